@@ -1,0 +1,148 @@
+"""Meshing frame, rigid-body poses and assembly errors of a crossed-axis gear pair.
+
+Meshing frame (SPEC section 3, GEOMETRY section 1): the gear axis is ``+z`` through the
+origin; the pinion axis is ``x`` through ``C1 = (0, -E, 0)`` (E = hypoid offset, mm).
+The gear turns with angular velocity ``w2 = +z`` (1 rad per unit phase) and the pinion
+with ``w1 = -u x`` (u = z2/z1), so that a gear rotation ``phi2`` pairs with a pinion
+rotation ``phi1 = u phi2`` about ``-x``.
+
+Body frames: each member's flank is defined in its own body frame (gear: axis z,
+apex-side conventions of :mod:`gearcontact.geometry.flank`; pinion: axis x, origin on
+its axis at the point that coincides with C1 in the nominal assembly). A pose maps
+body -> meshing frame: ``X_f = R @ X_body + t``.
+
+Assembly errors (Gleason sign conventions, all in the meshing frame):
+
+==========  ========  ==========================================================
+symbol      unit      positive value means
+==========  ========  ==========================================================
+``E``       mm        offset increased: the pinion axis moves to y = -(E0 + E)
+``P``       mm        pinion moved along its axis away from the crossing point (+x)
+``G``       mm        gear moved along its axis away from the crossing point (+z)
+``alpha``   deg       shaft angle increased: pinion axis rotated about +y through
+                      the pinion's crossing point by -alpha (tilting +x towards +z)
+==========  ========  ==========================================================
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., Cambridge
+University Press, 2004, ch. 9 (relative velocity, equation of meshing) and ch. 15
+(assembly errors of hypoid gear drives).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import check_finite, check_positive
+
+__all__ = ["AssemblyErrors", "MeshKinematics", "rot_x", "rot_y", "rot_z"]
+
+
+def rot_x(angle_rad: float) -> np.ndarray:
+    """Right-handed rotation matrix about +x by ``angle_rad``."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rot_y(angle_rad: float) -> np.ndarray:
+    """Right-handed rotation matrix about +y by ``angle_rad``."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rot_z(angle_rad: float) -> np.ndarray:
+    """Right-handed rotation matrix about +z by ``angle_rad``."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+@dataclass(frozen=True)
+class AssemblyErrors:
+    """Assembly (mounting) errors E, P, G, alpha; see the module table for signs.
+
+    Parameters
+    ----------
+    E_mm : float
+        Offset error, mm.
+    P_mm : float
+        Pinion axial displacement, mm.
+    G_mm : float
+        Gear axial displacement, mm.
+    alpha_deg : float
+        Shaft-angle error, degrees.
+    """
+
+    E_mm: float = 0.0
+    P_mm: float = 0.0
+    G_mm: float = 0.0
+    alpha_deg: float = 0.0
+
+    def __post_init__(self):
+        for name in ("E_mm", "P_mm", "G_mm", "alpha_deg"):
+            check_finite(f"assembly.{name}", getattr(self, name))
+
+
+@dataclass(frozen=True)
+class MeshKinematics:
+    """Rigid-body kinematics of a crossed-axis pair with shaft angle 90 deg.
+
+    Parameters
+    ----------
+    offset_mm : float
+        Nominal hypoid offset E0, mm (pinion axis below the gear centre, y = -E0).
+    ratio : float
+        Gear ratio u = z2 / z1 (> 0).
+    errors : AssemblyErrors
+        Mounting errors applied to the poses (nominal: all zero).
+    """
+
+    offset_mm: float
+    ratio: float
+    errors: AssemblyErrors = AssemblyErrors()
+
+    def __post_init__(self):
+        check_finite("offset_mm", self.offset_mm)
+        check_positive("ratio", self.ratio)
+
+    @property
+    def pinion_centre(self) -> np.ndarray:
+        """C1: the pinion's crossing point on its axis in the meshing frame, mm."""
+        return np.array([self.errors.P_mm, -(self.offset_mm + self.errors.E_mm), 0.0])
+
+    @property
+    def pinion_axis(self) -> np.ndarray:
+        """Unit vector of the pinion axis (+x tilted by the shaft-angle error)."""
+        return rot_y(-np.radians(self.errors.alpha_deg)) @ np.array([1.0, 0.0, 0.0])
+
+    @property
+    def gear_axis(self) -> np.ndarray:
+        """Unit vector of the gear axis (+z)."""
+        return np.array([0.0, 0.0, 1.0])
+
+    def gear_pose(self, phi2_rad: float) -> tuple[np.ndarray, np.ndarray]:
+        """Gear body -> meshing frame after a gear rotation ``phi2`` about +z.
+
+        Returns ``(R, t)`` with ``X_f = R @ X_body + t``; t carries the G error.
+        """
+        return rot_z(phi2_rad), np.array([0.0, 0.0, self.errors.G_mm])
+
+    def pinion_pose(self, phi1_rad: float) -> tuple[np.ndarray, np.ndarray]:
+        """Pinion body -> meshing frame after a pinion rotation ``phi1`` about -x.
+
+        The body frame's x axis is the pinion axis; errors move and tilt it.
+        """
+        tilt = rot_y(-np.radians(self.errors.alpha_deg))
+        return tilt @ rot_x(-phi1_rad), self.pinion_centre
+
+    def relative_velocity(self, x_f: np.ndarray) -> np.ndarray:
+        """Nominal sliding velocity v12 = w1 x (X - C1) - w2 x X per unit gear rate.
+
+        ``x_f`` may be (3,) or (..., 3); returns the same shape, mm/rad.
+        """
+        x = np.asarray(x_f, dtype=float)
+        w1 = -self.ratio * self.pinion_axis
+        w2 = self.gear_axis
+        return np.cross(w1, x - self.pinion_centre) - np.cross(w2, x - np.array([0.0, 0.0, self.errors.G_mm]))

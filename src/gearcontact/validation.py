@@ -1,0 +1,77 @@
+"""Input validation with errors that name the field, the value and the allowed range.
+
+Every public entry point of the package validates its physical inputs through these
+helpers, so that bad input never propagates silently (no clipping, no NaN).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["InputRangeError", "check_finite", "check_positive", "check_range",
+           "check_array_finite"]
+
+
+class InputRangeError(ValueError):
+    """A physical input is outside its allowed range.
+
+    Attributes
+    ----------
+    field : str
+        Name of the offending input (as the user spells it, with unit).
+    value : object
+        The value that was given.
+    allowed : str
+        Human-readable description of the allowed range.
+    """
+
+    def __init__(self, field: str, value, allowed: str):
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{field} = {value!r} is outside the allowed range: {allowed}")
+
+
+def check_finite(field: str, value) -> float:
+    """Return ``value`` as float; raise :class:`InputRangeError` if it is NaN or inf."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InputRangeError(field, value, "a finite real number") from None
+    if not math.isfinite(x):
+        raise InputRangeError(field, value, "a finite real number")
+    return x
+
+
+def check_positive(field: str, value) -> float:
+    """Return ``value`` as float; raise unless it is finite and > 0."""
+    x = check_finite(field, value)
+    if not x > 0.0:
+        raise InputRangeError(field, value, "a finite number > 0")
+    return x
+
+
+def check_range(field: str, value, lo: float, hi: float, *,
+                lo_open: bool = False, hi_open: bool = False) -> float:
+    """Return ``value`` as float; raise unless ``lo <= value <= hi`` (open ends optional)."""
+    x = check_finite(field, value)
+    below = x <= lo if lo_open else x < lo
+    above = x >= hi if hi_open else x > hi
+    if below or above:
+        lb = "(" if lo_open else "["
+        rb = ")" if hi_open else "]"
+        raise InputRangeError(field, value, f"{lb}{lo:g}, {hi:g}{rb}")
+    return x
+
+
+def check_array_finite(field: str, values) -> np.ndarray:
+    """Return ``values`` as a float64 array; raise naming the first non-finite entry."""
+    arr = np.asarray(values, dtype=float)
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise InputRangeError(f"{field}[{', '.join(map(str, idx))}]", arr[idx],
+                              "a finite real number")
+    return arr
