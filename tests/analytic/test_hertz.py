@@ -1,0 +1,177 @@
+"""Tests of gearcontact.analytic.hertz against independent truth.
+
+Truths used: hand-evaluated circular Hertz (Johnson 1985, eqs. 4.22-4.23), direct
+numerical quadrature of the Hertz displacement integrals for an ellipsoidal pressure
+(Johnson 1985, eq. 3.59 ff. -- no elliptic functions involved), scipy's ellipk/ellipe,
+and invariants (scaling laws, symmetry).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import ellipe, ellipk
+
+from gearcontact.analytic.hertz import (circular_hertz, exact_elliptic_hertz,
+                                        hamrock_brewe_error_table, hamrock_brewe_hertz,
+                                        hamrock_brewe_hertz_array)
+from gearcontact.materials import STEEL, effective_modulus_mpa
+from gearcontact.validation import InputRangeError
+
+E_PRIME = effective_modulus_mpa(STEEL)   # 229,670 MPa for steel/steel
+
+
+def test_effective_modulus_steel():
+    # E' = 2E/(1-nu^2) = 2*209000/0.91 = 459340/2 ... = 229,670.3 MPa (SPEC).
+    assert E_PRIME == pytest.approx(229_670.33, rel=1e-7)
+
+
+def test_circular_steel_ball_hand_numbers():
+    # Steel ball r = 10 mm on a steel flat, W = 1000 N. By hand:
+    #   E* = 209000/(2*0.91) = 114,835.16 MPa, R = 10 mm,
+    #   a^3 = 3 W R/(4 E*) = 30000/459,340.66 = 0.0653111 mm^3 -> a = 0.402713 mm,
+    #   p0 = 3W/(2 pi a^2), delta = a^2/R.
+    e_star = 209_000.0 / (2.0 * (1.0 - 0.3 ** 2))
+    a_hand = (3.0 * 1000.0 * 10.0 / (4.0 * e_star)) ** (1.0 / 3.0)
+    assert a_hand == pytest.approx(0.402713, rel=1e-5)   # printed 6 digits
+    c = circular_hertz(1.0 / (2.0 * 10.0), 1000.0, e_prime_mpa=2.0 * e_star)
+    # 1e-12: the same closed form evaluated in a different order, fp64 rounding only.
+    assert c.a_mm == pytest.approx(a_hand, rel=1e-12)
+    assert c.b_mm == c.a_mm and c.k == 1.0
+    assert c.p_max_mpa == pytest.approx(3000.0 / (2 * math.pi * a_hand ** 2), rel=1e-12)
+    assert c.approach_mm == pytest.approx(a_hand ** 2 / 10.0, rel=1e-12)
+    assert c.p_max_mpa == pytest.approx(2944.09, rel=2e-6)   # 6-digit hand value
+    # Johnson eq. 4.23: p0 = (6 W E*^2/(pi^3 R^2))^(1/3); rounding-level agreement.
+    assert c.p_max_mpa == pytest.approx(
+        (6 * 1000.0 * e_star ** 2 / (math.pi ** 3 * 100.0)) ** (1 / 3), rel=1e-12)
+
+
+def test_exact_reduces_to_circular():
+    c = circular_hertz(0.02, 500.0, e_prime_mpa=E_PRIME)
+    e = exact_elliptic_hertz(0.02, 0.02, 500.0, e_prime_mpa=E_PRIME)
+    assert e == c                                  # exact special case, bit-identical
+    # continuity: ratio 1 + 1e-8 -> relative change O(1e-8); 1e-7 leaves 10x margin.
+    n = exact_elliptic_hertz(0.02, 0.02 * (1 + 1e-8), 500.0, e_prime_mpa=E_PRIME)
+    for f in ("a_mm", "b_mm", "p_max_mpa", "approach_mm"):
+        assert getattr(n, f) == pytest.approx(getattr(c, f), rel=1e-7)
+
+
+def test_hamrock_brewe_circular_is_exact():
+    # alpha = 1: k = 1, E_e = 1 + (pi/2 - 1) = pi/2 = E(0), F = pi/2 = K(0) -> exact.
+    c = circular_hertz(0.05, 2000.0, e_prime_mpa=E_PRIME)
+    h = hamrock_brewe_hertz(0.05, 0.05, 2000.0, e_prime_mpa=E_PRIME)
+    for f in ("a_mm", "b_mm", "p_max_mpa", "approach_mm", "k"):
+        assert getattr(h, f) == pytest.approx(getattr(c, f), rel=1e-14)  # fp rounding
+
+
+def _quadrature_curvatures(h, e_prime):
+    """A, B, delta implied by an ellipsoidal pressure p0 sqrt(1-x^2/a^2-y^2/b^2).
+
+    Johnson (1985) eq. 3.59ff: inside the ellipse
+    u_z = (p0 a b/(2E*)) int_0^inf (1 - x^2/(a^2+w) - y^2/(b^2+w)) dw/sqrt((a^2+w)(b^2+w)w),
+    so delta = u_z(0,0) and A, B are the x^2, y^2 coefficients. Substituting w = u^2
+    removes the endpoint singularity.
+    """
+    a, b = h.a_mm, h.b_mm
+    pre = h.p_max_mpa * a * b / e_prime          # p0 a b/(2 E*) with E* = E'/2
+    opts = dict(epsabs=0.0, epsrel=1e-13, limit=400)
+    ia = quad(lambda u: 2.0 / ((a * a + u * u) ** 1.5 * math.sqrt(b * b + u * u)),
+              0, np.inf, **opts)[0]
+    ib = quad(lambda u: 2.0 / ((b * b + u * u) ** 1.5 * math.sqrt(a * a + u * u)),
+              0, np.inf, **opts)[0]
+    idl = quad(lambda u: 2.0 / math.sqrt((a * a + u * u) * (b * b + u * u)),
+               0, np.inf, **opts)[0]
+    return pre * ia, pre * ib, pre * idl
+
+
+@pytest.mark.parametrize("ratio", [1.001, 1.5, 3.0, 7.0, 20.0, 100.0, 1000.0])
+def test_exact_against_quadrature(ratio):
+    A = 0.0123
+    h = exact_elliptic_hertz(A, ratio * A, 2500.0, e_prime_mpa=E_PRIME)
+    qa, qb, qd = _quadrature_curvatures(h, E_PRIME)
+    # quad at epsrel 1e-13 on smooth integrands; 1e-9 bounds quadrature + solver error.
+    assert qa == pytest.approx(A, rel=1e-9)
+    assert qb == pytest.approx(ratio * A, rel=1e-9)
+    assert qd == pytest.approx(h.approach_mm, rel=1e-9)
+    # load balance W = (2/3) pi a b p0 (definition of p0), rounding only.
+    assert 2 / 3 * math.pi * h.a_mm * h.b_mm * h.p_max_mpa == pytest.approx(2500.0,
+                                                                            rel=1e-13)
+
+
+@pytest.mark.parametrize("ratio", [1.5, 8.0, 300.0])
+def test_exact_elliptic_integrals_match_scipy(ratio):
+    h = exact_elliptic_hertz(0.01, 0.01 * ratio, 100.0, e_prime_mpa=E_PRIME)
+    m = h.eccentricity ** 2
+    # Carlson forms vs scipy's ellipk/ellipe (parameter m = e^2): ~1e-13 expected
+    # (ellipk loses digits as m -> 1; 1e-10 covers m up to 1 - 1e-5).
+    assert h.elliptic_k == pytest.approx(float(ellipk(m)), rel=1e-10)
+    assert h.elliptic_e == pytest.approx(float(ellipe(m)), rel=1e-10)
+    # Johnson eq. 4.40 written with ellipk/ellipe
+    lam = ((ellipe(m) / (1 - m)) - ellipk(m)) / (ellipk(m) - ellipe(m))
+    assert lam == pytest.approx(ratio, rel=1e-9)
+
+
+def test_exact_scaling_laws_and_symmetry():
+    # a ~ W^(1/3), p ~ W^(1/3), delta ~ W^(2/3); a ~ E'^(-1/3); swap invariance.
+    h1 = exact_elliptic_hertz(0.01, 0.05, 1000.0, e_prime_mpa=E_PRIME)
+    h8 = exact_elliptic_hertz(0.05, 0.01, 8000.0, e_prime_mpa=E_PRIME)
+    assert h8.a_mm == pytest.approx(2 * h1.a_mm, rel=1e-13)       # rounding only
+    assert h8.p_max_mpa == pytest.approx(2 * h1.p_max_mpa, rel=1e-13)
+    assert h8.approach_mm == pytest.approx(4 * h1.approach_mm, rel=1e-13)
+    assert h8.k == pytest.approx(h1.k, rel=1e-15)
+
+
+def test_hb_error_envelope():
+    rows = hamrock_brewe_error_table()
+    worst = {key: max(abs(r[key]) for r in rows)
+             for key in ("err_k", "err_a", "err_b", "err_p_max", "err_approach")}
+    # Documented envelope (GEOMETRY.md sec. 5 and the docstring), each bound is the
+    # measured maximum rounded up in the last quoted digit.
+    assert 0.036 < worst["err_k"] <= 0.0381
+    assert 0.025 < worst["err_a"] <= 0.0269
+    assert 0.011 < worst["err_b"] <= 0.0120
+    assert 0.015 < worst["err_p_max"] <= 0.0162
+    assert worst["err_approach"] <= 0.0411
+    peak_k = max(rows, key=lambda r: abs(r["err_k"]))["ratio"]
+    peak_p = max(rows, key=lambda r: abs(r["err_p_max"]))["ratio"]
+    assert 5.0 <= peak_k <= 10.0 and 4.0 <= peak_p <= 10.0
+    near50 = min(rows, key=lambda r: abs(r["ratio"] - 50.0))
+    assert abs(near50["err_k"]) < 1e-3 and abs(near50["err_p_max"]) < 1e-3
+    assert rows[0]["ratio"] == 1.0 and abs(rows[0]["err_k"]) < 1e-15
+
+
+def test_hb_array_matches_scalar():
+    rng = np.random.default_rng(1)
+    A = rng.uniform(1e-3, 1.0, 200)
+    B = rng.uniform(1e-3, 1.0, 200)
+    W = rng.uniform(10, 2e4, 200)
+    arr = hamrock_brewe_hertz_array(A, B, W, e_prime_mpa=E_PRIME)
+    for i in range(200):
+        h = hamrock_brewe_hertz(A[i], B[i], W[i], e_prime_mpa=E_PRIME)
+        # numpy cbrt vs ** (1/3) and vector pow: a few ulp; 1e-14 relative.
+        assert arr["a_mm"][i] == pytest.approx(h.a_mm, rel=1e-14)
+        assert arr["p_max_mpa"][i] == pytest.approx(h.p_max_mpa, rel=1e-14)
+        assert arr["k"][i] == pytest.approx(h.k, rel=1e-14)
+        assert arr["approach_mm"][i] == pytest.approx(h.approach_mm, rel=1e-14)
+
+
+@pytest.mark.parametrize("fn", [exact_elliptic_hertz, hamrock_brewe_hertz])
+@pytest.mark.parametrize("args,field", [
+    ((0.0, 0.1, 10.0), "A_per_mm"), ((-0.1, 0.1, 10.0), "A_per_mm"),
+    ((0.1, math.nan, 10.0), "B_per_mm"), ((0.1, math.inf, 10.0), "B_per_mm"),
+    ((0.1, 0.2, 0.0), "load_n"), ((0.1, 0.2, -5.0), "load_n")])
+def test_bad_inputs(fn, args, field):
+    with pytest.raises(InputRangeError) as ei:
+        fn(*args, e_prime_mpa=E_PRIME)
+    assert ei.value.field == field
+
+
+def test_bad_inputs_array_and_circular():
+    with pytest.raises(InputRangeError, match=r"load_n\[1\]"):
+        hamrock_brewe_hertz_array([0.1, 0.1], [0.2, 0.2], [1.0, -1.0],
+                                  e_prime_mpa=E_PRIME)
+    with pytest.raises(InputRangeError, match="e_prime_mpa"):
+        circular_hertz(0.1, 1.0, e_prime_mpa=0.0)
+    with pytest.raises(InputRangeError, match="ratios"):
+        hamrock_brewe_error_table([0.5])
