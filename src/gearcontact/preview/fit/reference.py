@@ -1,0 +1,138 @@
+"""fp64 reference of stage C: quadratic fit of the gap stencil and principal curvatures.
+
+The gap field around the contact point is fitted with
+``g = c0 + c1 s + c2 t + c3 s^2 + c4 s t + c5 t^2`` through the pseudo-inverse of
+:mod:`.pinv`. Its quadratic part ``[s t] S [s t]^T`` with
+``S = [[c3, c4/2], [c4/2, c5]]`` is diagonalized in closed form: with ``h = c3 + c5``
+and ``r = sqrt((c3 - c5)^2 + c4^2)``,
+
+    A- = (h + r) / 2 >= B- = (h - r) / 2,
+
+so that ``g = A- u^2 + B- v^2`` in the principal axes (u at ``angle_deg`` from s).
+A- and B- are therefore *half* the relative principal curvatures (1/mm), which is the
+convention of the Hertz stage (R_x = 1/(2 A), Hamrock and Brewe [1]_; Litvin and
+Fuentes [2]_ ch. 8 for the relative curvature of mating gear flanks).
+
+A point (elliptic) contact needs B- > 0; the reference reports ``elliptic`` and leaves
+raising to the caller (the preview engine refuses non-elliptic stencils).
+
+References
+----------
+.. [1] B. J. Hamrock and D. E. Brewe, "Simplified solution for stresses and
+   deformations", J. Lubrication Technol. 105 (2), 171-177, 1983.
+.. [2] F. L. Litvin and A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed.,
+   Cambridge University Press, 2004.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearcontact.preview.fit.pinv import N_TAPS, baked_pinv, design_matrix, pseudo_inverse
+from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM
+from gearcontact.validation import InputRangeError, check_array_finite, check_positive
+
+__all__ = ["CurvatureFit", "fit_curvatures", "principal_curvatures"]
+
+
+@dataclass(frozen=True)
+class CurvatureFit:
+    """Result of the fp64 stage-C fit.
+
+    Attributes
+    ----------
+    coefficients : tuple of float
+        c0 (mm), c1, c2 (dimensionless slopes), c3, c4, c5 (1/mm) of
+        ``g = c0 + c1 s + c2 t + c3 s^2 + c4 s t + c5 t^2`` with s, t in mm.
+    A_minus_per_mm : float
+        Larger eigenvalue of ``[[c3, c4/2], [c4/2, c5]]``, 1/mm (half the larger
+        relative principal curvature).
+    B_minus_per_mm : float
+        Smaller eigenvalue, 1/mm (``B_minus_per_mm <= A_minus_per_mm``).
+    angle_deg : float
+        Direction of the A- principal axis measured from the s axis towards t, deg,
+        in (-90, 90].
+    residual_rms_mm : float
+        Root-mean-square fit residual over the 49 samples, mm.
+    elliptic : bool
+        True when ``B_minus_per_mm > 0`` (point contact; Hertz stage applicable).
+    """
+
+    coefficients: tuple
+    A_minus_per_mm: float
+    B_minus_per_mm: float
+    angle_deg: float
+    residual_rms_mm: float
+    elliptic: bool
+
+
+def principal_curvatures(c3: float, c4: float, c5: float) -> tuple[float, float, float]:
+    """Closed-form eigen-solve of ``[[c3, c4/2], [c4/2, c5]]``.
+
+    Parameters
+    ----------
+    c3, c4, c5 : float
+        Quadratic coefficients, 1/mm.
+
+    Returns
+    -------
+    (A_minus_per_mm, B_minus_per_mm, angle_deg)
+        Eigenvalues (1/mm, descending) and the A- axis angle from s, deg.
+
+    Notes
+    -----
+    The smaller-magnitude eigenvalue is taken from the determinant
+    (``lambda1 * lambda2 = c3 c5 - c4^2/4``) to avoid cancellation in ``h - r``.
+    """
+    h = c3 + c5
+    r = math.hypot(c3 - c5, c4)
+    a_minus = 0.5 * (h + r)
+    b_minus = 0.5 * (h - r)
+    det = c3 * c5 - 0.25 * c4 * c4
+    if h > 0.0 and a_minus != 0.0:
+        b_minus = det / a_minus
+    elif h < 0.0 and b_minus != 0.0:
+        a_minus = det / b_minus
+    angle = 0.5 * math.degrees(math.atan2(c4, c3 - c5))
+    if angle <= -90.0:
+        angle += 180.0
+    return a_minus, b_minus, angle
+
+
+def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> CurvatureFit:
+    """Fit the 7 x 7 gap stencil in fp64 and return the principal curvatures.
+
+    Parameters
+    ----------
+    gaps_mm : array_like, shape (49,)
+        Gap samples in the order of :mod:`.stencil`, mm (positive = open).
+    spacing_mm : float, keyword-only
+        Stencil spacing, mm (> 0; default the baked hardware spacing).
+
+    Returns
+    -------
+    CurvatureFit
+
+    Raises
+    ------
+    gearcontact.validation.InputRangeError
+        Wrong number of samples, a NaN/inf sample (named by index) or a non-positive
+        spacing.
+    """
+    g = check_array_finite("gaps_mm", gaps_mm)
+    if g.ndim != 1 or g.shape[0] != N_TAPS:
+        raise InputRangeError("gaps_mm.shape", g.shape,
+                              f"exactly {N_TAPS} samples, shape ({N_TAPS},)")
+    h = check_positive("spacing_mm", spacing_mm)
+    m = baked_pinv().weights if h == STENCIL_SPACING_MM else pseudo_inverse(h)
+    c = m @ g
+    resid = g - design_matrix(h) @ c
+    a_minus, b_minus, angle = principal_curvatures(float(c[3]), float(c[4]), float(c[5]))
+    return CurvatureFit(coefficients=tuple(float(x) for x in c),
+                        A_minus_per_mm=a_minus, B_minus_per_mm=b_minus,
+                        angle_deg=angle,
+                        residual_rms_mm=float(np.sqrt(np.mean(resid * resid))),
+                        elliptic=bool(b_minus > 0.0))

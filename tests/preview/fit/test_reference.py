@@ -1,0 +1,96 @@
+"""Tests of the fp64 stage-C reference (truth: exact quadratic gap fields)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gearcontact.preview.fit.reference import fit_curvatures, principal_curvatures
+from gearcontact.preview.fit.stencil import STENCIL_SIDE
+from gearcontact.validation import InputRangeError
+
+
+def _angle_diff(a, b):
+    """Difference of two axis directions modulo 180 deg, in [0, 90]."""
+    d = abs(a - b) % 180.0
+    return min(d, 180.0 - d)
+
+
+def test_exact_quadratics_recovered(quadratics):
+    # Truth: the field is an exact quadratic, least squares reproduces it exactly up to
+    # fp64 rounding (|g| <= ~5 mm, cond(A^T A) ~ 40) -> 1e-10 relative is ~1e5 eps.
+    for g, a, b, ang, c in quadratics(300, seed=1):
+        fit = fit_curvatures(g)
+        assert fit.A_minus_per_mm == pytest.approx(a, rel=1e-10)
+        assert fit.B_minus_per_mm == pytest.approx(b, rel=1e-10)
+        np.testing.assert_allclose(fit.coefficients[3:], c, rtol=0, atol=1e-12)
+        assert fit.A_minus_per_mm >= fit.B_minus_per_mm
+        assert fit.elliptic
+        # residual of an exact quadratic is rounding noise only
+        assert fit.residual_rms_mm < 1e-13
+        if (a - b) / a > 1e-3:
+            # the axis is defined; its error ~ eps/(A-B) relative, 1e-7 deg is ample
+            assert _angle_diff(fit.angle_deg, ang) < 1e-7
+        assert -90.0 < fit.angle_deg <= 90.0
+
+
+def test_rotation_by_90_deg_is_invariant(quadratics):
+    # Rotating the sampled field by 90 deg maps the 7x7 grid onto itself
+    # (s, t) -> (-t, s): eigenvalues must be unchanged (1e-12 relative, fp64) and the
+    # A- axis must turn by 90 deg.
+    for g, a, b, ang, _ in quadratics(50, seed=2):
+        grid = g.reshape(STENCIL_SIDE, STENCIL_SIDE)   # [j (t), k (s)]
+        rot = np.rot90(grid).ravel()
+        f0, f1 = fit_curvatures(g), fit_curvatures(rot)
+        assert f1.A_minus_per_mm == pytest.approx(f0.A_minus_per_mm, rel=1e-12)
+        assert f1.B_minus_per_mm == pytest.approx(f0.B_minus_per_mm, rel=1e-12)
+        if (a - b) / a > 1e-3:
+            assert _angle_diff(f1.angle_deg, f0.angle_deg + 90.0) < 1e-7 or \
+                _angle_diff(f1.angle_deg, f0.angle_deg - 90.0) < 1e-7
+
+
+def test_other_spacing(quadratic):
+    g, c = quadratic(0.2, 0.01, 30.0, 0.01, 0.02, -0.03, spacing_mm=0.25)
+    fit = fit_curvatures(g, spacing_mm=0.25)
+    assert fit.A_minus_per_mm == pytest.approx(0.2, rel=1e-10)
+    assert fit.B_minus_per_mm == pytest.approx(0.01, rel=1e-10)
+    assert fit.angle_deg == pytest.approx(30.0, abs=1e-8)
+
+
+def test_saddle_and_flat_are_not_elliptic(quadratic):
+    g, _ = quadratic(0.1, -0.05, 10.0)
+    fit = fit_curvatures(g)
+    assert not fit.elliptic
+    assert fit.B_minus_per_mm == pytest.approx(-0.05, rel=1e-10)
+    assert not fit_curvatures(np.zeros(49)).elliptic
+
+
+def test_principal_curvatures_closed_form():
+    # [[2, 1], [1, 2]]: eigenvalues 3 and 1, A- axis at 45 deg (exact)
+    a, b, ang = principal_curvatures(2.0, 2.0, 2.0)
+    assert (a, b) == pytest.approx((3.0, 1.0), rel=1e-15)
+    assert ang == pytest.approx(45.0, abs=1e-12)
+    # cancellation-free small eigenvalue: A = 1, B = 1e-9 at 30 deg, 1e-6 relative
+    co, si = math.cos(math.radians(30)), math.sin(math.radians(30))
+    a, b, _ = principal_curvatures(co * co + 1e-9 * si * si, 2 * (1 - 1e-9) * si * co,
+                                   si * si + 1e-9 * co * co)
+    assert b == pytest.approx(1e-9, rel=1e-6)
+    # both negative (concave): still ordered
+    a, b, _ = principal_curvatures(-1.0, 0.0, -2.0)
+    assert (a, b) == (-1.0, -2.0)
+
+
+@pytest.mark.parametrize("bad, field", [
+    (np.zeros(48), "gaps_mm.shape"),
+    (np.zeros((7, 7)), "gaps_mm.shape"),
+    (np.r_[np.zeros(10), np.nan, np.zeros(38)], r"gaps_mm\[10\]"),
+    (np.r_[np.inf, np.zeros(48)], r"gaps_mm\[0\]"),
+])
+def test_bad_input_names_field(bad, field):
+    with pytest.raises(InputRangeError, match=field):
+        fit_curvatures(bad)
+
+
+def test_bad_spacing():
+    with pytest.raises(InputRangeError, match="spacing_mm"):
+        fit_curvatures(np.zeros(49), spacing_mm=-0.5)
