@@ -62,7 +62,7 @@ __all__ = ["FLAG_COEFF_OVERFLOW", "FLAG_D_OVERFLOW", "FLAG_CURV_OVERFLOW",
            "FLAG_NOT_ELLIPTIC", "FLAG_ANY_OVERFLOW", "FLAG_BITS", "D_FMT", "ROOT_FMT",
            "SUM_FMT", "ISQRT_REM_FMT", "FIT_MAC_CYCLES", "FIT_LATCH_CYCLES", "FIT_CYCLES",
            "STAGE_D_CAPTURE_CYCLES", "chain_cycles", "GoldenFit", "GoldenFitBatch",
-           "encode_gaps", "decode_curvature", "isqrt_nonrestoring",
+           "encode_gaps", "decode_curvature", "check_gap_codes", "isqrt_nonrestoring",
            "isqrt_nonrestoring_array", "golden_fit", "golden_fit_batch"]
 
 FLAG_COEFF_OVERFLOW = 1 << 0   #: a rounded coefficient c0..c5 does not fit Q(32,20)
@@ -238,7 +238,12 @@ def isqrt_nonrestoring_array(d: np.ndarray) -> np.ndarray:
     return q
 
 
-def _check_codes(gap_codes, ndim: int) -> np.ndarray:
+def check_gap_codes(gap_codes, ndim: int) -> np.ndarray:
+    """Validate GAP Q(32,16) code stencils of rank ``ndim`` (1: (49,), 2: (n, 49)).
+
+    Returns an int64 array; raises InputRangeError (shape, non-integer) or
+    FixedPointOverflow naming the first code outside Q(32,16).
+    """
     codes = np.asarray(gap_codes)
     if codes.ndim != ndim or codes.shape[-1] != N_TAPS:
         want = f"({N_TAPS},)" if ndim == 1 else f"(n, {N_TAPS})"
@@ -273,7 +278,7 @@ def golden_fit(gap_codes, *, rom: BakedPinv | None = None, bitwise: bool = True)
     GoldenFit
     """
     rom = baked_pinv() if rom is None else rom
-    g = [int(x) for x in _check_codes(gap_codes, 1)]
+    g = [int(x) for x in check_gap_codes(gap_codes, 1)]
     c = []
     for row in rom.weight_codes:
         acc = ACC.check(sum(w * x for w, x in zip(row, g)), field="acc")
@@ -315,7 +320,7 @@ def golden_fit_batch(gap_codes, *, rom: BakedPinv | None = None) -> GoldenFitBat
     screening ``|e| > isqrt(2^63 - 1)``, so it cannot wrap either.
     """
     rom = baked_pinv() if rom is None else rom
-    g = _check_codes(gap_codes, 2)
+    g = check_gap_codes(gap_codes, 2)
     if max(rom.weight_l1_codes) >= (1 << 31):
         raise FixedPointOverflow("sum_i |M_ji| (int64 MAC bound)", max(rom.weight_l1_codes),
                                  sq(32, 0))
