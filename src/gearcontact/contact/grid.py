@@ -1,0 +1,185 @@
+"""Tangent-plane grids of rectangular cells for the contact (LTCA) solvers.
+
+A :class:`TangentGrid` is a tensor-product grid in the common tangent plane of the two
+flanks: cell centres ``x_mm`` (``nx``) and ``y_mm`` (``ny``) with cell widths ``dx_mm``
+and ``dy_mm``. Uniform grids (equal widths along each axis) allow the FFT influence
+operator; non-uniform grids (the adaptive grids of gear LTCA) use the dense operator.
+
+Array layout
+------------
+Every field on a grid (gap ``h``, pressure, nodal loads, contact mask) is a 2-D array of
+shape ``(ny, nx)`` indexed ``h[j, i]``: ``j`` runs along y (rows), ``i`` along x
+(columns), i.e. ``h[j, i]`` is the value at ``(x_mm[i], y_mm[j])``. Flattened vectors use
+C order (``k = j * nx + i``), the order of the dense influence matrix.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import InputRangeError, check_array_finite, check_positive
+
+__all__ = ["TangentGrid"]
+
+#: Relative tolerance under which cell widths count as equal (uniform grid).
+_UNIFORM_RTOL = 1e-9
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class TangentGrid:
+    """A tensor-product grid of rectangular cells in the tangent plane (mm).
+
+    Parameters
+    ----------
+    x_mm : ndarray, shape (nx,)
+        Cell-centre x coordinates in mm, strictly increasing.
+    y_mm : ndarray, shape (ny,)
+        Cell-centre y coordinates in mm, strictly increasing.
+    dx_mm : ndarray, shape (nx,)
+        Cell widths along x in mm (> 0).
+    dy_mm : ndarray, shape (ny,)
+        Cell widths along y in mm (> 0).
+
+    Notes
+    -----
+    Fields on the grid have shape ``(ny, nx)`` with x along the second index
+    (``h[j, i]`` at ``(x_mm[i], y_mm[j])``). Use :meth:`uniform`, :meth:`centered` or
+    :meth:`from_edges` to build one.
+    """
+
+    x_mm: np.ndarray
+    y_mm: np.ndarray
+    dx_mm: np.ndarray
+    dy_mm: np.ndarray
+
+    def __post_init__(self):
+        for name in ("x_mm", "y_mm", "dx_mm", "dy_mm"):
+            arr = check_array_finite(name, getattr(self, name))
+            if arr.ndim != 1 or arr.size == 0:
+                raise InputRangeError(name, arr.shape, "a non-empty 1-D array")
+            object.__setattr__(self, name, _readonly(arr))
+        if self.dx_mm.shape != self.x_mm.shape:
+            raise InputRangeError("dx_mm", self.dx_mm.shape, f"shape {self.x_mm.shape}")
+        if self.dy_mm.shape != self.y_mm.shape:
+            raise InputRangeError("dy_mm", self.dy_mm.shape, f"shape {self.y_mm.shape}")
+        for name in ("dx_mm", "dy_mm"):
+            arr = getattr(self, name)
+            if not np.all(arr > 0.0):
+                raise InputRangeError(name, float(arr.min()), "cell widths > 0 mm")
+        for name in ("x_mm", "y_mm"):
+            arr = getattr(self, name)
+            if arr.size > 1 and not np.all(np.diff(arr) > 0.0):
+                raise InputRangeError(name, arr, "strictly increasing cell centres")
+
+    # ------------------------------------------------------------------ builders
+    @classmethod
+    def uniform(cls, nx: int, ny: int, *, dx_mm: float, dy_mm: float,
+                x0_mm: float = 0.0, y0_mm: float = 0.0) -> "TangentGrid":
+        """Uniform grid whose first cell centre is at ``(x0_mm, y0_mm)``.
+
+        Parameters
+        ----------
+        nx, ny : int
+            Number of cells along x and y (>= 1).
+        dx_mm, dy_mm : float
+            Cell widths in mm (> 0).
+        x0_mm, y0_mm : float
+            Centre of cell ``[0, 0]`` in mm.
+        """
+        nx, ny = _check_count("nx", nx), _check_count("ny", ny)
+        dx = check_positive("dx_mm", dx_mm)
+        dy = check_positive("dy_mm", dy_mm)
+        return cls(x0_mm + dx * np.arange(nx), y0_mm + dy * np.arange(ny),
+                   np.full(nx, dx), np.full(ny, dy))
+
+    @classmethod
+    def centered(cls, nx: int, ny: int, *, dx_mm: float, dy_mm: float,
+                 cx_mm: float = 0.0, cy_mm: float = 0.0) -> "TangentGrid":
+        """Uniform grid centred on ``(cx_mm, cy_mm)`` (odd counts put a cell centre there)."""
+        nx, ny = _check_count("nx", nx), _check_count("ny", ny)
+        dx = check_positive("dx_mm", dx_mm)
+        dy = check_positive("dy_mm", dy_mm)
+        return cls.uniform(nx, ny, dx_mm=dx, dy_mm=dy,
+                           x0_mm=cx_mm - 0.5 * (nx - 1) * dx,
+                           y0_mm=cy_mm - 0.5 * (ny - 1) * dy)
+
+    @classmethod
+    def from_edges(cls, x_edges_mm, y_edges_mm) -> "TangentGrid":
+        """Grid from strictly increasing cell edges (``nx + 1`` and ``ny + 1`` values, mm)."""
+        xe = check_array_finite("x_edges_mm", x_edges_mm)
+        ye = check_array_finite("y_edges_mm", y_edges_mm)
+        for name, e in (("x_edges_mm", xe), ("y_edges_mm", ye)):
+            if e.ndim != 1 or e.size < 2 or not np.all(np.diff(e) > 0.0):
+                raise InputRangeError(name, e, "at least two strictly increasing edges")
+        return cls(0.5 * (xe[1:] + xe[:-1]), 0.5 * (ye[1:] + ye[:-1]),
+                   np.diff(xe), np.diff(ye))
+
+    # ---------------------------------------------------------------- properties
+    @property
+    def nx(self) -> int:
+        """Number of cells along x."""
+        return int(self.x_mm.size)
+
+    @property
+    def ny(self) -> int:
+        """Number of cells along y."""
+        return int(self.y_mm.size)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Field shape ``(ny, nx)``."""
+        return (self.ny, self.nx)
+
+    @property
+    def size(self) -> int:
+        """Number of cells."""
+        return self.nx * self.ny
+
+    @property
+    def is_uniform(self) -> bool:
+        """True when all cells have the same width along x and along y."""
+        return bool(np.allclose(self.dx_mm, self.dx_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)
+                    and np.allclose(self.dy_mm, self.dy_mm[0], rtol=_UNIFORM_RTOL,
+                                    atol=0.0))
+
+    @property
+    def cell_area_mm2(self) -> np.ndarray:
+        """Cell areas in mm^2, shape ``(ny, nx)``."""
+        return np.outer(self.dy_mm, self.dx_mm)
+
+    def mesh(self) -> tuple[np.ndarray, np.ndarray]:
+        """Cell-centre coordinates ``(X, Y)`` in mm, each of shape ``(ny, nx)``."""
+        return np.meshgrid(self.x_mm, self.y_mm, indexing="xy")
+
+    def sub(self, rows: slice, cols: slice) -> "TangentGrid":
+        """The sub-grid ``[rows, cols]`` (a window; slices with unit step)."""
+        return TangentGrid(self.x_mm[cols], self.y_mm[rows], self.dx_mm[cols],
+                           self.dy_mm[rows])
+
+    def check_field(self, field: str, values) -> np.ndarray:
+        """Return ``values`` as a finite float array of shape ``(ny, nx)`` or raise.
+
+        Raises
+        ------
+        InputRangeError
+            Wrong shape, or a NaN/inf entry (named by its ``[j, i]`` index).
+        """
+        arr = np.asarray(values, dtype=float)
+        if arr.shape != self.shape:
+            raise InputRangeError(f"{field}.shape", arr.shape,
+                                  f"{self.shape} = (ny, nx) of the grid, x along axis 1")
+        return check_array_finite(field, arr)
+
+
+def _check_count(field: str, n) -> int:
+    if int(n) != n or int(n) < 1:
+        raise InputRangeError(field, n, "an integer >= 1")
+    return int(n)

@@ -1,0 +1,454 @@
+"""Normal-contact linear complementarity problem (LCP) with a load constraint.
+
+For nodal loads ``w`` (N) on the cells of a tangent-plane grid, gap ``h`` (mm) and
+rigid approach ``delta`` (mm), find
+
+    s = C w + h - delta * 1 >= 0,   w >= 0,   w . s = 0,   sum(w) = W,
+
+with ``C`` the Boussinesq (Love) influence operator of :mod:`.influence`. Three solvers
+return the same :class:`LcpResult`:
+
+``"pk_cg"`` (fast)
+    Polonsky & Keer's constrained conjugate gradient (Wear 231 (1999) 206-219) with the
+    zero-padded FFT operator, on uniform grids, warm-startable from a previous pressure.
+``"nnls"`` (reference)
+    The Lawson & Hanson (1974) NNLS active-set algorithm (``scipy.optimize.nnls``) on
+    the Cholesky factor ``C = L L^T`` -- ``min ||L^T w - L^-1 (delta - h)||, w >= 0`` has
+    exactly the LCP's KKT conditions for fixed ``delta`` -- closed by a Brent root find
+    on ``delta`` such that ``sum(w(delta)) = W`` (monotone, piecewise linear), then one
+    exact bordered solve on the final support.
+``"active_set"`` (direct)
+    Block active-set iteration; each step solves the active block with the bordered
+    load constraint by Cholesky (LU for the non-symmetric collocation matrices of
+    non-uniform grids). For small/dense problems and non-convolution operators.
+
+Windowing (all solvers)
+    A cell in contact has ``h = delta - u <= delta`` (``u >= 0``), so the solvers work on
+    the window ``{h <= b}`` (its bounding box for FFT). If the window's solution has
+    ``delta <= b`` it is the solution on the whole grid (cells outside have
+    ``s >= h - delta > 0``); otherwise ``b`` grows and the solve is repeated, warm.
+    ``b`` starts from a flat-punch estimate (Johnson 1985, eq. 5.4) of the approach.
+
+References
+----------
+M. Polonsky, L. M. Keer, "A numerical method for solving rough contact problems based
+on the multi-level multi-summation and conjugate gradient techniques", Wear 231 (1999)
+206-219.
+C. L. Lawson, R. J. Hanson, *Solving Least Squares Problems*, Prentice-Hall, 1974, ch. 23.
+K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import linalg, optimize
+
+from ..materials import STEEL, Material, reduced_modulus_mpa
+from ..validation import InputRangeError, check_positive
+from .ellipse import warn_if_coarse
+from .grid import TangentGrid
+from .influence import FftInfluence, dense_influence_matrix
+
+__all__ = ["LcpResult", "LcpConvergenceError", "solve_lcp", "SOLVERS", "resolve_e_star"]
+
+#: Solver names accepted by :func:`solve_lcp`.
+SOLVERS = ("pk_cg", "nnls", "active_set")
+
+_DEFAULT_MAX_ITER = {"pk_cg": 2000, "nnls": 200, "active_set": 200}
+#: Window bound = hmin + this factor x (flat-punch estimate of the approach).
+_WINDOW_FACTOR = 2.5
+#: Window growth when a window's approach exceeds its bound.
+_WINDOW_GROWTH = 1.5
+_MAX_WINDOWS = 8
+
+
+@dataclass(frozen=True, eq=False)
+class LcpResult:
+    """Solution of the load-constrained contact LCP on a grid.
+
+    Attributes
+    ----------
+    pressure_mpa : ndarray, shape (ny, nx)
+        Cell pressures in MPa (``loads_n / cell area``).
+    loads_n : ndarray, shape (ny, nx)
+        Nodal loads ``w`` in N.
+    delta_mm : float
+        Rigid approach ``delta`` in mm (same datum as the gap).
+    contact_mask : ndarray of bool, shape (ny, nx)
+        Cells carrying load (``w > 0``).
+    iterations : int
+        Solver iterations (pk_cg: CG steps; nnls: NNLS solves; active_set: pivots),
+        summed over window rounds.
+    complementarity_residual : float
+        Natural residual ``max_i |min(w_i / max(w), s_i / (delta - min h))|``,
+        dimensionless (covers penetration, negative loads and open loaded cells).
+    load_residual : float
+        ``|sum(w) - W| / W``.
+    status : str
+        ``"converged"``, ``"max_iter"`` or ``"failed"``.
+    message : str
+        Human-readable account of the solve (window, certificate, failure cause).
+    solve_time_ms : float
+        Wall time of the solve in ms.
+    solver : str
+        Solver name.
+    load_n : float
+        Prescribed total load ``W`` in N.
+    window : tuple of int
+        ``(j0, j1, i0, i1)``: rows ``j0:j1`` and columns ``i0:i1`` of the final window.
+    """
+
+    pressure_mpa: np.ndarray
+    loads_n: np.ndarray
+    delta_mm: float
+    contact_mask: np.ndarray
+    iterations: int
+    complementarity_residual: float
+    load_residual: float
+    status: str
+    message: str
+    solve_time_ms: float
+    solver: str
+    load_n: float
+    window: tuple[int, int, int, int]
+
+    @property
+    def converged(self) -> bool:
+        """True when ``status == "converged"``."""
+        return self.status == "converged"
+
+    @property
+    def n_contact_cells(self) -> int:
+        """Number of cells carrying load."""
+        return int(self.contact_mask.sum())
+
+
+class LcpConvergenceError(RuntimeError):
+    """An LCP solve did not converge; ``.result`` holds the (unconverged) result."""
+
+    def __init__(self, result: LcpResult):
+        self.result = result
+        super().__init__(f"{result.solver}: {result.status}: {result.message}")
+
+
+def resolve_e_star(materials=None, e_star_mpa=None) -> float:
+    """E* in MPa from ``e_star_mpa``, a :class:`Material`, or a pair of them.
+
+    Defaults to steel on steel (:data:`gearcontact.materials.STEEL`) when both are None.
+    """
+    if e_star_mpa is not None:
+        if materials is not None:
+            raise InputRangeError("materials", materials, "None when e_star_mpa is given")
+        return check_positive("e_star_mpa", e_star_mpa)
+    if materials is None:
+        return reduced_modulus_mpa(STEEL, STEEL)
+    if isinstance(materials, Material):
+        return reduced_modulus_mpa(materials, materials)
+    m1, m2 = materials
+    return reduced_modulus_mpa(m1, m2)
+
+
+# ---------------------------------------------------------------------------- kernels
+def _bordered_solve(c_aa: np.ndarray, h_a: np.ndarray, load_n: float, symmetric: bool
+                    ) -> tuple[np.ndarray, float]:
+    """Solve ``C_AA w - delta 1 = -h_A, 1.w = W`` (Cholesky, or LU if non-symmetric)."""
+    rhs = np.column_stack([np.ones_like(h_a), h_a])
+    if symmetric:
+        x = linalg.cho_solve(linalg.cho_factor(c_aa, lower=True, check_finite=False),
+                             rhs, check_finite=False)
+    else:
+        x = linalg.lu_solve(linalg.lu_factor(c_aa, check_finite=False), rhs,
+                            check_finite=False)
+    delta = (load_n + x[:, 1].sum()) / x[:, 0].sum()
+    return delta * x[:, 0] - x[:, 1], float(delta)
+
+
+def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: float,
+           max_iter: int) -> tuple[np.ndarray, int, bool]:
+    """Polonsky-Keer CG on a uniform window (loads in N); returns (w, iterations, ok)."""
+    w = w0 * (load_n / w0.sum())
+    t = np.zeros_like(w)
+    g_old, conj = 1.0, False
+    for it in range(1, max_iter + 1):
+        contact = w > 0.0
+        g = op(w) + h
+        g -= g[contact].mean()
+        g_norm = float(np.dot(g[contact], g[contact]))
+        t = np.where(contact, g + (g_norm / g_old if conj else 0.0) * t, 0.0)
+        g_old = g_norm if g_norm > 0.0 else 1.0
+        r = op(t)
+        r -= r[contact].mean()
+        rt = float(np.dot(r[contact], t[contact]))
+        if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
+            return w, it, g_norm == 0.0 or rt == 0.0
+        tau = float(np.dot(g[contact], t[contact])) / rt
+        w_old = w
+        w = np.maximum(w - tau * t, 0.0)
+        overlap = (w == 0.0) & (g < 0.0)
+        conj = not overlap.any()
+        if not conj:
+            w[overlap] -= tau * g[overlap]
+        w *= load_n / w.sum()
+        if np.abs(w - w_old).sum() <= tol * load_n:
+            return w, it, True
+    return w, max_iter, False
+
+
+def _nnls_reference(c: np.ndarray, h: np.ndarray, load_n: float, tol: float,
+                    max_iter: int, delta_hi: float) -> tuple[np.ndarray, float, int, bool,
+                                                             str]:
+    """Lawson-Hanson NNLS on the Cholesky factor with a Brent root find on delta."""
+    lower = linalg.cholesky(c, lower=True, check_finite=False)
+    v1 = linalg.solve_triangular(lower, np.ones_like(h), lower=True, check_finite=False)
+    vh = linalg.solve_triangular(lower, h, lower=True, check_finite=False)
+    a = lower.T.copy()
+    calls = [0]
+
+    def loads(delta):
+        calls[0] += 1
+        return optimize.nnls(a, delta * v1 - vh, maxiter=50 * h.size)[0]
+
+    def excess(delta):
+        return loads(delta).sum() - load_n
+
+    lo, hi = float(h.min()), float(delta_hi)
+    while excess(hi) < 0.0:
+        lo, hi = hi, lo + 2.0 * (hi - lo)
+        if calls[0] > max_iter:
+            return np.zeros_like(h), hi, calls[0], False, "no bracket for delta"
+    try:
+        delta, info = optimize.brentq(excess, lo, hi, xtol=1e-15 * max(abs(hi), 1e-3),
+                                      rtol=4.0 * np.finfo(float).eps,
+                                      maxiter=max_iter, full_output=True, disp=False)
+    except RuntimeError as exc:  # pragma: no cover - brentq only raises on bad bracket
+        return np.zeros_like(h), hi, calls[0], False, f"root find failed: {exc}"
+    w = loads(delta)
+    support = w > 0.0
+    # exact polish on the final support (the load is linear in delta within it)
+    w_a, d_a = _bordered_solve(c[np.ix_(support, support)], h[support], load_n, True)
+    if np.all(w_a >= 0.0):
+        w = np.zeros_like(h)
+        w[support] = w_a
+        delta = d_a
+    return w, float(delta), calls[0], bool(info.converged), \
+        f"brentq {'converged' if info.converged else 'failed'} after {info.iterations} steps"
+
+
+def _active_set(c: np.ndarray, h: np.ndarray, load_n: float, active0: np.ndarray,
+                tol: float, max_iter: int, symmetric: bool
+                ) -> tuple[np.ndarray, float, int, bool, str]:
+    """Block active-set (principal pivoting) with the bordered load constraint."""
+    active = active0.copy()
+    if not active.any():
+        active[np.argmin(h)] = True
+    seen: set[bytes] = set()
+    single = False
+    delta = float(h.min())
+    for it in range(1, max_iter + 1):
+        w_a, delta = _bordered_solve(c[np.ix_(active, active)], h[active], load_n,
+                                     symmetric)
+        w = np.zeros_like(h)
+        w[active] = w_a
+        neg = w < -1e-14 * load_n
+        if neg.any():
+            drop = neg if not single else (w == w.min())
+            active &= ~drop
+            if not active.any():
+                active[np.argmin(h)] = True
+        else:
+            s = c[:, active] @ w_a + h - delta
+            scale = max(delta - float(h.min()), np.finfo(float).tiny)
+            pen = ~active & (s < -tol * scale)
+            if not pen.any():
+                return np.maximum(w, 0.0), delta, it, True, "active set converged"
+            add = pen if not single else (s == s[pen].min()) & pen
+            active |= add
+        key = np.packbits(active).tobytes()
+        if key in seen:
+            single = True  # a block cycle: continue with single pivots
+        seen.add(key)
+    return np.maximum(w, 0.0), delta, max_iter, False, "active set hit max_iter"
+
+
+# ---------------------------------------------------------------------------- driver
+def _initial_bound(h: np.ndarray, area: np.ndarray, load_n: float, e_star: float
+                   ) -> float:
+    """Gap level ``b*`` at which the flat-punch approach of ``{h <= b*}`` equals ``b* - hmin``.
+
+    A rigid circular punch of radius ``a`` under ``W`` sinks ``W / (2 a E*)`` (Johnson
+    1985, eq. 5.4 with both bodies in E*). For a Hertzian gap ``b* - hmin`` is about
+    0.47 of the true approach. Returns ``inf`` if the whole grid does not reach it.
+    """
+    order = np.argsort(h, kind="stable")
+    hs = h[order]
+    radius = np.sqrt(np.cumsum(area[order]) / np.pi)
+    ok = (hs - hs[0]) >= load_n / (2.0 * radius * e_star)
+    return float(hs[np.argmax(ok)]) if ok.any() else np.inf
+
+
+def _residuals(u: np.ndarray, h: np.ndarray, w: np.ndarray, load_n: float,
+               delta: float) -> tuple[float, float]:
+    """(complementarity, load) residuals on a window, see :class:`LcpResult`."""
+    s = u + h - delta
+    scale = max(delta - float(h.min()), np.finfo(float).tiny)
+    wmax = float(w.max()) if w.size and w.max() > 0 else 1.0
+    comp = float(np.abs(np.minimum(w / wmax, s / scale)).max())
+    return comp, abs(float(w.sum()) - load_n) / load_n
+
+
+def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
+              e_star_mpa: float | None = None, solver: str = "pk_cg",
+              tol: float = 1e-10, max_iter: int | None = None, warm_start=None,
+              residual_tol: float = 1e-6, raise_on_failure: bool = False,
+              warn_coarse: bool = True) -> LcpResult:
+    """Solve the load-constrained normal-contact LCP on a tangent-plane grid.
+
+    Parameters
+    ----------
+    gap_mm : array_like, shape (ny, nx)
+        Unloaded gap ``h[j, i]`` in mm at the cell centres (x along axis 1).
+    grid : TangentGrid
+        The grid (uniform for ``pk_cg`` and ``nnls``; any for ``active_set``).
+    load_n : float
+        Total normal load ``W`` in N (> 0).
+    materials : Material or (Material, Material), optional
+        The two bodies; default steel on steel. Mutually exclusive with ``e_star_mpa``.
+    e_star_mpa : float, optional
+        Composite modulus E* in MPa (``1/E* = sum (1 - nu^2)/E``).
+    solver : {"pk_cg", "nnls", "active_set"}
+        See the module docstring.
+    tol : float
+        pk_cg: stop when ``sum|w - w_prev| <= tol W``; active_set: penetration allowed
+        as a fraction of the approach; nnls: unused (root find to machine precision).
+    max_iter : int, optional
+        Iteration cap per window (defaults: pk_cg 2000, nnls 200, active_set 200).
+    warm_start : LcpResult or array_like (ny, nx), optional
+        A previous solution (its pressure in MPa) to start pk_cg from / seed the
+        active set. Ignored by the nnls reference, which always starts cold.
+    residual_tol : float
+        The complementarity residual above which a finished solve is not "converged".
+    raise_on_failure : bool
+        Raise :class:`LcpConvergenceError` instead of returning an unconverged result.
+    warn_coarse : bool
+        Emit :class:`~.ellipse.CoarseGridWarning` when the patch has too few cells per
+        minor semi-axis.
+
+    Returns
+    -------
+    LcpResult
+
+    Raises
+    ------
+    InputRangeError
+        Non-positive or non-finite load, NaN/inf in the gap, wrong shapes, unknown
+        solver, or ``pk_cg``/``nnls`` on a non-uniform grid.
+    """
+    t_start = time.perf_counter()
+    load = check_positive("load_n", load_n)
+    h_full = grid.check_field("gap_mm", gap_mm)
+    e_star = resolve_e_star(materials, e_star_mpa)
+    check_positive("tol", tol)
+    if solver not in SOLVERS:
+        raise InputRangeError("solver", solver, f"one of {SOLVERS}")
+    if solver in ("pk_cg", "nnls") and not grid.is_uniform:
+        raise InputRangeError("grid", "non-uniform", f"a uniform grid for solver="
+                              f"'{solver}' (use solver='active_set')")
+    n_iter = _DEFAULT_MAX_ITER[solver] if max_iter is None else int(max_iter)
+    if n_iter < 1:
+        raise InputRangeError("max_iter", max_iter, "an integer >= 1")
+    area_full = grid.cell_area_mm2
+    w_prev = None
+    if warm_start is not None:
+        p_prev = warm_start.pressure_mpa if isinstance(warm_start, LcpResult) else \
+            grid.check_field("warm_start", warm_start)
+        if p_prev.shape != grid.shape:
+            raise InputRangeError("warm_start.shape", p_prev.shape, f"{grid.shape}")
+        w_prev = np.maximum(p_prev, 0.0) * area_full
+
+    hmin = float(h_full.min())
+    b_star = _initial_bound(h_full.ravel(), area_full.ravel(), load, e_star)
+    bound = hmin + _WINDOW_FACTOR * (b_star - hmin)
+    iterations, notes = 0, []
+    ok, msg = False, ""
+    for _round in range(_MAX_WINDOWS):
+        cand = h_full <= bound
+        rows, cols = np.flatnonzero(cand.any(axis=1)), np.flatnonzero(cand.any(axis=0))
+        j0, j1, i0, i1 = rows[0], rows[-1] + 1, cols[0], cols[-1] + 1
+        whole = bool(cand.all())
+        box = (slice(j0, j1), slice(i0, i1))
+        h = h_full[box]
+        sub = grid.sub(*box)
+        if w_prev is not None and w_prev[box].sum() > 0.0:
+            w0 = w_prev[box]
+        else:
+            w0 = np.sqrt(np.maximum(b_star - h, 0.0)) if np.isfinite(b_star) else \
+                np.ones_like(h)
+            if not w0.any():
+                w0 = (h == h.min()).astype(float)
+        if solver == "pk_cg":
+            op = FftInfluence(h.shape, dx_mm=float(grid.dx_mm[0]),
+                              dy_mm=float(grid.dy_mm[0]), e_star_mpa=e_star)
+            w, it, ok = _pk_cg(op, h, load, w0, tol, n_iter)
+            contact = w > 0.0
+            u = op(w)
+            delta = float((u + h)[contact].mean())
+            msg = "pk_cg converged" if ok else "pk_cg hit max_iter"
+        else:
+            sel = cand[box].ravel()
+            c = dense_influence_matrix(sub, e_star_mpa=e_star, cells=np.flatnonzero(sel))
+            hs = h.ravel()[sel]
+            if solver == "nnls":
+                top = bound if np.isfinite(bound) else float(hs.max())
+                ws, delta, it, ok, msg = _nnls_reference(c, hs, load, tol, n_iter,
+                                                         max(top, hmin + 1e-12))
+            else:
+                ws, delta, it, ok, msg = _active_set(c, hs, load, w0.ravel()[sel] > 0.0,
+                                                     tol, n_iter, sub.is_uniform)
+            w = np.zeros(h.size)
+            w[np.flatnonzero(sel)] = ws
+            w = w.reshape(h.shape)
+            u_s = c @ ws
+            u = np.full(h.size, np.inf)  # cells outside {h <= b} satisfy s > 0
+            u[np.flatnonzero(sel)] = u_s
+            u = u.reshape(h.shape)
+        iterations += it
+        if not ok or whole or delta <= bound:
+            cert = "whole grid" if whole else (f"window {j1 - j0}x{i1 - i0} certified "
+                                               f"(delta <= bound)")
+            notes.append(f"{msg}; {cert}")
+            break
+        notes.append(f"window {j1 - j0}x{i1 - i0} too small (delta > bound), grown")
+        bound = hmin + _WINDOW_GROWTH * (delta - hmin)
+        full = np.zeros(grid.shape)
+        full[box] = w
+        w_prev = full
+    else:
+        ok, msg = False, "window kept growing"
+        notes.append(msg)
+
+    finite = np.isfinite(u)
+    comp, load_res = _residuals(np.where(finite, u, 0.0), np.where(finite, h, np.inf),
+                                w, load, delta)
+    if ok and comp > residual_tol:
+        ok = False
+        notes.append(f"complementarity residual {comp:.2e} > {residual_tol:.1e}")
+    loads_full = np.zeros(grid.shape)
+    loads_full[box] = w
+    loads_full.setflags(write=False)
+    pressure = loads_full / area_full
+    pressure.setflags(write=False)
+    mask = loads_full > 0.0
+    mask.setflags(write=False)
+    status = "converged" if ok else ("max_iter" if "max_iter" in msg else "failed")
+    result = LcpResult(pressure, loads_full, float(delta), mask, int(iterations),
+                       float(comp), float(load_res), status, "; ".join(notes),
+                       1e3 * (time.perf_counter() - t_start), solver, load,
+                       (int(j0), int(j1), int(i0), int(i1)))
+    if raise_on_failure and not result.converged:
+        raise LcpConvergenceError(result)
+    if warn_coarse and mask.any():
+        warn_if_coarse(grid, mask)
+    return result
