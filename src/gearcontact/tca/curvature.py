@@ -1,0 +1,184 @@
+"""Relative curvatures and the instantaneous contact ellipse at a mating point.
+
+Each flank's shape operator is projected onto one orthonormal basis ``E = [e1 e2]`` of
+the common tangent plane. With ``J = [r_u r_v]`` (posed) and ``M = E^T J`` the curvature
+tensor of a surface w.r.t. its own unit normal ``n`` is (do Carmo 1976, sec. 3-3)
+
+.. math::  K = M^{-T}\\, II\\, M^{-1}, \\qquad II_{ij} = \\mathbf r_{ij} \\cdot \\mathbf n,
+
+so that near the point the surface is ``X = P + q + (1/2) q^T K q n``. Both flank
+normals point out of their own tooth (``n1 = -n2`` at contact), and the separation of
+the flanks along the gear normal ``n2`` is, to second order,
+
+.. math::  g(q) = \\tfrac12\\, q^T B q, \\qquad B = -(K_1 + K_2),
+
+the relative curvature tensor (Litvin & Fuentes 2004, sec. 9.5 "relations between
+principal curvatures"; positive definite for point contact). Its eigenvalues
+``kappa_max >= kappa_min`` are the principal relative curvatures (1/mm). The Hertz
+stage takes half of them, with the naming of SPEC sec. 6 stage C:
+``A- = (h + r)/2 = kappa_max/2`` and ``B- = (h - r)/2 = kappa_min/2``.
+
+The instantaneous contact ellipse at the paint (marking compound) thickness
+``delta = 6.35 um`` is the set ``g(q) <= delta``: semi-axes ``sqrt(2 delta / kappa)``,
+i.e. ``sqrt(delta / A-)`` (minor) and ``sqrt(delta / B-)`` (major, along the
+direction of ``kappa_min``).
+
+Orientation convention: the flank frame at the mating point has ``l`` = the gear's
+lengthwise direction (unit tangent component of the posed ``r_v``, toe -> heel) and
+``p = n2 x l`` (profile direction). The ellipse angle is the angle from ``l`` to the
+major axis, positive towards ``p``, folded into (-90, 90] deg.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface, SurfacePoint
+from ..validation import check_positive
+from .solve import MatingPoint
+
+__all__ = ["PAINT_THICKNESS_MM", "RelativeCurvature", "ContactEllipse",
+           "curvature_tensor", "relative_curvature", "contact_ellipse", "flank_frame"]
+
+#: Thickness of the marking compound that defines the unloaded contact pattern, mm.
+PAINT_THICKNESS_MM = 6.35e-3
+
+
+@dataclass(frozen=True)
+class RelativeCurvature:
+    """Relative curvature at a mating point (all vectors in the meshing frame).
+
+    Attributes
+    ----------
+    kappa_max_per_mm, kappa_min_per_mm : float
+        Principal relative curvatures, 1/mm (``kappa_max >= kappa_min``).
+    dir_max, dir_min : ndarray (3,)
+        Unit principal directions of ``kappa_max`` and ``kappa_min``.
+    A_minus_per_mm, B_minus_per_mm : float
+        Hertz-stage curvatures ``kappa_max/2`` and ``kappa_min/2``, 1/mm.
+    tensor_per_mm : ndarray (2, 2)
+        ``B`` in the flank frame ``(l, p)``, 1/mm.
+    lengthwise, profile, normal : ndarray (3,)
+        The flank frame ``(l, p, n2)``.
+    """
+
+    kappa_max_per_mm: float
+    kappa_min_per_mm: float
+    dir_max: np.ndarray
+    dir_min: np.ndarray
+    A_minus_per_mm: float
+    B_minus_per_mm: float
+    tensor_per_mm: np.ndarray
+    lengthwise: np.ndarray
+    profile: np.ndarray
+    normal: np.ndarray
+
+
+@dataclass(frozen=True)
+class ContactEllipse:
+    """Instantaneous contact ellipse ``g <= delta`` at a mating point.
+
+    Attributes
+    ----------
+    semi_major_mm, semi_minor_mm : float
+        Semi-axes, mm (infinite major axis for line contact).
+    major_axis : ndarray (3,)
+        Unit direction of the major axis in the meshing frame.
+    angle_deg : float
+        Angle from the lengthwise direction to the major axis, deg (see module doc).
+    paint_mm : float
+        The separation ``delta`` that defines it, mm.
+    """
+
+    semi_major_mm: float
+    semi_minor_mm: float
+    major_axis: np.ndarray
+    angle_deg: float
+    paint_mm: float
+
+    @property
+    def ratio(self) -> float:
+        """Length-to-width ratio ``a / b``."""
+        return self.semi_major_mm / self.semi_minor_mm
+
+
+def curvature_tensor(sp: SurfacePoint, rot: np.ndarray, basis: np.ndarray) -> np.ndarray:
+    """Curvature tensor ``K = M^-T II M^-1`` (1/mm) of a posed surface point in ``basis``.
+
+    Parameters
+    ----------
+    sp : SurfacePoint
+        Body-frame evaluation (II is taken w.r.t. ``sp.n``).
+    rot : ndarray (3, 3)
+        Pose rotation body -> meshing frame.
+    basis : ndarray (3, 2)
+        Orthonormal basis of the tangent plane in the meshing frame.
+    """
+    _, second = sp.fundamental_forms()
+    m = basis.T @ (rot @ np.column_stack([sp.r_u, sp.r_v]))
+    m_inv = np.linalg.inv(m)
+    return m_inv.T @ second @ m_inv
+
+
+def flank_frame(sp_gear: SurfacePoint, rot_gear: np.ndarray) -> np.ndarray:
+    """Columns ``(l, p, n2)``: gear lengthwise, profile and normal directions (posed)."""
+    n = rot_gear @ sp_gear.n
+    rv = rot_gear @ sp_gear.r_v
+    lw = rv - (rv @ n) * n
+    lw /= np.linalg.norm(lw)
+    return np.column_stack([lw, np.cross(n, lw), n])
+
+
+def relative_curvature(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                       mp: MatingPoint) -> RelativeCurvature:
+    """Principal relative curvatures and directions at the mating point ``mp``.
+
+    Raises
+    ------
+    ValueError
+        For an edge phase (no interior mating point).
+    """
+    if mp.edge:
+        raise ValueError(f"no relative curvature at an edge-contact phase "
+                         f"(phi1 = {np.degrees(mp.phi1_rad):.6f} deg, {mp.edge_where})")
+    rot1 = kin.pinion_pose(mp.phi1_rad)[0]
+    rot2 = kin.gear_pose(mp.phi2_rad)[0]
+    sp1 = pinion.point(mp.u1, mp.v1)
+    sp2 = gear.point(mp.u2, mp.v2)
+    frame = flank_frame(sp2, rot2)
+    basis = frame[:, :2]
+    tensor = -(curvature_tensor(sp1, rot1, basis) + curvature_tensor(sp2, rot2, basis))
+    tensor = 0.5 * (tensor + tensor.T)
+    evals, evecs = np.linalg.eigh(tensor)
+    d_min = basis @ evecs[:, 0]
+    d_max = basis @ evecs[:, 1]
+    return RelativeCurvature(float(evals[1]), float(evals[0]), d_max, d_min,
+                             0.5 * float(evals[1]), 0.5 * float(evals[0]), tensor,
+                             frame[:, 0], frame[:, 1], frame[:, 2])
+
+
+def contact_ellipse(rc: RelativeCurvature, *,
+                    paint_mm: float = PAINT_THICKNESS_MM) -> ContactEllipse:
+    """Contact ellipse at separation ``paint_mm`` (default the 6.35 um paint).
+
+    Semi-axes ``sqrt(2 delta / kappa)`` (Litvin & Fuentes 2004, sec. 9.6). A
+    non-positive ``kappa_min`` (line contact or separating flanks) gives an infinite
+    major axis.
+    """
+    check_positive("paint_mm", paint_mm)
+    if rc.kappa_max_per_mm <= 0.0:
+        raise ValueError(f"relative curvature kappa_max = {rc.kappa_max_per_mm:g} 1/mm "
+                         "<= 0: the flanks do not form a contact ellipse")
+    minor = float(np.sqrt(2.0 * paint_mm / rc.kappa_max_per_mm))
+    major = (float(np.sqrt(2.0 * paint_mm / rc.kappa_min_per_mm))
+             if rc.kappa_min_per_mm > 0.0 else float("inf"))
+    axis = rc.dir_min
+    angle = np.degrees(np.arctan2(axis @ rc.profile, axis @ rc.lengthwise))
+    if angle > 90.0:
+        angle -= 180.0
+    elif angle <= -90.0:
+        angle += 180.0
+    return ContactEllipse(major, minor, axis, float(angle), float(paint_mm))

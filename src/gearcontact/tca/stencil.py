@@ -1,0 +1,265 @@
+"""Tangent-plane gap field around a mating point and the 7 x 7 hardware stencil.
+
+At the mating point ``P0`` with common normal ``n`` (the gear's, out of the gear tooth)
+a grid point ``q = P0 + s e_s + t e_t`` of the tangent plane defines the line
+``q + lambda n``. Each posed flank is intersected with that line exactly (Newton on
+``R r(u, v) + c - q - lambda n = 0``, three equations in ``(u, v, lambda)``, analytic
+Jacobian ``[R r_u, R r_v, -n]``), and the gap is the separation of the two
+intersections along ``n``:
+
+    gap(s, t) = lambda_pinion - lambda_gear      (mm, > 0 open, 0 at P0).
+
+To second order ``gap = (1/2) q^T B q`` with the relative curvature tensor ``B`` of
+:mod:`.curvature`, which is what stage C of the preview recovers from the stencil.
+
+Frames (both right-handed with ``n``):
+
+* ``"principal"``: ``e_s`` = major axis of the contact ellipse (direction of
+  ``kappa_min``), ``e_t = n x e_s``;
+* ``"flank"``: ``e_s = l`` (gear lengthwise, toe -> heel), ``e_t = p = n x l``
+  (profile direction).
+
+Grids:
+
+* the host field (:func:`gap_field_80`): 80 x 80 cell-centred nodes in the principal
+  frame, ``s_k = (k + 1/2 - 40) h_s``, ``h_s = 2 L_s / 80`` (likewise t), with half
+  extents ``L_s = 2 a_paint`` and ``L_t = 2 b_paint`` (twice the paint-ellipse
+  semi-axes at 6.35 um), so the grid covers the unloaded pattern with margin and
+  resolves the narrow direction; for s0003 this is about +-3.6 mm x +-0.5 mm and also
+  contains the loaded Hertz ellipse up to 258 N m;
+* the hardware stencil (:func:`hardware_stencil`): the baked 7 x 7 grid of
+  :mod:`gearcontact.preview.fit.stencil` (spacing ``STENCIL_SPACING_MM``, row-major,
+  s fastest) in the **flank** frame; stage C recovers A-, B- independently of the
+  rotation of the frame. Written by :func:`write_stencil_csv` as ``gap_stencil.csv``
+  (header ``s_mm,t_mm,gap_mm``).
+
+Points whose line leaves either flank's parameter box are not extrapolated: their gap
+is NaN and ``on_flank`` is False, unless ``allow_outside=True`` is given, in which case
+the surfaces' analytic continuation is used and ``on_flank`` still records the fact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface
+from ..preview.fit.stencil import STENCIL_SIDE, STENCIL_SPACING_MM, stencil_coordinates
+from ..validation import check_positive
+from .curvature import PAINT_THICKNESS_MM, contact_ellipse, relative_curvature
+from .solve import MatingPoint
+
+__all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
+           "hardware_stencil", "write_stencil_csv", "read_stencil_csv", "tangent_frame"]
+
+#: Nodes per side of the host gap field (SPEC section 3).
+GAP_GRID_SIDE = 80
+
+
+@dataclass(frozen=True)
+class GapField:
+    """Gap between the flanks over tangent-plane points around ``P0``.
+
+    Attributes
+    ----------
+    s_mm, t_mm : ndarray
+        Tangent-plane coordinates of the samples, mm (same shape as ``gap_mm``).
+    gap_mm : ndarray
+        Separation along the common normal, mm (NaN off the flank).
+    on_flank : ndarray of bool
+        True where both intersections lie inside their parameter boxes.
+    origin_mm : ndarray (3,)
+        ``P0`` in the meshing frame, mm.
+    frame : ndarray (3, 3)
+        Columns ``e_s, e_t, n`` in the meshing frame.
+    frame_name : str
+        ``"principal"`` or ``"flank"``.
+    """
+
+    s_mm: np.ndarray
+    t_mm: np.ndarray
+    gap_mm: np.ndarray
+    on_flank: np.ndarray
+    origin_mm: np.ndarray
+    frame: np.ndarray
+    frame_name: str
+
+
+def tangent_frame(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                  mp: MatingPoint, frame: str) -> np.ndarray:
+    """Columns ``(e_s, e_t, n)`` of the ``"principal"`` or ``"flank"`` frame at ``mp``."""
+    rc = relative_curvature(pinion, gear, kin, mp)
+    if frame == "flank":
+        e_s = rc.lengthwise
+    elif frame == "principal":
+        e_s = rc.dir_min
+    else:
+        raise ValueError(f"frame = {frame!r} is not one of 'principal', 'flank'")
+    n = rc.normal
+    return np.column_stack([e_s, np.cross(n, e_s), n])
+
+
+def evaluate_many(surface: Surface, u: np.ndarray, v: np.ndarray):
+    """Evaluate a surface at many parameter pairs: ``(r, r_u, r_v)`` as (N, 3) arrays.
+
+    Uses the surface's optional vectorized ``points(u, v)`` (a :class:`SurfacePoint`
+    with (N, 3) fields) when it has one, else loops over ``point``.
+    """
+    if hasattr(surface, "points"):
+        sp = surface.points(u, v)
+        return np.asarray(sp.r), np.asarray(sp.r_u), np.asarray(sp.r_v)
+    pts = [surface.point(float(a), float(b)) for a, b in zip(u, v)]
+    return (np.array([p.r for p in pts]), np.array([p.r_u for p in pts]),
+            np.array([p.r_v for p in pts]))
+
+
+def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
+                    uv0: np.ndarray, *, clamp: bool, tol_mm: float, max_iter: int = 25):
+    """Intersections of the lines ``q_i + lambda n`` with a posed surface (Newton,
+    vectorized over the lines).
+
+    Returns ``(lambda, inside)``: ``lambda`` (N,) is NaN where Newton did not converge
+    or, with ``clamp``, where the intersection lies outside the parameter box.
+    """
+    rot, c = pose
+    lo = np.array([surface.u_range[0], surface.v_range[0]], float)
+    hi = np.array([surface.u_range[1], surface.v_range[1]], float)
+    uv = uv0.copy()
+    lam = np.zeros(len(q))
+    active = np.ones(len(q), dtype=bool)
+    converged = np.zeros(len(q), dtype=bool)
+    for _ in range(max_iter):
+        idx = np.flatnonzero(active)
+        if idx.size == 0:
+            break
+        r, r_u, r_v = evaluate_many(surface, uv[idx, 0], uv[idx, 1])
+        res = r @ rot.T + c - q[idx] - lam[idx, None] * n
+        jac = np.stack([r_u @ rot.T, r_v @ rot.T, np.broadcast_to(-n, r.shape)], axis=2)
+        step = np.linalg.solve(jac, -res[..., None])[..., 0]
+        new_uv = uv[idx] + step[:, :2]
+        if clamp:
+            new_uv = np.clip(new_uv, lo, hi)
+        moved = np.abs(new_uv - uv[idx]).max(axis=1)
+        uv[idx] = new_uv
+        lam[idx] += step[:, 2]
+        done = (np.abs(res).max(axis=1) < tol_mm) & (moved < 1e-12)
+        converged[idx[done]] = True
+        active[idx[done]] = False
+    inside = converged & np.all((uv > lo) & (uv < hi), axis=1)
+    lam = np.where(converged & (inside | ~clamp), lam, np.nan)
+    return lam, inside
+
+
+def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+           s_mm, t_mm, *, frame: str = "principal", allow_outside: bool = False,
+           tol_mm: float = 1e-11) -> GapField:
+    """Gap field at arbitrary tangent-plane points ``(s_mm, t_mm)`` around ``mp``.
+
+    Parameters
+    ----------
+    pinion, gear : Surface
+        The flanks (body frames, normals out of the tooth).
+    kin : MeshKinematics
+        Kinematics (poses at ``mp.phi1_rad``, ``mp.phi2_rad``).
+    mp : MatingPoint
+        Interior mating point ``P0``.
+    s_mm, t_mm : array_like
+        Sample coordinates in the chosen frame, mm (any equal shapes).
+    frame : str
+        ``"principal"`` or ``"flank"`` (module docstring).
+    allow_outside : bool
+        Evaluate the flanks' continuation beyond their parameter boxes.
+    tol_mm : float
+        Newton tolerance of each line-surface intersection, mm.
+    """
+    check_positive("tol_mm", tol_mm)
+    s = np.asarray(s_mm, dtype=float)
+    t = np.asarray(t_mm, dtype=float)
+    if s.shape != t.shape:
+        raise ValueError(f"s_mm and t_mm must have equal shapes, got {s.shape} and {t.shape}")
+    axes = tangent_frame(pinion, gear, kin, mp, frame)
+    n = axes[:, 2]
+    st = np.column_stack([s.ravel(), t.ravel()])
+    q = mp.point_mm + st @ axes[:, :2].T
+    lams, insides = [], []
+    for surf, pose, uv_p0 in ((pinion, kin.pinion_pose(mp.phi1_rad), (mp.u1, mp.v1)),
+                              (gear, kin.gear_pose(mp.phi2_rad), (mp.u2, mp.v2))):
+        # Newton starts from the first-order map (s, t) -> (u, v) of the tangent plane
+        sp = surf.point(*uv_p0)
+        jac = axes[:, :2].T @ (pose[0] @ np.column_stack([sp.r_u, sp.r_v]))
+        uv0 = np.asarray(uv_p0, float) + st @ np.linalg.inv(jac).T
+        lam, inside = _intersect_many(surf, pose, q, n, uv0, clamp=not allow_outside,
+                                      tol_mm=tol_mm)
+        lams.append(lam)
+        insides.append(inside)
+    gap = (lams[0] - lams[1]).reshape(s.shape)
+    on_flank = (insides[0] & insides[1]).reshape(s.shape)
+    return GapField(s, t, gap, on_flank, np.array(mp.point_mm, float), axes, frame)
+
+
+def gap_field(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+              *, half_extent_mm: tuple[float, float], side: int = GAP_GRID_SIDE,
+              frame: str = "principal", allow_outside: bool = False) -> GapField:
+    """Gap on a ``side x side`` cell-centred grid with the given half extents (mm).
+
+    Node ``(j, k)`` (row j along t, column k along s) sits at
+    ``s_k = (k + 1/2 - side/2) h_s``, ``t_j = (j + 1/2 - side/2) h_t`` with
+    ``h = 2 L / side``.
+    """
+    ls = check_positive("half_extent_mm[0]", half_extent_mm[0])
+    lt = check_positive("half_extent_mm[1]", half_extent_mm[1])
+    idx = np.arange(side) + 0.5 - side / 2.0
+    s_axis = idx * (2.0 * ls / side)
+    t_axis = idx * (2.0 * lt / side)
+    s, t = np.meshgrid(s_axis, t_axis)
+    return gap_at(pinion, gear, kin, mp, s, t, frame=frame, allow_outside=allow_outside)
+
+
+def gap_field_80(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+                 *, paint_mm: float = PAINT_THICKNESS_MM,
+                 allow_outside: bool = False) -> GapField:
+    """The documented 80 x 80 host field: principal frame, half extents twice the
+    paint-ellipse semi-axes (module docstring)."""
+    ell = contact_ellipse(relative_curvature(pinion, gear, kin, mp), paint_mm=paint_mm)
+    if not np.isfinite(ell.semi_major_mm):
+        raise ValueError("line contact at the mating point: the gap field needs a finite "
+                         "contact ellipse (apply an ease-off)")
+    return gap_field(pinion, gear, kin, mp,
+                     half_extent_mm=(2.0 * ell.semi_major_mm, 2.0 * ell.semi_minor_mm),
+                     frame="principal", allow_outside=allow_outside)
+
+
+def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                     mp: MatingPoint, *, spacing_mm: float = STENCIL_SPACING_MM,
+                     frame: str = "flank", allow_outside: bool = False) -> GapField:
+    """The 49 gap samples of the 7 x 7 stage-C stencil, in the baked order (flat arrays)."""
+    s, t = stencil_coordinates(spacing_mm)
+    return gap_at(pinion, gear, kin, mp, s, t, frame=frame, allow_outside=allow_outside)
+
+
+def write_stencil_csv(field: GapField, path) -> Path:
+    """Write a 49-sample stencil as ``s_mm,t_mm,gap_mm`` (format of
+    :mod:`gearcontact.preview.fit.stencil`). Raises if a gap is not finite."""
+    if field.gap_mm.size != STENCIL_SIDE * STENCIL_SIDE:
+        raise ValueError(f"a hardware stencil has {STENCIL_SIDE ** 2} samples, "
+                         f"got {field.gap_mm.size}")
+    gaps = field.gap_mm.ravel()
+    if not np.all(np.isfinite(gaps)):
+        bad = int(np.argmin(np.isfinite(gaps)))
+        raise ValueError(f"stencil sample {bad} lies off the flank (gap is NaN); "
+                         "use allow_outside=True or a smaller spacing")
+    path = Path(path)
+    lines = ["s_mm,t_mm,gap_mm"]
+    for s, t, g in zip(field.s_mm.ravel(), field.t_mm.ravel(), gaps):
+        lines.append(f"{s:.9f},{t:.9f},{g:.12e}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def read_stencil_csv(path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Read ``gap_stencil.csv`` back as ``(s_mm, t_mm, gap_mm)`` arrays."""
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return data[:, 0], data[:, 1], data[:, 2]

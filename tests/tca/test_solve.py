@@ -1,0 +1,138 @@
+"""TCA Newton solve on an analytic pair with closed-form contact (tests/tca/analytic.py).
+
+Truth: a sphere on the pinion against a torus on the gear touch where the distance of
+the sphere centre from the posed core circle equals r + Rs; phi2(phi1) is an
+independent scalar root (brentq, xtol 1e-15 rad).
+"""
+
+import numpy as np
+import pytest
+
+from gearcontact.geometry.kinematics import AssemblyErrors
+from gearcontact.tca.solve import (ARCSEC_PER_RAD, ContactGuess, EdgeContact,
+                                   TcaConvergenceError, _residual_and_jacobian,
+                                   solve_mating_point, solve_tca)
+
+from .analytic import Torus, sphere_torus_case
+
+PHIS = np.radians(np.linspace(-20.0, 20.0, 21))
+
+
+def _guess(case, phi1=0.0):
+    return ContactGuess(np.pi / 2 + 0.02, 0.03, case.tube_angle - 0.02, 0.02, phi1,
+                        phi1 / case.kin.ratio + 0.002)
+
+
+@pytest.mark.parametrize("errors", [None, AssemblyErrors(E_mm=0.05, P_mm=-0.04,
+                                                         G_mm=0.03, alpha_deg=0.05)])
+def test_path_matches_closed_form_contact(errors):
+    case = sphere_torus_case(errors=errors)
+    path = solve_tca(case.pinion, case.gear, case.kin, PHIS, start=_guess(case))
+    assert not path.edge.any()
+    ref_phi2 = case.truth(path.phi1_ref_rad)[0]
+    for mp in path.points:
+        phi2, point, normal, _, _ = case.truth(mp.phi1_rad)
+        # Newton stops at |residual| < 1e-10 mm on a ~40 mm lever: 1e-12 rad, 1e-9 mm
+        assert mp.phi2_rad == pytest.approx(phi2, abs=1e-12)
+        np.testing.assert_allclose(mp.point_mm, point, atol=1e-9)
+        np.testing.assert_allclose(mp.normal, normal, atol=1e-11)
+        te = ((phi2 - ref_phi2) - (mp.phi1_rad - path.phi1_ref_rad) / case.kin.ratio)
+        assert mp.te0_arcsec == pytest.approx(te * ARCSEC_PER_RAD, abs=1e-6)
+        assert mp.iterations <= 6      # quadratic convergence from the secant predictor
+
+
+def test_analytic_jacobian_matches_finite_differences():
+    case = sphere_torus_case(errors=AssemblyErrors(E_mm=0.1, alpha_deg=0.2))
+    x = np.array([1.5, 0.1, 0.25, -0.05, 0.07, 0.01])
+    _, _, jac = _residual_and_jacobian(case.pinion, case.gear, case.kin, x)
+    h = 1e-6
+    for k in range(6):
+        dx = np.zeros(6)
+        dx[k] = h
+        # the tangent basis is frozen at x (its derivative multiplies n1 + n2, dropped
+        # by design), so difference the residual projected on the basis at x
+        rp, (_, n2p), _ = _residual_and_jacobian(case.pinion, case.gear, case.kin, x + dx,
+                                                 jacobian=False)
+        rm, _, _ = _residual_and_jacobian(case.pinion, case.gear, case.kin, x - dx,
+                                          jacobian=False)
+        # position rows are exact; central differences are accurate to O(h^2) ~ 1e-9
+        np.testing.assert_allclose((rp[:3] - rm[:3]) / (2 * h), jac[:3, k], atol=1e-7)
+
+
+def test_normal_rows_of_jacobian_at_contact():
+    """At a contact (n1 + n2 = 0) the dropped basis term vanishes: the normal rows are
+    the exact derivatives there (central differences, atol 1e-7)."""
+    case = sphere_torus_case()
+    mp = solve_mating_point(case.pinion, case.gear, case.kin, _guess(case))
+    x = np.array([mp.u1, mp.v1, mp.u2, mp.v2, mp.phi1_rad, mp.phi2_rad])
+    _, (_, n2), jac = _residual_and_jacobian(case.pinion, case.gear, case.kin, x)
+    from gearcontact.tca.solve import _tangent_basis
+    basis = _tangent_basis(n2)
+    h = 1e-6
+    for k in range(6):
+        dx = np.zeros(6)
+        dx[k] = h
+        normals = []
+        for sign in (1, -1):
+            y = x + sign * dx
+            r1 = case.kin.pinion_pose(y[4])[0] @ case.pinion.point(y[0], y[1]).n
+            r2 = case.kin.gear_pose(y[5])[0] @ case.gear.point(y[2], y[3]).n
+            normals.append(basis.T @ (r1 + r2))
+        np.testing.assert_allclose((normals[0] - normals[1]) / (2 * h), jac[3:, k],
+                                   atol=1e-7)
+
+
+def test_start_with_fixed_gear_parameter():
+    case = sphere_torus_case()
+    g = _guess(case)
+    start = ContactGuess(g.u1, g.v1, case.tube_angle + 0.003, g.v2, 0.01, 0.001)
+    path = solve_tca(case.pinion, case.gear, case.kin, PHIS, start=start, start_fixed="u2")
+    ref = solve_mating_point(case.pinion, case.gear, case.kin, start, fixed="u2")
+    assert ref.u2 == case.tube_angle + 0.003
+    assert path.phi1_ref_rad == pytest.approx(ref.phi1_rad, abs=1e-14)
+    i = int(np.argmin(np.abs(path.phi1_rad - ref.phi1_rad)))
+    assert path.phi1_rad[i] - ref.phi1_rad != 0.0   # a grid phase, not the reference
+
+
+def test_edge_contact_is_flagged_not_extrapolated():
+    case = sphere_torus_case()
+    g = case.gear
+    narrow = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range, (-0.04, 0.04))
+    path = solve_tca(case.pinion, narrow, case.kin, PHIS, start=_guess(case))
+    edge = path.edge
+    assert edge.any() and not edge.all()
+    for mp in path.points:
+        # independent truth: gear azimuth v of the true contact point
+        phi2, point, _, _, _ = case.truth(mp.phi1_rad)
+        rot, t = case.kin.gear_pose(phi2)
+        d = rot.T @ (point - t) - g.center
+        v_true = np.arctan2(d @ g.frame[:, 1], d @ g.frame[:, 0])
+        if mp.edge:
+            assert abs(v_true) > 0.04 - 1e-9
+            assert mp.edge_where.startswith("gear v") and np.isnan(mp.point_mm).all()
+        else:
+            assert abs(v_true) <= 0.04 and mp.v2 == pytest.approx(v_true, abs=1e-10)
+    # the march stops at the first edge: edge phases are contiguous at both ends
+    inner = np.flatnonzero(~edge)
+    assert np.all(np.diff(inner) == 1)
+
+
+def test_single_solve_raises_edge_contact():
+    case = sphere_torus_case()
+    g = case.gear
+    narrow = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range, (-0.04, 0.04))
+    with pytest.raises(EdgeContact, match="gear v max"):
+        solve_mating_point(case.pinion, narrow, case.kin, _guess(case, np.radians(-15)))
+
+
+def test_non_convergence_names_phase_and_residual():
+    case = sphere_torus_case()
+    with pytest.raises(TcaConvergenceError, match=r"phi1 = 5\.000000 deg: residual"):
+        solve_mating_point(case.pinion, case.gear, case.kin,
+                           _guess(case, np.radians(5.0)), max_iter=1)
+
+
+def test_phases_must_increase():
+    case = sphere_torus_case()
+    with pytest.raises(ValueError, match="strictly increasing"):
+        solve_tca(case.pinion, case.gear, case.kin, [0.1, 0.0], start=_guess(case))
