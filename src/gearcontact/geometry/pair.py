@@ -1,0 +1,376 @@
+"""Gear-pair definition: typed, validated dataclasses and the TOML pair format.
+
+A pair file is TOML with the tables below; every key is required unless a default is
+shown. Unknown tables or keys are errors (they are usually typos). Units are part of
+the key names. The built-in preset ``s0003`` (``gearcontact/data/pairs/s0003.toml``)
+is a complete, commented example; ``examples/`` holds more.
+
+.. code-block:: toml
+
+    name = "s0003"                      # label for reports
+
+    [teeth]
+    pinion = 7                          # z1, integer >= 5
+    gear = 70                           # z2, integer > z1
+
+    [axes]
+    shaft_angle_deg = 90.0              # Sigma; only 90 deg is supported
+    offset_mm = 19.0                    # hypoid offset E >= 0 (pinion axis at y = -E)
+
+    [design]                            # ISO 23509 Method 1 inputs
+    pinion_hand = "right"               # spiral hand of the pinion (gear is opposite)
+    gear_mean_cone_distance_mm = 40.68  # R2 ... or gear_mean_pitch_radius_mm (one of them)
+    pinion_spiral_angle_deg = 48.7      # beta1, (0, 70)
+    gear_face_width_mm = 12.0           # F2 along the gear pitch cone
+    pinion_face_width_mm = 13.2         # b1 along the pinion pitch cone (>= F2)
+    working_depth_factor = 2.0          # k_d (default 2.0)
+    clearance_factor = 0.125            # k_c (default 0.125)
+    gear_addendum_factor = 0.15         # c_ham (default 0.35)
+
+    [cutter]                            # face-milling cutter and blades
+    radius_mm = 45.1                    # r_c0 (nominal radius, slot centre line)
+    point_width_mm = 0.5                # W: blade tip width
+    edge_radius_mm = 0.1                # blade tip edge radius, [0, W/2)
+    pressure_angle_drive_deg = 20.0     # alpha_dD (nominal, before the alpha_lim split)
+    pressure_angle_coast_deg = 20.0     # alpha_dC
+    limit_pressure_angle_factor = 1.0   # f_alim in [0, 1] (default 1.0)
+
+    [easeoff.drive]                     # pinion ease-off, E in um (see easeoff.py)
+    profile_angle_um_per_mm = 0.0       # c_PA: E += c_PA * eta
+    spiral_angle_um_per_mm = 0.0        # c_SA: E += c_SA * xi
+    profile_crowning_um_per_mm2 = 1.5   # c_PC: E += c_PC * eta^2
+    lengthwise_crowning_um_per_mm2 = 0.15  # c_LC: E += c_LC * xi^2
+    bias_um_per_mm2 = 0.0               # c_TW: E += c_TW * xi * eta
+    [easeoff.coast]                     # same keys
+
+    [assembly]                          # optional; all default 0 (see kinematics.py)
+    E_mm = 0.0
+    P_mm = 0.0
+    G_mm = 0.0
+    alpha_deg = 0.0
+
+    [material.pinion]                   # optional; default steel 209 GPa / 0.3
+    youngs_modulus_gpa = 209.0
+    poisson_ratio = 0.3
+    [material.gear]
+
+Every value is validated on load: a missing key, a value of the wrong TOML type or a
+value outside its range raises :class:`~gearcontact.validation.InputRangeError`
+naming the dotted key, the value and the expected type/range; impossible designs
+(too few teeth, an offset too large for the gear, a spiral angle inconsistent with the
+offset) are rejected by :func:`GearPair.blank` (ISO 23509 Method 1).
+
+References
+----------
+ISO 23509:2016, *Bevel and hypoid gear geometry*, clauses 5-7.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from functools import cached_property
+from importlib import resources
+from pathlib import Path
+
+from ..materials import STEEL, Material
+from ..validation import InputRangeError, check_positive, check_range
+from .blank import BlankDesign, design_blank
+from .kinematics import AssemblyErrors, MeshKinematics
+
+__all__ = ["CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
+           "parse_pair"]
+
+#: Built-in presets: name -> resource file in ``gearcontact/data/pairs``.
+PRESETS = ("s0003",)
+
+
+@dataclass(frozen=True)
+class CutterSpec:
+    """Face-milling cutter head with one inside and one outside blade.
+
+    Parameters
+    ----------
+    radius_mm : float
+        Nominal cutter radius r_c0, mm: the slot centre line at the pitch plane.
+    point_width_mm : float
+        Blade point width W at the blade tip, mm.
+    edge_radius_mm : float
+        Blade tip edge radius, mm, in [0, W/2): the flank starts above the edge round.
+    pressure_angle_drive_deg, pressure_angle_coast_deg : float
+        Nominal design pressure angles alpha_dD, alpha_dC, degrees, in [5, 40].
+    limit_pressure_angle_factor : float
+        f_alim in [0, 1]: share of alpha_lim moved between the sides (ISO 23509).
+    """
+
+    radius_mm: float
+    point_width_mm: float
+    edge_radius_mm: float
+    pressure_angle_drive_deg: float = 20.0
+    pressure_angle_coast_deg: float = 20.0
+    limit_pressure_angle_factor: float = 1.0
+
+    def __post_init__(self):
+        check_positive("cutter.radius_mm", self.radius_mm)
+        check_positive("cutter.point_width_mm", self.point_width_mm)
+        check_range("cutter.edge_radius_mm", self.edge_radius_mm, 0.0,
+                    0.5 * self.point_width_mm, hi_open=True)
+        check_range("cutter.pressure_angle_drive_deg", self.pressure_angle_drive_deg, 5.0, 40.0)
+        check_range("cutter.pressure_angle_coast_deg", self.pressure_angle_coast_deg, 5.0, 40.0)
+        check_range("cutter.limit_pressure_angle_factor", self.limit_pressure_angle_factor,
+                    0.0, 1.0)
+
+
+@dataclass(frozen=True)
+class EaseOffCoefficients:
+    """Five-term pinion ease-off ``E = c_PA eta + c_SA xi + c_PC eta^2 + c_LC xi^2 + c_TW xi eta``.
+
+    E in um; xi (lengthwise, along the pinion axis) and eta (profile, radial) in mm from
+    the mean point; see :mod:`gearcontact.geometry.easeoff`.
+    """
+
+    profile_angle_um_per_mm: float = 0.0
+    spiral_angle_um_per_mm: float = 0.0
+    profile_crowning_um_per_mm2: float = 0.0
+    lengthwise_crowning_um_per_mm2: float = 0.0
+    bias_um_per_mm2: float = 0.0
+
+    def __post_init__(self):
+        for name in self.__dataclass_fields__:
+            check_range(f"easeoff.{name}", getattr(self, name), -1e3, 1e3)
+
+    @property
+    def is_zero(self) -> bool:
+        """True if every coefficient is exactly zero (conjugate pinion)."""
+        return all(getattr(self, n) == 0.0 for n in self.__dataclass_fields__)
+
+
+@dataclass(frozen=True)
+class GearPair:
+    """A hypoid (or spiral bevel, offset 0) pair with its cutter, ease-off and mounting.
+
+    Parameters
+    ----------
+    name : str
+        Label.
+    pinion_teeth, gear_teeth : int
+        z1 >= 5, z2 > z1.
+    offset_mm : float
+        Hypoid offset E, mm, >= 0 (pinion axis at y = -E in the meshing frame).
+    pinion_hand : str
+        "right" (the meshing frame's offset sign); the gear has the opposite hand.
+    pinion_spiral_angle_deg : float
+        Mean spiral angle beta1, degrees.
+    gear_face_width_mm, pinion_face_width_mm : float
+        Face widths along the pitch cones, mm (pinion >= gear).
+    cutter : CutterSpec
+    gear_mean_cone_distance_mm, gear_mean_pitch_radius_mm : float or None
+        Exactly one of R2 or r2, mm.
+    shaft_angle_deg : float
+        90 only.
+    working_depth_factor, clearance_factor, gear_addendum_factor : float
+        k_d, k_c, c_ham (dimensionless, ISO 23509 clause 7).
+    easeoff_drive, easeoff_coast : EaseOffCoefficients
+        Pinion ease-off of the drive (pinion concave) and coast (pinion convex) flanks.
+    assembly : AssemblyErrors
+        Mounting errors E, P, G, alpha used by TCA (flanks are generated without them).
+    pinion_material, gear_material : Material
+    """
+
+    name: str
+    pinion_teeth: int
+    gear_teeth: int
+    offset_mm: float
+    pinion_hand: str
+    pinion_spiral_angle_deg: float
+    gear_face_width_mm: float
+    pinion_face_width_mm: float
+    cutter: CutterSpec
+    gear_mean_cone_distance_mm: float | None = None
+    gear_mean_pitch_radius_mm: float | None = None
+    shaft_angle_deg: float = 90.0
+    working_depth_factor: float = 2.0
+    clearance_factor: float = 0.125
+    gear_addendum_factor: float = 0.35
+    easeoff_drive: EaseOffCoefficients = field(default_factory=EaseOffCoefficients)
+    easeoff_coast: EaseOffCoefficients = field(default_factory=EaseOffCoefficients)
+    assembly: AssemblyErrors = field(default_factory=AssemblyErrors)
+    pinion_material: Material = STEEL
+    gear_material: Material = STEEL
+
+    def __post_init__(self):
+        if self.pinion_hand != "right":
+            raise InputRangeError(
+                "design.pinion_hand", self.pinion_hand,
+                "'right' (the meshing frame puts the pinion axis at y = -E; a left-hand "
+                "pinion is its mirror image and needs the mirrored frame)")
+        check_positive("design.gear_face_width_mm", self.gear_face_width_mm)
+        check_range("design.pinion_face_width_mm", self.pinion_face_width_mm,
+                    self.gear_face_width_mm, 3.0 * self.gear_face_width_mm)
+        # the design itself is validated eagerly so that a bad pair fails on load
+        blank = self.blank
+        if self.gear_face_width_mm >= blank.mean_cone_distance_gear_mm:
+            raise InputRangeError("design.gear_face_width_mm", self.gear_face_width_mm,
+                                  f"(0, {blank.mean_cone_distance_gear_mm:.3f}) mm "
+                                  "(less than the gear mean cone distance)")
+        if blank.dedendum_pinion_mm >= blank.mean_pitch_radius_pinion_mm:
+            raise InputRangeError("design.gear_addendum_factor", self.gear_addendum_factor,
+                                  "a value leaving the pinion root radius positive")
+
+    @cached_property
+    def blank(self) -> BlankDesign:
+        """Pitch-cone design (ISO 23509 Method 1) of this pair."""
+        return design_blank(
+            pinion_teeth=self.pinion_teeth, gear_teeth=self.gear_teeth,
+            offset_mm=self.offset_mm, pinion_spiral_angle_deg=self.pinion_spiral_angle_deg,
+            cutter_radius_mm=self.cutter.radius_mm,
+            gear_mean_pitch_radius_mm=self.gear_mean_pitch_radius_mm,
+            gear_mean_cone_distance_mm=self.gear_mean_cone_distance_mm,
+            shaft_angle_deg=self.shaft_angle_deg,
+            working_depth_factor=self.working_depth_factor,
+            clearance_factor=self.clearance_factor,
+            gear_addendum_factor=self.gear_addendum_factor,
+            pressure_angle_drive_deg=self.cutter.pressure_angle_drive_deg,
+            pressure_angle_coast_deg=self.cutter.pressure_angle_coast_deg,
+            limit_pressure_angle_factor=self.cutter.limit_pressure_angle_factor)
+
+    @property
+    def ratio(self) -> float:
+        """Gear ratio u = z2/z1."""
+        return self.gear_teeth / self.pinion_teeth
+
+    def kinematics(self, *, with_errors: bool = True) -> MeshKinematics:
+        """Meshing kinematics; ``with_errors=False`` gives the nominal (generating) one."""
+        errors = self.assembly if with_errors else AssemblyErrors()
+        return MeshKinematics(offset_mm=self.offset_mm, ratio=self.ratio, errors=errors)
+
+
+# --------------------------------------------------------------------------- TOML
+
+_FLOAT, _INT, _STR = "a number (float)", "an integer", "a string"
+
+#: section -> {key: (expected type, required)}; ``None`` section = top level.
+_SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
+    "": {"name": (_STR, False)},
+    "teeth": {"pinion": (_INT, True), "gear": (_INT, True)},
+    "axes": {"shaft_angle_deg": (_FLOAT, False), "offset_mm": (_FLOAT, True)},
+    "design": {"pinion_hand": (_STR, True), "gear_mean_cone_distance_mm": (_FLOAT, False),
+               "gear_mean_pitch_radius_mm": (_FLOAT, False),
+               "pinion_spiral_angle_deg": (_FLOAT, True), "gear_face_width_mm": (_FLOAT, True),
+               "pinion_face_width_mm": (_FLOAT, True), "working_depth_factor": (_FLOAT, False),
+               "clearance_factor": (_FLOAT, False), "gear_addendum_factor": (_FLOAT, False)},
+    "cutter": {"radius_mm": (_FLOAT, True), "point_width_mm": (_FLOAT, True),
+               "edge_radius_mm": (_FLOAT, True), "pressure_angle_drive_deg": (_FLOAT, False),
+               "pressure_angle_coast_deg": (_FLOAT, False),
+               "limit_pressure_angle_factor": (_FLOAT, False)},
+    "easeoff.drive": {k: (_FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
+    "easeoff.coast": {k: (_FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
+    "assembly": {k: (_FLOAT, False) for k in ("E_mm", "P_mm", "G_mm", "alpha_deg")},
+    "material.pinion": {"youngs_modulus_gpa": (_FLOAT, True), "poisson_ratio": (_FLOAT, True)},
+    "material.gear": {"youngs_modulus_gpa": (_FLOAT, True), "poisson_ratio": (_FLOAT, True)},
+}
+_REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
+
+
+def _typed(key: str, value, kind: str):
+    """Return ``value`` converted to the schema type or raise naming the key."""
+    if kind == _INT:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise InputRangeError(key, value, kind)
+        return value
+    if kind == _FLOAT:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputRangeError(key, value, kind)
+        return float(value)
+    if not isinstance(value, str):
+        raise InputRangeError(key, value, kind)
+    return value
+
+
+def _flatten(doc: dict) -> dict[str, dict]:
+    """Split a parsed TOML document into the schema's sections; reject unknown keys."""
+    sections: dict[str, dict] = {"": {}}
+    for key, value in doc.items():
+        if isinstance(value, dict) and key in ("easeoff", "material"):
+            for sub, table in value.items():
+                name = f"{key}.{sub}"
+                if name not in _SCHEMA or not isinstance(table, dict):
+                    raise InputRangeError(name, table, f"one of the tables {sorted(_SCHEMA)}")
+                sections[name] = table
+        elif isinstance(value, dict):
+            if key not in _SCHEMA:
+                raise InputRangeError(key, "table", f"one of the tables {sorted(s for s in _SCHEMA if s)}")
+            sections[key] = value
+        else:
+            sections[""][key] = value
+    out: dict[str, dict] = {}
+    for name, table in sections.items():
+        schema = _SCHEMA[name]
+        typed = {}
+        for key, value in table.items():
+            dotted = f"{name}.{key}" if name else key
+            if key not in schema:
+                raise InputRangeError(dotted, value, f"a known key of [{name or 'top level'}]: "
+                                      f"{sorted(schema)}")
+            typed[key] = _typed(dotted, value, schema[key][0])
+        for key, (kind, required) in schema.items():
+            if required and key not in typed:
+                raise InputRangeError(f"{name}.{key}" if name else key, None,
+                                      f"required: {kind}")
+        out[name] = typed
+    for name in _REQUIRED_SECTIONS:
+        if name not in out:
+            raise InputRangeError(f"[{name}]", None, "a required table")
+    return out
+
+
+def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
+    """Build a :class:`GearPair` from a parsed TOML document (see module docstring)."""
+    s = _flatten(doc)
+    design = dict(s["design"])
+    if ("gear_mean_cone_distance_mm" in design) == ("gear_mean_pitch_radius_mm" in design):
+        raise InputRangeError("design.gear_mean_cone_distance_mm / design.gear_mean_pitch_radius_mm",
+                              None, "exactly one of the two keys")
+    materials = {}
+    for member in ("pinion", "gear"):
+        table = s.get(f"material.{member}")
+        materials[member] = STEEL if table is None else Material.from_gpa(
+            table["youngs_modulus_gpa"], table["poisson_ratio"], name=f"{member} material")
+    return GearPair(
+        name=s[""].get("name", name),
+        pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
+        offset_mm=s["axes"]["offset_mm"],
+        shaft_angle_deg=s["axes"].get("shaft_angle_deg", 90.0),
+        cutter=CutterSpec(**s["cutter"]),
+        easeoff_drive=EaseOffCoefficients(**s.get("easeoff.drive", {})),
+        easeoff_coast=EaseOffCoefficients(**s.get("easeoff.coast", {})),
+        assembly=AssemblyErrors(**s.get("assembly", {})),
+        pinion_material=materials["pinion"], gear_material=materials["gear"],
+        **design)
+
+
+def load_pair(source: str | Path) -> GearPair:
+    """Load a pair from a preset name (``"s0003"``) or a ``.toml`` file path.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``source`` is neither a preset nor an existing file.
+    InputRangeError
+        For a missing, mistyped or out-of-range field (the error names it) or an
+        impossible design.
+    """
+    text = str(source)
+    if text in PRESETS:
+        raw = resources.files("gearcontact").joinpath(f"data/pairs/{text}.toml").read_text()
+        label = text
+    else:
+        path = Path(text)
+        if not path.is_file():
+            raise FileNotFoundError(f"pair {text!r} is neither a preset {PRESETS} nor a file")
+        raw, label = path.read_text(), path.stem
+    try:
+        doc = tomllib.loads(raw)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputRangeError(f"{label} (TOML syntax)", str(exc), "valid TOML") from None
+    return parse_pair(doc, name=label)
