@@ -153,12 +153,13 @@ def test_go_while_busy_is_ignored_and_writes_dropped():
             await ctx.tick()
             n += 1
         assert n == FIT_CYCLES                  # not restarted, not delayed
-        assert not ctx.get(dut.busy)
+        assert not ctx.get(dut.busy) and ctx.get(dut.done_pulse)
         assert ctx.get(dut.wr_dropped) and ctx.get(dut.wr_count) == 49
         assert _read(ctx, dut) == _golden_tuple(first)   # RAM untouched by the write
         for _ in range(10):                     # done and outputs hold while idle
             await ctx.tick()
             assert ctx.get(dut.done) and _read(ctx, dut) == _golden_tuple(first)
+            assert not ctx.get(dut.done_pulse)  # one cycle only
         # second stencil: outputs keep the first result until the new done edge
         await _write(ctx, dut, second)
         assert not ctx.get(dut.wr_dropped)      # wr_rst cleared the sticky flag
@@ -168,7 +169,7 @@ def test_go_while_busy_is_ignored_and_writes_dropped():
         assert not ctx.get(dut.done)
         n = 1
         while not ctx.get(dut.done):
-            assert _read(ctx, dut) == _golden_tuple(first)
+            assert _read(ctx, dut) == _golden_tuple(first) and not ctx.get(dut.done_pulse)
             await ctx.tick()
             n += 1
         assert n == FIT_CYCLES and _read(ctx, dut) == _golden_tuple(second)

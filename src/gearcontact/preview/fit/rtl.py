@@ -20,7 +20,10 @@ Control behaviour
 -----------------
 * ``go`` is sampled only while idle; a ``go`` while ``busy`` is ignored (the running
   fit is neither restarted nor delayed). Accepting ``go`` clears ``done``; ``done``
-  then stays 1 from the end of the run until the next accepted ``go``. The output
+  then stays 1 from the end of the run until the next accepted ``go``, and
+  ``done_pulse`` is 1 for exactly the first cycle of it (the start strobe for a
+  following stage D in the C->D chain: D's first compute edge is edge 53, so its 2
+  capture/sort cycles are absorbed, see :mod:`.golden`). The output
   registers (``c0``..``c5``, ``a_minus``, ``b_minus``, ``flags``) change only on the
   ``done`` edge and hold until the next run completes.
 * Gap writes: ``wr_rst`` sets the write pointer to 0 and clears ``wr_dropped``;
@@ -87,7 +90,8 @@ class FitCore(wiring.Component):
     Ports (all synchronous to ``sync``):
 
     ``wr_rst`` In(1), ``wr_en`` In(1), ``wr_data`` In(signed(32)) GAP Q(32,16);
-    ``go`` In(1); ``busy`` Out(1), ``done`` Out(1); ``wr_count`` Out(range(50)),
+    ``go`` In(1); ``busy`` Out(1), ``done`` Out(1), ``done_pulse`` Out(1);
+    ``wr_count`` Out(range(50)),
     ``wr_dropped`` Out(1); ``c0``..``c5``, ``a_minus``, ``b_minus`` Out(signed(32))
     Q(32,20); ``flags`` Out(4).
     """
@@ -95,7 +99,7 @@ class FitCore(wiring.Component):
     def __init__(self, *, rom: BakedPinv | None = None):
         self._rom = baked_pinv() if rom is None else rom
         ports = {"wr_rst": In(1), "wr_en": In(1), "wr_data": In(signed(GAP.bits)),
-                 "go": In(1), "busy": Out(1), "done": Out(1),
+                 "go": In(1), "busy": Out(1), "done": Out(1), "done_pulse": Out(1),
                  "wr_count": Out(range(N_TAPS + 1)), "wr_dropped": Out(1),
                  "a_minus": Out(signed(CURVATURE.bits)),
                  "b_minus": Out(signed(CURVATURE.bits)), "flags": Out(FLAG_BITS)}
@@ -172,6 +176,7 @@ class FitCore(wiring.Component):
         a_new = _round_shift(h + r, 1)
         b_new = _round_shift(h - r, 1)
 
+        m.d.sync += self.done_pulse.eq(0)
         with m.If(~busy):
             with m.If(self.go):
                 m.d.sync += [busy.eq(1), self.done.eq(0), tap.eq(1), stage.eq(0)]
@@ -194,7 +199,8 @@ class FitCore(wiring.Component):
             kov = ~cov & ~dov & ~(_fits(a_new, CURVATURE) & _fits(b_new, CURVATURE))
             bad = cov | dov | kov
             flags = Cat(cov, dov, kov, ~bad & (b_new <= 0))     # bit order = FLAG_*
-            m.d.sync += [busy.eq(0), self.done.eq(1), stage.eq(0), tap.eq(0),
+            m.d.sync += [busy.eq(0), self.done.eq(1), self.done_pulse.eq(1),
+                         stage.eq(0), tap.eq(0),
                          self.flags.eq(flags),
                          self.a_minus.eq(Mux(bad, 0, a_new)),
                          self.b_minus.eq(Mux(bad, 0, b_new))]
