@@ -1,0 +1,166 @@
+"""TCA over the mesh cycle: neighbouring tooth pairs, TE0 envelope, per-phase contact.
+
+Tooth pair ``j`` is pinion tooth ``j`` (the reference flank turned by ``2 pi j / z1``
+about the pinion axis) against gear tooth ``j`` (turned by ``2 pi j / z2``). Because a
+turned tooth posed at ``phi1`` is the reference tooth posed at ``phi1 + 2 pi j/z1``
+(and likewise for the gear), pair ``j`` touches at pinion phase ``phi1`` exactly where
+pair 0 touches at ``phi1 + 2 pi j / z1``, at the same point of the meshing frame, and
+its transmission error is the shifted curve (Litvin & Fuentes 2004, sec. 15.6):
+
+    TE0_j(phi1) = TE0_0(phi1 + 2 pi j / z1)      (the z1/z2 terms cancel).
+
+So one continuation path of pair 0 on a grid whose step divides the pinion pitch
+gives every pair by an index shift, without interpolation.
+
+Envelope: unloaded, the gear rests on the first pair it meets. If the pinion pushes the
+gear forwards (the gear's normal at the contact opposes the gear's velocity,
+``n2 . (w2 x X) < 0``, the drive situation) the gear angle is the *largest* of the pair
+solutions, else the smallest; TE0 is the max (resp. min) over the pairs. Its
+peak-to-peak over one pinion pitch is the figure of merit ``te0_pp_arcsec``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface
+from ..validation import check_positive
+from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
+                        contact_ellipse, relative_curvature)
+from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
+
+__all__ = ["MeshCycle", "mesh_cycle"]
+
+
+@dataclass(frozen=True)
+class MeshCycle:
+    """TCA over one pinion pitch with the neighbouring tooth pairs.
+
+    Attributes
+    ----------
+    phi1_rad : ndarray (K,)
+        Phases of one pinion pitch, both ends included (``K = phases``), rad; centred
+        on the reference (mean) mating point.
+    pair_offsets : tuple of int
+        Pair indices ``j`` considered (``-pairs .. pairs``).
+    te0_pairs_arcsec : ndarray (P, K)
+        TE0 of each pair, arcsec (NaN where that pair is out of its flanks).
+    envelope_arcsec : ndarray (K,)
+        TE0 of the transmitting contact, arcsec.
+    active_pair : ndarray (K,) of int
+        Offset ``j`` of the pair that carries the contact.
+    te0_pp_arcsec : float
+        Peak-to-peak of the envelope over the pitch, arcsec.
+    contact : tuple of MatingPoint
+        Mating point of the transmitting pair at each phase (meshing frame).
+    curvature : tuple of RelativeCurvature
+        Relative curvature there.
+    ellipse : tuple of ContactEllipse
+        Instantaneous contact ellipse at the paint thickness.
+    pairs_in_contact : ndarray (K,) of int
+        Number of pairs with an interior mating point (potential contacts).
+    path : TcaPath
+        The full continuation path of pair 0 (``pairs`` pitches either side).
+    step_index : int
+        Path phases per pinion pitch (``K - 1``).
+    drive : bool
+        True if the pinion pushes the gear forwards (envelope = max).
+    pinion_teeth, gear_teeth : int
+        z1 and z2 (``z2 = z1 u`` rounded).
+    """
+
+    phi1_rad: np.ndarray
+    pair_offsets: tuple[int, ...]
+    te0_pairs_arcsec: np.ndarray
+    envelope_arcsec: np.ndarray
+    active_pair: np.ndarray
+    te0_pp_arcsec: float
+    contact: tuple[MatingPoint, ...]
+    curvature: tuple[RelativeCurvature, ...]
+    ellipse: tuple[ContactEllipse, ...]
+    pairs_in_contact: np.ndarray
+    path: TcaPath
+    step_index: int
+    drive: bool
+    pinion_teeth: int
+    gear_teeth: int
+
+    @property
+    def mean_index(self) -> int:
+        """Index of the phase nearest the reference mating point."""
+        return int(np.argmin(np.abs(self.phi1_rad - self.path.phi1_ref_rad)))
+
+
+def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
+               start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
+               pairs: int = 2, paint_mm: float = PAINT_THICKNESS_MM,
+               progress: bool = False) -> MeshCycle:
+    """Run TCA of pair 0 over ``2 pairs + 1`` pitches and assemble the mesh cycle.
+
+    Parameters
+    ----------
+    pinion, gear : Surface
+        One flank of each member (same side, e.g. drive).
+    kin : MeshKinematics
+        Kinematics with assembly errors.
+    pinion_teeth : int
+        z1; the pinion pitch is ``2 pi / z1``.
+    start : ContactGuess
+        Guess of the reference (mean) mating point; see :func:`solve_tca`.
+    start_fixed : str
+        Variable held while solving the reference point.
+    phases : int
+        Phases per pitch including both ends (>= 3; 61 or more for reports).
+    pairs : int
+        Neighbouring pairs on each side (``j = -pairs .. pairs``).
+    paint_mm : float
+        Paint thickness of the instantaneous ellipses, mm.
+    progress : bool
+        Show a progress bar over the phases.
+
+    Raises
+    ------
+    ValueError
+        If at some phase of the pitch no pair has an interior mating point (the paths
+        are shorter than a pitch: contact ratio below one).
+    """
+    if int(pinion_teeth) < 1:
+        raise ValueError(f"pinion_teeth = {pinion_teeth!r} must be >= 1")
+    if int(phases) < 3:
+        raise ValueError(f"phases = {phases!r} must be >= 3")
+    check_positive("paint_mm", paint_mm)
+    n = int(phases) - 1
+    step = 2.0 * np.pi / int(pinion_teeth) / n
+    ref = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed)
+    k0 = n // 2
+    span = pairs * n
+    grid = ref.phi1_rad + step * np.arange(-k0 - span, n - k0 + span + 1)
+    path = solve_tca(pinion, gear, kin, grid, start=ref.as_guess(), progress=progress)
+    offsets = tuple(range(-pairs, pairs + 1))
+    te0 = path.te0_arcsec
+    base = span                               # grid index of the pitch's first phase
+    idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
+    te_pairs = te0[idx]
+    rot2, t2 = kin.gear_pose(ref.phi2_rad)
+    drive = bool(ref.normal @ np.cross(kin.gear_axis, ref.point_mm - t2) < 0.0)
+    valid = np.isfinite(te_pairs)
+    if not valid.any(axis=0).all():
+        k = int(np.argmin(valid.any(axis=0)))
+        raise ValueError(f"no tooth pair in contact at phi1 = "
+                         f"{np.degrees(grid[base + k]):.4f} deg: the contact path is "
+                         "shorter than one pinion pitch (contact ratio < 1)")
+    filled = np.where(valid, te_pairs, -np.inf if drive else np.inf)
+    winner = np.argmax(filled, axis=0) if drive else np.argmin(filled, axis=0)
+    cols = np.arange(n + 1)
+    envelope = te_pairs[winner, cols]
+    contact = tuple(path.points[idx[w, k]] for k, w in enumerate(winner))
+    curv = tuple(relative_curvature(pinion, gear, kin, mp) for mp in contact)
+    ell = tuple(contact_ellipse(rc, paint_mm=paint_mm) for rc in curv)
+    return MeshCycle(grid[base:base + n + 1], offsets, te_pairs, envelope,
+                     np.array([offsets[w] for w in winner]),
+                     float(envelope.max() - envelope.min()), contact, curv, ell,
+                     valid.sum(axis=0), path, n, drive, int(pinion_teeth),
+                     int(round(int(pinion_teeth) * kin.ratio)))
