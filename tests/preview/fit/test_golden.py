@@ -152,6 +152,15 @@ def test_golden_within_quantization_bound(quadratics):
     assert _eigen_bound(next(quadratics(1, seed=3))[0]) < 2e-5
 
 
+def test_decoded_coefficients(quadratic):
+    # c3..c5 decode within the coefficient bound of pinv (rigorous)
+    g, c = quadratic(0.4, 0.02, 33.0, 0.01, -0.02, 0.03)
+    r = golden_fit(encode_gaps(g))
+    dc = coefficient_error_bound(g)
+    assert np.all(np.abs(np.array(r.coefficients[3:]) - np.array(c)) <= dc[3:])
+    assert np.all(np.abs(np.array(r.coefficients[:3]) - [0.01, -0.02, 0.03]) <= dc[:3])
+
+
 def test_golden_tracks_reference_and_rotation(quadratic):
     # rotating the field (grid rotation by 90 deg) keeps the golden eigenvalues within
     # twice the single-fit bound of each other (both within the bound of the truth)

@@ -120,6 +120,11 @@ class GoldenFit:
     flags: int
 
     @property
+    def coefficients(self) -> tuple:
+        """Decoded c0 (mm), c1, c2 (1), c3, c4, c5 (1/mm)."""
+        return tuple(COEFF.to_float(x) for x in self.c_codes)
+
+    @property
     def A_minus_per_mm(self) -> float:
         """Decoded A-, 1/mm."""
         return CURVATURE.to_float(self.a_minus_code)
