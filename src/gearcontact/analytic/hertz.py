@@ -249,14 +249,16 @@ def hamrock_brewe_terms(a_min: float, b_max: float, load_n: float, e_prime_mpa: 
     """
     alpha = b_max / a_min                       # R_x/R_y
     r_eff = 0.5 / (a_min + b_max)               # 1/R = 2 A_min + 2 B_max
-    k = alpha ** _HB_K_EXP
+    ln_alpha = math.log(alpha)
+    k = math.exp(_HB_K_EXP * ln_alpha)          # alpha^(2/pi)
     e_e = 1.0 + _HB_E / alpha
-    f = _HALF_PI + _HB_E * math.log(alpha)
+    f = _HALF_PI + _HB_E * ln_alpha
     a = (6.0 * k * k * e_e * load_n * r_eff / (math.pi * e_prime_mpa)) ** _THIRD
     b = a / k
     p_max = 3.0 * load_n / (2.0 * math.pi * a * b)
-    q = load_n / (math.pi * k * e_prime_mpa)
-    delta = f * (9.0 / (2.0 * e_e * r_eff) * q * q) ** _THIRD
+    # delta = F (9/(2 E_e R) (W/(pi k E'))^2)^(1/3), rewritten with a as 3 W F/(pi a E')
+    # (algebraically identical; saves the second cube root)
+    delta = 3.0 * load_n * f / (math.pi * a * e_prime_mpa)
     return a, b, k, p_max, delta, alpha, e_e, f, r_eff
 
 
@@ -339,8 +341,7 @@ def hamrock_brewe_hertz_array(A_per_mm, B_per_mm, load_n, *, e_prime_mpa) -> dic
     a = np.cbrt(6.0 * k * k * e_e * w * r_eff / (math.pi * ep))
     b = a / k
     p_max = 3.0 * w / (2.0 * math.pi * a * b)
-    q = w / (math.pi * k * ep)
-    delta = f * np.cbrt(9.0 / (2.0 * e_e * r_eff) * q * q)
+    delta = 3.0 * w * f / (math.pi * a * ep)          # = F (9/(2 E_e R) (W/(pi k E'))^2)^(1/3)
     return {"a_mm": a, "b_mm": b, "k": k, "p_max_mpa": p_max, "approach_mm": delta,
             "alpha": alpha, "elliptic_e": e_e, "elliptic_k": f, "r_eff_mm": r_eff}
 

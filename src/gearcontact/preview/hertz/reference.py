@@ -1,0 +1,185 @@
+"""fp64 reference of stage D: the Hamrock–Brewe elliptic Hertz preview.
+
+Sorts the half relative curvatures (``A_min <= B_max``), derives
+``R_x = 1/(2 A_min)``, ``R_y = 1/(2 B_max)`` and evaluates the simplified
+Hamrock–Brewe forms through :func:`gearcontact.analytic.hertz.hamrock_brewe_terms`
+(the package's single implementation of those formulas; SPEC section 6, Algorithm 3).
+
+The scalar path uses only ``math`` and costs about 1 us per call from Python
+(``benchmarks/bench_preview_reference.py``); :func:`hertz_preview_array` evaluates
+numpy batches.
+
+Operating envelope (``envelope=True``, the default): the same domain the fixed-point
+datapath accepts (:mod:`.formats`): curvatures in [2^-11, 16] 1/mm, load in
+[1, 2^17] N, E' in [2^12, 2^21] MPa and alpha = B_max/A_min <= 128 (POW LUT range),
+so that every backend of the preview accepts exactly the same inputs. With
+``envelope=False`` only positivity and finiteness are required.
+
+References
+----------
+B. J. Hamrock, D. E. Brewe, J. Lubrication Technol. 105 (1983) 171-177.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...analytic.hertz import hamrock_brewe_hertz_array, hamrock_brewe_terms
+from ...validation import InputRangeError, check_array_finite, check_positive, check_range
+from ..qformat import CURVATURE, LOAD
+from . import formats as F
+
+__all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE"]
+
+#: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
+ENVELOPE = {
+    "curvature_per_mm": (math.ldexp(F.CURV_MIN_CODE, -CURVATURE.frac),
+                         math.ldexp(F.CURV_MAX_CODE, -CURVATURE.frac)),
+    "load_n": (math.ldexp(F.LOAD_MIN_CODE, -LOAD.frac), math.ldexp(F.LOAD_MAX_CODE, -LOAD.frac)),
+    "e_prime_mpa": (float(F.E_PRIME_MIN_CODE), float(F.E_PRIME_MAX_CODE)),
+    "alpha": (1.0, math.ldexp(F.ALPHA_MAX_CODE, -F.ALPHA.frac)),
+}
+_C_LO, _C_HI = ENVELOPE["curvature_per_mm"]
+_W_LO, _W_HI = ENVELOPE["load_n"]
+_E_LO, _E_HI = ENVELOPE["e_prime_mpa"]
+_ALPHA_HI = ENVELOPE["alpha"][1]
+_new = object.__new__
+
+
+@dataclass(frozen=True)
+class HertzPreview:
+    """Stage-D preview of one contact (fp64).
+
+    Attributes
+    ----------
+    a_mm : float
+        Major semi-axis, mm (along the A_min principal direction).
+    b_mm : float
+        Minor semi-axis, mm.
+    k : float
+        Ellipticity a/b = alpha^(2/pi), dimensionless.
+    p_max_mpa : float
+        Peak Hertzian pressure, MPa.
+    alpha : float
+        Radius ratio R_x/R_y = B_max/A_min >= 1.
+    R_x_mm, R_y_mm : float
+        Principal relative radii 1/(2 A_min), 1/(2 B_max), mm.
+    approach_mm : float
+        Hamrock–Brewe rigid-body approach delta, mm (compliance 2 delta/(3 W)).
+    """
+
+    a_mm: float
+    b_mm: float
+    k: float
+    p_max_mpa: float
+    alpha: float
+    R_x_mm: float
+    R_y_mm: float
+    approach_mm: float
+
+
+def _envelope_error(field: str, value, lo: float, hi: float) -> None:
+    """Raise :class:`InputRangeError` naming ``field`` unless lo <= value <= hi."""
+    check_range(field, value, lo, hi)
+
+
+def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa: float,
+                  envelope: bool = True) -> HertzPreview:
+    """Hamrock–Brewe stage-D preview of one contact (fp64, scalar, pure ``math``).
+
+    Parameters
+    ----------
+    A_minus, B_minus : float
+        Half relative principal curvatures (gap ``A s^2 + B t^2``), 1/mm, any order.
+    load_n : float
+        Normal load W, N.
+    e_prime_mpa : float
+        Effective modulus E' = 2E*, MPa (steel/steel 229 670).
+    envelope : bool
+        Enforce the datapath's operating envelope (module docstring).
+
+    Returns
+    -------
+    HertzPreview
+
+    Raises
+    ------
+    InputRangeError
+        Non-positive / non-finite input, or outside the envelope (names the field).
+    """
+    a = float(A_minus)
+    b = float(B_minus)
+    w = float(load_n)
+    e = float(e_prime_mpa)
+    # one chained comparison rejects <= 0, inf and NaN; the slow path names the field
+    if not (0.0 < a < math.inf and 0.0 < b < math.inf and 0.0 < w < math.inf
+            and 0.0 < e < math.inf):
+        for name, v in (("A_minus", a), ("B_minus", b), ("load_n", w), ("e_prime_mpa", e)):
+            check_positive(name, v)
+    na, nb = "A_minus", "B_minus"
+    if a > b:
+        a, b, na, nb = b, a, nb, na
+    if envelope:
+        if not (_C_LO <= a and b <= _C_HI and _W_LO <= w <= _W_HI and _E_LO <= e <= _E_HI
+                and b <= _ALPHA_HI * a):
+            _envelope_error(na, a, _C_LO, _C_HI)
+            _envelope_error(nb, b, _C_LO, _C_HI)
+            _envelope_error("load_n", w, _W_LO, _W_HI)
+            _envelope_error("e_prime_mpa", e, _E_LO, _E_HI)
+            raise InputRangeError("alpha = B_max/A_min", b / a, f"[1, {_ALPHA_HI:g}]")
+    a_mm, b_mm, k, p_max, delta, alpha, _, _, _ = hamrock_brewe_terms(a, b, w, e)
+    # Fast construction of the frozen instance: the generated __init__ calls
+    # object.__setattr__ once per field (~2 us for 8 fields); filling the instance
+    # dict directly yields an identical object (same fields, __eq__, __repr__).
+    out = _new(HertzPreview)
+    out.__dict__.update(a_mm=a_mm, b_mm=b_mm, k=k, p_max_mpa=p_max, alpha=alpha,
+                        R_x_mm=0.5 / a, R_y_mm=0.5 / b, approach_mm=delta)
+    return out
+
+
+def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool = True
+                        ) -> dict:
+    """Vectorized :func:`hertz_preview` over broadcastable arrays.
+
+    Returns
+    -------
+    dict of str -> ndarray
+        ``a_mm, b_mm, k, p_max_mpa, alpha, R_x_mm, R_y_mm, approach_mm``.
+
+    Raises
+    ------
+    InputRangeError
+        The first offending element (field and index), as in the scalar path.
+    """
+    A = check_array_finite("A_minus", A_minus)
+    B = check_array_finite("B_minus", B_minus)
+    W = check_array_finite("load_n", load_n)
+    E = check_array_finite("e_prime_mpa", e_prime_mpa)
+    if envelope:
+        lo_hi = {"A_minus": (A, _C_LO, _C_HI), "B_minus": (B, _C_LO, _C_HI),
+                 "load_n": (W, _W_LO, _W_HI), "e_prime_mpa": (E, _E_LO, _E_HI)}
+        for name, (x, lo, hi) in lo_hi.items():
+            bad = ~((x >= lo) & (x <= hi))
+            if bad.any():
+                idx = tuple(int(i) for i in np.argwhere(bad)[0])
+                raise InputRangeError(f"{name}[{', '.join(map(str, idx))}]" if x.ndim
+                                      else name, x[idx], f"[{lo:g}, {hi:g}]")
+        A, B = np.broadcast_arrays(A, B)
+        ratio = np.maximum(A, B) / np.minimum(A, B)
+        bad = ratio > _ALPHA_HI
+        if bad.any():
+            idx = tuple(int(i) for i in np.argwhere(bad)[0])
+            raise InputRangeError("alpha = B_max/A_min" + (f"[{idx[0]}]" if idx else ""),
+                                  ratio[idx], f"[1, {_ALPHA_HI:g}]")
+    hb = hamrock_brewe_hertz_array(A, B, W, e_prime_mpa=E)
+    a_min = np.minimum(A, B)
+    b_max = np.maximum(A, B)
+    a_min, b_max = np.broadcast_arrays(a_min, b_max)
+    return {"a_mm": hb["a_mm"], "b_mm": hb["b_mm"], "k": hb["k"],
+            "p_max_mpa": hb["p_max_mpa"], "alpha": hb["alpha"],
+            "R_x_mm": np.broadcast_to(0.5 / a_min, hb["a_mm"].shape),
+            "R_y_mm": np.broadcast_to(0.5 / b_max, hb["a_mm"].shape),
+            "approach_mm": hb["approach_mm"]}
