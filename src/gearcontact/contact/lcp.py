@@ -14,9 +14,9 @@ return the same :class:`LcpResult`:
 ``"nnls"`` (reference)
     The Lawson & Hanson (1974) NNLS active-set algorithm (``scipy.optimize.nnls``) on
     the Cholesky factor ``C = L L^T`` -- ``min ||L^T w - L^-1 (delta - h)||, w >= 0`` has
-    exactly the LCP's KKT conditions for fixed ``delta`` -- closed by a Brent root find
-    on ``delta`` such that ``sum(w(delta)) = W`` (monotone, piecewise linear), then one
-    exact bordered solve on the final support.
+    exactly the LCP's KKT conditions for fixed ``delta`` -- closed by a safeguarded root
+    find on ``delta`` such that ``sum(w(delta)) = W`` (monotone, piecewise linear; each
+    step is the exact bordered solve on the current NNLS support).
 ``"active_set"`` (direct)
     Block active-set iteration; each step solves the active block with the bordered
     load constraint by Cholesky (LU for the non-symmetric collocation matrices of
@@ -197,44 +197,47 @@ def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: 
     return w, max_iter, False
 
 
-def _nnls_reference(c: np.ndarray, h: np.ndarray, load_n: float, tol: float,
-                    max_iter: int, delta_hi: float) -> tuple[np.ndarray, float, int, bool,
-                                                             str]:
-    """Lawson-Hanson NNLS on the Cholesky factor with a Brent root find on delta."""
+def _nnls_reference(c: np.ndarray, h: np.ndarray, load_n: float, max_iter: int,
+                    delta_guess: float) -> tuple[np.ndarray, float, int, bool, str]:
+    """Lawson-Hanson NNLS on the Cholesky factor, closed by a safeguarded root find.
+
+    ``sum(w(delta))`` is continuous, non-decreasing and linear on each NNLS support
+    ``S`` (slope ``1' C_SS^-1 1``), so the step to the next ``delta`` is the exact
+    bordered solve on the current support (Newton on a piecewise-linear function),
+    safeguarded by bisection inside the bracket ``[lo, hi]``. It stops when the support
+    repeats, where the bordered solution is the exact LCP solution.
+    """
     lower = linalg.cholesky(c, lower=True, check_finite=False)
     v1 = linalg.solve_triangular(lower, np.ones_like(h), lower=True, check_finite=False)
     vh = linalg.solve_triangular(lower, h, lower=True, check_finite=False)
     a = lower.T.copy()
-    calls = [0]
-
-    def loads(delta):
-        calls[0] += 1
-        return optimize.nnls(a, delta * v1 - vh, maxiter=50 * h.size)[0]
-
-    def excess(delta):
-        return loads(delta).sum() - load_n
-
-    lo, hi = float(h.min()), float(delta_hi)
-    while excess(hi) < 0.0:
-        lo, hi = hi, lo + 2.0 * (hi - lo)
-        if calls[0] > max_iter:
-            return np.zeros_like(h), hi, calls[0], False, "no bracket for delta"
-    try:
-        delta, info = optimize.brentq(excess, lo, hi, xtol=1e-15 * max(abs(hi), 1e-3),
-                                      rtol=4.0 * np.finfo(float).eps,
-                                      maxiter=max_iter, full_output=True, disp=False)
-    except RuntimeError as exc:  # pragma: no cover - brentq only raises on bad bracket
-        return np.zeros_like(h), hi, calls[0], False, f"root find failed: {exc}"
-    w = loads(delta)
-    support = w > 0.0
-    # exact polish on the final support (the load is linear in delta within it)
-    w_a, d_a = _bordered_solve(c[np.ix_(support, support)], h[support], load_n, True)
-    if np.all(w_a >= 0.0):
-        w = np.zeros_like(h)
-        w[support] = w_a
-        delta = d_a
-    return w, float(delta), calls[0], bool(info.converged), \
-        f"brentq {'converged' if info.converged else 'failed'} after {info.iterations} steps"
+    lo, hi = float(h.min()), np.inf
+    delta = max(float(delta_guess), lo + 1e-12)
+    support_prev = None
+    for calls in range(1, max_iter + 1):
+        w = optimize.nnls(a, delta * v1 - vh, maxiter=50 * h.size)[0]
+        support = w > 0.0
+        if support_prev is not None and np.array_equal(support, support_prev):
+            w_a, d_a = _bordered_solve(c[np.ix_(support, support)], h[support], load_n,
+                                       True)
+            if np.all(w_a >= 0.0):
+                w = np.zeros_like(h)
+                w[support] = w_a
+                return w, d_a, calls, True, f"nnls support fixed after {calls} solves"
+        if w.sum() < load_n:
+            lo = delta
+        else:
+            hi = delta
+        support_prev = support
+        if support.any():
+            _, step = _bordered_solve(c[np.ix_(support, support)], h[support], load_n,
+                                      True)
+        else:
+            step = lo + 2.0 * (delta - lo) + 1e-12
+        if not lo < step < hi:  # safeguard: bisect, or expand until bracketed
+            step = 0.5 * (lo + hi) if np.isfinite(hi) else lo + 2.0 * (delta - lo)
+        delta = step
+    return w, delta, max_iter, False, "nnls root find hit max_iter"
 
 
 def _active_set(c: np.ndarray, h: np.ndarray, load_n: float, active0: np.ndarray,
@@ -322,7 +325,7 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
         See the module docstring.
     tol : float
         pk_cg: stop when ``sum|w - w_prev| <= tol W``; active_set: penetration allowed
-        as a fraction of the approach; nnls: unused (root find to machine precision).
+        as a fraction of the approach; nnls: unused (exact support solve).
     max_iter : int, optional
         Iteration cap per window (defaults: pk_cg 2000, nnls 200, active_set 200).
     warm_start : LcpResult or array_like (ny, nx), optional
@@ -401,9 +404,9 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
             c = dense_influence_matrix(sub, e_star_mpa=e_star, cells=np.flatnonzero(sel))
             hs = h.ravel()[sel]
             if solver == "nnls":
-                top = bound if np.isfinite(bound) else float(hs.max())
-                ws, delta, it, ok, msg = _nnls_reference(c, hs, load, tol, n_iter,
-                                                         max(top, hmin + 1e-12))
+                guess = 2.1 * (b_star - hmin) if np.isfinite(b_star) else np.ptp(hs)
+                ws, delta, it, ok, msg = _nnls_reference(c, hs, load, n_iter,
+                                                         hmin + guess)
             else:
                 ws, delta, it, ok, msg = _active_set(c, hs, load, w0.ravel()[sel] > 0.0,
                                                      tol, n_iter, sub.is_uniform)
