@@ -40,8 +40,8 @@ def test_pairs_are_shifted_truths_and_envelope(cycle):
     np.testing.assert_allclose(cyc.te0_pairs_arcsec, te_truth, atol=1e-6)
     # the sphere meets the torus from behind its normal: gear pushed forwards
     mp = cyc.contact[cyc.mean_index]
-    assert cyc.drive == bool(mp.normal @ np.cross([0, 0, 1.0], mp.point_mm) < 0)
-    env = te_truth.max(axis=0) if cyc.drive else te_truth.min(axis=0)
+    assert cyc.envelope_is_max == bool(mp.normal @ np.cross([0, 0, 1.0], mp.point_mm) < 0)
+    env = te_truth.max(axis=0) if cyc.envelope_is_max else te_truth.min(axis=0)
     np.testing.assert_allclose(cyc.envelope_arcsec, env, atol=1e-6)
     assert cyc.te0_pp_arcsec == pytest.approx(env.max() - env.min(), abs=2e-6)
     assert (cyc.pairs_in_contact == 3).all()

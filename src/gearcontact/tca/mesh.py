@@ -13,9 +13,11 @@ So one continuation path of pair 0 on a grid whose step divides the pinion pitch
 gives every pair by an index shift, without interpolation.
 
 Envelope: unloaded, the gear rests on the first pair it meets. If the pinion pushes the
-gear forwards (the gear's normal at the contact opposes the gear's velocity,
-``n2 . (w2 x X) < 0``, the drive situation) the gear angle is the *largest* of the pair
-solutions, else the smallest; TE0 is the max (resp. min) over the pairs. Its
+gear towards +phi2 (the gear's normal at the contact, pointing at the pinion, opposes
+the gear's velocity: ``n2 . (w2 x X) < 0``) no pair may penetrate for
+``phi2 < phi2_j``, so the gear angle is the *largest* of the pair solutions; if it
+pushes towards -phi2 (as on the s0003 drive side of :mod:`gearcontact.geometry.flank`)
+it is the smallest. TE0 is the max (resp. min) over the pairs. Its
 peak-to-peak over one pinion pitch is the figure of merit ``te0_pp_arcsec``.
 """
 
@@ -66,8 +68,9 @@ class MeshCycle:
         The full continuation path of pair 0 (``pairs`` pitches either side).
     step_index : int
         Path phases per pinion pitch (``K - 1``).
-    drive : bool
-        True if the pinion pushes the gear forwards (envelope = max).
+    envelope_is_max : bool
+        True if the pinion pushes the gear forwards (+phi2), so TE0 is the max over
+        the pairs; False: the min.
     pinion_teeth, gear_teeth : int
         z1 and z2 (``z2 = z1 u`` rounded).
     """
@@ -84,9 +87,15 @@ class MeshCycle:
     pairs_in_contact: np.ndarray
     path: TcaPath
     step_index: int
-    drive: bool
+    envelope_is_max: bool
     pinion_teeth: int
     gear_teeth: int
+
+    @property
+    def reference_point(self) -> MatingPoint:
+        """The reference (mean) mating point P0 of pair 0 (TE0 = 0 there)."""
+        i = int(np.argmin(np.abs(self.path.phi1_rad - self.path.phi1_ref_rad)))
+        return self.path.points[i]
 
     @property
     def mean_index(self) -> int:
@@ -145,15 +154,15 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
     te_pairs = te0[idx]
     rot2, t2 = kin.gear_pose(ref.phi2_rad)
-    drive = bool(ref.normal @ np.cross(kin.gear_axis, ref.point_mm - t2) < 0.0)
+    envelope_is_max = bool(ref.normal @ np.cross(kin.gear_axis, ref.point_mm - t2) < 0.0)
     valid = np.isfinite(te_pairs)
     if not valid.any(axis=0).all():
         k = int(np.argmin(valid.any(axis=0)))
         raise ValueError(f"no tooth pair in contact at phi1 = "
                          f"{np.degrees(grid[base + k]):.4f} deg: the contact path is "
                          "shorter than one pinion pitch (contact ratio < 1)")
-    filled = np.where(valid, te_pairs, -np.inf if drive else np.inf)
-    winner = np.argmax(filled, axis=0) if drive else np.argmin(filled, axis=0)
+    filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
+    winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
     cols = np.arange(n + 1)
     envelope = te_pairs[winner, cols]
     contact = tuple(path.points[idx[w, k]] for k, w in enumerate(winner))
@@ -162,5 +171,5 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     return MeshCycle(grid[base:base + n + 1], offsets, te_pairs, envelope,
                      np.array([offsets[w] for w in winner]),
                      float(envelope.max() - envelope.min()), contact, curv, ell,
-                     valid.sum(axis=0), path, n, drive, int(pinion_teeth),
+                     valid.sum(axis=0), path, n, envelope_is_max, int(pinion_teeth),
                      int(round(int(pinion_teeth) * kin.ratio)))

@@ -105,11 +105,12 @@ def tangent_frame(pinion: Surface, gear: Surface, kin: MeshKinematics,
 def evaluate_many(surface: Surface, u: np.ndarray, v: np.ndarray):
     """Evaluate a surface at many parameter pairs: ``(r, r_u, r_v)`` as (N, 3) arrays.
 
-    Uses the surface's optional vectorized ``points(u, v)`` (a :class:`SurfacePoint`
-    with (N, 3) fields) when it has one, else loops over ``point``.
+    Uses the surface's optional vectorized ``evaluate(u, v)`` (the flanks of
+    :mod:`gearcontact.geometry` return arrays with (N, 3) fields) when it has one,
+    else loops over ``point``.
     """
-    if hasattr(surface, "points"):
-        sp = surface.points(u, v)
+    if hasattr(surface, "evaluate"):
+        sp = surface.evaluate(u, v)
         return np.asarray(sp.r), np.asarray(sp.r_u), np.asarray(sp.r_v)
     pts = [surface.point(float(a), float(b)) for a, b in zip(u, v)]
     return (np.array([p.r for p in pts]), np.array([p.r_u for p in pts]),

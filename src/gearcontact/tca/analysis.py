@@ -1,0 +1,128 @@
+"""The complete unloaded analysis of one flank pair: mesh cycle, phase table, gap field,
+hardware stencil and pattern check, as one call (what ``gearcontact tca`` runs).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from tqdm import tqdm
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface
+from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
+                        relative_curvature)
+from .mesh import MeshCycle, mesh_cycle
+from .phase_table import PhaseTable, phase_table
+from .solve import ContactGuess, MatingPoint
+from .stencil import GapField, gap_at, gap_field_80, hardware_stencil
+
+__all__ = ["TcaAnalysis", "analyze", "pattern_on_flank"]
+
+
+@dataclass(frozen=True)
+class TcaAnalysis:
+    """Everything the TCA stage hands downstream.
+
+    Attributes
+    ----------
+    cycle : MeshCycle
+        Mesh cycle with neighbouring pairs (TE0 envelope, transmitting contacts).
+    table : PhaseTable
+        Per-phase table over one pitch.
+    mean_point : MatingPoint
+        The reference mating point P0 (TE0 = 0 there).
+    mean_curvature : RelativeCurvature
+    mean_ellipse : ContactEllipse
+        Paint ellipse at P0.
+    gap_field : GapField
+        80 x 80 host gap field around P0 (principal frame).
+    stencil : GapField
+        49-sample hardware stencil around P0 (flank frame, baked spacing).
+    pattern_on_flank : ndarray (K,) of bool
+        Per phase of the pitch: the paint ellipse of the transmitting contact lies
+        inside both flanks (its four vertices map into the parameter boxes).
+    timings_s : dict
+        Wall-clock seconds per stage.
+    """
+
+    cycle: MeshCycle
+    table: PhaseTable
+    mean_point: MatingPoint
+    mean_curvature: RelativeCurvature
+    mean_ellipse: ContactEllipse
+    gap_field: GapField
+    stencil: GapField
+    pattern_on_flank: np.ndarray
+    timings_s: dict
+
+
+def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                     cycle: MeshCycle) -> np.ndarray:
+    """Per phase: do the four vertices of the paint ellipse lie on both flanks?"""
+    ok = np.zeros(len(cycle.contact), dtype=bool)
+    for k, (mp, ell) in enumerate(zip(cycle.contact, cycle.ellipse)):
+        if not np.isfinite(ell.semi_major_mm):
+            continue
+        a, b = ell.semi_major_mm, ell.semi_minor_mm
+        field = gap_at(pinion, gear, kin, mp, [a, -a, 0.0, 0.0], [0.0, 0.0, b, -b],
+                       frame="principal")
+        ok[k] = bool(field.on_flank.all())
+    return ok
+
+
+def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
+            start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
+            pairs: int = 2, allow_outside_stencil: bool = True,
+            progress: bool = False) -> TcaAnalysis:
+    """Run the whole unloaded analysis.
+
+    Parameters
+    ----------
+    pinion, gear : Surface
+        One flank of each member (same side).
+    kin : MeshKinematics
+        Kinematics with assembly errors.
+    pinion_teeth : int
+        z1.
+    start, start_fixed
+        Reference mating point guess (see :func:`~gearcontact.tca.solve.solve_tca`).
+    phases : int
+        Phases per pinion pitch including both ends (>= 61 for reports).
+    pairs : int
+        Neighbouring pairs either side.
+    allow_outside_stencil : bool
+        Let the 7 x 7 stencil (fixed +-1.5 mm window) use the flanks' analytic
+        continuation where it reaches beyond a flank boundary; the samples concerned
+        are recorded in ``stencil.on_flank``. The 80 x 80 field never extrapolates.
+    progress : bool
+        Show progress bars.
+    """
+    timings = {}
+    stages = tqdm(total=4, desc="TCA stages", disable=not progress, leave=False)
+    t0 = time.perf_counter()
+    cycle = mesh_cycle(pinion, gear, kin, pinion_teeth=pinion_teeth, start=start,
+                       start_fixed=start_fixed, phases=phases, pairs=pairs,
+                       progress=progress)
+    timings["mesh_cycle"] = time.perf_counter() - t0
+    stages.update(1)
+    table = phase_table(cycle)
+    mean = cycle.reference_point
+    t0 = time.perf_counter()
+    rc = relative_curvature(pinion, gear, kin, mean)
+    ell = contact_ellipse(rc)
+    field = gap_field_80(pinion, gear, kin, mean)
+    timings["gap_field_80"] = time.perf_counter() - t0
+    stages.update(1)
+    t0 = time.perf_counter()
+    stencil = hardware_stencil(pinion, gear, kin, mean, allow_outside=allow_outside_stencil)
+    timings["stencil"] = time.perf_counter() - t0
+    stages.update(1)
+    t0 = time.perf_counter()
+    inside = pattern_on_flank(pinion, gear, kin, cycle)
+    timings["pattern_check"] = time.perf_counter() - t0
+    stages.update(1)
+    stages.close()
+    return TcaAnalysis(cycle, table, mean, rc, ell, field, stencil, inside, timings)

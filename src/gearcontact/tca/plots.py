@@ -1,0 +1,128 @@
+"""TCA figures (matplotlib, Agg backend): contact pattern and path, TE0 over the mesh.
+
+Flank views use the usual axial-plane projection of gear-contact practice (Litvin &
+Fuentes 2004, sec. 15.7): a point of a member's body frame is drawn at
+(axial coordinate, distance from the axis). The gear axis is body z, the pinion axis
+body x (:mod:`gearcontact.geometry.kinematics`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ..geometry.kinematics import MeshKinematics  # noqa: E402
+from ..geometry.surface import Surface  # noqa: E402
+from .mesh import MeshCycle  # noqa: E402
+
+__all__ = ["axial_projection", "plot_contact_pattern", "plot_te0"]
+
+
+def axial_projection(points_body: np.ndarray, member: str) -> np.ndarray:
+    """(N, 2) axial-plane coordinates ``(axial, radius)`` in mm of body-frame points."""
+    p = np.atleast_2d(points_body)
+    if member == "gear":
+        return np.column_stack([p[:, 2], np.hypot(p[:, 0], p[:, 1])])
+    if member == "pinion":
+        return np.column_stack([p[:, 0], np.hypot(p[:, 1], p[:, 2])])
+    raise ValueError(f"member = {member!r} is not 'gear' or 'pinion'")
+
+
+def _boundary(surface: Surface, n: int = 40) -> np.ndarray:
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    u = np.linspace(u0, u1, n)
+    v = np.linspace(v0, v1, n)
+    loop = ([(a, v0) for a in u] + [(u1, b) for b in v] + [(a, v1) for a in u[::-1]]
+            + [(u0, b) for b in v[::-1]])
+    return np.array([surface.point(a, b).r for a, b in loop])
+
+
+def _to_body(kin: MeshKinematics, member: str, mp, x_f: np.ndarray) -> np.ndarray:
+    rot, t = (kin.gear_pose(mp.phi2_rad) if member == "gear"
+              else kin.pinion_pose(mp.phi1_rad))
+    return (np.atleast_2d(x_f) - t) @ rot
+
+
+def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                         cycle: MeshCycle, path, *, every: int = 2,
+                         title: str = "") -> Path:
+    """Contact pattern (union of paint ellipses) and path on both flanks; PNG at ``path``.
+
+    The ellipses of every ``every``-th phase of the pair-0 path are drawn; the
+    reference (mean) point P0 is marked.
+    """
+    from .curvature import contact_ellipse, relative_curvature
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    theta = np.linspace(0.0, 2 * np.pi, 49)
+    paint = cycle.ellipse[0].paint_mm
+    pts = [mp for mp in cycle.path.points if not mp.edge]
+    for ax, member, surf in ((axes[0], "gear", gear), (axes[1], "pinion", pinion)):
+        ax.plot(*axial_projection(_boundary(surf), member).T, color="0.3", lw=1.0,
+                label="flank boundary")
+        for i, mp in enumerate(pts):
+            if i % every:
+                continue
+            rc = relative_curvature(pinion, gear, kin, mp)
+            ell = contact_ellipse(rc, paint_mm=paint)
+            if not np.isfinite(ell.semi_major_mm):
+                continue
+            ring = (mp.point_mm + np.outer(ell.semi_major_mm * np.cos(theta), rc.dir_min)
+                    + np.outer(ell.semi_minor_mm * np.sin(theta), rc.dir_max))
+            xy = axial_projection(_to_body(kin, member, mp, ring), member)
+            ax.fill(xy[:, 0], xy[:, 1], color="tab:orange", alpha=0.25, lw=0)
+        trace = np.vstack([axial_projection(_to_body(kin, member, mp, mp.point_mm), member)
+                           for mp in pts])
+        ax.plot(trace[:, 0], trace[:, 1], color="tab:red", lw=1.2, label="contact path")
+        ref = cycle.contact[cycle.mean_index]
+        p0 = axial_projection(_to_body(kin, member, ref, ref.point_mm), member)[0]
+        ax.plot(*p0, "k+", ms=10, mew=2, label="P0")
+        ax.set_aspect("equal")
+        ax.set_xlabel(f"{member} axial coordinate (mm)")
+        ax.set_ylabel(f"distance from {member} axis (mm)")
+        ax.set_title(f"{member} flank: pattern at {paint * 1e3:.2f} um paint")
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="best", fontsize=8)
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    out = Path(path)
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    return out
+
+
+def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
+    """TE0 of each tooth pair along the mesh phase with the envelope; PNG at ``path``."""
+    n = cycle.step_index
+    p = cycle.path
+    te = p.te0_arcsec
+    phi = np.degrees(p.phi1_rad)
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    pitch_deg = 360.0 / cycle.pinion_teeth
+    for j in cycle.pair_offsets:
+        # pair j at phase phi is pair 0 at phi + j * pitch
+        ax.plot(phi - j * pitch_deg, te, lw=1.0, alpha=0.7, label=f"pair {j:+d}")
+    env_phi = np.degrees(cycle.phi1_rad)
+    ax.plot(env_phi, cycle.envelope_arcsec, color="k", lw=2.2,
+            label=f"envelope, p-p {cycle.te0_pp_arcsec:.2f} arcsec")
+    ax.axvspan(env_phi[0], env_phi[-1], color="0.9", zorder=0)
+    lo, hi = np.nanmin(cycle.envelope_arcsec), np.nanmax(cycle.envelope_arcsec)
+    pad = max(hi - lo, 1.0)
+    ax.set_ylim(lo - 1.5 * pad, hi + 0.5 * pad)
+    ax.set_xlim(env_phi[0] - pitch_deg, env_phi[-1] + pitch_deg)
+    ax.set_xlabel("pinion rotation phi1 (deg)")
+    ax.set_ylabel("TE0 (arcsec)")
+    ax.set_title(title or f"unloaded transmission error ({n + 1} phases per pitch)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    out = Path(path)
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    return out
