@@ -172,6 +172,8 @@ class FitCore(wiring.Component):
         stage = Signal(range(4))           # 0 MAC, 1..3 latch stages
 
         rounded = [_round_shift(acc, _COEFF_SHIFT) for acc in accs]
+        d_new = Signal(unsigned(2 * SUM_FMT.bits))   # >= 0 and < 2^66: no truncation
+        m.d.comb += d_new.eq(e * e + c_reg[4] * c_reg[4])
         r = self._isqrt(m, d[:D_FMT.bits])
         a_new = _round_shift(h + r, 1)
         b_new = _round_shift(h - r, 1)
@@ -192,8 +194,6 @@ class FitCore(wiring.Component):
             m.d.sync += [cov.eq(~_all(_fits(x, COEFF) for x in rounded)),
                          h.eq(c3 + c5), e.eq(c3 - c5), stage.eq(2)]
         with m.Elif(stage == 2):
-            d_new = Signal(unsigned(2 * SUM_FMT.bits))
-            m.d.comb += d_new.eq(e * e + c_reg[4] * c_reg[4])
             m.d.sync += [d.eq(d_new), dov.eq(~cov & (d_new > D_FMT.max_code)), stage.eq(3)]
         with m.Else():
             kov = ~cov & ~dov & ~(_fits(a_new, CURVATURE) & _fits(b_new, CURVATURE))
