@@ -119,8 +119,8 @@ def dense_influence_matrix(grid: TangentGrid, *, e_star_mpa: float,
 def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
                  ) -> tuple[np.ndarray, tuple[int, int]]:
     """Cached rfft2 of the zero-padded influence kernel (mm/N) and the padded shape."""
-    py = sfft.next_fast_len(2 * ny - 1, real=True)
-    px = sfft.next_fast_len(2 * nx - 1, real=True)
+    py = sfft.next_fast_len(2 * ny - 1)
+    px = sfft.next_fast_len(2 * nx - 1)
     ox = dx_mm * np.concatenate([np.arange(nx), np.arange(-(nx - 1), 0)])
     oy = dy_mm * np.concatenate([np.arange(ny), np.arange(-(ny - 1), 0)])
     k = love_rectangle_displacement(ox[None, :], oy[:, None], 0.5 * dx_mm, 0.5 * dy_mm,
@@ -158,9 +158,17 @@ class FftInfluence:
         if ny < 1 or nx < 1:
             raise InputRangeError("shape", shape, "(ny, nx) with both >= 1")
         self.shape = (ny, nx)
-        self._khat, self._pad = _kernel_rfft(ny, nx, check_positive("dx_mm", dx_mm),
-                                             check_positive("dy_mm", dy_mm),
-                                             check_positive("e_star_mpa", e_star_mpa))
+        self._dx = check_positive("dx_mm", dx_mm)
+        self._dy = check_positive("dy_mm", dy_mm)
+        self._e_star = check_positive("e_star_mpa", e_star_mpa)
+        self._khat, self._pad = _kernel_rfft(ny, nx, self._dx, self._dy, self._e_star)
+
+    def on_shape(self, shape: tuple[int, int]) -> "FftInfluence":
+        """The same kernel (cell size, E*) on a window of another ``shape``."""
+        if tuple(shape) == self.shape:
+            return self
+        return FftInfluence(shape, dx_mm=self._dx, dy_mm=self._dy,
+                            e_star_mpa=self._e_star)
 
     def __call__(self, loads_n: np.ndarray) -> np.ndarray:
         """Displacements (mm, shape ``(ny, nx)``) due to nodal loads (N, same shape)."""

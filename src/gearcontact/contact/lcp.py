@@ -59,7 +59,7 @@ SOLVERS = ("pk_cg", "nnls", "active_set")
 
 _DEFAULT_MAX_ITER = {"pk_cg": 2000, "nnls": 200, "active_set": 200}
 #: Window bound = hmin + this factor x (flat-punch estimate of the approach).
-_WINDOW_FACTOR = 2.5
+_WINDOW_FACTOR = 2.0
 #: Window growth when a window's approach exceeds its bound.
 _WINDOW_GROWTH = 1.5
 _MAX_WINDOWS = 8
@@ -168,33 +168,50 @@ def _bordered_solve(c_aa: np.ndarray, h_a: np.ndarray, load_n: float, symmetric:
 
 def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: float,
            max_iter: int) -> tuple[np.ndarray, int, bool]:
-    """Polonsky-Keer CG on a uniform window (loads in N); returns (w, iterations, ok)."""
-    w = w0 * (load_n / w0.sum())
+    """Polonsky-Keer CG on a uniform window (loads in N); returns (w, iterations, ok).
+
+    Follows Polonsky & Keer (1999), section 3: the gap is centred on its mean over the
+    contact set (which eliminates the approach), conjugate directions restart whenever
+    non-contacting cells with negative gap are re-admitted, and the load is rescaled
+    to ``W`` after every step.
+    """
+    shape = h.shape
+    hf = h.ravel()
+    w = (w0 * (load_n / w0.sum())).ravel()
     t = np.zeros_like(w)
     g_old, conj = 1.0, False
     for it in range(1, max_iter + 1):
-        contact = w > 0.0
-        g = op(w) + h
-        g -= g[contact].mean()
-        g_norm = float(np.dot(g[contact], g[contact]))
-        t = np.where(contact, g + (g_norm / g_old if conj else 0.0) * t, 0.0)
+        idx = np.flatnonzero(w)
+        g = op(w.reshape(shape)).ravel()
+        g += hf
+        g -= g[idx].mean()
+        gc = g[idx]
+        g_norm = float(gc @ gc)
+        tc = gc + (g_norm / g_old) * t[idx] if conj else gc
+        t = np.zeros_like(w)
+        t[idx] = tc
         g_old = g_norm if g_norm > 0.0 else 1.0
-        r = op(t)
-        r -= r[contact].mean()
-        rt = float(np.dot(r[contact], t[contact]))
+        # C t is needed on the contact set only: convolve on its bounding box
+        jj, ii = np.divmod(idx, shape[1])
+        box = (slice(jj.min(), jj.max() + 1), slice(ii.min(), ii.max() + 1))
+        t2 = t.reshape(shape)[box]
+        r = op.on_shape(t2.shape)(t2)[(jj - box[0].start, ii - box[1].start)]
+        r -= r.mean()
+        rt = float(r @ tc)
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
-            return w, it, g_norm == 0.0 or rt == 0.0
-        tau = float(np.dot(g[contact], t[contact])) / rt
-        w_old = w
-        w = np.maximum(w - tau * t, 0.0)
-        overlap = (w == 0.0) & (g < 0.0)
-        conj = not overlap.any()
+            return w.reshape(shape), it, g_norm == 0.0 or rt == 0.0
+        tau = float(gc @ tc) / rt
+        w_old = w.copy()
+        w[idx] -= tau * tc
+        np.maximum(w, 0.0, out=w)
+        overlap = np.flatnonzero((w == 0.0) & (g < 0.0))
+        conj = overlap.size == 0
         if not conj:
             w[overlap] -= tau * g[overlap]
         w *= load_n / w.sum()
         if np.abs(w - w_old).sum() <= tol * load_n:
-            return w, it, True
-    return w, max_iter, False
+            return w.reshape(shape), it, True
+    return w.reshape(shape), max_iter, False
 
 
 def _nnls_reference(c: np.ndarray, h: np.ndarray, load_n: float, max_iter: int,
@@ -304,7 +321,7 @@ def _residuals(u: np.ndarray, h: np.ndarray, w: np.ndarray, load_n: float,
 
 def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
               e_star_mpa: float | None = None, solver: str = "pk_cg",
-              tol: float = 1e-10, max_iter: int | None = None, warm_start=None,
+              tol: float = 1e-8, max_iter: int | None = None, warm_start=None,
               residual_tol: float = 1e-6, raise_on_failure: bool = False,
               warn_coarse: bool = True) -> LcpResult:
     """Solve the load-constrained normal-contact LCP on a tangent-plane grid.
