@@ -1,0 +1,130 @@
+"""Five-term pinion ease-off and the modified (eased) pinion flank.
+
+The ease-off is a relief of the pinion flank along its outward unit normal N1
+(GEOMETRY section 3; Litvin & Fuentes 2004, sec. 21.8 "local synthesis" uses the same
+polynomial topology):
+
+    r1*(u, v) = r1(u, v) - E(xi, eta) N1(u, v)
+    E = c_PA eta + c_SA xi + c_PC eta^2 + c_LC xi^2 + c_TW xi eta
+
+with xi = v - v_m (lengthwise, along the pinion axis, mm) and eta = u - u_m (profile,
+radial height, mm) measured from the pinion mean point (pitch radius, mean section),
+E > 0 removing material. Coefficients (pair file, um per mm^k):
+
+- c_PA  profile angle (pressure-angle change): tilts the bearing across the profile;
+- c_SA  spiral angle: tilts it along the face (moves the bearing toe/heel under load);
+- c_PC  profile crowning: limits the bearing height, sets the contact-ellipse length
+        across the contact lines (a = sqrt(2 delta_paint / kappa_E), kappa_E ~ 2 c);
+- c_LC  lengthwise crowning: localizes the bearing along the face and sets the
+        parabolic unloaded TE0 (TE ~ -dE_path / h2, h2 ~ 35 mm lever);
+- c_TW  bias (twist): turns the contact path (bias in / bias out).
+
+The eased flank is again a :class:`~.sheet.RadialSheet`: for every node (u, v) the
+base-flank point (u0, v0) whose relieved image ``r1 - E N1`` has the node's axial
+position and radius is found (fixed-point iteration, contraction ~ |E| x curvature),
+and the image's angular coordinate becomes the new sample. The modified normal and
+curvatures are recomputed from the new sheet's derivatives, never from N1.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 21.
+ISO 23509:2016 (mean point, face width).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import InputRangeError
+from .sheet import RadialSheet
+
+__all__ = ["EaseOff", "apply_easeoff", "MAX_EASEOFF_UM"]
+
+#: Largest |E| accepted over the flank, um (the node grid keeps room for the mapping).
+MAX_EASEOFF_UM = 30.0
+_NODE_SHRINK_MM = 0.04   # eased nodes stay this far inside the base node box
+_ITER = 30
+
+
+@dataclass(frozen=True)
+class EaseOff:
+    """The ease-off polynomial with its mean point (coefficients in um/mm^k, mean in mm)."""
+
+    profile_angle_um_per_mm: float
+    spiral_angle_um_per_mm: float
+    profile_crowning_um_per_mm2: float
+    lengthwise_crowning_um_per_mm2: float
+    bias_um_per_mm2: float
+    u_mean_mm: float
+    v_mean_mm: float
+
+    @classmethod
+    def from_coefficients(cls, coeffs, *, u_mean_mm: float, v_mean_mm: float) -> "EaseOff":
+        """From :class:`~.pair.EaseOffCoefficients` and the pinion mean point."""
+        return cls(u_mean_mm=float(u_mean_mm), v_mean_mm=float(v_mean_mm),
+                   **{k: getattr(coeffs, k) for k in coeffs.__dataclass_fields__})
+
+    @property
+    def is_zero(self) -> bool:
+        """True if all five coefficients are zero."""
+        return not any((self.profile_angle_um_per_mm, self.spiral_angle_um_per_mm,
+                        self.profile_crowning_um_per_mm2, self.lengthwise_crowning_um_per_mm2,
+                        self.bias_um_per_mm2))
+
+    def relief_mm(self, u, v) -> np.ndarray:
+        """E at pinion parameters (u, v), mm (positive = material removed)."""
+        eta = np.asarray(u, dtype=float) - self.u_mean_mm
+        xi = np.asarray(v, dtype=float) - self.v_mean_mm
+        um = (self.profile_angle_um_per_mm * eta + self.spiral_angle_um_per_mm * xi
+              + self.profile_crowning_um_per_mm2 * eta ** 2
+              + self.lengthwise_crowning_um_per_mm2 * xi ** 2 + self.bias_um_per_mm2 * xi * eta)
+        return 1e-3 * um
+
+
+def apply_easeoff(base: RadialSheet, easeoff: EaseOff) -> RadialSheet:
+    """The eased flank ``r - E N`` of ``base`` as a new :class:`RadialSheet`.
+
+    Raises
+    ------
+    InputRangeError
+        If |E| exceeds :data:`MAX_EASEOFF_UM` anywhere on the node box.
+    ArithmeticError
+        If the node mapping does not converge.
+    """
+    us = np.linspace(base.u_nodes[0] + _NODE_SHRINK_MM, base.u_nodes[-1] - _NODE_SHRINK_MM,
+                     len(base.u_nodes))
+    vs = np.linspace(base.v_nodes[0] + _NODE_SHRINK_MM, base.v_nodes[-1] - _NODE_SHRINK_MM,
+                     len(base.v_nodes))
+    U, V = np.meshgrid(us, vs, indexing="ij")
+    e_max = 1e3 * float(np.max(np.abs(easeoff.relief_mm(U, V))))
+    if e_max > MAX_EASEOFF_UM:
+        raise InputRangeError(f"easeoff ({base.side})", f"max |E| = {e_max:.2f} um",
+                              f"<= {MAX_EASEOFF_UM:g} um over the flank")
+    if easeoff.is_zero:
+        return RadialSheet(side=base.side, cone=base.cone, u_nodes=base.u_nodes,
+                           v_nodes=base.v_nodes, psi_nodes=base.psi_nodes,
+                           normal_sign=base.normal_sign, boundary=base.boundary)
+    cone = base.cone
+    R_target = cone.radius_mm(U, V)
+    u0, v0 = U.copy(), V.copy()
+    for _ in range(_ITER):
+        s = base.evaluate(u0, v0, second=False)
+        p = s.r - easeoff.relief_mm(u0, v0)[..., None] * s.n
+        dx = p[..., 0] - V
+        dR = np.hypot(p[..., 1], p[..., 2]) - R_target
+        v0 = v0 - dx
+        u0 = u0 - (dR - cone.tan_delta * dx)
+        if max(np.abs(dx).max(), np.abs(dR).max()) < 1e-12:  # 1 pm
+            break
+    else:
+        raise ArithmeticError(f"ease-off node mapping of the {base.side} flank did not converge "
+                              f"(residual {max(np.abs(dx).max(), np.abs(dR).max()):.2e} mm)")
+    s = base.evaluate(u0, v0, second=False)
+    p = s.r - easeoff.relief_mm(u0, v0)[..., None] * s.n
+    dpsi = np.angle(np.exp(1j * (np.arctan2(p[..., 2], p[..., 1])
+                                 - np.arctan2(s.r[..., 2], s.r[..., 1]))))
+    psi = base.psi(u0, v0) + dpsi
+    return RadialSheet(side=base.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
+                       normal_sign=base.normal_sign, boundary=base.boundary)
