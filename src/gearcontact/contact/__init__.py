@@ -1,0 +1,18 @@
+"""Loaded tooth contact analysis (LTCA): Love influence operators and LCP solvers.
+
+Fields on a :class:`TangentGrid` are ``(ny, nx)`` arrays ``h[j, i]`` with x along axis 1.
+"""
+
+from .ellipse import CoarseGridWarning, ContactEllipse, fit_contact_ellipse
+from .grid import TangentGrid
+from .influence import (FftInfluence, dense_influence_matrix, fft_influence,
+                        love_rectangle_displacement)
+from .lcp import SOLVERS, LcpConvergenceError, LcpResult, solve_lcp
+from .patch import (ContactAtEdgeWarning, PatchContact, patch_statistics, plot_patch,
+                    solve_patch)
+
+__all__ = ["TangentGrid", "love_rectangle_displacement", "dense_influence_matrix",
+           "FftInfluence", "fft_influence", "LcpResult", "LcpConvergenceError",
+           "solve_lcp", "SOLVERS", "PatchContact", "ContactAtEdgeWarning",
+           "solve_patch", "patch_statistics", "plot_patch", "ContactEllipse",
+           "CoarseGridWarning", "fit_contact_ellipse"]
