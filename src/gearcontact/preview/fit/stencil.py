@@ -17,9 +17,14 @@ match the baked grid to 1e-9 mm, ``gap_mm`` is the separation along the common n
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
-__all__ = ["STENCIL_SIDE", "STENCIL_SIZE", "STENCIL_SPACING_MM", "stencil_coordinates"]
+from ...validation import InputRangeError, check_array_finite
+
+__all__ = ["STENCIL_SIDE", "STENCIL_SIZE", "STENCIL_SPACING_MM", "stencil_coordinates",
+           "read_stencil_csv", "write_stencil_csv"]
 
 STENCIL_SIDE = 7
 STENCIL_SIZE = STENCIL_SIDE * STENCIL_SIDE
@@ -35,3 +40,58 @@ def stencil_coordinates(spacing_mm: float = STENCIL_SPACING_MM) -> tuple[np.ndar
     j = np.arange(STENCIL_SIZE) // STENCIL_SIDE
     half = STENCIL_SIDE // 2
     return (k - half) * spacing_mm, (j - half) * spacing_mm
+
+
+def write_stencil_csv(path, gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> Path:
+    """Write 49 gap samples (mm, stencil order) in the documented CSV format.
+
+    Raises
+    ------
+    InputRangeError
+        Not exactly 49 samples, or a non-finite sample (named by index).
+    """
+    g = check_array_finite("gap_mm", gaps_mm).ravel()
+    if g.size != STENCIL_SIZE:
+        raise InputRangeError("stencil length", g.size, f"exactly {STENCIL_SIZE} samples")
+    s, t = stencil_coordinates(spacing_mm)
+    lines = ["s_mm,t_mm,gap_mm"] + [f"{a:.9f},{b:.9f},{c:.12e}" for a, b, c in zip(s, t, g)]
+    path = Path(path)
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def read_stencil_csv(path, *, spacing_mm: float = STENCIL_SPACING_MM) -> np.ndarray:
+    """Read a stencil CSV and return its 49 gaps (mm) in stencil order.
+
+    The ``s_mm``/``t_mm`` columns must equal the baked grid to 1e-9 mm: a stencil on
+    another grid would be fitted with the wrong pseudo-inverse.
+
+    Raises
+    ------
+    FileNotFoundError
+        The file does not exist.
+    InputRangeError
+        Wrong header, wrong number of rows, off-grid coordinates or non-finite gaps.
+    """
+    path = Path(path)
+    lines = [ln.strip() for ln in path.read_text().splitlines() if ln.strip()]
+    if not lines or [h.strip() for h in lines[0].split(",")] != ["s_mm", "t_mm", "gap_mm"]:
+        raise InputRangeError(f"{path.name}: header", lines[0] if lines else "",
+                              "'s_mm,t_mm,gap_mm'")
+    rows = lines[1:]
+    if len(rows) != STENCIL_SIZE:
+        raise InputRangeError(f"{path.name}: number of samples", len(rows),
+                              f"exactly {STENCIL_SIZE}")
+    try:
+        data = np.array([[float(x) for x in r.split(",")] for r in rows])
+    except ValueError as exc:
+        raise InputRangeError(f"{path.name}: row", str(exc), "three numbers per row") from None
+    if data.shape != (STENCIL_SIZE, 3):
+        raise InputRangeError(f"{path.name}: columns", data.shape[1:], "3 (s_mm, t_mm, gap_mm)")
+    s, t = stencil_coordinates(spacing_mm)
+    off = np.flatnonzero((np.abs(data[:, 0] - s) > 1e-9) | (np.abs(data[:, 1] - t) > 1e-9))
+    if off.size:
+        i = int(off[0])
+        raise InputRangeError(f"{path.name}: sample {i} (s_mm, t_mm)",
+                              (data[i, 0], data[i, 1]), f"the baked grid point ({s[i]:g}, {t[i]:g})")
+    return check_array_finite(f"{path.name}: gap_mm", data[:, 2])

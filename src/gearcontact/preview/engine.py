@@ -1,0 +1,254 @@
+"""One preview engine interface with interchangeable backends.
+
+Host code asks a :class:`PreviewEngine` for the physics-direct preview of a contact and
+does not care which representation answers:
+
+=============  =================================================================
+backend        what evaluates the preview
+=============  =================================================================
+``reference``  fp64 closed forms (:mod:`.hertz.reference`, :mod:`.fit.reference`)
+``golden``     bit-exact fixed-point model of the datapath (:mod:`.hertz.golden`,
+               :mod:`.fit.golden`); results carry the raw codes, flags and cycles
+=============  =================================================================
+
+(The RTL-simulation backend registers itself here in the RTL work.)
+
+Physical inputs are validated the same way for every backend (finite, positive; errors
+name the field); range limits specific to a representation are then reported by that
+representation: the reference raises :class:`~gearcontact.validation.InputRangeError`
+outside its envelope, the golden model raises
+:class:`~gearcontact.preview.qformat.FixedPointOverflow` for values that do not fit a
+register and otherwise returns datapath flags (never a silently wrapped number).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Protocol, runtime_checkable
+
+import numpy as np
+
+from ..materials import STEEL, Material, effective_modulus_mpa
+from ..validation import InputRangeError, check_array_finite, check_positive
+from . import chain
+from .fit.golden import encode_gaps
+from .fit.stencil import STENCIL_SIZE
+from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
+from .hertz.golden_vec import hertz_golden_array
+from .hertz.reference import hertz_preview, hertz_preview_array
+from .hertz.schedule import HERTZ_CYCLES
+from .qformat import CURVATURE
+
+__all__ = ["PreviewResult", "PreviewBatch", "PreviewEngine", "ReferenceEngine",
+           "GoldenEngine", "get_engine", "register_backend", "BACKENDS"]
+
+
+@dataclass(frozen=True)
+class PreviewResult:
+    """The preview of one contact, whatever backend computed it.
+
+    Attributes
+    ----------
+    backend : str
+        Name of the backend.
+    load_n : float
+        Normal load W, N.
+    A_minus_per_mm, B_minus_per_mm : float
+        Half relative principal curvatures that entered stage D, 1/mm, sorted so that
+        A- >= B- (the stage-C convention; given, fitted, or decoded from the codes).
+    a_mm, b_mm : float
+        Contact-ellipse semi-axes, mm (a >= b).
+    k : float
+        Ellipticity a/b.
+    p_max_mpa : float
+        Peak Hertzian pressure, MPa.
+    angle_deg : float or None
+        Stencil path only: direction of the A- axis from the stencil s axis, deg
+        (reference backend; None otherwise).
+    codes : dict or None
+        Raw register codes (golden/rtl): inputs and outputs by name, with Q formats in
+        :mod:`.hertz.formats` / :mod:`.qformat`.
+    flags : tuple of str
+        Names of raised datapath flags; empty when valid. Outputs are 0 when flagged.
+    cycles : int or None
+        Hardware cycles of the evaluated path (golden/rtl), data independent.
+    """
+
+    backend: str
+    load_n: float
+    A_minus_per_mm: float
+    B_minus_per_mm: float
+    a_mm: float
+    b_mm: float
+    k: float
+    p_max_mpa: float
+    angle_deg: float | None = None
+    codes: dict | None = None
+    flags: tuple = ()
+    cycles: int | None = None
+
+    @property
+    def valid(self) -> bool:
+        """True when no datapath flag is raised."""
+        return not self.flags
+
+    def as_dict(self) -> dict:
+        """JSON-ready dict (keys a_mm, b_mm, k, p_max_mpa, backend, ...)."""
+        return {"backend": self.backend, "load_n": self.load_n,
+                "A_minus_per_mm": self.A_minus_per_mm, "B_minus_per_mm": self.B_minus_per_mm,
+                "a_mm": self.a_mm, "b_mm": self.b_mm, "k": self.k,
+                "p_max_mpa": self.p_max_mpa, "angle_deg": self.angle_deg,
+                "codes": self.codes, "flags": list(self.flags), "cycles": self.cycles}
+
+
+@dataclass(frozen=True)
+class PreviewBatch:
+    """Previews of many contacts (float64 arrays of one shape; flags as int words,
+    0 = valid, 0 everywhere for the reference)."""
+
+    backend: str
+    a_mm: np.ndarray
+    b_mm: np.ndarray
+    k: np.ndarray
+    p_max_mpa: np.ndarray
+    flags: np.ndarray = field(default=None)
+
+
+@runtime_checkable
+class PreviewEngine(Protocol):
+    """What host code needs from a preview backend."""
+
+    name: str
+    material: Material
+
+    def hertz(self, A_minus: float, B_minus: float, load_n: float) -> PreviewResult:
+        """Stage D from half relative curvatures (1/mm, any order) and load (N)."""
+        ...
+
+    def stencil(self, gaps_mm, load_n: float) -> PreviewResult:
+        """Stage C then D on a 49-sample gap stencil (mm, :mod:`.fit.stencil` order)."""
+        ...
+
+    def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
+        """Stage D over broadcastable arrays."""
+        ...
+
+
+def _check_physical(A_minus, B_minus, load_n) -> tuple[float, float, float]:
+    """Backend-independent validation: every input finite and > 0 (field named)."""
+    return (check_positive("A_minus (1/mm)", A_minus), check_positive("B_minus (1/mm)", B_minus),
+            check_positive("load_n (N)", load_n))
+
+
+def _check_stencil(gaps_mm) -> np.ndarray:
+    g = check_array_finite("gaps_mm", gaps_mm)
+    if g.shape != (STENCIL_SIZE,):
+        raise InputRangeError("stencil length", g.shape, f"exactly {STENCIL_SIZE} gap samples")
+    return g
+
+
+class ReferenceEngine:
+    """fp64 backend (Hamrock–Brewe closed forms; SPEC section 6).
+
+    Parameters
+    ----------
+    material, material2 : Material
+        The two contacting bodies (default steel/steel); E' = 2E*.
+    """
+
+    name = "reference"
+
+    def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
+        self.material = material
+        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+
+    def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
+        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa)
+        return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa)
+
+    def stencil(self, gaps_mm, load_n) -> PreviewResult:
+        g = _check_stencil(gaps_mm)
+        w = check_positive("load_n (N)", load_n)
+        res = chain.chain_reference(g, w, e_prime_mpa=self.e_prime_mpa)
+        hp = res.hertz
+        return PreviewResult(self.name, w, res.fit.A_minus_per_mm, res.fit.B_minus_per_mm,
+                             hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa, angle_deg=res.fit.angle_deg)
+
+    def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
+        out = hertz_preview_array(A_minus, B_minus, load_n, e_prime_mpa=self.e_prime_mpa)
+        a = np.asarray(out["a_mm"])
+        return PreviewBatch(self.name, a, np.asarray(out["b_mm"]), np.asarray(out["k"]),
+                            np.asarray(out["p_max_mpa"]), np.zeros(a.shape, dtype=np.int64))
+
+
+class GoldenEngine:
+    """Bit-exact fixed-point backend (the specification of the RTL).
+
+    Real inputs are quantized round-half-up to the contract formats (SPEC section 6);
+    E' is a constant register (integer MPa). Results carry the raw codes, the flags and
+    the hardware cycle count of the evaluated path.
+    """
+
+    name = "golden"
+
+    def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
+        self.material = material
+        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_code = encode_e_prime(self.e_prime_mpa)
+
+    def _result(self, hz, w, codes: dict, flags: tuple, cycles: int) -> PreviewResult:
+        v = decode_hertz_codes(hz)
+        codes.update(A_min=hz.A_min_code, B_max=hz.B_max_code, a=hz.a_code, b=hz.b_code,
+                     k=hz.k_code, p_max=hz.p_max_code, flags=codes.get("flags", hz.flags))
+        return PreviewResult(self.name, w, v.B_max_per_mm, v.A_min_per_mm, v.a_mm, v.b_mm,
+                             v.k, v.p_max_mpa, codes=codes, flags=flags, cycles=cycles)
+
+    def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
+        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
+        hz = hertz_golden(a_c, b_c, w_c, e_prime_code=e_c)
+        codes = {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
+        return self._result(hz, w, codes, hz.flag_names, HERTZ_CYCLES)
+
+    def stencil(self, gaps_mm, load_n) -> PreviewResult:
+        g = _check_stencil(gaps_mm)
+        w = check_positive("load_n (N)", load_n)
+        gap_codes = encode_gaps(g)
+        w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
+        res = chain.chain_golden([int(x) for x in gap_codes], w_c, e_prime_code=self.e_prime_code)
+        codes = {"W": w_c, "e_prime": self.e_prime_code,
+                 "A_fit": res.fit.a_minus_code, "B_fit": res.fit.b_minus_code,
+                 "flags": res.flags}
+        return self._result(res.hertz, w, codes, res.flag_names, res.cycles)
+
+    def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
+        a_c, b_c, w_c, e_c = encode_hertz_inputs(
+            np.atleast_1d(np.asarray(A_minus, dtype=float)),
+            np.atleast_1d(np.asarray(B_minus, dtype=float)),
+            np.atleast_1d(np.asarray(load_n, dtype=float)), e_prime_mpa=self.e_prime_mpa)
+        hz = hertz_golden_array(a_c, b_c, w_c, e_prime_code=e_c)
+        v = decode_hertz_codes(hz)
+        return PreviewBatch(self.name, v.a_mm, v.b_mm, v.k, v.p_max_mpa, hz.flags)
+
+
+#: Registered backends: name -> factory(material=..., material2=...).
+BACKENDS: dict[str, Callable[..., PreviewEngine]] = {
+    "reference": ReferenceEngine,
+    "golden": GoldenEngine,
+}
+
+
+def register_backend(name: str, factory: Callable[..., PreviewEngine]) -> None:
+    """Add a backend (e.g. ``rtl``) under ``name``."""
+    BACKENDS[name] = factory
+
+
+def get_engine(name: str = "reference", *, material: Material = STEEL,
+               material2: Material | None = None) -> PreviewEngine:
+    """Create the preview engine ``name`` (one of :data:`BACKENDS`)."""
+    try:
+        factory = BACKENDS[name]
+    except KeyError:
+        raise InputRangeError("backend", name, f"one of {sorted(BACKENDS)}") from None
+    return factory(material=material, material2=material2)
