@@ -243,14 +243,37 @@ def conjugate_pinion_flank(gear: FormateFlank, *, blank: BlankDesign, kinematics
     Raises
     ------
     UndercutError
-        Limit line (df/dphi2 = 0 or changing sign) or singular envelope in the box.
-    MeshingError
-        Non-convergent node.
+        Limit line (df/dphi2 = 0 or changing sign), singular envelope, or a node of the
+        box that the envelope does not reach (non-convergent node equations; the
+        :class:`MeshingError` naming node and residual is chained as the cause).
     """
     if int(n_u) != n_u or n_u < 6 or int(n_v) != n_v or n_v < 6:
         raise InputRangeError("n_u, n_v", (n_u, n_v), "integers >= 6 (quintic spline)")
     cone, box = _pinion_box(blank, pinion_face_width_mm)
     solver = MeshingSolver(gear, kinematics, cone)
+    try:
+        us, vs, U, V, nodes, mean, (i0, j0), u_m, v_m = _solve_grid(solver, box, blank, n_u, n_v)
+    except MeshingError as exc:
+        # for an envelope, a pinion point without a solution lies beyond the limit line
+        raise UndercutError(f"pinion {gear.side} flank", str(exc),
+                            "a pinion box fully covered by the regular envelope (no limit "
+                            "line / undercut: change pressure angles, addenda or cutter)") from exc
+    _check_regular(nodes, mean, gear.side, U, V)
+    psi = np.unwrap(np.unwrap(nodes.psi_rad, axis=0), axis=1)
+    flank = ConjugateFlank(side=gear.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
+                           normal_sign=1.0, boundary=box, solver=solver, nodes=nodes)
+    s = flank.evaluate(us[i0], vs[j0])
+    sign = float(np.sign(s.n @ nodes.n1[i0, j0]))
+    flank = ConjugateFlank(side=gear.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
+                           normal_sign=sign, boundary=box, solver=solver, nodes=nodes)
+    gear_uv = gear.surface_parameters(mean.h_mm, mean.theta_rad)
+    return flank, {"pinion_uv": (u_m, v_m), "gear_uv": tuple(float(x) for x in gear_uv),
+                   "phi2_rad": float(mean.phi2_rad)}
+
+
+def _solve_grid(solver: MeshingSolver, box: FlankBoundary, blank: BlankDesign, n_u: int, n_v: int):
+    """Continuation over the node grid (see module docstring)."""
+    cone = solver.cone
     u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
     mean = solver.solve(u_m, v_m, np.zeros(3))
     us = np.linspace(box.u_root - NODE_MARGIN_MM[0], box.u_tip + NODE_MARGIN_MM[0], int(n_u))
@@ -275,17 +298,7 @@ def conjugate_pinion_flank(gear: FormateFlank, *, blank: BlankDesign, kinematics
             q[:, j] = np.stack([s.h_mm, s.theta_rad, s.phi2_rad], axis=-1)
     U, V = np.meshgrid(us, vs, indexing="ij")
     nodes = solver.solve(U, V, q)
-    _check_regular(nodes, mean, gear.side, U, V)
-    psi = np.unwrap(np.unwrap(nodes.psi_rad, axis=0), axis=1)
-    flank = ConjugateFlank(side=gear.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
-                           normal_sign=1.0, boundary=box, solver=solver, nodes=nodes)
-    s = flank.evaluate(us[i0], vs[j0])
-    sign = float(np.sign(s.n @ nodes.n1[i0, j0]))
-    flank = ConjugateFlank(side=gear.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
-                           normal_sign=sign, boundary=box, solver=solver, nodes=nodes)
-    gear_uv = gear.surface_parameters(mean.h_mm, mean.theta_rad)
-    return flank, {"pinion_uv": (u_m, v_m), "gear_uv": tuple(float(x) for x in gear_uv),
-                   "phi2_rad": float(mean.phi2_rad)}
+    return us, vs, U, V, nodes, mean, (i0, j0), u_m, v_m
 
 
 def _check_regular(nodes: MeshingSolution, mean: MeshingSolution, side: str, U, V) -> None:

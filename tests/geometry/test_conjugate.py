@@ -1,0 +1,133 @@
+"""Conjugate pinion: equation of meshing, line contact, interpolation accuracy, regularity."""
+
+import numpy as np
+import pytest
+
+from gearcontact.geometry.conjugate import (MeshingError, UndercutError,
+                                            conjugate_pinion_flank)
+from gearcontact.geometry.cutter import place_cutter
+from gearcontact.geometry.flank import SIDES, gear_flank
+from gearcontact.geometry.kinematics import rot_x, rot_z
+from gearcontact.geometry.sampling import sample_grid
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_meshing_equation_at_every_node(flanks, side):
+    c = flanks.pinion_conjugate.side(side)
+    n = c.nodes
+    assert n.psi_rad.shape == (120, 150)
+    # recompute f = N . v12 independently with MeshKinematics (|f| < 1e-9 mm/rad required)
+    f = np.einsum("...i,...i->...", n.n_f, flanks.kinematics.relative_velocity(n.x_f_mm))
+    assert np.abs(f).max() < 1e-9
+    # the pinion node really is the gear point carried by the pinion rotation u*phi2
+    for i, j in ((0, 0), (60, 75), (119, 149)):
+        phi2 = n.phi2_rad[i, j]
+        x1 = rot_x(flanks.blank.ratio * phi2) @ (n.x_f_mm[i, j] - flanks.kinematics.pinion_centre)
+        assert np.allclose(x1, n.x1_mm[i, j], atol=1e-12)
+        g = flanks.flank("gear", side).blade.evaluate(n.h_mm[i, j], n.theta_rad[i, j])
+        assert np.allclose(rot_z(phi2) @ g.x, n.x_f_mm[i, j], atol=1e-12)
+        # and it has the node's axial position and radius
+        assert x1[0] == pytest.approx(c.v_nodes[j], abs=1e-10)
+        assert np.hypot(x1[1], x1[2]) == pytest.approx(c.cone.radius_mm(c.u_nodes[i], c.v_nodes[j]), abs=1e-10)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_line_contact_without_easeoff(flanks, side):
+    # Independent construction of the instantaneous contact line at gear angle phi2:
+    # on the gear flank solve f(h, theta, phi2) = 0 for theta at fixed h (1-D Newton with
+    # a finite-difference slope), carry the points to the pinion body frame and compare
+    # with the interpolated conjugate pinion sheet. Required: gap < 1e-6 mm along it.
+    c = flanks.pinion_conjugate.side(side)
+    g = flanks.flank("gear", side)
+    kin = flanks.kinematics
+    for dphi in (-0.05, 0.0, 0.05):
+        phi = flanks.mean_contact[side]["phi2_rad"] + dphi
+        h = np.linspace(-0.3, 1.4, 25)
+        th = np.full_like(h, g.blade_parameters(*flanks.mean_contact[side]["gear_uv"])[1])
+        for _ in range(40):
+            f = c.solver.meshing_function(h, th, phi)
+            th = th - f * 1e-7 / (c.solver.meshing_function(h, th + 1e-7, phi) - f)
+        b = g.blade.evaluate(h, th)
+        Xf, Nf = b.x @ rot_z(phi).T, b.n @ rot_z(phi).T
+        assert np.abs(np.einsum("ij,ij->i", Nf, kin.relative_velocity(Xf))).max() < 1e-9
+        R = rot_x(kin.ratio * phi)
+        X1, N1 = (Xf - kin.pinion_centre) @ R.T, -(Nf @ R.T)
+        u, v, _ = c.locate(X1)
+        inside = c.boundary.contains(u, v)
+        assert inside.sum() >= 5
+        s = c.evaluate(u[inside], v[inside])
+        gap = np.einsum("ij,ij->i", X1[inside] - s.r, s.n)
+        assert np.abs(gap).max() < 1e-6
+        assert np.linalg.norm(s.r - X1[inside], axis=-1).max() < 1e-6
+        # common normal, opposite orientation (both point out of their own tooth)
+        assert np.linalg.norm(s.n - N1[inside], axis=-1).max() < 1e-8
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_interpolant_matches_exact_solves(flanks, side):
+    # flanks from the 120 x 150 exact grid, evaluated at random off-grid points, against
+    # an exact solve of the node equations there: < 0.05 um (5e-5 mm) required.
+    c = flanks.pinion_conjugate.side(side)
+    rng = np.random.default_rng(7)
+    u = rng.uniform(*c.u_range, 200)
+    v = rng.uniform(*c.v_range, 200)
+    ex = c.exact(u, v)
+    s = c.evaluate(u, v)
+    assert np.linalg.norm(s.r - ex.x1_mm, axis=-1).max() < 5e-5
+    assert np.linalg.norm(s.n - ex.n1, axis=-1).max() < 1e-7
+    # interpolated point = Surface protocol point
+    p = c.point(float(u[0]), float(v[0]))
+    assert np.allclose(p.r, s.r[0], atol=1e-13)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_pinion_second_derivatives_consistent(flanks, side):
+    # r_uu, r_uv, r_vv from the spline formulas vs central differences of r_u, r_v
+    # (step 1e-5 mm: truncation ~1e-10, rounding ~1e-9 relative)
+    f = flanks.pinion.side(side)
+    u0, v0, e = 1.1, 36.0, 1e-5
+    p = f.point(u0, v0)
+    assert np.allclose((f.point(u0 + e, v0).r_u - f.point(u0 - e, v0).r_u) / (2 * e), p.r_uu, atol=1e-6)
+    assert np.allclose((f.point(u0, v0 + e).r_u - f.point(u0, v0 - e).r_u) / (2 * e), p.r_uv, atol=1e-6)
+    assert np.allclose((f.point(u0, v0 + e).r_v - f.point(u0, v0 - e).r_v) / (2 * e), p.r_vv, atol=1e-6)
+
+
+def test_pinion_flank_orientation(flanks):
+    # the pinion tooth lies between its drive and coast flanks: both outward normals
+    # point away from the tooth centre (mean angular position of the two flanks)
+    d, c = flanks.pinion.side("drive"), flanks.pinion.side("coast")
+    u, v = 1.0, 36.0
+    pd, pc = d.point(u, v), c.point(u, v)
+    mid = 0.5 * (pd.r + pc.r)
+    assert (pd.r - mid) @ pd.n > 0 and (pc.r - mid) @ pc.n > 0
+    # positive tooth thickness over the whole active flank (no pointed tooth)
+    grid_d, grid_c = sample_grid(d, 16, 22), sample_grid(c, 16, 22)
+    gap = np.linalg.norm(grid_d.positions_mm - grid_c.positions_mm, axis=-1)
+    assert gap.min() > 0.1
+
+
+def test_drive_flank_is_gear_convex(flanks):
+    # drive: the pinion pushes the gear when the gear turns towards -z (documented sign):
+    # the gear convex flank's normal has n . (z x X) > 0 at the mean contact
+    g = flanks.flank("gear", "drive")
+    p = g.point(*flanks.mean_contact["drive"]["gear_uv"])
+    assert p.n @ np.cross([0, 0, 1.0], p.r) > 0
+    assert sample_grid(g, 4, 4).curvatures_per_mm[..., 0].max() < 0  # convex
+
+
+def test_limit_line_detected(s0003):
+    # A 5-tooth pinion with an 8 deg drive blade is undercut at its root: the limit line of the
+    # envelope (Litvin & Fuentes 2004, sec. 6.3): must raise, never return a flank.
+    from dataclasses import replace
+    pair = replace(s0003, pinion_teeth=5, gear_teeth=70, gear_addendum_factor=0.02,
+                   cutter=replace(s0003.cutter, pressure_angle_drive_deg=8.0))
+    blank = pair.blank
+    _, inside, _ = place_cutter(blank, point_width_mm=pair.cutter.point_width_mm)
+    g = gear_flank(blank, inside, side="drive", gear_face_width_mm=pair.gear_face_width_mm,
+                   edge_radius_mm=pair.cutter.edge_radius_mm)
+    with pytest.raises(UndercutError) as err:
+        conjugate_pinion_flank(g, blank=blank, kinematics=pair.kinematics(with_errors=False),
+                               pinion_face_width_mm=pair.pinion_face_width_mm, n_u=12, n_v=12)
+    assert "pinion drive flank" in err.value.field
+    assert isinstance(err.value.__cause__, MeshingError)  # names node and residual
+    assert "residual" in str(err.value.__cause__)
