@@ -1,0 +1,73 @@
+"""``gearcontact design``: the blank (pitch-cone) data of a gear pair.
+
+Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its ISO 23509
+Method 1 blank design as a table; ``--json`` prints one JSON object instead (with at
+least ``pitch_angles_deg``, ``spiral_angles_deg``, ``mean_cone_distances_mm``, each
+``[pinion, gear]``).
+"""
+
+from __future__ import annotations
+
+import json
+
+from ..geometry.pair import PRESETS, load_pair
+
+#: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
+_PAIRED = (
+    ("teeth", "pinion_teeth", "gear_teeth", ""),
+    ("pitch angle", "pitch_angle_pinion_deg", "pitch_angle_gear_deg", "deg"),
+    ("mean spiral angle", "spiral_angle_pinion_deg", "spiral_angle_gear_deg", "deg"),
+    ("mean cone distance", "mean_cone_distance_pinion_mm", "mean_cone_distance_gear_mm", "mm"),
+    ("mean pitch radius", "mean_pitch_radius_pinion_mm", "mean_pitch_radius_gear_mm", "mm"),
+    ("offset angle (axial plane)", "offset_angle_axial_pinion_deg", "offset_angle_axial_gear_deg", "deg"),
+    ("mean addendum", "addendum_pinion_mm", "addendum_gear_mm", "mm"),
+    ("mean dedendum", "dedendum_pinion_mm", "dedendum_gear_mm", "mm"),
+)
+_SINGLE = (
+    ("ratio u", "ratio", ""),
+    ("hypoid offset E", "offset_mm", "mm"),
+    ("offset angle in pitch plane zeta_mp", "offset_angle_pitch_plane_deg", "deg"),
+    ("limit pressure angle alpha_lim", "limit_pressure_angle_deg", "deg"),
+    ("limit radius rho_lim", "limit_radius_mm", "mm"),
+    ("cutter radius r_c0", "cutter_radius_mm", "mm"),
+    ("mean normal module m_mn", "mean_normal_module_mm", "mm"),
+    ("mean working depth h_mw", "working_depth_mm", "mm"),
+    ("clearance c", "clearance_mm", "mm"),
+    ("pressure angle drive (gear convex)", "pressure_angle_drive_deg", "deg"),
+    ("pressure angle coast (gear concave)", "pressure_angle_coast_deg", "deg"),
+)
+
+
+def register(sub) -> None:
+    p = sub.add_parser("design", help="blank / pitch-cone data of a gear pair (ISO 23509)",
+                       description=__doc__.split("\n\n")[1])
+    p.add_argument("--pair", required=True, metavar="PRESET|FILE.toml",
+                   help=f"built-in preset ({', '.join(PRESETS)}) or a pair TOML file")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run)
+
+
+def _fmt(x) -> str:
+    return str(x) if isinstance(x, int) else f"{x:.4f}"
+
+
+def run(args) -> int:
+    pair = load_pair(args.pair)
+    blank = pair.blank
+    if args.json:
+        out = {"pair": pair.name, **blank.as_dict()}
+        print(json.dumps(out, indent=2))
+        return 0
+    print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
+          f"(shaft angle {pair.shaft_angle_deg:g} deg, {pair.pinion_hand}-hand pinion)")
+    width = max(len(r[0]) for r in _PAIRED + _SINGLE) + 7
+    print(f"{'quantity':<{width}} {'pinion':>12} {'gear':>12}")
+    for label, a1, a2, unit in _PAIRED:
+        name = f"{label} [{unit}]" if unit else label
+        print(f"{name:<{width}} {_fmt(getattr(blank, a1)):>12} {_fmt(getattr(blank, a2)):>12}")
+    for label, attr, unit in _SINGLE:
+        name = f"{label} [{unit}]" if unit else label
+        print(f"{name:<{width}} {_fmt(getattr(blank, attr)):>12}")
+    P = ", ".join(f"{c:.4f}" for c in blank.pitch_point_mm)
+    print(f"{'pitch point P (meshing frame) [mm]':<{width}} ({P})")
+    return 0

@@ -1,0 +1,41 @@
+"""``gearcontact design`` through gearcontact.cli.main, stdout captured."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from gearcontact.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_design_json_s0003(capsys):
+    assert main(["design", "--pair", "s0003", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    # published s0003 pitch cones (SPEC section 3), rounding interval +-0.005
+    d1, d2 = out["pitch_angles_deg"]
+    assert (round(d1, 2), round(d2, 2)) == (6.07, 83.15)
+    R1, R2 = out["mean_cone_distances_mm"]
+    assert round(R2, 2) == 40.68 and R1 == pytest.approx(54.06, abs=0.005)
+    b1, b2 = out["spiral_angles_deg"]
+    assert b1 - b2 == pytest.approx(out["offset_angle_pitch_plane_deg"], abs=1e-9)
+    assert out["pair"] == "s0003"
+
+
+def test_design_table_file(capsys):
+    assert main(["design", "--pair", str(ROOT / "examples" / "iso23509_f3.toml")]) == 0
+    text = capsys.readouterr().out
+    assert "pitch angle" in text and "limit pressure angle" in text
+    # ISO 23509 F.3: R_m1 = 73.519 mm printed with 4 decimals (73.5213, see test_blank)
+    assert "73.521" in text and "-2.2535" in text
+
+
+def test_design_bad_input(capsys, tmp_path):
+    assert main(["design", "--pair", "nonexistent_preset"]) == 2
+    assert "neither a preset" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text((ROOT / "examples" / "iso23509_f3.toml").read_text()
+                   .replace("offset_mm = 15.0", "offset_mm = 50.0"))
+    assert main(["design", "--pair", str(bad)]) == 2
+    assert "offset_mm" in capsys.readouterr().err
