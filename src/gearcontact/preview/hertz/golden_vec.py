@@ -237,7 +237,7 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
                                _as_codes(W_code, LOAD, "W_code"),
                                _as_codes(e_prime_code, F.E_PRIME, "e_prime_code"))
     shape = arrs[0].shape
-    flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrs]
+    flat = [np.array(a.reshape(-1), dtype=np.int64) for a in arrs]   # owned copies
     out = np.zeros((10, flat[0].size), dtype=np.int64)
     _kernel(*flat, lut_array(POW_SPEC), lut_array(CBRT_SPEC), _constants(), out)
     return HertzCodesArray(*(out[i].reshape(shape) for i in range(10)))
