@@ -1,0 +1,87 @@
+"""``gearcontact preview`` end to end through the console entry point."""
+
+import json
+
+import numpy as np
+import pytest
+
+from gearcontact.analytic.hertz import hamrock_brewe_hertz
+from gearcontact.cli import main
+from gearcontact.preview.fit.stencil import stencil_coordinates, write_stencil_csv
+
+
+def _run(capsys, *argv):
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+@pytest.mark.parametrize("backend", ["reference", "golden"])
+def test_json_keys_and_values(capsys, backend):
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.25", "0.005", "--load", "1971",
+                        "--backend", backend, "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert {"a_mm", "b_mm", "k", "p_max_mpa", "backend"} <= set(d)
+    assert d["backend"] == backend
+    hb = hamrock_brewe_hertz(0.25, 0.005, 1971.0, e_prime_mpa=209000 / (1 - 0.09))
+    # reference: same closed form; golden: within its 0.5 % acceptance bound
+    assert d["p_max_mpa"] == pytest.approx(hb.p_max_mpa, rel=1e-12 if backend == "reference" else 5e-3)
+    if backend == "golden":
+        assert d["cycles"] == 756 and d["flags"] == [] and d["codes"]["p_max"] > 0
+
+
+def test_text_output_shows_codes_for_golden(capsys):
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.25", "0.005", "--load", "1971",
+                        "--backend", "golden")
+    assert code == 0
+    assert "p_max" in out and "codes" in out and "cycles         756" in out
+
+
+def test_modulus_option(capsys):
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.1", "0.01", "--load", "100",
+                        "--modulus", "110", "--poisson", "0.34", "--json")
+    hb = hamrock_brewe_hertz(0.1, 0.01, 100.0, e_prime_mpa=110000 / (1 - 0.34 ** 2))
+    assert json.loads(out)["p_max_mpa"] == pytest.approx(hb.p_max_mpa, rel=1e-12)
+
+
+@pytest.mark.parametrize("argv,needle", [
+    (["--curvatures", "0.25", "0", "--load", "10"], "B_minus"),
+    (["--curvatures", "0.25", "0.01", "--load", "-1"], "load_n"),
+    (["--curvatures", "0.25", "0.01", "--load", "1e9", "--backend", "golden"], "load_n"),
+    (["--curvatures", "0.25", "0.01", "--load", "10", "--poisson", "0.6"], "poisson"),
+])
+def test_bad_input_one_line_error(capsys, argv, needle):
+    code, out, err = _run(capsys, "preview", *argv)
+    assert code == 2
+    assert needle in err and "Traceback" not in err
+
+
+def test_stencil_file(tmp_path, capsys):
+    s, t = stencil_coordinates()
+    path = write_stencil_csv(tmp_path / "st.csv", 0.002 + 0.2 * s ** 2 + 0.01 * t ** 2)
+    code, out, _ = _run(capsys, "preview", "--stencil", str(path), "--load", "500", "--json")
+    d = json.loads(out)
+    assert code == 0
+    assert d["A_minus_per_mm"] == pytest.approx(0.2, rel=1e-9)
+    assert d["B_minus_per_mm"] == pytest.approx(0.01, rel=1e-9)
+    code, out, _ = _run(capsys, "preview", "--stencil", str(path), "--load", "500",
+                        "--backend", "golden", "--json")
+    assert code == 0 and json.loads(out)["cycles"] == 806
+
+
+def test_stencil_file_wrong_length(tmp_path, capsys):
+    path = tmp_path / "short.csv"
+    s, t = stencil_coordinates()
+    rows = ["s_mm,t_mm,gap_mm"] + [f"{a},{b},0.1" for a, b in zip(s[:48], t[:48])]
+    path.write_text("\n".join(rows) + "\n")
+    code, _, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10")
+    assert code == 2 and "number of samples" in err and "49" in err
+
+
+def test_flagged_golden_exit_code(tmp_path, capsys):
+    s, t = stencil_coordinates()
+    path = write_stencil_csv(tmp_path / "saddle.csv", 0.2 * s ** 2 - 0.01 * t ** 2)
+    code, out, _ = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
+                        "--backend", "golden")
+    assert code == 3 and "fit_not_elliptic" in out
