@@ -97,18 +97,21 @@ def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, tau2, lanes, rf, cmin, cmax,
         l_rho = np.empty(lanes, np.int64)
         l_k = np.empty(lanes, np.int64)
         for m in range(c * per, min(m_pts, (c + 1) * per)):
-            pp = np.empty(3, np.int64)
-            for i in range(3):
-                pp[i] = ((t[m, i] << rf) + r[m, i, 0] * p[m, 0] + r[m, i, 1] * p[m, 1]
-                         + r[m, i, 2] * p[m, 2] + half) >> rf
-            out_ovf[m] = ((pp < cmin) | (pp > cmax)).any()
+            px = ((t[m, 0] << rf) + r[m, 0, 0] * p[m, 0] + r[m, 0, 1] * p[m, 1]
+                  + r[m, 0, 2] * p[m, 2] + half) >> rf
+            py = ((t[m, 1] << rf) + r[m, 1, 0] * p[m, 0] + r[m, 1, 1] * p[m, 1]
+                  + r[m, 1, 2] * p[m, 2] + half) >> rf
+            pz = ((t[m, 2] << rf) + r[m, 2, 0] * p[m, 0] + r[m, 2, 1] * p[m, 1]
+                  + r[m, 2, 2] * p[m, 2] + half) >> rf
+            ovf = ((px < cmin) | (px > cmax) | (py < cmin) | (py > cmax)
+                   | (pz < cmin) | (pz > cmax))
+            out_ovf[m] = ovf
             out_gap[m] = gap_sent
             out_idx[m] = idx_sent
             out_valid[m] = False
-            if out_ovf[m]:
+            if ovf:
                 continue
-            _sample_terms(pp[0], pp[1], pp[2], gx, gy, gz, nx, ny, nz, rf, e_shift,
-                          rho, gam)
+            _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam)
             l_rho[:] = rho[:lanes]           # beat 0, then strict-< updates:
             l_k[:] = 0                       # the earliest sample wins a lane tie
             for k in range(1, beats):
