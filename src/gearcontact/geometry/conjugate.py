@@ -291,9 +291,13 @@ def _solve_grid(solver: MeshingSolver, box: FlankBoundary, blank: BlankDesign, n
             q[i, j0] = prev = [s.h_mm, s.theta_rad, s.phi2_rad]
     for rng, back in ((range(j0 + 1, len(vs)), -1), (range(j0 - 1, -1, -1), 1)):
         for j in rng:
-            guess = q[:, j + back]
-            if 0 <= j + 2 * back < len(vs) and (j + 2 * back - j0) * back <= 0:
-                guess = 2.0 * q[:, j + back] - q[:, j + 2 * back]  # linear extrapolation
+            done = abs(j - j0)  # solved columns behind j on this side (incl. j0)
+            if done >= 3:   # quadratic extrapolation from the last three columns
+                guess = 3.0 * q[:, j + back] - 3.0 * q[:, j + 2 * back] + q[:, j + 3 * back]
+            elif done == 2:
+                guess = 2.0 * q[:, j + back] - q[:, j + 2 * back]
+            else:
+                guess = q[:, j + back]
             s = solver.solve(us, np.full_like(us, vs[j]), guess)
             q[:, j] = np.stack([s.h_mm, s.theta_rad, s.phi2_rad], axis=-1)
     U, V = np.meshgrid(us, vs, indexing="ij")

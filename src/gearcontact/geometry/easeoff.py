@@ -21,7 +21,8 @@ E > 0 removing material. Coefficients (pair file, um per mm^k):
 
 The eased flank is again a :class:`~.sheet.RadialSheet`: for every node (u, v) the
 base-flank point (u0, v0) whose relieved image ``r1 - E N1`` has the node's axial
-position and radius is found (fixed-point iteration, contraction ~ |E| x curvature),
+position and radius is found (Newton iteration on the sheet derivatives and the
+relief gradient, 2-3 steps to 1 pm),
 and the image's angular coordinate becomes the new sample. The modified normal and
 curvatures are recomputed from the new sheet's derivatives, never from N1.
 
@@ -109,15 +110,26 @@ def apply_easeoff(base: RadialSheet, easeoff: EaseOff) -> RadialSheet:
     cone = base.cone
     R_target = cone.radius_mm(U, V)
     u0, v0 = U.copy(), V.copy()
+    eps = 1e-6  # mm, finite-difference step of the (polynomial) relief gradient
     for _ in range(_ITER):
         s = base.evaluate(u0, v0, second=False)
-        p = s.r - easeoff.relief_mm(u0, v0)[..., None] * s.n
+        E = easeoff.relief_mm(u0, v0)
+        p = s.r - E[..., None] * s.n
         dx = p[..., 0] - V
-        dR = np.hypot(p[..., 1], p[..., 2]) - R_target
-        v0 = v0 - dx
-        u0 = u0 - (dR - cone.tan_delta * dx)
+        Rp = np.hypot(p[..., 1], p[..., 2])
+        dR = Rp - R_target
         if max(np.abs(dx).max(), np.abs(dR).max()) < 1e-12:  # 1 pm
             break
+        # Newton step on (x(p), R(p)) = (v, R) with dp/du0 ~ r_u - E_u n (n' E term dropped)
+        E_u = (easeoff.relief_mm(u0 + eps, v0) - E) / eps
+        E_v = (easeoff.relief_mm(u0, v0 + eps) - E) / eps
+        cols = []
+        for d in (s.r_u - E_u[..., None] * s.n, s.r_v - E_v[..., None] * s.n):
+            cols.append((d[..., 0], (p[..., 1] * d[..., 1] + p[..., 2] * d[..., 2]) / Rp))
+        (a, c), (b, d) = cols
+        det = a * d - b * c
+        u0 = u0 - (d * dx - b * dR) / det
+        v0 = v0 - (-c * dx + a * dR) / det
     else:
         raise ArithmeticError(f"ease-off node mapping of the {base.side} flank did not converge "
                               f"(residual {max(np.abs(dx).max(), np.abs(dR).max()):.2e} mm)")

@@ -1,0 +1,79 @@
+"""Figures of the generated flanks (matplotlib, Agg canvas; no pyplot global state).
+
+:func:`plot_flanks_in_mesh` draws the gear and pinion flank sheets of one side posed in
+the meshing frame at a mesh phase, with the mean point P0 (or a TCA mating point) -
+the "two flank sheets in mesh" figure of the TCA report.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from ..validation import InputRangeError
+from .flank import SIDES, FlankSet
+from .sampling import sample_grid
+
+__all__ = ["plot_flanks_in_mesh"]
+
+
+def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: float | None = None,
+                        point_mm=None, n_u: int = 16, n_v: int = 22,
+                        path: str | Path | None = None) -> Figure:
+    """3-D view of the gear and pinion flanks of ``side`` in mesh.
+
+    Parameters
+    ----------
+    flanks : FlankSet
+    side : str
+        "drive" or "coast".
+    phi2_rad : float, optional
+        Gear rotation, rad; the pinion is posed at ``phi1 = u phi2`` (nominal
+        kinematics). Default: the conjugate mean contact of ``side``.
+    point_mm : array-like (3,), optional
+        Point to mark in the meshing frame, mm (e.g. the TCA mating point P0); default
+        the conjugate contact at the pinion mean point.
+    n_u, n_v : int
+        Sampling of the sheets (default the 16 x 22 flank grid).
+    path : str or Path, optional
+        If given, the figure is also written there (PNG at 150 dpi).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if side not in SIDES:
+        raise InputRangeError("side", side, f"one of {SIDES}")
+    mean = flanks.mean_contact[side]
+    phi2 = mean["phi2_rad"] if phi2_rad is None else float(phi2_rad)
+    kin = flanks.kinematics
+    fig = Figure(figsize=(7.0, 5.5))
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot(projection="3d")
+    for member, colour, pose in (("gear", "tab:blue", kin.gear_pose(phi2)),
+                                 ("pinion", "tab:orange", kin.pinion_pose(kin.ratio * phi2))):
+        grid = sample_grid(flanks.flank(member, side), n_u, n_v)
+        R, t = pose
+        X = grid.positions_mm @ R.T + t
+        ax.plot_surface(X[..., 0], X[..., 1], X[..., 2], color=colour, alpha=0.55,
+                        linewidth=0.2, edgecolor="k", label=f"{member} {side}")
+    if point_mm is None:
+        g = flanks.flank("gear", side).point(*mean["gear_uv"])
+        R, t = kin.gear_pose(phi2)
+        point_mm = R @ g.r + t
+    p = np.asarray(point_mm, dtype=float)
+    ax.scatter([p[0]], [p[1]], [p[2]], color="k", s=30, depthshade=False)
+    ax.text(p[0], p[1], p[2], "  P0")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_zlabel("z [mm]")
+    ax.set_title(f"{flanks.blank.pinion_teeth}/{flanks.blank.gear_teeth} hypoid, {side} "
+                 f"flanks in mesh (phi2 = {np.degrees(phi2):.3f} deg)")
+    ax.legend(loc="upper left")
+    ax.set_box_aspect((np.ptp(ax.get_xlim3d()), np.ptp(ax.get_ylim3d()), np.ptp(ax.get_zlim3d())))
+    if path is not None:
+        fig.savefig(path, dpi=150)
+    return fig
