@@ -63,7 +63,7 @@ class GapBatchCodes:
     overflow: np.ndarray
 
 
-@njit(cache=True, boundscheck=False)
+@njit(cache=True, boundscheck=False, inline="always")
 def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam):
     """gamma and rho codes of every sample for the posed point (px, py, pz)."""
     half = np.int64(1) << (rf - 1)
@@ -90,6 +90,8 @@ def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, tau2, lanes, rf, cmin, cmax,
     beats = (n_smp + lanes - 1) // lanes
     n_pad = beats * lanes
     per = (m_pts + n_chunks - 1) // n_chunks
+    per_r = 1 if r.shape[0] == m_pts else 0     # shared (1) or per-point (M) poses
+    per_t = 1 if t.shape[0] == m_pts else 0
     for c in prange(n_chunks):
         rho = np.empty(n_pad, np.int64)      # per-thread buffers, samples padded
         gam = np.zeros(n_pad, np.int64)      # to whole beats with empty slots
@@ -97,12 +99,13 @@ def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, tau2, lanes, rf, cmin, cmax,
         l_rho = np.empty(lanes, np.int64)
         l_k = np.empty(lanes, np.int64)
         for m in range(c * per, min(m_pts, (c + 1) * per)):
-            px = ((t[m, 0] << rf) + r[m, 0, 0] * p[m, 0] + r[m, 0, 1] * p[m, 1]
-                  + r[m, 0, 2] * p[m, 2] + half) >> rf
-            py = ((t[m, 1] << rf) + r[m, 1, 0] * p[m, 0] + r[m, 1, 1] * p[m, 1]
-                  + r[m, 1, 2] * p[m, 2] + half) >> rf
-            pz = ((t[m, 2] << rf) + r[m, 2, 0] * p[m, 0] + r[m, 2, 1] * p[m, 1]
-                  + r[m, 2, 2] * p[m, 2] + half) >> rf
+            a, b = per_r * m, per_t * m
+            px = ((t[b, 0] << rf) + r[a, 0, 0] * p[m, 0] + r[a, 0, 1] * p[m, 1]
+                  + r[a, 0, 2] * p[m, 2] + half) >> rf
+            py = ((t[b, 1] << rf) + r[a, 1, 0] * p[m, 0] + r[a, 1, 1] * p[m, 1]
+                  + r[a, 1, 2] * p[m, 2] + half) >> rf
+            pz = ((t[b, 2] << rf) + r[a, 2, 0] * p[m, 0] + r[a, 2, 1] * p[m, 1]
+                  + r[a, 2, 2] * p[m, 2] + half) >> rf
             ovf = ((px < cmin) | (px > cmax) | (py < cmin) | (py > cmax)
                    | (pz < cmin) | (pz > cmax))
             out_ovf[m] = ovf
@@ -140,7 +143,7 @@ def _codes(field: str, a, shape_tail: tuple[int, ...]) -> np.ndarray:
     if not np.issubdtype(arr.dtype, np.integer) or arr.shape[-len(shape_tail):] != shape_tail:
         raise InputRangeError(f"{field}", f"dtype {arr.dtype}, shape {arr.shape}",
                               f"integer codes of shape (..., {', '.join(map(str, shape_tail))})")
-    return arr.astype(np.int64)
+    return np.ascontiguousarray(arr, dtype=np.int64)
 
 
 def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
@@ -171,8 +174,11 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
     if p.ndim != 2:
         raise InputRangeError("p_code.shape", p.shape, "(M, 3)")
     m = p.shape[0]
-    r = np.ascontiguousarray(np.broadcast_to(_codes("r_code", r_code, (3, 3)), (m, 3, 3)))
-    t = np.ascontiguousarray(np.broadcast_to(_codes("t_code", t_code, (3,)), (m, 3)))
+    r = _codes("r_code", r_code, (3, 3)).reshape(-1, 3, 3)
+    t = _codes("t_code", t_code, (3,)).reshape(-1, 3)
+    for name, a in (("r_code", r), ("t_code", t)):
+        if a.shape[0] not in (1, m):
+            raise InputRangeError(f"{name}.shape", a.shape, f"one pose or M = {m} poses")
     g = _codes("g_code", g_code, (3,))
     n = _codes("n_code", n_code, (3,))
     if not 1 <= g.shape[0] <= MAX_SAMPLES or g.ndim != 2 or n.shape != g.shape:
