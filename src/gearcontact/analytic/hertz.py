@@ -60,6 +60,12 @@ _HALF_PI = 0.5 * math.pi
 _HB_E = _HALF_PI - 1.0           # (pi/2 - 1), Hamrock–Brewe constant, dimensionless
 _HB_K_EXP = 2.0 / math.pi        # k = alpha^(2/pi)
 _THIRD = 1.0 / 3.0
+_SIX_OVER_PI = 6.0 / math.pi
+_THREE_OVER_PI = 3.0 / math.pi
+_THREE_OVER_2PI = 1.5 / math.pi
+_log = math.log
+_exp = math.exp
+_cbrt = math.cbrt          # Python >= 3.11
 
 
 @dataclass(frozen=True)
@@ -249,16 +255,16 @@ def hamrock_brewe_terms(a_min: float, b_max: float, load_n: float, e_prime_mpa: 
     """
     alpha = b_max / a_min                       # R_x/R_y
     r_eff = 0.5 / (a_min + b_max)               # 1/R = 2 A_min + 2 B_max
-    ln_alpha = math.log(alpha)
-    k = math.exp(_HB_K_EXP * ln_alpha)          # alpha^(2/pi)
+    ln_alpha = _log(alpha)
+    k = _exp(_HB_K_EXP * ln_alpha)              # alpha^(2/pi)
     e_e = 1.0 + _HB_E / alpha
     f = _HALF_PI + _HB_E * ln_alpha
-    a = (6.0 * k * k * e_e * load_n * r_eff / (math.pi * e_prime_mpa)) ** _THIRD
+    a = _cbrt(_SIX_OVER_PI * k * k * e_e * load_n * r_eff / e_prime_mpa)
     b = a / k
-    p_max = 3.0 * load_n / (2.0 * math.pi * a * b)
+    p_max = _THREE_OVER_2PI * load_n / (a * b)  # 3W/(2 pi a b)
     # delta = F (9/(2 E_e R) (W/(pi k E'))^2)^(1/3), rewritten with a as 3 W F/(pi a E')
     # (algebraically identical; saves the second cube root)
-    delta = 3.0 * load_n * f / (math.pi * a * e_prime_mpa)
+    delta = _THREE_OVER_PI * load_n * f / (a * e_prime_mpa)
     return a, b, k, p_max, delta, alpha, e_e, f, r_eff
 
 

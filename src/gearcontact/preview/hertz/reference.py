@@ -47,6 +47,7 @@ _W_LO, _W_HI = ENVELOPE["load_n"]
 _E_LO, _E_HI = ENVELOPE["e_prime_mpa"]
 _ALPHA_HI = ENVELOPE["alpha"][1]
 _new = object.__new__
+_INF = math.inf
 
 
 @dataclass(frozen=True)
@@ -81,9 +82,21 @@ class HertzPreview:
     approach_mm: float
 
 
-def _envelope_error(field: str, value, lo: float, hi: float) -> None:
-    """Raise :class:`InputRangeError` naming ``field`` unless lo <= value <= hi."""
-    check_range(field, value, lo, hi)
+def _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, envelope: bool) -> None:
+    """Raise :class:`InputRangeError` for the first offending input (slow path)."""
+    vals = {"A_minus": check_positive("A_minus", A_minus),
+            "B_minus": check_positive("B_minus", B_minus),
+            "load_n": check_positive("load_n", load_n),
+            "e_prime_mpa": check_positive("e_prime_mpa", e_prime_mpa)}
+    if envelope:
+        for name in ("A_minus", "B_minus"):
+            check_range(name, vals[name], _C_LO, _C_HI)
+        check_range("load_n", vals["load_n"], _W_LO, _W_HI)
+        check_range("e_prime_mpa", vals["e_prime_mpa"], _E_LO, _E_HI)
+        a, b = sorted((vals["A_minus"], vals["B_minus"]))
+        raise InputRangeError("alpha = B_max/A_min", b / a, f"[1, {_ALPHA_HI:g}]")
+    raise InputRangeError("inputs", (A_minus, B_minus, load_n, e_prime_mpa),
+                          "finite numbers > 0")     # pragma: no cover (unreachable)
 
 
 def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa: float,
@@ -110,26 +123,24 @@ def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa:
     InputRangeError
         Non-positive / non-finite input, or outside the envelope (names the field).
     """
-    a = float(A_minus)
-    b = float(B_minus)
-    w = float(load_n)
-    e = float(e_prime_mpa)
-    # one chained comparison rejects <= 0, inf and NaN; the slow path names the field
-    if not (0.0 < a < math.inf and 0.0 < b < math.inf and 0.0 < w < math.inf
-            and 0.0 < e < math.inf):
-        for name, v in (("A_minus", a), ("B_minus", b), ("load_n", w), ("e_prime_mpa", e)):
-            check_positive(name, v)
-    na, nb = "A_minus", "B_minus"
-    if a > b:
-        a, b, na, nb = b, a, nb, na
-    if envelope:
-        if not (_C_LO <= a and b <= _C_HI and _W_LO <= w <= _W_HI and _E_LO <= e <= _E_HI
-                and b <= _ALPHA_HI * a):
-            _envelope_error(na, a, _C_LO, _C_HI)
-            _envelope_error(nb, b, _C_LO, _C_HI)
-            _envelope_error("load_n", w, _W_LO, _W_HI)
-            _envelope_error("e_prime_mpa", e, _E_LO, _E_HI)
-            raise InputRangeError("alpha = B_max/A_min", b / a, f"[1, {_ALPHA_HI:g}]")
+    # Hot path: one chained comparison accepts valid input (NaN fails every comparison);
+    # anything else goes to _raise_input_error, which names the field.
+    if A_minus <= B_minus:
+        a, b = A_minus, B_minus
+    else:
+        a, b = B_minus, A_minus
+    w = load_n
+    e = e_prime_mpa
+    try:
+        if envelope:
+            ok = (_C_LO <= a and b <= _C_HI and _W_LO <= w <= _W_HI
+                  and _E_LO <= e <= _E_HI and b <= _ALPHA_HI * a)
+        else:
+            ok = 0.0 < a and b < _INF and 0.0 < w < _INF and 0.0 < e < _INF
+    except TypeError:
+        ok = False
+    if not ok:
+        _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, envelope)
     a_mm, b_mm, k, p_max, delta, alpha, _, _, _ = hamrock_brewe_terms(a, b, w, e)
     # Fast construction of the frozen instance: the generated __init__ calls
     # object.__setattr__ once per field (~2 us for 8 fields); filling the instance
