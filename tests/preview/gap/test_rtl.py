@@ -186,3 +186,24 @@ def test_convert_verilog_l8():
     text = convert_verilog(lanes=8)
     assert "module gap_core" in text and "tau2" in text and "w_ready" in text
     assert time.perf_counter() - t0 < 120               # a smoke bound, not a timing test
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("lanes", [32, 64])
+def test_wide_cores_bit_and_cycle_exact(lanes):
+    rng = np.random.default_rng(lanes)
+    vecs = directed_vectors(lanes) + [random_vector(rng, lanes),
+                                      random_vector(rng, 3 * lanes + 5)]
+    check_against_golden(vecs, lanes)
+
+
+@pytest.mark.slow
+def test_l16_random_sweep():
+    rng = np.random.default_rng(1616)
+    vecs = [random_vector(rng, int(n)) for n in rng.integers(1, 257, 40)]
+    check_against_golden(vecs, 16)
+
+
+@pytest.mark.slow
+def test_convert_verilog_l64():
+    assert "module gap_core" in convert_verilog(lanes=64)
