@@ -21,7 +21,7 @@ def cycle():
     case = sphere_torus_case()
     start = ContactGuess(np.pi / 2, 0.0, case.tube_angle, 0.0, 0.0, 0.0)
     return case, mesh_cycle(case.pinion, case.gear, case.kin, pinion_teeth=Z1,
-                            start=start, phases=31, pairs=1)
+                            start=start, phases=31, pairs=1, center="start")
 
 
 def test_pairs_are_shifted_truths_and_envelope(cycle):
@@ -67,4 +67,4 @@ def test_short_path_is_reported():
     narrow = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range, (-0.01, 0.01))
     with pytest.raises(ValueError, match="contact ratio < 1"):
         mesh_cycle(case.pinion, narrow, case.kin, pinion_teeth=Z1, start=start,
-                   phases=11, pairs=1)
+                   phases=11, pairs=1, center="start")

@@ -25,7 +25,7 @@ def table():
     case = sphere_torus_case()
     start = ContactGuess(np.pi / 2, 0.0, case.tube_angle, 0.0, 0.0, 0.0)
     cyc = mesh_cycle(case.pinion, case.gear, case.kin, pinion_teeth=120, start=start,
-                     phases=61, pairs=1)
+                     phases=61, pairs=1, center="start")
     return phase_table(cyc)
 
 

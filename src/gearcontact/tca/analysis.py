@@ -19,7 +19,7 @@ from .phase_table import PhaseTable, phase_table
 from .solve import ContactGuess, MatingPoint
 from .stencil import GapField, gap_at, gap_field_80, hardware_stencil
 
-__all__ = ["TcaAnalysis", "analyze", "pattern_on_flank"]
+__all__ = ["TcaAnalysis", "analyze", "analyze_pair", "pattern_on_flank"]
 
 
 @dataclass(frozen=True)
@@ -126,3 +126,32 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     stages.update(1)
     stages.close()
     return TcaAnalysis(cycle, table, mean, rc, ell, field, stencil, inside, timings)
+
+
+def analyze_pair(pair, *, side: str = "drive", phases: int = 61, pairs: int = 2,
+                 flanks=None, progress: bool = False) -> tuple[TcaAnalysis, object]:
+    """Build the flanks of a :class:`~gearcontact.geometry.pair.GearPair` and analyze
+    one side with the pair's assembly errors.
+
+    The reference point is the mating point at ``phi1_0 = u phi2_0`` of the conjugate
+    mean contact reported by :func:`~gearcontact.geometry.flank.build_flanks`.
+
+    Returns
+    -------
+    (TcaAnalysis, FlankSet)
+    """
+    from ..geometry.flank import SIDES, build_flanks
+
+    if side not in SIDES:
+        raise ValueError(f"side = {side!r} is not one of {SIDES}")
+    if flanks is None:
+        flanks = build_flanks(pair)
+    mean = flanks.mean_contact[side]
+    kin = pair.kinematics()
+    phi2 = float(mean["phi2_rad"])
+    start = ContactGuess(*map(float, mean["pinion_uv"]), *map(float, mean["gear_uv"]),
+                         pair.ratio * phi2, phi2)
+    result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
+                     pinion_teeth=pair.pinion_teeth, start=start, phases=phases,
+                     pairs=pairs, progress=progress)
+    return result, flanks

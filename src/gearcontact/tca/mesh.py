@@ -23,7 +23,7 @@ peak-to-peak over one pinion pitch is the figure of merit ``te0_pp_arcsec``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -34,7 +34,21 @@ from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
 from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
 
-__all__ = ["MeshCycle", "mesh_cycle"]
+__all__ = ["MeshCycle", "mesh_cycle", "rebase"]
+
+
+def rebase(path: TcaPath, index: int) -> TcaPath:
+    """The same path with its TE0 reference moved to the phase ``path.points[index]``.
+
+    ``TE0' = (phi2 - phi2_v) - (phi1 - phi1_v)/u = TE0 - TE0(index)`` exactly.
+    """
+    ref = path.points[index]
+    if ref.edge:
+        raise ValueError(f"cannot rebase TE0 on an edge phase (index {index})")
+    shift = ref.te0_arcsec
+    pts = tuple(p if p.edge else replace(p, te0_arcsec=p.te0_arcsec - shift)
+                for p in path.points)
+    return TcaPath(pts, ref.phi1_rad, ref.phi2_rad, path.ratio)
 
 
 @dataclass(frozen=True)
@@ -106,8 +120,9 @@ class MeshCycle:
 def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
                start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
                pairs: int = 2, paint_mm: float = PAINT_THICKNESS_MM,
-               progress: bool = False) -> MeshCycle:
-    """Run TCA of pair 0 over ``2 pairs + 1`` pitches and assemble the mesh cycle.
+               center: str = "vertex", progress: bool = False) -> MeshCycle:
+    """Run TCA of pair 0 over ``2 pairs + 1`` pitches (plus one either side to find the
+    vertex) and assemble the mesh cycle.
 
     Parameters
     ----------
@@ -127,6 +142,10 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         Neighbouring pairs on each side (``j = -pairs .. pairs``).
     paint_mm : float
         Paint thickness of the instantaneous ellipses, mm.
+    center : str
+        ``"vertex"`` (default): the reference point P0 (TE0 = 0, centre of the pitch
+        window) is the path phase of least relief, i.e. the extremum of the pair's TE0
+        (the vertex of the parabola); ``"start"``: the solved ``start`` point.
     progress : bool
         Show a progress bar over the phases.
 
@@ -141,20 +160,31 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     if int(phases) < 3:
         raise ValueError(f"phases = {phases!r} must be >= 3")
     check_positive("paint_mm", paint_mm)
+    if center not in ("vertex", "start"):
+        raise ValueError(f"center = {center!r} is not 'vertex' or 'start'")
     n = int(phases) - 1
     step = 2.0 * np.pi / int(pinion_teeth) / n
-    ref = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed)
+    first = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed)
+    rot2, t2 = kin.gear_pose(first.phi2_rad)
+    envelope_is_max = bool(first.normal @ np.cross(kin.gear_axis, first.point_mm - t2) < 0.0)
     k0 = n // 2
     span = pairs * n
-    grid = ref.phi1_rad + step * np.arange(-k0 - span, n - k0 + span + 1)
-    path = solve_tca(pinion, gear, kin, grid, start=ref.as_guess(), progress=progress)
+    margin = (n if center == "vertex" else 0)
+    ks = np.arange(-k0 - span - margin, n - k0 + span + margin + 1)
+    grid = first.phi1_rad + step * ks
+    path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress)
+    i_ref = int(np.flatnonzero(ks == 0)[0])
+    if center == "vertex":
+        # P0 = the point of least relief along the path: the TE0 extremum of one pair
+        te = np.where(path.edge, -np.inf if envelope_is_max else np.inf, path.te0_arcsec)
+        i_v = int(np.argmax(te) if envelope_is_max else np.argmin(te))
+        i_ref = int(np.clip(i_v, k0 + span, len(grid) - 1 - (n - k0) - span))
+        path = rebase(path, i_ref)
     offsets = tuple(range(-pairs, pairs + 1))
     te0 = path.te0_arcsec
-    base = span                               # grid index of the pitch's first phase
+    base = i_ref - k0                         # grid index of the pitch's first phase
     idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
     te_pairs = te0[idx]
-    rot2, t2 = kin.gear_pose(ref.phi2_rad)
-    envelope_is_max = bool(ref.normal @ np.cross(kin.gear_axis, ref.point_mm - t2) < 0.0)
     valid = np.isfinite(te_pairs)
     if not valid.any(axis=0).all():
         k = int(np.argmin(valid.any(axis=0)))

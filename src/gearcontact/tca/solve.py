@@ -300,7 +300,7 @@ def _boxes(pinion: Surface, gear: Surface) -> np.ndarray:
 
 
 def solve_mating_point(pinion: Surface, gear: Surface, kin: MeshKinematics,
-                       guess: ContactGuess, *, fixed: str = "phi1",
+                       guess: ContactGuess, *, fixed: str | tuple[str, ...] = "phi1",
                        tol_mm: float = 1e-10, max_iter: int = 40) -> MatingPoint:
     """Solve the five contact equations by Newton's method with one variable fixed.
 
@@ -312,8 +312,12 @@ def solve_mating_point(pinion: Surface, gear: Surface, kin: MeshKinematics,
         Poses of both members (assembly errors included).
     guess : ContactGuess
         Starting state; the variable named by ``fixed`` keeps its value.
-    fixed : str
-        One of :data:`VARIABLES`; ``"phi1"`` is ordinary TCA at a given mesh phase.
+    fixed : str or tuple of str
+        Variable(s) of :data:`VARIABLES` held at their guessed values; ``"phi1"`` is
+        ordinary TCA at a given mesh phase. With two fixed variables the five equations
+        in four unknowns are solved by Gauss-Newton (least squares); they converge only
+        if the system is consistent - e.g. along the contact line of a conjugate
+        (line-contact) pair, ``fixed=("phi1", "v2")``.
     tol_mm : float
         Convergence tolerance on the position residual, mm; the normal residual must
         fall below ``tol_mm / 1 mm``.
@@ -333,17 +337,23 @@ def solve_mating_point(pinion: Surface, gear: Surface, kin: MeshKinematics,
         No convergence; the message names the mesh phase and the residual.
     """
     check_positive("tol_mm", tol_mm)
-    k_fix = VARIABLES.index(fixed)
-    free = [i for i in range(6) if i != k_fix]
+    names = (fixed,) if isinstance(fixed, str) else tuple(fixed)
+    unknown = [n for n in names if n not in VARIABLES]
+    if unknown or not 1 <= len(set(names)) <= 2:
+        raise ValueError(f"fixed = {fixed!r}: give one or two of {VARIABLES}")
+    free = [i for i, n in enumerate(VARIABLES) if n not in names]
     boxes = _boxes(pinion, gear)
     x, hit = _clamp(guess.vector(), boxes)
     res, (x2, n2), jac = _residual_and_jacobian(pinion, gear, kin, x)
     norm = np.linalg.norm(res)
     clamped_iters = 0
     for it in range(1, max_iter + 1):
-        try:
-            step = np.linalg.solve(jac[:, free], -res)
-        except np.linalg.LinAlgError:
+        if len(free) == 5:
+            try:
+                step = np.linalg.solve(jac[:, free], -res)
+            except np.linalg.LinAlgError:
+                step = np.linalg.lstsq(jac[:, free], -res, rcond=None)[0]
+        else:
             step = np.linalg.lstsq(jac[:, free], -res, rcond=None)[0]
         lam = 1.0
         while True:
