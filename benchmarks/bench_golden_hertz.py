@@ -16,12 +16,11 @@ from __future__ import annotations
 import argparse
 import time
 
-import numba
 import numpy as np
 
 from gearcontact.materials import STEEL, effective_modulus_mpa
 from gearcontact.preview.hertz.golden import encode_hertz_inputs, hertz_golden
-from gearcontact.preview.hertz.golden_vec import hertz_golden_array
+from gearcontact.preview.hertz.golden_vec import HAVE_NUMBA, hertz_golden_array
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, HERTZ_CYCLES
 
 BOARD_HZ = 50e6
@@ -66,12 +65,20 @@ def main() -> None:
     hertz_golden_array(ac[:10], bc[:10], wc[:10], e_prime_code=ec)     # JIT / cache load
     rows = [("scalar golden, floor-division path", *_rate(scalar, n_scalar)),
             ("scalar golden, bit-serial divider", *_rate(serial, n_serial, 1))]
-    threads = numba.get_num_threads()
-    for nt in sorted({1, threads}):
-        numba.set_num_threads(nt)
-        rows.append((f"vectorized golden (numba, {nt} thread{'s' if nt > 1 else ''})",
-                     *_rate(lambda: hertz_golden_array(ac, bc, wc, e_prime_code=ec), n_vec)))
-    numba.set_num_threads(threads)
+    if HAVE_NUMBA:
+        import numba
+        threads = numba.get_num_threads()
+        for nt in sorted({1, threads}):
+            numba.set_num_threads(nt)
+            label = f"vectorized golden (numba, {nt} thread{'s' if nt > 1 else ''})"
+            rows.append((label, *_rate(
+                lambda: hertz_golden_array(ac, bc, wc, e_prime_code=ec), n_vec)))
+        numba.set_num_threads(threads)
+    else:
+        n_py = 2_000
+        rows.append(("vectorized golden (no numba: plain Python)", *_rate(
+            lambda: hertz_golden_array(ac[:n_py], bc[:n_py], wc[:n_py], e_prime_code=ec),
+            n_py, 1)))
     print(f"stage D golden model, evaluations per second ({n_vec} vectorized)")
     print(f"{'model':<44}{'wall /s':>12}{'CPU /s':>12}{'vs board':>10}")
     board = BOARD_HZ / HERTZ_CYCLES

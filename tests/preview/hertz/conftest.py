@@ -18,11 +18,12 @@ E_PRIMES = {
 
 def accuracy_domain(n, seed):
     """n seeded points of the accuracy domain: A-, B- log-uniform in [1e-3, 1] 1/mm
-    with B/A <= 128 (LUT range; 10 % of them with B/A in [1, 1.5], where the POW
+    with B/A <= 127.5 (LUT range 128 less the input quantization of the ratio, <= 0.12
+    at A- = 1e-3; 10 % of them with B/A in [1, 1.5], where the POW
     interpolation error peaks), W log-uniform in [10, 20 000] N. Returns (A, B, W)."""
     rng = np.random.default_rng(seed)
     a = np.exp(rng.uniform(np.log(1e-3), 0.0, n))
-    ratio = np.exp(rng.uniform(0.0, np.log(128.0), n))
+    ratio = np.exp(rng.uniform(0.0, np.log(127.5), n))
     near = rng.random(n) < 0.1
     ratio[near] = rng.uniform(1.0, 1.5, near.sum())
     b = np.minimum(a * ratio, 1.0)

@@ -2,27 +2,41 @@
 
 The scalar model (:mod:`.golden`) is the readable specification; this module runs the
 same operation sequence over numpy arrays in a numba kernel (``cache=True``,
-``parallel=True``). Every register is a ``uint64`` (after the envelope check all
-values are non-negative and below 2^64, see :mod:`.formats`); the three dividends
+``parallel=True``; without numba the same kernel runs as plain Python, slowly).
+Every register is a ``uint64`` (after the envelope check all values are
+non-negative and below 2^64, see :mod:`.formats`); the three dividends
 wider than 64 bits (C_a < 2^75, b < 2^66, p_n2 < 2^80) are divided exactly by
 schoolbook long division in five 16-bit digits (each partial remainder is below the
 divisor < 2^42, so ``rem * 2^16 + digit`` fits 64 bits) — Knuth, TAOCP vol. 2,
 sec. 4.3.1, Algorithm D with a single-word divisor. The tests compare codes and flags
 with the scalar model on more than 20 000 seeded vectors plus the envelope corners.
+
+Every divisor is provably positive once the envelope check has passed (A_min >= 2^9,
+alpha >= 2^24, E' >= 2^12, K >= 2^24, a_w >= 2^27, b_w >= 2^23), so the scalar
+model's zero-divisor branch (``FLAG_DIV_ZERO``) is unreachable and not replicated.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba
 import numpy as np
+
+try:  # numba is optional: the kernel is also valid Python (numpy uint64 scalars)
+    from numba import njit, prange
+    HAVE_NUMBA = True
+except ImportError:  # pragma: no cover - exercised only without numba
+    HAVE_NUMBA = False
+    prange = range
+
+    def njit(*args, **kwargs):
+        return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from .luts import CBRT_SPEC, POW_SPEC, lut_array
 
-__all__ = ["HertzCodesArray", "hertz_golden_array"]
+__all__ = ["HertzCodesArray", "hertz_golden_array", "HAVE_NUMBA"]
 
 _U = np.uint64
 
@@ -54,13 +68,13 @@ class HertzCodesArray:
         return self.flags == 0
 
 
-@numba.njit(cache=True, inline="always")
+@njit(cache=True, inline="always")
 def _rs(x, n):
     """Round-half-up right shift of a uint64 by n >= 1 bits."""
     return (x + (_U(1) << _U(n - 1))) >> _U(n)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _div_wide(x, s, d):
     """floor(x * 2^s / d) for uint64 x, x 2^s < 2^80, 0 < d < 2^48, quotient < 2^64."""
     rem = _U(0)
@@ -78,7 +92,7 @@ def _div_wide(x, s, d):
     return q
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _msb(x):
     """Index of the most significant set bit of a uint64 x > 0."""
     n = 0
@@ -89,7 +103,7 @@ def _msb(x):
     return n
 
 
-@numba.njit(cache=True, inline="always")
+@njit(cache=True, inline="always")
 def _interp(arg, lut, x0, tbits, qbits, corr_shift):
     """LUT interpolation, see :func:`.luts.lut_interpolate`."""
     off = arg - _U(x0)
@@ -103,7 +117,7 @@ def _interp(arg, lut, x0, tbits, qbits, corr_shift):
     return v0 * t_full + r * (v1 - v0) + _rs(r * (t_full - r) * q0, corr_shift)
 
 
-@numba.njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True)
 def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
     curv_lo, curv_hi, w_lo, w_hi, e_lo, e_hi = cst[0], cst[1], cst[2], cst[3], cst[4], cst[5]
     alpha_max, c6, n5, c3 = cst[6], cst[7], cst[8], cst[9]
@@ -111,7 +125,7 @@ def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
     cbrt_x0, cbrt_t, cbrt_qb, cbrt_cs = cst[15], cst[16], cst[17], cst[18]
     k_max, axis_max, pmax_max, curv_max_out = cst[19], cst[20], cst[21], cst[22]
     n = A.shape[0]
-    for j in numba.prange(n):
+    for j in prange(n):
         a_min = min(A[j], B[j])
         b_max = max(A[j], B[j])
         w = W[j]
