@@ -129,5 +129,22 @@ def test_limit_line_detected(s0003):
         conjugate_pinion_flank(g, blank=blank, kinematics=pair.kinematics(with_errors=False),
                                pinion_face_width_mm=pair.pinion_face_width_mm, n_u=12, n_v=12)
     assert "pinion drive flank" in err.value.field
-    assert isinstance(err.value.__cause__, MeshingError)  # names node and residual
-    assert "residual" in str(err.value.__cause__)
+    # the error locates the problem: (u, v) in the field or a chained MeshingError
+    # naming the node and its residual
+    cause = err.value.__cause__
+    assert "(u, v)" in err.value.field or (isinstance(cause, MeshingError) and "residual" in str(cause))
+
+
+def test_iso_f3_coast_toe_undercut_detected():
+    # The ISO 23509 F.3 pair (13/42) cut as a formate gear with this package's
+    # simplifications (pitch-plane cutter, uniform depth) has a limit line on the pinion
+    # coast flank at the toe, between the gear tip line and the mean radius: reported
+    # as UndercutError with its location, never as a silently extrapolated flank.
+    from pathlib import Path
+
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+    pair = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
+    with pytest.raises(UndercutError) as err:
+        build_flanks(pair, n_u=12, n_v=12)
+    assert "pinion coast flank" in err.value.field and "gear tip" in err.value.allowed
