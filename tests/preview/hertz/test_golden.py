@@ -200,3 +200,18 @@ def test_encode_errors():
     # values that fit the formats but not the envelope are encoded and then flagged
     ac, bc, wc, ec = encode_hertz_inputs(0.1, 0.2, 2e5, e_prime_mpa=2e5)
     assert hertz_golden(ac, bc, wc, e_prime_code=ec).flags == F.FLAG_LOAD_RANGE
+
+
+def test_trace_follows_the_schedule():
+    from gearcontact.preview.hertz.golden import hertz_golden_trace
+    from gearcontact.preview.hertz.schedule import DIVISION_ORDER
+    codes, trace = hertz_golden_trace(20972, 524288, 384000, e_prime_code=STEEL_CODE)
+    assert codes == hertz_golden(20972, 524288, 384000, e_prime_code=STEEL_CODE)
+    assert tuple(d[0] for d in trace["divisions"]) == DIVISION_ORDER   # SPEC order
+    assert all(q == n // d for _, n, d, q in trace["divisions"])        # exact floor
+    assert max(n for _, n, _, _ in trace["divisions"]) < 1 << 80
+    assert trace["p_max"] == codes.p_max_code and trace["alpha"] == codes.alpha_code
+    # C_a = m 8^p with m in [1, 8): value identity of the range reduction (truncation
+    # of m drops < 2^-29 relative)
+    c_a = trace["C_a"] / 2 ** F.CA.frac
+    assert c_a == pytest.approx(trace["m"] / 2 ** F.M_RED.frac * 8.0 ** trace["p"], rel=2e-9)

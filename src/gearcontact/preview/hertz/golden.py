@@ -68,7 +68,8 @@ from . import formats as F
 from .divider import DIVIDER_BITS, floor_divide, restoring_divide
 from .luts import CBRT_SPEC, POW_SPEC, lut_interpolate
 
-__all__ = ["HertzCodes", "HertzGoldenValues", "hertz_golden", "envelope_flags",
+__all__ = ["HertzCodes", "HertzGoldenValues", "hertz_golden", "hertz_golden_trace",
+           "envelope_flags",
            "encode_hertz_inputs", "encode_e_prime", "decode_hertz_codes"]
 
 _PRODUCT_LIMIT = 1 << 64        # every multiplier product is below this (SPEC: 2^66)
@@ -183,11 +184,6 @@ def _mul(x: int, y: int, what: str) -> int:
     return p
 
 
-def _reg(value: int, fmt, what: str) -> int:
-    assert fmt.fits(value), f"register {what} = {value} does not fit {fmt}"
-    return value
-
-
 def _flagged(a_min: int, b_max: int, flags: int) -> HertzCodes:
     return HertzCodes(0, 0, 0, 0, a_min, b_max, 0, 0, 0, flags)
 
@@ -219,59 +215,91 @@ def hertz_golden(A_code: int, B_code: int, W_code: int, *, e_prime_code: int,
         An input code does not fit its 32-bit register (the caller's error; values
         that fit but lie outside the operating envelope are flagged instead).
     """
+    return _run(A_code, B_code, W_code, e_prime_code, bit_serial, None)
+
+
+def hertz_golden_trace(A_code: int, B_code: int, W_code: int, *, e_prime_code: int
+                       ) -> tuple[HertzCodes, dict]:
+    """:func:`hertz_golden` plus every internal register, for stage-by-stage RTL checks.
+
+    Returns
+    -------
+    codes : HertzCodes
+    trace : dict
+        Register name -> integer code, in datapath order (``A_min, B_max, flags_sort,
+        R_x, R_y, alpha, R, K, E6, K2, T1, T2, T3, C_a, p, m, cbrt, a_w, b_w, p_n2,
+        p_max``; formats in :mod:`.formats`), plus ``"divisions"``: the list of
+        ``(name, dividend, divisor, quotient)`` in divider order. A flagged run stops
+        recording where the datapath's results stop mattering.
+    """
+    trace: dict = {"divisions": []}
+    codes = _run(A_code, B_code, W_code, e_prime_code, False, trace)
+    return codes, trace
+
+
+def _run(A_code, B_code, W_code, e_prime_code, bit_serial: bool, trace) -> HertzCodes:
+    """The datapath (module docstring); ``trace`` (dict or None) records registers."""
     A = _check_code(A_code, CURVATURE, "A_code")
     B = _check_code(B_code, CURVATURE, "B_code")
     W = _check_code(W_code, LOAD, "W_code")
     E = _check_code(e_prime_code, F.E_PRIME, "e_prime_code")
     div = restoring_divide if bit_serial else floor_divide
 
-    def divide(n: int, d: int) -> int:
+    def divide(name: str, n: int, d: int) -> int:
         assert 0 <= n < (1 << DIVIDER_BITS), "dividend exceeds the 80-bit register"
         res = div(n, d)
+        if trace is not None:
+            trace["divisions"].append((name, n, d, res.quotient))
         if res.divide_by_zero:
             raise _DivZero
         return res.quotient
 
+    def reg(name: str, value: int, fmt=None) -> int:
+        assert fmt is None or fmt.fits(value), f"register {name} = {value} exceeds {fmt}"
+        if trace is not None:
+            trace[name] = value
+        return value
+
     # SORT
-    a_min, b_max = (A, B) if A <= B else (B, A)
-    flags = envelope_flags(a_min, b_max, W, E)
+    a_min, b_max = reg("A_min", min(A, B)), reg("B_max", max(A, B))
+    flags = reg("flags_sort", envelope_flags(a_min, b_max, W, E))
     if flags:
         return _flagged(a_min, b_max, flags)
     try:
         # DIV_RX, DIV_RY
-        r_x = round_shift(divide(1 << 40, a_min), 1)
-        r_y = round_shift(divide(1 << 40, b_max), 1)
+        r_x = reg("R_x", round_shift(divide("R_x", 1 << 40, a_min), 1))
+        r_y = reg("R_y", round_shift(divide("R_y", 1 << 40, b_max), 1))
         # DIV_ALPHA
-        alpha = divide(b_max << F.ALPHA.frac, a_min)
+        alpha = reg("alpha", divide("alpha", b_max << F.ALPHA.frac, a_min))
         if alpha > F.ALPHA_MAX_CODE:
             return _flagged(a_min, b_max, F.FLAG_ALPHA_RANGE)
         # DIV_R || POW
-        radius = _reg(divide(1 << 42, a_min + b_max), F.RADIUS, "R")
-        k_int = _reg(round_shift(lut_interpolate(alpha, POW_SPEC),
-                                 POW_SPEC.out_frac - F.K_INT.frac), F.K_INT, "K")
+        radius = reg("R", divide("R", 1 << 42, a_min + b_max), F.RADIUS)
+        k_int = reg("K", round_shift(lut_interpolate(alpha, POW_SPEC),
+                                     POW_SPEC.out_frac - F.K_INT.frac), F.K_INT)
         # DIV_EE || k^2
-        e6 = _reg(F.C6 + divide(F.N5, alpha), F.E6, "E6")
-        k2 = _reg(round_shift(_mul(k_int, k_int, "K K"), 2 * F.K_INT.frac - F.K2.frac),
-                  F.K2, "K2")
+        e6 = reg("E6", F.C6 + divide("E_e", F.N5, alpha), F.E6)
+        k2 = reg("K2", round_shift(_mul(k_int, k_int, "K K"),
+                                   2 * F.K_INT.frac - F.K2.frac), F.K2)
         # PRODUCT
-        t1 = _reg(round_shift(_mul(k2, e6, "K2 E6"), F.K2.frac + F.E6.frac - F.T1.frac),
-                  F.T1, "T1")
-        t2 = _reg(round_shift(_mul(t1, radius, "T1 R"),
-                              F.T1.frac + F.RADIUS.frac - F.T2.frac), F.T2, "T2")
-        t3 = _reg(_mul(t2, W, "T2 W"), F.T3, "T3")
+        t1 = reg("T1", round_shift(_mul(k2, e6, "K2 E6"),
+                                   F.K2.frac + F.E6.frac - F.T1.frac), F.T1)
+        t2 = reg("T2", round_shift(_mul(t1, radius, "T1 R"),
+                                   F.T1.frac + F.RADIUS.frac - F.T2.frac), F.T2)
+        t3 = reg("T3", _mul(t2, W, "T2 W"), F.T3)
         # DIV_CA
-        c_a = _reg(divide(t3 << (F.CA.frac - F.T3.frac), E), F.CA, "C_a")
+        c_a = reg("C_a", divide("C_a", t3 << (F.CA.frac - F.T3.frac), E), F.CA)
         # CBRT: range reduction C_a = m 8^p, m in [1, 8)
-        p = (c_a.bit_length() - 1 - F.CA.frac) // 3
+        p = reg("p", (c_a.bit_length() - 1 - F.CA.frac) // 3)
         sh = F.CA.frac + 3 * p - F.M_RED.frac
-        m = c_a >> sh if sh >= 0 else c_a << -sh
+        m = reg("m", c_a >> sh if sh >= 0 else c_a << -sh, F.M_RED)
         assert (1 << F.M_RED.frac) <= m < (8 << F.M_RED.frac), "range reduction"
-        cbrt = _reg(lut_interpolate(m, CBRT_SPEC), F.CBRT_VAL, "cbrt")
-        a_w = _reg(round_shift(cbrt, F.CBRT_VAL.frac - F.AXIS_W.frac - p), F.AXIS_W, "a_w")
+        cbrt = reg("cbrt", lut_interpolate(m, CBRT_SPEC), F.CBRT_VAL)
+        a_w = reg("a_w", round_shift(cbrt, F.CBRT_VAL.frac - F.AXIS_W.frac - p), F.AXIS_W)
         # DIV_B, DIV_PN2, DIV_PMAX
-        b_w = _reg(divide(a_w << F.K_INT.frac, k_int), F.AXIS_W, "b_w")
-        pn2 = _reg(divide(_mul(W, F.C3, "W C3") << 16, a_w), F.PN2, "p_n2")
-        p_max = round_shift(divide(pn2 << 17, b_w), 1)
+        b_w = reg("b_w", divide("b", a_w << F.K_INT.frac, k_int), F.AXIS_W)
+        pn2 = reg("p_n2", divide("p_n2", _mul(W, F.C3, "W C3") << 16, a_w), F.PN2)
+        p_max = reg("p_max", round_shift(divide("p_max", pn2 << 17, b_w), 1))
     except _DivZero:
         return _flagged(a_min, b_max, F.FLAG_DIV_ZERO)
     a_code = round_shift(a_w, F.AXIS_W.frac - SEMI_AXIS.frac)
