@@ -99,3 +99,22 @@ def test_off_flank_points_are_nan_unless_allowed(case_mp):
     assert ext.on_flank.tolist() == [True, True, False] and np.isfinite(ext.gap_mm).all()
     assert ext.gap_mm[2] == pytest.approx(
         gap_at(case.pinion, case.gear, case.kin, mp, s, t, frame="flank").gap_mm[2], abs=1e-10)
+
+
+def test_quadric_fill_of_off_flank_stencil_samples(case_mp):
+    """Samples beyond the flank get (1/2) q^T B q; for the torus the flank frame is the
+    principal frame (l = parallel = kappa_min), so B = diag(kappa_min, kappa_max)."""
+    case, mp = case_mp
+    g = case.gear
+    small = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range,
+                  (mp.v2 - 0.03, mp.v2 + 0.03))
+    st = hardware_stencil(case.pinion, small, case.kin, mp, off_flank="quadric")
+    assert 0 < st.on_flank.sum() < 49
+    _, _, _, k_max, k_min = case.truth(mp.phi1_rad)
+    off = ~st.on_flank
+    expected = 0.5 * (k_min * st.s_mm[off] ** 2 + k_max * st.t_mm[off] ** 2)
+    np.testing.assert_allclose(st.gap_mm[off], expected, rtol=1e-10)
+    exact = hardware_stencil(case.pinion, case.gear, case.kin, mp)
+    np.testing.assert_array_equal(st.gap_mm[~off], exact.gap_mm[~off])
+    with pytest.raises(ValueError, match="off the flank"):
+        write_stencil_csv(hardware_stencil(case.pinion, small, case.kin, mp), "/dev/null")

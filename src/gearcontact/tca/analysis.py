@@ -75,7 +75,7 @@ def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
 
 def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
             start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
-            pairs: int = 2, allow_outside_stencil: bool = True,
+            pairs: int = 2, stencil_off_flank: str = "quadric",
             progress: bool = False) -> TcaAnalysis:
     """Run the whole unloaded analysis.
 
@@ -93,10 +93,11 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
         Phases per pinion pitch including both ends (>= 61 for reports).
     pairs : int
         Neighbouring pairs either side.
-    allow_outside_stencil : bool
-        Let the 7 x 7 stencil (fixed +-1.5 mm window) use the flanks' analytic
-        continuation where it reaches beyond a flank boundary; the samples concerned
-        are recorded in ``stencil.on_flank``. The 80 x 80 field never extrapolates.
+    stencil_off_flank : str
+        Fill of 7 x 7 stencil samples (fixed +-1.5 mm window) that lie beyond a flank
+        boundary (:func:`~gearcontact.tca.stencil.hardware_stencil`); the samples
+        concerned are recorded in ``stencil.on_flank``. The 80 x 80 field never
+        extrapolates (NaN, ``on_flank`` False).
     progress : bool
         Show progress bars.
     """
@@ -117,7 +118,7 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     timings["gap_field_80"] = time.perf_counter() - t0
     stages.update(1)
     t0 = time.perf_counter()
-    stencil = hardware_stencil(pinion, gear, kin, mean, allow_outside=allow_outside_stencil)
+    stencil = hardware_stencil(pinion, gear, kin, mean, off_flank=stencil_off_flank)
     timings["stencil"] = time.perf_counter() - t0
     stages.update(1)
     t0 = time.perf_counter()

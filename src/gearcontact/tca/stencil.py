@@ -31,7 +31,8 @@ Grids:
   :mod:`gearcontact.preview.fit.stencil` (spacing ``STENCIL_SPACING_MM``, row-major,
   s fastest) in the **flank** frame; stage C recovers A-, B- independently of the
   rotation of the frame. Written by :func:`write_stencil_csv` as ``gap_stencil.csv``
-  (header ``s_mm,t_mm,gap_mm``).
+  (header ``s_mm,t_mm,gap_mm``). Samples beyond the flank are filled as chosen by
+  ``off_flank`` (:func:`hardware_stencil`).
 
 Points whose line leaves either flank's parameter box are not extrapolated: their gap
 is NaN and ``on_flank`` is False, unless ``allow_outside=True`` is given, in which case
@@ -235,10 +236,41 @@ def gap_field_80(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: Mating
 
 def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
                      mp: MatingPoint, *, spacing_mm: float = STENCIL_SPACING_MM,
-                     frame: str = "flank", allow_outside: bool = False) -> GapField:
-    """The 49 gap samples of the 7 x 7 stage-C stencil, in the baked order (flat arrays)."""
+                     frame: str = "flank", off_flank: str = "nan") -> GapField:
+    """The 49 gap samples of the 7 x 7 stage-C stencil, in the baked order (flat arrays).
+
+    Parameters
+    ----------
+    off_flank : str
+        What a sample whose normal line misses a flank gets (``on_flank`` is False
+        there in every case):
+
+        * ``"nan"`` - NaN (not writable as a hardware stencil);
+        * ``"continuation"`` - the surfaces' own continuation beyond their parameter
+          boxes (exact for analytic flanks; unreliable for interpolated ones);
+        * ``"quadric"`` - the osculating quadric of the gap at P0,
+          ``(1/2) q^T B q`` with the relative curvature tensor B of
+          :mod:`.curvature` (exact to second order; it carries exactly the P0
+          curvatures, so stage C is unbiased by the fill). Needed when the baked
+          +-1.5 mm window is deeper than the tooth, as for s0003 (working depth
+          ~2.2 mm).
+    """
+    if off_flank not in ("nan", "continuation", "quadric"):
+        raise ValueError(f"off_flank = {off_flank!r} is not 'nan', 'continuation' or 'quadric'")
     s, t = stencil_coordinates(spacing_mm)
-    return gap_at(pinion, gear, kin, mp, s, t, frame=frame, allow_outside=allow_outside)
+    field = gap_at(pinion, gear, kin, mp, s, t, frame=frame,
+                   allow_outside=off_flank == "continuation")
+    if off_flank != "quadric" or field.on_flank.all():
+        return field
+    rc = relative_curvature(pinion, gear, kin, mp)
+    # B in the stencil frame: rotate the flank-frame tensor (l, p) onto (e_s, e_t)
+    rot = np.column_stack([rc.lengthwise, rc.profile]).T @ field.frame[:, :2]
+    tensor = rot.T @ rc.tensor_per_mm @ rot
+    q = np.column_stack([s, t])
+    quad = 0.5 * np.einsum("ni,ij,nj->n", q, tensor, q)
+    gap = np.where(field.on_flank, field.gap_mm, quad)
+    return GapField(field.s_mm, field.t_mm, gap, field.on_flank, field.origin_mm,
+                    field.frame, field.frame_name)
 
 
 def write_stencil_csv(field: GapField, path) -> Path:
@@ -251,7 +283,7 @@ def write_stencil_csv(field: GapField, path) -> Path:
     if not np.all(np.isfinite(gaps)):
         bad = int(np.argmin(np.isfinite(gaps)))
         raise ValueError(f"stencil sample {bad} lies off the flank (gap is NaN); "
-                         "use allow_outside=True or a smaller spacing")
+                         "choose an off_flank fill in hardware_stencil")
     path = Path(path)
     lines = ["s_mm,t_mm,gap_mm"]
     for s, t, g in zip(field.s_mm.ravel(), field.t_mm.ravel(), gaps):
