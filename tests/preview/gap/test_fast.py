@@ -46,13 +46,16 @@ def test_batch_bit_identical_to_scalar(lanes, n, tau2):
         assert b.valid.mean() > 0.5                     # the comparison is not vacuous
 
 
-def test_batch_overflow_and_wide_format():
-    fmt = GapFormat(coord_frac=24)                      # rho e_shift path, cw = 32
+@pytest.mark.parametrize("rf", [19, 24])
+def test_batch_overflow_and_wide_format(rf):
+    # cf = 24: rho e_shift path, cw = 32; rf = 19 stays on the float64-exact path,
+    # rf = 24 (|n.d| up to 3 2^56) takes the int64 path
+    fmt = GapFormat(coord_frac=24, normal_frac=rf)
     rng = np.random.default_rng(5)
     r, t, p, g, nc = random_codes(rng, 20, 40, spread_code=3 << 24, fmt=fmt)
     p[0] = [fmt.coord.max_code, 0, 0]
     t[0] = [fmt.coord.max_code, 0, 0]
-    r[0] = np.eye(3, dtype=np.int64) << 19              # p' = 2 max -> overflow
+    r[0] = np.eye(3, dtype=np.int64) << rf              # p' = 2 max -> overflow
     tau2 = 1 << 40
     b = gap_golden_batch(r, t, p, g, nc, tau2, lanes=8, fmt=fmt)
     assert b.overflow[0] and not b.valid[0]
