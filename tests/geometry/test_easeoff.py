@@ -36,10 +36,22 @@ def test_displacement_is_exactly_E_along_normal(flanks, s0003, side):
     assert np.linalg.norm(e.r - q, axis=-1).max() < 1e-9
     # the separation base -> eased along the base normal equals E (0.001 nm level)
     assert np.allclose(np.einsum("ij,ij->i", s.r - e.r, s.n), E, atol=1e-9, rtol=0)
-    # the eased normal is recomputed from the eased sheet: it differs from the base
-    # normal by the ease-off slope (first order: grad E), not identical
-    tilt = np.linalg.norm(e.n - s.n, axis=-1)
-    assert tilt.max() > 1e-5 and tilt.max() < 1e-2
+    # the eased normal is recomputed from the eased sheet: to first order it is tilted
+    # from the base normal by the surface gradient of E (r* = r - E n gives
+    # n* = n + grad_s E + O(E kappa, |grad E|^2)); |grad E| reaches ~0.016 here and the
+    # neglected terms stay below ~3e-4 (E <= 10 um, kappa <= 0.2 1/mm): bound 2e-4
+    eps = 1e-6
+    E_u = (eo.relief_mm(u + eps, v) - eo.relief_mm(u - eps, v)) / (2 * eps)
+    E_v = (eo.relief_mm(u, v + eps) - eo.relief_mm(u, v - eps)) / (2 * eps)
+    dot = lambda a, b: np.einsum("ij,ij->i", a, b)  # noqa: E731
+    g11, g12, g22 = dot(s.r_u, s.r_u), dot(s.r_u, s.r_v), dot(s.r_v, s.r_v)
+    det = g11 * g22 - g12 ** 2
+    grad = (((g22 * E_u - g12 * E_v) / det)[:, None] * s.r_u
+            + ((g11 * E_v - g12 * E_u) / det)[:, None] * s.r_v)
+    c = dot(e.n, s.n)
+    tilt = (e.n - c[:, None] * s.n) / c[:, None]
+    assert np.linalg.norm(grad, axis=-1).max() > 1e-4  # the test is not vacuous
+    assert np.linalg.norm(tilt - grad, axis=-1).max() < 2e-4
     assert np.allclose(np.einsum("ij,ij->i", e.n, e.r_u), 0, atol=1e-13)
 
 
