@@ -8,7 +8,9 @@ pair evaluated by Algorithm 1) beside the paper's FPGA figures (SPEC section 7):
 
 Target of the vectorized golden model: >= 1e9 candidates/s on 2 cores. Both wall-clock
 and per-CPU-second rates are printed (the second is robust against other load on a
-shared machine). Run: ``python benchmarks/bench_gap_kernel.py [--quick]``.
+shared machine). Run: ``python benchmarks/bench_gap_kernel.py [--quick] [--zmm]``;
+``--zmm`` sets ``NUMBA_CPU_FEATURES`` to the host features plus ``-prefer-256-bit`` so
+that LLVM uses full 512-bit AVX-512 vectors (it must precede the numba import).
 """
 
 from __future__ import annotations
@@ -18,10 +20,6 @@ import os
 import time
 
 import numpy as np
-
-from gearcontact.preview.gap.fast import HAVE_NUMBA, gap_golden_batch
-from gearcontact.preview.gap.golden import GapVector, gap_golden_codes, gap_latency
-from gearcontact.preview.gap.reference import gap_sample_terms
 
 ONE = 1 << 19
 BOARD = 16 * 12.5e6
@@ -92,15 +90,25 @@ def bench_rtl(rng, lanes, passes):
 
 
 def main():
+    global HAVE_NUMBA, gap_golden_batch, GapVector, gap_golden_codes, gap_latency
+    global gap_sample_terms
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="smaller problem sizes")
+    ap.add_argument("--zmm", action="store_true", help="let numba use 512-bit vectors")
     args = ap.parse_args()
+    if args.zmm:
+        import llvmlite.binding as ll
+        os.environ["NUMBA_CPU_FEATURES"] = ll.get_host_cpu_features().flatten() \
+            + ",-prefer-256-bit"
+    from gearcontact.preview.gap.fast import HAVE_NUMBA, gap_golden_batch
+    from gearcontact.preview.gap.golden import GapVector, gap_golden_codes, gap_latency
+    from gearcontact.preview.gap.reference import gap_sample_terms
     rng = np.random.default_rng(2024)
     scale = 8 if args.quick else 1
     reps = 2 if args.quick else 3
     threads = os.environ.get("NUMBA_NUM_THREADS", str(os.cpu_count()))
     print(f"gap kernel benchmark  (numba={'yes' if HAVE_NUMBA else 'no'}, "
-          f"threads={threads}, cpus={os.cpu_count()})")
+          f"threads={threads}, cpus={os.cpu_count()}, 512-bit vectors={args.zmm})")
     print(f"{'model':<34}{'N':>6}{'L':>4}{'cand/s wall':>14}{'cand/s/CPU-s':>14}"
           f"{'vs board':>10}{'vs proj.':>10}")
     rows = []
