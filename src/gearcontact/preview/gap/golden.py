@@ -290,7 +290,29 @@ class GoldenGapResult:
 
 @dataclass(frozen=True)
 class GapTiming:
-    """Cycle schedule of one pass (see the module docstring); ``total`` = latency."""
+    """Cycle schedule of one pass (module docstring); all fields in clock cycles.
+
+    Attributes
+    ----------
+    capture : int
+        Operand capture on the accepting edge (1).
+    transform : int
+        Pose transform: product stage + accumulate/round stage (2).
+    skew : int
+        Systolic p' distribution, lane L-1 starts L-1 cycles after lane 0.
+    beats : int
+        K = ceil(N / L) sample beats per lane at II = 1.
+    drain : int
+        Stage B (running-minimum update) of the last beat (1).
+    finalize : int
+        Gate -> key registers (1).
+    tree : int
+        log2(L) registered comparator levels.
+    out : int
+        Output registers and ``done`` (1).
+    total : int
+        Latency, the sum of the above.
+    """
 
     capture: int
     transform: int

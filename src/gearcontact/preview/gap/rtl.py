@@ -49,6 +49,10 @@ Schedule (edge E1 accepts go; see :mod:`.golden` for the count)
     its bank word k so that stage A (d, gamma) registers at E(4+l+k) and stage B
     (e, rho, running-minimum update) at E(5+l+k); keys register at E(L+K+4); the
     log2(L) tree levels at E(L+K+5) ...; outputs and ``done`` at E(L+K+5+log2 L).
+    Stage B chains gamma n_k (32 x 21 b), the round-shift add, e_k^2 (27 x 27 b), the
+    3-input sum and the 64-bit compare: it is the core's critical path (the paper's
+    "perp^2 multiplier chain", SPEC section 7 -- constrain the clock). In steady state
+    (N >> L) the lanes consume L samples per cycle.
 """
 
 from __future__ import annotations
