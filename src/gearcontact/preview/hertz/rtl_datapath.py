@@ -16,16 +16,37 @@ from dataclasses import dataclass
 
 from amaranth import Cat, Const, Module, Mux, Signal
 
-from ..qformat import CURVATURE, PMAX, SEMI_AXIS
+from ..qformat import PMAX, SEMI_AXIS
 from . import formats as F
 from .divider import DIVIDER_BITS
 from .luts import LUT_SIZE, POW_SPEC, LutSpec
 
-__all__ = ["FLAG_BITS", "LUT_ADDR_BITS", "Operands", "DIVISIONS", "fits", "round_shift",
-           "round_shift_var", "sort_pair", "flags_word", "envelope_flags", "lut_split",
-           "lut_interpolate", "pow_to_k", "PRODUCTS", "product_operands",
-           "product_result", "range_reduce", "scale_cbrt", "division",
-           "DIVIDEND_SHIFTS", "DIVISORS", "e6_from_quotient", "SCALE_BITS", "finalize"]
+__all__ = [
+    "DIVIDEND_SHIFTS",
+    "DIVISIONS",
+    "DIVISORS",
+    "FLAG_BITS",
+    "LUT_ADDR_BITS",
+    "PRODUCTS",
+    "SCALE_BITS",
+    "Operands",
+    "division",
+    "e6_from_quotient",
+    "envelope_flags",
+    "finalize",
+    "fits",
+    "flags_word",
+    "lut_interpolate",
+    "lut_split",
+    "pow_to_k",
+    "product_operands",
+    "product_result",
+    "range_reduce",
+    "round_shift",
+    "round_shift_var",
+    "scale_cbrt",
+    "sort_pair",
+]
 
 #: Width of the stage-D flags word (highest ``FLAG_*`` bit + 1).
 FLAG_BITS = max(F.FLAG_NAMES).bit_length()
@@ -113,7 +134,7 @@ def division(name: str, ops: Operands):
     elif reg == "N5":
         num = Const(F.N5, DIVIDER_BITS)
     else:
-        num = getattr(ops, reg).as_unsigned() << shift
+        num = getattr(ops, reg).as_unsigned().shift_left(shift)
     den_name = DIVISORS[name]
     if den_name == "a_min+b_max":
         den = ops.a_min.as_unsigned() + ops.b_max.as_unsigned()
@@ -130,13 +151,13 @@ def fits(value, fmt):
 
 def round_shift(value, n: int):
     """Round-half-up shift by a constant ``n >= 1`` (same as qformat.round_shift)."""
-    return (value + (1 << (n - 1))) >> n
+    return (value + (1 << (n - 1))).shift_right(n)
 
 
 def round_shift_var(value, n_minus_1):
     """Round-half-up shift by a variable ``n = n_minus_1 + 1``:
     ``floor((floor(x / 2^(n-1)) + 1) / 2) = floor((x + 2^(n-1)) / 2^n)``."""
-    return ((value >> n_minus_1) + 1) >> 1
+    return ((value >> n_minus_1) + 1).shift_right(1)
 
 
 def sort_pair(a, b):
@@ -175,7 +196,7 @@ def lut_interpolate(spec: LutSpec, word0, word1, r):
     v0, q0, v1 = word0[spec.qbits:], word0[:spec.qbits], word1[spec.qbits:]
     t_full = 1 << spec.tbits
     quad = round_shift(r * (t_full - r) * q0, spec.corr_shift)
-    return (v0 << spec.tbits) + r * (v1 - v0) + quad
+    return v0.shift_left(spec.tbits) + r * (v1 - v0) + quad
 
 
 def pow_to_k(interp):
@@ -192,7 +213,7 @@ PRODUCTS = {"k2": (("k", "k"), 2 * F.K_INT.frac - F.K2.frac),
             "wc3": (("C3", "w"), 0)}
 
 
-def product_operands(step: str, ops: "Operands"):
+def product_operands(step: str, ops: Operands):
     """Unsigned multiplier operands of product ``step`` (:data:`PRODUCTS`):
     K2 = rs(K K, 20), T1 = rs(K2 E6, 32), T2 = rs(T1 R, 18), T3 = T2 W, W C3."""
     def operand(name):

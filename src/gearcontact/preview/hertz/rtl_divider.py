@@ -32,7 +32,7 @@ from ..qformat import CURVATURE
 from . import formats as F
 from .divider import DIVIDER_BITS
 
-__all__ = ["DEN_BITS", "SerialDivider", "restoring_step", "array_divide"]
+__all__ = ["DEN_BITS", "SerialDivider", "array_divide", "restoring_step"]
 
 #: Divisor/remainder width: the widest stage-D divisor (a_w, b_w: AXIS_W, 42 bits;
 #: the others are A_min, B_max (32), A_min + B_max (33), alpha (32), E' (32), K (29)).
@@ -86,11 +86,10 @@ class SerialDivider(wiring.Component):
 
     def elaborate(self, platform):
         m = Module()
-        nq = Signal(DIVIDER_BITS)          # dividend bits out at the top, quotient in
-        rem = Signal(DEN_BITS)
+        nq = self.quotient                 # dividend bits out at the top, quotient in
+        rem = self.remainder
         den = Signal(DEN_BITS)
         new_rem, qbit = restoring_step(rem, nq[-1], den)
-        m.d.comb += [self.quotient.eq(nq), self.remainder.eq(rem)]
         with m.If(self.load):
             m.d.sync += nq.eq(self.num)
         with m.Elif(self.start):
