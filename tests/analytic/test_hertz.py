@@ -175,3 +175,19 @@ def test_bad_inputs_array_and_circular():
         circular_hertz(0.1, 1.0, e_prime_mpa=0.0)
     with pytest.raises(InputRangeError, match="ratios"):
         hamrock_brewe_error_table([0.5])
+
+
+def test_pressure_field_integrates_to_load():
+    from scipy.integrate import dblquad
+    h = exact_elliptic_hertz(0.01, 0.2, 1200.0, e_prime_mpa=E_PRIME)
+    a, b = h.a_mm, h.b_mm
+    total = dblquad(lambda y, x: h.pressure_mpa(x, y), -a, a,
+                    lambda x: -b * math.sqrt(max(0.0, 1 - (x / a) ** 2)),
+                    lambda x: b * math.sqrt(max(0.0, 1 - (x / a) ** 2)),
+                    epsabs=0.0, epsrel=1e-10)[0]
+    # integral of the Hertz ellipsoid = (2/3) pi a b p0 = W; quadrature tolerance 1e-7
+    assert total == pytest.approx(1200.0, rel=1e-7)
+    assert h.pressure_mpa(0.0, 0.0) == h.p_max_mpa
+    assert h.pressure_mpa(1.01 * a, 0.0) == 0.0 and h.pressure_mpa(0.0, 1.01 * b) == 0.0
+    grid = h.pressure_mpa(np.array([0.0, 0.5 * a]), np.array([0.0, 0.0]))
+    assert grid[1] == pytest.approx(h.p_max_mpa * math.sqrt(0.75), rel=1e-15)

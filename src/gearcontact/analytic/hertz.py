@@ -117,6 +117,25 @@ class HertzContact:
         """Contact compliance d(delta)/dW = 2 delta/(3 W), mm/N (delta ~ W^(2/3))."""
         return 2.0 * self.approach_mm / (3.0 * self.load_n)
 
+    def pressure_mpa(self, x_mm, y_mm):
+        """Hertz pressure ``p_max sqrt(1 - x^2/a^2 - y^2/b^2)``, 0 outside the ellipse.
+
+        Parameters
+        ----------
+        x_mm, y_mm : float or array_like
+            Coordinates from the contact centre along the major (A_min) and minor
+            principal directions, mm.
+
+        Returns
+        -------
+        float or ndarray
+            Pressure in MPa (Johnson 1985, eq. 4.36).
+        """
+        u = 1.0 - (np.asarray(x_mm, dtype=float) / self.a_mm) ** 2 \
+            - (np.asarray(y_mm, dtype=float) / self.b_mm) ** 2
+        p = self.p_max_mpa * np.sqrt(np.maximum(u, 0.0))
+        return float(p) if p.ndim == 0 else p
+
     @property
     def mean_pressure_mpa(self) -> float:
         """Mean contact pressure W/(pi a b) = (2/3) p_max, MPa."""
