@@ -24,10 +24,11 @@ __all__ = ["axial_projection", "plot_contact_pattern", "plot_te0"]
 
 
 def axial_projection(points_body: np.ndarray, member: str) -> np.ndarray:
-    """(N, 2) axial-plane coordinates ``(axial, radius)`` in mm of body-frame points."""
+    """(N, 2) axial-plane coordinates in mm of body-frame points: ``(radius, axial)``
+    for the gear (its face runs radially), ``(axial, radius)`` for the pinion."""
     p = np.atleast_2d(points_body)
     if member == "gear":
-        return np.column_stack([p[:, 2], np.hypot(p[:, 0], p[:, 1])])
+        return np.column_stack([np.hypot(p[:, 0], p[:, 1]), p[:, 2]])
     if member == "pinion":
         return np.column_stack([p[:, 0], np.hypot(p[:, 1], p[:, 2])])
     raise ValueError(f"member = {member!r} is not 'gear' or 'pinion'")
@@ -49,43 +50,43 @@ def _to_body(kin: MeshKinematics, member: str, mp, x_f: np.ndarray) -> np.ndarra
 
 
 def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
-                         cycle: MeshCycle, path, *, every: int = 2,
-                         title: str = "") -> Path:
-    """Contact pattern (union of paint ellipses) and path on both flanks; PNG at ``path``.
+                         cycle: MeshCycle, path, *, title: str = "") -> Path:
+    """Contact pattern and path on both flanks; PNG at ``path``.
 
-    The ellipses of every ``every``-th phase of the pair-0 path are drawn; the
-    reference (mean) point P0 is marked.
+    The pattern is the union of the paint ellipses of the transmitting contact over
+    one pinion pitch (every tooth carries the same pattern); the thin line is the whole
+    interior path of one pair, the thick line its transmitting part; P0 is marked.
     """
-    from .curvature import contact_ellipse, relative_curvature
-
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    fig, axes = plt.subplots(2, 1, figsize=(9, 7.5))
     theta = np.linspace(0.0, 2 * np.pi, 49)
     paint = cycle.ellipse[0].paint_mm
     pts = [mp for mp in cycle.path.points if not mp.edge]
+    labels = {"gear": ("distance from gear axis (mm)", "gear axial coordinate (mm)"),
+              "pinion": ("pinion axial coordinate (mm)", "distance from pinion axis (mm)")}
     for ax, member, surf in ((axes[0], "gear", gear), (axes[1], "pinion", pinion)):
         ax.plot(*axial_projection(_boundary(surf), member).T, color="0.3", lw=1.0,
                 label="flank boundary")
-        for i, mp in enumerate(pts):
-            if i % every:
-                continue
-            rc = relative_curvature(pinion, gear, kin, mp)
-            ell = contact_ellipse(rc, paint_mm=paint)
+        for mp, rc, ell in zip(cycle.contact, cycle.curvature, cycle.ellipse):
             if not np.isfinite(ell.semi_major_mm):
                 continue
             ring = (mp.point_mm + np.outer(ell.semi_major_mm * np.cos(theta), rc.dir_min)
                     + np.outer(ell.semi_minor_mm * np.sin(theta), rc.dir_max))
             xy = axial_projection(_to_body(kin, member, mp, ring), member)
-            ax.fill(xy[:, 0], xy[:, 1], color="tab:orange", alpha=0.25, lw=0)
+            ax.fill(xy[:, 0], xy[:, 1], color="tab:orange", alpha=0.12, lw=0)
         trace = np.vstack([axial_projection(_to_body(kin, member, mp, mp.point_mm), member)
                            for mp in pts])
-        ax.plot(trace[:, 0], trace[:, 1], color="tab:red", lw=1.2, label="contact path")
-        ref = cycle.contact[cycle.mean_index]
+        ax.plot(trace[:, 0], trace[:, 1], color="tab:red", lw=0.8, label="contact path")
+        active = np.vstack([axial_projection(_to_body(kin, member, mp, mp.point_mm), member)
+                            for mp in cycle.contact])
+        ax.plot(active[:, 0], active[:, 1], color="tab:red", lw=2.5,
+                label="transmitting (one pitch)")
+        ref = cycle.reference_point
         p0 = axial_projection(_to_body(kin, member, ref, ref.point_mm), member)[0]
         ax.plot(*p0, "k+", ms=10, mew=2, label="P0")
         ax.set_aspect("equal")
-        ax.set_xlabel(f"{member} axial coordinate (mm)")
-        ax.set_ylabel(f"distance from {member} axis (mm)")
-        ax.set_title(f"{member} flank: pattern at {paint * 1e3:.2f} um paint")
+        ax.set_xlabel(labels[member][0])
+        ax.set_ylabel(labels[member][1])
+        ax.set_title(f"{member} flank: contact pattern at {paint * 1e3:.2f} um paint")
         ax.grid(alpha=0.3)
     axes[0].legend(loc="best", fontsize=8)
     if title:
@@ -114,7 +115,10 @@ def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
     ax.axvspan(env_phi[0], env_phi[-1], color="0.9", zorder=0)
     lo, hi = np.nanmin(cycle.envelope_arcsec), np.nanmax(cycle.envelope_arcsec)
     pad = max(hi - lo, 1.0)
-    ax.set_ylim(lo - 1.5 * pad, hi + 0.5 * pad)
+    if cycle.envelope_is_max:       # the other pairs lie below the envelope
+        ax.set_ylim(lo - 1.5 * pad, hi + 0.5 * pad)
+    else:
+        ax.set_ylim(lo - 0.5 * pad, hi + 1.5 * pad)
     ax.set_xlim(env_phi[0] - pitch_deg, env_phi[-1] + pitch_deg)
     ax.set_xlabel("pinion rotation phi1 (deg)")
     ax.set_ylabel("TE0 (arcsec)")
