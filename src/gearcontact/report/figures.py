@@ -1,0 +1,63 @@
+"""Figures of the loaded-contact evaluation (matplotlib, Agg backend, PNG)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
+import numpy as np  # noqa: E402
+
+from ..contact.pair_ltca import preview_ellipse  # noqa: E402
+from ..contact.patch import plot_patch  # noqa: E402
+
+__all__ = ["plot_pressure_maps", "plot_pressure_vs_load"]
+
+
+def plot_pressure_maps(cases, path, *, title: str = "") -> Path:
+    """One panel per torque: LCP pressure map (principal frame, s along the long axis)
+    with the Hertzian preview ellipse overlaid (cyan)."""
+    n = len(cases)
+    fig, axes = plt.subplots(n, 1, figsize=(9, 2.6 * n), squeeze=False)
+    for ax, c in zip(axes[:, 0], cases):
+        plot_patch(c.patch, ax, ellipse=preview_ellipse(c.preview, c.patch.grid))
+        edge = ", edge contact" if c.edge_contact else ""
+        ax.set_title(f"{c.torque_nm:g} N·m, W = {c.load_n:.0f} N: LCP peak "
+                     f"{c.patch.p_peak_mpa:.0f} MPa, p90 {c.patch.p90_mpa:.0f} MPa; "
+                     f"preview p_max {c.preview.p_max_mpa:.0f} MPa (cyan){edge}",
+                     fontsize=9)
+        ax.set_xlabel("s along the long axis (mm)")
+        ax.set_ylabel("t (mm)")
+    fig.suptitle(f"{title}: loaded contact pressure, preview ellipse overlaid")
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def plot_pressure_vs_load(cases, path, *, title: str = "") -> Path:
+    """Log-log preview p_max and LCP mean / p90 / peak against the normal load, with the
+    Hertzian law p ~ W^(1/3) through the preview at the smallest load."""
+    w = np.array([c.load_n for c in cases])
+    pre = np.array([c.preview.p_max_mpa for c in cases])
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    ax.loglog(w, pre, "o-", color="C0", label="preview p_max (Hertz)")
+    ax.loglog(w, [c.patch.p_mean_mpa for c in cases], "s--", color="C1", label="LCP mean")
+    ax.loglog(w, [c.patch.p90_mpa for c in cases], "^--", color="C2", label="LCP p90")
+    ax.loglog(w, [c.patch.p_peak_mpa for c in cases], "v:", color="C3", label="LCP peak")
+    ww = np.geomspace(w.min() * 0.8, w.max() * 1.25, 50)
+    ax.loglog(ww, pre[0] * (ww / w[0]) ** (1.0 / 3.0), color="0.5", lw=0.8,
+              label="W^(1/3)")
+    ax.set_xlabel("normal load W (N)")
+    ax.set_ylabel("pressure (MPa)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(f"{title}: preview vs LCP over load")
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path

@@ -1,0 +1,105 @@
+"""The main job end to end on s0003 (reduced phase count to stay fast).
+
+Truths checked: the preview is Hertz (p_max ~ W^(1/3) exactly for fixed curvatures);
+LCP load balance; at the lowest torque the loaded patch lies inside the flank and the
+real gap field is close to quadratic, so the LCP peak equals the Hertzian p_max within
+the quadratic-fit deviation (2 %, Johnson 1985 ch. 4); pressures and approach increase
+with load; the golden preview agrees with fp64 within its 0.5 % acceptance bound.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from gearcontact.cli import main
+from gearcontact.report.analyze import published_values, run_analysis
+
+TORQUES = (32.25, 64.5, 258.0)
+
+
+@pytest.fixture(scope="module")
+def analysis(tmp_path_factory):
+    out = tmp_path_factory.mktemp("analyze")
+    return run_analysis("s0003", out_dir=out, torques_nm=TORQUES, phases=15, progress=False)
+
+
+def test_files_written(analysis):
+    out = analysis.out_dir
+    for name in ("design.json", "tca.json", "te0.csv", "gap_stencil.csv", "phase_table.bin",
+                 "ltca.json", "ltca_torques.csv", "preview.csv", "pressure_64.5Nm.csv",
+                 "pressure_maps.png", "pressure_vs_load.png", "summary.md", "te0.png",
+                 "contact_pattern.png"):
+        assert (out / name).stat().st_size > 0, name
+    rows = json.loads((out / "ltca.json").read_text())
+    assert [r["torque_nm"] for r in rows] == list(TORQUES)
+    for key in ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm",
+                "mesh_rotation_arcsec", "n_contact_cells", "preview_p_max_mpa", "solver",
+                "solve_ms"):
+        assert key in rows[0]
+    text = (out / "summary.md").read_text()
+    assert "preview vs p90" in text and "3.4" in text  # published TE0 beside ours
+
+
+def test_preview_is_hertzian_in_load(analysis):
+    w = np.array([c.load_n for c in analysis.cases])
+    p = np.array([c.preview.p_max_mpa for c in analysis.cases])
+    # same curvatures at every torque: p_max / W^(1/3) is constant to rounding
+    np.testing.assert_allclose(p / np.cbrt(w), p[0] / np.cbrt(w[0]), rtol=1e-12)
+
+
+def test_lcp_load_balance_and_monotonic(analysis):
+    cases = analysis.cases
+    for c in cases:
+        assert c.patch.converged
+        # sum of nodal loads = W (the load constraint closes delta)
+        assert c.patch.lcp.loads_n.sum() == pytest.approx(c.load_n, rel=1e-8)
+    for a, b in zip(cases, cases[1:]):
+        assert b.patch.p_mean_mpa > a.patch.p_mean_mpa
+        assert b.patch.p90_mpa > a.patch.p90_mpa
+        assert b.patch.delta_mm > a.patch.delta_mm
+        assert b.mesh_rotation_arcsec > a.mesh_rotation_arcsec
+
+
+def test_low_load_patch_is_hertzian(analysis):
+    c = analysis.cases[0]
+    assert not c.edge_contact
+    assert c.patch.p_peak_mpa == pytest.approx(c.preview.p_max_mpa, rel=0.02)
+    # rigid approach vs the Hertzian approach of the same curvatures
+    assert c.mesh_rotation_arcsec == pytest.approx(c.preview_mesh_rotation_arcsec, rel=0.03)
+
+
+def test_high_load_reaches_flank_edge(analysis):
+    # at 258 N·m the bearing runs off the tooth: edge contact with a tip spike
+    c = analysis.cases[-1]
+    assert c.edge_contact
+    assert c.patch.p_peak_mpa > 2.0 * c.patch.p90_mpa
+
+
+def test_golden_preview_matches_reference(analysis):
+    for c, g in zip(analysis.cases, analysis.golden):
+        assert g.valid
+        assert g.p_max_mpa == pytest.approx(c.preview.p_max_mpa, rel=5e-3)
+    assert all(ch.cycles == 806 for ch in analysis.golden_chain)
+
+
+def test_published_values_have_provenance():
+    pub = published_values("s0003")
+    assert "_provenance" in pub and pub["te0_pp_arcsec"] == 3.40
+    assert published_values("no-such-pair") is None
+
+
+def test_cli_analyze(tmp_path, capsys):
+    code = main(["analyze", "--pair", "s0003", "--out", str(tmp_path / "o"), "--torques",
+                 "64.5", "--phases", "9", "--no-figures", "--quiet"])
+    assert code == 0
+    assert "summary.md" in capsys.readouterr().out
+    assert (tmp_path / "o" / "summary.md").exists()
+    assert not (tmp_path / "o" / "pressure_maps.png").exists()
+
+
+def test_cli_analyze_bad_torque(tmp_path, capsys):
+    code = main(["analyze", "--out", str(tmp_path / "o"), "--torques", "-3", "--phases", "9",
+                 "--quiet"])
+    assert code == 2
+    assert "torque_nm" in capsys.readouterr().err
