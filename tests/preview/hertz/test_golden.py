@@ -6,7 +6,6 @@ circular limit, W^(1/3) law), the bit-serial divider model, and the documented
 envelope/flag semantics.
 """
 
-import itertools
 import math
 
 import numpy as np

@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import math
 
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, sq, uq
+from ..qformat import CURVATURE, LOAD, PMAX, sq, uq
 
 __all__ = [
     "E_PRIME", "K_OUT", "ALPHA", "RADIUS", "E6", "K_INT", "K2", "T1", "T2", "T3", "CA",
@@ -58,8 +58,7 @@ __all__ = [
     "CURV_MAX_CODE", "LOAD_MIN_CODE", "LOAD_MAX_CODE", "E_PRIME_MIN_CODE",
     "E_PRIME_MAX_CODE", "ALPHA_MAX_CODE", "FLAG_NOT_ELLIPTIC", "FLAG_CURV_RANGE",
     "FLAG_LOAD_RANGE", "FLAG_E_PRIME_RANGE", "FLAG_ALPHA_RANGE", "FLAG_OVERFLOW",
-    "FLAG_DIV_ZERO", "FLAG_INPUT", "FLAG_NAMES", "flag_names",
-    "CURVATURE", "LOAD", "PMAX", "SEMI_AXIS"]
+    "FLAG_DIV_ZERO", "FLAG_INPUT", "FLAG_NAMES", "flag_names", "C3_FRAC", "PN2_SHIFT", "PMAX_SHIFT"]
 
 # ---- register formats (see the table above) ----------------------------------------
 E_PRIME = sq(32, 0)        #: E' = 2E*, integer MPa (constant register)
@@ -81,8 +80,11 @@ PN2 = uq(47, 28)           #: p_n2 = 3W/(2 pi a), N/mm
 # ---- constants ----------------------------------------------------------------------
 C6 = math.floor(6.0 / math.pi * 2.0 ** E6.frac + 0.5)                      #: 6/pi
 N5 = math.floor((3.0 - 6.0 / math.pi) * 2.0 ** (E6.frac + ALPHA.frac) + 0.5)  #: 3-6/pi
-C3 = math.floor(3.0 / (2.0 * math.pi) * 2.0 ** 40 + 0.5)                   #: 3/(2 pi)
-C3_FRAC = 40
+C3_FRAC = 40                                                               #: C3 LSB 2^-40
+C3 = math.floor(3.0 / (2.0 * math.pi) * 2.0 ** C3_FRAC + 0.5)              #: 3/(2 pi)
+#: dividend shifts of DIV_PN2 (16) and DIV_PMAX (17, one extra bit for the final rounding)
+PN2_SHIFT = PN2.frac + AXIS_W.frac - LOAD.frac - C3_FRAC
+PMAX_SHIFT = PMAX.frac + 1 + AXIS_W.frac - PN2.frac
 
 # ---- operating envelope (codes, inclusive) ------------------------------------------
 CURV_MIN_CODE = 1 << (CURVATURE.frac - 11)     #: 2^-11 1/mm

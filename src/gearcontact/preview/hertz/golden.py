@@ -298,8 +298,8 @@ def _run(A_code, B_code, W_code, e_prime_code, bit_serial: bool, trace) -> Hertz
         a_w = reg("a_w", round_shift(cbrt, F.CBRT_VAL.frac - F.AXIS_W.frac - p), F.AXIS_W)
         # DIV_B, DIV_PN2, DIV_PMAX
         b_w = reg("b_w", divide("b", a_w << F.K_INT.frac, k_int), F.AXIS_W)
-        pn2 = reg("p_n2", divide("p_n2", _mul(W, F.C3, "W C3") << 16, a_w), F.PN2)
-        p_max = reg("p_max", round_shift(divide("p_max", pn2 << 17, b_w), 1))
+        pn2 = reg("p_n2", divide("p_n2", _mul(W, F.C3, "W C3") << F.PN2_SHIFT, a_w), F.PN2)
+        p_max = reg("p_max", round_shift(divide("p_max", pn2 << F.PMAX_SHIFT, b_w), 1))
     except _DivZero:
         return _flagged(a_min, b_max, F.FLAG_DIV_ZERO)
     a_code = round_shift(a_w, F.AXIS_W.frac - SEMI_AXIS.frac)

@@ -207,8 +207,9 @@ def _kernel_shifts_match_formats() -> bool:
     return ((F.K_INT.frac * 2 - F.K2.frac, F.K2.frac + F.E6.frac - F.T1.frac,
              F.T1.frac + F.RADIUS.frac - F.T2.frac, F.CA.frac - F.T3.frac, F.CA.frac,
              F.M_RED.frac, F.CBRT_VAL.frac - F.AXIS_W.frac, F.K_INT.frac,
-             F.AXIS_W.frac - SEMI_AXIS.frac, F.K_INT.frac - F.K_OUT.frac, F.ALPHA.frac)
-            == (20, 32, 18, 11, 45, 29, 10, 24, 16, 4, 24))
+             F.AXIS_W.frac - SEMI_AXIS.frac, F.K_INT.frac - F.K_OUT.frac, F.ALPHA.frac,
+             F.PN2_SHIFT, F.PMAX_SHIFT)
+            == (20, 32, 18, 11, 45, 29, 10, 24, 16, 4, 24, 16, 17))
 
 
 assert _kernel_shifts_match_formats()
