@@ -110,9 +110,13 @@ def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam):
         dy = py - gy[i]
         dz = pz - gz[i]
         gm = _fshift(half - (nx[i] * dx + ny[i] * dy + nz[i] * dz), rf, scale)
-        ex = _fshift(dx + _fshift(gm * nx[i] + half, rf, scale) + e_half, e_shift, e_scale)
-        ey = _fshift(dy + _fshift(gm * ny[i] + half, rf, scale) + e_half, e_shift, e_scale)
-        ez = _fshift(dz + _fshift(gm * nz[i] + half, rf, scale) + e_half, e_shift, e_scale)
+        ex = dx + _fshift(gm * nx[i] + half, rf, scale)
+        ey = dy + _fshift(gm * ny[i] + half, rf, scale)
+        ez = dz + _fshift(gm * nz[i] + half, rf, scale)
+        if e_shift > 0:                       # loop-invariant: LLVM unswitches it
+            ex = _fshift(ex + e_half, e_shift, e_scale)
+            ey = _fshift(ey + e_half, e_shift, e_scale)
+            ez = _fshift(ez + e_half, e_shift, e_scale)
         # e^2 < 2^52, so a sum of two is exact in float64; the third add is int64
         rho[i] = np.int64(ex * ex + ey * ey) + np.int64(ez * ez)
         gam[i] = np.int64(gm)

@@ -215,9 +215,11 @@ class GapFormat:
 DEFAULT_FORMAT = GapFormat()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class GapVector:
     """Integer operands of one pass (what the host writes into the core).
+
+    Compared by identity (its fields are arrays).
 
     Attributes
     ----------
