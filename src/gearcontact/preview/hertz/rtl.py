@@ -348,6 +348,15 @@ class HertzCore(wiring.Component):
             if self._tag_bits:
                 m.d.sync += self.tag.eq(tag)
         m.d.comb += self.busy.eq(busy)
+        #: Internal registers by golden-trace name (:func:`.golden.hertz_golden_trace`),
+        #: for simulation checks; set on elaboration. ``s1`` holds ``9 - p``.
+        self.probes = {"A_min": ops.a_min, "B_max": ops.b_max, "flags": flags,
+                       "R_x": r_x, "R_y": r_y, "alpha": ops.alpha, "R": ops.radius,
+                       "K": ops.k, "E6": ops.e6, "K2": ops.k2, "T1": ops.t1, "T2": ops.t2,
+                       "T3": ops.t3, "WC3": ops.wc3, "C_a": c_a, "m": m_red, "s1": s1,
+                       "a_w": ops.a_w, "b_w": ops.b_w, "p_n2": ops.p_n2, "state": state,
+                       "cnt": cnt, "div_load": div.load, "div_start": div.start,
+                       "div_num": num, "div_den": den, "quotient": q}
         return m
 
 
