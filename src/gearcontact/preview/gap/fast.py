@@ -157,8 +157,9 @@ def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, tau2, lanes, rf, cmin, cmax,
             if ovf:
                 continue
             _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam)
-            l_rho[:] = rho[:lanes]           # beat 0, then strict-< updates:
-            l_k[:] = 0                       # the earliest sample wins a lane tie
+            for lane in range(lanes):        # beat 0, then strict-< updates:
+                l_rho[lane] = rho[lane]      # the earliest sample wins a lane tie
+                l_k[lane] = 0
             for k in range(1, beats):
                 b = k * lanes
                 for lane in range(lanes):
