@@ -27,6 +27,9 @@ References
 A. E. H. Love, "The stress produced in a semi-infinite solid by pressure on part of the
 boundary", Phil. Trans. R. Soc. A 228 (1929) 377-420.
 K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985, section 3.9.
+E. A. H. Vollebregt, "A new solver for the elastic normal contact problem using
+conjugate gradients, deflation, and an FFT-based preconditioner", J. Comput. Phys. 257
+(2014) 333-351.
 """
 
 from __future__ import annotations
@@ -135,6 +138,21 @@ def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
     return khat, (py, px)
 
 
+@lru_cache(maxsize=64)
+def _inverse_symbol(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
+                    ) -> np.ndarray:
+    """``E* |k| dA / 2`` on the padded rfft2 grid (N/mm per mm of displacement)."""
+    py = sfft.next_fast_len(2 * ny - 1)
+    px = sfft.next_fast_len(2 * nx - 1)
+    ky = 2.0 * np.pi * sfft.fftfreq(py, dy_mm)
+    kx = 2.0 * np.pi * sfft.rfftfreq(px, dx_mm)
+    k = np.hypot(ky[:, None], kx[None, :])
+    k[0, 0] = 0.5 * min(abs(ky[1]) if py > 1 else np.inf, kx[1] if px > 1 else np.inf)
+    sym = 0.5 * e_star_mpa * dx_mm * dy_mm * k
+    sym.setflags(write=False)
+    return sym
+
+
 class FftInfluence:
     """Influence operator on a uniform grid applied by zero-padded FFT convolution.
 
@@ -169,6 +187,20 @@ class FftInfluence:
             return self
         return FftInfluence(shape, dx_mm=self._dx, dy_mm=self._dy,
                             e_star_mpa=self._e_star)
+
+    def approx_inverse(self, displacement_mm: np.ndarray) -> np.ndarray:
+        """Loads (N) approximately producing ``displacement_mm``: a preconditioner.
+
+        Applies the inverse of the continuous Boussinesq symbol, ``p^ = E* |k| u^ / 2``
+        (from ``u^ = 2 p^ / (E* |k|)``, Johnson 1985 sec. 3.2 in Fourier form), on the
+        operator's padded grid, times the cell area. Symmetric positive definite (the
+        mean mode is kept positive); used by the ``pk_cg`` solver following the
+        FFT-based preconditioning of Vollebregt (2014).
+        """
+        ny, nx = self.shape
+        sym = _inverse_symbol(ny, nx, self._dx, self._dy, self._e_star)
+        f = sfft.rfft2(displacement_mm, s=self._pad)
+        return sfft.irfft2(f * sym, s=self._pad)[:ny, :nx]
 
     def __call__(self, loads_n: np.ndarray) -> np.ndarray:
         """Displacements (mm, shape ``(ny, nx)``) due to nodal loads (N, same shape)."""

@@ -1,0 +1,143 @@
+"""Benchmark: LCP solvers on windowed Hertz problems (issue 4, solver targets).
+
+Problems: steel paraboloid gaps ``h = A x^2 + B y^2`` (curvature ratio B/A = 1 and 10)
+on a grid of +-2.5 contact semi-axes, with 8, 16 and 32 cells per semi-axis, i.e.
+~200 (the paper's 196-cell size), ~800 and ~3,200 contacting cells. The solvers work
+in their certified window; Tamaas (if importable) solves the same grid with its
+non-periodic ("dcfft") Polonsky-Keer-Rey solver, cold (traction zeroed) each run.
+
+Columns: best and median wall time over the repeats (ms), iterations, max pressure
+difference vs the direct active-set solution (relative to p_max), and speed-up ratios
+measured in this run: nnls / solver and tamaas / solver. The paper's NNLS reference
+costs 2005 ms per mesh phase at 196 contacting cells. Targets: pk_cg <= 5 ms at ~800
+cells and >= 300x faster than the NNLS reference.
+
+Usage::
+
+    python benchmarks/bench_lcp.py            # nnls at ~200 and ~800 cells
+    python benchmarks/bench_lcp.py --full     # also nnls at ~3,200 cells (minutes, ~1 GB)
+    python benchmarks/bench_lcp.py --no-nnls  # skip the reference entirely
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+import time
+
+import numpy as np
+
+from gearcontact.analytic.hertz import exact_elliptic_hertz
+from gearcontact.contact.grid import TangentGrid
+from gearcontact.contact.lcp import solve_lcp
+from gearcontact.materials import STEEL, reduced_modulus_mpa
+
+E_STAR = reduced_modulus_mpa(STEEL, STEEL)
+A_PER_MM = 1.0 / 40.0
+LOAD_N = 1000.0
+PAPER_NNLS_MS = 2005.0
+
+try:  # optional peer, never a dependency
+    import tamaas as tm
+    tm.set_log_level(tm.LogLevel.error)
+except ImportError:  # pragma: no cover - depends on the machine
+    tm = None
+
+
+def hertz_case(ratio: float, n: int, extent: float = 2.5):
+    """(grid, gap, HertzContact) with n cells per semi-axis on +-extent semi-axes."""
+    hz = exact_elliptic_hertz(A_PER_MM, ratio * A_PER_MM, LOAD_N, e_prime_mpa=2 * E_STAR)
+    half = int(np.ceil(extent * n))
+    grid = TangentGrid.centered(2 * half + 1, 2 * half + 1, dx_mm=hz.a_mm / n,
+                                dy_mm=hz.b_mm / n)
+    X, Y = grid.mesh()
+    return grid, A_PER_MM * X ** 2 + ratio * A_PER_MM * Y ** 2, hz
+
+
+def time_solver(fn, repeat: int):
+    """Run ``fn`` ``repeat`` times; return (best ms, median ms, last result)."""
+    times, out = [], None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(1e3 * (time.perf_counter() - t0))
+    return min(times), statistics.median(times), out
+
+
+def tamaas_solver(grid, gap):
+    """A cold non-periodic Tamaas PKR solve on the same grid; returns a callable."""
+    lx, ly = grid.nx * grid.dx_mm[0], grid.ny * grid.dy_mm[0]
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [ly, lx],
+                                        [grid.ny, grid.nx])
+    model.E, model.nu = E_STAR, 0.0  # Tamaas' E* = E / (1 - nu^2) = our E*
+    tm.ModelFactory.registerNonPeriodic(model, "dcfft")
+    solver = tm.PolonskyKeerRey(model, np.ascontiguousarray(-gap), 1e-10)
+    solver.setIntegralOperator("dcfft")
+
+    def run():
+        model.traction[...] = 0.0
+        solver.solve(LOAD_N / (lx * ly))
+        return np.array(model.traction)
+
+    return run
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=7, help="repeats for fast solvers")
+    ap.add_argument("--full", action="store_true", help="nnls also at ~3,200 cells")
+    ap.add_argument("--no-nnls", action="store_true", help="skip the NNLS reference")
+    args = ap.parse_args(argv)
+
+    print(f"# bench_lcp  python {platform.python_version()}  numpy {np.__version__}  "
+          f"cpus {os.cpu_count()}  load avg {os.getloadavg()[0]:.2f}")
+    print(f"# tamaas: {'%s (dcfft non-periodic PKR)' % tm.__version__ if tm else 'absent'}"
+          f"; ContactMechanics / ASPHER: not installed (not on PyPI as importable "
+          f"solvers here)")
+    head = (f"{'case':<14}{'cells':>6} {'solver':<14}{'best ms':>10}{'median ms':>11}"
+            f"{'iters':>7}{'max|dp|/p0':>12}{'nnls/x':>9}{'tamaas/x':>10}")
+    print(head)
+    print("-" * len(head))
+    for ratio in (1.0, 10.0):
+        for n in (8, 16, 32):
+            grid, gap, hz = hertz_case(ratio, n)
+            rows = {}
+            ref = solve_lcp(gap, grid, LOAD_N, e_star_mpa=E_STAR, solver="active_set")
+            ncells = ref.n_contact_cells
+            rows["pk_cg"] = time_solver(
+                lambda: solve_lcp(gap, grid, LOAD_N, e_star_mpa=E_STAR), args.repeat)
+            prev = solve_lcp(gap, grid, 1.02 * LOAD_N, e_star_mpa=E_STAR)
+            rows["pk_cg warm"] = time_solver(
+                lambda: solve_lcp(gap, grid, LOAD_N, e_star_mpa=E_STAR, warm_start=prev),
+                args.repeat)
+            rows["active_set"] = time_solver(
+                lambda: solve_lcp(gap, grid, LOAD_N, e_star_mpa=E_STAR,
+                                  solver="active_set"), max(1, args.repeat // 3))
+            if not args.no_nnls and (n <= 16 or args.full):
+                rows["nnls"] = time_solver(
+                    lambda: solve_lcp(gap, grid, LOAD_N, e_star_mpa=E_STAR,
+                                      solver="nnls"), 1)
+            if tm is not None:
+                rows["tamaas PKR"] = time_solver(tamaas_solver(grid, gap), args.repeat)
+            t_nnls = rows["nnls"][0] if "nnls" in rows else None
+            t_tm = rows["tamaas PKR"][0] if "tamaas PKR" in rows else None
+            for name, (best, med, res) in rows.items():
+                p = res if isinstance(res, np.ndarray) else res.pressure_mpa
+                iters = "" if isinstance(res, np.ndarray) else str(res.iterations)
+                dp = np.abs(p - ref.pressure_mpa).max() / hz.p_max_mpa
+                r_nnls = f"{t_nnls / best:9.0f}" if t_nnls else f"{'n/a':>9}"
+                r_tm = f"{t_tm / best:10.2f}" if t_tm else f"{'n/a':>10}"
+                print(f"{f'B/A={ratio:g} n={n}':<14}{ncells:>6} {name:<14}{best:10.2f}"
+                      f"{med:11.2f}{iters:>7}{dp:12.1e}{r_nnls}{r_tm}")
+            print(f"{'':<14}{'':>6} {'paper NNLS':<14}{PAPER_NNLS_MS:10.0f}"
+                  f"{'':>11}{'':>7}{'':>12}"
+                  + (f"{PAPER_NNLS_MS / rows['pk_cg'][0]:9.0f}  (paper/pk_cg, 196 cells)"
+                     if n == 8 else ""))
+    print(f"# load avg at end {os.getloadavg()[0]:.2f} (shared machine: compare ratios, "
+          "which are measured back to back)")
+
+
+if __name__ == "__main__":
+    main()
