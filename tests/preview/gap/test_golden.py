@@ -10,6 +10,7 @@ from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL, GapFor
                                             gap_golden, gap_golden_codes, gap_golden_terms,
                                             gap_latency, gap_timing, quantize_pass,
                                             quantize_tau2)
+from gearcontact.preview.gap.precision import gap_precision_sweep
 from gearcontact.preview.gap.reference import gap_reference, gap_sample_terms
 from gearcontact.preview.qformat import FixedPointOverflow
 from gearcontact.validation import InputRangeError
@@ -120,37 +121,26 @@ def random_case(rng, n_samples, spread=4.0):
     return signed_permutation(rng), rng.uniform(-spread, spread, 3), g, n
 
 
-@pytest.mark.parametrize("cf", range(14, 25))
-def test_precision_sweep_within_first_order_bound(cf):
+def test_precision_sweep_within_first_order_bound():
     """SPEC section 8: |e_g| <= sqrt(3) 2^-cf + 3 ||d||inf 2^-(rf+1) + 2^-(cf+1)."""
-    rng = np.random.default_rng(cf)
-    fmt = GapFormat(coord_frac=cf)
-    R, p, g, n = random_case(rng, 300)
-    ref = gap_sample_terms(R, np.zeros(3), p, g, n)
-    _, gam, _ = gap_golden_terms(quantize_pass(R, np.zeros(3), p, g, n, tau_mm=1.0,
-                                               fmt=fmt), fmt=fmt)
-    err = np.abs(fmt.gap.to_float(gam) - ref.gamma_mm)
-    d_inf = np.abs(ref.posed_point_mm - g).max(axis=1)
-    bound = np.array([gap_error_bound_mm(coord_frac=cf, normal_frac=19, d_inf_mm=x)
-                      for x in d_inf])
-    assert (err <= bound).all()             # the bound is a strict worst case
-    # and it is not vacuous: the worst sample uses > 15 % of it (round-off is random)
-    assert (err / bound).max() > 0.15
+    pts = gap_precision_sweep(coord_fracs=range(14, 25), normal_fracs=(19,),
+                              n_samples=300, seed=1)
+    assert [q.coord_frac for q in pts] == list(range(14, 25))
+    for q in pts:
+        assert q.max_bound_ratio <= 1.0            # the bound is a strict worst case
+        assert q.max_bound_ratio > 0.15            # ... and not vacuous (random round-off)
+        assert q.rms_error_mm < q.max_error_mm <= q.bound_mm
+    # the coordinate term dominates at cf = 14 (~1.1e-4 mm) while at cf = 18 the
+    # normal term (3 ||d|| 2^-20 ~ 1e-5 mm) takes over: expect > 4x less error
+    assert pts[0].max_error_mm > 4 * pts[4].max_error_mm
 
 
-@pytest.mark.parametrize("rf", [10, 14, 19, 24])
-def test_normal_width_sweep_within_bound(rf):
-    rng = np.random.default_rng(100 + rf)
-    fmt = GapFormat(normal_frac=rf)
-    R, p, g, n = random_case(rng, 300, spread=20.0)
-    ref = gap_sample_terms(R, np.zeros(3), p, g, n)
-    _, gam, _ = gap_golden_terms(quantize_pass(R, np.zeros(3), p, g, n, tau_mm=1.0,
-                                               fmt=fmt), fmt=fmt)
-    err = np.abs(fmt.gap.to_float(gam) - ref.gamma_mm)
-    d_inf = np.abs(ref.posed_point_mm - g).max(axis=1)
-    bound = np.array([gap_error_bound_mm(coord_frac=16, normal_frac=rf, d_inf_mm=x)
-                      for x in d_inf])
-    assert (err <= bound).all()
+def test_normal_width_sweep_within_bound():
+    pts = gap_precision_sweep(coord_fracs=(16,), normal_fracs=(10, 14, 19, 24),
+                              n_samples=300, spread_mm=20.0, seed=2)
+    assert all(q.max_bound_ratio <= 1.0 for q in pts)
+    # at rf = 10 the normal term (3 ||d|| 2^-11 ~ 3e-2 mm) dominates the error
+    assert pts[0].max_error_mm > 1e-3 > pts[-1].max_error_mm
 
 
 def test_golden_agrees_with_reference_selection():
