@@ -133,10 +133,9 @@ def apply_easeoff(base: RadialSheet, easeoff: EaseOff) -> RadialSheet:
     else:
         raise ArithmeticError(f"ease-off node mapping of the {base.side} flank did not converge "
                               f"(residual {max(np.abs(dx).max(), np.abs(dR).max()):.2e} mm)")
-    s = base.evaluate(u0, v0, second=False)
-    p = s.r - easeoff.relief_mm(u0, v0)[..., None] * s.n
-    dpsi = np.angle(np.exp(1j * (np.arctan2(p[..., 2], p[..., 1])
-                                 - np.arctan2(s.r[..., 2], s.r[..., 1]))))
-    psi = base.psi(u0, v0) + dpsi
+    # p (from the converged last iterate) has the node's x and R; its angle, unwrapped
+    # against the base nodes (at most 0.04 mm away, << pi), is the new sample
+    ang = np.arctan2(p[..., 2], p[..., 1])
+    psi = ang + 2.0 * np.pi * np.round((base.psi_nodes - ang) / (2.0 * np.pi))
     return RadialSheet(side=base.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
                        normal_sign=base.normal_sign, boundary=base.boundary)
