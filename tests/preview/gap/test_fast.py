@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from gearcontact.preview.gap.fast import gap_golden_batch
+from gearcontact.preview.gap.fast import gap_golden_batch, gap_golden_points
 from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, GapFormat, GapVector,
-                                            gap_golden_codes)
+                                            gap_golden, gap_golden_codes)
 from gearcontact.validation import InputRangeError
 
 ONE = 1 << 19
@@ -77,3 +77,23 @@ def test_batch_rejects_out_of_contract_codes():
     with pytest.raises(InputRangeError):
         gap_golden_batch(np.eye(3, dtype=np.int64) * ONE, [0, 0, 0], [[0, 0, 0]],
                          g, n, 1 << 32, lanes=12)
+
+
+def test_points_api_matches_scalar_real_api():
+    rng = np.random.default_rng(11)
+    g = rng.uniform(-2, 2, (40, 3))
+    n = rng.normal(size=(40, 3))
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    q *= np.sign(np.linalg.det(q))
+    t = np.array([0.2, -0.1, 0.05])
+    pts = rng.uniform(-2, 2, (25, 3))
+    pts[0] = q.T @ [127.9, 0.0, 0.0]                    # p'_x = 128.1 mm: overflow flag
+    res = gap_golden_points(q, t, pts, g, n, tau_mm=0.7, lanes=8)
+    assert res.overflow[0] and not res.valid[0] and np.isnan(res.min_gap_mm[0])
+    for k in range(1, 25):
+        one = gap_golden(q, t, pts[k], g, n, tau_mm=0.7, lanes=8)
+        assert (one.min_gap_code, one.min_idx, one.valid) == \
+            (res.min_gap_code[k], res.min_idx[k], res.valid[k])
+        assert one.min_gap_mm == res.min_gap_mm[k] or not one.valid
+    assert res.valid[1:].sum() >= 10                    # most points gate in

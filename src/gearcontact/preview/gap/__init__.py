@@ -10,7 +10,7 @@ Three models that must agree:
   Amaranth).
 """
 
-from .fast import GapBatchCodes, gap_golden_batch
+from .fast import GapBatchCodes, GapBatchResult, gap_golden_batch, gap_golden_points
 from .golden import (DEFAULT_FORMAT, IDX_SENTINEL, GapCodes, GapFormat, GapTiming,
                      GapVector, GoldenGapResult, gap_error_bound_mm, gap_golden,
                      gap_golden_codes, gap_golden_terms, gap_latency, gap_timing,
@@ -22,5 +22,5 @@ __all__ = ["GapResult", "GapSampleTerms", "gap_reference", "gap_sample_terms",
            "GapFormat", "DEFAULT_FORMAT", "GapVector", "GapCodes", "GoldenGapResult",
            "GapTiming", "IDX_SENTINEL", "quantize_pass", "quantize_tau2",
            "gap_golden_codes", "gap_golden_terms", "gap_golden", "gap_latency",
-           "gap_timing", "gap_error_bound_mm", "GapBatchCodes", "gap_golden_batch",
+           "gap_timing", "gap_error_bound_mm", "GapBatchCodes", "gap_golden_batch", "GapBatchResult", "gap_golden_points",
            "PrecisionPoint", "gap_precision_sweep"]

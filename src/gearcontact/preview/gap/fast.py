@@ -30,8 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...validation import InputRangeError
-from .golden import DEFAULT_FORMAT, IDX_SENTINEL, GapFormat, check_codes
+from ...validation import InputRangeError, check_array_finite
+from .golden import DEFAULT_FORMAT, IDX_SENTINEL, GapFormat, check_codes, quantize_pass
 from .reference import MAX_SAMPLES, check_lanes
 
 try:  # numba is optional: the kernel is also valid Python
@@ -47,7 +47,8 @@ except ImportError:  # pragma: no cover - exercised only without numba
     def njit(*args, **kwargs):
         return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
-__all__ = ["GapBatchCodes", "gap_golden_batch", "HAVE_NUMBA"]
+__all__ = ["GapBatchCodes", "GapBatchResult", "gap_golden_batch", "gap_golden_points",
+           "HAVE_NUMBA"]
 
 
 def _fshift(x, n, scale):
@@ -246,3 +247,64 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
                   out_gap, out_idx, out_valid, out_ovf)
     return GapBatchCodes(min_gap_code=out_gap, min_idx=out_idx, valid=out_valid,
                          overflow=out_ovf)
+
+
+@dataclass(frozen=True)
+class GapBatchResult:
+    """Per-point golden results in physical units (see :class:`GapBatchCodes`).
+
+    Attributes
+    ----------
+    min_gap_mm : numpy.ndarray
+        float64 (M,), winning signed gap, mm; ``nan`` where not valid.
+    min_gap_code : numpy.ndarray
+        int64 (M,), its Q(gap_bits, cf) code.
+    min_idx : numpy.ndarray
+        int64 (M,), winning sample index; ``IDX_SENTINEL`` where not valid.
+    valid : numpy.ndarray
+        bool (M,).
+    overflow : numpy.ndarray
+        bool (M,), p' = R p + t left the coordinate range (then not valid).
+    """
+
+    min_gap_mm: np.ndarray
+    min_gap_code: np.ndarray
+    min_idx: np.ndarray
+    valid: np.ndarray
+    overflow: np.ndarray
+
+
+def gap_golden_points(R, t, points_mm, samples_xyz, normals, *, tau_mm: float,
+                      lanes: int = 16, fmt: GapFormat = DEFAULT_FORMAT) -> GapBatchResult:
+    """Quantize real inputs and run one golden pass per point (shared pose).
+
+    Parameters
+    ----------
+    R : array_like, shape (3, 3)
+        Rotation (dimensionless), see :func:`.reference.validate_gap_inputs`.
+    t : array_like, shape (3,)
+        Translation, mm.
+    points_mm : array_like, shape (M, 3)
+        Body points, mm.
+    samples_xyz, normals : array_like, shape (N, 3)
+        Gear samples (mm) and unit normals.
+    tau_mm : float, keyword-only
+        Gate radius, mm.
+    lanes, fmt : keyword-only
+        As in :func:`.golden.gap_golden_codes`.
+
+    Returns
+    -------
+    GapBatchResult
+        Overflowing points are flagged per point (``overflow``), not raised.
+    """
+    pts = check_array_finite("points_mm", points_mm)
+    if pts.ndim != 2 or pts.shape[1] != 3 or pts.shape[0] < 1:
+        raise InputRangeError("points_mm.shape", pts.shape, "(M, 3) with M >= 1")
+    vec = quantize_pass(R, t, pts[0], samples_xyz, normals, tau_mm=tau_mm, fmt=fmt)
+    codes = gap_golden_batch(vec.r_code, vec.t_code,
+                             fmt.coord.quantize_array(pts, field="points_mm"),
+                             vec.g_code, vec.n_code, vec.tau2_code, lanes=lanes, fmt=fmt)
+    gap_mm = np.where(codes.valid, fmt.gap.to_float(codes.min_gap_code), np.nan)
+    return GapBatchResult(min_gap_mm=gap_mm, min_gap_code=codes.min_gap_code,
+                          min_idx=codes.min_idx, valid=codes.valid, overflow=codes.overflow)
