@@ -49,12 +49,13 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..preview.fit.stencil import STENCIL_SIDE, STENCIL_SPACING_MM, stencil_coordinates
+from ..preview.fit.stencil import write_stencil_csv as write_stencil_file
 from ..validation import check_positive
 from .curvature import PAINT_THICKNESS_MM, contact_ellipse, relative_curvature
 from .solve import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
-           "hardware_stencil", "write_stencil_csv", "read_stencil_csv", "tangent_frame"]
+           "hardware_stencil", "write_stencil_csv", "tangent_frame"]
 
 #: Nodes per side of the host gap field (SPEC section 3).
 GAP_GRID_SIDE = 80
@@ -274,8 +275,10 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
 
 
 def write_stencil_csv(field: GapField, path) -> Path:
-    """Write a 49-sample stencil as ``s_mm,t_mm,gap_mm`` (format of
-    :mod:`gearcontact.preview.fit.stencil`). Raises if a gap is not finite."""
+    """Write a 49-sample stencil as ``gap_stencil.csv`` through the format owner,
+    :func:`gearcontact.preview.fit.stencil.write_stencil_csv` (read it back with
+    :func:`~gearcontact.preview.fit.stencil.read_stencil_csv`). Raises ``ValueError``
+    if a sample lies off the flank without a fill (NaN)."""
     if field.gap_mm.size != STENCIL_SIDE * STENCIL_SIDE:
         raise ValueError(f"a hardware stencil has {STENCIL_SIDE ** 2} samples, "
                          f"got {field.gap_mm.size}")
@@ -284,15 +287,5 @@ def write_stencil_csv(field: GapField, path) -> Path:
         bad = int(np.argmin(np.isfinite(gaps)))
         raise ValueError(f"stencil sample {bad} lies off the flank (gap is NaN); "
                          "choose an off_flank fill in hardware_stencil")
-    path = Path(path)
-    lines = ["s_mm,t_mm,gap_mm"]
-    for s, t, g in zip(field.s_mm.ravel(), field.t_mm.ravel(), gaps):
-        lines.append(f"{s:.9f},{t:.9f},{g:.12e}")
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
-def read_stencil_csv(path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Read ``gap_stencil.csv`` back as ``(s_mm, t_mm, gap_mm)`` arrays."""
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return data[:, 0], data[:, 1], data[:, 2]
+    spacing = float(field.s_mm.ravel()[1] - field.s_mm.ravel()[0])
+    return write_stencil_file(path, gaps, spacing_mm=spacing)
