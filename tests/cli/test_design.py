@@ -39,3 +39,15 @@ def test_design_bad_input(capsys, tmp_path):
                    .replace("offset_mm = 15.0", "offset_mm = 50.0"))
     assert main(["design", "--pair", str(bad)]) == 2
     assert "offset_mm" in capsys.readouterr().err
+
+
+def test_design_json_spiral_bevel_is_strict_json(capsys):
+    # offset 0: no limit radius; the JSON must stay strict (null, not Infinity)
+    assert main(["design", "--pair", str(ROOT / "examples" / "iso23509_f2_spiral_bevel.toml"),
+                 "--json"]) == 0
+    text = capsys.readouterr().out
+    out = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
+    assert out["limit_radius_mm"] is None
+    # ISO 23509 F.2: delta1 = 19.747 deg, beta1 = beta2 = 35 deg
+    assert out["pitch_angles_deg"][0] == pytest.approx(19.747, abs=0.0005)
+    assert out["spiral_angles_deg"] == [35.0, 35.0]

@@ -90,8 +90,14 @@ class BlankDesign:
     pinion_apex_x_mm: float
 
     def as_dict(self) -> dict:
-        """Plain-JSON view (lists instead of tuples) plus the grouped CLI keys."""
-        out = {k: (list(v) if isinstance(v, tuple) else v) for k, v in self.__dict__.items()}
+        """Plain-JSON view (lists for tuples, None for non-finite) plus grouped CLI keys."""
+        def plain(v):
+            if isinstance(v, tuple):
+                return list(v)
+            if isinstance(v, float) and not np.isfinite(v):
+                return None  # e.g. rho_lim of a spiral bevel pair (no limit radius)
+            return v
+        out = {k: plain(v) for k, v in self.__dict__.items()}
         out["pitch_angles_deg"] = [self.pitch_angle_pinion_deg, self.pitch_angle_gear_deg]
         out["spiral_angles_deg"] = [self.spiral_angle_pinion_deg, self.spiral_angle_gear_deg]
         out["mean_cone_distances_mm"] = [self.mean_cone_distance_pinion_mm,
