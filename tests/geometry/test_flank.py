@@ -160,3 +160,17 @@ def test_spiral_bevel_example_generates():
         assert np.abs(c.nodes.meshing_residual).max() < 1e-9
         u, v = rng.uniform(*c.u_range, 40), rng.uniform(*c.v_range, 40)
         assert np.linalg.norm(c.evaluate(u, v).r - c.exact(u, v).x1_mm, axis=-1).max() < 5e-5
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_gear_principal_directions(flanks, side):
+    # cone: the zero-curvature direction is the generator (the blade line, along r_u),
+    # the other one is the circle direction (along r_v); both unit and orthogonal
+    g = flanks.flank("gear", side)
+    grid = sample_grid(g, 5, 6)
+    s = g.evaluate(*np.meshgrid(grid.u, grid.v, indexing="ij"))
+    k0 = 0 if side == "coast" else 1  # index of the zero curvature (ascending order)
+    gen = s.r_u / np.linalg.norm(s.r_u, axis=-1, keepdims=True)
+    circ = s.r_v / np.linalg.norm(s.r_v, axis=-1, keepdims=True)
+    assert np.allclose(np.abs(np.einsum("...i,...i->...", grid.directions[..., k0, :], gen)), 1, atol=1e-12)
+    assert np.allclose(np.abs(np.einsum("...i,...i->...", grid.directions[..., 1 - k0, :], circ)), 1, atol=1e-12)
