@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL, GapFormat,
+from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL,
                                             GapVector, check_codes, gap_error_bound_mm,
                                             gap_golden, gap_golden_codes, gap_golden_terms,
                                             gap_latency, gap_timing, quantize_pass,
@@ -93,7 +93,7 @@ def test_extreme_codes_stay_within_structural_widths():
     g = [[c.min_code] * 3, [c.max_code] * 3, [c.min_code, c.max_code, 0]]
     n = [[ONE] * 3, [-ONE] * 3, [ONE, -ONE, ONE]]
     for p in ([c.max_code] * 3, [c.min_code] * 3):
-        pp, gam, rho = gap_golden_terms(vec(g, n, p=p))    # raises AssertionError on a bug
+        _, gam, rho = gap_golden_terms(vec(g, n, p=p))     # raises AssertionError on a bug
         assert (np.abs(gam) <= 3 * (2 ** 24 - 1)).all()
         assert int(rho.max()) < 3 * 2 ** 52
         out = gap_golden_codes(vec(g, n, p=p, tau2=2 ** 63 - 1))
