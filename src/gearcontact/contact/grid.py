@@ -78,6 +78,9 @@ class TangentGrid:
             arr = getattr(self, name)
             if arr.size > 1 and not np.all(np.diff(arr) > 0.0):
                 raise InputRangeError(name, arr, "strictly increasing cell centres")
+        object.__setattr__(self, "_uniform", bool(
+            np.allclose(self.dx_mm, self.dx_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)
+            and np.allclose(self.dy_mm, self.dy_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)))
 
     # ------------------------------------------------------------------ builders
     @classmethod
@@ -146,9 +149,7 @@ class TangentGrid:
     @property
     def is_uniform(self) -> bool:
         """True when all cells have the same width along x and along y."""
-        return bool(np.allclose(self.dx_mm, self.dx_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)
-                    and np.allclose(self.dy_mm, self.dy_mm[0], rtol=_UNIFORM_RTOL,
-                                    atol=0.0))
+        return self._uniform
 
     @property
     def cell_area_mm2(self) -> np.ndarray:

@@ -180,13 +180,18 @@ class FftInfluence:
         self._dy = check_positive("dy_mm", dy_mm)
         self._e_star = check_positive("e_star_mpa", e_star_mpa)
         self._khat, self._pad = _kernel_rfft(ny, nx, self._dx, self._dy, self._e_star)
+        self._others: dict[tuple[int, int], FftInfluence] = {}
 
     def on_shape(self, shape: tuple[int, int]) -> "FftInfluence":
         """The same kernel (cell size, E*) on a window of another ``shape``."""
-        if tuple(shape) == self.shape:
+        shape = (int(shape[0]), int(shape[1]))
+        if shape == self.shape:
             return self
-        return FftInfluence(shape, dx_mm=self._dx, dy_mm=self._dy,
-                            e_star_mpa=self._e_star)
+        op = self._others.get(shape)
+        if op is None:
+            op = self._others[shape] = FftInfluence(shape, dx_mm=self._dx, dy_mm=self._dy,
+                                                    e_star_mpa=self._e_star)
+        return op
 
     def approx_inverse(self, displacement_mm: np.ndarray) -> np.ndarray:
         """Loads (N) approximately producing ``displacement_mm``: a preconditioner.

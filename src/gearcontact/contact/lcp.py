@@ -487,5 +487,5 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
     if raise_on_failure and not result.converged:
         raise LcpConvergenceError(result)
     if warn_coarse and mask.any():
-        warn_if_coarse(grid, mask)
+        warn_if_coarse(sub, mask[box])
     return result
