@@ -27,7 +27,7 @@ def out(tmp_path_factory):
 def test_writes_every_file(out):
     for name in ("tca.json", "te0.csv", "contact_path.csv", "gap_stencil.csv",
                  "gap_field.csv", "phase_table.json", "phase_table.bin", "te0.png",
-                 "contact_pattern.png"):
+                 "contact_pattern.png", "flanks_in_mesh.png"):
         assert (out / name).stat().st_size > 0, name
 
 

@@ -3,7 +3,7 @@
 Writes into ``--out`` (created if missing): ``tca.json`` (summary), ``te0.csv``,
 ``contact_path.csv``, ``gap_stencil.csv`` (49-sample hardware stencil),
 ``gap_field.csv`` (80 x 80 host field), ``phase_table.json``, ``phase_table.bin`` and
-the figures ``te0.png`` and ``contact_pattern.png``.
+the figures ``te0.png``, ``contact_pattern.png`` and ``flanks_in_mesh.png``.
 """
 
 from __future__ import annotations

@@ -3,8 +3,9 @@
 ``write_tca_outputs`` writes into one directory: ``tca.json`` (summary), ``te0.csv``,
 ``contact_path.csv``, ``gap_stencil.csv`` (49-sample hardware stencil, format of
 :mod:`gearcontact.preview.fit.stencil`), ``gap_field.csv`` (80 x 80 host field),
-``phase_table.json``, ``phase_table.bin`` and the figures ``te0.png`` and
-``contact_pattern.png``. Used by the ``tca`` and ``analyze`` commands.
+``phase_table.json``, ``phase_table.bin`` and the figures ``te0.png``,
+``contact_pattern.png`` and ``flanks_in_mesh.png`` (the geometry's flank-sheet view at
+P0). Used by the ``tca`` and ``analyze`` commands.
 """
 
 from __future__ import annotations
@@ -110,6 +111,13 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str = "drive",
     }
     (out / "tca.json").write_text(json.dumps(summary, indent=2))
     if figures:
+        import matplotlib.pyplot as plt
+
+        from ..geometry.plots import plot_flanks_in_mesh
+
+        fig = plot_flanks_in_mesh(flanks, side=side, phi2_rad=mp.phi2_rad,
+                                  point_mm=mp.point_mm, path=out / "flanks_in_mesh.png")
+        plt.close(fig)
         plot_te0(cyc, out / "te0.png", title=f"{pair.name} {side}: unloaded TE")
         plot_contact_pattern(pinion, gear, kin, cyc, out / "contact_pattern.png",
                              title=f"{pair.name} {side}")
