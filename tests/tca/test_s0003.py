@@ -48,6 +48,12 @@ def test_calibrated_te0_and_bearing(s0003_pair, s0003_drive):
                                                                s0003_pair.gear_material))
     assert 2 * hz.a_mm == pytest.approx(4.8, rel=0.10)
     assert 2 * hz.b_mm == pytest.approx(0.38, rel=0.10)
+    # the long continuation grid ends beyond the flanks: flagged, never extrapolated
+    path = cyc.path
+    assert path.edge[0] and path.edge[-1] and not path.edge[len(path.edge) // 2]
+    assert {p.edge_where for p in path.points if p.edge} <= {
+        f"{m} {q} {b}" for m in ("pinion", "gear") for q in "uv" for b in ("min", "max")}
+    assert np.isnan(path.points[0].point_mm).all()
     # the envelope is periodic over the pitch and zero at P0 (TE0 reference)
     assert cyc.envelope_arcsec[0] == pytest.approx(cyc.envelope_arcsec[-1], abs=1e-6)
     assert cyc.envelope_arcsec[cyc.mean_index] == pytest.approx(0.0, abs=1e-9)

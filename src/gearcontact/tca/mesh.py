@@ -159,6 +159,9 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         raise ValueError(f"pinion_teeth = {pinion_teeth!r} must be >= 1")
     if int(phases) < 3:
         raise ValueError(f"phases = {phases!r} must be >= 3")
+    if int(pairs) < 0:
+        raise ValueError(f"pairs = {pairs!r} must be >= 0")
+    pairs = int(pairs)
     check_positive("paint_mm", paint_mm)
     if center not in ("vertex", "start"):
         raise ValueError(f"center = {center!r} is not 'vertex' or 'start'")
