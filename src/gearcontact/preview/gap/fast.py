@@ -4,12 +4,14 @@
 shared pose) against the same N samples and returns exactly what
 :func:`.golden.gap_golden_codes` returns for each point -- same integer formulas, same
 lane striping and tie rules (see :mod:`.golden`). The per-sample terms run in float64
-when the format's structural bounds keep every intermediate an integer below 2^53 in
-magnitude (true for the SPEC formats and the whole cf sweep at rf = 19: products and
-sums of integers, power-of-two scalings and ``floor`` are then exact -- Goldberg 1991,
-sec. 1.2), which is ~1.2-1.3x faster than int64 on AVX-512 (no native 64-bit
-multiply throughput); otherwise in int64 (all intermediates < 2^60). Both paths are
-tested bit-identical to the scalar model. The empty-lane residual is held as 2^63 - 1 instead of the
+when the format's structural bounds keep every intermediate an integer (or an integer
+times 2^-rf) below 2^53 in magnitude -- true for the SPEC formats and the whole cf
+sweep at rf = 19 -- with the normals stored pre-scaled by 2^-rf: products and sums of
+such values, power-of-two scalings and ``floor`` are then exact (Goldberg 1991,
+sec. 1.2), and this is ~1.4x faster than int64 on AVX-512 (which has no full-rate
+64-bit multiply). Otherwise they run in int64 (all intermediates < 2^60). Both paths
+share one source (:func:`_nshift` is ``>> rf`` on integers, ``floor`` on floats) and
+are tested bit-identical to the scalar model. The empty-lane residual is held as 2^63 - 1 instead of the
 core's 2^64 - 1; both exceed every real rho (< 2^56) and every gate (<= 2^63 - 1), so
 the outcome is identical. It is compiled with numba (``parallel=True, cache=True``) when
 numba is importable and otherwise runs the same code as plain Python (slow).
@@ -62,6 +64,14 @@ def _fshift(x, n, scale):
     return np.floor(x * scale)
 
 
+def _nshift(x, n):
+    """Normal-scale floor shift: ``x >> n`` on integers; ``floor(x)`` on floats, whose
+    normals are stored pre-scaled by ``2^-n`` (exact), so x already carries it."""
+    if isinstance(x, (int, np.integer)):
+        return x >> n
+    return np.floor(x)
+
+
 if HAVE_NUMBA:
     from numba import types
     from numba.extending import overload
@@ -71,6 +81,12 @@ if HAVE_NUMBA:
         if isinstance(x, types.Integer):
             return lambda x, n, scale: x >> n
         return lambda x, n, scale: np.floor(x * scale)
+
+    @overload(_nshift, inline="always")
+    def _nshift_overload(x, n):
+        if isinstance(x, types.Integer):
+            return lambda x, n: x >> n
+        return lambda x, n: np.floor(x)
 
 
 @dataclass(frozen=True)
@@ -96,24 +112,24 @@ class GapBatchCodes:
 
 
 @njit(cache=True, boundscheck=False, inline="always")
-def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam):
+def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, half, e_shift, rho, gam):
     """gamma and rho codes of every sample for the posed point (px, py, pz).
 
-    ``g*``/``n*`` are int64, or float64 holding integers when every intermediate is
-    below 2^53 in magnitude (then all operations below are exact).
+    Integer mode: ``g*``, ``n*`` int64 codes and ``half = 2^(rf-1)``. Float mode:
+    float64 ``g*`` codes, normals pre-scaled to ``n 2^-rf`` and ``half = 0.5``; every
+    value is then an integer (or an integer times 2^-rf) below 2^53 in magnitude, so
+    all operations are exact and both modes give identical codes.
     """
-    half = np.int64(1) << (rf - 1)
     e_half = (np.int64(1) << (e_shift - 1)) if e_shift > 0 else np.int64(0)
-    scale = 1.0 / (np.int64(1) << rf)
     e_scale = 1.0 / (np.int64(1) << e_shift)
     for i in range(gx.shape[0]):
         dx = px - gx[i]
         dy = py - gy[i]
         dz = pz - gz[i]
-        gm = _fshift(half - (nx[i] * dx + ny[i] * dy + nz[i] * dz), rf, scale)
-        ex = dx + _fshift(gm * nx[i] + half, rf, scale)
-        ey = dy + _fshift(gm * ny[i] + half, rf, scale)
-        ez = dz + _fshift(gm * nz[i] + half, rf, scale)
+        gm = _nshift(half - (nx[i] * dx + ny[i] * dy + nz[i] * dz), rf)
+        ex = dx + _nshift(gm * nx[i] + half, rf)
+        ey = dy + _nshift(gm * ny[i] + half, rf)
+        ez = dz + _nshift(gm * nz[i] + half, rf)
         if e_shift > 0:                       # loop-invariant: LLVM unswitches it
             ex = _fshift(ex + e_half, e_shift, e_scale)
             ey = _fshift(ey + e_half, e_shift, e_scale)
@@ -124,7 +140,7 @@ def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam):
 
 
 @njit(parallel=True, cache=True, boundscheck=False)
-def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, tau2, lanes, rf, cmin, cmax,
+def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, n_half, tau2, lanes, rf, cmin, cmax,
                   e_shift, key_inf, gap_sent, idx_sent, rho_inf, n_chunks,
                   out_gap, out_idx, out_valid, out_ovf):
     m_pts = p.shape[0]
@@ -157,7 +173,7 @@ def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, tau2, lanes, rf, cmin, cmax,
             out_valid[m] = False
             if ovf:
                 continue
-            _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, e_shift, rho, gam)
+            _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, n_half, e_shift, rho, gam)
             for lane in range(lanes):        # beat 0, then strict-< updates:
                 l_rho[lane] = rho[lane]      # the earliest sample wins a lane tie
                 l_k[lane] = 0
@@ -238,7 +254,12 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
     exact_f64 = fmt.dot_bits <= 54 and fmt.e_bits <= 27
     dtype = np.float64 if exact_f64 else np.int64
     gt, nt = np.ascontiguousarray(g.T, dtype=dtype), np.ascontiguousarray(n.T, dtype=dtype)
-    _batch_kernel(r, t, p, gt[0], gt[1], gt[2], nt[0], nt[1], nt[2],
+    if exact_f64:
+        nt *= 2.0 ** -fmt.normal_frac            # exact: power-of-two scaling
+        n_half = np.float64(0.5)
+    else:
+        n_half = np.int64(1 << (fmt.normal_frac - 1))
+    _batch_kernel(r, t, p, gt[0], gt[1], gt[2], nt[0], nt[1], nt[2], n_half,
                   np.int64(tau2_code), np.int64(lanes), np.int64(fmt.normal_frac),
                   np.int64(cmin), np.int64(cmax), np.int64(fmt.e_shift),
                   np.int64(fmt.key_inf), np.int64(fmt.gap_sentinel),
