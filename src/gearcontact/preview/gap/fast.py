@@ -11,13 +11,15 @@ such values, power-of-two scalings and ``floor`` are then exact (Goldberg 1991,
 sec. 1.2), and this is ~1.4x faster than int64 on AVX-512 (which has no full-rate
 64-bit multiply). Otherwise they run in int64 (all intermediates < 2^60). Both paths
 share one source (:func:`_nshift` is ``>> rf`` on integers, ``floor`` on floats) and
-are tested bit-identical to the scalar model. The empty-lane residual is held as 2^63 - 1 instead of the
-core's 2^64 - 1; both exceed every real rho (< 2^56) and every gate (<= 2^63 - 1), so
-the outcome is identical. It is compiled with numba (``parallel=True, cache=True``) when
+are tested bit-identical to the scalar model.
+
+The empty-lane residual is held as 2^63 - 1 instead of the core's 2^64 - 1; both
+exceed every real rho (< 2^56) and every gate (<= 2^63 - 1), so the outcome is
+identical. It is compiled with numba (``parallel=True, cache=True``) when
 numba is importable and otherwise runs the same code as plain Python (slow).
 
 Per point, the (gamma, rho) terms of all samples are computed in one straight loop
-(which LLVM vectorizes, ``vpmullq`` for the int64 products) and the lanes' running
+(which LLVM vectorizes) and the lanes' running
 minima are then taken beat by beat over that buffer (``i = k L + l``).
 
 References
