@@ -25,8 +25,11 @@ direction of ``kappa_min``).
 
 Orientation convention: the flank frame at the mating point has ``l`` = the gear's
 lengthwise direction (unit tangent component of the posed ``r_v``, toe -> heel) and
-``p = n2 x l`` (profile direction). The ellipse angle is the angle from ``l`` to the
-major axis, positive towards ``p``, folded into (-90, 90] deg.
+``p`` = its profile direction (the tangent component of the posed ``r_u`` orthogonal
+to ``l``, root -> tip). The ellipse angle is the angle from ``l`` to the major axis,
+positive towards ``p`` (i.e. towards the gear tip when going heelwards), folded into
+(-90, 90] deg. ``(l, p, n2)`` is right-handed on one flank side and left-handed on the
+other.
 """
 
 from __future__ import annotations
@@ -62,7 +65,7 @@ class RelativeCurvature:
     tensor_per_mm : ndarray (2, 2)
         ``B`` in the flank frame ``(l, p)``, 1/mm.
     lengthwise, profile, normal : ndarray (3,)
-        The flank frame ``(l, p, n2)``.
+        The flank frame ``(l, p, n2)`` (toe -> heel, root -> tip, gear normal).
     """
 
     kappa_max_per_mm: float
@@ -124,12 +127,16 @@ def curvature_tensor(sp: SurfacePoint, rot: np.ndarray, basis: np.ndarray) -> np
 
 
 def flank_frame(sp_gear: SurfacePoint, rot_gear: np.ndarray) -> np.ndarray:
-    """Columns ``(l, p, n2)``: gear lengthwise, profile and normal directions (posed)."""
+    """Columns ``(l, p, n2)``: gear lengthwise (toe -> heel), profile (root -> tip) and
+    normal directions, posed; ``l`` and ``p`` orthonormal in the tangent plane."""
     n = rot_gear @ sp_gear.n
     rv = rot_gear @ sp_gear.r_v
     lw = rv - (rv @ n) * n
     lw /= np.linalg.norm(lw)
-    return np.column_stack([lw, np.cross(n, lw), n])
+    ru = rot_gear @ sp_gear.r_u
+    pr = ru - (ru @ n) * n - (ru @ lw) * lw
+    pr /= np.linalg.norm(pr)
+    return np.column_stack([lw, pr, n])
 
 
 def relative_curvature(pinion: Surface, gear: Surface, kin: MeshKinematics,

@@ -16,8 +16,8 @@ Frames (both right-handed with ``n``):
 
 * ``"principal"``: ``e_s`` = major axis of the contact ellipse (direction of
   ``kappa_min``), ``e_t = n x e_s``;
-* ``"flank"``: ``e_s = l`` (gear lengthwise, toe -> heel), ``e_t = p = n x l``
-  (profile direction).
+* ``"flank"``: ``e_s = l`` (gear lengthwise, toe -> heel), ``e_t = n x l`` (the
+  profile direction; root -> tip on one flank side, tip -> root on the other).
 
 Grids:
 
