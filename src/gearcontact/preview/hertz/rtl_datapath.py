@@ -60,7 +60,8 @@ _W_BITS = (F.LOAD_MAX_CODE).bit_length()          # W inside the envelope (26 bi
 DIVIDEND_SHIFTS = {
     "R_x": (None, 40), "R_y": (None, 40), "alpha": ("b_max", F.ALPHA.frac),
     "R": (None, 42), "E_e": ("N5", 0), "C_a": ("t3", F.CA.frac - F.T3.frac),
-    "b": ("a_w", F.K_INT.frac), "p_n2": ("wc3", 16), "p_max": ("p_n2", 17)}
+    "b": ("a_w", F.K_INT.frac), "p_n2": ("wc3", F.PN2_SHIFT),
+    "p_max": ("p_n2", F.PMAX_SHIFT)}
 #: Divisor register of each division.
 DIVISORS = {"R_x": "a_min", "R_y": "b_max", "alpha": "a_min", "R": "a_min+b_max",
             "E_e": "alpha", "C_a": "e_prime", "b": "k", "p_n2": "a_w", "p_max": "b_w"}

@@ -108,7 +108,7 @@ def array_divide(m: Module, num, den, *, name: str):
     Parameters
     ----------
     m : Module
-        Module to add the rows to (``m.d.comb``).
+        Parent module; the rows go into a submodule named ``name``.
     num, den : Value
         Unsigned dividend and divisor (any widths).
     name : str
@@ -120,14 +120,15 @@ def array_divide(m: Module, num, den, *, name: str):
         ``unsigned(len(num))`` quotient (all ones when ``den == 0``, as the model).
     """
     nbits, dbits = len(num), len(den)
+    m.submodules[name] = sub = Module()   # own block: simulated only when its inputs move
     rem = Signal(dbits, name=f"{name}_r{nbits}")
     qbits = []
     for i in range(nbits - 1, -1, -1):
         new_rem, qbit = restoring_step(rem, num[i], den)
         nxt = Signal(dbits, name=f"{name}_r{i}")
-        m.d.comb += nxt.eq(new_rem)
+        sub.d.comb += nxt.eq(new_rem)
         qbits.append(qbit)
         rem = nxt
     q = Signal(nbits, name=f"{name}_q")
-    m.d.comb += q.eq(Cat(*reversed(qbits)))
+    sub.d.comb += q.eq(Cat(*reversed(qbits)))
     return q
