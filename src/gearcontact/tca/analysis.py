@@ -43,7 +43,7 @@ class TcaAnalysis:
         49-sample hardware stencil around P0 (flank frame, baked spacing).
     pattern_on_flank : ndarray (K,) of bool
         Per phase of the pitch: the paint ellipse of the transmitting contact lies
-        inside both flanks (its four vertices map into the parameter boxes).
+        inside both flanks (its outline maps into the parameter boxes).
     timings_s : dict
         Wall-clock seconds per stage.
     """
@@ -60,15 +60,20 @@ class TcaAnalysis:
 
 
 def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
-                     cycle: MeshCycle) -> np.ndarray:
-    """Per phase: do the four vertices of the paint ellipse lie on both flanks?"""
+                     cycle: MeshCycle, *, outline_points: int = 16) -> np.ndarray:
+    """Per phase: does the paint ellipse of the transmitting contact lie on both flanks?
+
+    ``outline_points`` points of the ellipse outline (in the principal frame, vertices
+    included) are projected along the common normal onto both flanks; the phase passes
+    if all of them land inside both parameter boxes.
+    """
+    theta = 2.0 * np.pi * np.arange(int(outline_points)) / int(outline_points)
     ok = np.zeros(len(cycle.contact), dtype=bool)
     for k, (mp, ell) in enumerate(zip(cycle.contact, cycle.ellipse)):
         if not np.isfinite(ell.semi_major_mm):
             continue
-        a, b = ell.semi_major_mm, ell.semi_minor_mm
-        field = gap_at(pinion, gear, kin, mp, [a, -a, 0.0, 0.0], [0.0, 0.0, b, -b],
-                       frame="principal")
+        field = gap_at(pinion, gear, kin, mp, ell.semi_major_mm * np.cos(theta),
+                       ell.semi_minor_mm * np.sin(theta), frame="principal")
         ok[k] = bool(field.on_flank.all())
     return ok
 
