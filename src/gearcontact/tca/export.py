@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..preview.fit.reference import fit_curvatures
 from .curvature import contact_ellipse, relative_curvature
 from .phase_table import encode_binary, write_json
 from .plots import plot_contact_pattern, plot_te0
@@ -82,6 +83,7 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str = "drive",
     (out / "phase_table.bin").write_bytes(binary)
 
     edges = sorted({p.edge_where for p in cyc.path.points if p.edge})
+    stage_c = fit_curvatures(res.stencil.gap_mm.ravel())
     summary = {
         "pair": pair.name, "side": side,
         "te0_pp_arcsec": cyc.te0_pp_arcsec,
@@ -100,7 +102,10 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str = "drive",
         "path_edges": edges,
         "stencil": {"frame": res.stencil.frame_name,
                     "samples_off_flank": int((~res.stencil.on_flank).sum()),
-                    "off_flank_fill": "osculating quadric (1/2) q^T B q at P0"},
+                    "off_flank_fill": "osculating quadric (1/2) q^T B q at P0",
+                    # what stage C (fp64 reference) reads from this stencil
+                    "stage_c_A_minus": stage_c.A_minus_per_mm,
+                    "stage_c_B_minus": stage_c.B_minus_per_mm},
         "gap_field": {"frame": f.frame_name, "shape": list(f.gap_mm.shape),
                       "spacing_mm": [float(f.s_mm[0, 1] - f.s_mm[0, 0]),
                                      float(f.t_mm[1, 0] - f.t_mm[0, 0])],
