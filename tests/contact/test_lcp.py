@@ -208,3 +208,17 @@ def test_preconditioner_cuts_iterations_same_answer(make_hertz):
     assert pre.converged and plain.converged
     assert pre.iterations <= 0.5 * plain.iterations
     _agree(pre, plain)
+
+
+def test_pk_cg_gap_margin_fallback_to_whole_window(make_hertz, monkeypatch):
+    # Warm start from a much smaller patch with no margin around the contact box: the
+    # growth must come from the whole-window check at convergence; same solution.
+    prob = make_hertz(1.0, 12, extent=2.0)
+    ref = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
+    small = solve_lcp(prob.gap_mm, prob.grid, 0.3 * LOAD_N, e_star_mpa=E_STAR_MPA)
+    monkeypatch.setattr(lcp, "_PK_MARGIN", 0)
+    res = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA,
+                    warm_start=small)
+    assert res.converged, res.message
+    _agree(res, ref)
+    assert np.array_equal(res.contact_mask, ref.contact_mask)
