@@ -289,3 +289,30 @@ def test_chain_convert_verilog():
 def test_comb_convert_verilog():
     text = comb_verilog()
     assert "module comb_core" in text and "output [11:0] flags;" in text
+
+
+@pytest.mark.parametrize("core", ["chain", "comb"])
+def test_e_prime_envelope_ends(core):
+    rows = np.array([A_ROW, A_ROW], dtype=np.int64)
+    sim, n = ((simulate_chain_core, CHAIN_CYCLES) if core == "chain"
+              else (simulate_comb_core, COMB_CYCLES))
+    # chain: upper end and just beyond; comb (slower to build): lower end
+    cases = ([(F.E_PRIME_MAX_CODE, 0), (F.E_PRIME_MAX_CODE + 1, F.FLAG_E_PRIME_RANGE)]
+             if core == "chain" else [(F.E_PRIME_MIN_CODE, 0)])
+    for e, want in cases:
+        outs, cycles = sim(rows, [A_W, F.LOAD_MAX_CODE], e_prime_code=e)
+        _check(outs, cycles, rows, [A_W, F.LOAD_MAX_CODE], e, n)
+        assert [o.flags for o in outs] == [want, want]
+
+
+@pytest.mark.parametrize("core_cls,n_cycles", [(ChainCore, CHAIN_CYCLES),
+                                               (CombCore, COMB_CYCLES)])
+def test_go_after_power_up_without_writes(core_cls, n_cycles):
+    async def bench(ctx, dut, cd):
+        assert not ctx.get(dut.done) and not ctx.get(dut.busy)
+        assert await _go_and_wait(ctx, dut, A_W, 2 * n_cycles) == n_cycles
+        got = read_chain_codes(ctx, dut, n_cycles)
+        assert got == _one(np.zeros(49, dtype=np.int64), A_W, n_cycles)
+        assert got.flag_names == ("fit_not_elliptic", "not_elliptic")
+
+    _sim(core_cls, bench)
