@@ -14,8 +14,11 @@ ack      in     1       one cycle after the strobe (every access is acknowledged
                         unmapped ones too: they read 0 and count a bus error)
 =======  =====  ======  ================================================================
 
-An access is the cycle with ``re`` or ``we`` set; its effect (storage write, strobe
-pulse) happens on that edge, ``ack`` and ``dat_r`` follow one cycle later. This is the
+An access is the cycle with ``re`` or ``we`` set; its effect happens on that edge:
+``rw`` storage takes the new value (visible from the next cycle), ``strobe`` and
+``wdata`` pulses are combinational in the access cycle (``wdata`` presents the bus word
+itself then), so the datapath acts on the same edge and a read issued right after a
+``go`` already sees the cleared ``done``. ``ack`` and ``dat_r`` follow one cycle later. This is the
 shape of LiteX's CSR bus behind its Wishbone bridge, so a host sees the same register
 behaviour through the simulator and through a board.
 
@@ -63,7 +66,8 @@ class RegisterBlock(wiring.Component):
     Ports: ``bus`` (slave side of :data:`CSR_BUS`); ``error`` (out, 1): one-cycle pulse
     on an access to an unmapped address; one port per non-constant register
     (``ro``: in, ``rw``/``wdata``: out, ``strobe``: out pulse; width
-    :attr:`.regmap.Register.width`), and ``<port>__stb`` (out, 1) for ``wdata``.
+    :attr:`.regmap.Register.width`), and ``<port>__stb`` (out, 1) for ``wdata``;
+    ``strobe`` and ``wdata`` outputs are combinational from the bus (access cycle).
     """
 
     def __init__(self, soc_map: SocMap, *, constants: dict | None = None):
@@ -97,12 +101,15 @@ class RegisterBlock(wiring.Component):
         access = bus.re | bus.we
         rdata = Signal(32)
         mapped = Signal()
+        stored = {}
         for rg in self.soc_map.csr_regions():
             for r in rg.registers:
-                if r.kind == "strobe":
-                    m.d.sync += getattr(self, port_name(rg.name, r.name)).eq(0)
-                elif r.kind == "wdata":
-                    m.d.sync += getattr(self, port_name(rg.name, r.name) + "__stb").eq(0)
+                if r.kind == "wdata":
+                    name = port_name(rg.name, r.name)
+                    reg = stored[name] = Signal(r.width, init=r.reset, name=name + "_q")
+                    m.d.comb += getattr(self, name).eq(
+                        Mux(getattr(self, name + "__stb"), bus.dat_w[:r.width], reg))
+        self._stored = stored
         with m.Switch(word):
             for rg in self.soc_map.csr_regions():
                 for r in rg.registers:
@@ -140,11 +147,14 @@ class RegisterBlock(wiring.Component):
         if r.kind == "ro":
             m.d.comb += rdata.eq(port)
         elif r.kind == "strobe":
-            with m.If(bus.we & bus.dat_w[0]):
-                m.d.sync += port.eq(1)
+            m.d.comb += port.eq(bus.we & bus.dat_w[0])
+        elif r.kind == "wdata":
+            name = port_name(rg.name, r.name)
+            reg = self._stored[name]
+            m.d.comb += [rdata.eq(reg), getattr(self, name + "__stb").eq(bus.we)]
+            with m.If(bus.we):
+                m.d.sync += reg.eq(bus.dat_w[:r.width])
         else:
             m.d.comb += rdata.eq(port)
             with m.If(bus.we):
                 m.d.sync += port.eq(bus.dat_w[:r.width])
-                if r.kind == "wdata":
-                    m.d.sync += getattr(self, port_name(rg.name, r.name) + "__stb").eq(1)

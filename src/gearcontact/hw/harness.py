@@ -10,7 +10,7 @@ which outputs to read. :func:`generate_harness` turns it into one C++ ``main`` t
    ``clear`` input for one cycle, drives the burst beat by beat (``strobe`` high, the
    ``addr`` port = beat index, the beat's data fields), drives the operand inputs and
    ``go`` for one cycle, then clocks until ``done`` reads 1 (failing after
-   ``max_cycles``), and records the outputs and the cycle count;
+   ``max_cycles``, a command-line argument), and records the outputs and the cycle count;
 3. writes the outputs and prints ``{"vectors", "sim_cycles", "seconds"}`` as JSON.
 
 The cycle count is the number of rising clock edges from the edge that samples
@@ -121,7 +121,8 @@ class HarnessSpec:
     done : str
         Completion output (a pulse or a level cleared by the accepted ``go``).
     max_cycles : int
-        Give up on a vector after this many edges without ``done``.
+        Give up on a vector after this many edges without ``done`` (a run-time argument
+        of the harness binary, not compiled in).
     write : WritePort, optional
         Burst write port driven before ``go``.
     clock, reset : str
@@ -208,12 +209,13 @@ static std::vector<uint32_t> read_words(const char* path) {{
 }}
 
 int main(int argc, char** argv) {{
-    if (argc != 4) {{
-        std::fprintf(stderr, "usage: %s STIMULUS RESULTS N_VECTORS\n", argv[0]);
+    if (argc != 5) {{
+        std::fprintf(stderr, "usage: %s STIMULUS RESULTS N_VECTORS MAX_CYCLES\n", argv[0]);
         return 2;
     }}
     const std::vector<uint32_t> stim = read_words(argv[1]);
     const long n_vec = std::atol(argv[3]);
+    const uint32_t max_cycles = (uint32_t)std::atol(argv[4]);
     const size_t OUT_WORDS = {out_words};
     std::vector<uint32_t> out((size_t)n_vec * OUT_WORDS);
 
@@ -244,8 +246,8 @@ int main(int argc, char** argv) {{
         top->{go} = 0;
         uint32_t count = 1;
         while (!top->{done}) {{
-            if (count >= {max_cycles}u) {{
-                std::fprintf(stderr, "vector %ld: no {done} within {max_cycles} cycles\n", v);
+            if (count >= max_cycles) {{
+                std::fprintf(stderr, "vector %ld: no {done} within %u cycles\n", v, max_cycles);
                 return 3;
             }}
             tick();
@@ -325,7 +327,7 @@ def generate_harness(spec: HarnessSpec) -> str:
     return _TEMPLATE.format(top=spec.top, clock=spec.clock, reset=spec.reset,
                             out_words=spec.output_words, in_words=spec.input_words,
                             write_block=write_block, set_inputs=set_inputs or pad + ";",
-                            go=spec.go, done=spec.done, max_cycles=spec.max_cycles,
+                            go=spec.go, done=spec.done,
                             get_outputs=get_outputs)
 
 

@@ -208,19 +208,17 @@ _FIT_SPEC = HarnessSpec(
 # ---------------------------------------------------------------------------------
 # hertz (stage D), chain (C -> D) and comb (combinational C + D)
 # ---------------------------------------------------------------------------------
-_HERTZ_PORTS = ("a", "b", "p_max", "k", "A_min", "B_max", "R_x", "R_y", "alpha", "flags")
-_HERTZ_FIELDS = ("a_code", "b_code", "p_max_code", "k_code", "A_min_code", "B_max_code",
-                 "R_x_code", "R_y_code", "alpha_code", "flags")
-_HERTZ_OUT = tuple(Port(n, **_S32) for n in _HERTZ_PORTS[:8]) + (Port("alpha", 32),)
+_HERTZ_OUT = tuple(Port(n, **_S32) for n in ("a", "b", "p_max", "k", "A_min", "B_max",
+                                              "R_x", "R_y")) + (Port("alpha", 32),)
 
 
 def _hertz_cols(codes) -> dict:
-    """Output columns from a HertzCodesArray or a list of HertzCodes."""
+    """Output columns (by port) from a HertzCodesArray or a list of HertzCodes."""
+    from ..preview.hertz.rtl import OUTPUT_PORTS          # port -> HertzCodes field
     if isinstance(codes, list):
         return {p: np.array([getattr(c, f) for c in codes], np.int64)
-                for p, f in zip(_HERTZ_PORTS, _HERTZ_FIELDS)}
-    return {p: np.asarray(getattr(codes, f), np.int64)
-            for p, f in zip(_HERTZ_PORTS, _HERTZ_FIELDS)}
+                for p, f in OUTPUT_PORTS.items()}
+    return {p: np.asarray(getattr(codes, f), np.int64) for p, f in OUTPUT_PORTS.items()}
 
 
 def _hertz_ports(st: Stimulus):
@@ -253,6 +251,17 @@ _HERTZ_SPEC = HarnessSpec(
     outputs=_HERTZ_OUT + (Port("flags", 7),))
 
 
+_CHAIN_PORTS = ("a", "b", "p_max", "k", "R_x", "R_y", "alpha")
+
+
+def _chain_cols(hertz, fit_c, fit_a, fit_b, flags) -> dict:
+    """Chain/comb output columns: stage-D outputs, the fit registers, the chain flags."""
+    h = _hertz_cols(hertz)
+    cols = {p: h[p] for p in _CHAIN_PORTS}
+    cols.update(_fit_cols(fit_c, fit_a, fit_b, flags))
+    return cols
+
+
 def _chain_ports(st: Stimulus):
     f = st.fields
     return {"W": f["W"], "e_prime": f["e_prime"]}, {"wr_data": f["gaps"]}, None
@@ -262,19 +271,23 @@ def _chain_golden(st: Stimulus) -> dict:
     from ..preview.chain import chain_golden_batch
     f = st.fields
     res = chain_golden_batch(f["gaps"], f["W"], e_prime_code=f["e_prime"])
-    cols = _hertz_cols(res.hertz)
-    cols["flags"] = np.asarray(res.flags, np.int64)
-    return cols
+    return _chain_cols(res.hertz, res.fit.c_codes, res.fit.a_minus_codes,
+                       res.fit.b_minus_codes, res.flags)
 
 
-def _chain_amaranth(runner: str):
+def _chain_amaranth(module: str, runner: str):
     def run(st: Stimulus):
-        mod = _module("chain_rtl")
+        fn = getattr(_module(module), runner)
         f = st.fields
-        outs, cycles = getattr(mod, runner)(f["gaps"], f["W"], f["e_prime"])
-        cols = _hertz_cols([o.hertz for o in outs])
-        cols["flags"] = np.array([o.flags for o in outs], np.int64)
-        return cols, np.asarray(cycles, np.int64)
+        outs, cycles = [None] * len(st), np.zeros(len(st), np.int64)
+        for e in np.unique(f["e_prime"]):          # the runners take one E' per call
+            idx = np.flatnonzero(f["e_prime"] == e)
+            o, c = fn(f["gaps"][idx], f["W"][idx], e_prime_code=int(e))
+            for i, oi, ci in zip(idx, o, c):
+                outs[i], cycles[i] = oi, ci
+        return _chain_cols([o.hertz for o in outs], [o.fit.c_codes for o in outs],
+                           [o.fit.a_minus_code for o in outs],
+                           [o.fit.b_minus_code for o in outs], [o.flags for o in outs]), cycles
     return run
 
 
@@ -289,9 +302,12 @@ def _comb_cycles(st: Stimulus) -> int:
 
 
 def _chain_spec(top: str) -> HarnessSpec:
-    return HarnessSpec(top=top, go="go", done="done", max_cycles=2000,
-                       inputs=(Port("W", **_S32), Port("e_prime", **_S32)),
-                       outputs=_HERTZ_OUT + (Port("flags", 12),), write=_stencil_write())
+    return HarnessSpec(
+        top=top, go="go", done="done", max_cycles=2000,
+        inputs=(Port("W", **_S32), Port("e_prime", **_S32)),
+        outputs=tuple(Port(n, **_S32) for n in _CHAIN_PORTS[:6]) + (Port("alpha", 32),)
+        + tuple(Port(n, **_S32) for n in _FIT_OUT) + (Port("flags", 12),),
+        write=_stencil_write())
 
 
 BENCHES: dict[str, CoreBench] = {b.name: b for b in (
@@ -306,14 +322,13 @@ BENCHES: dict[str, CoreBench] = {b.name: b for b in (
               _hertz_amaranth, _hertz_cycles,
               summary="stage D serialized elliptic Hertz (one shared 80-bit divider)"),
     CoreBench("chain", "chain_rtl", _chain_spec("chain_core"), _chain_ports, _chain_golden,
-              _chain_amaranth("simulate_chain_core"), _chain_cycles,
+              _chain_amaranth("chain_rtl", "simulate_chain_core"), _chain_cycles,
               summary="C -> D chain: fit core feeding the serialized stage D"),
-    CoreBench("comb", "chain_rtl", _chain_spec("comb_core"), _chain_ports, _chain_golden,
-              _chain_amaranth("simulate_comb_core"), _comb_cycles,
+    CoreBench("comb", "comb_rtl", _chain_spec("comb_core"), _chain_ports, _chain_golden,
+              _chain_amaranth("comb_rtl", "simulate_comb_core"), _comb_cycles,
               summary="combinational C + D variant (array dividers, pipelined)"),
 )}
 CORE_NAMES = tuple(BENCHES)
-_CONVERTERS = {"comb": "convert_comb_verilog", "chain": "convert_chain_verilog"}
 
 
 def get_bench(name: str) -> CoreBench:
@@ -327,10 +342,7 @@ def get_bench(name: str) -> CoreBench:
 @lru_cache(maxsize=None)
 def _verilog(name: str) -> str:
     bench = get_bench(name)
-    mod = _module(bench.module)
-    fn = getattr(mod, _CONVERTERS.get(name, "convert_verilog"), None) \
-        or getattr(mod, "convert_verilog")
-    return fn(name=bench.spec.top, **bench.verilog_kwargs)
+    return _module(bench.module).convert_verilog(name=bench.spec.top, **bench.verilog_kwargs)
 
 
 @lru_cache(maxsize=None)

@@ -35,15 +35,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..preview.chain_rtl import CHAIN_FLAG_BITS
+from ..preview.chain import FIT_FLAG_SHIFT
+from ..preview.fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
-from ..preview.hertz.rtl_datapath import FLAG_BITS as HERTZ_FLAG_BITS
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
 
 __all__ = ["Register", "Region", "SocMap", "SOC_MAPS", "SOC_KINDS", "MAGIC",
            "IDENTS", "DONE_FLAGS_SHIFT", "CONTACT_FLAG_BITS", "CSR_PAGE",
            "SRAM_BASE", "SRAM_SIZE", "get_map", "identifier_bytes"]
+
+# Flag word widths (as chain_rtl / hertz.rtl_datapath derive them; this module stays
+# free of Amaranth so that the host driver imports quickly).
+CHAIN_FLAG_BITS = FIT_FLAG_SHIFT + FIT_FLAG_BITS
+HERTZ_FLAG_BITS = max(HF.FLAG_NAMES).bit_length()
 
 #: LiteX CSR page (``csr_address_width`` 14, 32-bit words: 0x800 bytes per region).
 CSR_PAGE = 0x800

@@ -166,7 +166,8 @@ class VerilatorModel:
         with tempfile.TemporaryDirectory(prefix="gearcontact-vl-") as tmp:
             stim, res = Path(tmp) / "stimulus.bin", Path(tmp) / "results.bin"
             stream.astype("<u4").tofile(stim)
-            proc = subprocess.run([str(self.binary), str(stim), str(res), str(n)],
+            proc = subprocess.run([str(self.binary), str(stim), str(res), str(n),
+                                   str(self.spec.max_cycles)],
                                   capture_output=True, text=True, timeout=timeout)
             if proc.returncode != 0:
                 raise RuntimeError(f"Verilator harness for {self.spec.top} failed "

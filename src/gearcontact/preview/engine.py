@@ -9,9 +9,9 @@ backend        what evaluates the preview
 ``reference``  fp64 closed forms (:mod:`.hertz.reference`, :mod:`.fit.reference`)
 ``golden``     bit-exact fixed-point model of the datapath (:mod:`.hertz.golden`,
                :mod:`.fit.golden`); results carry the raw codes, flags and cycles
+``rtl``        the Amaranth cores in simulation (Verilator or Amaranth,
+               :mod:`.rtl_engine`); loaded only when requested
 =============  =================================================================
-
-(The RTL-simulation backend registers itself here in the RTL work.)
 
 Physical inputs are validated the same way for every backend (finite, positive; errors
 name the field); range limits specific to a representation are then reported by that
@@ -242,6 +242,15 @@ BACKENDS: dict[str, Callable[..., PreviewEngine]] = {
 def register_backend(name: str, factory: Callable[..., PreviewEngine]) -> None:
     """Add a backend (e.g. ``rtl``) under ``name``."""
     BACKENDS[name] = factory
+
+
+def _rtl_backend(**kwargs) -> PreviewEngine:
+    """Lazy factory of the ``rtl`` backend (imports Amaranth/Verilator only when used)."""
+    from .rtl_engine import RtlEngine
+    return RtlEngine(**kwargs)
+
+
+register_backend("rtl", _rtl_backend)
 
 
 def get_engine(name: str = "reference", *, material: Material = STEEL,

@@ -230,8 +230,8 @@ def gap_stimulus(n: int, seed: int = 0, *, n_samples: int = 16,
     """
     n = _check_n(n)
     if isinstance(n_samples, bool) or not isinstance(n_samples, (int, np.integer)) \
-            or not 2 <= n_samples <= 4096:
-        raise InputRangeError("n_samples", n_samples, "an integer in [2, 4096]")
+            or not 1 <= n_samples <= 4096:
+        raise InputRangeError("n_samples", n_samples, "an integer in [1, 4096]")
     rng = np.random.default_rng(seed)
     fields, labels = _gap_random(rng, n, int(n_samples))
     return _concat("gap", _gap_corners(int(n_samples)) if corners else [], fields, labels,

@@ -1,0 +1,154 @@
+"""``gearcontact rtl``: run the RTL cores against the golden model, export their Verilog.
+
+``rtl sim`` runs the corner cases plus N seeded random vectors of a core through the
+RTL (Verilator, or the Amaranth simulator) and the bit-exact golden model, and reports
+cycles per evaluation, vectors, mismatches and the simulator speed; the exit code is 1
+on any mismatch or cycle-count deviation. ``rtl verilog`` writes a core's Verilog and a
+README of its ports.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+from ..hw.harness_cores import CORE_NAMES, SIMULATORS, CoreUnavailable, get_bench
+from ..hw.verilator import (VerilatorBuildError, VerilatorNotFound, verilator_available,
+                            verilator_version)
+
+#: Exit code when the RTL disagrees with the golden model (bits or cycles).
+EXIT_MISMATCH = 1
+#: Exit code when the simulator or a core is unavailable.
+EXIT_UNAVAILABLE = 2
+
+
+def register(sub) -> None:
+    p = sub.add_parser("rtl", help="RTL cores: bulk simulation against the golden model, "
+                                   "Verilog export",
+                       description=__doc__.split("\n\n")[1])
+    cmds = p.add_subparsers(dest="rtl_command", metavar="ACTION", required=True)
+
+    s = cmds.add_parser("sim", help="run corner cases + N random vectors through the RTL "
+                                    "and the golden model")
+    s.add_argument("--core", choices=CORE_NAMES, required=True,
+                   help="; ".join(f"{n}: {get_bench(n).summary}" for n in CORE_NAMES))
+    s.add_argument("--vectors", type=int, default=1000, metavar="N",
+                   help="random vectors in addition to the corner cases (default 1000)")
+    s.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
+    s.add_argument("--simulator", choices=SIMULATORS, default=None,
+                   help="default: verilator when installed, else amaranth (slow)")
+    s.add_argument("--samples", type=int, default=None, metavar="N",
+                   help="gap core only: samples per pass (default 16)")
+    s.add_argument("--no-corners", action="store_true", help="random vectors only")
+    s.add_argument("--json", action="store_true", help="print one JSON object")
+    s.set_defaults(func=run_sim)
+
+    v = cmds.add_parser("verilog", help="write a core's Verilog and a README of its ports")
+    v.add_argument("--core", choices=CORE_NAMES + ("all",), required=True)
+    v.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    v.set_defaults(func=run_verilog)
+
+
+def _error(msg: str) -> int:
+    print(f"gearcontact rtl: error: {msg}", file=sys.stderr)
+    return EXIT_UNAVAILABLE
+
+
+def run_sim(args) -> int:
+    from ..hw.harness_cores import run_equivalence
+    if args.vectors < 0:
+        return _error(f"--vectors = {args.vectors} must be >= 0")
+    kwargs = {}
+    if args.samples is not None:
+        if args.core != "gap":
+            return _error("--samples applies to --core gap only")
+        kwargs["n_samples"] = args.samples
+    simulator = args.simulator
+    if simulator is None:
+        simulator = "verilator" if verilator_available() else "amaranth"
+        if simulator == "amaranth":
+            print("gearcontact rtl: Verilator not installed, using the Amaranth simulator "
+                  "(slow); apt-get install verilator for bulk runs", file=sys.stderr)
+    try:
+        rep = run_equivalence(args.core, args.vectors, args.seed, simulator=simulator,
+                              corners=not args.no_corners, **kwargs)
+    except (VerilatorNotFound, VerilatorBuildError, CoreUnavailable) as exc:
+        return _error(str(exc))
+    version = verilator_version() if simulator == "verilator" else None
+    if args.json:
+        print(json.dumps({**rep.as_dict(), "seed": args.seed, "simulator_version": version},
+                         indent=2))
+    else:
+        bench = get_bench(args.core)
+        print(f"core         {rep.core}: {bench.summary}")
+        print(f"simulator    {rep.simulator}" + (f" ({version.split(' rev')[0]})"
+                                                  if version else ""))
+        print(f"vectors      {rep.vectors} ({rep.corner_vectors} corner cases + "
+              f"{rep.vectors - rep.corner_vectors} random, seed {args.seed})")
+        counts = ", ".join(f"{c} x {k}" for k, c in rep.cycle_counts.items())
+        print(f"cycles       {rep.cycles if rep.cycles is not None else counts} per "
+              f"evaluation (expected {rep.cycles_expected}"
+              f"{', data independent' if rep.cycles is not None else ''})")
+        print(f"mismatches   {rep.mismatches}")
+        for ex in rep.mismatch_examples:
+            print(f"  vector {ex['vector']} ({ex['label']}): {ex['port']} rtl {ex['rtl']} "
+                  f"golden {ex['golden']}")
+        print(f"speed        {rep.cycles_per_second:,.0f} cycles/s ({rep.sim_cycles:,} cycles "
+              f"in {rep.sim_seconds:.3g} s; build {rep.build_seconds:.3g} s, golden "
+              f"{rep.golden_seconds:.3g} s)")
+    return 0 if rep.ok else EXIT_MISMATCH
+
+
+_PORT = re.compile(r"^\s*(input|output)\s+(?:reg\s+|wire\s+)?(?:signed\s+)?"
+                   r"(?:\[(\d+):0\]\s+)?(\\?[\w$]+)\s*;", re.M)
+
+
+def verilog_ports(verilog: str, top: str) -> list[tuple[str, str, int]]:
+    """``(direction, name, width)`` of the ports of module ``top`` in Amaranth Verilog."""
+    start = verilog.index(f"module {top}(")
+    body = verilog[start:verilog.index("endmodule", start)]
+    return [(d, n, int(w) + 1 if w else 1) for d, w, n in _PORT.findall(body)]
+
+
+def _readme(core: str, verilog: str) -> str:
+    bench = get_bench(core)
+    spec = bench.spec
+    lines = [f"# {spec.top}", "", bench.summary + ".", "",
+             f"Generated by `gearcontact rtl verilog` from `gearcontact.preview."
+             f"{bench.module}`; clock `{spec.clock}`, synchronous active-high reset "
+             f"`{spec.reset}`.", "",
+             "| port | dir | width |", "|---|---|---|"]
+    lines += [f"| {n} | {d} | {w} |" for d, n, w in verilog_ports(verilog, spec.top)]
+    ops = ", ".join(f"`{p.name}`" for p in spec.inputs)
+    proto = [f"Protocol: drive the operands{f' ({ops})' if ops else ''}, pulse `{spec.go}` "
+             f"for one cycle, wait for `{spec.done}`; the outputs are then valid "
+             f"({bench.cycles(bench.stimulus(0))} cycles from the `{spec.go}` edge)."]
+    if spec.write is not None:
+        wp = spec.write
+        proto.append(f"Before `{spec.go}`, stream up to {wp.max_beats} words with "
+                     f"`{wp.strobe}` high" + (f" (`{wp.addr}` = word index)" if wp.addr
+                                                 else "")
+                     + (f", after a one-cycle `{wp.clear}` pulse" if wp.clear else "")
+                     + f": {', '.join(p.name for p in wp.fields)}.")
+    proto.append("Array ports hold element 0 in their low bits. Full semantics (formats, "
+                 "flags, busy/reset behaviour) are in the module docstring.")
+    return "\n".join(lines + [""] + proto) + "\n"
+
+
+def run_verilog(args) -> int:
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    for core in (CORE_NAMES if args.core == "all" else (args.core,)):
+        bench = get_bench(core)
+        try:
+            text = bench.verilog()
+        except CoreUnavailable as exc:
+            return _error(str(exc))
+        path = out / f"{bench.spec.top}.v"
+        path.write_text(text)
+        (out / f"{bench.spec.top}.README.md").write_text(_readme(core, text))
+        n_ports = len(verilog_ports(text, bench.spec.top))
+        print(f"{path} ({len(text.splitlines())} lines, {n_ports} ports)")
+    return 0

