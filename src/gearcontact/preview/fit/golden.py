@@ -54,6 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcontact.preview.fit.golden_vec import fit_kernel
 from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv, baked_pinv
 from gearcontact.preview.qformat import CURVATURE, GAP, FixedPointOverflow, round_shift, sq, uq
 from gearcontact.validation import InputRangeError
@@ -319,37 +320,21 @@ def golden_fit_batch(gap_codes, *, rom: BakedPinv | None = None) -> GoldenFitBat
 
     Notes
     -----
-    The MAC runs as an int64 matrix product, exact because
-    ``|acc_j| <= 2^31 * sum_i |M_ji| < 2^63`` for the ROM (checked; a ROM with larger
-    weights raises rather than wrap). ``e^2 + c4^2`` is formed in uint64 after
-    screening ``|e| > isqrt(2^63 - 1)``, so it cannot wrap either.
+    Runs the compiled kernel :func:`.golden_vec.fit_kernel` (numba, parallel over
+    stencils). Its int64 MAC is exact because ``|acc_j| <= 2^31 * sum_i |M_ji| < 2^63``
+    for the ROM (checked here; a ROM with larger weights raises rather than wrap).
+    ``e^2 + c4^2`` is formed in uint64 after screening ``|e| > isqrt(2^63 - 1)``, so it
+    cannot wrap either.
     """
     rom = baked_pinv() if rom is None else rom
-    g = check_gap_codes(gap_codes, 2)
+    g = np.asarray(gap_codes)
+    if g.dtype != np.int64 or g.ndim != 2 or g.shape[1] != N_TAPS:
+        g = check_gap_codes(gap_codes, 2)   # else the kernel range-checks in its MAC pass
     if max(rom.weight_l1_codes) >= (1 << 31):
         raise FixedPointOverflow("sum_i |M_ji| (int64 MAC bound)", max(rom.weight_l1_codes),
                                  sq(32, 0))
-    acc = g @ rom.weight_codes_array.T
-    c = round_shift(acc, _COEFF_SHIFT)
-    cov = ~COEFF.fits(c).all(axis=1)
-    a, b, cc = c[:, 3], c[:, 4], c[:, 5]
-    h = a + cc
-    e = a - cc
-    big = np.abs(e) > math.isqrt(D_FMT.max_code)
-    e_safe = np.where(big, 0, e)
-    d_u = (e_safe * e_safe).astype(np.uint64) + (b * b).astype(np.uint64)
-    dov = (big | (d_u > np.uint64(D_FMT.max_code))) & ~cov
-    d = np.where(dov | cov, np.uint64(0), d_u).astype(np.int64)
-    r = isqrt_nonrestoring_array(d)
-    a_minus = round_shift(h + r, 1)
-    b_minus = round_shift(h - r, 1)
-    kov = ~(CURVATURE.fits(a_minus) & CURVATURE.fits(b_minus)) & ~(cov | dov)
-    flags = np.where(cov, FLAG_COEFF_OVERFLOW,
-                     np.where(dov, FLAG_D_OVERFLOW,
-                              np.where(kov, FLAG_CURV_OVERFLOW,
-                                       np.where(b_minus <= 0, FLAG_NOT_ELLIPTIC, 0))))
-    bad = (flags & FLAG_ANY_OVERFLOW) != 0
-    return GoldenFitBatch(c_codes=np.where(bad[:, None], 0, c),
-                          a_minus_codes=np.where(bad, 0, a_minus),
-                          b_minus_codes=np.where(bad, 0, b_minus),
-                          flags=flags.astype(np.int64))
+    c, a_minus, b_minus, flags = fit_kernel(g, rom.weight_codes_array,
+                                            coeff_shift=_COEFF_SHIFT,
+                                            d_max_code=D_FMT.max_code)
+    return GoldenFitBatch(c_codes=c, a_minus_codes=a_minus, b_minus_codes=b_minus,
+                          flags=flags)
