@@ -1,0 +1,555 @@
+"""Loaded transmission error (LTE) along the mesh phase, rigid teeth.
+
+At each phase of one pinion pitch of the unloaded mesh cycle
+(:class:`~gearcontact.tca.mesh.MeshCycle`) every neighbouring tooth pair ``j`` whose
+mating point lies on both flanks is a potential contact:
+
+* its own tangent-plane gap field ``h_j`` around its own mating point (principal frame,
+  real flanks, :func:`~gearcontact.tca.stencil.gap_field`; cells off a flank get
+  :data:`~.pair_ltca.OFF_FLANK_GAP_MM` as in :func:`~.pair_ltca.single_pair_ltca`),
+  sized by the Hertzian ellipse of the pair carrying the whole torque
+  (``extent_factor`` semi-axes);
+* its lever ``l_j`` about the gear axis (:func:`~.load.torque_lever_mm`);
+* its initial separation: with the gear resting on the transmitting pair (TE0 envelope)
+  pair ``j`` stands open by ``|TE0_j - TE0_env|`` of gear rotation, i.e.
+  ``g_j = |TE0_j - TE0_env| / 206264.8 * l_j`` mm along its normal (a gear rotation
+  ``dphi2`` moves a gear point by ``l dphi2`` along the normal: the lever is the
+  moment arm of the normal, Litvin & Fuentes 2004, sec. 9.4).
+
+Under the gear torque ``T`` the gear turns by one shared rotation ``theta >= 0``
+(towards the pinion, i.e. lagging) and pair ``j`` approaches by
+``delta_j = l_j theta - g_j``; the torque balance ``sum_j W_j l_j = T`` closes the
+problem. Two models of the pairs' contact compliance:
+
+* **LCP** (``TE_LCP``): the half-space LCP of each pair on its gap field, all pairs
+  solved together as one torque-constrained LCP with the rotation as the multiplier
+  (coupled formulation, :func:`.mesh_lcp.solve_mesh_lcp`), warm-started from the
+  previous phase;
+* **preview** (``TE_pre``): Hamrock–Brewe Hertz per pair from its own relative
+  curvatures, ``delta_j(W) = kappa_j W^(2/3)`` (:func:`~gearcontact.analytic.hertz.
+  hamrock_brewe_hertz`), i.e. ``W_j = ((l_j theta - g_j)_+ / kappa_j)^(3/2)``; the
+  balance is a monotone scalar equation in ``theta`` solved by Brent's method.
+
+Sign convention: TE keeps the TCA's sign (``TE = (phi2 - phi2_0) - (z1/z2)(phi1 -
+phi1_0)``). The loaded gear lags the unloaded one by ``theta`` towards the open pairs, so
+
+    TE_LCP = TE0_env + s theta,   s = +1 if the envelope is the min over the pairs
+                                  (the pinion pushes the gear towards -phi2, s0003 drive),
+                                  s = -1 if it is the max.
+
+``rotation_*_arcsec`` hold ``theta >= 0``. With a single pair in contact the LCP
+rotation is that pair's approach over its lever (the single-pair
+``mesh_rotation_arcsec`` of :mod:`.pair_ltca`).
+
+Compliances at the reference phase P0, by a central difference in torque
+(``T (1 +- compliance_step)``), for LCP and preview, as ``c = l_0^2 d theta / d T``
+(approach ``delta = l_0 theta`` and load ``W = T / l_0`` on the lever ``l_0`` of the
+transmitting pair):
+
+* contact compliance ``c = d delta / d W`` of the transmitting pair carrying the whole
+  torque alone (for a Hertzian gap ``(2/3) delta / W``);
+* mesh compliance: the same with all pairs within reach sharing the torque.
+
+Scope: rigid teeth (no bending, no base rotation); pairs whose unloaded mating point
+has left a flank (TE0 undefined) are not considered (no tip-edge contact model); the
+loaded cells next to a flank boundary are reported (``edge_contact``).
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 9, 15.
+B. J. Hamrock, D. E. Brewe, J. Lubrication Technol. 105 (1983) 171-177.
+K. L. Johnson, *Contact Mechanics*, 1985, ch. 3-4. SPEC section 5.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+from tqdm import tqdm
+
+from ..analytic.hertz import hamrock_brewe_hertz
+from ..materials import effective_modulus_mpa
+from ..validation import InputRangeError, check_positive, check_range
+from .grid import TangentGrid
+from .load import torque_lever_mm
+from .mesh_lcp import MeshLcpResult, PairBlock, solve_mesh_lcp
+from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
+
+__all__ = ["LoadedTE", "PairContact", "loaded_te", "preview_balance", "ACTIVE_SHARE"]
+
+#: A pair counts as active when it carries more than this share of the total load.
+ACTIVE_SHARE = 1e-6
+#: Pairs whose opening exceeds this multiple of the preview rotation get no field.
+_REACH_FACTOR = 3.0
+
+
+@dataclass(frozen=True, eq=False)
+class PairContact:
+    """One potential contact (tooth pair ``offset`` at one phase): geometry and field.
+
+    Attributes
+    ----------
+    offset : int
+        Pair index ``j``.
+    path_index : int
+        Index of the mating point in the TCA path (pair ``j`` at phase ``k`` is pair 0
+        at path index ``base + k + j n``).
+    lever_mm : float
+        Lever of the normal force about the gear axis, mm.
+    opening_arcsec : float
+        ``|TE0_j - TE0_env|``, arcsec of gear rotation.
+    A_minus_per_mm, B_minus_per_mm : float
+        Half relative principal curvatures at the mating point, 1/mm.
+    kappa_mm_per_n23 : float
+        Hertzian approach coefficient: ``delta = kappa W^(2/3)`` (mm / N^(2/3)).
+    """
+
+    offset: int
+    path_index: int
+    lever_mm: float
+    opening_arcsec: float
+    A_minus_per_mm: float
+    B_minus_per_mm: float
+    kappa_mm_per_n23: float
+
+    @property
+    def offset_mm(self) -> float:
+        """Initial separation along the normal, mm."""
+        return self.opening_arcsec / ARCSEC_PER_RAD * self.lever_mm
+
+
+@dataclass(frozen=True, eq=False)
+class LoadedTE:
+    """Loaded transmission error over one pinion pitch (see module docstring).
+
+    Attributes
+    ----------
+    torque_nm : float
+        Gear torque, N·m.
+    phi1_rad : ndarray (K,)
+        Pinion phases, rad.
+    te0_arcsec, te_lcp_arcsec, te_pre_arcsec : ndarray (K,)
+        Unloaded envelope, LCP-loaded and preview-loaded TE, arcsec.
+    rotation_lcp_arcsec, rotation_pre_arcsec : ndarray (K,)
+        Loaded gear rotation ``theta >= 0`` (LCP, preview), arcsec.
+    te_sign : int
+        ``s`` of ``TE = TE0_env + s theta``.
+    pair_offsets : tuple of int
+        Pair indices (rows of the load arrays).
+    pair_loads_lcp_n, pair_loads_pre_n : ndarray (P, K)
+        Normal load per pair and phase (0 for open or out-of-reach pairs), N.
+    lever_mm : ndarray (P, K)
+        Levers (NaN where the pair has no mating point).
+    active_lcp, active_pre : ndarray (K,) of int
+        Pairs carrying more than :data:`ACTIVE_SHARE` of the load.
+    edge_contact : ndarray (K,) of bool
+        A loaded cell borders a flank boundary (tip, root or end) at that phase.
+    field_edge : ndarray (K,) of bool
+        A patch reaches the edge of its field (field too small; results truncated).
+    status : tuple of str
+        LCP status per phase.
+    solve_ms, field_ms : ndarray (K,)
+        LCP solve time and gap-field time per phase, ms.
+    reference_index : int
+        Phase of P0 (where the compliances are taken).
+    reference_lever_mm : float
+        Lever ``l_0`` of the transmitting pair at P0, mm.
+    compliance_lcp_mm_per_n, compliance_pre_mm_per_n : float
+        Contact compliance ``c = d delta / d W`` of the transmitting pair alone at P0
+        (LCP, Hamrock–Brewe preview), mm/N.
+    mesh_compliance_lcp_mm_per_n, mesh_compliance_pre_mm_per_n : float
+        ``l_0^2 d theta / d T`` at P0 with all pairs within reach, mm/N.
+    cells : int
+        Cells per side of each pair's field.
+    timings_s : dict
+        Wall-clock seconds per stage.
+    """
+
+    torque_nm: float
+    phi1_rad: np.ndarray
+    te0_arcsec: np.ndarray
+    te_lcp_arcsec: np.ndarray
+    te_pre_arcsec: np.ndarray
+    rotation_lcp_arcsec: np.ndarray
+    rotation_pre_arcsec: np.ndarray
+    te_sign: int
+    pair_offsets: tuple
+    pair_loads_lcp_n: np.ndarray
+    pair_loads_pre_n: np.ndarray
+    lever_mm: np.ndarray
+    active_lcp: np.ndarray
+    active_pre: np.ndarray
+    edge_contact: np.ndarray
+    field_edge: np.ndarray
+    status: tuple
+    solve_ms: np.ndarray
+    field_ms: np.ndarray
+    reference_index: int
+    reference_lever_mm: float
+    compliance_lcp_mm_per_n: float
+    compliance_pre_mm_per_n: float
+    mesh_compliance_lcp_mm_per_n: float
+    mesh_compliance_pre_mm_per_n: float
+    cells: int
+    timings_s: dict = field(default_factory=dict)
+
+    @property
+    def te0_pp_arcsec(self) -> float:
+        """Peak-to-peak of the unloaded envelope, arcsec."""
+        return float(np.ptp(self.te0_arcsec))
+
+    @property
+    def te_lcp_pp_arcsec(self) -> float:
+        """Peak-to-peak of TE_LCP, arcsec."""
+        return float(np.ptp(self.te_lcp_arcsec))
+
+    @property
+    def te_pre_pp_arcsec(self) -> float:
+        """Peak-to-peak of TE_pre, arcsec."""
+        return float(np.ptp(self.te_pre_arcsec))
+
+    @property
+    def converged(self) -> bool:
+        """True when every phase's LCP converged."""
+        return all(s == "converged" for s in self.status)
+
+    def summary(self) -> dict:
+        """Plain-JSON scalars (the keys of ``lte.json``)."""
+        k0 = self.reference_index
+        share = self.pair_loads_lcp_n[:, k0] / self.pair_loads_lcp_n[:, k0].sum()
+        return {"torque_nm": self.torque_nm, "phases": int(len(self.phi1_rad)),
+                "te0_pp_arcsec": self.te0_pp_arcsec,
+                "te_lcp_pp_arcsec": self.te_lcp_pp_arcsec,
+                "te_pre_pp_arcsec": self.te_pre_pp_arcsec,
+                "te_pre_vs_lcp_pp_pct": 100.0 * (self.te_pre_pp_arcsec
+                                                 / self.te_lcp_pp_arcsec - 1.0),
+                "compliance_lcp_mm_per_n": self.compliance_lcp_mm_per_n,
+                "compliance_pre_mm_per_n": self.compliance_pre_mm_per_n,
+                "mesh_compliance_lcp_mm_per_n": self.mesh_compliance_lcp_mm_per_n,
+                "mesh_compliance_pre_mm_per_n": self.mesh_compliance_pre_mm_per_n,
+                "mean_rotation_lcp_arcsec": float(self.rotation_lcp_arcsec.mean()),
+                "mean_rotation_pre_arcsec": float(self.rotation_pre_arcsec.mean()),
+                "reference_rotation_lcp_arcsec": float(self.rotation_lcp_arcsec[k0]),
+                "reference_lever_mm": self.reference_lever_mm,
+                "reference_load_share": {str(o): float(s) for o, s
+                                         in zip(self.pair_offsets, share)},
+                "active_pairs_lcp_min": int(self.active_lcp.min()),
+                "active_pairs_lcp_max": int(self.active_lcp.max()),
+                "active_pairs_pre_min": int(self.active_pre.min()),
+                "active_pairs_pre_max": int(self.active_pre.max()),
+                "edge_contact_phases": int(self.edge_contact.sum()),
+                "field_edge_phases": int(self.field_edge.sum()),
+                "converged": self.converged,
+                "unconverged_phases": int(sum(s != "converged" for s in self.status)),
+                "te_sign": self.te_sign, "cells": self.cells,
+                "solve_ms_per_phase": float(self.solve_ms.mean()),
+                "field_ms_per_phase": float(self.field_ms.mean()),
+                "timings_s": dict(self.timings_s)}
+
+    def table(self) -> tuple[list[str], list[list]]:
+        """Header and per-phase rows of ``lte.csv``."""
+        header = ["phase", "phi1_deg", "te0_arcsec", "te_lcp_arcsec", "te_pre_arcsec",
+                  "rotation_lcp_arcsec", "rotation_pre_arcsec", "active_lcp", "active_pre"]
+        header += [f"load_lcp_pair{o:+d}_n" for o in self.pair_offsets]
+        header += [f"load_pre_pair{o:+d}_n" for o in self.pair_offsets]
+        header += ["edge_contact", "field_edge", "status", "solve_ms", "field_ms"]
+        rows = []
+        for k in range(len(self.phi1_rad)):
+            rows.append([k, float(np.degrees(self.phi1_rad[k])), float(self.te0_arcsec[k]),
+                         float(self.te_lcp_arcsec[k]), float(self.te_pre_arcsec[k]),
+                         float(self.rotation_lcp_arcsec[k]),
+                         float(self.rotation_pre_arcsec[k]), int(self.active_lcp[k]),
+                         int(self.active_pre[k])]
+                        + [float(w) for w in self.pair_loads_lcp_n[:, k]]
+                        + [float(w) for w in self.pair_loads_pre_n[:, k]]
+                        + [int(self.edge_contact[k]), int(self.field_edge[k]),
+                           self.status[k], float(self.solve_ms[k]),
+                           float(self.field_ms[k])])
+        return header, rows
+
+
+def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float
+                    ) -> tuple[float, np.ndarray]:
+    """Shared rotation and pair loads of Hertzian pairs under a torque.
+
+    Solves ``sum_j l_j ((l_j theta - g_j)_+ / kappa_j)^(3/2) = T`` (monotone in
+    ``theta``) by Brent's method.
+
+    Parameters
+    ----------
+    levers_mm, offsets_mm, kappas : array_like (P,)
+        Levers ``l_j`` (mm), initial separations ``g_j`` (mm, >= 0, one of them 0 for the
+        transmitting pair) and approach coefficients ``kappa_j`` (mm/N^(2/3)).
+    torque_nmm : float
+        Gear torque, N·mm.
+
+    Returns
+    -------
+    (theta_rad, loads_n)
+    """
+    lv = np.asarray(levers_mm, float)
+    g = np.asarray(offsets_mm, float)
+    kap = np.asarray(kappas, float)
+    t = check_positive("torque_nmm", torque_nmm)
+
+    def loads(theta):
+        return (np.maximum(lv * theta - g, 0.0) / kap) ** 1.5
+
+    lo = float(np.min(g / lv))
+    # the pair open least carries the whole torque at this rotation: an upper bound
+    j = int(np.argmin(g / lv))
+    hi = lo + 1.01 * kap[j] * (t / lv[j]) ** (2.0 / 3.0) / lv[j]
+    theta = brentq(lambda th: loads(th) @ lv - t, lo, hi, xtol=1e-16, rtol=1e-14)
+    return float(theta), loads(theta)
+
+
+def _near(mask: np.ndarray) -> np.ndarray:
+    """Cells of ``mask`` and their 4-neighbours."""
+    out = mask.copy()
+    out[1:, :] |= mask[:-1, :]
+    out[:-1, :] |= mask[1:, :]
+    out[:, 1:] |= mask[:, :-1]
+    out[:, :-1] |= mask[:, 1:]
+    return out
+
+
+class _Fields:
+    """Gap fields per TCA path index (pairs at the pitch ends share them)."""
+
+    def __init__(self, pinion, gear, kin, cycle, *, torque_nmm, e_prime, cells, extent):
+        self.args = (pinion, gear, kin)
+        self.path = cycle.path
+        self.torque, self.e_prime, self.cells, self.extent = torque_nmm, e_prime, cells, extent
+        self.cache: dict[int, tuple] = {}
+        self.seconds = 0.0
+
+    def get(self, pc: PairContact):
+        """(PairBlock, off-flank mask) of a pair contact."""
+        from ..tca.stencil import gap_field
+
+        hit = self.cache.get(pc.path_index)
+        if hit is None:
+            t0 = time.perf_counter()
+            mp = self.path.points[pc.path_index]
+            hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm,
+                                     self.torque / pc.lever_mm, e_prime_mpa=self.e_prime)
+            f = gap_field(*self.args, mp, side=self.cells, frame="principal",
+                          half_extent_mm=(self.extent[0] * hz.a_mm, self.extent[1] * hz.b_mm),
+                          allow_outside=True)  # same values on the flank; faster Newton
+            off = ~f.on_flank  # near its path's end a pair's field is partly off
+            s_axis, t_axis = f.s_mm[0, :], f.t_mm[:, 0]
+            grid = TangentGrid.uniform(len(s_axis), len(t_axis),
+                                       dx_mm=float(s_axis[1] - s_axis[0]),
+                                       dy_mm=float(t_axis[1] - t_axis[0]),
+                                       x0_mm=float(s_axis[0]), y0_mm=float(t_axis[0]))
+            hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off)
+            self.cache[pc.path_index] = hit
+            self.seconds += time.perf_counter() - t0
+        gap, grid, off = hit
+        return PairBlock(gap, grid, pc.lever_mm, pc.offset_mm), off
+
+
+def _phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
+                    curv_cache: dict) -> list[PairContact]:
+    """The potential contacts (pairs with a mating point on both flanks) at phase k."""
+    from ..tca.curvature import relative_curvature
+
+    out = []
+    env = float(cycle.envelope_arcsec[k])
+    n = cycle.step_index
+    for j, off in enumerate(cycle.pair_offsets):
+        te = float(cycle.te0_pairs_arcsec[j, k])
+        if not np.isfinite(te):
+            continue
+        idx = base + k + off * n
+        mp = cycle.path.points[idx]
+        if idx not in curv_cache:
+            rc = relative_curvature(pinion, gear, kin, mp)
+            kap = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, 1.0,
+                                      e_prime_mpa=e_prime).approach_mm
+            curv_cache[idx] = (torque_lever_mm(mp.point_mm, mp.normal), rc.A_minus_per_mm,
+                               rc.B_minus_per_mm, kap)
+        lever, a_m, b_m, kap = curv_cache[idx]
+        out.append(PairContact(off, idx, lever, abs(te - env), a_m, b_m, kap))
+    return out
+
+
+def _solve_phase(contacts, fields: _Fields, torque_nmm: float, materials, *, tol: float,
+                 warm: dict, theta_pre: float):
+    """Torque-constrained LCP over the pairs within reach; returns
+    (result, used contacts, blocks, off masks). Pairs left out are checked open."""
+    reach = [pc for pc in contacts
+             if pc.opening_arcsec / ARCSEC_PER_RAD <= _REACH_FACTOR * theta_pre]
+    while True:
+        built = [fields.get(pc) for pc in reach]
+        blocks = [b for b, _ in built]
+        res = solve_mesh_lcp(blocks, torque_nmm, materials=materials, tol=tol,
+                             warm_start=[warm.get(pc.offset) for pc in reach],
+                             rotation_guess_rad=theta_pre)
+        late = [pc for pc in contacts if pc not in reach
+                and pc.opening_arcsec / ARCSEC_PER_RAD < res.rotation_rad]
+        if not late:
+            return res, reach, blocks, [o for _, o in built]
+        reach = reach + late
+
+
+def _check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
+    """Raise if a load closes an off-flank cell; return the edge-contact flag."""
+    edge = False
+    for pc, mask, off, d in zip(reach, res.contact_masks, offs, res.approach_mm):
+        if (mask & off).any() or d >= OFF_FLANK_GAP_MM:
+            raise InputRangeError(f"torque_nm = {torque_nm:g}: approach of pair "
+                                  f"{pc.offset:+d} (mm)", float(d),
+                                  f"< {OFF_FLANK_GAP_MM} mm (load closes the off-flank "
+                                  "separation)")
+        edge |= bool((mask & _near(off)).any())
+    return edge
+
+
+def _field_edge(masks) -> bool:
+    return any(m[0, :].any() or m[-1, :].any() or m[:, 0].any() or m[:, -1].any()
+               for m in masks)
+
+
+def _compliances(ref, fields: _Fields, torque: float, eps: float, materials,
+                 tol: float) -> dict:
+    """Contact and mesh compliances at the reference phase by central differences.
+
+    ``c = l0^2 (theta(T+) - theta(T-)) / (T+ - T-)`` with ``T+- = T (1 +- eps)``: with the
+    transmitting pair alone (contact compliance ``d delta / d W`` of that pair) and
+    with all pairs within reach (mesh compliance), for LCP and preview.
+    """
+    contacts = ref
+    main = next(pc for pc in contacts if pc.offset_mm == 0.0)
+    l0 = main.lever_mm
+    out = {"reference_lever_mm": float(l0)}
+    for key, group in (("", [main]), ("mesh_", contacts)):
+        lv = np.array([pc.lever_mm for pc in group])
+        gs = np.array([pc.offset_mm for pc in group])
+        kap = np.array([pc.kappa_mm_per_n23 for pc in group])
+        th_lcp, th_pre = [], []
+        for sgn in (1.0, -1.0):
+            tq = torque * (1.0 + sgn * eps)
+            th = preview_balance(lv, gs, kap, tq)[0]
+            res, *_ = _solve_phase(group, fields, tq, materials, tol=tol, warm={},
+                                   theta_pre=th)
+            if not res.converged:
+                raise ArithmeticError(f"compliance at {tq / 1e3:g} N·m: {res.message}")
+            th_lcp.append(res.rotation_rad)
+            th_pre.append(th)
+        d_t = 2.0 * eps * torque
+        out[f"{key}compliance_lcp_mm_per_n"] = float(l0 ** 2 * (th_lcp[0] - th_lcp[1]) / d_t)
+        out[f"{key}compliance_pre_mm_per_n"] = float(l0 ** 2 * (th_pre[0] - th_pre[1]) / d_t)
+    return out
+
+
+def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
+              cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
+              tol: float = 1e-8, compliance_step: float = 0.05,
+              progress: bool = False) -> LoadedTE:
+    """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
+
+    Parameters
+    ----------
+    tca : gearcontact.tca.analysis.TcaAnalysis
+        Unloaded analysis; its mesh cycle sets the phases (>= 61 per pitch for
+        reports) and the neighbouring pairs.
+    flanks : gearcontact.geometry.flank.FlankSet
+        The flanks the TCA ran on.
+    pair : gearcontact.geometry.pair.GearPair
+        The pair (kinematics with assembly errors, materials).
+    torque_nm : float
+        Gear torque, N·m (> 0).
+    side : str
+        ``"drive"`` or ``"coast"`` (the side the TCA ran on).
+    cells : int
+        Cells per side of each pair's field (>= 16; 40 resolves the minor semi-axis of
+        the fully loaded pair with 10 cells, which puts the approach within about 1 %
+        of the converged value; 80 matches :func:`~.pair_ltca.single_pair_ltca`).
+    extent_factor : (float, float)
+        Half extents of each field in Hertzian semi-axes at the full load (>= 1.1).
+    tol : float
+        LCP tolerance (:func:`.mesh_lcp.solve_mesh_lcp`).
+    compliance_step : float
+        Relative torque step of the central difference, in (0, 0.5].
+    progress : bool
+        Show a progress bar over the phases.
+
+    Returns
+    -------
+    LoadedTE
+        Per-phase LCP status in ``.status``; ``.converged`` is False if any failed.
+    """
+    t_all = time.perf_counter()
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if int(cells) < 16:
+        raise InputRangeError("cells", cells, ">= 16 per side")
+    for i, f in enumerate(extent_factor):
+        if not f >= 1.1:
+            raise InputRangeError(f"extent_factor[{i}]", f, ">= 1.1 Hertzian semi-axes")
+    eps = check_range("compliance_step", compliance_step, 0.0, 0.5, lo_open=True)
+    cycle = tca.cycle
+    kin = pair.kinematics()
+    pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
+    materials = (pair.pinion_material, pair.gear_material)
+    e_prime = effective_modulus_mpa(*materials)
+    torque = 1e3 * t
+    base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    fields = _Fields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
+                     cells=int(cells), extent=tuple(map(float, extent_factor)))
+    curv: dict = {}
+    n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
+    row = {o: i for i, o in enumerate(cycle.pair_offsets)}
+    rot_lcp, rot_pre = np.zeros(n_k), np.zeros(n_k)
+    w_lcp, w_pre, levers = np.zeros((n_p, n_k)), np.zeros((n_p, n_k)), np.full((n_p, n_k), np.nan)
+    edge, fedge = np.zeros(n_k, bool), np.zeros(n_k, bool)
+    solve_ms, field_ms, status = np.zeros(n_k), np.zeros(n_k), []
+    warm: dict = {}
+    k_ref = cycle.mean_index
+    ref = None
+    for k in tqdm(range(n_k), desc=f"LTE {t:g} N·m", disable=not progress, leave=False):
+        contacts = _phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv)
+        lv = np.array([pc.lever_mm for pc in contacts])
+        gs = np.array([pc.offset_mm for pc in contacts])
+        kap = np.array([pc.kappa_mm_per_n23 for pc in contacts])
+        th_pre, wp = preview_balance(lv, gs, kap, torque)
+        f0 = fields.seconds
+        res, reach, blocks, offs = _solve_phase(contacts, fields, torque, materials,
+                                                tol=tol, warm=warm, theta_pre=th_pre)
+        field_ms[k] = 1e3 * (fields.seconds - f0)
+        solve_ms[k] = res.solve_time_ms
+        status.append(res.status)
+        edge[k] = _check_loaded(res, reach, offs, t)
+        fedge[k] = _field_edge(res.contact_masks)
+        rot_lcp[k], rot_pre[k] = res.rotation_rad, th_pre
+        for pc, w in zip(contacts, wp):
+            w_pre[row[pc.offset], k] = w
+            levers[row[pc.offset], k] = pc.lever_mm
+        warm = {}
+        for pc, w, b in zip(reach, res.loads_n, blocks):
+            w_lcp[row[pc.offset], k] = float(w.sum())
+            warm[pc.offset] = w / b.grid.cell_area_mm2
+        if k == k_ref:
+            ref = contacts
+    comp = _compliances(ref, fields, torque, eps, materials, tol)
+    sign = -1 if cycle.envelope_is_max else 1
+    env = np.asarray(cycle.envelope_arcsec, float)
+    share = ACTIVE_SHARE
+    timings = {"fields_s": fields.seconds, "solves_s": float(solve_ms.sum()) / 1e3,
+               "total_s": time.perf_counter() - t_all}
+    return LoadedTE(
+        torque_nm=t, phi1_rad=np.asarray(cycle.phi1_rad, float), te0_arcsec=env,
+        te_lcp_arcsec=env + sign * rot_lcp * ARCSEC_PER_RAD,
+        te_pre_arcsec=env + sign * rot_pre * ARCSEC_PER_RAD,
+        rotation_lcp_arcsec=rot_lcp * ARCSEC_PER_RAD,
+        rotation_pre_arcsec=rot_pre * ARCSEC_PER_RAD, te_sign=sign,
+        pair_offsets=tuple(cycle.pair_offsets), pair_loads_lcp_n=w_lcp,
+        pair_loads_pre_n=w_pre, lever_mm=levers,
+        active_lcp=(w_lcp > share * w_lcp.sum(axis=0)).sum(axis=0),
+        active_pre=(w_pre > share * w_pre.sum(axis=0)).sum(axis=0),
+        edge_contact=edge, field_edge=fedge, status=tuple(status), solve_ms=solve_ms,
+        field_ms=field_ms, reference_index=int(k_ref), cells=int(cells),
+        timings_s=timings, **comp)
