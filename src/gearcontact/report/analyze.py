@@ -37,6 +37,7 @@ from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, get_engine
 from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import write_csv, write_tca_outputs
+from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
 from .summary import write_summary
 
@@ -118,7 +119,10 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     """
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
-    torques = sorted(float(t) for t in torques_nm)
+    # validate cheap inputs before the expensive stages
+    torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
+    if not torques:
+        raise InputRangeError("torques_nm", torques_nm, "at least one torque")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     timings = {}
