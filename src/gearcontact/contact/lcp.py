@@ -28,7 +28,8 @@ Windowing (all solvers)
     the window ``{h <= b}`` (its bounding box for FFT). If the window's solution has
     ``delta <= b`` it is the solution on the whole grid (cells outside have
     ``s >= h - delta > 0``); otherwise ``b`` grows and the solve is repeated, warm.
-    ``b`` starts from a flat-punch estimate (Johnson 1985, eq. 5.4) of the approach.
+    ``b`` starts from a flat-punch estimate of the approach (rigid circular punch,
+    Johnson 1985 ch. 3).
 
 References
 ----------
@@ -329,8 +330,8 @@ def _initial_bound(h: np.ndarray, area: np.ndarray, load_n: float, e_star: float
     """Gap level ``b*`` at which the flat-punch approach of ``{h <= b*}`` equals ``b* - hmin``.
 
     A rigid circular punch of radius ``a`` under ``W`` sinks ``W / (2 a E*)`` (Johnson
-    1985, eq. 5.4 with both bodies in E*). For a Hertzian gap ``b* - hmin`` is about
-    0.47 of the true approach. Returns ``inf`` if the whole grid does not reach it.
+    1985 ch. 3, both bodies in E*). For a Hertzian gap ``b* - hmin`` is about half the
+    true approach. Returns ``inf`` if the whole grid does not reach it.
     """
     order = np.argsort(h, kind="stable")
     hs = h[order]
