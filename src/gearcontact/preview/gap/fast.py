@@ -246,7 +246,7 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
     if not 1 <= g.shape[0] <= MAX_SAMPLES or g.ndim != 2 or n.shape != g.shape:
         raise InputRangeError("g_code/n_code shape", (g.shape, n.shape),
                               f"equal shapes (N, 3), 1 <= N <= {MAX_SAMPLES}")
-    check_codes(fmt, r=r, t=t, p=p, g=g, n=n, tau2=tau2_code)
+    check_codes(fmt=fmt, r=r, t=t, p=p, g=g, n=n, tau2=tau2_code)
     cmin, cmax = fmt.coord.min_code, fmt.coord.max_code
     out_gap = np.empty(m, np.int64)
     out_idx = np.empty(m, np.int64)

@@ -380,7 +380,7 @@ def _quantize_normal_array(x, fmt: GapFormat, field: str) -> np.ndarray:
     return code
 
 
-def quantize_tau2(tau_mm: float, fmt: GapFormat = DEFAULT_FORMAT) -> int:
+def quantize_tau2(tau_mm: float, *, fmt: GapFormat = DEFAULT_FORMAT) -> int:
     """Gate code ``ceil(tau^2 2^rho_frac)`` (exact rational arithmetic).
 
     For an integer residual code r, ``r < ceil(x)`` iff ``r < x``: the integer gate
@@ -408,10 +408,10 @@ def quantize_pass(R, t, p, samples_xyz, normals, *, tau_mm: float,
                      p_code=fmt.coord.quantize_array(p, field="p_mm"),
                      g_code=fmt.coord.quantize_array(g, field="samples_xyz_mm"),
                      n_code=_quantize_normal_array(n, fmt, "normals"),
-                     tau2_code=quantize_tau2(tau_mm, fmt))
+                     tau2_code=quantize_tau2(tau_mm, fmt=fmt))
 
 
-def check_codes(fmt: GapFormat = DEFAULT_FORMAT, *, r=None, t=None, p=None, g=None,
+def check_codes(*, fmt: GapFormat = DEFAULT_FORMAT, r=None, t=None, p=None, g=None,
                 n=None, tau2=None) -> None:
     """Raise :class:`InputRangeError` unless the given code arrays are in contract.
 
@@ -443,7 +443,7 @@ def check_codes(fmt: GapFormat = DEFAULT_FORMAT, *, r=None, t=None, p=None, g=No
         raise InputRangeError("tau2_code", tau2, "an integer in [1, 2^63 - 1]")
 
 
-def check_vector(vec: GapVector, fmt: GapFormat = DEFAULT_FORMAT) -> None:
+def check_vector(vec: GapVector, *, fmt: GapFormat = DEFAULT_FORMAT) -> None:
     """Raise :class:`InputRangeError` unless every code of ``vec`` is in contract."""
     for name, shape in (("r_code", (3, 3)), ("t_code", (3,)), ("p_code", (3,))):
         if np.shape(getattr(vec, name)) != shape:
@@ -453,7 +453,7 @@ def check_vector(vec: GapVector, fmt: GapFormat = DEFAULT_FORMAT) -> None:
             or np.shape(vec.n_code) != n:
         raise InputRangeError("g_code/n_code shape", (n, np.shape(vec.n_code)),
                               f"equal shapes (N, 3), 1 <= N <= {MAX_SAMPLES}")
-    check_codes(fmt, r=vec.r_code, t=vec.t_code, p=vec.p_code, g=vec.g_code,
+    check_codes(fmt=fmt, r=vec.r_code, t=vec.t_code, p=vec.p_code, g=vec.g_code,
                 n=vec.n_code, tau2=vec.tau2_code)
 
 
@@ -502,7 +502,7 @@ def gap_golden_terms(vec: GapVector, *, fmt: GapFormat = DEFAULT_FORMAT):
     FixedPointOverflow
         If p' leaves the coordinate format (the core would flag ``overflow``).
     """
-    check_vector(vec, fmt)
+    check_vector(vec, fmt=fmt)
     pp, ovf = _posed_point(vec, fmt)
     if ovf:
         raise FixedPointOverflow("posed_point_code", pp, fmt.coord)
@@ -531,7 +531,7 @@ def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
         Exactly the core's output registers (tie rules in the module docstring).
     """
     lanes = check_lanes(lanes)
-    check_vector(vec, fmt)
+    check_vector(vec, fmt=fmt)
     pp, ovf = _posed_point(vec, fmt)
     if ovf:
         return GapCodes(fmt.gap_sentinel, IDX_SENTINEL, False, True)
