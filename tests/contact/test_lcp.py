@@ -222,3 +222,17 @@ def test_pk_cg_gap_margin_fallback_to_whole_window(make_hertz, monkeypatch):
     assert res.converged, res.message
     _agree(res, ref)
     assert np.array_equal(res.contact_mask, ref.contact_mask)
+
+
+def test_linear_algebra_failure_is_reported_not_raised(make_hertz, monkeypatch):
+    prob = make_hertz(1.0, 8)
+
+    def broken(*args, **kwargs):
+        raise np.linalg.LinAlgError("matrix is not positive definite")
+
+    monkeypatch.setattr(lcp, "_bordered_solve", broken)
+    res = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, solver="active_set")
+    assert res.status == "failed" and "not positive definite" in res.message
+    with pytest.raises(LcpConvergenceError):
+        solve_lcp(prob.gap_mm, prob.grid, LOAD_N, solver="active_set",
+                  raise_on_failure=True)

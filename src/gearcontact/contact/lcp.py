@@ -454,13 +454,18 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
             sel = cand[box].ravel()
             c = dense_influence_matrix(sub, e_star_mpa=e_star, cells=np.flatnonzero(sel))
             hs = h.ravel()[sel]
-            if solver == "nnls":
-                guess = 2.1 * (b_star - hmin) if np.isfinite(b_star) else np.ptp(hs)
-                ws, delta, it, ok, msg = _nnls_reference(c, hs, load, n_iter,
-                                                         hmin + guess)
-            else:
-                ws, delta, it, ok, msg = _active_set(c, hs, load, w0.ravel()[sel] > 0.0,
-                                                     tol, n_iter, sub.is_uniform)
+            try:
+                if solver == "nnls":
+                    guess = 2.1 * (b_star - hmin) if np.isfinite(b_star) else np.ptp(hs)
+                    ws, delta, it, ok, msg = _nnls_reference(c, hs, load, n_iter,
+                                                             hmin + guess)
+                else:
+                    ws, delta, it, ok, msg = _active_set(c, hs, load,
+                                                         w0.ravel()[sel] > 0.0, tol,
+                                                         n_iter, sub.is_uniform)
+            except linalg.LinAlgError as exc:  # a non-SPD / singular active block
+                ws, delta, it, ok = np.zeros_like(hs), np.nan, 0, False
+                msg = f"{solver} failed: {exc}"
             w = np.zeros(h.size)
             w[np.flatnonzero(sel)] = ws
             w = w.reshape(h.shape)
