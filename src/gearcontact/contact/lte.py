@@ -51,8 +51,11 @@ transmitting pair):
 * mesh compliance: the same with all pairs within reach sharing the torque.
 
 Scope: rigid teeth (no bending, no base rotation); pairs whose unloaded mating point
-has left a flank (TE0 undefined) are not considered (no tip-edge contact model); the
-loaded cells next to a flank boundary are reported (``edge_contact``).
+has left a flank (TE0 undefined) are not considered (no tip-edge contact model): if such
+a pair still carried load at the previous phase, TE_LCP steps there and the load is
+reported (``dropped_load_n``); loaded cells next to a flank boundary are reported
+(``edge_contact``). The pairs come from the TCA's mesh cycle, whose continuation can
+lose a pair's path end at coarse phase steps (s0003: use >= 11 phases per pitch).
 
 References
 ----------
@@ -149,6 +152,10 @@ class LoadedTE:
         A loaded cell borders a flank boundary (tip, root or end) at that phase.
     field_edge : ndarray (K,) of bool
         A patch reaches the edge of its field (field too small; results truncated).
+    dropped_load_n : ndarray (K,)
+        LCP load that pairs carried at the previous phase when their mating point has
+        left the flanks at this one (they are dropped: no tip-edge contact model, so
+        TE_LCP steps there), N.
     status : tuple of str
         LCP status per phase.
     solve_ms, field_ms : ndarray (K,)
@@ -184,6 +191,7 @@ class LoadedTE:
     active_pre: np.ndarray
     edge_contact: np.ndarray
     field_edge: np.ndarray
+    dropped_load_n: np.ndarray
     status: tuple
     solve_ms: np.ndarray
     field_ms: np.ndarray
@@ -242,6 +250,7 @@ class LoadedTE:
                 "active_pairs_pre_max": int(self.active_pre.max()),
                 "edge_contact_phases": int(self.edge_contact.sum()),
                 "field_edge_phases": int(self.field_edge.sum()),
+                "max_dropped_load_n": float(self.dropped_load_n.max()),
                 "converged": self.converged,
                 "unconverged_phases": int(sum(s != "converged" for s in self.status)),
                 "te_sign": self.te_sign, "cells": self.cells,
@@ -255,7 +264,8 @@ class LoadedTE:
                   "rotation_lcp_arcsec", "rotation_pre_arcsec", "active_lcp", "active_pre"]
         header += [f"load_lcp_pair{o:+d}_n" for o in self.pair_offsets]
         header += [f"load_pre_pair{o:+d}_n" for o in self.pair_offsets]
-        header += ["edge_contact", "field_edge", "status", "solve_ms", "field_ms"]
+        header += ["edge_contact", "field_edge", "dropped_load_n", "status", "solve_ms",
+                   "field_ms"]
         rows = []
         for k in range(len(self.phi1_rad)):
             rows.append([k, float(np.degrees(self.phi1_rad[k])), float(self.te0_arcsec[k]),
@@ -266,7 +276,7 @@ class LoadedTE:
                         + [float(w) for w in self.pair_loads_lcp_n[:, k]]
                         + [float(w) for w in self.pair_loads_pre_n[:, k]]
                         + [int(self.edge_contact[k]), int(self.field_edge[k]),
-                           self.status[k], float(self.solve_ms[k]),
+                           float(self.dropped_load_n[k]), self.status[k], float(self.solve_ms[k]),
                            float(self.field_ms[k])])
         return header, rows
 
@@ -535,6 +545,13 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         if k == k_ref:
             ref = contacts
     comp = _compliances(ref, fields, torque, eps, materials, tol)
+    # loads of pairs that lose their mating point; pair j at phase 0 is pair j - 1 at
+    # phase K-1 (the next pitch starts there), so its predecessor is pair j - 1 at K-2
+    prev = np.zeros_like(w_lcp)
+    prev[:, 1:] = w_lcp[:, :-1]
+    if n_k > 2:
+        prev[1:, 0] = w_lcp[:-1, -2]
+    dropped = (prev * ~np.isfinite(cycle.te0_pairs_arcsec)).sum(axis=0)
     sign = -1 if cycle.envelope_is_max else 1
     env = np.asarray(cycle.envelope_arcsec, float)
     share = ACTIVE_SHARE
@@ -550,6 +567,6 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         pair_loads_pre_n=w_pre, lever_mm=levers,
         active_lcp=(w_lcp > share * w_lcp.sum(axis=0)).sum(axis=0),
         active_pre=(w_pre > share * w_pre.sum(axis=0)).sum(axis=0),
-        edge_contact=edge, field_edge=fedge, status=tuple(status), solve_ms=solve_ms,
+        edge_contact=edge, field_edge=fedge, dropped_load_n=dropped, status=tuple(status), solve_ms=solve_ms,
         field_ms=field_ms, reference_index=int(k_ref), cells=int(cells),
         timings_s=timings, **comp)

@@ -1,0 +1,257 @@
+"""Loaded TE: the torque-constrained multi-pair LCP and the LTE along the mesh phase.
+
+Independent truths:
+
+* one pair with lever 1 and no opening is exactly the load-constrained LCP of
+  :func:`gearcontact.contact.lcp.solve_lcp` (theta = delta, same loads), for every
+  solver there (agreement to their tolerance, 1e-6 relative);
+* two pairs: a nested root find on the load split built on ``solve_lcp`` (equal rotation
+  of both pairs, torque balance) -- a different algorithm for the same equations;
+* conservation: torque balance sum W_j l_j = T exactly (the constraint is imposed);
+  symmetric pairs share equally; a pair out of reach carries nothing;
+* analytic limits: Hertzian preview balance with one pair, theta = kappa (T/l)^(2/3)/l;
+  the LCP contact compliance of a pure-Hertz gap equals d(delta_Hertz)/dW = (2/3)
+  delta/W (exact elliptic Hertz, Johnson 1985 eq. 4.39-4.41); on s0003 at a torque low
+  enough for one pair at P0 the LTE rotation is the single-pair approach / lever;
+* periodicity: the last phase of a pitch is the first one with the pairs renumbered.
+"""
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from gearcontact.analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz
+from gearcontact.contact.grid import TangentGrid
+from gearcontact.contact.lcp import solve_lcp
+from gearcontact.contact.lte import ARCSEC_PER_RAD, loaded_te, preview_balance
+from gearcontact.contact.mesh_lcp import PairBlock, solve_mesh_lcp
+from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.validation import InputRangeError
+
+from .conftest import A_PER_MM, E_STAR_MPA
+
+#: Relative agreement of two converged solvers of the same LCP (their tolerance 1e-8 on
+#: the load change; residual_tol 1e-6).
+SOLVER_RTOL = 1e-6
+
+
+# ------------------------------------------------------------------ solver (analytic)
+@pytest.mark.parametrize("solver", ["pk_cg", "nnls", "active_set"])
+def test_single_pair_is_the_load_constrained_lcp(make_hertz, solver):
+    pb = make_hertz(10, 6)  # small: the nnls reference is cubic in the cells
+    ref = solve_lcp(pb.gap_mm, pb.grid, 1000.0, solver=solver, warn_coarse=False)
+    res = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 1.0)], 1000.0)
+    assert res.converged and ref.converged
+    assert res.rotation_rad == pytest.approx(ref.delta_mm, rel=SOLVER_RTOL)
+    np.testing.assert_allclose(res.loads_n[0], ref.loads_n, rtol=0,
+                               atol=SOLVER_RTOL * ref.loads_n.max())
+
+
+def test_lever_scaling(make_hertz):
+    # a lever l and torque l W is the same contact: theta = delta / l, loads unchanged
+    pb = make_hertz(3, 8)
+    one = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 1.0)], 1000.0)
+    res = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 37.0)], 37000.0)
+    assert res.rotation_rad * 37.0 == pytest.approx(one.rotation_rad, rel=1e-9)
+    assert res.pair_loads_n[0] == pytest.approx(1000.0, rel=1e-12)
+
+
+def _nested_reference(p1, p2, l1, l2, g2, torque):
+    """Load split by Brent on W1 with solve_lcp per pair: equal rotations."""
+    def mismatch(w1):
+        w2 = (torque - l1 * w1) / l2
+        d1 = solve_lcp(p1.gap_mm, p1.grid, w1).delta_mm
+        d2 = solve_lcp(p2.gap_mm, p2.grid, w2).delta_mm
+        return d1 / l1 - (d2 + g2) / l2
+
+    w1 = brentq(mismatch, 0.3 * torque / l1, 0.99 * torque / l1, xtol=1e-10)
+    return w1, (torque - l1 * w1) / l2, solve_lcp(p1.gap_mm, p1.grid, w1).delta_mm / l1
+
+
+def test_two_pairs_against_nested_root_find(make_hertz):
+    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
+    l1, l2, g2, torque = 40.0, 35.0, 0.004, 40000.0
+    res = solve_mesh_lcp([PairBlock(p1.gap_mm, p1.grid, l1),
+                          PairBlock(p2.gap_mm, p2.grid, l2, g2)], torque)
+    w1, w2, theta = _nested_reference(p1, p2, l1, l2, g2, torque)
+    assert res.converged
+    np.testing.assert_allclose(res.pair_loads_n, [w1, w2], rtol=SOLVER_RTOL)
+    assert res.rotation_rad == pytest.approx(theta, rel=SOLVER_RTOL)
+    # torque balance is imposed: exact to round-off
+    assert res.pair_loads_n @ [l1, l2] == pytest.approx(torque, rel=1e-12)
+    assert res.torque_residual < 1e-12 and res.complementarity_residual < 1e-6
+    np.testing.assert_allclose(res.approach_mm, [l1 * theta, l2 * theta - g2],
+                               rtol=SOLVER_RTOL)
+
+
+def test_symmetric_pairs_share_equally_and_far_pair_is_idle(make_hertz):
+    pb = make_hertz(10, 8)
+    sym = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 30.0)] * 2, 60000.0)
+    assert sym.pair_loads_n[0] == pytest.approx(sym.pair_loads_n[1], rel=1e-8)
+    one = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 30.0)], 60000.0)
+    # opening 1 mm: never reached by an approach of tens of micrometres
+    far = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 30.0),
+                          PairBlock(pb.gap_mm, pb.grid, 30.0, 1.0)], 60000.0)
+    assert far.pair_loads_n[1] == 0.0
+    assert far.rotation_rad == pytest.approx(one.rotation_rad, rel=SOLVER_RTOL)
+
+
+def test_hertz_contact_compliance(make_hertz):
+    # c = d delta / dW of a pure-Hertz gap = (2/3) delta_Hertz / W; central difference
+    # +-5 % (truncation 2e-4) on 16 cells per semi-axis (approach within 0.5 %, the
+    # solver tests' bound): 1 % tolerance
+    pb = make_hertz(10, 16)
+    w, eps = 1000.0, 0.05
+    th = [solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 1.0)], w * (1 + s * eps)
+                         ).rotation_rad for s in (1, -1)]
+    c = (th[0] - th[1]) / (2 * eps * w)
+    hz = exact_elliptic_hertz(A_PER_MM, 10 * A_PER_MM, w, e_prime_mpa=2 * E_STAR_MPA)
+    assert c == pytest.approx(2.0 / 3.0 * hz.approach_mm / w, rel=0.01)
+
+
+def test_bad_input(make_hertz):
+    pb = make_hertz(3, 8)
+    with pytest.raises(InputRangeError, match="blocks"):
+        solve_mesh_lcp([], 1.0)
+    with pytest.raises(InputRangeError, match="torque_nmm"):
+        solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 1.0)], 0.0)
+    with pytest.raises(InputRangeError, match="offset_mm"):
+        PairBlock(pb.gap_mm, pb.grid, 1.0, -1e-3)
+    with pytest.raises(InputRangeError, match="lever_mm"):
+        PairBlock(pb.gap_mm, pb.grid, 0.0)
+    bad = pb.gap_mm.copy()
+    bad[0, 0] = np.nan
+    with pytest.raises(InputRangeError, match="gap_mm"):
+        PairBlock(bad, pb.grid, 1.0)
+    nonuni = TangentGrid.from_edges(np.r_[0.0, 1.0, 3.0], np.r_[0.0, 1.0])
+    with pytest.raises(InputRangeError, match="uniform"):
+        PairBlock(np.zeros((1, 2)), nonuni, 1.0)
+
+
+def test_non_convergence_is_reported(make_hertz):
+    pb = make_hertz(10, 8)
+    res = solve_mesh_lcp([PairBlock(pb.gap_mm, pb.grid, 1.0)], 1000.0, max_iter=2)
+    assert not res.converged and res.status == "max_iter" and "stopped" in res.message
+
+
+# ---------------------------------------------------------------- preview balance
+def test_preview_balance_limits():
+    # one pair: theta = kappa (T/l)^(2/3) / l exactly
+    th, w = preview_balance([36.0], [0.0], [2e-4], 64500.0)
+    assert th == pytest.approx(2e-4 * (64500.0 / 36.0) ** (2 / 3) / 36.0, rel=1e-12)
+    assert w[0] == pytest.approx(64500.0 / 36.0, rel=1e-12)
+    lv, g, kap = np.array([36.0, 38.0, 34.0]), np.array([0.0, 2e-3, 1.0]), np.full(3, 2e-4)
+    th, w = preview_balance(lv, g, kap, 64500.0)
+    assert w @ lv == pytest.approx(64500.0, rel=1e-12)   # torque balance
+    assert w[2] == 0.0                                    # out of reach
+    # both loaded pairs at the same rotation: delta_j = kappa W_j^(2/3) = l_j theta - g_j
+    np.testing.assert_allclose(kap[:2] * w[:2] ** (2 / 3), lv[:2] * th - g[:2], rtol=1e-10)
+
+
+# ------------------------------------------------------------------------- s0003
+#: 11 phases per pitch: the TCA continuation keeps the neighbouring pairs' paths (at 7
+#: or 9 it loses path ends of s0003 and the pairs drop out early)
+PHASES = 11
+CELLS = 24
+
+
+@pytest.fixture(scope="module")
+def s0003_pair():
+    from gearcontact.geometry.pair import load_pair
+    return load_pair("s0003")
+
+
+@pytest.fixture(scope="module")
+def s0003_flanks(s0003_pair):
+    from gearcontact.geometry.flank import build_flanks
+    return build_flanks(s0003_pair)
+
+
+@pytest.fixture(scope="module")
+def s0003_tca(s0003_pair, s0003_flanks):
+    from gearcontact.tca.analysis import analyze_pair
+    return analyze_pair(s0003_pair, side="drive", phases=PHASES, flanks=s0003_flanks)[0]
+
+
+@pytest.fixture(scope="module")
+def lte(s0003_tca, s0003_flanks, s0003_pair):
+    return loaded_te(s0003_tca, s0003_flanks, s0003_pair, 64.5, cells=CELLS)
+
+
+def test_s0003_torque_balance_and_status(lte):
+    assert lte.converged
+    torque = 64.5e3
+    for loads in (lte.pair_loads_lcp_n, lte.pair_loads_pre_n):
+        moments = np.nansum(loads * np.nan_to_num(lte.lever_mm), axis=0)
+        np.testing.assert_allclose(moments, torque, rtol=1e-10)
+    assert lte.active_lcp.min() >= 1 and lte.active_pre.min() >= 1
+
+
+def test_s0003_sign_and_periodicity(lte, s0003_tca):
+    # s0003 drive: envelope = min over the pairs -> loaded TE = TE0 + theta
+    assert not s0003_tca.cycle.envelope_is_max and lte.te_sign == 1
+    np.testing.assert_allclose(lte.te_lcp_arcsec - lte.te0_arcsec, lte.rotation_lcp_arcsec,
+                               rtol=1e-12)
+    assert (lte.rotation_lcp_arcsec > 0).all()
+    # the last phase is the first with pair j -> j - 1: same state (fields shared), so
+    # the same TE up to the solver tolerance (1e-8 on the loads -> ~1e-6 arcsec)
+    assert lte.te_lcp_arcsec[-1] == pytest.approx(lte.te_lcp_arcsec[0], abs=1e-4)
+    np.testing.assert_allclose(lte.pair_loads_lcp_n[:-1, -1], lte.pair_loads_lcp_n[1:, 0],
+                               rtol=1e-5, atol=1e-6)
+    assert lte.te_pre_arcsec[-1] == pytest.approx(lte.te_pre_arcsec[0], abs=1e-9)
+    # a pair whose mating point leaves the flanks takes its last load with it, in the
+    # same way at both ends of the pitch
+    assert lte.dropped_load_n[-1] == pytest.approx(lte.dropped_load_n[0], rel=1e-5)
+    lost = ~np.isfinite(s0003_tca.cycle.te0_pairs_arcsec[:, -1])
+    assert lte.dropped_load_n[-1] == pytest.approx(lte.pair_loads_lcp_n[lost, -2].sum())
+
+
+def test_s0003_lcp_close_to_preview_and_continuous(lte):
+    # the real gap near each mating point is nearly quadratic: the LCP rotation stays
+    # within 5 % of the Hertzian one (measured ~2 %; coarse 24-cell fields, edge trimming)
+    np.testing.assert_allclose(lte.rotation_lcp_arcsec, lte.rotation_pre_arcsec, rtol=0.05)
+    # continuity along the phase: between neighbouring phases the rotation moves by far
+    # less than itself (a jump would show a pair switching in or out discontinuously)
+    assert np.abs(np.diff(lte.rotation_lcp_arcsec)).max() < 0.05 * lte.rotation_lcp_arcsec.min()
+    assert lte.te0_pp_arcsec == pytest.approx(np.ptp(lte.te0_arcsec))
+
+
+def test_s0003_preview_compliance_is_hertzian(lte, s0003_tca, s0003_pair):
+    # transmitting pair alone at P0: c_pre = (2/3) kappa W^(-1/3) (Hamrock-Brewe),
+    # central difference +-5 %: truncation 0.074 eps^2 = 1.9e-4 -> tolerance 3e-4
+    from gearcontact.materials import effective_modulus_mpa
+    rc = s0003_tca.mean_curvature
+    w = 64.5e3 / lte.reference_lever_mm
+    hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, w,
+                             e_prime_mpa=effective_modulus_mpa(s0003_pair.pinion_material,
+                                                               s0003_pair.gear_material))
+    assert lte.compliance_pre_mm_per_n == pytest.approx(2 / 3 * hb.approach_mm / w, rel=3e-4)
+    # near-Hertzian real gap: LCP within 5 % of the preview (measured ~1.5 %)
+    assert lte.compliance_lcp_mm_per_n == pytest.approx(lte.compliance_pre_mm_per_n, rel=0.05)
+    # sharing with the neighbours stiffens the mesh
+    assert lte.mesh_compliance_lcp_mm_per_n < lte.compliance_lcp_mm_per_n
+
+
+def test_s0003_single_pair_limit(s0003_tca, s0003_flanks, s0003_pair):
+    # at 0.5 N·m the neighbours of P0 stay open (approach ~3 arcsec vs an opening of
+    # ~13 arcsec), so the LTE rotation at P0 is the single-pair approach / lever on the
+    # same field: equal to solver tolerance
+    low = loaded_te(s0003_tca, s0003_flanks, s0003_pair, 0.5, cells=CELLS)
+    k = low.reference_index
+    assert low.active_lcp[k] == 1
+    single = single_pair_ltca(s0003_tca, s0003_flanks, s0003_pair, 0.5, cells=CELLS)
+    assert low.rotation_lcp_arcsec[k] == pytest.approx(single.mesh_rotation_arcsec,
+                                                       rel=SOLVER_RTOL)
+    assert low.rotation_pre_arcsec[k] == pytest.approx(single.preview_mesh_rotation_arcsec,
+                                                       rel=1e-9)
+    assert single.lever_mm == pytest.approx(low.reference_lever_mm, rel=1e-12)
+    assert ARCSEC_PER_RAD == pytest.approx(180 * 3600 / np.pi)
+
+
+def test_s0003_bad_input(s0003_tca, s0003_flanks, s0003_pair):
+    for kw, match in (({"torque_nm": 0.0}, "torque_nm"), ({"cells": 8}, "cells"),
+                      ({"extent_factor": (1.0, 2.0)}, "extent_factor"),
+                      ({"compliance_step": 0.0}, "compliance_step")):
+        args = {"torque_nm": 64.5, **kw}
+        with pytest.raises(InputRangeError, match=match):
+            loaded_te(s0003_tca, s0003_flanks, s0003_pair, args.pop("torque_nm"), **args)
