@@ -279,11 +279,11 @@ class HertzCore(wiring.Component):
         q = div.quotient
         wb = {name: in_state(st.name) & (cnt == _WB_CNT) for name, st in _DIV_STATE.items()}
 
-        rx_q, ry_q = round_shift(q, 1), round_shift(q, 1)
+        radius_q = round_shift(q, 1)             # R_x, R_y = rs(2^40 // curvature, 1)
         with m.If(wb["R_x"]):
-            m.d.sync += [r_x.eq(rx_q), ovf.eq(ovf | ~fits(rx_q, CURVATURE))]
+            m.d.sync += [r_x.eq(radius_q), ovf.eq(ovf | ~fits(radius_q, CURVATURE))]
         with m.If(wb["R_y"]):
-            m.d.sync += [r_y.eq(ry_q), ovf.eq(ovf | ~fits(ry_q, CURVATURE))]
+            m.d.sync += [r_y.eq(radius_q), ovf.eq(ovf | ~fits(radius_q, CURVATURE))]
         with m.If(wb["alpha"]):
             m.d.sync += ops.alpha.eq(q)
             with m.If((flags == 0) & (q > F.ALPHA_MAX_CODE)):
