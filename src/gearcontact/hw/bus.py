@@ -63,8 +63,8 @@ class RegisterBlock(wiring.Component):
 
     Notes
     -----
-    Ports: ``bus`` (slave side of :data:`CSR_BUS`); ``error`` (out, 1): one-cycle pulse
-    on an access to an unmapped address; one port per non-constant register
+    Ports: ``bus`` (slave side of :data:`CSR_BUS`); ``error`` (out, 1): high in the
+    cycle of an access to an unmapped address; one port per non-constant register
     (``ro``: in, ``rw``/``wdata``: out, ``strobe``: out pulse; width
     :attr:`.regmap.Register.width`), and ``<port>__stb`` (out, 1) for ``wdata``;
     ``strobe`` and ``wdata`` outputs are combinational from the bus (access cycle).
@@ -128,8 +128,8 @@ class RegisterBlock(wiring.Component):
                          wp.data.eq(bus.dat_w), wp.en.eq(bus.we & mem_hit)]
         mem_q = Signal()
         dat_q = Signal(32)
-        m.d.sync += [bus.ack.eq(access), mem_q.eq(mem_hit), dat_q.eq(rdata),
-                     self.error.eq(access & ~mapped & ~mem_hit)]
+        m.d.sync += [bus.ack.eq(access), mem_q.eq(mem_hit), dat_q.eq(rdata)]
+        m.d.comb += self.error.eq(access & ~mapped & ~mem_hit)
         if self._mem:
             m.d.comb += bus.dat_r.eq(Mux(mem_q, rp.data, dat_q))
         else:
