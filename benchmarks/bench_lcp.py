@@ -4,7 +4,10 @@ Problems: steel paraboloid gaps ``h = A x^2 + B y^2`` (curvature ratio B/A = 1 a
 on a grid of +-2.5 contact semi-axes, with 8, 16 and 32 cells per semi-axis, i.e.
 ~200 (the paper's 196-cell size), ~800 and ~3,200 contacting cells. The solvers work
 in their certified window; Tamaas (if importable) solves the same grid with its
-non-periodic ("dcfft") Polonsky-Keer-Rey solver, cold (traction zeroed) each run.
+non-periodic ("dcfft") Polonsky-Keer-Rey solver, cold (traction zeroed) each run, and
+ContactMechanics (if importable) with its Polonsky-Keer CG on a free (non-periodic) FFT
+half-space at its default tolerances. ASPHER ships as a C++ source build only and is
+not driven.
 
 Columns: best and median wall time over the repeats (ms), best CPU time of this
 process (ms; the fairer figure on a shared machine), iterations, max pressure difference
@@ -54,6 +57,13 @@ try:  # optional peer, never a dependency
     tm.set_log_level(tm.LogLevel.error)
 except ImportError:  # pragma: no cover - depends on the machine
     tm = None
+try:  # optional peer: ContactMechanics (Pastewka group), Polonsky-Keer CG, free FFT
+    import ContactMechanics as cm
+    from ContactMechanics.Optimization import constrained_conjugate_gradients
+    from ContactMechanics.Tools.Logger import quiet
+    from SurfaceTopography import Topography
+except ImportError:  # pragma: no cover - depends on the machine
+    cm = None
 
 
 def hertz_case(ratio: float, n: int, extent: float = 2.5):
@@ -96,6 +106,23 @@ def tamaas_solver(grid, gap):
     return run
 
 
+def contactmechanics_solver(grid, gap):
+    """A cold ContactMechanics PK-CG solve (free, non-periodic FFT half-space, its
+    default tolerances) on the same grid; returns a callable giving pressure (MPa)."""
+    nx, ny = grid.nx, grid.ny
+    size = (nx * grid.dx_mm[0], ny * grid.dy_mm[0])
+    substrate = cm.FreeFFTElasticHalfSpace((nx, ny), E_STAR, size)  # young = E*
+    topography = Topography(np.ascontiguousarray(-gap.T), size)  # [i, j], x first
+    area = grid.dx_mm[0] * grid.dy_mm[0]
+
+    def run():
+        res = constrained_conjugate_gradients(substrate, topography,
+                                              external_force=LOAD_N, logger=quiet)
+        return np.asarray(res.jac).T / area
+
+    return run
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=7, help="repeats for fast solvers")
@@ -106,8 +133,8 @@ def main(argv=None):
     print(f"# bench_lcp  python {platform.python_version()}  numpy {np.__version__}  "
           f"cpus {os.cpu_count()}  load avg {os.getloadavg()[0]:.2f}")
     print(f"# tamaas: {'%s (dcfft non-periodic PKR)' % tm.__version__ if tm else 'absent'}"
-          f"; ContactMechanics / ASPHER: not installed (not on PyPI as importable "
-          f"solvers here)")
+          f"; ContactMechanics: {'PK-CG, FreeFFT, default tol' if cm else 'absent'}"
+          f"; ASPHER: absent (no Python package)")
     head = (f"{'case':<14}{'cells':>6} {'solver':<15}{'best ms':>9}{'median ms':>10}"
             f"{'cpu ms':>9}{'iters':>6}{'max|dp|/p0':>11}{'nnls/x':>8}{'tamaas/x':>9}")
     print(head)
@@ -141,6 +168,9 @@ def main(argv=None):
                                       solver="nnls"), 1)
             if tm is not None:
                 rows["tamaas PKR"] = time_solver(tamaas_solver(grid, gap), args.repeat)
+            if cm is not None:
+                rows["contactmech"] = time_solver(contactmechanics_solver(grid, gap),
+                                                  max(1, args.repeat // 3))
             t_nnls = rows["nnls"][0] if "nnls" in rows else None
             t_tm = rows["tamaas PKR"][0] if "tamaas PKR" in rows else None
             for name, (best, med, cpu, res) in rows.items():
