@@ -33,7 +33,7 @@ Windowing (all solvers)
 
 References
 ----------
-M. Polonsky, L. M. Keer, "A numerical method for solving rough contact problems based
+I. A. Polonsky, L. M. Keer, "A numerical method for solving rough contact problems based
 on the multi-level multi-summation and conjugate gradient techniques", Wear 231 (1999)
 206-219.
 E. A. H. Vollebregt, J. Comput. Phys. 257 (2014) 333-351 (FFT-based preconditioner).
