@@ -15,8 +15,8 @@ import sys
 from pathlib import Path
 
 from ..hw.harness_cores import CORE_NAMES, SIMULATORS, CoreUnavailable, get_bench
-from ..hw.verilator import (VerilatorBuildError, VerilatorNotFound, verilator_available,
-                            verilator_version)
+from ..hw.verilator import (VerilatorBuildError, VerilatorNotFound, require_verilator,
+                            verilator_available, verilator_version)
 
 #: Exit code when the RTL disagrees with the golden model (bits or cycles).
 EXIT_MISMATCH = 1
@@ -72,6 +72,8 @@ def run_sim(args) -> int:
             print("gearcontact rtl: Verilator not installed, using the Amaranth simulator "
                   "(slow); apt-get install verilator for bulk runs", file=sys.stderr)
     try:
+        if simulator == "verilator":
+            require_verilator()
         rep = run_equivalence(args.core, args.vectors, args.seed, simulator=simulator,
                               corners=not args.no_corners, **kwargs)
     except (VerilatorNotFound, VerilatorBuildError, CoreUnavailable) as exc:
