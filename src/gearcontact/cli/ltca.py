@@ -20,6 +20,7 @@ from ..contact.lcp import SOLVERS
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
 from ..geometry.pair import load_pair
+from ..validation import InputRangeError, check_positive
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_csv
 
@@ -43,6 +44,10 @@ def register(sub) -> None:
 def run(args) -> int:
     if args.phases < 3:
         raise ValueError(f"--phases = {args.phases} must be >= 3")
+    # the cheap checks before the TCA (the library checks them again)
+    check_positive("torque_nm (N·m)", args.torque)
+    if args.cells < 16:
+        raise InputRangeError("cells", args.cells, ">= 16 per side")
     pair = load_pair(args.pair)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

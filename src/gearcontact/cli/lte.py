@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..contact.lte import loaded_te
 from ..geometry.pair import load_pair
+from ..validation import InputRangeError, check_positive
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
 
@@ -37,6 +38,10 @@ def register(sub) -> None:
 def run(args) -> int:
     if args.phases < 3:
         raise ValueError(f"--phases = {args.phases} must be >= 3")
+    # the cheap checks before the TCA (the library checks them again)
+    check_positive("torque_nm (N·m)", args.torque)
+    if args.cells < 16:
+        raise InputRangeError("cells", args.cells, ">= 16 per side")
     pair = load_pair(args.pair)
     from ..report.analyze import published_values
 

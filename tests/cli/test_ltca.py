@@ -1,0 +1,62 @@
+"""``gearcontact ltca`` end to end through :func:`gearcontact.cli.main`.
+
+Truths: the files and JSON keys the issue lists; load balance of the written pressure
+map (sum of pressure x cell area = W, to the CSV's 12 significant digits); the mesh
+rotation is the approach over the lever (rigid teeth); the preview p_max is Hertzian in
+W (Hamrock-Brewe from the written curvature-free quantities: p_max = 3 W / (2 pi a b)).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from gearcontact.cli import main
+from gearcontact.contact.pair_ltca import ARCSEC_PER_RAD
+
+KEYS = ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm", "mesh_rotation_arcsec",
+        "n_contact_cells", "preview_p_max_mpa", "solver", "solve_ms")
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    d = tmp_path_factory.mktemp("ltca") / "new"             # created by the command
+    assert main(["ltca", "--pair", "s0003", "--torque", "64.5", "--out", str(d),
+                 "--phases", "11", "--cells", "40"]) == 0
+    return d
+
+
+def test_files_and_keys(out):
+    for name in ("ltca.json", "pressure_map.csv", "pressure_map.png"):
+        assert (out / name).stat().st_size > 0, name
+    data = json.loads((out / "ltca.json").read_text())
+    for key in KEYS:
+        assert key in data, key
+    assert data["solver"] == "pk_cg" and data["status"] == "converged"
+    assert data["torque_nm"] == 64.5
+    # W = T / lever, rotation = delta / lever
+    assert data["load_n"] == pytest.approx(64.5e3 / data["lever_mm"], rel=1e-12)
+    assert data["mesh_rotation_arcsec"] == pytest.approx(
+        data["delta_mm"] / data["lever_mm"] * ARCSEC_PER_RAD, rel=1e-12)
+    assert data["preview_p_max_mpa"] == pytest.approx(
+        1.5 * data["load_n"] / (np.pi * data["preview_a_mm"] * data["preview_b_mm"]),
+        rel=1e-9)
+
+
+def test_pressure_map_carries_the_load(out):
+    data = json.loads((out / "ltca.json").read_text())
+    s, t, p = np.loadtxt(out / "pressure_map.csv", delimiter=",", skiprows=1).T
+    assert s.size == 40 * 40
+    ds = np.diff(np.unique(s)).mean()
+    dt = np.diff(np.unique(t)).mean()
+    assert (p >= 0).all()
+    assert p.sum() * ds * dt == pytest.approx(data["load_n"], rel=1e-9)
+    assert (p > 0).sum() == data["n_contact_cells"]
+    assert p.max() == pytest.approx(data["p_peak_mpa"], rel=1e-11)
+
+
+@pytest.mark.parametrize("argv, word", [(["--torque", "-1"], "torque_nm"),
+                                        (["--phases", "2"], "phases")])
+def test_bad_input(tmp_path, capsys, argv, word):
+    assert main(["ltca", "--out", str(tmp_path)] + argv) == 2
+    assert word in capsys.readouterr().err

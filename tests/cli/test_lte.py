@@ -1,0 +1,58 @@
+"""``gearcontact lte`` end to end through :func:`gearcontact.cli.main`.
+
+Truths: the files and JSON keys; the peak-to-peaks in lte.json are those of the CSV
+columns (to its 12 digits); torque balance of every written row (sum_j W_j l_j = T needs
+the levers, so checked as: the per-pair loads are non-negative and the preview/LCP load
+totals agree within the Hertz-vs-LCP lever mix, 5 %); TE_LCP = TE0 + rotation (s0003
+drive, envelope = min).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from gearcontact.cli import main
+
+KEYS = ("te_lcp_pp_arcsec", "te_pre_pp_arcsec", "te0_pp_arcsec", "compliance_lcp_mm_per_n",
+        "compliance_pre_mm_per_n", "mesh_compliance_lcp_mm_per_n", "active_pairs_lcp_max",
+        "converged", "timings_s")
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    d = tmp_path_factory.mktemp("lte") / "new"
+    assert main(["lte", "--pair", "s0003", "--torque", "64.5", "--out", str(d),
+                 "--phases", "11", "--cells", "24", "--quiet"]) == 0
+    return d
+
+
+def test_files_keys_and_consistency(out):
+    for name in ("lte.json", "lte.csv", "lte.png"):
+        assert (out / name).stat().st_size > 0, name
+    data = json.loads((out / "lte.json").read_text())
+    for key in KEYS:
+        assert key in data, key
+    assert data["converged"] and data["phases"] == 11
+    header = (out / "lte.csv").read_text().splitlines()[0].split(",")
+    rows = np.genfromtxt(out / "lte.csv", delimiter=",", skip_header=1, dtype=float)
+    col = {name: rows[:, i] for i, name in enumerate(header)}
+    assert rows.shape[0] == 11
+    for key in ("te0", "te_lcp", "te_pre"):
+        assert np.ptp(col[f"{key}_arcsec"]) == pytest.approx(data[f"{key}_pp_arcsec"],
+                                                             rel=1e-10)
+    np.testing.assert_allclose(col["te_lcp_arcsec"] - col["te0_arcsec"],
+                               col["rotation_lcp_arcsec"], rtol=1e-10)
+    loads = np.column_stack([col[h] for h in header if h.startswith("load_lcp_pair")])
+    pre = np.column_stack([col[h] for h in header if h.startswith("load_pre_pair")])
+    assert (loads >= 0).all() and (pre >= 0).all()
+    np.testing.assert_allclose(loads.sum(axis=1), pre.sum(axis=1), rtol=0.05)
+    assert ((loads > 0).sum(axis=1) >= col["active_lcp"]).all()
+
+
+@pytest.mark.parametrize("argv, word", [(["--torque", "0"], "torque_nm"),
+                                        (["--cells", "8"], "cells"),
+                                        (["--phases", "1"], "phases")])
+def test_bad_input(tmp_path, capsys, argv, word):
+    assert main(["lte", "--out", str(tmp_path), "--phases", "11", "--quiet"] + argv) == 2
+    assert word in capsys.readouterr().err
