@@ -108,7 +108,7 @@ def test_quadric_fill_of_off_flank_stencil_samples(case_mp):
     case, mp = case_mp
     g = case.gear
     small = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range,
-                  (mp.v2 - 0.03, mp.v2 + 0.03))
+                  (mp.v2 - 0.01, mp.v2 + 0.01))
     st = hardware_stencil(case.pinion, small, case.kin, mp, off_flank="quadric")
     assert 0 < st.on_flank.sum() < 49
     _, _, _, k_max, k_min = case.truth(mp.phi1_rad)

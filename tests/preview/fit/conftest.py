@@ -3,10 +3,11 @@
 import numpy as np
 import pytest
 
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM, stencil_coordinates
 
 
-def quadratic_field(a_minus, b_minus, angle_deg, c0=0.0, c1=0.0, c2=0.0, spacing_mm=0.5):
+def quadratic_field(a_minus, b_minus, angle_deg, c0=0.0, c1=0.0, c2=0.0,
+                    spacing_mm=STENCIL_SPACING_MM):
     """Exact gap field ``c0 + c1 s + c2 t + A u^2 + B v^2``, u at angle_deg from s.
 
     Returns (gaps_mm (49,), (c3, c4, c5)): the quadratic coefficients follow from

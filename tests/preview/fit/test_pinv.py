@@ -7,7 +7,7 @@ from gearcontact.preview.fit.pinv import (ACC, N_TAPS, ROM_WORD, ROM_WORD_BITS, 
                                           bake_pseudo_inverse, baked_pinv,
                                           coefficient_error_bound, design_matrix,
                                           pseudo_inverse)
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM, stencil_coordinates
 from gearcontact.preview.qformat import GAP, FixedPointOverflow
 from gearcontact.validation import InputRangeError
 
@@ -76,7 +76,8 @@ def test_coefficient_error_bound_positive_and_validated():
     b = coefficient_error_bound(0.1 * s * s)
     assert b.shape == (6,) and (b > 0).all()
     # quadratic rows: |Mq|_1 * 2^-17 + ... ~ 0.95 * 7.6e-6; looser than 1e-5 means a bug
-    assert b[3] < 1e-5
+    # curvature-coefficient bound scales as 1/h^2: 1e-5 at h = 0.5 mm
+    assert b[3] < 1e-5 * (0.5 / STENCIL_SPACING_MM) ** 2
     with pytest.raises(InputRangeError, match="gaps_mm"):
         coefficient_error_bound(np.zeros(48))
 
