@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..preview.fit.stencil import STENCIL_SPACING_MM
+
 __all__ = ["write_summary"]
 
 
@@ -90,8 +92,9 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     out.append(_table(["torque (N·m)", "fp64 p_max", "golden D p_max", "golden D vs fp64 (%)",
                        "golden C->D p_max (stencil)", "C->D vs fp64 (%)", "C->D flags",
                        "C->D cycles"], rows))
-    out += ["", "The C->D column fits the 7 x 7 hardware stencil (0.5 mm spacing) of the real "
-            "gap field, so it also carries the curvature-fit error of a non-quadratic surface.",
+    out += ["", f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm "
+            "spacing) of the real gap field, so it also carries the curvature-fit error of a "
+            "non-quadratic surface.",
             "", "## Run times", ""]
     out.append(_table(["stage", "seconds"], [[k, v] for k, v in result.timings_s.items()]))
     path = Path(path)
