@@ -36,9 +36,9 @@ import numpy as np
 
 from ..hw.harness_cores import get_bench
 from ..validation import InputRangeError
-from .chain import chain_flag_names
+from .chain import FIT_FLAG_SHIFT, chain_flag_names
 from .hertz.formats import FLAG_NAMES as HERTZ_FLAG_NAMES
-from .stimulus import Stimulus
+from .stimulus import STIMULUS_CORES, Stimulus
 
 __all__ = ["VECTOR_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "HexField",
            "vector_layout", "vector_stimulus", "golden_outputs", "encode_hex",
@@ -92,26 +92,24 @@ _PORT_DOC = {
 }
 
 
-def _flag_bits(core: str) -> list[str]:
-    """Name of each bit of the core's flags word (bit 0 first)."""
+def _flag_bits(core: str, nbits: int) -> list[str]:
+    """Name of each bit of the core's flags word (bit 0 first; "-" if unused)."""
     if core == "hertz":
-        return [HERTZ_FLAG_NAMES.get(1 << i, "-") for i in range(7)]
+        return [HERTZ_FLAG_NAMES.get(1 << i, "-") for i in range(nbits)]
     if core == "chain":
-        return [", ".join(chain_flag_names(1 << i)) or "-" for i in range(12)]
+        return [", ".join(chain_flag_names(1 << i)) or "-" for i in range(nbits)]
     if core == "fit":
-        from .chain import FIT_FLAG_SHIFT
         return [", ".join(chain_flag_names(1 << (i + FIT_FLAG_SHIFT))).replace("fit_", "")
-                or "-" for i in range(4)]
-    return []
+                or "-" for i in range(nbits)]
+    return ["-"] * nbits
 
 
-def _doc(core: str, name: str) -> tuple[str, str, str]:
-    if name == "flags":
-        bits = _flag_bits(core)
-        listing = "; ".join(f"bit {i} {n}" for i, n in enumerate(bits) if n != "-")
-        return (f"UQ({len(bits)},0)", "1", f"flags word, 0 = valid ({listing})")
-    fmt, unit, meaning = _PORT_DOC.get(name, ("-", "-", "see gearcontact.hw.harness_cores"))
-    return fmt, unit, meaning
+def _doc(core: str, port) -> tuple[str, str, str]:
+    if port.name == "flags":
+        listing = "; ".join(f"bit {i} {n}" for i, n in enumerate(_flag_bits(core, port.bits))
+                            if n != "-")
+        return f"UQ({port.bits},0)", "1", f"flags word, 0 = valid ({listing})"
+    return _PORT_DOC.get(port.name, ("-", "-", "see gearcontact.hw.harness_cores"))
 
 
 @dataclass(frozen=True)
@@ -167,7 +165,7 @@ class HexField:
 
 
 def _port_field(core: str, port, shape: tuple) -> HexField:
-    return HexField(port.name, port.bits, tuple(shape), bool(port.signed), *_doc(core, port.name))
+    return HexField(port.name, port.bits, tuple(shape), bool(port.signed), *_doc(core, port))
 
 
 def vector_layout(core: str) -> tuple[tuple[HexField, ...], tuple[HexField, ...]]:
@@ -368,9 +366,12 @@ def readme_text(summary: dict, *, count: int, seed: int) -> str:
         s = summary[c]
         bench = get_bench(c)
         ins, outs = vector_layout(c)
+        gen = STIMULUS_CORES[c]
+        how = " ".join((gen.__doc__ or "").split("Parameters\n")[0].split())
         lines += [f"## {c}", "", f"{bench.summary}. {s['vectors']} vectors: "
                   f"{s['corners']} corner cases (lines 0..{s['corners'] - 1}) + {count} "
                   f"random; {s['cycles']} cycles per vector.", "",
+                  f"Operands: `gearcontact.preview.stimulus.{gen.__name__}` -- {how}", "",
                   f"### `{c}_in.hex`: {s['in_bits']} bits per line "
                   f"({s['in_bits'] // 4} hex digits)", ""]
         lines += _field_table(ins)
