@@ -248,10 +248,25 @@ def test_s0003_single_pair_limit(s0003_tca, s0003_flanks, s0003_pair):
     assert ARCSEC_PER_RAD == pytest.approx(180 * 3600 / np.pi)
 
 
+def test_s0003_stride_selects_phases(lte, s0003_tca, s0003_flanks, s0003_pair):
+    # every other phase (plus P0): the same states as the full run, to solver tolerance
+    # (only the warm starts differ)
+    sub = loaded_te(s0003_tca, s0003_flanks, s0003_pair, 64.5, cells=CELLS, stride=2)
+    sel = np.array(sorted(set(range(0, PHASES, 2)) | {lte.reference_index}))
+    np.testing.assert_array_equal(sub.phi1_rad, lte.phi1_rad[sel])
+    np.testing.assert_allclose(sub.rotation_lcp_arcsec, lte.rotation_lcp_arcsec[sel],
+                               rtol=SOLVER_RTOL)
+    np.testing.assert_allclose(sub.rotation_pre_arcsec, lte.rotation_pre_arcsec[sel],
+                               rtol=1e-12)
+    assert sub.compliance_lcp_mm_per_n == pytest.approx(lte.compliance_lcp_mm_per_n,
+                                                        rel=1e-4)
+
+
 def test_s0003_bad_input(s0003_tca, s0003_flanks, s0003_pair):
     for kw, match in (({"torque_nm": 0.0}, "torque_nm"), ({"cells": 8}, "cells"),
                       ({"extent_factor": (1.0, 2.0)}, "extent_factor"),
-                      ({"compliance_step": 0.0}, "compliance_step")):
+                      ({"compliance_step": 0.0}, "compliance_step"),
+                      ({"stride": 0}, "stride")):
         args = {"torque_nm": 64.5, **kw}
         with pytest.raises(InputRangeError, match=match):
             loaded_te(s0003_tca, s0003_flanks, s0003_pair, args.pop("torque_nm"), **args)
