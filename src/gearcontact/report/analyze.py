@@ -15,6 +15,9 @@ TCA files                   see :mod:`gearcontact.tca.export` (``tca.json``, ``t
 ``pressure_<T>Nm.csv``      pressure map at each torque (s_mm, t_mm, pressure_mpa)
 ``pressure_maps.png``       LCP pressure maps with the preview ellipse overlaid
 ``pressure_vs_load.png``    log-log preview p_max and LCP mean / p90 / peak vs W, W^(1/3)
+``lte.json``, ``lte.csv``    loaded TE over one pitch at the design torque (TE0, TE_LCP,
+                            TE_pre, active pairs, compliances; :mod:`gearcontact.contact.lte`)
+``lte.png``                 TE0, TE_LCP, TE_pre and active pairs along the phase
 ``summary.md``              readable summary with the published values beside ours
 ==========================  ==============================================================
 """
@@ -31,6 +34,7 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
+from ..contact.lte import loaded_te
 from ..contact.pair_ltca import PairLoadCase, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning
 from ..geometry.pair import load_pair
@@ -39,6 +43,7 @@ from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import write_csv, write_tca_outputs
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
+from .lte_plot import write_lte_outputs
 from .summary import write_summary
 
 __all__ = ["DEFAULT_TORQUES_NM", "Analysis", "run_analysis", "published_values"]
@@ -73,6 +78,7 @@ class Analysis:
     golden_chain: tuple
     timings_s: dict
     out_dir: Path
+    lte: object = None
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -96,7 +102,8 @@ def _preview_rows(cases, golden, chain) -> list[list]:
 
 def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases: int = 61,
                  side: str = "drive", solver: str = "pk_cg", figures: bool = True,
-                 progress: bool = True) -> Analysis:
+                 progress: bool = True, lte_torque_nm: float | None = 64.5,
+                 lte_phases: int = 11) -> Analysis:
     """Run the main job on ``pair`` (preset name, TOML path or GearPair) into ``out_dir``.
 
     Parameters
@@ -116,6 +123,12 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         Write the PNG figures.
     progress : bool
         Show progress bars.
+    lte_torque_nm : float or None
+        Gear torque of the loaded TE (N·m; the design torque), None to skip it.
+    lte_phases : int
+        At most about this many LTE phases over the pitch: every
+        ``ceil((phases - 1) / (lte_phases - 1))``-th TCA phase (the LTE costs one gap
+        field per pair and phase).
     """
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
@@ -126,7 +139,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     timings = {}
-    steps = tqdm(total=3 + len(torques), desc=f"analyze {pair.name}", disable=not progress)
+    steps = tqdm(total=4 + len(torques), desc=f"analyze {pair.name}", disable=not progress)
 
     (out / "design.json").write_text(json.dumps(pair.blank.as_dict(), indent=2))
     t0 = time.perf_counter()
@@ -184,7 +197,18 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         plot_pressure_maps(cases, out / "pressure_maps.png", title=f"{pair.name} {side}")
         plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}")
     steps.update(1)
+    lte = None
+    if lte_torque_nm is not None:
+        steps.set_postfix_str(f"LTE {lte_torque_nm:g} N·m")
+        t0 = time.perf_counter()
+        stride = max(1, -(-(len(tca.cycle.phi1_rad) - 1) // max(int(lte_phases) - 1, 1)))
+        lte = loaded_te(tca, flanks, pair, lte_torque_nm, side=side, stride=stride,
+                        progress=progress)
+        write_lte_outputs(lte, out, figures=figures, title=f"{pair.name} {side}",
+                          published=published_values(pair.name))
+        timings["lte_s"] = time.perf_counter() - t0
+    steps.update(1)
     steps.close()
-    result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out)
+    result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result
