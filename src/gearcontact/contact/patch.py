@@ -157,8 +157,8 @@ def patch_statistics(grid: TangentGrid, result: LcpResult, *,
 def solve_patch(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
                 e_star_mpa: float | None = None, solver: str = "pk_cg",
                 tol: float = 1e-8, max_iter: int | None = None, warm_start=None,
-                raise_on_failure: bool = False, warn_edge: bool = True
-                ) -> PatchContact:
+                raise_on_failure: bool = False, warn_edge: bool = True,
+                warn_coarse: bool = True) -> PatchContact:
     """Solve one loaded contact patch from its tangent-plane gap field.
 
     Parameters
@@ -174,6 +174,10 @@ def solve_patch(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
         :class:`PatchContact`).
     warn_edge : bool
         Emit :class:`ContactAtEdgeWarning` when the contact reaches the field's edge.
+    warn_coarse : bool
+        Emit :class:`~.ellipse.CoarseGridWarning` when the patch has fewer than
+        :data:`~.ellipse.MIN_CELLS_PER_SEMI_AXIS` cells per minor semi-axis (the
+        figure is always in ``cells_per_semi_axis``).
 
     Returns
     -------
@@ -190,7 +194,7 @@ def solve_patch(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
         warm_start = warm_start.lcp
     res = solve_lcp(gap_mm, grid, load_n, materials=materials, e_star_mpa=e_star_mpa,
                     solver=solver, tol=tol, max_iter=max_iter, warm_start=warm_start,
-                    raise_on_failure=raise_on_failure)
+                    raise_on_failure=raise_on_failure, warn_coarse=warn_coarse)
     return patch_statistics(grid, res, warn_edge=warn_edge)
 
 
