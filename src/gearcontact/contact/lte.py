@@ -1,31 +1,35 @@
 """Loaded transmission error (LTE) along the mesh phase, rigid teeth.
 
 At each phase of one pinion pitch of the unloaded mesh cycle
-(:class:`~gearcontact.tca.mesh.MeshCycle`) every neighbouring tooth pair ``j`` whose
-mating point lies on both flanks is a potential contact:
+(:class:`~gearcontact.tca.mesh.MeshCycle`) every neighbouring tooth pair ``j`` is a
+potential contact if its mating point lies on both flanks, or if it lies at most
+``edge_reach`` of a pitch beyond an end of its contact path (an *edge pair*: the teeth
+still touch at a flank boundary, e.g. the tip, entering or leaving mesh). Each has
 
-* its own tangent-plane gap field ``h_j`` around its own mating point (principal frame,
-  real flanks, :func:`~gearcontact.tca.stencil.gap_field`; cells off a flank get
-  :data:`~.pair_ltca.OFF_FLANK_GAP_MM` as in :func:`~.pair_ltca.single_pair_ltca`),
-  sized by the Hertzian ellipse of the pair carrying the whole torque
-  (``extent_factor`` semi-axes);
-* its lever ``l_j`` about the gear axis (:func:`~.load.torque_lever_mm`);
-* its initial separation: with the gear resting on the transmitting pair (TE0 envelope)
-  pair ``j`` stands open by ``|TE0_j - TE0_env|`` of gear rotation, i.e.
-  ``g_j = |TE0_j - TE0_env| / 206264.8 * l_j`` mm along its normal (a gear rotation
-  ``dphi2`` moves a gear point by ``l dphi2`` along the normal: the lever is the
-  moment arm of the normal, Litvin & Fuentes 2004, sec. 9.4).
+* its own tangent-plane gap field around its own mating point (edge pair: around the
+  nearest interior point of its path), principal frame, real flanks
+  (:func:`~gearcontact.tca.stencil.gap_field`), with both flanks posed as they stand
+  unloaded -- the gear resting on the transmitting pair, ``TE = TE0_env`` -- so the
+  field contains the pair's opening: its minimum is ``g_j = |TE0_j - TE0_env| / 206264.8
+  * l_j`` mm (a gear rotation ``dphi2`` moves a gear point by ``l dphi2`` along the
+  normal: the lever is the moment arm of the normal, Litvin & Fuentes 2004, sec. 9.4);
+  cells off a flank get :data:`~.pair_ltca.OFF_FLANK_GAP_MM` as in
+  :func:`~.pair_ltca.single_pair_ltca`, which trims an edge pair's contact at the
+  boundary; the field is sized by the Hertzian ellipse of the pair carrying the whole
+  torque (``extent_factor`` semi-axes);
+* its lever ``l_j`` about the gear axis (:func:`~.load.torque_lever_mm`).
 
 Under the gear torque ``T`` the gear turns by one shared rotation ``theta >= 0``
-(towards the pinion, i.e. lagging) and pair ``j`` approaches by
-``delta_j = l_j theta - g_j``; the torque balance ``sum_j W_j l_j = T`` closes the
-problem. Two models of the pairs' contact compliance:
+(towards the pinion, i.e. lagging) and closes pair ``j`` by ``l_j theta`` (on the posed
+field, i.e. approach ``l_j theta - g_j`` from its own contact); the torque balance
+``sum_j W_j l_j = T`` closes the problem. Two models of the pairs' contact compliance:
 
 * **LCP** (``TE_LCP``): the half-space LCP of each pair on its gap field, all pairs
   solved together as one torque-constrained LCP with the rotation as the multiplier
   (coupled formulation, :func:`.mesh_lcp.solve_mesh_lcp`), warm-started from the
   previous phase;
-* **preview** (``TE_pre``): Hamrock–Brewe Hertz per pair from its own relative
+* **preview** (``TE_pre``): Hamrock–Brewe Hertz per pair with a mating point (the
+  preview has no edge model: edge pairs are left out) from its own relative
   curvatures, ``delta_j(W) = kappa_j W^(2/3)`` (:func:`~gearcontact.analytic.hertz.
   hamrock_brewe_hertz`), i.e. ``W_j = ((l_j theta - g_j)_+ / kappa_j)^(3/2)``; the
   balance is a monotone scalar equation in ``theta`` solved by Brent's method.
@@ -50,10 +54,10 @@ transmitting pair):
   torque alone (for a Hertzian gap ``(2/3) delta / W``);
 * mesh compliance: the same with all pairs within reach sharing the torque.
 
-Scope: rigid teeth (no bending, no base rotation); pairs whose unloaded mating point
-has left a flank (TE0 undefined) are not considered (no tip-edge contact model): if such
-a pair still carried load at the previous phase, TE_LCP steps there and the load is
-reported (``dropped_load_n``); loaded cells next to a flank boundary are reported
+Scope: rigid teeth (no bending, no base rotation); the edge is the sharp flank boundary
+(no tip radius); a pair beyond ``edge_reach`` is not considered: if it still carried
+load at the previous phase, TE_LCP steps there and the load is reported
+(``dropped_load_n``); loaded cells next to a flank boundary are reported
 (``edge_contact``). The pairs come from the TCA's mesh cycle, whose continuation can
 lose a pair's path end at coarse phase steps (s0003: use >= 11 phases per pitch).
 
@@ -67,7 +71,7 @@ K. L. Johnson, *Contact Mechanics*, 1985, ch. 3-4. SPEC section 5.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import brentq
@@ -91,32 +95,46 @@ _REACH_FACTOR = 3.0
 
 @dataclass(frozen=True, eq=False)
 class PairContact:
-    """One potential contact (tooth pair ``offset`` at one phase): geometry and field.
+    """One potential contact (tooth pair ``offset`` at one phase): geometry and pose.
 
     Attributes
     ----------
     offset : int
         Pair index ``j``.
     path_index : int
-        Index of the mating point in the TCA path (pair ``j`` at phase ``k`` is pair 0
+        Index of the pair's state in the TCA path (pair ``j`` at phase ``k`` is pair 0
         at path index ``base + k + j n``).
+    center_index : int
+        Path index of the field's centre: ``path_index`` if the pair has a mating point,
+        else the nearest interior point of its path (edge contact).
+    phi2_rad : float
+        Gear rotation of the unloaded pose (pair-0 coordinates): the gear rests on the
+        transmitting pair, ``TE = TE0_env``.
     lever_mm : float
         Lever of the normal force about the gear axis, mm.
     opening_arcsec : float
-        ``|TE0_j - TE0_env|``, arcsec of gear rotation.
+        ``|TE0_j - TE0_env|`` (arcsec of gear rotation); NaN for an edge pair until its
+        field is known.
     A_minus_per_mm, B_minus_per_mm : float
-        Half relative principal curvatures at the mating point, 1/mm.
+        Half relative principal curvatures at the (centre) mating point, 1/mm.
     kappa_mm_per_n23 : float
         Hertzian approach coefficient: ``delta = kappa W^(2/3)`` (mm / N^(2/3)).
     """
 
     offset: int
     path_index: int
+    center_index: int
+    phi2_rad: float
     lever_mm: float
     opening_arcsec: float
     A_minus_per_mm: float
     B_minus_per_mm: float
     kappa_mm_per_n23: float
+
+    @property
+    def edge(self) -> bool:
+        """The pair's unloaded mating point has left the flanks (contact at an edge)."""
+        return self.center_index != self.path_index
 
     @property
     def offset_mm(self) -> float:
@@ -327,7 +345,13 @@ def _near(mask: np.ndarray) -> np.ndarray:
 
 
 class _Fields:
-    """Gap fields per TCA path index (pairs at the pitch ends share them)."""
+    """Gap fields per TCA path index (pairs at the pitch ends share them).
+
+    Every field is the separation of the flanks posed as they stand unloaded (gear at
+    ``pc.phi2_rad``), along the normal lines of the tangent plane at the centre point:
+    it contains the pair's opening (its minimum over the flank, ~ ``g_j``) and, for an
+    edge pair, the flank boundary that trims the contact.
+    """
 
     def __init__(self, pinion, gear, kin, cycle, *, torque_nmm, e_prime, cells, extent):
         self.args = (pinion, gear, kin)
@@ -337,16 +361,25 @@ class _Fields:
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
-        """(PairBlock, off-flank mask) of a pair contact."""
+        """(gap, grid, off-flank mask, lever) of a pair contact."""
+        from ..tca.solve import MatingPoint
         from ..tca.stencil import gap_field
 
         hit = self.cache.get(pc.path_index)
         if hit is None:
             t0 = time.perf_counter()
-            mp = self.path.points[pc.path_index]
+            pinion, gear, kin = self.args
+            mp = self.path.points[pc.center_index]
+            if pc.edge:  # the gear point of the nearest interior state, posed
+                rot, c = kin.gear_pose(pc.phi2_rad)
+                sp = gear.point(mp.u2, mp.v2)
+                mp = MatingPoint(self.path.points[pc.path_index].phi1_rad, pc.phi2_rad,
+                                 mp.u1, mp.v1, mp.u2, mp.v2, rot @ sp.r + c, rot @ sp.n)
+            else:
+                mp = replace(mp, phi2_rad=pc.phi2_rad)
             hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm,
                                      self.torque / pc.lever_mm, e_prime_mpa=self.e_prime)
-            f = gap_field(*self.args, mp, side=self.cells, frame="principal",
+            f = gap_field(pinion, gear, kin, mp, side=self.cells, frame="principal",
                           half_extent_mm=(self.extent[0] * hz.a_mm, self.extent[1] * hz.b_mm),
                           allow_outside=True)  # same values on the flank; faster Newton
             off = ~f.on_flank  # near its path's end a pair's field is partly off
@@ -355,35 +388,55 @@ class _Fields:
                                        dx_mm=float(s_axis[1] - s_axis[0]),
                                        dy_mm=float(t_axis[1] - t_axis[0]),
                                        x0_mm=float(s_axis[0]), y0_mm=float(t_axis[0]))
-            hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off)
+            lever = torque_lever_mm(mp.point_mm, mp.normal)
+            hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
             self.cache[pc.path_index] = hit
             self.seconds += time.perf_counter() - t0
-        gap, grid, off = hit
-        return PairBlock(gap, grid, pc.lever_mm, pc.offset_mm), off
+        return hit
+
+    def block(self, pc: PairContact) -> tuple[PairBlock, np.ndarray]:
+        gap, grid, off, lever = self.get(pc)
+        return PairBlock(gap, grid, lever, 0.0), off
+
+    def opening_arcsec(self, pc: PairContact) -> float:
+        """Smallest separation over the flank of the posed field, arcsec of rotation."""
+        gap, _, off, lever = self.get(pc)
+        return float(gap[~off].min()) / lever * ARCSEC_PER_RAD if (~off).any() else np.inf
 
 
 def _phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
-                    curv_cache: dict) -> list[PairContact]:
-    """The potential contacts (pairs with a mating point on both flanks) at phase k."""
+                    curv_cache: dict, edge_steps: int) -> list[PairContact]:
+    """The potential contacts at phase k: pairs with a mating point on both flanks, and
+    pairs within ``edge_steps`` path steps beyond an end of their path (edge pairs)."""
     from ..tca.curvature import relative_curvature
 
     out = []
     env = float(cycle.envelope_arcsec[k])
     n = cycle.step_index
+    path = cycle.path
+    interior = ~path.edge
     for j, off in enumerate(cycle.pair_offsets):
         te = float(cycle.te0_pairs_arcsec[j, k])
-        if not np.isfinite(te):
-            continue
         idx = base + k + off * n
-        mp = cycle.path.points[idx]
-        if idx not in curv_cache:
+        center = idx
+        if not np.isfinite(te):
+            near = np.flatnonzero(interior[max(idx - edge_steps, 0):idx + edge_steps + 1])
+            if near.size == 0:
+                continue
+            cand = near + max(idx - edge_steps, 0)
+            center = int(cand[np.argmin(np.abs(cand - idx))])
+        mp = path.points[center]
+        if center not in curv_cache:
             rc = relative_curvature(pinion, gear, kin, mp)
             kap = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, 1.0,
                                       e_prime_mpa=e_prime).approach_mm
-            curv_cache[idx] = (torque_lever_mm(mp.point_mm, mp.normal), rc.A_minus_per_mm,
-                               rc.B_minus_per_mm, kap)
-        lever, a_m, b_m, kap = curv_cache[idx]
-        out.append(PairContact(off, idx, lever, abs(te - env), a_m, b_m, kap))
+            curv_cache[center] = (torque_lever_mm(mp.point_mm, mp.normal),
+                                  rc.A_minus_per_mm, rc.B_minus_per_mm, kap)
+        lever, a_m, b_m, kap = curv_cache[center]
+        phi2 = (path.phi2_ref_rad + (path.points[idx].phi1_rad - path.phi1_ref_rad)
+                / path.ratio + env / ARCSEC_PER_RAD)
+        out.append(PairContact(off, idx, center, phi2, lever,
+                               abs(te - env) if np.isfinite(te) else np.nan, a_m, b_m, kap))
     return out
 
 
@@ -391,16 +444,19 @@ def _solve_phase(contacts, fields: _Fields, torque_nmm: float, materials, *, tol
                  warm: dict, theta_pre: float):
     """Torque-constrained LCP over the pairs within reach; returns
     (result, used contacts, blocks, off masks). Pairs left out are checked open."""
+    def opening(pc):
+        return fields.opening_arcsec(pc) if pc.edge else pc.opening_arcsec
+
     reach = [pc for pc in contacts
-             if pc.opening_arcsec / ARCSEC_PER_RAD <= _REACH_FACTOR * theta_pre]
+             if opening(pc) / ARCSEC_PER_RAD <= _REACH_FACTOR * theta_pre]
     while True:
-        built = [fields.get(pc) for pc in reach]
+        built = [fields.block(pc) for pc in reach]
         blocks = [b for b, _ in built]
         res = solve_mesh_lcp(blocks, torque_nmm, materials=materials, tol=tol,
                              warm_start=[warm.get(pc.offset) for pc in reach],
                              rotation_guess_rad=theta_pre)
         late = [pc for pc in contacts if pc not in reach
-                and pc.opening_arcsec / ARCSEC_PER_RAD < res.rotation_rad]
+                and opening(pc) / ARCSEC_PER_RAD < res.rotation_rad]
         if not late:
             return res, reach, blocks, [o for _, o in built]
         reach = reach + late
@@ -433,13 +489,14 @@ def _compliances(ref, fields: _Fields, torque: float, eps: float, materials,
     with all pairs within reach (mesh compliance), for LCP and preview.
     """
     contacts = ref
-    main = next(pc for pc in contacts if pc.offset_mm == 0.0)
+    valid = [pc for pc in contacts if not pc.edge]
+    main = next(pc for pc in valid if pc.opening_arcsec == 0.0)
     l0 = main.lever_mm
     out = {"reference_lever_mm": float(l0)}
-    for key, group in (("", [main]), ("mesh_", contacts)):
-        lv = np.array([pc.lever_mm for pc in group])
-        gs = np.array([pc.offset_mm for pc in group])
-        kap = np.array([pc.kappa_mm_per_n23 for pc in group])
+    for key, group, hertz in (("", [main], [main]), ("mesh_", contacts, valid)):
+        lv = np.array([pc.lever_mm for pc in hertz])
+        gs = np.array([pc.offset_mm for pc in hertz])
+        kap = np.array([pc.kappa_mm_per_n23 for pc in hertz])
         th_lcp, th_pre = [], []
         for sgn in (1.0, -1.0):
             tq = torque * (1.0 + sgn * eps)
@@ -459,7 +516,7 @@ def _compliances(ref, fields: _Fields, torque: float, eps: float, materials,
 def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
-              progress: bool = False) -> LoadedTE:
+              edge_reach: float = 0.5, progress: bool = False) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
     Parameters
@@ -485,6 +542,10 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         LCP tolerance (:func:`.mesh_lcp.solve_mesh_lcp`).
     compliance_step : float
         Relative torque step of the central difference, in (0, 0.5].
+    edge_reach : float
+        Pairs up to this fraction of a pitch beyond an end of their contact path are
+        kept as edge contacts (their posed field is trimmed by the flank boundary), in
+        [0, 1]; 0 drops a pair as soon as its mating point leaves the flanks.
     stride : int
         Use every ``stride``-th phase of the cycle (>= 1), plus the last one and P0: a
         cheaper LTE on a fine TCA (e.g. 61 TCA phases, stride 6 -> 11 LTE phases).
@@ -507,6 +568,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     if int(stride) != stride or stride < 1:
         raise InputRangeError("stride", stride, "an integer >= 1")
     stride = int(stride)
+    check_range("edge_reach", edge_reach, 0.0, 1.0)
     cycle = tca.cycle
     kin = pair.kinematics()
     pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
@@ -524,16 +586,20 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     rot_lcp, rot_pre = np.zeros(n_k), np.zeros(n_k)
     w_lcp, w_pre, levers = np.zeros((n_p, n_k)), np.zeros((n_p, n_k)), np.full((n_p, n_k), np.nan)
     edge, fedge = np.zeros(n_k, bool), np.zeros(n_k, bool)
+    considered = np.zeros((n_p, n_k), bool)
+    edge_steps = int(round(edge_reach * cycle.step_index))
     solve_ms, field_ms, status = np.zeros(n_k), np.zeros(n_k), []
     warm: dict = {}
     k_ref = int(np.flatnonzero(sel == cycle.mean_index)[0])
     ref = None
     for k in tqdm(range(n_k), desc=f"LTE {t:g} N·m", disable=not progress, leave=False):
         contacts = _phase_contacts(pinion, gear, kin, cycle, int(sel[k]), base, e_prime,
-                                   curv)
-        lv = np.array([pc.lever_mm for pc in contacts])
-        gs = np.array([pc.offset_mm for pc in contacts])
-        kap = np.array([pc.kappa_mm_per_n23 for pc in contacts])
+                                   curv, edge_steps)
+        valid = [pc for pc in contacts if not pc.edge]   # the preview has no edge model
+        considered[[row[pc.offset] for pc in contacts], k] = True
+        lv = np.array([pc.lever_mm for pc in valid])
+        gs = np.array([pc.offset_mm for pc in valid])
+        kap = np.array([pc.kappa_mm_per_n23 for pc in valid])
         th_pre, wp = preview_balance(lv, gs, kap, torque)
         f0 = fields.seconds
         res, reach, blocks, offs = _solve_phase(contacts, fields, torque, materials,
@@ -544,12 +610,13 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         edge[k] = _check_loaded(res, reach, offs, t)
         fedge[k] = _field_edge(res.contact_masks)
         rot_lcp[k], rot_pre[k] = res.rotation_rad, th_pre
-        for pc, w in zip(contacts, wp):
+        for pc, w in zip(valid, wp):
             w_pre[row[pc.offset], k] = w
             levers[row[pc.offset], k] = pc.lever_mm
         warm = {}
         for pc, w, b in zip(reach, res.loads_n, blocks):
             w_lcp[row[pc.offset], k] = float(w.sum())
+            levers[row[pc.offset], k] = b.lever_mm
             warm[pc.offset] = w / b.grid.cell_area_mm2
         if k == k_ref:
             ref = contacts
@@ -560,7 +627,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     prev[:, 1:] = w_lcp[:, :-1]
     if n_k > 2:
         prev[1:, 0] = w_lcp[:-1, -2]
-    dropped = (prev * ~np.isfinite(cycle.te0_pairs_arcsec[:, sel])).sum(axis=0)
+    dropped = (prev * ~considered).sum(axis=0)
     sign = -1 if cycle.envelope_is_max else 1
     env = np.asarray(cycle.envelope_arcsec, float)[sel]
     share = ACTIVE_SHARE
