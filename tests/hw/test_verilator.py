@@ -11,6 +11,7 @@ Tests that need Verilator skip, with the apt command in the reason, only when
 """
 
 import dataclasses
+import os
 import subprocess
 from pathlib import Path
 
@@ -173,6 +174,11 @@ def test_toy_core_wide_ports_bursts_and_cycles(toy_model):
     assert run.cycles.tolist() == [5] * n
     assert run.sim_cycles == 2 + int((nb + 1).sum()) + 5 * n
     assert run.cycles_per_second > 0
+    split = toy_model.run({"x": x, "y": y}, {"wr_data": data}, nb, jobs=3)
+    assert split.processes == 3 and split.sim_cycles == run.sim_cycles + 2 * 2
+    for name in run.outputs:
+        np.testing.assert_array_equal(split.outputs[name], run.outputs[name])
+    np.testing.assert_array_equal(split.cycles, run.cycles)
 
 
 def test_toy_core_second_build_is_cached(toy_model):
@@ -254,4 +260,5 @@ def test_binary_run_from_a_shell_prints_its_speed():
 @needs_verilator
 @pytest.mark.parametrize("core", hc.CORE_NAMES)
 def test_bulk_equivalence_100k(core):
-    _assert_equivalent(_report(core, SLOW_VECTORS, SEED + 1), SLOW_VECTORS)
+    rep = _report(core, SLOW_VECTORS, SEED + 1, jobs=os.cpu_count() or 1)
+    _assert_equivalent(rep, SLOW_VECTORS)

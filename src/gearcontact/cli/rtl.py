@@ -42,6 +42,8 @@ def register(sub) -> None:
     s.add_argument("--samples", type=int, default=None, metavar="N",
                    help="gap core only: samples per pass (default 16)")
     s.add_argument("--no-corners", action="store_true", help="random vectors only")
+    s.add_argument("--jobs", type=int, default=1, metavar="J",
+                   help="parallel Verilator processes (default 1)")
     s.add_argument("--json", action="store_true", help="print one JSON object")
     s.set_defaults(func=run_sim)
 
@@ -60,6 +62,8 @@ def run_sim(args) -> int:
     from ..hw.harness_cores import run_equivalence
     if args.vectors < 0:
         return _error(f"--vectors = {args.vectors} must be >= 0")
+    if args.jobs < 1:
+        return _error(f"--jobs = {args.jobs} must be >= 1")
     kwargs = {}
     if args.samples is not None:
         if args.core != "gap":
@@ -75,7 +79,7 @@ def run_sim(args) -> int:
         if simulator == "verilator":
             require_verilator()
         rep = run_equivalence(args.core, args.vectors, args.seed, simulator=simulator,
-                              corners=not args.no_corners, **kwargs)
+                              corners=not args.no_corners, jobs=args.jobs, **kwargs)
     except (VerilatorNotFound, VerilatorBuildError, CoreUnavailable) as exc:
         return _error(str(exc))
     version = verilator_version() if simulator == "verilator" else None

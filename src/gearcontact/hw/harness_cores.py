@@ -429,13 +429,18 @@ def _burst_cycles(bench: CoreBench, st: Stimulus) -> int:
     return per * len(st)
 
 
-def simulate(bench: CoreBench, st: Stimulus, simulator: str = "verilator"):
-    """Run ``st`` on the RTL: ``(outputs, cycles, sim_cycles, sim_seconds, build_s)``."""
+def simulate(bench: CoreBench, st: Stimulus, simulator: str = "verilator", *,
+             jobs: int = 1):
+    """Run ``st`` on the RTL: ``(outputs, cycles, sim_cycles, sim_seconds, build_s)``.
+
+    ``jobs`` parallel simulator processes (Verilator only); ``sim_seconds`` is summed
+    over them, so ``sim_cycles / sim_seconds`` is the speed of one process.
+    """
     if simulator == "verilator":
         t0 = time.perf_counter()
         model = verilator_model(bench.name)
         build = time.perf_counter() - t0
-        run = model.run(*bench.ports(st))
+        run = model.run(*bench.ports(st), jobs=jobs)
         return run.outputs, run.cycles, run.sim_cycles, run.seconds, build
     if simulator == "amaranth":
         t0 = time.perf_counter()
@@ -446,7 +451,7 @@ def simulate(bench: CoreBench, st: Stimulus, simulator: str = "verilator"):
 
 
 def run_equivalence(core: str, n: int, seed: int = 0, *, simulator: str = "verilator",
-                    corners: bool = True, stim: Stimulus | None = None,
+                    corners: bool = True, stim: Stimulus | None = None, jobs: int = 1,
                     **stimulus_kwargs) -> EquivalenceReport:
     """Run corner cases + ``n`` random vectors through the RTL and the golden model.
 
@@ -461,6 +466,8 @@ def run_equivalence(core: str, n: int, seed: int = 0, *, simulator: str = "veril
         Include the corner cases.
     stim : Stimulus, keyword-only, optional
         Use these vectors instead of generating them.
+    jobs : int, keyword-only
+        Parallel Verilator processes over chunks of the vectors.
 
     Returns
     -------
@@ -476,7 +483,7 @@ def run_equivalence(core: str, n: int, seed: int = 0, *, simulator: str = "veril
     bench = get_bench(core)
     st = stim if stim is not None else bench.stimulus(n, seed, corners=corners,
                                                       **stimulus_kwargs)
-    outs, cycles, sim_cycles, sim_s, build_s = simulate(bench, st, simulator)
+    outs, cycles, sim_cycles, sim_s, build_s = simulate(bench, st, simulator, jobs=jobs)
     t0 = time.perf_counter()
     gold = bench.golden(st)
     golden_s = time.perf_counter() - t0

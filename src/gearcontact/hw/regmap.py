@@ -213,8 +213,9 @@ TIMER0 = Region("timer0", 0x2000, (
              width=1),
     Register("value", 0x10, "ro", None, "count latched by update_value, cycles"),
     Register("ev_status", 0x14, "ro", None, "1 while the count is zero", width=1),
-    Register("ev_pending", 0x18, "ro", None, "zero event seen (sticky; no IRQ here)",
-             width=1),
+    Register("ev_pending", 0x18, "rw", None,
+             "LiteX: zero event pending, write 1 to clear (no CPU, no IRQ; the simulated "
+             "SoC keeps plain storage)", width=1),
     Register("ev_enable", 0x1C, "rw", None, "interrupt enable (no CPU: unused)", width=1),
 ))
 

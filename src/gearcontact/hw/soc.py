@@ -283,20 +283,17 @@ class SocTop(wiring.Component):
     def _timer(m, regs):
         """LiteX ``Timer`` semantics: down-counter preloaded with ``load`` while
         disabled, reloading ``reload`` at zero while enabled; ``update_value`` latches."""
-        count, value, pending = Signal(32), Signal(32), Signal()
+        count, value = Signal(32), Signal(32)
         with m.If(regs.timer0__en):
             with m.If(count == 0):
                 m.d.sync += count.eq(regs.timer0__reload)
             with m.Else():
                 m.d.sync += count.eq(count - 1)
-            with m.If(count == 0):
-                m.d.sync += pending.eq(1)
         with m.Else():
             m.d.sync += count.eq(regs.timer0__load)
         with m.If(regs.timer0__update_value):
             m.d.sync += value.eq(count)
-        m.d.comb += [regs.timer0__value.eq(value), regs.timer0__ev_status.eq(count == 0),
-                     regs.timer0__ev_pending.eq(pending)]
+        m.d.comb += [regs.timer0__value.eq(value), regs.timer0__ev_status.eq(count == 0)]
 
 
 def convert_verilog(kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE,

@@ -17,10 +17,12 @@ Published figures (SPEC section 7) are in :data:`PUBLISHED` for side-by-side tab
 from __future__ import annotations
 
 import csv
+import os
 import re
 import shutil
 import subprocess
 import sys
+import threading
 import time
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
@@ -70,6 +72,8 @@ class SynthResult:
         Longest topological path between flip-flops (``ltp -noff t:FD* %n``), cells.
     seconds : float
         Wall time of the Yosys run.
+    cpu_seconds : float
+        CPU time of the Yosys process (robust against other load on the machine).
     """
 
     core: str
@@ -86,6 +90,7 @@ class SynthResult:
     SRL: int = 0
     depth: int = 0
     seconds: float = 0.0
+    cpu_seconds: float = 0.0
 
 
 def _gap(lanes):
@@ -220,20 +225,30 @@ def synthesize(core: str, workdir, *, lanes: int | None = None, nodsp: bool = Fa
               + (" -nodsp" if nodsp else "")
               + "; tee -q -o stat.txt stat; tee -q -o ltp.txt ltp -noff t:FD* %n")
     t0 = time.perf_counter()
-    try:
-        proc = subprocess.run(cmd + ["-q", "-l", "yosys.log", "-p", script], cwd=work,
-                              capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        raise RuntimeError(f"yosys on {core} (lanes={lanes}, nodsp={nodsp}) did not finish "
-                           f"within {timeout} s") from None
+    with (work / "yosys.out").open("w") as out:
+        proc = subprocess.Popen(cmd + ["-q", "-l", "yosys.log", "-p", script], cwd=work,
+                                stdout=out, stderr=subprocess.STDOUT)
+        timer = threading.Timer(timeout, proc.kill) if timeout else None
+        if timer:
+            timer.start()
+        try:
+            _, status, usage = os.wait4(proc.pid, 0)     # per-child CPU time
+        finally:
+            if timer:
+                timer.cancel()
+        proc.returncode = os.waitstatus_to_exitcode(status)
     seconds = time.perf_counter() - t0
+    if timer and timer.finished.is_set() and proc.returncode != 0 and seconds >= timeout:
+        raise RuntimeError(f"yosys on {core} (lanes={lanes}, nodsp={nodsp}) did not finish "
+                           f"within {timeout} s")
     if proc.returncode != 0:
-        tail = (proc.stderr or proc.stdout)[-2000:]
+        tail = (work / "yosys.out").read_text()[-2000:]
         raise RuntimeError(f"yosys failed on {core} (exit {proc.returncode}); "
                            f"log {work / 'yosys.log'}:\n{tail}")
     counts = parse_stat((work / "stat.txt").read_text())
     depth = parse_ltp((work / "ltp.txt").read_text())
-    return SynthResult(core, lanes, nodsp, depth=depth, seconds=round(seconds, 1), **counts)
+    return SynthResult(core, lanes, nodsp, depth=depth, seconds=round(seconds, 1),
+                       cpu_seconds=round(usage.ru_utime + usage.ru_stime, 1), **counts)
 
 
 @dataclass(frozen=True)
@@ -300,7 +315,7 @@ def write_csv(results, path) -> Path:
 def format_table(results) -> str:
     """Plain-text table of results with the published figures beside them."""
     head = (f"{'core':<12}{'L':>4}{'nodsp':>6}{'LUT':>9}{'FF':>8}{'CARRY4':>8}"
-            f"{'DSP':>6}{'B36':>5}{'B18':>5}{'depth':>6}{'s':>8}  published")
+            f"{'DSP':>6}{'B36':>5}{'B18':>5}{'depth':>6}{'wall s':>8}{'cpu s':>8}  published")
     lines = [head]
     for r in results:
         pub = PUBLISHED.get((r.core, r.lanes if r.core == "gap" else None), {})
@@ -308,7 +323,7 @@ def format_table(results) -> str:
                          else f"{k} {v}" for k, v in pub.items())
         lines.append(f"{r.core:<12}{r.lanes or '-':>4}{'y' if r.nodsp else 'n':>6}"
                      f"{r.LUT:>9,}{r.FF:>8,}{r.CARRY4:>8,}{r.DSP48E1:>6}{r.RAMB36:>5}"
-                     f"{r.RAMB18:>5}{r.depth:>6}{r.seconds:>8.1f}  {ptxt}")
+                     f"{r.RAMB18:>5}{r.depth:>6}{r.seconds:>8.1f}{r.cpu_seconds:>8.1f}  {ptxt}")
     return "\n".join(lines)
 
 

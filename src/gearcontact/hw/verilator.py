@@ -2,15 +2,17 @@
 
 :func:`build_model` takes a core's Verilog (from its ``convert_verilog``) and a
 :class:`~.harness.HarnessSpec`, generates the harness (:func:`.harness.generate_harness`)
-and compiles both with ``verilator --cc --exe --build -O3`` (Amaranth's Verilog needs
-``-Wno-WIDTH``; see HARDWARE.md). Builds are cached by a SHA-256 of the Verilog, the
+and compiles both with ``verilator --cc --exe -O3`` and ``make`` -- the two halves of
+``verilator --build``, split so that the Verilator run-time objects, identical for every
+core, are compiled once and reused (Amaranth's Verilog needs ``-Wno-WIDTH``; see
+HARDWARE.md). Builds are cached by a SHA-256 of the Verilog, the
 harness, the flags and the Verilator version under :func:`cache_root`
 (``$GEARCONTACT_CACHE_DIR/verilator`` or ``~/.cache/gearcontact/verilator``), so a
 second build of the same core is a lookup; concurrent builders serialize on a lock
 file, and a build lands in its final directory only when complete.
 
-:meth:`VerilatorModel.run` packs the vectors into a stimulus file in a temporary
-directory, runs the binary and returns the outputs, the per-vector cycle counts and the
+:meth:`VerilatorModel.run` packs the vectors into stimulus files in a temporary
+directory, runs the binary (optionally as parallel processes over chunks) and returns the outputs, the per-vector cycle counts and the
 simulator speed. Nothing is written into the source tree.
 
 Errors are explicit: without Verilator (or g++/make) :class:`VerilatorNotFound` names the
@@ -41,8 +43,9 @@ __all__ = ["VerilatorNotFound", "VerilatorBuildError", "VerilatorModel", "SimRun
            "verilator_available", "verilator_version", "require_verilator", "cache_root",
            "build_model", "VERILATOR_FLAGS", "INSTALL_HINT"]
 
-#: Flags of every build (``-Wno-WIDTH``/``-Wno-fatal``: Amaranth Verilog, HARDWARE.md).
-VERILATOR_FLAGS = ("--cc", "--exe", "--build", "-O3", "-Wno-WIDTH", "-Wno-fatal",
+#: Verilator flags of every build (``-Wno-WIDTH``/``-Wno-fatal``: Amaranth Verilog, see
+#: HARDWARE.md); the C++ is then compiled by ``make`` as ``verilator --build`` would.
+VERILATOR_FLAGS = ("--cc", "--exe", "-O3", "-Wno-WIDTH", "-Wno-fatal",
                    "--x-assign", "fast", "--x-initial", "fast")
 #: How to get the toolchain on Debian/Ubuntu (what CI's ``.ci/run`` does).
 INSTALL_HINT = ("install it with: apt-get install -y --no-install-recommends "
@@ -108,9 +111,12 @@ class SimRun:
     sim_cycles : int
         All clock cycles simulated (bursts, runs and the reset), for the speed.
     seconds : float
-        Wall time of the simulation loop inside the binary (no file I/O, no build).
+        Wall time of the simulation loops inside the binaries (no file I/O, no build),
+        summed over the processes.
     wall_seconds : float
         Wall time of the whole call (packing, process start, I/O, decoding).
+    processes : int
+        Simulator processes run in parallel.
     """
 
     outputs: dict
@@ -118,10 +124,11 @@ class SimRun:
     sim_cycles: int
     seconds: float
     wall_seconds: float
+    processes: int = 1
 
     @property
     def cycles_per_second(self) -> float:
-        """Simulator speed: clock cycles per second of simulation."""
+        """Simulator speed: clock cycles per second of one simulator process."""
         return self.sim_cycles / self.seconds if self.seconds > 0 else float("inf")
 
 
@@ -150,11 +157,18 @@ class VerilatorModel:
     build_cpu_seconds: float = 0.0
 
     def run(self, inputs: dict, beats: dict | None = None, n_beats=None, *,
-            timeout: float | None = None) -> SimRun:
+            jobs: int = 1, timeout: float | None = None) -> SimRun:
         """Run vectors through the model.
 
-        Parameters are those of :func:`.harness.pack_stimulus` (codes per port);
-        ``timeout`` bounds the subprocess (seconds).
+        Parameters
+        ----------
+        inputs, beats, n_beats
+            As for :func:`.harness.pack_stimulus` (codes per port).
+        jobs : int, keyword-only
+            Split the vectors into this many contiguous chunks simulated by parallel
+            processes (each from reset; results are concatenated in order).
+        timeout : float, keyword-only, optional
+            Bound on each subprocess, seconds.
 
         Raises
         ------
@@ -162,22 +176,54 @@ class VerilatorModel:
             The harness failed (e.g. no ``done`` within ``spec.max_cycles``).
         """
         t0 = time.perf_counter()
-        stream, n = pack_stimulus(self.spec, inputs, beats, n_beats)
+        n = _n_vectors(self.spec, inputs, beats)
+        jobs = max(1, min(int(jobs), n))
+        bounds = np.linspace(0, n, jobs + 1).astype(int)
         with tempfile.TemporaryDirectory(prefix="gearcontact-vl-") as tmp:
-            stim, res = Path(tmp) / "stimulus.bin", Path(tmp) / "results.bin"
-            stream.astype("<u4").tofile(stim)
-            proc = subprocess.run([str(self.binary), str(stim), str(res), str(n),
-                                   str(self.spec.max_cycles)],
-                                  capture_output=True, text=True, timeout=timeout)
-            if proc.returncode != 0:
-                raise RuntimeError(f"Verilator harness for {self.spec.top} failed "
-                                   f"(exit {proc.returncode}): {proc.stderr.strip()}")
-            words = np.fromfile(res, dtype="<u4")
-        stats = json.loads(proc.stdout.strip().splitlines()[-1])
-        outputs, cycles = unpack_results(self.spec, words, n)
-        return SimRun(outputs=outputs, cycles=cycles, sim_cycles=int(stats["sim_cycles"]),
-                      seconds=float(stats["seconds"]),
-                      wall_seconds=time.perf_counter() - t0)
+            procs = []
+            for j, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
+                stream, m = pack_stimulus(
+                    self.spec, _rows(inputs, a, b), _rows(beats, a, b),
+                    None if n_beats is None else np.asarray(n_beats)[a:b])
+                stim, res = Path(tmp) / f"stimulus{j}.bin", Path(tmp) / f"results{j}.bin"
+                stream.astype("<u4").tofile(stim)
+                cmd = [str(self.binary), str(stim), str(res), str(m),
+                       str(self.spec.max_cycles)]
+                procs.append((subprocess.Popen(cmd, stdout=subprocess.PIPE,
+                                               stderr=subprocess.PIPE, text=True), res, m))
+            chunks = []
+            try:
+                for proc, res, m in procs:
+                    out, err = proc.communicate(timeout=timeout)
+                    if proc.returncode != 0:
+                        raise RuntimeError(f"Verilator harness for {self.spec.top} failed "
+                                           f"(exit {proc.returncode}): {err.strip()}")
+                    stats = json.loads(out.strip().splitlines()[-1])
+                    chunks.append(unpack_results(self.spec, np.fromfile(res, dtype="<u4"),
+                                                 m) + (stats,))
+            finally:
+                for proc, _, _ in procs:
+                    if proc.poll() is None:
+                        proc.kill()
+                        proc.wait()
+        outputs = {p.name: np.concatenate([c[0][p.name] for c in chunks])
+                   for p in self.spec.outputs}
+        return SimRun(outputs=outputs, cycles=np.concatenate([c[1] for c in chunks]),
+                      sim_cycles=sum(int(c[2]["sim_cycles"]) for c in chunks),
+                      seconds=sum(float(c[2]["seconds"]) for c in chunks),
+                      wall_seconds=time.perf_counter() - t0, processes=jobs)
+
+
+def _n_vectors(spec: HarnessSpec, inputs: dict, beats: dict | None) -> int:
+    if spec.inputs:
+        return len(np.asarray(inputs[spec.inputs[0].name]))
+    if beats is None:
+        raise ValueError(f"{spec.top}: no operand inputs and no write-port beats given")
+    return len(np.asarray(beats[spec.write.fields[0].name]))
+
+
+def _rows(d: dict | None, a: int, b: int) -> dict | None:
+    return None if d is None else {k: np.asarray(v)[a:b] for k, v in d.items()}
 
 
 def _build_key(verilog: str, harness: str, flags: tuple) -> str:
@@ -245,15 +291,50 @@ def build_model(spec: HarnessSpec, verilog: str, *, jobs: int | None = None,
     return VerilatorModel(spec, binary, time.perf_counter() - t0, False, cpu)
 
 
+#: Verilator run-time objects every model links (same sources and flags for every
+#: core): compiled once per Verilator version and flag set, then copied into each build
+#: directory so that ``make`` finds them up to date (saves ~6 s of CPU per build).
+_RUNTIME_FILES = ("verilated.o", "verilated.d", "verilated_threads.o", "verilated_threads.d")
+
+
+def _runtime_dir(flags: tuple) -> Path:
+    h = hashlib.sha256(f"{verilator_version()}\0{' '.join(flags)}".encode()).hexdigest()
+    return cache_root() / f"runtime-{h[:16]}"
+
+
 def _compile(work: Path, spec: HarnessSpec, verilog: str, harness: str, flags: tuple,
              jobs: int) -> None:
     (work / f"{spec.top}.v").write_text(verilog)
     (work / "harness.cpp").write_text(harness)
-    cmd = (["verilator"] + list(flags) + ["-j", str(jobs), "--top-module", spec.top,
-           "-Mdir", "obj", "-o", "harness", f"{spec.top}.v", "harness.cpp"])
-    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
-    (work / "build.log").write_text(proc.stdout + proc.stderr)
-    if proc.returncode != 0 or not (work / "obj" / "harness").is_file():
-        tail = "\n".join((proc.stdout + proc.stderr).strip().splitlines()[-25:])
-        raise VerilatorBuildError(f"verilator build of {spec.top} failed "
-                                  f"(exit {proc.returncode}):\n{tail}")
+    obj, runtime = work / "obj", _runtime_dir(flags)
+    log = []
+
+    def step(cmd: list) -> None:
+        proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+        log.append(proc.stdout + proc.stderr)
+        (work / "build.log").write_text("".join(log))
+        if proc.returncode != 0:
+            tail = "\n".join((proc.stdout + proc.stderr).strip().splitlines()[-25:])
+            raise VerilatorBuildError(f"verilator build of {spec.top} failed "
+                                      f"(exit {proc.returncode}):\n{tail}")
+
+    # 1. Verilog -> C++ (what ``verilator --build`` does first)
+    step(["verilator"] + list(flags) + ["--top-module", spec.top, "-Mdir", "obj",
+                                        "-o", "harness", f"{spec.top}.v", "harness.cpp"])
+    # 2. the shared run-time objects, newer than the freshly generated makefile
+    if all((runtime / f).is_file() for f in _RUNTIME_FILES):
+        for f in _RUNTIME_FILES:
+            shutil.copyfile(runtime / f, obj / f)
+    # 3. C++ -> executable (the ``--build`` step)
+    step(["make", "-C", "obj", "-f", f"V{spec.top}.mk", "-j", str(jobs)])
+    if not (obj / "harness").is_file():
+        raise VerilatorBuildError(f"verilator build of {spec.top}: no executable "
+                                  f"(log: {work / 'build.log'})")
+    if not runtime.is_dir() and all((obj / f).is_file() for f in _RUNTIME_FILES):
+        tmp = Path(tempfile.mkdtemp(prefix=".runtime-", dir=runtime.parent))
+        for f in _RUNTIME_FILES:
+            shutil.copy2(obj / f, tmp / f)
+        try:
+            os.replace(tmp, runtime)
+        except OSError:                     # another build published it first
+            shutil.rmtree(tmp, ignore_errors=True)
