@@ -20,9 +20,9 @@ from ..contact.lcp import SOLVERS
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
 from ..geometry.pair import load_pair
-from ..validation import InputRangeError, check_positive
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_csv
+from ..validation import InputRangeError, check_positive
 
 
 def register(sub) -> None:

@@ -13,9 +13,9 @@ from pathlib import Path
 
 from ..contact.lte import loaded_te
 from ..geometry.pair import load_pair
-from ..validation import InputRangeError, check_positive
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
+from ..validation import InputRangeError, check_positive
 
 
 def register(sub) -> None:

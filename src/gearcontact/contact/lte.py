@@ -71,75 +71,24 @@ K. L. Johnson, *Contact Mechanics*, 1985, ch. 3-4. SPEC section 5.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import brentq
 from tqdm import tqdm
 
-from ..analytic.hertz import hamrock_brewe_hertz
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive, check_range
-from .grid import TangentGrid
-from .load import torque_lever_mm
-from .mesh_lcp import MeshLcpResult, PairBlock, solve_mesh_lcp
+from .lte_pairs import PairContact, PairFields, phase_contacts
+from .mesh_lcp import MeshLcpResult, solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
-__all__ = ["LoadedTE", "PairContact", "loaded_te", "preview_balance", "ACTIVE_SHARE"]
+__all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "loaded_te", "preview_balance"]
 
 #: A pair counts as active when it carries more than this share of the total load.
 ACTIVE_SHARE = 1e-6
 #: Pairs whose opening exceeds this multiple of the preview rotation get no field.
 _REACH_FACTOR = 3.0
-
-
-@dataclass(frozen=True, eq=False)
-class PairContact:
-    """One potential contact (tooth pair ``offset`` at one phase): geometry and pose.
-
-    Attributes
-    ----------
-    offset : int
-        Pair index ``j``.
-    path_index : int
-        Index of the pair's state in the TCA path (pair ``j`` at phase ``k`` is pair 0
-        at path index ``base + k + j n``).
-    center_index : int
-        Path index of the field's centre: ``path_index`` if the pair has a mating point,
-        else the nearest interior point of its path (edge contact).
-    phi2_rad : float
-        Gear rotation of the unloaded pose (pair-0 coordinates): the gear rests on the
-        transmitting pair, ``TE = TE0_env``.
-    lever_mm : float
-        Lever of the normal force about the gear axis, mm.
-    opening_arcsec : float
-        ``|TE0_j - TE0_env|`` (arcsec of gear rotation); NaN for an edge pair until its
-        field is known.
-    A_minus_per_mm, B_minus_per_mm : float
-        Half relative principal curvatures at the (centre) mating point, 1/mm.
-    kappa_mm_per_n23 : float
-        Hertzian approach coefficient: ``delta = kappa W^(2/3)`` (mm / N^(2/3)).
-    """
-
-    offset: int
-    path_index: int
-    center_index: int
-    phi2_rad: float
-    lever_mm: float
-    opening_arcsec: float
-    A_minus_per_mm: float
-    B_minus_per_mm: float
-    kappa_mm_per_n23: float
-
-    @property
-    def edge(self) -> bool:
-        """The pair's unloaded mating point has left the flanks (contact at an edge)."""
-        return self.center_index != self.path_index
-
-    @property
-    def offset_mm(self) -> float:
-        """Initial separation along the normal, mm."""
-        return self.opening_arcsec / ARCSEC_PER_RAD * self.lever_mm
 
 
 @dataclass(frozen=True, eq=False)
@@ -246,7 +195,7 @@ class LoadedTE:
         """Plain-JSON scalars (the keys of ``lte.json``)."""
         k0 = self.reference_index
         share = self.pair_loads_lcp_n[:, k0] / self.pair_loads_lcp_n[:, k0].sum()
-        return {"torque_nm": self.torque_nm, "phases": int(len(self.phi1_rad)),
+        return {"torque_nm": self.torque_nm, "phases": len(self.phi1_rad),
                 "te0_pp_arcsec": self.te0_pp_arcsec,
                 "te_lcp_pp_arcsec": self.te_lcp_pp_arcsec,
                 "te_pre_pp_arcsec": self.te_pre_pp_arcsec,
@@ -344,103 +293,7 @@ def _near(mask: np.ndarray) -> np.ndarray:
     return out
 
 
-class _Fields:
-    """Gap fields per TCA path index (pairs at the pitch ends share them).
-
-    Every field is the separation of the flanks posed as they stand unloaded (gear at
-    ``pc.phi2_rad``), along the normal lines of the tangent plane at the centre point:
-    it contains the pair's opening (its minimum over the flank, ~ ``g_j``) and, for an
-    edge pair, the flank boundary that trims the contact.
-    """
-
-    def __init__(self, pinion, gear, kin, cycle, *, torque_nmm, e_prime, cells, extent):
-        self.args = (pinion, gear, kin)
-        self.path = cycle.path
-        self.torque, self.e_prime, self.cells, self.extent = torque_nmm, e_prime, cells, extent
-        self.cache: dict[int, tuple] = {}
-        self.seconds = 0.0
-
-    def get(self, pc: PairContact):
-        """(gap, grid, off-flank mask, lever) of a pair contact."""
-        from ..tca.solve import MatingPoint
-        from ..tca.stencil import gap_field
-
-        hit = self.cache.get(pc.path_index)
-        if hit is None:
-            t0 = time.perf_counter()
-            pinion, gear, kin = self.args
-            mp = self.path.points[pc.center_index]
-            if pc.edge:  # the gear point of the nearest interior state, posed
-                rot, c = kin.gear_pose(pc.phi2_rad)
-                sp = gear.point(mp.u2, mp.v2)
-                mp = MatingPoint(self.path.points[pc.path_index].phi1_rad, pc.phi2_rad,
-                                 mp.u1, mp.v1, mp.u2, mp.v2, rot @ sp.r + c, rot @ sp.n)
-            else:
-                mp = replace(mp, phi2_rad=pc.phi2_rad)
-            hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm,
-                                     self.torque / pc.lever_mm, e_prime_mpa=self.e_prime)
-            f = gap_field(pinion, gear, kin, mp, side=self.cells, frame="principal",
-                          half_extent_mm=(self.extent[0] * hz.a_mm, self.extent[1] * hz.b_mm),
-                          allow_outside=True)  # same values on the flank; faster Newton
-            off = ~f.on_flank  # near its path's end a pair's field is partly off
-            s_axis, t_axis = f.s_mm[0, :], f.t_mm[:, 0]
-            grid = TangentGrid.uniform(len(s_axis), len(t_axis),
-                                       dx_mm=float(s_axis[1] - s_axis[0]),
-                                       dy_mm=float(t_axis[1] - t_axis[0]),
-                                       x0_mm=float(s_axis[0]), y0_mm=float(t_axis[0]))
-            lever = torque_lever_mm(mp.point_mm, mp.normal)
-            hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
-            self.cache[pc.path_index] = hit
-            self.seconds += time.perf_counter() - t0
-        return hit
-
-    def block(self, pc: PairContact) -> tuple[PairBlock, np.ndarray]:
-        gap, grid, off, lever = self.get(pc)
-        return PairBlock(gap, grid, lever, 0.0), off
-
-    def opening_arcsec(self, pc: PairContact) -> float:
-        """Smallest separation over the flank of the posed field, arcsec of rotation."""
-        gap, _, off, lever = self.get(pc)
-        return float(gap[~off].min()) / lever * ARCSEC_PER_RAD if (~off).any() else np.inf
-
-
-def _phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
-                    curv_cache: dict, edge_steps: int) -> list[PairContact]:
-    """The potential contacts at phase k: pairs with a mating point on both flanks, and
-    pairs within ``edge_steps`` path steps beyond an end of their path (edge pairs)."""
-    from ..tca.curvature import relative_curvature
-
-    out = []
-    env = float(cycle.envelope_arcsec[k])
-    n = cycle.step_index
-    path = cycle.path
-    interior = ~path.edge
-    for j, off in enumerate(cycle.pair_offsets):
-        te = float(cycle.te0_pairs_arcsec[j, k])
-        idx = base + k + off * n
-        center = idx
-        if not np.isfinite(te):
-            near = np.flatnonzero(interior[max(idx - edge_steps, 0):idx + edge_steps + 1])
-            if near.size == 0:
-                continue
-            cand = near + max(idx - edge_steps, 0)
-            center = int(cand[np.argmin(np.abs(cand - idx))])
-        mp = path.points[center]
-        if center not in curv_cache:
-            rc = relative_curvature(pinion, gear, kin, mp)
-            kap = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, 1.0,
-                                      e_prime_mpa=e_prime).approach_mm
-            curv_cache[center] = (torque_lever_mm(mp.point_mm, mp.normal),
-                                  rc.A_minus_per_mm, rc.B_minus_per_mm, kap)
-        lever, a_m, b_m, kap = curv_cache[center]
-        phi2 = (path.phi2_ref_rad + (path.points[idx].phi1_rad - path.phi1_ref_rad)
-                / path.ratio + env / ARCSEC_PER_RAD)
-        out.append(PairContact(off, idx, center, phi2, lever,
-                               abs(te - env) if np.isfinite(te) else np.nan, a_m, b_m, kap))
-    return out
-
-
-def _solve_phase(contacts, fields: _Fields, torque_nmm: float, materials, *, tol: float,
+def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, tol: float,
                  warm: dict, theta_pre: float):
     """Torque-constrained LCP over the pairs within reach; returns
     (result, used contacts, blocks, off masks). Pairs left out are checked open."""
@@ -480,7 +333,7 @@ def _field_edge(masks) -> bool:
                for m in masks)
 
 
-def _compliances(ref, fields: _Fields, torque: float, eps: float, materials,
+def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
                  tol: float) -> dict:
     """Contact and mesh compliances at the reference phase by central differences.
 
@@ -576,7 +429,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     e_prime = effective_modulus_mpa(*materials)
     torque = 1e3 * t
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
-    fields = _Fields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
+    fields = PairFields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
                      cells=int(cells), extent=tuple(map(float, extent_factor)))
     curv: dict = {}
     k_full = len(cycle.phi1_rad)
@@ -587,13 +440,13 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     w_lcp, w_pre, levers = np.zeros((n_p, n_k)), np.zeros((n_p, n_k)), np.full((n_p, n_k), np.nan)
     edge, fedge = np.zeros(n_k, bool), np.zeros(n_k, bool)
     considered = np.zeros((n_p, n_k), bool)
-    edge_steps = int(round(edge_reach * cycle.step_index))
+    edge_steps = round(edge_reach * cycle.step_index)
     solve_ms, field_ms, status = np.zeros(n_k), np.zeros(n_k), []
     warm: dict = {}
     k_ref = int(np.flatnonzero(sel == cycle.mean_index)[0])
     ref = None
     for k in tqdm(range(n_k), desc=f"LTE {t:g} N·m", disable=not progress, leave=False):
-        contacts = _phase_contacts(pinion, gear, kin, cycle, int(sel[k]), base, e_prime,
+        contacts = phase_contacts(pinion, gear, kin, cycle, int(sel[k]), base, e_prime,
                                    curv, edge_steps)
         valid = [pc for pc in contacts if not pc.edge]   # the preview has no edge model
         considered[[row[pc.offset] for pc in contacts], k] = True

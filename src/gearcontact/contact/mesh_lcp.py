@@ -48,7 +48,7 @@ from .grid import TangentGrid
 from .influence import FftInfluence
 from .lcp import resolve_e_star
 
-__all__ = ["PairBlock", "MeshLcpResult", "solve_mesh_lcp"]
+__all__ = ["MeshLcpResult", "PairBlock", "solve_mesh_lcp"]
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,0 +1,175 @@
+"""Tooth pairs of the loaded TE at one mesh phase: potential contacts and their posed
+gap fields (see :mod:`.lte` for the formulation).
+
+A potential contact is a neighbouring tooth pair with a mating point on both flanks, or
+one at most ``edge_steps`` path steps beyond an end of its contact path (edge pair).
+Its field is the separation of the flanks posed as they stand unloaded (gear resting on
+the transmitting pair), along the normal lines of the tangent plane at the pair's
+(nearest interior) mating point (:func:`gearcontact.tca.stencil.gap_field`), with
+off-flank cells set to :data:`.pair_ltca.OFF_FLANK_GAP_MM`.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 9.4,
+15.6 (force transmission, neighbouring pairs).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..analytic.hertz import hamrock_brewe_hertz
+from .grid import TangentGrid
+from .load import torque_lever_mm
+from .mesh_lcp import PairBlock
+from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
+
+__all__ = ["PairContact", "PairFields", "phase_contacts"]
+
+
+@dataclass(frozen=True, eq=False)
+class PairContact:
+    """One potential contact (tooth pair ``offset`` at one phase): geometry and pose.
+
+    Attributes
+    ----------
+    offset : int
+        Pair index ``j``.
+    path_index : int
+        Index of the pair's state in the TCA path (pair ``j`` at phase ``k`` is pair 0
+        at path index ``base + k + j n``).
+    center_index : int
+        Path index of the field's centre: ``path_index`` if the pair has a mating point,
+        else the nearest interior point of its path (edge contact).
+    phi2_rad : float
+        Gear rotation of the unloaded pose (pair-0 coordinates): the gear rests on the
+        transmitting pair, ``TE = TE0_env``.
+    lever_mm : float
+        Lever of the normal force about the gear axis, mm.
+    opening_arcsec : float
+        ``|TE0_j - TE0_env|`` (arcsec of gear rotation); NaN for an edge pair until its
+        field is known.
+    A_minus_per_mm, B_minus_per_mm : float
+        Half relative principal curvatures at the (centre) mating point, 1/mm.
+    kappa_mm_per_n23 : float
+        Hertzian approach coefficient: ``delta = kappa W^(2/3)`` (mm / N^(2/3)).
+    """
+
+    offset: int
+    path_index: int
+    center_index: int
+    phi2_rad: float
+    lever_mm: float
+    opening_arcsec: float
+    A_minus_per_mm: float
+    B_minus_per_mm: float
+    kappa_mm_per_n23: float
+
+    @property
+    def edge(self) -> bool:
+        """The pair's unloaded mating point has left the flanks (contact at an edge)."""
+        return self.center_index != self.path_index
+
+    @property
+    def offset_mm(self) -> float:
+        """Initial separation along the normal, mm."""
+        return self.opening_arcsec / ARCSEC_PER_RAD * self.lever_mm
+
+
+class PairFields:
+    """Gap fields per TCA path index (pairs at the pitch ends share them).
+
+    Every field is the separation of the flanks posed as they stand unloaded (gear at
+    ``pc.phi2_rad``), along the normal lines of the tangent plane at the centre point:
+    it contains the pair's opening (its minimum over the flank, ~ ``g_j``) and, for an
+    edge pair, the flank boundary that trims the contact.
+    """
+
+    def __init__(self, pinion, gear, kin, cycle, *, torque_nmm, e_prime, cells, extent):
+        self.args = (pinion, gear, kin)
+        self.path = cycle.path
+        self.torque, self.e_prime, self.cells, self.extent = torque_nmm, e_prime, cells, extent
+        self.cache: dict[int, tuple] = {}
+        self.seconds = 0.0
+
+    def get(self, pc: PairContact):
+        """(gap, grid, off-flank mask, lever) of a pair contact."""
+        from ..tca.solve import MatingPoint
+        from ..tca.stencil import gap_field
+
+        hit = self.cache.get(pc.path_index)
+        if hit is None:
+            t0 = time.perf_counter()
+            pinion, gear, kin = self.args
+            mp = self.path.points[pc.center_index]
+            if pc.edge:  # the gear point of the nearest interior state, posed
+                rot, c = kin.gear_pose(pc.phi2_rad)
+                sp = gear.point(mp.u2, mp.v2)
+                mp = MatingPoint(self.path.points[pc.path_index].phi1_rad, pc.phi2_rad,
+                                 mp.u1, mp.v1, mp.u2, mp.v2, rot @ sp.r + c, rot @ sp.n)
+            else:
+                mp = replace(mp, phi2_rad=pc.phi2_rad)
+            hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm,
+                                     self.torque / pc.lever_mm, e_prime_mpa=self.e_prime)
+            f = gap_field(pinion, gear, kin, mp, side=self.cells, frame="principal",
+                          half_extent_mm=(self.extent[0] * hz.a_mm, self.extent[1] * hz.b_mm),
+                          allow_outside=True)  # same values on the flank; faster Newton
+            off = ~f.on_flank  # near its path's end a pair's field is partly off
+            s_axis, t_axis = f.s_mm[0, :], f.t_mm[:, 0]
+            grid = TangentGrid.uniform(len(s_axis), len(t_axis),
+                                       dx_mm=float(s_axis[1] - s_axis[0]),
+                                       dy_mm=float(t_axis[1] - t_axis[0]),
+                                       x0_mm=float(s_axis[0]), y0_mm=float(t_axis[0]))
+            lever = torque_lever_mm(mp.point_mm, mp.normal)
+            hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
+            self.cache[pc.path_index] = hit
+            self.seconds += time.perf_counter() - t0
+        return hit
+
+    def block(self, pc: PairContact) -> tuple[PairBlock, np.ndarray]:
+        gap, grid, off, lever = self.get(pc)
+        return PairBlock(gap, grid, lever, 0.0), off
+
+    def opening_arcsec(self, pc: PairContact) -> float:
+        """Smallest separation over the flank of the posed field, arcsec of rotation."""
+        gap, _, off, lever = self.get(pc)
+        return float(gap[~off].min()) / lever * ARCSEC_PER_RAD if (~off).any() else np.inf
+
+
+def phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
+                    curv_cache: dict, edge_steps: int) -> list[PairContact]:
+    """The potential contacts at phase k: pairs with a mating point on both flanks, and
+    pairs within ``edge_steps`` path steps beyond an end of their path (edge pairs)."""
+    from ..tca.curvature import relative_curvature
+
+    out = []
+    env = float(cycle.envelope_arcsec[k])
+    n = cycle.step_index
+    path = cycle.path
+    interior = ~path.edge
+    for j, off in enumerate(cycle.pair_offsets):
+        te = float(cycle.te0_pairs_arcsec[j, k])
+        idx = base + k + off * n
+        center = idx
+        if not np.isfinite(te):
+            near = np.flatnonzero(interior[max(idx - edge_steps, 0):idx + edge_steps + 1])
+            if near.size == 0:
+                continue
+            cand = near + max(idx - edge_steps, 0)
+            center = int(cand[np.argmin(np.abs(cand - idx))])
+        mp = path.points[center]
+        if center not in curv_cache:
+            rc = relative_curvature(pinion, gear, kin, mp)
+            kap = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, 1.0,
+                                      e_prime_mpa=e_prime).approach_mm
+            curv_cache[center] = (torque_lever_mm(mp.point_mm, mp.normal),
+                                  rc.A_minus_per_mm, rc.B_minus_per_mm, kap)
+        lever, a_m, b_m, kap = curv_cache[center]
+        phi2 = (path.phi2_ref_rad + (path.points[idx].phi1_rad - path.phi1_ref_rad)
+                / path.ratio + env / ARCSEC_PER_RAD)
+        out.append(PairContact(off, idx, center, phi2, lever,
+                               abs(te - env) if np.isfinite(te) else np.nan, a_m, b_m, kap))
+    return out
