@@ -15,8 +15,13 @@ import sys
 from pathlib import Path
 
 from ..hw.harness_cores import CORE_NAMES, SIMULATORS, CoreUnavailable, get_bench
-from ..hw.verilator import (VerilatorBuildError, VerilatorNotFound, require_verilator,
-                            verilator_available, verilator_version)
+from ..hw.verilator import (
+    VerilatorBuildError,
+    VerilatorNotFound,
+    require_verilator,
+    verilator_available,
+    verilator_version,
+)
 
 #: Exit code when the RTL disagrees with the golden model (bits or cycles).
 EXIT_MISMATCH = 1
@@ -108,7 +113,7 @@ def run_sim(args) -> int:
 
 
 _PORT = re.compile(r"^\s*(input|output)\s+(?:reg\s+|wire\s+)?(?:signed\s+)?"
-                   r"(?:\[(\d+):0\]\s+)?(\\?[\w$]+)\s*;", re.M)
+                   r"(?:\[(\d+):0\]\s+)?(\\?[\w$]+)\s*;", re.MULTILINE)
 
 
 def verilog_ports(verilog: str, top: str) -> list[tuple[str, str, int]]:

@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import importlib
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import lru_cache
-from typing import Callable
+from functools import cache
 
 import numpy as np
 
@@ -214,7 +214,7 @@ _HERTZ_OUT = tuple(Port(n, **_S32) for n in ("a", "b", "p_max", "k", "A_min", "B
 
 def _hertz_cols(codes) -> dict:
     """Output columns (by port) from a HertzCodesArray or a list of HertzCodes."""
-    from ..preview.hertz.rtl import OUTPUT_PORTS          # port -> HertzCodes field
+    from ..preview.hertz.rtl import OUTPUT_PORTS  # port -> HertzCodes field
     if isinstance(codes, list):
         return {p: np.array([getattr(c, f) for c in codes], np.int64)
                 for p, f in OUTPUT_PORTS.items()}
@@ -339,13 +339,13 @@ def get_bench(name: str) -> CoreBench:
         raise InputRangeError("core", name, f"one of {list(CORE_NAMES)}") from None
 
 
-@lru_cache(maxsize=None)
+@cache
 def _verilog(name: str) -> str:
     bench = get_bench(name)
     return _module(bench.module).convert_verilog(name=bench.spec.top, **bench.verilog_kwargs)
 
 
-@lru_cache(maxsize=None)
+@cache
 def verilator_model(name: str):
     """The compiled (cached) Verilator model of core ``name``."""
     from .verilator import build_model

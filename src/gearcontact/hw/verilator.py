@@ -310,7 +310,7 @@ def _compile(work: Path, spec: HarnessSpec, verilog: str, harness: str, flags: t
     log = []
 
     def step(cmd: list) -> None:
-        proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+        proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True, check=False)
         log.append(proc.stdout + proc.stderr)
         (work / "build.log").write_text("".join(log))
         if proc.returncode != 0:

@@ -22,7 +22,13 @@ import numpy as np
 from ..materials import STEEL, Material
 from ..validation import InputRangeError, check_positive
 from . import chain
-from .engine import GoldenEngine, PreviewBatch, PreviewResult, _check_physical, _check_stencil
+from .engine import (
+    GoldenEngine,
+    PreviewBatch,
+    PreviewResult,
+    _check_physical,
+    _check_stencil,
+)
 from .fit.golden import encode_gaps
 from .hertz.golden import HertzCodes, decode_hertz_codes, encode_hertz_inputs
 from .hertz.golden_vec import HertzCodesArray
@@ -85,7 +91,7 @@ class RtlEngine(GoldenEngine):
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
         a, b, w = _check_physical(A_minus, B_minus, load_n)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        from .hertz.rtl import OUTPUT_PORTS                  # port -> HertzCodes field
+        from .hertz.rtl import OUTPUT_PORTS  # port -> HertzCodes field
         outs, cycles = self._simulate("hertz", {"A": [a_c], "B": [b_c], "W": [w_c],
                                                 "e_prime": [e_c]})
         hz = HertzCodes(**{f: int(outs[p][0]) for p, f in OUTPUT_PORTS.items()})

@@ -79,7 +79,7 @@ class Stimulus:
         """Number of leading corner-case vectors."""
         return sum(1 for s in self.labels if s not in ("random", "raw"))
 
-    def take(self, index) -> "Stimulus":
+    def take(self, index) -> Stimulus:
         """Sub-batch of the vectors selected by ``index`` (slice or index array)."""
         idx = np.arange(len(self))[index]
         return Stimulus(self.core, {k: v[idx] for k, v in self.fields.items()},
@@ -184,18 +184,20 @@ def _gap_corners(N: int) -> list:
     def case(label, g, **kw):
         return (label, {**base, "g": np.asarray(g, np.int64), **kw})
 
-    lane_sweep = np.stack([i * 65536, -i * 65536, (i - N // 2) * 4096], -1)
+    step = (1 << 20) // max(N, 16)            # sweeps stay within +-16 mm for any N
+    lane_sweep = np.stack([i * step, -i * step, (i - N // 2) * (step // 16)], -1)
     sym = np.where((i % 2)[:, None] == 0, [0, 0, 1 << 16], [0, 0, -(1 << 16)])
-    far = np.stack([np.full(N, 10 << 16), i << 12, i << 10], -1)
-    last = np.tile([0, 0, 5 << 16], (N, 1))
-    last[-1] = [0, 0, 1 << 16]
+    far = np.stack([np.full(N, 10 << 16), (i % 64) << 12, (i % 64) << 10], -1)
+    last = np.tile([1 << 16, 0, 5 << 16], (N, 1))      # rho = 1 mm^2, |g| = 5 mm ...
+    last[-1] = [0, 0, 1 << 16]                         # ... except rho = 0, |g| = 1 mm
     return [
         case("gate rejects every lane", far, tau2=_tau2(1.0).item()),
         case("gate tau2 = 1: only rho = 0 passes", lane_sweep, tau2=1),
         case("every sample identical (rho and |g| ties)", np.tile([0, 0, 3 << 16], (N, 1)),
              tau2=_TAU2_MAX),
         case("+-g ties across lanes", sym, tau2=_TAU2_MAX),
-        case("negative gaps (penetration)", np.stack([i << 10, i << 11, (i + 1) << 13], -1),
+        case("negative gaps (penetration)",
+             np.stack([(i % 16) << 10, (i % 16) << 11, (i + 1) * ((2 << 16) // N)], -1),
              p=np.array([0, 0, 3 << 16]), tau2=_tau2(2.0).item()),
         case("winner is the last sample", last, tau2=_TAU2_MAX),
         case("posed point overflows Q(24,16)", lane_sweep, p=np.full(3, _CMAX),
