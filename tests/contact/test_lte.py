@@ -220,11 +220,14 @@ def test_s0003_without_edge_pairs_drops_load(lte, s0003_tca, s0003_flanks, s0003
 
 
 def test_s0003_lcp_close_to_preview_and_continuous(lte):
-    # where the preview sees the same pairs (no edge pair loaded), the real gap near each
-    # mating point is nearly quadratic: the LCP rotation stays within 5 % of the
-    # Hertzian one (measured ~2 %; coarse 24-cell fields, edge trimming)
+    # away from the pitch ends (no edge pair loaded) the real gap near each mating point
+    # is nearly quadratic: the LCP rotation stays within 5 % of the Hertzian one
+    # (measured ~2 %; coarse 24-cell fields, edge trimming)
     same = (lte.active_lcp == lte.active_pre) & (lte.active_lcp == 3)
     assert same.sum() >= 5
+    # at the ends the edge pairs are truncated by the flank boundary for the LCP but not
+    # for the preview: the LCP mesh is softer there, but not by more than 15 %
+    np.testing.assert_array_less(lte.rotation_pre_arcsec, 1.15 * lte.rotation_lcp_arcsec)
     np.testing.assert_allclose(lte.rotation_lcp_arcsec[same], lte.rotation_pre_arcsec[same],
                                rtol=0.05)
     # continuity along the phase: between neighbouring phases the rotation moves by far

@@ -28,9 +28,9 @@ field, i.e. approach ``l_j theta - g_j`` from its own contact); the torque balan
   solved together as one torque-constrained LCP with the rotation as the multiplier
   (coupled formulation, :func:`.mesh_lcp.solve_mesh_lcp`), warm-started from the
   previous phase;
-* **preview** (``TE_pre``): Hamrock–Brewe Hertz per pair with a mating point (the
-  preview has no edge model: edge pairs are left out) from its own relative
-  curvatures, ``delta_j(W) = kappa_j W^(2/3)`` (:func:`~gearcontact.analytic.hertz.
+* **preview** (``TE_pre``): Hamrock–Brewe Hertz per pair from its own relative
+  curvatures (an edge pair: those of its nearest interior mating point, with the
+  opening of its posed field and no truncation at the edge; ``preview_edges``), ``delta_j(W) = kappa_j W^(2/3)`` (:func:`~gearcontact.analytic.hertz.
   hamrock_brewe_hertz`), i.e. ``W_j = ((l_j theta - g_j)_+ / kappa_j)^(3/2)``; the
   balance is a monotone scalar equation in ``theta`` solved by Brent's method.
 
@@ -297,11 +297,8 @@ def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, 
                  warm: dict, theta_pre: float):
     """Torque-constrained LCP over the pairs within reach; returns
     (result, used contacts, blocks, off masks). Pairs left out are checked open."""
-    def opening(pc):
-        return fields.opening_arcsec(pc) if pc.edge else pc.opening_arcsec
-
     reach = [pc for pc in contacts
-             if opening(pc) / ARCSEC_PER_RAD <= _REACH_FACTOR * theta_pre]
+             if pc.opening_arcsec / ARCSEC_PER_RAD <= _REACH_FACTOR * theta_pre]
     while True:
         built = [fields.block(pc) for pc in reach]
         blocks = [b for b, _ in built]
@@ -309,7 +306,7 @@ def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, 
                              warm_start=[warm.get(pc.offset) for pc in reach],
                              rotation_guess_rad=theta_pre)
         late = [pc for pc in contacts if pc not in reach
-                and opening(pc) / ARCSEC_PER_RAD < res.rotation_rad]
+                and pc.opening_arcsec / ARCSEC_PER_RAD < res.rotation_rad]
         if not late:
             return res, reach, blocks, [o for _, o in built]
         reach = reach + late
@@ -341,9 +338,8 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
     transmitting pair alone (contact compliance ``d delta / d W`` of that pair) and
     with all pairs within reach (mesh compliance), for LCP and preview.
     """
-    contacts = ref
-    valid = [pc for pc in contacts if not pc.edge]
-    main = next(pc for pc in valid if pc.opening_arcsec == 0.0)
+    contacts, valid = ref
+    main = next(pc for pc in valid if pc.opening_arcsec == 0.0 and not pc.edge)
     l0 = main.lever_mm
     out = {"reference_lever_mm": float(l0)}
     for key, group, hertz in (("", [main], [main]), ("mesh_", contacts, valid)):
@@ -369,7 +365,8 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
 def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
-              edge_reach: float = 0.5, progress: bool = False) -> LoadedTE:
+              edge_reach: float = 0.5, preview_edges: bool = True,
+              progress: bool = False) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
     Parameters
@@ -399,6 +396,11 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         Pairs up to this fraction of a pitch beyond an end of their contact path are
         kept as edge contacts (their posed field is trimmed by the flank boundary), in
         [0, 1]; 0 drops a pair as soon as its mating point leaves the flanks.
+    preview_edges : bool
+        Give the edge pairs to the preview too, as Hertzian contacts with the
+        curvatures of their nearest interior mating point and the opening of their posed
+        field (no truncation at the edge); False: the preview sees only pairs with a
+        mating point.
     stride : int
         Use every ``stride``-th phase of the cycle (>= 1), plus the last one and P0: a
         cheaper LTE on a fine TCA (e.g. 61 TCA phases, stride 6 -> 11 LTE phases).
@@ -446,15 +448,16 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     k_ref = int(np.flatnonzero(sel == cycle.mean_index)[0])
     ref = None
     for k in tqdm(range(n_k), desc=f"LTE {t:g} N·m", disable=not progress, leave=False):
-        contacts = phase_contacts(pinion, gear, kin, cycle, int(sel[k]), base, e_prime,
-                                   curv, edge_steps)
-        valid = [pc for pc in contacts if not pc.edge]   # the preview has no edge model
+        f0 = fields.seconds
+        contacts = [fields.resolve(pc) for pc in
+                    phase_contacts(pinion, gear, kin, cycle, int(sel[k]), base, e_prime,
+                                   curv, edge_steps)]
+        valid = contacts if preview_edges else [pc for pc in contacts if not pc.edge]
         considered[[row[pc.offset] for pc in contacts], k] = True
         lv = np.array([pc.lever_mm for pc in valid])
         gs = np.array([pc.offset_mm for pc in valid])
         kap = np.array([pc.kappa_mm_per_n23 for pc in valid])
         th_pre, wp = preview_balance(lv, gs, kap, torque)
-        f0 = fields.seconds
         res, reach, blocks, offs = _solve_phase(contacts, fields, torque, materials,
                                                 tol=tol, warm=warm, theta_pre=th_pre)
         field_ms[k] = 1e3 * (fields.seconds - f0)
@@ -472,7 +475,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
             levers[row[pc.offset], k] = b.lever_mm
             warm[pc.offset] = w / b.grid.cell_area_mm2
         if k == k_ref:
-            ref = contacts
+            ref = (contacts, valid)
     comp = _compliances(ref, fields, torque, eps, materials, tol)
     # loads of pairs that lose their mating point; pair j at phase 0 is pair j - 1 at
     # phase K-1 (the next pitch starts there), so its predecessor is pair j - 1 at K-2

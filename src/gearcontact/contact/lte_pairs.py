@@ -133,10 +133,15 @@ class PairFields:
         gap, grid, off, lever = self.get(pc)
         return PairBlock(gap, grid, lever, 0.0), off
 
-    def opening_arcsec(self, pc: PairContact) -> float:
-        """Smallest separation over the flank of the posed field, arcsec of rotation."""
+    def resolve(self, pc: PairContact) -> PairContact:
+        """An edge pair with its opening (smallest separation over the flank of its
+        posed field, arcsec of rotation) and the lever of its field's centre; other
+        pairs unchanged."""
+        if not pc.edge:
+            return pc
         gap, _, off, lever = self.get(pc)
-        return float(gap[~off].min()) / lever * ARCSEC_PER_RAD if (~off).any() else np.inf
+        opening = float(gap[~off].min()) / lever * ARCSEC_PER_RAD if (~off).any() else np.inf
+        return replace(pc, opening_arcsec=opening, lever_mm=lever)
 
 
 def phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
