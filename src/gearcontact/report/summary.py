@@ -54,13 +54,14 @@ def _lte_section(lte, pub: dict) -> list[str]:
          "74.6 / 22.6 / 2.8 (with bending)"],
         ["phases with edge contact / all LCPs converged",
          f"{int(lte.edge_contact.sum())} / {lte.converged}", None],
-        ["largest load of a pair dropped at its path end (N)",
+        ["largest load dropped beyond the edge window (N)",
          float(lte.dropped_load_n.max()), None]]))
     return out + [
         "", "The contact compliance is d(delta)/dW of the transmitting pair alone; the mesh "
-        "compliance lets the neighbouring pairs share the torque. A pair whose unloaded "
-        "mating point leaves the flanks is dropped (no tip-edge contact model), which puts "
-        "a step into TE_LCP where it still carried load.", "",
+        "compliance lets the neighbouring pairs share the torque. Pairs up to half a pitch "
+        "beyond the ends of their contact path stay in as edge contacts (LCP: field trimmed "
+        "at the flank boundary; preview: Hertzian with the nearest interior curvatures).",
+        "",
         "Figure: ![loaded TE](lte.png)", ""]
 
 
