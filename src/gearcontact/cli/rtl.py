@@ -4,7 +4,9 @@
 RTL (Verilator, or the Amaranth simulator) and the bit-exact golden model, and reports
 cycles per evaluation, vectors, mismatches and the simulator speed; the exit code is 1
 on any mismatch or cycle-count deviation. ``rtl verilog`` writes a core's Verilog and a
-README of its ports.
+README of its ports; ``rtl soc`` and ``rtl synth`` (board flow, synthesis reports).
+
+``soc`` and ``synth`` are defined in :mod:`.rtl_hw` and hooked in here.
 """
 
 from __future__ import annotations
@@ -56,6 +58,9 @@ def register(sub) -> None:
     v.add_argument("--core", choices=CORE_NAMES + ("all",), required=True)
     v.add_argument("--out", required=True, metavar="DIR", help="output directory")
     v.set_defaults(func=run_verilog)
+
+    from .rtl_hw import register_rtl_subcommands         # rtl soc, rtl synth
+    register_rtl_subcommands(cmds)
 
 
 def _error(msg: str) -> int:
