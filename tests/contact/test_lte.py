@@ -290,3 +290,27 @@ def test_s0003_bad_input(s0003_tca, s0003_flanks, s0003_pair):
         args = {"torque_nm": 64.5, **kw}
         with pytest.raises(InputRangeError, match=match):
             loaded_te(s0003_tca, s0003_flanks, s0003_pair, args.pop("torque_nm"), **args)
+
+
+def test_s0003_posed_field_contains_the_opening(s0003_tca, s0003_flanks, s0003_pair):
+    # each pair's field is taken with the gear resting on the transmitting pair: its
+    # minimum over the flank is the TCA opening g_j = |TE0_j - TE0_env| l_j, up to the
+    # cell-centred sampling of the minimum (at most A-(dt/2)^2 + B-(ds/2)^2 of the local
+    # quadric) plus 10 nm for the rotation's non-uniform closing across the field
+    from gearcontact.contact.lte_pairs import PairFields, phase_contacts
+    from gearcontact.materials import effective_modulus_mpa
+    cyc = s0003_tca.cycle
+    kin = s0003_pair.kinematics()
+    pin, gear = s0003_flanks.flank("pinion", "drive"), s0003_flanks.flank("gear", "drive")
+    e_prime = effective_modulus_mpa(s0003_pair.pinion_material, s0003_pair.gear_material)
+    base = int(np.argmin(np.abs(cyc.path.phi1_rad - cyc.phi1_rad[0])))
+    fields = PairFields(pin, gear, kin, cyc, torque_nmm=64.5e3, e_prime=e_prime, cells=CELLS,
+                        extent=(1.6, 2.0))
+    pcs = phase_contacts(pin, gear, kin, cyc, cyc.mean_index, base, e_prime, {}, 0)
+    assert len(pcs) == 3
+    for pc in pcs:
+        gap, grid, off, lever = fields.get(pc)
+        assert lever == pytest.approx(pc.lever_mm, rel=1e-12)
+        bound = (pc.A_minus_per_mm * (grid.dy_mm[0] / 2) ** 2
+                 + pc.B_minus_per_mm * (grid.dx_mm[0] / 2) ** 2 + 1e-5)
+        assert gap[~off].min() == pytest.approx(pc.offset_mm, abs=bound)
