@@ -116,6 +116,13 @@ def test_missing_toolchain_names_the_packages(monkeypatch):
         vl.build_model(hc.get_bench("fit").spec, "module fit_core; endmodule")
 
 
+def test_verilog_is_cached_by_source_digest():
+    text = hc.get_bench("fit").verilog()
+    cached = list((vl.cache_root().parent / "verilog").glob("fit_core-*.v"))
+    assert "module fit_core(" in text and any(p.read_text() == text for p in cached)
+    assert len(hc._source_digest()) == 64
+
+
 def test_cache_root_outside_the_source_tree(monkeypatch, tmp_path):
     assert REPO not in vl.cache_root().parents
     monkeypatch.setenv("GEARCONTACT_CACHE_DIR", str(tmp_path))

@@ -18,11 +18,14 @@ imported lazily, so a bench whose RTL is not present raises
 
 from __future__ import annotations
 
+import hashlib
 import importlib
+import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
+from pathlib import Path
 
 import numpy as np
 
@@ -340,9 +343,36 @@ def get_bench(name: str) -> CoreBench:
 
 
 @cache
+def _source_digest() -> str:
+    """SHA-256 of every ``.py`` file of the installed package and the Amaranth version:
+    the key of the Verilog cache (any source edit regenerates the Verilog)."""
+    import amaranth
+    pkg = Path(__file__).resolve().parents[1]
+    h = hashlib.sha256(amaranth.__version__.encode())
+    for f in sorted(pkg.rglob("*.py")):
+        h.update(str(f.relative_to(pkg)).encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()
+
+
+@cache
 def _verilog(name: str) -> str:
+    """Verilog of core ``name``; exported once per package source state (~4 s each) and
+    kept beside the Verilator builds (``cache_root().parent / "verilog"``)."""
+    from .verilator import cache_root
     bench = get_bench(name)
-    return _module(bench.module).convert_verilog(name=bench.spec.top, **bench.verilog_kwargs)
+    _module(bench.module)                                  # CoreUnavailable if absent
+    key = hashlib.sha256(f"{_source_digest()}\0{bench.spec.top}\0"
+                         f"{sorted(bench.verilog_kwargs.items())}".encode()).hexdigest()
+    path = cache_root().parent / "verilog" / f"{bench.spec.top}-{key[:24]}.v"
+    if path.is_file():
+        return path.read_text()
+    text = _module(bench.module).convert_verilog(name=bench.spec.top, **bench.verilog_kwargs)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(f".{os.getpid()}.tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+    return text
 
 
 @cache
