@@ -29,8 +29,7 @@ def test_contact_readback_equals_golden_pass(contact):
     # N write cycles + start + the gap core latency (26 at N = L = 16)
     contact.idle(vec.n_samples + 1 + gap_latency(16, 16))
     assert contact.read(m.addr("contact", "magic")) == MAGIC
-    d = drv._Driver.__new__(drv._Driver)
-    d.t, d.map = contact, m
+    d = drv.ContactDriver(contact)
     assert d.read_identifier() == IDENTS["contact_core"]
     assert d.read_contact() == _contact_expected()
 
@@ -93,3 +92,17 @@ def test_datapath_ports_are_the_register_ports():
     assert {"contact__gap", "preview__wr_data", "preview__wr_data__stb", "preview__go",
             "preview__done", "probe_cycles"} <= names
     assert "contact__magic" not in names and "ctrl__reset" not in names
+
+
+def test_contact_core_with_8_lanes_is_exact_and_faster():
+    """L = 8 halves the DSP of the contact readback and, at N = 16, shortens the pass
+    (gap_latency(16, 8) = 18 < 26 cycles): same golden model at that lane count."""
+    vec = baked_contact_vector()
+    assert gap_latency(16, 8) == 18 < gap_latency(16, 16) == 26
+    g = gap_golden_codes(vec, lanes=8)
+    with drv.SimTransport("contact_core", lanes=8) as t:
+        m = get_map("contact_core")
+        t.idle(vec.n_samples + gap_latency(16, 8))
+        assert not t.read(m.addr("contact", "flags")) & 8
+        assert drv.ContactDriver(t).read_contact() == drv.ContactReadback(g.min_gap_code, g.min_idx, g.valid,
+                                                       g.overflow, False, True)

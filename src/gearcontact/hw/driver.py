@@ -42,7 +42,7 @@ from .regmap import (CONTACT_FLAG_BITS, DONE_FLAGS_SHIFT, IDENT_WORDS, MAGIC, So
                      get_map)
 
 __all__ = ["Transport", "SimTransport", "LiteXRemoteTransport", "DriverError",
-           "WrongIdentifier", "DoneTimeout", "PreviewDriver", "HertzDriver",
+           "WrongIdentifier", "DoneTimeout", "PreviewDriver", "HertzDriver", "ContactDriver",
            "PreviewReadback", "ContactReadback", "SocEngine", "LITEX_PIN"]
 
 #: pip requirement of the board flow (pyproject optional extra ``board``).
@@ -430,6 +430,17 @@ class PreviewDriver(_Driver):
         self.set_load(W_code)
         self.go()
         return self.read_results(self.wait_done())
+
+
+class ContactDriver(_Driver):
+    """Stage A/B readback (``contact`` region) of any SoC that has one."""
+
+    region = "contact"
+
+    def __init__(self, transport: Transport, *, kind: str = "contact_core", **kw):
+        if "contact" not in [r.name for r in get_map(kind).regions]:
+            raise InputRangeError("SoC", kind, "a SoC with a contact region")
+        super().__init__(transport, kind=kind, **kw)
 
 
 class HertzDriver(_Driver):
