@@ -46,18 +46,20 @@ from amaranth.lib.wiring import In, Out
 from .chain import FIT_FLAG_SHIFT, ChainCodes
 from .fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from .fit.golden import GoldenFit, check_gap_codes
-from .fit.pinv import COEFF, N_COEFFS, N_TAPS, BakedPinv
-from .fit.rtl import FitCore
+from .fit.pinv import BakedPinv
+from .fit.rtl import COEFF_PORTS, FitCore, fit_front_end_ports
 from .hertz import formats as HF
 from .hertz.golden import HertzCodes
-from .hertz.rtl import CycleCounter, HertzCore
+from .hertz.rtl import HertzCore
 from .hertz.rtl_datapath import FLAG_BITS as HERTZ_FLAG_BITS
 from .hertz.schedule import CHAIN_CYCLES
-from .qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS
+from .qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from .simulation import CycleCounter, read_ports, run_testbench, write_stencil
 
 __all__ = [
     "CHAIN_FLAG_BITS",
     "ChainCore",
+    "ChainLikeCore",
     "chain_inputs",
     "chain_output_ports",
     "convert_verilog",
@@ -73,22 +75,20 @@ assert HERTZ_FLAG_BITS <= FIT_FLAG_SHIFT
 
 def chain_output_ports() -> dict:
     """Output ports shared by :class:`ChainCore` and the combinational ``CombCore``."""
-    ports = {"busy": Out(1), "done": Out(1), "done_pulse": Out(1),
-             "wr_count": Out(range(N_TAPS + 1)), "wr_dropped": Out(1),
-             "a": Out(signed(SEMI_AXIS.bits)), "b": Out(signed(SEMI_AXIS.bits)),
-             "p_max": Out(signed(PMAX.bits)), "k": Out(signed(HF.K_OUT.bits)),
-             "a_minus": Out(signed(CURVATURE.bits)), "b_minus": Out(signed(CURVATURE.bits)),
-             "R_x": Out(signed(CURVATURE.bits)), "R_y": Out(signed(CURVATURE.bits)),
-             "alpha": Out(unsigned(HF.ALPHA.bits)), "flags": Out(CHAIN_FLAG_BITS)}
-    for j in range(N_COEFFS):
-        ports[f"c{j}"] = Out(signed(COEFF.bits))
-    return ports
+    _, status, coeffs = fit_front_end_ports()
+    return {**status,
+            "a": Out(signed(SEMI_AXIS.bits)), "b": Out(signed(SEMI_AXIS.bits)),
+            "p_max": Out(signed(PMAX.bits)), "k": Out(signed(HF.K_OUT.bits)),
+            "a_minus": Out(signed(CURVATURE.bits)), "b_minus": Out(signed(CURVATURE.bits)),
+            "R_x": Out(signed(CURVATURE.bits)), "R_y": Out(signed(CURVATURE.bits)),
+            "alpha": Out(unsigned(HF.ALPHA.bits)), "flags": Out(CHAIN_FLAG_BITS),
+            **coeffs}
 
 
 def chain_inputs() -> dict:
     """Input ports shared by :class:`ChainCore` and ``CombCore``."""
-    return {"wr_rst": In(1), "wr_en": In(1), "wr_data": In(signed(GAP.bits)),
-            "W": In(signed(LOAD.bits)), "e_prime": In(signed(HF.E_PRIME.bits)),
+    write, _, _ = fit_front_end_ports()
+    return {**write, "W": In(signed(LOAD.bits)), "e_prime": In(signed(HF.E_PRIME.bits)),
             "go": In(1)}
 
 
@@ -113,16 +113,28 @@ def connect_front_end(m: Module, core, fit: FitCore, busy):
 
 def core_coeffs(core) -> list:
     """The ``c0``..``c5`` output ports of a chain-like core."""
-    return [getattr(core, f"c{j}") for j in range(N_COEFFS)]
+    return [getattr(core, p) for p in COEFF_PORTS]
 
 
-class ChainCore(wiring.Component):
-    """C->D chain core: stage-C fit feeding the serialized stage D (806 cycles).
+class ChainLikeCore(wiring.Component):
+    """Base of the cores with the chain's ports (:class:`ChainCore`, ``CombCore``):
+    :func:`chain_inputs` and :func:`chain_output_ports`.
 
     Parameters
     ----------
     rom : BakedPinv, keyword-only, optional
         Pseudo-inverse ROM of the fit (default: the hardware ROM).
+    """
+
+    def __init__(self, *, rom: BakedPinv | None = None):
+        self._rom = rom
+        super().__init__({**chain_inputs(), **chain_output_ports()})
+
+
+class ChainCore(ChainLikeCore):
+    """C->D chain core: stage-C fit feeding the serialized stage D (806 cycles).
+
+    Parameters as :class:`ChainLikeCore` (``rom``).
 
     Notes
     -----
@@ -157,10 +169,6 @@ class ChainCore(wiring.Component):
     ==========  =====  ==============  ===============================================
     """
 
-    def __init__(self, *, rom: BakedPinv | None = None):
-        self._rom = rom
-        super().__init__({**chain_inputs(), **chain_output_ports()})
-
     def elaborate(self, platform):
         m = Module()
         m.submodules.fit = fit = FitCore(rom=self._rom)
@@ -189,28 +197,16 @@ def convert_verilog(*, rom: BakedPinv | None = None, name: str = "chain_core") -
 
 
 # ---------------------------------------------------------------------------------
-# simulation runner (shared with the combinational core)
+# simulation runner (shared with the combinational core; write_stencil lives in
+# :mod:`.simulation` and is re-exported here)
 # ---------------------------------------------------------------------------------
-async def write_stencil(ctx, dut, row) -> None:
-    """Pulse ``wr_rst`` and write the 49 GAP codes of ``row`` (one per edge)."""
-    ctx.set(dut.wr_rst, 1)
-    await ctx.tick()
-    ctx.set(dut.wr_rst, 0)
-    ctx.set(dut.wr_en, 1)
-    for x in row:
-        ctx.set(dut.wr_data, int(x))
-        await ctx.tick()
-    ctx.set(dut.wr_en, 0)
-
-
 def read_chain_codes(ctx, dut, cycles: int) -> ChainCodes:
     """The outputs of a chain-like core as :class:`.chain.ChainCodes` (testbench)."""
-    g = {p: int(ctx.get(getattr(dut, p)))
-         for p in ("a", "b", "p_max", "k", "a_minus", "b_minus", "R_x", "R_y", "alpha",
-                   "flags")}
+    g = read_ports(ctx, dut, {p: p for p in ("a", "b", "p_max", "k", "a_minus", "b_minus",
+                                             "R_x", "R_y", "alpha", "flags")})
     fit_flags = g["flags"] >> FIT_FLAG_SHIFT
     hz_flags = g["flags"] & ((1 << FIT_FLAG_SHIFT) - 1)
-    fit = GoldenFit(c_codes=tuple(int(ctx.get(c)) for c in core_coeffs(dut)),
+    fit = GoldenFit(c_codes=read_ports(ctx, dut, {"c": COEFF_PORTS})["c"],
                     a_minus_code=g["a_minus"], b_minus_code=g["b_minus"], flags=fit_flags)
     hz = HertzCodes(g["a"], g["b"], g["p_max"], g["k"], g["b_minus"], g["a_minus"],
                     g["R_x"], g["R_y"], g["alpha"], hz_flags)
@@ -229,7 +225,6 @@ def check_chain_inputs(stencils, W_codes, e_prime_code):
 def run_chain_like(dut, stencils, W_codes, e_prime_code, *, max_cycles: int, what: str
                    ) -> tuple[list[ChainCodes], list[int]]:
     """Shared runner: write each stencil, pulse ``go``, wait for ``done``, read."""
-    from amaranth.sim import Simulator
     codes, ws, e = check_chain_inputs(stencils, W_codes, e_prime_code)
     cc = CycleCounter(dut)
     outputs, cycles = [], []
@@ -244,10 +239,7 @@ def run_chain_like(dut, stencils, W_codes, e_prime_code, *, max_cycles: int, wha
             cycles.append(n)
             outputs.append(read_chain_codes(ctx, dut, n))
 
-    sim = Simulator(cc.top)
-    sim.add_clock(1e-8)
-    sim.add_testbench(bench)
-    sim.run()
+    run_testbench(cc.top, bench)
     return outputs, cycles
 
 

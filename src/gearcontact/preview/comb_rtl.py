@@ -28,40 +28,16 @@ from __future__ import annotations
 
 from amaranth import Module, Mux, Signal, signed, unsigned
 from amaranth.back import verilog
-from amaranth.lib import wiring
 from amaranth.lib.memory import Memory
 
 from .chain import ChainCodes
-from .chain_rtl import (
-    chain_flags,
-    chain_inputs,
-    chain_output_ports,
-    connect_front_end,
-    run_chain_like,
-)
+from .chain_rtl import ChainLikeCore, chain_flags, connect_front_end, run_chain_like
 from .fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from .fit.pinv import BakedPinv
 from .fit.rtl import FitCore
 from .hertz import formats as F
 from .hertz.luts import CBRT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, cbrt_lut, pow_lut
-from .hertz.rtl_datapath import (
-    FLAG_BITS,
-    Operands,
-    division,
-    e6_from_quotient,
-    envelope_flags,
-    finalize,
-    fits,
-    lut_interpolate,
-    lut_split,
-    pow_to_k,
-    product_operands,
-    product_result,
-    range_reduce,
-    round_shift,
-    scale_cbrt,
-    sort_pair,
-)
+from .hertz import rtl_datapath as dp
 from .hertz.rtl_divider import array_divide
 from .hertz.schedule import COMB_CYCLES, COMB_D_STAGES
 from .qformat import CURVATURE, LOAD
@@ -78,13 +54,11 @@ def _first_flag(flags, checks):
     return Mux(flags != 0, flags, out)
 
 
-class CombCore(wiring.Component):
+class CombCore(ChainLikeCore):
     """Combinational C+D core: fit front end + 6-stage pipelined stage D (58 cycles).
 
-    Parameters
-    ----------
-    rom : BakedPinv, keyword-only, optional
-        Pseudo-inverse ROM of the fit (default: the hardware ROM).
+    Parameters as :class:`.chain_rtl.ChainLikeCore` (``rom``, the fit's
+    pseudo-inverse ROM).
 
     Notes
     -----
@@ -96,10 +70,6 @@ class CombCore(wiring.Component):
     UQ(32,24); ``flags`` the 12-bit chain flags word; ``c0``..``c5`` COEFF Q(32,20)).
     ``done`` rises on edge 58 (``COMB_CYCLES``).
     """
-
-    def __init__(self, *, rom: BakedPinv | None = None):
-        self._rom = rom
-        super().__init__({**chain_inputs(), **chain_output_ports()})
 
     def elaborate(self, platform):
         m = Module()
@@ -116,14 +86,15 @@ class CombCore(wiring.Component):
             m.d.sync += [w.eq(self.W), e_prime.eq(self.e_prime), self.done.eq(0)]
 
         # stage registers (one set: a single evaluation is in flight)
-        r = Operands(
+        r = dp.Operands(
             a_min=Signal(signed(CURVATURE.bits), name="a_min"),
             b_max=Signal(signed(CURVATURE.bits), name="b_max"), w=w, e_prime=e_prime,
             alpha=Signal(F.ALPHA.bits, name="alpha_reg"),
-            radius=Signal(F.RADIUS.bits, name="radius"), k=Signal(F.K_INT.bits, name="k_int"),
+            radius=Signal(F.RADIUS.bits, name="radius"),
+            k=Signal(F.K_INT.bits, name="k_int"),
             e6=Signal(F.E6.bits, name="e6"), t3=Signal(F.T3.bits, name="t3"),
             wc3=Signal(F.T3.bits, name="wc3"), a_w=Signal(F.AXIS_W.bits, name="a_w"))
-        flags = Signal(FLAG_BITS)
+        flags = Signal(dp.FLAG_BITS)
         ovf = Signal()
         r_x = Signal(CURVATURE.bits)
         r_y = Signal(CURVATURE.bits)
@@ -137,16 +108,17 @@ class CombCore(wiring.Component):
 
         # ---- S1: sort, envelope; R_x, R_y, alpha, R -----------------------------------
         m.submodules.s1 = s = Module()
-        a_min, b_max = (Signal(signed(CURVATURE.bits), name=n) for n in ("s1_min", "s1_max"))
-        lo, hi = sort_pair(fit.a_minus, fit.b_minus)
+        a_min, b_max = (Signal(signed(CURVATURE.bits), name=n)
+                        for n in ("s1_min", "s1_max"))
+        lo, hi = dp.sort_pair(fit.a_minus, fit.b_minus)
         s.d.comb += [a_min.eq(lo), b_max.eq(hi)]
-        ops1 = Operands(a_min=a_min, b_max=b_max)
+        ops1 = dp.Operands(a_min=a_min, b_max=b_max)
         q, dens = {}, {}
         for name in ("R_x", "R_y", "alpha", "R"):
-            num, dens[name] = division(name, ops1)
+            num, dens[name] = dp.division(name, ops1)
             q[name] = array_divide(s, num, dens[name], name=f"div_{name}")
-        rx_q, ry_q = round_shift(q["R_x"], 1), round_shift(q["R_y"], 1)
-        flags1 = _first_flag(envelope_flags(a_min, b_max, w, e_prime), [
+        rx_q, ry_q = dp.round_shift(q["R_x"], 1), dp.round_shift(q["R_y"], 1)
+        flags1 = _first_flag(dp.envelope_flags(a_min, b_max, w, e_prime), [
             (dens["R_x"] == 0, F.FLAG_DIV_ZERO), (dens["R_y"] == 0, F.FLAG_DIV_ZERO),
             (dens["alpha"] == 0, F.FLAG_DIV_ZERO),
             (q["alpha"] > F.ALPHA_MAX_CODE, F.FLAG_ALPHA_RANGE),
@@ -155,36 +127,36 @@ class CombCore(wiring.Component):
             m.d.sync += [r.a_min.eq(a_min), r.b_max.eq(b_max), flags.eq(flags1),
                          r_x.eq(rx_q), r_y.eq(ry_q), r.alpha.eq(q["alpha"]),
                          r.radius.eq(q["R"]), fit_flags.eq(fit.flags),
-                         ovf.eq(~fits(rx_q, CURVATURE) | ~fits(ry_q, CURVATURE))]
+                         ovf.eq(~dp.fits(rx_q, CURVATURE) | ~dp.fits(ry_q, CURVATURE))]
 
         # ---- S2: E6 (divider) and K (POW ROM + interpolation) -------------------------
         m.submodules.s2 = s = Module()
-        num, den = division("E_e", r)
+        num, den = dp.division("E_e", r)
         q_e = array_divide(s, num, den, name="div_E_e")
         pow0, pow1 = rom_pair(s, POW_SPEC, pow_lut())
-        p_addr, p_next, p_r = lut_split(POW_SPEC, r.alpha)
+        p_addr, p_next, p_r = dp.lut_split(POW_SPEC, r.alpha)
         s.d.comb += [pow0.addr.eq(p_addr), pow1.addr.eq(p_next)]
         with m.If(valid[1]):
-            m.d.sync += [r.e6.eq(e6_from_quotient(q_e)),
-                         r.k.eq(pow_to_k(lut_interpolate(POW_SPEC, pow0.data, pow1.data,
-                                                         p_r))),
+            m.d.sync += [r.e6.eq(dp.e6_from_quotient(q_e)),
+                         r.k.eq(dp.pow_to_k(dp.lut_interpolate(POW_SPEC, pow0.data,
+                                                               pow1.data, p_r))),
                          flags.eq(_first_flag(flags, [(den == 0, F.FLAG_DIV_ZERO)]))]
 
         # ---- S3: the staged products --------------------------------------------------
         m.submodules.s3 = s = Module()
-        p = Operands(k=r.k, e6=r.e6, radius=r.radius, w=w)
+        p = dp.Operands(k=r.k, e6=r.e6, radius=r.radius, w=w)
         for step, fmt in (("k2", F.K2), ("t1", F.T1), ("t2", F.T2), ("t3", F.T3),
                           ("wc3", F.T3)):
-            x, y = product_operands(step, p)
+            x, y = dp.product_operands(step, p)
             sig = Signal(fmt.bits, name=f"s3_{step}")
-            s.d.comb += sig.eq(product_result(step, x * y))
+            s.d.comb += sig.eq(dp.product_result(step, x * y))
             setattr(p, step, sig)
         with m.If(valid[2]):
             m.d.sync += [r.t3.eq(p.t3), r.wc3.eq(p.wc3)]
 
         # ---- S4: C_a ------------------------------------------------------------------
         m.submodules.s4 = s = Module()
-        num, den = division("C_a", r)
+        num, den = dp.division("C_a", r)
         q_ca = array_divide(s, num, den, name="div_C_a")
         with m.If(valid[3]):
             m.d.sync += [c_a.eq(q_ca),
@@ -192,28 +164,28 @@ class CombCore(wiring.Component):
 
         # ---- S5: range reduction, CBRT ROM + interpolation, a_w -----------------------
         m.submodules.s5 = s = Module()
-        m_red, s1 = range_reduce(s, c_a, name="rr")
+        m_red, s1 = dp.range_reduce(s, c_a, name="rr")
         cb0, cb1 = rom_pair(s, CBRT_SPEC, cbrt_lut())
-        c_addr, c_next, c_r = lut_split(CBRT_SPEC, m_red)
+        c_addr, c_next, c_r = dp.lut_split(CBRT_SPEC, m_red)
         s.d.comb += [cb0.addr.eq(c_addr), cb1.addr.eq(c_next)]
         with m.If(valid[4]):
-            m.d.sync += r.a_w.eq(scale_cbrt(lut_interpolate(CBRT_SPEC, cb0.data, cb1.data,
-                                                            c_r), s1))
+            m.d.sync += r.a_w.eq(dp.scale_cbrt(dp.lut_interpolate(CBRT_SPEC, cb0.data,
+                                                                  cb1.data, c_r), s1))
 
         # ---- S6: b_w, p_n2, p_max; outputs --------------------------------------------
         m.submodules.s6 = s = Module()
-        r6 = Operands(k=r.k, a_w=r.a_w, wc3=r.wc3,
+        r6 = dp.Operands(k=r.k, a_w=r.a_w, wc3=r.wc3,
                       b_w=Signal(F.AXIS_W.bits, name="s6_b_w"),
                       p_n2=Signal(F.PN2.bits, name="s6_p_n2"))
         dens = {}
         for name, dest in (("b", r6.b_w), ("p_n2", r6.p_n2), ("p_max", None)):
-            num, dens[name] = division(name, r6)
+            num, dens[name] = dp.division(name, r6)
             q[name] = array_divide(s, num, dens[name], name=f"div_{name}")
             if dest is not None:
                 s.d.comb += dest.eq(q[name])
         flags6 = _first_flag(flags, [(dens[n] == 0, F.FLAG_DIV_ZERO)
                                      for n in ("b", "p_n2", "p_max")])
-        flags_out, outs = finalize(flags6, ovf, a_w=r.a_w, b_w=r6.b_w, k=r.k, r_x=r_x,
+        flags_out, outs = dp.finalize(flags6, ovf, a_w=r.a_w, b_w=r6.b_w, k=r.k, r_x=r_x,
                                    r_y=r_y, alpha=r.alpha, p_max_q=q["p_max"])
         m.d.sync += self.done_pulse.eq(0)
         with m.If(valid[5]):

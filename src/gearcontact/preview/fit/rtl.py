@@ -57,8 +57,17 @@ from gearcontact.preview.fit.golden import (D_FMT, FIT_CYCLES, FLAG_BITS,
 from gearcontact.preview.fit.pinv import (ACC, COEFF, N_COEFFS, N_TAPS, ROM_WORD_BITS,
                                           BakedPinv, baked_pinv)
 from gearcontact.preview.qformat import CURVATURE, GAP
+from gearcontact.preview.simulation import (read_record, run_testbench, run_to_done,
+                                            write_stencil)
 
-__all__ = ["FitCore", "convert_verilog", "simulate_fit_core"]
+__all__ = ["COEFF_PORTS", "FIT_OUTPUT_PORTS", "FitCore", "convert_verilog",
+           "fit_front_end_ports", "read_fit_codes", "simulate_fit_core"]
+
+#: The coefficient output ports ``c0``..``c5``, in order.
+COEFF_PORTS = tuple(f"c{j}" for j in range(N_COEFFS))
+#: Output ports in :class:`.golden.GoldenFit` field order (``field -> port(s)``).
+FIT_OUTPUT_PORTS = {"c_codes": COEFF_PORTS, "a_minus_code": "a_minus",
+                    "b_minus_code": "b_minus", "flags": "flags"}
 
 _COEFF_SHIFT = ACC.frac - COEFF.frac
 # The flags port is Cat(cov, dov, kov, not_elliptic): it relies on this bit order.
@@ -74,6 +83,22 @@ def _fits(value, fmt):
 def _round_shift(value, n: int):
     """Amaranth round-half-up arithmetic shift (same as qformat.round_shift)."""
     return (value + (1 << (n - 1))) >> n
+
+
+def fit_front_end_ports() -> tuple[dict, dict, dict]:
+    """Port declarations of the fit front end, shared with the cores built on it.
+
+    Returns
+    -------
+    (write, status, coeffs) : tuple of dict
+        ``wr_rst``, ``wr_en``, ``wr_data`` (GAP Q(32,16)) inputs; ``busy``, ``done``,
+        ``done_pulse``, ``wr_count``, ``wr_dropped`` outputs; ``c0``..``c5`` (COEFF
+        Q(32,20)) outputs -- each in port order, as ``name -> In/Out`` dicts.
+    """
+    write = {"wr_rst": In(1), "wr_en": In(1), "wr_data": In(signed(GAP.bits))}
+    status = {"busy": Out(1), "done": Out(1), "done_pulse": Out(1),
+              "wr_count": Out(range(N_TAPS + 1)), "wr_dropped": Out(1)}
+    return write, status, {p: Out(signed(COEFF.bits)) for p in COEFF_PORTS}
 
 
 class FitCore(wiring.Component):
@@ -98,19 +123,16 @@ class FitCore(wiring.Component):
 
     def __init__(self, *, rom: BakedPinv | None = None):
         self._rom = baked_pinv() if rom is None else rom
-        ports = {"wr_rst": In(1), "wr_en": In(1), "wr_data": In(signed(GAP.bits)),
-                 "go": In(1), "busy": Out(1), "done": Out(1), "done_pulse": Out(1),
-                 "wr_count": Out(range(N_TAPS + 1)), "wr_dropped": Out(1),
-                 "a_minus": Out(signed(CURVATURE.bits)),
-                 "b_minus": Out(signed(CURVATURE.bits)), "flags": Out(FLAG_BITS)}
-        for j in range(N_COEFFS):
-            ports[f"c{j}"] = Out(signed(COEFF.bits))
-        super().__init__(ports)
+        write, status, coeffs = fit_front_end_ports()
+        super().__init__({**write, "go": In(1), **status,
+                          "a_minus": Out(signed(CURVATURE.bits)),
+                          "b_minus": Out(signed(CURVATURE.bits)), "flags": Out(FLAG_BITS),
+                          **coeffs})
 
     @property
     def coeffs(self) -> list:
         """The six coefficient output ports ``[c0, ..., c5]``."""
-        return [getattr(self, f"c{j}") for j in range(N_COEFFS)]
+        return [getattr(self, p) for p in COEFF_PORTS]
 
     def _isqrt(self, m: Module, d):
         """32-stage unrolled Li-Chu non-restoring isqrt of the 64-bit ``d`` (comb)."""
@@ -222,6 +244,11 @@ def convert_verilog(*, rom: BakedPinv | None = None, name: str = "fit_core") -> 
     return verilog.convert(core, name=name, strip_internal_attrs=True)
 
 
+def read_fit_codes(ctx, dut) -> GoldenFit:
+    """The output ports of a :class:`FitCore` as :class:`.golden.GoldenFit`."""
+    return read_record(ctx, dut, GoldenFit, FIT_OUTPUT_PORTS)
+
+
 def simulate_fit_core(stencils, *, rom: BakedPinv | None = None,
                       max_cycles: int = 4 * FIT_CYCLES) -> tuple[list, list]:
     """Simulate the core cycle-accurately on GAP code stencils.
@@ -245,38 +272,16 @@ def simulate_fit_core(stencils, *, rom: BakedPinv | None = None,
         (directly comparable with :func:`.golden.golden_fit`); ``cycles``: edges from
         the ``go`` edge to ``done`` for each stencil (``FIT_CYCLES`` by design).
     """
-    from amaranth.sim import Simulator
     codes = check_gap_codes(stencils, 2)
     dut = FitCore(rom=rom)
     outputs, cycles = [], []
 
     async def bench(ctx):
         for row in codes:
-            ctx.set(dut.wr_rst, 1)
-            await ctx.tick()
-            ctx.set(dut.wr_rst, 0)
-            ctx.set(dut.wr_en, 1)
-            for x in row:
-                ctx.set(dut.wr_data, int(x))
-                await ctx.tick()
-            ctx.set(dut.wr_en, 0)
-            ctx.set(dut.go, 1)
-            await ctx.tick()
-            ctx.set(dut.go, 0)
-            n = 1
-            while not ctx.get(dut.done):
-                if n >= max_cycles:
-                    raise RuntimeError(f"fit core: no done after {n} cycles")
-                await ctx.tick()
-                n += 1
-            outputs.append(GoldenFit(
-                c_codes=tuple(int(ctx.get(c)) for c in dut.coeffs),
-                a_minus_code=int(ctx.get(dut.a_minus)),
-                b_minus_code=int(ctx.get(dut.b_minus)), flags=int(ctx.get(dut.flags))))
-            cycles.append(n)
+            await write_stencil(ctx, dut, row)
+            cycles.append(await run_to_done(ctx, dut.go, dut.done, max_cycles=max_cycles,
+                                            what="fit core"))
+            outputs.append(read_fit_codes(ctx, dut))
 
-    sim = Simulator(dut)
-    sim.add_clock(1e-8)
-    sim.add_testbench(bench)
-    sim.run()
+    run_testbench(dut, bench)
     return outputs, cycles

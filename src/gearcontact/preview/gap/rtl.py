@@ -62,10 +62,12 @@ from amaranth.lib import data, memory, wiring
 from amaranth.lib.wiring import In, Out
 
 from ...validation import InputRangeError
+from ..simulation import read_ports, run_testbench, run_to_done
 from .golden import DEFAULT_FORMAT, IDX_BITS, IDX_SENTINEL, GapCodes, gap_latency
 from .reference import check_lanes
 
-__all__ = ["GapCore", "convert_verilog", "simulate_gap_core"]
+__all__ = ["GapCore", "convert_verilog", "load_gap_vector", "read_gap_codes",
+           "simulate_gap_core"]
 
 _F = DEFAULT_FORMAT
 CW, NW, RF = _F.coord_bits, _F.normal.bits, _F.normal_frac      # 24, 21, 19
@@ -252,6 +254,40 @@ def convert_verilog(*, lanes: int = 16, max_samples: int | None = None,
     return verilog.convert(core, name=name, strip_internal_attrs=True)
 
 
+async def load_gap_vector(ctx, dut, vec) -> None:
+    """Write the samples of ``vec`` (one per edge) and drive its pass operands.
+
+    Parameters
+    ----------
+    ctx : SimulatorContext
+        Testbench context.
+    dut : GapCore
+        Device under test.
+    vec : :class:`.golden.GapVector`
+        Pass operands; sample i goes to address i. ``start`` is left to the caller.
+    """
+    for i in range(vec.n_samples):
+        ctx.set(dut.w_valid, 1)
+        ctx.set(dut.w_addr, i)
+        ctx.set(dut.w_g, [int(x) for x in vec.g_code[i]])
+        ctx.set(dut.w_n, [int(x) for x in vec.n_code[i]])
+        await ctx.tick()
+    ctx.set(dut.w_valid, 0)
+    ctx.set(dut.r, [int(x) for x in vec.r_code.ravel()])
+    ctx.set(dut.t, [int(x) for x in vec.t_code])
+    ctx.set(dut.p, [int(x) for x in vec.p_code])
+    ctx.set(dut.tau2, int(vec.tau2_code))
+    ctx.set(dut.n_samples, vec.n_samples)
+
+
+def read_gap_codes(ctx, dut) -> GapCodes:
+    """The output registers of a :class:`GapCore` as :class:`.golden.GapCodes`."""
+    v = read_ports(ctx, dut, {"gap": "gap", "idx": "idx", "valid": "valid",
+                              "overflow": "overflow"})
+    return GapCodes(min_gap_code=v["gap"], min_idx=v["idx"], valid=bool(v["valid"]),
+                    overflow=bool(v["overflow"]))
+
+
 def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = None,
                       vcd_path: str | None = None):
     """Run passes on the RTL in the Amaranth simulator.
@@ -273,8 +309,6 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
     cycles : list of int
         Cycles from the edge accepting ``start`` to the edge raising ``done``.
     """
-    from amaranth.sim import Simulator
-
     from .golden import check_vector
     dut = GapCore(lanes=lanes, max_samples=max_samples)
     for vec in vectors:
@@ -286,38 +320,10 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
 
     async def bench(ctx):
         for vec in vectors:
-            for i in range(vec.n_samples):
-                ctx.set(dut.w_valid, 1)
-                ctx.set(dut.w_addr, i)
-                ctx.set(dut.w_g, [int(x) for x in vec.g_code[i]])
-                ctx.set(dut.w_n, [int(x) for x in vec.n_code[i]])
-                await ctx.tick()
-            ctx.set(dut.w_valid, 0)
-            ctx.set(dut.r, [int(x) for x in vec.r_code.ravel()])
-            ctx.set(dut.t, [int(x) for x in vec.t_code])
-            ctx.set(dut.p, [int(x) for x in vec.p_code])
-            ctx.set(dut.tau2, int(vec.tau2_code))
-            ctx.set(dut.n_samples, vec.n_samples)
-            ctx.set(dut.start, 1)
-            await ctx.tick()
-            ctx.set(dut.start, 0)
-            count = 1
-            while not ctx.get(dut.done):
-                if count > limit:
-                    raise RuntimeError(f"gap core: no done within {limit} cycles")
-                await ctx.tick()
-                count += 1
-            outputs.append(GapCodes(min_gap_code=ctx.get(dut.gap), min_idx=ctx.get(dut.idx),
-                                    valid=bool(ctx.get(dut.valid)),
-                                    overflow=bool(ctx.get(dut.overflow))))
-            cycles.append(count)
+            await load_gap_vector(ctx, dut, vec)
+            cycles.append(await run_to_done(ctx, dut.start, dut.done, max_cycles=limit + 1,
+                                            what="gap core"))
+            outputs.append(read_gap_codes(ctx, dut))
 
-    sim = Simulator(dut)
-    sim.add_clock(1e-8)
-    sim.add_testbench(bench)
-    if vcd_path:
-        with sim.write_vcd(vcd_path):
-            sim.run()
-    else:
-        sim.run()
+    run_testbench(dut, bench, vcd_path=vcd_path)
     return outputs, cycles

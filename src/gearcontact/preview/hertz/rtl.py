@@ -56,6 +56,7 @@ from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ..simulation import CycleCounter, read_record, run_testbench
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVIDER_CYCLES, DIVIDER_HANDSHAKE_CYCLES
 from .golden import HertzCodes
@@ -369,8 +370,7 @@ def convert_verilog(*, name: str = "hertz_core", tag_bits: int = 0) -> str:
 def read_hertz_codes(ctx, dut) -> HertzCodes:
     """The output ports of a :class:`HertzCore` (or a core with the same port names) as
     :class:`.golden.HertzCodes` (inside an Amaranth testbench)."""
-    return HertzCodes(**{field: int(ctx.get(getattr(dut, port)))
-                         for port, field in OUTPUT_PORTS.items()})
+    return read_record(ctx, dut, HertzCodes, {f: p for p, f in OUTPUT_PORTS.items()})
 
 
 def _check_vectors(vectors):
@@ -384,41 +384,6 @@ def _check_vectors(vectors):
     fmts = (("A_code", Cv), ("B_code", Cv), ("W_code", LOAD), ("e_prime_code", F.E_PRIME))
     return [tuple(int(fmt.check(int(x), field=f"vectors[{i}].{f}"))
                   for x, (f, fmt) in zip(row, fmts)) for i, row in enumerate(rows)]
-
-
-class CycleCounter:
-    """Simulation helper: a free-running edge counter beside a device under test.
-
-    ``wait_done`` lets the simulator run to ``done`` without waking the Python
-    testbench on every edge (``tick().until``, ~25 % faster than polling) and still
-    returns the exact count of edges from the start edge to the one after which
-    ``done`` reads 1.
-    """
-
-    def __init__(self, dut):
-        self.top = Module()
-        self.top.submodules.dut = dut
-        self.count = Signal(32)
-        self.deadline = Signal(32)
-        self.top.d.sync += self.count.eq(self.count + 1)
-
-    async def start(self, ctx, strobe) -> int:
-        """Pulse ``strobe`` for one edge; returns the count at that edge's end."""
-        ctx.set(strobe, 1)
-        await ctx.tick()
-        ctx.set(strobe, 0)
-        return ctx.get(self.count)
-
-    async def wait_done(self, ctx, done, t_go: int, max_cycles: int, what: str) -> int:
-        """Edges from the start edge (edge 1, ending at count ``t_go``) to ``done``."""
-        if not ctx.get(done):
-            ctx.set(self.deadline, t_go + max_cycles)
-            # until() samples before each edge: it returns one edge after done rose
-            await ctx.tick().until(done | (self.count >= self.deadline))
-            if not ctx.get(done):
-                raise RuntimeError(f"{what}: no done after {max_cycles} cycles")
-            return ctx.get(self.count) - t_go
-        return 1
 
 
 def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES
@@ -449,7 +414,6 @@ def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES
     evaluations/s; the bare serial divider alone: ~20k edges/s) plus ~1 s to elaborate;
     bulk sweeps belong in Verilator on :func:`convert_verilog`'s output.
     """
-    from amaranth.sim import Simulator
     rows = _check_vectors(vectors)
     dut = HertzCore()
     cc = CycleCounter(dut)
@@ -464,8 +428,5 @@ def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES
                                              "hertz core"))
             outputs.append(read_hertz_codes(ctx, dut))
 
-    sim = Simulator(cc.top)
-    sim.add_clock(1e-8)
-    sim.add_testbench(bench)
-    sim.run()
+    run_testbench(cc.top, bench)
     return outputs, cycles

@@ -74,34 +74,13 @@ class Operands:
 
     Attributes
     ----------
-    a_min, b_max : signed(32)
-        Sorted curvatures, CURVATURE Q(32,20).
-    w : signed(32)
-        W, LOAD Q(32,8).
-    e_prime : signed(32)
-        E', E_PRIME Q(32,0).
-    alpha : unsigned(32)
-        ALPHA UQ(32,24).
-    radius : unsigned(33)
-        RADIUS UQ(33,23).
-    k : unsigned(29)
-        K_INT UQ(29,24).
-    k2 : unsigned(37)
-        K2 UQ(37,28).
-    e6 : unsigned(27)
-        E6 UQ(27,25).
-    t1 : unsigned(31)
-        T1 UQ(31,21).
-    t2 : unsigned(39)
-        T2 UQ(39,26).
-    t3 : unsigned(64)
-        T3 UQ(64,34).
-    wc3 : unsigned(64)
-        W C3, UQ(64,48).
-    a_w, b_w : unsigned(42)
-        AXIS_W UQ(42,36).
-    p_n2 : unsigned(47)
-        PN2 UQ(47,28).
+    a_min, b_max, w, e_prime : signed(32)
+        Sorted curvatures (CURVATURE Q(32,20)), W (LOAD Q(32,8)), E' (E_PRIME Q(32,0)).
+    alpha, radius, k, k2, e6, t1, t2, t3, wc3, a_w, b_w, p_n2 : unsigned
+        The unsigned intermediates in their :mod:`.formats` formats, in the same
+        order: ALPHA UQ(32,24), RADIUS UQ(33,23), K_INT UQ(29,24), K2 UQ(37,28),
+        E6 UQ(27,25), T1 UQ(31,21), T2 UQ(39,26), T3 UQ(64,34), W C3 UQ(64,48),
+        AXIS_W UQ(42,36) (a_w and b_w), PN2 UQ(47,28).
     """
 
     a_min: object = None
