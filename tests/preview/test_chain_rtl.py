@@ -6,9 +6,6 @@ import dataclasses
 
 import numpy as np
 import pytest
-from amaranth import ClockDomain, Module
-from amaranth.sim import Simulator
-
 from gearcontact.materials import STEEL, Material, effective_modulus_mpa
 from gearcontact.preview.chain import chain_golden
 from gearcontact.preview.chain_rtl import (
@@ -27,6 +24,7 @@ from gearcontact.preview.hertz import formats as F
 from gearcontact.preview.hertz.golden import encode_e_prime
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, COMB_CYCLES
 from gearcontact.preview.qformat import GAP, LOAD
+from gearcontact.preview.simulation import pulse, run_to_done, simulate_bench
 
 S, T = stencil_coordinates()
 E_STEEL = encode_e_prime(effective_modulus_mpa(STEEL))
@@ -143,34 +141,16 @@ def test_random_stencils_bit_exact_long(core):
 # control behaviour
 # ---------------------------------------------------------------------------------
 def _sim(core_cls, bench, *, with_reset=False):
-    dut = core_cls()
-    top = Module()
-    top.submodules.dut = dut
-    cd = None
-    if with_reset:
-        top.domains.sync = cd = ClockDomain("sync")
-    sim = Simulator(top)
-    sim.add_clock(1e-8)
-
-    async def testbench(ctx):
+    async def steel_bench(ctx, dut, cd):
         ctx.set(dut.e_prime, E_STEEL)
         await bench(ctx, dut, cd)
 
-    sim.add_testbench(testbench)
-    sim.run()
+    simulate_bench(core_cls(), steel_bench, with_reset=with_reset)
 
 
 async def _go_and_wait(ctx, dut, w, limit):
     ctx.set(dut.W, w)
-    ctx.set(dut.go, 1)
-    await ctx.tick()
-    ctx.set(dut.go, 0)
-    n = 1
-    while not ctx.get(dut.done):
-        assert n < limit
-        await ctx.tick()
-        n += 1
-    return n
+    return await run_to_done(ctx, dut.go, dut.done, max_cycles=limit)
 
 
 def _one(row, w, cycles):
@@ -194,9 +174,7 @@ def test_go_while_busy_ignored_outputs_hold_and_writes(core_cls, n_cycles):
         await write_stencil(ctx, dut, B_ROW)
         assert not ctx.get(dut.wr_dropped)
         ctx.set(dut.W, B_W)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         ctx.set(dut.W, C_W)                      # W is captured at go: no effect
         n = 1
         while not ctx.get(dut.done):
@@ -228,9 +206,7 @@ def test_chain_accepts_writes_while_stage_d_runs():
     async def bench(ctx, dut, cd):
         await write_stencil(ctx, dut, A_ROW)
         ctx.set(dut.W, A_W)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         for _ in range(FIT_CYCLES + 5):
             await ctx.tick()
         assert ctx.get(dut.busy)
@@ -254,15 +230,11 @@ def test_reset_mid_run_returns_to_idle_and_keeps_ram(core_cls, n_cycles, reset_a
         assert await _go_and_wait(ctx, dut, A_W, 2 * n_cycles) == n_cycles
         await write_stencil(ctx, dut, B_ROW)
         ctx.set(dut.W, B_W)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         for _ in range(reset_at - 1):
             await ctx.tick()
         assert ctx.get(dut.busy)
-        ctx.set(cd.rst, 1)
-        await ctx.tick()
-        ctx.set(cd.rst, 0)
+        await pulse(ctx, cd.rst)
         assert not ctx.get(dut.busy) and not ctx.get(dut.done)
         zero = read_chain_codes(ctx, dut, 0)
         assert (zero.hertz.a_code, zero.hertz.p_max_code, zero.flags) == (0, 0, 0)

@@ -6,15 +6,17 @@ bit-identical with :func:`golden_fit` and take exactly ``FIT_CYCLES`` = 52 edges
 
 import numpy as np
 import pytest
-from amaranth import ClockDomain, Module
-from amaranth.sim import Simulator
 
 from gearcontact.preview.fit.golden import (FIT_CYCLES, FLAG_COEFF_OVERFLOW,
                                             FLAG_CURV_OVERFLOW, FLAG_D_OVERFLOW,
-                                            FLAG_NOT_ELLIPTIC, encode_gaps, golden_fit)
-from gearcontact.preview.fit.rtl import FitCore, convert_verilog, simulate_fit_core
+                                            FLAG_NOT_ELLIPTIC, GoldenFit, encode_gaps,
+                                            golden_fit)
+from gearcontact.preview.fit.rtl import (FitCore, convert_verilog, read_fit_codes,
+                                        simulate_fit_core)
 from gearcontact.preview.fit.stencil import stencil_coordinates
 from gearcontact.preview.qformat import GAP
+from gearcontact.preview.simulation import (pulse, run_to_done, simulate_bench,
+                                            write_stencil)
 
 S, T = stencil_coordinates()
 
@@ -72,74 +74,37 @@ def test_directed_corners_bit_exact_and_cycle_exact():
     assert flags["typical"] == flags["tiny"] == 0
 
 
-def test_random_stencils_bit_exact():
-    codes = _random(120, seed=21)
+def _check_random(n, seed):
+    codes = _random(n, seed=seed)
     outs, cycles = simulate_fit_core(codes)
     assert cycles == [FIT_CYCLES] * len(codes)
     for row, out in zip(codes, outs):
         assert out == golden_fit(row)
+
+
+def test_random_stencils_bit_exact():
+    _check_random(120, seed=21)
 
 
 @pytest.mark.slow
 def test_random_stencils_bit_exact_long():
-    codes = _random(3000, seed=22)
-    outs, cycles = simulate_fit_core(codes)
-    assert cycles == [FIT_CYCLES] * len(codes)
-    for row, out in zip(codes, outs):
-        assert out == golden_fit(row)
+    _check_random(3000, seed=22)
 
 
 # --------------------------------------------------------------- control behaviour
 
 def _run(bench, *, with_reset=False):
-    """Run an async testbench on a fresh core (optionally with a drivable reset)."""
-    dut = FitCore()
-    if with_reset:
-        top = Module()
-        top.domains.sync = cd = ClockDomain("sync")
-        top.submodules.dut = dut
-        sim = Simulator(top)
-    else:
-        cd, sim = None, Simulator(dut)
-    sim.add_clock(1e-8)
-
-    async def testbench(ctx):
-        await bench(ctx, dut, cd)
-
-    sim.add_testbench(testbench)
-    sim.run()
-
-
-async def _write(ctx, dut, row):
-    ctx.set(dut.wr_rst, 1)
-    await ctx.tick()
-    ctx.set(dut.wr_rst, 0)
-    ctx.set(dut.wr_en, 1)
-    for x in row:
-        ctx.set(dut.wr_data, int(x))
-        await ctx.tick()
-    ctx.set(dut.wr_en, 0)
-
-
-def _read(ctx, dut):
-    return (tuple(int(ctx.get(c)) for c in dut.coeffs), int(ctx.get(dut.a_minus)),
-            int(ctx.get(dut.b_minus)), int(ctx.get(dut.flags)))
-
-
-def _golden_tuple(row):
-    g = golden_fit(row)
-    return (g.c_codes, g.a_minus_code, g.b_minus_code, g.flags)
+    """Run ``bench(ctx, dut, cd)`` on a fresh core (optionally with a drivable reset)."""
+    simulate_bench(FitCore(), bench, with_reset=with_reset)
 
 
 def test_go_while_busy_is_ignored_and_writes_dropped():
     first, second = _field(0.31, 0.1, 0.05), _field(0.02, -0.01, 0.04)
 
     async def bench(ctx, dut, _):
-        await _write(ctx, dut, first)
+        await write_stencil(ctx, dut, first)
         assert ctx.get(dut.wr_count) == 49 and not ctx.get(dut.wr_dropped)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         n = 1
         while not ctx.get(dut.done):
             if n == 20:                         # go and a write while busy
@@ -155,24 +120,23 @@ def test_go_while_busy_is_ignored_and_writes_dropped():
         assert n == FIT_CYCLES                  # not restarted, not delayed
         assert not ctx.get(dut.busy) and ctx.get(dut.done_pulse)
         assert ctx.get(dut.wr_dropped) and ctx.get(dut.wr_count) == 49
-        assert _read(ctx, dut) == _golden_tuple(first)   # RAM untouched by the write
+        assert read_fit_codes(ctx, dut) == golden_fit(first)   # RAM untouched by the write
         for _ in range(10):                     # done and outputs hold while idle
             await ctx.tick()
-            assert ctx.get(dut.done) and _read(ctx, dut) == _golden_tuple(first)
+            assert ctx.get(dut.done) and read_fit_codes(ctx, dut) == golden_fit(first)
             assert not ctx.get(dut.done_pulse)  # one cycle only
         # second stencil: outputs keep the first result until the new done edge
-        await _write(ctx, dut, second)
+        await write_stencil(ctx, dut, second)
         assert not ctx.get(dut.wr_dropped)      # wr_rst cleared the sticky flag
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         assert not ctx.get(dut.done)
         n = 1
         while not ctx.get(dut.done):
-            assert _read(ctx, dut) == _golden_tuple(first) and not ctx.get(dut.done_pulse)
+            assert read_fit_codes(ctx, dut) == golden_fit(first)
+            assert not ctx.get(dut.done_pulse)
             await ctx.tick()
             n += 1
-        assert n == FIT_CYCLES and _read(ctx, dut) == _golden_tuple(second)
+        assert n == FIT_CYCLES and read_fit_codes(ctx, dut) == golden_fit(second)
 
     _run(bench)
 
@@ -181,7 +145,7 @@ def test_write_pointer_saturates_and_write_with_wr_rst_lands_at_zero():
     row = _field(0.2, 0.0, 0.1)
 
     async def bench(ctx, dut, _):
-        await _write(ctx, dut, row)
+        await write_stencil(ctx, dut, row)
         ctx.set(dut.wr_en, 1)                   # a 50th sample is dropped, no wrap
         ctx.set(dut.wr_data, 777)
         await ctx.tick()
@@ -207,7 +171,7 @@ def test_write_pointer_saturates_and_write_with_wr_rst_lands_at_zero():
         assert ctx.get(dut.done)
         expect = row.copy()
         expect[0] += 65536
-        assert _read(ctx, dut) == _golden_tuple(expect)
+        assert read_fit_codes(ctx, dut) == golden_fit(expect)
 
     _run(bench)
 
@@ -216,31 +180,22 @@ def test_reset_mid_run_returns_to_idle_and_keeps_ram():
     row = _field(0.12, -0.03, 0.4, 0.005)
 
     async def bench(ctx, dut, cd):
-        await _write(ctx, dut, row)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await write_stencil(ctx, dut, row)
+        await pulse(ctx, dut.go)
         for _ in range(29):
             await ctx.tick()
         assert ctx.get(dut.busy)
-        ctx.set(cd.rst, 1)                      # synchronous reset mid-run
-        await ctx.tick()
-        ctx.set(cd.rst, 0)
+        await pulse(ctx, cd.rst)                # synchronous reset mid-run
         assert not ctx.get(dut.busy) and not ctx.get(dut.done)
         assert ctx.get(dut.wr_count) == 0
-        assert _read(ctx, dut) == ((0,) * 6, 0, 0, 0)
+        assert read_fit_codes(ctx, dut) == GoldenFit((0,) * 6, 0, 0, 0)
         for _ in range(FIT_CYCLES + 5):         # stays idle: no spurious done
             await ctx.tick()
             assert not ctx.get(dut.done) and not ctx.get(dut.busy)
-        ctx.set(dut.go, 1)                      # re-run without rewriting the RAM
-        await ctx.tick()
-        ctx.set(dut.go, 0)
-        n = 1
-        while not ctx.get(dut.done):
-            await ctx.tick()
-            n += 1
+        # re-run without rewriting the RAM
+        n = await run_to_done(ctx, dut.go, dut.done, max_cycles=4 * FIT_CYCLES)
         assert n == FIT_CYCLES
-        assert _read(ctx, dut) == _golden_tuple(row)
+        assert read_fit_codes(ctx, dut) == golden_fit(row)
 
     _run(bench, with_reset=True)
 

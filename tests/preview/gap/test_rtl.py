@@ -9,12 +9,11 @@ import time
 
 import numpy as np
 import pytest
-from amaranth.hdl import ClockDomain, Elaboratable, Module, Signal
-from amaranth.sim import Simulator
-
 from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL, GapVector,
                                             gap_golden_codes, gap_latency)
-from gearcontact.preview.gap.rtl import GapCore, convert_verilog, simulate_gap_core
+from gearcontact.preview.gap.rtl import (GapCore, convert_verilog, load_gap_vector,
+                                         simulate_gap_core)
+from gearcontact.preview.simulation import pulse, simulate_bench
 from gearcontact.validation import InputRangeError
 
 ONE = 1 << 19
@@ -95,76 +94,41 @@ def test_l8_bit_and_cycle_exact():
     assert cycles == [gap_latency(12, 8)] * 3 + [19, 17]   # 8 + K + 3 + 5
 
 
-class _Harness(Elaboratable):
-    """Drives the core's sync-domain reset from a testbench signal."""
-
-    def __init__(self, core):
-        self.core, self.rst = core, Signal()
-
-    def elaborate(self, platform):
-        m = Module()
-        m.domains.sync = cd = ClockDomain()
-        m.d.comb += cd.rst.eq(self.rst)
-        m.submodules.core = self.core
-        return m
-
-
 def test_go_while_busy_ignored_reset_mid_run_and_bad_n():
     rng = np.random.default_rng(3)
     vec = random_vector(rng, 16)
     want = gap_golden_codes(vec, lanes=16)
-    dut = GapCore(lanes=16)
-    h = _Harness(dut)
     log = {}
 
-    async def run_pass(ctx, *, poke_at=None, reset_at=None):
-        ctx.set(dut.start, 1)
-        await ctx.tick()
-        ctx.set(dut.start, 0)
+    async def run_pass(ctx, dut, cd, *, poke_at=None, reset_at=None):
+        await pulse(ctx, dut.start)
         count = 1
         while not ctx.get(dut.done):
             if count == poke_at:
                 ctx.set(dut.start, 1)                   # ignored: the core is busy
                 ctx.set(dut.p, [0, 0, 0])               # operands were captured
             if count == reset_at:
-                ctx.set(h.rst, 1)
-                await ctx.tick()
-                ctx.set(h.rst, 0)
+                await pulse(ctx, cd.rst)
                 return None
             await ctx.tick()
             ctx.set(dut.start, 0)
             count += 1
         return count, (ctx.get(dut.gap), ctx.get(dut.idx), ctx.get(dut.valid))
 
-    async def bench(ctx):
-        for i in range(16):
-            ctx.set(dut.w_valid, 1)
-            ctx.set(dut.w_addr, i)
-            ctx.set(dut.w_g, [int(x) for x in vec.g_code[i]])
-            ctx.set(dut.w_n, [int(x) for x in vec.n_code[i]])
-            await ctx.tick()
-        ctx.set(dut.w_valid, 0)
-        ctx.set(dut.r, [int(x) for x in vec.r_code.ravel()])
-        ctx.set(dut.t, [int(x) for x in vec.t_code])
+    async def bench(ctx, dut, cd):
+        assert vec.n_samples == 16
+        await load_gap_vector(ctx, dut, vec)
+        log["busy_poke"] = await run_pass(ctx, dut, cd, poke_at=7)
         ctx.set(dut.p, [int(x) for x in vec.p_code])
-        ctx.set(dut.tau2, vec.tau2_code)
-        ctx.set(dut.n_samples, 16)
-        log["busy_poke"] = await run_pass(ctx, poke_at=7)
-        ctx.set(dut.p, [int(x) for x in vec.p_code])
-        log["reset"] = await run_pass(ctx, reset_at=12)
+        log["reset"] = await run_pass(ctx, dut, cd, reset_at=12)
         log["after_reset"] = (ctx.get(dut.busy), ctx.get(dut.valid), ctx.get(dut.idx))
-        log["rerun"] = await run_pass(ctx)
+        log["rerun"] = await run_pass(ctx, dut, cd)
         ctx.set(dut.n_samples, 0)
-        ctx.set(dut.start, 1)
-        await ctx.tick()
-        ctx.set(dut.start, 0)
+        await pulse(ctx, dut.start)
         await ctx.tick()
         log["bad_n"] = (ctx.get(dut.busy), ctx.get(dut.n_error))
 
-    sim = Simulator(h)
-    sim.add_clock(1e-8)
-    sim.add_testbench(bench)
-    sim.run()
+    simulate_bench(GapCore(lanes=16), bench, with_reset=True)
     golden = (want.min_gap_code, want.min_idx, want.valid)
     assert log["busy_poke"] == (26, golden)
     assert log["reset"] is None and log["after_reset"] == (0, 0, IDX_SENTINEL)

@@ -8,7 +8,7 @@ against :func:`.schedule.state_start_cycles`, and the go -> done edge count agai
 
 import numpy as np
 import pytest
-from amaranth import ClockDomain, Module
+from amaranth import Module
 from amaranth.sim import Simulator
 
 from gearcontact.preview.hertz import formats as F
@@ -35,6 +35,8 @@ from gearcontact.preview.hertz.schedule import (
     state_start_cycles,
 )
 from gearcontact.preview.qformat import CURVATURE, LOAD
+from gearcontact.preview.simulation import (pulse, run_testbench, run_to_done,
+                                            simulate_bench)
 
 from .conftest import E_PRIMES, accuracy_domain
 
@@ -143,20 +145,7 @@ def test_random_and_corner_sweep_long():
 # internal registers, divider operands and the state schedule vs the golden trace
 # ---------------------------------------------------------------------------------
 def _sim(bench, *, tag_bits=0, with_reset=False):
-    dut = HertzCore(tag_bits=tag_bits)
-    top = Module()
-    top.submodules.dut = dut
-    cd = None
-    if with_reset:
-        top.domains.sync = cd = ClockDomain("sync")
-    sim = Simulator(top)
-    sim.add_clock(1e-8)
-
-    async def testbench(ctx):
-        await bench(ctx, dut, cd)
-
-    sim.add_testbench(testbench)
-    sim.run()
+    simulate_bench(HertzCore(tag_bits=tag_bits), bench, with_reset=with_reset)
 
 
 def _drive(ctx, dut, v):
@@ -173,9 +162,7 @@ def test_registers_divisions_and_schedule_match_golden_trace(v):
     async def bench(ctx, dut, cd):
         pr = dut.probes
         _drive(ctx, dut, v)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         edge, entered, divs, pending = 1, {}, [], {}
         names = {s.index: s.name for s in STATES}
         while not ctx.get(dut.done):
@@ -213,15 +200,7 @@ def test_registers_divisions_and_schedule_match_golden_trace(v):
 # control behaviour
 # ---------------------------------------------------------------------------------
 async def _run_to_done(ctx, dut, strobe, limit=2 * HERTZ_CYCLES):
-    ctx.set(strobe, 1)
-    await ctx.tick()
-    ctx.set(strobe, 0)
-    n = 1
-    while not ctx.get(dut.done):
-        assert n < limit
-        await ctx.tick()
-        n += 1
-    return n
+    return await run_to_done(ctx, strobe, dut.done, max_cycles=limit, what="hertz core")
 
 
 def test_go_while_busy_is_ignored_and_outputs_hold_until_done():
@@ -236,9 +215,7 @@ def test_go_while_busy_is_ignored_and_outputs_hold_until_done():
         assert ctx.get(dut.done) and not ctx.get(dut.done_pulse)
         # second run; go / go_chain with other operands while busy are ignored
         _drive(ctx, dut, second)
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         assert ctx.get(dut.busy) and not ctx.get(dut.done)
         _drive(ctx, dut, first)
         n = 1
@@ -284,15 +261,11 @@ def test_reset_mid_run_returns_to_idle():
     async def bench(ctx, dut, cd):
         _drive(ctx, dut, v)
         assert await _run_to_done(ctx, dut, dut.go) == HERTZ_CYCLES
-        ctx.set(dut.go, 1)
-        await ctx.tick()
-        ctx.set(dut.go, 0)
+        await pulse(ctx, dut.go)
         for _ in range(300):                # inside DIV_ALPHA
             await ctx.tick()
         assert ctx.get(dut.busy)
-        ctx.set(cd.rst, 1)
-        await ctx.tick()
-        ctx.set(cd.rst, 0)
+        await pulse(ctx, cd.rst)
         assert not ctx.get(dut.busy) and not ctx.get(dut.done)
         assert read_hertz_codes(ctx, dut) == HertzCodes(*(0,) * 10)
         for _ in range(HERTZ_CYCLES + 5):   # stays idle: no spurious done
@@ -325,13 +298,9 @@ def test_serial_divider_matches_the_bit_serial_model():
     async def bench(ctx):
         for n, d in cases:
             ctx.set(dut.num, n)
-            ctx.set(dut.load, 1)
-            await ctx.tick()
-            ctx.set(dut.load, 0)
+            await pulse(ctx, dut.load)
             ctx.set(dut.den, d)
-            ctx.set(dut.start, 1)
-            await ctx.tick()
-            ctx.set(dut.start, 0)
+            await pulse(ctx, dut.start)
             ctx.set(dut.step, 1)
             await ctx.tick().repeat(80)
             ctx.set(dut.step, 0)
@@ -340,10 +309,7 @@ def test_serial_divider_matches_the_bit_serial_model():
             if d:
                 assert ctx.get(dut.remainder) == ref.remainder, (n, d)
 
-    sim = Simulator(dut)
-    sim.add_clock(1e-8)
-    sim.add_testbench(bench)
-    sim.run()
+    run_testbench(dut, bench)
 
 
 def test_array_divider_matches_the_model():
