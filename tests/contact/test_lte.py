@@ -314,3 +314,19 @@ def test_s0003_posed_field_contains_the_opening(s0003_tca, s0003_flanks, s0003_p
         bound = (pc.A_minus_per_mm * (grid.dy_mm[0] / 2) ** 2
                  + pc.B_minus_per_mm * (grid.dx_mm[0] / 2) ** 2 + 1e-5)
         assert gap[~off].min() == pytest.approx(pc.offset_mm, abs=bound)
+
+
+def test_s0003_coast_side_max_envelope(s0003_pair, s0003_flanks):
+    # coast side: the pinion pushes the gear towards +phi2, TE0 is the max over the
+    # pairs and the loaded gear lags towards -phi2: TE = TE0 - theta, theta > 0
+    from gearcontact.tca.analysis import analyze_pair
+    tca = analyze_pair(s0003_pair, side="coast", phases=PHASES, flanks=s0003_flanks)[0]
+    assert tca.cycle.envelope_is_max
+    res = loaded_te(tca, s0003_flanks, s0003_pair, 64.5, side="coast", cells=CELLS,
+                    stride=2)
+    assert res.converged and res.te_sign == -1
+    assert (res.rotation_lcp_arcsec > 0).all() and (res.rotation_pre_arcsec > 0).all()
+    np.testing.assert_allclose(res.te0_arcsec - res.te_lcp_arcsec, res.rotation_lcp_arcsec,
+                               rtol=1e-12)
+    moments = np.nansum(res.pair_loads_lcp_n * np.nan_to_num(res.lever_mm), axis=0)
+    np.testing.assert_allclose(moments, 64.5e3, rtol=1e-10)

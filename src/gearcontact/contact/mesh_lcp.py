@@ -208,7 +208,6 @@ def _pk_cg_blocks(blocks: list[_Block], x: list[np.ndarray], torque: float, tol:
         if rt <= 0.0:
             return x, it, gz == 0.0 or rt == 0.0
         tau = float(sum(c @ ti for c, ti in zip(gc, tc))) / rt
-        change = 0.0
         x_old = [xi.copy() for xi in x]
         overlap_any = False
         for xi, i, c, gi in zip(x, idx, tc, g):
