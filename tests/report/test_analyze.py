@@ -29,7 +29,7 @@ def test_files_written(analysis):
     for name in ("design.json", "tca.json", "te0.csv", "gap_stencil.csv", "phase_table.bin",
                  "ltca.json", "ltca_torques.csv", "preview.csv", "pressure_64.5Nm.csv",
                  "pressure_maps.png", "pressure_vs_load.png", "summary.md", "te0.png",
-                 "contact_pattern.png"):
+                 "contact_pattern.png", "lte.json", "lte.csv", "lte.png"):
         assert (out / name).stat().st_size > 0, name
     rows = json.loads((out / "ltca.json").read_text())
     assert [r["torque_nm"] for r in rows] == list(TORQUES)
@@ -91,11 +91,12 @@ def test_published_values_have_provenance():
 
 def test_cli_analyze(tmp_path, capsys):
     code = main(["analyze", "--pair", "s0003", "--out", str(tmp_path / "o"), "--torques",
-                 "64.5", "--phases", "9", "--no-figures", "--quiet"])
+                 "64.5", "--phases", "9", "--no-figures", "--quiet", "--lte-phases", "0"])
     assert code == 0
     assert "summary.md" in capsys.readouterr().out
     assert (tmp_path / "o" / "summary.md").exists()
     assert not (tmp_path / "o" / "pressure_maps.png").exists()
+    assert not (tmp_path / "o" / "lte.json").exists()  # --lte-phases 0 skips the LTE
 
 
 def test_cli_analyze_bad_torque(tmp_path, capsys):
@@ -103,3 +104,13 @@ def test_cli_analyze_bad_torque(tmp_path, capsys):
                  "--quiet"])
     assert code == 2
     assert "torque_nm" in capsys.readouterr().err
+
+
+def test_lte_in_main_job(analysis):
+    # the loaded TE of the main job: torque balance closes at every phase and the loaded
+    # rotation reduces the unloaded TE variation (load sharing smooths it)
+    lte = analysis.lte
+    d = json.loads((analysis.out_dir / "lte.json").read_text())
+    assert d["te_lcp_pp_arcsec"] == pytest.approx(lte.te_lcp_pp_arcsec)
+    assert 0.0 < lte.te_lcp_pp_arcsec < analysis.tca.cycle.te0_pp_arcsec
+    assert 0.0 < lte.te_pre_pp_arcsec < analysis.tca.cycle.te0_pp_arcsec

@@ -20,6 +20,10 @@ def register(sub) -> None:
     p.add_argument("--phases", type=int, default=61,
                    help="TCA mesh phases per pinion pitch (default 61)")
     p.add_argument("--side", default="drive", choices=("drive", "coast"))
+    p.add_argument("--lte-torque", type=float, default=64.5, metavar="T",
+                   help="gear torque of the loaded-TE run, N·m (default 64.5)")
+    p.add_argument("--lte-phases", type=int, default=11,
+                   help="phases of the loaded-TE run over one pitch (default 11; 0 skips it)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
@@ -28,12 +32,18 @@ def register(sub) -> None:
 def run(args) -> int:
     if args.phases < 3:
         raise ValueError(f"--phases = {args.phases} must be >= 3")
+    if args.lte_phases != 0 and args.lte_phases < 3:
+        raise ValueError(f"--lte-phases = {args.lte_phases} must be 0 (skip) or >= 3")
     res = run_analysis(args.pair, out_dir=args.out, torques_nm=args.torques,
                        phases=args.phases, side=args.side, figures=not args.no_figures,
-                       progress=not args.quiet)
-    design = res.cases[min(range(len(res.cases)), key=lambda i: abs(res.cases[i].torque_nm - 64.5))]
+                       progress=not args.quiet,
+                       lte_torque_nm=args.lte_torque if args.lte_phases else None,
+                       lte_phases=max(args.lte_phases, 3))
+    design = min(res.cases, key=lambda c: abs(c.torque_nm - args.lte_torque))
     print(f"{res.pair.name}: TE0 p-p {res.tca.cycle.te0_pp_arcsec:.2f} arcsec; at "
           f"{design.torque_nm:g} N·m W = {design.load_n:.0f} N, preview p_max "
-          f"{design.preview.p_max_mpa:.0f} MPa, LCP p90 {design.patch.p90_mpa:.0f} MPa "
-          f"-> {res.out_dir / 'summary.md'}")
+          f"{design.preview.p_max_mpa:.0f} MPa, LCP p90 {design.patch.p90_mpa:.0f} MPa"
+          + (f"; LTE p-p {res.lte.te_lcp_pp_arcsec:.2f} (LCP) / "
+             f"{res.lte.te_pre_pp_arcsec:.2f} (preview) arcsec" if res.lte is not None else "")
+          + f" -> {res.out_dir / 'summary.md'}")
     return 0
