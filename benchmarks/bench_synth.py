@@ -74,7 +74,7 @@ def main(argv=None) -> int:
 
     def one(job):
         core, lanes, nodsp = job
-        tag = f"{core}{'_L%d' % lanes if lanes else ''}{'_nodsp' if nodsp else ''}"
+        tag = f"{core}{f'_L{lanes}' if lanes else ''}{'_nodsp' if nodsp else ''}"
         try:
             r = S.synthesize(core, out / tag, lanes=lanes, nodsp=nodsp, timeout=args.timeout)
         except RuntimeError as exc:

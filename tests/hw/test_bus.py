@@ -8,8 +8,15 @@ import pytest
 from amaranth.sim import Simulator
 
 from gearcontact.hw.bus import RegisterBlock, port_name
-from gearcontact.hw.regmap import (CHAIN_FLAG_BITS, HERTZ_FLAG_BITS, SOC_MAPS, SRAM_BASE,
-                                   Register, Region, get_map)
+from gearcontact.hw.regmap import (
+    CHAIN_FLAG_BITS,
+    HERTZ_FLAG_BITS,
+    SOC_MAPS,
+    SRAM_BASE,
+    Region,
+    Register,
+    get_map,
+)
 from gearcontact.validation import InputRangeError
 
 

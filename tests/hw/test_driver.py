@@ -4,7 +4,6 @@ driver's errors on bad input or a misbehaving bus."""
 
 import dataclasses
 
-import numpy as np
 import pytest
 
 from gearcontact.hw import driver as drv
@@ -13,7 +12,11 @@ from gearcontact.preview.chain import chain_golden
 from gearcontact.preview.hertz.golden import hertz_golden
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, HERTZ_CYCLES
 from gearcontact.preview.qformat import FixedPointOverflow
-from gearcontact.preview.stimulus import STEEL_E_PRIME_CODE, chain_stimulus, hertz_stimulus
+from gearcontact.preview.stimulus import (
+    STEEL_E_PRIME_CODE,
+    chain_stimulus,
+    hertz_stimulus,
+)
 from gearcontact.validation import InputRangeError
 
 
@@ -124,6 +127,9 @@ def test_timeout_waiting_for_done():
     d = drv.PreviewDriver(FakeTransport(), max_polls=50)
     d.go()
     with pytest.raises(drv.DoneTimeout, match="50 polls"):
+        d.wait_done()
+    d = drv.PreviewDriver(FakeTransport(), timeout_s=0.01)
+    with pytest.raises(drv.DoneTimeout, match="0.01 s"):
         d.wait_done()
 
 

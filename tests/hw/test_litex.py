@@ -22,7 +22,8 @@ def board(tmp_path_factory):
 
 
 def _csv(path):
-    rows = [r for r in csv.reader(open(path)) if r and not r[0].startswith("#")]
+    with open(path) as fh:
+        rows = [r for r in csv.reader(fh) if r and not r[0].startswith("#")]
     bases = {r[1]: int(r[2], 16) for r in rows if r[0] == "csr_base"}
     regs = {r[1]: (int(r[2], 16), r[4]) for r in rows if r[0] == "csr_register"}
     mems = {r[1]: (int(r[2], 16), int(r[3])) for r in rows if r[0] == "memory_region"}

@@ -65,7 +65,7 @@ def test_bus_errors_count_unmapped_accesses(contact):
 
 def test_timer0_counts_down_and_latches(contact):
     m = get_map("contact_core")
-    a = lambda r: m.addr("timer0", r)  # noqa: E731
+    a = lambda r: m.addr("timer0", r)
     contact.write(a("load"), 1000)
     contact.write(a("en"), 1)          # count = load after this edge
     contact.idle(10)                   # ten edges down

@@ -65,7 +65,8 @@ def test_table_csv_plot(tmp_path):
     text = S.format_table(rs)
     assert "DSP48E1 258" in text and "LUT 197,377" in text
     path = S.write_csv(rs, tmp_path / "r.csv")
-    rows = list(csv.DictReader(open(path)))
+    with open(path) as fh:
+        rows = list(csv.DictReader(fh))
     assert rows[0]["DSP48E1"] == "258" and rows[2]["core"] == "tri_core"
     png = S.plot_sweep(rs, tmp_path / "p.png", S.dsp_fit(rs[:2]))
     assert png.read_bytes()[:4] == b"\x89PNG"

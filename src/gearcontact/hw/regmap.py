@@ -41,9 +41,22 @@ from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
 
-__all__ = ["Register", "Region", "SocMap", "SOC_MAPS", "SOC_KINDS", "MAGIC",
-           "IDENTS", "DONE_FLAGS_SHIFT", "CONTACT_FLAG_BITS", "CSR_PAGE",
-           "SRAM_BASE", "SRAM_SIZE", "get_map", "identifier_bytes"]
+__all__ = [
+    "CONTACT_FLAG_BITS",
+    "CSR_PAGE",
+    "DONE_FLAGS_SHIFT",
+    "IDENTS",
+    "MAGIC",
+    "SOC_KINDS",
+    "SOC_MAPS",
+    "SRAM_BASE",
+    "SRAM_SIZE",
+    "Region",
+    "Register",
+    "SocMap",
+    "get_map",
+    "identifier_bytes",
+]
 
 # Flag word widths (as chain_rtl / hertz.rtl_datapath derive them; this module stays
 # free of Amaranth so that the host driver imports quickly).

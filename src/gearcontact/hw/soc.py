@@ -41,11 +41,24 @@ from ..preview.gap.rtl import GapCore
 from ..preview.hertz.rtl import HertzCore
 from ..preview.stimulus import STEEL_E_PRIME_CODE, gap_stimulus
 from .bus import CSR_BUS, RegisterBlock, port_name
-from .regmap import (CONTACT_FLAG_BITS, DONE_FLAGS_SHIFT, MAGIC, SocMap,
-                     get_map, identifier_bytes)
+from .regmap import (
+    CONTACT_FLAG_BITS,
+    DONE_FLAGS_SHIFT,
+    MAGIC,
+    SocMap,
+    get_map,
+    identifier_bytes,
+)
 
-__all__ = ["ContactRunner", "SocDatapath", "SocTop", "baked_contact_vector",
-           "convert_verilog", "datapath_ports", "PROBE_BITS"]
+__all__ = [
+    "PROBE_BITS",
+    "ContactRunner",
+    "SocDatapath",
+    "SocTop",
+    "baked_contact_vector",
+    "convert_verilog",
+    "datapath_ports",
+]
 
 #: Width of the ``probe_cycles`` output (edges from an accepted go to done).
 PROBE_BITS = 16
@@ -199,7 +212,7 @@ class SocDatapath(wiring.Component):
         core = None
         if "preview" in names:
             m.submodules.chain = core = ChainCore()
-            P = lambda r: self._p("preview", r)  # noqa: E731
+            P = lambda r: self._p("preview", r)
             m.d.comb += [core.wr_rst.eq(P("wr_rst")), core.wr_en.eq(P("wr_data__stb")),
                          core.wr_data.eq(P("wr_data")), core.W.eq(P("W_load")),
                          core.e_prime.eq(self.e_prime_code), core.go.eq(P("go")),
@@ -207,7 +220,7 @@ class SocDatapath(wiring.Component):
             go = P("go")
         elif "hertz" in names:
             m.submodules.hertz = core = HertzCore()
-            P = lambda r: self._p("hertz", r)  # noqa: E731
+            P = lambda r: self._p("hertz", r)
             m.d.comb += [core.A.eq(P("A_in")), core.B.eq(P("B_in")), core.W.eq(P("W_load")),
                          core.e_prime.eq(self.e_prime_code), core.go.eq(P("go")),
                          core.go_chain.eq(0),

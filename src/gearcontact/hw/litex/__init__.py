@@ -7,7 +7,7 @@ constraints, ``csr.csv`` / ``csr.json`` and the openXC7 build script without run
 any vendor tool. Importing this package does not import LiteX.
 """
 
-__all__ = ["generate", "LITEX_PIN"]
+__all__ = ["LITEX_PIN", "generate"]
 
 from ..driver import LITEX_PIN
 

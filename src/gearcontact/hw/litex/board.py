@@ -33,10 +33,10 @@ from migen import ClockSignal, Instance, Module, ResetSignal, Signal
 
 from ..bus import port_name
 from ..regmap import CSR_PAGE, SRAM_SIZE, SocMap, get_map
-from ..soc import PROBE_BITS, _constants, datapath_ports, _DATAPATH_REGIONS
+from ..soc import _DATAPATH_REGIONS, PROBE_BITS, _constants, datapath_ports
 from .platform import CLK_FREQ_HZ, Platform
 
-__all__ = ["BoardSoC", "RegionCSRs", "generate", "BUILD_SCRIPT_NOTE"]
+__all__ = ["BUILD_SCRIPT_NOTE", "BoardSoC", "RegionCSRs", "generate"]
 
 
 class RegionCSRs(Module, AutoCSR):
@@ -84,7 +84,7 @@ class BoardSoC(SoCMini):
         Verilog of ``SocDatapath(kind)`` with top module ``<kind>_datapath``.
     """
 
-    mem_map = {**SoCCore.mem_map, "csr": 0x0000_0000}
+    mem_map = {**SoCCore.mem_map, "csr": 0x0000_0000}  # noqa: RUF012 -- LiteX API
 
     def __init__(self, platform, kind: str, datapath_verilog, *,
                  sys_clk_freq: float = CLK_FREQ_HZ):

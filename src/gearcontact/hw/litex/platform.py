@@ -18,7 +18,7 @@ from __future__ import annotations
 from litex.build.generic_platform import IOStandard, Pins
 from litex.build.xilinx import XilinxPlatform
 
-__all__ = ["Platform", "DEVICE", "CLK_PIN", "RESET_PIN", "CLK_FREQ_HZ"]
+__all__ = ["CLK_FREQ_HZ", "CLK_PIN", "DEVICE", "RESET_PIN", "Platform"]
 
 #: FPGA part as openXC7 names it (xc7k480t, package ffg1156, speed grade -2).
 DEVICE = "xc7k480tffg1156-2"
