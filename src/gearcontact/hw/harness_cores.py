@@ -408,7 +408,7 @@ class EquivalenceReport:
     sim_seconds : float
         Simulation time (Verilator: inside the binary; Amaranth: the runner call).
     build_seconds : float
-        Model build time in this call (0 when cached).
+        Verilog export + Verilator build in this call (about 0 when both are cached).
     golden_seconds : float
     """
 
