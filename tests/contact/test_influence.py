@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.influence import (FftInfluence, dense_influence_matrix,
-                                           fft_influence, love_rectangle_displacement)
+from gearcontact.contact.influence import (FftInfluence, boussinesq_inverse,
+                                           dense_influence_matrix, fft_influence,
+                                           love_rectangle_displacement)
 from gearcontact.validation import InputRangeError
 
 E_STAR = 114_835.0  # MPa, steel on steel
@@ -88,3 +89,27 @@ def test_dense_matrix_on_non_uniform_grid_matches_love_per_cell():
                                     grid.dx_mm[i] / 2, grid.dy_mm[j] / 2,
                                     e_star_mpa=E_STAR) / (grid.dx_mm[i] * grid.dy_mm[j])
     np.testing.assert_allclose(c[:, m], u.ravel(), rtol=1e-14)
+
+
+def test_approx_inverse_is_exact_and_finite_on_a_single_cell():
+    # A 1x1 field has no non-zero wavenumber: the preconditioner's symbol there is the
+    # exact inverse of the self-influence C_ii (dense 1x1 matrix), to round-off.
+    grid = TangentGrid.uniform(1, 1, dx_mm=0.02, dy_mm=0.03)
+    c_ii = dense_influence_matrix(grid, e_star_mpa=E_STAR)[0, 0]
+    op = fft_influence(grid, e_star_mpa=E_STAR)
+    w = op.approx_inverse(np.full((1, 1), 2e-4))
+    assert np.isfinite(w).all()
+    assert w[0, 0] == pytest.approx(2e-4 / c_ii, rel=1e-12)
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (1, 6), (5, 1), (7, 9)])
+def test_approx_inverse_symmetric_positive_definite(shape):
+    # As a matrix on the field (any padding), the preconditioner must be SPD for CG:
+    # symmetric to round-off (1e-12 relative) with a positive smallest eigenvalue.
+    n = shape[0] * shape[1]
+    for pad in (shape, (2 * shape[0], 2 * shape[1] + 1)):
+        m = np.column_stack([boussinesq_inverse(e.reshape(shape), dx_mm=0.02, dy_mm=0.03,
+                                                e_star_mpa=E_STAR, padded_shape=pad).ravel()
+                             for e in np.eye(n)])
+        assert np.abs(m - m.T).max() <= 1e-12 * np.abs(m).max()
+        assert np.linalg.eigvalsh(0.5 * (m + m.T)).min() > 0.0

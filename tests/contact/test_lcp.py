@@ -15,6 +15,7 @@ import pytest
 from gearcontact.contact import lcp
 from gearcontact.contact.ellipse import CoarseGridWarning
 from gearcontact.contact.grid import TangentGrid
+from gearcontact.contact.influence import dense_influence_matrix
 from gearcontact.contact.lcp import LcpConvergenceError, solve_lcp
 from gearcontact.validation import InputRangeError
 
@@ -236,3 +237,49 @@ def test_linear_algebra_failure_is_reported_not_raised(make_hertz, monkeypatch):
     with pytest.raises(LcpConvergenceError):
         solve_lcp(prob.gap_mm, prob.grid, LOAD_N, solver="active_set",
                   raise_on_failure=True)
+
+
+# ------------------------------------------------------------------ single-cell contact
+def _check_single_cell(res, gap, grid, load, cell):
+    # One contacting cell carries all of W: p = W / cell area, and the approach is the
+    # cell's gap plus its self-displacement, delta = h_min + C_ii W (C_ii: Love's closed
+    # form at the centre of a loaded cell, the dense 1x1 matrix). Exact up to round-off
+    # (1e-12 relative); every other cell stays open.
+    c_ii = dense_influence_matrix(grid.sub(slice(0, 1), slice(0, 1)),
+                                  e_star_mpa=E_STAR_MPA)[0, 0]
+    assert res.converged, res.message
+    assert res.n_contact_cells == 1 and res.contact_mask[cell]
+    assert np.all(np.isfinite(res.pressure_mpa))
+    assert res.pressure_mpa[cell] == pytest.approx(load / grid.cell_area_mm2[cell],
+                                                   rel=1e-12)
+    assert res.delta_mm == pytest.approx(float(gap.min()) + c_ii * load, rel=1e-12)
+    assert res.load_residual <= 1e-12
+
+
+@pytest.mark.parametrize("solver", lcp.SOLVERS)
+@pytest.mark.parametrize("load", [1e-3, 1e-9])
+def test_tiny_load_on_hertz_gap_contacts_one_cell(make_hertz, solver, load):
+    # At 1e-3 N (1e-6 W) the Hertz radius is 1 % of the 8-cell one: the contact is the
+    # centre cell alone, and the pk_cg preconditioner works on a 1x1 box (it returned
+    # NaN there before the 1x1 symbol was made finite).
+    prob = make_hertz(1.0, 8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CoarseGridWarning)
+        res = solve_lcp(prob.gap_mm, prob.grid, load, solver=solver,
+                        e_star_mpa=E_STAR_MPA)
+    cell = (prob.grid.ny // 2, prob.grid.nx // 2)
+    _check_single_cell(res, prob.gap_mm, prob.grid, load, cell)
+
+
+@pytest.mark.parametrize("solver", lcp.SOLVERS)
+@pytest.mark.parametrize("cell", [(5, 7), (0, 0), (22, 11)])
+def test_isolated_minimum_cell_carries_the_whole_load(solver, cell):
+    # A flat gap 1 um above one isolated cell (interior, corner, edge): under 1 N the
+    # cell sinks C_ii W ~ 0.15 um < 1 um, so it alone is in contact.
+    grid = TangentGrid.centered(23, 23, dx_mm=0.01, dy_mm=0.015)
+    gap = np.full(grid.shape, 1e-3)
+    gap[cell] = 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CoarseGridWarning)
+        res = solve_lcp(gap, grid, 1.0, solver=solver, e_star_mpa=E_STAR_MPA)
+    _check_single_cell(res, gap, grid, 1.0, cell)

@@ -43,7 +43,7 @@ from ..validation import InputRangeError, check_positive
 from .grid import TangentGrid
 
 __all__ = ["love_rectangle_displacement", "dense_influence_matrix", "FftInfluence",
-           "fft_influence"]
+           "fft_influence", "boussinesq_inverse"]
 
 
 def _corner(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
@@ -139,18 +139,63 @@ def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
 
 
 @lru_cache(maxsize=64)
-def _inverse_symbol(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
+def _inverse_symbol(py: int, px: int, dx_mm: float, dy_mm: float, e_star_mpa: float
                     ) -> np.ndarray:
-    """``E* |k| dA / 2`` on the padded rfft2 grid (N/mm per mm of displacement)."""
-    py = sfft.next_fast_len(2 * ny - 1)
-    px = sfft.next_fast_len(2 * nx - 1)
-    ky = 2.0 * np.pi * sfft.fftfreq(py, dy_mm)
-    kx = 2.0 * np.pi * sfft.rfftfreq(px, dx_mm)
-    k = np.hypot(ky[:, None], kx[None, :])
-    k[0, 0] = 0.5 * min(abs(ky[1]) if py > 1 else np.inf, kx[1] if px > 1 else np.inf)
-    sym = 0.5 * e_star_mpa * dx_mm * dy_mm * k
+    """``E* |k| dA / 2`` on a ``(py, px)`` rfft2 grid (N/mm per mm of displacement).
+
+    The mean mode ``k = 0`` (where the continuous symbol vanishes) takes half the lowest
+    non-zero wavenumber, which keeps the operator positive definite. A ``1 x 1`` grid
+    has no non-zero mode: there the symbol is the exact inverse of the cell's
+    self-influence, ``1 / C_ii`` (an infinite value here once made the ``pk_cg``
+    preconditioner return NaN when the contact shrank to one cell).
+    """
+    if py == 1 and px == 1:
+        c_ii = love_rectangle_displacement(0.0, 0.0, 0.5 * dx_mm, 0.5 * dy_mm,
+                                           e_star_mpa=e_star_mpa) / (dx_mm * dy_mm)
+        sym = np.full((1, 1), 1.0 / float(c_ii))
+    else:
+        ky = 2.0 * np.pi * sfft.fftfreq(py, dy_mm)
+        kx = 2.0 * np.pi * sfft.rfftfreq(px, dx_mm)
+        k = np.hypot(ky[:, None], kx[None, :])
+        k[0, 0] = 0.5 * min(abs(ky[1]) if py > 1 else np.inf, kx[1] if px > 1 else np.inf)
+        sym = 0.5 * e_star_mpa * dx_mm * dy_mm * k
     sym.setflags(write=False)
     return sym
+
+
+def boussinesq_inverse(displacement_mm: np.ndarray, *, dx_mm: float, dy_mm: float,
+                       e_star_mpa: float, padded_shape: tuple[int, int]) -> np.ndarray:
+    """Loads (N) approximately producing ``displacement_mm``: a preconditioner.
+
+    Applies the inverse of the continuous Boussinesq symbol, ``p^ = E* |k| u^ / 2``
+    (from ``u^ = 2 p^ / (E* |k|)``, Johnson 1985 sec. 3.2 in Fourier form), times the
+    cell area, on the field zero-padded to ``padded_shape`` (any shape at least the
+    field's; more padding is closer to the non-periodic inverse, less is cheaper).
+    Symmetric positive definite (see :func:`_inverse_symbol` for the mean mode and the
+    single-cell case); the FFT-based preconditioning of Vollebregt (2014).
+
+    Parameters
+    ----------
+    displacement_mm : ndarray, shape (ny, nx)
+        Displacements in mm on a uniform grid.
+    dx_mm, dy_mm : float
+        Cell widths in mm.
+    e_star_mpa : float
+        Composite modulus E* in MPa.
+    padded_shape : tuple of int
+        Transform shape ``(py, px)`` with ``py >= ny``, ``px >= nx``.
+
+    Returns
+    -------
+    ndarray, shape (ny, nx)
+        Nodal loads in N.
+    """
+    ny, nx = displacement_mm.shape
+    py, px = padded_shape
+    sym = _inverse_symbol(py, px, dx_mm, dy_mm, e_star_mpa)
+    f = sfft.rfft2(displacement_mm, s=padded_shape)
+    f *= sym
+    return sfft.irfft2(f, s=padded_shape)[:ny, :nx]
 
 
 class FftInfluence:
@@ -196,16 +241,12 @@ class FftInfluence:
     def approx_inverse(self, displacement_mm: np.ndarray) -> np.ndarray:
         """Loads (N) approximately producing ``displacement_mm``: a preconditioner.
 
-        Applies the inverse of the continuous Boussinesq symbol, ``p^ = E* |k| u^ / 2``
-        (from ``u^ = 2 p^ / (E* |k|)``, Johnson 1985 sec. 3.2 in Fourier form), on the
-        operator's padded grid, times the cell area. Symmetric positive definite (the
-        mean mode is kept positive); used by the ``pk_cg`` solver following the
-        FFT-based preconditioning of Vollebregt (2014).
+        :func:`boussinesq_inverse` on the operator's padded grid: symmetric positive
+        definite, exact on a ``1 x 1`` field; used by the multi-pair ``pk_cg`` of
+        :mod:`.mesh_lcp` following Vollebregt (2014).
         """
-        ny, nx = self.shape
-        sym = _inverse_symbol(ny, nx, self._dx, self._dy, self._e_star)
-        f = sfft.rfft2(displacement_mm, s=self._pad)
-        return sfft.irfft2(f * sym, s=self._pad)[:ny, :nx]
+        return boussinesq_inverse(displacement_mm, dx_mm=self._dx, dy_mm=self._dy,
+                                  e_star_mpa=self._e_star, padded_shape=self._pad)
 
     def __call__(self, loads_n: np.ndarray) -> np.ndarray:
         """Displacements (mm, shape ``(ny, nx)``) due to nodal loads (N, same shape)."""
