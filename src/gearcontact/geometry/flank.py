@@ -118,8 +118,13 @@ class FormateFlank:
         """Inverse of :meth:`blade_parameters`: (u, v) in mm."""
         return self.dedendum_mm - np.asarray(h_mm), np.asarray(theta_rad) / self._kv
 
-    def evaluate(self, u, v) -> SurfaceArrays:
-        """Vectorized exact evaluation at arrays ``u``, ``v`` (broadcast)."""
+    def evaluate(self, u, v, *, second: bool = True) -> SurfaceArrays:
+        """Vectorized exact evaluation at arrays ``u``, ``v`` (broadcast).
+
+        ``second`` is accepted for symmetry with
+        :meth:`~.sheet.RadialSheet.evaluate`; the closed-form second derivatives cost
+        nothing extra and are always returned.
+        """
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         h, th = self.blade_parameters(u, v)
         b = self.blade.evaluate(h, th)

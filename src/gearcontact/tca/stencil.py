@@ -42,6 +42,7 @@ the surfaces' analytic continuation is used and ``on_flank`` still records the f
 from __future__ import annotations
 
 from dataclasses import dataclass
+from inspect import signature
 from pathlib import Path
 
 import numpy as np
@@ -52,6 +53,7 @@ from ..preview.fit.stencil import STENCIL_SIDE, STENCIL_SPACING_MM, stencil_coor
 from ..preview.fit.stencil import write_stencil_csv as write_stencil_file
 from ..validation import check_positive
 from .curvature import PAINT_THICKNESS_MM, contact_ellipse, relative_curvature
+from .gap_kernel import intersect_lines, kernel_surface
 from .solve import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
@@ -108,28 +110,75 @@ def evaluate_many(surface: Surface, u: np.ndarray, v: np.ndarray):
     """Evaluate a surface at many parameter pairs: ``(r, r_u, r_v)`` as (N, 3) arrays.
 
     Uses the surface's optional vectorized ``evaluate(u, v)`` (the flanks of
-    :mod:`gearcontact.geometry` return arrays with (N, 3) fields) when it has one,
-    else loops over ``point``.
+    :mod:`gearcontact.geometry` return arrays with (N, 3) fields; with
+    ``second=False`` where supported, as no second derivatives are needed) when it
+    has one, else loops over ``point``.
     """
     if hasattr(surface, "evaluate"):
-        sp = surface.evaluate(u, v)
+        kw = {"second": False} if "second" in signature(surface.evaluate).parameters else {}
+        sp = surface.evaluate(u, v, **kw)
         return np.asarray(sp.r), np.asarray(sp.r_u), np.asarray(sp.r_v)
     pts = [surface.point(float(a), float(b)) for a, b in zip(u, v)]
     return (np.array([p.r for p in pts]), np.array([p.r_u for p in pts]),
             np.array([p.r_v for p in pts]))
 
 
+def _sweep(st: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """Solve order and predecessors of the samples (flattened ``st``, (N, 2)) for the
+    compiled intersections: every sample starts from the tangent-plane prediction at an
+    already solved neighbour nearer to P0 than itself.
+
+    A 2-D ``shape`` (a grid, row j along t, column k along s) is swept from its centre
+    node along the centre row, then out along the columns; other point sets take the
+    nearest already solved sample (up to 1024 samples; beyond that none).
+    """
+    m = st.shape[0]
+    if len(shape) == 2 and min(shape) > 1:
+        rows, cols = shape
+        jc, kc = rows // 2, cols // 2
+        j, k = (a.ravel() for a in np.indices(shape))
+        prev = np.where(j != jc, (j - np.sign(j - jc)) * cols + k,
+                        np.where(k != kc, j * cols + k - np.sign(k - kc), -1))
+        return np.lexsort((np.abs(k - kc), np.abs(j - jc))), prev
+    scale = np.ptp(st, axis=0) if m else np.ones(2)
+    scale[scale == 0.0] = 1.0
+    x = st / scale
+    order = np.argsort(np.einsum("ij,ij->i", x, x), kind="stable")
+    prev = np.full(m, -1)
+    if 1 < m <= 1024:
+        xs = x[order]
+        d2 = ((xs[:, None, :] - xs[None, :, :]) ** 2).sum(axis=2)
+        d2[np.triu_indices(m)] = np.inf           # only samples solved before
+        near = np.argmin(d2, axis=1)
+        closer = d2[np.arange(m), near] < np.einsum("ij,ij->i", xs, xs)
+        prev[order[closer]] = order[near[closer]]
+    return order, prev
+
+
 def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
-                    uv0: np.ndarray, *, clamp: bool, tol_mm: float, max_iter: int = 25):
+                    uv0: np.ndarray, *, clamp: bool, tol_mm: float, max_iter: int = 25,
+                    sweep=None):
     """Intersections of the lines ``q_i + lambda n`` with a posed surface (Newton,
     vectorized over the lines).
 
     Returns ``(lambda, inside)``: ``lambda`` (N,) is NaN where Newton did not converge
-    or, with ``clamp``, where the intersection lies outside the parameter box.
+    or, with ``clamp``, where the intersection lies outside the parameter box. The
+    flanks of :mod:`gearcontact.geometry` run the same iteration compiled
+    (:mod:`.gap_kernel`), started along ``sweep`` (:func:`_sweep`; default: every
+    line from ``uv0``); other surfaces run it vectorized in numpy from ``uv0``.
     """
     rot, c = pose
     lo = np.array([surface.u_range[0], surface.v_range[0]], float)
     hi = np.array([surface.u_range[1], surface.v_range[1]], float)
+    compiled = kernel_surface(surface)
+    if compiled is not None:
+        order, prev = sweep if sweep is not None else (np.arange(len(q)), np.full(len(q), -1))
+        return intersect_lines(*compiled, np.ascontiguousarray(rot, dtype=float),
+                               np.asarray(c, dtype=float), np.ascontiguousarray(q, dtype=float),
+                               np.ascontiguousarray(n, dtype=float),
+                               np.ascontiguousarray(uv0, dtype=float), lo, hi, bool(clamp),
+                               float(tol_mm), int(max_iter), order.astype(np.int64),
+                               prev.astype(np.int64))
     uv = uv0.copy()
     lam = np.zeros(len(q))
     active = np.ones(len(q), dtype=bool)
@@ -188,6 +237,7 @@ def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
     st = np.column_stack([s.ravel(), t.ravel()])
     q = mp.point_mm + st @ axes[:, :2].T
     lams, insides = [], []
+    sweep = _sweep(st, s.shape)
     for surf, pose, uv_p0 in ((pinion, kin.pinion_pose(mp.phi1_rad), (mp.u1, mp.v1)),
                               (gear, kin.gear_pose(mp.phi2_rad), (mp.u2, mp.v2))):
         # Newton starts from the first-order map (s, t) -> (u, v) of the tangent plane
@@ -195,7 +245,7 @@ def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
         jac = axes[:, :2].T @ (pose[0] @ np.column_stack([sp.r_u, sp.r_v]))
         uv0 = np.asarray(uv_p0, float) + st @ np.linalg.inv(jac).T
         lam, inside = _intersect_many(surf, pose, q, n, uv0, clamp=not allow_outside,
-                                      tol_mm=tol_mm)
+                                      tol_mm=tol_mm, sweep=sweep)
         lams.append(lam)
         insides.append(inside)
     gap = (lams[0] - lams[1]).reshape(s.shape)
