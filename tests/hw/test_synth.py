@@ -35,11 +35,11 @@ STAT_NEW = """
 
 
 def test_parse_stat_both_layouts():
-    a = S.parse_stat(STAT_OLD)
-    assert a == {"LUT": 30, "FF": 102, "CARRY4": 40, "DSP48E1": 3, "RAMB36": 2,
+    a = S.parse_stat(STAT_OLD + "   Estimated number of LCs:         25\n")
+    assert a == {"LC": 25, "LUT": 30, "FF": 102, "CARRY4": 40, "DSP48E1": 3, "RAMB36": 2,
                  "RAMB18": 1, "MUXF": 4, "LUTRAM": 1, "SRL": 5}
     b = S.parse_stat(STAT_NEW)
-    assert (b["LUT"], b["FF"], b["CARRY4"], b["DSP48E1"]) == (30, 102, 40, 3)
+    assert (b["LC"], b["LUT"], b["FF"], b["CARRY4"], b["DSP48E1"]) == (0, 30, 102, 40, 3)
 
 
 def test_parse_ltp():
@@ -102,6 +102,7 @@ def test_yosys_smoke_small_multiplier(tmp_path):
     # the product's registers fold into the DSP48E1 (A/B/P regs); the 8-bit
     # accumulator stays in fabric: 8 FF, a CARRY4 chain, depth >= 2 (LUT + carry)
     assert r.DSP48E1 == 1 and r.FF == 8 and r.CARRY4 >= 2 and r.depth >= 2
+    assert 0 < r.LC <= r.LUT
     assert (tmp_path / "w" / "stat.txt").exists() and r.cpu_seconds > 0
 
 

@@ -80,6 +80,9 @@ class SynthResult:
         Lane count (gap core) or None.
     nodsp : bool
         Multipliers kept out of DSP48E1 slices.
+    LC : int
+        Yosys' estimate of logic cells (``stat -tech xilinx``; LUTs packed in pairs
+        where they fit one LUT6 site — the "LC" of the published sweep); 0 if absent.
     LUT, FF, CARRY4, DSP48E1, RAMB36, RAMB18, MUXF, LUTRAM, SRL : int
         Cell counts (LUT = LUT1..LUT6; FF = FD*; MUXF = MUXF7 + MUXF8; LUTRAM =
         RAM32/64 cells; SRL = SRL16E/SRLC32E).
@@ -94,6 +97,7 @@ class SynthResult:
     core: str
     lanes: int | None
     nodsp: bool
+    LC: int = 0
     LUT: int = 0
     FF: int = 0
     CARRY4: int = 0
@@ -190,7 +194,9 @@ def parse_stat(text: str) -> dict:
     def total(pred):
         return sum(v for k, v in cells.items() if pred(k))
 
+    lc = re.findall(r"Estimated number of LCs:\s*(\d+)", text)
     return {
+        "LC": int(lc[-1]) if lc else 0,
         "LUT": total(lambda k: re.fullmatch(r"LUT[1-6]", k) is not None),
         "FF": total(lambda k: re.fullmatch(r"FD[A-Z]*", k) is not None),
         "CARRY4": cells.get("CARRY4", 0),
@@ -238,7 +244,7 @@ def synthesize(core: str, workdir, *, lanes: int | None = None, nodsp: bool = Fa
     (work / "core.v").write_text(verilog if verilog is not None else core_verilog(core, lanes))
     script = ("read_verilog core.v; synth_xilinx -family xc7 -top core -noiopad"
               + (" -nodsp" if nodsp else "")
-              + "; tee -q -o stat.txt stat; tee -q -o ltp.txt ltp -noff t:FD* %n")
+              + "; tee -q -o stat.txt stat -tech xilinx; tee -q -o ltp.txt ltp -noff t:FD* %n")
     t0 = time.perf_counter()
     with (work / "yosys.out").open("w") as out:
         proc = subprocess.Popen(cmd + ["-q", "-l", "yosys.log", "-p", script], cwd=work,
@@ -329,7 +335,7 @@ def write_csv(results, path) -> Path:
 
 def format_table(results) -> str:
     """Plain-text table of results with the published figures beside them."""
-    head = (f"{'core':<12}{'L':>4}{'nodsp':>6}{'LUT':>9}{'FF':>8}{'CARRY4':>8}"
+    head = (f"{'core':<12}{'L':>4}{'nodsp':>6}{'LC':>9}{'LUT':>9}{'FF':>8}{'CARRY4':>8}"
             f"{'DSP':>6}{'B36':>5}{'B18':>5}{'depth':>6}{'wall s':>8}{'cpu s':>8}  published")
     lines = [head]
     for r in results:
@@ -337,7 +343,8 @@ def format_table(results) -> str:
         ptxt = ", ".join(f"{k} {v:,}" if isinstance(v, int) and not isinstance(v, bool)
                          else f"{k} {v}" for k, v in pub.items())
         lines.append(f"{r.core:<12}{r.lanes or '-':>4}{'y' if r.nodsp else 'n':>6}"
-                     f"{r.LUT:>9,}{r.FF:>8,}{r.CARRY4:>8,}{r.DSP48E1:>6}{r.RAMB36:>5}"
+                     f"{r.LC or '-':>9}{r.LUT:>9,}{r.FF:>8,}{r.CARRY4:>8,}{r.DSP48E1:>6}"
+                     f"{r.RAMB36:>5}"
                      f"{r.RAMB18:>5}{r.depth:>6}{r.seconds:>8.1f}{r.cpu_seconds:>8.1f}  {ptxt}")
     return "\n".join(lines)
 
