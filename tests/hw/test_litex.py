@@ -86,3 +86,32 @@ def test_cli_soc_names_the_pip_command_without_litex(monkeypatch, capsys, tmp_pa
         out, kind, lanes = str(tmp_path), "tri_core", 16
     assert run_soc(A()) == EXIT_UNAVAILABLE
     assert "pip install litex==2024.12 migen==0.10.0" in capsys.readouterr().err
+
+
+_XILINX_STUBS = """
+module BSCANE2 #(parameter JTAG_CHAIN = 1) (output CAPTURE, output DRCK, output RESET,
+  output RUNTEST, output SEL, output SHIFT, output TCK, output TDI, output TMS,
+  output UPDATE, input TDO);
+endmodule
+module FDPE #(parameter INIT = 1) (output reg Q, input C, input CE, input D, input PRE);
+endmodule
+"""
+
+
+def test_top_and_datapath_elaborate_together(board, tmp_path):
+    """Verilator lint of the LiteX top + the Amaranth datapath: every Instance port
+    exists with a matching direction (Xilinx primitives stubbed)."""
+    import shutil
+    import subprocess
+    if shutil.which("verilator") is None:
+        pytest.skip("Verilator not installed: apt-get install -y --no-install-recommends "
+                    "verilator")
+    stubs = tmp_path / "stubs.v"
+    stubs.write_text(_XILINX_STUBS)
+    proc = subprocess.run(
+        ["verilator", "--lint-only", "-Wno-fatal", "-Wno-WIDTH", "-Wno-UNOPTFLAT",
+         "-Wno-DECLFILENAME", "-Wno-UNUSED", "-Wno-PINCONNECTEMPTY", "-Wno-PINMISSING",
+         "--top-module", board["verilog"].stem, str(board["verilog"]),
+         str(board["datapath"]), str(stubs)], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert "PINNOTFOUND" not in proc.stderr
