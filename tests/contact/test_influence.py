@@ -4,9 +4,13 @@ import numpy as np
 import pytest
 
 from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.influence import (FftInfluence, boussinesq_inverse,
-                                           dense_influence_matrix, fft_influence,
-                                           love_rectangle_displacement)
+from gearcontact.contact.influence import (
+    FftInfluence,
+    boussinesq_inverse,
+    dense_influence_matrix,
+    fft_influence,
+    love_rectangle_displacement,
+)
 from gearcontact.validation import InputRangeError
 
 E_STAR = 114_835.0  # MPa, steel on steel

@@ -42,6 +42,11 @@ from scipy import fft as sfft
 from ..validation import InputRangeError, check_positive
 from .grid import TangentGrid
 
+try:  # scipy.fft's own pocketfft binding, called without the per-call dispatch
+    from scipy.fft._pocketfft import pypocketfft as _pocketfft
+except ImportError:  # pragma: no cover - depends on the scipy build
+    _pocketfft = None
+
 __all__ = ["love_rectangle_displacement", "dense_influence_matrix", "FftInfluence",
            "fft_influence", "boussinesq_inverse"]
 
@@ -118,12 +123,57 @@ def dense_influence_matrix(grid: TangentGrid, *, e_star_mpa: float,
     return u / (4.0 * ax * by)[None, :]
 
 
+def _rfft2_scipy(x: np.ndarray, pad: tuple[int, int]) -> np.ndarray:
+    return sfft.rfft2(x, s=pad)
+
+
+def _irfft2_scipy(f: np.ndarray, pad: tuple[int, int]) -> np.ndarray:
+    return sfft.irfft2(f, s=pad)
+
+
+def _rfft2_direct(x: np.ndarray, pad: tuple[int, int]) -> np.ndarray:
+    buf = np.zeros(pad)
+    buf[:x.shape[0], :x.shape[1]] = x
+    return _pocketfft.r2c(buf, (0, 1), True, 0, None, 1)
+
+
+def _irfft2_direct(f: np.ndarray, pad: tuple[int, int]) -> np.ndarray:
+    return _pocketfft.c2r(f, (0, 1), pad[1], False, 2, None, 1)  # inorm 2: 1/N
+
+
+def _pick_transforms():
+    """The zero-padding ``rfft2`` / ``irfft2`` pair used by the operators.
+
+    :func:`scipy.fft.rfft2` spends ~20 us per call in dispatch and argument handling,
+    as long as a whole 64 x 64 transform; the solvers make ~60 small transforms per
+    solve, so the pocketfft binding under :mod:`scipy.fft` is called directly (one
+    thread: on small fields threads cost more than they save) when it is present and
+    agrees with :mod:`scipy.fft` on a test field; otherwise the public functions.
+    """
+    if _pocketfft is not None:
+        try:
+            x = np.arange(12.0).reshape(3, 4) ** 1.5
+            pad = (5, 7)
+            ok = (np.allclose(_rfft2_direct(x, pad), sfft.rfft2(x, s=pad), rtol=1e-13,
+                              atol=1e-12)
+                  and np.allclose(_irfft2_direct(sfft.rfft2(x, s=pad), pad)[:3, :4], x,
+                                  rtol=1e-13, atol=1e-12))
+        except (TypeError, ValueError, RuntimeError):  # pragma: no cover
+            ok = False
+        if ok:
+            return _rfft2_direct, _irfft2_direct
+    return _rfft2_scipy, _irfft2_scipy  # pragma: no cover
+
+
+_rfft2, _irfft2 = _pick_transforms()
+
+
 @lru_cache(maxsize=64)
 def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
                  ) -> tuple[np.ndarray, tuple[int, int]]:
     """Cached rfft2 of the zero-padded influence kernel (mm/N) and the padded shape."""
-    py = sfft.next_fast_len(2 * ny - 1)
-    px = sfft.next_fast_len(2 * nx - 1)
+    py = sfft.next_fast_len(2 * ny - 1, real=True)
+    px = sfft.next_fast_len(2 * nx - 1, real=True)
     ox = dx_mm * np.concatenate([np.arange(nx), np.arange(-(nx - 1), 0)])
     oy = dy_mm * np.concatenate([np.arange(ny), np.arange(-(ny - 1), 0)])
     k = love_rectangle_displacement(ox[None, :], oy[:, None], 0.5 * dx_mm, 0.5 * dy_mm,
@@ -193,9 +243,9 @@ def boussinesq_inverse(displacement_mm: np.ndarray, *, dx_mm: float, dy_mm: floa
     ny, nx = displacement_mm.shape
     py, px = padded_shape
     sym = _inverse_symbol(py, px, dx_mm, dy_mm, e_star_mpa)
-    f = sfft.rfft2(displacement_mm, s=padded_shape)
+    f = _rfft2(displacement_mm, (py, px))
     f *= sym
-    return sfft.irfft2(f, s=padded_shape)[:ny, :nx]
+    return _irfft2(f, (py, px))[:ny, :nx]
 
 
 class FftInfluence:
@@ -227,6 +277,16 @@ class FftInfluence:
         self._khat, self._pad = _kernel_rfft(ny, nx, self._dx, self._dy, self._e_star)
         self._others: dict[tuple[int, int], FftInfluence] = {}
 
+    @property
+    def cell_size(self) -> tuple[float, float]:
+        """Cell widths ``(dx_mm, dy_mm)``."""
+        return self._dx, self._dy
+
+    @property
+    def e_star_mpa(self) -> float:
+        """Composite modulus E* in MPa."""
+        return self._e_star
+
     def on_shape(self, shape: tuple[int, int]) -> "FftInfluence":
         """The same kernel (cell size, E*) on a window of another ``shape``."""
         shape = (int(shape[0]), int(shape[1]))
@@ -251,8 +311,9 @@ class FftInfluence:
     def __call__(self, loads_n: np.ndarray) -> np.ndarray:
         """Displacements (mm, shape ``(ny, nx)``) due to nodal loads (N, same shape)."""
         ny, nx = self.shape
-        f = sfft.rfft2(loads_n, s=self._pad)
-        return sfft.irfft2(f * self._khat, s=self._pad)[:ny, :nx]
+        f = _rfft2(loads_n, self._pad)
+        f *= self._khat
+        return _irfft2(f, self._pad)[:ny, :nx]
 
 
 def fft_influence(grid: TangentGrid, *, e_star_mpa: float) -> FftInfluence:

@@ -47,13 +47,14 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import fft as sfft
 from scipy import linalg, optimize
 
 from ..materials import STEEL, Material, reduced_modulus_mpa
 from ..validation import InputRangeError, check_positive
 from .ellipse import warn_if_coarse
 from .grid import TangentGrid
-from .influence import FftInfluence, dense_influence_matrix
+from .influence import FftInfluence, boussinesq_inverse, dense_influence_matrix
 
 __all__ = ["LcpResult", "LcpConvergenceError", "solve_lcp", "SOLVERS", "resolve_e_star"]
 
@@ -68,6 +69,8 @@ _WINDOW_GROWTH = 1.5
 _MAX_WINDOWS = 8
 #: pk_cg evaluates gaps on the contact bounding box grown by this many cells.
 _PK_MARGIN = 3
+#: pk_cg recomputes its incrementally updated displacement at least this often (steps).
+_PK_REFRESH = 50
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,78 +174,115 @@ def _bordered_solve(c_aa: np.ndarray, h_a: np.ndarray, load_n: float, symmetric:
     return delta * x[:, 0] - x[:, 1], float(delta)
 
 
+def _pre_shape(shape: tuple[int, int]) -> tuple[int, int]:
+    """Transform shape of the pk_cg preconditioner: the box padded by half per axis."""
+    return tuple(sfft.next_fast_len(n + (n + 1) // 2, real=True) for n in shape)
+
+
 def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: float,
-           max_iter: int, precondition: bool) -> tuple[np.ndarray, int, bool]:
-    """Polonsky-Keer CG on a uniform window (loads in N); returns (w, iterations, ok).
+           max_iter: int, precondition: bool
+           ) -> tuple[np.ndarray, np.ndarray, int, bool]:
+    """Polonsky-Keer CG on a uniform window (loads in N).
+
+    Returns ``(w, u, iterations, ok)`` with ``u = C w`` on the whole window.
 
     Follows Polonsky & Keer (1999), section 3: the gap is centred on its mean over the
     contact set (which eliminates the approach), conjugate directions restart whenever
     non-contacting cells with negative gap are re-admitted, and the load is rescaled
     to ``W`` after every step. With ``precondition`` the centred gap is replaced by
-    ``z = P M P g`` (``M``: :meth:`FftInfluence.approx_inverse` on the contact set's
-    bounding box, ``P``: removal of the mean over the contact set), i.e. projected
-    preconditioned CG (Vollebregt 2014); this cuts the iterations about threefold.
+    ``z = P M P g`` (``M``: :func:`~.influence.boussinesq_inverse` on the contact set's
+    bounding box padded by half its size, ``P``: removal of the mean over the contact
+    set), i.e. projected preconditioned CG (Vollebregt 2014); this cuts the iterations
+    about threefold.
 
     The gap is evaluated on the contact set's bounding box grown by
-    :data:`_PK_MARGIN` cells (where cells are re-admitted); at convergence it is
-    checked on the whole window, and any penetration found there switches the
-    iteration to whole-window gaps.
+    :data:`_PK_MARGIN` cells (where cells are re-admitted). Its displacement ``C w`` is
+    updated from the step's ``C t`` (``C w <- s (C w - tau C t)``, ``s`` the load
+    rescaling), so a step costs two transforms (``C t`` and the preconditioner); it is
+    recomputed when cells are clipped or re-admitted, when the box grows, and every
+    :data:`_PK_REFRESH` steps. At convergence the gap is checked on the whole window,
+    and any penetration found there switches the iteration to whole-window gaps.
     """
     ny, nx = h.shape
+    dx, dy = op.cell_size
     w = w0 * (load_n / w0.sum())
     t = np.zeros_like(w)
     gz_old, conj, whole = 1.0, False, False
+    u, ur = None, (0, ny, 0, nx)  # u = C w on rows ur[0]:ur[1], columns ur[2]:ur[3]
     for it in range(1, max_iter + 1):
-        jj, ii = np.nonzero(w)
-        j0, j1, i0, i1 = jj.min(), jj.max() + 1, ii.min(), ii.max() + 1
+        # contact box [j0:j1, i0:i1] (w's support lies in the last region ur)
+        on = w[ur[0]:ur[1], ur[2]:ur[3]] > 0.0
+        rows, cols = np.flatnonzero(on.any(axis=1)), np.flatnonzero(on.any(axis=0))
+        j0, j1, i0, i1 = (ur[0] + rows[0], ur[0] + rows[-1] + 1, ur[2] + cols[0],
+                          ur[2] + cols[-1] + 1)
         if whole:
-            gs = (slice(0, ny), slice(0, nx))
+            g0, g1, k0, k1 = 0, ny, 0, nx
         else:
-            gs = (slice(max(j0 - _PK_MARGIN, 0), min(j1 + _PK_MARGIN, ny)),
-                  slice(max(i0 - _PK_MARGIN, 0), min(i1 + _PK_MARGIN, nx)))
-        g = op.on_shape(h[gs].shape)(w[gs])
-        g += h[gs]
-        cg = (jj - gs[0].start, ii - gs[1].start)
-        g_mean = g[cg].mean()
-        g -= g_mean
-        gc = g[cg]
-        # the preconditioner and C t act on the contact set's bounding box
-        box_op = op.on_shape((j1 - j0, i1 - i0))
-        cb = (jj - j0, ii - i0)
+            g0, g1 = max(j0 - _PK_MARGIN, 0), min(j1 + _PK_MARGIN, ny)
+            k0, k1 = max(i0 - _PK_MARGIN, 0), min(i1 + _PK_MARGIN, nx)
+        gs = (slice(g0, g1), slice(k0, k1))
+        op_g = op.on_shape((g1 - g0, k1 - k0))
+        wg = w[gs]  # a view holding all of w's support
+        if (u is not None and it % _PK_REFRESH and ur[0] <= g0 and g1 <= ur[1]
+                and ur[2] <= k0 and k1 <= ur[3]):
+            ug = u[g0 - ur[0]:g1 - ur[0], k0 - ur[2]:k1 - ur[2]]
+        else:
+            ug = op_g(wg)
+        # dense masked vectors on the gap region (m: contact indicator)
+        m = (wg > 0.0).astype(float)
+        n_c = float(np.count_nonzero(m))
+        g = ug + h[gs]
+        g -= np.vdot(g, m) / n_c
+        gm = g * m
+        box = (slice(j0 - g0, j1 - g0), slice(i0 - k0, i1 - k0))
+        gmb, mb = gm[box], m[box]
         if precondition:
-            zb = np.zeros(box_op.shape)
-            zb[cb] = gc
-            z = box_op.approx_inverse(zb)[cb]
-            z -= z.mean()
+            z = boussinesq_inverse(gmb, dx_mm=dx, dy_mm=dy, e_star_mpa=op.e_star_mpa,
+                                   padded_shape=_pre_shape(gmb.shape))
+            z -= np.vdot(z, mb) / n_c
+            z *= mb
         else:
-            z = gc
-        gz = float(gc @ z)
-        tc = z + (gz / gz_old) * t[jj, ii] if conj else z
-        t = np.zeros_like(w)
-        t[jj, ii] = tc
+            z = gmb
+        gz = float(np.vdot(gmb, z))
+        tb = z + (gz / gz_old) * (t[j0:j1, i0:i1] * mb) if conj else z
+        t.fill(0.0)
+        t[j0:j1, i0:i1] = tb
         gz_old = gz if gz > 0.0 else 1.0
-        r = box_op(t[j0:j1, i0:i1])[cb]
-        rt = float(r @ tc)
+        tg = t[gs]
+        rg = op_g(tg)  # C t on the gap region
+        rt = float(np.vdot(rg[box], tb))
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
-            return w, it, gz == 0.0 or rt == 0.0
-        tau = float(gc @ tc) / rt
-        w_old = w.copy()
-        w[jj, ii] -= tau * tc
-        np.maximum(w, 0.0, out=w)
-        wg = w[gs]  # a view: re-admits write through
+            return w, op(w), it, gz == 0.0 or rt == 0.0
+        tau = float(np.vdot(gmb, tb)) / rt
+        w_old = wg.copy()
+        lin = w_old - tau * tg  # the step before clipping and re-admission
+        np.maximum(lin, 0.0, out=wg)
         overlap = (wg == 0.0) & (g < 0.0)
         conj = not overlap.any()
         if not conj:
             wg[overlap] -= tau * g[overlap]
-        w *= load_n / w.sum()
-        if np.abs(w - w_old).sum() <= tol * load_n:
+        scale = load_n / wg.sum()
+        wg *= scale
+        if conj and lin.min() >= 0.0:  # a linear step: C w from C t
+            rg *= -tau
+            rg += ug
+            rg *= scale
+            u = rg
+        else:
+            u = op_g(wg)
+        ur = (g0, g1, k0, k1)
+        if np.abs(wg - w_old).sum() <= tol * load_n:
+            u_all = op(w)
             if whole:
-                return w, it, True
-            g_all = op(w_old) + h - g_mean
-            if not ((w_old == 0.0) & (g_all < 0.0)).any():
-                return w, it, True
+                return w, u_all, it, True
+            s = u_all + h
+            s -= s[w > 0.0].mean()
+            s[gs] = 0.0  # inside the gap region the iteration re-admitted cells
+            if not (s < 0.0).any():
+                return w, u_all, it, True
             whole = True  # penetration outside the margin box: use the whole window
-    return w, max_iter, False
+            u, ur = u_all, (0, ny, 0, nx)
+    return w, op(w), max_iter, False
 
 
 def _nnls_reference(c: np.ndarray, h: np.ndarray, load_n: float, max_iter: int,
@@ -445,9 +485,8 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
         if solver == "pk_cg":
             op = FftInfluence(h.shape, dx_mm=float(grid.dx_mm[0]),
                               dy_mm=float(grid.dy_mm[0]), e_star_mpa=e_star)
-            w, it, ok = _pk_cg(op, h, load, w0, tol, n_iter, precondition)
+            w, u, it, ok = _pk_cg(op, h, load, w0, tol, n_iter, precondition)
             contact = w > 0.0
-            u = op(w)
             delta = float((u + h)[contact].mean())
             msg = "pk_cg converged" if ok else "pk_cg hit max_iter"
         else:
