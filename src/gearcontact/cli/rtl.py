@@ -59,7 +59,7 @@ def register(sub) -> None:
     v.add_argument("--out", required=True, metavar="DIR", help="output directory")
     v.set_defaults(func=run_verilog)
 
-    from .rtl_hw import register_rtl_subcommands         # rtl soc, rtl synth
+    from .rtl_hw import register_rtl_subcommands  # rtl soc, rtl synth
     register_rtl_subcommands(cmds)
 
 

@@ -12,8 +12,9 @@ second build of the same core is a lookup; concurrent builders serialize on a lo
 file, and a build lands in its final directory only when complete.
 
 :meth:`VerilatorModel.run` packs the vectors into stimulus files in a temporary
-directory, runs the binary (optionally as parallel processes over chunks) and returns the outputs, the per-vector cycle counts and the
-simulator speed. Nothing is written into the source tree.
+directory, runs the binary (optionally as parallel processes over chunks) and returns
+the outputs, the per-vector cycle counts and the simulator speed. Nothing is written
+into the source tree.
 
 Errors are explicit: without Verilator (or g++/make) :class:`VerilatorNotFound` names the
 Debian packages to install; a failing build raises :class:`VerilatorBuildError` with

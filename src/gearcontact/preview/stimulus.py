@@ -395,9 +395,9 @@ def hertz_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     """Stage-D inputs: corner cases, then ``n`` seeded random vectors.
 
     Random vectors: curvatures log-uniform over the envelope [2^-11, 16] 1/mm with a
-    log-uniform ratio up to 200 (alpha beyond 128 gets flagged), loads log-uniform over [1, 2^17] N, E' steel or (25 %)
-    uniform over its envelope; about 10 % draw every word over its whole 32-bit range
-    (envelope flags).
+    log-uniform ratio up to 200 (alpha beyond 128 gets flagged), loads log-uniform over
+    [1, 2^17] N, E' steel or (25 %) uniform over its envelope; about 10 % draw every
+    word over its whole 32-bit range (envelope flags).
     """
     n = _check_n(n)
     rng = np.random.default_rng(seed)
