@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from gearcontact.geometry.flank import FlankBoundary
+from gearcontact.geometry.flank import FlankBoundary, cone_vector
 from gearcontact.geometry.sheet import PinionCone, RadialSheet
 from gearcontact.tca import stencil
-from gearcontact.tca.gap_kernel import _eval_cone, _eval_sheet, kernel_surface
+from gearcontact.tca.gap_kernel import kernel_surface, sheet_point
 
 
 def _numpy_path(monkeypatch):
@@ -26,30 +26,25 @@ def _numpy_path(monkeypatch):
 @pytest.mark.parametrize("member", ["pinion", "gear"])
 def test_compiled_evaluation_equals_flank_evaluate(s0003_flanks, member):
     rng = np.random.default_rng(3)
+    bu, bv, work, d = np.empty((3, 6)), np.empty((3, 6)), np.empty((4, 6)), np.zeros(6)
+    vec = np.empty((7, 3))
     for side in ("drive", "coast"):
         surf = s0003_flanks.flank(member, side)
-        kind, par, tx, ty, coef = kernel_surface(surf)
+        kind, par, tx, ty, coef, rx, ry = kernel_surface(surf)
         lo = np.array([surf.u_range[0], surf.v_range[0]])
         hi = np.array([surf.u_range[1], surf.v_range[1]])
         inner = lo + (hi - lo) * rng.random((300, 2))
-        ref = surf.evaluate(inner[:, 0], inner[:, 1])
-        out, work = np.empty(9), np.empty((6, 6))
-        for i, (u, v) in enumerate(inner):
-            if kind == 0:
-                _eval_sheet(par, tx, ty, coef, u, v, out, work)
-            else:
-                _eval_cone(par, u, v, out)
-            for a, b in ((0, ref.r), (3, ref.r_u), (6, ref.r_v)):
-                assert np.abs(out[a:a + 3] - b[i]).max() < 1e-10
         # beyond the box: positions continue as the flank's own evaluate does
         outer = lo - 0.5 * (hi - lo) + 2.0 * (hi - lo) * rng.random((300, 2))
-        ref = surf.evaluate(outer[:, 0], outer[:, 1])
-        for i, (u, v) in enumerate(outer):
-            if kind == 0:
-                _eval_sheet(par, tx, ty, coef, u, v, out, work)
-            else:
-                _eval_cone(par, u, v, out)
-            assert np.abs(out[:3] - ref.r[i]).max() < 1e-10
+        for uv, rows in ((inner, 3), (outer, 1)):
+            ref = surf.evaluate(uv[:, 0], uv[:, 1])
+            for i, (u, v) in enumerate(uv):
+                if kind == 0:
+                    sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, d, vec)
+                else:
+                    cone_vector(par, u, v, False, vec)
+                for row, want in zip(range(rows), (ref.r, ref.r_u, ref.r_v)):
+                    assert np.abs(vec[row] - want[i]).max() < 1e-10
 
 
 def _fields(flanks, pair, mp, allow_outside, frame="principal"):

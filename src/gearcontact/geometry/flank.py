@@ -38,6 +38,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 from scipy.optimize import brentq
 
 from ..validation import InputRangeError
@@ -48,7 +49,7 @@ from .sampling import FlankGrid, SurfaceArrays, point_from_arrays, sample_grid
 from .surface import SurfacePoint
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "gear_flank"]
+           "build_flanks", "cone_vector", "gear_flank"]
 
 #: Flank sides, in the order used everywhere.
 SIDES = ("drive", "coast")
@@ -134,8 +135,25 @@ class FormateFlank:
                              n=b.n)
 
     def point(self, u: float, v: float) -> SurfacePoint:
-        """Exact :class:`SurfacePoint` at (u, v)."""
-        return point_from_arrays(self.evaluate(u, v))
+        """Exact :class:`SurfacePoint` at (u, v) (compiled, :func:`cone_vector`)."""
+        out = np.empty((7, 3))
+        cone_vector(self.kernel_parameters, float(u), float(v), True, out)
+        return SurfacePoint(float(u), float(v), *out)
+
+    @property
+    def kernel_parameters(self) -> np.ndarray:
+        """Parameter vector of :func:`cone_vector`: cutter centre, axis, e1, e2 (3 each),
+        ``rho_0``, ``k = sigma tan(alpha)``, dedendum, ``k_v``, ``sigma cos(alpha)``,
+        ``sin(alpha)``."""
+        got = self.__dict__.get("_kernel_parameters")
+        if got is None:
+            blade, pl = self.blade, self.blade.placement
+            alpha = np.radians(blade.pressure_angle_deg)
+            got = np.concatenate([pl.centre_mm, pl.axis, pl.e1, pl.e2, [
+                blade.radius_pitch_mm, blade.sigma * np.tan(alpha), self.dedendum_mm, self._kv,
+                blade.sigma * np.cos(alpha), np.sin(alpha)]]).astype(float)
+            object.__setattr__(self, "_kernel_parameters", got)
+        return got
 
     def analytic_curvatures(self, u, v) -> np.ndarray:
         """Principal curvatures of the blade cone, (..., 2) ascending, 1/mm.
@@ -148,6 +166,31 @@ class FormateFlank:
         k = self.blade.sigma * -np.cos(np.radians(self.blade.pressure_angle_deg)) / self.blade.radius_mm(h)
         z = np.zeros_like(k)
         return np.sort(np.stack([k, z], axis=-1), axis=-1)
+
+
+@njit(cache=True)
+def cone_vector(par, u, v, full, out):
+    """Compiled twin of :meth:`FormateFlank.evaluate` at one point: ``out`` (7, 3) =
+    r, r_u, r_v, r_uu, r_uv, r_vv, n (only the first three rows unless ``full``), from
+    :attr:`FormateFlank.kernel_parameters` ``par``. The blade cone
+    (:meth:`~.cutter.BladeCone.evaluate`) at ``h = dedendum - u``, ``theta = k_v v``:
+    ``x = C + rho e_rho + h a``, ``rho = rho_0 + k h``."""
+    h = par[14] - u
+    kv = par[15]
+    c = np.cos(kv * v)
+    s = np.sin(kv * v)
+    rho = par[12] + par[13] * h
+    for i in range(3):
+        e_rho = c * par[6 + i] + s * par[9 + i]
+        e_th = -s * par[6 + i] + c * par[9 + i]
+        out[0, i] = par[i] + rho * e_rho + h * par[3 + i]
+        out[1, i] = -(par[13] * e_rho + par[3 + i])
+        out[2, i] = kv * rho * e_th
+        if full:
+            out[3, i] = 0.0
+            out[4, i] = -kv * par[13] * e_th
+            out[5, i] = -kv * kv * rho * e_rho
+            out[6, i] = par[16] * e_rho - par[17] * par[3 + i]
 
 
 def gear_flank(blank: BlankDesign, blade: BladeCone, *, side: str, gear_face_width_mm: float,

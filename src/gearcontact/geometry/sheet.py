@@ -10,9 +10,10 @@ over a rectangular parameter box (both parameters in mm):
 
 so that ``r(u, v) = (v, R cos(psi), R sin(psi))``. The field psi is sampled exactly on
 a dense grid (:mod:`.conjugate`, :mod:`.easeoff`) and interpolated by a quintic
-tensor-product spline (scipy ``RectBivariateSpline``, kx = ky = 5, s = 0); positions,
-first and second derivatives follow analytically from psi and its spline derivatives
-(C4 continuous, never bilinear). With ``e_R = (0, cos psi, sin psi)``,
+tensor-product spline (scipy ``RectBivariateSpline``, kx = ky = 5, s = 0; evaluated
+with its derivatives in one compiled pass by :mod:`.spline_kernel`); positions, first
+and second derivatives follow analytically from psi and its spline derivatives (C4
+continuous, never bilinear). With ``e_R = (0, cos psi, sin psi)``,
 ``e_psi = (0, -sin psi, cos psi)`` and ``t = tan(delta1) = dR/dv``:
 
     r_u  = e_R + R psi_u e_psi
@@ -35,13 +36,53 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 from scipy.interpolate import RectBivariateSpline
 
 from .flank import FlankBoundary
-from .sampling import SurfaceArrays, point_from_arrays
+from .sampling import SurfaceArrays
+from .spline_kernel import knot_reciprocals, spline_derivatives
 from .surface import SurfacePoint
 
-__all__ = ["PinionCone", "RadialSheet"]
+__all__ = ["PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
+
+
+@njit(cache=True)
+def sheet_vector(u, v, d, apex_x, tan, root_offset, sign, full, out):
+    """Position and derivatives of a sheet point from psi and its derivatives
+    ``d = (psi, psi_u, psi_v, psi_uu, psi_uv, psi_vv)`` (module docstring formulas)
+    into ``out`` (7, 3): r, r_u, r_v, r_uu, r_uv, r_vv, n; with ``full`` False only
+    the first three rows."""
+    p, pu, pv, puu, puv, pvv = d[0], d[1], d[2], d[3], d[4], d[5]
+    rad = (v - apex_x) * tan - root_offset + u
+    c = np.cos(p)
+    s = np.sin(p)
+    # e_R = (0, c, s), e_psi = (0, -s, c), x = (1, 0, 0)
+    out[0, 0], out[0, 1], out[0, 2] = v, rad * c, rad * s
+    a = rad * pu
+    out[1, 0], out[1, 1], out[1, 2] = 0.0, c - a * s, s + a * c
+    b = rad * pv
+    out[2, 0], out[2, 1], out[2, 2] = 1.0, tan * c - b * s, tan * s + b * c
+    if not full:
+        return
+    for row, ep, er in ((3, 2.0 * pu + rad * puu, -rad * pu * pu),
+                        (4, pv + tan * pu + rad * puv, -rad * pu * pv),
+                        (5, 2.0 * tan * pv + rad * pvv, -rad * pv * pv)):
+        out[row, 0], out[row, 1], out[row, 2] = 0.0, -ep * s + er * c, ep * c + er * s
+    nx = out[1, 1] * out[2, 2] - out[1, 2] * out[2, 1]
+    ny = out[1, 2] * out[2, 0] - out[1, 0] * out[2, 2]
+    nz = out[1, 0] * out[2, 1] - out[1, 1] * out[2, 0]
+    f = sign / np.sqrt(nx * nx + ny * ny + nz * nz)
+    out[6, 0], out[6, 1], out[6, 2] = f * nx, f * ny, f * nz
+
+
+@njit(cache=True)
+def sheet_vectors(u, v, d, apex_x, tan, root_offset, sign, full):
+    """:func:`sheet_vector` for arrays: (N, 7, 3) from ``d`` (N, 6)."""
+    out = np.empty((u.shape[0], 7, 3))
+    for i in range(u.shape[0]):
+        sheet_vector(u[i], v[i], d[i], apex_x, tan, root_offset, sign, full, out[i])
+    return out
 
 
 @dataclass(frozen=True)
@@ -97,6 +138,18 @@ class RadialSheet:
         object.__setattr__(self, "_spline", spline)
 
     @property
+    def _tck(self) -> tuple:
+        """``(tx, ty, c, rx, ry, kx, ky)``: the spline's knots, coefficients and
+        reciprocal knot tables for :mod:`.spline_kernel` (built once)."""
+        got = self.__dict__.get("_tck_arrays")
+        if got is None:
+            tx, ty, c = (np.ascontiguousarray(a, dtype=float) for a in self._spline.tck[:3])
+            kx, ky = self._spline.degrees
+            got = (tx, ty, c, knot_reciprocals(tx, kx), knot_reciprocals(ty, ky), int(kx), int(ky))
+            object.__setattr__(self, "_tck_arrays", got)
+        return got
+
+    @property
     def u_range(self) -> tuple[float, float]:
         return (self.boundary.u_root, self.boundary.u_tip)
 
@@ -110,34 +163,38 @@ class RadialSheet:
         out = self._spline(u.ravel(), v.ravel(), dx=du, dy=dv, grid=False)
         return np.asarray(out).reshape(u.shape)
 
+    def psi_derivatives(self, u, v, *, second: bool = True) -> np.ndarray:
+        """psi and its partial derivatives at arrays (u, v) in one compiled pass:
+        (..., 6) with ``psi, psi_u, psi_v, psi_uu, psi_uv, psi_vv`` (the last three NaN
+        unless ``second``); equal to :meth:`psi` to rounding
+        (:mod:`.spline_kernel`)."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        tx, ty, c, rx, ry, kx, ky = self._tck
+        out = spline_derivatives(tx, ty, c, rx, ry, kx, ky, np.ascontiguousarray(u.ravel()),
+                                 np.ascontiguousarray(v.ravel()), 2 if second else 1, False)
+        return out.reshape(u.shape + (6,))
+
     def evaluate(self, u, v, *, second: bool = True) -> SurfaceArrays:
         """Vectorized evaluation (positions, derivatives, unit outward normal).
 
         ``second=False`` skips the second derivatives (returned as NaN) for speed.
         """
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
-        t = self.cone.tan_delta
-        R = self.cone.radius_mm(u, v)[..., None]
-        orders = ((0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)) if second else ((0, 0), (1, 0), (0, 1))
-        p, pu, pv, *rest = (self.psi(u, v, a, b)[..., None] for a, b in orders)
-        puu, puv, pvv = rest if second else (np.full_like(p, np.nan),) * 3
-        zero, one = np.zeros_like(p), np.ones_like(p)
-        eR = np.concatenate([zero, np.cos(p), np.sin(p)], axis=-1)
-        ep = np.concatenate([zero, -np.sin(p), np.cos(p)], axis=-1)
-        ex = np.concatenate([one, zero, zero], axis=-1)
-        r = v[..., None] * ex + R * eR
-        r_u = eR + R * pu * ep
-        r_v = ex + t * eR + R * pv * ep
-        r_uu = (2.0 * pu + R * puu) * ep - R * pu ** 2 * eR
-        r_uv = (pv + t * pu + R * puv) * ep - R * pu * pv * eR
-        r_vv = (2.0 * t * pv + R * pvv) * ep - R * pv ** 2 * eR
-        c = np.cross(r_u, r_v)
-        n = self.normal_sign * c / np.linalg.norm(c, axis=-1, keepdims=True)
-        return SurfaceArrays(u=u, v=v, r=r, r_u=r_u, r_v=r_v, r_uu=r_uu, r_uv=r_uv, r_vv=r_vv, n=n)
+        vec = self._vectors(u, v, second).reshape(u.shape + (7, 3))
+        return SurfaceArrays(u, v, *(vec[..., i, :] for i in range(7)))
 
     def point(self, u: float, v: float) -> SurfacePoint:
         """:class:`SurfacePoint` at (u, v) from the spline interpolant."""
-        return point_from_arrays(self.evaluate(u, v))
+        vec = self._vectors(np.asarray(u, dtype=float), np.asarray(v, dtype=float), True)[0]
+        return SurfacePoint(float(u), float(v), *vec)
+
+    def _vectors(self, u: np.ndarray, v: np.ndarray, second: bool) -> np.ndarray:
+        """(N, 7, 3): r, r_u, r_v, r_uu, r_uv, r_vv, n at the flattened (u, v)."""
+        d = self.psi_derivatives(u, v, second=second).reshape(-1, 6)
+        cone = self.cone
+        return sheet_vectors(np.ascontiguousarray(u.ravel()), np.ascontiguousarray(v.ravel()),
+                             d, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm,
+                             float(self.normal_sign), True)
 
     def locate(self, x_mm) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(u, v, psi_of_point) of body-frame points ``x_mm`` (..., 3)."""

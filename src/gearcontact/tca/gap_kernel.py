@@ -9,8 +9,9 @@ rule) per line in compiled code, with the surfaces evaluated exactly as their
 
 * :class:`~gearcontact.geometry.sheet.RadialSheet` (pinion): the quintic
   tensor-product B-spline of ``psi(u, v)`` and its first derivatives from the spline's
-  own knots and coefficients (Cox-de Boor recursion; arguments clamped to the knot
-  box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``, ``r_u``, ``r_v``;
+  own knots and coefficients (:mod:`gearcontact.geometry.spline_kernel`; arguments
+  clamped to the knot box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
+  ``r_u``, ``r_v``;
 * :class:`~gearcontact.geometry.flank.FormateFlank` (gear): the blade cone in closed
   form.
 
@@ -18,8 +19,10 @@ Other surfaces (e.g. analytic test surfaces) have no compiled form
 (:func:`kernel_surface` returns None) and use the vectorized numpy path of
 :mod:`.stencil`. Results agree with that path to rounding (~1e-13 mm).
 
-A surface is passed to the kernel as ``(kind, par, tx, ty, coef)``: ``kind`` 0 (sheet)
-or 1 (cone), a float parameter vector and the spline arrays (empty for a cone).
+A surface is passed to the kernel as ``(kind, par, tx, ty, coef, rx, ry)``: ``kind`` 0
+(sheet) or 1 (cone), a float parameter vector and the spline arrays (knots,
+coefficients, reciprocal knot tables of :mod:`gearcontact.geometry.spline_kernel`;
+empty for a cone).
 """
 
 from __future__ import annotations
@@ -29,43 +32,37 @@ import weakref
 import numpy as np
 from numba import njit
 
+from ..geometry.flank import FormateFlank, cone_vector
+from ..geometry.sheet import RadialSheet, sheet_vector
+from ..geometry.spline_kernel import spline_point
+
 __all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines"]
 
 #: Surface kinds of the kernel.
 KIND_SHEET = 0
 KIND_CONE = 1
 _EMPTY = np.zeros(0)
+_EMPTY3 = np.zeros((0, 0, 0))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def kernel_surface(surface):
-    """The kernel form ``(kind, par, tx, ty, coef)`` of a flank, or None.
+    """The kernel form ``(kind, par, tx, ty, coef, rx, ry)`` of a flank, or None.
 
     Sheet ``par``: ``(kx, ky, apex_x, tan_delta, root_offset)``; cone ``par``:
-    ``(centre[3], axis[3], e1[3], e2[3], rho_0, k = sigma tan(alpha), dedendum,
-    k_v = heel_sign / rho_0)``.
+    :attr:`~gearcontact.geometry.flank.FormateFlank.kernel_parameters`.
     """
-    from ..geometry.flank import FormateFlank
-    from ..geometry.sheet import RadialSheet
-
     try:
         return _CACHE[surface]
     except (KeyError, TypeError):
         pass
     if type(surface) is RadialSheet:
-        spline = surface._spline
-        tx, ty, c = (np.ascontiguousarray(a, dtype=float) for a in spline.tck[:3])
-        kx, ky = spline.degrees
+        tx, ty, c, rx, ry, kx, ky = surface._tck
         cone = surface.cone
         par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
-        out = (KIND_SHEET, par, tx, ty, c)
+        out = (KIND_SHEET, par, tx, ty, c, rx, ry)
     elif type(surface) is FormateFlank:
-        blade = surface.blade
-        pl = blade.placement
-        k = blade.sigma * np.tan(np.radians(blade.pressure_angle_deg))
-        par = np.concatenate([pl.centre_mm, pl.axis, pl.e1, pl.e2,
-                              [blade.radius_pitch_mm, k, surface.dedendum_mm, surface._kv]])
-        out = (KIND_CONE, np.asarray(par, float), _EMPTY, _EMPTY, _EMPTY)
+        out = (KIND_CONE, surface.kernel_parameters, _EMPTY, _EMPTY, _EMPTY, _EMPTY3, _EMPTY3)
     else:
         return None
     _CACHE[surface] = out
@@ -73,103 +70,13 @@ def kernel_surface(surface):
 
 
 @njit(cache=True)
-def _basis(t, k, x, nb, dnb, left, right):
-    """Non-zero B-spline basis values ``nb[0..k]`` and first derivatives ``dnb`` of
-    degree ``k`` at ``x`` (clamped to the knot box; ``left``, ``right``: work arrays
-    of k + 1); returns the knot span ``l`` (``nb[j]`` belongs to coefficient
-    ``l - k + j``)."""
-    n = t.shape[0]
-    lo, hi = t[k], t[n - k - 1]
-    clamped = x < lo or x > hi
-    x = min(max(x, lo), hi)
-    # span: t[l] <= x < t[l + 1], k <= l <= n - k - 2 (bisection)
-    a = k
-    b = n - k - 2
-    while a < b:
-        mid = (a + b + 1) // 2
-        if x >= t[mid]:
-            a = mid
-        else:
-            b = mid - 1
-    l = a
-    nb[0] = 1.0
-    for j in range(1, k + 1):
-        left[j] = x - t[l + 1 - j]
-        right[j] = t[l + j] - x
-        saved = 0.0
-        for r in range(j):
-            tmp = nb[r] / (right[r + 1] + left[j - r])
-            nb[r] = saved + right[r + 1] * tmp
-            saved = left[j - r] * tmp
-        nb[j] = saved
-        if j == k - 1:  # degree k-1 values give the derivatives of degree k
-            for s in range(k + 1):
-                d = 0.0
-                if s >= 1:
-                    i = l - k + s
-                    d += nb[s - 1] / (t[i + k] - t[i])
-                if s <= k - 1:
-                    i = l - k + s + 1
-                    d -= nb[s] / (t[i + k] - t[i])
-                dnb[s] = 0.0 if clamped else k * d
-    return l
-
-
-@njit(cache=True)
-def _eval_sheet(par, tx, ty, coef, u, v, out, work):
-    """r, r_u, r_v of a radial sheet into ``out[0:3], out[3:6], out[6:9]``
-    (``work``: (6, max(kx, ky) + 1) scratch)."""
-    kx = int(par[0])
-    ky = int(par[1])
-    nu, dnu, nv, dnv = work[0], work[1], work[2], work[3]
-    lu = _basis(tx, kx, u, nu, dnu, work[4], work[5])
-    lv = _basis(ty, ky, v, nv, dnv, work[4], work[5])
-    ncy = ty.shape[0] - ky - 1
-    p = 0.0
-    pu = 0.0
-    pv = 0.0
-    for a in range(kx + 1):
-        row = (lu - kx + a) * ncy + lv - ky
-        s0 = 0.0
-        s1 = 0.0
-        for b in range(ky + 1):
-            cc = coef[row + b]
-            s0 += nv[b] * cc
-            s1 += dnv[b] * cc
-        p += nu[a] * s0
-        pu += dnu[a] * s0
-        pv += nu[a] * s1
-    tan = par[3]
-    rad = (v - par[2]) * tan - par[4] + u
-    cp = np.cos(p)
-    sp = np.sin(p)
-    out[0] = v
-    out[1] = rad * cp
-    out[2] = rad * sp
-    # r_u = e_R + R pu e_psi, r_v = x + t e_R + R pv e_psi; e_R = (0, c, s), e_psi = (0, -s, c)
-    out[3] = 0.0
-    out[4] = cp - rad * pu * sp
-    out[5] = sp + rad * pu * cp
-    out[6] = 1.0
-    out[7] = tan * cp - rad * pv * sp
-    out[8] = tan * sp + rad * pv * cp
-
-
-@njit(cache=True)
-def _eval_cone(par, u, v, out):
-    """r, r_u, r_v of a formate blade cone (h = dedendum - u, theta = k_v v)."""
-    h = par[14] - u
-    kv = par[15]
-    th = kv * v
-    c = np.cos(th)
-    s = np.sin(th)
-    rho = par[12] + par[13] * h
-    for i in range(3):
-        e_rho = c * par[6 + i] + s * par[9 + i]
-        e_th = -s * par[6 + i] + c * par[9 + i]
-        out[i] = par[i] + rho * e_rho + h * par[3 + i]
-        out[3 + i] = -(par[13] * e_rho + par[3 + i])
-        out[6 + i] = kv * rho * e_th
+def sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, d, vec):
+    """r, r_u, r_v of a radial sheet into ``vec[0:3]`` (``bu``, ``bv``: (3, k + 1),
+    ``work``: (4, k + 1), ``d``: (6,) scratch). psi is FITPACK's clamped continuation
+    beyond the knot box, with zero derivatives there."""
+    spline_point(tx, ty, coef, rx, ry, int(par[0]), int(par[1]), u, v, 1, True, bu, bv,
+                 work, d)
+    sheet_vector(u, v, d, par[2], par[3], par[4], 1.0, False, vec)
 
 
 @njit(cache=True)
@@ -202,13 +109,13 @@ def _solve3(a, b, x):
 
 
 @njit(cache=True)
-def intersect_lines(kind, par, tx, ty, coef, rot, trans, q, n, uv0, lo, hi, clamp,
+def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, hi, clamp,
                     tol_mm, max_iter, order, prev):
     """Newton intersections of the lines ``q_i + lambda n`` with a posed surface.
 
     Parameters
     ----------
-    kind, par, tx, ty, coef
+    kind, par, tx, ty, coef, rx, ry
         Kernel form of the surface (:func:`kernel_surface`).
     rot, trans : ndarray (3, 3), (3,)
         Pose ``x -> rot x + trans`` of the surface.
@@ -247,8 +154,12 @@ def intersect_lines(kind, par, tx, ty, coef, rot, trans, q, n, uv0, lo, hi, clam
     ok = np.zeros(m, dtype=np.bool_)
     sol = np.empty((m, 3))        # converged (u, v, lambda)
     tang = np.empty((m, 6))       # posed r_u, r_v there
-    ev = np.empty(9)
-    work = np.empty((6, int(par[0:2].max()) + 1 if kind == 0 else 1))
+    kmax = int(par[0:2].max()) + 1 if kind == 0 else 1
+    bu = np.zeros((3, kmax))
+    bv = np.zeros((3, kmax))
+    work = np.empty((4, kmax))
+    dpsi = np.zeros(6)
+    vec = np.empty((7, 3))
     jac = np.empty((3, 3))
     rhs = np.empty(3)
     step = np.empty(3)
@@ -274,18 +185,18 @@ def intersect_lines(kind, par, tx, ty, coef, rot, trans, q, n, uv0, lo, hi, clam
         converged = False
         for _ in range(max_iter):
             if kind == 0:
-                _eval_sheet(par, tx, ty, coef, u, v, ev, work)
+                sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, dpsi, vec)
             else:
-                _eval_cone(par, u, v, ev)
+                cone_vector(par, u, v, False, vec)
             res_max = 0.0
             for a in range(3):
                 x[a] = 0.0
                 ju = 0.0
                 jv = 0.0
                 for b in range(3):
-                    x[a] += rot[a, b] * ev[b]
-                    ju += rot[a, b] * ev[3 + b]
-                    jv += rot[a, b] * ev[6 + b]
+                    x[a] += rot[a, b] * vec[0, b]
+                    ju += rot[a, b] * vec[1, b]
+                    jv += rot[a, b] * vec[2, b]
                 res = x[a] + trans[a] - q[i, a] - lam * n[a]
                 res_max = max(res_max, abs(res))
                 rhs[a] = -res

@@ -227,7 +227,8 @@ def normal_derivatives(sp: SurfacePoint) -> tuple[np.ndarray, np.ndarray]:
     (do Carmo 1976, sec. 3-3, eq. 3).
     """
     first, second = sp.fundamental_forms()
-    w = np.linalg.solve(first, second)
+    (e, f), (_, g) = first
+    w = np.array([[g, -f], [-f, e]]) @ second / (e * g - f * f)   # I^-1 II (2 x 2)
     jac = np.column_stack([sp.r_u, sp.r_v])
     dn = -jac @ w
     return dn[:, 0], dn[:, 1]
@@ -241,12 +242,19 @@ def posed_point(surface: Surface, pose: tuple[np.ndarray, np.ndarray],
     return sp, rot @ sp.r + t, rot @ sp.n
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a x b`` of two 3-vectors (np.cross without its per-call overhead)."""
+    a0, a1, a2 = a
+    b0, b1, b2 = b
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+
+
 def _tangent_basis(n: np.ndarray) -> np.ndarray:
     """An orthonormal (3, 2) basis of the plane normal to unit ``n``."""
     a = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     ta = a - (a @ n) * n
     ta /= np.linalg.norm(ta)
-    return np.column_stack([ta, np.cross(n, ta)])
+    return np.column_stack([ta, _cross(n, ta)])
 
 
 def _clamp(x: np.ndarray, boxes: np.ndarray) -> tuple[np.ndarray, list[str]]:
@@ -287,10 +295,10 @@ def _residual_and_jacobian(pinion: Surface, gear: Surface, kin: MeshKinematics,
     jac[:3, 1] = r1 @ sp1.r_v
     jac[:3, 2] = -(r2 @ sp2.r_u)
     jac[:3, 3] = -(r2 @ sp2.r_v)
-    jac[:3, 4] = np.cross(w1, x1 - pose1[1])
-    jac[:3, 5] = -np.cross(w2, x2 - pose2[1])
+    jac[:3, 4] = _cross(w1, x1 - pose1[1])
+    jac[:3, 5] = -_cross(w2, x2 - pose2[1])
     dn = np.column_stack([r1 @ n1u, r1 @ n1v, r2 @ n2u, r2 @ n2v,
-                          np.cross(w1, n1), np.cross(w2, n2)])
+                          _cross(w1, n1), _cross(w2, n2)])
     jac[3:, :] = basis.T @ dn
     return res, (x2, n2), jac
 
