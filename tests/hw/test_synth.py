@@ -148,3 +148,28 @@ def test_cli_soc_arguments(tmp_path):
     assert (args.kind, args.lanes) == ("bhseq_core", 16)
     with pytest.raises(SystemExit):
         _rtl_parser().parse_args(["soc", "--out", str(tmp_path), "--kind", "quad_core"])
+
+
+def test_cli_synth_writes_csv_png_json(monkeypatch, tmp_path, capsys):
+    """The sweep plumbing with Yosys replaced by fixed results (30 L + 18 DSP)."""
+    import json
+
+    monkeypatch.setattr(S, "require_yosys", lambda: ["yosys"])
+
+    def fake(core, workdir, *, lanes=None, nodsp=False, timeout=None, verilog=None):
+        return S.SynthResult(core, lanes, nodsp, LUT=800 * (lanes or 1), FF=500,
+                             DSP48E1=30 * (lanes or 0) + 18, depth=58)
+    monkeypatch.setattr(S, "synthesize", fake)
+    args = _rtl_parser().parse_args(["synth", "--lanes", "8,16,32", "--out", str(tmp_path)])
+    assert args.func(args) == 0
+    out = capsys.readouterr().out
+    assert "DSP48E1 = 30.00 L + 18.0" in out and "L = 63.4" in out
+    assert (tmp_path / "synth_gap.png").read_bytes()[:4] == b"\x89PNG"
+    doc = json.loads((tmp_path / "synth_gap.json").read_text())
+    assert doc["dsp_fit"]["a"] == pytest.approx(30) and len(doc["results"]) == 3
+    assert (tmp_path / "synth_gap.csv").read_text().count("\n") == 4
+    args = _rtl_parser().parse_args(["synth", "--core", "tri_core", "--nodsp",
+                                     "--out", str(tmp_path)])
+    assert args.func(args) == 0
+    assert "LUT 197,377" in capsys.readouterr().out
+    assert (tmp_path / "synth_tri_core_nodsp.csv").exists()
