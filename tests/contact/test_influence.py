@@ -117,3 +117,17 @@ def test_approx_inverse_symmetric_positive_definite(shape):
                              for e in np.eye(n)])
         assert np.abs(m - m.T).max() <= 1e-12 * np.abs(m).max()
         assert np.linalg.eigvalsh(0.5 * (m + m.T)).min() > 0.0
+
+
+def test_window_operators_slice_the_parent_kernel_exactly():
+    # Windows (on_shape) reuse the largest kernel quadrant computed for the cell size;
+    # each must still equal its own dense operator to round-off (1e-12 relative).
+    op = FftInfluence((40, 33), dx_mm=0.011, dy_mm=0.017, e_star_mpa=E_STAR)
+    rng = np.random.default_rng(7)
+    for shape in [(40, 33), (9, 21), (1, 5), (17, 1)]:
+        grid = TangentGrid.uniform(shape[1], shape[0], dx_mm=0.011, dy_mm=0.017)
+        w = rng.random(shape)
+        u_dense = (dense_influence_matrix(grid, e_star_mpa=E_STAR) @ w.ravel()
+                   ).reshape(shape)
+        u_fft = op.on_shape(shape)(w)
+        assert np.abs(u_fft - u_dense).max() <= 1e-12 * np.abs(u_dense).max()

@@ -78,9 +78,7 @@ class TangentGrid:
             arr = getattr(self, name)
             if arr.size > 1 and not np.all(np.diff(arr) > 0.0):
                 raise InputRangeError(name, arr, "strictly increasing cell centres")
-        object.__setattr__(self, "_uniform", bool(
-            np.allclose(self.dx_mm, self.dx_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)
-            and np.allclose(self.dy_mm, self.dy_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)))
+        object.__setattr__(self, "_uniform", _widths_uniform(self.dx_mm, self.dy_mm))
 
     # ------------------------------------------------------------------ builders
     @classmethod
@@ -161,9 +159,21 @@ class TangentGrid:
         return np.meshgrid(self.x_mm, self.y_mm, indexing="xy")
 
     def sub(self, rows: slice, cols: slice) -> "TangentGrid":
-        """The sub-grid ``[rows, cols]`` (a window; slices with unit step)."""
-        return TangentGrid(self.x_mm[cols], self.y_mm[rows], self.dx_mm[cols],
-                           self.dy_mm[rows])
+        """The sub-grid ``[rows, cols]`` (a window; slices with unit step).
+
+        The window shares (read-only) views of this grid's arrays; a non-empty slice of
+        a checked grid needs no new checks, which keeps this cheap inside solvers.
+        """
+        g = object.__new__(TangentGrid)
+        parts = {"x_mm": self.x_mm[cols], "y_mm": self.y_mm[rows],
+                 "dx_mm": self.dx_mm[cols], "dy_mm": self.dy_mm[rows]}
+        for name, arr in parts.items():
+            if arr.size == 0:
+                raise InputRangeError(name, (rows, cols), "a non-empty window")
+            object.__setattr__(g, name, arr)
+        object.__setattr__(g, "_uniform", self._uniform or
+                           _widths_uniform(parts["dx_mm"], parts["dy_mm"]))
+        return g
 
     def check_field(self, field: str, values) -> np.ndarray:
         """Return ``values`` as a finite float array of shape ``(ny, nx)`` or raise.
@@ -178,6 +188,12 @@ class TangentGrid:
             raise InputRangeError(f"{field}.shape", arr.shape,
                                   f"{self.shape} = (ny, nx) of the grid, x along axis 1")
         return check_array_finite(field, arr)
+
+
+def _widths_uniform(dx_mm: np.ndarray, dy_mm: np.ndarray) -> bool:
+    """True when the widths along each axis agree to :data:`_UNIFORM_RTOL`."""
+    return bool(np.allclose(dx_mm, dx_mm[0], rtol=_UNIFORM_RTOL, atol=0.0)
+                and np.allclose(dy_mm, dy_mm[0], rtol=_UNIFORM_RTOL, atol=0.0))
 
 
 def _check_count(field: str, n) -> int:

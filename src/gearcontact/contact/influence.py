@@ -168,21 +168,47 @@ def _pick_transforms():
 _rfft2, _irfft2 = _pick_transforms()
 
 
+#: Largest kernel quadrant computed per (dx, dy, E*); smaller windows slice it.
+_QUADRANTS: dict[tuple[float, float, float], np.ndarray] = {}
+_MAX_QUADRANTS = 64
+
+
+def _kernel_quadrant(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
+                     ) -> np.ndarray:
+    """Influence kernel ``K[|oy|, |ox|]`` (mm/N) at offsets ``0..n-1`` per axis.
+
+    Love's kernel is even in both offsets (``G`` is odd in each argument), so one
+    quadrant defines it. The largest quadrant per cell size and E* is kept and sliced,
+    so the windows the solvers step through cost no new kernel evaluations.
+    """
+    key = (dx_mm, dy_mm, e_star_mpa)
+    q = _QUADRANTS.get(key)
+    if q is None or q.shape[0] < ny or q.shape[1] < nx:
+        my, mx = (ny, nx) if q is None else (max(ny, q.shape[0]), max(nx, q.shape[1]))
+        q = love_rectangle_displacement(dx_mm * np.arange(mx)[None, :],
+                                        dy_mm * np.arange(my)[:, None], 0.5 * dx_mm,
+                                        0.5 * dy_mm, e_star_mpa=e_star_mpa)
+        q /= dx_mm * dy_mm
+        q.setflags(write=False)
+        if key not in _QUADRANTS and len(_QUADRANTS) >= _MAX_QUADRANTS:
+            _QUADRANTS.pop(next(iter(_QUADRANTS)))
+        _QUADRANTS[key] = q
+    return q[:ny, :nx]
+
+
 @lru_cache(maxsize=64)
 def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
                  ) -> tuple[np.ndarray, tuple[int, int]]:
     """Cached rfft2 of the zero-padded influence kernel (mm/N) and the padded shape."""
     py = sfft.next_fast_len(2 * ny - 1, real=True)
     px = sfft.next_fast_len(2 * nx - 1, real=True)
-    ox = dx_mm * np.concatenate([np.arange(nx), np.arange(-(nx - 1), 0)])
-    oy = dy_mm * np.concatenate([np.arange(ny), np.arange(-(ny - 1), 0)])
-    k = love_rectangle_displacement(ox[None, :], oy[:, None], 0.5 * dx_mm, 0.5 * dy_mm,
-                                    e_star_mpa=e_star_mpa) / (dx_mm * dy_mm)
-    pad = np.zeros((py, px))
+    q = _kernel_quadrant(ny, nx, dx_mm, dy_mm, e_star_mpa)
     # offsets 0..n-1 at the front, -(n-1)..-1 at the back (wrap-around order)
-    iy = np.concatenate([np.arange(ny), np.arange(py - (ny - 1), py)])
-    ix = np.concatenate([np.arange(nx), np.arange(px - (nx - 1), px)])
-    pad[np.ix_(iy, ix)] = k
+    pad = np.zeros((py, px))
+    pad[:ny, :nx] = q
+    pad[:ny, px - (nx - 1):] = q[:, :0:-1]
+    pad[py - (ny - 1):, :nx] = q[:0:-1, :]
+    pad[py - (ny - 1):, px - (nx - 1):] = q[:0:-1, :0:-1]
     khat = sfft.rfft2(pad)
     khat.setflags(write=False)
     return khat, (py, px)
