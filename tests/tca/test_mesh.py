@@ -68,3 +68,32 @@ def test_short_path_is_reported():
     with pytest.raises(ValueError, match="contact ratio < 1"):
         mesh_cycle(case.pinion, narrow, case.kin, pinion_teeth=Z1, start=start,
                    phases=11, pairs=1, center="start")
+
+
+@pytest.mark.parametrize("side", ["drive", "coast"])
+def test_coarse_phase_grid_follows_the_paths_to_their_ends(s0003_pair, s0003_flanks, side):
+    """7 phases per pitch (substeps of the continuation): the contact path of pair 0
+    reaches as far as with 61 phases, to within one coarse step, and its points are
+    the fine path's at the shared phases."""
+    pin, gear = s0003_flanks.flank("pinion", side), s0003_flanks.flank("gear", side)
+    kin = s0003_pair.kinematics()
+    mean = s0003_flanks.mean_contact[side]
+    phi2 = float(mean["phi2_rad"])
+    start = ContactGuess(*map(float, mean["pinion_uv"]), *map(float, mean["gear_uv"]),
+                         s0003_pair.ratio * phi2, phi2)
+    pitch = 2.0 * np.pi / s0003_pair.pinion_teeth
+    fine, coarse = (mesh_cycle(pin, gear, kin, pinion_teeth=s0003_pair.pinion_teeth,
+                               start=start, phases=k, center="start") for k in (61, 7))
+    ends = []
+    for cyc in (fine, coarse):
+        phi = cyc.path.phi1_rad[~cyc.path.edge] - cyc.path.phi1_ref_rad
+        ends.append((phi.min() / pitch, phi.max() / pitch))
+    assert ends[1][0] <= ends[0][0] + 1 / 6 + 1e-9 and ends[1][1] >= ends[0][1] - 1 / 6 - 1e-9
+    # the same grid points (every 10th fine phase), away from the ends
+    shared = coarse.path.te0_arcsec[~coarse.path.edge]
+    def key(path, phi):
+        return np.round((phi - path.phi1_ref_rad) / pitch * 60).astype(int)
+
+    fine_te = dict(zip(key(fine.path, fine.path.phi1_rad), fine.path.te0_arcsec))
+    keys = key(coarse.path, coarse.path.phi1_rad[~coarse.path.edge])
+    assert np.allclose(shared, [fine_te[k] for k in keys], atol=1e-6)

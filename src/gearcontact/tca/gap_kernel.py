@@ -41,6 +41,10 @@ __all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines"]
 #: Surface kinds of the kernel.
 KIND_SHEET = 0
 KIND_CONE = 1
+#: With clamping, a line whose Newton target leaves the box across the same edge in
+#: this many successive iterations after the first (every iterate clipped onto that
+#: edge) is given up as off the flank - where the full iteration ends anyway.
+PINNED_ITERATIONS = 3
 _EMPTY = np.zeros(0)
 _EMPTY3 = np.zeros((0, 0, 0))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
@@ -144,6 +148,8 @@ def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, 
 
     Notes
     -----
+    With ``clamp`` a line pinned to one edge of the box (:data:`PINNED_ITERATIONS`)
+    stops early as not converged: its intersection lies beyond that edge.
     Beyond the knot box a sheet's psi is FITPACK's constant extension; its derivative
     there is taken as zero (consistent), so such continuation points converge
     quadratically too.
@@ -183,6 +189,8 @@ def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, 
                 u = min(max(u, lo[0]), hi[0])
                 v = min(max(v, lo[1]), hi[1])
         converged = False
+        pinned = 0
+        last_side = 0
         for _ in range(max_iter):
             if kind == 0:
                 sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, dpsi, vec)
@@ -209,6 +217,12 @@ def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, 
             nu_ = u + step[0]
             nv_ = v + step[1]
             if clamp:
+                side = ((nu_ < lo[0]) + 2 * (nu_ > hi[0]) + 4 * (nv_ < lo[1])
+                        + 8 * (nv_ > hi[1]))
+                pinned = pinned + 1 if side != 0 and side == last_side else 0
+                last_side = side
+                if pinned >= PINNED_ITERATIONS:
+                    break
                 nu_ = min(max(nu_, lo[0]), hi[0])
                 nv_ = min(max(nv_, lo[1]), hi[1])
             moved = max(abs(nu_ - u), abs(nv_ - v))

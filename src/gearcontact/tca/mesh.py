@@ -34,7 +34,11 @@ from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
 from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
 
-__all__ = ["MeshCycle", "mesh_cycle", "rebase"]
+__all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
+
+#: The path is continued in steps of at most a pitch / this (coarser phase grids are
+#: crossed in unrecorded substeps, so that they follow the paths to their ends).
+CONTINUATION_STEPS_PER_PITCH = 30
 
 
 def rebase(path: TcaPath, index: int) -> TcaPath:
@@ -137,7 +141,9 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     start_fixed : str
         Variable held while solving the reference point.
     phases : int
-        Phases per pitch including both ends (>= 3; 61 or more for reports).
+        Phases per pitch including both ends (>= 3; 61 or more for reports). Below
+        ``CONTINUATION_STEPS_PER_PITCH + 1`` the continuation takes unrecorded
+        substeps between the phases.
     pairs : int
         Neighbouring pairs on each side (``j = -pairs .. pairs``).
     paint_mm : float
@@ -175,7 +181,8 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     margin = (n if center == "vertex" else 0)
     ks = np.arange(-k0 - span - margin, n - k0 + span + margin + 1)
     grid = first.phi1_rad + step * ks
-    path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress)
+    path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
+                     max_step_rad=2.0 * np.pi / int(pinion_teeth) / CONTINUATION_STEPS_PER_PITCH)
     i_ref = int(np.flatnonzero(ks == 0)[0])
     if center == "vertex":
         # P0 = the point of least relief along the path: the TE0 extremum of one pair

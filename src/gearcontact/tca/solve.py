@@ -383,9 +383,25 @@ def solve_mating_point(pinion: Surface, gear: Surface, kin: MeshKinematics,
     raise TcaConvergenceError(x[4], norm, max_iter)
 
 
+def _predict(prev: MatingPoint, prev2: MatingPoint | None, phi1: float,
+             ratio: float) -> ContactGuess:
+    """Continuation predictor at ``phi1``: secant through the last two solutions, or
+    the last one turned by the nominal ratio."""
+    x_prev = prev.as_guess().vector()
+    if prev2 is None:
+        x_pred = x_prev.copy()
+        x_pred[5] += (phi1 - x_prev[4]) / ratio
+    else:
+        x_old = prev2.as_guess().vector()
+        x_pred = x_prev + (x_prev - x_old) * (phi1 - x_prev[4]) / (x_prev[4] - x_old[4])
+    x_pred[4] = phi1
+    return ContactGuess.from_vector(x_pred)
+
+
 def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
               *, start: ContactGuess, start_fixed: str = "phi1", tol_mm: float = 1e-10,
-              max_iter: int = 40, progress: bool = False) -> TcaPath:
+              max_iter: int = 40, max_step_rad: float | None = None,
+              progress: bool = False) -> TcaPath:
     """TCA of one tooth pair over the mesh phases ``phi1_rad`` by continuation.
 
     The reference (mean) mating point is solved first from ``start`` with
@@ -407,6 +423,11 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         Guess of the reference mating point.
     start_fixed : str
         Variable held fixed while solving the reference point.
+    max_step_rad : float, optional
+        Largest continuation step in ``phi1``: a wider gap between two requested
+        phases is crossed in equal unrecorded substeps (a coarse phase grid then
+        follows the path as far as a fine one; a too wide secant step can run into a
+        parameter box early and end the path there). Default: no substeps.
     progress : bool
         Show a tqdm progress bar over the phases.
 
@@ -431,25 +452,23 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
             if stopped is not None:
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
                 continue
-            x_prev = prev.as_guess().vector()
-            if prev2 is None:
-                x_pred = x_prev.copy()
-                x_pred[5] += (phis[i] - x_prev[4]) / kin.ratio
-            else:
-                x_old = prev2.as_guess().vector()
-                x_pred = x_prev + (x_prev - x_old) * (phis[i] - x_prev[4]) / (x_prev[4] - x_old[4])
-            x_pred[4] = phis[i]
+            gap = phis[i] - prev.phi1_rad
+            subs = 1 if max_step_rad is None else max(1, int(np.ceil(abs(gap) / max_step_rad)))
             try:
-                mp = solve_mating_point(pinion, gear, kin, ContactGuess.from_vector(x_pred),
-                                        tol_mm=tol_mm, max_iter=max_iter)
+                for j in range(1, subs + 1):
+                    phi = phis[i] if j == subs else prev.phi1_rad + gap / (subs - j + 1)
+                    mp = solve_mating_point(pinion, gear, kin,
+                                            _predict(prev, prev2, phi, kin.ratio),
+                                            tol_mm=tol_mm, max_iter=max_iter)
+                    if abs(mp.phi1_rad - prev.phi1_rad) > 0.0:
+                        prev2 = prev
+                    prev = mp
+                    gap = phis[i] - prev.phi1_rad
             except EdgeContact as exc:
                 stopped = exc.where
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
                 continue
             te = ((mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
             results[i] = replace(mp, te0_arcsec=te * ARCSEC_PER_RAD)
-            if abs(mp.phi1_rad - prev.phi1_rad) > 0.0:
-                prev2 = prev
-            prev = mp
     bar.close()
     return TcaPath(tuple(results), ref.phi1_rad, ref.phi2_rad, kin.ratio)
