@@ -48,6 +48,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 from scipy import fft as sfft
 from scipy import linalg, optimize
 
@@ -181,6 +182,67 @@ def _pre_shape(shape: tuple[int, int]) -> tuple[int, int]:
     return tuple(sfft.next_fast_len(n + (n + 1) // 2, real=True) for n in shape)
 
 
+@njit(cache=True)
+def _pk_gap(ug, hg, wg, b0, b1, c0, c1, g, gmb):  # pragma: no cover - compiled
+    """``g = C w + h`` centred on its mean over the contact set (``w > 0``); ``gmb`` is
+    ``g`` on the box ``[b0:b1, c0:c1]`` at contact cells, 0 elsewhere."""
+    g[:] = ug + hg
+    on = wg > 0.0
+    g -= g.ravel()[on.ravel()].mean()
+    for j in range(b0, b1):
+        for i in range(c0, c1):
+            gmb[j - b0, i - c0] = g[j, i] if wg[j, i] > 0.0 else 0.0
+
+
+@njit(cache=True)
+def _pk_direction(z, wb, gmb, tb, gz_old, conj):  # pragma: no cover - compiled
+    """Project ``z`` onto the contact set (zero mean there, 0 off it), then make it
+    the new direction ``z + (gz / gz_old) t`` (``conj``) in place; returns
+    ``(gz, g.t)`` with ``gz = g.z``."""
+    mean, gz = z.ravel()[(wb > 0.0).ravel()].mean(), 0.0
+    for j in range(z.shape[0]):
+        for i in range(z.shape[1]):
+            z[j, i] = z[j, i] - mean if wb[j, i] > 0.0 else 0.0
+            gz += gmb[j, i] * z[j, i]
+    beta, gt = (gz / gz_old if conj else 0.0), 0.0
+    for j in range(z.shape[0]):
+        for i in range(z.shape[1]):
+            if wb[j, i] > 0.0:
+                z[j, i] += beta * tb[j, i]
+            gt += gmb[j, i] * z[j, i]
+    return gz, gt
+
+
+@njit(cache=True)
+def _pk_step(wg, w_old, tg, g, rg, ug, tau, load_n):  # pragma: no cover - compiled
+    """``w <- max(w - tau t, 0)``, re-admission of cells with ``w = 0, g < 0`` at
+    ``-tau g``, rescaling to ``load_n``; for a linear step (no clipping, no
+    re-admission) ``rg <- s (ug - tau rg)``, i.e. ``C w``. Returns ``(conj, linear,
+    change, j0, j1, i0, i1)``: the contact box of the new ``w`` in region indices."""
+    conj, linear, total = True, True, 0.0
+    for j in range(wg.shape[0]):
+        for i in range(wg.shape[1]):
+            w_old[j, i] = wg[j, i]
+            v = wg[j, i] - tau * tg[j, i]
+            if v < 0.0:
+                v, linear = 0.0, False
+            if v == 0.0 and g[j, i] < 0.0:
+                v, conj = -tau * g[j, i], False
+            wg[j, i] = v
+            total += v
+    scale, change = load_n / total, 0.0
+    j0, j1, i0, i1 = wg.shape[0], 0, wg.shape[1], 0
+    for j in range(wg.shape[0]):
+        for i in range(wg.shape[1]):
+            wg[j, i] *= scale
+            change += abs(wg[j, i] - w_old[j, i])
+            if conj and linear:
+                rg[j, i] = scale * (ug[j, i] - tau * rg[j, i])
+            if wg[j, i] > 0.0:
+                j0, j1, i0, i1 = min(j0, j), max(j1, j + 1), min(i0, i), max(i1, i + 1)
+    return conj, linear, change, j0, j1, i0, i1
+
+
 def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: float,
            max_iter: int, precondition: bool
            ) -> tuple[np.ndarray, np.ndarray, int, bool]:
@@ -202,7 +264,8 @@ def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: 
     updated from the step's ``C t`` (``C w <- s (C w - tau C t)``, ``s`` the load
     rescaling), so a step costs two transforms (``C t`` and the preconditioner); it is
     recomputed when cells are clipped or re-admitted, when the box grows, and every
-    :data:`_PK_REFRESH` steps. At convergence the gap is checked on the whole window,
+    :data:`_PK_REFRESH` steps. The element-wise work of a step is compiled
+    (:func:`_pk_gap`, :func:`_pk_direction`, :func:`_pk_step`). At convergence the gap is checked on the whole window,
     and any penetration found there switches the iteration to whole-window gaps.
     """
     ny, nx = h.shape
@@ -211,12 +274,9 @@ def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: 
     t = np.zeros_like(w)
     gz_old, conj, whole = 1.0, False, False
     u, ur = None, (0, ny, 0, nx)  # u = C w on rows ur[0]:ur[1], columns ur[2]:ur[3]
+    rows, cols = np.flatnonzero(w.any(axis=1)), np.flatnonzero(w.any(axis=0))
+    j0, j1, i0, i1 = rows[0], rows[-1] + 1, cols[0], cols[-1] + 1  # contact box
     for it in range(1, max_iter + 1):
-        # contact box [j0:j1, i0:i1] (w's support lies in the last region ur)
-        on = w[ur[0]:ur[1], ur[2]:ur[3]] > 0.0
-        rows, cols = np.flatnonzero(on.any(axis=1)), np.flatnonzero(on.any(axis=0))
-        j0, j1, i0, i1 = (ur[0] + rows[0], ur[0] + rows[-1] + 1, ur[2] + cols[0],
-                          ur[2] + cols[-1] + 1)
         if whole:
             g0, g1, k0, k1 = 0, ny, 0, nx
         else:
@@ -230,50 +290,25 @@ def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: 
             ug = u[g0 - ur[0]:g1 - ur[0], k0 - ur[2]:k1 - ur[2]]
         else:
             ug = op_g(wg)
-        # dense masked vectors on the gap region (m: contact indicator)
-        m = (wg > 0.0).astype(float)
-        n_c = float(np.count_nonzero(m))
-        g = ug + h[gs]
-        g -= np.vdot(g, m) / n_c
-        gm = g * m
-        box = (slice(j0 - g0, j1 - g0), slice(i0 - k0, i1 - k0))
-        gmb, mb = gm[box], m[box]
-        if precondition:
-            z = boussinesq_inverse(gmb, dx_mm=dx, dy_mm=dy, e_star_mpa=op.e_star_mpa,
-                                   padded_shape=_pre_shape(gmb.shape))
-            z -= np.vdot(z, mb) / n_c
-            z *= mb
-        else:
-            z = gmb
-        gz = float(np.vdot(gmb, z))
-        tb = z + (gz / gz_old) * (t[j0:j1, i0:i1] * mb) if conj else z
+        g, gmb = np.empty(ug.shape), np.empty((j1 - j0, i1 - i0))
+        _pk_gap(ug, h[gs], wg, j0 - g0, j1 - g0, i0 - k0, i1 - k0, g, gmb)
+        z = boussinesq_inverse(gmb, dx_mm=dx, dy_mm=dy, e_star_mpa=op.e_star_mpa,
+                               padded_shape=_pre_shape(gmb.shape)) if precondition \
+            else gmb.copy()
+        gz, gt = _pk_direction(z, w[j0:j1, i0:i1], gmb, t[j0:j1, i0:i1], gz_old, conj)
         t.fill(0.0)
-        t[j0:j1, i0:i1] = tb
+        t[j0:j1, i0:i1] = z
         gz_old = gz if gz > 0.0 else 1.0
         tg = t[gs]
         rg = op_g(tg)  # C t on the gap region
-        rt = float(np.vdot(rg[box], tb))
+        rt = float(np.vdot(rg, tg))
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return w, op(w), it, gz == 0.0 or rt == 0.0
-        tau = float(np.vdot(gmb, tb)) / rt
-        w_old = wg.copy()
-        lin = w_old - tau * tg  # the step before clipping and re-admission
-        np.maximum(lin, 0.0, out=wg)
-        overlap = (wg == 0.0) & (g < 0.0)
-        conj = not overlap.any()
-        if not conj:
-            wg[overlap] -= tau * g[overlap]
-        scale = load_n / wg.sum()
-        wg *= scale
-        if conj and lin.min() >= 0.0:  # a linear step: C w from C t
-            rg *= -tau
-            rg += ug
-            rg *= scale
-            u = rg
-        else:
-            u = op_g(wg)
-        ur = (g0, g1, k0, k1)
-        if np.abs(wg - w_old).sum() <= tol * load_n:
+        conj, linear, change, b0, b1, c0, c1 = _pk_step(wg, np.empty(wg.shape), tg, g,
+                                                        rg, ug, gt / rt, load_n)
+        u, ur = (rg if conj and linear else op_g(wg)), (g0, g1, k0, k1)
+        j0, j1, i0, i1 = g0 + b0, g0 + b1, k0 + c0, k0 + c1
+        if change <= tol * load_n:
             u_all = op(w)
             if whole:
                 return w, u_all, it, True
