@@ -9,7 +9,8 @@ robust against other load on a shared machine). Results accumulate in
 ``OUT/results.csv``; the table is printed and written to ``OUT/table.txt``.
 
 Run: ``python benchmarks/bench_synth.py --out DIR [--lanes 8,16,32,64]
-[--cores bhseq_core,tri_core] [--nodsp-cores fit] [--jobs 2] [--timeout S]``
+[--cores bhseq_core,tri_core] [--nodsp-cores fit] [--jobs 2] [--timeout S]
+[--dsp-study]``
 (needs ``pip install 'gearcontact[synth]'``).
 """
 
@@ -58,6 +59,9 @@ def main(argv=None) -> int:
     ap.add_argument("--nodsp-cores", default="", help="cores also run with -nodsp")
     ap.add_argument("--jobs", type=int, default=1, help="parallel Yosys runs")
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run")
+    ap.add_argument("--dsp-study", action="store_true",
+                    help="also synthesize the per-multiplier DSP48E1 study (published vs "
+                         "split partial products)")
     args = ap.parse_args(argv)
     S.require_yosys()
     out = Path(args.out)
@@ -97,6 +101,12 @@ def main(argv=None) -> int:
         lines.append(f"gap DSP48E1 fit: {fit.a:.2f} L + {fit.b:.1f}; 1,920 DSP run out at "
                      f"L = {fit.lanes_max:.1f} (published {pa:.0f} L + {pb:.0f}, L ~ 63)")
         S.plot_sweep(gap, out / "gap_sweep.png", fit)
+    if args.dsp_study:
+        st = S.dsp_study(out / "dsp_study", timeout=args.timeout)
+        lines.append("DSP48E1 per multiplier: " + ", ".join(
+            f"{m} {st[m]['DSP48E1']}" for m in S.DSP_STUDY_COUNTS))
+        lines.append(f"per lane: {st['per_lane']} as published, {st['per_lane_split']} with "
+                     f"split partial products; per core (pose): {st['per_core']}")
     text = "\n".join(lines)
     print(text)
     (out / "table.txt").write_text(text + "\n")
