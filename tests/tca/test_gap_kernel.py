@@ -26,7 +26,7 @@ def _numpy_path(monkeypatch):
 @pytest.mark.parametrize("member", ["pinion", "gear"])
 def test_compiled_evaluation_equals_flank_evaluate(s0003_flanks, member):
     rng = np.random.default_rng(3)
-    bu, bv, work, d = np.empty((3, 6)), np.empty((3, 6)), np.empty((4, 6)), np.zeros(6)
+    bu, bv, work, d = np.zeros((3, 6)), np.zeros((3, 6)), np.empty((4, 6)), np.zeros(6)
     vec = np.empty((7, 3))
     for side in ("drive", "coast"):
         surf = s0003_flanks.flank(member, side)

@@ -168,7 +168,7 @@ class FormateFlank:
         return np.sort(np.stack([k, z], axis=-1), axis=-1)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cone_vector(par, u, v, full, out):
     """Compiled twin of :meth:`FormateFlank.evaluate` at one point: ``out`` (7, 3) =
     r, r_u, r_v, r_uu, r_uv, r_vv, n (only the first three rows unless ``full``), from

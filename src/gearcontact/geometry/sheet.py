@@ -47,7 +47,7 @@ from .surface import SurfacePoint
 __all__ = ["PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def sheet_vector(u, v, d, apex_x, tan, root_offset, sign, full, out):
     """Position and derivatives of a sheet point from psi and its derivatives
     ``d = (psi, psi_u, psi_v, psi_uu, psi_uv, psi_vv)`` (module docstring formulas)

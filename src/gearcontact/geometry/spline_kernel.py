@@ -118,19 +118,6 @@ def basis_functions(t, rinv, k, x, nder, zero_outside, ders, work):
 
 
 @njit(cache=True)
-def _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, du, dv):
-    """sum_ab bu[du, a] bv[dv, b] c[lu-kx+a, lv-ky+b]."""
-    acc = 0.0
-    for a in range(kx + 1):
-        row = (lu - kx + a) * ncy + lv - ky
-        s = 0.0
-        for b in range(ky + 1):
-            s += bv[dv, b] * coef[row + b]
-        acc += bu[du, a] * s
-    return acc
-
-
-@njit(cache=True)
 def spline_point(tx, ty, coef, rx, ry, kx, ky, u, v, nder, zero_outside, bu, bv, work, d):
     """Spline value and partial derivatives at one point into ``d`` (6,): ``s, s_u,
     s_v, s_uu, s_uv, s_vv`` (entries beyond the order ``nder`` untouched). ``bu``,
@@ -138,14 +125,32 @@ def spline_point(tx, ty, coef, rx, ry, kx, ky, u, v, nder, zero_outside, bu, bv,
     ncy = ty.shape[0] - ky - 1
     lu = basis_functions(tx, rx, kx, u, nder, zero_outside, bu, work)
     lv = basis_functions(ty, ry, ky, v, nder, zero_outside, bv, work)
-    d[0] = _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, 0, 0)
+    p = pu = pv = puu = puv = pvv = 0.0
+    for a in range(kx + 1):
+        row = (lu - kx + a) * ncy + lv - ky
+        s0 = 0.0
+        s1 = 0.0
+        s2 = 0.0
+        for b in range(ky + 1):
+            c = coef[row + b]
+            s0 += bv[0, b] * c
+            s1 += bv[1, b] * c
+            if nder >= 2:
+                s2 += bv[2, b] * c
+        p += bu[0, a] * s0
+        pu += bu[1, a] * s0
+        pv += bu[0, a] * s1
+        puu += bu[2, a] * s0
+        puv += bu[1, a] * s1
+        pvv += bu[0, a] * s2
+    d[0] = p
     if nder >= 1:
-        d[1] = _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, 1, 0)
-        d[2] = _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, 0, 1)
+        d[1] = pu
+        d[2] = pv
     if nder >= 2:
-        d[3] = _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, 2, 0)
-        d[4] = _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, 1, 1)
-        d[5] = _tensor(coef, ncy, kx, ky, lu, lv, bu, bv, 0, 2)
+        d[3] = puu
+        d[4] = puv
+        d[5] = pvv
 
 
 @njit(cache=True)

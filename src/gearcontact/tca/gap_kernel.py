@@ -73,7 +73,7 @@ def kernel_surface(surface):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, d, vec):
     """r, r_u, r_v of a radial sheet into ``vec[0:3]`` (``bu``, ``bv``: (3, k + 1),
     ``work``: (4, k + 1), ``d``: (6,) scratch). psi is FITPACK's clamped continuation
