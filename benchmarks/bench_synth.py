@@ -12,6 +12,23 @@ Run: ``python benchmarks/bench_synth.py --out DIR [--lanes 8,16,32,64]
 [--cores bhseq_core,tri_core] [--nodsp-cores fit] [--jobs 2] [--timeout S]
 [--dsp-study]``
 (needs ``pip install 'gearcontact[synth]'``).
+
+Measured on the project machine (2 cores shared with other jobs, load ~8: wall time is
+mostly waiting, CPU time is the Yosys process's own), synth_xilinx without -nodsp:
+
+====  ======  ======  ======  =======  =====  ========  ======  =============
+L     LUT     FF      CARRY4  DSP48E1  depth  wall s    CPU s   published DSP
+====  ======  ======  ======  =======  =====  ========  ======  =============
+8     6,361   4,091   1,483   258      58     866       --      258
+16    12,409  7,862   2,906   498      58     1,182     122     498
+32    24,331  15,405  5,751   978      58     2,611     313     978
+====  ======  ======  ======  =======  =====  ========  ======  =============
+
+DSP48E1 = 30.00 L + 18.00 exactly (L_max = 63.4 on 1,920 DSP), the published fit. The
+DSP study: per lane 3 x (n.d 2 + gamma n 4 + e^2 4) = 30, pose 9 x 2 = 18; written as
+split partial products gamma n takes 2 and e^2 3 DSP48E1: 21 per lane (exact), i.e.
+21 L + 18 and L_max = 90. L = 64, bhseq_core, tri_core and any -nodsp run did not
+finish inside the session on the loaded machine (fit and tri_core > 60 min in ABC9).
 """
 
 from __future__ import annotations
