@@ -138,7 +138,7 @@ class RadialSheet:
         object.__setattr__(self, "_spline", spline)
 
     @property
-    def _tck(self) -> tuple:
+    def spline_arrays(self) -> tuple:
         """``(tx, ty, c, rx, ry, kx, ky)``: the spline's knots, coefficients and
         reciprocal knot tables for :mod:`.spline_kernel` (built once)."""
         got = self.__dict__.get("_tck_arrays")
@@ -169,7 +169,7 @@ class RadialSheet:
         unless ``second``); equal to :meth:`psi` to rounding
         (:mod:`.spline_kernel`)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
-        tx, ty, c, rx, ry, kx, ky = self._tck
+        tx, ty, c, rx, ry, kx, ky = self.spline_arrays
         out = spline_derivatives(tx, ty, c, rx, ry, kx, ky, np.ascontiguousarray(u.ravel()),
                                  np.ascontiguousarray(v.ravel()), 2 if second else 1, False)
         return out.reshape(u.shape + (6,))

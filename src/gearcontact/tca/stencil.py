@@ -37,6 +37,11 @@ Grids:
 Points whose line leaves either flank's parameter box are not extrapolated: their gap
 is NaN and ``on_flank`` is False, unless ``allow_outside=True`` is given, in which case
 the surfaces' analytic continuation is used and ``on_flank`` still records the fact.
+
+Speed: for the flanks of :mod:`gearcontact.geometry` the intersections run compiled
+(:mod:`.gap_kernel`), grids swept outwards from P0 with every line started at its
+solved neighbour (:func:`_sweep`); other surfaces use the vectorized numpy iteration.
+Both give the same gaps to rounding (~1e-13 mm).
 """
 
 from __future__ import annotations
