@@ -265,8 +265,9 @@ def _pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: 
     rescaling), so a step costs two transforms (``C t`` and the preconditioner); it is
     recomputed when cells are clipped or re-admitted, when the box grows, and every
     :data:`_PK_REFRESH` steps. The element-wise work of a step is compiled
-    (:func:`_pk_gap`, :func:`_pk_direction`, :func:`_pk_step`). At convergence the gap is checked on the whole window,
-    and any penetration found there switches the iteration to whole-window gaps.
+    (:func:`_pk_gap`, :func:`_pk_direction`, :func:`_pk_step`). At convergence the gap
+    is checked on the whole window, and any penetration found there switches the
+    iteration to whole-window gaps.
     """
     ny, nx = h.shape
     dx, dy = op.cell_size
