@@ -42,6 +42,15 @@ def test_parse_stat_both_layouts():
     assert (b["LC"], b["LUT"], b["FF"], b["CARRY4"], b["DSP48E1"]) == (0, 30, 102, 40, 3)
 
 
+def test_parse_stat_uses_the_hierarchy_totals():
+    text = ("=== core ===\n   5 LUT6\n   9 FDRE\n   Estimated number of LCs: 5\n"
+            "=== core.sub ===\n   7 LUT6\n   2 DSP48E1\n   Estimated number of LCs: 7\n"
+            "=== design hierarchy ===\n   12 LUT6\n   9 FDRE\n   2 DSP48E1\n"
+            "   Estimated number of LCs: 12\n")
+    r = S.parse_stat(text)
+    assert (r["LUT"], r["FF"], r["DSP48E1"], r["LC"]) == (12, 9, 2, 12)
+
+
 def test_parse_ltp():
     assert S.parse_ltp("Longest topological path in core (length=25):\n  0 ...") == 25
     with pytest.raises(ValueError, match="length"):

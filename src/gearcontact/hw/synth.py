@@ -180,9 +180,11 @@ def parse_stat(text: str) -> dict:
     """Cell counts from Yosys ``stat`` output, grouped as in :class:`SynthResult`.
 
     Accepts both the classic ``<name>  <count>`` and the newer ``<count> <name>``
-    column orders; when the design has submodules the last (top, hierarchical)
-    block of counts wins.
+    column orders. A hierarchical design (synth_xilinx does not flatten Amaranth's
+    submodules) is counted from the ``=== design hierarchy ===`` totals only.
     """
+    if "=== design hierarchy ===" in text:
+        text = text.split("=== design hierarchy ===")[-1]
     cells: dict[str, int] = {}
     for line in text.splitlines():
         mt = _STAT_LINE.match(line)
@@ -244,7 +246,10 @@ def synthesize(core: str, workdir, *, lanes: int | None = None, nodsp: bool = Fa
     (work / "core.v").write_text(verilog if verilog is not None else core_verilog(core, lanes))
     script = ("read_verilog core.v; synth_xilinx -family xc7 -top core -noiopad"
               + (" -nodsp" if nodsp else "")
-              + "; tee -q -o stat.txt stat -tech xilinx; tee -q -o ltp.txt ltp -noff t:FD* %n")
+              # flatten the mapped netlist: ltp then follows paths across Amaranth's
+              # submodule boundaries (cell counts are unchanged)
+              + "; flatten; tee -q -o stat.txt stat -tech xilinx"
+              + "; tee -q -o ltp.txt ltp -noff t:FD* %n")
     t0 = time.perf_counter()
     with (work / "yosys.out").open("w") as out:
         proc = subprocess.Popen(cmd + ["-q", "-l", "yosys.log", "-p", script], cwd=work,
