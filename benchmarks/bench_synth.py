@@ -27,8 +27,13 @@ L     LUT     FF      CARRY4  DSP48E1  depth  wall s    CPU s   published DSP
 DSP48E1 = 30.00 L + 18.00 exactly (L_max = 63.4 on 1,920 DSP), the published fit. The
 DSP study: per lane 3 x (n.d 2 + gamma n 4 + e^2 4) = 30, pose 9 x 2 = 18; written as
 split partial products gamma n takes 2 and e^2 3 DSP48E1: 21 per lane (exact), i.e.
-21 L + 18 and L_max = 90. L = 64, bhseq_core, tri_core and any -nodsp run did not
-finish inside the session on the loaded machine (fit and tri_core > 60 min in ABC9).
+21 L + 18 and L_max = 90.
+
+bhseq_core (SoC top: stage D + register block + timer), DSP mode: LC 2,630, 3,247 LUT,
+1,567 FF, 255 CARRY4, 20 DSP48E1, 0 BRAM, depth 44 (flattened), 242 s wall / 50 s CPU —
+against the published -nodsp build of ~40k LUT, 857 FF, 1,029 CARRY4. L = 64, the fit
+core, tri_core and every -nodsp run did not finish inside the session on the loaded
+machine (fit and tri_core > 70 min in ABC9; bhseq -nodsp > 10 min).
 """
 
 from __future__ import annotations
