@@ -22,6 +22,7 @@ L     LUT     FF      CARRY4  DSP48E1  depth  wall s    CPU s   published DSP
 8     6,361   4,091   1,483   258      58     866       --      258
 16    12,409  7,862   2,906   498      58     1,182     122     498
 32    24,331  15,405  5,751   978      58     2,611     313     978
+64    48,331  30,493  11,447  1,938    58     3,834     651     1,938
 ====  ======  ======  ======  =======  =====  ========  ======  =============
 
 DSP48E1 = 30.00 L + 18.00 exactly (L_max = 63.4 on 1,920 DSP), the published fit. The
@@ -31,8 +32,8 @@ split partial products gamma n takes 2 and e^2 3 DSP48E1: 21 per lane (exact), i
 
 bhseq_core (SoC top: stage D + register block + timer), DSP mode: LC 2,630, 3,247 LUT,
 1,567 FF, 255 CARRY4, 20 DSP48E1, 0 BRAM, depth 44 (flattened), 242 s wall / 50 s CPU —
-against the published -nodsp build of ~40k LUT, 857 FF, 1,029 CARRY4. L = 64, the fit
-core, tri_core and every -nodsp run did not finish inside the session on the loaded
+against the published -nodsp build of ~40k LUT, 857 FF, 1,029 CARRY4. The fit core,
+tri_core and every -nodsp run did not finish inside the session on the loaded
 machine (fit and tri_core > 70 min in ABC9; bhseq -nodsp > 10 min).
 """
 
