@@ -253,6 +253,17 @@ def _rtl_backend(**kwargs) -> PreviewEngine:
 register_backend("rtl", _rtl_backend)
 
 
+def _rtl_soc_backend(**kwargs) -> PreviewEngine:
+    """tri_core SoC in simulation behind the host driver's register protocol (imported
+    on first use: the driver needs Amaranth)."""
+    from ..hw.driver import SocEngine
+
+    return SocEngine(**kwargs)
+
+
+register_backend("rtl-soc", _rtl_soc_backend)
+
+
 def get_engine(name: str = "reference", *, material: Material = STEEL,
                material2: Material | None = None) -> PreviewEngine:
     """Create the preview engine ``name`` (one of :data:`BACKENDS`)."""
