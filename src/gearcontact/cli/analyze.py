@@ -4,34 +4,27 @@ torques and the physics-direct preview, written to one directory with ``summary.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
+from .options import add_pair_arguments, check_pair_arguments
 
 
 def register(sub) -> None:
     p = sub.add_parser("analyze", help="main job: design, TCA, LTCA and preview of a pair "
                                        "into one directory",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
-    p.add_argument("--out", required=True, type=Path, help="output directory")
+    add_pair_arguments(p)
     p.add_argument("--torques", type=float, nargs="+", default=list(DEFAULT_TORQUES_NM),
                    metavar="T", help="gear torques in N·m (default 32.25 64.5 129 258)")
-    p.add_argument("--phases", type=int, default=61,
-                   help="TCA mesh phases per pinion pitch (default 61)")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
     p.add_argument("--lte-torque", type=float, default=64.5, metavar="T",
                    help="gear torque of the loaded-TE run, N·m (default 64.5)")
     p.add_argument("--lte-phases", type=int, default=11,
                    help="phases of the loaded-TE run over one pitch (default 11; 0 skips it)")
-    p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    if args.phases < 3:
-        raise ValueError(f"--phases = {args.phases} must be >= 3")
+    check_pair_arguments(args)
     if args.lte_phases != 0 and args.lte_phases < 3:
         raise ValueError(f"--lte-phases = {args.lte_phases} must be 0 (skip) or >= 3")
     res = run_analysis(args.pair, out_dir=args.out, torques_nm=args.torques,

@@ -22,32 +22,20 @@ from ..contact.patch import ContactAtEdgeWarning, plot_patch
 from ..geometry.pair import load_pair
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_csv
-from ..validation import InputRangeError, check_positive
+from .options import add_pair_arguments, check_pair_arguments
 
 
 def register(sub) -> None:
     p = sub.add_parser("ltca", help="loaded contact of one tooth pair at P0: pressure map, "
                                     "statistics, approach, preview beside it",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
-    p.add_argument("--torque", type=float, default=64.5, help="gear torque in N·m (default 64.5)")
-    p.add_argument("--out", required=True, type=Path, help="output directory")
+    add_pair_arguments(p, torque=True, cells=80)
     p.add_argument("--solver", default="pk_cg", choices=SOLVERS, help="LCP solver (default pk_cg)")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
-    p.add_argument("--cells", type=int, default=80, help="cells per side of the field (default 80)")
-    p.add_argument("--phases", type=int, default=61,
-                   help="TCA phases per pinion pitch that locate P0 (default 61)")
-    p.add_argument("--no-figures", action="store_true", help="skip the PNG figure")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    if args.phases < 3:
-        raise ValueError(f"--phases = {args.phases} must be >= 3")
-    # the cheap checks before the TCA (the library checks them again)
-    check_positive("torque_nm (N·m)", args.torque)
-    if args.cells < 16:
-        raise InputRangeError("cells", args.cells, ">= 16 per side")
+    check_pair_arguments(args)
     pair = load_pair(args.pair)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

@@ -9,39 +9,24 @@ TE_LCP, TE_pre, rotations, active pairs, load per pair) and ``lte.png``.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
-
 from ..contact.lte import loaded_te
 from ..geometry.pair import load_pair
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
-from ..validation import InputRangeError, check_positive
+from .options import add_pair_arguments, check_pair_arguments
 
 
 def register(sub) -> None:
     p = sub.add_parser("lte", help="loaded transmission error along the mesh phase: "
                                    "TE_LCP, TE_pre, active pairs, compliances",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
-    p.add_argument("--torque", type=float, default=64.5, help="gear torque in N·m (default 64.5)")
-    p.add_argument("--out", required=True, type=Path, help="output directory")
-    p.add_argument("--phases", type=int, default=61,
-                   help="mesh phases per pinion pitch, both ends included (default 61)")
-    p.add_argument("--cells", type=int, default=40,
-                   help="cells per side of each pair's gap field (default 40)")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
-    p.add_argument("--no-figures", action="store_true", help="skip the PNG figure")
+    add_pair_arguments(p, torque=True, cells=40)
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    if args.phases < 3:
-        raise ValueError(f"--phases = {args.phases} must be >= 3")
-    # the cheap checks before the TCA (the library checks them again)
-    check_positive("torque_nm (N·m)", args.torque)
-    if args.cells < 16:
-        raise InputRangeError("cells", args.cells, ">= 16 per side")
+    check_pair_arguments(args)
     pair = load_pair(args.pair)
     from ..report.analyze import published_values
 

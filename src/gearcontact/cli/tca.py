@@ -13,28 +13,23 @@ from pathlib import Path
 from ..geometry.pair import load_pair
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_tca_outputs
+from .options import add_pair_arguments, check_pair_arguments
 
 
 def register(sub) -> None:
     p = sub.add_parser("tca", help="unloaded TCA: contact path, TE0, gap stencil, phase table",
                        description=__doc__.split("\n\n")[1])
-    p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
-    p.add_argument("--out", required=True, type=Path, help="output directory")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
-    p.add_argument("--phases", type=int, default=61,
-                   help="mesh phases per pinion pitch, both ends included (default 61)")
+    add_pair_arguments(p)
     p.add_argument("--pairs", type=int, default=2,
                    help="neighbouring tooth pairs on each side (default 2)")
     p.add_argument("--table-records", type=int, default=16,
                    help="maximum records of the binary phase table (default 16)")
-    p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    if args.phases < 3:
-        raise ValueError(f"--phases = {args.phases} must be >= 3")
+    check_pair_arguments(args)
     pair = load_pair(args.pair)
     out = Path(args.out)
     res, flanks = analyze_pair(pair, side=args.side, phases=args.phases, pairs=args.pairs,
