@@ -232,6 +232,15 @@ TIMER0 = Region("timer0", 0x2000, (
     Register("ev_enable", 0x1C, "rw", None, "interrupt enable (no CPU: unused)", width=1),
 ))
 
+
+#: Result registers shared by the tri_core ``preview`` and the stage-D-only ``hertz`` maps.
+_ELLIPSE_REGISTERS = (
+    Register("a", 0x18, "ro", SEMI_AXIS, "semi-axis a, SEMI_AXIS Q(32,20) mm"),
+    Register("b", 0x1C, "ro", SEMI_AXIS, "semi-axis b, SEMI_AXIS Q(32,20) mm"),
+    Register("p_max", 0x20, "ro", PMAX, "peak pressure, PMAX Q(32,8) MPa"),
+    Register("k", 0x24, "ro", HF.K_OUT, "ellipticity a/b, K_OUT Q(32,20)"),
+)
+
 PREVIEW = Region("preview", 0x1800, (
     Register("wr_rst", 0x00, "strobe", None, "write 1: rewind the gap RAM write pointer",
              width=1),
@@ -242,10 +251,7 @@ PREVIEW = Region("preview", 0x1800, (
              width=1),
     Register("A", 0x10, "ro", CURVATURE, "fitted A- (stage D B_max), Q(32,20) 1/mm"),
     Register("B", 0x14, "ro", CURVATURE, "fitted B- (stage D A_min), Q(32,20) 1/mm"),
-    Register("a", 0x18, "ro", SEMI_AXIS, "semi-axis a, SEMI_AXIS Q(32,20) mm"),
-    Register("b", 0x1C, "ro", SEMI_AXIS, "semi-axis b, SEMI_AXIS Q(32,20) mm"),
-    Register("p_max", 0x20, "ro", PMAX, "peak pressure, PMAX Q(32,8) MPa"),
-    Register("k", 0x24, "ro", HF.K_OUT, "ellipticity a/b, K_OUT Q(32,20)"),
+    *_ELLIPSE_REGISTERS,
     Register("done", 0x28, "ro", None,
              f"bit 0 done, bit 1 busy, bits {DONE_FLAGS_SHIFT}.."
              f"{DONE_FLAGS_SHIFT + CHAIN_FLAG_BITS - 1} chain flags word",
@@ -260,10 +266,7 @@ HERTZ = Region("hertz", 0x1800, (
     Register("go", 0x0C, "strobe", None, "write 1: start stage D (756 cycles)", width=1),
     Register("A", 0x10, "ro", CURVATURE, "B_max = max(A, B), Q(32,20) 1/mm"),
     Register("B", 0x14, "ro", CURVATURE, "A_min = min(A, B), Q(32,20) 1/mm"),
-    Register("a", 0x18, "ro", SEMI_AXIS, "semi-axis a, SEMI_AXIS Q(32,20) mm"),
-    Register("b", 0x1C, "ro", SEMI_AXIS, "semi-axis b, SEMI_AXIS Q(32,20) mm"),
-    Register("p_max", 0x20, "ro", PMAX, "peak pressure, PMAX Q(32,8) MPa"),
-    Register("k", 0x24, "ro", HF.K_OUT, "ellipticity a/b, K_OUT Q(32,20)"),
+    *_ELLIPSE_REGISTERS,
     Register("done", 0x28, "ro", None,
              f"bit 0 done, bit 1 busy, bits {DONE_FLAGS_SHIFT}.."
              f"{DONE_FLAGS_SHIFT + HERTZ_FLAG_BITS - 1} stage-D flags",
