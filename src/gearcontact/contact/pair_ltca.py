@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..preview.engine import PreviewResult, get_engine
+from ..tca.solve import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .ellipse import ContactEllipse
 from .grid import TangentGrid
@@ -39,7 +40,6 @@ from .patch import PatchContact, solve_patch
 
 __all__ = ["PairLoadCase", "single_pair_ltca", "preview_ellipse", "OFF_FLANK_GAP_MM"]
 
-ARCSEC_PER_RAD = 206264.80624709636
 #: Separation given to tangent-plane cells that lie off a flank, mm (no material there).
 OFF_FLANK_GAP_MM = 1.0
 
