@@ -56,8 +56,8 @@ def directed_vectors(n_samples):
     return vecs
 
 
-def check_against_golden(vectors, lanes):
-    outs, cycles = simulate_gap_core(vectors, lanes=lanes)
+def check_against_golden(vectors, lanes, **kw):
+    outs, cycles = simulate_gap_core(vectors, lanes=lanes, **kw)
     for vec, out, cyc in zip(vectors, outs, cycles):
         assert out == gap_golden_codes(vec, lanes=lanes)           # bit for bit
         assert cyc == gap_latency(vec.n_samples, lanes)            # cycle for cycle
@@ -92,6 +92,15 @@ def test_l8_bit_and_cycle_exact():
     vecs = directed_vectors(12)[:3] + [random_vector(rng, 20), random_vector(rng, 8)]
     _, cycles = check_against_golden(vecs, 8)
     assert cycles == [gap_latency(12, 8)] * 3 + [19, 17]   # 8 + K + 3 + 5
+
+
+def test_l8_plain_products_bit_and_cycle_exact():
+    """The published netlist (plain gamma n, e^2 multipliers) stays exact too."""
+    assert GapCore(lanes=8).split_products                      # the default is split
+    rng = np.random.default_rng(80)
+    vecs = directed_vectors(12)[1:5] + [random_vector(rng, 19)]
+    _, cycles = check_against_golden(vecs, 8, split_products=False)
+    assert cycles == [gap_latency(v.n_samples, 8) for v in vecs]
 
 
 def test_go_while_busy_ignored_reset_mid_run_and_bad_n():

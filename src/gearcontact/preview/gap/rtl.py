@@ -53,6 +53,13 @@ Schedule (edge E1 accepts go; see :mod:`.golden` for the count)
     3-input sum and the 64-bit compare: it is the core's critical path (the paper's
     "perp^2 multiplier chain", SPEC section 7 -- constrain the clock). In steady state
     (N >> L) the lanes consume L samples per cycle.
+
+DSP48E1 per lane (``synth_xilinx -family xc7``; the pose adds 9 x 2 = 18 per core)
+    ``split_products=True`` (default) writes gamma n_k and e_k^2 as exact split partial
+    products (:mod:`.rtl_mul`): 3 x (n.d 2 + gamma n 2 + e^2 3) = 21 per lane. With
+    ``split_products=False`` they are plain ``*`` as in the published design, which
+    Yosys tiles into 4 slices each: 3 x (2 + 4 + 4) = 30 per lane (DSP = 30 L + 18).
+    Outputs and cycle counts are identical; only the netlist differs.
 """
 
 from __future__ import annotations
@@ -65,6 +72,7 @@ from ...validation import InputRangeError
 from ..simulation import read_ports, run_testbench, run_to_done
 from .golden import DEFAULT_FORMAT, IDX_BITS, IDX_SENTINEL, GapCodes, gap_latency
 from .reference import check_lanes
+from .rtl_mul import split_mul, split_square
 
 __all__ = ["GapCore", "convert_verilog", "load_gap_vector", "read_gap_codes",
            "simulate_gap_core"]
@@ -86,10 +94,16 @@ class GapCore(wiring.Component):
     max_samples : int
         Sample capacity, a power of two >= 2 L (default ``16 L``); each lane owns a
         bank of ``max_samples / L`` words of 135 bits.
+    split_products : bool
+        Build stage B's gamma n_k and e_k^2 from split partial products (21 DSP48E1
+        per lane instead of 30; bit- and cycle-identical). False gives the published
+        netlist with plain multipliers, for side-by-side synthesis.
     """
 
-    def __init__(self, *, lanes: int = 16, max_samples: int | None = None):
+    def __init__(self, *, lanes: int = 16, max_samples: int | None = None,
+                 split_products: bool = True):
         self.lanes = check_lanes(lanes)
+        self.split_products = bool(split_products)
         self.max_samples = 16 * self.lanes if max_samples is None else max_samples
         ms = self.max_samples
         if isinstance(ms, bool) or not isinstance(ms, int) or ms < 2 * self.lanes \
@@ -234,10 +248,16 @@ class GapCore(wiring.Component):
         rho = Signal(64, name=f"rho_{l}")
         sq = []
         for k in range(3):
+            # gn: Q(46,35) mm (|gamma n| fits 46 b structurally); e: Q(27,16) mm
             gn = Signal(signed(_F.dot_bits), name=f"gn_{l}_{k}")
             e = Signal(signed(_F.e_bits), name=f"e_{l}_{k}")
-            m.d.comb += [gn.eq(gam27 * a_n[k]), e.eq(a_d[k] + ((gn + half) >> RF))]
-            sq.append(e * e)
+            if self.split_products:             # n on the A port, gamma's parts on B
+                m.d.comb += gn.eq(split_mul(gam27, a_n[k]))
+            else:
+                m.d.comb += gn.eq(gam27 * a_n[k])
+            m.d.comb += e.eq(a_d[k] + ((gn + half) >> RF))
+            # e^2: Q(54,32) mm^2, >= 0, exact either way
+            sq.append(split_square(e) if self.split_products else e * e)
         m.d.comb += rho.eq(sq[0] + sq[1] + sq[2])
         with m.If(accept):
             m.d.sync += l_rho.eq((1 << 64) - 1)
@@ -247,10 +267,13 @@ class GapCore(wiring.Component):
 
 
 def convert_verilog(*, lanes: int = 16, max_samples: int | None = None,
-                    name: str = "gap_core") -> str:
-    """Verilog of ``GapCore(lanes=..., max_samples=...)`` (internal attrs stripped)."""
+                    name: str = "gap_core", split_products: bool = True) -> str:
+    """Verilog of ``GapCore(lanes=..., max_samples=..., split_products=...)``.
+
+    Internal attributes are stripped; ``split_products=False`` is the published netlist.
+    """
     from amaranth.back import verilog
-    core = GapCore(lanes=lanes, max_samples=max_samples)
+    core = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products)
     return verilog.convert(core, name=name, strip_internal_attrs=True)
 
 
@@ -289,7 +312,7 @@ def read_gap_codes(ctx, dut) -> GapCodes:
 
 
 def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = None,
-                      vcd_path: str | None = None):
+                      vcd_path: str | None = None, split_products: bool = True):
     """Run passes on the RTL in the Amaranth simulator.
 
     Parameters
@@ -297,7 +320,7 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
     vectors : sequence of :class:`.golden.GapVector`
         Operands (default formats); each pass first writes its N samples through the
         write port (one per cycle), then pulses ``start``.
-    lanes, max_samples : keyword-only
+    lanes, max_samples, split_products : keyword-only
         Core parameters (see :class:`GapCore`).
     vcd_path : str, optional
         Write a VCD waveform there.
@@ -310,7 +333,7 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
         Cycles from the edge accepting ``start`` to the edge raising ``done``.
     """
     from .golden import check_vector
-    dut = GapCore(lanes=lanes, max_samples=max_samples)
+    dut = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products)
     for vec in vectors:
         check_vector(vec)
         if vec.n_samples > dut.max_samples:
