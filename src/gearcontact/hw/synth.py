@@ -6,6 +6,11 @@ CARRY4, DSP48E1, RAMB36E1 / RAMB18E1) and the logic depth between flip-flops
 (``ltp -noff t:FD* %n``), and sweeps the gap core's lane count with the linear fit
 DSP = a L + b and the lane count at which the XC7K480T's DSP slices run out.
 
+The gap core comes in two netlists (:data:`GAP_CORES`), bit- and cycle-identical:
+``gap`` (default, split partial products: DSP48E1 = 21 L + 18) and ``gap_plain`` (plain
+multipliers as in the published design: 30 L + 18); both are tabled beside the
+published sweep.
+
 HARDWARE.md quirks honoured here: yowasp mounts its own directory over ``/tmp``, so
 Yosys runs with ``cwd`` = the work directory and relative file names; ``-noiopad`` is
 required for Amaranth tops (YosysHQ/yosys#4349); ``-nodsp`` is very slow under
@@ -31,6 +36,7 @@ from ..validation import InputRangeError
 
 __all__ = [
     "CORES",
+    "GAP_CORES",
     "PUBLISHED",
     "XC7K480T",
     "YOSYS_PIN",
@@ -66,6 +72,8 @@ PUBLISHED = {
 }
 #: Published fit DSP = a L + b.
 PUBLISHED_DSP_FIT = (30.0, 18.0)
+#: Gap-core netlists swept over L and compared with ``PUBLISHED[("gap", L)]``.
+GAP_CORES = ("gap", "gap_plain")
 
 
 @dataclass(frozen=True)
@@ -75,9 +83,10 @@ class SynthResult:
     Attributes
     ----------
     core : str
-        Core name (:data:`CORES`).
+        Core name (:data:`CORES`; ``gap`` / ``gap_plain`` are the split-product and
+        published-form gap core netlists).
     lanes : int or None
-        Lane count (gap core) or None.
+        Lane count (gap cores) or None.
     nodsp : bool
         Multipliers kept out of DSP48E1 slices.
     LC : int
@@ -112,9 +121,13 @@ class SynthResult:
     cpu_seconds: float = 0.0
 
 
-def _gap(lanes):
+def _gap(lanes, split_products=True):
     from ..preview.gap.rtl import convert_verilog
-    return convert_verilog(lanes=lanes or 16, name="core")
+    return convert_verilog(lanes=lanes or 16, name="core", split_products=split_products)
+
+
+def _gap_plain(lanes):
+    return _gap(lanes, split_products=False)
 
 
 def _fit(lanes):
@@ -145,7 +158,8 @@ def _soc(kind):
 
 
 #: Core name -> Verilog generator ``f(lanes) -> str`` (top module ``core``).
-CORES = {"gap": _gap, "fit": _fit, "hertz": _hertz, "chain": _chain, "comb": _comb,
+CORES = {"gap": _gap, "gap_plain": _gap_plain, "fit": _fit, "hertz": _hertz,
+         "chain": _chain, "comb": _comb,
          "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
          "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
 
@@ -312,11 +326,14 @@ def check_lanes_list(lanes) -> list[int]:
 
 
 def lane_sweep(out_dir, lanes=(8, 16, 32, 64), *, nodsp: bool = False,
-               timeout: float | None = None, log=print) -> list[SynthResult]:
-    """Synthesize the gap core for each lane count in ``out_dir/gap_L<L>/``."""
+               timeout: float | None = None, log=print,
+               core: str = "gap") -> list[SynthResult]:
+    """Synthesize gap core ``core`` (:data:`GAP_CORES`) per L in ``out_dir/<core>_L<L>/``."""
+    if core not in GAP_CORES:
+        raise InputRangeError("core", core, f"one of {GAP_CORES}")
     res = []
     for n in check_lanes_list(list(lanes)):
-        r = synthesize("gap", Path(out_dir) / f"gap_L{n}{'_nodsp' if nodsp else ''}",
+        r = synthesize(core, Path(out_dir) / f"{core}_L{n}{'_nodsp' if nodsp else ''}",
                        lanes=n, nodsp=nodsp, timeout=timeout)
         if log:
             log(format_table([r]).splitlines()[-1])
@@ -344,7 +361,8 @@ def format_table(results) -> str:
             f"{'DSP':>6}{'B36':>5}{'B18':>5}{'depth':>6}{'wall s':>8}{'cpu s':>8}  published")
     lines = [head]
     for r in results:
-        pub = PUBLISHED.get((r.core, r.lanes if r.core == "gap" else None), {})
+        key = ("gap", r.lanes) if r.core in GAP_CORES else (r.core, None)
+        pub = PUBLISHED.get(key, {})
         ptxt = ", ".join(f"{k} {v:,}" if isinstance(v, int) and not isinstance(v, bool)
                          else f"{k} {v}" for k, v in pub.items())
         lines.append(f"{r.core:<12}{r.lanes or '-':>4}{'y' if r.nodsp else 'n':>6}"
@@ -378,7 +396,8 @@ def plot_sweep(results, path, fit: DspFit | None = None) -> Path:
     ax.set_yscale("log")
     ax.set_xlabel("lanes L")
     ax.set_ylabel("cells")
-    ax.set_title("gap core, synth_xilinx -family xc7" + (" -nodsp" if rs and rs[0].nodsp else ""))
+    ax.set_title(f"{rs[0].core if rs else 'gap'} core, synth_xilinx -family xc7"
+                 + (" -nodsp" if rs and rs[0].nodsp else ""))
     ax.legend(fontsize=7)
     ax2.plot(L, [r.depth for r in rs], "o-")
     ax2.set_xscale("log", base=2)
@@ -393,6 +412,7 @@ def plot_sweep(results, path, fit: DspFit | None = None) -> Path:
 
 # ---------------------------------------------------------------------------------
 # DSP48E1 per-lane study: where 30 L + 18 comes from, and exact split forms
+# (GapCore builds the split forms with preview.gap.rtl_mul; this keeps them in Verilog)
 # ---------------------------------------------------------------------------------
 #: One registered multiplier per module, at the gap core's operand widths
 #: (:mod:`gearcontact.preview.gap.golden` formats): ``pose`` R p (21 x 24, 9 per core),

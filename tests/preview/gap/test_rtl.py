@@ -9,10 +9,20 @@ import time
 
 import numpy as np
 import pytest
-from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL, GapVector,
-                                            gap_golden_codes, gap_latency)
-from gearcontact.preview.gap.rtl import (GapCore, convert_verilog, load_gap_vector,
-                                         simulate_gap_core)
+
+from gearcontact.preview.gap.golden import (
+    DEFAULT_FORMAT,
+    IDX_SENTINEL,
+    GapVector,
+    gap_golden_codes,
+    gap_latency,
+)
+from gearcontact.preview.gap.rtl import (
+    GapCore,
+    convert_verilog,
+    load_gap_vector,
+    simulate_gap_core,
+)
 from gearcontact.preview.simulation import pulse, simulate_bench
 from gearcontact.validation import InputRangeError
 
