@@ -134,6 +134,50 @@ def test_non_convergence_is_reported(make_hertz):
     assert not res.converged and res.status == "max_iter" and "stopped" in res.message
 
 
+def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
+    # The block pk_cg updates C x from the step's C t; recomputing C x at every step
+    # (_REFRESH = 1) follows the same iterates up to round-off: same iteration count,
+    # loads within 1e-9 of the largest (the solver tolerance is 1e-8 T), and both final
+    # residuals (computed from an exact C x) below the solver's residual_tol.
+    from gearcontact.contact import mesh_lcp
+
+    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
+    blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
+    fast = solve_mesh_lcp(blocks, 40000.0)
+    monkeypatch.setattr(mesh_lcp, "_REFRESH", 1)
+    exact = solve_mesh_lcp(blocks, 40000.0)
+    assert fast.converged and exact.converged
+    assert fast.iterations == exact.iterations
+    wmax = max(float(w.max()) for w in exact.loads_n)
+    for a, b in zip(fast.loads_n, exact.loads_n):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * wmax)
+    assert fast.rotation_rad == pytest.approx(exact.rotation_rad, rel=1e-9)
+    assert fast.complementarity_residual < 1e-6 and fast.torque_residual < 1e-12
+
+
+def test_fields_of_other_shapes_are_padded_exactly(make_hertz):
+    # Blocks of different field shapes share one batched operator on the largest shape;
+    # the padding carries no load, so the result is the one of the same pairs on
+    # fields that all have the largest shape (the small field embedded in a larger
+    # one, extra cells far open): agreement to the solver tolerance (1e-6 relative).
+    p1, p2 = make_hertz(10, 8), make_hertz(3, 6)  # 23 x 23 and 17 x 17 cells
+    assert p1.grid.shape != p2.grid.shape
+    big = np.full(p1.grid.shape, 1.0)  # 1 mm: never closed
+    big[:p2.grid.ny, :p2.grid.nx] = p2.gap_mm
+    grid2 = TangentGrid.uniform(p1.grid.nx, p1.grid.ny, dx_mm=float(p2.grid.dx_mm[0]),
+                                dy_mm=float(p2.grid.dy_mm[0]))
+    mixed = solve_mesh_lcp([PairBlock(p1.gap_mm, p1.grid, 40.0),
+                            PairBlock(p2.gap_mm, p2.grid, 35.0, 2e-3)], 40000.0)
+    same = solve_mesh_lcp([PairBlock(p1.gap_mm, p1.grid, 40.0),
+                           PairBlock(big, grid2, 35.0, 2e-3)], 40000.0)
+    assert mixed.converged and same.converged
+    assert mixed.loads_n[1].shape == p2.grid.shape
+    np.testing.assert_allclose(mixed.pair_loads_n, same.pair_loads_n, rtol=SOLVER_RTOL)
+    assert mixed.rotation_rad == pytest.approx(same.rotation_rad, rel=SOLVER_RTOL)
+    np.testing.assert_allclose(mixed.loads_n[1], same.loads_n[1][:17, :17], rtol=0,
+                               atol=SOLVER_RTOL * same.loads_n[1].max())
+
+
 # ---------------------------------------------------------------- preview balance
 def test_preview_balance_limits():
     # one pair: theta = kappa (T/l)^(2/3) / l exactly

@@ -48,7 +48,7 @@ except ImportError:  # pragma: no cover - depends on the scipy build
     _pocketfft = None
 
 __all__ = ["love_rectangle_displacement", "dense_influence_matrix", "FftInfluence",
-           "fft_influence", "boussinesq_inverse"]
+           "fft_influence", "boussinesq_inverse", "StackedFftInfluence"]
 
 
 def _corner(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
@@ -349,3 +349,114 @@ def fft_influence(grid: TangentGrid, *, e_star_mpa: float) -> FftInfluence:
                               "a uniform grid for the FFT operator (use the dense one)")
     return FftInfluence(grid.shape, dx_mm=float(grid.dx_mm[0]),
                         dy_mm=float(grid.dy_mm[0]), e_star_mpa=e_star_mpa)
+
+
+class StackedFftInfluence:
+    """Block-diagonal operator over a stack of same-shape fields, one batched FFT.
+
+    Field ``k`` has its own cell size and a scale ``s_k``; :meth:`apply` maps loads
+    ``x[k]`` (N) to ``C_k x[k] / s_k`` (mm) with the exact zero-padded operator of
+    :class:`FftInfluence`, and :meth:`approx_inverse` maps displacements to
+    ``s_k M_k u[k]`` with the Boussinesq preconditioner of :func:`boussinesq_inverse`.
+    All fields are transformed in one call per axis, and the zero padding is not
+    transformed: the forward real transform runs over the ``ny`` data rows only and
+    the inverse real transform returns only those rows (about half the work of a
+    full 2-D transform pair). Work buffers are kept between calls.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Field shape ``(ny, nx)`` shared by all fields.
+    cell_sizes : sequence of (float, float)
+        ``(dx_mm, dy_mm)`` per field.
+    e_star_mpa : float
+        Composite modulus E* in MPa.
+    scales : sequence of float, optional
+        ``s_k`` per field (default 1).
+    pre_shape : tuple of int, optional
+        Transform shape of the preconditioner (default: the operator's padded shape).
+    """
+
+    def __init__(self, shape, cell_sizes, *, e_star_mpa: float, scales=None,
+                 pre_shape=None):
+        ny, nx = (int(n) for n in shape)
+        if ny < 1 or nx < 1:
+            raise InputRangeError("shape", shape, "(ny, nx) with both >= 1")
+        cells = [(check_positive("dx_mm", dx), check_positive("dy_mm", dy))
+                 for dx, dy in cell_sizes]
+        e_star = check_positive("e_star_mpa", e_star_mpa)
+        sc = np.ones(len(cells)) if scales is None else np.asarray(scales, float)
+        self.shape, self.n_fields = (ny, nx), len(cells)
+        khats = [_kernel_rfft(ny, nx, dx, dy, e_star) for dx, dy in cells]
+        self._pad = khats[0][1]
+        self._khat = np.stack([k for k, _ in khats]) / sc[:, None, None]
+        self._qad = self._pad if pre_shape is None else tuple(int(n) for n in pre_shape)
+        if self._qad[0] < ny or self._qad[1] < nx:
+            raise InputRangeError("pre_shape", pre_shape, f">= {self.shape} per axis")
+        self._sym = np.stack([_inverse_symbol(*self._qad, dx, dy, e_star)
+                              for dx, dy in cells]) * sc[:, None, None]
+        self._subsets: dict[bytes, tuple[np.ndarray, np.ndarray]] = {}
+        self._bufs: dict[tuple[int, int], tuple[np.ndarray, ...]] = {}
+
+    def _buffers(self, pad):
+        b = self._bufs.get(pad)
+        if b is None:
+            n, (ny, nx) = self.n_fields, self.shape
+            b = self._bufs[pad] = (np.zeros((n, ny, pad[1])),
+                                   np.zeros((n, pad[0], pad[1] // 2 + 1), complex),
+                                   np.empty((n, ny, pad[1])))
+        return b
+
+    def _convolve(self, x, out, symbols, pad, live):
+        """``out[k] = (x[k] convolved with the symbol k)`` on the fields ``live``
+        (bool per field; None: all), 0 on the others."""
+        ny, nx = self.shape
+        if live is not None and live.all():
+            live = None
+        if live is not None:
+            key = live.tobytes() + bytes(symbols is self._sym)
+            sub = self._subsets.get(key)
+            if sub is None:
+                sub = self._subsets[key] = (np.flatnonzero(live), symbols[live])
+            idx, symbols = sub
+            x = x[idx]
+        n = x.shape[0]
+        rbuf, cbuf, obuf = (b[:n] for b in self._buffers(pad))
+        if n == 0:
+            out[...] = 0.0
+            return out
+        rbuf[:, :, :nx] = x  # columns nx: stay zero
+        if _pocketfft is not None:
+            _pocketfft.r2c(rbuf, (2,), True, 0, cbuf[:, :ny], 1)
+            cbuf[:, ny:] = 0.0
+            _pocketfft.c2c(cbuf, (1,), True, 0, cbuf, 1)
+            cbuf *= symbols
+            _pocketfft.c2c(cbuf, (1,), False, 2, cbuf, 1)
+            _pocketfft.c2r(cbuf[:, :ny], (2,), pad[1], False, 2, obuf, 1)
+        else:  # pragma: no cover - depends on the scipy build
+            f = sfft.rfft2(rbuf, s=pad, axes=(1, 2)) * symbols
+            obuf[...] = sfft.irfft2(f, s=pad, axes=(1, 2))[:, :ny]
+        if live is None:
+            out[...] = obuf[:, :, :nx]
+        else:
+            out[...] = 0.0
+            out[idx] = obuf[:, :, :nx]
+        return out
+
+    def apply(self, loads_n: np.ndarray, out: np.ndarray | None = None,
+              live: np.ndarray | None = None) -> np.ndarray:
+        """``C_k x[k] / s_k`` (mm) for loads ``x`` (N, shape ``(n_fields, ny, nx)``).
+
+        ``live`` (bool per field) restricts the work to those fields; the others must
+        carry no load and get zero displacement. ``out`` receives the result.
+        """
+        out = np.empty(loads_n.shape) if out is None else out
+        return self._convolve(loads_n, out, self._khat, self._pad, live)
+
+    def approx_inverse(self, displacement_mm: np.ndarray, out: np.ndarray | None = None,
+                       live: np.ndarray | None = None) -> np.ndarray:
+        """``s_k M_k u[k]`` (N): :func:`boussinesq_inverse` per field on the
+        preconditioner's transform shape, scaled; ``live`` and ``out`` as in
+        :meth:`apply` (fields not live get 0)."""
+        out = np.empty(displacement_mm.shape) if out is None else out
+        return self._convolve(displacement_mm, out, self._sym, self._qad, live)

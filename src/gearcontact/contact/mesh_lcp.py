@@ -42,10 +42,11 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from ..validation import InputRangeError, check_finite, check_positive
 from .grid import TangentGrid
-from .influence import FftInfluence
+from .influence import StackedFftInfluence
 from .lcp import resolve_e_star
 
 __all__ = ["MeshLcpResult", "PairBlock", "solve_mesh_lcp"]
@@ -139,89 +140,154 @@ class MeshLcpResult:
         return tuple(w / b.grid.cell_area_mm2 for w, b in zip(self.loads_n, blocks))
 
 
-class _Block:
-    """Scaled operator of one pair: ``x -> C x / l^2``."""
-
-    def __init__(self, block: PairBlock, e_star: float):
-        g = block.grid
-        self.op = FftInfluence(g.shape, dx_mm=float(g.dx_mm[0]), dy_mm=float(g.dy_mm[0]),
-                               e_star_mpa=e_star)
-        self.l2 = block.lever_mm ** 2
-        self.h = (block.gap_mm + block.offset_mm) / block.lever_mm
-        self.shape = g.shape
-
-    def apply(self, x: np.ndarray) -> np.ndarray:
-        return self.op(x) / self.l2
-
-    def boxes(self, idx: np.ndarray):
-        """Operator and 2-D coordinates for the cells ``idx``. Unlike :mod:`.lcp`
-        (bounding box of the contact set) the operators act on the whole field: the
-        fields of the LTE are small, and one cached kernel per field is cheaper than a
-        new kernel per box shape, for the same iteration count (measured on s0003)."""
-        return self.op, np.divmod(idx, self.shape[1])
+#: The incrementally updated displacement is recomputed at least this often (steps).
+_REFRESH = 50
 
 
-def _box_apply(op: FftInfluence, loc, values: np.ndarray, inverse: bool) -> np.ndarray:
-    """``op`` (or its approximate inverse) applied to ``values`` placed at ``loc``."""
-    if inverse and op.shape == (1, 1):  # the symbol has no k != 0 mode: exact inverse
-        return values / op(np.ones((1, 1)))[0, 0]
-    buf = np.zeros(op.shape)
-    buf[loc] = values
-    return (op.approx_inverse(buf) if inverse else op(buf))[loc]
+@njit(cache=True)
+def _mesh_gap(u, h, x, g, gm, count):  # pragma: no cover - compiled
+    """``g = u + h`` centred on its mean over the contact set (``x > 0``, all blocks);
+    ``gm = g`` there, 0 elsewhere; ``count[k]``: contact cells of block ``k``."""
+    total, n = 0.0, 0
+    for k in range(x.shape[0]):
+        count[k] = 0
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                v = u[k, j, i] + h[k, j, i]
+                g[k, j, i] = v
+                if x[k, j, i] > 0.0:
+                    total += v
+                    count[k] += 1
+        n += count[k]
+    mean = total / n
+    for k in range(x.shape[0]):
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                g[k, j, i] -= mean
+                gm[k, j, i] = g[k, j, i] if x[k, j, i] > 0.0 else 0.0
 
 
-def _pk_cg_blocks(blocks: list[_Block], x: list[np.ndarray], torque: float, tol: float,
-                  max_iter: int, precondition: bool) -> tuple[list[np.ndarray], int, bool]:
+@njit(cache=True)
+def _mesh_direction(z, x, g, t, gz_old, conj):  # pragma: no cover - compiled
+    """Project ``z`` on the contact set (zero mean there, 0 off it) and make the new
+    direction ``t <- z + (gz / gz_old) t`` (``conj``), 0 off the contact set.
+    Returns ``(gz, g.t)`` with ``gz = g.z``."""
+    total, n = 0.0, 0
+    for k in range(x.shape[0]):
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                if x[k, j, i] > 0.0:
+                    total += z[k, j, i]
+                    n += 1
+    mean, gz = total / n, 0.0
+    for k in range(x.shape[0]):
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                if x[k, j, i] > 0.0:
+                    z[k, j, i] -= mean
+                    gz += g[k, j, i] * z[k, j, i]
+    beta, gt = (gz / gz_old if conj else 0.0), 0.0
+    for k in range(x.shape[0]):
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                if x[k, j, i] > 0.0:
+                    t[k, j, i] = z[k, j, i] + beta * t[k, j, i]
+                    gt += g[k, j, i] * t[k, j, i]
+                else:
+                    t[k, j, i] = 0.0
+    return gz, gt
+
+
+@njit(cache=True)
+def _mesh_step(x, x_old, t, g, r, u, tau, torque, live):  # pragma: no cover - compiled
+    """``x <- max(x - tau t, 0)``, re-admission of cells with ``x = 0, g < 0`` at
+    ``-tau g``, rescaling to ``torque``; for a linear step (no clipping, no
+    re-admission) ``u <- s (u - tau r)`` (``r = C t``: ``u`` stays ``C x``).
+    ``live[k]``: block ``k`` carries load. Returns ``(conj, linear, change)``."""
+    conj, linear, total = True, True, 0.0
+    for k in range(x.shape[0]):
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                x_old[k, j, i] = x[k, j, i]
+                v = x[k, j, i] - tau * t[k, j, i]
+                if v < 0.0:
+                    v, linear = 0.0, False
+                if v == 0.0 and g[k, j, i] < 0.0:
+                    v, conj = -tau * g[k, j, i], False
+                x[k, j, i] = v
+                total += v
+    scale, change = torque / total, 0.0
+    for k in range(x.shape[0]):
+        live[k] = False
+        for j in range(x.shape[1]):
+            for i in range(x.shape[2]):
+                x[k, j, i] *= scale
+                change += abs(x[k, j, i] - x_old[k, j, i])
+                if x[k, j, i] > 0.0:
+                    live[k] = True
+                if conj and linear:
+                    u[k, j, i] = scale * (u[k, j, i] - tau * r[k, j, i])
+    return conj, linear, change
+
+
+def _stack(blocks, e_star: float, hs, xs):
+    """Batched operator ``x -> C_k x / l_k^2`` and the stacks of ``h~`` and ``x``.
+
+    Fields of other shapes are padded to the largest one: padded cells carry no load
+    (exact: the operator is a linear convolution) and an infinite gap, so they are
+    never re-admitted.
+    """
+    ny = max(hk.shape[0] for hk in hs)
+    nx = max(hk.shape[1] for hk in hs)
+    h, x = np.full((len(hs), ny, nx), np.inf), np.zeros((len(hs), ny, nx))
+    for k, (hk, xk) in enumerate(zip(hs, xs)):
+        h[k, :hk.shape[0], :hk.shape[1]] = hk
+        x[k, :hk.shape[0], :hk.shape[1]] = xk
+    op = StackedFftInfluence((ny, nx), [(float(b.grid.dx_mm[0]), float(b.grid.dy_mm[0]))
+                                        for b in blocks], e_star_mpa=e_star,
+                             scales=[b.lever_mm ** 2 for b in blocks])
+    return op, h, x
+
+
+def _pk_cg_blocks(op: StackedFftInfluence, h: np.ndarray, x: np.ndarray, torque: float,
+                  tol: float, max_iter: int, precondition: bool
+                  ) -> tuple[np.ndarray, int, bool]:
     """Polonsky-Keer CG over block-diagonal operators with ``sum(x) = torque``.
 
-    The iteration of :func:`gearcontact.contact.lcp.solve_lcp` (``pk_cg``), with every
-    vector split over the blocks and the inner products summed over all of them.
+    The iteration of :func:`gearcontact.contact.lcp.solve_lcp` (``pk_cg``) on the stack
+    ``x`` (blocks, ny, nx) of scaled loads, with the inner products summed over all
+    blocks: the gap is centred on its mean over the contact set of all blocks (which
+    eliminates ``theta``), conjugacy restarts when cells are re-admitted, the torque is
+    restored after every step. ``op`` applies all blocks in one batched transform
+    (only the blocks carrying load). The displacement ``u = C~ x`` is updated from the
+    step's ``C~ t`` (``u <- s (u - tau C~ t)``, ``s`` the rescaling), so a step costs
+    two batched transforms (``C~ t`` and the preconditioner); it is recomputed when
+    cells are clipped or re-admitted and every :data:`_REFRESH` steps. ``x`` is
+    updated in place.
     """
-    x = [xi.ravel().copy() for xi in x]
-    t = [np.zeros_like(xi) for xi in x]
+    n_b = x.shape[0]
+    live = np.array([bool((xk > 0.0).any()) for xk in x])
+    u, r, z = op.apply(x, live=live), np.empty(x.shape), np.empty(x.shape)
+    g, gm, x_old, t = (np.empty(x.shape), np.empty(x.shape), np.empty(x.shape),
+                       np.zeros(x.shape))
+    count = np.zeros(n_b, np.int64)
     gz_old, conj = 1.0, False
     for it in range(1, max_iter + 1):
-        idx = [np.flatnonzero(xi) for xi in x]
-        g = [b.apply(xi.reshape(b.shape)).ravel() + b.h.ravel() for b, xi in zip(blocks, x)]
-        n_c = sum(i.size for i in idx)
-        gbar = sum(gi[i].sum() for gi, i in zip(g, idx)) / n_c
-        for gi in g:
-            gi -= gbar
-        gc = [gi[i] for gi, i in zip(g, idx)]
-        boxes = [b.boxes(i) if i.size else (None, None) for b, i in zip(blocks, idx)]
+        _mesh_gap(u, h, x, g, gm, count)
+        on = count > 0
         if precondition:
-            z = [_box_apply(op, loc, c, True) * b.l2 if c.size else c
-                 for (op, loc), c, b in zip(boxes, gc, blocks)]
-            zbar = sum(zi.sum() for zi in z) / n_c
-            z = [zi - zbar for zi in z]
+            op.approx_inverse(gm, out=z, live=on)
         else:
-            z = gc
-        gz = float(sum(c @ zi for c, zi in zip(gc, z)))
-        tc = [zi + (gz / gz_old) * ti[i] if conj else zi for zi, ti, i in zip(z, t, idx)]
-        t = [np.zeros_like(xi) for xi in x]
-        for ti, i, c in zip(t, idx, tc):
-            ti[i] = c
+            z[...] = gm
+        gz, gt = _mesh_direction(z, x, g, t, gz_old, conj)
         gz_old = gz if gz > 0.0 else 1.0
-        r = [_box_apply(op, loc, c, False) / b.l2 if c.size else c
-             for (op, loc), c, b in zip(boxes, tc, blocks)]
-        rt = float(sum(ri @ c for ri, c in zip(r, tc)))
-        if rt <= 0.0:
+        op.apply(t, out=r, live=on)
+        rt = float(np.vdot(r, t))
+        if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return x, it, gz == 0.0 or rt == 0.0
-        tau = float(sum(c @ ti for c, ti in zip(gc, tc))) / rt
-        x_old = [xi.copy() for xi in x]
-        overlap_any = False
-        for xi, i, c, gi in zip(x, idx, tc, g):
-            xi[i] -= tau * c
-            np.maximum(xi, 0.0, out=xi)
-            overlap = np.flatnonzero((xi == 0.0) & (gi < 0.0))
-            if overlap.size:
-                overlap_any = True
-                xi[overlap] -= tau * gi[overlap]
-        conj = not overlap_any
-        total = sum(xi.sum() for xi in x)
-        for xi in x:
-            xi *= torque / total
-        change = sum(np.abs(xi - xo).sum() for xi, xo in zip(x, x_old))
+        conj, linear, change = _mesh_step(x, x_old, t, g, r, u, gt / rt, torque, live)
+        if not (conj and linear) or it % _REFRESH == 0:
+            op.apply(x, out=u, live=live)
         if change <= tol * torque:
             return x, it, True
     return x, max_iter, False
@@ -270,36 +336,37 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     if int(max_iter) < 1:
         raise InputRangeError("max_iter", max_iter, "an integer >= 1")
     e_star = resolve_e_star(materials, e_star_mpa)
-    ops = [_Block(b, e_star) for b in blocks]
-    hmin = min(float(o.h.min()) for o in ops)
+    hs = [(b.gap_mm + b.offset_mm) / b.lever_mm for b in blocks]  # h~ per block
+    hmin = min(float(hk.min()) for hk in hs)
     theta0 = check_finite("rotation_guess_rad", rotation_guess_rad) \
         if rotation_guess_rad is not None else None
     x0 = []
-    for k, (b, o) in enumerate(zip(blocks, ops)):
+    for k, (b, hk) in enumerate(zip(blocks, hs)):
         p = None if warm_start is None else warm_start[k]
-        if p is not None and np.shape(p) == o.shape and np.max(p) > 0.0:
+        if p is not None and np.shape(p) == hk.shape and np.max(p) > 0.0:
             x0.append(np.maximum(p, 0.0) * b.grid.cell_area_mm2 * b.lever_mm)
         elif theta0 is not None and theta0 > hmin:
-            x0.append(np.sqrt(np.maximum(theta0 - o.h, 0.0)))
+            x0.append(np.sqrt(np.maximum(theta0 - hk, 0.0)))
         else:
-            x0.append(np.zeros(o.shape))
+            x0.append(np.zeros(hk.shape))
     if sum(float(xi.sum()) for xi in x0) <= 0.0:
         # cold start: Hertz-like caps over the (about) 64 lowest cells of all pairs
-        h_all = np.sort(np.concatenate([o.h.ravel() for o in ops]))
+        h_all = np.sort(np.concatenate([hk.ravel() for hk in hs]))
         level = h_all[min(63, h_all.size - 1)]
-        x0 = [np.sqrt(np.maximum(level - o.h, 0.0)) + (o.h == hmin) for o in ops]
+        x0 = [np.sqrt(np.maximum(level - hk, 0.0)) + (hk == hmin) for hk in hs]
     total = sum(float(xi.sum()) for xi in x0)
-    x0 = [xi * (torque / total) for xi in x0]
-    x, iters, ok = _pk_cg_blocks(ops, x0, torque, tol, int(max_iter), precondition)
-    x = [xi.reshape(o.shape) for xi, o in zip(x, ops)]
-    u = [o.apply(xi) for o, xi in zip(ops, x)]
+    op, h, x = _stack(blocks, e_star, hs, [xi * (torque / total) for xi in x0])
+    x, iters, ok = _pk_cg_blocks(op, h, x, torque, tol, int(max_iter), precondition)
+    u = op.apply(x)  # exact, for theta and the residuals
+    x = [x[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
+    u = [u[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     contact = [xi > 0.0 for xi in x]
-    theta = float(np.concatenate([(ui + o.h)[c] for ui, o, c in zip(u, ops, contact)]).mean())
+    theta = float(np.concatenate([(ui + hk)[c] for ui, hk, c in zip(u, hs, contact)]).mean())
     # residuals over all cells of all blocks (see LcpResult)
     scale = max(theta - hmin, np.finfo(float).tiny)
     xmax = max(float(xi.max()) for xi in x) or 1.0
-    comp = max(float(np.abs(np.minimum(xi / xmax, (ui + o.h - theta) / scale)).max())
-               for xi, ui, o in zip(x, u, ops))
+    comp = max(float(np.abs(np.minimum(xi / xmax, (ui + hk - theta) / scale)).max())
+               for xi, ui, hk in zip(x, u, hs))
     loads = tuple(xi / b.lever_mm for xi, b in zip(x, blocks))
     pair_loads = np.array([float(w.sum()) for w in loads])
     levers = np.array([b.lever_mm for b in blocks])
