@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import RectBivariateSpline
 
-from gearcontact.geometry.spline_kernel import knot_reciprocals, spline_derivatives
+from gearcontact.geometry.spline_kernel import (knot_reciprocals, pp_coefficients,
+                                                pp_derivatives, spline_derivatives)
 
 ORDERS = ((0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2))
 
@@ -32,6 +33,39 @@ def test_spline_derivatives_equal_fitpack(k):
             continue
         want = spl(np.clip(u, 0, 1), np.clip(v, y[0], y[-1]), dx=a, dy=b, grid=False)
         assert np.abs(got[:, col] - want).max() < 1e-9 * max(1.0, np.abs(want).max())
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("zero_outside", [False, True])
+def test_pp_form_equals_fitpack(k, zero_outside):
+    # the piecewise-polynomial form is the same spline: equal to FITPACK (and to the
+    # B-spline recursion, clamping rules included) to rounding; 1e-11 relative covers
+    # the Taylor sums' cancellation at the degree-5 derivatives (~2e-12 observed)
+    x, y = np.linspace(0.0, 1.0, 15), np.linspace(0.0, 2.0, 17) ** 1.3
+    z = np.sin(3.0 * x)[:, None] * np.cos(2.0 * y)[None, :] + x[:, None] * y[None, :] ** 2
+    spl = RectBivariateSpline(x, y, z, kx=k, ky=k, s=0)
+    tx, ty, c = spl.tck
+    rng = np.random.default_rng(10 + k)
+    u = -0.3 + 1.6 * rng.random(2000)
+    v = -0.5 + 3.5 * rng.random(2000)
+    u[:3], v[:3] = x[[0, 7, -1]], y[[0, 5, -1]]        # knots and box corners
+    got = pp_derivatives(tx, ty, pp_coefficients(tx, ty, c, k, k), k, k, u, v, 2,
+                         zero_outside)
+    rec = spline_derivatives(tx, ty, c, knot_reciprocals(tx, k), knot_reciprocals(ty, k),
+                             k, k, u, v, 2, zero_outside)
+    scale = np.nanmax(np.abs(rec), axis=0)
+    assert np.all(np.abs(got - rec) <= 1e-11 * np.maximum(scale, 1.0))
+    for col, (a, b) in enumerate(ORDERS):
+        if a >= k or b >= k:
+            continue
+        want = spl(np.clip(u, 0, 1), np.clip(v, y[0], y[-1]), dx=a, dy=b, grid=False)
+        if zero_outside:
+            outside = ((a > 0) & ((u < 0) | (u > 1))) | ((b > 0) & ((v < y[0]) | (v > y[-1])))
+            want = np.where(outside, 0.0, want)
+        assert np.abs(got[:, col] - want).max() < 1e-9 * max(1.0, np.abs(want).max())
+    first = pp_derivatives(tx, ty, pp_coefficients(tx, ty, c, k, k), k, k, u, v, 1,
+                           zero_outside)
+    assert np.array_equal(first[:, :3], got[:, :3]) and np.isnan(first[:, 3:]).all()
 
 
 def test_spline_zero_outside_has_constant_continuation():

@@ -11,7 +11,8 @@ over a rectangular parameter box (both parameters in mm):
 so that ``r(u, v) = (v, R cos(psi), R sin(psi))``. The field psi is sampled exactly on
 a dense grid (:mod:`.conjugate`, :mod:`.easeoff`) and interpolated by a quintic
 tensor-product spline (scipy ``RectBivariateSpline``, kx = ky = 5, s = 0; evaluated
-with its derivatives in one compiled pass by :mod:`.spline_kernel`); positions, first
+with its derivatives in one compiled pass from its piecewise-polynomial form,
+:mod:`.spline_kernel`); positions, first
 and second derivatives follow analytically from psi and its spline derivatives (C4
 continuous, never bilinear). With ``e_R = (0, cos psi, sin psi)``,
 ``e_psi = (0, -sin psi, cos psi)`` and ``t = tan(delta1) = dR/dv``:
@@ -41,7 +42,7 @@ from scipy.interpolate import RectBivariateSpline
 
 from .flank import FlankBoundary
 from .sampling import SurfaceArrays
-from .spline_kernel import knot_reciprocals, spline_derivatives
+from .spline_kernel import knot_reciprocals, pp_coefficients, pp_derivatives
 from .surface import SurfacePoint
 
 __all__ = ["PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
@@ -150,6 +151,18 @@ class RadialSheet:
         return got
 
     @property
+    def pp_arrays(self) -> tuple:
+        """``(tx, ty, pc, kx, ky)``: knots and piecewise-polynomial coefficients of the
+        psi spline (:func:`~.spline_kernel.pp_coefficients`, built once, ~6 MB for the
+        120 x 150 node grid)."""
+        got = self.__dict__.get("_pp_arrays")
+        if got is None:
+            tx, ty, c, _, _, kx, ky = self.spline_arrays
+            got = (tx, ty, pp_coefficients(tx, ty, c, kx, ky), kx, ky)
+            object.__setattr__(self, "_pp_arrays", got)
+        return got
+
+    @property
     def u_range(self) -> tuple[float, float]:
         return (self.boundary.u_root, self.boundary.u_tip)
 
@@ -169,9 +182,9 @@ class RadialSheet:
         unless ``second``); equal to :meth:`psi` to rounding
         (:mod:`.spline_kernel`)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
-        tx, ty, c, rx, ry, kx, ky = self.spline_arrays
-        out = spline_derivatives(tx, ty, c, rx, ry, kx, ky, np.ascontiguousarray(u.ravel()),
-                                 np.ascontiguousarray(v.ravel()), 2 if second else 1, False)
+        tx, ty, pc, kx, ky = self.pp_arrays
+        out = pp_derivatives(tx, ty, pc, kx, ky, np.ascontiguousarray(u.ravel()),
+                             np.ascontiguousarray(v.ravel()), 2 if second else 1, False)
         return out.reshape(u.shape + (6,))
 
     def evaluate(self, u, v, *, second: bool = True) -> SurfaceArrays:
