@@ -7,9 +7,10 @@ this module runs that iteration (same update, clamping and stopping rule) per li
 compiled code, with the surfaces evaluated as their ``evaluate`` methods do:
 
 * :class:`~gearcontact.geometry.sheet.RadialSheet` (pinion): the quintic
-  tensor-product B-spline of ``psi(u, v)`` and its first derivatives from the spline's
-  own knots and coefficients (:mod:`gearcontact.geometry.spline_kernel`; arguments
-  clamped to the knot box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
+  tensor-product spline of ``psi(u, v)`` and its first derivatives from its
+  piecewise-polynomial form (:attr:`~gearcontact.geometry.sheet.RadialSheet.pp_arrays`,
+  :func:`gearcontact.geometry.spline_kernel.pp_point`; arguments clamped to the knot
+  box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
   ``r_u``, ``r_v`` (:func:`~gearcontact.geometry.sheet.sheet_vector`);
 * :class:`~gearcontact.geometry.flank.FormateFlank` (gear): the blade cone in closed
   form (:func:`~gearcontact.geometry.flank.cone_vector`).
@@ -24,10 +25,9 @@ Other surfaces (e.g. analytic test surfaces) have no compiled form
 (:func:`kernel_surface` returns None) and use the vectorized numpy path of
 :mod:`.stencil`. Results agree with that path to rounding (~1e-13 mm).
 
-A surface is passed to the kernel as ``(kind, par, tx, ty, coef, rx, ry)``: ``kind`` 0
-(sheet) or 1 (cone), a float parameter vector and the spline arrays (knots,
-coefficients, reciprocal knot tables of :mod:`gearcontact.geometry.spline_kernel`;
-empty for a cone).
+A surface is passed to the kernel as ``(kind, par, tx, ty, pc)``: ``kind`` 0 (sheet) or
+1 (cone), a float parameter vector and the spline arrays (knots and piecewise-polynomial
+coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone).
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ from numba import njit
 
 from ..geometry.flank import FormateFlank, cone_vector
 from ..geometry.sheet import RadialSheet, sheet_vector
-from ..geometry.spline_kernel import spline_point
+from ..geometry.spline_kernel import pp_point
 
 __all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines"]
 
@@ -50,13 +50,19 @@ KIND_CONE = 1
 #: this many successive iterations after the first (every iterate clipped onto that
 #: edge) is given up as off the flank - where the full iteration ends anyway.
 PINNED_ITERATIONS = 3
+#: Residual (mm) below which Newton is in its quadratic basin on the flanks (curvature
+#: radii >= ~1 mm, parameter steps ~ residuals) ...
+BASIN_MM = 1e-6
+#: ... and the parameter / line step (mm) that ends it there without a confirming
+#: evaluation: the next residual is of order FINAL_STEP^2 / radius, ~1e-14 mm.
+FINAL_STEP = 1e-7
 _EMPTY = np.zeros(0)
-_EMPTY3 = np.zeros((0, 0, 0))
+_EMPTY4 = np.zeros((0, 0, 0, 0))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def kernel_surface(surface):
-    """The kernel form ``(kind, par, tx, ty, coef, rx, ry)`` of a flank, or None.
+    """The kernel form ``(kind, par, tx, ty, pc)`` of a flank, or None.
 
     Sheet ``par``: ``(kx, ky, apex_x, tan_delta, root_offset)``; cone ``par``:
     :attr:`~gearcontact.geometry.flank.FormateFlank.kernel_parameters`.
@@ -66,12 +72,12 @@ def kernel_surface(surface):
     except (KeyError, TypeError):
         pass
     if type(surface) is RadialSheet:
-        tx, ty, c, rx, ry, kx, ky = surface.spline_arrays
+        tx, ty, pc, kx, ky = surface.pp_arrays
         cone = surface.cone
         par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
-        out = (KIND_SHEET, par, tx, ty, c, rx, ry)
+        out = (KIND_SHEET, par, tx, ty, pc)
     elif type(surface) is FormateFlank:
-        out = (KIND_CONE, surface.kernel_parameters, _EMPTY, _EMPTY, _EMPTY, _EMPTY3, _EMPTY3)
+        out = (KIND_CONE, surface.kernel_parameters, _EMPTY, _EMPTY, _EMPTY4)
     else:
         return None
     _CACHE[surface] = out
@@ -79,12 +85,10 @@ def kernel_surface(surface):
 
 
 @njit(cache=True, inline="always")
-def sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, d, vec):
-    """r, r_u, r_v of a radial sheet into ``vec[0:3]`` (``bu``, ``bv``: (3, k + 1),
-    ``work``: (4, k + 1), ``d``: (6,) scratch). psi is FITPACK's clamped continuation
-    beyond the knot box, with zero derivatives there."""
-    spline_point(tx, ty, coef, rx, ry, int(par[0]), int(par[1]), u, v, 1, True, bu, bv,
-                 work, d)
+def sheet_point(par, tx, ty, pc, u, v, d, vec):
+    """r, r_u, r_v of a radial sheet into ``vec[0:3]`` (``d``: (6,) scratch). psi is
+    FITPACK's clamped continuation beyond the knot box, with zero derivatives there."""
+    pp_point(tx, ty, pc, int(par[0]), int(par[1]), u, v, 1, True, d)
     sheet_vector(u, v, d, par[2], par[3], par[4], 1.0, False, vec)
 
 
@@ -118,13 +122,13 @@ def _solve3(a, b, x):
 
 
 @njit(cache=True)
-def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, hi, clamp,
+def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
                     tol_mm, max_iter, order, prev):
     """Newton intersections of the lines ``q_i + lambda n`` with a posed surface.
 
     Parameters
     ----------
-    kind, par, tx, ty, coef, rx, ry
+    kind, par, tx, ty, pc
         Kernel form of the surface (:func:`kernel_surface`).
     rot, trans : ndarray (3, 3), (3,)
         Pose ``x -> rot x + trans`` of the surface.
@@ -165,10 +169,6 @@ def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, 
     ok = np.zeros(m, dtype=np.bool_)
     sol = np.empty((m, 3))        # converged (u, v, lambda)
     tang = np.empty((m, 6))       # posed r_u, r_v there
-    kmax = int(par[0:2].max()) + 1 if kind == 0 else 1
-    bu = np.zeros((3, kmax))
-    bv = np.zeros((3, kmax))
-    work = np.empty((4, kmax))
     dpsi = np.zeros(6)
     vec = np.empty((7, 3))
     jac = np.empty((3, 3))
@@ -196,9 +196,10 @@ def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, 
         converged = False
         pinned = 0
         last_side = 0
+        side = 0
         for _ in range(max_iter):
             if kind == 0:
-                sheet_point(par, tx, ty, coef, rx, ry, u, v, bu, bv, work, dpsi, vec)
+                sheet_point(par, tx, ty, pc, u, v, dpsi, vec)
             else:
                 cone_vector(par, u, v, False, vec)
             res_max = 0.0
@@ -235,6 +236,13 @@ def intersect_lines(kind, par, tx, ty, coef, rx, ry, rot, trans, q, n, uv0, lo, 
             v = nv_
             lam += step[2]
             if res_max < tol_mm and moved < 1e-12:
+                converged = True
+                break
+            # quadratic basin: once the residual is below BASIN_MM a step below
+            # FINAL_STEP leaves an error of order step^2 |r''| (~1e-14 mm), so the
+            # confirming evaluation is skipped (one to two per line)
+            if (res_max < BASIN_MM and moved < FINAL_STEP and abs(step[2]) < FINAL_STEP
+                    and not (clamp and side != 0)):
                 converged = True
                 break
         ins = converged and lo[0] < u < hi[0] and lo[1] < v < hi[1]
