@@ -123,3 +123,27 @@ def test_sheet_intersections_match_closed_form():
 
     truth = np.array([brentq(f, -1.0, 1.0, args=(qi,), xtol=1e-15) for qi in q])
     assert np.abs(lam - truth).max() < 1e-9
+
+
+def test_cone_lines_closed_form(s0003_flanks):
+    # a line through a flank point along its normal meets the blade cone there
+    # (lambda = 0 to rounding) and again across the cutter (the far root is not
+    # taken); a line parallel to the axis at the axis never meets it (NaN)
+    from gearcontact.tca.gap_kernel import cone_lines
+    gear = s0003_flanks.flank("gear", "drive")
+    par = gear.kernel_parameters
+    rot, trans = np.eye(3), np.zeros(3)
+    lo = np.array([gear.u_range[0], gear.v_range[0]])
+    hi = np.array([gear.u_range[1], gear.v_range[1]])
+    rng = np.random.default_rng(5)
+    uv = lo + (hi - lo) * (0.1 + 0.8 * rng.random((50, 2)))
+    pts = [gear.point(u, v) for u, v in uv]
+    for sp, (u, v) in zip(pts, uv):
+        shift = 0.3 * sp.n                                 # start 0.3 mm off the flank
+        lam, ins = cone_lines(par, rot, trans, (sp.r + shift)[None, :], sp.n,
+                              np.array([[u, v]]), lo, hi, True)
+        assert ins[0] and abs(lam[0] + 0.3) < 1e-12
+    axis_line = par[0:3][None, :]
+    lam, ins = cone_lines(par, rot, trans, axis_line, par[3:6], np.zeros((1, 2)), lo, hi,
+                          False)
+    assert np.isnan(lam[0]) and not ins[0]

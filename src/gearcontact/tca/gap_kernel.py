@@ -12,8 +12,10 @@ compiled code, with the surfaces evaluated as their ``evaluate`` methods do:
   :func:`gearcontact.geometry.spline_kernel.pp_point`; arguments clamped to the knot
   box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
   ``r_u``, ``r_v`` (:func:`~gearcontact.geometry.sheet.sheet_vector`);
-* :class:`~gearcontact.geometry.flank.FormateFlank` (gear): the blade cone in closed
-  form (:func:`~gearcontact.geometry.flank.cone_vector`).
+* :class:`~gearcontact.geometry.flank.FormateFlank` (gear): the blade cone, a circular
+  cone, which a line meets where a quadratic vanishes (:func:`cone_lines`: no Newton;
+  the root nearest the tangent plane; (u, v) back from the point by the inverse of
+  :func:`~gearcontact.geometry.flank.cone_vector`).
 
 Three things make it converge in fewer steps without moving any root: each line starts
 from the tangent-plane prediction at an already solved neighbour (order given by the
@@ -41,7 +43,7 @@ from ..geometry.flank import FormateFlank, cone_vector
 from ..geometry.sheet import RadialSheet, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
-__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines"]
+__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines", "cone_lines"]
 
 #: Surface kinds of the kernel.
 KIND_SHEET = 0
@@ -122,6 +124,71 @@ def _solve3(a, b, x):
 
 
 @njit(cache=True)
+def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
+    """Closed-form intersections of the lines ``q_i + lambda n`` with a posed blade
+    cone (``par``: :attr:`~gearcontact.geometry.flank.FormateFlank.kernel_parameters`).
+
+    In the body frame a cone point ``w = x - C`` has height ``h = w.a`` along the axis
+    and radius ``|w - h a| = rho_0 + k h``; along a line ``w = w_0 + lambda m`` squaring
+    gives ``A lambda^2 + B lambda + C = 0``, solved in the cancellation-free form
+    (Press et al., *Numerical Recipes*, 3rd ed., sec. 5.6). Of the roots on the nappe
+    (``rho_0 + k h > 0``) the one nearest ``lambda = 0`` (the tangent plane) is taken;
+    ``u = dedendum - h``, ``v = theta / k_v`` with the polar angle ``theta`` of the
+    point about the axis taken nearest ``k_v uv0[i, 1]``. Returns as
+    :func:`intersect_lines`.
+    """
+    m = q.shape[0]
+    lam_out = np.full(m, np.nan)
+    inside = np.zeros(m, dtype=np.bool_)
+    rho0, k, ded, kv = par[12], par[13], par[14], par[15]
+    nb = np.empty(3)
+    for a in range(3):
+        nb[a] = rot[0, a] * n[0] + rot[1, a] * n[1] + rot[2, a] * n[2]
+    hm = nb[0] * par[3] + nb[1] * par[4] + nb[2] * par[5]
+    pm = np.empty(3)
+    for a in range(3):
+        pm[a] = nb[a] - hm * par[3 + a]
+    rk = k * hm
+    aa = pm[0] * pm[0] + pm[1] * pm[1] + pm[2] * pm[2] - rk * rk
+    w0 = np.empty(3)
+    p0 = np.empty(3)
+    for i in range(m):
+        for a in range(3):       # body frame: x = rot^T (q - trans), w0 = x - C
+            w0[a] = (rot[0, a] * (q[i, 0] - trans[0]) + rot[1, a] * (q[i, 1] - trans[1])
+                     + rot[2, a] * (q[i, 2] - trans[2]) - par[a])
+        h0 = w0[0] * par[3] + w0[1] * par[4] + w0[2] * par[5]
+        for a in range(3):
+            p0[a] = w0[a] - h0 * par[3 + a]
+        r0 = rho0 + k * h0
+        bb = 2.0 * (p0[0] * pm[0] + p0[1] * pm[1] + p0[2] * pm[2] - rk * r0)
+        cc = p0[0] * p0[0] + p0[1] * p0[1] + p0[2] * p0[2] - r0 * r0
+        disc = bb * bb - 4.0 * aa * cc
+        if disc < 0.0:
+            continue
+        qq = -0.5 * (bb + np.copysign(np.sqrt(disc), bb))
+        best = np.nan
+        for lam in (qq / aa if aa != 0.0 else np.nan, cc / qq if qq != 0.0 else np.nan):
+            if np.isfinite(lam) and r0 + rk * lam > 0.0 and not abs(lam) >= abs(best):
+                best = lam
+        if not np.isfinite(best):
+            continue
+        u = ded - (h0 + hm * best)
+        px = p0[0] + best * pm[0]
+        py = p0[1] + best * pm[1]
+        pz = p0[2] + best * pm[2]
+        theta = np.arctan2(px * par[9] + py * par[10] + pz * par[11],
+                           px * par[6] + py * par[7] + pz * par[8])
+        t0 = kv * uv0[i, 1]
+        theta = t0 + (theta - t0 + np.pi) % (2.0 * np.pi) - np.pi
+        v = theta / kv
+        ins = lo[0] < u < hi[0] and lo[1] < v < hi[1]
+        inside[i] = ins
+        if ins or not clamp:
+            lam_out[i] = best
+    return lam_out, inside
+
+
+@njit(cache=True)
 def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
                     tol_mm, max_iter, order, prev):
     """Newton intersections of the lines ``q_i + lambda n`` with a posed surface.
@@ -163,6 +230,8 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
     there is taken as zero (consistent), so such continuation points converge
     quadratically too.
     """
+    if kind == KIND_CONE:
+        return cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp)
     m = q.shape[0]
     lam_out = np.empty(m)
     inside = np.zeros(m, dtype=np.bool_)
