@@ -155,6 +155,25 @@ def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
     assert fast.complementarity_residual < 1e-6 and fast.torque_residual < 1e-12
 
 
+@pytest.mark.parametrize("checks", [3, 0])
+def test_pair_closing_outside_the_windows(make_hertz, monkeypatch, checks):
+    # The block pk_cg works on windows around the loaded cells; a pair that starts
+    # without load (warm start from the first pair alone) is found by the whole-field
+    # check at convergence and joins (its window widened, or with _CHECKS = 0 the
+    # whole fields): same solution as a cold start, to the solver tolerance.
+    from gearcontact.contact import mesh_lcp
+
+    monkeypatch.setattr(mesh_lcp, "_CHECKS", checks)
+    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
+    blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
+    alone = solve_mesh_lcp(blocks[:1], 40000.0)
+    warm = solve_mesh_lcp(blocks, 40000.0, warm_start=[alone.pressures_mpa(blocks)[0], None])
+    cold = solve_mesh_lcp(blocks, 40000.0)
+    assert warm.converged and cold.converged and warm.pair_loads_n[1] > 0.1 * 1000.0
+    np.testing.assert_allclose(warm.pair_loads_n, cold.pair_loads_n, rtol=SOLVER_RTOL)
+    assert warm.rotation_rad == pytest.approx(cold.rotation_rad, rel=SOLVER_RTOL)
+
+
 def test_fields_of_other_shapes_are_padded_exactly(make_hertz):
     # Blocks of different field shapes share one batched operator on the largest shape;
     # the padding carries no load, so the result is the one of the same pairs on

@@ -185,10 +185,12 @@ def _kernel_quadrant(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: f
     q = _QUADRANTS.get(key)
     if q is None or q.shape[0] < ny or q.shape[1] < nx:
         my, mx = (ny, nx) if q is None else (max(ny, q.shape[0]), max(nx, q.shape[1]))
-        q = love_rectangle_displacement(dx_mm * np.arange(mx)[None, :],
-                                        dy_mm * np.arange(my)[:, None], 0.5 * dx_mm,
-                                        0.5 * dy_mm, e_star_mpa=e_star_mpa)
-        q /= dx_mm * dy_mm
+        # Love's four corner terms of cell (j, i) are G on the cell-edge lattice
+        # ((m - 1/2) dx, (n - 1/2) dy): one G per lattice point, not four per cell
+        gl = _corner(dx_mm * (np.arange(mx + 1) - 0.5)[None, :],
+                     dy_mm * (np.arange(my + 1) - 0.5)[:, None])
+        q = (gl[1:, 1:] - gl[:-1, 1:] - gl[1:, :-1] + gl[:-1, :-1]) \
+            / (np.pi * e_star_mpa * dx_mm * dy_mm)
         q.setflags(write=False)
         if key not in _QUADRANTS and len(_QUADRANTS) >= _MAX_QUADRANTS:
             _QUADRANTS.pop(next(iter(_QUADRANTS)))
@@ -199,7 +201,8 @@ def _kernel_quadrant(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: f
 @lru_cache(maxsize=64)
 def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
                  ) -> tuple[np.ndarray, tuple[int, int]]:
-    """Cached rfft2 of the zero-padded influence kernel (mm/N) and the padded shape."""
+    """Cached rfft2 of the zero-padded influence kernel (mm/N, real: the kernel is
+    even) and the padded shape."""
     py = sfft.next_fast_len(2 * ny - 1, real=True)
     px = sfft.next_fast_len(2 * nx - 1, real=True)
     q = _kernel_quadrant(ny, nx, dx_mm, dy_mm, e_star_mpa)
@@ -209,7 +212,9 @@ def _kernel_rfft(ny: int, nx: int, dx_mm: float, dy_mm: float, e_star_mpa: float
     pad[:ny, px - (nx - 1):] = q[:, :0:-1]
     pad[py - (ny - 1):, :nx] = q[:0:-1, :]
     pad[py - (ny - 1):, px - (nx - 1):] = q[:0:-1, :0:-1]
-    khat = sfft.rfft2(pad)
+    # the kernel is even in both offsets, so its transform is real: keep the real part
+    # (the imaginary one is round-off) for the cheaper real-by-complex product
+    khat = np.ascontiguousarray(_rfft2(pad, (py, px)).real)
     khat.setflags(write=False)
     return khat, (py, px)
 
@@ -390,58 +395,67 @@ class StackedFftInfluence:
         khats = [_kernel_rfft(ny, nx, dx, dy, e_star) for dx, dy in cells]
         self._pad = khats[0][1]
         self._khat = np.stack([k for k, _ in khats]) / sc[:, None, None]
+        self._cells, self._e_star, self._scales = cells, e_star, sc
         self._qad = self._pad if pre_shape is None else tuple(int(n) for n in pre_shape)
         if self._qad[0] < ny or self._qad[1] < nx:
             raise InputRangeError("pre_shape", pre_shape, f">= {self.shape} per axis")
-        self._sym = np.stack([_inverse_symbol(*self._qad, dx, dy, e_star)
-                              for dx, dy in cells]) * sc[:, None, None]
-        self._subsets: dict[bytes, tuple[np.ndarray, np.ndarray]] = {}
-        self._bufs: dict[tuple[int, int], tuple[np.ndarray, ...]] = {}
+        self._sym = None  # the preconditioner's symbols, made on first use
+        self._plans: dict[tuple, tuple] = {}
 
-    def _buffers(self, pad):
-        b = self._bufs.get(pad)
-        if b is None:
-            n, (ny, nx) = self.n_fields, self.shape
-            b = self._bufs[pad] = (np.zeros((n, ny, pad[1])),
-                                   np.zeros((n, pad[0], pad[1] // 2 + 1), complex),
-                                   np.empty((n, ny, pad[1])))
-        return b
+    def _plan(self, symbols: np.ndarray, pad: tuple[int, int], live) -> tuple:
+        """Fields, symbols and buffer views of one transform (cached per ``live``)."""
+        key = (id(symbols), None if live is None else live.tobytes())
+        plan = self._plans.get(key)
+        if plan is None:
+            (ny, nx), n = self.shape, self.n_fields
+            idx = None if live is None or live.all() else np.flatnonzero(live)
+            if idx is not None:
+                symbols, n = symbols[idx], idx.size
+            rbuf, cbuf, obuf = (np.zeros((n, ny, pad[1])),
+                                np.zeros((n, pad[0], pad[1] // 2 + 1), complex),
+                                np.empty((n, ny, pad[1])))
+            plan = self._plans[key] = (idx, symbols, rbuf, cbuf, obuf, rbuf[:, :, :nx],
+                                       cbuf[:, :ny], cbuf[:, ny:], obuf[:, :, :nx])
+        return plan
 
     def _convolve(self, x, out, symbols, pad, live):
         """``out[k] = (x[k] convolved with the symbol k)`` on the fields ``live``
         (bool per field; None: all), 0 on the others."""
-        ny, nx = self.shape
-        if live is not None and live.all():
-            live = None
-        if live is not None:
-            key = live.tobytes() + bytes(symbols is self._sym)
-            sub = self._subsets.get(key)
-            if sub is None:
-                sub = self._subsets[key] = (np.flatnonzero(live), symbols[live])
-            idx, symbols = sub
-            x = x[idx]
-        n = x.shape[0]
-        rbuf, cbuf, obuf = (b[:n] for b in self._buffers(pad))
-        if n == 0:
+        idx, symbols, rbuf, cbuf, obuf, r_in, c_top, c_pad, o_out = \
+            self._plan(symbols, pad, live)
+        if idx is not None:
             out[...] = 0.0
-            return out
-        rbuf[:, :, :nx] = x  # columns nx: stay zero
-        if _pocketfft is not None:
-            _pocketfft.r2c(rbuf, (2,), True, 0, cbuf[:, :ny], 1)
-            cbuf[:, ny:] = 0.0
+            if idx.size == 0:
+                return out
+            x = x[idx]
+        r_in[...] = x  # the padding columns of rbuf stay zero
+        if _pocketfft is not None and pad == self.shape:  # periodic: nothing to prune
+            f = _pocketfft.r2c(rbuf, (1, 2), True, 0, cbuf, 1)
+            f *= symbols
+            _pocketfft.c2r(f, (1, 2), pad[1], False, 2, obuf, 1)
+        elif _pocketfft is not None:
+            _pocketfft.r2c(rbuf, (2,), True, 0, c_top, 1)
+            c_pad[...] = 0.0
             _pocketfft.c2c(cbuf, (1,), True, 0, cbuf, 1)
             cbuf *= symbols
             _pocketfft.c2c(cbuf, (1,), False, 2, cbuf, 1)
-            _pocketfft.c2r(cbuf[:, :ny], (2,), pad[1], False, 2, obuf, 1)
+            _pocketfft.c2r(c_top, (2,), pad[1], False, 2, obuf, 1)
         else:  # pragma: no cover - depends on the scipy build
             f = sfft.rfft2(rbuf, s=pad, axes=(1, 2)) * symbols
-            obuf[...] = sfft.irfft2(f, s=pad, axes=(1, 2))[:, :ny]
-        if live is None:
-            out[...] = obuf[:, :, :nx]
+            obuf[...] = sfft.irfft2(f, s=pad, axes=(1, 2))[:, :self.shape[0]]
+        if idx is None:
+            out[...] = o_out
         else:
-            out[...] = 0.0
-            out[idx] = obuf[:, :, :nx]
+            out[idx] = o_out
         return out
+
+    def kernel_quadrants(self) -> np.ndarray:
+        """``K_k[|oy|, |ox|] / s_k`` (mm/N), shape ``(n_fields, ny, nx)``: the operator
+        of field ``k`` in real space (displacement at offset ``(oy, ox)`` from a unit
+        load), for updates by a few cells."""
+        ny, nx = self.shape
+        return np.stack([_kernel_quadrant(ny, nx, dx, dy, self._e_star) / s
+                         for (dx, dy), s in zip(self._cells, self._scales)])
 
     def apply(self, loads_n: np.ndarray, out: np.ndarray | None = None,
               live: np.ndarray | None = None) -> np.ndarray:
@@ -458,5 +472,8 @@ class StackedFftInfluence:
         """``s_k M_k u[k]`` (N): :func:`boussinesq_inverse` per field on the
         preconditioner's transform shape, scaled; ``live`` and ``out`` as in
         :meth:`apply` (fields not live get 0)."""
+        if self._sym is None:
+            self._sym = np.stack([_inverse_symbol(*self._qad, dx, dy, self._e_star)
+                                  for dx, dy in self._cells]) * self._scales[:, None, None]
         out = np.empty(displacement_mm.shape) if out is None else out
         return self._convolve(displacement_mm, out, self._sym, self._qad, live)
