@@ -54,10 +54,11 @@ KIND_CONE = 1
 PINNED_ITERATIONS = 3
 #: Residual (mm) below which Newton is in its quadratic basin on the flanks (curvature
 #: radii >= ~1 mm, parameter steps ~ residuals) ...
-BASIN_MM = 1e-6
+BASIN_MM = 1e-5
 #: ... and the parameter / line step (mm) that ends it there without a confirming
-#: evaluation: the next residual is of order FINAL_STEP^2 / radius, ~1e-14 mm.
-FINAL_STEP = 1e-7
+#: evaluation: the error left is of order FINAL_STEP^2 |r''| / 2 (<= ~1e-12 mm for
+#: flank curvatures <= 1/mm), below the line tolerance (1e-11 mm by default).
+FINAL_STEP = 1e-6
 _EMPTY = np.zeros(0)
 _EMPTY4 = np.zeros((0, 0, 0, 0))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
@@ -238,6 +239,8 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
     ok = np.zeros(m, dtype=np.bool_)
     sol = np.empty((m, 3))        # converged (u, v, lambda)
     tang = np.empty((m, 6))       # posed r_u, r_v there
+    pred = np.empty((m, 3))       # tangent-plane prediction of (u, v, lambda)
+    has_pred = np.zeros(m, dtype=np.bool_)
     dpsi = np.zeros(6)
     vec = np.empty((7, 3))
     jac = np.empty((3, 3))
@@ -259,6 +262,25 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
             u = sol[p, 0] + step[0]
             v = sol[p, 1] + step[1]
             lam = sol[p, 2] + step[2]
+            pred[i, 0] = u
+            pred[i, 1] = v
+            pred[i, 2] = lam
+            has_pred[i] = True
+            # on a straight, evenly spaced chain pp -> p -> i the tangent-plane
+            # prediction errs by about what it erred from pp to p (the second-order
+            # term): adding that makes the start third-order accurate
+            pp = prev[p]
+            if has_pred[p] and pp >= 0:
+                same = True
+                for a in range(3):
+                    d1 = q[i, a] - q[p, a]
+                    d0 = q[p, a] - q[pp, a]
+                    if abs(d1 - d0) > 1e-9 * (abs(d1) + abs(d0)) + 1e-15:
+                        same = False
+                if same:
+                    u += sol[p, 0] - pred[p, 0]
+                    v += sol[p, 1] - pred[p, 1]
+                    lam += sol[p, 2] - pred[p, 2]
             if clamp:
                 u = min(max(u, lo[0]), hi[0])
                 v = min(max(v, lo[1]), hi[1])
@@ -308,7 +330,7 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
                 converged = True
                 break
             # quadratic basin: once the residual is below BASIN_MM a step below
-            # FINAL_STEP leaves an error of order step^2 |r''| (~1e-14 mm), so the
+            # FINAL_STEP leaves an error of order step^2 |r''| (<= ~1e-12 mm), so the
             # confirming evaluation is skipped (one to two per line)
             if (res_max < BASIN_MM and moved < FINAL_STEP and abs(step[2]) < FINAL_STEP
                     and not (clamp and side != 0)):
