@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 import pytest
 
-from gearcontact.contact import lcp
+from gearcontact.contact import lcp, pk_cg
 from gearcontact.contact.ellipse import CoarseGridWarning
 from gearcontact.contact.grid import TangentGrid
 from gearcontact.contact.influence import dense_influence_matrix
@@ -217,7 +217,7 @@ def test_pk_cg_gap_margin_fallback_to_whole_window(make_hertz, monkeypatch):
     prob = make_hertz(1.0, 12, extent=2.0)
     ref = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
     small = solve_lcp(prob.gap_mm, prob.grid, 0.3 * LOAD_N, e_star_mpa=E_STAR_MPA)
-    monkeypatch.setattr(lcp, "_PK_MARGIN", 0)
+    monkeypatch.setattr(pk_cg, "_PK_MARGIN", 0)
     res = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA,
                     warm_start=small)
     assert res.converged, res.message
@@ -291,7 +291,7 @@ def test_pk_cg_incremental_displacement_matches_recomputed(make_hertz, monkeypat
     # count, pressures within 1e-9 of p_max (the solver tolerance is 1e-8 W).
     prob = make_hertz(10.0, 12, extent=2.0)
     fast = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
-    monkeypatch.setattr(lcp, "_PK_REFRESH", 1)
+    monkeypatch.setattr(pk_cg, "_PK_REFRESH", 1)
     exact = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
     assert fast.converged and exact.converged
     assert fast.iterations == exact.iterations

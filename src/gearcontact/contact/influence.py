@@ -168,6 +168,44 @@ def _pick_transforms():
 _rfft2, _irfft2 = _pick_transforms()
 
 
+def _pruned_buffers(n: int, shape: tuple[int, int], pad: tuple[int, int]) -> tuple:
+    """Work buffers of :func:`_convolve_pruned` for ``n`` fields."""
+    return (np.zeros((n, shape[0], pad[1])),
+            np.zeros((n, pad[0], pad[1] // 2 + 1), complex),
+            np.empty((n, shape[0], pad[1])))
+
+
+def _convolve_pruned(x: np.ndarray, symbols: np.ndarray, pad: tuple[int, int],
+                     bufs: tuple) -> np.ndarray:
+    """``irfft2(symbols * rfft2(x zero-padded to pad))`` cropped to ``x``'s shape.
+
+    ``x`` is a stack ``(n, ny, nx)``; ``symbols`` broadcasts against ``(n, py, px//2+1)``.
+    The zero padding is not transformed: the forward real transform (last axis) runs
+    over the ``ny`` data rows only, and the inverse one returns only those rows --
+    about half the work of a full 2-D transform pair, for the same result to
+    round-off. ``bufs`` from :func:`_pruned_buffers` (kept by the callers between
+    calls); the result is a view into the last one.
+    """
+    ny, nx = x.shape[1:]
+    rbuf, cbuf, obuf = bufs
+    rbuf[:, :, :nx] = x  # the padding columns of rbuf stay zero
+    if _pocketfft is None:  # pragma: no cover - depends on the scipy build
+        obuf[...] = sfft.irfft2(sfft.rfft2(rbuf, s=pad, axes=(1, 2)) * symbols, s=pad,
+                                axes=(1, 2))[:, :ny]
+    elif pad == (ny, nx):  # periodic: nothing to prune
+        f = _pocketfft.r2c(rbuf, (1, 2), True, 0, cbuf, 1)
+        f *= symbols
+        _pocketfft.c2r(f, (1, 2), pad[1], False, 2, obuf, 1)
+    else:
+        _pocketfft.r2c(rbuf, (2,), True, 0, cbuf[:, :ny], 1)
+        cbuf[:, ny:] = 0.0
+        _pocketfft.c2c(cbuf, (1,), True, 0, cbuf, 1)
+        cbuf *= symbols
+        _pocketfft.c2c(cbuf, (1,), False, 2, cbuf, 1)
+        _pocketfft.c2r(cbuf[:, :ny], (2,), pad[1], False, 2, obuf, 1)
+    return obuf[:, :, :nx]
+
+
 #: Largest kernel quadrant computed per (dx, dy, E*); smaller windows slice it.
 _QUADRANTS: dict[tuple[float, float, float], np.ndarray] = {}
 _MAX_QUADRANTS = 64
@@ -274,9 +312,8 @@ def boussinesq_inverse(displacement_mm: np.ndarray, *, dx_mm: float, dy_mm: floa
     ny, nx = displacement_mm.shape
     py, px = padded_shape
     sym = _inverse_symbol(py, px, dx_mm, dy_mm, e_star_mpa)
-    f = _rfft2(displacement_mm, (py, px))
-    f *= sym
-    return _irfft2(f, (py, px))[:ny, :nx]
+    return _convolve_pruned(displacement_mm[None], sym, (py, px),
+                            _pruned_buffers(1, (ny, nx), (py, px)))[0]
 
 
 class FftInfluence:
@@ -307,6 +344,7 @@ class FftInfluence:
         self._e_star = check_positive("e_star_mpa", e_star_mpa)
         self._khat, self._pad = _kernel_rfft(ny, nx, self._dx, self._dy, self._e_star)
         self._others: dict[tuple[int, int], FftInfluence] = {}
+        self._bufs = None  # transform work space, made on first use
 
     @property
     def cell_size(self) -> tuple[float, float]:
@@ -329,6 +367,11 @@ class FftInfluence:
                                                     e_star_mpa=self._e_star)
         return op
 
+    def kernel_quadrant(self) -> np.ndarray:
+        """``K[|oy|, |ox|]`` (mm/N), shape ``(ny, nx)``: the operator in real space
+        (displacement at offset ``(oy, ox)`` from a unit load; read-only, cached)."""
+        return _kernel_quadrant(*self.shape, self._dx, self._dy, self._e_star)
+
     def approx_inverse(self, displacement_mm: np.ndarray) -> np.ndarray:
         """Loads (N) approximately producing ``displacement_mm``: a preconditioner.
 
@@ -341,10 +384,10 @@ class FftInfluence:
 
     def __call__(self, loads_n: np.ndarray) -> np.ndarray:
         """Displacements (mm, shape ``(ny, nx)``) due to nodal loads (N, same shape)."""
-        ny, nx = self.shape
-        f = _rfft2(loads_n, self._pad)
-        f *= self._khat
-        return _irfft2(f, self._pad)[:ny, :nx]
+        if self._bufs is None:
+            self._bufs = _pruned_buffers(1, self.shape, self._pad)
+        return _convolve_pruned(np.asarray(loads_n, float)[None], self._khat, self._pad,
+                                self._bufs)[0].copy()
 
 
 def fft_influence(grid: TangentGrid, *, e_star_mpa: float) -> FftInfluence:
@@ -403,7 +446,7 @@ class StackedFftInfluence:
         self._plans: dict[tuple, tuple] = {}
 
     def _plan(self, symbols: np.ndarray, pad: tuple[int, int], live) -> tuple:
-        """Fields, symbols and buffer views of one transform (cached per ``live``)."""
+        """Fields, symbols and work buffers of one transform (cached per ``live``)."""
         key = (id(symbols), None if live is None else live.tobytes())
         plan = self._plans.get(key)
         if plan is None:
@@ -411,42 +454,20 @@ class StackedFftInfluence:
             idx = None if live is None or live.all() else np.flatnonzero(live)
             if idx is not None:
                 symbols, n = symbols[idx], idx.size
-            rbuf, cbuf, obuf = (np.zeros((n, ny, pad[1])),
-                                np.zeros((n, pad[0], pad[1] // 2 + 1), complex),
-                                np.empty((n, ny, pad[1])))
-            plan = self._plans[key] = (idx, symbols, rbuf, cbuf, obuf, rbuf[:, :, :nx],
-                                       cbuf[:, :ny], cbuf[:, ny:], obuf[:, :, :nx])
+            plan = self._plans[key] = (idx, symbols, _pruned_buffers(n, self.shape, pad))
         return plan
 
     def _convolve(self, x, out, symbols, pad, live):
         """``out[k] = (x[k] convolved with the symbol k)`` on the fields ``live``
         (bool per field; None: all), 0 on the others."""
-        idx, symbols, rbuf, cbuf, obuf, r_in, c_top, c_pad, o_out = \
-            self._plan(symbols, pad, live)
+        idx, symbols, bufs = self._plan(symbols, pad, live)
         if idx is not None:
             out[...] = 0.0
             if idx.size == 0:
                 return out
-            x = x[idx]
-        r_in[...] = x  # the padding columns of rbuf stay zero
-        if _pocketfft is not None and pad == self.shape:  # periodic: nothing to prune
-            f = _pocketfft.r2c(rbuf, (1, 2), True, 0, cbuf, 1)
-            f *= symbols
-            _pocketfft.c2r(f, (1, 2), pad[1], False, 2, obuf, 1)
-        elif _pocketfft is not None:
-            _pocketfft.r2c(rbuf, (2,), True, 0, c_top, 1)
-            c_pad[...] = 0.0
-            _pocketfft.c2c(cbuf, (1,), True, 0, cbuf, 1)
-            cbuf *= symbols
-            _pocketfft.c2c(cbuf, (1,), False, 2, cbuf, 1)
-            _pocketfft.c2r(c_top, (2,), pad[1], False, 2, obuf, 1)
-        else:  # pragma: no cover - depends on the scipy build
-            f = sfft.rfft2(rbuf, s=pad, axes=(1, 2)) * symbols
-            obuf[...] = sfft.irfft2(f, s=pad, axes=(1, 2))[:, :self.shape[0]]
-        if idx is None:
-            out[...] = o_out
+            out[idx] = _convolve_pruned(x[idx], symbols, pad, bufs)
         else:
-            out[idx] = o_out
+            out[...] = _convolve_pruned(x, symbols, pad, bufs)
         return out
 
     def kernel_quadrants(self) -> np.ndarray:
