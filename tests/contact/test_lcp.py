@@ -286,9 +286,10 @@ def test_isolated_minimum_cell_carries_the_whole_load(solver, cell):
 
 
 def test_pk_cg_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
-    # pk_cg updates C w from the step's C t; recomputing C w by FFT at every step
-    # (_PK_REFRESH = 1) follows the same iterates up to round-off: same iteration
-    # count, pressures within 1e-9 of p_max (the solver tolerance is 1e-8 W).
+    # pk_cg updates C w from the step's C t and adds clipped / re-admitted cells one by
+    # one from the real-space kernel (both fire on this problem); recomputing C w by FFT
+    # at every step (_PK_REFRESH = 1) follows the same iterates up to round-off: same
+    # iteration count, pressures within 1e-9 of p_max (the solver tolerance is 1e-8 W).
     prob = make_hertz(10.0, 12, extent=2.0)
     fast = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
     monkeypatch.setattr(pk_cg, "_PK_REFRESH", 1)

@@ -135,7 +135,8 @@ def test_non_convergence_is_reported(make_hertz):
 
 
 def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
-    # The block pk_cg updates C x from the step's C t; recomputing C x at every step
+    # The block pk_cg updates C x from the step's C t and adds clipped / re-admitted
+    # cells one by one from the real-space kernels; recomputing C x at every step
     # (_REFRESH = 1) follows the same iterates up to round-off: same iteration count,
     # loads within 1e-9 of the largest (the solver tolerance is 1e-8 T), and both final
     # residuals (computed from an exact C x) below the solver's residual_tol.
