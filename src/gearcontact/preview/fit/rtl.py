@@ -2,19 +2,49 @@
 
 Structure (SPEC section 6, Algorithm 2; section 7 tri_core write port)::
 
-    wr_rst / wr_en + wr_data ──► gap RAM 49 x 32 (GAP Q(32,16))
-                                      │ tap k (async read)
-    6 x ROM 49 x 40 (Q(40,20)) ───────┤
+    wr_rst / wr_en + wr_data ──► gap RAM, 2 banks x 25 x 32 (GAP Q(32,16))
+                                      │ pair p = taps 2p, 2p+1 (sync read)
+    12 x ROM 25 x 20 (WEIGHT codes) ──┤ (sync read, same pair address)
                                       ▼
-              6 MACs  acc_j += M_jk * g_k   (ACC Q(72,36), one tap per cycle)
+        PairMac: 24 partial products -> M registers -> 24 accumulators (DSP
+                 P = P + M), fold even/odd, combine -> acc_j (ACC Q(72,36))
                                       ▼
-    latch 1: c_j = round_shift(acc_j, 16) (Q(32,20)), h = c3 + c5, e = c3 - c5
-    latch 2: d = e^2 + c4^2                (Q(64,40))
-    latch 3: r = isqrt(d) (32-stage unrolled non-restoring, shift-and-add only),
-             A- = round_shift(h + r, 1), B- = round_shift(h - r, 1), flags, done
+    round: c_j = round_shift(acc_j, 16) (Q(32,20)) | h = c3 + c5, e = c3 - c5
+    | e^2, c4^2 | d = e^2 + c4^2 (Q(64,40)) | r = isqrt(d), 2 bits per edge
+    (:class:`.rtl_isqrt.IsqrtSequential`) | A-, B- = round_shift(h +- r, 1) | flags
+    | output registers, done
 
-Timing: ``FIT_CYCLES = 52`` edges from the edge that samples ``go`` (which already
-multiplies tap 0) to the edge after which ``done`` reads 1, independent of the data.
+Schedule (edge k = the k-th clock edge counted from the edge that samples ``go``,
+which is edge 1; ``t`` is the schedule counter, ``t = k - 1`` in the cycle before
+edge k, 0 while idle). ``FIT_CYCLES = 52``: ``done`` reads 1 after edge 52 for every
+input. Every path between registers holds at most one DSP multiply or two adders
+(the isqrt's two 34-bit steps)::
+
+    edge    registers written                               Q format
+    1       t = 1, done = 0; gap/ROM read regs <- pair 0    GAP Q(32,16), WEIGHT codes
+            (address t = 0 presented while idle);
+            bank accumulators a_* = 0
+    1..25   read regs <- pair k - 1 (address t = k - 1)     as above
+    2..26   M regs <- partial products of pair k - 2        Q(..,36 - shift)
+    3..27   a_* += M (pair k - 3)                           Q(m + 5, 36 - shift)
+    28      f_* = even + odd bank accumulators              Q(m + 6, 36 - shift)
+    29      acc_j = sum_parts f << shift                    ACC Q(72,36)
+    30      c_j = round_shift(acc_j, 16) (low 32 bits),     COEFF Q(32,20)
+            cov = some c_j outside Q(32,20)
+    31      h = c3 + c5, e = c3 - c5                        SUM_FMT Q(33,20)
+    32      ee = e^2, cc = c4^2                             UQ(66,40)
+    33      dov = ~cov & (ee + cc > max D); isqrt loads     D_FMT Q(64,40)
+            d = (ee + cc)[:64]
+    34..49  isqrt: 2 root bits per edge                     rem Q(34,0), root UQ(32,20)
+    50      a_sum = round_shift(h + r, 1),                  Q(34,20)
+            b_sum = round_shift(h - r, 1)
+    51      kov (a_sum or b_sum outside Q(32,20)), bad,     flags word
+            flags_reg = Cat(cov, dov, kov, ~bad & b_sum <= 0)
+    52      outputs c0..c5, a_minus, b_minus (0 if bad),    COEFF / CURVATURE Q(32,20)
+            flags; busy = 0, done = 1, done_pulse = 1
+
+The last edge that computes is 51, so edge 52 is the same as in the single-cycle
+design: the C->D chain (:mod:`..chain_rtl`) still sees ``done_pulse`` after edge 52.
 
 Control behaviour
 -----------------
@@ -46,21 +76,21 @@ from __future__ import annotations
 from amaranth import Cat, Const, Module, Mux, Signal, signed, unsigned
 from amaranth.back import verilog
 from amaranth.lib import wiring
-from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
 from gearcontact.preview.fit.golden import (D_FMT, FIT_CYCLES, FLAG_BITS,
                                             FLAG_COEFF_OVERFLOW, FLAG_CURV_OVERFLOW,
                                             FLAG_D_OVERFLOW, FLAG_NOT_ELLIPTIC,
-                                            ISQRT_REM_FMT, ROOT_FMT, SUM_FMT, GoldenFit,
+                                            ROOT_FMT, SUM_FMT, GoldenFit,
                                             check_gap_codes)
-from gearcontact.preview.fit.pinv import (ACC, COEFF, N_COEFFS, N_TAPS, ROM_WORD_BITS,
-                                          BakedPinv, baked_pinv)
+from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv
+from gearcontact.preview.fit.rtl_isqrt import IsqrtSequential
+from gearcontact.preview.fit.rtl_mac import N_PAIRS, PairMac
 from gearcontact.preview.qformat import CURVATURE, GAP
 from gearcontact.preview.simulation import (read_record, run_testbench, run_to_done,
                                             write_stencil)
 
-__all__ = ["COEFF_PORTS", "FIT_OUTPUT_PORTS", "FitCore", "convert_verilog",
+__all__ = ["COEFF_PORTS", "FIT_OUTPUT_PORTS", "SCHEDULE", "FitCore", "convert_verilog",
            "fit_front_end_ports", "read_fit_codes", "simulate_fit_core"]
 
 #: The coefficient output ports ``c0``..``c5``, in order.
@@ -70,9 +100,31 @@ FIT_OUTPUT_PORTS = {"c_codes": COEFF_PORTS, "a_minus_code": "a_minus",
                     "b_minus_code": "b_minus", "flags": "flags"}
 
 _COEFF_SHIFT = ACC.frac - COEFF.frac
+_ISQRT_BITS_PER_CYCLE = 2
 # The flags port is Cat(cov, dov, kov, not_elliptic): it relies on this bit order.
 assert (FLAG_COEFF_OVERFLOW, FLAG_D_OVERFLOW, FLAG_CURV_OVERFLOW, FLAG_NOT_ELLIPTIC) == \
     (1, 2, 4, 8)
+
+
+def _schedule() -> dict:
+    """Edge of each step (module docstring table), derived from the pipeline depths."""
+    e = {"acc_last": N_PAIRS + 2}               # read, M register, accumulate
+    e["fold"] = e["acc_last"] + 1
+    e["combine"] = e["fold"] + 1
+    e["round"] = e["combine"] + 1
+    e["sum_diff"] = e["round"] + 1
+    e["square"] = e["sum_diff"] + 1
+    e["isqrt_load"] = e["square"] + 1
+    e["isqrt_last"] = e["isqrt_load"] + ROOT_FMT.bits // _ISQRT_BITS_PER_CYCLE
+    e["round_ab"] = e["isqrt_last"] + 1
+    e["flags"] = e["round_ab"] + 1
+    e["done"] = FIT_CYCLES                       # idle edges pad up to here
+    assert e["flags"] < e["done"], "the schedule must fit in FIT_CYCLES"
+    return e
+
+
+#: Edge (1 = the ``go`` edge) of each step of the schedule.
+SCHEDULE = _schedule()
 
 
 def _fits(value, fmt):
@@ -118,11 +170,11 @@ class FitCore(wiring.Component):
     ``go`` In(1); ``busy`` Out(1), ``done`` Out(1), ``done_pulse`` Out(1);
     ``wr_count`` Out(range(50)),
     ``wr_dropped`` Out(1); ``c0``..``c5``, ``a_minus``, ``b_minus`` Out(signed(32))
-    Q(32,20); ``flags`` Out(4).
+    Q(32,20); ``flags`` Out(4). Schedule: module docstring and :data:`SCHEDULE`.
     """
 
     def __init__(self, *, rom: BakedPinv | None = None):
-        self._rom = baked_pinv() if rom is None else rom
+        self._rom = rom
         write, status, coeffs = fit_front_end_ports()
         super().__init__({**write, "go": In(1), **status,
                           "a_minus": Out(signed(CURVATURE.bits)),
@@ -134,35 +186,14 @@ class FitCore(wiring.Component):
         """The six coefficient output ports ``[c0, ..., c5]``."""
         return [getattr(self, p) for p in COEFF_PORTS]
 
-    def _isqrt(self, m: Module, d):
-        """32-stage unrolled Li-Chu non-restoring isqrt of the 64-bit ``d`` (comb)."""
-        rem = Const(0, signed(ISQRT_REM_FMT.bits))
-        q = Const(0, 1)
-        for i in range(ROOT_FMT.bits - 1, -1, -1):
-            shifted = Cat(d[2 * i:2 * i + 2], rem).as_signed()     # 4 R + pair
-            nxt = Signal(signed(ISQRT_REM_FMT.bits), name=f"isqrt_rem{i}")
-            m.d.comb += nxt.eq(Mux(rem >= 0, shifted - Cat(Const(1, 2), q),
-                                   shifted + Cat(Const(3, 2), q)))
-            qn = Signal(ROOT_FMT.bits - i, name=f"isqrt_q{i}")
-            m.d.comb += qn.eq(Cat(~nxt[-1], q))
-            rem, q = nxt, qn
-        return q
-
-    def elaborate(self, platform):
-        m = Module()
-
-        # ---- gap RAM (49 x 32) and its write port -------------------------------
-        gap_ram = Memory(shape=signed(GAP.bits), depth=N_TAPS, init=[])
-        m.submodules.gap_ram = gap_ram
-        wp = gap_ram.write_port()
-        gap_rd = gap_ram.read_port(domain="comb")
-
-        busy = Signal()
+    def _write_port(self, m: Module, mac: PairMac, busy):
+        """Write pointer, drop rules and the sticky ``wr_dropped`` flag."""
         ptr = Signal(range(N_TAPS + 1))
         accept = self.wr_en & ~busy & ~self.go & (self.wr_rst | (ptr < N_TAPS))
         dropped_now = self.wr_en & ~accept
-        m.d.comb += [wp.addr.eq(Mux(self.wr_rst, 0, ptr)), wp.data.eq(self.wr_data),
-                     wp.en.eq(accept), self.wr_count.eq(ptr), self.busy.eq(busy)]
+        m.d.comb += [mac.wr_addr.eq(Mux(self.wr_rst, 0, ptr)),
+                     mac.wr_data.eq(self.wr_data), mac.wr_en.eq(accept),
+                     self.wr_count.eq(ptr)]
         with m.If(self.wr_rst):
             m.d.sync += [ptr.eq(accept), self.wr_dropped.eq(dropped_now)]
         with m.Else():
@@ -171,62 +202,74 @@ class FitCore(wiring.Component):
             with m.If(dropped_now):
                 m.d.sync += self.wr_dropped.eq(1)
 
-        # ---- baked ROMs and the six MACs ---------------------------------------
-        tap = Signal(range(N_TAPS))
-        m.d.comb += gap_rd.addr.eq(Mux(busy, tap, 0))
-        accs = [Signal(signed(ACC.bits), name=f"acc{j}") for j in range(N_COEFFS)]
-        prods = []
-        for j in range(N_COEFFS):
-            rom = Memory(shape=unsigned(ROM_WORD_BITS), depth=N_TAPS,
-                         init=list(self._rom.rom_words[j]))
-            m.submodules[f"rom{j}"] = rom
-            rd = rom.read_port(domain="comb")
-            m.d.comb += rd.addr.eq(gap_rd.addr)
-            prods.append(gap_rd.data * rd.data.as_signed())      # Q(72,36)
+    def elaborate(self, platform):
+        m = Module()
+        e = SCHEDULE
+        m.submodules.mac = mac = PairMac(rom=self._rom)
+        m.submodules.isqrt = isq = IsqrtSequential(bits_per_cycle=_ISQRT_BITS_PER_CYCLE)
 
-        # ---- curvature latch registers -----------------------------------------
+        # ---- schedule counter: t = k - 1 in the cycle before edge k, 0 idle -----
+        t = Signal(range(FIT_CYCLES))
+        busy = t != 0
+        start = self.go & ~busy
+
+        def at(edge):
+            """True in the cycle before ``edge`` (edge >= 2)."""
+            return t == edge - 1
+
+        m.d.comb += self.busy.eq(busy)
+        self._write_port(m, mac, busy)
+        m.d.comb += [mac.raddr.eq(Mux(t < N_PAIRS, t, 0)), mac.clear.eq(start),
+                     mac.acc_en.eq((t >= 2) & (t <= e["acc_last"] - 1)),
+                     mac.fold.eq(at(e["fold"])), mac.combine.eq(at(e["combine"]))]
+
+        # ---- latch registers ----------------------------------------------------
         c_reg = [Signal(signed(COEFF.bits), name=f"c{j}_reg") for j in range(N_COEFFS)]
         cov = Signal()                     # coefficient overflow
         dov = Signal()                     # d overflow
         h = Signal(signed(SUM_FMT.bits))   # c3 + c5, Q(33,20)
-        e = Signal(signed(SUM_FMT.bits))   # c3 - c5, Q(33,20)
-        d = Signal(unsigned(2 * SUM_FMT.bits))   # e^2 + c4^2, wide enough to test > max
-        stage = Signal(range(4))           # 0 MAC, 1..3 latch stages
+        dif = Signal(signed(SUM_FMT.bits))   # e = c3 - c5, Q(33,20)
+        ee = Signal(unsigned(2 * SUM_FMT.bits))  # e^2 <= 2^64, UQ(66,40)
+        cc = Signal(unsigned(2 * SUM_FMT.bits))  # c4^2 < 2^62, UQ(66,40)
+        a_sum = Signal(signed(SUM_FMT.bits + 1))  # round_shift(h + r, 1), Q(34,20)
+        b_sum = Signal(signed(SUM_FMT.bits + 1))  # round_shift(h - r, 1), Q(34,20)
+        bad = Signal()                     # any overflow: outputs read 0
+        flags = Signal(FLAG_BITS)
 
-        rounded = [_round_shift(acc, _COEFF_SHIFT) for acc in accs]
-        d_new = Signal(unsigned(2 * SUM_FMT.bits))   # >= 0 and < 2^66: no truncation
-        m.d.comb += d_new.eq(e * e + c_reg[4] * c_reg[4])
-        r = self._isqrt(m, d[:D_FMT.bits])
-        a_new = _round_shift(h + r, 1)
-        b_new = _round_shift(h - r, 1)
+        rounded = [_round_shift(acc, _COEFF_SHIFT) for acc in mac.sums]
+        d_new = ee + cc                    # < 2^66: no truncation
+        r = isq.root                       # UQ(32,20)
+        m.d.comb += [isq.start.eq(at(e["isqrt_load"])), isq.d.eq(d_new[:D_FMT.bits])]
 
-        m.d.sync += self.done_pulse.eq(0)
-        with m.If(~busy):
-            with m.If(self.go):
-                m.d.sync += [busy.eq(1), self.done.eq(0), tap.eq(1), stage.eq(0)]
-                m.d.sync += [acc.eq(p) for acc, p in zip(accs, prods)]
-        with m.Elif(stage == 0):
-            m.d.sync += [acc.eq(acc + p) for acc, p in zip(accs, prods)]
-            m.d.sync += tap.eq(tap + 1)
-            with m.If(tap == N_TAPS - 1):
-                m.d.sync += stage.eq(1)
-        with m.Elif(stage == 1):
-            c3, c5 = rounded[3][:COEFF.bits].as_signed(), rounded[5][:COEFF.bits].as_signed()
+        with m.If(at(e["round"])):
             m.d.sync += [cr.eq(x) for cr, x in zip(c_reg, rounded)]
-            m.d.sync += [cov.eq(~_all(_fits(x, COEFF) for x in rounded)),
-                         h.eq(c3 + c5), e.eq(c3 - c5), stage.eq(2)]
-        with m.Elif(stage == 2):
-            m.d.sync += [d.eq(d_new), dov.eq(~cov & (d_new > D_FMT.max_code)), stage.eq(3)]
-        with m.Else():
-            kov = ~cov & ~dov & ~(_fits(a_new, CURVATURE) & _fits(b_new, CURVATURE))
-            bad = cov | dov | kov
-            flags = Cat(cov, dov, kov, ~bad & (b_new <= 0))     # bit order = FLAG_*
-            m.d.sync += [busy.eq(0), self.done.eq(1), self.done_pulse.eq(1),
-                         stage.eq(0), tap.eq(0),
+            m.d.sync += cov.eq(~_all(_fits(x, COEFF) for x in rounded))
+        with m.If(at(e["sum_diff"])):
+            m.d.sync += [h.eq(c_reg[3] + c_reg[5]), dif.eq(c_reg[3] - c_reg[5])]
+        with m.If(at(e["square"])):
+            m.d.sync += [ee.eq(dif * dif), cc.eq(c_reg[4] * c_reg[4])]
+        with m.If(at(e["isqrt_load"])):
+            m.d.sync += dov.eq(~cov & (d_new > D_FMT.max_code))
+        with m.If(at(e["round_ab"])):
+            m.d.sync += [a_sum.eq(_round_shift(h + r, 1)), b_sum.eq(_round_shift(h - r, 1))]
+        with m.If(at(e["flags"])):
+            kov = ~cov & ~dov & ~(_fits(a_sum, CURVATURE) & _fits(b_sum, CURVATURE))
+            bad_now = cov | dov | kov
+            m.d.sync += [bad.eq(bad_now),      # bit order = FLAG_*
+                         flags.eq(Cat(cov, dov, kov, ~bad_now & (b_sum <= 0)))]
+
+        # ---- control and the output registers (the done edge) -------------------
+        m.d.sync += self.done_pulse.eq(0)
+        with m.If(start):
+            m.d.sync += [t.eq(1), self.done.eq(0)]
+        with m.Elif(at(e["done"])):
+            m.d.sync += [t.eq(0), self.done.eq(1), self.done_pulse.eq(1),
                          self.flags.eq(flags),
-                         self.a_minus.eq(Mux(bad, 0, a_new)),
-                         self.b_minus.eq(Mux(bad, 0, b_new))]
+                         self.a_minus.eq(Mux(bad, 0, a_sum)),
+                         self.b_minus.eq(Mux(bad, 0, b_sum))]
             m.d.sync += [o.eq(Mux(bad, 0, cr)) for o, cr in zip(self.coeffs, c_reg)]
+        with m.Elif(busy):
+            m.d.sync += t.eq(t + 1)
         return m
 
 
