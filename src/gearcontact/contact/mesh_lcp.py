@@ -394,17 +394,18 @@ def _pk_cg_blocks(blocks, e_star: float, h: np.ndarray, x: np.ndarray, torque: f
     blocks: the gap is centred on its mean over the contact set of all blocks (which
     eliminates ``theta``), conjugacy restarts when cells are re-admitted, the torque is
     restored after every step, and the preconditioner is the Boussinesq inverse per
-    block (on the window, periodic: the contact lies well inside it).
+    block (periodic on the window: on s0003 as few iterations as padded by half, for
+    about half the transform).
 
     As in :func:`gearcontact.contact.lcp.solve_lcp` the gap is evaluated only on a
     window per loaded block (its contact box grown by :data:`_MARGIN` cells, where
     cells are re-admitted; all windows of one shape, one batched transform for all
     blocks, :class:`_Region`); the windows grow (and the conjugacy restarts) when a
     contact box leaves its window. The displacement ``u = C~ x`` is updated from the
-    step's ``C~ t`` (``u <- s (u - tau C~ t)``, ``s`` the rescaling), so a step costs
-    two batched transforms (``C~ t`` and the preconditioner); it is recomputed when
-    cells are clipped or re-admitted (beyond :data:`_TRACKED` cells) and every
-    :data:`_REFRESH` steps. A step that re-admits cells never ends the iteration. At
+    step's ``C~ t`` (``u <- s (u - tau C~ t)``, ``s`` the rescaling) plus the cells the
+    step clipped or re-admitted, from the real-space kernels, so a step costs two
+    batched transforms (``C~ t`` and the preconditioner); it is recomputed after a step
+    departing in more than :data:`_TRACKED` cells and every :data:`_REFRESH` steps. A step that re-admits cells never ends the iteration. At
     convergence the gap is checked on the whole fields; penetration outside the
     windows (e.g. an unloaded pair closing) widens those blocks' windows over it, and
     after :data:`_CHECKS` such rounds the iteration uses the whole fields.
