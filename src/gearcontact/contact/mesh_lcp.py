@@ -208,6 +208,16 @@ def _mesh_direction(z, x, g, t, gz_old, conj):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def _dot(a, b):  # pragma: no cover - compiled
+    """``a . b`` over all elements (same shapes), single-threaded."""
+    total = 0.0
+    fa, fb = a.ravel(), b.ravel()
+    for m in range(fa.size):
+        total += fa[m] * fb[m]
+    return total
+
+
+@njit(cache=True)
 def _mesh_step(x, x_old, t, g, r, u, kern, tau, torque, box, cells, dval
                ):  # pragma: no cover - compiled
     """``x <- max(x - tau t, 0)``, re-admission of cells with ``x = 0, g < 0`` at
@@ -370,7 +380,7 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
         gz, gt = _mesh_direction(z, x, g, t, gz_old, conj)
         gz_old = gz if gz > 0.0 else 1.0
         op.apply(t, out=r, live=on)
-        rt = float(np.vdot(r, t))
+        rt = _dot(r, t)  # not np.vdot: BLAS threads spin on a busy machine
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return ("stalled" if gz == 0.0 or rt == 0.0 else "lost"), it, box
         conj, change, tracked = _mesh_step(x, x_old, t, g, r, u, kern, gt / rt, torque,

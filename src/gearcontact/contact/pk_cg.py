@@ -72,6 +72,16 @@ def _pk_direction(z, wb, gmb, tb, gz_old, conj):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def _dot(a, b):  # pragma: no cover - compiled
+    """``a . b`` over all elements of two 2-D arrays (views) of one shape."""
+    total = 0.0
+    for j in range(a.shape[0]):
+        for i in range(a.shape[1]):
+            total += a[j, i] * b[j, i]
+    return total
+
+
+@njit(cache=True)
 def _pk_step(wg, w_old, tg, g, rg, ug, kern, tau, load_n, cells, dval
              ):  # pragma: no cover - compiled
     """``w <- max(w - tau t, 0)``, re-admission of cells with ``w = 0, g < 0`` at
@@ -178,7 +188,7 @@ def pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: f
         gz_old = gz if gz > 0.0 else 1.0
         tg = t[gs]
         rg = op_g(tg)  # C t on the gap region
-        rt = float(np.vdot(rg, tg))
+        rt = _dot(rg, tg)  # not np.vdot: BLAS threads spin on a busy machine
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return w, op(w), it, gz == 0.0 or rt == 0.0
         conj, tracked, change, b0, b1, c0, c1 = _pk_step(
