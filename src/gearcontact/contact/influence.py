@@ -450,7 +450,7 @@ class StackedFftInfluence:
         key = (id(symbols), None if live is None else live.tobytes())
         plan = self._plans.get(key)
         if plan is None:
-            (ny, nx), n = self.shape, self.n_fields
+            n = self.n_fields
             idx = None if live is None or live.all() else np.flatnonzero(live)
             if idx is not None:
                 symbols, n = symbols[idx], idx.size

@@ -237,7 +237,7 @@ def _mesh_step(x, x_old, t, g, r, u, kern, tau, torque, box, cells, dval
             for i in range(x.shape[2]):
                 x_old[k, j, i] = x[k, j, i]
                 lin = x[k, j, i] - tau * t[k, j, i]
-                v = lin if lin > 0.0 else 0.0
+                v = max(lin, 0.0)
                 if v == 0.0 and g[k, j, i] < 0.0:
                     v, conj = -tau * g[k, j, i], False
                 if v != lin:
@@ -422,7 +422,7 @@ def _pk_cg_blocks(blocks, e_star: float, h: np.ndarray, x: np.ndarray, torque: f
 
     Returns ``(x, u, iterations, ok)`` with ``u = C~ x`` computed exactly.
     """
-    n_b, ny, nx = x.shape
+    ny, nx = x.shape[1:]
     cells = [(float(b.grid.dx_mm[0]), float(b.grid.dy_mm[0])) for b in blocks]
     scales = np.array([b.lever_mm ** 2 for b in blocks])
     full = StackedFftInfluence((ny, nx), cells, e_star_mpa=e_star, scales=scales)

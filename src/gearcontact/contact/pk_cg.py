@@ -99,7 +99,7 @@ def _pk_step(wg, w_old, tg, g, rg, ug, kern, tau, load_n, cells, dval
         for i in range(wg.shape[1]):
             w_old[j, i] = wg[j, i]
             lin = wg[j, i] - tau * tg[j, i]
-            v = lin if lin > 0.0 else 0.0
+            v = max(lin, 0.0)
             if v == 0.0 and g[j, i] < 0.0:
                 v, conj = -tau * g[j, i], False
             if v != lin:
