@@ -321,7 +321,10 @@ class FftInfluence:
 
     Applies exactly the dense collocation operator of :func:`dense_influence_matrix`
     (non-periodic: each axis is padded to at least ``2N - 1``), in
-    ``O(N log N)``. The kernel's transform is cached per ``(shape, dx, dy, E*)``.
+    ``O(N log N)``. The kernel's transform is cached per ``(shape, dx, dy, E*)``; the
+    transforms skip the zero padding (:func:`_convolve_pruned`) and keep their work
+    buffers on the instance, so one instance must not be called from several threads
+    at once.
 
     Parameters
     ----------
@@ -409,7 +412,8 @@ class StackedFftInfluence:
     All fields are transformed in one call per axis, and the zero padding is not
     transformed: the forward real transform runs over the ``ny`` data rows only and
     the inverse real transform returns only those rows (about half the work of a
-    full 2-D transform pair). Work buffers are kept between calls.
+    full 2-D transform pair). Work buffers are kept between calls (one instance per
+    thread).
 
     Parameters
     ----------
