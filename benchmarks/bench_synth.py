@@ -10,25 +10,45 @@ robust against other load on a shared machine). Results accumulate in
 
 Run: ``python benchmarks/bench_synth.py --out DIR [--lanes 8,16,32,64]
 [--gap-cores gap,gap_plain] [--cores bhseq_core,tri_core] [--nodsp-cores fit]
-[--jobs 2] [--timeout S] [--dsp-study]``
+[--jobs 2] [--timeout S] [--dsp-study] [--stage-b]``
 (needs ``pip install 'gearcontact[synth]'``).
 
 Measured on the project machine (2 cores shared with other jobs, load ~8: wall time is
-mostly waiting, CPU time is the Yosys process's own), synth_xilinx without -nodsp:
+mostly waiting, CPU time is the Yosys process's own), synth_xilinx without -nodsp.
+``gap_plain`` is the published netlist (plain ``*``; measured as ``gap`` before the
+split landed), ``gap`` the default with split partial products (:mod:`gearcontact.
+preview.gap.rtl_mul`); both are bit- and cycle-identical to the golden model:
 
-====  ======  ======  ======  =======  =====  ========  ======  =============
-L     LUT     FF      CARRY4  DSP48E1  depth  wall s    CPU s   published DSP
-====  ======  ======  ======  =======  =====  ========  ======  =============
-8     6,361   4,091   1,483   258      58     866       --      258
-16    12,409  7,862   2,906   498      58     1,182     122     498
-32    24,331  15,405  5,751   978      58     2,611     313     978
-64    48,331  30,493  11,447  1,938    58     3,834     651     1,938
-====  ======  ======  ======  =======  =====  ========  ======  =============
+=========  ==  ======  ======  ======  =======  =====  ======  =====  =============
+core       L   LUT     FF      CARRY4  DSP48E1  depth  wall s  CPU s  published DSP
+=========  ==  ======  ======  ======  =======  =====  ======  =====  =============
+gap_plain  8   6,361   4,091   1,483   258      58     866     --     258
+gap_plain  16  12,409  7,862   2,906   498      58     1,182   122    498
+gap_plain  32  24,331  15,405  5,751   978      58     2,611   313    978
+gap_plain  64  48,331  30,493  11,447  1,938    58     3,834   651    1,938
+gap        8   6,550   4,107   1,063   186      58     96      68     258
+gap        16  12,699  7,894   2,042   354      58     184     118    498
+gap        32  24,914  15,469  4,023   690      58     357     273    978
+gap        64  49,467  30,621  7,991   1,362    58     625     515    1,938
+=========  ==  ======  ======  ======  =======  =====  ======  =====  =============
 
-DSP48E1 = 30.00 L + 18.00 exactly (L_max = 63.4 on 1,920 DSP), the published fit. The
-DSP study: per lane 3 x (n.d 2 + gamma n 4 + e^2 4) = 30, pose 9 x 2 = 18; written as
-split partial products gamma n takes 2 and e^2 3 DSP48E1: 21 per lane (exact), i.e.
-21 L + 18 and L_max = 90.
+gap_plain: DSP48E1 = 30.00 L + 18.00 exactly (L_max = 63.4 on 1,920 DSP), the
+published fit -- L = 64 (1,938) does not fit the XC7K480T. gap: DSP48E1 = 21.00 L +
+18.00 exactly, L_max = 90.6; L = 64 (lanes are powers of two) takes 1,362 DSP48E1
+(71 %) and leaves 558 for the rest of the SoC. The split moves partial-product sums
+into the DSP post-adder / PCIN cascade: CARRY4 -28 to -30 %, LUT +2.3 to +3.0 %, FF
++0.4 % (wall times are not comparable: the plain runs saw heavier load). The DSP study (``--dsp-study``): per lane 3 x (n.d 2 + gamma n 4 + e^2 4) = 30,
+pose 9 x 2 = 18; split: gamma n 2 and e^2 3, 21 per lane. n.d stays at 2 (21 x 25 b
+needs two 25 x 18 tiles whichever operand is cut), the pose likewise.
+
+Logic depth (``ltp``, cells between flip-flops, not delay): 58 for every core above --
+in the full core the path runs through DSP48E1 cells whose absorbed A/B registers are
+pipeline boundaries, so it covers stage A's tail plus stage B. Stage B alone
+(``--stage-b``, one lane between registers): split 33 (15 DSP48E1, 446 LUT, 62 CARRY4)
+against plain 34 (24 DSP48E1, 427 LUT, 116 CARRY4): the split's extra adder lands in
+the DSP cascade, not in fabric, but its longest path crosses three DSP48E1 (gamma n's
+two cascaded slices, one e^2 slice) where the plain one's crosses one; the real delay
+needs a placed design (nextpnr-xilinx is not on this machine).
 
 bhseq_core (SoC top: stage D + register block + timer), DSP mode: LC 2,630, 3,247 LUT,
 1,567 FF, 255 CARRY4, 20 DSP48E1, 0 BRAM, depth 44 (flattened), 242 s wall / 50 s CPU —
@@ -47,6 +67,41 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from gearcontact.hw import synth as S
+
+
+def stage_b_verilog(split_products: bool) -> str:
+    """One lane's stage B alone between registers, as GapCore builds it (top ``core``).
+
+    In the full core ``ltp`` walks through DSP48E1 cells whose absorbed A/B registers
+    are pipeline boundaries, so its path runs from stage A's tail into stage B; here
+    nothing precedes stage B's registered inputs (gamma Q(27,16), n_k Q(21,19), d_k
+    Q(25,16)) and the path ends at the running minimum (rho UQ(64,32)), so the depth
+    is stage B's own: gamma n_k, round-shift add, e_k^2, 3-input sum, 64-bit compare.
+    """
+    from amaranth.back import verilog
+    from amaranth.hdl import Module, Signal, signed
+
+    from gearcontact.preview.gap.rtl_mul import split_mul, split_square
+    m = Module()
+    gam_i, gam = Signal(signed(27)), Signal(signed(27))
+    n_i = [Signal(signed(21), name=f"n_i{k}") for k in range(3)]
+    d_i = [Signal(signed(25), name=f"d_i{k}") for k in range(3)]
+    n = [Signal(signed(21), name=f"n{k}") for k in range(3)]
+    d = [Signal(signed(25), name=f"d{k}") for k in range(3)]
+    rho, l_rho = Signal(64), Signal(64, init=(1 << 64) - 1)
+    m.d.sync += [gam.eq(gam_i)] + [n[k].eq(n_i[k]) for k in range(3)] \
+        + [d[k].eq(d_i[k]) for k in range(3)]
+    sq = []
+    for k in range(3):
+        gn, e = Signal(signed(46), name=f"gn{k}"), Signal(signed(27), name=f"e{k}")
+        m.d.comb += [gn.eq(split_mul(gam, n[k]) if split_products else gam * n[k]),
+                     e.eq(d[k] + ((gn + (1 << 18)) >> 19))]
+        sq.append(split_square(e) if split_products else e * e)
+    m.d.comb += rho.eq(sq[0] + sq[1] + sq[2])
+    with m.If(rho < l_rho):
+        m.d.sync += l_rho.eq(rho)
+    return verilog.convert(m, ports=[gam_i, *n_i, *d_i, l_rho], name="core",
+                           strip_internal_attrs=True)
 
 
 def _load(path: Path) -> list[S.SynthResult]:
@@ -88,6 +143,9 @@ def main(argv=None) -> int:
     ap.add_argument("--dsp-study", action="store_true",
                     help="also synthesize the per-multiplier DSP48E1 study (published vs "
                          "split partial products)")
+    ap.add_argument("--stage-b", action="store_true",
+                    help="also synthesize one lane's stage B alone, split and plain (its "
+                         "logic depth without stage A's tail)")
     args = ap.parse_args(argv)
     S.require_yosys()
     out = Path(args.out)
@@ -139,6 +197,13 @@ def main(argv=None) -> int:
             f"{m} {st[m]['DSP48E1']}" for m in S.DSP_STUDY_COUNTS))
         lines.append(f"per lane: {st['per_lane']} as published, {st['per_lane_split']} with "
                      f"split partial products; per core (pose): {st['per_core']}")
+    if args.stage_b:
+        for split in (True, False):
+            tag = "stage_b_split" if split else "stage_b_plain"
+            r = S.synthesize(tag, out / tag, verilog=stage_b_verilog(split),
+                             timeout=args.timeout)
+            lines.append(f"{tag}: DSP48E1 {r.DSP48E1}, LUT {r.LUT}, CARRY4 {r.CARRY4}, "
+                         f"depth {r.depth} ({r.cpu_seconds:.0f} s CPU)")
     text = "\n".join(lines)
     print(text)
     (out / "table.txt").write_text(text + "\n")
