@@ -49,7 +49,7 @@ from amaranth.lib.wiring import In, Out
 from gearcontact.preview.fit.pinv import ACC, N_COEFFS, N_TAPS, WEIGHT, BakedPinv, baked_pinv
 from gearcontact.preview.qformat import GAP
 
-__all__ = ["N_PAIRS", "G_LO_BITS", "W_LO_BITS", "PairMac", "weight_bits"]
+__all__ = ["G_LO_BITS", "N_PAIRS", "W_LO_BITS", "PairMac", "weight_bits"]
 
 #: Tap pairs read per run: taps (2p, 2p + 1), p = 0..24 (tap 49 is a zero weight).
 N_PAIRS = (N_TAPS + 1) // 2
