@@ -52,9 +52,27 @@ needs a placed design (nextpnr-xilinx is not on this machine).
 
 bhseq_core (SoC top: stage D + register block + timer), DSP mode: LC 2,630, 3,247 LUT,
 1,567 FF, 255 CARRY4, 20 DSP48E1, 0 BRAM, depth 44 (flattened), 242 s wall / 50 s CPU —
-against the published -nodsp build of ~40k LUT, 857 FF, 1,029 CARRY4. The fit core,
-tri_core and every -nodsp run did not finish inside the session on the loaded
-machine (fit and tri_core > 70 min in ABC9; bhseq -nodsp > 10 min).
+against the published -nodsp build of ~40k LUT, 857 FF, 1,029 CARRY4.
+
+Fit core and tri_core (DSP mode). The first fit core (one tap per cycle, a 32-stage
+unrolled isqrt in one cycle) never left ABC9 (> 70 min on its 29k-AND module; with the
+isqrt stubbed out the rest synthesized in 20 s): its single-cycle path of 32 chained
+34-66-bit adders could not have met the board's 50 MHz either. The fit core now runs
+two taps per edge into pipelined DSP MACs and a sequential 2-bit-per-edge isqrt, same
+outputs and FIT_CYCLES = 52 (:mod:`gearcontact.preview.fit.rtl`):
+
+=================  ======  ======  ======  =======  ======  =====  ======  =====
+core               LUT     FF      CARRY4  DSP48E1  RAMB36  depth  wall s  CPU s
+=================  ======  ======  ======  =======  ======  =====  ======  =====
+fit                1,930   1,874   436     32       0       25     18      18
+tri_core (L = 16)  18,006  11,293  2,652   406      2       58     191     187
+tri_core publ.     197,377 4,851   4,638   0        2 + 1   --     --      --
+=================  ======  ======  ======  =======  ======  =====  ======  =====
+
+(published tri_core: -nodsp, 2 RAMB36 + 1 RAMB18, 75 MHz). tri_core's DSP48E1 are the
+L = 16 split gap core 354 + fit 32 + Hertz 20; its depth-58 path lies in the gap core.
+-nodsp runs: see the issue notes (bhseq_core / tri_core -nodsp under WebAssembly take
+longer than a working session).
 """
 
 from __future__ import annotations
