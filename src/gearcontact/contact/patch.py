@@ -198,6 +198,12 @@ def solve_patch(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
     return patch_statistics(grid, res, warn_edge=warn_edge)
 
 
+#: Peak / p90 ratio above which :func:`plot_patch` treats the peak as an edge spike ...
+EDGE_SPIKE_RATIO = 1.5
+#: ... and clips the colour scale at this multiple of p90.
+EDGE_SPIKE_CLIP = 1.2
+
+
 def plot_patch(patch: PatchContact, ax=None, *, ellipse: ContactEllipse | None = None,
                cmap: str = "inferno"):
     """Pressure map (MPa) with an ellipse overlaid (default: the fitted one).
@@ -213,8 +219,16 @@ def plot_patch(patch: PatchContact, ax=None, *, ellipse: ContactEllipse | None =
     xe = np.concatenate([g.x_mm - g.dx_mm / 2, [g.x_mm[-1] + g.dx_mm[-1] / 2]])
     ye = np.concatenate([g.y_mm - g.dy_mm / 2, [g.y_mm[-1] + g.dy_mm[-1] / 2]])
     p = np.ma.masked_where(~patch.lcp.contact_mask, patch.pressure_mpa)
-    mesh = ax.pcolormesh(xe, ye, p, cmap=cmap, shading="flat")
-    ax.figure.colorbar(mesh, ax=ax, label="pressure (MPa)")
+    # an edge spike (tip or end of the flank) can be several times the body of the
+    # patch; a colour scale up to it would paint the whole patch dark, so the scale
+    # stops at EDGE_SPIKE_CLIP x p90 and the spike shows as the clipped colour (+)
+    vmax = None
+    if patch.p_peak_mpa > EDGE_SPIKE_RATIO * patch.p90_mpa:
+        vmax = EDGE_SPIKE_CLIP * patch.p90_mpa
+    mesh = ax.pcolormesh(xe, ye, p, cmap=cmap, shading="flat", vmin=0.0, vmax=vmax)
+    label = "pressure (MPa)" if vmax is None else \
+        f"pressure (MPa), scale clipped (peak {patch.p_peak_mpa:.0f})"
+    ax.figure.colorbar(mesh, ax=ax, label=label, extend="neither" if vmax is None else "max")
     (ellipse or patch.ellipse).draw(ax, color="cyan")
     ax.plot(patch.peak_x_mm, patch.peak_y_mm, "w+", ms=8)
     ax.set_xlabel("x (mm)")
