@@ -88,3 +88,28 @@ def test_plot_patch_draws_the_ellipse(make_hertz):
         ((y - e.center_y_mm) / e.semi_minor_mm) ** 2  # angle 0 for this problem
     assert np.allclose(rho, 1.0, atol=1e-9)
     matplotlib.pyplot.close(ax.figure)
+
+
+def test_plot_patch_clips_the_colour_scale_only_for_edge_spikes(make_hertz):
+    # a Hertz patch (peak = p_max, p90 below it but within EDGE_SPIKE_RATIO) keeps the
+    # full scale; a patch truncated by the field edge (the half-space edge spike of a
+    # flat-ended punch: peak >> p90) gets the scale clipped at EDGE_SPIKE_CLIP x p90
+    from gearcontact.contact.patch import EDGE_SPIKE_CLIP, EDGE_SPIKE_RATIO
+    prob = make_hertz(1.0, 8)
+    patch = solve_patch(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
+    assert patch.p_peak_mpa <= EDGE_SPIKE_RATIO * patch.p90_mpa
+    ax = plot_patch(patch)
+    assert ax.collections[0].norm.vmax == pytest.approx(patch.p_peak_mpa, rel=1e-12)
+    matplotlib.pyplot.close(ax.figure)
+    hz = exact_elliptic_hertz(A_PER_MM, A_PER_MM, LOAD_N, e_prime_mpa=2 * E_STAR_MPA)
+    d = hz.a_mm / 12
+    grid = TangentGrid.uniform(26, 31, dx_mm=d, dy_mm=d, x0_mm=-0.5 * hz.a_mm,
+                               y0_mm=-15 * d)
+    X, Y = grid.mesh()
+    with pytest.warns(ContactAtEdgeWarning):
+        cut = solve_patch(A_PER_MM * (X ** 2 + Y ** 2), grid, 4 * LOAD_N,
+                          e_star_mpa=E_STAR_MPA)
+    assert cut.p_peak_mpa > EDGE_SPIKE_RATIO * cut.p90_mpa
+    ax = plot_patch(cut)
+    assert ax.collections[0].norm.vmax == pytest.approx(EDGE_SPIKE_CLIP * cut.p90_mpa)
+    matplotlib.pyplot.close(ax.figure)
