@@ -17,8 +17,9 @@ def register(sub) -> None:
                    metavar="T", help="gear torques in N·m (default 32.25 64.5 129 258)")
     p.add_argument("--lte-torque", type=float, default=64.5, metavar="T",
                    help="gear torque of the loaded-TE run, N·m (default 64.5)")
-    p.add_argument("--lte-phases", type=int, default=11,
-                   help="phases of the loaded-TE run over one pitch (default 11; 0 skips it)")
+    p.add_argument("--lte-phases", type=int, default=61,
+                   help="phases of the loaded-TE run over one pitch (default 61, every TCA "
+                        "phase; 0 skips it)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
