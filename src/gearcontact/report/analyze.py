@@ -18,6 +18,8 @@ TCA files                   see :mod:`gearcontact.tca.export` (``tca.json``, ``t
 ``lte.json``, ``lte.csv``    loaded TE over one pitch at the design torque (TE0, TE_LCP,
                             TE_pre, active pairs, compliances; :mod:`gearcontact.contact.lte`)
 ``lte.png``                 TE0, TE_LCP, TE_pre and active pairs along the phase
+``precision.csv``, ``.png`` gap-kernel fixed-point error vs coordinate / normal width
+                            beside the first-order bound (:mod:`.precision`)
 ``summary.md``              readable summary with the published values beside ours
 ==========================  ==============================================================
 """
@@ -44,6 +46,7 @@ from ..tca.export import write_csv, write_tca_outputs
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
 from .lte_plot import write_lte_outputs
+from .precision import write_precision_outputs
 from .summary import write_summary
 
 __all__ = ["DEFAULT_TORQUES_NM", "Analysis", "run_analysis", "published_values"]
@@ -69,6 +72,11 @@ class Analysis:
     timings_s : dict
         Wall-clock seconds per stage.
     out_dir : Path
+    lte : LoadedTe or None
+        Loaded TE at the design torque (None when skipped).
+    precision : tuple or None
+        Gap-kernel precision sweeps (by coordinate width, by normal width;
+        :func:`.precision.precision_sweeps`).
     """
 
     pair: object
@@ -79,6 +87,7 @@ class Analysis:
     timings_s: dict
     out_dir: Path
     lte: object = None
+    precision: tuple | None = None
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -139,7 +148,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     timings = {}
-    steps = tqdm(total=4 + len(torques), desc=f"analyze {pair.name}", disable=not progress)
+    steps = tqdm(total=5 + len(torques), desc=f"analyze {pair.name}", disable=not progress)
 
     (out / "design.json").write_text(json.dumps(pair.blank.as_dict(), indent=2))
     t0 = time.perf_counter()
@@ -208,7 +217,13 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                           published=published_values(pair.name))
         timings["lte_s"] = time.perf_counter() - t0
     steps.update(1)
+    steps.set_postfix_str("fixed-point precision")
+    t0 = time.perf_counter()
+    precision = write_precision_outputs(out, figures=figures)
+    timings["precision_s"] = time.perf_counter() - t0
+    steps.update(1)
     steps.close()
-    result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte)
+    result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
+                      precision)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

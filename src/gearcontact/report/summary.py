@@ -65,6 +65,20 @@ def _lte_section(lte, pub: dict) -> list[str]:
         "Figure: ![loaded TE](lte.png)", ""]
 
 
+def _precision_section(precision) -> list[str]:
+    """Gap-kernel error at the hardware widths and the worst error / bound ratio."""
+    by_coord, by_normal = precision
+    hw = next(p for p in by_coord if p.coord_frac == 16)
+    worst = max(p.max_bound_ratio for p in by_coord + by_normal)
+    return ["## Fixed-point precision of the gap kernel", "",
+            _table(["quantity", "value"], [
+                ["max / RMS gap error at the hardware widths cf 16, rf 19 (um)",
+                 f"{hw.max_error_mm * 1e3:.4g} / {hw.rms_error_mm * 1e3:.4g}"],
+                ["first-order bound there (um)", hw.bound_mm * 1e3],
+                ["largest error / bound over all widths (cf 14-24, rf 12-24)", worst]]),
+            "", "Figure: ![precision](precision.png) (data: precision.csv)", ""]
+
+
 def write_summary(result, path, *, published: dict | None = None) -> Path:
     """Write the summary of an :class:`~.analyze.Analysis` as Markdown at ``path``."""
     from .. import __version__
@@ -138,6 +152,8 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
             "non-quadratic surface.", ""]
     if getattr(result, "lte", None) is not None:
         out += _lte_section(result.lte, pub)
+    if getattr(result, "precision", None) is not None:
+        out += _precision_section(result.precision)
     out += ["## Run times", ""]
     out.append(_table(["stage", "seconds"], [[k, v] for k, v in result.timings_s.items()]))
     path = Path(path)
