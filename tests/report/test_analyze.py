@@ -30,7 +30,7 @@ def test_files_written(analysis):
                  "ltca.json", "ltca_torques.csv", "preview.csv", "pressure_64.5Nm.csv",
                  "pressure_maps.png", "pressure_vs_load.png", "summary.md", "te0.png",
                  "contact_pattern.png", "lte.json", "lte.csv", "lte.png", "precision.csv",
-                 "precision.png"):
+                 "precision.png", "latency.json"):
         assert (out / name).stat().st_size > 0, name
     rows = json.loads((out / "ltca.json").read_text())
     assert [r["torque_nm"] for r in rows] == list(TORQUES)

@@ -20,6 +20,8 @@ TCA files                   see :mod:`gearcontact.tca.export` (``tca.json``, ``t
 ``lte.png``                 TE0, TE_LCP, TE_pre and active pairs along the phase
 ``precision.csv``, ``.png`` gap-kernel fixed-point error vs coordinate / normal width
                             beside the first-order bound (:mod:`.precision`)
+``latency.json``            RTL cycle counts per core and the fp64 preview's CPU latency
+                            and jitter on this machine (:mod:`.latency`)
 ``summary.md``              readable summary with the published values beside ours
 ==========================  ==============================================================
 """
@@ -45,6 +47,7 @@ from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import write_csv, write_tca_outputs
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
+from .latency import core_cycles, scalar_latency
 from .lte_plot import write_lte_outputs
 from .precision import write_precision_outputs
 from .summary import write_summary
@@ -77,6 +80,8 @@ class Analysis:
     precision : tuple or None
         Gap-kernel precision sweeps (by coordinate width, by normal width;
         :func:`.precision.precision_sweeps`).
+    latency : ScalarLatency or None
+        fp64 preview CPU latency measured on this machine (:mod:`.latency`).
     """
 
     pair: object
@@ -88,6 +93,7 @@ class Analysis:
     out_dir: Path
     lte: object = None
     precision: tuple | None = None
+    latency: object = None
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -221,9 +227,14 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     t0 = time.perf_counter()
     precision = write_precision_outputs(out, figures=figures)
     timings["precision_s"] = time.perf_counter() - t0
+    latency = scalar_latency(20_000)
+    (out / "latency.json").write_text(json.dumps(
+        {"core_cycles": core_cycles(), "cycles_spread": 0,
+         "preview_cpu": {"p50_us": latency.p50_us, "p99_us": latency.p99_us,
+                         "jitter": latency.jitter, "calls": latency.calls}}, indent=2))
     steps.update(1)
     steps.close()
     result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision)
+                      precision, latency)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

@@ -79,6 +79,21 @@ def _precision_section(precision) -> list[str]:
             "", "Figure: ![precision](precision.png) (data: precision.csv)", ""]
 
 
+def _latency_section(lat) -> list[str]:
+    """RTL cycle counts (constants, zero spread) beside the CPU preview's latency."""
+    from .latency import PAPER_JITTER, PAPER_US, core_cycles
+
+    rows = [[name, cycles, 0] for name, cycles in core_cycles().items()]
+    return ["## Determinism and latency", "",
+            _table(["RTL core", "cycles go -> done", "spread (cycles)"], rows), "",
+            "Every RTL run in the test suite takes exactly these cycles (asserted), for "
+            "any input.", "",
+            _table(["fp64 preview from Python, this machine", "ours", "published CPU"], [
+                ["median per call (us)", lat.p50_us, PAPER_US],
+                ["p99 per call (us)", lat.p99_us, None],
+                ["jitter p99/p50 - 1 (%)", 100.0 * lat.jitter, 100.0 * PAPER_JITTER]]), ""]
+
+
 def write_summary(result, path, *, published: dict | None = None) -> Path:
     """Write the summary of an :class:`~.analyze.Analysis` as Markdown at ``path``."""
     from .. import __version__
@@ -154,6 +169,8 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         out += _lte_section(result.lte, pub)
     if getattr(result, "precision", None) is not None:
         out += _precision_section(result.precision)
+    if getattr(result, "latency", None) is not None:
+        out += _latency_section(result.latency)
     out += ["## Run times", ""]
     out.append(_table(["stage", "seconds"], [[k, v] for k, v in result.timings_s.items()]))
     path = Path(path)
