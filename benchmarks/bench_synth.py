@@ -73,9 +73,10 @@ tri_core publ.     197,377 4,851   4,638   0        2 + 1   --     --      --
 L = 16 split gap core 354 + fit 32 + Hertz 20; its depth-58 path lies in the gap core.
 -nodsp runs (multipliers in LUT/CARRY4; ABC9 under WebAssembly is the slow part):
 bhseq_core -nodsp 12,307 LUT, 1,567 FF, 315 CARRY4, 0 DSP, depth 48, 1,012 s wall /
-856 s CPU (published -nodsp ~40k LUT, 857 FF, 1,029 CARRY4). tri_core -nodsp was still
-in ABC9 when the session ended (over 1.5 h wall, sharing 2 cores); gap -nodsp (L = 8)
-was stopped after 15 min in ABC9 (its 48k-output network) to free a core.
+856 s CPU (published -nodsp ~40k LUT, 857 FF, 1,029 CARRY4). tri_core -nodsp was stopped
+after 47 min wall / 41 min CPU, still in ABC9 on the gap module (48,795 inputs, 86,273
+outputs: the -nodsp multipliers); gap -nodsp (L = 8) was stopped after 15 min in ABC9
+(its 48k-output network). Both need a longer dedicated run.
 """
 
 from __future__ import annotations
