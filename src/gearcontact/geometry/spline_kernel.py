@@ -62,6 +62,26 @@ def _difference(rinv, l, j, lower, out):
         out[s] = j * d
 
 
+@njit(cache=True, inline="always")
+def _span(t, k, x):
+    """Clamped argument and span ``l`` (``t[l] <= x < t[l+1]``, inside the knot box,
+    as FITPACK picks it); third value: whether ``x`` was clamped."""
+    n = t.shape[0]
+    lo = t[k]
+    hi = t[n - k - 1]
+    clamped = x < lo or x > hi
+    x = min(max(x, lo), hi)
+    a = k
+    b = n - k - 2
+    while a < b:
+        mid = (a + b + 1) // 2
+        if x >= t[mid]:
+            a = mid
+        else:
+            b = mid - 1
+    return x, a, clamped
+
+
 @njit(cache=True)
 def basis_functions(t, rinv, k, x, nder, zero_outside, ders, work):
     """Non-zero basis functions of degree k at x and their derivatives up to ``nder``
@@ -73,20 +93,7 @@ def basis_functions(t, rinv, k, x, nder, zero_outside, ders, work):
     constant continuation) instead of FITPACK's one-sided values. ``work``: (4, k + 1)
     scratch.
     """
-    n = t.shape[0]
-    lo = t[k]
-    hi = t[n - k - 1]
-    clamped = x < lo or x > hi
-    x = min(max(x, lo), hi)
-    a = k
-    b = n - k - 2
-    while a < b:  # span: t[l] <= x < t[l + 1]
-        mid = (a + b + 1) // 2
-        if x >= t[mid]:
-            a = mid
-        else:
-            b = mid - 1
-    l = a
+    x, l, clamped = _span(t, k, x)
     nb = work[0]
     low1 = work[1]   # degree k-1 values
     low2 = work[2]   # degree k-2 values, then their D_{k-1}
@@ -235,25 +242,6 @@ def pp_coefficients(tx, ty, coef, kx: int, ky: int) -> np.ndarray:
                                     optimize=True)
     return np.ascontiguousarray(out)
 
-
-@njit(cache=True, inline="always")
-def _span(t, k, x):
-    """Clamped argument and span ``l`` (``t[l] <= x < t[l+1]``, inside the knot box,
-    as FITPACK picks it); third value: whether ``x`` was clamped."""
-    n = t.shape[0]
-    lo = t[k]
-    hi = t[n - k - 1]
-    clamped = x < lo or x > hi
-    x = min(max(x, lo), hi)
-    a = k
-    b = n - k - 2
-    while a < b:
-        mid = (a + b + 1) // 2
-        if x >= t[mid]:
-            a = mid
-        else:
-            b = mid - 1
-    return x, a, clamped
 
 
 @njit(cache=True)
