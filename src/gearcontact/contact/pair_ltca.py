@@ -147,7 +147,10 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str = "drive"
     kin = pair.kinematics()
     field = gap_field(flanks.flank("pinion", side), flanks.flank("gear", side), kin, mp,
                       half_extent_mm=(extent_factor[0] * pre.a_mm, extent_factor[1] * pre.b_mm),
-                      side=int(cells), frame="principal")
+                      side=int(cells), frame="principal",
+                      # same values and mask on the flanks; lines beyond them converge on
+                      # the continuation instead of being pinned (measured 1.5-2.4 ms less)
+                      allow_outside=True)
     off = ~field.on_flank
     if off[field.gap_mm.shape[0] // 2, field.gap_mm.shape[1] // 2]:
         raise InputRangeError("mating point P0", tuple(mp.point_mm), "a point on both flanks")
