@@ -42,7 +42,7 @@ from scipy.interpolate import RectBivariateSpline
 
 from .flank import FlankBoundary
 from .sampling import SurfaceArrays
-from .spline_kernel import knot_reciprocals, pp_coefficients, pp_derivatives
+from .spline_kernel import pp_coefficients, pp_derivatives
 from .surface import SurfacePoint
 
 __all__ = ["PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
@@ -139,25 +139,14 @@ class RadialSheet:
         object.__setattr__(self, "_spline", spline)
 
     @property
-    def spline_arrays(self) -> tuple:
-        """``(tx, ty, c, rx, ry, kx, ky)``: the spline's knots, coefficients and
-        reciprocal knot tables for :mod:`.spline_kernel` (built once)."""
-        got = self.__dict__.get("_tck_arrays")
-        if got is None:
-            tx, ty, c = (np.ascontiguousarray(a, dtype=float) for a in self._spline.tck[:3])
-            kx, ky = self._spline.degrees
-            got = (tx, ty, c, knot_reciprocals(tx, kx), knot_reciprocals(ty, ky), int(kx), int(ky))
-            object.__setattr__(self, "_tck_arrays", got)
-        return got
-
-    @property
     def pp_arrays(self) -> tuple:
         """``(tx, ty, pc, kx, ky)``: knots and piecewise-polynomial coefficients of the
         psi spline (:func:`~.spline_kernel.pp_coefficients`, built once, ~6 MB for the
         120 x 150 node grid)."""
         got = self.__dict__.get("_pp_arrays")
         if got is None:
-            tx, ty, c, _, _, kx, ky = self.spline_arrays
+            tx, ty, c = (np.ascontiguousarray(a, dtype=float) for a in self._spline.tck[:3])
+            kx, ky = (int(k) for k in self._spline.degrees)
             got = (tx, ty, pp_coefficients(tx, ty, c, kx, ky), kx, ky)
             object.__setattr__(self, "_pp_arrays", got)
         return got
