@@ -39,7 +39,7 @@ import weakref
 import numpy as np
 from numba import njit
 
-from ..geometry.flank import FormateFlank, cone_vector
+from ..geometry.flank import FormateFlank
 from ..geometry.sheet import RadialSheet, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
@@ -192,7 +192,8 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
 @njit(cache=True)
 def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
                     tol_mm, max_iter, order, prev):
-    """Newton intersections of the lines ``q_i + lambda n`` with a posed surface.
+    """Intersections of the lines ``q_i + lambda n`` with a posed surface: Newton on a
+    sheet, :func:`cone_lines` (closed form) on a cone.
 
     Parameters
     ----------
@@ -289,10 +290,7 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         last_side = 0
         side = 0
         for _ in range(max_iter):
-            if kind == 0:
-                sheet_point(par, tx, ty, pc, u, v, dpsi, vec)
-            else:
-                cone_vector(par, u, v, False, vec)
+            sheet_point(par, tx, ty, pc, u, v, dpsi, vec)    # cones returned above
             res_max = 0.0
             for a in range(3):
                 x[a] = 0.0
