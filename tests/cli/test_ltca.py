@@ -21,7 +21,7 @@ KEYS = ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm", "mesh_rotat
 @pytest.fixture(scope="module")
 def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("ltca") / "new"             # created by the command
-    assert main(["ltca", "--pair", "s0003", "--torque", "64.5", "--out", str(d),
+    assert main(["ltca", "--pair", "s0003-centred", "--torque", "64.5", "--out", str(d),
                  "--phases", "11", "--cells", "40"]) == 0
     return d
 

@@ -21,7 +21,7 @@ TORQUES = (32.25, 64.5, 258.0)
 @pytest.fixture(scope="module")
 def analysis(tmp_path_factory):
     out = tmp_path_factory.mktemp("analyze")
-    return run_analysis("s0003", out_dir=out, torques_nm=TORQUES, phases=15, progress=False)
+    return run_analysis("s0003-centred", out_dir=out, torques_nm=TORQUES, phases=15, progress=False)
 
 
 def test_files_written(analysis):
@@ -91,7 +91,7 @@ def test_published_values_have_provenance():
 
 
 def test_cli_analyze(tmp_path, capsys):
-    code = main(["analyze", "--pair", "s0003", "--out", str(tmp_path / "o"), "--torques",
+    code = main(["analyze", "--pair", "s0003-centred", "--out", str(tmp_path / "o"), "--torques",
                  "64.5", "--phases", "9", "--no-figures", "--quiet", "--lte-phases", "0"])
     assert code == 0
     assert "summary.md" in capsys.readouterr().out

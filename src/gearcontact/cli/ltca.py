@@ -37,6 +37,7 @@ def register(sub) -> None:
 def run(args) -> int:
     check_pair_arguments(args)
     pair = load_pair(args.pair)
+    args.side = args.side or pair.design_side
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases)

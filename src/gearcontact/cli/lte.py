@@ -28,6 +28,7 @@ def register(sub) -> None:
 def run(args) -> int:
     check_pair_arguments(args)
     pair = load_pair(args.pair)
+    args.side = args.side or pair.design_side
     from ..report.analyze import published_values
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,

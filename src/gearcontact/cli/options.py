@@ -16,7 +16,9 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None) -> 
     if torque:
         p.add_argument("--torque", type=float, default=64.5,
                        help="gear torque in N·m (default 64.5)")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
+    p.add_argument("--side", default=None, choices=("drive", "coast"),
+                   help="flank pair (default: the pair's design_side; s0003: coast, the "
+                        "published design point)")
     p.add_argument("--phases", type=int, default=61,
                    help="TCA mesh phases per pinion pitch, both ends included (default 61)")
     if cells is not None:

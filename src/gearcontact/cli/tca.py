@@ -31,6 +31,7 @@ def register(sub) -> None:
 def run(args) -> int:
     check_pair_arguments(args)
     pair = load_pair(args.pair)
+    args.side = args.side or pair.design_side
     out = Path(args.out)
     res, flanks = analyze_pair(pair, side=args.side, phases=args.phases, pairs=args.pairs,
                                progress=not args.quiet)
