@@ -100,6 +100,22 @@ def test_cli_analyze(tmp_path, capsys):
     assert not (tmp_path / "o" / "lte.json").exists()  # --lte-phases 0 skips the LTE
 
 
+def test_cli_analyze_calibrated_preset(tmp_path, capsys):
+    # the README's main job on the calibrated preset: the design-point table shows P0
+    # reached (docs/calibration.md) and the loaded patch is edge-loaded (peak > 3 x p90).
+    # 61 phases: P0 is the discrete TE0 vertex, within half a phase step (~0.03 mm at 61
+    # phases per pitch, ~0.15 mm at 15) of the calibrated continuous vertex
+    code = main(["analyze", "--pair", "s0003", "--out", str(tmp_path / "o"), "--torques",
+                 "64.5", "--phases", "61", "--no-figures", "--quiet", "--lte-phases", "0"])
+    assert code == 0
+    text = (tmp_path / "o" / "summary.md").read_text()
+    assert "## Design point (coast flank pair)" in text
+    rows = [r for r in text.splitlines() if r.startswith("| P0 ")]
+    assert len(rows) == 4 and all(r.endswith("| yes |") for r in rows)
+    case = json.loads((tmp_path / "o" / "ltca.json").read_text())[0]
+    assert case["p_peak_mpa"] > 3.0 * case["p90_mpa"]
+
+
 def test_cli_analyze_bad_torque(tmp_path, capsys):
     code = main(["analyze", "--out", str(tmp_path / "o"), "--torques", "-3", "--phases", "9",
                  "--quiet"])

@@ -82,6 +82,10 @@ class Analysis:
         :func:`.precision.precision_sweeps`).
     latency : ScalarLatency or None
         fp64 preview CPU latency measured on this machine (:mod:`.latency`).
+    side : str
+        Flank pair analysed ("drive" | "coast").
+    flanks : FlankSet or None
+        The flanks the analysis ran on.
     """
 
     pair: object
@@ -94,6 +98,8 @@ class Analysis:
     lte: object = None
     precision: tuple | None = None
     latency: object = None
+    side: str = "drive"
+    flanks: object = None
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -241,6 +247,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     steps.update(1)
     steps.close()
     result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision, latency)
+                      precision, latency, side, flanks)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

@@ -59,7 +59,8 @@ from .solve import ContactGuess, EdgeContact, solve_mating_point
 
 __all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibration", "calibrate_pair",
            "point_invariants", "surface_of_action_offset", "working_depth_for_tip",
-           "evaluate_design_point", "DesignPoint", "PRIORITY_WEIGHTS"]
+           "evaluate_design_point", "DesignPoint", "PRIORITY_WEIGHTS",
+           "centred_coefficients", "design_point_at", "design_point_rows"]
 
 _INVARIANTS = ("gear radius", "gear axial", "pinion radius", "pinion axial")
 _COEFFS = tuple(EaseOffCoefficients.__dataclass_fields__)
@@ -296,6 +297,29 @@ def working_depth_for_tip(pair: GearPair, point_mm, *, tip_margin_mm: float) -> 
     return float(h_am1 / ((1.0 - pair.gear_addendum_factor) * b.mean_normal_module_mm))
 
 
+def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
+                    torque_nm: float) -> DesignPoint:
+    """:class:`DesignPoint` of the mating point ``mp`` of ``pinion`` and ``gear`` (the
+    pair's kinematics), with the Hamrock–Brewe ellipse at the gear torque ``torque_nm``."""
+    kin = pair.kinematics()
+    rc = relative_curvature(pinion, gear, kin, mp)
+    ell = contact_ellipse(rc)
+    # the flank frame (l, p, n) is right-handed on one side and left-handed on the other
+    # (tca.curvature); compare orientations in the right-handed frame of either side
+    handed = float(np.sign(np.cross(rc.lengthwise, rc.profile) @ rc.normal))
+    load = normal_load_from_torque(torque_nm, mp.point_mm, mp.normal)
+    hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
+                             e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
+                                                               pair.gear_material))
+    return DesignPoint(point_mm=np.asarray(mp.point_mm), normal=np.asarray(mp.normal),
+                       invariants_mm=point_invariants(mp.point_mm, pair.offset_mm),
+                       pinion_uv=(mp.u1, mp.v1), gear_uv=(mp.u2, mp.v2),
+                       te0_pp_arcsec=float(te0_pp_arcsec), load_n=float(load),
+                       ellipse_length_mm=2.0 * hb.a_mm, ellipse_width_mm=2.0 * hb.b_mm,
+                       ellipse_angle_deg=handed * float(ell.angle_deg),
+                       easeoff_max_um=float(np.nan))
+
+
 def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
                           torque_nm: float, phases: int = 61) -> DesignPoint:
     """TCA of one eased pinion flank against ``gear`` at the continuous TE0 vertex.
@@ -322,27 +346,35 @@ def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
                                                                - g.vector()))
             mp = solve_mating_point(eased, gear, kin, dataclasses.replace(
                 guess, phi1_rad=g.phi1_rad + h * step))
-    rc = relative_curvature(eased, gear, kin, mp)
-    ell = contact_ellipse(rc)
-    # the flank frame (l, p, n) is right-handed on one side and left-handed on the other
-    # (tca.curvature); compare orientations in the right-handed frame of either side
-    handed = float(np.sign(np.cross(rc.lengthwise, rc.profile) @ rc.normal))
-    load = normal_load_from_torque(torque_nm, mp.point_mm, mp.normal)
-    hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
-                             e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
-                                                               pair.gear_material))
-    return DesignPoint(point_mm=np.asarray(mp.point_mm), normal=np.asarray(mp.normal),
-                       invariants_mm=point_invariants(mp.point_mm, pair.offset_mm),
-                       pinion_uv=(mp.u1, mp.v1), gear_uv=(mp.u2, mp.v2),
-                       te0_pp_arcsec=float(cycle.te0_pp_arcsec), load_n=float(load),
-                       ellipse_length_mm=2.0 * hb.a_mm, ellipse_width_mm=2.0 * hb.b_mm,
-                       ellipse_angle_deg=handed * float(ell.angle_deg),
-                       easeoff_max_um=float(np.nan))
+    return design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
+                           torque_nm=torque_nm)
 
 
 #: Least-squares weight of each target group, in the order of priority of the targets
 #: (P0, TE0, 2a, 2b, angle): a miss of one tolerance on P0 costs 10x one on the ellipse.
 PRIORITY_WEIGHTS = (10.0, 3.0, 1.0, 1.0, 1.0)
+
+
+#: Start grid of the search (um/mm^2): profile and lengthwise crowning.
+_GRID_PROFILE_CROWNING = (4.0, 8.0, 12.0, 16.0, 20.0)
+_GRID_LENGTHWISE_CROWNING = (0.06, 0.1, 0.15)
+
+
+def centred_coefficients(eta_c: float, xi_c: float, profile_crowning: float,
+                         lengthwise_crowning: float, bias: float) -> EaseOffCoefficients:
+    """Five-term coefficients of the ease-off written about its centre (mm, um/mm^2):
+
+    ``E = c_PC (eta - eta_c)^2 + c_LC (xi - xi_c)^2 + c_TW (xi - xi_c)(eta - eta_c) + const``
+
+    i.e. ``c_PA = -2 c_PC eta_c - c_TW xi_c`` and ``c_SA = -2 c_LC xi_c - c_TW eta_c``
+    (the constant is dropped: the pair format has none; it only shifts TE0).
+    """
+    return EaseOffCoefficients(
+        profile_angle_um_per_mm=float(-2.0 * profile_crowning * eta_c - bias * xi_c),
+        spiral_angle_um_per_mm=float(-2.0 * lengthwise_crowning * xi_c - bias * eta_c),
+        profile_crowning_um_per_mm2=float(profile_crowning),
+        lengthwise_crowning_um_per_mm2=float(lengthwise_crowning),
+        bias_um_per_mm2=float(bias))
 
 
 def _residuals(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float) -> np.ndarray:
@@ -354,6 +386,12 @@ def _residuals(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float) -
          w[2] * (dp.ellipse_length_mm / targets.ellipse_length_mm - 1.0) / targets.tol_length_rel,
          w[3] * (dp.ellipse_width_mm / targets.ellipse_width_mm - 1.0) / targets.tol_width_rel,
          w[4] * (dp.ellipse_angle_deg - targets.ellipse_angle_deg) / targets.tol_angle_deg]])
+
+
+def design_point_rows(dp: DesignPoint, targets: CalibrationTargets, *, offset_mm: float
+                      ) -> tuple[CalibrationRow, ...]:
+    """Target / achieved / tolerance rows of a design point (summary tables)."""
+    return _rows(dp, targets, offset_mm)
 
 
 def _rows(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float
@@ -440,18 +478,17 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
     # (u1) and finds the phase, since the eased path need not cross P0's conjugate line
     starts = [_conjugate_contact(conj, gear, deep, u_c - d, v_c) for d in (0.1, 0.3, 0.6)]
     limit = flanks.easeoff_limit_um
-    # start coefficients: today's crowning with the relief valley centred on P0
-    c0 = getattr(pair, f"easeoff_{side}")
-    pc, lc = max(c0.profile_crowning_um_per_mm2, 1.0), max(c0.lengthwise_crowning_um_per_mm2, 0.05)
+    # search in the centre form of the ease-off (:func:`centred_coefficients`): the
+    # bearing centre (eta_c, xi_c) and the three second-order terms are nearly
+    # independent there, so crowning changes do not drag the bearing off P0
     eta_c, xi_c = u_c - u_m, v_c - v_m
-    x0 = np.array([-2.0 * pc * eta_c, -2.0 * lc * xi_c, pc, lc, 0.0])
-    lo = np.array([-200.0, -50.0, 0.5, 0.01, -20.0])
-    hi = np.array([200.0, 50.0, 40.0, 2.0, 20.0])
-    scale = np.array([1.0, 0.1, 0.5, 0.01, 0.2])
+    lo = np.array([eta_c - 1.5, xi_c - 6.0, 0.5, 0.01, -2.0])
+    hi = np.array([eta_c + 1.5, xi_c + 6.0, 40.0, 1.0, 2.0])
+    scale = np.array([0.05, 0.2, 0.5, 0.01, 0.05])
     evals = {"n": 0, "best": (np.inf, None)}
 
     def run(x):
-        coeffs = EaseOffCoefficients(**dict(zip(_COEFFS, (float(v) for v in x))))
+        coeffs = centred_coefficients(*x)
         eo = EaseOff.from_coefficients(coeffs, u_mean_mm=u_m, v_mean_mm=v_m)
         eased = apply_easeoff(conj, eo, limit_um=limit)
         for k, start in enumerate(starts):
@@ -474,7 +511,7 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
         r = _residuals(dp, targets, pair.offset_mm)
         cost = float(r @ r)
         if cost < evals["best"][0]:
-            evals["best"] = (cost, x.copy())
+            evals["best"] = (cost, np.array(x, dtype=float))
             if progress:
                 print(f"  calibration eval {evals['n']}: cost {cost:.4g}, P0 off "
                       f"{np.abs(dp.invariants_mm - inv0).max():.3f} mm, TE0 "
@@ -482,30 +519,36 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
                       f"{dp.ellipse_width_mm:.3f} mm at {dp.ellipse_angle_deg:.1f} deg")
         return r
 
-    least_squares(fun, np.clip(x0, lo, hi), bounds=(lo, hi), x_scale=scale,
-                  diff_step=2e-2, max_nfev=int(max_evaluations))
-    x_best = evals["best"][1]
-    if x_best is None:
-        raise ArithmeticError("calibration: no ease-off in the search box gave a TCA with the "
-                              "mean contact on the flanks")
-    # polish the first-priority target alone: the bearing centre (c_PA, c_SA) places the
-    # vertex on the surface of action, whose two coordinates fix all four invariants
-    def place(y):
-        x = x_best.copy()
-        x[:2] = y
-        try:
-            _, dp = run(x)
-        except (ArithmeticError, ValueError, EdgeContact):
-            return np.full(4, 1e2)
-        return (dp.invariants_mm - inv0) / targets.tol_point_mm
+    def place(x, max_nfev=20):
+        """``x`` with its bearing centre moved so that the TE0 vertex lands on P0 (the
+        first-priority target; the surface of action's two coordinates fix all four
+        invariants)."""
+        def off(y):
+            try:
+                _, dp = run(np.concatenate([y, x[2:]]))
+            except (ArithmeticError, ValueError, EdgeContact):
+                return np.full(4, 1e2)
+            return (dp.invariants_mm - inv0) / targets.tol_point_mm
 
-    polish = least_squares(place, x_best[:2], bounds=(lo[:2], hi[:2]), x_scale=scale[:2],
-                           diff_step=1e-3, max_nfev=30)
-    if np.all(np.isfinite(polish.fun)) and polish.cost < 0.5 * float(
-            np.sum(place(x_best[:2]) ** 2)):
-        x_best = x_best.copy()
-        x_best[:2] = polish.x
-    evals["n"] += int(polish.nfev)
+        r = least_squares(off, np.clip(x[:2], lo[:2], hi[:2]), bounds=(lo[:2], hi[:2]),
+                          x_scale=scale[:2], diff_step=1e-3, max_nfev=max_nfev)
+        evals["n"] += int(r.nfev)
+        return np.concatenate([r.x, x[2:]])
+
+    # a coarse grid over the two crownings first, each with its bearing placed on P0:
+    # the objective has several basins (the path turns with the profile crowning) and a
+    # local search alone stays in the first
+    centre = np.array([eta_c, xi_c])
+    for pc in _GRID_PROFILE_CROWNING:
+        for lc in _GRID_LENGTHWISE_CROWNING:
+            x = place(np.array([*centre, pc, lc, 0.0]), max_nfev=8)
+            fun(x)
+    if evals["best"][1] is None:
+        raise ArithmeticError("calibration: no ease-off of the start grid gave a TCA with the "
+                              "mean contact on the flanks")
+    least_squares(fun, np.clip(evals["best"][1], lo, hi), bounds=(lo, hi), x_scale=scale,
+                  diff_step=1e-2, max_nfev=int(max_evaluations))
+    x_best = place(evals["best"][1], max_nfev=30)
     coeffs, dp = run(x_best)
     calibrated = dataclasses.replace(deep, **{f"easeoff_{side}": coeffs})
     tip = float(conj.cone.radius_mm(box.u_tip, inv0[3]) - inv0[2])
@@ -520,10 +563,10 @@ def calibration_toml(cal: Calibration, *, name: str | None = None) -> str:
     provenance as comments."""
     from ..geometry.pair import pair_to_toml
 
-    if name is not None:
-        cal = dataclasses.replace(cal, pair=dataclasses.replace(cal.pair, name=name))
-    head = (f"{cal.pair.name}: calibrated by gearcontact.tca.calibration (gearcontact design "
-            f"--pair {cal.pair.name} --calibrate) to the published design point.\n"
+    source = cal.pair.name
+    pair = cal.pair if name is None else dataclasses.replace(cal.pair, name=name)
+    head = (f"{pair.name}: calibrated by gearcontact.tca.calibration (gearcontact design "
+            f"--pair {source} --calibrate) to the published design point.\n"
             f"Design side {cal.side}: the published mating point lies on its surface of "
             "action (offsets, mm: " + ", ".join(f"{k} {v:.3f}" for k, v in
                                                   cal.soa_offset_mm.items()) + ").\n"
@@ -532,4 +575,4 @@ def calibration_toml(cal: Calibration, *, name: str | None = None) -> str:
             f"easeoff.{cal.side}: bounded least squares, {cal.evaluations} TCA runs, "
             f"max |E| {cal.point.easeoff_max_um:.1f} um.\n"
             "target / achieved / tolerance:\n" + cal.table())
-    return pair_to_toml(cal.pair, comments={"": head})
+    return pair_to_toml(pair, comments={"": head})
