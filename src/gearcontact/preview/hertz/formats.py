@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 
+from ...validation import InputRangeError
 from ..qformat import CURVATURE, LOAD, PMAX, sq, uq
 
 __all__ = [
@@ -58,7 +59,8 @@ __all__ = [
     "CURV_MAX_CODE", "LOAD_MIN_CODE", "LOAD_MAX_CODE", "E_PRIME_MIN_CODE",
     "E_PRIME_MAX_CODE", "ALPHA_MAX_CODE", "FLAG_NOT_ELLIPTIC", "FLAG_CURV_RANGE",
     "FLAG_LOAD_RANGE", "FLAG_E_PRIME_RANGE", "FLAG_ALPHA_RANGE", "FLAG_OVERFLOW",
-    "FLAG_DIV_ZERO", "FLAG_INPUT", "FLAG_NAMES", "flag_names", "C3_FRAC", "PN2_SHIFT", "PMAX_SHIFT"]
+    "FLAG_DIV_ZERO", "FLAG_INPUT", "FLAG_NAMES", "flag_names", "C3_FRAC", "PN2_SHIFT", "PMAX_SHIFT",
+    "HERTZ_FORMS", "DEFAULT_HERTZ_FORM", "check_hertz_form"]
 
 # ---- register formats (see the table above) ----------------------------------------
 E_PRIME = sq(32, 0)        #: E' = 2E*, integer MPa (constant register)
@@ -114,3 +116,19 @@ FLAG_NAMES = {FLAG_NOT_ELLIPTIC: "not_elliptic", FLAG_CURV_RANGE: "curvature_ran
 def flag_names(flags: int) -> tuple[str, ...]:
     """Names of the bits set in a flags word (empty tuple when valid)."""
     return tuple(name for bit, name in FLAG_NAMES.items() if flags & bit)
+
+
+# ---- Hertz forms ----------------------------------------------------------------------
+#: ``"hamrock-brewe"``: the published simplified forms k = alpha^(2/pi),
+#: E_e = 1 + (pi/2 - 1)/alpha (the default); ``"exact"``: the POW table holds the exact
+#: k(alpha) and a second table of the same geometry the exact elliptic-integral term
+#: (:mod:`.luts`), with the same datapath, formats and cycle count.
+HERTZ_FORMS = ("hamrock-brewe", "exact")
+DEFAULT_HERTZ_FORM = "hamrock-brewe"
+
+
+def check_hertz_form(hertz_form) -> str:
+    """``hertz_form`` if it is one of :data:`HERTZ_FORMS`, else InputRangeError."""
+    if hertz_form not in HERTZ_FORMS:
+        raise InputRangeError("hertz_form", hertz_form, f"one of {HERTZ_FORMS}")
+    return hertz_form
