@@ -34,7 +34,9 @@ k            Q(32,20)      round_shift(K, 4) (output)
 Constants: ``C6 = round(6/pi 2^25)``, ``N5 = round((3 - 6/pi) 2^49)``,
 ``C3 = round(3/(2 pi) 2^40)``. Every multiplier product is below 2^64 (the SPEC
 allows 2^66) and every dividend below 2^80 (largest: p_n2, W C3 2^16 < 2^80); the
-golden model asserts both on every run.
+golden model asserts both on every run. With ``hertz_form="exact"`` the E_e dividend
+N5 becomes the EEX table's N(alpha) in the same units (< 2^51; N in [1.09, 1.14] and
+E6 = 6E/pi <= 3, so every bound above holds unchanged).
 
 Operating envelope (checked in state SORT; outside it the run is flagged and every
 numeric output except the sorted curvature registers reads 0):

@@ -48,7 +48,7 @@ Interpolation error (measured against fp64 ``x**exponent`` in
 cubic remainder ``f'''(x) h^3 t (t - 1/2)(t - 1)/6`` is odd about the midpoint, so
 no symmetric quadratic term can cancel it; it decays ~alpha^-2.4 to 2.5e-6 beyond
 alpha = 5); CBRT 1.8e-7 (node rounding 2^-23 plus interpolation); POWX 1.7e-4 and
-EEX 2.1e-4 relative (alpha ~ 1.1, same cause), i.e. 7e-5 relative in E6.
+EEX 2.1e-4 relative near alpha = 1 (same cause), 2.5e-6 and 4.3e-6 beyond alpha = 5.
 
 References
 ----------

@@ -16,6 +16,8 @@ combinational core); this module only sequences them::
                2..81  80 restoring iterations
                82     quotient write-back (alpha: range check; p_max: outputs, done)
     DIV_R      0 | 1  || POW ROM read (nodes of alpha) | K <= rs(interpolation, 16)
+               82     || (hertz_form="exact") EEX read; its interpolation is the E_e
+                      dividend loaded at DIV_EE cnt 0 (instead of the constant N5)
     DIV_EE     0      || K2 <= rs(K K, 20)                     (shared multiplier)
     PRODUCT    0..3   T1 = rs(K2 E6, 32) | T2 = rs(T1 R, 18) | T3 = T2 W | W C3
     CBRT       0..2   leading one + range reduction (m, p) | CBRT ROM read |
