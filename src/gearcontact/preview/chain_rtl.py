@@ -289,5 +289,5 @@ def simulate_chain_core(stencils, W_codes, *, e_prime_code: int,
     ~9k edges/s of CPU time in Amaranth's simulator (~10 stencils/s including the 50
     write edges), plus ~1.5 s to elaborate.
     """
-    return run_chain_like(ChainCore(rom=rom, hertz_form=hertz_form), stencils, W_codes, e_prime_code,
-                          max_cycles=max_cycles, what="chain core")
+    return run_chain_like(ChainCore(rom=rom, hertz_form=hertz_form), stencils, W_codes,
+                          e_prime_code, max_cycles=max_cycles, what="chain core")

@@ -9,7 +9,9 @@ wider than 64 bits (C_a < 2^75, b < 2^66, p_n2 < 2^80) are divided exactly by
 schoolbook long division in five 16-bit digits (each partial remainder is below the
 divisor < 2^42, so ``rem * 2^16 + digit`` fits 64 bits) — Knuth, TAOCP vol. 2,
 sec. 4.3.1, Algorithm D with a single-word divisor. The tests compare codes and flags
-with the scalar model on more than 20 000 seeded vectors plus the envelope corners.
+with the scalar model on more than 20 000 seeded vectors plus the envelope corners, and
+on 5 000 more with ``hertz_form="exact"`` (the kernel then takes the E_e dividend from
+the EEX table, which shares the POW geometry, instead of the constant N5).
 
 Every divisor is provably positive once the envelope check has passed (A_min >= 2^9,
 alpha >= 2^24, E' >= 2^12, K >= 2^24, a_w >= 2^27, b_w >= 2^23), so the scalar
