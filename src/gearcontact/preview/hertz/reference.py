@@ -7,7 +7,7 @@ Sorts the half relative curvatures (``A_min <= B_max``), derives
 implementation of those formulas; SPEC section 6, Algorithm 3), or with
 ``hertz_form="exact"`` the exact elliptic-integral solution
 :func:`gearcontact.analytic.hertz.exact_elliptic_hertz` (what the exact tables of the
-fixed-point datapath hold, :mod:`.luts`; ~40 us per call).
+fixed-point datapath hold, :mod:`.luts`; ~50 us per call).
 
 The scalar path uses only ``math`` and costs about 1 us per call from Python
 (``benchmarks/bench_preview_reference.py``); :func:`hertz_preview_array` evaluates
@@ -167,7 +167,7 @@ def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa:
 def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool = True,
                         hertz_form: str = F.DEFAULT_HERTZ_FORM) -> dict:
     """Vectorized :func:`hertz_preview` over broadcastable arrays (the exact form loops
-    over :func:`~gearcontact.analytic.hertz.exact_elliptic_hertz`, ~40 us per element).
+    over :func:`~gearcontact.analytic.hertz.exact_elliptic_hertz`, ~50 us per element).
 
     Returns
     -------
