@@ -97,3 +97,22 @@ def test_verilator_requested_but_missing(monkeypatch):
         RtlEngine(simulator="verilator")
     monkeypatch.setenv("GEARCONTACT_RTL_SIMULATOR", "amaranth")
     assert RtlEngine().simulator == "amaranth"
+
+
+@pytest.mark.parametrize("simulator", ["amaranth", "verilator"])
+def test_exact_form_rtl_equals_golden(simulator):
+    """get_engine("rtl", hertz_form="exact") runs the hertz_exact / chain_exact cores:
+    same codes, flags, cycles and hertz_form as the exact golden backend (the stencil
+    under Amaranth only: chain_exact's Verilator build, 18 s, is left to the slow suite)."""
+    if simulator == "verilator" and not vl.verilator_available():
+        pytest.skip(f"Verilator toolchain not installed: {vl.INSTALL_HINT}")
+    rtl = get_engine("rtl", hertz_form="exact")
+    rtl = type(rtl)(simulator=simulator, hertz_form="exact")
+    gold = get_engine("golden", hertz_form="exact")
+    A, B, W = HERTZ_INPUTS[0]
+    r = rtl.hertz(A, B, W)
+    _same(r, gold.hertz(A, B, W), HERTZ_CYCLES)
+    assert r.hertz_form == "exact" and r.k != get_engine("golden").hertz(A, B, W).k
+    if simulator == "amaranth":
+        gaps, w = STENCILS[0]
+        _same(rtl.stencil(gaps, w), gold.stencil(gaps, w), CHAIN_CYCLES)

@@ -12,6 +12,7 @@ import json
 from ..materials import STEEL, Material
 from ..preview.engine import BACKENDS, get_engine
 from ..preview.fit.stencil import read_stencil_csv
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
 
 #: Exit code when the datapath raised a flag (outputs invalid).
 EXIT_FLAGGED = 3
@@ -34,13 +35,16 @@ def register(sub) -> None:
                    help="Poisson's ratio of both bodies (default 0.3)")
     p.add_argument("--backend", choices=sorted(BACKENDS), default="reference",
                    help="which representation evaluates the preview (default reference)")
+    p.add_argument("--hertz-form", choices=HERTZ_FORMS, default=DEFAULT_HERTZ_FORM,
+                   help="stage-D Hertz form: the published simplified forms (default) or "
+                        "exact elliptic Hertz in the same tables (not for rtl-soc)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     material = Material.from_gpa(args.modulus, args.poisson, name="cli")
-    engine = get_engine(args.backend, material=material)
+    engine = get_engine(args.backend, material=material, hertz_form=args.hertz_form)
     if args.stencil is not None:
         res = engine.stencil(read_stencil_csv(args.stencil), args.load)
     else:

@@ -30,6 +30,7 @@ from .engine import (
     _check_stencil,
 )
 from .fit.golden import encode_gaps
+from .hertz.formats import DEFAULT_HERTZ_FORM
 from .hertz.golden import HertzCodes, decode_hertz_codes, encode_hertz_inputs
 from .hertz.golden_vec import HertzCodesArray
 from .stimulus import Stimulus
@@ -59,6 +60,9 @@ class RtlEngine(GoldenEngine):
         The two bodies (default steel/steel); E' is the constant register code.
     simulator : {"verilator", "amaranth"}, optional
         Default :func:`default_simulator`.
+    hertz_form : {"hamrock-brewe", "exact"}
+        Stage-D ROM contents: the ``hertz`` / ``chain`` cores, or ``hertz_exact`` /
+        ``chain_exact`` (:mod:`gearcontact.hw.harness_cores`).
 
     Raises
     ------
@@ -69,9 +73,11 @@ class RtlEngine(GoldenEngine):
     name = "rtl"
 
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
-                 simulator: str | None = None):
+                 simulator: str | None = None, hertz_form: str = DEFAULT_HERTZ_FORM):
         from ..hw.harness_cores import SIMULATORS
-        super().__init__(material=material, material2=material2)
+        super().__init__(material=material, material2=material2, hertz_form=hertz_form)
+        suffix = "_exact" if self.hertz_form == "exact" else ""
+        self._cores = {"hertz": "hertz" + suffix, "chain": "chain" + suffix}
         self.simulator = simulator or default_simulator()
         if self.simulator not in SIMULATORS:
             raise InputRangeError("simulator", self.simulator, f"one of {list(SIMULATORS)}")
@@ -82,6 +88,7 @@ class RtlEngine(GoldenEngine):
     def _simulate(self, core: str, fields: dict):
         """Run vectors (dict of code arrays) on ``core``: (outputs, cycles)."""
         from ..hw.harness_cores import get_bench, simulate
+        core = self._cores[core]
         n = len(next(iter(fields.values())))
         st = Stimulus(core, {k: np.asarray(v, np.int64) for k, v in fields.items()},
                       ("engine",) * n, 0)

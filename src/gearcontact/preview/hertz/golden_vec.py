@@ -9,7 +9,9 @@ wider than 64 bits (C_a < 2^75, b < 2^66, p_n2 < 2^80) are divided exactly by
 schoolbook long division in five 16-bit digits (each partial remainder is below the
 divisor < 2^42, so ``rem * 2^16 + digit`` fits 64 bits) — Knuth, TAOCP vol. 2,
 sec. 4.3.1, Algorithm D with a single-word divisor. The tests compare codes and flags
-with the scalar model on more than 20 000 seeded vectors plus the envelope corners.
+with the scalar model on more than 20 000 seeded vectors plus the envelope corners, and
+on 5 000 more with ``hertz_form="exact"`` (the kernel then takes the E_e dividend from
+the EEX table, which shares the POW geometry, instead of the constant N5).
 
 Every divisor is provably positive once the envelope check has passed (A_min >= 2^9,
 alpha >= 2^24, E' >= 2^12, K >= 2^24, a_w >= 2^27, b_w >= 2^23), so the scalar
@@ -34,7 +36,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
 
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
-from .luts import CBRT_SPEC, POW_SPEC, lut_array
+from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, POW_SPEC, POW_SPECS, lut_array
 
 __all__ = ["HertzCodesArray", "hertz_golden_array", "HAVE_NUMBA"]
 
@@ -118,12 +120,13 @@ def _interp(arg, lut, x0, tbits, qbits, corr_shift):
 
 
 @njit(cache=True, parallel=True)
-def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
+def _kernel(A, B, W, E, pow_lut, ee_lut, cbrt_lut, cst, out):
     curv_lo, curv_hi, w_lo, w_hi, e_lo, e_hi = cst[0], cst[1], cst[2], cst[3], cst[4], cst[5]
     alpha_max, c6, n5, c3 = cst[6], cst[7], cst[8], cst[9]
     pow_x0, pow_t, pow_qb, pow_cs, pow_of = cst[10], cst[11], cst[12], cst[13], cst[14]
     cbrt_x0, cbrt_t, cbrt_qb, cbrt_cs = cst[15], cst[16], cst[17], cst[18]
     k_max, axis_max, pmax_max, curv_max_out = cst[19], cst[20], cst[21], cst[22]
+    exact, ee_shift = cst[23], cst[24]
     n = A.shape[0]
     for j in prange(n):
         a_min = min(A[j], B[j])
@@ -154,7 +157,12 @@ def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
             else:
                 radius = (_U(1) << _U(42)) // (ua + ub)
                 k_int = _rs(_interp(alpha, pow_lut, pow_x0, pow_t, pow_qb, pow_cs), pow_of)
-                e6 = _U(c6) + _U(n5) // alpha
+                if exact:      # EEX table (same geometry as POW) instead of N5
+                    n_ee = _interp(alpha, ee_lut, pow_x0, pow_t, pow_qb, pow_cs) \
+                        << _U(ee_shift)
+                else:
+                    n_ee = _U(n5)
+                e6 = _U(c6) + n_ee // alpha
                 k2 = _rs(k_int * k_int, 20)
                 t1 = _rs(k2 * e6, 32)
                 t2 = _rs(t1 * radius, 18)
@@ -192,13 +200,14 @@ def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
         out[9, j] = flags
 
 
-def _constants() -> np.ndarray:
+def _constants(exact: bool) -> np.ndarray:
     vals = (F.CURV_MIN_CODE, F.CURV_MAX_CODE, F.LOAD_MIN_CODE, F.LOAD_MAX_CODE,
             F.E_PRIME_MIN_CODE, F.E_PRIME_MAX_CODE, F.ALPHA_MAX_CODE, F.C6, F.N5, F.C3,
+            # POW geometry serves POW, POWX and EEX (luts.same_geometry)
             POW_SPEC.x0_code, POW_SPEC.tbits, POW_SPEC.qbits, POW_SPEC.corr_shift,
             POW_SPEC.out_frac - F.K_INT.frac, CBRT_SPEC.x0_code, CBRT_SPEC.tbits,
             CBRT_SPEC.qbits, CBRT_SPEC.corr_shift, F.K_OUT.max_code, SEMI_AXIS.max_code,
-            PMAX.max_code, CURVATURE.max_code)
+            PMAX.max_code, CURVATURE.max_code, int(exact), EE_DIVIDEND_SHIFT)
     return np.array(vals, dtype=np.int64)
 
 
@@ -224,7 +233,8 @@ def _as_codes(x, fmt, field: str) -> np.ndarray:
     return arr
 
 
-def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArray:
+def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code,
+                       hertz_form: str = F.DEFAULT_HERTZ_FORM) -> HertzCodesArray:
     """Stage-D golden model over broadcastable integer arrays (bit-identical to
     :func:`.golden.hertz_golden`).
 
@@ -236,6 +246,8 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
         LOAD Q(32,8) codes, N.
     e_prime_code : int or array_like of int
         E' codes, Q(32,0) MPa.
+    hertz_form : {"hamrock-brewe", "exact"}
+        As in :func:`.golden.hertz_golden`.
 
     Returns
     -------
@@ -246,7 +258,10 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
     ------
     FixedPointOverflow
         A code that does not fit its 32-bit register (naming field and index).
+    InputRangeError
+        Unknown ``hertz_form``.
     """
+    exact = F.check_hertz_form(hertz_form) == "exact"
     arrs = np.broadcast_arrays(_as_codes(A_code, CURVATURE, "A_code"),
                                _as_codes(B_code, CURVATURE, "B_code"),
                                _as_codes(W_code, LOAD, "W_code"),
@@ -254,5 +269,6 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
     shape = arrs[0].shape
     flat = [np.array(a.reshape(-1), dtype=np.int64) for a in arrs]   # owned copies
     out = np.zeros((10, flat[0].size), dtype=np.int64)
-    _kernel(*flat, lut_array(POW_SPEC), lut_array(CBRT_SPEC), _constants(), out)
+    _kernel(*flat, lut_array(POW_SPECS[hertz_form]), lut_array(EE_EXACT_SPEC),
+            lut_array(CBRT_SPEC), _constants(exact), out)
     return HertzCodesArray(*(out[i].reshape(shape) for i in range(10)))
