@@ -13,8 +13,11 @@ import sys
 from dataclasses import asdict
 from pathlib import Path
 
+from . import EXIT_BAD_INPUT
+from .outdir import add_out_argument
+
 #: Exit code when an optional tool is missing or a run fails.
-EXIT_UNAVAILABLE = 2
+EXIT_UNAVAILABLE = EXIT_BAD_INPUT
 
 __all__ = ["register_rtl_subcommands", "run_soc", "run_synth"]
 
@@ -26,7 +29,9 @@ def register_rtl_subcommands(cmds) -> None:
 
     s = cmds.add_parser("soc", help="generate the LiteX board flow (Verilog, XDC, csr.csv/"
                                     "json, openXC7 build script) for the XC7K480T card")
-    s.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    add_out_argument(s)
+    # LiteX writes absolute paths into its scripts: no staging directory (outdir policy)
+    s.set_defaults(staged_output=False)
     s.add_argument("--kind", choices=SOC_KINDS, default="tri_core",
                    help="SoC top (default tri_core)")
     s.add_argument("--lanes", type=int, default=16, help="gap core lanes (default 16)")
@@ -39,7 +44,8 @@ def register_rtl_subcommands(cmds) -> None:
                         "gap_plain is the published netlist (30 per lane)")
     y.add_argument("--lanes", default="8,16,32,64", metavar="L,L,...",
                    help="gap lane counts (default 8,16,32,64)")
-    y.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    add_out_argument(y)
+    y.set_defaults(staged_output=False)      # Yosys logs name their work directories
     y.add_argument("--nodsp", action="store_true",
                    help="multipliers in LUT/CARRY4 (very slow under WebAssembly)")
     y.add_argument("--timeout", type=float, default=None, metavar="S",
