@@ -75,8 +75,15 @@ def torque_limit_nm(pair, lever_mm: float | None = None) -> float:
 
 def check_torque(field: str, value, pair) -> float:
     """A gear torque in (0, :func:`torque_limit_nm`] N·m for ``pair``."""
+    from ..preview.hertz.reference import ENVELOPE
+
     t = check_positive(field, value)
-    return check_range(field, t, 0.0, torque_limit_nm(pair), lo_open=True)
+    hi = torque_limit_nm(pair)
+    if t > hi:
+        raise InputRangeError(field, value, f"(0, {hi:.6g}] for pair {pair.name} (its normal "
+                                            f"load must stay <= {ENVELOPE['load_n'][1]:g} N, "
+                                            "the preview envelope)")
+    return t
 
 
 def rename_load_error(exc: InputRangeError, torque_nm: float, pair, tca) -> InputRangeError:
