@@ -148,6 +148,13 @@ def _check_physical(A_minus, B_minus, load_n, e_prime_mpa: float
     return a, b, w
 
 
+def _e_prime(material: Material, material2: Material | None) -> float:
+    """E' = 2E* of the pair (MPa), inside the envelope every backend accepts."""
+    lo, hi = ENVELOPE["e_prime_mpa"]
+    return check_range("E' = 2 E* of the materials (MPa)",
+                       effective_modulus_mpa(material, material2), lo, hi)
+
+
 def _check_load(load_n) -> float:
     """The load of a stencil evaluation: finite, > 0 and inside the envelope (N)."""
     lo, hi = ENVELOPE["load_n"]
@@ -180,7 +187,7 @@ class ReferenceEngine:
 
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
         self.material = material
-        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_mpa = _e_prime(material, material2)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
         a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
@@ -214,7 +221,7 @@ class GoldenEngine:
 
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
         self.material = material
-        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_mpa = _e_prime(material, material2)
         self.e_prime_code = encode_e_prime(self.e_prime_mpa)
 
     def _result(self, hz, w, codes: dict, flags: tuple, cycles: int) -> PreviewResult:
