@@ -151,3 +151,17 @@ def test_internal_error_exit_1_traceback_only_with_debug(capsys, monkeypatch, ex
     assert len(err.strip().splitlines()) == 1
     assert main(argv + ["--debug"]) == EXIT_INTERNAL
     assert "Traceback" in capsys.readouterr().err
+
+
+def test_disk_full_is_said_as_such(tmp_path, capsys, monkeypatch):
+    import errno
+
+    import gearcontact.cli.vectors as cli_vectors
+
+    def full(*a, **k):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(cli_vectors, "export_vectors", full)
+    assert main(["vectors", "--out", str(tmp_path / "v"), "--count", "1"]) == EXIT_INTERNAL
+    err = capsys.readouterr().err
+    assert "system refused a write" in err and "please report" not in err

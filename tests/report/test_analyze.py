@@ -97,6 +97,13 @@ def test_cli_analyze(tmp_path, capsys):
     assert (tmp_path / "o" / "summary.md").exists()
     assert not (tmp_path / "o" / "pressure_maps.png").exists()
     assert not (tmp_path / "o" / "lte.json").exists()  # --lte-phases 0 skips the LTE
+    # --no-figures: the summary links no PNG; the manifest lists every file written
+    assert ".png" not in (tmp_path / "o" / "summary.md").read_text()
+    run = json.loads((tmp_path / "o" / "run.json").read_text())
+    listed = sorted(f["path"] for f in run["files"])
+    assert listed == sorted(p.name for p in (tmp_path / "o").iterdir()
+                            if not p.name.startswith(".") and p.name != "run.json")
+    assert {"tca_s", "ltca_solve_ms", "preview_cpu", "jit_warm_up_s"} <= set(run["timings_s"])
 
 
 def test_cli_analyze_bad_torque(tmp_path, capsys):

@@ -12,7 +12,8 @@ code  meaning
 ====  ==================================================================================
 0     success
 1     internal error (a bug): one line "internal error, please report"; the traceback
-      is printed only with ``--debug``
+      is printed only with ``--debug``. Also a write the system refused (disk full,
+      read-only file system), said as such
 2     bad input: an option, an input file or the output directory, reported in one line
       naming the field, the value, the allowed range and the file where one is
       involved; also a missing optional tool
@@ -26,7 +27,9 @@ code  meaning
 from __future__ import annotations
 
 import argparse
+import errno
 import importlib
+import os
 import sys
 import traceback
 import warnings
@@ -123,13 +126,33 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"gearcontact {name}: interrupted", file=sys.stderr)
         return 130
-    except Exception as exc:  # noqa: BLE001  (the last line of defence: report a bug)
-        if getattr(args, "debug", False):
-            traceback.print_exc()
-        print(f"gearcontact {name}: internal error, please report "
-              f"({type(exc).__name__}: {exc}); rerun with --debug for the traceback",
-              file=sys.stderr)
+    except BrokenPipeError:
+        # the reader of stdout went away (``| head``): not an error of ours
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+    except OSError as exc:
+        if exc.errno not in _SYSTEM_REFUSED:
+            return _internal(name, exc, args)
+        print(f"gearcontact {name}: error: the system refused a write ({exc}); the "
+              "output directory keeps its previous run", file=sys.stderr)
         return EXIT_INTERNAL
+    except Exception as exc:  # noqa: BLE001  (the last line of defence: report a bug)
+        return _internal(name, exc, args)
+
+
+#: errno values of an OSError that are the system's refusal, not a bug (disk full,
+#: quota, I/O error, read-only file system).
+_SYSTEM_REFUSED = {errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS}
+
+
+def _internal(name: str, exc: BaseException, args) -> int:
+    """A bug: one line asking for a report; the traceback only with ``--debug``."""
+    if getattr(args, "debug", False):
+        traceback.print_exception(exc)
+    print(f"gearcontact {name}: internal error, please report "
+          f"({type(exc).__name__}: {exc}); rerun with --debug for the traceback",
+          file=sys.stderr)
+    return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

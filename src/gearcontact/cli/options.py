@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 
 from ..geometry.pair import load_pair
-from ..validation import InputRangeError, check_positive, check_range
+from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",

@@ -107,6 +107,7 @@ def _existing_figures(text: str, folder: Path) -> str:
             new = " ".join(new.split())
             if "![" not in new:
                 new = re.sub(r"^Figures?:\s*", "", new)
+                new = re.sub(r"^\(data: ([^)]*)\)$", r"Data: \1", new)
             if not new:
                 continue
         lines.append(new)
