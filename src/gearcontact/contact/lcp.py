@@ -460,9 +460,13 @@ def warm_up(solver: str = "pk_cg") -> float:
         Wall-clock seconds the warm-up took (compilation included), s.
     """
     t0 = time.perf_counter()
-    n, d = 24, 0.05                      # 24 x 24 cells of 50 um, a ~0.3 mm contact
+    # a Hertzian patch (R = 10 mm, steel) over about a third of a 40 x 40 field, at two
+    # loads: the solver's windows then shrink and grow as in a real solve, so every
+    # array layout the kernels see there (contiguous or a strided window) is compiled
+    n, d = 40, 0.01
     grid = TangentGrid.uniform(n, n, dx_mm=d, dy_mm=d, x0_mm=-0.5 * d * (n - 1),
                                y0_mm=-0.5 * d * (n - 1))
     x, y = np.meshgrid(grid.x_mm, grid.y_mm)
-    solve_lcp(0.5 * (x ** 2 + y ** 2), grid, 20.0, solver=solver, warn_coarse=False)
+    for load_n in (2.0, 20.0):
+        solve_lcp(0.05 * (x ** 2 + y ** 2), grid, load_n, solver=solver, warn_coarse=False)
     return time.perf_counter() - t0
