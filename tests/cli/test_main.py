@@ -66,6 +66,17 @@ def test_torque_named_not_load(tmp_path, capsys, no_work):
     assert code == 2 and "--torque" in err and "load_n" not in err
 
 
+def test_torque_beyond_the_lever_limit_named_after_tca(tmp_path, capsys):
+    """5500 N·m passes the outer-radius bound (6080 N·m for s0003) but the TCA's lever
+    (36.7 mm) makes W = 150 kN > 131072 N: still reported as --torque, with the limit
+    of this pair (131072 N x 36.7 mm = 4.8 kN·m), before the LCP and any file."""
+    out = tmp_path / "o"
+    code, err = _err(capsys, ["ltca", "--out", str(out), "--torque", "5500", "--phases",
+                              "5", "--cells", "24"])
+    assert code == EXIT_BAD_INPUT and "--torque (N·m) = 5500" in err and "(0, 48" in err
+    assert "Traceback" not in err and not out.exists()   # created by the run, removed
+
+
 @pytest.mark.parametrize("argv, needles", [
     (["vectors", "--count", "2000000"], ["--count", "1000000"]),
     (["rtl", "sim", "--core", "hertz", "--vectors", "0", "--no-corners"],
@@ -115,7 +126,7 @@ def test_stencil_file_errors_named(tmp_path, capsys):
     assert code == 2 and "s.csv" in err and "UTF-8" in err
 
 
-@pytest.mark.parametrize("backend", ["reference", "golden"])
+@pytest.mark.parametrize("backend", ["reference", "golden", "rtl"])
 @pytest.mark.parametrize("a, b, w, field", [
     ("16.0000001", "0.01", "100", "A_minus"),          # above the 16 1/mm register
     ("0.0004882", "0.0004882", "1", "A_minus"),        # below 2^-11 1/mm, rounds onto it

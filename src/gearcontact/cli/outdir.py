@@ -16,7 +16,7 @@ One policy, applied by :func:`gearcontact.cli.main` around each such command:
    :func:`os.replace` (atomic per file), the previous run's files that this run did not
    write are removed, and ``run.json`` is written last (temporary file + replace). When
    the command fails, the staging directory is removed and the previous run stays as it
-   was. Commands whose generated files embed their own absolute paths (``rtl soc``,
+   was (a directory this run created is removed again). Commands whose generated files embed their own absolute paths (``rtl soc``,
    ``rtl synth``: LiteX/Yosys scripts) write in place instead (``staged=False``): the
    previous run's files are removed before the work starts.
 4. **A lock.** An exclusive :func:`fcntl.flock` on ``.gearcontact.lock`` is held for the
@@ -196,6 +196,7 @@ class RunDirectory:
         self.path = self._check_path(out)
         self.work = self.path
         self._lock_fd = None
+        self._created = False
         self._started = time.perf_counter()
         self._started_wall = time.time()
         self._started_utc = datetime.now(timezone.utc).isoformat(timespec="seconds")
@@ -219,6 +220,7 @@ class RunDirectory:
         return path
 
     def _lock(self) -> None:
+        self._created = not self.path.exists()
         try:
             self.path.mkdir(parents=True, exist_ok=True)
             fd = os.open(self.path / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
@@ -329,4 +331,10 @@ class RunDirectory:
             if self.staged and self.work != self.path:
                 shutil.rmtree(self.work, ignore_errors=True)
             self._unlock()
+            if exc_type is not None and self._created:   # a failed first run leaves nothing
+                (self.path / LOCK_NAME).unlink(missing_ok=True)
+                try:
+                    self.path.rmdir()
+                except OSError:
+                    pass
         return False
