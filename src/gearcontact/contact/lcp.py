@@ -460,13 +460,14 @@ def warm_up(solver: str = "pk_cg") -> float:
         Wall-clock seconds the warm-up took (compilation included), s.
     """
     t0 = time.perf_counter()
-    # a Hertzian patch (R = 10 mm, steel) over about a third of a 40 x 40 field, at two
-    # loads: the solver's windows then shrink and grow as in a real solve, so every
-    # array layout the kernels see there (contiguous or a strided window) is compiled
+    # a Hertzian patch (R = 10 mm, steel) on a 40 x 40 field at three loads: a third of
+    # the field, most of it, and beyond it (as an edge contact): the solver's windows
+    # then shrink, grow and span whole rows as in real solves, so every array layout the
+    # kernels see there (contiguous or a strided window) is compiled here
     n, d = 40, 0.01
     grid = TangentGrid.uniform(n, n, dx_mm=d, dy_mm=d, x0_mm=-0.5 * d * (n - 1),
                                y0_mm=-0.5 * d * (n - 1))
     x, y = np.meshgrid(grid.x_mm, grid.y_mm)
-    for load_n in (2.0, 20.0):
+    for load_n in (2.0, 20.0, 400.0):
         solve_lcp(0.05 * (x ** 2 + y ** 2), grid, load_n, solver=solver, warn_coarse=False)
     return time.perf_counter() - t0
