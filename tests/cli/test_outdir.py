@@ -185,6 +185,34 @@ def test_in_place_mode_records_and_replaces(tmp_path):
         assert not (tmp_path / "a.txt").exists()
         (run.work / "c.txt").write_text("3")
     assert _files(tmp_path) == ["c.txt", MANIFEST]
+    # a failed in-place run lists what it left, and the next run removes it
+    with pytest.raises(RuntimeError):
+        with RunDirectory(str(tmp_path), ["x"], staged=False) as run:
+            (run.work / "half.txt").write_text("h")
+            raise RuntimeError("tool crashed")
+    doc = json.loads((tmp_path / MANIFEST).read_text())
+    assert doc["exit_code"] == 1 and [f["path"] for f in doc["files"]] == ["half.txt"]
+    with RunDirectory(str(tmp_path), ["x"], staged=False) as run:
+        (run.work / "d.txt").write_text("4")
+    assert _files(tmp_path) == ["d.txt", MANIFEST]
+
+
+def test_command_reporting_bad_input_keeps_nothing(tmp_path, capsys, monkeypatch):
+    """A handler that returns exit 2 itself (e.g. a missing optional tool) commits
+    nothing: the previous run stays, a new directory is removed."""
+    assert _vectors(tmp_path / "v") == 0
+    before = {f: (tmp_path / "v" / f).read_bytes() for f in _files(tmp_path / "v")}
+
+    def refuse(out, **kw):
+        (out / "partial.txt").write_text("p")
+        return []
+
+    monkeypatch.setattr(cli_vectors, "export_vectors", refuse)
+    monkeypatch.setattr(cli_vectors, "run", lambda args: (refuse(args.out), 2)[1])
+    assert main(["vectors", "--out", str(tmp_path / "v"), "--count", "1"]) == 2
+    assert {f: (tmp_path / "v" / f).read_bytes() for f in _files(tmp_path / "v")} == before
+    assert main(["vectors", "--out", str(tmp_path / "new"), "--count", "1"]) == 2
+    assert not (tmp_path / "new").exists()
 
 
 def test_write_atomic_replaces_whole_files(tmp_path):

@@ -90,8 +90,7 @@ def _run(args, argv: list[str], name: str) -> int:
         text = " ".join(str(message).split())
         print(f"gearcontact {name}: warning: {text} ({category.__name__})", file=sys.stderr)
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("default")        # each distinct warning once per place
+    with warnings.catch_warnings():           # the filters stay Python's defaults
         warnings.showwarning = one_line
         return _run_command(args, argv)
 
@@ -108,6 +107,8 @@ def _run_command(args, argv: list[str]) -> int:
                       staged=getattr(args, "staged_output", True)) as run:
         args.run, args.out = run, run.work
         run.exit_code = int(args.func(args) or 0)
+        if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):
+            run.discard()       # a refused run keeps nothing; the previous run stays
     return run.exit_code
 
 

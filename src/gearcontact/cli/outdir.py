@@ -18,7 +18,8 @@ One policy, applied by :func:`gearcontact.cli.main` around each such command:
    the command fails, the staging directory is removed and the previous run stays as it
    was (a directory this run created is removed again). Commands whose generated files embed their own absolute paths (``rtl soc``,
    ``rtl synth``: LiteX/Yosys scripts) write in place instead (``staged=False``): the
-   previous run's files are removed before the work starts.
+   previous run's files are removed before the work starts, and a failed run's
+   ``run.json`` lists what it left (so that the next run removes it).
 4. **A lock.** An exclusive :func:`fcntl.flock` on ``.gearcontact.lock`` is held for the
    whole run; a second run into the same directory is refused (exit 2) while the first
    one holds it, so two runs cannot interleave their files.
@@ -197,6 +198,7 @@ class RunDirectory:
         self.work = self.path
         self._lock_fd = None
         self._created = False
+        self._discard = False
         self._started = time.perf_counter()
         self._started_wall = time.time()
         self._started_utc = datetime.now(timezone.utc).isoformat(timespec="seconds")
@@ -315,6 +317,11 @@ class RunDirectory:
                 "wall_s": round(time.perf_counter() - self._started, 3),
                 "timings_s": self.timings_s, "files": entries}
 
+    def discard(self) -> None:
+        """Keep nothing of this run (the command reported bad input or a failure
+        itself): on leaving, the staging directory is removed as after an exception."""
+        self._discard = True
+
     def _unlock(self) -> None:
         if self._lock_fd is not None:
             fcntl.flock(self._lock_fd, fcntl.LOCK_UN)
@@ -322,16 +329,21 @@ class RunDirectory:
             self._lock_fd = None
 
     def __exit__(self, exc_type, exc, tb) -> bool:
+        failed = exc_type is not None or self._discard
         try:
-            if exc_type is None:
+            # in place, the previous run is gone already: a failed run still lists what
+            # it left (exit code 1 when it raised), so that the next run removes it
+            if not failed or not self.staged:
                 files = self._commit()
+                if exc_type is not None:
+                    self.exit_code = 1
                 write_atomic(self.path / MANIFEST,
                              json.dumps(self._manifest(files), indent=2) + "\n")
         finally:
             if self.staged and self.work != self.path:
                 shutil.rmtree(self.work, ignore_errors=True)
             self._unlock()
-            if exc_type is not None and self._created:   # a failed first run leaves nothing
+            if failed and self._created and self.staged:   # a failed first run leaves nothing
                 (self.path / LOCK_NAME).unlink(missing_ok=True)
                 try:
                     self.path.rmdir()
