@@ -2,8 +2,8 @@
 
 ``rtl sim`` runs the corner cases plus N seeded random vectors of a core through the
 RTL (Verilator, or the Amaranth simulator) and the bit-exact golden model, and reports
-cycles per evaluation, vectors, mismatches and the simulator speed; the exit code is 1
-4 on any mismatch or cycle-count deviation. ``rtl verilog`` writes a core's Verilog and a
+cycles per evaluation, vectors, mismatches and the simulator speed; the exit code is 4
+on any mismatch or cycle-count deviation. ``rtl verilog`` writes a core's Verilog and a
 README of its ports; ``rtl soc`` and ``rtl synth`` (board flow, synthesis reports).
 
 ``soc`` and ``synth`` are defined in :mod:`.rtl_hw` and hooked in here.
