@@ -219,3 +219,28 @@ def test_write_atomic_replaces_whole_files(tmp_path):
     p = write_atomic(tmp_path / "x.json", "old")
     write_atomic(p, b"new")
     assert p.read_bytes() == b"new" and [q.name for q in tmp_path.iterdir()] == ["x.json"]
+
+
+def test_two_processes_cannot_interleave(tmp_path, capsys):
+    """A second process's run is refused while another process holds the directory."""
+    import subprocess
+    import sys
+
+    holder = subprocess.Popen(
+        [sys.executable, "-c",
+         "import sys\nfrom gearcontact.cli.outdir import RunDirectory\n"
+         f"with RunDirectory({str(tmp_path)!r}, ['x']) as run:\n"
+         "    (run.work / 'a.txt').write_text('first')\n"
+         "    print('held', flush=True)\n"
+         "    sys.stdin.readline()\n"],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+        env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)})
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        assert _vectors(tmp_path) == 2
+        assert "another gearcontact run" in capsys.readouterr().err
+    finally:
+        holder.communicate("\n", timeout=60)
+    assert holder.returncode == 0
+    assert (tmp_path / "a.txt").read_text() == "first"
+    assert _vectors(tmp_path) == 0 and not (tmp_path / "a.txt").exists()
