@@ -244,3 +244,14 @@ def test_two_processes_cannot_interleave(tmp_path, capsys):
     assert holder.returncode == 0
     assert (tmp_path / "a.txt").read_text() == "first"
     assert _vectors(tmp_path) == 0 and not (tmp_path / "a.txt").exists()
+
+
+def test_a_forged_manifest_removes_nothing_outside(tmp_path):
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / MANIFEST).write_text(json.dumps({"files": [{"path": "../victim.txt"},
+                                                      {"path": str(victim)}]}))
+    assert _vectors(out) == 0
+    assert victim.read_text() == "keep"

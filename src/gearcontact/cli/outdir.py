@@ -151,6 +151,12 @@ def _previous_files(root: Path) -> list[str] | None:
         return None
 
 
+def _inside(rel: str) -> bool:
+    """A manifest path that stays inside the directory (relative, no ``..``)."""
+    p = Path(rel)
+    return not p.is_absolute() and ".." not in p.parts and rel not in ("", ".")
+
+
 def _remove_empty_dirs(root: Path, rel_files) -> None:
     parents = sorted({p for f in rel_files for p in Path(f).parents if p != Path(".")},
                      key=lambda p: len(p.parts), reverse=True)
@@ -242,21 +248,31 @@ class RunDirectory:
         for entry in self.path.iterdir():   # staging left by a crashed run: ours, unlocked
             if entry.name.startswith(STAGING_PREFIX):
                 shutil.rmtree(entry, ignore_errors=True)
+        previous = _previous_files(self.path)
+        if previous is None:                # not a gearcontact run: refuse at a glance
+            top = sorted(e.name for e in self.path.iterdir() if not _ours(e.name))
+            top += [MANIFEST] if (self.path / MANIFEST).exists() else []
+            if top and not self.force:
+                self._refuse(top)
+            previous = []
+        # only listed files that are really inside the directory are ever removed
+        self._previous = [f for f in previous if _inside(f) and (self.path / f).is_file()]
+        if self.force and self.staged:
+            return                          # nothing below matters: no walk of a big tree
         files, dirs = _tree(self.path)
-        previous = _previous_files(self.path) or []
-        owned = set(previous)
+        owned = set(self._previous)
         owned_dirs = {p.as_posix() for f in owned for p in Path(f).parents}
         foreign = [f for f in files if f not in owned] + [d for d in dirs
                                                            if d not in owned_dirs]
-        if (self.path / MANIFEST).exists() and _previous_files(self.path) is None:
-            foreign.append(MANIFEST)
         if foreign and not self.force:
-            raise OutputDirectoryError(
-                self.given, f"holds {len(foreign)} entr{'y' if len(foreign) == 1 else 'ies'}"
-                f" not written by a gearcontact run (e.g. {sorted(foreign)[0]!r}); use an "
-                "empty or new directory, or --force to write beside them")
-        self._previous = [f for f in previous if f in set(files)]
+            self._refuse(foreign)
         self._foreign = set(foreign)
+
+    def _refuse(self, foreign) -> None:
+        raise OutputDirectoryError(
+            self.given, f"holds entries not written by a gearcontact run (e.g. "
+            f"{sorted(foreign)[0]!r}); use an empty or new directory, or --force to write "
+            "beside them")
 
     def __enter__(self) -> "RunDirectory":
         self._lock()
