@@ -13,6 +13,7 @@ from .options import (
     check_count,
     check_pair_arguments,
     check_torque,
+    lte_warnings,
     run_timings,
     warn,
 )
@@ -66,7 +67,7 @@ def run(args) -> int:
           + (f"; LTE p-p {res.lte.te_lcp_pp_arcsec:.2f} (LCP) / "
              f"{res.lte.te_pre_pp_arcsec:.2f} (preview) arcsec" if res.lte is not None else "")
           + f" -> {final_path(args, res.out_dir / 'summary.md')}")
-    for case in res.cases:
-        for line in case_warnings(case):
-            warn("analyze", line)
+    lines = [line for case in res.cases for line in case_warnings(case)]
+    for line in lines + (lte_warnings(res.lte) if res.lte is not None else []):
+        warn("analyze", line)
     return 0

@@ -19,6 +19,7 @@ from . import EXIT_CHECK_FAILED
 from .options import (
     add_pair_arguments,
     check_pair_arguments,
+    lte_warnings,
     rename_load_error,
     run_timings,
     warn,
@@ -65,9 +66,8 @@ def run(args) -> int:
           f"{res.compliance_lcp_mm_per_n:.3g} / preview {res.compliance_pre_mm_per_n:.3g} "
           f"mm/N; active pairs {res.active_lcp.min()}-{res.active_lcp.max()} -> "
           f"{final_path(args, args.out)}")
-    edge = [int(k) for k in res.edge_contact.nonzero()[0]]
-    if edge:
-        warn("lte", f"edge contact (load beyond the flank boundary) at phases {edge}")
+    for line in lte_warnings(res):
+        warn("lte", line)
     if not res.converged:
         bad = [k for k, s in enumerate(res.status) if s != "converged"]
         warn("lte", f"LCP not converged at phases {bad}")

@@ -11,6 +11,7 @@ from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
+           "case_warnings", "lte_warnings", "run_timings", "check_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm",
            "rename_load_error"]
 
@@ -127,6 +128,16 @@ def case_warnings(case, *, label: str = "") -> list[str]:
         out.append(f"{at}: the loaded contact reaches the edge of the gap field at "
                    f"{', '.join(p.edge_sides)}: enlarge the field")
     return out   # a grid too coarse is a Python warning of the solver (printed by main)
+
+
+def lte_warnings(lte) -> list[str]:
+    """What a user must see about a loaded TE (:class:`~gearcontact.contact.lte.LoadedTE`),
+    one line each: the phases with edge contact."""
+    edge = [int(k) for k in lte.edge_contact.nonzero()[0]]
+    if not edge:
+        return []
+    return [f"loaded TE at {lte.torque_nm:g} N·m: edge contact (load beyond the flank "
+            f"boundary) at {len(edge)} of {len(lte.edge_contact)} phases {edge}"]
 
 
 def run_timings(args, **timings) -> None:
