@@ -51,3 +51,30 @@ def test_design_json_spiral_bevel_is_strict_json(capsys):
     # ISO 23509 F.2: delta1 = 19.747 deg, beta1 = beta2 = 35 deg
     assert out["pitch_angles_deg"][0] == pytest.approx(19.747, abs=0.0005)
     assert out["spiral_angles_deg"] == [35.0, 35.0]
+
+
+def test_design_calibrate_needs_published_values_and_out(capsys, tmp_path):
+    # no published design point for a user's pair: named error before any TCA work
+    assert main(["design", "--pair", str(ROOT / "examples" / "iso23509_f3.toml"),
+                 "--calibrate", "--out", str(tmp_path)]) == 2
+    assert "--pair" in capsys.readouterr().err
+    assert main(["design", "--pair", "s0003-centred", "--calibrate"]) == 2
+    assert "--out" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_design_calibrate_reproduces_the_preset(capsys, tmp_path):
+    # the calibration is deterministic: rerunning it regenerates the s0003 preset's
+    # numbers (docs/calibration.md), ~45 s
+    import tomllib
+
+    from gearcontact.geometry.pair import load_pair, parse_pair
+
+    assert main(["design", "--pair", "s0003-centred", "--calibrate", "--out",
+                 str(tmp_path)]) == 0
+    assert "P0 gear radius" in capsys.readouterr().out
+    got = parse_pair(tomllib.loads((tmp_path / "calibrated.toml").read_text()))
+    preset = load_pair("s0003")
+    assert got.working_depth_factor == preset.working_depth_factor
+    for name, value in vars(preset.easeoff_coast).items():
+        assert getattr(got.easeoff_coast, name) == pytest.approx(value, rel=1e-6, abs=1e-9)

@@ -21,7 +21,7 @@ KEYS = ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm", "mesh_rotat
 @pytest.fixture(scope="module")
 def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("ltca") / "new"             # created by the command
-    assert main(["ltca", "--pair", "s0003", "--torque", "64.5", "--out", str(d),
+    assert main(["ltca", "--pair", "s0003-centred", "--torque", "64.5", "--out", str(d),
                  "--phases", "11", "--cells", "40"]) == 0
     return d
 
@@ -67,14 +67,15 @@ def test_bad_input(tmp_path, capsys, argv, word):
 
 @pytest.fixture(scope="module")
 def overload(tmp_path_factory):
-    """4000 N·m: the bearing runs off the tooth (s0003, rigid teeth)."""
+    """4000 N·m: the bearing runs off the tooth (s0003-centred, rigid teeth)."""
     d = tmp_path_factory.mktemp("ltca4000")
     import contextlib
     import io
 
     err = io.StringIO()
     with contextlib.redirect_stderr(err):
-        code = main(["ltca", "--torque", "4000", "--out", str(d), "--phases", "5",
+        code = main(["ltca", "--pair", "s0003-centred", "--torque", "4000", "--out", str(d),
+                     "--phases", "5",
                      "--cells", "24", "--export-problem", "--no-figures"])
     return code, err.getvalue(), d
 

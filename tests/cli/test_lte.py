@@ -22,7 +22,7 @@ KEYS = ("te_lcp_pp_arcsec", "te_pre_pp_arcsec", "te0_pp_arcsec", "compliance_lcp
 @pytest.fixture(scope="module")
 def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("lte") / "new"
-    assert main(["lte", "--pair", "s0003", "--torque", "64.5", "--out", str(d),
+    assert main(["lte", "--pair", "s0003-centred", "--torque", "64.5", "--out", str(d),
                  "--phases", "11", "--cells", "24", "--quiet"]) == 0
     return d
 

@@ -67,12 +67,13 @@ def test_torque_named_not_load(tmp_path, capsys, no_work):
 
 
 def test_torque_beyond_the_lever_limit_named_after_tca(tmp_path, capsys):
-    """5500 N·m passes the outer-radius bound (6080 N·m for s0003) but the TCA's lever
-    (36.7 mm) makes W = 150 kN > 131072 N: still reported as --torque, with the limit
-    of this pair (131072 N x 36.7 mm = 4.8 kN·m), before the LCP and any file."""
+    """5500 N·m passes the outer-radius bound (6080 N·m for s0003-centred) but the
+    TCA's lever (36.7 mm) makes W = 150 kN > 131072 N: still reported as --torque, with
+    the limit of this pair (131072 N x 36.7 mm = 4.8 kN·m), before the LCP and any
+    file."""
     out = tmp_path / "o"
-    code, err = _err(capsys, ["ltca", "--out", str(out), "--torque", "5500", "--phases",
-                              "5", "--cells", "24"])
+    code, err = _err(capsys, ["ltca", "--pair", "s0003-centred", "--out", str(out),
+                              "--torque", "5500", "--phases", "5", "--cells", "24"])
     assert code == EXIT_BAD_INPUT and "--torque (N·m) = 5500" in err and "(0, 48" in err
     assert "Traceback" not in err and not out.exists()   # created by the run, removed
 

@@ -14,8 +14,8 @@ from gearcontact.cli.outdir import MANIFEST
 
 
 @pytest.mark.parametrize("argv", [
-    ["tca", "--phases", "5", "--quiet"],
-    ["ltca", "--phases", "5", "--cells", "24", "--export-problem"],
+    ["tca", "--pair", "s0003-centred", "--phases", "5", "--quiet"],
+    ["ltca", "--pair", "s0003-centred", "--phases", "5", "--cells", "24", "--export-problem"],
 ])
 def test_identical_runs_identical_files(tmp_path, argv):
     outs = [tmp_path / "a", tmp_path / "b"]

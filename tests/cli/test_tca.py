@@ -19,7 +19,7 @@ from gearcontact.tca.phase_table import decode_binary, read_json
 @pytest.fixture(scope="module")
 def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("tca") / "new" / "dir"      # created by the command
-    assert main(["tca", "--pair", "s0003", "--out", str(d), "--phases", "61",
+    assert main(["tca", "--pair", "s0003-centred", "--out", str(d), "--phases", "61",
                  "--quiet"]) == 0
     return d
 

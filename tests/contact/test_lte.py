@@ -222,7 +222,7 @@ CELLS = 24
 @pytest.fixture(scope="module")
 def s0003_pair():
     from gearcontact.geometry.pair import load_pair
-    return load_pair("s0003")
+    return load_pair("s0003-centred")
 
 
 @pytest.fixture(scope="module")

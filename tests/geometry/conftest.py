@@ -8,7 +8,7 @@ from gearcontact.geometry.pair import load_pair
 
 @pytest.fixture(scope="session")
 def s0003():
-    return load_pair("s0003")
+    return load_pair("s0003-centred")
 
 
 @pytest.fixture(scope="session")

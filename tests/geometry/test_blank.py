@@ -62,7 +62,7 @@ def test_cone_relations_hold_exactly():
 
 
 def test_s0003_published_pitch_cones():
-    b = load_pair("s0003").blank
+    b = load_pair("s0003-centred").blank
     # published to 0.01 deg / 0.01 mm: the rounding interval is +-0.005
     assert round(b.pitch_angle_pinion_deg, 2) == 6.07
     assert round(b.pitch_angle_gear_deg, 2) == 83.15

@@ -72,7 +72,7 @@ def test_lengthwise_crowning_curvature(flanks):
     c = 0.5  # um/mm^2 (|E| <= 22 um over the face)
     eo = EaseOff.from_coefficients(EaseOffCoefficients(lengthwise_crowning_um_per_mm2=c),
                                    u_mean_mm=u_m, v_mean_mm=v_m)
-    eased = apply_easeoff(base, eo)
+    eased = apply_easeoff(base, eo, limit_um=flanks.easeoff_limit_um)
 
     def kappa_v(f):
         p = f.point(u_m, v_m)
@@ -88,7 +88,7 @@ def test_lengthwise_crowning_curvature(flanks):
 def test_zero_easeoff_is_conjugate(flanks):
     base = flanks.pinion_conjugate.side("coast")
     eo = EaseOff.from_coefficients(EaseOffCoefficients(), u_mean_mm=0.6, v_mean_mm=35.8)
-    same = apply_easeoff(base, eo)
+    same = apply_easeoff(base, eo, limit_um=flanks.easeoff_limit_um)
     p, q = base.point(1.0, 36.0), same.point(1.0, 36.0)
     assert np.allclose(p.r, q.r, atol=0) and np.allclose(p.n, q.n, atol=0)
 
@@ -98,8 +98,19 @@ def test_too_large_easeoff_rejected(flanks):
     eo = EaseOff.from_coefficients(EaseOffCoefficients(lengthwise_crowning_um_per_mm2=50.0),
                                    u_mean_mm=0.6, v_mean_mm=35.8)
     with pytest.raises(InputRangeError) as err:
-        apply_easeoff(base, eo)
-    assert "easeoff" in err.value.field
+        apply_easeoff(base, eo, limit_um=flanks.easeoff_limit_um)
+    # the message names the relief, where it occurs and the thickness-based limit
+    assert "easeoff" in err.value.field and "corner" in err.value.field
+    assert "tooth thickness" in str(err.value)
+
+
+def test_easeoff_limit_is_a_fraction_of_the_measured_tooth_thickness(flanks):
+    # s_mn from the two conjugate flanks against the ISO 23509 order of magnitude: the
+    # pinion of a 7-tooth hypoid is thickened above half the normal pitch pi m_mn / 2
+    m = flanks.blank.mean_normal_module_mm
+    s_mn = flanks.pinion_normal_thickness_mm
+    assert 0.5 * np.pi * m < s_mn < np.pi * m
+    assert flanks.easeoff_limit_um == pytest.approx(1e3 * 0.05 * s_mn)
     with pytest.raises(InputRangeError):
         EaseOffCoefficients(bias_um_per_mm2=float("nan"))
 

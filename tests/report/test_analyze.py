@@ -21,7 +21,7 @@ TORQUES = (32.25, 64.5, 258.0)
 @pytest.fixture(scope="module")
 def analysis(tmp_path_factory):
     out = tmp_path_factory.mktemp("analyze")
-    return run_analysis("s0003", out_dir=out, torques_nm=TORQUES, phases=15, progress=False)
+    return run_analysis("s0003-centred", out_dir=out, torques_nm=TORQUES, phases=15, progress=False)
 
 
 def test_files_written(analysis):
@@ -90,7 +90,7 @@ def test_published_values_have_provenance():
 
 
 def test_cli_analyze(tmp_path, capsys):
-    code = main(["analyze", "--pair", "s0003", "--out", str(tmp_path / "o"), "--torques",
+    code = main(["analyze", "--pair", "s0003-centred", "--out", str(tmp_path / "o"), "--torques",
                  "64.5", "--phases", "9", "--no-figures", "--quiet", "--lte-phases", "0"])
     assert code == 0
     assert "summary.md" in capsys.readouterr().out
@@ -104,6 +104,22 @@ def test_cli_analyze(tmp_path, capsys):
     assert listed == sorted(p.name for p in (tmp_path / "o").iterdir()
                             if not p.name.startswith(".") and p.name != "run.json")
     assert {"tca_s", "ltca_solve_ms", "preview_cpu", "jit_warm_up_s"} <= set(run["timings_s"])
+
+
+def test_cli_analyze_calibrated_preset(tmp_path, capsys):
+    # the README's main job on the calibrated preset: the design-point table shows P0
+    # reached (docs/calibration.md) and the loaded patch is edge-loaded (peak > 3 x p90).
+    # 61 phases: P0 is the discrete TE0 vertex, within half a phase step (~0.03 mm at 61
+    # phases per pitch, ~0.15 mm at 15) of the calibrated continuous vertex
+    code = main(["analyze", "--pair", "s0003", "--out", str(tmp_path / "o"), "--torques",
+                 "64.5", "--phases", "61", "--no-figures", "--quiet", "--lte-phases", "0"])
+    assert code == 0
+    text = (tmp_path / "o" / "summary.md").read_text()
+    assert "## Design point (coast flank pair)" in text
+    rows = [r for r in text.splitlines() if r.startswith("| P0 ")]
+    assert len(rows) == 4 and all(r.endswith("| yes |") for r in rows)
+    case = json.loads((tmp_path / "o" / "ltca.json").read_text())[0]
+    assert case["p_peak_mpa"] > 3.0 * case["p90_mpa"]
 
 
 def test_cli_analyze_bad_torque(tmp_path, capsys):

@@ -9,7 +9,7 @@ from gearcontact.tca.analysis import analyze_pair
 
 @pytest.fixture(scope="session")
 def s0003_pair():
-    return load_pair("s0003")
+    return load_pair("s0003-centred")
 
 
 @pytest.fixture(scope="session")

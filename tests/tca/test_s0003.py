@@ -88,7 +88,8 @@ def _easeoff(flanks, side, **coeffs):
     eo = EaseOff.from_coefficients(EaseOffCoefficients(**coeffs),
                                    u_mean_mm=mean["pinion_uv"][0],
                                    v_mean_mm=mean["pinion_uv"][1])
-    return eo, apply_easeoff(flanks.pinion_conjugate.side(side), eo)
+    return eo, apply_easeoff(flanks.pinion_conjugate.side(side), eo,
+                             limit_um=flanks.easeoff_limit_um)
 
 
 #: The calibrated valley: E = 8 (eta - 0.756)^2 - 4.57 um, no lengthwise relief.

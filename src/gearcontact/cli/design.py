@@ -9,8 +9,10 @@ least ``pitch_angles_deg``, ``spiral_angles_deg``, ``mean_cone_distances_mm``, e
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from ..geometry.pair import PRESETS, load_pair
+from ..validation import InputRangeError
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
 _PAIRED = (
@@ -44,6 +46,16 @@ def register(sub) -> None:
     p.add_argument("--pair", required=True, metavar="PRESET|FILE.toml",
                    help=f"built-in preset ({', '.join(PRESETS)}) or a pair TOML file")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--calibrate", action="store_true",
+                   help="calibrate the unpublished set-up (working depth, design-side "
+                        "ease-off) to the pair's published design point (TCA in the loop, "
+                        "~1 min); prints the target / achieved / tolerance table")
+    p.add_argument("--tip-margin", type=float, default=0.05, metavar="MM",
+                   help="with --calibrate: pinion tip radius above the published mating "
+                        "point, mm (default 0.05: a tip-edge bearing)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="with --calibrate: directory for calibrated.toml and "
+                        "calibration.json")
     p.set_defaults(func=run)
 
 
@@ -51,8 +63,32 @@ def _fmt(x) -> str:
     return str(x) if isinstance(x, int) else f"{x:.4f}"
 
 
+def _calibrate(args, pair) -> int:
+    from ..report.analyze import published_values
+    from ..tca.calibration import CalibrationTargets, calibrate_pair, calibration_toml
+
+    published = published_values(pair.name.removesuffix("-centred"))
+    if published is None:
+        raise InputRangeError("--pair", args.pair, "a built-in pair with published values "
+                              "(s0003, s0003-centred) for --calibrate")
+    if args.out is None:
+        raise InputRangeError("--out", None, "an output directory for calibrated.toml")
+    targets = CalibrationTargets.from_published(published)
+    args.out.mkdir(parents=True, exist_ok=True)
+    cal = calibrate_pair(pair, targets, tip_margin_mm=args.tip_margin, progress=True)
+    (args.out / "calibrated.toml").write_text(
+        calibration_toml(cal, name=pair.name.removesuffix("-centred")))
+    (args.out / "calibration.json").write_text(json.dumps(cal.as_dict(), indent=2))
+    print(cal.table())
+    print(f"design side {cal.side}; working depth factor {cal.pair.working_depth_factor:g}; "
+          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> {args.out / 'calibrated.toml'}")
+    return 0
+
+
 def run(args) -> int:
     pair = load_pair(args.pair)
+    if args.calibrate:
+        return _calibrate(args, pair)
     blank = pair.blank
     if args.json:
         out = {"pair": pair.name, **blank.as_dict()}

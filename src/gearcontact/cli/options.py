@@ -42,7 +42,9 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None) -> 
         p.add_argument("--torque", type=float, default=64.5,
                        help="gear torque in N·m (default 64.5); the normal load it makes "
                             "must lie in the preview envelope (1 to 131072 N)")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
+    p.add_argument("--side", default=None, choices=("drive", "coast"),
+                   help="flank pair (default: the pair's design_side; s0003: coast, the "
+                        "published design point)")
     p.add_argument("--phases", type=int, default=61,
                    help=f"TCA mesh phases per pinion pitch, both ends included, 3 to "
                         f"{MAX_PHASES} (default 61)")
@@ -60,6 +62,7 @@ def check_pair_arguments(args) -> None:
     if getattr(args, "cells", None) is not None:
         check_count("--cells", args.cells, 16, MAX_CELLS, note=" per side")
     args.gear_pair = load_pair(args.pair)
+    args.side = args.side or args.gear_pair.design_side
     if getattr(args, "torque", None) is not None:
         check_torque("--torque (N·m)", args.torque, args.gear_pair)
 

@@ -362,7 +362,7 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
     return out
 
 
-def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
+def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
               edge_reach: float = 0.5, preview_edges: bool = True,
@@ -380,8 +380,9 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         The pair (kinematics with assembly errors, materials).
     torque_nm : float
         Gear torque, N·m (> 0).
-    side : str
-        ``"drive"`` or ``"coast"`` (the side the TCA ran on).
+    side : str, optional
+        ``"drive"`` or ``"coast"`` (the side the TCA ran on); default the pair's
+        ``design_side``.
     cells : int
         Cells per side of each pair's field (>= 16; 40 resolves the minor semi-axis of
         the fully loaded pair with 10 cells, which puts the approach within about 1 %
@@ -412,6 +413,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     LoadedTE
         Per-phase LCP status in ``.status``; ``.converged`` is False if any failed.
     """
+    side = pair.design_side if side is None else side
     t_all = time.perf_counter()
     t = check_positive("torque_nm (N·m)", torque_nm)
     if int(cells) < 16:

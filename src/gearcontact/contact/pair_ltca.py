@@ -109,7 +109,7 @@ def preview_ellipse(preview: PreviewResult, grid: TangentGrid) -> ContactEllipse
                           cells_per_semi_minor=preview.b_mm / dy)
 
 
-def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
+def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
                      cells: int = 80, extent_factor: tuple[float, float] = (1.6, 2.0),
                      solver: str = "pk_cg", warm_start: PatchContact | None = None
                      ) -> PairLoadCase:
@@ -125,8 +125,9 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str = "drive"
         The pair (kinematics with assembly errors, material).
     torque_nm : float
         Gear torque, N·m (> 0).
-    side : str
-        ``"drive"`` or ``"coast"``.
+    side : str, optional
+        ``"drive"`` or ``"coast"`` (the side the TCA ran on); default the pair's
+        ``design_side``.
     cells : int
         Cells per side of the square tangent-plane grid (>= 16).
     extent_factor : (float, float)
@@ -138,6 +139,7 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str = "drive"
     """
     from ..tca.stencil import gap_field
 
+    side = pair.design_side if side is None else side
     t = check_positive("torque_nm (N·m)", torque_nm)
     if int(cells) < 16:
         raise InputRangeError("cells", cells, ">= 16 per side")

@@ -41,11 +41,20 @@ import numpy as np
 from ..validation import InputRangeError
 from .sheet import RadialSheet
 
-__all__ = ["EaseOff", "apply_easeoff", "MAX_EASEOFF_UM"]
+__all__ = ["EaseOff", "apply_easeoff", "easeoff_limit_um", "max_relief_um",
+           "mean_normal_thickness_mm",
+           "MAX_EASEOFF_THICKNESS_FRACTION"]
 
-#: Largest |E| accepted over the flank, um (the node grid keeps room for the mapping).
-MAX_EASEOFF_UM = 30.0
-_NODE_SHRINK_MM = 0.04   # eased nodes stay this far inside the base node box
+#: Largest |E| accepted over the flank as a fraction of the pinion mean normal tooth
+#: thickness s_mn. Why a fraction of the thickness: the relief removes material along
+#: the normal, so E is a local loss of tooth thickness. Ease-off is a micro-geometry
+#: (machine-setting) modification within the finishing stock of the flank; at 5 % of
+#: s_mn it already changes the local bending stiffness (~ t^3) by ~15 % and the backlash
+#: by E, beyond which the "ease-off" is a different tooth form and should be designed
+#: as one (pressure angle, addendum, thickness), not as a relief. For s0003 (s_mn ~ 1.7
+#: mm) the limit is ~85 um; it scales with the tooth size instead of being a fixed value.
+MAX_EASEOFF_THICKNESS_FRACTION = 0.05
+_NODE_SHRINK_MM = 0.04   # eased nodes stay at least this far inside the base node box
 _ITER = 30
 
 
@@ -84,25 +93,86 @@ class EaseOff:
         return 1e-3 * um
 
 
-def apply_easeoff(base: RadialSheet, easeoff: EaseOff) -> RadialSheet:
+def mean_normal_thickness_mm(drive: RadialSheet, coast: RadialSheet, *, u_mm: float,
+                             v_mm: float, spiral_angle_deg: float) -> float:
+    """Pinion mean normal tooth thickness s_mn from its two flanks, mm.
+
+    The transverse arc thickness at the mean point (radius R, axial position v) is
+    ``R |psi_coast - psi_drive|`` (angular positions of the two flanks of one tooth,
+    both centred on the mean point at phi1 = 0); ``s_mn = s_mt cos(beta_m1)``
+    (ISO 23509 clause 7, mean normal circular thickness).
+    """
+    pts = [sheet.evaluate(np.array([u_mm]), np.array([v_mm]), second=False).r[0]
+           for sheet in (drive, coast)]
+    ang = [np.arctan2(p[2], p[1]) for p in pts]
+    d = abs((ang[1] - ang[0] + np.pi) % (2.0 * np.pi) - np.pi)
+    radius = float(np.hypot(pts[0][1], pts[0][2]))
+    return float(radius * d * np.cos(np.radians(spiral_angle_deg)))
+
+
+def easeoff_limit_um(thickness_mm: float) -> float:
+    """Largest accepted |E| over a flank, um: :data:`MAX_EASEOFF_THICKNESS_FRACTION`
+    of the pinion mean normal tooth thickness ``thickness_mm``."""
+    return 1e3 * MAX_EASEOFF_THICKNESS_FRACTION * float(thickness_mm)
+
+
+def max_relief_um(easeoff: EaseOff, boundary) -> tuple[float, float, float]:
+    """Largest |E| over a flank box (41 x 41 samples, corners included), um, and its
+    (u, v) in mm. E is quadratic, so its extremes lie at corners or on edges."""
+    b = boundary
+    U, V = np.meshgrid(np.linspace(b.u_root, b.u_tip, 41), np.linspace(b.v_toe, b.v_heel, 41),
+                       indexing="ij")
+    E = 1e3 * np.abs(easeoff.relief_mm(U, V))
+    k = np.unravel_index(int(np.argmax(E)), E.shape)
+    return float(E[k]), float(U[k]), float(V[k])
+
+
+def _corner_name(base: RadialSheet, u: float, v: float) -> str:
+    """'toe/root'-style name of the flank region of (u, v)."""
+    b = base.boundary
+    prof = "root" if u < 0.5 * (b.u_root + b.u_tip) else "tip"
+    face = "toe" if v < 0.5 * (b.v_toe + b.v_heel) else "heel"
+    return f"{face}/{prof}"
+
+
+def apply_easeoff(base: RadialSheet, easeoff: EaseOff, *, limit_um: float) -> RadialSheet:
     """The eased flank ``r - E N`` of ``base`` as a new :class:`RadialSheet`.
+
+    Parameters
+    ----------
+    base : RadialSheet
+        The conjugate (un-eased) pinion flank.
+    easeoff : EaseOff
+    limit_um : float
+        Largest |E| accepted over the flank, um (:func:`easeoff_limit_um`).
 
     Raises
     ------
     InputRangeError
-        If |E| exceeds :data:`MAX_EASEOFF_UM` anywhere on the node box.
+        If |E| exceeds ``limit_um`` anywhere on the flank (the message names the
+        largest relief, where it occurs and the limit).
     ArithmeticError
         If the node mapping does not converge.
     """
-    us = np.linspace(base.u_nodes[0] + _NODE_SHRINK_MM, base.u_nodes[-1] - _NODE_SHRINK_MM,
-                     len(base.u_nodes))
-    vs = np.linspace(base.v_nodes[0] + _NODE_SHRINK_MM, base.v_nodes[-1] - _NODE_SHRINK_MM,
-                     len(base.v_nodes))
+    b = base.boundary
+    e_max, u_k, v_k = max_relief_um(easeoff, b)
+    if e_max > limit_um:
+        raise InputRangeError(
+            f"easeoff ({base.side}) relief at the {_corner_name(base, u_k, v_k)} corner "
+            f"(u = {u_k:.2f}, v = {v_k:.2f} mm)", f"|E| = {e_max:.1f} um",
+            f"<= {limit_um:.1f} um ({100 * MAX_EASEOFF_THICKNESS_FRACTION:g} % of the pinion "
+            "mean normal tooth thickness; reduce the crowning or move the relief centre)")
+    # eased nodes must map back into the base node box: the node moves by at most |E|
+    # (times the in-plane part of the unit normal), so shrink by the largest relief
+    # beyond the box, within the base grid's margin around the box
+    margin = min(b.u_root - base.u_nodes[0], base.u_nodes[-1] - b.u_tip,
+                 b.v_toe - base.v_nodes[0], base.v_nodes[-1] - b.v_heel)
+    ends = np.meshgrid(base.u_nodes[[0, -1]], base.v_nodes[[0, -1]], indexing="ij")
+    e_nodes = 1e-3 * max(e_max, 1e3 * float(np.abs(easeoff.relief_mm(*ends)).max()))
+    shrink = max(_NODE_SHRINK_MM, min(1.2 * e_nodes + 0.005, 0.9 * margin))
+    us = np.linspace(base.u_nodes[0] + shrink, base.u_nodes[-1] - shrink, len(base.u_nodes))
+    vs = np.linspace(base.v_nodes[0] + shrink, base.v_nodes[-1] - shrink, len(base.v_nodes))
     U, V = np.meshgrid(us, vs, indexing="ij")
-    e_max = 1e3 * float(np.max(np.abs(easeoff.relief_mm(U, V))))
-    if e_max > MAX_EASEOFF_UM:
-        raise InputRangeError(f"easeoff ({base.side})", f"max |E| = {e_max:.2f} um",
-                              f"<= {MAX_EASEOFF_UM:g} um over the flank")
     if easeoff.is_zero:
         return RadialSheet(side=base.side, cone=base.cone, u_nodes=base.u_nodes,
                            v_nodes=base.v_nodes, psi_nodes=base.psi_nodes,

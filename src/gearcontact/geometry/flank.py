@@ -257,6 +257,9 @@ class FlankSet:
     mean_contact : dict
         Per side: ``{"gear_uv": (u2, v2), "pinion_uv": (u1, v1), "phi2_rad": phi2}`` -
         the conjugate contact at the pinion's mean node, a starting guess for TCA.
+    pinion_normal_thickness_mm : float
+        Pinion mean normal tooth thickness s_mn of the conjugate flanks, mm
+        (:func:`~.easeoff.mean_normal_thickness_mm`); sets the ease-off limit.
     """
 
     blank: BlankDesign
@@ -266,6 +269,14 @@ class FlankSet:
     pinion: MemberFlanks
     pinion_conjugate: MemberFlanks
     mean_contact: dict
+    pinion_normal_thickness_mm: float
+
+    @property
+    def easeoff_limit_um(self) -> float:
+        """Largest accepted ease-off |E| over a pinion flank, um
+        (:func:`~.easeoff.easeoff_limit_um`)."""
+        from .easeoff import easeoff_limit_um
+        return easeoff_limit_um(self.pinion_normal_thickness_mm)
 
     def flank(self, member: str, side: str):
         """Flank of ``member`` ("gear" | "pinion") and ``side`` ("drive" | "coast")."""
@@ -300,7 +311,7 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         (:class:`~.conjugate.UndercutError`).
     """
     from .conjugate import conjugate_pinion_flank
-    from .easeoff import EaseOff, apply_easeoff
+    from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
 
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
@@ -313,9 +324,15 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         conj[side], mean[side] = conjugate_pinion_flank(
             gear[side], blank=blank, kinematics=kin,
             pinion_face_width_mm=pair.pinion_face_width_mm, n_u=n_u, n_v=n_v)
+    u_m, v_m = mean["drive"]["pinion_uv"]
+    thickness = mean_normal_thickness_mm(conj["drive"], conj["coast"], u_mm=u_m, v_mm=v_m,
+                                         spiral_angle_deg=blank.spiral_angle_pinion_deg)
+    for side in SIDES:
         coeffs = pair.easeoff_drive if side == "drive" else pair.easeoff_coast
         eased[side] = apply_easeoff(conj[side], EaseOff.from_coefficients(
-            coeffs, u_mean_mm=mean[side]["pinion_uv"][0], v_mean_mm=mean[side]["pinion_uv"][1]))
+            coeffs, u_mean_mm=mean[side]["pinion_uv"][0], v_mean_mm=mean[side]["pinion_uv"][1]),
+            limit_um=easeoff_limit_um(thickness))
     return FlankSet(blank=blank, kinematics=kin, cutter=placement,
                     gear=MemberFlanks(**gear), pinion=MemberFlanks(**eased),
-                    pinion_conjugate=MemberFlanks(**conj), mean_contact=mean)
+                    pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
+                    pinion_normal_thickness_mm=thickness)

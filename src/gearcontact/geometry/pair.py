@@ -26,6 +26,8 @@ is a complete, commented example; ``examples/`` holds more.
     working_depth_factor = 2.0          # k_d (default 2.0)
     clearance_factor = 0.125            # k_c (default 0.125)
     gear_addendum_factor = 0.15         # c_ham (default 0.35)
+    design_side = "drive"               # flank pair analysed and loaded by default
+                                        # ("drive" | "coast"; default "drive")
 
     [cutter]                            # face-milling cutter and blades
     radius_mm = 45.1                    # r_c0 (nominal radius, slot centre line)
@@ -67,6 +69,7 @@ ISO 23509:2016, *Bevel and hypoid gear geometry*, clauses 5-7.
 
 from __future__ import annotations
 
+import dataclasses
 import tomllib
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -79,10 +82,13 @@ from .blank import BlankDesign, design_blank
 from .kinematics import AssemblyErrors, MeshKinematics
 
 __all__ = ["CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
-           "parse_pair"]
+           "parse_pair", "pair_to_toml"]
 
-#: Built-in presets: name -> resource file in ``gearcontact/data/pairs``.
-PRESETS = ("s0003",)
+#: Built-in presets (resource files ``gearcontact/data/pairs/<name>.toml``): ``s0003``
+#: calibrated to the published design point (tip-edge bearing on the coast flank pair,
+#: docs/calibration.md) and ``s0003-centred``, the same pair with a centred drive-side
+#: bearing (the Hertzian reference case).
+PRESETS = ("s0003", "s0003-centred")
 
 
 @dataclass(frozen=True)
@@ -175,6 +181,9 @@ class GearPair:
     assembly : AssemblyErrors
         Mounting errors E, P, G, alpha used by TCA (flanks are generated without them).
     pinion_material, gear_material : Material
+    design_side : str
+        Flank pair of the design point, "drive" (gear convex / pinion concave) or
+        "coast": the side every command analyses and loads unless told otherwise.
     """
 
     name: str
@@ -197,8 +206,11 @@ class GearPair:
     assembly: AssemblyErrors = field(default_factory=AssemblyErrors)
     pinion_material: Material = STEEL
     gear_material: Material = STEEL
+    design_side: str = "drive"
 
     def __post_init__(self):
+        if self.design_side not in ("drive", "coast"):
+            raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
         if self.pinion_hand != "right":
             raise InputRangeError(
                 "design.pinion_hand", self.pinion_hand,
@@ -258,7 +270,8 @@ _SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
                "gear_mean_pitch_radius_mm": (_FLOAT, False),
                "pinion_spiral_angle_deg": (_FLOAT, True), "gear_face_width_mm": (_FLOAT, True),
                "pinion_face_width_mm": (_FLOAT, True), "working_depth_factor": (_FLOAT, False),
-               "clearance_factor": (_FLOAT, False), "gear_addendum_factor": (_FLOAT, False)},
+               "clearance_factor": (_FLOAT, False), "gear_addendum_factor": (_FLOAT, False),
+               "design_side": (_STR, False)},
     "cutter": {"radius_mm": (_FLOAT, True), "point_width_mm": (_FLOAT, True),
                "edge_radius_mm": (_FLOAT, True), "pressure_angle_drive_deg": (_FLOAT, False),
                "pressure_angle_coast_deg": (_FLOAT, False),
@@ -388,3 +401,50 @@ def load_pair(source: str | Path) -> GearPair:
         if not where:
             raise
         raise InputRangeError(f"{where}{exc.field}", exc.value, exc.allowed) from None
+
+
+def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> str:
+    """The TOML text of ``pair`` (the format of the module docstring; floats at full
+    precision, so ``parse_pair(tomllib.loads(pair_to_toml(p)))`` rebuilds ``p``).
+
+    ``comments`` maps a table name (``""`` for the file head, ``"easeoff.coast"``, ...)
+    to a comment block written above that table.
+    """
+    comments = comments or {}
+
+    def block(name: str, items: dict) -> list[str]:
+        lines = [f"# {c}" if c else "#" for c in comments.get(name, "").splitlines()]
+        if name:
+            lines.append(f"[{name}]")
+        for key, value in items.items():
+            if value is None:
+                continue
+            lines.append(f"{key} = " + (f'"{value}"' if isinstance(value, str) else repr(value)))
+        return lines + [""]
+
+    design = {"pinion_hand": pair.pinion_hand,
+              "gear_mean_cone_distance_mm": pair.gear_mean_cone_distance_mm,
+              "gear_mean_pitch_radius_mm": pair.gear_mean_pitch_radius_mm,
+              "pinion_spiral_angle_deg": pair.pinion_spiral_angle_deg,
+              "gear_face_width_mm": pair.gear_face_width_mm,
+              "pinion_face_width_mm": pair.pinion_face_width_mm,
+              "working_depth_factor": pair.working_depth_factor,
+              "clearance_factor": pair.clearance_factor,
+              "gear_addendum_factor": pair.gear_addendum_factor,
+              "design_side": pair.design_side}
+    a = pair.assembly
+    out = block("", {"name": pair.name})
+    out += block("teeth", {"pinion": pair.pinion_teeth, "gear": pair.gear_teeth})
+    out += block("axes", {"shaft_angle_deg": pair.shaft_angle_deg, "offset_mm": pair.offset_mm})
+    out += block("design", design)
+    out += block("cutter", dataclasses.asdict(pair.cutter))
+    for side in ("drive", "coast"):
+        c = getattr(pair, f"easeoff_{side}")
+        out += block(f"easeoff.{side}", {k: float(v) for k, v in dataclasses.asdict(c).items()})
+    out += block("assembly", {"E_mm": a.E_mm, "P_mm": a.P_mm, "G_mm": a.G_mm,
+                              "alpha_deg": a.alpha_deg})
+    for member in ("pinion", "gear"):
+        m = getattr(pair, f"{member}_material")
+        out += block(f"material.{member}", {"youngs_modulus_gpa": m.youngs_modulus_mpa / 1e3,
+                                            "poisson_ratio": m.poisson_ratio})
+    return "\n".join(out)

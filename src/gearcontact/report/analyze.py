@@ -87,6 +87,10 @@ class Analysis:
         :func:`.precision.precision_sweeps`).
     latency : ScalarLatency or None
         fp64 preview CPU latency measured on this machine (:mod:`.latency`).
+    side : str
+        Flank pair analysed ("drive" | "coast").
+    flanks : FlankSet or None
+        The flanks the analysis ran on.
     """
 
     pair: object
@@ -99,11 +103,18 @@ class Analysis:
     lte: object = None
     precision: tuple | None = None
     latency: object = None
+    side: str = "drive"
+    flanks: object = None
 
 
 def published_values(pair_name: str) -> dict | None:
-    """Published reference values for a built-in pair (with provenance), or None."""
-    res = resources.files("gearcontact").joinpath(f"data/published/{pair_name}.json")
+    """Published reference values for a built-in pair (with provenance), or None.
+
+    The variant ``s0003-centred`` (same pair, centred bearing) is compared with the
+    published values of ``s0003``.
+    """
+    base = pair_name.removesuffix("-centred")
+    res = resources.files("gearcontact").joinpath(f"data/published/{base}.json")
     if not res.is_file():
         return None
     return json.loads(res.read_text())
@@ -121,7 +132,7 @@ def _preview_rows(cases, golden, chain) -> list[list]:
 
 
 def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases: int = 61,
-                 side: str = "drive", solver: str = "pk_cg", figures: bool = True,
+                 side: str | None = None, solver: str = "pk_cg", figures: bool = True,
                  progress: bool = True, lte_torque_nm: float | None = 64.5,
                  lte_phases: int = 61) -> Analysis:
     """Run the main job on ``pair`` (preset name, TOML path or GearPair) into ``out_dir``.
@@ -135,8 +146,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         Gear torques, N·m (> 0).
     phases : int
         TCA phases per pinion pitch (>= 3; 61 for reports).
-    side : str
-        ``"drive"`` or ``"coast"``.
+    side : str, optional
+        ``"drive"`` or ``"coast"``; default the pair's ``design_side``.
     solver : str
         LCP solver for the loaded contact.
     figures : bool
@@ -152,6 +163,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     """
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
+    side = pair.design_side if side is None else side
     # validate cheap inputs before the expensive stages
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:
@@ -247,6 +259,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     steps.update(1)
     steps.close()
     result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision, latency)
+                      precision, latency, side, flanks)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

@@ -16,10 +16,11 @@ from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
                         relative_curvature)
 from .mesh import MeshCycle, mesh_cycle
 from .phase_table import PhaseTable, phase_table
-from .solve import ContactGuess, MatingPoint
+from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError,
+                    solve_mating_point)
 from .stencil import GapField, gap_at, gap_field_80, hardware_stencil
 
-__all__ = ["TcaAnalysis", "analyze", "analyze_pair", "pattern_on_flank"]
+__all__ = ["TcaAnalysis", "analyze", "analyze_pair", "pattern_on_flank", "reference_start"]
 
 
 @dataclass(frozen=True)
@@ -134,10 +135,10 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     return TcaAnalysis(cycle, table, mean, rc, ell, field, stencil, inside, timings)
 
 
-def analyze_pair(pair, *, side: str = "drive", phases: int = 61, pairs: int = 2,
+def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int = 2,
                  flanks=None, progress: bool = False) -> tuple[TcaAnalysis, object]:
     """Build the flanks of a :class:`~gearcontact.geometry.pair.GearPair` and analyze
-    one side with the pair's assembly errors.
+    one side (default the pair's ``design_side``) with the pair's assembly errors.
 
     The reference point is the mating point at ``phi1_0 = u phi2_0`` of the conjugate
     mean contact reported by :func:`~gearcontact.geometry.flank.build_flanks`.
@@ -148,16 +149,67 @@ def analyze_pair(pair, *, side: str = "drive", phases: int = 61, pairs: int = 2,
     """
     from ..geometry.flank import SIDES, build_flanks
 
+    if side is None:
+        side = pair.design_side
     if side not in SIDES:
         raise ValueError(f"side = {side!r} is not one of {SIDES}")
     if flanks is None:
         flanks = build_flanks(pair)
+    kin = pair.kinematics()
+    start, fixed = reference_start(pair, flanks, side)
+    result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
+                     pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
+                     phases=phases, pairs=pairs, progress=progress)
+    return result, flanks
+
+
+def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
+    """A contact state from which the mesh cycle of ``side`` can start, and the variable
+    its first solve holds.
+
+    First the conjugate contact at the pinion's mean node (``phi1`` held); if the eased
+    contact at that phase lies beyond the flank (a bearing placed far from the mean
+    node, e.g. at the tip edge), the conjugate contacts of pinion points around the
+    least-relief point of the ease-off are tried with their height ``u1`` held (the
+    phase free), since the eased path need not cross a given conjugate contact line.
+
+    Raises
+    ------
+    EdgeContact
+        If no candidate yields an interior mating point (the bearing has left the
+        flank at every phase tried).
+    """
+    from ..geometry.easeoff import EaseOff
+
     mean = flanks.mean_contact[side]
     kin = pair.kinematics()
+    pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
+    conj = flanks.pinion_conjugate.side(side)
     phi2 = float(mean["phi2_rad"])
-    start = ContactGuess(*map(float, mean["pinion_uv"]), *map(float, mean["gear_uv"]),
+    first = ContactGuess(*map(float, mean["pinion_uv"]), *map(float, mean["gear_uv"]),
                          pair.ratio * phi2, phi2)
-    result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
-                     pinion_teeth=pair.pinion_teeth, start=start, phases=phases,
-                     pairs=pairs, progress=progress)
-    return result, flanks
+    try:
+        solve_mating_point(pinion, gear, kin, first, fixed="phi1")
+        return first, "phi1"
+    except (EdgeContact, TcaConvergenceError) as exc:
+        error = exc
+    b = conj.boundary
+    eo = EaseOff.from_coefficients(getattr(pair, f"easeoff_{side}"),
+                                   u_mean_mm=mean["pinion_uv"][0], v_mean_mm=mean["pinion_uv"][1])
+    U, V = np.meshgrid(np.linspace(b.u_root, b.u_tip, 25), np.linspace(b.v_toe, b.v_heel, 25),
+                       indexing="ij")
+    k = np.unravel_index(int(np.argmin(eo.relief_mm(U, V))), U.shape)
+    du, dv = 0.1 * (b.u_tip - b.u_root), 0.1 * (b.v_heel - b.v_toe)
+    for fu, fv in ((0, 0), (-1, 0), (-2, 0), (-1, -1), (-1, 1), (-3, 0), (-2, -2), (-2, 2)):
+        u1 = float(np.clip(U[k] + fu * du, b.u_root + 0.5 * du, b.u_tip - 0.5 * du))
+        v1 = float(np.clip(V[k] + fv * dv, b.v_toe + 0.5 * dv, b.v_heel - 0.5 * dv))
+        ms = conj.exact(np.array(u1), np.array(v1))
+        u2, v2 = gear.surface_parameters(ms.h_mm, ms.theta_rad)
+        p2 = float(ms.phi2_rad)
+        guess = ContactGuess(u1, v1, float(u2), float(v2), pair.ratio * p2, p2)
+        try:
+            solve_mating_point(pinion, gear, kin, guess, fixed="u1")
+            return guess, "u1"
+        except (EdgeContact, TcaConvergenceError):
+            continue
+    raise error

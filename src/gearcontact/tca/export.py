@@ -43,13 +43,14 @@ def write_csv(path: Path, header: list[str], rows) -> None:
     path.write_text("\n".join(lines) + "\n")
 
 
-def write_tca_outputs(res, flanks, pair, out, *, side: str = "drive",
+def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
                       table_records: int = 16, figures: bool = True) -> dict:
     """Write the TCA files of ``res`` (a :class:`~.analysis.TcaAnalysis` of ``pair``'s
     ``side`` on ``flanks``) into the directory ``out`` (created if missing).
 
     Returns the ``tca.json`` summary dict.
     """
+    side = pair.design_side if side is None else side
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     cyc, mp, rc, ell = res.cycle, res.mean_point, res.mean_curvature, res.mean_ellipse

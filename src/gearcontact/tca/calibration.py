@@ -1,0 +1,578 @@
+"""Calibration of a pair's unpublished set-up against a published design point.
+
+A published study usually gives the pitch-cone data and a handful of results of its
+design mesh phase (mating point, TE0, contact ellipse) but not the tooth proportions
+and ease-off that produced them. This module closes that gap by TCA in the loop
+(docs/calibration.md):
+
+1. **Design flank.** The published mating point P0 must lie on the surface of action
+   of one flank pair; :func:`surface_of_action_offset` measures, for each side, the
+   invariant distance of P0 from the contact of the *conjugate* flanks (no ease-off):
+   the side with the smaller offset is the design side.
+2. **Tip.** P0 must lie on the pinion flank: :func:`working_depth_for_tip` chooses the
+   working-depth factor ``k_d`` so that the pinion tip cone passes ``tip_margin_mm``
+   above P0 at P0's axial position (the published bearing is a tip-edge bearing; a
+   margin > 0 keeps the mating point an interior point for the Newton solve).
+3. **Ease-off.** The five ease-off coefficients of the design side are solved by
+   bounded least squares (``scipy.optimize.least_squares``) against the targets in
+   their order of priority - the four frame-invariant coordinates of P0 (radius and
+   axial position on both members), TE0 peak-to-peak, the Hertz ellipse 2a x 2b at the
+   design torque, its angle from the lengthwise direction - with weights that encode
+   that order (:class:`CalibrationTargets`).
+
+The reference point of the objective is the *continuous* TE0 vertex (parabolic
+interpolation of the path's TE0 at the discrete vertex, then a mating-point solve at
+that phase), so that the objective is smooth in the coefficients; the TCA of the
+calibrated pair reports the discrete vertex, within half a phase step of it.
+
+Frame invariants: gear radius ``sqrt(x^2 + y^2)`` and axial position ``z``; pinion
+radius ``sqrt((y + E)^2 + z^2)`` and axial position ``x`` (meshing frame of
+:mod:`gearcontact.geometry.kinematics`). They do not depend on the rotation phase at
+which a point is reported, so they compare design points across frames.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 9
+(TCA), sec. 21.8 (local synthesis: bearing position, path, TE level prescribed at the
+mean point).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares, minimize_scalar
+
+from ..analytic.hertz import hamrock_brewe_hertz
+from ..contact.load import normal_load_from_torque
+from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um
+from ..geometry.flank import SIDES, build_flanks
+from ..geometry.pair import EaseOffCoefficients, GearPair
+from ..materials import effective_modulus_mpa
+from ..validation import InputRangeError, check_positive
+from .curvature import contact_ellipse, relative_curvature
+from .mesh import mesh_cycle
+from .solve import ContactGuess, EdgeContact, solve_mating_point
+
+__all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibration", "calibrate_pair",
+           "point_invariants", "surface_of_action_offset", "working_depth_for_tip",
+           "evaluate_design_point", "DesignPoint", "PRIORITY_WEIGHTS",
+           "centred_coefficients", "design_point_at", "design_point_rows"]
+
+_INVARIANTS = ("gear radius", "gear axial", "pinion radius", "pinion axial")
+_COEFFS = tuple(EaseOffCoefficients.__dataclass_fields__)
+
+
+def point_invariants(point_mm, offset_mm: float) -> np.ndarray:
+    """Frame-invariant coordinates of a meshing-frame point, mm.
+
+    Returns ``(gear radius, gear axial z, pinion radius, pinion axial x)``.
+    """
+    x, y, z = (float(c) for c in point_mm)
+    return np.array([np.hypot(x, y), z, np.hypot(y + offset_mm, z), x])
+
+
+@dataclass(frozen=True)
+class CalibrationTargets:
+    """Published design-point results and the tolerance each is met to.
+
+    Parameters
+    ----------
+    mean_point_mm : (3,) float
+        Published TCA mating point P0 in the meshing frame, mm.
+    te0_pp_arcsec : float
+        Unloaded TE peak-to-peak over one pinion pitch, arcsec.
+    ellipse_length_mm, ellipse_width_mm : float
+        Hertz contact ellipse 2a x 2b at ``torque_nm``, mm.
+    ellipse_angle_deg : float
+        Angle of the major axis from the lengthwise direction, deg.
+    torque_nm : float
+        Design gear torque, N·m.
+    tol_point_mm, tol_te0_rel, tol_length_rel, tol_width_rel, tol_angle_deg : float
+        Tolerances: invariant coordinates of P0 (mm), TE0 (relative), 2a and 2b
+        (relative), angle (deg). Divided by :data:`PRIORITY_WEIGHTS` they are the
+        least-squares scales, so a target weighs by how tightly it is asked for and by
+        its priority.
+    """
+
+    mean_point_mm: tuple[float, float, float]
+    te0_pp_arcsec: float
+    ellipse_length_mm: float
+    ellipse_width_mm: float
+    ellipse_angle_deg: float
+    torque_nm: float
+    tol_point_mm: float = 0.1
+    tol_te0_rel: float = 0.10
+    tol_length_rel: float = 0.10
+    tol_width_rel: float = 0.10
+    tol_angle_deg: float = 3.0
+
+    def __post_init__(self):
+        check_positive("te0_pp_arcsec", self.te0_pp_arcsec)
+        check_positive("ellipse_length_mm", self.ellipse_length_mm)
+        check_positive("ellipse_width_mm", self.ellipse_width_mm)
+        check_positive("torque_nm (N·m)", self.torque_nm)
+        for name in ("tol_point_mm", "tol_te0_rel", "tol_length_rel", "tol_width_rel",
+                     "tol_angle_deg"):
+            check_positive(name, getattr(self, name))
+
+    @classmethod
+    def from_published(cls, published: dict) -> "CalibrationTargets":
+        """Targets from a ``data/published/<pair>.json`` document."""
+        try:
+            return cls(mean_point_mm=tuple(float(c) for c in published["design_point_mm"]),
+                       te0_pp_arcsec=float(published["te0_pp_arcsec"]),
+                       ellipse_length_mm=float(published["preview_ellipse_2a_mm"]),
+                       ellipse_width_mm=float(published["preview_ellipse_2b_mm"]),
+                       ellipse_angle_deg=float(published["preview_ellipse_angle_deg"]),
+                       torque_nm=float(published["design_torque_nm"]))
+        except KeyError as exc:
+            raise InputRangeError("published values", str(exc),
+                                  "a document with design_point_mm, te0_pp_arcsec, "
+                                  "preview_ellipse_2a_mm/2b_mm/angle_deg, design_torque_nm"
+                                  ) from None
+
+
+@dataclass(frozen=True)
+class DesignPoint:
+    """TCA results at the (continuous) TE0 vertex of one ease-off.
+
+    Attributes
+    ----------
+    point_mm, normal : ndarray (3,)
+        Mating point (meshing frame, mm) and common unit normal.
+    invariants_mm : ndarray (4,)
+        :func:`point_invariants` of ``point_mm``.
+    pinion_uv, gear_uv : (float, float)
+        Flank parameters of the mating point, mm.
+    te0_pp_arcsec : float
+        TE0 peak-to-peak over one pinion pitch (61 phases), arcsec.
+    load_n : float
+        Normal load at the design torque, N.
+    ellipse_length_mm, ellipse_width_mm : float
+        Hamrock–Brewe Hertz ellipse 2a x 2b at ``load_n``, mm.
+    ellipse_angle_deg : float
+        Major axis from the lengthwise direction, deg, positive towards the profile
+        direction in the right-handed flank frame ``(l, p, n)``: the angle of
+        :func:`~gearcontact.tca.curvature.contact_ellipse` on the side where that frame
+        is right-handed, its negative on the other side, so that mirror-image bearings
+        on the two sides have the same angle.
+    easeoff_max_um : float
+        Largest |E| of the ease-off over the pinion flank, um.
+    """
+
+    point_mm: np.ndarray
+    normal: np.ndarray
+    invariants_mm: np.ndarray
+    pinion_uv: tuple[float, float]
+    gear_uv: tuple[float, float]
+    te0_pp_arcsec: float
+    load_n: float
+    ellipse_length_mm: float
+    ellipse_width_mm: float
+    ellipse_angle_deg: float
+    easeoff_max_um: float
+
+
+@dataclass(frozen=True)
+class CalibrationRow:
+    """One line of the target / achieved / tolerance table (units in ``unit``)."""
+
+    target: str
+    unit: str
+    published: float
+    achieved: float
+    tolerance: float
+    met: bool
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """Result of :func:`calibrate_pair`.
+
+    Attributes
+    ----------
+    pair : GearPair
+        The calibrated pair (``design_side`` set, working depth and ease-off solved).
+    side : str
+        Design side (the flank pair P0 lies on).
+    soa_offset_mm : dict
+        Per side: largest invariant offset of P0 from the conjugate contact, mm.
+    tip_margin_mm : float
+        Pinion tip radius above P0 at P0's axial position, mm.
+    point : DesignPoint
+        TCA at the calibrated set-up.
+    rows : tuple of CalibrationRow
+        Target / achieved / tolerance table in the order of priority.
+    evaluations : int
+        TCA runs of the least-squares search.
+    seconds : float
+        Wall time, s.
+    """
+
+    pair: GearPair
+    side: str
+    soa_offset_mm: dict
+    tip_margin_mm: float
+    point: DesignPoint
+    rows: tuple[CalibrationRow, ...]
+    evaluations: int
+    seconds: float
+    notes: tuple[str, ...] = field(default=())
+
+    def as_dict(self) -> dict:
+        """Plain-JSON view: side, offsets, tip margin, coefficients and the table."""
+        c = getattr(self.pair, f"easeoff_{self.side}")
+        return {"side": self.side, "surface_of_action_offset_mm": self.soa_offset_mm,
+                "tip_margin_mm": self.tip_margin_mm,
+                "working_depth_factor": self.pair.working_depth_factor,
+                f"pressure_angle_{self.side}_deg":
+                    getattr(self.pair.cutter, f"pressure_angle_{self.side}_deg"),
+                "easeoff": dataclasses.asdict(c), "easeoff_max_um": self.point.easeoff_max_um,
+                "mating_point_mm": [float(x) for x in self.point.point_mm],
+                "evaluations": self.evaluations,
+                "rows": [dataclasses.asdict(r) for r in self.rows]}
+
+    def table(self) -> str:
+        """The target / achieved / tolerance table as Markdown."""
+        lines = ["| target | published | achieved | tolerance | met |",
+                 "|---|---:|---:|---:|---|"]
+        for r in self.rows:
+            lines.append(f"| {r.target} ({r.unit}) | {r.published:.4g} | {r.achieved:.4g} | "
+                         f"{r.tolerance:.3g} | {'yes' if r.met else 'NO'} |")
+        return "\n".join(lines)
+
+
+def _conjugate_contact(conj, gear, pair: GearPair, u1: float, v1: float) -> ContactGuess:
+    """Contact state of the conjugate pinion point (u1, v1) with its generating gear."""
+    ms = conj.exact(np.array(float(u1)), np.array(float(v1)))
+    u2, v2 = gear.surface_parameters(ms.h_mm, ms.theta_rad)
+    phi2 = float(ms.phi2_rad)
+    return ContactGuess(float(u1), float(v1), float(u2), float(v2), pair.ratio * phi2, phi2)
+
+
+def surface_of_action_offset(pair: GearPair, point_mm, *, side: str, flanks=None
+                             ) -> tuple[float, np.ndarray]:
+    """Invariant offset of ``point_mm`` from the conjugate contact of ``side``.
+
+    The pinion point with the same radius and axial position as ``point_mm`` is put in
+    conjugate contact with its generating gear flank (equation of meshing); the result
+    is the largest difference of the four :func:`point_invariants`, mm, and the
+    meshing-frame contact point. An ease-off moves the bearing over the surface of
+    action, not off it, so an offset much larger than the tolerance rules the side out.
+    """
+    if flanks is None:
+        flanks = build_flanks(dataclasses.replace(pair, easeoff_drive=EaseOffCoefficients(),
+                                                  easeoff_coast=EaseOffCoefficients()))
+    conj = flanks.pinion_conjugate.side(side)
+    target = point_invariants(point_mm, pair.offset_mm)
+    u_t = target[2] - conj.cone.radius_mm(0.0, target[3])
+    u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+    q = np.zeros(3)
+    # continuation from the mean node: the node equations have several roots
+    for t in np.linspace(0.0, 1.0, 21)[1:]:
+        s = conj.solver.solve(np.array(u_m + t * (u_t - u_m)),
+                              np.array(v_m + t * (target[3] - v_m)), q)
+        q = np.array([float(s.h_mm), float(s.theta_rad), float(s.phi2_rad)])
+    x = np.asarray(s.x_f_mm, dtype=float)
+    return float(np.max(np.abs(point_invariants(x, pair.offset_mm) - target))), x
+
+
+def working_depth_for_tip(pair: GearPair, point_mm, *, tip_margin_mm: float) -> float:
+    """Working-depth factor ``k_d`` whose pinion tip passes ``tip_margin_mm`` above P0.
+
+    With uniform depth (ISO 23509 clause 7) the pinion tip cone is
+    ``R_a(x) = (x - x_A1) tan(delta1) + h_am1 / cos(delta1)`` and
+    ``h_am1 = (1 - c_ham) k_d m_mn``; the pitch cone (and so ``x_A1``, ``delta1`` and
+    ``m_mn``) does not depend on ``k_d``, so ``k_d`` follows in closed form.
+    """
+    b = pair.blank
+    inv = point_invariants(point_mm, pair.offset_mm)
+    d1 = np.radians(b.pitch_angle_pinion_deg)
+    r_pitch = (inv[3] - b.pinion_apex_x_mm) * np.tan(d1)
+    h_am1 = (inv[2] + tip_margin_mm - r_pitch) * np.cos(d1)
+    return float(h_am1 / ((1.0 - pair.gear_addendum_factor) * b.mean_normal_module_mm))
+
+
+def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
+                    torque_nm: float) -> DesignPoint:
+    """:class:`DesignPoint` of the mating point ``mp`` of ``pinion`` and ``gear`` (the
+    pair's kinematics), with the Hamrock–Brewe ellipse at the gear torque ``torque_nm``."""
+    kin = pair.kinematics()
+    rc = relative_curvature(pinion, gear, kin, mp)
+    ell = contact_ellipse(rc)
+    # the flank frame (l, p, n) is right-handed on one side and left-handed on the other
+    # (tca.curvature); compare orientations in the right-handed frame of either side
+    handed = float(np.sign(np.cross(rc.lengthwise, rc.profile) @ rc.normal))
+    load = normal_load_from_torque(torque_nm, mp.point_mm, mp.normal)
+    hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
+                             e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
+                                                               pair.gear_material))
+    return DesignPoint(point_mm=np.asarray(mp.point_mm), normal=np.asarray(mp.normal),
+                       invariants_mm=point_invariants(mp.point_mm, pair.offset_mm),
+                       pinion_uv=(mp.u1, mp.v1), gear_uv=(mp.u2, mp.v2),
+                       te0_pp_arcsec=float(te0_pp_arcsec), load_n=float(load),
+                       ellipse_length_mm=2.0 * hb.a_mm, ellipse_width_mm=2.0 * hb.b_mm,
+                       ellipse_angle_deg=handed * float(ell.angle_deg),
+                       easeoff_max_um=float(np.nan))
+
+
+def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
+                          torque_nm: float, phases: int = 61) -> DesignPoint:
+    """TCA of one eased pinion flank against ``gear`` at the continuous TE0 vertex.
+
+    ``start`` is a contact guess whose pinion height ``u1`` the first solve holds (the
+    phase is free), then the mesh cycle continues along the phase.
+    """
+    kin = pair.kinematics()
+    cycle = mesh_cycle(eased, gear, kin, pinion_teeth=pair.pinion_teeth, start=start,
+                       start_fixed="u1", phases=phases, pairs=2)
+    path = cycle.path
+    i = int(np.argmin(np.abs(path.phi1_rad - path.phi1_ref_rad)))
+    te = path.te0_arcsec
+    mp = path.points[i]
+    if 0 < i < len(te) - 1 and np.all(np.isfinite(te[i - 1:i + 2])):
+        # vertex of the parabola through the three phases around the discrete vertex
+        y0, y1, y2 = te[i - 1], te[i], te[i + 1]
+        den = y0 - 2.0 * y1 + y2
+        if den != 0.0:
+            h = float(np.clip(0.5 * (y0 - y2) / den, -0.5, 0.5))
+            step = path.phi1_rad[i + 1] - path.phi1_rad[i]
+            g = mp.as_guess()
+            guess = ContactGuess.from_vector(g.vector() + h * (path.points[i + 1].as_guess().vector()
+                                                               - g.vector()))
+            mp = solve_mating_point(eased, gear, kin, dataclasses.replace(
+                guess, phi1_rad=g.phi1_rad + h * step))
+    return design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
+                           torque_nm=torque_nm)
+
+
+#: Least-squares weight of each target group, in the order of priority of the targets
+#: (P0, TE0, 2a, 2b, angle): a miss of one tolerance on P0 costs 10x one on the ellipse.
+PRIORITY_WEIGHTS = (10.0, 3.0, 1.0, 1.0, 1.0)
+
+
+#: Start grid of the search (um/mm^2): profile and lengthwise crowning.
+_GRID_PROFILE_CROWNING = (4.0, 8.0, 12.0, 16.0, 20.0)
+_GRID_LENGTHWISE_CROWNING = (0.06, 0.1, 0.15)
+
+
+def centred_coefficients(eta_c: float, xi_c: float, profile_crowning: float,
+                         lengthwise_crowning: float, bias: float) -> EaseOffCoefficients:
+    """Five-term coefficients of the ease-off written about its centre (mm, um/mm^2):
+
+    ``E = c_PC (eta - eta_c)^2 + c_LC (xi - xi_c)^2 + c_TW (xi - xi_c)(eta - eta_c) + const``
+
+    i.e. ``c_PA = -2 c_PC eta_c - c_TW xi_c`` and ``c_SA = -2 c_LC xi_c - c_TW eta_c``
+    (the constant is dropped: the pair format has none; it only shifts TE0).
+    """
+    return EaseOffCoefficients(
+        profile_angle_um_per_mm=float(-2.0 * profile_crowning * eta_c - bias * xi_c),
+        spiral_angle_um_per_mm=float(-2.0 * lengthwise_crowning * xi_c - bias * eta_c),
+        profile_crowning_um_per_mm2=float(profile_crowning),
+        lengthwise_crowning_um_per_mm2=float(lengthwise_crowning),
+        bias_um_per_mm2=float(bias))
+
+
+def _residuals(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float) -> np.ndarray:
+    inv0 = point_invariants(targets.mean_point_mm, offset_mm)
+    w = PRIORITY_WEIGHTS
+    return np.concatenate([
+        w[0] * (dp.invariants_mm - inv0) / targets.tol_point_mm,
+        [w[1] * (dp.te0_pp_arcsec / targets.te0_pp_arcsec - 1.0) / targets.tol_te0_rel,
+         w[2] * (dp.ellipse_length_mm / targets.ellipse_length_mm - 1.0) / targets.tol_length_rel,
+         w[3] * (dp.ellipse_width_mm / targets.ellipse_width_mm - 1.0) / targets.tol_width_rel,
+         w[4] * (dp.ellipse_angle_deg - targets.ellipse_angle_deg) / targets.tol_angle_deg]])
+
+
+def design_point_rows(dp: DesignPoint, targets: CalibrationTargets, *, offset_mm: float
+                      ) -> tuple[CalibrationRow, ...]:
+    """Target / achieved / tolerance rows of a design point (summary tables)."""
+    return _rows(dp, targets, offset_mm)
+
+
+def _rows(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float
+          ) -> tuple[CalibrationRow, ...]:
+    inv0 = point_invariants(targets.mean_point_mm, offset_mm)
+    rows = [CalibrationRow(f"P0 {name}", "mm", float(p), float(a), targets.tol_point_mm,
+                           bool(abs(a - p) <= targets.tol_point_mm))
+            for name, p, a in zip(_INVARIANTS, inv0, dp.invariants_mm)]
+    for name, unit, p, a, tol in (
+            ("TE0 peak-to-peak", "arcsec", targets.te0_pp_arcsec, dp.te0_pp_arcsec,
+             targets.tol_te0_rel * targets.te0_pp_arcsec),
+            (f"Hertz 2a at {targets.torque_nm:g} N·m", "mm", targets.ellipse_length_mm,
+             dp.ellipse_length_mm, targets.tol_length_rel * targets.ellipse_length_mm),
+            (f"Hertz 2b at {targets.torque_nm:g} N·m", "mm", targets.ellipse_width_mm,
+             dp.ellipse_width_mm, targets.tol_width_rel * targets.ellipse_width_mm),
+            ("ellipse angle from lengthwise", "deg", targets.ellipse_angle_deg,
+             dp.ellipse_angle_deg, targets.tol_angle_deg)):
+        rows.append(CalibrationRow(name, unit, float(p), float(a), float(tol),
+                                   bool(abs(a - p) <= tol)))
+    return tuple(rows)
+
+
+def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm: float = 0.05,
+                   side: str | None = None, max_evaluations: int = 120,
+                   progress: bool = False) -> Calibration:
+    """Calibrate the working depth and the design-side ease-off of ``pair``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        Starting pair; its pitch-cone inputs are kept exactly.
+    targets : CalibrationTargets
+    tip_margin_mm : float
+        Pinion tip radius above P0 at P0's axial position, mm, in [0.01, 0.5].
+    side : str, optional
+        Force the design side; by default the side whose conjugate surface of action
+        passes nearest P0.
+    max_evaluations : int
+        Budget of TCA runs for the least-squares search (each ~0.3 s).
+    progress : bool
+        Print one line per improvement.
+
+    Returns
+    -------
+    Calibration
+    """
+    t_start = time.perf_counter()
+    check_positive("tip_margin_mm", tip_margin_mm)
+    if not 0.01 <= tip_margin_mm <= 0.5:
+        raise InputRangeError("tip_margin_mm", tip_margin_mm, "[0.01, 0.5] mm")
+    if side is not None and side not in SIDES:
+        raise InputRangeError("side", side, f"one of {SIDES}")
+    zero = dataclasses.replace(pair, easeoff_drive=EaseOffCoefficients(),
+                               easeoff_coast=EaseOffCoefficients())
+    flanks0 = build_flanks(zero)
+    offsets = {s: surface_of_action_offset(zero, targets.mean_point_mm, side=s, flanks=flanks0)[0]
+               for s in SIDES}
+    if side is None:
+        side = min(SIDES, key=lambda s: offsets[s])
+    # the blade pressure angle of the design side moves the surface of action: choose it
+    # (to 0.1 deg) so that the conjugate contact passes through P0
+    key = f"pressure_angle_{side}_deg"
+
+    def soa(angle_deg):
+        trial = dataclasses.replace(zero, cutter=dataclasses.replace(zero.cutter,
+                                                                     **{key: float(angle_deg)}))
+        return surface_of_action_offset(trial, targets.mean_point_mm, side=side)[0]
+
+    best = minimize_scalar(soa, bounds=(15.0, 30.0), method="bounded",
+                           options={"xatol": 0.05})
+    angle = round(float(best.x), 1)
+    zero = dataclasses.replace(zero, cutter=dataclasses.replace(zero.cutter, **{key: angle}))
+    offsets[f"{side} at {angle:g} deg"] = soa(angle)
+    k_d = working_depth_for_tip(zero, targets.mean_point_mm, tip_margin_mm=tip_margin_mm)
+    deep = dataclasses.replace(zero, working_depth_factor=round(k_d, 4), design_side=side)
+    flanks = build_flanks(deep)
+    conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
+    u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+    inv0 = point_invariants(targets.mean_point_mm, pair.offset_mm)
+    u_c = float(inv0[2] - conj.cone.radius_mm(0.0, inv0[3]))
+    v_c = float(inv0[3])
+    box = conj.boundary
+    # starts: conjugate contacts of pinion points below P0; the TCA holds their height
+    # (u1) and finds the phase, since the eased path need not cross P0's conjugate line
+    starts = [_conjugate_contact(conj, gear, deep, u_c - d, v_c) for d in (0.1, 0.3, 0.6)]
+    limit = flanks.easeoff_limit_um
+    # search in the centre form of the ease-off (:func:`centred_coefficients`): the
+    # bearing centre (eta_c, xi_c) and the three second-order terms are nearly
+    # independent there, so crowning changes do not drag the bearing off P0
+    eta_c, xi_c = u_c - u_m, v_c - v_m
+    lo = np.array([eta_c - 1.5, xi_c - 6.0, 0.5, 0.01, -2.0])
+    hi = np.array([eta_c + 1.5, xi_c + 6.0, 40.0, 1.0, 2.0])
+    scale = np.array([0.05, 0.2, 0.5, 0.01, 0.05])
+    evals = {"n": 0, "best": (np.inf, None)}
+
+    def run(x):
+        coeffs = centred_coefficients(*x)
+        eo = EaseOff.from_coefficients(coeffs, u_mean_mm=u_m, v_mean_mm=v_m)
+        eased = apply_easeoff(conj, eo, limit_um=limit)
+        for k, start in enumerate(starts):
+            try:
+                dp = evaluate_design_point(eased, gear, deep, start, torque_nm=targets.torque_nm)
+                break
+            except (EdgeContact, ArithmeticError, ValueError):
+                if k == len(starts) - 1:
+                    raise
+        return coeffs, dataclasses.replace(dp, easeoff_max_um=max_relief_um(eo, conj.boundary)[0])
+
+    def fun(x):
+        evals["n"] += 1
+        try:
+            _, dp = run(x)
+        except (ArithmeticError, ValueError, EdgeContact) as exc:  # edge, no pair in mesh, limit
+            if progress:
+                print(f"  calibration eval {evals['n']}: rejected ({exc})")
+            return np.full(8, 1e3)
+        r = _residuals(dp, targets, pair.offset_mm)
+        cost = float(r @ r)
+        if cost < evals["best"][0]:
+            evals["best"] = (cost, np.array(x, dtype=float))
+            if progress:
+                print(f"  calibration eval {evals['n']}: cost {cost:.4g}, P0 off "
+                      f"{np.abs(dp.invariants_mm - inv0).max():.3f} mm, TE0 "
+                      f"{dp.te0_pp_arcsec:.2f} arcsec, ellipse {dp.ellipse_length_mm:.2f} x "
+                      f"{dp.ellipse_width_mm:.3f} mm at {dp.ellipse_angle_deg:.1f} deg")
+        return r
+
+    def place(x, max_nfev=20):
+        """``x`` with its bearing centre moved so that the TE0 vertex lands on P0 (the
+        first-priority target; the surface of action's two coordinates fix all four
+        invariants)."""
+        def off(y):
+            try:
+                _, dp = run(np.concatenate([y, x[2:]]))
+            except (ArithmeticError, ValueError, EdgeContact):
+                return np.full(4, 1e2)
+            return (dp.invariants_mm - inv0) / targets.tol_point_mm
+
+        r = least_squares(off, np.clip(x[:2], lo[:2], hi[:2]), bounds=(lo[:2], hi[:2]),
+                          x_scale=scale[:2], diff_step=1e-3, max_nfev=max_nfev)
+        evals["n"] += int(r.nfev)
+        return np.concatenate([r.x, x[2:]])
+
+    # a coarse grid over the two crownings first, each with its bearing placed on P0:
+    # the objective has several basins (the path turns with the profile crowning) and a
+    # local search alone stays in the first
+    centre = np.array([eta_c, xi_c])
+    for pc in _GRID_PROFILE_CROWNING:
+        for lc in _GRID_LENGTHWISE_CROWNING:
+            x = place(np.array([*centre, pc, lc, 0.0]), max_nfev=8)
+            fun(x)
+    if evals["best"][1] is None:
+        raise ArithmeticError("calibration: no ease-off of the start grid gave a TCA with the "
+                              "mean contact on the flanks")
+    least_squares(fun, np.clip(evals["best"][1], lo, hi), bounds=(lo, hi), x_scale=scale,
+                  diff_step=1e-2, max_nfev=int(max_evaluations))
+    x_best = place(evals["best"][1], max_nfev=30)
+    coeffs, dp = run(x_best)
+    calibrated = dataclasses.replace(deep, **{f"easeoff_{side}": coeffs})
+    tip = float(conj.cone.radius_mm(box.u_tip, inv0[3]) - inv0[2])
+    return Calibration(pair=calibrated, side=side, soa_offset_mm=offsets, tip_margin_mm=tip,
+                       point=dp, rows=_rows(dp, targets, pair.offset_mm),
+                       evaluations=evals["n"], seconds=time.perf_counter() - t_start)
+
+
+
+def calibration_toml(cal: Calibration, *, name: str | None = None) -> str:
+    """TOML of the calibrated pair (renamed ``name`` if given) with the calibration's
+    provenance as comments."""
+    from ..geometry.pair import pair_to_toml
+
+    source = cal.pair.name
+    pair = cal.pair if name is None else dataclasses.replace(cal.pair, name=name)
+    head = (f"{pair.name}: calibrated by gearcontact.tca.calibration (gearcontact design "
+            f"--pair {source} --calibrate) to the published design point.\n"
+            f"Design side {cal.side}: the published mating point lies on its surface of "
+            "action (offsets, mm: " + ", ".join(f"{k} {v:.3f}" for k, v in
+                                                  cal.soa_offset_mm.items()) + ").\n"
+            f"working_depth_factor: pinion tip {cal.tip_margin_mm:.3f} mm above P0 at P0's "
+            "axial position (a tip-edge bearing).\n"
+            f"easeoff.{cal.side}: bounded least squares, {cal.evaluations} TCA runs, "
+            f"max |E| {cal.point.easeoff_max_um:.1f} um.\n"
+            "target / achieved / tolerance:\n" + cal.table())
+    return pair_to_toml(pair, comments={"": head})

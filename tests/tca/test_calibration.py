@@ -1,0 +1,117 @@
+"""The s0003 preset against the published design point (SPEC sec. 3, docs/calibration.md).
+
+Independent truths: the published mating point P0 = (41.679, -16.164, 7.949) mm and its
+frame invariants (radius / axial position on both members), the published pitch angles
+(6.07 / 83.15 deg, exact by construction), and the conservation / contact-mechanics
+signature of a tip-edge bearing: a loaded cell peak several times the body pressure,
+the Hertz preview below the LCP p90. The centred preset is the Hertzian reference:
+its patch lies inside the flank and its preview is within a few % of p90.
+"""
+
+from __future__ import annotations
+
+import tomllib
+
+import numpy as np
+import pytest
+
+from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.geometry.pair import load_pair, pair_to_toml, parse_pair
+from gearcontact.report.analyze import published_values
+from gearcontact.tca.analysis import analyze_pair
+from gearcontact.tca.calibration import (CalibrationTargets, point_invariants,
+                                         surface_of_action_offset, working_depth_for_tip)
+from gearcontact.validation import InputRangeError
+
+P0 = (41.679, -16.164, 7.949)
+
+
+@pytest.fixture(scope="module")
+def calibrated():
+    pair = load_pair("s0003")
+    tca, flanks = analyze_pair(pair)
+    return pair, tca, flanks
+
+
+def test_p0_invariants_are_frame_invariant():
+    # rotating a point about the gear axis keeps the gear invariants; about the pinion
+    # axis keeps the pinion ones (definition check with an independent rotation)
+    inv = point_invariants(P0, 19.0)
+    np.testing.assert_allclose(inv, [44.704, 7.949, 8.440, 41.679], atol=1e-3)
+    a = 0.3
+    rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    np.testing.assert_allclose(point_invariants(rz @ np.array(P0), 19.0)[:2], inv[:2])
+
+
+def test_calibrated_preset_reaches_p0(calibrated):
+    pair, tca, flanks = calibrated
+    assert pair.design_side == "coast"
+    # tolerance 0.1 mm (the issue's target); the TCA reports the discrete TE0 vertex of
+    # 61 phases per pitch, within half a phase step (~0.03 mm) of the calibrated point
+    got = point_invariants(tca.mean_point.point_mm, pair.offset_mm)
+    np.testing.assert_allclose(got, point_invariants(P0, pair.offset_mm), atol=0.1)
+    # pitch angles stay the published ones exactly (the calibration never touches them)
+    assert pair.blank.pitch_angle_pinion_deg == pytest.approx(6.07, abs=1e-9)
+    assert pair.blank.pitch_angle_gear_deg == pytest.approx(83.15, abs=1e-9)
+
+
+def test_p0_on_pinion_flank_at_its_tip_edge(calibrated):
+    pair, tca, flanks = calibrated
+    pin = flanks.flank("pinion", "coast")
+    b = pin.boundary
+    mp = tca.mean_point
+    assert b.u_root < mp.u1 <= b.u_tip
+    # within 0.1 mm of the tip edge (the tip passes 0.05 mm radially above P0)
+    assert b.u_tip - mp.u1 < 0.1
+
+
+def test_design_side_is_the_one_whose_surface_of_action_holds_p0():
+    pair = load_pair("s0003")
+    coast, _ = surface_of_action_offset(pair, P0, side="coast")
+    drive, _ = surface_of_action_offset(pair, P0, side="drive")
+    assert coast < 0.01 and drive > 1.0
+
+
+def test_working_depth_for_tip_closed_form():
+    pair = load_pair("s0003-centred")
+    kd = working_depth_for_tip(pair, P0, tip_margin_mm=0.05)
+    b = pair.blank
+    d1 = np.radians(b.pitch_angle_pinion_deg)
+    h_am1 = (1.0 - pair.gear_addendum_factor) * kd * b.mean_normal_module_mm
+    tip = (P0[0] - b.pinion_apex_x_mm) * np.tan(d1) + h_am1 / np.cos(d1)
+    assert tip == pytest.approx(point_invariants(P0, 19.0)[2] + 0.05, abs=1e-9)
+
+
+def test_calibrated_ltca_is_edge_loaded_at_the_tip(calibrated):
+    pair, tca, flanks = calibrated
+    case = single_pair_ltca(tca, flanks, pair, 64.5, side="coast", cells=64)
+    # the published signature (SPEC sec. 3/5): edge peak ~5x the body, preview below p90
+    assert case.edge_contact
+    assert case.patch.p_peak_mpa > 3.0 * case.patch.p90_mpa
+    assert case.preview.p_max_mpa < case.patch.p90_mpa
+
+
+def test_centred_preset_stays_hertzian():
+    pair = load_pair("s0003-centred")
+    assert pair.design_side == "drive"
+    tca, flanks = analyze_pair(pair)
+    case = single_pair_ltca(tca, flanks, pair, 64.5, cells=64)
+    # Hertzian patch: peak close to p90 and the preview within 10 % of p90 (it is +5.5 %
+    # on the default 80-cell grid; 10 % leaves room for the coarser test grid)
+    assert case.patch.p_peak_mpa < 1.5 * case.patch.p90_mpa
+    assert abs(case.preview.p_max_mpa / case.patch.p90_mpa - 1.0) < 0.10
+
+
+def test_targets_from_published_and_bad_input():
+    t = CalibrationTargets.from_published(published_values("s0003"))
+    assert t.mean_point_mm == P0 and t.te0_pp_arcsec == 3.40
+    with pytest.raises(InputRangeError, match="published values"):
+        CalibrationTargets.from_published({"te0_pp_arcsec": 3.4})
+    with pytest.raises(InputRangeError, match="te0_pp_arcsec"):
+        CalibrationTargets(P0, -1.0, 4.8, 0.38, -13.8, 64.5)
+
+
+def test_pair_toml_round_trip():
+    for name in ("s0003", "s0003-centred"):
+        p = load_pair(name)
+        assert parse_pair(tomllib.loads(pair_to_toml(p))) == p
