@@ -139,8 +139,14 @@ def lte_warnings(lte) -> list[str]:
     edge = [int(k) for k in lte.edge_contact.nonzero()[0]]
     if not edge:
         return []
+    runs, start = [], edge[0]
+    for a, b in zip(edge, edge[1:] + [None]):
+        if b != a + 1:                      # close a run of consecutive phases
+            runs.append(f"{start}" if start == a else f"{start}-{a}")
+            start = b
     return [f"loaded TE at {lte.torque_nm:g} N·m: edge contact (load beyond the flank "
-            f"boundary) at {len(edge)} of {len(lte.edge_contact)} phases {edge}"]
+            f"boundary) at {len(edge)} of {len(lte.edge_contact)} phases "
+            f"({', '.join(runs)})"]
 
 
 def run_timings(args, **timings) -> None:
