@@ -255,3 +255,17 @@ def test_a_forged_manifest_removes_nothing_outside(tmp_path):
                                                       {"path": str(victim)}]}))
     assert _vectors(out) == 0
     assert victim.read_text() == "keep"
+
+
+def test_in_place_command_checks_its_tool_before_removing_anything(tmp_path, capsys,
+                                                                   monkeypatch):
+    """``rtl soc`` writes in place, so a missing LiteX must be found before the previous
+    run's files are removed: exit 2 naming the pip command, previous run intact."""
+    import sys
+
+    with RunDirectory(str(tmp_path), ["rtl", "soc"], staged=False) as run:
+        (run.work / "csr.csv").write_text("previous")
+    monkeypatch.setitem(sys.modules, "litex", None)
+    assert main(["rtl", "soc", "--out", str(tmp_path)]) == 2
+    assert "pip install litex" in capsys.readouterr().err
+    assert (tmp_path / "csr.csv").read_text() == "previous"
