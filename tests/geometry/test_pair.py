@@ -86,7 +86,7 @@ def test_impossible_pair(section, key, value, field):
 
 
 def test_missing_file_and_bad_toml(tmp_path):
-    with pytest.raises(FileNotFoundError):
+    with pytest.raises(InputRangeError):
         load_pair(tmp_path / "nope.toml")
     bad = tmp_path / "bad.toml"
     bad.write_text("[teeth\npinion = 7")

@@ -34,16 +34,19 @@ from typing import Callable, Protocol, runtime_checkable
 import numpy as np
 
 from ..materials import STEEL, Material, effective_modulus_mpa
-from ..validation import InputRangeError, check_array_finite, check_positive
+from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import chain
 from .fit.golden import encode_gaps
 from .fit.stencil import STENCIL_SIZE
 from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
-from .hertz.reference import hertz_preview, hertz_preview_array
+from .hertz.reference import ENVELOPE, check_envelope, hertz_preview, hertz_preview_array
 from .hertz.schedule import HERTZ_CYCLES
 from .qformat import CURVATURE
+
+#: Preset materials :func:`get_engine` accepts by name.
+MATERIALS = {"steel": STEEL}
 
 __all__ = ["PreviewResult", "PreviewBatch", "PreviewEngine", "ReferenceEngine",
            "GoldenEngine", "get_engine", "register_backend", "BACKENDS",
@@ -145,14 +148,38 @@ class PreviewEngine(Protocol):
         ...
 
 
-def _check_physical(A_minus, B_minus, load_n) -> tuple[float, float, float]:
-    """Backend-independent validation: every input finite and > 0 (field named)."""
-    return (check_positive("A_minus (1/mm)", A_minus), check_positive("B_minus (1/mm)", B_minus),
-            check_positive("load_n (N)", load_n))
+def _check_physical(A_minus, B_minus, load_n, e_prime_mpa: float
+                    ) -> tuple[float, float, float]:
+    """Backend-independent validation: every input a finite real scalar > 0 (not a bool),
+    then inside the operating envelope (:data:`.hertz.reference.ENVELOPE`): every
+    backend accepts exactly the same domain (field and range named)."""
+    a, b, w = (check_positive("A_minus (1/mm)", A_minus),
+               check_positive("B_minus (1/mm)", B_minus), check_positive("load_n (N)", load_n))
+    check_envelope(a, b, w, e_prime_mpa=e_prime_mpa)
+    return a, b, w
+
+
+def _e_prime(material: Material, material2: Material | None) -> float:
+    """E' = 2E* of the pair (MPa), inside the envelope every backend accepts."""
+    lo, hi = ENVELOPE["e_prime_mpa"]
+    return check_range("E' = 2 E* of the materials (MPa)",
+                       effective_modulus_mpa(material, material2), lo, hi)
+
+
+def _check_load(load_n) -> float:
+    """The load of a stencil evaluation: finite, > 0 and inside the envelope (N)."""
+    lo, hi = ENVELOPE["load_n"]
+    return check_range("load_n (N)", check_positive("load_n (N)", load_n), lo, hi)
 
 
 def _check_stencil(gaps_mm) -> np.ndarray:
-    g = check_array_finite("gaps_mm", gaps_mm)
+    try:
+        g = check_array_finite("gaps_mm", gaps_mm)
+    except (TypeError, ValueError) as exc:   # strings, ragged lists, objects
+        if isinstance(exc, InputRangeError):
+            raise
+        raise InputRangeError("gaps_mm", gaps_mm, f"{STENCIL_SIZE} finite gaps in mm "
+                                                  "(array_like of numbers)") from None
     if g.shape != (STENCIL_SIZE,):
         raise InputRangeError("stencil length", g.shape, f"exactly {STENCIL_SIZE} gap samples")
     return g
@@ -174,18 +201,18 @@ class ReferenceEngine:
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
                  hertz_form: str = DEFAULT_HERTZ_FORM):
         self.material = material
-        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_mpa = _e_prime(material, material2)
         self.hertz_form = check_hertz_form(hertz_form)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa, hertz_form=self.hertz_form)
         return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k,
                              hp.p_max_mpa, hertz_form=self.hertz_form)
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
-        w = check_positive("load_n (N)", load_n)
+        w = _check_load(load_n)
         res = chain.chain_reference(g, w, e_prime_mpa=self.e_prime_mpa,
                                     hertz_form=self.hertz_form)
         hp = res.hertz
@@ -215,7 +242,7 @@ class GoldenEngine:
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
                  hertz_form: str = DEFAULT_HERTZ_FORM):
         self.material = material
-        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_mpa = _e_prime(material, material2)
         self.e_prime_code = encode_e_prime(self.e_prime_mpa)
         self.hertz_form = check_hertz_form(hertz_form)
 
@@ -228,7 +255,7 @@ class GoldenEngine:
                              hertz_form=self.hertz_form)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
         hz = hertz_golden(a_c, b_c, w_c, e_prime_code=e_c, hertz_form=self.hertz_form)
         codes = {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
@@ -236,7 +263,7 @@ class GoldenEngine:
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
-        w = check_positive("load_n (N)", load_n)
+        w = _check_load(load_n)
         gap_codes = encode_gaps(g)
         w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
         res = chain.chain_golden([int(x) for x in gap_codes], w_c, e_prime_code=self.e_prime_code,
@@ -307,11 +334,23 @@ def get_engine(name: str = "reference", *, material: Material = STEEL,
     """
     try:
         factory = BACKENDS[name]
-    except KeyError:
+    except (KeyError, TypeError):
         raise InputRangeError("backend", name, f"one of {sorted(BACKENDS)}") from None
     forms = BACKEND_HERTZ_FORMS[name]
     if check_hertz_form(hertz_form) not in forms:
         raise InputRangeError(f"hertz_form (backend {name})", hertz_form, f"one of {forms}")
+    materials = dict(material=_material(material, "material"),
+                     material2=None if material2 is None else _material(material2, "material2"))
     if len(forms) > 1:
-        return factory(material=material, material2=material2, hertz_form=hertz_form)
-    return factory(material=material, material2=material2)
+        return factory(**materials, hertz_form=hertz_form)
+    return factory(**materials)
+
+
+def _material(value, field: str) -> Material:
+    """A :class:`Material`, or the name of a preset (``"steel"``)."""
+    if isinstance(value, Material):
+        return value
+    if isinstance(value, str) and value.lower() in MATERIALS:
+        return MATERIALS[value.lower()]
+    raise InputRangeError(field, value, f"a gearcontact.Material or one of the preset "
+                                        f"names {sorted(MATERIALS)}")

@@ -20,12 +20,13 @@ import os
 import numpy as np
 
 from ..materials import STEEL, Material
-from ..validation import InputRangeError, check_positive
+from ..validation import InputRangeError
 from . import chain
 from .engine import (
     GoldenEngine,
     PreviewBatch,
     PreviewResult,
+    _check_load,
     _check_physical,
     _check_stencil,
 )
@@ -96,7 +97,7 @@ class RtlEngine(GoldenEngine):
         return outs, cycles
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
         from .hertz.rtl import OUTPUT_PORTS  # port -> HertzCodes field
         outs, cycles = self._simulate("hertz", {"A": [a_c], "B": [b_c], "W": [w_c],
@@ -107,7 +108,7 @@ class RtlEngine(GoldenEngine):
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
-        w = check_positive("load_n (N)", load_n)
+        w = _check_load(load_n)
         gap_codes = encode_gaps(g)
         w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
         outs, cycles = self._simulate("chain", {"gaps": gap_codes[None, :], "W": [w_c],

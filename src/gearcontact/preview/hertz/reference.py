@@ -36,7 +36,8 @@ from ...validation import InputRangeError, check_array_finite, check_positive, c
 from ..qformat import CURVATURE, LOAD
 from . import formats as F
 
-__all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE"]
+__all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
+           "check_envelope"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
 ENVELOPE = {
@@ -101,6 +102,21 @@ def _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, envelope: bool) ->
         raise InputRangeError("alpha = B_max/A_min", b / a, f"[1, {_ALPHA_HI:g}]")
     raise InputRangeError("inputs", (A_minus, B_minus, load_n, e_prime_mpa),
                           "finite numbers > 0")     # pragma: no cover (unreachable)
+
+
+def check_envelope(A_minus, B_minus, load_n, *, e_prime_mpa) -> tuple[float, float, float]:
+    """Return ``(A_minus, B_minus, load_n)`` as floats if they lie in the operating
+    :data:`ENVELOPE` (the domain every backend accepts); else raise
+    :class:`InputRangeError` naming the first offending input and its range."""
+    try:
+        a, b, w, e = float(A_minus), float(B_minus), float(load_n), float(e_prime_mpa)
+    except (TypeError, ValueError):
+        a = b = w = e = math.nan
+    lo, hi = (a, b) if a <= b else (b, a)
+    if not (_C_LO <= lo and hi <= _C_HI and _W_LO <= w <= _W_HI and _E_LO <= e <= _E_HI
+            and hi <= _ALPHA_HI * lo):
+        _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, True)
+    return a, b, w
 
 
 def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa: float,
