@@ -9,16 +9,19 @@ from ..validation import InputRangeError, check_positive
 __all__ = ["add_pair_arguments", "check_pair_arguments"]
 
 
-def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None) -> None:
-    """Add ``--pair --out --side --phases --no-figures`` (and ``--torque``, ``--cells``)."""
+def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
+                       phases: bool = True) -> None:
+    """Add ``--pair --out --side --phases --no-figures`` (and ``--torque``, ``--cells``;
+    ``phases=False`` leaves out the mesh options ``--side --phases``)."""
     p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
     p.add_argument("--out", required=True, type=Path, help="output directory")
     if torque:
         p.add_argument("--torque", type=float, default=64.5,
                        help="gear torque in N·m (default 64.5)")
-    p.add_argument("--side", default="drive", choices=("drive", "coast"))
-    p.add_argument("--phases", type=int, default=61,
-                   help="TCA mesh phases per pinion pitch, both ends included (default 61)")
+    if phases:
+        p.add_argument("--side", default="drive", choices=("drive", "coast"))
+        p.add_argument("--phases", type=int, default=61,
+                       help="TCA mesh phases per pinion pitch, both ends included (default 61)")
     if cells is not None:
         p.add_argument("--cells", type=int, default=cells,
                        help=f"cells per side of the tangent-plane gap field (default {cells})")

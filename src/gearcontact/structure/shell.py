@@ -13,14 +13,17 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   of the real mid-surface; the coupling of membrane and bending through the
   mid-surface curvature is neglected, a shallow-shell / plate approximation);
 - Ritz basis: ``w, beta_1, beta_2 = sum_ij a_ij P_i(xi) P_j(eta) r(eta)`` with Legendre
-  polynomials of degree <= ``order`` in each direction; ``r = (1 + eta)/2`` makes w and
-  beta_1 vanish at the root eta = -1; beta_2 (the root rotation) also carries r when the
-  root is clamped (``root_compliance = 0``), otherwise it is free and restrained by a
-  rotational foundation spring along the root line,
-  ``U_root = 1/2 int k_r beta_2^2 dl`` with ``k_r = E t_root^2 / (c_r (1 - nu^2))`` per
-  unit root length (N/rad): the tooth-root / rim rotation of O'Donnell / Weber,
-  ``theta = c_r (1 - nu^2) M / (E t^2)`` for a root moment M per unit length; the one
-  coefficient ``c_r`` is calibrated against 3D finite elements of the tooth with its rim
+  polynomials of degree <= ``order`` in each direction; ``r = (1 + eta)/2`` makes beta_1
+  vanish at the root eta = -1, and w and beta_2 too when the root is clamped
+  (``RootFoundation(0, 0)``);
+- root / rim flexibility (a foundation along the root line, Weber 1949, O'Donnell 1963,
+  Sainsot et al. 2004): with a non-zero coefficient, beta_2 (the root rotation) and w
+  (the root translation) are free at the root and restrained by springs per unit root
+  length, ``U_root = 1/2 int (k_r beta_2^2 + k_w w^2) dl`` with
+  ``k_r = E t_root^2 / (c_r (1 - nu^2))`` (N/rad) and ``k_w = E / (c_w (1 - nu^2))``
+  (N/mm^2): the foundation rotation ``theta = c_r (1 - nu^2) M / (E t^2)`` and
+  translation ``w = c_w (1 - nu^2) q / E`` of a root moment M / force q per unit length.
+  The coefficients are calibrated against 3D finite elements of the tooth with its rim
   segment (:mod:`.fe`, ``docs/bending.md``);
 - a unit load along the unit direction d at a flank point (offset z from the
   mid-surface) does work on ``delta = (d.m) w + z ((d.e_1) beta_1 + (d.e_2) beta_2)``,
@@ -59,15 +62,43 @@ from ..geometry.flank import FlankSet
 from ..validation import InputRangeError, check_range
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
-__all__ = ["ShellModel", "ComplianceOperator", "build_shell", "tooth_shell",
-           "ROOT_COMPLIANCE", "SHEAR_FACTOR"]
+__all__ = ["ShellModel", "ComplianceOperator", "RootFoundation", "build_shell",
+           "tooth_shell", "ROOT_FOUNDATION", "SHEAR_FACTOR", "CLAMPED"]
 
 #: Mindlin shear correction factor kappa_s (Mindlin 1951; Reissner's 5/6).
 SHEAR_FACTOR = 5.0 / 6.0
 
-#: Calibrated root / rim rotation coefficient c_r per member (dimensionless), from the
-#: shell-vs-FE calibration of ``docs/bending.md`` (s0003 teeth with their rim segment).
-ROOT_COMPLIANCE = {"pinion": 5.3, "gear": 5.3}
+
+
+@dataclass(frozen=True)
+class RootFoundation:
+    """Root / rim foundation coefficients (dimensionless, module docstring).
+
+    Parameters
+    ----------
+    rotation : float
+        c_r >= 0 of the root rotation spring (0: rotation clamped).
+    translation : float
+        c_w >= 0 of the root translation spring (0: translation clamped).
+    """
+
+    rotation: float
+    translation: float
+
+    def __post_init__(self):
+        check_range("root_foundation.rotation", self.rotation, 0.0, 1e3)
+        check_range("root_foundation.translation", self.translation, 0.0, 1e3)
+
+
+#: A clamped root (the closed-form cantilever plate).
+CLAMPED = RootFoundation(0.0, 0.0)
+
+#: Calibrated root / rim coefficients per member: the grid search of ``docs/bending.md``
+#: against 3D FE (P2, 20 x 8 x 4 cells + 6 rim layers) of the s0003 teeth with their rim
+#: segments, on the through-thickness compliance of a 3 x 3 drive-flank lattice. The
+#: pinion tooth stands on the solid shaft core: a clamped root fits best (shell/FE
+#: 0.82..1.14); the gear tooth on its thin rim needs both springs (0.83..1.17).
+ROOT_FOUNDATION = {"pinion": CLAMPED, "gear": RootFoundation(8.0, 1.5)}
 
 #: Gauss-Legendre points per direction of the stiffness quadrature (fixed, so that the
 #: trial spaces of different orders are compared on the same integration rule).
@@ -130,7 +161,7 @@ class ShellModel:
 
     body: object
     order: int
-    root_compliance: float
+    foundation: RootFoundation
     cholesky: np.ndarray
     n_functions: int
 
@@ -141,9 +172,9 @@ class ShellModel:
         px, dpx = _legendre_table(xi, self.order)
         pe, dpe = _legendre_table(eta, self.order)
         r, dr = 0.5 * (1.0 + eta), 0.5 * np.ones_like(eta)
-        free = self.root_compliance > 0.0
+        fd = self.foundation
         vals, dxi, deta = [], [], []
-        for clamped in (True, True, not free):
+        for clamped in (fd.translation == 0.0, True, fd.rotation == 0.0):
             qe = pe * r if clamped else pe
             dqe = dpe * r + pe * dr if clamped else dpe
             vals.append((px[:, None, :] * qe[None, :, :]).reshape(-1, len(xi)))
@@ -172,7 +203,7 @@ class ShellModel:
         return self.compliance(at).factor @ self.compliance(loads).factor.T
 
 
-def _stiffness(body, order: int, root_compliance: float, model: ShellModel) -> np.ndarray:
+def _stiffness(body, model: ShellModel) -> np.ndarray:
     """Ritz stiffness K (m x m), N/mm: Gauss-Legendre quadrature of the plate energy."""
     g, wg = legendre.leggauss(_QUADRATURE)
     XI, ETA = np.meshgrid(g, g, indexing="ij")
@@ -208,17 +239,21 @@ def _stiffness(body, order: int, root_compliance: float, model: ShellModel) -> n
     Db = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1.0 - nu)]])
     K = np.einsum("amq,ab,bnq,q->mn", Bb, Db, Bb, D, optimize=True)
     K += np.einsum("amq,anq,q->mn", Bs, Bs, Gs, optimize=True)
-    if root_compliance > 0.0:
-        mr = body.mid_surface(g, -np.ones_like(g))
-        dl = wg * np.linalg.norm(mr.x_xi, axis=-1)
-        kr = E * mr.thickness_mm ** 2 / (root_compliance * (1.0 - nu * nu)) * dl
-        Nr, _, _ = model.shape_functions(g, -np.ones_like(g))
-        b2 = np.concatenate([zero[:, :len(g)], zero[:, :len(g)], Nr[2]])
-        K += np.einsum("mq,nq,q->mn", b2, b2, kr)
+    fd = model.foundation
+    mr = body.mid_surface(g, -np.ones_like(g))
+    dl = wg * np.linalg.norm(mr.x_xi, axis=-1)
+    Nr, _, _ = model.shape_functions(g, -np.ones_like(g))
+    z0 = np.zeros_like(Nr[0])
+    springs = ((fd.rotation, mr.thickness_mm ** 2, np.concatenate([z0, z0, Nr[2]])),
+               (fd.translation, 1.0, np.concatenate([Nr[0], z0, z0])))
+    for coef, t2, row in springs:
+        if coef > 0.0:
+            k = E * t2 / (coef * (1.0 - nu * nu)) * dl
+            K += np.einsum("mq,nq,q->mn", row, row, k)
     return 0.5 * (K + K.T)
 
 
-def build_shell(body, *, order: int = 6, root_compliance: float = 0.0) -> ShellModel:
+def build_shell(body, *, order: int = 6, foundation: RootFoundation = CLAMPED) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -227,26 +262,26 @@ def build_shell(body, *, order: int = 6, root_compliance: float = 0.0) -> ShellM
         The plate (mid-surface, thickness, material).
     order : int
         Legendre degree per direction, 1..16; 3 (order+1)^2 Ritz functions.
-    root_compliance : float
-        Root / rim rotation coefficient c_r >= 0 (dimensionless, module docstring);
-        0 clamps the root.
+    foundation : RootFoundation
+        Root / rim foundation coefficients (default clamped).
 
     Raises
     ------
     InputRangeError
-        For an order outside 1..16, a negative root coefficient, a non-positive
-        thickness, or a stiffness that is not positive definite.
+        For an order outside 1..16, a non-positive thickness, or a stiffness that is
+        not positive definite.
     """
     if isinstance(order, bool) or int(order) != order or not 1 <= order <= 16:
         raise InputRangeError("order", order, "an integer in [1, 16]")
-    check_range("root_compliance", root_compliance, 0.0, 1e3)
     t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
     n = 3 * (int(order) + 1) ** 2
-    model = ShellModel(body=body, order=int(order), root_compliance=float(root_compliance),
+    if not isinstance(foundation, RootFoundation):
+        raise InputRangeError("foundation", foundation, "a RootFoundation")
+    model = ShellModel(body=body, order=int(order), foundation=foundation,
                        cholesky=np.empty((0, 0)), n_functions=n)
-    K = _stiffness(body, int(order), float(root_compliance), model)
+    K = _stiffness(body, model)
     try:
         L, _ = cho_factor(K, lower=True)
     except np.linalg.LinAlgError:
@@ -258,12 +293,13 @@ def build_shell(body, *, order: int = 6, root_compliance: float = 0.0) -> ShellM
 
 @lru_cache(maxsize=8)
 def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = 6,
-                root_compliance: float | None = None) -> ShellModel:
+                foundation: RootFoundation | None = None) -> ShellModel:
     """The shell model of one tooth of ``member``, cached per flank set and member.
 
-    ``root_compliance`` defaults to the calibrated :data:`ROOT_COMPLIANCE` of the
-    member. Both flanks (drive and coast) of the tooth use the same model.
+    ``foundation`` defaults to the calibrated :data:`ROOT_FOUNDATION` of the member.
+    Both flanks (drive and coast) of the tooth use the same model (one cache entry per
+    pair, member and options; the flank set is hashed by identity).
     """
     tooth: ToothGeometry = tooth_geometry(flanks, member, material=material)
-    c_r = ROOT_COMPLIANCE[member] if root_compliance is None else root_compliance
-    return build_shell(tooth, order=order, root_compliance=c_r)
+    return build_shell(tooth, order=order,
+                       foundation=ROOT_FOUNDATION[member] if foundation is None else foundation)
