@@ -54,7 +54,11 @@ transmitting pair):
   torque alone (for a Hertzian gap ``(2/3) delta / W``);
 * mesh compliance: the same with all pairs within reach sharing the torque.
 
-Scope: rigid teeth (no bending, no base rotation); the edge is the sharp flank boundary
+Tooth bending (optional, ``bending=``): the shell compliance of the pinion and gear
+tooth of every pair (:mod:`.tooth_bending`) is added to its half-space compliance in
+the same coupled LCP (:mod:`.mesh_lcp`); without it the teeth are rigid.
+
+Scope: no base / shaft rotation; the edge is the sharp flank boundary
 (no tip radius); a pair beyond ``edge_reach`` is not considered: if it still carried
 load at the previous phase, TE_LCP steps there and the load is reported
 (``dropped_load_n``); loaded cells next to a flank boundary are reported
@@ -366,7 +370,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
               edge_reach: float = 0.5, preview_edges: bool = True,
-              progress: bool = False) -> LoadedTE:
+              bending=None, progress: bool = False) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
     Parameters
@@ -404,6 +408,11 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     stride : int
         Use every ``stride``-th phase of the cycle (>= 1), plus the last one and P0: a
         cheaper LTE on a fine TCA (e.g. 61 TCA phases, stride 6 -> 11 LTE phases).
+    bending : ToothBending or None
+        Tooth bending compliance of both members
+        (:func:`~.tooth_bending.tooth_bending`) added to every pair's half-space
+        compliance in the coupled LCP; None (default): rigid teeth, exactly the
+        rigid-tooth solution.
     progress : bool
         Show a progress bar over the phases.
 
@@ -431,8 +440,11 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
     e_prime = effective_modulus_mpa(*materials)
     torque = 1e3 * t
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    if bending is not None and bending.side != side:
+        raise InputRangeError("bending.side", bending.side, f"'{side}' (the side of the LTE)")
     fields = PairFields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
-                     cells=int(cells), extent=tuple(map(float, extent_factor)))
+                        cells=int(cells), extent=tuple(map(float, extent_factor)),
+                        bending=bending)
     curv: dict = {}
     k_full = len(cycle.phi1_rad)
     sel = np.array(sorted(set(range(0, k_full, stride)) | {k_full - 1, cycle.mean_index}))
