@@ -3,7 +3,7 @@
 Truths: the files and JSON keys of the issue (points_mm, shell_mm_per_n, with --fe
 fe_mm_per_n and fe_nodes); the shell matrix is symmetric (Maxwell-Betti) and its points
 lie on the real drive flank of the gear tooth (distance to the flank surface from the
-exact blade cone, < 1e-9 mm); shell vs FE through-thickness ratios within 20 %
+exact blade cone, < 1e-9 mm); shell vs FE distributed-load ratios within 25 %
 (test_fe states why); bad input -> exit 2.
 """
 
@@ -28,8 +28,8 @@ def test_bending_gear_with_fe(tmp_path):
     G = np.array(data["shell_mm_per_n"])
     assert G.shape == (6, 6) and np.allclose(G, G.T, rtol=1e-12)
     assert data["fe_nodes"] > 1000
-    ratio = np.array(data["through_ratio_shell_to_fe"])
-    assert np.all(np.abs(ratio - 1) <= 0.2)
+    ratio = np.array(data["ratio_shell_to_fe"])
+    assert np.all(np.abs(ratio - 1) <= 0.25)   # tests/structure/test_fe.py states why
     # the points are on the gear drive flank: solve the exact cone for (u, v) and compare
     from gearcontact.geometry.flank import build_flanks
     from gearcontact.geometry.pair import load_pair

@@ -1,9 +1,10 @@
 """``gearcontact bending``: tooth bending compliance of one member (shell, optionally FE).
 
-Writes into ``--out`` (created if missing): ``compliance.json`` (``points_mm``: drive-flank
-points in the member's body frame; ``shell_mm_per_n``: shell Rayleigh-Ritz compliance
-matrix between them; the through-thickness compliance of each point; with ``--fe`` also
-``fe_mm_per_n``, ``fe_through_mm_per_n``, ``fe_nodes`` (nodes of the P2 mesh) and the
+Writes into ``--out`` (created if missing): ``compliance.json`` (``points_mm``: a lattice
+of drive-flank points in the member's body frame; ``shell_mm_per_n``: the shell
+Rayleigh-Ritz point-compliance matrix between them; the deflections under segment loads
+around the points and line loads over the face; with ``--fe`` also ``fe_mm_per_n``,
+the FE segment / line deflections, ``fe_nodes`` (nodes of the P2 mesh) and the
 shell-to-FE ratios) and ``deflection.png`` (deflection over the flank).
 """
 
@@ -24,8 +25,11 @@ def register(sub) -> None:
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, phases=False)
     p.add_argument("--member", choices=("pinion", "gear"), default="pinion")
-    p.add_argument("--order", type=int, default=8,
-                   help="Legendre order of the Ritz basis per direction, 1..16 (default 8)")
+    p.add_argument("--order", type=int, default=6,
+                   help="Legendre order of the Ritz basis over the tooth height, 1..16 "
+                        "(default 6)")
+    p.add_argument("--order-face", type=int, default=16,
+                   help="Legendre order along the face, 1..24 (default 16)")
     p.add_argument("--points", type=int, nargs=2, default=(3, 3), metavar=("NXI", "NETA"),
                    help="flank lattice: points along the face and the height (default 3 3)")
     p.add_argument("--fe", action="store_true",
@@ -42,16 +46,19 @@ def run(args) -> int:
             raise InputRangeError(name, n, "[1, 50]")
     pair = load_pair(args.pair)
     flanks = build_flanks(pair)
-    lattice = [0.75 * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1)) for n in args.points]
+    # lattice over the inner part of the flank (xi in +-0.5, eta in +-1/3)
+    lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
+               for s, n in zip((0.5, 1 / 3), args.points)]
     res = flank_compliance(pair, args.member, flanks=flanks, xi=lattice[0], eta=lattice[1],
-                           order=args.order, fe=args.fe, fe_mesh=FeMesh(*args.fe_mesh))
+                           order=args.order, order_face=args.order_face, fe=args.fe,
+                           fe_mesh=FeMesh(*args.fe_mesh))
     write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
-                     order=args.order)
-    line = (f"{pair.name} {args.member}: {len(res.xi)} drive-flank points, shell "
-            f"through-thickness compliance {res.shell_through_mm_per_n.min():.3g}.."
-            f"{res.shell_through_mm_per_n.max():.3g} mm/N")
+                     order=args.order, order_face=args.order_face)
+    seg = res.segment_shell_mm_per_n
+    line = (f"{pair.name} {args.member}: {len(res.xi)} drive-flank points, shell segment-load "
+            f"deflection {seg.min():.3g}..{seg.max():.3g} mm/N")
     if res.fe_mm_per_n is not None:
-        r = res.shell_through_mm_per_n / res.fe_through_mm_per_n
+        r = res.ratios()
         line += (f"; FE ({res.fe_nodes} nodes, {res.fe_build_s:.1f} s) shell/FE "
                  f"{r.min():.2f}..{r.max():.2f}")
     print(line + f" -> {args.out}")

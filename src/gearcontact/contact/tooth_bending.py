@@ -9,7 +9,7 @@ cells is that of the pinion tooth plus that of the gear tooth,
 ``G = G_pinion + G_gear`` (both deflect away from the contact along the common normal),
 each the low-rank shell operator of :mod:`gearcontact.structure.shell`. It is handed to
 :func:`.mesh_lcp.solve_mesh_lcp` as one factor ``F`` with ``G = F F^T``: evaluated
-exactly on a 12 x 12 sub-lattice of the cells, compressed there by a pivoted Cholesky
+exactly on an 8 x 24 sub-lattice of the cells, compressed there by a pivoted Cholesky
 factorization of ``F F^T`` (dropped entries below 1e-10 of the largest compliance), and
 interpolated to all cells by cubic splines (:meth:`ToothBending.factor`).
 
@@ -42,8 +42,9 @@ __all__ = ["ToothBending", "tooth_bending"]
 #: largest remaining diagonal of F F^T is below this fraction of the largest diagonal
 #: (every entry of the dropped part is then below it too, G being semi-definite).
 _CUT = 1e-10
-#: Sub-lattice (per direction) on which the shell operator is evaluated exactly.
-_NODES = 12
+#: Sub-lattice (rows along the field's minor axis t, columns along its major axis s,
+#: which runs along the face) on which the shell operator is evaluated exactly.
+_NODES = (8, 24)
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,22 +67,23 @@ class ToothBending:
     scale: float = 1.0
 
     def factor(self, uv_pinion: np.ndarray, uv_gear: np.ndarray, shape, *,
-               nodes: int = _NODES) -> np.ndarray:
+               nodes: tuple[int, int] = _NODES) -> np.ndarray:
         """Bending factor ``F`` (ny, nx, r) at a grid of cells with pinion / gear flank
         parameters ``uv_*`` (ny * nx, 2, row-major over ``shape``), mm: ``G = F F^T``
         (mm/N).
 
-        The shell operator is evaluated exactly on a ``nodes x nodes`` sub-lattice of
-        the cells (all cells if the grid is smaller), compressed there, and its rows are
-        interpolated to every cell by tensor cubic splines over the cell indices (the
-        compliance varies on the Ritz scale, ~1.5 mm, the cells on ~0.1 mm; the
-        interpolation error is checked below 1e-3 of the largest entry in the tests).
+        The shell operator is evaluated exactly on a ``nodes`` (rows, columns)
+        sub-lattice of the cells (all cells of a shorter axis), compressed there, and
+        its rows are interpolated to every cell by tensor cubic splines over the cell
+        indices (the compliance varies on the Ritz scale along the face, ~1 mm, the
+        cells on ~0.1-0.2 mm; the interpolation error is checked below 2e-3 of the
+        largest entry in the tests).
         """
         ny, nx = (int(n) for n in shape)
         if self.scale == 0.0:
             return np.zeros((ny, nx, 1))
-        jy = _sub_lattice(ny, nodes)
-        jx = _sub_lattice(nx, nodes)
+        jy = _sub_lattice(ny, nodes[0])
+        jx = _sub_lattice(nx, nodes[1])
         pick = (jy[:, None] * nx + jx[None, :]).ravel()
         parts = []
         for shell, uv in ((self.pinion, uv_pinion[pick]), (self.gear, uv_gear[pick])):
@@ -152,11 +154,14 @@ def _spline_weights(at: np.ndarray, n: int) -> np.ndarray:
     return CubicSpline(at, np.eye(len(at)))(np.arange(n))
 
 
-def tooth_bending(flanks, pair, *, side: str, order: int = 6, scale: float = 1.0
-                  ) -> ToothBending:
-    """The :class:`ToothBending` of a pair (shell models cached per flank set)."""
+def tooth_bending(flanks, pair, *, side: str, order: int = 6, order_face: int = 16,
+                  scale: float = 1.0) -> ToothBending:
+    """The :class:`ToothBending` of a pair (shell models cached per flank set; orders
+    and root foundations as calibrated, :func:`~gearcontact.structure.shell.tooth_shell`)."""
     check_range("bending scale", scale, 0.0, 1e6)
     return ToothBending(
-        pinion=tooth_shell(flanks, "pinion", material=pair.pinion_material, order=order),
-        gear=tooth_shell(flanks, "gear", material=pair.gear_material, order=order),
+        pinion=tooth_shell(flanks, "pinion", material=pair.pinion_material, order=order,
+                           order_face=order_face),
+        gear=tooth_shell(flanks, "gear", material=pair.gear_material, order=order,
+                         order_face=order_face),
         side=side, scale=float(scale))

@@ -13,7 +13,8 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   of the real mid-surface; the coupling of membrane and bending through the
   mid-surface curvature is neglected, a shallow-shell / plate approximation);
 - Ritz basis: ``w, beta_1, beta_2 = sum_ij a_ij P_i(xi) P_j(eta) r(eta)`` with Legendre
-  polynomials of degree <= ``order`` in each direction; ``r = (1 + eta)/2`` makes beta_1
+  polynomials of degree <= ``order_face`` along the face (xi) and <= ``order`` over the
+  height (eta) (a tooth is 5-10 times longer than high); ``r = (1 + eta)/2`` makes beta_1
   vanish at the root eta = -1, and w and beta_2 too when the root is clamped
   (``RootFoundation(0, 0)``);
 - root / rim flexibility (a foundation along the root line, Weber 1949, O'Donnell 1963,
@@ -96,13 +97,14 @@ CLAMPED = RootFoundation(0.0, 0.0)
 
 #: Calibrated root / rim coefficients per member: the grid search of ``docs/bending.md``
 #: against 3D FE (P2, 20 x 8 x 4 cells + 6 rim layers) of the s0003 teeth with their rim
-#: segments, on the through-thickness compliance of a 3 x 3 drive-flank lattice. The
-#: pinion tooth stands on the solid shaft core: a clamped root fits best (shell/FE
-#: 0.82..1.14); the gear tooth on its thin rim needs both springs (0.83..1.17).
-ROOT_FOUNDATION = {"pinion": CLAMPED, "gear": RootFoundation(8.0, 1.5)}
+#: segments, on the deflection under distributed loads (segment and line loads along
+#: the face at three heights; shell orders 6 / 16): shell/FE 0.76..1.20 (pinion),
+#: 0.79..1.09 (gear).
+ROOT_FOUNDATION = {"pinion": RootFoundation(3.0, 1.0), "gear": RootFoundation(10.0, 2.0)}
 
 #: Gauss-Legendre points per direction of the stiffness quadrature (fixed, so that the
-#: trial spaces of different orders are compared on the same integration rule).
+#: trial spaces of different orders are compared on the same integration rule); along
+#: the face at least ``order_face + 6`` points.
 _QUADRATURE = 20
 
 
@@ -162,6 +164,7 @@ class ShellModel:
 
     body: object
     order: int
+    order_face: int
     foundation: RootFoundation
     cholesky: np.ndarray
     n_functions: int
@@ -170,7 +173,7 @@ class ShellModel:
         """Values and derivatives of the Ritz functions of (w, beta_1, beta_2):
         ``(N, N_xi, N_eta)`` each (3, nb, n) for the three fields."""
         xi, eta = np.atleast_1d(np.asarray(xi, float)), np.atleast_1d(np.asarray(eta, float))
-        px, dpx = _legendre_table(xi, self.order)
+        px, dpx = _legendre_table(xi, self.order_face)
         pe, dpe = _legendre_table(eta, self.order)
         r, dr = 0.5 * (1.0 + eta), 0.5 * np.ones_like(eta)
         fd = self.foundation
@@ -222,8 +225,9 @@ def _lower_solve(low, phi):  # pragma: no cover - compiled
 def _stiffness(body, model: ShellModel) -> np.ndarray:
     """Ritz stiffness K (m x m), N/mm: Gauss-Legendre quadrature of the plate energy."""
     g, wg = legendre.leggauss(_QUADRATURE)
-    XI, ETA = np.meshgrid(g, g, indexing="ij")
-    xi, eta, wq = XI.ravel(), ETA.ravel(), np.outer(wg, wg).ravel()
+    gx, wx = legendre.leggauss(max(_QUADRATURE, model.order_face + 6))
+    XI, ETA = np.meshgrid(gx, g, indexing="ij")
+    xi, eta, wq = XI.ravel(), ETA.ravel(), np.outer(wx, wg).ravel()
     mid = body.mid_surface(xi, eta)
     e1, e2, _ = local_frame(mid)
     # J maps (d xi, d eta) -> local (dx1, dx2); gradient = J^-T (d/dxi, d/deta)
@@ -256,9 +260,9 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     K = np.einsum("amq,ab,bnq,q->mn", Bb, Db, Bb, D, optimize=True)
     K += np.einsum("amq,anq,q->mn", Bs, Bs, Gs, optimize=True)
     fd = model.foundation
-    mr = body.mid_surface(g, -np.ones_like(g))
-    dl = wg * np.linalg.norm(mr.x_xi, axis=-1)
-    Nr, _, _ = model.shape_functions(g, -np.ones_like(g))
+    mr = body.mid_surface(gx, -np.ones_like(gx))
+    dl = wx * np.linalg.norm(mr.x_xi, axis=-1)
+    Nr, _, _ = model.shape_functions(gx, -np.ones_like(gx))
     z0 = np.zeros_like(Nr[0])
     springs = ((fd.rotation, mr.thickness_mm ** 2, np.concatenate([z0, z0, Nr[2]])),
                (fd.translation, 1.0, np.concatenate([Nr[0], z0, z0])))
@@ -269,7 +273,8 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     return 0.5 * (K + K.T)
 
 
-def build_shell(body, *, order: int = 6, foundation: RootFoundation = CLAMPED) -> ShellModel:
+def build_shell(body, *, order: int = 6, order_face: int | None = None,
+                foundation: RootFoundation = CLAMPED) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -277,7 +282,10 @@ def build_shell(body, *, order: int = 6, foundation: RootFoundation = CLAMPED) -
     body : ToothGeometry or RectangularPlate
         The plate (mid-surface, thickness, material).
     order : int
-        Legendre degree per direction, 1..16; 3 (order+1)^2 Ritz functions.
+        Legendre degree over the height (eta), 1..16.
+    order_face : int or None
+        Legendre degree along the face (xi), 1..24 (default ``order``);
+        3 (order + 1)(order_face + 1) Ritz functions.
     foundation : RootFoundation
         Root / rim foundation coefficients (default clamped).
 
@@ -289,13 +297,17 @@ def build_shell(body, *, order: int = 6, foundation: RootFoundation = CLAMPED) -
     """
     if isinstance(order, bool) or int(order) != order or not 1 <= order <= 16:
         raise InputRangeError("order", order, "an integer in [1, 16]")
+    order_face = order if order_face is None else order_face
+    if isinstance(order_face, bool) or int(order_face) != order_face or not 1 <= order_face <= 24:
+        raise InputRangeError("order_face", order_face, "an integer in [1, 24]")
     t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
-    n = 3 * (int(order) + 1) ** 2
+    n = 3 * (int(order) + 1) * (int(order_face) + 1)
     if not isinstance(foundation, RootFoundation):
         raise InputRangeError("foundation", foundation, "a RootFoundation")
-    model = ShellModel(body=body, order=int(order), foundation=foundation,
+    model = ShellModel(body=body, order=int(order), order_face=int(order_face),
+                       foundation=foundation,
                        cholesky=np.empty((0, 0)), n_functions=n)
     K = _stiffness(body, model)
     try:
@@ -309,13 +321,16 @@ def build_shell(body, *, order: int = 6, foundation: RootFoundation = CLAMPED) -
 
 @lru_cache(maxsize=8)
 def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = 6,
-                foundation: RootFoundation | None = None) -> ShellModel:
+                order_face: int = 16, foundation: RootFoundation | None = None
+                ) -> ShellModel:
     """The shell model of one tooth of ``member``, cached per flank set and member.
 
-    ``foundation`` defaults to the calibrated :data:`ROOT_FOUNDATION` of the member.
+    ``foundation`` defaults to the calibrated :data:`ROOT_FOUNDATION` of the member;
+    the default orders (6 over the height, 16 along the face) are those of the
+    calibration (a tooth is 5-10 times longer than high).
     Both flanks (drive and coast) of the tooth use the same model (one cache entry per
     pair, member and options; the flank set is hashed by identity).
     """
     tooth: ToothGeometry = tooth_geometry(flanks, member, material=material)
-    return build_shell(tooth, order=order,
+    return build_shell(tooth, order=order, order_face=order_face,
                        foundation=ROOT_FOUNDATION[member] if foundation is None else foundation)
