@@ -19,7 +19,8 @@ the inward flank normal at a flank node is a consistent nodal force for P2 (a ve
 basis function is 1 there, the others 0), so G_ij = d_i . u(node_i; load j) is
 Maxwell-Betti symmetric to rounding. The point load makes the displacement at the
 loaded node itself mesh dependent (the local indentation, which the half-space part of
-the LTCA models); compare with the shell at separated points or at the opposite flank.
+the LTCA models); the shell is compared with it under distributed loads
+(:mod:`.compliance`).
 
 Needs the optional ``fe`` extra (``pip install 'gearcontact[fe]'``: scikit-fem).
 
