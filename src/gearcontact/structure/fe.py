@@ -116,7 +116,8 @@ def _rim_map(body, xi, s_mm, zeta, *, fillet_mm: float):
     axis = body.axis
     radial = lambda p: p - np.outer(p @ axis, axis)  # noqa: E731
     rc, rd = radial(pc0), radial(pd0)
-    cosang = np.einsum("ni,ni->n", rc, rd) / (np.linalg.norm(rc, axis=1) * np.linalg.norm(rd, axis=1))
+    cosang = np.einsum("ni,ni->n", rc, rd) / (np.linalg.norm(rc, axis=1)
+                                               * np.linalg.norm(rd, axis=1))
     widen = (2.0 * np.pi / body.teeth) / np.arccos(np.clip(cosang, -1.0, 1.0))
     q = np.clip(s_mm / fillet_mm, 0.0, 1.0)
     fan = np.sqrt(1.0 - (1.0 - q) ** 2)

@@ -149,7 +149,8 @@ class RectangularPlate(_PlateBody):
 
     def _thickness(self, eta):
         tip = self.thickness_root_mm if self.thickness_tip_mm is None else self.thickness_tip_mm
-        return self.thickness_root_mm + 0.5 * (np.asarray(eta) + 1.0) * (tip - self.thickness_root_mm)
+        t0 = self.thickness_root_mm
+        return t0 + 0.5 * (np.asarray(eta) + 1.0) * (tip - t0)
 
     def mid_surface(self, xi, eta) -> MidSurfaceArrays:
         xi, eta = np.broadcast_arrays(np.asarray(xi, float), np.asarray(eta, float))
