@@ -14,10 +14,9 @@ import pytest
 
 from gearcontact.cli import main
 
-pytest.importorskip("skfem")
-
 
 def test_bending_gear_with_fe(tmp_path):
+    pytest.importorskip("skfem")
     out = tmp_path / "b"
     assert main(["bending", "--pair", "s0003", "--member", "gear", "--out", str(out),
                  "--fe", "--points", "3", "2"]) == 0
