@@ -19,7 +19,8 @@ Truths:
   itself a model of the real rim. Measured: fine calibration mesh pinion 0.76..1.20,
   gear 0.79..1.09 (slow suite); default coarse mesh pinion 0.84..1.12, gear
   0.77..0.99;
-- bad input: mesh sizes, rim / fillet sizes -> InputRangeError (before meshing).
+- bad input: mesh sizes, rim / fillet sizes -> InputRangeError (before meshing); a
+  body with crossing faces -> InputRangeError "FE mesh" (inverted cells).
 """
 
 import numpy as np
@@ -105,6 +106,9 @@ def test_bad_input(s0003):
         build_fe(plate, n_eta=1, n_rim=0)
     with pytest.raises(InputRangeError, match="n_rim"):
         build_fe(plate, n_rim=2)            # a plate has no member axis for a rim
+    # a body whose faces cross (thickness < 0 towards the tip): inverted cells
+    with pytest.raises(InputRangeError, match="FE mesh"):
+        build_fe(_Crossing(Material(E_MPA, NU)), n_xi=2, n_eta=4, n_zeta=1, n_rim=0)
     pair, flanks = s0003
     from gearcontact.structure.tooth import tooth_geometry
 
@@ -113,3 +117,13 @@ def test_bad_input(s0003):
         build_fe(tooth, n_xi=2, n_eta=2, n_zeta=1, n_rim=2, rim_depth_mm=-1.0)
     with pytest.raises(InputRangeError, match="fillet_mm"):
         build_fe(tooth, n_xi=2, n_eta=2, n_zeta=1, n_rim=2, fillet_mm=0.0)
+
+
+class _Crossing(RectangularPlate):
+    """A plate whose thickness goes negative towards the tip (faces crossing)."""
+
+    def __init__(self, mat):
+        super().__init__(10.0, 4.0, 1.0, mat)
+
+    def _thickness(self, eta):
+        return 1.0 - 1.5 * (np.asarray(eta) + 1.0) / 2.0
