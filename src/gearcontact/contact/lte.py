@@ -142,6 +142,8 @@ class LoadedTE:
         ``l_0^2 d theta / d T`` at P0 with all pairs within reach, mm/N.
     cells : int
         Cells per side of each pair's field.
+    bending : bool
+        Tooth bending was in the LCP (then the LCP compliances include it).
     timings_s : dict
         Wall-clock seconds per stage.
     """
@@ -173,6 +175,7 @@ class LoadedTE:
     mesh_compliance_lcp_mm_per_n: float
     mesh_compliance_pre_mm_per_n: float
     cells: int
+    bending: bool = False
     timings_s: dict = field(default_factory=dict)
 
     @property
@@ -224,7 +227,7 @@ class LoadedTE:
                 "max_dropped_load_n": float(self.dropped_load_n.max()),
                 "converged": self.converged,
                 "unconverged_phases": int(sum(s != "converged" for s in self.status)),
-                "te_sign": self.te_sign, "cells": self.cells,
+                "te_sign": self.te_sign, "cells": self.cells, "bending": self.bending,
                 "solve_ms_per_phase": float(self.solve_ms.mean()),
                 "field_ms_per_phase": float(self.field_ms.mean()),
                 "timings_s": dict(self.timings_s)}
@@ -513,4 +516,4 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str = "drive",
         active_pre=(w_pre > share * w_pre.sum(axis=0)).sum(axis=0),
         edge_contact=edge, field_edge=fedge, dropped_load_n=dropped, status=tuple(status), solve_ms=solve_ms,
         field_ms=field_ms, reference_index=int(k_ref), cells=int(cells),
-        timings_s=timings, **comp)
+        bending=bending is not None, timings_s=timings, **comp)
