@@ -48,7 +48,8 @@ def main() -> None:
         best = None
         for _ in range(args.repeat):
             t0 = time.perf_counter()
-            tooth = tooth_geometry(flanks, member, material=pair.pinion_material)
+            material = pair.pinion_material if member == "pinion" else pair.gear_material
+            tooth = tooth_geometry(flanks, member, material=material)
             t1 = time.perf_counter()
             shell = build_shell(tooth, order=args.order, order_face=args.order_face,
                                 foundation=ROOT_FOUNDATION[member])

@@ -31,6 +31,7 @@ topography and shell theory", *Mechanism and Machine Theory* 44(10), 2009, 1848-
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -38,7 +39,7 @@ from ..geometry.flank import SIDES, FlankSet
 from ..materials import Material
 from ..validation import InputRangeError, check_array_finite, check_positive
 
-__all__ = ["MidSurfaceArrays", "LoadPoints", "ToothGeometry", "RectangularPlate",
+__all__ = ["MidSurfaceArrays", "LoadPoints", "PlateBody", "ToothGeometry", "RectangularPlate",
            "tooth_geometry", "local_frame"]
 
 #: Tolerance (mm) on a flank parameter outside its own box before it is rejected.
@@ -97,27 +98,25 @@ def local_frame(mid: MidSurfaceArrays) -> tuple[np.ndarray, np.ndarray, np.ndarr
     return e1, e2, mid.normal
 
 
-class _PlateBody:
-    """Shared interface of the plate bodies (tooth, test plate)."""
+class PlateBody(Protocol):
+    """What the shell (:mod:`.shell`) and the FE (:mod:`.fe`) need of a plate body:
+    its material, mid-surface and the two faces over (xi, eta) in [-1, 1]^2 (eta = -1
+    is the root), and load points on a face."""
 
     material: Material
 
-    def mid_surface(self, xi, eta) -> MidSurfaceArrays:  # pragma: no cover - interface
-        raise NotImplementedError
+    def mid_surface(self, xi, eta) -> MidSurfaceArrays:
+        """Mid-surface arrays at (xi, eta)."""
 
-    def side_points(self, xi, eta) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
+    def side_points(self, xi, eta) -> tuple[np.ndarray, np.ndarray]:
         """(coast-side, drive-side) surface points (..., 3) facing each other, mm."""
-        raise NotImplementedError
 
-    def root_length_mm(self) -> float:
-        """Length of the clamped root line (eta = -1), mm (Gauss-Legendre, 32 points)."""
-        x, w = np.polynomial.legendre.leggauss(32)
-        mid = self.mid_surface(x, -np.ones_like(x))
-        return float(np.sum(w * np.linalg.norm(mid.x_xi, axis=-1)))
+    def points_at(self, side: str, xi, eta) -> LoadPoints:
+        """Load points on the face of ``side`` at (xi, eta)."""
 
 
 @dataclass(frozen=True, eq=False)
-class RectangularPlate(_PlateBody):
+class RectangularPlate:
     """Flat rectangular plate clamped along one edge: the test body with closed forms.
 
     The plate lies in the x-y plane: ``x = xi W / 2`` across the width,
@@ -188,7 +187,7 @@ class RectangularPlate(_PlateBody):
 
 
 @dataclass(frozen=True, eq=False)
-class ToothGeometry(_PlateBody):
+class ToothGeometry:
     """One tooth of a member between its real drive and coast flanks (module docstring).
 
     Attributes
@@ -300,11 +299,6 @@ class ToothGeometry(_PlateBody):
         mid = self.mid_surface(xi, eta)
         off = np.einsum("...i,...i->...", r - mid.position_mm, mid.normal)
         return LoadPoints(xi=xi, eta=eta, direction=-n, offset_mm=off, position_mm=r)
-
-    def root_centre_mm(self, xi) -> np.ndarray:
-        """Distance from the member axis of the mid-surface root line, mm (..., )."""
-        p = self.mid_surface(xi, -np.ones_like(np.asarray(xi, float))).position_mm
-        return np.linalg.norm(p - np.outer(p @ self.axis, self.axis).reshape(p.shape), axis=-1)
 
 
 def _turn(axis: np.ndarray, angle_rad: float) -> np.ndarray:
