@@ -60,6 +60,7 @@ from ..validation import InputRangeError, check_finite, check_positive
 from .grid import TangentGrid
 from .influence import StackedFftInfluence
 from .lcp import resolve_e_star
+from .tooth_bending import add_low_rank, bending_stack
 
 __all__ = ["MeshLcpResult", "PairBlock", "solve_mesh_lcp"]
 
@@ -302,30 +303,6 @@ def _boxes(x):  # pragma: no cover - compiled
     return box
 
 
-def _add_low_rank(f: np.ndarray, v: np.ndarray, out: np.ndarray) -> np.ndarray:
-    """``out[k] += F_k (F_k^T v[k])`` for factors ``f`` (blocks, ny, nx, r) and fields
-    ``v`` (blocks, ny, nx)."""
-    nb, ny, nx, r = f.shape
-    f2 = f.reshape(nb, ny * nx, r)
-    c = np.matmul(v.reshape(nb, 1, ny * nx), f2)              # (nb, 1, r)
-    out += np.matmul(f2, c.transpose(0, 2, 1)).reshape(nb, ny, nx)
-    return out
-
-
-def _bending_stack(blocks, shape) -> np.ndarray | None:
-    """Bending factors ``F_j / l_j`` of all blocks on one padded shape (blocks, ny, nx,
-    r_max), zero where a block has none or is padded; None if no block has one."""
-    if all(b.bending_factor is None for b in blocks):
-        return None
-    r = max(b.bending_factor.shape[2] for b in blocks if b.bending_factor is not None)
-    out = np.zeros((len(blocks),) + tuple(shape) + (r,))
-    for k, b in enumerate(blocks):
-        if b.bending_factor is not None:
-            f = b.bending_factor
-            out[k, :f.shape[0], :f.shape[1], :f.shape[2]] = f / b.lever_mm
-    return out
-
-
 class _Region:
     """Batched operator and data on one window per loaded block.
 
@@ -410,7 +387,7 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
     live = box[:, 1] > box[:, 0]
     u, r, z = op.apply(x, live=live), np.empty(x.shape), np.empty(x.shape)
     if bend is not None:
-        _add_low_rank(bend, x, u)
+        add_low_rank(bend, x, u)
     g, gm, x_old, t = (np.empty(x.shape), np.empty(x.shape), np.empty(x.shape),
                        np.zeros(x.shape))
     count = np.zeros(x.shape[0], np.int64)
@@ -429,7 +406,7 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
         gz_old = gz if gz > 0.0 else 1.0
         op.apply(t, out=r, live=on)
         if bend is not None:
-            _add_low_rank(bend, t, r)
+            add_low_rank(bend, t, r)
         rt = _dot(r, t)  # not np.vdot: BLAS threads spin on a busy machine
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return ("stalled" if gz == 0.0 or rt == 0.0 else "lost"), it, box
@@ -443,7 +420,7 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
             # (with bending the cell-by-cell update lacks the low-rank part: recompute)
             op.apply(x, out=u, live=box[:, 1] > box[:, 0])
             if bend is not None:
-                _add_low_rank(bend, x, u)
+                add_low_rank(bend, x, u)
     return "max_iter", it, box
 
 
@@ -492,7 +469,7 @@ def _pk_cg_blocks(blocks, e_star: float, h: np.ndarray, x: np.ndarray, torque: f
             continue
         u, ok = full.apply(x), reason in ("converged", "stalled")
         if bend is not None:
-            _add_low_rank(bend, x, u)
+            add_low_rank(bend, x, u)
         if not ok or whole:
             return x, u, it, ok
         s = u + h
@@ -583,7 +560,7 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     total = sum(float(xi.sum()) for xi in x0)
     h, x = _stack(hs, [xi * (torque / total) for xi in x0])
     x, u, iters, ok = _pk_cg_blocks(blocks, e_star, h, x, torque, tol, int(max_iter),
-                                    precondition, _bending_stack(blocks, h.shape[1:]))
+                                    precondition, bending_stack(blocks, h.shape[1:]))
     x = [x[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     u = [u[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     contact = [xi > 0.0 for xi in x]
