@@ -63,3 +63,19 @@ def test_files_keys_and_consistency(out):
 def test_bad_input(tmp_path, capsys, argv, word):
     assert main(["lte", "--out", str(tmp_path), "--phases", "11", "--quiet"] + argv) == 2
     assert word in capsys.readouterr().err
+
+
+def test_lte_with_bending(out, tmp_path):
+    # the shell bending of both teeth in the coupled LCP (tests/contact/
+    # test_tooth_bending.py checks it against its limits): the same command with
+    # --bending is flagged, converges, balances the shares and is more compliant
+    d = tmp_path / "bend"
+    assert main(["lte", "--pair", "s0003-centred", "--torque", "64.5", "--out", str(d),
+                 "--phases", "11", "--cells", "24", "--quiet", "--no-figures",
+                 "--bending"]) == 0
+    bent = json.loads((d / "lte.json").read_text())
+    rigid = json.loads((out / "lte.json").read_text())
+    assert bent["bending"] and not rigid["bending"] and bent["converged"]
+    assert sum(bent["reference_load_share"].values()) == pytest.approx(1.0, rel=1e-12)
+    assert bent["mesh_compliance_lcp_mm_per_n"] > rigid["mesh_compliance_lcp_mm_per_n"]
+    assert bent["reference_rotation_lcp_arcsec"] > rigid["reference_rotation_lcp_arcsec"]

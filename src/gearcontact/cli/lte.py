@@ -1,4 +1,5 @@
-"""``gearcontact lte``: loaded transmission error over one pinion pitch (rigid teeth).
+"""``gearcontact lte``: loaded transmission error over one pinion pitch (rigid teeth, or
+with the shell bending of both teeth with ``--bending``).
 
 Writes into ``--out`` (created if missing): ``lte.json`` (peak-to-peaks of TE0, TE_LCP
 and TE_pre, contact and mesh compliances, active pairs, load shares at P0; see
@@ -32,6 +33,9 @@ def register(sub) -> None:
                                    "TE_LCP, TE_pre, active pairs, compliances",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, torque=True, cells=40)
+    p.add_argument("--bending", action="store_true",
+                   help="add the shell bending compliance of the pinion and gear teeth to "
+                        "every pair in the coupled LCP (default: rigid teeth)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run, check=check_pair_arguments)
 
@@ -44,15 +48,20 @@ def run(args) -> int:
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
                                progress=not args.quiet)
+    bending = None
+    if args.bending:
+        from ..contact.tooth_bending import tooth_bending
+
+        bending = tooth_bending(flanks, pair, side=args.side)
     try:
         # JIT warm-up on three phases (first, P0, last) of the same problem, so that the
         # solve times of the run exclude the compilation of the mesh-LCP kernels
         t0 = time.perf_counter()
         loaded_te(tca, flanks, pair, args.torque, side=args.side, cells=args.cells,
-                  stride=len(tca.cycle.phi1_rad), progress=False)
+                  stride=len(tca.cycle.phi1_rad), bending=bending, progress=False)
         jit_s = time.perf_counter() - t0
         res = loaded_te(tca, flanks, pair, args.torque, side=args.side, cells=args.cells,
-                        progress=not args.quiet)
+                        bending=bending, progress=not args.quiet)
     except InputRangeError as exc:
         raise rename_load_error(exc, args.torque, pair, tca) from None
     run_timings(args, tca=tca.timings_s, lte=res.timings_s, jit_warm_up_s=jit_s,
@@ -60,7 +69,8 @@ def run(args) -> int:
                 field_ms_per_phase=float(res.field_ms.mean()))
     write_lte_outputs(res, args.out, figures=not args.no_figures,
                       title=f"{pair.name} {args.side}", published=published_values(pair.name))
-    print(f"{pair.name} {args.side} {args.torque:g} N·m, {len(res.phi1_rad)} phases: TE p-p "
+    print(f"{pair.name} {args.side} {args.torque:g} N·m, {len(res.phi1_rad)} phases"
+          f"{', bending' if args.bending else ''}: TE p-p "
           f"TE0 {res.te0_pp_arcsec:.2f} / LCP {res.te_lcp_pp_arcsec:.2f} / preview "
           f"{res.te_pre_pp_arcsec:.2f} arcsec; compliance LCP "
           f"{res.compliance_lcp_mm_per_n:.3g} / preview {res.compliance_pre_mm_per_n:.3g} "

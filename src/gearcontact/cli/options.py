@@ -33,21 +33,23 @@ def check_count(field: str, value: int, lo: int, hi: int, *, note: str = "") -> 
     return int(value)
 
 
-def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None) -> None:
+def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
+                       phases: bool = True) -> None:
     """Add ``--pair --out --force --side --phases --no-figures`` (and ``--torque``,
-    ``--cells``)."""
+    ``--cells``; ``phases=False`` leaves out the mesh options ``--side --phases``)."""
     p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
     add_out_argument(p)
     if torque:
         p.add_argument("--torque", type=float, default=64.5,
                        help="gear torque in N·m (default 64.5); the normal load it makes "
                             "must lie in the preview envelope (1 to 131072 N)")
-    p.add_argument("--side", default=None, choices=("drive", "coast"),
-                   help="flank pair (default: the pair's design_side; s0003: coast, the "
-                        "published design point)")
-    p.add_argument("--phases", type=int, default=61,
-                   help=f"TCA mesh phases per pinion pitch, both ends included, 3 to "
-                        f"{MAX_PHASES} (default 61)")
+    if phases:
+        p.add_argument("--side", default=None, choices=("drive", "coast"),
+                       help="flank pair (default: the pair's design_side; s0003: coast, the "
+                            "published design point)")
+        p.add_argument("--phases", type=int, default=61,
+                       help=f"TCA mesh phases per pinion pitch, both ends included, 3 to "
+                            f"{MAX_PHASES} (default 61)")
     if cells is not None:
         p.add_argument("--cells", type=int, default=cells,
                        help=f"cells per side of the tangent-plane gap field, 16 to "
@@ -58,11 +60,13 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None) -> 
 def check_pair_arguments(args) -> None:
     """Cheap checks before the expensive stages (the library checks again); loads the
     pair (TOML errors name the file and the field) into ``args.gear_pair``."""
-    check_count("--phases", args.phases, 3, MAX_PHASES)
+    if getattr(args, "phases", None) is not None:
+        check_count("--phases", args.phases, 3, MAX_PHASES)
     if getattr(args, "cells", None) is not None:
         check_count("--cells", args.cells, 16, MAX_CELLS, note=" per side")
     args.gear_pair = load_pair(args.pair)
-    args.side = args.side or args.gear_pair.design_side
+    if hasattr(args, "side"):
+        args.side = args.side or args.gear_pair.design_side
     if getattr(args, "torque", None) is not None:
         check_torque("--torque (N·m)", args.torque, args.gear_pair)
 
