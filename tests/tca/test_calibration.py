@@ -50,6 +50,8 @@ def test_calibrated_preset_reaches_p0(calibrated):
     # 61 phases per pitch, within half a phase step (~0.03 mm) of the calibrated point
     got = point_invariants(tca.mean_point.point_mm, pair.offset_mm)
     np.testing.assert_allclose(got, point_invariants(P0, pair.offset_mm), atol=0.1)
+    # TE0 p-p within 10 % of the published 3.40 arcsec (the second-priority target)
+    assert tca.cycle.te0_pp_arcsec == pytest.approx(3.40, rel=0.10)
     # pitch angles stay the published ones exactly (the calibration never touches them)
     assert pair.blank.pitch_angle_pinion_deg == pytest.approx(6.07, abs=1e-9)
     assert pair.blank.pitch_angle_gear_deg == pytest.approx(83.15, abs=1e-9)
@@ -70,6 +72,25 @@ def test_design_side_is_the_one_whose_surface_of_action_holds_p0():
     coast, _ = surface_of_action_offset(pair, P0, side="coast")
     drive, _ = surface_of_action_offset(pair, P0, side="drive")
     assert coast < 0.01 and drive > 1.0
+
+
+def test_face_widths_leave_heel_room_beyond_p0():
+    # both faces (centred on the published mean cone distances) end 2 mm beyond P0
+    # towards the heel along their pitch cones, to the 0.1 mm rounding (independent
+    # evaluation: the pitch-cone generatrix through the apex in the axial plane)
+    pair = load_pair("s0003")
+    b = pair.blank
+    inv = point_invariants(P0, pair.offset_mm)
+    d1, d2 = np.radians(b.pitch_angle_pinion_deg), np.radians(b.pitch_angle_gear_deg)
+    apex2 = np.array([0.0, b.gear_apex_z_mm])
+    gen2 = np.array([np.sin(d2), np.cos(d2)])
+    room2 = (b.mean_cone_distance_gear_mm + 0.5 * pair.gear_face_width_mm
+             - (np.array([inv[0], inv[1]]) - apex2) @ gen2)
+    apex1 = np.array([0.0, b.pinion_apex_x_mm])
+    gen1 = np.array([np.sin(d1), np.cos(d1)])
+    room1 = (b.mean_cone_distance_pinion_mm + 0.5 * pair.pinion_face_width_mm
+             - (np.array([inv[2], inv[3]]) - apex1) @ gen1)
+    assert 2.0 <= room2 < 2.05 and 2.0 <= room1 < 2.05
 
 
 def test_working_depth_for_tip_closed_form():

@@ -60,7 +60,8 @@ from .solve import ContactGuess, EdgeContact, solve_mating_point
 __all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibration", "calibrate_pair",
            "point_invariants", "surface_of_action_offset", "working_depth_for_tip",
            "evaluate_design_point", "DesignPoint", "PRIORITY_WEIGHTS",
-           "centred_coefficients", "design_point_at", "design_point_rows"]
+           "centred_coefficients", "design_point_at", "design_point_rows",
+           "face_widths_for_room"]
 
 _INVARIANTS = ("gear radius", "gear axial", "pinion radius", "pinion axial")
 _COEFFS = tuple(EaseOffCoefficients.__dataclass_fields__)
@@ -414,9 +415,31 @@ def _rows(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float
     return tuple(rows)
 
 
+def face_widths_for_room(pair: GearPair, point_mm, *, heel_room_mm: float
+                         ) -> tuple[float, float]:
+    """Face widths (gear F2, pinion b1; mm, up to 0.1 mm) that end ``heel_room_mm`` or
+    more beyond the point along both pitch cones (never narrower than the pair's).
+
+    The faces stay centred on the mean cone distances (which are published); the
+    position of the point along a pitch cone is its projection on the cone's generatrix
+    in the axial plane, ``R = r sin(delta) + (a - a_apex) cos(delta)`` (r radius, a axial
+    position, from the pitch apex).
+    """
+    b = pair.blank
+    inv = point_invariants(point_mm, pair.offset_mm)
+    d1, d2 = np.radians(b.pitch_angle_pinion_deg), np.radians(b.pitch_angle_gear_deg)
+    r_gear = inv[0] * np.sin(d2) + (inv[1] - b.gear_apex_z_mm) * np.cos(d2)
+    r_pinion = inv[2] * np.sin(d1) + (inv[3] - b.pinion_apex_x_mm) * np.cos(d1)
+    f2 = 2.0 * (r_gear + heel_room_mm - b.mean_cone_distance_gear_mm)
+    f1 = 2.0 * (r_pinion + heel_room_mm - b.mean_cone_distance_pinion_mm)
+    f2 = max(pair.gear_face_width_mm, np.ceil(10.0 * f2) / 10.0)
+    f1 = max(pair.pinion_face_width_mm, f2, np.ceil(10.0 * f1) / 10.0)
+    return float(f2), float(f1)
+
+
 def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm: float = 0.05,
-                   side: str | None = None, max_evaluations: int = 120,
-                   progress: bool = False) -> Calibration:
+                   heel_room_mm: float = 2.0, side: str | None = None,
+                   max_evaluations: int = 120, progress: bool = False) -> Calibration:
     """Calibrate the working depth and the design-side ease-off of ``pair``.
 
     Parameters
@@ -426,6 +449,10 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
     targets : CalibrationTargets
     tip_margin_mm : float
         Pinion tip radius above P0 at P0's axial position, mm, in [0.01, 0.5].
+    heel_room_mm : float
+        Length of both faces beyond P0 towards the heel, mm, in [0, 5]
+        (:func:`face_widths_for_room`): room for the contact path on the heel side of
+        the TE0 vertex, about half a pitch of path (s0003: ~2 mm).
     side : str, optional
         Force the design side; by default the side whose conjugate surface of action
         passes nearest P0.
@@ -442,10 +469,14 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
     check_positive("tip_margin_mm", tip_margin_mm)
     if not 0.01 <= tip_margin_mm <= 0.5:
         raise InputRangeError("tip_margin_mm", tip_margin_mm, "[0.01, 0.5] mm")
+    if not 0.0 <= heel_room_mm <= 5.0:
+        raise InputRangeError("heel_room_mm", heel_room_mm, "[0, 5] mm")
     if side is not None and side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
+    f2, f1 = face_widths_for_room(pair, targets.mean_point_mm, heel_room_mm=heel_room_mm)
     zero = dataclasses.replace(pair, easeoff_drive=EaseOffCoefficients(),
-                               easeoff_coast=EaseOffCoefficients())
+                               easeoff_coast=EaseOffCoefficients(), gear_face_width_mm=f2,
+                               pinion_face_width_mm=f1)
     flanks0 = build_flanks(zero)
     offsets = {s: surface_of_action_offset(zero, targets.mean_point_mm, side=s, flanks=flanks0)[0]
                for s in SIDES}
