@@ -14,7 +14,7 @@ from ..validation import InputRangeError
 __all__ = ["main", "build_parser"]
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
-COMMANDS = ("analyze", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte")
+COMMANDS = ("analyze", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte", "twin")
 
 
 def build_parser() -> argparse.ArgumentParser:
