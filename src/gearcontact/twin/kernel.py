@@ -81,8 +81,8 @@ _HB_E = 0.5 * math.pi - 1.0
 
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
- P_EP, P_DPSI, P_PITCH, P_ECODE) = range(18)
-N_PRM = 18
+ P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW) = range(19)
+N_PRM = 19
 # record columns
 (R_T, R_THETA, R_PSI, R_TMESH, R_W, R_A, R_B, R_P, R_NPAIRS, R_KE, R_PE, R_V, R_D, R_WIN,
  R_WP, R_WG) = range(16)
@@ -130,7 +130,7 @@ def _phase(psi, prm):
     pitch = prm[P_PITCH]
     x = psi - pitch * math.floor(psi / pitch)
     u = x / prm[P_DPSI]
-    i = int(u)
+    i = min(int(u), int(prm[P_NROW]) - 2)     # rounding can put x/dpsi at K-1
     return i, u - i
 
 

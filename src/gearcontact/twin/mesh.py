@@ -106,7 +106,7 @@ class MeshTable:
 
 
 def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.5,
-               edge_reach: float = 0.5) -> MeshTable:
+               edge_reach: float = 0.5, cells: int = 40) -> MeshTable:
     """Mesh data of ``tca`` over one pitch (module docstring).
 
     Parameters
@@ -125,6 +125,10 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     edge_reach : float
         As in :func:`gearcontact.contact.lte.loaded_te`: pairs up to this fraction of a
         pitch beyond their path end are kept as edge contacts.
+    cells : int
+        Cells per side of an edge pair's posed field, whose smallest separation on the
+        flank is the pair's opening (resolution dependent: use the ``cells`` of the
+        loaded TE the twin is compared with; 40 is its default).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
@@ -132,7 +136,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
     e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
     fields = PairFields(pinion, gear, kin, cycle, torque_nmm=1e3 * t, e_prime=e_prime,
-                        cells=24, extent=(1.6, 2.0))
+                        cells=int(cells), extent=(1.6, 2.0))
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
     n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}

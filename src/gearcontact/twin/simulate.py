@@ -124,6 +124,7 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_DPSI] = m.step_rad
     prm[K.P_PITCH] = m.pitch_rad
     prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
+    prm[K.P_NROW] = len(m.psi_rad)
     return prm
 
 
