@@ -16,3 +16,17 @@ def s0003_twin():
     pair = load_pair("s0003")
     tca, flanks = analyze_pair(pair, side="drive", phases=PHASES)
     return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM)
+
+
+def quasi_static_bound_arcsec(mesh, rotation_arcsec: float) -> float:
+    """TE tolerance at the phase rows of a quasi-static run against the static loaded TE.
+
+    The twin's pinion carries ``T (1/u + eps')``, so with the motor torque ``T_l / u``
+    the mesh torque departs from ``T_l`` by the relative ``u eps'``, which moves the
+    Hertzian rotation (``theta ~ T^(2/3)``) by ``(2/3) u |eps'| theta``; plus 0.003
+    arcsec for sampling within 1 % of a row where the TE slope reaches 0.25 arcsec/row.
+    """
+    import numpy as np
+
+    slope = np.abs(np.diff(mesh.eps_rad) / mesh.step_rad).max()
+    return 2.0 / 3.0 * mesh.ratio * slope * rotation_arcsec + 0.003
