@@ -93,7 +93,7 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
                   "pinion_speed_rad_s", "gear_speed_rad_s")
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, out3):
     """kappa (mm/N^(2/3)) from the golden stage D; out3 <- (a, b, p_max) at w_q."""
     s20 = 1048576.0
@@ -115,7 +115,7 @@ def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, out3):
     return delta / wq ** (2.0 / 3.0)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _kappa_reference(A, B, w, prm, out3):
     a, b, k, p, delta, alpha, e_e, f, r = _hb(min(A, B), max(A, B), w, prm[P_EP])
     out3[0] = a
@@ -124,7 +124,7 @@ def _kappa_reference(A, B, w, prm, out3):
     return delta / w ** (2.0 / 3.0)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def _phase(psi, prm):
     """Row interval and fraction of the pinion angle psi (periodic in the pitch)."""
     pitch = prm[P_PITCH]
@@ -134,7 +134,7 @@ def _phase(psi, prm):
     return i, u - i
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23):
     """(T_el N·m, W N) from the loaded-TE table at rows i, i+1 and rotation theta."""
     t_out = 0.0
@@ -161,7 +161,7 @@ def _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23):
     return t_out, w_out
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
              cache, pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, w_pairs, abp):
     """Elastic mesh torque T_el (N·m) and total normal load (N) of the drive-flank law at
@@ -223,7 +223,7 @@ def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_e
     return t_el, w_tot
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
            cbrt_lut, cst, tab_theta, tab_t23, tab_w23, dy, w_pairs, abp):
     """dy/dt into dy; returns (theta, T_mesh N·m, total normal load N)."""
@@ -239,20 +239,24 @@ def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache,
     t_mesh = 0.0
     t_el_signed = 0.0
     w_tot = 0.0
+    flank = 0                        # +1 drive, -1 coast, 0 free flight
+    th_e = 0.0
     if theta >= 0.0:
-        t_el, w_tot = _elastic(theta, psi_p, prm, eps, lever, opening, A_t, B_t, valid,
+        flank = 1
+        th_e = theta
+    elif theta <= -prm[P_THB]:
+        flank = -1
+        th_e = -theta - prm[P_THB]
+    if flank != 0:
+        t_el, w_tot = _elastic(th_e, psi_p, prm, eps, lever, opening, A_t, B_t, valid,
                                backend, w_eval, cache, pow_lut, cbrt_lut, cst, tab_theta,
                                tab_t23, tab_w23, w_pairs, abp)
         if t_el > 0.0:
-            t_el_signed = t_el
-            t_mesh = max(t_el + t_d, 0.0)
-    elif theta <= -prm[P_THB]:
-        t_el, w_tot = _elastic(-theta - prm[P_THB], psi_p, prm, eps, lever, opening, A_t,
-                               B_t, valid, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                               tab_theta, tab_t23, tab_w23, w_pairs, abp)
-        if t_el > 0.0:
-            t_el_signed = -t_el
-            t_mesh = min(-t_el + t_d, 0.0)
+            t_el_signed = flank * t_el
+            if flank == 1:
+                t_mesh = max(t_el + t_d, 0.0)
+            else:
+                t_mesh = min(-t_el + t_d, 0.0)
     else:
         for j in range(w_pairs.shape[0]):
             w_pairs[j] = 0.0
@@ -279,7 +283,7 @@ def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache,
     return theta, t_mesh, w_tot
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _mesh_potential(theta, psi, prm, lever, opening, valid, w_pairs):
     """Hertzian mesh potential sum (2/5) W_j d_j (J) of the loads in w_pairs."""
     i, f = _phase(psi, prm)
@@ -293,7 +297,7 @@ def _mesh_potential(theta, psi, prm, lever, opening, valid, w_pairs):
     return v
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
               w_eval, pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, rec, rec_start,
               record_every):
@@ -306,64 +310,85 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, back
     """
     n_y = y.shape[0]
     n_p = lever.shape[0]
-    k1 = np.empty(n_y)
-    k2 = np.empty(n_y)
-    k3 = np.empty(n_y)
-    k4 = np.empty(n_y)
-    ys = np.empty(n_y)
-    w_pairs = np.zeros(n_p)
-    w_tmp = np.zeros(n_p)
-    abp = np.zeros(7)
-    abp_tmp = np.zeros(7)
+    stages = np.empty((5, n_y))
+    pairs = np.zeros((2, n_p))
+    abp = np.zeros((2, 7))
     cache = np.zeros((n_p, 6))
+    return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
+                w_eval, pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, rec, rec_start,
+                record_every, stages, pairs, abp, cache)
+
+
+# Without the runtime's reference counting: every array is owned by run_steps, and the
+# inlined helpers would otherwise pay an atomic incref/decref per array argument and
+# call (measured ~200 ns per mesh evaluation, more than the evaluation itself).
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
+         pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, rec, rec_start, record_every,
+         stages, pairs, abp2, cache):
+    n_y = y.shape[0]
+    n_p = lever.shape[0]
+    k1 = stages[0]
+    k2 = stages[1]
+    k3 = stages[2]
+    k4 = stages[3]
+    ys = stages[4]
+    w_pairs = pairs[0]
+    abp = abp2[0]
     rows = 0
     for n in range(n_steps):
         for j in range(n_p):
             cache[j, 0] = -1.0      # a fresh preview of every loaded pair each step
-        theta, t_mesh, w_tot = _deriv(y, prm, eps, lever, opening, A_t, B_t, valid,
-                                      backend, w_eval, cache, pow_lut, cbrt_lut, cst, tab_theta,
-                                      tab_t23, tab_w23, k1, w_pairs, abp)
-        if n % record_every == 0:
-            r = rec_start + rows
-            rec[r, R_T] = t0 + n * h
-            rec[r, R_THETA] = theta
-            rec[r, R_PSI] = y[1]
-            rec[r, R_TMESH] = t_mesh
-            rec[r, R_W] = w_tot
-            rec[r, R_A] = abp[0]
-            rec[r, R_B] = abp[1]
-            rec[r, R_P] = abp[2]
-            cnt = 0
-            for j in range(n_p):
-                if w_pairs[j] > 0.0:
-                    cnt += 1
-            rec[r, R_NPAIRS] = cnt
-            rec[r, R_KE] = 0.5 * (prm[P_JM] * y[4] ** 2 + prm[P_JP] * y[5] ** 2
-                                  + prm[P_JG] * y[6] ** 2 + prm[P_JL] * y[7] ** 2)
-            rec[r, R_PE] = 0.5 * (prm[P_K1] * (y[0] - y[1]) ** 2
-                                  + prm[P_K2] * (y[2] - y[3]) ** 2)
-            rec[r, R_V] = _mesh_potential(theta, y[1], prm, lever, opening, valid,
-                                          w_pairs) if backend != 2 else 0.0
-            rec[r, R_D] = y[8]
-            rec[r, R_WIN] = y[9]
-            rec[r, R_WP] = y[5]
-            rec[r, R_WG] = y[6]
-            rows += 1
-        for j in range(n_p):
-            if w_pairs[j] > 0.0:
-                w_eval[j] = w_pairs[j]
-        for m in range(n_y):
-            ys[m] = y[m] + 0.5 * h * k1[m]
-        _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
-               cbrt_lut, cst, tab_theta, tab_t23, tab_w23, k2, w_tmp, abp_tmp)
-        for m in range(n_y):
-            ys[m] = y[m] + 0.5 * h * k2[m]
-        _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
-               cbrt_lut, cst, tab_theta, tab_t23, tab_w23, k3, w_tmp, abp_tmp)
-        for m in range(n_y):
-            ys[m] = y[m] + h * k3[m]
-        _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
-               cbrt_lut, cst, tab_theta, tab_t23, tab_w23, k4, w_tmp, abp_tmp)
+        for st in range(4):
+            if st == 0:
+                for m in range(n_y):
+                    ys[m] = y[m]
+            else:
+                c = 1.0 if st == 3 else 0.5
+                prev = stages[st - 1]
+                for m in range(n_y):
+                    ys[m] = y[m] + c * h * prev[m]
+            theta, t_mesh, w_tot = _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid,
+                                          backend, w_eval, cache, pow_lut, cbrt_lut, cst,
+                                          tab_theta, tab_t23, tab_w23, stages[st],
+                                          pairs[min(st, 1)], abp2[min(st, 1)])
+            if st == 0:
+                if n % record_every == 0:
+                    _record(rec, rec_start + rows, t0 + n * h, theta, t_mesh, w_tot, y, prm,
+                            lever, opening, valid, backend, w_pairs, abp)
+                    rows += 1
+                for j in range(n_p):
+                    if w_pairs[j] > 0.0:
+                        w_eval[j] = w_pairs[j]
         for m in range(n_y):
             y[m] += h / 6.0 * (k1[m] + 2.0 * k2[m] + 2.0 * k3[m] + k4[m])
     return rows
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _record(rec, r, t, theta, t_mesh, w_tot, y, prm, lever, opening, valid, backend,
+            w_pairs, abp):
+    """One row of :data:`RECORD_COLUMNS` (state at the start of a step)."""
+    n_p = lever.shape[0]
+    rec[r, R_T] = t
+    rec[r, R_THETA] = theta
+    rec[r, R_PSI] = y[1]
+    rec[r, R_TMESH] = t_mesh
+    rec[r, R_W] = w_tot
+    rec[r, R_A] = abp[0]
+    rec[r, R_B] = abp[1]
+    rec[r, R_P] = abp[2]
+    cnt = 0
+    for j in range(n_p):
+        if w_pairs[j] > 0.0:
+            cnt += 1
+    rec[r, R_NPAIRS] = cnt
+    rec[r, R_KE] = 0.5 * (prm[P_JM] * y[4] ** 2 + prm[P_JP] * y[5] ** 2
+                          + prm[P_JG] * y[6] ** 2 + prm[P_JL] * y[7] ** 2)
+    rec[r, R_PE] = 0.5 * (prm[P_K1] * (y[0] - y[1]) ** 2 + prm[P_K2] * (y[2] - y[3]) ** 2)
+    rec[r, R_V] = _mesh_potential(theta, y[1], prm, lever, opening, valid,
+                                  w_pairs) if backend != 2 else 0.0
+    rec[r, R_D] = y[8]
+    rec[r, R_WIN] = y[9]
+    rec[r, R_WP] = y[5]
+    rec[r, R_WG] = y[6]
