@@ -67,3 +67,16 @@ def test_bad_drivetrain_file_exit_2(tmp_path, capsys):
     f.write_text("[drivetrain]\nload_inertia_kgm2 = -0.1\n")
     code = main(["twin", "--drivetrain", str(f), "--out", str(tmp_path / "x"), "--quiet"])
     assert code == 2 and "drivetrain.load_inertia_kgm2" in capsys.readouterr().err
+
+
+def test_speed_sweep_files(tmp_path):
+    d = tmp_path / "sweep"
+    assert main(["twin", "--speed-sweep", "1000:3000:1000", "--phases", "31", "--workers", "1",
+                 "--out", str(d), "--quiet"]) == 0
+    data = json.loads((d / "sweep.json").read_text())
+    assert data["speeds_rpm"] == [1000.0, 3000.0, 3]
+    assert set(data) >= {"reference", "table", "resonance_speeds_rpm"}
+    rows = np.genfromtxt(d / "sweep.csv", delimiter=",", skip_header=1, dtype=float)
+    assert rows.shape == (3, 7)
+    assert data["reference"]["max_dynamic_factor"] == pytest.approx(rows[:, 1].max())
+    assert (d / "sweep.png").stat().st_size > 0

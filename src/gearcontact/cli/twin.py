@@ -4,7 +4,10 @@ Writes into ``--out`` (created if missing): ``twin.json`` (backend, steps, step_
 real_time_factor, step-time p50/p99, mesh frequency, mean mesh torque and load vs the
 static ones, dynamic factor, contact-loss fraction, DTE peak-to-peak, linearised natural
 frequencies; :func:`gearcontact.twin.simulate.simulate`), ``twin.csv`` (time series) and
-``twin.png`` / ``twin_spectrum.png``. Drivetrain parameters: the ``[drivetrain]`` table
+``twin.png`` / ``twin_spectrum.png``. With ``--speed-sweep START:STOP:STEP`` it runs the
+dynamic factor vs speed curve instead, for the preview twin (``--backend``) and the table
+twin side by side, in parallel over the speeds: ``sweep.json``, ``sweep.csv``,
+``sweep.png`` (:mod:`gearcontact.twin.sweep`). Drivetrain parameters: the ``[drivetrain]`` table
 of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.params`.
 """
 
@@ -12,8 +15,9 @@ from __future__ import annotations
 
 from ..geometry.pair import load_pair
 from ..twin.params import load_drivetrain
-from ..twin.report import write_twin_outputs
-from ..twin.simulate import BACKENDS, STEP_RANGE_US, model_for_pair, simulate
+from ..twin.report import write_sweep_outputs, write_twin_outputs
+from ..twin.simulate import BACKENDS, STEP_RANGE_US, build_model, model_for_pair, simulate
+from ..twin.sweep import parse_speed_range, speed_sweep
 from ..validation import InputRangeError, check_positive, check_range
 from .options import add_pair_arguments, check_pair_arguments
 
@@ -38,6 +42,10 @@ def register(sub) -> None:
                    help="table backend: LTCA (lcp, default) or Hertz preview loaded TE")
     p.add_argument("--record-every", type=int, default=1,
                    help="write every n-th step to twin.csv (default 1)")
+    p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
+                   help="rpm range: dynamic factor vs speed, preview and table twins")
+    p.add_argument("--workers", type=int, default=None,
+                   help="worker processes of the speed sweep (default: CPU count)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run)
 
@@ -51,8 +59,16 @@ def run(args) -> int:
     check_range("--speed-rpm", args.speed_rpm, 0.0, 1e5)
     if args.record_every < 1:
         raise InputRangeError("--record-every", args.record_every, ">= 1")
+    speeds = parse_speed_range(args.speed_sweep) if args.speed_sweep else None
+    if speeds is not None and args.backend == "table":
+        raise InputRangeError("--backend", "table", "reference or golden with --speed-sweep "
+                              "(the table twin runs beside it)")
+    if args.workers is not None and args.workers < 1:
+        raise InputRangeError("--workers", args.workers, ">= 1")
     pair = load_pair(args.pair)
     drivetrain = load_drivetrain(args.drivetrain, pair)
+    if speeds is not None:
+        return _sweep(args, pair, drivetrain, speeds)
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, progress=not args.quiet)
@@ -69,5 +85,25 @@ def run(args) -> int:
           f" / static {s['static_mesh_torque_nm']:g} N·m, dynamic factor "
           f"{s['dynamic_factor']:.3f}, contact loss {100 * s['contact_loss']:.1f} %, DTE p-p "
           f"{s['dte_pp_arcsec']:.2f} arcsec; real-time factor {s['real_time_factor']:.2f} "
+          f"-> {args.out}")
+    return 0
+
+
+def _sweep(args, pair, drivetrain, speeds) -> int:
+    table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
+                                 drivetrain=drivetrain, side=args.side, phases=args.phases,
+                                 table_source=args.table_source, progress=not args.quiet)
+    preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend)
+    sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,
+                     step_s=1e-6 * args.step_us, workers=args.workers, progress=not args.quiet)
+    s = write_sweep_outputs(sw, args.out, figures=not args.no_figures,
+                            title=f"{pair.name} {args.side} {args.torque:g} N·m",
+                            extra={"pair": pair.name, "step_us": args.step_us,
+                                   "table_source": args.table_source,
+                                   "drivetrain": drivetrain.as_dict()})
+    print(f"{pair.name} twin speed sweep {speeds[0]:g}-{speeds[-1]:g} rpm ({speeds.size} "
+          f"speeds): max dynamic factor {args.backend} {s[args.backend]['max_dynamic_factor']:.3f}"
+          f" at {s[args.backend]['at_speed_rpm']:g} rpm, table "
+          f"{s['table']['max_dynamic_factor']:.3f} at {s['table']['at_speed_rpm']:g} rpm "
           f"-> {args.out}")
     return 0

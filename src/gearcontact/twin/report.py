@@ -19,7 +19,8 @@ import numpy as np  # noqa: E402
 
 from ..tca.export import write_csv  # noqa: E402
 
-__all__ = ["write_twin_outputs", "plot_time", "plot_spectrum", "CSV_COLUMNS"]
+__all__ = ["write_twin_outputs", "write_sweep_outputs", "plot_time", "plot_spectrum",
+           "plot_sweep", "CSV_COLUMNS"]
 
 #: Columns of ``twin.csv`` (time series keys of :class:`~.simulate.TwinResult`).
 CSV_COLUMNS = ("t_s", "te_arcsec", "theta_rad", "mesh_torque_nm", "mesh_load_n", "a_mm",
@@ -112,4 +113,68 @@ def write_twin_outputs(result, out, *, figures: bool = True, title: str = "",
     if figures:
         plot_time(result, out / "twin.png", title=title)
         plot_spectrum(result, out / "twin_spectrum.png", title=title)
+    return summary
+
+
+def plot_sweep(sweep, path, *, title: str = "") -> Path:
+    """Dynamic factor and DTE p-p vs pinion speed for every model, the resonance speeds
+    ``60 f_n / (k z1)`` (mesh orders k = 1..6, k written at the top) marked."""
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    v = sweep.speeds_rpm
+    for i, (label, rows) in enumerate(sweep.rows.items()):
+        ax.plot(v, rows["dynamic_factor"], f"C{i}.-", ms=3, label=f"{label} twin")
+        ax2.plot(v, rows["dte_pp_arcsec"], f"C{i}.-", ms=3, label=f"{label} twin")
+    first = True
+    for (k, fn), n in sweep.resonance_speeds_rpm(orders=range(1, 7)).items():
+        if v[0] <= n <= v[-1]:
+            for a in (ax, ax2):
+                a.axvline(n, color="gray", ls="--", lw=0.7,
+                          label="k f_z = f_n" if (first and a is ax) else None)
+            ax.annotate(f"{k}", (n, 1.0), xycoords=("data", "axes fraction"), ha="center",
+                        va="bottom", fontsize=7, color="gray")
+            first = False
+    ax.set_ylabel("dynamic factor (max / static mesh torque)")
+    ax2.set_ylabel("DTE peak-to-peak (arcsec)")
+    ax2.set_xlabel("pinion speed (rpm)")
+    ax.set_title(f"{title} speed sweep; modes "
+                 + ", ".join(f"{f:.0f}" for f in sweep.natural_frequencies_hz) + " Hz",
+                 fontsize=10)
+    ax.legend(fontsize=8)
+    ax2.legend(fontsize=8)
+    for a in (ax, ax2):
+        a.grid(alpha=0.3)
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_sweep_outputs(sweep, out, *, figures: bool = True, title: str = "",
+                        extra: dict | None = None) -> dict:
+    """Write ``sweep.json`` (per model: speed of the largest dynamic factor and its value,
+    resonance speeds), ``sweep.csv`` (one row per speed) and ``sweep.png``."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    summary = {"speeds_rpm": [float(sweep.speeds_rpm[0]), float(sweep.speeds_rpm[-1]),
+                              len(sweep.speeds_rpm)],
+               "natural_frequencies_hz": [float(f) for f in sweep.natural_frequencies_hz],
+               "resonance_speeds_rpm": [{"order": k, "mode_hz": fn, "speed_rpm": n}
+                                        for (k, fn), n in sweep.resonance_speeds_rpm().items()]}
+    for label, rows in sweep.rows.items():
+        i = int(np.argmax(rows["dynamic_factor"]))
+        summary[label] = {"max_dynamic_factor": float(rows["dynamic_factor"][i]),
+                          "at_speed_rpm": float(sweep.speeds_rpm[i]),
+                          "max_contact_loss": float(rows["contact_loss"].max()),
+                          "mean_real_time_factor": float(rows["real_time_factor"].mean())}
+    summary.update(extra or {})
+    (out / "sweep.json").write_text(json.dumps(summary, indent=2))
+    header = ["speed_rpm"] + [f"{label}_{k}" for label in sweep.rows
+                              for k in ("dynamic_factor", "dte_pp_arcsec", "contact_loss")]
+    rows = [[float(v)] + [float(sweep.rows[label][k][i]) for label in sweep.rows
+                          for k in ("dynamic_factor", "dte_pp_arcsec", "contact_loss")]
+            for i, v in enumerate(sweep.speeds_rpm)]
+    write_csv(out / "sweep.csv", header, rows)
+    if figures:
+        plot_sweep(sweep, out / "sweep.png", title=title)
     return summary

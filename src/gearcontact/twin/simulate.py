@@ -36,7 +36,7 @@ from .mesh import MeshTable
 from .params import DrivetrainParams
 
 __all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate",
-           "linearized_modes", "linear_matrices", "static_rotation", "mesh_damping_n_s_per_mm",
+           "linearized_modes", "linear_matrices", "check_step", "static_rotation", "mesh_damping_n_s_per_mm",
            "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
@@ -227,6 +227,20 @@ def mesh_damping_n_s_per_mm(model: TwinModel) -> float:
     return 1e-3 * 2.0 * dt.mesh_damping_ratio * math.sqrt(k_m * m_e)
 
 
+def check_step(model: TwinModel, step_s: float) -> tuple[np.ndarray, float]:
+    """Linearised modes (Hz) and ``h omega_max``; raises :class:`InputRangeError`
+    (field ``step_us``) when the step is outside :data:`STEP_RANGE_US` or ``h omega_max
+    >`` :data:`STABILITY_LIMIT`."""
+    h_us = check_range("step_us", 1e6 * float(step_s), *STEP_RANGE_US)
+    freqs = linearized_modes(model)
+    h_omega = 1e-6 * h_us * 2.0 * math.pi * float(freqs[-1])
+    if h_omega > STABILITY_LIMIT:
+        h_max = STABILITY_LIMIT / (2.0 * math.pi * freqs[-1]) * 1e6
+        raise InputRangeError("step_us", h_us, f"<= {h_max:.3g} us (RK4 stability: h omega_max"
+                              f" <= {STABILITY_LIMIT}, highest mode {freqs[-1]:.4g} Hz)")
+    return freqs, h_omega
+
+
 @dataclass(frozen=True, eq=False)
 class TwinResult:
     """A twin run.
@@ -292,12 +306,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     if int(record_every) != record_every or record_every < 1:
         raise InputRangeError("record_every", record_every, "an integer >= 1")
     check_range("settle_fraction", settle_fraction, 0.0, 1.0, hi_open=True)
-    freqs = linearized_modes(model)
-    h_omega = h * 2.0 * math.pi * float(freqs[-1])
-    if h_omega > STABILITY_LIMIT:
-        h_max = STABILITY_LIMIT / (2.0 * math.pi * freqs[-1]) * 1e6
-        raise InputRangeError("step_us", h_us, f"<= {h_max:.3g} us (RK4 stability: h omega_max"
-                              f" <= {STABILITY_LIMIT}, highest mode {freqs[-1]:.4g} Hz)")
+    freqs, h_omega = check_step(model, h)
     n_steps = int(round(dur / h))
     if n_steps < 1:
         raise InputRangeError("duration_s", dur, f">= one step ({h:g} s)")
@@ -344,6 +353,8 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     if not np.all(np.isfinite(rec[:rows])):
         raise ArithmeticError("twin: non-finite state (step too large for this load?)")
     sel = cols["t_s"] >= settle_fraction * dur
+    if not sel.any():
+        sel[:] = True
     t_mesh, w_mesh = cols["mesh_torque_nm"][sel], cols["mesh_load_n"][sel]
     static_t = model.torque_nm
     st = np.array(times) * 1e6
