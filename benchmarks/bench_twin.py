@@ -5,7 +5,9 @@ drivetrain) for each contact backend and prints steps/s, the real-time factor
 (simulated / wall time), the step time p50 / p99 (over blocks of 256 steps, one
 compiled call each) and their jitter, the process CPU time per step and the load
 average (the machine is shared: wall-clock figures include other load). Targets
-(issue 14): compiled fp64 backend >= 10x real time on one core, golden >= 1x.
+(issue 14): compiled fp64 backend >= 10x real time on one core, golden >= 1x; the
+``rtl`` backend (golden loop + lockstep HertzCore replay, :mod:`gearcontact.twin.cosim`)
+runs a shorter time and states its rate.
 
 Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]``.
 """
@@ -31,6 +33,8 @@ def main() -> None:
     ap.add_argument("--speed-rpm", type=float, default=3000.0)
     ap.add_argument("--torque", type=float, default=64.5, help="gear torque (N·m)")
     ap.add_argument("--record-every", type=int, default=1, help="record every n-th step")
+    ap.add_argument("--rtl-duration-ms", type=float, default=10.0,
+                    help="simulated time of the rtl backend (lockstep RTL replay), ms")
     ap.add_argument("--backends", default=",".join(BACKENDS))
     args = ap.parse_args()
     pair = load_pair("s0003")
@@ -41,6 +45,7 @@ def main() -> None:
           f" {args.duration_ms:g} ms simulated, record every {args.record_every}")
     print(f"{'backend':<11}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
           f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
+    rtl_line = ""
     for be in args.backends.split(","):
         table = None
         if be == "table":
@@ -48,7 +53,8 @@ def main() -> None:
         model = build_model(mesh, dt, args.torque, backend=be, table=table)
         simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3, step_s=1e-6 * args.step_us)
         c0 = time.process_time()
-        res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * args.duration_ms,
+        ms = args.rtl_duration_ms if be == "rtl" else args.duration_ms
+        res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * ms,
                        step_s=1e-6 * args.step_us, record_every=args.record_every)
         cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
         s = res.summary
@@ -56,6 +62,12 @@ def main() -> None:
               f"{s['step_time_p50_us']:>10.3f}{s['step_time_p99_us']:>10.3f}"
               f"{s['step_time_p99_us'] / s['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
               f"{s['dynamic_factor']:>7.3f}")
+        if be == "rtl":
+            rtl_line = (f"rtl: {s['rtl_previews']} previews replayed on {s['rtl_simulator']} at "
+                        f"{s['rtl_previews_per_s']:.4g} previews/s, {s['rtl_mismatches']} "
+                        f"mismatches ({ms:g} ms simulated; CPU time excludes the simulator)")
+    if rtl_line:
+        print(rtl_line)
     print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())} "
           f"on {os.cpu_count()} cores")
 

@@ -72,7 +72,9 @@ def _cbrt_overload(x):   # numba 0.6x has no math.cbrt; libm cbrt is the same fu
 
 _hb = njit(cache=True)(hamrock_brewe_terms)
 
-BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2}
+#: Contact backends; ``rtl`` runs the golden loop and replays its previews on the RTL
+#: (:mod:`.cosim`).
+BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1}
 #: Smallest load at which a pair's preview is sampled, N (the datapath's envelope starts
 #: at 1 N; a pair that just closes is sampled here).
 W_EVAL_MIN_N = 1.0
@@ -94,7 +96,7 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, out3):
+def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, trace, tcount, out3):
     """kappa (mm/N^(2/3)) from the golden stage D; out3 <- (a, b, p_max) at w_q."""
     s20 = 1048576.0
     a_code = np.int64(math.floor(min(A, B) * s20 + 0.5))
@@ -102,6 +104,18 @@ def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, out3):
     w_code = np.int64(math.floor(w * 256.0 + 0.5))
     flags, a_c, b_c, p_c, k_c, rx, ry, al = hertz_element(
         a_code, b_code, w_code, np.int64(prm[P_ECODE]), pow_lut, cbrt_lut, cst)
+    t = tcount[0]
+    if t < trace.shape[0]:      # the rtl backend replays these on the hardware
+        trace[t, 0] = tcount[1]
+        trace[t, 1] = a_code
+        trace[t, 2] = b_code
+        trace[t, 3] = w_code
+        trace[t, 4] = flags
+        trace[t, 5] = a_c
+        trace[t, 6] = b_c
+        trace[t, 7] = p_c
+        trace[t, 8] = k_c
+        tcount[0] = t + 1
     if flags != 0 or a_c == 0 or k_c == 0:
         return -1.0
     a = a_c / s20
@@ -163,7 +177,8 @@ def _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23):
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
-             cache, pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, w_pairs, abp):
+             cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+             w_pairs, abp):
     """Elastic mesh torque T_el (N·m) and total normal load (N) of the drive-flank law at
     rotation theta >= 0; per-pair loads into w_pairs, (a, b, p) of the most loaded pair
     into abp[0:3] (zeros when none); abp[3] flags a golden pair outside the envelope,
@@ -197,7 +212,8 @@ def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_e
             if backend == 0:
                 kap = _kappa_reference(A, B, we, prm, out3)
             else:
-                kap = _kappa_golden(A, B, we, prm, pow_lut, cbrt_lut, cst, out3)
+                kap = _kappa_golden(A, B, we, prm, pow_lut, cbrt_lut, cst, trace, tcount,
+                                    out3)
             cache[j, 0] = i
             cache[j, 1] = kap
             cache[j, 2] = out3[0]
@@ -225,7 +241,7 @@ def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_e
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
-           cbrt_lut, cst, tab_theta, tab_t23, tab_w23, dy, w_pairs, abp):
+           cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, dy, w_pairs, abp):
     """dy/dt into dy; returns (theta, T_mesh N·m, total normal load N)."""
     u = prm[P_U]
     psi_p = y[1]
@@ -249,7 +265,8 @@ def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache,
         th_e = -theta - prm[P_THB]
     if flank != 0:
         t_el, w_tot = _elastic(th_e, psi_p, prm, eps, lever, opening, A_t, B_t, valid,
-                               backend, w_eval, cache, pow_lut, cbrt_lut, cst, tab_theta,
+                               backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace,
+                               tcount, tab_theta,
                                tab_t23, tab_w23, w_pairs, abp)
         if t_el > 0.0:
             t_el_signed = flank * t_el
@@ -299,14 +316,17 @@ def _mesh_potential(theta, psi, prm, lever, opening, valid, w_pairs):
 
 @njit(cache=True, error_model="numpy")
 def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
-              w_eval, pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, rec, rec_start,
-              record_every):
+              w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec,
+              rec_start, record_every):
     """Advance ``y`` (in place) by ``n_steps`` RK4 steps of ``h`` s from time ``t0``.
 
     Rows ``rec[rec_start + n // record_every]`` receive the state at the start of every
     ``record_every``-th step (columns :data:`RECORD_COLUMNS`); ``w_eval`` (per pair, N)
     carries the pair loads from step to step (the loads at which the preview is
-    sampled). Returns the number of rows written.
+    sampled). ``trace`` (int64, rows x 9) receives every golden stage-D evaluation while
+    rows remain, ``[step, A_code, B_code, W_code, flags, a_code, b_code, p_max_code,
+    k_code]``, counted in ``tcount[0]`` (``tcount[2]`` counts the steps); a trace of 0
+    rows records nothing. Returns the number of rows written to ``rec``.
     """
     n_y = y.shape[0]
     n_p = lever.shape[0]
@@ -315,8 +335,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, back
     abp = np.zeros((2, 7))
     cache = np.zeros((n_p, 6))
     return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
-                w_eval, pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, rec, rec_start,
-                record_every, stages, pairs, abp, cache)
+                w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+                rec, rec_start, record_every, stages, pairs, abp, cache)
 
 
 # Without the runtime's reference counting: every array is owned by run_steps, and the
@@ -324,7 +344,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, back
 # call (measured ~200 ns per mesh evaluation, more than the evaluation itself).
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
-         pow_lut, cbrt_lut, cst, tab_theta, tab_t23, tab_w23, rec, rec_start, record_every,
+         pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec, rec_start,
+         record_every,
          stages, pairs, abp2, cache):
     n_y = y.shape[0]
     n_p = lever.shape[0]
@@ -339,6 +360,8 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, 
     for n in range(n_steps):
         for j in range(n_p):
             cache[j, 0] = -1.0      # a fresh preview of every loaded pair each step
+        tcount[1] = tcount[2]       # step index of the trace rows
+        tcount[2] += 1
         for st in range(4):
             if st == 0:
                 for m in range(n_y):
@@ -350,7 +373,7 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, 
                     ys[m] = y[m] + c * h * prev[m]
             theta, t_mesh, w_tot = _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid,
                                           backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                                          tab_theta, tab_t23, tab_w23, stages[st],
+                                          trace, tcount, tab_theta, tab_t23, tab_w23, stages[st],
                                           pairs[min(st, 1)], abp2[min(st, 1)])
             if st == 0:
                 if n % record_every == 0:

@@ -137,8 +137,9 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
     w = np.zeros(n_p)
     t, _ = K._elastic(theta, psi, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
                       a["valid"], K.BACKEND_CODES[model.backend], w_eval,
-                      np.full((n_p, 6), -1.0), a["pow_lut"],
-                      a["cbrt_lut"], a["cst"], a["tab_theta"], a["tab_t23"], a["tab_w23"],
+                      np.full((n_p, 6), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
+                      np.zeros((0, 9), np.int64), np.zeros(3, np.int64), a["tab_theta"],
+                      a["tab_t23"], a["tab_w23"],
                       w, np.zeros(7))
     return t, w
 
@@ -326,9 +327,16 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     a = model.arrays
     code = K.BACKEND_CODES[model.backend]
     args = (prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"], a["valid"], code)
-    tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], a["tab_theta"], a["tab_t23"], a["tab_w23"])
+    n_p = a["lever"].shape[0]
+    # rtl: the golden loop records every preview for the lockstep replay (.cosim)
+    trace = np.zeros(((n_steps * (n_p + 2)) if model.backend == "rtl" else 0, 9), np.int64)
+    tcount = np.zeros(3, np.int64)
+    tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"],
+            a["tab_t23"], a["tab_w23"])
+    warm = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace[:0], np.zeros(3, np.int64),
+            a["tab_theta"], a["tab_t23"], a["tab_w23"])
     # compile (or load the cache) outside the timed loop
-    K.run_steps(y.copy(), 0.0, 1, h, *args, w_eval.copy(), *tail, np.zeros((1, K.N_REC)), 0, 1)
+    K.run_steps(y.copy(), 0.0, 1, h, *args, w_eval.copy(), *warm, np.zeros((1, K.N_REC)), 0, 1)
     n_rec = (n_steps + record_every - 1) // record_every
     rec = np.zeros((n_rec, K.N_REC))
     chunk = _CHUNK * record_every
@@ -345,8 +353,17 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         times.append((time.perf_counter() - t0) / n)
         done += n
         bar.update(n)
-    wall = time.perf_counter() - wall0
     bar.close()
+    rtl = {}
+    if model.backend == "rtl":
+        from .cosim import replay_on_rtl
+        if tcount[0] >= trace.shape[0]:
+            raise ArithmeticError(f"rtl trace full ({trace.shape[0]} previews)")
+        rtl = replay_on_rtl(trace[:tcount[0]], int(prm[K.P_ECODE]))
+        if rtl["rtl_mismatches"]:
+            raise ArithmeticError(f"RTL != golden in {rtl['rtl_mismatches']} previews, first "
+                                  f"at step {rtl['rtl_first_mismatch_step']}")
+    wall = time.perf_counter() - wall0
     cols = {name: rec[:rows, i] for i, name in enumerate(K.RECORD_COLUMNS)}
     eps = np.interp(np.mod(cols["psi_p_rad"], m.pitch_rad), m.psi_rad, m.eps_rad)
     cols["te_arcsec"] = m.motion_sign * (eps - cols["theta_rad"]) * ARCSEC_PER_RAD
@@ -371,7 +388,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
-        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n}
+        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n, **rtl}
     return TwinResult(cols, summary, freqs)
 
 
