@@ -21,7 +21,6 @@ import numpy as np
 import pytest
 
 from gearcontact.contact.lte import loaded_te, preview_balance
-from gearcontact.contact.pair_ltca import ARCSEC_PER_RAD
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain

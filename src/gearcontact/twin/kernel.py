@@ -21,24 +21,30 @@ Mesh torque, drive flank (``theta >= 0``): the Hertzian pairs of the current pha
 sum W_j l_j``, plus the mesh damping ``T_d = c_m l_0^2 theta'`` while a pair is closed;
 the flanks cannot pull, so ``T_mesh = max(T_el + T_d, 0)``. Coast flank (``theta <=
 -theta_b``, ``theta_b = backlash / l_0``): the drive law mirrored, ``T_mesh =
-min(-T_el(-theta - theta_b) + T_d, 0)``; in between the teeth fly free (``T_mesh = 0``,
+min(-T_el(-theta - theta_b) + T_d, 0)`` -- an approximation: the coast flank's own TCA
+is not used yet, so coast impacts see the drive flank's pairs and curvatures; in between the teeth fly free (``T_mesh = 0``,
 contact loss). Nothing divides by a load or an approach, so contact loss gives 0, never
 NaN.
 
 ``kappa_j`` (mm / N^(2/3)) is the Hertzian approach coefficient ``delta = kappa W^(2/3)``
-(Johnson 1985 sec. 4.2: the approach of two elastic bodies under a point contact grows
-as ``W^(2/3)``, Hamrock & Brewe 1983 eq. for ``delta``), taken from the preview of the
-pair at the current phase (curvatures interpolated in phase) at the pair's load of the
-previous step: ``delta = 3 W F / (pi a E')`` with ``F = pi/2 + (pi/2 - 1) ln alpha`` and
-``alpha = k^(pi/2)`` (Hamrock–Brewe's ``k = alpha^(2/pi)`` inverted), i.e. from the
-preview's outputs ``a`` and ``k`` whatever backend computed them:
+(Johnson 1985 sec. 4.2: the approach of two elastic bodies in point contact grows as
+``W^(2/3)``; Hamrock & Brewe 1983 for the elliptical closed form), taken from one preview
+per loaded pair and step -- at the phase of the step's start (curvatures interpolated in
+phase; again if a later RK4 stage enters the next phase interval) and at the pair's load
+of the previous step -- and held over the step's four stages: ``delta = 3 W F / (pi a
+E')`` with ``F = pi/2 + (pi/2 - 1) ln alpha`` and ``alpha = k^(pi/2)`` (Hamrock–Brewe's
+``k = alpha^(2/pi)`` inverted), i.e. from the preview's outputs ``a`` and ``k`` whatever
+backend computed them:
 
 * ``reference`` (0): the fp64 Hamrock–Brewe forms, the package's one implementation
   (:func:`gearcontact.analytic.hertz.hamrock_brewe_terms`) compiled here;
 * ``golden`` (1): the bit-exact fixed-point stage D (:func:`gearcontact.preview.hertz.
   golden_vec.hertz_element`) on the round-half-up codes of A-, B- and W;
 * ``table`` (2): no preview; ``T_el`` from the offline loaded-TE table
-  (:mod:`.ltca_table`).
+  (:mod:`.ltca_table`);
+* ``rtl``: the golden loop, every preview traced and replayed on the RTL (:mod:`.cosim`).
+
+Tooth bending is not in the law yet (rigid teeth; hook in :mod:`.simulate`).
 
 For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
 rounding, and the load at which it is sampled is clamped to the datapath envelope
@@ -48,8 +54,8 @@ Integrator: classical 4th-order Runge–Kutta at a fixed step ``h`` (4 mesh eval
 step). Linear stability on the imaginary axis (undamped modes): ``h omega <= 2 sqrt(2)
 ~ 2.83`` (Hairer & Wanner, Solving ODEs II, sec. IV.2); :mod:`.simulate` requires
 ``h omega_max <= 2.0`` at the linearised static operating point, margin for the
-Hertzian stiffening at dynamic overload (``k ~ W^(1/3)``: 2.0 still holds at 2.8x the
-static load). Global error O(h^4) where the force is smooth; the contact opening/closing
+Hertzian stiffening at dynamic overload (``k ~ W^(1/3)``, ``omega ~ W^(1/6)``: the RK4
+limit is reached only at 8x the static load). Global error O(h^4) where the force is smooth; the contact opening/closing
 and the phase-table kinks reduce it locally to O(h).
 """
 

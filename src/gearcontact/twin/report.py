@@ -29,6 +29,17 @@ CSV_COLUMNS = ("t_s", "te_arcsec", "theta_rad", "mesh_torque_nm", "mesh_load_n",
                "input_work_j")
 
 
+def _save(fig, axes, path) -> Path:
+    """Grid every axis, lay out, write the PNG and close the figure."""
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def plot_time(result, path, *, title: str = "") -> Path:
     """Four panels over time (ms): mesh load (N), dynamic TE (arcsec), a and b (mm),
     p_max (MPa)."""
@@ -56,13 +67,7 @@ def plot_time(result, path, *, title: str = "") -> Path:
     axes[0].set_title(f"{title} {s['backend']}: {s['torque_nm']:g} N·m, {s['speed_rpm']:g} rpm,"
                       f" dynamic factor {s['dynamic_factor']:.3f}, contact loss "
                       f"{100 * s['contact_loss']:.1f} %", fontsize=10)
-    for ax in axes:
-        ax.grid(alpha=0.3)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, axes, path)
 
 
 def plot_spectrum(result, path, *, settle_fraction: float = 0.5, title: str = "") -> Path:
@@ -90,12 +95,7 @@ def plot_spectrum(result, path, *, settle_fraction: float = 0.5, title: str = ""
     ax.set_ylabel("TE amplitude (arcsec)")
     ax.set_title(f"{title} dynamic TE spectrum ({s['backend']})", fontsize=10)
     ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, [ax], path)
 
 
 def write_twin_outputs(result, out, *, figures: bool = True, title: str = "",
@@ -141,13 +141,7 @@ def plot_sweep(sweep, path, *, title: str = "") -> Path:
                  fontsize=10)
     ax.legend(fontsize=8)
     ax2.legend(fontsize=8)
-    for a in (ax, ax2):
-        a.grid(alpha=0.3)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, [ax, ax2], path)
 
 
 def write_sweep_outputs(sweep, out, *, figures: bool = True, title: str = "",

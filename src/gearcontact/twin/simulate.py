@@ -36,8 +36,8 @@ from .mesh import MeshTable
 from .params import DrivetrainParams
 
 __all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate",
-           "linearized_modes", "linear_matrices", "check_step", "static_rotation", "mesh_damping_n_s_per_mm",
-           "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US"]
+           "linearized_modes", "linear_matrices", "check_step", "static_rotation",
+           "mesh_damping_n_s_per_mm", "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
 #: Largest h omega_max accepted (RK4 limit 2.83 on the imaginary axis; kernel docstring).
