@@ -261,6 +261,8 @@ def test_bad_input_names_the_field(model, s0003_twin):
         simulate(model, speed_rpm=-1.0, duration_s=0.01, step_s=10e-6)
     with pytest.raises(InputRangeError, match="table"):
         build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="table")
+    with pytest.raises(InputRangeError, match="bending_compliance_mm_per_n"):
+        build_model(mesh, default_drivetrain(pair), TORQUE_NM, bending_compliance_mm_per_n=1e-6)
     with pytest.raises(InputRangeError, match="pinion_inertia_kgm2"):
         replace(default_drivetrain(pair), pinion_inertia_kgm2=-1e-6)
 

@@ -75,17 +75,26 @@ class TwinModel:
 
 
 def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
-                backend: str = "reference", table=None) -> TwinModel:
+                backend: str = "reference", table=None,
+                bending_compliance_mm_per_n: float = 0.0) -> TwinModel:
     """Check the inputs and pack the compiled loop's arrays.
+
+    ``bending_compliance_mm_per_n`` is the hook for the tooth-bending model: only 0 is
+    accepted until it lands (then each pair solves ``d_j = kappa_j W^(2/3) + c_b W`` for
+    ``W`` by a few Newton steps in the kernel instead of the closed form).
 
     Raises
     ------
     InputRangeError
-        Unknown backend, ``table`` backend without a table, torque <= 0.
+        Unknown backend, ``table`` backend without a table, torque <= 0, a bending
+        compliance other than 0.
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     t = check_positive("torque_nm (N·m)", torque_nm)
+    if bending_compliance_mm_per_n != 0.0:
+        raise InputRangeError("bending_compliance_mm_per_n", bending_compliance_mm_per_n,
+                              "0 (tooth bending is not modelled yet: rigid teeth)")
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
     pow_lut, cbrt_lut, cst = golden_constants()
