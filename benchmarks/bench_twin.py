@@ -6,8 +6,9 @@ drivetrain) for each contact backend and prints steps/s, the real-time factor
 compiled call each) and their jitter, the process CPU time per step and the load
 average (the machine is shared: wall-clock figures include other load). Targets
 (issue 14): compiled fp64 backend >= 10x real time on one core, golden >= 1x; the
-``rtl`` backend (golden loop + lockstep HertzCore replay, :mod:`gearcontact.twin.cosim`)
-runs a shorter time and states its rate.
+``rtl`` and ``soc`` backends (golden loop + lockstep replay on HertzCore / through the
+SoC register driver, :mod:`gearcontact.twin.cosim`) run shorter times and state their
+rates (the CPU column counts this process only, not the simulator).
 
 Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]``.
 """
@@ -35,6 +36,8 @@ def main() -> None:
     ap.add_argument("--record-every", type=int, default=1, help="record every n-th step")
     ap.add_argument("--rtl-duration-ms", type=float, default=10.0,
                     help="simulated time of the rtl backend (lockstep RTL replay), ms")
+    ap.add_argument("--soc-duration-ms", type=float, default=0.1,
+                    help="simulated time of the soc backend (register driver replay), ms")
     ap.add_argument("--backends", default=",".join(BACKENDS))
     args = ap.parse_args()
     pair = load_pair("s0003")
@@ -45,7 +48,7 @@ def main() -> None:
           f" {args.duration_ms:g} ms simulated, record every {args.record_every}")
     print(f"{'backend':<11}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
           f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
-    rtl_line = ""
+    lines = []
     for be in args.backends.split(","):
         table = None
         if be == "table":
@@ -53,7 +56,8 @@ def main() -> None:
         model = build_model(mesh, dt, args.torque, backend=be, table=table)
         simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3, step_s=1e-6 * args.step_us)
         c0 = time.process_time()
-        ms = args.rtl_duration_ms if be == "rtl" else args.duration_ms
+        ms = {"rtl": args.rtl_duration_ms, "soc": args.soc_duration_ms}.get(be,
+                                                                          args.duration_ms)
         res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * ms,
                        step_s=1e-6 * args.step_us, record_every=args.record_every)
         cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
@@ -62,12 +66,13 @@ def main() -> None:
               f"{s['step_time_p50_us']:>10.3f}{s['step_time_p99_us']:>10.3f}"
               f"{s['step_time_p99_us'] / s['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
               f"{s['dynamic_factor']:>7.3f}")
-        if be == "rtl":
-            rtl_line = (f"rtl: {s['rtl_previews']} previews replayed on {s['rtl_simulator']} at "
-                        f"{s['rtl_previews_per_s']:.4g} previews/s, {s['rtl_mismatches']} "
-                        f"mismatches ({ms:g} ms simulated; CPU time excludes the simulator)")
-    if rtl_line:
-        print(rtl_line)
+        if be in ("rtl", "soc"):
+            where = s.get("rtl_simulator", "the bhseq_core SoC (register driver)")
+            lines.append(f"{be}: {s[be + '_previews']} previews replayed on {where} at "
+                         f"{s[be + '_previews_per_s']:.4g} previews/s, "
+                         f"{s[be + '_mismatches']} mismatches ({ms:g} ms simulated)")
+    for line in lines:
+        print(line)
     print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())} "
           f"on {os.cpu_count()} cores")
 

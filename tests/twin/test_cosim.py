@@ -55,3 +55,15 @@ def test_a_wrong_output_is_caught(s0003_twin):
     trace[17, 7] += 1                       # one LSB of p_max at trace row 17
     rep = replay_on_rtl(trace[:n], e_code)
     assert rep["rtl_mismatches"] == 1 and rep["rtl_first_mismatch_step"] == trace[17, 0]
+
+
+def test_soc_twin_through_the_register_driver(s0003_twin):
+    # the host driver's register protocol on the simulated bhseq_core SoC (~0.3 s per
+    # preview in the Amaranth simulator): 3 steps, every preview bit-identical
+    pair, _, _, mesh = s0003_twin
+    dt = default_drivetrain(pair)
+    kw = dict(speed_rpm=3000.0, duration_s=30e-6, step_s=10e-6)
+    soc = simulate(build_model(mesh, dt, TORQUE_NM, backend="soc"), **kw)
+    gold = simulate(build_model(mesh, dt, TORQUE_NM, backend="golden"), **kw)
+    assert soc.summary["soc_mismatches"] == 0 and soc.summary["soc_previews"] >= 6
+    np.testing.assert_array_equal(soc.columns["mesh_load_n"], gold.columns["mesh_load_n"])

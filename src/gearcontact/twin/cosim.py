@@ -1,4 +1,4 @@
-"""The ``rtl`` twin backend: the golden twin in lockstep with the RTL of stage D.
+"""The ``rtl`` and ``soc`` twin backends: the golden twin in lockstep with the hardware.
 
 The twin's state after step ``n + 1`` depends on the contact backend only through the
 stage-D output codes of the previews at step ``n``. The golden loop records every
@@ -11,6 +11,11 @@ If every output matches, the RTL-driven twin takes exactly the golden twin's tra
 mismatch is an error naming the step. This replays a whole run in one bulk simulation
 instead of one simulator round trip per step; it is meant for short runs (the RTL rate
 is reported).
+
+The ``soc`` backend replays the same trace through the host driver over the register
+map (:class:`gearcontact.hw.driver.HertzDriver` on the ``bhseq_core`` SoC, the protocol a
+board uses; here its transport is the Amaranth simulation of the SoC, ~0.3 s per
+preview): one register transaction per preview, for very short runs.
 """
 
 from __future__ import annotations
@@ -21,7 +26,7 @@ import numpy as np
 
 from ..preview.stimulus import Stimulus
 
-__all__ = ["replay_on_rtl", "TRACE_COLUMNS"]
+__all__ = ["replay_on_rtl", "replay_on_soc", "TRACE_COLUMNS"]
 
 #: Columns of the golden preview trace.
 TRACE_COLUMNS = ("step", "A_code", "B_code", "W_code", "flags", "a_code", "b_code",
@@ -67,11 +72,49 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
     outs, *_ = simulate(get_bench("hertz"), st, sim)
     secs = time.perf_counter() - t0
     port = {f: p for p, f in OUTPUT_PORTS.items()}
-    bad = np.zeros(n, bool)
-    for col, field in ((4, "flags"), (5, "a_code"), (6, "b_code"), (7, "p_max_code"),
-                       (8, "k_code")):
-        bad |= np.asarray(outs[port[field]], np.int64) != trace[:, col]
-    out.update(rtl_mismatches=int(bad.sum()), rtl_seconds=secs, rtl_previews_per_s=n / secs)
+    got = np.column_stack([np.asarray(outs[port[f]], np.int64) for f in _FIELDS])
+    return _compare(trace, got, out, "rtl", secs)
+
+
+#: Output fields compared, in the order of trace columns 4..8.
+_FIELDS = ("flags", "a_code", "b_code", "p_max_code", "k_code")
+
+
+def _compare(trace, got, out: dict, prefix: str, secs: float) -> dict:
+    bad = np.any(got != trace[:, 4:9], axis=1)
+    n = int(trace.shape[0])
+    out.update({f"{prefix}_mismatches": int(bad.sum()), f"{prefix}_seconds": secs,
+                f"{prefix}_previews_per_s": n / secs if secs > 0 else 0.0})
     if bad.any():
-        out["rtl_first_mismatch_step"] = int(trace[np.argmax(bad), 0])
+        out[f"{prefix}_first_mismatch_step"] = int(trace[np.argmax(bad), 0])
     return out
+
+
+def replay_on_soc(trace: np.ndarray, e_prime_code: int) -> dict:
+    """Replay the traced previews through the register driver of the simulated
+    ``bhseq_core`` SoC and compare every output code (as :func:`replay_on_rtl`).
+
+    Returns
+    -------
+    dict
+        ``soc_previews``, ``soc_mismatches``, ``soc_first_mismatch_step``, ``soc_seconds``,
+        ``soc_previews_per_s``.
+    """
+    from ..hw.driver import HertzDriver, SimTransport
+
+    n = int(trace.shape[0])
+    out = {"soc_previews": n, "soc_mismatches": 0, "soc_first_mismatch_step": None,
+           "soc_seconds": 0.0, "soc_previews_per_s": 0.0}
+    if n == 0:
+        return out
+    t0 = time.perf_counter()
+    drv = HertzDriver(SimTransport("bhseq_core", e_prime_code=int(e_prime_code)),
+                      kind="bhseq_core")
+    got = np.zeros((n, 5), np.int64)
+    try:
+        for i in range(n):
+            rb = drv.run(int(trace[i, 1]), int(trace[i, 2]), int(trace[i, 3]))
+            got[i] = (rb.flags, rb.a, rb.b, rb.p_max, rb.k)
+    finally:
+        drv.t.close()
+    return _compare(trace, got, out, "soc", time.perf_counter() - t0)

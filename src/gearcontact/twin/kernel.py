@@ -42,7 +42,8 @@ backend computed them:
   golden_vec.hertz_element`) on the round-half-up codes of A-, B- and W;
 * ``table`` (2): no preview; ``T_el`` from the offline loaded-TE table
   (:mod:`.ltca_table`);
-* ``rtl``: the golden loop, every preview traced and replayed on the RTL (:mod:`.cosim`).
+* ``rtl`` / ``soc``: the golden loop, every preview traced and replayed on the RTL core
+  or through the SoC's register driver (:mod:`.cosim`).
 
 Tooth bending is not in the law yet (rigid teeth; hook in :mod:`.simulate`).
 
@@ -78,9 +79,9 @@ def _cbrt_overload(x):   # numba 0.6x has no math.cbrt; libm cbrt is the same fu
 
 _hb = njit(cache=True)(hamrock_brewe_terms)
 
-#: Contact backends; ``rtl`` runs the golden loop and replays its previews on the RTL
-#: (:mod:`.cosim`).
-BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1}
+#: Contact backends; ``rtl`` and ``soc`` run the golden loop and replay its previews on
+#: the RTL core / through the SoC register driver (:mod:`.cosim`).
+BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1, "soc": 1}
 #: Smallest load at which a pair's preview is sampled, N (the datapath's envelope starts
 #: at 1 N; a pair that just closes is sampled here).
 W_EVAL_MIN_N = 1.0

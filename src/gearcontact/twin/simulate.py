@@ -338,7 +338,8 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     args = (prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"], a["valid"], code)
     n_p = a["lever"].shape[0]
     # rtl: the golden loop records every preview for the lockstep replay (.cosim)
-    trace = np.zeros(((n_steps * (n_p + 2)) if model.backend == "rtl" else 0, 9), np.int64)
+    lockstep = model.backend in ("rtl", "soc")
+    trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, 9), np.int64)
     tcount = np.zeros(3, np.int64)
     tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"],
             a["tab_t23"], a["tab_w23"])
@@ -364,14 +365,16 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         bar.update(n)
     bar.close()
     rtl = {}
-    if model.backend == "rtl":
-        from .cosim import replay_on_rtl
+    if lockstep:
+        from . import cosim
         if tcount[0] >= trace.shape[0]:
-            raise ArithmeticError(f"rtl trace full ({trace.shape[0]} previews)")
-        rtl = replay_on_rtl(trace[:tcount[0]], int(prm[K.P_ECODE]))
-        if rtl["rtl_mismatches"]:
-            raise ArithmeticError(f"RTL != golden in {rtl['rtl_mismatches']} previews, first "
-                                  f"at step {rtl['rtl_first_mismatch_step']}")
+            raise ArithmeticError(f"{model.backend} trace full ({trace.shape[0]} previews)")
+        be = model.backend
+        replay = cosim.replay_on_rtl if be == "rtl" else cosim.replay_on_soc
+        rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]))
+        if rtl[f"{be}_mismatches"]:
+            raise ArithmeticError(f"{be} != golden in {rtl[f'{be}_mismatches']} previews, "
+                                  f"first at step {rtl[f'{be}_first_mismatch_step']}")
     wall = time.perf_counter() - wall0
     cols = {name: rec[:rows, i] for i, name in enumerate(K.RECORD_COLUMNS)}
     eps = np.interp(np.mod(cols["psi_p_rad"], m.pitch_rad), m.psi_rad, m.eps_rad)
