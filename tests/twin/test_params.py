@@ -56,3 +56,18 @@ def test_damping_ratio_range():
     base["mesh_damping_ratio"] = 1.5
     with pytest.raises(InputRangeError, match="mesh_damping_ratio"):
         DrivetrainParams(**base)
+
+
+def test_example_file_loads():
+    from pathlib import Path
+    pair = load_pair("s0003")
+    path = Path(__file__).resolve().parents[2] / "examples" / "drivetrain_s0003.toml"
+    p = load_drivetrain(path, pair)
+    assert p.load_inertia_kgm2 == 0.2 and p.speed_control_bandwidth_hz == 5.0
+    # the commented defaults in the file are the defaults (6 digits)
+    d = default_drivetrain(pair)
+    text = path.read_text()
+    for key, value in d.as_dict().items():
+        if f"# {key} = " in text:
+            written = float(text.split(f"# {key} = ")[1].split()[0])
+            assert written == pytest.approx(value, rel=1e-5), key

@@ -286,3 +286,33 @@ def test_contact_loss_at_light_load_in_resonance(s0003_twin):
         out[torque] = res.summary
     assert out[1.0]["contact_loss"] > 0.01 and out[1.0]["dynamic_factor"] > 1.5
     assert out[TORQUE_NM]["contact_loss"] == 0.0
+
+
+def test_speed_controller_recovers_like_the_rigid_pi_loop(s0003_twin):
+    # PI on the motor speed, 5 Hz bandwidth (30x below the first mode): on the rigid
+    # chain the closed loop is s^2 J + K_p s + K_i with both poles at -w_n = -pi f_c, so
+    # an initial speed error e0 of the whole chain decays as e0 (1 - w_n t) exp(-w_n t)
+    pair, _, _, mesh = s0003_twin
+    dt = replace(default_drivetrain(pair), speed_control_bandwidth_hz=5.0)
+    m = build_model(mesh, dt, TORQUE_NM)
+    e0, omega = 5.0, 3000.0 * 2 * math.pi / 60
+    u = mesh.ratio
+    res = simulate(m, speed_rpm=3000.0, duration_s=0.4, step_s=10e-6,
+                   initial_velocity=[-e0, -e0, -e0 / u, -e0 / u])
+    c = res.columns
+    t = c["t_s"]
+    wn = math.pi * 5.0
+    expected = e0 * (1 - wn * t) * np.exp(-wn * t)
+    err = omega - c["pinion_speed_rad_s"]
+    # the pinion also carries the mesh-excited vibration (~1e-2 rad/s at 350 Hz and up):
+    # smooth it over one mesh period, then 2 % of e0
+    k = int(round(1 / 350.0 / 10e-6))
+    smooth = np.convolve(err, np.ones(k) / k, mode="valid")
+    mid = t[k // 2: k // 2 + smooth.size]
+    np.testing.assert_allclose(smooth, e0 * (1 - wn * mid) * np.exp(-wn * mid),
+                               atol=0.02 * e0)
+    assert abs(err[-1]) < 0.02 * e0 and expected.min() < -0.1 * e0     # overshoot seen
+    # and the bandwidth is bounded by the first mode
+    with pytest.raises(InputRangeError, match="speed_control_bandwidth_hz"):
+        simulate(build_model(mesh, replace(dt, speed_control_bandwidth_hz=100.0),
+                             TORQUE_NM), speed_rpm=3000.0, duration_s=1e-3, step_s=1e-5)

@@ -1,9 +1,12 @@
 """Compiled (numba) step loop of the twin: contact law per backend and the RK4 integrator.
 
 State (SI, angles along the motion, absolute): ``y = [psi_m, psi_p, psi_g, psi_l,
-w_m, w_p, w_g, w_l, D, W_in]`` with ``D`` the energy dissipated by the dampers and
+w_m, w_p, w_g, w_l, D, W_in, I]`` with ``D`` the energy dissipated by the dampers,
 ``W_in`` the work of the motor and load torques (J), integrated with the motion so that
-the energy balance is checked to the integrator's order.
+the energy balance is checked to the integrator's order, and ``I`` the integral of the
+motor speed error (rad) of the optional PI speed controller::
+
+    T_m = T_l / u + K_p (Omega - w_m) + K_i I,       I' = Omega - w_m
 
 Equations of motion (torques N·m; module :mod:`.simulate` for the parameters)::
 
@@ -90,8 +93,10 @@ _HB_E = 0.5 * math.pi - 1.0
 
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
- P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW) = range(19)
-N_PRM = 19
+ P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA) = range(22)
+N_PRM = 22
+#: Length of the state vector y.
+N_STATE = 11
 # record columns
 (R_T, R_THETA, R_PSI, R_TMESH, R_W, R_A, R_B, R_P, R_NPAIRS, R_KE, R_PE, R_V, R_D, R_WIN,
  R_WP, R_WG) = range(16)
@@ -293,7 +298,9 @@ def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache,
     dy[1] = y[5]
     dy[2] = y[6]
     dy[3] = y[7]
-    dy[4] = (prm[P_TM] - tw1) / prm[P_JM]
+    # motor: constant torque T_l/u, plus the PI speed controller when its gains are set
+    t_m = prm[P_TM] + prm[P_KP] * (prm[P_OMEGA] - y[4]) + prm[P_KI] * y[10]
+    dy[4] = (t_m - tw1) / prm[P_JM]
     dy[5] = (tw1 - t_mesh * (1.0 / u + de)) / prm[P_JP]
     dy[6] = (t_mesh - tw2) / prm[P_JG]
     dy[7] = (tw2 - prm[P_TL]) / prm[P_JL]
@@ -303,7 +310,8 @@ def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache,
     dw1 = y[4] - y[5]
     dw2 = y[6] - y[7]
     dy[8] = prm[P_C1] * dw1 * dw1 + prm[P_C2] * dw2 * dw2 + p_mesh
-    dy[9] = prm[P_TM] * y[4] - prm[P_TL] * y[7]
+    dy[9] = t_m * y[4] - prm[P_TL] * y[7]
+    dy[10] = prm[P_OMEGA] - y[4]
     return theta, t_mesh, w_tot
 
 
@@ -337,6 +345,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, back
     """
     n_y = y.shape[0]
     n_p = lever.shape[0]
+    if n_y != N_STATE:
+        raise ValueError("run_steps: the state vector must have N_STATE entries")
     stages = np.empty((5, n_y))
     pairs = np.zeros((2, n_p))
     abp = np.zeros((2, 7))

@@ -25,7 +25,9 @@ Defaults for s0003 (:func:`default_drivetrain`) and their sources:
   the 0.03-0.17 range of the gear-dynamics literature, H. N. Özgüven, D. R. Houser,
   J. Sound Vib. 121 (1988) 383-411);
 * normal backlash 0.05 mm (assumed: not published for s0003; inside the usual
-  0.025-0.1 mm of bevel gears of ~1 mm normal module).
+  0.025-0.1 mm of bevel gears of ~1 mm normal module);
+* no speed controller (constant motor torque, the drive of a back-to-back or
+  brake test rig); a PI speed loop is available by its bandwidth.
 """
 
 from __future__ import annotations
@@ -66,6 +68,10 @@ class DrivetrainParams:
     backlash_mm : float
         Normal backlash along the line of action, mm (>= 0): free play between the drive
         and the coast flank.
+    speed_control_bandwidth_hz : float
+        Bandwidth of the motor's PI speed controller, Hz (>= 0); 0 (default, the
+        constant-torque drive of a test rig) holds the motor torque at ``T_l / u``
+        (:func:`gearcontact.twin.simulate.speed_controller_gains`).
     """
 
     motor_inertia_kgm2: float
@@ -78,6 +84,7 @@ class DrivetrainParams:
     output_damping_ratio: float = 0.02
     mesh_damping_ratio: float = 0.05
     backlash_mm: float = 0.05
+    speed_control_bandwidth_hz: float = 0.0
 
     def __post_init__(self):
         for f in fields(self):
@@ -86,6 +93,8 @@ class DrivetrainParams:
                 check_range(f"drivetrain.{f.name}", v, 0.0, 1.0, hi_open=True)
             elif f.name == "backlash_mm":
                 check_range("drivetrain.backlash_mm", v, 0.0, 10.0)
+            elif f.name == "speed_control_bandwidth_hz":
+                check_range("drivetrain.speed_control_bandwidth_hz", v, 0.0, 1e4)
             else:
                 check_positive(f"drivetrain.{f.name}", v)
 

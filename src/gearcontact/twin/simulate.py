@@ -37,6 +37,7 @@ from .params import DrivetrainParams
 
 __all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate",
            "linearized_modes", "linear_matrices", "check_step", "static_rotation",
+           "speed_controller_gains",
            "mesh_damping_n_s_per_mm", "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
@@ -135,6 +136,35 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
     prm[K.P_NROW] = len(m.psi_rad)
     return prm
+
+
+def speed_controller_gains(model: TwinModel) -> tuple[float, float]:
+    """PI gains ``(K_p N·m·s/rad, K_i N·m/rad)`` of the motor speed controller, (0, 0)
+    when ``speed_control_bandwidth_hz`` is 0 (constant motor torque).
+
+    Designed on the rigid chain (inertia reflected to the motor ``J = J_m + J_p + (J_g +
+    J_l)/u^2``): ``K_p = 2 pi f_c J``, ``K_i = K_p 2 pi f_c / 4``, which places both
+    closed-loop poles at ``-pi f_c`` (critically damped, ``s^2 J + K_p s + K_i = 0``);
+    the bandwidth must stay below a third of the first elastic mode so that the rigid
+    design holds.
+
+    Raises
+    ------
+    InputRangeError
+        ``speed_control_bandwidth_hz`` >= f_1 / 3.
+    """
+    dt, m = model.drivetrain, model.mesh
+    f_c = dt.speed_control_bandwidth_hz
+    if f_c == 0.0:
+        return 0.0, 0.0
+    f1 = float(linearized_modes(model)[1])
+    if f_c >= f1 / 3.0:
+        raise InputRangeError("drivetrain.speed_control_bandwidth_hz", f_c,
+                              f"< {f1 / 3.0:.4g} Hz (a third of the first mode {f1:.4g} Hz)")
+    j = (dt.motor_inertia_kgm2 + dt.pinion_inertia_kgm2
+         + (dt.gear_inertia_kgm2 + dt.load_inertia_kgm2) / m.ratio ** 2)
+    kp = 2.0 * math.pi * f_c * j
+    return kp, kp * 2.0 * math.pi * f_c / 4.0
 
 
 def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
@@ -325,7 +355,9 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     prm = _prm(model, c_m)
     theta0, w0 = static_rotation(model)
     omega = speed * 2.0 * math.pi / 60.0
-    y = np.zeros(10)
+    prm[K.P_OMEGA] = omega
+    prm[K.P_KP], prm[K.P_KI] = speed_controller_gains(model)
+    y = np.zeros(K.N_STATE)
     y[0] = model.torque_nm / m.ratio / dt.input_stiffness_nm_per_rad
     y[2] = m.eps_rad[0] - theta0
     y[3] = y[2] - model.torque_nm / dt.output_stiffness_nm_per_rad
