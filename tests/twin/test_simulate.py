@@ -261,6 +261,9 @@ def test_bad_input_names_the_field(model, s0003_twin):
         simulate(model, speed_rpm=-1.0, duration_s=0.01, step_s=10e-6)
     with pytest.raises(InputRangeError, match="table"):
         build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="table")
+    steep = replace(mesh, A_minus_per_mm=300.0 * mesh.A_minus_per_mm)   # 26 1/mm > 16
+    with pytest.raises(InputRangeError, match="A_minus_per_mm"):
+        build_model(steep, default_drivetrain(pair), TORQUE_NM, backend="golden")
     with pytest.raises(InputRangeError, match="bending_compliance_mm_per_n"):
         build_model(mesh, default_drivetrain(pair), TORQUE_NM, bending_compliance_mm_per_n=1e-6)
     with pytest.raises(InputRangeError, match="pinion_inertia_kgm2"):

@@ -233,8 +233,9 @@ def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_e
             cache[j, 4] = out3[2]
             cache[j, 5] = we
         kap = cache[j, 1]
-        if kap <= 0.0:      # golden outside the datapath envelope: the pair carries nothing
+        if kap <= 0.0:      # golden outside the datapath envelope: counted, reported
             abp[3] = 1.0
+            tcount[3] += 1
             continue
         we = cache[j, 5]
         x = d / kap
@@ -340,8 +341,9 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, back
     carries the pair loads from step to step (the loads at which the preview is
     sampled). ``trace`` (int64, rows x 9) receives every golden stage-D evaluation while
     rows remain, ``[step, A_code, B_code, W_code, flags, a_code, b_code, p_max_code,
-    k_code]``, counted in ``tcount[0]`` (``tcount[2]`` counts the steps); a trace of 0
-    rows records nothing. Returns the number of rows written to ``rec``.
+    k_code]``, counted in ``tcount[0]`` (``tcount[2]`` counts the steps, ``tcount[3]`` the
+    golden previews flagged outside the datapath envelope, whose pair then carries
+    nothing); a trace of 0 rows records nothing. Returns the number of rows written to ``rec``.
     """
     n_y = y.shape[0]
     n_p = lever.shape[0]

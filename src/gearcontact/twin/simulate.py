@@ -30,6 +30,7 @@ from ..contact.lte import preview_balance
 from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
+from ..preview.hertz.reference import ENVELOPE
 from ..validation import InputRangeError, check_positive, check_range
 from . import kernel as K
 from .mesh import MeshTable
@@ -98,6 +99,8 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                               "0 (tooth bending is not modelled yet: rigid teeth)")
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
+    if backend != "table":
+        _check_envelope(mesh)
     pow_lut, cbrt_lut, cst = golden_constants()
     if table is not None:
         tab = (np.ascontiguousarray(table.theta_rad),
@@ -115,6 +118,27 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
               "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
               "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2]}
     return TwinModel(mesh, drivetrain, backend, t, table, 0.0, arrays)
+
+
+def _check_envelope(mesh: MeshTable) -> None:
+    """The pairs' curvatures must lie in the preview's operating envelope (the same for
+    every backend, :data:`gearcontact.preview.hertz.reference.ENVELOPE`); checked once
+    here, not per step."""
+    lo, hi = ENVELOPE["curvature_per_mm"]
+    v = mesh.valid
+    for name, arr in (("A_minus_per_mm", mesh.A_minus_per_mm), ("B_minus_per_mm",
+                                                                mesh.B_minus_per_mm)):
+        x = arr[v]
+        if x.size and not (x.min() >= lo and x.max() <= hi):
+            bad = x[np.argmax((x < lo) | (x > hi))]
+            raise InputRangeError(f"mesh {name}", float(bad), f"[{lo:g}, {hi:g}] 1/mm "
+                                  "(preview envelope)")
+    a, b = mesh.A_minus_per_mm[v], mesh.B_minus_per_mm[v]
+    if a.size:
+        ratio = float((np.maximum(a, b) / np.minimum(a, b)).max())
+        if ratio > ENVELOPE["alpha"][1]:
+            raise InputRangeError("mesh alpha = B_max/A_min", ratio,
+                                  f"<= {ENVELOPE['alpha'][1]:g} (preview envelope)")
 
 
 def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
@@ -177,7 +201,7 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
     t, _ = K._elastic(theta, psi, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
                       a["valid"], K.BACKEND_CODES[model.backend], w_eval,
                       np.full((n_p, 6), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
-                      np.zeros((0, 9), np.int64), np.zeros(3, np.int64), a["tab_theta"],
+                      np.zeros((0, 9), np.int64), np.zeros(4, np.int64), a["tab_theta"],
                       a["tab_t23"], a["tab_w23"],
                       w, np.zeros(7))
     return t, w
@@ -372,10 +396,10 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     # rtl: the golden loop records every preview for the lockstep replay (.cosim)
     lockstep = model.backend in ("rtl", "soc")
     trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, 9), np.int64)
-    tcount = np.zeros(3, np.int64)
+    tcount = np.zeros(4, np.int64)
     tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"],
             a["tab_t23"], a["tab_w23"])
-    warm = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace[:0], np.zeros(3, np.int64),
+    warm = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace[:0], np.zeros(4, np.int64),
             a["tab_theta"], a["tab_t23"], a["tab_w23"])
     # compile (or load the cache) outside the timed loop
     K.run_steps(y.copy(), 0.0, 1, h, *args, w_eval.copy(), *warm, np.zeros((1, K.N_REC)), 0, 1)
@@ -396,6 +420,10 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         done += n
         bar.update(n)
     bar.close()
+    if tcount[3]:
+        raise ArithmeticError(f"{model.backend} preview flagged outside the datapath envelope "
+                              f"in {int(tcount[3])} evaluations (curvatures or load out of "
+                              "range): the run is not the hardware's")
     rtl = {}
     if lockstep:
         from . import cosim
