@@ -261,6 +261,11 @@ def test_bad_input_names_the_field(model, s0003_twin):
         simulate(model, speed_rpm=-1.0, duration_s=0.01, step_s=10e-6)
     with pytest.raises(InputRangeError, match="table"):
         build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="table")
+    with pytest.raises(InputRangeError, match="initial_velocity"):
+        simulate(model, speed_rpm=0.0, duration_s=1e-3, step_s=1e-5, initial_velocity=[1.0])
+    with pytest.raises(InputRangeError, match="duration_s"):
+        simulate(build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="soc"),
+                 speed_rpm=3000.0, duration_s=0.1, step_s=1e-5)
     steep = replace(mesh, A_minus_per_mm=300.0 * mesh.A_minus_per_mm)   # 26 1/mm > 16
     with pytest.raises(InputRangeError, match="A_minus_per_mm"):
         build_model(steep, default_drivetrain(pair), TORQUE_NM, backend="golden")

@@ -31,7 +31,7 @@ from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
-from ..validation import InputRangeError, check_positive, check_range
+from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import kernel as K
 from .mesh import MeshTable
 from .params import DrivetrainParams
@@ -39,7 +39,8 @@ from .params import DrivetrainParams
 __all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate",
            "linearized_modes", "linear_matrices", "check_step", "static_rotation",
            "speed_controller_gains",
-           "mesh_damping_n_s_per_mm", "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US"]
+           "mesh_damping_n_s_per_mm", "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US",
+           "LOCKSTEP_MAX_STEPS"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
 #: Largest h omega_max accepted (RK4 limit 2.83 on the imaginary axis; kernel docstring).
@@ -47,6 +48,9 @@ STABILITY_LIMIT = 2.0
 #: Accepted fixed steps, us.
 STEP_RANGE_US = (1.0, 50.0)
 _CHUNK = 256          # steps per compiled call: the step-time percentiles' granularity
+#: Longest lockstep runs (the trace holds every preview; the SoC driver takes ~0.3 s per
+#: preview in simulation), steps.
+LOCKSTEP_MAX_STEPS = {"rtl": 200_000, "soc": 1_000}
 
 
 @dataclass(frozen=True, eq=False)
@@ -361,7 +365,16 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         natural_frequencies_hz, h_omega_max, mesh_damping_n_s_per_mm,
         bending_compliance_mm_per_n``. Statistics over the recorded steps after
         ``settle_fraction``. ``step_time_p*`` are percentiles of the mean step time of
-        blocks of 256 steps (one compiled call each).
+        blocks of ``256 record_every`` steps (one compiled call each). ``rtl`` / ``soc``
+        add the replay's ``<backend>_previews, _mismatches, _seconds, _previews_per_s``.
+
+    Raises
+    ------
+    InputRangeError
+        Bad speed, duration, step (range and stability), record_every, settle_fraction,
+        initial_velocity; a lockstep run longer than :data:`LOCKSTEP_MAX_STEPS`.
+    ArithmeticError
+        Non-finite state, a flagged golden preview, or a lockstep mismatch.
     """
     speed = check_range("speed_rpm", speed_rpm, 0.0, 1e5)
     dur = check_positive("duration_s", duration_s)
@@ -374,6 +387,15 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     n_steps = int(round(dur / h))
     if n_steps < 1:
         raise InputRangeError("duration_s", dur, f">= one step ({h:g} s)")
+    cap = LOCKSTEP_MAX_STEPS.get(model.backend)
+    if cap is not None and n_steps > cap:
+        raise InputRangeError("duration_s", dur, f"<= {cap * h:g} s ({cap} steps) for the "
+                              f"{model.backend} backend (lockstep replay: short runs)")
+    if initial_velocity is not None:
+        initial_velocity = check_array_finite("initial_velocity (rad/s)", initial_velocity)
+        if initial_velocity.shape != (4,):
+            raise InputRangeError("initial_velocity shape", initial_velocity.shape,
+                                  "(4,): motor, pinion, gear, load")
     m, dt = model.mesh, model.drivetrain
     c_m = mesh_damping_n_s_per_mm(model)
     prm = _prm(model, c_m)
@@ -387,7 +409,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     y[3] = y[2] - model.torque_nm / dt.output_stiffness_nm_per_rad
     y[4:8] = omega, omega, omega / m.ratio, omega / m.ratio
     if initial_velocity is not None:
-        y[4:8] += np.asarray(initial_velocity, float)
+        y[4:8] += initial_velocity
     w_eval = np.where(w0 > 0, w0, K.W_EVAL_MIN_N)
     a = model.arrays
     code = K.BACKEND_CODES[model.backend]
