@@ -161,6 +161,9 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     order = np.arange(n_k) if m == 1 else np.arange(n_k)[::-1]
     k0 = cycle.mean_index
     main = [i for i in range(n_p) if valid[i, k0] and arrays["opening"][i, k0] == 0.0]
+    if not main:
+        raise ValueError("mesh_table: no transmitting pair at the reference phase (the TCA "
+                         "lost the path of pair 0; use more phases)")
     ref_lever = float(arrays["lever"][main[0], k0])
     return MeshTable(
         psi_rad=m * (phi1[order] - phi1[order][0]), eps_rad=m * env[order] / ARCSEC_PER_RAD,
