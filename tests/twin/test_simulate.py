@@ -324,3 +324,30 @@ def test_speed_controller_recovers_like_the_rigid_pi_loop(s0003_twin):
     with pytest.raises(InputRangeError, match="speed_control_bandwidth_hz"):
         simulate(build_model(mesh, replace(dt, speed_control_bandwidth_hz=100.0),
                              TORQUE_NM), speed_rpm=3000.0, duration_s=1e-3, step_s=1e-5)
+
+
+def test_two_inertia_mesh_mode_closed_form(s0003_twin):
+    # shafts 1e6 times softer: pinion and gear vibrate on the mesh alone, the two-inertia
+    # closed form omega^2 = k_theta (v_p^2 / J_p + 1 / J_g), v_p = 1/u + eps'
+    pair, _, _, mesh = s0003_twin
+    dt = replace(_undamped(pair), input_stiffness_nm_per_rad=1e-2,
+                 output_stiffness_nm_per_rad=1e-2)
+    m = build_model(mesh, dt, TORQUE_NM)
+    ok = mesh.valid[:, 0] & mesh.valid[:, 1]
+    lv, g = mesh.lever_mm[ok, 0], mesh.opening_mm[ok, 0]
+    kap = np.array([hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa).approach_mm
+                    for a, b in zip(mesh.A_minus_per_mm[ok, 0], mesh.B_minus_per_mm[ok, 0])])
+    t = 1e3 * TORQUE_NM
+    dth = preview_balance(lv, g, kap, 1.001 * t)[0] - preview_balance(lv, g, kap, 0.999 * t)[0]
+    k_th = 1e-3 * 0.002 * t / dth
+    v_p = 1.0 / mesh.ratio + (mesh.eps_rad[1] - mesh.eps_rad[0]) / mesh.step_rad
+    f_closed = math.sqrt(k_th * (v_p ** 2 / dt.pinion_inertia_kgm2
+                                 + 1.0 / dt.gear_inertia_kgm2)) / (2 * math.pi)
+    # the library's eig (the soft shafts shift it by ~1e-6)
+    assert linearized_modes(m)[-1] == pytest.approx(f_closed, rel=1e-4)
+    # the free vibration of the twin rings at it (0.05 s: 20 Hz bins, interpolated peak
+    # within 0.2 %)
+    res = simulate(m, speed_rpm=0.0, duration_s=0.05, step_s=2e-6,
+                   initial_velocity=[0.0, 0.05, 0.0, 0.0])
+    found = _peaks(res.columns["theta_rad"], 2e-6, [f_closed])[0]
+    assert found == pytest.approx(f_closed, rel=2e-3)
