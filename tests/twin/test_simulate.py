@@ -140,9 +140,9 @@ def test_real_mesh_exchanges_bounded_energy_with_the_rotation(model):
     assert abs(r[-1] - r[-1 - pitch_steps]) < 0.15 * np.ptp(c["mesh_energy_j"])
 
 
-def _independent_modes(mesh, dt, torque_nm):
-    """Eigenfrequencies (Hz) of the linearised chain from the parameters and the
-    Hertzian mesh stiffness dT/dtheta of preview_balance (central difference)."""
+def _hertz_mesh_stiffness(mesh, torque_nm):
+    """dT/dtheta (N m/rad) at the first phase from preview_balance (central difference
+    +-0.1 %) with Hamrock–Brewe approach coefficients."""
     ok = mesh.valid[:, 0] & mesh.valid[:, 1]
     lv, g = mesh.lever_mm[ok, 0], mesh.opening_mm[ok, 0]
     kap = np.array([hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa).approach_mm
@@ -150,7 +150,13 @@ def _independent_modes(mesh, dt, torque_nm):
     t = 1e3 * torque_nm
     th_p = preview_balance(lv, g, kap, 1.001 * t)[0]
     th_m = preview_balance(lv, g, kap, 0.999 * t)[0]
-    k_th = 1e-3 * 0.002 * t / (th_p - th_m)          # N m / rad
+    return 1e-3 * 0.002 * t / (th_p - th_m)
+
+
+def _independent_modes(mesh, dt, torque_nm):
+    """Eigenfrequencies (Hz) of the linearised chain from the parameters and the
+    Hertzian mesh stiffness dT/dtheta of preview_balance (central difference)."""
+    k_th = _hertz_mesh_stiffness(mesh, torque_nm)
     de = (mesh.eps_rad[1] - mesh.eps_rad[0]) / mesh.step_rad
     v = np.array([0.0, 1.0 / mesh.ratio + de, -1.0, 0.0])
     k1, k2 = dt.input_stiffness_nm_per_rad, dt.output_stiffness_nm_per_rad
@@ -333,13 +339,7 @@ def test_two_inertia_mesh_mode_closed_form(s0003_twin):
     dt = replace(_undamped(pair), input_stiffness_nm_per_rad=1e-2,
                  output_stiffness_nm_per_rad=1e-2)
     m = build_model(mesh, dt, TORQUE_NM)
-    ok = mesh.valid[:, 0] & mesh.valid[:, 1]
-    lv, g = mesh.lever_mm[ok, 0], mesh.opening_mm[ok, 0]
-    kap = np.array([hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa).approach_mm
-                    for a, b in zip(mesh.A_minus_per_mm[ok, 0], mesh.B_minus_per_mm[ok, 0])])
-    t = 1e3 * TORQUE_NM
-    dth = preview_balance(lv, g, kap, 1.001 * t)[0] - preview_balance(lv, g, kap, 0.999 * t)[0]
-    k_th = 1e-3 * 0.002 * t / dth
+    k_th = _hertz_mesh_stiffness(mesh, TORQUE_NM)
     v_p = 1.0 / mesh.ratio + (mesh.eps_rad[1] - mesh.eps_rad[0]) / mesh.step_rad
     f_closed = math.sqrt(k_th * (v_p ** 2 / dt.pinion_inertia_kgm2
                                  + 1.0 / dt.gear_inertia_kgm2)) / (2 * math.pi)
