@@ -118,7 +118,7 @@ def write_twin_outputs(result, out, *, figures: bool = True, title: str = "",
 
 def plot_sweep(sweep, path, *, title: str = "") -> Path:
     """Dynamic factor and DTE p-p vs pinion speed for every model, the resonance speeds
-    ``60 f_n / (k z1)`` (mesh orders k = 1..6, k written at the top) marked."""
+    ``60 f_n / (k z1)`` (mesh orders k = 1..6, labelled) marked."""
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     v = sweep.speeds_rpm
     for i, (label, rows) in enumerate(sweep.rows.items()):
@@ -130,8 +130,8 @@ def plot_sweep(sweep, path, *, title: str = "") -> Path:
             for a in (ax, ax2):
                 a.axvline(n, color="gray", ls="--", lw=0.7,
                           label="k f_z = f_n" if (first and a is ax) else None)
-            ax.annotate(f"{k}", (n, 1.0), xycoords=("data", "axes fraction"), ha="center",
-                        va="bottom", fontsize=7, color="gray")
+            ax.annotate(f"k={k}", (n, 0.98), xycoords=("data", "axes fraction"),
+                        ha="left", va="top", fontsize=7, color="gray")
             first = False
     ax.set_ylabel("dynamic factor (max / static mesh torque)")
     ax2.set_ylabel("DTE peak-to-peak (arcsec)")
