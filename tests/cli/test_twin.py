@@ -53,6 +53,7 @@ def test_files_keys_and_consistency(out):
     (["--backend", "fpga"], "--backend"),
     (["--step-us", "80"], "--step-us"),
     (["--duration-ms", "-1"], "--duration-ms"),
+    (["--duration", "0"], "--duration"),
     (["--torque", "-3"], "torque_nm"),
 ])
 def test_bad_input_exit_2(tmp_path, capsys, argv, field):

@@ -29,8 +29,11 @@ def register(sub) -> None:
     add_pair_arguments(p, torque=True)
     p.add_argument("--speed-rpm", type=float, default=3000.0,
                    help="pinion (motor) speed in rpm (default 3000)")
-    p.add_argument("--duration-ms", type=float, default=50.0,
-                   help="simulated time in ms (default 50)")
+    dur = p.add_mutually_exclusive_group()
+    dur.add_argument("--duration-ms", type=float, default=None,
+                     help="simulated time in ms (default 50)")
+    dur.add_argument("--duration", type=float, default=None,
+                     help="simulated time in s (alternative to --duration-ms)")
     p.add_argument("--step-us", type=float, default=10.0,
                    help=f"fixed RK4 step in us, {STEP_RANGE_US[0]:g}-{STEP_RANGE_US[1]:g} "
                         "(default 10)")
@@ -55,7 +58,11 @@ def run(args) -> int:
     if args.backend not in BACKENDS:
         raise InputRangeError("--backend", args.backend, f"one of {list(BACKENDS)}")
     check_range("--step-us", args.step_us, *STEP_RANGE_US)
-    check_positive("--duration-ms", args.duration_ms)
+    if args.duration is not None:
+        duration_s = check_positive("--duration", args.duration)
+    else:
+        duration_s = 1e-3 * check_positive("--duration-ms", 50.0 if args.duration_ms is None
+                                           else args.duration_ms)
     check_range("--speed-rpm", args.speed_rpm, 0.0, 1e5)
     if args.record_every < 1:
         raise InputRangeError("--record-every", args.record_every, ">= 1")
@@ -72,7 +79,7 @@ def run(args) -> int:
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, progress=not args.quiet)
-    res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * args.duration_ms,
+    res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
                    progress=not args.quiet)
     extra = {"pair": pair.name, "side": args.side, "drivetrain": drivetrain.as_dict()}
