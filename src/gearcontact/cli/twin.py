@@ -67,9 +67,9 @@ def run(args) -> int:
     if args.record_every < 1:
         raise InputRangeError("--record-every", args.record_every, ">= 1")
     speeds = parse_speed_range(args.speed_sweep) if args.speed_sweep else None
-    if speeds is not None and args.backend == "table":
-        raise InputRangeError("--backend", "table", "reference or golden with --speed-sweep "
-                              "(the table twin runs beside it)")
+    if speeds is not None and args.backend not in ("reference", "golden"):
+        raise InputRangeError("--backend", args.backend, "reference or golden with "
+                              "--speed-sweep (the table twin runs beside it)")
     if args.workers is not None and args.workers < 1:
         raise InputRangeError("--workers", args.workers, ">= 1")
     pair = load_pair(args.pair)
