@@ -101,6 +101,8 @@ N_STATE = 11
 (R_T, R_THETA, R_PSI, R_TMESH, R_W, R_A, R_B, R_P, R_NPAIRS, R_KE, R_PE, R_V, R_D, R_WIN,
  R_WP, R_WG) = range(16)
 N_REC = 16
+#: Recorded columns (SI; loads N, semi-axes mm, pressure MPa). The table backend holds no
+#: contact state: its a_mm, b_mm, p_max_mpa, pairs_loaded and mesh_energy_j are 0.
 RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_n",
                   "a_mm", "b_mm", "p_max_mpa", "pairs_loaded", "kinetic_j",
                   "shaft_energy_j", "mesh_energy_j", "dissipated_j", "input_work_j",
