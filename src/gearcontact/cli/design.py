@@ -51,9 +51,10 @@ def register(sub) -> None:
                    help="calibrate the unpublished set-up (working depth, design-side "
                         "ease-off) to the pair's published design point (TCA in the loop, "
                         "~1 min); prints the target / achieved / tolerance table")
-    p.add_argument("--tip-margin", type=float, default=0.05, metavar="MM",
+    p.add_argument("--tip-margin", type=float, default=None, metavar="MM",
                    help="with --calibrate: pinion tip radius above the published mating "
-                        "point, mm (default 0.05: a tip-edge bearing)")
+                        "point, mm, 0.01 to 0.5 (default: the largest margin that keeps a "
+                        "top land of 0.25 m_mn)")
     p.add_argument("--out", default=None, metavar="DIR",
                    help="with --calibrate: directory for calibrated.toml and "
                         "calibration.json (the output-directory policy of every command, "
@@ -76,7 +77,8 @@ def check(args) -> None:
                                   "values (s0003, s0003-centred) for --calibrate")
         if args.out is None:
             raise InputRangeError("--out", None, "an output directory for calibrated.toml")
-        check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
+        if args.tip_margin is not None:
+            check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
     args.writes_files = bool(args.calibrate)
 
 
