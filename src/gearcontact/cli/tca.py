@@ -42,4 +42,7 @@ def run(args) -> int:
           f"A- {rc.A_minus_per_mm:.5g} B- {rc.B_minus_per_mm:.5g} 1/mm, paint ellipse "
           f"{2 * ell.semi_major_mm:.2f} x {2 * ell.semi_minor_mm:.3f} mm at "
           f"{ell.angle_deg:.1f} deg -> {out}")
+    if res.edge_counts:
+        print("edge contact (phases of " + str(len(res.edges)) + "): "
+              + ", ".join(f"{k} {v}" for k, v in res.edge_counts.items()))
     return 0

@@ -147,7 +147,9 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         ["paint ellipse 2a x 2b (mm) at 6.35 um",
          f"{2 * ell.semi_major_mm:.3f} x {2 * ell.semi_minor_mm:.3f}", None],
         ["paint ellipse angle from lengthwise (deg)", ell.angle_deg, None],
-        ["contact pattern inside the flank", bool(tca.pattern_on_flank.all()), None]]))
+        ["contact pattern inside the flank", bool(tca.pattern_on_flank.all()), None],
+        ["edge contact (phases per flank edge)",
+         ", ".join(f"{k} {v}" for k, v in tca.edge_counts.items()) or "none", None]]))
     out += ["", "Figures: ![TE0](te0.png) ![contact pattern](contact_pattern.png)", ""]
     out += _design_point_section(result, pub)
     out += ["## Loaded contact: preview vs LCP (single pair at P0, rigid teeth)", ""]

@@ -50,11 +50,12 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
     # te0.csv: per phase of the pitch, every pair and the envelope
     write_csv(out / "te0.csv",
          ["phi1_deg"] + [f"te0_pair{j:+d}_arcsec" for j in cyc.pair_offsets]
-         + ["te0_arcsec", "active_pair", "pairs_in_contact"],
+         + ["te0_arcsec", "active_pair", "pairs_in_contact", "edge"],
          [[float(np.degrees(cyc.phi1_rad[k]))]
           + [float(x) for x in cyc.te0_pairs_arcsec[:, k]]
           + [float(cyc.envelope_arcsec[k]), int(cyc.active_pair[k]),
-             int(cyc.pairs_in_contact[k])] for k in range(len(cyc.phi1_rad))])
+             int(cyc.pairs_in_contact[k]), res.edges[k] or "-"]
+          for k in range(len(cyc.phi1_rad))])
 
     # contact_path.csv: the whole interior path of one tooth pair
     rows = []
@@ -79,7 +80,7 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
     write_csv(out / "gap_field.csv", ["s_mm", "t_mm", "gap_mm"],
          zip(map(float, f.s_mm.ravel()), map(float, f.t_mm.ravel()),
              map(float, f.gap_mm.ravel())))
-    write_json(res.table, out / "phase_table.json")
+    write_json(res.table, out / "phase_table.json", edges=res.edges)
     binary = encode_binary(res.table, max_records=table_records)
     (out / "phase_table.bin").write_bytes(binary)
 
@@ -101,6 +102,9 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         "pairs_in_contact_max": int(cyc.pairs_in_contact.max()),
         "pattern_on_flank": bool(res.pattern_on_flank.all()),
         "path_edges": edges,
+        # per phase of the pitch: "" inside, else the flank edge reached (tca.edges)
+        "edge_phases": res.edge_counts,
+        "phase_edges": list(res.edges),
         "stencil": {"frame": res.stencil.frame_name,
                     "samples_off_flank": int((~res.stencil.on_flank).sum()),
                     "off_flank_fill": "osculating quadric (1/2) q^T B q at P0",
@@ -126,5 +130,5 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         plt.close(fig)
         plot_te0(cyc, out / "te0.png", title=f"{pair.name} {side}: unloaded TE")
         plot_contact_pattern(pinion, gear, kin, cyc, out / "contact_pattern.png",
-                             title=f"{pair.name} {side}")
+                             title=f"{pair.name} {side}", edges=res.edges)
     return summary
