@@ -55,7 +55,18 @@ def register(sub) -> None:
                         "point, mm (default 0.05: a tip-edge bearing)")
     p.add_argument("--out", type=Path, default=None,
                    help="with --calibrate: directory for calibrated.toml and "
-                        "calibration.json")
+                        "calibration.json; with --synthesize-easeoff: for easeoff.toml")
+    p.add_argument("--synthesize-easeoff", action="store_true",
+                   help="local synthesis of the ease-off of both sides (TCA in the loop, "
+                        "~10-30 s per side); prints the [easeoff.drive]/[easeoff.coast] TOML")
+    p.add_argument("--te0-arcsec", type=float, default=3.0,
+                   help="with --synthesize-easeoff: TE0 peak-to-peak, arcsec (default 3)")
+    p.add_argument("--pattern-length-ratio", type=float, default=0.35,
+                   help="with --synthesize-easeoff: paint-ellipse length over the gear face "
+                        "width (default 0.35; practice 1/3 to 1/2)")
+    p.add_argument("--path-angle-deg", type=float, default=None,
+                   help="with --synthesize-easeoff: contact-path angle from the lengthwise "
+                        "direction, deg (default free, bias 0)")
     p.set_defaults(func=run)
 
 
@@ -85,10 +96,30 @@ def _calibrate(args, pair) -> int:
     return 0
 
 
+def _synthesize(args, pair) -> int:
+    from ..tca.synthesis import SynthesisTargets, easeoff_toml, synthesize_pair
+
+    targets = SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
+                               pattern_length_ratio=args.pattern_length_ratio,
+                               path_angle_deg=args.path_angle_deg)
+    _, done = synthesize_pair(pair, targets=targets)
+    for side, s in done.items():
+        print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
+    text = easeoff_toml(done, pair_name=pair.name)
+    print(text)
+    if args.out is not None:
+        args.out.mkdir(parents=True, exist_ok=True)
+        (args.out / "easeoff.toml").write_text(text)
+        print(f"-> {args.out / 'easeoff.toml'}")
+    return 0
+
+
 def run(args) -> int:
     pair = load_pair(args.pair)
     if args.calibrate:
         return _calibrate(args, pair)
+    if args.synthesize_easeoff:
+        return _synthesize(args, pair)
     blank = pair.blank
     if args.json:
         out = {"pair": pair.name, **blank.as_dict()}

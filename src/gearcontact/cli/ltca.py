@@ -19,10 +19,9 @@ import numpy as np
 from ..contact.lcp import SOLVERS
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
-from ..geometry.pair import load_pair
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_csv
-from .options import add_pair_arguments, check_pair_arguments
+from .options import add_pair_arguments, check_pair_arguments, load_pair_for
 
 
 def register(sub) -> None:
@@ -36,8 +35,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     check_pair_arguments(args)
-    pair = load_pair(args.pair)
-    args.side = args.side or pair.design_side
+    pair = load_pair_for(args)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases)

@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import sys
 from ..contact.lte import loaded_te
-from ..geometry.pair import load_pair
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
-from .options import add_pair_arguments, check_pair_arguments
+from .options import add_pair_arguments, check_pair_arguments, load_pair_for
 
 
 def register(sub) -> None:
@@ -27,8 +26,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     check_pair_arguments(args)
-    pair = load_pair(args.pair)
-    args.side = args.side or pair.design_side
+    pair = load_pair_for(args)
     from ..report.analyze import published_values
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,

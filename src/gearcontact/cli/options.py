@@ -6,7 +6,7 @@ from pathlib import Path
 
 from ..validation import InputRangeError, check_positive
 
-__all__ = ["add_pair_arguments", "check_pair_arguments"]
+__all__ = ["add_pair_arguments", "check_pair_arguments", "load_pair_for"]
 
 
 def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None) -> None:
@@ -35,3 +35,17 @@ def check_pair_arguments(args) -> None:
         check_positive("torque_nm (N·m)", args.torque)
     if getattr(args, "cells", None) is not None and args.cells < 16:
         raise InputRangeError("cells", args.cells, ">= 16 per side")
+
+
+def load_pair_for(args):
+    """The pair of ``--pair`` with ``args.side`` set (default its design side) and, if
+    the pair file has no ease-off table for that side, the synthesized one (printed)."""
+    from ..geometry.pair import load_pair
+    from ..tca.synthesis import with_easeoff
+
+    pair = load_pair(args.pair)
+    args.side = args.side or pair.design_side
+    pair, note = with_easeoff(pair, side=args.side)
+    if note:
+        print(note)
+    return pair

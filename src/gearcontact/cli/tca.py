@@ -10,10 +10,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..geometry.pair import load_pair
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_tca_outputs
-from .options import add_pair_arguments, check_pair_arguments
+from .options import add_pair_arguments, check_pair_arguments, load_pair_for
 
 
 def register(sub) -> None:
@@ -30,8 +29,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     check_pair_arguments(args)
-    pair = load_pair(args.pair)
-    args.side = args.side or pair.design_side
+    pair = load_pair_for(args)
     out = Path(args.out)
     res, flanks = analyze_pair(pair, side=args.side, phases=args.phases, pairs=args.pairs,
                                progress=not args.quiet)

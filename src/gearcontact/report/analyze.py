@@ -44,6 +44,7 @@ from ..contact.patch import ContactAtEdgeWarning
 from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, get_engine
 from ..tca.analysis import TcaAnalysis, analyze_pair
+from ..tca.synthesis import with_easeoff
 from ..tca.export import write_csv, write_tca_outputs
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
@@ -86,6 +87,9 @@ class Analysis:
         Flank pair analysed ("drive" | "coast").
     flanks : FlankSet or None
         The flanks the analysis ran on.
+    easeoff_note : str
+        Non-empty when the pair came without an ease-off for ``side`` and it was
+        synthesized (:func:`gearcontact.tca.synthesis.with_easeoff`).
     """
 
     pair: object
@@ -100,6 +104,7 @@ class Analysis:
     latency: object = None
     side: str = "drive"
     flanks: object = None
+    easeoff_note: str = ""
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -163,6 +168,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:
         raise InputRangeError("torques_nm", torques_nm, "at least one torque")
+    pair, easeoff_note = with_easeoff(pair, side=side)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     timings = {}
@@ -247,6 +253,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     steps.update(1)
     steps.close()
     result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision, latency, side, flanks)
+                      precision, latency, side, flanks, easeoff_note)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

@@ -131,7 +131,11 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     out = [f"# {pair.name}: tooth-contact analysis", "",
            f"gearcontact {__version__}. Units: mm, N, MPa, arcsec. "
            "Published values (where given) are from the original study, for comparison.",
-           "", "## Blank (ISO 23509 Method 1)", ""]
+           ""]
+    if getattr(result, "easeoff_note", ""):
+        head, _, toml = result.easeoff_note.partition("\n")
+        out += ["**Ease-off synthesized.** " + head, "", "```toml", toml.strip(), "```", ""]
+    out += ["## Blank (ISO 23509 Method 1)", ""]
     out.append(_table(["quantity", "ours", "published"], [
         ["pinion pitch angle (deg)", blank["pitch_angles_deg"][0], pub.get("pitch_angle_pinion_deg")],
         ["gear pitch angle (deg)", blank["pitch_angles_deg"][1], pub.get("pitch_angle_gear_deg")],

@@ -199,6 +199,7 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
         flank at every phase tried); it names the edge most trial contacts left by.
     """
     from ..geometry.easeoff import EaseOff
+    from .calibration import conjugate_contact
 
     mean = flanks.mean_contact[side]
     kin = pair.kinematics()
@@ -230,10 +231,7 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
     grid.sort(key=lambda uv: ((uv[0] - U[k]) / du) ** 2 + ((uv[1] - V[k]) / dv) ** 2)
     exits = [error.where if isinstance(error, EdgeContact) else "no convergence"]
     for u1, v1 in near + grid:
-        ms = conj.exact(np.array(u1), np.array(v1))
-        u2, v2 = gear.surface_parameters(ms.h_mm, ms.theta_rad)
-        p2 = float(ms.phi2_rad)
-        guess = ContactGuess(u1, v1, float(u2), float(v2), pair.ratio * p2, p2)
+        guess = conjugate_contact(conj, gear, pair, u1, v1)
         try:
             solve_mating_point(pinion, gear, kin, guess, fixed="u1")
             return guess, "u1"
