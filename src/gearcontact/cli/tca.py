@@ -8,10 +8,12 @@ the figures ``te0.png``, ``contact_pattern.png`` and ``flanks_in_mesh.png``.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_tca_outputs
+from ..tca.line_contact import LineContact
 from .options import add_pair_arguments, check_pair_arguments, load_pair_for
 
 
@@ -31,8 +33,15 @@ def run(args) -> int:
     check_pair_arguments(args)
     pair = load_pair_for(args)
     out = Path(args.out)
-    res, flanks = analyze_pair(pair, side=args.side, phases=args.phases, pairs=args.pairs,
-                               progress=not args.quiet)
+    try:
+        res, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
+                                   pairs=args.pairs, progress=not args.quiet)
+    except LineContact as line:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "tca.json").write_text(json.dumps(
+            {"pair": pair.name, "side": args.side, **line.result.as_dict()}, indent=2))
+        print(f"{pair.name} {args.side}: {line} -> {out}")
+        return 0
     write_tca_outputs(res, flanks, pair, out, side=args.side,
                       table_records=args.table_records, figures=not args.no_figures)
     cyc, rc, ell = res.cycle, res.mean_curvature, res.mean_ellipse

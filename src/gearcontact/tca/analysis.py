@@ -12,6 +12,7 @@ from tqdm import tqdm
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
+from .line_contact import LineContact, is_conjugate, line_contact
 from .edges import PatternOffFlank, exit_counts, pattern_edges
 from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
                         relative_curvature)
@@ -162,6 +163,14 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     Returns
     -------
     (TcaAnalysis, FlankSet)
+
+    Raises
+    ------
+    LineContact
+        Zero ease-off and no assembly errors: the flanks are conjugate (line contact,
+        TE0 = 0); the exception carries the :class:`~.line_contact.LineContactResult`.
+    PatternOffFlank
+        The contact has left the flanks at every phase tried.
     """
     from ..geometry.flank import SIDES, build_flanks
 
@@ -172,6 +181,14 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     if flanks is None:
         flanks = build_flanks(pair)
     kin = pair.kinematics()
+    if is_conjugate(pair, side):
+        mean = flanks.mean_contact[side]
+        phi2 = float(mean["phi2_rad"])
+        start = ContactGuess(*map(float, mean["pinion_uv"]), *map(float, mean["gear_uv"]),
+                             pair.ratio * phi2, phi2)
+        raise LineContact(line_contact(flanks.flank("pinion", side), flanks.flank("gear", side),
+                                       kin, start, pinion_teeth=pair.pinion_teeth,
+                                       phases=phases), side=side)
     start, fixed = reference_start(pair, flanks, side)
     result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
                      pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
