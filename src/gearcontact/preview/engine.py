@@ -154,17 +154,23 @@ class ReferenceEngine:
     ----------
     material, material2 : Material
         The two contacting bodies (default steel/steel); E' = 2E*.
+    envelope : bool
+        Enforce the datapath's operating envelope in :meth:`hertz` (default True).
     """
 
     name = "reference"
 
-    def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
+    def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
+                 envelope: bool = True):
         self.material = material
         self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        #: enforce the datapath's operating envelope (False: any physical input, e.g.
+        #: host-side sizing of a large gear's contact beyond the hardware's range)
+        self.envelope = bool(envelope)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
         a, b, w = _check_physical(A_minus, B_minus, load_n)
-        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa)
+        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa, envelope=self.envelope)
         return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa)
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:

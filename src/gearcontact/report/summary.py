@@ -187,10 +187,14 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
             "## Fixed-point preview (golden model = RTL specification)", ""]
     rows = []
     for c, g, ch in zip(cases, result.golden, result.golden_chain):
-        rows.append([c.torque_nm, c.preview.p_max_mpa, g.p_max_mpa,
-                     _pct(g.p_max_mpa, c.preview.p_max_mpa), ch.p_max_mpa,
-                     _pct(ch.p_max_mpa, c.preview.p_max_mpa), ", ".join(ch.flags) or "none",
-                     ch.cycles])
+        off = "outside the datapath envelope"
+        rows.append([c.torque_nm, c.preview.p_max_mpa,
+                     off if g is None else g.p_max_mpa,
+                     None if g is None else _pct(g.p_max_mpa, c.preview.p_max_mpa),
+                     off if ch is None else ch.p_max_mpa,
+                     None if ch is None else _pct(ch.p_max_mpa, c.preview.p_max_mpa),
+                     off if ch is None else ", ".join(ch.flags) or "none",
+                     None if ch is None else ch.cycles])
     out.append(_table(["torque (N·m)", "fp64 p_max", "golden D p_max", "golden D vs fp64 (%)",
                        "golden C->D p_max (stencil)", "C->D vs fp64 (%)", "C->D flags",
                        "C->D cycles"], rows))

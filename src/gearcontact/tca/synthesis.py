@@ -26,8 +26,10 @@ Targets (:class:`SynthesisTargets`) and their defaults, from common practice:
   (Litvin & Fuentes 2004, sec. 21.8 use 6-8 arcsec; Stadtfeld 1993 recommends the
   smallest level that keeps the bearing inside under the mounting tolerances; s0003's
   published design has 3.4 arcsec);
-* **path angle** optional: without it the bias (twist) is held at zero, i.e. the path
-  runs along the relief valley that the crownings cut.
+* **path angle** optional: without it the bias (twist) is free but drawn weakly
+  towards zero (a regularizing residual of weight :data:`BIAS_WEIGHT`), so that a
+  path along the relief valley is preferred where it meets the targets, and a twisted
+  one is used where TE0 and the ellipse length cannot be met together without it.
 
 References
 ----------
@@ -62,6 +64,10 @@ __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pa
 #: target of the synthesis; the pattern length is the paint ellipse).
 _REPORT_TORQUE_NM = 64.5
 
+#: Weight of the residual ``c_TW / scale`` that draws the bias towards zero when no
+#: path angle is prescribed (one bias scale step costs 0.1 of a tolerance).
+BIAS_WEIGHT = 0.1
+
 
 @dataclass(frozen=True)
 class SynthesisTargets:
@@ -77,7 +83,7 @@ class SynthesisTargets:
         Contact-path direction at the bearing centre from the lengthwise direction,
         deg in (-90, 90] (right-handed flank frame, as the ellipse angle of
         :class:`~gearcontact.tca.calibration.DesignPoint`); None: not prescribed
-        (bias held at 0).
+        (bias drawn weakly towards 0).
     centre_face, centre_profile : float
         Bearing centre (TE0 vertex) on the pinion flank as fractions of the face
         (0 toe, 1 heel) and of the working depth (0 root, 1 tip), in [0.1, 0.9].
@@ -224,12 +230,10 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     lo = np.array([eta_c - 0.5 * depth, xi_c - 0.4 * face, 0.05 * k, 0.002 * k, -2.0 * k])
     hi = np.array([eta_c + 0.5 * depth, xi_c + 0.4 * face, 60.0 * k, 2.0 * k, 2.0 * k])
     scale = np.array([0.02 * depth, 0.02 * face, 0.5 * k, 0.01 * k, 0.05 * k])
-    free = slice(0, 5 if with_bias else 4)
     evals = {"n": 0, "best": (np.inf, None, None)}
 
     def run(x):
-        xx = np.concatenate([x, [0.0]]) if not with_bias else x
-        coeffs = centred_coefficients(*xx)
+        coeffs = centred_coefficients(*x)
         return coeffs, eased_design_point(coeffs, conj, gear, pair, starts, mean_uv=(u_m, v_m),
                                           limit_um=limit, torque_nm=_REPORT_TORQUE_NM,
                                           phases=phases)
@@ -239,7 +243,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         try:
             coeffs, dp = run(x)
         except (EdgeContact, ArithmeticError, ValueError):
-            return np.full(4 + with_bias, 1e3)
+            return np.full(5, 1e3)
         r = [(dp.pinion_uv[0] - centre[0]) / targets.tol_centre_mm,
              (dp.pinion_uv[1] - centre[1]) / targets.tol_centre_mm,
              (dp.te0_pp_arcsec / targets.te0_pp_arcsec - 1.0) / targets.tol_te0_rel,
@@ -247,6 +251,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         if with_bias:
             ang = dp.path_angle_deg if np.isfinite(dp.path_angle_deg) else 90.0
             r.append(_angle_diff(ang, targets.path_angle_deg) / targets.tol_angle_deg)
+        else:
+            r.append(BIAS_WEIGHT * x[4] / scale[4])
         r = np.asarray(r)
         cost = float(r @ r)
         if cost < evals["best"][0]:
@@ -257,14 +263,16 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     # turns with the profile crowning), bearing centre at its target
     for pc in (4.0, 8.0, 16.0):
         for lc in (0.06, 0.15, 0.4):
-            x0 = np.array([eta_c, xi_c, pc * k, lc * k, 0.0])[free]
-            residual(x0)
+            residual(np.array([eta_c, xi_c, pc * k, lc * k, 0.0]))
     if evals["best"][1] is None:
         raise ArithmeticError(f"ease-off synthesis of {pair.name} {side}: no start of the "
                               "search gave an interior TCA contact")
-    least_squares(residual, np.clip(evals["best"][1], lo[free], hi[free]),
-                  bounds=(lo[free], hi[free]), x_scale=scale[free], diff_step=1e-2,
-                  max_nfev=int(max_evaluations))
+    # the local search runs in variables normalized by ``scale`` (each of order one
+    # per scale step), so that the finite-difference step (1 % of max(1, |z|) scale
+    # steps) is a small, comparable change of every coefficient
+    x0 = np.clip(evals["best"][1], lo, hi)
+    least_squares(lambda z: residual(x0 + z * scale), np.zeros(5), method="lm",
+                  diff_step=1e-2, max_nfev=int(max_evaluations))
     _, _, (coeffs, dp) = evals["best"]
     return Synthesis(side, coeffs, targets, dp, centre, length,
                      _targets_rows(dp, targets, centre, length), evals["n"],
@@ -280,7 +288,7 @@ def easeoff_toml(synth: dict, *, pair_name: str) -> str:
         out.append(f"[easeoff.{side}]")
         out.append(f"# synthesized by gearcontact (local synthesis, {pair_name}): TE0 "
                    f"{t.te0_pp_arcsec:g} arcsec, paint ellipse {t.pattern_length_ratio:g} x face, "
-                   + ("path angle free (bias 0)" if t.path_angle_deg is None
+                   + ("path angle free" if t.path_angle_deg is None
                       else f"path angle {t.path_angle_deg:g} deg")
                    + f", centre at {t.centre_face:g} face / {t.centre_profile:g} depth.")
         out.append(f"# achieved: TE0 {s.point.te0_pp_arcsec:.2f} arcsec, 2a "
