@@ -27,7 +27,7 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 
-__all__ = ["EDGES", "edge_name", "exit_counts", "PatternOffFlank", "pattern_edges"]
+__all__ = ["EDGES", "edge_name", "exit_counts", "PatternOffFlank", "ContactGap", "pattern_edges"]
 
 #: Edge name of each parameter-box side (``u`` root -> tip, ``v`` toe -> heel).
 EDGES = {"u min": "root", "u max": "tip", "v min": "toe", "v max": "heel"}
@@ -60,6 +60,24 @@ class PatternOffFlank(ValueError):
             f"contact pattern off the flank: no interior mating point at any of the "
             f"{tried} start contacts tried{context}; the contact leaves towards the "
             f"{self.where} (exits: {detail}). Reduce the assembly errors or the ease-off.")
+
+
+class ContactGap(ValueError):
+    """At some phase of the pitch no tooth pair has an interior mating point: the
+    contact paths are shorter than one pinion pitch (contact ratio below one), e.g. a
+    short face or a strong misalignment.
+
+    Attributes
+    ----------
+    phi1_rad : float
+        First phase without a contact, rad.
+    """
+
+    def __init__(self, phi1_rad: float):
+        self.phi1_rad = float(phi1_rad)
+        super().__init__(f"no tooth pair in contact at phi1 = {np.degrees(phi1_rad):.4f} deg: "
+                         "the contact path is shorter than one pinion pitch (contact ratio "
+                         "< 1); the unloaded mesh has a gap there")
 
 
 def _edge_of(surface: Surface, u: float, v: float) -> tuple[str, float]:
