@@ -50,12 +50,11 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
     # te0.csv: per phase of the pitch, every pair and the envelope
     write_csv(out / "te0.csv",
          ["phi1_deg"] + [f"te0_pair{j:+d}_arcsec" for j in cyc.pair_offsets]
-         + ["te0_arcsec", "active_pair", "pairs_in_contact", "edge"],
+         + ["te0_arcsec", "active_pair", "pairs_in_contact"],
          [[float(np.degrees(cyc.phi1_rad[k]))]
           + [float(x) for x in cyc.te0_pairs_arcsec[:, k]]
           + [float(cyc.envelope_arcsec[k]), int(cyc.active_pair[k]),
-             int(cyc.pairs_in_contact[k]), res.edges[k] or "-"]
-          for k in range(len(cyc.phi1_rad))])
+             int(cyc.pairs_in_contact[k])] for k in range(len(cyc.phi1_rad))])
 
     # contact_path.csv: the whole interior path of one tooth pair
     rows = []
