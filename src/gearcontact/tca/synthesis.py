@@ -92,7 +92,7 @@ class SynthesisTargets:
         (bias drawn weakly towards 0).
     centre_face, centre_profile : float
         Bearing centre (TE0 vertex) on the pinion flank as fractions of the face
-        (0 toe, 1 heel) and of the working depth (0 root, 1 tip), in [0.1, 0.9].
+        (0 toe, 1 heel) and of the working depth (0 root, 1 tip), in [0.02, 0.98].
     tol_centre_mm, tol_te0_rel, tol_length_rel, tol_angle_deg : float
         Tolerances (least-squares scales): centre, mm; TE0 and length, relative;
         path angle, deg.
@@ -113,8 +113,8 @@ class SynthesisTargets:
         check_range("pattern_length_ratio", self.pattern_length_ratio, 0.1, 0.8)
         if self.path_angle_deg is not None:
             check_range("path_angle_deg", self.path_angle_deg, -89.9, 90.0)
-        check_range("centre_face", self.centre_face, 0.1, 0.9)
-        check_range("centre_profile", self.centre_profile, 0.1, 0.9)
+        check_range("centre_face", self.centre_face, 0.02, 0.98)
+        check_range("centre_profile", self.centre_profile, 0.02, 0.98)
         for name in ("tol_centre_mm", "tol_te0_rel", "tol_length_rel", "tol_angle_deg"):
             check_positive(name, getattr(self, name))
 
