@@ -112,3 +112,17 @@ def test_zero_easeoff_reports_line_contact(tmp_path, capsys):
     assert doc["line_contact"] and doc["te0_max_abs_arcsec"] < 1e-3
     assert main(["ltca", "--pair", str(pair), "--out", str(tmp_path / "l")]) == 2
     assert "line contact" in capsys.readouterr().err
+
+
+def test_misaligned_pair_loads_the_edge(tmp_path):
+    """ltca and lte on misaligned s0003-centred (issue 11) run: E = -0.2 mm puts the
+    patch on the pinion-tip / gear-heel edge, which the LCP reports as edge contact
+    with an edge spike (sharp edge: peak several times p90); P = +0.1 mm through lte."""
+    pair = _s0003_centred_with(tmp_path, "E_mm = -0.2")
+    assert main(["ltca", "--pair", str(pair), "--out", str(tmp_path / "l"), "--phases", "15",
+                 "--no-figures"]) == 0
+    doc = json.loads((tmp_path / "l" / "ltca.json").read_text())
+    assert doc["edge_contact"] and doc["p_peak_mpa"] > 3.0 * doc["p90_mpa"]
+    pair = _s0003_centred_with(tmp_path, "P_mm = 0.1")
+    assert main(["lte", "--pair", str(pair), "--out", str(tmp_path / "t"), "--phases", "15",
+                 "--quiet", "--no-figures"]) == 0
