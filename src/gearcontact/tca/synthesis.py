@@ -226,10 +226,11 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
               b.v_toe + targets.centre_face * (b.v_heel - b.v_toe))
     face = pair.gear_face_width_mm
     length = targets.pattern_length_ratio * face
-    # starts of the mating-point solve: conjugate contacts at and below the centre
+    # starts of the mating-point solve: conjugate contacts at and below the centre (u1
+    # held, the phase free)
     depth = b.u_tip - b.u_root
     starts = [conjugate_contact(conj, gear, pair, centre[0] - f * depth, centre[1])
-              for f in (0.0, 0.15, -0.15, 0.3)]
+              for f in (0.0, 0.03, 0.1, 0.25)]
     limit = flanks.easeoff_limit_um
     with_bias = targets.path_angle_deg is not None
     # curvature scale: the ellipse length scales with the face, its curvature with
