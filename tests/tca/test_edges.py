@@ -154,3 +154,12 @@ def test_edge_names_follow_the_flank_box():
     assert edge_name("gear u max") == "gear tip"
     assert edge_name("pinion v min") == "pinion toe"
     assert edge_name("gear v max") == "gear heel"
+
+
+def test_off_flank_error_names_the_most_common_edge_not_a_solver_failure():
+    from gearcontact.tca.edges import exit_counts
+
+    err = PatternOffFlank(exit_counts(["no convergence"] * 5 + ["pinion v min"] * 2
+                                      + ["gear u max"]))
+    assert err.where == "pinion toe" and err.counts["no convergence"] == 5
+    assert PatternOffFlank(exit_counts(["no convergence"])).where == "unknown edge"

@@ -45,14 +45,17 @@ class PatternOffFlank(ValueError):
     Attributes
     ----------
     where : str
-        The edge the contact crossed most often (``"gear root"``, ``"pinion toe"``, ...).
+        The edge the contact crossed most often (``"gear root"``, ``"pinion toe"``, ...;
+        ``"unknown edge"`` if no trial reached an edge, e.g. none converged).
     counts : dict
-        How many of the trial contacts left by each edge.
+        How many of the trial contacts left by each edge (or did not converge).
     """
 
     def __init__(self, counts: dict, *, context: str = ""):
         self.counts = dict(counts)
-        self.where = max(self.counts, key=self.counts.get) if self.counts else "unknown"
+        named = {k: v for k, v in self.counts.items()
+                 if k.split(" ")[-1] in EDGES.values()}
+        self.where = max(named, key=named.get) if named else "unknown edge"
         tried = sum(self.counts.values())
         detail = ", ".join(f"{k} {v}" for k, v in sorted(self.counts.items(),
                                                          key=lambda kv: -kv[1]))
