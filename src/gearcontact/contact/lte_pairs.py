@@ -98,6 +98,8 @@ class PairFields:
         self.bending = bending
         self.cache: dict[int, tuple] = {}
         self.factors: dict[int, np.ndarray] = {}
+        #: (origin (3,), frame (3, 3): columns e_s, e_t, n) of each field, meshing frame
+        self.frames: dict[int, tuple] = {}
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
@@ -131,6 +133,7 @@ class PairFields:
             lever = torque_lever_mm(mp.point_mm, mp.normal)
             hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
             self.cache[pc.path_index] = hit
+            self.frames[pc.path_index] = (f.origin_mm, f.frame)
             if self.bending is not None:
                 self.factors[pc.path_index] = self._bending_factor(f, mp)
             self.seconds += time.perf_counter() - t0
