@@ -106,7 +106,7 @@ class MultiToothCase:
         Phase of the mesh cycle (``cycle.mean_index``).
     pairs : tuple of EngagedPair
         Pairs loaded in either solution (> ``ACTIVE_SHARE`` of the load), the
-        transmitting pair first, then by offset.
+        transmitting pair first, then by distance from it (the later pair first).
     rotation_rigid_arcsec, rotation_arcsec : float
         Loaded gear rotation ``theta`` rigid and with bending, arcsec (equal without
         bending).
@@ -281,7 +281,7 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
             edge=pc.edge, load_n=load, load_rigid_n=rigid_load.get(pc.offset, 0.0),
             loads_n=w, grid=b.grid, off_flank=off, origin_mm=np.asarray(origin, float),
             frame=np.asarray(frame, float), peak=line_contact_peak(w, b.grid, off)))
-    engaged.sort(key=lambda p: (p.offset != main.offset, p.offset))
+    engaged.sort(key=lambda p: (abs(p.offset - main.offset), -p.offset))
     ref = engaged[0]
     engine = get_engine("reference", material=pair.pinion_material,
                         material2=pair.gear_material)
