@@ -149,10 +149,11 @@ class PairFields:
         uv2 = tangent_parameters(gear, kin.gear_pose(mp.phi2_rad), f.frame, (mp.u2, mp.v2), st)
         return self.bending.factor(uv1, uv2, f.gap_mm.shape)
 
-    def block(self, pc: PairContact) -> tuple[PairBlock, np.ndarray]:
+    def block(self, pc: PairContact, *, rigid: bool = False) -> tuple[PairBlock, np.ndarray]:
+        """(block, off-flank mask) of a pair; ``rigid``: without its bending factor."""
         gap, grid, off, lever = self.get(pc)
         return PairBlock(gap, grid, lever, 0.0,
-                         bending_factor=self.factors.get(pc.path_index)), off
+                         bending_factor=None if rigid else self.factors.get(pc.path_index)), off
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its
