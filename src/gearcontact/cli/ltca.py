@@ -10,7 +10,7 @@ the rest of :meth:`~gearcontact.contact.pair_ltca.PairLoadCase.summary`),
 ``--multi-tooth`` also the coupled LCP of all engaged pairs at P0, rigid and with the
 shell bending of both teeth (:mod:`gearcontact.contact.multitooth`): ``multitooth.json``
 (load shares, rotations, CP_max, cell peak, preview p_max), ``multitooth.csv`` and the
-full-wheel figure ``multitooth.png`` (:mod:`gearcontact.report.multitooth_plot`). The
+full-wheel figure ``multitooth.png`` (:mod:`gearcontact.report.multitooth`). The
 solve times (``solve_ms``, ``multi_tooth_solve_ms``, ``multi_tooth_solve_rigid_ms``) go
 to ``run.json`` only, so identical runs write identical result files. Edge contact is
 reported on stderr.
@@ -141,7 +141,7 @@ def _multi_tooth(args, tca, flanks, pair, out):
     from ..contact.multitooth import multi_tooth_ltca
     from ..contact.tooth_bending import tooth_bending
     from ..report.analyze import published_values
-    from ..report.multitooth_plot import write_multitooth_outputs
+    from ..report.multitooth import write_multitooth_outputs
 
     t0 = time.perf_counter()
     bending = tooth_bending(flanks, pair, side=args.side)

@@ -1,11 +1,13 @@
-"""Multi-tooth figure and files: pressure on every engaged flank, load share per pair.
+"""Multi-tooth outputs: figure, files and summary section (pressure on every engaged
+flank, load share per pair).
 
 :func:`write_multitooth_outputs` writes ``multitooth.json``
 (:meth:`~gearcontact.contact.multitooth.MultiToothCase.summary`, no timings),
 ``multitooth.csv`` (one row per loaded cell of every pair: pair, meshing-frame point
 (z = gear-axial position), radius about the gear axis, pressure, trimmed as
 boundary-inadmissible) and ``multitooth.png``
-(:func:`plot_multitooth`); used by ``gearcontact ltca --multi-tooth`` and the main job.
+(:func:`plot_multitooth`); used by ``gearcontact ltca --multi-tooth`` and the main job,
+whose ``summary.md`` gets :func:`multitooth_section`.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import numpy as np  # noqa: E402
 from ..contact.line_peak import inadmissible_cells  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
-__all__ = ["plot_multitooth", "write_multitooth_outputs"]
+__all__ = ["multitooth_section", "plot_multitooth", "write_multitooth_outputs"]
 
 
 def _wheel_coordinates(p) -> tuple[np.ndarray, np.ndarray]:
@@ -105,3 +107,52 @@ def write_multitooth_outputs(case, out_dir, *, figures: bool = True, title: str 
         paths.append(plot_multitooth(case, out / "multitooth.png", title=title,
                                      published=published))
     return paths
+
+
+def multitooth_section(case, pub: dict) -> list[str]:
+    """Markdown of the multi-tooth section of ``summary.md``: ours beside the published
+    load shares, rotation increase from bending, and CP_max vs the preview."""
+    from .summary import _pct, _table
+
+    shares = pub.get("multi_tooth_load_share_pct")
+
+    def fmt(values):
+        return " / ".join(f"{v:.1f}" for v in values)
+
+    ref = case.pairs[0]
+    out = [f"## Multi-tooth loaded contact at P0, {case.torque_nm:g} N·m (rigid and with "
+           "tooth bending)", "",
+           f"All tooth pairs within reach at the phase of P0 in one torque-balanced LCP "
+           f"(pairs {', '.join(f'{p.offset:+d}' for p in case.pairs)}, reference first), "
+           "with rigid teeth and with the shell bending of both teeth "
+           "(`gearcontact ltca --multi-tooth`; docs/bending.md). CP_max: the "
+           "incomplete-ellipse line-contact peak after trimming the boundary-inadmissible "
+           "edge cells (`gearcontact.contact.line_peak`).", ""]
+    out.append(_table(["quantity", "ours", "published"], [
+        ["engaged pairs (bending)", sum(p.load_n > 0 for p in case.pairs),
+         len(shares) if shares else None],
+        ["load shares rigid (%)", fmt(case.load_share_rigid_pct), None],
+        ["load shares with bending (%)", fmt(case.load_share_pct),
+         fmt(shares) if shares else None],
+        ["reference pair load with bending (N)", ref.load_n,
+         pub.get("multi_tooth_reference_load_n")],
+        ["mesh rotation rigid (arcsec)", case.rotation_rigid_arcsec,
+         pub.get("mesh_rotation_rigid_arcsec_at_design")],
+        ["mesh rotation with bending (arcsec)", case.rotation_arcsec,
+         pub.get("mesh_rotation_bending_arcsec_at_design")],
+        ["rotation increase from bending (%)",
+         _pct(case.rotation_arcsec, case.rotation_rigid_arcsec),
+         pub.get("mesh_rotation_bending_increase_pct")],
+        ["CP_max (MPa)", case.cp_max_mpa, pub.get("cp_max_mpa_at_design")],
+        ["preview p_max, reference pair at its load (MPa)", case.preview_p_max_mpa,
+         pub.get("preview_p_max_mpa_at_design")],
+        ["CP_max vs preview (%)", _pct(case.cp_max_mpa, case.preview_p_max_mpa),
+         _pct(pub["cp_max_mpa_at_design"], pub["preview_p_max_mpa_at_design"])
+         if "cp_max_mpa_at_design" in pub else None],
+        ["raw cell peak (MPa)", case.p_peak_cell_mpa, None],
+        ["trimmed edge cells / their load (N)",
+         f"{sum(p.peak.trimmed_cells for p in case.pairs)} / "
+         f"{sum(p.peak.trimmed_load_n for p in case.pairs):.0f}", None],
+        ["converged", case.converged, None]]))
+    out += ["", "Figure: ![multi-tooth](multitooth.png)", ""]
+    return out
