@@ -53,8 +53,9 @@ def plot_multitooth(case, path, *, title: str = "", published: dict | None = Non
                         vmin=0.0, vmax=vmax, marker="s", linewidths=0)
         k = np.unravel_index(np.argmax(p.loads_n), p.loads_n.shape)
         ax.annotate(f"pair {p.offset:+d}: {case.load_share_pct[i]:.1f} %",
-                    (z[k], r[k]), textcoords="offset points", xytext=(-40, 10), fontsize=8,
-                    color="C0")
+                    (z[k], r[k]), textcoords="offset points", xytext=(-110, -4), fontsize=8,
+                    bbox={"boxstyle": "round", "fc": "white", "alpha": 0.85},
+                    arrowprops={"arrowstyle": "-", "lw": 0.6})
     if sc is not None:
         fig.colorbar(sc, ax=ax, extend="max",
                      label="pressure (MPa, with bending; trimmed edge cells saturate)")
