@@ -87,7 +87,8 @@ from .lte_pairs import PairContact, PairFields, phase_contacts
 from .mesh_lcp import MeshLcpResult, solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
-__all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "loaded_te", "preview_balance"]
+__all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "check_loaded", "loaded_te",
+           "preview_balance", "solve_phase"]
 
 #: A pair counts as active when it carries more than this share of the total load.
 ACTIVE_SHARE = 1e-6
@@ -338,7 +339,7 @@ def _near(mask: np.ndarray) -> np.ndarray:
     return out
 
 
-def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, tol: float,
+def solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, tol: float,
                  warm: dict, theta_pre: float, rigid: bool = False):
     """Torque-constrained LCP over the pairs within reach (``rigid``: without the
     bending factors); returns (result, used contacts, blocks, off masks). Pairs left out
@@ -358,7 +359,7 @@ def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, 
         reach = reach + late
 
 
-def _check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
+def check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
     """Raise if a load closes an off-flank cell; return the edge-contact flag."""
     edge = False
     for pc, mask, off, d in zip(reach, res.contact_masks, offs, res.approach_mm):
@@ -396,7 +397,7 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
         for sgn in (1.0, -1.0):
             tq = torque * (1.0 + sgn * eps)
             th = preview_balance(lv, gs, kap, tq)[0]
-            res, *_ = _solve_phase(group, fields, tq, materials, tol=tol, warm={},
+            res, *_ = solve_phase(group, fields, tq, materials, tol=tol, warm={},
                                    theta_pre=th)
             if not res.converged:
                 raise ArithmeticError(f"compliance at {tq / 1e3:g} N·m: {res.message}")
@@ -520,12 +521,12 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         gs = np.array([pc.offset_mm for pc in valid])
         kap = np.array([pc.kappa_mm_per_n23 for pc in valid])
         th_pre, wp = preview_balance(lv, gs, kap, torque)
-        res, reach, blocks, offs = _solve_phase(contacts, fields, torque, materials,
+        res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials,
                                                 tol=tol, warm=warm, theta_pre=th_pre)
         field_ms[k] = 1e3 * (fields.seconds - f0)
         solve_ms[k] = res.solve_time_ms
         status.append(res.status)
-        edge[k] = _check_loaded(res, reach, offs, t)
+        edge[k] = check_loaded(res, reach, offs, t)
         fedge[k] = _field_edge(res.contact_masks)
         rot_lcp[k], rot_pre[k] = res.rotation_rad, th_pre
         for pc, w in zip(valid, wp):
@@ -539,7 +540,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         for rigid, k_arr in models:
             th = []
             for sgn in (1.0, -1.0):
-                r2, *_ = _solve_phase(contacts, fields, torque * (1.0 + sgn * eps), materials,
+                r2, *_ = solve_phase(contacts, fields, torque * (1.0 + sgn * eps), materials,
                                       tol=tol, warm=warm, theta_pre=th_pre,
                                       rigid=rigid or bending is None)
                 if not r2.converged and status[-1] == "converged":

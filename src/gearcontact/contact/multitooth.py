@@ -31,7 +31,7 @@ from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive, check_range
 from .grid import TangentGrid
 from .line_peak import LinePeak, line_contact_peak
-from .lte import ACTIVE_SHARE, _check_loaded, _solve_phase, preview_balance
+from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
 from .mesh_lcp import MeshLcpResult
 from .pair_ltca import ARCSEC_PER_RAD
@@ -203,9 +203,9 @@ def _solve(contacts, fields: PairFields, torque: float, materials, tol: float,
     gs = np.array([pc.offset_mm for pc in contacts])
     kap = np.array([pc.kappa_mm_per_n23 for pc in contacts])
     th_pre, _ = preview_balance(lv, gs, kap, torque)
-    res, reach, blocks, offs = _solve_phase(contacts, fields, torque, materials, tol=tol,
+    res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials, tol=tol,
                                             warm={}, theta_pre=th_pre)
-    edge = _check_loaded(res, reach, offs, torque_nm)
+    edge = check_loaded(res, reach, offs, torque_nm)
     return res, reach, blocks, offs, edge
 
 
