@@ -79,3 +79,24 @@ def test_lte_with_bending(out, tmp_path):
     assert sum(bent["reference_load_share"].values()) == pytest.approx(1.0, rel=1e-12)
     assert bent["mesh_compliance_lcp_mm_per_n"] > rigid["mesh_compliance_lcp_mm_per_n"]
     assert bent["reference_rotation_lcp_arcsec"] > rigid["reference_rotation_lcp_arcsec"]
+    # one run gives the mesh stiffness rigid and with bending: its rigid stiffness is the
+    # rigid run's (the same fields and solves: identical to rounding, 1e-9), the bending
+    # one is softer, and at P0 it is the inverse of the mesh compliance (same step, 1e-6)
+    for key in ("mesh_stiffness_rigid_n_per_mm_mean", "mesh_stiffness_rigid_nm_per_rad_mean"):
+        assert bent[key] == pytest.approx(rigid[key], rel=1e-9)
+    assert "mesh_stiffness_bending_n_per_mm_mean" not in rigid
+    assert bent["mesh_stiffness_bending_n_per_mm_max"] < bent["mesh_stiffness_rigid_n_per_mm_min"]
+    assert bent["reference_mesh_stiffness_bending_n_per_mm"] == pytest.approx(
+        1.0 / bent["mesh_compliance_lcp_mm_per_n"], rel=1e-6)
+    with open(d / "lte.csv") as f:
+        header = f.readline().strip().split(",")
+    rows = np.loadtxt(d / "lte.csv", delimiter=",", skiprows=1,
+                      usecols=[header.index(c) for c in (
+                          "mesh_stiffness_rigid_nm_per_rad", "mesh_stiffness_rigid_n_per_mm",
+                          "mesh_stiffness_bending_nm_per_rad",
+                          "mesh_stiffness_bending_n_per_mm")])
+    lever = bent["reference_lever_mm"]
+    np.testing.assert_allclose(rows[:, 1], 1e3 * rows[:, 0] / lever ** 2, rtol=1e-11)
+    np.testing.assert_allclose(rows[:, 3], 1e3 * rows[:, 2] / lever ** 2, rtol=1e-11)
+    assert rows[:, 2].mean() == pytest.approx(bent["mesh_stiffness_bending_nm_per_rad_mean"],
+                                              rel=1e-11)

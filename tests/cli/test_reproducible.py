@@ -16,6 +16,8 @@ from gearcontact.cli.outdir import MANIFEST
 @pytest.mark.parametrize("argv", [
     ["tca", "--pair", "s0003-centred", "--phases", "5", "--quiet"],
     ["ltca", "--pair", "s0003-centred", "--phases", "5", "--cells", "24", "--export-problem"],
+    ["ltca", "--pair", "s0003", "--phases", "11", "--cells", "24", "--multi-tooth",
+     "--multi-tooth-cells", "24", "--no-figures"],
 ])
 def test_identical_runs_identical_files(tmp_path, argv):
     outs = [tmp_path / "a", tmp_path / "b"]

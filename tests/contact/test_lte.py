@@ -394,3 +394,48 @@ def test_s0003_coast_side_max_envelope(s0003_pair, s0003_flanks):
                                rtol=1e-12)
     moments = np.nansum(res.pair_loads_lcp_n * np.nan_to_num(res.lever_mm), axis=0)
     np.testing.assert_allclose(moments, 64.5e3, rtol=1e-10)
+
+
+# ------------------------------------------------------------------ mesh stiffness
+def test_s0003_mesh_stiffness(s0003_tca, s0003_flanks, s0003_pair):
+    """Mesh stiffness along the phase (``stiffness=True``), rigid and with bending.
+
+    Truths: (1) the stiffness equals d(torque)/d(rotation) of two *separate* runs at
+    T (1 +- 5 %) (their public rotations, cold-started), within 3 % (measured 1.4 %:
+    each run sizes its fields by its own Hertzian semi-axes, ~ T^(1/3), so the two
+    rotations come from grids 3 % apart whose discretization errors, ~0.5 % of theta
+    at 24 cells, do not cancel in a difference of 10 % of theta; the run itself
+    differences on one grid); (2) at P0 the stiffness along the normal is the inverse
+    of the mesh compliance (same step, same fields; warm vs cold start: solver
+    tolerance 1e-8, allowed 1e-6);
+    (3) zero-compliance limit: bending scale 0 gives the rigid stiffness (1e-9);
+    (4) bending makes the mesh softer at every phase."""
+    from gearcontact.contact.tooth_bending import tooth_bending
+
+    kw = dict(side="drive", cells=24, stride=5)
+    pair, flanks, tca = s0003_pair, s0003_flanks, s0003_tca
+    bend = tooth_bending(flanks, pair, side="drive")
+    res = loaded_te(tca, flanks, pair, 64.5, bending=bend, stiffness=True, **kw)
+    assert res.converged
+    kr, kb = res.stiffness_rigid_nm_per_rad, res.stiffness_bending_nm_per_rad
+    for model, k in ((None, kr), (bend, kb)):
+        for h, rtol in ((0.05, 3e-2),):
+            hi, lo = (loaded_te(tca, flanks, pair, 64.5 * (1 + f), bending=model, **kw)
+                      for f in (h, -h))
+            fd = 2 * h * 64.5 / ((hi.rotation_lcp_arcsec - lo.rotation_lcp_arcsec)
+                                 / ARCSEC_PER_RAD)
+            np.testing.assert_allclose(k, fd, rtol=rtol)
+    k0 = res.reference_index
+    assert res.mesh_stiffness_n_per_mm(kb[k0]) == pytest.approx(
+        1.0 / res.mesh_compliance_lcp_mm_per_n, rel=1e-6)
+    assert (kb < kr).all()
+    zero = loaded_te(tca, flanks, pair, 64.5, bending=tooth_bending(flanks, pair, side="drive",
+                                                                   scale=0.0),
+                     stiffness=True, **kw)
+    np.testing.assert_allclose(zero.stiffness_bending_nm_per_rad, kr, rtol=1e-9)
+    s = res.summary()
+    assert s["reference_mesh_stiffness_bending_n_per_mm"] == pytest.approx(
+        1e3 * kb[k0] / res.reference_lever_mm ** 2, rel=1e-12)
+    header, rows = res.table()
+    col = header.index("mesh_stiffness_rigid_nm_per_rad")
+    assert [r[col] for r in rows] == list(kr)

@@ -137,3 +137,20 @@ def test_lte_in_main_job(analysis):
     assert d["te_lcp_pp_arcsec"] == pytest.approx(lte.te_lcp_pp_arcsec)
     assert 0.0 < lte.te_lcp_pp_arcsec < analysis.tca.cycle.te0_pp_arcsec
     assert 0.0 < lte.te_pre_pp_arcsec < analysis.tca.cycle.te0_pp_arcsec
+
+
+def test_multitooth_in_main_job(analysis):
+    # the multi-tooth section: the written JSON is the computed case (no timings in it),
+    # shares sum to 100 %, bending rotates more, and summary.md sets the published
+    # 74.6 / 22.6 / 2.8 %, +12 % and CP_max 2714 MPa beside ours
+    mt = analysis.multitooth
+    d = json.loads((analysis.out_dir / "multitooth.json").read_text())
+    assert d["load_share_pct"] == pytest.approx(mt.load_share_pct, rel=1e-15)
+    assert sum(d["load_share_pct"]) == pytest.approx(100.0, rel=1e-12)
+    assert d["mesh_rotation_arcsec"] > d["mesh_rotation_rigid_arcsec"] and d["converged"]
+    assert "solve_ms" not in d and analysis.timings_s["multi_tooth_solve_ms"] > 0
+    assert (analysis.out_dir / "multitooth.png").stat().st_size > 0
+    text = (analysis.out_dir / "summary.md").read_text()
+    assert "## Multi-tooth loaded contact at P0" in text
+    for published in ("74.6 / 22.6 / 2.8", "| 2714 |", "| 12 |", "| 124.4 |"):
+        assert published in text, published

@@ -6,8 +6,14 @@ the rest of :meth:`~gearcontact.contact.pair_ltca.PairLoadCase.summary`),
 ``pressure_map.csv`` (``s_mm,t_mm,pressure_mpa`` over the principal-frame field),
 ``pressure_map.png`` (pressure map with the Hertzian preview ellipse overlaid) and, with
 ``--export-problem``, the solved LCP as ``ltca_problem.npz`` with
-``ltca_problem.README.md`` (:mod:`gearcontact.contact.problem_export`). The solve time
-goes to ``run.json`` only. Edge contact is reported on stderr.
+``ltca_problem.README.md`` (:mod:`gearcontact.contact.problem_export`). With
+``--multi-tooth`` also the coupled LCP of all engaged pairs at P0, rigid and with the
+shell bending of both teeth (:mod:`gearcontact.contact.multitooth`): ``multitooth.json``
+(load shares, rotations, CP_max, cell peak, preview p_max), ``multitooth.csv`` and the
+full-wheel figure ``multitooth.png`` (:mod:`gearcontact.report.multitooth`). The
+solve times (``solve_ms``, ``multi_tooth_solve_ms``, ``multi_tooth_solve_rigid_ms``) go
+to ``run.json`` only, so identical runs write identical result files. Edge contact is
+reported on stderr.
 """
 
 from __future__ import annotations
@@ -27,7 +33,9 @@ from ..tca.export import without_timings, write_csv
 from ..validation import InputRangeError
 from . import EXIT_CHECK_FAILED
 from .options import (
+    MAX_CELLS,
     add_pair_arguments,
+    check_count,
     case_warnings,
     check_pair_arguments,
     load_pair_for,
@@ -47,10 +55,23 @@ def register(sub) -> None:
     p.add_argument("--export-problem", action="store_true",
                    help="also write the solved LCP (gap, on-flank mask, grid, load, E*, "
                         "solution) as ltca_problem.npz with ltca_problem.README.md")
-    p.set_defaults(func=run, check=check_pair_arguments)
+    p.add_argument("--multi-tooth", action="store_true",
+                   help="also solve all engaged pairs together at P0, rigid and with tooth "
+                        "bending: multitooth.json/.csv/.png")
+    p.add_argument("--multi-tooth-cells", type=int, default=40,
+                   help=f"cells per side of each pair's field in the multi-tooth solve, 16 "
+                        f"to {MAX_CELLS} (default 40, as gearcontact lte)")
+    p.set_defaults(func=run, check=_check)
+
+
+def _check(args) -> None:
+    check_pair_arguments(args)
+    check_count("--multi-tooth-cells", args.multi_tooth_cells, 16, MAX_CELLS, note=" per side")
 
 
 def run(args) -> int:
+    if getattr(args, "gear_pair", None) is None:
+        _check(args)
     pair = load_pair_for(args)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -96,6 +117,7 @@ def run(args) -> int:
 
         write_lcp_problem(case, (pair.pinion_material, pair.gear_material), out,
                           title=f"{pair.name} {args.side}, {args.torque:g} N·m at P0")
+    multi = _multi_tooth(args, tca, flanks, pair, out) if args.multi_tooth else None
     print(f"{pair.name} {args.side} {args.torque:g} N·m: W = {case.load_n:.0f} N, LCP mean "
           f"{case.patch.p_mean_mpa:.0f} / p90 {case.patch.p90_mpa:.0f} / peak "
           f"{case.patch.p_peak_mpa:.0f} MPa, preview p_max {case.preview.p_max_mpa:.0f} MPa, "
@@ -107,4 +129,40 @@ def run(args) -> int:
     if not case.patch.converged:
         warn("ltca", f"LCP {case.patch.lcp.status}: {case.patch.lcp.message}")
         return EXIT_CHECK_FAILED
+    if multi is not None and not multi.converged:
+        warn("ltca", f"multi-tooth LCP not converged (rigid {multi.status_rigid}, "
+                     f"bending {multi.status})")
+        return EXIT_CHECK_FAILED
     return 0
+
+
+def _multi_tooth(args, tca, flanks, pair, out):
+    """The multi-tooth solve at P0 and its files; returns the case."""
+    from ..contact.mesh_lcp import warm_up_mesh_lcp
+    from ..contact.multitooth import multi_tooth_ltca
+    from ..contact.tooth_bending import tooth_bending
+    from ..report.analyze import published_values
+    from ..report.multitooth import write_multitooth_outputs
+
+    t0 = time.perf_counter()
+    bending = tooth_bending(flanks, pair, side=args.side)
+    t1 = time.perf_counter()
+    jit_s = warm_up_mesh_lcp()
+    t2 = time.perf_counter()
+    try:
+        mt = multi_tooth_ltca(tca, flanks, pair, args.torque, side=args.side,
+                              bending=bending, cells=args.multi_tooth_cells)
+    except InputRangeError as exc:
+        raise rename_load_error(exc, args.torque, pair, tca) from None
+    run_timings(args, bending_build_s=t1 - t0, multi_tooth_jit_warm_up_s=jit_s,
+                multi_tooth_s=time.perf_counter() - t2, multi_tooth_solve_ms=mt.solve_ms,
+                multi_tooth_solve_rigid_ms=mt.solve_rigid_ms)
+    write_multitooth_outputs(mt, out, figures=not args.no_figures,
+                             title=f"{pair.name} {args.side}",
+                             published=published_values(pair.name))
+    shares = " / ".join(f"{s:.1f}" for s in mt.load_share_pct)
+    print(f"multi-tooth at P0: {len(mt.pairs)} pairs, shares {shares} % with bending; "
+          f"rotation {mt.rotation_rigid_arcsec:.1f} rigid -> {mt.rotation_arcsec:.1f} arcsec; "
+          f"CP_max {mt.cp_max_mpa:.0f} MPa (cell peak {mt.p_peak_cell_mpa:.0f}, preview "
+          f"{mt.preview_p_max_mpa:.0f})")
+    return mt

@@ -2,10 +2,11 @@
 with the shell bending of both teeth with ``--bending``).
 
 Writes into ``--out`` (created if missing): ``lte.json`` (peak-to-peaks of TE0, TE_LCP
-and TE_pre, contact and mesh compliances, active pairs, load shares at P0; see
+and TE_pre, contact and mesh compliances, active pairs, load shares at P0, mesh
+stiffness statistics rigid and, with ``--bending``, with bending; see
 :meth:`~gearcontact.contact.lte.LoadedTE.summary`), ``lte.csv`` (one row per phase: TE0,
-TE_LCP, TE_pre, rotations, active pairs, load per pair) and ``lte.png``; timings go to
-``run.json`` only.
+TE_LCP, TE_pre, rotations, active pairs, load per pair, mesh stiffness in N·m/rad and
+N/mm rigid and with bending) and ``lte.png``; timings go to ``run.json`` only.
 """
 
 from __future__ import annotations
@@ -60,7 +61,7 @@ def run(args) -> int:
                   stride=len(tca.cycle.phi1_rad), bending=bending, progress=False)
         jit_s = time.perf_counter() - t0
         res = loaded_te(tca, flanks, pair, args.torque, side=args.side, cells=args.cells,
-                        bending=bending, progress=not args.quiet)
+                        bending=bending, stiffness=True, progress=not args.quiet)
     except InputRangeError as exc:
         raise rename_load_error(exc, args.torque, pair, tca) from None
     run_timings(args, tca=tca.timings_s, lte=res.timings_s, jit_warm_up_s=jit_s,

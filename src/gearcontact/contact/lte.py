@@ -87,7 +87,8 @@ from .lte_pairs import PairContact, PairFields, phase_contacts
 from .mesh_lcp import MeshLcpResult, solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
-__all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "loaded_te", "preview_balance"]
+__all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "check_loaded", "loaded_te",
+           "preview_balance", "solve_phase"]
 
 #: A pair counts as active when it carries more than this share of the total load.
 ACTIVE_SHARE = 1e-6
@@ -144,6 +145,12 @@ class LoadedTE:
         Cells per side of each pair's field.
     bending : bool
         Tooth bending was in the LCP (then the LCP compliances include it).
+    stiffness_rigid_nm_per_rad, stiffness_bending_nm_per_rad : ndarray (K,) or None
+        Mesh stiffness ``k = dT / dtheta`` per phase with rigid teeth and with tooth
+        bending (``loaded_te(stiffness=True)``; the bending one only with ``bending``),
+        N·m/rad; central difference at ``T (1 +- compliance_step)``, each warm-started
+        from the phase's solution. ``mesh_stiffness_n_per_mm`` refers it to the normal
+        at the reference lever: ``k / l_0^2``.
     timings_s : dict
         Wall-clock seconds per stage.
     """
@@ -176,7 +183,19 @@ class LoadedTE:
     mesh_compliance_pre_mm_per_n: float
     cells: int
     bending: bool = False
+    stiffness_rigid_nm_per_rad: np.ndarray | None = None
+    stiffness_bending_nm_per_rad: np.ndarray | None = None
     timings_s: dict = field(default_factory=dict)
+
+    def mesh_stiffness_n_per_mm(self, k_nm_per_rad: np.ndarray) -> np.ndarray:
+        """A mesh stiffness (N·m/rad) along the normal at the reference lever ``l_0``:
+        ``1e3 k / l_0^2``, N/mm (the inverse of ``mesh_compliance_*`` at P0)."""
+        return 1e3 * np.asarray(k_nm_per_rad) / self.reference_lever_mm ** 2
+
+    def _stiffness_models(self) -> list[tuple[str, np.ndarray]]:
+        return [(name, k) for name, k in (("rigid", self.stiffness_rigid_nm_per_rad),
+                                          ("bending", self.stiffness_bending_nm_per_rad))
+                if k is not None]
 
     @property
     def te0_pp_arcsec(self) -> float:
@@ -227,10 +246,25 @@ class LoadedTE:
                 "max_dropped_load_n": float(self.dropped_load_n.max()),
                 "converged": self.converged,
                 "unconverged_phases": int(sum(s != "converged" for s in self.status)),
+                **self._stiffness_summary(),
                 "te_sign": self.te_sign, "cells": self.cells, "bending": self.bending,
                 "solve_ms_per_phase": float(self.solve_ms.mean()),
                 "field_ms_per_phase": float(self.field_ms.mean()),
                 "timings_s": dict(self.timings_s)}
+
+    def _stiffness_summary(self) -> dict:
+        out = {}
+        k0 = self.reference_index
+        for name, k in self._stiffness_models():
+            kn = self.mesh_stiffness_n_per_mm(k)
+            out |= {f"mesh_stiffness_{name}_nm_per_rad_mean": float(k.mean()),
+                    f"mesh_stiffness_{name}_nm_per_rad_min": float(k.min()),
+                    f"mesh_stiffness_{name}_nm_per_rad_max": float(k.max()),
+                    f"mesh_stiffness_{name}_n_per_mm_mean": float(kn.mean()),
+                    f"mesh_stiffness_{name}_n_per_mm_min": float(kn.min()),
+                    f"mesh_stiffness_{name}_n_per_mm_max": float(kn.max()),
+                    f"reference_mesh_stiffness_{name}_n_per_mm": float(kn[k0])}
+        return out
 
     def table(self) -> tuple[list[str], list[list]]:
         """Header and per-phase rows of ``lte.csv``."""
@@ -238,6 +272,9 @@ class LoadedTE:
                   "rotation_lcp_arcsec", "rotation_pre_arcsec", "active_lcp", "active_pre"]
         header += [f"load_lcp_pair{o:+d}_n" for o in self.pair_offsets]
         header += [f"load_pre_pair{o:+d}_n" for o in self.pair_offsets]
+        models = self._stiffness_models()
+        for name, _ in models:
+            header += [f"mesh_stiffness_{name}_nm_per_rad", f"mesh_stiffness_{name}_n_per_mm"]
         header += ["edge_contact", "field_edge", "dropped_load_n", "status", "solve_ms",
                    "field_ms"]
         rows = []
@@ -249,6 +286,8 @@ class LoadedTE:
                          int(self.active_pre[k])]
                         + [float(w) for w in self.pair_loads_lcp_n[:, k]]
                         + [float(w) for w in self.pair_loads_pre_n[:, k]]
+                        + [float(v) for _, st in models
+                           for v in (st[k], self.mesh_stiffness_n_per_mm(st[k]))]
                         + [int(self.edge_contact[k]), int(self.field_edge[k]),
                            float(self.dropped_load_n[k]), self.status[k], float(self.solve_ms[k]),
                            float(self.field_ms[k])])
@@ -300,14 +339,15 @@ def _near(mask: np.ndarray) -> np.ndarray:
     return out
 
 
-def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, tol: float,
-                 warm: dict, theta_pre: float):
-    """Torque-constrained LCP over the pairs within reach; returns
-    (result, used contacts, blocks, off masks). Pairs left out are checked open."""
+def solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, tol: float,
+                 warm: dict, theta_pre: float, rigid: bool = False):
+    """Torque-constrained LCP over the pairs within reach (``rigid``: without the
+    bending factors); returns (result, used contacts, blocks, off masks). Pairs left out
+    are checked open."""
     reach = [pc for pc in contacts
              if pc.opening_arcsec / ARCSEC_PER_RAD <= _REACH_FACTOR * theta_pre]
     while True:
-        built = [fields.block(pc) for pc in reach]
+        built = [fields.block(pc, rigid=rigid) for pc in reach]
         blocks = [b for b, _ in built]
         res = solve_mesh_lcp(blocks, torque_nmm, materials=materials, tol=tol,
                              warm_start=[warm.get(pc.offset) for pc in reach],
@@ -319,7 +359,7 @@ def _solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, 
         reach = reach + late
 
 
-def _check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
+def check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
     """Raise if a load closes an off-flank cell; return the edge-contact flag."""
     edge = False
     for pc, mask, off, d in zip(reach, res.contact_masks, offs, res.approach_mm):
@@ -357,7 +397,7 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
         for sgn in (1.0, -1.0):
             tq = torque * (1.0 + sgn * eps)
             th = preview_balance(lv, gs, kap, tq)[0]
-            res, *_ = _solve_phase(group, fields, tq, materials, tol=tol, warm={},
+            res, *_ = solve_phase(group, fields, tq, materials, tol=tol, warm={},
                                    theta_pre=th)
             if not res.converged:
                 raise ArithmeticError(f"compliance at {tq / 1e3:g} N·m: {res.message}")
@@ -373,7 +413,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
               edge_reach: float = 0.5, preview_edges: bool = True,
-              bending=None, progress: bool = False) -> LoadedTE:
+              bending=None, stiffness: bool = False, progress: bool = False) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
     Parameters
@@ -417,6 +457,10 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         (:func:`~.tooth_bending.tooth_bending`) added to every pair's half-space
         compliance in the coupled LCP; None (default): rigid teeth, exactly the
         rigid-tooth solution.
+    stiffness : bool
+        Also the mesh stiffness ``dT / dtheta`` at every phase (central difference
+        with ``compliance_step``, warm-started; 2 more solves per phase and model): with
+        rigid teeth, and with ``bending`` also with bending (4 more solves per phase).
     progress : bool
         Show a progress bar over the phases.
 
@@ -461,6 +505,8 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
     considered = np.zeros((n_p, n_k), bool)
     edge_steps = round(edge_reach * cycle.step_index)
     solve_ms, field_ms, status = np.zeros(n_k), np.zeros(n_k), []
+    models = ([(True, np.zeros(n_k))] + ([(False, np.zeros(n_k))] if bending is not None
+                                          else [])) if stiffness else []
     warm: dict = {}
     k_ref = int(np.flatnonzero(sel == cycle.mean_index)[0])
     ref = None
@@ -475,12 +521,12 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         gs = np.array([pc.offset_mm for pc in valid])
         kap = np.array([pc.kappa_mm_per_n23 for pc in valid])
         th_pre, wp = preview_balance(lv, gs, kap, torque)
-        res, reach, blocks, offs = _solve_phase(contacts, fields, torque, materials,
+        res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials,
                                                 tol=tol, warm=warm, theta_pre=th_pre)
         field_ms[k] = 1e3 * (fields.seconds - f0)
         solve_ms[k] = res.solve_time_ms
         status.append(res.status)
-        edge[k] = _check_loaded(res, reach, offs, t)
+        edge[k] = check_loaded(res, reach, offs, t)
         fedge[k] = _field_edge(res.contact_masks)
         rot_lcp[k], rot_pre[k] = res.rotation_rad, th_pre
         for pc, w in zip(valid, wp):
@@ -491,6 +537,16 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
             w_lcp[row[pc.offset], k] = float(w.sum())
             levers[row[pc.offset], k] = b.lever_mm
             warm[pc.offset] = w / b.grid.cell_area_mm2
+        for rigid, k_arr in models:
+            th = []
+            for sgn in (1.0, -1.0):
+                r2, *_ = solve_phase(contacts, fields, torque * (1.0 + sgn * eps), materials,
+                                      tol=tol, warm=warm, theta_pre=th_pre,
+                                      rigid=rigid or bending is None)
+                if not r2.converged and status[-1] == "converged":
+                    status[-1] = r2.status
+                th.append(r2.rotation_rad)
+            k_arr[k] = 2.0 * eps * t / (th[0] - th[1])          # N·m/rad
         if k == k_ref:
             ref = (contacts, valid)
     comp = _compliances(ref, fields, torque, eps, materials, tol)
@@ -518,4 +574,6 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         active_pre=(w_pre > share * w_pre.sum(axis=0)).sum(axis=0),
         edge_contact=edge, field_edge=fedge, dropped_load_n=dropped, status=tuple(status), solve_ms=solve_ms,
         field_ms=field_ms, reference_index=int(k_ref), cells=int(cells),
-        bending=bending is not None, timings_s=timings, **comp)
+        bending=bending is not None, timings_s=timings,
+        stiffness_rigid_nm_per_rad=models[0][1] if models else None,
+        stiffness_bending_nm_per_rad=models[1][1] if len(models) > 1 else None, **comp)

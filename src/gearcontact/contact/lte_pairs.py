@@ -98,6 +98,8 @@ class PairFields:
         self.bending = bending
         self.cache: dict[int, tuple] = {}
         self.factors: dict[int, np.ndarray] = {}
+        #: (origin (3,), frame (3, 3): columns e_s, e_t, n) of each field, meshing frame
+        self.frames: dict[int, tuple] = {}
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
@@ -131,6 +133,7 @@ class PairFields:
             lever = torque_lever_mm(mp.point_mm, mp.normal)
             hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
             self.cache[pc.path_index] = hit
+            self.frames[pc.path_index] = (f.origin_mm, f.frame)
             if self.bending is not None:
                 self.factors[pc.path_index] = self._bending_factor(f, mp)
             self.seconds += time.perf_counter() - t0
@@ -146,10 +149,11 @@ class PairFields:
         uv2 = tangent_parameters(gear, kin.gear_pose(mp.phi2_rad), f.frame, (mp.u2, mp.v2), st)
         return self.bending.factor(uv1, uv2, f.gap_mm.shape)
 
-    def block(self, pc: PairContact) -> tuple[PairBlock, np.ndarray]:
+    def block(self, pc: PairContact, *, rigid: bool = False) -> tuple[PairBlock, np.ndarray]:
+        """(block, off-flank mask) of a pair; ``rigid``: without its bending factor."""
         gap, grid, off, lever = self.get(pc)
         return PairBlock(gap, grid, lever, 0.0,
-                         bending_factor=self.factors.get(pc.path_index)), off
+                         bending_factor=None if rigid else self.factors.get(pc.path_index)), off
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its

@@ -96,6 +96,9 @@ class Analysis:
     easeoff_note : str
         Non-empty when the pair came without an ease-off for ``side`` and it was
         synthesized (:func:`gearcontact.tca.synthesis.with_easeoff`).
+    multitooth : MultiToothCase or None
+        Multi-tooth LTCA at P0 at the LTE torque, rigid and with tooth bending
+        (:mod:`gearcontact.contact.multitooth`; None when the LTE is skipped).
     """
 
     pair: object
@@ -111,6 +114,7 @@ class Analysis:
     side: str = "drive"
     flanks: object = None
     easeoff_note: str = ""
+    multitooth: object = None
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -149,6 +153,27 @@ def _preview_rows(cases, golden, chain) -> list[list]:
                        [ch.A_minus_per_mm, ch.B_minus_per_mm, ch.a_mm, ch.b_mm, ch.p_max_mpa,
                         ch.codes["p_max"], "|".join(ch.flags), ch.cycles]))
     return rows
+
+
+def _multi_tooth(tca, flanks, pair, torque_nm: float, side: str, out: Path, figures: bool,
+                 timings: dict):
+    """Multi-tooth LTCA at P0 (rigid and with tooth bending) and its files; solve times
+    into ``timings``."""
+    from ..contact.mesh_lcp import warm_up_mesh_lcp
+    from ..contact.multitooth import multi_tooth_ltca
+    from ..contact.tooth_bending import tooth_bending
+    from .multitooth import write_multitooth_outputs
+
+    t0 = time.perf_counter()
+    bending = tooth_bending(flanks, pair, side=side)
+    timings["multi_tooth_jit_warm_up_s"] = warm_up_mesh_lcp()
+    mt = multi_tooth_ltca(tca, flanks, pair, torque_nm, side=side, bending=bending)
+    write_multitooth_outputs(mt, out, figures=figures, title=f"{pair.name} {side}",
+                             published=published_values(pair.name))
+    timings["multi_tooth_s"] = time.perf_counter() - t0
+    timings["multi_tooth_solve_ms"] = mt.solve_ms
+    timings["multi_tooth_solve_rigid_ms"] = mt.solve_rigid_ms
+    return mt
 
 
 def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases: int = 61,
@@ -257,7 +282,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         plot_pressure_maps(cases, out / "pressure_maps.png", title=f"{pair.name} {side}")
         plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}")
     steps.update(1)
-    lte = None
+    lte = multitooth = None
     if lte_torque_nm is not None:
         steps.set_postfix_str(f"LTE {lte_torque_nm:g} N·m")
         t0 = time.perf_counter()
@@ -267,6 +292,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         write_lte_outputs(lte, out, figures=figures, title=f"{pair.name} {side}",
                           published=published_values(pair.name))
         timings["lte_s"] = time.perf_counter() - t0
+        multitooth = _multi_tooth(tca, flanks, pair, lte_torque_nm, side, out, figures,
+                                  timings)
     steps.update(1)
     steps.set_postfix_str("fixed-point precision")
     t0 = time.perf_counter()
@@ -281,6 +308,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     steps.update(1)
     steps.close()
     result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision, latency, side, flanks, easeoff_note)
+                      precision, latency, side, flanks, easeoff_note, multitooth)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

@@ -223,6 +223,10 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
             "non-quadratic surface.", ""]
     if getattr(result, "lte", None) is not None:
         out += _lte_section(result.lte, pub)
+    if getattr(result, "multitooth", None) is not None:
+        from .multitooth import multitooth_section
+
+        out += multitooth_section(result.multitooth, pub)
     if getattr(result, "precision", None) is not None:
         out += _precision_section(result.precision)
     if getattr(result, "latency", None) is not None:
