@@ -1,6 +1,6 @@
 """Gap-kernel precision in the report (:mod:`gearcontact.report.precision`).
 
-Truth: the first-order error bound of SPEC section 8 item 8
+Truth: the first-order error bound of docs/spec.md sec. 8 item 8
 (:func:`gearcontact.preview.gap.golden.gap_error_bound_mm`) holds at every width, the
 error shrinks as the widths grow (halving per bit until the Q(32,16) gap output's own
 rounding floor), and the CSV carries exactly the sweeps' numbers.

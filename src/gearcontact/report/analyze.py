@@ -54,7 +54,7 @@ from .summary import write_summary
 
 __all__ = ["DEFAULT_TORQUES_NM", "Analysis", "run_analysis", "published_values"]
 
-#: Operating torques of the s0003 evaluation (gear torque, N·m; SPEC section 3).
+#: Operating torques of the s0003 evaluation (gear torque, N·m; docs/spec.md sec. 3).
 DEFAULT_TORQUES_NM = (32.25, 64.5, 129.0, 258.0)
 
 

@@ -1,4 +1,4 @@
-"""Fixed-point precision of the gap kernel in the report (SPEC section 8, item 8).
+"""Fixed-point precision of the gap kernel in the report (docs/spec.md sec. 8, item 8).
 
 Measures the golden model's signed-gap error against the fp64 reference over the word
 widths (:func:`gearcontact.preview.gap.precision.gap_precision_sweep`): coordinate

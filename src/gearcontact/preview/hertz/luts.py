@@ -1,6 +1,6 @@
 """POW and CBRT look-up tables of stage D: contents, packing and interpolation.
 
-Both ROMs are 256 words x 32 bits (SPEC section 6). This module is the one place that
+Both ROMs are 256 words x 32 bits (docs/spec.md sec. 6). This module is the one place that
 generates their contents; the golden models and the RTL import :func:`pow_lut` /
 :func:`cbrt_lut` (never a copy).
 

@@ -3,7 +3,7 @@
 Sorts the half relative curvatures (``A_min <= B_max``), derives
 ``R_x = 1/(2 A_min)``, ``R_y = 1/(2 B_max)`` and evaluates the simplified
 Hamrock–Brewe forms through :func:`gearcontact.analytic.hertz.hamrock_brewe_terms`
-(the package's single implementation of those formulas; SPEC section 6, Algorithm 3).
+(the package's single implementation of those formulas; docs/spec.md sec. 6, Algorithm 3).
 
 The scalar path uses only ``math`` and costs about 1 us per call from Python
 (``benchmarks/bench_preview_reference.py``); :func:`hertz_preview_array` evaluates
