@@ -14,7 +14,8 @@ from ..validation import InputRangeError
 __all__ = ["main", "build_parser"]
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
-COMMANDS = ("analyze", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte")
+COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca",
+            "lte")
 
 
 def build_parser() -> argparse.ArgumentParser:
