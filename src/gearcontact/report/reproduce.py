@@ -585,10 +585,10 @@ def _precision(analysis) -> Section:
             f"samples, beside the first-order bound |e_g| <= sqrt(3) 2^-cf + 3 ||d||_inf "
             f"2^-(rf+1) + 2^-(cf+1) (the published formula; the published column is the "
             f"bound). Largest error / bound over all widths: {worst:.3f} (<= 1: the bound "
-            f"holds). Coordinate widths are {ci} integer bits + cf; the golden model "
-            f"supports cf >= 8, so this sweep covers {rows[0][0]}–{rows[-1][0]} bits, not the "
-            f"published 14–24 (widths below 16 bits would need fewer integer bits than the "
-            f"+-128 mm range of the contract)."]
+            f"holds). The coordinate word is {ci} integer bits (the +-128 mm range of the "
+            f"contract, fixed) + cf fraction bits; the golden model supports cf >= 8, so "
+            f"the sweep covers {rows[0][0]}–{rows[-1][0]} bits: the published 14–24 except "
+            f"14 and 15, which would leave fewer than 8 fraction bits."]
     header = ["width (bits)", "cf", "rf", "max error (um)", "RMS error (um)",
               "max error / bound", "published bound (um)"]
     return Section("precision", 8, "Fixed-point precision of the gap kernel", "partial", text,

@@ -140,7 +140,7 @@ def _precision_section(precision) -> list[str]:
                 ["max / RMS gap error at the hardware widths cf 16, rf 19 (um)",
                  f"{hw.max_error_mm * 1e3:.4g} / {hw.rms_error_mm * 1e3:.4g}"],
                 ["first-order bound there (um)", hw.bound_mm * 1e3],
-                ["largest error / bound over all widths (cf 14-24, rf 12-24)", worst]]),
+                ["largest error / bound over all widths (cf 8-24, rf 12-24)", worst]]),
             "", "Figure: ![precision](precision.png) (data: precision.csv)", ""]
 
 
