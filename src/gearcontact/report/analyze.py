@@ -222,7 +222,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                       map(float, c.patch.pressure_mpa.ravel())))
     if figures:
         plot_pressure_maps(cases, out / "pressure_maps.png", title=f"{pair.name} {side}")
-        plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}")
+        plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}",
+                              published=published_values(pair.name))
     steps.update(1)
     lte = None
     if lte_torque_nm is not None:
