@@ -96,14 +96,17 @@ class Reproduction:
 
 
 def format_cell(x) -> str:
-    """A table cell as text: 4 significant digits, yes/no, an em dash for None."""
+    """A table cell as text: 4 significant digits (whole numbers from 1000 up, no
+    exponent), yes/no, an em dash for None."""
     if x is None:
         return "—"
-    if isinstance(x, bool):
+    if isinstance(x, (bool, np.bool_)):
         return "yes" if x else "no"
     if isinstance(x, (float, np.floating)):
         if not math.isfinite(x):
             return str(x)
+        if 1e3 <= abs(x) < 1e9:
+            return f"{x:.0f}"
         return f"{x:.4g}"
     return str(x)
 

@@ -416,7 +416,10 @@ def _lte(analysis, pub) -> Section:
             f"phases), which is what makes TE_LCP larger than TE0; the published TE_LCP, "
             f"half its TE0, implies a nearly constant rotation. Where along the path the "
             f"published bearing meets the edge was not published, so this difference is "
-            f"measured, not resolved. Tooth bending is not modelled yet (item 7)."]
+            f"measured, not resolved. TE0 itself misses the published 3.40 arcsec: with P0 "
+            f"held at the pinion tip the calibration cannot meet TE0 and the ellipse "
+            f"together (measured trade-off in docs/calibration.md); the centred set-up "
+            f"meets it. Tooth bending is not modelled yet (item 7)."]
     return Section("lte", 6, "Loaded transmission error along the mesh phase", "reproduced",
                    text, [Table("Loaded TE and compliances", ["quantity", "ours", "published"],
                                 lte_rows(lte, pub))],
