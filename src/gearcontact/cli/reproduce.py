@@ -5,6 +5,8 @@ report.json (one key per item).
 
 from __future__ import annotations
 
+import sys
+
 from ..report.reproduce import run_reproduce
 
 
@@ -24,8 +26,12 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    rep = run_reproduce(args.out, quick=args.quick, synth=args.synth,
-                        progress=not args.quiet)
+    try:
+        rep = run_reproduce(args.out, quick=args.quick, synth=args.synth,
+                            progress=not args.quiet)
+    except ModuleNotFoundError as exc:      # the 'report' (or 'synth') extra is missing
+        print(f"gearcontact reproduce: error: {exc}", file=sys.stderr)
+        return 2
     status = ", ".join(f"{s.key} {s.status}" for s in rep.sections)
     print(f"{rep.meta['pair']}: {status}; {rep.meta['total_s']:.0f} s -> "
           f"{rep.out_dir / 'report.html'}")

