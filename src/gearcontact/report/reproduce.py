@@ -312,8 +312,8 @@ def _latency(analysis) -> Section:
             "this machine; the published CPU figure is of the original implementation. "
             f"Jitter here is the p99 / p50 spread of {lat.calls} individually timed calls "
             f"on a shared machine (load average {os.getloadavg()[0]:.1f} on "
-            f"{os.cpu_count()} cores when the report was built): other processes, not the "
-            f"preview, set it — the preview has no data-dependent branch."]
+            f"{os.cpu_count()} cores when the report was built): other processes set it, "
+            f"the preview runs the same operations for every input."]
     return Section("latency", 4, "Determinism and latency", "reproduced", text,
                    [Table("RTL cycles from go to done", ["core", "cycles", "spread (cycles)",
                                                          "published"], rows),
