@@ -119,6 +119,12 @@ def test_accuracy_numbers_rederived(report):
     for w, p in zip(acc["load_n"], acc["preview_p_max_mpa"]):
         hb = hamrock_brewe_hertz(tca["A_minus"], tca["B_minus"], w, e_prime_mpa=ep)
         assert p == pytest.approx(hb.p_max_mpa, rel=1e-9)
+    # item 2: the preview ellipse at the design load is the same Hamrock–Brewe contact
+    pm = rep["pressure_map"]
+    hb = hamrock_brewe_hertz(tca["A_minus"], tca["B_minus"], pm["load_n"], e_prime_mpa=ep)
+    assert pm["preview_2a_mm"] == pytest.approx(2 * hb.a_mm, rel=1e-9)
+    assert pm["preview_2b_mm"] == pytest.approx(2 * hb.b_mm, rel=1e-9)
+    assert pm["published"]["preview_ellipse_2a_mm"] == 4.8
     # preview vs p90 in % from the listed pressures
     for p, p90, e in zip(acc["preview_p_max_mpa"], acc["lcp_p90_mpa"],
                          acc["preview_vs_p90_pct"]):
