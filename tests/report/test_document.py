@@ -51,6 +51,6 @@ def test_renderings_carry_the_same_content():
     assert '<img src="fig.png"' in html
     assert '<td class="published">—</td>' in html and "<td>1.235</td>" in html
     md = render_markdown(rep)
-    assert "| x (mm) | 1.235 | — |" in md and "![a figure](fig.png)" in md
+    assert "| x (mm) | 1.235 | — |" in md and "![a figure](fig.png) ([SVG](fig.svg))" in md
     assert rep.as_json()["accuracy"]["x"] == 1
     assert rep.as_json()["accuracy"]["tables"][0]["header"][-1] == "published"

@@ -30,6 +30,7 @@ class _Page(HTMLParser):
     def __init__(self):
         super().__init__()
         self.ids, self.links, self.images, self.stack = set(), [], [], []
+        self.files = []
         self.tables, self._header = [], None
 
     def handle_starttag(self, tag, attrs):
@@ -38,6 +39,8 @@ class _Page(HTMLParser):
             self.ids.add(a["id"])
         if tag == "a" and a.get("href", "").startswith("#"):
             self.links.append(a["href"][1:])
+        elif tag == "a":
+            self.files.append(a.get("href"))
         if tag == "img":
             self.images.append(a.get("src"))
         if tag == "table":
@@ -100,6 +103,9 @@ def test_html_parses_and_links_resolve(report):
     assert page.images
     for src in page.images:
         assert (out / src).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", src
+    assert len(page.files) == len(page.images)                # one SVG link per figure
+    for href in page.files:
+        assert b"<svg" in (out / href).read_bytes()[:2000], href
     for header in page.tables:
         assert any("published" in h for h in header), header
     md = (out / "report.md").read_text()

@@ -158,7 +158,7 @@ def render_markdown(rep: Reproduction) -> str:
                     "|" + "---|" * len(t.header)]
             out += ["| " + " | ".join(format_cell(x) for x in r) + " |" for r in t.rows]
             out.append("")
-        out += [f"![{cap}]({f})" for f, cap in s.figures]
+        out += [f"![{cap}]({f}) ([SVG]({f.replace('.png', '.svg')}))" for f, cap in s.figures]
     out += ["", "## Run", "", f"{rep.meta['run_text']}", ""]
     if rep.meta.get("main_job_warnings"):
         out += ["Warnings of the main job: " + "; ".join(rep.meta["main_job_warnings"]), ""]

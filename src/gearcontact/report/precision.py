@@ -21,7 +21,8 @@ from ..preview.gap.golden import GapFormat
 from ..preview.gap.precision import PrecisionPoint, gap_precision_sweep
 from ..tca.export import write_csv
 
-__all__ = ["COORD_FRACS", "NORMAL_FRACS", "precision_sweeps", "write_precision_outputs"]
+__all__ = ["COORD_FRACS", "NORMAL_FRACS", "plot_precision", "precision_sweeps",
+           "write_precision_outputs"]
 
 #: Coordinate fraction bits swept at the hardware normal width (word widths 16..32 bits
 #: with the contract's 8 integer bits).
@@ -56,11 +57,13 @@ def write_precision_outputs(out_dir, *, figures: bool = True, n_samples: int = 1
                                       "normal_frac_bits", "max_error_um", "rms_error_um",
                                       "bound_um", "max_error_over_bound"], rows)
     if figures:
-        _plot(by_coord, by_normal, out / "precision.png")
+        plot_precision(by_coord, by_normal, out / "precision.png")
     return by_coord, by_normal
 
 
-def _plot(by_coord, by_normal, path: Path) -> Path:
+def plot_precision(by_coord, by_normal, path) -> Path:
+    """Two log panels: max / RMS gap error and the first-order bound against the
+    coordinate word width and the normal fraction bits (format from the suffix)."""
     from .figures import plt
 
     hw = GapFormat()

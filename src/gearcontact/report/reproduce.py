@@ -507,6 +507,23 @@ def _precision(analysis) -> Section:
                     "max_error_over_bound": worst})
 
 
+def _write_svgs(analysis, pub, out: Path) -> None:
+    """The main job's figures of the report again as SVG beside their PNG (the plot
+    functions take the format from the suffix)."""
+    from .figures import plot_pressure_maps, plot_pressure_vs_load
+    from .lte_plot import plot_lte
+    from .precision import plot_precision
+
+    title = f"{analysis.pair.name} {analysis.side}"
+    plot_pressure_maps(analysis.cases, out / "pressure_maps.svg", title=title)
+    plot_pressure_vs_load(analysis.cases, out / "pressure_vs_load.svg", title=title,
+                          published=pub)
+    if analysis.lte is not None:
+        plot_lte(analysis.lte, out / "lte.svg", title=title, published=pub)
+    if analysis.precision is not None:
+        plot_precision(*analysis.precision, out / "precision.svg")
+
+
 def _unique_messages(caught) -> list[str]:
     out = []
     for w in caught:
@@ -592,6 +609,9 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
         sections.append(sec)
         times[f"{key}_s"] = time.perf_counter() - t0
         bar.update(1)
+    t0 = time.perf_counter()
+    _write_svgs(analysis, pub, out)
+    times["svg_s"] = time.perf_counter() - t0
     bar.close()
     from .. import __version__
 
