@@ -16,6 +16,7 @@ Files written into ``out`` (besides those of the main job, which the report show
 ``report.json``        every number of the report; one top-level key per item
                        (:data:`ITEMS`) plus ``meta``
 ``surrogate.png/.svg`` the two-panel surrogate figure
+``*.svg``              the main job's report figures again as SVG
 ``resources.json``     synthesis results with provenance (only with ``synth=True``)
 =====================  ===================================================================
 
