@@ -142,7 +142,7 @@ def test_accuracy_numbers_rederived(report):
     rows = acc["bearing_sweep"]["rows"]
     assert rows[0]["preview_vs_p90_pct"] == pytest.approx(5.409, abs=2.0)
     assert rows[-1]["preview_vs_p90_pct"] < 0.0 and rows[-1]["peak_over_p90"] > 3.0
-    for r in rows + acc["grid_study"]:
+    for r in rows + acc["lengthwise_sweep"] + acc["grid_study"]:
         assert r["preview_vs_p90_pct"] == pytest.approx(
             100.0 * (r["preview_p_max_mpa"] / r["p90_mpa"] - 1.0), rel=1e-12)
 

@@ -7,8 +7,9 @@ Three measurements show where such a bias comes from, without tuning to the publ
 number:
 
 * :func:`bearing_sweep` — the centred, Hertzian set-up of the pair with its bearing moved
-  toward the pinion tip by the design side's ease-off (profile angle, then spiral angle):
-  preview vs LCP p90 and peak as the patch reaches the flank edge;
+  by the design side's ease-off toward the pinion tip (profile angle) or lengthwise
+  toward the toe / heel (spiral angle): preview vs LCP p90 and peak as the patch reaches
+  the flank edge;
 * :func:`grid_study` — LCP statistics against the grid resolution (contacting cells),
   including the published ~200 cells;
 * the centred set-up itself is the first row of the sweep (the unmodified pair).
@@ -28,7 +29,8 @@ import numpy as np
 from ..validation import InputRangeError
 
 __all__ = ["StudyRow", "HERTZ_P90_OVER_P0", "bearing_sweep", "grid_study",
-           "BEARING_STEPS_QUICK", "BEARING_STEPS_FULL"]
+           "BEARING_STEPS_QUICK", "BEARING_STEPS_FULL", "LENGTHWISE_STEPS_QUICK",
+           "LENGTHWISE_STEPS_FULL"]
 
 #: p90 / p0 of a Hertz pressure p0 sqrt(1 - r^2) over an ellipse sampled on equal cells
 #: (r normalised): the area fraction with p <= x is (x / p0)^2, so p90 = sqrt(0.9) p0.
@@ -38,6 +40,10 @@ HERTZ_P90_OVER_P0 = float(np.sqrt(0.9))
 BEARING_STEPS_QUICK = ((-12.1, 0.0), (-18.0, 0.0), (-24.0, 0.0), (-27.0, 0.6))
 BEARING_STEPS_FULL = ((-12.1, 0.0), (-15.0, 0.0), (-18.0, 0.0), (-21.0, 0.0), (-24.0, 0.0),
                       (-27.0, 0.0), (-27.0, 0.6))
+#: Spiral-angle steps (same units) moving the bearing lengthwise toward the toe / heel.
+LENGTHWISE_STEPS_QUICK = ((-12.1, -2.0), (-12.1, 2.0))
+LENGTHWISE_STEPS_FULL = ((-12.1, -2.0), (-12.1, -1.0), (-12.1, 1.0), (-12.1, 2.0),
+                         (-12.1, 3.0))
 
 
 @dataclass(frozen=True)
@@ -51,6 +57,8 @@ class StudyRow:
     pinion_radius_mm : float
         Distance of the TCA mating point P0 from the pinion axis, mm (grows toward the
         pinion tip).
+    gear_radius_mm : float
+        Distance of P0 from the gear axis, mm (grows from the toe toward the heel).
     preview_p_max_mpa, p90_mpa, p_peak_mpa, p_mean_mpa : float
         Preview peak pressure and LCP statistics, MPa.
     preview_vs_p90_pct : float
@@ -67,6 +75,7 @@ class StudyRow:
 
     label: str
     pinion_radius_mm: float
+    gear_radius_mm: float
     preview_p_max_mpa: float
     p90_mpa: float
     p_peak_mpa: float
@@ -82,8 +91,8 @@ def _row(label, case, point_mm, offset_mm) -> StudyRow:
     from ..tca.calibration import point_invariants
 
     p = case.patch
-    return StudyRow(label=label, pinion_radius_mm=float(point_invariants(point_mm,
-                                                                         offset_mm)[2]),
+    inv = point_invariants(point_mm, offset_mm)
+    return StudyRow(label=label, pinion_radius_mm=float(inv[2]), gear_radius_mm=float(inv[0]),
                     preview_p_max_mpa=case.preview.p_max_mpa, p90_mpa=p.p90_mpa,
                     p_peak_mpa=p.p_peak_mpa, p_mean_mpa=p.p_mean_mpa,
                     preview_vs_p90_pct=100.0 * (case.preview.p_max_mpa / p.p90_mpa - 1.0),
