@@ -405,7 +405,9 @@ def _resources(synth: bool, settings, out: Path) -> Section:
                      r.depth, r.cpu_seconds, p.get("DSP48E1"), p.get("LC")])
     prov = data["provenance"]
     per_lane = ", ".join(f"{(r.DSP48E1 - PUBLISHED_DSP_FIT[1]) / r.lanes:.2f}" for r in results)
-    text = [f"Synthesis provenance: {prov.get('tool')}, {prov.get('command')}, "
+    source = ("this run (--synth)" if synth else
+              "results committed with the package (data/synth/resources.json)")
+    text = [f"Synthesis results: {source}; {prov.get('tool')}, {prov.get('command')}, "
             f"{prov.get('date')}, {prov.get('machine')}.",
             f"DSP48E1 per lane beyond the published intercept {PUBLISHED_DSP_FIT[1]:g}: "
             f"{per_lane} against the published {PUBLISHED_DSP_FIT[0]:g}: the default gap "
@@ -424,7 +426,7 @@ def _resources(synth: bool, settings, out: Path) -> Section:
                    [Table("Gap core, yosys synth_xilinx (DSP mode)",
                           ["core", "DSP48E1", "LUT", "FF", "CARRY4", "LC", "depth", "CPU s",
                            "DSP48E1 published", "LC published"], rows)],
-                   [], {**data, "dsp_fit": asdict(fit) if fit else None,
+                   [], {**data, "source": source, "dsp_fit": asdict(fit) if fit else None,
                         "published": published})
 
 
