@@ -35,7 +35,17 @@ class InputRangeError(ValueError):
 
 
 def check_finite(field: str, value) -> float:
-    """Return ``value`` as float; raise :class:`InputRangeError` if it is NaN or inf."""
+    """Return ``value`` as float; raise :class:`InputRangeError` if it is NaN or inf,
+    not a real scalar (numpy scalars and 0-d arrays are scalars), text, or a bool
+    (``True`` is not a load of 1 N)."""
+    if isinstance(value, (bool, np.bool_)) or (isinstance(value, np.ndarray)
+                                               and value.dtype == bool):
+        raise InputRangeError(field, value, "a finite real number (not a bool)")
+    if isinstance(value, (str, bytes)):
+        raise InputRangeError(field, value, "a finite real number (not text)")
+    if np.ndim(value) != 0:
+        raise InputRangeError(field, value, "a scalar finite real number (arrays go to "
+                                            "the *_batch / *_array functions)")
     try:
         x = float(value)
     except (TypeError, ValueError):

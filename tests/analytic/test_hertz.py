@@ -13,7 +13,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import ellipe, ellipk
 
-from gearcontact.analytic.hertz import (circular_hertz, exact_elliptic_hertz,
+from gearcontact.analytic.hertz import (circular_hertz, exact_elliptic_hertz, exact_ellipticity,
                                         hamrock_brewe_error_table, hamrock_brewe_hertz,
                                         hamrock_brewe_hertz_array)
 from gearcontact.materials import STEEL, effective_modulus_mpa
@@ -191,3 +191,24 @@ def test_pressure_field_integrates_to_load():
     assert h.pressure_mpa(1.01 * a, 0.0) == 0.0 and h.pressure_mpa(0.0, 1.01 * b) == 0.0
     grid = h.pressure_mpa(np.array([0.0, 0.5 * a]), np.array([0.0, 0.0]))
     assert grid[1] == pytest.approx(h.p_max_mpa * math.sqrt(0.75), rel=1e-15)
+
+
+@pytest.mark.parametrize("ratio", [1.0, 1.0001, 2.0, 8.0, 128.0])
+def test_exact_ellipticity_is_the_hamrock_form_made_exact(ratio):
+    """k and E of exact_ellipticity put into Hamrock's a = (6 k^2 E W R/(pi E'))^(1/3),
+    b = a/k reproduce exact_elliptic_hertz (to rounding, 1e-13), and E = scipy's
+    ellipe(1 - 1/k^2)."""
+    k, e = exact_ellipticity(ratio)
+    a_min, w, ep = 0.02, 700.0, 229_670.0
+    ex = exact_elliptic_hertz(a_min, ratio * a_min, w, e_prime_mpa=ep)
+    r = 0.5 / (a_min + ratio * a_min)
+    a = (6.0 * k * k * e * w * r / (math.pi * ep)) ** (1.0 / 3.0)
+    assert a == pytest.approx(ex.a_mm, rel=1e-13)
+    assert a / k == pytest.approx(ex.b_mm, rel=1e-13)
+    assert e == pytest.approx(float(ellipe(1.0 - 1.0 / (k * k))), rel=1e-13)
+
+
+def test_exact_ellipticity_bad_alpha():
+    for bad in (0.999, float("nan"), float("inf")):
+        with pytest.raises(InputRangeError, match="alpha"):
+            exact_ellipticity(bad)

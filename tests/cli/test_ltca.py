@@ -15,7 +15,7 @@ from gearcontact.cli import main
 from gearcontact.contact.pair_ltca import ARCSEC_PER_RAD
 
 KEYS = ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm", "mesh_rotation_arcsec",
-        "n_contact_cells", "preview_p_max_mpa", "solver", "solve_ms")
+        "n_contact_cells", "preview_p_max_mpa", "solver")
 
 
 @pytest.fixture(scope="module")
@@ -32,6 +32,9 @@ def test_files_and_keys(out):
     data = json.loads((out / "ltca.json").read_text())
     for key in KEYS:
         assert key in data, key
+    # timings only in the run manifest: identical runs give identical result files
+    assert "solve_ms" not in data
+    assert json.loads((out / "run.json").read_text())["timings_s"]["solve_ms"] > 0
     assert data["solver"] == "pk_cg" and data["status"] == "converged"
     assert data["torque_nm"] == 64.5
     # W = T / lever, rotation = delta / lever
@@ -55,8 +58,59 @@ def test_pressure_map_carries_the_load(out):
     assert p.max() == pytest.approx(data["p_peak_mpa"], rel=1e-11)
 
 
-@pytest.mark.parametrize("argv, word", [(["--torque", "-1"], "torque_nm"),
+@pytest.mark.parametrize("argv, word", [(["--torque", "-1"], "--torque"),
                                         (["--phases", "2"], "phases")])
 def test_bad_input(tmp_path, capsys, argv, word):
     assert main(["ltca", "--out", str(tmp_path)] + argv) == 2
     assert word in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def overload(tmp_path_factory):
+    """4000 N·m: the bearing runs off the tooth (s0003-centred, rigid teeth)."""
+    d = tmp_path_factory.mktemp("ltca4000")
+    import contextlib
+    import io
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        code = main(["ltca", "--pair", "s0003-centred", "--torque", "4000", "--out", str(d),
+                     "--phases", "5",
+                     "--cells", "24", "--export-problem", "--no-figures"])
+    return code, err.getvalue(), d
+
+
+def test_edge_spike_warned_on_stderr(overload):
+    code, err, d = overload
+    data = json.loads((d / "ltca.json").read_text())
+    assert code == 0 and data["edge_contact"]
+    # the truncated patch's peak is far above the Hertzian p_max: one stderr line says so
+    assert data["p_peak_mpa"] > 1.5 * data["preview_p_max_mpa"]
+    lines = [ln for ln in err.splitlines() if "flank edge" in ln]
+    assert len(lines) == 1 and "edge spike" in lines[0]
+    assert f"{data['p_peak_mpa']:.0f} MPa" in lines[0]
+
+
+def test_exported_problem_resolves_with_another_solver(overload):
+    """The exported LCP is complete: the active-set solver (Cholesky, bordered load
+    constraint) on the file's arrays alone reproduces pk_cg's pressure within the two
+    solvers' tolerances (1e-6 of the peak) and closes the load exactly."""
+    from gearcontact.contact.grid import TangentGrid
+    from gearcontact.contact.lcp import solve_lcp
+
+    _, _, d = overload
+    z = np.load(d / "ltca_problem.npz")
+    readme = (d / "ltca_problem.README.md").read_text()
+    for key in z.files:
+        assert f"`{key}`" in readme, key
+    x, y = z["x_mm"], z["y_mm"]
+    grid = TangentGrid.uniform(x.size, y.size, dx_mm=float(z["dx_mm"]),
+                               dy_mm=float(z["dy_mm"]), x0_mm=float(x[0]), y0_mm=float(y[0]))
+    res = solve_lcp(z["gap_mm"], grid, float(z["load_n"]), e_star_mpa=float(z["e_star_mpa"]),
+                    solver="active_set", warn_coarse=False)
+    p = z["pressure_mpa"]
+    assert res.pressure_mpa.sum() * z["dx_mm"] * z["dy_mm"] == pytest.approx(
+        float(z["load_n"]), rel=1e-9)
+    np.testing.assert_allclose(res.pressure_mpa, p, atol=1e-6 * p.max())
+    assert res.delta_mm == pytest.approx(float(z["delta_mm"]), rel=1e-6)
+    assert not (p[~z["on_flank"]] > 0).any()

@@ -85,3 +85,23 @@ def test_flagged_golden_exit_code(tmp_path, capsys):
     code, out, _ = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
                         "--backend", "golden")
     assert code == 3 and "fit_not_elliptic" in out
+
+
+def test_hertz_form_exact(capsys):
+    """--hertz-form exact: the golden datapath's exact tables against analytic exact
+    Hertz (1e-3: measured end-to-end 5.4e-4); the published form is 3 % off here."""
+    from gearcontact.analytic.hertz import exact_elliptic_hertz
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.25", "0.03", "--load", "1971",
+                        "--backend", "golden", "--hertz-form", "exact", "--json")
+    assert code == 0
+    d = json.loads(out)
+    ex = exact_elliptic_hertz(0.25, 0.03, 1971.0, e_prime_mpa=209000 / (1 - 0.09))
+    assert d["hertz_form"] == "exact" and d["cycles"] == 756
+    assert d["k"] == pytest.approx(ex.k, rel=1e-3)
+    assert d["p_max_mpa"] == pytest.approx(ex.p_max_mpa, rel=1e-3)
+
+
+def test_hertz_form_not_available_on_rtl_soc_exits_2(capsys):
+    code, _, err = _run(capsys, "preview", "--curvatures", "0.25", "0.03", "--load", "100",
+                        "--backend", "rtl-soc", "--hertz-form", "exact")
+    assert code == 2 and "hertz_form" in err

@@ -288,3 +288,19 @@ def test_go_after_power_up_without_writes(core_cls, n_cycles):
         assert got.flag_names == ("fit_not_elliptic", "not_elliptic")
 
     _sim(core_cls, bench)
+
+
+def test_chain_exact_form_bit_exact_and_806_cycles():
+    """ChainCore(hertz_form="exact") == chain_golden(..., hertz_form="exact") bit for
+    bit in 806 cycles on 8 seeded stencils; the batch golden equals the scalar one."""
+    from gearcontact.preview.chain import chain_golden_batch
+    rows, ws = _random(8, seed=31)
+    outs, cycles = simulate_chain_core(rows, ws, e_prime_code=E_STEEL, hertz_form="exact")
+    assert cycles == [CHAIN_CYCLES] * len(rows)
+    want = [dataclasses.replace(chain_golden(r, w, e_prime_code=E_STEEL, hertz_form="exact"),
+                                cycles=CHAIN_CYCLES) for r, w in zip(rows, ws)]
+    assert outs == want
+    assert sum(o.flags == 0 for o in outs) >= 4
+    batch = chain_golden_batch(rows, np.array(ws), e_prime_code=E_STEEL, hertz_form="exact")
+    assert [int(x) for x in batch.hertz.p_max_code] == [o.hertz.p_max_code for o in outs]
+    assert [int(x) for x in batch.flags] == [o.flags for o in outs]

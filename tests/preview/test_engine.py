@@ -136,3 +136,45 @@ def test_batch_matches_scalar():
             # vectorized numpy form of the same formulas, equal to a few ulp
             assert batch.p_max_mpa[i] == pytest.approx(one.p_max_mpa, rel=1e-13)
             assert batch.a_mm[i] == pytest.approx(one.a_mm, rel=1e-13)
+
+
+# ---------------------------------------------------------------------------------
+# hertz_form (the exact variant of stage D)
+# ---------------------------------------------------------------------------------
+def test_exact_form_reference_is_exact_hertz_and_golden_within_1e3():
+    """reference = analytic exact Hertz to rounding; golden within 1e-3 of it (the
+    measured end-to-end error of the exact tables is 5.4e-4, tests/preview/hertz)."""
+    from gearcontact.analytic.hertz import exact_elliptic_hertz
+    ex = exact_elliptic_hertz(0.01, 0.08, 1200.0, e_prime_mpa=effective_modulus_mpa(STEEL))
+    for name in ("reference", "golden"):
+        r = get_engine(name, hertz_form="exact").hertz(0.08, 0.01, 1200.0)
+        assert r.hertz_form == "exact"
+        tol = 1e-12 if name == "reference" else 1e-3
+        for f, want in (("a_mm", ex.a_mm), ("b_mm", ex.b_mm), ("k", ex.k),
+                        ("p_max_mpa", ex.p_max_mpa)):
+            assert getattr(r, f) == pytest.approx(want, rel=tol), (name, f)
+    batch = get_engine("golden", hertz_form="exact").hertz_batch([0.08], [0.01], [1200.0])
+    assert batch.k[0] == get_engine("golden", hertz_form="exact").hertz(0.08, 0.01, 1200.0).k
+
+
+def test_exact_form_stencil_path():
+    """C -> D with the exact form: same fit, stage D as exact Hertz of the fitted pair."""
+    from gearcontact.analytic.hertz import exact_elliptic_hertz
+    s, t = stencil_coordinates()
+    gaps = 0.05 * s ** 2 + 0.01 * t ** 2
+    ref = get_engine("reference", hertz_form="exact").stencil(gaps, 900.0)
+    ex = exact_elliptic_hertz(ref.A_minus_per_mm, ref.B_minus_per_mm, 900.0,
+                              e_prime_mpa=effective_modulus_mpa(STEEL))
+    assert ref.p_max_mpa == pytest.approx(ex.p_max_mpa, rel=1e-12)
+    gold = get_engine("golden", hertz_form="exact").stencil(gaps, 900.0)
+    assert gold.valid and gold.hertz_form == "exact"
+    assert gold.p_max_mpa == pytest.approx(ex.p_max_mpa, rel=1e-3)
+
+
+def test_hertz_form_errors_name_the_field():
+    with pytest.raises(InputRangeError, match="hertz_form"):
+        get_engine("golden", hertz_form="simplified")
+    with pytest.raises(InputRangeError, match=r"hertz_form \(backend rtl-soc\)"):
+        get_engine("rtl-soc", hertz_form="exact")
+    with pytest.raises(InputRangeError, match="hertz_form"):
+        ReferenceEngine(hertz_form="HB")

@@ -35,8 +35,7 @@ def test_files_written(analysis):
     rows = json.loads((out / "ltca.json").read_text())
     assert [r["torque_nm"] for r in rows] == list(TORQUES)
     for key in ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm",
-                "mesh_rotation_arcsec", "n_contact_cells", "preview_p_max_mpa", "solver",
-                "solve_ms"):
+                "mesh_rotation_arcsec", "n_contact_cells", "preview_p_max_mpa", "solver"):
         assert key in rows[0]
     text = (out / "summary.md").read_text()
     assert "preview vs p90" in text and "3.4" in text  # published TE0 beside ours
@@ -98,6 +97,13 @@ def test_cli_analyze(tmp_path, capsys):
     assert (tmp_path / "o" / "summary.md").exists()
     assert not (tmp_path / "o" / "pressure_maps.png").exists()
     assert not (tmp_path / "o" / "lte.json").exists()  # --lte-phases 0 skips the LTE
+    # --no-figures: the summary links no PNG; the manifest lists every file written
+    assert ".png" not in (tmp_path / "o" / "summary.md").read_text()
+    run = json.loads((tmp_path / "o" / "run.json").read_text())
+    listed = sorted(f["path"] for f in run["files"])
+    assert listed == sorted(p.name for p in (tmp_path / "o").iterdir()
+                            if not p.name.startswith(".") and p.name != "run.json")
+    assert {"tca_s", "ltca_solve_ms", "preview_cpu", "jit_warm_up_s"} <= set(run["timings_s"])
 
 
 def test_cli_analyze_calibrated_preset(tmp_path, capsys):
@@ -120,7 +126,7 @@ def test_cli_analyze_bad_torque(tmp_path, capsys):
     code = main(["analyze", "--out", str(tmp_path / "o"), "--torques", "-3", "--phases", "9",
                  "--quiet"])
     assert code == 2
-    assert "torque_nm" in capsys.readouterr().err
+    assert "--torques" in capsys.readouterr().err
 
 
 def test_lte_in_main_job(analysis):

@@ -80,13 +80,18 @@ def report(tmp_path_factory):
 
 
 def test_json_has_every_item(report):
-    _, rep = report
+    out, rep = report
     assert set(rep) == set(ITEMS) | {"meta"}
     for key in ITEMS:
         assert rep[key]["status"] in ("reproduced", "partial", "not available"), key
         for t in rep[key]["tables"]:
             assert any("published" in str(h) for h in t["header"]), (key, t["caption"])
-    assert rep["meta"]["quick"] is True and rep["meta"]["total_s"] > 0
+    assert rep["meta"]["quick"] is True
+    # run times go to run.json (the output-directory policy), not into the report
+    run = json.loads((out / "run.json").read_text())
+    assert run["timings_s"]["total_s"] > 0 and "total_s" not in rep["meta"]
+    assert {"report.html", "report.md", "report.json", "surrogate.svg"} <= {
+        f["path"] if isinstance(f, dict) else f for f in run["files"]}
     p = rep["precision"]
     n = len(p["coord_width_bits"])
     assert n >= 5 and len(p["max_gap_error_um"]) == n and len(p["rms_gap_error_um"]) == n

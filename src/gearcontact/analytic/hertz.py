@@ -52,7 +52,7 @@ from scipy.special import elliprd, elliprf
 
 from ..validation import InputRangeError, check_array_finite, check_positive
 
-__all__ = ["HertzContact", "exact_elliptic_hertz", "hamrock_brewe_hertz",
+__all__ = ["HertzContact", "exact_elliptic_hertz", "exact_ellipticity", "hamrock_brewe_hertz",
            "hamrock_brewe_hertz_array", "hamrock_brewe_terms", "circular_hertz",
            "hamrock_brewe_error_table", "HB_ERROR_RATIOS"]
 
@@ -196,6 +196,53 @@ def _ratio_of_p(p: float) -> float:
     return (3.0 * float(elliprf(0.0, p, 1.0)) / float(elliprd(0.0, p, 1.0)) - 1.0) / p
 
 
+def _solve_p(lam: float) -> float:
+    """``p = (b/a)^2`` of the exact solution for the curvature ratio ``lam > 1``
+    (Brent's method on Johnson's eq. 4.40, relative tolerance 4 eps)."""
+    # k = a/b <= lam for lam >= 1 (k ~ lam^0.64), so p = 1/k^2 lies in [1/lam^2, 1).
+    lo = 0.5 / (lam * lam)
+    while _ratio_of_p(lo) <= lam:          # defensive widening; never taken in practice
+        lo *= 0.25
+    return brentq(lambda q: _ratio_of_p(q) - lam, lo, 1.0, xtol=1e-300,
+                  rtol=4.0 * np.finfo(float).eps, maxiter=200)
+
+
+def exact_ellipticity(alpha: float) -> tuple[float, float]:
+    """Ellipticity ``k = a/b`` and ``E(e)`` of the exact Hertz solution for ``alpha``.
+
+    Both depend on the curvature ratio ``alpha = B_max/A_min`` only (Johnson 1985,
+    eq. 4.40). With them Hamrock's form ``a = (6 k^2 E W R/(pi E'))^(1/3)`` is exact
+    (it is the identity ``a^3 = W R_D/(pi E' A_min)`` of :func:`exact_elliptic_hertz`
+    rewritten with ``R = 1/(2 A_min (1 + alpha))``); the simplified forms replace
+    these two functions by ``alpha^(2/pi)`` and ``1 + (pi/2 - 1)/alpha``.
+
+    Parameters
+    ----------
+    alpha : float
+        Radius ratio ``R_x/R_y >= 1``, dimensionless.
+
+    Returns
+    -------
+    (k, E) : tuple of float
+        ``k >= 1`` and the complete elliptic integral of the second kind ``E(m)``,
+        ``m = 1 - 1/k^2`` (``(1, pi/2)`` at ``alpha = 1``), dimensionless.
+
+    Raises
+    ------
+    InputRangeError
+        ``alpha`` not finite or below 1.
+    """
+    lam = float(alpha)
+    if not (math.isfinite(lam) and lam >= 1.0):
+        raise InputRangeError("alpha", alpha, "a finite number >= 1")
+    if lam == 1.0:
+        return 1.0, _HALF_PI
+    p = _solve_p(lam)
+    rf = float(elliprf(0.0, p, 1.0))
+    rd = float(elliprd(0.0, p, 1.0))
+    return 1.0 / math.sqrt(p), rf - (1.0 - p) * rd / 3.0
+
+
 def exact_elliptic_hertz(A_per_mm: float, B_per_mm: float, load_n: float, *,
                          e_prime_mpa: float) -> HertzContact:
     """Exact Hertz solution of an elliptical point contact (complete elliptic integrals).
@@ -235,12 +282,7 @@ def exact_elliptic_hertz(A_per_mm: float, B_per_mm: float, load_n: float, *,
     if a_min == b_max:
         return circular_hertz(a_min, w, e_prime_mpa=ep)
     lam = b_max / a_min
-    # k = a/b <= lam for lam >= 1 (k ~ lam^0.64), so p = 1/k^2 lies in [1/lam^2, 1).
-    lo = 0.5 / (lam * lam)
-    while _ratio_of_p(lo) <= lam:          # defensive widening; never taken in practice
-        lo *= 0.25
-    p = brentq(lambda q: _ratio_of_p(q) - lam, lo, 1.0, xtol=1e-300,
-               rtol=4.0 * np.finfo(float).eps, maxiter=200)
+    p = _solve_p(lam)
     m = 1.0 - p
     rf = float(elliprf(0.0, p, 1.0))
     rd = float(elliprd(0.0, p, 1.0))

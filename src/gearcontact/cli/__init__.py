@@ -1,21 +1,68 @@
 """The ``gearcontact`` command line: a thin layer that parses, calls the library and
 writes files. Each subcommand lives in its own module ``gearcontact.cli.<name>`` that
-defines ``register(subparsers)``; its handler is stored as ``func`` on the parser.
+defines ``register(subparsers)``; its handler is stored as ``func`` on the parser, an
+optional cheap ``check(args)`` (all option and input-file validation) as ``check``.
+
+:func:`main` runs, in this order: the command's ``check``, the output-directory policy
+of :mod:`.outdir` (commands with ``--out``), the handler. One exit-code convention
+holds for every command:
+
+====  ==================================================================================
+code  meaning
+====  ==================================================================================
+0     success
+1     internal error (a bug): one line "internal error, please report"; the traceback
+      is printed only with ``--debug``. Also a write the system refused (disk full,
+      read-only file system), said as such
+2     bad input: an option, an input file or the output directory, reported in one line
+      naming the field, the value, the allowed range and the file where one is
+      involved; also a missing optional tool
+3     the fixed-point datapath flagged this input (golden / rtl preview): the flags are
+      printed on stderr, one line each; the outputs are invalid
+4     the computation did not pass its own check: an LCP did not converge, or the RTL
+      disagrees with the golden model
+====  ==================================================================================
 """
 
 from __future__ import annotations
 
 import argparse
+import errno
 import importlib
+import os
 import sys
+import traceback
+import warnings
 
 from ..validation import InputRangeError
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
+           "EXIT_FLAGGED", "EXIT_CHECK_FAILED"]
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
-COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca",
-            "lte")
+COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
+            "bending", "twin")
+
+EXIT_OK = 0
+#: A bug: "internal error, please report" (traceback with --debug).
+EXIT_INTERNAL = 1
+#: Bad input (option, input file, output directory) or a missing optional tool.
+EXIT_BAD_INPUT = 2
+#: The fixed-point datapath flagged this input (flags on stderr).
+EXIT_FLAGGED = 3
+#: The computation failed its own check (LCP not converged, RTL != golden).
+EXIT_CHECK_FAILED = 4
+
+
+def _leaf_parsers(parser: argparse.ArgumentParser):
+    """Every parser that runs a handler (subcommands and ``rtl`` actions)."""
+    subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if not subs:
+        yield parser
+        return
+    for action in subs:
+        for child in dict.fromkeys(action.choices.values()):
+            yield from _leaf_parsers(child)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -24,24 +71,90 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gearcontact",
         description="Gear tooth-contact computation: hypoid flanks, TCA, LTCA and the "
-                    "physics-direct Hertz preview (fp64 / fixed point / RTL).")
+                    "physics-direct Hertz preview (fp64 / fixed point / RTL).",
+        epilog="exit codes: 0 success, 1 internal error (traceback with --debug), 2 bad "
+               "input, 3 fixed-point datapath flagged the input, 4 a computation failed "
+               "its own check (LCP not converged, RTL != golden)")
     parser.add_argument("--version", action="version", version=f"gearcontact {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name in COMMANDS:
         importlib.import_module(f"{__name__}.{name}").register(sub)
+    for leaf in _leaf_parsers(parser):
+        leaf.add_argument("--debug", action="store_true",
+                          help="print the traceback of an internal error")
     return parser
+
+
+def _run(args, argv: list[str], name: str) -> int:
+    def one_line(message, category, *_args, **_kwargs):
+        # warnings users must see: one line each on stderr, no source excerpt
+        text = " ".join(str(message).split())
+        print(f"gearcontact {name}: warning: {text} ({category.__name__})", file=sys.stderr)
+
+    with warnings.catch_warnings():           # the filters stay Python's defaults
+        warnings.showwarning = one_line
+        return _run_command(args, argv)
+
+
+def _run_command(args, argv: list[str]) -> int:
+    check = getattr(args, "check", None)
+    if check is not None:
+        check(args)                 # cheap validation before any work or output
+    if not getattr(args, "writes_files", False):
+        return int(args.func(args) or 0)
+    from .outdir import RunDirectory
+
+    with RunDirectory(args.out, argv, force=args.force,
+                      staged=getattr(args, "staged_output", True)) as run:
+        args.run, args.out = run, run.work
+        run.exit_code = int(args.func(args) or 0)
+        if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):
+            run.discard()       # a refused run keeps nothing; the previous run stays
+    return run.exit_code
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the process exit code."""
     parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
     args = parser.parse_args(argv)
+    name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
-        return int(args.func(args) or 0)
-    except (InputRangeError, ArithmeticError, FileNotFoundError, ValueError) as exc:
-        # Bad input is reported as one clear line, not a traceback.
-        print(f"gearcontact {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        return _run(args, argv, name)
+    except InputRangeError as exc:
+        # bad input: one line naming the field, the value and the allowed range
+        print(f"gearcontact {name}: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print(f"gearcontact {name}: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        # the reader of stdout went away (``| head``): not an error of ours
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+    except OSError as exc:
+        if exc.errno not in _SYSTEM_REFUSED:
+            return _internal(name, exc, args)
+        print(f"gearcontact {name}: error: the system refused a write ({exc}); the "
+              "output directory keeps its previous run", file=sys.stderr)
+        return EXIT_INTERNAL
+    except Exception as exc:  # noqa: BLE001  (the last line of defence: report a bug)
+        return _internal(name, exc, args)
+
+
+#: errno values of an OSError that are the system's refusal, not a bug (disk full,
+#: quota, I/O error, read-only file system).
+_SYSTEM_REFUSED = {errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS}
+
+
+def _internal(name: str, exc: BaseException, args) -> int:
+    """A bug: one line asking for a report; the traceback only with ``--debug``."""
+    if getattr(args, "debug", False):
+        traceback.print_exception(exc)
+    print(f"gearcontact {name}: internal error, please report "
+          f"({type(exc).__name__}: {exc}); rerun with --debug for the traceback",
+          file=sys.stderr)
+    return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

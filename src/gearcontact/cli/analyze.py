@@ -5,7 +5,22 @@ torques and the physics-direct preview, written to one directory with ``summary.
 from __future__ import annotations
 
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
-from .options import add_pair_arguments, check_pair_arguments
+from ..validation import InputRangeError
+from .options import (
+    MAX_PHASES,
+    add_pair_arguments,
+    case_warnings,
+    check_count,
+    check_pair_arguments,
+    check_torque,
+    lte_warnings,
+    run_timings,
+    warn,
+)
+from .outdir import final_path
+
+#: Upper limit of the number of ``--torques``.
+MAX_TORQUES = 32
 
 
 def register(sub) -> None:
@@ -21,23 +36,38 @@ def register(sub) -> None:
                    help="phases of the loaded-TE run over one pitch (default 61, every TCA "
                         "phase; 0 skips it)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, check=check)
+
+
+def check(args) -> None:
+    """Every option and the pair file, before any work."""
+    check_pair_arguments(args)
+    if not 1 <= len(args.torques) <= MAX_TORQUES:
+        raise InputRangeError("--torques", args.torques, f"1 to {MAX_TORQUES} torques")
+    for t in args.torques:
+        check_torque("--torques (N·m)", t, args.gear_pair)
+    check_torque("--lte-torque (N·m)", args.lte_torque, args.gear_pair)
+    if args.lte_phases != 0:
+        check_count("--lte-phases", args.lte_phases, 3, MAX_PHASES, note=", or 0 to skip")
 
 
 def run(args) -> int:
-    check_pair_arguments(args)
-    if args.lte_phases != 0 and args.lte_phases < 3:
-        raise ValueError(f"--lte-phases = {args.lte_phases} must be 0 (skip) or >= 3")
-    res = run_analysis(args.pair, out_dir=args.out, torques_nm=args.torques,
+    if getattr(args, "gear_pair", None) is None:
+        check(args)
+    res = run_analysis(args.gear_pair, out_dir=args.out, torques_nm=args.torques,
                        phases=args.phases, side=args.side, figures=not args.no_figures,
                        progress=not args.quiet,
                        lte_torque_nm=args.lte_torque if args.lte_phases else None,
                        lte_phases=max(args.lte_phases, 3))
+    run_timings(args, **res.timings_s)
     design = min(res.cases, key=lambda c: abs(c.torque_nm - args.lte_torque))
     print(f"{res.pair.name}: TE0 p-p {res.tca.cycle.te0_pp_arcsec:.2f} arcsec; at "
           f"{design.torque_nm:g} N·m W = {design.load_n:.0f} N, preview p_max "
           f"{design.preview.p_max_mpa:.0f} MPa, LCP p90 {design.patch.p90_mpa:.0f} MPa"
           + (f"; LTE p-p {res.lte.te_lcp_pp_arcsec:.2f} (LCP) / "
              f"{res.lte.te_pre_pp_arcsec:.2f} (preview) arcsec" if res.lte is not None else "")
-          + f" -> {res.out_dir / 'summary.md'}")
+          + f" -> {final_path(args, res.out_dir / 'summary.md')}")
+    lines = [line for case in res.cases for line in case_warnings(case)]
+    for line in lines + (lte_warnings(res.lte) if res.lte is not None else []):
+        warn("analyze", line)
     return 0

@@ -12,7 +12,8 @@ import json
 from pathlib import Path
 
 from ..geometry.pair import PRESETS, load_pair
-from ..validation import InputRangeError
+from ..validation import InputRangeError, check_range
+from .outdir import final_path
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
 _PAIRED = (
@@ -50,13 +51,35 @@ def register(sub) -> None:
                    help="calibrate the unpublished set-up (working depth, design-side "
                         "ease-off) to the pair's published design point (TCA in the loop, "
                         "~1 min); prints the target / achieved / tolerance table")
-    p.add_argument("--tip-margin", type=float, default=0.05, metavar="MM",
+    p.add_argument("--tip-margin", type=float, default=None, metavar="MM",
                    help="with --calibrate: pinion tip radius above the published mating "
-                        "point, mm (default 0.05: a tip-edge bearing)")
-    p.add_argument("--out", type=Path, default=None,
+                        "point, mm, 0.01 to 0.5 (default: the largest margin that keeps a "
+                        "top land of 0.25 m_mn)")
+    p.add_argument("--out", default=None, metavar="DIR",
                    help="with --calibrate: directory for calibrated.toml and "
-                        "calibration.json")
-    p.set_defaults(func=run)
+                        "calibration.json (the output-directory policy of every command, "
+                        "see run.json)")
+    p.add_argument("--force", action="store_true",
+                   help="with --calibrate: write into --out even if it holds files "
+                        "gearcontact did not write")
+    p.set_defaults(func=run, check=check)
+
+
+def check(args) -> None:
+    """--calibrate needs published values and --out; only then does design write files
+    (under the output-directory policy, :mod:`.outdir`)."""
+    pair = load_pair(args.pair)
+    if args.calibrate:
+        from ..report.analyze import published_values
+
+        if published_values(pair.name) is None:
+            raise InputRangeError("--pair", args.pair, "a built-in pair with published "
+                                  "values (s0003, s0003-centred) for --calibrate")
+        if args.out is None:
+            raise InputRangeError("--out", None, "an output directory for calibrated.toml")
+        if args.tip_margin is not None:
+            check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
+    args.writes_files = bool(args.calibrate)
 
 
 def _fmt(x) -> str:
@@ -67,21 +90,16 @@ def _calibrate(args, pair) -> int:
     from ..report.analyze import published_values
     from ..tca.calibration import CalibrationTargets, calibrate_pair, calibration_toml
 
-    published = published_values(pair.name.removesuffix("-centred"))
-    if published is None:
-        raise InputRangeError("--pair", args.pair, "a built-in pair with published values "
-                              "(s0003, s0003-centred) for --calibrate")
-    if args.out is None:
-        raise InputRangeError("--out", None, "an output directory for calibrated.toml")
-    targets = CalibrationTargets.from_published(published)
-    args.out.mkdir(parents=True, exist_ok=True)
+    targets = CalibrationTargets.from_published(published_values(pair.name))
     cal = calibrate_pair(pair, targets, tip_margin_mm=args.tip_margin, progress=True)
-    (args.out / "calibrated.toml").write_text(
+    out = Path(args.out)
+    (out / "calibrated.toml").write_text(
         calibration_toml(cal, name=pair.name.removesuffix("-centred")))
-    (args.out / "calibration.json").write_text(json.dumps(cal.as_dict(), indent=2))
+    (out / "calibration.json").write_text(json.dumps(cal.as_dict(), indent=2))
     print(cal.table())
     print(f"design side {cal.side}; working depth factor {cal.pair.working_depth_factor:g}; "
-          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> {args.out / 'calibrated.toml'}")
+          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> "
+          f"{final_path(args, out / 'calibrated.toml')}")
     return 0
 
 

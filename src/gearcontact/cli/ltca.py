@@ -1,28 +1,40 @@
 """``gearcontact ltca``: loaded contact of the reference tooth pair at P0 under a torque.
 
 Writes into ``--out`` (created if missing): ``ltca.json`` (load, LCP mean / p90 / peak
-pressure, approach, mesh rotation, contact cells, preview p_max, solver, solve time and
+pressure, approach, mesh rotation, contact cells, preview p_max, solver and
 the rest of :meth:`~gearcontact.contact.pair_ltca.PairLoadCase.summary`),
-``pressure_map.csv`` (``s_mm,t_mm,pressure_mpa`` over the principal-frame field) and
-``pressure_map.png`` (pressure map with the Hertzian preview ellipse overlaid).
+``pressure_map.csv`` (``s_mm,t_mm,pressure_mpa`` over the principal-frame field),
+``pressure_map.png`` (pressure map with the Hertzian preview ellipse overlaid) and, with
+``--export-problem``, the solved LCP as ``ltca_problem.npz`` with
+``ltca_problem.README.md`` (:mod:`gearcontact.contact.problem_export`). The solve time
+goes to ``run.json`` only. Edge contact is reported on stderr.
 """
 
 from __future__ import annotations
 
 import json
-import sys
+import time
 import warnings
 from pathlib import Path
 
 import numpy as np
 
-from ..contact.lcp import SOLVERS
+from ..contact.lcp import SOLVERS, warm_up
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
-from ..geometry.pair import load_pair
 from ..tca.analysis import analyze_pair
-from ..tca.export import write_csv
-from .options import add_pair_arguments, check_pair_arguments
+from ..tca.export import without_timings, write_csv
+from ..validation import InputRangeError
+from . import EXIT_CHECK_FAILED
+from .options import (
+    add_pair_arguments,
+    case_warnings,
+    check_pair_arguments,
+    rename_load_error,
+    run_timings,
+    warn,
+)
+from .outdir import final_path
 
 
 def register(sub) -> None:
@@ -31,21 +43,33 @@ def register(sub) -> None:
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, torque=True, cells=80)
     p.add_argument("--solver", default="pk_cg", choices=SOLVERS, help="LCP solver (default pk_cg)")
-    p.set_defaults(func=run)
+    p.add_argument("--export-problem", action="store_true",
+                   help="also write the solved LCP (gap, on-flank mask, grid, load, E*, "
+                        "solution) as ltca_problem.npz with ltca_problem.README.md")
+    p.set_defaults(func=run, check=check_pair_arguments)
 
 
 def run(args) -> int:
-    check_pair_arguments(args)
-    pair = load_pair(args.pair)
-    args.side = args.side or pair.design_side
+    if getattr(args, "gear_pair", None) is None:
+        check_pair_arguments(args)
+    pair = args.gear_pair
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ContactAtEdgeWarning)  # reported in the JSON
-        case = single_pair_ltca(tca, flanks, pair, args.torque, side=args.side,
-                                cells=args.cells, solver=args.solver)
-    summary = case.summary()
+    jit_s = warm_up(args.solver)   # solve_ms below then excludes the JIT compilation
+    t1 = time.perf_counter()
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ContactAtEdgeWarning)  # case_warnings below
+            case = single_pair_ltca(tca, flanks, pair, args.torque, side=args.side,
+                                    cells=args.cells, solver=args.solver)
+    except InputRangeError as exc:
+        raise rename_load_error(exc, args.torque, pair, tca) from None
+    run_timings(args, tca_s=t1 - t0 - jit_s, jit_warm_up_s=jit_s,
+                ltca_s=time.perf_counter() - t1,
+                solve_ms=case.patch.lcp.solve_time_ms)
+    summary, _ = without_timings(case.summary())    # the solve time is in run.json
     (out / "ltca.json").write_text(json.dumps(summary, indent=2))
     g = case.patch.grid
     s, t = np.meshgrid(g.x_mm, g.y_mm)
@@ -68,13 +92,20 @@ def run(args) -> int:
         fig.tight_layout()
         fig.savefig(out / "pressure_map.png", dpi=120)
         plt.close(fig)
+    if args.export_problem:
+        from ..contact.problem_export import write_lcp_problem
+
+        write_lcp_problem(case, (pair.pinion_material, pair.gear_material), out,
+                          title=f"{pair.name} {args.side}, {args.torque:g} N·m at P0")
     print(f"{pair.name} {args.side} {args.torque:g} N·m: W = {case.load_n:.0f} N, LCP mean "
           f"{case.patch.p_mean_mpa:.0f} / p90 {case.patch.p90_mpa:.0f} / peak "
           f"{case.patch.p_peak_mpa:.0f} MPa, preview p_max {case.preview.p_max_mpa:.0f} MPa, "
           f"mesh rotation {case.mesh_rotation_arcsec:.1f} arcsec "
-          f"({case.patch.lcp.solver}, {case.patch.lcp.solve_time_ms:.0f} ms) -> {out}")
+          f"({case.patch.lcp.solver}, {case.patch.lcp.solve_time_ms:.0f} ms) -> "
+          f"{final_path(args, out)}")
+    for line in case_warnings(case):
+        warn("ltca", line)
     if not case.patch.converged:
-        print(f"gearcontact ltca: warning: LCP {case.patch.lcp.status}: "
-              f"{case.patch.lcp.message}", file=sys.stderr)
-        return 1
+        warn("ltca", f"LCP {case.patch.lcp.status}: {case.patch.lcp.message}")
+        return EXIT_CHECK_FAILED
     return 0

@@ -1,19 +1,31 @@
-"""``gearcontact lte``: loaded transmission error over one pinion pitch (rigid teeth).
+"""``gearcontact lte``: loaded transmission error over one pinion pitch (rigid teeth, or
+with the shell bending of both teeth with ``--bending``).
 
 Writes into ``--out`` (created if missing): ``lte.json`` (peak-to-peaks of TE0, TE_LCP
-and TE_pre, contact and mesh compliances, active pairs, load shares at P0, timings; see
+and TE_pre, contact and mesh compliances, active pairs, load shares at P0; see
 :meth:`~gearcontact.contact.lte.LoadedTE.summary`), ``lte.csv`` (one row per phase: TE0,
-TE_LCP, TE_pre, rotations, active pairs, load per pair) and ``lte.png``.
+TE_LCP, TE_pre, rotations, active pairs, load per pair) and ``lte.png``; timings go to
+``run.json`` only.
 """
 
 from __future__ import annotations
 
-import sys
+import time
+
 from ..contact.lte import loaded_te
-from ..geometry.pair import load_pair
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
-from .options import add_pair_arguments, check_pair_arguments
+from ..validation import InputRangeError
+from . import EXIT_CHECK_FAILED
+from .options import (
+    add_pair_arguments,
+    check_pair_arguments,
+    lte_warnings,
+    rename_load_error,
+    run_timings,
+    warn,
+)
+from .outdir import final_path
 
 
 def register(sub) -> None:
@@ -21,29 +33,53 @@ def register(sub) -> None:
                                    "TE_LCP, TE_pre, active pairs, compliances",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, torque=True, cells=40)
+    p.add_argument("--bending", action="store_true",
+                   help="add the shell bending compliance of the pinion and gear teeth to "
+                        "every pair in the coupled LCP (default: rigid teeth)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, check=check_pair_arguments)
 
 
 def run(args) -> int:
-    check_pair_arguments(args)
-    pair = load_pair(args.pair)
-    args.side = args.side or pair.design_side
+    if getattr(args, "gear_pair", None) is None:
+        check_pair_arguments(args)
+    pair = args.gear_pair
     from ..report.analyze import published_values
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
                                progress=not args.quiet)
-    res = loaded_te(tca, flanks, pair, args.torque, side=args.side, cells=args.cells,
-                    progress=not args.quiet)
+    bending = None
+    if args.bending:
+        from ..contact.tooth_bending import tooth_bending
+
+        bending = tooth_bending(flanks, pair, side=args.side)
+    try:
+        # JIT warm-up on three phases (first, P0, last) of the same problem, so that the
+        # solve times of the run exclude the compilation of the mesh-LCP kernels
+        t0 = time.perf_counter()
+        loaded_te(tca, flanks, pair, args.torque, side=args.side, cells=args.cells,
+                  stride=len(tca.cycle.phi1_rad), bending=bending, progress=False)
+        jit_s = time.perf_counter() - t0
+        res = loaded_te(tca, flanks, pair, args.torque, side=args.side, cells=args.cells,
+                        bending=bending, progress=not args.quiet)
+    except InputRangeError as exc:
+        raise rename_load_error(exc, args.torque, pair, tca) from None
+    run_timings(args, tca=tca.timings_s, lte=res.timings_s, jit_warm_up_s=jit_s,
+                solve_ms_per_phase=float(res.solve_ms.mean()),
+                field_ms_per_phase=float(res.field_ms.mean()))
     write_lte_outputs(res, args.out, figures=not args.no_figures,
                       title=f"{pair.name} {args.side}", published=published_values(pair.name))
-    print(f"{pair.name} {args.side} {args.torque:g} N·m, {len(res.phi1_rad)} phases: TE p-p "
+    print(f"{pair.name} {args.side} {args.torque:g} N·m, {len(res.phi1_rad)} phases"
+          f"{', bending' if args.bending else ''}: TE p-p "
           f"TE0 {res.te0_pp_arcsec:.2f} / LCP {res.te_lcp_pp_arcsec:.2f} / preview "
           f"{res.te_pre_pp_arcsec:.2f} arcsec; compliance LCP "
           f"{res.compliance_lcp_mm_per_n:.3g} / preview {res.compliance_pre_mm_per_n:.3g} "
-          f"mm/N; active pairs {res.active_lcp.min()}-{res.active_lcp.max()} -> {args.out}")
+          f"mm/N; active pairs {res.active_lcp.min()}-{res.active_lcp.max()} -> "
+          f"{final_path(args, args.out)}")
+    for line in lte_warnings(res):
+        warn("lte", line)
     if not res.converged:
         bad = [k for k, s in enumerate(res.status) if s != "converged"]
-        print(f"gearcontact lte: warning: LCP not converged at phases {bad}", file=sys.stderr)
-        return 1
+        warn("lte", f"LCP not converged at phases {bad}")
+        return EXIT_CHECK_FAILED
     return 0

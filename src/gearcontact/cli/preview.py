@@ -2,19 +2,21 @@
 
 Either from half relative curvatures and a load (stage D), or from a 49-sample gap
 stencil file (stage C then D). Prints a, b, k, p_max (and raw codes, flags and cycles
-for the fixed-point backend); ``--json`` prints one JSON object instead.
+for the fixed-point backend); ``--json`` prints one JSON object instead. When the
+fixed-point datapath flags the input, each flag is printed on stderr and the exit code
+is 3.
 """
 
 from __future__ import annotations
 
 import json
+import sys
 
 from ..materials import STEEL, Material
 from ..preview.engine import BACKENDS, get_engine
 from ..preview.fit.stencil import read_stencil_csv
-
-#: Exit code when the datapath raised a flag (outputs invalid).
-EXIT_FLAGGED = 3
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
+from . import EXIT_FLAGGED
 
 
 def register(sub) -> None:
@@ -34,15 +36,26 @@ def register(sub) -> None:
                    help="Poisson's ratio of both bodies (default 0.3)")
     p.add_argument("--backend", choices=sorted(BACKENDS), default="reference",
                    help="which representation evaluates the preview (default reference)")
+    p.add_argument("--hertz-form", choices=HERTZ_FORMS, default=DEFAULT_HERTZ_FORM,
+                   help="stage-D Hertz form: the published simplified forms (default) or "
+                        "exact elliptic Hertz in the same tables (not for rtl-soc)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, check=check)
+
+
+def check(args) -> None:
+    """Material and stencil file before any engine is built (the engine validates the
+    curvatures and the load, the same domain for every backend)."""
+    args.material = Material.from_gpa(args.modulus, args.poisson, name="cli")
+    args.gaps_mm = None if args.stencil is None else read_stencil_csv(args.stencil)
 
 
 def run(args) -> int:
-    material = Material.from_gpa(args.modulus, args.poisson, name="cli")
-    engine = get_engine(args.backend, material=material)
-    if args.stencil is not None:
-        res = engine.stencil(read_stencil_csv(args.stencil), args.load)
+    if getattr(args, "material", None) is None:
+        check(args)
+    engine = get_engine(args.backend, material=args.material, hertz_form=args.hertz_form)
+    if args.gaps_mm is not None:
+        res = engine.stencil(args.gaps_mm, args.load)
     else:
         res = engine.hertz(args.curvatures[0], args.curvatures[1], args.load)
     if args.json:
@@ -61,4 +74,7 @@ def run(args) -> int:
             print("codes          " + ", ".join(f"{k}={v}" for k, v in res.codes.items()))
             print(f"cycles         {res.cycles}")
         print(f"flags          {', '.join(res.flags) if res.flags else 'none'}")
+    for flag in res.flags:   # the outputs are invalid (zero): say so where users look
+        print(f"gearcontact preview: datapath flag: {flag} (outputs invalid; exit "
+              f"{EXIT_FLAGGED})", file=sys.stderr)
     return EXIT_FLAGGED if res.flags else 0

@@ -2,7 +2,7 @@
 
 ``rtl sim`` runs the corner cases plus N seeded random vectors of a core through the
 RTL (Verilator, or the Amaranth simulator) and the bit-exact golden model, and reports
-cycles per evaluation, vectors, mismatches and the simulator speed; the exit code is 1
+cycles per evaluation, vectors, mismatches and the simulator speed; the exit code is 4
 on any mismatch or cycle-count deviation. ``rtl verilog`` writes a core's Verilog and a
 README of its ports; ``rtl soc`` and ``rtl synth`` (board flow, synthesis reports).
 
@@ -25,10 +25,19 @@ from ..hw.verilator import (
     verilator_version,
 )
 
+from ..validation import InputRangeError
+from . import EXIT_BAD_INPUT, EXIT_CHECK_FAILED
+from .options import check_count
+from .outdir import add_out_argument, final_path
+
 #: Exit code when the RTL disagrees with the golden model (bits or cycles).
-EXIT_MISMATCH = 1
+EXIT_MISMATCH = EXIT_CHECK_FAILED
 #: Exit code when the simulator or a core is unavailable.
-EXIT_UNAVAILABLE = 2
+EXIT_UNAVAILABLE = EXIT_BAD_INPUT
+#: Most random vectors of one ``rtl sim`` run (the slow suite runs 100,000).
+MAX_SIM_VECTORS = 10_000_000
+#: Most parallel Verilator processes.
+MAX_JOBS = 64
 
 
 def register(sub) -> None:
@@ -42,7 +51,8 @@ def register(sub) -> None:
     s.add_argument("--core", choices=CORE_NAMES, required=True,
                    help="; ".join(f"{n}: {get_bench(n).summary}" for n in CORE_NAMES))
     s.add_argument("--vectors", type=int, default=1000, metavar="N",
-                   help="random vectors in addition to the corner cases (default 1000)")
+                   help=f"random vectors in addition to the corner cases, 0 to "
+                        f"{MAX_SIM_VECTORS} (default 1000)")
     s.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
     s.add_argument("--simulator", choices=SIMULATORS, default=None,
                    help="default: verilator when installed, else amaranth (slow)")
@@ -52,11 +62,11 @@ def register(sub) -> None:
     s.add_argument("--jobs", type=int, default=1, metavar="J",
                    help="parallel Verilator processes (default 1)")
     s.add_argument("--json", action="store_true", help="print one JSON object")
-    s.set_defaults(func=run_sim)
+    s.set_defaults(func=run_sim, check=check_sim)
 
     v = cmds.add_parser("verilog", help="write a core's Verilog and a README of its ports")
     v.add_argument("--core", choices=CORE_NAMES + ("all",), required=True)
-    v.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    add_out_argument(v)
     v.set_defaults(func=run_verilog)
 
     from .rtl_hw import register_rtl_subcommands  # rtl soc, rtl synth
@@ -68,16 +78,21 @@ def _error(msg: str) -> int:
     return EXIT_UNAVAILABLE
 
 
+def check_sim(args) -> None:
+    """Every ``rtl sim`` option, before any build or simulation."""
+    check_count("--vectors", args.vectors, 1 if args.no_corners else 0, MAX_SIM_VECTORS,
+                note=" (at least 1 with --no-corners)" if args.no_corners else "")
+    check_count("--jobs", args.jobs, 1, MAX_JOBS)
+    check_count("--seed", args.seed, 0, 2 ** 63 - 1)
+    if args.samples is not None and args.core != "gap":
+        raise InputRangeError("--samples", args.samples, "only with --core gap")
+
+
 def run_sim(args) -> int:
     from ..hw.harness_cores import run_equivalence
-    if args.vectors < 0:
-        return _error(f"--vectors = {args.vectors} must be >= 0")
-    if args.jobs < 1:
-        return _error(f"--jobs = {args.jobs} must be >= 1")
+    check_sim(args)
     kwargs = {}
     if args.samples is not None:
-        if args.core != "gap":
-            return _error("--samples applies to --core gap only")
         kwargs["n_samples"] = args.samples
     simulator = args.simulator
     if simulator is None:
@@ -166,5 +181,5 @@ def run_verilog(args) -> int:
         path.write_text(text)
         (out / f"{bench.spec.top}.README.md").write_text(_readme(core, text))
         n_ports = len(verilog_ports(text, bench.spec.top))
-        print(f"{path} ({len(text.splitlines())} lines, {n_ports} ports)")
+        print(f"{final_path(args, path)} ({len(text.splitlines())} lines, {n_ports} ports)")
     return 0

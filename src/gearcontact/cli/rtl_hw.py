@@ -13,8 +13,12 @@ import sys
 from dataclasses import asdict
 from pathlib import Path
 
+from . import EXIT_BAD_INPUT
+from ..validation import InputRangeError
+from .outdir import add_out_argument
+
 #: Exit code when an optional tool is missing or a run fails.
-EXIT_UNAVAILABLE = 2
+EXIT_UNAVAILABLE = EXIT_BAD_INPUT
 
 __all__ = ["register_rtl_subcommands", "run_soc", "run_synth"]
 
@@ -26,7 +30,9 @@ def register_rtl_subcommands(cmds) -> None:
 
     s = cmds.add_parser("soc", help="generate the LiteX board flow (Verilog, XDC, csr.csv/"
                                     "json, openXC7 build script) for the XC7K480T card")
-    s.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    add_out_argument(s)
+    # LiteX writes absolute paths into its scripts: no staging directory (outdir policy)
+    s.set_defaults(staged_output=False, check=check_soc)
     s.add_argument("--kind", choices=SOC_KINDS, default="tri_core",
                    help="SoC top (default tri_core)")
     s.add_argument("--lanes", type=int, default=16, help="gap core lanes (default 16)")
@@ -39,12 +45,56 @@ def register_rtl_subcommands(cmds) -> None:
                         "gap_plain is the published netlist (30 per lane)")
     y.add_argument("--lanes", default="8,16,32,64", metavar="L,L,...",
                    help="gap lane counts (default 8,16,32,64)")
-    y.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    add_out_argument(y)
+    # Yosys logs name their work directories: in place, so checked before any removal
+    y.set_defaults(staged_output=False, check=check_synth)
     y.add_argument("--nodsp", action="store_true",
                    help="multipliers in LUT/CARRY4 (very slow under WebAssembly)")
     y.add_argument("--timeout", type=float, default=None, metavar="S",
                    help="seconds per Yosys run")
     y.set_defaults(func=run_synth)
+
+
+class ToolUnavailable(InputRangeError):
+    """An optional tool is missing (exit 2): the message names the pip command."""
+
+    def __init__(self, message: str):
+        super().__init__("optional tool", None, message)
+        self.args = (message,)
+
+    def __str__(self) -> str:
+        return self.args[0]
+
+
+def check_soc(args) -> None:
+    """Before the output directory is touched (soc writes in place): LiteX present."""
+    try:
+        import litex  # noqa: F401
+        import migen  # noqa: F401
+    except ImportError:
+        from ..hw.driver import LITEX_PIN
+        raise ToolUnavailable(f"LiteX is not installed: pip install {LITEX_PIN} "
+                              "(or pip install 'gearcontact[board]')") from None
+
+
+def check_synth(args) -> None:
+    """Before the output directory is touched (synth writes in place): yosys present,
+    lane counts valid."""
+    from ..hw import synth as S
+    try:
+        S.require_yosys()
+    except RuntimeError as exc:
+        raise ToolUnavailable(str(exc)) from None
+    if args.core in S.GAP_CORES:
+        try:
+            lanes = [int(x) for x in args.lanes.split(",") if x]
+        except ValueError:
+            raise InputRangeError("--lanes", args.lanes, "comma-separated integers") from None
+        try:
+            S.check_lanes_list(lanes)
+        except InputRangeError as exc:
+            raise InputRangeError("--lanes", args.lanes, f"lane counts {exc.allowed}") \
+                from None
 
 
 def _error(msg: str) -> int:

@@ -10,10 +10,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..geometry.pair import load_pair
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_tca_outputs
-from .options import add_pair_arguments, check_pair_arguments
+from .options import (
+    MAX_PAIRS,
+    add_pair_arguments,
+    check_count,
+    check_pair_arguments,
+    run_timings,
+)
+from .outdir import final_path
 
 
 def register(sub) -> None:
@@ -21,25 +27,38 @@ def register(sub) -> None:
                        description=__doc__.split("\n\n")[1])
     add_pair_arguments(p)
     p.add_argument("--pairs", type=int, default=2,
-                   help="neighbouring tooth pairs on each side (default 2)")
+                   help=f"neighbouring tooth pairs on each side, 0 to {MAX_PAIRS} (default 2)")
     p.add_argument("--table-records", type=int, default=16,
-                   help="maximum records of the binary phase table (default 16)")
+                   help=f"maximum records of the binary phase table, 1 to "
+                        f"{MAX_TABLE_RECORDS} (default 16)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, check=check)
+
+
+#: Upper limit of ``--table-records`` (the record index of the binary table is 16 bit).
+MAX_TABLE_RECORDS = 65535
+
+
+def check(args) -> None:
+    """Every option and the pair file, before any work."""
+    check_pair_arguments(args)
+    check_count("--pairs", args.pairs, 0, MAX_PAIRS)
+    check_count("--table-records", args.table_records, 1, MAX_TABLE_RECORDS)
 
 
 def run(args) -> int:
-    check_pair_arguments(args)
-    pair = load_pair(args.pair)
-    args.side = args.side or pair.design_side
+    if getattr(args, "gear_pair", None) is None:
+        check(args)
+    pair = args.gear_pair
     out = Path(args.out)
     res, flanks = analyze_pair(pair, side=args.side, phases=args.phases, pairs=args.pairs,
                                progress=not args.quiet)
+    run_timings(args, **res.timings_s)
     write_tca_outputs(res, flanks, pair, out, side=args.side,
                       table_records=args.table_records, figures=not args.no_figures)
     cyc, rc, ell = res.cycle, res.mean_curvature, res.mean_ellipse
     print(f"{pair.name} {args.side}: TE0 p-p {cyc.te0_pp_arcsec:.3f} arcsec, "
           f"A- {rc.A_minus_per_mm:.5g} B- {rc.B_minus_per_mm:.5g} 1/mm, paint ellipse "
           f"{2 * ell.semi_major_mm:.2f} x {2 * ell.semi_minor_mm:.3f} mm at "
-          f"{ell.angle_deg:.1f} deg -> {out}")
+          f"{ell.angle_deg:.1f} deg -> {final_path(args, out)}")
     return 0

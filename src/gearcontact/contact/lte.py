@@ -54,7 +54,11 @@ transmitting pair):
   torque alone (for a Hertzian gap ``(2/3) delta / W``);
 * mesh compliance: the same with all pairs within reach sharing the torque.
 
-Scope: rigid teeth (no bending, no base rotation); the edge is the sharp flank boundary
+Tooth bending (optional, ``bending=``): the shell compliance of the pinion and gear
+tooth of every pair (:mod:`.tooth_bending`) is added to its half-space compliance in
+the same coupled LCP (:mod:`.mesh_lcp`); without it the teeth are rigid.
+
+Scope: no base / shaft rotation; the edge is the sharp flank boundary
 (no tip radius); a pair beyond ``edge_reach`` is not considered: if it still carried
 load at the previous phase, TE_LCP steps there and the load is reported
 (``dropped_load_n``); loaded cells next to a flank boundary are reported
@@ -138,6 +142,8 @@ class LoadedTE:
         ``l_0^2 d theta / d T`` at P0 with all pairs within reach, mm/N.
     cells : int
         Cells per side of each pair's field.
+    bending : bool
+        Tooth bending was in the LCP (then the LCP compliances include it).
     timings_s : dict
         Wall-clock seconds per stage.
     """
@@ -169,6 +175,7 @@ class LoadedTE:
     mesh_compliance_lcp_mm_per_n: float
     mesh_compliance_pre_mm_per_n: float
     cells: int
+    bending: bool = False
     timings_s: dict = field(default_factory=dict)
 
     @property
@@ -220,7 +227,7 @@ class LoadedTE:
                 "max_dropped_load_n": float(self.dropped_load_n.max()),
                 "converged": self.converged,
                 "unconverged_phases": int(sum(s != "converged" for s in self.status)),
-                "te_sign": self.te_sign, "cells": self.cells,
+                "te_sign": self.te_sign, "cells": self.cells, "bending": self.bending,
                 "solve_ms_per_phase": float(self.solve_ms.mean()),
                 "field_ms_per_phase": float(self.field_ms.mean()),
                 "timings_s": dict(self.timings_s)}
@@ -366,7 +373,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
               edge_reach: float = 0.5, preview_edges: bool = True,
-              progress: bool = False) -> LoadedTE:
+              bending=None, progress: bool = False) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
     Parameters
@@ -405,6 +412,11 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
     stride : int
         Use every ``stride``-th phase of the cycle (>= 1), plus the last one and P0: a
         cheaper LTE on a fine TCA (e.g. 61 TCA phases, stride 6 -> 11 LTE phases).
+    bending : ToothBending or None
+        Tooth bending compliance of both members
+        (:func:`~.tooth_bending.tooth_bending`) added to every pair's half-space
+        compliance in the coupled LCP; None (default): rigid teeth, exactly the
+        rigid-tooth solution.
     progress : bool
         Show a progress bar over the phases.
 
@@ -433,8 +445,11 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
     e_prime = effective_modulus_mpa(*materials)
     torque = 1e3 * t
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    if bending is not None and bending.side != side:
+        raise InputRangeError("bending.side", bending.side, f"'{side}' (the side of the LTE)")
     fields = PairFields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
-                     cells=int(cells), extent=tuple(map(float, extent_factor)))
+                        cells=int(cells), extent=tuple(map(float, extent_factor)),
+                        bending=bending)
     curv: dict = {}
     k_full = len(cycle.phi1_rad)
     sel = np.array(sorted(set(range(0, k_full, stride)) | {k_full - 1, cycle.mean_index}))
@@ -503,4 +518,4 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         active_pre=(w_pre > share * w_pre.sum(axis=0)).sum(axis=0),
         edge_contact=edge, field_edge=fedge, dropped_load_n=dropped, status=tuple(status), solve_ms=solve_ms,
         field_ms=field_ms, reference_index=int(k_ref), cells=int(cells),
-        timings_s=timings, **comp)
+        bending=bending is not None, timings_s=timings, **comp)

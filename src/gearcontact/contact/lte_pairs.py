@@ -85,14 +85,19 @@ class PairFields:
     Every field is the separation of the flanks posed as they stand unloaded (gear at
     ``pc.phi2_rad``), along the normal lines of the tangent plane at the centre point:
     it contains the pair's opening (its minimum over the flank, ~ ``g_j``) and, for an
-    edge pair, the flank boundary that trims the contact.
+    edge pair, the flank boundary that trims the contact. With ``bending``
+    (:class:`~.tooth_bending.ToothBending`) each block also carries the bending factor
+    of its two teeth at its cells.
     """
 
-    def __init__(self, pinion, gear, kin, cycle, *, torque_nmm, e_prime, cells, extent):
+    def __init__(self, pinion, gear, kin, cycle, *, torque_nmm, e_prime, cells, extent,
+                 bending=None):
         self.args = (pinion, gear, kin)
         self.path = cycle.path
         self.torque, self.e_prime, self.cells, self.extent = torque_nmm, e_prime, cells, extent
+        self.bending = bending
         self.cache: dict[int, tuple] = {}
+        self.factors: dict[int, np.ndarray] = {}
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
@@ -126,12 +131,25 @@ class PairFields:
             lever = torque_lever_mm(mp.point_mm, mp.normal)
             hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
             self.cache[pc.path_index] = hit
+            if self.bending is not None:
+                self.factors[pc.path_index] = self._bending_factor(f, mp)
             self.seconds += time.perf_counter() - t0
         return hit
 
+    def _bending_factor(self, f, mp) -> np.ndarray:
+        """Bending factor of the teeth at the field's cells (first-order flank map)."""
+        from ..tca.stencil import tangent_parameters
+
+        pinion, gear, kin = self.args
+        st = np.column_stack([f.s_mm.ravel(), f.t_mm.ravel()])
+        uv1 = tangent_parameters(pinion, kin.pinion_pose(mp.phi1_rad), f.frame, (mp.u1, mp.v1), st)
+        uv2 = tangent_parameters(gear, kin.gear_pose(mp.phi2_rad), f.frame, (mp.u2, mp.v2), st)
+        return self.bending.factor(uv1, uv2, f.gap_mm.shape)
+
     def block(self, pc: PairContact) -> tuple[PairBlock, np.ndarray]:
         gap, grid, off, lever = self.get(pc)
-        return PairBlock(gap, grid, lever, 0.0), off
+        return PairBlock(gap, grid, lever, 0.0,
+                         bending_factor=self.factors.get(pc.path_index)), off
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its

@@ -30,6 +30,16 @@ windows of :mod:`.lcp`). For a single pair with ``l = 1``, ``g = 0`` this
 is exactly the problem :func:`.lcp.solve_lcp` solves; the tests check that, and check
 two-pair solutions against a nested root find built on :func:`.lcp.solve_lcp`.
 
+Tooth bending (optional): a block may carry the bending compliance of its two teeth at
+its cells as a low-rank factor ``F_j`` (``PairBlock.bending_factor``, from
+:mod:`gearcontact.structure.shell`), so that its compliance is ``C_j + F_j F_j^T``
+(Love half-space of both bodies plus the pinion and gear tooth deflections; different
+pairs load different teeth, so the bending part is block diagonal too). The same
+iteration runs with ``C~_j = (C_j + F_j F_j^T) / l_j^2``; the low-rank part is applied
+as ``F (F^T x)`` on the windows, the FFT preconditioner stays the half-space one, and
+the displacement is recomputed every step instead of updated cell by cell. Without any
+bending factor the code path is exactly the rigid-tooth one.
+
 References
 ----------
 M. Polonsky, L. M. Keer, Wear 231 (1999) 206-219 (constrained CG).
@@ -50,6 +60,7 @@ from ..validation import InputRangeError, check_finite, check_positive
 from .grid import TangentGrid
 from .influence import StackedFftInfluence
 from .lcp import resolve_e_star
+from .tooth_bending import add_low_rank, bending_stack
 
 __all__ = ["MeshLcpResult", "PairBlock", "solve_mesh_lcp"]
 
@@ -69,12 +80,16 @@ class PairBlock:
         Effective lever of the pair's normal force about the gear axis, mm (> 0).
     offset_mm : float
         Initial separation ``g_j`` of the pair along its normal, mm (>= 0).
+    bending_factor : ndarray (ny, nx, r) or None
+        Low-rank factor F of the teeth's bending compliance at the cells,
+        ``G = F F^T`` (mm/N; F in (mm/N)^(1/2)); None: rigid teeth.
     """
 
     gap_mm: np.ndarray
     grid: TangentGrid
     lever_mm: float
     offset_mm: float = 0.0
+    bending_factor: np.ndarray | None = None
 
     def __post_init__(self):
         if not self.grid.is_uniform:
@@ -85,6 +100,12 @@ class PairBlock:
         if g < 0.0:
             raise InputRangeError("offset_mm", g, ">= 0 mm (initial separation)")
         object.__setattr__(self, "offset_mm", g)
+        if self.bending_factor is not None:
+            f = np.asarray(self.bending_factor, dtype=float)
+            if f.ndim != 3 or f.shape[:2] != self.gap_mm.shape or not np.isfinite(f).all():
+                raise InputRangeError("bending_factor", f"shape {f.shape}",
+                                      f"a finite array of shape {self.gap_mm.shape} + (rank,)")
+            object.__setattr__(self, "bending_factor", f)
 
 
 @dataclass(frozen=True, eq=False)
@@ -288,10 +309,10 @@ class _Region:
     Block ``k`` of ``blocks`` is seen through rows ``org[k, 0]:org[k, 0] + gy`` and
     columns ``org[k, 1]:org[k, 1] + gx`` of its field, a window holding its contact box
     grown by :data:`_MARGIN` cells (clamped to the field); ``whole``: every block on
-    its whole field.
+    its whole field. ``bending``: the windows of the bending factors (or None).
     """
 
-    def __init__(self, x, box, cells, scales, e_star, whole):
+    def __init__(self, x, box, cells, scales, e_star, whole, bend=None):
         n_b, ny, nx = x.shape
         if whole:
             self.blocks = np.arange(n_b)
@@ -307,6 +328,8 @@ class _Region:
         self.op = StackedFftInfluence((gy, gx), [cells[k] for k in self.blocks],
                                       e_star_mpa=e_star, scales=scales[self.blocks],
                                       pre_shape=(gy, gx))
+        self.bending = None if bend is None else np.ascontiguousarray(
+            np.stack([bend[k, j:j + gy, i:i + gx] for k, (j, i) in zip(self.blocks, org)]))
 
     def gather(self, a: np.ndarray) -> np.ndarray:
         gy, gx = self.shape
@@ -359,10 +382,12 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
     of ``"converged"``, ``"grow"`` (a contact box left its window), ``"stalled"``
     (``rt <= 0``: round-off, converged if ``t == 0``), ``"lost"`` (lost descent),
     ``"max_iter"``; ``box``: the contact boxes in window coordinates."""
-    op = reg.op
+    op, bend = reg.op, reg.bending
     box = _boxes(x)
     live = box[:, 1] > box[:, 0]
     u, r, z = op.apply(x, live=live), np.empty(x.shape), np.empty(x.shape)
+    if bend is not None:
+        add_low_rank(bend, x, u)
     g, gm, x_old, t = (np.empty(x.shape), np.empty(x.shape), np.empty(x.shape),
                        np.zeros(x.shape))
     count = np.zeros(x.shape[0], np.int64)
@@ -380,6 +405,8 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
         gz, gt = _mesh_direction(z, x, g, t, gz_old, conj)
         gz_old = gz if gz > 0.0 else 1.0
         op.apply(t, out=r, live=on)
+        if bend is not None:
+            add_low_rank(bend, t, r)
         rt = _dot(r, t)  # not np.vdot: BLAS threads spin on a busy machine
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return ("stalled" if gz == 0.0 or rt == 0.0 else "lost"), it, box
@@ -389,13 +416,16 @@ def _pk_cg_window(reg: _Region, h, x, torque, tol, it, max_iter, precondition):
             return "converged", it, box     # their loads are not balanced yet
         if not reg.holds(box):
             return "grow", it, box
-        if not tracked or it % _REFRESH == 0:
+        if bend is not None or not tracked or it % _REFRESH == 0:
+            # (with bending the cell-by-cell update lacks the low-rank part: recompute)
             op.apply(x, out=u, live=box[:, 1] > box[:, 0])
+            if bend is not None:
+                add_low_rank(bend, x, u)
     return "max_iter", it, box
 
 
 def _pk_cg_blocks(blocks, e_star: float, h: np.ndarray, x: np.ndarray, torque: float,
-                  tol: float, max_iter: int, precondition: bool
+                  tol: float, max_iter: int, precondition: bool, bend=None
                   ) -> tuple[np.ndarray, np.ndarray, int, bool]:
     """Polonsky-Keer CG over block-diagonal operators with ``sum(x) = torque``.
 
@@ -428,7 +458,7 @@ def _pk_cg_blocks(blocks, e_star: float, h: np.ndarray, x: np.ndarray, torque: f
     full = StackedFftInfluence((ny, nx), cells, e_star_mpa=e_star, scales=scales)
     box, whole, it, checks = _boxes(x), False, 0, 0
     while True:
-        reg = _Region(x, box, cells, scales, e_star, whole)
+        reg = _Region(x, box, cells, scales, e_star, whole, bend)
         xr = reg.gather(x)
         reason, it, rbox = _pk_cg_window(reg, reg.gather(h), xr, torque, tol, it,
                                          max_iter, precondition)
@@ -438,6 +468,8 @@ def _pk_cg_blocks(blocks, e_star: float, h: np.ndarray, x: np.ndarray, torque: f
             box[reg.blocks] = rbox + np.repeat(reg.org, 2, axis=1)
             continue
         u, ok = full.apply(x), reason in ("converged", "stalled")
+        if bend is not None:
+            add_low_rank(bend, x, u)
         if not ok or whole:
             return x, u, it, ok
         s = u + h
@@ -528,7 +560,7 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     total = sum(float(xi.sum()) for xi in x0)
     h, x = _stack(hs, [xi * (torque / total) for xi in x0])
     x, u, iters, ok = _pk_cg_blocks(blocks, e_star, h, x, torque, tol, int(max_iter),
-                                    precondition)
+                                    precondition, bending_stack(blocks, h.shape[1:]))
     x = [x[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     u = [u[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     contact = [xi > 0.0 for xi in x]

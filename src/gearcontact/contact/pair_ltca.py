@@ -69,6 +69,10 @@ class PairLoadCase:
     edge_contact : bool
         A loaded cell borders an off-flank cell: the contact is truncated by the flank
         edge (tooth tip, root or end).
+    gap_mm : ndarray (ny, nx) or None
+        The gap the LCP solved, mm (off-flank cells set to ``OFF_FLANK_GAP_MM``).
+    on_flank : ndarray of bool (ny, nx) or None
+        Cells whose normal line meets both flanks.
     """
 
     torque_nm: float
@@ -80,6 +84,8 @@ class PairLoadCase:
     preview_mesh_rotation_arcsec: float
     off_flank_cells: int = 0
     edge_contact: bool = False
+    gap_mm: np.ndarray | None = None
+    on_flank: np.ndarray | None = None
 
     def summary(self) -> dict:
         """Flat JSON-ready dict (the keys of ``ltca.json``)."""
@@ -175,7 +181,7 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     near_off[:, 1:] |= off[:, :-1]
     near_off[:, :-1] |= off[:, 1:]
     # approach of the (rigid) teeth along the normal -> gear rotation about its axis
-    return PairLoadCase(off_flank_cells=int(off.sum()),
+    return PairLoadCase(off_flank_cells=int(off.sum()), gap_mm=gap, on_flank=~off,
                         edge_contact=bool((loaded & near_off).any()),
 torque_nm=t, lever_mm=lever, load_n=load, preview=pre, patch=patch,
                         mesh_rotation_arcsec=patch.delta_mm / lever * ARCSEC_PER_RAD,

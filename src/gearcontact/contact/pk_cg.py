@@ -179,9 +179,11 @@ def pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: f
             ug = op_g(wg)
         g, gmb = np.empty(ug.shape), np.empty((j1 - j0, i1 - i0))
         _pk_gap(ug, h[gs], wg, j0 - g0, j1 - g0, i0 - k0, i1 - k0, g, gmb)
-        z = boussinesq_inverse(gmb, dx_mm=dx, dy_mm=dy, e_star_mpa=op.e_star_mpa,
-                               padded_shape=_pre_shape(gmb.shape)) if precondition \
-            else gmb.copy()
+        # contiguous always: one compiled layout of _pk_direction (the FFT crop is a
+        # strided view for some window shapes; a fresh install would compile it mid-solve)
+        z = np.ascontiguousarray(boussinesq_inverse(
+            gmb, dx_mm=dx, dy_mm=dy, e_star_mpa=op.e_star_mpa,
+            padded_shape=_pre_shape(gmb.shape))) if precondition else gmb.copy()
         gz, gt = _pk_direction(z, w[j0:j1, i0:i1], gmb, t[j0:j1, i0:i1], gz_old, conj)
         t.fill(0.0)
         t[j0:j1, i0:i1] = z

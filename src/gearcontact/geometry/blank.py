@@ -47,6 +47,8 @@ from ..validation import InputRangeError, check_positive, check_range
 
 __all__ = ["BlankDesign", "design_blank", "limit_pressure_angle_rad", "limit_radius_mm"]
 
+#: Largest gear mean pitch radius / mean cone distance accepted, mm.
+MAX_GEAR_SIZE_MM = 5000.0
 _SCAN_POINTS = 160  # samples used to bracket the roots (root isolation, then brentq)
 
 
@@ -209,10 +211,14 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
         raise InputRangeError("gear_mean_pitch_radius_mm / gear_mean_cone_distance_mm",
                               (gear_mean_pitch_radius_mm, gear_mean_cone_distance_mm),
                               "exactly one of the two given")
-    r2 = None if gear_mean_pitch_radius_mm is None else check_positive(
-        "gear_mean_pitch_radius_mm", gear_mean_pitch_radius_mm)
-    R2 = None if gear_mean_cone_distance_mm is None else check_positive(
-        "gear_mean_cone_distance_mm", gear_mean_cone_distance_mm)
+    # upper bound: a 5 m gear is beyond any bevel-gear cutting machine, and far beyond
+    # it the cone equations lose all precision (NaN inside the root search)
+    r2 = None if gear_mean_pitch_radius_mm is None else check_range(
+        "gear_mean_pitch_radius_mm", gear_mean_pitch_radius_mm, 0.0, MAX_GEAR_SIZE_MM,
+        lo_open=True)
+    R2 = None if gear_mean_cone_distance_mm is None else check_range(
+        "gear_mean_cone_distance_mm", gear_mean_cone_distance_mm, 0.0, MAX_GEAR_SIZE_MM,
+        lo_open=True)
     size = r2 if r2 is not None else R2
     if E >= 0.5 * size:
         raise InputRangeError("offset_mm", offset_mm,

@@ -367,26 +367,40 @@ def load_pair(source: str | Path) -> GearPair:
 
     Raises
     ------
-    FileNotFoundError
-        If ``source`` is neither a preset nor an existing file.
     InputRangeError
-        For a missing, mistyped or out-of-range field (the error names it) or an
-        impossible design.
+        If ``source`` is neither a preset nor a readable UTF-8 TOML file, for a TOML
+        syntax error, and for a missing, mistyped or out-of-range field or an impossible
+        design; the message names the file (when one is involved) and the field.
     """
     text = str(source)
     if text in PRESETS:
         raw = resources.files("gearcontact").joinpath(f"data/pairs/{text}.toml").read_text()
-        label = text
+        label, where = text, ""
     else:
         path = Path(text)
         if not path.is_file():
-            raise FileNotFoundError(f"pair {text!r} is neither a preset {PRESETS} nor a file")
-        raw, label = path.read_text(), path.stem
+            raise InputRangeError("pair", text, f"a preset {PRESETS} or an existing TOML "
+                                                "file (it is neither a preset nor a file)")
+        try:
+            raw = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError as exc:
+            raise InputRangeError(f"{path} (byte {exc.start})", exc.object[exc.start:exc.start + 4],
+                                  "UTF-8 text (a TOML file)") from None
+        except OSError as exc:
+            raise InputRangeError("pair", text, f"a readable TOML file ({exc.strerror})") \
+                from None
+        label, where = path.stem, f"{path}: "
     try:
         doc = tomllib.loads(raw)
     except tomllib.TOMLDecodeError as exc:
-        raise InputRangeError(f"{label} (TOML syntax)", str(exc), "valid TOML") from None
-    return parse_pair(doc, name=label)
+        raise InputRangeError(f"{where or label + ' '}(TOML syntax)", str(exc),
+                              "valid TOML") from None
+    try:
+        return parse_pair(doc, name=label)
+    except InputRangeError as exc:
+        if not where:
+            raise
+        raise InputRangeError(f"{where}{exc.field}", exc.value, exc.allowed) from None
 
 
 def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> str:

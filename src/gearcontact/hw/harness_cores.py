@@ -23,7 +23,7 @@ import importlib
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cache
 from pathlib import Path
 
@@ -228,18 +228,24 @@ def _hertz_ports(st: Stimulus):
     return {k: st.fields[k] for k in ("A", "B", "W", "e_prime")}, None, None
 
 
-def _hertz_golden(st: Stimulus) -> dict:
-    from ..preview.hertz.golden_vec import hertz_golden_array
-    f = st.fields
-    return _hertz_cols(hertz_golden_array(f["A"], f["B"], f["W"], e_prime_code=f["e_prime"]))
+def _hertz_golden(hertz_form: str):
+    def run(st: Stimulus) -> dict:
+        from ..preview.hertz.golden_vec import hertz_golden_array
+        f = st.fields
+        return _hertz_cols(hertz_golden_array(f["A"], f["B"], f["W"],
+                                              e_prime_code=f["e_prime"],
+                                              hertz_form=hertz_form))
+    return run
 
 
-def _hertz_amaranth(st: Stimulus):
-    from ..preview.hertz.rtl import simulate_hertz_core
-    f = st.fields
-    rows = np.stack([f["A"], f["B"], f["W"], f["e_prime"]], axis=1)
-    outs, cycles = simulate_hertz_core(rows)
-    return _hertz_cols(outs), np.asarray(cycles, np.int64)
+def _hertz_amaranth(hertz_form: str):
+    def run(st: Stimulus):
+        from ..preview.hertz.rtl import simulate_hertz_core
+        f = st.fields
+        rows = np.stack([f["A"], f["B"], f["W"], f["e_prime"]], axis=1)
+        outs, cycles = simulate_hertz_core(rows, hertz_form=hertz_form)
+        return _hertz_cols(outs), np.asarray(cycles, np.int64)
+    return run
 
 
 def _hertz_cycles(st: Stimulus) -> int:
@@ -270,22 +276,25 @@ def _chain_ports(st: Stimulus):
     return {"W": f["W"], "e_prime": f["e_prime"]}, {"wr_data": f["gaps"]}, None
 
 
-def _chain_golden(st: Stimulus) -> dict:
-    from ..preview.chain import chain_golden_batch
-    f = st.fields
-    res = chain_golden_batch(f["gaps"], f["W"], e_prime_code=f["e_prime"])
-    return _chain_cols(res.hertz, res.fit.c_codes, res.fit.a_minus_codes,
-                       res.fit.b_minus_codes, res.flags)
+def _chain_golden(hertz_form: str = "hamrock-brewe"):
+    def run(st: Stimulus) -> dict:
+        from ..preview.chain import chain_golden_batch
+        f = st.fields
+        res = chain_golden_batch(f["gaps"], f["W"], e_prime_code=f["e_prime"],
+                                 hertz_form=hertz_form)
+        return _chain_cols(res.hertz, res.fit.c_codes, res.fit.a_minus_codes,
+                           res.fit.b_minus_codes, res.flags)
+    return run
 
 
-def _chain_amaranth(module: str, runner: str):
+def _chain_amaranth(module: str, runner: str, **kwargs):
     def run(st: Stimulus):
         fn = getattr(_module(module), runner)
         f = st.fields
         outs, cycles = [None] * len(st), np.zeros(len(st), np.int64)
         for e in np.unique(f["e_prime"]):          # the runners take one E' per call
             idx = np.flatnonzero(f["e_prime"] == e)
-            o, c = fn(f["gaps"][idx], f["W"][idx], e_prime_code=int(e))
+            o, c = fn(f["gaps"][idx], f["W"][idx], e_prime_code=int(e), **kwargs)
             for i, oi, ci in zip(idx, o, c):
                 outs[i], cycles[i] = oi, ci
         return _chain_cols([o.hertz for o in outs], [o.fit.c_codes for o in outs],
@@ -321,13 +330,22 @@ BENCHES: dict[str, CoreBench] = {b.name: b for b in (
                                                         None),
               _fit_golden, _fit_amaranth, _fit_cycles,
               summary="stage C curvature fit (49-tap baked pseudo-inverse MAC + isqrt)"),
-    CoreBench("hertz", "hertz.rtl", _HERTZ_SPEC, _hertz_ports, _hertz_golden,
-              _hertz_amaranth, _hertz_cycles,
+    CoreBench("hertz", "hertz.rtl", _HERTZ_SPEC, _hertz_ports, _hertz_golden("hamrock-brewe"),
+              _hertz_amaranth("hamrock-brewe"), _hertz_cycles,
               summary="stage D serialized elliptic Hertz (one shared 80-bit divider)"),
-    CoreBench("chain", "chain_rtl", _chain_spec("chain_core"), _chain_ports, _chain_golden,
+    CoreBench("hertz_exact", "hertz.rtl", replace(_HERTZ_SPEC, top="hertz_exact_core"),
+              _hertz_ports, _hertz_golden("exact"), _hertz_amaranth("exact"), _hertz_cycles,
+              verilog_kwargs={"hertz_form": "exact"},
+              summary="stage D with hertz_form='exact' (exact k and E tables, 756 cycles)"),
+    CoreBench("chain", "chain_rtl", _chain_spec("chain_core"), _chain_ports, _chain_golden(),
               _chain_amaranth("chain_rtl", "simulate_chain_core"), _chain_cycles,
               summary="C -> D chain: fit core feeding the serialized stage D"),
-    CoreBench("comb", "comb_rtl", _chain_spec("comb_core"), _chain_ports, _chain_golden,
+    CoreBench("chain_exact", "chain_rtl", _chain_spec("chain_exact_core"), _chain_ports,
+              _chain_golden("exact"),
+              _chain_amaranth("chain_rtl", "simulate_chain_core", hertz_form="exact"),
+              _chain_cycles, verilog_kwargs={"hertz_form": "exact"},
+              summary="C -> D chain with stage D in hertz_form='exact'"),
+    CoreBench("comb", "comb_rtl", _chain_spec("comb_core"), _chain_ports, _chain_golden(),
               _chain_amaranth("comb_rtl", "simulate_comb_core"), _comb_cycles,
               summary="combinational C + D variant (array dividers, pipelined)"),
 )}

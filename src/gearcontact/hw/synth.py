@@ -140,6 +140,11 @@ def _hertz(lanes):
     return convert_verilog(name="core")
 
 
+def _hertz_exact(lanes):
+    from ..preview.hertz.rtl import convert_verilog
+    return convert_verilog(name="core", hertz_form="exact")
+
+
 def _chain(lanes):
     from ..preview.chain_rtl import convert_verilog
     return convert_verilog(name="core")
@@ -159,7 +164,7 @@ def _soc(kind):
 
 #: Core name -> Verilog generator ``f(lanes) -> str`` (top module ``core``).
 CORES = {"gap": _gap, "gap_plain": _gap_plain, "fit": _fit, "hertz": _hertz,
-         "chain": _chain, "comb": _comb,
+         "hertz_exact": _hertz_exact, "chain": _chain, "comb": _comb,
          "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
          "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
 

@@ -24,6 +24,7 @@ import numpy as np
 
 from .fit import golden as fit_golden_mod
 from .fit.reference import CurvatureFit, fit_curvatures
+from .hertz.formats import DEFAULT_HERTZ_FORM
 from .hertz.formats import flag_names as hertz_flag_names
 from .hertz.golden import HertzCodes, hertz_golden
 from .hertz.golden_vec import HertzCodesArray, hertz_golden_array
@@ -95,8 +96,10 @@ class ChainCodesBatch:
     flags: np.ndarray
 
 
-def chain_reference(gaps_mm, load_n: float, *, e_prime_mpa: float) -> ChainReference:
-    """fp64 C -> D on one stencil (gaps in mm, order of :mod:`.fit.stencil`).
+def chain_reference(gaps_mm, load_n: float, *, e_prime_mpa: float,
+                    hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainReference:
+    """fp64 C -> D on one stencil (gaps in mm, order of :mod:`.fit.stencil`); stage D in
+    the Hertz form ``hertz_form`` (:data:`.hertz.formats.HERTZ_FORMS`).
 
     Raises
     ------
@@ -111,21 +114,26 @@ def chain_reference(gaps_mm, load_n: float, *, e_prime_mpa: float) -> ChainRefer
         raise InputRangeError("fitted B_minus (1/mm)", fit.B_minus_per_mm,
                               "> 0 (the stencil is not an elliptic point contact)")
     return ChainReference(fit, hertz_preview(fit.A_minus_per_mm, fit.B_minus_per_mm,
-                                             load_n, e_prime_mpa=e_prime_mpa))
+                                             load_n, e_prime_mpa=e_prime_mpa,
+                                             hertz_form=hertz_form))
 
 
-def chain_golden(gap_codes, W_code: int, *, e_prime_code: int) -> ChainCodes:
-    """Golden C -> D on one stencil of GAP Q(32,16) codes and a LOAD Q(32,8) code."""
+def chain_golden(gap_codes, W_code: int, *, e_prime_code: int,
+                 hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainCodes:
+    """Golden C -> D on one stencil of GAP Q(32,16) codes and a LOAD Q(32,8) code
+    (stage D in the Hertz form ``hertz_form``)."""
     fit = fit_golden_mod.golden_fit(gap_codes, bitwise=False)
-    hz = hertz_golden(fit.a_minus_code, fit.b_minus_code, W_code, e_prime_code=e_prime_code)
+    hz = hertz_golden(fit.a_minus_code, fit.b_minus_code, W_code, e_prime_code=e_prime_code,
+                      hertz_form=hertz_form)
     return ChainCodes(fit=fit, hertz=hz, flags=hz.flags | (fit.flags << FIT_FLAG_SHIFT))
 
 
-def chain_golden_batch(gap_codes, W_code, *, e_prime_code) -> ChainCodesBatch:
+def chain_golden_batch(gap_codes, W_code, *, e_prime_code,
+                       hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainCodesBatch:
     """Vectorized, bit-identical :func:`chain_golden` over n stencils, shape (n, 49)."""
     fit = fit_golden_mod.golden_fit_batch(gap_codes)
     hz = hertz_golden_array(fit.a_minus_codes, fit.b_minus_codes, W_code,
-                            e_prime_code=e_prime_code)
+                            e_prime_code=e_prime_code, hertz_form=hertz_form)
     return ChainCodesBatch(fit=fit, hertz=hz,
                            flags=hz.flags | (fit.flags.astype(np.int64) << FIT_FLAG_SHIFT))
 

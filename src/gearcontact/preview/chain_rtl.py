@@ -134,7 +134,9 @@ class ChainLikeCore(wiring.Component):
 class ChainCore(ChainLikeCore):
     """C->D chain core: stage-C fit feeding the serialized stage D (806 cycles).
 
-    Parameters as :class:`ChainLikeCore` (``rom``).
+    Parameters as :class:`ChainLikeCore` (``rom``), plus ``hertz_form``
+    (keyword-only, :data:`.hertz.formats.HERTZ_FORMS`): the ROM contents of the
+    embedded :class:`~.hertz.rtl.HertzCore` (same ports and cycle count).
 
     Notes
     -----
@@ -169,10 +171,16 @@ class ChainCore(ChainLikeCore):
     ==========  =====  ==============  ===============================================
     """
 
+    def __init__(self, *, rom: BakedPinv | None = None,
+                 hertz_form: str = HF.DEFAULT_HERTZ_FORM):
+        self._hertz_form = HF.check_hertz_form(hertz_form)
+        super().__init__(rom=rom)
+
     def elaborate(self, platform):
         m = Module()
         m.submodules.fit = fit = FitCore(rom=self._rom)
-        m.submodules.hertz = hz = HertzCore(tag_bits=FIT_FLAG_BITS)
+        m.submodules.hertz = hz = HertzCore(tag_bits=FIT_FLAG_BITS,
+                                            hertz_form=self._hertz_form)
         busy = fit.busy | fit.done_pulse | hz.busy
         accept = connect_front_end(m, self, fit, busy)
         w = Signal(signed(LOAD.bits))
@@ -191,9 +199,11 @@ class ChainCore(ChainLikeCore):
         return m
 
 
-def convert_verilog(*, rom: BakedPinv | None = None, name: str = "chain_core") -> str:
+def convert_verilog(*, rom: BakedPinv | None = None, name: str = "chain_core",
+                    hertz_form: str = HF.DEFAULT_HERTZ_FORM) -> str:
     """Verilog of :class:`ChainCore` (``strip_internal_attrs=True``)."""
-    return verilog.convert(ChainCore(rom=rom), name=name, strip_internal_attrs=True)
+    return verilog.convert(ChainCore(rom=rom, hertz_form=hertz_form), name=name,
+                           strip_internal_attrs=True)
 
 
 # ---------------------------------------------------------------------------------
@@ -244,7 +254,8 @@ def run_chain_like(dut, stencils, W_codes, e_prime_code, *, max_cycles: int, wha
 
 
 def simulate_chain_core(stencils, W_codes, *, e_prime_code: int,
-                        rom: BakedPinv | None = None, max_cycles: int = 2 * CHAIN_CYCLES
+                        rom: BakedPinv | None = None, max_cycles: int = 2 * CHAIN_CYCLES,
+                        hertz_form: str = HF.DEFAULT_HERTZ_FORM
                         ) -> tuple[list[ChainCodes], list[int]]:
     """Simulate :class:`ChainCore` cycle-accurately on GAP code stencils.
 
@@ -263,6 +274,8 @@ def simulate_chain_core(stencils, W_codes, *, e_prime_code: int,
         Fit ROM (default: the hardware ROM).
     max_cycles : int, keyword-only
         Give up (RuntimeError) if ``done`` has not risen after this many edges.
+    hertz_form : {"hamrock-brewe", "exact"}, keyword-only
+        Stage-D ROM contents (:class:`ChainCore`).
 
     Returns
     -------
@@ -276,5 +289,5 @@ def simulate_chain_core(stencils, W_codes, *, e_prime_code: int,
     ~9k edges/s of CPU time in Amaranth's simulator (~10 stencils/s including the 50
     write edges), plus ~1.5 s to elaborate.
     """
-    return run_chain_like(ChainCore(rom=rom), stencils, W_codes, e_prime_code,
-                          max_cycles=max_cycles, what="chain core")
+    return run_chain_like(ChainCore(rom=rom, hertz_form=hertz_form), stencils, W_codes,
+                          e_prime_code, max_cycles=max_cycles, what="chain core")

@@ -13,6 +13,11 @@ backend        what evaluates the preview
                :mod:`.rtl_engine`); loaded only when requested
 =============  =================================================================
 
+Every backend except ``rtl-soc`` (whose SoC holds the published ROMs) evaluates
+stage D in either Hertz form, ``get_engine(name, hertz_form="hamrock-brewe" |
+"exact")`` (:data:`.hertz.formats.HERTZ_FORMS`; the fixed-point ``"exact"`` form holds the
+exact k and elliptic-integral terms in the same tables, :mod:`.hertz.luts`).
+
 Physical inputs are validated the same way for every backend (finite, positive; errors
 name the field); range limits specific to a representation are then reported by that
 representation: the reference raises :class:`~gearcontact.validation.InputRangeError`
@@ -29,18 +34,23 @@ from typing import Callable, Protocol, runtime_checkable
 import numpy as np
 
 from ..materials import STEEL, Material, effective_modulus_mpa
-from ..validation import InputRangeError, check_array_finite, check_positive
+from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import chain
 from .fit.golden import encode_gaps
 from .fit.stencil import STENCIL_SIZE
+from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
-from .hertz.reference import hertz_preview, hertz_preview_array
+from .hertz.reference import ENVELOPE, check_envelope, hertz_preview, hertz_preview_array
 from .hertz.schedule import HERTZ_CYCLES
 from .qformat import CURVATURE
 
+#: Preset materials :func:`get_engine` accepts by name.
+MATERIALS = {"steel": STEEL}
+
 __all__ = ["PreviewResult", "PreviewBatch", "PreviewEngine", "ReferenceEngine",
-           "GoldenEngine", "get_engine", "register_backend", "BACKENDS"]
+           "GoldenEngine", "get_engine", "register_backend", "BACKENDS",
+           "BACKEND_HERTZ_FORMS"]
 
 
 @dataclass(frozen=True)
@@ -72,6 +82,8 @@ class PreviewResult:
         Names of raised datapath flags; empty when valid. Outputs are 0 when flagged.
     cycles : int or None
         Hardware cycles of the evaluated path (golden/rtl), data independent.
+    hertz_form : str
+        Stage-D Hertz form that produced the result (:data:`.hertz.formats.HERTZ_FORMS`).
     """
 
     backend: str
@@ -86,6 +98,7 @@ class PreviewResult:
     codes: dict | None = None
     flags: tuple = ()
     cycles: int | None = None
+    hertz_form: str = DEFAULT_HERTZ_FORM
 
     @property
     def valid(self) -> bool:
@@ -98,7 +111,8 @@ class PreviewResult:
                 "A_minus_per_mm": self.A_minus_per_mm, "B_minus_per_mm": self.B_minus_per_mm,
                 "a_mm": self.a_mm, "b_mm": self.b_mm, "k": self.k,
                 "p_max_mpa": self.p_max_mpa, "angle_deg": self.angle_deg,
-                "codes": self.codes, "flags": list(self.flags), "cycles": self.cycles}
+                "codes": self.codes, "flags": list(self.flags), "cycles": self.cycles,
+                "hertz_form": self.hertz_form}
 
 
 @dataclass(frozen=True)
@@ -134,49 +148,81 @@ class PreviewEngine(Protocol):
         ...
 
 
-def _check_physical(A_minus, B_minus, load_n) -> tuple[float, float, float]:
-    """Backend-independent validation: every input finite and > 0 (field named)."""
-    return (check_positive("A_minus (1/mm)", A_minus), check_positive("B_minus (1/mm)", B_minus),
-            check_positive("load_n (N)", load_n))
+def _check_physical(A_minus, B_minus, load_n, e_prime_mpa: float
+                    ) -> tuple[float, float, float]:
+    """Backend-independent validation: every input a finite real scalar > 0 (not a bool),
+    then inside the operating envelope (:data:`.hertz.reference.ENVELOPE`): every
+    backend accepts exactly the same domain (field and range named)."""
+    a, b, w = (check_positive("A_minus (1/mm)", A_minus),
+               check_positive("B_minus (1/mm)", B_minus), check_positive("load_n (N)", load_n))
+    check_envelope(a, b, w, e_prime_mpa=e_prime_mpa)
+    return a, b, w
+
+
+def _e_prime(material: Material, material2: Material | None) -> float:
+    """E' = 2E* of the pair (MPa), inside the envelope every backend accepts."""
+    lo, hi = ENVELOPE["e_prime_mpa"]
+    return check_range("E' = 2 E* of the materials (MPa)",
+                       effective_modulus_mpa(material, material2), lo, hi)
+
+
+def _check_load(load_n) -> float:
+    """The load of a stencil evaluation: finite, > 0 and inside the envelope (N)."""
+    lo, hi = ENVELOPE["load_n"]
+    return check_range("load_n (N)", check_positive("load_n (N)", load_n), lo, hi)
 
 
 def _check_stencil(gaps_mm) -> np.ndarray:
-    g = check_array_finite("gaps_mm", gaps_mm)
+    try:
+        g = check_array_finite("gaps_mm", gaps_mm)
+    except (TypeError, ValueError) as exc:   # strings, ragged lists, objects
+        if isinstance(exc, InputRangeError):
+            raise
+        raise InputRangeError("gaps_mm", gaps_mm, f"{STENCIL_SIZE} finite gaps in mm "
+                                                  "(array_like of numbers)") from None
     if g.shape != (STENCIL_SIZE,):
         raise InputRangeError("stencil length", g.shape, f"exactly {STENCIL_SIZE} gap samples")
     return g
 
 
 class ReferenceEngine:
-    """fp64 backend (Hamrock–Brewe closed forms; docs/spec.md sec. 6).
+    """fp64 backend (Hamrock–Brewe closed forms, docs/spec.md sec. 6, or exact Hertz).
 
     Parameters
     ----------
     material, material2 : Material
         The two contacting bodies (default steel/steel); E' = 2E*.
+    hertz_form : {"hamrock-brewe", "exact"}
+        Stage-D Hertz form (default the published simplified forms).
     """
 
     name = "reference"
 
-    def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
+    def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
+                 hertz_form: str = DEFAULT_HERTZ_FORM):
         self.material = material
-        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_mpa = _e_prime(material, material2)
+        self.hertz_form = check_hertz_form(hertz_form)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n)
-        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa)
+        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
+        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa, hertz_form=self.hertz_form)
+        return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k,
+                             hp.p_max_mpa, hertz_form=self.hertz_form)
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
-        w = check_positive("load_n (N)", load_n)
-        res = chain.chain_reference(g, w, e_prime_mpa=self.e_prime_mpa)
+        w = _check_load(load_n)
+        res = chain.chain_reference(g, w, e_prime_mpa=self.e_prime_mpa,
+                                    hertz_form=self.hertz_form)
         hp = res.hertz
         return PreviewResult(self.name, w, res.fit.A_minus_per_mm, res.fit.B_minus_per_mm,
-                             hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa, angle_deg=res.fit.angle_deg)
+                             hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa, angle_deg=res.fit.angle_deg,
+                             hertz_form=self.hertz_form)
 
     def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
-        out = hertz_preview_array(A_minus, B_minus, load_n, e_prime_mpa=self.e_prime_mpa)
+        out = hertz_preview_array(A_minus, B_minus, load_n, e_prime_mpa=self.e_prime_mpa,
+                                  hertz_form=self.hertz_form)
         a = np.asarray(out["a_mm"])
         return PreviewBatch(self.name, a, np.asarray(out["b_mm"]), np.asarray(out["k"]),
                             np.asarray(out["p_max_mpa"]), np.zeros(a.shape, dtype=np.int64))
@@ -187,36 +233,41 @@ class GoldenEngine:
 
     Real inputs are quantized round-half-up to the contract formats (docs/spec.md sec. 6);
     E' is a constant register (integer MPa). Results carry the raw codes, the flags and
-    the hardware cycle count of the evaluated path.
+    the hardware cycle count of the evaluated path. ``hertz_form`` as for
+    :class:`ReferenceEngine` (the golden model's tables, :mod:`.hertz.luts`).
     """
 
     name = "golden"
 
-    def __init__(self, *, material: Material = STEEL, material2: Material | None = None):
+    def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
+                 hertz_form: str = DEFAULT_HERTZ_FORM):
         self.material = material
-        self.e_prime_mpa = effective_modulus_mpa(material, material2)
+        self.e_prime_mpa = _e_prime(material, material2)
         self.e_prime_code = encode_e_prime(self.e_prime_mpa)
+        self.hertz_form = check_hertz_form(hertz_form)
 
     def _result(self, hz, w, codes: dict, flags: tuple, cycles: int) -> PreviewResult:
         v = decode_hertz_codes(hz)
         codes.update(A_min=hz.A_min_code, B_max=hz.B_max_code, a=hz.a_code, b=hz.b_code,
                      k=hz.k_code, p_max=hz.p_max_code, flags=codes.get("flags", hz.flags))
         return PreviewResult(self.name, w, v.B_max_per_mm, v.A_min_per_mm, v.a_mm, v.b_mm,
-                             v.k, v.p_max_mpa, codes=codes, flags=flags, cycles=cycles)
+                             v.k, v.p_max_mpa, codes=codes, flags=flags, cycles=cycles,
+                             hertz_form=self.hertz_form)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        hz = hertz_golden(a_c, b_c, w_c, e_prime_code=e_c)
+        hz = hertz_golden(a_c, b_c, w_c, e_prime_code=e_c, hertz_form=self.hertz_form)
         codes = {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
         return self._result(hz, w, codes, hz.flag_names, HERTZ_CYCLES)
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
-        w = check_positive("load_n (N)", load_n)
+        w = _check_load(load_n)
         gap_codes = encode_gaps(g)
         w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
-        res = chain.chain_golden([int(x) for x in gap_codes], w_c, e_prime_code=self.e_prime_code)
+        res = chain.chain_golden([int(x) for x in gap_codes], w_c, e_prime_code=self.e_prime_code,
+                                 hertz_form=self.hertz_form)
         codes = {"W": w_c, "e_prime": self.e_prime_code,
                  "A_fit": res.fit.a_minus_code, "B_fit": res.fit.b_minus_code,
                  "flags": res.flags}
@@ -227,21 +278,27 @@ class GoldenEngine:
             np.atleast_1d(np.asarray(A_minus, dtype=float)),
             np.atleast_1d(np.asarray(B_minus, dtype=float)),
             np.atleast_1d(np.asarray(load_n, dtype=float)), e_prime_mpa=self.e_prime_mpa)
-        hz = hertz_golden_array(a_c, b_c, w_c, e_prime_code=e_c)
+        hz = hertz_golden_array(a_c, b_c, w_c, e_prime_code=e_c, hertz_form=self.hertz_form)
         v = decode_hertz_codes(hz)
         return PreviewBatch(self.name, v.a_mm, v.b_mm, v.k, v.p_max_mpa, hz.flags)
 
 
-#: Registered backends: name -> factory(material=..., material2=...).
-BACKENDS: dict[str, Callable[..., PreviewEngine]] = {
-    "reference": ReferenceEngine,
-    "golden": GoldenEngine,
-}
+#: Registered backends: name -> factory(material=..., material2=...[, hertz_form=...]).
+BACKENDS: dict[str, Callable[..., PreviewEngine]] = {}
+#: Hertz forms each backend implements (a factory is passed ``hertz_form`` only when
+#: it implements more than the default).
+BACKEND_HERTZ_FORMS: dict[str, tuple[str, ...]] = {}
 
 
-def register_backend(name: str, factory: Callable[..., PreviewEngine]) -> None:
-    """Add a backend (e.g. ``rtl``) under ``name``."""
+def register_backend(name: str, factory: Callable[..., PreviewEngine], *,
+                     hertz_forms: tuple[str, ...] = (DEFAULT_HERTZ_FORM,)) -> None:
+    """Add a backend (e.g. ``rtl``) under ``name``, implementing ``hertz_forms``."""
     BACKENDS[name] = factory
+    BACKEND_HERTZ_FORMS[name] = tuple(check_hertz_form(f) for f in hertz_forms)
+
+
+register_backend("reference", ReferenceEngine, hertz_forms=HERTZ_FORMS)
+register_backend("golden", GoldenEngine, hertz_forms=HERTZ_FORMS)
 
 
 def _rtl_backend(**kwargs) -> PreviewEngine:
@@ -250,7 +307,7 @@ def _rtl_backend(**kwargs) -> PreviewEngine:
     return RtlEngine(**kwargs)
 
 
-register_backend("rtl", _rtl_backend)
+register_backend("rtl", _rtl_backend, hertz_forms=HERTZ_FORMS)
 
 
 def _rtl_soc_backend(**kwargs) -> PreviewEngine:
@@ -265,10 +322,35 @@ register_backend("rtl-soc", _rtl_soc_backend)
 
 
 def get_engine(name: str = "reference", *, material: Material = STEEL,
-               material2: Material | None = None) -> PreviewEngine:
-    """Create the preview engine ``name`` (one of :data:`BACKENDS`)."""
+               material2: Material | None = None,
+               hertz_form: str = DEFAULT_HERTZ_FORM) -> PreviewEngine:
+    """Create the preview engine ``name`` (one of :data:`BACKENDS`).
+
+    Raises
+    ------
+    InputRangeError
+        Unknown backend, unknown ``hertz_form``, or a form the backend does not
+        implement (:data:`BACKEND_HERTZ_FORMS`; ``rtl-soc`` has the published form only).
+    """
     try:
         factory = BACKENDS[name]
-    except KeyError:
+    except (KeyError, TypeError):
         raise InputRangeError("backend", name, f"one of {sorted(BACKENDS)}") from None
-    return factory(material=material, material2=material2)
+    forms = BACKEND_HERTZ_FORMS[name]
+    if check_hertz_form(hertz_form) not in forms:
+        raise InputRangeError(f"hertz_form (backend {name})", hertz_form, f"one of {forms}")
+    materials = dict(material=_material(material, "material"),
+                     material2=None if material2 is None else _material(material2, "material2"))
+    if len(forms) > 1:
+        return factory(**materials, hertz_form=hertz_form)
+    return factory(**materials)
+
+
+def _material(value, field: str) -> Material:
+    """A :class:`Material`, or the name of a preset (``"steel"``)."""
+    if isinstance(value, Material):
+        return value
+    if isinstance(value, str) and value.lower() in MATERIALS:
+        return MATERIALS[value.lower()]
+    raise InputRangeError(field, value, f"a gearcontact.Material or one of the preset "
+                                        f"names {sorted(MATERIALS)}")

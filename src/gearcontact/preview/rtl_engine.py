@@ -20,16 +20,18 @@ import os
 import numpy as np
 
 from ..materials import STEEL, Material
-from ..validation import InputRangeError, check_positive
+from ..validation import InputRangeError
 from . import chain
 from .engine import (
     GoldenEngine,
     PreviewBatch,
     PreviewResult,
+    _check_load,
     _check_physical,
     _check_stencil,
 )
 from .fit.golden import encode_gaps
+from .hertz.formats import DEFAULT_HERTZ_FORM
 from .hertz.golden import HertzCodes, decode_hertz_codes, encode_hertz_inputs
 from .hertz.golden_vec import HertzCodesArray
 from .stimulus import Stimulus
@@ -59,6 +61,9 @@ class RtlEngine(GoldenEngine):
         The two bodies (default steel/steel); E' is the constant register code.
     simulator : {"verilator", "amaranth"}, optional
         Default :func:`default_simulator`.
+    hertz_form : {"hamrock-brewe", "exact"}
+        Stage-D ROM contents: the ``hertz`` / ``chain`` cores, or ``hertz_exact`` /
+        ``chain_exact`` (:mod:`gearcontact.hw.harness_cores`).
 
     Raises
     ------
@@ -69,9 +74,11 @@ class RtlEngine(GoldenEngine):
     name = "rtl"
 
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
-                 simulator: str | None = None):
+                 simulator: str | None = None, hertz_form: str = DEFAULT_HERTZ_FORM):
         from ..hw.harness_cores import SIMULATORS
-        super().__init__(material=material, material2=material2)
+        super().__init__(material=material, material2=material2, hertz_form=hertz_form)
+        suffix = "_exact" if self.hertz_form == "exact" else ""
+        self._cores = {"hertz": "hertz" + suffix, "chain": "chain" + suffix}
         self.simulator = simulator or default_simulator()
         if self.simulator not in SIMULATORS:
             raise InputRangeError("simulator", self.simulator, f"one of {list(SIMULATORS)}")
@@ -82,6 +89,7 @@ class RtlEngine(GoldenEngine):
     def _simulate(self, core: str, fields: dict):
         """Run vectors (dict of code arrays) on ``core``: (outputs, cycles)."""
         from ..hw.harness_cores import get_bench, simulate
+        core = self._cores[core]
         n = len(next(iter(fields.values())))
         st = Stimulus(core, {k: np.asarray(v, np.int64) for k, v in fields.items()},
                       ("engine",) * n, 0)
@@ -89,7 +97,7 @@ class RtlEngine(GoldenEngine):
         return outs, cycles
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n)
+        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
         from .hertz.rtl import OUTPUT_PORTS  # port -> HertzCodes field
         outs, cycles = self._simulate("hertz", {"A": [a_c], "B": [b_c], "W": [w_c],
@@ -100,7 +108,7 @@ class RtlEngine(GoldenEngine):
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
-        w = check_positive("load_n (N)", load_n)
+        w = _check_load(load_n)
         gap_codes = encode_gaps(g)
         w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
         outs, cycles = self._simulate("chain", {"gaps": gap_codes[None, :], "W": [w_c],

@@ -40,7 +40,7 @@ from .chain import FIT_FLAG_SHIFT, chain_flag_names
 from .hertz.formats import FLAG_NAMES as HERTZ_FLAG_NAMES
 from .stimulus import STIMULUS_CORES, Stimulus
 
-__all__ = ["VECTOR_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "HexField",
+__all__ = ["VECTOR_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "MAX_COUNT", "HexField",
            "vector_layout", "vector_stimulus", "golden_outputs", "encode_hex",
            "decode_hex", "read_hex", "read_jsonl", "readme_text", "export_vectors"]
 
@@ -50,6 +50,8 @@ VECTOR_CORES = ("gap", "fit", "hertz", "chain")
 GAP_VECTOR_SAMPLES = 16
 #: Default number of seeded random vectors per core (corner cases come on top).
 DEFAULT_COUNT = 1000
+#: Most random vectors per core (about 0.5 GB of hex and JSON lines for all cores).
+MAX_COUNT = 1_000_000
 
 # Q format, unit and meaning of every port (README and HexField); ``flags`` per core.
 _S = "the 49 gap samples, stencil order i = 7 j + k (s fastest, gearcontact.preview." \
@@ -384,9 +386,11 @@ def readme_text(summary: dict, *, count: int, seed: int) -> str:
     return "\n".join(lines)
 
 
-def _check_int(name: str, value, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
-        raise InputRangeError(name, value, f"an integer >= {lo}")
+def _check_int(name: str, value, lo: int, hi: int | None = None) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo \
+            or (hi is not None and value > hi):
+        raise InputRangeError(name, value, f"an integer >= {lo}" if hi is None
+                              else f"an integer in [{lo}, {hi}]")
     return int(value)
 
 
@@ -414,15 +418,15 @@ def export_vectors(out_dir, *, cores=VECTOR_CORES, count: int = DEFAULT_COUNT,
     Raises
     ------
     InputRangeError
-        Unknown core, negative count/seed, or a value that does not fit its port.
+        Unknown core, count outside [0, MAX_COUNT], negative seed, or a value that does not fit its port.
     """
     wanted = [cores] if isinstance(cores, str) else list(cores)
     if not wanted:
         raise InputRangeError("cores", cores, f"a non-empty subset of {list(VECTOR_CORES)}")
     for c in wanted:
         _check_core(c)
-    count = _check_int("count", count, 0)
-    seed = _check_int("seed", seed, 0)
+    count = _check_int("count", count, 0, MAX_COUNT)
+    seed = _check_int("seed", seed, 0, 2 ** 63 - 1)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     files, summary = [], {}

@@ -77,16 +77,20 @@ class Reproduction:
     sections : tuple of Section
         One per item, in :data:`ITEMS` order.
     meta : dict
-        Version, date, settings, run times (s).
+        Title, version, settings, warnings of the main job (no timings).
     out_dir : Path
     analysis : gearcontact.report.analyze.Analysis
         The main job's results the report was built from.
+    timings_s : dict
+        Wall seconds per item and ``total_s`` (not in the report files: the command
+        line writes them into run.json).
     """
 
     sections: tuple
     meta: dict
     out_dir: Path
     analysis: object = None
+    timings_s: dict = field(default_factory=dict)
 
     def as_json(self) -> dict:
         """The content of ``report.json``."""

@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
-from ..tca.export import write_csv  # noqa: E402
+from ..tca.export import TIMING_KEYS, without_timings, write_csv  # noqa: E402
 
 __all__ = ["plot_lte", "write_lte_outputs"]
 
@@ -76,12 +76,16 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
 def write_lte_outputs(lte, out, *, figures: bool = True, title: str = "",
                       published: dict | None = None) -> dict:
     """Write ``lte.json``, ``lte.csv`` and (``figures``) ``lte.png`` into ``out``;
-    returns the JSON dict."""
+    returns the JSON dict. Timings (:data:`~gearcontact.tca.export.TIMING_KEYS`) stay
+    out of the files."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    summary = lte.summary()
+    summary, _ = without_timings(lte.summary())     # identical runs, identical files
     (out / "lte.json").write_text(json.dumps(summary, indent=2))
-    write_csv(out / "lte.csv", *lte.table())
+    header, rows = lte.table()
+    keep = [i for i, h in enumerate(header) if h not in TIMING_KEYS]
+    write_csv(out / "lte.csv", [header[i] for i in keep],
+              [[row[i] for i in keep] for row in rows])
     if figures:
         plot_lte(lte, out / "lte.png", title=title, published=published)
     return summary

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from ..preview.fit.stencil import STENCIL_SPACING_MM
@@ -145,21 +146,42 @@ def _precision_section(precision) -> list[str]:
 
 
 def _latency_section(lat) -> list[str]:
-    """RTL cycle counts (constants, zero spread) beside the CPU preview's latency."""
-    from .latency import core_cycles
+    """RTL cycle counts (constants, zero spread); the CPU latency is in run.json."""
+    from .latency import PAPER_JITTER, PAPER_US, core_cycles
 
     rows = [[name, cycles, 0] for name, cycles in core_cycles().items()]
     return ["## Determinism and latency", "",
             _table(["RTL core", "cycles go -> done", "spread (cycles)"], rows), "",
             "Every RTL run in the test suite takes exactly these cycles (asserted), for "
             "any input.", "",
-            _table(["fp64 preview from Python, this machine", "ours", "published CPU"],
-                   cpu_latency_rows(lat)), ""]
+            f"The fp64 preview's CPU latency on this machine is a timing, so it is in "
+            f"run.json (`timings_s.preview_cpu`: median, p99, jitter), not here; published "
+            f"CPU: median {PAPER_US:g} us, jitter {100.0 * PAPER_JITTER:g} %.", ""]
+
+
+def _existing_figures(text: str, folder: Path) -> str:
+    """Drop the Markdown image links whose PNG is not in ``folder`` (``--no-figures``)
+    and a "Figure(s):" label left without images."""
+    def keep(m):
+        return m.group(0) if (folder / m.group(1)).is_file() else ""
+
+    lines = []
+    for line in text.split("\n"):
+        new = re.sub(r"!\[[^]]*\]\(([^)\s]+\.png)\)", keep, line)
+        if new != line:
+            new = " ".join(new.split())
+            if "![" not in new:
+                new = re.sub(r"^Figures?:\s*", "", new)
+                new = re.sub(r"^\(data: ([^)]*)\)$", r"Data: \1", new)
+            if not new:
+                continue
+        lines.append(new)
+    return "\n".join(lines)
 
 
 def cpu_latency_rows(lat) -> list[list]:
     """Rows (quantity, ours, published) of the fp64 preview's CPU latency
-    (:class:`~.latency.ScalarLatency`)."""
+    (:class:`~.latency.ScalarLatency`; the reproduction report's latency item)."""
     from .latency import PAPER_JITTER, PAPER_US
 
     return [["median per call (us)", lat.p50_us, PAPER_US],
@@ -235,8 +257,9 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         out += _precision_section(result.precision)
     if getattr(result, "latency", None) is not None:
         out += _latency_section(result.latency)
-    out += ["## Run times", ""]
-    out.append(_table(["stage", "seconds"], [[k, v] for k, v in result.timings_s.items()]))
+    out += ["Run times: in run.json of `gearcontact analyze` (`Analysis.timings_s` in "
+            "Python); no result file holds a timing, so two identical runs write identical "
+            "files."]
     path = Path(path)
-    path.write_text("\n".join(out) + "\n")
+    path.write_text(_existing_figures("\n".join(out) + "\n", path.parent))
     return path

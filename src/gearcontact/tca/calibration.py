@@ -11,8 +11,8 @@ and ease-off that produced them. This module closes that gap by TCA in the loop
    the side with the smaller offset is the design side.
 2. **Tip.** P0 must lie on the pinion flank: :func:`working_depth_for_tip` chooses the
    working-depth factor ``k_d`` so that the pinion tip cone passes ``tip_margin_mm``
-   above P0 at P0's axial position (the published bearing is a tip-edge bearing; a
-   margin > 0 keeps the mating point an interior point for the Newton solve).
+   above P0 at P0's axial position (the published bearing is a tip-edge bearing: the
+   loaded ellipse reaches over the tip at every torque).
 3. **Ease-off.** The five ease-off coefficients of the design side are solved by
    bounded least squares (``scipy.optimize.least_squares``) against the targets in
    their order of priority - the four frame-invariant coordinates of P0 (radius and
@@ -48,7 +48,7 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..contact.load import normal_load_from_torque
-from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um
+from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um, mean_normal_thickness_mm
 from ..geometry.flank import SIDES, build_flanks
 from ..geometry.pair import EaseOffCoefficients, GearPair
 from ..materials import effective_modulus_mpa
@@ -60,7 +60,9 @@ from .solve import ContactGuess, EdgeContact, solve_mating_point
 __all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibration", "calibrate_pair",
            "point_invariants", "surface_of_action_offset", "working_depth_for_tip",
            "evaluate_design_point", "DesignPoint", "PRIORITY_WEIGHTS",
-           "centred_coefficients", "design_point_at", "design_point_rows"]
+           "centred_coefficients", "design_point_at", "design_point_rows",
+           "face_widths_for_room", "top_land_mm", "tip_margin_for_top_land",
+           "MIN_TOP_LAND_MODULES"]
 
 _INVARIANTS = ("gear radius", "gear axial", "pinion radius", "pinion axial")
 _COEFFS = tuple(EaseOffCoefficients.__dataclass_fields__)
@@ -320,6 +322,45 @@ def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
                        easeoff_max_um=float(np.nan))
 
 
+#: Smallest pinion top land accepted by the default tip choice, in mean normal modules:
+#: common practice for case-hardened bevel and hypoid gears keeps the top land at about
+#: 0.25-0.3 m_mn so that the tip is not hardened through and does not chip.
+MIN_TOP_LAND_MODULES = 0.25
+
+
+def top_land_mm(flanks) -> float:
+    """Smallest normal top-land thickness of the pinion tooth along the face, mm
+    (drive and coast conjugate flanks at the tip, toe / middle / heel)."""
+    d, c = flanks.pinion_conjugate.drive, flanks.pinion_conjugate.coast
+    b = d.boundary
+    u_tip = min(b.u_tip, c.boundary.u_tip)
+    return min(mean_normal_thickness_mm(d, c, u_mm=u_tip, v_mm=v,
+                                        spiral_angle_deg=flanks.blank.spiral_angle_pinion_deg)
+               for v in (b.v_toe, 0.5 * (b.v_toe + b.v_heel), b.v_heel))
+
+
+def tip_margin_for_top_land(pair: GearPair, point_mm, *, lo_mm: float = 0.01,
+                            hi_mm: float = 0.5) -> float:
+    """Largest tip margin (mm, to 0.01 mm, in [lo_mm, hi_mm]) whose pinion keeps a top
+    land of :data:`MIN_TOP_LAND_MODULES` x m_mn (bisection; the top land shrinks as the
+    working depth grows). ``lo_mm`` if even that margin thins the top land below it."""
+    need = MIN_TOP_LAND_MODULES * pair.blank.mean_normal_module_mm
+
+    def land(margin):
+        k_d = working_depth_for_tip(pair, point_mm, tip_margin_mm=margin)
+        return top_land_mm(build_flanks(dataclasses.replace(pair, working_depth_factor=k_d)))
+
+    if land(hi_mm) >= need:
+        return hi_mm
+    if land(lo_mm) < need:
+        return lo_mm
+    a, b = lo_mm, hi_mm
+    while b - a > 0.01:
+        m = 0.5 * (a + b)
+        a, b = (m, b) if land(m) >= need else (a, m)
+    return float(np.floor(100.0 * a) / 100.0)
+
+
 def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
                           torque_nm: float, phases: int = 61) -> DesignPoint:
     """TCA of one eased pinion flank against ``gear`` at the continuous TE0 vertex.
@@ -414,9 +455,32 @@ def _rows(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float
     return tuple(rows)
 
 
-def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm: float = 0.05,
-                   side: str | None = None, max_evaluations: int = 120,
-                   progress: bool = False) -> Calibration:
+def face_widths_for_room(pair: GearPair, point_mm, *, heel_room_mm: float
+                         ) -> tuple[float, float]:
+    """Face widths (gear F2, pinion b1; mm, up to 0.1 mm) that end ``heel_room_mm`` or
+    more beyond the point along both pitch cones (never narrower than the pair's).
+
+    The faces stay centred on the mean cone distances (which are published); the
+    position of the point along a pitch cone is its projection on the cone's generatrix
+    in the axial plane, ``R = r sin(delta) + (a - a_apex) cos(delta)`` (r radius, a axial
+    position, from the pitch apex).
+    """
+    b = pair.blank
+    inv = point_invariants(point_mm, pair.offset_mm)
+    d1, d2 = np.radians(b.pitch_angle_pinion_deg), np.radians(b.pitch_angle_gear_deg)
+    r_gear = inv[0] * np.sin(d2) + (inv[1] - b.gear_apex_z_mm) * np.cos(d2)
+    r_pinion = inv[2] * np.sin(d1) + (inv[3] - b.pinion_apex_x_mm) * np.cos(d1)
+    f2 = 2.0 * (r_gear + heel_room_mm - b.mean_cone_distance_gear_mm)
+    f1 = 2.0 * (r_pinion + heel_room_mm - b.mean_cone_distance_pinion_mm)
+    f2 = max(pair.gear_face_width_mm, np.ceil(10.0 * f2) / 10.0)
+    f1 = max(pair.pinion_face_width_mm, f2, np.ceil(10.0 * f1) / 10.0)
+    return float(f2), float(f1)
+
+
+def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *,
+                   tip_margin_mm: float | None = None,
+                   heel_room_mm: float = 2.0, side: str | None = None,
+                   max_evaluations: int = 120, progress: bool = False) -> Calibration:
     """Calibrate the working depth and the design-side ease-off of ``pair``.
 
     Parameters
@@ -424,8 +488,16 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
     pair : GearPair
         Starting pair; its pitch-cone inputs are kept exactly.
     targets : CalibrationTargets
-    tip_margin_mm : float
-        Pinion tip radius above P0 at P0's axial position, mm, in [0.01, 0.5].
+    tip_margin_mm : float, optional
+        Pinion tip radius above P0 at P0's axial position, mm, in [0.01, 0.5]. By
+        default the largest margin whose pinion top land keeps
+        :data:`MIN_TOP_LAND_MODULES` x m_mn everywhere along the face
+        (:func:`tip_margin_for_top_land`); docs/calibration.md shows what the margin
+        changes in the loaded results.
+    heel_room_mm : float
+        Length of both faces beyond P0 towards the heel, mm, in [0, 5]
+        (:func:`face_widths_for_room`): room for the contact path on the heel side of
+        the TE0 vertex, about half a pitch of path (s0003: ~2 mm).
     side : str, optional
         Force the design side; by default the side whose conjugate surface of action
         passes nearest P0.
@@ -439,13 +511,16 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
     Calibration
     """
     t_start = time.perf_counter()
-    check_positive("tip_margin_mm", tip_margin_mm)
-    if not 0.01 <= tip_margin_mm <= 0.5:
+    if tip_margin_mm is not None and not 0.01 <= tip_margin_mm <= 0.5:
         raise InputRangeError("tip_margin_mm", tip_margin_mm, "[0.01, 0.5] mm")
+    if not 0.0 <= heel_room_mm <= 5.0:
+        raise InputRangeError("heel_room_mm", heel_room_mm, "[0, 5] mm")
     if side is not None and side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
+    f2, f1 = face_widths_for_room(pair, targets.mean_point_mm, heel_room_mm=heel_room_mm)
     zero = dataclasses.replace(pair, easeoff_drive=EaseOffCoefficients(),
-                               easeoff_coast=EaseOffCoefficients())
+                               easeoff_coast=EaseOffCoefficients(), gear_face_width_mm=f2,
+                               pinion_face_width_mm=f1)
     flanks0 = build_flanks(zero)
     offsets = {s: surface_of_action_offset(zero, targets.mean_point_mm, side=s, flanks=flanks0)[0]
                for s in SIDES}
@@ -465,6 +540,8 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *, tip_margin_mm
     angle = round(float(best.x), 1)
     zero = dataclasses.replace(zero, cutter=dataclasses.replace(zero.cutter, **{key: angle}))
     offsets[f"{side} at {angle:g} deg"] = soa(angle)
+    if tip_margin_mm is None:
+        tip_margin_mm = tip_margin_for_top_land(zero, targets.mean_point_mm)
     k_d = working_depth_for_tip(zero, targets.mean_point_mm, tip_margin_mm=tip_margin_mm)
     deep = dataclasses.replace(zero, working_depth_factor=round(k_d, 4), design_side=side)
     flanks = build_flanks(deep)

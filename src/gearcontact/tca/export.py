@@ -21,7 +21,18 @@ from .phase_table import encode_binary, write_json
 from .plots import plot_contact_pattern, plot_te0
 from .stencil import write_stencil_csv
 
-__all__ = ["write_tca_outputs", "write_csv"]
+__all__ = ["write_tca_outputs", "write_csv", "without_timings", "TIMING_KEYS"]
+
+#: Keys of result dicts that hold wall-clock timings. Result files leave them out (two
+#: identical runs give byte-identical files); the command line records them in run.json.
+TIMING_KEYS = ("timings_s", "solve_ms", "field_ms", "solve_ms_per_phase",
+               "field_ms_per_phase")
+
+
+def without_timings(doc: dict) -> tuple[dict, dict]:
+    """``(doc without the TIMING_KEYS, the timings removed)``."""
+    clean = {k: v for k, v in doc.items() if k not in TIMING_KEYS}
+    return clean, {k: doc[k] for k in TIMING_KEYS if k in doc}
 
 
 def write_csv(path: Path, header: list[str], rows) -> None:
@@ -113,8 +124,7 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
                       "nodes_off_flank": int((~f.on_flank).sum())},
         "phase_table_bin_bytes": len(binary),
         "assembly": {k: getattr(pair.assembly, k) for k in ("E_mm", "P_mm", "G_mm", "alpha_deg")},
-        "timings_s": res.timings_s,
-    }
+    }   # no timings: identical runs give identical files (res.timings_s has them)
     (out / "tca.json").write_text(json.dumps(summary, indent=2))
     if figures:
         import matplotlib.pyplot as plt

@@ -62,7 +62,7 @@ from .gap_kernel import intersect_lines, kernel_surface
 from .solve import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
-           "hardware_stencil", "write_stencil_csv", "tangent_frame"]
+           "hardware_stencil", "write_stencil_csv", "tangent_frame", "tangent_parameters"]
 
 #: Nodes per side of the host gap field (docs/spec.md sec. 3).
 GAP_GRID_SIDE = 80
@@ -210,6 +210,17 @@ def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
     return lam, inside
 
 
+def tangent_parameters(surface: Surface, pose, axes: np.ndarray, uv_p0, st: np.ndarray
+                       ) -> np.ndarray:
+    """Flank parameters (n, 2) of tangent-plane offsets ``st`` (n, 2) (mm, along the
+    columns 0, 1 of ``axes``) about the flank point ``uv_p0``, to first order:
+    ``(u, v) = uv_p0 + J^-1 st`` with J the tangent-plane components of the posed
+    ``r_u``, ``r_v`` (``pose = (R, c)``)."""
+    sp = surface.point(*uv_p0)
+    jac = axes[:, :2].T @ (pose[0] @ np.column_stack([sp.r_u, sp.r_v]))
+    return np.asarray(uv_p0, float) + np.asarray(st, float) @ np.linalg.inv(jac).T
+
+
 def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
            s_mm, t_mm, *, frame: str = "principal", allow_outside: bool = False,
            tol_mm: float = 1e-11) -> GapField:
@@ -246,9 +257,7 @@ def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
     for surf, pose, uv_p0 in ((pinion, kin.pinion_pose(mp.phi1_rad), (mp.u1, mp.v1)),
                               (gear, kin.gear_pose(mp.phi2_rad), (mp.u2, mp.v2))):
         # Newton starts from the first-order map (s, t) -> (u, v) of the tangent plane
-        sp = surf.point(*uv_p0)
-        jac = axes[:, :2].T @ (pose[0] @ np.column_stack([sp.r_u, sp.r_v]))
-        uv0 = np.asarray(uv_p0, float) + st @ np.linalg.inv(jac).T
+        uv0 = tangent_parameters(surf, pose, axes, uv_p0, st)
         lam, inside = _intersect_many(surf, pose, q, n, uv0, clamp=not allow_outside,
                                       tol_mm=tol_mm, sweep=sweep)
         lams.append(lam)

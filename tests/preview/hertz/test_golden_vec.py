@@ -61,3 +61,22 @@ def test_bit_identical_long_sweep():
         s = hertz_golden(int(A[i]), int(B[i]), int(W[i]), e_prime_code=int(E[i]))
         assert tuple(int(getattr(vec, f)[i]) for f in FIELDS) == \
             tuple(getattr(s, f) for f in FIELDS), i
+
+
+def test_exact_form_bit_identical_random_and_corners():
+    """hertz_form="exact": same comparison as above on 5 000 vectors plus the corners
+    (the EEX dividend path of the kernel against the scalar model)."""
+    A, B, W, E = _vectors(5_000, seed=2026)
+    corners = np.array(CORNERS, dtype=np.int64).T
+    A, B, W, E = (np.concatenate([x, c]) for x, c in zip((A, B, W, E), corners))
+    vec = hertz_golden_array(A, B, W, e_prime_code=E, hertz_form="exact")
+    got = np.stack([getattr(vec, f) for f in FIELDS])
+    want = np.array([[getattr(hertz_golden(int(a), int(b), int(w), e_prime_code=int(e),
+                                           hertz_form="exact"), f)
+                      for f in FIELDS] for a, b, w, e in zip(A, B, W, E)],
+                    dtype=np.int64).T
+    assert np.array_equal(got, want)
+    assert (vec.flags == 0).sum() > 2_500
+    # and the two forms really differ on the valid path (k differs beyond alpha = 1)
+    hb = hertz_golden_array(A, B, W, e_prime_code=E)
+    assert (hb.k_code[vec.valid] != vec.k_code[vec.valid]).mean() > 0.9

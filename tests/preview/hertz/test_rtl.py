@@ -89,10 +89,10 @@ DIRECTED = [
 ]
 
 
-def _check(vectors, outs, cycles):
+def _check(vectors, outs, cycles, hertz_form="hamrock-brewe"):
     assert cycles == [HERTZ_CYCLES] * len(vectors)
     for v, o in zip(vectors, outs):
-        assert o == _golden(v), v
+        assert o == hertz_golden(*v[:3], e_prime_code=v[3], hertz_form=hertz_form), v
 
 
 def test_directed_corners_bit_exact_and_cycle_exact():
@@ -134,11 +134,25 @@ def test_random_vectors_bit_exact():
 
 
 @pytest.mark.slow
-def test_random_and_corner_sweep_long():
+@pytest.mark.parametrize("hertz_form", F.HERTZ_FORMS)
+def test_random_and_corner_sweep_long(hertz_form):
     from .test_golden import CORNERS
     vectors = list(CORNERS) + _random_vectors(200, seed=7)
-    outs, cycles = simulate_hertz_core(vectors)
-    _check(vectors, outs, cycles)
+    outs, cycles = simulate_hertz_core(vectors, hertz_form=hertz_form)
+    _check(vectors, outs, cycles, hertz_form)
+
+
+def test_exact_form_corners_and_random_bit_exact():
+    """HertzCore(hertz_form="exact") == hertz_golden(..., hertz_form="exact") bit for bit
+    in 756 cycles on the directed corners and seeded accuracy-domain vectors (including
+    alpha = 1, alpha = 128 at the end of the tables, and flagged runs)."""
+    vectors = [v for _, v in DIRECTED] + _random_vectors(32, seed=20261123)
+    outs, cycles = simulate_hertz_core(vectors, hertz_form="exact")
+    _check(vectors, outs, cycles, "exact")
+    valid = [(v, o) for v, o in zip(vectors, outs) if o.valid]
+    assert len(valid) >= 20
+    # the exact tables are really in use: k differs from the published form off alpha = 1
+    assert sum(o.k_code != _golden(v).k_code for v, o in valid) >= 15
 
 
 # ---------------------------------------------------------------------------------
@@ -153,10 +167,12 @@ def _drive(ctx, dut, v):
         ctx.set(port, int(x))
 
 
-@pytest.mark.parametrize("v", [_typical(0.02, 0.5, 1500.0), _typical(0.9, 0.0071, 20.0,
-                                                                    "aluminium")])
-def test_registers_divisions_and_schedule_match_golden_trace(v):
-    codes, trace = hertz_golden_trace(*v[:3], e_prime_code=v[3])
+@pytest.mark.parametrize("v,hertz_form", [
+    (_typical(0.02, 0.5, 1500.0), "hamrock-brewe"),
+    (_typical(0.9, 0.0071, 20.0, "aluminium"), "hamrock-brewe"),
+    (_typical(0.02, 0.5, 1500.0), "exact")])
+def test_registers_divisions_and_schedule_match_golden_trace(v, hertz_form):
+    codes, trace = hertz_golden_trace(*v[:3], e_prime_code=v[3], hertz_form=hertz_form)
     assert codes.valid
 
     async def bench(ctx, dut, cd):
@@ -192,8 +208,10 @@ def test_registers_divisions_and_schedule_match_golden_trace(v):
         assert ctx.get(pr["s1"]) == 9 - trace["p"]
         assert ctx.get(pr["WC3"]) == v[2] * F.C3
         assert read_hertz_codes(ctx, dut) == codes
+        if hertz_form == "exact":       # the E_e dividend is the EEX interpolation
+            assert divs[DIVISION_ORDER.index("E_e")][0] == trace["N_ee"]
 
-    _sim(bench)
+    simulate_bench(HertzCore(hertz_form=hertz_form), bench)
 
 
 # ---------------------------------------------------------------------------------

@@ -70,13 +70,23 @@ def read_stencil_csv(path, *, spacing_mm: float = STENCIL_SPACING_MM) -> np.ndar
 
     Raises
     ------
-    FileNotFoundError
-        The file does not exist.
     InputRangeError
-        Wrong header, wrong number of rows, off-grid coordinates or non-finite gaps.
+        The file is missing, not a regular file or not UTF-8 text; wrong header, wrong
+        number of rows, off-grid coordinates or non-finite gaps (the file is named).
     """
     path = Path(path)
-    lines = [ln.strip() for ln in path.read_text().splitlines() if ln.strip()]
+    if not path.is_file():
+        raise InputRangeError("stencil file", str(path),
+                              "an existing regular file (CSV s_mm,t_mm,gap_mm)")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputRangeError(f"{path.name} (byte {exc.start})",
+                              exc.object[exc.start:exc.start + 4], "UTF-8 text") from None
+    except OSError as exc:
+        raise InputRangeError("stencil file", str(path), f"a readable file ({exc.strerror})") \
+            from None
+    lines = [ln.strip() for ln in text.splitlines() if ln.strip()]
     if not lines or [h.strip() for h in lines[0].split(",")] != ["s_mm", "t_mm", "gap_mm"]:
         raise InputRangeError(f"{path.name}: header", lines[0] if lines else "",
                               "'s_mm,t_mm,gap_mm'")

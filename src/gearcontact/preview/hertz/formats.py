@@ -34,7 +34,9 @@ k            Q(32,20)      round_shift(K, 4) (output)
 Constants: ``C6 = round(6/pi 2^25)``, ``N5 = round((3 - 6/pi) 2^49)``,
 ``C3 = round(3/(2 pi) 2^40)``. Every multiplier product is below 2^64 (docs/spec.md sec. 6
 allows 2^66) and every dividend below 2^80 (largest: p_n2, W C3 2^16 < 2^80); the
-golden model asserts both on every run.
+golden model asserts both on every run. With ``hertz_form="exact"`` the E_e dividend
+N5 becomes the EEX table's N(alpha) in the same units (< 2^51; N in [1.09, 1.14] and
+E6 = 6E/pi <= 3, so every bound above holds unchanged).
 
 Operating envelope (checked in state SORT; outside it the run is flagged and every
 numeric output except the sorted curvature registers reads 0):
@@ -50,6 +52,7 @@ from __future__ import annotations
 
 import math
 
+from ...validation import InputRangeError
 from ..qformat import CURVATURE, LOAD, PMAX, sq, uq
 
 __all__ = [
@@ -58,7 +61,8 @@ __all__ = [
     "CURV_MAX_CODE", "LOAD_MIN_CODE", "LOAD_MAX_CODE", "E_PRIME_MIN_CODE",
     "E_PRIME_MAX_CODE", "ALPHA_MAX_CODE", "FLAG_NOT_ELLIPTIC", "FLAG_CURV_RANGE",
     "FLAG_LOAD_RANGE", "FLAG_E_PRIME_RANGE", "FLAG_ALPHA_RANGE", "FLAG_OVERFLOW",
-    "FLAG_DIV_ZERO", "FLAG_INPUT", "FLAG_NAMES", "flag_names", "C3_FRAC", "PN2_SHIFT", "PMAX_SHIFT"]
+    "FLAG_DIV_ZERO", "FLAG_INPUT", "FLAG_NAMES", "flag_names", "C3_FRAC", "PN2_SHIFT", "PMAX_SHIFT",
+    "HERTZ_FORMS", "DEFAULT_HERTZ_FORM", "check_hertz_form"]
 
 # ---- register formats (see the table above) ----------------------------------------
 E_PRIME = sq(32, 0)        #: E' = 2E*, integer MPa (constant register)
@@ -114,3 +118,19 @@ FLAG_NAMES = {FLAG_NOT_ELLIPTIC: "not_elliptic", FLAG_CURV_RANGE: "curvature_ran
 def flag_names(flags: int) -> tuple[str, ...]:
     """Names of the bits set in a flags word (empty tuple when valid)."""
     return tuple(name for bit, name in FLAG_NAMES.items() if flags & bit)
+
+
+# ---- Hertz forms ----------------------------------------------------------------------
+#: ``"hamrock-brewe"``: the published simplified forms k = alpha^(2/pi),
+#: E_e = 1 + (pi/2 - 1)/alpha (the default); ``"exact"``: the POW table holds the exact
+#: k(alpha) and a second table of the same geometry the exact elliptic-integral term
+#: (:mod:`.luts`), with the same datapath, formats and cycle count.
+HERTZ_FORMS = ("hamrock-brewe", "exact")
+DEFAULT_HERTZ_FORM = "hamrock-brewe"
+
+
+def check_hertz_form(hertz_form) -> str:
+    """``hertz_form`` if it is one of :data:`HERTZ_FORMS`, else InputRangeError."""
+    if hertz_form not in HERTZ_FORMS:
+        raise InputRangeError("hertz_form", hertz_form, f"one of {HERTZ_FORMS}")
+    return hertz_form

@@ -13,6 +13,8 @@ Operation sequence (codes; ``rs`` = round-half-up shift, ``//`` = the divider)::
     DIV_ALPHA alpha = (B_max << 24) // A_min     ; > 2^31 -> FLAG_ALPHA_RANGE
     DIV_R     R     = 2^42 // (A_min + B_max)    || K = rs(POW(alpha), 16)
     DIV_EE    E6    = C6 + N5 // alpha           || K2 = rs(K K, 20)
+              (hertz_form="exact": K = rs(POWX(alpha), 16) and
+               E6 = C6 + (EEX(alpha) << 9) // alpha, tables of :mod:`.luts`)
     PRODUCT   T1 = rs(K2 E6, 32); T2 = rs(T1 R, 18); T3 = T2 W
     DIV_CA    C_a   = (T3 << 11) // E'
     CBRT      p = floor((msb(C_a) - 45)/3); m = C_a >> (16 + 3p) (<< if negative)
@@ -47,7 +49,9 @@ The datapath error is dominated by the POW interpolation near alpha = 1 (cubic
 remainder, :mod:`.luts`) and, beyond alpha = 5, by the half-LSB rounding of the
 output registers (small b, p_max); the end-to-end figure adds the CURVATURE input
 quantization (+-2^-21 1/mm, i.e. 4.8e-4 relative at A- = 1e-3). All are at least
-7x inside the requirement of 0.5 % (docs/spec.md sec. 6).
+7x inside the requirement of 0.5 % (docs/spec.md sec. 6). The ``hertz_form="exact"``
+variant is measured against exact Hertz instead (the package docstring's table: end to end
+at most 5.4e-4).
 
 References
 ----------
@@ -66,7 +70,7 @@ from ...validation import check_array_finite, check_finite
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift
 from . import formats as F
 from .divider import DIVIDER_BITS, floor_divide, restoring_divide
-from .luts import CBRT_SPEC, POW_SPEC, lut_interpolate
+from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, POW_SPECS, lut_interpolate
 
 __all__ = ["HertzCodes", "HertzGoldenValues", "hertz_golden", "hertz_golden_trace",
            "envelope_flags",
@@ -189,7 +193,8 @@ def _flagged(a_min: int, b_max: int, flags: int) -> HertzCodes:
 
 
 def hertz_golden(A_code: int, B_code: int, W_code: int, *, e_prime_code: int,
-                 bit_serial: bool = False) -> HertzCodes:
+                 bit_serial: bool = False,
+                 hertz_form: str = F.DEFAULT_HERTZ_FORM) -> HertzCodes:
     """Run the stage-D datapath on one input set (bit-exact with the RTL).
 
     Parameters
@@ -204,6 +209,9 @@ def hertz_golden(A_code: int, B_code: int, W_code: int, *, e_prime_code: int,
     bit_serial : bool
         Run every division through the 80-iteration restoring model instead of the
         floor-division fast path (identical results, ~100x slower).
+    hertz_form : {"hamrock-brewe", "exact"}
+        Contents of the k and E_e terms (:data:`.formats.HERTZ_FORMS`): the published
+        simplified forms (default) or the exact elliptic solution in the same tables.
 
     Returns
     -------
@@ -214,12 +222,15 @@ def hertz_golden(A_code: int, B_code: int, W_code: int, *, e_prime_code: int,
     FixedPointOverflow
         An input code does not fit its 32-bit register (the caller's error; values
         that fit but lie outside the operating envelope are flagged instead).
+    InputRangeError
+        Unknown ``hertz_form``.
     """
-    return _run(A_code, B_code, W_code, e_prime_code, bit_serial, None)
+    return _run(A_code, B_code, W_code, e_prime_code, bit_serial, None,
+                F.check_hertz_form(hertz_form))
 
 
-def hertz_golden_trace(A_code: int, B_code: int, W_code: int, *, e_prime_code: int
-                       ) -> tuple[HertzCodes, dict]:
+def hertz_golden_trace(A_code: int, B_code: int, W_code: int, *, e_prime_code: int,
+                       hertz_form: str = F.DEFAULT_HERTZ_FORM) -> tuple[HertzCodes, dict]:
     """:func:`hertz_golden` plus every internal register, for stage-by-stage RTL checks.
 
     Returns
@@ -228,16 +239,19 @@ def hertz_golden_trace(A_code: int, B_code: int, W_code: int, *, e_prime_code: i
     trace : dict
         Register name -> integer code, in datapath order (``A_min, B_max, flags_sort,
         R_x, R_y, alpha, R, K, E6, K2, T1, T2, T3, C_a, p, m, cbrt, a_w, b_w, p_n2,
-        p_max``; formats in :mod:`.formats`), plus ``"divisions"``: the list of
+        p_max``; formats in :mod:`.formats`; ``N_ee``, the shifted EEX interpolation,
+        with ``hertz_form="exact"``), plus ``"divisions"``: the list of
         ``(name, dividend, divisor, quotient)`` in divider order. A flagged run stops
         recording where the datapath's results stop mattering.
     """
     trace: dict = {"divisions": []}
-    codes = _run(A_code, B_code, W_code, e_prime_code, False, trace)
+    codes = _run(A_code, B_code, W_code, e_prime_code, False, trace,
+                 F.check_hertz_form(hertz_form))
     return codes, trace
 
 
-def _run(A_code, B_code, W_code, e_prime_code, bit_serial: bool, trace) -> HertzCodes:
+def _run(A_code, B_code, W_code, e_prime_code, bit_serial: bool, trace,
+         hertz_form: str) -> HertzCodes:
     """The datapath (module docstring); ``trace`` (dict or None) records registers."""
     A = _check_code(A_code, CURVATURE, "A_code")
     B = _check_code(B_code, CURVATURE, "B_code")
@@ -275,10 +289,15 @@ def _run(A_code, B_code, W_code, e_prime_code, bit_serial: bool, trace) -> Hertz
             return _flagged(a_min, b_max, F.FLAG_ALPHA_RANGE)
         # DIV_R || POW
         radius = reg("R", divide("R", 1 << 42, a_min + b_max), F.RADIUS)
-        k_int = reg("K", round_shift(lut_interpolate(alpha, POW_SPEC),
-                                     POW_SPEC.out_frac - F.K_INT.frac), F.K_INT)
-        # DIV_EE || k^2
-        e6 = reg("E6", F.C6 + divide("E_e", F.N5, alpha), F.E6)
+        pow_spec = POW_SPECS[hertz_form]
+        k_int = reg("K", round_shift(lut_interpolate(alpha, pow_spec),
+                                     pow_spec.out_frac - F.K_INT.frac), F.K_INT)
+        # DIV_EE || k^2 (exact form: the dividend is the EEX interpolation, not N5)
+        if hertz_form == "exact":
+            n_ee = reg("N_ee", lut_interpolate(alpha, EE_EXACT_SPEC) << EE_DIVIDEND_SHIFT)
+        else:
+            n_ee = F.N5
+        e6 = reg("E6", F.C6 + divide("E_e", n_ee, alpha), F.E6)
         k2 = reg("K2", round_shift(_mul(k_int, k_int, "K K"),
                                    2 * F.K_INT.frac - F.K2.frac), F.K2)
         # PRODUCT

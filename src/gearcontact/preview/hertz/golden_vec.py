@@ -9,7 +9,9 @@ wider than 64 bits (C_a < 2^75, b < 2^66, p_n2 < 2^80) are divided exactly by
 schoolbook long division in five 16-bit digits (each partial remainder is below the
 divisor < 2^42, so ``rem * 2^16 + digit`` fits 64 bits) — Knuth, TAOCP vol. 2,
 sec. 4.3.1, Algorithm D with a single-word divisor. The tests compare codes and flags
-with the scalar model on more than 20 000 seeded vectors plus the envelope corners.
+with the scalar model on more than 20 000 seeded vectors plus the envelope corners, and
+on 5 000 more with ``hertz_form="exact"`` (the kernel then takes the E_e dividend from
+the EEX table, which shares the POW geometry, instead of the constant N5).
 
 Every divisor is provably positive once the envelope check has passed (A_min >= 2^9,
 alpha >= 2^24, E' >= 2^12, K >= 2^24, a_w >= 2^27, b_w >= 2^23), so the scalar
@@ -34,9 +36,10 @@ except ImportError:  # pragma: no cover - exercised only without numba
 
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
-from .luts import CBRT_SPEC, POW_SPEC, lut_array
+from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, POW_SPEC, POW_SPECS, lut_array
 
-__all__ = ["HertzCodesArray", "hertz_golden_array", "HAVE_NUMBA"]
+__all__ = ["HertzCodesArray", "hertz_golden_array", "hertz_element", "golden_constants",
+           "HAVE_NUMBA"]
 
 _U = np.uint64
 
@@ -117,88 +120,121 @@ def _interp(arg, lut, x0, tbits, qbits, corr_shift):
     return v0 * t_full + r * (v1 - v0) + _rs(r * (t_full - r) * q0, corr_shift)
 
 
-@njit(cache=True, parallel=True)
-def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
+@njit(cache=True, inline="always")
+def hertz_element(a_min, b_max, w, e, pow_lut, cbrt_lut, cst):
+    """Stage D on one set of codes (sorted curvatures ``a_min <= b_max``, load, E').
+
+    The per-element body of the batch kernel, callable from other compiled loops (the
+    drivetrain twin calls it once per loaded tooth pair and step). ``pow_lut`` is the
+    POW ROM of the form; for the exact form it holds POWX followed by EEX (one 512-word
+    ROM, as in the RTL), ``cst[25]`` being the EEX offset (:func:`golden_constants`).
+
+    Returns
+    -------
+    tuple of int
+        ``(flags, a_code, b_code, p_max_code, k_code, R_x_code, R_y_code, alpha_code)``;
+        all outputs 0 when ``flags != 0``.
+    """
     curv_lo, curv_hi, w_lo, w_hi, e_lo, e_hi = cst[0], cst[1], cst[2], cst[3], cst[4], cst[5]
     alpha_max, c6, n5, c3 = cst[6], cst[7], cst[8], cst[9]
     pow_x0, pow_t, pow_qb, pow_cs, pow_of = cst[10], cst[11], cst[12], cst[13], cst[14]
     cbrt_x0, cbrt_t, cbrt_qb, cbrt_cs = cst[15], cst[16], cst[17], cst[18]
     k_max, axis_max, pmax_max, curv_max_out = cst[19], cst[20], cst[21], cst[22]
+    exact, ee_shift, ee_off = cst[23], cst[24], cst[25]
+    flags = 0
+    if a_min <= 0:
+        flags |= 1
+    elif a_min < curv_lo or b_max > curv_hi:
+        flags |= 2
+    if w < w_lo or w > w_hi:
+        flags |= 4
+    if e < e_lo or e > e_hi:
+        flags |= 8
+    if flags != 0:
+        return flags, 0, 0, 0, 0, 0, 0, 0
+    ua = _U(a_min)
+    ub = _U(b_max)
+    uw = _U(w)
+    ue = _U(e)
+    r_x = _rs((_U(1) << _U(40)) // ua, 1)
+    r_y = _rs((_U(1) << _U(40)) // ub, 1)
+    alpha = (ub << _U(24)) // ua
+    if alpha > _U(alpha_max):
+        return 16, 0, 0, 0, 0, 0, 0, 0
+    radius = (_U(1) << _U(42)) // (ua + ub)
+    k_int = _rs(_interp(alpha, pow_lut, pow_x0, pow_t, pow_qb, pow_cs), pow_of)
+    if exact:      # EEX table (same geometry as POW) instead of N5
+        n_ee = _interp(alpha, pow_lut[ee_off:], pow_x0, pow_t, pow_qb, pow_cs) \
+            << _U(ee_shift)
+    else:
+        n_ee = _U(n5)
+    e6 = _U(c6) + n_ee // alpha
+    k2 = _rs(k_int * k_int, 20)
+    t1 = _rs(k2 * e6, 32)
+    t2 = _rs(t1 * radius, 18)
+    t3 = t2 * uw
+    c_a = _div_wide(t3, 11, ue)
+    p = (_msb(c_a) - 45) // 3
+    sh = 45 + 3 * p - 29
+    if sh >= 0:
+        m = c_a >> _U(sh)
+    else:
+        m = c_a << _U(-sh)
+    cbrt = _interp(m, cbrt_lut, cbrt_x0, cbrt_t, cbrt_qb, cbrt_cs)
+    a_w = _rs(cbrt, 10 - p)
+    b_w = _div_wide(a_w, 24, k_int)
+    pn2 = _div_wide(uw * _U(c3), 16, a_w)
+    p_max = _rs((pn2 << _U(17)) // b_w, 1)
+    a_c = _rs(a_w, 16)
+    b_c = _rs(b_w, 16)
+    k_c = _rs(k_int, 4)
+    if (a_c > _U(axis_max) or b_c > _U(axis_max) or p_max > _U(pmax_max)
+            or k_c > _U(k_max) or r_x > _U(curv_max_out) or r_y > _U(curv_max_out)):
+        return 32, 0, 0, 0, 0, 0, 0, 0
+    return (0, np.int64(a_c), np.int64(b_c), np.int64(p_max), np.int64(k_c),
+            np.int64(r_x), np.int64(r_y), np.int64(alpha))
+
+
+@njit(cache=True, parallel=True)
+def _kernel(A, B, W, E, pow_lut, cbrt_lut, cst, out):
     n = A.shape[0]
     for j in prange(n):
         a_min = min(A[j], B[j])
         b_max = max(A[j], B[j])
-        w = W[j]
-        e = E[j]
         out[4, j] = a_min
         out[5, j] = b_max
-        flags = 0
-        if a_min <= 0:
-            flags |= 1
-        elif a_min < curv_lo or b_max > curv_hi:
-            flags |= 2
-        if w < w_lo or w > w_hi:
-            flags |= 4
-        if e < e_lo or e > e_hi:
-            flags |= 8
-        if flags == 0:
-            ua = _U(a_min)
-            ub = _U(b_max)
-            uw = _U(w)
-            ue = _U(e)
-            r_x = _rs((_U(1) << _U(40)) // ua, 1)
-            r_y = _rs((_U(1) << _U(40)) // ub, 1)
-            alpha = (ub << _U(24)) // ua
-            if alpha > _U(alpha_max):
-                flags = 16
-            else:
-                radius = (_U(1) << _U(42)) // (ua + ub)
-                k_int = _rs(_interp(alpha, pow_lut, pow_x0, pow_t, pow_qb, pow_cs), pow_of)
-                e6 = _U(c6) + _U(n5) // alpha
-                k2 = _rs(k_int * k_int, 20)
-                t1 = _rs(k2 * e6, 32)
-                t2 = _rs(t1 * radius, 18)
-                t3 = t2 * uw
-                c_a = _div_wide(t3, 11, ue)
-                p = (_msb(c_a) - 45) // 3
-                sh = 45 + 3 * p - 29
-                if sh >= 0:
-                    m = c_a >> _U(sh)
-                else:
-                    m = c_a << _U(-sh)
-                cbrt = _interp(m, cbrt_lut, cbrt_x0, cbrt_t, cbrt_qb, cbrt_cs)
-                a_w = _rs(cbrt, 10 - p)
-                b_w = _div_wide(a_w, 24, k_int)
-                pn2 = _div_wide(uw * _U(c3), 16, a_w)
-                p_max = _rs((pn2 << _U(17)) // b_w, 1)
-                a_c = _rs(a_w, 16)
-                b_c = _rs(b_w, 16)
-                k_c = _rs(k_int, 4)
-                if (a_c > _U(axis_max) or b_c > _U(axis_max) or p_max > _U(pmax_max)
-                        or k_c > _U(k_max) or r_x > _U(curv_max_out)
-                        or r_y > _U(curv_max_out)):
-                    flags = 32
-                else:
-                    out[0, j] = np.int64(a_c)
-                    out[1, j] = np.int64(b_c)
-                    out[2, j] = np.int64(p_max)
-                    out[3, j] = np.int64(k_c)
-                    out[6, j] = np.int64(r_x)
-                    out[7, j] = np.int64(r_y)
-                    out[8, j] = np.int64(alpha)
-        if flags != 0:
-            for row in (0, 1, 2, 3, 6, 7, 8):
-                out[row, j] = 0
+        flags, a_c, b_c, p_max, k_c, r_x, r_y, alpha = hertz_element(
+            a_min, b_max, W[j], E[j], pow_lut, cbrt_lut, cst)
+        out[0, j] = a_c
+        out[1, j] = b_c
+        out[2, j] = p_max
+        out[3, j] = k_c
+        out[6, j] = r_x
+        out[7, j] = r_y
+        out[8, j] = alpha
         out[9, j] = flags
 
 
-def _constants() -> np.ndarray:
+def golden_constants(hertz_form: str = F.DEFAULT_HERTZ_FORM
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(pow_lut, cbrt_lut, constants)``: the ROMs and the constant vector that
+    :func:`hertz_element` takes for ``hertz_form`` (the exact form's POW ROM is POWX
+    followed by EEX)."""
+    exact = F.check_hertz_form(hertz_form) == "exact"
+    pow_lut = lut_array(POW_SPECS[hertz_form])
+    if exact:
+        pow_lut = np.concatenate([pow_lut, lut_array(EE_EXACT_SPEC)])
+    return pow_lut, lut_array(CBRT_SPEC), _constants(exact, ee_offset=len(pow_lut) // 2)
+
+
+def _constants(exact: bool, *, ee_offset: int) -> np.ndarray:
     vals = (F.CURV_MIN_CODE, F.CURV_MAX_CODE, F.LOAD_MIN_CODE, F.LOAD_MAX_CODE,
             F.E_PRIME_MIN_CODE, F.E_PRIME_MAX_CODE, F.ALPHA_MAX_CODE, F.C6, F.N5, F.C3,
+            # POW geometry serves POW, POWX and EEX (luts.same_geometry)
             POW_SPEC.x0_code, POW_SPEC.tbits, POW_SPEC.qbits, POW_SPEC.corr_shift,
             POW_SPEC.out_frac - F.K_INT.frac, CBRT_SPEC.x0_code, CBRT_SPEC.tbits,
             CBRT_SPEC.qbits, CBRT_SPEC.corr_shift, F.K_OUT.max_code, SEMI_AXIS.max_code,
-            PMAX.max_code, CURVATURE.max_code)
+            PMAX.max_code, CURVATURE.max_code, int(exact), EE_DIVIDEND_SHIFT, int(ee_offset))
     return np.array(vals, dtype=np.int64)
 
 
@@ -224,7 +260,8 @@ def _as_codes(x, fmt, field: str) -> np.ndarray:
     return arr
 
 
-def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArray:
+def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code,
+                       hertz_form: str = F.DEFAULT_HERTZ_FORM) -> HertzCodesArray:
     """Stage-D golden model over broadcastable integer arrays (bit-identical to
     :func:`.golden.hertz_golden`).
 
@@ -236,6 +273,8 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
         LOAD Q(32,8) codes, N.
     e_prime_code : int or array_like of int
         E' codes, Q(32,0) MPa.
+    hertz_form : {"hamrock-brewe", "exact"}
+        As in :func:`.golden.hertz_golden`.
 
     Returns
     -------
@@ -246,7 +285,10 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
     ------
     FixedPointOverflow
         A code that does not fit its 32-bit register (naming field and index).
+    InputRangeError
+        Unknown ``hertz_form``.
     """
+    F.check_hertz_form(hertz_form)
     arrs = np.broadcast_arrays(_as_codes(A_code, CURVATURE, "A_code"),
                                _as_codes(B_code, CURVATURE, "B_code"),
                                _as_codes(W_code, LOAD, "W_code"),
@@ -254,5 +296,5 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code) -> HertzCodesArr
     shape = arrs[0].shape
     flat = [np.array(a.reshape(-1), dtype=np.int64) for a in arrs]   # owned copies
     out = np.zeros((10, flat[0].size), dtype=np.int64)
-    _kernel(*flat, lut_array(POW_SPEC), lut_array(CBRT_SPEC), _constants(), out)
+    _kernel(*flat, *golden_constants(hertz_form), out)
     return HertzCodesArray(*(out[i].reshape(shape) for i in range(10)))

@@ -1,9 +1,13 @@
-"""fp64 reference of stage D: the Hamrock–Brewe elliptic Hertz preview.
+"""fp64 reference of stage D: the elliptic Hertz preview (Hamrock–Brewe or exact).
 
 Sorts the half relative curvatures (``A_min <= B_max``), derives
-``R_x = 1/(2 A_min)``, ``R_y = 1/(2 B_max)`` and evaluates the simplified
-Hamrock–Brewe forms through :func:`gearcontact.analytic.hertz.hamrock_brewe_terms`
-(the package's single implementation of those formulas; docs/spec.md sec. 6, Algorithm 3).
+``R_x = 1/(2 A_min)``, ``R_y = 1/(2 B_max)`` and evaluates, with
+``hertz_form="hamrock-brewe"`` (default), the simplified Hamrock–Brewe forms through
+:func:`gearcontact.analytic.hertz.hamrock_brewe_terms` (the package's single
+implementation of those formulas; docs/spec.md sec. 6, Algorithm 3), or with
+``hertz_form="exact"`` the exact elliptic-integral solution
+:func:`gearcontact.analytic.hertz.exact_elliptic_hertz` (what the exact tables of the
+fixed-point datapath hold, :mod:`.luts`; ~50 us per call).
 
 The scalar path uses only ``math`` and costs about 1 us per call from Python
 (``benchmarks/bench_preview_reference.py``); :func:`hertz_preview_array` evaluates
@@ -27,12 +31,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...analytic.hertz import hamrock_brewe_hertz_array, hamrock_brewe_terms
+from ...analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz_array, hamrock_brewe_terms
 from ...validation import InputRangeError, check_array_finite, check_positive, check_range
 from ..qformat import CURVATURE, LOAD
 from . import formats as F
 
-__all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE"]
+__all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
+           "check_envelope"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
 ENVELOPE = {
@@ -61,7 +66,7 @@ class HertzPreview:
     b_mm : float
         Minor semi-axis, mm.
     k : float
-        Ellipticity a/b = alpha^(2/pi), dimensionless.
+        Ellipticity a/b (alpha^(2/pi) in the Hamrock–Brewe form), dimensionless.
     p_max_mpa : float
         Peak Hertzian pressure, MPa.
     alpha : float
@@ -69,7 +74,7 @@ class HertzPreview:
     R_x_mm, R_y_mm : float
         Principal relative radii 1/(2 A_min), 1/(2 B_max), mm.
     approach_mm : float
-        Hamrock–Brewe rigid-body approach delta, mm (compliance 2 delta/(3 W)).
+        Rigid-body approach delta of the chosen form, mm (compliance 2 delta/(3 W)).
     """
 
     a_mm: float
@@ -99,9 +104,25 @@ def _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, envelope: bool) ->
                           "finite numbers > 0")     # pragma: no cover (unreachable)
 
 
+def check_envelope(A_minus, B_minus, load_n, *, e_prime_mpa) -> tuple[float, float, float]:
+    """Return ``(A_minus, B_minus, load_n)`` as floats if they lie in the operating
+    :data:`ENVELOPE` (the domain every backend accepts); else raise
+    :class:`InputRangeError` naming the first offending input and its range."""
+    try:
+        a, b, w, e = float(A_minus), float(B_minus), float(load_n), float(e_prime_mpa)
+    except (TypeError, ValueError):
+        a = b = w = e = math.nan
+    lo, hi = (a, b) if a <= b else (b, a)
+    if not (_C_LO <= lo and hi <= _C_HI and _W_LO <= w <= _W_HI and _E_LO <= e <= _E_HI
+            and hi <= _ALPHA_HI * lo):
+        _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, True)
+    return a, b, w
+
+
 def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa: float,
-                  envelope: bool = True) -> HertzPreview:
-    """Hamrock–Brewe stage-D preview of one contact (fp64, scalar, pure ``math``).
+                  envelope: bool = True,
+                  hertz_form: str = F.DEFAULT_HERTZ_FORM) -> HertzPreview:
+    """Stage-D preview of one contact (fp64, scalar; Hamrock–Brewe in pure ``math``).
 
     Parameters
     ----------
@@ -113,6 +134,8 @@ def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa:
         Effective modulus E' = 2E*, MPa (steel/steel 229 670).
     envelope : bool
         Enforce the datapath's operating envelope (module docstring).
+    hertz_form : {"hamrock-brewe", "exact"}
+        Simplified Hamrock–Brewe forms (default) or exact elliptic Hertz.
 
     Returns
     -------
@@ -121,7 +144,8 @@ def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa:
     Raises
     ------
     InputRangeError
-        Non-positive / non-finite input, or outside the envelope (names the field).
+        Non-positive / non-finite input, or outside the envelope (names the field),
+        or an unknown ``hertz_form``.
     """
     # Hot path: one chained comparison accepts valid input (NaN fails every comparison);
     # anything else goes to _raise_input_error, which names the field.
@@ -141,6 +165,11 @@ def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa:
         ok = False
     if not ok:
         _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, envelope)
+    if hertz_form != F.DEFAULT_HERTZ_FORM:
+        F.check_hertz_form(hertz_form)
+        ex = exact_elliptic_hertz(a, b, w, e_prime_mpa=e)
+        return HertzPreview(ex.a_mm, ex.b_mm, ex.k, ex.p_max_mpa, ex.alpha, 0.5 / a,
+                            0.5 / b, ex.approach_mm)
     a_mm, b_mm, k, p_max, delta, alpha, _, _, _ = hamrock_brewe_terms(a, b, w, e)
     # Fast construction of the frozen instance: the generated __init__ calls
     # object.__setattr__ once per field (~2 us for 8 fields); filling the instance
@@ -151,9 +180,10 @@ def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa:
     return out
 
 
-def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool = True
-                        ) -> dict:
-    """Vectorized :func:`hertz_preview` over broadcastable arrays.
+def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool = True,
+                        hertz_form: str = F.DEFAULT_HERTZ_FORM) -> dict:
+    """Vectorized :func:`hertz_preview` over broadcastable arrays (the exact form loops
+    over :func:`~gearcontact.analytic.hertz.exact_elliptic_hertz`, ~50 us per element).
 
     Returns
     -------
@@ -165,6 +195,7 @@ def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool
     InputRangeError
         The first offending element (field and index), as in the scalar path.
     """
+    F.check_hertz_form(hertz_form)
     A = check_array_finite("A_minus", A_minus)
     B = check_array_finite("B_minus", B_minus)
     W = check_array_finite("load_n", load_n)
@@ -185,7 +216,10 @@ def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool
             idx = tuple(int(i) for i in np.argwhere(bad)[0])
             raise InputRangeError("alpha = B_max/A_min" + (f"[{idx[0]}]" if idx else ""),
                                   ratio[idx], f"[1, {_ALPHA_HI:g}]")
-    hb = hamrock_brewe_hertz_array(A, B, W, e_prime_mpa=E)
+    if hertz_form == "exact":
+        hb = _exact_array(A, B, W, E)
+    else:
+        hb = hamrock_brewe_hertz_array(A, B, W, e_prime_mpa=E)
     a_min = np.minimum(A, B)
     b_max = np.maximum(A, B)
     a_min, b_max = np.broadcast_arrays(a_min, b_max)
@@ -194,3 +228,16 @@ def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool
             "R_x_mm": np.broadcast_to(0.5 / a_min, hb["a_mm"].shape),
             "R_y_mm": np.broadcast_to(0.5 / b_max, hb["a_mm"].shape),
             "approach_mm": hb["approach_mm"]}
+
+
+def _exact_array(A, B, W, E) -> dict:
+    """Exact elliptic Hertz elementwise over broadcast arrays (same keys as
+    :func:`~gearcontact.analytic.hertz.hamrock_brewe_hertz_array` that are used here)."""
+    A, B, W, E = np.broadcast_arrays(A, B, W, E)
+    keys = ("a_mm", "b_mm", "k", "p_max_mpa", "alpha", "approach_mm")
+    out = {k: np.empty(A.shape) for k in keys}
+    for idx in np.ndindex(A.shape):
+        ex = exact_elliptic_hertz(A[idx], B[idx], W[idx], e_prime_mpa=E[idx])
+        for k in keys:
+            out[k][idx] = getattr(ex, k)
+    return out

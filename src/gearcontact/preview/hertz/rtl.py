@@ -16,6 +16,8 @@ combinational core); this module only sequences them::
                2..81  80 restoring iterations
                82     quotient write-back (alpha: range check; p_max: outputs, done)
     DIV_R      0 | 1  || POW ROM read (nodes of alpha) | K <= rs(interpolation, 16)
+               82     || (hertz_form="exact") EEX read; its interpolation is the E_e
+                      dividend loaded at DIV_EE cnt 0 (instead of the constant N5)
     DIV_EE     0      || K2 <= rs(K K, 20)                     (shared multiplier)
     PRODUCT    0..3   T1 = rs(K2 E6, 32) | T2 = rs(T1 R, 18) | T3 = T2 W | W C3
     CBRT       0..2   leading one + range reduction (m, p) | CBRT ROM read |
@@ -49,7 +51,7 @@ Control behaviour
 
 from __future__ import annotations
 
-from amaranth import Module, Signal, signed, unsigned
+from amaranth import Cat, Module, Signal, signed, unsigned
 from amaranth.back import verilog
 from amaranth.lib import wiring
 from amaranth.lib.memory import Memory
@@ -60,7 +62,7 @@ from ..simulation import CycleCounter, read_record, run_testbench
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVIDER_CYCLES, DIVIDER_HANDSHAKE_CYCLES
 from .golden import HertzCodes
-from .luts import CBRT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, cbrt_lut, pow_lut
+from .luts import CBRT_SPEC, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, POW_SPECS, rom_words
 from .rtl_datapath import (
     DIVISIONS,
     FLAG_BITS,
@@ -121,6 +123,14 @@ class HertzCore(wiring.Component):
         Width of an optional side-band word captured with the operands (``tag_in``)
         and presented with the results (``tag``); 0 (default) omits both ports. The
         C->D chain carries the fit core's flags in it.
+    hertz_form : {"hamrock-brewe", "exact"}, keyword-only
+        ROM contents (:data:`.formats.HERTZ_FORMS`). ``"exact"`` doubles the POW ROM
+        to 512 words (POWX, exact k, at 0..255; EEX, the exact elliptic term N(alpha),
+        at 256..511) read through the same two ports and the same interpolator: the
+        EEX nodes are read on the last cycle of DIV_R and their interpolation is the
+        E_e dividend loaded on DIV_EE's first cycle instead of the constant N5. Same
+        756 cycles, same multipliers; bit-exact with ``hertz_golden(...,
+        hertz_form="exact")``.
 
     Notes
     -----
@@ -151,8 +161,9 @@ class HertzCore(wiring.Component):
     ==========  =====  ==============  ===============================================
     """
 
-    def __init__(self, *, tag_bits: int = 0):
+    def __init__(self, *, tag_bits: int = 0, hertz_form: str = F.DEFAULT_HERTZ_FORM):
         self._tag_bits = int(tag_bits)
+        self._hertz_form = F.check_hertz_form(hertz_form)
         ports = {"A": In(signed(CURVATURE.bits)), "B": In(signed(CURVATURE.bits)),
                  "W": In(signed(LOAD.bits)), "e_prime": In(signed(F.E_PRIME.bits)),
                  "go": In(1), "go_chain": In(1),
@@ -171,11 +182,15 @@ class HertzCore(wiring.Component):
         m.submodules.div = div = SerialDivider()
 
         # ---- ROMs: two synchronous read ports each (nodes i and i + 1) -------------
+        exact = self._hertz_form == "exact"
+        pow_words = list(rom_words(POW_SPECS[self._hertz_form]))
+        if exact:                                # EEX in the upper half (address bit 8)
+            pow_words += rom_words(EE_EXACT_SPEC)
         roms = {}
-        for spec, words in ((POW_SPEC, pow_lut()), (CBRT_SPEC, cbrt_lut())):
-            rom = Memory(shape=unsigned(LUT_WORD_BITS), depth=LUT_SIZE, init=list(words))
-            m.submodules[f"{spec.name}_rom"] = rom
-            roms[spec.name] = (rom.read_port(), rom.read_port())
+        for name, words in (("pow", pow_words), ("cbrt", rom_words(CBRT_SPEC))):
+            rom = Memory(shape=unsigned(LUT_WORD_BITS), depth=len(words), init=list(words))
+            m.submodules[f"{name}_rom"] = rom
+            roms[name] = (rom.read_port(), rom.read_port())
 
         # ---- control and datapath registers (named after the golden intermediates) --
         busy = Signal()
@@ -196,6 +211,10 @@ class HertzCore(wiring.Component):
             t2=Signal(F.T2.bits, name="t2"), t3=Signal(F.T3.bits, name="t3"),
             wc3=Signal(F.T3.bits, name="wc3"), a_w=Signal(F.AXIS_W.bits, name="a_w"),
             b_w=Signal(F.AXIS_W.bits, name="b_w"), p_n2=Signal(F.PN2.bits, name="p_n2"))
+        # POW interpolation (units 2^-40); with the exact form also the E_e dividend
+        pow_interp = Signal(POW_SPEC.vbits + POW_SPEC.tbits)
+        if exact:
+            ops.n_ee = pow_interp
         flags = Signal(FLAG_BITS)
         ovf = Signal()                         # R_x or R_y does not fit CURVATURE
         r_x = Signal(CURVATURE.bits)
@@ -301,14 +320,22 @@ class HertzCore(wiring.Component):
             m.d.sync += ops.p_n2.eq(q)
 
         # ---- POW LUT || DIV_R: k ------------------------------------------------------
+        # (POW, POWX and EEX share one geometry: luts.same_geometry)
         pow0, pow1 = roms["pow"]
         m.submodules.pow_addr = mp = Module()
         p_addr, p_next, p_r = lut_split(POW_SPEC, ops.alpha)
-        mp.d.comb += [pow0.addr.eq(p_addr), pow1.addr.eq(p_next)]
-        m.d.comb += [pow0.en.eq(in_state("DIV_R") & (cnt == 0)), pow1.en.eq(pow0.en)]
+        mp.d.comb += pow_interp.eq(lut_interpolate(POW_SPEC, pow0.data, pow1.data, p_r))
+        pow_en = in_state("DIV_R") & (cnt == 0)
+        if exact:                 # EEX nodes on DIV_R's last cycle, dividend of DIV_EE
+            ee_read = in_state("DIV_R") & (cnt == _WB_CNT)
+            pow_en = pow_en | ee_read
+            mp.d.comb += [pow0.addr.eq(Cat(p_addr, ee_read)),
+                          pow1.addr.eq(Cat(p_next, ee_read))]
+        else:
+            mp.d.comb += [pow0.addr.eq(p_addr), pow1.addr.eq(p_next)]
+        m.d.comb += [pow0.en.eq(pow_en), pow1.en.eq(pow0.en)]
         with m.If(in_state("DIV_R") & (cnt == 1)):
-            m.d.sync += ops.k.eq(pow_to_k(lut_interpolate(POW_SPEC, pow0.data, pow1.data,
-                                                          p_r)))
+            m.d.sync += ops.k.eq(pow_to_k(pow_interp))
 
         # ---- the shared multiplier: K2 || DIV_EE, then PRODUCT ------------------------
         op_x = Signal(max(len(product_operands(s, ops)[0]) for s in PRODUCTS))
@@ -357,13 +384,15 @@ class HertzCore(wiring.Component):
                        "T3": ops.t3, "WC3": ops.wc3, "C_a": c_a, "m": m_red, "s1": s1,
                        "a_w": ops.a_w, "b_w": ops.b_w, "p_n2": ops.p_n2, "state": state,
                        "cnt": cnt, "div_load": div.load, "div_start": div.start,
-                       "div_num": num, "div_den": den, "quotient": q}
+                       "div_num": num, "div_den": den, "quotient": q,
+                       "pow_interp": pow_interp}
         return m
 
 
-def convert_verilog(*, name: str = "hertz_core", tag_bits: int = 0) -> str:
+def convert_verilog(*, name: str = "hertz_core", tag_bits: int = 0,
+                    hertz_form: str = F.DEFAULT_HERTZ_FORM) -> str:
     """Verilog of :class:`HertzCore` (``strip_internal_attrs=True``)."""
-    return verilog.convert(HertzCore(tag_bits=tag_bits), name=name,
+    return verilog.convert(HertzCore(tag_bits=tag_bits, hertz_form=hertz_form), name=name,
                            strip_internal_attrs=True)
 
 
@@ -386,7 +415,8 @@ def _check_vectors(vectors):
                   for x, (f, fmt) in zip(row, fmts)) for i, row in enumerate(rows)]
 
 
-def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES
+def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES,
+                        hertz_form: str = F.DEFAULT_HERTZ_FORM
                         ) -> tuple[list[HertzCodes], list[int]]:
     """Simulate :class:`HertzCore` cycle-accurately (Amaranth simulator).
 
@@ -400,6 +430,8 @@ def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES
         Q(32,20), LOAD Q(32,8), E_PRIME Q(32,0) (each must fit its 32-bit register).
     max_cycles : int, keyword-only
         Give up (RuntimeError) if ``done`` has not risen after this many edges.
+    hertz_form : {"hamrock-brewe", "exact"}, keyword-only
+        ROM contents of the simulated core (:class:`HertzCore`).
 
     Returns
     -------
@@ -415,7 +447,7 @@ def simulate_hertz_core(vectors, *, max_cycles: int = 2 * HERTZ_CYCLES
     bulk sweeps belong in Verilator on :func:`convert_verilog`'s output.
     """
     rows = _check_vectors(vectors)
-    dut = HertzCore()
+    dut = HertzCore(hertz_form=hertz_form)
     cc = CycleCounter(dut)
     outputs, cycles = [], []
 

@@ -19,7 +19,7 @@ from amaranth import Cat, Const, Module, Mux, Signal
 from ..qformat import PMAX, SEMI_AXIS
 from . import formats as F
 from .divider import DIVIDER_BITS
-from .luts import LUT_SIZE, POW_SPEC, LutSpec
+from .luts import EE_DIVIDEND_SHIFT, LUT_SIZE, POW_SPEC, LutSpec
 
 __all__ = [
     "DIVIDEND_SHIFTS",
@@ -81,6 +81,9 @@ class Operands:
         order: ALPHA UQ(32,24), RADIUS UQ(33,23), K_INT UQ(29,24), K2 UQ(37,28),
         E6 UQ(27,25), T1 UQ(31,21), T2 UQ(39,26), T3 UQ(64,34), W C3 UQ(64,48),
         AXIS_W UQ(42,36) (a_w and b_w), PN2 UQ(47,28).
+    n_ee : unsigned, optional
+        ``hertz_form="exact"`` only: the EEX interpolation (units 2^-40), whose
+        ``<< EE_DIVIDEND_SHIFT`` replaces the constant N5 as the E_e dividend.
     """
 
     a_min: object = None
@@ -99,6 +102,7 @@ class Operands:
     a_w: object = None
     b_w: object = None
     p_n2: object = None
+    n_ee: object = None
 
 
 def division(name: str, ops: Operands):
@@ -111,8 +115,10 @@ def division(name: str, ops: Operands):
     reg, shift = DIVIDEND_SHIFTS[name]
     if reg is None:
         num = Const(1 << shift, DIVIDER_BITS)
-    elif reg == "N5":
+    elif reg == "N5" and ops.n_ee is None:          # published form: E_e = C6 + N5/alpha
         num = Const(F.N5, DIVIDER_BITS)
+    elif reg == "N5":                                # exact form: the EEX table's N(alpha)
+        num = ops.n_ee.as_unsigned().shift_left(EE_DIVIDEND_SHIFT)
     else:
         num = getattr(ops, reg).as_unsigned().shift_left(shift)
     den_name = DIVISORS[name]

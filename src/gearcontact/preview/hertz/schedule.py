@@ -7,6 +7,8 @@ with the divider where its operands are ready (the POW look-up and interpolation
 k, and k^2, run while the divider computes R and E_e); the four products of the
 C_a numerator and the cube-root range reduction get their own states. The schedule is
 static: every input, valid or flagged, takes exactly the same number of cycles.
+The ``hertz_form="exact"`` core keeps it: its second table (EEX) is read on DIV_R's
+last cycle and feeds the E_e dividend loaded on DIV_EE's first cycle.
 
 =====  ==========  ======  ===========================================================
 state  name        cycles  what it does

@@ -1,0 +1,81 @@
+"""Benchmark of the drivetrain twin: steps per second and real-time factor per backend.
+
+Runs ``gearcontact.twin`` on s0003 (64.5 N·m, 3000 rpm, 10 us RK4 step, default
+drivetrain) for each contact backend and prints steps/s, the real-time factor
+(simulated / wall time), the step time p50 / p99 (over blocks of 256 steps, one
+compiled call each) and their jitter, the process CPU time per step and the load
+average (the machine is shared: wall-clock figures include other load). Targets
+(issue 14): compiled fp64 backend >= 10x real time on one core, golden >= 1x; the
+``rtl`` and ``soc`` backends (golden loop + lockstep replay on HertzCore / through the
+SoC register driver, :mod:`gearcontact.twin.cosim`) run shorter times and state their
+rates (the CPU column counts this process only, not the simulator).
+
+Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+
+from gearcontact.geometry.pair import load_pair
+from gearcontact.tca.analysis import analyze_pair
+from gearcontact.twin.ltca_table import torque_table
+from gearcontact.twin.mesh import mesh_table
+from gearcontact.twin.params import default_drivetrain
+from gearcontact.twin.simulate import BACKENDS, build_model, simulate
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--duration-ms", type=float, default=200.0, help="simulated time (ms)")
+    ap.add_argument("--step-us", type=float, default=10.0, help="RK4 step (us)")
+    ap.add_argument("--speed-rpm", type=float, default=3000.0)
+    ap.add_argument("--torque", type=float, default=64.5, help="gear torque (N·m)")
+    ap.add_argument("--record-every", type=int, default=1, help="record every n-th step")
+    ap.add_argument("--rtl-duration-ms", type=float, default=10.0,
+                    help="simulated time of the rtl backend (lockstep RTL replay), ms")
+    ap.add_argument("--soc-duration-ms", type=float, default=0.1,
+                    help="simulated time of the soc backend (register driver replay), ms")
+    ap.add_argument("--backends", default=",".join(BACKENDS))
+    args = ap.parse_args()
+    pair = load_pair("s0003")
+    tca, flanks = analyze_pair(pair, phases=61)
+    mesh = mesh_table(tca, flanks, pair, torque_nm=args.torque)
+    dt = default_drivetrain(pair)
+    print(f"s0003 twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, step {args.step_us:g} us,"
+          f" {args.duration_ms:g} ms simulated, record every {args.record_every}")
+    print(f"{'backend':<11}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
+          f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
+    lines = []
+    for be in args.backends.split(","):
+        table = None
+        if be == "table":
+            table = torque_table(tca, flanks, pair, mesh, args.torque)
+        model = build_model(mesh, dt, args.torque, backend=be, table=table)
+        simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3, step_s=1e-6 * args.step_us)
+        c0 = time.process_time()
+        ms = {"rtl": args.rtl_duration_ms, "soc": args.soc_duration_ms}.get(be,
+                                                                          args.duration_ms)
+        res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * ms,
+                       step_s=1e-6 * args.step_us, record_every=args.record_every)
+        cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
+        s = res.summary
+        print(f"{be:<11}{s['steps'] / s['wall_s']:>12.4g}{s['real_time_factor']:>11.2f}"
+              f"{s['step_time_p50_us']:>10.3f}{s['step_time_p99_us']:>10.3f}"
+              f"{s['step_time_p99_us'] / s['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
+              f"{s['dynamic_factor']:>7.3f}")
+        if be in ("rtl", "soc"):
+            where = s.get("rtl_simulator", "the bhseq_core SoC (register driver)")
+            lines.append(f"{be}: {s[be + '_previews']} previews replayed on {where} at "
+                         f"{s[be + '_previews_per_s']:.4g} previews/s, "
+                         f"{s[be + '_mismatches']} mismatches ({ms:g} ms simulated)")
+    for line in lines:
+        print(line)
+    print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())} "
+          f"on {os.cpu_count()} cores")
+
+
+if __name__ == "__main__":
+    main()

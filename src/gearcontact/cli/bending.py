@@ -1,0 +1,82 @@
+"""``gearcontact bending``: tooth bending compliance of one member (shell, optionally FE).
+
+Writes into ``--out`` (created if missing): ``compliance.json`` (``points_mm``: a lattice
+of drive-flank points in the member's body frame; ``shell_mm_per_n``: the shell
+Rayleigh-Ritz point-compliance matrix between them; the deflections under segment loads
+around the points and line loads over the face; with ``--fe`` also ``fe_mm_per_n``,
+the FE segment / line deflections, ``fe_nodes`` (nodes of the P2 mesh) and the
+shell-to-FE ratios) and ``deflection.png`` (deflection over the flank); the FE build
+time goes to ``run.json`` only (result files are byte-identical across runs).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry.flank import build_flanks
+from ..geometry.pair import load_pair
+from ..structure.compliance import FeMesh, flank_compliance, write_compliance
+from ..validation import InputRangeError
+from .options import add_pair_arguments, check_count, check_pair_arguments, run_timings
+from .outdir import final_path
+
+
+def register(sub) -> None:
+    p = sub.add_parser("bending", help="tooth bending compliance (shell Rayleigh-Ritz, "
+                                       "optionally checked by 3D finite elements)",
+                       description=__doc__.split("\n\n")[0].split(": ", 1)[1])
+    add_pair_arguments(p, phases=False)
+    p.add_argument("--member", choices=("pinion", "gear"), default="pinion")
+    p.add_argument("--order", type=int, default=6,
+                   help="Legendre order of the Ritz basis over the tooth height, 1..16 "
+                        "(default 6)")
+    p.add_argument("--order-face", type=int, default=16,
+                   help="Legendre order along the face, 1..24 (default 16)")
+    p.add_argument("--points", type=int, nargs=2, default=(3, 3), metavar=("NXI", "NETA"),
+                   help="flank lattice: points along the face and the height (default 3 3)")
+    p.add_argument("--fe", action="store_true",
+                   help="also solve the 3D P2 finite-element model (needs the 'fe' extra)")
+    p.add_argument("--fe-mesh", type=int, nargs=4, default=(12, 6, 3, 4),
+                   metavar=("NXI", "NETA", "NZETA", "NRIM"),
+                   help="FE cells along face, height, thickness and rim (default 12 6 3 4)")
+    p.set_defaults(func=run, check=check)
+
+
+def check(args) -> None:
+    """Options, the pair and the optional FE dependency before any work."""
+    check_pair_arguments(args)
+    for name, n in zip(("--points NXI", "--points NETA"), args.points):
+        check_count(name, n, 1, 50)
+    check_count("--order", args.order, 1, 16)
+    check_count("--order-face", args.order_face, 1, 24)
+    for name, n in zip(("NXI", "NETA", "NZETA", "NRIM"), args.fe_mesh):
+        check_count(f"--fe-mesh {name}", n, 1, 64)
+    if args.fe:
+        try:
+            import skfem  # noqa: F401
+        except ImportError:
+            raise InputRangeError("--fe", True, "available only with the 'fe' extra "
+                                  "(pip install 'gearcontact[fe]')") from None
+
+
+def run(args) -> int:
+    pair = getattr(args, "gear_pair", None) or load_pair(args.pair)
+    flanks = build_flanks(pair)
+    # lattice over the inner part of the flank (xi in +-0.5, eta in +-1/3)
+    lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
+               for s, n in zip((0.5, 1 / 3), args.points)]
+    res = flank_compliance(pair, args.member, flanks=flanks, xi=lattice[0], eta=lattice[1],
+                           order=args.order, order_face=args.order_face, fe=args.fe,
+                           fe_mesh=FeMesh(*args.fe_mesh))
+    write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
+                     order=args.order, order_face=args.order_face)
+    seg = res.segment_shell_mm_per_n
+    line = (f"{pair.name} {args.member}: {len(res.xi)} drive-flank points, shell segment-load "
+            f"deflection {seg.min():.3g}..{seg.max():.3g} mm/N")
+    if res.fe_mm_per_n is not None:
+        r = res.ratios()
+        run_timings(args, fe_build_s=res.fe_build_s)
+        line += (f"; FE ({res.fe_nodes} nodes, {res.fe_build_s:.1f} s) shell/FE "
+                 f"{r.min():.2f}..{r.max():.2f}")
+    print(line + f" -> {final_path(args, args.out)}")
+    return 0

@@ -1,0 +1,125 @@
+"""``gearcontact twin``: real-time torsional drivetrain twin driven by the contact preview.
+
+Writes into ``--out`` (created if missing): ``twin.json`` (backend, steps, step_us,
+real_time_factor, step-time p50/p99, mesh frequency, mean mesh torque and load vs the
+static ones, dynamic factor, contact-loss fraction, DTE peak-to-peak, linearised natural
+frequencies; :func:`gearcontact.twin.simulate.simulate`), ``twin.csv`` (time series) and
+``twin.png`` / ``twin_spectrum.png``. With ``--speed-sweep START:STOP:STEP`` it runs the
+dynamic factor vs speed curve instead, for the preview twin (``--backend``) and the table
+twin side by side, in parallel over the speeds: ``sweep.json``, ``sweep.csv``,
+``sweep.png`` (:mod:`gearcontact.twin.sweep`). Drivetrain parameters: the ``[drivetrain]`` table
+of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.params`.
+"""
+
+from __future__ import annotations
+
+from ..geometry.pair import load_pair
+from ..twin.params import load_drivetrain
+from ..twin.report import write_sweep_outputs, write_twin_outputs
+from ..twin.simulate import BACKENDS, STEP_RANGE_US, build_model, model_for_pair, simulate
+from ..twin.sweep import parse_speed_range, speed_sweep
+from ..validation import InputRangeError, check_positive, check_range
+from .options import add_pair_arguments, check_pair_arguments
+from .outdir import final_path
+
+
+def register(sub) -> None:
+    p = sub.add_parser("twin", help="torsional drivetrain twin with the preview as the "
+                                    "contact law: dynamic TE, mesh load, dynamic factor",
+                       description=__doc__.split("\n\n")[0].split(": ", 1)[1])
+    add_pair_arguments(p, torque=True)
+    p.add_argument("--speed-rpm", type=float, default=3000.0,
+                   help="pinion (motor) speed in rpm (default 3000)")
+    dur = p.add_mutually_exclusive_group()
+    dur.add_argument("--duration-ms", type=float, default=None,
+                     help="simulated time in ms (default 50)")
+    dur.add_argument("--duration", type=float, default=None,
+                     help="simulated time in s (alternative to --duration-ms)")
+    p.add_argument("--step-us", type=float, default=10.0,
+                   help=f"fixed RK4 step in us, {STEP_RANGE_US[0]:g}-{STEP_RANGE_US[1]:g} "
+                        "(default 10)")
+    p.add_argument("--backend", default="reference",
+                   help=f"contact backend: one of {', '.join(BACKENDS)} (default reference)")
+    p.add_argument("--drivetrain", default=None,
+                   help="TOML file with a [drivetrain] table (default: s0003 estimates)")
+    p.add_argument("--table-source", default="lcp", choices=("lcp", "preview"),
+                   help="table backend: LTCA (lcp, default) or Hertz preview loaded TE")
+    p.add_argument("--record-every", type=int, default=1,
+                   help="write every n-th step to twin.csv (default 1)")
+    p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
+                   help="rpm range: dynamic factor vs speed, preview and table twins")
+    p.add_argument("--workers", type=int, default=None,
+                   help="worker processes of the speed sweep (default: CPU count)")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.set_defaults(func=run, check=check)
+
+
+def check(args) -> None:
+    """Every option before any work (and before the output directory is touched)."""
+    check_pair_arguments(args)
+    if args.backend not in BACKENDS:
+        raise InputRangeError("--backend", args.backend, f"one of {list(BACKENDS)}")
+    check_range("--step-us", args.step_us, *STEP_RANGE_US)
+    if args.duration is not None:
+        duration_s = check_positive("--duration", args.duration)
+    else:
+        duration_s = 1e-3 * check_positive("--duration-ms", 50.0 if args.duration_ms is None
+                                           else args.duration_ms)
+    check_range("--speed-rpm", args.speed_rpm, 0.0, 1e5)
+    if args.record_every < 1:
+        raise InputRangeError("--record-every", args.record_every, ">= 1")
+    speeds = parse_speed_range(args.speed_sweep) if args.speed_sweep else None
+    if speeds is not None and args.backend not in ("reference", "golden"):
+        raise InputRangeError("--backend", args.backend, "reference or golden with "
+                              "--speed-sweep (the table twin runs beside it)")
+    if args.workers is not None and args.workers < 1:
+        raise InputRangeError("--workers", args.workers, ">= 1")
+    args.duration_s, args.speeds = duration_s, speeds
+
+
+def run(args) -> int:
+    if not hasattr(args, "duration_s"):
+        check(args)
+    duration_s, speeds = args.duration_s, args.speeds
+    pair = load_pair(args.pair)
+    drivetrain = load_drivetrain(args.drivetrain, pair)
+    if speeds is not None:
+        return _sweep(args, pair, drivetrain, speeds)
+    model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
+                           drivetrain=drivetrain, side=args.side, phases=args.phases,
+                           table_source=args.table_source, progress=not args.quiet)
+    res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
+                   step_s=1e-6 * args.step_us, record_every=args.record_every,
+                   progress=not args.quiet)
+    extra = {"pair": pair.name, "side": args.side, "drivetrain": drivetrain.as_dict()}
+    if args.backend == "table":
+        extra["table_source"] = args.table_source
+    s = write_twin_outputs(res, args.out, figures=not args.no_figures,
+                           title=f"{pair.name} {args.side}", extra=extra)
+    print(f"{pair.name} twin {s['backend']}: {s['steps']} steps of {s['step_us']:g} us, "
+          f"mesh {s['mesh_frequency_hz']:g} Hz; mean mesh torque {s['mean_mesh_torque_nm']:.3f}"
+          f" / static {s['static_mesh_torque_nm']:g} N·m, dynamic factor "
+          f"{s['dynamic_factor']:.3f}, contact loss {100 * s['contact_loss']:.1f} %, DTE p-p "
+          f"{s['dte_pp_arcsec']:.2f} arcsec; real-time factor {s['real_time_factor']:.2f} "
+          f"-> {final_path(args, args.out)}")
+    return 0
+
+
+def _sweep(args, pair, drivetrain, speeds) -> int:
+    table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
+                                 drivetrain=drivetrain, side=args.side, phases=args.phases,
+                                 table_source=args.table_source, progress=not args.quiet)
+    preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend)
+    sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,
+                     step_s=1e-6 * args.step_us, workers=args.workers, progress=not args.quiet)
+    s = write_sweep_outputs(sw, args.out, figures=not args.no_figures,
+                            title=f"{pair.name} {args.side} {args.torque:g} N·m",
+                            extra={"pair": pair.name, "step_us": args.step_us,
+                                   "table_source": args.table_source,
+                                   "drivetrain": drivetrain.as_dict()})
+    print(f"{pair.name} twin speed sweep {speeds[0]:g}-{speeds[-1]:g} rpm ({speeds.size} "
+          f"speeds): max dynamic factor {args.backend} {s[args.backend]['max_dynamic_factor']:.3f}"
+          f" at {s[args.backend]['at_speed_rpm']:g} rpm, table "
+          f"{s['table']['max_dynamic_factor']:.3f} at {s['table']['at_speed_rpm']:g} rpm "
+          f"-> {final_path(args, args.out)}")
+    return 0

@@ -1,0 +1,10 @@
+"""Structural compliance of the teeth: shell Rayleigh-Ritz model and 3D finite elements.
+
+- :mod:`.tooth`: one tooth between its real drive and coast flanks (mid-surface,
+  thickness, flank load points), and the rectangular test plate;
+- :mod:`.shell`: Mindlin-Reissner plate Rayleigh-Ritz compliance operator (low rank);
+- :mod:`.fe`: 3D finite elements of the tooth with its rim segment (scikit-fem, the
+  optional ``fe`` extra), the independent truth of the shell model;
+- :mod:`.compliance`: flank-grid compliance tables of a pair (shell and FE), as the
+  ``gearcontact bending`` command writes them.
+"""

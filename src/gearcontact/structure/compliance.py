@@ -1,0 +1,236 @@
+"""Flank compliance tables of one tooth: shell Rayleigh-Ritz beside 3D finite elements.
+
+:func:`flank_compliance` evaluates the bending compliance of one tooth of a pair at a
+lattice of drive-flank points (on the node lines of the FE mesh, so that the shell and
+the FE see the same points) with the shell model of :mod:`.shell` and, optionally, the
+FE model of :mod:`.fe`; :func:`write_compliance` writes ``compliance.json`` and the
+figure of the deflection over the flank (``gearcontact bending``).
+
+Two kinds of numbers:
+
+- point compliances between the lattice points (``shell_mm_per_n``, ``fe_mm_per_n``).
+  Under a point load neither model has a converged local value: the Mindlin plate's
+  deflection is logarithmically singular (it grows with the Ritz order) and the 3D
+  solid's is 1/r singular (it grows as the mesh is refined) - the local part is the
+  half-space's in the LTCA. They are reported, not compared;
+- distributed loads, which both models resolve and which is what the LTCA applies:
+  a *segment* load (unit total load spread evenly over 5 neighbouring node columns
+  along the face, 4.3 mm on the pinion and 2.6 mm on the gear at the default mesh)
+  around each lattice point, and a *line* load over the whole face at each lattice
+  height. The compared deflection is the mean deflection of the coast-flank points
+  behind the loaded ones (the bending deflection without the local indentation under
+  the discrete nodal loads). These are checked against the FE (``docs/bending.md``).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry.flank import FlankSet, build_flanks
+from ..validation import InputRangeError
+from .shell import RootFoundation, tooth_shell
+from .tooth import LoadPoints
+
+__all__ = ["FlankCompliance", "FeMesh", "flank_compliance", "write_compliance",
+           "concat_points", "SEGMENT_NODES"]
+
+#: Node columns of a segment load.
+SEGMENT_NODES = 5
+
+
+@dataclass(frozen=True)
+class FeMesh:
+    """Cells of the FE mesh (:func:`~.fe.build_fe`): face, height, thickness, rim."""
+
+    n_xi: int = 12
+    n_eta: int = 6
+    n_zeta: int = 3
+    n_rim: int = 4
+
+
+@dataclass(frozen=True)
+class FlankCompliance:
+    """Compliance of one tooth at a lattice of drive-flank points, mm/N.
+
+    Attributes
+    ----------
+    member : str
+    xi, eta : ndarray (n,)
+        Tooth coordinates of the lattice points.
+    points_mm : ndarray (n, 3)
+        Drive-flank lattice points, body frame, mm.
+    shell_mm_per_n : ndarray (n, n)
+        Shell point compliance between the lattice points (along the inward normal).
+    segment_shell_mm_per_n : ndarray (n,)
+        Shell deflection under a segment load around each lattice point.
+    line_eta : ndarray (k,)
+        Heights of the line loads (the lattice heights).
+    line_shell_mm_per_n : ndarray (k,)
+        Shell deflection under a line load over the face at each height.
+    fe_mm_per_n, segment_fe_mm_per_n, line_fe_mm_per_n : ndarray or None
+        The same from the FE model (None without FE).
+    fe_nodes : int or None
+        Nodes of the P2 FE mesh.
+    fe_build_s : float or None
+        FE meshing + assembly + factorization time, s.
+    """
+
+    member: str
+    xi: np.ndarray
+    eta: np.ndarray
+    points_mm: np.ndarray
+    shell_mm_per_n: np.ndarray
+    segment_shell_mm_per_n: np.ndarray
+    line_eta: np.ndarray
+    line_shell_mm_per_n: np.ndarray
+    fe_mm_per_n: np.ndarray | None = None
+    segment_fe_mm_per_n: np.ndarray | None = None
+    line_fe_mm_per_n: np.ndarray | None = None
+    fe_nodes: int | None = None
+    fe_build_s: float | None = None
+
+    def ratios(self) -> np.ndarray:
+        """Shell / FE for all segment and line loads (NaN-free; needs the FE)."""
+        return np.concatenate([self.segment_shell_mm_per_n / self.segment_fe_mm_per_n,
+                               self.line_shell_mm_per_n / self.line_fe_mm_per_n])
+
+    def summary(self) -> dict:
+        """JSON-ready dict (keys of ``compliance.json``)."""
+        out = {"member": self.member, "xi": self.xi.tolist(), "eta": self.eta.tolist(),
+               "points_mm": self.points_mm.tolist(),
+               "shell_mm_per_n": self.shell_mm_per_n.tolist(),
+               "segment_shell_mm_per_n": self.segment_shell_mm_per_n.tolist(),
+               "line_eta": self.line_eta.tolist(),
+               "line_shell_mm_per_n": self.line_shell_mm_per_n.tolist()}
+        if self.fe_mm_per_n is not None:
+            out.update(fe_mm_per_n=self.fe_mm_per_n.tolist(),
+                       segment_fe_mm_per_n=self.segment_fe_mm_per_n.tolist(),
+                       line_fe_mm_per_n=self.line_fe_mm_per_n.tolist(),
+                       fe_nodes=self.fe_nodes,
+                       ratio_shell_to_fe=self.ratios().tolist())
+        return out
+
+
+def concat_points(a: LoadPoints, b: LoadPoints) -> LoadPoints:
+    """The points of ``a`` followed by those of ``b``."""
+    return LoadPoints(*(np.concatenate([getattr(a, f), getattr(b, f)])
+                        for f in ("xi", "eta", "direction", "offset_mm", "position_mm")))
+
+
+def _load_sets(i_xi: np.ndarray, j_eta: np.ndarray, n_xi: int):
+    """Node (xi-level, eta-level) index pairs of all loads and, per load, the positions
+    of its nodes in that list: segments around each lattice point, then one line per
+    lattice height (interior xi levels 1 .. n_xi - 1)."""
+    interior = np.arange(1, n_xi)
+    half = SEGMENT_NODES // 2
+    loads = []
+    for i, j in zip(i_xi, j_eta):
+        c = int(np.clip(i, 1 + half, n_xi - 1 - half))
+        cols = interior[(interior >= c - half) & (interior <= c + half)]
+        loads.append([(int(a), int(j)) for a in cols])
+    heights = np.unique(j_eta)
+    for j in heights:
+        loads.append([(int(a), int(j)) for a in interior])
+    nodes = sorted({n for load in loads for n in load})
+    where = {n: k for k, n in enumerate(nodes)}
+    return np.array(nodes), [np.array([where[n] for n in load]) for load in loads], heights
+
+
+def _distributed(G: np.ndarray, sets) -> np.ndarray:
+    """Mean coast-side deflection under a unit load spread over each node set (drive):
+    ``G`` holds the drive nodes then the coast nodes (directions into the tooth, so
+    the coast deflection along the drive load is the negative)."""
+    n = G.shape[0] // 2
+    return np.array([-np.mean(G[n:, :n][np.ix_(s, s)]) for s in sets])
+
+
+def flank_compliance(pair, member: str, *, flanks: FlankSet | None = None,
+                     xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = 6,
+                     order_face: int = 16, foundation: RootFoundation | None = None,
+                     fe: bool = False, fe_mesh: FeMesh = FeMesh()) -> FlankCompliance:
+    """Compliance of one tooth of ``member`` at the drive-flank lattice ``xi x eta``.
+
+    The lattice values are snapped to the nearest node lines of the FE mesh
+    (``fe_mesh``, also without ``fe``) so that shell and FE see the same points.
+
+    Parameters
+    ----------
+    pair : GearPair
+    member : str
+        "pinion" or "gear".
+    flanks : FlankSet or None
+        The pair's flanks (built when None).
+    xi, eta : sequence of float
+        Tooth coordinates in [-1, 1] (face toe -> heel, height root -> tip).
+    order, order_face : int
+        Ritz orders of the shell over the height and along the face
+        (:func:`~.shell.build_shell`).
+    foundation : RootFoundation or None
+        Root / rim coefficients (default: the calibrated ones of the member).
+    fe : bool
+        Also solve the 3D FE model (needs the ``fe`` extra).
+    fe_mesh : FeMesh
+    """
+    if member not in ("pinion", "gear"):
+        raise InputRangeError("member", member, "'pinion' or 'gear'")
+    xi, eta = (np.asarray(a, float).ravel() for a in (xi, eta))
+    for name, a in (("xi", xi), ("eta", eta)):
+        if a.size == 0 or np.any(np.abs(a) > 1.0) or not np.all(np.isfinite(a)):
+            raise InputRangeError(name, a.tolist(), "a non-empty list of values in [-1, 1]")
+    if fe_mesh.n_xi < SEGMENT_NODES + 1:
+        raise InputRangeError("fe_mesh.n_xi", fe_mesh.n_xi, f">= {SEGMENT_NODES + 1}")
+    flanks = build_flanks(pair) if flanks is None else flanks
+    material = pair.pinion_material if member == "pinion" else pair.gear_material
+    xl = np.linspace(-1.0, 1.0, fe_mesh.n_xi + 1)
+    el = np.linspace(-1.0, 1.0, fe_mesh.n_eta + 1)
+    I, J = np.meshgrid(np.abs(xi[:, None] - xl).argmin(1), np.abs(eta[:, None] - el).argmin(1),
+                       indexing="ij")
+    I, J = I.ravel(), J.ravel()
+    nodes, sets, heights = _load_sets(I, J, fe_mesh.n_xi)
+    shell = tooth_shell(flanks, member, material=material, order=order,
+                        order_face=order_face, foundation=foundation)
+    tooth = shell.body
+    lattice = tooth.points_at("drive", xl[I], el[J])
+    nx, ny = xl[nodes[:, 0]], el[nodes[:, 1]]
+    both = concat_points(tooth.points_at("drive", nx, ny), tooth.points_at("coast", nx, ny))
+    Gs = shell.compliance(both).matrix()
+    n = len(I)
+    kw = dict(member=member, xi=xl[I], eta=el[J], points_mm=lattice.position_mm,
+              shell_mm_per_n=shell.compliance(lattice).matrix(),
+              segment_shell_mm_per_n=_distributed(Gs, sets[:n]), line_eta=el[heights],
+              line_shell_mm_per_n=_distributed(Gs, sets[n:]))
+    if fe:
+        from .fe import build_fe
+
+        model = build_fe(tooth, n_xi=fe_mesh.n_xi, n_eta=fe_mesh.n_eta,
+                         n_zeta=fe_mesh.n_zeta, n_rim=fe_mesh.n_rim)
+        pd, vd = model.node_points("drive", nx, ny)
+        pc, vc = model.node_points("coast", nx, ny)
+        G = model.compliance(concat_points(pd, pc), np.concatenate([vd, vc]))
+        pl, vl = model.node_points("drive", xl[I], el[J])
+        kw.update(fe_mm_per_n=model.compliance(pl, vl),
+                  segment_fe_mm_per_n=_distributed(G, sets[:n]),
+                  line_fe_mm_per_n=_distributed(G, sets[n:]),
+                  fe_nodes=model.n_nodes, fe_build_s=model.build_s)
+    return FlankCompliance(**kw)
+
+
+def write_compliance(result: FlankCompliance, out, *, pair, flanks: FlankSet,
+                     figures: bool = True, order: int = 6, order_face: int = 16
+                     ) -> list[Path]:
+    """Write ``compliance.json`` and ``deflection.png`` into ``out`` (created)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "compliance.json"
+    path.write_text(json.dumps(result.summary(), indent=1))
+    written = [path]
+    if figures:
+        from .plots import plot_deflection
+
+        written.append(plot_deflection(result, out / "deflection.png", pair=pair,
+                                       flanks=flanks, order=order, order_face=order_face))
+    return written

@@ -1,0 +1,209 @@
+"""3D finite elements of one tooth with its rim segment: the independent truth of the shell.
+
+The solid is a structured mapped mesh (no CAD): a tensor grid of nodes in
+(xi, eta, zeta) is mapped into the tooth (``zeta`` in [0, 1] runs straight from the
+coast flank point ``P_c(xi, eta)`` to the drive flank point ``P_d(xi, eta)``, so every
+surface node lies exactly on the real flanks of :mod:`.tooth`), and continued below the
+root line by a rim segment of depth ``rim_depth_mm``:
+
+- a root fillet approximation over the height ``fillet_mm`` below the root line, where
+  the sides widen on a quarter ellipse from the tooth to the slot middles (the
+  rim segment spans one pitch, half a slot on each side);
+- the rim block below it, whose bottom face is clamped (all displacements zero); its
+  sides, the toe / heel ends, the flanks and the top land are free.
+
+Each hexahedral cell is split into six tetrahedra (``MeshTet.init_tensor``); linear
+elasticity is solved with quadratic tetrahedra (P2) in scikit-fem with one sparse LU
+factorization per tooth, then one back-substitution per load point. A unit load along
+the inward flank normal at a flank node is a consistent nodal force for P2 (a vertex
+basis function is 1 there, the others 0), so G_ij = d_i . u(node_i; load j) is
+Maxwell-Betti symmetric to rounding. The point load makes the displacement at the
+loaded node itself mesh dependent (the local indentation, which the half-space part of
+the LTCA models); the shell is compared with it under distributed loads
+(:mod:`.compliance`).
+
+Needs the optional ``fe`` extra (``pip install 'gearcontact[fe]'``: scikit-fem).
+
+References
+----------
+T. Gustafsson, G. D. McBain, "scikit-fem: A Python package for finite element
+assembly", *J. Open Source Software* 5(52), 2020, 2369.
+O. C. Zienkiewicz, R. L. Taylor, *The Finite Element Method*, vol. 1, 6th ed., 2005
+(isoparametric solids, consistent nodal loads).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import InputRangeError, check_positive
+from .tooth import LoadPoints
+
+__all__ = ["FeTooth", "build_fe"]
+
+
+@dataclass(frozen=True, eq=False)
+class FeTooth:
+    """A factorized P2 finite-element model of one tooth (:func:`build_fe`).
+
+    Attributes
+    ----------
+    body : ToothGeometry or RectangularPlate
+    xi_levels, eta_levels : ndarray
+        Tooth coordinates of the flank node lines (eta only on the tooth, not the rim).
+    n_nodes, n_dofs : int
+        Nodes (vertices + edge mid-nodes) and degrees of freedom of the P2 mesh.
+    build_s : float
+        Wall time of meshing, assembly and factorization, s.
+    """
+
+    body: object
+    xi_levels: np.ndarray
+    eta_levels: np.ndarray
+    n_nodes: int
+    n_dofs: int
+    build_s: float
+    _vertex: object      # (i_xi, j_vertical, k_zeta) -> vertex index
+    _rim_levels: int
+    _n_zeta: int
+    _nodal_dofs: np.ndarray
+    _free: np.ndarray
+    _lu: object
+    _points: np.ndarray
+
+    def node_points(self, side: str, xi, eta) -> tuple[LoadPoints, np.ndarray]:
+        """Snap (xi, eta) to the nearest flank node of ``side``: the load points there
+        (inward flank normal) and the vertex indices."""
+        xi, eta = (np.atleast_1d(np.asarray(a, float)) for a in (xi, eta))
+        i = np.abs(xi[:, None] - self.xi_levels[None, :]).argmin(axis=1)
+        j = np.abs(eta[:, None] - self.eta_levels[None, :]).argmin(axis=1)
+        k = self._n_zeta if side == "drive" else 0
+        pts = self.body.points_at(side, self.xi_levels[i], self.eta_levels[j])
+        return pts, self._vertex[i, j + self._rim_levels, k]
+
+    def compliance(self, points: LoadPoints, vertices: np.ndarray) -> np.ndarray:
+        """G (n, n), mm/N: deflection along ``points.direction[i]`` at vertex i for a
+        unit load along ``points.direction[j]`` at vertex j (:meth:`node_points`)."""
+        F = np.zeros((self.n_dofs, len(vertices)))
+        for col, (v, d) in enumerate(zip(vertices, points.direction)):
+            F[self._nodal_dofs[:, v], col] = d
+        U = np.zeros_like(F)
+        U[self._free] = self._lu.solve(np.ascontiguousarray(F[self._free]))
+        G = F.T @ U
+        return 0.5 * (G + G.T)
+
+    def vertex_positions_mm(self, vertices: np.ndarray) -> np.ndarray:
+        """Body-frame positions of mesh vertices (n, 3), mm."""
+        return self._points[:, vertices].T
+
+
+def _signed_volumes(mesh) -> np.ndarray:
+    """Six times the signed volume of every tetrahedron, mm^3."""
+    p = mesh.p[:, mesh.t]
+    return np.einsum("in,in->n", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0], axis=0),
+                     p[:, 3] - p[:, 0])
+
+
+def _rim_map(body, xi, s_mm, zeta, *, fillet_mm: float):
+    """Points of the fillet / rim segment at depth ``s_mm`` below the root line."""
+    pc0, pd0 = body.side_points(xi, -np.ones_like(xi))
+    mid = body.mid_surface(xi, -np.ones_like(xi))
+    down = -mid.x_eta / np.linalg.norm(mid.x_eta, axis=-1, keepdims=True)
+    centre = 0.5 * (pc0 + pd0)
+    axis = body.axis
+    radial = lambda p: p - np.outer(p @ axis, axis)  # noqa: E731
+    rc, rd = radial(pc0), radial(pd0)
+    cosang = np.einsum("ni,ni->n", rc, rd) / (np.linalg.norm(rc, axis=1)
+                                               * np.linalg.norm(rd, axis=1))
+    widen = (2.0 * np.pi / body.teeth) / np.arccos(np.clip(cosang, -1.0, 1.0))
+    q = np.clip(s_mm / fillet_mm, 0.0, 1.0)
+    fan = np.sqrt(1.0 - (1.0 - q) ** 2)
+    f = 1.0 + (widen - 1.0) * fan
+    return centre + s_mm[:, None] * down + ((zeta - 0.5) * f)[:, None] * (pd0 - pc0)
+
+
+def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: int = 4,
+             rim_depth_mm: float | None = None, fillet_mm: float | None = None) -> FeTooth:
+    """Mesh, assemble and factor the P2 elasticity model of a tooth (module docstring).
+
+    Parameters
+    ----------
+    body : ToothGeometry or RectangularPlate
+        The tooth (with ``axis`` and ``teeth`` for the rim) or, with ``n_rim = 0``, any
+        plate body clamped at eta = -1.
+    n_xi, n_eta, n_zeta : int
+        Cells along the face, the height and the thickness (>= 1 each, n_xi, n_eta
+        >= 2).
+    n_rim : int
+        Cell layers of the fillet + rim segment (0: clamp the tooth at its root line).
+    rim_depth_mm : float or None
+        Depth of the rim segment below the root line, mm (default: the tooth height).
+    fillet_mm : float or None
+        Height of the fillet widening, mm (default: the larger of the flank's start
+        above the root cone, ``u_lo``, and 15 % of the tooth height).
+
+    Raises
+    ------
+    InputRangeError
+        For mesh sizes out of range, a non-positive depth, or a mesh with inverted
+        cells (``FE mesh``).
+    """
+    try:
+        import skfem
+        from scipy.sparse.linalg import splu
+        from skfem.models.elasticity import lame_parameters, linear_elasticity
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError("the FE model needs scikit-fem: pip install 'gearcontact[fe]'") from exc
+    for name, n, lo in (("n_xi", n_xi, 2), ("n_eta", n_eta, 2), ("n_zeta", n_zeta, 1),
+                        ("n_rim", n_rim, 0)):
+        if isinstance(n, bool) or int(n) != n or not lo <= n <= 200:
+            raise InputRangeError(name, n, f"an integer in [{lo}, 200]")
+    t0 = time.perf_counter()
+    xi_l = np.linspace(-1.0, 1.0, n_xi + 1)
+    eta_l = np.linspace(-1.0, 1.0, n_eta + 1)
+    zeta_l = np.linspace(0.0, 1.0, n_zeta + 1)
+    idx = skfem.MeshTet.init_tensor(np.arange(n_xi + 1.0), np.arange(n_rim + n_eta + 1.0),
+                                    np.arange(n_zeta + 1.0))
+    I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
+    pts = np.empty((3, idx.p.shape[1]))
+    tooth = J >= n_rim
+    eta = eta_l[np.clip(J - n_rim, 0, n_eta)]
+    pc, pd = body.side_points(xi_l[I[tooth]], eta[tooth])
+    pts[:, tooth] = (pc + zeta_l[K[tooth], None] * (pd - pc)).T
+    if n_rim:
+        if not hasattr(body, "teeth"):
+            raise InputRangeError("n_rim", n_rim, "0 for a body without a member axis")
+        mid = body.mid_surface(0.0, np.linspace(-1, 1, 9))
+        height = float(np.sum(np.linalg.norm(np.diff(mid.position_mm, axis=0), axis=1)))
+        depth = height if rim_depth_mm is None else check_positive("rim_depth_mm", rim_depth_mm)
+        fil = (max(body.u_span_mm[0], 0.15 * height) if fillet_mm is None
+               else check_positive("fillet_mm", fillet_mm))
+        fil = min(fil, depth)
+        # depth of the rim levels: graded towards the root (cubic), the root level at 0
+        s_lev = depth * ((n_rim - np.arange(n_rim + 1)) / n_rim) ** 2
+        r = ~tooth
+        pts[:, r] = _rim_map(body, xi_l[I[r]], s_lev[J[r]], zeta_l[K[r]], fillet_mm=fil).T
+    mesh = skfem.MeshTet(pts, idx.t)
+    # inverted cells: the map must keep (or flip) the orientation of every index cell
+    flips = np.sign(_signed_volumes(mesh)) * np.sign(_signed_volumes(idx))
+    if not (np.all(flips > 0) or np.all(flips < 0)):
+        raise InputRangeError("FE mesh", f"{int(np.sum(flips != np.sign(np.median(flips))))} "
+                              "inverted cells", "a mesh with positive cell volumes")
+    basis = skfem.Basis(mesh, skfem.ElementVector(skfem.ElementTetP2()), intorder=2)
+    mat = body.material
+    A = skfem.asm(linear_elasticity(*lame_parameters(mat.youngs_modulus_mpa, mat.poisson_ratio)),
+                  basis)
+    bottom = idx.facets_satisfying(lambda x: x[1] < 1e-6)   # all three vertices on J = 0
+    fixed = basis.get_dofs(facets=bottom).all()
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    lu = splu(A[free][:, free].tocsc())
+    vertex = np.empty((n_xi + 1, n_rim + n_eta + 1, n_zeta + 1), dtype=int)
+    vertex[I, J, K] = np.arange(idx.p.shape[1])
+    return FeTooth(body=body, xi_levels=xi_l, eta_levels=eta_l,
+                   n_nodes=int(basis.N // 3), n_dofs=int(basis.N),
+                   build_s=time.perf_counter() - t0, _vertex=vertex, _rim_levels=n_rim,
+                   _n_zeta=n_zeta, _nodal_dofs=basis.nodal_dofs, _free=free, _lu=lu,
+                   _points=mesh.p)

@@ -1,0 +1,438 @@
+"""Compiled (numba) step loop of the twin: contact law per backend and the RK4 integrator.
+
+State (SI, angles along the motion, absolute): ``y = [psi_m, psi_p, psi_g, psi_l,
+w_m, w_p, w_g, w_l, D, W_in, I]`` with ``D`` the energy dissipated by the dampers,
+``W_in`` the work of the motor and load torques (J), integrated with the motion so that
+the energy balance is checked to the integrator's order, and ``I`` the integral of the
+motor speed error (rad) of the optional PI speed controller::
+
+    T_m = T_l / u + K_p (Omega - w_m) + K_i I,       I' = Omega - w_m
+
+Equations of motion (torques N·m; module :mod:`.simulate` for the parameters)::
+
+    J_m w_m' = T_m - k1 (psi_m - psi_p) - c1 (w_m - w_p)
+    J_p w_p' = k1 (psi_m - psi_p) + c1 (w_m - w_p) - T_mesh (1/u + eps'(psi_p))
+    J_g w_g' = T_mesh - k2 (psi_g - psi_l) - c2 (w_g - w_l)
+    J_l w_l' = k2 (psi_g - psi_l) + c2 (w_g - w_l) - T_l
+
+with the mesh rotation ``theta = psi_p/u + eps(psi_p) - psi_g`` (:mod:`.mesh`); the
+pinion's factor ``1/u + eps'`` is ``d theta / d psi_p``, which makes the mesh
+conservative in the unloaded TE (the torque is the derivative of the mesh potential).
+
+Mesh torque, drive flank (``theta >= 0``): the Hertzian pairs of the current phase,
+``W_j = (d_j / kappa_j)^(3/2)`` for ``d_j = l_j theta - g_j > 0`` (else 0), ``T_el =
+sum W_j l_j``, plus the mesh damping ``T_d = c_m l_0^2 theta'`` while a pair is closed;
+the flanks cannot pull, so ``T_mesh = max(T_el + T_d, 0)``. Coast flank (``theta <=
+-theta_b``, ``theta_b = backlash / l_0``): the drive law mirrored, ``T_mesh =
+min(-T_el(-theta - theta_b) + T_d, 0)`` -- an approximation: the coast flank's own TCA
+is not used yet, so coast impacts see the drive flank's pairs and curvatures; in between the teeth fly free (``T_mesh = 0``,
+contact loss). Nothing divides by a load or an approach, so contact loss gives 0, never
+NaN.
+
+``kappa_j`` (mm / N^(2/3)) is the Hertzian approach coefficient ``delta = kappa W^(2/3)``
+(Johnson 1985 sec. 4.2: the approach of two elastic bodies in point contact grows as
+``W^(2/3)``; Hamrock & Brewe 1983 for the elliptical closed form), taken from one preview
+per loaded pair and step -- at the phase of the step's start (curvatures interpolated in
+phase; again if a later RK4 stage enters the next phase interval) and at the pair's load
+of the previous step -- and held over the step's four stages: ``delta = 3 W F / (pi a
+E')`` with ``F = pi/2 + (pi/2 - 1) ln alpha`` and ``alpha = k^(pi/2)`` (Hamrock–Brewe's
+``k = alpha^(2/pi)`` inverted), i.e. from the preview's outputs ``a`` and ``k`` whatever
+backend computed them:
+
+* ``reference`` (0): the fp64 Hamrock–Brewe forms, the package's one implementation
+  (:func:`gearcontact.analytic.hertz.hamrock_brewe_terms`) compiled here;
+* ``golden`` (1): the bit-exact fixed-point stage D (:func:`gearcontact.preview.hertz.
+  golden_vec.hertz_element`) on the round-half-up codes of A-, B- and W;
+* ``table`` (2): no preview; ``T_el`` from the offline loaded-TE table
+  (:mod:`.ltca_table`);
+* ``rtl`` / ``soc``: the golden loop, every preview traced and replayed on the RTL core
+  or through the SoC's register driver (:mod:`.cosim`).
+
+Tooth bending is not in the law yet (rigid teeth; hook in :mod:`.simulate`).
+
+For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
+rounding, and the load at which it is sampled is clamped to the datapath envelope
+(:data:`W_EVAL_MIN_N` .. 2^17 N).
+
+Integrator: classical 4th-order Runge–Kutta at a fixed step ``h`` (4 mesh evaluations per
+step). Linear stability on the imaginary axis (undamped modes): ``h omega <= 2 sqrt(2)
+~ 2.83`` (Hairer & Wanner, Solving ODEs II, sec. IV.2); :mod:`.simulate` requires
+``h omega_max <= 2.0`` at the linearised static operating point, margin for the
+Hertzian stiffening at dynamic overload (``k ~ W^(1/3)``, ``omega ~ W^(1/6)``: the RK4
+limit is reached only at 8x the static load). Global error O(h^4) where the force is smooth; the contact opening/closing
+and the phase-table kinks reduce it locally to O(h).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from numba.extending import overload
+
+from ..analytic.hertz import hamrock_brewe_terms
+from ..preview.hertz.golden_vec import hertz_element
+
+
+@overload(math.cbrt)
+def _cbrt_overload(x):   # numba 0.6x has no math.cbrt; libm cbrt is the same function
+    return lambda x: np.cbrt(x)
+
+
+_hb = njit(cache=True)(hamrock_brewe_terms)
+
+#: Contact backends; ``rtl`` and ``soc`` run the golden loop and replay its previews on
+#: the RTL core / through the SoC register driver (:mod:`.cosim`).
+BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1, "soc": 1}
+#: Smallest load at which a pair's preview is sampled, N (the datapath's envelope starts
+#: at 1 N; a pair that just closes is sampled here).
+W_EVAL_MIN_N = 1.0
+_W_EVAL_MAX_N = 131072.0
+_HB_E = 0.5 * math.pi - 1.0
+
+# prm indices
+(P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
+ P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA) = range(22)
+N_PRM = 22
+#: Length of the state vector y.
+N_STATE = 11
+# record columns
+(R_T, R_THETA, R_PSI, R_TMESH, R_W, R_A, R_B, R_P, R_NPAIRS, R_KE, R_PE, R_V, R_D, R_WIN,
+ R_WP, R_WG) = range(16)
+N_REC = 16
+#: Recorded columns (SI; loads N, semi-axes mm, pressure MPa). The table backend holds no
+#: contact state: its a_mm, b_mm, p_max_mpa, pairs_loaded and mesh_energy_j are 0.
+RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_n",
+                  "a_mm", "b_mm", "p_max_mpa", "pairs_loaded", "kinetic_j",
+                  "shaft_energy_j", "mesh_energy_j", "dissipated_j", "input_work_j",
+                  "pinion_speed_rad_s", "gear_speed_rad_s")
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, trace, tcount, out3):
+    """kappa (mm/N^(2/3)) from the golden stage D; out3 <- (a, b, p_max) at w_q."""
+    s20 = 1048576.0
+    a_code = np.int64(math.floor(min(A, B) * s20 + 0.5))
+    b_code = np.int64(math.floor(max(A, B) * s20 + 0.5))
+    w_code = np.int64(math.floor(w * 256.0 + 0.5))
+    flags, a_c, b_c, p_c, k_c, rx, ry, al = hertz_element(
+        a_code, b_code, w_code, np.int64(prm[P_ECODE]), pow_lut, cbrt_lut, cst)
+    t = tcount[0]
+    if t < trace.shape[0]:      # the rtl backend replays these on the hardware
+        trace[t, 0] = tcount[1]
+        trace[t, 1] = a_code
+        trace[t, 2] = b_code
+        trace[t, 3] = w_code
+        trace[t, 4] = flags
+        trace[t, 5] = a_c
+        trace[t, 6] = b_c
+        trace[t, 7] = p_c
+        trace[t, 8] = k_c
+        tcount[0] = t + 1
+    if flags != 0 or a_c == 0 or k_c == 0:
+        return -1.0
+    a = a_c / s20
+    k = k_c / s20
+    wq = w_code / 256.0
+    f = 0.5 * math.pi + _HB_E * (0.5 * math.pi) * math.log(k)
+    delta = 3.0 * wq * f / (math.pi * a * prm[P_ECODE])
+    out3[0] = a
+    out3[1] = b_c / s20
+    out3[2] = p_c / 256.0
+    return delta / wq ** (2.0 / 3.0)
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _kappa_reference(A, B, w, prm, out3):
+    a, b, k, p, delta, alpha, e_e, f, r = _hb(min(A, B), max(A, B), w, prm[P_EP])
+    out3[0] = a
+    out3[1] = b
+    out3[2] = p
+    return delta / w ** (2.0 / 3.0)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _phase(psi, prm):
+    """Row interval and fraction of the pinion angle psi (periodic in the pitch)."""
+    pitch = prm[P_PITCH]
+    x = psi - pitch * math.floor(psi / pitch)
+    u = x / prm[P_DPSI]
+    i = min(int(u), int(prm[P_NROW]) - 2)     # rounding can put x/dpsi at K-1
+    return i, u - i
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23):
+    """(T_el N·m, W N) from the loaded-TE table at rows i, i+1 and rotation theta."""
+    t_out = 0.0
+    w_out = 0.0
+    for r, wr in ((i, 1.0 - f), (i + 1, f)):
+        th = tab_theta[r]
+        n = th.shape[0]
+        # segment through (0, 0) and the ladder; the last one extrapolates
+        j = 0
+        while j < n - 1 and theta > th[j]:
+            j += 1
+        if j == 0:
+            x0, y0, z0 = 0.0, 0.0, 0.0
+        else:
+            x0, y0, z0 = th[j - 1], tab_t23[r, j - 1], tab_w23[r, j - 1]
+        x1, y1, z1 = th[j], tab_t23[r, j], tab_w23[r, j]
+        s = (theta - x0) / (x1 - x0)
+        y = y0 + s * (y1 - y0)
+        z = z0 + s * (z1 - z0)
+        if y > 0.0:
+            t_out += wr * y * math.sqrt(y)
+        if z > 0.0:
+            w_out += wr * z * math.sqrt(z)
+    return t_out, w_out
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
+             cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+             w_pairs, abp):
+    """Elastic mesh torque T_el (N·m) and total normal load (N) of the drive-flank law at
+    rotation theta >= 0; per-pair loads into w_pairs, (a, b, p) of the most loaded pair
+    into abp[0:3] (zeros when none); abp[3] flags a golden pair outside the envelope,
+    abp[4:7] is scratch."""
+    i, f = _phase(psi, prm)
+    n_p = lever.shape[0]
+    t_el = 0.0
+    w_tot = 0.0
+    abp[0] = 0.0
+    abp[1] = 0.0
+    abp[2] = 0.0
+    abp[3] = 0.0
+    for j in range(n_p):
+        w_pairs[j] = 0.0
+    if backend == 2:
+        return _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23)
+    out3 = abp[4:7]
+    w_max = 0.0
+    for j in range(n_p):
+        if not (valid[j, i] and valid[j, i + 1]):
+            continue
+        lv = lever[j, i] + f * (lever[j, i + 1] - lever[j, i])
+        g = opening[j, i] + f * (opening[j, i + 1] - opening[j, i])
+        d = lv * theta - g
+        if d <= 0.0:
+            continue
+        if cache[j, 0] != i:    # one preview per pair and step (and per new interval)
+            A = A_t[j, i] + f * (A_t[j, i + 1] - A_t[j, i])
+            B = B_t[j, i] + f * (B_t[j, i + 1] - B_t[j, i])
+            we = min(max(w_eval[j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
+            if backend == 0:
+                kap = _kappa_reference(A, B, we, prm, out3)
+            else:
+                kap = _kappa_golden(A, B, we, prm, pow_lut, cbrt_lut, cst, trace, tcount,
+                                    out3)
+            cache[j, 0] = i
+            cache[j, 1] = kap
+            cache[j, 2] = out3[0]
+            cache[j, 3] = out3[1]
+            cache[j, 4] = out3[2]
+            cache[j, 5] = we
+        kap = cache[j, 1]
+        if kap <= 0.0:      # golden outside the datapath envelope: counted, reported
+            abp[3] = 1.0
+            tcount[3] += 1
+            continue
+        we = cache[j, 5]
+        x = d / kap
+        w = x * math.sqrt(x)
+        w_pairs[j] = w
+        t_el += 1e-3 * w * lv
+        w_tot += w
+        if w > w_max:
+            w_max = w
+            scale = (w / we) ** (1.0 / 3.0)     # Hertz similarity a, b, p ~ W^(1/3)
+            abp[0] = cache[j, 2] * scale
+            abp[1] = cache[j, 3] * scale
+            abp[2] = cache[j, 4] * scale
+    return t_el, w_tot
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
+           cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, dy, w_pairs, abp):
+    """dy/dt into dy; returns (theta, T_mesh N·m, total normal load N)."""
+    u = prm[P_U]
+    psi_p = y[1]
+    i, f = _phase(psi_p, prm)
+    e = eps[i] + f * (eps[i + 1] - eps[i])
+    de = (eps[i + 1] - eps[i]) / prm[P_DPSI]
+    theta = psi_p / u + e - y[2]
+    theta_dot = y[5] * (1.0 / u + de) - y[6]
+    l0 = prm[P_L0]
+    t_d = 1e-3 * prm[P_CM] * l0 * l0 * theta_dot
+    t_mesh = 0.0
+    t_el_signed = 0.0
+    w_tot = 0.0
+    flank = 0                        # +1 drive, -1 coast, 0 free flight
+    th_e = 0.0
+    if theta >= 0.0:
+        flank = 1
+        th_e = theta
+    elif theta <= -prm[P_THB]:
+        flank = -1
+        th_e = -theta - prm[P_THB]
+    if flank != 0:
+        t_el, w_tot = _elastic(th_e, psi_p, prm, eps, lever, opening, A_t, B_t, valid,
+                               backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace,
+                               tcount, tab_theta,
+                               tab_t23, tab_w23, w_pairs, abp)
+        if t_el > 0.0:
+            t_el_signed = flank * t_el
+            if flank == 1:
+                t_mesh = max(t_el + t_d, 0.0)
+            else:
+                t_mesh = min(-t_el + t_d, 0.0)
+    else:
+        for j in range(w_pairs.shape[0]):
+            w_pairs[j] = 0.0
+        abp[0] = 0.0
+        abp[1] = 0.0
+        abp[2] = 0.0
+    tw1 = prm[P_K1] * (y[0] - y[1]) + prm[P_C1] * (y[4] - y[5])
+    tw2 = prm[P_K2] * (y[2] - y[3]) + prm[P_C2] * (y[6] - y[7])
+    dy[0] = y[4]
+    dy[1] = y[5]
+    dy[2] = y[6]
+    dy[3] = y[7]
+    # motor: constant torque T_l/u, plus the PI speed controller when its gains are set
+    t_m = prm[P_TM] + prm[P_KP] * (prm[P_OMEGA] - y[4]) + prm[P_KI] * y[10]
+    dy[4] = (t_m - tw1) / prm[P_JM]
+    dy[5] = (tw1 - t_mesh * (1.0 / u + de)) / prm[P_JP]
+    dy[6] = (t_mesh - tw2) / prm[P_JG]
+    dy[7] = (tw2 - prm[P_TL]) / prm[P_JL]
+    # dissipated power: shaft dampers + the non-elastic part of the mesh torque (the
+    # damper, or the clamp that keeps the flanks from pulling), (T_mesh - T_el) theta'
+    p_mesh = (t_mesh - t_el_signed) * theta_dot
+    dw1 = y[4] - y[5]
+    dw2 = y[6] - y[7]
+    dy[8] = prm[P_C1] * dw1 * dw1 + prm[P_C2] * dw2 * dw2 + p_mesh
+    dy[9] = t_m * y[4] - prm[P_TL] * y[7]
+    dy[10] = prm[P_OMEGA] - y[4]
+    return theta, t_mesh, w_tot
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _mesh_potential(theta, psi, prm, lever, opening, valid, w_pairs):
+    """Hertzian mesh potential sum (2/5) W_j d_j (J) of the loads in w_pairs."""
+    i, f = _phase(psi, prm)
+    v = 0.0
+    th = theta if theta >= 0.0 else -theta - prm[P_THB]
+    for j in range(lever.shape[0]):
+        if w_pairs[j] > 0.0:
+            lv = lever[j, i] + f * (lever[j, i + 1] - lever[j, i])
+            g = opening[j, i] + f * (opening[j, i + 1] - opening[j, i])
+            v += 0.4 * w_pairs[j] * (lv * th - g) * 1e-3
+    return v
+
+
+@njit(cache=True, error_model="numpy")
+def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
+              w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec,
+              rec_start, record_every):
+    """Advance ``y`` (in place) by ``n_steps`` RK4 steps of ``h`` s from time ``t0``.
+
+    Rows ``rec[rec_start + n // record_every]`` receive the state at the start of every
+    ``record_every``-th step (columns :data:`RECORD_COLUMNS`); ``w_eval`` (per pair, N)
+    carries the pair loads from step to step (the loads at which the preview is
+    sampled). ``trace`` (int64, rows x 9) receives every golden stage-D evaluation while
+    rows remain, ``[step, A_code, B_code, W_code, flags, a_code, b_code, p_max_code,
+    k_code]``, counted in ``tcount[0]`` (``tcount[2]`` counts the steps, ``tcount[3]`` the
+    golden previews flagged outside the datapath envelope, whose pair then carries
+    nothing); a trace of 0 rows records nothing. Returns the number of rows written to ``rec``.
+    """
+    n_y = y.shape[0]
+    n_p = lever.shape[0]
+    if n_y != N_STATE:
+        raise ValueError("run_steps: the state vector must have N_STATE entries")
+    stages = np.empty((5, n_y))
+    pairs = np.zeros((2, n_p))
+    abp = np.zeros((2, 7))
+    cache = np.zeros((n_p, 6))
+    return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
+                w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+                rec, rec_start, record_every, stages, pairs, abp, cache)
+
+
+# Without the runtime's reference counting: every array is owned by run_steps, and the
+# inlined helpers would otherwise pay an atomic incref/decref per array argument and
+# call (measured ~200 ns per mesh evaluation, more than the evaluation itself).
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
+         pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec, rec_start,
+         record_every,
+         stages, pairs, abp2, cache):
+    n_y = y.shape[0]
+    n_p = lever.shape[0]
+    k1 = stages[0]
+    k2 = stages[1]
+    k3 = stages[2]
+    k4 = stages[3]
+    ys = stages[4]
+    w_pairs = pairs[0]
+    abp = abp2[0]
+    rows = 0
+    for n in range(n_steps):
+        for j in range(n_p):
+            cache[j, 0] = -1.0      # a fresh preview of every loaded pair each step
+        tcount[1] = tcount[2]       # step index of the trace rows
+        tcount[2] += 1
+        for st in range(4):
+            if st == 0:
+                for m in range(n_y):
+                    ys[m] = y[m]
+            else:
+                c = 1.0 if st == 3 else 0.5
+                prev = stages[st - 1]
+                for m in range(n_y):
+                    ys[m] = y[m] + c * h * prev[m]
+            theta, t_mesh, w_tot = _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid,
+                                          backend, w_eval, cache, pow_lut, cbrt_lut, cst,
+                                          trace, tcount, tab_theta, tab_t23, tab_w23, stages[st],
+                                          pairs[min(st, 1)], abp2[min(st, 1)])
+            if st == 0:
+                if n % record_every == 0:
+                    _record(rec, rec_start + rows, t0 + n * h, theta, t_mesh, w_tot, y, prm,
+                            lever, opening, valid, backend, w_pairs, abp)
+                    rows += 1
+                for j in range(n_p):
+                    if w_pairs[j] > 0.0:
+                        w_eval[j] = w_pairs[j]
+        for m in range(n_y):
+            y[m] += h / 6.0 * (k1[m] + 2.0 * k2[m] + 2.0 * k3[m] + k4[m])
+    return rows
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _record(rec, r, t, theta, t_mesh, w_tot, y, prm, lever, opening, valid, backend,
+            w_pairs, abp):
+    """One row of :data:`RECORD_COLUMNS` (state at the start of a step)."""
+    n_p = lever.shape[0]
+    rec[r, R_T] = t
+    rec[r, R_THETA] = theta
+    rec[r, R_PSI] = y[1]
+    rec[r, R_TMESH] = t_mesh
+    rec[r, R_W] = w_tot
+    rec[r, R_A] = abp[0]
+    rec[r, R_B] = abp[1]
+    rec[r, R_P] = abp[2]
+    cnt = 0
+    for j in range(n_p):
+        if w_pairs[j] > 0.0:
+            cnt += 1
+    rec[r, R_NPAIRS] = cnt
+    rec[r, R_KE] = 0.5 * (prm[P_JM] * y[4] ** 2 + prm[P_JP] * y[5] ** 2
+                          + prm[P_JG] * y[6] ** 2 + prm[P_JL] * y[7] ** 2)
+    rec[r, R_PE] = 0.5 * (prm[P_K1] * (y[0] - y[1]) ** 2 + prm[P_K2] * (y[2] - y[3]) ** 2)
+    rec[r, R_V] = _mesh_potential(theta, y[1], prm, lever, opening, valid,
+                                  w_pairs) if backend != 2 else 0.0
+    rec[r, R_D] = y[8]
+    rec[r, R_WIN] = y[9]
+    rec[r, R_WP] = y[5]
+    rec[r, R_WG] = y[6]

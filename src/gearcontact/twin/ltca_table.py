@@ -1,0 +1,102 @@
+"""The conventional twin's input: an offline loaded-TE table over phase x torque.
+
+The loaded TE of :func:`gearcontact.contact.lte.loaded_te` is run at a ladder of gear
+torques ``T_i``; at every phase it gives the mesh rotation ``theta(phase, T_i)`` (gear
+lag behind the unloaded pose, rad) and the total normal load. The twin then needs the
+inverse, the mesh torque at the current rotation: per phase, ``T^(2/3)`` is
+interpolated linearly in ``theta`` through ``(0, 0)`` and the ladder (exact for a single
+Hertzian pair, ``theta ~ T^(2/3)``; extrapolated with the last segment beyond the
+largest torque), then linearly in phase. Two sources over the same runs:
+
+* ``"lcp"`` -- the half-space LCP of all pairs in reach (``TE_LCP``, the conventional
+  loaded TCA), the default;
+* ``"preview"`` -- the Hamrock–Brewe balance of the same pairs (``TE_pre``), the same
+  contact model as the preview twin: the two twins must then agree up to the table's
+  interpolation (a test).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..contact.lte import loaded_te
+from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..validation import InputRangeError, check_positive
+
+__all__ = ["TorqueTable", "torque_table", "TABLE_SOURCES", "DEFAULT_LADDER"]
+
+TABLE_SOURCES = ("lcp", "preview")
+#: Torques of the ladder as fractions of the nominal gear torque (dense at light load,
+#: where T^(2/3) bends most with the number of pairs in contact; 2.5x covers dynamic
+#: factors up to 2.5 without extrapolation).
+DEFAULT_LADDER = (0.05, 0.15, 0.3, 0.5, 0.75, 1.0, 1.4, 1.9, 2.5)
+
+
+@dataclass(frozen=True, eq=False)
+class TorqueTable:
+    """Mesh rotation vs gear torque at each phase, rows in the motion order of a
+    :class:`~.mesh.MeshTable` (same phases).
+
+    Attributes
+    ----------
+    torques_nm : ndarray (T,)
+        Gear torques of the ladder, N·m, increasing.
+    theta_rad : ndarray (K, T)
+        Mesh rotation at each phase and torque, rad.
+    load_n : ndarray (K, T)
+        Total normal load of the pairs, N.
+    source : str
+        ``"lcp"`` or ``"preview"``.
+    """
+
+    torques_nm: np.ndarray
+    theta_rad: np.ndarray
+    load_n: np.ndarray
+    source: str
+
+
+def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "drive",
+                 source: str = "lcp", ladder=DEFAULT_LADDER, cells: int = 32,
+                 progress: bool = False) -> TorqueTable:
+    """Run the loaded TE at ``ladder x torque_nm`` and tabulate (module docstring).
+
+    Parameters
+    ----------
+    tca, flanks, pair
+        As for :func:`gearcontact.contact.lte.loaded_te` (``tca`` the analysis the
+        ``mesh`` was built from).
+    mesh : gearcontact.twin.mesh.MeshTable
+        Sets the row order (motion).
+    torque_nm : float
+        Nominal gear torque, N·m.
+    source : str
+        One of :data:`TABLE_SOURCES`.
+    ladder : sequence of float
+        Torque fractions, increasing, > 0.
+    cells : int
+        Cells per side of each pair's field (32 puts the rotation within ~1-2 % of the
+        converged LCP, :func:`~gearcontact.contact.lte.loaded_te`).
+    """
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if source not in TABLE_SOURCES:
+        raise InputRangeError("table source", source, f"one of {TABLE_SOURCES}")
+    lad = np.asarray(ladder, float)
+    if lad.ndim != 1 or lad.size < 2 or not (np.all(lad > 0) and np.all(np.diff(lad) > 0)):
+        raise InputRangeError("table ladder", ladder, "at least 2 increasing fractions > 0")
+    order = np.arange(len(mesh.psi_rad)) if mesh.motion_sign == 1 else \
+        np.arange(len(mesh.psi_rad))[::-1]
+    theta = np.zeros((len(order), lad.size))
+    load = np.zeros_like(theta)
+    for i, f in enumerate(lad):
+        res = loaded_te(tca, flanks, pair, f * t, side=side, cells=cells, progress=progress)
+        if source == "lcp":
+            if not res.converged:
+                raise ArithmeticError(f"loaded TE at {f * t:g} N·m did not converge")
+            rot, w = res.rotation_lcp_arcsec, res.pair_loads_lcp_n
+        else:
+            rot, w = res.rotation_pre_arcsec, res.pair_loads_pre_n
+        theta[:, i] = rot[order] / ARCSEC_PER_RAD
+        load[:, i] = w.sum(axis=0)[order]
+    return TorqueTable(lad * t, theta, load, source)

@@ -1,0 +1,175 @@
+"""The mesh of the twin: per phase and tooth pair, what the contact law needs.
+
+From the unloaded TCA over one pinion pitch (:class:`~gearcontact.tca.mesh.MeshCycle`)
+and the potential contacts of the loaded TE (:func:`~gearcontact.contact.lte_pairs.
+phase_contacts`, edge pairs resolved on their posed fields), at each of the ``K`` phases
+and for each neighbouring pair ``j``:
+
+* ``lever_mm``: lever ``l_j`` of the pair's normal about the gear axis, mm;
+* ``opening_mm``: initial separation ``g_j`` along the normal with the gear resting on
+  the transmitting pair (0 for that pair), mm;
+* ``A_minus, B_minus``: half relative principal curvatures at its mating point, 1/mm,
+  the inputs of the Hertz stage of the preview;
+
+and the unloaded TE envelope. Everything is re-expressed along the *motion*: the
+pinion angle ``psi`` and the gear angle increase in the direction the pinion drives the
+gear on the analysed flank (``psi = m (phi1 - phi1_0)`` with ``m = +1`` if the TE0
+envelope is the max over the pairs, i.e. the pinion pushes the gear towards +phi2, and
+``m = -1`` otherwise; :mod:`gearcontact.tca.mesh`), so that
+
+    theta = psi_p / u + eps(psi_p) - psi_g          (gear lag behind its unloaded pose)
+
+closes pair ``j`` by ``d_j = l_j theta - g_j`` exactly as the rotation ``theta`` of
+:mod:`gearcontact.contact.lte`, with ``eps = m TE0_env`` (rad). The loaded TE in the
+TCA's sign is ``TE = TE0_env - m theta`` (the ``TE = TE0_env + s theta`` of the LTE,
+``s = -m``).
+
+Phases are kept with both ends of the pitch: the last row is the next pitch's first
+with the pairs renumbered, so that an interval between two rows always uses one pair
+numbering (the force is a sum over the pairs and does not care about their names).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..contact.lte_pairs import PairFields, phase_contacts
+from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..materials import effective_modulus_mpa
+from ..validation import check_positive
+
+__all__ = ["MeshTable", "mesh_table"]
+
+
+@dataclass(frozen=True, eq=False)
+class MeshTable:
+    """Per-phase, per-pair mesh data along the motion (module docstring).
+
+    Attributes
+    ----------
+    psi_rad : ndarray (K,)
+        Pinion angle along the motion from the first row, rad, increasing, spanning one
+        pinion pitch ``2 pi / z1``.
+    eps_rad : ndarray (K,)
+        Unloaded TE envelope along the motion ``m TE0_env``, rad of gear rotation.
+    lever_mm, opening_mm, A_minus_per_mm, B_minus_per_mm : ndarray (P, K)
+        Per pair; rows of pairs without a contact at that phase hold 0 and
+        ``valid`` False.
+    valid : ndarray (P, K) of bool
+        The pair is a potential contact at that phase.
+    motion_sign : int
+        ``m``: +1 if the motion runs along +phi1, -1 along -phi1.
+    ratio : float
+        ``u = z2 / z1``.
+    pinion_teeth : int
+        z1.
+    reference_lever_mm : float
+        Lever of the transmitting pair at the reference (mean) phase, mm; the line of
+        action on which forces and the mesh damping are reported.
+    reference_index : int
+        Row of the reference phase.
+    e_prime_mpa : float
+        Effective modulus E' = 2E* of the two members, MPa.
+    phi1_rad : ndarray (K,)
+        The TCA phases of the rows, rad (TCA sign).
+    te0_arcsec : ndarray (K,)
+        The TCA envelope of the rows, arcsec (TCA sign).
+    """
+
+    psi_rad: np.ndarray
+    eps_rad: np.ndarray
+    lever_mm: np.ndarray
+    opening_mm: np.ndarray
+    A_minus_per_mm: np.ndarray
+    B_minus_per_mm: np.ndarray
+    valid: np.ndarray
+    motion_sign: int
+    ratio: float
+    pinion_teeth: int
+    reference_lever_mm: float
+    reference_index: int
+    e_prime_mpa: float
+    phi1_rad: np.ndarray
+    te0_arcsec: np.ndarray
+
+    @property
+    def pitch_rad(self) -> float:
+        """Pinion pitch ``2 pi / z1``, rad."""
+        return 2.0 * np.pi / self.pinion_teeth
+
+    @property
+    def step_rad(self) -> float:
+        """Uniform phase step of the rows, rad."""
+        return float(self.psi_rad[1] - self.psi_rad[0])
+
+
+def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.5,
+               edge_reach: float = 0.5, cells: int = 40) -> MeshTable:
+    """Mesh data of ``tca`` over one pitch (module docstring).
+
+    Parameters
+    ----------
+    tca : gearcontact.tca.analysis.TcaAnalysis
+        Unloaded analysis of ``side``.
+    flanks : gearcontact.geometry.flank.FlankSet
+        Its flanks.
+    pair : gearcontact.geometry.pair.GearPair
+        The pair (kinematics, materials).
+    side : str
+        ``"drive"`` or ``"coast"``.
+    torque_nm : float
+        Gear torque that sizes the posed fields of edge pairs (their opening is the
+        smallest separation on the flank; the size only has to cover it), N·m.
+    edge_reach : float
+        As in :func:`gearcontact.contact.lte.loaded_te`: pairs up to this fraction of a
+        pitch beyond their path end are kept as edge contacts.
+    cells : int
+        Cells per side of an edge pair's posed field, whose smallest separation on the
+        flank is the pair's opening (resolution dependent: use the ``cells`` of the
+        loaded TE the twin is compared with; 40 is its default).
+    """
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    cycle = tca.cycle
+    kin = pair.kinematics()
+    pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
+    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
+    fields = PairFields(pinion, gear, kin, cycle, torque_nmm=1e3 * t, e_prime=e_prime,
+                        cells=int(cells), extent=(1.6, 2.0))
+    base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
+    row = {o: i for i, o in enumerate(cycle.pair_offsets)}
+    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B")}
+    valid = np.zeros((n_p, n_k), bool)
+    curv: dict = {}
+    steps = round(edge_reach * cycle.step_index)
+    for k in range(n_k):
+        for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
+            pc = fields.resolve(pc)
+            if not np.isfinite(pc.opening_arcsec):
+                continue
+            i = row[pc.offset]
+            valid[i, k] = True
+            arrays["lever"][i, k] = pc.lever_mm
+            arrays["opening"][i, k] = pc.offset_mm
+            arrays["A"][i, k] = pc.A_minus_per_mm
+            arrays["B"][i, k] = pc.B_minus_per_mm
+    m = 1 if cycle.envelope_is_max else -1
+    phi1 = np.asarray(cycle.phi1_rad, float)
+    env = np.asarray(cycle.envelope_arcsec, float)
+    order = np.arange(n_k) if m == 1 else np.arange(n_k)[::-1]
+    k0 = cycle.mean_index
+    main = [i for i in range(n_p) if valid[i, k0] and arrays["opening"][i, k0] == 0.0]
+    if not main:
+        raise ValueError("mesh_table: no transmitting pair at the reference phase (the TCA "
+                         "lost the path of pair 0; use more phases)")
+    ref_lever = float(arrays["lever"][main[0], k0])
+    return MeshTable(
+        psi_rad=m * (phi1[order] - phi1[order][0]), eps_rad=m * env[order] / ARCSEC_PER_RAD,
+        lever_mm=arrays["lever"][:, order], opening_mm=arrays["opening"][:, order],
+        A_minus_per_mm=arrays["A"][:, order], B_minus_per_mm=arrays["B"][:, order],
+        valid=valid[:, order], motion_sign=m, ratio=float(pair.gear_teeth / pair.pinion_teeth),
+        pinion_teeth=int(pair.pinion_teeth), reference_lever_mm=ref_lever,
+        reference_index=int(np.flatnonzero(order == k0)[0]), e_prime_mpa=float(e_prime),
+        phi1_rad=phi1[order], te0_arcsec=env[order])

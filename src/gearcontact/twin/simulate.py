@@ -1,0 +1,510 @@
+"""The drivetrain twin: model set-up, static operating point, linearised modes, time run.
+
+A :class:`TwinModel` joins the drivetrain (:mod:`.params`), the mesh of the pair
+(:mod:`.mesh`; and for the ``table`` backend the loaded-TE table of :mod:`.ltca_table`)
+and one contact backend; :func:`simulate` integrates it at a fixed step with the
+compiled loop of :mod:`.kernel` (equations and integrator documented there).
+
+Operating point: the motor torque balances the load (gear) torque through the ratio,
+``T_m = T_l / u`` (no losses); the run starts from the static equilibrium at the first
+phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
+:func:`gearcontact.contact.lte.preview_balance`) with the members at the nominal
+speeds, so that what follows is the response to the mesh excitation (unloaded TE and
+the phase-varying stiffness).
+
+Tooth bending: not modelled yet (rigid teeth, Hertzian approach only). The hook is
+:attr:`TwinModel.bending_compliance_mm_per_n`: it must stay 0 until the bending model
+lands; the contact law then becomes ``d_j = delta_H(W_j) + c_b W_j`` per pair.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from tqdm import tqdm
+
+from ..contact.lte import preview_balance
+from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..preview.hertz.golden import encode_e_prime
+from ..preview.hertz.golden_vec import golden_constants
+from ..preview.hertz.reference import ENVELOPE
+from ..validation import InputRangeError, check_array_finite, check_positive, check_range
+from . import kernel as K
+from .mesh import MeshTable
+from .params import DrivetrainParams
+
+__all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate",
+           "linearized_modes", "linear_matrices", "check_step", "static_rotation",
+           "speed_controller_gains",
+           "mesh_damping_n_s_per_mm", "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US",
+           "LOCKSTEP_MAX_STEPS"]
+
+BACKENDS = tuple(K.BACKEND_CODES)
+#: Largest h omega_max accepted (RK4 limit 2.83 on the imaginary axis; kernel docstring).
+STABILITY_LIMIT = 2.0
+#: Accepted fixed steps, us.
+STEP_RANGE_US = (1.0, 50.0)
+_CHUNK = 256          # steps per compiled call: the step-time percentiles' granularity
+#: Longest lockstep runs (the trace holds every preview; the SoC driver takes ~0.3 s per
+#: preview in simulation), steps.
+LOCKSTEP_MAX_STEPS = {"rtl": 200_000, "soc": 1_000}
+
+
+@dataclass(frozen=True, eq=False)
+class TwinModel:
+    """Everything a run needs (build with :func:`build_model`).
+
+    Attributes
+    ----------
+    mesh : MeshTable
+    drivetrain : DrivetrainParams
+    backend : str
+        One of :data:`BACKENDS`.
+    torque_nm : float
+        Load torque on the gear, N·m (the motor gives ``torque / u``).
+    table : gearcontact.twin.ltca_table.TorqueTable or None
+        The loaded-TE table (``table`` backend).
+    bending_compliance_mm_per_n : float
+        Tooth-bending compliance hook; 0 (not modelled yet, module docstring).
+    """
+
+    mesh: MeshTable
+    drivetrain: DrivetrainParams
+    backend: str
+    torque_nm: float
+    table: object = None
+    bending_compliance_mm_per_n: float = 0.0
+    arrays: dict = field(default_factory=dict, repr=False)
+
+
+def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
+                backend: str = "reference", table=None,
+                bending_compliance_mm_per_n: float = 0.0) -> TwinModel:
+    """Check the inputs and pack the compiled loop's arrays.
+
+    ``bending_compliance_mm_per_n`` is the hook for the tooth-bending model: only 0 is
+    accepted until it lands (then each pair solves ``d_j = kappa_j W^(2/3) + c_b W`` for
+    ``W`` by a few Newton steps in the kernel instead of the closed form).
+
+    Raises
+    ------
+    InputRangeError
+        Unknown backend, ``table`` backend without a table, torque <= 0, a bending
+        compliance other than 0.
+    """
+    if backend not in BACKENDS:
+        raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if bending_compliance_mm_per_n != 0.0:
+        raise InputRangeError("bending_compliance_mm_per_n", bending_compliance_mm_per_n,
+                              "0 (tooth bending is not modelled yet: rigid teeth)")
+    if backend == "table" and table is None:
+        raise InputRangeError("table", None, "a loaded-TE table for the table backend")
+    if backend != "table":
+        _check_envelope(mesh)
+    pow_lut, cbrt_lut, cst = golden_constants()
+    if table is not None:
+        tab = (np.ascontiguousarray(table.theta_rad),
+               np.ascontiguousarray(np.broadcast_to(table.torques_nm ** (2.0 / 3.0),
+                                                    table.theta_rad.shape)),
+               np.ascontiguousarray(table.load_n ** (2.0 / 3.0)))
+    else:
+        tab = (np.ones((1, 2)), np.zeros((1, 2)), np.zeros((1, 2)))
+    arrays = {"eps": np.ascontiguousarray(mesh.eps_rad),
+              "lever": np.ascontiguousarray(mesh.lever_mm),
+              "opening": np.ascontiguousarray(mesh.opening_mm),
+              "A": np.ascontiguousarray(mesh.A_minus_per_mm),
+              "B": np.ascontiguousarray(mesh.B_minus_per_mm),
+              "valid": np.ascontiguousarray(mesh.valid),
+              "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
+              "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2]}
+    return TwinModel(mesh, drivetrain, backend, t, table, 0.0, arrays)
+
+
+def _check_envelope(mesh: MeshTable) -> None:
+    """The pairs' curvatures must lie in the preview's operating envelope (the same for
+    every backend, :data:`gearcontact.preview.hertz.reference.ENVELOPE`); checked once
+    here, not per step."""
+    lo, hi = ENVELOPE["curvature_per_mm"]
+    v = mesh.valid
+    for name, arr in (("A_minus_per_mm", mesh.A_minus_per_mm), ("B_minus_per_mm",
+                                                                mesh.B_minus_per_mm)):
+        x = arr[v]
+        if x.size and not (x.min() >= lo and x.max() <= hi):
+            bad = x[np.argmax((x < lo) | (x > hi))]
+            raise InputRangeError(f"mesh {name}", float(bad), f"[{lo:g}, {hi:g}] 1/mm "
+                                  "(preview envelope)")
+    a, b = mesh.A_minus_per_mm[v], mesh.B_minus_per_mm[v]
+    if a.size:
+        ratio = float((np.maximum(a, b) / np.minimum(a, b)).max())
+        if ratio > ENVELOPE["alpha"][1]:
+            raise InputRangeError("mesh alpha = B_max/A_min", ratio,
+                                  f"<= {ENVELOPE['alpha'][1]:g} (preview envelope)")
+
+
+def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
+    dt, m = model.drivetrain, model.mesh
+    c1, c2 = dt.shaft_damping()
+    prm = np.zeros(K.N_PRM)
+    prm[[K.P_JM, K.P_JP, K.P_JG, K.P_JL]] = (dt.motor_inertia_kgm2, dt.pinion_inertia_kgm2,
+                                             dt.gear_inertia_kgm2, dt.load_inertia_kgm2)
+    prm[K.P_K1], prm[K.P_K2] = dt.input_stiffness_nm_per_rad, dt.output_stiffness_nm_per_rad
+    prm[K.P_C1], prm[K.P_C2], prm[K.P_CM] = c1, c2, c_mesh_n_s_per_mm
+    prm[K.P_THB] = dt.backlash_mm / m.reference_lever_mm
+    prm[K.P_U] = m.ratio
+    prm[K.P_TL] = model.torque_nm
+    prm[K.P_TM] = model.torque_nm / m.ratio
+    prm[K.P_L0] = m.reference_lever_mm
+    prm[K.P_EP] = m.e_prime_mpa
+    prm[K.P_DPSI] = m.step_rad
+    prm[K.P_PITCH] = m.pitch_rad
+    prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
+    prm[K.P_NROW] = len(m.psi_rad)
+    return prm
+
+
+def speed_controller_gains(model: TwinModel) -> tuple[float, float]:
+    """PI gains ``(K_p N·m·s/rad, K_i N·m/rad)`` of the motor speed controller, (0, 0)
+    when ``speed_control_bandwidth_hz`` is 0 (constant motor torque).
+
+    Designed on the rigid chain (inertia reflected to the motor ``J = J_m + J_p + (J_g +
+    J_l)/u^2``): ``K_p = 2 pi f_c J``, ``K_i = K_p 2 pi f_c / 4``, which places both
+    closed-loop poles at ``-pi f_c`` (critically damped, ``s^2 J + K_p s + K_i = 0``);
+    the bandwidth must stay below a third of the first elastic mode so that the rigid
+    design holds.
+
+    Raises
+    ------
+    InputRangeError
+        ``speed_control_bandwidth_hz`` >= f_1 / 3.
+    """
+    dt, m = model.drivetrain, model.mesh
+    f_c = dt.speed_control_bandwidth_hz
+    if f_c == 0.0:
+        return 0.0, 0.0
+    f1 = float(linearized_modes(model)[1])
+    if f_c >= f1 / 3.0:
+        raise InputRangeError("drivetrain.speed_control_bandwidth_hz", f_c,
+                              f"< {f1 / 3.0:.4g} Hz (a third of the first mode {f1:.4g} Hz)")
+    j = (dt.motor_inertia_kgm2 + dt.pinion_inertia_kgm2
+         + (dt.gear_inertia_kgm2 + dt.load_inertia_kgm2) / m.ratio ** 2)
+    kp = 2.0 * math.pi * f_c * j
+    return kp, kp * 2.0 * math.pi * f_c / 4.0
+
+
+def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
+             w_eval=None) -> tuple[float, np.ndarray]:
+    """Drive-flank elastic torque (N·m) and pair loads (N) at (theta, psi)."""
+    a = model.arrays
+    n_p = a["lever"].shape[0]
+    w_eval = np.full(n_p, 1e3) if w_eval is None else w_eval
+    w = np.zeros(n_p)
+    t, _ = K._elastic(theta, psi, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
+                      a["valid"], K.BACKEND_CODES[model.backend], w_eval,
+                      np.full((n_p, 6), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
+                      np.zeros((0, 9), np.int64), np.zeros(4, np.int64), a["tab_theta"],
+                      a["tab_t23"], a["tab_w23"],
+                      w, np.zeros(7))
+    return t, w
+
+
+def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
+    """Mesh rotation theta (rad) and pair loads (N) that carry the load torque at the
+    first phase, with the model's own contact law.
+
+    The Hertzian balance of :func:`~gearcontact.contact.lte.preview_balance` gives the
+    starting point; it is then refined by bisection on the backend's torque (golden:
+    its rounding; table: its interpolation).
+    """
+    m = model.mesh
+    prm = _prm(model, 0.0)
+    ok = m.valid[:, 0] & m.valid[:, 1]
+    kap = np.array([K._kappa_reference(a, b, 1e3, prm, np.empty(3)) for a, b in
+                    zip(m.A_minus_per_mm[ok, 0], m.B_minus_per_mm[ok, 0])])
+    th0, _ = preview_balance(m.lever_mm[ok, 0], m.opening_mm[ok, 0], kap,
+                             1e3 * model.torque_nm)
+    target = model.torque_nm
+    lo, hi = 0.0, 4.0 * th0
+    while _elastic(model, prm, hi)[0] < target:
+        hi *= 2.0
+    w_eval = np.full(m.lever_mm.shape[0], 1e3)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        t, w = _elastic(model, prm, mid, w_eval=w_eval)
+        w_eval = np.where(w > 0, w, w_eval)
+        if t < target:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    return hi, _elastic(model, prm, hi, w_eval=w_eval)[1]
+
+
+def _mesh_stiffness(model: TwinModel, prm, theta: float) -> float:
+    """Linearised mesh stiffness dT/dtheta at the first phase, N·m/rad (central
+    difference, 1e-4 relative step: the torque is smooth there)."""
+    d = 1e-4 * theta
+    return (_elastic(model, prm, theta + d)[0] - _elastic(model, prm, theta - d)[0]) / (2 * d)
+
+
+def linear_matrices(model: TwinModel) -> tuple[np.ndarray, np.ndarray, float]:
+    """Mass and stiffness matrices (4x4, SI) of the chain linearised at the static point
+    of the first phase, and the mesh stiffness k_theta (N·m/rad).
+
+    Coordinates ``psi_m, psi_p, psi_g, psi_l``; the mesh couples ``psi_p`` and ``psi_g``
+    through ``theta = psi_p (1/u + eps') - psi_g``.
+    """
+    dt, m = model.drivetrain, model.mesh
+    prm = _prm(model, 0.0)
+    theta, _ = static_rotation(model)
+    k_th = _mesh_stiffness(model, prm, theta)
+    de = (m.eps_rad[1] - m.eps_rad[0]) / m.step_rad
+    v = np.array([0.0, 1.0 / m.ratio + de, -1.0, 0.0])
+    k1, k2 = dt.input_stiffness_nm_per_rad, dt.output_stiffness_nm_per_rad
+    stiff = k_th * np.outer(v, v)
+    stiff[0:2, 0:2] += k1 * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    stiff[2:4, 2:4] += k2 * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    mass = np.diag([dt.motor_inertia_kgm2, dt.pinion_inertia_kgm2, dt.gear_inertia_kgm2,
+                    dt.load_inertia_kgm2])
+    return mass, stiff, k_th
+
+
+def linearized_modes(model: TwinModel) -> np.ndarray:
+    """Undamped natural frequencies of the linearised chain, Hz, ascending (the rigid
+    mode 0 included): ``sqrt(eig(M^-1 K)) / 2 pi``."""
+    mass, stiff, _ = linear_matrices(model)
+    lam = np.linalg.eigvals(np.linalg.solve(mass, stiff)).real
+    return np.sort(np.sqrt(np.clip(lam, 0.0, None))) / (2.0 * math.pi)
+
+
+def mesh_damping_n_s_per_mm(model: TwinModel) -> float:
+    """``c_m = 2 zeta_m sqrt(k_m m_e)`` along the reference line of action, N·s/mm, with
+    ``k_m = k_theta / l_0^2`` and ``m_e`` the two members' inertias on their levers
+    ``l_0 / u`` (pinion) and ``l_0`` (gear)."""
+    dt, m = model.drivetrain, model.mesh
+    _, _, k_th = linear_matrices(model)
+    l0 = 1e-3 * m.reference_lever_mm
+    k_m = k_th / l0 ** 2
+    m_p = dt.pinion_inertia_kgm2 / (l0 / m.ratio) ** 2
+    m_g = dt.gear_inertia_kgm2 / l0 ** 2
+    m_e = m_p * m_g / (m_p + m_g)
+    return 1e-3 * 2.0 * dt.mesh_damping_ratio * math.sqrt(k_m * m_e)
+
+
+def check_step(model: TwinModel, step_s: float) -> tuple[np.ndarray, float]:
+    """Linearised modes (Hz) and ``h omega_max``; raises :class:`InputRangeError`
+    (field ``step_us``) when the step is outside :data:`STEP_RANGE_US` or ``h omega_max
+    >`` :data:`STABILITY_LIMIT`."""
+    h_us = check_range("step_us", 1e6 * float(step_s), *STEP_RANGE_US)
+    freqs = linearized_modes(model)
+    h_omega = 1e-6 * h_us * 2.0 * math.pi * float(freqs[-1])
+    if h_omega > STABILITY_LIMIT:
+        h_max = STABILITY_LIMIT / (2.0 * math.pi * freqs[-1]) * 1e6
+        raise InputRangeError("step_us", h_us, f"<= {h_max:.3g} us (RK4 stability: h omega_max"
+                              f" <= {STABILITY_LIMIT}, highest mode {freqs[-1]:.4g} Hz)")
+    return freqs, h_omega
+
+
+@dataclass(frozen=True, eq=False)
+class TwinResult:
+    """A twin run.
+
+    Attributes
+    ----------
+    columns : dict of str -> ndarray
+        Time series (:data:`~.kernel.RECORD_COLUMNS` plus ``te_arcsec``, the dynamic TE
+        in the TCA's sign, comparable with ``gearcontact lte``).
+    summary : dict
+        Plain-JSON scalars (see :func:`simulate`).
+    natural_frequencies_hz : ndarray
+        Linearised modes at the static point.
+    """
+
+    columns: dict
+    summary: dict
+    natural_frequencies_hz: np.ndarray
+
+
+def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: float,
+             record_every: int = 1, settle_fraction: float = 0.5, initial_velocity=None,
+             progress: bool = False) -> TwinResult:
+    """Integrate the twin (kernel docstring for equations and integrator).
+
+    Parameters
+    ----------
+    model : TwinModel
+    speed_rpm : float
+        Nominal pinion (motor) speed, rpm (>= 0; 0 gives a free vibration about the
+        static point).
+    duration_s : float
+        Simulated time, s (> 0).
+    step_s : float
+        Fixed step, s, within :data:`STEP_RANGE_US` and ``h omega_max <=``
+        :data:`STABILITY_LIMIT`.
+    record_every : int
+        Record every n-th step (>= 1).
+    settle_fraction : float
+        Leading fraction of the run left out of the summary statistics (transient from
+        the static start), in [0, 1).
+    initial_velocity : array_like (4,) or None
+        Added to the nominal speeds of motor, pinion, gear, load at t = 0, rad/s.
+    progress : bool
+        Progress bar over the steps.
+
+    Returns
+    -------
+    TwinResult
+        ``summary`` keys: ``backend, steps, step_us, duration_s, speed_rpm, torque_nm,
+        mesh_frequency_hz, static_mesh_torque_nm, static_mesh_load_n,
+        mean_mesh_torque_nm, mean_mesh_load_n, dynamic_factor, contact_loss,
+        dte_pp_arcsec, real_time_factor, step_time_p50_us, step_time_p99_us, wall_s,
+        natural_frequencies_hz, h_omega_max, mesh_damping_n_s_per_mm,
+        bending_compliance_mm_per_n``. Statistics over the recorded steps after
+        ``settle_fraction``. ``step_time_p*`` are percentiles of the mean step time of
+        blocks of ``256 record_every`` steps (one compiled call each). ``rtl`` / ``soc``
+        add the replay's ``<backend>_previews, _mismatches, _seconds, _previews_per_s``.
+
+    Raises
+    ------
+    InputRangeError
+        Bad speed, duration, step (range and stability), record_every, settle_fraction,
+        initial_velocity; a lockstep run longer than :data:`LOCKSTEP_MAX_STEPS`.
+    ArithmeticError
+        Non-finite state, a flagged golden preview, or a lockstep mismatch.
+    """
+    speed = check_range("speed_rpm", speed_rpm, 0.0, 1e5)
+    dur = check_positive("duration_s", duration_s)
+    h_us = check_range("step_us", 1e6 * float(step_s), *STEP_RANGE_US)
+    h = 1e-6 * h_us
+    if int(record_every) != record_every or record_every < 1:
+        raise InputRangeError("record_every", record_every, "an integer >= 1")
+    check_range("settle_fraction", settle_fraction, 0.0, 1.0, hi_open=True)
+    freqs, h_omega = check_step(model, h)
+    n_steps = int(round(dur / h))
+    if n_steps < 1:
+        raise InputRangeError("duration_s", dur, f">= one step ({h:g} s)")
+    cap = LOCKSTEP_MAX_STEPS.get(model.backend)
+    if cap is not None and n_steps > cap:
+        raise InputRangeError("duration_s", dur, f"<= {cap * h:g} s ({cap} steps) for the "
+                              f"{model.backend} backend (lockstep replay: short runs)")
+    if initial_velocity is not None:
+        initial_velocity = check_array_finite("initial_velocity (rad/s)", initial_velocity)
+        if initial_velocity.shape != (4,):
+            raise InputRangeError("initial_velocity shape", initial_velocity.shape,
+                                  "(4,): motor, pinion, gear, load")
+    m, dt = model.mesh, model.drivetrain
+    c_m = mesh_damping_n_s_per_mm(model)
+    prm = _prm(model, c_m)
+    theta0, w0 = static_rotation(model)
+    omega = speed * 2.0 * math.pi / 60.0
+    prm[K.P_OMEGA] = omega
+    prm[K.P_KP], prm[K.P_KI] = speed_controller_gains(model)
+    y = np.zeros(K.N_STATE)
+    y[0] = model.torque_nm / m.ratio / dt.input_stiffness_nm_per_rad
+    y[2] = m.eps_rad[0] - theta0
+    y[3] = y[2] - model.torque_nm / dt.output_stiffness_nm_per_rad
+    y[4:8] = omega, omega, omega / m.ratio, omega / m.ratio
+    if initial_velocity is not None:
+        y[4:8] += initial_velocity
+    w_eval = np.where(w0 > 0, w0, K.W_EVAL_MIN_N)
+    a = model.arrays
+    code = K.BACKEND_CODES[model.backend]
+    args = (prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"], a["valid"], code)
+    n_p = a["lever"].shape[0]
+    # rtl: the golden loop records every preview for the lockstep replay (.cosim)
+    lockstep = model.backend in ("rtl", "soc")
+    trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, 9), np.int64)
+    tcount = np.zeros(4, np.int64)
+    tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"],
+            a["tab_t23"], a["tab_w23"])
+    warm = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace[:0], np.zeros(4, np.int64),
+            a["tab_theta"], a["tab_t23"], a["tab_w23"])
+    # compile (or load the cache) outside the timed loop
+    K.run_steps(y.copy(), 0.0, 1, h, *args, w_eval.copy(), *warm, np.zeros((1, K.N_REC)), 0, 1)
+    n_rec = (n_steps + record_every - 1) // record_every
+    rec = np.zeros((n_rec, K.N_REC))
+    chunk = _CHUNK * record_every
+    times = []
+    rows = 0
+    bar = tqdm(total=n_steps, desc=f"twin {model.backend}", unit="step", disable=not progress,
+               leave=False)
+    done = 0
+    wall0 = time.perf_counter()
+    while done < n_steps:
+        n = min(chunk, n_steps - done)
+        t0 = time.perf_counter()
+        rows += K.run_steps(y, done * h, n, h, *args, w_eval, *tail, rec, rows, record_every)
+        times.append((time.perf_counter() - t0) / n)
+        done += n
+        bar.update(n)
+    bar.close()
+    if tcount[3]:
+        raise ArithmeticError(f"{model.backend} preview flagged outside the datapath envelope "
+                              f"in {int(tcount[3])} evaluations (curvatures or load out of "
+                              "range): the run is not the hardware's")
+    rtl = {}
+    if lockstep:
+        from . import cosim
+        if tcount[0] >= trace.shape[0]:
+            raise ArithmeticError(f"{model.backend} trace full ({trace.shape[0]} previews)")
+        be = model.backend
+        replay = cosim.replay_on_rtl if be == "rtl" else cosim.replay_on_soc
+        rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]))
+        if rtl[f"{be}_mismatches"]:
+            raise ArithmeticError(f"{be} != golden in {rtl[f'{be}_mismatches']} previews, "
+                                  f"first at step {rtl[f'{be}_first_mismatch_step']}")
+    wall = time.perf_counter() - wall0
+    cols = {name: rec[:rows, i] for i, name in enumerate(K.RECORD_COLUMNS)}
+    eps = np.interp(np.mod(cols["psi_p_rad"], m.pitch_rad), m.psi_rad, m.eps_rad)
+    cols["te_arcsec"] = m.motion_sign * (eps - cols["theta_rad"]) * ARCSEC_PER_RAD
+    if not np.all(np.isfinite(rec[:rows])):
+        raise ArithmeticError("twin: non-finite state (step too large for this load?)")
+    sel = cols["t_s"] >= settle_fraction * dur
+    if not sel.any():
+        sel[:] = True
+    t_mesh, w_mesh = cols["mesh_torque_nm"][sel], cols["mesh_load_n"][sel]
+    static_t = model.torque_nm
+    st = np.array(times) * 1e6
+    summary = {
+        "backend": model.backend, "steps": n_steps, "step_us": h_us, "duration_s": dur,
+        "speed_rpm": speed, "torque_nm": model.torque_nm,
+        "mesh_frequency_hz": m.pinion_teeth * speed / 60.0,
+        "static_mesh_torque_nm": static_t, "static_mesh_load_n": float(w0.sum()),
+        "mean_mesh_torque_nm": float(t_mesh.mean()), "mean_mesh_load_n": float(w_mesh.mean()),
+        "dynamic_factor": float(t_mesh.max() / static_t),
+        "contact_loss": float(np.mean(t_mesh == 0.0)),
+        "dte_pp_arcsec": float(np.ptp(cols["te_arcsec"][sel])),
+        "real_time_factor": dur / wall, "step_time_p50_us": float(np.percentile(st, 50)),
+        "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
+        "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
+        "mesh_damping_n_s_per_mm": c_m,
+        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n, **rtl}
+    return TwinResult(cols, summary, freqs)
+
+
+def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
+                   drivetrain: DrivetrainParams | None = None, side: str = "drive",
+                   phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
+                   progress: bool = False) -> TwinModel:
+    """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
+    :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`."""
+    from ..tca.analysis import analyze_pair
+    from .ltca_table import torque_table
+    from .mesh import mesh_table
+    from .params import default_drivetrain
+
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if backend not in BACKENDS:     # before the expensive stages
+        raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, progress=progress)
+    mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t)
+    table = None
+    if backend == "table":
+        table = torque_table(tca, flanks, pair, mesh, t, side=side, source=table_source,
+                             cells=table_cells, progress=progress)
+    return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
+                       table=table)

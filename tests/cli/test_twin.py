@@ -1,0 +1,83 @@
+"""``gearcontact twin`` end to end through :func:`gearcontact.cli.main`.
+
+Truths: the files and JSON keys; the summary statistics are those of the CSV columns
+(to its 12 digits); the time axis has the requested step; the mesh carries the load
+torque on average; bad input -> exit 2 with the field named, before the TCA runs.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from gearcontact.cli import main
+
+KEYS = ("backend", "steps", "step_us", "real_time_factor", "step_time_p50_us",
+        "step_time_p99_us", "mesh_frequency_hz", "dte_pp_arcsec", "dynamic_factor",
+        "contact_loss", "mean_mesh_torque_nm", "static_mesh_load_n", "natural_frequencies_hz",
+        "drivetrain")
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    d = tmp_path_factory.mktemp("twin") / "new"
+    assert main(["twin", "--pair", "s0003", "--torque", "64.5", "--speed-rpm", "3000",
+                 "--duration-ms", "6", "--step-us", "10", "--phases", "31",
+                 "--backend", "golden", "--out", str(d), "--quiet"]) == 0
+    return d
+
+
+def test_files_keys_and_consistency(out):
+    for name in ("twin.json", "twin.csv", "twin.png", "twin_spectrum.png"):
+        assert (out / name).stat().st_size > 0, name
+    data = json.loads((out / "twin.json").read_text())
+    for key in KEYS:
+        assert key in data, key
+    assert data["backend"] == "golden" and data["steps"] == 600
+    assert data["mesh_frequency_hz"] == pytest.approx(350.0)      # 7 x 3000 / 60
+    header = (out / "twin.csv").read_text().splitlines()[0].split(",")
+    rows = np.genfromtxt(out / "twin.csv", delimiter=",", skip_header=1, dtype=float)
+    col = {name: rows[:, i] for i, name in enumerate(header)}
+    assert rows.shape[0] == 600
+    np.testing.assert_allclose(np.diff(col["t_s"]), 10e-6, rtol=1e-9)
+    late = col["t_s"] >= 0.5 * data["duration_s"]
+    assert data["dte_pp_arcsec"] == pytest.approx(np.ptp(col["te_arcsec"][late]), rel=1e-9)
+    assert data["dynamic_factor"] == pytest.approx(
+        col["mesh_torque_nm"][late].max() / 64.5, rel=1e-9)
+    # 3 ms after the static start: the mean mesh torque is the load torque within the
+    # dynamic swing (dynamic factor ~1.02)
+    assert data["mean_mesh_torque_nm"] == pytest.approx(64.5, rel=0.02)
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["--backend", "fpga"], "--backend"),
+    (["--step-us", "80"], "--step-us"),
+    (["--duration-ms", "-1"], "--duration-ms"),
+    (["--duration", "0"], "--duration"),
+    (["--torque", "-3"], "--torque"),
+])
+def test_bad_input_exit_2(tmp_path, capsys, argv, field):
+    code = main(["twin", "--out", str(tmp_path / "x"), "--quiet", *argv])
+    assert code == 2
+    assert field in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def test_bad_drivetrain_file_exit_2(tmp_path, capsys):
+    f = tmp_path / "d.toml"
+    f.write_text("[drivetrain]\nload_inertia_kgm2 = -0.1\n")
+    code = main(["twin", "--drivetrain", str(f), "--out", str(tmp_path / "x"), "--quiet"])
+    assert code == 2 and "drivetrain.load_inertia_kgm2" in capsys.readouterr().err
+
+
+def test_speed_sweep_files(tmp_path):
+    d = tmp_path / "sweep"
+    assert main(["twin", "--speed-sweep", "1000:3000:1000", "--phases", "31", "--workers", "1",
+                 "--out", str(d), "--quiet"]) == 0
+    data = json.loads((d / "sweep.json").read_text())
+    assert data["speeds_rpm"] == [1000.0, 3000.0, 3]
+    assert set(data) >= {"reference", "table", "resonance_speeds_rpm"}
+    rows = np.genfromtxt(d / "sweep.csv", delimiter=",", skip_header=1, dtype=float)
+    assert rows.shape == (3, 7)
+    assert data["reference"]["max_dynamic_factor"] == pytest.approx(rows[:, 1].max())
+    assert (d / "sweep.png").stat().st_size > 0

@@ -1,0 +1,32 @@
+"""s0003 mesh for the twin tests (one TCA per session: 31 phases per pitch keep the
+neighbouring pairs' paths, see tests/contact/test_lte.py, at half the cost of 61)."""
+
+import pytest
+
+PHASES = 31
+TORQUE_NM = 64.5
+
+
+@pytest.fixture(scope="session")
+def s0003_twin():
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.tca.analysis import analyze_pair
+    from gearcontact.twin.mesh import mesh_table
+
+    pair = load_pair("s0003-centred")
+    tca, flanks = analyze_pair(pair, side="drive", phases=PHASES)
+    return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM)
+
+
+def quasi_static_bound_arcsec(mesh, rotation_arcsec: float) -> float:
+    """TE tolerance at the phase rows of a quasi-static run against the static loaded TE.
+
+    The twin's pinion carries ``T (1/u + eps')``, so with the motor torque ``T_l / u``
+    the mesh torque departs from ``T_l`` by the relative ``u eps'``, which moves the
+    Hertzian rotation (``theta ~ T^(2/3)``) by ``(2/3) u |eps'| theta``; plus 0.003
+    arcsec for sampling within 1 % of a row where the TE slope reaches 0.25 arcsec/row.
+    """
+    import numpy as np
+
+    slope = np.abs(np.diff(mesh.eps_rad) / mesh.step_rad).max()
+    return 2.0 / 3.0 * mesh.ratio * slope * rotation_arcsec + 0.003
