@@ -8,7 +8,8 @@ the preview p_max is Hamrock–Brewe of the TCA curvatures at each load (1e-9 re
 rounding only); the cycle counts are the published constants 26 / 756 / 806 / 58
 (exact); the surrogate's preview error against Hamrock–Brewe is zero (1e-12 %); the
 precision widths are integer bits + fraction bits and every measured error is within the
-first-order bound. Items without physics on main are "not available" with a reason.
+first-order bound; the multi-tooth shares sum to one and bending adds compliance. Items
+without data say why.
 """
 
 import json
@@ -171,10 +172,19 @@ def test_latency_surrogate_precision_rederived(report):
         assert err <= bound
 
 
-def test_unavailable_items_say_why(report):
+def test_multitooth_and_resources(report):
     _, rep = report
-    assert rep["multitooth"]["status"] == "not available"
-    assert "bending" in rep["multitooth"]["reason"]
+    # multi-tooth: the shares of each model sum to 1 (torque balance; 1e-9); adding the
+    # bending compliance to every pair cannot stiffen the mesh: rotation and mesh
+    # compliance at P0 grow
+    mt = rep["multitooth"]
+    assert mt["status"] == "partial"
+    for model in ("rigid", "bending"):
+        assert sum(mt[model]["reference_load_share"].values()) == pytest.approx(1.0, abs=1e-9)
+    assert mt["bending"]["reference_rotation_lcp_arcsec"] > \
+        mt["rigid"]["reference_rotation_lcp_arcsec"]
+    assert mt["bending"]["mesh_compliance_lcp_mm_per_n"] > \
+        mt["rigid"]["mesh_compliance_lcp_mm_per_n"]
     res = rep["resources"]
     if res["status"] == "not available":                   # no committed results
         assert "--synth" in res["reason"]
