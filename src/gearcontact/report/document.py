@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["Table", "Section", "Reproduction", "format_cell", "jsonable", "render_html",
-           "render_markdown"]
+__all__ = ["Table", "Section", "Reproduction", "format_cell", "jsonable", "pct_diff",
+           "render_html", "render_markdown"]
 
 
 @dataclass(frozen=True)
@@ -97,6 +97,11 @@ class Reproduction:
         d = {s.key: s.as_dict() for s in self.sections}
         d["meta"] = self.meta
         return d
+
+
+def pct_diff(a, b):
+    """``100 (a / b - 1)`` in %, or None when either is None."""
+    return None if a is None or b is None else 100.0 * (a / b - 1.0)
 
 
 def format_cell(x) -> str:
