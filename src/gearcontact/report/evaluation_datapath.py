@@ -81,9 +81,9 @@ def surrogate_section(analysis, pub, settings, out: Path) -> Section:
         f"{', '.join(f'{t:g}' for t in extrap)} N·m (input: the load W; the pair and phase "
         f"are fixed). The network reproduces its training labels and flattens beyond them "
         f"(tanh units saturate); the preview's error is the edge-contact bias of item 1 "
-        f"(preview below p90 by {ra['preview']['train']:.0f}–"
-        f"{ra['preview']['extrap']:.0f} % here: our calibrated bearing is further into "
-        f"the tip edge than the published one, see item 1).",
+        f"(RMSE {ra['preview']['train']:.0f} % on the trained, "
+        f"{ra['preview']['extrap']:.0f} % on the extrapolated loads; item 1 compares its "
+        f"size with the published one).",
     ]
     return Section("surrogate", 3, "Physics-direct preview vs a neural surrogate",
                    "reproduced", text,
