@@ -88,8 +88,13 @@ def accuracy_section(analysis, pub, settings) -> Section:
         f"to {last.pinion_radius_mm:.2f} mm from the pinion axis) turns the error to "
         f"{last.preview_vs_p90_pct:+.1f} % while the cell peak grows from "
         f"{first.p_peak_mpa:.0f} to {last.p_peak_mpa:.0f} MPa (peak / p90 "
-        f"{last.peak_over_p90:.1f}): the published pattern appears as the patch reaches the "
-        f"flank edge. The calibrated {name} bearing sits at the tip edge (peak / p90 "
+        f"{last.peak_over_p90:.1f})"
+        + (": the published pattern (preview below p90, edge peak several times the body) "
+           "appears as the patch reaches the flank edge."
+           if last.preview_vs_p90_pct < 0 and last.peak_over_p90 > 3 else
+           ", short of the published pattern (preview below p90, edge peak several times "
+           "the body).")
+        + f" The calibrated {name} bearing sits at the tip edge (peak / p90 "
         f"{design.patch.p_peak_mpa / design.patch.p90_mpa:.1f} at the design torque); "
         f"{depth}; how far beyond the edge the published bearing lay was not published "
         f"(docs/calibration.md), and we do not tune to the published error. Moving the "
