@@ -41,7 +41,7 @@ def main() -> None:
     args = ap.parse_args()
     runs = [("quick", True)] + ([("full", False)] if args.full else [])
     results = {name: _run(quick) for name, quick in runs}
-    keys = list(next(iter(results.values()))[0])
+    keys = [k for k, v in next(iter(results.values()))[0].items() if isinstance(v, float)]
     print(f"{'stage (wall s)':<18}" + "".join(f"{name:>10}" for name in results))
     for k in keys:
         print(f"{k:<18}" + "".join(f"{r[0].get(k, float('nan')):>10.2f}"

@@ -82,8 +82,9 @@ class Reproduction:
     analysis : gearcontact.report.analyze.Analysis
         The main job's results the report was built from.
     timings_s : dict
-        Wall seconds per item and ``total_s`` (not in the report files: the command
-        line writes them into run.json).
+        Wall seconds per item, ``total_s`` and the main job's stage timings
+        (``main_job``); not in the report files: the command line writes them into
+        run.json.
     """
 
     sections: tuple

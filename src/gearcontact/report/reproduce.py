@@ -144,6 +144,7 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
                                 lte_phases=settings["lte_phases"], progress=False)
     main_warnings = _unique_messages(caught)
     times["analysis_s"] = time.perf_counter() - t0
+    times["main_job"] = analysis.timings_s         # its stages, as `gearcontact analyze`
     bar.update(1)
     builders = {
         "accuracy": lambda: accuracy_section(analysis, pub, settings),
