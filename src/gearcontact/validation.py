@@ -14,6 +14,13 @@ __all__ = ["InputRangeError", "check_finite", "check_positive", "check_range",
            "check_array_finite"]
 
 
+class UnusableInput(ValueError):
+    """The input is valid field by field but cannot be analysed as given (a pattern that
+    has left the flanks, line contact where an ellipse is needed, a contact ratio below
+    one). Like :class:`InputRangeError` it is the user's input, not a bug: the CLI
+    reports it in one line with exit code 2."""
+
+
 class InputRangeError(ValueError):
     """A physical input is outside its allowed range.
 

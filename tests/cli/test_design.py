@@ -78,3 +78,25 @@ def test_design_calibrate_reproduces_the_preset(capsys, tmp_path):
     assert got.working_depth_factor == preset.working_depth_factor
     for name, value in vars(preset.easeoff_coast).items():
         assert getattr(got.easeoff_coast, name) == pytest.approx(value, rel=1e-6, abs=1e-9)
+
+
+def test_synthesize_easeoff_bad_target_exits_2_before_work(capsys):
+    from gearcontact.cli import main
+
+    assert main(["design", "--pair", "s0003-centred", "--synthesize-easeoff",
+                 "--te0-arcsec", "0"]) == 2
+    assert "te0_pp_arcsec" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_synthesize_easeoff_prints_and_writes_the_tables(tmp_path, capsys):
+    """Both sides of s0003-centred (~15 s): a TOML block with both tables."""
+    import tomllib
+
+    from gearcontact.cli import main
+
+    assert main(["design", "--pair", "s0003-centred", "--synthesize-easeoff",
+                 "--out", str(tmp_path)]) == 0
+    doc = tomllib.loads((tmp_path / "easeoff.toml").read_text())
+    assert set(doc["easeoff"]) == {"drive", "coast"}
+    assert "[easeoff.drive]" in capsys.readouterr().out

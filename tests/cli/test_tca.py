@@ -64,3 +64,65 @@ def test_bad_pair_is_one_line_error(tmp_path, capsys):
     assert main(["tca", "--pair", str(tmp_path / "missing.toml"), "--out",
                  str(tmp_path)]) == 2
     assert "error" in capsys.readouterr().err
+
+
+def _s0003_centred_with(tmp_path, assembly: str):
+    from importlib import resources
+
+    text = resources.files("gearcontact").joinpath("data/pairs/s0003-centred.toml").read_text()
+    path = tmp_path / "misaligned.toml"
+    path.write_text(text.split("[assembly]")[0] + f"\n[assembly]\n{assembly}\n")
+    return path
+
+
+def test_misaligned_pair_reports_edges(tmp_path, capsys):
+    """E = -0.2 mm (issue 11): a result, with the edge phases named in tca.json and
+    phase_table.json, never a traceback."""
+    pair = _s0003_centred_with(tmp_path, "E_mm = -0.2")
+    out = tmp_path / "out"
+    assert main(["tca", "--pair", str(pair), "--out", str(out), "--phases", "15",
+                 "--quiet", "--no-figures"]) == 0
+    assert "edge contact" in capsys.readouterr().out
+    doc = json.loads((out / "tca.json").read_text())
+    assert sum(doc["edge_phases"].values()) == 15 and len(doc["phase_edges"]) == 15
+    assert json.loads((out / "phase_table.json").read_text())["edges"] == doc["phase_edges"]
+
+
+def test_pattern_off_the_flank_exits_2_naming_the_edge(tmp_path, capsys):
+    """G = -10 mm: the contact has left the flank at every start; one line, exit 2."""
+    pair = _s0003_centred_with(tmp_path, "G_mm = -10.0")
+    assert main(["tca", "--pair", str(pair), "--out", str(tmp_path / "o"), "--phases", "15",
+                 "--quiet", "--no-figures"]) == 2
+    err = capsys.readouterr().err
+    assert "off the flank" in err and "pinion heel" in err and len(err.splitlines()) == 1
+
+
+def test_zero_easeoff_reports_line_contact(tmp_path, capsys):
+    """Explicit zero ease-off: tca reports the line contact (exit 0, tca.json), the
+    loaded commands name it (exit 2)."""
+    from importlib import resources
+
+    text = resources.files("gearcontact").joinpath("data/pairs/s0003-centred.toml").read_text()
+    head = text[:text.index("[easeoff.drive]")]
+    pair = tmp_path / "zero.toml"
+    pair.write_text(head + "[easeoff.drive]\nprofile_angle_um_per_mm = 0.0\n")
+    out = tmp_path / "out"
+    assert main(["tca", "--pair", str(pair), "--out", str(out), "--quiet"]) == 0
+    doc = json.loads((out / "tca.json").read_text())
+    assert doc["line_contact"] and doc["te0_max_abs_arcsec"] < 1e-3
+    assert main(["ltca", "--pair", str(pair), "--out", str(tmp_path / "l")]) == 2
+    assert "line contact" in capsys.readouterr().err
+
+
+def test_misaligned_pair_loads_the_edge(tmp_path):
+    """ltca and lte on misaligned s0003-centred (issue 11) run: E = -0.2 mm puts the
+    patch on the pinion-tip / gear-heel edge, which the LCP reports as edge contact
+    with an edge spike (sharp edge: peak several times p90); P = +0.1 mm through lte."""
+    pair = _s0003_centred_with(tmp_path, "E_mm = -0.2")
+    assert main(["ltca", "--pair", str(pair), "--out", str(tmp_path / "l"), "--phases", "15",
+                 "--no-figures"]) == 0
+    doc = json.loads((tmp_path / "l" / "ltca.json").read_text())
+    assert doc["edge_contact"] and doc["p_peak_mpa"] > 3.0 * doc["p90_mpa"]
+    pair = _s0003_centred_with(tmp_path, "P_mm = 0.1")
+    assert main(["lte", "--pair", str(pair), "--out", str(tmp_path / "t"), "--phases", "15",
+                 "--quiet", "--no-figures"]) == 0

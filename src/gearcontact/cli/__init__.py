@@ -34,7 +34,7 @@ import sys
 import traceback
 import warnings
 
-from ..validation import InputRangeError
+from ..validation import InputRangeError, UnusableInput
 
 __all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
            "EXIT_FLAGGED", "EXIT_CHECK_FAILED"]
@@ -121,8 +121,9 @@ def main(argv: list[str] | None = None) -> int:
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
         return _run(args, argv, name)
-    except InputRangeError as exc:
-        # bad input: one line naming the field, the value and the allowed range
+    except (InputRangeError, UnusableInput) as exc:
+        # bad input: one line naming the field, the value and the allowed range (or why
+        # the pair cannot be analysed as given)
         print(f"gearcontact {name}: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:

@@ -60,6 +60,8 @@ def run(args) -> int:
                        lte_torque_nm=args.lte_torque if args.lte_phases else None,
                        lte_phases=max(args.lte_phases, 3))
     run_timings(args, **res.timings_s)
+    if res.easeoff_note:
+        print(res.easeoff_note.partition("\n")[0].rstrip(":") + " (the TOML block is in summary.md)")
     design = min(res.cases, key=lambda c: abs(c.torque_nm - args.lte_torque))
     print(f"{res.pair.name}: TE0 p-p {res.tca.cycle.te0_pp_arcsec:.2f} arcsec; at "
           f"{design.torque_nm:g} N·m W = {design.load_n:.0f} N, preview p_max "

@@ -57,18 +57,32 @@ def register(sub) -> None:
                         "top land of 0.25 m_mn)")
     p.add_argument("--out", default=None, metavar="DIR",
                    help="with --calibrate: directory for calibrated.toml and "
-                        "calibration.json (the output-directory policy of every command, "
-                        "see run.json)")
+                        "calibration.json, with --synthesize-easeoff for easeoff.toml (the "
+                        "output-directory policy of every command, see run.json)")
     p.add_argument("--force", action="store_true",
-                   help="with --calibrate: write into --out even if it holds files "
-                        "gearcontact did not write")
+                   help="with --out: write into it even if it holds files gearcontact did "
+                        "not write")
+    p.add_argument("--synthesize-easeoff", action="store_true",
+                   help="local synthesis of the ease-off of both sides (TCA in the loop, "
+                        "~10-30 s per side); prints the [easeoff.drive]/[easeoff.coast] TOML")
+    p.add_argument("--te0-arcsec", type=float, default=3.0,
+                   help="with --synthesize-easeoff: TE0 peak-to-peak, arcsec (default 3)")
+    p.add_argument("--pattern-length-ratio", type=float, default=0.35,
+                   help="with --synthesize-easeoff: paint-ellipse length over the gear face "
+                        "width (default 0.35; practice 1/3 to 1/2)")
+    p.add_argument("--path-angle-deg", type=float, default=None,
+                   help="with --synthesize-easeoff: contact-path angle from the lengthwise "
+                        "direction, deg (default free, bias 0)")
     p.set_defaults(func=run, check=check)
 
 
 def check(args) -> None:
-    """--calibrate needs published values and --out; only then does design write files
-    (under the output-directory policy, :mod:`.outdir`)."""
+    """--calibrate needs published values and --out; design writes files only with
+    --calibrate or --synthesize-easeoff --out (under the output-directory policy,
+    :mod:`.outdir`)."""
     pair = load_pair(args.pair)
+    if args.calibrate and args.synthesize_easeoff:
+        raise InputRangeError("--calibrate / --synthesize-easeoff", "both", "one of the two")
     if args.calibrate:
         from ..report.analyze import published_values
 
@@ -79,7 +93,7 @@ def check(args) -> None:
             raise InputRangeError("--out", None, "an output directory for calibrated.toml")
         if args.tip_margin is not None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
-    args.writes_files = bool(args.calibrate)
+    args.writes_files = bool(args.calibrate or (args.synthesize_easeoff and args.out))
 
 
 def _fmt(x) -> str:
@@ -103,10 +117,30 @@ def _calibrate(args, pair) -> int:
     return 0
 
 
+def _synthesize(args, pair) -> int:
+    from ..tca.synthesis import SynthesisTargets, easeoff_toml, synthesize_pair
+
+    targets = SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
+                               pattern_length_ratio=args.pattern_length_ratio,
+                               path_angle_deg=args.path_angle_deg)
+    _, done = synthesize_pair(pair, targets=targets)
+    for side, s in done.items():
+        print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
+    text = easeoff_toml(done, pair_name=pair.name)
+    print(text)
+    if args.out is not None:
+        out = Path(args.out)
+        (out / "easeoff.toml").write_text(text)
+        print(f"-> {final_path(args, out / 'easeoff.toml')}")
+    return 0
+
+
 def run(args) -> int:
     pair = load_pair(args.pair)
     if args.calibrate:
         return _calibrate(args, pair)
+    if args.synthesize_easeoff:
+        return _synthesize(args, pair)
     blank = pair.blank
     if args.json:
         out = {"pair": pair.name, **blank.as_dict()}

@@ -30,6 +30,7 @@ from .options import (
     add_pair_arguments,
     case_warnings,
     check_pair_arguments,
+    load_pair_for,
     rename_load_error,
     run_timings,
     warn,
@@ -50,9 +51,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    if getattr(args, "gear_pair", None) is None:
-        check_pair_arguments(args)
-    pair = args.gear_pair
+    pair = load_pair_for(args)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()

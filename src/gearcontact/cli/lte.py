@@ -20,6 +20,7 @@ from . import EXIT_CHECK_FAILED
 from .options import (
     add_pair_arguments,
     check_pair_arguments,
+    load_pair_for,
     lte_warnings,
     rename_load_error,
     run_timings,
@@ -41,9 +42,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    if getattr(args, "gear_pair", None) is None:
-        check_pair_arguments(args)
-    pair = args.gear_pair
+    pair = load_pair_for(args)
     from ..report.analyze import published_values
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,

@@ -13,7 +13,7 @@ from .outdir import add_out_argument
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm",
-           "rename_load_error"]
+           "rename_load_error", "load_pair_for"]
 
 #: Upper limit of ``--phases`` (61 is the report value; at 1001, measured on the project
 #: machine: ``tca`` 5.2 s, ``lte`` 11.4 s in all; 100000 ran for minutes).
@@ -163,3 +163,16 @@ def run_timings(args, **timings) -> None:
 def warn(command: str, message: str) -> None:
     """A warning the user must see: one line on stderr."""
     print(f"gearcontact {command}: warning: {message}", file=sys.stderr)
+
+
+def load_pair_for(args):
+    """The pair of ``--pair`` (loaded by :func:`check_pair_arguments`) with, if the pair
+    file has no ease-off table for ``args.side``, the synthesized one (the note printed)."""
+    from ..tca.synthesis import with_easeoff
+
+    if getattr(args, "gear_pair", None) is None:
+        check_pair_arguments(args)
+    pair, note = with_easeoff(args.gear_pair, side=args.side)
+    if note:
+        print(note)
+    return pair

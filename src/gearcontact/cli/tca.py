@@ -8,15 +8,18 @@ the figures ``te0.png``, ``contact_pattern.png`` and ``flanks_in_mesh.png``.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from ..tca.analysis import analyze_pair
 from ..tca.export import write_tca_outputs
+from ..tca.line_contact import LineContact
 from .options import (
     MAX_PAIRS,
     add_pair_arguments,
     check_count,
     check_pair_arguments,
+    load_pair_for,
     run_timings,
 )
 from .outdir import final_path
@@ -47,12 +50,16 @@ def check(args) -> None:
 
 
 def run(args) -> int:
-    if getattr(args, "gear_pair", None) is None:
-        check(args)
-    pair = args.gear_pair
+    pair = load_pair_for(args)
     out = Path(args.out)
-    res, flanks = analyze_pair(pair, side=args.side, phases=args.phases, pairs=args.pairs,
-                               progress=not args.quiet)
+    try:
+        res, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
+                                   pairs=args.pairs, progress=not args.quiet)
+    except LineContact as line:
+        (out / "tca.json").write_text(json.dumps(
+            {"pair": pair.name, "side": args.side, **line.result.as_dict()}, indent=2))
+        print(f"{pair.name} {args.side}: {line} -> {final_path(args, out)}")
+        return 0
     run_timings(args, **res.timings_s)
     write_tca_outputs(res, flanks, pair, out, side=args.side,
                       table_records=args.table_records, figures=not args.no_figures)
@@ -61,4 +68,7 @@ def run(args) -> int:
           f"A- {rc.A_minus_per_mm:.5g} B- {rc.B_minus_per_mm:.5g} 1/mm, paint ellipse "
           f"{2 * ell.semi_major_mm:.2f} x {2 * ell.semi_minor_mm:.3f} mm at "
           f"{ell.angle_deg:.1f} deg -> {final_path(args, out)}")
+    if res.edge_counts:
+        print("edge contact (phases of " + str(len(res.edges)) + "): "
+              + ", ".join(f"{k} {v}" for k, v in res.edge_counts.items()))
     return 0

@@ -30,9 +30,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..preview.engine import PreviewResult, get_engine
+from ..preview.engine import PreviewResult, ReferenceEngine
 from ..tca.solve import ARCSEC_PER_RAD
-from ..validation import InputRangeError, check_positive
+from ..validation import InputRangeError, check_positive, check_range
 from .ellipse import ContactEllipse
 from .grid import TangentGrid
 from .load import normal_load_from_torque, torque_lever_mm
@@ -149,8 +149,14 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     mp, rc = tca.mean_point, tca.mean_curvature
     lever = torque_lever_mm(mp.point_mm, mp.normal)
     load = normal_load_from_torque(t, mp.point_mm, mp.normal)
-    engine = get_engine("reference", material=pair.pinion_material,
-                        material2=pair.gear_material)
+    # the load keeps the preview's range (the torque the CLI names); the curvatures may
+    # leave it: host-side fp64 preview without the datapath envelope (a large gear's B-
+    # lies below the fixed-point range; the golden/RTL stages report that themselves)
+    from ..preview.hertz.reference import ENVELOPE
+
+    check_range("load_n (N)", load, *ENVELOPE["load_n"])
+    engine = ReferenceEngine(material=pair.pinion_material, material2=pair.gear_material,
+                             envelope=False)
     pre = engine.hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load)
     kin = pair.kinematics()
     field = gap_field(flanks.flank("pinion", side), flanks.flank("gear", side), kin, mp,

@@ -184,6 +184,9 @@ class GearPair:
     design_side : str
         Flank pair of the design point, "drive" (gear convex / pinion concave) or
         "coast": the side every command analyses and loads unless told otherwise.
+    easeoff_tables : tuple of str
+        Sides whose ease-off was given (a TOML without ``[easeoff.<side>]`` leaves the
+        side out; the commands then synthesize it, :mod:`gearcontact.tca.synthesis`).
     """
 
     name: str
@@ -207,6 +210,7 @@ class GearPair:
     pinion_material: Material = STEEL
     gear_material: Material = STEEL
     design_side: str = "drive"
+    easeoff_tables: tuple = ("drive", "coast")
 
     def __post_init__(self):
         if self.design_side not in ("drive", "coast"):
@@ -359,6 +363,7 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         easeoff_coast=EaseOffCoefficients(**s.get("easeoff.coast", {})),
         assembly=AssemblyErrors(**s.get("assembly", {})),
         pinion_material=materials["pinion"], gear_material=materials["gear"],
+        easeoff_tables=tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s),
         **design)
 
 

@@ -194,19 +194,30 @@ class ReferenceEngine:
         The two contacting bodies (default steel/steel); E' = 2E*.
     hertz_form : {"hamrock-brewe", "exact"}
         Stage-D Hertz form (default the published simplified forms).
+    envelope : bool
+        Enforce the datapath's operating envelope in :meth:`hertz` (default True; False
+        accepts any physical input, e.g. host-side sizing of a large gear's contact
+        beyond the hardware's range).
     """
 
     name = "reference"
 
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
-                 hertz_form: str = DEFAULT_HERTZ_FORM):
+                 hertz_form: str = DEFAULT_HERTZ_FORM, envelope: bool = True):
         self.material = material
         self.e_prime_mpa = _e_prime(material, material2)
         self.hertz_form = check_hertz_form(hertz_form)
+        self.envelope = bool(envelope)
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
-        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa, hertz_form=self.hertz_form)
+        if self.envelope:
+            a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
+        else:
+            a, b, w = (check_positive("A_minus (1/mm)", A_minus),
+                       check_positive("B_minus (1/mm)", B_minus),
+                       check_positive("load_n (N)", load_n))
+        hp = hertz_preview(a, b, w, e_prime_mpa=self.e_prime_mpa, envelope=self.envelope,
+                           hertz_form=self.hertz_form)
         return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k,
                              hp.p_max_mpa, hertz_form=self.hertz_form)
 

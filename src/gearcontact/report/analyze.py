@@ -47,8 +47,10 @@ from ..contact.pair_ltca import PairLoadCase, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning
 from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, get_engine
+from ..preview.qformat import FixedPointOverflow
 from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import without_timings, write_csv, write_tca_outputs
+from ..tca.synthesis import with_easeoff
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
 from .latency import core_cycles, scalar_latency
@@ -91,6 +93,9 @@ class Analysis:
         Flank pair analysed ("drive" | "coast").
     flanks : FlankSet or None
         The flanks the analysis ran on.
+    easeoff_note : str
+        Non-empty when the pair came without an ease-off for ``side`` and it was
+        synthesized (:func:`gearcontact.tca.synthesis.with_easeoff`).
     """
 
     pair: object
@@ -105,6 +110,7 @@ class Analysis:
     latency: object = None
     side: str = "drive"
     flanks: object = None
+    easeoff_note: str = ""
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -120,14 +126,28 @@ def published_values(pair_name: str) -> dict | None:
     return json.loads(res.read_text())
 
 
+def _in_envelope(call, *args):
+    """A golden-model preview, or None if the inputs lie outside the datapath's
+    envelope (a large gear's relative curvature below the fixed-point range): the
+    fixed-point stages are then reported as not applicable, the fp64 stages still run."""
+    try:
+        return call(*args)
+    except (InputRangeError, FixedPointOverflow):
+        return None
+
+
 def _preview_rows(cases, golden, chain) -> list[list]:
     rows = []
+    off = [float("nan")] * 4 + ["", "outside datapath envelope"]
     for c, g, ch in zip(cases, golden, chain):
         p = c.preview
-        rows.append([c.torque_nm, c.load_n, p.a_mm, p.b_mm, p.k, p.p_max_mpa,
-                     g.a_mm, g.b_mm, g.k, g.p_max_mpa, g.codes["p_max"], "|".join(g.flags),
-                     ch.A_minus_per_mm, ch.B_minus_per_mm, ch.a_mm, ch.b_mm, ch.p_max_mpa,
-                     ch.codes["p_max"], "|".join(ch.flags), ch.cycles])
+        rows.append([c.torque_nm, c.load_n, p.a_mm, p.b_mm, p.k, p.p_max_mpa]
+                    + (off if g is None else [g.a_mm, g.b_mm, g.k, g.p_max_mpa,
+                                              g.codes["p_max"], "|".join(g.flags)])
+                    + ([float("nan")] * 5 + ["", "outside datapath envelope", 0]
+                       if ch is None else
+                       [ch.A_minus_per_mm, ch.B_minus_per_mm, ch.a_mm, ch.b_mm, ch.p_max_mpa,
+                        ch.codes["p_max"], "|".join(ch.flags), ch.cycles]))
     return rows
 
 
@@ -168,6 +188,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:
         raise InputRangeError("torques_nm", torques_nm, "at least one torque")
+    pair, easeoff_note = with_easeoff(pair, side=side)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     timings = {}
@@ -195,8 +216,9 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
             case = single_pair_ltca(tca, flanks, pair, torque, side=side, solver=solver,
                                     warm_start=cases[-1].patch if cases else None)
         cases.append(case)
-        gold.append(golden.hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, case.load_n))
-        chain.append(golden.stencil(stencil, case.load_n))
+        gold.append(_in_envelope(golden.hertz, rc.A_minus_per_mm, rc.B_minus_per_mm,
+                                 case.load_n))
+        chain.append(_in_envelope(golden.stencil, stencil, case.load_n))
         steps.update(1)
     timings["ltca_s"] = time.perf_counter() - t0
 
@@ -260,6 +282,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     steps.update(1)
     steps.close()
     result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision, latency, side, flanks)
+                      precision, latency, side, flanks, easeoff_note)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

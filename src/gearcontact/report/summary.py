@@ -200,7 +200,11 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     out = [f"# {pair.name}: tooth-contact analysis", "",
            f"gearcontact {__version__}. Units: mm, N, MPa, arcsec. "
            "Published values (where given) are from the original study, for comparison.",
-           "", "## Blank (ISO 23509 Method 1)", ""]
+           ""]
+    if getattr(result, "easeoff_note", ""):
+        head, _, toml = result.easeoff_note.partition("\n")
+        out += ["**Ease-off synthesized.** " + head, "", "```toml", toml.strip(), "```", ""]
+    out += ["## Blank (ISO 23509 Method 1)", ""]
     out.append(_table(["quantity", "ours", "published"], [
         ["pinion pitch angle (deg)", blank["pitch_angles_deg"][0], pub.get("pitch_angle_pinion_deg")],
         ["gear pitch angle (deg)", blank["pitch_angles_deg"][1], pub.get("pitch_angle_gear_deg")],
@@ -216,7 +220,9 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         ["paint ellipse 2a x 2b (mm) at 6.35 um",
          f"{2 * ell.semi_major_mm:.3f} x {2 * ell.semi_minor_mm:.3f}", None],
         ["paint ellipse angle from lengthwise (deg)", ell.angle_deg, None],
-        ["contact pattern inside the flank", bool(tca.pattern_on_flank.all()), None]]))
+        ["contact pattern inside the flank", bool(tca.pattern_on_flank.all()), None],
+        ["edge contact (phases per flank edge)",
+         ", ".join(f"{k} {v}" for k, v in tca.edge_counts.items()) or "none", None]]))
     out += ["", "Figures: ![TE0](te0.png) ![contact pattern](contact_pattern.png)", ""]
     out += _design_point_section(result, pub)
     out += ["## Loaded contact: preview vs LCP (single pair at P0, rigid teeth)", ""]
@@ -241,10 +247,14 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
             "## Fixed-point preview (golden model = RTL specification)", ""]
     rows = []
     for c, g, ch in zip(cases, result.golden, result.golden_chain):
-        rows.append([c.torque_nm, c.preview.p_max_mpa, g.p_max_mpa,
-                     _pct(g.p_max_mpa, c.preview.p_max_mpa), ch.p_max_mpa,
-                     _pct(ch.p_max_mpa, c.preview.p_max_mpa), ", ".join(ch.flags) or "none",
-                     ch.cycles])
+        off = "outside the datapath envelope"
+        rows.append([c.torque_nm, c.preview.p_max_mpa,
+                     off if g is None else g.p_max_mpa,
+                     None if g is None else _pct(g.p_max_mpa, c.preview.p_max_mpa),
+                     off if ch is None else ch.p_max_mpa,
+                     None if ch is None else _pct(ch.p_max_mpa, c.preview.p_max_mpa),
+                     off if ch is None else ", ".join(ch.flags) or "none",
+                     None if ch is None else ch.cycles])
     out.append(_table(["torque (N·m)", "fp64 p_max", "golden D p_max", "golden D vs fp64 (%)",
                        "golden C->D p_max (stencil)", "C->D vs fp64 (%)", "C->D flags",
                        "C->D cycles"], rows))

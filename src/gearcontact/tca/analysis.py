@@ -12,6 +12,8 @@ from tqdm import tqdm
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
+from .line_contact import LineContact, is_conjugate, line_contact
+from .edges import PatternOffFlank, exit_counts, pattern_edges
 from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
                         relative_curvature)
 from .mesh import MeshCycle, mesh_cycle
@@ -45,6 +47,10 @@ class TcaAnalysis:
     pattern_on_flank : ndarray (K,) of bool
         Per phase of the pitch: the paint ellipse of the transmitting contact lies
         inside both flanks (its outline maps into the parameter boxes).
+    edges : tuple of str
+        Per phase of the pitch: ``""`` or the flank edge the transmitting contact or
+        its pattern reaches (``"pinion toe"``, ``"gear tip"``, ...;
+        :func:`~gearcontact.tca.edges.pattern_edges`).
     timings_s : dict
         Wall-clock seconds per stage.
     """
@@ -57,7 +63,17 @@ class TcaAnalysis:
     gap_field: GapField
     stencil: GapField
     pattern_on_flank: np.ndarray
+    edges: tuple
     timings_s: dict
+
+    @property
+    def edge_counts(self) -> dict:
+        """Phases of the pitch per flank edge reached (empty: pattern inside)."""
+        counts: dict = {}
+        for e in self.edges:
+            if e:
+                counts[e] = counts.get(e, 0) + 1
+        return counts
 
 
 def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
@@ -129,10 +145,11 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     stages.update(1)
     t0 = time.perf_counter()
     inside = pattern_on_flank(pinion, gear, kin, cycle)
+    edges = pattern_edges(pinion, gear, kin, cycle, inside)
     timings["pattern_check"] = time.perf_counter() - t0
     stages.update(1)
     stages.close()
-    return TcaAnalysis(cycle, table, mean, rc, ell, field, stencil, inside, timings)
+    return TcaAnalysis(cycle, table, mean, rc, ell, field, stencil, inside, edges, timings)
 
 
 def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int = 2,
@@ -146,6 +163,14 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     Returns
     -------
     (TcaAnalysis, FlankSet)
+
+    Raises
+    ------
+    LineContact
+        Zero ease-off and no assembly errors: the flanks are conjugate (line contact,
+        TE0 = 0); the exception carries the :class:`~.line_contact.LineContactResult`.
+    PatternOffFlank
+        The contact has left the flanks at every phase tried.
     """
     from ..geometry.flank import SIDES, build_flanks
 
@@ -156,6 +181,14 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     if flanks is None:
         flanks = build_flanks(pair)
     kin = pair.kinematics()
+    if is_conjugate(pair, side):
+        mean = flanks.mean_contact[side]
+        phi2 = float(mean["phi2_rad"])
+        start = ContactGuess(*map(float, mean["pinion_uv"]), *map(float, mean["gear_uv"]),
+                             pair.ratio * phi2, phi2)
+        raise LineContact(line_contact(flanks.flank("pinion", side), flanks.flank("gear", side),
+                                       kin, start, pinion_teeth=pair.pinion_teeth,
+                                       phases=phases), side=side)
     start, fixed = reference_start(pair, flanks, side)
     result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
                      pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
@@ -173,13 +206,17 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
     least-relief point of the ease-off are tried with their height ``u1`` held (the
     phase free), since the eased path need not cross a given conjugate contact line.
 
+    If neither yields an interior mating point, a 7 x 7 grid over the whole pinion
+    flank is tried the same way (a misaligned pair's bearing can be anywhere on it).
+
     Raises
     ------
-    EdgeContact
+    PatternOffFlank
         If no candidate yields an interior mating point (the bearing has left the
-        flank at every phase tried).
+        flank at every phase tried); it names the edge most trial contacts left by.
     """
     from ..geometry.easeoff import EaseOff
+    from .calibration import conjugate_contact
 
     mean = flanks.mean_contact[side]
     kin = pair.kinematics()
@@ -200,16 +237,23 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
                        indexing="ij")
     k = np.unravel_index(int(np.argmin(eo.relief_mm(U, V))), U.shape)
     du, dv = 0.1 * (b.u_tip - b.u_root), 0.1 * (b.v_heel - b.v_toe)
-    for fu, fv in ((0, 0), (-1, 0), (-2, 0), (-1, -1), (-1, 1), (-3, 0), (-2, -2), (-2, 2)):
-        u1 = float(np.clip(U[k] + fu * du, b.u_root + 0.5 * du, b.u_tip - 0.5 * du))
-        v1 = float(np.clip(V[k] + fv * dv, b.v_toe + 0.5 * dv, b.v_heel - 0.5 * dv))
-        ms = conj.exact(np.array(u1), np.array(v1))
-        u2, v2 = gear.surface_parameters(ms.h_mm, ms.theta_rad)
-        p2 = float(ms.phi2_rad)
-        guess = ContactGuess(u1, v1, float(u2), float(v2), pair.ratio * p2, p2)
+    near = [(float(np.clip(U[k] + fu * du, b.u_root + 0.5 * du, b.u_tip - 0.5 * du)),
+             float(np.clip(V[k] + fv * dv, b.v_toe + 0.5 * dv, b.v_heel - 0.5 * dv)))
+            for fu, fv in ((0, 0), (-1, 0), (-2, 0), (-1, -1), (-1, 1), (-3, 0), (-2, -2),
+                           (-2, 2))]
+    # then the whole flank, nearest the least-relief point first: a misaligned pair
+    # (assembly errors) moves its bearing anywhere on the flank, up to an edge
+    grid = [(float(u), float(v)) for u in np.linspace(b.u_root + 0.5 * du, b.u_tip - 0.5 * du, 7)
+            for v in np.linspace(b.v_toe + 0.5 * dv, b.v_heel - 0.5 * dv, 7)]
+    grid.sort(key=lambda uv: ((uv[0] - U[k]) / du) ** 2 + ((uv[1] - V[k]) / dv) ** 2)
+    exits = [error.where if isinstance(error, EdgeContact) else "no convergence"]
+    for u1, v1 in near + grid:
+        guess = conjugate_contact(conj, gear, pair, u1, v1)
         try:
             solve_mating_point(pinion, gear, kin, guess, fixed="u1")
             return guess, "u1"
-        except (EdgeContact, TcaConvergenceError):
-            continue
-    raise error
+        except EdgeContact as exc:
+            exits.append(exc.where)
+        except TcaConvergenceError:
+            exits.append("no convergence")
+    raise PatternOffFlank(exit_counts(exits), context=f" on the {side} side")

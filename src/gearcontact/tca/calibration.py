@@ -62,7 +62,7 @@ __all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibrat
            "evaluate_design_point", "DesignPoint", "PRIORITY_WEIGHTS",
            "centred_coefficients", "design_point_at", "design_point_rows",
            "face_widths_for_room", "top_land_mm", "tip_margin_for_top_land",
-           "MIN_TOP_LAND_MODULES"]
+           "MIN_TOP_LAND_MODULES", "eased_design_point", "conjugate_contact"]
 
 _INVARIANTS = ("gear radius", "gear axial", "pinion radius", "pinion axial")
 _COEFFS = tuple(EaseOffCoefficients.__dataclass_fields__)
@@ -164,6 +164,12 @@ class DesignPoint:
         on the two sides have the same angle.
     easeoff_max_um : float
         Largest |E| of the ease-off over the pinion flank, um.
+    paint_length_mm : float
+        Major axis 2a of the paint ellipse (6.35 um, :mod:`.curvature`), mm.
+    path_angle_deg : float
+        Direction of the contact path at the point (phase increasing), deg from the
+        lengthwise direction, in the same right-handed frame as ``ellipse_angle_deg``,
+        folded into (-90, 90]; NaN if the path has no interior neighbour there.
     """
 
     point_mm: np.ndarray
@@ -177,6 +183,8 @@ class DesignPoint:
     ellipse_width_mm: float
     ellipse_angle_deg: float
     easeoff_max_um: float
+    paint_length_mm: float = float("nan")
+    path_angle_deg: float = float("nan")
 
 
 @dataclass(frozen=True)
@@ -248,7 +256,7 @@ class Calibration:
         return "\n".join(lines)
 
 
-def _conjugate_contact(conj, gear, pair: GearPair, u1: float, v1: float) -> ContactGuess:
+def conjugate_contact(conj, gear, pair: GearPair, u1: float, v1: float) -> ContactGuess:
     """Contact state of the conjugate pinion point (u1, v1) with its generating gear."""
     ms = conj.exact(np.array(float(u1)), np.array(float(v1)))
     u2, v2 = gear.surface_parameters(ms.h_mm, ms.theta_rad)
@@ -299,16 +307,26 @@ def working_depth_for_tip(pair: GearPair, point_mm, *, tip_margin_mm: float) -> 
     return float(h_am1 / ((1.0 - pair.gear_addendum_factor) * b.mean_normal_module_mm))
 
 
+def _fold_deg(angle: float) -> float:
+    """An axis direction in (-90, 90] deg."""
+    return float((angle + 90.0) % 180.0 - 90.0) if (angle + 90.0) % 180.0 != 0.0 else 90.0
+
+
 def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
-                    torque_nm: float) -> DesignPoint:
+                    torque_nm: float, path_tangent=None) -> DesignPoint:
     """:class:`DesignPoint` of the mating point ``mp`` of ``pinion`` and ``gear`` (the
-    pair's kinematics), with the Hamrock–Brewe ellipse at the gear torque ``torque_nm``."""
+    pair's kinematics), with the Hamrock–Brewe ellipse at the gear torque ``torque_nm``
+    and, given the meshing-frame ``path_tangent`` (3,), the path angle."""
     kin = pair.kinematics()
     rc = relative_curvature(pinion, gear, kin, mp)
     ell = contact_ellipse(rc)
     # the flank frame (l, p, n) is right-handed on one side and left-handed on the other
     # (tca.curvature); compare orientations in the right-handed frame of either side
     handed = float(np.sign(np.cross(rc.lengthwise, rc.profile) @ rc.normal))
+    path_angle = float("nan")
+    if path_tangent is not None and np.all(np.isfinite(path_tangent)):
+        path_angle = _fold_deg(handed * float(np.degrees(np.arctan2(
+            path_tangent @ rc.profile, path_tangent @ rc.lengthwise))))
     load = normal_load_from_torque(torque_nm, mp.point_mm, mp.normal)
     hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
                              e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
@@ -319,7 +337,8 @@ def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
                        te0_pp_arcsec=float(te0_pp_arcsec), load_n=float(load),
                        ellipse_length_mm=2.0 * hb.a_mm, ellipse_width_mm=2.0 * hb.b_mm,
                        ellipse_angle_deg=handed * float(ell.angle_deg),
-                       easeoff_max_um=float(np.nan))
+                       easeoff_max_um=float(np.nan), paint_length_mm=2.0 * ell.semi_major_mm,
+                       path_angle_deg=path_angle)
 
 
 #: Smallest pinion top land accepted by the default tip choice, in mean normal modules:
@@ -387,8 +406,37 @@ def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
                                                                - g.vector()))
             mp = solve_mating_point(eased, gear, kin, dataclasses.replace(
                 guess, phi1_rad=g.phi1_rad + h * step))
+    tangent = None
+    if 0 < i < len(te) - 1 and not (path.points[i - 1].edge or path.points[i + 1].edge):
+        tangent = path.points[i + 1].point_mm - path.points[i - 1].point_mm
     return design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
-                           torque_nm=torque_nm)
+                           torque_nm=torque_nm, path_tangent=tangent)
+
+
+def eased_design_point(coeffs: EaseOffCoefficients, conj, gear, pair: GearPair, starts, *,
+                       mean_uv: tuple[float, float], limit_um: float, torque_nm: float,
+                       phases: int = 61) -> DesignPoint:
+    """:func:`evaluate_design_point` of the conjugate pinion flank ``conj`` eased by
+    ``coeffs`` (about the pinion mean node ``mean_uv``, within ``limit_um``), from the
+    first of ``starts`` (contact guesses, ``u1`` held) that reaches an interior contact;
+    ``easeoff_max_um`` is filled in.
+
+    Raises
+    ------
+    EdgeContact, ArithmeticError, ValueError
+        From the last start if none succeeds (edge, no pair in mesh, relief limit).
+    """
+    eo = EaseOff.from_coefficients(coeffs, u_mean_mm=mean_uv[0], v_mean_mm=mean_uv[1])
+    eased = apply_easeoff(conj, eo, limit_um=limit_um)
+    for k, start in enumerate(starts):
+        try:
+            dp = evaluate_design_point(eased, gear, pair, start, torque_nm=torque_nm,
+                                       phases=phases)
+            break
+        except (EdgeContact, ArithmeticError, ValueError):
+            if k == len(starts) - 1:
+                raise
+    return dataclasses.replace(dp, easeoff_max_um=max_relief_um(eo, conj.boundary)[0])
 
 
 #: Least-squares weight of each target group, in the order of priority of the targets
@@ -553,7 +601,7 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *,
     box = conj.boundary
     # starts: conjugate contacts of pinion points below P0; the TCA holds their height
     # (u1) and finds the phase, since the eased path need not cross P0's conjugate line
-    starts = [_conjugate_contact(conj, gear, deep, u_c - d, v_c) for d in (0.1, 0.3, 0.6)]
+    starts = [conjugate_contact(conj, gear, deep, u_c - d, v_c) for d in (0.1, 0.3, 0.6)]
     limit = flanks.easeoff_limit_um
     # search in the centre form of the ease-off (:func:`centred_coefficients`): the
     # bearing centre (eta_c, xi_c) and the three second-order terms are nearly
@@ -566,16 +614,8 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *,
 
     def run(x):
         coeffs = centred_coefficients(*x)
-        eo = EaseOff.from_coefficients(coeffs, u_mean_mm=u_m, v_mean_mm=v_m)
-        eased = apply_easeoff(conj, eo, limit_um=limit)
-        for k, start in enumerate(starts):
-            try:
-                dp = evaluate_design_point(eased, gear, deep, start, torque_nm=targets.torque_nm)
-                break
-            except (EdgeContact, ArithmeticError, ValueError):
-                if k == len(starts) - 1:
-                    raise
-        return coeffs, dataclasses.replace(dp, easeoff_max_um=max_relief_um(eo, conj.boundary)[0])
+        return coeffs, eased_design_point(coeffs, conj, gear, deep, starts, mean_uv=(u_m, v_m),
+                                          limit_um=limit, torque_nm=targets.torque_nm)
 
     def fun(x):
         evals["n"] += 1

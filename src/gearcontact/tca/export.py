@@ -90,7 +90,7 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
     write_csv(out / "gap_field.csv", ["s_mm", "t_mm", "gap_mm"],
          zip(map(float, f.s_mm.ravel()), map(float, f.t_mm.ravel()),
              map(float, f.gap_mm.ravel())))
-    write_json(res.table, out / "phase_table.json")
+    write_json(res.table, out / "phase_table.json", edges=res.edges)
     binary = encode_binary(res.table, max_records=table_records)
     (out / "phase_table.bin").write_bytes(binary)
 
@@ -112,6 +112,9 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         "pairs_in_contact_max": int(cyc.pairs_in_contact.max()),
         "pattern_on_flank": bool(res.pattern_on_flank.all()),
         "path_edges": edges,
+        # per phase of the pitch: "" inside, else the flank edge reached (tca.edges)
+        "edge_phases": res.edge_counts,
+        "phase_edges": list(res.edges),
         "stencil": {"frame": res.stencil.frame_name,
                     "samples_off_flank": int((~res.stencil.on_flank).sum()),
                     "off_flank_fill": "osculating quadric (1/2) q^T B q at P0",
@@ -136,5 +139,5 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         plt.close(fig)
         plot_te0(cyc, out / "te0.png", title=f"{pair.name} {side}: unloaded TE")
         plot_contact_pattern(pinion, gear, kin, cyc, out / "contact_pattern.png",
-                             title=f"{pair.name} {side}")
+                             title=f"{pair.name} {side}", edges=res.edges)
     return summary

@@ -32,6 +32,7 @@ from ..geometry.surface import Surface
 from ..validation import check_positive
 from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
+from .edges import ContactGap
 from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
 
 __all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
@@ -161,9 +162,9 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
 
     Raises
     ------
-    ValueError
+    ContactGap
         If at some phase of the pitch no pair has an interior mating point (the paths
-        are shorter than a pitch: contact ratio below one).
+        are shorter than a pitch: contact ratio below one); a ValueError.
     """
     if int(pinion_teeth) < 1:
         raise ValueError(f"pinion_teeth = {pinion_teeth!r} must be >= 1")
@@ -212,9 +213,7 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     valid = np.isfinite(te_pairs)
     if not valid.any(axis=0).all():
         k = int(np.argmin(valid.any(axis=0)))
-        raise ValueError(f"no tooth pair in contact at phi1 = "
-                         f"{np.degrees(grid[base + k]):.4f} deg: the contact path is "
-                         "shorter than one pinion pitch (contact ratio < 1)")
+        raise ContactGap(grid[base + k])
     filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
     winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
     cols = np.arange(n + 1)

@@ -209,8 +209,9 @@ def decode_binary(data: bytes) -> DecodedPhaseTable:
                              fields[:, 6])
 
 
-def write_json(table: PhaseTable, path) -> Path:
-    """Write ``phase_table.json`` (all phases, double precision)."""
+def write_json(table: PhaseTable, path, *, edges=()) -> Path:
+    """Write ``phase_table.json`` (all phases, double precision); ``edges`` (one string
+    per phase, ``""`` inside the flanks) is written as the list ``"edges"``."""
     rows = [[float(table.phi1_deg[i]), *map(float, table.point_mm[i]),
              float(table.te0_arcsec[i]), float(table.A_minus_per_mm[i]),
              float(table.B_minus_per_mm[i]), float(table.ellipse_angle_deg[i]),
@@ -218,6 +219,8 @@ def write_json(table: PhaseTable, path) -> Path:
     doc = {"format": "gearcontact.phase_table", "version": VERSION,
            "pinion_teeth": table.pinion_teeth, "gear_teeth": table.gear_teeth,
            "te0_pp_arcsec": table.te0_pp_arcsec, "columns": list(COLUMNS), "rows": rows}
+    if len(edges):
+        doc["edges"] = [str(e) for e in edges]
     path = Path(path)
     path.write_text(json.dumps(doc, indent=1))
     return path

@@ -50,12 +50,15 @@ def _to_body(kin: MeshKinematics, member: str, mp, x_f: np.ndarray) -> np.ndarra
 
 
 def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
-                         cycle: MeshCycle, path, *, title: str = "") -> Path:
+                         cycle: MeshCycle, path, *, title: str = "",
+                         edges=()) -> Path:
     """Contact pattern and path on both flanks; PNG at ``path``.
 
     The pattern is the union of the paint ellipses of the transmitting contact over
     one pinion pitch (every tooth carries the same pattern); the thin line is the whole
     interior path of one pair, the thick line its transmitting part; P0 is marked.
+    ``edges`` (per phase, ``""`` or the edge reached; :mod:`gearcontact.tca.edges`)
+    draws the ellipses of edge phases in red and names the edges in the legend.
     """
     fig, axes = plt.subplots(2, 1, figsize=(9, 7.5))
     theta = np.linspace(0.0, 2 * np.pi, 49)
@@ -66,18 +69,25 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
     for ax, member, surf in ((axes[0], "gear", gear), (axes[1], "pinion", pinion)):
         ax.plot(*axial_projection(_boundary(surf), member).T, color="0.3", lw=1.0,
                 label="flank boundary")
-        for mp, rc, ell in zip(cycle.contact, cycle.curvature, cycle.ellipse):
-            if not np.isfinite(ell.semi_major_mm):
+        marks = tuple(edges) or ("",) * len(cycle.contact)
+        named = sorted({e for e in marks if e})
+        for mp, rc, ell, edge in zip(cycle.contact, cycle.curvature, cycle.ellipse, marks):
+            if mp.edge or not np.isfinite(ell.semi_major_mm):
                 continue
             ring = (mp.point_mm + np.outer(ell.semi_major_mm * np.cos(theta), rc.dir_min)
                     + np.outer(ell.semi_minor_mm * np.sin(theta), rc.dir_max))
             xy = axial_projection(_to_body(kin, member, mp, ring), member)
-            ax.fill(xy[:, 0], xy[:, 1], color="tab:orange", alpha=0.12, lw=0)
+            ax.fill(xy[:, 0], xy[:, 1], color="tab:red" if edge else "tab:orange",
+                    alpha=0.12, lw=0)
+        if named:
+            ax.fill([], [], color="tab:red", alpha=0.3,
+                    label=f"edge contact ({', '.join(named)}: "
+                          f"{sum(1 for e in marks if e)} of {len(marks)} phases)")
         trace = np.vstack([axial_projection(_to_body(kin, member, mp, mp.point_mm), member)
                            for mp in pts])
         ax.plot(trace[:, 0], trace[:, 1], color="tab:red", lw=0.8, label="contact path")
         active = np.vstack([axial_projection(_to_body(kin, member, mp, mp.point_mm), member)
-                            for mp in cycle.contact])
+                            for mp in cycle.contact if not mp.edge])
         ax.plot(active[:, 0], active[:, 1], color="tab:red", lw=2.5,
                 label="transmitting (one pitch)")
         ref = cycle.reference_point

@@ -1,0 +1,136 @@
+"""Edge contact as a result: which flank edge a contact or its pattern reaches.
+
+Misalignment, a short face or a strong ease-off move the contact towards a flank
+boundary. Mounting checks are run precisely to see that (Stadtfeld 1993, ch. 6: the
+V/H check moves the pattern to toe/heel and tip/root), so an edge is reported, never
+fatal: per phase of the pitch the transmitting contact is either interior with its
+paint ellipse inside both flanks (``""``), or its pattern or its mating point reaches an
+edge, named ``"<member> <edge>"`` with ``member`` pinion or gear and ``edge`` one of
+toe / heel / tip / root (:class:`~gearcontact.geometry.flank.FlankBoundary`: ``u`` runs
+root -> tip, ``v`` toe -> heel on both members).
+
+Only a contact that has left the flanks at every phase tried is an error,
+:class:`PatternOffFlank`, which names the way it left.
+
+References
+----------
+H. J. Stadtfeld, *Handbook of Bevel and Hypoid Gears*, RIT, 1993, ch. 6 (contact
+pattern movement with the V, H, J mounting errors).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import numpy as np
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface
+from ..validation import UnusableInput
+
+__all__ = ["EDGES", "edge_name", "exit_counts", "PatternOffFlank", "ContactGap", "pattern_edges"]
+
+#: Edge name of each parameter-box side (``u`` root -> tip, ``v`` toe -> heel).
+EDGES = {"u min": "root", "u max": "tip", "v min": "toe", "v max": "heel"}
+
+
+def edge_name(where: str) -> str:
+    """``"<member> <edge>"`` for a solver boundary such as ``"pinion v max"``."""
+    member, _, side = where.partition(" ")
+    return f"{member} {EDGES.get(side, side)}" if side in EDGES else where
+
+
+class PatternOffFlank(UnusableInput):
+    """The contact has left the flanks at every phase tried.
+
+    Attributes
+    ----------
+    where : str
+        The edge the contact crossed most often (``"gear root"``, ``"pinion toe"``, ...;
+        ``"unknown edge"`` if no trial reached an edge, e.g. none converged).
+    counts : dict
+        How many of the trial contacts left by each edge (or did not converge).
+    """
+
+    def __init__(self, counts: dict, *, context: str = ""):
+        self.counts = dict(counts)
+        named = {k: v for k, v in self.counts.items()
+                 if k.split(" ")[-1] in EDGES.values()}
+        self.where = max(named, key=named.get) if named else "unknown edge"
+        tried = sum(self.counts.values())
+        detail = ", ".join(f"{k} {v}" for k, v in sorted(self.counts.items(),
+                                                         key=lambda kv: -kv[1]))
+        super().__init__(
+            f"contact pattern off the flank: no interior mating point at any of the "
+            f"{tried} start contacts tried{context}; the contact leaves towards the "
+            f"{self.where} (exits: {detail}). Reduce the assembly errors or the ease-off.")
+
+
+class ContactGap(UnusableInput):
+    """At some phase of the pitch no tooth pair has an interior mating point: the
+    contact paths are shorter than one pinion pitch (contact ratio below one), e.g. a
+    short face or a strong misalignment.
+
+    Attributes
+    ----------
+    phi1_rad : float
+        First phase without a contact, rad.
+    """
+
+    def __init__(self, phi1_rad: float):
+        self.phi1_rad = float(phi1_rad)
+        super().__init__(f"no tooth pair in contact at phi1 = {np.degrees(phi1_rad):.4f} deg: "
+                         "the contact path is shorter than one pinion pitch (contact ratio "
+                         "< 1); the unloaded mesh has a gap there")
+
+
+def _edge_of(surface: Surface, u: float, v: float) -> tuple[str, float]:
+    """Edge of the box nearest (or beyond) ``(u, v)`` and its signed margin, mm
+    (negative: outside)."""
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    margins = {"root": u - u0, "tip": u1 - u, "toe": v - v0, "heel": v1 - v}
+    name = min(margins, key=margins.get)
+    return name, float(margins[name])
+
+
+def pattern_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, cycle,
+                  on_flank: np.ndarray, *, outline_points: int = 16) -> tuple[str, ...]:
+    """Per phase of ``cycle``: the edge the transmitting contact reaches, or ``""``.
+
+    An edge phase of the path (no interior mating point) reports its solver boundary.
+    A phase whose paint ellipse is not on both flanks (``on_flank`` False, from the
+    exact normal-line projection of :func:`~gearcontact.tca.analysis.pattern_on_flank`)
+    reports the edge that the ellipse outline crosses furthest, located by mapping the
+    outline into each flank's parameters to first order (``[r_u r_v] d(u, v) = q``,
+    least squares in the tangent plane).
+    """
+    theta = 2.0 * np.pi * np.arange(int(outline_points)) / int(outline_points)
+    out = []
+    for k, (mp, rc, ell) in enumerate(zip(cycle.contact, cycle.curvature, cycle.ellipse)):
+        if mp.edge:
+            out.append(edge_name(mp.edge_where))
+            continue
+        if on_flank[k]:
+            out.append("")
+            continue
+        major = ell.semi_major_mm if np.isfinite(ell.semi_major_mm) else 1e3
+        ring = (np.outer(major * np.cos(theta), rc.dir_min)
+                + np.outer(ell.semi_minor_mm * np.sin(theta), rc.dir_max))
+        worst = ("", np.inf)
+        for member, surf, (u, v), rot in (
+                ("pinion", pinion, (mp.u1, mp.v1), kin.pinion_pose(mp.phi1_rad)[0]),
+                ("gear", gear, (mp.u2, mp.v2), kin.gear_pose(mp.phi2_rad)[0])):
+            sp = surf.point(u, v)
+            jac = rot @ np.column_stack([sp.r_u, sp.r_v])
+            duv = np.linalg.lstsq(jac, ring.T, rcond=None)[0]
+            for du, dv in duv.T:
+                name, margin = _edge_of(surf, u + du, v + dv)
+                if margin < worst[1]:
+                    worst = (f"{member} {name}", margin)
+        out.append(worst[0])
+    return tuple(out)
+
+
+def exit_counts(wheres) -> dict:
+    """Counts of the named edges of solver boundaries (for :class:`PatternOffFlank`)."""
+    return dict(Counter(edge_name(w) for w in wheres))

@@ -1,0 +1,158 @@
+"""Conjugate flanks (zero ease-off, no assembly errors): line contact, reported.
+
+The pinion flanks are generated conjugate to the gear flanks (equation of meshing,
+:mod:`gearcontact.geometry.conjugate`), so without an ease-off and mounted without
+errors the two flanks touch along a *line* at every phase and the transmission error
+vanishes identically (Litvin & Fuentes 2004, sec. 9.3 and ch. 15: a mismatch is what
+turns the line into a point and gives the parabolic TE). The point-contact Newton solve
+of :mod:`.solve` is singular there (a one-parameter family of solutions), so TCA does
+not run it: :func:`line_contact` follows the contact line instead, with the phase and
+the gear's lengthwise parameter ``v2`` both held (five equations in four unknowns,
+consistent on the line, solved by Gauss-Newton), and checks ``TE0 = 0`` along the
+pitch. The result is reported as :class:`LineContact`, an error for the loaded stages
+(no contact ellipse; the pair needs an ease-off) and a result for ``gearcontact tca``.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004,
+sec. 9.3 (line contact of conjugate surfaces), ch. 15.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface
+from ..validation import UnusableInput
+from .solve import (ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError,
+                    solve_mating_point)
+
+__all__ = ["LINE_TOLERANCE_MM", "LineContactResult", "LineContact", "line_contact",
+           "is_conjugate"]
+
+#: Residual tolerance of the contact-line solve, mm: the pinion sheets interpolate the
+#: exact conjugate nodes with C2 quintic splines, so the flanks are conjugate only to
+#: the interpolation accuracy (residuals ~1e-9 mm measured on s0003), not to 1e-10 mm.
+LINE_TOLERANCE_MM = 1e-7
+
+
+@dataclass(frozen=True)
+class LineContactResult:
+    """Line contact of a conjugate flank pair.
+
+    Attributes
+    ----------
+    phi1_rad : ndarray (K,)
+        Phases of one pinion pitch, rad.
+    te0_arcsec : ndarray (K,)
+        TE0 at the middle of the contact line at each phase, arcsec (0 up to the
+        interpolation accuracy of the flanks).
+    line_mm : ndarray (N, 3)
+        Points of the contact line at the mean phase, meshing frame, mm (toe -> heel).
+    line_length_mm : float
+        Length of that line inside both flanks (polyline), mm.
+    te0_max_abs_arcsec : float
+        Largest |TE0| over the pitch, arcsec.
+    """
+
+    phi1_rad: np.ndarray
+    te0_arcsec: np.ndarray
+    line_mm: np.ndarray
+    line_length_mm: float
+    te0_max_abs_arcsec: float
+
+    def as_dict(self) -> dict:
+        return {"line_contact": True, "te0_max_abs_arcsec": self.te0_max_abs_arcsec,
+                "line_length_mm": self.line_length_mm,
+                "phi1_deg": [float(x) for x in np.degrees(self.phi1_rad)],
+                "te0_arcsec": [float(x) for x in self.te0_arcsec],
+                "line_mm": [[float(c) for c in p] for p in self.line_mm]}
+
+
+class LineContact(UnusableInput):
+    """The flanks are conjugate: line contact, TE0 = 0 (see the module docstring).
+
+    Attributes
+    ----------
+    result : LineContactResult
+    """
+
+    def __init__(self, result: LineContactResult, *, side: str = ""):
+        self.result = result
+        super().__init__(
+            f"line contact{f' on the {side} side' if side else ''}: zero ease-off and no "
+            f"assembly errors make the flanks conjugate (TE0 = 0 within "
+            f"{max(result.te0_max_abs_arcsec, 1e-9):.1e} arcsec, contact line "
+            f"{result.line_length_mm:.2f} mm long); there is no contact ellipse to load. "
+            "Give an [easeoff.*] table, or omit it to have one synthesized.")
+
+
+def is_conjugate(pair, side: str) -> bool:
+    """True if ``side`` of ``pair`` has zero ease-off and no assembly errors."""
+    c = dataclasses.astuple(getattr(pair, f"easeoff_{side}"))
+    a = pair.assembly
+    return (not any(c)) and not any((a.E_mm, a.P_mm, a.G_mm, a.alpha_deg))
+
+
+def _line_point(pinion, gear, kin, guess: ContactGuess):
+    return solve_mating_point(pinion, gear, kin, guess, fixed=("phi1", "v2"),
+                              tol_mm=LINE_TOLERANCE_MM)
+
+
+def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: ContactGuess,
+                 *, pinion_teeth: int, phases: int = 61, line_points: int = 25
+                 ) -> LineContactResult:
+    """Follow the contact line of conjugate flanks and TE0 over one pitch.
+
+    Parameters
+    ----------
+    pinion, gear : Surface
+    kin : MeshKinematics
+    start : ContactGuess
+        A contact state on the line (e.g. the conjugate mean contact of
+        :func:`~gearcontact.geometry.flank.build_flanks`); its phase is the mean phase.
+    pinion_teeth : int
+    phases : int
+        Phases of the pitch (both ends included), centred on the start phase.
+    line_points : int
+        Samples of ``v2`` over the gear face for the contact line.
+    """
+    ref = _line_point(pinion, gear, kin, start)
+    # the contact line at the mean phase: march v2 from the start to each end
+    v_lo, v_hi = gear.v_range
+    line = {0.0: ref.point_mm}
+    for end in (v_lo, v_hi):
+        prev = ref.as_guess()
+        for v2 in np.linspace(ref.v2, end, int(line_points) // 2 + 1)[1:]:
+            try:
+                mp = _line_point(pinion, gear, kin, dataclasses.replace(prev, v2=float(v2)))
+            except (EdgeContact, TcaConvergenceError):
+                break
+            prev = mp.as_guess()
+            line[float(v2 - ref.v2)] = mp.point_mm
+    pts = np.array([line[k] for k in sorted(line)])
+    length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    # TE0 along the pitch at the middle of the line (v2 held), continued in phase
+    step = 2.0 * np.pi / int(pinion_teeth) / (int(phases) - 1)
+    ks = np.arange(int(phases)) - (int(phases) - 1) // 2
+    te = np.full(len(ks), np.nan)
+    for direction in (+1, -1):
+        prev = ref.as_guess()
+        for k in (ks[ks >= 0] if direction > 0 else ks[ks < 0][::-1]):
+            phi1 = ref.phi1_rad + k * step
+            guess = dataclasses.replace(prev, phi1_rad=phi1,
+                                        phi2_rad=prev.phi2_rad + (phi1 - prev.phi1_rad) / kin.ratio)
+            try:
+                mp = _line_point(pinion, gear, kin, guess)
+            except (EdgeContact, TcaConvergenceError):
+                break
+            prev = mp.as_guess()
+            te[np.flatnonzero(ks == k)[0]] = ARCSEC_PER_RAD * (
+                (mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
+    finite = te[np.isfinite(te)]
+    return LineContactResult(ref.phi1_rad + step * ks, te, pts, length,
+                             float(np.max(np.abs(finite))) if finite.size else float("nan"))

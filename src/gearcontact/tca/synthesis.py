@@ -1,0 +1,366 @@
+"""Local synthesis of the ease-off: a bearing for a pair that comes without one.
+
+Litvin's local synthesis prescribes, at the mean point M of the flank, the position of
+the bearing, the direction of the contact path, the length of the instantaneous contact
+ellipse (paint thickness 6.35 um) and the level of the parabolic transmission error,
+and solves the machine-tool settings for them (Litvin & Fuentes 2004, sec. 21.8; Litvin
+et al. 2006). gearcontact's flanks carry the relief as the 5-term pinion ease-off, so
+the unknowns are its five coefficients, written in the centre form of
+:func:`~gearcontact.tca.calibration.centred_coefficients` (bearing centre
+``(eta_c, xi_c)``, profile and lengthwise crowning, bias), and the conditions are met
+with TCA in the loop: :func:`~gearcontact.tca.calibration.eased_design_point` (the TCA
+at the continuous TE0 vertex) and bounded least squares, the machinery of the
+calibration (docs/calibration.md), here with design targets instead of published ones.
+
+Targets (:class:`SynthesisTargets`) and their defaults, from common practice:
+
+* **bearing centre** mid-face and mid working depth of the pinion flank
+  (``centre_face = centre_profile = 0.5``); practice centres the unloaded bearing or
+  places it slightly towards the toe, since it moves heelwards under load (Stadtfeld
+  1993, ch. 6; ANSI/AGMA 2005-D03, clause 8 "tooth contact pattern");
+* **pattern length** ``2a`` of the paint ellipse = ``0.35`` x the gear face width:
+  practice asks for a pattern over 1/3 to 1/2 of the face (Stadtfeld 1993, ch. 6;
+  AGMA 2005-D03, clause 8);
+* **TE0 level** ``3`` arcsec peak-to-peak over one pinion pitch: a few arcsec keep the
+  parabolic TE function that absorbs misalignment without a large mesh excitation
+  (Litvin & Fuentes 2004, sec. 21.8 use 6-8 arcsec; Stadtfeld 1993 recommends the
+  smallest level that keeps the bearing inside under the mounting tolerances; s0003's
+  published design has 3.4 arcsec);
+* **path angle** optional: without it the bias (twist) is free but drawn weakly
+  towards zero (a regularizing residual of weight :data:`BIAS_WEIGHT`), so that a
+  path along the relief valley is preferred where it meets the targets, and a twisted
+  one is used where TE0 and the ellipse length cannot be met together without it.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 21.8.
+F. L. Litvin, A. Fuentes, K. Hayasaka, "Design, manufacture, stress analysis, and
+experimental tests of low-noise high endurance spiral bevel gears", *Mech. Mach.
+Theory* 41 (2006) 83-118.
+H. J. Stadtfeld, *Handbook of Bevel and Hypoid Gears*, RIT, 1993, ch. 6.
+ANSI/AGMA 2005-D03, *Design Manual for Bevel Gears*, clause 8.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..geometry.flank import SIDES, build_flanks
+from ..geometry.kinematics import AssemblyErrors
+from ..geometry.pair import EaseOffCoefficients, GearPair
+from ..validation import InputRangeError, check_positive, check_range
+from .calibration import (DesignPoint, centred_coefficients, conjugate_contact,
+                          eased_design_point)
+from .solve import EdgeContact
+
+__all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
+           "easeoff_toml", "with_easeoff"]
+
+#: Design torque of the Hertz ellipse reported beside the paint ellipse, N·m (not a
+#: target of the synthesis; the pattern length is the paint ellipse).
+_REPORT_TORQUE_NM = 64.5
+
+#: Weight of the residual ``c_TW / scale`` that draws the bias towards zero when no
+#: path angle is prescribed (one bias scale step costs 0.02 of a tolerance: with 0.1
+#: the spiral bevel example kept its ellipse 6 % long, with 0.02 it meets all targets).
+BIAS_WEIGHT = 0.02
+
+
+#: Lengthwise-crowning scale steps of the successive local-search passes, um/mm^2 per
+#: (12 mm / face)^2.
+_LC_SCALES = (0.05, 0.01)
+
+
+class _BudgetSpent(Exception):
+    """The search's budget of TCA runs is spent (its best point is the result)."""
+
+
+@dataclass(frozen=True)
+class SynthesisTargets:
+    """Conditions of the local synthesis at the mean point (defaults: module docstring).
+
+    Parameters
+    ----------
+    te0_pp_arcsec : float
+        Unloaded TE peak-to-peak over one pinion pitch, arcsec, in [0.5, 30].
+    pattern_length_ratio : float
+        Paint-ellipse major axis 2a over the gear face width, in [0.1, 0.8].
+    path_angle_deg : float or None
+        Contact-path direction at the bearing centre from the lengthwise direction,
+        deg in (-90, 90] (right-handed flank frame, as the ellipse angle of
+        :class:`~gearcontact.tca.calibration.DesignPoint`); None: not prescribed
+        (bias drawn weakly towards 0).
+    centre_face, centre_profile : float
+        Bearing centre (TE0 vertex) on the pinion flank as fractions of the face
+        (0 toe, 1 heel) and of the working depth (0 root, 1 tip), in [0.02, 0.98].
+    tol_centre_mm, tol_te0_rel, tol_length_rel, tol_angle_deg : float
+        Tolerances (least-squares scales): centre, mm; TE0 and length, relative;
+        path angle, deg.
+    """
+
+    te0_pp_arcsec: float = 3.0
+    pattern_length_ratio: float = 0.35
+    path_angle_deg: float | None = None
+    centre_face: float = 0.5
+    centre_profile: float = 0.5
+    tol_centre_mm: float = 0.05
+    tol_te0_rel: float = 0.05
+    tol_length_rel: float = 0.05
+    tol_angle_deg: float = 2.0
+
+    def __post_init__(self):
+        check_range("te0_pp_arcsec", self.te0_pp_arcsec, 0.5, 30.0)
+        check_range("pattern_length_ratio", self.pattern_length_ratio, 0.1, 0.8)
+        if self.path_angle_deg is not None:
+            check_range("path_angle_deg", self.path_angle_deg, -89.9, 90.0)
+        check_range("centre_face", self.centre_face, 0.02, 0.98)
+        check_range("centre_profile", self.centre_profile, 0.02, 0.98)
+        for name in ("tol_centre_mm", "tol_te0_rel", "tol_length_rel", "tol_angle_deg"):
+            check_positive(name, getattr(self, name))
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """Result of :func:`synthesize_easeoff`.
+
+    Attributes
+    ----------
+    side : str
+    coefficients : EaseOffCoefficients
+        The synthesized ease-off of ``side``.
+    targets : SynthesisTargets
+    point : DesignPoint
+        TCA at the synthesized ease-off (continuous TE0 vertex).
+    centre_uv_mm : (float, float)
+        Target bearing centre (pinion u, v), mm.
+    pattern_length_mm : float
+        Target paint-ellipse 2a, mm.
+    rows : tuple of (str, str, float, float, float, bool)
+        (quantity, unit, target, achieved, tolerance, met).
+    evaluations : int
+        TCA runs.
+    seconds : float
+    """
+
+    side: str
+    coefficients: EaseOffCoefficients
+    targets: SynthesisTargets
+    point: DesignPoint
+    centre_uv_mm: tuple[float, float]
+    pattern_length_mm: float
+    rows: tuple
+    evaluations: int
+    seconds: float
+
+    @property
+    def met(self) -> bool:
+        """Every target within its tolerance."""
+        return all(r[5] for r in self.rows)
+
+    def table(self) -> str:
+        """Target / achieved / tolerance as Markdown."""
+        lines = ["| target | aim | achieved | tolerance | met |", "|---|---:|---:|---:|---|"]
+        for name, unit, aim, got, tol, ok in self.rows:
+            lines.append(f"| {name} ({unit}) | {aim:.4g} | {got:.4g} | {tol:.3g} | "
+                         f"{'yes' if ok else 'NO'} |")
+        return "\n".join(lines)
+
+
+def _targets_rows(dp: DesignPoint, t: SynthesisTargets, centre, length_mm: float):
+    rows = [("bearing centre pinion u", "mm", centre[0], dp.pinion_uv[0], t.tol_centre_mm),
+            ("bearing centre pinion v", "mm", centre[1], dp.pinion_uv[1], t.tol_centre_mm),
+            ("TE0 peak-to-peak", "arcsec", t.te0_pp_arcsec, dp.te0_pp_arcsec,
+             t.tol_te0_rel * t.te0_pp_arcsec),
+            ("paint ellipse 2a", "mm", length_mm, dp.paint_length_mm,
+             t.tol_length_rel * length_mm)]
+    if t.path_angle_deg is not None:
+        rows.append(("path angle from lengthwise", "deg", t.path_angle_deg,
+                     dp.path_angle_deg, t.tol_angle_deg))
+    return tuple((n, u, float(a), float(g), float(tol), bool(abs(g - a) <= tol))
+                 for n, u, a, g, tol in rows)
+
+
+def _angle_diff(a: float, b: float) -> float:
+    """Difference of two axis directions, deg in (-90, 90]."""
+    d = (a - b + 90.0) % 180.0 - 90.0
+    return float(d)
+
+
+def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
+                       targets: SynthesisTargets = SynthesisTargets(), flanks=None,
+                       phases: int = 31, max_evaluations: int = 150) -> Synthesis:
+    """Solve the ease-off of ``side`` (default the pair's design side) for ``targets``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        Its ease-off of ``side`` is ignored (the synthesis starts from the conjugate
+        flanks) and so are its assembly errors: the ease-off is designed for the
+        nominal mounting, so that a misalignment check shows the pattern move.
+    flanks : FlankSet, optional
+        ``build_flanks(pair)``, if already built.
+    phases : int
+        TCA phases per pitch of each evaluation (31: TE0 p-p within ~1 % of 61).
+    max_evaluations : int
+        Budget of TCA runs of each local-search pass (two at most; the best point
+        found is returned when it is spent; each run ~0.1-0.2 s).
+
+    Raises
+    ------
+    InputRangeError
+        Bad side.
+    ArithmeticError
+        If no start of the search reaches an interior contact.
+    """
+    t_start = time.perf_counter()
+    side = pair.design_side if side is None else side
+    pair = dataclasses.replace(pair, assembly=AssemblyErrors())
+    if side not in SIDES:
+        raise InputRangeError("side", side, f"one of {SIDES}")
+    if flanks is None:
+        flanks = build_flanks(pair)
+    conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
+    u_m, v_m = (float(x) for x in flanks.mean_contact[side]["pinion_uv"])
+    b = conj.boundary
+    centre = (b.u_root + targets.centre_profile * (b.u_tip - b.u_root),
+              b.v_toe + targets.centre_face * (b.v_heel - b.v_toe))
+    face = pair.gear_face_width_mm
+    length = targets.pattern_length_ratio * face
+    # starts of the mating-point solve: conjugate contacts at and below the centre (u1
+    # held, the phase free)
+    depth = b.u_tip - b.u_root
+    starts = [conjugate_contact(conj, gear, pair, centre[0] - f * depth, centre[1])
+              for f in (0.0, 0.03, 0.1, 0.25)]
+    limit = flanks.easeoff_limit_um
+    with_bias = targets.path_angle_deg is not None
+    # curvature scale: the ellipse length scales with the face, its curvature with
+    # 1 / length^2 (s0003-centred: 8 and 0.124 um/mm^2 for a 12 mm face)
+    k = (12.0 / face) ** 2
+    eta_c, xi_c = centre[0] - u_m, centre[1] - v_m
+    lo = np.array([eta_c - 0.5 * depth, xi_c - 0.4 * face, 0.05 * k, 0.002 * k, -2.0 * k])
+    hi = np.array([eta_c + 0.5 * depth, xi_c + 0.4 * face, 60.0 * k, 2.0 * k, 2.0 * k])
+    scale = np.array([0.02 * depth, 0.02 * face, 0.5 * k, 0.05 * k, 0.05 * k])
+    evals = {"n": 0, "best": (np.inf, None, None)}
+
+    def run(x):
+        coeffs = centred_coefficients(*x)
+        return coeffs, eased_design_point(coeffs, conj, gear, pair, starts, mean_uv=(u_m, v_m),
+                                          limit_um=limit, torque_nm=_REPORT_TORQUE_NM,
+                                          phases=phases)
+
+    budget = 9 + 2 * int(max_evaluations)
+
+    def residual(x):
+        if evals["n"] >= budget:
+            raise _BudgetSpent
+        evals["n"] += 1
+        try:
+            coeffs, dp = run(x)
+        except (EdgeContact, ArithmeticError, ValueError):
+            return np.full(5, 1e3)
+        r = [(dp.pinion_uv[0] - centre[0]) / targets.tol_centre_mm,
+             (dp.pinion_uv[1] - centre[1]) / targets.tol_centre_mm,
+             (dp.te0_pp_arcsec / targets.te0_pp_arcsec - 1.0) / targets.tol_te0_rel,
+             (dp.paint_length_mm / length - 1.0) / targets.tol_length_rel]
+        if with_bias:
+            ang = dp.path_angle_deg if np.isfinite(dp.path_angle_deg) else 90.0
+            r.append(_angle_diff(ang, targets.path_angle_deg) / targets.tol_angle_deg)
+        else:
+            r.append(BIAS_WEIGHT * x[4] / scale[4])
+        r = np.asarray(r)
+        cost = float(r @ r)
+        if cost < evals["best"][0]:
+            evals["best"] = (cost, np.array(x, float), (coeffs, dp))
+        return r
+
+    # start grid over the two crownings (the objective has several basins: the path
+    # turns with the profile crowning), bearing centre at its target
+    for pc in (4.0, 8.0, 16.0):
+        for lc in (0.06, 0.15, 0.4):
+            residual(np.array([eta_c, xi_c, pc * k, lc * k, 0.0]))
+    if evals["best"][1] is None:
+        raise ArithmeticError(f"ease-off synthesis of {pair.name} {side}: no start of the "
+                              "search gave an interior TCA contact")
+    # the local search runs in variables normalized by ``scale`` (each of order one
+    # per scale step), so that the finite-difference step (1 % of max(1, |z|) scale
+    # steps) is a small, comparable change of every coefficient. A pass that stalls
+    # short of the targets is restarted from the best grid point with a finer
+    # lengthwise-crowning scale (measured: the coarse scale meets F3, the 11/41 hypoid and the
+    # s0003 tip-edge preset; the F2 spiral bevel needs the fine one)
+    x_grid = np.clip(evals["best"][1], lo, hi)
+    for lc_scale in _LC_SCALES:
+        x0 = x_grid
+        step = scale.copy()
+        step[3] = lc_scale * k
+        try:
+            least_squares(lambda z, x0=x0, step=step: residual(x0 + z * step), np.zeros(5),
+                          method="lm", diff_step=1e-2, max_nfev=int(max_evaluations))
+        except _BudgetSpent:
+            break
+        _, _, (coeffs, dp) = evals["best"]
+        if all(r[5] for r in _targets_rows(dp, targets, centre, length)):
+            break
+    _, _, (coeffs, dp) = evals["best"]
+    return Synthesis(side, coeffs, targets, dp, centre, length,
+                     _targets_rows(dp, targets, centre, length), evals["n"],
+                     time.perf_counter() - t_start)
+
+
+def easeoff_toml(synth: dict, *, pair_name: str) -> str:
+    """``[easeoff.<side>]`` TOML tables of ``synth`` (side -> :class:`Synthesis`), with
+    the targets and what was achieved as comments, ready to paste into a pair file."""
+    out = []
+    for side, s in synth.items():
+        t = s.targets
+        out.append(f"[easeoff.{side}]")
+        out.append(f"# synthesized by gearcontact (local synthesis, {pair_name}): TE0 "
+                   f"{t.te0_pp_arcsec:g} arcsec, paint ellipse {t.pattern_length_ratio:g} x face, "
+                   + ("path angle free" if t.path_angle_deg is None
+                      else f"path angle {t.path_angle_deg:g} deg")
+                   + f", centre at {t.centre_face:g} face / {t.centre_profile:g} depth.")
+        out.append(f"# achieved: TE0 {s.point.te0_pp_arcsec:.2f} arcsec, 2a "
+                   f"{s.point.paint_length_mm:.2f} mm, path angle {s.point.path_angle_deg:.1f} "
+                   f"deg, max |E| {s.point.easeoff_max_um:.1f} um"
+                   + ("" if s.met else " (NOT all targets met: see the table)"))
+        for k, v in dataclasses.asdict(s.coefficients).items():
+            out.append(f"{k} = {float(v):.6g}")
+        out.append("")
+    return "\n".join(out)
+
+
+def synthesize_pair(pair: GearPair, *, sides=SIDES, targets: SynthesisTargets = SynthesisTargets(),
+                    flanks=None) -> tuple[GearPair, dict]:
+    """``pair`` with the ease-off of each of ``sides`` synthesized, and the
+    :class:`Synthesis` of each side."""
+    if flanks is None:
+        flanks = build_flanks(pair)
+    done = {s: synthesize_easeoff(pair, side=s, targets=targets, flanks=flanks) for s in sides}
+    return dataclasses.replace(pair, **{f"easeoff_{s}": r.coefficients
+                                        for s, r in done.items()}), done
+
+
+def with_easeoff(pair: GearPair, *, side: str | None = None) -> tuple[GearPair, str]:
+    """``pair`` ready for TCA: if the ease-off table of ``side`` (default the design
+    side) was not given, it is synthesized with the default :class:`SynthesisTargets`.
+
+    Returns the pair and a note for the output (``""`` if nothing was synthesized); a
+    synthesized ease-off is never silent.
+    """
+    side = pair.design_side if side is None else side
+    if side in pair.easeoff_tables:
+        return pair, ""
+    new, done = synthesize_pair(pair, sides=(side,))
+    s = done[side]
+    new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
+    note = (f"{pair.name} has no [easeoff.{side}] table: ease-off synthesized (local "
+            f"synthesis, {s.evaluations} TCA runs, {s.seconds:.0f} s): TE0 "
+            f"{s.point.te0_pp_arcsec:.2f} arcsec, paint ellipse {s.point.paint_length_mm:.2f} mm "
+            f"(targets {s.targets.te0_pp_arcsec:g} arcsec, {s.pattern_length_mm:.2f} mm); keep "
+            f"it with `gearcontact design --pair FILE --synthesize-easeoff`:\n"
+            + easeoff_toml(done, pair_name=pair.name))
+    return new, note
