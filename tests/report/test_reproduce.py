@@ -122,3 +122,16 @@ def test_synth_quick(tmp_path):
     assert res["status"] == "partial" and res["provenance"]["tool"].startswith("yowasp")
     # gap core at L = 8 with split products: 21 x 8 + 18 DSP48E1 (bench_synth.py)
     assert res["results"][0]["DSP48E1"] == 186
+
+
+def test_missing_extra_is_bad_input(tmp_path, monkeypatch, capsys):
+    # without scikit-learn the command refuses before any work: exit 2, one line naming
+    # the extra to install, nothing written into --out
+    import importlib.util
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name == "sklearn" else real(name, *a))
+    out = tmp_path / "r"
+    assert main(["reproduce", "--out", str(out), "--quick", "--quiet"]) == 2
+    assert "gearcontact[report]" in capsys.readouterr().err
+    assert not (out / "report.json").exists()
