@@ -1,7 +1,7 @@
 """Benchmark of the stage A/B gap kernel: golden models, fp64 reference and RTL sim.
 
 Prints one table of candidate gaps per second (one candidate = one (point, sample)
-pair evaluated by Algorithm 1) beside the paper's FPGA figures (SPEC section 7):
+pair evaluated by Algorithm 1) beside the paper's FPGA figures (docs/spec.md sec. 7):
 
 * board: 16 lanes x 12.5 MHz = 2.0e8 candidates/s (lane-parallel peak);
 * projected: 63 lanes x 50 MHz = 3.15e9 candidates/s (DSP-saturated XC7K480T).

@@ -14,7 +14,7 @@ whole-range codes, loads and E' over their envelopes). Rows:
 Two rates per row: ``wall`` = vectors / elapsed time (best of ``--repeat``), and
 ``cpu`` = vectors x threads / process CPU time of that run, the rate the same work
 would reach on ``threads`` otherwise idle cores -- the figure to read when the
-machine is shared (the load average is printed). The target (SPEC, issue 2) is
+machine is shared (the load average is printed). The target (docs/spec.md sec. 6, issue 2) is
 >= 1e6 chain evaluations/s on 2 cores.
 
 Run: ``python benchmarks/bench_golden_chain.py [--n-batch 1000000] [--n-scalar 2000]

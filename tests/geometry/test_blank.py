@@ -43,7 +43,7 @@ def test_iso23509_f3_sample():
 
 
 def test_cone_relations_hold_exactly():
-    # independent re-check of the defining equations (GEOMETRY sec. 2) at 1e-12
+    # independent re-check of the defining equations (docs/geometry.md sec. 2) at 1e-12
     b = _f3()
     d1, d2 = np.radians([b.pitch_angle_pinion_deg, b.pitch_angle_gear_deg])
     zm, eta, zmp = np.radians([b.offset_angle_axial_pinion_deg, b.offset_angle_axial_gear_deg,
@@ -67,7 +67,7 @@ def test_s0003_published_pitch_cones():
     assert round(b.pitch_angle_pinion_deg, 2) == 6.07
     assert round(b.pitch_angle_gear_deg, 2) == 83.15
     assert round(b.mean_cone_distance_gear_mm, 2) == 40.68
-    # GEOMETRY check values (computed independently, rounded to the digits given)
+    # docs/geometry.md sec. 2 check values (computed independently, rounded to the digits given)
     assert b.offset_angle_axial_pinion_deg == pytest.approx(27.55, abs=0.005)
     assert b.offset_angle_axial_gear_deg == pytest.approx(3.18, abs=0.005)
     assert b.offset_angle_pitch_plane_deg == pytest.approx(27.72, abs=0.005)
@@ -82,7 +82,7 @@ def test_s0003_published_pitch_cones():
 
 
 def test_standard_cutter_variant():
-    # GEOMETRY: the 3.5 in cutter (44.45 mm) with beta1 = 50 deg gives 6.079 / 83.140 deg
+    # docs/geometry.md sec. 2: a 3.5 in cutter (44.45 mm), beta1 = 50 deg, gives 6.079 / 83.140 deg
     b = design_blank(pinion_teeth=7, gear_teeth=70, offset_mm=19.0, pinion_spiral_angle_deg=50.0,
                      cutter_radius_mm=44.45, gear_mean_cone_distance_mm=40.68)
     assert b.pitch_angle_pinion_deg == pytest.approx(6.079, abs=0.0005)

@@ -1,4 +1,4 @@
-"""LiteX board flow: the generated csr.csv / csr.json equal the SPEC section 7 map of
+"""LiteX board flow: the generated csr.csv / csr.json equal the docs/spec.md sec. 7 map of
 tri_core; constraints carry the pins and the create_clock; the openXC7 script is written
 (not run); jtagbone is the bus master. Skipped without LiteX."""
 

@@ -2,7 +2,7 @@
 
 Truths checked: the reference backend equals the package's Hamrock–Brewe closed form
 (Hamrock & Brewe 1983) exactly; the golden backend agrees with it within the fixed-point
-tolerance of SPEC section 6; bad input raises naming the field.
+tolerance of docs/spec.md sec. 6; bad input raises naming the field.
 """
 
 import math

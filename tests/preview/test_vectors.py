@@ -5,7 +5,7 @@ Truths (independent of the exporter): the README's field tables decoded with Pyt
 big integers (not :func:`decode_hex`), the golden models called directly on the
 decoded inputs (vectorized on every vector; scalar on every corner case and every
 7th random vector), :mod:`gearcontact.preview.stimulus` for the operands and labels,
-and the cycle counts of SPEC section 6 (26 / 52 / 756 / 806). Tolerance: none --
+and the cycle counts of docs/spec.md sec. 6 (26 / 52 / 756 / 806). Tolerance: none --
 every code, flag and cycle count must be equal.
 """
 
@@ -28,7 +28,7 @@ from gearcontact.preview.vectors import (VECTOR_CORES, HexField, decode_hex, enc
 from gearcontact.validation import InputRangeError
 
 COUNT, SEED = 150, 7
-CYCLES = {"gap": 26, "fit": 52, "hertz": 756, "chain": 806}     # SPEC section 6
+CYCLES = {"gap": 26, "fit": 52, "hertz": 756, "chain": 806}     # docs/spec.md sec. 6
 HERTZ = ("a", "b", "p_max", "k", "A_min", "B_max", "R_x", "R_y", "alpha")
 
 

@@ -1,7 +1,7 @@
 """Determinism and latency in the report (:mod:`gearcontact.report.latency`).
 
 Truth: the cycle formulas of the timing model written out independently -- gap pass
-``L + ceil(N/L) + log2(L) + 5`` (SPEC section 7), fit ``49 MAC + 3 latch``, Hertz
+``L + ceil(N/L) + log2(L) + 5`` (docs/spec.md sec. 7), fit ``49 MAC + 3 latch``, Hertz
 ``2 + 9 x 83 + 4 + 3`` and the chain ``49 + 3 + 754`` (stage D's 2 capture edges
 absorbed) -- and the ordering of the measured percentiles.
 """

@@ -1,6 +1,6 @@
 """Gap-kernel precision in the report (:mod:`gearcontact.report.precision`).
 
-Truth: the first-order error bound of SPEC section 8 item 8
+Truth: the first-order error bound of docs/spec.md sec. 8 item 8
 (:func:`gearcontact.preview.gap.golden.gap_error_bound_mm`) holds at every width, the
 error shrinks as the widths grow (halving per bit until the Q(32,16) gap output's own
 rounding floor), and the CSV carries exactly the sweeps' numbers.
@@ -41,6 +41,8 @@ def test_csv_matches_the_sweeps(written):
     for row, p in zip(rows, by_coord + by_normal):
         assert int(row["coord_frac_bits"]) == p.coord_frac
         assert int(row["normal_frac_bits"]) == p.normal_frac
-        assert float(row["max_error_um"]) == pytest.approx(p.max_error_mm * 1e3, rel=1e-12)
-        assert float(row["bound_um"]) == pytest.approx(p.bound_mm * 1e3, rel=1e-12)
+        # the CSV keeps 12 significant digits: rounding <= 5e-12 relative
+        assert int(row["coord_width_bits"]) == 8 + p.coord_frac
+        assert float(row["max_error_um"]) == pytest.approx(p.max_error_mm * 1e3, rel=5e-12)
+        assert float(row["bound_um"]) == pytest.approx(p.bound_mm * 1e3, rel=5e-12)
     assert (out / "precision.png").stat().st_size > 0

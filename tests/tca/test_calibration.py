@@ -1,4 +1,4 @@
-"""The s0003 preset against the published design point (SPEC sec. 3, docs/calibration.md).
+"""The s0003 preset against the published design point (docs/spec.md sec. 3, docs/calibration.md).
 
 Independent truths: the published mating point P0 = (41.679, -16.164, 7.949) mm and its
 frame invariants (radius / axial position on both members), the published pitch angles
@@ -120,7 +120,7 @@ def test_working_depth_for_tip_closed_form():
 def test_calibrated_ltca_is_edge_loaded_at_the_tip(calibrated):
     pair, tca, flanks = calibrated
     case = single_pair_ltca(tca, flanks, pair, 64.5, side="coast", cells=64)
-    # the published signature (SPEC sec. 3/5): edge peak ~5x the body, preview below p90
+    # the published signature (docs/spec.md sec. 3/5): edge peak ~5x the body, preview below p90
     assert case.edge_contact
     assert case.patch.p_peak_mpa > 3.0 * case.patch.p90_mpa
     assert case.preview.p_max_mpa < case.patch.p90_mpa

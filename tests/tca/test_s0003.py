@@ -1,8 +1,8 @@
 """TCA of the built-in s0003 pair: calibration targets, conjugacy, crowning, assembly errors.
 
-Independent truths: the published s0003 figures (SPEC sec. 3: TE0 p-p 3.40 arcsec,
+Independent truths: the published s0003 figures (docs/spec.md sec. 3: TE0 p-p 3.40 arcsec,
 preview ellipse 4.8 x 0.38 mm at 64.5 N m); theory of conjugate action (line contact,
-zero TE); the first-order relation TE = relief / lever (GEOMETRY sec. 3); first-order
+zero TE); the first-order relation TE = relief / lever (docs/geometry.md sec. 3); first-order
 rigid-body kinematics of a mounting error.
 """
 
@@ -18,7 +18,7 @@ from gearcontact.tca.curvature import relative_curvature
 from gearcontact.tca.solve import (ARCSEC_PER_RAD, ContactGuess, solve_mating_point,
                                    solve_tca)
 
-#: gear torque 64.5 N m -> normal load 1971 N (SPEC / GEOMETRY sec. 2)
+#: gear torque 64.5 N m -> normal load 1971 N (docs/spec.md sec. 3, docs/geometry.md sec. 2)
 W_DESIGN_N = 1971.0
 
 
@@ -33,7 +33,7 @@ def test_calibrated_te0_and_bearing(s0003_pair, s0003_drive):
     res = s0003_drive
     cyc = res.cycle
     assert len(cyc.phi1_rad) >= 61
-    # SPEC sec. 3: 3.40 arcsec; the issue's acceptance band is 25 %
+    # docs/spec.md sec. 3: 3.40 arcsec; the issue's acceptance band is 25 %
     assert cyc.te0_pp_arcsec == pytest.approx(3.4, rel=0.25)
     # three pairs share the mesh at some phases, never fewer than two
     assert cyc.pairs_in_contact.min() >= 2 and cyc.pairs_in_contact.max() >= 3

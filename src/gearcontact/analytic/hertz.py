@@ -1,6 +1,6 @@
 """Elliptical Hertz contact: exact elliptic-integral solution and Hamrock–Brewe forms.
 
-Convention (SPEC section 6, Algorithm 3): the unloaded gap between the two bodies near
+Convention (docs/spec.md sec. 6, Algorithm 3): the unloaded gap between the two bodies near
 the initial point contact is, in principal axes (s, t),
 
     g(s, t) = A s^2 + B t^2,        A, B > 0 in 1/mm,
@@ -331,7 +331,7 @@ def hamrock_brewe_terms(a_min: float, b_max: float, load_n: float, e_prime_mpa: 
 
 def hamrock_brewe_hertz(A_per_mm: float, B_per_mm: float, load_n: float, *,
                         e_prime_mpa: float) -> HertzContact:
-    """Simplified Hamrock–Brewe elliptical Hertz contact (SPEC section 6, Algorithm 3).
+    """Simplified Hamrock–Brewe elliptical Hertz contact (docs/spec.md sec. 6, Algorithm 3).
 
     ``alpha = R_x/R_y``, ``k = alpha^(2/pi)``, ``E_e = 1 + (pi/2 - 1)/alpha``,
     ``F = pi/2 + (pi/2 - 1) ln alpha``, ``a = (6 k^2 E_e W R/(pi E'))^(1/3)``,

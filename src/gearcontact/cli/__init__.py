@@ -40,7 +40,8 @@ __all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
            "EXIT_FLAGGED", "EXIT_CHECK_FAILED"]
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
-COMMANDS = ("analyze", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte", "bending", "twin")
+COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
+            "bending", "twin")
 
 EXIT_OK = 0
 #: A bug: "internal error, please report" (traceback with --debug).

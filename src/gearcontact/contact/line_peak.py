@@ -1,4 +1,4 @@
-"""Incomplete-ellipse line-contact peak ``CP_max`` of a loaded patch (SPEC section 5).
+"""Incomplete-ellipse line-contact peak ``CP_max`` of a loaded patch (docs/spec.md sec. 5).
 
 At a tip-edge bearing the contact ellipse is cut by the flank boundary: an *incomplete
 ellipse*. On rigid teeth with a sharp edge the half-space LCP puts an edge spike into

@@ -69,7 +69,7 @@ References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 9, 15.
 B. J. Hamrock, D. E. Brewe, J. Lubrication Technol. 105 (1983) 171-177.
-K. L. Johnson, *Contact Mechanics*, 1985, ch. 3-4. SPEC section 5.
+K. L. Johnson, *Contact Mechanics*, 1985, ch. 3-4. docs/spec.md sec. 5.
 """
 
 from __future__ import annotations

@@ -12,13 +12,13 @@ gear torque's normal loads, pressure map, and the incomplete-ellipse line-contac
 (:mod:`.line_peak`); overall: the loaded mesh rotation rigid and with bending,
 ``CP_max`` (largest line-contact peak over the engaged pairs, bending solution) beside
 the raw cell peak and the Hamrock–Brewe preview of the reference pair at the load the
-LCP gives it (``preview_p_max_mpa``; SPEC section 5: *paper* 2714 MPa vs 2038 MPa).
+LCP gives it (``preview_p_max_mpa``; docs/spec.md sec. 5: *paper* 2714 MPa vs 2038 MPa).
 
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 9.
 M. Kolivand, A. Kahraman, Mech. Mach. Theory 44 (2009) 1848-1865 (loaded tooth contact
-of hypoid gears with tooth bending). SPEC section 5.
+of hypoid gears with tooth bending). docs/spec.md sec. 5.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Loaded contact of one tooth pair at a mesh phase (the single-pair LTCA of SPEC §5).
+"""Loaded contact of one tooth pair at a mesh phase (the single-pair LTCA of docs/spec.md sec. 5).
 
 The unloaded TCA gives the mating point P0, the common normal and the relative
 curvatures; from them:
@@ -21,7 +21,7 @@ curvatures; from them:
 
 References
 ----------
-K. L. Johnson, *Contact Mechanics*, 1985, ch. 4; SPEC section 5.
+K. L. Johnson, *Contact Mechanics*, 1985, ch. 4; docs/spec.md sec. 5.
 """
 
 from __future__ import annotations

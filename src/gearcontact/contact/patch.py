@@ -226,8 +226,9 @@ def plot_patch(patch: PatchContact, ax=None, *, ellipse: ContactEllipse | None =
     if patch.p_peak_mpa > EDGE_SPIKE_RATIO * patch.p90_mpa:
         vmax = EDGE_SPIKE_CLIP * patch.p90_mpa
     mesh = ax.pcolormesh(xe, ye, p, cmap=cmap, shading="flat", vmin=0.0, vmax=vmax)
-    label = "pressure (MPa)" if vmax is None else \
-        f"pressure (MPa), scale clipped (peak {patch.p_peak_mpa:.0f})"
+    # short label: a long one overlaps the colour bars of stacked panels; the peak
+    # itself is in the title
+    label = "pressure (MPa)" if vmax is None else "pressure (MPa), clipped"
     ax.figure.colorbar(mesh, ax=ax, label=label, extend="neither" if vmax is None else "max")
     (ellipse or patch.ellipse).draw(ax, color="cyan")
     ax.plot(patch.peak_x_mm, patch.peak_y_mm, "w+", ms=8)

@@ -2,7 +2,7 @@
 
 Given the hypoid offset E, the ratio u = z2/z1, the gear mean pitch radius r2 (or the
 gear mean cone distance R2), the pinion mean spiral angle beta1 and the cutter radius
-r_c0, the pitch cones are fixed by (GEOMETRY section 2; ISO 23509:2016 clause 6.2.2)
+r_c0, the pitch cones are fixed by (docs/geometry.md sec. 2; ISO 23509:2016 clause 6.2.2)
 
 - cone tangency: ``cos(zeta_m) = sin(delta1)/cos(delta2)``,
   ``cos(eta) = sin(delta2)/cos(delta1)``;
@@ -21,7 +21,7 @@ Tooth proportions follow ISO 23509 clause 7 with the depth factors of the pair:
 ``h_mw = k_d m_mn``, ``h_am2 = c_ham h_mw``, ``h_am1 = h_mw - h_am2``, ``c = k_c h_mw``,
 ``h_fm2 = h_am1 + c``, ``h_fm1 = h_am2 + c`` (uniform depth along the face).
 
-Meshing-frame placement (GEOMETRY section 1): the gear axis is +z through the origin,
+Meshing-frame placement (docs/geometry.md sec. 1): the gear axis is +z through the origin,
 the pinion axis is x through C1 = (0, -E, 0). The pitch point is
 ``P = (r2 cos zeta_m, -r2 sin zeta_m, r1 cos eta)``; the gear pitch apex lies on the
 gear axis at ``z = P_z - R2 cos(delta2)`` and the pinion pitch apex on the pinion axis at

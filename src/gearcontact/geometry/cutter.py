@@ -1,7 +1,7 @@
 """Face-milling cutter placement and blade cones of a formate (non-generated) gear.
 
 The cutter axis ``a`` is normal to the gear pitch plane (the plane tangent to the gear
-pitch cone along the generatrix through the mean point P; GEOMETRY section 3, "first
+pitch cone along the generatrix through the mean point P; docs/geometry.md sec. 3, "first
 version, pitch plane") and points into the gear body (towards the gear root). The
 cutter centre C lies in the pitch plane at distance r_c0 from P, perpendicular to the
 tooth trace, on the side that gives the gear the hand of the pair:

@@ -1,7 +1,7 @@
 """Five-term pinion ease-off and the modified (eased) pinion flank.
 
 The ease-off is a relief of the pinion flank along its outward unit normal N1
-(GEOMETRY section 3; Litvin & Fuentes 2004, sec. 21.8 "local synthesis" uses the same
+(docs/geometry.md sec. 3; Litvin & Fuentes 2004, sec. 21.8 "local synthesis" uses the same
 polynomial topology):
 
     r1*(u, v) = r1(u, v) - E(xi, eta) N1(u, v)

@@ -1,6 +1,6 @@
 """Meshing frame, rigid-body poses and assembly errors of a crossed-axis gear pair.
 
-Meshing frame (SPEC section 3, GEOMETRY section 1): the gear axis is ``+z`` through the
+Meshing frame (docs/spec.md sec. 3, docs/geometry.md sec. 1): the gear axis is ``+z`` through the
 origin; the pinion axis is ``x`` through ``C1 = (0, -E, 0)`` (E = hypoid offset, mm).
 The gear turns with angular velocity ``w2 = +z`` (1 rad per unit phase) and the pinion
 with ``w1 = -u x`` (u = z2/z1), so that a gear rotation ``phi2`` pairs with a pinion

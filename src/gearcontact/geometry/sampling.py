@@ -3,7 +3,7 @@
 Every flank of :mod:`gearcontact.geometry` evaluates whole arrays of parameters at once
 (:class:`SurfaceArrays`); :func:`sample_grid` turns that into a :class:`FlankGrid`
 (positions, unit normals, principal curvatures and directions on a regular (u, v)
-grid, e.g. the 16 x 22 and 120 x 150 grids of SPEC section 3).
+grid, e.g. the 16 x 22 and 120 x 150 grids of docs/spec.md sec. 3).
 
 Curvature convention: the second fundamental form is taken w.r.t. the outward unit
 normal n (out of the tooth); a principal curvature is positive where the flank bends

@@ -8,7 +8,7 @@ A transport moves 32-bit words at byte addresses (:class:`Transport`):
 * :class:`LiteXRemoteTransport` — LiteX's ``RemoteClient`` talking to
   ``litex_server`` (jtagbone or etherbone bridge) for a real board.
 
-:class:`PreviewDriver` speaks the tri_core protocol (SPEC section 7, map in
+:class:`PreviewDriver` speaks the tri_core protocol (docs/spec.md sec. 7, map in
 :mod:`.regmap`)::
 
     identify   contact.magic == MAGIC and identifier_mem == "gearcontact tri_core"

@@ -1,4 +1,4 @@
-"""Register maps of the four SoCs, defined once as data (SPEC section 7).
+"""Register maps of the four SoCs, defined once as data (docs/spec.md sec. 7).
 
 Every consumer reads these tables: the Amaranth register block (:mod:`.bus`,
 :mod:`.soc`), the host driver (:mod:`.driver`), the LiteX CSR generation
@@ -16,9 +16,9 @@ region          base         content
 ``sram``        0x0100_0000  8 KiB scratch RAM (tri_core)
 ==============  ===========  =============================================================
 
-tri_core ``preview`` region (SPEC section 7, exact): wr ``wr_rst`` 0x00, ``wr_data``
+tri_core ``preview`` region (docs/spec.md sec. 7, exact): wr ``wr_rst`` 0x00, ``wr_data``
 0x04, ``W_load`` 0x08, ``go`` 0x0C; rd ``A`` 0x10, ``B`` 0x14, ``a`` 0x18, ``b`` 0x1C,
-``p_max`` 0x20, ``k`` 0x24, ``done`` 0x28. The SPEC map has no separate flags word: the
+``p_max`` 0x20, ``k`` 0x24, ``done`` 0x28. That map has no separate flags word: the
 ``done`` register carries ``done`` in bit 0, ``busy`` in bit 1, and the 12-bit chain
 flags word (:mod:`gearcontact.preview.chain`) in bits 16..27 — still one 32-bit read.
 
@@ -127,7 +127,7 @@ class Region:
     Attributes
     ----------
     name : str
-        Region name as in SPEC section 7.
+        Region name as in docs/spec.md sec. 7.
     base : int
         Byte address of offset 0.
     registers : tuple of Register

@@ -1,4 +1,4 @@
-"""The four SoC tops of SPEC section 7 in Amaranth: cores behind the register bus.
+"""The four SoC tops of docs/spec.md sec. 7 in Amaranth: cores behind the register bus.
 
 =================  =====================================================================
 kind               datapath

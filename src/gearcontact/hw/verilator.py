@@ -5,7 +5,7 @@
 and compiles both with ``verilator --cc --exe -O3`` and ``make`` -- the two halves of
 ``verilator --build``, split so that the Verilator run-time objects, identical for every
 core, are compiled once and reused (Amaranth's Verilog needs ``-Wno-WIDTH``; see
-HARDWARE.md). Builds are cached by a SHA-256 of the Verilog, the
+docs/hardware.md sec. 2). Builds are cached by a SHA-256 of the Verilog, the
 harness, the flags and the Verilator version under :func:`cache_root`
 (``$GEARCONTACT_CACHE_DIR/verilator`` or ``~/.cache/gearcontact/verilator``), so a
 second build of the same core is a lookup; concurrent builders serialize on a lock
@@ -45,7 +45,7 @@ __all__ = ["VerilatorNotFound", "VerilatorBuildError", "VerilatorModel", "SimRun
            "build_model", "VERILATOR_FLAGS", "INSTALL_HINT"]
 
 #: Verilator flags of every build (``-Wno-WIDTH``/``-Wno-fatal``: Amaranth Verilog, see
-#: HARDWARE.md); the C++ is then compiled by ``make`` as ``verilator --build`` would.
+#: docs/hardware.md sec. 2); the C++ is then compiled by ``make`` as ``verilator --build`` would.
 VERILATOR_FLAGS = ("--cc", "--exe", "-O3", "-Wno-WIDTH", "-Wno-fatal",
                    "--x-assign", "fast", "--x-initial", "fast")
 #: How to get the toolchain on Debian/Ubuntu (what CI's ``.ci/run`` does).

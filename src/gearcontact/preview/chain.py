@@ -7,7 +7,7 @@ stages:
   :func:`.hertz.reference.hertz_preview`;
 * :func:`chain_golden` / :func:`chain_golden_batch` — the integer fit core output codes
   (A-, B- in CURVATURE Q(32,20)) feed the integer stage D unchanged, exactly as the
-  datapath latches them (SPEC section 6); cycle count :data:`CHAIN_CYCLES` = 806.
+  datapath latches them (docs/spec.md sec. 6); cycle count :data:`CHAIN_CYCLES` = 806.
 
 Chain flags word (what the tri_core ``flags`` readback carries): bits 0..7 are stage D's
 ``FLAG_*`` (:mod:`.hertz.formats`), bits 8..11 the fit core's ``FLAG_*``

@@ -186,7 +186,7 @@ def _check_stencil(gaps_mm) -> np.ndarray:
 
 
 class ReferenceEngine:
-    """fp64 backend (Hamrock–Brewe closed forms, SPEC section 6, or exact Hertz).
+    """fp64 backend (Hamrock–Brewe closed forms, docs/spec.md sec. 6, or exact Hertz).
 
     Parameters
     ----------
@@ -242,7 +242,7 @@ class ReferenceEngine:
 class GoldenEngine:
     """Bit-exact fixed-point backend (the specification of the RTL).
 
-    Real inputs are quantized round-half-up to the contract formats (SPEC section 6);
+    Real inputs are quantized round-half-up to the contract formats (docs/spec.md sec. 6);
     E' is a constant register (integer MPa). Results carry the raw codes, the flags and
     the hardware cycle count of the evaluated path. ``hertz_form`` as for
     :class:`ReferenceEngine` (the golden model's tables, :mod:`.hertz.luts`).

@@ -1,6 +1,6 @@
 """Fixed-point Q formats of the preview datapath.
 
-``Q(m, f)`` is an m-bit two's-complement word with f fraction bits (SPEC section 6);
+``Q(m, f)`` is an m-bit two's-complement word with f fraction bits (docs/spec.md sec. 6);
 ``UQ(m, f)`` its unsigned twin. Codes are Python ``int`` (arbitrary width, exact) or
 numpy ``int64`` arrays where every value provably fits in 63 bits.
 
@@ -170,7 +170,7 @@ def uq(bits: int, frac: int) -> QFormat:
     return QFormat(bits, frac, False)
 
 
-# The data contract of SPEC section 6 (units in the comments).
+# The data contract of docs/spec.md sec. 6 (units in the comments).
 COORD = sq(24, 16)      #: position, mm
 NORMAL = sq(20, 19)     #: unit-normal / rotation-matrix component, Q1.19 (dimensionless)
 LOAD = sq(32, 8)        #: contact load W, N

@@ -1,7 +1,7 @@
 """Seeded random and corner-case input codes for every preview core.
 
 One generator per core returns the integer input codes the RTL and the golden model
-consume (formats of SPEC section 6), corner cases first, then ``n`` seeded random
+consume (formats of docs/spec.md sec. 6), corner cases first, then ``n`` seeded random
 vectors. The same function feeds the Verilator equivalence tests, the
 ``gearcontact rtl sim`` command and the golden-vector export, so "vector k of seed s"
 means the same operands everywhere.

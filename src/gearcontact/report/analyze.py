@@ -60,7 +60,7 @@ from .summary import write_summary
 
 __all__ = ["DEFAULT_TORQUES_NM", "Analysis", "run_analysis", "published_values"]
 
-#: Operating torques of the s0003 evaluation (gear torque, N·m; SPEC section 3).
+#: Operating torques of the s0003 evaluation (gear torque, N·m; docs/spec.md sec. 3).
 DEFAULT_TORQUES_NM = (32.25, 64.5, 129.0, 258.0)
 
 
@@ -280,7 +280,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                       map(float, c.patch.pressure_mpa.ravel())))
     if figures:
         plot_pressure_maps(cases, out / "pressure_maps.png", title=f"{pair.name} {side}")
-        plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}")
+        plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}",
+                              published=published_values(pair.name))
     steps.update(1)
     lte = multitooth = None
     if lte_torque_nm is not None:

@@ -38,9 +38,11 @@ def plot_pressure_maps(cases, path, *, title: str = "") -> Path:
     return path
 
 
-def plot_pressure_vs_load(cases, path, *, title: str = "") -> Path:
+def plot_pressure_vs_load(cases, path, *, title: str = "", published: dict | None = None
+                          ) -> Path:
     """Log-log preview p_max and LCP mean / p90 / peak against the normal load, with the
-    Hertzian law p ~ W^(1/3) through the preview at the smallest load."""
+    Hertzian law p ~ W^(1/3) through the preview at the smallest load and, when
+    ``published`` values are given, the published preview p_max at the design torque."""
     w = np.array([c.load_n for c in cases])
     pre = np.array([c.preview.p_max_mpa for c in cases])
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
@@ -51,13 +53,20 @@ def plot_pressure_vs_load(cases, path, *, title: str = "") -> Path:
     ww = np.geomspace(w.min() * 0.8, w.max() * 1.25, 50)
     ax.loglog(ww, pre[0] * (ww / w[0]) ** (1.0 / 3.0), color="0.5", lw=0.8,
               label="W^(1/3)")
+    pub = published or {}
+    if "preview_p_max_mpa_at_design" in pub:
+        w_pub = pub["loads_n"][f"{pub['design_torque_nm']:g}"]
+        ax.loglog([w_pub], [pub["preview_p_max_mpa_at_design"]], "*", color="C0", ms=11,
+                  mfc="none", label=f"published preview p_max at {pub['design_torque_nm']:g} "
+                                    "N·m")
     ax.set_xlabel("normal load W (N)")
     ax.set_ylabel("pressure (MPa)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    # legend beside the axes: inside it covers the curves
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     ax.set_title(f"{title}: preview vs LCP over load")
     fig.tight_layout()
     path = Path(path)
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
     return path

@@ -1,4 +1,4 @@
-"""Determinism and latency in the report (SPEC section 8, item 4).
+"""Determinism and latency in the report (docs/spec.md sec. 8, item 4).
 
 Two kinds of latency are set side by side:
 
@@ -29,7 +29,7 @@ from ..preview.hertz.schedule import CHAIN_CYCLES, COMB_CYCLES, HERTZ_CYCLES
 __all__ = ["PAPER_JITTER", "PAPER_US", "ScalarLatency", "core_cycles", "preview_inputs",
            "scalar_latency"]
 
-#: Published CPU preview: 277 us per call with 7 % jitter (SPEC section 7).
+#: Published CPU preview: 277 us per call with 7 % jitter (docs/spec.md sec. 7).
 PAPER_US = 277.0
 PAPER_JITTER = 0.07
 

@@ -26,7 +26,7 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
     relative to its own mean so that the peak-to-peaks compare), bottom the active pairs
     (LCP, preview) and the load share of each pair (LCP)."""
     phase = np.degrees(lte.phi1_rad - lte.phi1_rad[lte.reference_index])
-    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True,
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(10, 6.5), sharex=True,
                                   gridspec_kw={"height_ratios": [3, 2]})
     pub = (published or {}).get("lte_pp_arcsec", {})
     for te, label, style in (
@@ -40,8 +40,11 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
     ax.set_title(f"{title} {lte.torque_nm:g} N·m: mean loaded rotation LCP "
                  f"{lte.rotation_lcp_arcsec.mean():.1f}, preview "
                  f"{lte.rotation_pre_arcsec.mean():.1f} arcsec", fontsize=10)
-    ax.legend(fontsize=8)
+    # legends right of the axes: inside they cover the curves
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.08, 1.0))
     ax.grid(alpha=0.3)
+    ax.tick_params(labelbottom=True)
+    ax.set_xlabel("pinion phase from P0 (deg)")
     ax2.step(phase, lte.active_lcp, "C0-", where="mid", label="active pairs LCP")
     ax2.step(phase, lte.active_pre, "C1--", where="mid", label="active pairs preview")
     ax2.set_ylabel("active pairs")
@@ -54,16 +57,18 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
                        label=f"pair {off:+d} share")
     share.set_ylabel("LCP load share (%)")
     share.set_ylim(0, 105)
-    lines = ax2.get_legend_handles_labels()
-    lines2 = share.get_legend_handles_labels()
-    ax2.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=7, loc="lower right")
     edge = np.flatnonzero(lte.edge_contact)
     if edge.size:
-        ax2.plot(phase[edge], np.full(edge.size, 0.3), "rx", ms=4, label="edge contact")
+        ax2.plot(phase[edge], np.full(edge.size, 0.3), "rx", ms=4,
+                 label="phase with edge contact (LCP)")
+    lines = ax2.get_legend_handles_labels()
+    lines2 = share.get_legend_handles_labels()
+    ax2.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=7, loc="upper left",
+               bbox_to_anchor=(1.08, 1.0))
     ax2.set_xlabel("pinion phase from P0 (deg)")
     fig.tight_layout()
     path = Path(path)
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
     return path
 

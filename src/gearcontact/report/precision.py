@@ -1,15 +1,16 @@
-"""Fixed-point precision of the gap kernel in the report (SPEC section 8, item 8).
+"""Fixed-point precision of the gap kernel in the report (docs/spec.md sec. 8, item 8).
 
 Measures the golden model's signed-gap error against the fp64 reference over the word
-widths (:func:`gearcontact.preview.gap.precision.gap_precision_sweep`): coordinate
-fraction bits ``cf`` = 14..24 at the hardware's normal width (``rf`` = 19), and normal
-fraction bits ``rf`` = 12..24 at the hardware's coordinate width (``cf`` = 16), each
-beside the first-order bound
+widths (:func:`gearcontact.preview.gap.precision.gap_precision_sweep`): the coordinate
+word width ``cw = 8 + cf`` = 16..32 bits with the 8 integer bits of the contract fixed
+(fraction bits ``cf`` = 8..24, the golden model's range) at the hardware's normal width
+(``rf`` = 19), and normal fraction bits ``rf`` = 12..24 at the hardware's coordinate
+width (``cf`` = 16), each beside the first-order bound
 
     |e_g| <= sqrt(3) 2^-cf + 3 ||d||_inf 2^-(rf+1) + 2^-(cf+1).
 
 Writes ``precision.csv`` (one row per setting) and ``precision.png`` (two log panels:
-max and RMS error and the bound against each width).
+max and RMS error and the bound against each word width).
 """
 
 from __future__ import annotations
@@ -20,10 +21,12 @@ from ..preview.gap.golden import GapFormat
 from ..preview.gap.precision import PrecisionPoint, gap_precision_sweep
 from ..tca.export import write_csv
 
-__all__ = ["COORD_FRACS", "NORMAL_FRACS", "precision_sweeps", "write_precision_outputs"]
+__all__ = ["COORD_FRACS", "NORMAL_FRACS", "plot_precision", "precision_sweeps",
+           "write_precision_outputs"]
 
-#: Coordinate fraction bits swept at the hardware normal width.
-COORD_FRACS = tuple(range(14, 25))
+#: Coordinate fraction bits swept at the hardware normal width (word widths 16..32 bits
+#: with the contract's 8 integer bits).
+COORD_FRACS = tuple(range(8, 25))
 #: Normal fraction bits swept at the hardware coordinate width.
 NORMAL_FRACS = tuple(range(12, 25, 2))
 
@@ -44,35 +47,43 @@ def write_precision_outputs(out_dir, *, figures: bool = True, n_samples: int = 1
     """Run :func:`precision_sweeps` and write ``precision.csv`` (+ ``precision.png``)."""
     out = Path(out_dir)
     by_coord, by_normal = precision_sweeps(n_samples=n_samples)
-    rows = [["coord", p.coord_frac, p.normal_frac, p.max_error_mm * 1e3,
-             p.rms_error_mm * 1e3, p.bound_mm * 1e3, p.max_bound_ratio] for p in by_coord]
-    rows += [["normal", p.coord_frac, p.normal_frac, p.max_error_mm * 1e3,
-              p.rms_error_mm * 1e3, p.bound_mm * 1e3, p.max_bound_ratio] for p in by_normal]
-    write_csv(out / "precision.csv", ["swept", "coord_frac_bits", "normal_frac_bits",
-                                      "max_error_um", "rms_error_um", "bound_um",
-                                      "max_error_over_bound"], rows)
+    ci = GapFormat().coord_int
+    rows = [["coord", ci + p.coord_frac, p.coord_frac, p.normal_frac, p.max_error_mm * 1e3,
+             p.rms_error_mm * 1e3, p.bound_mm * 1e3, p.max_bound_ratio]
+            for p in by_coord + by_normal]
+    for r in rows[len(by_coord):]:
+        r[0] = "normal"
+    write_csv(out / "precision.csv", ["swept", "coord_width_bits", "coord_frac_bits",
+                                      "normal_frac_bits", "max_error_um", "rms_error_um",
+                                      "bound_um", "max_error_over_bound"], rows)
     if figures:
-        _plot(by_coord, by_normal, out / "precision.png")
+        plot_precision(by_coord, by_normal, out / "precision.png")
     return by_coord, by_normal
 
 
-def _plot(by_coord, by_normal, path: Path) -> Path:
+def plot_precision(by_coord, by_normal, path) -> Path:
+    """Two log panels: max / RMS gap error and the first-order bound against the
+    coordinate word width and the normal fraction bits (format from the suffix)."""
     from .figures import plt
 
     hw = GapFormat()
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for ax, pts, attr, fixed, label in (
             (axes[0], by_coord, "coord_frac", f"rf = {hw.normal_frac}",
-             "coordinate fraction bits cf"),
+             f"coordinate word width {hw.coord_int} + cf (bits)"),
             (axes[1], by_normal, "normal_frac", f"cf = {hw.coord_frac}",
              "normal fraction bits rf")):
-        x = [getattr(p, attr) for p in pts]
+        offset = hw.coord_int if attr == "coord_frac" else 0
+        x = [getattr(p, attr) + offset for p in pts]
         ax.semilogy(x, [p.bound_mm * 1e3 for p in pts], "k-", label="first-order bound")
         ax.semilogy(x, [p.max_error_mm * 1e3 for p in pts], "o-", color="C3",
                     label="max |golden - fp64|")
         ax.semilogy(x, [p.rms_error_mm * 1e3 for p in pts], "s--", color="C0", label="RMS")
-        hw_x = hw.coord_frac if attr == "coord_frac" else hw.normal_frac
+        hw_x = hw.coord_bits if attr == "coord_frac" else hw.normal_frac
         ax.axvline(hw_x, color="0.6", lw=0.8, ls=":", label="hardware width")
+        if attr == "coord_frac":
+            # the published figure sweeps the coordinate word over 14..24 bits
+            ax.axvspan(14, 24, color="C2", alpha=0.08, label="published sweep 14-24 bits")
         ax.set_xlabel(label)
         ax.set_title(f"signed gap error vs {label.split(' ')[0]} width ({fixed})", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)

@@ -7,7 +7,8 @@ from pathlib import Path
 
 from ..preview.fit.stencil import STENCIL_SPACING_MM
 
-__all__ = ["write_summary"]
+__all__ = ["DESIGN_POINT_HEADER", "TORQUE_HEADER", "cpu_latency_rows", "design_point_table_rows",
+           "lte_rows", "torque_rows", "write_summary"]
 
 
 def _table(header: list[str], rows: list[list]) -> str:
@@ -25,16 +26,14 @@ def _pct(a: float, b: float) -> float:
     return 100.0 * (a / b - 1.0)
 
 
-def _lte_section(lte, pub: dict) -> list[str]:
-    """Markdown of the loaded-TE section (:class:`~gearcontact.contact.lte.LoadedTE`)."""
+def lte_rows(lte, pub: dict) -> list[list]:
+    """Rows (quantity, ours, published) of the loaded-TE comparison
+    (:class:`~gearcontact.contact.lte.LoadedTE`; also the ``lte`` item of the
+    reproduction report)."""
     pp, comp = pub.get("lte_pp_arcsec", {}), pub.get("compliance_mm_per_n", {})
     k0 = lte.reference_index
     share = lte.pair_loads_lcp_n[:, k0] / lte.pair_loads_lcp_n[:, k0].sum()
-    out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m (rigid teeth)", "",
-           f"{len(lte.phi1_rad)} phases over one pinion pitch; every tooth pair within reach "
-           "with its own gap field, one shared gear rotation, torque balance; TE_pre from "
-           "the Hamrock–Brewe approach of each pair.", ""]
-    out.append(_table(["quantity", "ours", "published"], [
+    return [
         ["TE0 peak-to-peak (arcsec)", lte.te0_pp_arcsec, pub.get("te0_pp_arcsec")],
         ["TE_LCP peak-to-peak (arcsec)", lte.te_lcp_pp_arcsec, pp.get("lcp")],
         ["TE_pre peak-to-peak (arcsec)", lte.te_pre_pp_arcsec, pp.get("preview")],
@@ -56,7 +55,33 @@ def _lte_section(lte, pub: dict) -> list[str]:
         ["phases with edge contact / all LCPs converged",
          f"{int(lte.edge_contact.sum())} / {lte.converged}", None],
         ["largest load dropped beyond the edge window (N)",
-         float(lte.dropped_load_n.max()), None]]))
+         float(lte.dropped_load_n.max()), None]]
+
+
+#: Columns of :func:`torque_rows` (pressures in MPa).
+TORQUE_HEADER = ["torque (N·m)", "W (N)", "W published (N)", "preview p_max", "LCP mean",
+                 "LCP p90", "LCP peak", "preview vs p90 (%)", "peak / p90", "delta (um)",
+                 "mesh rotation (arcsec)", "contact cells", "edge contact"]
+
+
+def torque_rows(cases, pub: dict) -> list[list]:
+    """Rows of the preview-vs-LCP table over the torques (:data:`TORQUE_HEADER`;
+    cases are :class:`~gearcontact.contact.pair_ltca.PairLoadCase`)."""
+    loads = pub.get("loads_n", {})
+    return [[c.torque_nm, c.load_n, loads.get(f"{c.torque_nm:g}"), c.preview.p_max_mpa,
+             c.patch.p_mean_mpa, c.patch.p90_mpa, c.patch.p_peak_mpa,
+             _pct(c.preview.p_max_mpa, c.patch.p90_mpa), c.patch.p_peak_mpa / c.patch.p90_mpa,
+             1e3 * c.patch.delta_mm, c.mesh_rotation_arcsec, c.patch.n_contact_cells,
+             c.edge_contact] for c in cases]
+
+
+def _lte_section(lte, pub: dict) -> list[str]:
+    """Markdown of the loaded-TE section (:class:`~gearcontact.contact.lte.LoadedTE`)."""
+    out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m (rigid teeth)", "",
+           f"{len(lte.phi1_rad)} phases over one pinion pitch; every tooth pair within reach "
+           "with its own gap field, one shared gear rotation, torque balance; TE_pre from "
+           "the Hamrock–Brewe approach of each pair.", ""]
+    out.append(_table(["quantity", "ours", "published"], lte_rows(lte, pub)))
     return out + [
         "", "The contact compliance is d(delta)/dW of the transmitting pair alone; the mesh "
         "compliance lets the neighbouring pairs share the torque. Pairs up to half a pitch "
@@ -66,28 +91,42 @@ def _lte_section(lte, pub: dict) -> list[str]:
         "Figure: ![loaded TE](lte.png)", ""]
 
 
-def _design_point_section(result, pub: dict) -> list[str]:
-    """Published design point vs this set-up (docs/calibration.md) at the design torque."""
+#: Columns of :func:`design_point_table_rows`.
+DESIGN_POINT_HEADER = ["target", "published", "ours", "tolerance", "met"]
+
+
+def design_point_table_rows(result, pub: dict) -> list[list] | None:
+    """Rows (:data:`DESIGN_POINT_HEADER`) of the published design point against this
+    set-up at the design torque (docs/calibration.md), or None without published P0.
+    ``result`` is an :class:`~.analyze.Analysis`."""
     from ..tca.calibration import CalibrationTargets, design_point_at, design_point_rows
 
     if "design_point_mm" not in pub:
-        return []
+        return None
     pair, tca = result.pair, result.tca
     targets = CalibrationTargets.from_published(pub)
     side = result.side
     dp = design_point_at(pair, result.flanks.flank("pinion", side),
                          result.flanks.flank("gear", side), tca.mean_point,
                          te0_pp_arcsec=tca.cycle.te0_pp_arcsec, torque_nm=targets.torque_nm)
-    rows = [[f"{r.target} ({r.unit})", r.published, r.achieved, r.tolerance,
+    return [[f"{r.target} ({r.unit})", r.published, r.achieved, r.tolerance,
              "yes" if r.met else "NO"]
             for r in design_point_rows(dp, targets, offset_mm=pair.offset_mm)]
+
+
+def _design_point_section(result, pub: dict) -> list[str]:
+    """Published design point vs this set-up (docs/calibration.md) at the design torque."""
+    rows = design_point_table_rows(result, pub)
+    if rows is None:
+        return []
+    pair, side = result.pair, result.side
     note = ("the preset calibrated to the published design point: `gearcontact design "
             "--pair s0003-centred --calibrate` reproduces it; the targets it cannot meet "
             "together and why are in docs/calibration.md" if pair.name == "s0003" else
             "this set-up is not calibrated to the published design point (the centred "
             "set-up `s0003-centred` is the Hertzian reference case), so P0 differs by design")
     return [f"## Design point ({side} flank pair) vs the published one", "",
-            _table(["target", "published", "ours", "tolerance", "met"], rows), "",
+            _table(DESIGN_POINT_HEADER, rows), "",
             f"P0 as frame invariants (radius / axial position on each member); ellipse "
             f"angle in the right-handed flank frame; {note}.", ""]
 
@@ -102,7 +141,7 @@ def _precision_section(precision) -> list[str]:
                 ["max / RMS gap error at the hardware widths cf 16, rf 19 (um)",
                  f"{hw.max_error_mm * 1e3:.4g} / {hw.rms_error_mm * 1e3:.4g}"],
                 ["first-order bound there (um)", hw.bound_mm * 1e3],
-                ["largest error / bound over all widths (cf 14-24, rf 12-24)", worst]]),
+                ["largest error / bound over all widths (cf 8-24, rf 12-24)", worst]]),
             "", "Figure: ![precision](precision.png) (data: precision.csv)", ""]
 
 
@@ -138,6 +177,16 @@ def _existing_figures(text: str, folder: Path) -> str:
                 continue
         lines.append(new)
     return "\n".join(lines)
+
+
+def cpu_latency_rows(lat) -> list[list]:
+    """Rows (quantity, ours, published) of the fp64 preview's CPU latency
+    (:class:`~.latency.ScalarLatency`; the reproduction report's latency item)."""
+    from .latency import PAPER_JITTER, PAPER_US
+
+    return [["median per call (us)", lat.p50_us, PAPER_US],
+            ["p99 per call (us)", lat.p99_us, None],
+            ["jitter p99/p50 - 1 (%)", 100.0 * lat.jitter, 100.0 * PAPER_JITTER]]
 
 
 def write_summary(result, path, *, published: dict | None = None) -> Path:
@@ -177,16 +226,7 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     out += ["", "Figures: ![TE0](te0.png) ![contact pattern](contact_pattern.png)", ""]
     out += _design_point_section(result, pub)
     out += ["## Loaded contact: preview vs LCP (single pair at P0, rigid teeth)", ""]
-    loads = pub.get("loads_n", {})
-    out.append(_table(
-        ["torque (N·m)", "W (N)", "W published (N)", "preview p_max", "LCP mean", "LCP p90",
-         "LCP peak", "preview vs p90 (%)", "peak / p90", "delta (um)",
-         "mesh rotation (arcsec)", "contact cells", "edge contact"],
-        [[c.torque_nm, c.load_n, loads.get(f"{c.torque_nm:g}"), c.preview.p_max_mpa,
-          c.patch.p_mean_mpa, c.patch.p90_mpa, c.patch.p_peak_mpa,
-          _pct(c.preview.p_max_mpa, c.patch.p90_mpa), c.patch.p_peak_mpa / c.patch.p90_mpa,
-          1e3 * c.patch.delta_mm, c.mesh_rotation_arcsec, c.patch.n_contact_cells,
-          c.edge_contact] for c in cases]))
+    out.append(_table(TORQUE_HEADER, torque_rows(cases, pub)))
     if pub:
         out += ["", f"Published: preview vs p90 mean error {pub['preview_vs_p90_mean_error_pct']} % "
                 f"(per torque {pub['preview_vs_p90_error_range_pct'][0]} % to "

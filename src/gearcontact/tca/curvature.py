@@ -15,7 +15,7 @@ the flanks along the gear normal ``n2`` is, to second order,
 the relative curvature tensor (Litvin & Fuentes 2004, sec. 9.5 "relations between
 principal curvatures"; positive definite for point contact). Its eigenvalues
 ``kappa_max >= kappa_min`` are the principal relative curvatures (1/mm). The Hertz
-stage takes half of them, with the naming of SPEC sec. 6 stage C:
+stage takes half of them, with the naming of docs/spec.md sec. 6 stage C:
 ``A- = (h + r)/2 = kappa_max/2`` and ``B- = (h - r)/2 = kappa_min/2``.
 
 The instantaneous contact ellipse at the paint (marking compound) thickness

@@ -1,5 +1,5 @@
 """The phase table: per mesh phase over one pinion pitch, the unloaded contact state
-that the device evaluates instead of searching the flanks (SPEC section 2).
+that the device evaluates instead of searching the flanks (docs/spec.md sec. 2).
 
 Per phase: pinion phase, mating point (meshing frame), TE0, the Hertz-stage relative
 curvatures A- >= B- and the orientation of the contact ellipse (angle from the gear's

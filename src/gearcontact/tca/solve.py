@@ -24,7 +24,7 @@ Member 1 is the pinion, member 2 the gear; poses come from
 Iterates are kept inside the flanks' parameter boxes: a solution that would lie
 outside is reported as *edge contact* (:class:`EdgeContact`), never extrapolated.
 
-Transmission error (GEOMETRY sec. 4):
+Transmission error (docs/geometry.md sec. 4):
 ``TE0 = (phi2 - phi2_0) - (z1/z2)(phi1 - phi1_0)`` converted to arcsec
 (x 206264.806), relative to the reference (mean) mating point ``(phi1_0, phi2_0)``.
 """

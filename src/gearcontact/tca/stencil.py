@@ -64,7 +64,7 @@ from .solve import MatingPoint
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
            "hardware_stencil", "write_stencil_csv", "tangent_frame", "tangent_parameters"]
 
-#: Nodes per side of the host gap field (SPEC section 3).
+#: Nodes per side of the host gap field (docs/spec.md sec. 3).
 GAP_GRID_SIDE = 80
 
 

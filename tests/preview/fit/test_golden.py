@@ -2,7 +2,7 @@
 
 Truths: math.isqrt (integer square root), exact Python-int arithmetic of the scalar
 model (the batch model must equal it bit for bit), exact quadratic gap fields with a
-rigorous quantization bound, and the timing contract of SPEC section 6.
+rigorous quantization bound, and the timing contract of docs/spec.md sec. 6.
 """
 
 import math
@@ -215,7 +215,7 @@ def test_golden_input_validation():
 
 
 def test_timing_model():
-    # SPEC section 6: 49-cycle MAC stream + 3-cycle latch; chain with the 756-cycle D = 806
+    # docs/spec.md sec. 6: 49-cycle MAC stream + 3-cycle latch; chain with the 756-cycle D = 806
     assert (FIT_MAC_CYCLES, FIT_LATCH_CYCLES, FIT_CYCLES) == (49, 3, 52)
     assert chain_cycles(756) == 806
     with pytest.raises(InputRangeError):

@@ -25,7 +25,7 @@ def vec(g, n, *, p=(0, 0, 0), t=(0, 0, 0), r=None, tau2=1 << 40):
 
 
 def test_latency_26_cycles_at_16_lanes_and_formula():
-    assert gap_latency(16, 16) == 26                  # SPEC section 6
+    assert gap_latency(16, 16) == 26                  # docs/spec.md sec. 6
     tm = gap_timing(16, 16)
     assert (tm.capture, tm.transform, tm.skew, tm.beats, tm.drain, tm.finalize,
             tm.tree, tm.out) == (1, 2, 15, 1, 1, 1, 4, 1)
@@ -122,7 +122,7 @@ def random_case(rng, n_samples, spread=4.0):
 
 
 def test_precision_sweep_within_first_order_bound():
-    """SPEC section 8: |e_g| <= sqrt(3) 2^-cf + 3 ||d||inf 2^-(rf+1) + 2^-(cf+1)."""
+    """docs/spec.md sec. 8: |e_g| <= sqrt(3) 2^-cf + 3 ||d||inf 2^-(rf+1) + 2^-(cf+1)."""
     pts = gap_precision_sweep(coord_fracs=range(14, 25), normal_fracs=(19,),
                               n_samples=300, seed=1)
     assert [q.coord_frac for q in pts] == list(range(14, 25))

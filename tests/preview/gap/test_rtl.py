@@ -78,7 +78,7 @@ def test_l16_directed_and_random_bit_and_cycle_exact():
     rng = np.random.default_rng(16)
     vecs = directed_vectors(16) + [random_vector(rng, 16) for _ in range(4)]
     outs, cycles = check_against_golden(vecs, 16)
-    assert cycles == [26] * len(vecs)                   # SPEC: 26 cycles, zero jitter
+    assert cycles == [26] * len(vecs)                   # docs/spec.md sec. 6: 26 cycles, no jitter
     assert not outs[0].valid and outs[0].min_idx == IDX_SENTINEL
     assert (outs[1].min_idx, outs[1].min_gap_code) == (3, 700)
     assert (outs[2].min_idx, outs[2].min_gap_code) == (2, -(1 << 16))

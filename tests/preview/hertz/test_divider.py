@@ -8,7 +8,7 @@ from gearcontact.preview.hertz.divider import (DIVIDER_BITS, DIVISION_CYCLES, fl
 
 
 def test_cycle_constants():
-    assert DIVIDER_BITS == 80 and DIVISION_CYCLES == 83     # SPEC: 80 + 3 handshake
+    assert DIVIDER_BITS == 80 and DIVISION_CYCLES == 83     # docs/spec.md sec. 6: 80 + 3 handshake
 
 
 def test_restoring_equals_floor_random():

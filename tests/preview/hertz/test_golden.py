@@ -35,7 +35,7 @@ CORNERS = [(a, min(int(a * r), F.CURV_MAX_CODE), w, e)
 
 
 def test_steel_code():
-    assert STEEL_CODE == 229_670          # SPEC: E' = 229,670 MPa for steel/steel
+    assert STEEL_CODE == 229_670          # docs/spec.md sec. 6: E' = 229,670 MPa for steel/steel
 
 
 def test_worked_example_steel():
@@ -58,7 +58,7 @@ def test_worked_example_steel():
 
 @pytest.mark.parametrize("material", sorted(E_PRIMES))
 def test_accuracy_vs_reference(material):
-    """Max relative error of a, b, p_max, k over the accuracy domain (SPEC: 0.5 %)."""
+    """Max relative error of a, b, p_max, k over the domain (0.5 %, docs/spec.md sec. 6)."""
     A, B, W = accuracy_domain(25_000, seed=11)
     ac, bc, wc, ec = encode_hertz_inputs(A, B, W, e_prime_mpa=E_PRIMES[material])
     codes = hertz_golden_array(ac, bc, wc, e_prime_code=ec)
@@ -71,12 +71,12 @@ def test_accuracy_vs_reference(material):
              for f in ("a_mm", "b_mm", "k", "p_max_mpa")}
     # Measured (all four materials): k 1.9e-4, a 1.4e-4, b 7.7e-5, p_max 1.25e-4 — the POW
     # interpolation near alpha = 1 dominates. Asserted at 2.5e-4 (k) / 2e-4 (others):
-    # 20x inside the SPEC's 0.5 %.
+    # 20x inside the 0.5 % of docs/spec.md sec. 6.
     assert worst["k"] < 2.5e-4, worst
     for f in ("a_mm", "b_mm", "p_max_mpa"):
         assert worst[f] < 2e-4, (f, worst)
     # end to end (reference at the real inputs, adds the Q(32,20) input quantization):
-    # measured 6.8e-4 (k), 3.6e-4 (a, b, p_max); the SPEC bound is 0.5 %
+    # measured 6.8e-4 (k), 3.6e-4 (a, b, p_max); the bound of docs/spec.md sec. 6 is 0.5 %
     true = hertz_preview_array(A, B, W, e_prime_mpa=E_PRIMES[material])
     for f in ("a_mm", "b_mm", "k", "p_max_mpa"):
         assert np.max(np.abs(getattr(v, f) / true[f] - 1.0)) < 1e-3, f
@@ -206,7 +206,7 @@ def test_trace_follows_the_schedule():
     from gearcontact.preview.hertz.schedule import DIVISION_ORDER
     codes, trace = hertz_golden_trace(20972, 524288, 384000, e_prime_code=STEEL_CODE)
     assert codes == hertz_golden(20972, 524288, 384000, e_prime_code=STEEL_CODE)
-    assert tuple(d[0] for d in trace["divisions"]) == DIVISION_ORDER   # SPEC order
+    assert tuple(d[0] for d in trace["divisions"]) == DIVISION_ORDER   # docs/spec.md sec. 6 order
     assert all(q == n // d for _, n, d, q in trace["divisions"])        # exact floor
     assert max(n for _, n, _, _ in trace["divisions"]) < 1 << 80
     assert trace["p_max"] == codes.p_max_code and trace["alpha"] == codes.alpha_code

@@ -198,7 +198,7 @@ def test_registers_divisions_and_schedule_match_golden_trace(v, hertz_form):
         # state entry edges (1-based; the go edge is edge 1 = CAPTURE)
         start = state_start_cycles()
         assert entered == {n: start[n] + 1 for n in start if n != "CAPTURE"}
-        # divider operands and quotients, in the SPEC order
+        # divider operands and quotients, in the order of docs/spec.md sec. 6
         assert [d[0] for d in trace["divisions"]] == list(DIVISION_ORDER)
         assert divs == [d[1:] for d in trace["divisions"]]
         # every register holds its golden value after the run

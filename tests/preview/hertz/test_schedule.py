@@ -1,4 +1,4 @@
-"""The stage-D cycle schedule (SPEC section 7: 756 / 806 / 58 cycles)."""
+"""The stage-D cycle schedule (docs/spec.md sec. 7: 756 / 806 / 58 cycles)."""
 
 from gearcontact.preview.fit.golden import FIT_CYCLES, STAGE_D_CAPTURE_CYCLES
 from gearcontact.preview.hertz.divider import DIVISION_CYCLES
@@ -16,7 +16,7 @@ def test_state_table():
     assert len(divs) == len(DIVISION_ORDER) == 9
     assert all(s.cycles == DIVISION_CYCLES for s in divs)
     assert sum(s.cycles for s in STATES) - 9 * DIVISION_CYCLES == 9   # 1+1+4+3
-    # SPEC division order R_x, R_y, alpha, R, E_e, C_a, b, p_n2, p_max
+    # docs/spec.md sec. 6 division order R_x, R_y, alpha, R, E_e, C_a, b, p_n2, p_max
     assert [s.name for s in divs] == ["DIV_RX", "DIV_RY", "DIV_ALPHA", "DIV_R", "DIV_EE",
                                       "DIV_CA", "DIV_B", "DIV_PN2", "DIV_PMAX"]
 

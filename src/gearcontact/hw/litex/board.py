@@ -128,7 +128,7 @@ here, so the script reads them from the environment instead:
     cd gateware && sh build_{name}.sh
 
 Multipliers: add ``-nodsp`` to the synth_xilinx line if nextpnr-xilinx hits the
-DSP-cascade router bug the published build avoided (SPEC section 7) — at the cost of
+DSP-cascade router bug the published build avoided (docs/spec.md sec. 7) — at the cost of
 ~200k LUT for tri_core.
 """
 

@@ -42,6 +42,6 @@ class Platform(XilinxPlatform):
 
     def do_finalize(self, fragment):
         XilinxPlatform.do_finalize(self, fragment)
-        # the create_clock the original bring-up missed (SPEC section 7)
+        # the create_clock the original bring-up missed (docs/spec.md sec. 7)
         self.add_period_constraint(self.lookup_request("clk50", loose=True),
                                    self.default_clk_period)

@@ -1,4 +1,4 @@
-"""Stage C of the physics-direct preview: the baked curvature fit (SPEC section 6).
+"""Stage C of the physics-direct preview: the baked curvature fit (docs/spec.md sec. 6).
 
 Three models side by side that share the ROM of :mod:`.pinv`:
 

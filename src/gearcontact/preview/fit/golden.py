@@ -1,6 +1,6 @@
 """Bit-exact integer golden model of the stage-C fit core (and its timing model).
 
-Datapath (all integers, no floating point; Q formats as in SPEC section 6):
+Datapath (all integers, no floating point; Q formats as in docs/spec.md sec. 6):
 
 ==========  =============  ===================================================
 signal      format         definition

@@ -1,6 +1,6 @@
 """Baked pseudo-inverse of the stage-C curvature fit (design matrix, ROM contents).
 
-Stage C (SPEC section 6, Algorithm 2) fits the quadratic
+Stage C (docs/spec.md sec. 6, Algorithm 2) fits the quadratic
 
     g(s, t) = c0 + c1 s + c2 t + c3 s^2 + c4 s t + c5 t^2
 

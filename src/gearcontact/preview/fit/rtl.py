@@ -1,6 +1,6 @@
 """Amaranth 0.5 RTL of the stage-C fit core, bit- and cycle-exact with :mod:`.golden`.
 
-Structure (SPEC section 6, Algorithm 2; section 7 tri_core write port)::
+Structure (docs/spec.md sec. 6, Algorithm 2; section 7 tri_core write port)::
 
     wr_rst / wr_en + wr_data ──► gap RAM, 2 banks x 25 x 32 (GAP Q(32,16))
                                       │ pair p = taps 2p, 2p+1 (sync read)

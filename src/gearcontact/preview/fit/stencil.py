@@ -1,7 +1,7 @@
 """Geometry of the hardware curvature-fit stencil (stage C) and its file format.
 
 The datapath fits a quadratic to ``N = 49`` gap samples on a fixed 7 x 7 grid in the
-local tangent frame (s, t) centred on the contact point (SPEC section 6, Algorithm 2).
+local tangent frame (s, t) centred on the contact point (docs/spec.md sec. 6, Algorithm 2).
 The grid is a compile-time constant: its pseudo-inverse is baked into a ROM, so the
 spacing below is part of the hardware contract.
 

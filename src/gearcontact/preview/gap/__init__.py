@@ -1,11 +1,11 @@
-"""Stage A/B geometric contact-gap kernel (SPEC section 6, Algorithm 1).
+"""Stage A/B geometric contact-gap kernel (docs/spec.md sec. 6, Algorithm 1).
 
 Three models that must agree:
 
 - :mod:`.reference` -- fp64 (ideal and lane selection rules);
 - :mod:`.golden` -- bit-exact fixed-point model, formats, timing model, error bound;
   :mod:`.fast` -- its vectorized (numba) twin for many points; :mod:`.precision` --
-  the gap-error-versus-word-width sweep of SPEC section 8;
+  the gap-error-versus-word-width sweep of docs/spec.md sec. 8;
 - :mod:`.rtl` -- the Amaranth 0.5 core ``GapCore`` (imported on demand: it pulls in
   Amaranth).
 """

@@ -5,13 +5,13 @@ shared pose) against the same N samples and returns exactly what
 :func:`.golden.gap_golden_codes` returns for each point -- same integer formulas, same
 lane striping and tie rules (see :mod:`.golden`). The per-sample terms run in float64
 when the format's structural bounds keep every intermediate an integer (or an integer
-times 2^-rf) below 2^53 in magnitude -- true for the SPEC formats and the whole cf
-sweep at rf = 19 -- with the normals stored pre-scaled by 2^-rf: products and sums of
-such values, power-of-two scalings and ``floor`` are then exact (Goldberg 1991,
-sec. 1.2), and this is ~1.4x faster than int64 on AVX-512 (which has no full-rate
-64-bit multiply). Otherwise they run in int64 (all intermediates < 2^60). Both paths
-share one source (:func:`_nshift` is ``>> rf`` on integers, ``floor`` on floats) and
-are tested bit-identical to the scalar model.
+times 2^-rf) below 2^53 in magnitude -- true for the contract formats (docs/spec.md
+sec. 6) and the whole cf sweep at rf = 19 -- with the normals stored pre-scaled by 2^-rf:
+products and sums of such values, power-of-two scalings and ``floor`` are then exact
+(Goldberg 1991, sec. 1.2), and this is ~1.4x faster than int64 on AVX-512 (which has no
+full-rate 64-bit multiply). Otherwise they run in int64 (all intermediates < 2^60). Both
+paths share one source (:func:`_nshift` is ``>> rf`` on integers, ``floor`` on floats)
+and are tested bit-identical to the scalar model.
 
 The empty-lane residual is held as 2^63 - 1 instead of the core's 2^64 - 1; both
 exceed every real rho (< 2^56) and every gate (<= 2^63 - 1), so the outcome is

@@ -2,7 +2,7 @@
 
 This module *is* the datapath specification of the gap core: every integer below is a
 register or wire of :mod:`.rtl`, which reproduces these numbers bit for bit and
-:func:`gap_latency` cycle for cycle. It follows Algorithm 1 of SPEC section 6; the
+:func:`gap_latency` cycle for cycle. It follows Algorithm 1 of docs/spec.md sec. 6; the
 geometry and the selection rule are those of :mod:`.reference` (``lanes=L``).
 
 Formats (defaults ``cf = 16`` coordinate and ``rf = 19`` normal fraction bits; ``cw``
@@ -32,11 +32,11 @@ min_gap         Q(32,16)       winning gamma; sentinel ``0x7FFFFFFF`` (+32768 mm
 +1.0 -- yet unit normals such as (0, 0, 1) and the identity rotation need it. Instead
 of clipping, the word is widened by one integer bit to Q(21,19) and restricted to the
 closed unit interval, codes in [-2^19, +2^19]; the product magnitude stays
-<= 2^42, so the 44-bit products and 48-bit accumulator of SPEC section 6 are
+<= 2^42, so the 44-bit products and 48-bit accumulator of docs/spec.md sec. 6 are
 unchanged. A component whose rounded code leaves [-2^19, 2^19] raises
 :class:`~gearcontact.preview.qformat.FixedPointOverflow`.
 
-For ``cf > 16`` (precision sweep, SPEC section 8) ``e_k`` is round-shifted back to
+For ``cf > 16`` (precision sweep, docs/spec.md sec. 8) ``e_k`` is round-shifted back to
 16 fraction bits before squaring (``e_shift = cf - 16``) so that rho keeps the
 UQ(64,32) format and the 64-bit budget; for ``cf <= 16`` rho is UQ(64, 2 cf). Every
 bound above is structural (it holds for all in-range codes) and is re-checked on every
@@ -75,7 +75,7 @@ The count is data-independent: a pass always takes latency(N, L) cycles.
 
 References
 ----------
-SPEC section 6 (Algorithm 1, fixed-point contract); F. L. Litvin, A. Fuentes, *Gear
+docs/spec.md sec. 6 (Algorithm 1, fixed-point contract); F. L. Litvin, A. Fuentes, *Gear
 Geometry and Applied Theory*, 2nd ed., Cambridge Univ. Press, 2004 (normal-gap
 definition); R. Yates, "Fixed-Point Arithmetic: An Introduction", Digital Signal Labs,
 2013 (Q notation, rounding by shift).
@@ -348,7 +348,7 @@ def gap_latency(n_samples: int, lanes: int) -> int:
 
 
 def gap_error_bound_mm(*, coord_frac: int, normal_frac: int, d_inf_mm: float) -> float:
-    """First-order bound on the fixed-point signed-gap error (SPEC section 8), mm.
+    """First-order bound on the fixed-point signed-gap error (docs/spec.md sec. 8), mm.
 
     ``|e_g| <= sqrt(3) 2^-cf + 3 ||d||_inf 2^-(rf+1) + 2^-(cf+1)``: coordinate
     quantization of p' and g (each component of d off by <= 2^-cf, projected on a unit
@@ -523,7 +523,7 @@ def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
     lanes : int, keyword-only
         Lane count L, power of two in [8, 64].
     fmt : GapFormat, keyword-only
-        Word formats (default: SPEC contract).
+        Word formats (default: the contract of docs/spec.md sec. 6).
 
     Returns
     -------

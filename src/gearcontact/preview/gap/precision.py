@@ -1,4 +1,4 @@
-"""Fixed-point precision of the signed gap versus word widths (SPEC section 8, item 8).
+"""Fixed-point precision of the signed gap versus word widths (docs/spec.md sec. 8, item 8).
 
 For each (coordinate fraction bits cf, normal fraction bits rf) the golden model's
 per-sample signed gap is compared with the fp64 reference on the same seeded random

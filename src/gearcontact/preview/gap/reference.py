@@ -1,10 +1,10 @@
-"""Stage A/B geometric contact gap, fp64 reference (SPEC section 6, Algorithm 1).
+"""Stage A/B geometric contact gap, fp64 reference (docs/spec.md sec. 6, Algorithm 1).
 
 One posed point ``p' = R p + t`` is compared with ``N`` gear samples ``(g_i, n_i)``
 (positions in mm, outward unit normals, all in the meshing frame)::
 
     d_i     = p' - g_i                       (mm)
-    gamma_i = -(n_i . d_i)                   signed gap, mm (SPEC section 4 sign)
+    gamma_i = -(n_i . d_i)                   signed gap, mm (docs/spec.md sec. 4 sign)
     rho_i   = || d_i + gamma_i n_i ||^2      perpendicular residual, mm^2
 
 With ``n`` pointing out of the gear material towards the pinion, ``gamma < 0`` means

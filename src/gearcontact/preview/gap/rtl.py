@@ -2,7 +2,7 @@
 
 The core implements :mod:`.golden` (formats, rounding, tie rules) with the schedule of
 :func:`.golden.gap_latency`; every register below is named after the golden model's
-intermediate it holds. Only the default word formats (SPEC section 6) are built.
+intermediate it holds. Only the default word formats (docs/spec.md sec. 6) are built.
 
 Interface (all synchronous to the ``sync`` domain, active-high synchronous reset)
 
@@ -51,7 +51,7 @@ Schedule (edge E1 accepts go; see :mod:`.golden` for the count)
     log2(L) tree levels at E(L+K+5) ...; outputs and ``done`` at E(L+K+5+log2 L).
     Stage B chains gamma n_k (32 x 21 b), the round-shift add, e_k^2 (27 x 27 b), the
     3-input sum and the 64-bit compare: it is the core's critical path (the paper's
-    "perp^2 multiplier chain", SPEC section 7 -- constrain the clock). In steady state
+    "perp^2 multiplier chain", docs/spec.md sec. 7 -- constrain the clock). In steady state
     (N >> L) the lanes consume L samples per cycle.
 
 DSP48E1 per lane (``synth_xilinx -family xc7``; the pose adds 9 x 2 = 18 per core)

@@ -1,6 +1,6 @@
 """Fixed-point formats, constants, operating envelope and flags of stage D.
 
-All registers are unsigned except the contract inputs/outputs (SPEC section 6).
+All registers are unsigned except the contract inputs/outputs (docs/spec.md sec. 6).
 ``round_shift`` is round-half-up by shifting; ``floor`` is the divider's exact floor.
 
 ===========  ============  ====================================================  ==========
@@ -32,7 +32,7 @@ k            Q(32,20)      round_shift(K, 4) (output)
 ===========  ============  ====================================================  ==========
 
 Constants: ``C6 = round(6/pi 2^25)``, ``N5 = round((3 - 6/pi) 2^49)``,
-``C3 = round(3/(2 pi) 2^40)``. Every multiplier product is below 2^64 (the SPEC
+``C3 = round(3/(2 pi) 2^40)``. Every multiplier product is below 2^64 (docs/spec.md sec. 6
 allows 2^66) and every dividend below 2^80 (largest: p_n2, W C3 2^16 < 2^80); the
 golden model asserts both on every run. With ``hertz_form="exact"`` the E_e dividend
 N5 becomes the EEX table's N(alpha) in the same units (< 2^51; N in [1.09, 1.14] and

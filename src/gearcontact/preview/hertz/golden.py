@@ -1,6 +1,6 @@
 """Bit-exact integer golden model of the serialized stage D (elliptic Hertz).
 
-The model computes exactly what the datapath computes (SPEC section 6, Algorithm 3),
+The model computes exactly what the datapath computes (docs/spec.md sec. 6, Algorithm 3),
 operation by operation, with Python integers: no floating point. Register formats,
 constants and the operating envelope are tabulated in :mod:`.formats`, the ROMs in
 :mod:`.luts`, the divider in :mod:`.divider` and the cycle schedule in :mod:`.schedule`.
@@ -49,8 +49,9 @@ The datapath error is dominated by the POW interpolation near alpha = 1 (cubic
 remainder, :mod:`.luts`) and, beyond alpha = 5, by the half-LSB rounding of the
 output registers (small b, p_max); the end-to-end figure adds the CURVATURE input
 quantization (+-2^-21 1/mm, i.e. 4.8e-4 relative at A- = 1e-3). All are at least
-7x inside the SPEC requirement of 0.5 %. The ``hertz_form="exact"`` variant is measured
-against exact Hertz instead (the package docstring's table: end to end at most 5.4e-4).
+7x inside the requirement of 0.5 % (docs/spec.md sec. 6). The ``hertz_form="exact"``
+variant is measured against exact Hertz instead (the package docstring's table: end to end
+at most 5.4e-4).
 
 References
 ----------
@@ -75,7 +76,7 @@ __all__ = ["HertzCodes", "HertzGoldenValues", "hertz_golden", "hertz_golden_trac
            "envelope_flags",
            "encode_hertz_inputs", "encode_e_prime", "decode_hertz_codes"]
 
-_PRODUCT_LIMIT = 1 << 64        # every multiplier product is below this (SPEC: 2^66)
+_PRODUCT_LIMIT = 1 << 64        # every product is below this (docs/spec.md sec. 6: 2^66)
 
 
 @dataclass(frozen=True)

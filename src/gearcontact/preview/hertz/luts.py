@@ -1,6 +1,6 @@
 """POW, CBRT (and exact-Hertz) look-up tables of stage D: contents, packing, interpolation.
 
-Every ROM is 256 words x 32 bits (SPEC section 6). This module is the one place that
+Every ROM is 256 words x 32 bits (docs/spec.md sec. 6). This module is the one place that
 generates their contents; the golden models and the RTL import :func:`pow_lut` /
 :func:`cbrt_lut` / :func:`rom_words` (never a copy).
 

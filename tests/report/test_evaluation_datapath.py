@@ -1,0 +1,54 @@
+"""Items 3, 4, 5, 8 of the report (:mod:`gearcontact.report.evaluation_datapath`) on one
+``--quick`` run: the cycle counts are the published constants 26 / 756 / 806 / 58
+(exact, constants of the design); the surrogate's preview error against Hamrock–Brewe is
+zero (1e-12 %) and the MLP is accurate in its box (< 3 %) and worse outside it; the
+training cost counts one LCP solve per training torque; the precision widths are integer
+bits + fraction bits and every measured error is within the first-order bound; committed
+synthesis results carry their provenance and the split-product DSP count 21 L + 18.
+"""
+
+import pytest
+
+
+def test_latency_surrogate_precision_rederived(quick_report):
+    _, rep = quick_report
+    cyc = rep["latency"]["core_cycles"]
+    assert cyc["gap pass (L = 16, N = 16)"] == 26 and cyc["Hertz D"] == 756
+    assert cyc["chain C -> D"] == 806 and cyc["combinational C + D"] == 58
+    assert rep["latency"]["cycles_spread"] == 0
+    r = rep["surrogate"]["synthetic"]["rmse_pct"]
+    assert r["preview"]["hamrock_brewe"]["out_of_box"] < 1e-12
+    assert r["mlp"]["exact"]["in_box"] < 3.0
+    assert r["mlp"]["exact"]["out_of_box"] > r["mlp"]["exact"]["in_box"]
+    cost = rep["surrogate"]["anchored"]["training_cost"]
+    assert cost["lcp_solves"] == len(rep["surrogate"]["anchored"]["train_torques_nm"])
+    p = rep["precision"]
+    assert [w - f for w, f in zip(p["coord_width_bits"], p["coord_frac_bits"])] == \
+        [8] * len(p["coord_width_bits"])
+    for err, bound in zip(p["max_gap_error_um"], p["bound_um"]):
+        assert err <= bound
+
+
+def test_committed_resources_have_provenance():
+    from gearcontact.hw.synth import SynthResult
+    from gearcontact.report.reproduce import committed_resources
+
+    data = committed_resources()
+    if data is None:
+        pytest.skip("no committed synthesis results in this tree")
+    assert {"tool", "command", "date"} <= set(data["provenance"])
+    results = [SynthResult(**r) for r in data["results"]]
+    # the split-product gap netlist: DSP48E1 = 21 L + 18 exactly (bench_synth.py)
+    for r in results:
+        assert r.core == "gap" and r.DSP48E1 == 21 * r.lanes + 18
+
+
+def test_resources_item(quick_report):
+    _, rep = quick_report
+    res = rep["resources"]
+    if res["status"] == "not available":                   # no committed results
+        assert "--synth" in res["reason"]
+    else:                                                   # committed, with provenance
+        assert res["source"].startswith("results committed") and "provenance" in res
+    assert res["published"]["dsp_fit"] == [30.0, 18.0]
+
