@@ -70,7 +70,7 @@ def test_cluster_sweep_equals_serial_points(pair, flanks, client, tmp_path):
     assert (ds["status"].values == store_mod.DONE).all()
 
 
-@pytest.mark.filterwarnings("ignore::gearcontact.contact.patch.CoarseGridWarning")
+@pytest.mark.filterwarnings("ignore::gearcontact.contact.ellipse.CoarseGridWarning")
 def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(pair, flanks, tmp_path):
     from gearcontact.contact.pair_ltca import single_pair_ltca
     from gearcontact.tca.analysis import analyze_pair
