@@ -2,8 +2,9 @@
 s0003-centred in this process (plain loop, ``workers=0``) and on a Dask LocalCluster of
 1 and 2 worker processes, the scaling ratio 2 / 1 worker and the per-cell overhead of
 the Dask path over the plain loop. The flanks and the cluster start-up are timed apart
-(``startup_s``: flank build + cluster start + scatter, measured as wall time minus the
-cells' span). Prints a table and the load average (the machine is shared).
+(``flanks_s``; ``first_s``: from the flanks to the first point written, with the
+cluster start, the scatter and the workers' first call; ``steady/s``: points per second
+from the first to the last point). Prints a table and the load average (the machine is shared).
 
 Usage: python3 benchmarks/bench_sweep.py [--steps 9] [--phases 61]
 """
@@ -37,14 +38,20 @@ def main() -> None:
             t0 = time.perf_counter()
             rep = run_sweep(pair, grid, out=d, side="drive", phases=a.phases,
                             workers=workers, progress=False)
-            rows.append((workers, rep.computed, time.perf_counter() - t0, rep.failed))
+            rows.append((workers, rep.computed, time.perf_counter() - t0, rep.failed,
+                         rep.flanks_s, rep.first_s,
+                         (rep.computed - 1) / (rep.last_s - rep.first_s)))
     print(f"(E, P) {a.steps} x {a.steps} TCA sweep, s0003-centred drive, {a.phases} phases")
-    print(f"{'workers':>8} {'cells':>6} {'wall_s':>8} {'cells/s':>8} {'failed':>7}")
-    for w, n, s, f in rows:
-        print(f"{('loop' if w == 0 else w):>8} {n:>6} {s:8.2f} {n / s:8.2f} {f:>7}")
+    print(f"{'workers':>8} {'cells':>6} {'wall_s':>8} {'cells/s':>8} {'failed':>7} "
+          f"{'flanks_s':>9} {'first_s':>8} {'steady/s':>9}")
+    for w, n, s, f, fl, first, steady in rows:
+        print(f"{('loop' if w == 0 else w):>8} {n:>6} {s:8.2f} {n / s:8.2f} {f:>7} "
+              f"{fl:9.2f} {first:8.2f} {steady:9.2f}")
     loop, one, two = rows
-    print(f"scaling 2 / 1 workers: {one[2] / two[2]:.2f}x; Dask (1 worker) overhead per "
-          f"cell vs loop: {1e3 * (one[2] - loop[2]) / one[1]:.1f} ms (start-up included)")
+    print(f"scaling 2 / 1 workers (steady state): {two[6] / one[6]:.2f}x; Dask (1 worker) "
+          f"overhead per cell vs loop (steady state): {1e3 * (1 / one[6] - 1 / loop[6]):.1f}"
+          f" ms; start-up (first point after the flanks): {one[5]:.2f} s vs loop "
+          f"{loop[5]:.2f} s")
     print(f"load average: {os.getloadavg()}")
 
 

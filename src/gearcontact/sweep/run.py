@@ -44,6 +44,14 @@ class SweepReport:
         (recorded with their error) among all cells.
     wall_s : float
         Wall time of the computation (flanks, cluster start-up and tasks), s.
+    flanks_s : float
+        Of it, the flank build, s.
+    first_s, last_s : float
+        From after the flanks to the first and the last point written, s (the first
+        includes the cluster start-up, the scatter and the workers' first call; points
+        per second in steady state = (points - 1) / (last_s - first_s)).
+    errors : list of str
+        The distinct errors of the failed cells.
     """
 
     store: Path
@@ -52,6 +60,9 @@ class SweepReport:
     skipped: int = 0
     failed: int = 0
     wall_s: float = 0.0
+    flanks_s: float = 0.0
+    first_s: float = float("nan")
+    last_s: float = float("nan")
     errors: list = field(default_factory=list)
 
 
@@ -95,9 +106,14 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
                   solver=solver)
     if todo:
         flanks = build_flanks(pair)
+        t1 = time.perf_counter()
+        report.flanks_s = t1 - t0
         for idx, result in _results(pair, flanks, grid, todo, kwargs, scheduler=scheduler,
                                     workers=workers, client=client):
             write_point(store, grid, idx, result)
+            report.last_s = time.perf_counter() - t1
+            if report.computed == 0:
+                report.first_s = report.last_s
             report.computed += n_t
             bar.update(n_t)
     bar.close()
