@@ -17,6 +17,7 @@ import warnings
 
 import numpy as np
 
+from ..contact.ellipse import CoarseGridWarning
 from ..contact.patch import ContactAtEdgeWarning
 from ..tca.solve import EdgeContact, TcaConvergenceError
 from ..validation import InputRangeError
@@ -42,11 +43,13 @@ LTCA_VARIABLES = {
     "lcp_p90_mpa": ("MPa", "LCP pressure, 90th percentile of loaded cells"),
     "lcp_peak_mpa": ("MPa", "LCP peak pressure"),
     "ltca_edge_contact": ("1", "loaded contact truncated by a flank edge"),
+    "lcp_coarse_grid": ("1", "fewer than 8 cells per minor semi-axis (raise --cells)"),
 }
 CELL_VARIABLES = {**TCA_VARIABLES, **LTCA_VARIABLES}
 #: Errors recorded as a point's result (named errors of the library).
 RECORDED_ERRORS = (EdgeContact, TcaConvergenceError, InputRangeError)
-BOOL_VARIABLES = {"pattern_on_flank", "edge_contact", "ltca_edge_contact"}
+BOOL_VARIABLES = {"pattern_on_flank", "edge_contact", "ltca_edge_contact",
+                  "lcp_coarse_grid"}
 
 
 def _tca_values(res) -> dict:
@@ -109,10 +112,13 @@ def compute_point(pair, flanks, assembly: dict, torques_nm, *, side: str, comput
         return out
     for i, torque in enumerate(torques_nm):
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", ContactAtEdgeWarning)  # recorded below
+            with warnings.catch_warnings(record=True) as caught:   # recorded below,
+                warnings.simplefilter("always")                       # not one line per cell
                 case = single_pair_ltca(res, flanks, moved, float(torque), side=side,
                                         cells=cells, solver=solver)
+            for w in caught:
+                if not issubclass(w.category, (ContactAtEdgeWarning, CoarseGridWarning)):
+                    warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
         except RECORDED_ERRORS as exc:
             out["error"][i] = f"{type(exc).__name__}: {exc}"
             continue
@@ -120,6 +126,8 @@ def compute_point(pair, flanks, assembly: dict, torques_nm, *, side: str, comput
         out["lcp_p90_mpa"][i] = float(case.patch.p90_mpa)
         out["lcp_peak_mpa"][i] = float(case.patch.p_peak_mpa)
         out["ltca_edge_contact"][i] = bool(case.edge_contact)
+        out["lcp_coarse_grid"][i] = any(issubclass(w.category, CoarseGridWarning)
+                                        for w in caught)
         if not case.patch.converged:
             out["error"][i] = f"LCPNotConverged: {case.patch.lcp.status}"
     return out
