@@ -47,7 +47,7 @@ def register(sub) -> None:
                         "--misalignment; repeat for more dimensions")
     p.add_argument("--torques", type=float, nargs="+", default=[64.5], metavar="T",
                    help="gear torques in N·m (default 64.5; used by ltca)")
-    p.add_argument("--compute", default="tca", choices=COMPUTE,
+    p.add_argument("--compute", default="tca", choices=COMPUTE, metavar="tca|tca,ltca",
                    help="per cell: unloaded TCA, or TCA and the LTCA per torque "
                         "(default tca)")
     where = p.add_mutually_exclusive_group()
@@ -64,7 +64,14 @@ def register(sub) -> None:
 
 
 def check(args) -> None:
-    """Every option and the pair file, before any work."""
+    """Every option and the pair file, before any work; the optional tools."""
+    import importlib.util
+
+    missing = [m for m in ("distributed", "xarray", "zarr") if importlib.util.find_spec(m) is None]
+    if missing:     # a missing optional tool is bad input (exit 2), said as such
+        raise InputRangeError("gearcontact sweep", f"without {', '.join(missing)}",
+                              "installed with the 'sweep' extra: pip install "
+                              "'gearcontact[sweep]'")
     check_pair_arguments(args)
     args.grid = SweepGrid(tuple(parse_vary(v) for v in args.vary), tuple(args.torques))
     for t in args.torques:
