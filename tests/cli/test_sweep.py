@@ -85,3 +85,33 @@ def test_scheduler_address_runs_the_same_sweep(tmp_path, scheduler, capsys):
     (local / "run.json").unlink()
     assert main([*ARGS, "--workers", "0", "--no-figures", "--out", str(local)]) == 0
     assert "0 computed, 4 already finished" in capsys.readouterr().out
+
+
+def test_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, capsys):
+    """SIGKILL of the command after some points, rerun: the Dataset equals an
+    uninterrupted run's and every cell is computed once (computed + finished = total)."""
+    import re
+    import signal
+
+    args = ["sweep", "--pair", "s0003-centred", "--vary", "E=-0.04:0.04:9", "--phases", "61",
+            "--workers", "0", "--no-figures"]
+    cut = tmp_path / "cut"
+    env = dict(os.environ, PYTHONPATH=str(Path(gearcontact.__file__).parents[1]))
+    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", *args, "--out", str(cut)],
+                            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    seen = b""
+    while not re.search(rb"\b([2-7])/9 ", seen):      # tqdm: 2 to 7 of 9 cells done
+        chunk = proc.stderr.read1(256)
+        assert chunk, f"the sweep ended before it could be killed: {seen[-300:]!r}"
+        seen += chunk
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    capsys.readouterr()
+    assert main([*args, "--quiet", "--out", str(cut)]) == 0
+    m = re.search(r"(\d+) computed, (\d+) already finished", capsys.readouterr().out)
+    computed, finished = map(int, m.groups())
+    assert finished >= 2 and computed + finished == 9
+    assert main([*args, "--quiet", "--out", str(tmp_path / "whole")]) == 0
+    xr.testing.assert_identical(
+        xr.open_zarr(cut / "sweep.zarr", consolidated=False).load(),
+        xr.open_zarr(tmp_path / "whole" / "sweep.zarr", consolidated=False).load())

@@ -1,6 +1,7 @@
 """The zarr store of a sweep: one xarray Dataset over the grid's named dimensions,
 created with every cell pending and filled one grid point at a time (region writes by
-the single client process, so no two writers share a chunk). ``status`` says what each
+the single client process, so no two writers share a chunk; the point's ``status`` is
+written after its values). ``status`` says what each
 cell holds (0 pending, 1 done, 2 failed with ``error``); a rerun reads it and computes
 only the pending cells. The grid and the settings are stored in the attributes: a rerun
 with other ones is refused rather than mixed into the store.
@@ -105,8 +106,11 @@ def write_point(path, grid, index: tuple, result: dict) -> int:
     data = {k: (grid.dims, np.asarray(v).reshape(shape))
             for k, v in result.items() if k in CELL_VARIABLES}
     data["error"] = (grid.dims, errors.reshape(shape))
-    data["status"] = (grid.dims, status.reshape(shape))
     region = {d: slice(i, i + 1) for d, i in zip(grid.dims, index)}
     region["torque_nm"] = slice(0, len(grid.torques_nm))
+    # each chunk file is replaced atomically (zarr's local store); ``status`` goes last,
+    # so that a kill between two files leaves the point pending, never half done
     xr.Dataset(data).to_zarr(path, region=region, consolidated=False)
+    xr.Dataset({"status": (grid.dims, status.reshape(shape))}).to_zarr(
+        path, region=region, consolidated=False)
     return int(status.max())
