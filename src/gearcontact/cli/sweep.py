@@ -15,7 +15,7 @@ from pathlib import Path
 
 from ..sweep.grid import SweepGrid, parse_vary
 from ..sweep.run import sweep_settings
-from ..sweep.store import STORE_NAME, check_store
+from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
 from ..validation import InputRangeError
 from .options import (
     add_pair_arguments,
@@ -60,7 +60,7 @@ def register(sub) -> None:
                             "without Dask")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run, check=check, staged_output=False,
-                   resume_entries=("sweep.zarr",))
+                   resume_entries=(STORE_NAME, CREATING_NAME))
 
 
 def check(args) -> None:

@@ -15,6 +15,8 @@ Research Software* 5(1), 2017, 10 (the Dataset, zarr region writes).
 from __future__ import annotations
 
 import json
+import os
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -22,11 +24,13 @@ import numpy as np
 from ..validation import InputRangeError
 from .cell import BOOL_VARIABLES, CELL_VARIABLES, LTCA_VARIABLES, TCA_VARIABLES
 
-__all__ = ["STORE_NAME", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
+__all__ = ["STORE_NAME", "CREATING_NAME", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
            "prepare_store", "write_point"]
 
 #: Name of the store inside ``--out``.
 STORE_NAME = "sweep.zarr"
+#: Name of the store while it is created (renamed to STORE_NAME when complete).
+CREATING_NAME = ".sweep.zarr.creating"
 PENDING, DONE, FAILED = 0, 1, 2
 _UNITS = {"E_mm": "mm", "P_mm": "mm", "G_mm": "mm", "alpha_deg": "deg", "torque_nm": "N m"}
 
@@ -91,7 +95,12 @@ def prepare_store(path, grid, compute, settings: dict) -> np.ndarray:
     if path.exists():
         return xr.open_zarr(path, consolidated=False)["status"].values
     want = empty_dataset(grid, compute, settings)
-    want.to_zarr(path, mode="w", consolidated=False, zarr_format=3)
+    # created beside and renamed into place: a kill during the creation leaves no
+    # half-made store (the next run starts the creation again)
+    tmp = path.with_name(CREATING_NAME)
+    shutil.rmtree(tmp, ignore_errors=True)
+    want.to_zarr(tmp, mode="w", consolidated=False, zarr_format=3)
+    os.replace(tmp, path)
     return want["status"].values
 
 
