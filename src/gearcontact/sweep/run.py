@@ -15,6 +15,7 @@ M. Rocklin, "Dask: parallel computation with blocked algorithms and task schedul
 
 from __future__ import annotations
 
+import hashlib
 import os
 import time
 from dataclasses import dataclass, field
@@ -24,7 +25,7 @@ import numpy as np
 from tqdm import tqdm
 
 from .cell import compute_point
-from .store import DONE, FAILED, PENDING, STORE_NAME, prepare_store, write_point
+from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
 
 __all__ = ["SweepReport", "run_sweep", "sweep_settings"]
 
@@ -105,9 +106,10 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
     kwargs = dict(side=side, compute=tuple(compute), phases=phases, cells=cells,
                   solver=solver)
     if todo:
+        tf = time.perf_counter()
         flanks = build_flanks(pair)
         t1 = time.perf_counter()
-        report.flanks_s = t1 - t0
+        report.flanks_s = t1 - tf
         for idx, result in _results(pair, flanks, grid, todo, kwargs, scheduler=scheduler,
                                     workers=workers, client=client):
             write_point(store, grid, idx, result)
@@ -128,9 +130,14 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
 
 def sweep_settings(pair, *, side: str, compute, phases: int, cells: int, solver: str
                    ) -> dict:
-    """Settings a resumed sweep must share with the run that began its store."""
+    """Settings a resumed sweep must share with the run that began its store (the
+    pair by name and by the SHA-256 of its TOML, which holds every design value)."""
+    from ..geometry.pair import pair_to_toml
+
     a = pair.assembly
-    return {"pair": pair.name, "assembly": [a.E_mm, a.P_mm, a.G_mm, a.alpha_deg],
+    digest = hashlib.sha256(pair_to_toml(pair).encode()).hexdigest()
+    return {"pair": pair.name, "pair_sha256": digest,
+            "assembly": [a.E_mm, a.P_mm, a.G_mm, a.alpha_deg],
             "side": side, "phases": phases,
             **({"cells": cells, "solver": solver} if "ltca" in compute else {})}
 
