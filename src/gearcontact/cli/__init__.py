@@ -41,7 +41,7 @@ __all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
 COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
-            "bending", "twin")
+            "bending", "twin", "sweep")
 
 EXIT_OK = 0
 #: A bug: "internal error, please report" (traceback with --debug).
@@ -105,7 +105,8 @@ def _run_command(args, argv: list[str]) -> int:
     from .outdir import RunDirectory
 
     with RunDirectory(args.out, argv, force=args.force,
-                      staged=getattr(args, "staged_output", True)) as run:
+                      staged=getattr(args, "staged_output", True),
+                      resume=getattr(args, "resume_entries", ())) as run:
         args.run, args.out = run, run.work
         run.exit_code = int(args.func(args) or 0)
         if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):

@@ -27,7 +27,7 @@ def register(sub) -> None:
     p = sub.add_parser("analyze", help="main job: design, TCA, LTCA and preview of a pair "
                                        "into one directory",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    add_pair_arguments(p)
+    add_pair_arguments(p, misalignment=True)
     p.add_argument("--torques", type=float, nargs="+", default=list(DEFAULT_TORQUES_NM),
                    metavar="T", help="gear torques in N·m (default 32.25 64.5 129 258)")
     p.add_argument("--lte-torque", type=float, default=64.5, metavar="T",

@@ -18,6 +18,7 @@ reported on stderr.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import time
 import warnings
@@ -50,7 +51,7 @@ def register(sub) -> None:
     p = sub.add_parser("ltca", help="loaded contact of one tooth pair at P0: pressure map, "
                                     "statistics, approach, preview beside it",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    add_pair_arguments(p, torque=True, cells=80)
+    add_pair_arguments(p, torque=True, cells=80, misalignment=True)
     p.add_argument("--solver", default="pk_cg", choices=SOLVERS, help="LCP solver (default pk_cg)")
     p.add_argument("--export-problem", action="store_true",
                    help="also write the solved LCP (gap, on-flank mask, grid, load, E*, "
@@ -90,6 +91,7 @@ def run(args) -> int:
                 ltca_s=time.perf_counter() - t1,
                 solve_ms=case.patch.lcp.solve_time_ms)
     summary, _ = without_timings(case.summary())    # the solve time is in run.json
+    summary["assembly"] = dataclasses.asdict(pair.assembly)
     (out / "ltca.json").write_text(json.dumps(summary, indent=2))
     g = case.patch.grid
     s, t = np.meshgrid(g.x_mm, g.y_mm)

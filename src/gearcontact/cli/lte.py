@@ -11,6 +11,7 @@ N/mm rigid and with bending) and ``lte.png``; timings go to ``run.json`` only.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
 from ..contact.lte import loaded_te
@@ -34,7 +35,7 @@ def register(sub) -> None:
     p = sub.add_parser("lte", help="loaded transmission error along the mesh phase: "
                                    "TE_LCP, TE_pre, active pairs, compliances",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    add_pair_arguments(p, torque=True, cells=40)
+    add_pair_arguments(p, torque=True, cells=40, misalignment=True)
     p.add_argument("--bending", action="store_true",
                    help="add the shell bending compliance of the pinion and gear teeth to "
                         "every pair in the coupled LCP (default: rigid teeth)")
@@ -68,7 +69,8 @@ def run(args) -> int:
                 solve_ms_per_phase=float(res.solve_ms.mean()),
                 field_ms_per_phase=float(res.field_ms.mean()))
     write_lte_outputs(res, args.out, figures=not args.no_figures,
-                      title=f"{pair.name} {args.side}", published=published_values(pair.name))
+                      title=f"{pair.name} {args.side}", published=published_values(pair.name),
+                      extra={"assembly": dataclasses.asdict(pair.assembly)})
     print(f"{pair.name} {args.side} {args.torque:g} N·m, {len(res.phi1_rad)} phases"
           f"{', bending' if args.bending else ''}: TE p-p "
           f"TE0 {res.te0_pp_arcsec:.2f} / LCP {res.te_lcp_pp_arcsec:.2f} / preview "

@@ -4,8 +4,10 @@ warnings users must see (stderr, one line each)."""
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 
+from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
 from ..geometry.pair import load_pair
 from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument
@@ -13,7 +15,8 @@ from .outdir import add_out_argument
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm",
-           "rename_load_error", "load_pair_for"]
+           "rename_load_error", "load_pair_for", "parse_misalignment",
+           "MISALIGNMENT_HELP"]
 
 #: Upper limit of ``--phases`` (61 is the report value; at 1001, measured on the project
 #: machine: ``tca`` 5.2 s, ``lte`` 11.4 s in all; 100000 ran for minutes).
@@ -33,12 +36,58 @@ def check_count(field: str, value: int, lo: int, hi: int, *, note: str = "") -> 
     return int(value)
 
 
+#: Help of ``--misalignment`` (sign conventions of :mod:`gearcontact.geometry.kinematics`).
+MISALIGNMENT_HELP = (
+    "assembly errors overriding the pair's [assembly] table, e.g. "
+    "E=0.05,P=-0.02,G=0.03,alpha=0.01 (keys not given keep the table's value). E mm: "
+    "offset increased (pinion axis to y = -(E0 + E)); P mm: pinion moved along its axis "
+    "away from the crossing point; G mm: gear moved along its axis away from the crossing "
+    "point; alpha deg: shaft angle increased. |E|, |P|, |G| <= "
+    f"{ASSEMBLY_LIMITS['E_mm']:g} mm, |alpha| <= {ASSEMBLY_LIMITS['alpha_deg']:g} deg "
+    "(docs/sweeps.md)")
+
+
+def parse_misalignment(text: str, *, field: str = "--misalignment") -> dict[str, float]:
+    """``"E=0.05,P=-0.02"`` -> ``{"E_mm": 0.05, "P_mm": -0.02}`` (fields of
+    :class:`~gearcontact.geometry.kinematics.AssemblyErrors`).
+
+    Raises
+    ------
+    InputRangeError
+        Naming the item for an unknown or repeated key, a bad number or a value
+        beyond :data:`~gearcontact.geometry.kinematics.ASSEMBLY_LIMITS`.
+    """
+    out: dict[str, float] = {}
+    for item in str(text).split(","):
+        key, eq, value = (part.strip() for part in item.partition("="))
+        if not eq or key not in ASSEMBLY_KEYS:
+            raise InputRangeError(field, item.strip(), "KEY=VALUE items separated by commas,"
+                                  f" KEY one of {', '.join(ASSEMBLY_KEYS)}")
+        name = ASSEMBLY_KEYS[key]
+        if name in out:
+            raise InputRangeError(field, text, f"each key at most once ({key} repeated)")
+        try:
+            x = float(value)
+        except ValueError:
+            raise InputRangeError(f"{field} {key}", value, "a number") from None
+        lim = ASSEMBLY_LIMITS[name]
+        unit = "deg" if name.endswith("_deg") else "mm"
+        if not -lim <= x <= lim:     # also refuses NaN
+            raise InputRangeError(f"{field} {key} ({unit})", x, f"[{-lim:g}, {lim:g}] {unit}")
+        out[name] = x
+    return out
+
+
 def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
-                       phases: bool = True) -> None:
+                       phases: bool = True, misalignment: bool = False) -> None:
     """Add ``--pair --out --force --side --phases --no-figures`` (and ``--torque``,
-    ``--cells``; ``phases=False`` leaves out the mesh options ``--side --phases``)."""
+    ``--cells``, ``--misalignment``; ``phases=False`` leaves out the mesh options
+    ``--side --phases``)."""
     p.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
     add_out_argument(p)
+    if misalignment:
+        p.add_argument("--misalignment", default=None, metavar="E=..,P=..,G=..,alpha=..",
+                       help=MISALIGNMENT_HELP)
     if torque:
         p.add_argument("--torque", type=float, default=64.5,
                        help="gear torque in N·m (default 64.5); the normal load it makes "
@@ -64,7 +113,12 @@ def check_pair_arguments(args) -> None:
         check_count("--phases", args.phases, 3, MAX_PHASES)
     if getattr(args, "cells", None) is not None:
         check_count("--cells", args.cells, 16, MAX_CELLS, note=" per side")
+    override = (parse_misalignment(args.misalignment)
+                if getattr(args, "misalignment", None) is not None else {})
     args.gear_pair = load_pair(args.pair)
+    if override:    # the pair's assembly errors are what TCA and every JSON use
+        assembly = dataclasses.replace(args.gear_pair.assembly, **override)
+        args.gear_pair = dataclasses.replace(args.gear_pair, assembly=assembly)
     if hasattr(args, "side"):
         args.side = args.side or args.gear_pair.design_side
     if getattr(args, "torque", None) is not None:

@@ -19,7 +19,9 @@ One policy, applied by :func:`gearcontact.cli.main` around each such command:
    was (a directory this run created is removed again). Commands whose generated files embed their own absolute paths (``rtl soc``,
    ``rtl synth``: LiteX/Yosys scripts) write in place instead (``staged=False``): the
    previous run's files are removed before the work starts, and a failed run's
-   ``run.json`` lists what it left (so that the next run removes it).
+   ``run.json`` lists what it left (so that the next run removes it). A resumable
+   command (``sweep``) names the entries it continues (``resume=("sweep.zarr",)``):
+   they count as its own even without a ``run.json`` (a killed run) and are kept.
 4. **A lock.** An exclusive :func:`fcntl.flock` on ``.gearcontact.lock`` is held for the
    whole run; a second run into the same directory is refused (exit 2) while the first
    one holds it, so two runs cannot interleave their files.
@@ -180,6 +182,9 @@ class RunDirectory:
         Accept foreign entries in ``out`` (kept; same-named files replaced).
     staged : bool, keyword-only
         Write through a staging directory (default); False writes in place.
+    resume : tuple of str, keyword-only
+        Top-level entries an in-place command continues from run to run: never foreign,
+        never removed before the work.
 
     Attributes
     ----------
@@ -193,8 +198,10 @@ class RunDirectory:
         Recorded in run.json (set by the caller before leaving the context).
     """
 
-    def __init__(self, out, argv, *, force: bool = False, staged: bool = True):
+    def __init__(self, out, argv, *, force: bool = False, staged: bool = True,
+                 resume: tuple[str, ...] = ()):
         self.given = out
+        self.resume = tuple(resume)
         self.argv = list(argv)
         self.force = force
         self.staged = staged
@@ -250,7 +257,8 @@ class RunDirectory:
                 shutil.rmtree(entry, ignore_errors=True)
         previous = _previous_files(self.path)
         if previous is None:                # not a gearcontact run: refuse at a glance
-            top = sorted(e.name for e in self.path.iterdir() if not _ours(e.name))
+            top = sorted(e.name for e in self.path.iterdir()
+                         if not _ours(e.name) and e.name not in self.resume)
             top += [MANIFEST] if (self.path / MANIFEST).exists() else []
             if top and not self.force:
                 self._refuse(top)
@@ -264,6 +272,7 @@ class RunDirectory:
         owned_dirs = {p.as_posix() for f in owned for p in Path(f).parents}
         foreign = [f for f in files if f not in owned] + [d for d in dirs
                                                            if d not in owned_dirs]
+        foreign = [f for f in foreign if Path(f).parts[0] not in self.resume]
         if foreign and not self.force:
             self._refuse(foreign)
         self._foreign = set(foreign)
@@ -281,7 +290,8 @@ class RunDirectory:
             if self.staged:
                 self.work = Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=self.path))
             else:
-                self._remove_previous(keep=())
+                self._remove_previous(keep=[f for f in self._previous
+                                            if Path(f).parts[0] in self.resume])
         except BaseException:
             self._unlock()
             raise

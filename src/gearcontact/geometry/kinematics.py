@@ -38,7 +38,15 @@ import numpy as np
 
 from ..validation import check_finite, check_positive
 
-__all__ = ["AssemblyErrors", "MeshKinematics", "rot_x", "rot_y", "rot_z"]
+__all__ = ["AssemblyErrors", "MeshKinematics", "ASSEMBLY_KEYS", "ASSEMBLY_LIMITS",
+           "rot_x", "rot_y", "rot_z"]
+
+#: Short names of the assembly errors (command line, sweeps) -> AssemblyErrors fields.
+ASSEMBLY_KEYS = {"E": "E_mm", "P": "P_mm", "G": "G_mm", "alpha": "alpha_deg"}
+#: Largest magnitude accepted from the command line per field (mm, mm, mm, deg): ten
+#: times the usual mounting tolerances of automotive hypoid sets (tens of um, minutes of
+#: arc); beyond it the bearing leaves the flank of any practical set-up.
+ASSEMBLY_LIMITS = {"E_mm": 1.0, "P_mm": 1.0, "G_mm": 1.0, "alpha_deg": 0.5}
 
 
 def rot_x(angle_rad: float) -> np.ndarray:

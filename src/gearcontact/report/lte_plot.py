@@ -74,13 +74,14 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
 
 
 def write_lte_outputs(lte, out, *, figures: bool = True, title: str = "",
-                      published: dict | None = None) -> dict:
+                      published: dict | None = None, extra: dict | None = None) -> dict:
     """Write ``lte.json``, ``lte.csv`` and (``figures``) ``lte.png`` into ``out``;
-    returns the JSON dict. Timings (:data:`~gearcontact.tca.export.TIMING_KEYS`) stay
-    out of the files."""
+    returns the JSON dict (``extra`` keys added, e.g. the assembly errors used).
+    Timings (:data:`~gearcontact.tca.export.TIMING_KEYS`) stay out of the files."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     summary, _ = without_timings(lte.summary())     # identical runs, identical files
+    summary.update(extra or {})
     (out / "lte.json").write_text(json.dumps(summary, indent=2))
     header, rows = lte.table()
     keep = [i for i, h in enumerate(header) if h not in TIMING_KEYS]

@@ -1,0 +1,113 @@
+"""``gearcontact sweep``: the contact analysis over a grid of assembly errors and
+torques, on Dask distributed (docs/sweeps.md).
+
+Writes into ``--out`` (created if missing): ``sweep.zarr``, one xarray Dataset with the
+dimensions of the ``--vary`` keys (``E_mm``, ``P_mm``, ``G_mm``, ``alpha_deg``) and
+``torque_nm``, filled as grid points finish. A rerun of the same command computes only
+the cells still pending (resumable after a crash or Ctrl-C); a rerun with another grid
+or other settings into the same directory is refused.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from ..sweep.grid import SweepGrid, parse_vary
+from ..sweep.run import sweep_settings
+from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
+from ..validation import InputRangeError
+from .options import (
+    add_pair_arguments,
+    check_count,
+    check_pair_arguments,
+    check_torque,
+    run_timings,
+    warn,
+)
+from .outdir import final_path
+
+#: Upper limit of ``--workers`` (local worker processes).
+MAX_WORKERS = 256
+#: What ``--compute`` accepts.
+COMPUTE = ("tca", "tca,ltca")
+#: LCP solver of the LTCA cells.
+SOLVER = "pk_cg"
+_ADDRESS = re.compile(r"^(tcp|tls)://[^\s:/]+:\d{1,5}$")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("sweep", help="TCA / LTCA over a grid of assembly errors and "
+                                     "torques on Dask distributed (zarr, resumable)",
+                       description=__doc__.split("\n\n")[0].split(": ", 1)[1])
+    add_pair_arguments(p, cells=80, misalignment=True)
+    p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:STEPS",
+                   help="an assembly error over numpy.linspace(START, STOP, STEPS), ends "
+                        "included; KEY one of E, P, G (mm), alpha (deg) with the signs of "
+                        "--misalignment; repeat for more dimensions")
+    p.add_argument("--torques", type=float, nargs="+", default=[64.5], metavar="T",
+                   help="gear torques in N·m (default 64.5; used by ltca)")
+    p.add_argument("--compute", default="tca", choices=COMPUTE, metavar="tca|tca,ltca",
+                   help="per cell: unloaded TCA, or TCA and the LTCA per torque "
+                        "(default tca)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+                       help="address of a running Dask scheduler (default: a local "
+                            "cluster)")
+    where.add_argument("--workers", type=int, default=None,
+                       help=f"worker processes of the local cluster, 1 to {MAX_WORKERS} "
+                            "(default: the CPU count); 0 computes in this process "
+                            "without Dask")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=run, check=check, staged_output=False,
+                   resume_entries=(STORE_NAME, CREATING_NAME))
+
+
+def check(args) -> None:
+    """Every option and the pair file, before any work; the optional tools."""
+    import importlib.util
+
+    missing = [m for m in ("distributed", "xarray", "zarr") if importlib.util.find_spec(m) is None]
+    if missing:     # a missing optional tool is bad input (exit 2), said as such
+        raise InputRangeError("gearcontact sweep", f"without {', '.join(missing)}",
+                              "installed with the 'sweep' extra: pip install "
+                              "'gearcontact[sweep]'")
+    check_pair_arguments(args)
+    args.grid = SweepGrid(tuple(parse_vary(v) for v in args.vary), tuple(args.torques))
+    for t in args.torques:
+        check_torque("--torques (N·m)", t, args.gear_pair)
+    if args.workers is not None:
+        check_count("--workers", args.workers, 0, MAX_WORKERS)
+    if args.scheduler is not None and not _ADDRESS.match(args.scheduler):
+        raise InputRangeError("--scheduler", args.scheduler,
+                              "a scheduler address tcp://HOST:PORT (or tls://HOST:PORT)")
+    # a store of another sweep in --out: refused before the run touches the directory
+    compute = tuple(args.compute.split(","))
+    check_store(Path(args.out) / STORE_NAME, args.grid, compute, sweep_settings(
+        args.gear_pair, side=args.side, compute=compute, phases=args.phases,
+        cells=args.cells, solver=SOLVER))
+
+
+def run(args) -> int:
+    from ..sweep.run import run_sweep
+
+    if getattr(args, "grid", None) is None:
+        check(args)
+    pair, grid = args.gear_pair, args.grid
+    report = run_sweep(pair, grid, out=args.out, side=args.side,
+                       compute=tuple(args.compute.split(",")), phases=args.phases,
+                       cells=args.cells, solver=SOLVER, scheduler=args.scheduler,
+                       workers=args.workers,
+                       progress=not args.quiet)
+    run_timings(args, sweep_s=report.wall_s, cells_computed=report.computed)
+    if not args.no_figures and len(grid.vary) == 2:    # redrawn on every run
+        from ..sweep.plots import plot_maps
+
+        plot_maps(report.store, args.out / "sweep_maps.png",
+                  title=f"{pair.name} {args.side}")
+    print(f"{pair.name} {args.side}: {grid.cells} cells ({' x '.join(map(str, grid.shape))}"
+          f" over {', '.join(grid.dims)}): {report.computed} computed, {report.skipped} "
+          f"already finished, {report.failed} failed -> {final_path(args, report.store)}")
+    for e in report.errors[:5]:
+        warn("sweep", f"failed cells: {e}")
+    return 0

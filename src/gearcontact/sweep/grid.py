@@ -1,0 +1,128 @@
+"""The grid of a sweep: ``--vary KEY=START:STOP:STEPS`` specs and the torques.
+
+Keys are the assembly errors of :mod:`gearcontact.geometry.kinematics` by their short
+names (``E``, ``P``, ``G`` in mm, ``alpha`` in deg; sign conventions there); each spec
+spans ``numpy.linspace(START, STOP, STEPS)``, both ends included. The torques form the
+last dimension. A grid point (one set of assembly errors) is one task; a cell is one
+point at one torque.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
+from ..validation import InputRangeError
+
+__all__ = ["MAX_STEPS", "MAX_CELLS", "VarySpec", "SweepGrid", "parse_vary"]
+
+#: Steps of one ``--vary`` spec, at most (a 101 x 101 (E, P) map is finer than any
+#: V/H chart needs).
+MAX_STEPS = 101
+#: Cells of a sweep, at most (about a day of LTCA cells on one core).
+MAX_CELLS = 100_000
+
+
+@dataclass(frozen=True)
+class VarySpec:
+    """One swept assembly error: ``field`` (an AssemblyErrors field, unit in its name)
+    over ``numpy.linspace(start, stop, steps)``."""
+
+    key: str
+    field: str
+    start: float
+    stop: float
+    steps: int
+
+    @property
+    def values(self) -> np.ndarray:
+        return np.linspace(self.start, self.stop, self.steps)
+
+
+def parse_vary(text: str) -> VarySpec:
+    """``"E=-0.1:0.1:9"`` -> :class:`VarySpec`.
+
+    Raises
+    ------
+    InputRangeError
+        Naming ``--vary`` and the spec: unknown key, not ``START:STOP:STEPS``, bad
+        number, STEPS outside [1, MAX_STEPS] (1 needs START == STOP), STOP < START,
+        a value beyond :data:`~gearcontact.geometry.kinematics.ASSEMBLY_LIMITS`.
+    """
+    key, eq, rng = (s.strip() for s in str(text).partition("="))
+    if not eq or key not in ASSEMBLY_KEYS:
+        raise InputRangeError("--vary", text, f"KEY=START:STOP:STEPS with KEY one of "
+                              f"{', '.join(ASSEMBLY_KEYS)} (the assembly errors)")
+    parts = rng.split(":")
+    if len(parts) != 3:
+        raise InputRangeError(f"--vary {key}", rng, "START:STOP:STEPS (three fields)")
+    try:
+        start, stop = float(parts[0]), float(parts[1])
+        steps = int(parts[2])
+    except ValueError:
+        raise InputRangeError(f"--vary {key}", rng, "START:STOP:STEPS with numbers START,"
+                              " STOP and an integer STEPS") from None
+    field = ASSEMBLY_KEYS[key]
+    unit = "deg" if field.endswith("_deg") else "mm"
+    lim = ASSEMBLY_LIMITS[field]
+    if not 1 <= steps <= MAX_STEPS:
+        raise InputRangeError(f"--vary {key} STEPS", steps, f"an integer in [1, {MAX_STEPS}]")
+    if not stop >= start:
+        raise InputRangeError(f"--vary {key}", rng, "STOP >= START (a reversed range)")
+    if steps == 1 and stop != start:
+        raise InputRangeError(f"--vary {key}", rng, "STEPS >= 2 when STOP != START")
+    for x in (start, stop):
+        if not -lim <= x <= lim:
+            raise InputRangeError(f"--vary {key} ({unit})", x, f"[{-lim:g}, {lim:g}] {unit}")
+    return VarySpec(key, field, start, stop, steps)
+
+
+@dataclass(frozen=True)
+class SweepGrid:
+    """The swept assembly errors (in ``--vary`` order) and the torques (N·m).
+
+    Dimensions of the Dataset: the fields of ``vary`` (e.g. ``E_mm``, ``P_mm``) then
+    ``torque_nm``. ``points()`` lists the grid points (index tuple, AssemblyErrors
+    overrides) in C order.
+    """
+
+    vary: tuple[VarySpec, ...]
+    torques_nm: tuple[float, ...]
+
+    def __post_init__(self):
+        fields = [v.field for v in self.vary]
+        if len(set(fields)) != len(fields):
+            raise InputRangeError("--vary", [v.key for v in self.vary],
+                                  "each key at most once")
+        n = self.cells
+        if n > MAX_CELLS:
+            raise InputRangeError("--vary x --torques (cells)", n, f"at most {MAX_CELLS}")
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        return (*(v.field for v in self.vary), "torque_nm")
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return (*(v.steps for v in self.vary), len(self.torques_nm))
+
+    @property
+    def cells(self) -> int:
+        return int(np.prod(self.shape))
+
+    def points(self):
+        """(index tuple, {AssemblyErrors field: value}) of every grid point."""
+        for idx in itertools.product(*(range(v.steps) for v in self.vary)):
+            yield idx, {v.field: float(v.values[i]) for v, i in zip(self.vary, idx)}
+
+    def as_dict(self) -> dict:
+        return {"vary": [[v.key, v.start, v.stop, v.steps] for v in self.vary],
+                "torques_nm": list(self.torques_nm)}
+
+    def key(self) -> str:
+        """Identity of the grid (stored with the results; a resume must match it)."""
+        return json.dumps(self.as_dict(), sort_keys=True)

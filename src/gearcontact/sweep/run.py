@@ -1,0 +1,186 @@
+"""Running a sweep on Dask distributed: a LocalCluster (worker processes, one thread
+each) by default, an existing cluster by its scheduler address, or in this process
+(``workers=0``, the plain loop the Dask path is measured against).
+
+The flanks are built once here and scattered to every worker (broadcast); one task is
+one grid point (one TCA, then one LTCA per torque). Results are written into the zarr
+store (:mod:`.store`) by this process as tasks finish, so an interrupted sweep keeps
+every finished point and its rerun computes only the rest.
+
+References
+----------
+M. Rocklin, "Dask: parallel computation with blocked algorithms and task scheduling",
+*Proc. 14th Python in Science Conf.*, 2015, 126-132.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from tqdm import tqdm
+
+from .cell import compute_point
+from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
+
+__all__ = ["SweepReport", "run_sweep", "sweep_settings"]
+
+
+@dataclass
+class SweepReport:
+    """What one run of a sweep did.
+
+    Attributes
+    ----------
+    store : Path
+        The zarr store.
+    cells : int
+        Cells of the grid (points x torques).
+    computed, skipped, failed : int
+        Cells computed by this run, found finished (done or failed) by it, and failed
+        (recorded with their error) among all cells.
+    wall_s : float
+        Wall time of the computation (flanks, cluster start-up and tasks), s.
+    flanks_s : float
+        Of it, the flank build, s.
+    first_s, last_s : float
+        From after the flanks to the first and the last point written, s (the first
+        includes the cluster start-up, the scatter and the workers' first call; points
+        per second in steady state = (points - 1) / (last_s - first_s)).
+    errors : list of str
+        The distinct errors of the failed cells.
+    """
+
+    store: Path
+    cells: int
+    computed: int = 0
+    skipped: int = 0
+    failed: int = 0
+    wall_s: float = 0.0
+    flanks_s: float = 0.0
+    first_s: float = float("nan")
+    last_s: float = float("nan")
+    errors: list = field(default_factory=list)
+
+
+def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
+              cells: int = 80, solver: str = "pk_cg", scheduler: str | None = None,
+              workers: int | None = None, client=None, progress: bool = True
+              ) -> SweepReport:
+    """Compute the pending cells of ``grid`` into ``out/sweep.zarr``.
+
+    Parameters
+    ----------
+    pair : GearPair
+    grid : SweepGrid
+    out : path
+        Directory of the store.
+    side, compute, phases, cells, solver
+        As :func:`~gearcontact.sweep.cell.compute_point`.
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://HOST:PORT``).
+    workers : int, optional
+        Worker processes of the LocalCluster (default: the CPU count); 0 runs the
+        cells in this process without Dask.
+    client : distributed.Client, optional
+        A client to use (then neither ``scheduler`` nor ``workers`` apply).
+    progress : bool
+        Progress bar of cells done / total.
+    """
+    from ..geometry.flank import build_flanks
+
+    t0 = time.perf_counter()
+    store = Path(out) / STORE_NAME
+    settings = sweep_settings(pair, side=side, compute=compute, phases=phases, cells=cells,
+                              solver=solver)
+    status = prepare_store(store, grid, compute, settings)
+    todo = [(idx, a) for idx, a in grid.points() if (status[idx] == PENDING).any()]
+    n_t = len(grid.torques_nm)
+    report = SweepReport(store, grid.cells, skipped=grid.cells - n_t * len(todo))
+    bar = tqdm(total=grid.cells, initial=report.skipped, desc="sweep cells",
+               unit="cell", disable=not progress)
+    kwargs = dict(side=side, compute=tuple(compute), phases=phases, cells=cells,
+                  solver=solver)
+    if todo:
+        tf = time.perf_counter()
+        flanks = build_flanks(pair)
+        t1 = time.perf_counter()
+        report.flanks_s = t1 - tf
+        for idx, result in _results(pair, flanks, grid, todo, kwargs, scheduler=scheduler,
+                                    workers=workers, client=client):
+            write_point(store, grid, idx, result)
+            report.last_s = time.perf_counter() - t1
+            if report.computed == 0:
+                report.first_s = report.last_s
+            report.computed += n_t
+            bar.update(n_t)
+    bar.close()
+    import xarray as xr
+
+    final = xr.open_zarr(store, consolidated=False)
+    report.failed = int((final["status"].values == FAILED).sum())
+    report.errors = sorted({str(e) for e in final["error"].values.ravel() if e})
+    report.wall_s = time.perf_counter() - t0
+    return report
+
+
+def sweep_settings(pair, *, side: str, compute, phases: int, cells: int, solver: str
+                   ) -> dict:
+    """Settings a resumed sweep must share with the run that began its store (the
+    pair by name and by the SHA-256 of its TOML, which holds every design value)."""
+    from ..geometry.pair import pair_to_toml
+
+    a = pair.assembly
+    digest = hashlib.sha256(pair_to_toml(pair).encode()).hexdigest()
+    return {"pair": pair.name, "pair_sha256": digest,
+            "assembly": [a.E_mm, a.P_mm, a.G_mm, a.alpha_deg],
+            "side": side, "phases": phases,
+            **({"cells": cells, "solver": solver} if "ltca" in compute else {})}
+
+
+def _results(pair, flanks, grid, todo, kwargs, *, scheduler, workers, client):
+    """(index, result) of every point of ``todo``, in the order they finish."""
+    torques = list(grid.torques_nm)
+    if workers == 0 and client is None and scheduler is None:
+        for idx, a in todo:
+            yield idx, _guarded(pair, flanks, a, torques, kwargs)
+        return
+    from distributed import Client, LocalCluster, as_completed
+
+    own = None
+    if client is None:
+        if scheduler is not None:
+            own = client = Client(scheduler)
+        else:
+            n = workers or os.cpu_count() or 1
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            own = client = Client(cluster)
+    try:
+        pair_f = client.scatter(pair, broadcast=True)
+        flanks_f = client.scatter(flanks, broadcast=True)
+        futures = {client.submit(_guarded, pair_f, flanks_f, a, torques, kwargs,
+                                 pure=False): idx for idx, a in todo}
+        for fut in as_completed(futures):
+            yield futures[fut], fut.result()
+            fut.release()
+    finally:
+        if own is not None:
+            cluster = getattr(own, "cluster", None)
+            own.close()
+            if cluster is not None and scheduler is None:
+                cluster.close()
+
+
+def _guarded(pair, flanks, assembly, torques, kwargs) -> dict:
+    """:func:`compute_point`, any unexpected exception recorded as the point's error
+    (a sweep of hundreds of points must not die of one)."""
+    try:
+        return compute_point(pair, flanks, assembly, torques, **kwargs)
+    except Exception as exc:  # noqa: BLE001  (recorded with its type; see the store)
+        n = len(torques)
+        return {"error": [f"{type(exc).__name__}: {exc}"] * n}

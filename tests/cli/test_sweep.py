@@ -1,0 +1,117 @@
+"""``gearcontact sweep`` (:mod:`gearcontact.cli.sweep`) under the CLI contract.
+
+Truths: bad grids are exit 2 before any output; the cluster path for real - a
+``dask scheduler`` and a ``dask worker`` started as subprocesses on the loopback
+address, the sweep run through ``--scheduler`` - gives the Dataset of the in-process
+run (``--workers 0``) exactly; the rerun of the same command computes nothing; run.json
+lists the store's files.
+"""
+
+import json
+import os
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("distributed")
+xr = pytest.importorskip("xarray")
+
+import gearcontact  # noqa: E402
+from gearcontact.cli import main  # noqa: E402
+
+ARGS = ["sweep", "--pair", "s0003-centred", "--vary", "E=-0.05:0.05:2", "--vary",
+        "P=-0.05:0.05:2", "--phases", "21", "--quiet"]
+
+
+@pytest.mark.parametrize("bad,named", [
+    (["--vary", "E=0.1:-0.1:3"], "reversed range"), (["--vary", "E=0:0.1:0"], "STEPS"),
+    (["--vary", "H=0:0.1:2"], "KEY one of"), (["--vary", "E=0:1:2", "--vary", "E=0:1:2"],
+                                              "each key at most once"),
+    (["--scheduler", "localhost:8786"], "tcp://HOST:PORT"), (["--workers", "-1"], "--workers"),
+    (["--torques", "1e9"], "--torques")])
+def test_bad_input_exits_2_before_any_output(tmp_path, capsys, bad, named):
+    out = tmp_path / "o"
+    assert main(["sweep", *bad, "--out", str(out)]) == 2
+    assert named in capsys.readouterr().err
+    assert not out.exists()
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def scheduler():
+    """A real scheduler and one worker process on the loopback address."""
+    from distributed import Client
+
+    addr = f"tcp://127.0.0.1:{_free_port()}"
+    env = dict(os.environ, PYTHONPATH=str(Path(gearcontact.__file__).parents[1]))
+    procs = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
+                               "--host", "127.0.0.1", "--port", addr.rsplit(":", 1)[1],
+                               "--no-dashboard"], env=env, stderr=subprocess.DEVNULL)]
+    procs.append(subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", addr,
+                                   "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
+                                  env=env, stderr=subprocess.DEVNULL))
+    try:
+        with Client(addr, timeout=60) as c:
+            c.wait_for_workers(1, timeout=60)
+        yield addr
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+            p.wait(timeout=30)
+
+
+def test_scheduler_address_runs_the_same_sweep(tmp_path, scheduler, capsys):
+    remote, local = tmp_path / "remote", tmp_path / "local"
+    assert main([*ARGS, "--scheduler", scheduler, "--out", str(remote)]) == 0
+    assert main([*ARGS, "--workers", "0", "--no-figures", "--out", str(local)]) == 0
+    a = xr.open_zarr(remote / "sweep.zarr", consolidated=False).load()
+    b = xr.open_zarr(local / "sweep.zarr", consolidated=False).load()
+    assert (a["status"].values == 1).all()
+    xr.testing.assert_identical(a.drop_attrs(), b.drop_attrs())
+    capsys.readouterr()
+    assert main([*ARGS, "--scheduler", scheduler, "--out", str(remote)]) == 0
+    assert "0 computed, 4 already finished" in capsys.readouterr().out
+    files = [f["path"] for f in json.loads((remote / "run.json").read_text())["files"]]
+    assert "sweep_maps.png" in files and any(f.startswith("sweep.zarr/") for f in files)
+    # a killed run leaves no run.json: the store is still the sweep's own, not foreign
+    (local / "run.json").unlink()
+    assert main([*ARGS, "--workers", "0", "--no-figures", "--out", str(local)]) == 0
+    assert "0 computed, 4 already finished" in capsys.readouterr().out
+
+
+def test_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, capsys):
+    """SIGKILL of the command after some points, rerun: the Dataset equals an
+    uninterrupted run's and every cell is computed once (computed + finished = total)."""
+    import re
+    import signal
+
+    args = ["sweep", "--pair", "s0003-centred", "--vary", "E=-0.04:0.04:9", "--phases", "61",
+            "--workers", "0", "--no-figures"]
+    cut = tmp_path / "cut"
+    env = dict(os.environ, PYTHONPATH=str(Path(gearcontact.__file__).parents[1]))
+    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", *args, "--out", str(cut)],
+                            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    seen = b""
+    while not re.search(rb"\b([2-7])/9 ", seen):      # tqdm: 2 to 7 of 9 cells done
+        chunk = proc.stderr.read1(256)
+        assert chunk, f"the sweep ended before it could be killed: {seen[-300:]!r}"
+        seen += chunk
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    capsys.readouterr()
+    assert main([*args, "--quiet", "--out", str(cut)]) == 0
+    m = re.search(r"(\d+) computed, (\d+) already finished", capsys.readouterr().out)
+    computed, finished = map(int, m.groups())
+    assert finished >= 2 and computed + finished == 9
+    assert main([*args, "--quiet", "--out", str(tmp_path / "whole")]) == 0
+    xr.testing.assert_identical(
+        xr.open_zarr(cut / "sweep.zarr", consolidated=False).load(),
+        xr.open_zarr(tmp_path / "whole" / "sweep.zarr", consolidated=False).load())

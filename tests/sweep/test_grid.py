@@ -1,0 +1,47 @@
+"""``--vary`` specs and the sweep grid (:mod:`gearcontact.sweep.grid`).
+
+Truths: a spec spans numpy.linspace with both ends; the grid's cells are the product
+of the steps and the torques; every malformed spec is a named InputRangeError.
+"""
+
+import numpy as np
+import pytest
+
+from gearcontact.sweep.grid import MAX_CELLS, SweepGrid, parse_vary
+from gearcontact.validation import InputRangeError
+
+
+def test_spec_is_linspace_with_both_ends():
+    v = parse_vary("alpha=-0.02:0.02:5")
+    assert (v.key, v.field) == ("alpha", "alpha_deg")
+    # equal up to the rounding of linspace's arithmetic (1 ulp of 0.02 ~ 3.5e-18)
+    np.testing.assert_allclose(v.values, [-0.02, -0.01, 0.0, 0.01, 0.02], rtol=0, atol=1e-17)
+    assert parse_vary("P=0.05:0.05:1").values.tolist() == [0.05]
+
+
+def test_grid_dims_shape_and_points():
+    g = SweepGrid((parse_vary("E=-0.1:0.1:3"), parse_vary("P=0:0.1:2")), (32.25, 64.5))
+    assert g.dims == ("E_mm", "P_mm", "torque_nm") and g.shape == (3, 2, 2)
+    assert g.cells == 12
+    pts = list(g.points())
+    assert len(pts) == 6 and pts[-1] == ((2, 1), {"E_mm": 0.1, "P_mm": 0.1})
+
+
+@pytest.mark.parametrize("spec,named", [
+    ("Q=0:1:2", "KEY one of E, P, G, alpha"), ("E0:1:2", "KEY=START"),
+    ("E=0:1", "three fields"), ("E=a:1:2", "integer STEPS"), ("E=0:1:2.5", "integer STEPS"),
+    ("E=0.1:-0.1:3", "reversed range"), ("E=0:0.1:0", "STEPS = 0"),
+    ("E=0:0.1:1", "STEPS >= 2"), ("P=0:1.5:3", "--vary P (mm) = 1.5"),
+    ("alpha=-1:0:3", "[-0.5, 0.5] deg"), ("G=0:0.1:102", "[1, 101]")])
+def test_bad_specs_are_named_errors(spec, named):
+    with pytest.raises(InputRangeError) as exc:
+        parse_vary(spec)
+    assert named in str(exc.value)
+
+
+def test_repeated_key_and_too_many_cells():
+    with pytest.raises(InputRangeError, match="each key at most once"):
+        SweepGrid((parse_vary("E=0:1:2"), parse_vary("E=0:1:3")), (64.5,))
+    big = (parse_vary("E=-1:1:101"), parse_vary("P=-1:1:101"), parse_vary("G=0:1:11"))
+    with pytest.raises(InputRangeError, match=f"at most {MAX_CELLS}"):
+        SweepGrid(big, (64.5,))
