@@ -24,24 +24,12 @@ from gearcontact.contact.multitooth import multi_tooth_ltca
 from gearcontact.contact.tooth_bending import tooth_bending
 from gearcontact.validation import InputRangeError
 
-PHASES, CELLS, TORQUE = 11, 24, 64.5
+CELLS, TORQUE = 24, 64.5  # TCA: 11 phases per pitch (conftest centred_drive_11)
 
 
 @pytest.fixture(scope="module")
-def setup():
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
-    from gearcontact.tca.analysis import analyze_pair
-
-    pair = load_pair("s0003-centred")
-    flanks = build_flanks(pair)
-    tca = analyze_pair(pair, side="drive", phases=PHASES, flanks=flanks)[0]
-    return pair, flanks, tca
-
-
-@pytest.fixture(scope="module")
-def cases(setup):
-    pair, flanks, tca = setup
+def cases(centred_drive_11):
+    pair, flanks, tca = centred_drive_11
     out = {}
     for scale in (None, 0.0, 1.0, 2.0):
         bend = None if scale is None else tooth_bending(flanks, pair, side="drive",
@@ -51,8 +39,8 @@ def cases(setup):
     return out
 
 
-def test_rigid_solution_is_the_loaded_te_at_p0(setup, cases):
-    pair, flanks, tca = setup
+def test_rigid_solution_is_the_loaded_te_at_p0(centred_drive_11, cases):
+    pair, flanks, tca = centred_drive_11
     lte = loaded_te(tca, flanks, pair, TORQUE, side="drive", cells=CELLS,
                     stride=len(tca.cycle.phi1_rad))
     k = lte.reference_index
@@ -98,8 +86,8 @@ def test_cp_max_is_hertzian_on_the_centred_bearing(cases):
     assert c.cp_max_mpa <= c.p_peak_cell_mpa * 1.05
 
 
-def test_bad_input(setup):
-    pair, flanks, tca = setup
+def test_bad_input(centred_drive_11):
+    pair, flanks, tca = centred_drive_11
     with pytest.raises(InputRangeError, match="torque"):
         multi_tooth_ltca(tca, flanks, pair, -1.0, side="drive")
     with pytest.raises(InputRangeError, match="cells"):

@@ -24,30 +24,18 @@ from gearcontact.contact.lte import loaded_te
 from gearcontact.contact.tooth_bending import tooth_bending
 from gearcontact.validation import InputRangeError
 
-PHASES, CELLS, STRIDE = 11, 24, 5
+CELLS, STRIDE = 24, 5  # TCA: 11 phases per pitch (conftest centred_drive_11)
 
 
-@pytest.fixture(scope="module")
-def setup():
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
-    from gearcontact.tca.analysis import analyze_pair
-
-    pair = load_pair("s0003-centred")
-    flanks = build_flanks(pair)
-    tca = analyze_pair(pair, side="drive", phases=PHASES, flanks=flanks)[0]
-    return pair, flanks, tca
-
-
-def run(setup, scale=None):
-    pair, flanks, tca = setup
+def run(centred_drive_11, scale=None):
+    pair, flanks, tca = centred_drive_11
     bend = None if scale is None else tooth_bending(flanks, pair, side="drive", scale=scale)
     return loaded_te(tca, flanks, pair, 64.5, cells=CELLS, stride=STRIDE, bending=bend)
 
 
 @pytest.fixture(scope="module")
-def results(setup):
-    return {s: run(setup, s) for s in (None, 0.0, 1.0, 2.0)}
+def results(centred_drive_11):
+    return {s: run(centred_drive_11, s) for s in (None, 0.0, 1.0, 2.0)}
 
 
 def test_zero_compliance_limit(results):
@@ -74,8 +62,8 @@ def test_softer_teeth_rotate_more(results):
         > rigid.mesh_compliance_lcp_mm_per_n
 
 
-def test_block_is_the_sum_of_both_teeth(setup):
-    pair, flanks, _ = setup
+def test_block_is_the_sum_of_both_teeth(centred_drive_11):
+    pair, flanks, _ = centred_drive_11
     bend = tooth_bending(flanks, pair, side="drive")
     uv1 = np.array([[1.2, 36.0], [1.0, 34.0]])
     uv2 = np.array([[1.1, 0.5], [1.3, -1.0]])
@@ -87,8 +75,8 @@ def test_block_is_the_sum_of_both_teeth(setup):
     assert np.linalg.eigvalsh(G).min() > 0
 
 
-def test_bad_input(setup):
-    pair, flanks, tca = setup
+def test_bad_input(centred_drive_11):
+    pair, flanks, tca = centred_drive_11
     with pytest.raises(InputRangeError, match="bending scale"):
         tooth_bending(flanks, pair, side="drive", scale=-1.0)
     bend = tooth_bending(flanks, pair, side="coast")
@@ -96,8 +84,8 @@ def test_bad_input(setup):
         loaded_te(tca, flanks, pair, 64.5, cells=CELLS, stride=STRIDE, bending=bend)
 
 
-def test_sub_lattice_interpolation_matches_exact(setup):
-    pair, flanks, _ = setup
+def test_sub_lattice_interpolation_matches_exact(centred_drive_11):
+    pair, flanks, _ = centred_drive_11
     bend = tooth_bending(flanks, pair, side="drive")
     # a 40 x 40 field, 7 x 1 mm, affine in the cell index like the tangent-plane map,
     # at mid flank of both teeth (the s0003 reference pair's neighbourhood)

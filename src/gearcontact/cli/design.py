@@ -80,7 +80,7 @@ def check(args) -> None:
     """--calibrate needs published values and --out; design writes files only with
     --calibrate or --synthesize-easeoff --out (under the output-directory policy,
     :mod:`.outdir`)."""
-    pair = load_pair(args.pair)
+    pair = args.gear_pair = load_pair(args.pair)
     if args.calibrate and args.synthesize_easeoff:
         raise InputRangeError("--calibrate / --synthesize-easeoff", "both", "one of the two")
     if args.calibrate:
@@ -136,7 +136,7 @@ def _synthesize(args, pair) -> int:
 
 
 def run(args) -> int:
-    pair = load_pair(args.pair)
+    pair = getattr(args, "gear_pair", None) or load_pair(args.pair)
     if args.calibrate:
         return _calibrate(args, pair)
     if args.synthesize_easeoff:

@@ -479,12 +479,8 @@ def _residuals(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float) -
 
 def design_point_rows(dp: DesignPoint, targets: CalibrationTargets, *, offset_mm: float
                       ) -> tuple[CalibrationRow, ...]:
-    """Target / achieved / tolerance rows of a design point (summary tables)."""
-    return _rows(dp, targets, offset_mm)
-
-
-def _rows(dp: DesignPoint, targets: CalibrationTargets, offset_mm: float
-          ) -> tuple[CalibrationRow, ...]:
+    """Target / achieved / tolerance rows of a design point, in the order of priority
+    (the calibration's table and the summary's)."""
     inv0 = point_invariants(targets.mean_point_mm, offset_mm)
     rows = [CalibrationRow(f"P0 {name}", "mm", float(p), float(a), targets.tol_point_mm,
                            bool(abs(a - p) <= targets.tol_point_mm))
@@ -670,7 +666,7 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *,
     calibrated = dataclasses.replace(deep, **{f"easeoff_{side}": coeffs})
     tip = float(conj.cone.radius_mm(box.u_tip, inv0[3]) - inv0[2])
     return Calibration(pair=calibrated, side=side, soa_offset_mm=offsets, tip_margin_mm=tip,
-                       point=dp, rows=_rows(dp, targets, pair.offset_mm),
+                       point=dp, rows=design_point_rows(dp, targets, offset_mm=pair.offset_mm),
                        evaluations=evals["n"], seconds=time.perf_counter() - t_start)
 
 

@@ -185,25 +185,25 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     span = pairs * n
     margin = (n if center == "vertex" else 0)
     ks = np.arange(-k0 - span - margin, n - k0 + span + margin + 1)
+    lo, hi = k0 + span, len(ks) - 1 - (n - k0) - span   # vertices the window can centre
     for _ in range(_RECENTRE_TRIES):
         grid = first.phi1_rad + step * ks
         path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
                          max_step_rad=2.0 * np.pi / int(pinion_teeth)
                          / CONTINUATION_STEPS_PER_PITCH)
-        i_ref = int(np.flatnonzero(ks == 0)[0])
         if center != "vertex":
+            i_ref = int(np.flatnonzero(ks == 0)[0])
             break
         # P0 = the point of least relief along the path: the TE0 extremum of one pair
         te = np.where(path.edge, -np.inf if envelope_is_max else np.inf, path.te0_arcsec)
         i_v = int(np.argmax(te) if envelope_is_max else np.argmin(te))
-        lo, hi = k0 + span, len(grid) - 1 - (n - k0) - span
         if lo <= i_v <= hi or not np.isfinite(te[i_v]):
             break
         # the start was more than a pitch from the vertex (a bearing far from the mean
         # node): restart the continuation from the path point nearest the vertex
-        first = path.points[int(np.clip(i_v, 0, len(grid) - 1))]
-    i_ref = i_ref if center != "vertex" else int(np.clip(i_v, lo, hi))
+        first = path.points[i_v]
     if center == "vertex":
+        i_ref = int(np.clip(i_v, lo, hi))
         path = rebase(path, i_ref)
     offsets = tuple(range(-pairs, pairs + 1))
     te0 = path.te0_arcsec
