@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 import pytest
 
-from gearcontact.contact import lcp, pk_cg
+from gearcontact.contact import constrained_cg, lcp
 from gearcontact.contact.ellipse import CoarseGridWarning
 from gearcontact.contact.grid import TangentGrid
 from gearcontact.contact.influence import dense_influence_matrix
@@ -217,7 +217,7 @@ def test_pk_cg_gap_margin_fallback_to_whole_window(make_hertz, monkeypatch):
     prob = make_hertz(1.0, 12, extent=2.0)
     ref = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
     small = solve_lcp(prob.gap_mm, prob.grid, 0.3 * LOAD_N, e_star_mpa=E_STAR_MPA)
-    monkeypatch.setattr(pk_cg, "_PK_MARGIN", 0)
+    monkeypatch.setattr(constrained_cg, "_MARGIN", 0)
     res = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA,
                     warm_start=small)
     assert res.converged, res.message
@@ -288,11 +288,11 @@ def test_isolated_minimum_cell_carries_the_whole_load(solver, cell):
 def test_pk_cg_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
     # pk_cg updates C w from the step's C t and adds clipped / re-admitted cells one by
     # one from the real-space kernel (both fire on this problem); recomputing C w by FFT
-    # at every step (_PK_REFRESH = 1) follows the same iterates up to round-off: same
+    # at every step (_REFRESH = 1) follows the same iterates up to round-off: same
     # iteration count, pressures within 1e-9 of p_max (the solver tolerance is 1e-8 W).
     prob = make_hertz(10.0, 12, extent=2.0)
     fast = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
-    monkeypatch.setattr(pk_cg, "_PK_REFRESH", 1)
+    monkeypatch.setattr(constrained_cg, "_REFRESH", 1)
     exact = solve_lcp(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
     assert fast.converged and exact.converged
     assert fast.iterations == exact.iterations

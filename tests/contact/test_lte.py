@@ -135,17 +135,17 @@ def test_non_convergence_is_reported(make_hertz):
 
 
 def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
-    # The block pk_cg updates C x from the step's C t and adds clipped / re-admitted
+    # The constrained CG updates C x from the step's C t and adds clipped / re-admitted
     # cells one by one from the real-space kernels; recomputing C x at every step
     # (_REFRESH = 1) follows the same iterates up to round-off: same iteration count,
     # loads within 1e-9 of the largest (the solver tolerance is 1e-8 T), and both final
     # residuals (computed from an exact C x) below the solver's residual_tol.
-    from gearcontact.contact import mesh_lcp
+    from gearcontact.contact import constrained_cg
 
     p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
     blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
     fast = solve_mesh_lcp(blocks, 40000.0)
-    monkeypatch.setattr(mesh_lcp, "_REFRESH", 1)
+    monkeypatch.setattr(constrained_cg, "_REFRESH", 1)
     exact = solve_mesh_lcp(blocks, 40000.0)
     assert fast.converged and exact.converged
     assert fast.iterations == exact.iterations
@@ -158,13 +158,13 @@ def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
 
 @pytest.mark.parametrize("checks", [3, 0])
 def test_pair_closing_outside_the_windows(make_hertz, monkeypatch, checks):
-    # The block pk_cg works on windows around the loaded cells; a pair that starts
+    # The constrained CG works on windows around the loaded cells; a pair that starts
     # without load (warm start from the first pair alone) is found by the whole-field
     # check at convergence and joins (its window widened, or with _CHECKS = 0 the
     # whole fields): same solution as a cold start, to the solver tolerance.
-    from gearcontact.contact import mesh_lcp
+    from gearcontact.contact import constrained_cg
 
-    monkeypatch.setattr(mesh_lcp, "_CHECKS", checks)
+    monkeypatch.setattr(constrained_cg, "_CHECKS", checks)
     p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
     blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
     alone = solve_mesh_lcp(blocks[:1], 40000.0)

@@ -15,9 +15,9 @@ import pytest
 
 SCRIPT = r"""
 import warnings
-from gearcontact.contact import influence, lcp, pk_cg
+from gearcontact.contact import constrained_cg, influence, lcp
 def sigs():
-    return {f"{m.__name__}.{k}": set(map(str, v.signatures)) for m in (pk_cg, influence, lcp)
+    return {f"{m.__name__}.{k}": set(map(str, v.signatures)) for m in (constrained_cg, influence, lcp)
             for k, v in vars(m).items() if hasattr(v, "signatures") and hasattr(v, "py_func")}
 lcp.warm_up()
 before = sigs()

@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import time
 
+from ..contact.constrained_cg import SolveStatus
 from ..contact.lte import loaded_te
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
@@ -81,7 +82,7 @@ def run(args) -> int:
     for line in lte_warnings(res):
         warn("lte", line)
     if not res.converged:
-        bad = [k for k, s in enumerate(res.status) if s != "converged"]
+        bad = [k for k, s in enumerate(res.status) if s is not SolveStatus.CONVERGED]
         warn("lte", f"LCP not converged at phases {bad}")
         return EXIT_CHECK_FAILED
     return 0

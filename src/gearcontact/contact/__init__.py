@@ -3,6 +3,8 @@
 Fields on a :class:`TangentGrid` are ``(ny, nx)`` arrays ``h[j, i]`` with x along axis 1.
 """
 
+from .compliance import BlockCompliance
+from .constrained_cg import SolveStatus, constrained_cg
 from .ellipse import CoarseGridWarning, ContactEllipse, fit_contact_ellipse
 from .grid import TangentGrid
 from .influence import (FftInfluence, dense_influence_matrix, fft_influence,
@@ -15,4 +17,5 @@ __all__ = ["TangentGrid", "love_rectangle_displacement", "dense_influence_matrix
            "FftInfluence", "fft_influence", "LcpResult", "LcpConvergenceError",
            "solve_lcp", "SOLVERS", "PatchContact", "ContactAtEdgeWarning",
            "solve_patch", "patch_statistics", "plot_patch", "ContactEllipse",
-           "CoarseGridWarning", "fit_contact_ellipse"]
+           "CoarseGridWarning", "fit_contact_ellipse", "BlockCompliance", "SolveStatus",
+           "constrained_cg"]

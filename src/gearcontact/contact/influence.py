@@ -379,8 +379,7 @@ class FftInfluence:
         """Loads (N) approximately producing ``displacement_mm``: a preconditioner.
 
         :func:`boussinesq_inverse` on the operator's padded grid: symmetric positive
-        definite, exact on a ``1 x 1`` field; used by the multi-pair ``pk_cg`` of
-        :mod:`.mesh_lcp` following Vollebregt (2014).
+        definite, exact on a ``1 x 1`` field (Vollebregt 2014).
         """
         return boussinesq_inverse(displacement_mm, dx_mm=self._dx, dy_mm=self._dy,
                                   e_star_mpa=self._e_star, padded_shape=self._pad)

@@ -12,7 +12,7 @@ return the same :class:`LcpResult`:
     Polonsky & Keer's constrained conjugate gradient (Wear 231 (1999) 206-219) with the
     zero-padded FFT operator, on uniform grids, preconditioned by the inverse
     Boussinesq symbol (Vollebregt 2014), warm-startable from a previous pressure
-    (:mod:`.pk_cg`).
+    (:mod:`.constrained_cg`, the package's one iteration, on a one-block stack).
 ``"nnls"`` (reference)
     The Lawson & Hanson (1974) NNLS active-set algorithm (``scipy.optimize.nnls``) on
     the Cholesky factor ``C = L L^T`` -- ``min ||L^T w - L^-1 (delta - h)||, w >= 0`` has
@@ -54,11 +54,12 @@ from ..materials import STEEL, Material, reduced_modulus_mpa
 from ..validation import InputRangeError, check_positive
 from .ellipse import warn_if_coarse
 from .grid import TangentGrid
-from .influence import FftInfluence, dense_influence_matrix
-from .pk_cg import pk_cg as _pk_cg
+from .compliance import BlockCompliance
+from .constrained_cg import SolveStatus, constrained_cg
+from .influence import dense_influence_matrix
 
-__all__ = ["LcpResult", "LcpConvergenceError", "solve_lcp", "SOLVERS", "resolve_e_star",
-           "warm_up"]
+__all__ = ["LcpResult", "LcpConvergenceError", "solve_lcp", "SOLVERS", "SolveStatus",
+           "resolve_e_star", "warm_up"]
 
 #: Solver names accepted by :func:`solve_lcp`.
 SOLVERS = ("pk_cg", "nnls", "active_set")
@@ -93,8 +94,8 @@ class LcpResult:
         dimensionless (covers penetration, negative loads and open loaded cells).
     load_residual : float
         ``|sum(w) - W| / W``.
-    status : str
-        ``"converged"``, ``"max_iter"`` or ``"failed"``.
+    status : SolveStatus
+        CONVERGED, MAX_ITER or FAILED (a ``str`` enum).
     message : str
         Human-readable account of the solve (window, certificate, failure cause).
     solve_time_ms : float
@@ -114,7 +115,7 @@ class LcpResult:
     iterations: int
     complementarity_residual: float
     load_residual: float
-    status: str
+    status: SolveStatus
     message: str
     solve_time_ms: float
     solver: str
@@ -123,8 +124,8 @@ class LcpResult:
 
     @property
     def converged(self) -> bool:
-        """True when ``status == "converged"``."""
-        return self.status == "converged"
+        """True when ``status`` is CONVERGED."""
+        return self.status is SolveStatus.CONVERGED
 
     @property
     def n_contact_cells(self) -> int:
@@ -361,7 +362,7 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
     b_star = _initial_bound(h_full.ravel(), area_full.ravel(), load, e_star)
     bound = hmin + _WINDOW_FACTOR * (b_star - hmin)
     iterations, notes = 0, []
-    ok, msg = False, ""
+    ok, msg, max_iter_hit = False, "", False
     for _round in range(_MAX_WINDOWS):
         cand = h_full <= bound
         rows, cols = np.flatnonzero(cand.any(axis=1)), np.flatnonzero(cand.any(axis=0))
@@ -376,13 +377,16 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
                 np.ones_like(h)
             if not w0.any():
                 w0 = (h == h.min()).astype(float)
-        if solver == "pk_cg":
-            op = FftInfluence(h.shape, dx_mm=float(grid.dx_mm[0]),
-                              dy_mm=float(grid.dy_mm[0]), e_star_mpa=e_star)
-            w, u, it, ok = _pk_cg(op, h, load, w0, tol, n_iter, precondition)
+        if solver == "pk_cg":  # the package's constrained CG on a one-block stack
+            op = BlockCompliance(h.shape, [(float(grid.dx_mm[0]), float(grid.dy_mm[0]))],
+                                 e_star_mpa=e_star)
+            out = constrained_cg(op, h[None], w0[None], load, tol=tol, max_iter=n_iter,
+                                 precondition=precondition)
+            w, u, it, ok = out.x[0], out.u[0], out.iterations, out.converged
             contact = w > 0.0
             delta = float((u + h)[contact].mean())
-            msg = "pk_cg converged" if ok else "pk_cg hit max_iter"
+            msg = f"pk_cg {out.status}"
+            max_iter_hit = out.status is SolveStatus.MAX_ITER
         else:
             sub = grid.sub(*box)
             sel = cand[box].ravel()
@@ -393,10 +397,12 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
                     guess = 2.1 * (b_star - hmin) if np.isfinite(b_star) else np.ptp(hs)
                     ws, delta, it, ok, msg = _nnls_reference(c, hs, load, n_iter,
                                                              hmin + guess)
+                    max_iter_hit = not ok
                 else:
                     ws, delta, it, ok, msg = _active_set(c, hs, load,
                                                          w0.ravel()[sel] > 0.0, tol,
                                                          n_iter, sub.is_uniform)
+                    max_iter_hit = not ok
             except linalg.LinAlgError as exc:  # a non-SPD / singular active block
                 ws, delta, it, ok = np.zeros_like(hs), np.nan, 0, False
                 msg = f"{solver} failed: {exc}"
@@ -435,7 +441,8 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
     pressure.setflags(write=False)
     mask = loads_full > 0.0
     mask.setflags(write=False)
-    status = "converged" if ok else ("max_iter" if "max_iter" in msg else "failed")
+    status = SolveStatus.CONVERGED if ok else (SolveStatus.MAX_ITER if max_iter_hit
+                                               else SolveStatus.FAILED)
     result = LcpResult(pressure, loads_full, float(delta), mask, int(iterations),
                        float(comp), float(load_res), status, "; ".join(notes),
                        1e3 * (time.perf_counter() - t_start), solver, load,

@@ -84,7 +84,7 @@ from tqdm import tqdm
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive, check_range
 from .lte_pairs import PairContact, PairFields, phase_contacts
-from .mesh_lcp import MeshLcpResult, solve_mesh_lcp
+from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
 __all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "check_loaded", "loaded_te",
@@ -128,7 +128,7 @@ class LoadedTE:
         LCP load that pairs carried at the previous phase when their mating point has
         left the flanks at this one (they are dropped: no tip-edge contact model, so
         TE_LCP steps there), N.
-    status : tuple of str
+    status : tuple of SolveStatus
         LCP status per phase.
     solve_ms, field_ms : ndarray (K,)
         LCP solve time and gap-field time per phase, ms.
@@ -215,7 +215,7 @@ class LoadedTE:
     @property
     def converged(self) -> bool:
         """True when every phase's LCP converged."""
-        return all(s == "converged" for s in self.status)
+        return all(s is SolveStatus.CONVERGED for s in self.status)
 
     def summary(self) -> dict:
         """Plain-JSON scalars (the keys of ``lte.json``)."""
@@ -245,7 +245,7 @@ class LoadedTE:
                 "field_edge_phases": int(self.field_edge.sum()),
                 "max_dropped_load_n": float(self.dropped_load_n.max()),
                 "converged": self.converged,
-                "unconverged_phases": int(sum(s != "converged" for s in self.status)),
+                "unconverged_phases": int(sum(s is not SolveStatus.CONVERGED for s in self.status)),
                 **self._stiffness_summary(),
                 "te_sign": self.te_sign, "cells": self.cells, "bending": self.bending,
                 "solve_ms_per_phase": float(self.solve_ms.mean()),
@@ -543,7 +543,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
                 r2, *_ = solve_phase(contacts, fields, torque * (1.0 + sgn * eps), materials,
                                       tol=tol, warm=warm, theta_pre=th_pre,
                                       rigid=rigid or bending is None)
-                if not r2.converged and status[-1] == "converged":
+                if not r2.converged and status[-1] is SolveStatus.CONVERGED:
                     status[-1] = r2.status
                 th.append(r2.rotation_rad)
             k_arr[k] = 2.0 * eps * t / (th[0] - th[1])          # N·m/rad

@@ -33,7 +33,7 @@ from .grid import TangentGrid
 from .line_peak import LinePeak, line_contact_peak
 from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
-from .mesh_lcp import MeshLcpResult
+from .mesh_lcp import MeshLcpResult, SolveStatus
 from .pair_ltca import ARCSEC_PER_RAD
 
 __all__ = ["EngagedPair", "MultiToothCase", "multi_tooth_ltca"]
@@ -114,7 +114,7 @@ class MultiToothCase:
         Hamrock–Brewe p_max of the reference pair at its LCP load with bending, MPa.
     bending : bool
         The second solve had tooth bending (False: both solves are rigid).
-    status, status_rigid : str
+    status, status_rigid : SolveStatus
         LCP status of the two solves.
     solve_ms, solve_rigid_ms : float
         LCP solve times, ms (run.json only).
@@ -130,8 +130,8 @@ class MultiToothCase:
     rotation_arcsec: float
     preview_p_max_mpa: float
     bending: bool
-    status: str
-    status_rigid: str
+    status: SolveStatus
+    status_rigid: SolveStatus
     solve_ms: float
     solve_rigid_ms: float
     edge_contact: bool
@@ -139,7 +139,8 @@ class MultiToothCase:
     @property
     def converged(self) -> bool:
         """Both LCP solves converged."""
-        return self.status == "converged" and self.status_rigid == "converged"
+        return (self.status is SolveStatus.CONVERGED
+                and self.status_rigid is SolveStatus.CONVERGED)
 
     def _shares(self, attr: str) -> list[float]:
         w = np.array([getattr(p, attr) for p in self.pairs])

@@ -36,7 +36,7 @@ from scipy.interpolate import CubicSpline
 from ..structure.shell import ShellModel, tooth_shell
 from ..validation import check_range
 
-__all__ = ["ToothBending", "tooth_bending", "add_low_rank", "bending_stack"]
+__all__ = ["ToothBending", "tooth_bending", "bending_stack"]
 
 #: Relative cut of the compressed bending factor: the pivoted Cholesky stops when the
 #: largest remaining diagonal of F F^T is below this fraction of the largest diagonal
@@ -165,17 +165,6 @@ def tooth_bending(flanks, pair, *, side: str, order: int = 6, order_face: int = 
         gear=tooth_shell(flanks, "gear", material=pair.gear_material, order=order,
                          order_face=order_face),
         side=side, scale=float(scale))
-
-
-def add_low_rank(f: np.ndarray, v: np.ndarray, out: np.ndarray) -> np.ndarray:
-    """``out[k] += F_k (F_k^T v[k])`` for factors ``f`` (blocks, ny, nx, r) and fields
-    ``v`` (blocks, ny, nx): the bending part of the stacked operator of
-    :mod:`.mesh_lcp`."""
-    nb, ny, nx, r = f.shape
-    f2 = f.reshape(nb, ny * nx, r)
-    c = np.matmul(v.reshape(nb, 1, ny * nx), f2)              # (nb, 1, r)
-    out += np.matmul(f2, c.transpose(0, 2, 1)).reshape(nb, ny, nx)
-    return out
 
 
 def bending_stack(blocks, shape) -> np.ndarray | None:
