@@ -4,7 +4,7 @@ Fields on a :class:`TangentGrid` are ``(ny, nx)`` arrays ``h[j, i]`` with x alon
 """
 
 from .compliance import BlockCompliance
-from .constrained_cg import SolveStatus, constrained_cg
+from .constrained_cg import SolveStatus
 from .ellipse import CoarseGridWarning, ContactEllipse, fit_contact_ellipse
 from .grid import TangentGrid
 from .influence import (FftInfluence, dense_influence_matrix, fft_influence,
@@ -17,5 +17,4 @@ __all__ = ["TangentGrid", "love_rectangle_displacement", "dense_influence_matrix
            "FftInfluence", "fft_influence", "LcpResult", "LcpConvergenceError",
            "solve_lcp", "SOLVERS", "PatchContact", "ContactAtEdgeWarning",
            "solve_patch", "patch_statistics", "plot_patch", "ContactEllipse",
-           "CoarseGridWarning", "fit_contact_ellipse", "BlockCompliance", "SolveStatus",
-           "constrained_cg"]
+           "CoarseGridWarning", "fit_contact_ellipse", "BlockCompliance", "SolveStatus"]

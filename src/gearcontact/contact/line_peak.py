@@ -49,7 +49,8 @@ import numpy as np
 from ..validation import InputRangeError
 from .grid import TangentGrid
 
-__all__ = ["LinePeak", "MIN_STRIP_CELLS", "inadmissible_cells", "line_contact_peak"]
+__all__ = ["LinePeak", "MIN_STRIP_CELLS", "boundary_cells", "inadmissible_cells",
+           "line_contact_peak", "trimmed_gap"]
 
 #: Strips with fewer admissible loaded cells carry no width estimate (a single cell
 #: has only the Sheppard variance).
@@ -84,14 +85,37 @@ class LinePeak:
     trimmed_load_n: float
 
 
-def inadmissible_cells(loaded: np.ndarray, off_flank: np.ndarray) -> np.ndarray:
-    """Loaded cells with an off-flank 4-neighbour (boundary-inadmissible)."""
+def boundary_cells(off_flank: np.ndarray) -> np.ndarray:
+    """On-flank cells with an off-flank 4-neighbour: the boundary row of the flank."""
     near = np.zeros_like(off_flank, dtype=bool)
     near[1:, :] |= off_flank[:-1, :]
     near[:-1, :] |= off_flank[1:, :]
     near[:, 1:] |= off_flank[:, :-1]
     near[:, :-1] |= off_flank[:, 1:]
-    return loaded & near & ~off_flank
+    return near & ~off_flank
+
+
+def inadmissible_cells(loaded: np.ndarray, off_flank: np.ndarray) -> np.ndarray:
+    """Loaded cells with an off-flank 4-neighbour (boundary-inadmissible)."""
+    return loaded & boundary_cells(off_flank)
+
+
+def trimmed_gap(gap_mm: np.ndarray, off_flank: np.ndarray, loaded: np.ndarray,
+                separation_mm: float) -> np.ndarray | None:
+    """The gap for the LCP re-solved without the boundary-inadmissible cells.
+
+    When a solution loads a boundary cell (:func:`boundary_cells`), the whole boundary
+    row is removed from the potential contact (its gap set to ``separation_mm``, the
+    off-flank separation, mm): the flank is eroded by one cell, a set fixed by the
+    geometry alone, so one re-solve is final (removing only the loaded boundary cells
+    could load their neighbours along the edge). Returns None when no boundary cell
+    is loaded (the solution stands: cells without load keep ``s > 0`` when their gap
+    grows).
+    """
+    bnd = boundary_cells(np.asarray(off_flank, bool))
+    if not (bnd & loaded).any():
+        return None
+    return np.where(bnd, separation_mm, gap_mm)
 
 
 def line_contact_peak(loads_n: np.ndarray, grid: TangentGrid,

@@ -35,6 +35,7 @@ from ..tca.solve import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive, check_range
 from .ellipse import ContactEllipse
 from .grid import TangentGrid
+from .line_peak import LinePeak, line_contact_peak, trimmed_gap
 from .load import normal_load_from_torque, torque_lever_mm
 from .patch import PatchContact, solve_patch
 
@@ -73,6 +74,14 @@ class PairLoadCase:
         The gap the LCP solved, mm (off-flank cells set to ``OFF_FLANK_GAP_MM``).
     on_flank : ndarray of bool (ny, nx) or None
         Cells whose normal line meets both flanks.
+    peak : LinePeak or None
+        Line-contact peak ``CP_max`` of the solution, boundary-inadmissible cells
+        trimmed afterwards (:mod:`.line_peak`).
+    resolved : PatchContact or None
+        The LCP re-solved without the flank's boundary row (:func:`.line_peak.trimmed_gap`)
+        when the solution loaded it; None: no boundary cell carried load.
+    peak_resolved : LinePeak or None
+        Line-contact peak of ``resolved`` (None when not re-solved).
     """
 
     torque_nm: float
@@ -86,6 +95,27 @@ class PairLoadCase:
     edge_contact: bool = False
     gap_mm: np.ndarray | None = None
     on_flank: np.ndarray | None = None
+    peak: LinePeak | None = None
+    resolved: PatchContact | None = None
+    peak_resolved: LinePeak | None = None
+
+    def edge_summary(self) -> dict:
+        """Raw cell peak, trimmed-and-re-solved peak and ``CP_max`` (MPa), trimmed
+        cells and their raw load (N); the re-solved values equal the raw ones when no
+        boundary cell carried load."""
+        if self.peak is None:
+            return {}
+        res = self.resolved if self.resolved is not None else self.patch
+        pk = self.peak_resolved if self.peak_resolved is not None else self.peak
+        return {"p_peak_cell_mpa": self.peak.p_peak_cell_mpa,
+                "p_peak_trimmed_resolved_mpa": float(res.lcp.pressure_mpa.max()),
+                "cp_max_mpa": self.peak.cp_max_mpa,
+                "cp_max_resolved_mpa": pk.cp_max_mpa,
+                "trimmed_cells": self.peak.trimmed_cells,
+                "trimmed_load_n": self.peak.trimmed_load_n,
+                "edge_resolved": self.resolved is not None,
+                "mesh_rotation_resolved_arcsec": res.delta_mm / self.lever_mm
+                * ARCSEC_PER_RAD}
 
     def summary(self) -> dict:
         """Flat JSON-ready dict (the keys of ``ltca.json``)."""
@@ -96,6 +126,7 @@ class PairLoadCase:
                  preview_a_mm=self.preview.a_mm, preview_b_mm=self.preview.b_mm,
                  preview_mesh_rotation_arcsec=self.preview_mesh_rotation_arcsec,
                  off_flank_cells=self.off_flank_cells, edge_contact=self.edge_contact)
+        d.update(self.edge_summary())
         return d
 
 
@@ -186,8 +217,21 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     near_off[:-1, :] |= off[1:, :]
     near_off[:, 1:] |= off[:, :-1]
     near_off[:, :-1] |= off[:, 1:]
+    # boundary-inadmissible cells (docs/spec.md sec. 5): trimmed, and the LCP re-solved
+    # without the flank's boundary row when it carried load (warm from the raw solution)
+    gap2 = trimmed_gap(gap, off, loaded, OFF_FLANK_GAP_MM)
+    resolved = peak_resolved = None
+    if gap2 is not None:
+        resolved = solve_patch(gap2, grid, load, materials=(pair.pinion_material,
+                                                           pair.gear_material),
+                               solver=solver, warm_start=np.where(
+                                   gap2 < OFF_FLANK_GAP_MM, patch.lcp.pressure_mpa, 0.0),
+                               warn_edge=False, warn_coarse=False)
+        peak_resolved = line_contact_peak(resolved.lcp.loads_n, grid, gap2 >= OFF_FLANK_GAP_MM)
     # approach of the (rigid) teeth along the normal -> gear rotation about its axis
     return PairLoadCase(off_flank_cells=int(off.sum()), gap_mm=gap, on_flank=~off,
+                        peak=line_contact_peak(patch.lcp.loads_n, grid, off),
+                        resolved=resolved, peak_resolved=peak_resolved,
                         edge_contact=bool((loaded & near_off).any()),
 torque_nm=t, lever_mm=lever, load_n=load, preview=pre, patch=patch,
                         mesh_rotation_arcsec=patch.delta_mm / lever * ARCSEC_PER_RAD,
