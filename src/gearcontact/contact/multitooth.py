@@ -23,18 +23,18 @@ of hypoid gears with tooth bending). docs/spec.md sec. 5.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive, check_range
 from .grid import TangentGrid
-from .line_peak import LinePeak, line_contact_peak
+from .line_peak import LinePeak, line_contact_peak, trimmed_gap
 from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
-from .mesh_lcp import MeshLcpResult, SolveStatus
-from .pair_ltca import ARCSEC_PER_RAD
+from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
+from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
 __all__ = ["EngagedPair", "MultiToothCase", "multi_tooth_ltca"]
 
@@ -66,6 +66,11 @@ class EngagedPair:
         = z), mm.
     peak : LinePeak
         Line-contact peak of the bending solution.
+    load_resolved_n : float
+        Normal load of the bending solution re-solved without the flanks' boundary
+        rows (:func:`.line_peak.trimmed_gap`), N (= ``load_n`` when not re-solved).
+    peak_resolved : LinePeak
+        Line-contact peak of the re-solved solution (= ``peak`` when not re-solved).
     """
 
     offset: int
@@ -80,6 +85,8 @@ class EngagedPair:
     origin_mm: np.ndarray
     frame: np.ndarray
     peak: LinePeak
+    load_resolved_n: float
+    peak_resolved: LinePeak
 
     @property
     def pressure_mpa(self) -> np.ndarray:
@@ -120,6 +127,13 @@ class MultiToothCase:
         LCP solve times, ms (run.json only).
     edge_contact : bool
         A loaded cell borders a flank boundary (bending solution).
+    rotation_resolved_arcsec : float
+        Rotation of the bending solution re-solved without the boundary-inadmissible
+        cells, arcsec (= ``rotation_arcsec`` when no boundary cell carried load).
+    resolved : bool
+        The bending solution loaded a flank's boundary row and was re-solved.
+    status_resolved : SolveStatus
+        LCP status of the re-solve (that of the bending solve when not re-solved).
     """
 
     torque_nm: float
@@ -135,12 +149,16 @@ class MultiToothCase:
     solve_ms: float
     solve_rigid_ms: float
     edge_contact: bool
+    rotation_resolved_arcsec: float
+    resolved: bool
+    status_resolved: SolveStatus
 
     @property
     def converged(self) -> bool:
         """Both LCP solves converged."""
         return (self.status is SolveStatus.CONVERGED
-                and self.status_rigid is SolveStatus.CONVERGED)
+                and self.status_rigid is SolveStatus.CONVERGED
+                and self.status_resolved is SolveStatus.CONVERGED)
 
     def _shares(self, attr: str) -> list[float]:
         w = np.array([getattr(p, attr) for p in self.pairs])
@@ -192,6 +210,13 @@ class MultiToothCase:
             "trimmed_cells": sum(p.peak.trimmed_cells for p in self.pairs),
             "trimmed_load_n": sum(p.peak.trimmed_load_n for p in self.pairs),
             "preview_p_max_mpa": self.preview_p_max_mpa,
+            "edge_resolved": self.resolved,
+            "p_peak_trimmed_resolved_mpa": max(float(p.peak_resolved.p_peak_cell_mpa)
+                                               for p in self.pairs),
+            "cp_max_resolved_mpa": max(p.peak_resolved.cp_max_mpa for p in self.pairs),
+            "load_share_resolved_pct": self._shares("load_resolved_n"),
+            "mesh_rotation_resolved_arcsec": self.rotation_resolved_arcsec,
+            "status_resolved": self.status_resolved,
             "edge_contact": self.edge_contact,
             "status": self.status, "status_rigid": self.status_rigid,
             "converged": self.converged}
@@ -268,11 +293,24 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
                     phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, {}, edge_steps)]
         out.append((fields, *_solve(contacts, fields, torque, materials, tol, t)))
     (_, rig, reach_r, _, _, _), (fields, res, reach, blocks, offs, edge) = out
+    # boundary-inadmissible cells (docs/spec.md sec. 5): re-solve without the flanks'
+    # boundary rows when the bending solution loaded them (warm from it)
+    gaps = [trimmed_gap(b.gap_mm, off, m, OFF_FLANK_GAP_MM)
+            for b, off, m in zip(blocks, offs, res.contact_masks)]
+    fin, trimmed_offs = res, offs
+    if any(g is not None for g in gaps):
+        gaps = [b.gap_mm if g is None else g for b, g in zip(blocks, gaps)]
+        trimmed_offs = [g >= OFF_FLANK_GAP_MM for g in gaps]
+        fin = solve_mesh_lcp([replace(b, gap_mm=g) for b, g in zip(blocks, gaps)], torque,
+                             materials=materials, tol=tol, rotation_guess_rad=res.rotation_rad,
+                             warm_start=[np.where(o, 0.0, p) for o, p in
+                                         zip(trimmed_offs, res.pressures_mpa(blocks))])
     rigid_load = {pc.offset: float(w.sum()) for pc, w in zip(reach_r, rig.loads_n)}
     total = float(sum(w.sum() for w in res.loads_n))
     main = next(pc for pc in reach if pc.opening_arcsec == 0.0 and not pc.edge)
     engaged = []
-    for pc, w, b, off in zip(reach, res.loads_n, blocks, offs):
+    for pc, w, b, off, wf, of in zip(reach, res.loads_n, blocks, offs, fin.loads_n,
+                                     trimmed_offs):
         load = float(w.sum())
         if load <= ACTIVE_SHARE * total and rigid_load.get(pc.offset, 0.0) <= 0.0:
             continue
@@ -281,7 +319,8 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
             offset=pc.offset, lever_mm=float(b.lever_mm), opening_arcsec=float(pc.opening_arcsec),
             edge=pc.edge, load_n=load, load_rigid_n=rigid_load.get(pc.offset, 0.0),
             loads_n=w, grid=b.grid, off_flank=off, origin_mm=np.asarray(origin, float),
-            frame=np.asarray(frame, float), peak=line_contact_peak(w, b.grid, off)))
+            frame=np.asarray(frame, float), peak=line_contact_peak(w, b.grid, off),
+            load_resolved_n=float(wf.sum()), peak_resolved=line_contact_peak(wf, b.grid, of)))
     engaged.sort(key=lambda p: (abs(p.offset - main.offset), -p.offset))
     ref = engaged[0]
     engine = get_engine("reference", material=pair.pinion_material,
@@ -293,4 +332,6 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
         rotation_arcsec=float(res.rotation_rad * ARCSEC_PER_RAD),
         preview_p_max_mpa=float(pre.p_max_mpa), bending=bending is not None,
         status=res.status, status_rigid=rig.status, solve_ms=float(res.solve_time_ms),
-        solve_rigid_ms=float(rig.solve_time_ms), edge_contact=bool(edge))
+        solve_rigid_ms=float(rig.solve_time_ms), edge_contact=bool(edge),
+        rotation_resolved_arcsec=float(fin.rotation_rad * ARCSEC_PER_RAD),
+        resolved=fin is not res, status_resolved=fin.status)
