@@ -1,7 +1,8 @@
 """``gearcontact bending``: tooth bending compliance of one member (shell, optionally FE).
 
 Writes into ``--out`` (created if missing): ``compliance.json`` (``points_mm``: a lattice
-of drive-flank points in the member's body frame; ``shell_mm_per_n``: the shell
+of points of the loaded flank (``--side``, default the pair's design side) in the
+member's body frame; ``shell_mm_per_n``: the shell
 Rayleigh-Ritz point-compliance matrix between them; the deflections under segment loads
 around the points and line loads over the face; with ``--fe`` also ``fe_mm_per_n``,
 the FE segment / line deflections, ``fe_nodes`` (nodes of the P2 mesh) and the
@@ -27,6 +28,9 @@ def register(sub) -> None:
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, phases=False)
     p.add_argument("--member", choices=("pinion", "gear"), default="pinion")
+    p.add_argument("--side", choices=("drive", "coast"), default=None,
+                   help="loaded flank (default: the pair's design side, the one its "
+                        "contact uses)")
     p.add_argument("--order", type=int, default=6,
                    help="Legendre order of the Ritz basis over the tooth height, 1..16 "
                         "(default 6)")
@@ -65,13 +69,14 @@ def run(args) -> int:
     # lattice over the inner part of the flank (xi in +-0.5, eta in +-1/3)
     lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
                for s, n in zip((0.5, 1 / 3), args.points)]
-    res = flank_compliance(pair, args.member, flanks=flanks, xi=lattice[0], eta=lattice[1],
+    side = pair.design_side if args.side is None else args.side
+    res = flank_compliance(pair, args.member, side=side, flanks=flanks, xi=lattice[0], eta=lattice[1],
                            order=args.order, order_face=args.order_face, fe=args.fe,
                            fe_mesh=FeMesh(*args.fe_mesh))
     write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
                      order=args.order, order_face=args.order_face)
     seg = res.segment_shell_mm_per_n
-    line = (f"{pair.name} {args.member}: {len(res.xi)} drive-flank points, shell segment-load "
+    line = (f"{pair.name} {args.member}: {len(res.xi)} {side}-flank points, shell segment-load "
             f"deflection {seg.min():.3g}..{seg.max():.3g} mm/N")
     if res.fe_mm_per_n is not None:
         r = res.ratios()

@@ -1,7 +1,7 @@
 """Flank compliance tables of one tooth: shell Rayleigh-Ritz beside 3D finite elements.
 
 :func:`flank_compliance` evaluates the bending compliance of one tooth of a pair at a
-lattice of drive-flank points (on the node lines of the FE mesh, so that the shell and
+lattice of points of its loaded flank (drive or coast) (on the node lines of the FE mesh, so that the shell and
 the FE see the same points) with the shell model of :mod:`.shell` and, optionally, the
 FE model of :mod:`.fe`; :func:`write_compliance` writes ``compliance.json`` and the
 figure of the deflection over the flank (``gearcontact bending``).
@@ -19,7 +19,7 @@ Two kinds of numbers:
   around each lattice point, and a *line* load over the whole face at each lattice
   height. The compared deflection is the mean deflection of the coast-flank points
   behind the loaded ones (the bending deflection without the local indentation under
-  the discrete nodal loads). These are checked against the FE (``docs/bending.md``).
+  the discrete nodal loads; the back flank is the other side's). These are checked against the FE (``docs/bending.md``).
 """
 
 from __future__ import annotations
@@ -54,15 +54,17 @@ class FeMesh:
 
 @dataclass(frozen=True)
 class FlankCompliance:
-    """Compliance of one tooth at a lattice of drive-flank points, mm/N.
+    """Compliance of one tooth at a lattice of points of its loaded flank, mm/N.
 
     Attributes
     ----------
     member : str
+    side : str
+        The loaded flank, "drive" or "coast".
     xi, eta : ndarray (n,)
         Tooth coordinates of the lattice points.
     points_mm : ndarray (n, 3)
-        Drive-flank lattice points, body frame, mm.
+        Lattice points on the loaded flank, body frame, mm.
     shell_mm_per_n : ndarray (n, n)
         Shell point compliance between the lattice points (along the inward normal).
     segment_shell_mm_per_n : ndarray (n,)
@@ -80,6 +82,7 @@ class FlankCompliance:
     """
 
     member: str
+    side: str
     xi: np.ndarray
     eta: np.ndarray
     points_mm: np.ndarray
@@ -100,7 +103,7 @@ class FlankCompliance:
 
     def summary(self) -> dict:
         """JSON-ready dict (keys of ``compliance.json``)."""
-        out = {"member": self.member, "xi": self.xi.tolist(), "eta": self.eta.tolist(),
+        out = {"member": self.member, "side": self.side, "xi": self.xi.tolist(), "eta": self.eta.tolist(),
                "points_mm": self.points_mm.tolist(),
                "shell_mm_per_n": self.shell_mm_per_n.tolist(),
                "segment_shell_mm_per_n": self.segment_shell_mm_per_n.tolist(),
@@ -141,18 +144,21 @@ def _load_sets(i_xi: np.ndarray, j_eta: np.ndarray, n_xi: int):
 
 
 def _distributed(G: np.ndarray, sets) -> np.ndarray:
-    """Mean coast-side deflection under a unit load spread over each node set (drive):
-    ``G`` holds the drive nodes then the coast nodes (directions into the tooth, so
-    the coast deflection along the drive load is the negative)."""
+    """Mean back-flank deflection under a unit load spread over each node set of the
+    loaded flank: ``G`` holds the loaded-flank nodes then the back-flank nodes
+    (directions into the tooth, so the back deflection along the load is the
+    negative)."""
     n = G.shape[0] // 2
     return np.array([-np.mean(G[n:, :n][np.ix_(s, s)]) for s in sets])
 
 
-def flank_compliance(pair, member: str, *, flanks: FlankSet | None = None,
+def flank_compliance(pair, member: str, *, side: str = "drive",
+                     flanks: FlankSet | None = None,
                      xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = 6,
                      order_face: int = 16, foundation: RootFoundation | None = None,
                      fe: bool = False, fe_mesh: FeMesh = FeMesh()) -> FlankCompliance:
-    """Compliance of one tooth of ``member`` at the drive-flank lattice ``xi x eta``.
+    """Compliance of one tooth of ``member`` at the lattice ``xi x eta`` of its flank
+    ``side`` (loaded there, normal into the tooth).
 
     The lattice values are snapped to the nearest node lines of the FE mesh
     (``fe_mesh``, also without ``fe``) so that shell and FE see the same points.
@@ -162,6 +168,9 @@ def flank_compliance(pair, member: str, *, flanks: FlankSet | None = None,
     pair : GearPair
     member : str
         "pinion" or "gear".
+    side : str
+        The loaded flank, "drive" or "coast" (a pair's ``design_side`` is the one its
+        contact uses).
     flanks : FlankSet or None
         The pair's flanks (built when None).
     xi, eta : sequence of float
@@ -177,6 +186,9 @@ def flank_compliance(pair, member: str, *, flanks: FlankSet | None = None,
     """
     if member not in ("pinion", "gear"):
         raise InputRangeError("member", member, "'pinion' or 'gear'")
+    if side not in ("drive", "coast"):
+        raise InputRangeError("side", side, "'drive' or 'coast'")
+    back = "coast" if side == "drive" else "drive"
     xi, eta = (np.asarray(a, float).ravel() for a in (xi, eta))
     for name, a in (("xi", xi), ("eta", eta)):
         if a.size == 0 or np.any(np.abs(a) > 1.0) or not np.all(np.isfinite(a)):
@@ -194,12 +206,12 @@ def flank_compliance(pair, member: str, *, flanks: FlankSet | None = None,
     shell = tooth_shell(flanks, member, material=material, order=order,
                         order_face=order_face, foundation=foundation)
     tooth = shell.body
-    lattice = tooth.points_at("drive", xl[I], el[J])
+    lattice = tooth.points_at(side, xl[I], el[J])
     nx, ny = xl[nodes[:, 0]], el[nodes[:, 1]]
-    both = concat_points(tooth.points_at("drive", nx, ny), tooth.points_at("coast", nx, ny))
+    both = concat_points(tooth.points_at(side, nx, ny), tooth.points_at(back, nx, ny))
     Gs = shell.compliance(both).matrix()
     n = len(I)
-    kw = dict(member=member, xi=xl[I], eta=el[J], points_mm=lattice.position_mm,
+    kw = dict(member=member, side=side, xi=xl[I], eta=el[J], points_mm=lattice.position_mm,
               shell_mm_per_n=shell.compliance(lattice).matrix(),
               segment_shell_mm_per_n=_distributed(Gs, sets[:n]), line_eta=el[heights],
               line_shell_mm_per_n=_distributed(Gs, sets[n:]))
@@ -208,10 +220,10 @@ def flank_compliance(pair, member: str, *, flanks: FlankSet | None = None,
 
         model = build_fe(tooth, n_xi=fe_mesh.n_xi, n_eta=fe_mesh.n_eta,
                          n_zeta=fe_mesh.n_zeta, n_rim=fe_mesh.n_rim)
-        pd, vd = model.node_points("drive", nx, ny)
-        pc, vc = model.node_points("coast", nx, ny)
+        pd, vd = model.node_points(side, nx, ny)
+        pc, vc = model.node_points(back, nx, ny)
         G = model.compliance(concat_points(pd, pc), np.concatenate([vd, vc]))
-        pl, vl = model.node_points("drive", xl[I], el[J])
+        pl, vl = model.node_points(side, xl[I], el[J])
         kw.update(fe_mm_per_n=model.compliance(pl, vl),
                   segment_fe_mm_per_n=_distributed(G, sets[:n]),
                   line_fe_mm_per_n=_distributed(G, sets[n:]),

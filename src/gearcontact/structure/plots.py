@@ -1,4 +1,4 @@
-"""Figure of a tooth's bending deflection over its drive flank (``gearcontact bending``)."""
+"""Figure of a tooth's bending deflection over its loaded flank (``gearcontact bending``)."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ __all__ = ["plot_deflection"]
 
 def plot_deflection(result, path, *, pair, flanks, order: int = 6,
                     order_face: int = 16) -> Path:
-    """Left: shell deflection (um per kN) over the drive flank (face position v, height
+    """Left: shell deflection (um per kN) over the loaded flank (face position v, height
     u, mm) under a unit normal load at the lattice point nearest the flank centre;
     right: deflection under the segment loads around the lattice points and the line
     loads, shell and (if solved) FE."""
@@ -28,11 +28,11 @@ def plot_deflection(result, path, *, pair, flanks, order: int = 6,
     tooth = shell.body
     k = int(np.argmin(result.xi ** 2 + result.eta ** 2))
     XI, ETA = np.meshgrid(np.linspace(-1, 1, 61), np.linspace(-1, 1, 25), indexing="ij")
-    field = tooth.points_at("drive", XI.ravel(), ETA.ravel())
-    load = tooth.points_at("drive", result.xi[k:k + 1], result.eta[k:k + 1])
+    field = tooth.points_at(result.side, XI.ravel(), ETA.ravel())
+    load = tooth.points_at(result.side, result.xi[k:k + 1], result.eta[k:k + 1])
     defl = shell.cross_compliance(field, load)[:, 0].reshape(XI.shape) * 1e6  # mm/N -> um/kN
-    U, V = tooth.flank_parameters("drive", XI, ETA)
-    u_pts, v_pts = tooth.flank_parameters("drive", result.xi, result.eta)
+    U, V = tooth.flank_parameters(result.side, XI, ETA)
+    u_pts, v_pts = tooth.flank_parameters(result.side, result.xi, result.eta)
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4.2),
                                   gridspec_kw={"width_ratios": [3, 2]})
     mesh = ax.pcolormesh(V, U, defl, shading="gouraud", cmap="viridis")
@@ -41,7 +41,7 @@ def plot_deflection(result, path, *, pair, flanks, order: int = 6,
     ax.plot(v_pts[k], u_pts[k], "r*", ms=12, label="unit load")
     ax.set_xlabel("v, face position (mm)")
     ax.set_ylabel("u, height above root (mm)")
-    ax.set_title(f"{pair.name} {member} drive flank: shell (orders {shell.order} / "
+    ax.set_title(f"{pair.name} {member} {result.side} flank: shell (orders {shell.order} / "
                  f"{shell.order_face})")
     ax.legend(loc="upper right", fontsize=8)
     n_seg = len(result.xi)
