@@ -53,14 +53,14 @@ capacity", DSIR report 3, 1949 (root / foundation rotation).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from numpy.polynomial import legendre
-from numba import njit
-from scipy.linalg import cho_factor
+from scipy.linalg import cho_factor, solve_triangular
 
 from ..geometry.flank import FlankSet
+from ..threads import one_blas_thread
 from ..validation import InputRangeError, check_range
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
@@ -110,13 +110,18 @@ _QUADRATURE = 20
 
 def _legendre_table(x: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
     """Values and first derivatives of P_0..P_order at x: two (order+1, n) arrays."""
-    val, der = [], []
-    for i in range(order + 1):
-        c = np.zeros(i + 1)
-        c[i] = 1.0
-        val.append(legendre.legval(x, c))
-        der.append(legendre.legval(x, legendre.legder(c)))
-    return np.array(val), np.array(der)
+    # Bonnet's recurrence (n+1) P_{n+1} = (2n+1) x P_n - n P_{n-1} and
+    # P'_{n+1} = P'_{n-1} + (2n+1) P_n (Abramowitz & Stegun 22.7.10, 22.8.5): the same
+    # values as numpy's legval to rounding, without its per-order call overhead
+    x = np.asarray(x, float)
+    val, der = np.zeros((order + 1,) + x.shape), np.zeros((order + 1,) + x.shape)
+    val[0] = 1.0
+    if order >= 1:
+        val[1], der[1] = x, 1.0
+    for n in range(1, order):
+        val[n + 1] = ((2 * n + 1) * x * val[n] - n * val[n - 1]) / (n + 1)
+        der[n + 1] = der[n - 1] + (2 * n + 1) * val[n]
+    return val, der
 
 
 @dataclass(frozen=True)
@@ -196,30 +201,27 @@ class ShellModel:
                          z * np.einsum("ni,ni->n", d, e2)])          # (3, n)
         return np.concatenate([(N[f] * coef[f]).T for f in range(3)], axis=1)
 
+    @cached_property
+    def inverse_cholesky_t(self) -> np.ndarray:
+        """``L^-T`` (m x m), (N/mm)^(-1/2): made once per model, so that a factor
+        ``B = Phi L^-T`` is one matrix product (BLAS on one thread: threaded BLAS of
+        these sizes spins on a busy machine)."""
+        with one_blas_thread():
+            out = solve_triangular(self.cholesky, np.eye(self.n_functions), lower=True,
+                                   check_finite=False).T
+        out.setflags(write=False)
+        return out
+
     def compliance(self, points: LoadPoints) -> ComplianceOperator:
         """:class:`ComplianceOperator` between ``points`` (mm/N)."""
         phi = self.load_vectors(points)
-        return ComplianceOperator(factor=_lower_solve(self.cholesky, phi), points=points)
+        with one_blas_thread():
+            factor = phi @ self.inverse_cholesky_t
+        return ComplianceOperator(factor=factor, points=points)
 
     def cross_compliance(self, at: LoadPoints, loads: LoadPoints) -> np.ndarray:
         """G[i, j]: deflection at ``at[i]`` for a unit load at ``loads[j]``, mm/N."""
         return self.compliance(at).factor @ self.compliance(loads).factor.T
-
-
-@njit(cache=True)
-def _lower_solve(low, phi):  # pragma: no cover - compiled
-    """B = Phi L^-T (n, m): forward substitution row by row, ``L B_i^T = Phi_i^T``
-    (compiled: the threaded-BLAS triangular solve costs ~20 ms per call on a busy
-    machine for these sizes)."""
-    n, m = phi.shape
-    out = np.empty((n, m))
-    for i in range(n):
-        for k in range(m):
-            acc = phi[i, k]
-            for q in range(k):
-                acc -= low[k, q] * out[i, q]
-            out[i, k] = acc / low[k, k]
-    return out
 
 
 def _stiffness(body, model: ShellModel) -> np.ndarray:
