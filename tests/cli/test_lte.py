@@ -23,7 +23,7 @@ KEYS = ("te_lcp_pp_arcsec", "te_pre_pp_arcsec", "te0_pp_arcsec", "compliance_lcp
 def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("lte") / "new"
     assert main(["lte", "--pair", "s0003-centred", "--torque", "64.5", "--out", str(d),
-                 "--phases", "11", "--cells", "24", "--quiet"]) == 0
+                 "--phases", "11", "--cells", "24", "--quiet", "--rigid"]) == 0
     return d
 
 
@@ -67,12 +67,12 @@ def test_bad_input(tmp_path, capsys, argv, word):
 
 def test_lte_with_bending(out, tmp_path):
     # the shell bending of both teeth in the coupled LCP (tests/contact/
-    # test_tooth_bending.py checks it against its limits): the same command with
-    # --bending is flagged, converges, balances the shares and is more compliant
+    # test_tooth_bending.py checks it against its limits): the same command without
+    # --rigid (bending is the default) is flagged, converges, balances the shares and
+    # is more compliant
     d = tmp_path / "bend"
     assert main(["lte", "--pair", "s0003-centred", "--torque", "64.5", "--out", str(d),
-                 "--phases", "11", "--cells", "24", "--quiet", "--no-figures",
-                 "--bending"]) == 0
+                 "--phases", "11", "--cells", "24", "--quiet", "--no-figures"]) == 0
     bent = json.loads((d / "lte.json").read_text())
     rigid = json.loads((out / "lte.json").read_text())
     assert bent["bending"] and not rigid["bending"] and bent["converged"]

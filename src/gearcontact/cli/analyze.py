@@ -35,6 +35,9 @@ def register(sub) -> None:
     p.add_argument("--lte-phases", type=int, default=61,
                    help="phases of the loaded-TE run over one pitch (default 61, every TCA "
                         "phase; 0 skips it)")
+    p.add_argument("--rigid", action="store_true",
+                   help="loaded TE with rigid teeth (default: with the shell bending of "
+                        "both teeth)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run, check=check)
 
@@ -58,7 +61,7 @@ def run(args) -> int:
                        phases=args.phases, side=args.side, figures=not args.no_figures,
                        progress=not args.quiet,
                        lte_torque_nm=args.lte_torque if args.lte_phases else None,
-                       lte_phases=max(args.lte_phases, 3))
+                       lte_phases=max(args.lte_phases, 3), lte_bending=not args.rigid)
     run_timings(args, **res.timings_s)
     if res.easeoff_note:
         print(res.easeoff_note.partition("\n")[0].rstrip(":") + " (the TOML block is in summary.md)")

@@ -1,9 +1,10 @@
-"""``gearcontact lte``: loaded transmission error over one pinion pitch (rigid teeth, or
-with the shell bending of both teeth with ``--bending``).
+"""``gearcontact lte``: loaded transmission error over one pinion pitch (with the shell
+bending of both teeth; ``--rigid``: rigid teeth, the Love half-space alone).
 
 Writes into ``--out`` (created if missing): ``lte.json`` (peak-to-peaks of TE0, TE_LCP
 and TE_pre, contact and mesh compliances, active pairs, load shares at P0, mesh
-stiffness statistics rigid and, with ``--bending``, with bending; see
+stiffness statistics rigid and, unless ``--rigid``, with bending; ``bending`` records
+which tooth model ran; see
 :meth:`~gearcontact.contact.lte.LoadedTE.summary`), ``lte.csv`` (one row per phase: TE0,
 TE_LCP, TE_pre, rotations, active pairs, load per pair, mesh stiffness in N·m/rad and
 N/mm rigid and with bending) and ``lte.png``; timings go to ``run.json`` only.
@@ -37,9 +38,13 @@ def register(sub) -> None:
                                    "TE_LCP, TE_pre, active pairs, compliances",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, torque=True, cells=40, misalignment=True)
-    p.add_argument("--bending", action="store_true",
-                   help="add the shell bending compliance of the pinion and gear teeth to "
-                        "every pair in the coupled LCP (default: rigid teeth)")
+    teeth = p.add_mutually_exclusive_group()
+    teeth.add_argument("--rigid", action="store_true",
+                       help="rigid teeth: the Love half-space compliance alone (default: "
+                            "with the shell bending of the pinion and gear teeth)")
+    teeth.add_argument("--bending", action="store_true",
+                       help="tooth bending in the coupled LCP (the default; kept for "
+                            "scripts)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run, check=check_pair_arguments)
 
@@ -51,7 +56,7 @@ def run(args) -> int:
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
                                progress=not args.quiet)
     bending = None
-    if args.bending:
+    if not args.rigid:
         from ..contact.tooth_bending import tooth_bending
 
         bending = tooth_bending(flanks, pair, side=args.side)
@@ -73,7 +78,7 @@ def run(args) -> int:
                       title=f"{pair.name} {args.side}", published=published_values(pair.name),
                       extra={"assembly": dataclasses.asdict(pair.assembly)})
     print(f"{pair.name} {args.side} {args.torque:g} N·m, {len(res.phi1_rad)} phases"
-          f"{', bending' if args.bending else ''}: TE p-p "
+          f"{', rigid teeth' if args.rigid else ', bending'}: TE p-p "
           f"TE0 {res.te0_pp_arcsec:.2f} / LCP {res.te_lcp_pp_arcsec:.2f} / preview "
           f"{res.te_pre_pp_arcsec:.2f} arcsec; compliance LCP "
           f"{res.compliance_lcp_mm_per_n:.3g} / preview {res.compliance_pre_mm_per_n:.3g} "

@@ -179,7 +179,7 @@ def _multi_tooth(tca, flanks, pair, torque_nm: float, side: str, out: Path, figu
 def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases: int = 61,
                  side: str | None = None, solver: str = "pk_cg", figures: bool = True,
                  progress: bool = True, lte_torque_nm: float | None = 64.5,
-                 lte_phases: int = 61) -> Analysis:
+                 lte_phases: int = 61, lte_bending: bool = True) -> Analysis:
     """Run the main job on ``pair`` (preset name, TOML path or GearPair) into ``out_dir``.
 
     Parameters
@@ -288,8 +288,13 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         steps.set_postfix_str(f"LTE {lte_torque_nm:g} N·m")
         t0 = time.perf_counter()
         stride = max(1, -(-(len(tca.cycle.phi1_rad) - 1) // max(int(lte_phases) - 1, 1)))
+        bending = None
+        if lte_bending:
+            from ..contact.tooth_bending import tooth_bending
+
+            bending = tooth_bending(flanks, pair, side=side)
         lte = loaded_te(tca, flanks, pair, lte_torque_nm, side=side, stride=stride,
-                        progress=progress)
+                        bending=bending, progress=progress)
         write_lte_outputs(lte, out, figures=figures, title=f"{pair.name} {side}",
                           published=published_values(pair.name))
         timings["lte_s"] = time.perf_counter() - t0
