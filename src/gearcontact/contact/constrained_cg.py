@@ -46,6 +46,7 @@ from enum import Enum, StrEnum
 import numpy as np
 from numba import njit
 
+from ..threads import one_blas_thread
 from .compliance import BlockCompliance
 
 __all__ = ["SolveStatus", "CgOutcome", "constrained_cg"]
@@ -320,6 +321,14 @@ def constrained_cg(op: BlockCompliance, h: np.ndarray, x: np.ndarray, total: flo
     CgOutcome
     """
     x = np.asarray(x, float) * (total / float(np.sum(x)))
+    if op.low_rank is None:
+        return _solve(op, h, x, total, tol, max_iter, precondition)
+    with one_blas_thread():  # the low-rank products: threaded BLAS spins on small sizes
+        return _solve(op, h, x, total, tol, max_iter, precondition)
+
+
+def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
+    """:func:`constrained_cg` after the start is scaled (``x`` is the iterate)."""
     box, whole, it, checks = _boxes(x), False, 0, 0
     while True:
         win = _Windows(op, box, whole)

@@ -217,7 +217,8 @@ def lte_section(analysis, pub) -> Section:
     lte_pp, te0_pp = lte.te_lcp_pp_arcsec, lte.te0_pp_arcsec
     pp_lcp, te0_pub = pp.get("lcp", math.nan), pub.get("te0_pp_arcsec", math.nan)
     text = [f"{len(lte.phi1_rad)} mesh phases over one pinion pitch at {lte.torque_nm:g} "
-            f"N·m, rigid teeth: every pair within reach with its own gap field, one shared "
+            f"N·m, {'with the shell bending of both teeth' if lte.bending else 'rigid teeth'}"
+            f": every pair within reach with its own gap field, one shared "
             f"gear rotation, torque balance. TE_LCP peak-to-peak {lte.te_lcp_pp_arcsec:.2f} "
             f"arcsec against the published {pp.get('lcp')} arcsec (TE0 "
             f"{lte.te0_pp_arcsec:.2f} against {pub.get('te0_pp_arcsec')} arcsec). The loaded "

@@ -77,7 +77,8 @@ def torque_rows(cases, pub: dict) -> list[list]:
 
 def _lte_section(lte, pub: dict) -> list[str]:
     """Markdown of the loaded-TE section (:class:`~gearcontact.contact.lte.LoadedTE`)."""
-    out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m (rigid teeth)", "",
+    teeth = "with tooth bending" if lte.bending else "rigid teeth"
+    out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m ({teeth})", "",
            f"{len(lte.phi1_rad)} phases over one pinion pitch; every tooth pair within reach "
            "with its own gap field, one shared gear rotation, torque balance; TE_pre from "
            "the Hamrock–Brewe approach of each pair.", ""]
