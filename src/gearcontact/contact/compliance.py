@@ -104,6 +104,18 @@ class BlockCompliance:
             add_low_rank(self.low_rank, loads, out)
         return out
 
+    def add_low_rank_cells(self, out: np.ndarray, cells: np.ndarray,
+                           values: np.ndarray) -> np.ndarray:
+        """``out += F (F^T d)`` for loads ``d`` at a few cells ``(block, row, col)``
+        (``values`` in ``x``'s units): the low-rank displacement of sparse loads, one
+        product per block instead of a whole-field ``F^T``."""
+        f = self.low_rank
+        c = np.zeros((f.shape[0], f.shape[3]))
+        np.add.at(c, cells[:, 0], f[cells[:, 0], cells[:, 1], cells[:, 2]] * values[:, None])
+        nb, ny, nx, r = f.shape
+        out += np.matmul(f.reshape(nb, ny * nx, r), c[:, :, None]).reshape(nb, ny, nx)
+        return out
+
     def approx_inverse(self, displacement_mm: np.ndarray, out: np.ndarray | None = None,
                        live: np.ndarray | None = None) -> np.ndarray:
         """The half-space part's Boussinesq-inverse preconditioner

@@ -20,12 +20,12 @@ ContactMechanics' ``ConstrainedConjugateGradients``: the single-pair solver
 Work is confined to one window per loaded block (its contact box grown by
 :data:`_MARGIN` cells, where cells are re-admitted; all windows of one shape, one
 batched transform, :meth:`.compliance.BlockCompliance.window`); the windows grow (and
-the conjugacy restarts) when a contact box leaves its window. Without a low-rank part
-the displacement ``u = C x`` is updated from the step's ``C t``
-(``u <- s (u - tau C t)``, ``s`` the rescaling) plus the cells the step clipped or
-re-admitted, from the real-space kernels, so a step costs two batched transforms; it
-is recomputed after a step departing in more than :data:`_TRACKED` cells, every
-:data:`_REFRESH` steps and, with a low-rank part, every step. A step that re-admits
+the conjugacy restarts) when a contact box leaves its window. The displacement
+``u = C x`` is updated from the step's ``C t`` (``u <- s (u - tau C t)``, ``s`` the
+rescaling) plus the cells the step clipped or re-admitted, from the real-space kernels
+(and the low-rank part at those cells), so a step costs two batched transforms; it is
+recomputed after a step departing in more than :data:`_TRACKED` cells and every
+:data:`_REFRESH` steps. A step that re-admits
 cells never ends the iteration. At convergence the gap is checked on the whole fields;
 penetration outside the windows (e.g. an unloaded pair closing) widens those blocks'
 windows over it, and after :data:`_CHECKS` such rounds the iteration uses the whole
@@ -187,8 +187,10 @@ def _step(x, x_old, t, g, r, u, kern, tau, goal, box, cells, dval
     rescaling and ``d`` the departures from the linear step (clipped and re-admitted
     cells), added cell by cell from the kernel quadrants ``kern`` (``kern[k, |dj|,
     |di|]``, the operator's kernel) when there are at most ``len(dval)`` of them
-    (``cells``, ``dval``: work space). Returns ``(conj, change, tracked)``; ``tracked``
-    False: too many departures, ``u`` must be recomputed.
+    (``cells``, ``dval``: work space). Returns ``(conj, change, tracked, n_d, scale)``;
+    ``tracked`` False: too many departures, ``u`` must be recomputed; otherwise the
+    departures ``scale * dval[:n_d]`` at ``cells[:n_d]`` are what an operator's part
+    outside the kernels (its low rank) still has to add.
     """
     conj, total, n_d = True, 0.0, 0
     for k in range(x.shape[0]):
@@ -224,7 +226,7 @@ def _step(x, x_old, t, g, r, u, kern, tau, goal, box, cells, dval
             for j in range(x.shape[1]):
                 for i in range(x.shape[2]):
                     u[k, j, i] += d * kern[k, abs(j - jc), abs(i - ic)]
-    return conj, change, tracked
+    return conj, change, tracked, min(n_d, dval.size), scale
 
 
 @njit(cache=True)
@@ -399,13 +401,14 @@ def _window_steps(win: _Windows, h, x, total, tol, it, max_iter, precondition):
         rt = _dot(r, t)  # not np.vdot: BLAS threads spin on a busy machine
         if rt <= 0.0:  # converged to round-off (t == 0) or lost descent
             return (_Stop.STALLED if gz == 0.0 or rt == 0.0 else _Stop.LOST), it, box
-        conj, change, tracked = _step(x, x_old, t, g, r, u, kern, gt / rt, total,
-                                           box, cells, dval)
+        conj, change, tracked, n_d, scale = _step(x, x_old, t, g, r, u, kern, gt / rt,
+                                                  total, box, cells, dval)
         if change <= tol * total and conj:  # not on a step that re-admitted cells:
             return _Stop.CONVERGED, it, box  # their loads are not balanced yet
         if not win.holds(box):
             return _Stop.GROW, it, box
-        if not op.exact_kernels or not tracked or it % _REFRESH == 0:
-            # (the cell-by-cell update lacks a low-rank part: then recompute)
+        if not tracked or it % _REFRESH == 0:
             op.evaluate_disp(x, out=u, live=box[:, 1] > box[:, 0])
+        elif n_d and not op.exact_kernels:  # the departures' low-rank part
+            op.add_low_rank_cells(u, cells[:n_d], scale * dval[:n_d])
     return _Stop.MAX_ITER, it, box
