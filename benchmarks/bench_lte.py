@@ -122,7 +122,8 @@ def main(argv=None) -> int:
     rest = (wall - sum(s[1][0] for s in stages[1:]), cpu - sum(s[1][1] for s in stages[1:]))
     stages.append(("  rest", rest))
     pairs = res.active_lcp.mean()
-    print(f"s0003 LTE {args.torque:g} N·m, {'bending' if bend else 'rigid'}, {k} phases, {args.cells}x{args.cells} cells per "
+    print(f"s0003 LTE {args.torque:g} N·m, {'bending' if bend else 'rigid'}, {k} phases, "
+          f"{args.cells}x{args.cells} cells per "
           f"pair field, {pairs:.2f} active pairs on average")
     print(f"{'stage':<28}{'wall s':>10}{'cpu s':>10}{'ms/phase':>12}")
     for name, (sec, csec) in stages:

@@ -70,8 +70,8 @@ def run(args) -> int:
     lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
                for s, n in zip((0.5, 1 / 3), args.points)]
     side = pair.design_side if args.side is None else args.side
-    res = flank_compliance(pair, args.member, side=side, flanks=flanks, xi=lattice[0], eta=lattice[1],
-                           order=args.order, order_face=args.order_face, fe=args.fe,
+    res = flank_compliance(pair, args.member, side=side, flanks=flanks, xi=lattice[0],
+                           eta=lattice[1], order=args.order, order_face=args.order_face, fe=args.fe,
                            fe_mesh=FeMesh(*args.fe_mesh))
     write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
                      order=args.order, order_face=args.order_face)

@@ -26,9 +26,9 @@ eliminates ``theta``; rescaling to ``sum(x) = T`` after each step), with the
 compliance operator :class:`.compliance.BlockCompliance`: each block its zero-padded
 FFT Love operator scaled by ``1 / l_j^2``, preconditioned by its inverse Boussinesq
 symbol (Vollebregt 2014), all blocks in one batched transform on a window per loaded
-pair around its contact (certified on the whole fields at convergence). For a single pair with ``l = 1``, ``g = 0`` this
-is exactly the problem :func:`.lcp.solve_lcp` solves; the tests check that, and check
-two-pair solutions against a nested root find built on :func:`.lcp.solve_lcp`.
+pair around its contact (certified on the whole fields at convergence). For a single
+pair with ``l = 1``, ``g = 0`` this is exactly the problem :func:`.lcp.solve_lcp`
+solves; the tests check that, and check two-pair solutions against a nested root find built on :func:`.lcp.solve_lcp`.
 
 Tooth bending (optional): a block may carry the bending compliance of its two teeth at
 its cells as a low-rank factor ``F_j`` (``PairBlock.bending_factor``, from

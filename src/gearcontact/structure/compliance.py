@@ -1,9 +1,9 @@
 """Flank compliance tables of one tooth: shell Rayleigh-Ritz beside 3D finite elements.
 
 :func:`flank_compliance` evaluates the bending compliance of one tooth of a pair at a
-lattice of points of its loaded flank (drive or coast) (on the node lines of the FE mesh, so that the shell and
-the FE see the same points) with the shell model of :mod:`.shell` and, optionally, the
-FE model of :mod:`.fe`; :func:`write_compliance` writes ``compliance.json`` and the
+lattice of points of its loaded flank, drive or coast (on the node lines of the FE
+mesh, so that the shell and the FE see the same points) with the shell model of
+:mod:`.shell` and, optionally, the FE model of :mod:`.fe`; :func:`write_compliance` writes ``compliance.json`` and the
 figure of the deflection over the flank (``gearcontact bending``).
 
 Two kinds of numbers:
@@ -19,7 +19,8 @@ Two kinds of numbers:
   around each lattice point, and a *line* load over the whole face at each lattice
   height. The compared deflection is the mean deflection of the coast-flank points
   behind the loaded ones (the bending deflection without the local indentation under
-  the discrete nodal loads; the back flank is the other side's). These are checked against the FE (``docs/bending.md``).
+  the discrete nodal loads; the back flank is the other side's). These are checked
+  against the FE (``docs/bending.md``).
 """
 
 from __future__ import annotations
@@ -103,7 +104,8 @@ class FlankCompliance:
 
     def summary(self) -> dict:
         """JSON-ready dict (keys of ``compliance.json``)."""
-        out = {"member": self.member, "side": self.side, "xi": self.xi.tolist(), "eta": self.eta.tolist(),
+        out = {"member": self.member, "side": self.side, "xi": self.xi.tolist(),
+               "eta": self.eta.tolist(),
                "points_mm": self.points_mm.tolist(),
                "shell_mm_per_n": self.shell_mm_per_n.tolist(),
                "segment_shell_mm_per_n": self.segment_shell_mm_per_n.tolist(),
