@@ -3,8 +3,9 @@
 :func:`flank_compliance` evaluates the bending compliance of one tooth of a pair at a
 lattice of points of its loaded flank, drive or coast (on the node lines of the FE
 mesh, so that the shell and the FE see the same points) with the shell model of
-:mod:`.shell` and, optionally, the FE model of :mod:`.fe`; :func:`write_compliance` writes ``compliance.json`` and the
-figure of the deflection over the flank (``gearcontact bending``).
+:mod:`.shell` and, optionally, the FE model of :mod:`.fe`; :func:`write_compliance`
+writes ``compliance.json`` and the figure of the deflection over the flank
+(``gearcontact bending``).
 
 Two kinds of numbers:
 
