@@ -28,7 +28,7 @@ ARGS = ["sweep", "--pair", "s0003-centred", "--vary", "E=-0.05:0.05:2", "--vary"
 
 @pytest.mark.parametrize("bad,named", [
     (["--vary", "E=0.1:-0.1:3"], "reversed range"), (["--vary", "E=0:0.1:0"], "STEPS"),
-    (["--vary", "H=0:0.1:2"], "KEY one of"), (["--vary", "E=0:1:2", "--vary", "E=0:1:2"],
+    (["--vary", "H=0:0.1:2"], "one of the assembly errors"), (["--vary", "E=0:1:2", "--vary", "E=0:1:2"],
                                               "each key at most once"),
     (["--scheduler", "localhost:8786"], "tcp://HOST:PORT"), (["--workers", "-1"], "--workers"),
     (["--torques", "1e9"], "--torques")])
