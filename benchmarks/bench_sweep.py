@@ -25,6 +25,7 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=9)
     ap.add_argument("--phases", type=int, default=61)
     a = ap.parse_args()
+    load0 = os.getloadavg()
     pair = load_pair("s0003-centred")
     grid = SweepGrid((parse_vary(f"E=-0.1:0.1:{a.steps}"),
                       parse_vary(f"P=-0.1:0.1:{a.steps}")), (64.5,))
@@ -52,7 +53,7 @@ def main() -> None:
           f"overhead per cell vs loop (steady state): {1e3 * (1 / one[6] - 1 / loop[6]):.1f}"
           f" ms; start-up (first point after the flanks): {one[5]:.2f} s vs loop "
           f"{loop[5]:.2f} s")
-    print(f"load average: {os.getloadavg()}")
+    print(f"load average: at start {load0}, at end {os.getloadavg()} (2 cores, shared)")
 
 
 if __name__ == "__main__":
