@@ -77,8 +77,11 @@ def _marks(ax, ds2, xd, yd) -> None:
     ax.plot(gx[failed], gy[failed], "rx", ms=7, mew=1.5)
 
 
-def _map(fig, ax, ds2, xd, yd, z, label, cmap="viridis") -> None:
-    im = ax.pcolormesh(ds2[xd].values, ds2[yd].values, z, shading="nearest", cmap=cmap)
+def _map(fig, ax, ds2, xd, yd, z, label, cmap="viridis", *, centred: bool = False) -> None:
+    """A map of ``z`` (rows y, columns x); ``centred``: colour limits symmetric about 0."""
+    lim = float(np.nanmax(np.abs(z))) if centred and np.isfinite(z).any() else None
+    im = ax.pcolormesh(ds2[xd].values, ds2[yd].values, z, shading="nearest", cmap=cmap,
+                       vmin=-lim if lim else None, vmax=lim if lim else None)
     fig.colorbar(im, ax=ax, label=label)
     _marks(ax, ds2, xd, yd)
     ax.set_xlabel(_label(ds2, xd))
@@ -121,11 +124,11 @@ def plot_maps(store, path, *, title: str = "", dims: tuple | None = None) -> Pat
     ok = np.isfinite(shift["pattern_face_mm"]) & np.isfinite(shift["pattern_height_mm"])
     length = np.nanmax(np.hypot(shift["pattern_face_mm"], shift["pattern_height_mm"]))
     length = length if np.isfinite(length) and length > 0 else 1.0
-    # the longest arrow spans 0.9 of the smaller grid step (arrows never overlap)
-    step = min(np.ptp(first[d].values) / max(first[d].size - 1, 1) or 1.0 for d in dims)
+    # drawn in screen units (the two swept keys may have different units): the
+    # longest arrow spans 0.8 of a grid cell's width
     ax.quiver(gx[ok], gy[ok], shift["pattern_face_mm"][ok], shift["pattern_height_mm"][ok],
-              angles="xy", scale_units="xy", scale=length / (0.9 * step), color="C0",
-              width=0.008)
+              angles="uv", scale_units="width", scale=length * first[xd].size / 0.8,
+              color="C0", width=0.008)
     _marks(ax, first, xd, yd)
     for axis, v in ((ax.set_xlim, first[xd].values), (ax.set_ylim, first[yd].values)):
         pad = 0.15 * (np.ptp(v) or 1.0)
@@ -135,9 +138,9 @@ def plot_maps(store, path, *, title: str = "", dims: tuple | None = None) -> Pat
     ax.set_title("V/H chart: pattern centre shift on the gear flank\n(right = to heel, "
                  f"up = to tip; longest arrow {length:.2g} mm)", fontsize=9)
     _map(fig, axes[0, 1], first, xd, yd, shift["pattern_face_mm"],
-         "pattern shift along face, toe->heel (mm)", "RdBu_r")
+         "pattern shift along face, toe->heel (mm)", "RdBu_r", centred=True)
     _map(fig, axes[0, 2], first, xd, yd, shift["pattern_height_mm"],
-         "pattern shift along profile, root->tip (mm)", "RdBu_r")
+         "pattern shift along profile, root->tip (mm)", "RdBu_r", centred=True)
     _map(fig, axes[0, 3], first, xd, yd, first["te0_pp_arcsec"].transpose(yd, xd).values,
          "TE0 peak to peak (arcsec)")
     for r, torque in enumerate(torques if loaded else [], start=1):
