@@ -151,3 +151,9 @@ def test_cutter_radius_sweep_builds_each_variant_and_draws_it(tmp_path, capsys):
     assert te[0, 0] != te[1, 0]            # another cutter, other flanks
     files = [f["path"] for f in json.loads((out / "run.json").read_text())["files"]]
     assert {"sweep_maps.png", "sweep_design.png"} <= set(files)
+    # the rerun resumes: nothing computed (no variant rebuilt), the same Dataset
+    assert main(["sweep", "--pair", "s0003-centred", "--vary", "cutter.radius_mm=44.6:45.6:2",
+                 "--vary", "E=-0.01:0.01:2", "--phases", "21", "--workers", "0", "--quiet",
+                 "--no-figures", "--out", str(out)]) == 0
+    assert "0 computed, 4 already finished" in capsys.readouterr().out
+    xr.testing.assert_identical(xr.open_zarr(out / "sweep.zarr", consolidated=False).load(), ds)
