@@ -19,6 +19,8 @@ Truths:
   ``2a = 2 sqrt(2 delta / kappa_min)`` shortens, by at most the factor
   ``sqrt(kappa / (kappa + 2e-3 dc_LC))`` (the whole added curvature acting along the
   major axis): more crowning, larger TE0 and a shorter pattern;
+* an ease-off variant applied to the nominal pair's conjugate flanks is the full build
+  of the varied pair, bit for bit (the conjugate flanks do not depend on the ease-off);
 * a variant whose flanks cannot be built is recorded by name on its cells only.
 """
 
@@ -28,7 +30,12 @@ import pytest
 pytest.importorskip("distributed")
 xr = pytest.importorskip("xarray")
 
-from gearcontact.sweep.design import check_variants, vary_design  # noqa: E402
+from gearcontact.sweep.design import (  # noqa: E402
+    Variant,
+    build_variant,
+    check_variants,
+    vary_design,
+)
 from gearcontact.sweep.grid import SweepGrid, parse_vary  # noqa: E402
 from gearcontact.sweep.run import run_sweep  # noqa: E402
 from gearcontact.tca.curvature import PAINT_THICKNESS_MM  # noqa: E402
@@ -124,3 +131,20 @@ def test_failed_variant_is_recorded_on_its_cells_only(pair, tmp_path):
     assert ds["error"].values[1, 0].startswith("InputRangeError: ")
     assert "ease-off" in ds["error"].values[1, 0].lower() or \
         "easeoff" in ds["error"].values[1, 0].lower()
+
+
+def test_easeoff_variant_on_the_nominal_conjugate_flanks_is_the_full_build(pair, flanks):
+    design = ((KEY, 0.2), ("easeoff.coast.bias_um_per_mm2", 0.5))
+    quick = build_variant(pair, design, Variant(pair, flanks, 0.0))
+    full = build_variant(pair, design)
+    assert quick.error == full.error == ""
+    assert quick.flanks.pinion_conjugate is flanks.pinion_conjugate     # reused
+    for side in ("drive", "coast"):
+        a, b = quick.flanks.flank("pinion", side), full.flanks.flank("pinion", side)
+        (u0, u1), (v0, v1) = a.u_range, a.v_range
+        u, v = np.meshgrid(np.linspace(u0, u1, 7), np.linspace(v0, v1, 9))
+        ea, eb = a.evaluate(u, v), b.evaluate(u, v)
+        for name in ("r", "r_u", "r_v", "r_uu", "n"):
+            np.testing.assert_array_equal(getattr(ea, name), getattr(eb, name), err_msg=name)
+        # and it is not the nominal ease-off (both sides' coefficients differ)
+        assert not np.array_equal(ea.r, flanks.flank("pinion", side).evaluate(u, v).r)

@@ -5,7 +5,10 @@ cutter.radius_mm=44:46:5``; ``ease-off.`` is accepted for ``easeoff.``).
 
 A variant changes the cut flanks, so its flanks are built anew -- once per variant, on
 a worker, and shared by every assembly-error point and torque of that variant
-(:mod:`.run`). A variant whose flanks cannot be built (an undercut, an ease-off beyond
+(:mod:`.run`). A variant of ease-off keys only keeps the conjugate flanks of the
+nominal pair and applies its ease-off to them
+(:func:`~gearcontact.geometry.flank.with_easeoff`, about a tenth of a full build); a
+cutter key rebuilds everything (the blank, the gear, the conjugate pinion). A variant whose flanks cannot be built (an undercut, an ease-off beyond
 its limit) is the result of its cells, recorded by name like a wild assembly error.
 """
 
@@ -19,7 +22,7 @@ from ..geometry.pair import CutterSpec, EaseOffCoefficients
 from ..validation import InputRangeError
 
 __all__ = ["DESIGN_KEYS", "Variant", "build_variant", "check_variants", "design_key",
-           "design_unit", "vary_design"]
+           "design_unit", "easeoff_only", "vary_design"]
 
 #: TOML key (``table.key``) -> (GearPair attribute, field of that attribute).
 DESIGN_KEYS: dict[str, tuple[str, str]] = {
@@ -47,6 +50,12 @@ def design_unit(key: str) -> str:
         if key.endswith(suffix):
             return unit
     raise ValueError(f"no unit in the design key {key!r}")
+
+
+def easeoff_only(keys) -> bool:
+    """True when every key of ``keys`` is an ease-off coefficient (the conjugate flanks
+    of the nominal pair serve every variant)."""
+    return all(DESIGN_KEYS[k][0].startswith("easeoff_") for k in keys)
 
 
 def vary_design(pair, design: dict):
@@ -94,15 +103,22 @@ class Variant:
     error: str = ""
 
 
-def build_variant(pair, design: tuple) -> Variant:
+def build_variant(pair, design: tuple, base: Variant | None = None) -> Variant:
     """Build the flanks of ``pair`` with ``design`` (``((TOML key, value), ...)``)
-    replaced; an error of the build is the variant's result."""
-    from ..geometry.flank import build_flanks
+    replaced; an error of the build is the variant's result.
+
+    ``base``: the nominal pair's built variant; with ease-off keys only, its conjugate
+    flanks are reused and only the variant's ease-off is applied.
+    """
+    from ..geometry.flank import build_flanks, with_easeoff
 
     t0 = time.perf_counter()
     try:
         varied = vary_design(pair, dict(design))
-        flanks = build_flanks(varied)
+        if base is not None and easeoff_only(k for k, _ in design):
+            flanks = with_easeoff(base.flanks, varied)
+        else:
+            flanks = build_flanks(varied)
     except Exception as exc:  # noqa: BLE001  (recorded by type for every cell of it)
         return Variant(None, None, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}")
     return Variant(varied, flanks, time.perf_counter() - t0)

@@ -27,7 +27,7 @@ import numpy as np
 from tqdm import tqdm
 
 from .cell import LTE_CELLS, compute_point, lte_stride
-from .design import Variant, build_variant
+from .design import Variant, build_variant, easeoff_only
 from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
 
 __all__ = ["SweepReport", "run_sweep", "sweep_settings"]
@@ -49,7 +49,7 @@ class SweepReport:
     wall_s : float
         Wall time of the computation (flanks, cluster start-up and tasks), s.
     flanks_s : float
-        Of it, the nominal flank build in this process, s (0 with design keys: each
+        Of it, the nominal flank build in this process, s (0 with cutter keys: each
         variant's build is timed on its worker, ``flank_build_s`` in the store).
     first_s, last_s : float
         From after the flanks to the first and the last point written, s (the first
@@ -112,8 +112,11 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
                   solver=solver)
     if todo:
         tf = time.perf_counter()
+        design_keys = [v.key for v in grid.vary if v.design]
         nominal = None
-        if not any(v.design for v in grid.vary):    # built here once, shipped to workers
+        # built here once and shipped to the workers: the flanks of every point, or
+        # (ease-off keys only) the conjugate flanks every variant's ease-off goes on
+        if not design_keys or easeoff_only(design_keys):
             nominal = Variant(pair, build_flanks(pair), time.perf_counter() - tf)
         t1 = time.perf_counter()
         report.flanks_s = t1 - tf
@@ -161,17 +164,18 @@ def _by_variant(todo) -> dict:
 def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
     """(index, result) of every point of ``todo``, in the order they finish.
 
-    ``nominal``: the pair's own :class:`~.design.Variant` (no design key swept; built
-    by the caller and broadcast to the workers) or None: then every design variant is
-    built by one task on a worker, and the tasks of its points depend on it (Dask
-    runs them where the flanks are, or moves them once), submitted variant by variant
-    so that few variants' flanks are held at a time.
+    ``nominal``: the pair's own :class:`~.design.Variant` (built by the caller and
+    broadcast to the workers) or None. Without design keys it serves every point.
+    With them every design variant is built by one task on a worker (on ``nominal``'s
+    conjugate flanks when given: ease-off keys only), and the tasks of its points depend
+    on it (Dask runs them where the flanks are, or moves them once), submitted variant
+    by variant so that few variants' flanks are held at a time.
     """
     torques = list(grid.torques_nm)
     groups = _by_variant(todo)
     if workers == 0 and client is None and scheduler is None:
         for design, points in groups.items():
-            variant = nominal or build_variant(pair, design)
+            variant = build_variant(pair, design, nominal) if design else nominal
             for idx, a in points:
                 yield idx, _guarded(variant, a, torques, kwargs)
         return
@@ -190,8 +194,8 @@ def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
         futures = {}
         shared = client.scatter(nominal, broadcast=True) if nominal is not None else None
         for design, points in groups.items():
-            variant = (shared if shared is not None
-                       else client.submit(build_variant, pair, design, pure=False))
+            variant = (client.submit(build_variant, pair, design, shared, pure=False)
+                       if design else shared)
             for idx, a in points:
                 futures[client.submit(_guarded, variant, a, torques, kwargs,
                                       pure=False)] = idx
