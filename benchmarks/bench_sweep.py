@@ -4,7 +4,11 @@ s0003-centred in this process (plain loop, ``workers=0``) and on a Dask LocalClu
 the Dask path over the plain loop. The flanks and the cluster start-up are timed apart
 (``flanks_s``; ``first_s``: from the flanks to the first point written, with the
 cluster start, the scatter and the workers' first call; ``steady/s``: points per second
-from the first to the last point). Prints a table and the load average (the machine is shared).
+from the first to the last point). The Dask overhead per cell is also measured
+directly: 81 no-op tasks taking the scattered nominal variant (flanks) as the real
+tasks do, submitted and gathered through ``as_completed`` on a 1-worker cluster
+(``noop_ms``: wall time per task). Prints a table and the load average (the machine
+is shared).
 
 Usage: python3 benchmarks/bench_sweep.py [--steps 9] [--phases 61]
 """
@@ -25,6 +29,7 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=9)
     ap.add_argument("--phases", type=int, default=61)
     a = ap.parse_args()
+    load0 = os.getloadavg()
     pair = load_pair("s0003-centred")
     grid = SweepGrid((parse_vary(f"E=-0.1:0.1:{a.steps}"),
                       parse_vary(f"P=-0.1:0.1:{a.steps}")), (64.5,))
@@ -47,12 +52,38 @@ def main() -> None:
     for w, n, s, f, fl, first, steady in rows:
         print(f"{('loop' if w == 0 else w):>8} {n:>6} {s:8.2f} {n / s:8.2f} {f:>7} "
               f"{fl:9.2f} {first:8.2f} {steady:9.2f}")
+    noop_ms = _noop_overhead_ms(pair, a.steps ** 2)
     loop, one, two = rows
     print(f"scaling 2 / 1 workers (steady state): {two[6] / one[6]:.2f}x; Dask (1 worker) "
           f"overhead per cell vs loop (steady state): {1e3 * (1 / one[6] - 1 / loop[6]):.1f}"
           f" ms; start-up (first point after the flanks): {one[5]:.2f} s vs loop "
           f"{loop[5]:.2f} s")
-    print(f"load average: {os.getloadavg()}")
+    print(f"Dask overhead per task, measured on no-op tasks with the scattered flanks "
+          f"(1 worker): {noop_ms:.1f} ms")
+    print(f"load average: at start {load0}, at end {os.getloadavg()} (2 cores, shared)")
+
+
+def _noop(variant, assembly, torques, kwargs) -> dict:
+    return {"error": [""] * len(torques)}
+
+
+def _noop_overhead_ms(pair, n: int) -> float:
+    """Wall time per no-op task (submit, schedule, run, result), ms."""
+    from distributed import Client, LocalCluster, as_completed
+
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.sweep.design import Variant
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        shared = client.scatter(Variant(pair, build_flanks(pair), 0.0), broadcast=True)
+        client.submit(_noop, shared, {}, [64.5], {}, pure=False).result()   # warm
+        t0 = time.perf_counter()
+        futures = [client.submit(_noop, shared, {"E_mm": 0.001 * i}, [64.5], {},
+                                 pure=False) for i in range(n)]
+        for fut in as_completed(futures):
+            fut.result()
+        return 1e3 * (time.perf_counter() - t0) / n
 
 
 if __name__ == "__main__":

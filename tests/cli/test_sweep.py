@@ -1,6 +1,8 @@
 """``gearcontact sweep`` (:mod:`gearcontact.cli.sweep`) under the CLI contract.
 
-Truths: bad grids are exit 2 before any output; the cluster path for real - a
+Truths: bad grids (also unknown TOML keys and impossible design values) are exit 2
+before any output; zero misalignment reproduces ``gearcontact tca`` exactly; a
+cutter-radius sweep builds each variant and draws the design figure; the cluster path for real - a
 ``dask scheduler`` and a ``dask worker`` started as subprocesses on the loopback
 address, the sweep run through ``--scheduler`` - gives the Dataset of the in-process
 run (``--workers 0``) exactly; the rerun of the same command computes nothing; run.json
@@ -28,10 +30,15 @@ ARGS = ["sweep", "--pair", "s0003-centred", "--vary", "E=-0.05:0.05:2", "--vary"
 
 @pytest.mark.parametrize("bad,named", [
     (["--vary", "E=0.1:-0.1:3"], "reversed range"), (["--vary", "E=0:0.1:0"], "STEPS"),
-    (["--vary", "H=0:0.1:2"], "KEY one of"), (["--vary", "E=0:1:2", "--vary", "E=0:1:2"],
+    (["--vary", "H=0:0.1:2"], "one of the assembly errors"), (["--vary", "E=0:1:2", "--vary", "E=0:1:2"],
                                               "each key at most once"),
     (["--scheduler", "localhost:8786"], "tcp://HOST:PORT"), (["--workers", "-1"], "--workers"),
-    (["--torques", "1e9"], "--torques")])
+    (["--torques", "1e9"], "--torques"),
+    # an unknown TOML key: named, with the allowed keys listed
+    (["--vary", "easeoff.drive.crowning=0:1:2"], "easeoff.drive.crowning"),
+    (["--vary", "cutter.diameter_mm=80:90:2"], "cutter.radius_mm, cutter.point_width_mm"),
+    # a design value the pair refuses, before any flank is built
+    (["--vary", "cutter.radius_mm=-5:45:2"], "cutter.radius_mm")])
 def test_bad_input_exits_2_before_any_output(tmp_path, capsys, bad, named):
     out = tmp_path / "o"
     assert main(["sweep", *bad, "--out", str(out)]) == 2
@@ -115,3 +122,38 @@ def test_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, capsys):
     xr.testing.assert_identical(
         xr.open_zarr(cut / "sweep.zarr", consolidated=False).load(),
         xr.open_zarr(tmp_path / "whole" / "sweep.zarr", consolidated=False).load())
+
+
+def test_zero_misalignment_reproduces_gearcontact_tca(tmp_path):
+    tca, sweep = tmp_path / "tca", tmp_path / "sweep"
+    assert main(["tca", "--pair", "s0003-centred", "--phases", "21", "--no-figures",
+                 "--out", str(tca)]) == 0
+    assert main(["sweep", "--pair", "s0003-centred", "--vary", "E=0:0:1", "--phases", "21",
+                 "--workers", "0", "--quiet", "--out", str(sweep)]) == 0
+    want = json.loads((tca / "tca.json").read_text())
+    got = xr.open_zarr(sweep / "sweep.zarr", consolidated=False).load().isel(
+        E_mm=0, torque_nm=0)
+    assert float(got["te0_pp_arcsec"]) == want["te0_pp_arcsec"]          # exactly
+    assert float(got["paint_major_mm"]) == 2 * want["paint_ellipse"]["semi_major_mm"]
+    assert bool(got["pattern_on_flank"]) == want["pattern_on_flank"]
+
+
+def test_cutter_radius_sweep_builds_each_variant_and_draws_it(tmp_path, capsys):
+    out = tmp_path / "o"
+    assert main(["sweep", "--pair", "s0003-centred", "--vary", "cutter.radius_mm=44.6:45.6:2",
+                 "--vary", "E=-0.01:0.01:2", "--phases", "21", "--workers", "0", "--quiet",
+                 "--out", str(out)]) == 0
+    assert "4 computed" in capsys.readouterr().out
+    ds = xr.open_zarr(out / "sweep.zarr", consolidated=False).load()
+    assert ds["cutter_radius_mm"].attrs == {"units": "mm", "key": "cutter.radius_mm"}
+    assert (ds["status"].values == 1).all()
+    te = ds["te0_pp_arcsec"].isel(torque_nm=0).values
+    assert te[0, 0] != te[1, 0]            # another cutter, other flanks
+    files = [f["path"] for f in json.loads((out / "run.json").read_text())["files"]]
+    assert {"sweep_maps.png", "sweep_design.png"} <= set(files)
+    # the rerun resumes: nothing computed (no variant rebuilt), the same Dataset
+    assert main(["sweep", "--pair", "s0003-centred", "--vary", "cutter.radius_mm=44.6:45.6:2",
+                 "--vary", "E=-0.01:0.01:2", "--phases", "21", "--workers", "0", "--quiet",
+                 "--no-figures", "--out", str(out)]) == 0
+    assert "0 computed, 4 already finished" in capsys.readouterr().out
+    xr.testing.assert_identical(xr.open_zarr(out / "sweep.zarr", consolidated=False).load(), ds)

@@ -16,8 +16,6 @@ import pytest
 pytest.importorskip("distributed")
 xr = pytest.importorskip("xarray")
 
-from gearcontact.geometry.flank import build_flanks  # noqa: E402
-from gearcontact.geometry.pair import load_pair  # noqa: E402
 from gearcontact.sweep import store as store_mod  # noqa: E402
 from gearcontact.sweep.cell import CELL_VARIABLES, TCA_VARIABLES, compute_point  # noqa: E402
 from gearcontact.sweep.grid import SweepGrid, parse_vary  # noqa: E402
@@ -25,28 +23,6 @@ from gearcontact.sweep.run import run_sweep  # noqa: E402
 
 PHASES = 21      # enough for a cycle of the centred set-up; keeps a point at ~0.1 s
 GRID = SweepGrid((parse_vary("E=-0.05:0.05:2"), parse_vary("P=-0.05:0.05:2")), (64.5,))
-
-
-@pytest.fixture(scope="module")
-def pair():
-    return load_pair("s0003-centred")
-
-
-@pytest.fixture(scope="module")
-def flanks(pair):
-    return build_flanks(pair)
-
-
-@pytest.fixture(scope="module")
-def client():
-    from distributed import Client, LocalCluster
-
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                           dashboard_address=None)
-    c = Client(cluster)
-    yield c
-    c.close()
-    cluster.close()
 
 
 def _open(report):
@@ -60,7 +36,7 @@ def test_cluster_sweep_equals_serial_points(pair, flanks, client, tmp_path):
     ds = _open(rep)
     assert ds["te0_pp_arcsec"].attrs["units"] == "arcsec"
     assert ds["E_mm"].attrs["units"] == "mm" and ds["torque_nm"].attrs["units"] == "N m"
-    for idx, a in GRID.points():
+    for idx, a, _ in GRID.points():
         want = compute_point(pair, flanks, a, GRID.torques_nm, side="drive",
                              compute=("tca",), phases=PHASES)
         cell = ds.isel(E_mm=idx[0], P_mm=idx[1])
@@ -73,7 +49,9 @@ def test_cluster_sweep_equals_serial_points(pair, flanks, client, tmp_path):
 @pytest.mark.filterwarnings("error::gearcontact.contact.ellipse.CoarseGridWarning")
 def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(pair, flanks, tmp_path):
     from gearcontact.contact.ellipse import CoarseGridWarning
+    from gearcontact.contact.lte import loaded_te
     from gearcontact.contact.pair_ltca import single_pair_ltca
+    from gearcontact.sweep.cell import LTE_CELLS, LTE_PHASES, lte_stride
     from gearcontact.tca.analysis import analyze_pair
 
     grid = SweepGrid((parse_vary("E=0:0:1"),), (64.5, 129.0))
@@ -89,6 +67,12 @@ def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(pair, flanks, tmp
         assert ds["preview_p_max_mpa"].values[k] == case.preview.p_max_mpa
         assert ds["lcp_p90_mpa"].values[k] == case.patch.p90_mpa
         assert ds["lcp_peak_mpa"].values[k] == case.patch.p_peak_mpa
+        # the loaded TE at the documented phase count (21 TCA phases, stride 2: 11)
+        lte = loaded_te(tca, flanks, pair, t, side="drive", cells=LTE_CELLS,
+                        stride=lte_stride(PHASES))
+        assert len(lte.phi1_rad) == LTE_PHASES
+        assert ds["lte_lcp_pp_arcsec"].values[k] == lte.te_lcp_pp_arcsec
+        assert ds["lte_preview_pp_arcsec"].values[k] == lte.te_pre_pp_arcsec
     # 24 cells per side resolve the minor semi-axis with ~6 cells: recorded, not warned
     assert ds["lcp_coarse_grid"].values.all()
     # twice the torque: the Hertzian p_max grows by 2^(1/3) (Hertz: p_max ~ W^(1/3))

@@ -1,9 +1,9 @@
-"""``gearcontact sweep``: the contact analysis over a grid of assembly errors and
-torques, on Dask distributed (docs/sweeps.md).
+"""``gearcontact sweep``: the contact analysis over a grid of assembly errors, design
+variants and torques, on Dask distributed (docs/sweeps.md).
 
 Writes into ``--out`` (created if missing): ``sweep.zarr``, one xarray Dataset with the
-dimensions of the ``--vary`` keys (``E_mm``, ``P_mm``, ``G_mm``, ``alpha_deg``) and
-``torque_nm``, filled as grid points finish. A rerun of the same command computes only
+dimensions of the ``--vary`` keys (``E_mm``, ``P_mm``, ``G_mm``, ``alpha_deg``, design
+keys with ``_`` for ``.``) and ``torque_nm``, filled as grid points finish. A rerun of the same command computes only
 the cells still pending (resumable after a crash or Ctrl-C); a rerun with another grid
 or other settings into the same directory is refused.
 """
@@ -13,6 +13,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from ..sweep.design import check_variants
 from ..sweep.grid import SweepGrid, parse_vary
 from ..sweep.run import sweep_settings
 from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
@@ -42,14 +43,19 @@ def register(sub) -> None:
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     add_pair_arguments(p, cells=80, misalignment=True)
     p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:STEPS",
-                   help="an assembly error over numpy.linspace(START, STOP, STEPS), ends "
-                        "included; KEY one of E, P, G (mm), alpha (deg) with the signs of "
-                        "--misalignment; repeat for more dimensions")
+                   help="KEY over numpy.linspace(START, STOP, STEPS), ends included; KEY "
+                        "an assembly error E, P, G (mm), alpha (deg) with the signs of "
+                        "--misalignment, or a design key of the pair's TOML: "
+                        "easeoff.drive.<coefficient>, easeoff.coast.<coefficient> "
+                        "('ease-off.' also accepted), cutter.<key> (e.g. "
+                        "easeoff.drive.lengthwise_crowning_um_per_mm2=0.08:0.16:5, "
+                        "cutter.radius_mm=44:46:5; flanks rebuilt once per variant); "
+                        "repeat for more dimensions")
     p.add_argument("--torques", type=float, nargs="+", default=[64.5], metavar="T",
                    help="gear torques in N·m (default 64.5; used by ltca)")
     p.add_argument("--compute", default="tca", choices=COMPUTE, metavar="tca|tca,ltca",
-                   help="per cell: unloaded TCA, or TCA and the LTCA per torque "
-                        "(default tca)")
+                   help="per cell: unloaded TCA, or TCA and per torque the LTCA at P0 "
+                        "and the loaded TE p-p (default tca)")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                        help="address of a running Dask scheduler (default: a local "
@@ -74,6 +80,7 @@ def check(args) -> None:
                               "'gearcontact[sweep]'")
     check_pair_arguments(args)
     args.grid = SweepGrid(tuple(parse_vary(v) for v in args.vary), tuple(args.torques))
+    check_variants(args.gear_pair, args.grid)
     for t in args.torques:
         check_torque("--torques (N·m)", t, args.gear_pair)
     if args.workers is not None:
@@ -100,11 +107,14 @@ def run(args) -> int:
                        workers=args.workers,
                        progress=not args.quiet)
     run_timings(args, sweep_s=report.wall_s, cells_computed=report.computed)
-    if not args.no_figures and len(grid.vary) == 2:    # redrawn on every run
-        from ..sweep.plots import plot_maps
+    if not args.no_figures:      # redrawn on every run
+        from ..sweep.plots import plot_design, plot_maps
 
-        plot_maps(report.store, args.out / "sweep_maps.png",
-                  title=f"{pair.name} {args.side}")
+        title = f"{pair.name} {args.side}"
+        if len(grid.vary) >= 2:
+            plot_maps(report.store, args.out / "sweep_maps.png", title=title)
+        if any(v.design for v in grid.vary):
+            plot_design(report.store, args.out / "sweep_design.png", title=title)
     print(f"{pair.name} {args.side}: {grid.cells} cells ({' x '.join(map(str, grid.shape))}"
           f" over {', '.join(grid.dims)}): {report.computed} computed, {report.skipped} "
           f"already finished, {report.failed} failed -> {final_path(args, report.store)}")

@@ -49,7 +49,7 @@ from .sampling import FlankGrid, SurfaceArrays, point_from_arrays, sample_grid
 from .surface import SurfacePoint
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "cone_vector", "gear_flank"]
+           "build_flanks", "cone_vector", "gear_flank", "with_easeoff"]
 
 #: Flank sides, in the order used everywhere.
 SIDES = ("drive", "coast")
@@ -311,7 +311,7 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         (:class:`~.conjugate.UndercutError`).
     """
     from .conjugate import conjugate_pinion_flank
-    from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
+    from .easeoff import mean_normal_thickness_mm
 
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
@@ -319,7 +319,7 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     gear = {side: gear_flank(blank, blade, side=side, gear_face_width_mm=pair.gear_face_width_mm,
                              edge_radius_mm=pair.cutter.edge_radius_mm)
             for side, blade in zip(SIDES, (inside, outside))}
-    conj, eased, mean = {}, {}, {}
+    conj, mean = {}, {}
     for side in SIDES:
         conj[side], mean[side] = conjugate_pinion_flank(
             gear[side], blank=blank, kinematics=kin,
@@ -327,12 +327,38 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     u_m, v_m = mean["drive"]["pinion_uv"]
     thickness = mean_normal_thickness_mm(conj["drive"], conj["coast"], u_mm=u_m, v_mm=v_m,
                                          spiral_angle_deg=blank.spiral_angle_pinion_deg)
+    conjugate = FlankSet(blank=blank, kinematics=kin, cutter=placement,
+                         gear=MemberFlanks(**gear), pinion=MemberFlanks(**conj),
+                         pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
+                         pinion_normal_thickness_mm=thickness)
+    return with_easeoff(conjugate, pair)
+
+
+def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
+    """``flanks`` with the pinion ease-off of ``pair`` applied to their conjugate pinion
+    flanks (the gear, the conjugate pinion, the blank and the cutter stay those of
+    ``flanks``).
+
+    Valid when ``pair`` differs from the pair ``flanks`` were built for in its
+    ``[easeoff.*]`` coefficients only (the conjugate flanks do not depend on them): an
+    ease-off design variant at the cost of the ease-off alone, about a tenth of
+    :func:`build_flanks` (whose last step it is).
+
+    Raises
+    ------
+    InputRangeError
+        An ease-off beyond its limit (:func:`~.easeoff.apply_easeoff`).
+    """
+    import dataclasses
+
+    from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um
+
+    limit = easeoff_limit_um(flanks.pinion_normal_thickness_mm)
+    eased = {}
     for side in SIDES:
         coeffs = pair.easeoff_drive if side == "drive" else pair.easeoff_coast
-        eased[side] = apply_easeoff(conj[side], EaseOff.from_coefficients(
-            coeffs, u_mean_mm=mean[side]["pinion_uv"][0], v_mean_mm=mean[side]["pinion_uv"][1]),
-            limit_um=easeoff_limit_um(thickness))
-    return FlankSet(blank=blank, kinematics=kin, cutter=placement,
-                    gear=MemberFlanks(**gear), pinion=MemberFlanks(**eased),
-                    pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
-                    pinion_normal_thickness_mm=thickness)
+        u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+        easeoff = EaseOff.from_coefficients(coeffs, u_mean_mm=u_m, v_mean_mm=v_m)
+        eased[side] = apply_easeoff(flanks.pinion_conjugate.side(side), easeoff,
+                                    limit_um=limit)
+    return dataclasses.replace(flanks, pinion=MemberFlanks(**eased))

@@ -1,10 +1,12 @@
 """The grid of a sweep: ``--vary KEY=START:STOP:STEPS`` specs and the torques.
 
 Keys are the assembly errors of :mod:`gearcontact.geometry.kinematics` by their short
-names (``E``, ``P``, ``G`` in mm, ``alpha`` in deg; sign conventions there); each spec
-spans ``numpy.linspace(START, STOP, STEPS)``, both ends included. The torques form the
-last dimension. A grid point (one set of assembly errors) is one task; a cell is one
-point at one torque.
+names (``E``, ``P``, ``G`` in mm, ``alpha`` in deg; sign conventions there) or design
+keys of the pair's TOML (``easeoff.<side>.<coefficient>``, ``cutter.<key>``;
+:mod:`.design`); each spec spans ``numpy.linspace(START, STOP, STEPS)``, both ends
+included. The torques form the last dimension. A grid point (one design variant and one
+set of assembly errors) is one task; a cell is one point at one torque; a design
+variant is the set of points sharing their design values (one flank build).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import numpy as np
 
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
 from ..validation import InputRangeError
+from .design import DESIGN_KEYS, design_key, design_unit
 
 __all__ = ["MAX_STEPS", "MAX_CELLS", "VarySpec", "SweepGrid", "parse_vary"]
 
@@ -29,14 +32,25 @@ MAX_CELLS = 100_000
 
 @dataclass(frozen=True)
 class VarySpec:
-    """One swept assembly error: ``field`` (an AssemblyErrors field, unit in its name)
-    over ``numpy.linspace(start, stop, steps)``."""
+    """One swept key over ``numpy.linspace(start, stop, steps)``.
+
+    ``key`` is the short name of an assembly error (``E``) or a TOML design key
+    (``easeoff.drive.lengthwise_crowning_um_per_mm2``); ``field`` the Dataset
+    dimension (an AssemblyErrors field, or the design key with ``_`` for ``.``; the
+    unit is in the name, ``unit`` spells it).
+    """
 
     key: str
     field: str
     start: float
     stop: float
     steps: int
+    unit: str = "mm"
+
+    @property
+    def design(self) -> bool:
+        """True for a design key (the flanks change)."""
+        return self.key in DESIGN_KEYS
 
     @property
     def values(self) -> np.ndarray:
@@ -49,14 +63,19 @@ def parse_vary(text: str) -> VarySpec:
     Raises
     ------
     InputRangeError
-        Naming ``--vary`` and the spec: unknown key, not ``START:STOP:STEPS``, bad
-        number, STEPS outside [1, MAX_STEPS] (1 needs START == STOP), STOP < START,
-        a value beyond :data:`~gearcontact.geometry.kinematics.ASSEMBLY_LIMITS`.
+        Naming ``--vary`` and the spec: unknown key (the message lists the allowed
+        ones), not ``START:STOP:STEPS``, bad number, STEPS outside [1, MAX_STEPS] (1
+        needs START == STOP), STOP < START, an assembly error beyond
+        :data:`~gearcontact.geometry.kinematics.ASSEMBLY_LIMITS` (the range of a design
+        key is the pair's: :func:`.design.check_variants`).
     """
     key, eq, rng = (s.strip() for s in str(text).partition("="))
-    if not eq or key not in ASSEMBLY_KEYS:
-        raise InputRangeError("--vary", text, f"KEY=START:STOP:STEPS with KEY one of "
-                              f"{', '.join(ASSEMBLY_KEYS)} (the assembly errors)")
+    if not eq:
+        raise InputRangeError("--vary", text, "KEY=START:STOP:STEPS")
+    if key not in ASSEMBLY_KEYS and design_key(key) is None:
+        raise InputRangeError("--vary KEY", key, "one of the assembly errors "
+                              f"{', '.join(ASSEMBLY_KEYS)} or a key of the pair's TOML "
+                              f"[easeoff.*] / [cutter] tables: {', '.join(DESIGN_KEYS)}")
     parts = rng.split(":")
     if len(parts) != 3:
         raise InputRangeError(f"--vary {key}", rng, "START:STOP:STEPS (three fields)")
@@ -66,28 +85,32 @@ def parse_vary(text: str) -> VarySpec:
     except ValueError:
         raise InputRangeError(f"--vary {key}", rng, "START:STOP:STEPS with numbers START,"
                               " STOP and an integer STEPS") from None
-    field = ASSEMBLY_KEYS[key]
-    unit = "deg" if field.endswith("_deg") else "mm"
-    lim = ASSEMBLY_LIMITS[field]
     if not 1 <= steps <= MAX_STEPS:
         raise InputRangeError(f"--vary {key} STEPS", steps, f"an integer in [1, {MAX_STEPS}]")
     if not stop >= start:
         raise InputRangeError(f"--vary {key}", rng, "STOP >= START (a reversed range)")
     if steps == 1 and stop != start:
         raise InputRangeError(f"--vary {key}", rng, "STEPS >= 2 when STOP != START")
+    if key not in ASSEMBLY_KEYS:
+        key = design_key(key)
+        return VarySpec(key, key.replace(".", "_"), start, stop, steps, design_unit(key))
+    field = ASSEMBLY_KEYS[key]
+    unit = "deg" if field.endswith("_deg") else "mm"
+    lim = ASSEMBLY_LIMITS[field]
     for x in (start, stop):
         if not -lim <= x <= lim:
             raise InputRangeError(f"--vary {key} ({unit})", x, f"[{-lim:g}, {lim:g}] {unit}")
-    return VarySpec(key, field, start, stop, steps)
+    return VarySpec(key, field, start, stop, steps, unit)
 
 
 @dataclass(frozen=True)
 class SweepGrid:
-    """The swept assembly errors (in ``--vary`` order) and the torques (N·m).
+    """The swept keys (in ``--vary`` order) and the torques (N·m).
 
-    Dimensions of the Dataset: the fields of ``vary`` (e.g. ``E_mm``, ``P_mm``) then
-    ``torque_nm``. ``points()`` lists the grid points (index tuple, AssemblyErrors
-    overrides) in C order.
+    Dimensions of the Dataset: the fields of ``vary`` (e.g. ``E_mm``, ``P_mm``,
+    ``easeoff_drive_lengthwise_crowning_um_per_mm2``) then ``torque_nm``.
+    ``points()`` lists the grid points (index tuple, AssemblyErrors overrides, design
+    variant) in C order, ``variants()`` the distinct design variants.
     """
 
     vary: tuple[VarySpec, ...]
@@ -115,9 +138,19 @@ class SweepGrid:
         return int(np.prod(self.shape))
 
     def points(self):
-        """(index tuple, {AssemblyErrors field: value}) of every grid point."""
+        """(index tuple, {AssemblyErrors field: value}, design) of every grid point;
+        ``design`` is ``((TOML key, value), ...)`` of the swept design keys (``()``
+        without any: the pair as given)."""
         for idx in itertools.product(*(range(v.steps) for v in self.vary)):
-            yield idx, {v.field: float(v.values[i]) for v, i in zip(self.vary, idx)}
+            values = [(v, float(v.values[i])) for v, i in zip(self.vary, idx)]
+            yield (idx, {v.field: x for v, x in values if not v.design},
+                   tuple((v.key, x) for v, x in values if v.design))
+
+    def variants(self) -> list[tuple]:
+        """The distinct design variants (``design`` of :meth:`points`), in C order."""
+        design = [v for v in self.vary if v.design]
+        return [tuple((v.key, float(x)) for v, x in zip(design, xs))
+                for xs in itertools.product(*(v.values for v in design))]
 
     def as_dict(self) -> dict:
         return {"vary": [[v.key, v.start, v.stop, v.steps] for v in self.vary],

@@ -2,8 +2,10 @@
 each) by default, an existing cluster by its scheduler address, or in this process
 (``workers=0``, the plain loop the Dask path is measured against).
 
-The flanks are built once here and scattered to every worker (broadcast); one task is
-one grid point (one TCA, then one LTCA per torque). Results are written into the zarr
+Without design keys the flanks are built once here and scattered to every worker
+(broadcast); with them, one task per design variant builds its flanks on a worker and
+the points of that variant depend on it (:mod:`.design`). One task is one grid point
+(one TCA, then per torque one LTCA and one loaded TE). Results are written into the zarr
 store (:mod:`.store`) by this process as tasks finish, so an interrupted sweep keeps
 every finished point and its rerun computes only the rest.
 
@@ -24,7 +26,8 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from .cell import compute_point
+from .cell import LTE_CELLS, compute_point, lte_stride
+from .design import Variant, build_variant, easeoff_only
 from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
 
 __all__ = ["SweepReport", "run_sweep", "sweep_settings"]
@@ -46,7 +49,8 @@ class SweepReport:
     wall_s : float
         Wall time of the computation (flanks, cluster start-up and tasks), s.
     flanks_s : float
-        Of it, the flank build, s.
+        Of it, the nominal flank build in this process, s (0 with cutter keys: each
+        variant's build is timed on its worker, ``flank_build_s`` in the store).
     first_s, last_s : float
         From after the flanks to the first and the last point written, s (the first
         includes the cluster start-up, the scatter and the workers' first call; points
@@ -76,6 +80,7 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
     Parameters
     ----------
     pair : GearPair
+        The nominal pair (a grid with design keys varies it, :mod:`.design`).
     grid : SweepGrid
     out : path
         Directory of the store.
@@ -98,7 +103,7 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
     settings = sweep_settings(pair, side=side, compute=compute, phases=phases, cells=cells,
                               solver=solver)
     status = prepare_store(store, grid, compute, settings)
-    todo = [(idx, a) for idx, a in grid.points() if (status[idx] == PENDING).any()]
+    todo = [p for p in grid.points() if (status[p[0]] == PENDING).any()]
     n_t = len(grid.torques_nm)
     report = SweepReport(store, grid.cells, skipped=grid.cells - n_t * len(todo))
     bar = tqdm(total=grid.cells, initial=report.skipped, desc="sweep cells",
@@ -107,10 +112,15 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
                   solver=solver)
     if todo:
         tf = time.perf_counter()
-        flanks = build_flanks(pair)
+        design_keys = [v.key for v in grid.vary if v.design]
+        nominal = None
+        # built here once and shipped to the workers: the flanks of every point, or
+        # (ease-off keys only) the conjugate flanks every variant's ease-off goes on
+        if not design_keys or easeoff_only(design_keys):
+            nominal = Variant(pair, build_flanks(pair), time.perf_counter() - tf)
         t1 = time.perf_counter()
         report.flanks_s = t1 - tf
-        for idx, result in _results(pair, flanks, grid, todo, kwargs, scheduler=scheduler,
+        for idx, result in _results(pair, nominal, grid, todo, kwargs, scheduler=scheduler,
                                     workers=workers, client=client):
             write_point(store, grid, idx, result)
             report.last_s = time.perf_counter() - t1
@@ -136,18 +146,38 @@ def sweep_settings(pair, *, side: str, compute, phases: int, cells: int, solver:
 
     a = pair.assembly
     digest = hashlib.sha256(pair_to_toml(pair).encode()).hexdigest()
+    ltca = ({"cells": cells, "solver": solver, "lte_cells": LTE_CELLS,
+             "lte_stride": lte_stride(phases)} if "ltca" in compute else {})
     return {"pair": pair.name, "pair_sha256": digest,
             "assembly": [a.E_mm, a.P_mm, a.G_mm, a.alpha_deg],
-            "side": side, "phases": phases,
-            **({"cells": cells, "solver": solver} if "ltca" in compute else {})}
+            "side": side, "phases": phases, **ltca}
 
 
-def _results(pair, flanks, grid, todo, kwargs, *, scheduler, workers, client):
-    """(index, result) of every point of ``todo``, in the order they finish."""
+def _by_variant(todo) -> dict:
+    """The points of ``todo`` grouped by design variant (first-seen order)."""
+    groups: dict = {}
+    for idx, assembly, design in todo:
+        groups.setdefault(design, []).append((idx, assembly))
+    return groups
+
+
+def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
+    """(index, result) of every point of ``todo``, in the order they finish.
+
+    ``nominal``: the pair's own :class:`~.design.Variant` (built by the caller and
+    broadcast to the workers) or None. Without design keys it serves every point.
+    With them every design variant is built by one task on a worker (on ``nominal``'s
+    conjugate flanks when given: ease-off keys only), and the tasks of its points depend
+    on it (Dask runs them where the flanks are, or moves them once), submitted variant
+    by variant so that few variants' flanks are held at a time.
+    """
     torques = list(grid.torques_nm)
+    groups = _by_variant(todo)
     if workers == 0 and client is None and scheduler is None:
-        for idx, a in todo:
-            yield idx, _guarded(pair, flanks, a, torques, kwargs)
+        for design, points in groups.items():
+            variant = build_variant(pair, design, nominal) if design else nominal
+            for idx, a in points:
+                yield idx, _guarded(variant, a, torques, kwargs)
         return
     from distributed import Client, LocalCluster, as_completed
 
@@ -161,10 +191,15 @@ def _results(pair, flanks, grid, todo, kwargs, *, scheduler, workers, client):
                                    dashboard_address=None)
             own = client = Client(cluster)
     try:
-        pair_f = client.scatter(pair, broadcast=True)
-        flanks_f = client.scatter(flanks, broadcast=True)
-        futures = {client.submit(_guarded, pair_f, flanks_f, a, torques, kwargs,
-                                 pure=False): idx for idx, a in todo}
+        futures = {}
+        shared = client.scatter(nominal, broadcast=True) if nominal is not None else None
+        for design, points in groups.items():
+            variant = (client.submit(build_variant, pair, design, shared, pure=False)
+                       if design else shared)
+            for idx, a in points:
+                futures[client.submit(_guarded, variant, a, torques, kwargs,
+                                      pure=False)] = idx
+            del variant        # held by its points' tasks until they finish
         for fut in as_completed(futures):
             yield futures[fut], fut.result()
             fut.release()
@@ -176,11 +211,16 @@ def _results(pair, flanks, grid, todo, kwargs, *, scheduler, workers, client):
                 cluster.close()
 
 
-def _guarded(pair, flanks, assembly, torques, kwargs) -> dict:
-    """:func:`compute_point`, any unexpected exception recorded as the point's error
-    (a sweep of hundreds of points must not die of one)."""
+def _guarded(variant, assembly, torques, kwargs) -> dict:
+    """:func:`compute_point` on a built design variant, with the variant's flank build
+    time; a failed build or any unexpected exception recorded as the point's error (a
+    sweep of hundreds of points must not die of one)."""
+    n = len(torques)
+    timing = {"flank_build_s": [variant.build_s] * n}
+    if variant.error:
+        return {"error": [variant.error] * n, **timing}
     try:
-        return compute_point(pair, flanks, assembly, torques, **kwargs)
+        return {**compute_point(variant.pair, variant.flanks, assembly, torques, **kwargs),
+                **timing}
     except Exception as exc:  # noqa: BLE001  (recorded with its type; see the store)
-        n = len(torques)
-        return {"error": [f"{type(exc).__name__}: {exc}"] * n}
+        return {"error": [f"{type(exc).__name__}: {exc}"] * n, **timing}

@@ -24,7 +24,7 @@ import numpy as np
 from ..validation import InputRangeError
 from .cell import BOOL_VARIABLES, CELL_VARIABLES, LTCA_VARIABLES, TCA_VARIABLES
 
-__all__ = ["STORE_NAME", "CREATING_NAME", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
+__all__ = ["STORE_NAME", "CREATING_NAME", "TIMING_VARIABLES", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
            "prepare_store", "write_point"]
 
 #: Name of the store inside ``--out``.
@@ -32,22 +32,27 @@ STORE_NAME = "sweep.zarr"
 #: Name of the store while it is created (renamed to STORE_NAME when complete).
 CREATING_NAME = ".sweep.zarr.creating"
 PENDING, DONE, FAILED = 0, 1, 2
-_UNITS = {"E_mm": "mm", "P_mm": "mm", "G_mm": "mm", "alpha_deg": "deg", "torque_nm": "N m"}
+#: With design keys swept: the flank build time of each cell's design variant (a
+#: timing, not a result: it differs between runs; one build per variant).
+TIMING_VARIABLES = {"flank_build_s": ("s", "wall time of the flank build of this cell's "
+                                           "design variant (once per variant)")}
 
 
-def _variables(compute) -> dict:
-    return {**TCA_VARIABLES, **(LTCA_VARIABLES if "ltca" in compute else {})}
+def _variables(grid, compute) -> dict:
+    timing = TIMING_VARIABLES if any(v.design for v in grid.vary) else {}
+    return {**TCA_VARIABLES, **(LTCA_VARIABLES if "ltca" in compute else {}), **timing}
 
 
 def empty_dataset(grid, compute, settings: dict):
     """All cells pending: NaN / False, ``error`` empty, ``status`` 0."""
     import xarray as xr
 
-    coords = {v.field: (v.field, v.values, {"units": _UNITS[v.field]}) for v in grid.vary}
+    coords = {v.field: (v.field, v.values, {"units": v.unit, "key": v.key})
+              for v in grid.vary}
     coords["torque_nm"] = ("torque_nm", np.asarray(grid.torques_nm, float),
-                           {"units": _UNITS["torque_nm"]})
+                           {"units": "N m"})
     data = {}
-    for name, (unit, text) in _variables(compute).items():
+    for name, (unit, text) in _variables(grid, compute).items():
         fill = (np.zeros(grid.shape, bool) if name in BOOL_VARIABLES
                 else np.full(grid.shape, np.nan))
         data[name] = (grid.dims, fill, {"units": unit, "long_name": text})
@@ -112,8 +117,10 @@ def write_point(path, grid, index: tuple, result: dict) -> int:
     errors = np.asarray(result["error"], dtype=object)
     status = np.where(errors == "", DONE, FAILED).astype(np.int8)
     shape = (1,) * len(index) + (len(grid.torques_nm),)
+    names = {*CELL_VARIABLES, *(TIMING_VARIABLES if any(v.design for v in grid.vary)
+                                else ())}
     data = {k: (grid.dims, np.asarray(v).reshape(shape))
-            for k, v in result.items() if k in CELL_VARIABLES}
+            for k, v in result.items() if k in names}
     data["error"] = (grid.dims, errors.reshape(shape))
     region = {d: slice(i, i + 1) for d, i in zip(grid.dims, index)}
     region["torque_nm"] = slice(0, len(grid.torques_nm))

@@ -1,0 +1,124 @@
+"""Design variants of a sweep: the pair with keys of its TOML ``[easeoff.drive]``,
+``[easeoff.coast]`` or ``[cutter]`` tables replaced (``--vary
+easeoff.drive.lengthwise_crowning_um_per_mm2=0.08:0.16:5``, ``--vary
+cutter.radius_mm=44:46:5``; ``ease-off.`` is accepted for ``easeoff.``).
+
+A variant changes the cut flanks, so its flanks are built anew -- once per variant, on
+a worker, and shared by every assembly-error point and torque of that variant
+(:mod:`.run`). A variant of ease-off keys only keeps the conjugate flanks of the
+nominal pair and applies its ease-off to them
+(:func:`~gearcontact.geometry.flank.with_easeoff`, about a tenth of a full build); a
+cutter key rebuilds everything (the blank, the gear, the conjugate pinion). A variant whose flanks cannot be built (an undercut, an ease-off beyond
+its limit) is the result of its cells, recorded by name like a wild assembly error.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+from ..geometry.pair import CutterSpec, EaseOffCoefficients
+from ..validation import InputRangeError
+
+__all__ = ["DESIGN_KEYS", "Variant", "build_variant", "check_variants", "design_key",
+           "design_unit", "easeoff_only", "vary_design"]
+
+#: TOML key (``table.key``) -> (GearPair attribute, field of that attribute).
+DESIGN_KEYS: dict[str, tuple[str, str]] = {
+    **{f"easeoff.{side}.{name}": (f"easeoff_{side}", name)
+       for side in ("drive", "coast") for name in EaseOffCoefficients.__dataclass_fields__},
+    **{f"cutter.{name}": ("cutter", name) for name in CutterSpec.__dataclass_fields__},
+}
+_ALIASES = {"ease-off.": "easeoff."}
+_UNIT_SUFFIXES = (("_um_per_mm2", "um/mm^2"), ("_um_per_mm", "um/mm"), ("_mm", "mm"),
+                  ("_deg", "deg"), ("_factor", "1"))
+
+
+def design_key(key: str) -> str | None:
+    """The TOML key ``key`` names (``ease-off.`` spelt ``easeoff.``), or None if it is
+    not a design key."""
+    for alias, name in _ALIASES.items():
+        if key.startswith(alias):
+            key = name + key[len(alias):]
+    return key if key in DESIGN_KEYS else None
+
+
+def design_unit(key: str) -> str:
+    """Unit of a design key, from its name (the TOML keys carry their unit)."""
+    for suffix, unit in _UNIT_SUFFIXES:
+        if key.endswith(suffix):
+            return unit
+    raise ValueError(f"no unit in the design key {key!r}")
+
+
+def easeoff_only(keys) -> bool:
+    """True when every key of ``keys`` is an ease-off coefficient (the conjugate flanks
+    of the nominal pair serve every variant)."""
+    return all(DESIGN_KEYS[k][0].startswith("easeoff_") for k in keys)
+
+
+def vary_design(pair, design: dict):
+    """``pair`` with the design keys of ``design`` (TOML key -> value) replaced; the
+    pair's own checks run again (named :class:`InputRangeError` on an impossible
+    value or design)."""
+    changes: dict = {}
+    for key, value in design.items():
+        attr, name = DESIGN_KEYS[key]
+        changes[attr] = dataclasses.replace(changes.get(attr, getattr(pair, attr)),
+                                            **{name: float(value)})
+    return dataclasses.replace(pair, **changes) if changes else pair
+
+
+def check_variants(pair, grid) -> None:
+    """Every design variant of ``grid`` is a valid pair (cheap: the blank design, no
+    flanks), or :class:`InputRangeError` naming the ``--vary`` key and the value."""
+    for design in grid.variants():
+        try:
+            vary_design(pair, dict(design))
+        except InputRangeError as exc:
+            keys = ", ".join(f"{k}={v:g}" for k, v in design)
+            raise InputRangeError(f"--vary {keys}: {exc.field}", exc.value,
+                                  exc.allowed) from None
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One design variant, built: its pair and flanks, or the error that stopped the
+    build.
+
+    Attributes
+    ----------
+    pair : GearPair or None
+    flanks : FlankSet or None
+    build_s : float
+        Wall time of the flank build, s (on the worker that built it).
+    error : str
+        ``""`` or ``"Type: message"`` of a failed build.
+    """
+
+    pair: object
+    flanks: object
+    build_s: float
+    error: str = ""
+
+
+def build_variant(pair, design: tuple, base: Variant | None = None) -> Variant:
+    """Build the flanks of ``pair`` with ``design`` (``((TOML key, value), ...)``)
+    replaced; an error of the build is the variant's result.
+
+    ``base``: the nominal pair's built variant; with ease-off keys only, its conjugate
+    flanks are reused and only the variant's ease-off is applied.
+    """
+    from ..geometry.flank import build_flanks, with_easeoff
+
+    t0 = time.perf_counter()
+    try:
+        varied = vary_design(pair, dict(design))
+        if base is not None and easeoff_only(k for k, _ in design):
+            flanks = with_easeoff(base.flanks, varied)
+        else:
+            flanks = build_flanks(varied)
+    except Exception as exc:  # noqa: BLE001  (recorded by type for every cell of it)
+        return Variant(None, None, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}")
+    return Variant(varied, flanks, time.perf_counter() - t0)
