@@ -14,15 +14,15 @@ The items themselves are built in :mod:`.evaluation_contact` (1, 2, 6, 7) and
 
 Files written into ``out`` (besides those of the main job, which the report shows):
 
-=====================  ===================================================================
-``report.html``        one page with a table of contents; figures beside it (PNG)
-``report.md``          the same report as Markdown
-``report.json``        every number of the report; one top-level key per item
-                       (:data:`ITEMS`) plus ``meta``
-``surrogate.png/.svg`` the two-panel surrogate figure
-``*.svg``              the main job's report figures again as SVG
-``resources.json``     synthesis results with provenance (only with ``synth=True``)
-=====================  ===================================================================
+=======================  ===================================================================
+``report.html``          one page with a table of contents; figures beside it (PNG)
+``report.md``            the same report as Markdown
+``report.json``          every number of the report; one top-level key per item
+                         (:data:`ITEMS`) plus ``meta``
+``surrogate.png/.svg``   the two-panel surrogate figure
+``*.svg``                the main job's report figures again as SVG
+``resources.json``       synthesis results with provenance (only with ``synth=True``)
+=======================  ===================================================================
 
 Every table has a ``published`` column (values of ``data/published/s0003.json``; empty
 where the study gave none). An item whose physics is not in the package yet is reported
