@@ -24,6 +24,9 @@ TCA files                     see :mod:`gearcontact.tca.export` (``tca.json``, `
 ``summary.md``                readable summary with the published values beside ours
 ============================  ==============================================================
 
+Every figure is written as PNG and as SVG beside it (:func:`gearcontact.figure_files.save_figure`:
+identical runs write identical bytes, the SVG included), ``flanks_in_mesh`` too.
+
 No file holds a timing (two identical runs write identical files): the stage times, the
 LCP solve times and the fp64 preview's CPU latency and jitter on this machine are in
 :attr:`Analysis.timings_s` (``gearcontact analyze`` writes them into ``run.json``).

@@ -8,10 +8,12 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
+from matplotlib.collections import QuadMesh  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ..contact.pair_ltca import preview_ellipse  # noqa: E402
 from ..contact.patch import plot_patch  # noqa: E402
+from ..figure_files import save_figure  # noqa: E402
 
 __all__ = ["plot_pressure_maps", "plot_pressure_vs_load"]
 
@@ -23,6 +25,9 @@ def plot_pressure_maps(cases, path, *, title: str = "") -> Path:
     fig, axes = plt.subplots(n, 1, figsize=(9, 2.6 * n), squeeze=False)
     for ax, c in zip(axes[:, 0], cases):
         plot_patch(c.patch, ax, ellipse=preview_ellipse(c.preview, c.patch.grid))
+        for mesh in ax.collections:     # the cell map as an image inside the SVG (5 MB
+            if isinstance(mesh, QuadMesh):  # of vector quads otherwise)
+                mesh.set_rasterized(True)
         edge = ", edge contact" if c.edge_contact else ""
         ax.set_title(f"{c.torque_nm:g} N·m, W = {c.load_n:.0f} N: LCP peak "
                      f"{c.patch.p_peak_mpa:.0f} MPa, p90 {c.patch.p90_mpa:.0f} MPa; "
@@ -32,8 +37,7 @@ def plot_pressure_maps(cases, path, *, title: str = "") -> Path:
         ax.set_ylabel("t (mm)")
     fig.suptitle(f"{title}: loaded contact pressure, preview ellipse overlaid")
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
+    path = save_figure(fig, path)
     plt.close(fig)
     return path
 
@@ -66,7 +70,6 @@ def plot_pressure_vs_load(cases, path, *, title: str = "", published: dict | Non
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     ax.set_title(f"{title}: preview vs LCP over load")
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+    path = save_figure(fig, path, tight=True)
     plt.close(fig)
     return path

@@ -16,6 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
+from ..figure_files import save_figure  # noqa: E402
 from ..tca.export import TIMING_KEYS, without_timings, write_csv  # noqa: E402
 
 __all__ = ["plot_lte", "write_lte_outputs"]
@@ -67,8 +68,7 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
                bbox_to_anchor=(1.08, 1.0))
     ax2.set_xlabel("pinion phase from P0 (deg)")
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+    path = save_figure(fig, path, tight=True)
     plt.close(fig)
     return path
 

@@ -22,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
 from ..contact.line_peak import inadmissible_cells  # noqa: E402
+from ..figure_files import save_figure  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
 __all__ = ["multitooth_section", "plot_multitooth", "write_multitooth_outputs"]
@@ -81,9 +82,9 @@ def plot_multitooth(case, path, *, title: str = "", published: dict | None = Non
     ax2.legend(fontsize=8)
     ax2.grid(alpha=0.3, axis="y")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    path = save_figure(fig, path)
     plt.close(fig)
-    return Path(path)
+    return path
 
 
 def write_multitooth_outputs(case, out_dir, *, figures: bool = True, title: str = "",

@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz_array
+from ..figure_files import save_figure
 from ..materials import STEEL, effective_modulus_mpa
 from ..validation import InputRangeError, check_positive
 
@@ -407,8 +408,6 @@ def plot_surrogate(synthetic: SyntheticStudy, anchored: AnchoredStudy | None, pa
                    title: str = ""):
     """Two panels: (a) relative p_max error vs load, MLP and preview against exact Hertz,
     training limit marked; (b) LCP p90 labels, MLP and preview over the load."""
-    from pathlib import Path
-
     from .figures import plt
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -459,9 +458,6 @@ def plot_surrogate(synthetic: SyntheticStudy, anchored: AnchoredStudy | None, pa
     if title:
         fig.suptitle(title)
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    svg = path.with_suffix(".svg")
-    fig.savefig(svg)
+    path = save_figure(fig, path)
     plt.close(fig)
     return path

@@ -16,6 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..figure_files import save_figure  # noqa: E402
 from ..geometry.kinematics import MeshKinematics  # noqa: E402
 from ..geometry.surface import Surface  # noqa: E402
 from .mesh import MeshCycle  # noqa: E402
@@ -102,8 +103,7 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
     if title:
         fig.suptitle(title)
     fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=130)
+    out = save_figure(fig, path, dpi=130)
     plt.close(fig)
     return out
 
@@ -136,7 +136,6 @@ def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=130)
+    out = save_figure(fig, path, dpi=130)
     plt.close(fig)
     return out
