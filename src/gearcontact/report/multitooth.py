@@ -59,7 +59,7 @@ def plot_multitooth(case, path, *, title: str = "", published: dict | None = Non
                     arrowprops={"arrowstyle": "-", "lw": 0.6})
     if sc is not None:
         fig.colorbar(sc, ax=ax, extend="max",
-                     label="pressure (MPa, with bending; trimmed edge cells saturate)")
+                     label="pressure (MPa), with bending\n(trimmed edge cells saturate)")
     ax.set_xlabel("gear-axial position z (mm)")
     ax.set_ylabel("radius about the gear axis (mm)")
     ax.set_title(f"{title} {case.torque_nm:g} N·m: CP_max {case.cp_max_mpa:.0f}, cell peak "

@@ -99,10 +99,12 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
         ax.set_ylabel(labels[member][1])
         ax.set_title(f"{member} flank: contact pattern at {paint * 1e3:.2f} um paint")
         ax.grid(alpha=0.3)
-    axes[0].legend(loc="best", fontsize=8)
+    # below the panels: inside, the legend covers the flank boundary and the pattern
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=3,
+               fontsize=8)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0.0, 0.08, 1.0, 1.0))
     out = save_figure(fig, path, dpi=130)
     plt.close(fig)
     return out
