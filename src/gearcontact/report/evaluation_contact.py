@@ -340,8 +340,8 @@ def multitooth_section(analysis, settings) -> Section:
             f"published one {pub['shares_pct'][0]} %; a line-contact peak grows as the square "
             f"root of the load per length (Johnson 1985, eq. 4.45), so at the published share "
             f"ours would read {scaled:.0f} MPa ({pct_diff(scaled, pub['cp_max_mpa']):+.0f} % "
-            f"from the published value). The remainder is the different bearing (docs/"
-            f"calibration.md) and is measured, not resolved.")
+            f"from the published value). The remaining difference is measured, not resolved "
+            f"here.")
         data["line_peak"] = {"cp_max_mpa": mt.cp_max_mpa, "p_peak_cell_mpa": mt.p_peak_cell_mpa,
                              "reference_share_pct": share_pct,
                              "cp_max_at_published_share_mpa": scaled,
