@@ -62,9 +62,11 @@ def plot_multitooth(case, path, *, title: str = "", published: dict | None = Non
                      label="pressure (MPa), with bending\n(trimmed edge cells saturate)")
     ax.set_xlabel("gear-axial position z (mm)")
     ax.set_ylabel("radius about the gear axis (mm)")
-    ax.set_title(f"{title} {case.torque_nm:g} N·m: CP_max {case.cp_max_mpa:.0f}, cell peak "
-                 f"{case.p_peak_cell_mpa:.0f}, preview {case.preview_p_max_mpa:.0f} MPa",
-                 fontsize=9)
+    cp_pub = (published or {}).get("cp_max_mpa_at_design")
+    ax.set_title(f"{title} {case.torque_nm:g} N·m: CP_max {case.cp_max_mpa:.0f}"
+                 + (f" (published {cp_pub:g})" if cp_pub else "")
+                 + f" MPa\ncell peak {case.p_peak_cell_mpa:.0f}, preview "
+                 f"{case.preview_p_max_mpa:.0f} MPa", fontsize=9)
     ax.grid(alpha=0.3)
     labels = [f"{p.offset:+d}" for p in case.pairs]
     x = np.arange(len(case.pairs))
