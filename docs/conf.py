@@ -69,7 +69,8 @@ myst_heading_anchors = 3
 # its words and, where a word such as ``n``, ``shape`` or ``ContactEllipse`` names
 # attributes or classes of several modules, warns that the link is ambiguous. Those
 # words are not references; only this category is silenced (broken markup, missing
-# pages, duplicate descriptions and unresolvable references still fail the build).
+# pages, modules that fail to import and duplicate descriptions still fail the build;
+# unresolved references are not checked, nitpicky mode is off).
 suppress_warnings = ["ref.python"]
 
 html_theme = "alabaster"
