@@ -44,3 +44,8 @@ def test_docs_site_builds_without_warnings(tmp_path):
     assert modules - pages == set()
     assert {p.stem for p in (ROOT / "docs").glob("*.md")} <= {p.stem
                                                                 for p in out.glob("*.html")}
+    # the API pages carry the docstrings: a function's numpydoc Parameters section and
+    # the units it states, and a module docstring's citation of docs/
+    hertz = (out / "_api" / "gearcontact.analytic.hertz.html").read_text(encoding="utf-8")
+    assert 'id="gearcontact.analytic.hertz.exact_elliptic_hertz"' in hertz
+    assert "Parameters" in hertz and "load_n" in hertz and "docs/hertz.md sec. 2" in hertz
