@@ -124,7 +124,7 @@ def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
     env_phi = np.degrees(cycle.phi1_rad)
     ax.plot(env_phi, cycle.envelope_arcsec, color="k", lw=2.2,
             label=f"envelope, p-p {cycle.te0_pp_arcsec:.2f} arcsec")
-    ax.axvspan(env_phi[0], env_phi[-1], color="0.9", zorder=0)
+    ax.axvspan(env_phi[0], env_phi[-1], color="0.9", zorder=0, label="one pinion pitch")
     lo, hi = np.nanmin(cycle.envelope_arcsec), np.nanmax(cycle.envelope_arcsec)
     pad = max(hi - lo, 1.0)
     if cycle.envelope_is_max:       # the other pairs lie below the envelope
@@ -136,8 +136,9 @@ def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
     ax.set_ylabel("TE0 (arcsec)")
     ax.set_title(title or f"unloaded transmission error ({n + 1} phases per pitch)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    # beside the axes: inside, it covers the neighbouring pairs' curves
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    out = save_figure(fig, path, dpi=130)
+    out = save_figure(fig, path, dpi=130, tight=True)
     plt.close(fig)
     return out
