@@ -32,6 +32,10 @@ def test_files_written(analysis):
                  "contact_pattern.png", "lte.json", "lte.csv", "lte.png", "precision.csv",
                  "precision.png", "latency.json"):
         assert (out / name).stat().st_size > 0, name
+    # every figure also as SVG beside its PNG (gearcontact.figure_files)
+    pngs = sorted(out.glob("*.png"))
+    assert len(pngs) >= 7
+    assert [p.name for p in pngs if not p.with_suffix(".svg").is_file()] == []
     rows = json.loads((out / "ltca.json").read_text())
     assert [r["torque_nm"] for r in rows] == list(TORQUES)
     for key in ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm",

@@ -63,3 +63,13 @@ def test_multitooth(quick_report):
         mt["rigid"]["reference_rotation_lcp_arcsec"]
     assert mt["bending"]["mesh_compliance_lcp_mm_per_n"] > \
         mt["rigid"]["mesh_compliance_lcp_mm_per_n"]
+    # CP_max beside the published one, re-derived from the library's multi-tooth result
+    # of the same settings (the main job's case): the largest line-contact peak over the
+    # pairs, and the square-root share scaling of a line contact (exact arithmetic, 1e-12)
+    lp = mt["line_peak"]
+    assert lp["published_cp_max_mpa"] == 2714
+    assert lp["cp_max_mpa"] <= lp["p_peak_cell_mpa"]    # trimming removes the edge spike
+    assert lp["cp_max_at_published_share_mpa"] == pytest.approx(
+        lp["cp_max_mpa"] * (74.6 / lp["reference_share_pct"]) ** 0.5, rel=1e-12)
+    assert "multitooth.png" in mt["figures"]
+

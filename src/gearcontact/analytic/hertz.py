@@ -1,44 +1,17 @@
-"""Elliptical Hertz contact: exact elliptic-integral solution and Hamrock–Brewe forms.
+"""Elliptical Hertz contact: the exact elliptic-integral solution and Hamrock–Brewe forms.
 
-Convention (docs/spec.md sec. 6, Algorithm 3): the unloaded gap between the two bodies near
-the initial point contact is, in principal axes (s, t),
+The gap near the point contact is ``g = A s^2 + B t^2`` with ``A``, ``B`` half the
+relative principal curvatures in 1/mm (docs/hertz.md sec. 1); loads in N, E' = 2 E* in
+MPa, lengths in mm, pressures in MPa.
 
-    g(s, t) = A s^2 + B t^2,        A, B > 0 in 1/mm,
+* :func:`exact_elliptic_hertz` — exact, complete elliptic integrals in Carlson's
+  symmetric form (docs/hertz.md sec. 2; Johnson 1985, sec. 4.2);
+* :func:`hamrock_brewe_hertz` / :func:`hamrock_brewe_terms` — the simplified closed forms
+  of Hamrock & Brewe (1983), the one implementation in the package (docs/hertz.md
+  sec. 3; docs/spec.md sec. 6, Algorithm 3);
+* :func:`circular_hertz` — the axisymmetric case ``A = B`` (docs/hertz.md sec. 4).
 
-i.e. ``A`` and ``B`` are *half* the relative principal curvatures. With the sorted pair
-``A_min <= B_max`` the principal relative radii are ``R_x = 1/(2 A_min)`` and
-``R_y = 1/(2 B_max)``, Hamrock's curvature-sum radius is ``1/R = 1/R_x + 1/R_y`` and the
-radius ratio ``alpha = R_x/R_y = B_max/A_min >= 1``. The contact ellipse has its major
-semi-axis ``a`` along the A_min direction (s) and its minor semi-axis ``b = a/k`` along
-t. Materials enter through E' = 2 E* (MPa), see :mod:`gearcontact.materials`.
-
-Three solutions are provided:
-
-* :func:`exact_elliptic_hertz` — the exact Hertz solution from complete elliptic
-  integrals (Johnson 1985, sec. 4.2, eqs. 4.39–4.41; Harris & Kotzalas 2006, ch. 6).
-  The eccentricity equation is solved with Brent's method in ``p = 1 - e^2 = 1/k^2``
-  using Carlson's symmetric integrals, ``K(m) = R_F(0, 1-m, 1)`` and
-  ``K(m) - E(m) = (m/3) R_D(0, 1-m, 1)`` (DLMF 19.25.1), which are the same complete
-  integrals as ``scipy.special.ellipk/ellipe`` (parameter ``m = e^2``) but free of the
-  ``K - E`` cancellation near the circular limit.
-* :func:`hamrock_brewe_hertz` — the simplified closed forms of Hamrock & Brewe (1983):
-  ``k = alpha^(2/pi)``, ``E_e = 1 + (pi/2 - 1)/alpha``, ``F = pi/2 + (pi/2 - 1) ln alpha``,
-  ``a = (6 k^2 E_e W R/(pi E'))^(1/3)``, ``b = a/k``, ``p_max = 3W/(2 pi a b)`` and the
-  approach ``delta = F (9/(2 E_e R) (W/(pi k E'))^2)^(1/3)``. This module holds the one
-  implementation of these formulas in the package (the fp64 preview of stage D calls
-  :func:`hamrock_brewe_terms`).
-* :func:`circular_hertz` — the axisymmetric special case ``A = B`` (Johnson 1985,
-  eqs. 4.22–4.23): ``a^3 = 3 W R_J/(4 E*)``, ``delta = a^2/R_J``,
-  ``p_0 = 3 W/(2 pi a^2)`` with ``R_J = 1/(2A)``.
-
-References
-----------
-K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985, sec. 4.2.
-B. J. Hamrock, W. J. Anderson, D. E. Brewe, "Simplified solution for stresses and
-deformations", *J. Lubrication Technology (J. Tribology)* 105(2), 1983, 171–177.
-T. A. Harris, M. N. Kotzalas, *Rolling Bearing Analysis*, 5th ed., CRC, 2006, ch. 6.
-B. C. Carlson, "Numerical computation of real or complex elliptic integrals",
-*Numerical Algorithms* 10, 1995, 13–26; NIST DLMF sec. 19.25.
+References are listed in docs/hertz.md sec. 5.
 """
 
 from __future__ import annotations

@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from ..figure_files import save_figure
 from ..validation import InputRangeError
 from .flank import SIDES, FlankSet
 from .sampling import sample_grid
@@ -75,5 +76,5 @@ def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: floa
     ax.legend(loc="upper left")
     ax.set_box_aspect((np.ptp(ax.get_xlim3d()), np.ptp(ax.get_ylim3d()), np.ptp(ax.get_zlim3d())))
     if path is not None:
-        fig.savefig(path, dpi=150)
+        save_figure(fig, path, dpi=150)
     return fig

@@ -24,11 +24,13 @@ flags word (:mod:`gearcontact.preview.chain`) in bits 16..27 — still one 32-bi
 
 Register kinds (:attr:`Register.kind`):
 
+==========  ==========================================================================
 ``ro``      read-only status, driven by the datapath;
 ``rw``      storage read back as written (reset value :attr:`Register.reset`);
 ``wdata``   storage plus a one-cycle write pulse (``wr_data``: one RAM sample per write);
 ``strobe``  a write with bit 0 set produces a one-cycle pulse (``go``, ``wr_rst``);
             reads return 0.
+==========  ==========================================================================
 """
 
 from __future__ import annotations

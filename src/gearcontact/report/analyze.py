@@ -3,26 +3,29 @@ physics-direct preview beside it, written to one directory with a readable summa
 
 ``run_analysis`` is what ``gearcontact analyze`` calls. Files written into ``out``:
 
-==========================  ==============================================================
-``design.json``             blank data (ISO 23509 Method 1)
-TCA files                   see :mod:`gearcontact.tca.export` (``tca.json``, ``te0.csv``,
-                            ``contact_path.csv``, ``gap_stencil.csv``, ``gap_field.csv``,
-                            ``phase_table.json``/``.bin``, ``te0.png``, ``contact_pattern.png``)
-``ltca.json``               per torque: load, LCP statistics, delta, mesh rotation, preview
-``ltca_torques.csv``        the table "preview vs LCP mean / p90 / peak" over the torques
-``preview.csv``             per torque: reference, golden (A-, B- -> D) and golden C -> D
-                            (hardware stencil) previews with codes and flags
-``pressure_<T>Nm.csv``      pressure map at each torque (s_mm, t_mm, pressure_mpa)
-``pressure_maps.png``       LCP pressure maps with the preview ellipse overlaid
-``pressure_vs_load.png``    log-log preview p_max and LCP mean / p90 / peak vs W, W^(1/3)
-``lte.json``, ``lte.csv``    loaded TE over one pitch at the design torque (TE0, TE_LCP,
-                            TE_pre, active pairs, compliances; :mod:`gearcontact.contact.lte`)
-``lte.png``                 TE0, TE_LCP, TE_pre and active pairs along the phase
-``precision.csv``, ``.png`` gap-kernel fixed-point error vs coordinate / normal width
-                            beside the first-order bound (:mod:`.precision`)
-``latency.json``            RTL cycle counts per core (:mod:`.latency`)
-``summary.md``              readable summary with the published values beside ours
-==========================  ==============================================================
+============================  ==============================================================
+``design.json``               blank data (ISO 23509 Method 1)
+TCA files                     see :mod:`gearcontact.tca.export` (``tca.json``, ``te0.csv``,
+                              ``contact_path.csv``, ``gap_stencil.csv``, ``gap_field.csv``,
+                              ``phase_table.json``/``.bin``, ``te0.png``, ``contact_pattern.png``)
+``ltca.json``                 per torque: load, LCP statistics, delta, mesh rotation, preview
+``ltca_torques.csv``          the table "preview vs LCP mean / p90 / peak" over the torques
+``preview.csv``               per torque: reference, golden (A-, B- -> D) and golden C -> D
+                              (hardware stencil) previews with codes and flags
+``pressure_<T>Nm.csv``        pressure map at each torque (s_mm, t_mm, pressure_mpa)
+``pressure_maps.png``         LCP pressure maps with the preview ellipse overlaid
+``pressure_vs_load.png``      log-log preview p_max and LCP mean / p90 / peak vs W, W^(1/3)
+``lte.json``, ``lte.csv``     loaded TE over one pitch at the design torque (TE0, TE_LCP,
+                              TE_pre, active pairs, compliances; :mod:`gearcontact.contact.lte`)
+``lte.png``                   TE0, TE_LCP, TE_pre and active pairs along the phase
+``precision.csv``, ``.png``   gap-kernel fixed-point error vs coordinate / normal width
+                              beside the first-order bound (:mod:`.precision`)
+``latency.json``              RTL cycle counts per core (:mod:`.latency`)
+``summary.md``                readable summary with the published values beside ours
+============================  ==============================================================
+
+Every figure is written as PNG and as SVG beside it (:func:`gearcontact.figure_files.save_figure`:
+identical runs write identical bytes, the SVG included), ``flanks_in_mesh`` too.
 
 No file holds a timing (two identical runs write identical files): the stage times, the
 LCP solve times and the fp64 preview's CPU latency and jitter on this machine are in

@@ -16,6 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
+from ..figure_files import save_figure  # noqa: E402
 from ..tca.export import TIMING_KEYS, without_timings, write_csv  # noqa: E402
 
 __all__ = ["plot_lte", "write_lte_outputs"]
@@ -41,7 +42,7 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
                  f"{lte.rotation_lcp_arcsec.mean():.1f}, preview "
                  f"{lte.rotation_pre_arcsec.mean():.1f} arcsec", fontsize=10)
     # legends right of the axes: inside they cover the curves
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.08, 1.0))
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.12, 1.0))
     ax.grid(alpha=0.3)
     ax.tick_params(labelbottom=True)
     ax.set_xlabel("pinion phase from P0 (deg)")
@@ -64,11 +65,10 @@ def plot_lte(lte, path, *, title: str = "", published: dict | None = None) -> Pa
     lines = ax2.get_legend_handles_labels()
     lines2 = share.get_legend_handles_labels()
     ax2.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=7, loc="upper left",
-               bbox_to_anchor=(1.08, 1.0))
+               bbox_to_anchor=(1.12, 1.0))
     ax2.set_xlabel("pinion phase from P0 (deg)")
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+    path = save_figure(fig, path, tight=True)
     plt.close(fig)
     return path
 

@@ -22,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
 from ..contact.line_peak import inadmissible_cells  # noqa: E402
+from ..figure_files import save_figure  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
 __all__ = ["multitooth_section", "plot_multitooth", "write_multitooth_outputs"]
@@ -58,12 +59,14 @@ def plot_multitooth(case, path, *, title: str = "", published: dict | None = Non
                     arrowprops={"arrowstyle": "-", "lw": 0.6})
     if sc is not None:
         fig.colorbar(sc, ax=ax, extend="max",
-                     label="pressure (MPa, with bending; trimmed edge cells saturate)")
+                     label="pressure (MPa), with bending\n(trimmed edge cells saturate)")
     ax.set_xlabel("gear-axial position z (mm)")
     ax.set_ylabel("radius about the gear axis (mm)")
-    ax.set_title(f"{title} {case.torque_nm:g} N·m: CP_max {case.cp_max_mpa:.0f}, cell peak "
-                 f"{case.p_peak_cell_mpa:.0f}, preview {case.preview_p_max_mpa:.0f} MPa",
-                 fontsize=9)
+    cp_pub = (published or {}).get("cp_max_mpa_at_design")
+    ax.set_title(f"{title} {case.torque_nm:g} N·m: CP_max {case.cp_max_mpa:.0f}"
+                 + (f" (published {cp_pub:g})" if cp_pub else "")
+                 + f" MPa\ncell peak {case.p_peak_cell_mpa:.0f}, preview "
+                 f"{case.preview_p_max_mpa:.0f} MPa", fontsize=9)
     ax.grid(alpha=0.3)
     labels = [f"{p.offset:+d}" for p in case.pairs]
     x = np.arange(len(case.pairs))
@@ -81,9 +84,9 @@ def plot_multitooth(case, path, *, title: str = "", published: dict | None = Non
     ax2.legend(fontsize=8)
     ax2.grid(alpha=0.3, axis="y")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    path = save_figure(fig, path)
     plt.close(fig)
-    return Path(path)
+    return path
 
 
 def write_multitooth_outputs(case, out_dir, *, figures: bool = True, title: str = "",

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..figure_files import save_figure
 from ..preview.gap.golden import GapFormat
 from ..preview.gap.precision import PrecisionPoint, gap_precision_sweep
 from ..tca.export import write_csv
@@ -91,6 +92,6 @@ def plot_precision(by_coord, by_normal, path) -> Path:
     axes[0].legend(fontsize=8)
     fig.suptitle("Gap kernel fixed-point precision (golden model vs fp64, 1000 samples)")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    path = save_figure(fig, path)
     plt.close(fig)
     return path

@@ -14,15 +14,14 @@ The items themselves are built in :mod:`.evaluation_contact` (1, 2, 6, 7) and
 
 Files written into ``out`` (besides those of the main job, which the report shows):
 
-=====================  ===================================================================
-``report.html``        one page with a table of contents; figures beside it (PNG)
-``report.md``          the same report as Markdown
-``report.json``        every number of the report; one top-level key per item
-                       (:data:`ITEMS`) plus ``meta``
-``surrogate.png/.svg`` the two-panel surrogate figure
-``*.svg``              the main job's report figures again as SVG
-``resources.json``     synthesis results with provenance (only with ``synth=True``)
-=====================  ===================================================================
+=======================  ===================================================================
+``report.html``          one page with a table of contents; figures beside it (PNG, SVG)
+``report.md``            the same report as Markdown
+``report.json``          every number of the report; one top-level key per item
+                         (:data:`ITEMS`) plus ``meta``
+``surrogate.png/.svg``   the two-panel surrogate figure
+``resources.json``       synthesis results with provenance (only with ``synth=True``)
+=======================  ===================================================================
 
 Every table has a ``published`` column (values of ``data/published/s0003.json``; empty
 where the study gave none). An item whose physics is not in the package yet is reported
@@ -62,23 +61,6 @@ QUICK = {"phases": 15, "lte_phases": 8, "n_train": 1000, "n_test": 400,
 FULL = {"phases": 61, "lte_phases": 61, "n_train": 2000, "n_test": 1000,
         "anchored_train": 6, "grid_cells": (40, 80, 120), "bearing_steps": BEARING_STEPS_FULL,
         "lengthwise_steps": LENGTHWISE_STEPS_FULL, "synth_lanes": (8, 16, 32, 64)}
-
-
-def _write_svgs(analysis, pub, out: Path) -> None:
-    """The main job's figures of the report again as SVG beside their PNG (the plot
-    functions take the format from the suffix)."""
-    from .figures import plot_pressure_maps, plot_pressure_vs_load
-    from .lte_plot import plot_lte
-    from .precision import plot_precision
-
-    title = f"{analysis.pair.name} {analysis.side}"
-    plot_pressure_maps(analysis.cases, out / "pressure_maps.svg", title=title)
-    plot_pressure_vs_load(analysis.cases, out / "pressure_vs_load.svg", title=title,
-                          published=pub)
-    if analysis.lte is not None:
-        plot_lte(analysis.lte, out / "lte.svg", title=title, published=pub)
-    if analysis.precision is not None:
-        plot_precision(*analysis.precision, out / "precision.svg")
 
 
 def _unique_messages(caught) -> list[str]:
@@ -167,9 +149,6 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
         sections.append(sec)
         times[f"{key}_s"] = time.perf_counter() - t0
         bar.update(1)
-    t0 = time.perf_counter()
-    _write_svgs(analysis, pub, out)
-    times["svg_s"] = time.perf_counter() - t0
     bar.close()
     from .. import __version__
 

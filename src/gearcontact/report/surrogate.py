@@ -1,31 +1,12 @@
 """Physics-direct preview vs a neural surrogate (docs/spec.md sec. 8, item 3).
 
-A learned surrogate needs one reference solve per training sample and promises nothing
-outside its training box; the physics-direct preview needs no training and extrapolates
-exactly as far as its physics holds. Two studies measure that:
-
-(a) **Synthetic domain** (:func:`synthetic_study`): half relative curvatures and load
-    (A-, B-, W) drawn uniformly from a box; the label is the peak pressure p_max of the
-    *exact* elliptic Hertz solution (:func:`gearcontact.analytic.hertz.
-    exact_elliptic_hertz`). The MLP is trained for W <= 3000 N and tested on fresh
-    samples inside the box and on 3000 < W <= 9000 N outside it. Errors are RMSE of the
-    relative error in % against the exact solution and against Hamrock–Brewe (the truth
-    of the published study); the fp64 preview *is* Hamrock–Brewe, so its error against
-    that truth is zero by construction and its error against the exact solution is the
-    Hamrock–Brewe approximation error (<= 1.6 % in p_max, docs/geometry.md sec. 5),
-    the same inside and outside the box.
-(b) **Anchored to the LCP** (:func:`anchored_study`): the label is the LCP p90 of the
-    loaded s0003 patch (:func:`gearcontact.contact.pair_ltca.single_pair_ltca`) at the
-    design mesh phase; the MLP is trained on the low torques and extrapolated to the high
-    ones (the pair and phase are fixed, so the load is the only input). The preview's
-    p_max is compared with the same labels. The cost of the training set is counted in
-    LCP solves and in seconds on this machine, beside the published 2005 ms per solve.
-
-The network (:class:`MlpSpec`) is scikit-learn's ``MLPRegressor`` (Pedregosa et al.,
-*JMLR* 12, 2011) behind ``StandardScaler`` on the inputs and on the target (zero mean,
-unit variance from the training set), seeded, trained by L-BFGS on the squared error.
-Training runs with BLAS limited to one thread (``threadpoolctl``): on a shared 2-core
-machine that is ~10x faster than the default and makes the timing reproducible.
+Two studies (design and reasoning: docs/reproduce.md sec. 2): :func:`synthetic_study`
+labels random (A-, B-, W) with the exact elliptic Hertz p_max and tests a network
+trained for W <= 3000 N inside and outside that box; :func:`anchored_study` labels the
+loads with the LCP p90 of s0003 at the design phase and extrapolates beyond the training
+torques. Errors are RMSE of the relative error in %. The network (:class:`MlpSpec`) is
+scikit-learn's ``MLPRegressor`` behind ``StandardScaler``, seeded, trained with BLAS
+limited to one thread. :func:`plot_surrogate` draws the two-panel figure.
 
 Requires the ``report`` extra (``pip install 'gearcontact[report]'``: scikit-learn).
 """
@@ -39,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz_array
+from ..figure_files import save_figure
 from ..materials import STEEL, effective_modulus_mpa
 from ..validation import InputRangeError, check_positive
 
@@ -407,8 +389,6 @@ def plot_surrogate(synthetic: SyntheticStudy, anchored: AnchoredStudy | None, pa
                    title: str = ""):
     """Two panels: (a) relative p_max error vs load, MLP and preview against exact Hertz,
     training limit marked; (b) LCP p90 labels, MLP and preview over the load."""
-    from pathlib import Path
-
     from .figures import plt
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -425,7 +405,9 @@ def plot_surrogate(synthetic: SyntheticStudy, anchored: AnchoredStudy | None, pa
                  f"{r['mlp']['exact']['in_box']:.2f} % in / "
                  f"{r['mlp']['exact']['out_of_box']:.1f} % out of box; preview "
                  f"{r['preview']['exact']['in_box']:.2f} / "
-                 f"{r['preview']['exact']['out_of_box']:.2f} %", fontsize=9)
+                 f"{r['preview']['exact']['out_of_box']:.2f} %\n(published MLP "
+                 f"{PUBLISHED_SYNTHETIC['mlp_in_pct']:g} / {PUBLISHED_SYNTHETIC['mlp_out_pct']:g}"
+                 f" % vs Hamrock–Brewe)", fontsize=9)
     ax.set_xlabel("normal load W (N)")
     ax.set_ylabel("p_max error vs exact Hertz (%)")
     ax.grid(True, alpha=0.3)
@@ -451,7 +433,11 @@ def plot_surrogate(synthetic: SyntheticStudy, anchored: AnchoredStudy | None, pa
         ax.set_title(f"(b) anchored to LCP p90 ({a.lcp_solves} training solves)\nMLP "
                      f"{r['mlp']['train']:.1f} % trained / {r['mlp']['extrap']:.1f} % "
                      f"extrapolated; preview {r['preview']['train']:.1f} / "
-                     f"{r['preview']['extrap']:.1f} %", fontsize=9)
+                     f"{r['preview']['extrap']:.1f} %\n(published MLP "
+                     f"{PUBLISHED_ANCHORED['mlp_train_pct']:g} / "
+                     f"{PUBLISHED_ANCHORED['mlp_extrap_pct']:g} %, preview "
+                     f"{PUBLISHED_ANCHORED['preview_train_pct']:g} / "
+                     f"{PUBLISHED_ANCHORED['preview_extrap_pct']:g} %)", fontsize=9)
         ax.set_xlabel("normal load W (N)")
         ax.set_ylabel("pressure (MPa)")
         ax.grid(True, alpha=0.3)
@@ -459,9 +445,6 @@ def plot_surrogate(synthetic: SyntheticStudy, anchored: AnchoredStudy | None, pa
     if title:
         fig.suptitle(title)
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    svg = path.with_suffix(".svg")
-    fig.savefig(svg)
+    path = save_figure(fig, path)
     plt.close(fig)
     return path

@@ -16,6 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..figure_files import save_figure  # noqa: E402
 from ..geometry.kinematics import MeshKinematics  # noqa: E402
 from ..geometry.surface import Surface  # noqa: E402
 from .mesh import MeshCycle  # noqa: E402
@@ -98,12 +99,13 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
         ax.set_ylabel(labels[member][1])
         ax.set_title(f"{member} flank: contact pattern at {paint * 1e3:.2f} um paint")
         ax.grid(alpha=0.3)
-    axes[0].legend(loc="best", fontsize=8)
+    # below the panels: inside, the legend covers the flank boundary and the pattern
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=3,
+               fontsize=8)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=130)
+    fig.tight_layout(rect=(0.0, 0.08, 1.0, 1.0))
+    out = save_figure(fig, path, dpi=130)
     plt.close(fig)
     return out
 
@@ -122,7 +124,7 @@ def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
     env_phi = np.degrees(cycle.phi1_rad)
     ax.plot(env_phi, cycle.envelope_arcsec, color="k", lw=2.2,
             label=f"envelope, p-p {cycle.te0_pp_arcsec:.2f} arcsec")
-    ax.axvspan(env_phi[0], env_phi[-1], color="0.9", zorder=0)
+    ax.axvspan(env_phi[0], env_phi[-1], color="0.9", zorder=0, label="one pinion pitch")
     lo, hi = np.nanmin(cycle.envelope_arcsec), np.nanmax(cycle.envelope_arcsec)
     pad = max(hi - lo, 1.0)
     if cycle.envelope_is_max:       # the other pairs lie below the envelope
@@ -134,9 +136,9 @@ def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
     ax.set_ylabel("TE0 (arcsec)")
     ax.set_title(title or f"unloaded transmission error ({n + 1} phases per pitch)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    # beside the axes: inside, it covers the neighbouring pairs' curves
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=130)
+    out = save_figure(fig, path, dpi=130, tight=True)
     plt.close(fig)
     return out

@@ -2,20 +2,20 @@
 
 Datapath (all integers, no floating point; Q formats as in docs/spec.md sec. 6):
 
-==========  =============  ===================================================
-signal      format         definition
-==========  =============  ===================================================
-g_i         GAP Q(32,16)   gap sample i, mm (input, 49 words)
-M_ji        ROM Q(40,20)   baked weight (Q(32,20) value, :mod:`.pinv`)
-acc_j       ACC Q(72,36)   ``sum_i M_ji g_i``, exact (cannot wrap, see pinv)
-c_j         COEFF Q(32,20) ``round_shift(acc_j, 16)``; overflow -> flag
-h           Q(33,20)       ``c3 + c5``, 1/mm (exact)
-e           Q(33,20)       ``c3 - c5``, 1/mm (exact)
-d           D Q(64,40)     ``e^2 + c4^2``, (1/mm)^2 (exact); > max -> flag
-r           UQ(32,20)      ``floor(sqrt(d))``, non-restoring isqrt [1]_
-A-, B-      CURVATURE      ``round_shift(h + r, 1)``, ``round_shift(h - r, 1)``
-            Q(32,20)       1/mm; overflow -> flag; B- <= 0 -> not elliptic
-==========  =============  ===================================================
+==========  ==============  ===================================================
+signal      format          definition
+==========  ==============  ===================================================
+g_i         GAP Q(32,16)    gap sample i, mm (input, 49 words)
+M_ji        ROM Q(40,20)    baked weight (Q(32,20) value, :mod:`.pinv`)
+acc_j       ACC Q(72,36)    ``sum_i M_ji g_i``, exact (cannot wrap, see pinv)
+c_j         COEFF Q(32,20)  ``round_shift(acc_j, 16)``; overflow -> flag
+h           Q(33,20)        ``c3 + c5``, 1/mm (exact)
+e           Q(33,20)        ``c3 - c5``, 1/mm (exact)
+d           D Q(64,40)      ``e^2 + c4^2``, (1/mm)^2 (exact); > max -> flag
+r           UQ(32,20)       ``floor(sqrt(d))``, non-restoring isqrt [1]_
+A-, B-      CURVATURE       ``round_shift(h + r, 1)``, ``round_shift(h - r, 1)``
+            Q(32,20)        1/mm; overflow -> flag; B- <= 0 -> not elliptic
+==========  ==============  ===================================================
 
 ``round_shift`` is round-half-up by arithmetic shift (:mod:`..qformat`). A- >= B- by
 construction (r >= 0 and rounding is monotone). Nothing wraps: whenever an overflow

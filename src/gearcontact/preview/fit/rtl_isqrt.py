@@ -11,16 +11,16 @@ so the root *and* every intermediate remainder equal the golden ones; the result
 
 Registers (fit core sizes: 64-bit radicand, 32-bit root, 2 bits per cycle):
 
-========  ==========================  ==============================================
-register  format                      meaning
-========  ==========================  ==============================================
-``dsh``   UQ(64,0)                    radicand, shifted left 2k bits per edge (the
-                                      next bit pairs at the top)
-``rem``   ISQRT_REM_FMT Q(34,0)       partial remainder R, ``|R| <= 2Q + 1``
-``root``  ROOT_FMT UQ(32,0) (as int)  root bits retired so far (LSB = newest); the
-                                      full root after the last step
-``count`` range(17)                   steps left; ``busy`` = ``count != 0``
-========  ==========================  ==============================================
+=========  ==========================  ==============================================
+register   format                      meaning
+=========  ==========================  ==============================================
+``dsh``    UQ(64,0)                    radicand, shifted left 2k bits per edge (the
+                                       next bit pairs at the top)
+``rem``    ISQRT_REM_FMT Q(34,0)       partial remainder R, ``|R| <= 2Q + 1``
+``root``   ROOT_FMT UQ(32,0) (as int)  root bits retired so far (LSB = newest); the
+                                       full root after the last step
+``count``  range(17)                   steps left; ``busy`` = ``count != 0``
+=========  ==========================  ==============================================
 
 Timing: the edge that samples ``start`` loads ``d`` (``rem`` = ``root`` = 0); each
 of the next ``cycles`` = ``root_bits / bits_per_cycle`` edges retires

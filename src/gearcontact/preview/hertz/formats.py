@@ -3,33 +3,34 @@
 All registers are unsigned except the contract inputs/outputs (docs/spec.md sec. 6).
 ``round_shift`` is round-half-up by shifting; ``floor`` is the divider's exact floor.
 
-===========  ============  ====================================================  ==========
-register     format        definition (codes; value = code 2^-frac)              max code
-===========  ============  ====================================================  ==========
-A, B         Q(32,20)      CURVATURE inputs, 1/mm (half relative curvatures)      2^24
-W            Q(32,8)       LOAD input, N                                          2^25
-E'           Q(32,0)       effective modulus E' = 2E*, integer MPa (constant      2^21
+===========  ============  ======================================================  ==========
+register     format        definition (codes; value = code 2^-frac)                max code
+===========  ============  ======================================================  ==========
+A, B         Q(32,20)      CURVATURE inputs, 1/mm (half relative curvatures)        2^24
+W            Q(32,8)       LOAD input, N                                            2^25
+E'           Q(32,0)       effective modulus E' = 2E*, integer MPa (constant        2^21
                            register; steel/steel 229 670)
-A_min,B_max  Q(32,20)      sorted curvatures                                      2^24
-R_x, R_y     Q(32,20)      round_shift(floor(2^40 / A_min), 1), mm (outputs)      2^30
-alpha        UQ(32,24)     floor(B_max 2^24 / A_min) = R_x/R_y                    2^31
-R            UQ(33,23)     floor(2^42 / (A_min + B_max)), mm                      2^32
-E6           UQ(27,25)     C6 + floor(N5 / alpha) = 6 E_e/pi, E_e = 1+(pi/2-1)/a  < 2^26.6
-k  (K)       UQ(29,24)     round_shift(POW interpolation, 16)                     < 2^28.5
-k^2 (K2)     UQ(37,28)     round_shift(K K, 20)                                   < 2^36.9
-T1           UQ(31,21)     round_shift(K2 E6, 32)            = k^2 E6             < 2^30.9
-T2           UQ(39,26)     round_shift(T1 R, 18)             = k^2 E6 R, mm       < 2^38.9
-T3           UQ(64,34)     T2 W (exact)                      = k^2 E6 R W, N mm   < 2^63.9
-C_a          UQ(64,45)     floor((T3 << 11) / E')            = a^3, mm^3          < 2^62.9
-m            UQ(32,29)     C_a 2^-3p in [1, 8); p = floor((msb(C_a) - 45)/3)      < 2^32
-c            UQ(47,46)     CBRT interpolation = m^(1/3) in [1, 2)                 < 2^47
-a_w          UQ(42,36)     round_shift(c, 10 - p) = a, mm                         < 2^42
-b_w          UQ(42,36)     floor((a_w << 24) / K) = a/k, mm                       < 2^42
-p_n2         UQ(47,28)     floor((W C3 << 16) / a_w) = 3W/(2 pi a), N/mm          < 2^46.8
-p_max        Q(32,8)       round_shift(floor((p_n2 << 17) / b_w), 1), MPa         < 2^31
-a, b         Q(32,20)      round_shift(a_w, 16), round_shift(b_w, 16), mm (SEMI_AXIS)
+A_min,B_max  Q(32,20)      sorted curvatures                                        2^24
+R_x, R_y     Q(32,20)      round_shift(floor(2^40 / A_min), 1), mm (outputs)        2^30
+alpha        UQ(32,24)     floor(B_max 2^24 / A_min) = R_x/R_y                      2^31
+R            UQ(33,23)     floor(2^42 / (A_min + B_max)), mm                        2^32
+E6           UQ(27,25)     C6 + floor(N5 / alpha) = 6 E_e/pi, E_e = 1+(pi/2-1)/a    < 2^26.6
+k  (K)       UQ(29,24)     round_shift(POW interpolation, 16)                       < 2^28.5
+k^2 (K2)     UQ(37,28)     round_shift(K K, 20)                                     < 2^36.9
+T1           UQ(31,21)     round_shift(K2 E6, 32)            = k^2 E6               < 2^30.9
+T2           UQ(39,26)     round_shift(T1 R, 18)             = k^2 E6 R, mm         < 2^38.9
+T3           UQ(64,34)     T2 W (exact)                      = k^2 E6 R W, N mm     < 2^63.9
+C_a          UQ(64,45)     floor((T3 << 11) / E')            = a^3, mm^3            < 2^62.9
+m            UQ(32,29)     C_a 2^-3p in [1, 8); p = floor((msb(C_a) - 45)/3)        < 2^32
+c            UQ(47,46)     CBRT interpolation = m^(1/3) in [1, 2)                   < 2^47
+a_w          UQ(42,36)     round_shift(c, 10 - p) = a, mm                           < 2^42
+b_w          UQ(42,36)     floor((a_w << 24) / K) = a/k, mm                         < 2^42
+p_n2         UQ(47,28)     floor((W C3 << 16) / a_w) = 3W/(2 pi a), N/mm            < 2^46.8
+p_max        Q(32,8)       round_shift(floor((p_n2 << 17) / b_w), 1), MPa           < 2^31
+a, b         Q(32,20)      round_shift(a_w, 16), round_shift(b_w, 16), mm
+                           (SEMI_AXIS)
 k            Q(32,20)      round_shift(K, 4) (output)
-===========  ============  ====================================================  ==========
+===========  ============  ======================================================  ==========
 
 Constants: ``C6 = round(6/pi 2^25)``, ``N5 = round((3 - 6/pi) 2^49)``,
 ``C3 = round(3/(2 pi) 2^40)``. Every multiplier product is below 2^64 (docs/spec.md sec. 6

@@ -35,15 +35,15 @@ measured on 200 000 seeded points per material of the accuracy domain A-, B- in
 titanium and steel/cast iron (``tests/preview/hertz/test_golden.py`` asserts it on
 25 000 points per material); maximum relative errors:
 
-=========  ==========================  =================  =======================
-output     datapath only (reference    same, alpha > 5    end to end (reference
-           at the decoded input codes)                    at the real inputs)
-=========  ==========================  =================  =======================
-k          1.9e-4 (rms 6e-5)           2.7e-6             6.8e-4
-a          1.4e-4 (rms 4e-5)           7.8e-6             3.6e-4
-b          7.7e-5 (rms 2e-5)           3.3e-5             3.3e-4
-p_max      1.25e-4 (rms 2e-5)          3.9e-5             3.4e-4
-=========  ==========================  =================  =======================
+=========  ===========================  =================  =======================
+output     datapath only (reference     same, alpha > 5    end to end (reference
+           at the decoded input codes)                     at the real inputs)
+=========  ===========================  =================  =======================
+k          1.9e-4 (rms 6e-5)            2.7e-6             6.8e-4
+a          1.4e-4 (rms 4e-5)            7.8e-6             3.6e-4
+b          7.7e-5 (rms 2e-5)            3.3e-5             3.3e-4
+p_max      1.25e-4 (rms 2e-5)           3.9e-5             3.4e-4
+=========  ===========================  =================  =======================
 
 The datapath error is dominated by the POW interpolation near alpha = 1 (cubic
 remainder, :mod:`.luts`) and, beyond alpha = 5, by the half-LSB rounding of the
