@@ -61,15 +61,15 @@ def main() -> None:
         res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * ms,
                        step_s=1e-6 * args.step_us, record_every=args.record_every)
         cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
-        s = res.summary
-        print(f"{be:<11}{s['steps'] / s['wall_s']:>12.4g}{s['real_time_factor']:>11.2f}"
-              f"{s['step_time_p50_us']:>10.3f}{s['step_time_p99_us']:>10.3f}"
-              f"{s['step_time_p99_us'] / s['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
+        s, tm = res.summary, res.timings
+        print(f"{be:<11}{s['steps'] / tm['wall_s']:>12.4g}{tm['real_time_factor']:>11.2f}"
+              f"{tm['step_time_p50_us']:>10.3f}{tm['step_time_p99_us']:>10.3f}"
+              f"{tm['step_time_p99_us'] / tm['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
               f"{s['dynamic_factor']:>7.3f}")
         if be in ("rtl", "soc"):
             where = s.get("rtl_simulator", "the bhseq_core SoC (register driver)")
             lines.append(f"{be}: {s[be + '_previews']} previews replayed on {where} at "
-                         f"{s[be + '_previews_per_s']:.4g} previews/s, "
+                         f"{tm[be + '_previews_per_s']:.4g} previews/s, "
                          f"{s[be + '_mismatches']} mismatches ({ms:g} ms simulated)")
     for line in lines:
         print(line)

@@ -319,14 +319,20 @@ class TwinResult:
         Time series (:data:`~.kernel.RECORD_COLUMNS` plus ``te_arcsec``, the dynamic TE
         in the TCA's sign, comparable with ``gearcontact lte``).
     summary : dict
-        Plain-JSON scalars (see :func:`simulate`).
+        Plain-JSON scalars (see :func:`simulate`); deterministic: identical runs give
+        identical summaries (no timings).
     natural_frequencies_hz : ndarray
         Linearised modes at the static point.
+    timings : dict
+        Wall-clock measurements of this run (see :func:`simulate`), kept out of
+        ``summary`` so that result files are byte-identical across identical runs
+        (the CLI writes these into ``run.json``).
     """
 
     columns: dict
     summary: dict
     natural_frequencies_hz: np.ndarray
+    timings: dict = field(default_factory=dict)
 
 
 def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: float,
@@ -361,12 +367,13 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         ``summary`` keys: ``backend, steps, step_us, duration_s, speed_rpm, torque_nm,
         mesh_frequency_hz, static_mesh_torque_nm, static_mesh_load_n,
         mean_mesh_torque_nm, mean_mesh_load_n, dynamic_factor, contact_loss,
-        dte_pp_arcsec, real_time_factor, step_time_p50_us, step_time_p99_us, wall_s,
-        natural_frequencies_hz, h_omega_max, mesh_damping_n_s_per_mm,
-        bending_compliance_mm_per_n``. Statistics over the recorded steps after
-        ``settle_fraction``. ``step_time_p*`` are percentiles of the mean step time of
-        blocks of ``256 record_every`` steps (one compiled call each). ``rtl`` / ``soc``
-        add the replay's ``<backend>_previews, _mismatches, _seconds, _previews_per_s``.
+        dte_pp_arcsec, natural_frequencies_hz, h_omega_max, mesh_damping_n_s_per_mm,
+        bending``. Statistics over the recorded steps after ``settle_fraction``.
+        ``rtl`` / ``soc`` add the replay's ``<backend>_previews, _mismatches``.
+        ``timings`` keys: ``real_time_factor, step_time_p50_us, step_time_p99_us,
+        wall_s`` (and ``<backend>_seconds, _previews_per_s`` of a replay);
+        ``step_time_p*`` are percentiles of the mean step time of blocks of ``256
+        record_every`` steps (one compiled call each).
 
     Raises
     ------
@@ -478,12 +485,15 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "dynamic_factor": float(t_mesh.max() / static_t),
         "contact_loss": float(np.mean(t_mesh == 0.0)),
         "dte_pp_arcsec": float(np.ptp(cols["te_arcsec"][sel])),
-        "real_time_factor": dur / wall, "step_time_p50_us": float(np.percentile(st, 50)),
-        "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
-        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n, **rtl}
-    return TwinResult(cols, summary, freqs)
+        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n,
+        **{k: v for k, v in rtl.items() if not k.endswith(("_seconds", "_per_s"))}}
+    timings = {"real_time_factor": dur / wall,
+               "step_time_p50_us": float(np.percentile(st, 50)),
+               "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
+               **{k: v for k, v in rtl.items() if k.endswith(("_seconds", "_per_s"))}}
+    return TwinResult(cols, summary, freqs, timings)
 
 
 def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
