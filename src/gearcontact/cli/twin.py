@@ -112,7 +112,8 @@ def _sweep(args, pair, drivetrain, speeds) -> int:
     table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
                                  drivetrain=drivetrain, side=args.side, phases=args.phases,
                                  table_source=args.table_source, progress=not args.quiet)
-    preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend)
+    preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
+                          reverse=table_model.reverse, reverse_note=table_model.reverse_note)
     sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,
                      step_s=1e-6 * args.step_us, workers=args.workers, progress=not args.quiet)
     run_timings(args, **{f"{label}_mean_real_time_factor": float(rows["real_time_factor"].mean())

@@ -40,7 +40,7 @@ from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..validation import check_positive
 
-__all__ = ["MeshTable", "mesh_table"]
+__all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,6 +76,16 @@ class MeshTable:
         The TCA phases of the rows, rad (TCA sign).
     te0_arcsec : ndarray (K,)
         The TCA envelope of the rows, arcsec (TCA sign).
+    gear_datum_rad : float
+        ``phi2_ref + (phi1_0 - phi1_ref) / u`` of the TCA path (pair-0 coordinates,
+        ``phi1_0`` the first row): the unloaded gear angle of the row-0 phase is this
+        plus ``TE0_env`` of the row; with the other side's datum it gives the free play
+        between the two flanks (:func:`free_play_rad`).
+    side : str
+        ``"drive"`` or ``"coast"``.
+    bending_mm_per_n : ndarray (P, K)
+        Tooth-bending compliance of each pair (pinion + gear tooth in series with the
+        contact), mm/N; zeros for rigid teeth (:func:`mesh_table` ``bending``).
     """
 
     psi_rad: np.ndarray
@@ -93,6 +103,9 @@ class MeshTable:
     e_prime_mpa: float
     phi1_rad: np.ndarray
     te0_arcsec: np.ndarray
+    gear_datum_rad: float = 0.0
+    side: str = "drive"
+    bending_mm_per_n: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:
@@ -172,4 +185,52 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         valid=valid[:, order], motion_sign=m, ratio=float(pair.gear_teeth / pair.pinion_teeth),
         pinion_teeth=int(pair.pinion_teeth), reference_lever_mm=ref_lever,
         reference_index=int(np.flatnonzero(order == k0)[0]), e_prime_mpa=float(e_prime),
-        phi1_rad=phi1[order], te0_arcsec=env[order])
+        phi1_rad=phi1[order], te0_arcsec=env[order],
+        gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
+                             / cycle.path.ratio),
+        side=side, bending_mm_per_n=np.zeros((n_p, n_k)))
+
+
+def reverse_law(loaded: MeshTable, reverse: MeshTable) -> tuple[float, float]:
+    """``(c_r, C)`` relating the reverse flank's table to the loaded one's motion.
+
+    With the motion signs ``m`` (loaded) and ``m_r = -m`` (the reverse flank stops the
+    gear the other way), the reverse table's pinion angle is ``psi_r = m_r (phi1 -
+    phi1_r0) = c_r - psi`` and its closure (penetration along its own law, rad of gear
+    rotation) is
+
+        theta_r = psi_g - psi / u + eps_r(psi_r) - C - theta_b
+
+    with ``C = m [(phi2_r0 - phi1_r0 / u) - (phi2_0 - phi1_0 / u)]`` from the two TCA
+    data (reduced modulo the gear pitch: both paths use their own pair 0) and
+    ``theta_b`` the designed backlash over the reference lever. The geometric free play
+    between the flanks (``theta_b = 0``) is ``b(psi) = C - eps_r(psi_r) - eps(psi)``
+    (:func:`free_play_rad`).
+
+    Raises
+    ------
+    ValueError
+        Both tables have the same motion sign (not a flank pair of opposite sides).
+    """
+    m, mr = loaded.motion_sign, reverse.motion_sign
+    if mr != -m:
+        raise ValueError(f"reverse_law: the {reverse.side} table runs the same way as the "
+                         f"{loaded.side} table (motion signs {mr}, {m})")
+    u = loaded.ratio
+    c_r = mr * float(loaded.phi1_rad[0] - reverse.phi1_rad[0])
+    big = m * ((reverse.gear_datum_rad - reverse.phi1_rad[0] / u)
+               - (loaded.gear_datum_rad - loaded.phi1_rad[0] / u))
+    p2 = 2.0 * np.pi / (u * loaded.pinion_teeth)
+    return c_r, float(big - p2 * np.round(big / p2))
+
+
+def free_play_rad(loaded: MeshTable, reverse: MeshTable, psi_rad) -> np.ndarray:
+    """Geometric angular free play ``b(psi)`` (rad of gear rotation) between the loaded
+    and the reverse flanks of the generated teeth (no designed backlash) at the loaded
+    table's pinion angles ``psi``; negative: the flanks interfere."""
+    c_r, big = reverse_law(loaded, reverse)
+    psi = np.asarray(psi_rad, float)
+    p = loaded.pitch_rad
+    eps = np.interp(np.mod(psi, p), loaded.psi_rad, loaded.eps_rad)
+    eps_r = np.interp(np.mod(c_r - psi, p), reverse.psi_rad, reverse.eps_rad)
+    return big - eps_r - eps
