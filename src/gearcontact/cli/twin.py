@@ -45,6 +45,9 @@ def register(sub) -> None:
                    help="TOML file with a [drivetrain] table (default: s0003 estimates)")
     p.add_argument("--table-source", default="lcp", choices=("lcp", "preview"),
                    help="table backend: LTCA (lcp, default) or Hertz preview loaded TE")
+    p.add_argument("--bending", action="store_true",
+                   help="tooth bending of both members in series with the Hertzian law "
+                        "(shell model; default rigid teeth)")
     p.add_argument("--record-every", type=int, default=1,
                    help="write every n-th step to twin.csv (default 1)")
     p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
@@ -88,7 +91,8 @@ def run(args) -> int:
         return _sweep(args, pair, drivetrain, speeds)
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
-                           table_source=args.table_source, progress=not args.quiet)
+                           table_source=args.table_source, bending=args.bending,
+                           progress=not args.quiet)
     res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
                    progress=not args.quiet)
@@ -111,7 +115,8 @@ def run(args) -> int:
 def _sweep(args, pair, drivetrain, speeds) -> int:
     table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
                                  drivetrain=drivetrain, side=args.side, phases=args.phases,
-                                 table_source=args.table_source, progress=not args.quiet)
+                                 table_source=args.table_source, bending=args.bending,
+                                 progress=not args.quiet)
     preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
                           reverse=table_model.reverse, reverse_note=table_model.reverse_note)
     sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,

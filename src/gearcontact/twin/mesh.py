@@ -38,9 +38,11 @@ import numpy as np
 from ..contact.lte_pairs import PairFields, phase_contacts
 from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
-from ..validation import check_positive
+from ..analytic.hertz import hamrock_brewe_hertz
+from ..validation import InputRangeError, check_positive
 
-__all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad"]
+__all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad",
+           "pair_bending_compliance"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,7 +121,7 @@ class MeshTable:
 
 
 def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.5,
-               edge_reach: float = 0.5, cells: int = 40) -> MeshTable:
+               edge_reach: float = 0.5, cells: int = 40, bending=None) -> MeshTable:
     """Mesh data of ``tca`` over one pitch (module docstring).
 
     Parameters
@@ -142,18 +144,25 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         Cells per side of an edge pair's posed field, whose smallest separation on the
         flank is the pair's opening (resolution dependent: use the ``cells`` of the
         loaded TE the twin is compared with; 40 is its default).
+    bending : gearcontact.contact.tooth_bending.ToothBending or None
+        Tooth bending of both members: each pair's bending compliance
+        :func:`pair_bending_compliance` at every phase into ``bending_mm_per_n`` (in
+        series with the Hertzian approach in the twin's contact law); None: rigid
+        teeth (zeros).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
     kin = pair.kinematics()
     pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
     e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
+    if bending is not None and bending.side != side:
+        raise InputRangeError("bending.side", bending.side, f"'{side}' (the side of the mesh)")
     fields = PairFields(pinion, gear, kin, cycle, torque_nmm=1e3 * t, e_prime=e_prime,
-                        cells=int(cells), extent=(1.6, 2.0))
+                        cells=int(cells), extent=(1.6, 2.0), bending=bending)
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
     n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}
-    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B")}
+    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb")}
     valid = np.zeros((n_p, n_k), bool)
     curv: dict = {}
     steps = round(edge_reach * cycle.step_index)
@@ -168,6 +177,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             arrays["opening"][i, k] = pc.offset_mm
             arrays["A"][i, k] = pc.A_minus_per_mm
             arrays["B"][i, k] = pc.B_minus_per_mm
+            if bending is not None:
+                arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
@@ -188,7 +199,31 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         phi1_rad=phi1[order], te0_arcsec=env[order],
         gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
                              / cycle.path.ratio),
-        side=side, bending_mm_per_n=np.zeros((n_p, n_k)))
+        side=side, bending_mm_per_n=arrays["cb"][:, order])
+
+
+def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:
+    """Bending compliance of a pair's two teeth under its Hertzian pressure, mm/N.
+
+    ``c_b = p^T G p / W^2 = |F^T p|^2 / W^2`` with ``G = F F^T`` the shell compliance
+    of the pinion and gear tooth at the cells of the pair's field
+    (:class:`gearcontact.contact.tooth_bending.ToothBending`, as the loaded TE's LCP
+    uses it) and ``p`` the semi-ellipsoidal Hertz pressure of the pair carrying the
+    torque alone (its semi-axes from Hamrock–Brewe; the field's own sizing load): the
+    work-conjugate compliance of that pressure shape (Castigliano), so that ``W c_b``
+    is the pressure-weighted mean bending deflection along the normal. Cells off the
+    flank carry no pressure.
+    """
+    gap, grid, off, lever = fields.get(pc)
+    f = fields.factors[pc.path_index]
+    hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, torque_nmm / pc.lever_mm,
+                             e_prime_mpa=fields.e_prime)
+    s, t = np.meshgrid(grid.x_mm, grid.y_mm)
+    q = np.sqrt(np.clip(1.0 - (s / hz.a_mm) ** 2 - (t / hz.b_mm) ** 2, 0.0, None)) * ~off
+    if not q.any():
+        return 0.0
+    v = np.einsum("yxr,yx->r", f, q / q.sum())
+    return float(v @ v)
 
 
 def reverse_law(loaded: MeshTable, reverse: MeshTable) -> tuple[float, float]:

@@ -12,9 +12,12 @@ phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
 speeds, so that what follows is the response to the mesh excitation (unloaded TE and
 the phase-varying stiffness).
 
-Tooth bending: not modelled yet (rigid teeth, Hertzian approach only). The hook is
-:attr:`TwinModel.bending_compliance_mm_per_n`: it must stay 0 until the bending model
-lands; the contact law then becomes ``d_j = delta_H(W_j) + c_b W_j`` per pair.
+Tooth bending (switchable: ``mesh_table(..., bending=...)``, ``model_for_pair(...,
+bending=True)``, ``gearcontact twin --bending``): each pair's bending compliance of the
+pinion and gear tooth (:func:`~.mesh.pair_bending_compliance`, the shell operator of
+:mod:`gearcontact.contact.tooth_bending` weighted by the pair's Hertz pressure) is in
+series with its Hertzian approach, ``d_j = kappa_j W_j^(2/3) + c_b,j W_j``, solved per
+pair and step in the kernel; without it the teeth are rigid.
 """
 
 from __future__ import annotations
@@ -73,8 +76,6 @@ class TwinModel:
         about the designed backlash (``reverse_note`` says why).
     reverse_note : str
         How the reverse flank is modelled (written to ``twin.json``).
-    bending_compliance_mm_per_n : float
-        Tooth-bending compliance hook; 0 (not modelled yet, module docstring).
     """
 
     mesh: MeshTable
@@ -82,34 +83,26 @@ class TwinModel:
     backend: str
     torque_nm: float
     table: object = None
-    bending_compliance_mm_per_n: float = 0.0
     arrays: dict = field(default_factory=dict, repr=False)
     reverse: MeshTable | None = None
     reverse_note: str = ""
 
 
 def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
-                backend: str = "reference", table=None,
-                bending_compliance_mm_per_n: float = 0.0, reverse: MeshTable | None = None,
+                backend: str = "reference", table=None, reverse: MeshTable | None = None,
                 reverse_note: str = "") -> TwinModel:
     """Check the inputs and pack the compiled loop's arrays.
 
-    ``bending_compliance_mm_per_n`` is the hook for the tooth-bending model: only 0 is
-    accepted until it lands (then each pair solves ``d_j = kappa_j W^(2/3) + c_b W`` for
-    ``W`` by a few Newton steps in the kernel instead of the closed form).
+    Tooth bending comes with the mesh tables (their ``bending_mm_per_n``).
 
     Raises
     ------
     InputRangeError
-        Unknown backend, ``table`` backend without a table, torque <= 0, a bending
-        compliance other than 0.
+        Unknown backend, ``table`` backend without a table, torque <= 0.
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     t = check_positive("torque_nm (N·m)", torque_nm)
-    if bending_compliance_mm_per_n != 0.0:
-        raise InputRangeError("bending_compliance_mm_per_n", bending_compliance_mm_per_n,
-                              "0 (tooth bending is not modelled yet: rigid teeth)")
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
     if backend != "table":
@@ -135,7 +128,7 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
     arrays = {**_stack(mesh, reverse if reverse is not None else mesh),
               "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
               "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2]}
-    return TwinModel(mesh, drivetrain, backend, t, table, 0.0, arrays, reverse, reverse_note)
+    return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note)
 
 
 def _stack(mesh: MeshTable, rev: MeshTable) -> dict:
@@ -534,7 +527,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "dte_pp_arcsec": float(np.ptp(cols["te_arcsec"][sel])),
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
-        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n,
+        **_bending_summary(model),
         "reverse_flank": model.reverse_note, **_free_play_summary(model),
         **{k: v for k, v in rtl.items() if not k.endswith(("_seconds", "_per_s"))}}
     timings = {"real_time_factor": dur / wall,
@@ -542,6 +535,15 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
                "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
                **{k: v for k, v in rtl.items() if k.endswith(("_seconds", "_per_s"))}}
     return TwinResult(cols, summary, freqs, timings)
+
+
+def _bending_summary(model: TwinModel) -> dict:
+    """Whether tooth bending is in the law, and the mean pair bending compliance of the
+    loaded side's valid pairs, mm/N."""
+    cb = model.mesh.bending_mm_per_n
+    on = cb is not None and bool(np.any(cb > 0.0))
+    return {"bending": on, "bending_compliance_mean_mm_per_n":
+            float(cb[model.mesh.valid].mean()) if on else 0.0}
 
 
 def _free_play_summary(model: TwinModel) -> dict:
@@ -561,9 +563,12 @@ def _free_play_summary(model: TwinModel) -> dict:
 def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                    drivetrain: DrivetrainParams | None = None, side: str = "drive",
                    phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
-                   progress: bool = False) -> TwinModel:
+                   bending: bool = False, progress: bool = False) -> TwinModel:
     """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
-    :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`."""
+    :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
+    The reverse flank is the other side's own TCA (mirrored loaded law if that side is in
+    line contact). ``bending``: tooth bending of both members in series with the
+    Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`)."""
     from ..tca.analysis import analyze_pair
     from ..tca.line_contact import LineContact
     from .ltca_table import torque_table
@@ -573,20 +578,24 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in BACKENDS:     # before the expensive stages
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    from ..contact.tooth_bending import tooth_bending
+
     tca, flanks = analyze_pair(pair, side=side, phases=phases, progress=progress)
-    mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t)
+    bend = (lambda s: tooth_bending(flanks, pair, side=s)) if bending else (lambda s: None)
+    mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t, bending=bend(side))
     other = "coast" if side == "drive" else "drive"
     reverse, note = None, ""
     try:
         rtca, _ = analyze_pair(pair, side=other, phases=phases, flanks=flanks,
                                progress=progress)
-        reverse = mesh_table(rtca, flanks, pair, side=other, torque_nm=t)
+        reverse = mesh_table(rtca, flanks, pair, side=other, torque_nm=t,
+                             bending=bend(other))
     except LineContact as exc:     # conjugate flanks: no contact ellipse to load
         note = (f"loaded side's law mirrored about backlash_mm: the {other} flanks are in "
                 f"line contact ({str(exc).split(';')[0]}), outside the Hertzian preview")
     table = None
     if backend == "table":
         table = torque_table(tca, flanks, pair, mesh, t, side=side, source=table_source,
-                             cells=table_cells, progress=progress)
+                             cells=table_cells, bending=bend(side), progress=progress)
     return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
                        table=table, reverse=reverse, reverse_note=note)
