@@ -19,15 +19,25 @@ with the mesh rotation ``theta = psi_p/u + eps(psi_p) - psi_g`` (:mod:`.mesh`); 
 pinion's factor ``1/u + eps'`` is ``d theta / d psi_p``, which makes the mesh
 conservative in the unloaded TE (the torque is the derivative of the mesh potential).
 
-Mesh torque, drive flank (``theta >= 0``): the Hertzian pairs of the current phase,
-``W_j = (d_j / kappa_j)^(3/2)`` for ``d_j = l_j theta - g_j > 0`` (else 0), ``T_el =
-sum W_j l_j``, plus the mesh damping ``T_d = c_m l_0^2 theta'`` while a pair is closed;
-the flanks cannot pull, so ``T_mesh = max(T_el + T_d, 0)``. Coast flank (``theta <=
--theta_b``, ``theta_b = backlash / l_0``): the drive law mirrored, ``T_mesh =
-min(-T_el(-theta - theta_b) + T_d, 0)`` -- an approximation: the coast flank's own TCA
-is not used yet, so coast impacts see the drive flank's pairs and curvatures; in between the teeth fly free (``T_mesh = 0``,
-contact loss). Nothing divides by a load or an approach, so contact loss gives 0, never
-NaN.
+Mesh torque, loaded flank (``theta >= 0``; the side the TCA ran on, e.g. coast for
+s0003): the Hertzian pairs of the current phase, ``W_j`` from ``d_j = l_j theta - g_j >
+0`` (else 0) by ``d_j = kappa_j W_j^(2/3) + c_b,j W_j`` (closed form
+``W = (d/kappa)^(3/2)`` for rigid teeth, ``c_b = 0``; with the tooth-bending compliance
+``c_b`` of :func:`.mesh.pair_bending_compliance` in series, Newton on ``s = W^(1/3)``),
+``T_el = sum W_j l_j``, plus the mesh damping ``c_m l_0^2 theta'`` while a pair is
+closed; the flanks cannot pull, so ``T = max(T_el + T_d, 0)``.
+
+Reverse flank (torque reversal through the backlash): its own table (index 1 of the
+stacked arrays, the other side's TCA: levers, openings, curvatures, TE0, bending) along
+its own pinion angle ``psi_r = c_r - psi_p`` and its own closure ``theta_r = psi_g -
+psi_p/u + eps_r(psi_r) - C - theta_b`` (:func:`.mesh.reverse_law`: ``C`` from the two
+TCA data, so the geometric free play between the flanks is in it; ``theta_b =
+backlash / l_0`` is the designed backlash added to it); it pushes the gear back and the
+pinion forward through its own ``d theta_r / d psi_p``. Where the other side has no
+contact ellipse (line contact), ``P_MIRROR`` makes it the loaded law mirrored about
+``theta_b`` (``theta_r = -theta - theta_b``). In between both flanks the teeth fly free
+(``T_mesh = 0``, contact loss). Nothing divides by a load or an approach, so contact
+loss gives 0, never NaN.
 
 ``kappa_j`` (mm / N^(2/3)) is the Hertzian approach coefficient ``delta = kappa W^(2/3)``
 (Johnson 1985 sec. 4.2: the approach of two elastic bodies in point contact grows as
@@ -47,8 +57,6 @@ backend computed them:
   (:mod:`.ltca_table`);
 * ``rtl`` / ``soc``: the golden loop, every preview traced and replayed on the RTL core
   or through the SoC's register driver (:mod:`.cosim`).
-
-Tooth bending is not in the law yet (rigid teeth; hook in :mod:`.simulate`).
 
 For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
 rounding, and the load at which it is sampled is clamped to the datapath envelope
