@@ -77,7 +77,7 @@ def test_reverse_flank_has_its_own_hertzian_law(s0003_twin, s0003_coast):
     dy = np.zeros((1, K.N_STATE))
     th, th_r_k, t_mesh, w = K._deriv(y, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
                                      a["valid"], a["cb"], 0, np.full((2, n_p), 1e3),
-                                     np.full((2, n_p, 6), -1.0), a["pow_lut"], a["cbrt_lut"],
+                                     np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"],
                                      a["cst"], np.zeros((0, 9), np.int64), np.zeros(4, np.int64),
                                      a["tab_theta"], a["tab_t23"], a["tab_w23"], dy, 0,
                                      np.zeros((2, n_p)), np.zeros((2, 4)), np.zeros(3))
@@ -130,6 +130,8 @@ def test_torque_reversal_through_the_backlash(s0003_twin, s0003_coast):
 
 @pytest.mark.parametrize("d, kap, cb", [(1e-3, 2e-4, 0.0), (1e-3, 2e-4, 1e-6),
                                         (5e-2, 1e-4, 5e-5), (1e-6, 3e-4, 1e-5)])
-def test_bending_law_inverts(d, kap, cb):
-    w = K._pair_load(d, kap, cb)
+@pytest.mark.parametrize("s_prev", [-1.0, 1e-3, 1.0, 1e3])
+def test_bending_law_inverts(d, kap, cb, s_prev):
+    """From the bound start or any previous solution (far below or above the root)."""
+    w = K._pair_load(d, kap, cb, s_prev)
     assert kap * w ** (2.0 / 3.0) + cb * w == pytest.approx(d, rel=1e-12)

@@ -172,22 +172,26 @@ def _phase(psi, pitch, dpsi, nrow):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _pair_load(d, kap, cb):
+def _pair_load(d, kap, cb, s_prev):
     """Load W (N) of a pair at approach ``d`` (mm): Hertz ``d = kap W^(2/3)`` alone
     (closed form), or with the tooth-bending compliance ``cb`` (mm/N) in series, ``d =
-    kap W^(2/3) + cb W``: Newton on ``cb s^3 + kap s^2 - d = 0`` for ``s = W^(1/3)``
-    from ``s0 = min(sqrt(d/kap), cbrt(d/cb))`` (the residual is >= 0 there and the
-    function is convex increasing for s > 0, so the iterates fall monotonically to the
-    root)."""
+    kap W^(2/3) + cb W``: Newton on ``f(s) = cb s^3 + kap s^2 - d = 0`` for ``s =
+    W^(1/3)``. ``f`` is convex increasing for s > 0, so Newton from any s > 0 lands
+    right of the root after at most one step and then falls monotonically to it; the
+    start is the pair's previous solution ``s_prev`` (> 0; the load changes little per
+    stage: 2-3 iterations), else ``min(sqrt(d/kap), cbrt(d/cb))`` (where ``f >= 0``).
+    Stops at a relative step of 1e-14."""
     x = d / kap
     if cb <= 0.0:
         return x * math.sqrt(x)
-    s = min(math.sqrt(x), np.cbrt(d / cb))
-    for _ in range(40):
+    s = s_prev if s_prev > 0.0 else min(math.sqrt(x), np.cbrt(d / cb))
+    for _ in range(60):
         r = (cb * s + kap) * s * s - d
         ds = r / ((3.0 * cb * s + 2.0 * kap) * s)
         s -= ds
-        if ds <= 1e-15 * s:
+        if s <= 0.0:            # (only from a far start): restart where f >= 0
+            s = min(math.sqrt(x), np.cbrt(d / cb))
+        elif abs(ds) <= 1e-14 * s:
             break
     return s * s * s
 
@@ -271,7 +275,10 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t, bac
             tcount[3] += 1
             continue
         we = cache[sd, j, 5]
-        w = _pair_load(d, kap, cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i]))
+        cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+        w = _pair_load(d, kap, cb, cache[sd, j, 6])
+        if cb > 0.0:
+            cache[sd, j, 6] = np.cbrt(w)
         w_pairs[sd, j] = w
         t_el += 1e-3 * w * lv
         w_tot += w
@@ -426,7 +433,7 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
     out3 = np.zeros(3)
-    cache = np.zeros((2, n_p, 6))
+    cache = np.zeros((2, n_p, 7))     # preview per pair; column 6 the last W^(1/3)
     return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend,
                 w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
                 rec, rec_start, record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache)

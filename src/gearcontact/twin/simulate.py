@@ -244,7 +244,7 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
     i = min(int(x), int(prm[K.P_NROW]) - 2)
     t, _ = K._elastic(theta, i, x - i, 0, 0, prm, a["lever"], a["opening"], a["A"], a["B"],
                       a["valid"], a["cb"], K.BACKEND_CODES[model.backend], w_ev,
-                      np.full((2, n_p, 6), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
+                      np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
                       np.zeros((0, 9), np.int64), np.zeros(4, np.int64), a["tab_theta"],
                       a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)), np.zeros(3))
     return t, w[0]
