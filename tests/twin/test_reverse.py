@@ -128,6 +128,20 @@ def test_torque_reversal_through_the_backlash(s0003_twin, s0003_coast):
     assert free.any() and np.all(t[free] == 0.0)
 
 
+def test_backlash_must_clear_the_interference(s0003_twin, s0003_coast):
+    """s0003-centred's generated flanks interfere by ~9.5 um: a smaller designed
+    backlash is a named error, a larger one runs."""
+    from dataclasses import replace as dc_replace
+
+    from gearcontact.validation import InputRangeError
+    pair, _, _, mesh = s0003_twin
+    _, cmesh = s0003_coast
+    dt = default_drivetrain(pair)
+    with pytest.raises(InputRangeError, match="drivetrain.backlash_mm"):
+        build_model(mesh, dc_replace(dt, backlash_mm=0.005), TORQUE_NM, reverse=cmesh)
+    build_model(mesh, dc_replace(dt, backlash_mm=0.011), TORQUE_NM, reverse=cmesh)
+
+
 @pytest.mark.parametrize("d, kap, cb", [(1e-3, 2e-4, 0.0), (1e-3, 2e-4, 1e-6),
                                         (5e-2, 1e-4, 5e-5), (1e-6, 3e-4, 1e-5)])
 @pytest.mark.parametrize("s_prev", [-1.0, 1e-3, 1.0, 1e3])

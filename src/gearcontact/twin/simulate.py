@@ -98,7 +98,8 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
     Raises
     ------
     InputRangeError
-        Unknown backend, ``table`` backend without a table, torque <= 0.
+        Unknown backend, ``table`` backend without a table, torque <= 0, a designed
+        backlash that does not clear an interference of the generated flanks.
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
@@ -110,8 +111,14 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
         if reverse is not None:
             _check_envelope(reverse)
     if reverse is not None:
-        from .mesh import reverse_law
-        reverse_law(mesh, reverse)          # opposite motion signs
+        from .mesh import free_play_rad
+        # opposite motion signs (reverse_law), and a positive total free play: the
+        # designed backlash must exceed an interference of the generated flanks
+        geo = float(free_play_rad(mesh, reverse, mesh.psi_rad).min()) * mesh.reference_lever_mm
+        if geo + drivetrain.backlash_mm <= 0.0:
+            raise InputRangeError("drivetrain.backlash_mm", drivetrain.backlash_mm,
+                                  f"> {-geo:.4g} mm (the generated {mesh.side} and "
+                                  f"{reverse.side} flanks interfere by {-1e3 * geo:.3g} um)")
         reverse_note = reverse_note or (f"own law: the {reverse.side} flanks' TCA (levers, "
                                         "openings, curvatures, TE0), geometric free play "
                                         "plus backlash_mm")
