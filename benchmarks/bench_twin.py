@@ -22,9 +22,8 @@ import time
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 from gearcontact.twin.ltca_table import torque_table
-from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain
-from gearcontact.twin.simulate import BACKENDS, build_model, simulate
+from gearcontact.twin.simulate import BACKENDS, build_model, model_for_pair, simulate
 
 
 def main() -> None:
@@ -39,21 +38,28 @@ def main() -> None:
     ap.add_argument("--soc-duration-ms", type=float, default=0.1,
                     help="simulated time of the soc backend (register driver replay), ms")
     ap.add_argument("--backends", default=",".join(BACKENDS))
+    ap.add_argument("--pair", default="s0003")
+    ap.add_argument("--bending", action="store_true", help="tooth bending in the law")
     args = ap.parse_args()
-    pair = load_pair("s0003")
-    tca, flanks = analyze_pair(pair, phases=61)
-    mesh = mesh_table(tca, flanks, pair, torque_nm=args.torque)
+    pair = load_pair(args.pair)
+    side = pair.design_side
+    base = model_for_pair(pair, torque_nm=args.torque, side=side, phases=61,
+                          bending=args.bending)
+    mesh = base.mesh
+    tca, flanks = analyze_pair(pair, side=side, phases=61)
     dt = default_drivetrain(pair)
-    print(f"s0003 twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, step {args.step_us:g} us,"
-          f" {args.duration_ms:g} ms simulated, record every {args.record_every}")
+    print(f"{pair.name} ({side}) twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, step "
+          f"{args.step_us:g} us, {args.duration_ms:g} ms simulated, record every "
+          f"{args.record_every}, bending {args.bending}; reverse flank: {base.reverse_note}")
     print(f"{'backend':<11}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
           f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
     lines = []
     for be in args.backends.split(","):
         table = None
         if be == "table":
-            table = torque_table(tca, flanks, pair, mesh, args.torque)
-        model = build_model(mesh, dt, args.torque, backend=be, table=table)
+            table = torque_table(tca, flanks, pair, mesh, args.torque, side=side)
+        model = build_model(mesh, dt, args.torque, backend=be, table=table,
+                            reverse=base.reverse, reverse_note=base.reverse_note)
         simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3, step_s=1e-6 * args.step_us)
         c0 = time.process_time()
         ms = {"rtl": args.rtl_duration_ms, "soc": args.soc_duration_ms}.get(be,
@@ -61,15 +67,15 @@ def main() -> None:
         res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * ms,
                        step_s=1e-6 * args.step_us, record_every=args.record_every)
         cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
-        s = res.summary
-        print(f"{be:<11}{s['steps'] / s['wall_s']:>12.4g}{s['real_time_factor']:>11.2f}"
-              f"{s['step_time_p50_us']:>10.3f}{s['step_time_p99_us']:>10.3f}"
-              f"{s['step_time_p99_us'] / s['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
+        s, tm = res.summary, res.timings
+        print(f"{be:<11}{s['steps'] / tm['wall_s']:>12.4g}{tm['real_time_factor']:>11.2f}"
+              f"{tm['step_time_p50_us']:>10.3f}{tm['step_time_p99_us']:>10.3f}"
+              f"{tm['step_time_p99_us'] / tm['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
               f"{s['dynamic_factor']:>7.3f}")
         if be in ("rtl", "soc"):
             where = s.get("rtl_simulator", "the bhseq_core SoC (register driver)")
             lines.append(f"{be}: {s[be + '_previews']} previews replayed on {where} at "
-                         f"{s[be + '_previews_per_s']:.4g} previews/s, "
+                         f"{tm[be + '_previews_per_s']:.4g} previews/s, "
                          f"{s[be + '_mismatches']} mismatches ({ms:g} ms simulated)")
     for line in lines:
         print(line)

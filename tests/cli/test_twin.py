@@ -6,14 +6,15 @@ torque on average; bad input -> exit 2 with the field named, before the TCA runs
 """
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from gearcontact.cli import main
+from gearcontact.cli.outdir import MANIFEST
 
-KEYS = ("backend", "steps", "step_us", "real_time_factor", "step_time_p50_us",
-        "step_time_p99_us", "mesh_frequency_hz", "dte_pp_arcsec", "dynamic_factor",
+KEYS = ("backend", "steps", "step_us", "mesh_frequency_hz", "dte_pp_arcsec", "dynamic_factor",
         "contact_loss", "mean_mesh_torque_nm", "static_mesh_load_n", "natural_frequencies_hz",
         "drivetrain")
 
@@ -47,6 +48,25 @@ def test_files_keys_and_consistency(out):
     # 3 ms after the static start: the mean mesh torque is the load torque within the
     # dynamic swing (dynamic factor ~1.02)
     assert data["mean_mesh_torque_nm"] == pytest.approx(64.5, rel=0.02)
+
+
+def test_identical_runs_identical_files(out, tmp_path):
+    """A second identical run writes byte-identical files (figures included); the
+    real-time factor and step timings are only in run.json."""
+    again = tmp_path / "again"
+    assert main(["twin", "--pair", "s0003", "--torque", "64.5", "--speed-rpm", "3000",
+                 "--duration-ms", "6", "--step-us", "10", "--phases", "31",
+                 "--backend", "golden", "--out", str(again), "--quiet"]) == 0
+    manifests = [json.loads((Path(d) / MANIFEST).read_text()) for d in (out, again)]
+    files = [{f["path"]: f["sha256"] for f in m["files"]} for m in manifests]
+    assert files[0] == files[1] and set(files[0]) >= {"twin.json", "twin.csv", "twin.png",
+                                                      "twin_spectrum.png"}
+    for name in files[0]:
+        assert (out / name).read_bytes() == (again / name).read_bytes(), name
+    timings = manifests[1]["timings_s"]
+    for key in ("real_time_factor", "step_time_p50_us", "step_time_p99_us", "wall_s"):
+        assert timings[key] > 0, key
+        assert key not in (out / "twin.json").read_text(), key
 
 
 @pytest.mark.parametrize("argv, field", [

@@ -30,3 +30,14 @@ def quasi_static_bound_arcsec(mesh, rotation_arcsec: float) -> float:
 
     slope = np.abs(np.diff(mesh.eps_rad) / mesh.step_rad).max()
     return 2.0 / 3.0 * mesh.ratio * slope * rotation_arcsec + 0.003
+
+
+@pytest.fixture(scope="session")
+def s0003_coast(s0003_twin):
+    """The coast flanks' mesh of the same s0003-centred flanks (the reverse law)."""
+    from gearcontact.tca.analysis import analyze_pair
+    from gearcontact.twin.mesh import mesh_table
+
+    pair, _, flanks, _ = s0003_twin
+    tca, _ = analyze_pair(pair, side="coast", phases=PHASES, flanks=flanks)
+    return tca, mesh_table(tca, flanks, pair, side="coast", torque_nm=TORQUE_NM)

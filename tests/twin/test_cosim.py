@@ -45,7 +45,7 @@ def test_a_wrong_output_is_caught(s0003_twin):
     y = np.zeros(K.N_STATE)
     y[2] = mesh.eps_rad[0] - static_rotation(m)[0]      # static start, at rest
     K.run_steps(y, 0.0, 10, 1e-5, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
-                a["valid"], 1, np.full(a["lever"].shape[0], 500.0), a["pow_lut"],
+                a["valid"], a["cb"], 1, np.full((2, a["lever"].shape[1]), 500.0), a["pow_lut"],
                 a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"], a["tab_t23"],
                 a["tab_w23"], np.zeros((10, K.N_REC)), 0, 1)
     n = int(tcount[0])

@@ -1,10 +1,11 @@
 """``gearcontact twin``: real-time torsional drivetrain twin driven by the contact preview.
 
 Writes into ``--out`` (created if missing): ``twin.json`` (backend, steps, step_us,
-real_time_factor, step-time p50/p99, mesh frequency, mean mesh torque and load vs the
+mesh frequency, mean mesh torque and load vs the
 static ones, dynamic factor, contact-loss fraction, DTE peak-to-peak, linearised natural
 frequencies; :func:`gearcontact.twin.simulate.simulate`), ``twin.csv`` (time series) and
-``twin.png`` / ``twin_spectrum.png``. With ``--speed-sweep START:STOP:STEP`` it runs the
+``twin.png`` / ``twin_spectrum.png``; the real-time factor and the step-time p50/p99
+are timings and go to ``run.json`` only (identical runs write byte-identical files). With ``--speed-sweep START:STOP:STEP`` it runs the
 dynamic factor vs speed curve instead, for the preview twin (``--backend``) and the table
 twin side by side, in parallel over the speeds: ``sweep.json``, ``sweep.csv``,
 ``sweep.png`` (:mod:`gearcontact.twin.sweep`). Drivetrain parameters: the ``[drivetrain]`` table
@@ -19,7 +20,7 @@ from ..twin.report import write_sweep_outputs, write_twin_outputs
 from ..twin.simulate import BACKENDS, STEP_RANGE_US, build_model, model_for_pair, simulate
 from ..twin.sweep import parse_speed_range, speed_sweep
 from ..validation import InputRangeError, check_positive, check_range
-from .options import add_pair_arguments, check_pair_arguments
+from .options import add_pair_arguments, check_pair_arguments, run_timings
 from .outdir import final_path
 
 
@@ -44,6 +45,9 @@ def register(sub) -> None:
                    help="TOML file with a [drivetrain] table (default: s0003 estimates)")
     p.add_argument("--table-source", default="lcp", choices=("lcp", "preview"),
                    help="table backend: LTCA (lcp, default) or Hertz preview loaded TE")
+    p.add_argument("--bending", action="store_true",
+                   help="tooth bending of both members in series with the Hertzian law "
+                        "(shell model; default rigid teeth)")
     p.add_argument("--record-every", type=int, default=1,
                    help="write every n-th step to twin.csv (default 1)")
     p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
@@ -87,10 +91,12 @@ def run(args) -> int:
         return _sweep(args, pair, drivetrain, speeds)
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
-                           table_source=args.table_source, progress=not args.quiet)
+                           table_source=args.table_source, bending=args.bending,
+                           progress=not args.quiet)
     res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
                    progress=not args.quiet)
+    run_timings(args, **res.timings)
     extra = {"pair": pair.name, "side": args.side, "drivetrain": drivetrain.as_dict()}
     if args.backend == "table":
         extra["table_source"] = args.table_source
@@ -100,7 +106,8 @@ def run(args) -> int:
           f"mesh {s['mesh_frequency_hz']:g} Hz; mean mesh torque {s['mean_mesh_torque_nm']:.3f}"
           f" / static {s['static_mesh_torque_nm']:g} N·m, dynamic factor "
           f"{s['dynamic_factor']:.3f}, contact loss {100 * s['contact_loss']:.1f} %, DTE p-p "
-          f"{s['dte_pp_arcsec']:.2f} arcsec; real-time factor {s['real_time_factor']:.2f} "
+          f"{s['dte_pp_arcsec']:.2f} arcsec; real-time factor "
+          f"{res.timings['real_time_factor']:.2f} "
           f"-> {final_path(args, args.out)}")
     return 0
 
@@ -108,10 +115,14 @@ def run(args) -> int:
 def _sweep(args, pair, drivetrain, speeds) -> int:
     table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
                                  drivetrain=drivetrain, side=args.side, phases=args.phases,
-                                 table_source=args.table_source, progress=not args.quiet)
-    preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend)
+                                 table_source=args.table_source, bending=args.bending,
+                                 progress=not args.quiet)
+    preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
+                          reverse=table_model.reverse, reverse_note=table_model.reverse_note)
     sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,
                      step_s=1e-6 * args.step_us, workers=args.workers, progress=not args.quiet)
+    run_timings(args, **{f"{label}_mean_real_time_factor": float(rows["real_time_factor"].mean())
+                         for label, rows in sw.rows.items()})
     s = write_sweep_outputs(sw, args.out, figures=not args.no_figures,
                             title=f"{pair.name} {args.side} {args.torque:g} N·m",
                             extra={"pair": pair.name, "step_us": args.step_us,

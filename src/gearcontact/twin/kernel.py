@@ -19,15 +19,25 @@ with the mesh rotation ``theta = psi_p/u + eps(psi_p) - psi_g`` (:mod:`.mesh`); 
 pinion's factor ``1/u + eps'`` is ``d theta / d psi_p``, which makes the mesh
 conservative in the unloaded TE (the torque is the derivative of the mesh potential).
 
-Mesh torque, drive flank (``theta >= 0``): the Hertzian pairs of the current phase,
-``W_j = (d_j / kappa_j)^(3/2)`` for ``d_j = l_j theta - g_j > 0`` (else 0), ``T_el =
-sum W_j l_j``, plus the mesh damping ``T_d = c_m l_0^2 theta'`` while a pair is closed;
-the flanks cannot pull, so ``T_mesh = max(T_el + T_d, 0)``. Coast flank (``theta <=
--theta_b``, ``theta_b = backlash / l_0``): the drive law mirrored, ``T_mesh =
-min(-T_el(-theta - theta_b) + T_d, 0)`` -- an approximation: the coast flank's own TCA
-is not used yet, so coast impacts see the drive flank's pairs and curvatures; in between the teeth fly free (``T_mesh = 0``,
-contact loss). Nothing divides by a load or an approach, so contact loss gives 0, never
-NaN.
+Mesh torque, loaded flank (``theta >= 0``; the side the TCA ran on, e.g. coast for
+s0003): the Hertzian pairs of the current phase, ``W_j`` from ``d_j = l_j theta - g_j >
+0`` (else 0) by ``d_j = kappa_j W_j^(2/3) + c_b,j W_j`` (closed form
+``W = (d/kappa)^(3/2)`` for rigid teeth, ``c_b = 0``; with the tooth-bending compliance
+``c_b`` of :func:`.mesh.pair_bending_compliance` in series, Newton on ``s = W^(1/3)``),
+``T_el = sum W_j l_j``, plus the mesh damping ``c_m l_0^2 theta'`` while a pair is
+closed; the flanks cannot pull, so ``T = max(T_el + T_d, 0)``.
+
+Reverse flank (torque reversal through the backlash): its own table (index 1 of the
+stacked arrays, the other side's TCA: levers, openings, curvatures, TE0, bending) along
+its own pinion angle ``psi_r = c_r - psi_p`` and its own closure ``theta_r = psi_g -
+psi_p/u + eps_r(psi_r) - C - theta_b`` (:func:`.mesh.reverse_law`: ``C`` from the two
+TCA data, so the geometric free play between the flanks is in it; ``theta_b =
+backlash / l_0`` is the designed backlash added to it); it pushes the gear back and the
+pinion forward through its own ``d theta_r / d psi_p``. Where the other side has no
+contact ellipse (line contact), ``P_MIRROR`` makes it the loaded law mirrored about
+``theta_b`` (``theta_r = -theta - theta_b``). In between both flanks the teeth fly free
+(``T_mesh = 0``, contact loss). Nothing divides by a load or an approach, so contact
+loss gives 0, never NaN.
 
 ``kappa_j`` (mm / N^(2/3)) is the Hertzian approach coefficient ``delta = kappa W^(2/3)``
 (Johnson 1985 sec. 4.2: the approach of two elastic bodies in point contact grows as
@@ -47,8 +57,6 @@ backend computed them:
   (:mod:`.ltca_table`);
 * ``rtl`` / ``soc``: the golden loop, every preview traced and replayed on the RTL core
   or through the SoC's register driver (:mod:`.cosim`).
-
-Tooth bending is not in the law yet (rigid teeth; hook in :mod:`.simulate`).
 
 For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
 rounding, and the load at which it is sampled is clamped to the datapath envelope
@@ -93,8 +101,9 @@ _HB_E = 0.5 * math.pi - 1.0
 
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
- P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA) = range(22)
-N_PRM = 22
+ P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
+ P_CR, P_MIRROR) = range(27)
+N_PRM = 27
 #: Length of the state vector y.
 N_STATE = 11
 # record columns
@@ -153,13 +162,38 @@ def _kappa_reference(A, B, w, prm, out3):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _phase(psi, prm):
-    """Row interval and fraction of the pinion angle psi (periodic in the pitch)."""
-    pitch = prm[P_PITCH]
+def _phase(psi, pitch, dpsi, nrow):
+    """Row interval and fraction of the pinion angle psi (periodic in the pitch) on a
+    table of ``nrow`` rows ``dpsi`` apart."""
     x = psi - pitch * math.floor(psi / pitch)
-    u = x / prm[P_DPSI]
-    i = min(int(u), int(prm[P_NROW]) - 2)     # rounding can put x/dpsi at K-1
+    u = x / dpsi
+    i = min(int(u), int(nrow) - 2)     # rounding can put x/dpsi at K-1
     return i, u - i
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _pair_load(d, kap, cb, s_prev):
+    """Load W (N) of a pair at approach ``d`` (mm): Hertz ``d = kap W^(2/3)`` alone
+    (closed form), or with the tooth-bending compliance ``cb`` (mm/N) in series, ``d =
+    kap W^(2/3) + cb W``: Newton on ``f(s) = cb s^3 + kap s^2 - d = 0`` for ``s =
+    W^(1/3)``. ``f`` is convex increasing for s > 0, so Newton from any s > 0 lands
+    right of the root after at most one step and then falls monotonically to it; the
+    start is the pair's previous solution ``s_prev`` (> 0; the load changes little per
+    stage: 2-3 iterations), else ``min(sqrt(d/kap), cbrt(d/cb))`` (where ``f >= 0``).
+    Stops at a relative step of 1e-14."""
+    x = d / kap
+    if cb <= 0.0:
+        return x * math.sqrt(x)
+    s = s_prev if s_prev > 0.0 else min(math.sqrt(x), np.cbrt(d / cb))
+    for _ in range(60):
+        r = (cb * s + kap) * s * s - d
+        ds = r / ((3.0 * cb * s + 2.0 * kap) * s)
+        s -= ds
+        if s <= 0.0:            # (only from a far start): restart where f >= 0
+            s = min(math.sqrt(x), np.cbrt(d / cb))
+        elif abs(ds) <= 1e-14 * s:
+            break
+    return s * s * s
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -190,157 +224,198 @@ def _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _elastic(theta, psi, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
-             cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
-             w_pairs, abp):
-    """Elastic mesh torque T_el (N·m) and total normal load (N) of the drive-flank law at
-    rotation theta >= 0; per-pair loads into w_pairs, (a, b, p) of the most loaded pair
-    into abp[0:3] (zeros when none); abp[3] flags a golden pair outside the envelope,
-    abp[4:7] is scratch."""
-    i, f = _phase(psi, prm)
-    n_p = lever.shape[0]
+def _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t, backend,
+             w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23,
+             tab_w23, w_pairs, abp, out3):
+    """Elastic mesh torque T_el (N·m) and total normal load (N) of one flank's law at
+    its rotation theta >= 0 and row interval (i, f) of table ``s`` (0 loaded side, 1
+    reverse side); per-pair loads into ``w_pairs[sd]``, (a, b, p) of the most loaded
+    pair into ``abp[sd, 0:3]`` (zeros when none), ``abp[sd, 3]`` flags a golden pair
+    outside the envelope; ``w_eval[sd]``, ``cache[sd]`` are the slot's preview loads and
+    cache, ``out3`` (3,) scratch. Plain indexing throughout (no array views in the
+    loop compiled without the runtime's reference counting)."""
+    n_p = lever.shape[1]
     t_el = 0.0
     w_tot = 0.0
-    abp[0] = 0.0
-    abp[1] = 0.0
-    abp[2] = 0.0
-    abp[3] = 0.0
+    abp[sd, 0] = 0.0
+    abp[sd, 1] = 0.0
+    abp[sd, 2] = 0.0
+    abp[sd, 3] = 0.0
     for j in range(n_p):
-        w_pairs[j] = 0.0
+        w_pairs[sd, j] = 0.0
     if backend == 2:
         return _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23)
-    out3 = abp[4:7]
     w_max = 0.0
     for j in range(n_p):
-        if not (valid[j, i] and valid[j, i + 1]):
+        if not (valid[s, j, i] and valid[s, j, i + 1]):
             continue
-        lv = lever[j, i] + f * (lever[j, i + 1] - lever[j, i])
-        g = opening[j, i] + f * (opening[j, i + 1] - opening[j, i])
+        lv = lever[s, j, i] + f * (lever[s, j, i + 1] - lever[s, j, i])
+        g = opening[s, j, i] + f * (opening[s, j, i + 1] - opening[s, j, i])
         d = lv * theta - g
         if d <= 0.0:
             continue
-        if cache[j, 0] != i:    # one preview per pair and step (and per new interval)
-            A = A_t[j, i] + f * (A_t[j, i + 1] - A_t[j, i])
-            B = B_t[j, i] + f * (B_t[j, i + 1] - B_t[j, i])
-            we = min(max(w_eval[j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
+        if cache[sd, j, 0] != i:    # one preview per pair and step (and per new interval)
+            A = A_t[s, j, i] + f * (A_t[s, j, i + 1] - A_t[s, j, i])
+            B = B_t[s, j, i] + f * (B_t[s, j, i + 1] - B_t[s, j, i])
+            we = min(max(w_eval[sd, j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
             if backend == 0:
                 kap = _kappa_reference(A, B, we, prm, out3)
             else:
                 kap = _kappa_golden(A, B, we, prm, pow_lut, cbrt_lut, cst, trace, tcount,
                                     out3)
-            cache[j, 0] = i
-            cache[j, 1] = kap
-            cache[j, 2] = out3[0]
-            cache[j, 3] = out3[1]
-            cache[j, 4] = out3[2]
-            cache[j, 5] = we
-        kap = cache[j, 1]
+            cache[sd, j, 0] = i
+            cache[sd, j, 1] = kap
+            cache[sd, j, 2] = out3[0]
+            cache[sd, j, 3] = out3[1]
+            cache[sd, j, 4] = out3[2]
+            cache[sd, j, 5] = we
+        kap = cache[sd, j, 1]
         if kap <= 0.0:      # golden outside the datapath envelope: counted, reported
-            abp[3] = 1.0
+            abp[sd, 3] = 1.0
             tcount[3] += 1
             continue
-        we = cache[j, 5]
-        x = d / kap
-        w = x * math.sqrt(x)
-        w_pairs[j] = w
+        we = cache[sd, j, 5]
+        cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+        w = _pair_load(d, kap, cb, cache[sd, j, 6])
+        if cb > 0.0:
+            cache[sd, j, 6] = np.cbrt(w)
+        w_pairs[sd, j] = w
         t_el += 1e-3 * w * lv
         w_tot += w
         if w > w_max:
             w_max = w
             scale = (w / we) ** (1.0 / 3.0)     # Hertz similarity a, b, p ~ W^(1/3)
-            abp[0] = cache[j, 2] * scale
-            abp[1] = cache[j, 3] * scale
-            abp[2] = cache[j, 4] * scale
+            abp[sd, 0] = cache[sd, j, 2] * scale
+            abp[sd, 1] = cache[sd, j, 3] * scale
+            abp[sd, 2] = cache[sd, j, 4] * scale
     return t_el, w_tot
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval, cache, pow_lut,
-           cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, dy, w_pairs, abp):
-    """dy/dt into dy; returns (theta, T_mesh N·m, total normal load N)."""
+def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, A_t, B_t, valid, cb_t, backend,
+           w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23,
+           tab_w23, w_pairs, abp, out3, ip, fp):
+    """(T N·m >= 0, T_el N·m, W N) of flank ``sd`` (0: loaded side, 1: reverse) at its
+    rotation theta and rate theta_dot; 0 out of contact (``theta < 0``). The table
+    backend and a mirrored reverse law use the loaded side's rows (ip, fp)."""
+    if theta < 0.0:
+        for j in range(w_pairs.shape[1]):
+            w_pairs[sd, j] = 0.0
+        abp[sd, 0] = 0.0
+        abp[sd, 1] = 0.0
+        abp[sd, 2] = 0.0
+        return 0.0, 0.0, 0.0
+    s = 0 if prm[P_MIRROR] != 0.0 else sd
+    if s == 0 or backend == 2:      # the table holds the loaded side's rows only
+        i, f = ip, fp
+    t_el, w_tot = _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t,
+                           backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount,
+                           tab_theta, tab_t23, tab_w23, w_pairs, abp, out3)
+    if t_el <= 0.0:
+        return 0.0, 0.0, w_tot
+    l0 = prm[P_L0]
+    # the flanks cannot pull: damping only while it does not reverse the contact force
+    return max(t_el + 1e-3 * prm[P_CM] * l0 * l0 * theta_dot, 0.0), t_el, w_tot
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval, cache,
+           pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, dy, row, w_pairs,
+           abp, out3):
+    """dy/dt into dy[row]; returns (theta, theta_r, T_mesh N·m, total normal load N)."""
     u = prm[P_U]
     psi_p = y[1]
-    i, f = _phase(psi_p, prm)
-    e = eps[i] + f * (eps[i + 1] - eps[i])
-    de = (eps[i + 1] - eps[i]) / prm[P_DPSI]
+    pitch = prm[P_PITCH]
+    i, f = _phase(psi_p, pitch, prm[P_DPSI], prm[P_NROW])
+    e = eps[0, i] + f * (eps[0, i + 1] - eps[0, i])
+    de = (eps[0, i + 1] - eps[0, i]) / prm[P_DPSI]
     theta = psi_p / u + e - y[2]
     theta_dot = y[5] * (1.0 / u + de) - y[6]
-    l0 = prm[P_L0]
-    t_d = 1e-3 * prm[P_CM] * l0 * l0 * theta_dot
-    t_mesh = 0.0
-    t_el_signed = 0.0
-    w_tot = 0.0
-    flank = 0                        # +1 drive, -1 coast, 0 free flight
-    th_e = 0.0
-    if theta >= 0.0:
-        flank = 1
-        th_e = theta
-    elif theta <= -prm[P_THB]:
-        flank = -1
-        th_e = -theta - prm[P_THB]
-    if flank != 0:
-        t_el, w_tot = _elastic(th_e, psi_p, prm, eps, lever, opening, A_t, B_t, valid,
-                               backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace,
-                               tcount, tab_theta,
-                               tab_t23, tab_w23, w_pairs, abp)
-        if t_el > 0.0:
-            t_el_signed = flank * t_el
-            if flank == 1:
-                t_mesh = max(t_el + t_d, 0.0)
-            else:
-                t_mesh = min(-t_el + t_d, 0.0)
+    # reverse flank: its own table along its own motion psi_r = c_r - psi_p
+    if prm[P_MIRROR] != 0.0:
+        ir, fr, der = i, f, de
+        theta_r = -theta - prm[P_THB]
     else:
-        for j in range(w_pairs.shape[0]):
-            w_pairs[j] = 0.0
-        abp[0] = 0.0
-        abp[1] = 0.0
-        abp[2] = 0.0
+        ir, fr = _phase(prm[P_PSIR] - psi_p, pitch, prm[P_DPSIR], prm[P_NROWR])
+        er = eps[1, ir] + fr * (eps[1, ir + 1] - eps[1, ir])
+        der = (eps[1, ir + 1] - eps[1, ir]) / prm[P_DPSIR]
+        theta_r = y[2] - psi_p / u + er - prm[P_CR] - prm[P_THB]
+    theta_r_dot = y[6] - y[5] * (1.0 / u + der)
+    t_p, el_p, w_p = _flank(0, theta, theta_dot, i, f, prm, lever, opening, A_t, B_t,
+                            valid, cb_t, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
+                            trace, tcount, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
+    t_r, el_r, w_r = _flank(1, theta_r, theta_r_dot, ir, fr, prm, lever, opening, A_t, B_t,
+                            valid, cb_t, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
+                            trace, tcount, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
+    t_mesh = t_p - t_r
     tw1 = prm[P_K1] * (y[0] - y[1]) + prm[P_C1] * (y[4] - y[5])
     tw2 = prm[P_K2] * (y[2] - y[3]) + prm[P_C2] * (y[6] - y[7])
-    dy[0] = y[4]
-    dy[1] = y[5]
-    dy[2] = y[6]
-    dy[3] = y[7]
+    dy[row, 0] = y[4]
+    dy[row, 1] = y[5]
+    dy[row, 2] = y[6]
+    dy[row, 3] = y[7]
     # motor: constant torque T_l/u, plus the PI speed controller when its gains are set
     t_m = prm[P_TM] + prm[P_KP] * (prm[P_OMEGA] - y[4]) + prm[P_KI] * y[10]
-    dy[4] = (t_m - tw1) / prm[P_JM]
-    dy[5] = (tw1 - t_mesh * (1.0 / u + de)) / prm[P_JP]
-    dy[6] = (t_mesh - tw2) / prm[P_JG]
-    dy[7] = (tw2 - prm[P_TL]) / prm[P_JL]
-    # dissipated power: shaft dampers + the non-elastic part of the mesh torque (the
-    # damper, or the clamp that keeps the flanks from pulling), (T_mesh - T_el) theta'
-    p_mesh = (t_mesh - t_el_signed) * theta_dot
+    dy[row, 4] = (t_m - tw1) / prm[P_JM]
+    # each flank acts through d theta / d psi_p of its own law (conservative in its TE)
+    dy[row, 5] = (tw1 - t_p * (1.0 / u + de) + t_r * (1.0 / u + der)) / prm[P_JP]
+    dy[row, 6] = (t_mesh - tw2) / prm[P_JG]
+    dy[row, 7] = (tw2 - prm[P_TL]) / prm[P_JL]
+    # dissipated power: shaft dampers + the non-elastic part of each flank's torque (the
+    # damper, or the clamp that keeps the flanks from pulling), (T - T_el) theta'
+    p_mesh = (t_p - el_p) * theta_dot + (t_r - el_r) * theta_r_dot
     dw1 = y[4] - y[5]
     dw2 = y[6] - y[7]
-    dy[8] = prm[P_C1] * dw1 * dw1 + prm[P_C2] * dw2 * dw2 + p_mesh
-    dy[9] = t_m * y[4] - prm[P_TL] * y[7]
-    dy[10] = prm[P_OMEGA] - y[4]
-    return theta, t_mesh, w_tot
+    dy[row, 8] = prm[P_C1] * dw1 * dw1 + prm[P_C2] * dw2 * dw2 + p_mesh
+    dy[row, 9] = t_m * y[4] - prm[P_TL] * y[7]
+    dy[row, 10] = prm[P_OMEGA] - y[4]
+    return theta, theta_r, t_mesh, w_p + w_r
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _pair_potential(w, d, cb):
+    """Mesh potential of one pair at load w (N) and approach d (mm), J: the integral of
+    W dd, ``(2/5) kap W^(5/3) + (1/2) cb W^2`` with ``kap W^(2/3) = d - cb W``."""
+    return 1e-3 * (0.4 * (d - cb * w) * w + 0.5 * cb * w * w)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _mesh_potential(theta, psi, prm, lever, opening, valid, w_pairs):
-    """Hertzian mesh potential sum (2/5) W_j d_j (J) of the loads in w_pairs."""
-    i, f = _phase(psi, prm)
+def _mesh_potential(theta, theta_r, psi, prm, lever, opening, cb_t, w_pairs):
+    """Mesh potential of both flanks (J) at the loads in w_pairs."""
+    pitch = prm[P_PITCH]
     v = 0.0
-    th = theta if theta >= 0.0 else -theta - prm[P_THB]
-    for j in range(lever.shape[0]):
-        if w_pairs[j] > 0.0:
-            lv = lever[j, i] + f * (lever[j, i + 1] - lever[j, i])
-            g = opening[j, i] + f * (opening[j, i + 1] - opening[j, i])
-            v += 0.4 * w_pairs[j] * (lv * th - g) * 1e-3
+    for sd in range(2):
+        th = theta if sd == 0 else theta_r
+        if th < 0.0:
+            continue
+        mirror = prm[P_MIRROR] != 0.0
+        s = 0 if (sd == 0 or mirror) else 1
+        if s == 0:
+            i, f = _phase(psi, pitch, prm[P_DPSI], prm[P_NROW])
+        else:
+            i, f = _phase(prm[P_PSIR] - psi, pitch, prm[P_DPSIR], prm[P_NROWR])
+        for j in range(lever.shape[1]):
+            w = w_pairs[sd, j]
+            if w > 0.0:
+                lv = lever[s, j, i] + f * (lever[s, j, i + 1] - lever[s, j, i])
+                g = opening[s, j, i] + f * (opening[s, j, i + 1] - opening[s, j, i])
+                cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+                v += _pair_potential(w, lv * th - g, cb)
     return v
 
 
 @njit(cache=True, error_model="numpy")
-def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
+def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend,
               w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec,
               rec_start, record_every):
     """Advance ``y`` (in place) by ``n_steps`` RK4 steps of ``h`` s from time ``t0``.
 
+    The mesh arrays are stacked per flank: index 0 the loaded side, 1 the reverse
+    side (``eps`` (2, K), ``lever, opening, A_t, B_t, valid, cb_t`` (2, P, K) with
+    ``cb_t`` the tooth-bending compliance per pair, mm/N, 0 for rigid teeth).
     Rows ``rec[rec_start + n // record_every]`` receive the state at the start of every
-    ``record_every``-th step (columns :data:`RECORD_COLUMNS`); ``w_eval`` (per pair, N)
-    carries the pair loads from step to step (the loads at which the preview is
+    ``record_every``-th step (columns :data:`RECORD_COLUMNS`); ``w_eval`` (2, P) carries
+    the pair loads of both flanks from step to step (the loads at which the preview is
     sampled). ``trace`` (int64, rows x 9) receives every golden stage-D evaluation while
     rows remain, ``[step, A_code, B_code, W_code, flags, a_code, b_code, p_max_code,
     k_code]``, counted in ``tcount[0]`` (``tcount[2]`` counts the steps, ``tcount[3]`` the
@@ -348,39 +423,37 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, back
     nothing); a trace of 0 rows records nothing. Returns the number of rows written to ``rec``.
     """
     n_y = y.shape[0]
-    n_p = lever.shape[0]
+    n_p = lever.shape[1]
     if n_y != N_STATE:
         raise ValueError("run_steps: the state vector must have N_STATE entries")
-    stages = np.empty((5, n_y))
-    pairs = np.zeros((2, n_p))
-    abp = np.zeros((2, 7))
-    cache = np.zeros((n_p, 6))
-    return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend,
+    k = np.zeros((4, n_y))      # RK4 stage derivatives
+    ys = np.zeros(n_y)
+    pairs0 = np.zeros((2, n_p))     # pair loads per flank: stage 0 (recorded), later stages
+    pairs1 = np.zeros((2, n_p))
+    abp0 = np.zeros((2, 4))
+    abp1 = np.zeros((2, 4))
+    out3 = np.zeros(3)
+    cache = np.zeros((2, n_p, 7))     # preview per pair; column 6 the last W^(1/3)
+    return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend,
                 w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
-                rec, rec_start, record_every, stages, pairs, abp, cache)
+                rec, rec_start, record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache)
 
 
 # Without the runtime's reference counting: every array is owned by run_steps, and the
 # inlined helpers would otherwise pay an atomic incref/decref per array argument and
-# call (measured ~200 ns per mesh evaluation, more than the evaluation itself).
+# call (measured ~200 ns per mesh evaluation, more than the evaluation itself). The
+# loop indexes its arrays and never takes views of them.
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, w_eval,
+def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval,
          pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec, rec_start,
-         record_every,
-         stages, pairs, abp2, cache):
+         record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache):
     n_y = y.shape[0]
-    n_p = lever.shape[0]
-    k1 = stages[0]
-    k2 = stages[1]
-    k3 = stages[2]
-    k4 = stages[3]
-    ys = stages[4]
-    w_pairs = pairs[0]
-    abp = abp2[0]
+    n_p = lever.shape[1]
     rows = 0
     for n in range(n_steps):
-        for j in range(n_p):
-            cache[j, 0] = -1.0      # a fresh preview of every loaded pair each step
+        for sd in range(2):
+            for j in range(n_p):
+                cache[sd, j, 0] = -1.0      # a fresh preview of every loaded pair each step
         tcount[1] = tcount[2]       # step index of the trace rows
         tcount[2] += 1
         for st in range(4):
@@ -389,48 +462,54 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, backend, 
                     ys[m] = y[m]
             else:
                 c = 1.0 if st == 3 else 0.5
-                prev = stages[st - 1]
                 for m in range(n_y):
-                    ys[m] = y[m] + c * h * prev[m]
-            theta, t_mesh, w_tot = _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid,
-                                          backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                                          trace, tcount, tab_theta, tab_t23, tab_w23, stages[st],
-                                          pairs[min(st, 1)], abp2[min(st, 1)])
+                    ys[m] = y[m] + c * h * k[st - 1, m]
             if st == 0:
+                theta, theta_r, t_mesh, w_tot = _deriv(
+                    ys, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval,
+                    cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+                    k, st, pairs0, abp0, out3)
                 if n % record_every == 0:
-                    _record(rec, rec_start + rows, t0 + n * h, theta, t_mesh, w_tot, y, prm,
-                            lever, opening, valid, backend, w_pairs, abp)
+                    _record(rec, rec_start + rows, t0 + n * h, theta, theta_r, t_mesh, w_tot,
+                            y, prm, lever, opening, cb_t, backend, pairs0, abp0)
                     rows += 1
-                for j in range(n_p):
-                    if w_pairs[j] > 0.0:
-                        w_eval[j] = w_pairs[j]
+                for sd in range(2):
+                    for j in range(n_p):
+                        if pairs0[sd, j] > 0.0:
+                            w_eval[sd, j] = pairs0[sd, j]
+            else:
+                _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval,
+                       cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23,
+                       tab_w23, k, st, pairs1, abp1, out3)
         for m in range(n_y):
-            y[m] += h / 6.0 * (k1[m] + 2.0 * k2[m] + 2.0 * k3[m] + k4[m])
+            y[m] += h / 6.0 * (k[0, m] + 2.0 * k[1, m] + 2.0 * k[2, m] + k[3, m])
     return rows
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _record(rec, r, t, theta, t_mesh, w_tot, y, prm, lever, opening, valid, backend,
+def _record(rec, r, t, theta, theta_r, t_mesh, w_tot, y, prm, lever, opening, cb_t, backend,
             w_pairs, abp):
     """One row of :data:`RECORD_COLUMNS` (state at the start of a step)."""
-    n_p = lever.shape[0]
+    n_p = lever.shape[1]
     rec[r, R_T] = t
     rec[r, R_THETA] = theta
     rec[r, R_PSI] = y[1]
     rec[r, R_TMESH] = t_mesh
     rec[r, R_W] = w_tot
-    rec[r, R_A] = abp[0]
-    rec[r, R_B] = abp[1]
-    rec[r, R_P] = abp[2]
+    sd = 0 if abp[0, 0] >= abp[1, 0] else 1     # the flank in contact (a > 0)
+    rec[r, R_A] = abp[sd, 0]
+    rec[r, R_B] = abp[sd, 1]
+    rec[r, R_P] = abp[sd, 2]
     cnt = 0
-    for j in range(n_p):
-        if w_pairs[j] > 0.0:
-            cnt += 1
+    for s in range(2):
+        for j in range(n_p):
+            if w_pairs[s, j] > 0.0:
+                cnt += 1
     rec[r, R_NPAIRS] = cnt
     rec[r, R_KE] = 0.5 * (prm[P_JM] * y[4] ** 2 + prm[P_JP] * y[5] ** 2
                           + prm[P_JG] * y[6] ** 2 + prm[P_JL] * y[7] ** 2)
     rec[r, R_PE] = 0.5 * (prm[P_K1] * (y[0] - y[1]) ** 2 + prm[P_K2] * (y[2] - y[3]) ** 2)
-    rec[r, R_V] = _mesh_potential(theta, y[1], prm, lever, opening, valid,
+    rec[r, R_V] = _mesh_potential(theta, theta_r, y[1], prm, lever, opening, cb_t,
                                   w_pairs) if backend != 2 else 0.0
     rec[r, R_D] = y[8]
     rec[r, R_WIN] = y[9]

@@ -59,7 +59,7 @@ class TorqueTable:
 
 def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "drive",
                  source: str = "lcp", ladder=DEFAULT_LADDER, cells: int = 32,
-                 progress: bool = False) -> TorqueTable:
+                 bending=None, progress: bool = False) -> TorqueTable:
     """Run the loaded TE at ``ladder x torque_nm`` and tabulate (module docstring).
 
     Parameters
@@ -78,10 +78,15 @@ def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "driv
     cells : int
         Cells per side of each pair's field (32 puts the rotation within ~1-2 % of the
         converged LCP, :func:`~gearcontact.contact.lte.loaded_te`).
+    bending : ToothBending or None
+        Tooth bending in the LCP (``lcp`` source; the ``preview`` source is the rigid
+        Hertzian TE_pre of the loaded TE, so bending is refused there).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     if source not in TABLE_SOURCES:
         raise InputRangeError("table source", source, f"one of {TABLE_SOURCES}")
+    if bending is not None and source != "lcp":
+        raise InputRangeError("table source", source, "'lcp' with tooth bending")
     lad = np.asarray(ladder, float)
     if lad.ndim != 1 or lad.size < 2 or not (np.all(lad > 0) and np.all(np.diff(lad) > 0)):
         raise InputRangeError("table ladder", ladder, "at least 2 increasing fractions > 0")
@@ -90,7 +95,8 @@ def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "driv
     theta = np.zeros((len(order), lad.size))
     load = np.zeros_like(theta)
     for i, f in enumerate(lad):
-        res = loaded_te(tca, flanks, pair, f * t, side=side, cells=cells, progress=progress)
+        res = loaded_te(tca, flanks, pair, f * t, side=side, cells=cells, bending=bending,
+                        progress=progress)
         if source == "lcp":
             if not res.converged:
                 raise ArithmeticError(f"loaded TE at {f * t:g} N·m did not converge")

@@ -38,9 +38,11 @@ import numpy as np
 from ..contact.lte_pairs import PairFields, phase_contacts
 from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
-from ..validation import check_positive
+from ..analytic.hertz import hamrock_brewe_hertz
+from ..validation import InputRangeError, check_positive
 
-__all__ = ["MeshTable", "mesh_table"]
+__all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad",
+           "pair_bending_compliance"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,6 +78,16 @@ class MeshTable:
         The TCA phases of the rows, rad (TCA sign).
     te0_arcsec : ndarray (K,)
         The TCA envelope of the rows, arcsec (TCA sign).
+    gear_datum_rad : float
+        ``phi2_ref + (phi1_0 - phi1_ref) / u`` of the TCA path (pair-0 coordinates,
+        ``phi1_0`` the first row): the unloaded gear angle of the row-0 phase is this
+        plus ``TE0_env`` of the row; with the other side's datum it gives the free play
+        between the two flanks (:func:`free_play_rad`).
+    side : str
+        ``"drive"`` or ``"coast"``.
+    bending_mm_per_n : ndarray (P, K)
+        Tooth-bending compliance of each pair (pinion + gear tooth in series with the
+        contact), mm/N; zeros for rigid teeth (:func:`mesh_table` ``bending``).
     """
 
     psi_rad: np.ndarray
@@ -93,6 +105,9 @@ class MeshTable:
     e_prime_mpa: float
     phi1_rad: np.ndarray
     te0_arcsec: np.ndarray
+    gear_datum_rad: float = 0.0
+    side: str = "drive"
+    bending_mm_per_n: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:
@@ -106,7 +121,7 @@ class MeshTable:
 
 
 def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.5,
-               edge_reach: float = 0.5, cells: int = 40) -> MeshTable:
+               edge_reach: float = 0.5, cells: int = 40, bending=None) -> MeshTable:
     """Mesh data of ``tca`` over one pitch (module docstring).
 
     Parameters
@@ -129,18 +144,25 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         Cells per side of an edge pair's posed field, whose smallest separation on the
         flank is the pair's opening (resolution dependent: use the ``cells`` of the
         loaded TE the twin is compared with; 40 is its default).
+    bending : gearcontact.contact.tooth_bending.ToothBending or None
+        Tooth bending of both members: each pair's bending compliance
+        :func:`pair_bending_compliance` at every phase into ``bending_mm_per_n`` (in
+        series with the Hertzian approach in the twin's contact law); None: rigid
+        teeth (zeros).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
     kin = pair.kinematics()
     pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
     e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
+    if bending is not None and bending.side != side:
+        raise InputRangeError("bending.side", bending.side, f"'{side}' (the side of the mesh)")
     fields = PairFields(pinion, gear, kin, cycle, torque_nmm=1e3 * t, e_prime=e_prime,
-                        cells=int(cells), extent=(1.6, 2.0))
+                        cells=int(cells), extent=(1.6, 2.0), bending=bending)
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
     n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}
-    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B")}
+    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb")}
     valid = np.zeros((n_p, n_k), bool)
     curv: dict = {}
     steps = round(edge_reach * cycle.step_index)
@@ -155,6 +177,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             arrays["opening"][i, k] = pc.offset_mm
             arrays["A"][i, k] = pc.A_minus_per_mm
             arrays["B"][i, k] = pc.B_minus_per_mm
+            if bending is not None:
+                arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
@@ -172,4 +196,76 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         valid=valid[:, order], motion_sign=m, ratio=float(pair.gear_teeth / pair.pinion_teeth),
         pinion_teeth=int(pair.pinion_teeth), reference_lever_mm=ref_lever,
         reference_index=int(np.flatnonzero(order == k0)[0]), e_prime_mpa=float(e_prime),
-        phi1_rad=phi1[order], te0_arcsec=env[order])
+        phi1_rad=phi1[order], te0_arcsec=env[order],
+        gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
+                             / cycle.path.ratio),
+        side=side, bending_mm_per_n=arrays["cb"][:, order])
+
+
+def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:
+    """Bending compliance of a pair's two teeth under its Hertzian pressure, mm/N.
+
+    ``c_b = p^T G p / W^2 = |F^T p|^2 / W^2`` with ``G = F F^T`` the shell compliance
+    of the pinion and gear tooth at the cells of the pair's field
+    (:class:`gearcontact.contact.tooth_bending.ToothBending`, as the loaded TE's LCP
+    uses it) and ``p`` the semi-ellipsoidal Hertz pressure of the pair carrying the
+    torque alone (its semi-axes from Hamrock–Brewe; the field's own sizing load): the
+    work-conjugate compliance of that pressure shape (Castigliano), so that ``W c_b``
+    is the pressure-weighted mean bending deflection along the normal. Cells off the
+    flank carry no pressure.
+    """
+    gap, grid, off, lever = fields.get(pc)
+    f = fields.factors[pc.path_index]
+    hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, torque_nmm / pc.lever_mm,
+                             e_prime_mpa=fields.e_prime)
+    s, t = np.meshgrid(grid.x_mm, grid.y_mm)
+    q = np.sqrt(np.clip(1.0 - (s / hz.a_mm) ** 2 - (t / hz.b_mm) ** 2, 0.0, None)) * ~off
+    if not q.any():
+        return 0.0
+    v = np.einsum("yxr,yx->r", f, q / q.sum())
+    return float(v @ v)
+
+
+def reverse_law(loaded: MeshTable, reverse: MeshTable) -> tuple[float, float]:
+    """``(c_r, C)`` relating the reverse flank's table to the loaded one's motion.
+
+    With the motion signs ``m`` (loaded) and ``m_r = -m`` (the reverse flank stops the
+    gear the other way), the reverse table's pinion angle is ``psi_r = m_r (phi1 -
+    phi1_r0) = c_r - psi`` and its closure (penetration along its own law, rad of gear
+    rotation) is
+
+        theta_r = psi_g - psi / u + eps_r(psi_r) - C - theta_b
+
+    with ``C = m [(phi2_r0 - phi1_r0 / u) - (phi2_0 - phi1_0 / u)]`` from the two TCA
+    data (reduced modulo the gear pitch: both paths use their own pair 0) and
+    ``theta_b`` the designed backlash over the reference lever. The geometric free play
+    between the flanks (``theta_b = 0``) is ``b(psi) = C - eps_r(psi_r) - eps(psi)``
+    (:func:`free_play_rad`).
+
+    Raises
+    ------
+    ValueError
+        Both tables have the same motion sign (not a flank pair of opposite sides).
+    """
+    m, mr = loaded.motion_sign, reverse.motion_sign
+    if mr != -m:
+        raise ValueError(f"reverse_law: the {reverse.side} table runs the same way as the "
+                         f"{loaded.side} table (motion signs {mr}, {m})")
+    u = loaded.ratio
+    c_r = mr * float(loaded.phi1_rad[0] - reverse.phi1_rad[0])
+    big = m * ((reverse.gear_datum_rad - reverse.phi1_rad[0] / u)
+               - (loaded.gear_datum_rad - loaded.phi1_rad[0] / u))
+    p2 = 2.0 * np.pi / (u * loaded.pinion_teeth)
+    return c_r, float(big - p2 * np.round(big / p2))
+
+
+def free_play_rad(loaded: MeshTable, reverse: MeshTable, psi_rad) -> np.ndarray:
+    """Geometric angular free play ``b(psi)`` (rad of gear rotation) between the loaded
+    and the reverse flanks of the generated teeth (no designed backlash) at the loaded
+    table's pinion angles ``psi``; negative: the flanks interfere."""
+    c_r, big = reverse_law(loaded, reverse)
+    psi = np.asarray(psi_rad, float)
+    p = loaded.pitch_rad
+    eps = np.interp(np.mod(psi, p), loaded.psi_rad, loaded.eps_rad)
+    eps_r = np.interp(np.mod(c_r - psi, p), reverse.psi_rad, reverse.eps_rad)
+    return big - eps_r - eps

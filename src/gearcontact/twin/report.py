@@ -159,8 +159,7 @@ def write_sweep_outputs(sweep, out, *, figures: bool = True, title: str = "",
         i = int(np.argmax(rows["dynamic_factor"]))
         summary[label] = {"max_dynamic_factor": float(rows["dynamic_factor"][i]),
                           "at_speed_rpm": float(sweep.speeds_rpm[i]),
-                          "max_contact_loss": float(rows["contact_loss"].max()),
-                          "mean_real_time_factor": float(rows["real_time_factor"].mean())}
+                          "max_contact_loss": float(rows["contact_loss"].max())}
     summary.update(extra or {})
     (out / "sweep.json").write_text(json.dumps(summary, indent=2))
     header = ["speed_rpm"] + [f"{label}_{k}" for label in sweep.rows

@@ -12,9 +12,12 @@ phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
 speeds, so that what follows is the response to the mesh excitation (unloaded TE and
 the phase-varying stiffness).
 
-Tooth bending: not modelled yet (rigid teeth, Hertzian approach only). The hook is
-:attr:`TwinModel.bending_compliance_mm_per_n`: it must stay 0 until the bending model
-lands; the contact law then becomes ``d_j = delta_H(W_j) + c_b W_j`` per pair.
+Tooth bending (switchable: ``mesh_table(..., bending=...)``, ``model_for_pair(...,
+bending=True)``, ``gearcontact twin --bending``): each pair's bending compliance of the
+pinion and gear tooth (:func:`~.mesh.pair_bending_compliance`, the shell operator of
+:mod:`gearcontact.contact.tooth_bending` weighted by the pair's Hertz pressure) is in
+series with its Hertzian approach, ``d_j = kappa_j W_j^(2/3) + c_b,j W_j``, solved per
+pair and step in the kernel; without it the teeth are rigid.
 """
 
 from __future__ import annotations
@@ -67,8 +70,12 @@ class TwinModel:
         Load torque on the gear, N·m (the motor gives ``torque / u``).
     table : gearcontact.twin.ltca_table.TorqueTable or None
         The loaded-TE table (``table`` backend).
-    bending_compliance_mm_per_n : float
-        Tooth-bending compliance hook; 0 (not modelled yet, module docstring).
+    reverse : MeshTable or None
+        The other flank side's table (its own TCA): the law of the reverse flank
+        (torque reversal through the backlash). None: the loaded side's law mirrored
+        about the designed backlash (``reverse_note`` says why).
+    reverse_note : str
+        How the reverse flank is modelled (written to ``twin.json``).
     """
 
     mesh: MeshTable
@@ -76,35 +83,47 @@ class TwinModel:
     backend: str
     torque_nm: float
     table: object = None
-    bending_compliance_mm_per_n: float = 0.0
     arrays: dict = field(default_factory=dict, repr=False)
+    reverse: MeshTable | None = None
+    reverse_note: str = ""
 
 
 def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
-                backend: str = "reference", table=None,
-                bending_compliance_mm_per_n: float = 0.0) -> TwinModel:
+                backend: str = "reference", table=None, reverse: MeshTable | None = None,
+                reverse_note: str = "") -> TwinModel:
     """Check the inputs and pack the compiled loop's arrays.
 
-    ``bending_compliance_mm_per_n`` is the hook for the tooth-bending model: only 0 is
-    accepted until it lands (then each pair solves ``d_j = kappa_j W^(2/3) + c_b W`` for
-    ``W`` by a few Newton steps in the kernel instead of the closed form).
+    Tooth bending comes with the mesh tables (their ``bending_mm_per_n``).
 
     Raises
     ------
     InputRangeError
-        Unknown backend, ``table`` backend without a table, torque <= 0, a bending
-        compliance other than 0.
+        Unknown backend, ``table`` backend without a table, torque <= 0, a designed
+        backlash that does not clear an interference of the generated flanks.
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     t = check_positive("torque_nm (N·m)", torque_nm)
-    if bending_compliance_mm_per_n != 0.0:
-        raise InputRangeError("bending_compliance_mm_per_n", bending_compliance_mm_per_n,
-                              "0 (tooth bending is not modelled yet: rigid teeth)")
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
     if backend != "table":
         _check_envelope(mesh)
+        if reverse is not None:
+            _check_envelope(reverse)
+    if reverse is not None:
+        from .mesh import free_play_rad
+        # opposite motion signs (reverse_law), and a positive total free play: the
+        # designed backlash must exceed an interference of the generated flanks
+        geo = float(free_play_rad(mesh, reverse, mesh.psi_rad).min()) * mesh.reference_lever_mm
+        if geo + drivetrain.backlash_mm <= 0.0:
+            raise InputRangeError("drivetrain.backlash_mm", drivetrain.backlash_mm,
+                                  f"> {-geo:.4g} mm (the generated {mesh.side} and "
+                                  f"{reverse.side} flanks interfere by {-1e3 * geo:.3g} um)")
+        reverse_note = reverse_note or (f"own law: the {reverse.side} flanks' TCA (levers, "
+                                        "openings, curvatures, TE0), geometric free play "
+                                        "plus backlash_mm")
+    else:
+        reverse_note = reverse_note or "loaded side's law mirrored about backlash_mm"
     pow_lut, cbrt_lut, cst = golden_constants()
     if table is not None:
         tab = (np.ascontiguousarray(table.theta_rad),
@@ -113,15 +132,31 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                np.ascontiguousarray(table.load_n ** (2.0 / 3.0)))
     else:
         tab = (np.ones((1, 2)), np.zeros((1, 2)), np.zeros((1, 2)))
-    arrays = {"eps": np.ascontiguousarray(mesh.eps_rad),
-              "lever": np.ascontiguousarray(mesh.lever_mm),
-              "opening": np.ascontiguousarray(mesh.opening_mm),
-              "A": np.ascontiguousarray(mesh.A_minus_per_mm),
-              "B": np.ascontiguousarray(mesh.B_minus_per_mm),
-              "valid": np.ascontiguousarray(mesh.valid),
+    arrays = {**_stack(mesh, reverse if reverse is not None else mesh),
               "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
               "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2]}
-    return TwinModel(mesh, drivetrain, backend, t, table, 0.0, arrays)
+    return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note)
+
+
+def _stack(mesh: MeshTable, rev: MeshTable) -> dict:
+    """The kernel's per-flank arrays: index 0 the loaded side, 1 the reverse side, padded
+    to the larger pair and row counts (padding is never valid)."""
+    n_p = max(mesh.lever_mm.shape[0], rev.lever_mm.shape[0])
+    n_k = max(mesh.lever_mm.shape[1], rev.lever_mm.shape[1])
+    out = {"eps": np.zeros((2, n_k))}
+    for s, m in enumerate((mesh, rev)):
+        out["eps"][s, :m.eps_rad.size] = m.eps_rad
+    for key, attr in (("lever", "lever_mm"), ("opening", "opening_mm"),
+                      ("A", "A_minus_per_mm"), ("B", "B_minus_per_mm"), ("valid", "valid"),
+                      ("cb", "bending_mm_per_n")):
+        arr = np.zeros((2, n_p, n_k), bool if key == "valid" else float)
+        for s, m in enumerate((mesh, rev)):
+            v = getattr(m, attr)
+            if v is None:
+                continue
+            arr[s, :v.shape[0], :v.shape[1]] = v
+        out[key] = arr
+    return out
 
 
 def _check_envelope(mesh: MeshTable) -> None:
@@ -158,6 +193,14 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_TL] = model.torque_nm
     prm[K.P_TM] = model.torque_nm / m.ratio
     prm[K.P_L0] = m.reference_lever_mm
+    rev = model.reverse
+    if rev is None:
+        prm[K.P_MIRROR] = 1.0
+        prm[K.P_DPSIR], prm[K.P_NROWR] = m.step_rad, len(m.psi_rad)
+    else:
+        from .mesh import reverse_law
+        prm[K.P_PSIR], prm[K.P_CR] = reverse_law(m, rev)
+        prm[K.P_DPSIR], prm[K.P_NROWR] = rev.step_rad, len(rev.psi_rad)
     prm[K.P_EP] = m.e_prime_mpa
     prm[K.P_DPSI] = m.step_rad
     prm[K.P_PITCH] = m.pitch_rad
@@ -197,18 +240,21 @@ def speed_controller_gains(model: TwinModel) -> tuple[float, float]:
 
 def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
              w_eval=None) -> tuple[float, np.ndarray]:
-    """Drive-flank elastic torque (N·m) and pair loads (N) at (theta, psi)."""
+    """Loaded-flank elastic torque (N·m) and pair loads (N) at (theta, psi)."""
     a = model.arrays
-    n_p = a["lever"].shape[0]
-    w_eval = np.full(n_p, 1e3) if w_eval is None else w_eval
-    w = np.zeros(n_p)
-    t, _ = K._elastic(theta, psi, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
-                      a["valid"], K.BACKEND_CODES[model.backend], w_eval,
-                      np.full((n_p, 6), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
+    n_p = a["lever"].shape[1]
+    w_ev = np.full((2, n_p), 1e3)
+    if w_eval is not None:
+        w_ev[0] = w_eval
+    w = np.zeros((2, n_p))
+    x = float(np.mod(psi, prm[K.P_PITCH])) / prm[K.P_DPSI]      # as kernel._phase
+    i = min(int(x), int(prm[K.P_NROW]) - 2)
+    t, _ = K._elastic(theta, i, x - i, 0, 0, prm, a["lever"], a["opening"], a["A"], a["B"],
+                      a["valid"], a["cb"], K.BACKEND_CODES[model.backend], w_ev,
+                      np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
                       np.zeros((0, 9), np.int64), np.zeros(4, np.int64), a["tab_theta"],
-                      a["tab_t23"], a["tab_w23"],
-                      w, np.zeros(7))
-    return t, w
+                      a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)), np.zeros(3))
+    return t, w[0]
 
 
 def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
@@ -230,7 +276,7 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     lo, hi = 0.0, 4.0 * th0
     while _elastic(model, prm, hi)[0] < target:
         hi *= 2.0
-    w_eval = np.full(m.lever_mm.shape[0], 1e3)
+    w_eval = np.full(model.arrays["lever"].shape[1], 1e3)
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         t, w = _elastic(model, prm, mid, w_eval=w_eval)
@@ -319,14 +365,20 @@ class TwinResult:
         Time series (:data:`~.kernel.RECORD_COLUMNS` plus ``te_arcsec``, the dynamic TE
         in the TCA's sign, comparable with ``gearcontact lte``).
     summary : dict
-        Plain-JSON scalars (see :func:`simulate`).
+        Plain-JSON scalars (see :func:`simulate`); deterministic: identical runs give
+        identical summaries (no timings).
     natural_frequencies_hz : ndarray
         Linearised modes at the static point.
+    timings : dict
+        Wall-clock measurements of this run (see :func:`simulate`), kept out of
+        ``summary`` so that result files are byte-identical across identical runs
+        (the CLI writes these into ``run.json``).
     """
 
     columns: dict
     summary: dict
     natural_frequencies_hz: np.ndarray
+    timings: dict = field(default_factory=dict)
 
 
 def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: float,
@@ -361,12 +413,13 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         ``summary`` keys: ``backend, steps, step_us, duration_s, speed_rpm, torque_nm,
         mesh_frequency_hz, static_mesh_torque_nm, static_mesh_load_n,
         mean_mesh_torque_nm, mean_mesh_load_n, dynamic_factor, contact_loss,
-        dte_pp_arcsec, real_time_factor, step_time_p50_us, step_time_p99_us, wall_s,
-        natural_frequencies_hz, h_omega_max, mesh_damping_n_s_per_mm,
-        bending_compliance_mm_per_n``. Statistics over the recorded steps after
-        ``settle_fraction``. ``step_time_p*`` are percentiles of the mean step time of
-        blocks of ``256 record_every`` steps (one compiled call each). ``rtl`` / ``soc``
-        add the replay's ``<backend>_previews, _mismatches, _seconds, _previews_per_s``.
+        dte_pp_arcsec, natural_frequencies_hz, h_omega_max, mesh_damping_n_s_per_mm,
+        bending``. Statistics over the recorded steps after ``settle_fraction``.
+        ``rtl`` / ``soc`` add the replay's ``<backend>_previews, _mismatches``.
+        ``timings`` keys: ``real_time_factor, step_time_p50_us, step_time_p99_us,
+        wall_s`` (and ``<backend>_seconds, _previews_per_s`` of a replay);
+        ``step_time_p*`` are percentiles of the mean step time of blocks of ``256
+        record_every`` steps (one compiled call each).
 
     Raises
     ------
@@ -410,11 +463,12 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     y[4:8] = omega, omega, omega / m.ratio, omega / m.ratio
     if initial_velocity is not None:
         y[4:8] += initial_velocity
-    w_eval = np.where(w0 > 0, w0, K.W_EVAL_MIN_N)
+    w_eval = np.full((2, w0.size), K.W_EVAL_MIN_N)
+    w_eval[0] = np.where(w0 > 0, w0, K.W_EVAL_MIN_N)
     a = model.arrays
     code = K.BACKEND_CODES[model.backend]
-    args = (prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"], a["valid"], code)
-    n_p = a["lever"].shape[0]
+    args = (prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"], a["valid"], a["cb"], code)
+    n_p = a["lever"].shape[1]
     # rtl: the golden loop records every preview for the lockstep replay (.cosim)
     lockstep = model.backend in ("rtl", "soc")
     trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, 9), np.int64)
@@ -478,21 +532,52 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "dynamic_factor": float(t_mesh.max() / static_t),
         "contact_loss": float(np.mean(t_mesh == 0.0)),
         "dte_pp_arcsec": float(np.ptp(cols["te_arcsec"][sel])),
-        "real_time_factor": dur / wall, "step_time_p50_us": float(np.percentile(st, 50)),
-        "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
-        "bending_compliance_mm_per_n": model.bending_compliance_mm_per_n, **rtl}
-    return TwinResult(cols, summary, freqs)
+        **_bending_summary(model),
+        "reverse_flank": model.reverse_note, **_free_play_summary(model),
+        **{k: v for k, v in rtl.items() if not k.endswith(("_seconds", "_per_s"))}}
+    timings = {"real_time_factor": dur / wall,
+               "step_time_p50_us": float(np.percentile(st, 50)),
+               "step_time_p99_us": float(np.percentile(st, 99)), "wall_s": wall,
+               **{k: v for k, v in rtl.items() if k.endswith(("_seconds", "_per_s"))}}
+    return TwinResult(cols, summary, freqs, timings)
+
+
+def _bending_summary(model: TwinModel) -> dict:
+    """Whether tooth bending is in the law, and the mean pair bending compliance of the
+    loaded side's valid pairs, mm/N."""
+    cb = model.mesh.bending_mm_per_n
+    on = cb is not None and bool(np.any(cb > 0.0))
+    return {"bending": on, "bending_compliance_mean_mm_per_n":
+            float(cb[model.mesh.valid].mean()) if on else 0.0}
+
+
+def _free_play_summary(model: TwinModel) -> dict:
+    """Normal free play between the loaded and the reverse flanks along the pitch, mm at
+    the reference lever: geometric (the generated teeth) and total (+ backlash_mm)."""
+    m, dt = model.mesh, model.drivetrain
+    if model.reverse is None:
+        return {"free_play_min_mm": dt.backlash_mm, "free_play_max_mm": dt.backlash_mm}
+    from .mesh import free_play_rad
+    geo = free_play_rad(m, model.reverse, m.psi_rad) * m.reference_lever_mm
+    return {"geometric_free_play_min_mm": float(geo.min()),
+            "geometric_free_play_max_mm": float(geo.max()),
+            "free_play_min_mm": float(geo.min()) + dt.backlash_mm,
+            "free_play_max_mm": float(geo.max()) + dt.backlash_mm}
 
 
 def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                    drivetrain: DrivetrainParams | None = None, side: str = "drive",
                    phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
-                   progress: bool = False) -> TwinModel:
+                   bending: bool = False, progress: bool = False) -> TwinModel:
     """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
-    :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`."""
+    :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
+    The reverse flank is the other side's own TCA (mirrored loaded law if that side is in
+    line contact). ``bending``: tooth bending of both members in series with the
+    Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`)."""
     from ..tca.analysis import analyze_pair
+    from ..tca.line_contact import LineContact
     from .ltca_table import torque_table
     from .mesh import mesh_table
     from .params import default_drivetrain
@@ -500,11 +585,24 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in BACKENDS:     # before the expensive stages
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    from ..contact.tooth_bending import tooth_bending
+
     tca, flanks = analyze_pair(pair, side=side, phases=phases, progress=progress)
-    mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t)
+    bend = (lambda s: tooth_bending(flanks, pair, side=s)) if bending else (lambda s: None)
+    mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t, bending=bend(side))
+    other = "coast" if side == "drive" else "drive"
+    reverse, note = None, ""
+    try:
+        rtca, _ = analyze_pair(pair, side=other, phases=phases, flanks=flanks,
+                               progress=progress)
+        reverse = mesh_table(rtca, flanks, pair, side=other, torque_nm=t,
+                             bending=bend(other))
+    except LineContact as exc:     # conjugate flanks: no contact ellipse to load
+        note = (f"loaded side's law mirrored about backlash_mm: the {other} flanks are in "
+                f"line contact ({str(exc).split(';')[0]}), outside the Hertzian preview")
     table = None
     if backend == "table":
         table = torque_table(tca, flanks, pair, mesh, t, side=side, source=table_source,
-                             cells=table_cells, progress=progress)
+                             cells=table_cells, bending=bend(side), progress=progress)
     return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
-                       table=table)
+                       table=table, reverse=reverse, reverse_note=note)
