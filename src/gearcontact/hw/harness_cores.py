@@ -31,7 +31,7 @@ import numpy as np
 
 from ..preview.stimulus import Stimulus, stimulus
 from ..validation import InputRangeError
-from .harness import HarnessSpec, Port, WritePort
+from .harness import HarnessSpec, Port, Stream, WritePort
 
 __all__ = ["CoreBench", "CoreUnavailable", "EquivalenceReport", "BENCHES", "CORE_NAMES",
            "get_bench", "verilator_model", "run_equivalence", "SIMULATORS"]
@@ -260,6 +260,29 @@ _HERTZ_SPEC = HarnessSpec(
     outputs=_HERTZ_OUT + (Port("flags", 7),))
 
 
+def _pipe_amaranth(hertz_form: str):
+    def run(st: Stimulus):
+        from ..preview.hertz.rtl_pipe import simulate_hertz_pipe
+        f = st.fields
+        rows = np.stack([f["A"], f["B"], f["W"], f["e_prime"]], axis=1)
+        res = simulate_hertz_pipe(rows, hertz_form=hertz_form)
+        acc = res.accept_edges
+        ii = (acc[-1] - acc[0]) / (len(acc) - 1) if len(acc) > 1 else None
+        return _hertz_cols(res.outputs), np.asarray(res.latency, np.int64), ii
+    return run
+
+
+def _pipe_cycles(hertz_form: str):
+    def latency(st: Stimulus) -> int:
+        from ..preview.hertz.rtl_pipe import pipe_latency
+        return pipe_latency(hertz_form=hertz_form)
+    return latency
+
+
+_PIPE_SPEC = replace(_HERTZ_SPEC, top="hertz_pipe", go="in_valid", done="out_valid",
+                     max_cycles=1000, stream=Stream())
+
+
 _CHAIN_PORTS = ("a", "b", "p_max", "k", "R_x", "R_y", "alpha")
 
 
@@ -337,6 +360,15 @@ BENCHES: dict[str, CoreBench] = {b.name: b for b in (
               _hertz_ports, _hertz_golden("exact"), _hertz_amaranth("exact"), _hertz_cycles,
               verilog_kwargs={"hertz_form": "exact"},
               summary="stage D with hertz_form='exact' (exact k and E tables, 756 cycles)"),
+    CoreBench("hertz_pipe", "hertz.rtl_pipe", _PIPE_SPEC, _hertz_ports,
+              _hertz_golden("hamrock-brewe"), _pipe_amaranth("hamrock-brewe"),
+              _pipe_cycles("hamrock-brewe"),
+              summary="stage D pipelined, initiation interval 1 (one preview per clock, "
+                      "valid/ready stream; cycles = latency)"),
+    CoreBench("hertz_pipe_exact", "hertz.rtl_pipe", replace(_PIPE_SPEC, top="hertz_pipe_exact"),
+              _hertz_ports, _hertz_golden("exact"), _pipe_amaranth("exact"),
+              _pipe_cycles("exact"), verilog_kwargs={"hertz_form": "exact"},
+              summary="pipelined stage D (II = 1) with hertz_form='exact'"),
     CoreBench("chain", "chain_rtl", _chain_spec("chain_core"), _chain_ports, _chain_golden(),
               _chain_amaranth("chain_rtl", "simulate_chain_core"), _chain_cycles,
               summary="C -> D chain: fit core feeding the serialized stage D"),
@@ -428,6 +460,11 @@ class EquivalenceReport:
     build_seconds : float
         Verilog export + Verilator build in this call (about 0 when both are cached).
     golden_seconds : float
+    streaming : bool
+        The core takes a valid/ready stream (``cycles`` is then the latency).
+    measured_ii : float or None
+        Streaming cores: edges between the first and last accepted input per input
+        (1.0 when one input is accepted per clock).
     """
 
     core: str
@@ -443,6 +480,15 @@ class EquivalenceReport:
     sim_seconds: float
     build_seconds: float
     golden_seconds: float
+    streaming: bool = False
+    measured_ii: float | None = None
+
+    @property
+    def initiation_interval(self):
+        """Edges between two accepted evaluations: measured for a streaming core; for a
+        go/done core a start is accepted only once the previous run is done, so it is
+        the run's cycle count (write bursts before ``go`` not included)."""
+        return self.measured_ii if self.streaming else self.cycles
 
     @property
     def cycles_per_second(self) -> float:
@@ -451,8 +497,10 @@ class EquivalenceReport:
 
     @property
     def ok(self) -> bool:
-        """No mismatch and every vector took exactly the expected cycle count."""
-        return self.mismatches == 0 and self.cycles == self.cycles_expected
+        """No mismatch, every vector took exactly the expected cycle count (latency) and,
+        for a streaming core, one input was accepted per clock."""
+        return (self.mismatches == 0 and self.cycles == self.cycles_expected
+                and (not self.streaming or self.measured_ii in (None, 1.0)))
 
     def as_dict(self) -> dict:
         """JSON-ready summary."""
@@ -464,7 +512,9 @@ class EquivalenceReport:
                 "sim_cycles": self.sim_cycles, "sim_seconds": round(self.sim_seconds, 6),
                 "cycles_per_second": round(self.cycles_per_second, 1),
                 "build_seconds": round(self.build_seconds, 3),
-                "golden_seconds": round(self.golden_seconds, 3), "ok": self.ok}
+                "golden_seconds": round(self.golden_seconds, 3),
+                "initiation_interval": self.initiation_interval,
+                "latency_cycles": self.cycles, "ok": self.ok}
 
 
 def _burst_cycles(bench: CoreBench, st: Stimulus) -> int:
@@ -479,7 +529,8 @@ def _burst_cycles(bench: CoreBench, st: Stimulus) -> int:
 
 def simulate(bench: CoreBench, st: Stimulus, simulator: str = "verilator", *,
              jobs: int = 1):
-    """Run ``st`` on the RTL: ``(outputs, cycles, sim_cycles, sim_seconds, build_s)``.
+    """Run ``st`` on the RTL: ``(outputs, cycles, sim_cycles, sim_seconds, build_s,
+    initiation_interval)`` (the last is None except for streaming cores).
 
     ``jobs`` parallel simulator processes (Verilator only); ``sim_seconds`` is summed
     over them, so ``sim_cycles / sim_seconds`` is the speed of one process.
@@ -489,12 +540,16 @@ def simulate(bench: CoreBench, st: Stimulus, simulator: str = "verilator", *,
         model = verilator_model(bench.name)
         build = time.perf_counter() - t0
         run = model.run(*bench.ports(st), jobs=jobs)
-        return run.outputs, run.cycles, run.sim_cycles, run.seconds, build
+        return (run.outputs, run.cycles, run.sim_cycles, run.seconds, build,
+                run.initiation_interval)
     if simulator == "amaranth":
         t0 = time.perf_counter()
-        outs, cycles = bench.amaranth(st)
+        outs, cycles, *ii = bench.amaranth(st)
         secs = time.perf_counter() - t0
-        return outs, cycles, int(cycles.sum()) + _burst_cycles(bench, st), secs, 0.0
+        sim_cycles = (int(cycles.sum()) if bench.spec.stream is None
+                      else int(cycles.max(initial=0)) + len(st))
+        return (outs, cycles, sim_cycles + _burst_cycles(bench, st), secs, 0.0,
+                ii[0] if ii else None)
     raise InputRangeError("simulator", simulator, f"one of {list(SIMULATORS)}")
 
 
@@ -531,7 +586,7 @@ def run_equivalence(core: str, n: int, seed: int = 0, *, simulator: str = "veril
     bench = get_bench(core)
     st = stim if stim is not None else bench.stimulus(n, seed, corners=corners,
                                                       **stimulus_kwargs)
-    outs, cycles, sim_cycles, sim_s, build_s = simulate(bench, st, simulator, jobs=jobs)
+    outs, cycles, sim_cycles, sim_s, build_s, ii = simulate(bench, st, simulator, jobs=jobs)
     t0 = time.perf_counter()
     gold = bench.golden(st)
     golden_s = time.perf_counter() - t0
@@ -551,5 +606,6 @@ def run_equivalence(core: str, n: int, seed: int = 0, *, simulator: str = "veril
         cycles_expected=int(bench.cycles(st)),
         cycle_counts={int(v): int(c) for v, c in zip(values, counts)},
         sim_cycles=int(sim_cycles), sim_seconds=float(sim_s), build_seconds=float(build_s),
-        golden_seconds=golden_s)
+        golden_seconds=golden_s, streaming=bench.spec.stream is not None,
+        measured_ii=ii)
 
