@@ -228,9 +228,18 @@ def test_importing_the_driver_does_not_load_amaranth():
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
-def test_rtl_soc_exact_form_is_refused_naming_the_field():
-    """The SoC tops hold the published tables: hertz_form='exact' is bad input."""
+def test_rtl_soc_exact_form_reads_back_the_exact_tables():
+    """hertz_form='exact' builds the SoC with the exact-Hertz tables: the registers read
+    back equal the exact-form golden model (and differ from the published form)."""
     from gearcontact.hw import backends  # noqa: F401
     from gearcontact.preview.engine import get_engine
-    with pytest.raises(InputRangeError, match=r"hertz_form \(backend rtl-soc\)"):
-        get_engine("rtl-soc", hertz_form="exact")
+    eng = get_engine("rtl-soc", hertz_form="exact")
+    try:
+        got = eng.hertz(0.05, 0.01, 1000.0)
+    finally:
+        eng.close()
+    gold = get_engine("golden", hertz_form="exact").hertz(0.05, 0.01, 1000.0)
+    assert got.hertz_form == "exact" and got.cycles == HERTZ_CYCLES
+    for k in ("a", "b", "k", "p_max", "flags"):
+        assert got.codes[k] == gold.codes[k], k
+    assert got.codes["k"] != get_engine("golden").hertz(0.05, 0.01, 1000.0).codes["k"]

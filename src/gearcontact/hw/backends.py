@@ -6,8 +6,8 @@ backends and knows nothing of the hardware; importing this module adds
 * ``rtl`` -- :class:`.rtl_engine.RtlEngine`, the RTL cores in simulation (both Hertz
   forms);
 * ``rtl-soc`` -- :class:`.driver.SocEngine`, the SoCs in simulation behind the host
-  driver, returning the register values it reads back (published form only: the SoC
-  tops hold the published tables).
+  driver, returning the register values it reads back (both Hertz forms: the
+  simulated SoC is built with the requested tables).
 
 Both through lazy factories: nothing here imports Amaranth or builds a model until a
 backend is created. The command line imports this module before it lists backends.
@@ -35,4 +35,4 @@ def _rtl_soc(**kwargs) -> PreviewEngine:
 
 
 register_backend("rtl", _rtl, hertz_forms=HERTZ_FORMS)
-register_backend("rtl-soc", _rtl_soc)
+register_backend("rtl-soc", _rtl_soc, hertz_forms=HERTZ_FORMS)

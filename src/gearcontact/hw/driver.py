@@ -109,14 +109,15 @@ class SimTransport:
     ----------
     kind : str
         SoC kind (default ``tri_core``).
-    lanes, e_prime_code : keyword-only
+    lanes, e_prime_code, hertz_form : keyword-only
         SoC parameters (:class:`.soc.SocTop`).
     reply_timeout : float, keyword-only
         Seconds to wait for the simulator thread before raising DriverError.
     """
 
     def __init__(self, kind: str = "tri_core", *, lanes: int = 16,
-                 e_prime_code: int | None = None, reply_timeout: float = 300.0):
+                 e_prime_code: int | None = None, hertz_form: str = HF.DEFAULT_HERTZ_FORM,
+                 reply_timeout: float = 300.0):
         from amaranth.sim import Simulator
 
         from ..preview.stimulus import STEEL_E_PRIME_CODE
@@ -125,7 +126,7 @@ class SimTransport:
         self.soc_map = get_map(kind)
         e = STEEL_E_PRIME_CODE if e_prime_code is None else int(e_prime_code)
         self.e_prime_code = e
-        self.top = SocTop(kind, lanes=lanes, e_prime_code=e)
+        self.top = SocTop(kind, lanes=lanes, e_prime_code=e, hertz_form=hertz_form)
         self.reply_timeout = reply_timeout
         self.cycles = 0
         self._req: queue.Queue = queue.Queue()
@@ -490,7 +491,8 @@ class SocEngine(GoldenEngine):
     simulated SoCs through the register drivers (tri_core for stencils, bhseq_core
     for stage D). Results are the values read back from the registers (decoded from
     their Q formats), their flags word and the measured cycles; nothing is taken from
-    the golden model. Registered by :mod:`.backends`."""
+    the golden model. Both Hertz forms (``hertz_form`` sets the tables of the simulated
+    SoC's stage D). Registered by :mod:`.backends`."""
 
     name = "rtl-soc"
 
@@ -500,7 +502,7 @@ class SocEngine(GoldenEngine):
 
     def _driver(self, kind):
         if kind not in self._drivers:
-            t = SimTransport(kind, e_prime_code=self.e_prime_code)
+            t = SimTransport(kind, e_prime_code=self.e_prime_code, hertz_form=self.hertz_form)
             self._drivers[kind] = (PreviewDriver(t) if kind == "tri_core"
                                    else HertzDriver(t, kind=kind))
         return self._drivers[kind]

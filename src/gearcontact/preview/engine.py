@@ -17,8 +17,7 @@ and register themselves here (:func:`register_backend`) when
 cores in simulation) and ``rtl-soc`` (the SoCs behind the host driver, returning the
 register values read back).
 
-Every backend except ``rtl-soc`` (whose SoC holds the published ROMs) evaluates
-stage D in either Hertz form, ``get_engine(name, hertz_form="hamrock-brewe" |
+Every backend evaluates stage D in either Hertz form, ``get_engine(name, hertz_form="hamrock-brewe" |
 "exact")`` (:data:`.hertz.formats.HERTZ_FORMS`; the fixed-point ``"exact"`` form holds the
 exact k and elliptic-integral terms in the same tables, :mod:`.hertz.luts`).
 
