@@ -227,7 +227,9 @@ def test_build_error_carries_the_log(tmp_path, monkeypatch):
 #: is in the slow suite, and tests/preview/test_rtl_engine.py runs it on a stencil.
 #: hertz_pipe_exact likewise differs from hertz_pipe by the tables only (the Amaranth
 #: tests run it under stalls, tests/preview/hertz/test_rtl_pipe.py).
-_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact")
+#: chain_pipe is the fit core + hertz_pipe, both checked here (its Amaranth test runs in
+#: tests/preview/test_chain_pipe.py).
+_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe")
 _DEFAULT_CORES = [pytest.param(c, marks=pytest.mark.slow) if c in _SLOW_BUILDS else c
                   for c in hc.CORE_NAMES]
 

@@ -1,5 +1,6 @@
-"""Descriptors of the C -> D chain (:class:`.chain_rtl.ChainCore`, both Hertz forms) and
-of the combinational C + D core (:class:`.comb_rtl.CombCore`); see :mod:`.core`."""
+"""Descriptors of the C -> D chains (:class:`.chain_rtl.ChainCore` in both Hertz forms,
+:class:`.chain_pipe.ChainPipe` with the pipelined stage D) and of the combinational
+C + D core (:class:`.comb_rtl.CombCore`); see :mod:`.core`."""
 
 from __future__ import annotations
 
@@ -62,6 +63,11 @@ def _chain_cycles(st: Stimulus) -> int:
     return CHAIN_CYCLES
 
 
+def _pipe_cycles(st: Stimulus) -> int:
+    from .chain_pipe import CHAIN_PIPE_CYCLES
+    return CHAIN_PIPE_CYCLES
+
+
 def _comb_cycles(st: Stimulus) -> int:
     from .hertz.schedule import COMB_CYCLES
     return COMB_CYCLES
@@ -82,6 +88,9 @@ DESCRIPTORS = (
                   _chain_amaranth("chain_rtl", "simulate_chain_core", hertz_form="exact"),
                   _chain_cycles, "C -> D chain with stage D in hertz_form='exact'",
                   verilog_kwargs={"hertz_form": "exact"}),
+    _stencil_core("chain_pipe", "chain_pipe", "ChainPipe", "chain_pipe", _chain_golden(),
+                  _chain_amaranth("chain_pipe", "simulate_chain_pipe"), _pipe_cycles,
+                  "C -> D chain with the pipelined stage D (hertz_pipe; 142 cycles)"),
     _stencil_core("comb", "comb_rtl", "CombCore", "comb_core", _chain_golden(),
                   _chain_amaranth("comb_rtl", "simulate_comb_core"), _comb_cycles,
                   "combinational C + D variant (array dividers, pipelined)"),
