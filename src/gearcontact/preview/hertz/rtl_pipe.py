@@ -60,7 +60,7 @@ from amaranth.lib.wiring import In, Out
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from . import rtl_datapath as dp
-from .luts import CBRT_SPEC, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, POW_SPECS, rom_words
+from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, POW_SPECS, rom_words
 from .rtl_divider import restoring_step
 
 __all__ = ["HertzPipe", "DEFAULT_ROWS_PER_STAGE", "INITIATION_INTERVAL", "pipe_latency",
@@ -90,13 +90,23 @@ def _check_rows(rows_per_stage) -> int:
 
 
 def _dividend(name: str, ops: dp.Operands):
-    """``(dividend, rows)`` of division ``name``: the :func:`.rtl_datapath.division`
-    dividend, a constant one as a Python int, and its row count (leading one of a
-    constant, the expression width otherwise)."""
+    """``(dividend, rows)`` of division ``name`` (:func:`.rtl_datapath.division`).
+
+    The dividend is a Python int for a constant one, else ``(register, shift)`` with
+    dividend = register << shift (so the shifted-in zeros never occupy pipeline
+    registers); ``rows`` is the constant's leading-one position + 1, else the width
+    of the shifted register.
+    """
     num, _ = dp.division(name, ops)
     if isinstance(num, Const):
         return num.value, num.value.bit_length()
-    return num, len(num)
+    reg, shift = dp.DIVIDEND_SHIFTS[name]
+    if reg == "N5":                                  # the exact form's table dividend
+        base, shift = ops.n_ee.as_unsigned(), EE_DIVIDEND_SHIFT
+    else:
+        base = getattr(ops, reg).as_unsigned()
+    assert len(base) + shift == len(num), (name, len(base), shift, len(num))
+    return (base, shift), len(num)
 
 
 def division_rows(hertz_form: str = F.DEFAULT_HERTZ_FORM) -> dict[str, int]:
@@ -171,17 +181,19 @@ class _Pipeline:
 
 
 class _Division:
-    """One unrolled restoring division in flight: the remaining dividend bits (live
-    ``<name>_num``, or a Python constant), the quotient bits so far (``<name>_q``) and
-    the partial remainder (``<name>_rem``); the divisor is a live value named ``den``."""
+    """One unrolled restoring division in flight: the dividend bits not yet consumed
+    (live ``<name>_num``: the register part of ``register << shift`` above the shift, or
+    a Python constant), the quotient bits so far (``<name>_q``) and the partial
+    remainder (``<name>_rem``); the divisor is a live value named ``den``."""
 
     def __init__(self, pipe: _Pipeline, name: str, num, rows: int, den: str):
         self.name, self.rows, self.done, self.den = name, rows, 0, den
         self.const = num if isinstance(num, int) else None
+        self.shift = 0 if self.const is not None else num[1]
         dbits = len(pipe.live[den].as_unsigned())
         pipe.live[f"{name}_rem"] = Const(0, dbits)
         if self.const is None:
-            pipe.live[f"{name}_num"] = num
+            pipe.live[f"{name}_num"] = num[0]
 
     @property
     def finished(self) -> bool:
@@ -194,25 +206,32 @@ class _Division:
             return
         n, den = self.name, pipe.live[self.den].as_unsigned()
         rem = pipe.live[f"{n}_rem"]
-        num = None if self.const is not None else pipe.live[f"{n}_num"]
+        num = pipe.live.get(f"{n}_num")                   # None: constant or all consumed
         q = pipe.live.get(f"{n}_q")
         for _ in range(min(k, self.rows - self.done)):
             i = self.rows - 1 - self.done                 # dividend bit, MSB first
-            bit = Const((self.const >> i) & 1, 1) if num is None else num[i]
+            if self.const is not None:
+                bit = Const((self.const >> i) & 1, 1)
+            elif i >= self.shift:
+                bit = num[i - self.shift]
+            else:                                         # shifted-in zeros: constants
+                bit = Const(0, 1)
             new_rem, qbit = restoring_step(rem, bit, den)
             rem = pipe.comb(f"{n}_r{i}", new_rem, len(den))
             qb = pipe.comb(f"{n}_q{i}", qbit, 1)
             q = qb if q is None else Cat(qb, q)
             self.done += 1
         pipe.live[f"{n}_q"] = q
+        left = self.rows - self.done - self.shift          # register bits still to come
+        if num is not None:
+            if left > 0:
+                pipe.live[f"{n}_num"] = num[:left]
+            else:
+                pipe.live.pop(f"{n}_num", None)
         if self.finished:
             pipe.drop(f"{n}_rem")
-            if num is not None:
-                pipe.drop(f"{n}_num")
         else:
             pipe.live[f"{n}_rem"] = rem
-            if num is not None:
-                pipe.live[f"{n}_num"] = num[:self.rows - self.done]
 
     def quotient(self, pipe: _Pipeline):
         """The quotient (``rows`` bits) after the last row; removed from the live set."""
@@ -233,14 +252,31 @@ def _run_phase(pipe: _Pipeline, divs: list, r: int, per_stage=None) -> None:
         i += 1
 
 
-def _first_flag(flags, checks):
-    """Keep ``flags`` if set, else the first ``(cond, FLAG)`` that holds, else 0 (the
-    golden model's priority)."""
+#: Bit of FLAG_OVERFLOW: raised only by the output stage, so the flags word travels down
+#: the pipeline without it (a constant bit through every stage is only work for the
+#: synthesis tool).
+_OVF_BIT = F.FLAG_OVERFLOW.bit_length() - 1
+
+
+def _pack_flags(word):
+    """The flags word without the overflow bit (``FLAG_BITS - 1`` bits)."""
+    return Cat(word[:_OVF_BIT], word[_OVF_BIT + 1:])
+
+
+def _unpack_flags(packed):
+    """The ``FLAG_BITS`` word of a packed one (overflow bit 0)."""
+    return Cat(packed[:_OVF_BIT], Const(0, 1), packed[_OVF_BIT:])
+
+
+def _first_flag(packed, checks):
+    """Keep the (packed) flags if set, else the first ``(cond, FLAG)`` that holds, else
+    0 (the golden model's priority); packed result."""
     from amaranth import Mux
     out = Const(0, dp.FLAG_BITS)
     for cond, flag in reversed(checks):
+        assert flag != F.FLAG_OVERFLOW
         out = Mux(cond, flag, out)
-    return Mux(flags != 0, flags, out)
+    return _pack_flags(Mux(packed != 0, _unpack_flags(packed), out))
 
 
 class HertzPipe(wiring.Component):
@@ -324,8 +360,8 @@ class HertzPipe(wiring.Component):
         b_max = pipe.comb("b_max", hi, signed(CURVATURE.bits))
         pipe.drop("a_in", "b_in")
         lv.update(a_min=a_min, b_max=b_max,
-                  flags=pipe.comb("env", dp.envelope_flags(a_min, b_max, lv["w"],
-                                                           lv["e_prime"]), dp.FLAG_BITS),
+                  flags=pipe.comb("env", _pack_flags(dp.envelope_flags(
+                      a_min, b_max, lv["w"], lv["e_prime"])), dp.FLAG_BITS - 1),
                   ab_sum=pipe.comb("ab_sum", a_min.as_unsigned() + b_max.as_unsigned(),
                                    CURVATURE.bits + 1))
         o = ops(a_min=a_min, b_max=b_max)
@@ -429,7 +465,7 @@ class HertzPipe(wiring.Component):
 
         # ---- outputs -------------------------------------------------------------------
         lv = pipe.live
-        flags_out, outs = dp.finalize(lv["flags"], lv["ovf"], a_w=lv["a_w"], b_w=lv["b_w"],
+        flags_out, outs = dp.finalize(_unpack_flags(lv["flags"]), lv["ovf"], a_w=lv["a_w"], b_w=lv["b_w"],
                                       k=lv["k"], r_x=lv["r_x"], r_y=lv["r_y"],
                                       alpha=lv["alpha"], p_max_q=d_pmax.quotient(pipe))
         final = {"valid": lv["valid"], "flags": flags_out, "A_min": lv["a_min"],
