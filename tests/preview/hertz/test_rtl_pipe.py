@@ -94,7 +94,6 @@ def test_latency_table():
         assert pipe_latency(rps) == 8 + sum(-(-n // rps) for n in phases)
 
 
-@pytest.mark.filterwarnings("ignore:.*created but never used")
 @pytest.mark.parametrize("bad", [0, 17, 2.0, True])
 def test_bad_rows_per_stage(bad):
     with pytest.raises(InputRangeError, match="rows_per_stage"):

@@ -57,6 +57,7 @@ from amaranth.lib import wiring
 from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
+from ...validation import InputRangeError
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from . import rtl_datapath as dp
@@ -81,7 +82,6 @@ _INTERP_BITS = POW_SPEC.vbits + POW_SPEC.tbits
 
 
 def _check_rows(rows_per_stage) -> int:
-    from ...validation import InputRangeError
     if isinstance(rows_per_stage, bool) or not isinstance(rows_per_stage, int) \
             or not _ROWS_RANGE[0] <= rows_per_stage <= _ROWS_RANGE[1]:
         raise InputRangeError("rows_per_stage", rows_per_stage,
@@ -306,8 +306,12 @@ class HertzPipe(wiring.Component):
 
     def __init__(self, *, rows_per_stage: int = DEFAULT_ROWS_PER_STAGE,
                  hertz_form: str = F.DEFAULT_HERTZ_FORM, tag_bits: int = 0):
-        self._rows = _check_rows(rows_per_stage)
-        self._hertz_form = F.check_hertz_form(hertz_form)
+        try:
+            self._rows = _check_rows(rows_per_stage)
+            self._hertz_form = F.check_hertz_form(hertz_form)
+        except InputRangeError:
+            self._MustUse__silence = True     # never built: no "created but never used"
+            raise
         self._tag_bits = int(tag_bits)
         ports = {"A": In(signed(CURVATURE.bits)), "B": In(signed(CURVATURE.bits)),
                  "W": In(signed(LOAD.bits)), "e_prime": In(signed(F.E_PRIME.bits)),
@@ -555,7 +559,6 @@ def simulate_hertz_pipe(vectors, *, hertz_form: str = F.DEFAULT_HERTZ_FORM,
 
     from ..simulation import run_testbench
     from .rtl import _check_vectors, read_hertz_codes
-    from ...validation import InputRangeError
     rows = _check_vectors(vectors)
     for field, p in (("bubble_prob", bubble_prob), ("stall_prob", stall_prob)):
         if not 0.0 <= p < 1.0:
