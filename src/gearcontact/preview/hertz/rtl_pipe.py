@@ -44,6 +44,16 @@ Stream interface (valid/ready, one global stall)
   Bubbles (cycles without ``in_valid``) travel as invalid stages and are not squeezed
   out by a stall.
 * Synchronous reset empties the pipeline (every valid bit 0).
+
+Resources (Debian yosys 0.23 ``synth_xilinx -family xc7 -noiopad``, DSP mode, R = 4):
+45,565 LUT, 10,351 FF + 1,446 SRL, 6,195 CARRY4, 36 DSP48E1, no BRAM, logic depth 121
+cells -- against 2,650 LUT / 1,428 FF / 20 DSP48E1 / depth 44 for the serialized core
+with the same tool (docs/architecture.md).
+
+References
+----------
+B. Parhami, *Computer Arithmetic*, 2nd ed., Oxford University Press, 2010, sec. 13.1
+and ch. 16 (restoring division, array dividers and their pipelining).
 """
 
 from __future__ import annotations
