@@ -24,7 +24,6 @@ import hashlib
 import importlib
 import os
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, fields
 from functools import cache
 from pathlib import Path

@@ -46,7 +46,6 @@ from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_input
 from .hertz.golden_vec import hertz_golden_array
 from .hertz.reference import ENVELOPE, check_envelope, hertz_preview, hertz_preview_array
 from .hertz.schedule import HERTZ_CYCLES
-from .qformat import CURVATURE
 
 #: Preset materials :func:`get_engine` accepts by name.
 MATERIALS = {"steel": STEEL}

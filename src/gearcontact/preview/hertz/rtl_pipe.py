@@ -72,7 +72,7 @@ from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from . import rtl_datapath as dp
 from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, POW_SPECS, rom_words
-from .rtl_divider import restoring_step
+from .rtl_pipeline import Pipeline, PipelinedDivision, run_division_phase
 
 __all__ = ["HertzPipe", "DEFAULT_ROWS_PER_STAGE", "INITIATION_INTERVAL", "pipe_latency",
            "division_rows", "convert_verilog", "simulate_hertz_pipe", "PipeRun"]
@@ -145,121 +145,6 @@ def pipe_latency(rows_per_stage: int = DEFAULT_ROWS_PER_STAGE, *,
     r = _check_rows(rows_per_stage)
     rows = division_rows(hertz_form)
     return _FIXED_STAGES + sum(math.ceil(max(rows[n] for n in ph) / r) for ph in _PHASES)
-
-
-class _Pipeline:
-    """Live values of one evaluation, registered from stage to stage on ``en``.
-
-    ``live`` maps a name to the Amaranth value the next stage register takes;
-    :meth:`stage` creates the registers (reset-less, except ``valid``) and makes them
-    the live values; :meth:`comb` names a combinational value inside the current stage.
-    """
-
-    def __init__(self, m: Module, en):
-        self.m, self.en = m, en
-        self.live: dict = {}
-        self.depth = 0
-        self.sub = self._new_sub()
-
-    def _new_sub(self) -> Module:
-        sub = Module()
-        self.m.submodules[f"s{self.depth + 1}"] = sub
-        return sub
-
-    def comb(self, name: str, value, shape=None):
-        sig = Signal(shape if shape is not None else value.shape(),
-                     name=f"s{self.depth + 1}_{name}")
-        self.sub.d.comb += sig.eq(value)
-        return sig
-
-    def stage(self) -> None:
-        """Register every live value (one pipeline stage)."""
-        self.depth += 1
-        new = {}
-        with self.m.If(self.en):
-            for name, value in self.live.items():
-                shape = value.shape() if hasattr(value, "shape") else unsigned(1)
-                reg = Signal(shape, name=f"p{self.depth}_{name}", reset_less=name != "valid")
-                self.m.d.sync += reg.eq(value)
-                new[name] = reg
-        self.live = new
-        self.sub = self._new_sub()
-
-    def drop(self, *names: str) -> None:
-        for n in names:
-            del self.live[n]
-
-
-class _Division:
-    """One unrolled restoring division in flight: the dividend bits not yet consumed
-    (live ``<name>_num``: the register part of ``register << shift`` above the shift, or
-    a Python constant), the quotient bits so far (``<name>_q``) and the partial
-    remainder (``<name>_rem``); the divisor is a live value named ``den``."""
-
-    def __init__(self, pipe: _Pipeline, name: str, num, rows: int, den: str):
-        self.name, self.rows, self.done, self.den = name, rows, 0, den
-        self.const = num if isinstance(num, int) else None
-        self.shift = 0 if self.const is not None else num[1]
-        dbits = len(pipe.live[den].as_unsigned())
-        pipe.live[f"{name}_rem"] = Const(0, dbits)
-        if self.const is None:
-            pipe.live[f"{name}_num"] = num[0]
-
-    @property
-    def finished(self) -> bool:
-        return self.done == self.rows
-
-    def advance(self, pipe: _Pipeline, k: int) -> None:
-        """Up to ``k`` rows in the current stage (comb rows, registered by the next
-        :meth:`_Pipeline.stage`); nothing once finished (the quotient travels on)."""
-        if self.finished:
-            return
-        n, den = self.name, pipe.live[self.den].as_unsigned()
-        rem = pipe.live[f"{n}_rem"]
-        num = pipe.live.get(f"{n}_num")                   # None: constant or all consumed
-        q = pipe.live.get(f"{n}_q")
-        for _ in range(min(k, self.rows - self.done)):
-            i = self.rows - 1 - self.done                 # dividend bit, MSB first
-            if self.const is not None:
-                bit = Const((self.const >> i) & 1, 1)
-            elif i >= self.shift:
-                bit = num[i - self.shift]
-            else:                                         # shifted-in zeros: constants
-                bit = Const(0, 1)
-            new_rem, qbit = restoring_step(rem, bit, den)
-            rem = pipe.comb(f"{n}_r{i}", new_rem, len(den))
-            qb = pipe.comb(f"{n}_q{i}", qbit, 1)
-            q = qb if q is None else Cat(qb, q)
-            self.done += 1
-        pipe.live[f"{n}_q"] = q
-        left = self.rows - self.done - self.shift          # register bits still to come
-        if num is not None:
-            if left > 0:
-                pipe.live[f"{n}_num"] = num[:left]
-            else:
-                pipe.live.pop(f"{n}_num", None)
-        if self.finished:
-            pipe.drop(f"{n}_rem")
-        else:
-            pipe.live[f"{n}_rem"] = rem
-
-    def quotient(self, pipe: _Pipeline):
-        """The quotient (``rows`` bits) after the last row; removed from the live set."""
-        assert self.finished
-        return pipe.live.pop(f"{self.name}_q")
-
-
-def _run_phase(pipe: _Pipeline, divs: list, r: int, per_stage=None) -> None:
-    """Clock the divisions ``divs`` side by side until all are done (``per_stage(i)``
-    adds other logic to stage ``i`` of the phase)."""
-    i = 0
-    while not all(d.finished for d in divs):
-        for d in divs:
-            d.advance(pipe, r)
-        if per_stage is not None:
-            per_stage(i)
-        pipe.stage()
-        i += 1
 
 
 #: Bit of FLAG_OVERFLOW: raised only by the output stage, so the flags word travels down
@@ -346,7 +231,7 @@ class HertzPipe(wiring.Component):
         r = self._rows
         exact = self._hertz_form == "exact"
         en = Signal()
-        pipe = _Pipeline(m, en)
+        pipe = Pipeline(m, en)
         lv = pipe.live
 
         def rom_pair(spec, name):
@@ -382,9 +267,9 @@ class HertzPipe(wiring.Component):
         divs = {}
         for name in _PHASES[0]:
             num, rows = _dividend(name, o)
-            divs[name] = _Division(pipe, name, num, rows, dp.DIVISORS[name].replace(
+            divs[name] = PipelinedDivision(pipe, name, num, rows, dp.DIVISORS[name].replace(
                 "a_min+b_max", "ab_sum"))
-        _run_phase(pipe, list(divs.values()), r)
+        run_division_phase(pipe, list(divs.values()), r)
 
         # ---- rounding, alpha range, POW (EEX) interpolation, W C3 ----------------------
         lv = pipe.live
@@ -417,13 +302,13 @@ class HertzPipe(wiring.Component):
         # ---- E_e || K2 -------------------------------------------------------------------
         lv = pipe.live
         num, rows = _dividend("E_e", ops(n_ee=lv.get("n_ee")))
-        d_ee = _Division(pipe, "E_e", num, rows, "alpha")
+        d_ee = PipelinedDivision(pipe, "E_e", num, rows, "alpha")
         if exact:
             pipe.drop("n_ee")
         x, y = dp.product_operands("k2", ops(k=lv["k"]))
         lv["k2"] = pipe.comb("K2", dp.product_result("k2", x * y), F.K2.bits)
         lv["flags"] = _first_flag(lv["flags"], [(lv["alpha"] == 0, F.FLAG_DIV_ZERO)])
-        _run_phase(pipe, [d_ee], r)
+        run_division_phase(pipe, [d_ee], r)
 
         # ---- T1, T2, T3 --------------------------------------------------------------------
         lv = pipe.live
@@ -441,10 +326,10 @@ class HertzPipe(wiring.Component):
         # ---- C_a ---------------------------------------------------------------------------
         lv = pipe.live
         num, rows = _dividend("C_a", ops(t3=lv["t3"]))
-        d_ca = _Division(pipe, "C_a", num, rows, "e_prime")
+        d_ca = PipelinedDivision(pipe, "C_a", num, rows, "e_prime")
         pipe.drop("t3")
         lv["flags"] = _first_flag(lv["flags"], [(lv["e_prime"] == 0, F.FLAG_DIV_ZERO)])
-        _run_phase(pipe, [d_ca], r)
+        run_division_phase(pipe, [d_ca], r)
 
         # ---- range reduction | CBRT ----------------------------------------------------
         lv = pipe.live
@@ -464,18 +349,18 @@ class HertzPipe(wiring.Component):
         # ---- b || p_n2, then p_max ----------------------------------------------------
         lv = pipe.live
         o = ops(a_w=lv["a_w"], wc3=lv["wc3"])
-        d_b = _Division(pipe, "b", *_dividend("b", o), "k")
-        d_pn2 = _Division(pipe, "p_n2", *_dividend("p_n2", o), "a_w")
+        d_b = PipelinedDivision(pipe, "b", *_dividend("b", o), "k")
+        d_pn2 = PipelinedDivision(pipe, "p_n2", *_dividend("p_n2", o), "a_w")
         pipe.drop("wc3")
         lv["flags"] = _first_flag(lv["flags"], [(lv["k"] == 0, F.FLAG_DIV_ZERO),
                                                 (lv["a_w"] == 0, F.FLAG_DIV_ZERO)])
-        _run_phase(pipe, [d_b, d_pn2], r)
+        run_division_phase(pipe, [d_b, d_pn2], r)
         lv = pipe.live
         lv["b_w"] = pipe.comb("b_w", d_b.quotient(pipe), F.AXIS_W.bits)
         p_n2 = pipe.comb("p_n2", d_pn2.quotient(pipe), F.PN2.bits)
-        d_pmax = _Division(pipe, "p_max", *_dividend("p_max", ops(p_n2=p_n2)), "b_w")
+        d_pmax = PipelinedDivision(pipe, "p_max", *_dividend("p_max", ops(p_n2=p_n2)), "b_w")
         lv["flags"] = _first_flag(lv["flags"], [(lv["b_w"] == 0, F.FLAG_DIV_ZERO)])
-        _run_phase(pipe, [d_pmax], r)
+        run_division_phase(pipe, [d_pmax], r)
 
         # ---- outputs -------------------------------------------------------------------
         lv = pipe.live
