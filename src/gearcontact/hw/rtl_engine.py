@@ -1,8 +1,9 @@
 """The ``rtl`` preview backend: the Amaranth RTL cores in cycle-accurate simulation.
 
-:class:`RtlEngine` answers the :class:`~.engine.PreviewEngine` calls with the hardware
-itself: ``hertz`` / ``hertz_batch`` run :class:`~.hertz.rtl.HertzCore` (stage D, 756
-cycles) and ``stencil`` runs :class:`~.chain_rtl.ChainCore` (C -> D, 806 cycles), under
+:class:`RtlEngine` answers the :class:`~gearcontact.preview.engine.PreviewEngine` calls
+with the hardware itself: ``hertz`` / ``hertz_batch`` run
+:class:`~gearcontact.preview.hertz.rtl.HertzCore` (stage D, 756 cycles) and ``stencil``
+runs :class:`~gearcontact.preview.chain_rtl.ChainCore` (C -> D, 806 cycles), under
 Verilator when it is installed (compiled once, cached) and otherwise in the Amaranth
 simulator. Inputs are validated and quantized exactly as by the ``golden`` backend, and
 the result carries the raw register codes, the flags and ``cycles`` = the cycle count
