@@ -8,7 +8,7 @@ such a descriptor plus what the hardware side derives from it:
 * the :class:`~.harness.HarnessSpec` (:func:`derive_spec`): every operand, output and
   burst-field width, signedness and element count read from the component's
   ``signature.members`` (nothing hand-typed), which also gives the vector layouts of
-  :mod:`gearcontact.preview.vectors` and the port README of ``gearcontact rtl verilog``;
+  :mod:`.vectors` and the port README of ``gearcontact rtl verilog``;
 * its Verilog (the core's ``convert_verilog``, cached by source digest).
 
 :func:`run_equivalence` runs a stimulus through a simulator and the golden model and
