@@ -101,7 +101,17 @@ def test_hertz_form_exact(capsys):
     assert d["p_max_mpa"] == pytest.approx(ex.p_max_mpa, rel=1e-3)
 
 
-def test_hertz_form_not_available_on_rtl_soc_exits_2(capsys):
-    code, _, err = _run(capsys, "preview", "--curvatures", "0.25", "0.03", "--load", "100",
-                        "--backend", "rtl-soc", "--hertz-form", "exact")
-    assert code == 2 and "hertz_form" in err
+def test_hertz_form_exact_on_rtl_soc_reads_back_the_exact_tables(capsys):
+    """The SoC backend in the exact form: the values read from its registers are the
+    exact-form golden values (stage D in the simulated bhseq_core, 756 cycles)."""
+    args = ("preview", "--curvatures", "0.25", "0.03", "--load", "100", "--hertz-form",
+            "exact", "--json")
+    code, out, _ = _run(capsys, *args, "--backend", "rtl-soc")
+    assert code == 0
+    soc = json.loads(out)
+    code, out, _ = _run(capsys, *args, "--backend", "golden")
+    gold = json.loads(out)
+    assert soc["backend"] == "rtl-soc" and soc["hertz_form"] == "exact"
+    assert soc["cycles"] == 756
+    for k in ("a_mm", "b_mm", "k", "p_max_mpa"):
+        assert soc[k] == gold[k], k

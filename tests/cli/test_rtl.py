@@ -31,6 +31,20 @@ def test_sim_json_fit(capsys):
 
 
 @needs_verilator
+def test_sim_json_hertz_pipe(capsys):
+    """The II = 1 core: today's keys plus initiation_interval (measured, 1 edge) and
+    latency_cycles (90, the pipeline depth); the serialized core reports 756 for both."""
+    assert main(["rtl", "sim", "--core", "hertz_pipe", "--vectors", "100", "--json"]) == 0
+    out = _json(capsys)
+    assert out["mismatches"] == 0 and out["ok"]
+    assert out["initiation_interval"] == 1.0
+    assert out["latency_cycles"] == out["cycles"] == out["cycles_expected"] == 90
+    assert main(["rtl", "sim", "--core", "hertz", "--vectors", "0", "--json"]) == 0
+    out = _json(capsys)
+    assert out["initiation_interval"] == out["latency_cycles"] == 756
+
+
+@needs_verilator
 def test_sim_text_hertz(capsys):
     assert main(["rtl", "sim", "--core", "hertz", "--vectors", "20"]) == 0
     text = capsys.readouterr().out
@@ -108,3 +122,11 @@ def test_verilog_export_stencil_core_readme(tmp_path):
     assert main(["rtl", "verilog", "--core", "fit", "--out", str(tmp_path / "new")]) == 0
     readme = (tmp_path / "new" / "fit_core.README.md").read_text()
     assert "`wr_en` high, after a one-cycle `wr_rst` pulse: wr_data" in readme
+
+
+def test_verilog_export_stream_core_readme(tmp_path):
+    assert main(["rtl", "verilog", "--core", "hertz_pipe", "--out", str(tmp_path)]) == 0
+    readme = (tmp_path / "hertz_pipe.README.md").read_text()
+    assert "Protocol (stream, initiation interval 1)" in readme
+    assert "`out_valid` 90 edges later" in readme
+    assert "| in_ready | output | 1 |" in readme and "| A | input | 32 |" in readme

@@ -10,7 +10,7 @@ import pytest
 from gearcontact.cli import COMMANDS, main
 from gearcontact.preview.fit.golden import golden_fit_batch
 from gearcontact.preview.hertz.golden_vec import hertz_golden_array
-from gearcontact.preview.vectors import export_vectors, read_hex, read_jsonl
+from gearcontact.hw.vectors import export_vectors, read_hex, read_jsonl
 
 
 def _run(capsys, *argv):

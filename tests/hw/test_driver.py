@@ -74,21 +74,62 @@ def test_bhseq_protocol_bit_exact_with_hertz_golden():
                                              cycles=HERTZ_CYCLES)
 
 
-def test_rtl_soc_engine_backend_equals_golden():
+def _rtl_soc():
+    from gearcontact.hw import backends  # noqa: F401 (registers rtl-soc)
     from gearcontact.preview.engine import BACKENDS, get_engine
-    from gearcontact.preview.fit.stencil import stencil_coordinates
     assert "rtl-soc" in BACKENDS
+    return get_engine("rtl-soc")
+
+
+def _soc_stencil():
+    from gearcontact.preview.fit.stencil import stencil_coordinates
     s, t = stencil_coordinates()
-    gaps = 0.04 * s ** 2 + 0.01 * t ** 2 + 0.002 * s * t
-    eng = get_engine("rtl-soc")
+    return 0.04 * s ** 2 + 0.01 * t ** 2 + 0.002 * s * t
+
+
+def test_rtl_soc_engine_backend_equals_golden():
+    from gearcontact.preview.engine import get_engine
+    gaps = _soc_stencil()
+    eng = _rtl_soc()
     try:
         got = eng.stencil(gaps, 900.0)
-        gold = get_engine("golden").stencil(gaps, 900.0)
+        got_h = eng.hertz(0.05, 0.01, 1000.0)
     finally:
         eng.close()
-    assert got.cycles == CHAIN_CYCLES and got.valid
-    assert (got.a_mm, got.b_mm, got.p_max_mpa, got.k) == (gold.a_mm, gold.b_mm,
-                                                          gold.p_max_mpa, gold.k)
+    gold = get_engine("golden").stencil(gaps, 900.0)
+    gold_h = get_engine("golden").hertz(0.05, 0.01, 1000.0)
+    assert got.cycles == CHAIN_CYCLES and got.valid and got.backend == "rtl-soc"
+    assert (got.a_mm, got.b_mm, got.p_max_mpa, got.k, got.A_minus_per_mm,
+            got.B_minus_per_mm, got.flags) == (gold.a_mm, gold.b_mm, gold.p_max_mpa, gold.k,
+                                               gold.A_minus_per_mm, gold.B_minus_per_mm,
+                                               gold.flags)
+    assert got_h.cycles == HERTZ_CYCLES and got_h.valid
+    for k in ("a", "b", "k", "p_max", "A_min", "B_max", "flags", "A_in", "B_in", "W"):
+        assert got_h.codes[k] == gold_h.codes[k], k
+
+
+def test_rtl_soc_engine_returns_the_register_values(monkeypatch):
+    """The backend reports what it read from the registers, not the golden numbers: a
+    readback with p_max and k off by one LSB shows up decoded in the result."""
+    eng = _rtl_soc()
+    real = drv.PreviewDriver.run
+
+    def corrupted(self, gap_codes, W_code):
+        rb = real(self, gap_codes, W_code)
+        return dataclasses.replace(rb, p_max=rb.p_max + 1, k=rb.k - 1)
+
+    monkeypatch.setattr(drv.PreviewDriver, "run", corrupted)
+    from gearcontact.preview.engine import get_engine
+    gaps = _soc_stencil()
+    try:
+        got = eng.stencil(gaps, 900.0)
+    finally:
+        eng.close()
+    gold = get_engine("golden").stencil(gaps, 900.0)
+    assert got.codes["p_max"] == gold.codes["p_max"] + 1
+    assert got.p_max_mpa == gold.p_max_mpa + 2.0 ** -8        # PMAX Q(32,8) LSB, MPa
+    assert got.k == gold.k - 2.0 ** -20                        # K_OUT Q(32,20) LSB
+    assert got.a_mm == gold.a_mm
 
 
 # ------------------------------------------------------------------ bad input / bus ---
@@ -181,6 +222,24 @@ def test_litex_remote_transport_errors():
 def test_importing_the_driver_does_not_load_amaranth():
     import subprocess
     import sys
-    code = ("import sys, gearcontact.hw.driver as d, gearcontact.preview.engine as e; "
+    code = ("import sys, gearcontact.hw.driver as d, gearcontact.hw.backends, "
+            "gearcontact.preview.engine as e; "
             "assert 'rtl-soc' in e.BACKENDS; assert 'amaranth' not in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_rtl_soc_exact_form_reads_back_the_exact_tables():
+    """hertz_form='exact' builds the SoC with the exact-Hertz tables: the registers read
+    back equal the exact-form golden model (and differ from the published form)."""
+    from gearcontact.hw import backends  # noqa: F401
+    from gearcontact.preview.engine import get_engine
+    eng = get_engine("rtl-soc", hertz_form="exact")
+    try:
+        got = eng.hertz(0.05, 0.01, 1000.0)
+    finally:
+        eng.close()
+    gold = get_engine("golden", hertz_form="exact").hertz(0.05, 0.01, 1000.0)
+    assert got.hertz_form == "exact" and got.cycles == HERTZ_CYCLES
+    for k in ("a", "b", "k", "p_max", "flags"):
+        assert got.codes[k] == gold.codes[k], k
+    assert got.codes["k"] != get_engine("golden").hertz(0.05, 0.01, 1000.0).codes["k"]

@@ -31,6 +31,7 @@ from gearcontact.hw.harness import (
     unpack_results,
 )
 from gearcontact.preview.gap.golden import gap_latency
+from gearcontact.preview.gap_cores import GAP_LANES
 
 needs_verilator = pytest.mark.skipif(
     not vl.verilator_available(), reason=f"Verilator toolchain not installed: {vl.INSTALL_HINT}")
@@ -224,7 +225,12 @@ def test_build_error_carries_the_log(tmp_path, monkeypatch):
 #: chain_exact differs from chain only by the HertzCore ROMs that hertz_exact already
 #: checks here; its own 1,000-vector run (an 18 s Verilator build on a fresh machine)
 #: is in the slow suite, and tests/preview/test_rtl_engine.py runs it on a stencil.
-_DEFAULT_CORES = [pytest.param(c, marks=pytest.mark.slow) if c == "chain_exact" else c
+#: hertz_pipe_exact likewise differs from hertz_pipe by the tables only (the Amaranth
+#: tests run it under stalls, tests/preview/hertz/test_rtl_pipe.py).
+#: chain_pipe is the fit core + hertz_pipe, both checked here (its Amaranth test runs in
+#: tests/preview/test_chain_pipe.py).
+_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe")
+_DEFAULT_CORES = [pytest.param(c, marks=pytest.mark.slow) if c in _SLOW_BUILDS else c
                   for c in hc.CORE_NAMES]
 
 
@@ -235,11 +241,39 @@ def test_bulk_equivalence(core):
 
 
 @needs_verilator
+def test_pipe_streams_one_input_per_clock():
+    """hertz_pipe back to back: II = 1 measured in the binary, latency = pipe_latency."""
+    from gearcontact.preview.hertz.rtl_pipe import pipe_latency
+    rep = _report("hertz_pipe", 200, SEED + 5)
+    assert rep.streaming and rep.measured_ii == 1.0
+    assert rep.cycles == pipe_latency() == 90
+    # the serialized core needs its whole run per evaluation
+    assert _report("hertz", 0, SEED).initiation_interval == 756
+
+
+@needs_verilator
+def test_pipe_under_random_bubbles_and_stalls():
+    """Random in_valid bubbles and out_ready stalls in the Verilator harness: every result
+    bit-exact and in order, latency never below the pipeline depth and above it only
+    when stalls occurred."""
+    from gearcontact.preview.hertz.rtl_pipe import pipe_latency
+    bench = hc.get_bench("hertz_pipe")
+    st = bench.stimulus(2_000, SEED + 6)
+    run = hc.verilator_model("hertz_pipe").run(*bench.ports(st), bubble_per_mille=300,
+                                               stall_per_mille=300, seed=9)
+    gold = bench.golden(st)
+    for port, want in gold.items():
+        np.testing.assert_array_equal(run.outputs[port], want, err_msg=port)
+    assert run.cycles.min() == pipe_latency() and run.cycles.max() > pipe_latency()
+    assert run.initiation_interval > 1.0
+
+
+@needs_verilator
 @pytest.mark.parametrize("n_samples", [1, 37, 256])
 def test_gap_other_pass_lengths(n_samples):
     rep = _report("gap", 100, SEED + n_samples, n_samples=n_samples)
     _assert_equivalent(rep, 100)
-    assert rep.cycles == gap_latency(n_samples, hc.GAP_LANES)
+    assert rep.cycles == gap_latency(n_samples, GAP_LANES)
 
 
 @needs_verilator
@@ -284,3 +318,44 @@ def test_binary_run_from_a_shell_prints_its_speed():
 def test_bulk_equivalence_100k(core):
     rep = _report(core, SLOW_VECTORS, SEED + 1, jobs=os.cpu_count() or 1)
     _assert_equivalent(rep, SLOW_VECTORS)
+
+
+# ---------------------------------------------------------------------------------
+# descriptors: every harness width derived from the component's signature
+# ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("core", ["gap", "fit", "hertz", "hertz_pipe", "chain"])
+def test_derived_spec_matches_the_verilog_ports(core):
+    """Each derived port (operands, burst fields, outputs) has the direction and total
+    width of the exported Verilog's port (independent truth: Amaranth's backend), and
+    the spec names every Verilog port except the declared control/protocol ones."""
+    from gearcontact.cli.rtl import verilog_ports
+    bench = hc.get_bench(core)
+    spec = bench.spec
+    ports = {n: (d, w) for d, n, w in verilog_ports(bench.verilog(), spec.top)}
+    fields = spec.write.fields if spec.write else ()
+    for p in spec.inputs + fields:
+        assert ports[p.name] == ("input", p.width), p
+    for p in spec.outputs:
+        assert ports[p.name] == ("output", p.width), p
+    named = {p.name for p in spec.inputs + spec.outputs + fields} | set(bench.control) \
+        | {spec.go, spec.done, spec.clock, spec.reset}
+    if spec.write:
+        named |= {spec.write.strobe, spec.write.addr, spec.write.clear}
+    if spec.stream:
+        named |= set(dataclasses.astuple(spec.stream))
+    assert set(ports) <= named, set(ports) - named
+
+
+def test_derived_spec_signedness_and_arrays():
+    gap = hc.get_bench("gap").spec
+    assert Port("r", 21, 9, True) in gap.inputs and Port("tau2", 64) in gap.inputs
+    assert gap.write.fields == (Port("w_g", 24, 3, True), Port("w_n", 21, 3, True))
+    hz = {p.name: p for p in hc.get_bench("hertz").spec.outputs}
+    assert hz["alpha"] == Port("alpha", 32) and hz["a"] == Port("a", 32, signed=True)
+    assert hz["flags"] == Port("flags", 7)
+
+
+def test_descriptor_with_an_unknown_port_is_refused():
+    bench = dataclasses.replace(hc.get_bench("hertz"), control=("go_chain", "no_such"))
+    with pytest.raises(ValueError, match="no_such"):
+        hc.derive_spec(bench)

@@ -174,7 +174,5 @@ def test_exact_form_stencil_path():
 def test_hertz_form_errors_name_the_field():
     with pytest.raises(InputRangeError, match="hertz_form"):
         get_engine("golden", hertz_form="simplified")
-    with pytest.raises(InputRangeError, match=r"hertz_form \(backend rtl-soc\)"):
-        get_engine("rtl-soc", hertz_form="exact")
     with pytest.raises(InputRangeError, match="hertz_form"):
         ReferenceEngine(hertz_form="HB")

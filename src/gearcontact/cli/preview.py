@@ -13,6 +13,7 @@ import json
 import sys
 
 from ..materials import STEEL, Material
+from ..hw import backends as _hardware_backends  # noqa: F401 (registers rtl, rtl-soc)
 from ..preview.engine import BACKENDS, get_engine
 from ..preview.fit.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS

@@ -122,6 +122,9 @@ def run_sim(args) -> int:
         print(f"cycles       {rep.cycles if rep.cycles is not None else counts} per "
               f"evaluation (expected {rep.cycles_expected}"
               f"{', data independent' if rep.cycles is not None else ''})")
+        if rep.streaming:
+            print(f"interval     {rep.initiation_interval} cycles between accepted inputs "
+                  f"(initiation interval; cycles above = latency)")
         print(f"mismatches   {rep.mismatches}")
         for ex in rep.mismatch_examples:
             print(f"  vector {ex['vector']} ({ex['label']}): {ex['port']} rtl {ex['rtl']} "
@@ -153,9 +156,20 @@ def _readme(core: str, verilog: str) -> str:
              "| port | dir | width |", "|---|---|---|"]
     lines += [f"| {n} | {d} | {w} |" for d, n, w in verilog_ports(verilog, spec.top)]
     ops = ", ".join(f"`{p.name}`" for p in spec.inputs)
-    proto = [f"Protocol: drive the operands{f' ({ops})' if ops else ''}, pulse `{spec.go}` "
-             f"for one cycle, wait for `{spec.done}`; the outputs are then valid "
-             f"({bench.cycles(bench.stimulus(0))} cycles from the `{spec.go}` edge)."]
+    if spec.stream is not None:
+        sm = spec.stream
+        proto = [f"Protocol (stream, initiation interval 1): an input set ({ops}) is "
+                 f"accepted on every edge with `{sm.in_valid}` and `{sm.in_ready}` high; its "
+                 f"result shows on the outputs with `{sm.out_valid}` "
+                 f"{bench.cycles(bench.stimulus(0))} edges later (the accepting edge counted "
+                 f"as 1) and is consumed on an edge with `{sm.out_valid}` and "
+                 f"`{sm.out_ready}` high; results leave in input order. "
+                 f"`{sm.out_valid}` & ~`{sm.out_ready}` stalls the whole pipeline "
+                 f"(`{sm.in_ready}` low)."]
+    else:
+        proto = [f"Protocol: drive the operands{f' ({ops})' if ops else ''}, pulse `{spec.go}` "
+                 f"for one cycle, wait for `{spec.done}`; the outputs are then valid "
+                 f"({bench.cycles(bench.stimulus(0))} cycles from the `{spec.go}` edge)."]
     if spec.write is not None:
         wp = spec.write
         proto.append(f"Before `{spec.go}`, stream up to {wp.max_beats} words with "

@@ -3,12 +3,12 @@
 Writes, per core, the seeded random and corner-case vectors with the golden model's
 expected outputs as JSON lines and ``$readmemh`` hex files, plus a README.md that
 describes every file, field order, width and Q format
-(:mod:`gearcontact.preview.vectors`).
+(:mod:`gearcontact.hw.vectors`).
 """
 
 from __future__ import annotations
 
-from ..preview.vectors import DEFAULT_COUNT, MAX_COUNT, VECTOR_CORES, export_vectors
+from ..hw.vectors import DEFAULT_COUNT, MAX_COUNT, VECTOR_CORES, export_vectors
 from ..validation import InputRangeError
 from .options import check_count
 from .outdir import add_out_argument, final_path

@@ -33,7 +33,7 @@ import time
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
-from ..preview.engine import GoldenEngine, PreviewBatch, register_backend
+from ..preview.engine import GoldenEngine, PreviewBatch
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
@@ -109,14 +109,15 @@ class SimTransport:
     ----------
     kind : str
         SoC kind (default ``tri_core``).
-    lanes, e_prime_code : keyword-only
+    lanes, e_prime_code, hertz_form : keyword-only
         SoC parameters (:class:`.soc.SocTop`).
     reply_timeout : float, keyword-only
         Seconds to wait for the simulator thread before raising DriverError.
     """
 
     def __init__(self, kind: str = "tri_core", *, lanes: int = 16,
-                 e_prime_code: int | None = None, reply_timeout: float = 300.0):
+                 e_prime_code: int | None = None, hertz_form: str = HF.DEFAULT_HERTZ_FORM,
+                 reply_timeout: float = 300.0):
         from amaranth.sim import Simulator
 
         from ..preview.stimulus import STEEL_E_PRIME_CODE
@@ -125,7 +126,7 @@ class SimTransport:
         self.soc_map = get_map(kind)
         e = STEEL_E_PRIME_CODE if e_prime_code is None else int(e_prime_code)
         self.e_prime_code = e
-        self.top = SocTop(kind, lanes=lanes, e_prime_code=e)
+        self.top = SocTop(kind, lanes=lanes, e_prime_code=e, hertz_form=hertz_form)
         self.reply_timeout = reply_timeout
         self.cycles = 0
         self._req: queue.Queue = queue.Queue()
@@ -488,7 +489,10 @@ class HertzDriver(_Driver):
 class SocEngine(GoldenEngine):
     """Preview backend ``rtl-soc``: the golden model's quantization, evaluated by the
     simulated SoCs through the register drivers (tri_core for stencils, bhseq_core
-    for stage D). Results carry the register codes and the measured cycles."""
+    for stage D). Results are the values read back from the registers (decoded from
+    their Q formats), their flags word and the measured cycles; nothing is taken from
+    the golden model. Both Hertz forms (``hertz_form`` sets the tables of the simulated
+    SoC's stage D). Registered by :mod:`.backends`."""
 
     name = "rtl-soc"
 
@@ -498,7 +502,7 @@ class SocEngine(GoldenEngine):
 
     def _driver(self, kind):
         if kind not in self._drivers:
-            t = SimTransport(kind, e_prime_code=self.e_prime_code)
+            t = SimTransport(kind, e_prime_code=self.e_prime_code, hertz_form=self.hertz_form)
             self._drivers[kind] = (PreviewDriver(t) if kind == "tri_core"
                                    else HertzDriver(t, kind=kind))
         return self._drivers[kind]
@@ -508,30 +512,28 @@ class SocEngine(GoldenEngine):
             d.t.close()
         self._drivers.clear()
 
-    def _from_readback(self, rb: PreviewReadback, golden_result, codes_extra: dict):
-        g = golden_result
-        got = {"A": rb.A, "B": rb.B, "a": rb.a, "b": rb.b, "p_max": rb.p_max, "k": rb.k,
-               "flags": rb.flags}
-        want = {k: g.codes[c] for k, c in (("a", "a"), ("b", "b"), ("p_max", "p_max"),
-                                           ("k", "k"), ("flags", "flags"))}
-        if any(got[k] != v for k, v in want.items()):
-            raise DriverError(f"rtl-soc readback {got} differs from the golden model {want}")
-        codes = dict(g.codes, **codes_extra, rtl=got)
-        return type(g)(self.name, g.load_n, g.A_minus_per_mm, g.B_minus_per_mm, g.a_mm,
-                       g.b_mm, g.k, g.p_max_mpa, codes=codes, flags=g.flags,
-                       cycles=rb.cycles)
+    def _from_readback(self, rb: PreviewReadback, load_n: float, codes: dict,
+                       hertz_flags: int, flag_names: tuple):
+        """PreviewResult of the register codes: A- / B- are stage D's B_max / A_min; the
+        SoC maps have no R_x, R_y, alpha registers (their codes are not reported)."""
+        from ..preview.hertz.golden import HertzCodes
+        hz = HertzCodes(a_code=rb.a, b_code=rb.b, p_max_code=rb.p_max, k_code=rb.k,
+                        A_min_code=rb.B, B_max_code=rb.A, R_x_code=0, R_y_code=0,
+                        alpha_code=0, flags=hertz_flags)
+        return self._result(hz, load_n, dict(codes, flags=rb.flags), flag_names, rb.cycles)
 
     def stencil(self, gaps_mm, load_n):
-        g = super().stencil(gaps_mm, load_n)
-        from ..preview.fit.golden import encode_gaps
-        rb = self._driver("tri_core").run([int(x) for x in encode_gaps(gaps_mm)],
-                                          g.codes["W"])
-        return self._from_readback(rb, g, {})
+        from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
+        w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
+        rb = self._driver("tri_core").run([int(x) for x in gap_codes], w_c)
+        codes = {"W": w_c, "e_prime": self.e_prime_code, "A_fit": rb.A, "B_fit": rb.B}
+        return self._from_readback(rb, w, codes, rb.flags & ((1 << FIT_FLAG_SHIFT) - 1),
+                                   chain_flag_names(rb.flags))
 
     def hertz(self, A_minus, B_minus, load_n):
-        g = super().hertz(A_minus, B_minus, load_n)
-        rb = self._driver("bhseq_core").run(g.codes["A_in"], g.codes["B_in"], g.codes["W"])
-        return self._from_readback(rb, g, {})
+        w, codes = self.encode_hertz(A_minus, B_minus, load_n)
+        rb = self._driver("bhseq_core").run(codes["A_in"], codes["B_in"], codes["W"])
+        return self._from_readback(rb, w, codes, rb.flags, HF.flag_names(rb.flags))
 
     def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
         import numpy as np
@@ -545,6 +547,3 @@ class SocEngine(GoldenEngine):
         return PreviewBatch(self.name, col(lambda r: r.a_mm), col(lambda r: r.b_mm),
                             col(lambda r: r.k), col(lambda r: r.p_max_mpa),
                             col(lambda r: r.codes["flags"]).astype(np.int64))
-
-
-register_backend("rtl-soc", SocEngine)

@@ -17,6 +17,17 @@ The cycle count is the number of rising clock edges from the edge that samples
 ``go`` (counted as 1) to the edge after which ``done`` reads 1 -- the convention of the
 Amaranth runners (``simulate_*_core``) and of the golden timing models.
 
+A *streaming* core (``HarnessSpec.stream``, a :class:`Stream` of valid/ready names,
+e.g. the II = 1 stage D) gets a different loop: on every clock the next pending vector
+is offered on the operand inputs with ``in_valid`` (unless a random bubble withholds
+it), ``out_ready`` is driven (low on a random stall), and a result is taken whenever
+``out_valid`` and ``out_ready`` are both 1; the record's cycle word is then the
+latency, edges from the accepting edge (edge 1) to the edge after which the result
+first showed ``out_valid``. Bubble and stall probabilities (per mille) and the seed
+of the harness' xorshift generator are optional arguments 5-7 of the binary (default 0:
+back to back); the JSON line adds ``first_accept`` and ``last_accept`` (edge indices),
+from which the initiation interval follows.
+
 Stimulus and result files are flat little-endian ``uint32`` streams. Stimulus, per
 vector: ``[n_beats]`` and ``n_beats`` x (beat fields) if the spec has a write port,
 then the operand inputs. Result, per vector: the outputs, then the cycle count. A port
@@ -33,7 +44,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 
-__all__ = ["Port", "WritePort", "HarnessSpec", "generate_harness", "pack_stimulus",
+__all__ = ["Port", "WritePort", "Stream", "HarnessSpec", "generate_harness", "pack_stimulus",
            "unpack_results", "pack_port", "unpack_port"]
 
 
@@ -105,6 +116,24 @@ class WritePort:
 
 
 @dataclass(frozen=True)
+class Stream:
+    """Valid/ready port names of a streaming core (one input set per accepted edge).
+
+    Parameters
+    ----------
+    in_valid, in_ready, out_valid, out_ready : str
+        The handshake ports: an input set is accepted on an edge where ``in_valid`` and
+        ``in_ready`` are 1; a result is consumed on an edge where ``out_valid`` and
+        ``out_ready`` are 1.
+    """
+
+    in_valid: str = "in_valid"
+    in_ready: str = "in_ready"
+    out_valid: str = "out_valid"
+    out_ready: str = "out_ready"
+
+
+@dataclass(frozen=True)
 class HarnessSpec:
     """Everything the generic harness needs to know about a core.
 
@@ -125,6 +154,10 @@ class HarnessSpec:
         of the harness binary, not compiled in).
     write : WritePort, optional
         Burst write port driven before ``go``.
+    stream : Stream, optional
+        Streaming handshake instead of ``go``/``done`` (then ``go`` and ``done`` name
+        ``in_valid`` and ``out_valid``, ``max_cycles`` bounds the edges between two
+        results, and there is no write port).
     clock, reset : str
         Clock and synchronous active-high reset inputs (Amaranth: ``clk``, ``rst``).
     """
@@ -136,8 +169,13 @@ class HarnessSpec:
     done: str
     max_cycles: int
     write: WritePort | None = None
+    stream: Stream | None = None
     clock: str = "clk"
     reset: str = "rst"
+
+    def __post_init__(self):
+        if self.stream is not None and self.write is not None:
+            raise InputRangeError("HarnessSpec.write", self.write, "None for a stream core")
 
     @property
     def input_words(self) -> int:
@@ -209,8 +247,8 @@ static std::vector<uint32_t> read_words(const char* path) {{
 }}
 
 int main(int argc, char** argv) {{
-    if (argc != 5) {{
-        std::fprintf(stderr, "usage: %s STIMULUS RESULTS N_VECTORS MAX_CYCLES\n", argv[0]);
+    if ({argc_check}) {{
+        std::fprintf(stderr, "usage: %s STIMULUS RESULTS N_VECTORS MAX_CYCLES{usage_extra}\n", argv[0]);
         return 2;
     }}
     const std::vector<uint32_t> stim = read_words(argv[1]);
@@ -229,7 +267,23 @@ int main(int argc, char** argv) {{
     top->{reset} = 0;
     top->eval();
 
-    size_t pos = 0;
+{loop}    FILE* f = std::fopen(argv[2], "wb");
+    if (!f || std::fwrite(out.data(), sizeof(uint32_t), out.size(), f) != out.size()) {{
+        std::fprintf(stderr, "cannot write %s\n", argv[2]);
+        return 2;
+    }}
+    std::fclose(f);
+    const double secs = std::chrono::duration<double>(t1 - t0).count();
+    std::printf("{{\"vectors\": %ld, \"sim_cycles\": %llu, \"seconds\": %.6f{stats_fmt}}}\n",
+                n_vec, (unsigned long long)sim_cycles, secs{stats_args});
+    top->final();
+    delete top;
+    delete ctx;
+    return 0;
+}}
+"""
+
+_GO_LOOP = r"""    size_t pos = 0;
     auto t0 = std::chrono::steady_clock::now();
     for (long v = 0; v < n_vec; ++v) {{
         uint32_t* o = &out[(size_t)v * OUT_WORDS];
@@ -261,20 +315,59 @@ int main(int argc, char** argv) {{
         std::fprintf(stderr, "stimulus has %zu unused words\n", stim.size() - pos);
         return 2;
     }}
-    FILE* f = std::fopen(argv[2], "wb");
-    if (!f || std::fwrite(out.data(), sizeof(uint32_t), out.size(), f) != out.size()) {{
-        std::fprintf(stderr, "cannot write %s\n", argv[2]);
+"""
+
+_STREAM_LOOP = r"""    const uint32_t bubble = argc > 5 ? (uint32_t)std::atol(argv[5]) : 0u;   // per mille
+    const uint32_t stall = argc > 6 ? (uint32_t)std::atol(argv[6]) : 0u;    // per mille
+    uint64_t rng = argc > 7 ? (uint64_t)std::atoll(argv[7]) * 2654435761u + 1u : 1u;
+    auto chance = [&rng](uint32_t per_mille) {{             // xorshift64
+        rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17;
+        return per_mille > 0 && (uint32_t)(rng % 1000u) < per_mille;
+    }};
+    if ((size_t)n_vec * {in_words} != stim.size()) {{
+        std::fprintf(stderr, "stimulus has %zu words, expected %ld x {in_words}\n",
+                     stim.size(), n_vec);
         return 2;
     }}
-    std::fclose(f);
-    const double secs = std::chrono::duration<double>(t1 - t0).count();
-    std::printf("{{\"vectors\": %ld, \"sim_cycles\": %llu, \"seconds\": %.6f}}\n",
-                n_vec, (unsigned long long)sim_cycles, secs);
-    top->final();
-    delete top;
-    delete ctx;
-    return 0;
-}}
+    std::vector<uint64_t> accepted((size_t)n_vec);
+    long next_in = 0, next_out = 0;
+    bool shown = false;
+    uint64_t appear = 0, progress = sim_cycles, first_acc = 0, last_acc = 0;
+    auto t0 = std::chrono::steady_clock::now();
+    while (next_out < n_vec) {{
+        if (sim_cycles - progress > max_cycles) {{
+            std::fprintf(stderr, "result %ld: no {out_valid} within %u cycles\n", next_out,
+                         max_cycles);
+            return 3;
+        }}
+        const bool send = next_in < n_vec && !chance(bubble);
+        if (send) {{
+            const uint32_t* w = &stim[(size_t)next_in * {in_words}];
+{set_inputs}
+        }}
+        top->{in_valid} = send;
+        top->{out_ready} = !chance(stall);
+        top->eval();
+        if (top->{out_valid}) {{
+            if (!shown) {{ appear = sim_cycles; shown = true; }}
+            if (top->{out_ready}) {{
+                uint32_t* o = &out[(size_t)next_out * OUT_WORDS];
+{get_outputs}
+                o[OUT_WORDS - 1] = (uint32_t)(appear - accepted[(size_t)next_out] + 1);
+                ++next_out;
+                shown = false;
+                progress = sim_cycles;
+            }}
+        }}
+        if (send && top->{in_ready}) {{
+            accepted[(size_t)next_in] = sim_cycles + 1;
+            if (next_in == 0) first_acc = sim_cycles + 1;
+            last_acc = sim_cycles + 1;
+            ++next_in;
+        }}
+        tick();
+    }}
+    auto t1 = std::chrono::steady_clock::now();
 """
 
 _WRITE_TEMPLATE = r"""        {{
@@ -320,15 +413,30 @@ def generate_harness(spec: HarnessSpec) -> str:
         write_block = _WRITE_TEMPLATE.format(max_beats=wp.max_beats,
                                              beat_words=wp.beat_words, clear=clear,
                                              strobe=wp.strobe, addr=addr, fields=fields)
-    set_inputs = "\n".join(f"{pad}{_c_set(p, 'w', str(k))}"
-                           for p, k in zip(spec.inputs, _offsets(spec.inputs)))
-    get_outputs = "\n".join(f"{pad}{_c_get(p, 'o', k)}"
-                            for p, k in zip(spec.outputs, _offsets(spec.outputs)))
+    if spec.stream is not None:
+        st, pad2 = spec.stream, pad + "    "
+        loop = _STREAM_LOOP.format(
+            in_words=spec.input_words, in_valid=st.in_valid, in_ready=st.in_ready,
+            out_valid=st.out_valid, out_ready=st.out_ready,
+            set_inputs="\n".join(f"{pad2}{_c_set(p, 'w', str(k))}"
+                                  for p, k in zip(spec.inputs, _offsets(spec.inputs)))
+            or pad2 + ";",
+            get_outputs="\n".join(f"{pad2}{_c_get(p, 'o', k)}"
+                                   for p, k in zip(spec.outputs, _offsets(spec.outputs))))
+        extra = dict(argc_check="argc < 5 || argc > 8", usage_extra=" [BUBBLE_PER_MILLE STALL_PER_MILLE SEED]",
+                     stats_fmt=', \\"first_accept\\": %llu, \\"last_accept\\": %llu',
+                     stats_args=", (unsigned long long)first_acc, (unsigned long long)last_acc")
+    else:
+        set_inputs = "\n".join(f"{pad}{_c_set(p, 'w', str(k))}"
+                               for p, k in zip(spec.inputs, _offsets(spec.inputs)))
+        get_outputs = "\n".join(f"{pad}{_c_get(p, 'o', k)}"
+                                for p, k in zip(spec.outputs, _offsets(spec.outputs)))
+        loop = _GO_LOOP.format(in_words=spec.input_words, write_block=write_block,
+                               set_inputs=set_inputs or pad + ";", go=spec.go,
+                               done=spec.done, get_outputs=get_outputs)
+        extra = dict(argc_check="argc != 5", usage_extra="", stats_fmt="", stats_args="")
     return _TEMPLATE.format(top=spec.top, clock=spec.clock, reset=spec.reset,
-                            out_words=spec.output_words, in_words=spec.input_words,
-                            write_block=write_block, set_inputs=set_inputs or pad + ";",
-                            go=spec.go, done=spec.done,
-                            get_outputs=get_outputs)
+                            out_words=spec.output_words, loop=loop, **extra)
 
 
 # ---------------------------------------------------------------------------------

@@ -38,6 +38,7 @@ from amaranth.lib.wiring import In, Out
 from ..preview.chain_rtl import ChainCore
 from ..preview.gap.golden import GapVector
 from ..preview.gap.rtl import GapCore
+from ..preview.hertz import formats as HF
 from ..preview.hertz.rtl import HertzCore
 from ..preview.stimulus import STEEL_E_PRIME_CODE, gap_stimulus
 from .bus import CSR_BUS, RegisterBlock, port_name
@@ -180,6 +181,8 @@ class SocDatapath(wiring.Component):
         Gap core lanes (contact readback), default 16.
     e_prime_code : int, keyword-only
         Baked E', E_PRIME Q(32,0) MPa.
+    hertz_form : {"hamrock-brewe", "exact"}, keyword-only
+        Stage-D tables of the preview / Hertz core (default the published form).
 
     Notes
     -----
@@ -189,11 +192,13 @@ class SocDatapath(wiring.Component):
     bring-up probe that is not on the bus.
     """
 
-    def __init__(self, kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE):
+    def __init__(self, kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE,
+                 hertz_form: str = HF.DEFAULT_HERTZ_FORM):
         self.kind = kind
         self.soc_map = get_map(kind)
         self.lanes = lanes
         self.e_prime_code = int(e_prime_code)
+        self.hertz_form = HF.check_hertz_form(hertz_form)
         ports = datapath_ports(self.soc_map, _constants(self.soc_map))
         ports["probe_cycles"] = Out(PROBE_BITS)
         super().__init__(ports)
@@ -211,7 +216,7 @@ class SocDatapath(wiring.Component):
                          self._p("contact", "flags").eq(c.flags)]
         core = None
         if "preview" in names:
-            m.submodules.chain = core = ChainCore()
+            m.submodules.chain = core = ChainCore(hertz_form=self.hertz_form)
             P = lambda r: self._p("preview", r)
             m.d.comb += [core.wr_rst.eq(P("wr_rst")), core.wr_en.eq(P("wr_data__stb")),
                          core.wr_data.eq(P("wr_data")), core.W.eq(P("W_load")),
@@ -219,7 +224,7 @@ class SocDatapath(wiring.Component):
                          P("A").eq(core.a_minus), P("B").eq(core.b_minus)]
             go = P("go")
         elif "hertz" in names:
-            m.submodules.hertz = core = HertzCore()
+            m.submodules.hertz = core = HertzCore(hertz_form=self.hertz_form)
             P = lambda r: self._p("hertz", r)
             m.d.comb += [core.A.eq(P("A_in")), core.B.eq(P("B_in")), core.W.eq(P("W_load")),
                          core.e_prime.eq(self.e_prime_code), core.go.eq(P("go")),
@@ -250,7 +255,7 @@ class SocTop(wiring.Component):
     ----------
     kind : str
         One of :data:`.regmap.SOC_KINDS`.
-    lanes, e_prime_code : keyword-only
+    lanes, e_prime_code, hertz_form : keyword-only
         See :class:`SocDatapath`.
 
     Notes
@@ -261,18 +266,21 @@ class SocTop(wiring.Component):
     timer are not reset by it.
     """
 
-    def __init__(self, kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE):
+    def __init__(self, kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE,
+                 hertz_form: str = HF.DEFAULT_HERTZ_FORM):
         self.kind = kind
         self.soc_map = get_map(kind)
         self.lanes = lanes
         self.e_prime_code = int(e_prime_code)
+        self.hertz_form = HF.check_hertz_form(hertz_form)
         super().__init__({"bus": In(CSR_BUS), "probe_cycles": Out(PROBE_BITS)})
 
     def elaborate(self, platform):
         m = Module()
         const = _constants(self.soc_map)
         m.submodules.regs = regs = RegisterBlock(self.soc_map, constants=const)
-        dp = SocDatapath(self.kind, lanes=self.lanes, e_prime_code=self.e_prime_code)
+        dp = SocDatapath(self.kind, lanes=self.lanes, e_prime_code=self.e_prime_code,
+                         hertz_form=self.hertz_form)
         soft_rst = regs.ctrl__reset
         m.submodules.datapath = ResetInserter(soft_rst)(dp)
         wiring.connect(m, wiring.flipped(self.bus), regs.bus)
@@ -310,14 +318,15 @@ class SocTop(wiring.Component):
 
 
 def convert_verilog(kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE,
-                    datapath_only: bool = False, name: str | None = None) -> str:
+                    datapath_only: bool = False, name: str | None = None,
+                    hertz_form: str = HF.DEFAULT_HERTZ_FORM) -> str:
     """Verilog of :class:`SocTop` (or of :class:`SocDatapath` for LiteX wrapping).
 
     Parameters
     ----------
     kind : str
         One of :data:`.regmap.SOC_KINDS`.
-    lanes, e_prime_code : keyword-only
+    lanes, e_prime_code, hertz_form : keyword-only
         See :class:`SocDatapath`.
     datapath_only : bool, keyword-only
         Emit the datapath (register ports, no bus) instead of the bus top.
@@ -325,6 +334,6 @@ def convert_verilog(kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_P
         Verilog module name (default ``kind`` or ``kind + "_datapath"``).
     """
     cls = SocDatapath if datapath_only else SocTop
-    top = cls(kind, lanes=lanes, e_prime_code=e_prime_code)
+    top = cls(kind, lanes=lanes, e_prime_code=e_prime_code, hertz_form=hertz_form)
     name = name or (kind + "_datapath" if datapath_only else kind)
     return verilog.convert(top, name=name, strip_internal_attrs=True)

@@ -118,6 +118,10 @@ class SimRun:
         Wall time of the whole call (packing, process start, I/O, decoding).
     processes : int
         Simulator processes run in parallel.
+    initiation_interval : float or None
+        Streaming cores only: edges between the first and the last accepted input
+        divided by the accepted inputs minus one, the largest over the processes
+        (1.0 = one input per clock); None for go/done cores or single vectors.
     """
 
     outputs: dict
@@ -126,6 +130,7 @@ class SimRun:
     seconds: float
     wall_seconds: float
     processes: int = 1
+    initiation_interval: float | None = None
 
     @property
     def cycles_per_second(self) -> float:
@@ -158,7 +163,8 @@ class VerilatorModel:
     build_cpu_seconds: float = 0.0
 
     def run(self, inputs: dict, beats: dict | None = None, n_beats=None, *,
-            jobs: int = 1, timeout: float | None = None) -> SimRun:
+            jobs: int = 1, timeout: float | None = None, bubble_per_mille: int = 0,
+            stall_per_mille: int = 0, seed: int = 0) -> SimRun:
         """Run vectors through the model.
 
         Parameters
@@ -170,6 +176,9 @@ class VerilatorModel:
             processes (each from reset; results are concatenated in order).
         timeout : float, keyword-only, optional
             Bound on each subprocess, seconds.
+        bubble_per_mille, stall_per_mille, seed : int, keyword-only
+            Streaming cores only: random input bubbles and output stalls per 1000
+            clocks (0..999) and the seed of their pattern (see :mod:`.harness`).
 
         Raises
         ------
@@ -190,6 +199,9 @@ class VerilatorModel:
                 stream.astype("<u4").tofile(stim)
                 cmd = [str(self.binary), str(stim), str(res), str(m),
                        str(self.spec.max_cycles)]
+                if self.spec.stream is not None:
+                    cmd += [str(int(bubble_per_mille)), str(int(stall_per_mille)),
+                            str(int(seed) + j)]
                 procs.append((subprocess.Popen(cmd, stdout=subprocess.PIPE,
                                                stderr=subprocess.PIPE, text=True), res, m))
             chunks = []
@@ -209,10 +221,13 @@ class VerilatorModel:
                         proc.wait()
         outputs = {p.name: np.concatenate([c[0][p.name] for c in chunks])
                    for p in self.spec.outputs}
+        spans = [(c[2]["last_accept"] - c[2]["first_accept"]) / (c[2]["vectors"] - 1)
+                 for c in chunks if "first_accept" in c[2] and c[2]["vectors"] > 1]
         return SimRun(outputs=outputs, cycles=np.concatenate([c[1] for c in chunks]),
                       sim_cycles=sum(int(c[2]["sim_cycles"]) for c in chunks),
                       seconds=sum(float(c[2]["seconds"]) for c in chunks),
-                      wall_seconds=time.perf_counter() - t0, processes=jobs)
+                      wall_seconds=time.perf_counter() - t0, processes=jobs,
+                      initiation_interval=max(spans) if spans else None)
 
 
 def _n_vectors(spec: HarnessSpec, inputs: dict, beats: dict | None) -> int:

@@ -9,12 +9,15 @@ backend        what evaluates the preview
 ``reference``  fp64 closed forms (:mod:`.hertz.reference`, :mod:`.fit.reference`)
 ``golden``     bit-exact fixed-point model of the datapath (:mod:`.hertz.golden`,
                :mod:`.fit.golden`); results carry the raw codes, flags and cycles
-``rtl``        the Amaranth cores in simulation (Verilator or Amaranth,
-               :mod:`.rtl_engine`); loaded only when requested
 =============  =================================================================
 
-Every backend except ``rtl-soc`` (whose SoC holds the published ROMs) evaluates
-stage D in either Hertz form, ``get_engine(name, hertz_form="hamrock-brewe" |
+This module knows only these two. The hardware backends live in :mod:`gearcontact.hw`
+and register themselves here (:func:`register_backend`) when
+:mod:`gearcontact.hw.backends` is imported (the command line does): ``rtl`` (the RTL
+cores in simulation) and ``rtl-soc`` (the SoCs behind the host driver, returning the
+register values read back).
+
+Every backend evaluates stage D in either Hertz form, ``get_engine(name, hertz_form="hamrock-brewe" |
 "exact")`` (:data:`.hertz.formats.HERTZ_FORMS`; the fixed-point ``"exact"`` form holds the
 exact k and elliptic-integral terms in the same tables, :mod:`.hertz.luts`).
 
@@ -43,7 +46,6 @@ from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_input
 from .hertz.golden_vec import hertz_golden_array
 from .hertz.reference import ENVELOPE, check_envelope, hertz_preview, hertz_preview_array
 from .hertz.schedule import HERTZ_CYCLES
-from .qformat import CURVATURE
 
 #: Preset materials :func:`get_engine` accepts by name.
 MATERIALS = {"steel": STEEL}
@@ -265,18 +267,28 @@ class GoldenEngine:
                              v.k, v.p_max_mpa, codes=codes, flags=flags, cycles=cycles,
                              hertz_form=self.hertz_form)
 
-    def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
+    def encode_hertz(self, A_minus, B_minus, load_n) -> tuple[float, dict]:
+        """Checked load (N) and the stage-D input codes ``{"A_in", "B_in", "W",
+        "e_prime"}`` of one point (the quantization every fixed-point backend shares)."""
         a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        hz = hertz_golden(a_c, b_c, w_c, e_prime_code=e_c, hertz_form=self.hertz_form)
-        codes = {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
+        return w, {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
+
+    def encode_stencil(self, gaps_mm, load_n) -> tuple[float, np.ndarray, int]:
+        """Checked load (N), the 49 GAP codes and the LOAD code of one stencil."""
+        g = _check_stencil(gaps_mm)
+        w = _check_load(load_n)
+        return w, encode_gaps(g), encode_hertz_inputs(1.0, 1.0, w,
+                                                      e_prime_mpa=self.e_prime_mpa)[2]
+
+    def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
+        w, codes = self.encode_hertz(A_minus, B_minus, load_n)
+        hz = hertz_golden(codes["A_in"], codes["B_in"], codes["W"],
+                          e_prime_code=codes["e_prime"], hertz_form=self.hertz_form)
         return self._result(hz, w, codes, hz.flag_names, HERTZ_CYCLES)
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
-        g = _check_stencil(gaps_mm)
-        w = _check_load(load_n)
-        gap_codes = encode_gaps(g)
-        w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
+        w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
         res = chain.chain_golden([int(x) for x in gap_codes], w_c, e_prime_code=self.e_prime_code,
                                  hertz_form=self.hertz_form)
         codes = {"W": w_c, "e_prime": self.e_prime_code,
@@ -310,26 +322,6 @@ def register_backend(name: str, factory: Callable[..., PreviewEngine], *,
 
 register_backend("reference", ReferenceEngine, hertz_forms=HERTZ_FORMS)
 register_backend("golden", GoldenEngine, hertz_forms=HERTZ_FORMS)
-
-
-def _rtl_backend(**kwargs) -> PreviewEngine:
-    """Lazy factory of the ``rtl`` backend (imports Amaranth/Verilator only when used)."""
-    from .rtl_engine import RtlEngine
-    return RtlEngine(**kwargs)
-
-
-register_backend("rtl", _rtl_backend, hertz_forms=HERTZ_FORMS)
-
-
-def _rtl_soc_backend(**kwargs) -> PreviewEngine:
-    """tri_core SoC in simulation behind the host driver's register protocol (imported
-    on first use: the driver needs Amaranth)."""
-    from ..hw.driver import SocEngine
-
-    return SocEngine(**kwargs)
-
-
-register_backend("rtl-soc", _rtl_soc_backend)
 
 
 def get_engine(name: str = "reference", *, material: Material = STEEL,

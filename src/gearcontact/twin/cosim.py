@@ -44,7 +44,7 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
     e_prime_code : int
         E' register code (Q(32,0), MPa).
     simulator : str or None
-        ``verilator`` or ``amaranth`` (default :func:`~gearcontact.preview.rtl_engine.
+        ``verilator`` or ``amaranth`` (default :func:`~gearcontact.hw.rtl_engine.
         default_simulator`).
 
     Returns
@@ -56,7 +56,7 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
     """
     from ..hw.harness_cores import get_bench, simulate
     from ..preview.hertz.rtl import OUTPUT_PORTS
-    from ..preview.rtl_engine import default_simulator
+    from ..hw.rtl_engine import default_simulator
 
     sim = simulator or default_simulator()
     n = int(trace.shape[0])

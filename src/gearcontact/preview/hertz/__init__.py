@@ -9,7 +9,10 @@ Three models side by side sharing one set of constants:
   (:func:`.golden_vec.hertz_golden_array`; not imported here so that importing the
   package does not load numba);
 * formats/constants (:mod:`.formats`), ROMs (:mod:`.luts`), divider (:mod:`.divider`)
-  and the cycle schedule (:mod:`.schedule`) that the RTL imports.
+  and the cycle schedule (:mod:`.schedule`) that the RTL imports;
+* the RTL: the serialized core (:mod:`.rtl`, 756 cycles) and the pipelined one
+  (:mod:`.rtl_pipe`, initiation interval 1, latency 90), both bit-exact with
+  :mod:`.golden`, described for the tools in :mod:`.cores`.
 
 Hertz forms (``hertz_form=``, :data:`.formats.HERTZ_FORMS`, in every model and in
 ``HertzCore``): ``"hamrock-brewe"`` (default) is the published datapath with

@@ -22,7 +22,7 @@ from gearcontact.preview.gap.golden import GapVector, gap_golden_codes
 from gearcontact.preview.hertz.golden import hertz_golden
 from gearcontact.preview.hertz.golden_vec import hertz_golden_array
 from gearcontact.preview.stimulus import stimulus
-from gearcontact.preview.vectors import (VECTOR_CORES, HexField, decode_hex, encode_hex,
+from gearcontact.hw.vectors import (VECTOR_CORES, HexField, decode_hex, encode_hex,
                                          export_vectors, read_hex, read_jsonl,
                                          vector_layout)
 from gearcontact.validation import InputRangeError

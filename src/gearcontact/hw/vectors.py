@@ -34,11 +34,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..hw.harness_cores import get_bench
+from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
+from ..preview.hertz.formats import FLAG_NAMES as HERTZ_FLAG_NAMES
+from ..preview.stimulus import STIMULUS_CORES, Stimulus
 from ..validation import InputRangeError
-from .chain import FIT_FLAG_SHIFT, chain_flag_names
-from .hertz.formats import FLAG_NAMES as HERTZ_FLAG_NAMES
-from .stimulus import STIMULUS_CORES, Stimulus
+from .harness_cores import get_bench
 
 __all__ = ["VECTOR_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "MAX_COUNT", "HexField",
            "vector_layout", "vector_stimulus", "golden_outputs", "encode_hex",
@@ -326,7 +326,7 @@ def readme_text(summary: dict, *, count: int, seed: int) -> str:
         f"gearcontact vectors --out DIR --count {count} --seed {seed} "
         f"--cores {','.join(cores)}",
         "```", "",
-        "or in Python: `gearcontact.preview.vectors.export_vectors(DIR, "
+        "or in Python: `gearcontact.hw.vectors.export_vectors(DIR, "
         f"cores={tuple(cores)!r}, count={count}, seed={seed})`.", "",
         "## Files", "",
         "| file | content |", "|---|---|",

@@ -8,6 +8,7 @@ import sys
 import numpy as np
 import pytest
 
+from gearcontact.hw import backends as hardware_backends
 from gearcontact.hw import verilator as vl
 from gearcontact.preview.engine import BACKENDS, get_engine
 from gearcontact.preview.fit.stencil import stencil_coordinates
@@ -43,11 +44,17 @@ def _same(rtl, gold, cycles):
     assert dataclasses.replace(rtl, backend="golden") == gold
 
 
-def test_importing_the_engine_does_not_load_amaranth():
+def test_registration_is_inverted_and_does_not_load_amaranth():
+    """preview.engine knows only reference and golden; importing gearcontact.hw.backends
+    registers the hardware ones, still without importing Amaranth."""
     code = ("import sys, gearcontact.preview.engine as e; "
-            "assert 'rtl' in e.BACKENDS; assert 'amaranth' not in sys.modules")
+            "assert set(e.BACKENDS) == {'reference', 'golden'}, e.BACKENDS; "
+            "assert 'gearcontact.hw' not in sys.modules, 'preview imports hw'; "
+            "import gearcontact.hw.backends; "
+            "assert {'rtl', 'rtl-soc'} <= set(e.BACKENDS); "
+            "assert 'amaranth' not in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)
-    assert "rtl" in BACKENDS
+    assert set(hardware_backends.HARDWARE_BACKENDS) <= set(BACKENDS)
 
 
 @needs_verilator
@@ -104,7 +111,7 @@ def test_bad_inputs_are_rejected_like_golden():
 
 
 def test_verilator_requested_but_missing(monkeypatch):
-    from gearcontact.preview.rtl_engine import RtlEngine
+    from gearcontact.hw.rtl_engine import RtlEngine
     monkeypatch.setattr(vl.shutil, "which", lambda name: None)
     with pytest.raises(vl.VerilatorNotFound, match="apt-get install"):
         RtlEngine(simulator="verilator")

@@ -1,16 +1,18 @@
 """The ``rtl`` preview backend: the Amaranth RTL cores in cycle-accurate simulation.
 
-:class:`RtlEngine` answers the :class:`~.engine.PreviewEngine` calls with the hardware
-itself: ``hertz`` / ``hertz_batch`` run :class:`~.hertz.rtl.HertzCore` (stage D, 756
-cycles) and ``stencil`` runs :class:`~.chain_rtl.ChainCore` (C -> D, 806 cycles), under
+:class:`RtlEngine` answers the :class:`~gearcontact.preview.engine.PreviewEngine` calls
+with the hardware itself: ``hertz`` / ``hertz_batch`` run
+:class:`~gearcontact.preview.hertz.rtl.HertzCore` (stage D, 756 cycles) and ``stencil``
+runs :class:`~gearcontact.preview.chain_rtl.ChainCore` (C -> D, 806 cycles), under
 Verilator when it is installed (compiled once, cached) and otherwise in the Amaranth
 simulator. Inputs are validated and quantized exactly as by the ``golden`` backend, and
 the result carries the raw register codes, the flags and ``cycles`` = the cycle count
 measured in simulation, so ``rtl`` and ``golden`` results compare equal field by field
 except for ``backend``.
 
-The backend is registered in :data:`.engine.BACKENDS` through a lazy factory: importing
-the engine does not import Amaranth or build anything until ``get_engine("rtl")``.
+The backend is registered in :data:`gearcontact.preview.engine.BACKENDS` by
+:mod:`.backends` through a lazy factory: importing it does not import Amaranth or build
+anything until ``get_engine("rtl")``.
 """
 
 from __future__ import annotations
@@ -21,20 +23,12 @@ import numpy as np
 
 from ..materials import STEEL, Material
 from ..validation import InputRangeError
-from . import chain
-from .engine import (
-    GoldenEngine,
-    PreviewBatch,
-    PreviewResult,
-    _check_load,
-    _check_physical,
-    _check_stencil,
-)
-from .fit.golden import encode_gaps
-from .hertz.formats import DEFAULT_HERTZ_FORM
-from .hertz.golden import HertzCodes, decode_hertz_codes, encode_hertz_inputs
-from .hertz.golden_vec import HertzCodesArray
-from .stimulus import Stimulus
+from ..preview import chain
+from ..preview.engine import GoldenEngine, PreviewBatch, PreviewResult
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
+from ..preview.hertz.golden import HertzCodes, decode_hertz_codes, encode_hertz_inputs
+from ..preview.hertz.golden_vec import HertzCodesArray
+from ..preview.stimulus import Stimulus
 
 __all__ = ["RtlEngine", "default_simulator", "SIMULATOR_ENV"]
 
@@ -45,7 +39,7 @@ SIMULATOR_ENV = "GEARCONTACT_RTL_SIMULATOR"
 def default_simulator() -> str:
     """``$GEARCONTACT_RTL_SIMULATOR`` if set, else ``verilator`` when installed, else
     ``amaranth``."""
-    from ..hw.verilator import verilator_available
+    from .verilator import verilator_available
     env = os.environ.get(SIMULATOR_ENV)
     if env:
         return env
@@ -75,7 +69,7 @@ class RtlEngine(GoldenEngine):
 
     def __init__(self, *, material: Material = STEEL, material2: Material | None = None,
                  simulator: str | None = None, hertz_form: str = DEFAULT_HERTZ_FORM):
-        from ..hw.harness_cores import SIMULATORS
+        from .harness_cores import SIMULATORS
         super().__init__(material=material, material2=material2, hertz_form=hertz_form)
         suffix = "_exact" if self.hertz_form == "exact" else ""
         self._cores = {"hertz": "hertz" + suffix, "chain": "chain" + suffix}
@@ -83,12 +77,12 @@ class RtlEngine(GoldenEngine):
         if self.simulator not in SIMULATORS:
             raise InputRangeError("simulator", self.simulator, f"one of {list(SIMULATORS)}")
         if self.simulator == "verilator":
-            from ..hw.verilator import require_verilator
+            from .verilator import require_verilator
             require_verilator()
 
     def _simulate(self, core: str, fields: dict):
         """Run vectors (dict of code arrays) on ``core``: (outputs, cycles)."""
-        from ..hw.harness_cores import get_bench, simulate
+        from .harness_cores import get_bench, simulate
         core = self._cores[core]
         n = len(next(iter(fields.values())))
         st = Stimulus(core, {k: np.asarray(v, np.int64) for k, v in fields.items()},
@@ -97,20 +91,16 @@ class RtlEngine(GoldenEngine):
         return outs, cycles
 
     def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
-        a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
-        a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        from .hertz.rtl import OUTPUT_PORTS  # port -> HertzCodes field
-        outs, cycles = self._simulate("hertz", {"A": [a_c], "B": [b_c], "W": [w_c],
-                                                "e_prime": [e_c]})
+        w, codes = self.encode_hertz(A_minus, B_minus, load_n)
+        from ..preview.hertz.rtl import OUTPUT_PORTS  # port -> HertzCodes field
+        outs, cycles = self._simulate("hertz", {"A": [codes["A_in"]], "B": [codes["B_in"]],
+                                                "W": [codes["W"]],
+                                                "e_prime": [codes["e_prime"]]})
         hz = HertzCodes(**{f: int(outs[p][0]) for p, f in OUTPUT_PORTS.items()})
-        codes = {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
         return self._result(hz, w, codes, hz.flag_names, int(cycles[0]))
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
-        g = _check_stencil(gaps_mm)
-        w = _check_load(load_n)
-        gap_codes = encode_gaps(g)
-        w_c = encode_hertz_inputs(1.0, 1.0, w, e_prime_mpa=self.e_prime_mpa)[2]
+        w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
         outs, cycles = self._simulate("chain", {"gaps": gap_codes[None, :], "W": [w_c],
                                                 "e_prime": [self.e_prime_code]})
         o = {k: int(v[0]) for k, v in outs.items()}
@@ -132,7 +122,7 @@ class RtlEngine(GoldenEngine):
         outs, _ = self._simulate("hertz", {"A": a_c.ravel(), "B": b_c.ravel(),
                                            "W": w_c.ravel(),
                                            "e_prime": np.full(a_c.size, e_c)})
-        from .hertz.rtl import OUTPUT_PORTS
+        from ..preview.hertz.rtl import OUTPUT_PORTS
         v = decode_hertz_codes(HertzCodesArray(**{f: outs[p].reshape(shape)
                                                   for p, f in OUTPUT_PORTS.items()}))
         return PreviewBatch(self.name, v.a_mm, v.b_mm, v.k, v.p_max_mpa, v.flags)

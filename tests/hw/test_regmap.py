@@ -1,0 +1,34 @@
+"""The published register maps against the cores' signatures: every register that a SoC
+wires to a core port holds exactly that port's width (truth: the component's
+``signature.members``, via the harness' :func:`member_port`), and the ``done`` register
+has room for the core's flags word above ``DONE_FLAGS_SHIFT``."""
+
+import pytest
+
+from gearcontact.hw.harness_cores import get_bench, member_port
+from gearcontact.hw.regmap import DONE_FLAGS_SHIFT, get_map
+
+#: Register -> core port, as hw.soc wires them (tri_core: ChainCore; bhseq: HertzCore).
+WIRING = {
+    ("tri_core", "preview", "chain"): {"wr_data": "wr_data", "W_load": "W", "A": "a_minus",
+                                       "B": "b_minus", "a": "a", "b": "b", "p_max": "p_max",
+                                       "k": "k"},
+    ("bhseq_core", "hertz", "hertz"): {"A_in": "A", "B_in": "B", "W_load": "W",
+                                       "A": "B_max", "B": "A_min", "a": "a", "b": "b",
+                                       "p_max": "p_max", "k": "k"},
+}
+
+
+@pytest.mark.parametrize("kind, region, core", list(WIRING))
+def test_register_widths_follow_the_core_signature(kind, region, core):
+    comp = get_bench(core).make_component()
+    comp._MustUse__silence = True                 # inspected, not elaborated
+    members = comp.signature.members
+    reg = get_map(kind).region(region)
+    for name, port in WIRING[(kind, region, core)].items():
+        r = reg.reg(name)
+        p = member_port(port, members[port].shape)
+        assert (r.fmt.bits if r.fmt is not None else r.width) == p.width, (name, port)
+        assert r.fmt is None or r.fmt.signed == p.signed, (name, port)
+    flags = member_port("flags", members["flags"].shape)
+    assert reg.reg("done").width == DONE_FLAGS_SHIFT + flags.width
