@@ -176,3 +176,19 @@ def test_hertz_form_errors_name_the_field():
         get_engine("golden", hertz_form="simplified")
     with pytest.raises(InputRangeError, match="hertz_form"):
         ReferenceEngine(hertz_form="HB")
+
+
+def test_hardware_backends_found_through_the_entry_point():
+    """``get_engine("rtl")`` in a fresh interpreter that never imported ``gearcontact.hw``:
+    the backend comes from the ``gearcontact.preview_backends`` entry point, and the
+    preview layer itself still imports nothing of the hardware layer."""
+    import subprocess
+    import sys
+    code = ("import sys\n"
+            "import gearcontact.preview.engine as eng\n"
+            "assert not any(m.startswith('gearcontact.hw') for m in sys.modules)\n"
+            "e = eng.get_engine('rtl-soc')\n"
+            "print(type(e).__module__)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "gearcontact.hw.driver"

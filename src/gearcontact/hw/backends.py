@@ -10,7 +10,9 @@ backends and knows nothing of the hardware; importing this module adds
   simulated SoC is built with the requested tables).
 
 Both through lazy factories: nothing here imports Amaranth or builds a model until a
-backend is created. The command line imports this module before it lists backends.
+backend is created. ``preview.engine.get_engine`` imports this module through the
+``gearcontact.preview_backends`` entry point (pyproject.toml) the first time it is asked
+for a backend it does not know.
 """
 
 from __future__ import annotations

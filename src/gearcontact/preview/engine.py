@@ -51,7 +51,8 @@ from .hertz.schedule import HERTZ_CYCLES
 MATERIALS = {"steel": STEEL}
 
 __all__ = ["PreviewResult", "PreviewBatch", "PreviewEngine", "ReferenceEngine",
-           "GoldenEngine", "get_engine", "register_backend", "BACKENDS",
+           "GoldenEngine", "get_engine", "register_backend", "load_backend_plugins",
+           "BACKENDS",
            "BACKEND_HERTZ_FORMS"]
 
 
@@ -324,6 +325,25 @@ register_backend("reference", ReferenceEngine, hertz_forms=HERTZ_FORMS)
 register_backend("golden", GoldenEngine, hertz_forms=HERTZ_FORMS)
 
 
+#: Entry-point group through which installed packages add backends (the package's own
+#: ``gearcontact.hw.backends`` registers ``rtl`` and ``rtl-soc`` this way, so the
+#: preview layer never imports the hardware layer, yet ``get_engine("rtl")`` works
+#: without the caller importing anything first).
+BACKEND_ENTRY_POINTS = "gearcontact.preview_backends"
+_plugins_loaded = False
+
+
+def load_backend_plugins() -> None:
+    """Import every module registered under :data:`BACKEND_ENTRY_POINTS` (once)."""
+    global _plugins_loaded
+    if _plugins_loaded:
+        return
+    _plugins_loaded = True
+    from importlib.metadata import entry_points
+    for point in entry_points(group=BACKEND_ENTRY_POINTS):
+        point.load()
+
+
 def get_engine(name: str = "reference", *, material: Material = STEEL,
                material2: Material | None = None,
                hertz_form: str = DEFAULT_HERTZ_FORM) -> PreviewEngine:
@@ -335,6 +355,8 @@ def get_engine(name: str = "reference", *, material: Material = STEEL,
         Unknown backend, unknown ``hertz_form``, or a form the backend does not
         implement (:data:`BACKEND_HERTZ_FORMS`; ``rtl-soc`` has the published form only).
     """
+    if name not in BACKENDS:
+        load_backend_plugins()
     try:
         factory = BACKENDS[name]
     except (KeyError, TypeError):
