@@ -24,7 +24,7 @@ import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from functools import cache
+from functools import cache, partial
 from pathlib import Path
 
 import numpy as np
@@ -116,7 +116,7 @@ def _gap_ports(st: Stimulus):
     return inputs, {"w_g": f["g"], "w_n": f["nrm"]}, None
 
 
-def _gap_golden(st: Stimulus) -> dict:
+def _gap_golden(st: Stimulus, variant: str = "published") -> dict:
     from ..preview.gap.fast import gap_golden_batch
     f = st.fields
     n = len(st)
@@ -130,20 +130,20 @@ def _gap_golden(st: Stimulus) -> dict:
     starts = np.flatnonzero(~same).tolist() + [n]
     for a, b in zip(starts[:-1], starts[1:]):
         o = gap_golden_batch(f["r"][a:b], f["t"][a:b], f["p"][a:b], f["g"][a], f["nrm"][a],
-                             int(f["tau2"][a]), lanes=GAP_LANES)
+                             int(f["tau2"][a]), lanes=GAP_LANES, variant=variant)
         cols["gap"][a:b], cols["idx"][a:b] = o.min_gap_code, o.min_idx
         cols["valid"][a:b], cols["overflow"][a:b] = o.valid, o.overflow
     return cols
 
 
-def _gap_amaranth(st: Stimulus):
+def _gap_amaranth(st: Stimulus, variant: str = "published"):
     from ..preview.gap.golden import GapVector
     from ..preview.gap.rtl import simulate_gap_core
     f = st.fields
     vecs = [GapVector(r_code=f["r"][i], t_code=f["t"][i], p_code=f["p"][i],
                       g_code=f["g"][i], n_code=f["nrm"][i], tau2_code=int(f["tau2"][i]))
             for i in range(len(st))]
-    outs, cycles = simulate_gap_core(vecs, lanes=GAP_LANES)
+    outs, cycles = simulate_gap_core(vecs, lanes=GAP_LANES, variant=variant)
     return ({"gap": np.array([o.min_gap_code for o in outs], np.int64),
              "idx": np.array([o.min_idx for o in outs], np.int64),
              "valid": np.array([o.valid for o in outs], np.int64),
@@ -326,6 +326,10 @@ BENCHES: dict[str, CoreBench] = {b.name: b for b in (
     CoreBench("gap", "gap.rtl", _GAP_SPEC, _gap_ports, _gap_golden, _gap_amaranth,
               _gap_cycles, verilog_kwargs={"lanes": GAP_LANES},
               summary=f"stage A/B gap kernel, L = {GAP_LANES} lanes, N = 16 samples"),
+    CoreBench("gap_lean", "gap.rtl", replace(_GAP_SPEC, top="gap_lean_core"), _gap_ports,
+              partial(_gap_golden, variant="lean"), partial(_gap_amaranth, variant="lean"),
+              _gap_cycles, verilog_kwargs={"lanes": GAP_LANES, "variant": "lean"},
+              summary=f"gap kernel variant 'lean' (15 DSP48E1 per lane), L = {GAP_LANES}"),
     CoreBench("fit", "fit.rtl", _FIT_SPEC, lambda st: ({}, {"wr_data": st.fields["gaps"]},
                                                         None),
               _fit_golden, _fit_amaranth, _fit_cycles,

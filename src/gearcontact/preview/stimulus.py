@@ -447,7 +447,8 @@ def chain_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
 #: Generator per core name (``comb`` shares the chain's inputs).
 STIMULUS_CORES = {"gap": gap_stimulus, "fit": fit_stimulus, "hertz": hertz_stimulus,
                   "chain": chain_stimulus, "comb": chain_stimulus,
-                  "hertz_exact": hertz_stimulus, "chain_exact": chain_stimulus}
+                  "hertz_exact": hertz_stimulus, "chain_exact": chain_stimulus,
+                  "gap_lean": gap_stimulus}
 
 
 def stimulus(core: str, n: int, seed: int = 0, **kwargs) -> Stimulus:
