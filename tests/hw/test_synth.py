@@ -339,6 +339,9 @@ def test_committed_records_have_provenance():
         assert r.DSP48E1 == (21 * 16 + 18) + 20 + 32
     nodsp = [r.result for r in recs if r.result.nodsp]
     assert all(r.DSP48E1 == 0 for r in nodsp)
+    for r in (r.result for r in recs if not r.result.nodsp and r.result.lanes):
+        per_lane = {"gap": 21, "gap_plain": 30, "gap_lean": 15}[r.core]
+        assert r.DSP48E1 == per_lane * r.lanes + 18
 
 
 def test_cli_synth_committed_prints_provenance(capsys):
