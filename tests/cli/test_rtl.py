@@ -108,3 +108,13 @@ def test_verilog_export_stencil_core_readme(tmp_path):
     assert main(["rtl", "verilog", "--core", "fit", "--out", str(tmp_path / "new")]) == 0
     readme = (tmp_path / "new" / "fit_core.README.md").read_text()
     assert "`wr_en` high, after a one-cycle `wr_rst` pulse: wr_data" in readme
+
+
+@needs_verilator
+def test_sim_gap_lean(capsys):
+    """The 15-DSP gap lane: bit-exact against its golden model, the gap core's cycles."""
+    assert main(["rtl", "sim", "--core", "gap_lean", "--vectors", "60", "--samples", "40",
+                 "--json"]) == 0
+    out = _json(capsys)
+    assert out["mismatches"] == 0 and out["vectors"] == 60 + out["corner_vectors"]
+    assert out["cycles"] == 16 + 3 + 4 + 5          # L + ceil(N/L) + log2 L + 5

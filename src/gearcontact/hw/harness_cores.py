@@ -352,6 +352,11 @@ BENCHES: dict[str, CoreBench] = {b.name: b for b in (
     CoreBench("comb", "comb_rtl", _chain_spec("comb_core"), _chain_ports, _chain_golden(),
               _chain_amaranth("comb_rtl", "simulate_comb_core"), _comb_cycles,
               summary="combinational C + D variant (array dividers, pipelined)"),
+    CoreBench("comb_exact", "comb_rtl", _chain_spec("comb_exact_core"), _chain_ports,
+              _chain_golden("exact"),
+              _chain_amaranth("comb_rtl", "simulate_comb_core", hertz_form="exact"),
+              _comb_cycles, verilog_kwargs={"hertz_form": "exact"},
+              summary="combinational C + D with hertz_form='exact' (58 cycles)"),
 )}
 CORE_NAMES = tuple(BENCHES)
 

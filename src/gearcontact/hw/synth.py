@@ -179,6 +179,11 @@ def _comb(lanes):
     return convert_verilog(name="core")
 
 
+def _comb_exact(lanes):
+    from ..preview.comb_rtl import convert_verilog
+    return convert_verilog(name="core", hertz_form="exact")
+
+
 def _soc(kind):
     def make(lanes):
         from .soc import convert_verilog
@@ -189,7 +194,7 @@ def _soc(kind):
 #: Core name -> Verilog generator ``f(lanes) -> str`` (top module ``core``).
 CORES = {"gap": _gap, "gap_plain": _gap_plain, "gap_lean": _gap_lean, "fit": _fit,
          "hertz": _hertz,
-         "hertz_exact": _hertz_exact, "chain": _chain, "comb": _comb,
+         "hertz_exact": _hertz_exact, "chain": _chain, "comb": _comb, "comb_exact": _comb_exact,
          "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
          "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
 

@@ -448,7 +448,7 @@ def chain_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
 STIMULUS_CORES = {"gap": gap_stimulus, "fit": fit_stimulus, "hertz": hertz_stimulus,
                   "chain": chain_stimulus, "comb": chain_stimulus,
                   "hertz_exact": hertz_stimulus, "chain_exact": chain_stimulus,
-                  "gap_lean": gap_stimulus}
+                  "gap_lean": gap_stimulus, "comb_exact": chain_stimulus}
 
 
 def stimulus(core: str, n: int, seed: int = 0, **kwargs) -> Stimulus:
