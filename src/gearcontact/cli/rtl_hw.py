@@ -136,7 +136,8 @@ def run_soc(args) -> int:
 def run_committed(args) -> int:
     """``rtl synth --committed``: the committed results with their provenance."""
     from ..hw import synth as S
-    records = [r for r in S.committed_records() if args.core in (None, r.result.core)]
+    from ..hw.synth_records import committed_records
+    records = [r for r in committed_records() if args.core in (None, r.result.core)]
     if not records:
         return _error(f"no committed synthesis results for core {args.core!r}")
     print(S.format_table([r.result for r in records]))

@@ -163,7 +163,8 @@ _TRI_CORE_NOTE = ("tri_core utilization is not part of this sweep: `gearcontact 
 def _whole_core_table():
     """Committed whole-core / SoC results (``data/synth/cores.json``) beside the published
     tri_core build: ``(Table or None, text, rows as dicts)``."""
-    from ..hw.synth import GAP_CORES, PUBLISHED, committed_records
+    from ..hw.synth import GAP_CORES, PUBLISHED
+    from ..hw.synth_records import committed_records
 
     recs = [r for r in committed_records() if r.result.core not in GAP_CORES]
     if not recs:
