@@ -70,3 +70,5 @@ def test_resources_section_tables_the_committed_whole_cores(tmp_path):
     assert {r.result.LUT for r in whole} == {r["LUT"] for r in tri}
     table = sec.tables[-1]
     assert any("197,377 LUT" in str(row[-1]) for row in table.rows)
+    if len([r for r in committed_records() if r.result.core == "gap_lean"]) >= 2:
+        assert "DSP48E1 = 15.00 L + 18.0" in " ".join(sec.text)

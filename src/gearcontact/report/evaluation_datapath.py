@@ -163,12 +163,19 @@ _TRI_CORE_NOTE = ("tri_core utilization is not part of this sweep: `gearcontact 
 def _whole_core_table():
     """Committed whole-core / SoC results (``data/synth/cores.json``) beside the published
     tri_core build: ``(Table or None, text, rows as dicts)``."""
-    from ..hw.synth import GAP_CORES, PUBLISHED
+    from ..hw.synth import GAP_CORES, PUBLISHED, dsp_fit
     from ..hw.synth_records import committed_records
 
+    lean = [r.result for r in committed_records() if r.result.core == "gap_lean"]
+    lean_text = ""
+    if len({r.lanes for r in lean}) >= 2:
+        fit = dsp_fit(lean)
+        lean_text = (f" The lean gap lane (gap_lean, 15 DSP48E1 per lane, same cycles, equal "
+                     f"outputs for a gate tau <= 2 mm) sweeps to DSP48E1 = {fit.a:.2f} L + "
+                     f"{fit.b:.1f}: the XC7K480T holds L <= {fit.lanes_max:.1f} lanes.")
     recs = [r for r in committed_records() if r.result.core not in GAP_CORES]
     if not recs:
-        return None, _TRI_CORE_NOTE, []
+        return None, _TRI_CORE_NOTE + lean_text, []
     rows, dicts = [], []
     for rec in recs:
         r, p = rec.result, PUBLISHED.get((rec.result.core, None), {})
@@ -182,7 +189,7 @@ def _whole_core_table():
     text = ("Whole cores and the tri_core SoC top (contact L = 16 + C -> D chain behind the "
             "register bus): results committed with the package (data/synth/cores.json, "
             "one provenance per row; `gearcontact rtl synth --committed` prints them). "
-            "The published tri_core figure is a -nodsp build.")
+            "The published tri_core figure is a -nodsp build." + lean_text)
     table = Table("Whole cores / SoC, yosys synth_xilinx -family xc7 -noiopad",
                   ["core", "mode", "LUT", "FF", "CARRY4", "DSP48E1", "RAMB36", "depth",
                    "wall s", "tool", "published"], rows)
