@@ -130,3 +130,13 @@ def test_verilog_export_stream_core_readme(tmp_path):
     assert "Protocol (stream, initiation interval 1)" in readme
     assert "`out_valid` 90 edges later" in readme
     assert "| in_ready | output | 1 |" in readme and "| A | input | 32 |" in readme
+
+
+@needs_verilator
+def test_sim_gap_lean(capsys):
+    """The 15-DSP gap lane: bit-exact against its golden model, the gap core's cycles."""
+    assert main(["rtl", "sim", "--core", "gap_lean", "--vectors", "60", "--samples", "40",
+                 "--json"]) == 0
+    out = _json(capsys)
+    assert out["mismatches"] == 0 and out["vectors"] == 60 + out["corner_vectors"]
+    assert out["cycles"] == 16 + 3 + 4 + 5          # L + ceil(N/L) + log2 L + 5

@@ -274,3 +274,34 @@ def test_jsonl_is_strict_json(export):
         rec = json.loads(line)
         assert np.array(rec["inputs"]["w_g"]).shape == (16, 3)
         assert np.array(rec["inputs"]["r"]).shape == (9,)
+
+
+def test_variant_cores_export_their_own_golden_model(tmp_path):
+    """gap_lean and hertz_exact (on request only): same fields and operands as their base
+    cores, outputs of their own golden models read back from the hex files."""
+    files = export_vectors(tmp_path, cores=("hertz_exact", "gap_lean"), count=40, seed=SEED)
+    assert [p.name for p in files[:6]] == ["gap_lean.jsonl", "gap_lean_in.hex",
+                                           "gap_lean_out.hex", "hertz_exact.jsonl",
+                                           "hertz_exact_in.hex", "hertz_exact_out.hex"]
+    assert vector_layout("gap_lean") == vector_layout("gap")
+    rows = read_jsonl(tmp_path / "hertz_exact.jsonl")
+    assert {r["core"] for r in rows} == {"hertz_exact"} and rows[0]["cycles"] == 756
+    x = read_hex(tmp_path / "hertz_exact_in.hex", "hertz_exact", "in")
+    y = read_hex(tmp_path / "hertz_exact_out.hex", "hertz_exact", "out")
+    want = hertz_golden_array(x["A"], x["B"], x["W"], e_prime_code=x["e_prime"],
+                              hertz_form="exact")
+    published = hertz_golden_array(x["A"], x["B"], x["W"], e_prime_code=x["e_prime"])
+    assert np.array_equal(y["k"], want.k_code)
+    assert not np.array_equal(y["k"], published.k_code)        # the exact tables differ
+    x = read_hex(tmp_path / "gap_lean_in.hex", "gap_lean", "in")
+    y = read_hex(tmp_path / "gap_lean_out.hex", "gap_lean", "out")
+    rows = read_jsonl(tmp_path / "gap_lean.jsonl")
+    assert rows[0]["cycles"] == 26
+    for i in range(0, len(rows), 3):
+        vec = GapVector(x["r"][i].reshape(3, 3), x["t"][i], x["p"][i], x["w_g"][i],
+                        x["w_n"][i], int(x["tau2"][i]))
+        got = gap_golden_codes(vec, variant="lean")
+        assert (y["gap"][i], y["idx"][i], y["valid"][i]) == \
+            (got.min_gap_code, got.min_idx, got.valid)
+    with pytest.raises(InputRangeError, match="core = 'comb'"):
+        export_vectors(tmp_path, cores=("comb",), count=1)

@@ -229,7 +229,9 @@ def test_build_error_carries_the_log(tmp_path, monkeypatch):
 #: tests run it under stalls, tests/preview/hertz/test_rtl_pipe.py).
 #: chain_pipe is the fit core + hertz_pipe, both checked here (its Amaranth test runs in
 #: tests/preview/test_chain_pipe.py).
-_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe")
+#: comb_exact likewise (16 s with its build; slow suite here, 1,000 vectors passing);
+#: tests/preview/test_chain_rtl.py checks it in the Amaranth simulator by default.
+_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe", "comb_exact")
 _DEFAULT_CORES = [pytest.param(c, marks=pytest.mark.slow) if c in _SLOW_BUILDS else c
                   for c in hc.CORE_NAMES]
 

@@ -304,3 +304,20 @@ def test_chain_exact_form_bit_exact_and_806_cycles():
     batch = chain_golden_batch(rows, np.array(ws), e_prime_code=E_STEEL, hertz_form="exact")
     assert [int(x) for x in batch.hertz.p_max_code] == [o.hertz.p_max_code for o in outs]
     assert [int(x) for x in batch.flags] == [o.flags for o in outs]
+
+
+def test_comb_exact_form_bit_exact_and_58_cycles():
+    """CombCore(hertz_form="exact") == chain_golden(..., hertz_form="exact") bit for bit
+    in 58 cycles on 6 seeded stencils, and differs from the published form's k."""
+    rows, ws = _random(6, seed=37)
+    outs, cycles = simulate_comb_core(rows, ws, e_prime_code=E_STEEL, hertz_form="exact")
+    assert cycles == [COMB_CYCLES] * len(rows)
+    want = [dataclasses.replace(chain_golden(r, w, e_prime_code=E_STEEL, hertz_form="exact"),
+                                cycles=COMB_CYCLES) for r, w in zip(rows, ws)]
+    assert outs == want
+    ok = [o for o in outs if o.flags == 0]
+    assert len(ok) >= 3
+    hb = [chain_golden(r, w, e_prime_code=E_STEEL) for r, w in zip(rows, ws)]
+    assert any(o.hertz.k_code != h.hertz.k_code for o, h in zip(outs, hb) if o.flags == 0)
+    with pytest.raises(ValueError, match="hertz_form"):
+        CombCore(hertz_form="fit")

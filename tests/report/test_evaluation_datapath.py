@@ -52,3 +52,23 @@ def test_resources_item(quick_report):
         assert res["source"].startswith("results committed") and "provenance" in res
     assert res["published"]["dsp_fit"] == [30.0, 18.0]
 
+
+
+def test_resources_section_tables_the_committed_whole_cores(tmp_path):
+    """Without a synthesis run the section tables the committed tri_core rows (with their
+    tool and date) beside the published -nodsp build; no Yosys is run."""
+    from gearcontact.hw.synth_records import committed_records
+    from gearcontact.report.evaluation_datapath import resources_section
+
+    whole = [r for r in committed_records() if r.result.core == "tri_core"]
+    if not whole:
+        pytest.skip("no committed tri_core results in this tree")
+    sec = resources_section(False, {"synth_lanes": [8]}, tmp_path)
+    rows = sec.data["whole_cores"]
+    tri = [r for r in rows if r["core"] == "tri_core"]
+    assert len(tri) == len(whole) and all(r["provenance"]["tool"] for r in tri)
+    assert {r.result.LUT for r in whole} == {r["LUT"] for r in tri}
+    table = sec.tables[-1]
+    assert any("197,377 LUT" in str(row[-1]) for row in table.rows)
+    if len([r for r in committed_records() if r.result.core == "gap_lean"]) >= 2:
+        assert "DSP48E1 = 15.00 L + 18.0" in " ".join(sec.text)

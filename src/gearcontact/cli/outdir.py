@@ -72,9 +72,10 @@ class OutputDirectoryError(InputRangeError):
         return self.args[0]
 
 
-def add_out_argument(p, *, help: str = "output directory") -> None:
-    """Add ``--out DIR`` and ``--force`` to a sub-parser and mark it as writing files."""
-    p.add_argument("--out", required=True, metavar="DIR",
+def add_out_argument(p, *, help: str = "output directory", required: bool = True) -> None:
+    """Add ``--out DIR`` and ``--force`` to a sub-parser and mark it as writing files
+    (``required=False``: the command's ``check`` demands it where it writes)."""
+    p.add_argument("--out", required=required, metavar="DIR",
                    help=f"{help} (created if missing; must be empty or hold a previous "
                         f"gearcontact run, whose files are replaced; see run.json)")
     p.add_argument("--force", action="store_true",

@@ -57,7 +57,7 @@ def register(sub) -> None:
     s.add_argument("--simulator", choices=SIMULATORS, default=None,
                    help="default: verilator when installed, else amaranth (slow)")
     s.add_argument("--samples", type=int, default=None, metavar="N",
-                   help="gap core only: samples per pass (default 16)")
+                   help="gap cores only: samples per pass (default 16)")
     s.add_argument("--no-corners", action="store_true", help="random vectors only")
     s.add_argument("--jobs", type=int, default=1, metavar="J",
                    help="parallel Verilator processes (default 1)")
@@ -84,8 +84,8 @@ def check_sim(args) -> None:
                 note=" (at least 1 with --no-corners)" if args.no_corners else "")
     check_count("--jobs", args.jobs, 1, MAX_JOBS)
     check_count("--seed", args.seed, 0, 2 ** 63 - 1)
-    if args.samples is not None and args.core != "gap":
-        raise InputRangeError("--samples", args.samples, "only with --core gap")
+    if args.samples is not None and args.core not in ("gap", "gap_lean"):
+        raise InputRangeError("--samples", args.samples, "only with --core gap or gap_lean")
 
 
 def run_sim(args) -> int:

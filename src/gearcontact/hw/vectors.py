@@ -29,7 +29,7 @@ by the operand ports; outputs are the ports the equivalence tests check.
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -40,12 +40,18 @@ from ..preview.stimulus import STIMULUS_CORES, Stimulus
 from ..validation import InputRangeError
 from .harness_cores import get_bench
 
-__all__ = ["VECTOR_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "MAX_COUNT", "HexField",
+__all__ = ["VECTOR_CORES", "VARIANT_CORES", "EXPORT_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "MAX_COUNT", "HexField",
            "vector_layout", "vector_stimulus", "golden_outputs", "encode_hex",
            "decode_hex", "read_hex", "read_jsonl", "readme_text", "export_vectors"]
 
-#: Cores exported, in file order.
+#: Cores exported by default, in file order.
 VECTOR_CORES = ("gap", "fit", "hertz", "chain")
+#: Variants exported on request (``cores=``), each with the ports and stimulus of its
+#: base core and its own golden model: the lean gap lane, stage D and the C -> D chain
+#: with the exact-Hertz tables.
+VARIANT_CORES = {"gap_lean": "gap", "hertz_exact": "hertz", "chain_exact": "chain"}
+#: Every exportable core, in file order.
+EXPORT_CORES = VECTOR_CORES + tuple(VARIANT_CORES)
 #: Gear samples per gap pass (one beat per sample, L = 16 lanes: 26 cycles).
 GAP_VECTOR_SAMPLES = 16
 #: Default number of seeded random vectors per core (corner cases come on top).
@@ -96,6 +102,7 @@ _PORT_DOC = {
 
 def _flag_bits(core: str, nbits: int) -> list[str]:
     """Name of each bit of the core's flags word (bit 0 first; "-" if unused)."""
+    core = VARIANT_CORES.get(core, core)
     if core == "hertz":
         return [HERTZ_FLAG_NAMES.get(1 << i, "-") for i in range(nbits)]
     if core == "chain":
@@ -180,7 +187,7 @@ def vector_layout(core: str) -> tuple[tuple[HexField, ...], tuple[HexField, ...]
     spec = get_bench(_check_core(core)).spec
     ins = []
     if spec.write is not None:
-        beats = GAP_VECTOR_SAMPLES if core == "gap" else spec.write.max_beats
+        beats = GAP_VECTOR_SAMPLES if _base(core) == "gap" else spec.write.max_beats
         for p in spec.write.fields:
             ins.append(_port_field(core, p, (beats, p.count) if p.count > 1 else (beats,)))
     ins += [_port_field(core, p, (p.count,) if p.count > 1 else ()) for p in spec.inputs]
@@ -189,15 +196,21 @@ def vector_layout(core: str) -> tuple[tuple[HexField, ...], tuple[HexField, ...]
 
 
 def _check_core(core: str) -> str:
-    if core not in VECTOR_CORES:
-        raise InputRangeError("core", core, f"one of {list(VECTOR_CORES)}")
+    if core not in EXPORT_CORES:
+        raise InputRangeError("core", core, f"one of {list(EXPORT_CORES)}")
     return core
 
 
+def _base(core: str) -> str:
+    """The core whose ports and stimulus a variant shares (itself if not a variant)."""
+    return VARIANT_CORES.get(core, core)
+
+
 def vector_stimulus(core: str, count: int, seed: int) -> Stimulus:
-    """Corner cases + ``count`` seeded random vectors of ``core`` (gap: N = 16)."""
-    kw = {"n_samples": GAP_VECTOR_SAMPLES} if _check_core(core) == "gap" else {}
-    return get_bench(core).stimulus(count, seed, **kw)
+    """Corner cases + ``count`` seeded random vectors of ``core`` (gap cores: N = 16);
+    ``Stimulus.core`` names ``core`` (a variant keeps its own name and golden model)."""
+    kw = {"n_samples": GAP_VECTOR_SAMPLES} if _base(_check_core(core)) == "gap" else {}
+    return replace(get_bench(core).stimulus(count, seed, **kw), core=core)
 
 
 def golden_outputs(stim: Stimulus) -> dict[str, np.ndarray]:
@@ -403,7 +416,8 @@ def export_vectors(out_dir, *, cores=VECTOR_CORES, count: int = DEFAULT_COUNT,
     out_dir : str or Path
         Output directory.
     cores : sequence of str, keyword-only
-        Subset of :data:`VECTOR_CORES` (file order follows :data:`VECTOR_CORES`).
+        Subset of :data:`EXPORT_CORES` (default :data:`VECTOR_CORES`; file order follows
+        :data:`EXPORT_CORES`).
     count : int, keyword-only
         Seeded random vectors per core (the corner cases come on top).
     seed : int, keyword-only
@@ -422,7 +436,7 @@ def export_vectors(out_dir, *, cores=VECTOR_CORES, count: int = DEFAULT_COUNT,
     """
     wanted = [cores] if isinstance(cores, str) else list(cores)
     if not wanted:
-        raise InputRangeError("cores", cores, f"a non-empty subset of {list(VECTOR_CORES)}")
+        raise InputRangeError("cores", cores, f"a non-empty subset of {list(EXPORT_CORES)}")
     for c in wanted:
         _check_core(c)
     count = _check_int("count", count, 0, MAX_COUNT)
@@ -430,7 +444,7 @@ def export_vectors(out_dir, *, cores=VECTOR_CORES, count: int = DEFAULT_COUNT,
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     files, summary = [], {}
-    for core in (c for c in VECTOR_CORES if c in wanted):
+    for core in (c for c in EXPORT_CORES if c in wanted):
         stim = vector_stimulus(core, count, seed)
         ins, outs = vector_layout(core)
         inputs, outputs = _input_arrays(stim), golden_outputs(stim)

@@ -94,4 +94,9 @@ DESCRIPTORS = (
     _stencil_core("comb", "comb_rtl", "CombCore", "comb_core", _chain_golden(),
                   _chain_amaranth("comb_rtl", "simulate_comb_core"), _comb_cycles,
                   "combinational C + D variant (array dividers, pipelined)"),
+    _stencil_core("comb_exact", "comb_rtl", "CombCore", "comb_exact_core",
+                  _chain_golden("exact"),
+                  _chain_amaranth("comb_rtl", "simulate_comb_core", hertz_form="exact"),
+                  _comb_cycles, "combinational C + D with hertz_form='exact' (58 cycles)",
+                  verilog_kwargs={"hertz_form": "exact"}),
 )

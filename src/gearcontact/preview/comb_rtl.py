@@ -10,6 +10,8 @@ expressions as the serialized core (:mod:`.hertz.rtl_datapath`), so its outputs 
 
     edge 53  S1  sort, envelope flags; R_x, R_y, alpha (range check), R    (4 dividers)
     edge 54  S2  E6 = C6 + N5 // alpha (divider); POW ROM + interpolation: K
+                 (hertz_form="exact": POWX ROM for K; EEX ROM + interpolation N(alpha)
+                 as the divider's dividend instead of the constant N5)
     edge 55  S3  K2, T1, T2, T3, W C3                                      (products)
     edge 56  S4  C_a = (T3 << 11) // E'                                    (divider)
     edge 57  S5  range reduction, CBRT ROM + interpolation, a_w
@@ -36,7 +38,8 @@ from .fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from .fit.pinv import BakedPinv
 from .fit.rtl import FitCore
 from .hertz import formats as F
-from .hertz.luts import CBRT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, cbrt_lut, pow_lut
+from .hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC,
+                         POW_SPECS, rom_words)
 from .hertz import rtl_datapath as dp
 from .hertz.rtl_divider import array_divide
 from .hertz.schedule import COMB_CYCLES, COMB_D_STAGES
@@ -58,7 +61,11 @@ class CombCore(ChainLikeCore):
     """Combinational C+D core: fit front end + 6-stage pipelined stage D (58 cycles).
 
     Parameters as :class:`.chain_rtl.ChainLikeCore` (``rom``, the fit's
-    pseudo-inverse ROM).
+    pseudo-inverse ROM), plus ``hertz_form`` (``"hamrock-brewe"``, the published
+    default, or ``"exact"``: the exact k table and the EEX table N(alpha) of
+    :mod:`.hertz.luts`, read at S2 by a second ROM pair with its own interpolator -- the
+    serialized core shares one, this pipeline reads both tables in one stage; same 58
+    cycles, outputs of ``chain_golden(..., hertz_form="exact")``).
 
     Notes
     -----
@@ -70,6 +77,11 @@ class CombCore(ChainLikeCore):
     UQ(32,24); ``flags`` the 12-bit chain flags word; ``c0``..``c5`` COEFF Q(32,20)).
     ``done`` rises on edge 58 (``COMB_CYCLES``).
     """
+
+    def __init__(self, *, rom: BakedPinv | None = None,
+                 hertz_form: str = F.DEFAULT_HERTZ_FORM):
+        self._hertz_form = F.check_hertz_form(hertz_form)
+        super().__init__(rom=rom)
 
     def elaborate(self, platform):
         m = Module()
@@ -131,11 +143,17 @@ class CombCore(ChainLikeCore):
 
         # ---- S2: E6 (divider) and K (POW ROM + interpolation) -------------------------
         m.submodules.s2 = s = Module()
-        num, den = dp.division("E_e", r)
-        q_e = array_divide(s, num, den, name="div_E_e")
-        pow0, pow1 = rom_pair(s, POW_SPEC, pow_lut())
+        pow_spec = POW_SPECS[self._hertz_form]          # one geometry: luts.same_geometry
+        pow0, pow1 = rom_pair(s, pow_spec, rom_words(pow_spec))
         p_addr, p_next, p_r = dp.lut_split(POW_SPEC, r.alpha)
         s.d.comb += [pow0.addr.eq(p_addr), pow1.addr.eq(p_next)]
+        if self._hertz_form == "exact":                 # EEX: the E_e dividend N(alpha)
+            ee0, ee1 = rom_pair(s, EE_EXACT_SPEC, rom_words(EE_EXACT_SPEC))
+            r.n_ee = Signal(POW_SPEC.vbits + POW_SPEC.tbits, name="n_ee")
+            s.d.comb += [ee0.addr.eq(p_addr), ee1.addr.eq(p_next),
+                         r.n_ee.eq(dp.lut_interpolate(POW_SPEC, ee0.data, ee1.data, p_r))]
+        num, den = dp.division("E_e", r)
+        q_e = array_divide(s, num, den, name="div_E_e")
         with m.If(valid[1]):
             m.d.sync += [r.e6.eq(dp.e6_from_quotient(q_e)),
                          r.k.eq(dp.pow_to_k(dp.lut_interpolate(POW_SPEC, pow0.data,
@@ -165,7 +183,7 @@ class CombCore(ChainLikeCore):
         # ---- S5: range reduction, CBRT ROM + interpolation, a_w -----------------------
         m.submodules.s5 = s = Module()
         m_red, s1 = dp.range_reduce(s, c_a, name="rr")
-        cb0, cb1 = rom_pair(s, CBRT_SPEC, cbrt_lut())
+        cb0, cb1 = rom_pair(s, CBRT_SPEC, rom_words(CBRT_SPEC))
         c_addr, c_next, c_r = dp.lut_split(CBRT_SPEC, m_red)
         s.d.comb += [cb0.addr.eq(c_addr), cb1.addr.eq(c_next)]
         with m.If(valid[4]):
@@ -196,13 +214,16 @@ class CombCore(ChainLikeCore):
         return m
 
 
-def convert_verilog(*, rom: BakedPinv | None = None, name: str = "comb_core") -> str:
+def convert_verilog(*, rom: BakedPinv | None = None, name: str = "comb_core",
+                    hertz_form: str = F.DEFAULT_HERTZ_FORM) -> str:
     """Verilog of :class:`CombCore` (``strip_internal_attrs=True``)."""
-    return verilog.convert(CombCore(rom=rom), name=name, strip_internal_attrs=True)
+    return verilog.convert(CombCore(rom=rom, hertz_form=hertz_form), name=name,
+                           strip_internal_attrs=True)
 
 
 def simulate_comb_core(stencils, W_codes, *, e_prime_code: int,
-                       rom: BakedPinv | None = None, max_cycles: int = 2 * COMB_CYCLES
+                       rom: BakedPinv | None = None, max_cycles: int = 2 * COMB_CYCLES,
+                       hertz_form: str = F.DEFAULT_HERTZ_FORM
                        ) -> tuple[list[ChainCodes], list[int]]:
     """Simulate :class:`CombCore` cycle-accurately; same interface and return value as
     :func:`.chain_rtl.simulate_chain_core`, with ``COMB_CYCLES`` = 58 by design (the
@@ -211,5 +232,5 @@ def simulate_comb_core(stencils, W_codes, *, e_prime_code: int,
 
     ~10 stencils/s of CPU time in Amaranth's simulator (the cost is the once-per-run
     settling of the array dividers, not the 108 edges), plus ~2 s to elaborate."""
-    return run_chain_like(CombCore(rom=rom), stencils, W_codes, e_prime_code,
-                          max_cycles=max_cycles, what="comb core")
+    return run_chain_like(CombCore(rom=rom, hertz_form=hertz_form), stencils, W_codes,
+                          e_prime_code, max_cycles=max_cycles, what="comb core")

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from functools import partial
+
 from .core import CoreDescriptor, WriteNames, lazy
 from .stimulus import Stimulus
 
@@ -26,7 +28,7 @@ def _gap_ports(st: Stimulus):
     return inputs, {"w_g": f["g"], "w_n": f["nrm"]}, None
 
 
-def _gap_golden(st: Stimulus) -> dict:
+def _gap_golden(st: Stimulus, variant: str = "published") -> dict:
     from .gap.fast import gap_golden_batch
     f = st.fields
     n = len(st)
@@ -40,20 +42,20 @@ def _gap_golden(st: Stimulus) -> dict:
     starts = np.flatnonzero(~same).tolist() + [n]
     for a, b in zip(starts[:-1], starts[1:]):
         o = gap_golden_batch(f["r"][a:b], f["t"][a:b], f["p"][a:b], f["g"][a], f["nrm"][a],
-                             int(f["tau2"][a]), lanes=GAP_LANES)
+                             int(f["tau2"][a]), lanes=GAP_LANES, variant=variant)
         cols["gap"][a:b], cols["idx"][a:b] = o.min_gap_code, o.min_idx
         cols["valid"][a:b], cols["overflow"][a:b] = o.valid, o.overflow
     return cols
 
 
-def _gap_amaranth(st: Stimulus):
+def _gap_amaranth(st: Stimulus, variant: str = "published"):
     from .gap.golden import GapVector
     from .gap.rtl import simulate_gap_core
     f = st.fields
     vecs = [GapVector(r_code=f["r"][i], t_code=f["t"][i], p_code=f["p"][i],
                       g_code=f["g"][i], n_code=f["nrm"][i], tau2_code=int(f["tau2"][i]))
             for i in range(len(st))]
-    outs, cycles = simulate_gap_core(vecs, lanes=GAP_LANES)
+    outs, cycles = simulate_gap_core(vecs, lanes=GAP_LANES, variant=variant)
     return ({"gap": np.array([o.min_gap_code for o in outs], np.int64),
              "idx": np.array([o.min_idx for o in outs], np.int64),
              "valid": np.array([o.valid for o in outs], np.int64),
@@ -66,12 +68,20 @@ def _gap_cycles(st: Stimulus) -> int:
     return gap_latency(st.fields["g"].shape[1], GAP_LANES)
 
 
-DESCRIPTORS = (
-    CoreDescriptor(
-        "gap", "gap.rtl", lazy("gap.rtl", "GapCore"), "gap_core", _gap_ports, _gap_golden,
-        _gap_amaranth, _gap_cycles, go="start", done="done",
+def _gap_core(name: str, top: str, variant: str, summary: str) -> CoreDescriptor:
+    return CoreDescriptor(
+        name, "gap.rtl", lazy("gap.rtl", "GapCore"), top, _gap_ports,
+        partial(_gap_golden, variant=variant), partial(_gap_amaranth, variant=variant),
+        _gap_cycles, go="start", done="done",
         control=("w_ready", "busy", "n_error"), max_cycles=4 * _GAP_MAX,
         write=WriteNames("w_valid", ("w_g", "w_n"), _GAP_MAX, addr="w_addr"),
-        verilog_kwargs={"lanes": GAP_LANES},
-        summary=f"stage A/B gap kernel, L = {GAP_LANES} lanes, N = 16 samples"),
+        verilog_kwargs={"lanes": GAP_LANES, "variant": variant},
+        stimulus_core="gap", summary=summary)
+
+
+DESCRIPTORS = (
+    _gap_core("gap", "gap_core", "published",
+              f"stage A/B gap kernel, L = {GAP_LANES} lanes, N = 16 samples"),
+    _gap_core("gap_lean", "gap_lean_core", "lean",
+              f"gap kernel variant 'lean' (15 DSP48E1 per lane), L = {GAP_LANES}"),
 )

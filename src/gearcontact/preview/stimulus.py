@@ -449,7 +449,8 @@ STIMULUS_CORES = {"gap": gap_stimulus, "fit": fit_stimulus, "hertz": hertz_stimu
                   "chain": chain_stimulus, "comb": chain_stimulus,
                   "hertz_exact": hertz_stimulus, "chain_exact": chain_stimulus,
                   "hertz_pipe": hertz_stimulus, "hertz_pipe_exact": hertz_stimulus,
-                  "chain_pipe": chain_stimulus}
+                  "chain_pipe": chain_stimulus, "gap_lean": gap_stimulus,
+                  "comb_exact": chain_stimulus}
 
 
 def stimulus(core: str, n: int, seed: int = 0, **kwargs) -> Stimulus:

@@ -160,6 +160,42 @@ _TRI_CORE_NOTE = ("tri_core utilization is not part of this sweep: `gearcontact 
                   "build is -nodsp: 197,377 LUT, 4,851 FF, 4,638 CARRY4, fmax 75 MHz).")
 
 
+def _whole_core_table():
+    """Committed whole-core / SoC results (``data/synth/cores.json``) beside the published
+    tri_core build: ``(Table or None, text, rows as dicts)``."""
+    from ..hw.synth import GAP_CORES, PUBLISHED, dsp_fit
+    from ..hw.synth_records import committed_records
+
+    lean = [r.result for r in committed_records() if r.result.core == "gap_lean"]
+    lean_text = ""
+    if len({r.lanes for r in lean}) >= 2:
+        fit = dsp_fit(lean)
+        lean_text = (f" The lean gap lane (gap_lean, 15 DSP48E1 per lane, same cycles, equal "
+                     f"outputs for a gate tau <= 2 mm) sweeps to DSP48E1 = {fit.a:.2f} L + "
+                     f"{fit.b:.1f}: the XC7K480T holds L <= {fit.lanes_max:.1f} lanes.")
+    recs = [r for r in committed_records() if r.result.core not in GAP_CORES]
+    if not recs:
+        return None, _TRI_CORE_NOTE + lean_text, []
+    rows, dicts = [], []
+    for rec in recs:
+        r, p = rec.result, PUBLISHED.get((rec.result.core, None), {})
+        pub = (f"{p['LUT']:,} LUT / {p['FF']:,} FF / {p['CARRY4']:,} CARRY4"
+               f"{' (-nodsp)' if p.get('nodsp') else ''}") if "LUT" in p else None
+        rows.append([r.core, "-nodsp" if r.nodsp else "DSP", r.LUT, r.FF, r.CARRY4,
+                     r.DSP48E1, r.RAMB36, r.depth, r.seconds, rec.tool.split(";")[0], pub])
+        dicts.append({**asdict(r), "provenance": {"tool": rec.tool, "command": rec.command,
+                                                  "date": rec.date, "machine": rec.machine,
+                                                  "note": rec.note}})
+    text = ("Whole cores and the tri_core SoC top (contact L = 16 + C -> D chain behind the "
+            "register bus): results committed with the package (data/synth/cores.json, "
+            "one provenance per row; `gearcontact rtl synth --committed` prints them). "
+            "The published tri_core figure is a -nodsp build." + lean_text)
+    table = Table("Whole cores / SoC, yosys synth_xilinx -family xc7 -noiopad",
+                  ["core", "mode", "LUT", "FF", "CARRY4", "DSP48E1", "RAMB36", "depth",
+                   "wall s", "tool", "published"], rows)
+    return table, text, dicts
+
+
 def resources_section(synth: bool, settings, out: Path) -> Section:
     from ..hw.synth import PUBLISHED, PUBLISHED_DSP_FIT, XC7K480T, SynthResult, dsp_fit
 
@@ -210,13 +246,15 @@ def resources_section(synth: bool, settings, out: Path) -> Section:
         text.append(f"DSP48E1 = {fit.a:.2f} L + {fit.b:.2f} (published {PUBLISHED_DSP_FIT[0]:g} "
                     f"L + {PUBLISHED_DSP_FIT[1]:g}); the {XC7K480T['DSP48E1']} DSP slices of "
                     f"the XC7K480T hold L <= {fit.lanes_max:.1f} lanes (published: L ~ 63).")
-    text.append(_TRI_CORE_NOTE)
+    soc_table, soc_text, soc_rows = _whole_core_table()
+    text.append(soc_text)
     return Section("resources", 5, "Resources and throughput scaling", "partial", text,
                    [Table("Gap core, yosys synth_xilinx (DSP mode)",
                           ["core", "DSP48E1", "LUT", "FF", "CARRY4", "LC", "depth", "CPU s",
-                           "DSP48E1 published", "LC published"], rows)],
+                           "DSP48E1 published", "LC published"], rows)]
+                   + ([soc_table] if soc_table else []),
                    [], {**data, "source": source, "dsp_fit": asdict(fit) if fit else None,
-                        "published": published})
+                        "published": published, "whole_cores": soc_rows})
 
 
 def precision_section(analysis) -> Section:

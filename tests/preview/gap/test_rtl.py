@@ -68,8 +68,9 @@ def directed_vectors(n_samples):
 
 def check_against_golden(vectors, lanes, **kw):
     outs, cycles = simulate_gap_core(vectors, lanes=lanes, **kw)
+    variant = kw.get("variant", "published")
     for vec, out, cyc in zip(vectors, outs, cycles):
-        assert out == gap_golden_codes(vec, lanes=lanes)           # bit for bit
+        assert out == gap_golden_codes(vec, lanes=lanes, variant=variant)   # bit for bit
         assert cyc == gap_latency(vec.n_samples, lanes)            # cycle for cycle
     return outs, cycles
 
@@ -111,6 +112,40 @@ def test_l8_plain_products_bit_and_cycle_exact():
     vecs = directed_vectors(12)[1:5] + [random_vector(rng, 19)]
     _, cycles = check_against_golden(vecs, 8, split_products=False)
     assert cycles == [gap_latency(v.n_samples, 8) for v in vecs]
+
+
+def lean_vectors(rng):
+    """Saturation corners of the lean variant (residual component 2^17 codes = 2 mm)."""
+    up = [[0, 0, ONE]] * 12
+    g = [[(20 + i) << 16, 0, 0] for i in range(12)]
+    g[0], g[1] = [-(2 << 16), 0, 0], [-(2 << 16) + 1, 0, 0]      # e = 2^17 (saturates) in
+    wide = (1 << 63) - 1                                         # lane 0, 2^17 - 1 in lane 1
+    vecs = [make(g, up, tau2=1 << 34), make(g, up, tau2=(1 << 34) + 1), make(g, up, tau2=wide)]
+    g2 = [row[:] for row in g]
+    g2[1] = [-(3 << 16), 0, 5 << 16]                             # every sample saturates
+    vecs.append(make(g2, up, tau2=wide))
+    vecs.append(make([[0, 0, 0]] * 12, up, tau2=wide))          # rho = 0 everywhere
+    for spread in (2 << 16, 40 << 16):                          # inside / beyond 2 mm
+        v = random_vector(rng, 19, spread)
+        vecs.append(make(v.g_code, v.n_code, p=v.p_code, t=v.t_code, r=v.r_code, tau2=wide))
+    return vecs
+
+
+def test_lean_variant_bit_and_cycle_exact():
+    """GapCore(variant="lean") == its golden model on saturation corners, directed and
+    random passes (gates up to 2^63), at the published core's cycle counts."""
+    rng = np.random.default_rng(15)
+    vecs = lean_vectors(rng) + directed_vectors(12)[:5] + [random_vector(rng, 20)]
+    outs, cycles = check_against_golden(vecs, 8, variant="lean")
+    assert cycles == [gap_latency(v.n_samples, 8) for v in vecs]
+    # gamma = 0 for both near samples (a key tie): the lowest lane holding one wins
+    assert [o.min_idx for o in outs[:3]] == [1, 1, 1]
+    assert [gap_golden_codes(v, lanes=8).min_idx for v in vecs[:3]] == [1, 0, 0]
+    assert not outs[3].valid and outs[4].valid and outs[4].min_idx == 0
+    with pytest.raises(InputRangeError, match="split_products"):
+        GapCore(lanes=8, split_products=False, variant="lean")
+    with pytest.raises(InputRangeError, match="variant"):
+        GapCore(lanes=8, variant="narrow")
 
 
 def test_go_while_busy_ignored_reset_mid_run_and_bad_n():

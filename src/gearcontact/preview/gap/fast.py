@@ -37,6 +37,7 @@ import numpy as np
 from ...validation import InputRangeError, check_array_finite
 from .golden import DEFAULT_FORMAT, IDX_SENTINEL, GapFormat, check_codes, quantize_pass
 from .reference import MAX_SAMPLES, check_lanes
+from .variants import residual_limit
 
 try:  # numba is optional: the kernel is also valid Python
     from numba import get_num_threads, njit, prange
@@ -114,8 +115,12 @@ class GapBatchCodes:
 
 
 @njit(cache=True, boundscheck=False, inline="always")
-def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, half, e_shift, rho, gam):
+def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, half, e_shift, e_lim, rho_inf,
+                  rho, gam):
     """gamma and rho codes of every sample for the posed point (px, py, pz).
+
+    ``e_lim > 0`` (lean variant, :mod:`.variants`): rho = ``rho_inf`` where an e_k
+    leaves ``[-e_lim, e_lim - 1]``.
 
     Integer mode: ``g*``, ``n*`` int64 codes and ``half = 2^(rf-1)``. Float mode:
     float64 ``g*`` codes, normals pre-scaled to ``n 2^-rf`` and ``half = 0.5``; every
@@ -138,12 +143,16 @@ def _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, half, e_shift, rho, ga
             ez = _fshift(ez + e_half, e_shift, e_scale)
         # e^2 < 2^52, so a sum of two is exact in float64; the third add is int64
         rho[i] = np.int64(ex * ex + ey * ey) + np.int64(ez * ez)
+        if e_lim > 0:                         # loop-invariant as well
+            if (ex < -e_lim or ex >= e_lim or ey < -e_lim or ey >= e_lim
+                    or ez < -e_lim or ez >= e_lim):
+                rho[i] = rho_inf
         gam[i] = np.int64(gm)
 
 
 @njit(parallel=True, cache=True, boundscheck=False)
 def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, n_half, tau2, lanes, rf, cmin, cmax,
-                  e_shift, key_inf, gap_sent, idx_sent, rho_inf, n_chunks,
+                  e_shift, e_lim, key_inf, gap_sent, idx_sent, rho_inf, n_chunks,
                   out_gap, out_idx, out_valid, out_ovf):
     m_pts = p.shape[0]
     n_smp = gx.shape[0]
@@ -175,7 +184,8 @@ def _batch_kernel(r, t, p, gx, gy, gz, nx, ny, nz, n_half, tau2, lanes, rf, cmin
             out_valid[m] = False
             if ovf:
                 continue
-            _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, n_half, e_shift, rho, gam)
+            _sample_terms(px, py, pz, gx, gy, gz, nx, ny, nz, rf, n_half, e_shift, e_lim,
+                          rho_inf, rho, gam)
             for lane in range(lanes):        # beat 0, then strict-< updates:
                 l_rho[lane] = rho[lane]      # the earliest sample wins a lane tie
                 l_k[lane] = 0
@@ -209,7 +219,8 @@ def _codes(field: str, a, shape_tail: tuple[int, ...]) -> np.ndarray:
 
 
 def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
-                     lanes: int = 16, fmt: GapFormat = DEFAULT_FORMAT) -> GapBatchCodes:
+                     lanes: int = 16, fmt: GapFormat = DEFAULT_FORMAT,
+                     variant: str = "published") -> GapBatchCodes:
     """One gap pass per point, bit-identical to :func:`.golden.gap_golden_codes`.
 
     Parameters
@@ -224,7 +235,7 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
         Gear samples (coordinate codes, mm) and normals (normal codes).
     tau2_code : int
         Gate, UQ(64, rho_frac) code (mm^2).
-    lanes, fmt : keyword-only
+    lanes, fmt, variant : keyword-only
         As in :func:`.golden.gap_golden_codes`.
 
     Returns
@@ -232,6 +243,7 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
     GapBatchCodes
     """
     lanes = check_lanes(lanes)
+    e_lim = residual_limit(variant)
     p = _codes("p_code", p_code, (3,))
     if p.ndim != 2:
         raise InputRangeError("p_code.shape", p.shape, "(M, 3)")
@@ -264,7 +276,7 @@ def gap_golden_batch(r_code, t_code, p_code, g_code, n_code, tau2_code: int, *,
     _batch_kernel(r, t, p, gt[0], gt[1], gt[2], nt[0], nt[1], nt[2], n_half,
                   np.int64(tau2_code), np.int64(lanes), np.int64(fmt.normal_frac),
                   np.int64(cmin), np.int64(cmax), np.int64(fmt.e_shift),
-                  np.int64(fmt.key_inf), np.int64(fmt.gap_sentinel),
+                  np.int64(e_lim), np.int64(fmt.key_inf), np.int64(fmt.gap_sentinel),
                   np.int64(IDX_SENTINEL), np.int64((1 << 63) - 1),
                   np.int64(max(1, min(m, 8 * get_num_threads()))),
                   out_gap, out_idx, out_valid, out_ovf)

@@ -45,6 +45,11 @@ is reported (``overflow = True`` forces ``valid = False`` and the sentinels).
 
 Rounding is round-half-up by shift everywhere (``(x + 2^(n-1)) >> n``).
 
+Variants (``variant=`` of the model functions and of ``GapCore``; :mod:`.variants`)
+    ``"published"`` is the datapath above; ``"lean"`` saturates rho to 2^64 - 1 when a
+    residual component leaves 18 bits (15 DSP48E1 per lane; equal outputs for
+    ``tau2 <= 2^34``).
+
 Selection and tie-breaking (exact)
     Lane ``l`` receives samples ``i = l + k L`` in increasing ``k`` and replaces its
     held sample only if ``rho_i < rho_held`` (strict), so among equal rho the
@@ -92,6 +97,7 @@ import numpy as np
 from ...validation import InputRangeError, check_positive, check_range
 from ..qformat import FixedPointOverflow, QFormat, round_shift, sq, uq
 from .reference import MAX_SAMPLES, check_lanes, validate_gap_inputs
+from .variants import residual_limit
 
 __all__ = ["GapFormat", "DEFAULT_FORMAT", "GapVector", "GapCodes", "GoldenGapResult",
            "GapTiming", "quantize_pass", "gap_golden_codes", "gap_golden_terms",
@@ -478,24 +484,31 @@ def _posed_point(vec: GapVector, fmt: GapFormat) -> tuple[list[int], bool]:
     return pp, ovf
 
 
-def _sample(pp: list[int], g, n, fmt: GapFormat) -> tuple[int, int]:
-    """(gamma, rho) codes of one sample, every intermediate width-checked."""
+def _sample(pp: list[int], g, n, fmt: GapFormat, e_limit: int = 0) -> tuple[int, int]:
+    """(gamma, rho) codes of one sample, every intermediate width-checked.
+
+    ``e_limit > 0`` (lean variant): rho = 2^64 - 1 when an e_k leaves
+    ``[-e_limit, e_limit - 1]``.
+    """
     rf = fmt.normal_frac
     d = [_w(pp[k] - int(g[k]), fmt.diff_bits, "d") for k in range(3)]
     dot = _w(sum(int(n[k]) * d[k] for k in range(3)), fmt.dot_bits, "n.d")
     gamma = _w(round_shift(-dot, rf), fmt.gap_bits, "gamma")
-    rho = 0
+    rho, saturated = 0, False
     for k in range(3):
         gn = _w(gamma * int(n[k]), fmt.dot_bits, "gamma n")
         e = _w(round_shift(d[k] + round_shift(gn, rf), fmt.e_shift), fmt.e_bits, "e")
+        saturated |= e_limit > 0 and not -e_limit <= e < e_limit
         rho += e * e
-    return gamma, _w(rho, RHO_BITS, "rho", signed=False)
+    return gamma, (1 << RHO_BITS) - 1 if saturated else _w(rho, RHO_BITS, "rho", signed=False)
 
 
-def gap_golden_terms(vec: GapVector, *, fmt: GapFormat = DEFAULT_FORMAT):
+def gap_golden_terms(vec: GapVector, *, fmt: GapFormat = DEFAULT_FORMAT,
+                     variant: str = "published"):
     """Per-sample integer terms: ``(pp_code (3,), gamma_code (N,), rho_code (N,))``.
 
-    gamma in Q(gap_bits, cf), rho in UQ(64, rho_frac).
+    gamma in Q(gap_bits, cf), rho in UQ(64, rho_frac) (``variant="lean"``: 2^64 - 1
+    where saturated).
 
     Raises
     ------
@@ -506,14 +519,16 @@ def gap_golden_terms(vec: GapVector, *, fmt: GapFormat = DEFAULT_FORMAT):
     pp, ovf = _posed_point(vec, fmt)
     if ovf:
         raise FixedPointOverflow("posed_point_code", pp, fmt.coord)
-    terms = [_sample(pp, vec.g_code[i], vec.n_code[i], fmt) for i in range(vec.n_samples)]
+    lim = residual_limit(variant)
+    terms = [_sample(pp, vec.g_code[i], vec.n_code[i], fmt, lim)
+             for i in range(vec.n_samples)]
     gam = np.array([g for g, _ in terms], dtype=np.int64)
     rho = np.array([r for _, r in terms], dtype=np.uint64)
     return np.array(pp, dtype=np.int64), gam, rho
 
 
-def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
-                     fmt: GapFormat = DEFAULT_FORMAT) -> GapCodes:
+def gap_golden_codes(vec: GapVector, *, lanes: int = 16, fmt: GapFormat = DEFAULT_FORMAT,
+                     variant: str = "published") -> GapCodes:
     """Scalar bit-exact model of one pass of the gap core.
 
     Parameters
@@ -524,6 +539,9 @@ def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
         Lane count L, power of two in [8, 64].
     fmt : GapFormat, keyword-only
         Word formats (default: the contract of docs/spec.md sec. 6).
+    variant : {"published", "lean"}, keyword-only
+        Datapath variant (module docstring; ``"lean"`` equals ``"published"`` for
+        ``tau2 <= lean_tau2_max()``).
 
     Returns
     -------
@@ -531,6 +549,7 @@ def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
         Exactly the core's output registers (tie rules in the module docstring).
     """
     lanes = check_lanes(lanes)
+    lim = residual_limit(variant)
     check_vector(vec, fmt=fmt)
     pp, ovf = _posed_point(vec, fmt)
     if ovf:
@@ -538,7 +557,7 @@ def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
     rho_inf = (1 << RHO_BITS) - 1
     held = [(rho_inf, 0, 0)] * lanes                       # (rho, gamma, idx) per lane
     for i in range(vec.n_samples):
-        gamma, rho = _sample(pp, vec.g_code[i], vec.n_code[i], fmt)
+        gamma, rho = _sample(pp, vec.g_code[i], vec.n_code[i], fmt, lim)
         lane = i % lanes
         if rho < held[lane][0]:                            # strict: earliest tie stays
             held[lane] = (rho, gamma, i)
@@ -554,11 +573,11 @@ def gap_golden_codes(vec: GapVector, *, lanes: int = 16,
 
 
 def gap_golden(R, t, p, samples_xyz, normals, *, tau_mm: float, lanes: int = 16,
-               fmt: GapFormat = DEFAULT_FORMAT) -> GoldenGapResult:
+               fmt: GapFormat = DEFAULT_FORMAT, variant: str = "published") -> GoldenGapResult:
     """Quantize real inputs and run :func:`gap_golden_codes`.
 
     Parameters are those of :func:`.reference.gap_reference` (mm, dimensionless R
-    and n); ``lanes`` and ``fmt`` as in :func:`gap_golden_codes`.
+    and n); ``lanes``, ``fmt`` and ``variant`` as in :func:`gap_golden_codes`.
 
     Raises
     ------
@@ -567,7 +586,7 @@ def gap_golden(R, t, p, samples_xyz, normals, *, tau_mm: float, lanes: int = 16,
         range (the core's ``overflow`` flag).
     """
     vec = quantize_pass(R, t, p, samples_xyz, normals, tau_mm=tau_mm, fmt=fmt)
-    out = gap_golden_codes(vec, lanes=lanes, fmt=fmt)
+    out = gap_golden_codes(vec, lanes=lanes, fmt=fmt, variant=variant)
     if out.overflow:
         pp = np.asarray(R, float) @ np.asarray(p, float) + np.asarray(t, float)
         raise FixedPointOverflow("posed_point_mm", pp.tolist(), fmt.coord)

@@ -60,6 +60,9 @@ DSP48E1 per lane (``synth_xilinx -family xc7``; the pose adds 9 x 2 = 18 per cor
     ``split_products=False`` they are plain ``*`` as in the published design, which
     Yosys tiles into 4 slices each: 3 x (2 + 4 + 4) = 30 per lane (DSP = 30 L + 18).
     Outputs and cycle counts are identical; only the netlist differs.
+    ``variant="lean"`` (:mod:`.variants`) squares e_k in 18 bits with a saturation flag:
+    3 x (2 + 2 + 1) = 15 per lane (DSP = 15 L + 18), same cycles; its residual register
+    is 36 bits wide and the gate compares against ``min(tau2, 2^36 - 1)``.
 """
 
 from __future__ import annotations
@@ -73,9 +76,10 @@ from ..simulation import read_ports, run_testbench, run_to_done
 from .golden import DEFAULT_FORMAT, IDX_BITS, IDX_SENTINEL, GapCodes, gap_latency
 from .reference import check_lanes
 from .rtl_mul import split_mul, split_square
+from .variants import LEAN_E_BITS, check_variant
 
-__all__ = ["GapCore", "convert_verilog", "load_gap_vector", "read_gap_codes",
-           "simulate_gap_core"]
+__all__ = ["GapCore", "GapLaneProbe", "convert_verilog", "lane_verilog", "load_gap_vector",
+           "read_gap_codes", "simulate_gap_core"]
 
 _F = DEFAULT_FORMAT
 CW, NW, RF = _F.coord_bits, _F.normal.bits, _F.normal_frac      # 24, 21, 19
@@ -98,12 +102,19 @@ class GapCore(wiring.Component):
         Build stage B's gamma n_k and e_k^2 from split partial products (21 DSP48E1
         per lane instead of 30; bit- and cycle-identical). False gives the published
         netlist with plain multipliers, for side-by-side synthesis.
+    variant : {"published", "lean"}
+        Datapath variant (:mod:`.variants`): ``"lean"`` is 15 DSP48E1 per lane and
+        matches ``gap_golden_codes(..., variant="lean")``; it needs split products.
     """
 
     def __init__(self, *, lanes: int = 16, max_samples: int | None = None,
-                 split_products: bool = True):
+                 split_products: bool = True, variant: str = "published"):
         self.lanes = check_lanes(lanes)
         self.split_products = bool(split_products)
+        self.variant = check_variant(variant)
+        if self.variant == "lean" and not self.split_products:
+            raise InputRangeError("split_products", split_products,
+                                  "True with variant='lean' (its gamma n is split)")
         self.max_samples = 16 * self.lanes if max_samples is None else max_samples
         ms = self.max_samples
         if isinstance(ms, bool) or not isinstance(ms, int) or ms < 2 * self.lanes \
@@ -112,6 +123,8 @@ class GapCore(wiring.Component):
                                   f"a power of two in [{2 * self.lanes}, {1 << (IDX_BITS - 1)}]")
         self.lane_bits = self.lanes.bit_length() - 1
         self.depth = ms // self.lanes
+        # lane residual register: 64 b, or 36 b (lean: 3 e^2 < 3 2^34 < its all-ones)
+        self.rho_bits = 2 * LEAN_E_BITS if self.variant == "lean" else 64
         super().__init__({
             "w_valid": In(1), "w_ready": Out(1),
             "w_addr": In(unsigned(ms.bit_length() - 1)),
@@ -182,8 +195,8 @@ class GapCore(wiring.Component):
             m.d.sync += tok[l].eq(tok[l - 1])
 
         # ---- lanes -------------------------------------------------------------------
-        rho_inf = (1 << 64) - 1
-        l_rho = [Signal(64, name=f"l_rho_{l}", init=rho_inf) for l in range(L)]
+        rho_inf = (1 << self.rho_bits) - 1
+        l_rho = [Signal(self.rho_bits, name=f"l_rho_{l}", init=rho_inf) for l in range(L)]
         l_gam = [Signal(signed(_F.gap_bits), name=f"l_gam_{l}") for l in range(L)]
         l_idx = [Signal(IDX_BITS, name=f"l_idx_{l}") for l in range(L)]
         wr = self.w_valid & ~busy
@@ -201,10 +214,14 @@ class GapCore(wiring.Component):
         # ---- finalize (gate -> key) and registered comparator tree -------------------
         key_inf = _F.key_inf
         keys = [Signal(_F.gap_bits, name=f"key_{l}", init=key_inf) for l in range(L)]
+        gate = tau2_q
+        if self.rho_bits < 64:          # lean: min(tau2, rho_inf); a held rho_inf fails
+            gate = Signal(self.rho_bits, name="gate")
+            m.d.comb += gate.eq(Mux(tau2_q > rho_inf, rho_inf, tau2_q))
         with m.If(fin_now):
             for l in range(L):
                 mag = Mux(l_gam[l] < 0, -l_gam[l], l_gam[l])
-                m.d.sync += keys[l].eq(Mux(l_rho[l] < tau2_q, mag, key_inf))
+                m.d.sync += keys[l].eq(Mux(l_rho[l] < gate, mag, key_inf))
         level = [(keys[l], C(l, max(1, lb))) for l in range(L)]
         for v in range(1, lb + 1):
             nxt = []
@@ -245,8 +262,9 @@ class GapCore(wiring.Component):
         m.d.sync += [a_d[k].eq(d[k]) for k in range(3)]
         # stage B: |gamma| < 2^26 structurally, so its low 27 bits feed the multipliers
         gam27 = a_gam[:CW + 3].as_signed()
-        rho = Signal(64, name=f"rho_{l}")
-        sq = []
+        rho = Signal(self.rho_bits, name=f"rho_{l}")
+        lean = self.variant == "lean"
+        sq, fits = [], []
         for k in range(3):
             # gn: Q(46,35) mm (|gamma n| fits 46 b structurally); e: Q(27,16) mm
             gn = Signal(signed(_F.dot_bits), name=f"gn_{l}_{k}")
@@ -256,24 +274,71 @@ class GapCore(wiring.Component):
             else:
                 m.d.comb += gn.eq(gam27 * a_n[k])
             m.d.comb += e.eq(a_d[k] + ((gn + half) >> RF))
-            # e^2: Q(54,32) mm^2, >= 0, exact either way
-            sq.append(split_square(e) if self.split_products else e * e)
-        m.d.comb += rho.eq(sq[0] + sq[1] + sq[2])
+            if lean:                            # e in 18 b: one B port, one slice
+                e18 = e[:LEAN_E_BITS].as_signed()
+                fits.append(e18 == e)
+                sq.append(e18 * e18)
+            else:                               # e^2: Q(54,32) mm^2, >= 0, exact either way
+                sq.append(split_square(e) if self.split_products else e * e)
+        total = sq[0] + sq[1] + sq[2]
+        rho_inf = (1 << self.rho_bits) - 1
+        m.d.comb += rho.eq(Mux(fits[0] & fits[1] & fits[2], total, rho_inf) if lean else total)
         with m.If(accept):
-            m.d.sync += l_rho.eq((1 << 64) - 1)
+            m.d.sync += l_rho.eq(rho_inf)
         with m.Elif(a_valid & (rho < l_rho)):        # strict: earliest sample keeps a tie
             m.d.sync += [l_rho.eq(rho), l_gam.eq(a_gam),
                          l_idx.eq((a_k << self.lane_bits) | l)]
 
 
+class GapLaneProbe(wiring.Component):
+    """One lane of :class:`GapCore` (stages A and B, running minimum) with its operands
+    as ports: the unit of the per-lane resource count (``hw.synth.lane_dsp``).
+
+    Parameters
+    ----------
+    split_products, variant : keyword-only
+        As in :class:`GapCore`.
+    """
+
+    def __init__(self, *, split_products: bool = True, variant: str = "published"):
+        self.core = GapCore(lanes=8, split_products=split_products, variant=variant)
+        self.core._MustUse__silence = True        # only its _lane is elaborated
+        self._kw = max(1, (self.core.depth - 1).bit_length())
+        super().__init__({
+            "pp": In(COORD3), "smp": In(SAMPLE), "act": In(1), "k": In(self._kw),
+            "n_q": In(IDX_BITS), "accept": In(1), "rho": Out(self.core.rho_bits),
+            "gam": Out(signed(_F.gap_bits)), "idx": Out(IDX_BITS)})
+
+    def elaborate(self, platform):
+        m = Module()
+        tok = Signal(data.StructLayout({"act": 1, "k": unsigned(self._kw)}))
+        l_rho = Signal(self.core.rho_bits, init=(1 << self.core.rho_bits) - 1)
+        l_gam, l_idx = Signal(signed(_F.gap_bits)), Signal(IDX_BITS)
+        m.d.comb += [tok.act.eq(self.act), tok.k.eq(self.k), self.rho.eq(l_rho),
+                     self.gam.eq(l_gam), self.idx.eq(l_idx)]
+        self.core._lane(m, 0, self.pp, self.smp, tok, self.n_q, self.accept,
+                        l_rho, l_gam, l_idx)
+        return m
+
+
+def lane_verilog(*, split_products: bool = True, variant: str = "published",
+                 name: str = "core") -> str:
+    """Verilog of one :class:`GapLaneProbe` (top ``name``)."""
+    from amaranth.back import verilog
+    return verilog.convert(GapLaneProbe(split_products=split_products, variant=variant),
+                           name=name, strip_internal_attrs=True)
+
+
 def convert_verilog(*, lanes: int = 16, max_samples: int | None = None,
-                    name: str = "gap_core", split_products: bool = True) -> str:
-    """Verilog of ``GapCore(lanes=..., max_samples=..., split_products=...)``.
+                    name: str = "gap_core", split_products: bool = True,
+                    variant: str = "published") -> str:
+    """Verilog of ``GapCore(lanes=..., max_samples=..., split_products=..., variant=...)``.
 
     Internal attributes are stripped; ``split_products=False`` is the published netlist.
     """
     from amaranth.back import verilog
-    core = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products)
+    core = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products,
+                   variant=variant)
     return verilog.convert(core, name=name, strip_internal_attrs=True)
 
 
@@ -312,7 +377,8 @@ def read_gap_codes(ctx, dut) -> GapCodes:
 
 
 def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = None,
-                      vcd_path: str | None = None, split_products: bool = True):
+                      vcd_path: str | None = None, split_products: bool = True,
+                      variant: str = "published"):
     """Run passes on the RTL in the Amaranth simulator.
 
     Parameters
@@ -320,7 +386,7 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
     vectors : sequence of :class:`.golden.GapVector`
         Operands (default formats); each pass first writes its N samples through the
         write port (one per cycle), then pulses ``start``.
-    lanes, max_samples, split_products : keyword-only
+    lanes, max_samples, split_products, variant : keyword-only
         Core parameters (see :class:`GapCore`).
     vcd_path : str, optional
         Write a VCD waveform there.
@@ -333,7 +399,8 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
         Cycles from the edge accepting ``start`` to the edge raising ``done``.
     """
     from .golden import check_vector
-    dut = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products)
+    dut = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products,
+                  variant=variant)
     for vec in vectors:
         check_vector(vec)
         if vec.n_samples > dut.max_samples:
