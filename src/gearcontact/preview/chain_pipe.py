@@ -17,7 +17,7 @@ computes exactly what :func:`.chain.chain_golden` computes, so every output is t
 golden one bit for bit (only the cycle count differs from ChainCore's 806).
 
 Control behaviour (as ChainCore except where said)
--------------------------------------------------
+--------------------------------------------------
 * ``go`` is accepted only while idle (``busy``: the fit running or an evaluation in the
   pipe); ``W`` and ``e_prime`` are captured on the accepting edge.
 * The result is held at the pipe's output (``out_ready`` stays low) and ``done`` =

@@ -4,14 +4,14 @@ Stage B of a lane forms, per component k, ``gamma n_k`` and ``e_k^2`` (docs/spec
 sec. 6; formats in :mod:`.golden`). On a DSP48E1 (25 x 18 signed multiplier) the
 published widths cost, per lane (``synth_xilinx -family xc7``):
 
-==================  ==========  ================  =============  ============
+==================  ==========  =================  ===============  ============
 product             operands    published (plain)  ``gap`` (split)  ``gap_lean``
-==================  ==========  ================  =============  ============
-n_k d_k             21 x 25 b   2                 2              2
-gamma n_k           27 x 21 b   4                 2              2
-e_k^2               27 x 27 b   4                 3              1
-per lane (3 k)                  30                21             15
-==================  ==========  ================  =============  ============
+==================  ==========  =================  ===============  ============
+n_k d_k             21 x 25 b   2                  2                2
+gamma n_k           27 x 21 b   4                  2                2
+e_k^2               27 x 27 b   4                  3                1
+per lane (3 k)                  30                 21               15
+==================  ==========  =================  ===============  ============
 
 ``"lean"`` squares e_k in 18 bits (:data:`LEAN_E_BITS`, one B port: one slice per
 square). A sample with any e_k outside ``[-2^17, 2^17 - 1]`` gets the saturated residual
