@@ -18,7 +18,7 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 from scipy import fft as sfft
 
 from .influence import FftInfluence, boussinesq_inverse
@@ -44,9 +44,19 @@ def _pre_shape(shape: tuple[int, int]) -> tuple[int, int]:
 def _pk_gap(ug, hg, wg, b0, b1, c0, c1, g, gmb):  # pragma: no cover - compiled
     """``g = C w + h`` centred on its mean over the contact set (``w > 0``); ``gmb`` is
     ``g`` on the box ``[b0:b1, c0:c1]`` at contact cells, 0 elsewhere."""
-    g[:] = ug + hg
-    on = wg > 0.0
-    g -= g.ravel()[on.ravel()].mean()
+    # loops, not ``g[:] = ug + hg``: an array slice assignment makes numba compile its
+    # shape-mismatch message formatting (~3 s of a fresh install's first solve)
+    total, count = 0.0, 0
+    for j in range(g.shape[0]):
+        for i in range(g.shape[1]):
+            g[j, i] = ug[j, i] + hg[j, i]
+            if wg[j, i] > 0.0:
+                total += g[j, i]
+                count += 1
+    mean = total / count
+    for j in range(g.shape[0]):
+        for i in range(g.shape[1]):
+            g[j, i] -= mean
     for j in range(b0, b1):
         for i in range(c0, c1):
             gmb[j - b0, i - c0] = g[j, i] if wg[j, i] > 0.0 else 0.0
@@ -127,6 +137,30 @@ def _pk_step(wg, w_old, tg, g, rg, ug, kern, tau, load_n, cells, dval
     return conj, tracked, change, j0, j1, i0, i1
 
 
+#: The one compiled signature of each element-wise kernel: float64 arrays of any layout
+#: (inputs read-only, so read-only views convert too). The views pk_cg passes are
+#: contiguous or strided depending on the window, and numba would otherwise compile
+#: every combination it meets (11 in one ``gearcontact analyze``, ~1 s each when fresh).
+_IO = types.float64[:, :]
+_IN = types.Array(types.float64, 2, "A", readonly=True)
+_SIGNATURES = (
+    (_pk_gap, (_IN, _IN, _IN) + (types.int64,) * 4 + (_IO, _IO)),
+    (_pk_direction, (_IO, _IN, _IN, _IN, types.float64, types.boolean)),
+    (_dot, (_IN, _IN)),
+    (_pk_step, (_IO, _IO, _IN, _IN, _IO, _IN, _IN, types.float64, types.float64,
+                types.int64[:, :], types.float64[:])),
+)
+
+
+def _compile_kernels() -> None:
+    """Compile (or load from numba's cache) the kernels' one signature on first use,
+    then let numba convert every other array layout to it instead of compiling."""
+    for kernel, signature in _SIGNATURES:
+        if kernel._can_compile:
+            kernel.compile(signature)
+            kernel.disable_compile()
+
+
 def pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: float,
            max_iter: int, precondition: bool
            ) -> tuple[np.ndarray, np.ndarray, int, bool]:
@@ -154,6 +188,7 @@ def pk_cg(op: FftInfluence, h: np.ndarray, load_n: float, w0: np.ndarray, tol: f
     is checked on the whole window, and any penetration found there switches the
     iteration to whole-window gaps.
     """
+    _compile_kernels()
     ny, nx = h.shape
     dx, dy = op.cell_size
     w = w0 * (load_n / w0.sum())
