@@ -67,7 +67,13 @@ class ToolUnavailable(InputRangeError):
 
 
 def check_soc(args) -> None:
-    """Before the output directory is touched (soc writes in place): LiteX present."""
+    """Before the output directory is touched (soc writes in place): LiteX present,
+    ``--lanes`` a lane count of the gap core."""
+    from ..preview.gap.reference import check_lanes
+    try:
+        check_lanes(args.lanes)
+    except InputRangeError as exc:
+        raise InputRangeError("--lanes", args.lanes, exc.allowed) from None
     try:
         import litex  # noqa: F401
         import migen  # noqa: F401
