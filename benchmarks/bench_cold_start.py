@@ -14,8 +14,9 @@ Usage::
     python benchmarks/bench_cold_start.py --warm-up            # also `gearcontact warm-up`
     python benchmarks/bench_cold_start.py --top 0              # no per-kernel profile
 
-Every figure is wall-clock seconds on a shared machine: the load average is printed,
-compare runs only at similar load.
+Wall-clock seconds depend on the load of a shared machine (printed); the CPU seconds
+(user + system of the child process; compile times: ``time.process_time`` of the
+compiling thread) are the fairer figures.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import shlex
 import subprocess
 import sys
@@ -41,11 +43,11 @@ stack = []
 
 class _Listener(event.Listener):
     def on_start(self, ev):
-        stack.append([time.perf_counter(), 0.0])
+        stack.append([time.process_time(), 0.0])
 
     def on_end(self, ev):
         start, children = stack.pop()
-        total = time.perf_counter() - start
+        total = time.process_time() - start
         if stack:
             stack[-1][1] += total
         disp = ev.data["dispatcher"]
@@ -64,14 +66,20 @@ sys.exit(code)
 """
 
 
-def _run(argv: list[str], env: dict[str, str]) -> tuple[float, int]:
-    start = time.perf_counter()
+def _cpu_children() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _run(argv: list[str], env: dict[str, str]) -> tuple[float, float, int]:
+    """Wall and CPU seconds (user + system of the child) and the exit code."""
+    start, cpu = time.perf_counter(), _cpu_children()
     proc = subprocess.run(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                           text=True)
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, _cpu_children() - cpu
     if proc.returncode != 0:
         print(proc.stderr, file=sys.stderr)
-    return wall, proc.returncode
+    return wall, cpu, proc.returncode
 
 
 def main() -> int:
@@ -103,32 +111,32 @@ def main() -> int:
             with open(prof) as fh:
                 return json.load(fh)
 
-        cold, code_cold = _run(command("o1"), env_with("c1"))
-        rows.append(("cold (empty cache)", cold, code_cold))
-        warm, code_warm = _run(command("o2"), env_with("c1"))
-        rows.append(("cached (second run)", warm, code_warm))
+        cold = _run(command("o1"), env_with("c1"))
+        rows.append(("cold (empty cache)", *cold))
+        warm = _run(command("o2"), env_with("c1"))
+        rows.append(("cached (second run)", *warm))
         after_records = None
         if opts.warm_up:
-            wu, code_wu = _run(cli + ["warm-up"], env_with("c2"))
-            rows.append(("gearcontact warm-up (empty cache)", wu, code_wu))
-            after, code_after = _run(command("o3"), env_with("c2"))
-            rows.append(("command after warm-up", after, code_after))
+            rows.append(("gearcontact warm-up (empty cache)",
+                         *_run(cli + ["warm-up"], env_with("c2"))))
+            rows.append(("command after warm-up", *_run(command("o3"), env_with("c2"))))
             after_records = profile("c2", "o5")
         records = profile("c3", "o4") if opts.top > 0 else []
 
     print(f"gearcontact {opts.command}   (load average {os.getloadavg()[0]:.2f} "
           f"{os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f}, {os.cpu_count()} CPUs)")
-    print(f"{'case':36s} {'wall s':>8s} {'exit':>5s}")
-    for name, wall, code in rows:
-        print(f"{name:36s} {wall:8.2f} {code:5d}")
-    print(f"{'compilation (cold - cached)':36s} {cold - warm:8.2f}")
+    print(f"{'case':36s} {'wall s':>8s} {'CPU s':>8s} {'exit':>5s}")
+    for name, wall, cpu, code in rows:
+        print(f"{name:36s} {wall:8.2f} {cpu:8.2f} {code:5d}")
+    print(f"{'compilation (cold - cached)':36s} {cold[0] - warm[0]:8.2f} "
+          f"{cold[1] - warm[1]:8.2f}")
     if after_records is not None:
         print(f"{'compilations left after warm-up':36s} {len(after_records):8d} "
               f"({sum(r[2] for r in after_records):.2f} s: "
               f"{', '.join(sorted({r[0].rsplit('.', 1)[-1] for r in after_records})) or '-'})")
     if records:
         total = sum(r[2] for r in records)
-        print(f"\n{len(records)} kernel compilations, {total:.2f} s in numba "
+        print(f"\n{len(records)} kernel compilations, {total:.2f} CPU s in numba "
               f"(exclusive times, top {opts.top}):")
         print(f"{'kernel':60s} {'excl s':>7s} {'incl s':>7s}  signature")
         for name, sig, excl, incl in sorted(records, key=lambda r: -r[2])[:opts.top]:

@@ -67,7 +67,13 @@ def _pk_direction(z, wb, gmb, tb, gz_old, conj):  # pragma: no cover - compiled
     """Project ``z`` onto the contact set (zero mean there, 0 off it), then make it
     the new direction ``z + (gz / gz_old) t`` (``conj``) in place; returns
     ``(gz, g.t)`` with ``gz = g.z``."""
-    mean, gz = z.ravel()[(wb > 0.0).ravel()].mean(), 0.0
+    total, count = 0.0, 0
+    for j in range(z.shape[0]):
+        for i in range(z.shape[1]):
+            if wb[j, i] > 0.0:
+                total += z[j, i]
+                count += 1
+    mean, gz = total / count, 0.0
     for j in range(z.shape[0]):
         for i in range(z.shape[1]):
             z[j, i] = z[j, i] - mean if wb[j, i] > 0.0 else 0.0
