@@ -108,3 +108,21 @@ def test_verilog_export_stencil_core_readme(tmp_path):
     assert main(["rtl", "verilog", "--core", "fit", "--out", str(tmp_path / "new")]) == 0
     readme = (tmp_path / "new" / "fit_core.README.md").read_text()
     assert "`wr_en` high, after a one-cycle `wr_rst` pulse: wr_data" in readme
+
+
+@pytest.mark.parametrize("argv, named", [
+    (["--core", "hertz", "--timeout", "-1"], "--timeout (s) = -1.0"),
+    (["--core", "hertz", "--timeout", "nan"], "--timeout (s) = nan"),
+    # --lanes sets the gap sweep only: on another core it was ignored (a long run of
+    # the fixed netlist instead)
+    (["--core", "tri_core", "--lanes", "5"], "--core tri_core has a fixed netlist")])
+def test_synth_options_checked_before_yosys(tmp_path, capsys, argv, named):
+    from gearcontact.hw import synth as S
+    try:
+        S.require_yosys()
+    except RuntimeError:
+        pytest.skip("no yosys: the tool check comes first")
+    out = tmp_path / "o"
+    assert main(["rtl", "synth", "--out", str(out), *argv]) == 2
+    assert named in capsys.readouterr().err
+    assert not out.exists()

@@ -115,3 +115,17 @@ def test_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, capsys):
     xr.testing.assert_identical(
         xr.open_zarr(cut / "sweep.zarr", consolidated=False).load(),
         xr.open_zarr(tmp_path / "whole" / "sweep.zarr", consolidated=False).load())
+
+
+def test_unreachable_scheduler_is_bad_input_before_the_store(tmp_path, capsys):
+    """Nothing listens on the port: exit 2 naming --scheduler (was an internal error
+    after 30 s, with an empty store left behind)."""
+    import dask
+
+    out = tmp_path / "o"
+    with dask.config.set({"distributed.comm.timeouts.connect": "2s"}):
+        code = main(ARGS + ["--scheduler", f"tcp://127.0.0.1:{_free_port()}",
+                            "--out", str(out)])
+    assert code == 2
+    assert "--scheduler" in capsys.readouterr().err
+    assert not (out / "sweep.zarr").exists()
