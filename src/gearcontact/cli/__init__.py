@@ -118,8 +118,12 @@ def _run_command(args, argv: list[str]) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the process exit code."""
-    parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        parser = build_parser()      # imports every command module: seconds when cold
+    except KeyboardInterrupt:
+        print("gearcontact: interrupted", file=sys.stderr)
+        return 130
     args = parser.parse_args(argv)
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
