@@ -73,7 +73,7 @@ def note_cold_cache(command: str) -> None:
     """One line on stderr when ``command`` is about to compile on a cold cache."""
     if command in COMPILING_COMMANDS and cache_is_cold():
         print(f"gearcontact {command}: note: first run after install (or a source change): "
-              "numba compiles its kernels into its cache now, about 10-20 s once; "
+              "numba compiles its kernels into its cache now (about 10 s of CPU, once); "
               "`gearcontact warm-up` does this ahead of time", file=sys.stderr)
 
 
