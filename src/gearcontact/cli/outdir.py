@@ -344,8 +344,9 @@ class RunDirectory:
         listed nowhere, so the next run would take them for foreign: remove them."""
         for here, _dnames, _fnames in os.walk(self.path, topdown=False):
             rel = Path(here).relative_to(self.path)
-            if rel == Path(".") or _ours(rel.parts[0]) or rel.as_posix() in self._foreign:
-                continue
+            if (rel == Path(".") or _ours(rel.parts[0]) or rel.parts[0] in self.resume
+                    or rel.as_posix() in self._foreign):
+                continue                    # ours, a resumed store (zarr), or foreign
             try:
                 os.rmdir(here)
             except OSError:
