@@ -3,7 +3,7 @@
 Truth: in a fresh process with an empty numba cache (``NUMBA_CACHE_DIR``), after
 ``warm_up`` no compiled function of the LCP path gains a signature while single-pair
 LTCAs of s0003 run (drive, three grids, torques from Hertzian to far beyond the flank,
-warm-started as in the main job) — so ``solve_time_ms`` never includes compilation.
+warm-started as in the main job; s0003-centred) — so ``solve_time_ms`` never includes compilation.
 Slow: the fresh process compiles everything (10-20 s).
 """
 
@@ -24,7 +24,7 @@ before = sigs()
 from gearcontact.contact.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
-pair = load_pair("s0003")
+pair = load_pair("s0003-centred")   # calibrated s0003 at 15 phases: P0 off one flank
 tca, flanks = analyze_pair(pair, phases=15)
 warnings.simplefilter("ignore")
 for cells in (80, 40, 24):
