@@ -1,10 +1,10 @@
 """``gearcontact warm-up``: compile the numba kernels ahead of the first real run.
 
 The compiled kernels (TCA gap search, spline and flank evaluation, the LCP solvers,
-tooth bending) are kept in numba's on-disk cache: ``__pycache__`` beside the sources,
-or a user cache directory when the installation is read-only, or ``NUMBA_CACHE_DIR``.
-That cache is tied to the source files and to this CPU, so it cannot ship inside a
-wheel; the first command after an install compiles instead (docs/performance.md
+tooth bending) are kept in numba's on-disk cache: ``NUMBA_CACHE_DIR`` if set, else
+``__pycache__`` beside the sources, or a user cache directory when the installation is
+read-only. That cache is keyed to the source files and to this CPU, so a wheel does not
+carry it; the first command after an install compiles instead (docs/performance.md
 gives the times). ``gearcontact warm-up`` does that compilation at a moment of the
 user's choosing (an image build, a CI step, right after ``pip install``): it runs a
 small ``gearcontact analyze`` of the default pair (few phases, two torques, no
