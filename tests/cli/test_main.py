@@ -179,3 +179,17 @@ def test_disk_full_is_said_as_such(tmp_path, capsys, monkeypatch):
     assert main(["vectors", "--out", str(tmp_path / "v"), "--count", "1"]) == EXIT_INTERNAL
     err = capsys.readouterr().err
     assert "system refused a write" in err and "please report" not in err
+
+
+def test_ctrl_c_while_the_commands_load(monkeypatch, capsys):
+    """Ctrl-C during ``build_parser`` (it imports every command module: seconds on a
+    cold start) printed a KeyboardInterrupt traceback; now one line and exit 130."""
+    import gearcontact.cli as cli
+
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "build_parser", interrupted)
+    assert cli.main(["tca", "--out", "unused"]) == 130
+    err = capsys.readouterr().err
+    assert err == "gearcontact: interrupted\n"
