@@ -100,3 +100,16 @@ def test_synthesize_easeoff_prints_and_writes_the_tables(tmp_path, capsys):
     doc = tomllib.loads((tmp_path / "easeoff.toml").read_text())
     assert set(doc["easeoff"]) == {"drive", "coast"}
     assert "[easeoff.drive]" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, named", [
+    (["--out", "x"], "--out = "), (["--te0-arcsec", "3"], "--te0-arcsec"),
+    (["--pattern-length-ratio", "0.4"], "--pattern-length-ratio"),
+    (["--path-angle-deg", "10"], "--path-angle-deg"), (["--tip-margin", "0.1"], "--tip-margin")])
+def test_option_of_a_mode_not_asked_for_is_refused(tmp_path, capsys, argv, named):
+    """These were silently ignored (exit 0, nothing written) without their mode."""
+    argv = [str(tmp_path / "x") if a == "x" else a for a in argv]
+    assert main(["design", "--pair", "s0003", *argv]) == 2
+    err = capsys.readouterr().err
+    assert named in err and "given only with" in err
+    assert not (tmp_path / "x").exists()

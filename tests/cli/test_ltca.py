@@ -58,8 +58,13 @@ def test_pressure_map_carries_the_load(out):
     assert p.max() == pytest.approx(data["p_peak_mpa"], rel=1e-11)
 
 
-@pytest.mark.parametrize("argv, word", [(["--torque", "-1"], "--torque"),
-                                        (["--phases", "2"], "phases")])
+@pytest.mark.parametrize("argv, word", [
+    (["--torque", "-1"], "--torque"), (["--phases", "2"], "phases"),
+    # a dense solver at 320 cells per side would need tens of GB: refused at once
+    (["--solver", "nnls", "--cells", "320"], "[16, 80] per side with the dense --solver"),
+    (["--solver", "active_set", "--cells", "81"], "--cells = 81"),
+    # below the envelope's 1 N at any lever (was "blocks = []" from the mesh LCP in lte)
+    (["--torque", "1e-9"], "--torque (N·m) = 1e-09")])
 def test_bad_input(tmp_path, capsys, argv, word):
     assert main(["ltca", "--out", str(tmp_path)] + argv) == 2
     assert word in capsys.readouterr().err

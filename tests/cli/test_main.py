@@ -41,12 +41,14 @@ def _err(capsys, argv):
 
 @pytest.mark.parametrize("argv, needles", [
     (["analyze", "--lte-torque", "0"], ["--lte-torque", "> 0"]),
-    (["analyze", "--torques", "64.5", "1e9"], ["--torques", "1000000000.0", "131072 N"]),
+    (["analyze", "--torques", "64.5", "1e9"], ["--torques", "1000000000.0", "131072] N"]),
     (["analyze", "--lte-phases", "2"], ["--lte-phases", "or 0 to skip"]),
+    # more LTE than TCA phases ran with the TCA's 3 phases, exit 0
+    (["analyze", "--phases", "3", "--lte-phases", "1001"], ["--lte-phases = 1001", "[3, 3]"]),
     (["tca", "--table-records", "0"], ["--table-records", "65535"]),
     (["tca", "--pairs", "99"], ["--pairs", "[0, 6]"]),
     (["tca", "--phases", "100000"], ["--phases", "1001"]),
-    (["ltca", "--torque", "1e9"], ["--torque", "1000000000.0", "131072 N"]),
+    (["ltca", "--torque", "1e9"], ["--torque", "1000000000.0", "131072] N"]),
     (["ltca", "--cells", "5000"], ["--cells", "320"]),
     (["lte", "--torque", "0"], ["--torque"]),
 ])
@@ -177,3 +179,17 @@ def test_disk_full_is_said_as_such(tmp_path, capsys, monkeypatch):
     assert main(["vectors", "--out", str(tmp_path / "v"), "--count", "1"]) == EXIT_INTERNAL
     err = capsys.readouterr().err
     assert "system refused a write" in err and "please report" not in err
+
+
+def test_ctrl_c_while_the_commands_load(monkeypatch, capsys):
+    """Ctrl-C during ``build_parser`` (it imports every command module: seconds on a
+    cold start) printed a KeyboardInterrupt traceback; now one line and exit 130."""
+    import gearcontact.cli as cli
+
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "build_parser", interrupted)
+    assert cli.main(["tca", "--out", "unused"]) == 130
+    err = capsys.readouterr().err
+    assert err == "gearcontact: interrupted\n"

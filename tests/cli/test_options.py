@@ -42,6 +42,17 @@ def test_torque_limit_is_envelope_load_times_lever():
     assert torque_limit_nm(pair) == pytest.approx(131.072 * outer, rel=1e-12)
 
 
+def test_torque_floor_is_envelope_load_times_inner_radius(capsys):
+    from gearcontact.cli.options import torque_floor_nm
+
+    pair = load_pair("s0003")
+    inner = pair.blank.mean_pitch_radius_gear_mm - 0.5 * pair.gear_face_width_mm
+    assert torque_floor_nm(pair) == pytest.approx(1.0 * inner / 1e3, rel=1e-12)
+    assert main(["lte", "--out", "unused", "--torque", "0.03"]) == 2
+    err = capsys.readouterr().err
+    assert "[0.0338, 6159.02]" in err and "[1, 131072] N" in err
+
+
 # --misalignment: parsing, named errors, override of the TOML [assembly] table ---------
 
 from gearcontact.cli import main  # noqa: E402

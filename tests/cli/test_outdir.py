@@ -269,3 +269,29 @@ def test_in_place_command_checks_its_tool_before_removing_anything(tmp_path, cap
     assert main(["rtl", "soc", "--out", str(tmp_path)]) == 2
     assert "pip install litex" in capsys.readouterr().err
     assert (tmp_path / "csr.csv").read_text() == "previous"
+
+
+def test_soc_lanes_checked_before_the_directory_is_touched(tmp_path, capsys):
+    """``rtl soc --lanes 4`` failed inside LiteX generation (exit 1) after creating
+    ``amaranth/``, and the rerun was then refused as foreign: now exit 2 at once."""
+    out = tmp_path / "soc"
+    assert main(["rtl", "soc", "--out", str(out), "--lanes", "4"]) == 2
+    err = capsys.readouterr().err
+    assert "--lanes = 4" in err and "power of two in [8, 64]" in err
+    assert not out.exists()
+
+
+def test_failed_in_place_run_leaves_no_unlisted_directory(tmp_path):
+    """An in-place run that made an empty directory and then failed on bad input: the
+    directory is removed, run.json records exit 2, and the next run is not refused."""
+    from gearcontact.validation import InputRangeError
+
+    with pytest.raises(InputRangeError):
+        with RunDirectory(str(tmp_path), ["rtl", "soc"], staged=False) as run:
+            (run.work / "amaranth" / "deep").mkdir(parents=True)
+            raise InputRangeError("lanes", 4, "a power of two in [8, 64]")
+    assert not (tmp_path / "amaranth").exists()
+    assert json.loads((tmp_path / MANIFEST).read_text())["exit_code"] == 2
+    with RunDirectory(str(tmp_path), ["rtl", "soc"], staged=False) as run:
+        (run.work / "csr.csv").write_text("ok")
+    assert json.loads((tmp_path / MANIFEST).read_text())["files"][0]["path"] == "csr.csv"

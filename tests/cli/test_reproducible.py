@@ -6,9 +6,14 @@ so every difference between the manifests is a timing, a time stamp or the path.
 """
 
 import json
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 
+import gearcontact
 from gearcontact.cli import main
 from gearcontact.cli.outdir import MANIFEST
 
@@ -34,3 +39,42 @@ def test_identical_runs_identical_files(tmp_path, argv):
         if name.endswith((".json", ".csv", ".md")):
             text = (outs[0] / name).read_text()
             assert "timings_s" not in text and "solve_ms" not in text, name
+
+
+def _run_cli(argv, out, *, hash_seed):
+    """``gearcontact argv --out out`` in a fresh interpreter (its own hash seed and
+    object addresses, as two separate runs have)."""
+    src = str(Path(gearcontact.__file__).parents[1])
+    env = {**os.environ, "PYTHONHASHSEED": str(hash_seed),
+           "PYTHONPATH": os.pathsep.join([src, os.environ.get("PYTHONPATH", "")])}
+    proc = subprocess.run([sys.executable, "-m", "gearcontact", *argv, "--out", str(out)],
+                          env=env, capture_output=True, text=True, timeout=600, check=False)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+
+
+@pytest.mark.parametrize("argv", [
+    ["vectors", "--count", "20"],
+    ["rtl", "verilog", "--core", "chain"],   # fit + hertz sources (all: 7 cores, ~30 s CPU)
+    ["rtl", "soc"],
+], ids=["vectors", "rtl-verilog", "rtl-soc"])
+def test_generated_files_identical_across_runs_and_places(tmp_path, argv):
+    """Two runs in separate processes (other hash seeds), into directories of other
+    names and depths, write the same files with the same bytes; no file names the
+    output directory or the installation path (Amaranth ``src`` attributes, LiteX
+    dates and Yosys script paths are rewritten by :mod:`gearcontact.hw.reproducible`)."""
+    if argv[:2] == ["rtl", "soc"]:
+        pytest.importorskip("litex")
+    outs = [tmp_path / "a", tmp_path / "deeper" / "other_name"]
+    for seed, out in enumerate(outs):
+        _run_cli(argv, out, hash_seed=seed)
+    trees = [sorted(p.relative_to(o).as_posix() for p in o.rglob("*")
+                    if p.is_file() and not p.name.startswith((".", MANIFEST)))
+             for o in outs]
+    assert trees[0] == trees[1] and trees[0]
+    install = str(Path(gearcontact.__file__).parents[1])
+    for name in trees[0]:
+        data = (outs[0] / name).read_bytes()
+        assert data == (outs[1] / name).read_bytes(), name
+        assert str(tmp_path).encode() not in data, name
+        assert install.encode() not in data, name
+        assert b'src = "/' not in data, name    # Amaranth source paths import-relative

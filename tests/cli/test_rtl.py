@@ -140,3 +140,21 @@ def test_sim_gap_lean(capsys):
     out = _json(capsys)
     assert out["mismatches"] == 0 and out["vectors"] == 60 + out["corner_vectors"]
     assert out["cycles"] == 16 + 3 + 4 + 5          # L + ceil(N/L) + log2 L + 5
+
+
+@pytest.mark.parametrize("argv, named", [
+    (["--core", "hertz", "--timeout", "-1"], "--timeout (s) = -1.0"),
+    (["--core", "hertz", "--timeout", "nan"], "--timeout (s) = nan"),
+    # --lanes sets the gap sweep only: on another core it was ignored (a long run of
+    # the fixed netlist instead)
+    (["--core", "tri_core", "--lanes", "5"], "--core tri_core has a fixed netlist")])
+def test_synth_options_checked_before_yosys(tmp_path, capsys, argv, named):
+    from gearcontact.hw import synth as S
+    try:
+        S.require_yosys()
+    except RuntimeError:
+        pytest.skip("no yosys: the tool check comes first")
+    out = tmp_path / "o"
+    assert main(["rtl", "synth", "--out", str(out), *argv]) == 2
+    assert named in capsys.readouterr().err
+    assert not out.exists()

@@ -157,3 +157,17 @@ def test_cutter_radius_sweep_builds_each_variant_and_draws_it(tmp_path, capsys):
                  "--no-figures", "--out", str(out)]) == 0
     assert "0 computed, 4 already finished" in capsys.readouterr().out
     xr.testing.assert_identical(xr.open_zarr(out / "sweep.zarr", consolidated=False).load(), ds)
+
+
+def test_unreachable_scheduler_is_bad_input_before_the_store(tmp_path, capsys):
+    """Nothing listens on the port: exit 2 naming --scheduler (was an internal error
+    after 30 s, with an empty store left behind)."""
+    import dask
+
+    out = tmp_path / "o"
+    with dask.config.set({"distributed.comm.timeouts.connect": "2s"}):
+        code = main(ARGS + ["--scheduler", f"tcp://127.0.0.1:{_free_port()}",
+                            "--out", str(out)])
+    assert code == 2
+    assert "--scheduler" in capsys.readouterr().err
+    assert not (out / "sweep.zarr").exists()

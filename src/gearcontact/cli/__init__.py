@@ -41,7 +41,7 @@ __all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
 COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
-            "bending", "twin", "sweep")
+            "bending", "twin", "sweep", "warm_up")
 
 EXIT_OK = 0
 #: A bug: "internal error, please report" (traceback with --debug).
@@ -100,6 +100,8 @@ def _run_command(args, argv: list[str]) -> int:
     check = getattr(args, "check", None)
     if check is not None:
         check(args)                 # cheap validation before any work or output
+    from .warm_up import note_cold_cache
+    note_cold_cache(args.command)
     if not getattr(args, "writes_files", False):
         return int(args.func(args) or 0)
     from .outdir import RunDirectory
@@ -116,8 +118,12 @@ def _run_command(args, argv: list[str]) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the process exit code."""
-    parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        parser = build_parser()      # imports every command module: seconds when cold
+    except KeyboardInterrupt:
+        print("gearcontact: interrupted", file=sys.stderr)
+        return 130
     args = parser.parse_args(argv)
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:

@@ -32,9 +32,9 @@ def register(sub) -> None:
                    metavar="T", help="gear torques in N·m (default 32.25 64.5 129 258)")
     p.add_argument("--lte-torque", type=float, default=64.5, metavar="T",
                    help="gear torque of the loaded-TE run, N·m (default 64.5)")
-    p.add_argument("--lte-phases", type=int, default=61,
-                   help="phases of the loaded-TE run over one pitch (default 61, every TCA "
-                        "phase; 0 skips it)")
+    p.add_argument("--lte-phases", type=int, default=None,
+                   help="phases of the loaded-TE run over one pitch, 3 to --phases "
+                        "(default: every TCA phase; 0 skips it)")
     p.add_argument("--rigid", action="store_true",
                    help="loaded TE with rigid teeth (default: with the shell bending of "
                         "both teeth)")
@@ -50,8 +50,13 @@ def check(args) -> None:
     for t in args.torques:
         check_torque("--torques (N·m)", t, args.gear_pair)
     check_torque("--lte-torque (N·m)", args.lte_torque, args.gear_pair)
+    if args.lte_phases is None:
+        args.lte_phases = args.phases
     if args.lte_phases != 0:
-        check_count("--lte-phases", args.lte_phases, 3, MAX_PHASES, note=", or 0 to skip")
+        # the loaded TE runs on TCA phases: more than --phases would silently be --phases
+        check_count("--lte-phases", args.lte_phases, 3, min(args.phases, MAX_PHASES),
+                    note=f", or 0 to skip (at most --phases = {args.phases}: the loaded TE "
+                         "runs on TCA phases)")
 
 
 def run(args) -> int:

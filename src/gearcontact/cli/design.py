@@ -41,6 +41,10 @@ _SINGLE = (
 )
 
 
+#: Targets of ``--synthesize-easeoff`` when not given.
+SYNTHESIS_DEFAULTS = {"te0_arcsec": 3.0, "pattern_length_ratio": 0.35}
+
+
 def register(sub) -> None:
     p = sub.add_parser("design", help="blank / pitch-cone data of a gear pair (ISO 23509)",
                        description=__doc__.split("\n\n")[1])
@@ -65,9 +69,9 @@ def register(sub) -> None:
     p.add_argument("--synthesize-easeoff", action="store_true",
                    help="local synthesis of the ease-off of both sides (TCA in the loop, "
                         "~10-30 s per side); prints the [easeoff.drive]/[easeoff.coast] TOML")
-    p.add_argument("--te0-arcsec", type=float, default=3.0,
+    p.add_argument("--te0-arcsec", type=float, default=None,
                    help="with --synthesize-easeoff: TE0 peak-to-peak, arcsec (default 3)")
-    p.add_argument("--pattern-length-ratio", type=float, default=0.35,
+    p.add_argument("--pattern-length-ratio", type=float, default=None,
                    help="with --synthesize-easeoff: paint-ellipse length over the gear face "
                         "width (default 0.35; practice 1/3 to 1/2)")
     p.add_argument("--path-angle-deg", type=float, default=None,
@@ -83,6 +87,24 @@ def check(args) -> None:
     pair = args.gear_pair = load_pair(args.pair)
     if args.calibrate and args.synthesize_easeoff:
         raise InputRangeError("--calibrate / --synthesize-easeoff", "both", "one of the two")
+    # an option of a mode that is not asked for would be ignored without a word
+    for option, value, mode in (("--tip-margin", args.tip_margin, args.calibrate),
+                                ("--te0-arcsec", args.te0_arcsec, args.synthesize_easeoff),
+                                ("--pattern-length-ratio", args.pattern_length_ratio,
+                                 args.synthesize_easeoff),
+                                ("--path-angle-deg", args.path_angle_deg,
+                                 args.synthesize_easeoff),
+                                ("--out", args.out, args.calibrate or args.synthesize_easeoff)):
+        if value is not None and not mode:
+            needs = ("--calibrate" if option == "--tip-margin" else "--synthesize-easeoff"
+                     if option != "--out" else "--calibrate or --synthesize-easeoff")
+            raise InputRangeError(option, value, f"given only with {needs} (without it "
+                                                 "the option has no effect)")
+    if args.synthesize_easeoff:
+        args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
+            else args.te0_arcsec
+        args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
+            if args.pattern_length_ratio is None else args.pattern_length_ratio
     if args.calibrate:
         from ..report.analyze import published_values
 

@@ -14,7 +14,7 @@ from .outdir import add_out_argument
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
-           "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm",
+           "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm", "torque_floor_nm",
            "rename_load_error", "load_pair_for", "parse_misalignment",
            "MISALIGNMENT_HELP"]
 
@@ -137,16 +137,28 @@ def torque_limit_nm(pair, lever_mm: float | None = None) -> float:
     return ENVELOPE["load_n"][1] * lever_mm / 1e3
 
 
+def torque_floor_nm(pair) -> float:
+    """Gear torque (N·m) below which the normal load W = T / lever is certainly under the
+    preview envelope's lower end: the lever is at least the gear's inner pitch radius."""
+    from ..preview.hertz.reference import ENVELOPE
+
+    lever_mm = pair.blank.mean_pitch_radius_gear_mm - 0.5 * pair.gear_face_width_mm
+    return ENVELOPE["load_n"][0] * lever_mm / 1e3
+
+
 def check_torque(field: str, value, pair) -> float:
-    """A gear torque in (0, :func:`torque_limit_nm`] N·m for ``pair``."""
+    """A gear torque in [:func:`torque_floor_nm`, :func:`torque_limit_nm`] N·m for
+    ``pair``."""
     from ..preview.hertz.reference import ENVELOPE
 
     t = check_positive(field, value)
-    hi = torque_limit_nm(pair)
-    if t > hi:
-        raise InputRangeError(field, value, f"(0, {hi:.6g}] for pair {pair.name} (its normal "
-                                            f"load must stay <= {ENVELOPE['load_n'][1]:g} N, "
-                                            "the preview envelope)")
+    lo, hi = torque_floor_nm(pair), torque_limit_nm(pair)
+    if not lo <= t <= hi:
+        raise InputRangeError(field, value, f"[{lo:.3g}, {hi:.6g}] for pair {pair.name} (its "
+                                            "normal load must stay in "
+                                            f"[{ENVELOPE['load_n'][0]:g}, "
+                                            f"{ENVELOPE['load_n'][1]:g}] N, the preview "
+                                            "envelope)")
     return t
 
 

@@ -46,7 +46,7 @@ from datetime import datetime, timezone
 from importlib import metadata
 from pathlib import Path
 
-from ..validation import InputRangeError
+from ..validation import InputRangeError, UnusableInput
 
 __all__ = ["MANIFEST", "LOCK_NAME", "OutputDirectoryError", "RunDirectory",
            "add_out_argument", "final_path", "write_atomic"]
@@ -168,6 +168,13 @@ def _remove_empty_dirs(root: Path, rel_files) -> None:
             (root / d).rmdir()
         except OSError:
             pass  # not empty (foreign or new files) or already gone
+
+
+def _exit_code_of(exc_type) -> int:
+    """The exit code :func:`gearcontact.cli.main` gives a run that raised ``exc_type``."""
+    if issubclass(exc_type, (InputRangeError, UnusableInput)):
+        return 2
+    return 130 if issubclass(exc_type, KeyboardInterrupt) else 1
 
 
 class RunDirectory:
@@ -328,9 +335,23 @@ class RunDirectory:
                 os.replace(self.work / f, target)
             self._remove_previous(keep=files)
         else:
+            self._remove_empty_dirs_left()
             files = [f for f in _tree(self.path)[0] if f not in self._foreign
                      or (self.path / f).stat().st_mtime >= self._started_wall]
         return files
+
+    def _remove_empty_dirs_left(self) -> None:
+        """In place: directories this run left empty (e.g. made before it failed) are
+        listed nowhere, so the next run would take them for foreign: remove them."""
+        for here, _dnames, _fnames in os.walk(self.path, topdown=False):
+            rel = Path(here).relative_to(self.path)
+            if (rel == Path(".") or _ours(rel.parts[0]) or rel.parts[0] in self.resume
+                    or rel.as_posix() in self._foreign):
+                continue                    # ours, a resumed store (zarr), or foreign
+            try:
+                os.rmdir(here)
+            except OSError:
+                pass                        # not empty
 
     def _manifest(self, files) -> dict:
         entries = []
@@ -363,7 +384,7 @@ class RunDirectory:
             if not failed or not self.staged:
                 files = self._commit()
                 if exc_type is not None:
-                    self.exit_code = 1
+                    self.exit_code = _exit_code_of(exc_type)
                 write_atomic(self.path / MANIFEST,
                              json.dumps(self._manifest(files), indent=2) + "\n")
         finally:

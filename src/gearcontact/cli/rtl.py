@@ -17,6 +17,7 @@ import sys
 from pathlib import Path
 
 from ..hw.harness_cores import CORE_NAMES, SIMULATORS, CoreUnavailable, get_bench
+from ..hw.reproducible import portable_src
 from ..hw.verilator import (
     VerilatorBuildError,
     VerilatorNotFound,
@@ -188,7 +189,7 @@ def run_verilog(args) -> int:
     for core in (CORE_NAMES if args.core == "all" else (args.core,)):
         bench = get_bench(core)
         try:
-            text = bench.verilog()
+            text = portable_src(bench.verilog())    # same bytes wherever installed
         except CoreUnavailable as exc:
             return _error(str(exc))
         path = out / f"{bench.spec.top}.v"

@@ -14,13 +14,17 @@ from dataclasses import asdict
 from pathlib import Path
 
 from . import EXIT_BAD_INPUT
-from ..validation import InputRangeError
+from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument
 
 #: Exit code when an optional tool is missing or a run fails.
 EXIT_UNAVAILABLE = EXIT_BAD_INPUT
 
 __all__ = ["register_rtl_subcommands", "run_soc", "run_synth"]
+
+
+#: Lane counts of the gap-core synthesis sweep when ``--lanes`` is not given.
+DEFAULT_LANES = "8,16,32,64"
 
 
 def register_rtl_subcommands(cmds) -> None:
@@ -45,8 +49,8 @@ def register_rtl_subcommands(cmds) -> None:
                    help="default gap (split partial products, 21 DSP48E1 per lane); "
                         "gap_plain is the published netlist (30 per lane), gap_lean the "
                         "15-per-lane variant; with --committed: only this core")
-    y.add_argument("--lanes", default="8,16,32,64", metavar="L,L,...",
-                   help="gap lane counts (default 8,16,32,64)")
+    y.add_argument("--lanes", default=None, metavar="L,L,...",
+                   help=f"gap lane counts, gap cores only (default {DEFAULT_LANES})")
     add_out_argument(y, required=False)
     # Yosys logs name their work directories: in place, so checked before any removal
     y.set_defaults(staged_output=False, check=check_synth)
@@ -78,7 +82,13 @@ class ToolUnavailable(InputRangeError):
 
 
 def check_soc(args) -> None:
-    """Before the output directory is touched (soc writes in place): LiteX present."""
+    """Before the output directory is touched (soc writes in place): LiteX present,
+    ``--lanes`` a lane count of the gap core."""
+    from ..preview.gap.reference import check_lanes
+    try:
+        check_lanes(args.lanes)
+    except InputRangeError as exc:
+        raise InputRangeError("--lanes", args.lanes, exc.allowed) from None
     try:
         import litex  # noqa: F401
         import migen  # noqa: F401
@@ -101,7 +111,15 @@ def check_synth(args) -> None:
         S.require_yosys(args.tool)
     except RuntimeError as exc:
         raise ToolUnavailable(str(exc)) from None
-    if (args.core or "gap") in S.GAP_CORES:
+    if args.timeout is not None:
+        check_positive("--timeout (s)", args.timeout)
+    core = args.core or "gap"
+    if core not in S.GAP_CORES and args.lanes is not None:
+        raise InputRangeError("--lanes", args.lanes, f"not given: it sets the lane counts "
+                              f"of the gap cores {', '.join(S.GAP_CORES)}; "
+                              f"--core {core} has a fixed netlist")
+    if core in S.GAP_CORES:
+        args.lanes = DEFAULT_LANES if args.lanes is None else args.lanes
         try:
             lanes = [int(x) for x in args.lanes.split(",") if x]
         except ValueError:
@@ -172,7 +190,8 @@ def run_synth(args) -> int:
     try:
         if args.core in S.GAP_CORES:
             try:
-                lanes = S.check_lanes_list([int(x) for x in args.lanes.split(",") if x])
+                lanes = S.check_lanes_list([int(x) for x in
+                                            (args.lanes or DEFAULT_LANES).split(",") if x])
             except ValueError as exc:
                 return _error(f"--lanes {args.lanes!r}: {exc}")
             results = S.lane_sweep(out, lanes, nodsp=args.nodsp, timeout=args.timeout,

@@ -95,17 +95,33 @@ def check(args) -> None:
         cells=args.cells, solver=SOLVER))
 
 
+def _connect(address: str):
+    """A client of the scheduler at ``address``, connected before the store is touched;
+    an unreachable scheduler is bad input naming ``--scheduler`` (exit 2)."""
+    from distributed import Client
+
+    try:
+        return Client(address)
+    except OSError as exc:     # refused, unknown host, or Dask's connect timeout
+        raise InputRangeError("--scheduler", address, f"the address of a running Dask "
+                              f"scheduler (connecting failed: {exc})") from None
+
+
 def run(args) -> int:
     from ..sweep.run import run_sweep
 
     if getattr(args, "grid", None) is None:
         check(args)
     pair, grid = args.gear_pair, args.grid
-    report = run_sweep(pair, grid, out=args.out, side=args.side,
-                       compute=tuple(args.compute.split(",")), phases=args.phases,
-                       cells=args.cells, solver=SOLVER, scheduler=args.scheduler,
-                       workers=args.workers,
-                       progress=not args.quiet)
+    client = _connect(args.scheduler) if args.scheduler is not None else None
+    try:
+        report = run_sweep(pair, grid, out=args.out, side=args.side,
+                           compute=tuple(args.compute.split(",")), phases=args.phases,
+                           cells=args.cells, solver=SOLVER, workers=args.workers,
+                           client=client, progress=not args.quiet)
+    finally:
+        if client is not None:
+            client.close()
     run_timings(args, sweep_s=report.wall_s, cells_computed=report.computed)
     if not args.no_figures:      # redrawn on every run
         from ..sweep.plots import plot_design, plot_maps

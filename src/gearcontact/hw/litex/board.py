@@ -34,6 +34,7 @@ from migen import ClockSignal, Instance, Module, ResetSignal, Signal
 
 from ..bus import port_name
 from ..regmap import CSR_PAGE, SRAM_SIZE, SocMap, get_map
+from ..reproducible import reproducible_tree
 from ..soc import _DATAPATH_REGIONS, PROBE_BITS, _constants, datapath_ports
 from .platform import CLK_FREQ_HZ, Platform
 
@@ -179,6 +180,8 @@ def generate(out_dir, *, kind: str = "tri_core", lanes: int = 16,
                       + BUILD_SCRIPT_NOTE.format(dbpart=paths.pop("dbpart"), name=name)
                       + "\nHost side: `litex_server --jtag` then "
                         "`gearcontact.hw.driver.PreviewDriver(LiteXRemoteTransport())`.\n")
+    # byte-identical across runs and install locations (issue 12)
+    reproducible_tree(out, here=out / "gateware")
     return {**paths, "datapath": dp, "csr_csv": out / "csr.csv",
             "csr_json": out / "csr.json", "readme": readme}
 

@@ -1,0 +1,97 @@
+"""``gearcontact warm-up``: compile the numba kernels ahead of the first real run.
+
+The compiled kernels (TCA gap search, spline and flank evaluation, the LCP solvers,
+tooth bending) are kept in numba's on-disk cache: ``NUMBA_CACHE_DIR`` if set, else
+``__pycache__`` beside the sources, or a user cache directory when the installation is
+read-only. That cache is keyed to the source files and to this CPU, so a wheel does not
+carry it; the first command after an install compiles instead (docs/performance.md
+gives the times). ``gearcontact warm-up`` does that compilation at a moment of the
+user's choosing (an image build, a CI step, right after ``pip install``): it runs a
+small ``gearcontact analyze`` of the default pair (few phases, two torques, no
+figures) in a temporary directory, which calls every kernel signature a default run
+calls, and deletes the directory. The commands that compile print one line on stderr
+when they find the cache cold (:func:`note_cold_cache`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+__all__ = ["register", "run", "cache_is_cold", "cache_directory", "note_cold_cache",
+           "WARM_UP_ARGUMENTS", "COMPILING_COMMANDS"]
+
+#: The run that compiles the kernels: every stage of ``analyze`` (design, TCA, LTCA,
+#: multi-tooth mesh, loaded TE, fixed-point preview) at the smallest useful size.
+WARM_UP_ARGUMENTS = ("analyze", "--pair", "s0003", "--phases", "9", "--torques", "64.5",
+                     "258", "--lte-phases", "3", "--no-figures", "--quiet")
+
+#: Commands that call numba kernels whose compilation takes seconds on a cold cache.
+COMPILING_COMMANDS = frozenset({"analyze", "reproduce", "tca", "ltca", "lte", "bending",
+                                "sweep"})
+
+
+def register(sub) -> None:
+    p = sub.add_parser("warm-up", help="compile the numba kernels into their on-disk cache "
+                                       "now (once after an install; later runs load them)",
+                       description=__doc__.split("\n\n")[1])
+    p.add_argument("--quiet", action="store_true", help="print nothing on success")
+    p.set_defaults(func=run)
+
+
+def _sentinel():
+    """A kernel every compiling command calls (the TCA line intersection)."""
+    from ..tca.gap_kernel import intersect_lines
+    return intersect_lines
+
+
+def cache_directory() -> Path | None:
+    """Where numba keeps the cached kernels of this installation (None if unknown)."""
+    try:
+        from numba.core.caching import FunctionCache
+        return Path(FunctionCache(_sentinel().py_func)._cache_path)
+    except Exception:  # noqa: BLE001  (numba internals: no message rather than a failure)
+        return None
+
+
+def cache_is_cold() -> bool:
+    """Whether numba's cache holds no compiled code of the current sources for the
+    sentinel kernel (a fresh install, or sources changed since the last run)."""
+    try:
+        from numba.core.caching import FunctionCache
+        return not FunctionCache(_sentinel().py_func)._cache_file._load_index()
+    except Exception:  # noqa: BLE001  (numba internals: assume warm, print nothing)
+        return False
+
+
+def note_cold_cache(command: str) -> None:
+    """One line on stderr when ``command`` is about to compile on a cold cache."""
+    if command in COMPILING_COMMANDS and cache_is_cold():
+        print(f"gearcontact {command}: note: first run after install (or a source change): "
+              "numba compiles its kernels into its cache now (about 10 s of CPU, once); "
+              "`gearcontact warm-up` does this ahead of time", file=sys.stderr)
+
+
+def run(args) -> int:
+    from . import EXIT_INTERNAL, main
+
+    start = time.perf_counter()
+    where = cache_directory()
+    with tempfile.TemporaryDirectory(prefix="gearcontact-warm-up-") as tmp:
+        captured = io.StringIO()
+        with contextlib.redirect_stdout(captured), contextlib.redirect_stderr(captured):
+            code = main([*WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "run")])
+    if code != 0:
+        print(captured.getvalue().rstrip(), file=sys.stderr)
+        print(f"gearcontact warm-up: error: the warm-up run ended with exit code {code}",
+              file=sys.stderr)
+        return EXIT_INTERNAL
+    if not args.quiet:
+        print(f"numba kernels compiled or loaded in {time.perf_counter() - start:.1f} s; "
+              f"cache: {where if where is not None else 'numba default'}")
+    return 0

@@ -1,0 +1,64 @@
+"""``gearcontact warm-up`` and the first-run note on a cold numba cache.
+
+Truth: numba's own compile events. Each run is a fresh interpreter with its own empty
+``NUMBA_CACHE_DIR`` (the state right after an install)."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import gearcontact
+
+SRC = str(Path(gearcontact.__file__).parents[1])
+
+#: Runs the command line with numba's compile events counted; prints the count last.
+_COUNTING = r"""
+import sys
+from numba.core import event
+from gearcontact.cli import main
+rec = event.install_recorder("numba:compile")
+with rec:
+    code = main(sys.argv[1:])
+print("compiled", sum(1 for _, e in rec.buffer if e.is_start), file=sys.stderr)
+sys.exit(code)
+"""
+
+
+def _cli(argv, cache, *, count=False):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache),
+           "PYTHONPATH": os.pathsep.join([SRC, os.environ.get("PYTHONPATH", "")])}
+    head = [sys.executable, "-c", _COUNTING] if count else [sys.executable, "-m",
+                                                             "gearcontact"]
+    proc = subprocess.run(head + list(argv), env=env, capture_output=True, text=True,
+                          timeout=1800, check=False)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    return proc.stderr
+
+
+def test_first_run_note_once(tmp_path):
+    """A compiling command prints the one-line note on an empty cache, not once the
+    cache holds its kernels; a command that compiles nothing never prints it."""
+    cache = tmp_path / "numba"
+    argv = ["tca", "--pair", "s0003-centred", "--phases", "3", "--quiet", "--no-figures"]
+    first = _cli(argv + ["--out", str(tmp_path / "a")], cache)
+    notes = [line for line in first.splitlines() if "note: first run" in line]
+    assert len(notes) == 1 and "gearcontact warm-up" in notes[0]
+    again = _cli(argv + ["--out", str(tmp_path / "b")], cache)
+    assert "note: first run" not in again
+    other = _cli(["design", "--pair", "s0003"], tmp_path / "other")
+    assert "note: first run" not in other
+
+
+@pytest.mark.slow
+def test_warm_up_compiles_everything_a_default_analyze_calls(tmp_path):
+    """After ``gearcontact warm-up`` into an empty cache, a default ``analyze`` compiles
+    no kernel at all (every signature is loaded from the cache)."""
+    cache = tmp_path / "numba"
+    _cli(["warm-up", "--quiet"], cache)
+    err = _cli(["analyze", "--pair", "s0003", "--quiet", "--out", str(tmp_path / "a")],
+               cache, count=True)
+    assert err.strip().splitlines()[-1] == "compiled 0"
+    assert "note: first run" not in err
