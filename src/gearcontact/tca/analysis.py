@@ -13,6 +13,7 @@ from tqdm import tqdm
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from .line_contact import LineContact, is_conjugate, line_contact
+from .edge_contact import pushes_forward, solve_edge_contact
 from .edges import PatternOffFlank, exit_counts, pattern_edges
 from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
                         relative_curvature)
@@ -87,8 +88,8 @@ def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
     theta = 2.0 * np.pi * np.arange(int(outline_points)) / int(outline_points)
     ok = np.zeros(len(cycle.contact), dtype=bool)
     for k, (mp, ell) in enumerate(zip(cycle.contact, cycle.ellipse)):
-        if not np.isfinite(ell.semi_major_mm):
-            continue
+        if mp.edge_contact or not np.isfinite(ell.semi_major_mm):
+            continue        # an edge contact's pattern reaches its edge
         field = gap_at(pinion, gear, kin, mp, ell.semi_major_mm * np.cos(theta),
                        ell.semi_minor_mm * np.sin(theta), frame="principal")
         ok[k] = bool(field.on_flank.all())
@@ -247,8 +248,10 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
             for v in np.linspace(b.v_toe + 0.5 * dv, b.v_heel - 0.5 * dv, 7)]
     grid.sort(key=lambda uv: ((uv[0] - U[k]) / du) ** 2 + ((uv[1] - V[k]) / dv) ** 2)
     exits = [error.where if isinstance(error, EdgeContact) else "no convergence"]
+    tried = [first]
     for u1, v1 in near + grid:
         guess = conjugate_contact(conj, gear, pair, u1, v1)
+        tried.append(guess)
         try:
             solve_mating_point(pinion, gear, kin, guess, fixed="u1")
             return guess, "u1"
@@ -256,4 +259,11 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
             exits.append(exc.where)
         except TcaConvergenceError:
             exits.append("no convergence")
+    # no surface contact anywhere: an edge of one flank touching the other (the bearing
+    # lies beyond the edge at every phase, e.g. a large offset error)
+    for guess in tried[:1 + len(near)]:
+        mp = solve_edge_contact(pinion, gear, kin, guess.phi1_rad, guess=guess,
+                                forward=pushes_forward(gear, kin, guess))
+        if mp is not None:
+            return mp.as_guess(), "phi1"
     raise PatternOffFlank(exit_counts(exits), context=f" on the {side} side")

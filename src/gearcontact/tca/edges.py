@@ -97,7 +97,8 @@ def pattern_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, cycle,
                   on_flank: np.ndarray, *, outline_points: int = 16) -> tuple[str, ...]:
     """Per phase of ``cycle``: the edge the transmitting contact reaches, or ``""``.
 
-    An edge phase of the path (no interior mating point) reports its solver boundary.
+    A phase without contact reports its solver boundary; an edge-to-surface contact
+    (:mod:`gearcontact.tca.edge_contact`) reports its edge.
     A phase whose paint ellipse is not on both flanks (``on_flank`` False, from the
     exact normal-line projection of :func:`~gearcontact.tca.analysis.pattern_on_flank`)
     reports the edge that the ellipse outline crosses furthest, located by mapping the
@@ -109,6 +110,9 @@ def pattern_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, cycle,
     for k, (mp, rc, ell) in enumerate(zip(cycle.contact, cycle.curvature, cycle.ellipse)):
         if mp.edge:
             out.append(edge_name(mp.edge_where))
+            continue
+        if mp.edge_contact:     # an edge touching the other flank
+            out.append(mp.edge_contact)
             continue
         if on_flank[k]:
             out.append("")

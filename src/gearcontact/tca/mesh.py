@@ -32,8 +32,9 @@ from ..geometry.surface import Surface
 from ..validation import check_positive
 from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
+from .edge_contact import contact_state
 from .edges import ContactGap
-from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
+from .solve import ContactGuess, MatingPoint, TcaPath, solve_tca
 
 __all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
 
@@ -178,7 +179,7 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         raise ValueError(f"center = {center!r} is not 'vertex' or 'start'")
     n = int(phases) - 1
     step = 2.0 * np.pi / int(pinion_teeth) / n
-    first = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed)
+    first = contact_state(pinion, gear, kin, start, fixed=start_fixed)
     rot2, t2 = kin.gear_pose(first.phi2_rad)
     envelope_is_max = bool(first.normal @ np.cross(kin.gear_axis, first.point_mm - t2) < 0.0)
     k0 = n // 2
