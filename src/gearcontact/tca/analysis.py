@@ -99,7 +99,7 @@ def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
 def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
             start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
             pairs: int = 2, stencil_off_flank: str = "quadric",
-            progress: bool = False) -> TcaAnalysis:
+            edge_contact: bool = True, progress: bool = False) -> TcaAnalysis:
     """Run the whole unloaded analysis.
 
     Parameters
@@ -121,6 +121,9 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
         boundary (:func:`~gearcontact.tca.stencil.hardware_stencil`); the samples
         concerned are recorded in ``stencil.on_flank``. The 80 x 80 field never
         extrapolates (NaN, ``on_flank`` False).
+    edge_contact : bool
+        Edge-to-surface contact where the surface contact leaves a flank (default), or
+        surface contact only (:func:`~gearcontact.tca.mesh.mesh_cycle`).
     progress : bool
         Show progress bars.
     """
@@ -129,7 +132,7 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     t0 = time.perf_counter()
     cycle = mesh_cycle(pinion, gear, kin, pinion_teeth=pinion_teeth, start=start,
                        start_fixed=start_fixed, phases=phases, pairs=pairs,
-                       progress=progress)
+                       edge_contact=edge_contact, progress=progress)
     timings["mesh_cycle"] = time.perf_counter() - t0
     stages.update(1)
     table = phase_table(cycle)
@@ -154,12 +157,15 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
 
 
 def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int = 2,
-                 flanks=None, progress: bool = False) -> tuple[TcaAnalysis, object]:
+                 flanks=None, edge_contact: bool = True,
+                 progress: bool = False) -> tuple[TcaAnalysis, object]:
     """Build the flanks of a :class:`~gearcontact.geometry.pair.GearPair` and analyze
     one side (default the pair's ``design_side``) with the pair's assembly errors.
 
     The reference point is the mating point at ``phi1_0 = u phi2_0`` of the conjugate
     mean contact reported by :func:`~gearcontact.geometry.flank.build_flanks`.
+    ``edge_contact`` (default True) continues the paths through edge-to-surface
+    contact (:mod:`gearcontact.tca.edge_contact`); False: surface contact only.
 
     Returns
     -------
@@ -190,14 +196,16 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
         raise LineContact(line_contact(flanks.flank("pinion", side), flanks.flank("gear", side),
                                        kin, start, pinion_teeth=pair.pinion_teeth,
                                        phases=phases), side=side)
-    start, fixed = reference_start(pair, flanks, side)
+    start, fixed = reference_start(pair, flanks, side, edge_contact=edge_contact)
     result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
                      pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
-                     phases=phases, pairs=pairs, progress=progress)
+                     phases=phases, pairs=pairs, edge_contact=edge_contact,
+                     progress=progress)
     return result, flanks
 
 
-def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
+def reference_start(pair, flanks, side: str, *,
+                    edge_contact: bool = True) -> tuple[ContactGuess, str]:
     """A contact state from which the mesh cycle of ``side`` can start, and the variable
     its first solve holds.
 
@@ -261,7 +269,7 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
             exits.append("no convergence")
     # no surface contact anywhere: an edge of one flank touching the other (the bearing
     # lies beyond the edge at every phase, e.g. a large offset error)
-    for guess in tried[:1 + len(near)]:
+    for guess in tried[:1 + len(near)] if edge_contact else ():
         mp = solve_edge_contact(pinion, gear, kin, guess.phi1_rad, guess=guess,
                                 forward=pushes_forward(gear, kin, guess))
         if mp is not None:

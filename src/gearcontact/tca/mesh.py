@@ -34,7 +34,7 @@ from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
 from .edge_contact import contact_state
 from .edges import ContactGap
-from .solve import ContactGuess, MatingPoint, TcaPath, solve_tca
+from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
 
 __all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
 
@@ -130,7 +130,8 @@ _RECENTRE_TRIES = 4
 def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
                start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
                pairs: int = 2, paint_mm: float = PAINT_THICKNESS_MM,
-               center: str = "vertex", progress: bool = False) -> MeshCycle:
+               center: str = "vertex", edge_contact: bool = True,
+               progress: bool = False) -> MeshCycle:
     """Run TCA of pair 0 over ``2 pairs + 1`` pitches (plus one either side to find the
     vertex) and assemble the mesh cycle.
 
@@ -158,6 +159,10 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         ``"vertex"`` (default): the reference point P0 (TE0 = 0, centre of the pitch
         window) is the path phase of least relief, i.e. the extremum of the pair's TE0
         (the vertex of the parabola); ``"start"``: the solved ``start`` point.
+    edge_contact : bool
+        Continue each pair's path through edge-to-surface contact (default;
+        :mod:`gearcontact.tca.edge_contact`) or stop it at the first flank boundary
+        (surface contact only, as surface-only TCA codes report).
     progress : bool
         Show a progress bar over the phases.
 
@@ -179,7 +184,8 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         raise ValueError(f"center = {center!r} is not 'vertex' or 'start'")
     n = int(phases) - 1
     step = 2.0 * np.pi / int(pinion_teeth) / n
-    first = contact_state(pinion, gear, kin, start, fixed=start_fixed)
+    first = (contact_state(pinion, gear, kin, start, fixed=start_fixed) if edge_contact
+             else solve_mating_point(pinion, gear, kin, start, fixed=start_fixed))
     rot2, t2 = kin.gear_pose(first.phi2_rad)
     envelope_is_max = bool(first.normal @ np.cross(kin.gear_axis, first.point_mm - t2) < 0.0)
     k0 = n // 2
@@ -190,6 +196,7 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     for _ in range(_RECENTRE_TRIES):
         grid = first.phi1_rad + step * ks
         path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
+                         edges=edge_contact,
                          max_step_rad=2.0 * np.pi / int(pinion_teeth)
                          / CONTINUATION_STEPS_PER_PITCH)
         if center != "vertex":
