@@ -451,6 +451,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         With TE0 relative to the reference point, arcsec.
     """
     from .edge_contact import contact_state, pushes_forward, solve_edge_contact
+    from .edges import solver_boundary
 
     phis = np.asarray(phi1_rad, dtype=float).ravel()
     if phis.size == 0 or np.any(np.diff(phis) <= 0.0):
@@ -510,7 +511,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
             else:
                 # edge mode: the edge contact, or the surface point if it is back on the
                 # flanks and touches first
-                where = prev.edge_contact
+                where = solver_boundary(prev.edge_contact)
                 guess = replace(prev.as_guess(), phi1_rad=phis[i],
                                 phi2_rad=prev.phi2_rad + (phis[i] - prev.phi1_rad) / kin.ratio)
                 try:   # a short attempt: from the edge the surface point is near or off
