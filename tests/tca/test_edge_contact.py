@@ -53,7 +53,7 @@ def test_edge_contact_equals_surface_contact_exactly_on_the_edge(s0003_pair, s00
     """At the phase where the surface mating point lies on the edge, the edge contact
     gives the same gear angle within 1e-4 arcsec and the same point within 1e-6 mm
     (both Newton solves converge to 1e-10 mm; the 1-D Brent search along the edge to
-    1e-7 mm, whose error enters phi2 only at second order)."""
+    1e-5 mm, whose error enters phi2 only at second order)."""
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
     for surf, edge in _transitions(s0003_drive.cycle.path):
@@ -126,7 +126,7 @@ def test_interior_edge_contact_has_the_edge_tangent_in_the_touched_plane(
         s0003_pair, s0003_flanks, s0003_drive):
     """At an edge contact inside its edge (not a corner), d phi2/ds = 0: the edge
     tangent lies in the touched surface's tangent plane (|t . n| < 1e-5, the Brent
-    tolerance 1e-7 mm over edge curvature radii of mm)."""
+    tolerance 1e-5 mm times the rate of turn of the edge tangent, well below 1/mm)."""
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
     checked = 0

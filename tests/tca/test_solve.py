@@ -145,7 +145,7 @@ def test_edge_contact_beyond_a_narrow_face_matches_the_closed_form():
     """With edge contact (default) the path continues beyond the band's ends as the
     torus's edge circle touching the sphere; its gear angle matches the closed-form
     circle-sphere touch within 1e-9 rad (Newton 1e-10 mm over ~30 mm radii; Brent along
-    the edge 1e-7, second order in phi2), and TE0 is continuous across the switch."""
+    the edge 1e-5 mm, second order in phi2), and TE0 is continuous across the switch."""
     from gearcontact.tca.solve import ARCSEC_PER_RAD
 
     case = sphere_torus_case()

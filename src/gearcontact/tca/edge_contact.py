@@ -50,14 +50,14 @@ from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError,
                     posed_point, solve_mating_point)
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
-           "pushes_forward", "solve_edge_contact", "contact_state"]
+           "pushes_forward", "inward_slope", "solve_edge_contact", "contact_state"]
 
 #: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
 EDGE_NAMES = ("toe", "heel", "root", "tip")
 
 #: Samples along an edge before the 1-D refinement (the extreme of ``phi2(s)`` is
 #: bracketed by the best sample's neighbours).
-EDGE_SAMPLES = 9
+EDGE_SAMPLES = 7
 
 
 @dataclass(frozen=True)
@@ -180,6 +180,28 @@ class _EdgeSolver:
                            float(v2), x, n, edge_contact=self.edge.label)
 
 
+def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                 mp: MatingPoint) -> float:
+    """Slope of the separation from the edge into its own flank at an edge contact.
+
+    ``(d X_own / d q) . n_other`` for a unit step ``q`` on the own flank perpendicular
+    to the edge, inwards, with ``n_other`` the touched flank's normal out of its
+    tooth. Positive: the flank behind the edge recedes from the other flank, so the
+    edge is the first point to touch; negative: the flank surface inside the edge
+    touches first (the surface contact is back on the flanks).
+    """
+    member, _, name = mp.edge_contact.partition(" ")
+    if member == "pinion":
+        sp, rot, n_other = pinion.point(mp.u1, mp.v1), kin.pinion_pose(mp.phi1_rad)[0], mp.normal
+    else:
+        sp, rot, n_other = gear.point(mp.u2, mp.v2), kin.gear_pose(mp.phi2_rad)[0], -mp.normal
+    along, across, sign = {"toe": (sp.r_u, sp.r_v, 1.0), "heel": (sp.r_u, sp.r_v, -1.0),
+                           "root": (sp.r_v, sp.r_u, 1.0), "tip": (sp.r_v, sp.r_u, -1.0)}[name]
+    t = along / np.linalg.norm(along)
+    inward = sign * (across - (across @ t) * t)
+    return float((rot @ (inward / np.linalg.norm(inward))) @ n_other)
+
+
 def _guess_y(edge: FlankEdge, guess: ContactGuess) -> np.ndarray:
     if edge.member == "pinion":
         return np.array([guess.u2, guess.v2, guess.phi2_rad])
@@ -193,9 +215,12 @@ def _guess_s(surface: Surface, edge: FlankEdge, guess: ContactGuess) -> float:
 
 
 def _edge_samples(solver: _EdgeSolver, guess: ContactGuess, forward: bool,
-                  samples: int) -> tuple[float, np.ndarray, np.ndarray, list] | None:
+                  samples: int, memo: dict | None = None
+                  ) -> tuple[float, np.ndarray, np.ndarray, list] | None:
     """Sample ``phi2(s)`` along one edge: ``(best score, samples s, scores, solutions)``,
-    or None if no sample of the edge meets the other flank."""
+    or None if no sample of the edge meets the other flank. ``memo`` (per edge: sample
+    ``s`` -> ``(phi1, y)`` of an earlier phase) gives each sample its own Newton start,
+    turned by the nominal ratio."""
     lo, hi = edge_span(solver.own, solver.edge.name)
     s0 = _guess_s(solver.own, solver.edge, guess)
     # the guess's own position and its close neighbours join the even samples: the
@@ -207,13 +232,22 @@ def _edge_samples(solver: _EdgeSolver, guess: ContactGuess, forward: bool,
     ys: list = [None] * len(ss)
     k0 = int(np.argmin(np.abs(ss - s0)))
     # chain the Newton starts outwards from the sample nearest the guess
+    known = {} if memo is None else memo.setdefault(solver.edge.label, {})
+    ratio = solver.kin.ratio
     for order in (range(k0, len(ss)), range(k0 - 1, -1, -1)):
         y_prev = _guess_y(solver.edge, guess)
         for k in order:
-            y = solver.solve(ss[k], y_prev)
+            y = None
+            if float(ss[k]) in known:
+                phi1_old, y_old = known[float(ss[k])]
+                y = solver.solve(ss[k], y_old + np.array(
+                    [0.0, 0.0, (solver.phi1 - phi1_old) / ratio]))
+            if y is None and y_prev is not None:
+                y = solver.solve(ss[k], y_prev)
             ys[k] = y
             if y is not None:
                 y_prev = y
+                known[float(ss[k])] = (solver.phi1, y)
     sign = 1.0 if forward else -1.0
     score = np.array([sign * y[2] if solver.feasible(y) else -np.inf for y in ys])
     if not np.isfinite(score).any():
@@ -238,7 +272,7 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
         return -sign * y[2] if solver.feasible(y) else -score[k] + 1.0
 
     opt = minimize_scalar(objective, bounds=(a, b), method="bounded",
-                          options={"xatol": 1e-7})
+                          options={"xatol": 1e-5})
     s_opt = float(opt.x)
     y_opt = cache[s_opt] if s_opt in cache else solver.solve(s_opt, y_best)
     # the bounded search never evaluates the bracket ends: an extreme at an end of the
@@ -254,7 +288,7 @@ EDGES_REFINED = 2
 def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad: float,
                        *, guess: ContactGuess, forward: bool, edges=FLANK_EDGES,
                        samples: int = EDGE_SAMPLES, tol_mm: float = 1e-10,
-                       max_iter: int = 15) -> MatingPoint | None:
+                       max_iter: int = 15, memo: dict | None = None) -> MatingPoint | None:
     """The first edge-to-surface contact of one tooth pair at the pinion phase ``phi1``.
 
     Parameters
@@ -277,6 +311,9 @@ def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1
         :data:`EDGES_REFINED` edges whose samples touch first are refined.
     tol_mm : float
         Newton tolerance of the point-on-surface equations, mm.
+    memo : dict, optional
+        Newton starts kept between calls (pass the same dict along a path: each edge
+        sample then starts from its solution at the previous phase).
 
     Returns
     -------
@@ -290,7 +327,7 @@ def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1
     for edge in edges:
         solver = _EdgeSolver(pinion, gear, kin, phi1_rad, edge, tol_mm=tol_mm,
                              max_iter=max_iter)
-        hit = _edge_samples(solver, guess, forward, samples)
+        hit = _edge_samples(solver, guess, forward, samples, memo)
         if hit is not None:
             sampled.append((hit[0], solver, hit))
     if not sampled:

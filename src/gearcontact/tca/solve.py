@@ -450,7 +450,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     TcaPath
         With TE0 relative to the reference point, arcsec.
     """
-    from .edge_contact import contact_state, pushes_forward, solve_edge_contact
+    from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
     from .edges import solver_boundary
 
     phis = np.asarray(phi1_rad, dtype=float).ravel()
@@ -475,6 +475,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     for direction, indices in ((+1, range(i0, phis.size)), (-1, range(i0 - 1, -1, -1))):
         prev, prev2 = ref, None
         stopped: str | None = None
+        memo: dict = {}             # edge samples' Newton starts along this direction
         for i in indices:
             bar.update(1)
             if stopped is not None:
@@ -504,7 +505,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                         continue
                     stopped = None
                     mp = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                            forward=forward, tol_mm=tol_mm)
+                                            forward=forward, tol_mm=tol_mm, memo=memo)
                     if mp is None and isinstance(exc, TcaConvergenceError):
                         raise
                     where = exc.where if isinstance(exc, EdgeContact) else "no convergence"
@@ -512,15 +513,19 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 # edge mode: the edge contact, or the surface point if it is back on the
                 # flanks and touches first
                 where = solver_boundary(prev.edge_contact)
-                guess = replace(prev.as_guess(), phi1_rad=phis[i],
-                                phi2_rad=prev.phi2_rad + (phis[i] - prev.phi1_rad) / kin.ratio)
-                try:   # a short attempt: from the edge the surface point is near or off
-                    surface = solve_mating_point(pinion, gear, kin, guess, tol_mm=tol_mm,
-                                                 max_iter=min(max_iter, 12))
-                except (EdgeContact, TcaConvergenceError):
-                    surface = None
                 edge = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                          forward=forward, tol_mm=tol_mm)
+                                          forward=forward, tol_mm=tol_mm, memo=memo)
+                surface = None
+                # the flank behind the edge dips towards the other flank: the surface
+                # contact is back inside the flanks
+                if edge is None or inward_slope(pinion, gear, kin, edge) < 0.0:
+                    guess = replace(prev.as_guess(), phi1_rad=phis[i], phi2_rad=prev.phi2_rad
+                                    + (phis[i] - prev.phi1_rad) / kin.ratio)
+                    try:
+                        surface = solve_mating_point(pinion, gear, kin, guess, tol_mm=tol_mm,
+                                                     max_iter=max_iter)
+                    except (EdgeContact, TcaConvergenceError):
+                        pass
                 mp = first_touch(surface, edge)
             if mp is None:
                 stopped = where
