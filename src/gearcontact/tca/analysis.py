@@ -68,6 +68,16 @@ class TcaAnalysis:
     timings_s: dict
 
     @property
+    def edge_contact_counts(self) -> dict:
+        """Phases of the pitch whose transmitting contact is an edge touching the other
+        flank (:mod:`gearcontact.tca.edge_contact`), per edge."""
+        counts: dict = {}
+        for mp in self.cycle.contact:
+            if mp.edge_contact:
+                counts[mp.edge_contact] = counts.get(mp.edge_contact, 0) + 1
+        return counts
+
+    @property
     def edge_counts(self) -> dict:
         """Phases of the pitch per flank edge reached (empty: pattern inside)."""
         counts: dict = {}
