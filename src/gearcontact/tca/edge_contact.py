@@ -42,7 +42,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
+from scipy.optimize import brentq, minimize_scalar
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
@@ -50,7 +50,8 @@ from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError,
                     posed_point, solve_mating_point)
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
-           "pushes_forward", "inward_slope", "solve_edge_contact", "contact_state"]
+           "pushes_forward", "inward_slope", "nearby_edges", "solve_edge_contact",
+           "contact_state"]
 
 #: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
 EDGE_NAMES = ("toe", "heel", "root", "tip")
@@ -202,6 +203,27 @@ def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
     return float((rot @ (inward / np.linalg.norm(inward))) @ n_other)
 
 
+#: Edges farther from the last contact than this fraction of the flank's extent across
+#: them are not tried along a path (the contact moves continuously between phases).
+NEAR_EDGE_FRACTION = 0.35
+
+
+def nearby_edges(pinion: Surface, gear: Surface, last: MatingPoint) -> tuple:
+    """The edges a path's next contact can reach from its last contact ``last``: those
+    within :data:`NEAR_EDGE_FRACTION` of the flank's parameter extent across them (in
+    each member's own parameters), and the edge ``last`` touches with."""
+    out = []
+    for edge in FLANK_EDGES:
+        surf, (u, v) = ((pinion, (last.u1, last.v1)) if edge.member == "pinion"
+                        else (gear, (last.u2, last.v2)))
+        (u0, u1), (v0, v1) = surf.u_range, surf.v_range
+        dist, extent = {"toe": (v - v0, v1 - v0), "heel": (v1 - v, v1 - v0),
+                        "root": (u - u0, u1 - u0), "tip": (u1 - u, u1 - u0)}[edge.name]
+        if dist <= NEAR_EDGE_FRACTION * extent or edge.label == last.edge_contact:
+            out.append(edge)
+    return tuple(out)
+
+
 def _guess_y(edge: FlankEdge, guess: ContactGuess) -> np.ndarray:
     if edge.member == "pinion":
         return np.array([guess.u2, guess.v2, guess.phi2_rad])
@@ -261,7 +283,11 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
     _, ss, score, ys = sampled
     sign = 1.0 if forward else -1.0
     k = int(np.argmax(score))
-    a, b = ss[max(k - 1, 0)], ss[min(k + 1, len(ss) - 1)]
+    # bracket: one even sample spacing either side of the best sample (the samples near
+    # the last contact are closer together than the extreme may have moved)
+    lo, hi = edge_span(solver.own, solver.edge.name)
+    h = (hi - lo) / (EDGE_SAMPLES - 1)
+    a, b = max(ss[k] - h, lo), min(ss[k] + h, hi)
     y_best = ys[k]
     cache = {}
 
@@ -277,8 +303,42 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
     y_opt = cache[s_opt] if s_opt in cache else solver.solve(s_opt, y_best)
     # the bounded search never evaluates the bracket ends: an extreme at an end of the
     # edge (a corner contact) is the end sample itself
-    candidates = [(sv, y) for sv, y in ((s_opt, y_opt), (ss[k], y_best)) if solver.feasible(y)]
+    candidates = [(s_opt, y_opt), (ss[k], y_best)]
+    # where a neighbour sample touches beyond the other flank, the extreme can be the
+    # crossing of the two flanks' boundaries: its point (margin 0) by Brent's root search
+    for end in (a, b):
+        if end != ss[k] and not solver.feasible(solver.solve(end, y_best)):
+            crossing = _boundary_crossing(solver, ss[k], end, y_best)
+            if crossing is not None:
+                candidates.append(crossing)
+    candidates = [(sv, y) for sv, y in candidates if solver.feasible(y)]
     return max(candidates, key=lambda sy: sign * sy[1][2])
+
+
+def _margin(surface: Surface, y: np.ndarray) -> float:
+    """Signed distance of the touched point's parameters inside ``surface``'s box, mm."""
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    return float(min(y[0] - u0, u1 - y[0], y[1] - v0, v1 - y[1]))
+
+
+def _boundary_crossing(solver: _EdgeSolver, s_in: float, s_out: float,
+                       y_in: np.ndarray) -> tuple[float, np.ndarray] | None:
+    """The edge point between ``s_in`` (touching inside the other flank) and ``s_out``
+    (beyond it) whose touch lies on the other flank's boundary (margin 0)."""
+    def margin(s):
+        y = solver.solve(s, y_in)
+        return -1.0 if y is None else _margin(solver.other, y)
+
+    if margin(s_out) >= 0.0:
+        return None
+    try:
+        s_b = brentq(margin, s_in, s_out, xtol=1e-9)
+    except ValueError:
+        return None
+    y = solver.solve(s_b, y_in)
+    if y is None:
+        return None
+    return s_b, y           # feasible within the box tolerance (1e-9 mm)
 
 
 #: Edges refined after sampling (the best by their sampled first touch).

@@ -123,6 +123,10 @@ class MeshCycle:
         return int(np.argmin(np.abs(self.phi1_rad - self.path.phi1_ref_rad)))
 
 
+#: Initial limit of the edge tails (``solve_tca``'s ``edge_te_limit_arcsec``), arcsec;
+#: widened 4x (up to 16x) while the mesh's TE0 p-p exceeds half of it.
+EDGE_TE_LIMIT_ARCSEC = 60.0
+
 #: Restarts of the continuation when the TE0 vertex lies beyond the pitch window.
 _RECENTRE_TRIES = 4
 
@@ -193,39 +197,51 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     margin = (n if center == "vertex" else 0)
     ks = np.arange(-k0 - span - margin, n - k0 + span + margin + 1)
     lo, hi = k0 + span, len(ks) - 1 - (n - k0) - span   # vertices the window can centre
-    for _ in range(_RECENTRE_TRIES):
-        grid = first.phi1_rad + step * ks
-        path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
-                         edges=edge_contact,
-                         max_step_rad=2.0 * np.pi / int(pinion_teeth)
-                         / CONTINUATION_STEPS_PER_PITCH)
-        if center != "vertex":
-            i_ref = int(np.flatnonzero(ks == 0)[0])
+    # the edge tails of each path are followed while they can carry (TE0 within a limit of
+    # the path's first touch); a mesh whose TE0 p-p approaches the limit is redone wider
+    limit, start_point = EDGE_TE_LIMIT_ARCSEC, first
+    while True:
+        first = start_point
+        for _ in range(_RECENTRE_TRIES):
+            grid = first.phi1_rad + step * ks
+            path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
+                             edges=edge_contact, edge_te_limit_arcsec=limit,
+                             max_step_rad=2.0 * np.pi / int(pinion_teeth)
+                             / CONTINUATION_STEPS_PER_PITCH)
+            if center != "vertex":
+                i_ref = int(np.flatnonzero(ks == 0)[0])
+                break
+            # P0 = the point of least relief along the path: the TE0 extremum of one pair
+            te = np.where(path.edge, -np.inf if envelope_is_max else np.inf, path.te0_arcsec)
+            i_v = int(np.argmax(te) if envelope_is_max else np.argmin(te))
+            if lo <= i_v <= hi or not np.isfinite(te[i_v]):
+                break
+            # the start was more than a pitch from the vertex (a bearing far from the mean
+            # node): restart the continuation from the path point nearest the vertex
+            first = path.points[i_v]
+        if center == "vertex":
+            i_ref = int(np.clip(i_v, lo, hi))
+            path = rebase(path, i_ref)
+        offsets = tuple(range(-pairs, pairs + 1))
+        te0 = path.te0_arcsec
+        base = i_ref - k0                         # grid index of the pitch's first phase
+        idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
+        te_pairs = te0[idx]
+        valid = np.isfinite(te_pairs)
+        if not valid.any(axis=0).all():
+            if edge_contact and limit < 16.0 * EDGE_TE_LIMIT_ARCSEC:
+                limit *= 4.0            # a gap the cut edge tails may bridge
+                continue
+            k = int(np.argmin(valid.any(axis=0)))
+            raise ContactGap(grid[base + k])
+        filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
+        winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
+        cols = np.arange(n + 1)
+        envelope = te_pairs[winner, cols]
+        if (not edge_contact or float(envelope.max() - envelope.min()) <= 0.5 * limit
+                or limit >= 16.0 * EDGE_TE_LIMIT_ARCSEC):
             break
-        # P0 = the point of least relief along the path: the TE0 extremum of one pair
-        te = np.where(path.edge, -np.inf if envelope_is_max else np.inf, path.te0_arcsec)
-        i_v = int(np.argmax(te) if envelope_is_max else np.argmin(te))
-        if lo <= i_v <= hi or not np.isfinite(te[i_v]):
-            break
-        # the start was more than a pitch from the vertex (a bearing far from the mean
-        # node): restart the continuation from the path point nearest the vertex
-        first = path.points[i_v]
-    if center == "vertex":
-        i_ref = int(np.clip(i_v, lo, hi))
-        path = rebase(path, i_ref)
-    offsets = tuple(range(-pairs, pairs + 1))
-    te0 = path.te0_arcsec
-    base = i_ref - k0                         # grid index of the pitch's first phase
-    idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
-    te_pairs = te0[idx]
-    valid = np.isfinite(te_pairs)
-    if not valid.any(axis=0).all():
-        k = int(np.argmin(valid.any(axis=0)))
-        raise ContactGap(grid[base + k])
-    filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
-    winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
-    cols = np.arange(n + 1)
-    envelope = te_pairs[winner, cols]
+        limit *= 4.0
     contact = tuple(path.points[idx[w, k]] for k, w in enumerate(winner))
     curv = tuple(relative_curvature(pinion, gear, kin, mp) for mp in contact)
     ell = tuple(contact_ellipse(rc, paint_mm=paint_mm) for rc in curv)

@@ -408,7 +408,8 @@ def _predict(prev: MatingPoint, prev2: MatingPoint | None, phi1: float,
 def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
               *, start: ContactGuess, start_fixed: str = "phi1", tol_mm: float = 1e-10,
               max_iter: int = 40, max_step_rad: float | None = None,
-              edges: bool = True, progress: bool = False) -> TcaPath:
+              edges: bool = True, edge_te_limit_arcsec: float = 60.0,
+              progress: bool = False) -> TcaPath:
     """TCA of one tooth pair over the mesh phases ``phi1_rad`` by continuation.
 
     The reference (mean) mating point is solved first from ``start`` with
@@ -442,6 +443,11 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         parameter box early and end the path there). Default: no substeps.
     edges : bool
         Continue through edge-to-surface contact (default) or stop at the boundary.
+    edge_te_limit_arcsec : float
+        An edge contact whose TE0 lies more than this behind the path's first touch so
+        far (its TE0 extreme) ends the path in that direction: it can carry only if the
+        mesh's TE0 peak-to-peak exceeds the limit (:func:`~gearcontact.tca.mesh.mesh_cycle`
+        then widens it). Keeps the cost of the edge tails bounded.
     progress : bool
         Show a tqdm progress bar over the phases.
 
@@ -450,7 +456,8 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     TcaPath
         With TE0 relative to the reference point, arcsec.
     """
-    from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
+    from .edge_contact import (contact_state, inward_slope, nearby_edges, pushes_forward,
+                               solve_edge_contact)
     from .edges import solver_boundary
 
     phis = np.asarray(phi1_rad, dtype=float).ravel()
@@ -476,6 +483,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         prev, prev2 = ref, None
         stopped: str | None = None
         memo: dict = {}             # edge samples' Newton starts along this direction
+        best = 0.0                  # the path's first touch so far (TE0 extreme), arcsec
         for i in indices:
             bar.update(1)
             if stopped is not None:
@@ -505,7 +513,8 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                         continue
                     stopped = None
                     mp = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                            forward=forward, tol_mm=tol_mm, memo=memo)
+                                            forward=forward, tol_mm=tol_mm,
+                                            edges=nearby_edges(pinion, gear, prev))
                     if mp is None and isinstance(exc, TcaConvergenceError):
                         raise
                     where = exc.where if isinstance(exc, EdgeContact) else "no convergence"
@@ -514,7 +523,8 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 # flanks and touches first
                 where = solver_boundary(prev.edge_contact)
                 edge = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                          forward=forward, tol_mm=tol_mm, memo=memo)
+                                          forward=forward, tol_mm=tol_mm,
+                                          edges=nearby_edges(pinion, gear, prev))
                 surface = None
                 # the flank behind the edge dips towards the other flank: the surface
                 # contact is back inside the flanks
@@ -531,9 +541,16 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 stopped = where
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
                 continue
+            te = ((mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
+            te *= ARCSEC_PER_RAD
+            if mp.edge_contact and (best - te if forward else te - best) > edge_te_limit_arcsec:
+                # an edge contact this far behind the path's first touch cannot carry
+                stopped = solver_boundary(mp.edge_contact)
+                results[i] = MatingPoint.edge_phase(phis[i], stopped)
+                continue
+            best = max(best, te) if forward else min(best, te)
             if prev is not mp:      # a switch between surface and edge contact
                 prev2, prev = None, mp
-            te = ((mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
-            results[i] = replace(mp, te0_arcsec=te * ARCSEC_PER_RAD)
+            results[i] = replace(mp, te0_arcsec=te)
     bar.close()
     return TcaPath(tuple(results), ref.phi1_rad, ref.phi2_rad, kin.ratio)
