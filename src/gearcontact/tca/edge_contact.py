@@ -50,8 +50,7 @@ from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError,
                     posed_point, solve_mating_point)
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
-           "pushes_forward", "inward_slope", "nearby_edges", "solve_edge_contact",
-           "contact_state"]
+           "pushes_forward", "inward_slope", "solve_edge_contact", "contact_state"]
 
 #: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
 EDGE_NAMES = ("toe", "heel", "root", "tip")
@@ -201,27 +200,6 @@ def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
     t = along / np.linalg.norm(along)
     inward = sign * (across - (across @ t) * t)
     return float((rot @ (inward / np.linalg.norm(inward))) @ n_other)
-
-
-#: Edges farther from the last contact than this fraction of the flank's extent across
-#: them are not tried along a path (the contact moves continuously between phases).
-NEAR_EDGE_FRACTION = 0.35
-
-
-def nearby_edges(pinion: Surface, gear: Surface, last: MatingPoint) -> tuple:
-    """The edges a path's next contact can reach from its last contact ``last``: those
-    within :data:`NEAR_EDGE_FRACTION` of the flank's parameter extent across them (in
-    each member's own parameters), and the edge ``last`` touches with."""
-    out = []
-    for edge in FLANK_EDGES:
-        surf, (u, v) = ((pinion, (last.u1, last.v1)) if edge.member == "pinion"
-                        else (gear, (last.u2, last.v2)))
-        (u0, u1), (v0, v1) = surf.u_range, surf.v_range
-        dist, extent = {"toe": (v - v0, v1 - v0), "heel": (v1 - v, v1 - v0),
-                        "root": (u - u0, u1 - u0), "tip": (u1 - u, u1 - u0)}[edge.name]
-        if dist <= NEAR_EDGE_FRACTION * extent or edge.label == last.edge_contact:
-            out.append(edge)
-    return tuple(out)
 
 
 def _guess_y(edge: FlankEdge, guess: ContactGuess) -> np.ndarray:

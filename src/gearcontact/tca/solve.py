@@ -456,8 +456,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     TcaPath
         With TE0 relative to the reference point, arcsec.
     """
-    from .edge_contact import (contact_state, inward_slope, nearby_edges, pushes_forward,
-                               solve_edge_contact)
+    from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
     from .edges import solver_boundary
 
     phis = np.asarray(phi1_rad, dtype=float).ravel()
@@ -482,7 +481,6 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     for direction, indices in ((+1, range(i0, phis.size)), (-1, range(i0 - 1, -1, -1))):
         prev, prev2 = ref, None
         stopped: str | None = None
-        memo: dict = {}             # edge samples' Newton starts along this direction
         best = 0.0                  # the path's first touch so far (TE0 extreme), arcsec
         for i in indices:
             bar.update(1)
@@ -513,8 +511,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                         continue
                     stopped = None
                     mp = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                            forward=forward, tol_mm=tol_mm,
-                                            edges=nearby_edges(pinion, gear, prev))
+                                            forward=forward, tol_mm=tol_mm)
                     if mp is None and isinstance(exc, TcaConvergenceError):
                         raise
                     where = exc.where if isinstance(exc, EdgeContact) else "no convergence"
@@ -523,8 +520,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 # flanks and touches first
                 where = solver_boundary(prev.edge_contact)
                 edge = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                          forward=forward, tol_mm=tol_mm,
-                                          edges=nearby_edges(pinion, gear, prev))
+                                          forward=forward, tol_mm=tol_mm)
                 surface = None
                 # the flank behind the edge dips towards the other flank: the surface
                 # contact is back inside the flanks
