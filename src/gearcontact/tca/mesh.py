@@ -34,7 +34,8 @@ from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
 from .edge_contact import contact_state
 from .edges import ContactGap
-from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
+from .solve import (EDGE_TE_LIMIT_ARCSEC, ContactGuess, MatingPoint, TcaPath,
+                    solve_mating_point, solve_tca)
 
 __all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
 
@@ -123,10 +124,6 @@ class MeshCycle:
         return int(np.argmin(np.abs(self.phi1_rad - self.path.phi1_ref_rad)))
 
 
-#: Initial limit of the edge tails (``solve_tca``'s ``edge_te_limit_arcsec``), arcsec;
-#: widened 4x (up to 16x) while the mesh's TE0 p-p exceeds half of it.
-EDGE_TE_LIMIT_ARCSEC = 60.0
-
 #: Restarts of the continuation when the TE0 vertex lies beyond the pitch window.
 _RECENTRE_TRIES = 4
 
@@ -198,7 +195,8 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     ks = np.arange(-k0 - span - margin, n - k0 + span + margin + 1)
     lo, hi = k0 + span, len(ks) - 1 - (n - k0) - span   # vertices the window can centre
     # the edge tails of each path are followed while they can carry (TE0 within a limit of
-    # the path's first touch); a mesh whose TE0 p-p approaches the limit is redone wider
+    # the path's first touch); a mesh whose TE0 p-p exceeds half the limit, or that has a
+    # gap, is redone with the limit widened 4x (up to 16x)
     limit, start_point = EDGE_TE_LIMIT_ARCSEC, first
     while True:
         first = start_point

@@ -40,12 +40,17 @@ from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface, SurfacePoint
 from ..validation import check_positive
 
-__all__ = ["ARCSEC_PER_RAD", "VARIABLES", "ContactGuess", "MatingPoint", "TcaPath",
+__all__ = ["ARCSEC_PER_RAD", "EDGE_TE_LIMIT_ARCSEC", "VARIABLES", "ContactGuess", "MatingPoint", "TcaPath",
            "EdgeContact", "TcaConvergenceError", "solve_mating_point", "solve_tca",
            "posed_point", "normal_derivatives"]
 
 #: Arc seconds per radian (180 * 3600 / pi).
 ARCSEC_PER_RAD = 206264.80624709636
+#: Default limit of a path's edge tails: an edge contact whose TE0 lies this far behind
+#: the path's first touch ends the path (arcsec); the nominal s0003 meshes have TE0 p-p
+#: of ~3 arcsec, and :func:`~gearcontact.tca.mesh.mesh_cycle` widens the limit when a
+#: mesh's TE0 p-p exceeds half of it.
+EDGE_TE_LIMIT_ARCSEC = 20.0
 #: Order of the six contact variables in every vector of this module.
 VARIABLES = ("u1", "v1", "u2", "v2", "phi1", "phi2")
 
@@ -408,7 +413,7 @@ def _predict(prev: MatingPoint, prev2: MatingPoint | None, phi1: float,
 def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
               *, start: ContactGuess, start_fixed: str = "phi1", tol_mm: float = 1e-10,
               max_iter: int = 40, max_step_rad: float | None = None,
-              edges: bool = True, edge_te_limit_arcsec: float = 60.0,
+              edges: bool = True, edge_te_limit_arcsec: float = EDGE_TE_LIMIT_ARCSEC,
               progress: bool = False) -> TcaPath:
     """TCA of one tooth pair over the mesh phases ``phi1_rad`` by continuation.
 
