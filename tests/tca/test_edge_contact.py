@@ -17,7 +17,7 @@ from scipy.optimize import least_squares
 
 from gearcontact.tca.edge_contact import (FLANK_EDGES, edge_parameters, edge_span,
                                           solve_edge_contact)
-from gearcontact.tca.solve import ARCSEC_PER_RAD, ContactGuess, solve_mating_point
+from gearcontact.tca.solve import ARCSEC_PER_RAD, ContactGuess, solve_mating_point, solve_tca
 
 #: Solver boundary variable of each edge.
 _HELD = {"pinion toe": ("v1", 1, 0), "pinion heel": ("v1", 1, 1),
@@ -30,6 +30,15 @@ def _flanks(flanks):
     return flanks.flank("pinion", "drive"), flanks.flank("gear", "drive")
 
 
+@pytest.fixture(scope="module")
+def full_path(s0003_pair, s0003_flanks, s0003_drive):
+    """The nominal drive path of one pair over the mesh cycle's phases with its whole
+    edge tails (no TE0 limit: the mesh cycle cuts tails that cannot carry)."""
+    pinion, gear = _flanks(s0003_flanks)
+    return solve_tca(pinion, gear, s0003_pair.kinematics(), s0003_drive.cycle.path.phi1_rad,
+                     start=s0003_drive.mean_point.as_guess(), edge_te_limit_arcsec=np.inf)
+
+
 def _transitions(path):
     """(last surface point, first edge point) pairs where the path switches."""
     pts = path.points
@@ -38,10 +47,10 @@ def _transitions(path):
                                    if not b.edge and not b.edge_contact and a.edge_contact]
 
 
-def test_nominal_path_switches_to_edge_contact_at_both_ends(s0003_drive):
+def test_nominal_path_switches_to_edge_contact_at_both_ends(full_path):
     """The centred pair's path leaves its flanks at both ends and continues as edge
     contact (at least one switch each way), with finite TE0 at every edge phase."""
-    path = s0003_drive.cycle.path
+    path = full_path
     switches = _transitions(path)
     assert len(switches) >= 2
     edge_pts = [p for p in path.points if p.edge_contact]
@@ -49,14 +58,14 @@ def test_nominal_path_switches_to_edge_contact_at_both_ends(s0003_drive):
 
 
 def test_edge_contact_equals_surface_contact_exactly_on_the_edge(s0003_pair, s0003_flanks,
-                                                                 s0003_drive):
+                                                                 s0003_drive, full_path):
     """At the phase where the surface mating point lies on the edge, the edge contact
     gives the same gear angle within 1e-4 arcsec and the same point within 1e-6 mm
     (both Newton solves converge to 1e-10 mm; the 1-D Brent search along the edge to
     1e-5 mm, whose error enters phi2 only at second order)."""
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
-    for surf, edge in _transitions(s0003_drive.cycle.path):
+    for surf, edge in _transitions(full_path):
         var, index, end = _HELD[edge.edge_contact]
         box = (pinion.u_range, pinion.v_range, gear.u_range, gear.v_range)[index]
         x = surf.as_guess().vector()
@@ -87,7 +96,7 @@ def _signed_distances(surface, pose, points, normal_sign, uv0):
     return np.array(out)
 
 
-def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, s0003_drive):
+def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, full_path):
     """At an edge phase a few steps past the switch the flanks are posed at the edge
     contact's angles: dense samples (41 per edge) of all eight edges keep a signed
     distance >= -1e-7 mm to the other flank (no penetration: the contact is the first
@@ -95,7 +104,7 @@ def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, s
     within 1e-7 mm."""
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
-    path = s0003_drive.cycle.path
+    path = full_path
     k = next(i for i, p in enumerate(path.points) if p.edge_contact
              and i > 0 and not path.points[i - 1].edge_contact
              and not path.points[i - 1].edge) + 2
@@ -123,14 +132,14 @@ def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, s
 
 
 def test_interior_edge_contact_has_the_edge_tangent_in_the_touched_plane(
-        s0003_pair, s0003_flanks, s0003_drive):
+        s0003_pair, s0003_flanks, full_path):
     """At an edge contact inside its edge (not a corner), d phi2/ds = 0: the edge
     tangent lies in the touched surface's tangent plane (|t . n| < 1e-5, the Brent
     tolerance 1e-5 mm times the rate of turn of the edge tangent, well below 1/mm)."""
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
     checked = 0
-    for mp in s0003_drive.cycle.path.points:
+    for mp in full_path.points:
         if not mp.edge_contact:
             continue
         member, name = mp.edge_contact.split()
