@@ -125,9 +125,8 @@ def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, f
             dmin = min(dmin, float(d.min()))
     assert dmin >= -1e-7
     # the contact point itself touches
-    x_edge = (kin.pinion_pose(mp.phi1_rad)[0] @ pinion.point(mp.u1, mp.v1).r
-              + kin.pinion_pose(mp.phi1_rad)[1])
-    x_other = kin.gear_pose(mp.phi2_rad)[0] @ gear.point(mp.u2, mp.v2).r + kin.gear_pose(mp.phi2_rad)[1]
+    x_edge = pose1[0] @ pinion.point(mp.u1, mp.v1).r + pose1[1]
+    x_other = pose2[0] @ gear.point(mp.u2, mp.v2).r + pose2[1]
     assert np.linalg.norm(x_edge - x_other) < 1e-7
 
 

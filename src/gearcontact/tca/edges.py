@@ -29,7 +29,8 @@ from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..validation import UnusableInput
 
-__all__ = ["EDGES", "edge_name", "solver_boundary", "exit_counts", "PatternOffFlank", "ContactGap", "pattern_edges",
+__all__ = ["EDGES", "edge_name", "solver_boundary", "exit_counts", "PatternOffFlank",
+           "ContactGap", "pattern_edges",
            "PatchEdges", "loaded_patch_edges"]
 
 #: Edge name of each parameter-box side (``u`` root -> tip, ``v`` toe -> heel).

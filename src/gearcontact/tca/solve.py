@@ -41,7 +41,8 @@ from ..geometry.surface import Surface, SurfacePoint
 from ..validation import check_positive
 
 __all__ = ["ARCSEC_PER_RAD", "EDGE_TE_LIMIT_ARCSEC", "VARIABLES", "ContactGuess",
-           "MatingPoint", "TcaPath", "EdgeContact", "TcaConvergenceError", "solve_mating_point", "solve_tca",
+           "MatingPoint", "TcaPath", "EdgeContact", "TcaConvergenceError",
+           "solve_mating_point", "solve_tca",
            "posed_point", "normal_derivatives"]
 
 #: Arc seconds per radian (180 * 3600 / pi).
