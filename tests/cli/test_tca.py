@@ -126,3 +126,27 @@ def test_misaligned_pair_loads_the_edge(tmp_path):
     pair = _s0003_centred_with(tmp_path, "P_mm = 0.1")
     assert main(["lte", "--pair", str(pair), "--out", str(tmp_path / "t"), "--phases", "15",
                  "--quiet", "--no-figures"]) == 0
+
+
+def test_edge_to_surface_contact_is_written(tmp_path, capsys):
+    """E = +0.2 mm (issue 11; the surface contact lies beyond the pinion toe at every
+    phase): tca exits 0 and marks every phase's contact kind in tca.json and
+    contact_path.csv; ltca at 64.5 N·m solves the edge-loaded patch and names the edge
+    it reaches in ltca.json."""
+    out = tmp_path / "t"
+    assert main(["tca", "--pair", "s0003-centred", "--misalignment", "E=0.2", "--out",
+                 str(out), "--phases", "15", "--quiet", "--no-figures"]) == 0
+    assert "edge touches the other flank" in capsys.readouterr().out
+    doc = json.loads((out / "tca.json").read_text())
+    assert len(doc["phase_contact"]) == 15
+    assert doc["mean_point_contact"] == "pinion toe"
+    assert sum(doc["edge_contact_phases"].values()) == sum(
+        1 for k in doc["phase_contact"] if k != "surface")
+    rows = (out / "contact_path.csv").read_text().splitlines()
+    assert rows[0].endswith(",edge_contact") and any(r.endswith(",pinion toe") for r in rows)
+    lt = tmp_path / "l"
+    assert main(["ltca", "--pair", "s0003-centred", "--misalignment", "E=0.2", "--out",
+                 str(lt), "--phases", "15", "--cells", "48", "--no-figures"]) == 0
+    doc = json.loads((lt / "ltca.json").read_text())
+    assert doc["tca_edge_contact"] == "pinion toe" and doc["edge_contact"]
+    assert "pinion toe" in doc["edge_contact_edges"] and doc["edge_pressure_ratio_p90"] > 1.0

@@ -50,8 +50,14 @@ def test_calibrated_preset_reaches_p0(calibrated):
     # 61 phases per pitch, within half a phase step (~0.03 mm) of the calibrated point
     got = point_invariants(tca.mean_point.point_mm, pair.offset_mm)
     np.testing.assert_allclose(got, point_invariants(P0, pair.offset_mm), atol=0.1)
-    # TE0 p-p within 10 % of the published 3.40 arcsec (the second-priority target)
-    assert tca.cycle.te0_pp_arcsec == pytest.approx(3.40, rel=0.10)
+    # TE0 p-p within 10 % of the published 3.40 arcsec (the second-priority target) in
+    # the surface-only TCA the calibration fitted; with edge contact the gear-heel edge
+    # carries the pair switch over 3 of 61 phases, so the drop there is smaller
+    # (measured 3.017 against 3.542 surface-only)
+    surface_only, _ = analyze_pair(pair, flanks=flanks, edge_contact=False)
+    assert surface_only.cycle.te0_pp_arcsec == pytest.approx(3.40, rel=0.10)
+    assert tca.cycle.te0_pp_arcsec < surface_only.cycle.te0_pp_arcsec
+    assert any(mp.edge_contact == "gear heel" for mp in tca.cycle.contact)
     # pitch angles stay the published ones exactly (the calibration never touches them)
     assert pair.blank.pitch_angle_pinion_deg == pytest.approx(6.07, abs=1e-9)
     assert pair.blank.pitch_angle_gear_deg == pytest.approx(83.15, abs=1e-9)

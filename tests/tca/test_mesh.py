@@ -67,7 +67,12 @@ def test_short_path_is_reported():
     narrow = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range, (-0.01, 0.01))
     with pytest.raises(ValueError, match="contact ratio < 1"):
         mesh_cycle(case.pinion, narrow, case.kin, pinion_teeth=Z1, start=start,
-                   phases=11, pairs=1, center="start")
+                   phases=11, pairs=1, center="start", edge_contact=False)
+    # with edge contact the band's edge circles keep touching the sphere: no gap
+    cyc = mesh_cycle(case.pinion, narrow, case.kin, pinion_teeth=Z1, start=start,
+                     phases=11, pairs=1, center="start")
+    assert np.isfinite(cyc.envelope_arcsec).all()
+    assert any(mp.edge_contact for mp in cyc.contact)
 
 
 @pytest.mark.parametrize("side", ["drive", "coast"])

@@ -6,6 +6,7 @@ independent scalar root (brentq, xtol 1e-15 rad).
 """
 
 import numpy as np
+from scipy.optimize import brentq
 import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors
@@ -95,10 +96,11 @@ def test_start_with_fixed_gear_parameter():
 
 
 def test_edge_contact_is_flagged_not_extrapolated():
+    """Surface contact only (``edges=False``): the march stops at the first edge."""
     case = sphere_torus_case()
     g = case.gear
     narrow = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range, (-0.04, 0.04))
-    path = solve_tca(case.pinion, narrow, case.kin, PHIS, start=_guess(case))
+    path = solve_tca(case.pinion, narrow, case.kin, PHIS, start=_guess(case), edges=False)
     edge = path.edge
     assert edge.any() and not edge.all()
     for mp in path.points:
@@ -115,6 +117,61 @@ def test_edge_contact_is_flagged_not_extrapolated():
     # the march stops at the first edge: edge phases are contiguous at both ends
     inner = np.flatnonzero(~edge)
     assert np.all(np.diff(inner) == 1)
+
+
+def _meridian_touch(case, narrow, phi1, v, phi2_guess):
+    """Closed-form edge truth: the gear edge at azimuth ``v`` is a meridian circle of
+    the torus (centre ``m``, radius ``r``, plane normal ``a``); the sphere (centre
+    ``c``, radius ``Rs``) touches it when the distance from ``c`` to the circle,
+    ``sqrt(h^2 + (rho - r)^2)`` with ``h = (c - m).a`` and ``rho`` the in-plane
+    distance, equals ``Rs`` (brentq in phi2)."""
+    c = case.sphere_centre(phi1)
+    e1, e2, e3 = narrow.frame.T
+
+    def gap(phi2):
+        rot, t = case.kin.gear_pose(phi2)
+        radial = rot @ (np.cos(v) * e1 + np.sin(v) * e2)
+        a = rot @ (-np.sin(v) * e1 + np.cos(v) * e2)
+        m = rot @ narrow.center + t + narrow.core_radius * radial
+        d = c - m
+        h = d @ a
+        rho = np.linalg.norm(d - h * a)
+        return np.hypot(h, rho - narrow.tube_radius) - case.pinion.radius
+
+    return brentq(gap, phi2_guess - 0.02, phi2_guess + 0.02, xtol=1e-15, rtol=1e-15)
+
+
+def test_edge_contact_beyond_a_narrow_face_matches_the_closed_form():
+    """With edge contact (default) the path continues beyond the band's ends as the
+    torus's edge circle touching the sphere; its gear angle matches the closed-form
+    circle-sphere touch within 1e-9 rad (Newton 1e-10 mm over ~30 mm radii; Brent along
+    the edge 1e-5 mm, second order in phi2), and TE0 is continuous across the switch."""
+    from gearcontact.tca.solve import ARCSEC_PER_RAD
+
+    case = sphere_torus_case()
+    g = case.gear
+    narrow = Torus(g.center, g.frame, g.core_radius, g.tube_radius, g.u_range, (-0.04, 0.04))
+    # the whole edge tails (no TE0 limit): the truth holds wherever an edge touches
+    path = solve_tca(case.pinion, narrow, case.kin, PHIS, start=_guess(case),
+                     edge_te_limit_arcsec=np.inf)
+    kinds = [mp.edge_contact for mp in path.points]
+    assert "gear toe" in kinds and "gear heel" in kinds
+    checked = 0
+    for mp in path.points:
+        if not mp.edge_contact:
+            continue
+        v = narrow.v_range[0] if mp.edge_contact == "gear toe" else narrow.v_range[1]
+        assert mp.v2 == v
+        phi2 = _meridian_touch(case, narrow, mp.phi1_rad, v, mp.phi2_rad)
+        assert mp.phi2_rad == pytest.approx(phi2, abs=1e-9)
+        checked += 1
+    assert checked >= 4
+    # continuity: TE0 steps across each switch no more than the largest step inside
+    te = path.te0_arcsec[~path.edge]
+    steps = np.abs(np.diff(te))
+    surf = np.array([not mp.edge_contact for mp in path.points if not mp.edge])
+    inner = steps[surf[1:] & surf[:-1]]
+    assert steps.max() <= 2.0 * inner.max() + 1e-9 * ARCSEC_PER_RAD
 
 
 def test_single_solve_raises_edge_contact():

@@ -13,7 +13,10 @@ shell bending of both teeth (:mod:`gearcontact.contact.multitooth`): ``multitoot
 full-wheel figure ``multitooth.png`` (:mod:`gearcontact.report.multitooth`). The
 solve times (``solve_ms``, ``multi_tooth_solve_ms``, ``multi_tooth_solve_rigid_ms``) go
 to ``run.json`` only, so identical runs write identical result files. Edge contact is
-reported on stderr.
+reported on stderr; ``ltca.json`` names the flank edges the loaded patch reaches
+(``edge_contact_edges``, its cells and ``edge_pressure_ratio_p90``: the largest pressure
+there over p90, :func:`~gearcontact.tca.edges.loaded_patch_edges`) and whether the
+unloaded contact at P0 is itself an edge contact (``tca_edge_contact``, the edge's name).
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ from ..contact.lcp import SOLVERS, warm_up
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
 from ..tca.analysis import analyze_pair
+from ..tca.edges import loaded_patch_edges
 from ..tca.export import without_timings, write_csv
 from ..validation import InputRangeError
 from . import EXIT_CHECK_FAILED
@@ -100,6 +104,13 @@ def run(args) -> int:
                 ltca_s=time.perf_counter() - t1,
                 solve_ms=case.patch.lcp.solve_time_ms)
     summary, _ = without_timings(case.summary())    # the solve time is in run.json
+    # what edge_contact means: the flank edges the loaded patch reaches, and how much
+    # pressure it carries there (tca.edges.loaded_patch_edges)
+    side = args.side or pair.design_side
+    reach = loaded_patch_edges(flanks.flank("pinion", side), flanks.flank("gear", side),
+                               pair.kinematics(), tca.mean_point, case)
+    summary.update(reach.as_dict())
+    summary["tca_edge_contact"] = tca.mean_point.edge_contact
     summary["assembly"] = dataclasses.asdict(pair.assembly)
     (out / "ltca.json").write_text(json.dumps(summary, indent=2))
     g = case.patch.grid
@@ -137,6 +148,13 @@ def run(args) -> int:
           f"{final_path(args, out)}")
     for line in case_warnings(case):
         warn("ltca", line)
+    if reach.edges:
+        warn("ltca", f"the loaded patch reaches the {', '.join(reach.edges)} "
+                     f"({reach.boundary_cells} cells; pressure there up to "
+                     f"{reach.boundary_pressure_ratio:.2f} x p90)")
+    if tca.mean_point.edge_contact:
+        warn("ltca", f"unloaded contact at P0 is edge contact ({tca.mean_point.edge_contact} "
+                     "touching the other flank)")
     if not case.patch.converged:
         warn("ltca", f"LCP {case.patch.lcp.status}: {case.patch.lcp.message}")
         return EXIT_CHECK_FAILED

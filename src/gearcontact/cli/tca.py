@@ -3,7 +3,9 @@
 Writes into ``--out`` (created if missing): ``tca.json`` (summary), ``te0.csv``,
 ``contact_path.csv``, ``gap_stencil.csv`` (49-sample hardware stencil),
 ``gap_field.csv`` (80 x 80 host field), ``phase_table.json``, ``phase_table.bin`` and
-the figures ``te0.png``, ``contact_pattern.png`` and ``flanks_in_mesh.png``.
+the figures ``te0.png``, ``contact_pattern.png`` and ``flanks_in_mesh.png``. Per phase
+``tca.json`` says whether the contact is flank on flank or an edge touching the other
+flank (``phase_contact``, :mod:`gearcontact.tca.edge_contact`).
 """
 
 from __future__ import annotations
@@ -71,4 +73,9 @@ def run(args) -> int:
     if res.edge_counts:
         print("edge contact (phases of " + str(len(res.edges)) + "): "
               + ", ".join(f"{k} {v}" for k, v in res.edge_counts.items()))
+    if res.edge_contact_counts:
+        print("  of which an edge touches the other flank: "
+              + ", ".join(f"{k} {v}" for k, v in res.edge_contact_counts.items())
+              + (f"; P0 is on the {res.mean_point.edge_contact}"
+                 if res.mean_point.edge_contact else ""))
     return 0

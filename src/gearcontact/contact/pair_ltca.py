@@ -197,7 +197,10 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
                       # the continuation instead of being pinned (measured 1.5-2.4 ms less)
                       allow_outside=True)
     off = ~field.on_flank
-    if off[field.gap_mm.shape[0] // 2, field.gap_mm.shape[1] // 2]:
+    # the four cells around P0: all off means P0 is not on the flanks; an edge contact
+    # (tca.edge_contact) has P0 on a flank boundary, with cells on one side of it
+    j, k = field.gap_mm.shape[0] // 2, field.gap_mm.shape[1] // 2
+    if off[j - 1:j + 1, k - 1:k + 1].all():
         raise InputRangeError("mating point P0", tuple(mp.point_mm), "a point on both flanks")
     gap = np.where(off, OFF_FLANK_GAP_MM, field.gap_mm)
     s_axis, t_axis = field.s_mm[0, :], field.t_mm[:, 0]

@@ -13,6 +13,7 @@ from tqdm import tqdm
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from .line_contact import LineContact, is_conjugate, line_contact
+from .edge_contact import pushes_forward, solve_edge_contact
 from .edges import PatternOffFlank, exit_counts, pattern_edges
 from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
                         relative_curvature)
@@ -67,6 +68,16 @@ class TcaAnalysis:
     timings_s: dict
 
     @property
+    def edge_contact_counts(self) -> dict:
+        """Phases of the pitch whose transmitting contact is an edge touching the other
+        flank (:mod:`gearcontact.tca.edge_contact`), per edge."""
+        counts: dict = {}
+        for mp in self.cycle.contact:
+            if mp.edge_contact:
+                counts[mp.edge_contact] = counts.get(mp.edge_contact, 0) + 1
+        return counts
+
+    @property
     def edge_counts(self) -> dict:
         """Phases of the pitch per flank edge reached (empty: pattern inside)."""
         counts: dict = {}
@@ -87,8 +98,8 @@ def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
     theta = 2.0 * np.pi * np.arange(int(outline_points)) / int(outline_points)
     ok = np.zeros(len(cycle.contact), dtype=bool)
     for k, (mp, ell) in enumerate(zip(cycle.contact, cycle.ellipse)):
-        if not np.isfinite(ell.semi_major_mm):
-            continue
+        if mp.edge_contact or not np.isfinite(ell.semi_major_mm):
+            continue        # an edge contact's pattern reaches its edge
         field = gap_at(pinion, gear, kin, mp, ell.semi_major_mm * np.cos(theta),
                        ell.semi_minor_mm * np.sin(theta), frame="principal")
         ok[k] = bool(field.on_flank.all())
@@ -98,7 +109,7 @@ def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
 def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
             start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
             pairs: int = 2, stencil_off_flank: str = "quadric",
-            progress: bool = False) -> TcaAnalysis:
+            edge_contact: bool = True, progress: bool = False) -> TcaAnalysis:
     """Run the whole unloaded analysis.
 
     Parameters
@@ -120,6 +131,9 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
         boundary (:func:`~gearcontact.tca.stencil.hardware_stencil`); the samples
         concerned are recorded in ``stencil.on_flank``. The 80 x 80 field never
         extrapolates (NaN, ``on_flank`` False).
+    edge_contact : bool
+        Edge-to-surface contact where the surface contact leaves a flank (default), or
+        surface contact only (:func:`~gearcontact.tca.mesh.mesh_cycle`).
     progress : bool
         Show progress bars.
     """
@@ -128,7 +142,7 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     t0 = time.perf_counter()
     cycle = mesh_cycle(pinion, gear, kin, pinion_teeth=pinion_teeth, start=start,
                        start_fixed=start_fixed, phases=phases, pairs=pairs,
-                       progress=progress)
+                       edge_contact=edge_contact, progress=progress)
     timings["mesh_cycle"] = time.perf_counter() - t0
     stages.update(1)
     table = phase_table(cycle)
@@ -153,12 +167,15 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
 
 
 def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int = 2,
-                 flanks=None, progress: bool = False) -> tuple[TcaAnalysis, object]:
+                 flanks=None, edge_contact: bool = True,
+                 progress: bool = False) -> tuple[TcaAnalysis, object]:
     """Build the flanks of a :class:`~gearcontact.geometry.pair.GearPair` and analyze
     one side (default the pair's ``design_side``) with the pair's assembly errors.
 
     The reference point is the mating point at ``phi1_0 = u phi2_0`` of the conjugate
     mean contact reported by :func:`~gearcontact.geometry.flank.build_flanks`.
+    ``edge_contact`` (default True) continues the paths through edge-to-surface
+    contact (:mod:`gearcontact.tca.edge_contact`); False: surface contact only.
 
     Returns
     -------
@@ -189,14 +206,16 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
         raise LineContact(line_contact(flanks.flank("pinion", side), flanks.flank("gear", side),
                                        kin, start, pinion_teeth=pair.pinion_teeth,
                                        phases=phases), side=side)
-    start, fixed = reference_start(pair, flanks, side)
+    start, fixed = reference_start(pair, flanks, side, edge_contact=edge_contact)
     result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
                      pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
-                     phases=phases, pairs=pairs, progress=progress)
+                     phases=phases, pairs=pairs, edge_contact=edge_contact,
+                     progress=progress)
     return result, flanks
 
 
-def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
+def reference_start(pair, flanks, side: str, *,
+                    edge_contact: bool = True) -> tuple[ContactGuess, str]:
     """A contact state from which the mesh cycle of ``side`` can start, and the variable
     its first solve holds.
 
@@ -247,8 +266,10 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
             for v in np.linspace(b.v_toe + 0.5 * dv, b.v_heel - 0.5 * dv, 7)]
     grid.sort(key=lambda uv: ((uv[0] - U[k]) / du) ** 2 + ((uv[1] - V[k]) / dv) ** 2)
     exits = [error.where if isinstance(error, EdgeContact) else "no convergence"]
+    tried = [first]
     for u1, v1 in near + grid:
         guess = conjugate_contact(conj, gear, pair, u1, v1)
+        tried.append(guess)
         try:
             solve_mating_point(pinion, gear, kin, guess, fixed="u1")
             return guess, "u1"
@@ -256,4 +277,11 @@ def reference_start(pair, flanks, side: str) -> tuple[ContactGuess, str]:
             exits.append(exc.where)
         except TcaConvergenceError:
             exits.append("no convergence")
+    # no surface contact anywhere: an edge of one flank touching the other (the bearing
+    # lies beyond the edge at every phase, e.g. a large offset error)
+    for guess in tried[:1 + len(near)] if edge_contact else ():
+        mp = solve_edge_contact(pinion, gear, kin, guess.phi1_rad, guess=guess,
+                                forward=pushes_forward(gear, kin, guess))
+        if mp is not None:
+            return mp.as_guess(), "phi1"
     raise PatternOffFlank(exit_counts(exits), context=f" on the {side} side")

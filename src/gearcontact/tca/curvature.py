@@ -143,6 +143,9 @@ def relative_curvature(pinion: Surface, gear: Surface, kin: MeshKinematics,
                        mp: MatingPoint) -> RelativeCurvature:
     """Principal relative curvatures and directions at the mating point ``mp``.
 
+    At an edge contact (``mp.edge_contact``) the equivalent curvatures of the edge's
+    paint strip (:func:`_edge_tensor`).
+
     Raises
     ------
     ValueError
@@ -157,7 +160,10 @@ def relative_curvature(pinion: Surface, gear: Surface, kin: MeshKinematics,
     sp2 = gear.point(mp.u2, mp.v2)
     frame = flank_frame(sp2, rot2)
     basis = frame[:, :2]
-    tensor = -(curvature_tensor(sp1, rot1, basis) + curvature_tensor(sp2, rot2, basis))
+    if mp.edge_contact:
+        tensor = _edge_tensor(sp1, rot1, sp2, rot2, basis, mp.edge_contact)
+    else:
+        tensor = -(curvature_tensor(sp1, rot1, basis) + curvature_tensor(sp2, rot2, basis))
     tensor = 0.5 * (tensor + tensor.T)
     evals, evecs = np.linalg.eigh(tensor)
     d_min = basis @ evecs[:, 0]
@@ -165,6 +171,36 @@ def relative_curvature(pinion: Surface, gear: Surface, kin: MeshKinematics,
     return RelativeCurvature(float(evals[1]), float(evals[0]), d_max, d_min,
                              0.5 * float(evals[1]), 0.5 * float(evals[0]), tensor,
                              frame[:, 0], frame[:, 1], frame[:, 2])
+
+
+def _edge_tensor(sp1: SurfacePoint, rot1: np.ndarray, sp2: SurfacePoint, rot2: np.ndarray,
+                 basis: np.ndarray, edge: str, *, paint_mm: float = PAINT_THICKNESS_MM
+                 ) -> np.ndarray:
+    """Equivalent relative curvature tensor of an edge contact in ``basis`` (1/mm).
+
+    An edge touching a surface is a singular contact: along the edge ``e`` the
+    separation grows as ``1/2 kappa_e s^2`` (``kappa_e = e^T B e`` with ``B`` the
+    relative curvature of the smooth flanks; ``kappa_e >= 0`` at a first touch inside
+    the edge), across it, on the flank side, linearly with the slope ``tan theta``
+    of the angle between the flank normals. The paint strip across the edge is then
+    ``w = delta / tan theta`` wide; the equivalent curvature with the same width at the
+    paint thickness ``delta`` is ``kappa_f = 2 tan^2 theta / delta``. At a corner
+    (``kappa_e <= 0``: the extreme is an end of the edge) the separation grows
+    linearly both ways and ``kappa_f`` is used along the edge too.
+    """
+    member, _, name = edge.partition(" ")
+    smooth = -(curvature_tensor(sp1, rot1, basis) + curvature_tensor(sp2, rot2, basis))
+    own, rot = (sp1, rot1) if member == "pinion" else (sp2, rot2)
+    tangent = basis.T @ (rot @ (own.r_u if name in ("toe", "heel") else own.r_v))
+    e = tangent / np.linalg.norm(tangent)
+    f = np.array([-e[1], e[0]])
+    cos_theta = float(np.clip(-(rot1 @ sp1.n) @ (rot2 @ sp2.n), -1.0, 1.0))
+    tan2 = (1.0 - cos_theta ** 2) / max(cos_theta ** 2, 1e-12)
+    kappa_f = 2.0 * tan2 / paint_mm
+    kappa_e = float(e @ smooth @ e)
+    if kappa_e <= 0.0:
+        kappa_e = kappa_f
+    return kappa_e * np.outer(e, e) + kappa_f * np.outer(f, f)
 
 
 def contact_ellipse(rc: RelativeCurvature, *,

@@ -21,6 +21,7 @@ pattern movement with the V, H, J mounting errors).
 from __future__ import annotations
 
 from collections import Counter
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,10 +29,20 @@ from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..validation import UnusableInput
 
-__all__ = ["EDGES", "edge_name", "exit_counts", "PatternOffFlank", "ContactGap", "pattern_edges"]
+__all__ = ["EDGES", "edge_name", "solver_boundary", "exit_counts", "PatternOffFlank",
+           "ContactGap", "pattern_edges",
+           "PatchEdges", "loaded_patch_edges"]
 
 #: Edge name of each parameter-box side (``u`` root -> tip, ``v`` toe -> heel).
 EDGES = {"u min": "root", "u max": "tip", "v min": "toe", "v max": "heel"}
+
+
+def solver_boundary(label: str) -> str:
+    """The solver boundary (``"pinion v min"``) of an edge label (``"pinion toe"``);
+    the inverse of :func:`edge_name`."""
+    member, _, edge = label.partition(" ")
+    sides = {name: side for side, name in EDGES.items()}
+    return f"{member} {sides[edge]}" if edge in sides else label
 
 
 def edge_name(where: str) -> str:
@@ -97,7 +108,8 @@ def pattern_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, cycle,
                   on_flank: np.ndarray, *, outline_points: int = 16) -> tuple[str, ...]:
     """Per phase of ``cycle``: the edge the transmitting contact reaches, or ``""``.
 
-    An edge phase of the path (no interior mating point) reports its solver boundary.
+    A phase without contact reports its solver boundary; an edge-to-surface contact
+    (:mod:`gearcontact.tca.edge_contact`) reports its edge.
     A phase whose paint ellipse is not on both flanks (``on_flank`` False, from the
     exact normal-line projection of :func:`~gearcontact.tca.analysis.pattern_on_flank`)
     reports the edge that the ellipse outline crosses furthest, located by mapping the
@@ -109,6 +121,9 @@ def pattern_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, cycle,
     for k, (mp, rc, ell) in enumerate(zip(cycle.contact, cycle.curvature, cycle.ellipse)):
         if mp.edge:
             out.append(edge_name(mp.edge_where))
+            continue
+        if mp.edge_contact:     # an edge touching the other flank
+            out.append(mp.edge_contact)
             continue
         if on_flank[k]:
             out.append("")
@@ -134,3 +149,75 @@ def pattern_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, cycle,
 def exit_counts(wheres) -> dict:
     """Counts of the named edges of solver boundaries (for :class:`PatternOffFlank`)."""
     return dict(Counter(edge_name(w) for w in wheres))
+
+
+@dataclass(frozen=True)
+class PatchEdges:
+    """Where a loaded contact patch meets the flank boundary (the meaning of the LTCA's
+    ``edge_contact`` flag: a loaded cell borders a cell beyond a flank).
+
+    Attributes
+    ----------
+    edges : tuple of str
+        Flank edges the loaded patch reaches (``"pinion tip"``, ...), most cells first;
+        empty if the patch lies inside both flanks.
+    boundary_cells : int
+        Loaded cells next to an off-flank cell.
+    boundary_pressure_ratio : float
+        Largest pressure on those cells over the patch's p90 (0 if none): about 1 or
+        more is load carried at the edge (an edge spike above ~2); well below 1 the
+        patch only grazes the edge with its low-pressure rim.
+    """
+
+    edges: tuple
+    boundary_cells: int
+    boundary_pressure_ratio: float
+
+    def as_dict(self) -> dict:
+        return {"edge_contact_edges": list(self.edges),
+                "edge_contact_cells": self.boundary_cells,
+                "edge_pressure_ratio_p90": self.boundary_pressure_ratio}
+
+
+def loaded_patch_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, mp, case, *,
+                       frame: str = "principal") -> PatchEdges:
+    """The flank edges a loaded patch reaches.
+
+    ``case`` is a :class:`~gearcontact.contact.pair_ltca.PairLoadCase` solved at the
+    mating point ``mp`` (its grid lies in the ``frame`` tangent plane there, its
+    ``on_flank`` mask marks the
+    cells whose normal line meets both flanks). The off-flank cells next to loaded
+    cells are mapped into each flank's parameters to first order
+    (:func:`~gearcontact.tca.stencil.tangent_parameters`) and named by the box side
+    they lie beyond.
+    """
+    from .stencil import tangent_frame, tangent_parameters
+
+    patch = case.patch
+    off = ~np.asarray(case.on_flank, bool)
+    loaded = patch.lcp.contact_mask
+    near_off = np.zeros_like(off)
+    near_loaded = np.zeros_like(off)
+    for a, b in ((slice(1, None), slice(None, -1)), (slice(None, -1), slice(1, None))):
+        near_off[a, :] |= off[b, :]
+        near_off[:, a] |= off[:, b]
+        near_loaded[a, :] |= loaded[b, :]
+        near_loaded[:, a] |= loaded[:, b]
+    boundary = loaded & near_off
+    if not boundary.any():
+        return PatchEdges((), 0, 0.0)
+    axes = tangent_frame(pinion, gear, kin, mp, frame)
+    s, t = np.meshgrid(patch.grid.x_mm, patch.grid.y_mm)
+    cells = off & near_loaded
+    st = np.column_stack([s[cells], t[cells]])
+    names: Counter = Counter()
+    for member, surf, pose, uv in (
+            ("pinion", pinion, kin.pinion_pose(mp.phi1_rad), (mp.u1, mp.v1)),
+            ("gear", gear, kin.gear_pose(mp.phi2_rad), (mp.u2, mp.v2))):
+        for u, v in tangent_parameters(surf, pose, axes, uv, st):
+            name, margin = _edge_of(surf, u, v)
+            if margin < 0.0:
+                names[f"{member} {name}"] += 1
+    ratio = float(patch.pressure_mpa[boundary].max() / patch.p90_mpa)
+    return PatchEdges(tuple(n for n, _ in names.most_common()), int(boundary.sum()), ratio)
+

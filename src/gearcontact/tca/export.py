@@ -78,12 +78,12 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
                      *map(float, p.point_mm), *map(float, p.normal), float(p.u1),
                      float(p.v1), float(p.u2), float(p.v2), float(p.te0_arcsec),
                      c.A_minus_per_mm, c.B_minus_per_mm, e.semi_major_mm, e.semi_minor_mm,
-                     e.angle_deg])
+                     e.angle_deg, p.edge_contact])
     write_csv(out / "contact_path.csv",
          ["phi1_deg", "phi2_deg", "x_mm", "y_mm", "z_mm", "nx", "ny", "nz",
           "pinion_u_mm", "pinion_v_mm", "gear_u_mm", "gear_v_mm", "te0_arcsec",
           "A_minus_per_mm", "B_minus_per_mm", "paint_semi_major_mm", "paint_semi_minor_mm",
-          "ellipse_angle_deg"], rows)
+          "ellipse_angle_deg", "edge_contact"], rows)
 
     write_stencil_csv(res.stencil, out / "gap_stencil.csv")
     f = res.gap_field
@@ -115,6 +115,11 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         # per phase of the pitch: "" inside, else the flank edge reached (tca.edges)
         "edge_phases": res.edge_counts,
         "phase_edges": list(res.edges),
+        # per phase of the pitch: "surface" (flank on flank) or the flank edge touching
+        # the other flank (tca.edge_contact)
+        "phase_contact": [p.edge_contact or "surface" for p in cyc.contact],
+        "edge_contact_phases": res.edge_contact_counts,
+        "mean_point_contact": mp.edge_contact or "surface",
         "stencil": {"frame": res.stencil.frame_name,
                     "samples_off_flank": int((~res.stencil.on_flank).sum()),
                     "off_flank_fill": "osculating quadric (1/2) q^T B q at P0",

@@ -32,8 +32,10 @@ from ..geometry.surface import Surface
 from ..validation import check_positive
 from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
+from .edge_contact import contact_state
 from .edges import ContactGap
-from .solve import ContactGuess, MatingPoint, TcaPath, solve_mating_point, solve_tca
+from .solve import (EDGE_TE_LIMIT_ARCSEC, ContactGuess, MatingPoint, TcaPath,
+                    solve_mating_point, solve_tca)
 
 __all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
 
@@ -129,7 +131,8 @@ _RECENTRE_TRIES = 4
 def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
                start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
                pairs: int = 2, paint_mm: float = PAINT_THICKNESS_MM,
-               center: str = "vertex", progress: bool = False) -> MeshCycle:
+               center: str = "vertex", edge_contact: bool = True,
+               progress: bool = False) -> MeshCycle:
     """Run TCA of pair 0 over ``2 pairs + 1`` pitches (plus one either side to find the
     vertex) and assemble the mesh cycle.
 
@@ -157,6 +160,10 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         ``"vertex"`` (default): the reference point P0 (TE0 = 0, centre of the pitch
         window) is the path phase of least relief, i.e. the extremum of the pair's TE0
         (the vertex of the parabola); ``"start"``: the solved ``start`` point.
+    edge_contact : bool
+        Continue each pair's path through edge-to-surface contact (default;
+        :mod:`gearcontact.tca.edge_contact`) or stop it at the first flank boundary
+        (surface contact only, as surface-only TCA codes report).
     progress : bool
         Show a progress bar over the phases.
 
@@ -178,7 +185,8 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         raise ValueError(f"center = {center!r} is not 'vertex' or 'start'")
     n = int(phases) - 1
     step = 2.0 * np.pi / int(pinion_teeth) / n
-    first = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed)
+    first = (contact_state(pinion, gear, kin, start, fixed=start_fixed) if edge_contact
+             else solve_mating_point(pinion, gear, kin, start, fixed=start_fixed))
     rot2, t2 = kin.gear_pose(first.phi2_rad)
     envelope_is_max = bool(first.normal @ np.cross(kin.gear_axis, first.point_mm - t2) < 0.0)
     k0 = n // 2
@@ -186,38 +194,52 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
     margin = (n if center == "vertex" else 0)
     ks = np.arange(-k0 - span - margin, n - k0 + span + margin + 1)
     lo, hi = k0 + span, len(ks) - 1 - (n - k0) - span   # vertices the window can centre
-    for _ in range(_RECENTRE_TRIES):
-        grid = first.phi1_rad + step * ks
-        path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
-                         max_step_rad=2.0 * np.pi / int(pinion_teeth)
-                         / CONTINUATION_STEPS_PER_PITCH)
-        if center != "vertex":
-            i_ref = int(np.flatnonzero(ks == 0)[0])
+    # the edge tails of each path are followed while they can carry (TE0 within a limit of
+    # the path's first touch); a mesh whose TE0 p-p exceeds half the limit, or that has a
+    # gap, is redone with the limit widened 4x (up to 16x)
+    limit, start_point = EDGE_TE_LIMIT_ARCSEC, first
+    while True:
+        first = start_point
+        for _ in range(_RECENTRE_TRIES):
+            grid = first.phi1_rad + step * ks
+            path = solve_tca(pinion, gear, kin, grid, start=first.as_guess(), progress=progress,
+                             edges=edge_contact, edge_te_limit_arcsec=limit,
+                             max_step_rad=2.0 * np.pi / int(pinion_teeth)
+                             / CONTINUATION_STEPS_PER_PITCH)
+            if center != "vertex":
+                i_ref = int(np.flatnonzero(ks == 0)[0])
+                break
+            # P0 = the point of least relief along the path: the TE0 extremum of one pair
+            te = np.where(path.edge, -np.inf if envelope_is_max else np.inf, path.te0_arcsec)
+            i_v = int(np.argmax(te) if envelope_is_max else np.argmin(te))
+            if lo <= i_v <= hi or not np.isfinite(te[i_v]):
+                break
+            # the start was more than a pitch from the vertex (a bearing far from the mean
+            # node): restart the continuation from the path point nearest the vertex
+            first = path.points[i_v]
+        if center == "vertex":
+            i_ref = int(np.clip(i_v, lo, hi))
+            path = rebase(path, i_ref)
+        offsets = tuple(range(-pairs, pairs + 1))
+        te0 = path.te0_arcsec
+        base = i_ref - k0                         # grid index of the pitch's first phase
+        idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
+        te_pairs = te0[idx]
+        valid = np.isfinite(te_pairs)
+        if not valid.any(axis=0).all():
+            if edge_contact and limit < 16.0 * EDGE_TE_LIMIT_ARCSEC:
+                limit *= 4.0            # a gap the cut edge tails may bridge
+                continue
+            k = int(np.argmin(valid.any(axis=0)))
+            raise ContactGap(grid[base + k])
+        filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
+        winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
+        cols = np.arange(n + 1)
+        envelope = te_pairs[winner, cols]
+        if (not edge_contact or float(envelope.max() - envelope.min()) <= 0.5 * limit
+                or limit >= 16.0 * EDGE_TE_LIMIT_ARCSEC):
             break
-        # P0 = the point of least relief along the path: the TE0 extremum of one pair
-        te = np.where(path.edge, -np.inf if envelope_is_max else np.inf, path.te0_arcsec)
-        i_v = int(np.argmax(te) if envelope_is_max else np.argmin(te))
-        if lo <= i_v <= hi or not np.isfinite(te[i_v]):
-            break
-        # the start was more than a pitch from the vertex (a bearing far from the mean
-        # node): restart the continuation from the path point nearest the vertex
-        first = path.points[i_v]
-    if center == "vertex":
-        i_ref = int(np.clip(i_v, lo, hi))
-        path = rebase(path, i_ref)
-    offsets = tuple(range(-pairs, pairs + 1))
-    te0 = path.te0_arcsec
-    base = i_ref - k0                         # grid index of the pitch's first phase
-    idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
-    te_pairs = te0[idx]
-    valid = np.isfinite(te_pairs)
-    if not valid.any(axis=0).all():
-        k = int(np.argmin(valid.any(axis=0)))
-        raise ContactGap(grid[base + k])
-    filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
-    winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
-    cols = np.arange(n + 1)
-    envelope = te_pairs[winner, cols]
+        limit *= 4.0
     contact = tuple(path.points[idx[w, k]] for k, w in enumerate(winner))
     curv = tuple(relative_curvature(pinion, gear, kin, mp) for mp in contact)
     ell = tuple(contact_ellipse(rc, paint_mm=paint_mm) for rc in curv)

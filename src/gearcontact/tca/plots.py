@@ -59,7 +59,9 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
     one pinion pitch (every tooth carries the same pattern); the thin line is the whole
     interior path of one pair, the thick line its transmitting part; P0 is marked.
     ``edges`` (per phase, ``""`` or the edge reached; :mod:`gearcontact.tca.edges`)
-    draws the ellipses of edge phases in red and names the edges in the legend.
+    draws the ellipses of edge phases in red and names the edges in the legend;
+    transmitting contacts that are an edge touching the other flank
+    (:mod:`gearcontact.tca.edge_contact`) are marked with crosses.
     """
     fig, axes = plt.subplots(2, 1, figsize=(9, 7.5))
     theta = np.linspace(0.0, 2 * np.pi, 49)
@@ -91,6 +93,13 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
                             for mp in cycle.contact if not mp.edge])
         ax.plot(active[:, 0], active[:, 1], color="tab:red", lw=2.5,
                 label="transmitting (one pitch)")
+        touching = [mp for mp in cycle.contact if mp.edge_contact]
+        if touching:
+            xy = np.vstack([axial_projection(_to_body(kin, member, mp, mp.point_mm), member)
+                            for mp in touching])
+            ax.plot(xy[:, 0], xy[:, 1], "kx", ms=5,
+                    label="edge touching the other flank ("
+                          + ", ".join(sorted({mp.edge_contact for mp in touching})) + ")")
         ref = cycle.reference_point
         p0 = axial_projection(_to_body(kin, member, ref, ref.point_mm), member)[0]
         ax.plot(*p0, "k+", ms=10, mew=2, label="P0")

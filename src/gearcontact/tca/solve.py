@@ -40,12 +40,18 @@ from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface, SurfacePoint
 from ..validation import check_positive
 
-__all__ = ["ARCSEC_PER_RAD", "VARIABLES", "ContactGuess", "MatingPoint", "TcaPath",
-           "EdgeContact", "TcaConvergenceError", "solve_mating_point", "solve_tca",
+__all__ = ["ARCSEC_PER_RAD", "EDGE_TE_LIMIT_ARCSEC", "VARIABLES", "ContactGuess",
+           "MatingPoint", "TcaPath", "EdgeContact", "TcaConvergenceError",
+           "solve_mating_point", "solve_tca",
            "posed_point", "normal_derivatives"]
 
 #: Arc seconds per radian (180 * 3600 / pi).
 ARCSEC_PER_RAD = 206264.80624709636
+#: Default limit of a path's edge tails: an edge contact whose TE0 lies this far behind
+#: the path's first touch ends the path (arcsec); the nominal s0003 meshes have TE0 p-p
+#: of ~3 arcsec, and :func:`~gearcontact.tca.mesh.mesh_cycle` widens the limit when a
+#: mesh's TE0 p-p exceeds half of it.
+EDGE_TE_LIMIT_ARCSEC = 20.0
 #: Order of the six contact variables in every vector of this module.
 VARIABLES = ("u1", "v1", "u2", "v2", "phi1", "phi2")
 
@@ -133,10 +139,16 @@ class MatingPoint:
     iterations : int
         Newton iterations used.
     edge : bool
-        True if there is no interior mating point at this phase (edge contact); all
-        geometric fields are then NaN and ``edge_where`` names the boundary.
+        True if the pair has no contact at this phase: no interior mating point and no
+        edge touching the other flank (:mod:`gearcontact.tca.edge_contact`); all
+        geometric fields are then NaN and ``edge_where`` names the boundary crossed.
     edge_where : str
         Boundary crossed (``""`` for interior contact).
+    edge_contact : str
+        ``""`` for surface-to-surface contact; else the flank edge (``"pinion toe"``,
+        ...) whose point ``(u, v)`` (on that member's boundary) touches the other
+        flank's surface: an edge contact, with finite fields (``normal``: the touched
+        surface's, oriented like every mating normal).
     """
 
     phi1_rad: float
@@ -152,6 +164,7 @@ class MatingPoint:
     iterations: int = 0
     edge: bool = False
     edge_where: str = ""
+    edge_contact: str = ""
 
     def as_guess(self) -> ContactGuess:
         return ContactGuess(self.u1, self.v1, self.u2, self.v2, self.phi1_rad, self.phi2_rad)
@@ -401,15 +414,20 @@ def _predict(prev: MatingPoint, prev2: MatingPoint | None, phi1: float,
 def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
               *, start: ContactGuess, start_fixed: str = "phi1", tol_mm: float = 1e-10,
               max_iter: int = 40, max_step_rad: float | None = None,
+              edges: bool = True, edge_te_limit_arcsec: float = EDGE_TE_LIMIT_ARCSEC,
               progress: bool = False) -> TcaPath:
     """TCA of one tooth pair over the mesh phases ``phi1_rad`` by continuation.
 
     The reference (mean) mating point is solved first from ``start`` with
     ``start_fixed`` held (``"phi1"``: at ``start.phi1_rad``; ``"u2"``: the path point
     through the gear's profile parameter ``start.u2``). The path is then continued
-    from it upwards and downwards in ``phi1`` with a secant predictor; at the first
-    edge contact in a direction the march stops and all further phases in that
-    direction are returned as edge phases (never extrapolated).
+    from it upwards and downwards in ``phi1`` with a secant predictor. Where the
+    surface mating point leaves a flank, the path switches to edge-to-surface contact
+    (:mod:`gearcontact.tca.edge_contact`; ``edges=True``): at each further phase the
+    first of the edge contact and a surface mating point (re-entry) to touch is kept,
+    until no edge touches the other flank either; all further phases in that direction
+    are then phases without contact (never extrapolated). With ``edges=False`` the
+    path stops at the first boundary (surface contact only).
 
     Parameters
     ----------
@@ -422,12 +440,20 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     start : ContactGuess
         Guess of the reference mating point.
     start_fixed : str
-        Variable held fixed while solving the reference point.
+        Variable held fixed while solving the reference point (an edge contact, when the
+        surface point lies beyond a flank, holds ``phi1``).
     max_step_rad : float, optional
         Largest continuation step in ``phi1``: a wider gap between two requested
         phases is crossed in equal unrecorded substeps (a coarse phase grid then
         follows the path as far as a fine one; a too wide secant step can run into a
         parameter box early and end the path there). Default: no substeps.
+    edges : bool
+        Continue through edge-to-surface contact (default) or stop at the boundary.
+    edge_te_limit_arcsec : float
+        An edge contact whose TE0 lies more than this behind the path's first touch so
+        far (its TE0 extreme) ends the path in that direction: it can carry only if the
+        mesh's TE0 peak-to-peak exceeds the limit (:func:`~gearcontact.tca.mesh.mesh_cycle`
+        then widens it). Keeps the cost of the edge tails bounded.
     progress : bool
         Show a tqdm progress bar over the phases.
 
@@ -436,39 +462,97 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
     TcaPath
         With TE0 relative to the reference point, arcsec.
     """
+    from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
+    from .edges import solver_boundary
+
     phis = np.asarray(phi1_rad, dtype=float).ravel()
     if phis.size == 0 or np.any(np.diff(phis) <= 0.0):
         raise ValueError("phi1_rad must be a non-empty, strictly increasing sequence")
-    ref = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed,
-                             tol_mm=tol_mm, max_iter=max_iter)
+    if edges:
+        ref = contact_state(pinion, gear, kin, start, fixed=start_fixed, tol_mm=tol_mm,
+                            max_iter=max_iter)
+    else:
+        ref = solve_mating_point(pinion, gear, kin, start, fixed=start_fixed,
+                                 tol_mm=tol_mm, max_iter=max_iter)
+    forward = pushes_forward(gear, kin, ref.as_guess())
     results: list[MatingPoint | None] = [None] * phis.size
     i0 = int(np.searchsorted(phis, ref.phi1_rad))
     bar = tqdm(total=phis.size, desc="TCA phases", disable=not progress, leave=False)
+
+    def first_touch(a: MatingPoint | None, b: MatingPoint | None) -> MatingPoint | None:
+        if a is None or b is None:
+            return a if b is None else b
+        return a if (a.phi2_rad >= b.phi2_rad) == forward else b
+
     for direction, indices in ((+1, range(i0, phis.size)), (-1, range(i0 - 1, -1, -1))):
         prev, prev2 = ref, None
         stopped: str | None = None
+        best = 0.0                  # the path's first touch so far (TE0 extreme), arcsec
         for i in indices:
             bar.update(1)
             if stopped is not None:
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
                 continue
-            gap = phis[i] - prev.phi1_rad
-            subs = 1 if max_step_rad is None else max(1, int(np.ceil(abs(gap) / max_step_rad)))
-            try:
-                for j in range(1, subs + 1):
-                    phi = phis[i] if j == subs else prev.phi1_rad + gap / (subs - j + 1)
-                    mp = solve_mating_point(pinion, gear, kin,
-                                            _predict(prev, prev2, phi, kin.ratio),
-                                            tol_mm=tol_mm, max_iter=max_iter)
-                    if abs(mp.phi1_rad - prev.phi1_rad) > 0.0:
-                        prev2 = prev
-                    prev = mp
-                    gap = phis[i] - prev.phi1_rad
-            except EdgeContact as exc:
-                stopped = exc.where
+            mp = None
+            if not prev.edge_contact:
+                gap = phis[i] - prev.phi1_rad
+                subs = 1 if max_step_rad is None else max(1, int(np.ceil(abs(gap) / max_step_rad)))
+                try:
+                    for j in range(1, subs + 1):
+                        phi = phis[i] if j == subs else prev.phi1_rad + gap / (subs - j + 1)
+                        step = solve_mating_point(pinion, gear, kin,
+                                                  _predict(prev, prev2, phi, kin.ratio),
+                                                  tol_mm=tol_mm, max_iter=max_iter)
+                        if abs(step.phi1_rad - prev.phi1_rad) > 0.0:
+                            prev2 = prev
+                        prev = step
+                        gap = phis[i] - prev.phi1_rad
+                    mp = step
+                except (EdgeContact, TcaConvergenceError) as exc:
+                    if not edges and isinstance(exc, TcaConvergenceError):
+                        raise
+                    stopped = exc.where if isinstance(exc, EdgeContact) else "no convergence"
+                    if not edges:
+                        results[i] = MatingPoint.edge_phase(phis[i], stopped)
+                        continue
+                    stopped = None
+                    mp = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
+                                            forward=forward, tol_mm=tol_mm)
+                    if mp is None and isinstance(exc, TcaConvergenceError):
+                        raise
+                    where = exc.where if isinstance(exc, EdgeContact) else "no convergence"
+            else:
+                # edge mode: the edge contact, or the surface point if it is back on the
+                # flanks and touches first
+                where = solver_boundary(prev.edge_contact)
+                edge = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
+                                          forward=forward, tol_mm=tol_mm)
+                surface = None
+                # the flank behind the edge dips towards the other flank: the surface
+                # contact is back inside the flanks
+                if edge is None or inward_slope(pinion, gear, kin, edge) < 0.0:
+                    guess = replace(prev.as_guess(), phi1_rad=phis[i], phi2_rad=prev.phi2_rad
+                                    + (phis[i] - prev.phi1_rad) / kin.ratio)
+                    try:
+                        surface = solve_mating_point(pinion, gear, kin, guess, tol_mm=tol_mm,
+                                                     max_iter=max_iter)
+                    except (EdgeContact, TcaConvergenceError):
+                        pass
+                mp = first_touch(surface, edge)
+            if mp is None:
+                stopped = where
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
                 continue
             te = ((mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
-            results[i] = replace(mp, te0_arcsec=te * ARCSEC_PER_RAD)
+            te *= ARCSEC_PER_RAD
+            if mp.edge_contact and (best - te if forward else te - best) > edge_te_limit_arcsec:
+                # an edge contact this far behind the path's first touch cannot carry
+                stopped = solver_boundary(mp.edge_contact)
+                results[i] = MatingPoint.edge_phase(phis[i], stopped)
+                continue
+            best = max(best, te) if forward else min(best, te)
+            if prev is not mp:      # a switch between surface and edge contact
+                prev2, prev = None, mp
+            results[i] = replace(mp, te0_arcsec=te)
     bar.close()
     return TcaPath(tuple(results), ref.phi1_rad, ref.phi2_rad, kin.ratio)

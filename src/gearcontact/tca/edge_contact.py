@@ -1,0 +1,404 @@
+"""Edge-to-surface contact: a boundary curve of one flank touching the other flank.
+
+When the surface-to-surface mating point of a phase lies beyond a flank boundary
+(misalignment, short face, strong ease-off), the teeth still touch: an *edge* of one
+flank - toe, heel, tip (top-land edge) or root (fillet limit) - meets the other flank's
+surface. The gear then rests where the first point of an edge reaches the other surface
+(Litvin & Fuentes 2004, sec. 15.7 "edge contact"; Simon 2007):
+
+for each point ``s`` of the edge ``C(s)`` of member ``M`` (``u`` or ``v`` held at its box
+limit, the other parameter ``s`` free), the gear rotation ``phi2(s)`` that brings the
+point onto the other member's surface solves the three equations
+
+.. math::  \\mathbf X_1 - \\mathbf X_2 = 0
+
+in the other member's parameters ``(a, b)`` and ``phi2`` (pinion phase held; Newton's
+method with the analytic Jacobian ``[r_a, r_b, -w_2 x (X_2 - c_2)]``). The contact is the
+extreme of ``phi2(s)`` over the edge in the direction the gear is pushed (the first
+point to touch; the same rule that picks the transmitting pair of the envelope in
+:mod:`gearcontact.tca.mesh`): a bounded 1-D minimisation (Brent) after sampling the
+edge. At an interior extreme ``d phi2 / ds = 0``, i.e. the edge tangent lies in the
+touched surface's tangent plane; at an end of the edge the contact is a corner. When the
+surface mating point reaches the edge from inside, it satisfies both systems, so the
+edge solution continues the surface one with continuous TE0 (tested).
+
+The result is a :class:`~gearcontact.tca.solve.MatingPoint` whose ``edge_contact`` names
+the edge (``"pinion toe"``) and whose ``normal`` is the touched surface's normal
+oriented like every mating normal (out of the gear tooth, into the pinion tooth). Edge
+contact is singular (no contact ellipse across the edge); downstream the loaded contact
+is solved on the real gap field around the edge point, whose cells beyond the edge
+carry no material.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., Cambridge
+University Press, 2004, sec. 15.7.
+V. Simon, "Load distribution in spiral bevel gears", *J. Mech. Des.* 129 (2007) 201-209
+(edge contact of misaligned bevel gears).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from ..geometry.kinematics import MeshKinematics
+from ..geometry.surface import Surface
+from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError, _cross,
+                    posed_point, solve_mating_point)
+
+__all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
+           "pushes_forward", "inward_slope", "solve_edge_contact", "contact_state"]
+
+#: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
+EDGE_NAMES = ("toe", "heel", "root", "tip")
+
+#: Samples along an edge before the 1-D refinement (the extreme of ``phi2(s)`` is
+#: bracketed by the best sample's neighbours).
+EDGE_SAMPLES = 7
+
+
+@dataclass(frozen=True)
+class FlankEdge:
+    """One boundary curve of a member's flank.
+
+    Attributes
+    ----------
+    member : str
+        ``"pinion"`` or ``"gear"``.
+    name : str
+        One of :data:`EDGE_NAMES`.
+    """
+
+    member: str
+    name: str
+
+    @property
+    def label(self) -> str:
+        """``"<member> <edge>"``, the name used in every output."""
+        return f"{self.member} {self.name}"
+
+
+#: All eight candidate edges (each member's four, touching the other's surface).
+FLANK_EDGES = tuple(FlankEdge(m, e) for m in ("pinion", "gear") for e in EDGE_NAMES)
+
+
+def edge_span(surface: Surface, name: str) -> tuple[float, float]:
+    """Range of the free parameter ``s`` along the edge ``name``, mm."""
+    if name in ("toe", "heel"):
+        return tuple(map(float, surface.u_range))
+    if name in ("root", "tip"):
+        return tuple(map(float, surface.v_range))
+    raise ValueError(f"edge = {name!r} is not one of {EDGE_NAMES}")
+
+
+def edge_parameters(surface: Surface, name: str, s: float) -> tuple[float, float]:
+    """Flank parameters ``(u, v)`` of the point ``s`` of the edge ``name``."""
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    return {"toe": (s, v0), "heel": (s, v1), "root": (u0, s), "tip": (u1, s)}[name]
+
+
+def pushes_forward(gear: Surface, kin: MeshKinematics, guess: ContactGuess) -> bool:
+    """True if a contact at ``guess`` pushes the gear towards +phi2 (its normal, out of
+    the gear tooth, opposes the gear's velocity): the gear then rests on the contact
+    of *largest* phi2 (:mod:`gearcontact.tca.mesh`)."""
+    _, x2, n2 = posed_point(gear, kin.gear_pose(guess.phi2_rad), guess.u2, guess.v2)
+    t2 = kin.gear_pose(guess.phi2_rad)[1]
+    return bool(n2 @ np.cross(kin.gear_axis, x2 - t2) < 0.0)
+
+
+def _inside(surface: Surface, a: float, b: float, tol: float = 1e-9) -> bool:
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    return u0 - tol <= a <= u1 + tol and v0 - tol <= b <= v1 + tol
+
+
+class _EdgeSolver:
+    """``phi2(s)`` of one edge at one pinion phase (3 x 3 Newton per point)."""
+
+    def __init__(self, pinion: Surface, gear: Surface, kin: MeshKinematics, phi1: float,
+                 edge: FlankEdge, *, tol_mm: float, max_iter: int):
+        self.pinion, self.gear, self.kin, self.phi1 = pinion, gear, kin, float(phi1)
+        self.edge, self.tol, self.max_iter = edge, tol_mm, max_iter
+        self.own = pinion if edge.member == "pinion" else gear
+        self.other = gear if edge.member == "pinion" else pinion
+        self.pose1 = kin.pinion_pose(self.phi1)
+
+    def solve(self, s: float, y0: np.ndarray) -> np.ndarray | None:
+        """``(a, b, phi2)`` with edge point ``s`` on the other surface, or None."""
+        kin, w2 = self.kin, self.kin.gear_axis
+        ue, ve = edge_parameters(self.own, self.edge.name, s)
+        y = np.array(y0, float)
+        on_pinion = self.edge.member == "pinion"
+        if on_pinion:   # the edge point is fixed (pinion phase held)
+            x1 = posed_point(self.pinion, self.pose1, ue, ve)[1]
+        else:
+            sp_edge = self.gear.point(ue, ve)
+        for _ in range(self.max_iter):
+            rot2, c2 = kin.gear_pose(y[2])
+            if on_pinion:
+                sp = self.gear.point(y[0], y[1])
+                x2 = rot2 @ sp.r + c2
+                res = x1 - x2
+                jac = np.column_stack([-(rot2 @ sp.r_u), -(rot2 @ sp.r_v),
+                                       -_cross(w2, x2 - c2)])
+            else:
+                sp = self.pinion.point(y[0], y[1])
+                x1 = self.pose1[0] @ sp.r + self.pose1[1]
+                x2 = rot2 @ sp_edge.r + c2
+                res = x1 - x2
+                jac = np.column_stack([self.pose1[0] @ sp.r_u, self.pose1[0] @ sp.r_v,
+                                       -_cross(w2, x2 - c2)])
+            if np.all(np.abs(res) < self.tol):
+                return y
+            try:
+                step = np.linalg.solve(jac, -res)
+            except np.linalg.LinAlgError:
+                return None
+            # a step of more than a tooth or a tenth of a radian: no touch nearby
+            if np.abs(step[:2]).max() > 50.0 or abs(step[2]) > 0.1:
+                return None
+            y = y + step
+        return None
+
+    def feasible(self, y: np.ndarray | None) -> bool:
+        return y is not None and _inside(self.other, y[0], y[1])
+
+    def mating_point(self, s: float, y: np.ndarray) -> MatingPoint:
+        """The contact state of edge point ``s`` touching at ``y``."""
+        ue, ve = edge_parameters(self.own, self.edge.name, s)
+        pose2 = self.kin.gear_pose(y[2])
+        if self.edge.member == "pinion":
+            u1, v1, u2, v2 = ue, ve, y[0], y[1]
+            _, x, n = posed_point(self.gear, pose2, u2, v2)
+        else:
+            u1, v1, u2, v2 = y[0], y[1], ue, ve
+            _, x, n1 = posed_point(self.pinion, self.pose1, u1, v1)
+            n = -n1     # the common normal points into the pinion tooth
+        return MatingPoint(self.phi1, float(y[2]), float(u1), float(v1), float(u2),
+                           float(v2), x, n, edge_contact=self.edge.label)
+
+
+def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                 mp: MatingPoint) -> float:
+    """Slope of the separation from the edge into its own flank at an edge contact.
+
+    ``(d X_own / d q) . n_other`` for a unit step ``q`` on the own flank perpendicular
+    to the edge, inwards, with ``n_other`` the touched flank's normal out of its
+    tooth. Positive: the flank behind the edge recedes from the other flank, so the
+    edge is the first point to touch; negative: the flank surface inside the edge
+    touches first (the surface contact is back on the flanks).
+    """
+    member, _, name = mp.edge_contact.partition(" ")
+    if member == "pinion":
+        sp, rot, n_other = pinion.point(mp.u1, mp.v1), kin.pinion_pose(mp.phi1_rad)[0], mp.normal
+    else:
+        sp, rot, n_other = gear.point(mp.u2, mp.v2), kin.gear_pose(mp.phi2_rad)[0], -mp.normal
+    along, across, sign = {"toe": (sp.r_u, sp.r_v, 1.0), "heel": (sp.r_u, sp.r_v, -1.0),
+                           "root": (sp.r_v, sp.r_u, 1.0), "tip": (sp.r_v, sp.r_u, -1.0)}[name]
+    t = along / np.linalg.norm(along)
+    inward = sign * (across - (across @ t) * t)
+    return float((rot @ (inward / np.linalg.norm(inward))) @ n_other)
+
+
+def _guess_y(edge: FlankEdge, guess: ContactGuess) -> np.ndarray:
+    if edge.member == "pinion":
+        return np.array([guess.u2, guess.v2, guess.phi2_rad])
+    return np.array([guess.u1, guess.v1, guess.phi2_rad])
+
+
+def _guess_s(surface: Surface, edge: FlankEdge, guess: ContactGuess) -> float:
+    u, v = (guess.u1, guess.v1) if edge.member == "pinion" else (guess.u2, guess.v2)
+    lo, hi = edge_span(surface, edge.name)
+    return float(np.clip(u if edge.name in ("toe", "heel") else v, lo, hi))
+
+
+def _edge_samples(solver: _EdgeSolver, guess: ContactGuess, forward: bool,
+                  samples: int, memo: dict | None = None
+                  ) -> tuple[float, np.ndarray, np.ndarray, list] | None:
+    """Sample ``phi2(s)`` along one edge: ``(best score, samples s, scores, solutions)``,
+    or None if no sample of the edge meets the other flank. ``memo`` (per edge: sample
+    ``s`` -> ``(phi1, y)`` of an earlier phase) gives each sample its own Newton start,
+    turned by the nominal ratio."""
+    lo, hi = edge_span(solver.own, solver.edge.name)
+    s0 = _guess_s(solver.own, solver.edge, guess)
+    # the guess's own position and its close neighbours join the even samples: the
+    # edge contact of the previous phase continues there even where the touching part
+    # of the edge is short (an edge crossing the other flank's boundary)
+    near = 0.02 * (hi - lo)
+    ss = np.unique(np.clip(np.concatenate([np.linspace(lo, hi, int(samples)),
+                                           [s0 - near, s0, s0 + near]]), lo, hi))
+    ys: list = [None] * len(ss)
+    k0 = int(np.argmin(np.abs(ss - s0)))
+    # chain the Newton starts outwards from the sample nearest the guess
+    known = {} if memo is None else memo.setdefault(solver.edge.label, {})
+    ratio = solver.kin.ratio
+    for order in (range(k0, len(ss)), range(k0 - 1, -1, -1)):
+        y_prev = _guess_y(solver.edge, guess)
+        for k in order:
+            y = None
+            if float(ss[k]) in known:
+                phi1_old, y_old = known[float(ss[k])]
+                y = solver.solve(ss[k], y_old + np.array(
+                    [0.0, 0.0, (solver.phi1 - phi1_old) / ratio]))
+            if y is None and y_prev is not None:
+                y = solver.solve(ss[k], y_prev)
+            ys[k] = y
+            if y is not None:
+                y_prev = y
+                known[float(ss[k])] = (solver.phi1, y)
+    sign = 1.0 if forward else -1.0
+    score = np.array([sign * y[2] if solver.feasible(y) else -np.inf for y in ys])
+    if not np.isfinite(score).any():
+        return None
+    return float(score.max()), ss, score, ys
+
+
+def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, np.ndarray]:
+    """``(s, y)`` of the first point of one edge to touch: the best sample refined by a
+    bounded Brent search between its neighbours."""
+    _, ss, score, ys = sampled
+    sign = 1.0 if forward else -1.0
+    k = int(np.argmax(score))
+    # bracket: one even sample spacing either side of the best sample (the samples near
+    # the last contact are closer together than the extreme may have moved)
+    lo, hi = edge_span(solver.own, solver.edge.name)
+    h = (hi - lo) / (EDGE_SAMPLES - 1)
+    a, b = max(ss[k] - h, lo), min(ss[k] + h, hi)
+    y_best = ys[k]
+    cache = {}
+
+    def objective(s):
+        y = solver.solve(s, y_best)
+        cache[float(s)] = y
+        # infeasible points (beyond the other flank) rank below the best sample
+        return -sign * y[2] if solver.feasible(y) else -score[k] + 1.0
+
+    opt = minimize_scalar(objective, bounds=(a, b), method="bounded",
+                          options={"xatol": 1e-5})
+    s_opt = float(opt.x)
+    y_opt = cache[s_opt] if s_opt in cache else solver.solve(s_opt, y_best)
+    # the bounded search never evaluates the bracket ends: an extreme at an end of the
+    # edge (a corner contact) is the end sample itself
+    candidates = [(s_opt, y_opt), (ss[k], y_best)]
+    # where a neighbour sample touches beyond the other flank, the extreme can be the
+    # crossing of the two flanks' boundaries: its point (margin 0) by Brent's root search
+    for end in (a, b):
+        if end != ss[k] and not solver.feasible(solver.solve(end, y_best)):
+            crossing = _boundary_crossing(solver, ss[k], end, y_best)
+            if crossing is not None:
+                candidates.append(crossing)
+    candidates = [(sv, y) for sv, y in candidates if solver.feasible(y)]
+    return max(candidates, key=lambda sy: sign * sy[1][2])
+
+
+def _margin(surface: Surface, y: np.ndarray) -> float:
+    """Signed distance of the touched point's parameters inside ``surface``'s box, mm."""
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    return float(min(y[0] - u0, u1 - y[0], y[1] - v0, v1 - y[1]))
+
+
+def _boundary_crossing(solver: _EdgeSolver, s_in: float, s_out: float,
+                       y_in: np.ndarray) -> tuple[float, np.ndarray] | None:
+    """The edge point between ``s_in`` (touching inside the other flank) and ``s_out``
+    (beyond it) whose touch lies on the other flank's boundary (margin 0)."""
+    def margin(s):
+        y = solver.solve(s, y_in)
+        return -1.0 if y is None else _margin(solver.other, y)
+
+    if margin(s_out) >= 0.0:
+        return None
+    try:
+        s_b = brentq(margin, s_in, s_out, xtol=1e-9)
+    except ValueError:
+        return None
+    y = solver.solve(s_b, y_in)
+    if y is None:
+        return None
+    return s_b, y           # feasible within the box tolerance (1e-9 mm)
+
+
+#: Edges refined after sampling (the best by their sampled first touch).
+EDGES_REFINED = 2
+
+
+def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad: float,
+                       *, guess: ContactGuess, forward: bool, edges=FLANK_EDGES,
+                       samples: int = EDGE_SAMPLES, tol_mm: float = 1e-10,
+                       max_iter: int = 15, memo: dict | None = None) -> MatingPoint | None:
+    """The first edge-to-surface contact of one tooth pair at the pinion phase ``phi1``.
+
+    Parameters
+    ----------
+    pinion, gear : Surface
+        The two flanks (body frames, normals out of the tooth).
+    kin : MeshKinematics
+        Kinematics with assembly errors.
+    phi1_rad : float
+        Pinion phase, rad (held).
+    guess : ContactGuess
+        A nearby contact state (Newton starts; its ``phi1`` is ignored).
+    forward : bool
+        The pinion pushes the gear towards +phi2 (:func:`pushes_forward`): the contact
+        is the edge point of largest ``phi2``; else of smallest.
+    edges : sequence of FlankEdge
+        Candidate edges (default all eight).
+    samples : int
+        Even points per edge before the 1-D refinement (>= 3); the
+        :data:`EDGES_REFINED` edges whose samples touch first are refined.
+    tol_mm : float
+        Newton tolerance of the point-on-surface equations, mm.
+    memo : dict, optional
+        Newton starts kept between calls (pass the same dict along a path: each edge
+        sample then starts from its solution at the previous phase).
+
+    Returns
+    -------
+    MatingPoint or None
+        With ``edge_contact`` naming the edge (``te0_arcsec`` 0: the path sets it);
+        None if no edge point meets the other flank inside its boundary.
+    """
+    if int(samples) < 3:
+        raise ValueError(f"samples = {samples!r} must be >= 3")
+    sampled = []
+    for edge in edges:
+        solver = _EdgeSolver(pinion, gear, kin, phi1_rad, edge, tol_mm=tol_mm,
+                             max_iter=max_iter)
+        hit = _edge_samples(solver, guess, forward, samples, memo)
+        if hit is not None:
+            sampled.append((hit[0], solver, hit))
+    if not sampled:
+        return None
+    sampled.sort(key=lambda item: -item[0])
+    sign = 1.0 if forward else -1.0
+    refined = [(solver, _edge_extreme(solver, forward, hit))
+               for _, solver, hit in sampled[:EDGES_REFINED]]
+    solver, (s, y) = max(refined, key=lambda item: sign * item[1][1][2])
+    return solver.mating_point(s, y)
+
+
+def contact_state(pinion: Surface, gear: Surface, kin: MeshKinematics, guess: ContactGuess,
+                  *, fixed: str = "phi1", forward: bool | None = None,
+                  tol_mm: float = 1e-10, max_iter: int = 40) -> MatingPoint:
+    """The contact at ``guess``: the surface mating point, or, if that lies beyond a
+    flank boundary (or its Newton solve fails), the edge contact at ``guess.phi1``.
+
+    ``forward`` defaults to :func:`pushes_forward` at ``guess``.
+
+    Raises
+    ------
+    EdgeContact, TcaConvergenceError
+        The surface solve's error, if no edge touches either.
+    """
+    try:
+        return solve_mating_point(pinion, gear, kin, guess, fixed=fixed, tol_mm=tol_mm,
+                                  max_iter=max_iter)
+    except (EdgeContact, TcaConvergenceError) as exc:
+        error = exc
+    if forward is None:
+        forward = pushes_forward(gear, kin, guess)
+    mp = solve_edge_contact(pinion, gear, kin, guess.phi1_rad, guess=guess, forward=forward)
+    if mp is None:
+        raise error
+    return mp
