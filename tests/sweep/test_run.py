@@ -106,17 +106,21 @@ def test_interrupted_sweep_resumes_without_recomputing(pair, client, tmp_path, m
 
 
 def test_failed_point_is_recorded_not_fatal(pair, tmp_path):
-    # E = 1 mm: the bearing has left the pinion flank at every start contact (named
-    # PatternOffFlank, towards the toe; before edge contact was a result, the TCA Newton
-    # solve failed there)
-    grid = SweepGrid((parse_vary("E=0:1:2"),), (64.5,))
+    # A lengthwise crowning of 40 um/mm^2 relieves the toe/tip corner by ~1.7 mm, far
+    # beyond the ease-off limit (5 % of the pinion mean normal tooth thickness, ~0.1 mm):
+    # that variant's flanks cannot be built, a named error recorded on its point. (A
+    # misalignment no longer serves here: since edge-to-surface contact is modelled,
+    # every error within the sweep limits gives a result.)
+    grid = SweepGrid((parse_vary("easeoff.drive.lengthwise_crowning_um_per_mm2=0.1:40:2"),),
+                     (64.5,))
     rep = run_sweep(pair, grid, out=tmp_path, side="drive", phases=PHASES, workers=0,
                     progress=False)
     assert (rep.computed, rep.failed) == (2, 1)
     ds = _open(rep)
     assert ds["status"].values.ravel().tolist() == [store_mod.DONE, store_mod.FAILED]
     assert ds["error"].values[0, 0] == ""
-    assert ds["error"].values[1, 0].startswith("PatternOffFlank: ")
+    assert ds["error"].values[1, 0].startswith("InputRangeError: easeoff (drive) relief")
+    assert "101.8 um" in ds["error"].values[1, 0]
     assert np.isfinite(ds["te0_pp_arcsec"].values[0, 0])
     assert np.isnan(ds["te0_pp_arcsec"].values[1, 0])
     assert set(CELL_VARIABLES) >= set(TCA_VARIABLES) and "lcp_p90_mpa" not in ds
