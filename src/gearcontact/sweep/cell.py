@@ -44,7 +44,8 @@ TCA_VARIABLES = {
     "pattern_depth_mm": ("mm", "extent of the transmitting path along the profile"),
     "paint_major_mm": ("mm", "paint-ellipse major axis 2a at P0"),
     "pattern_on_flank": ("1", "every transmitting paint ellipse lies on both flanks"),
-    "edge_contact": ("1", "a transmitting phase has no interior mating point"),
+    "edge_contact": ("1", "a transmitting phase is an edge touching the other flank, or "
+                          "has no mating point"),
 }
 #: Per cell with ``ltca``.
 LTCA_VARIABLES = {
@@ -72,6 +73,8 @@ def lte_stride(phases: int) -> int:
 
 def _tca_values(res) -> dict:
     cyc = res.cycle
+    # every phase with a contact (an edge touching the other flank included: it is where
+    # the pattern runs); ``edge`` phases have no mating point and NaN fields
     inner = [mp for mp in cyc.contact if not mp.edge]
     u2 = np.array([mp.u2 for mp in inner])
     v2 = np.array([mp.v2 for mp in inner])
@@ -81,7 +84,7 @@ def _tca_values(res) -> dict:
             "pattern_length_mm": float(np.ptp(v2)), "pattern_depth_mm": float(np.ptp(u2)),
             "paint_major_mm": float(2.0 * res.mean_ellipse.semi_major_mm),
             "pattern_on_flank": bool(res.pattern_on_flank.all()),
-            "edge_contact": len(inner) < len(cyc.contact)}
+            "edge_contact": any(mp.edge or mp.edge_contact for mp in cyc.contact)}
 
 
 def compute_point(pair, flanks, assembly: dict, torques_nm, *, side: str, compute: tuple,
