@@ -46,7 +46,7 @@ def main() -> None:
     base = model_for_pair(pair, torque_nm=args.torque, side=side, phases=61,
                           bending=args.bending)
     mesh = base.mesh
-    tca, flanks = analyze_pair(pair, side=side, phases=61)
+    tca, flanks = analyze_pair(pair, side=side, phases=61, edge_contact=False)
     dt = default_drivetrain(pair)
     print(f"{pair.name} ({side}) twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, step "
           f"{args.step_us:g} us, {args.duration_ms:g} ms simulated, record every "

@@ -7,11 +7,12 @@ helpers, so that bad input never propagates silently (no clipping, no NaN).
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
 __all__ = ["InputRangeError", "check_finite", "check_positive", "check_range",
-           "check_array_finite"]
+           "check_array_finite", "read_text_file"]
 
 
 class UnusableInput(ValueError):
@@ -92,3 +93,20 @@ def check_array_finite(field: str, values) -> np.ndarray:
         raise InputRangeError(f"{field}[{', '.join(map(str, idx))}]", arr[idx],
                               "a finite real number")
     return arr
+
+
+def read_text_file(path: Path, *, field: str, what: str) -> str:
+    """The UTF-8 text of ``path``; a bad byte or an unreadable file is an
+    :class:`InputRangeError` naming the file (and the byte) or ``field``.
+
+    ``what`` describes the expected file in the message (e.g. ``"a TOML file"``).
+    """
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputRangeError(f"{path} (byte {exc.start})",
+                              exc.object[exc.start:exc.start + 4],
+                              f"UTF-8 text ({what})") from None
+    except OSError as exc:
+        raise InputRangeError(field, str(path), f"a readable file: {what} "
+                                                f"({exc.strerror})") from None

@@ -90,6 +90,26 @@ def test_bad_drivetrain_file_exit_2(tmp_path, capsys):
     assert code == 2 and "drivetrain.load_inertia_kgm2" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("content, named", [
+    (None, "--drivetrain"),                         # no such file
+    (b"[drivetrain]\nload_inertia_kgm2 = \xff\n", "(byte 33)"),   # not UTF-8
+    (b"[drivetrain\n", "TOML syntax")])
+def test_unreadable_drivetrain_file_exit_2_before_work(tmp_path, capsys, content, named):
+    """Each was 'internal error, please report' (careless-user probe of issue 12)."""
+    f = tmp_path / "d.toml"
+    if content is not None:
+        f.write_bytes(content)
+    code = main(["twin", "--drivetrain", str(f), "--out", str(tmp_path / "x"), "--quiet"])
+    assert code == 2 and named in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def test_duration_has_an_upper_limit(tmp_path, capsys):
+    """--duration 1e9 ran for hours; the limit is named in the message."""
+    code = main(["twin", "--duration", "1e9", "--out", str(tmp_path / "x"), "--quiet"])
+    assert code == 2 and "at most 60 s" in capsys.readouterr().err
+
+
 def test_speed_sweep_files(tmp_path):
     d = tmp_path / "sweep"
     assert main(["twin", "--speed-sweep", "1000:3000:1000", "--phases", "31", "--workers", "1",

@@ -77,7 +77,7 @@ from importlib import resources
 from pathlib import Path
 
 from ..materials import STEEL, Material
-from ..validation import InputRangeError, check_positive, check_range
+from ..validation import InputRangeError, check_positive, check_range, read_text_file
 from .blank import BlankDesign, design_blank
 from .kinematics import AssemblyErrors, MeshKinematics
 
@@ -386,14 +386,7 @@ def load_pair(source: str | Path) -> GearPair:
         if not path.is_file():
             raise InputRangeError("pair", text, f"a preset {PRESETS} or an existing TOML "
                                                 "file (it is neither a preset nor a file)")
-        try:
-            raw = path.read_text(encoding="utf-8")
-        except UnicodeDecodeError as exc:
-            raise InputRangeError(f"{path} (byte {exc.start})", exc.object[exc.start:exc.start + 4],
-                                  "UTF-8 text (a TOML file)") from None
-        except OSError as exc:
-            raise InputRangeError("pair", text, f"a readable TOML file ({exc.strerror})") \
-                from None
+        raw = read_text_file(path, field="pair", what="a TOML file")
         label, where = path.stem, f"{path}: "
     try:
         doc = tomllib.loads(raw)

@@ -37,9 +37,10 @@ import tomllib
 from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
-from ..validation import InputRangeError, check_positive, check_range
+from ..validation import InputRangeError, check_positive, check_range, read_text_file
 
-__all__ = ["DrivetrainParams", "default_drivetrain", "load_drivetrain", "STEEL_DENSITY_KG_M3",
+__all__ = ["DrivetrainParams", "default_drivetrain", "load_drivetrain", "check_drivetrain_file",
+           "STEEL_DENSITY_KG_M3",
            "shaft_stiffness_nm_per_rad", "shaft_inertia_kgm2"]
 
 #: Density of steel, kg/m^3 (handbook value).
@@ -153,6 +154,26 @@ def default_drivetrain(pair) -> DrivetrainParams:
         output_stiffness_nm_per_rad=shaft_stiffness_nm_per_rad(*_OUTPUT_SHAFT_MM, g2))
 
 
+def check_drivetrain_file(source) -> dict:
+    """The parsed TOML document of the drivetrain file ``source``.
+
+    Raises
+    ------
+    InputRangeError
+        ``--drivetrain`` is not an existing, readable UTF-8 TOML file (the message names
+        the file and, for a bad byte or a syntax error, where).
+    """
+    path = Path(source)
+    if not path.is_file():
+        raise InputRangeError("--drivetrain", str(source), "an existing TOML file with a "
+                                                           "[drivetrain] table")
+    text = read_text_file(path, field="--drivetrain", what="a TOML file")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputRangeError(f"{path.name} (TOML syntax)", str(exc), "valid TOML") from None
+
+
 def load_drivetrain(source, pair) -> DrivetrainParams:
     """The ``[drivetrain]`` table of a TOML file over the defaults of ``pair``.
 
@@ -164,12 +185,7 @@ def load_drivetrain(source, pair) -> DrivetrainParams:
     if source is None:
         return base
     path = Path(source)
-    if not path.is_file():
-        raise FileNotFoundError(f"drivetrain file {str(source)!r} does not exist")
-    try:
-        doc = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise InputRangeError(f"{path.name} (TOML syntax)", str(exc), "valid TOML") from None
+    doc = check_drivetrain_file(source)
     table = doc.get("drivetrain")
     if not isinstance(table, dict):
         raise InputRangeError("[drivetrain]", None, f"a table in {path.name}")

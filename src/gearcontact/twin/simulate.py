@@ -573,8 +573,9 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                    bending: bool = False, progress: bool = False) -> TwinModel:
     """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
     :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
-    The reverse flank is the other side's own TCA (mirrored loaded law if that side is in
-    line contact). ``bending``: tooth bending of both members in series with the
+    The TCA is surface-to-surface (``edge_contact=False``: the Hertzian law has no
+    meaning at an edge touching the other flank). The reverse flank is the other side's
+    own TCA (mirrored loaded law if that side is in line contact). ``bending``: tooth bending of both members in series with the
     Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`)."""
     from ..tca.analysis import analyze_pair
     from ..tca.line_contact import LineContact
@@ -587,14 +588,18 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     from ..contact.tooth_bending import tooth_bending
 
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, progress=progress)
+    # Surface-to-surface TCA (edge_contact=False): the twin's contact law is Hertzian,
+    # and an edge touching the other flank has no Hertzian law; pairs beyond the end of
+    # their path enter as edge pairs resolved on their posed fields, as in the loaded TE
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False,
+                               progress=progress)
     bend = (lambda s: tooth_bending(flanks, pair, side=s)) if bending else (lambda s: None)
     mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t, bending=bend(side))
     other = "coast" if side == "drive" else "drive"
     reverse, note = None, ""
     try:
         rtca, _ = analyze_pair(pair, side=other, phases=phases, flanks=flanks,
-                               progress=progress)
+                               edge_contact=False, progress=progress)
         reverse = mesh_table(rtca, flanks, pair, side=other, torque_nm=t,
                              bending=bend(other))
     except LineContact as exc:     # conjugate flanks: no contact ellipse to load
