@@ -124,6 +124,28 @@ def test_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, capsys):
         xr.open_zarr(tmp_path / "whole" / "sweep.zarr", consolidated=False).load())
 
 
+def test_pair_without_easeoff_is_swept_with_the_synthesized_one(tmp_path, capsys):
+    """A pair file without an [easeoff.drive] table: the sweep uses the synthesized
+    ease-off, says so, and reproduces `gearcontact tca` of the same file exactly (both go
+    through tca.synthesis.with_easeoff, deterministic)."""
+    from importlib import resources
+
+    text = resources.files("gearcontact").joinpath("data/pairs/s0003-centred.toml").read_text()
+    head, rest = text.split("[easeoff.drive]", 1)
+    pair_file = tmp_path / "bare.toml"
+    pair_file.write_text(head + "[easeoff.coast]" + rest.split("[easeoff.coast]", 1)[1])
+    tca, sweep = tmp_path / "tca", tmp_path / "sweep"
+    assert main(["tca", "--pair", str(pair_file), "--side", "drive", "--phases", "21",
+                 "--no-figures", "--out", str(tca)]) == 0
+    assert main(["sweep", "--pair", str(pair_file), "--side", "drive", "--vary", "E=0:0:1",
+                 "--phases", "21", "--workers", "0", "--quiet", "--out", str(sweep)]) == 0
+    assert capsys.readouterr().out.count("has no [easeoff.drive] table: ease-off synthesized") == 2
+    want = json.loads((tca / "tca.json").read_text())
+    got = xr.open_zarr(sweep / "sweep.zarr", consolidated=False).load().isel(
+        E_mm=0, torque_nm=0)
+    assert float(got["te0_pp_arcsec"]) == want["te0_pp_arcsec"]          # exactly
+
+
 def test_zero_misalignment_reproduces_gearcontact_tca(tmp_path):
     tca, sweep = tmp_path / "tca", tmp_path / "sweep"
     assert main(["tca", "--pair", "s0003-centred", "--phases", "21", "--no-figures",

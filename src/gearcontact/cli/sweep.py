@@ -23,6 +23,7 @@ from .options import (
     check_count,
     check_pair_arguments,
     check_torque,
+    load_pair_for,
     run_timings,
     warn,
 )
@@ -112,7 +113,9 @@ def run(args) -> int:
 
     if getattr(args, "grid", None) is None:
         check(args)
-    pair, grid = args.gear_pair, args.grid
+    # a pair file without an ease-off table of the side: the synthesized one (said on
+    # stdout, as every pair command does), the base of every grid point and variant
+    pair, grid = load_pair_for(args), args.grid
     client = _connect(args.scheduler) if args.scheduler is not None else None
     try:
         report = run_sweep(pair, grid, out=args.out, side=args.side,
