@@ -258,17 +258,21 @@ def multitooth_section(analysis, settings) -> Section:
     from ..contact.lte import loaded_te
     from ..contact.tooth_bending import tooth_bending
 
-    rigid = analysis.lte
-    if rigid is None:
+    main = analysis.lte
+    if main is None:
         reason = "The loaded-TE run of the main job was skipped."
         return Section("multitooth", 7, "Multi-tooth load sharing", "not available",
                        [reason], [], [], {"reason": reason})
     pub = _PUBLISHED_MULTITOOTH
     n = len(analysis.tca.cycle.phi1_rad)
     stride = max(1, -(-(n - 1) // max(int(settings["lte_phases"]) - 1, 1)))  # as the main job
-    bent = loaded_te(analysis.tca, analysis.flanks, analysis.pair, rigid.torque_nm,
-                     side=analysis.side, stride=stride,
-                     bending=tooth_bending(analysis.flanks, analysis.pair, side=analysis.side))
+    # the main job's loaded TE is one of the two models (bending by default, rigid with
+    # --rigid); the other is solved here on the same phases
+    other = loaded_te(analysis.tca, analysis.flanks, analysis.pair, main.torque_nm,
+                      side=analysis.side, stride=stride,
+                      bending=None if main.bending else tooth_bending(
+                          analysis.flanks, analysis.pair, side=analysis.side))
+    rigid, bent = (other, main) if main.bending else (main, other)
     s_r, s_b = rigid.summary(), bent.summary()
     share_r, share_b = s_r["reference_load_share"], s_b["reference_load_share"]
     def ranked(share):
@@ -293,9 +297,10 @@ def multitooth_section(analysis, settings) -> Section:
               f"{s_r['active_pairs_lcp_max']}", f"{s_b['active_pairs_lcp_min']}-"
               f"{s_b['active_pairs_lcp_max']}", "3"]]
     text = [f"The coupled multi-pair LCP at {rigid.torque_nm:g} N·m over {len(bent.phi1_rad)} "
-            f"phases, rigid teeth (the main job's loaded-TE run) and with the shell bending "
+            f"phases, rigid teeth and with the shell bending "
             f"compliance of both teeth added to every pair (gearcontact.contact."
-            f"tooth_bending). Bending raises the loaded rotation at P0 by "
+            f"tooth_bending; the main job's loaded TE is the "
+            f"{'bending' if main.bending else 'rigid'} one). Bending raises the loaded rotation at P0 by "
             f"{pct_diff(rot_b, rot_r):+.0f} % (published +{pub['bending_rotation_increase_pct']} "
             f"%): the mesh compliance at P0 goes from {s_r['mesh_compliance_lcp_mm_per_n']:.3g} "
             f"to {s_b['mesh_compliance_lcp_mm_per_n']:.3g} mm/N ("
