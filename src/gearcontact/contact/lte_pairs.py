@@ -166,6 +166,15 @@ class PairFields:
         return replace(pc, opening_arcsec=opening, lever_mm=lever)
 
 
+def _nearest_surface_point(path, index: int):
+    """The surface-to-surface mating point of ``path`` nearest to ``index`` (``index``'s
+    own point if every point is an edge contact: nothing better exists)."""
+    surface = np.flatnonzero([not (p.edge or p.edge_contact) for p in path.points])
+    if surface.size == 0:
+        return path.points[index]
+    return path.points[int(surface[np.argmin(np.abs(surface - index))])]
+
+
 def phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
                     curv_cache: dict, edge_steps: int) -> list[PairContact]:
     """The potential contacts at phase k: pairs with a mating point on both flanks, and
@@ -189,7 +198,11 @@ def phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
             center = int(cand[np.argmin(np.abs(cand - idx))])
         mp = path.points[center]
         if center not in curv_cache:
-            rc = relative_curvature(pinion, gear, kin, mp)
+            # an edge touching the other flank (tca.edge_contact) has no Hertzian
+            # curvature (unbounded across the edge): the preview law takes the surface
+            # contact nearest along the path; the LCP resolves the edge on its posed field
+            cpt = _nearest_surface_point(path, center) if mp.edge_contact else mp
+            rc = relative_curvature(pinion, gear, kin, cpt)
             kap = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, 1.0,
                                       e_prime_mpa=e_prime).approach_mm
             curv_cache[center] = (torque_lever_mm(mp.point_mm, mp.normal),
