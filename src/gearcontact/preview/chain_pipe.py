@@ -38,7 +38,7 @@ from __future__ import annotations
 from amaranth import Module, Signal, signed
 from amaranth.back import verilog
 
-from .chain_rtl import ChainLikeCore, chain_flags, connect_front_end, run_chain_like
+from .chain_rtl import ChainLikeCore, connect_front_end, run_chain_like, stage_d_outputs
 from .fit.golden import FIT_CYCLES
 from .fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from .fit.pinv import BakedPinv
@@ -99,11 +99,8 @@ class ChainPipe(ChainLikeCore):
         m.d.comb += [hz.A.eq(fit.a_minus), hz.B.eq(fit.b_minus), hz.W.eq(w),
                      hz.e_prime.eq(e_prime), hz.in_valid.eq(fit.done_pulse),
                      hz.tag_in.eq(fit.flags), hz.out_ready.eq(accept)]
-        m.d.comb += [self.done.eq(hz.out_valid), self.done_pulse.eq(hz.out_valid & ~shown),
-                     self.a.eq(hz.a), self.b.eq(hz.b), self.p_max.eq(hz.p_max),
-                     self.k.eq(hz.k), self.a_minus.eq(hz.B_max), self.b_minus.eq(hz.A_min),
-                     self.R_x.eq(hz.R_x), self.R_y.eq(hz.R_y), self.alpha.eq(hz.alpha),
-                     self.flags.eq(chain_flags(hz.flags, hz.tag))]
+        m.d.comb += [self.done.eq(hz.out_valid), self.done_pulse.eq(hz.out_valid & ~shown)]
+        m.d.comb += stage_d_outputs(self, hz)
         return m
 
 

@@ -97,6 +97,16 @@ def chain_flags(hertz_flags, fit_flags):
     return Cat(hertz_flags, Const(0, FIT_FLAG_SHIFT - len(hertz_flags)), fit_flags)
 
 
+def stage_d_outputs(core, hz) -> list:
+    """Assignments of a chain-like core's result ports from its stage D ``hz`` (a
+    HertzCore or HertzPipe): a, b, p_max, k, the ordered curvatures, R_x, R_y, alpha and
+    the chain flags (stage D's flags with the fit flags carried as its tag)."""
+    return [core.a.eq(hz.a), core.b.eq(hz.b), core.p_max.eq(hz.p_max), core.k.eq(hz.k),
+            core.a_minus.eq(hz.B_max), core.b_minus.eq(hz.A_min), core.R_x.eq(hz.R_x),
+            core.R_y.eq(hz.R_y), core.alpha.eq(hz.alpha),
+            core.flags.eq(chain_flags(hz.flags, hz.tag))]
+
+
 def connect_front_end(m: Module, core, fit: FitCore, busy):
     """Write port, gated ``go`` and coefficient outputs of the fit front end.
 
@@ -191,11 +201,8 @@ class ChainCore(ChainLikeCore):
                      hz.e_prime.eq(e_prime), hz.go.eq(0), hz.go_chain.eq(fit.done_pulse),
                      hz.tag_in.eq(fit.flags)]
         m.d.comb += [self.done.eq(hz.done & ~fit.busy & ~fit.done_pulse),
-                     self.done_pulse.eq(hz.done_pulse),
-                     self.a.eq(hz.a), self.b.eq(hz.b), self.p_max.eq(hz.p_max),
-                     self.k.eq(hz.k), self.a_minus.eq(hz.B_max), self.b_minus.eq(hz.A_min),
-                     self.R_x.eq(hz.R_x), self.R_y.eq(hz.R_y), self.alpha.eq(hz.alpha),
-                     self.flags.eq(chain_flags(hz.flags, hz.tag))]
+                     self.done_pulse.eq(hz.done_pulse)]
+        m.d.comb += stage_d_outputs(self, hz)
         return m
 
 
