@@ -169,7 +169,7 @@ class PairFields:
 def _nearest_surface_point(path, index: int):
     """The surface-to-surface mating point of ``path`` nearest to ``index`` (``index``'s
     own point if every point is an edge contact: nothing better exists)."""
-    surface = np.flatnonzero([not (p.edge or p.edge_contact) for p in path.points])
+    surface = np.flatnonzero(path.surface)
     if surface.size == 0:
         return path.points[index]
     return path.points[int(surface[np.argmin(np.abs(surface - index))])]

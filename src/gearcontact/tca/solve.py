@@ -227,6 +227,14 @@ class TcaPath:
     def edge(self) -> np.ndarray:
         return self._stack("edge")
 
+    @property
+    def surface(self) -> np.ndarray:
+        """Per point: a surface-to-surface contact (neither a phase without contact nor
+        an edge touching the other flank)."""
+        if "surface" not in self._cache:
+            self._cache["surface"] = ~self.edge & (self._stack("edge_contact") == "")
+        return self._cache["surface"]
+
     def parameters(self, member: str) -> np.ndarray:
         """(N, 2) flank parameters (u, v) of ``"pinion"`` or ``"gear"``."""
         k = {"pinion": ("u1", "v1"), "gear": ("u2", "v2")}[member]
