@@ -7,13 +7,14 @@ Amaranth, matplotlib) load on first use of the name that needs them. See
 
 from importlib import import_module
 
-from .materials import STEEL, Material, effective_modulus_mpa, reduced_modulus_mpa
-from .validation import InputRangeError
-
 __version__ = "0.1.0"
 
 #: public name -> module that defines it (imported lazily)
 _LAZY = {
+    # materials and errors (lazy too: ``import gearcontact`` stays free of numpy, so the
+    # console script reaches its Ctrl-C handler within milliseconds)
+    "Material": "materials", "STEEL": "materials", "effective_modulus_mpa": "materials",
+    "reduced_modulus_mpa": "materials", "InputRangeError": "validation",
     # geometry
     "GearPair": "geometry.pair", "load_pair": "geometry.pair",
     "design_blank": "geometry.blank", "build_flanks": "geometry.flank",
@@ -33,8 +34,7 @@ _LAZY = {
     "run_analysis": "report.analyze",
 }
 
-__all__ = ["Material", "STEEL", "effective_modulus_mpa", "reduced_modulus_mpa",
-           "InputRangeError", "__version__", *_LAZY]
+__all__ = ["__version__", *_LAZY]
 
 
 def __getattr__(name):

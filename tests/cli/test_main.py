@@ -193,3 +193,39 @@ def test_ctrl_c_while_the_commands_load(monkeypatch, capsys):
     assert cli.main(["tca", "--out", "unused"]) == 130
     err = capsys.readouterr().err
     assert err == "gearcontact: interrupted\n"
+
+
+@pytest.mark.parametrize("delay_s", [0.15, 0.3, 1.0])
+def test_ctrl_c_early_in_a_real_process(tmp_path, delay_s):
+    """Ctrl-C in the first fraction of a second (numpy and the command modules still
+    importing) gives the one line and exit 130, never a traceback: ``import
+    gearcontact.cli`` is light (no numpy), so the handler in ``main`` is in place after
+    a few milliseconds of the process; the delays stay above the interpreter's own start
+    (~30 ms), where Python itself owns SIGINT. Exit 130, not -2: see
+    :func:`gearcontact.cli.console_main`."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "tca", "--pair", "s0003",
+                             "--out", str(tmp_path / "out")],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(delay_s)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert "Traceback" not in err, err
+    assert proc.returncode == 130, (proc.returncode, err)
+    assert err.strip().endswith("interrupted"), err
+    assert not (tmp_path / "out").exists()
+
+
+def test_package_import_is_light():
+    """``import gearcontact.cli`` loads no numpy (the console script's Ctrl-C handler
+    must be reachable at once); the public names still resolve lazily."""
+    import subprocess
+    import sys
+
+    code = ("import sys, gearcontact.cli; assert 'numpy' not in sys.modules; "
+            "import gearcontact; assert gearcontact.STEEL.youngs_modulus_mpa == 209000.0")
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -34,9 +34,7 @@ import sys
 import traceback
 import warnings
 
-from ..validation import InputRangeError, UnusableInput
-
-__all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
+__all__ = ["main", "console_main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
            "EXIT_FLAGGED", "EXIT_CHECK_FAILED"]
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
@@ -120,11 +118,15 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the process exit code."""
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
-        parser = build_parser()      # imports every command module: seconds when cold
+        # everything heavy (numpy, the command modules: seconds when cold) is imported
+        # here, inside the Ctrl-C handler; ``import gearcontact.cli`` itself is light
+        from ..validation import InputRangeError, UnusableInput
+
+        parser = build_parser()
+        args = parser.parse_args(argv)
     except KeyboardInterrupt:
         print("gearcontact: interrupted", file=sys.stderr)
         return 130
-    args = parser.parse_args(argv)
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
         return _run(args, argv, name)
@@ -148,6 +150,25 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_INTERNAL
     except Exception as exc:  # noqa: BLE001  (the last line of defence: report a bug)
         return _internal(name, exc, args)
+
+
+def console_main() -> None:
+    """The console script and ``python -m gearcontact``: :func:`main`, then exit.
+
+    After a Ctrl-C the process ends with ``os._exit(130)`` once stdout and stderr are
+    flushed: an interrupt that landed in code an extension module ran through
+    ``PyRun_String`` (numpy and numba initialise that way) leaves CPython's
+    "unhandled KeyboardInterrupt" mark set even though :func:`main` handled it, and the
+    interpreter would then kill itself with SIGINT (exit -2) instead of exiting 130.
+    Nothing is left to clean up at that point: the output directory was restored by
+    its context manager before the handler ran.
+    """
+    code = main()
+    if code == 130:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(130)
+    sys.exit(code)
 
 
 #: errno values of an OSError that are the system's refusal, not a bug (disk full,
