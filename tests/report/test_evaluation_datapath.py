@@ -27,6 +27,15 @@ def test_latency_surrogate_precision_rederived(quick_report):
         [8] * len(p["coord_width_bits"])
     for err, bound in zip(p["max_gap_error_um"], p["bound_um"]):
         assert err <= bound
+    # the published figure's 14..24-bit range is covered, and the numbers are the
+    # library's (re-derived here with the report's seed and sample count)
+    assert set(range(14, 25)) <= set(p["coord_width_bits"])
+    from gearcontact.preview.gap.precision import gap_precision_sweep
+
+    (q,) = gap_precision_sweep(coord_fracs=(6,), normal_fracs=(19,), n_samples=1000, seed=0)
+    i = p["coord_width_bits"].index(14)
+    assert p["max_gap_error_um"][i] == pytest.approx(1e3 * q.max_error_mm, rel=1e-12)
+    assert rep["precision"]["status"] == "reproduced"
 
 
 def test_committed_resources_have_provenance():

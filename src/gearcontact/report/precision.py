@@ -2,8 +2,9 @@
 
 Measures the golden model's signed-gap error against the fp64 reference over the word
 widths (:func:`gearcontact.preview.gap.precision.gap_precision_sweep`): the coordinate
-word width ``cw = 8 + cf`` = 16..32 bits with the 8 integer bits of the contract fixed
-(fraction bits ``cf`` = 8..24, the golden model's range) at the hardware's normal width
+word width ``cw = 8 + cf`` = 14..32 bits with the 8 integer bits of the contract fixed
+(fraction bits ``cf`` = 6..24: the published 14–24-bit sweep and on to the golden
+model's widest word) at the hardware's normal width
 (``rf`` = 19), and normal fraction bits ``rf`` = 12..24 at the hardware's coordinate
 width (``cf`` = 16), each beside the first-order bound
 
@@ -25,9 +26,9 @@ from ..tca.export import write_csv
 __all__ = ["COORD_FRACS", "NORMAL_FRACS", "plot_precision", "precision_sweeps",
            "write_precision_outputs"]
 
-#: Coordinate fraction bits swept at the hardware normal width (word widths 16..32 bits
-#: with the contract's 8 integer bits).
-COORD_FRACS = tuple(range(8, 25))
+#: Coordinate fraction bits swept at the hardware normal width (word widths 14..32 bits
+#: with the contract's 8 integer bits; the published figure covers 14..24).
+COORD_FRACS = tuple(range(6, 25))
 #: Normal fraction bits swept at the hardware coordinate width.
 NORMAL_FRACS = tuple(range(12, 25, 2))
 
@@ -65,6 +66,8 @@ def write_precision_outputs(out_dir, *, figures: bool = True, n_samples: int = 1
 def plot_precision(by_coord, by_normal, path) -> Path:
     """Two log panels: max / RMS gap error and the first-order bound against the
     coordinate word width and the normal fraction bits (format from the suffix)."""
+    from matplotlib.ticker import MaxNLocator
+
     from .figures import plt
 
     hw = GapFormat()
@@ -85,6 +88,7 @@ def plot_precision(by_coord, by_normal, path) -> Path:
         if attr == "coord_frac":
             # the published figure sweeps the coordinate word over 14..24 bits
             ax.axvspan(14, 24, color="C2", alpha=0.08, label="published sweep 14-24 bits")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))     # bits, not 17.5
         ax.set_xlabel(label)
         ax.set_title(f"signed gap error vs {label.split(' ')[0]} width ({fixed})", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)

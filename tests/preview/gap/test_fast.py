@@ -65,6 +65,21 @@ def test_batch_overflow_and_wide_format(rf):
             (b.min_gap_code[k], b.min_idx[k], b.valid[k], b.overflow[k])
 
 
+@pytest.mark.parametrize("cf", [6, 7])
+def test_batch_bit_identical_at_narrow_coordinate_words(cf):
+    # cw = 8 + cf = 14, 15 bits: the narrow end of the published precision figure
+    fmt = GapFormat(coord_frac=cf)
+    rng = np.random.default_rng(100 + cf)
+    r, t, p, g, nc = random_codes(rng, 20, 40, spread_code=3 << cf, fmt=fmt)
+    tau2 = 1 << (2 * cf + 2)                            # tau = 2 mm
+    b = gap_golden_batch(r, t, p, g, nc, tau2, lanes=8, fmt=fmt)
+    for k in range(20):
+        s = gap_golden_codes(GapVector(r[k], t[k], p[k], g, nc, tau2), lanes=8, fmt=fmt)
+        assert (s.min_gap_code, s.min_idx, s.valid, s.overflow) == \
+            (b.min_gap_code[k], b.min_idx[k], b.valid[k], b.overflow[k])
+    assert b.valid.any()                                # not vacuous
+
+
 def test_batch_rejects_out_of_contract_codes():
     g = np.zeros((4, 3), np.int64)
     n = np.tile([0, 0, ONE], (4, 1))

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL,
-                                            GapVector, check_codes, gap_error_bound_mm,
+                                            GapFormat, GapVector, check_codes, gap_error_bound_mm,
                                             gap_golden, gap_golden_codes, gap_golden_terms,
                                             gap_latency, gap_timing, quantize_pass,
                                             quantize_tau2)
@@ -133,6 +133,27 @@ def test_precision_sweep_within_first_order_bound():
     # the coordinate term dominates at cf = 14 (~1.1e-4 mm) while at cf = 18 the
     # normal term (3 ||d|| 2^-20 ~ 1e-5 mm) takes over: expect > 4x less error
     assert pts[0].max_error_mm > 4 * pts[4].max_error_mm
+
+
+def test_narrow_coordinate_words_within_bound_and_rejected_below_zero():
+    """The published precision figure starts at a 14-bit coordinate word: with the
+    contract's 8 integer bits that is cf = 6. The bounds of the datapath are structural
+    in cw, so cf = 0..7 run the same arithmetic; the first-order bound must still hold
+    (ratio <= 1) and the error must halve per fraction bit (the coordinate term
+    sqrt(3) 2^-cf dominates there: RMS error(cf) / error(cf + 1) in [1.5, 3.0] for
+    seeded round-off over 300 samples; the widest step, 2.7, is cf 0 -> 1, a 1 mm LSB
+    against the +-4 mm geometry)."""
+    pts = gap_precision_sweep(coord_fracs=range(0, 8), normal_fracs=(19,),
+                              n_samples=300, seed=1)
+    for q in pts:
+        assert q.max_bound_ratio <= 1.0
+        assert q.rms_error_mm < q.max_error_mm <= q.bound_mm
+    ratios = [a.rms_error_mm / b.rms_error_mm for a, b in zip(pts, pts[1:])]
+    assert all(1.5 <= r <= 3.0 for r in ratios), ratios
+    with pytest.raises(InputRangeError, match="coord_frac"):
+        GapFormat(coord_frac=-1)
+    with pytest.raises(InputRangeError, match="coord_frac"):
+        GapFormat(coord_frac=25)
 
 
 def test_normal_width_sweep_within_bound():

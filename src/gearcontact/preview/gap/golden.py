@@ -119,7 +119,11 @@ class GapFormat:
     Parameters
     ----------
     coord_frac : int
-        Coordinate fraction bits cf in [8, 24] (one LSB = 2^-cf mm); default 16.
+        Coordinate fraction bits cf in [0, 24] (one LSB = 2^-cf mm); default 16. Every
+        bound of the module table is structural in ``cw = coord_int + cf`` (the widths
+        of d, gamma, e_k and rho grow with cw and nothing else), so the arithmetic is
+        exact-by-construction down to cf = 0 (integer millimetres); the upper end is
+        the 64-bit rho budget (``e_shift``). Only the default format is built in RTL.
     normal_frac : int
         Normal / rotation fraction bits rf in [8, 24]; default 19.
     coord_int : int
@@ -131,7 +135,7 @@ class GapFormat:
     coord_int: int = 8
 
     def __post_init__(self):
-        for name, lo, hi in (("coord_frac", 8, 24), ("normal_frac", 8, 24),
+        for name, lo, hi in (("coord_frac", 0, 24), ("normal_frac", 8, 24),
                              ("coord_int", 4, 8)):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:

@@ -57,7 +57,7 @@ def gap_precision_sweep(*, coord_fracs=range(14, 25), normal_fracs=(19,),
     Parameters
     ----------
     coord_fracs, normal_fracs : iterable of int, keyword-only
-        cf values in [8, 24] and rf values in [8, 24]; every pair is measured.
+        cf values in [0, 24] and rf values in [8, 24]; every pair is measured.
     n_samples : int, keyword-only
         Random gear samples per setting (>= 1).
     spread_mm : float, keyword-only
