@@ -13,6 +13,7 @@ import numpy as np
 
 from .accuracy_studies import HERTZ_P90_OVER_P0, bearing_sweep, grid_study
 from .document import Section, Table, format_cell, pct_diff
+from .evaluation_sharing import sharing_explanation
 
 __all__ = ["accuracy_section", "design_case", "lte_section", "multitooth_section",
            "pressure_map_section"]
@@ -310,10 +311,8 @@ def multitooth_section(analysis, settings) -> Section:
             f"{100 * share_b.get('0', 0.0):.1f} % with bending). The published sharing is "
             f"more concentrated (largest share {pub['shares_pct'][0]} %); where along the path "
             f"the published P0 lies relative to the neighbours' contacts was not published, "
-            f"so this difference is measured, not resolved. Why a compliance common to all "
-            f"pairs moves load away from the reference pair in our model (the neighbours' "
-            f"unloaded openings and each pair's bending compliance, measured, and the ISO "
-            f"6336-1 single-pair stiffness as a check): docs/bending.md sec. 7.",
+            f"so this difference is measured, not resolved; the measurements that explain "
+            f"it follow the tables (derivation: docs/bending.md sec. 7).",
             ]
     tables = [Table(f"Load sharing at {rigid.torque_nm:g} N·m", ["quantity", "rigid teeth",
                                                                 "with bending", "published"],
@@ -358,5 +357,9 @@ def multitooth_section(analysis, settings) -> Section:
                              "published_cp_max_mpa": pub["cp_max_mpa"]}
         figures.append(("multitooth.png", "pressure of every engaged pair on the gear flank "
                         "(with bending) and the load share per pair beside the published"))
+        why_tables, why_text, why_data = sharing_explanation(analysis, s_r, s_b, pub)
+        tables += why_tables
+        text += why_text
+        data["sharing_explanation"] = why_data
     return Section("multitooth", 7, "Multi-tooth load sharing", "partial", text, tables,
                    figures, data)

@@ -1,0 +1,135 @@
+"""ISO 6336-1 Method B single-pair tooth stiffness: an independent order of magnitude
+for the mesh compliance of the loaded-contact models (docs/bending.md sec. 7).
+
+The theoretical single stiffness of a pair of solid spur gears with the ISO 53 basic
+rack is the inverse of the flexibility polynomial (ISO 6336-1:2006, eq. 70 and
+table 8)::
+
+    q' = C1 + C2 / z_n1 + C3 / z_n2 + C4 x1 + C5 x1 / z_n1 + C6 x2 + C7 x2 / z_n2
+         + C8 x1^2 + C9 x2^2                       (mm µm / N)
+    c'_th = 1 / q'                                   (N / (mm µm))
+
+and the single stiffness of the real pair is ``c' = c'_th C_M C_R C_B cos(beta)``
+(eq. 71), with C_M = 0.8 (measured against theory), C_R = 1 (solid blanks) and the
+basic-rack factor ``C_B = [1 + 0.5 (1.2 - h_fP / m_n)] [1 - 0.02 (20 deg - alpha_n)]``
+(eq. 73). A bevel or hypoid pair enters through its virtual cylindrical gears,
+``z_n = z / (cos(delta) cos^3(beta_m))`` (ISO 10300-1), at the mean spiral angle.
+Multiplied by the face width this is the stiffness of a contact line over the whole
+face: contact flattening, tooth bending and foundation together. A localized bearing
+loads only part of the face, so its pair compliance must lie *above* this value.
+
+References
+----------
+ISO 6336-1:2006, *Calculation of load capacity of spur and helical gears — Part 1*,
+clause 9 (Method B), eq. (70)–(73), table 8. ISO 10300-1:2014, *Calculation of load
+capacity of bevel gears*, virtual cylindrical gears.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..validation import check_positive, check_range
+
+__all__ = ["FLEXIBILITY_COEFFICIENTS", "IsoPairStiffness", "theoretical_single_stiffness",
+           "virtual_teeth", "bevel_pair_stiffness"]
+
+#: C1..C9 of ISO 6336-1:2006 table 8 (mm µm / N; x dimensionless).
+FLEXIBILITY_COEFFICIENTS = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193,
+                            -0.24188, 0.00529, 0.00182)
+
+
+def theoretical_single_stiffness(*, z_n1: float, z_n2: float, x1: float = 0.0,
+                                 x2: float = 0.0) -> float:
+    """c'_th = 1 / q' of ISO 6336-1 eq. (70), N/(mm·µm).
+
+    Parameters
+    ----------
+    z_n1, z_n2 : float, keyword-only
+        Virtual (normal-section) numbers of teeth of pinion and wheel (>= 5; the
+        standard's fit covers external gears).
+    x1, x2 : float, keyword-only
+        Profile shift coefficients, in [-0.5, 2] (the range of table 8's fit).
+    """
+    check_range("z_n1", z_n1, 5.0, 1e9)
+    check_range("z_n2", z_n2, 5.0, 1e9)
+    check_range("x1", x1, -0.5, 2.0)
+    check_range("x2", x2, -0.5, 2.0)
+    c1, c2, c3, c4, c5, c6, c7, c8, c9 = FLEXIBILITY_COEFFICIENTS
+    q = (c1 + c2 / z_n1 + c3 / z_n2 + c4 * x1 + c5 * x1 / z_n1 + c6 * x2 + c7 * x2 / z_n2
+         + c8 * x1 ** 2 + c9 * x2 ** 2)
+    return 1.0 / q
+
+
+def virtual_teeth(teeth: int, *, pitch_angle_deg: float, spiral_angle_deg: float) -> float:
+    """Virtual number of teeth of a bevel member, ``z / (cos(delta) cos^3(beta_m))``."""
+    check_range("pitch_angle_deg", pitch_angle_deg, 0.0, 89.9)
+    check_range("spiral_angle_deg", spiral_angle_deg, 0.0, 60.0)
+    return teeth / (math.cos(math.radians(pitch_angle_deg))
+                    * math.cos(math.radians(spiral_angle_deg)) ** 3)
+
+
+@dataclass(frozen=True)
+class IsoPairStiffness:
+    """ISO 6336-1 Method B single-pair stiffness of a bevel / hypoid pair.
+
+    Attributes
+    ----------
+    z_n1, z_n2 : float
+        Virtual numbers of teeth.
+    spiral_angle_deg : float
+        Mean spiral angle used (mean of pinion and gear for a hypoid), degrees.
+    c_th_n_per_mm_um : float
+        Theoretical single stiffness c'_th, N/(mm·µm).
+    c_n_per_mm_um : float
+        Single stiffness c' = c'_th C_M C_R C_B cos(beta), N/(mm·µm).
+    face_width_mm : float
+        Face width b, mm.
+    stiffness_n_per_um : float
+        Pair stiffness c' b, N/µm.
+    compliance_mm_per_n : float
+        Pair compliance 1 / (c' b), mm/N.
+    """
+
+    z_n1: float
+    z_n2: float
+    spiral_angle_deg: float
+    c_th_n_per_mm_um: float
+    c_n_per_mm_um: float
+    face_width_mm: float
+    stiffness_n_per_um: float
+    compliance_mm_per_n: float
+
+
+def bevel_pair_stiffness(blank, *, face_width_mm: float, c_m: float = 0.8, c_r: float = 1.0,
+                         dedendum_per_module: float = 1.25,
+                         rack_pressure_angle_deg: float = 20.0) -> IsoPairStiffness:
+    """Method B single-pair stiffness of a bevel or hypoid pair from its blank.
+
+    Parameters
+    ----------
+    blank : gearcontact.geometry.blank.BlankDesign
+        Teeth, pitch angles and spiral angles (the mean of pinion and gear spiral
+        angles is the virtual gears' helix angle).
+    face_width_mm : float, keyword-only
+        Face width b, mm (> 0): the gear's, the narrower member of a bevel pair.
+    c_m, c_r : float, keyword-only
+        Correction factor (0.8, theory vs measurement) and gear-blank factor (1, solid).
+    dedendum_per_module, rack_pressure_angle_deg : float, keyword-only
+        Basic rack h_fP / m_n and alpha_n, degrees, of the factor C_B (eq. 73).
+    """
+    b = check_positive("face_width_mm", face_width_mm)
+    beta = 0.5 * (blank.spiral_angle_pinion_deg + blank.spiral_angle_gear_deg)
+    z1 = virtual_teeth(blank.pinion_teeth, pitch_angle_deg=blank.pitch_angle_pinion_deg,
+                       spiral_angle_deg=beta)
+    z2 = virtual_teeth(blank.gear_teeth, pitch_angle_deg=blank.pitch_angle_gear_deg,
+                       spiral_angle_deg=beta)
+    c_th = theoretical_single_stiffness(z_n1=z1, z_n2=z2)
+    c_b = ((1.0 + 0.5 * (1.2 - dedendum_per_module))
+           * (1.0 - 0.02 * (20.0 - rack_pressure_angle_deg)))
+    c = c_th * c_m * c_r * c_b * math.cos(math.radians(beta))
+    k = c * b
+    return IsoPairStiffness(z_n1=z1, z_n2=z2, spiral_angle_deg=beta, c_th_n_per_mm_um=c_th,
+                            c_n_per_mm_um=c, face_width_mm=b, stiffness_n_per_um=k,
+                            compliance_mm_per_n=1e-3 / k)

@@ -1,0 +1,53 @@
+"""ISO 6336-1 Method B single-pair stiffness (gearcontact.analytic.iso6336).
+
+Truths: the rack-rack limit of the flexibility polynomial (z_n -> infinity, x = 0) is
+c'_th = 1 / C1 = 21.17 N/(mm·µm); a spur gear's virtual teeth are its teeth; more teeth
+make the pair stiffer; the standard's "c' ~ 14 N/(mm·µm)" mean for solid spur gears
+(ISO 6336-1:2006 clause 9.3) is met by a 20/40 pair with C_M C_B = 0.78 within 15 %;
+and the hypoid s0003's virtual gears (12.7 / 1063 teeth at the mean spiral angle 34.9 deg)
+give c' = 10.7 N/(mm·µm), the figure of docs/bending.md sec. 7 (rounding 0.05).
+"""
+
+import math
+
+import pytest
+
+from gearcontact.analytic.iso6336 import (bevel_pair_stiffness, theoretical_single_stiffness,
+                                          virtual_teeth)
+from gearcontact.geometry.pair import load_pair
+from gearcontact.validation import InputRangeError
+
+
+def test_rack_limit_and_monotone_in_teeth():
+    assert theoretical_single_stiffness(z_n1=1e9, z_n2=1e9) == pytest.approx(1 / 0.04723,
+                                                                             rel=1e-7)
+    c = [theoretical_single_stiffness(z_n1=z, z_n2=2 * z) for z in (10, 20, 40, 80)]
+    assert c == sorted(c)
+    # ISO's mean single stiffness of solid steel spur gears, ~14 N/(mm um)
+    assert c[1] * 0.8 * 0.975 == pytest.approx(14.0, rel=0.15)
+
+
+def test_virtual_teeth_of_a_spur_gear_are_its_teeth():
+    assert virtual_teeth(23, pitch_angle_deg=0.0, spiral_angle_deg=0.0) == 23.0
+    assert virtual_teeth(23, pitch_angle_deg=60.0, spiral_angle_deg=0.0) == \
+        pytest.approx(46.0, rel=1e-12)
+
+
+def test_s0003_virtual_gears_and_single_stiffness():
+    pair = load_pair("s0003")
+    iso = bevel_pair_stiffness(pair.blank, face_width_mm=pair.gear_face_width_mm)
+    assert iso.spiral_angle_deg == pytest.approx(34.9, abs=0.05)
+    assert iso.z_n1 == pytest.approx(12.7, abs=0.05)
+    assert iso.z_n2 == pytest.approx(1063, abs=1)
+    assert iso.c_th_n_per_mm_um == pytest.approx(16.8, abs=0.05)
+    assert iso.c_n_per_mm_um == pytest.approx(10.7, abs=0.05)
+    assert iso.compliance_mm_per_n == pytest.approx(
+        1e-3 / (iso.c_n_per_mm_um * pair.gear_face_width_mm), rel=1e-12)
+    assert math.isclose(iso.stiffness_n_per_um, iso.c_n_per_mm_um * 13.2, rel_tol=1e-12)
+
+
+def test_bad_input_names_the_field():
+    with pytest.raises(InputRangeError, match="z_n1"):
+        theoretical_single_stiffness(z_n1=2, z_n2=40)
+    with pytest.raises(InputRangeError, match="face_width_mm"):
+        bevel_pair_stiffness(load_pair("s0003").blank, face_width_mm=0.0)
