@@ -100,7 +100,8 @@ def test_multitooth_share_difference_is_explained_by_measurements(quick_report):
     seps = why["separations_um"]
     assert seps[0] == 0.0 and all(0.0 < g < why["approach_um"] for g in seps[1:])
     c = why["pair_compliance_mm_per_n"]
-    # a localized bearing is more compliant than ISO's full-face pair; the published
-    # +12 % is not
-    assert c["bending"] > iso.compliance_mm_per_n > c["published_implied"]
+    # a localized bearing is more compliant than ISO's full-face pair (ours: 2.4-2.5x);
+    # the published +12 % is not (0.95-0.99x; 1.1x leaves room for grid changes)
+    assert c["bending"] > 1.5 * iso.compliance_mm_per_n
+    assert c["published_implied"] < 1.1 * iso.compliance_mm_per_n
 

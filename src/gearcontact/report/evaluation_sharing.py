@@ -128,8 +128,8 @@ def sharing_explanation(analysis, rigid: dict, bending: dict, published: dict):
         f"gives a full-face single-pair compliance of {iso.compliance_mm_per_n:.3g} mm/N; "
         f"our pair at P0 with bending is {c_bend / iso.compliance_mm_per_n:.2f}x that "
         f"(above, as a localized bearing on part of the face must be), while the published "
-        f"+{target:g} % would make it {c_pub / iso.compliance_mm_per_n:.2f}x, stiffer than "
-        f"ISO's full-face pair. The published separations and rigid baseline are not "
+        f"+{target:g} % would make it {c_pub / iso.compliance_mm_per_n:.2f}x, no more "
+        f"compliant than ISO's pair loaded over the whole face. The published separations and rigid baseline are not "
         f"given, so the published sharing cannot be checked further; we do not tune to it."]
     data = {"approach_um": approach_um, "separations_um": seps,
             "scale_trend": {"scale": [r[0] for r in trend],
