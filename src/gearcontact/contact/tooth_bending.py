@@ -175,11 +175,20 @@ def _sub_lattice(n: int, nodes: int) -> np.ndarray:
 def _spline_weights(at: np.ndarray, n: int) -> np.ndarray:
     """(n, len(at)) weights of the not-a-knot cubic spline through samples at ``at``
     evaluated at 0..n-1 (identity when every index is a sample)."""
+    return _spline_weights_cached(tuple(int(a) for a in at), int(n))
+
+
+@lru_cache(maxsize=64)
+def _spline_weights_cached(at: tuple, n: int) -> np.ndarray:
+    # every field of one LTE has the same cell count: built once, not once per field
     if len(at) == n:
-        return np.eye(n)
-    if len(at) < 4:
-        return np.stack([np.interp(np.arange(n), at, e) for e in np.eye(len(at))], axis=1)
-    return CubicSpline(at, np.eye(len(at)))(np.arange(n))
+        out = np.eye(n)
+    elif len(at) < 4:
+        out = np.stack([np.interp(np.arange(n), at, e) for e in np.eye(len(at))], axis=1)
+    else:
+        out = CubicSpline(np.asarray(at, float), np.eye(len(at)))(np.arange(n))
+    out.setflags(write=False)
+    return out
 
 
 def tooth_bending(flanks, pair, *, side: str, order: int = 6, order_face: int = 16,
