@@ -223,14 +223,15 @@ class MultiToothCase:
 
 
 def _solve(contacts, fields: PairFields, torque: float, materials, tol: float,
-           torque_nm: float) -> tuple[MeshLcpResult, list, list, list, bool]:
-    """The coupled LCP at one phase as :func:`.lte.loaded_te` solves it (cold start)."""
+           torque_nm: float, *, rigid: bool) -> tuple[MeshLcpResult, list, list, list, bool]:
+    """The coupled LCP at one phase as :func:`.lte.loaded_te` solves it (cold start;
+    ``rigid``: without the fields' bending factors)."""
     lv = np.array([pc.lever_mm for pc in contacts])
     gs = np.array([pc.offset_mm for pc in contacts])
     kap = np.array([pc.kappa_mm_per_n23 for pc in contacts])
     th_pre, _ = preview_balance(lv, gs, kap, torque)
     res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials, tol=tol,
-                                            warm={}, theta_pre=th_pre)
+                                            warm={}, theta_pre=th_pre, rigid=rigid)
     edge = check_loaded(res, reach, offs, torque_nm)
     return res, reach, blocks, offs, edge
 
@@ -284,15 +285,15 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
     k = cycle.mean_index
     edge_steps = round(edge_reach * cycle.step_index)
-    out = []
-    for bend in (None, bending):
-        fields = PairFields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
-                            cells=int(cells), extent=tuple(map(float, extent_factor)),
-                            bending=bend)
-        contacts = [fields.resolve(pc) for pc in
-                    phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, {}, edge_steps)]
-        out.append((fields, *_solve(contacts, fields, torque, materials, tol, t)))
-    (_, rig, reach_r, _, _, _), (fields, res, reach, blocks, offs, edge) = out
+    # one set of fields for both solves: the rigid one leaves the bending factors out
+    fields = PairFields(pinion, gear, kin, cycle, torque_nmm=torque, e_prime=e_prime,
+                        cells=int(cells), extent=tuple(map(float, extent_factor)),
+                        bending=bending)
+    contacts = [fields.resolve(pc) for pc in
+                phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, {}, edge_steps)]
+    rig, reach_r, *_ = _solve(contacts, fields, torque, materials, tol, t, rigid=True)
+    res, reach, blocks, offs, edge = _solve(contacts, fields, torque, materials, tol, t,
+                                            rigid=bending is None)
     # boundary-inadmissible cells (docs/spec.md sec. 5): re-solve without the flanks'
     # boundary rows when the bending solution loaded them (warm from it)
     gaps = [trimmed_gap(b.gap_mm, off, m, OFF_FLANK_GAP_MM)
