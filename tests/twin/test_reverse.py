@@ -147,5 +147,7 @@ def test_backlash_must_clear_the_interference(s0003_twin, s0003_coast):
 @pytest.mark.parametrize("s_prev", [-1.0, 1e-3, 1.0, 1e3])
 def test_bending_law_inverts(d, kap, cb, s_prev):
     """From the bound start or any previous solution (far below or above the root)."""
-    w = K._pair_load(d, kap, cb, s_prev)
+    w, s = K._pair_load(d, kap, cb, s_prev)
     assert kap * w ** (2.0 / 3.0) + cb * w == pytest.approx(d, rel=1e-12)
+    if cb > 0.0:                        # the next start: W^(1/3), to rounding
+        assert s ** 3 == pytest.approx(w, rel=1e-14)

@@ -173,17 +173,18 @@ def _phase(psi, pitch, dpsi, nrow):
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _pair_load(d, kap, cb, s_prev):
-    """Load W (N) of a pair at approach ``d`` (mm): Hertz ``d = kap W^(2/3)`` alone
-    (closed form), or with the tooth-bending compliance ``cb`` (mm/N) in series, ``d =
-    kap W^(2/3) + cb W``: Newton on ``f(s) = cb s^3 + kap s^2 - d = 0`` for ``s =
-    W^(1/3)``. ``f`` is convex increasing for s > 0, so Newton from any s > 0 lands
-    right of the root after at most one step and then falls monotonically to it; the
-    start is the pair's previous solution ``s_prev`` (> 0; the load changes little per
-    stage: 2-3 iterations), else ``min(sqrt(d/kap), cbrt(d/cb))`` (where ``f >= 0``).
-    Stops at a relative step of 1e-14."""
+    """(W N, s = W^(1/3)) of a pair at approach ``d`` (mm): Hertz ``d = kap W^(2/3)``
+    alone (closed form; s is then not formed and returned as 0), or with the
+    tooth-bending compliance ``cb`` (mm/N) in series, ``d = kap W^(2/3) + cb W``: Newton
+    on ``f(s) = cb s^3 + kap s^2 - d = 0``. ``f`` is convex increasing for s > 0, so
+    Newton from any s > 0 lands right of the root after at most one step and then falls
+    monotonically to it; the start is the pair's previous solution ``s_prev`` (> 0; the
+    load changes little per stage: 2-3 iterations), else ``min(sqrt(d/kap),
+    cbrt(d/cb))`` (where ``f >= 0``). Stops at a relative step of 1e-14. Returning s
+    saves the caller a cube root per pair and stage (the next start)."""
     x = d / kap
     if cb <= 0.0:
-        return x * math.sqrt(x)
+        return x * math.sqrt(x), 0.0
     s = s_prev if s_prev > 0.0 else min(math.sqrt(x), np.cbrt(d / cb))
     for _ in range(60):
         r = (cb * s + kap) * s * s - d
@@ -193,7 +194,7 @@ def _pair_load(d, kap, cb, s_prev):
             s = min(math.sqrt(x), np.cbrt(d / cb))
         elif abs(ds) <= 1e-14 * s:
             break
-    return s * s * s
+    return s * s * s, s
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -276,9 +277,9 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t, bac
             continue
         we = cache[sd, j, 5]
         cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
-        w = _pair_load(d, kap, cb, cache[sd, j, 6])
+        w, s_new = _pair_load(d, kap, cb, cache[sd, j, 6])
         if cb > 0.0:
-            cache[sd, j, 6] = np.cbrt(w)
+            cache[sd, j, 6] = s_new
         w_pairs[sd, j] = w
         t_el += 1e-3 * w * lv
         w_tot += w
