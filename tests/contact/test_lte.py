@@ -439,3 +439,35 @@ def test_s0003_mesh_stiffness(s0003_tca, s0003_flanks, s0003_pair):
     header, rows = res.table()
     col = header.index("mesh_stiffness_rigid_nm_per_rad")
     assert [r[col] for r in rows] == list(kr)
+
+
+@pytest.fixture(scope="module")
+def s0003_calibrated():
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+    pair = load_pair("s0003")
+    return pair, build_flanks(pair)
+
+
+def test_calibrated_s0003_needs_three_pairs_and_is_then_periodic(s0003_calibrated):
+    """The calibrated preset (coast, tip-edge bearing) loads pairs -3..0 over the pitch
+    of its reference window. With the window -2..2 pair -2 carries load at the first
+    phase, so pair -3 would at the last: a named error, not a wrong TE (before the check
+    the TE_LCP came out -60.5 arcsec at the first phase and -61.4 at the last). With
+    the default window -3..3 the last phase repeats the first: TE_LCP equal to the
+    solver tolerance (1e-4 arcsec, as the centred test) and the loads shifted by one
+    pair (1e-5 relative)."""
+    from gearcontact.tca.analysis import analyze_pair
+    from gearcontact.validation import UnusableInput
+
+    pair, flanks = s0003_calibrated
+    narrow, _ = analyze_pair(pair, phases=PHASES, flanks=flanks, pairs=2)
+    with pytest.raises(UnusableInput, match=r"pair window -2\.\.2 .* pairs >= 3"):
+        loaded_te(narrow, flanks, pair, 64.5, cells=CELLS)
+    tca, _ = analyze_pair(pair, phases=PHASES, flanks=flanks)
+    assert tca.cycle.pair_offsets == (-3, -2, -1, 0, 1, 2, 3)
+    res = loaded_te(tca, flanks, pair, 64.5, cells=CELLS)
+    assert res.te_lcp_arcsec[-1] == pytest.approx(res.te_lcp_arcsec[0], abs=1e-4)
+    np.testing.assert_allclose(res.pair_loads_lcp_n[:-1, -1], res.pair_loads_lcp_n[1:, 0],
+                               rtol=1e-5, atol=1e-6)
+    assert res.pair_loads_lcp_n[0, 0] == 0.0 and res.pair_loads_lcp_n[0, -1] > 0.0

@@ -97,8 +97,12 @@ def test_multitooth_share_difference_is_explained_by_measurements(quick_report):
     assert inc[0] == pytest.approx(0.0, abs=1e-9)
     assert all(a < b for a, b in zip(inc, inc[1:])), inc
     assert 0.0 < trend["scale_at_published_increase"] < 1.0
-    seps = why["separations_um"]
-    assert seps[0] == 0.0 and all(0.0 < g < why["approach_um"] for g in seps[1:])
+    # a pair loaded with rigid teeth stands open by less than the rigid approach (it
+    # closes under it); one beyond it carries load only with bending
+    seps, rigid = why["separations_um"], why["rigid_share_pct"]
+    assert seps[0] == 0.0 and rigid[0] > 0.0
+    for g, share in zip(seps[1:], rigid[1:]):
+        assert (g < why["approach_um"]) == (share > 0.0), (g, share)
     c = why["pair_compliance_mm_per_n"]
     # a localized bearing is more compliant than ISO's full-face pair (ours: 2.4-2.5x);
     # the published +12 % is not (0.95-0.99x; 1.1x leaves room for grid changes)

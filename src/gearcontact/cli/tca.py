@@ -31,8 +31,8 @@ def register(sub) -> None:
     p = sub.add_parser("tca", help="unloaded TCA: contact path, TE0, gap stencil, phase table",
                        description=__doc__.split("\n\n")[1])
     add_pair_arguments(p, misalignment=True)
-    p.add_argument("--pairs", type=int, default=2,
-                   help=f"neighbouring tooth pairs on each side, 0 to {MAX_PAIRS} (default 2)")
+    p.add_argument("--pairs", type=int, default=3,
+                   help=f"neighbouring tooth pairs on each side, 0 to {MAX_PAIRS} (default 3)")
     p.add_argument("--table-records", type=int, default=16,
                    help=f"maximum records of the binary phase table, 1 to "
                         f"{MAX_TABLE_RECORDS} (default 16)")

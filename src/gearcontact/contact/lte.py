@@ -82,7 +82,7 @@ from scipy.optimize import brentq
 from tqdm import tqdm
 
 from ..materials import effective_modulus_mpa
-from ..validation import InputRangeError, check_positive, check_range
+from ..validation import InputRangeError, UnusableInput, check_positive, check_range
 from .lte_pairs import PairContact, PairFields, phase_contacts
 from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
@@ -372,6 +372,41 @@ def check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
     return edge
 
 
+def check_pair_window(loads_n: np.ndarray, offsets, *, full_pitch: bool) -> None:
+    """Raise :class:`~gearcontact.validation.UnusableInput` when the TCA's pair window
+    is too narrow for the loaded mesh.
+
+    Over one pitch pair j at the last phase is pair j + 1 at the first (the next pitch
+    starts there), so the pair beyond the window's negative end is loaded at the last
+    phase exactly when the outermost negative pair is loaded at the first, and likewise
+    on the positive side. A missing loaded pair makes the others carry its load: the
+    loaded TE stops being periodic (s0003 with pairs -2..2: TE_LCP -60.51 arcsec at the
+    first phase against -61.44 at the last, with bending -98.6 against -108.0).
+
+    Parameters
+    ----------
+    loads_n : ndarray (P, K)
+        Pair loads along the phase, N (rows in the order of ``offsets``).
+    offsets : sequence of int
+        Pair offsets of the TCA's mesh cycle.
+    full_pitch : bool
+        The phases include the first and the last of the pitch (else nothing to check).
+    """
+    if not full_pitch or loads_n.shape[1] < 2:
+        return
+    total = loads_n.sum(axis=0)
+    for row, col, beyond in ((0, 0, offsets[0] - 1), (-1, -1, offsets[-1] + 1)):
+        w = float(loads_n[row, col])
+        if w > ACTIVE_SHARE * float(total[col]):
+            raise UnusableInput(
+                f"the TCA's pair window {offsets[0]}..{offsets[-1]} is too narrow for "
+                f"this mesh: pair {offsets[row]} carries {w:.3g} N at the "
+                f"{'first' if col == 0 else 'last'} phase of the pitch, so pair {beyond} "
+                f"is loaded at the {'last' if col == 0 else 'first'}; run the TCA with "
+                f"pairs >= {max(-offsets[0], offsets[-1]) + 1} (analyze_pair(pairs=...), "
+                f"gearcontact tca --pairs)")
+
+
 def _field_edge(masks) -> bool:
     return any(m[0, :].any() or m[-1, :].any() or m[:, 0].any() or m[:, -1].any()
                for m in masks)
@@ -549,6 +584,8 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
             k_arr[k] = 2.0 * eps * t / (th[0] - th[1])          # N·m/rad
         if k == k_ref:
             ref = (contacts, valid)
+    check_pair_window(w_lcp, cycle.pair_offsets, full_pitch=bool(sel[0] == 0
+                                                                 and sel[-1] == k_full - 1))
     comp = _compliances(ref, fields, torque, eps, materials, tol)
     # loads of pairs that lose their mating point; pair j at phase 0 is pair j - 1 at
     # phase K-1 (the next pitch starts there), so its predecessor is pair j - 1 at K-2

@@ -113,12 +113,16 @@ def sharing_explanation(analysis, rigid: dict, bending: dict, published: dict):
                ["implied by the published +12 % rotation", None,
                 c_pub / iso.compliance_mm_per_n, c_pub]]),
     ]
-    neighbours = [g / approach_um for g in seps[1:]]
+    rigid_shares = list(mt.load_share_rigid_pct)
+    near = [g / approach_um for g, sh in zip(seps[1:], rigid_shares[1:]) if sh > 0.0]
+    far = [g / approach_um for g, sh in zip(seps[1:], rigid_shares[1:]) if sh <= 0.0]
+    near_text = (f"{min(near):.2f}–{max(near):.2f}" if near else "none")
+    far_text = (f"; the pairs beyond the rigid approach ({', '.join(f'{x:.2f}' for x in far)}) "
+                f"close only under the larger rotation with bending" if far else "")
     text = [
         f"Why the shares differ, measured in this run. (1) The neighbours stand barely "
-        f"open: their unloaded separations are {min(neighbours):.2f}–{max(neighbours):.2f} "
-        f"of the reference pair's rigid approach ({approach_um:.1f} um), so they carry load "
-        f"already with rigid teeth. (2) Any compliance common to all pairs equalizes the "
+        f"open: those loaded with rigid teeth have unloaded separations of {near_text} of "
+        f"the reference pair's rigid approach ({approach_um:.1f} um){far_text}. (2) Any compliance common to all pairs equalizes the "
         f"shares: re-solved with the bending compliance scaled by s = "
         f"{', '.join(f'{s:g}' for s in BENDING_SCALES)}, the reference share falls "
         f"{' -> '.join(f'{r[1]:.1f}' for r in trend)} %: over this range the tooth "
@@ -132,6 +136,7 @@ def sharing_explanation(analysis, rigid: dict, bending: dict, published: dict):
         f"compliant than ISO's pair loaded over the whole face. The published separations and rigid baseline are not "
         f"given, so the published sharing cannot be checked further; we do not tune to it."]
     data = {"approach_um": approach_um, "separations_um": seps,
+            "rigid_share_pct": rigid_shares,
             "scale_trend": {"scale": [r[0] for r in trend],
                             "reference_share_pct": [r[1] for r in trend],
                             "rotation_increase_pct": [r[2] for r in trend],

@@ -108,7 +108,7 @@ def pattern_on_flank(pinion: Surface, gear: Surface, kin: MeshKinematics,
 
 def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
             start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
-            pairs: int = 2, stencil_off_flank: str = "quadric",
+            pairs: int = 3, stencil_off_flank: str = "quadric",
             edge_contact: bool = True, progress: bool = False) -> TcaAnalysis:
     """Run the whole unloaded analysis.
 
@@ -166,7 +166,7 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     return TcaAnalysis(cycle, table, mean, rc, ell, field, stencil, inside, edges, timings)
 
 
-def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int = 2,
+def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int = 3,
                  flanks=None, edge_contact: bool = True,
                  progress: bool = False) -> tuple[TcaAnalysis, object]:
     """Build the flanks of a :class:`~gearcontact.geometry.pair.GearPair` and analyze

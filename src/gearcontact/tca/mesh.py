@@ -130,7 +130,7 @@ _RECENTRE_TRIES = 4
 
 def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth: int,
                start: ContactGuess, start_fixed: str = "phi1", phases: int = 61,
-               pairs: int = 2, paint_mm: float = PAINT_THICKNESS_MM,
+               pairs: int = 3, paint_mm: float = PAINT_THICKNESS_MM,
                center: str = "vertex", edge_contact: bool = True,
                progress: bool = False) -> MeshCycle:
     """Run TCA of pair 0 over ``2 pairs + 1`` pitches (plus one either side to find the
@@ -153,7 +153,10 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         ``CONTINUATION_STEPS_PER_PITCH + 1`` the continuation takes unrecorded
         substeps between the phases.
     pairs : int
-        Neighbouring pairs on each side (``j = -pairs .. pairs``).
+        Neighbouring pairs on each side (``j = -pairs .. pairs``); default 3: a hypoid
+        pair with a contact ratio near 3 loads pairs -3..0 over one pitch of the
+        reference window (s0003), and a window one pair too narrow drops a loaded pair
+        at the pitch's end (:func:`gearcontact.contact.lte.loaded_te` checks it).
     paint_mm : float
         Paint thickness of the instantaneous ellipses, mm.
     center : str
