@@ -181,6 +181,16 @@ def _comb_exact(lanes):
     return convert_verilog(name="core", hertz_form="exact")
 
 
+def _hertz_pipe(lanes):
+    from ..preview.hertz.rtl_pipe import convert_verilog
+    return convert_verilog(name="core")
+
+
+def _chain_pipe(lanes):
+    from ..preview.chain_pipe import convert_verilog
+    return convert_verilog(name="core")
+
+
 def _soc(kind):
     def make(lanes):
         from .soc import convert_verilog
@@ -191,7 +201,8 @@ def _soc(kind):
 #: Core name -> Verilog generator ``f(lanes) -> str`` (top module ``core``).
 CORES = {"gap": _gap, "gap_plain": _gap_plain, "gap_lean": _gap_lean, "fit": _fit,
          "hertz": _hertz,
-         "hertz_exact": _hertz_exact, "chain": _chain, "comb": _comb, "comb_exact": _comb_exact,
+         "hertz_exact": _hertz_exact, "hertz_pipe": _hertz_pipe, "chain": _chain,
+         "chain_pipe": _chain_pipe, "comb": _comb, "comb_exact": _comb_exact,
          "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
          "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
 
