@@ -372,7 +372,7 @@ def check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
     return edge
 
 
-def check_pair_window(loads_n: np.ndarray, offsets, *, full_pitch: bool) -> None:
+def check_pair_window(loads_n: np.ndarray, offsets) -> None:
     """Raise :class:`~gearcontact.validation.UnusableInput` when the TCA's pair window
     is too narrow for the loaded mesh.
 
@@ -389,10 +389,8 @@ def check_pair_window(loads_n: np.ndarray, offsets, *, full_pitch: bool) -> None
         Pair loads along the phase, N (rows in the order of ``offsets``).
     offsets : sequence of int
         Pair offsets of the TCA's mesh cycle.
-    full_pitch : bool
-        The phases include the first and the last of the pitch (else nothing to check).
     """
-    if not full_pitch or loads_n.shape[1] < 2:
+    if loads_n.shape[1] < 2:
         return
     total = loads_n.sum(axis=0)
     for row, col, beyond in ((0, 0, offsets[0] - 1), (-1, -1, offsets[-1] + 1)):
@@ -584,8 +582,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
             k_arr[k] = 2.0 * eps * t / (th[0] - th[1])          # N·m/rad
         if k == k_ref:
             ref = (contacts, valid)
-    check_pair_window(w_lcp, cycle.pair_offsets, full_pitch=bool(sel[0] == 0
-                                                                 and sel[-1] == k_full - 1))
+    check_pair_window(w_lcp, cycle.pair_offsets)   # sel holds the first and last phase
     comp = _compliances(ref, fields, torque, eps, materials, tol)
     # loads of pairs that lose their mating point; pair j at phase 0 is pair j - 1 at
     # phase K-1 (the next pitch starts there), so its predecessor is pair j - 1 at K-2

@@ -285,13 +285,14 @@ def precision_section(analysis) -> Section:
     from ..preview.gap.golden import GapFormat
 
     by_coord, by_normal = analysis.precision
-    ci = GapFormat().coord_int
+    hw = GapFormat()
+    ci = hw.coord_int
     rows = [[ci + p.coord_frac, p.coord_frac, p.normal_frac, 1e3 * p.max_error_mm,
              1e3 * p.rms_error_mm, p.max_bound_ratio, 1e3 * p.bound_mm] for p in by_coord]
     nrows = [[p.normal_frac + 1, p.coord_frac, p.normal_frac, 1e3 * p.max_error_mm,
               1e3 * p.rms_error_mm, p.max_bound_ratio, 1e3 * p.bound_mm] for p in by_normal]
     worst = max(p.max_bound_ratio for p in by_coord + by_normal)
-    hw_pt = next(p for p in by_coord if p.coord_frac == GapFormat().coord_frac)
+    hw_pt = next(p for p in by_coord if p.coord_frac == hw.coord_frac)
     hw_err, hw_bound = 1e3 * hw_pt.max_error_mm, 1e3 * hw_pt.bound_mm
     narrow_err = next(r[3] for r in rows if r[0] == 14)
     text = [f"Golden-model signed gap against fp64 over the word widths, 1000 random "
@@ -301,7 +302,7 @@ def precision_section(analysis) -> Section:
             f"holds). The coordinate word is {ci} integer bits (the +-128 mm range of the "
             f"contract, fixed) + cf fraction bits, swept over {rows[0][0]}–{rows[-1][0]} "
             f"bits: the published 14–24 and on to the golden model's widest word. At the "
-            f"hardware width ({ci + 16} bits) the largest error is {hw_err:.4f} um against "
+            f"hardware width ({hw.coord_bits} bits) the largest error is {hw_err:.4f} um against "
             f"a bound of {hw_bound:.4f} um; at 14 bits it is {narrow_err:.1f} um, so the "
             f"contract's 16 fraction bits hold the gap well below the micrometre scale of "
             f"the ease-off."]

@@ -20,10 +20,9 @@ Three measurements, each from the library on the main job's case at P0:
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from ..contact.pair_ltca import ARCSEC_PER_RAD
 from .document import Table
 
 __all__ = ["BENDING_SCALES", "sharing_explanation"]
@@ -32,18 +31,28 @@ __all__ = ["BENDING_SCALES", "sharing_explanation"]
 BENDING_SCALES = (0.0, 0.5, 1.0, 2.0)
 
 
-def _scale_trend(analysis, torque_nm: float):
+def _scale_trend(analysis):
+    """(s, reference share %, rotation increase %) per :data:`BENDING_SCALES`. The main
+    job's case gives s = 0 (its rigid solve) and s = 1 (its bending solve); only the
+    other scales are solved here."""
     from ..contact.multitooth import multi_tooth_ltca
     from ..contact.tooth_bending import tooth_bending
 
+    mt = analysis.multitooth
+    known = {0.0: (mt.load_share_rigid_pct[0], 0.0)}
+    if mt.bending:
+        known[1.0] = (mt.load_share_pct[0],
+                      100.0 * (mt.rotation_arcsec / mt.rotation_rigid_arcsec - 1.0))
     rows = []
     for s in BENDING_SCALES:
-        case = multi_tooth_ltca(analysis.tca, analysis.flanks, analysis.pair, torque_nm,
-                                side=analysis.side,
-                                bending=tooth_bending(analysis.flanks, analysis.pair,
-                                                      side=analysis.side, scale=s))
-        rows.append((s, case.load_share_pct[0],
-                     100.0 * (case.rotation_arcsec / case.rotation_rigid_arcsec - 1.0)))
+        if s not in known:
+            case = multi_tooth_ltca(analysis.tca, analysis.flanks, analysis.pair,
+                                    mt.torque_nm, side=analysis.side,
+                                    bending=tooth_bending(analysis.flanks, analysis.pair,
+                                                          side=analysis.side, scale=s))
+            known[s] = (case.load_share_pct[0],
+                        100.0 * (case.rotation_arcsec / case.rotation_rigid_arcsec - 1.0))
+        rows.append((s, *known[s]))
     return rows
 
 
@@ -66,14 +75,14 @@ def sharing_explanation(analysis, rigid: dict, bending: dict, published: dict):
     from ..analytic.iso6336 import bevel_pair_stiffness
 
     mt = analysis.multitooth
-    theta0 = math.radians(mt.rotation_rigid_arcsec / 3600.0)
+    theta0 = mt.rotation_rigid_arcsec / ARCSEC_PER_RAD
     approach_um = 1e3 * mt.pairs[0].lever_mm * theta0
     sep_rows, seps = [], []
     for p, s_r, s_b in zip(mt.pairs, mt.load_share_rigid_pct, mt.load_share_pct):
-        g_um = 1e3 * p.lever_mm * math.radians(p.opening_arcsec / 3600.0)
+        g_um = 1e3 * p.lever_mm * p.opening_arcsec / ARCSEC_PER_RAD
         seps.append(g_um)
         sep_rows.append([f"{p.offset:+d}", p.lever_mm, g_um, g_um / approach_um, s_r, s_b])
-    trend = _scale_trend(analysis, mt.torque_nm)
+    trend = _scale_trend(analysis)
     scales = np.array([r[0] for r in trend])
     increase = np.array([r[2] for r in trend])
     target = float(published["bending_rotation_increase_pct"])
@@ -122,8 +131,8 @@ def sharing_explanation(analysis, rigid: dict, bending: dict, published: dict):
     text = [
         f"Why the shares differ, measured in this run. (1) The neighbours stand barely "
         f"open: those loaded with rigid teeth have unloaded separations of {near_text} of "
-        f"the reference pair's rigid approach ({approach_um:.1f} um){far_text}. (2) Any compliance common to all pairs equalizes the "
-        f"shares: re-solved with the bending compliance scaled by s = "
+        f"the reference pair's rigid approach ({approach_um:.1f} um){far_text}. (2) Any "
+        f"compliance common to all pairs equalizes the shares: re-solved with the bending compliance scaled by s = "
         f"{', '.join(f'{s:g}' for s in BENDING_SCALES)}, the reference share falls "
         f"{' -> '.join(f'{r[1]:.1f}' for r in trend)} %: over this range the tooth "
         f"compliance only moves load away from the reference pair, never toward the "
@@ -133,8 +142,8 @@ def sharing_explanation(analysis, rigid: dict, bending: dict, published: dict):
         f"our pair at P0 with bending is {c_bend / iso.compliance_mm_per_n:.2f}x that "
         f"(above, as a localized bearing on part of the face must be), while the published "
         f"+{target:g} % would make it {c_pub / iso.compliance_mm_per_n:.2f}x, no more "
-        f"compliant than ISO's pair loaded over the whole face. The published separations and rigid baseline are not "
-        f"given, so the published sharing cannot be checked further; we do not tune to it."]
+        f"compliant than ISO's pair loaded over the whole face. The published separations "
+        f"and rigid baseline are not given, so the published sharing cannot be checked further; we do not tune to it."]
     data = {"approach_um": approach_um, "separations_um": seps,
             "rigid_share_pct": rigid_shares,
             "scale_trend": {"scale": [r[0] for r in trend],
