@@ -31,6 +31,7 @@ M. Kolivand, A. Kahraman, *Mechanism and Machine Theory* 44(10), 2009, 1848-1865
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from ..validation import InputRangeError
 from .influence import StackedFftInfluence
@@ -40,12 +41,36 @@ __all__ = ["BlockCompliance", "add_low_rank"]
 
 def add_low_rank(f: np.ndarray, v: np.ndarray, out: np.ndarray) -> np.ndarray:
     """``out[k] += F_k (F_k^T v[k])`` for factors ``f`` (blocks, ny, nx, r) and fields
-    ``v`` (blocks, ny, nx)."""
-    nb, ny, nx, r = f.shape
-    f2 = f.reshape(nb, ny * nx, r)
-    c = np.matmul(v.reshape(nb, 1, ny * nx), f2)              # (nb, 1, r)
-    out += np.matmul(f2, c.transpose(0, 2, 1)).reshape(nb, ny, nx)
+    ``v`` (blocks, ny, nx); double-precision sums whatever ``f``'s precision."""
+    c = np.zeros((f.shape[0], f.shape[3]))
+    _project(f, v, c)
+    _expand(f, c, out)
     return out
+
+
+@njit(cache=True, fastmath=True)
+def _project(f, v, c):  # pragma: no cover - compiled
+    """``c[k] += F_k^T v[k]``, skipping the cells where ``v`` is 0 (the loads and the
+    CG directions vanish off the contact set, most of a field)."""
+    for k in range(f.shape[0]):
+        for j in range(f.shape[1]):
+            for i in range(f.shape[2]):
+                a = v[k, j, i]
+                if a != 0.0:
+                    for q in range(f.shape[3]):
+                        c[k, q] += a * f[k, j, i, q]
+
+
+@njit(cache=True, fastmath=True)
+def _expand(f, c, out):  # pragma: no cover - compiled
+    """``out[k] += F_k c[k]``."""
+    for k in range(f.shape[0]):
+        for j in range(f.shape[1]):
+            for i in range(f.shape[2]):
+                acc = 0.0
+                for q in range(f.shape[3]):
+                    acc += f[k, j, i, q] * c[k, q]
+                out[k, j, i] += acc
 
 
 class BlockCompliance:
@@ -64,7 +89,8 @@ class BlockCompliance:
         ``x``: loads N, or torque shares N·mm with ``s_k = l_k²``).
     low_rank : ndarray (blocks, ny, nx, r), optional
         Factors ``F_k`` of the further compliance ``G_k = F_k F_k^T``, in
-        (mm/N)^(1/2) per unit of ``x``; None: the half-space alone.
+        (mm/N)^(1/2) per unit of ``x`` (kept in single precision); None: the
+        half-space alone.
     pre_shape : tuple of int, optional
         Transform shape of the preconditioner (default the operator's padded one).
     """
@@ -79,7 +105,10 @@ class BlockCompliance:
                                               scales=self.scales, pre_shape=pre_shape)
         self.shape, self.n_blocks = self.half_space.shape, len(self.cell_sizes)
         if low_rank is not None:
-            low_rank = np.asarray(low_rank, float)
+            # single precision storage halves the memory the CG streams per step; the
+            # sums stay double (G = F F^T exactly for the rounded F: still symmetric
+            # and semi-definite, entries within 1e-7 of the double factor's)
+            low_rank = np.asarray(low_rank, np.float32)
             if low_rank.shape[:3] != (self.n_blocks,) + self.shape:
                 raise InputRangeError("low_rank", f"shape {low_rank.shape}",
                                       f"({self.n_blocks}, {self.shape[0]}, "
@@ -112,8 +141,7 @@ class BlockCompliance:
         f = self.low_rank
         c = np.zeros((f.shape[0], f.shape[3]))
         np.add.at(c, cells[:, 0], f[cells[:, 0], cells[:, 1], cells[:, 2]] * values[:, None])
-        nb, ny, nx, r = f.shape
-        out += np.matmul(f.reshape(nb, ny * nx, r), c[:, :, None]).reshape(nb, ny, nx)
+        _expand(f, c, out)
         return out
 
     def approx_inverse(self, displacement_mm: np.ndarray, out: np.ndarray | None = None,

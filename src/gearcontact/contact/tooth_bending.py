@@ -11,7 +11,10 @@ each the low-rank shell operator of :mod:`gearcontact.structure.shell`. It is ha
 :func:`.mesh_lcp.solve_mesh_lcp` as one factor ``F`` with ``G = F F^T``: evaluated
 exactly on an 8 x 24 sub-lattice of the cells, compressed there by a pivoted Cholesky
 factorization of ``F F^T`` (dropped entries below 1e-10 of the largest compliance), and
-interpolated to all cells by cubic splines (:meth:`ToothBending.factor`).
+interpolated to all cells by cubic splines (:meth:`ToothBending.factor`). The rows
+at the sub-lattice are themselves interpolated, by a tensor cubic spline over a fine
+lattice of the whole flank made once per tooth and side (:func:`flank_rows`), so a
+field costs a few small products instead of the Ritz functions at 192 points.
 
 Cells outside a flank's parameter box (off-flank cells, which never carry load) take
 the compliance of the nearest box point.
@@ -32,13 +35,14 @@ from functools import lru_cache
 
 import numpy as np
 from numba import njit
-from scipy.interpolate import CubicSpline
+from scipy.interpolate import BSpline, CubicSpline, make_interp_spline
 
 from ..structure.shell import ShellModel, tooth_shell
 from ..threads import one_blas_thread
 from ..validation import check_range
 
-__all__ = ["ToothBending", "tooth_bending", "bending_stack", "flank_map"]
+__all__ = ["ToothBending", "FlankRows", "tooth_bending", "bending_stack", "flank_map",
+           "flank_rows"]
 
 #: Relative cut of the compressed bending factor: the pivoted Cholesky stops when the
 #: largest remaining diagonal of F F^T is below this fraction of the largest diagonal
@@ -53,6 +57,12 @@ _MAP_CUT = 1e-12
 #: Sub-lattice (rows along the field's minor axis t, columns along its major axis s,
 #: which runs along the face) on which the shell operator is evaluated exactly.
 _NODES = (8, 24)
+#: Lattice (face, height) of tooth coordinates over which :func:`flank_rows` splines a
+#: flank's factor rows: the compliance from them is within 4e-5 (pinion) and 3e-5
+#: (gear) of the largest self-compliance of the exact rows on s0003 (97 x 33: 5e-3,
+#: 129 x 33: 1.2e-3; the error falls as h^4 along the face, where the Ritz functions
+#: reach degree 16), well inside the 2e-3 of the sub-lattice interpolation.
+_ROWS_GRID = (193, 33)
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,16 +103,9 @@ class ToothBending:
         jy = _sub_lattice(ny, nodes[0])
         jx = _sub_lattice(nx, nodes[1])
         pick = (jy[:, None] * nx + jx[None, :]).ravel()
-        parts = []
-        for shell, uv in ((self.pinion, uv_pinion[pick]), (self.gear, uv_gear[pick])):
-            tooth = shell.body
-            flank = getattr(tooth, self.side)
-            u = np.clip(uv[:, 0], *flank.u_range)
-            v = np.clip(uv[:, 1], *flank.v_range)
-            phi = shell.load_vectors(tooth.flank_points(self.side, u, v))
-            with one_blas_thread():
-                parts.append(phi @ flank_map(shell, self.side))
-        f = np.concatenate(parts, axis=1) * np.sqrt(self.scale)
+        f = np.concatenate([flank_rows(shell, self.side).rows(uv[pick]) for shell, uv in
+                            ((self.pinion, uv_pinion), (self.gear, uv_gear))], axis=1)
+        f *= np.sqrt(self.scale)
         # compress on the nodes: pivoted Cholesky (compiled) of the Gram matrix F F^T
         # (BLAS on one thread; LAPACK's SVD / eigh, or threaded BLAS, cost 30-60x more
         # on a busy machine)
@@ -135,6 +138,81 @@ def flank_map(shell: ShellModel, side: str) -> np.ndarray:
         lam, vec = np.linalg.eigh(b.T @ b)
         out = shell.inverse_cholesky_t @ vec[:, lam > _MAP_CUT * lam.max()]
     out.setflags(write=False)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class FlankRows:
+    """Factor rows ``phi(x) M`` (:func:`flank_map`) of one tooth flank as a tensor
+    cubic spline over tooth coordinates (not-a-knot, on :data:`_ROWS_GRID`).
+
+    Attributes
+    ----------
+    shell : ShellModel
+    side : str
+    knots_xi, knots_eta : ndarray
+        B-spline knots along the face (xi) and the height (eta).
+    coef : ndarray (n_xi, n_eta, r)
+        Spline coefficients, (mm/N)^(1/2).
+    """
+
+    shell: ShellModel
+    side: str
+    knots_xi: np.ndarray
+    knots_eta: np.ndarray
+    coef: np.ndarray
+
+    def rows(self, uv: np.ndarray) -> np.ndarray:
+        """Rows (n, r) at flank parameters ``uv`` (n, 2), mm (clipped to the flank
+        box: off-flank cells take the nearest box point's compliance)."""
+        tooth = self.shell.body
+        flank = getattr(tooth, self.side)
+        u = np.clip(uv[:, 0], *flank.u_range)
+        v = np.clip(uv[:, 1], *flank.v_range)
+        xi, eta = tooth.tooth_coordinates(self.side, u, v)
+        ix, wx = _basis(self.knots_xi, xi)
+        ie, we = _basis(self.knots_eta, eta)
+        return _tensor_rows(self.coef, ix, wx, ie, we)
+
+
+@lru_cache(maxsize=16)
+def flank_rows(shell: ShellModel, side: str) -> FlankRows:
+    """The :class:`FlankRows` of a tooth's flank ``side`` (made once per shell model
+    and side: the rows at the lattice, then a spline along each axis)."""
+    xi, eta = (np.linspace(-1.0, 1.0, n) for n in _ROWS_GRID)
+    x, e = np.meshgrid(xi, eta, indexing="ij")
+    phi = shell.load_vectors(shell.body.points_at(side, x.ravel(), e.ravel()))
+    with one_blas_thread():
+        rows = (phi @ flank_map(shell, side)).reshape(len(xi), len(eta), -1)
+    along_xi = make_interp_spline(xi, rows, k=3, axis=0)
+    along_eta = make_interp_spline(eta, along_xi.c, k=3, axis=1)
+    coef = np.ascontiguousarray(np.moveaxis(along_eta.c, 0, 1))
+    for a in (along_xi.t, along_eta.t, coef):
+        a.setflags(write=False)
+    return FlankRows(shell=shell, side=side, knots_xi=along_xi.t, knots_eta=along_eta.t,
+                     coef=coef)
+
+
+def _basis(knots: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(first index (n,), values (n, 4)) of the four cubic B-splines not zero at x."""
+    d = BSpline.design_matrix(x, knots, 3).tocsr()
+    d.sort_indices()
+    # k + 1 = 4 stored entries per row (zeros included at a knot): consecutive indices
+    return d.indices.reshape(-1, 4)[:, 0].copy(), d.data.reshape(-1, 4)
+
+
+@njit(cache=True)
+def _tensor_rows(coef, ix, wx, ie, we):  # pragma: no cover - compiled
+    """sum_ab wx[p, a] we[p, b] coef[ix[p] + a, ie[p] + b, :] per point p."""
+    n, r = ix.shape[0], coef.shape[2]
+    out = np.zeros((n, r))
+    for p in range(n):
+        for a in range(4):
+            for b in range(4):
+                w = wx[p, a] * we[p, b]
+                c = coef[ix[p] + a, ie[p] + b]
+                for q in range(r):
+                    out[p, q] += w * c[q]
     return out
 
 
@@ -210,7 +288,7 @@ def bending_stack(blocks, shape) -> np.ndarray | None:
     if all(b.bending_factor is None for b in blocks):
         return None
     r = max(b.bending_factor.shape[2] for b in blocks if b.bending_factor is not None)
-    out = np.zeros((len(blocks),) + tuple(shape) + (r,))
+    out = np.zeros((len(blocks),) + tuple(shape) + (r,), np.float32)  # see compliance
     for k, b in enumerate(blocks):
         if b.bending_factor is not None:
             f = b.bending_factor
