@@ -10,7 +10,7 @@ cells is that of the pinion tooth plus that of the gear tooth,
 each the low-rank shell operator of :mod:`gearcontact.structure.shell`. It is handed to
 :func:`.mesh_lcp.solve_mesh_lcp` as one factor ``F`` with ``G = F F^T``: evaluated
 exactly on an 8 x 24 sub-lattice of the cells, compressed there by a pivoted Cholesky
-factorization of ``F F^T`` (dropped entries below 1e-10 of the largest compliance), and
+factorization of ``F F^T`` (dropped entries below 1e-6 of the largest compliance), and
 interpolated to all cells by cubic splines (:meth:`ToothBending.factor`). The rows
 at the sub-lattice are themselves interpolated, by a tensor cubic spline over a fine
 lattice of the whole flank made once per tooth and side (:func:`flank_rows`), so a
@@ -35,7 +35,7 @@ from functools import lru_cache
 
 import numpy as np
 from numba import njit
-from scipy.interpolate import BSpline, CubicSpline, make_interp_spline
+from scipy.interpolate import CubicSpline, make_interp_spline
 
 from ..structure.shell import ShellModel, tooth_shell
 from ..threads import one_blas_thread
@@ -47,7 +47,10 @@ __all__ = ["ToothBending", "FlankRows", "tooth_bending", "bending_stack", "flank
 #: Relative cut of the compressed bending factor: the pivoted Cholesky stops when the
 #: largest remaining diagonal of F F^T is below this fraction of the largest diagonal
 #: (every entry of the dropped part is then below it too, G being semi-definite).
-_CUT = 1e-10
+#: 1e-6 is 40x below the flank-rows spline's error (4e-5) and keeps rank ~69 per s0003
+#: field instead of ~105 at 1e-10, with TE, rotation, shares and CP_max unchanged to
+#: 1e-5 relative.
+_CUT = 1e-6
 #: Lattice (face, height) of tooth coordinates on which :func:`flank_map` reduces a
 #: flank's compliance (the Ritz functions are polynomials of order <= 16 along the face).
 _MAP_GRID = (97, 33)
@@ -86,9 +89,10 @@ class ToothBending:
 
     def factor(self, uv_pinion: np.ndarray, uv_gear: np.ndarray, shape, *,
                nodes: tuple[int, int] = _NODES) -> np.ndarray:
-        """Bending factor ``F`` (ny, nx, r) at a grid of cells with pinion / gear flank
-        parameters ``uv_*`` (ny * nx, 2, row-major over ``shape``), mm: ``G = F F^T``
-        (mm/N).
+        """Bending factor ``F`` (ny, nx, r), single precision, at a grid of cells with
+        pinion / gear flank parameters ``uv_*`` (ny * nx, 2, row-major over ``shape``),
+        mm: ``G = F F^T`` (mm/N; the LCP applies it in single precision with double
+        sums, :class:`~.compliance.BlockCompliance`).
 
         The shell operator is evaluated exactly on a ``nodes`` (rows, columns)
         sub-lattice of the cells (all cells of a shorter axis), compressed there, and
@@ -116,7 +120,7 @@ class ToothBending:
         # two small contractions, BLAS on one thread (threaded: ~20 ms each on a busy
         # machine; einsum's loops: 2-3 ms)
         with one_blas_thread():
-            half = np.matmul(wx, fc)                                 # (a, nx, r)
+            half = np.matmul(wx, fc.astype(np.float32))             # (a, nx, r)
             return (wy @ half.reshape(len(jy), -1)).reshape(ny, nx, -1)
 
 
@@ -193,12 +197,30 @@ def flank_rows(shell: ShellModel, side: str) -> FlankRows:
                      coef=coef)
 
 
-def _basis(knots: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(first index (n,), values (n, 4)) of the four cubic B-splines not zero at x."""
-    d = BSpline.design_matrix(x, knots, 3).tocsr()
-    d.sort_indices()
-    # k + 1 = 4 stored entries per row (zeros included at a knot): consecutive indices
-    return d.indices.reshape(-1, 4)[:, 0].copy(), d.data.reshape(-1, 4)
+@njit(cache=True)
+def _basis(knots, x):  # pragma: no cover - compiled
+    """(first index (n,), values (n, 4)) of the four cubic B-splines not zero at x
+    (``x`` within the knots' base interval): Cox-de Boor, Piegl & Tiller, *The NURBS
+    Book*, 2nd ed., 1997, algorithm A2.2."""
+    n_coef = knots.size - 4
+    first = np.empty(x.size, np.int64)
+    out = np.empty((x.size, 4))
+    left, right = np.empty(4), np.empty(4)
+    for p in range(x.size):
+        xv = x[p]
+        m = min(max(np.searchsorted(knots, xv, side="right") - 1, 3), n_coef - 1)
+        first[p] = m - 3
+        out[p, 0] = 1.0
+        for j in range(1, 4):
+            left[j] = xv - knots[m + 1 - j]
+            right[j] = knots[m + j] - xv
+            saved = 0.0
+            for r in range(j):
+                tmp = out[p, r] / (right[r + 1] + left[j - r])
+                out[p, r] = saved + right[r + 1] * tmp
+                saved = left[j - r] * tmp
+            out[p, j] = saved
+    return first, out
 
 
 @njit(cache=True)
@@ -265,6 +287,7 @@ def _spline_weights_cached(at: tuple, n: int) -> np.ndarray:
         out = np.stack([np.interp(np.arange(n), at, e) for e in np.eye(len(at))], axis=1)
     else:
         out = CubicSpline(np.asarray(at, float), np.eye(len(at)))(np.arange(n))
+    out = out.astype(np.float32)  # the factor is used in single precision (compliance)
     out.setflags(write=False)
     return out
 
