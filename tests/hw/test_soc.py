@@ -26,7 +26,7 @@ def _contact_expected():
 def test_contact_readback_equals_golden_pass(contact):
     m = get_map("contact_core")
     vec = baked_contact_vector()
-    # N write cycles + start + the gap core latency (26 at N = L = 16)
+    # N write cycles + go + the gap core latency (26 at N = L = 16)
     contact.idle(vec.n_samples + 1 + gap_latency(16, 16))
     assert contact.read(m.addr("contact", "magic")) == MAGIC
     d = drv.ContactDriver(contact)
@@ -38,7 +38,7 @@ def test_contact_pass_latency_is_exact():
     with drv.SimTransport("contact_core") as t:
         m = get_map("contact_core")
         vec = baked_contact_vector()
-        # after reset: N write edges, the start edge, latency - 1 edges to the gap
+        # after reset: N write edges, the go edge, latency - 1 edges to the gap
         # core's done, one edge into contact.flags; a read returns the state before
         # its own edge
         t.idle(vec.n_samples + gap_latency(16, 16))

@@ -31,7 +31,7 @@ from gearcontact.hw.harness import (
     unpack_results,
 )
 from gearcontact.preview.gap.golden import gap_latency
-from gearcontact.preview.gap_cores import GAP_LANES
+from gearcontact.preview.gap.cores import GAP_LANES
 
 needs_verilator = pytest.mark.skipif(
     not vl.verilator_available(), reason=f"Verilator toolchain not installed: {vl.INSTALL_HINT}")
@@ -101,7 +101,7 @@ def test_stream_variable_beats():
 def test_generated_harness_drives_the_described_ports():
     src = generate_harness(hc.get_bench("gap").spec)
     for needle in ("#include \"Vgap_core.h\"", "top->w_valid = 1;", "top->w_addr = b;",
-                   "top->r[i] = w[0 + i];", "top->start = 1;", "while (!top->done)",
+                   "top->r[i] = w[0 + i];", "top->go = 1;", "while (!top->done)",
                    "top->tau2 = (uint64_t)w["):
         assert needle in src
     fit = generate_harness(hc.get_bench("fit").spec)

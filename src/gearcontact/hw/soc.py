@@ -24,7 +24,7 @@ and E' = 2E* of the Hertz stage, an E_PRIME Q(32,0) code in MPa baked at elabora
 (default steel/steel, :data:`gearcontact.preview.stimulus.STEEL_E_PRIME_CODE`).
 
 The contact pass (stage A/B) runs by itself after every reset: :class:`ContactRunner`
-writes its baked samples into the gap core's banks (N cycles), pulses ``start`` and the
+writes its baked samples into the gap core's banks (N cycles), pulses ``go`` and the
 gap core's outputs are the ``contact`` readback (``flags`` bit 3 says the pass is done).
 """
 
@@ -94,7 +94,7 @@ class ContactRunner(wiring.Component):
     -----
     Ports: ``gap`` out signed(32) GAP Q(32,16) mm; ``idx`` out 16; ``flags`` out 4
     (bit 0 valid, 1 overflow, 2 n_error, 3 done). Schedule after reset: N write cycles,
-    one start cycle, then the gap core's latency (26 cycles at N = L = 16).
+    one go cycle, then the gap core's latency (26 cycles at N = L = 16).
     """
 
     def __init__(self, *, lanes: int = 16, vector: GapVector | None = None):
@@ -115,7 +115,7 @@ class ContactRunner(wiring.Component):
         loading = cnt < n
         m.d.comb += [gap.w_valid.eq(loading), gap.w_addr.eq(cnt),
                      gap.w_g.as_value().eq(g_rom[cnt]), gap.w_n.as_value().eq(n_rom[cnt]),
-                     gap.start.eq(cnt == n), gap.n_samples.eq(n),
+                     gap.go.eq(cnt == n), gap.n_samples.eq(n),
                      gap.tau2.eq(int(vec.tau2_code))]
         m.d.comb += [gap.r[i].eq(int(c)) for i, c in enumerate(vec.r_code.ravel())]
         m.d.comb += [gap.t[i].eq(int(c)) for i, c in enumerate(vec.t_code)]

@@ -1,8 +1,11 @@
 """One description per RTL core: component, golden batch model, stimulus, cycle count.
 
-Every stage folder exports the :class:`CoreDescriptor` of its cores (``fit.cores``,
-``hertz.cores``, ``chain_cores`` for the C -> D and combinational cores; the gap core's
-lives in ``gap_cores`` beside its folder). A descriptor names the Amaranth component
+Every stage folder exports the :class:`CoreDescriptor` of its cores (``gap.cores``,
+``fit.cores``, ``hertz.cores``; ``chain_cores`` for the C -> D and combinational
+cores). Every core speaks one protocol: ``go`` starts a run when the core is idle,
+``busy`` is high while it runs, ``done`` rises on the last edge and holds until the
+next accepted ``go``, ``done_pulse`` marks its first cycle (streaming cores use
+valid/ready instead). A descriptor names the Amaranth component
 and its protocol ports but never repeats a port width: everything that needs widths
 (the Verilator harness, the vector layouts, the port README) derives them from the
 component's ``signature.members`` (:func:`gearcontact.hw.harness_cores.derive_spec`).
@@ -26,7 +29,7 @@ from .stimulus import Stimulus, stimulus
 __all__ = ["WriteNames", "CoreDescriptor", "core_descriptors", "lazy", "DESCRIPTOR_MODULES"]
 
 #: Modules exporting ``DESCRIPTORS`` (tuples of :class:`CoreDescriptor`), in order.
-DESCRIPTOR_MODULES = ("gearcontact.preview.gap_cores", "gearcontact.preview.fit.cores",
+DESCRIPTOR_MODULES = ("gearcontact.preview.gap.cores", "gearcontact.preview.fit.cores",
                       "gearcontact.preview.hertz.cores", "gearcontact.preview.chain_cores")
 
 

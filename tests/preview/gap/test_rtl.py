@@ -155,18 +155,25 @@ def test_go_while_busy_ignored_reset_mid_run_and_bad_n():
     log = {}
 
     async def run_pass(ctx, dut, cd, *, poke_at=None, reset_at=None):
-        await pulse(ctx, dut.start)
+        await pulse(ctx, dut.go)
+        assert not ctx.get(dut.done)                    # accepting go clears done
         count = 1
         while not ctx.get(dut.done):
+            assert not ctx.get(dut.done_pulse)
             if count == poke_at:
-                ctx.set(dut.start, 1)                   # ignored: the core is busy
+                ctx.set(dut.go, 1)                      # ignored: the core is busy
                 ctx.set(dut.p, [0, 0, 0])               # operands were captured
             if count == reset_at:
                 await pulse(ctx, cd.rst)
                 return None
             await ctx.tick()
-            ctx.set(dut.start, 0)
+            ctx.set(dut.go, 0)
             count += 1
+        # done_pulse marks done's first cycle only; done holds until the next go
+        first = ctx.get(dut.done_pulse)
+        await ctx.tick().repeat(3)
+        held = (ctx.get(dut.done), ctx.get(dut.done_pulse), ctx.get(dut.busy))
+        assert (first, held) == (1, (1, 0, 0))
         return count, (ctx.get(dut.gap), ctx.get(dut.idx), ctx.get(dut.valid))
 
     async def bench(ctx, dut, cd):
@@ -175,19 +182,22 @@ def test_go_while_busy_ignored_reset_mid_run_and_bad_n():
         log["busy_poke"] = await run_pass(ctx, dut, cd, poke_at=7)
         ctx.set(dut.p, [int(x) for x in vec.p_code])
         log["reset"] = await run_pass(ctx, dut, cd, reset_at=12)
-        log["after_reset"] = (ctx.get(dut.busy), ctx.get(dut.valid), ctx.get(dut.idx))
+        log["after_reset"] = (ctx.get(dut.busy), ctx.get(dut.valid), ctx.get(dut.idx),
+                              ctx.get(dut.done))
         log["rerun"] = await run_pass(ctx, dut, cd)
         ctx.set(dut.n_samples, 0)
-        await pulse(ctx, dut.start)
+        await pulse(ctx, dut.go)
         await ctx.tick()
-        log["bad_n"] = (ctx.get(dut.busy), ctx.get(dut.n_error))
+        # refused: idle, n_error, and the last pass's done and outputs stand
+        log["bad_n"] = (ctx.get(dut.busy), ctx.get(dut.n_error), ctx.get(dut.done),
+                        ctx.get(dut.gap))
 
     simulate_bench(GapCore(lanes=16), bench, with_reset=True)
     golden = (want.min_gap_code, want.min_idx, want.valid)
     assert log["busy_poke"] == (26, golden)
-    assert log["reset"] is None and log["after_reset"] == (0, 0, IDX_SENTINEL)
+    assert log["reset"] is None and log["after_reset"] == (0, 0, IDX_SENTINEL, 0)
     assert log["rerun"] == (26, golden)                 # sample banks survive reset
-    assert log["bad_n"] == (0, 1)
+    assert log["bad_n"] == (0, 1, 1, want.min_gap_code)
 
 
 @pytest.mark.filterwarnings("ignore:.*created but never used")

@@ -7,7 +7,7 @@ Three models that must agree:
   :mod:`.fast` -- its vectorized (numba) twin for many points; :mod:`.precision` --
   the gap-error-versus-word-width sweep of docs/spec.md sec. 8;
 - :mod:`.rtl` -- the Amaranth 0.5 core ``GapCore`` (imported on demand: it pulls in
-  Amaranth).
+  Amaranth); :mod:`.cores` -- its descriptors for the harness, vectors and SoC.
 """
 
 from .fast import GapBatchCodes, GapBatchResult, gap_golden_batch, gap_golden_points

@@ -18,9 +18,10 @@ r              in     9 x signed(21)      rotation, row-major, Q(21,19), ``|c| <
 t, p           in     3 x signed(24)      translation and body point, Q(24,16) mm
 tau2           in     unsigned(64)        gate tau^2, UQ(64,32) mm^2 (``ceil``-rounded)
 n_samples      in     unsigned(16)        N, 1 <= N <= max_samples
-start          in     1                   go: accepted when ``~busy`` and N in range
+go             in     1                   start: accepted when ``~busy`` and N in range
 busy           out    1                   a pass is running (from accept to done)
-done           out    1                   one-cycle pulse: outputs below are new
+done           out    1                   the last pass completed (held until next go)
+done_pulse     out    1                   first cycle of ``done``: outputs below new
 gap            out    signed(32)          min_gap, Q(32,16) mm; 0x7FFFFFFF if ~valid
 idx            out    unsigned(16)        min_idx; 0xFFFF if ~valid
 valid          out    1                   a lane passed the gate and no overflow
@@ -35,13 +36,18 @@ busy, so writes wait). The input contract ``|r|, |n| <= 2^19`` is the host's job
 datapath widths are sized for it.
 
 Behaviour on protocol corner cases
-    * ``start`` while busy is ignored (no restart, no queueing); the running pass
+    * the protocol of every core (:mod:`gearcontact.preview.core`): accepting ``go``
+      clears ``done``; ``done`` is set on the last edge and stays 1 until the next
+      accepted ``go``; ``done_pulse`` is 1 for exactly its first cycle. The outputs
+      change only on that edge.
+    * ``go`` while busy is ignored (no restart, no queueing); the running pass
       completes with its own operands and latency.
-    * ``start`` with N = 0 or N > max_samples is refused: the core stays idle and
-      raises ``n_error`` (held until the next accepted go) instead of running a pass.
-    * synchronous reset mid-run abandons the pass: busy, done, valid and overflow go
-      to 0 and gap/idx to their sentinels; the sample banks keep their contents
-      (memories are not reset), so the next go runs a full, correct pass.
+    * ``go`` with N = 0 or N > max_samples is refused: the core stays idle, ``done``
+      keeps its value and ``n_error`` rises (held until the next accepted go) instead
+      of a pass running.
+    * synchronous reset mid-run abandons the pass: busy, done, done_pulse, valid and
+      overflow go to 0 and gap/idx to their sentinels; the sample banks keep their
+      contents (memories are not reset), so the next go runs a full, correct pass.
 
 Schedule (edge E1 accepts go; see :mod:`.golden` for the count)
     E1 capture; E2 nine R p products (44 b); E3 48-b accumulate + round -> p' and
@@ -131,7 +137,7 @@ class GapCore(wiring.Component):
             "w_g": In(COORD3), "w_n": In(NORM3),
             "r": In(data.ArrayLayout(signed(NW), 9)), "t": In(COORD3), "p": In(COORD3),
             "tau2": In(unsigned(64)), "n_samples": In(unsigned(IDX_BITS)),
-            "start": In(1), "busy": Out(1), "done": Out(1),
+            "go": In(1), "busy": Out(1), "done": Out(1), "done_pulse": Out(1),
             "gap": Out(signed(_F.gap_bits), init=_F.gap_sentinel),
             "idx": Out(unsigned(IDX_BITS), init=IDX_SENTINEL),
             "valid": Out(1), "overflow": Out(1), "n_error": Out(1),
@@ -152,18 +158,18 @@ class GapCore(wiring.Component):
         m.d.comb += [beats.eq((n_q + (L - 1)) >> lb), self.busy.eq(busy),
                      self.w_ready.eq(~busy)]
         n_ok = (self.n_samples >= 1) & (self.n_samples <= self.max_samples)
-        accept = self.start & ~busy & n_ok
+        accept = self.go & ~busy & n_ok
         out_now = busy & (cyc == L + beats + 4 + lb)
         fin_now = busy & (cyc == L + beats + 3)
-        m.d.sync += self.done.eq(out_now)
+        m.d.sync += self.done_pulse.eq(out_now)
         with m.If(accept):
             m.d.sync += [busy.eq(1), cyc.eq(1), r_q.eq(self.r), t_q.eq(self.t),
                          p_q.eq(self.p), tau2_q.eq(self.tau2), n_q.eq(self.n_samples),
-                         self.n_error.eq(0)]
-        with m.Elif(self.start & ~busy):
+                         self.n_error.eq(0), self.done.eq(0)]
+        with m.Elif(self.go & ~busy):
             m.d.sync += self.n_error.eq(1)
         with m.Elif(out_now):
-            m.d.sync += [busy.eq(0), cyc.eq(0)]
+            m.d.sync += [busy.eq(0), cyc.eq(0), self.done.eq(1)]
         with m.Elif(busy):
             m.d.sync += cyc.eq(cyc + 1)
 
@@ -352,7 +358,7 @@ async def load_gap_vector(ctx, dut, vec) -> None:
     dut : GapCore
         Device under test.
     vec : :class:`.golden.GapVector`
-        Pass operands; sample i goes to address i. ``start`` is left to the caller.
+        Pass operands; sample i goes to address i. ``go`` is left to the caller.
     """
     for i in range(vec.n_samples):
         ctx.set(dut.w_valid, 1)
@@ -385,7 +391,7 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
     ----------
     vectors : sequence of :class:`.golden.GapVector`
         Operands (default formats); each pass first writes its N samples through the
-        write port (one per cycle), then pulses ``start``.
+        write port (one per cycle), then pulses ``go``.
     lanes, max_samples, split_products, variant : keyword-only
         Core parameters (see :class:`GapCore`).
     vcd_path : str, optional
@@ -396,7 +402,7 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
     outputs : list of GapCodes
         The output registers after each pass's ``done``.
     cycles : list of int
-        Cycles from the edge accepting ``start`` to the edge raising ``done``.
+        Cycles from the edge accepting ``go`` to the edge raising ``done``.
     """
     from .golden import check_vector
     dut = GapCore(lanes=lanes, max_samples=max_samples, split_products=split_products,
@@ -411,7 +417,7 @@ def simulate_gap_core(vectors, *, lanes: int = 16, max_samples: int | None = Non
     async def bench(ctx):
         for vec in vectors:
             await load_gap_vector(ctx, dut, vec)
-            cycles.append(await run_to_done(ctx, dut.start, dut.done, max_cycles=limit + 1,
+            cycles.append(await run_to_done(ctx, dut.go, dut.done, max_cycles=limit + 1,
                                             what="gap core"))
             outputs.append(read_gap_codes(ctx, dut))
 

@@ -1,17 +1,15 @@
-"""Descriptor of the stage A/B gap kernel (:class:`.gap.rtl.GapCore`, L = 16 lanes).
-
-Kept beside the ``gap`` folder (not in it) while that folder is being reworked; it
-moves to ``gap/cores.py`` with the next change there. See :mod:`.core`.
+"""Descriptors of the stage A/B gap kernel (:class:`.rtl.GapCore`, L = 16 lanes): the
+published netlist and the 15-DSP ``lean`` variant. See :mod:`gearcontact.preview.core`.
 """
 
 from __future__ import annotations
 
-import numpy as np
-
 from functools import partial
 
-from .core import CoreDescriptor, WriteNames, lazy
-from .stimulus import Stimulus
+import numpy as np
+
+from ..core import CoreDescriptor, WriteNames, lazy
+from ..stimulus import Stimulus
 
 __all__ = ["DESCRIPTORS", "GAP_LANES"]
 
@@ -29,7 +27,7 @@ def _gap_ports(st: Stimulus):
 
 
 def _gap_golden(st: Stimulus, variant: str = "published") -> dict:
-    from .gap.fast import gap_golden_batch
+    from .fast import gap_golden_batch
     f = st.fields
     n = len(st)
     cols = {k: np.empty(n, np.int64) for k in ("gap", "idx", "valid", "overflow")}
@@ -49,8 +47,8 @@ def _gap_golden(st: Stimulus, variant: str = "published") -> dict:
 
 
 def _gap_amaranth(st: Stimulus, variant: str = "published"):
-    from .gap.golden import GapVector
-    from .gap.rtl import simulate_gap_core
+    from .golden import GapVector
+    from .rtl import simulate_gap_core
     f = st.fields
     vecs = [GapVector(r_code=f["r"][i], t_code=f["t"][i], p_code=f["p"][i],
                       g_code=f["g"][i], n_code=f["nrm"][i], tau2_code=int(f["tau2"][i]))
@@ -64,7 +62,7 @@ def _gap_amaranth(st: Stimulus, variant: str = "published"):
 
 
 def _gap_cycles(st: Stimulus) -> int:
-    from .gap.golden import gap_latency
+    from .golden import gap_latency
     return gap_latency(st.fields["g"].shape[1], GAP_LANES)
 
 
@@ -72,8 +70,8 @@ def _gap_core(name: str, top: str, variant: str, summary: str) -> CoreDescriptor
     return CoreDescriptor(
         name, "gap.rtl", lazy("gap.rtl", "GapCore"), top, _gap_ports,
         partial(_gap_golden, variant=variant), partial(_gap_amaranth, variant=variant),
-        _gap_cycles, go="start", done="done",
-        control=("w_ready", "busy", "n_error"), max_cycles=4 * _GAP_MAX,
+        _gap_cycles, go="go", done="done",
+        control=("w_ready", "busy", "done_pulse", "n_error"), max_cycles=4 * _GAP_MAX,
         write=WriteNames("w_valid", ("w_g", "w_n"), _GAP_MAX, addr="w_addr"),
         verilog_kwargs={"lanes": GAP_LANES, "variant": variant},
         stimulus_core="gap", summary=summary)
