@@ -6,10 +6,12 @@ has room for the core's flags word above ``DONE_FLAGS_SHIFT``."""
 import pytest
 
 from gearcontact.hw.harness_cores import get_bench, member_port
-from gearcontact.hw.regmap import DONE_FLAGS_SHIFT, get_map
+from gearcontact.hw.regmap import CONTACT_FLAG_BITS, DONE_FLAGS_SHIFT, get_map
 
-#: Register -> core port, as hw.soc wires them (tri_core: ChainCore; bhseq: HertzCore).
+#: Register -> core port, as hw.soc wires them (tri_core: ChainCore; bhseq: HertzCore;
+#: contact: GapCore through ContactRunner).
 WIRING = {
+    ("contact_core", "contact", "gap"): {"gap": "gap", "idx": "idx"},
     ("tri_core", "preview", "chain"): {"wr_data": "wr_data", "W_load": "W", "A": "a_minus",
                                        "B": "b_minus", "a": "a", "b": "b", "p_max": "p_max",
                                        "k": "k"},
@@ -30,5 +32,9 @@ def test_register_widths_follow_the_core_signature(kind, region, core):
         p = member_port(port, members[port].shape)
         assert (r.fmt.bits if r.fmt is not None else r.width) == p.width, (name, port)
         assert r.fmt is None or r.fmt.signed == p.signed, (name, port)
-    flags = member_port("flags", members["flags"].shape)
-    assert reg.reg("done").width == DONE_FLAGS_SHIFT + flags.width
+    if "flags" in members:
+        flags = member_port("flags", members["flags"].shape)
+        assert reg.reg("done").width == DONE_FLAGS_SHIFT + flags.width
+    else:  # the gap core's status bits, one per contact.flags bit
+        assert reg.reg("flags").width == len(CONTACT_FLAG_BITS)
+        assert {"valid", "overflow", "n_error", "done"} <= set(members)

@@ -203,7 +203,8 @@ CONTACT = Region("contact", 0x0000, (
     Register("gap", 0x00, "ro", GAP, "min_gap g*, GAP Q(32,16) mm (0x7FFFFFFF if not valid)"),
     Register("idx", 0x04, "ro", None, "min_idx i* (0xFFFF if not valid)", width=16),
     Register("flags", 0x08, "ro", None,
-             "bit 0 valid, 1 overflow, 2 n_error, 3 done (a pass has completed)", width=4),
+             "bit 0 valid, 1 overflow, 2 n_error, 3 done (a pass has completed)",
+             width=len(CONTACT_FLAG_BITS)),
     Register("magic", 0x0C, "ro", None, f"constant {MAGIC:#010x} ('GCNT')"),
 ))
 
