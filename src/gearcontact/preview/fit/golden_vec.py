@@ -52,7 +52,7 @@ from ...validation import InputRangeError
 from ..qformat import CURVATURE, GAP, FixedPointOverflow
 from .pinv import COEFF, N_COEFFS, N_TAPS
 
-__all__ = ["HAVE_NUMBA", "fit_kernel"]
+__all__ = ["HAVE_NUMBA", "fit_kernel", "fit_element", "fit_constants"]
 
 _U = np.uint64
 _FLAG_COEFF, _FLAG_D, _FLAG_CURV, _FLAG_NOT_ELLIPTIC = 1, 2, 4, 8   # .golden FLAG_*
@@ -76,66 +76,80 @@ def _isqrt(d):
     return r
 
 
-@njit(cache=True, parallel=True)
-def _kernel(g, w, cst, c_out, a_out, b_out, flags_out):
+@njit(cache=True, inline="always")
+def fit_element(g, k, w, cst, c_out):
+    """The fit datapath on stencil ``g[k]`` (49 GAP codes): coefficient codes into
+    ``c_out[k]``; returns ``(a_minus, b_minus, flags)`` (flags -1: a gap code outside
+    GAP, the caller names it).
+
+    The per-stencil body of the batch kernel, callable from other compiled loops (the
+    drivetrain twin runs stage C once per loaded tooth pair and step, :mod:`gearcontact.
+    twin.kernel`). No allocation: ``g`` and ``c_out`` are the caller's 2-D arrays.
+    """
     gap_lo, gap_hi, coeff_lo, coeff_hi = cst[0], cst[1], cst[2], cst[3]
     curv_lo, curv_hi, e_max, d_max, shift = cst[4], cst[5], cst[6], cst[7], cst[8]
     half = np.int64(1) << np.int64(shift - 1)
-    n = g.shape[0]
     n_taps = g.shape[1]
     n_coeffs = w.shape[0]
-    for k in prange(n):
-        lo = g[k, 0]
-        hi = g[k, 0]
-        for i in range(n_taps):          # min/max reduction: vectorizes, unlike a branch
-            lo = min(lo, g[k, i])
-            hi = max(hi, g[k, i])
-        bad_input = lo < gap_lo or hi > gap_hi
-        cov = False
-        for j in range(n_coeffs):
-            acc = np.int64(0)
-            for i in range(n_taps):
-                acc += w[j, i] * g[k, i]
-            cj = (acc + half) >> np.int64(shift)
-            c_out[k, j] = cj
-            if cj < coeff_lo or cj > coeff_hi:
-                cov = True
-        flags = 0
-        a_minus = np.int64(0)
-        b_minus = np.int64(0)
-        if bad_input:
-            flags = -1
-        elif cov:
-            flags = _FLAG_COEFF
+    lo = g[k, 0]
+    hi = g[k, 0]
+    for i in range(n_taps):          # min/max reduction: vectorizes, unlike a branch
+        lo = min(lo, g[k, i])
+        hi = max(hi, g[k, i])
+    bad_input = lo < gap_lo or hi > gap_hi
+    cov = False
+    for j in range(n_coeffs):
+        acc = np.int64(0)
+        for i in range(n_taps):
+            acc += w[j, i] * g[k, i]
+        cj = (acc + half) >> np.int64(shift)
+        c_out[k, j] = cj
+        if cj < coeff_lo or cj > coeff_hi:
+            cov = True
+    flags = 0
+    a_minus = np.int64(0)
+    b_minus = np.int64(0)
+    if bad_input:
+        flags = -1
+    elif cov:
+        flags = _FLAG_COEFF
+    else:
+        h = c_out[k, 3] + c_out[k, 5]
+        e = c_out[k, 3] - c_out[k, 5]
+        if abs(e) > e_max:
+            flags = _FLAG_D
         else:
-            h = c_out[k, 3] + c_out[k, 5]
-            e = c_out[k, 3] - c_out[k, 5]
-            if abs(e) > e_max:
+            d_u = _U(e * e) + _U(c_out[k, 4] * c_out[k, 4])
+            if d_u > _U(d_max):
                 flags = _FLAG_D
             else:
-                d_u = _U(e * e) + _U(c_out[k, 4] * c_out[k, 4])
-                if d_u > _U(d_max):
-                    flags = _FLAG_D
-                else:
-                    r = _isqrt(np.int64(d_u))
-                    a_minus = (h + r + np.int64(1)) >> np.int64(1)
-                    b_minus = (h - r + np.int64(1)) >> np.int64(1)
-                    if (a_minus < curv_lo or a_minus > curv_hi or b_minus < curv_lo
-                            or b_minus > curv_hi):
-                        flags = _FLAG_CURV
-                    elif b_minus <= 0:
-                        flags = _FLAG_NOT_ELLIPTIC
-        if flags != 0 and flags != _FLAG_NOT_ELLIPTIC:
-            for j in range(n_coeffs):
-                c_out[k, j] = 0
-            a_minus = np.int64(0)
-            b_minus = np.int64(0)
+                r = _isqrt(np.int64(d_u))
+                a_minus = (h + r + np.int64(1)) >> np.int64(1)
+                b_minus = (h - r + np.int64(1)) >> np.int64(1)
+                if (a_minus < curv_lo or a_minus > curv_hi or b_minus < curv_lo
+                        or b_minus > curv_hi):
+                    flags = _FLAG_CURV
+                elif b_minus <= 0:
+                    flags = _FLAG_NOT_ELLIPTIC
+    if flags != 0 and flags != _FLAG_NOT_ELLIPTIC:
+        for j in range(n_coeffs):
+            c_out[k, j] = 0
+        a_minus = np.int64(0)
+        b_minus = np.int64(0)
+    return a_minus, b_minus, flags
+
+
+@njit(cache=True, parallel=True)
+def _kernel(g, w, cst, c_out, a_out, b_out, flags_out):
+    for k in prange(g.shape[0]):
+        a_minus, b_minus, flags = fit_element(g, k, w, cst, c_out)
         a_out[k] = a_minus
         b_out[k] = b_minus
         flags_out[k] = flags
 
 
-def _constants(shift: int, d_max: int) -> np.ndarray:
+def fit_constants(shift: int, d_max: int) -> np.ndarray:
+    """The constants vector ``cst`` of :func:`fit_element` (int64, 9 entries)."""
     return np.array([GAP.min_code, GAP.max_code, COEFF.min_code, COEFF.max_code,
                      CURVATURE.min_code,
                      CURVATURE.max_code, math.isqrt(d_max), d_max, shift], dtype=np.int64)
@@ -182,7 +196,7 @@ def fit_kernel(gap_codes: np.ndarray, weight_codes: np.ndarray, *, coeff_shift: 
     a_minus = np.empty(n, np.int64)
     b_minus = np.empty(n, np.int64)
     flags = np.empty(n, np.int64)
-    _kernel(g, w, _constants(int(coeff_shift), int(d_max_code)), c, a_minus, b_minus, flags)
+    _kernel(g, w, fit_constants(int(coeff_shift), int(d_max_code)), c, a_minus, b_minus, flags)
     bad = np.flatnonzero(flags < 0)
     if bad.size:                      # name the first code outside GAP Q(32,16)
         k = int(bad[0])
