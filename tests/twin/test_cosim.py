@@ -1,11 +1,15 @@
-"""The rtl twin backend: golden twin in lockstep with HertzCore (Verilator when installed,
-else the Amaranth simulator).
+"""The rtl and soc twin backends: the golden twin in lockstep with the RTL (Verilator when
+installed, else the Amaranth simulator): the C -> D ChainCore with stage C per step
+(curvatures="stencil"), HertzCore with the TCA's curvatures (curvatures="exact").
 
-Truth: RTL == golden bit for bit on every preview of a short run (the stage-D
-equivalence the hardware tests establish on random vectors, here on the twin's own
-inputs), hence the rtl twin's trajectory is the golden one exactly; a corrupted golden
-output is reported at its step (the comparison is not vacuous).
+Truth: RTL == golden bit for bit on every preview of a short run (the equivalence the
+hardware tests establish on random vectors, here on the twin's own inputs), hence the
+rtl twin's trajectory is the golden one exactly; a corrupted golden output -- a stage-D
+output or the fit core's curvature -- is reported at its step (the comparison is not
+vacuous).
 """
+
+import pytest
 
 import numpy as np
 
@@ -17,53 +21,64 @@ from gearcontact.twin.simulate import build_model, simulate
 from .conftest import TORQUE_NM
 
 
-def test_rtl_twin_is_the_golden_twin_bit_for_bit(s0003_twin):
+@pytest.mark.parametrize("curvatures, core", [("stencil", "chain"), ("exact", "hertz")])
+def test_rtl_twin_is_the_golden_twin_bit_for_bit(s0003_twin, curvatures, core):
     pair, _, _, mesh = s0003_twin
     dt = default_drivetrain(pair)
     kw = dict(speed_rpm=3000.0, duration_s=1e-3, step_s=10e-6)
-    rtl = simulate(build_model(mesh, dt, TORQUE_NM, backend="rtl"), **kw)
-    gold = simulate(build_model(mesh, dt, TORQUE_NM, backend="golden"), **kw)
+    rtl = simulate(build_model(mesh, dt, TORQUE_NM, backend="rtl", curvatures=curvatures),
+                   **kw)
+    gold = simulate(build_model(mesh, dt, TORQUE_NM, backend="golden",
+                                curvatures=curvatures), **kw)
     s = rtl.summary
     # 100 steps x 3-4 loaded pairs, one preview each per step (more when a stage enters
     # the next phase interval)
     assert s["rtl_mismatches"] == 0 and s["rtl_previews"] >= 300
+    assert s["rtl_core"] == core and s["curvatures"] == curvatures
     for key, col in gold.columns.items():
         np.testing.assert_array_equal(rtl.columns[key], col, err_msg=key)
 
 
 def test_a_wrong_output_is_caught(s0003_twin):
     from gearcontact.twin import kernel as K
+    from gearcontact.twin.simulate import _fit_args, _prm, static_rotation
 
     pair, _, _, mesh = s0003_twin
     m = build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="golden")
-    # a small trace from the compiled loop itself
-    from gearcontact.twin.simulate import _prm, static_rotation
+    # a small trace from the compiled loop itself (stage C per step: the stencils too)
     a = m.arrays
     prm = _prm(m, 0.0)
     trace = np.zeros((40, 9), np.int64)
+    fit = _fit_args(a, 40)
     tcount = np.zeros(4, np.int64)
     y = np.zeros(K.N_STATE)
     y[2] = mesh.eps_rad[0] - static_rotation(m)[0]      # static start, at rest
-    K.run_steps(y, 0.0, 10, 1e-5, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
+    K.run_steps(y, 0.0, 10, 1e-5, prm, a["eps"], a["lever"], a["opening"], a["cv"],
                 a["valid"], a["cb"], 1, np.full((2, a["lever"].shape[1]), 500.0), a["pow_lut"],
-                a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"], a["tab_t23"],
+                a["cbrt_lut"], a["cst"], trace, tcount, fit, a["tab_theta"], a["tab_t23"],
                 a["tab_w23"], np.zeros((10, K.N_REC)), 0, 1)
     n = int(tcount[0])
     assert n >= 20           # 10 steps x 2-4 loaded pairs
     e_code = encode_e_prime(mesh.e_prime_mpa)
-    assert replay_on_rtl(trace[:n], e_code)["rtl_mismatches"] == 0
-    trace[17, 7] += 1                       # one LSB of p_max at trace row 17
-    rep = replay_on_rtl(trace[:n], e_code)
-    assert rep["rtl_mismatches"] == 1 and rep["rtl_first_mismatch_step"] == trace[17, 0]
+    stencils = fit[4][:n]
+    assert np.count_nonzero(stencils) > 40 * n     # 49 gap codes per preview, ~all non-zero
+    assert replay_on_rtl(trace[:n], e_code, stencils=stencils)["rtl_mismatches"] == 0
+    for col in (7, 2):          # one LSB of p_max, then of the fit core's A-
+        bad = trace[:n].copy()
+        bad[17, col] += 1
+        rep = replay_on_rtl(bad, e_code, stencils=stencils)
+        assert rep["rtl_mismatches"] == 1 and rep["rtl_first_mismatch_step"] == trace[17, 0]
 
 
 def test_soc_twin_through_the_register_driver(s0003_twin):
-    # the host driver's register protocol on the simulated bhseq_core SoC (~0.3 s per
-    # preview in the Amaranth simulator): 3 steps, every preview bit-identical
+    # the host driver's register protocol on the simulated tri_core SoC (49 wr_data
+    # writes, W_load, go, poll, read per preview in the Amaranth simulator): 3 steps,
+    # every preview bit-identical
     pair, _, _, mesh = s0003_twin
     dt = default_drivetrain(pair)
     kw = dict(speed_rpm=3000.0, duration_s=30e-6, step_s=10e-6)
     soc = simulate(build_model(mesh, dt, TORQUE_NM, backend="soc"), **kw)
     gold = simulate(build_model(mesh, dt, TORQUE_NM, backend="golden"), **kw)
     assert soc.summary["soc_mismatches"] == 0 and soc.summary["soc_previews"] >= 6
+    assert soc.summary["soc_kind"] == "tri_core"
     np.testing.assert_array_equal(soc.columns["mesh_load_n"], gold.columns["mesh_load_n"])

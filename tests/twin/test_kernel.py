@@ -4,6 +4,10 @@ Truth: :class:`gearcontact.preview.engine.ReferenceEngine` (fp64) and
 :class:`~gearcontact.preview.engine.GoldenEngine` (bit-exact codes, its own input
 quantization) on the same curvatures and loads; the approach coefficient against the
 exact relation delta = 3 W F/(pi a E') of Hamrock–Brewe (the reference's own approach).
+With stage C per step (curvatures="stencil"): the package's C -> D chain,
+:func:`gearcontact.preview.chain.chain_reference` (fp64, 1e-12) and
+:func:`~gearcontact.preview.chain.chain_golden` (bit for bit, every code and the chain
+flags word) on the stencil the loop interpolates between two rows.
 """
 
 import math
@@ -14,6 +18,10 @@ import pytest
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.materials import STEEL, effective_modulus_mpa
 from gearcontact.preview.engine import get_engine
+from gearcontact.preview.chain import FIT_FLAG_SHIFT, chain_golden, chain_reference
+from gearcontact.preview.fit.golden import element_constants, encode_gaps
+from gearcontact.preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
+from gearcontact.preview.fit.stencil import stencil_coordinates
 from gearcontact.preview.hertz.golden import encode_e_prime
 from gearcontact.preview.hertz.golden_vec import golden_constants
 from gearcontact.twin import kernel as K
@@ -28,11 +36,27 @@ POINTS = [(0.0869, 0.00186, 1755.0), (0.088, 0.0016, 12.3), (0.05, 0.03, 40000.0
     if max(a, b) / min(a, b) < 120]
 
 
-def _prm():
+def _prm(source="exact"):
     prm = np.zeros(K.N_PRM)
     prm[K.P_EP] = E_PRIME
     prm[K.P_ECODE] = encode_e_prime(E_PRIME)
+    prm[K.P_STAGEC] = K.CURVATURE_SOURCES[source]
     return prm
+
+
+def _fit(trace_rows=1):
+    w, cst = element_constants()
+    return (w, cst, np.zeros((1, N_TAPS), np.int64), np.zeros((1, N_COEFFS), np.int64),
+            np.zeros((trace_rows, N_TAPS), np.int64))
+
+
+def _kappa(cv, f, W, backend, source, trace, fit):
+    """The loop's preview of pair 0 between rows 0 and 1 of ``cv`` (2, C) at fraction f."""
+    out = np.zeros(3)
+    tcount = np.zeros(4, np.int64)
+    kap = K._kappa(0, 0, 0, f, W, _prm(source), np.asarray(cv, float)[None, None],
+                   backend, *golden_constants(), trace, tcount, fit, out)
+    return kap, out
 
 
 @pytest.mark.parametrize("A, B, W", POINTS)
@@ -48,10 +72,8 @@ def test_reference_preview_is_the_engine(A, B, W):
 
 @pytest.mark.parametrize("A, B, W", POINTS)
 def test_golden_preview_is_the_engine_bit_for_bit(A, B, W):
-    out = np.zeros(3)
     trace = np.zeros((1, 9), np.int64)
-    tcount = np.zeros(4, np.int64)
-    kap = K._kappa_golden(A, B, W, _prm(), *golden_constants(), trace, tcount, out)
+    kap, out = _kappa([[A, B], [A, B]], 0.0, W, 1, "exact", trace, _fit(0))
     res = get_engine("golden").hertz(A, B, W)
     c = res.codes
     # the same input quantization and the same output codes
@@ -64,3 +86,70 @@ def test_golden_preview_is_the_engine_bit_for_bit(A, B, W):
     ref = K._kappa_reference(A, B, W, _prm(), np.zeros(3))
     assert kap == pytest.approx(ref, rel=1.5e-3)
     assert math.isfinite(kap)
+
+
+def _stencils(A, B):
+    """Two rows of stencils (mm): quadrics with principal half curvatures near (A, B),
+    turned, with a tilt and cubic terms (stage C fits them with a bias, as on real
+    flanks), the second row a little different from the first."""
+    s, t = stencil_coordinates()
+    rows = []
+    for turn, cubic in ((0.3, 0.002), (0.45, -0.003)):
+        c, d = math.cos(turn), math.sin(turn)
+        u, v = c * s + d * t, -d * s + c * t
+        rows.append(A * u * u + B * v * v + 1e-3 * s + cubic * u ** 3 + 0.01 * s * t * t)
+    return np.array(rows)
+
+
+STENCIL_POINTS = [(a, b, w) for a, b, w in POINTS if max(a, b) / min(a, b) < 60][:12]
+
+
+@pytest.mark.parametrize("f", [0.0, 0.37])
+@pytest.mark.parametrize("A, B, W", STENCIL_POINTS)
+def test_stencil_reference_preview_is_the_chain(A, B, W, f):
+    g = _stencils(A, B)
+    # fp64: the rows' fitted coefficients, interpolated (stage C is linear)
+    cv = g @ baked_pinv().weights[3:6].T
+    kap, out = _kappa(cv, f, W, 0, "stencil", np.zeros((0, 9), np.int64), _fit(0))
+    ref = chain_reference(g[0] + f * (g[1] - g[0]), W, e_prime_mpa=E_PRIME)
+    hz = ref.hertz
+    np.testing.assert_allclose(out, [hz.a_mm, hz.b_mm, hz.p_max_mpa], rtol=1e-12)
+    hb = hamrock_brewe_hertz(ref.fit.A_minus_per_mm, ref.fit.B_minus_per_mm, W,
+                             e_prime_mpa=E_PRIME)
+    assert kap * W ** (2.0 / 3.0) == pytest.approx(hb.approach_mm, rel=1e-12)
+
+
+@pytest.mark.parametrize("f", [0.0, 0.37])
+@pytest.mark.parametrize("A, B, W", STENCIL_POINTS)
+def test_stencil_golden_preview_is_the_chain_bit_for_bit(A, B, W, f):
+    g = _stencils(A, B)
+    trace = np.zeros((1, 9), np.int64)
+    fit = _fit(1)
+    kap, out = _kappa(g, f, W, 1, "stencil", trace, fit)
+    codes = encode_gaps(g[0] + f * (g[1] - g[0]))
+    assert np.array_equal(fit[4][0], codes)            # the traced stencil
+    w_code = int(trace[0, 3])
+    assert w_code == math.floor(W * 256.0 + 0.5)
+    ch = chain_golden(codes, w_code, e_prime_code=encode_e_prime(E_PRIME))
+    assert (trace[0, 1], trace[0, 2]) == (ch.fit.b_minus_code, ch.fit.a_minus_code)
+    hz = ch.hertz
+    assert tuple(trace[0, 4:9]) == (ch.flags, hz.a_code, hz.b_code, hz.p_max_code,
+                                    hz.k_code)
+    assert ch.flags >> FIT_FLAG_SHIFT == 0 and ch.flags == 0
+    ref, _ = _kappa(g @ baked_pinv().weights[3:6].T, f, W, 0, "stencil",
+                    np.zeros((0, 9), np.int64), _fit(0))
+    assert kap == pytest.approx(ref, rel=2e-3)         # the golden error of the chain
+
+
+def test_stencil_not_elliptic_is_flagged_not_loaded():
+    # a saddle: stage C's B- < 0; fp64 gives no law (-1), golden the chain's flags
+    s, t = stencil_coordinates()
+    g = np.array([0.05 * s * s - 0.01 * t * t] * 2)
+    kap, _ = _kappa(g @ baked_pinv().weights[3:6].T, 0.0, 100.0, 0, "stencil",
+                    np.zeros((0, 9), np.int64), _fit(0))
+    assert kap == -1.0
+    trace = np.zeros((1, 9), np.int64)
+    kap, _ = _kappa(g, 0.0, 100.0, 1, "stencil", trace, _fit(1))
+    assert kap == -1.0 and trace[0, 4] != 0
+    ch = chain_golden(encode_gaps(g[0]), 25600, e_prime_code=encode_e_prime(E_PRIME))
+    assert trace[0, 4] == ch.flags and "fit_not_elliptic" in ch.flag_names

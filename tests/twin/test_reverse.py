@@ -24,7 +24,7 @@ from gearcontact.tca.stencil import gap_field
 from gearcontact.twin import kernel as K
 from gearcontact.twin.mesh import free_play_rad, reverse_law
 from gearcontact.twin.params import default_drivetrain
-from gearcontact.twin.simulate import _prm, build_model, simulate
+from gearcontact.twin.simulate import _fit_args, _prm, build_model, simulate
 
 from .conftest import TORQUE_NM
 
@@ -59,7 +59,9 @@ def test_free_play_is_the_gap_of_the_posed_reverse_flanks(s0003_twin, s0003_coas
 def test_reverse_flank_has_its_own_hertzian_law(s0003_twin, s0003_coast):
     pair, _, _, mesh = s0003_twin
     _, cmesh = s0003_coast
-    model = build_model(mesh, default_drivetrain(pair), TORQUE_NM, reverse=cmesh)
+    # the TCA's curvatures: the independent balance below is built on them
+    model = build_model(mesh, default_drivetrain(pair), TORQUE_NM, reverse=cmesh,
+                        curvatures="exact")
     prm = _prm(model, 0.0)
     a = model.arrays
     c_r, big = reverse_law(mesh, cmesh)
@@ -75,12 +77,13 @@ def test_reverse_flank_has_its_own_hertzian_law(s0003_twin, s0003_coast):
     dy = np.zeros(K.N_STATE)
     n_p = a["lever"].shape[1]
     dy = np.zeros((1, K.N_STATE))
-    th, th_r_k, t_mesh, w = K._deriv(y, prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"],
+    th, th_r_k, t_mesh, w = K._deriv(y, prm, a["eps"], a["lever"], a["opening"], a["cv"],
                                      a["valid"], a["cb"], 0, np.full((2, n_p), 1e3),
                                      np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"],
                                      a["cst"], np.zeros((0, 9), np.int64), np.zeros(4, np.int64),
-                                     a["tab_theta"], a["tab_t23"], a["tab_w23"], dy, 0,
-                                     np.zeros((2, n_p)), np.zeros((2, 4)), np.zeros(3))
+                                     _fit_args(a, 0), a["tab_theta"], a["tab_t23"],
+                                     a["tab_w23"], dy, 0, np.zeros((2, n_p)), np.zeros((2, 4)),
+                                     np.zeros(3))
     dy = dy[0]
     assert th_r_k == pytest.approx(th_r, rel=1e-6)
     assert th < 0.0                                   # the drive flanks are open

@@ -29,7 +29,8 @@ def test_s0003_coast_quasi_static_is_the_loaded_te():
     tca, flanks = analyze_pair(pair, side="coast", phases=PHASES, edge_contact=False)
     lte = loaded_te(tca, flanks, pair, TORQUE_NM, side="coast")
     dt = replace(base.drivetrain, input_damping_ratio=0.3, output_damping_ratio=0.3)
-    m = build_model(mesh, dt, TORQUE_NM, reverse_note=base.reverse_note)
+    m = build_model(mesh, dt, TORQUE_NM, reverse_note=base.reverse_note,
+                    curvatures="exact")   # the loaded TE's preview law
     pitch = mesh.pitch_rad
     res = simulate(m, speed_rpm=60.0, duration_s=2 * pitch / (2 * math.pi), step_s=10e-6)
     c = res.columns

@@ -17,7 +17,8 @@ from __future__ import annotations
 from ..geometry.pair import load_pair
 from ..twin.params import check_drivetrain_file, load_drivetrain
 from ..twin.report import write_sweep_outputs, write_twin_outputs
-from ..twin.simulate import BACKENDS, STEP_RANGE_US, build_model, model_for_pair, simulate
+from ..twin.simulate import (BACKENDS, CURVATURE_SOURCES, STEP_RANGE_US, build_model,
+                             model_for_pair, simulate)
 from ..twin.sweep import parse_speed_range, speed_sweep
 from ..validation import InputRangeError, check_positive, check_range
 from .options import add_pair_arguments, check_pair_arguments, run_timings
@@ -52,6 +53,11 @@ def register(sub) -> None:
     p.add_argument("--bending", action="store_true",
                    help="tooth bending of both members in series with the Hertzian law "
                         "(shell model; default rigid teeth)")
+    p.add_argument("--curvatures", default="stencil", choices=CURVATURE_SOURCES,
+                   help="where the preview's curvatures come from: stencil (default: stage "
+                        "C per step, the curvature fit of the 7 x 7 gap stencil, then "
+                        "stage D: the whole C -> D preview) or exact (the TCA's "
+                        "shape-operator curvatures, the law of the loaded TE's preview)")
     p.add_argument("--record-every", type=int, default=1,
                    help="write every n-th step to twin.csv (default 1)")
     p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
@@ -103,7 +109,7 @@ def run(args) -> int:
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, bending=args.bending,
-                           progress=not args.quiet)
+                           curvatures=args.curvatures, progress=not args.quiet)
     res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
                    progress=not args.quiet)
@@ -113,7 +119,8 @@ def run(args) -> int:
         extra["table_source"] = args.table_source
     s = write_twin_outputs(res, args.out, figures=not args.no_figures,
                            title=f"{pair.name} {args.side}", extra=extra)
-    print(f"{pair.name} twin {s['backend']}: {s['steps']} steps of {s['step_us']:g} us, "
+    print(f"{pair.name} twin {s['backend']} ({s['curvatures']} curvatures): {s['steps']} "
+          f"steps of {s['step_us']:g} us, "
           f"mesh {s['mesh_frequency_hz']:g} Hz; mean mesh torque {s['mean_mesh_torque_nm']:.3f}"
           f" / static {s['static_mesh_torque_nm']:g} N·m, dynamic factor "
           f"{s['dynamic_factor']:.3f}, contact loss {100 * s['contact_loss']:.1f} %, DTE p-p "
@@ -129,7 +136,8 @@ def _sweep(args, pair, drivetrain, speeds) -> int:
                                  table_source=args.table_source, bending=args.bending,
                                  progress=not args.quiet)
     preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
-                          reverse=table_model.reverse, reverse_note=table_model.reverse_note)
+                          reverse=table_model.reverse, reverse_note=table_model.reverse_note,
+                          curvatures=args.curvatures)
     sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,
                      step_s=1e-6 * args.step_us, workers=args.workers, progress=not args.quiet)
     run_timings(args, **{f"{label}_mean_real_time_factor": float(rows["real_time_factor"].mean())

@@ -27,7 +27,7 @@ from .load import torque_lever_mm
 from .mesh_lcp import PairBlock
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
-__all__ = ["PairContact", "PairFields", "phase_contacts"]
+__all__ = ["PairContact", "PairFields", "phase_contacts", "curvature_point"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -166,6 +166,15 @@ class PairFields:
         return replace(pc, opening_arcsec=opening, lever_mm=lever)
 
 
+def curvature_point(path, center: int):
+    """The mating point whose relative curvature (and preview stencil) a contact centred
+    at path index ``center`` carries: that point, or for an edge touching the other
+    flank (:mod:`gearcontact.tca.edge_contact`, no Hertzian curvature: unbounded across
+    the edge) the surface contact nearest along the path."""
+    mp = path.points[center]
+    return _nearest_surface_point(path, center) if mp.edge_contact else mp
+
+
 def _nearest_surface_point(path, index: int):
     """The surface-to-surface mating point of ``path`` nearest to ``index`` (``index``'s
     own point if every point is an edge contact: nothing better exists)."""
@@ -198,11 +207,8 @@ def phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
             center = int(cand[np.argmin(np.abs(cand - idx))])
         mp = path.points[center]
         if center not in curv_cache:
-            # an edge touching the other flank (tca.edge_contact) has no Hertzian
-            # curvature (unbounded across the edge): the preview law takes the surface
-            # contact nearest along the path; the LCP resolves the edge on its posed field
-            cpt = _nearest_surface_point(path, center) if mp.edge_contact else mp
-            rc = relative_curvature(pinion, gear, kin, cpt)
+            # the LCP resolves an edge contact on its posed field
+            rc = relative_curvature(pinion, gear, kin, curvature_point(path, center))
             kap = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, 1.0,
                                       e_prime_mpa=e_prime).approach_mm
             curv_cache[center] = (torque_lever_mm(mp.point_mm, mp.normal),

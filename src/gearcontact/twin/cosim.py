@@ -1,11 +1,14 @@
 """The ``rtl`` and ``soc`` twin backends: the golden twin in lockstep with the hardware.
 
 The twin's state after step ``n + 1`` depends on the contact backend only through the
-stage-D output codes of the previews at step ``n``. The golden loop records every
-preview it evaluates (input codes A-, B-, W and output codes a, b, p_max, k, flags;
+output codes of the previews at step ``n``. The golden loop records every preview it
+evaluates (input codes W and A-, B- -- with stage C per step also the 49 gap codes of
+the stencil -- and output codes a, b, p_max, k, flags;
 :func:`gearcontact.twin.kernel.run_steps`), and :func:`replay_on_rtl` runs the same
-input codes through the HertzCore RTL (Verilator when installed, else the Amaranth
-simulator; :mod:`gearcontact.hw.harness_cores`) and compares the outputs code by code.
+input codes through the RTL -- the C -> D ChainCore on the stencils (806 cycles: fit
+core and stage D), else the stage-D HertzCore on A-, B- (Verilator when installed, else
+the Amaranth simulator; :mod:`gearcontact.hw.harness_cores`) -- and compares the outputs
+code by code (with the chain also the fit core's A-, B- registers).
 If every output matches, the RTL-driven twin takes exactly the golden twin's trajectory
 (by induction over the steps), so the golden run *is* the RTL co-simulation; a single
 mismatch is an error naming the step. This replays a whole run in one bulk simulation
@@ -13,9 +16,11 @@ instead of one simulator round trip per step; it is meant for short runs (the RT
 is reported).
 
 The ``soc`` backend replays the same trace through the host driver over the register
-map (:class:`gearcontact.hw.driver.HertzDriver` on the ``bhseq_core`` SoC, the protocol a
-board uses; here its transport is the Amaranth simulation of the SoC, ~0.3 s per
-preview): one register transaction per preview, for very short runs.
+map (:class:`gearcontact.hw.driver.PreviewDriver` on the ``tri_core`` SoC with
+stencils: 49 ``wr_data`` writes, ``W_load``, ``go``; :class:`~gearcontact.hw.driver.
+HertzDriver` on ``bhseq_core`` without; the protocol a board uses; here its transport is
+the Amaranth simulation of the SoC, ~0.3 s per preview): one register transaction per
+preview, for very short runs.
 """
 
 from __future__ import annotations
@@ -33,9 +38,9 @@ TRACE_COLUMNS = ("step", "A_code", "B_code", "W_code", "flags", "a_code", "b_cod
                  "p_max_code", "k_code")
 
 
-def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None = None
-                  ) -> dict:
-    """Run the traced stage-D inputs on the RTL and compare every output code.
+def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None = None,
+                  stencils: np.ndarray | None = None) -> dict:
+    """Run the traced previews on the RTL and compare every output code.
 
     Parameters
     ----------
@@ -46,33 +51,44 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
     simulator : str or None
         ``verilator`` or ``amaranth`` (default :func:`~gearcontact.hw.rtl_engine.
         default_simulator`).
+    stencils : ndarray (N, 49) of int64, optional
+        The gap codes of each preview (stage C per step): replayed on the C -> D chain
+        core instead of stage D alone.
 
     Returns
     -------
     dict
-        ``rtl_previews``, ``rtl_mismatches`` (0 when bit-identical),
+        ``rtl_previews``, ``rtl_core``, ``rtl_mismatches`` (0 when bit-identical),
         ``rtl_first_mismatch_step`` (or None), ``rtl_simulator``, ``rtl_seconds``,
         ``rtl_previews_per_s``.
     """
     from ..hw.harness_cores import get_bench, simulate
-    from ..preview.hertz.rtl import OUTPUT_PORTS
     from ..hw.rtl_engine import default_simulator
+    from ..preview.hertz.rtl import OUTPUT_PORTS
 
     sim = simulator or default_simulator()
     n = int(trace.shape[0])
-    out = {"rtl_previews": n, "rtl_mismatches": 0, "rtl_first_mismatch_step": None,
-           "rtl_simulator": sim, "rtl_seconds": 0.0, "rtl_previews_per_s": 0.0}
+    core = "hertz" if stencils is None else "chain"
+    out = {"rtl_previews": n, "rtl_core": core, "rtl_mismatches": 0,
+           "rtl_first_mismatch_step": None, "rtl_simulator": sim, "rtl_seconds": 0.0,
+           "rtl_previews_per_s": 0.0}
     if n == 0:
         return out
-    fields = {"A": trace[:, 1], "B": trace[:, 2], "W": trace[:, 3],
-              "e_prime": np.full(n, int(e_prime_code), np.int64)}
-    st = Stimulus("hertz", {k: np.asarray(v, np.int64) for k, v in fields.items()},
+    e = np.full(n, int(e_prime_code), np.int64)
+    if stencils is None:
+        fields = {"A": trace[:, 1], "B": trace[:, 2], "W": trace[:, 3], "e_prime": e}
+    else:
+        fields = {"gaps": stencils, "W": trace[:, 3], "e_prime": e}
+    st = Stimulus(core, {k: np.asarray(v, np.int64) for k, v in fields.items()},
                   ("twin",) * n, 0)
     t0 = time.perf_counter()
-    outs, *_ = simulate(get_bench("hertz"), st, sim)
+    outs, *_ = simulate(get_bench(core), st, sim)
     secs = time.perf_counter() - t0
     port = {f: p for p, f in OUTPUT_PORTS.items()}
     got = np.column_stack([np.asarray(outs[port[f]], np.int64) for f in _FIELDS])
+    if stencils is not None:        # the fit core's latched A- >= B-: stage D's B, A
+        got = np.column_stack([got, np.asarray(outs["b_minus"], np.int64),
+                               np.asarray(outs["a_minus"], np.int64)])
     return _compare(trace, got, out, "rtl", secs)
 
 
@@ -81,7 +97,10 @@ _FIELDS = ("flags", "a_code", "b_code", "p_max_code", "k_code")
 
 
 def _compare(trace, got, out: dict, prefix: str, secs: float) -> dict:
-    bad = np.any(got != trace[:, 4:9], axis=1)
+    """Rows of ``got`` (flags, a, b, p_max, k[, stage D's A, B]) against the trace."""
+    want = trace[:, 4:9] if got.shape[1] == 5 else np.column_stack([trace[:, 4:9],
+                                                                    trace[:, 1:3]])
+    bad = np.any(got != want, axis=1)
     n = int(trace.shape[0])
     out.update({f"{prefix}_mismatches": int(bad.sum()), f"{prefix}_seconds": secs,
                 f"{prefix}_previews_per_s": n / secs if secs > 0 else 0.0})
@@ -90,31 +109,38 @@ def _compare(trace, got, out: dict, prefix: str, secs: float) -> dict:
     return out
 
 
-def replay_on_soc(trace: np.ndarray, e_prime_code: int) -> dict:
-    """Replay the traced previews through the register driver of the simulated
-    ``bhseq_core`` SoC and compare every output code (as :func:`replay_on_rtl`).
+def replay_on_soc(trace: np.ndarray, e_prime_code: int, *,
+                  stencils: np.ndarray | None = None) -> dict:
+    """Replay the traced previews through the register driver of the simulated SoC
+    (``tri_core`` with ``stencils``, else ``bhseq_core``) and compare every output code
+    (as :func:`replay_on_rtl`).
 
     Returns
     -------
     dict
-        ``soc_previews``, ``soc_mismatches``, ``soc_first_mismatch_step``, ``soc_seconds``,
-        ``soc_previews_per_s``.
+        ``soc_previews``, ``soc_kind``, ``soc_mismatches``, ``soc_first_mismatch_step``,
+        ``soc_seconds``, ``soc_previews_per_s``.
     """
-    from ..hw.driver import HertzDriver, SimTransport
+    from ..hw.driver import HertzDriver, PreviewDriver, SimTransport
 
     n = int(trace.shape[0])
-    out = {"soc_previews": n, "soc_mismatches": 0, "soc_first_mismatch_step": None,
-           "soc_seconds": 0.0, "soc_previews_per_s": 0.0}
+    kind = "bhseq_core" if stencils is None else "tri_core"
+    out = {"soc_previews": n, "soc_kind": kind, "soc_mismatches": 0,
+           "soc_first_mismatch_step": None, "soc_seconds": 0.0, "soc_previews_per_s": 0.0}
     if n == 0:
         return out
     t0 = time.perf_counter()
-    drv = HertzDriver(SimTransport("bhseq_core", e_prime_code=int(e_prime_code)),
-                      kind="bhseq_core")
-    got = np.zeros((n, 5), np.int64)
+    transport = SimTransport(kind, e_prime_code=int(e_prime_code))
+    drv = HertzDriver(transport, kind=kind) if stencils is None else PreviewDriver(transport)
+    got = np.zeros((n, 5 if stencils is None else 7), np.int64)
     try:
         for i in range(n):
-            rb = drv.run(int(trace[i, 1]), int(trace[i, 2]), int(trace[i, 3]))
-            got[i] = (rb.flags, rb.a, rb.b, rb.p_max, rb.k)
+            if stencils is None:
+                rb = drv.run(int(trace[i, 1]), int(trace[i, 2]), int(trace[i, 3]))
+                got[i] = (rb.flags, rb.a, rb.b, rb.p_max, rb.k)
+            else:
+                rb = drv.run(stencils[i], int(trace[i, 3]))
+                got[i] = (rb.flags, rb.a, rb.b, rb.p_max, rb.k, rb.B, rb.A)
     finally:
         drv.t.close()
     return _compare(trace, got, out, "soc", time.perf_counter() - t0)

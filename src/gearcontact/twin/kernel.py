@@ -42,21 +42,35 @@ loss gives 0, never NaN.
 ``kappa_j`` (mm / N^(2/3)) is the Hertzian approach coefficient ``delta = kappa W^(2/3)``
 (Johnson 1985 sec. 4.2: the approach of two elastic bodies in point contact grows as
 ``W^(2/3)``; Hamrock & Brewe 1983 for the elliptical closed form), taken from one preview
-per loaded pair and step -- at the phase of the step's start (curvatures interpolated in
-phase; again if a later RK4 stage enters the next phase interval) and at the pair's load
-of the previous step -- and held over the step's four stages: ``delta = 3 W F / (pi a
-E')`` with ``F = pi/2 + (pi/2 - 1) ln alpha`` and ``alpha = k^(pi/2)`` (Hamrock–Brewe's
-``k = alpha^(2/pi)`` inverted), i.e. from the preview's outputs ``a`` and ``k`` whatever
-backend computed them:
+per loaded pair and step -- at the phase of the step's start (again if a later RK4
+stage enters the next phase interval) and at the pair's load of the previous step --
+and held over the step's four stages: ``delta = 3 W F / (pi a E')`` with ``F = pi/2 +
+(pi/2 - 1) ln alpha`` and ``alpha = k^(pi/2)`` (Hamrock–Brewe's ``k = alpha^(2/pi)``
+inverted), i.e. from the preview's outputs ``a`` and ``k`` whatever backend computed
+them. The curvatures the preview takes (``prm[P_STAGEC]``, :data:`CURVATURE_SOURCES`):
+
+* ``stencil``: the whole C -> D preview per step -- the pair's 7 x 7 gap stencil at
+  the step's phase (linear between the TCA rows), stage C's curvature fit, stage D.
+  fp64: the fit is linear in the samples, so the rows' fitted coefficients c3, c4, c5
+  are interpolated instead (identical, 3 values instead of 49) and the principal
+  curvatures formed from them; golden: the interpolated samples are quantized to GAP
+  codes and run through the bit-exact fit core (:func:`gearcontact.preview.fit.
+  golden_vec.fit_element`) into the golden stage D, as the tri_core chain does;
+* ``exact``: the TCA's shape-operator curvatures A-, B- interpolated between rows
+  (the law of the loaded TE's preview, :mod:`gearcontact.contact.lte`).
+
+Per backend:
 
 * ``reference`` (0): the fp64 Hamrock–Brewe forms, the package's one implementation
   (:func:`gearcontact.analytic.hertz.hamrock_brewe_terms`) compiled here;
 * ``golden`` (1): the bit-exact fixed-point stage D (:func:`gearcontact.preview.hertz.
-  golden_vec.hertz_element`) on the round-half-up codes of A-, B- and W;
+  golden_vec.hertz_element`) on the fit core's codes (stencil) or the round-half-up
+  codes of A-, B- (exact), and W's;
 * ``table`` (2): no preview; ``T_el`` from the offline loaded-TE table
   (:mod:`.ltca_table`);
 * ``rtl`` / ``soc``: the golden loop, every preview traced and replayed on the RTL core
-  or through the SoC's register driver (:mod:`.cosim`).
+  (the C -> D chain core with stencils, the stage-D core without) or through the
+  SoC's register driver (:mod:`.cosim`).
 
 For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
 rounding, and the load at which it is sampled is clamped to the datapath envelope
@@ -80,6 +94,7 @@ from numba import njit
 from numba.extending import overload
 
 from ..analytic.hertz import hamrock_brewe_terms
+from ..preview.fit.golden_vec import fit_element
 from ..preview.hertz.golden_vec import hertz_element
 
 
@@ -102,8 +117,14 @@ _HB_E = 0.5 * math.pi - 1.0
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
  P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
- P_CR, P_MIRROR) = range(27)
-N_PRM = 27
+ P_CR, P_MIRROR, P_STAGEC) = range(28)
+N_PRM = 28
+#: Curvature sources of the preview (``prm[P_STAGEC]``): the TCA's shape-operator
+#: curvatures per row (``cv`` columns A-, B-), or stage C per step on the 7 x 7 stencil
+#: (fp64: ``cv`` the fitted c3, c4, c5 per row; golden: ``cv`` the 49 gap samples).
+CURVATURE_SOURCES = {"exact": 0, "stencil": 1}
+_S16 = 65536.0
+_S20 = 1048576.0
 #: Length of the state vector y.
 N_STATE = 11
 # record columns
@@ -119,14 +140,17 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, trace, tcount, out3):
-    """kappa (mm/N^(2/3)) from the golden stage D; out3 <- (a, b, p_max) at w_q."""
-    s20 = 1048576.0
-    a_code = np.int64(math.floor(min(A, B) * s20 + 0.5))
-    b_code = np.int64(math.floor(max(A, B) * s20 + 0.5))
+def _kappa_golden(a_code, b_code, fit_flags, w, prm, pow_lut, cbrt_lut, cst, trace, tcount,
+                  fit, out3):
+    """kappa (mm/N^(2/3)) from the golden stage D on the curvature codes ``a_code <=
+    b_code`` (Q(32,20)); out3 <- (a, b, p_max) at w_q. ``fit_flags``: the stage-C flags
+    of the codes (0 without stage C), in bits 8.. of the traced flags word (the chain's,
+    :mod:`gearcontact.preview.chain`); with stage C the stencil codes ``fit[2][0]`` are
+    traced too (``fit[4]``)."""
     w_code = np.int64(math.floor(w * 256.0 + 0.5))
     flags, a_c, b_c, p_c, k_c, rx, ry, al = hertz_element(
         a_code, b_code, w_code, np.int64(prm[P_ECODE]), pow_lut, cbrt_lut, cst)
+    flags |= fit_flags << 8
     t = tcount[0]
     if t < trace.shape[0]:      # the rtl backend replays these on the hardware
         trace[t, 0] = tcount[1]
@@ -138,18 +162,75 @@ def _kappa_golden(A, B, w, prm, pow_lut, cbrt_lut, cst, trace, tcount, out3):
         trace[t, 6] = b_c
         trace[t, 7] = p_c
         trace[t, 8] = k_c
+        tg = fit[4]
+        if t < tg.shape[0]:
+            for q in range(tg.shape[1]):
+                tg[t, q] = fit[2][0, q]
         tcount[0] = t + 1
     if flags != 0 or a_c == 0 or k_c == 0:
         return -1.0
-    a = a_c / s20
-    k = k_c / s20
+    a = a_c / _S20
+    k = k_c / _S20
     wq = w_code / 256.0
     f = 0.5 * math.pi + _HB_E * (0.5 * math.pi) * math.log(k)
     delta = 3.0 * wq * f / (math.pi * a * prm[P_ECODE])
     out3[0] = a
-    out3[1] = b_c / s20
+    out3[1] = b_c / _S20
     out3[2] = p_c / 256.0
     return delta / wq ** (2.0 / 3.0)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tcount, fit,
+           out3):
+    """kappa of pair j of table s at row interval (i, f) and evaluation load ``we``:
+    the preview's stage D on the curvatures of the source ``prm[P_STAGEC]``
+    (:data:`CURVATURE_SOURCES`); -1 where the preview flags its inputs."""
+    if prm[P_STAGEC] == 0.0:
+        A = cv_t[s, j, i, 0] + f * (cv_t[s, j, i + 1, 0] - cv_t[s, j, i, 0])
+        B = cv_t[s, j, i, 1] + f * (cv_t[s, j, i + 1, 1] - cv_t[s, j, i, 1])
+        if backend == 0:
+            return _kappa_reference(A, B, we, prm, out3)
+        return _kappa_golden(np.int64(math.floor(min(A, B) * _S20 + 0.5)),
+                             np.int64(math.floor(max(A, B) * _S20 + 0.5)), 0, we, prm,
+                             pow_lut, cbrt_lut, cst, trace, tcount, fit, out3)
+    if backend == 0:
+        # stage C is linear in the samples: the fit of the samples interpolated between
+        # two rows is the interpolation of the rows' fitted coefficients (exactly)
+        c3 = cv_t[s, j, i, 0] + f * (cv_t[s, j, i + 1, 0] - cv_t[s, j, i, 0])
+        c4 = cv_t[s, j, i, 1] + f * (cv_t[s, j, i + 1, 1] - cv_t[s, j, i, 1])
+        c5 = cv_t[s, j, i, 2] + f * (cv_t[s, j, i + 1, 2] - cv_t[s, j, i, 2])
+        A, B = _principal(c3, c4, c5)
+        if B <= 0.0:
+            return -1.0
+        return _kappa_reference(A, B, we, prm, out3)
+    # golden: the samples interpolated and quantized (GAP Q(32,16), round half up), the
+    # bit-exact fit core, its latched codes into stage D (the C -> D chain)
+    g = fit[2]
+    for q in range(cv_t.shape[3]):
+        x = cv_t[s, j, i, q] + f * (cv_t[s, j, i + 1, q] - cv_t[s, j, i, q])
+        g[0, q] = np.int64(math.floor(x * _S16 + 0.5))
+    am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
+    if ff < 0:      # a sample beyond GAP's +-32768 mm: flagged like a coefficient overflow
+        ff = 1
+    return _kappa_golden(min(am, bm), max(am, bm), ff, we, prm, pow_lut, cbrt_lut, cst,
+                         trace, tcount, fit, out3)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _principal(c3, c4, c5):
+    """(A-, B-) of the fitted quadric: :func:`gearcontact.preview.fit.reference.
+    principal_curvatures` (the smaller one from the determinant, no cancellation)."""
+    h = c3 + c5
+    r = math.sqrt((c3 - c5) * (c3 - c5) + c4 * c4)
+    a = 0.5 * (h + r)
+    b = 0.5 * (h - r)
+    det = c3 * c5 - 0.25 * c4 * c4
+    if h > 0.0 and a != 0.0:
+        b = det / a
+    elif h < 0.0 and b != 0.0:
+        a = det / b
+    return a, b
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -225,8 +306,8 @@ def _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t, backend,
-             w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23,
+def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend,
+             w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23,
              tab_w23, w_pairs, abp, out3):
     """Elastic mesh torque T_el (N·m) and total normal load (N) of one flank's law at
     its rotation theta >= 0 and row interval (i, f) of table ``s`` (0 loaded side, 1
@@ -256,14 +337,9 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t, bac
         if d <= 0.0:
             continue
         if cache[sd, j, 0] != i:    # one preview per pair and step (and per new interval)
-            A = A_t[s, j, i] + f * (A_t[s, j, i + 1] - A_t[s, j, i])
-            B = B_t[s, j, i] + f * (B_t[s, j, i + 1] - B_t[s, j, i])
             we = min(max(w_eval[sd, j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
-            if backend == 0:
-                kap = _kappa_reference(A, B, we, prm, out3)
-            else:
-                kap = _kappa_golden(A, B, we, prm, pow_lut, cbrt_lut, cst, trace, tcount,
-                                    out3)
+            kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
+                         tcount, fit, out3)
             cache[sd, j, 0] = i
             cache[sd, j, 1] = kap
             cache[sd, j, 2] = out3[0]
@@ -293,8 +369,8 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t, bac
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, A_t, B_t, valid, cb_t, backend,
-           w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23,
+def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, cv_t, valid, cb_t, backend,
+           w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23,
            tab_w23, w_pairs, abp, out3, ip, fp):
     """(T N·m >= 0, T_el N·m, W N) of flank ``sd`` (0: loaded side, 1: reverse) at its
     rotation theta and rate theta_dot; 0 out of contact (``theta < 0``). The table
@@ -309,8 +385,8 @@ def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, A_t, B_t, valid, cb_
     s = 0 if prm[P_MIRROR] != 0.0 else sd
     if s == 0 or backend == 2:      # the table holds the loaded side's rows only
         i, f = ip, fp
-    t_el, w_tot = _elastic(theta, i, f, s, sd, prm, lever, opening, A_t, B_t, valid, cb_t,
-                           backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount,
+    t_el, w_tot = _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t,
+                           backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, fit,
                            tab_theta, tab_t23, tab_w23, w_pairs, abp, out3)
     if t_el <= 0.0:
         return 0.0, 0.0, w_tot
@@ -320,8 +396,8 @@ def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, A_t, B_t, valid, cb_
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval, cache,
-           pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, dy, row, w_pairs,
+def _deriv(y, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval, cache,
+           pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23, dy, row, w_pairs,
            abp, out3):
     """dy/dt into dy[row]; returns (theta, theta_r, T_mesh N·m, total normal load N)."""
     u = prm[P_U]
@@ -342,12 +418,12 @@ def _deriv(y, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval, 
         der = (eps[1, ir + 1] - eps[1, ir]) / prm[P_DPSIR]
         theta_r = y[2] - psi_p / u + er - prm[P_CR] - prm[P_THB]
     theta_r_dot = y[6] - y[5] * (1.0 / u + der)
-    t_p, el_p, w_p = _flank(0, theta, theta_dot, i, f, prm, lever, opening, A_t, B_t,
+    t_p, el_p, w_p = _flank(0, theta, theta_dot, i, f, prm, lever, opening, cv_t,
                             valid, cb_t, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                            trace, tcount, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
-    t_r, el_r, w_r = _flank(1, theta_r, theta_r_dot, ir, fr, prm, lever, opening, A_t, B_t,
+                            trace, tcount, fit, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
+    t_r, el_r, w_r = _flank(1, theta_r, theta_r_dot, ir, fr, prm, lever, opening, cv_t,
                             valid, cb_t, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                            trace, tcount, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
+                            trace, tcount, fit, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
     t_mesh = t_p - t_r
     tw1 = prm[P_K1] * (y[0] - y[1]) + prm[P_C1] * (y[4] - y[5])
     tw2 = prm[P_K2] * (y[2] - y[3]) + prm[P_C2] * (y[6] - y[7])
@@ -406,22 +482,28 @@ def _mesh_potential(theta, theta_r, psi, prm, lever, opening, cb_t, w_pairs):
 
 
 @njit(cache=True, error_model="numpy")
-def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend,
-              w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec,
+def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend,
+              w_eval, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23, rec,
               rec_start, record_every):
     """Advance ``y`` (in place) by ``n_steps`` RK4 steps of ``h`` s from time ``t0``.
 
     The mesh arrays are stacked per flank: index 0 the loaded side, 1 the reverse
-    side (``eps`` (2, K), ``lever, opening, A_t, B_t, valid, cb_t`` (2, P, K) with
-    ``cb_t`` the tooth-bending compliance per pair, mm/N, 0 for rigid teeth).
+    side (``eps`` (2, K), ``lever, opening, valid, cb_t`` (2, P, K) with ``cb_t`` the
+    tooth-bending compliance per pair, mm/N, 0 for rigid teeth; ``cv_t`` (2, P, K, C)
+    the preview's curvature source per row, :data:`CURVATURE_SOURCES`).
+    ``fit = (weights (6, 49), constants (9,), stencil scratch (1, 49), coefficient
+    scratch (1, 6), stencil trace (rows, 49))``, int64: the golden stage C
+    (:func:`gearcontact.preview.fit.golden_vec.fit_element`; its ROM and constants).
     Rows ``rec[rec_start + n // record_every]`` receive the state at the start of every
     ``record_every``-th step (columns :data:`RECORD_COLUMNS`); ``w_eval`` (2, P) carries
     the pair loads of both flanks from step to step (the loads at which the preview is
     sampled). ``trace`` (int64, rows x 9) receives every golden stage-D evaluation while
     rows remain, ``[step, A_code, B_code, W_code, flags, a_code, b_code, p_max_code,
-    k_code]``, counted in ``tcount[0]`` (``tcount[2]`` counts the steps, ``tcount[3]`` the
-    golden previews flagged outside the datapath envelope, whose pair then carries
-    nothing); a trace of 0 rows records nothing. Returns the number of rows written to ``rec``.
+    k_code]`` (A <= B the stage-D inputs; with stage C the flags word is the chain's and
+    the stencil trace receives the 49 gap codes), counted in ``tcount[0]``
+    (``tcount[2]`` counts the steps, ``tcount[3]`` the golden previews flagged outside
+    the datapath envelope, whose pair then carries nothing); a trace of 0 rows records
+    nothing. Returns the number of rows written to ``rec``.
     """
     n_y = y.shape[0]
     n_p = lever.shape[1]
@@ -435,8 +517,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t
     abp1 = np.zeros((2, 4))
     out3 = np.zeros(3)
     cache = np.zeros((2, n_p, 7))     # preview per pair; column 6 the last W^(1/3)
-    return _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend,
-                w_eval, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+    return _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend,
+                w_eval, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23,
                 rec, rec_start, record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache)
 
 
@@ -445,8 +527,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t
 # call (measured ~200 ns per mesh evaluation, more than the evaluation itself). The
 # loop indexes its arrays and never takes views of them.
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval,
-         pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23, rec, rec_start,
+def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval,
+         pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23, rec, rec_start,
          record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache):
     n_y = y.shape[0]
     n_p = lever.shape[1]
@@ -467,8 +549,8 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, bac
                     ys[m] = y[m] + c * h * k[st - 1, m]
             if st == 0:
                 theta, theta_r, t_mesh, w_tot = _deriv(
-                    ys, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval,
-                    cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23, tab_w23,
+                    ys, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval,
+                    cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23,
                     k, st, pairs0, abp0, out3)
                 if n % record_every == 0:
                     _record(rec, rec_start + rows, t0 + n * h, theta, theta_r, t_mesh, w_tot,
@@ -479,8 +561,8 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, A_t, B_t, valid, cb_t, bac
                         if pairs0[sd, j] > 0.0:
                             w_eval[sd, j] = pairs0[sd, j]
             else:
-                _deriv(ys, prm, eps, lever, opening, A_t, B_t, valid, cb_t, backend, w_eval,
-                       cache, pow_lut, cbrt_lut, cst, trace, tcount, tab_theta, tab_t23,
+                _deriv(ys, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval,
+                       cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23,
                        tab_w23, k, st, pairs1, abp1, out3)
         for m in range(n_y):
             y[m] += h / 6.0 * (k[0, m] + 2.0 * k[1, m] + 2.0 * k[2, m] + k[3, m])

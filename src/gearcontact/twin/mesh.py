@@ -10,6 +10,9 @@ and for each neighbouring pair ``j``:
   the transmitting pair (0 for that pair), mm;
 * ``A_minus, B_minus``: half relative principal curvatures at its mating point, 1/mm,
   the inputs of the Hertz stage of the preview;
+* ``stencil_gaps_mm``: the 49 gap samples of the preview's 7 x 7 stage-C stencil at the
+  same point (:func:`gearcontact.tca.stencil.hardware_stencil`, off-flank samples
+  filled by the osculating quadric), the input of the whole C -> D preview;
 
 and the unloaded TE envelope. Everything is re-expressed along the *motion*: the
 pinion angle ``psi`` and the gear angle increase in the direction the pinion drives the
@@ -35,7 +38,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.lte_pairs import PairFields, phase_contacts
+from ..contact.lte_pairs import PairFields, curvature_point, phase_contacts
+from ..preview.fit.pinv import N_TAPS
+from ..tca.stencil import hardware_stencil
 from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
@@ -88,6 +93,9 @@ class MeshTable:
     bending_mm_per_n : ndarray (P, K)
         Tooth-bending compliance of each pair (pinion + gear tooth in series with the
         contact), mm/N; zeros for rigid teeth (:func:`mesh_table` ``bending``).
+    stencil_gaps_mm : ndarray (P, K, 49)
+        The stage-C stencil of each pair at each phase (zeros where not ``valid``), mm,
+        in the order of :mod:`gearcontact.preview.fit.stencil`.
     """
 
     psi_rad: np.ndarray
@@ -108,6 +116,7 @@ class MeshTable:
     gear_datum_rad: float = 0.0
     side: str = "drive"
     bending_mm_per_n: np.ndarray | None = None
+    stencil_gaps_mm: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:
@@ -164,7 +173,9 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}
     arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb")}
     valid = np.zeros((n_p, n_k), bool)
+    stencils = np.zeros((n_p, n_k, N_TAPS))
     curv: dict = {}
+    sten: dict = {}
     steps = round(edge_reach * cycle.step_index)
     for k in range(n_k):
         for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
@@ -177,6 +188,11 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             arrays["opening"][i, k] = pc.offset_mm
             arrays["A"][i, k] = pc.A_minus_per_mm
             arrays["B"][i, k] = pc.B_minus_per_mm
+            if pc.center_index not in sten:
+                mp = curvature_point(cycle.path, pc.center_index)
+                sten[pc.center_index] = hardware_stencil(pinion, gear, kin, mp,
+                                                         off_flank="quadric").gap_mm
+            stencils[i, k] = sten[pc.center_index]
             if bending is not None:
                 arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
     m = 1 if cycle.envelope_is_max else -1
@@ -199,7 +215,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         phi1_rad=phi1[order], te0_arcsec=env[order],
         gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
                              / cycle.path.ratio),
-        side=side, bending_mm_per_n=arrays["cb"][:, order])
+        side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order])
 
 
 def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:

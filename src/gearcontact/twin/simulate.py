@@ -31,6 +31,8 @@ from tqdm import tqdm
 
 from ..contact.lte import preview_balance
 from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..preview.fit.golden import element_constants
+from ..preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
@@ -42,10 +44,13 @@ from .params import DrivetrainParams
 __all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate",
            "linearized_modes", "linear_matrices", "check_step", "static_rotation",
            "speed_controller_gains",
-           "mesh_damping_n_s_per_mm", "BACKENDS", "STABILITY_LIMIT", "STEP_RANGE_US",
+           "mesh_damping_n_s_per_mm", "BACKENDS", "CURVATURE_SOURCES", "STABILITY_LIMIT",
+           "STEP_RANGE_US",
            "LOCKSTEP_MAX_STEPS"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
+#: Curvature sources of the preview (:class:`TwinModel` ``curvatures``).
+CURVATURE_SOURCES = tuple(K.CURVATURE_SOURCES)
 #: Largest h omega_max accepted (RK4 limit 2.83 on the imaginary axis; kernel docstring).
 STABILITY_LIMIT = 2.0
 #: Accepted fixed steps, us.
@@ -76,6 +81,11 @@ class TwinModel:
         about the designed backlash (``reverse_note`` says why).
     reverse_note : str
         How the reverse flank is modelled (written to ``twin.json``).
+    curvatures : str
+        Where the preview's curvatures come from (:data:`CURVATURE_SOURCES`):
+        ``"stencil"``, stage C per step on the 7 x 7 gap stencil (the whole C -> D
+        preview); ``"exact"``, the TCA's shape-operator curvatures (the law of the
+        loaded TE's preview).
     """
 
     mesh: MeshTable
@@ -86,11 +96,12 @@ class TwinModel:
     arrays: dict = field(default_factory=dict, repr=False)
     reverse: MeshTable | None = None
     reverse_note: str = ""
+    curvatures: str = "stencil"
 
 
 def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
                 backend: str = "reference", table=None, reverse: MeshTable | None = None,
-                reverse_note: str = "") -> TwinModel:
+                reverse_note: str = "", curvatures: str = "stencil") -> TwinModel:
     """Check the inputs and pack the compiled loop's arrays.
 
     Tooth bending comes with the mesh tables (their ``bending_mm_per_n``).
@@ -98,18 +109,20 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
     Raises
     ------
     InputRangeError
-        Unknown backend, ``table`` backend without a table, torque <= 0, a designed
-        backlash that does not clear an interference of the generated flanks.
+        Unknown backend or curvature source, ``table`` backend without a table, torque
+        <= 0, curvatures outside the preview's envelope, a designed backlash that does
+        not clear an interference of the generated flanks.
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    if curvatures not in CURVATURE_SOURCES:
+        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
     if backend != "table":
-        _check_envelope(mesh)
-        if reverse is not None:
-            _check_envelope(reverse)
+        for m in (mesh,) if reverse is None else (mesh, reverse):
+            _check_envelope(m, curvatures)
     if reverse is not None:
         from .mesh import free_play_rad
         # opposite motion signs (reverse_law), and a positive total free play: the
@@ -132,22 +145,28 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                np.ascontiguousarray(table.load_n ** (2.0 / 3.0)))
     else:
         tab = (np.ones((1, 2)), np.zeros((1, 2)), np.zeros((1, 2)))
-    arrays = {**_stack(mesh, reverse if reverse is not None else mesh),
+    source = "exact" if backend == "table" else curvatures
+    fit_w, fit_cst = element_constants()
+    arrays = {**_stack(mesh, reverse if reverse is not None else mesh, source,
+                       golden=backend not in ("reference", "table")),
               "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
-              "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2]}
-    return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note)
+              "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2],
+              "fit_w": fit_w, "fit_cst": fit_cst}
+    return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note,
+                     curvatures)
 
 
-def _stack(mesh: MeshTable, rev: MeshTable) -> dict:
+def _stack(mesh: MeshTable, rev: MeshTable, source: str, *, golden: bool) -> dict:
     """The kernel's per-flank arrays: index 0 the loaded side, 1 the reverse side, padded
-    to the larger pair and row counts (padding is never valid)."""
+    to the larger pair and row counts (padding is never valid). ``cv``: the preview's
+    curvature source per row (:mod:`.kernel`): A-, B- (``exact``); the stencil's fitted
+    c3, c4, c5 (``stencil``, fp64) or its 49 samples (``stencil``, golden)."""
     n_p = max(mesh.lever_mm.shape[0], rev.lever_mm.shape[0])
     n_k = max(mesh.lever_mm.shape[1], rev.lever_mm.shape[1])
     out = {"eps": np.zeros((2, n_k))}
     for s, m in enumerate((mesh, rev)):
         out["eps"][s, :m.eps_rad.size] = m.eps_rad
-    for key, attr in (("lever", "lever_mm"), ("opening", "opening_mm"),
-                      ("A", "A_minus_per_mm"), ("B", "B_minus_per_mm"), ("valid", "valid"),
+    for key, attr in (("lever", "lever_mm"), ("opening", "opening_mm"), ("valid", "valid"),
                       ("cb", "bending_mm_per_n")):
         arr = np.zeros((2, n_p, n_k), bool if key == "valid" else float)
         for s, m in enumerate((mesh, rev)):
@@ -156,27 +175,54 @@ def _stack(mesh: MeshTable, rev: MeshTable) -> dict:
                 continue
             arr[s, :v.shape[0], :v.shape[1]] = v
         out[key] = arr
+    srcs = [_curvature_rows(m, source, golden=golden) for m in (mesh, rev)]
+    cv = np.zeros((2, n_p, n_k, srcs[0].shape[2]))
+    for s, v in enumerate(srcs):
+        cv[s, :v.shape[0], :v.shape[1]] = v
+    out["cv"] = cv
     return out
 
 
-def _check_envelope(mesh: MeshTable) -> None:
-    """The pairs' curvatures must lie in the preview's operating envelope (the same for
-    every backend, :data:`gearcontact.preview.hertz.reference.ENVELOPE`); checked once
+def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray:
+    """(P, K, C) curvature source of one table (:func:`_stack`)."""
+    if source == "exact":
+        return np.stack([mesh.A_minus_per_mm, mesh.B_minus_per_mm], axis=-1)
+    if golden:
+        return np.asarray(mesh.stencil_gaps_mm, float)
+    return _fitted_coefficients(mesh)
+
+
+def _fitted_coefficients(mesh: MeshTable) -> np.ndarray:
+    """fp64 stage-C coefficients c3, c4, c5 (1/mm) of every row's stencil (P, K, 3): the
+    fit of :func:`gearcontact.preview.fit.reference.fit_curvatures` (the baked ROM's
+    weights), for all rows at once."""
+    return np.asarray(mesh.stencil_gaps_mm, float) @ baked_pinv().weights[3:6].T
+
+
+def _check_envelope(mesh: MeshTable, source: str = "exact") -> None:
+    """The pairs' curvatures (of the preview's ``source``; ``stencil``: stage C's fit)
+    must lie in the preview's operating envelope (the same for every backend,
+    :data:`gearcontact.preview.hertz.reference.ENVELOPE`) and be elliptic; checked once
     here, not per step."""
     lo, hi = ENVELOPE["curvature_per_mm"]
     v = mesh.valid
-    for name, arr in (("A_minus_per_mm", mesh.A_minus_per_mm), ("B_minus_per_mm",
-                                                                mesh.B_minus_per_mm)):
+    if source == "stencil":
+        c = _fitted_coefficients(mesh)
+        h, r = c[..., 0] + c[..., 2], np.hypot(c[..., 0] - c[..., 2], c[..., 1])
+        a_all, b_all, what = 0.5 * (h + r), 0.5 * (h - r), "stage-C fitted "
+    else:
+        a_all, b_all, what = mesh.A_minus_per_mm, mesh.B_minus_per_mm, ""
+    for name, arr in (("A_minus_per_mm", a_all), ("B_minus_per_mm", b_all)):
         x = arr[v]
         if x.size and not (x.min() >= lo and x.max() <= hi):
             bad = x[np.argmax((x < lo) | (x > hi))]
-            raise InputRangeError(f"mesh {name}", float(bad), f"[{lo:g}, {hi:g}] 1/mm "
+            raise InputRangeError(f"mesh {what}{name}", float(bad), f"[{lo:g}, {hi:g}] 1/mm "
                                   "(preview envelope)")
-    a, b = mesh.A_minus_per_mm[v], mesh.B_minus_per_mm[v]
+    a, b = a_all[v], b_all[v]
     if a.size:
         ratio = float((np.maximum(a, b) / np.minimum(a, b)).max())
         if ratio > ENVELOPE["alpha"][1]:
-            raise InputRangeError("mesh alpha = B_max/A_min", ratio,
+            raise InputRangeError(f"mesh {what}alpha = B_max/A_min", ratio,
                                   f"<= {ENVELOPE['alpha'][1]:g} (preview envelope)")
 
 
@@ -206,6 +252,8 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_PITCH] = m.pitch_rad
     prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
     prm[K.P_NROW] = len(m.psi_rad)
+    prm[K.P_STAGEC] = K.CURVATURE_SOURCES["exact" if model.backend == "table"
+                                          else model.curvatures]
     return prm
 
 
@@ -249,12 +297,20 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
     w = np.zeros((2, n_p))
     x = float(np.mod(psi, prm[K.P_PITCH])) / prm[K.P_DPSI]      # as kernel._phase
     i = min(int(x), int(prm[K.P_NROW]) - 2)
-    t, _ = K._elastic(theta, i, x - i, 0, 0, prm, a["lever"], a["opening"], a["A"], a["B"],
+    t, _ = K._elastic(theta, i, x - i, 0, 0, prm, a["lever"], a["opening"], a["cv"],
                       a["valid"], a["cb"], K.BACKEND_CODES[model.backend], w_ev,
                       np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
-                      np.zeros((0, 9), np.int64), np.zeros(4, np.int64), a["tab_theta"],
-                      a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)), np.zeros(3))
+                      np.zeros((0, 9), np.int64), np.zeros(4, np.int64), _fit_args(a, 0),
+                      a["tab_theta"], a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)),
+                      np.zeros(3))
     return t, w[0]
+
+
+def _fit_args(a: dict, trace_rows: int) -> tuple:
+    """The kernel's ``fit`` tuple: the golden stage C's ROM and constants, its scratch,
+    and a stencil trace of ``trace_rows`` rows (:func:`.kernel.run_steps`)."""
+    return (a["fit_w"], a["fit_cst"], np.zeros((1, N_TAPS), np.int64),
+            np.zeros((1, N_COEFFS), np.int64), np.zeros((trace_rows, N_TAPS), np.int64))
 
 
 def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
@@ -467,16 +523,18 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     w_eval[0] = np.where(w0 > 0, w0, K.W_EVAL_MIN_N)
     a = model.arrays
     code = K.BACKEND_CODES[model.backend]
-    args = (prm, a["eps"], a["lever"], a["opening"], a["A"], a["B"], a["valid"], a["cb"], code)
+    args = (prm, a["eps"], a["lever"], a["opening"], a["cv"], a["valid"], a["cb"], code)
     n_p = a["lever"].shape[1]
     # rtl: the golden loop records every preview for the lockstep replay (.cosim)
     lockstep = model.backend in ("rtl", "soc")
     trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, 9), np.int64)
     tcount = np.zeros(4, np.int64)
-    tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, a["tab_theta"],
+    stencil = prm[K.P_STAGEC] == K.CURVATURE_SOURCES["stencil"]
+    fit = _fit_args(a, trace.shape[0] if stencil else 0)
+    tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, fit, a["tab_theta"],
             a["tab_t23"], a["tab_w23"])
     warm = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace[:0], np.zeros(4, np.int64),
-            a["tab_theta"], a["tab_t23"], a["tab_w23"])
+            _fit_args(a, 0), a["tab_theta"], a["tab_t23"], a["tab_w23"])
     # compile (or load the cache) outside the timed loop
     K.run_steps(y.copy(), 0.0, 1, h, *args, w_eval.copy(), *warm, np.zeros((1, K.N_REC)), 0, 1)
     n_rec = (n_steps + record_every - 1) // record_every
@@ -507,7 +565,8 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
             raise ArithmeticError(f"{model.backend} trace full ({trace.shape[0]} previews)")
         be = model.backend
         replay = cosim.replay_on_rtl if be == "rtl" else cosim.replay_on_soc
-        rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]))
+        rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]),
+                     stencils=fit[4][:tcount[0]] if stencil else None)
         if rtl[f"{be}_mismatches"]:
             raise ArithmeticError(f"{be} != golden in {rtl[f'{be}_mismatches']} previews, "
                                   f"first at step {rtl[f'{be}_first_mismatch_step']}")
@@ -524,7 +583,9 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     static_t = model.torque_nm
     st = np.array(times) * 1e6
     summary = {
-        "backend": model.backend, "steps": n_steps, "step_us": h_us, "duration_s": dur,
+        "backend": model.backend,
+        "curvatures": "table" if model.backend == "table" else model.curvatures,
+        "steps": n_steps, "step_us": h_us, "duration_s": dur,
         "speed_rpm": speed, "torque_nm": model.torque_nm,
         "mesh_frequency_hz": m.pinion_teeth * speed / 60.0,
         "static_mesh_torque_nm": static_t, "static_mesh_load_n": float(w0.sum()),
@@ -570,13 +631,15 @@ def _free_play_summary(model: TwinModel) -> dict:
 def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                    drivetrain: DrivetrainParams | None = None, side: str = "drive",
                    phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
-                   bending: bool = False, progress: bool = False) -> TwinModel:
+                   bending: bool = False, curvatures: str = "stencil",
+                   progress: bool = False) -> TwinModel:
     """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
     :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
     The TCA is surface-to-surface (``edge_contact=False``: the Hertzian law has no
     meaning at an edge touching the other flank). The reverse flank is the other side's
     own TCA (mirrored loaded law if that side is in line contact). ``bending``: tooth bending of both members in series with the
-    Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`)."""
+    Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`). ``curvatures``:
+    the preview's curvature source (:class:`TwinModel`)."""
     from ..tca.analysis import analyze_pair
     from ..tca.line_contact import LineContact
     from .ltca_table import torque_table
@@ -586,6 +649,8 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in BACKENDS:     # before the expensive stages
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    if curvatures not in CURVATURE_SOURCES:
+        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
     from ..contact.tooth_bending import tooth_bending
 
     # Surface-to-surface TCA (edge_contact=False): the twin's contact law is Hertzian,
@@ -610,4 +675,5 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
         table = torque_table(tca, flanks, pair, mesh, t, side=side, source=table_source,
                              cells=table_cells, bending=bend(side), progress=progress)
     return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
-                       table=table, reverse=reverse, reverse_note=note)
+                       table=table, reverse=reverse, reverse_note=note,
+                       curvatures=curvatures)

@@ -54,7 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcontact.preview.fit.golden_vec import fit_kernel
+from gearcontact.preview.fit.golden_vec import fit_constants, fit_kernel
 from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv, baked_pinv
 from gearcontact.preview.qformat import CURVATURE, GAP, FixedPointOverflow, round_shift, sq, uq
 from gearcontact.validation import InputRangeError
@@ -64,7 +64,7 @@ __all__ = ["FLAG_COEFF_OVERFLOW", "FLAG_D_OVERFLOW", "FLAG_CURV_OVERFLOW",
            "SUM_FMT", "ISQRT_REM_FMT", "FIT_MAC_CYCLES", "FIT_LATCH_CYCLES", "FIT_CYCLES",
            "STAGE_D_CAPTURE_CYCLES", "chain_cycles", "GoldenFit", "GoldenFitBatch",
            "encode_gaps", "decode_curvature", "check_gap_codes", "isqrt_nonrestoring",
-           "isqrt_nonrestoring_array", "golden_fit", "golden_fit_batch"]
+           "isqrt_nonrestoring_array", "golden_fit", "golden_fit_batch", "element_constants"]
 
 FLAG_COEFF_OVERFLOW = 1 << 0   #: a rounded coefficient c0..c5 does not fit Q(32,20)
 FLAG_D_OVERFLOW = 1 << 1       #: d = (c3-c5)^2 + c4^2 does not fit Q(64,40)
@@ -308,6 +308,23 @@ def golden_fit(gap_codes, *, rom: BakedPinv | None = None, bitwise: bool = True)
                      flags=flags)
 
 
+def _check_mac_bound(rom: BakedPinv) -> None:
+    """The int64 MAC of the compiled kernel is exact only for ``sum_i |M_ji| < 2^31``."""
+    if max(rom.weight_l1_codes) >= (1 << 31):
+        raise FixedPointOverflow("sum_i |M_ji| (int64 MAC bound)", max(rom.weight_l1_codes),
+                                 sq(32, 0))
+
+
+def element_constants(rom: BakedPinv | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """``(weight codes (6, 49), constants (9,))``, int64: what
+    :func:`.golden_vec.fit_element` takes to run this model inside another compiled loop
+    (default the baked hardware ROM)."""
+    rom = baked_pinv() if rom is None else rom
+    _check_mac_bound(rom)
+    return (np.ascontiguousarray(rom.weight_codes_array, np.int64),
+            fit_constants(_COEFF_SHIFT, D_FMT.max_code))
+
+
 def golden_fit_batch(gap_codes, *, rom: BakedPinv | None = None) -> GoldenFitBatch:
     """Vectorized, bit-identical :func:`golden_fit` over n stencils (numpy int64).
 
@@ -330,9 +347,7 @@ def golden_fit_batch(gap_codes, *, rom: BakedPinv | None = None) -> GoldenFitBat
     g = np.asarray(gap_codes)
     if g.dtype != np.int64 or g.ndim != 2 or g.shape[1] != N_TAPS:
         g = check_gap_codes(gap_codes, 2)   # else the kernel range-checks in its MAC pass
-    if max(rom.weight_l1_codes) >= (1 << 31):
-        raise FixedPointOverflow("sum_i |M_ji| (int64 MAC bound)", max(rom.weight_l1_codes),
-                                 sq(32, 0))
+    _check_mac_bound(rom)
     c, a_minus, b_minus, flags = fit_kernel(g, rom.weight_codes_array,
                                             coeff_shift=_COEFF_SHIFT,
                                             d_max_code=D_FMT.max_code)
