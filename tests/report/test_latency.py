@@ -15,7 +15,11 @@ def test_core_cycles_follow_the_timing_formulas():
     got = core_cycles(lanes=16, n_samples=49)
     assert got == {"gap pass (L = 16, N = 49)": 16 + math.ceil(49 / 16) + 4 + 5,
                    "fit C": 49 + 3, "Hertz D": 2 + 9 * 83 + 4 + 3,
-                   "chain C -> D": 49 + 3 + 754, "combinational C + D": 58}
+                   "chain C -> D": 49 + 3 + 754, "combinational C + D": 58,
+                   # latency of the pipelined stage D at R = 4 rows per divider stage
+                   # (preview.hertz.rtl_pipe; the RTL tests count it), and the chain's
+                   # fit (52) plus it
+                   "pipelined Hertz D (II = 1)": 90, "chain C -> D with pipelined D": 142}
     assert core_cycles(lanes=64, n_samples=4096)["gap pass (L = 64, N = 4096)"] == \
         64 + 64 + 6 + 5
 

@@ -190,11 +190,30 @@ def _whole_core_table():
             "register bus): results committed with the package (data/synth/cores.json, "
             "one provenance per row; `gearcontact rtl synth --committed` prints them). "
             "The published tri_core figure is a -nodsp build." + lean_text
-            + _tri_core_difference(recs))
+            + _tri_core_difference(recs) + _pipe_sentence(recs))
     table = Table("Whole cores / SoC, yosys synth_xilinx -family xc7 -noiopad",
                   ["core", "mode", "LUT", "FF", "CARRY4", "DSP48E1", "RAMB36", "depth",
                    "wall s", "tool", "published"], rows)
     return table, text, dicts
+
+
+def _pipe_sentence(recs) -> str:
+    """The pipelined cores' throughput beside the serialized stage D, from their rows."""
+    from ..preview.chain_pipe import CHAIN_PIPE_CYCLES
+    from ..preview.hertz.rtl_pipe import pipe_latency
+    from ..preview.hertz.schedule import HERTZ_CYCLES
+
+    by = {r.result.core: r.result for r in recs if not r.result.nodsp}
+    hp, cp = by.get("hertz_pipe"), by.get("chain_pipe")
+    if hp is None or cp is None:
+        return ""
+    return (f" The pipelined stage D (hertz_pipe) accepts one preview per clock "
+            f"(initiation interval 1, latency {pipe_latency()} cycles) where the serialized "
+            f"core takes {HERTZ_CYCLES}, a {HERTZ_CYCLES}x throughput, for {hp.LUT:,} LUT / "
+            f"{hp.FF:,} FF / {hp.DSP48E1} DSP48E1; the C -> D chain around it (chain_pipe: "
+            f"{CHAIN_PIPE_CYCLES} cycles go -> done instead of 806, one evaluation in flight "
+            f"as the serialized fit bounds its rate) takes {cp.LUT:,} LUT / {cp.FF:,} FF / "
+            f"{cp.DSP48E1} DSP48E1.")
 
 
 def _tri_core_difference(recs) -> str:

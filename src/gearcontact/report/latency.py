@@ -58,10 +58,16 @@ class ScalarLatency:
 
 
 def core_cycles(*, lanes: int = 16, n_samples: int = 49) -> dict[str, int]:
-    """Clock cycles from ``go`` to ``done`` per core (constants of the design)."""
+    """Clock cycles from ``go`` to ``done`` per core (constants of the design); for the
+    pipelined cores (initiation interval 1) the latency of each preview."""
+    from ..preview.chain_pipe import CHAIN_PIPE_CYCLES
+    from ..preview.hertz.rtl_pipe import pipe_latency
+
     return {f"gap pass (L = {lanes}, N = {n_samples})": gap_latency(n_samples, lanes),
             "fit C": FIT_CYCLES, "Hertz D": HERTZ_CYCLES, "chain C -> D": CHAIN_CYCLES,
-            "combinational C + D": COMB_CYCLES}
+            "combinational C + D": COMB_CYCLES,
+            "pipelined Hertz D (II = 1)": pipe_latency(),
+            "chain C -> D with pipelined D": CHAIN_PIPE_CYCLES}
 
 
 def preview_inputs(n: int, seed: int = 1):
