@@ -6,11 +6,14 @@ drivetrain) for each contact backend and prints steps/s, the real-time factor
 compiled call each) and their jitter, the process CPU time per step and the load
 average (the machine is shared: wall-clock figures include other load). Targets
 (issue 14): compiled fp64 backend >= 10x real time on one core, golden >= 1x; the
-``rtl`` and ``soc`` backends (golden loop + lockstep replay on HertzCore / through the
-SoC register driver, :mod:`gearcontact.twin.cosim`) run shorter times and state their
-rates (the CPU column counts this process only, not the simulator).
+``rtl`` and ``soc`` backends (golden loop + lockstep replay on ChainCore / HertzCore or
+through the SoC register driver, :mod:`gearcontact.twin.cosim`) run shorter times and
+state their rates (the CPU column counts this process only, not the simulator).
+``--curvatures``: the preview's curvature source (``stencil``: stage C per step, the
+default; ``exact``; ``both``: every backend with each).
 
-Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]``.
+Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]
+[--curvatures stencil|exact|both] [--bending]``.
 """
 
 from __future__ import annotations
@@ -40,6 +43,8 @@ def main() -> None:
     ap.add_argument("--backends", default=",".join(BACKENDS))
     ap.add_argument("--pair", default="s0003")
     ap.add_argument("--bending", action="store_true", help="tooth bending in the law")
+    ap.add_argument("--curvatures", default="stencil", choices=("stencil", "exact", "both"),
+                    help="the preview's curvature source (default stencil: stage C per step)")
     args = ap.parse_args()
     pair = load_pair(args.pair)
     side = pair.design_side
@@ -51,15 +56,19 @@ def main() -> None:
     print(f"{pair.name} ({side}) twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, step "
           f"{args.step_us:g} us, {args.duration_ms:g} ms simulated, record every "
           f"{args.record_every}, bending {args.bending}; reverse flank: {base.reverse_note}")
-    print(f"{'backend':<11}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
+    print(f"{'backend':<20}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
           f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
     lines = []
-    for be in args.backends.split(","):
+    sources = ("stencil", "exact") if args.curvatures == "both" else (args.curvatures,)
+    runs = [(be, src) for be in args.backends.split(",") for src in sources
+            if be != "table" or src == sources[0]]
+    for be, src in runs:
         table = None
         if be == "table":
             table = torque_table(tca, flanks, pair, mesh, args.torque, side=side)
         model = build_model(mesh, dt, args.torque, backend=be, table=table,
-                            reverse=base.reverse, reverse_note=base.reverse_note)
+                            reverse=base.reverse, reverse_note=base.reverse_note,
+                            curvatures=src)
         simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3, step_s=1e-6 * args.step_us)
         c0 = time.process_time()
         ms = {"rtl": args.rtl_duration_ms, "soc": args.soc_duration_ms}.get(be,
@@ -68,13 +77,15 @@ def main() -> None:
                        step_s=1e-6 * args.step_us, record_every=args.record_every)
         cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
         s, tm = res.summary, res.timings
-        print(f"{be:<11}{s['steps'] / tm['wall_s']:>12.4g}{tm['real_time_factor']:>11.2f}"
+        label = be if be == "table" else f"{be} ({src})"
+        print(f"{label:<20}{s['steps'] / tm['wall_s']:>12.4g}{tm['real_time_factor']:>11.2f}"
               f"{tm['step_time_p50_us']:>10.3f}{tm['step_time_p99_us']:>10.3f}"
               f"{tm['step_time_p99_us'] / tm['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
               f"{s['dynamic_factor']:>7.3f}")
         if be in ("rtl", "soc"):
-            where = s.get("rtl_simulator", "the bhseq_core SoC (register driver)")
-            lines.append(f"{be}: {s[be + '_previews']} previews replayed on {where} at "
+            where = (f"{s['rtl_core']} core, {s['rtl_simulator']}" if be == "rtl"
+                     else f"the {s['soc_kind']} SoC (register driver)")
+            lines.append(f"{label}: {s[be + '_previews']} previews replayed on {where} at "
                          f"{tm[be + '_previews_per_s']:.4g} previews/s, "
                          f"{s[be + '_mismatches']} mismatches ({ms:g} ms simulated)")
     for line in lines:
