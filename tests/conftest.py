@@ -19,3 +19,33 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if "slow" in item.keywords:
             item.add_marker(skip_slow)
+
+
+@pytest.fixture(scope="session")
+def served_tri_core():
+    """``gearcontact rtl serve`` (the simulated tri_core behind litex_server's protocol)
+    in a subprocess on a free local port; yields ``(host, port)``."""
+    import socket
+    import subprocess
+    import sys
+    import time
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "rtl", "serve", "--port",
+                             str(port)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True)
+    try:
+        deadline = time.monotonic() + 120
+        for line in proc.stdout:                # the server says when it listens
+            if line.startswith("tcp port"):
+                break
+            if time.monotonic() > deadline:
+                raise RuntimeError("gearcontact rtl serve did not start")
+        else:
+            raise RuntimeError(f"gearcontact rtl serve exited: {proc.wait()}")
+        yield "127.0.0.1", port
+    finally:
+        proc.terminate()
+        proc.wait(30)

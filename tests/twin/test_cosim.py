@@ -82,3 +82,26 @@ def test_soc_twin_through_the_register_driver(s0003_twin):
     assert soc.summary["soc_mismatches"] == 0 and soc.summary["soc_previews"] >= 6
     assert soc.summary["soc_kind"] == "tri_core"
     np.testing.assert_array_equal(soc.columns["mesh_load_n"], gold.columns["mesh_load_n"])
+
+
+def test_soc_twin_through_a_board_address(s0003_twin, served_tri_core):
+    # the board path: LiteX's RemoteClient over TCP to `gearcontact rtl serve` (LiteX's
+    # RemoteServer in front of the simulated tri_core), every preview bit-identical;
+    # a SoC of the wrong kind there is a named error
+    from gearcontact.validation import InputRangeError, UnusableInput
+
+    pair, _, _, mesh = s0003_twin
+    dt = default_drivetrain(pair)
+    kw = dict(speed_rpm=3000.0, duration_s=30e-6, step_s=10e-6)
+    soc = simulate(build_model(mesh, dt, TORQUE_NM, backend="soc"), board=served_tri_core,
+                   **kw)
+    gold = simulate(build_model(mesh, dt, TORQUE_NM, backend="golden"), **kw)
+    s = soc.summary
+    assert s["soc_mismatches"] == 0 and s["soc_previews"] >= 6
+    assert s["soc_transport"] == "litex_server {}:{}".format(*served_tri_core)
+    np.testing.assert_array_equal(soc.columns["mesh_load_n"], gold.columns["mesh_load_n"])
+    with pytest.raises(UnusableInput, match="bhseq_core"):
+        simulate(build_model(mesh, dt, TORQUE_NM, backend="soc", curvatures="exact"),
+                 board=served_tri_core, **kw)
+    with pytest.raises(InputRangeError, match="board"):
+        simulate(build_model(mesh, dt, TORQUE_NM), board=served_tri_core, **kw)

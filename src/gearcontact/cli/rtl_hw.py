@@ -1,4 +1,5 @@
-"""``gearcontact rtl soc`` and ``gearcontact rtl synth``: board flow and synthesis reports.
+"""``gearcontact rtl soc``, ``serve`` and ``synth``: board flow, a simulated board behind
+litex_server's protocol, synthesis reports.
 
 Hooked into ``gearcontact rtl`` by :func:`register_rtl_subcommands` (called with the
 ``rtl`` action sub-parsers). Both need optional extras and say so when they are
@@ -20,7 +21,7 @@ from .outdir import add_out_argument
 #: Exit code when an optional tool is missing or a run fails.
 EXIT_UNAVAILABLE = EXIT_BAD_INPUT
 
-__all__ = ["register_rtl_subcommands", "run_soc", "run_synth"]
+__all__ = ["register_rtl_subcommands", "run_serve", "run_soc", "run_synth"]
 
 
 #: Lane counts of the gap-core synthesis sweep when ``--lanes`` is not given.
@@ -28,7 +29,7 @@ DEFAULT_LANES = "8,16,32,64"
 
 
 def register_rtl_subcommands(cmds) -> None:
-    """Add ``soc`` and ``synth`` to the ``gearcontact rtl`` action sub-parsers."""
+    """Add ``soc``, ``serve`` and ``synth`` to the ``gearcontact rtl`` action sub-parsers."""
     from ..hw.regmap import SOC_KINDS
     from ..hw.synth import CORES, YOSYS_TOOLS
 
@@ -41,6 +42,20 @@ def register_rtl_subcommands(cmds) -> None:
                    help="SoC top (default tri_core)")
     s.add_argument("--lanes", type=int, default=16, help="gap core lanes (default 16)")
     s.set_defaults(func=run_soc)
+
+    v = cmds.add_parser("serve", help="serve a simulated SoC behind LiteX's litex_server "
+                                      "protocol (RemoteClient, litex_cli, gearcontact twin "
+                                      "--board): host code without a board")
+    v.add_argument("--kind", choices=SOC_KINDS, default="tri_core",
+                   help="SoC top (default tri_core)")
+    v.add_argument("--host", default="127.0.0.1", help="bind address (default 127.0.0.1)")
+    v.add_argument("--port", type=int, default=1234, help="TCP port (default 1234, "
+                                                          "litex_server's)")
+    v.add_argument("--pair", default=None,
+                   help="bake this pair's E' (materials) into the SoC, as a board build "
+                        "would (default steel on steel)")
+    v.add_argument("--lanes", type=int, default=16, help="gap core lanes (default 16)")
+    v.set_defaults(func=run_serve, check=check_serve)
 
     y = cmds.add_parser("synth", help="Yosys synth_xilinx resource and logic-depth report "
                                       "(gap lane sweep with the DSP fit); --committed "
@@ -96,6 +111,36 @@ def check_soc(args) -> None:
         from ..hw.driver import LITEX_PIN
         raise ToolUnavailable(f"LiteX is not installed: pip install {LITEX_PIN} "
                               "(or pip install 'gearcontact[board]')") from None
+
+
+def check_serve(args) -> None:
+    if not 0 < args.port < 65536:
+        raise InputRangeError("--port", args.port, "a TCP port in [1, 65535]")
+    if args.lanes not in (8, 16, 32, 64):
+        raise InputRangeError("--lanes", args.lanes, "one of 8, 16, 32, 64")
+    if args.pair is not None:
+        from ..geometry.pair import load_pair
+        args.pair_obj = load_pair(args.pair)     # a bad file: named error, exit 2
+
+
+def run_serve(args) -> int:
+    from ..hw.driver import DriverError
+    from ..hw.serve import serve
+    from ..materials import effective_modulus_mpa
+    from ..preview.hertz.golden import encode_e_prime
+
+    e_code = None
+    if args.pair is not None:
+        p = args.pair_obj
+        e_code = encode_e_prime(effective_modulus_mpa(p.pinion_material, p.gear_material))
+    print(f"gearcontact rtl serve: simulated {args.kind} (E' code {e_code or 'steel'}) on "
+          f"{args.host}:{args.port}; Ctrl-C stops", flush=True)
+    try:
+        serve(args.kind, host=args.host, port=args.port, e_prime_code=e_code,
+              lanes=args.lanes)
+    except DriverError as exc:
+        return _error(str(exc))
+    return 0
 
 
 def check_synth(args) -> None:

@@ -58,6 +58,10 @@ def register(sub) -> None:
                         "C per step, the curvature fit of the 7 x 7 gap stencil, then "
                         "stage D: the whole C -> D preview) or exact (the TCA's "
                         "shape-operator curvatures, the law of the loaded TE's preview)")
+    p.add_argument("--board", default=None, metavar="HOST:PORT",
+                   help="soc backend: replay the previews through the litex_server at "
+                        "HOST:PORT (a board built with this pair's E', or `gearcontact rtl "
+                        "serve`) instead of the SoC simulation in this process")
     p.add_argument("--record-every", type=int, default=1,
                    help="write every n-th step to twin.csv (default 1)")
     p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
@@ -95,6 +99,12 @@ def check(args) -> None:
                               "--speed-sweep (the table twin runs beside it)")
     if args.workers is not None and args.workers < 1:
         raise InputRangeError("--workers", args.workers, ">= 1")
+    args.board_address = None
+    if args.board is not None:
+        if args.backend != "soc":
+            raise InputRangeError("--board", args.board, "only with --backend soc")
+        from ..hw.serve import parse_address
+        args.board_address = parse_address(args.board, field="--board")
     args.duration_s, args.speeds = duration_s, speeds
 
 
@@ -112,7 +122,7 @@ def run(args) -> int:
                            curvatures=args.curvatures, progress=not args.quiet)
     res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
-                   progress=not args.quiet)
+                   progress=not args.quiet, board=args.board_address)
     run_timings(args, **res.timings)
     extra = {"pair": pair.name, "side": args.side, "drivetrain": drivetrain.as_dict()}
     if args.backend == "table":

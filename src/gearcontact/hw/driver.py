@@ -251,7 +251,8 @@ class LiteXRemoteTransport:
             self._client.open()
         except OSError as exc:
             raise DriverError(f"cannot reach litex_server at {host}:{port} ({exc}); start "
-                              "it with 'litex_server --jtag' (jtagbone) first") from None
+                              "it first: 'litex_server --jtag' (jtagbone) for a board, "
+                              "'gearcontact rtl serve' for the simulated SoC") from None
 
     def read(self, addr: int) -> int:
         return int(self._client.read(addr))

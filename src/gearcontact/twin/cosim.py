@@ -30,6 +30,7 @@ import time
 import numpy as np
 
 from ..preview.stimulus import Stimulus
+from ..validation import UnusableInput
 
 __all__ = ["replay_on_rtl", "replay_on_soc", "TRACE_COLUMNS"]
 
@@ -110,28 +111,46 @@ def _compare(trace, got, out: dict, prefix: str, secs: float) -> dict:
 
 
 def replay_on_soc(trace: np.ndarray, e_prime_code: int, *,
-                  stencils: np.ndarray | None = None) -> dict:
-    """Replay the traced previews through the register driver of the simulated SoC
-    (``tri_core`` with ``stencils``, else ``bhseq_core``) and compare every output code
-    (as :func:`replay_on_rtl`).
+                  stencils: np.ndarray | None = None, board: tuple | None = None) -> dict:
+    """Replay the traced previews through the register driver of the SoC (``tri_core``
+    with ``stencils``, else ``bhseq_core``) and compare every output code (as
+    :func:`replay_on_rtl`).
+
+    ``board``: ``(host, port)`` of a ``litex_server`` in front of a board built with this
+    E' (or of ``gearcontact rtl serve``, :mod:`gearcontact.hw.serve`), reached through
+    LiteX's ``RemoteClient``; None: the Amaranth simulation of the SoC in this process.
 
     Returns
     -------
     dict
-        ``soc_previews``, ``soc_kind``, ``soc_mismatches``, ``soc_first_mismatch_step``,
-        ``soc_seconds``, ``soc_previews_per_s``.
+        ``soc_previews``, ``soc_kind``, ``soc_transport``, ``soc_mismatches``,
+        ``soc_first_mismatch_step``, ``soc_seconds``, ``soc_previews_per_s``.
     """
-    from ..hw.driver import HertzDriver, PreviewDriver, SimTransport
+    from ..hw.driver import (DriverError, HertzDriver, LiteXRemoteTransport, PreviewDriver,
+                             SimTransport, WrongIdentifier)
 
     n = int(trace.shape[0])
     kind = "bhseq_core" if stencils is None else "tri_core"
-    out = {"soc_previews": n, "soc_kind": kind, "soc_mismatches": 0,
+    where = "simulation" if board is None else f"litex_server {board[0]}:{board[1]}"
+    out = {"soc_previews": n, "soc_kind": kind, "soc_transport": where, "soc_mismatches": 0,
            "soc_first_mismatch_step": None, "soc_seconds": 0.0, "soc_previews_per_s": 0.0}
     if n == 0:
         return out
     t0 = time.perf_counter()
-    transport = SimTransport(kind, e_prime_code=int(e_prime_code))
-    drv = HertzDriver(transport, kind=kind) if stencils is None else PreviewDriver(transport)
+    try:
+        transport = (SimTransport(kind, e_prime_code=int(e_prime_code)) if board is None
+                     else LiteXRemoteTransport(host=board[0], port=int(board[1])))
+    except DriverError as exc:      # no server there: the user's address, not a bug
+        raise UnusableInput(str(exc)) from None
+    try:
+        drv = (HertzDriver(transport, kind=kind) if stencils is None
+               else PreviewDriver(transport))
+    except WrongIdentifier as exc:
+        transport.close()
+        need = ("tri_core (the C -> D chain: stage C per step)" if stencils is not None
+                else "bhseq_core (stage D alone: --curvatures exact)")
+        raise UnusableInput(f"the SoC at {where} is not the one this replay needs ({exc}): "
+                            f"it needs a {need}") from None
     got = np.zeros((n, 5 if stencils is None else 7), np.int64)
     try:
         for i in range(n):

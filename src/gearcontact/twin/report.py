@@ -76,6 +76,13 @@ def plot_spectrum(result, path, *, settle_fraction: float = 0.5, title: str = ""
     c, s = result.columns, result.summary
     sel = c["t_s"] >= settle_fraction * s["duration_s"]
     te = c["te_arcsec"][sel]
+    if te.size < 16:        # a few steps (lockstep runs): no spectrum to speak of
+        fig, ax = plt.subplots(figsize=(8, 4))
+        ax.text(0.5, 0.5, f"{te.size} samples after the transient: too short a run for a "
+                "spectrum", ha="center", va="center", transform=ax.transAxes)
+        ax.set_axis_off()
+        ax.set_title(f"{title} dynamic TE spectrum ({s['backend']})", fontsize=10)
+        return _save(fig, [ax], path)
     dt = float(np.median(np.diff(c["t_s"])))
     win = np.hanning(te.size)
     amp = 2.0 * np.abs(np.fft.rfft((te - te.mean()) * win)) / win.sum()

@@ -439,7 +439,7 @@ class TwinResult:
 
 def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: float,
              record_every: int = 1, settle_fraction: float = 0.5, initial_velocity=None,
-             progress: bool = False) -> TwinResult:
+             progress: bool = False, board: tuple | None = None) -> TwinResult:
     """Integrate the twin (kernel docstring for equations and integrator).
 
     Parameters
@@ -462,6 +462,10 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         Added to the nominal speeds of motor, pinion, gear, load at t = 0, rad/s.
     progress : bool
         Progress bar over the steps.
+    board : (str, int) or None
+        ``soc`` backend: ``(host, port)`` of the ``litex_server`` in front of the board
+        (or of ``gearcontact rtl serve``) that the previews are replayed on; None: the
+        SoC's simulation in this process.
 
     Returns
     -------
@@ -492,6 +496,9 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     if int(record_every) != record_every or record_every < 1:
         raise InputRangeError("record_every", record_every, "an integer >= 1")
     check_range("settle_fraction", settle_fraction, 0.0, 1.0, hi_open=True)
+    if board is not None and model.backend != "soc":
+        raise InputRangeError("board", f"{board[0]}:{board[1]}",
+                              f"only with the soc backend (not {model.backend})")
     freqs, h_omega = check_step(model, h)
     n_steps = int(round(dur / h))
     if n_steps < 1:
@@ -564,12 +571,16 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         if tcount[0] >= trace.shape[0]:
             raise ArithmeticError(f"{model.backend} trace full ({trace.shape[0]} previews)")
         be = model.backend
+        kw = {"stencils": fit[4][:tcount[0]] if stencil else None}
+        if be == "soc":
+            kw["board"] = board
         replay = cosim.replay_on_rtl if be == "rtl" else cosim.replay_on_soc
-        rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]),
-                     stencils=fit[4][:tcount[0]] if stencil else None)
+        rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]), **kw)
         if rtl[f"{be}_mismatches"]:
+            hint = ("" if board is None else f" (was the board built with E' code "
+                    f"{int(prm[K.P_ECODE])} MPa, this pair's?)")
             raise ArithmeticError(f"{be} != golden in {rtl[f'{be}_mismatches']} previews, "
-                                  f"first at step {rtl[f'{be}_first_mismatch_step']}")
+                                  f"first at step {rtl[f'{be}_first_mismatch_step']}{hint}")
     wall = time.perf_counter() - wall0
     cols = {name: rec[:rows, i] for i, name in enumerate(K.RECORD_COLUMNS)}
     eps = np.interp(np.mod(cols["psi_p_rad"], m.pitch_rad), m.psi_rad, m.eps_rad)
