@@ -185,6 +185,58 @@ def _targets_rows(dp: DesignPoint, t: SynthesisTargets, centre, length_mm: float
                  for n, u, a, g, tol in rows)
 
 
+def _recentred(residual, x, centre, tol_mm: float, lo, hi, *, rounds: int = 2) -> None:
+    """Evaluate ``x`` and move its ease-off centre (``x[0:2]``, pinion u, v offsets) by
+    the bearing centre's miss, at most ``rounds`` times (the vertex follows the relief
+    centre about one to one), until the centre is within ``tol_mm``; every evaluation
+    enters the search's ranking through ``residual``."""
+    x = np.array(x, float)
+    for _ in range(rounds + 1):
+        r = residual(x)
+        if r[0] >= 1e3:                     # no interior contact at this start
+            return
+        miss = np.array([r[0], r[1]]) * tol_mm
+        if np.all(np.abs(miss) <= tol_mm):
+            return
+        x[0:2] = np.clip(x[0:2] - miss, lo[0:2], hi[0:2])
+
+
+def _polish(residual, evals, lo, hi, targets: SynthesisTargets, length_mm: float, *,
+            rounds: int = 8) -> None:
+    """Decoupled fixed-point rounds from the best point when the least squares stalls
+    short of the targets (the residuals carry the TCA's discretization noise, which
+    misleads its finite-difference Jacobian: F2 spiral bevel coast stopped with the
+    pattern 7 % long). Each round scales the lengthwise crowning by the TE0 miss (the
+    parabolic TE level is proportional to it, Litvin & Fuentes 2004 sec. 21.8) and the
+    profile crowning by the pattern-length miss to the power -2 (the paint ellipse
+    half-length goes as the inverse square root of the relative curvature across the
+    path at a fixed paint thickness), exponents refined by secant from the rounds'
+    own results, and re-centres the ease-off (:func:`_recentred`)."""
+    x = np.array(evals["best"][1], float)
+    expo = {2: -2.0, 3: 1.0}                # d log(coefficient) / d log(miss)
+    prev = None
+    for _ in range(rounds):
+        r = residual(x)
+        if r[0] >= 1e3:
+            return
+        miss = {2: 1.0 + r[3] * targets.tol_length_rel, 3: 1.0 + r[2] * targets.tol_te0_rel}
+        if (max(abs(r[2]), abs(r[3])) <= 1.0 and abs(r[0]) <= 1.0 and abs(r[1]) <= 1.0):
+            return
+        if prev is not None:                # secant on log-log, kept to a sane range
+            for i in (2, 3):
+                dm = np.log(miss[i]) - np.log(prev[1][i])
+                dx = np.log(x[i]) - np.log(prev[0][i])
+                if abs(dm) > 1e-3 and abs(dx) > 1e-6:
+                    expo[i] = float(np.clip(dx / dm, 4.0 * expo[i], 0.25 * expo[i])
+                                    if expo[i] < 0 else
+                                    np.clip(dx / dm, 0.25 * expo[i], 4.0 * expo[i]))
+        prev = (x.copy(), miss)
+        for i in (2, 3):                    # log x moves by expo * (0 - log miss)
+            x[i] = x[i] * miss[i] ** (-expo[i])
+        x[0:2] -= np.array([r[0], r[1]]) * targets.tol_centre_mm
+        x = np.clip(x, lo, hi)
+
+
 def _angle_diff(a: float, b: float) -> float:
     """Difference of two axis directions, deg in (-90, 90]."""
     d = (a - b + 90.0) % 180.0 - 90.0
@@ -279,10 +331,15 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         return r
 
     # start grid over the two crownings (the objective has several basins: the path
-    # turns with the profile crowning), bearing centre at its target
-    for pc in (4.0, 8.0, 16.0):
+    # turns with the profile crowning), each start re-centred before it is ranked: the
+    # TE0 vertex moves with the crownings along an inclined path (F2 spiral bevel coast:
+    # 5 mm towards the toe at 4x the profile crowning), so a start ranked with its
+    # ease-off centre at the target bearing centre is ranked by that drift, not by the
+    # TE0 and pattern length it gives
+    for pc in (4.0, 8.0, 16.0, 24.0, 32.0):
         for lc in (0.06, 0.15, 0.4):
-            residual(np.array([eta_c, xi_c, pc * k, lc * k, 0.0]))
+            _recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
+                       targets.tol_centre_mm, lo, hi)
     if evals["best"][1] is None:
         raise ArithmeticError(f"ease-off synthesis of {pair.name} {side}: no start of the "
                               "search gave an interior TCA contact")
@@ -294,7 +351,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     # s0003 tip-edge preset; the F2 spiral bevel needs the fine one)
     x_grid = np.clip(evals["best"][1], lo, hi)
     for lc_scale in _LC_SCALES:
-        x0 = x_grid
+        x0 = np.clip(evals["best"][1], lo, hi)     # from the best point so far
         step = scale.copy()
         step[3] = lc_scale * k
         try:
@@ -305,6 +362,12 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         _, _, (coeffs, dp) = evals["best"]
         if all(r[5] for r in _targets_rows(dp, targets, centre, length)):
             break
+    _, _, (coeffs, dp) = evals["best"]
+    if not all(r[5] for r in _targets_rows(dp, targets, centre, length)):
+        try:
+            _polish(residual, evals, lo, hi, targets, length)
+        except _BudgetSpent:
+            pass
     _, _, (coeffs, dp) = evals["best"]
     return Synthesis(side, coeffs, targets, dp, centre, length,
                      _targets_rows(dp, targets, centre, length), evals["n"],
