@@ -95,6 +95,7 @@ from numba.extending import overload
 
 from ..analytic.hertz import hamrock_brewe_terms
 from ..preview.fit.golden_vec import fit_element
+from ..preview.fit.reference import principal_curvatures
 from ..preview.hertz.golden_vec import hertz_element
 
 
@@ -104,6 +105,8 @@ def _cbrt_overload(x):   # numba 0.6x has no math.cbrt; libm cbrt is the same fu
 
 
 _hb = njit(cache=True)(hamrock_brewe_terms)
+#: The package's closed-form eigen-solve of the fitted quadric (stage C's last step).
+_principal = njit(cache=True, inline="always")(principal_curvatures)
 
 #: Contact backends; ``rtl`` and ``soc`` run the golden loop and replay its previews on
 #: the RTL core / through the SoC register driver (:mod:`.cosim`).
@@ -200,7 +203,7 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
         c3 = cv_t[s, j, i, 0] + f * (cv_t[s, j, i + 1, 0] - cv_t[s, j, i, 0])
         c4 = cv_t[s, j, i, 1] + f * (cv_t[s, j, i + 1, 1] - cv_t[s, j, i, 1])
         c5 = cv_t[s, j, i, 2] + f * (cv_t[s, j, i + 1, 2] - cv_t[s, j, i, 2])
-        A, B = _principal(c3, c4, c5)
+        A, B, _ = _principal(c3, c4, c5)
         if B <= 0.0:
             return -1.0
         return _kappa_reference(A, B, we, prm, out3)
@@ -215,22 +218,6 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
         ff = 1
     return _kappa_golden(min(am, bm), max(am, bm), ff, we, prm, pow_lut, cbrt_lut, cst,
                          trace, tcount, fit, out3)
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _principal(c3, c4, c5):
-    """(A-, B-) of the fitted quadric: :func:`gearcontact.preview.fit.reference.
-    principal_curvatures` (the smaller one from the determinant, no cancellation)."""
-    h = c3 + c5
-    r = math.sqrt((c3 - c5) * (c3 - c5) + c4 * c4)
-    a = 0.5 * (h + r)
-    b = 0.5 * (h - r)
-    det = c3 * c5 - 0.25 * c4 * c4
-    if h > 0.0 and a != 0.0:
-        b = det / a
-    elif h < 0.0 and b != 0.0:
-        a = det / b
-    return a, b
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
