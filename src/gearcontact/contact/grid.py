@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import InputRangeError, check_array_finite, check_positive
+from ..validation import InputRangeError, check_array_finite, check_finite, check_positive
 
 __all__ = ["TangentGrid"]
 
@@ -98,8 +98,15 @@ class TangentGrid:
         nx, ny = _check_count("nx", nx), _check_count("ny", ny)
         dx = check_positive("dx_mm", dx_mm)
         dy = check_positive("dy_mm", dy_mm)
-        return cls(x0_mm + dx * np.arange(nx), y0_mm + dy * np.arange(ny),
-                   np.full(nx, dx), np.full(ny, dy))
+        x0, y0 = check_finite("x0_mm", x0_mm), check_finite("y0_mm", y0_mm)
+        # valid by construction (finite, widths > 0, increasing, uniform): the checks of
+        # __post_init__ are skipped (a loaded TE builds one grid per field)
+        grid = object.__new__(cls)
+        for name, arr in (("x_mm", x0 + dx * np.arange(nx)), ("y_mm", y0 + dy * np.arange(ny)),
+                          ("dx_mm", np.full(nx, dx)), ("dy_mm", np.full(ny, dy))):
+            object.__setattr__(grid, name, _readonly(arr))
+        object.__setattr__(grid, "_uniform", True)
+        return grid
 
     @classmethod
     def centered(cls, nx: int, ny: int, *, dx_mm: float, dy_mm: float,

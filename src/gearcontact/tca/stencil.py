@@ -47,6 +47,7 @@ Both give the same gaps to rounding (~1e-13 mm).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from inspect import signature
 from pathlib import Path
 
@@ -139,12 +140,7 @@ def _sweep(st: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarr
     """
     m = st.shape[0]
     if len(shape) == 2 and min(shape) > 1:
-        rows, cols = shape
-        jc, kc = rows // 2, cols // 2
-        j, k = (a.ravel() for a in np.indices(shape))
-        prev = np.where(j != jc, (j - np.sign(j - jc)) * cols + k,
-                        np.where(k != kc, j * cols + k - np.sign(k - kc), -1))
-        return np.lexsort((np.abs(k - kc), np.abs(j - jc))), prev
+        return _grid_sweep(tuple(int(n) for n in shape))
     scale = np.ptp(st, axis=0) if m else np.ones(2)
     scale[scale == 0.0] = 1.0
     x = st / scale
@@ -157,6 +153,22 @@ def _sweep(st: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarr
         near = np.argmin(d2, axis=1)
         closer = d2[np.arange(m), near] < np.einsum("ij,ij->i", xs, xs)
         prev[order[closer]] = order[near[closer]]
+    return order, prev
+
+
+@lru_cache(maxsize=16)
+def _grid_sweep(shape: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_sweep` of a grid: it depends on the shape alone (one per field size of a
+    loaded TE, not one per field)."""
+    rows, cols = shape
+    jc, kc = rows // 2, cols // 2
+    j, k = (a.ravel() for a in np.indices(shape))
+    prev = np.where(j != jc, (j - np.sign(j - jc)) * cols + k,
+                    np.where(k != kc, j * cols + k - np.sign(k - kc), -1))
+    order = np.lexsort((np.abs(k - kc), np.abs(j - jc))).astype(np.int64)
+    prev = prev.astype(np.int64)
+    for a in (order, prev):
+        a.setflags(write=False)
     return order, prev
 
 
