@@ -99,11 +99,7 @@ class ToolUnavailable(InputRangeError):
 def check_soc(args) -> None:
     """Before the output directory is touched (soc writes in place): LiteX present,
     ``--lanes`` a lane count of the gap core."""
-    from ..preview.gap.reference import check_lanes
-    try:
-        check_lanes(args.lanes)
-    except InputRangeError as exc:
-        raise InputRangeError("--lanes", args.lanes, exc.allowed) from None
+    _check_lanes(args)
     try:
         import litex  # noqa: F401
         import migen  # noqa: F401
@@ -113,11 +109,19 @@ def check_soc(args) -> None:
                               "(or pip install 'gearcontact[board]')") from None
 
 
+def _check_lanes(args) -> None:
+    """``--lanes`` a lane count of the gap core."""
+    from ..preview.gap.reference import check_lanes
+    try:
+        check_lanes(args.lanes)
+    except InputRangeError as exc:
+        raise InputRangeError("--lanes", args.lanes, exc.allowed) from None
+
+
 def check_serve(args) -> None:
     if not 0 < args.port < 65536:
         raise InputRangeError("--port", args.port, "a TCP port in [1, 65535]")
-    if args.lanes not in (8, 16, 32, 64):
-        raise InputRangeError("--lanes", args.lanes, "one of 8, 16, 32, 64")
+    _check_lanes(args)
     if args.pair is not None:
         from ..geometry.pair import load_pair
         args.pair_obj = load_pair(args.pair)     # a bad file: named error, exit 2

@@ -47,7 +47,6 @@ class SimComm:
             raise InputRangeError("kind", kind, f"one of {list(SOC_KINDS)}")
         self.kind, self.e_prime_code, self.lanes = kind, e_prime_code, lanes
         self.transport = None
-        self.accesses = 0
 
     def open(self) -> None:
         from .driver import SimTransport
@@ -65,14 +64,12 @@ class SimComm:
         n = 1 if length is None else int(length)
         step = 4 if burst == "incr" else 0
         words = [self.transport.read(addr + step * i) for i in range(n)]
-        self.accesses += n
         return words[0] if length is None else words
 
     def write(self, addr: int, data) -> None:
         """A word or a list of words at consecutive addresses."""
         for i, w in enumerate(data if isinstance(data, (list, tuple)) else [data]):
             self.transport.write(addr + 4 * i, int(w))
-            self.accesses += 1
 
 
 def parse_address(text: str, *, field: str = "address") -> tuple[str, int]:
@@ -89,10 +86,9 @@ def parse_address(text: str, *, field: str = "address") -> tuple[str, int]:
 
 
 def serve(kind: str, *, host: str = "127.0.0.1", port: int = 1234,
-          e_prime_code: int | None = None, lanes: int = 16,
-          stop: threading.Event | None = None, ready: threading.Event | None = None) -> None:
+          e_prime_code: int | None = None, lanes: int = 16) -> None:
     """Serve the simulated SoC ``kind`` on ``host:port`` with LiteX's ``RemoteServer``
-    until ``stop`` is set (or forever; Ctrl-C ends the command).
+    until interrupted (Ctrl-C ends the command).
 
     Raises
     ------
@@ -123,8 +119,6 @@ def serve(kind: str, *, host: str = "127.0.0.1", port: int = 1234,
         raise DriverError(f"cannot listen on {host}:{port} ({exc})") from None
     try:
         server.start(1)
-        if ready is not None:
-            ready.set()
-        (stop or threading.Event()).wait()
+        threading.Event().wait()
     finally:
         server.close()

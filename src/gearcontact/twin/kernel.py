@@ -184,14 +184,19 @@ def _kappa_golden(a_code, b_code, fit_flags, w, prm, pow_lut, cbrt_lut, cst, tra
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _row(cv_t, s, j, i, f, q):
+    """Column ``q`` of pair j's curvature source, linear between rows i and i + 1."""
+    return cv_t[s, j, i, q] + f * (cv_t[s, j, i + 1, q] - cv_t[s, j, i, q])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tcount, fit,
            out3):
     """kappa of pair j of table s at row interval (i, f) and evaluation load ``we``:
     the preview's stage D on the curvatures of the source ``prm[P_STAGEC]``
     (:data:`CURVATURE_SOURCES`); -1 where the preview flags its inputs."""
     if prm[P_STAGEC] == 0.0:
-        A = cv_t[s, j, i, 0] + f * (cv_t[s, j, i + 1, 0] - cv_t[s, j, i, 0])
-        B = cv_t[s, j, i, 1] + f * (cv_t[s, j, i + 1, 1] - cv_t[s, j, i, 1])
+        A, B = _row(cv_t, s, j, i, f, 0), _row(cv_t, s, j, i, f, 1)
         if backend == 0:
             return _kappa_reference(A, B, we, prm, out3)
         return _kappa_golden(np.int64(math.floor(min(A, B) * _S20 + 0.5)),
@@ -200,10 +205,8 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
     if backend == 0:
         # stage C is linear in the samples: the fit of the samples interpolated between
         # two rows is the interpolation of the rows' fitted coefficients (exactly)
-        c3 = cv_t[s, j, i, 0] + f * (cv_t[s, j, i + 1, 0] - cv_t[s, j, i, 0])
-        c4 = cv_t[s, j, i, 1] + f * (cv_t[s, j, i + 1, 1] - cv_t[s, j, i, 1])
-        c5 = cv_t[s, j, i, 2] + f * (cv_t[s, j, i + 1, 2] - cv_t[s, j, i, 2])
-        A, B, _ = _principal(c3, c4, c5)
+        A, B, _ = _principal(_row(cv_t, s, j, i, f, 0), _row(cv_t, s, j, i, f, 1),
+                             _row(cv_t, s, j, i, f, 2))
         if B <= 0.0:
             return -1.0
         return _kappa_reference(A, B, we, prm, out3)
@@ -211,8 +214,7 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
     # bit-exact fit core, its latched codes into stage D (the C -> D chain)
     g = fit[2]
     for q in range(cv_t.shape[3]):
-        x = cv_t[s, j, i, q] + f * (cv_t[s, j, i + 1, q] - cv_t[s, j, i, q])
-        g[0, q] = np.int64(math.floor(x * _S16 + 0.5))
+        g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
     am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
     if ff < 0:      # a sample beyond GAP's +-32768 mm: flagged like a coefficient overflow
         ff = 1

@@ -33,6 +33,7 @@ from ..contact.lte import preview_balance
 from ..contact.pair_ltca import ARCSEC_PER_RAD
 from ..preview.fit.golden import element_constants
 from ..preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
+from ..preview.fit.reference import principal_curvatures
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
@@ -98,6 +99,17 @@ class TwinModel:
     reverse_note: str = ""
     curvatures: str = "stencil"
 
+    @property
+    def curvature_source(self) -> str:
+        """The curvature source the kernel runs (:func:`_curvature_source`)."""
+        return _curvature_source(self.backend, self.curvatures)
+
+
+def _curvature_source(backend: str, curvatures: str) -> str:
+    """The table backend has no preview: its arrays are packed with the exact
+    curvatures, never read; every other backend runs ``curvatures``."""
+    return "exact" if backend == "table" else curvatures
+
 
 def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
                 backend: str = "reference", table=None, reverse: MeshTable | None = None,
@@ -145,8 +157,8 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                np.ascontiguousarray(table.load_n ** (2.0 / 3.0)))
     else:
         tab = (np.ones((1, 2)), np.zeros((1, 2)), np.zeros((1, 2)))
-    source = "exact" if backend == "table" else curvatures
     fit_w, fit_cst = element_constants()
+    source = _curvature_source(backend, curvatures)
     arrays = {**_stack(mesh, reverse if reverse is not None else mesh, source,
                        golden=backend not in ("reference", "table")),
               "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
@@ -208,8 +220,8 @@ def _check_envelope(mesh: MeshTable, source: str = "exact") -> None:
     v = mesh.valid
     if source == "stencil":
         c = _fitted_coefficients(mesh)
-        h, r = c[..., 0] + c[..., 2], np.hypot(c[..., 0] - c[..., 2], c[..., 1])
-        a_all, b_all, what = 0.5 * (h + r), 0.5 * (h - r), "stage-C fitted "
+        a_all, b_all, _ = np.vectorize(principal_curvatures)(c[..., 0], c[..., 1], c[..., 2])
+        what = "stage-C fitted "
     else:
         a_all, b_all, what = mesh.A_minus_per_mm, mesh.B_minus_per_mm, ""
     for name, arr in (("A_minus_per_mm", a_all), ("B_minus_per_mm", b_all)):
@@ -252,8 +264,7 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_PITCH] = m.pitch_rad
     prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
     prm[K.P_NROW] = len(m.psi_rad)
-    prm[K.P_STAGEC] = K.CURVATURE_SOURCES["exact" if model.backend == "table"
-                                          else model.curvatures]
+    prm[K.P_STAGEC] = K.CURVATURE_SOURCES[model.curvature_source]
     return prm
 
 
