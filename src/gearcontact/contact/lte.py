@@ -350,13 +350,19 @@ def solve_phase(contacts, fields: PairFields, torque_nmm: float, materials, *, t
         built = [fields.block(pc, rigid=rigid) for pc in reach]
         blocks = [b for b, _ in built]
         res = solve_mesh_lcp(blocks, torque_nmm, materials=materials, tol=tol,
-                             warm_start=[warm.get(pc.offset) for pc in reach],
+                             warm_start=[_warm(warm.get(pc.offset), off)
+                                         for pc, (_, off) in zip(reach, built)],
                              rotation_guess_rad=theta_pre)
         late = [pc for pc in contacts if pc not in reach
                 and pc.opening_arcsec / ARCSEC_PER_RAD < res.rotation_rad]
         if not late:
             return res, reach, blocks, [o for _, o in built]
         reach = reach + late
+
+
+def _warm(p, off):
+    """A warm-start pressure map without load on the field's off-flank cells."""
+    return None if p is None or p.shape != off.shape else np.where(off, 0.0, p)
 
 
 def check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
