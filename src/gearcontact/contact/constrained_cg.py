@@ -26,10 +26,13 @@ rescaling) plus the cells the step clipped or re-admitted, from the real-space k
 (and the low-rank part at those cells), so a step costs two batched transforms; it is
 recomputed after a step departing in more than :data:`_TRACKED` cells and every
 :data:`_REFRESH` steps. A step that re-admits
-cells never ends the iteration. At convergence the gap is checked on the whole fields;
-penetration outside the windows (e.g. an unloaded pair closing) widens those blocks'
-windows over it, and after :data:`_CHECKS` such rounds the iteration uses the whole
-fields.
+cells never ends the iteration. The gap is checked on the whole fields once when the
+change first falls below :data:`_PROBE` and again at convergence; penetration outside
+the windows (e.g. an unloaded pair closing) widens those blocks' windows over it, and
+after :data:`_CHECKS` such rounds the iteration uses the whole fields. (The early probe
+finds a pair that starts without load before the windows' iteration has converged to
+the tolerance: s0003's multi-tooth solve with bending, where pair -3 closes only under
+the larger rotation, takes 38 steps instead of 56.)
 
 References
 ----------
@@ -72,6 +75,7 @@ class _Stop(Enum):
     STALLED = 3    # rt <= 0 with t == 0: converged to round-off
     LOST = 4       # rt <= 0 otherwise: lost descent
     MAX_ITER = 5
+    PENETRATES = 6  # the probe found cells outside the windows closing
 
 
 @dataclass(frozen=True, eq=False)
@@ -108,6 +112,10 @@ _REFRESH = 50
 _TRACKED = 16
 #: Whole-field checks that may widen the windows before the whole fields are used.
 _CHECKS = 3
+#: Relative change at which the windows' iteration first checks the whole fields for
+#: closing cells outside the windows (a pair that carried nothing at the start):
+#: widening then saves converging to the tolerance twice.
+_PROBE = 1e-2
 #: Cells by which a block's window exceeds its contact box (where cells are re-admitted).
 _MARGIN = 3
 
@@ -335,25 +343,29 @@ def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
     while True:
         win = _Windows(op, box, whole)
         xr = win.gather(x)
+
+        def probe(xw, _win=win):
+            x.fill(0.0)
+            _win.scatter(xw, x)
+            return _penetration(op, h, x, _win)
+
         stop, it, rbox = _window_steps(win, win.gather(h), xr, total, tol, it, max_iter,
-                                       precondition)
+                                       precondition, None if whole else probe)
         x.fill(0.0)
         win.scatter(xr, x)
         if stop is _Stop.GROW:
             box[win.blocks] = rbox + np.repeat(win.org, 2, axis=1)
             continue
-        u = op.evaluate_disp(x)
-        ok = stop in (_Stop.CONVERGED, _Stop.STALLED)
-        if not ok or whole:
-            break
-        s = u + h
-        on = x > 0.0
-        s -= s[on].mean()
-        for k, (j, i) in zip(win.blocks, win.org):  # the windows re-admitted cells
-            s[k, j:j + win.shape[0], i:i + win.shape[1]] = 0.0
-        pen = (s < 0.0) & ~on
-        if not pen.any():
-            break
+        if stop is _Stop.PENETRATES:
+            pen = probe(xr)
+        else:
+            u = op.evaluate_disp(x)
+            ok = stop in (_Stop.CONVERGED, _Stop.STALLED)
+            if not ok or whole:
+                break
+            pen = _penetration(op, h, x, win, u)
+            if pen is None:
+                break
         # a block closing outside the windows (e.g. a pair that carried nothing): widen
         # those blocks' windows over the penetrating cells; after a few rounds use the
         # whole fields
@@ -373,10 +385,27 @@ def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
     return CgOutcome(x=x, u=u, iterations=int(it), status=status)
 
 
-def _window_steps(win: _Windows, h, x, total, tol, it, max_iter, precondition):
+def _penetration(op, h, x, win, u=None):
+    """Cells outside ``win``'s windows that the loads ``x`` (whole fields) make
+    penetrate (gap below the contact set's mean), as a mask over the fields; None if
+    there are none. ``u``: ``C x`` when already computed."""
+    s = (op.evaluate_disp(x) if u is None else u) + h
+    on = x > 0.0
+    s -= s[on].mean()
+    for k, (j, i) in zip(win.blocks, win.org):  # the windows re-admitted cells
+        s[k, j:j + win.shape[0], i:i + win.shape[1]] = 0.0
+    pen = (s < 0.0) & ~on
+    return pen if pen.any() else None
+
+
+def _window_steps(win: _Windows, h, x, total, tol, it, max_iter, precondition, probe):
     """CG steps on ``win``'s windows (``h``, ``x``: window stacks; ``x`` updated in
     place). Returns ``(stop, it, box)``: a :class:`_Stop`, the step count so far and
-    the contact boxes in window coordinates."""
+    the contact boxes in window coordinates.
+
+    ``probe(x)`` (or None), called once when the change first falls below
+    :data:`_PROBE`, tells whether cells outside the windows close (a mask, else
+    None): then the windows are widened at once, not after converging on them."""
     op = win.op
     box = _boxes(x)
     u = op.evaluate_disp(x, live=box[:, 1] > box[:, 0])
@@ -405,6 +434,10 @@ def _window_steps(win: _Windows, h, x, total, tol, it, max_iter, precondition):
                                                   total, box, cells, dval)
         if change <= tol * total and conj:  # not on a step that re-admitted cells:
             return _Stop.CONVERGED, it, box  # their loads are not balanced yet
+        if probe is not None and change <= _PROBE * total and conj:
+            if probe(x) is not None:
+                return _Stop.PENETRATES, it, box
+            probe = None
         if not win.holds(box):
             return _Stop.GROW, it, box
         if not tracked or it % _REFRESH == 0:
