@@ -1,5 +1,6 @@
 """Benchmark: loaded TE of s0003 over one pinion pitch (>= 61 phases, rigid teeth;
-issue 4 target <= 2 s per pitch), and the single-pair LTCA at P0.
+target <= 0.5 s CPU per pitch, issue 10; issue 4 had asked <= 2 s), and the single-pair
+LTCA at P0.
 
 The TCA (61 phases, neighbouring pairs) runs once untimed. Then
 :func:`gearcontact.contact.lte.loaded_te` at 64.5 N·m is timed as a whole (wall-clock
@@ -44,7 +45,7 @@ from gearcontact.contact.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 
-TARGET_S = 2.0
+TARGET_S = 0.5
 TARGET_BENDING_S = 1.0
 TARGET_SINGLE_MS = 20.0
 PUBLISHED_MS_PER_PHASE = 2005.0
@@ -115,7 +116,7 @@ def main(argv=None) -> int:
     k = len(res.phi1_rad)
     fw, fc = clock.get("fields")
     bw, bc = clock.get("factors")
-    stages = [("one pitch (total)", (wall, cpu)), ("  gap fields", (fw - bw, fc - bc)),
+    stages = [("one pitch (total)", (wall, cpu)), ("  gap fields", (fw, fc)),
               ("  bending factors", (bw, bc)),
               ("  coupled LCP solves", clock.get("solves")),
               ("  compliance solves (P0)", clock.get("compliance"))]

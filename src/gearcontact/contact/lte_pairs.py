@@ -98,6 +98,7 @@ class PairFields:
         self.bending = bending
         self.cache: dict[int, tuple] = {}
         self.factors: dict[int, np.ndarray] = {}
+        self._posed: dict[int, tuple] = {}  # (field, posed point) awaiting a factor
         #: (origin (3,), frame (3, 3): columns e_s, e_t, n) of each field, meshing frame
         self.frames: dict[int, tuple] = {}
         self.seconds = 0.0
@@ -134,8 +135,23 @@ class PairFields:
             hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
             self.cache[pc.path_index] = hit
             self.frames[pc.path_index] = (f.origin_mm, f.frame)
-            if self.bending is not None:
-                self.factors[pc.path_index] = self._bending_factor(f, mp)
+            if self.bending is not None:  # its factor when a solve first needs it
+                self._posed[pc.path_index] = (f, mp)
+            self.seconds += time.perf_counter() - t0
+        return hit
+
+    def factor(self, pc: PairContact) -> np.ndarray | None:
+        """The bending factor of a pair's field (None without bending), made when first
+        asked for: pairs whose field only gives their opening (edge pairs out of
+        reach) never need one."""
+        if self.bending is None:
+            return None
+        self.get(pc)
+        hit = self.factors.get(pc.path_index)
+        if hit is None:
+            t0 = time.perf_counter()
+            hit = self.factors[pc.path_index] = self._bending_factor(
+                *self._posed.pop(pc.path_index))
             self.seconds += time.perf_counter() - t0
         return hit
 
@@ -153,7 +169,7 @@ class PairFields:
         """(block, off-flank mask) of a pair; ``rigid``: without its bending factor."""
         gap, grid, off, lever = self.get(pc)
         return PairBlock(gap, grid, lever, 0.0,
-                         bending_factor=None if rigid else self.factors.get(pc.path_index)), off
+                         bending_factor=None if rigid else self.factor(pc)), off
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its

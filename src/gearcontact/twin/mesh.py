@@ -231,7 +231,7 @@ def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:
     flank carry no pressure.
     """
     gap, grid, off, lever = fields.get(pc)
-    f = fields.factors[pc.path_index]
+    f = fields.factor(pc)
     hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, torque_nmm / pc.lever_mm,
                              e_prime_mpa=fields.e_prime)
     s, t = np.meshgrid(grid.x_mm, grid.y_mm)
