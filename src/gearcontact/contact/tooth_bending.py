@@ -156,7 +156,7 @@ class FlankRows:
     side : str
     knots_xi, knots_eta : ndarray
         B-spline knots along the face (xi) and the height (eta).
-    coef : ndarray (n_xi, n_eta, r)
+    coef : ndarray (n_xi, n_eta, r), float32
         Spline coefficients, (mm/N)^(1/2).
     """
 
@@ -190,7 +190,10 @@ def flank_rows(shell: ShellModel, side: str) -> FlankRows:
         rows = (phi @ flank_map(shell, side)).reshape(len(xi), len(eta), -1)
     along_xi = make_interp_spline(xi, rows, k=3, axis=0)
     along_eta = make_interp_spline(eta, along_xi.c, k=3, axis=1)
-    coef = np.ascontiguousarray(np.moveaxis(along_eta.c, 0, 1))
+    # single precision: half the memory a field's rows stream (~20 MB for both
+    # teeth); the rows' error stays the spline's (<= 1e-4 of the largest compliance,
+    # the rounding adds < 1e-9), and the sums of _tensor_rows stay double
+    coef = np.ascontiguousarray(np.moveaxis(along_eta.c, 0, 1), dtype=np.float32)
     for a in (along_xi.t, along_eta.t, coef):
         a.setflags(write=False)
     return FlankRows(shell=shell, side=side, knots_xi=along_xi.t, knots_eta=along_eta.t,
