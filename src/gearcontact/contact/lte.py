@@ -422,9 +422,11 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
 
     ``c = l0^2 (theta(T+) - theta(T-)) / (T+ - T-)`` with ``T+- = T (1 +- eps)``: with the
     transmitting pair alone (contact compliance ``d delta / d W`` of that pair) and
-    with all pairs within reach (mesh compliance), for LCP and preview.
+    with all pairs within reach (mesh compliance), for LCP and preview. ``ref``:
+    (contacts, preview contacts, pressures per pair offset) of the reference phase;
+    the solves start from those pressures.
     """
-    contacts, valid = ref
+    contacts, valid, warm = ref
     main = next(pc for pc in valid if pc.opening_arcsec == 0.0 and not pc.edge)
     l0 = main.lever_mm
     out = {"reference_lever_mm": float(l0)}
@@ -436,7 +438,7 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
         for sgn in (1.0, -1.0):
             tq = torque * (1.0 + sgn * eps)
             th = preview_balance(lv, gs, kap, tq)[0]
-            res, *_ = solve_phase(group, fields, tq, materials, tol=tol, warm={},
+            res, *_ = solve_phase(group, fields, tq, materials, tol=tol, warm=warm,
                                    theta_pre=th)
             if not res.converged:
                 raise ArithmeticError(f"compliance at {tq / 1e3:g} N·m: {res.message}")
@@ -587,7 +589,7 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
                 th.append(r2.rotation_rad)
             k_arr[k] = 2.0 * eps * t / (th[0] - th[1])          # N·m/rad
         if k == k_ref:
-            ref = (contacts, valid)
+            ref = (contacts, valid, warm)
     check_pair_window(w_lcp, cycle.pair_offsets)   # sel holds the first and last phase
     comp = _compliances(ref, fields, torque, eps, materials, tol)
     # loads of pairs that lose their mating point; pair j at phase 0 is pair j - 1 at
