@@ -80,10 +80,12 @@ def test_lte_with_bending(out, tmp_path):
     assert bent["mesh_compliance_lcp_mm_per_n"] > rigid["mesh_compliance_lcp_mm_per_n"]
     assert bent["reference_rotation_lcp_arcsec"] > rigid["reference_rotation_lcp_arcsec"]
     # one run gives the mesh stiffness rigid and with bending: its rigid stiffness is the
-    # rigid run's (the same fields and solves: identical to rounding, 1e-9), the bending
-    # one is softer, and at P0 it is the inverse of the mesh compliance (same step, 1e-6)
+    # rigid run's (the same fields and LCPs, started from the bending instead of the
+    # rigid solution: equal to the solver tolerance 1e-8 over the 10 % torque step of
+    # the difference quotient, 1e-6), the bending one is softer, and at P0 it is the
+    # inverse of the mesh compliance (same step, 1e-6)
     for key in ("mesh_stiffness_rigid_n_per_mm_mean", "mesh_stiffness_rigid_nm_per_rad_mean"):
-        assert bent[key] == pytest.approx(rigid[key], rel=1e-9)
+        assert bent[key] == pytest.approx(rigid[key], rel=1e-6)
     assert "mesh_stiffness_bending_n_per_mm_mean" not in rigid
     assert bent["mesh_stiffness_bending_n_per_mm_max"] < bent["mesh_stiffness_rigid_n_per_mm_min"]
     assert bent["reference_mesh_stiffness_bending_n_per_mm"] == pytest.approx(

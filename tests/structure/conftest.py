@@ -1,4 +1,4 @@
-"""Shared fixtures: the s0003 pair and its flanks (built once per session)."""
+"""Shared fixtures: the s0003 pairs and their flanks (built once per session)."""
 
 import pytest
 
@@ -10,3 +10,11 @@ from gearcontact.geometry.pair import load_pair
 def s0003():
     pair = load_pair("s0003-centred")
     return pair, build_flanks(pair)
+
+
+@pytest.fixture(scope="session")
+def pairs(s0003):
+    """``name -> (pair, flanks)`` of both calibration pairs: s0003-centred and the
+    calibrated s0003 (deeper teeth: 2.9 mm against 2.4 mm)."""
+    pair = load_pair("s0003")
+    return {"s0003-centred": s0003, "s0003": (pair, build_flanks(pair))}

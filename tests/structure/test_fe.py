@@ -7,18 +7,20 @@ Truths:
   the coarse default mesh adds ~1-2 %);
 - the same for the shell (independent code): shell and FE agree within 3 % there;
 - Maxwell-Betti symmetry of the FE compliance before symmetrization (1e-9 relative);
-- shell vs FE on the real s0003 teeth under distributed loads (segment loads of 5 node
-  columns around a 3 x 3 drive-flank lattice and line loads over the face at its three
-  heights; deflection of the coast-flank points behind the loaded ones): within 25 %.
-  Point loads are not compared: neither model has a converged local value under a
-  point load (Mindlin: log-singular, grows with the Ritz order; 3D: 1/r, grows with
-  mesh refinement) and the local part is the half-space's in the LTCA. The shell is a
-  plate (no membrane-curvature coupling) on a Winkler-type root foundation, which
-  cannot follow both the short-range and the whole-face response of the FE rim
-  segment; the FE rim segment (free sides, clamped bottom, approximate fillet) is
-  itself a model of the real rim. Measured: fine calibration mesh pinion 0.76..1.20,
-  gear 0.79..1.09 (slow suite); default coarse mesh pinion 0.84..1.12, gear
-  0.77..0.99;
+- shell vs FE on the real teeth of both calibration pairs (s0003-centred and the
+  calibrated s0003, whose teeth are 24 % deeper) under distributed loads (segment
+  loads of 5 node columns around a 3 x 3 drive-flank lattice and line loads over the
+  face at its three heights; deflection of the coast-flank points behind the loaded
+  ones): within 15 % on the default mesh (measured pinion 0.89..1.11, gear
+  0.91..1.05) and 25 % on the calibration mesh (slow suite; measured pinion
+  0.82..1.22, gear 0.90..1.13). Point loads are not compared: neither model has a
+  converged local value under a point load (Mindlin: log-singular, grows with the
+  Ritz order; 3D: 1/r, grows with mesh refinement) and the local part is the
+  half-space's in the LTCA. What remains: the plate (no membrane-curvature coupling,
+  no through-thickness compression) follows the FE's whole-face line load low on the
+  flank less well than its short segment loads (docs/bending.md sec. 3); the FE rim
+  segment (free sides, clamped bottom, approximate fillet) is itself a model of the
+  real rim;
 - bad input: mesh sizes, rim / fillet sizes -> InputRangeError (before meshing); a
   body with crossing faces -> InputRangeError "FE mesh" (inverted cells).
 """
@@ -74,13 +76,14 @@ def test_fe_reciprocity():
     assert np.allclose(raw, raw.T, rtol=1e-9, atol=0)
 
 
-#: Shell vs FE under distributed loads (module docstring).
-TOLERANCE = 0.25
+#: Shell vs FE under distributed loads, default and calibration mesh (module docstring).
+TOLERANCE, TOLERANCE_FINE = 0.15, 0.25
 
 
+@pytest.mark.parametrize("name", ["s0003-centred", "s0003"])
 @pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_shell_vs_fe_coarse(s0003, member):
-    pair, flanks = s0003
+def test_shell_vs_fe_coarse(pairs, name, member):
+    pair, flanks = pairs[name]
     res = flank_compliance(pair, member, flanks=flanks, fe=True, fe_mesh=FeMesh(12, 6, 3, 4))
     ratio = res.ratios()
     assert np.all(np.abs(ratio - 1.0) <= TOLERANCE), ratio
@@ -91,13 +94,14 @@ def test_shell_vs_fe_coarse(s0003, member):
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("name", ["s0003-centred", "s0003"])
 @pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_shell_vs_fe_fine(s0003, member):
-    pair, flanks = s0003
+def test_shell_vs_fe_fine(pairs, name, member):
+    pair, flanks = pairs[name]
     res = flank_compliance(pair, member, flanks=flanks, xi=(-0.5, 0.0, 0.5),
                            eta=(-0.5, 0.0, 0.5), fe=True, fe_mesh=FeMesh(20, 8, 4, 6))
     ratio = res.ratios()
-    assert np.all(np.abs(ratio - 1.0) <= TOLERANCE), ratio
+    assert np.all(np.abs(ratio - 1.0) <= TOLERANCE_FINE), ratio
 
 
 def test_bad_input(s0003):

@@ -17,6 +17,7 @@ import numpy as np
 from ..geometry.flank import build_flanks
 from ..geometry.pair import load_pair
 from ..structure.compliance import FeMesh, flank_compliance, write_compliance
+from ..structure.shell import ORDER, ORDER_FACE
 from ..validation import InputRangeError
 from .options import add_pair_arguments, check_count, check_pair_arguments, run_timings
 from .outdir import final_path
@@ -31,11 +32,11 @@ def register(sub) -> None:
     p.add_argument("--side", choices=("drive", "coast"), default=None,
                    help="loaded flank (default: the pair's design side, the one its "
                         "contact uses)")
-    p.add_argument("--order", type=int, default=6,
-                   help="Legendre order of the Ritz basis over the tooth height, 1..16 "
-                        "(default 6)")
-    p.add_argument("--order-face", type=int, default=16,
-                   help="Legendre order along the face, 1..24 (default 16)")
+    p.add_argument("--order", type=int, default=ORDER,
+                   help="Legendre order of the Ritz basis over the height of rim and "
+                        f"tooth, 1..16 (default {ORDER})")
+    p.add_argument("--order-face", type=int, default=ORDER_FACE,
+                   help=f"Legendre order along the face, 1..24 (default {ORDER_FACE})")
     p.add_argument("--points", type=int, nargs=2, default=(3, 3), metavar=("NXI", "NETA"),
                    help="flank lattice: points along the face and the height (default 3 3)")
     p.add_argument("--fe", action="store_true",

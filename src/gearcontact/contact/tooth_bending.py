@@ -37,7 +37,7 @@ import numpy as np
 from numba import njit
 from scipy.interpolate import CubicSpline, make_interp_spline
 
-from ..structure.shell import ShellModel, tooth_shell
+from ..structure.shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
 from ..threads import one_blas_thread
 from ..validation import check_range
 
@@ -303,10 +303,10 @@ def _spline_weights_cached(at: tuple, n: int) -> np.ndarray:
     return out
 
 
-def tooth_bending(flanks, pair, *, side: str, order: int = 6, order_face: int = 16,
+def tooth_bending(flanks, pair, *, side: str, order: int = ORDER, order_face: int = ORDER_FACE,
                   scale: float = 1.0) -> ToothBending:
     """The :class:`ToothBending` of a pair (shell models cached per flank set; orders
-    and root foundations as calibrated, :func:`~gearcontact.structure.shell.tooth_shell`)."""
+    and the members' rims as calibrated, :func:`~gearcontact.structure.shell.tooth_shell`)."""
     check_range("bending scale", scale, 0.0, 1e6)
     return ToothBending(
         pinion=tooth_shell(flanks, "pinion", material=pair.pinion_material, order=order,

@@ -34,7 +34,8 @@ import numpy as np
 
 from ..geometry.flank import FlankSet, build_flanks
 from ..validation import InputRangeError
-from .shell import RootFoundation, tooth_shell
+from .rim import RimSegment
+from .shell import ORDER, ORDER_FACE, tooth_shell
 from .tooth import LoadPoints
 
 __all__ = ["FlankCompliance", "FeMesh", "flank_compliance", "write_compliance",
@@ -157,8 +158,8 @@ def _distributed(G: np.ndarray, sets) -> np.ndarray:
 
 def flank_compliance(pair, member: str, *, side: str = "drive",
                      flanks: FlankSet | None = None,
-                     xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = 6,
-                     order_face: int = 16, foundation: RootFoundation | None = None,
+                     xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = ORDER,
+                     order_face: int = ORDER_FACE, rim: RimSegment | None = None,
                      fe: bool = False, fe_mesh: FeMesh = FeMesh()) -> FlankCompliance:
     """Compliance of one tooth of ``member`` at the lattice ``xi x eta`` of its flank
     ``side`` (loaded there, normal into the tooth).
@@ -181,8 +182,9 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
     order, order_face : int
         Ritz orders of the shell over the height and along the face
         (:func:`~.shell.build_shell`).
-    foundation : RootFoundation or None
-        Root / rim coefficients (default: the calibrated ones of the member).
+    rim : RimSegment or None
+        Fillet and rim of the shell (default: the member's calibrated one,
+        :func:`~.shell.tooth_shell`); the FE meshes the same depth and fillet.
     fe : bool
         Also solve the 3D FE model (needs the ``fe`` extra).
     fe_mesh : FeMesh
@@ -207,7 +209,7 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
     I, J = I.ravel(), J.ravel()
     nodes, sets, heights = _load_sets(I, J, fe_mesh.n_xi)
     shell = tooth_shell(flanks, member, material=material, order=order,
-                        order_face=order_face, foundation=foundation)
+                        order_face=order_face, rim=rim)
     tooth = shell.body
     lattice = tooth.points_at(side, xl[I], el[J])
     nx, ny = xl[nodes[:, 0]], el[nodes[:, 1]]
@@ -222,7 +224,8 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
         from .fe import build_fe
 
         model = build_fe(tooth, n_xi=fe_mesh.n_xi, n_eta=fe_mesh.n_eta,
-                         n_zeta=fe_mesh.n_zeta, n_rim=fe_mesh.n_rim)
+                         n_zeta=fe_mesh.n_zeta, n_rim=fe_mesh.n_rim,
+                         rim_depth_mm=shell.rim.depth_mm, fillet_mm=shell.rim.fillet_mm)
         pd, vd = model.node_points(side, nx, ny)
         pc, vc = model.node_points(back, nx, ny)
         G = model.compliance(concat_points(pd, pc), np.concatenate([vd, vc]))
@@ -235,7 +238,8 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
 
 
 def write_compliance(result: FlankCompliance, out, *, pair, flanks: FlankSet,
-                     figures: bool = True, order: int = 6, order_face: int = 16
+                     figures: bool = True, order: int = ORDER,
+                     order_face: int = ORDER_FACE
                      ) -> list[Path]:
     """Write ``compliance.json`` and ``deflection.png`` into ``out`` (created)."""
     out = Path(out)

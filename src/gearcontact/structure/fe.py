@@ -4,7 +4,7 @@ The solid is a structured mapped mesh (no CAD): a tensor grid of nodes in
 (xi, eta, zeta) is mapped into the tooth (``zeta`` in [0, 1] runs straight from the
 coast flank point ``P_c(xi, eta)`` to the drive flank point ``P_d(xi, eta)``, so every
 surface node lies exactly on the real flanks of :mod:`.tooth`), and continued below the
-root line by a rim segment of depth ``rim_depth_mm``:
+root line by the rim segment of :mod:`.rim` (the shell's too) of depth ``rim_depth_mm``:
 
 - a root fillet approximation over the height ``fillet_mm`` below the root line, where
   the sides widen on a quarter ellipse from the tooth to the slot middles (the
@@ -39,7 +39,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import InputRangeError, check_positive
+from ..validation import InputRangeError
+from .rim import rim_points, rim_segment
 from .tooth import LoadPoints
 
 __all__ = ["FeTooth", "build_fe"]
@@ -107,24 +108,6 @@ def _signed_volumes(mesh) -> np.ndarray:
                      p[:, 3] - p[:, 0])
 
 
-def _rim_map(body, xi, s_mm, zeta, *, fillet_mm: float):
-    """Points of the fillet / rim segment at depth ``s_mm`` below the root line."""
-    pc0, pd0 = body.side_points(xi, -np.ones_like(xi))
-    mid = body.mid_surface(xi, -np.ones_like(xi))
-    down = -mid.x_eta / np.linalg.norm(mid.x_eta, axis=-1, keepdims=True)
-    centre = 0.5 * (pc0 + pd0)
-    axis = body.axis
-    radial = lambda p: p - np.outer(p @ axis, axis)  # noqa: E731
-    rc, rd = radial(pc0), radial(pd0)
-    cosang = np.einsum("ni,ni->n", rc, rd) / (np.linalg.norm(rc, axis=1)
-                                               * np.linalg.norm(rd, axis=1))
-    widen = (2.0 * np.pi / body.teeth) / np.arccos(np.clip(cosang, -1.0, 1.0))
-    q = np.clip(s_mm / fillet_mm, 0.0, 1.0)
-    fan = np.sqrt(1.0 - (1.0 - q) ** 2)
-    f = 1.0 + (widen - 1.0) * fan
-    return centre + s_mm[:, None] * down + ((zeta - 0.5) * f)[:, None] * (pd0 - pc0)
-
-
 def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: int = 4,
              rim_depth_mm: float | None = None, fillet_mm: float | None = None) -> FeTooth:
     """Mesh, assemble and factor the P2 elasticity model of a tooth (module docstring).
@@ -143,7 +126,8 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
         Depth of the rim segment below the root line, mm (default: the tooth height).
     fillet_mm : float or None
         Height of the fillet widening, mm (default: the larger of the flank's start
-        above the root cone, ``u_lo``, and 15 % of the tooth height).
+        above the root cone, ``u_lo``, and 15 % of the tooth height; both defaults
+        from :func:`.rim.rim_segment`).
 
     Raises
     ------
@@ -176,16 +160,11 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     if n_rim:
         if not hasattr(body, "teeth"):
             raise InputRangeError("n_rim", n_rim, "0 for a body without a member axis")
-        mid = body.mid_surface(0.0, np.linspace(-1, 1, 9))
-        height = float(np.sum(np.linalg.norm(np.diff(mid.position_mm, axis=0), axis=1)))
-        depth = height if rim_depth_mm is None else check_positive("rim_depth_mm", rim_depth_mm)
-        fil = (max(body.u_span_mm[0], 0.15 * height) if fillet_mm is None
-               else check_positive("fillet_mm", fillet_mm))
-        fil = min(fil, depth)
-        # depth of the rim levels: graded towards the root (cubic), the root level at 0
-        s_lev = depth * ((n_rim - np.arange(n_rim + 1)) / n_rim) ** 2
+        rim = rim_segment(body, depth_mm=rim_depth_mm, fillet_mm=fillet_mm)
+        # depth of the rim levels: graded towards the root (quadratic), the root level at 0
+        s_lev = rim.depth_mm * ((n_rim - np.arange(n_rim + 1)) / n_rim) ** 2
         r = ~tooth
-        pts[:, r] = _rim_map(body, xi_l[I[r]], s_lev[J[r]], zeta_l[K[r]], fillet_mm=fil).T
+        pts[:, r] = rim_points(body, rim, xi_l[I[r]], s_lev[J[r]], zeta_l[K[r]]).T
     mesh = skfem.MeshTet(pts, idx.t)
     # inverted cells: the map must keep (or flip) the orientation of every index cell
     flips = np.sign(_signed_volumes(mesh)) * np.sign(_signed_volumes(idx))

@@ -10,13 +10,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
-from .shell import tooth_shell  # noqa: E402
+from .shell import ORDER, ORDER_FACE, tooth_shell  # noqa: E402
 
 __all__ = ["plot_deflection"]
 
 
-def plot_deflection(result, path, *, pair, flanks, order: int = 6,
-                    order_face: int = 16) -> Path:
+def plot_deflection(result, path, *, pair, flanks, order: int = ORDER,
+                    order_face: int = ORDER_FACE) -> Path:
     """Left: shell deflection (um per kN) over the loaded flank (face position v, height
     u, mm) under a unit normal load at the lattice point nearest the flank centre;
     right: deflection under the segment loads around the lattice points and the line

@@ -12,20 +12,18 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   Cartesian coordinates of the tangent plane, ``dA`` the true area element (the metric
   of the real mid-surface; the coupling of membrane and bending through the
   mid-surface curvature is neglected, a shallow-shell / plate approximation);
-- Ritz basis: ``w, beta_1, beta_2 = sum_ij a_ij P_i(xi) P_j(eta) r(eta)`` with Legendre
+- Ritz basis: ``w, beta_1, beta_2 = sum_ij a_ij P_i(xi) P_j(eta') r(eta')`` with Legendre
   polynomials of degree <= ``order_face`` along the face (xi) and <= ``order`` over the
-  height (eta) (a tooth is 5-10 times longer than high); ``r = (1 + eta)/2`` makes beta_1
-  vanish at the root eta = -1, and w and beta_2 too when the root is clamped
-  (``RootFoundation(0, 0)``);
-- root / rim flexibility (a foundation along the root line, Weber 1949, O'Donnell 1963,
-  Sainsot et al. 2004): with a non-zero coefficient, beta_2 (the root rotation) and w
-  (the root translation) are free at the root and restrained by springs per unit root
-  length, ``U_root = 1/2 int (k_r beta_2^2 + k_w w^2) dl`` with
-  ``k_r = E t_root^2 / (c_r (1 - nu^2))`` (N/rad) and ``k_w = E / (c_w (1 - nu^2))``
-  (N/mm^2): the foundation rotation ``theta = c_r (1 - nu^2) M / (E t^2)`` and
-  translation ``w = c_w (1 - nu^2) q / E`` of a root moment M / force q per unit length.
-  The coefficients are calibrated against 3D finite elements of the tooth with its rim
-  segment (:mod:`.fe`, ``docs/bending.md``);
+  height (a tooth is 5-10 times longer than high); ``r = (1 + eta')/2`` clamps all three
+  fields at the plate's bottom ``eta' = -1``;
+- root and rim (``docs/bending.md`` sec. 3): the plate continues below the root line
+  through the root fillet and the rim block of :mod:`.rim` (the same geometry as the
+  3D FE's), clamped at the rim's bottom; ``eta'`` runs from there (-1) over the rim and
+  the tooth to the tip (1). The plate model of the fillet and the rim block (wide,
+  shallow, with a twisted mid-surface) is too soft against the 3D solid: their modulus
+  is raised by a factor calibrated per member against the FE (:data:`RIM_STIFFENING`).
+  Without a rim segment the plate is clamped at the root line (the closed-form
+  cantilever);
 - a unit load along the unit direction d at a flank point (offset z from the
   mid-surface) does work on ``delta = (d.m) w + z ((d.e_1) beta_1 + (d.e_2) beta_2)``,
   i.e. ``delta = phi^T a``; with the stiffness K (Gauss-Legendre quadrature) the
@@ -45,9 +43,9 @@ R. D. Mindlin, "Influence of rotatory inertia and shear on flexural motions of
 isotropic, elastic plates", *J. Appl. Mech.* 18, 1951, 31-38.
 K. M. Liew, Y. Xiang, S. Kitipornchai, "Research on thick plate vibration: a literature
 survey", *J. Sound Vib.* 180(1), 1995, 163-176 (Ritz with polynomial bases).
-A. E. O'Donnell, "Stress and deflection in built-in beams", *J. Eng. Ind.* 85, 1963;
-C. Weber, "The deformation of loaded gears and the effect on their load-carrying
-capacity", DSIR report 3, 1949 (root / foundation rotation).
+P. Sainsot, P. Velex, O. Duverger, "Contribution of gear body to tooth deflections - a
+new bidimensional analytical formula", *J. Mech. Des.* 126(4), 2004, 748-752 (the
+body's share of the tooth deflection).
 """
 
 from __future__ import annotations
@@ -61,46 +59,27 @@ from scipy.linalg import cho_factor, solve_triangular
 
 from ..geometry.flank import FlankSet
 from ..threads import one_blas_thread
-from ..validation import InputRangeError, check_range
+from ..validation import InputRangeError
+from .rim import RimSegment, rim_mid_surface, rim_modulus_factor, rim_segment, tooth_height_mm
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
-__all__ = ["ShellModel", "ComplianceOperator", "RootFoundation", "build_shell",
-           "tooth_shell", "ROOT_FOUNDATION", "SHEAR_FACTOR", "CLAMPED"]
+__all__ = ["ShellModel", "ComplianceOperator", "build_shell", "tooth_shell",
+           "RIM_STIFFENING", "SHEAR_FACTOR", "ORDER", "ORDER_FACE"]
 
 #: Mindlin shear correction factor kappa_s (Mindlin 1951; Reissner's 5/6).
 SHEAR_FACTOR = 5.0 / 6.0
 
 
 
-@dataclass(frozen=True)
-class RootFoundation:
-    """Root / rim foundation coefficients (dimensionless, module docstring).
-
-    Parameters
-    ----------
-    rotation : float
-        c_r >= 0 of the root rotation spring (0: rotation clamped).
-    translation : float
-        c_w >= 0 of the root translation spring (0: translation clamped).
-    """
-
-    rotation: float
-    translation: float
-
-    def __post_init__(self):
-        check_range("root_foundation.rotation", self.rotation, 0.0, 1e3)
-        check_range("root_foundation.translation", self.translation, 0.0, 1e3)
-
-
-#: A clamped root (the closed-form cantilever plate).
-CLAMPED = RootFoundation(0.0, 0.0)
-
-#: Calibrated root / rim coefficients per member: the grid search of ``docs/bending.md``
-#: against 3D FE (P2, 20 x 8 x 4 cells + 6 rim layers) of the s0003 teeth with their rim
-#: segments, on the deflection under distributed loads (segment and line loads along
-#: the face at three heights; shell orders 6 / 16): shell/FE 0.76..1.20 (pinion),
-#: 0.79..1.09 (gear).
-ROOT_FOUNDATION = {"pinion": RootFoundation(3.0, 1.0), "gear": RootFoundation(10.0, 2.0)}
+#: Factor on the modulus of the fillet and rim block of each member's shell (module
+#: docstring), calibrated against 3D FE (P2, 20 x 8 x 4 cells + 6 rim layers) of the
+#: teeth of s0003 and s0003-centred, both members, on the deflection under distributed
+#: loads (segment and line loads along the face at three heights; orders 10 / 16):
+#: shell / FE 0.82 .. 1.22 (pinion), 0.90 .. 1.13 (gear), docs/bending.md.
+RIM_STIFFENING = {"pinion": 2.9, "gear": 1.45}
+#: Ritz orders of a tooth's shell (the calibration's): over the height of rim and tooth,
+#: and along the face.
+ORDER, ORDER_FACE = 10, 16
 
 #: Gauss-Legendre points per direction of the stiffness quadrature (fixed, so that the
 #: trial spaces of different orders are compared on the same integration rule); along
@@ -170,26 +149,43 @@ class ShellModel:
     body: object
     order: int
     order_face: int
-    foundation: RootFoundation
     cholesky: np.ndarray
     n_functions: int
+    rim: RimSegment | None = None
+
+    @cached_property
+    def rim_split(self) -> float:
+        """The Ritz coordinate ``eta'`` of the root line: -1 without a rim segment,
+        else ``-1 + 2 D / (D + h)`` (rim depth D, tooth height h), so that ``eta'`` runs
+        about evenly from the rim's clamped bottom (-1) to the tip (1)."""
+        if self.rim is None:
+            return -1.0
+        d = self.rim.depth_mm
+        return -1.0 + 2.0 * d / (d + tooth_height_mm(self.body))
 
     def shape_functions(self, xi, eta) -> tuple[np.ndarray, ...]:
-        """Values and derivatives of the Ritz functions of (w, beta_1, beta_2):
-        ``(N, N_xi, N_eta)`` each (3, nb, n) for the three fields."""
-        xi, eta = np.atleast_1d(np.asarray(xi, float)), np.atleast_1d(np.asarray(eta, float))
+        """Values and derivatives of the Ritz functions of (w, beta_1, beta_2) at tooth
+        coordinates: ``(N, N_xi, N_eta)`` each (3, nb, n) for the three fields."""
+        eta = np.atleast_1d(np.asarray(eta, float))
+        scale = 0.5 * (1.0 - self.rim_split)            # d eta' / d eta
+        n, n_xi, n_eta = self._functions(xi, self.rim_split + scale * (eta + 1.0))
+        return n, n_xi, n_eta * scale
+
+    def _functions(self, xi, eta_r) -> tuple[np.ndarray, ...]:
+        """:meth:`shape_functions` in the Ritz coordinate ``eta'`` (-1 at the clamped
+        bottom of the plate: the root line, or the rim's bottom). The three fields
+        share one scalar basis."""
+        xi, eta = np.atleast_1d(np.asarray(xi, float)), np.atleast_1d(np.asarray(eta_r, float))
         px, dpx = _legendre_table(xi, self.order_face)
         pe, dpe = _legendre_table(eta, self.order)
-        r, dr = 0.5 * (1.0 + eta), 0.5 * np.ones_like(eta)
-        fd = self.foundation
-        vals, dxi, deta = [], [], []
-        for clamped in (fd.translation == 0.0, True, fd.rotation == 0.0):
-            qe = pe * r if clamped else pe
-            dqe = dpe * r + pe * dr if clamped else dpe
-            vals.append((px[:, None, :] * qe[None, :, :]).reshape(-1, len(xi)))
-            dxi.append((dpx[:, None, :] * qe[None, :, :]).reshape(-1, len(xi)))
-            deta.append((px[:, None, :] * dqe[None, :, :]).reshape(-1, len(xi)))
-        return np.array(vals), np.array(dxi), np.array(deta)
+        qe = 0.5 * (1.0 + eta) * pe
+        dqe = 0.5 * (1.0 + eta) * dpe + 0.5 * pe
+        n = len(xi)
+        vals = (px[:, None, :] * qe[None, :, :]).reshape(-1, n)
+        dxi = (dpx[:, None, :] * qe[None, :, :]).reshape(-1, n)
+        deta = (px[:, None, :] * dqe[None, :, :]).reshape(-1, n)
+        return (np.broadcast_to(vals, (3,) + vals.shape), np.broadcast_to(dxi, (3,) + dxi.shape),
+                np.broadcast_to(deta, (3,) + deta.shape))
 
     def load_vectors(self, points: LoadPoints) -> np.ndarray:
         """Phi (n, m): deflection of each point along its direction per Ritz coordinate."""
@@ -225,12 +221,36 @@ class ShellModel:
 
 
 def _stiffness(body, model: ShellModel) -> np.ndarray:
-    """Ritz stiffness K (m x m), N/mm: Gauss-Legendre quadrature of the plate energy."""
+    """Ritz stiffness K (m x m), N/mm: Gauss-Legendre quadrature of the plate energy
+    over the tooth and, with a rim segment, over its fillet and rim block (a rule per
+    piece: the thickness has a kink where the fillet ends)."""
     g, wg = legendre.leggauss(_QUADRATURE)
     gx, wx = legendre.leggauss(max(_QUADRATURE, model.order_face + 6))
     XI, ETA = np.meshgrid(gx, g, indexing="ij")
     xi, eta, wq = XI.ravel(), ETA.ravel(), np.outer(wx, wg).ravel()
-    mid = body.mid_surface(xi, eta)
+    K = _plate_energy(body.mid_surface(xi, eta), *model.shape_functions(xi, eta), wq,
+                      body.material)
+    rim = model.rim
+    if rim is not None:
+        # depth s below the root line; the Ritz coordinate rises by (split + 1) / D per
+        # mm upwards, the direction of the rim mid-surface's x_eta
+        rate = (model.rim_split + 1.0) / rim.depth_mm
+        for s0, s1 in ((0.0, rim.fillet_mm), (rim.fillet_mm, rim.depth_mm)):
+            if s1 <= s0:
+                continue
+            S = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * ETA.ravel()
+            n, n_xi, n_eta = model._functions(xi, model.rim_split - rate * S)
+            K += _plate_energy(rim_mid_surface(body, rim, xi, S), n, n_xi, n_eta * rate,
+                               wq * 0.5 * (s1 - s0), body.material,
+                               modulus_factor=rim_modulus_factor(rim, S))
+    return 0.5 * (K + K.T)
+
+
+def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0) -> np.ndarray:
+    """Stiffness (m x m), N/mm, of the plate energy at quadrature points of weights
+    ``wq`` (per unit of the coordinates ``mid.x_xi``, ``mid.x_eta`` refer to, in which
+    ``Nxi``, ``Neta`` are the derivatives); ``modulus_factor`` (scalar or per point)
+    scales E (and G)."""
     e1, e2, _ = local_frame(mid)
     # J maps (d xi, d eta) -> local (dx1, dx2); gradient = J^-T (d/dxi, d/deta)
     j11 = np.einsum("ni,ni->n", e1, mid.x_xi)
@@ -239,12 +259,11 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     det = j11 * j22
     if np.any(det <= 0.0):
         raise InputRangeError("mid-surface Jacobian", float(det.min()), "> 0 (a regular surface)")
-    N, Nxi, Neta = model.shape_functions(xi, eta)
     # inverse-transpose of [[j11, j12], [0, j22]]: d/dx1 = f_xi/j11,
     # d/dx2 = (f_eta - j12/j11 f_xi)/j22
     dx1 = Nxi / j11
     dx2 = (Neta - (j12 / j11) * Nxi) / j22
-    nb, nq = N.shape[1], len(xi)
+    nb, nq = N.shape[1], N.shape[2]
     zero = np.zeros((nb, nq))
     # rows: kappa_11, kappa_22, kappa_12 (engineering), gamma_1, gamma_2; columns: w, b1, b2
     Bb = np.stack([np.concatenate([zero, dx1[1], zero]),
@@ -252,8 +271,7 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
                    np.concatenate([zero, dx2[1], dx1[2]])])            # (3, m, nq)
     Bs = np.stack([np.concatenate([dx1[0], N[1], zero]),
                    np.concatenate([dx2[0], zero, N[2]])])              # (2, m, nq)
-    mat = body.material
-    E, nu = mat.youngs_modulus_mpa, mat.poisson_ratio
+    E, nu = modulus_factor * material.youngs_modulus_mpa, material.poisson_ratio
     t = mid.thickness_mm
     dA = wq * det
     D = E * t ** 3 / (12.0 * (1.0 - nu * nu)) * dA
@@ -261,22 +279,11 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     Db = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1.0 - nu)]])
     K = np.einsum("amq,ab,bnq,q->mn", Bb, Db, Bb, D, optimize=True)
     K += np.einsum("amq,anq,q->mn", Bs, Bs, Gs, optimize=True)
-    fd = model.foundation
-    mr = body.mid_surface(gx, -np.ones_like(gx))
-    dl = wx * np.linalg.norm(mr.x_xi, axis=-1)
-    Nr, _, _ = model.shape_functions(gx, -np.ones_like(gx))
-    z0 = np.zeros_like(Nr[0])
-    springs = ((fd.rotation, mr.thickness_mm ** 2, np.concatenate([z0, z0, Nr[2]])),
-               (fd.translation, 1.0, np.concatenate([Nr[0], z0, z0])))
-    for coef, t2, row in springs:
-        if coef > 0.0:
-            k = E * t2 / (coef * (1.0 - nu * nu)) * dl
-            K += np.einsum("mq,nq,q->mn", row, row, k)
-    return 0.5 * (K + K.T)
+    return K
 
 
 def build_shell(body, *, order: int = 6, order_face: int | None = None,
-                foundation: RootFoundation = CLAMPED) -> ShellModel:
+                rim: RimSegment | None = None) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -288,8 +295,10 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     order_face : int or None
         Legendre degree along the face (xi), 1..24 (default ``order``);
         3 (order + 1)(order_face + 1) Ritz functions.
-    foundation : RootFoundation
-        Root / rim foundation coefficients (default clamped).
+    rim : RimSegment or None
+        Continue the plate below the root line through the fillet and the rim block
+        (:mod:`.rim`), clamped at the rim's bottom; None: the plate is clamped at the
+        root line.
 
     Raises
     ------
@@ -306,11 +315,10 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
     n = 3 * (int(order) + 1) * (int(order_face) + 1)
-    if not isinstance(foundation, RootFoundation):
-        raise InputRangeError("foundation", foundation, "a RootFoundation")
+    if rim is not None and not isinstance(rim, RimSegment):
+        raise InputRangeError("rim", rim, "a RimSegment or None")
     model = ShellModel(body=body, order=int(order), order_face=int(order_face),
-                       foundation=foundation,
-                       cholesky=np.empty((0, 0)), n_functions=n)
+                       cholesky=np.empty((0, 0)), n_functions=n, rim=rim)
     K = _stiffness(body, model)
     try:
         L, _ = cho_factor(K, lower=True)
@@ -322,17 +330,18 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
 
 
 @lru_cache(maxsize=8)
-def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = 6,
-                order_face: int = 16, foundation: RootFoundation | None = None
-                ) -> ShellModel:
+def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
+                order_face: int = ORDER_FACE, rim: RimSegment | None = None) -> ShellModel:
     """The shell model of one tooth of ``member``, cached per flank set and member.
 
-    ``foundation`` defaults to the calibrated :data:`ROOT_FOUNDATION` of the member;
-    the default orders (6 over the height, 16 along the face) are those of the
-    calibration (a tooth is 5-10 times longer than high).
-    Both flanks (drive and coast) of the tooth use the same model (one cache entry per
-    pair, member and options; the flank set is hashed by identity).
+    ``rim`` defaults to the member's fillet and rim segment (:func:`.rim.rim_segment`)
+    with its calibrated :data:`RIM_STIFFENING`; the default orders (10 over the height
+    of tooth and rim, 16 along the face) are those of the calibration (a tooth is 5-10
+    times longer than high). Both flanks (drive and coast) of the tooth use the same
+    model (one cache entry per pair, member and options; the flank set is hashed by
+    identity).
     """
     tooth: ToothGeometry = tooth_geometry(flanks, member, material=material)
-    return build_shell(tooth, order=order, order_face=order_face,
-                       foundation=ROOT_FOUNDATION[member] if foundation is None else foundation)
+    if rim is None:
+        rim = rim_segment(tooth, stiffening=RIM_STIFFENING[member])
+    return build_shell(tooth, order=order, order_face=order_face, rim=rim)
