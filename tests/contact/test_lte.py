@@ -134,6 +134,13 @@ def test_non_convergence_is_reported(make_hertz):
     assert not res.converged and res.status == "max_iter" and "stopped" in res.message
 
 
+def _two_pairs(make_hertz):
+    """Two Hertzian pairs on levers 40 and 35 mm, the second open by 4 um: it closes
+    at 40 N·m."""
+    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
+    return [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
+
+
 def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
     # The constrained CG updates C x from the step's C t and adds clipped / re-admitted
     # cells one by one from the real-space kernels; recomputing C x at every step
@@ -142,8 +149,7 @@ def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
     # residuals (computed from an exact C x) below the solver's residual_tol.
     from gearcontact.contact import constrained_cg
 
-    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
-    blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
+    blocks = _two_pairs(make_hertz)
     fast = solve_mesh_lcp(blocks, 40000.0)
     monkeypatch.setattr(constrained_cg, "_REFRESH", 1)
     exact = solve_mesh_lcp(blocks, 40000.0)
@@ -167,8 +173,7 @@ def test_pair_closing_outside_the_windows(make_hertz, monkeypatch, checks, probe
 
     monkeypatch.setattr(constrained_cg, "_CHECKS", checks)
     monkeypatch.setattr(constrained_cg, "_PROBE", probe)
-    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
-    blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
+    blocks = _two_pairs(make_hertz)
     alone = solve_mesh_lcp(blocks[:1], 40000.0)
     warm = solve_mesh_lcp(blocks, 40000.0, warm_start=[alone.pressures_mpa(blocks)[0], None])
     cold = solve_mesh_lcp(blocks, 40000.0)
@@ -185,8 +190,7 @@ def test_probe_widens_the_windows_before_converging(make_hertz, monkeypatch):
     # (27 against 35 when this was written).
     from gearcontact.contact import constrained_cg
 
-    p1, p2 = make_hertz(10, 8), make_hertz(3, 8)
-    blocks = [PairBlock(p1.gap_mm, p1.grid, 40.0), PairBlock(p2.gap_mm, p2.grid, 35.0, 4e-3)]
+    blocks = _two_pairs(make_hertz)
     probed = solve_mesh_lcp(blocks, 40000.0)
     monkeypatch.setattr(constrained_cg, "_PROBE", 0.0)
     late = solve_mesh_lcp(blocks, 40000.0)
