@@ -39,7 +39,7 @@ def served_tri_core():
     try:
         deadline = time.monotonic() + 120
         for line in proc.stdout:                # the server says when it listens
-            if line.startswith("tcp port"):
+            if line.startswith("gearcontact rtl serve: listening on"):
                 break
             if time.monotonic() > deadline:
                 raise RuntimeError("gearcontact rtl serve did not start")

@@ -141,7 +141,8 @@ def run_serve(args) -> int:
           f"{args.host}:{args.port}; Ctrl-C stops", flush=True)
     try:
         serve(args.kind, host=args.host, port=args.port, e_prime_code=e_code,
-              lanes=args.lanes)
+              lanes=args.lanes, on_ready=lambda: print(
+                  f"gearcontact rtl serve: listening on {args.host}:{args.port}", flush=True))
     except DriverError as exc:
         return _error(str(exc))
     return 0

@@ -86,9 +86,13 @@ def parse_address(text: str, *, field: str = "address") -> tuple[str, int]:
 
 
 def serve(kind: str, *, host: str = "127.0.0.1", port: int = 1234,
-          e_prime_code: int | None = None, lanes: int = 16) -> None:
+          e_prime_code: int | None = None, lanes: int = 16, on_ready=None) -> None:
     """Serve the simulated SoC ``kind`` on ``host:port`` with LiteX's ``RemoteServer``
     until interrupted (Ctrl-C ends the command).
+
+    ``on_ready()`` (optional) is called once the socket listens and the server thread
+    runs: LiteX's own "tcp port" line comes before its ``listen``, so a client that
+    connects on it may be refused.
 
     Raises
     ------
@@ -119,6 +123,8 @@ def serve(kind: str, *, host: str = "127.0.0.1", port: int = 1234,
         raise DriverError(f"cannot listen on {host}:{port} ({exc})") from None
     try:
         server.start(1)
+        if on_ready is not None:
+            on_ready()
         threading.Event().wait()
     finally:
         server.close()
