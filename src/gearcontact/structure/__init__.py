@@ -2,7 +2,10 @@
 
 - :mod:`.tooth`: one tooth between its real drive and coast flanks (mid-surface,
   thickness, flank load points), and the rectangular test plate;
-- :mod:`.shell`: Mindlin-Reissner plate Rayleigh-Ritz compliance operator (low rank);
+- :mod:`.rim`: the root fillet and rim segment below a tooth's root line, one geometry
+  for the shell and the FE;
+- :mod:`.shell`: Mindlin-Reissner plate Rayleigh-Ritz compliance operator (low rank)
+  over the tooth, its fillet and rim;
 - :mod:`.fe`: 3D finite elements of the tooth with its rim segment (scikit-fem, the
   optional ``fe`` extra), the independent truth of the shell model;
 - :mod:`.compliance`: flank-grid compliance tables of a pair (shell and FE), as the
