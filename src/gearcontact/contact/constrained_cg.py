@@ -343,11 +343,13 @@ def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
     while True:
         win = _Windows(op, box, whole)
         xr = win.gather(x)
+        probed = []  # the probe's mask (it ends the windows' iteration when not None)
 
-        def probe(xw, _win=win):
+        def probe(xw):
             x.fill(0.0)
-            _win.scatter(xw, x)
-            return _penetration(op, h, x, _win)
+            win.scatter(xw, x)
+            probed.append(_penetration(op, h, x, win))
+            return probed[-1]
 
         stop, it, rbox = _window_steps(win, win.gather(h), xr, total, tol, it, max_iter,
                                        precondition, None if whole else probe)
@@ -357,7 +359,7 @@ def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
             box[win.blocks] = rbox + np.repeat(win.org, 2, axis=1)
             continue
         if stop is _Stop.PENETRATES:
-            pen = probe(xr)
+            pen = probed[-1]
         else:
             u = op.evaluate_disp(x)
             ok = stop in (_Stop.CONVERGED, _Stop.STALLED)
