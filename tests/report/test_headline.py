@@ -1,6 +1,6 @@
 """The status rule of the reproduce items (:mod:`gearcontact.report.headline`).
 
-Truths: the rule of docs/reproduce.md sec. 2 on synthetic items whose quantities sit
+Truths: the rule of docs/reproduce.md sec. 5 on synthetic items whose quantities sit
 inside or outside their tolerance by construction (reproduced = every headline within;
 differs = no key headline within, or none at all without key quantities; partial
 otherwise); an item is never "reproduced" with a headline outside its tolerance, over
@@ -122,7 +122,10 @@ def test_explanation_names_quantity_values_and_tolerance():
     text = explain(_judge(a=(12.3456, 10.0)))
     assert text.startswith("Status partial: 5 of 6 headline quantities")
     assert "a (mm) (key): ours 12.35 against the published 10" in text
-    assert "±10 % of the value (accepted 9 to 11" in text
+    assert "tolerance ±10 % of the value (9 to 11)" in text
+    # a published interval is named as such
+    assert "r (%): ours -40 against the published interval [-31, -13]" in explain(
+        _judge(r=([-40.0], (-31, -13))))
     assert explain(_judge()) == "Status reproduced: 6 of 6 headline quantities within their tolerance."
 
 
@@ -162,7 +165,7 @@ def test_committed_tolerances():
                     x = x[part]
             (kind, arg), = e["tolerance"].items()
             assert kind in ("relative", "absolute", "range", "exact", "calibration")
-            # the documented default is 10 % of the value (docs/reproduce.md sec. 2): no
+            # the documented default is 10 % of the value (docs/reproduce.md sec. 5): no
             # tolerance is wider, so none can have been widened to let an item pass
             if kind == "relative":
                 assert arg <= 0.10, (item, e["id"])

@@ -1,5 +1,5 @@
 """The status of a reproduce item, computed from its headline quantities
-(docs/reproduce.md sec. 2).
+(docs/reproduce.md sec. 5).
 
 Each item of ``gearcontact reproduce`` names its headline quantities, the published
 value of each and the tolerance it is judged against, with the reason, in
@@ -36,7 +36,8 @@ __all__ = ["HEADLINE_HEADER", "STATUSES", "Headline", "explain", "headline_rows"
 #: Statuses an item can have, in the order the summary counts them.
 STATUSES = ("reproduced", "partial", "differs", "not available")
 #: Columns of :func:`headline_rows`.
-HEADLINE_HEADER = ["headline quantity", "ours", "published", "tolerance", "within", "key"]
+HEADLINE_HEADER = ["headline quantity", "ours", "published", "tolerance", "within", "key",
+                   "why this tolerance"]
 
 
 @dataclass(frozen=True)
@@ -200,6 +201,8 @@ def judge(item: str, measured: dict, pub: dict, *, spec: dict | None = None
 def _fmt(x) -> str:
     if x is None:
         return "not measured"
+    if isinstance(x, tuple) and len(x) == 2:                  # a published interval
+        return f"[{format_cell(float(x[0]))}, {format_cell(float(x[1]))}]"
     if np.ndim(x):
         return ", ".join(format_cell(float(v)) for v in np.ravel(x))
     return format_cell(float(x))
@@ -217,9 +220,12 @@ def explain(headlines) -> str:
     if not outside:
         return head + "."
     parts = [f"{h.quantity}{' (key)' if h.key else ''}: ours {_fmt(h.measured)} against "
-             f"the published {_fmt(h.published)}, tolerance {h.tolerance} (accepted "
-             f"{format_cell(h.low)} to {format_cell(h.high)}; {h.reason})" for h in outside]
-    return head + "; outside: " + "; ".join(parts) + "."
+             + (f"the published interval {_fmt(h.published)}" if isinstance(h.published, tuple)
+                else f"the published {_fmt(h.published)}, tolerance {h.tolerance} "
+                     f"({format_cell(h.low)} to {format_cell(h.high)})")
+             for h in outside]
+    return (head + "; outside: " + "; ".join(parts) + ". Why each tolerance: table "
+            "'headline quantities'.")
 
 
 def headline_rows(headlines) -> Table:
@@ -227,7 +233,7 @@ def headline_rows(headlines) -> Table:
     return Table("Headline quantities: the status is computed from these",
                  HEADLINE_HEADER,
                  [[h.quantity, _fmt(h.measured), _fmt(h.published), h.tolerance,
-                   h.within, h.key] for h in headlines])
+                   h.within, h.key, h.reason] for h in headlines])
 
 
 def judged_section(key: str, number: int, title: str, headlines, text, tables, figures,
