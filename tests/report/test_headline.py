@@ -126,7 +126,8 @@ def test_explanation_names_quantity_values_and_tolerance():
     # a published interval is named as such
     assert "r (%): ours -40 against the published interval [-31, -13]" in explain(
         _judge(r=([-40.0], (-31, -13))))
-    assert explain(_judge()) == "Status reproduced: 6 of 6 headline quantities within their tolerance."
+    assert explain(_judge()) == ("Status reproduced: 6 of 6 headline quantities within "
+                                 "their tolerance.")
 
 
 def test_published_value_is_checked_and_headlines_are_complete():

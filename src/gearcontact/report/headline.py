@@ -91,8 +91,9 @@ class Headline:
     def as_dict(self) -> dict:
         """Plain-JSON view (``report.json[item]["headlines"]``)."""
         m = self.values
+        scalar = np.ndim(self.measured) == 0
         return {"id": self.id, "quantity": self.quantity,
-                "measured": None if not m else (m[0] if np.ndim(self.measured) == 0 else list(m)),
+                "measured": None if not m else (m[0] if scalar else list(m)),
                 "published": (list(self.published) if isinstance(self.published, tuple)
                               else self.published),
                 "low": self.low, "high": self.high, "tolerance": self.tolerance,

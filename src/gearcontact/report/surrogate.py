@@ -37,9 +37,10 @@ BOX = {"A_min_per_mm": (5e-4, 1e-2), "B_max_per_mm": (1e-2, 6e-2),
 _PUBLISHED = published_values("s0003")
 #: Published RMSE of study (a), %: MLP in / out of the box, preview (physics) ~ 0
 #: (``data/published/s0003.json``).
-PUBLISHED_SYNTHETIC = {"mlp_in_pct": _PUBLISHED["surrogate_synthetic_rmse_pct"]["mlp_in_box"],
-                       "mlp_out_pct": _PUBLISHED["surrogate_synthetic_rmse_pct"]["mlp_out_of_box"],
-                       "preview_pct": _PUBLISHED["surrogate_synthetic_rmse_pct"]["preview"]}
+PUBLISHED_SYNTHETIC = {f"{ours}_pct": _PUBLISHED["surrogate_synthetic_rmse_pct"][name]
+                       for ours, name in (("mlp_in", "mlp_in_box"),
+                                          ("mlp_out", "mlp_out_of_box"),
+                                          ("preview", "preview"))}
 #: Published errors of study (b), %: network / physics on the trained and extrapolated
 #: loads (``data/published/s0003.json``).
 PUBLISHED_ANCHORED = {f"{model}_{loads}_pct": _PUBLISHED["surrogate_anchored_rmse_pct"][
