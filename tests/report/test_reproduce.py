@@ -5,9 +5,11 @@ Checked: report.json has one key per item (plus ``meta``) with a status; report.
 parses (stdlib ``html.parser``, every element closed), every table-of-contents link
 resolves to an element id, every image it shows is a PNG file beside it and every SVG
 link an SVG file, every table has a published column; run times are in run.json, not in
-the report; a pair without published values is refused naming the field. The items'
-numbers are checked in test_evaluation_contact.py / test_evaluation_datapath.py on the
-same run (fixture ``quick_report`` in conftest.py).
+the report; a pair without published values is refused naming the field; every item's
+status is the rule of docs/reproduce.md sec. 5 applied to its own headline numbers
+(re-derived from the measured values, s0003.json and the committed tolerances) and the
+summary line counts them. The items' numbers are checked in test_evaluation_contact.py /
+test_evaluation_datapath.py on the same run (fixture ``quick_report`` in conftest.py).
 """
 
 import json

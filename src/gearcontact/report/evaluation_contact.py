@@ -2,6 +2,7 @@
 2, 6, 7): each builds one :class:`~.document.Section` from the main job's
 :class:`~.analyze.Analysis` and the published values, adding only the measurements
 that explain a difference (:mod:`.accuracy_studies`, the loaded TE with tooth bending).
+Each item's status is computed from its headline quantities (:mod:`.headline`).
 """
 
 from __future__ import annotations

@@ -1,7 +1,8 @@
 """Items of the evaluation report on the preview, its datapath and hardware
 (docs/spec.md sec. 8, items 3, 4, 5, 8): the neural-surrogate comparison, latency,
 synthesis resources (committed results with provenance, or a ``--synth`` run) and the
-fixed-point precision, each as one :class:`~.document.Section`.
+fixed-point precision, each as one :class:`~.document.Section` whose status is computed
+from its headline quantities (:mod:`.headline`).
 """
 
 from __future__ import annotations
