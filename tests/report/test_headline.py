@@ -120,14 +120,14 @@ def test_never_reproduced_with_a_headline_outside():
 
 def test_explanation_names_quantity_values_and_tolerance():
     text = explain(_judge(a=(12.3456, 10.0)))
-    assert text.startswith("Status partial: 5 of 6 headline quantities")
+    assert text.startswith("Partial: 5 of 6 headline quantities")
     assert "a (mm) (key): ours 12.35 against the published 10" in text
     assert "tolerance ±10 % of the value (9 to 11)" in text
     # a published interval is named as such
     assert "r (%): ours -40 against the published interval [-31, -13]" in explain(
         _judge(r=([-40.0], (-31, -13))))
-    assert explain(_judge()) == ("Status reproduced: 6 of 6 headline quantities within "
-                                 "their tolerance.")
+    assert explain(_judge()) == ("Reproduced: 6 of 6 headline quantities within their "
+                                 "tolerance.")
 
 
 def test_published_value_is_checked_and_headlines_are_complete():

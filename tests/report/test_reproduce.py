@@ -166,7 +166,7 @@ def test_statuses_follow_from_the_headline_numbers(quick_report):
         assert sec["status"] == _status_from(sec["headlines"]), key
         assert sec["status"] != "reproduced" or all(h["within"] for h in sec["headlines"])
         # the first paragraph says the status and names every quantity outside
-        assert sec["text"][0].startswith(f"Status {sec['status']}:")
+        assert sec["text"][0].startswith(f"{sec['status'].capitalize()}:")
         for h in sec["headlines"]:
             assert (h["quantity"] in sec["text"][0]) == (not h["within"]), (key, h["id"])
     assert rep["meta"]["status_counts"] == counts

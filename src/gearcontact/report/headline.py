@@ -210,13 +210,14 @@ def _fmt(x) -> str:
 
 
 def explain(headlines) -> str:
-    """One paragraph: the computed status and, for each headline outside its tolerance,
-    the measured value against the published one and the tolerance."""
+    """One paragraph: the computed status, how many headlines are within and, for each
+    one outside its tolerance, ours against the published value and the accepted
+    interval."""
     headlines = tuple(headlines)
     status = item_status(headlines)
     n_in = sum(h.within for h in headlines)
-    head = (f"Status {status}: {n_in} of {len(headlines)} headline quantities within "
-            f"their tolerance")
+    head = (f"{status.capitalize()}: {n_in} of {len(headlines)} headline quantities "
+            f"within their tolerance")
     outside = [h for h in headlines if not h.within]
     if not outside:
         return head + "."

@@ -158,7 +158,8 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
 
     times["total_s"] = time.perf_counter() - t_start
     counts = status_counts(s.status for s in sections)
-    meta = {"title": f"{pair}: the evaluation of docs/spec.md sec. 8, reproduced",
+    meta = {"title": f"{pair}: the evaluation of docs/spec.md sec. 8 beside the published "
+                     "values",
             "intro": (f"gearcontact {__version__}, pair {pair} ({analysis.side} flank pair), "
                       f"{'quick' if quick else 'full'} run. Units: mm, N, MPa, arcsec. "
                       "Published values are those of the original study "
