@@ -50,9 +50,9 @@ class Headline:
         Key in the item's list of ``<pair>_headlines.json``.
     quantity : str
         Readable name with the unit.
-    measured : float or tuple of float or None
-        Our value (a tuple: one per torque / lane, each must be within); None when the
-        run did not measure it (never within).
+    measured : float or sequence of float or None
+        Our value (a sequence: one per torque / lane, each must be within); None when
+        the run did not measure it (never within).
     published : float or tuple of float
         The published value; ``(lo, hi)`` for a published interval.
     low, high : float
@@ -199,10 +199,10 @@ def judge(item: str, measured: dict, pub: dict, *, spec: dict | None = None
     return tuple(out)
 
 
-def _fmt(x) -> str:
+def _fmt(x, *, interval: bool = False) -> str:
     if x is None:
         return "not measured"
-    if isinstance(x, tuple) and len(x) == 2:                  # a published interval
+    if interval:
         return f"[{format_cell(float(x[0]))}, {format_cell(float(x[1]))}]"
     if np.ndim(x):
         return ", ".join(format_cell(float(v)) for v in np.ravel(x))
@@ -222,7 +222,8 @@ def explain(headlines) -> str:
     if not outside:
         return head + "."
     parts = [f"{h.quantity}{' (key)' if h.key else ''}: ours {_fmt(h.measured)} against "
-             + (f"the published interval {_fmt(h.published)}" if isinstance(h.published, tuple)
+             + (f"the published interval {_fmt(h.published, interval=True)}"
+                if isinstance(h.published, tuple)
                 else f"the published {_fmt(h.published)}, tolerance {h.tolerance} "
                      f"({format_cell(h.low)} to {format_cell(h.high)})")
              for h in outside]
@@ -234,7 +235,8 @@ def headline_rows(headlines) -> Table:
     """The headlines as a report table (:data:`HEADLINE_HEADER`)."""
     return Table("Headline quantities: the status is computed from these",
                  HEADLINE_HEADER,
-                 [[h.quantity, _fmt(h.measured), _fmt(h.published), h.tolerance,
+                 [[h.quantity, _fmt(h.measured),
+                   _fmt(h.published, interval=isinstance(h.published, tuple)), h.tolerance,
                    h.within, h.key, h.reason] for h in headlines])
 
 
