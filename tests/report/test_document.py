@@ -18,6 +18,7 @@ pytest.importorskip("jinja2")
 from gearcontact.report.document import (Reproduction, Section, Table,  # noqa: E402
                                          format_cell, jsonable, render_html,
                                          render_markdown)
+from gearcontact.report.headline import Headline  # noqa: E402
 
 
 def test_format_cell():
@@ -35,11 +36,14 @@ def test_jsonable():
 
 
 def _doc():
+    within = Headline("x", "x (mm)", 1.23456, 1.2, 1.08, 1.32, "±10 % of the value", "r",
+                      True)
     sec = Section("accuracy", 1, "Accuracy", "reproduced", ["p < 5 & q"],
                   [Table("caption", ["quantity", "ours", "published"],
                          [["x (mm)", 1.23456, None]])], [("fig.png", "a figure")],
-                  {"x": 1})
-    meta = {"title": "T", "intro": "I", "run_text": "R", "date": "D", "machine": "M"}
+                  {"x": 1}, (within,))
+    meta = {"title": "T", "intro": "I", "run_text": "R", "date": "D", "machine": "M",
+            "summary": "1 items: 1 reproduced, 0 partial, 0 differs"}
     return Reproduction((sec,), meta, Path("."))
 
 
@@ -53,4 +57,8 @@ def test_renderings_carry_the_same_content():
     md = render_markdown(rep)
     assert "| x (mm) | 1.235 | — |" in md and "![a figure](fig.png) ([SVG](fig.svg))" in md
     assert rep.as_json()["accuracy"]["x"] == 1
+    # the summary line of the status counts opens both renderings
+    assert "<strong>Summary: 1 items: 1 reproduced, 0 partial, 0 differs</strong>" in html
+    assert "**Summary: 1 items: 1 reproduced, 0 partial, 0 differs**" in md
+    assert rep.as_json()["accuracy"]["headlines"][0]["within"] is True
     assert rep.as_json()["accuracy"]["tables"][0]["header"][-1] == "published"

@@ -93,11 +93,19 @@ def test_resources_section_tables_the_committed_whole_cores(tmp_path):
     whole = [r for r in committed_records() if r.result.core == "tri_core"]
     if not whole:
         pytest.skip("no committed tri_core results in this tree")
-    sec = resources_section(False, {"synth_lanes": [8]}, tmp_path)
+    from gearcontact.report.analyze import published_values
+
+    sec = resources_section(False, {"synth_lanes": [8]}, tmp_path, published_values("s0003"))
     rows = sec.data["whole_cores"]
     tri = [r for r in rows if r["core"] == "tri_core"]
     assert len(tri) == len(whole) and all(r["provenance"]["tool"] for r in tri)
     assert {r.result.LUT for r in whole} == {r["LUT"] for r in tri}
+    # the committed gap netlist has 21 DSP48E1 per lane above the intercept 18 (exact,
+    # test above), outside the published 30 +- 10 %: the key headline misses, so the
+    # computed status is "differs" whatever the tri_core rows say
+    h = {x.id: x for x in sec.headlines}
+    assert h["dsp_per_lane"].values == (21.0,) * len(h["dsp_per_lane"].values)
+    assert not h["dsp_per_lane"].within and sec.status == "differs"
     table = sec.tables[-1]
     assert any("197,377 LUT" in str(row[-1]) for row in table.rows)
     if len([r for r in committed_records() if r.result.core == "gap_lean"]) >= 2:

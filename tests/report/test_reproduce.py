@@ -5,9 +5,11 @@ Checked: report.json has one key per item (plus ``meta``) with a status; report.
 parses (stdlib ``html.parser``, every element closed), every table-of-contents link
 resolves to an element id, every image it shows is a PNG file beside it and every SVG
 link an SVG file, every table has a published column; run times are in run.json, not in
-the report; a pair without published values is refused naming the field. The items'
-numbers are checked in test_evaluation_contact.py / test_evaluation_datapath.py on the
-same run (fixture ``quick_report`` in conftest.py).
+the report; a pair without published values is refused naming the field; every item's
+status is the rule of docs/reproduce.md sec. 5 applied to its own headline numbers
+(re-derived from the measured values, s0003.json and the committed tolerances) and the
+summary line counts them. The items' numbers are checked in test_evaluation_contact.py /
+test_evaluation_datapath.py on the same run (fixture ``quick_report`` in conftest.py).
 """
 
 import json
@@ -19,6 +21,8 @@ pytest.importorskip("sklearn")
 pytest.importorskip("jinja2")
 
 from gearcontact.cli import main  # noqa: E402
+from gearcontact.report.analyze import published_values  # noqa: E402
+from gearcontact.report.headline import STATUSES, headline_spec  # noqa: E402
 from gearcontact.report.reproduce import ITEMS, run_reproduce  # noqa: E402
 from gearcontact.validation import InputRangeError  # noqa: E402
 
@@ -73,7 +77,7 @@ def test_json_has_every_item(quick_report):
     out, rep = quick_report
     assert set(rep) == set(ITEMS) | {"meta"}
     for key in ITEMS:
-        assert rep[key]["status"] in ("reproduced", "partial", "not available"), key
+        assert rep[key]["status"] in STATUSES, key
         for t in rep[key]["tables"]:
             assert any("published" in str(h) for h in t["header"]), (key, t["caption"])
     assert rep["meta"]["quick"] is True
@@ -108,6 +112,70 @@ def test_html_parses_and_links_resolve(quick_report):
         assert rep[key]["title"] in md
 
 
+def _status_from(headlines) -> str:
+    """The rule of docs/reproduce.md sec. 5, written out again from its statement."""
+    if all(h["within"] for h in headlines):
+        return "reproduced"
+    decisive = [h for h in headlines if h["key"]] or headlines
+    return "partial" if any(h["within"] for h in decisive) else "differs"
+
+
+def test_statuses_follow_from_the_headline_numbers(quick_report):
+    """Every item's status is the rule applied to its own headline numbers in
+    report.json: each 'within' re-derived from the measured values and the committed
+    tolerance around the published value (1e-12), the published value that of
+    s0003.json; never 'reproduced' with a headline outside; the summary counts them."""
+    out, rep = quick_report
+    pub = published_values("s0003")
+    spec = headline_spec("s0003")
+    counts = {s: 0 for s in STATUSES}
+    for key in ITEMS:
+        sec = rep[key]
+        counts[sec["status"]] += 1
+        if sec["status"] == "not available":
+            assert not sec["headlines"], key
+            continue
+        entries = {e["id"]: e for e in spec[key]}
+        assert [h["id"] for h in sec["headlines"]] == [e["id"] for e in spec[key]]
+        for h in sec["headlines"]:
+            e = entries[h["id"]]
+            if "published_key" in e:
+                ref = pub
+                for part in e["published_key"].split("."):
+                    ref = ref[part]
+                assert h["published"] == ref, (key, h["id"])
+            (kind, arg), = e["tolerance"].items()
+            p = h["published"]
+            if kind == "relative":
+                lo, hi = p - arg * abs(p), p + arg * abs(p)
+            elif kind == "absolute":
+                lo, hi = p - arg, p + arg
+            elif kind == "range":
+                lo, hi = p
+            elif kind == "exact":
+                lo, hi = p, p
+            else:                                # calibration: its table's tolerance
+                lo, hi = h["low"], h["high"]
+                row = next(r for r in rep["pressure_map"]["design_point"]
+                           if r["published"] == pytest.approx(p, rel=1e-12))
+                assert hi - lo == pytest.approx(2 * row["tolerance"], rel=1e-9)
+            assert (h["low"], h["high"]) == pytest.approx((lo, hi), rel=1e-12, abs=1e-15)
+            values = h["measured"] if isinstance(h["measured"], list) else [h["measured"]]
+            within = None not in values and all(lo <= v <= hi for v in values)
+            assert h["within"] == within, (key, h["id"], values, lo, hi)
+        assert sec["status"] == _status_from(sec["headlines"]), key
+        assert sec["status"] != "reproduced" or all(h["within"] for h in sec["headlines"])
+        # the first paragraph says the status and names every quantity outside
+        assert sec["text"][0].startswith(f"{sec['status'].capitalize()}:")
+        for h in sec["headlines"]:
+            assert (h["quantity"] in sec["text"][0]) == (not h["within"]), (key, h["id"])
+    assert rep["meta"]["status_counts"] == counts
+    line = (f"{counts['reproduced']} reproduced, {counts['partial']} partial, "
+            f"{counts['differs']} differs")
+    assert line in rep["meta"]["summary"]
+    assert line in (out / "report.md").read_text() and line in (out / "report.html").read_text()
+
+
 def test_bad_pair_named(tmp_path):
     with pytest.raises(InputRangeError, match="pair"):
         run_reproduce(tmp_path, pair="s0004", quick=True, progress=False)
@@ -119,7 +187,9 @@ def test_synth_quick(tmp_path):
     assert main(["reproduce", "--out", str(tmp_path), "--quick", "--synth", "--quiet"]) == 0
     rep = json.loads((tmp_path / "report.json").read_text())
     res = rep["resources"]
-    assert res["status"] == "partial" and res["provenance"]["tool"].startswith("yowasp")
+    # 21 DSP48E1 per lane at L = 8 ((186 - 18) / 8, below) is outside the published
+    # 30 +- 10 %, the item's key headline: the computed status is "differs"
+    assert res["status"] == "differs" and res["provenance"]["tool"].startswith("yowasp")
     # gap core at L = 8 with split products: 21 x 8 + 18 DSP48E1 (bench_synth.py)
     assert res["results"][0]["DSP48E1"] == 186
 

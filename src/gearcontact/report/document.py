@@ -42,7 +42,9 @@ class Section:
         Item number of docs/spec.md sec. 8.
     title : str
     status : str
-        ``"reproduced"``, ``"partial"`` or ``"not available"``.
+        ``"reproduced"``, ``"partial"`` or ``"differs"``, computed from ``headlines``
+        (:func:`gearcontact.report.headline.judged_section`), or ``"not available"``
+        for an item that measured nothing (no headlines).
     text : list of str
         Paragraphs (each difference beyond its tolerance explained with a measurement).
     tables : list of Table
@@ -50,6 +52,8 @@ class Section:
         (file name beside the report, caption).
     data : dict
         The machine-readable numbers (``report.json[key]``).
+    headlines : tuple of gearcontact.report.headline.Headline
+        The quantities the status is computed from (``report.json[key]["headlines"]``).
     """
 
     key: str
@@ -60,12 +64,25 @@ class Section:
     tables: list = field(default_factory=list)
     figures: list = field(default_factory=list)
     data: dict = field(default_factory=dict)
+    headlines: tuple = ()
+
+    def __post_init__(self):
+        # a status is measured, never asserted: only an item that measured nothing is
+        # "not available", and none is "reproduced" with a headline outside tolerance
+        if (self.status == "not available") != (not self.headlines):
+            raise ValueError(f"item {self.key}: status {self.status!r} with "
+                             f"{len(self.headlines)} headline quantities")
+        if self.status == "reproduced" and not all(h.within for h in self.headlines):
+            raise ValueError(f"item {self.key}: 'reproduced' with a headline outside "
+                             "its tolerance")
 
     def as_dict(self) -> dict:
-        """JSON of the section: status, title, text, tables, figures and data."""
+        """JSON of the section: status, title, text, tables, figures, headlines and
+        data."""
         return {"item": self.number, "title": self.title, "status": self.status,
                 "text": self.text, "tables": [asdict(t) for t in self.tables],
-                "figures": [f for f, _ in self.figures], **self.data}
+                "figures": [f for f, _ in self.figures],
+                "headlines": [h.as_dict() for h in self.headlines], **self.data}
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,6 +175,8 @@ def render_html(rep: Reproduction) -> str:
 def render_markdown(rep: Reproduction) -> str:
     """The report as Markdown (the same content as the HTML page)."""
     out = [f"# {rep.meta['title']}", "", rep.meta["intro"], ""]
+    if rep.meta.get("summary"):
+        out += [f"**Summary: {rep.meta['summary']}**", ""]
     out += [f"- [{s.number}. {s.title}](#{s.key}) — {s.status}" for s in rep.sections]
     for s in rep.sections:
         out += ["", f'<a id="{s.key}"></a>', f"## {s.number}. {s.title}", "",

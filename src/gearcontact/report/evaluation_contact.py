@@ -2,6 +2,7 @@
 2, 6, 7): each builds one :class:`~.document.Section` from the main job's
 :class:`~.analyze.Analysis` and the published values, adding only the measurements
 that explain a difference (:mod:`.accuracy_studies`, the loaded TE with tooth bending).
+Each item's status is computed from its headline quantities (:mod:`.headline`).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import numpy as np
 from .accuracy_studies import HERTZ_P90_OVER_P0, bearing_sweep, grid_study
 from .document import Section, Table, format_cell, pct_diff
 from .evaluation_sharing import sharing_explanation
+from .headline import judge, judged_section
 
 __all__ = ["accuracy_section", "design_case", "lte_section", "multitooth_section",
            "pressure_map_section"]
@@ -128,27 +130,33 @@ def accuracy_section(analysis, pub, settings) -> Section:
         Table(f"Grid resolution: {name} at {design.torque_nm:g} N·m",
               _STUDY_HEADER + ["published contact cells"], _study_rows(grid, cells_pub)),
     ]
-    return Section("accuracy", 1, "Accuracy: preview vs full LCP over the load", "reproduced",
-                   [x for x in text if x], tables,
-                   [("pressure_vs_load.png", "preview p_max and LCP mean / p90 / peak over "
-                                             "the load (log-log) with the W^(1/3) law")],
-                   {"torque_nm": [c.torque_nm for c in cases],
-                    "load_n": [c.load_n for c in cases],
-                    "preview_p_max_mpa": [c.preview.p_max_mpa for c in cases],
-                    "lcp_mean_mpa": [c.patch.p_mean_mpa for c in cases],
-                    "lcp_p90_mpa": [c.patch.p90_mpa for c in cases],
-                    "lcp_peak_mpa": [c.patch.p_peak_mpa for c in cases],
-                    "preview_vs_p90_pct": err.tolist(),
-                    "preview_vs_p90_mean_pct": float(err.mean()),
-                    "edge_contact": [bool(c.edge_contact) for c in cases],
-                    "hertz_patch_preview_vs_p90_pct": hertz_err,
-                    "bearing_sweep": {"pair": centred.name, "side": centred.design_side,
-                                      "rows": [asdict(r) for r in sweep]},
-                    "lengthwise_sweep": [asdict(r) for r in lengthwise],
-                    "grid_study": [asdict(r) for r in grid],
-                    "published": {k: pub.get(k) for k in (
-                        "preview_vs_p90_mean_error_pct", "preview_vs_p90_error_range_pct",
-                        "edge_peak_over_body", "loads_n", "lcp_contact_cells_at_design")}})
+    peak_ratio = [c.patch.p_peak_mpa / c.patch.p90_mpa for c in cases]
+    heads = judge("accuracy", {
+        "preview_vs_p90_mean_pct": (float(err.mean()), pub_mean),
+        "preview_vs_p90_per_torque_pct": (err.tolist(), (lo, hi)),
+        "peak_over_p90": (peak_ratio, pub.get("edge_peak_over_body"))}, pub)
+    return judged_section(
+        "accuracy", 1, "Accuracy: preview vs full LCP over the load", heads,
+        [x for x in text if x], tables,
+        [("pressure_vs_load.png", "preview p_max and LCP mean / p90 / peak over "
+                                  "the load (log-log) with the W^(1/3) law")],
+        {"torque_nm": [c.torque_nm for c in cases],
+         "load_n": [c.load_n for c in cases],
+         "preview_p_max_mpa": [c.preview.p_max_mpa for c in cases],
+         "lcp_mean_mpa": [c.patch.p_mean_mpa for c in cases],
+         "lcp_p90_mpa": [c.patch.p90_mpa for c in cases],
+         "lcp_peak_mpa": [c.patch.p_peak_mpa for c in cases],
+         "preview_vs_p90_pct": err.tolist(),
+         "preview_vs_p90_mean_pct": float(err.mean()),
+         "edge_contact": [bool(c.edge_contact) for c in cases],
+         "hertz_patch_preview_vs_p90_pct": hertz_err,
+         "bearing_sweep": {"pair": centred.name, "side": centred.design_side,
+                           "rows": [asdict(r) for r in sweep]},
+         "lengthwise_sweep": [asdict(r) for r in lengthwise],
+         "grid_study": [asdict(r) for r in grid],
+         "published": {k: pub.get(k) for k in (
+             "preview_vs_p90_mean_error_pct", "preview_vs_p90_error_range_pct",
+             "edge_peak_over_body", "loads_n", "lcp_contact_cells_at_design")}})
 
 
 def pressure_map_section(analysis, pub) -> Section:
@@ -190,20 +198,28 @@ def pressure_map_section(analysis, pub) -> Section:
                     dp_rows)] if dp_rows else []
     tables.append(Table(f"Loaded contact at the design torque {c.torque_nm:g} N·m",
                         ["quantity", "ours", "published"], rows))
-    return Section("pressure_map", 2, "Spatial view: pressure map with the preview ellipse",
-                   "reproduced", text, tables,
-                   [("pressure_maps.png", "LCP pressure maps at the four torques, preview "
-                                          "ellipse overlaid")],
-                   {"torque_nm": c.torque_nm, "load_n": c.load_n,
-                    "preview_2a_mm": 2 * p.a_mm, "preview_2b_mm": 2 * p.b_mm,
-                    "preview_p_max_mpa": p.p_max_mpa,
-                    "design_point": [dict(zip(("target", "published", "ours", "tolerance",
-                                               "met"), r)) for r in dp_rows],
-                    "lcp": c.summary(),
-                    "published": {k: pub.get(k) for k in (
-                        "preview_ellipse_2a_mm", "preview_ellipse_2b_mm",
-                        "preview_ellipse_angle_deg", "preview_p_max_mpa_at_design",
-                        "lcp_contact_cells_at_design", "mesh_rotation_rigid_arcsec_at_design")}})
+    # the spatial targets of the design-point table (TE0 is judged in item 6)
+    ids = {"P0 gear radius": "p0_gear_radius_mm", "P0 gear axial": "p0_gear_axial_mm",
+           "P0 pinion radius": "p0_pinion_radius_mm", "P0 pinion axial": "p0_pinion_axial_mm",
+           "Hertz 2a": "ellipse_2a_mm", "Hertz 2b": "ellipse_2b_mm",
+           "ellipse angle": "ellipse_angle_deg"}
+    heads = judge("pressure_map", {ids[k]: (r[2], r[1]) for r in dp_rows for k in ids
+                                   if r[0].startswith(k)}, pub)
+    return judged_section(
+        "pressure_map", 2, "Spatial view: pressure map with the preview ellipse", heads,
+        text, tables,
+        [("pressure_maps.png", "LCP pressure maps at the four torques, preview "
+                               "ellipse overlaid")],
+        {"torque_nm": c.torque_nm, "load_n": c.load_n,
+         "preview_2a_mm": 2 * p.a_mm, "preview_2b_mm": 2 * p.b_mm,
+         "preview_p_max_mpa": p.p_max_mpa,
+         "design_point": [dict(zip(("target", "published", "ours", "tolerance",
+                                    "met"), r)) for r in dp_rows],
+         "lcp": c.summary(),
+         "published": {k: pub.get(k) for k in (
+             "preview_ellipse_2a_mm", "preview_ellipse_2b_mm",
+             "preview_ellipse_angle_deg", "preview_p_max_mpa_at_design",
+             "lcp_contact_cells_at_design", "mesh_rotation_rigid_arcsec_at_design")}})
 
 
 def lte_section(analysis, pub) -> Section:
@@ -240,22 +256,34 @@ def lte_section(analysis, pub) -> Section:
                f"{pct_diff(te0_pp, te0_pub):+.0f} %: the calibration trades it against P0 "
                f"and the ellipse (measured trade-off in docs/calibration.md). ")
             + "Tooth bending: item 7."]
-    return Section("lte", 6, "Loaded transmission error along the mesh phase", "reproduced",
-                   text, [Table("Loaded TE and compliances", ["quantity", "ours", "published"],
-                                lte_rows(lte, pub))],
-                   [("lte.png", "TE0, TE_LCP, TE_pre and active pairs along the phase")],
-                   {**s, "published": {"lte_pp_arcsec": pp, "te0_pp_arcsec":
-                                       pub.get("te0_pp_arcsec"),
-                                       "compliance_mm_per_n": pub.get("compliance_mm_per_n")}})
+    comp = pub.get("compliance_mm_per_n", {})
+    heads = judge("lte", {
+        "te0_pp_arcsec": (te0_pp, te0_pub),
+        "te_lcp_pp_arcsec": (lte_pp, pp_lcp),
+        "te_pre_pp_arcsec": (lte.te_pre_pp_arcsec, pp.get("preview")),
+        "te_pre_over_te_lcp": (lte.te_pre_pp_arcsec / lte_pp, pp.get("preview") / pp_lcp),
+        "compliance_lcp_mm_per_n": (lte.compliance_lcp_mm_per_n, comp.get("lcp")),
+        "compliance_pre_mm_per_n": (lte.compliance_pre_mm_per_n, comp.get("preview"))}, pub)
+    return judged_section("lte", 6, "Loaded transmission error along the mesh phase", heads,
+                          text, [Table("Loaded TE and compliances",
+                                       ["quantity", "ours", "published"], lte_rows(lte, pub))],
+                          [("lte.png", "TE0, TE_LCP, TE_pre and active pairs along the phase")],
+                          {**s, "published": {"lte_pp_arcsec": pp, "te0_pp_arcsec":
+                                              pub.get("te0_pp_arcsec"),
+                                              "compliance_mm_per_n": comp}})
 
 
-#: Published multi-tooth figures at 64.5 N·m (docs/spec.md sec. 3, 5).
-_PUBLISHED_MULTITOOTH = {"shares_pct": [74.6, 22.6, 2.8], "rotation_rigid_arcsec": 111.4,
-                         "rotation_bending_arcsec": 124.4, "bending_rotation_increase_pct": 12,
-                         "cp_max_mpa": 2714}
+def _multitooth_published(pub) -> dict:
+    """The published multi-tooth figures at 64.5 N·m (docs/spec.md sec. 3, 5) from the
+    pair's published values, under the names this item uses."""
+    return {"shares_pct": list(pub["multi_tooth_load_share_pct"]),
+            "rotation_rigid_arcsec": pub["mesh_rotation_rigid_arcsec_at_design"],
+            "rotation_bending_arcsec": pub["mesh_rotation_bending_arcsec_at_design"],
+            "bending_rotation_increase_pct": pub["mesh_rotation_bending_increase_pct"],
+            "cp_max_mpa": pub["cp_max_mpa_at_design"]}
 
 
-def multitooth_section(analysis, settings) -> Section:
+def multitooth_section(analysis, pub, settings) -> Section:
     from ..contact.lte import loaded_te
     from ..contact.tooth_bending import tooth_bending
 
@@ -264,7 +292,8 @@ def multitooth_section(analysis, settings) -> Section:
         reason = "The loaded-TE run of the main job was skipped."
         return Section("multitooth", 7, "Multi-tooth load sharing", "not available",
                        [reason], [], [], {"reason": reason})
-    pub = _PUBLISHED_MULTITOOTH
+    published = pub
+    pub = _multitooth_published(published)
     n = len(analysis.tca.cycle.phi1_rad)
     stride = max(1, -(-(n - 1) // max(int(settings["lte_phases"]) - 1, 1)))  # as the main job
     # the main job's loaded TE is one of the two models (bending by default, rigid with
@@ -361,5 +390,12 @@ def multitooth_section(analysis, settings) -> Section:
         tables += why_tables
         text += why_text
         data["sharing_explanation"] = why_data
-    return Section("multitooth", 7, "Multi-tooth load sharing", "partial", text, tables,
-                   figures, data)
+    heads = judge("multitooth", {
+        "reference_share_pct": (100.0 * share_b.get("0", 0.0), pub["shares_pct"][0]),
+        "rotation_rigid_arcsec": (rot_r, pub["rotation_rigid_arcsec"]),
+        "rotation_bending_arcsec": (rot_b, pub["rotation_bending_arcsec"]),
+        "rotation_bending_over_rigid": (rot_b / rot_r, pub["rotation_bending_arcsec"]
+                                        / pub["rotation_rigid_arcsec"]),
+        "cp_max_mpa": (None if mt is None else mt.cp_max_mpa, pub["cp_max_mpa"])}, published)
+    return judged_section("multitooth", 7, "Multi-tooth load sharing", heads, text, tables,
+                          figures, data)

@@ -1,7 +1,8 @@
 """Items of the evaluation report on the preview, its datapath and hardware
 (docs/spec.md sec. 8, items 3, 4, 5, 8): the neural-surrogate comparison, latency,
 synthesis resources (committed results with provenance, or a ``--synth`` run) and the
-fixed-point precision, each as one :class:`~.document.Section`.
+fixed-point precision, each as one :class:`~.document.Section` whose status is computed
+from its headline quantities (:mod:`.headline`).
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import numpy as np
 from .analyze import DEFAULT_TORQUES_NM
 from .document import Section, Table, pct_diff
 from .evaluation_contact import design_case
+from .headline import judge, judged_section
 
 __all__ = ["committed_resources", "latency_section", "precision_section",
            "resources_section", "surrogate_section"]
@@ -85,32 +87,44 @@ def surrogate_section(analysis, pub, settings, out: Path) -> Section:
         f"{ra['preview']['extrap']:.0f} % on the extrapolated loads; item 1 compares its "
         f"size with the published one).",
     ]
-    return Section("surrogate", 3, "Physics-direct preview vs a neural surrogate",
-                   "reproduced", text,
-                   [Table("(a) synthetic (A-, B-, W): RMSE of p_max (%)",
-                          ["model vs truth", "in box (W <= 3000 N)", "out of box (3–9 kN)",
-                           "published in / out"], syn_rows),
-                    Table("(b) anchored to the LCP p90", ["model", "trained loads",
-                                                          "extrapolated loads",
-                                                          "published trained / extrap."],
-                          anc_rows),
-                    Table("(b) cost of the training set", ["quantity", "ours", "published"],
-                          cost_rows)],
-                   [("surrogate.png", "(a) p_max error vs load, MLP and preview against "
-                                      "exact Hertz; (b) LCP p90 labels, MLP and preview")],
-                   {"synthetic": syn.as_dict(), "anchored": anc.as_dict()})
+    ps, pa = pub["surrogate_synthetic_rmse_pct"], pub["surrogate_anchored_rmse_pct"]
+    heads = judge("surrogate", {
+        "mlp_in_box_rmse_pct": (r["mlp"]["exact"]["in_box"], ps["mlp_in_box"]),
+        "mlp_out_of_box_rmse_pct": (r["mlp"]["exact"]["out_of_box"], ps["mlp_out_of_box"]),
+        "preview_vs_hamrock_brewe_rmse_pct": ([r["preview"]["hamrock_brewe"]["in_box"],
+                                               r["preview"]["hamrock_brewe"]["out_of_box"]],
+                                              ps["preview"]),
+        "mlp_trained_rmse_pct": (ra["mlp"]["train"], pa["mlp_trained"]),
+        "mlp_extrapolated_rmse_pct": (ra["mlp"]["extrap"], pa["mlp_extrapolated"]),
+        "preview_trained_rmse_pct": (ra["preview"]["train"], pa["preview_trained"]),
+        "preview_extrapolated_rmse_pct": (ra["preview"]["extrap"],
+                                          pa["preview_extrapolated"])}, pub)
+    return judged_section(
+        "surrogate", 3, "Physics-direct preview vs a neural surrogate", heads, text,
+        [Table("(a) synthetic (A-, B-, W): RMSE of p_max (%)",
+               ["model vs truth", "in box (W <= 3000 N)", "out of box (3–9 kN)",
+                "published in / out"], syn_rows),
+         Table("(b) anchored to the LCP p90", ["model", "trained loads", "extrapolated loads",
+                                               "published trained / extrap."], anc_rows),
+         Table("(b) cost of the training set", ["quantity", "ours", "published"], cost_rows)],
+        [("surrogate.png", "(a) p_max error vs load, MLP and preview against exact Hertz; "
+                           "(b) LCP p90 labels, MLP and preview")],
+        {"synthetic": syn.as_dict(), "anchored": anc.as_dict()})
 
 
-def latency_section(analysis) -> Section:
+def latency_section(analysis, pub) -> Section:
     from .latency import PAPER_JITTER, PAPER_US, core_cycles
     from .summary import cpu_latency_rows
 
-    published_cycles = {"gap pass (L = 16, N = 16)": 26, "fit C": None, "Hertz D": 756,
-                        "chain C -> D": 806, "combinational C + D": 58}
+    pc = pub["rtl_cycles"]
+    published_cycles = {"gap pass (L = 16, N = 16)": pc["gap_pass_l16_n16"], "fit C": None,
+                        "Hertz D": pc["hertz_d"], "chain C -> D": pc["chain_c_d"],
+                        "combinational C + D": pc["combinational_c_d"]}
     cyc = core_cycles()
     cyc16 = core_cycles(n_samples=16)
     rows = [[name, n, 0, published_cycles.get(name)] for name, n in cyc.items()]
-    rows.insert(1, ["gap pass (L = 16, N = 16)", next(iter(cyc16.values())), 0, 26])
+    rows.insert(1, ["gap pass (L = 16, N = 16)", next(iter(cyc16.values())), 0,
+                    pc["gap_pass_l16_n16"]])
     lat = analysis.latency
     text = ["Cycle counts are constants of the design (the golden timing model; every RTL "
             "simulation in the test suite is asserted to take exactly these cycles, so the "
@@ -120,16 +134,24 @@ def latency_section(analysis) -> Section:
             f"on a shared machine (load average {os.getloadavg()[0]:.1f} on "
             f"{os.cpu_count()} cores when the report was built): other processes set it, "
             f"the preview runs the same operations for every input."]
-    return Section("latency", 4, "Determinism and latency", "reproduced", text,
-                   [Table("RTL cycles from go to done", ["core", "cycles", "spread (cycles)",
-                                                         "published"], rows),
-                    Table("fp64 preview on the CPU", ["quantity", "ours", "published"],
-                          cpu_latency_rows(lat))],
-                   [], {"core_cycles": {r[0]: r[1] for r in rows}, "cycles_spread": 0,
-                        "preview_cpu": {"p50_us": lat.p50_us, "p99_us": lat.p99_us,
-                                        "jitter": lat.jitter, "calls": lat.calls},
-                        "published": {"cycles": published_cycles,
-                                      "cpu_preview_us": PAPER_US, "cpu_jitter": PAPER_JITTER}})
+    ours = {r[0]: r[1] for r in rows}
+    heads = judge("latency", {
+        "cycles_gap_l16_n16": (ours["gap pass (L = 16, N = 16)"], pc["gap_pass_l16_n16"]),
+        "cycles_hertz_d": (ours["Hertz D"], pc["hertz_d"]),
+        "cycles_chain_c_d": (ours["chain C -> D"], pc["chain_c_d"]),
+        "cycles_combinational_c_d": (ours["combinational C + D"], pc["combinational_c_d"])},
+        pub)
+    return judged_section(
+        "latency", 4, "Determinism and latency", heads, text,
+        [Table("RTL cycles from go to done", ["core", "cycles", "spread (cycles)",
+                                              "published"], rows),
+         Table("fp64 preview on the CPU", ["quantity", "ours", "published"],
+               cpu_latency_rows(lat))],
+        [], {"core_cycles": ours, "cycles_spread": 0,
+             "preview_cpu": {"p50_us": lat.p50_us, "p99_us": lat.p99_us,
+                             "jitter": lat.jitter, "calls": lat.calls},
+             "published": {"cycles": published_cycles,
+                           "cpu_preview_us": PAPER_US, "cpu_jitter": PAPER_JITTER}})
 
 
 def committed_resources() -> dict | None:
@@ -239,7 +261,7 @@ def _tri_core_difference(recs) -> str:
             f"place and route).")
 
 
-def resources_section(synth: bool, settings, out: Path) -> Section:
+def resources_section(synth: bool, settings, out: Path, pub) -> Section:
     from ..hw.synth import PUBLISHED, PUBLISHED_DSP_FIT, XC7K480T, SynthResult, dsp_fit
 
     data = _run_synth(out, settings["synth_lanes"]) if synth else committed_resources()
@@ -291,16 +313,24 @@ def resources_section(synth: bool, settings, out: Path) -> Section:
                     f"the XC7K480T hold L <= {fit.lanes_max:.1f} lanes (published: L ~ 63).")
     soc_table, soc_text, soc_rows = _whole_core_table()
     text.append(soc_text)
-    return Section("resources", 5, "Resources and throughput scaling", "partial", text,
-                   [Table("Gap core, yosys synth_xilinx (DSP mode)",
-                          ["core", "DSP48E1", "LUT", "FF", "CARRY4", "LC", "depth", "CPU s",
-                           "DSP48E1 published", "LC published"], rows)]
-                   + ([soc_table] if soc_table else []),
-                   [], {**data, "source": source, "dsp_fit": asdict(fit) if fit else None,
-                        "published": published, "whole_cores": soc_rows})
+    pf, pt = pub["gap_core_dsp_fit"], pub["tri_core_nodsp"]
+    tri = next((r for r in soc_rows if r["core"] == "tri_core" and r["nodsp"]), {})
+    heads = judge("resources", {
+        "dsp_per_lane": ([(r.DSP48E1 - pf["intercept"]) / r.lanes for r in results],
+                         pf["per_lane"]),
+        **{f"tri_core_nodsp_{k.lower()}": (tri.get(k), pt[k]) for k in ("LUT", "FF", "CARRY4")}},
+        pub)
+    return judged_section(
+        "resources", 5, "Resources and throughput scaling", heads, text,
+        [Table("Gap core, yosys synth_xilinx (DSP mode)",
+               ["core", "DSP48E1", "LUT", "FF", "CARRY4", "LC", "depth", "CPU s",
+                "DSP48E1 published", "LC published"], rows)]
+        + ([soc_table] if soc_table else []),
+        [], {**data, "source": source, "dsp_fit": asdict(fit) if fit else None,
+             "published": published, "whole_cores": soc_rows})
 
 
-def precision_section(analysis) -> Section:
+def precision_section(analysis, pub) -> Section:
     from ..preview.gap.golden import GapFormat
 
     by_coord, by_normal = analysis.precision
@@ -327,20 +357,21 @@ def precision_section(analysis) -> Section:
             f"the ease-off."]
     header = ["width (bits)", "cf", "rf", "max error (um)", "RMS error (um)",
               "max error / bound", "published bound (um)"]
-    return Section("precision", 8, "Fixed-point precision of the gap kernel", "reproduced",
-                   text,
-                   [Table("Over the coordinate width (rf = 19)", header, rows),
-                    Table("Over the normal width (cf = 16; width = rf + 1 sign bit)",
-                          header, nrows)],
-                   [("precision.png", "gap error vs coordinate / normal fraction bits with "
-                                      "the first-order bound")],
-                   {"coord_width_bits": [r[0] for r in rows],
-                    "coord_frac_bits": [r[1] for r in rows],
-                    "max_gap_error_um": [r[3] for r in rows],
-                    "rms_gap_error_um": [r[4] for r in rows],
-                    "bound_um": [r[6] for r in rows],
-                    "normal_width_bits": [r[0] for r in nrows],
-                    "normal_max_gap_error_um": [r[3] for r in nrows],
-                    "normal_rms_gap_error_um": [r[4] for r in nrows],
-                    "normal_bound_um": [r[6] for r in nrows],
-                    "max_error_over_bound": worst})
+    heads = judge("precision", {"max_error_over_bound": (worst, pub["gap_error_over_bound"])},
+                  pub)
+    return judged_section(
+        "precision", 8, "Fixed-point precision of the gap kernel", heads, text,
+        [Table("Over the coordinate width (rf = 19)", header, rows),
+         Table("Over the normal width (cf = 16; width = rf + 1 sign bit)", header, nrows)],
+        [("precision.png", "gap error vs coordinate / normal fraction bits with the "
+                           "first-order bound")],
+        {"coord_width_bits": [r[0] for r in rows],
+         "coord_frac_bits": [r[1] for r in rows],
+         "max_gap_error_um": [r[3] for r in rows],
+         "rms_gap_error_um": [r[4] for r in rows],
+         "bound_um": [r[6] for r in rows],
+         "normal_width_bits": [r[0] for r in nrows],
+         "normal_max_gap_error_um": [r[3] for r in nrows],
+         "normal_rms_gap_error_um": [r[4] for r in nrows],
+         "normal_bound_um": [r[6] for r in nrows],
+         "max_error_over_bound": worst})

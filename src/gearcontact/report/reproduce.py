@@ -24,8 +24,11 @@ Files written into ``out`` (besides those of the main job, which the report show
 =======================  ===================================================================
 
 Every table has a ``published`` column (values of ``data/published/s0003.json``; empty
-where the study gave none). An item whose physics is not in the package yet is reported
-with status ``not available`` and the reason; nothing is filled in.
+where the study gave none). Each item's status is computed from its headline quantities
+and their published tolerances (:mod:`.headline`, ``data/published/s0003_headlines.json``):
+``reproduced``, ``partial`` or ``differs``; an item that measured nothing (its physics or
+data missing) is ``not available`` with the reason; nothing is filled in. ``meta``
+counts the statuses (``status_counts``, ``summary``).
 """
 
 from __future__ import annotations
@@ -47,6 +50,7 @@ from .evaluation_contact import (accuracy_section, lte_section, multitooth_secti
                                  pressure_map_section)
 from .evaluation_datapath import (committed_resources, latency_section, precision_section,
                                   resources_section, surrogate_section)
+from .headline import status_counts, summary_line
 
 __all__ = ["ITEMS", "run_reproduce", "committed_resources", "QUICK", "FULL"]
 
@@ -132,11 +136,11 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
         "accuracy": lambda: accuracy_section(analysis, pub, settings),
         "pressure_map": lambda: pressure_map_section(analysis, pub),
         "surrogate": lambda: surrogate_section(analysis, pub, settings, out),
-        "latency": lambda: latency_section(analysis),
-        "resources": lambda: resources_section(synth, settings, out),
+        "latency": lambda: latency_section(analysis, pub),
+        "resources": lambda: resources_section(synth, settings, out, pub),
         "lte": lambda: lte_section(analysis, pub),
-        "multitooth": lambda: multitooth_section(analysis, settings),
-        "precision": lambda: precision_section(analysis),
+        "multitooth": lambda: multitooth_section(analysis, pub, settings),
+        "precision": lambda: precision_section(analysis, pub),
     }
     sections = []
     for key in ITEMS:
@@ -153,12 +157,21 @@ def run_reproduce(out_dir, *, quick: bool = False, synth: bool = False,
     from .. import __version__
 
     times["total_s"] = time.perf_counter() - t_start
-    meta = {"title": f"{pair}: the evaluation of docs/spec.md sec. 8, reproduced",
+    counts = status_counts(s.status for s in sections)
+    meta = {"title": f"{pair}: the evaluation of docs/spec.md sec. 8 beside the published "
+                     "values",
             "intro": (f"gearcontact {__version__}, pair {pair} ({analysis.side} flank pair), "
                       f"{'quick' if quick else 'full'} run. Units: mm, N, MPa, arcsec. "
                       "Published values are those of the original study "
                       "(data/published/s0003.json); differences beyond their tolerance are "
                       "explained in the text of each item with a measurement."),
+            "status_counts": counts,
+            "summary": (f"{len(sections)} items: {summary_line(counts)}. A status is "
+                        "computed from the item's headline quantities and their published "
+                        "tolerances (data/published/s0003_headlines.json): reproduced = "
+                        "every headline within its tolerance, differs = no key headline "
+                        "within, partial otherwise; each item's first paragraph names what "
+                        "is outside, measured against published."),
             "version": __version__, "pair": pair, "quick": bool(quick), "synth": bool(synth),
             "settings": {k: list(v) if isinstance(v, tuple) else v
                          for k, v in settings.items()},

@@ -23,6 +23,7 @@ from ..analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz_array
 from ..figure_files import save_figure
 from ..materials import STEEL, effective_modulus_mpa
 from ..validation import InputRangeError, check_positive
+from .analyze import published_values
 
 __all__ = ["BOX", "MlpSpec", "SyntheticStudy", "AnchoredStudy", "fit_mlp",
            "relative_rmse_pct", "synthetic_study", "anchored_study", "plot_surrogate",
@@ -33,12 +34,19 @@ __all__ = ["BOX", "MlpSpec", "SyntheticStudy", "AnchoredStudy", "fit_mlp",
 #: inside the preview's envelope (alpha <= 128).
 BOX = {"A_min_per_mm": (5e-4, 1e-2), "B_max_per_mm": (1e-2, 6e-2),
        "load_train_n": (100.0, 3000.0), "load_out_n": (3000.0, 9000.0)}
-#: Published RMSE of study (a), %: MLP in / out of the box, preview (physics) ~ 0.
-PUBLISHED_SYNTHETIC = {"mlp_in_pct": 0.94, "mlp_out_pct": 27.9, "preview_pct": 0.0}
+_PUBLISHED = published_values("s0003")
+#: Published RMSE of study (a), %: MLP in / out of the box, preview (physics) ~ 0
+#: (``data/published/s0003.json``).
+PUBLISHED_SYNTHETIC = {f"{ours}_pct": _PUBLISHED["surrogate_synthetic_rmse_pct"][name]
+                       for ours, name in (("mlp_in", "mlp_in_box"),
+                                          ("mlp_out", "mlp_out_of_box"),
+                                          ("preview", "preview"))}
 #: Published errors of study (b), %: network / physics on the trained and extrapolated
-#: loads.
-PUBLISHED_ANCHORED = {"mlp_train_pct": 0.0, "mlp_extrap_pct": 20.3,
-                      "preview_train_pct": 29.2, "preview_extrap_pct": 18.9}
+#: loads (``data/published/s0003.json``).
+PUBLISHED_ANCHORED = {f"{model}_{loads}_pct": _PUBLISHED["surrogate_anchored_rmse_pct"][
+                          f"{model}_{name}"]
+                      for model in ("mlp", "preview")
+                      for loads, name in (("train", "trained"), ("extrap", "extrapolated"))}
 #: Published host LCP cost, s per solve (docs/spec.md sec. 5).
 PUBLISHED_LCP_S_PER_SOLVE = 2.005
 
