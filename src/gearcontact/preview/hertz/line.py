@@ -54,7 +54,8 @@ divider, ``isqrt`` the restoring square root of :mod:`.sqrt`)::
     SELECT    p_l = rs(S, 8); elliptic when flags' = 0 and (2 a_e <= L or p_e >= p_l):
               (a_e, b_e, p_e, k_e); else line: a = rs(L, 1), b = rs(b_l, 16),
               p_max = p_l, k = 0;
-              S = 0 -> FLAG_DIV_ZERO; an output beyond its format -> FLAG_OVERFLOW
+              S = 0 -> FLAG_DIV_ZERO; an output beyond its format (a_e, b, p_max)
+              -> FLAG_OVERFLOW
 
 =========  ============  =========================================  ==============
 register   format        definition                                 bound (codes)
@@ -312,6 +313,8 @@ def line_golden(A_code: int, B_code: int, W_code: int, L_code: int, *, e_prime_c
     # SELECT: the higher of two lower bounds once the ellipse is longer than the flank
     p_c = round_shift(s, SQRT_OUT.frac - PMAX.frac)
     if hz.flags == 0 and (2 * a_e <= L or p_e >= p_c):
+        if not SEMI_AXIS.fits(a_e):        # an ellipse beyond 2048 mm kept: no register
+            return LineCodes(0, 0, 0, 0, a_min, b_max, 0, n, F.FLAG_OVERFLOW)
         return LineCodes(a_e, b_e, p_e, hz.k_code, a_min, b_max, MODE_ELLIPTIC, n, 0)
     if div_zero:
         return LineCodes(0, 0, 0, 0, a_min, b_max, 0, n, F.FLAG_DIV_ZERO)
