@@ -21,6 +21,14 @@ Every backend evaluates stage D in either Hertz form, ``get_engine(name, hertz_f
 "exact")`` (:data:`.hertz.formats.HERTZ_FORMS`; the fixed-point ``"exact"`` form holds the
 exact k and elliptic-integral terms in the same tables, :mod:`.hertz.luts`).
 
+Near-line contact: ``hertz(A, B, W, line_length_mm=L)`` (reference, golden) runs the
+*line core* of stage D (:mod:`.hertz.line`; 759 cycles): the Hertz ellipse (reduced
+radii beyond the published 1 m by the Hertz similarity) or, where the flank (contact line
+of length L) truncates a longer ellipse, the Hertz line contact; ``PreviewResult.mode``
+says which. The golden line core reports its domain through flags (never raises for
+it); the reference mirrors that domain unless ``envelope=False`` (host-side previews:
+any positive input, the physics alone).
+
 Physical inputs are validated the same way for every backend (finite, positive; errors
 name the field); range limits specific to a representation are then reported by that
 representation: the reference raises :class:`~gearcontact.validation.InputRangeError`

@@ -346,9 +346,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                for c in cases])
     write_csv(out / "preview.csv", PREVIEW_COLUMNS,
               _preview_rows(cases, reference, gold, chain))
-    missing = _missing_warning(gold, chain)
-    if missing is not None:
-        warnings.warn(missing, PreviewDomainWarning, stacklevel=2)
     for c in cases:
         g = c.patch.grid
         s, t = np.meshgrid(g.x_mm, g.y_mm)
@@ -390,6 +387,9 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                               "jitter": latency.jitter, "calls": latency.calls}
     steps.update(1)
     steps.close()
+    missing = _missing_warning(gold, chain)
+    if missing is not None:      # after the progress bar: one clean line on stderr
+        warnings.warn(missing, PreviewDomainWarning, stacklevel=2)
     result = Analysis(pair, tca, tuple(cases), tuple(g for g, _ in gold),
                       tuple(ch for ch, _ in chain), timings, out, lte, precision, latency,
                       side, flanks, easeoff_note, multitooth,

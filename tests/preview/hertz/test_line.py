@@ -170,6 +170,24 @@ def test_golden_against_reference_of_the_same_rule(material):
     assert modes == {"elliptic", "line"}
 
 
+def test_exact_form_line_core():
+    # hertz_form="exact": the wrapped datapath holds exact k and E (its own tests); the
+    # line core's elliptic answer is then exact Hertz within the same 1.5e-4 + LSB at
+    # the decoded codes, and the line answer does not depend on the form
+    for a, b, w, length in zip(*_random_inputs(40, seed=99)):
+        a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=EP)
+        l_c = encode_length(length)
+        lc = line_golden(a_c, b_c, w_c, l_c, e_prime_code=e_c, hertz_form="exact")
+        v = decode_line_codes(lc)
+        dec = [math.ldexp(a_c, -20), math.ldexp(b_c, -20), math.ldexp(w_c, -8),
+               math.ldexp(l_c, -20)]
+        tp = truncated_preview(*dec, e_prime_mpa=e_c, hertz_form="exact")
+        assert tp.mode == lc.mode_name
+        assert abs(v["p_max_mpa"] - tp.p_max_mpa) <= 1.5e-4 * tp.p_max_mpa + LSB_P
+        if lc.mode == MODE_LINE:
+            assert lc == line_golden(a_c, b_c, w_c, l_c, e_prime_code=e_c)
+
+
 def test_pressure_continuous_where_the_mode_changes():
     # load sweep through the switch of an F3-like bearing (L = 13.3 mm): the larger of
     # the two lower bounds, so p_max(W) has no jump; a plain a > L/2 switch would drop
