@@ -19,6 +19,10 @@ datapath accepts (:mod:`.formats`): curvatures in [2^-11, 16] 1/mm, load in
 so that every backend of the preview accepts exactly the same inputs. With
 ``envelope=False`` only positivity and finiteness are required.
 
+Near-line contact: :func:`truncated_preview` is the fp64 model of the line core's mode
+rule (:mod:`.line`): the ellipse, or the Hertz line contact of the contact line's
+length where the flank truncates a longer ellipse (docs/hertz.md sec. 6).
+
 References
 ----------
 B. J. Hamrock, D. E. Brewe, J. Lubrication Technol. 105 (1983) 171-177.
