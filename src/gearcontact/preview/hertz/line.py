@@ -31,7 +31,9 @@ modes (``mode``):
   higher one is taken: just past ``a = L/2`` the ellipse's (the cut-off tips carry
   little load), far past it the line's. The pressure is then continuous in the load
   and curvatures where the mode changes (a plain ``a > L/2`` switch would drop it by
-  up to ~20 %: ``2/3 (b_e/b_l)`` at ``a = L/2``).
+  up to ~20 %: ``2/3 (b_e/b_l)`` at ``a = L/2``), except where the ratio crosses 128
+  with the ellipse inside the flank: there the line answer is below the ellipse's
+  (the POW table's end; docs/hertz.md sec. 6, known limit).
 
 (:func:`gearcontact.analytic.hertz.line_contact_hertz` is the fp64 truth of the line
 answer, :func:`.reference.truncated_preview` the fp64 model of the mode rule.)
