@@ -3,7 +3,8 @@
 Truths: the golden model bit for bit (every output port, the mode, the scale and the
 flags) on corner and seeded random vectors; the cycle count, 759 for every vector
 (data independent); the square-root unit equals ``math.isqrt``. The simulator runs the
-core at ~1 evaluation/s of CPU time, so the default suite runs 14 vectors (~15 s).
+core at a few evaluations/s of CPU time, so the default suite runs 14 vectors + 3 with the
+exact-Hertz tables (6 s on an idle machine, 20 s under load).
 """
 
 import math
@@ -68,6 +69,15 @@ def test_rtl_equals_golden_bit_for_bit_and_759_cycles():
     assert {line_golden(*v[:4], e_prime_code=v[4]).scale for v in CORNERS} == {0, 1, 2, 3}
     flags = {line_golden(*v[:4], e_prime_code=v[4]).flags for v in CORNERS}
     assert {F.FLAG_NOT_ELLIPTIC, 1 << 7} <= flags
+
+
+def test_exact_form_rtl_equals_golden():
+    # the wrapped HertzCore with the exact-Hertz tables: one vector per mode and scale
+    vectors = [CORNERS[0], CORNERS[1], CORNERS[2]]
+    outs, cycles = simulate_line_core(vectors, hertz_form="exact")
+    assert cycles == [LINE_CYCLES] * 3
+    for v, got in zip(vectors, outs):
+        assert got == line_golden(*v[:4], e_prime_code=v[4], hertz_form="exact"), v
 
 
 @pytest.mark.slow
