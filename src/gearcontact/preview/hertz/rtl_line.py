@@ -294,7 +294,7 @@ def simulate_line_core(vectors, *, max_cycles: int = 2 * LN.LINE_CYCLES,
     (outputs, cycles)
         :class:`.line.LineCodes` read from the ports (comparable with
         :func:`.line.line_golden`) and the edges from ``go`` to ``done`` per vector
-        (``LINE_CYCLES`` = 759 by design). About 20 evaluations/s of CPU time.
+        (``LINE_CYCLES`` = 759 by design). A few evaluations per second of CPU time.
     """
     dut = HertzLineCore(hertz_form=hertz_form)
     cc = CycleCounter(dut)
