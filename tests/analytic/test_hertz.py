@@ -15,7 +15,7 @@ from scipy.special import ellipe, ellipk
 
 from gearcontact.analytic.hertz import (circular_hertz, exact_elliptic_hertz, exact_ellipticity,
                                         hamrock_brewe_error_table, hamrock_brewe_hertz,
-                                        hamrock_brewe_hertz_array)
+                                        hamrock_brewe_hertz_array, line_contact_hertz)
 from gearcontact.materials import STEEL, effective_modulus_mpa
 from gearcontact.validation import InputRangeError
 
@@ -212,3 +212,34 @@ def test_exact_ellipticity_bad_alpha():
     for bad in (0.999, float("nan"), float("inf")):
         with pytest.raises(InputRangeError, match="alpha"):
             exact_ellipticity(bad)
+
+
+@pytest.mark.parametrize("ratio, tol", [(1e3, 3e-4), (1e4, 3e-5), (1e5, 3e-6)])
+def test_line_contact_is_the_long_ellipse_limit(ratio, tol):
+    # Independent truth: the exact elliptic solution (Carlson integrals). Along the
+    # centre strip of a long Hertz ellipse the pressure is a semi-ellipse of peak p0 and
+    # half-width b carrying q = pi p0 b / 2 per mm; the Hertz line contact with that
+    # load per length and R = 1/(2 B_max) must give the same p0 and b as ratio -> inf.
+    # Measured deviation 0.23/ratio (2.2e-3 at 100, 2.3e-5 at 1e4): tol ~ 1.3x that.
+    B = 0.1
+    ex = exact_elliptic_hertz(B / ratio, B, 1000.0, e_prime_mpa=E_PRIME)
+    q = math.pi * ex.p_max_mpa * ex.b_mm / 2.0
+    lc = line_contact_hertz(0.5 / B, q * 10.0, 10.0, e_prime_mpa=E_PRIME)
+    assert lc.p_max_mpa == pytest.approx(ex.p_max_mpa, rel=tol)
+    assert lc.b_mm == pytest.approx(ex.b_mm, rel=tol)
+
+
+def test_line_contact_closed_forms_and_inputs():
+    # Johnson 1985 sec. 4.3 by hand: W = 1000 N, L = 10 mm, R = 10 mm, E* = 114 835 MPa:
+    # p0 = sqrt(100 * 114835 / (10 pi)) = 604.6 MPa, b = sqrt(4 * 100 * 10 / (pi E*))
+    lc = line_contact_hertz(10.0, 1000.0, 10.0, e_prime_mpa=E_PRIME)
+    assert lc.p_max_mpa == pytest.approx(math.sqrt(100.0 * E_PRIME / 2 / (10.0 * math.pi)),
+                                         rel=1e-14)
+    assert lc.b_mm == pytest.approx(math.sqrt(4000.0 / (math.pi * E_PRIME / 2)), rel=1e-14)
+    assert lc.half_length_mm == 5.0 and lc.load_per_length_n_per_mm == 100.0
+    # equilibrium: the semi-elliptic strip carries the load
+    assert math.pi * lc.p_max_mpa * lc.b_mm * 10.0 / 2.0 == pytest.approx(1000.0, rel=1e-14)
+    for args, field in (((0.0, 1.0, 1.0), "radius_mm"), ((1.0, -1.0, 1.0), "load_n"),
+                        ((1.0, 1.0, math.nan), "length_mm")):
+        with pytest.raises(InputRangeError, match=field):
+            line_contact_hertz(*args, e_prime_mpa=E_PRIME)

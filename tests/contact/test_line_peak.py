@@ -21,7 +21,8 @@ import pytest
 from scipy.integrate import quad
 
 from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.line_peak import (boundary_cells, inadmissible_cells,
+from gearcontact.contact.line_peak import (boundary_cells, contact_line_length_mm,
+                                           inadmissible_cells,
                                          line_contact_peak, trimmed_gap)
 from gearcontact.validation import InputRangeError
 
@@ -165,3 +166,20 @@ def test_edge_cut_hertz_trimmed_and_resolved():
         assert out[n][3] == pytest.approx(out[n][2], rel=0.06)
     assert out[80][2] == pytest.approx(out[40][2], rel=0.10)
     assert out[80][3] == pytest.approx(out[40][3], rel=0.10)
+
+
+def test_contact_line_length_is_the_on_flank_run_through_the_centre():
+    # cell centres x = -5.95 .. 5.95 mm (dx = 0.1), y = -0.5 .. 0.5 (row 10 at y = 0);
+    # flank edges at s = -3 and s = +2 mm cut the centre line: 50 cells, 5.0 mm; an
+    # on-flank island beyond the edge (4 < s < 5) is not part of the line
+    grid = TangentGrid.uniform(120, 21, dx_mm=0.1, dy_mm=0.05, x0_mm=-5.95, y0_mm=-0.5)
+    x, _ = grid.mesh()
+    off = (x < -3.0) | (x > 2.0)
+    off[10, (grid.x_mm > 4.0) & (grid.x_mm < 5.0)] = False
+    assert contact_line_length_mm(off, grid) == pytest.approx(5.0, abs=1e-12)
+    # no flank boundary inside the field: the field's width
+    assert contact_line_length_mm(np.zeros_like(off), grid) == pytest.approx(12.0, abs=1e-12)
+    # P0 itself off the flank (edge contact): the run nearest s = 0
+    off2 = (x < 0.5) | (x > 2.0)
+    assert contact_line_length_mm(off2, grid) == pytest.approx(1.5, abs=1e-12)
+    assert contact_line_length_mm(np.ones_like(off), grid) is None

@@ -95,6 +95,10 @@ def test_cp_max_is_hertzian_on_the_centred_bearing(cases):
     assert not c.edge_contact and ref.peak.trimmed_cells == 0
     assert ref.peak.cp_max_mpa == pytest.approx(c.preview_p_max_mpa, rel=5e-2)
     assert c.cp_max_mpa <= c.p_peak_cell_mpa * 1.05
+    # no edge: the contact line through the contact point is longer than the ellipse,
+    # so the preview is the ellipse (docs/hertz.md sec. 6), reported as such
+    assert c.preview_mode == "elliptic" and c.summary()["preview_mode"] == "elliptic"
+    assert c.line_length_mm > 0
 
 
 def test_bad_input(centred_drive_11):

@@ -231,7 +231,10 @@ def test_build_error_carries_the_log(tmp_path, monkeypatch):
 #: tests/preview/test_chain_pipe.py).
 #: comb_exact likewise (16 s with its build; slow suite here, 1,000 vectors passing);
 #: tests/preview/test_chain_rtl.py checks it in the Amaranth simulator by default.
-_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe", "comb_exact")
+#: hertz_line wraps the HertzCore checked here (its own build takes ~45 s; 100,017
+#: vectors passing, docs/hertz.md sec. 6); tests/preview/hertz/test_rtl_line.py checks it
+#: in the Amaranth simulator by default.
+_SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe", "comb_exact", "hertz_line")
 _DEFAULT_CORES = [pytest.param(c, marks=pytest.mark.slow) if c in _SLOW_BUILDS else c
                   for c in hc.CORE_NAMES]
 
@@ -325,7 +328,7 @@ def test_bulk_equivalence_100k(core):
 # ---------------------------------------------------------------------------------
 # descriptors: every harness width derived from the component's signature
 # ---------------------------------------------------------------------------------
-@pytest.mark.parametrize("core", ["gap", "fit", "hertz", "hertz_pipe", "chain"])
+@pytest.mark.parametrize("core", ["gap", "fit", "hertz", "hertz_pipe", "chain", "hertz_line"])
 def test_derived_spec_matches_the_verilog_ports(core):
     """Each derived port (operands, burst fields, outputs) has the direction and total
     width of the exported Verilog's port (independent truth: Amaranth's backend), and

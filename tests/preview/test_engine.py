@@ -192,3 +192,39 @@ def test_hardware_backends_found_through_the_entry_point():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "gearcontact.hw.driver"
+
+
+@pytest.mark.parametrize("A, B, W, L, mode", [
+    (0.0246, 2.3e-4, 603.0, 20.0, "elliptic"),   # R_x = 2.2 m, below the published range
+    (0.0246, 1e-6, 4825.0, 13.3, "line"),        # ellipse far longer than the flank
+    (0.0246, 3e-5, 4825.0, 50.3, "line"),        # ratio 820: beyond the POW table
+])
+def test_line_length_gives_the_line_core_and_its_mode(A, B, W, L, mode):
+    # the datapath's rule: reference (fp64) and golden agree on the mode and within the
+    # 0.5 % acceptance bound (the line core's own tests measure the errors in detail)
+    ref = ReferenceEngine().hertz(A, B, W, line_length_mm=L)
+    gold = GoldenEngine().hertz(A, B, W, line_length_mm=L)
+    assert ref.mode == gold.mode == mode and gold.valid and gold.cycles == 759
+    for name in ("a_mm", "b_mm", "k", "p_max_mpa"):
+        assert getattr(gold, name) == pytest.approx(getattr(ref, name), rel=GOLDEN_RTOL), name
+    assert gold.codes["mode"] == (mode == "line") and gold.as_dict()["mode"] == mode
+    if mode == "line":
+        # Johnson 1985 sec. 4.3 with R = 1/(2 A-) across the line, E* = E'/2
+        p0 = math.sqrt(W * E_PRIME_STEEL / 2 / (math.pi * (0.5 / A) * L))
+        assert ref.p_max_mpa == pytest.approx(p0, rel=1e-13)
+        assert ref.a_mm == L / 2 and ref.k == pytest.approx(ref.a_mm / ref.b_mm, rel=1e-15)
+
+
+def test_line_core_outside_its_domain_is_flagged_not_raised():
+    # golden: the line core flags a contact line longer than 1024 mm (a result); the
+    # reference mirrors the domain with envelope=True and takes any positive input
+    # without it (host-side previews)
+    gold = GoldenEngine().hertz(0.0246, 2.3e-4, 603.0, line_length_mm=2000.0)
+    assert gold.mode == "flagged" and gold.flags == ("length_range",) and gold.p_max_mpa == 0
+    with pytest.raises(InputRangeError, match="line_length_mm"):
+        ReferenceEngine().hertz(0.0246, 2.3e-4, 603.0, line_length_mm=2000.0)
+    host = ReferenceEngine(envelope=False).hertz(0.0246, 2.3e-4, 603.0, line_length_mm=2000.0)
+    assert host.mode == "elliptic" and host.p_max_mpa > 0
+    # the published path keeps its contract: outside the envelope it raises
+    with pytest.raises(InputRangeError):
+        GoldenEngine().hertz(0.0246, 2.3e-4, 603.0)

@@ -13,7 +13,9 @@ import numpy as np
 import pytest
 
 from gearcontact.cli import main
-from gearcontact.report.analyze import published_values, run_analysis
+from gearcontact.preview.engine import GoldenEngine
+from gearcontact.report.analyze import (PREVIEW_COLUMNS, _golden_preview, _missing_warning,
+                                        published_values, run_analysis)
 
 TORQUES = (32.25, 64.5, 258.0)
 
@@ -85,6 +87,40 @@ def test_golden_preview_matches_reference(analysis):
         assert g.valid
         assert g.p_max_mpa == pytest.approx(c.preview.p_max_mpa, rel=5e-3)
     assert all(ch.cycles == 806 for ch in analysis.golden_chain)
+
+
+def test_preview_csv_says_which_mode_evaluated_each_torque(analysis):
+    # s0003's curvatures lie inside the published core's range: every fixed-point column
+    # evaluated; the line core in elliptic mode (at 258 N·m the flank cuts the major axis
+    # at L = 4.96 mm < 2a = 7.1 mm, but the ellipse's peak stays the higher of the two
+    # lower bounds) and equal to the fp64 rule within the 0.5 % acceptance bound
+    lines = (analysis.out_dir / "preview.csv").read_text().splitlines()
+    assert lines[0].split(",") == PREVIEW_COLUMNS
+    rows = [dict(zip(PREVIEW_COLUMNS, ln.split(","))) for ln in lines[1:]]
+    assert len(rows) == len(TORQUES)
+    for row, ref in zip(rows, analysis.reference):
+        assert row["golden_status"] == row["chain_status"] == "ok"
+        assert row["ref_mode"] == row["golden_mode"] == ref.mode == "elliptic"
+        c = next(c for c in analysis.cases if c.torque_nm == float(row["torque_nm"]))
+        width = float(c.patch.grid.dx_mm.sum())
+        assert 0 < float(row["line_length_mm"]) <= width + 1e-9   # cut by flank or field
+        assert float(row["golden_p_max_mpa"]) == pytest.approx(ref.p_max_mpa, rel=5e-3)
+
+
+def test_missing_fixed_point_results_are_statuses_and_one_warning_line():
+    gold = GoldenEngine()
+    # published path below its curvature range: not evaluated (the engine's check);
+    # the line core flags a 2 m contact line; inside both: ok
+    res = [_golden_preview(gold.hertz, 0.0246, 2.3e-4, 603.0),
+           _golden_preview(gold.hertz, 0.0246, 2.3e-4, 603.0, line_length_mm=2000.0),
+           _golden_preview(gold.hertz, 0.0246, 2.3e-4, 603.0, line_length_mm=20.0)]
+    assert [st for _, st in res] == ["outside_envelope", "flagged:length_range", "ok"]
+    assert res[0][0] is None and res[1][0].p_max_mpa == 0 and res[2][0].mode == "elliptic"
+    msg = _missing_warning(res, [res[2]] * 3)
+    assert "\n" not in msg and "golden D (line core) p_max missing for 2 of 3 torques" in msg
+    assert "flagged:length_range" in msg and "outside_envelope" in msg
+    assert "C->D" not in msg
+    assert _missing_warning([res[2]], [res[2]]) is None
 
 
 def test_published_values_have_provenance():

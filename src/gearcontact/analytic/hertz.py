@@ -9,7 +9,9 @@ MPa, lengths in mm, pressures in MPa.
 * :func:`hamrock_brewe_hertz` / :func:`hamrock_brewe_terms` — the simplified closed forms
   of Hamrock & Brewe (1983), the one implementation in the package (docs/hertz.md
   sec. 3; docs/spec.md sec. 6, Algorithm 3);
-* :func:`circular_hertz` — the axisymmetric case ``A = B`` (docs/hertz.md sec. 4).
+* :func:`circular_hertz` — the axisymmetric case ``A = B`` (docs/hertz.md sec. 4);
+* :func:`line_contact_hertz` — two-dimensional Hertz contact of a cylinder of length L
+  (a contact ellipse longer than the flank, truncated by it; docs/hertz.md sec. 6).
 
 References are listed in docs/hertz.md sec. 5.
 """
@@ -25,7 +27,7 @@ from scipy.special import elliprd, elliprf
 
 from ..validation import InputRangeError, check_array_finite, check_positive
 
-__all__ = ["HertzContact", "exact_elliptic_hertz", "exact_ellipticity", "hamrock_brewe_hertz",
+__all__ = ["HertzContact", "LineContactHertz", "line_contact_hertz", "exact_elliptic_hertz", "exact_ellipticity", "hamrock_brewe_hertz",
            "hamrock_brewe_hertz_array", "hamrock_brewe_terms", "circular_hertz",
            "hamrock_brewe_error_table", "HB_ERROR_RATIOS"]
 
@@ -155,6 +157,74 @@ def circular_hertz(curvature_per_mm: float, load_n: float, *,
     return HertzContact(a_mm=a, b_mm=a, k=1.0, p_max_mpa=3.0 * w / (2.0 * math.pi * a * a),
                         approach_mm=a * a / r_j, eccentricity=0.0, elliptic_k=_HALF_PI,
                         elliptic_e=_HALF_PI, r_eff_mm=0.5 * r_j, alpha=1.0, load_n=w)
+
+
+# ----------------------------------------------------------------------------------
+# line contact
+# ----------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class LineContactHertz:
+    """Hertz line contact of a cylinder of finite length (plane strain, no end effects).
+
+    Attributes
+    ----------
+    p_max_mpa : float
+        Peak pressure ``p0 = sqrt(W E* / (pi R L))``, MPa.
+    b_mm : float
+        Half-width of the contact strip ``b = sqrt(4 W R / (pi E* L))``, mm.
+    half_length_mm : float
+        ``L/2``, mm (the strip spans the whole length).
+    load_per_length_n_per_mm : float
+        ``q = W/L``, N/mm.
+    radius_mm : float
+        Reduced radius across the line ``R``, mm.
+    load_n : float
+        Normal load W, N.
+    """
+
+    p_max_mpa: float
+    b_mm: float
+    half_length_mm: float
+    load_per_length_n_per_mm: float
+    radius_mm: float
+    load_n: float
+
+
+def line_contact_hertz(radius_mm: float, load_n: float, length_mm: float, *,
+                       e_prime_mpa: float) -> LineContactHertz:
+    """Hertz line contact: load ``W`` spread over a contact line of length ``L``.
+
+    The pressure across the strip is the semi-ellipse ``p0 sqrt(1 - x^2/b^2)`` with
+    ``p0 = sqrt(W E* / (pi R L))`` and ``b = sqrt(4 W R / (pi E* L))`` (Johnson 1985,
+    sec. 4.3, with the load per length P = W/L), so that ``pi p0 b L / 2 = W``. This is
+    the contact of an elliptic Hertz gap whose ellipse is longer than the flank: the
+    flank truncates it to L and the load is carried along the whole line.
+
+    Parameters
+    ----------
+    radius_mm : float
+        Reduced radius across the line, ``R = 1/(2 A)`` for the half relative curvature
+        ``A`` across it, mm (> 0).
+    load_n : float
+        Normal load W, N (> 0).
+    length_mm : float
+        Contact length L, mm (> 0).
+    e_prime_mpa : float
+        Effective modulus E' = 2 E*, MPa (> 0).
+
+    Returns
+    -------
+    LineContactHertz
+    """
+    r = check_positive("radius_mm", radius_mm)
+    w = check_positive("load_n", load_n)
+    length = check_positive("length_mm", length_mm)
+    e_star = 0.5 * check_positive("e_prime_mpa", e_prime_mpa)
+    q = w / length
+    return LineContactHertz(p_max_mpa=math.sqrt(q * e_star / (math.pi * r)),
+                            b_mm=math.sqrt(4.0 * q * r / (math.pi * e_star)),
+                            half_length_mm=0.5 * length, load_per_length_n_per_mm=q,
+                            radius_mm=r, load_n=w)
 
 
 # ----------------------------------------------------------------------------------

@@ -49,7 +49,8 @@ import numpy as np
 from ..validation import InputRangeError
 from .grid import TangentGrid
 
-__all__ = ["LinePeak", "MIN_STRIP_CELLS", "boundary_cells", "inadmissible_cells",
+__all__ = ["LinePeak", "MIN_STRIP_CELLS", "boundary_cells", "contact_line_length_mm",
+           "inadmissible_cells",
            "line_contact_peak", "trimmed_gap"]
 
 #: Strips with fewer admissible loaded cells carry no width estimate (a single cell
@@ -98,6 +99,31 @@ def boundary_cells(off_flank: np.ndarray) -> np.ndarray:
 def inadmissible_cells(loaded: np.ndarray, off_flank: np.ndarray) -> np.ndarray:
     """Loaded cells with an off-flank 4-neighbour (boundary-inadmissible)."""
     return loaded & boundary_cells(off_flank)
+
+
+def contact_line_length_mm(off_flank: np.ndarray, grid: TangentGrid) -> float | None:
+    """Length of the contact line on the flank through the contact point, mm.
+
+    The line is the cell row through the field's centre (``t = 0``: the principal
+    frame's major axis through P0, along ``s``); its length is the width of the run of
+    on-flank cells around ``s = 0`` (the flank's boundaries cut the line; a run that
+    reaches the field's edge is cut there, at no less than the field's extent). This is
+    the ``L`` that truncates a Hertz ellipse longer than the flank
+    (:mod:`gearcontact.preview.hertz.line`). None when the row has no on-flank cell.
+    """
+    off = np.asarray(off_flank, bool)
+    row = off[int(np.argmin(np.abs(grid.y_mm)))]
+    on = np.flatnonzero(~row)
+    if on.size == 0:
+        return None
+    i = int(on[np.argmin(np.abs(grid.x_mm[on]))])   # on-flank cell nearest s = 0
+    lo = i
+    while lo > 0 and not row[lo - 1]:
+        lo -= 1
+    hi = i
+    while hi < row.size - 1 and not row[hi + 1]:
+        hi += 1
+    return float(grid.dx_mm[lo:hi + 1].sum())
 
 
 def trimmed_gap(gap_mm: np.ndarray, off_flank: np.ndarray, loaded: np.ndarray,

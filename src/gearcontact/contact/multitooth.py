@@ -28,9 +28,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..materials import effective_modulus_mpa
+from ..preview.engine import ReferenceEngine
 from ..validation import InputRangeError, check_positive, check_range
 from .grid import TangentGrid
-from .line_peak import LinePeak, line_contact_peak, trimmed_gap
+from .line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
 from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
 from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
@@ -118,7 +119,16 @@ class MultiToothCase:
         Loaded gear rotation ``theta`` rigid and with bending, arcsec (equal without
         bending).
     preview_p_max_mpa : float
-        Hamrock–Brewe p_max of the reference pair at its LCP load with bending, MPa.
+        Preview p_max of the reference pair at its LCP load with bending, MPa: the
+        Hamrock–Brewe ellipse or, when the flank truncates it, the Hertz line contact of
+        the contact line's length (fp64 line-core rule,
+        :func:`gearcontact.preview.hertz.reference.truncated_preview`).
+    preview_mode : str
+        Which of the two answered (``"elliptic"`` | ``"line"``).
+    line_length_mm : float or None
+        Length of the reference pair's contact line on the flank through its contact
+        point (:func:`.line_peak.contact_line_length_mm`), mm; None: no on-flank cell
+        on the field's centre row (plain ellipse).
     bending : bool
         The second solve had tooth bending (False: both solves are rigid).
     status, status_rigid : SolveStatus
@@ -152,6 +162,8 @@ class MultiToothCase:
     rotation_resolved_arcsec: float
     resolved: bool
     status_resolved: SolveStatus
+    preview_mode: str = "elliptic"
+    line_length_mm: float | None = None
 
     @property
     def converged(self) -> bool:
@@ -210,6 +222,7 @@ class MultiToothCase:
             "trimmed_cells": sum(p.peak.trimmed_cells for p in self.pairs),
             "trimmed_load_n": sum(p.peak.trimmed_load_n for p in self.pairs),
             "preview_p_max_mpa": self.preview_p_max_mpa,
+            "preview_mode": self.preview_mode, "line_length_mm": self.line_length_mm,
             "edge_resolved": self.resolved,
             "p_peak_trimmed_resolved_mpa": max(float(p.peak_resolved.p_peak_cell_mpa)
                                                for p in self.pairs),
@@ -264,8 +277,6 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     -------
     MultiToothCase
     """
-    from ..preview.engine import get_engine
-
     side = pair.design_side if side is None else side
     t = check_positive("torque_nm (N·m)", torque_nm)
     if int(cells) < 16:
@@ -324,9 +335,13 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
             load_resolved_n=float(wf.sum()), peak_resolved=line_contact_peak(wf, b.grid, of)))
     engaged.sort(key=lambda p: (abs(p.offset - main.offset), -p.offset))
     ref = engaged[0]
-    engine = get_engine("reference", material=pair.pinion_material,
-                        material2=pair.gear_material)
-    pre = engine.hertz(main.A_minus_per_mm, main.B_minus_per_mm, ref.load_n)
+    # host-side fp64 preview: the datapath's envelope is no input check here (an
+    # ordinary pair's reduced radius exceeds its 1 m curvature range along the path)
+    engine = ReferenceEngine(material=pair.pinion_material, material2=pair.gear_material,
+                             envelope=False)
+    length = contact_line_length_mm(ref.off_flank, ref.grid)
+    pre = engine.hertz(main.A_minus_per_mm, main.B_minus_per_mm, ref.load_n,
+                       line_length_mm=length)
     return MultiToothCase(
         torque_nm=t, side=side, phase_index=int(k), pairs=tuple(engaged),
         rotation_rigid_arcsec=float(rig.rotation_rad * ARCSEC_PER_RAD),
@@ -335,4 +350,5 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
         status=res.status, status_rigid=rig.status, solve_ms=float(res.solve_time_ms),
         solve_rigid_ms=float(rig.solve_time_ms), edge_contact=bool(edge),
         rotation_resolved_arcsec=float(fin.rotation_rad * ARCSEC_PER_RAD),
-        resolved=fin is not res, status_resolved=fin.status)
+        resolved=fin is not res, status_resolved=fin.status, preview_mode=pre.mode,
+        line_length_mm=length)

@@ -21,6 +21,14 @@ Every backend evaluates stage D in either Hertz form, ``get_engine(name, hertz_f
 "exact")`` (:data:`.hertz.formats.HERTZ_FORMS`; the fixed-point ``"exact"`` form holds the
 exact k and elliptic-integral terms in the same tables, :mod:`.hertz.luts`).
 
+Near-line contact: ``hertz(A, B, W, line_length_mm=L)`` (reference, golden) runs the
+*line core* of stage D (:mod:`.hertz.line`; 759 cycles): the Hertz ellipse (reduced
+radii beyond the published 1 m by the Hertz similarity) or, where the flank (contact line
+of length L) truncates a longer ellipse, the Hertz line contact; ``PreviewResult.mode``
+says which. The golden line core reports its domain through flags (never raises for
+it); the reference mirrors that domain unless ``envelope=False`` (host-side previews:
+any positive input, the physics alone).
+
 Physical inputs are validated the same way for every backend (finite, positive; errors
 name the field); range limits specific to a representation are then reported by that
 representation: the reference raises :class:`~gearcontact.validation.InputRangeError`
@@ -44,7 +52,9 @@ from .fit.stencil import STENCIL_SIZE
 from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
-from .hertz.reference import ENVELOPE, check_envelope, hertz_preview, hertz_preview_array
+from .hertz.line import LINE_CYCLES, decode_line_codes, encode_length, line_golden
+from .hertz.reference import (ENVELOPE, check_envelope, hertz_preview, hertz_preview_array,
+                              truncated_preview)
 from .hertz.schedule import HERTZ_CYCLES
 
 #: Preset materials :func:`get_engine` accepts by name.
@@ -52,8 +62,10 @@ MATERIALS = {"steel": STEEL}
 
 __all__ = ["PreviewResult", "PreviewBatch", "PreviewEngine", "ReferenceEngine",
            "GoldenEngine", "get_engine", "register_backend", "load_backend_plugins",
-           "BACKENDS",
-           "BACKEND_HERTZ_FORMS"]
+           "BACKENDS", "BACKEND_HERTZ_FORMS", "MODES"]
+
+#: Stage-D modes a :class:`PreviewResult` names (``mode``).
+MODES = ("elliptic", "line", "flagged")
 
 
 @dataclass(frozen=True)
@@ -87,6 +99,11 @@ class PreviewResult:
         Hardware cycles of the evaluated path (golden/rtl), data independent.
     hertz_form : str
         Stage-D Hertz form that produced the result (:data:`.hertz.formats.HERTZ_FORMS`).
+    mode : str
+        What evaluated stage D (:data:`MODES`): ``"elliptic"`` (Hertz ellipse),
+        ``"line"`` (the ellipse is longer than the flank's contact line: Hertz line
+        contact of that length, :mod:`.hertz.line`) or ``"flagged"`` (the datapath
+        flags the input; outputs 0).
     """
 
     backend: str
@@ -102,6 +119,7 @@ class PreviewResult:
     flags: tuple = ()
     cycles: int | None = None
     hertz_form: str = DEFAULT_HERTZ_FORM
+    mode: str = "elliptic"
 
     @property
     def valid(self) -> bool:
@@ -115,7 +133,7 @@ class PreviewResult:
                 "a_mm": self.a_mm, "b_mm": self.b_mm, "k": self.k,
                 "p_max_mpa": self.p_max_mpa, "angle_deg": self.angle_deg,
                 "codes": self.codes, "flags": list(self.flags), "cycles": self.cycles,
-                "hertz_form": self.hertz_form}
+                "hertz_form": self.hertz_form, "mode": self.mode}
 
 
 @dataclass(frozen=True)
@@ -139,7 +157,12 @@ class PreviewEngine(Protocol):
     material: Material
 
     def hertz(self, A_minus: float, B_minus: float, load_n: float) -> PreviewResult:
-        """Stage D from half relative curvatures (1/mm, any order) and load (N)."""
+        """Stage D from half relative curvatures (1/mm, any order) and load (N).
+
+        The reference and golden backends take ``line_length_mm=L`` as well (keyword):
+        the length of the contact line on the flank, mm; stage D is then the line core
+        (:mod:`.hertz.line`: an ellipse longer than the flank is truncated to a Hertz
+        line contact, ``mode`` says which answered)."""
         ...
 
     def stencil(self, gaps_mm, load_n: float) -> PreviewResult:
@@ -212,7 +235,9 @@ class ReferenceEngine:
         self.hertz_form = check_hertz_form(hertz_form)
         self.envelope = bool(envelope)
 
-    def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
+    def hertz(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewResult:
+        if line_length_mm is not None:
+            return self._line(A_minus, B_minus, load_n, line_length_mm)
         if self.envelope:
             a, b, w = _check_physical(A_minus, B_minus, load_n, self.e_prime_mpa)
         else:
@@ -223,6 +248,16 @@ class ReferenceEngine:
                            hertz_form=self.hertz_form)
         return PreviewResult(self.name, w, max(a, b), min(a, b), hp.a_mm, hp.b_mm, hp.k,
                              hp.p_max_mpa, hertz_form=self.hertz_form)
+
+    def _line(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewResult:
+        """The line core's mode rule in fp64 (:func:`.hertz.reference.truncated_preview`;
+        with ``envelope=False`` the physics alone, any positive input)."""
+        a, b, w = (check_positive("A_minus (1/mm)", A_minus),
+                   check_positive("B_minus (1/mm)", B_minus), check_positive("load_n (N)", load_n))
+        tp = truncated_preview(a, b, w, line_length_mm, e_prime_mpa=self.e_prime_mpa,
+                               envelope=self.envelope, hertz_form=self.hertz_form)
+        return PreviewResult(self.name, w, max(a, b), min(a, b), tp.a_mm, tp.b_mm, tp.k,
+                             tp.p_max_mpa, hertz_form=self.hertz_form, mode=tp.mode)
 
     def stencil(self, gaps_mm, load_n) -> PreviewResult:
         g = _check_stencil(gaps_mm)
@@ -266,7 +301,8 @@ class GoldenEngine:
                      k=hz.k_code, p_max=hz.p_max_code, flags=codes.get("flags", hz.flags))
         return PreviewResult(self.name, w, v.B_max_per_mm, v.A_min_per_mm, v.a_mm, v.b_mm,
                              v.k, v.p_max_mpa, codes=codes, flags=flags, cycles=cycles,
-                             hertz_form=self.hertz_form)
+                             hertz_form=self.hertz_form,
+                             mode="flagged" if flags else "elliptic")
 
     def encode_hertz(self, A_minus, B_minus, load_n) -> tuple[float, dict]:
         """Checked load (N) and the stage-D input codes ``{"A_in", "B_in", "W",
@@ -282,7 +318,41 @@ class GoldenEngine:
         return w, encode_gaps(g), encode_hertz_inputs(1.0, 1.0, w,
                                                       e_prime_mpa=self.e_prime_mpa)[2]
 
-    def hertz(self, A_minus, B_minus, load_n) -> PreviewResult:
+    def encode_line(self, A_minus, B_minus, load_n, line_length_mm) -> tuple[float, dict]:
+        """Checked load (N) and the line core's input codes ``{"A_in", "B_in", "W",
+        "L", "e_prime"}`` (no envelope check: the line core flags its own domain).
+
+        Raises
+        ------
+        InputRangeError
+            A non-finite or non-positive input.
+        FixedPointOverflow
+            A value that does not fit its 32-bit input register (naming the field).
+        """
+        a, b, w = (check_positive("A_minus (1/mm)", A_minus),
+                   check_positive("B_minus (1/mm)", B_minus), check_positive("load_n (N)", load_n))
+        length = check_positive("line_length_mm", line_length_mm)
+        a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
+        return w, {"A_in": a_c, "B_in": b_c, "W": w_c, "L": encode_length(length),
+                   "e_prime": e_c}
+
+    def _line(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewResult:
+        """The line core (:func:`.hertz.line.line_golden`, :data:`LINE_CYCLES`)."""
+        w, codes = self.encode_line(A_minus, B_minus, load_n, line_length_mm)
+        lc = line_golden(codes["A_in"], codes["B_in"], codes["W"], codes["L"],
+                         e_prime_code=codes["e_prime"], hertz_form=self.hertz_form)
+        codes.update(A_min=lc.A_min_code, B_max=lc.B_max_code, a=lc.a_code, b=lc.b_code,
+                     k=lc.k_code, p_max=lc.p_max_code, mode=lc.mode, scale=lc.scale,
+                     flags=lc.flags)
+        v = decode_line_codes(lc)
+        return PreviewResult(self.name, w, v["B_max_per_mm"], v["A_min_per_mm"], v["a_mm"],
+                             v["b_mm"], v["k"], v["p_max_mpa"], codes=codes, flags=lc.flag_names,
+                             cycles=LINE_CYCLES, hertz_form=self.hertz_form,
+                             mode=lc.mode_name)
+
+    def hertz(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewResult:
+        if line_length_mm is not None:
+            return self._line(A_minus, B_minus, load_n, line_length_mm)
         w, codes = self.encode_hertz(A_minus, B_minus, load_n)
         hz = hertz_golden(codes["A_in"], codes["B_in"], codes["W"],
                           e_prime_code=codes["e_prime"], hertz_form=self.hertz_form)

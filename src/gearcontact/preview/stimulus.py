@@ -15,6 +15,8 @@ gap      ``r`` (n, 3, 3) Q(21,19) with ``|c| <= 2^19``; ``t``, ``p`` (n, 3) and 
 fit      ``gaps`` (n, 49) GAP Q(32,16) mm, stencil order of :mod:`.fit.stencil`
 hertz    ``A``, ``B`` (n,) CURVATURE Q(32,20) 1/mm; ``W`` (n,) LOAD Q(32,8) N;
          ``e_prime`` (n,) Q(32,0) MPa
+line     as hertz plus ``L`` (n,) LINE_LENGTH Q(32,20) mm (the line core,
+         :mod:`.hertz.line`)
 chain    ``gaps`` (n, 49) as for fit; ``W``, ``e_prime`` as for hertz (the C -> D
          chain and the combinational C + D core take the same inputs)
 =======  ==========================================================================
@@ -40,6 +42,7 @@ from .hertz import formats as HF
 from .qformat import CURVATURE, GAP, LOAD
 
 __all__ = ["Stimulus", "gap_stimulus", "fit_stimulus", "hertz_stimulus", "chain_stimulus",
+           "line_stimulus",
            "stimulus", "STIMULUS_CORES", "STEEL_E_PRIME_CODE"]
 
 #: E' of steel/steel (2E*, 209 GPa, nu 0.3), integer MPa: the default constant register.
@@ -413,6 +416,61 @@ def hertz_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     return _concat("hertz", _hertz_corners() if corners else [], fields, labels, seed)
 
 
+def _line_corners() -> list:
+    one, w1k, st = 1 << CURVATURE.frac, 1000 << LOAD.frac, STEEL_E_PRIME_CODE
+    lmin, lmax = 1 << CURVATURE.frac, 1 << (CURVATURE.frac + 10)   # 1 mm, 1024 mm
+    l20 = 20 << CURVATURE.frac
+
+    def case(label, A, B, L=l20, W=w1k, e=st):
+        return (label, {"A": A, "B": B, "W": W, "e_prime": e, "L": L})
+
+    return [
+        case("all zero (go without data)", 0, 0, 0, 0, 0),
+        case("ellipse inside the flank (published core)", one // 8, one // 32),
+        case("A_min 2^-12 (scale 1)", 256, 26_000),
+        case("A_min 2^-15 (scale 2)", 32, 3_000),
+        case("A_min 2^-20 (scale 3, ratio 600: line)", 1, 600),
+        case("A_min = 0 (cylinder)", 0, one // 16),
+        case("ratio above 128 (line)", 1_000, 200_000),
+        case("ellipse longer than the flank", 256, 26_000, 5 << CURVATURE.frac,
+             20_000 << LOAD.frac),
+        case("length at the minimum", one // 8, one // 32, lmin),
+        case("length at the maximum", one // 8, one // 32, lmax),
+        case("length below the envelope", one // 8, one // 32, lmin - 1),
+        case("length above the envelope", one // 8, one // 32, lmax + 1),
+        case("B_max above the envelope", 0, HF.CURV_MAX_CODE + 1),
+        case("B_max below the envelope", 0, HF.CURV_MIN_CODE - 1),
+        case("negative A_min (saddle)", -one, one),
+        case("largest codes", *(_I32[1],) * 5),
+        case("smallest codes", *(_I32[0],) * 5),
+    ]
+
+
+def line_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
+    """Line-core inputs (:mod:`.hertz.line`): corner cases, then ``n`` seeded random
+    vectors: B_max log-uniform in [2^-11, 16] 1/mm, ratio B_max/A_min log-uniform up to
+    1e5 (every SCALE exponent, both modes), loads and E' as :func:`hertz_stimulus`, L
+    log-uniform in [0.5, 2048] mm (a little beyond the envelope each side); about 10 %
+    draw every word over its whole 32-bit range."""
+    n = _check_n(n)
+    rng = np.random.default_rng(seed)
+    b = np.exp(rng.uniform(np.log(2.0 ** -11), np.log(16.0), n))
+    a = b / np.exp(rng.uniform(0.0, np.log(1e5), n))
+    length = np.exp(rng.uniform(np.log(0.5), np.log(2048.0), n))
+    swap = rng.random(n) < 0.5
+    code = (lambda x: np.floor(x * (1 << CURVATURE.frac) + 0.5).astype(np.int64))
+    fields = {"A": code(np.where(swap, b, a)), "B": code(np.where(swap, a, b)),
+              "W": _loads(rng, n), "e_prime": _e_primes(rng, n),
+              "L": np.minimum(code(length), _I32[1])}
+    labels = ["random"] * n
+    raw = rng.random(n) < 0.1
+    for k in fields:
+        fields[k][raw] = rng.integers(*_I32, int(raw.sum()), endpoint=True)
+    for i in np.flatnonzero(raw):
+        labels[i] = "raw"
+    return _concat("line", _line_corners() if corners else [], fields, labels, seed)
+
+
 def chain_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     """C -> D inputs (also the combinational C + D core): stencils, loads and E'.
 
@@ -450,7 +508,7 @@ STIMULUS_CORES = {"gap": gap_stimulus, "fit": fit_stimulus, "hertz": hertz_stimu
                   "hertz_exact": hertz_stimulus, "chain_exact": chain_stimulus,
                   "hertz_pipe": hertz_stimulus, "hertz_pipe_exact": hertz_stimulus,
                   "chain_pipe": chain_stimulus, "gap_lean": gap_stimulus,
-                  "comb_exact": chain_stimulus}
+                  "comb_exact": chain_stimulus, "hertz_line": line_stimulus}
 
 
 def stimulus(core: str, n: int, seed: int = 0, **kwargs) -> Stimulus:

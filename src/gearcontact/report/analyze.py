@@ -10,8 +10,12 @@ TCA files                     see :mod:`gearcontact.tca.export` (``tca.json``, `
                               ``phase_table.json``/``.bin``, ``te0.png``, ``contact_pattern.png``)
 ``ltca.json``                 per torque: load, LCP statistics, delta, mesh rotation, preview
 ``ltca_torques.csv``          the table "preview vs LCP mean / p90 / peak" over the torques
-``preview.csv``               per torque: reference, golden (A-, B- -> D) and golden C -> D
-                              (hardware stencil) previews with codes and flags
+``preview.csv``               per torque: contact-line length on the flank, reference and
+                              golden line-core previews (A-, B-, L -> D) and golden C -> D
+                              (published chain, hardware stencil) with codes, the stage-D
+                              mode (elliptic | line) and a status each (``ok``, or why the
+                              result is missing: then one :class:`PreviewDomainWarning`
+                              line names the count)
 ``pressure_<T>Nm.csv``        pressure map at each torque (s_mm, t_mm, pressure_mpa)
 ``pressure_maps.png``         LCP pressure maps with the preview ellipse overlaid
 ``pressure_vs_load.png``      log-log preview p_max and LCP mean / p90 / peak vs W, W^(1/3)
@@ -46,10 +50,11 @@ from tqdm import tqdm
 
 from ..contact.lcp import warm_up
 from ..contact.lte import loaded_te
+from ..contact.line_peak import contact_line_length_mm
 from ..contact.pair_ltca import PairLoadCase, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning
 from ..geometry.pair import load_pair
-from ..preview.engine import PreviewResult, get_engine
+from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
 from ..preview.qformat import FixedPointOverflow
 from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import without_timings, write_csv, write_tca_outputs
@@ -61,7 +66,8 @@ from .lte_plot import write_lte_outputs
 from .precision import write_precision_outputs
 from .summary import write_summary
 
-__all__ = ["DEFAULT_TORQUES_NM", "Analysis", "run_analysis", "published_values"]
+__all__ = ["DEFAULT_TORQUES_NM", "Analysis", "PreviewDomainWarning", "run_analysis",
+           "published_values"]
 
 #: Operating torques of the s0003 evaluation (gear torque, N·m; docs/spec.md sec. 3).
 DEFAULT_TORQUES_NM = (32.25, 64.5, 129.0, 258.0)
@@ -77,9 +83,11 @@ class Analysis:
     tca : TcaAnalysis
     cases : tuple of PairLoadCase
         One per torque, ascending.
-    golden : tuple of PreviewResult
-        Golden preview (A-, B- from TCA -> stage D) at each case's load.
-    golden_chain : tuple of PreviewResult
+    golden : tuple of PreviewResult or None
+        Golden preview (A-, B- from TCA -> the line core of stage D,
+        :mod:`gearcontact.preview.hertz.line`, with the contact line's length in the
+        case's field) at each case's load (None: not evaluated, see ``golden_status``).
+    golden_chain : tuple of PreviewResult or None
         Golden C -> D on the hardware stencil at each case's load.
     timings_s : dict
         Wall-clock seconds per stage (``*_s``), LCP solve times (``ltca_solve_ms``) and
@@ -102,6 +110,14 @@ class Analysis:
     multitooth : MultiToothCase or None
         Multi-tooth LTCA at P0 at the LTE torque, rigid and with tooth bending
         (:mod:`gearcontact.contact.multitooth`; None when the LTE is skipped).
+    golden_status, chain_status : tuple of str
+        Per torque, the status of ``golden`` / ``golden_chain``: ``ok``,
+        ``flagged:<flags>`` (outputs 0), or ``outside_envelope`` / ``outside_registers``
+        (then the result is None); the mode that evaluated a result is its ``mode``.
+    reference : tuple of PreviewResult
+        fp64 preview of the line core's rule at each case (ellipse, or the Hertz line
+        contact where the flank truncates it; ``mode`` says which), the golden line
+        core's counterpart.
     """
 
     pair: object
@@ -118,6 +134,14 @@ class Analysis:
     flanks: object = None
     easeoff_note: str = ""
     multitooth: object = None
+    golden_status: tuple = ()
+    chain_status: tuple = ()
+    reference: tuple = ()
+
+
+class PreviewDomainWarning(UserWarning):
+    """A fixed-point preview result is missing: the datapath flags the phase or its
+    inputs lie outside the datapath's domain (reported, never an error)."""
 
 
 def published_values(pair_name: str) -> dict | None:
@@ -133,29 +157,75 @@ def published_values(pair_name: str) -> dict | None:
     return json.loads(res.read_text())
 
 
-def _in_envelope(call, *args):
-    """A golden-model preview, or None if the inputs lie outside the datapath's
-    envelope (a large gear's relative curvature below the fixed-point range): the
-    fixed-point stages are then reported as not applicable, the fp64 stages still run."""
+def _golden_preview(call, *args, **kwargs) -> tuple[PreviewResult | None, str]:
+    """A golden-model preview and its status: ``ok``, ``flagged:<flags>`` when the
+    datapath flags the input (outputs 0, not reported), or ``outside_envelope`` /
+    ``outside_registers`` when the inputs do not reach the datapath at all (e.g. a
+    curvature below the published core's range). A phase outside the datapath's domain
+    is a result, not an error."""
     try:
-        return call(*args)
-    except (InputRangeError, FixedPointOverflow):
-        return None
+        res = call(*args, **kwargs)
+    except InputRangeError:
+        return None, "outside_envelope"
+    except FixedPointOverflow:
+        return None, "outside_registers"
+    return res, (f"flagged:{'|'.join(res.flags)}" if res.flags else "ok")
 
 
-def _preview_rows(cases, golden, chain) -> list[list]:
+def _line_length(case) -> float | None:
+    """Length of the contact line on the flank through P0 in the case's field, mm."""
+    return None if case.on_flank is None else contact_line_length_mm(~case.on_flank,
+                                                                     case.patch.grid)
+
+
+def _values(res: PreviewResult | None, fields: tuple[str, ...]) -> list:
+    """The numeric columns of a preview; empty cells where it gives none (its status
+    column says why)."""
+    if res is None or res.flags:
+        return [""] * len(fields)
+    return [res.codes["p_max"] if f == "p_max_code" else getattr(res, f) for f in fields]
+
+
+def _mode(res: PreviewResult | None) -> str:
+    return "none" if res is None or res.flags else res.mode
+
+
+def _preview_rows(cases, reference, golden, chain) -> list[list]:
     rows = []
-    off = [float("nan")] * 4 + ["", "outside datapath envelope"]
-    for c, g, ch in zip(cases, golden, chain):
-        p = c.preview
-        rows.append([c.torque_nm, c.load_n, p.a_mm, p.b_mm, p.k, p.p_max_mpa]
-                    + (off if g is None else [g.a_mm, g.b_mm, g.k, g.p_max_mpa,
-                                              g.codes["p_max"], "|".join(g.flags)])
-                    + ([float("nan")] * 5 + ["", "outside datapath envelope", 0]
-                       if ch is None else
-                       [ch.A_minus_per_mm, ch.B_minus_per_mm, ch.a_mm, ch.b_mm, ch.p_max_mpa,
-                        ch.codes["p_max"], "|".join(ch.flags), ch.cycles]))
+    for c, ref, (g, g_status), (ch, ch_status) in zip(cases, reference, golden, chain):
+        length = _line_length(c)
+        rows.append([c.torque_nm, c.load_n, "" if length is None else length, ref.mode,
+                     ref.a_mm, ref.b_mm, ref.k, ref.p_max_mpa]
+                    + _values(g, ("a_mm", "b_mm", "k", "p_max_mpa", "p_max_code"))
+                    + [_mode(g), g_status]
+                    + _values(ch, ("A_minus_per_mm", "B_minus_per_mm", "a_mm", "b_mm",
+                                   "p_max_mpa", "p_max_code"))
+                    + [_mode(ch), ch_status, "" if ch is None else ch.cycles])
     return rows
+
+
+#: Columns of ``preview.csv`` (:func:`_preview_rows`).
+PREVIEW_COLUMNS = [
+    "torque_nm", "load_n", "line_length_mm", "ref_mode", "ref_a_mm", "ref_b_mm", "ref_k",
+    "ref_p_max_mpa", "golden_a_mm", "golden_b_mm", "golden_k", "golden_p_max_mpa",
+    "golden_p_max_code_q32_8", "golden_mode", "golden_status", "chain_A_minus_per_mm",
+    "chain_B_minus_per_mm", "chain_a_mm", "chain_b_mm", "chain_p_max_mpa",
+    "chain_p_max_code_q32_8", "chain_mode", "chain_status", "chain_cycles"]
+
+
+def _missing_warning(golden, chain) -> str | None:
+    """One line naming how many torques lack which fixed-point result, or None."""
+    parts = []
+    for name, results in (("golden D (line core)", golden),
+                          ("golden C->D (published chain core, hardware stencil)", chain)):
+        bad = [status for res, status in results if status != "ok"]
+        if bad:
+            parts.append(f"{name} p_max missing for {len(bad)} of {len(results)} torques "
+                         f"({', '.join(sorted(set(bad)))})")
+    if not parts:
+        return None
+    return ("fixed-point preview outside the datapath's domain: " + "; ".join(parts)
+            + " (preview.csv status columns; the fp64 preview and the LCP are complete)")
 
 
 def _multi_tooth(tca, flanks, pair, torque_nm: float, side: str, out: Path, figures: bool,
@@ -232,7 +302,10 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     golden = get_engine("golden", material=pair.pinion_material, material2=pair.gear_material)
     stencil = tca.stencil.gap_mm.ravel()
     rc = tca.mean_curvature
-    cases, gold, chain = [], [], []
+    # host-side fp64 line-core rule (any positive input) beside the golden line core
+    host = ReferenceEngine(material=pair.pinion_material, material2=pair.gear_material,
+                           envelope=False)
+    cases, reference, gold, chain = [], [], [], []
     # compile the LCP kernels first: solve_ms then times the solves alone
     timings["jit_warm_up_s"] = warm_up(solver)
     t0 = time.perf_counter()
@@ -244,9 +317,12 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
             case = single_pair_ltca(tca, flanks, pair, torque, side=side, solver=solver,
                                     warm_start=cases[-1].patch if cases else None)
         cases.append(case)
-        gold.append(_in_envelope(golden.hertz, rc.A_minus_per_mm, rc.B_minus_per_mm,
-                                 case.load_n))
-        chain.append(_in_envelope(golden.stencil, stencil, case.load_n))
+        length = _line_length(case)
+        reference.append(host.hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, case.load_n,
+                                    line_length_mm=length))
+        gold.append(_golden_preview(golden.hertz, rc.A_minus_per_mm, rc.B_minus_per_mm,
+                                    case.load_n, line_length_mm=length))
+        chain.append(_golden_preview(golden.stencil, stencil, case.load_n))
         steps.update(1)
     timings["ltca_s"] = time.perf_counter() - t0
 
@@ -268,13 +344,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                 c.mesh_rotation_arcsec, c.preview_mesh_rotation_arcsec,
                 c.patch.n_contact_cells, int(c.edge_contact)]
                for c in cases])
-    write_csv(out / "preview.csv",
-              ["torque_nm", "load_n", "ref_a_mm", "ref_b_mm", "ref_k", "ref_p_max_mpa",
-               "golden_a_mm", "golden_b_mm", "golden_k", "golden_p_max_mpa",
-               "golden_p_max_code_q32_8", "golden_flags", "chain_A_minus_per_mm",
-               "chain_B_minus_per_mm", "chain_a_mm", "chain_b_mm", "chain_p_max_mpa",
-               "chain_p_max_code_q32_8", "chain_flags", "chain_cycles"],
-              _preview_rows(cases, gold, chain))
+    write_csv(out / "preview.csv", PREVIEW_COLUMNS,
+              _preview_rows(cases, reference, gold, chain))
     for c in cases:
         g = c.patch.grid
         s, t = np.meshgrid(g.x_mm, g.y_mm)
@@ -316,7 +387,13 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                               "jitter": latency.jitter, "calls": latency.calls}
     steps.update(1)
     steps.close()
-    result = Analysis(pair, tca, tuple(cases), tuple(gold), tuple(chain), timings, out, lte,
-                      precision, latency, side, flanks, easeoff_note, multitooth)
+    missing = _missing_warning(gold, chain)
+    if missing is not None:      # after the progress bar: one clean line on stderr
+        warnings.warn(missing, PreviewDomainWarning, stacklevel=2)
+    result = Analysis(pair, tca, tuple(cases), tuple(g for g, _ in gold),
+                      tuple(ch for ch, _ in chain), timings, out, lte, precision, latency,
+                      side, flanks, easeoff_note, multitooth,
+                      golden_status=tuple(st for _, st in gold),
+                      chain_status=tuple(st for _, st in chain), reference=tuple(reference))
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

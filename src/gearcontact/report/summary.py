@@ -247,19 +247,27 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
             "![pressure vs load](pressure_vs_load.png)", "",
             "## Fixed-point preview (golden model = RTL specification)", ""]
     rows = []
-    for c, g, ch in zip(cases, result.golden, result.golden_chain):
-        off = "outside the datapath envelope"
-        rows.append([c.torque_nm, c.preview.p_max_mpa,
-                     off if g is None else g.p_max_mpa,
-                     None if g is None else _pct(g.p_max_mpa, c.preview.p_max_mpa),
-                     off if ch is None else ch.p_max_mpa,
-                     None if ch is None else _pct(ch.p_max_mpa, c.preview.p_max_mpa),
-                     off if ch is None else ", ".join(ch.flags) or "none",
+    for c, ref, g, ch, g_st, ch_st in zip(cases, result.reference, result.golden,
+                                          result.golden_chain, result.golden_status,
+                                          result.chain_status):
+        # a flagged or unevaluated fixed-point result has no value (its outputs read 0)
+        g_ok, ch_ok = g_st == "ok", ch_st == "ok"
+        rows.append([c.torque_nm, ref.p_max_mpa, ref.mode,
+                     g.p_max_mpa if g_ok else f"missing ({g_st})",
+                     _pct(g.p_max_mpa, ref.p_max_mpa) if g_ok else None,
+                     g.mode if g_ok else None,
+                     ch.p_max_mpa if ch_ok else f"missing ({ch_st})",
+                     _pct(ch.p_max_mpa, c.preview.p_max_mpa) if ch_ok else None,
+                     "none" if ch_ok else ch_st,
                      None if ch is None else ch.cycles])
-    out.append(_table(["torque (N·m)", "fp64 p_max", "golden D p_max", "golden D vs fp64 (%)",
-                       "golden C->D p_max (stencil)", "C->D vs fp64 (%)", "C->D flags",
-                       "C->D cycles"], rows))
-    out += ["", f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm "
+    out.append(_table(["torque (N·m)", "fp64 p_max", "fp64 mode", "golden D p_max",
+                       "golden D vs fp64 (%)", "golden D mode",
+                       "golden C->D p_max (stencil)", "C->D vs fp64 ellipse (%)",
+                       "C->D flags", "C->D cycles"], rows))
+    out += ["", "Stage D here is the line core: the Hertz ellipse, or the Hertz line contact "
+            "of the flank's contact line where the flank truncates a longer ellipse (mode "
+            "`line`). The C->D chain is the published elliptic core.", "",
+            f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm "
             "spacing) of the real gap field, so it also carries the curvature-fit error of a "
             "non-quadratic surface.", ""]
     if getattr(result, "lte", None) is not None:

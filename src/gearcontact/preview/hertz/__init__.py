@@ -12,7 +12,11 @@ Three models side by side sharing one set of constants:
   and the cycle schedule (:mod:`.schedule`) that the RTL imports;
 * the RTL: the serialized core (:mod:`.rtl`, 756 cycles) and the pipelined one
   (:mod:`.rtl_pipe`, initiation interval 1, latency 90), both bit-exact with
-  :mod:`.golden`, described for the tools in :mod:`.cores`.
+  :mod:`.golden`, described for the tools in :mod:`.cores`;
+* the line core for near-line contact (docs/hertz.md sec. 6): :mod:`.line` (golden,
+  formats, schedule), :func:`.reference.truncated_preview` (fp64), :mod:`.sqrt`
+  (restoring square root) and :mod:`.rtl_line` (``HertzLineCore``: the 756-cycle core
+  unchanged inside, 759 cycles), core ``hertz_line`` in :mod:`.cores`.
 
 Hertz forms (``hertz_form=``, :data:`.formats.HERTZ_FORMS`, in every model and in
 ``HertzCore``): ``"hamrock-brewe"`` (default) is the published datapath with

@@ -1,6 +1,7 @@
 """Descriptors of the stage-D cores: the serialized :class:`.rtl.HertzCore` (756 cycles)
 and the pipelined :class:`.rtl_pipe.HertzPipe` (initiation interval 1), each in both
-Hertz forms; see :mod:`gearcontact.preview.core`."""
+Hertz forms, and the line core :class:`.rtl_line.HertzLineCore` (759 cycles, near-line
+contact, :mod:`.line`); see :mod:`gearcontact.preview.core`."""
 
 from __future__ import annotations
 
@@ -88,6 +89,39 @@ def _pipe(name, hertz_form, summary):
         stimulus_core="hertz", summary=summary)
 
 
+def _line_fields(st: Stimulus):
+    f = st.fields
+    return f["A"], f["B"], f["W"], f["L"], f["e_prime"]
+
+
+def _line_ports(st: Stimulus):
+    return {k: st.fields[k] for k in ("A", "B", "W", "L", "e_prime")}, None, None
+
+
+def _line_columns(codes) -> dict:
+    from .rtl_line import LINE_OUTPUT_PORTS
+    return {p: np.array([getattr(c, f) for c in codes], np.int64)
+            for p, f in LINE_OUTPUT_PORTS.items()}
+
+
+def _line_golden(st: Stimulus) -> dict:
+    # scalar golden per vector (~30 us each; no vectorized twin of the line core yet)
+    from .line import line_golden
+    return _line_columns([line_golden(int(a), int(b), int(w), int(length), e_prime_code=int(e))
+                          for a, b, w, length, e in zip(*_line_fields(st))])
+
+
+def _line_amaranth(st: Stimulus):
+    from .rtl_line import simulate_line_core
+    outs, cycles = simulate_line_core(list(zip(*_line_fields(st))))
+    return _line_columns(outs), np.asarray(cycles, np.int64)
+
+
+def _line_cycles(st: Stimulus) -> int:
+    from .line import LINE_CYCLES
+    return LINE_CYCLES
+
+
 DESCRIPTORS = (
     _serial("hertz", "hertz_core", "hamrock-brewe",
             "stage D serialized elliptic Hertz (one shared 80-bit divider)"),
@@ -97,4 +131,10 @@ DESCRIPTORS = (
           "stage D pipelined, initiation interval 1 (one preview per clock, valid/ready "
           "stream; cycles = latency)"),
     _pipe("hertz_pipe_exact", "exact", "pipelined stage D (II = 1) with hertz_form='exact'"),
+    CoreDescriptor(
+        "hertz_line", "hertz.rtl_line", lazy("hertz.rtl_line", "HertzLineCore"),
+        "hertz_line_core", _line_ports, _line_golden, _line_amaranth, _line_cycles,
+        control=("busy", "done_pulse"), stimulus_core="hertz_line",
+        summary="stage D line core: ellipse (radii beyond 1 m by Hertz similarity) or "
+                "Hertz line contact of the flank's contact line L, 759 cycles"),
 )

@@ -19,6 +19,10 @@ datapath accepts (:mod:`.formats`): curvatures in [2^-11, 16] 1/mm, load in
 so that every backend of the preview accepts exactly the same inputs. With
 ``envelope=False`` only positivity and finiteness are required.
 
+Near-line contact: :func:`truncated_preview` is the fp64 model of the line core's mode
+rule (:mod:`.line`): the ellipse, or the Hertz line contact of the contact line's
+length where the flank truncates a longer ellipse (docs/hertz.md sec. 6).
+
 References
 ----------
 B. J. Hamrock, D. E. Brewe, J. Lubrication Technol. 105 (1983) 171-177.
@@ -31,13 +35,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz_array, hamrock_brewe_terms
+from ...analytic.hertz import (exact_elliptic_hertz, hamrock_brewe_hertz_array,
+                               hamrock_brewe_terms, line_contact_hertz)
 from ...validation import InputRangeError, check_array_finite, check_positive, check_range
 from ..qformat import CURVATURE, LOAD
 from . import formats as F
 
 __all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
-           "check_envelope"]
+           "check_envelope", "LINE_ENVELOPE", "TruncatedPreview", "truncated_preview"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
 ENVELOPE = {
@@ -47,6 +52,10 @@ ENVELOPE = {
     "e_prime_mpa": (float(F.E_PRIME_MIN_CODE), float(F.E_PRIME_MAX_CODE)),
     "alpha": (1.0, math.ldexp(F.ALPHA_MAX_CODE, -F.ALPHA.frac)),
 }
+#: Operating envelope of the line core (:mod:`.line`): B_max (across the line) and
+#: the contact-line length L; load and E' as :data:`ENVELOPE`; A_min >= 0.
+LINE_ENVELOPE = {"B_max_per_mm": ENVELOPE["curvature_per_mm"],
+                 "line_length_mm": (1.0, 1024.0)}
 _C_LO, _C_HI = ENVELOPE["curvature_per_mm"]
 _W_LO, _W_HI = ENVELOPE["load_n"]
 _E_LO, _E_HI = ENVELOPE["e_prime_mpa"]
@@ -241,3 +250,103 @@ def _exact_array(A, B, W, E) -> dict:
         for k in keys:
             out[k][idx] = getattr(ex, k)
     return out
+
+
+@dataclass(frozen=True)
+class TruncatedPreview:
+    """Stage-D preview of the line core (fp64): Hertz ellipse or, when the flank
+    truncates it, Hertz line contact (:mod:`.line`).
+
+    Attributes
+    ----------
+    mode : str
+        ``"elliptic"`` or ``"line"``.
+    a_mm : float
+        Major semi-axis (elliptic) or half the contact-line length L/2 (line), mm.
+    b_mm : float
+        Minor semi-axis (elliptic) or half-width of the line contact, mm.
+    k : float
+        a/b, dimensionless.
+    p_max_mpa : float
+        Peak pressure, MPa.
+    p_ellipse_mpa : float
+        Peak of the untruncated ellipse, MPa (0 where the mode rule does not evaluate
+        it: ratio beyond the datapath's 128 with ``envelope=True``, or A_min = 0).
+    p_line_mpa : float
+        Peak of the line contact of length L, MPa.
+    """
+
+    mode: str
+    a_mm: float
+    b_mm: float
+    k: float
+    p_max_mpa: float
+    p_ellipse_mpa: float
+    p_line_mpa: float
+
+
+def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: float, *,
+                      e_prime_mpa: float, envelope: bool = True,
+                      hertz_form: str = F.DEFAULT_HERTZ_FORM) -> TruncatedPreview:
+    """fp64 model of the line core's mode rule (:mod:`.line`).
+
+    Elliptic Hertz when the ellipse fits the contact line (``a <= L/2``); past that
+    the higher of the two lower bounds of the truncated ellipse's peak, the untruncated
+    ellipse's and the Hertz line contact of length L
+    (:func:`~gearcontact.analytic.hertz.line_contact_hertz`, R = 1/(2 B_max)); the line
+    contact alone where no ellipse is evaluated.
+
+    Parameters
+    ----------
+    A_minus, B_minus : float
+        Half relative principal curvatures, 1/mm, any order (the smaller one may be 0).
+    load_n : float
+        Normal load W, N.
+    length_mm : float
+        Length L of the contact line on the flank through the contact point along the
+        ellipse's major axis, mm.
+    e_prime_mpa : float
+        E' = 2E*, MPa.
+    envelope : bool
+        Mirror the line core's domain (default): :data:`LINE_ENVELOPE` and the load /
+        E' ranges of :data:`ENVELOPE` (else InputRangeError), and no ellipse for a
+        ratio ``B_max/A_min > 128`` (the datapath's POW table). False: the physics
+        alone, for host-side previews of any positive input.
+    hertz_form : {"hamrock-brewe", "exact"}
+        Form of the elliptic part.
+
+    Returns
+    -------
+    TruncatedPreview
+
+    Raises
+    ------
+    InputRangeError
+        A non-finite or non-positive input (the smaller curvature may be 0), or with
+        ``envelope=True`` an input outside the line core's envelope (field named).
+    """
+    F.check_hertz_form(hertz_form)
+    a_min, b_max = sorted((check_range("A_minus", A_minus, 0.0, _INF),
+                           check_range("B_minus", B_minus, 0.0, _INF)))
+    b_max = check_positive("B_max = max(A_minus, B_minus)", b_max)
+    w = check_positive("load_n", load_n)
+    length = check_positive("line_length_mm", length_mm)
+    e = check_positive("e_prime_mpa", e_prime_mpa)
+    if envelope:
+        check_range("B_max = max(A_minus, B_minus)", b_max, *LINE_ENVELOPE["B_max_per_mm"])
+        check_range("line_length_mm", length, *LINE_ENVELOPE["line_length_mm"])
+        check_range("load_n", w, _W_LO, _W_HI)
+        check_range("e_prime_mpa", e, _E_LO, _E_HI)
+    line = line_contact_hertz(0.5 / b_max, w, length, e_prime_mpa=e)
+    if a_min > 0.0 and (not envelope or b_max <= _ALPHA_HI * a_min):
+        ell = hertz_preview(a_min, b_max, w, e_prime_mpa=e, envelope=False,
+                            hertz_form=hertz_form)
+        if ell.a_mm <= 0.5 * length or ell.p_max_mpa >= line.p_max_mpa:
+            return TruncatedPreview("elliptic", ell.a_mm, ell.b_mm, ell.k, ell.p_max_mpa,
+                                    ell.p_max_mpa, line.p_max_mpa)
+        p_ellipse = ell.p_max_mpa
+    else:
+        p_ellipse = 0.0
+    return TruncatedPreview("line", line.half_length_mm, line.b_mm,
+                            line.half_length_mm / line.b_mm, line.p_max_mpa, p_ellipse,
+                            line.p_max_mpa)
