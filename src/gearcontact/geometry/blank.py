@@ -167,7 +167,7 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     Parameters
     ----------
     pinion_teeth, gear_teeth : int
-        Tooth numbers z1 (>= 5) and z2 (> z1).
+        Tooth numbers z1 (>= 5) and z2 (>= z1; z2 = z1 is a miter pair).
     offset_mm : float
         Hypoid offset E, mm (>= 0; 0 gives a spiral bevel pair).
     pinion_spiral_angle_deg : float
@@ -199,8 +199,9 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     """
     if int(pinion_teeth) != pinion_teeth or pinion_teeth < 5:
         raise InputRangeError("pinion_teeth", pinion_teeth, "an integer >= 5")
-    if int(gear_teeth) != gear_teeth or gear_teeth <= pinion_teeth:
-        raise InputRangeError("gear_teeth", gear_teeth, f"an integer > pinion_teeth = {pinion_teeth}")
+    if int(gear_teeth) != gear_teeth or gear_teeth < pinion_teeth:
+        raise InputRangeError("gear_teeth", gear_teeth,
+                              f"an integer >= pinion_teeth = {pinion_teeth} (1:1 is a miter pair)")
     if abs(float(shaft_angle_deg) - 90.0) > 1e-12:
         raise InputRangeError("shaft_angle_deg", shaft_angle_deg, "exactly 90 (Method 1, Sigma = 90 deg)")
     E = check_range("offset_mm", offset_mm, 0.0, np.inf)

@@ -160,7 +160,7 @@ class GearPair:
     name : str
         Label.
     pinion_teeth, gear_teeth : int
-        z1 >= 5, z2 > z1.
+        z1 >= 5, z2 >= z1 (z2 = z1: a miter pair).
     offset_mm : float
         Hypoid offset E, mm, >= 0 (pinion axis at y = -E in the meshing frame).
     pinion_hand : str
