@@ -98,9 +98,19 @@ def test_spiral_bevel_limit():
     assert b.mean_normal_module_mm == pytest.approx(3.213, abs=0.001)
 
 
+def test_miter_pair():
+    # z2 = z1, E = 0: the 1:1 miter pair, tan(delta1) = z1/z2 = 1 -> both pitch angles
+    # 45 deg, equal pitch radii (rounding only: 1e-12)
+    b = design_blank(pinion_teeth=20, gear_teeth=20, offset_mm=0.0, pinion_spiral_angle_deg=35.0,
+                     cutter_radius_mm=63.5, gear_mean_pitch_radius_mm=60.0)
+    assert b.pitch_angle_pinion_deg == pytest.approx(45.0, abs=1e-12)
+    assert b.pitch_angle_gear_deg == pytest.approx(45.0, abs=1e-12)
+    assert b.mean_pitch_radius_pinion_mm == pytest.approx(60.0, abs=1e-12)
+
+
 @pytest.mark.parametrize("kwargs, field", [
     (dict(pinion_teeth=3), "pinion_teeth"),
-    (dict(gear_teeth=7), "gear_teeth"),
+    (dict(gear_teeth=6), "gear_teeth"),
     (dict(offset_mm=30.0), "offset_mm"),
     (dict(offset_mm=-1.0), "offset_mm"),
     (dict(shaft_angle_deg=80.0), "shaft_angle_deg"),

@@ -216,8 +216,15 @@ def test_f3_spiral_45_generates_trimmed_at_the_limit_line():
     # Jacobian -> 0 while df/dphi2 stays ~47 mm/rad) at gear h = -1.69 mm, above the gear
     # tip h = -1.97 mm. The active profile now ends at the limit line.
     from gearcontact.geometry.flank import build_flanks
-    fs = build_flanks(_f3(pinion_spiral_angle_deg=45.0), n_u=60, n_v=80)
+    from gearcontact.geometry.conjugate import check_generation
+    pair = _f3(pinion_spiral_angle_deg=45.0)
+    fs = build_flanks(pair, n_u=60, n_v=80)
     assert _check_trimmed_at_limit_line(fs) >= 1
+    # the design-time check (no grid) finds the same active boxes and trims, exactly
+    for side, got in check_generation(pair).items():
+        c = fs.pinion_conjugate.side(side)
+        assert got["active_box"] == c.boundary
+        assert got["gear_tip_undercut_mm"] == c.gear_tip_undercut_mm
 
 
 def test_f3_spiral_25_undercut_names_the_fix():

@@ -49,7 +49,7 @@ from .sampling import FlankGrid, SurfaceArrays, point_from_arrays, sample_grid
 from .surface import SurfacePoint
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "cone_vector", "gear_flank", "with_easeoff"]
+           "build_flanks", "cone_vector", "gear_flank", "gear_flanks", "with_easeoff"]
 
 #: Flank sides, in the order used everywhere.
 SIDES = ("drive", "coast")
@@ -222,6 +222,17 @@ def gear_flank(blank: BlankDesign, blade: BladeCone, *, side: str, gear_face_wid
                                                v_toe=float(ends[0]), v_heel=float(ends[1])))
 
 
+def gear_flanks(pair) -> tuple[CutterPlacement, dict]:
+    """The cutter placement and the formate gear flanks ``{side: FormateFlank}`` of
+    ``pair`` (inside blade -> drive, outside blade -> coast)."""
+    blank = pair.blank
+    placement, inside, outside = place_cutter(blank, point_width_mm=pair.cutter.point_width_mm)
+    return placement, {side: gear_flank(blank, blade, side=side,
+                                        gear_face_width_mm=pair.gear_face_width_mm,
+                                        edge_radius_mm=pair.cutter.edge_radius_mm)
+                       for side, blade in zip(SIDES, (inside, outside))}
+
+
 @dataclass(frozen=True, eq=False)
 class MemberFlanks:
     """The drive and coast flanks of one member (each a Surface in its body frame)."""
@@ -315,10 +326,7 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
 
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
-    placement, inside, outside = place_cutter(blank, point_width_mm=pair.cutter.point_width_mm)
-    gear = {side: gear_flank(blank, blade, side=side, gear_face_width_mm=pair.gear_face_width_mm,
-                             edge_radius_mm=pair.cutter.edge_radius_mm)
-            for side, blade in zip(SIDES, (inside, outside))}
+    placement, gear = gear_flanks(pair)
     conj, mean = {}, {}
     for side in SIDES:
         conj[side], mean[side] = conjugate_pinion_flank(
