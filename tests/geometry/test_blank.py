@@ -1,9 +1,11 @@
 """Blank design against ISO 23509:2016 Annex F.3 and the published s0003 pitch cones."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from gearcontact.geometry.blank import design_blank
+from gearcontact.geometry.blank import design_blank, gear_top_land_mm
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 
@@ -106,6 +108,29 @@ def test_miter_pair():
     assert b.pitch_angle_pinion_deg == pytest.approx(45.0, abs=1e-12)
     assert b.pitch_angle_gear_deg == pytest.approx(45.0, abs=1e-12)
     assert b.mean_pitch_radius_pinion_mm == pytest.approx(60.0, abs=1e-12)
+
+
+def test_pointed_gear_teeth_refused_naming_the_field():
+    # Rack approximation of the mean normal section: gear top land
+    # s_a2 = pi m_mn - W - k_d (1 + k_c) m_mn (tan alpha_nD + tan alpha_nC). Independent
+    # truth: the k_d and W where it vanishes, from the closed form with the F.3 blank.
+    from dataclasses import replace
+    pair = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
+    b = pair.blank
+    t = np.tan(np.radians(b.pressure_angle_drive_deg)) + np.tan(np.radians(b.pressure_angle_coast_deg))
+    land = np.pi * b.mean_normal_module_mm - 1.5 - 2.0 * 1.125 * b.mean_normal_module_mm * t
+    assert gear_top_land_mm(b, 1.5) == pytest.approx(land, rel=1e-12)
+    w_max = 1.5 + land
+    replace(pair, cutter=replace(pair.cutter, point_width_mm=w_max * (1 - 1e-6)))
+    with pytest.raises(InputRangeError) as err:
+        replace(pair, cutter=replace(pair.cutter, point_width_mm=w_max * (1 + 1e-6)))
+    assert err.value.field == "cutter.point_width_mm" and f"< {w_max:.4g}" in err.value.allowed
+    # issue 28: k_d = 50 was blamed on gear_addendum_factor; no point width helps there
+    # (alpha_n does not depend on k_d, so the closed form k_max = pi / ((1 + k_c) t) holds)
+    with pytest.raises(InputRangeError) as err:
+        replace(pair, working_depth_factor=50.0)
+    assert err.value.field == "design.working_depth_factor"
+    assert f"< {np.pi / (1.125 * t):.4g}" in err.value.allowed
 
 
 @pytest.mark.parametrize("kwargs, field", [

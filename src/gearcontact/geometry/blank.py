@@ -45,7 +45,8 @@ from scipy.optimize import brentq
 
 from ..validation import InputRangeError, check_positive, check_range
 
-__all__ = ["BlankDesign", "design_blank", "limit_pressure_angle_rad", "limit_radius_mm"]
+__all__ = ["BlankDesign", "design_blank", "gear_top_land_mm", "limit_pressure_angle_rad",
+           "limit_radius_mm"]
 
 #: Largest gear mean pitch radius / mean cone distance accepted, mm.
 MAX_GEAR_SIZE_MM = 5000.0
@@ -268,6 +269,23 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
         gear_apex_z_mm=float(P[2] - cones.R2 * np.cos(cones.d2)),
         pinion_apex_x_mm=float(P[0] - cones.R1 * np.cos(cones.d1)),
     )
+
+
+def gear_top_land_mm(blank: BlankDesign, point_width_mm: float) -> float:
+    """Mean normal top land of the formate gear tooth, mm (negative: pointed teeth).
+
+    Rack approximation of the mean normal section: the gear slot is the blade profile,
+    ``W`` wide at the root and widening by ``tan(alpha_nD) + tan(alpha_nC)`` per mm of
+    height; with the normal circular pitch ``pi m_mn`` the tooth left between two slots
+    has at the gear tip (height ``h_fm2 + h_am2`` above the root) the top land
+    ``s_a2 = pi m_mn - W - (h_fm2 + h_am2) (tan alpha_nD + tan alpha_nC)``.
+    (The conjugate pinion's top land is, in the same approximation,
+    ``W + c (tan alpha_nD + tan alpha_nC) > 0``: never pointed.)
+    """
+    t = np.tan(np.radians(blank.pressure_angle_drive_deg)) + np.tan(
+        np.radians(blank.pressure_angle_coast_deg))
+    return float(np.pi * blank.mean_normal_module_mm - point_width_mm
+                 - (blank.dedendum_gear_mm + blank.addendum_gear_mm) * t)
 
 
 def _bevel_cones(*, b1: float, u: float, r2: float | None, R2: float | None) -> _Cones:

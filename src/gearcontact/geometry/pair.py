@@ -76,9 +76,11 @@ from functools import cached_property
 from importlib import resources
 from pathlib import Path
 
+import numpy as np
+
 from ..materials import STEEL, Material
 from ..validation import InputRangeError, check_positive, check_range, read_text_file
-from .blank import BlankDesign, design_blank
+from .blank import BlankDesign, design_blank, gear_top_land_mm
 from .kinematics import AssemblyErrors, MeshKinematics
 
 __all__ = ["CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
@@ -229,9 +231,28 @@ class GearPair:
             raise InputRangeError("design.gear_face_width_mm", self.gear_face_width_mm,
                                   f"(0, {blank.mean_cone_distance_gear_mm:.3f}) mm "
                                   "(less than the gear mean cone distance)")
+        land = gear_top_land_mm(blank, self.cutter.point_width_mm)
+        if land <= 0.0:
+            # the point width that leaves a zero top land, else the working depth
+            w_max = self.cutter.point_width_mm + land
+            if w_max > 0.0:
+                raise InputRangeError("cutter.point_width_mm", self.cutter.point_width_mm,
+                                      f"< {w_max:.4g} mm (pointed gear teeth: the mean normal "
+                                      f"top land is {land:.4g} mm)")
+            t = (np.tan(np.radians(blank.pressure_angle_drive_deg))
+                 + np.tan(np.radians(blank.pressure_angle_coast_deg)))
+            k_max = np.pi / ((1.0 + self.clearance_factor) * t)
+            raise InputRangeError("design.working_depth_factor", self.working_depth_factor,
+                                  f"< {k_max:.4g} (pointed gear teeth: the mean normal top "
+                                  f"land is {land:.4g} mm for any cutter point width)")
         if blank.dedendum_pinion_mm >= blank.mean_pitch_radius_pinion_mm:
-            raise InputRangeError("design.gear_addendum_factor", self.gear_addendum_factor,
-                                  "a value leaving the pinion root radius positive")
+            # h_fm1 = (c_ham + k_c) k_d m_mn must stay below the pinion pitch radius
+            bound = blank.mean_pitch_radius_pinion_mm / (
+                (self.gear_addendum_factor + self.clearance_factor) * blank.mean_normal_module_mm)
+            raise InputRangeError("design.working_depth_factor", self.working_depth_factor,
+                                  f"< {bound:.4g} (the pinion dedendum must stay below the "
+                                  f"pinion mean pitch radius "
+                                  f"{blank.mean_pitch_radius_pinion_mm:.4g} mm)")
 
     @cached_property
     def blank(self) -> BlankDesign:
