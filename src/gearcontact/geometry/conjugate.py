@@ -473,18 +473,23 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
     undercut = float(np.nanmax(edge_h) - h_lo) if np.isfinite(edge_h).any() else 0.0
     if undercut > _MAX_UNDERCUT * blank.addendum_gear_mm:
         k = int(np.nanargmax(edge_h))
-        # the limit line depends on the blade and the kinematics only, not on the
-        # addenda: a gear tip at the limit-line depth removes the undercut
+        # the limit line is a property of the blade and the kinematics (the addenda move
+        # it only slightly): a gear tip at the limit-line depth removes the undercut
         fix = np.floor(max(-float(edge_h[k]), 0.0) / blank.working_depth_mm * 1e3) / 1e3
+        where = (f"the pinion {gear.side} flank is undercut (limit line of the envelope) at "
+                 f"v = {vs[k]:.3f} mm, where the gear tip zone h = [{h_lo:.3f}, "
+                 f"{edge_h[k]:.3f}] mm ({undercut / blank.addendum_gear_mm:.0%} of the gear "
+                 f"addendum, more than {_MAX_UNDERCUT:.0%}) generates no pinion flank")
+        if fix <= 0.0:  # the limit line reaches the pitch plane: no addendum avoids it
+            raise UndercutError(
+                "pinion_teeth / gear_teeth", (blank.pinion_teeth, blank.gear_teeth),
+                f"a pair whose pinion the formate gear generates: {where}, and no gear "
+                "addendum factor avoids it (raise the tooth numbers or the ratio, the "
+                f"{gear.side} pressure angle or the spiral angle)")
         raise UndercutError(
-            "gear_addendum_factor",
-            float(f"{blank.addendum_gear_mm / blank.working_depth_mm:.6g}"),
-            f"<= {fix:.3f} (or no undercut): the pinion {gear.side} flank is undercut "
-            f"(limit line of the envelope) at v = {vs[k]:.3f} mm, where the gear tip zone h = "
-            f"[{h_lo:.3f}, {edge_h[k]:.3f}] mm ({undercut / blank.addendum_gear_mm:.0%} of "
-            f"the gear addendum, more than {_MAX_UNDERCUT:.0%}) generates no pinion flank; "
-            "or raise the spiral angle, the pressure angle or the pinion tooth count",
-            fix=float(fix))
+            "gear_addendum_factor", float(f"{blank.addendum_gear_mm / blank.working_depth_mm:.6g}"),
+            f"<= {fix:.3f} (or no undercut): {where}; or raise the spiral angle, the pressure "
+            "angle or the pinion tooth count", fix=float(fix))
     u_root = max(nominal.u_root, float(np.max(limits[0])))
     u_tip = min(nominal.u_tip, float(np.min(limits[1])))
     if not u_tip - u_root > 0.1 * (nominal.u_tip - nominal.u_root):
