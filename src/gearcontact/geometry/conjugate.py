@@ -36,6 +36,7 @@ every node of the final grid.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -137,6 +138,9 @@ class MeshingSolver:
     """
 
     def __init__(self, gear: FormateFlank, kinematics: MeshKinematics, cone: PinionCone):
+        if kinematics.hand != "right":  # the node equations use the right-hand frame
+            raise ValueError("MeshingSolver takes the right-hand twin's kinematics "
+                             "(a left-hand pair is generated as its mirror image)")
         self.gear, self.kin, self.cone = gear, kinematics, cone
         # v12 is affine in X: v12(X) = M X + v0, M and v0 read off relative_velocity once
         self._v0 = kinematics.relative_velocity(np.zeros(3))
@@ -353,6 +357,8 @@ def check_generation(pair) -> dict:
     UndercutError
         As :func:`pinion_active_box` (names the field and a value that avoids it).
     """
+    if pair.pinion_hand == "left":  # its mirror image generates alike (:mod:`.mirror`)
+        pair = dataclasses.replace(pair, pinion_hand="right")
     kin = pair.kinematics(with_errors=False)
     out = {}
     for side, gear in gear_flanks(pair)[1].items():

@@ -35,6 +35,7 @@ ISO 23509:2016 (blank data).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,11 +46,13 @@ from ..validation import InputRangeError
 from .blank import BlankDesign
 from .cutter import BladeCone, CutterPlacement, place_cutter
 from .kinematics import MeshKinematics
+from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, SurfaceArrays, point_from_arrays, sample_grid
 from .surface import SurfacePoint
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "cone_vector", "gear_flank", "gear_flanks", "with_easeoff"]
+           "build_flanks", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
+           "with_easeoff"]
 
 #: Flank sides, in the order used everywhere.
 SIDES = ("drive", "coast")
@@ -324,6 +327,10 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     from .conjugate import conjugate_pinion_flank
     from .easeoff import mean_normal_thickness_mm
 
+    if pair.pinion_hand == "left":  # the mirror image of the right-hand twin
+        twin = dataclasses.replace(pair, pinion_hand="right")
+        return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v),
+                                pair.kinematics(with_errors=False))
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
     placement, gear = gear_flanks(pair)
@@ -342,6 +349,25 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     return with_easeoff(conjugate, pair)
 
 
+def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
+    """The left-hand flank set: every flank of the right-hand ``flanks`` reflected
+    (:mod:`.mirror`).
+
+    ``kinematics`` is the left-hand pair's nominal kinematics (``hand="left"``). The
+    blank's pitch point is reflected with the frame; mean contacts (u, v, phi2) are
+    unchanged (:mod:`.kinematics`: the mirrored pair meshes at the same phases).
+    """
+    placement = mirror_placement(flanks.cutter)
+    P = flanks.blank.pitch_point_mm
+    return dataclasses.replace(
+        flanks, blank=dataclasses.replace(flanks.blank, pitch_point_mm=(P[0], -P[1], P[2])),
+        kinematics=kinematics, cutter=placement,
+        gear=MemberFlanks(**{s: mirror_gear_flank(flanks.gear.side(s), placement) for s in SIDES}),
+        pinion=MemberFlanks(**{s: mirror_sheet(flanks.pinion.side(s)) for s in SIDES}),
+        pinion_conjugate=MemberFlanks(**{s: mirror_sheet(flanks.pinion_conjugate.side(s))
+                                         for s in SIDES}))
+
+
 def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
     """``flanks`` with the pinion ease-off of ``pair`` applied to their conjugate pinion
     flanks (the gear, the conjugate pinion, the blank and the cutter stay those of
@@ -357,8 +383,6 @@ def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
     InputRangeError
         An ease-off beyond its limit (:func:`~.easeoff.apply_easeoff`).
     """
-    import dataclasses
-
     from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um
 
     limit = easeoff_limit_um(flanks.pinion_normal_thickness_mm)

@@ -166,7 +166,9 @@ class GearPair:
     offset_mm : float
         Hypoid offset E, mm, >= 0 (pinion axis at y = -E in the meshing frame).
     pinion_hand : str
-        "right" (the meshing frame's offset sign); the gear has the opposite hand.
+        "right" or "left"; the gear has the opposite hand. A left-hand pair is the
+        mirror image (y -> -y) of the right-hand one: pinion axis at y = +E, flanks
+        reflected (:mod:`.mirror`, :func:`~.flank.build_flanks`).
     pinion_spiral_angle_deg : float
         Mean spiral angle beta1, degrees.
     gear_face_width_mm, pinion_face_width_mm : float
@@ -217,11 +219,8 @@ class GearPair:
     def __post_init__(self):
         if self.design_side not in ("drive", "coast"):
             raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
-        if self.pinion_hand != "right":
-            raise InputRangeError(
-                "design.pinion_hand", self.pinion_hand,
-                "'right' (the meshing frame puts the pinion axis at y = -E; a left-hand "
-                "pinion is its mirror image and needs the mirrored frame)")
+        if self.pinion_hand not in ("right", "left"):
+            raise InputRangeError("design.pinion_hand", self.pinion_hand, "'right' or 'left'")
         check_positive("design.gear_face_width_mm", self.gear_face_width_mm)
         check_range("design.pinion_face_width_mm", self.pinion_face_width_mm,
                     self.gear_face_width_mm, 3.0 * self.gear_face_width_mm)
@@ -279,7 +278,8 @@ class GearPair:
     def kinematics(self, *, with_errors: bool = True) -> MeshKinematics:
         """Meshing kinematics; ``with_errors=False`` gives the nominal (generating) one."""
         errors = self.assembly if with_errors else AssemblyErrors()
-        return MeshKinematics(offset_mm=self.offset_mm, ratio=self.ratio, errors=errors)
+        return MeshKinematics(offset_mm=self.offset_mm, ratio=self.ratio, errors=errors,
+                              hand=self.pinion_hand)
 
 
 # --------------------------------------------------------------------------- TOML
