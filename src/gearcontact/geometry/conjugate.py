@@ -27,11 +27,17 @@ the gear-tip line is fillet). The node grid extends ``NODE_MARGIN_MM`` beyond th
 
 Regularity (Litvin & Fuentes 2004, sec. 6.3-6.4): the envelope exists and is free of
 undercut where ``df/dphi2 != 0`` (no limit line) and the Jacobian of the node equations
-is non-singular (``r_u x r_v != 0`` on the generated sheet). If the envelope folds
-before the gear-tip (or gear-root) line is reached, the active flank is undercut and
-:class:`UndercutError` names flank and location; a fold in the fillet zone within the
-node margin only moves the active edge inwards. Both conditions are also checked on
-every node of the final grid.
+is non-singular (``r_u x r_v != 0`` on the generated sheet). Towards the pinion root the
+envelope of a formate gear may reach its limit line (a cusp: det J -> 0 while df/dphi2
+stays well away from 0) before the gear-tip line, most often at the toe, at low spiral
+angles and low ratios: the gear's tip zone then undercuts the pinion, and the active
+profile ends where the envelope is still regular (:func:`_active_box`; the depth of the
+gear tip zone without a conjugate partner is ``ConjugateFlank.gear_tip_undercut_mm``).
+Beyond half the gear addendum the active flank itself is undercut:
+:class:`UndercutError` naming ``gear_addendum_factor`` and a value that avoids it (or
+the tooth numbers when none does); :func:`check_generation` finds this before any
+flank work. A fold before the gear-root line is always an error. Both conditions are
+also checked on every node of the final grid.
 """
 
 from __future__ import annotations
