@@ -117,7 +117,8 @@ def test_pointed_gear_teeth_refused_naming_the_field():
     from dataclasses import replace
     pair = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
     b = pair.blank
-    t = np.tan(np.radians(b.pressure_angle_drive_deg)) + np.tan(np.radians(b.pressure_angle_coast_deg))
+    t = (np.tan(np.radians(b.pressure_angle_drive_deg))
+         + np.tan(np.radians(b.pressure_angle_coast_deg)))
     land = np.pi * b.mean_normal_module_mm - 1.5 - 2.0 * 1.125 * b.mean_normal_module_mm * t
     assert gear_top_land_mm(b, 1.5) == pytest.approx(land, rel=1e-12)
     w_max = 1.5 + land
