@@ -3,8 +3,8 @@
 Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its ISO 23509
 Method 1 blank design as a table (after checking that the gear generates the pinion
 flanks: :func:`~gearcontact.geometry.conjugate.check_generation`); ``--json`` prints one
-JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``, ``mean_cone_distances_mm``, each
-``[pinion, gear]``).
+JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
+``mean_cone_distances_mm``, each ``[pinion, gear]``).
 """
 
 from __future__ import annotations
