@@ -134,6 +134,22 @@ def test_pointed_gear_teeth_refused_naming_the_field():
     assert f"< {np.pi / (1.125 * t):.4g}" in err.value.allowed
 
 
+def test_absurd_gear_teeth_blamed_on_the_gear_teeth():
+    # issue 28: 100,000 gear teeth were blamed on the spiral angle and cutter radius.
+    # The error names gear_teeth and the largest tooth number with pitch cones; that
+    # bound is checked against the design itself (it designs, one more does not).
+    import re
+    base = dict(pinion_teeth=13, offset_mm=15.0, pinion_spiral_angle_deg=50.0,
+                cutter_radius_mm=63.5, gear_mean_pitch_radius_mm=70.9)
+    with pytest.raises(InputRangeError) as err:
+        design_blank(gear_teeth=100_000, **base)
+    assert err.value.field == "gear_teeth"
+    bound = int(re.match(r"<= (\d+)", err.value.allowed).group(1))
+    design_blank(gear_teeth=bound, **base)
+    with pytest.raises(InputRangeError):
+        design_blank(gear_teeth=bound + 1, **base)
+
+
 @pytest.mark.parametrize("kwargs, field", [
     (dict(pinion_teeth=3), "pinion_teeth"),
     (dict(gear_teeth=6), "gear_teeth"),

@@ -238,7 +238,11 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     if E == 0.0:
         cones, alim = _bevel_cones(b1=b1, u=u, r2=r2, R2=R2), 0.0
     else:
-        cones, alim = _solve_hypoid(E=E, b1=b1, u=u, r2=r2, R2=R2, rc0=rc0)
+        try:
+            cones, alim = _solve_hypoid(E=E, b1=b1, u=u, r2=r2, R2=R2, rc0=rc0)
+        except _NoCones:
+            raise _blame_no_cones(E=E, b1=b1, z1=int(pinion_teeth), z2=int(gear_teeth), r2=r2,
+                                  R2=R2, rc0=rc0) from None
 
     m_mn = 2.0 * cones.r2 * np.cos(cones.b2) / gear_teeth
     h_mw = k_d * m_mn
@@ -297,6 +301,59 @@ def _bevel_cones(*, b1: float, u: float, r2: float | None, R2: float | None) -> 
     return _Cones(d1, d2, 0.0, 0.0, 0.0, b1, r1, r2v, r1 / np.sin(d1), r2v / np.sin(d2))
 
 
+class _NoCones(ArithmeticError):
+    """No pitch cones with rho_lim = r_c0 for the given data (diagnosed by the caller)."""
+
+
+#: Ratios above this are unusual for hypoids (issue 28's design space is 1-10): when no
+#: pitch cones exist there, the gear tooth number is blamed before the spiral angle.
+_USUAL_MAX_RATIO = 10.0
+#: Spiral angles tried when no pitch cones exist, deg (which input to blame).
+_TRY_SPIRAL_DEG = (20.0, 30.0, 40.0, 50.0, 60.0)
+
+
+def _blame_no_cones(*, E, b1, z1, z2, r2, R2, rc0) -> InputRangeError:
+    """The input error for "no pitch cones with rho_lim = r_c0": the gear tooth number
+    for a ratio above ``_USUAL_MAX_RATIO`` (naming the largest with cones at this spiral
+    angle, by bisection), else the spiral angle when another one has cones (naming
+    it), else the gear tooth number, else the offset."""
+    kw = dict(E=E, r2=r2, R2=R2, rc0=rc0)
+
+    def has(beta_rad, teeth):
+        try:
+            with np.errstate(all="ignore"):
+                _solve_hypoid(b1=beta_rad, u=teeth / z1, **kw)
+        except (_NoCones, InputRangeError):
+            return False
+        return True
+
+    def fewer_teeth() -> InputRangeError:
+        lo, hi = z1, z2   # has(lo) and not has(hi)
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (mid, hi) if has(b1, mid) else (lo, mid)
+        return InputRangeError("gear_teeth", z2,
+                               f"<= {lo} (ratio {lo / z1:.4g}): beyond it no hypoid pitch "
+                               f"cones with rho_lim = r_c0 exist at offset {E:g} mm and this "
+                               "spiral angle")
+
+    ratio_ok = has(b1, z1)
+    if z2 / z1 > _USUAL_MAX_RATIO and ratio_ok:  # an unusual ratio: blame the teeth first
+        return fewer_teeth()
+    ok = [b for b in _TRY_SPIRAL_DEG if has(np.radians(b), z2)]
+    if ok:
+        best = min(ok, key=lambda b: abs(b - np.degrees(b1)))
+        return InputRangeError("pinion_spiral_angle_deg / cutter_radius_mm",
+                               (float(np.degrees(b1)), rc0),
+                               "a combination for which pitch cones with rho_lim = r_c0 exist "
+                               f"(e.g. pinion_spiral_angle_deg = {best:g}, or another cutter "
+                               "radius)")
+    if ratio_ok:
+        return fewer_teeth()
+    return InputRangeError("offset_mm", E, "a smaller offset: no hypoid pitch cones with "
+                           "rho_lim = r_c0 exist for these teeth at any spiral angle tried")
+
+
 def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float | None,
                   rc0: float) -> tuple[_Cones, float]:
     """Solve offset equation and rho_lim = r_c0 for (zeta_m, eta); returns cones, alpha_lim."""
@@ -336,10 +393,7 @@ def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float 
             if abs(residual(root)) < 1e-6 * rc0:  # a sign change through a pole is no root
                 roots.append(root)
     if not roots:
-        raise InputRangeError("pinion_spiral_angle_deg / cutter_radius_mm",
-                              (float(np.degrees(b1)), rc0),
-                              "a combination for which pitch cones with rho_lim = r_c0 exist "
-                              "(try a larger spiral angle or another cutter radius)")
+        raise _NoCones()
     eta = roots[0]  # the smallest wheel offset angle: the ISO iteration's branch
     c = _cones(zeta_for(eta), eta, **kw)
     if c.b2 <= 0.0:
