@@ -381,6 +381,13 @@ _MARCH_STEPS = 24
 #: of its mean-point value (towards a limit line the flank curvature grows like
 #: 1/sqrt(distance) and the spline interpolant loses accuracy).
 _CUSP_FRACTION = 0.1
+#: Below this ratio a formate gear (a copy of the straight blade, far from the profile
+#: a generated gear would have) typically undercuts its conjugate pinion; the undercut
+#: message says so (generated gears are not modelled).
+_FORMATE_MIN_RATIO = 2.5
+_FORMATE_HINT = (" (the gear is formate, a copy of the straight blade: at ratios below "
+                 f"about {_FORMATE_MIN_RATIO:g} its conjugate pinion is undercut unless the gear "
+                 "addendum is short; generated gears are not modelled)")
 #: Largest share of the gear addendum whose tip zone may lack a conjugate partner
 #: (limit line at the pinion root, trimmed) before the active flank counts as undercut.
 _MAX_UNDERCUT = 0.5
@@ -491,7 +498,8 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
         where = (f"the pinion {gear.side} flank is undercut (limit line of the envelope) at "
                  f"v = {vs[k]:.3f} mm, where the gear tip zone h = [{h_lo:.3f}, "
                  f"{edge_h[k]:.3f}] mm ({undercut / blank.addendum_gear_mm:.0%} of the gear "
-                 f"addendum, more than {_MAX_UNDERCUT:.0%}) generates no pinion flank")
+                 f"addendum, more than {_MAX_UNDERCUT:.0%}) generates no pinion flank"
+                 f"{_FORMATE_HINT if blank.ratio < _FORMATE_MIN_RATIO else ''}")
         if fix <= 0.0:  # the limit line reaches the pitch plane: no addendum avoids it
             raise UndercutError(
                 "pinion_teeth / gear_teeth", (blank.pinion_teeth, blank.gear_teeth),
