@@ -237,6 +237,12 @@ def test_f3_spiral_25_undercut_names_the_fix():
         build_flanks(pair, n_u=30, n_v=40)
     assert err.value.field == "gear_addendum_factor" and err.value.value == 0.35
     assert 0.0 < err.value.fix < 0.35
+    # design's check (no grid) refuses it alike, with a fix it has verified
+    from gearcontact.geometry.conjugate import check_generation
+    with pytest.raises(UndercutError) as checked:
+        check_generation(pair)
+    assert checked.value.field == "gear_addendum_factor"
+    assert checked.value.fix == err.value.fix
     from dataclasses import replace
     fs = build_flanks(replace(pair, gear_addendum_factor=err.value.fix), n_u=60, n_v=80)
     _check_trimmed_at_limit_line(fs)
