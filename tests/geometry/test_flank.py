@@ -216,9 +216,13 @@ def _design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
 
 
 def _design_space_case(z1, ratio, offset_frac, beta, face_frac, side, *, tca):
-    from gearcontact.validation import InputRangeError
+    from gearcontact.geometry.conjugate import UndercutError
     try:
         pair = _design_space_pair(z1, ratio, offset_frac, beta, face_frac, side)
+    except UndercutError as err:     # refused by design: undercut / limit line, named
+        assert err.field in _DESIGN_FIELDS or err.field.startswith("pinion "), err
+        assert "undercut" in err.allowed or "limit line" in err.allowed
+        return None
     except InputRangeError as err:   # refused by design, naming an ISO condition
         assert err.field in _DESIGN_FIELDS, err
         assert err.allowed
