@@ -545,7 +545,8 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
     u_tip = min(nominal.u_tip, float(np.min(limits[1])))
     if not u_tip - u_root > 0.1 * (nominal.u_tip - nominal.u_root):
         raise UndercutError("pinion flank active profile", (u_root, u_tip),
-                            "a generated profile of at least 10 % of the working depth")
+                            "a generated profile of at least 10 % of the working depth "
+                            "(the limit lines / undercut leave less)")
     box = FlankBoundary(u_root=u_root, u_tip=u_tip, v_toe=nominal.v_toe, v_heel=nominal.v_heel)
     return box, undercut
 
@@ -628,4 +629,5 @@ def _check_regular(nodes: MeshingSolution, mean: MeshingSolution, side: str, U, 
     if np.any(sing):
         i = tuple(int(k) for k in np.argwhere(sing)[0])
         raise UndercutError(f"pinion {side} flank at (u, v) = ({U[i]:.4f}, {V[i]:.4f}) mm",
-                            float(det[i]), "a regular envelope (r_u x r_v != 0)")
+                            float(det[i]),
+                            "a regular envelope (r_u x r_v != 0: no limit line)")
