@@ -258,7 +258,7 @@ def test_design_space_accepts_or_names_the_condition(z1, ratio, offset_frac, bet
 
 
 @pytest.mark.slow
-@settings(max_examples=60, deadline=None, derandomize=True, database=None)
+@settings(max_examples=25, deadline=None, derandomize=True, database=None)
 @given(**_SPACE)
 def test_design_space_accepts_or_names_the_condition_slow(z1, ratio, offset_frac, beta,
                                                            face_frac, side):
