@@ -101,3 +101,21 @@ def test_left_hand_tca_is_the_mirror_image(s0003, flanks, left):
     ca, cb = a.mean_curvature, b.mean_curvature
     assert ca.kappa_max_per_mm == pytest.approx(cb.kappa_max_per_mm, abs=1e-9)
     assert ca.kappa_min_per_mm == pytest.approx(cb.kappa_min_per_mm, abs=1e-9)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_left_hand_conjugate_nodes_meet_the_mirrored_meshing_equation(left, side):
+    # The reflected node solutions of the left-hand conjugate flank satisfy the equation
+    # of meshing of the left-hand kinematics, f = N_f . v12(X_f) (1e-9 mm/rad, as the
+    # right-hand nodes), and its exact solves lie on its (mirrored) spline sheet
+    # (5e-5 mm, the interpolation tolerance of test_conjugate.py).
+    _, lh = left
+    c = lh.pinion_conjugate.side(side)
+    n = c.nodes
+    f = np.einsum("...i,...i->...", n.n_f, lh.kinematics.relative_velocity(n.x_f_mm))
+    assert np.abs(f).max() < 1e-9
+    rng = np.random.default_rng(5)
+    u, v = rng.uniform(*c.u_range, 50), rng.uniform(*c.v_range, 50)
+    ex, s = c.exact(u, v), c.evaluate(u, v)
+    assert np.linalg.norm(s.r - ex.x1_mm, axis=-1).max() < 5e-5
+    assert np.linalg.norm(s.n - ex.n1, axis=-1).max() < 1e-7

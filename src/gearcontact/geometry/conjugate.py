@@ -52,6 +52,7 @@ from ..validation import InputRangeError
 from .blank import BlankDesign
 from .flank import FlankBoundary, FormateFlank, gear_flanks
 from .kinematics import MeshKinematics
+from .mirror import mirror_solution
 from .sheet import PinionCone, RadialSheet
 
 __all__ = ["UndercutError", "MeshingError", "MeshingSolution", "MeshingSolver",
@@ -238,20 +239,25 @@ class ConjugateFlank(RadialSheet):
     (:class:`MeshingSolution` on the grid, shape (n_u, n_v)) and
     ``gear_tip_undercut_mm``: depth of the gear tip zone without a conjugate partner
     (the envelope's limit line lies above the gear-tip line; the active profile is
-    trimmed there, :func:`_active_box`), mm, 0 without one.
+    trimmed there, :func:`_active_box`), mm, 0 without one; ``mirrored``: the flank of
+    a left-hand pair (:mod:`.mirror`).
     """
 
     solver: MeshingSolver = None
     nodes: MeshingSolution = None
     gear_tip_undercut_mm: float = 0.0
+    mirrored: bool = False
 
     def exact(self, u, v) -> MeshingSolution:
-        """Exact solve of the node equations at arbitrary (u, v) (guess from the nodes)."""
+        """Exact solve of the node equations at arbitrary (u, v) (guess from the nodes);
+        reflected for a mirrored (left-hand) flank, whose ``solver`` is its right-hand
+        twin's (:func:`~.mirror.mirror_solution`)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         guess = np.stack([RectBivariateSpline(self.u_nodes, self.v_nodes, g, kx=3, ky=3)(
             u.ravel(), v.ravel(), grid=False).reshape(u.shape)
             for g in (self.nodes.h_mm, self.nodes.theta_rad, self.nodes.phi2_rad)], axis=-1)
-        return self.solver.solve(u, v, guess)
+        sol = self.solver.solve(u, v, guess)
+        return mirror_solution(sol) if self.mirrored else sol
 
 
 def _nominal_pinion_box(blank: BlankDesign, pinion_face_width_mm: float) -> tuple[PinionCone, FlankBoundary]:

@@ -27,7 +27,8 @@ import numpy as np
 
 from .cutter import CutterPlacement
 
-__all__ = ["MIRROR", "mirror_gear_flank", "mirror_placement", "mirror_sheet"]
+__all__ = ["MIRROR", "mirror_gear_flank", "mirror_placement", "mirror_sheet",
+           "mirror_solution"]
 
 #: The reflection y -> -y of the meshing frame (and of both body frames).
 MIRROR = np.diag([1.0, -1.0, 1.0])
@@ -45,13 +46,25 @@ def mirror_gear_flank(gear, placement: CutterPlacement):
     return dataclasses.replace(gear, blade=dataclasses.replace(gear.blade, placement=placement))
 
 
+def mirror_solution(sol):
+    """The mirror image of a :class:`~.conjugate.MeshingSolution`: the parameters
+    (h, theta, phi2) are those of the right-hand twin, psi -> pi - psi and every vector
+    reflected."""
+    return dataclasses.replace(sol, psi_rad=np.pi - sol.psi_rad, x1_mm=sol.x1_mm @ MIRROR,
+                               n1=sol.n1 @ MIRROR, x_f_mm=sol.x_f_mm @ MIRROR,
+                               n_f=sol.n_f @ MIRROR)
+
+
 def mirror_sheet(sheet):
     """The mirror image of a pinion :class:`~.sheet.RadialSheet` (or a subclass):
     ``psi -> pi - psi``, normal sign flipped.
 
-    A :class:`~.conjugate.ConjugateFlank` keeps its type and its gear-tip undercut, but
-    not its exact node solutions (``solver``, ``nodes``: those of the right-hand twin).
+    A :class:`~.conjugate.ConjugateFlank` keeps its right-hand twin's solver; its node
+    solutions are reflected (:func:`mirror_solution`) and so are those of its
+    ``exact`` method (flag ``mirrored``).
     """
-    extra = {"solver": None, "nodes": None} if hasattr(sheet, "solver") else {}
+    extra = {}
+    if hasattr(sheet, "mirrored"):
+        extra = {"nodes": mirror_solution(sheet.nodes), "mirrored": not sheet.mirrored}
     return dataclasses.replace(sheet, psi_nodes=np.pi - sheet.psi_nodes,
                                normal_sign=-sheet.normal_sign, **extra)
