@@ -216,7 +216,7 @@ def test_f3_spiral_45_generates_trimmed_at_the_limit_line():
     # Jacobian -> 0 while df/dphi2 stays ~47 mm/rad) at gear h = -1.69 mm, above the gear
     # tip h = -1.97 mm. The active profile now ends at the limit line.
     from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.conjugate import check_generation
+    from gearcontact.geometry.generation import check_generation
     pair = _f3(pinion_spiral_angle_deg=45.0)
     fs = build_flanks(pair, n_u=60, n_v=80)
     assert _check_trimmed_at_limit_line(fs) >= 1
@@ -234,7 +234,7 @@ def test_f3_spiral_25_undercut_names_the_fix():
     # with it the pair generates (measured fix 0.164, docs/geometry.md sec. 7.2).
     from dataclasses import replace
 
-    from gearcontact.geometry.conjugate import check_generation
+    from gearcontact.geometry.generation import check_generation
     from gearcontact.geometry.flank import build_flanks
     pair = _f3(pinion_spiral_angle_deg=25.0)
     with pytest.raises(UndercutError) as err:

@@ -196,7 +196,7 @@ def _design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
     ease-off), or the InputRangeError that ``design`` raises for it."""
     from pathlib import Path
 
-    from gearcontact.geometry.conjugate import check_generation
+    from gearcontact.geometry.generation import check_generation
     from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
     base = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
     z2 = max(z1, int(round(z1 * ratio)))

@@ -2,7 +2,7 @@
 
 Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its ISO 23509
 Method 1 blank design as a table (after checking that the gear generates the pinion
-flanks: :func:`~gearcontact.geometry.conjugate.check_generation`); ``--json`` prints one
+flanks: :func:`~gearcontact.geometry.generation.check_generation`); ``--json`` prints one
 JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
 ``mean_cone_distances_mm``, each ``[pinion, gear]``).
 """
@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..geometry.conjugate import check_generation
+from ..geometry.generation import check_generation
 from ..geometry.pair import PRESETS, load_pair
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
