@@ -1,9 +1,11 @@
 """Blank design against ISO 23509:2016 Annex F.3 and the published s0003 pitch cones."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from gearcontact.geometry.blank import design_blank
+from gearcontact.geometry.blank import design_blank, gear_top_land_mm
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 
@@ -98,9 +100,59 @@ def test_spiral_bevel_limit():
     assert b.mean_normal_module_mm == pytest.approx(3.213, abs=0.001)
 
 
+def test_miter_pair():
+    # z2 = z1, E = 0: the 1:1 miter pair, tan(delta1) = z1/z2 = 1 -> both pitch angles
+    # 45 deg, equal pitch radii (rounding only: 1e-12)
+    b = design_blank(pinion_teeth=20, gear_teeth=20, offset_mm=0.0, pinion_spiral_angle_deg=35.0,
+                     cutter_radius_mm=63.5, gear_mean_pitch_radius_mm=60.0)
+    assert b.pitch_angle_pinion_deg == pytest.approx(45.0, abs=1e-12)
+    assert b.pitch_angle_gear_deg == pytest.approx(45.0, abs=1e-12)
+    assert b.mean_pitch_radius_pinion_mm == pytest.approx(60.0, abs=1e-12)
+
+
+def test_pointed_gear_teeth_refused_naming_the_field():
+    # Rack approximation of the mean normal section: gear top land
+    # s_a2 = pi m_mn - W - k_d (1 + k_c) m_mn (tan alpha_nD + tan alpha_nC). Independent
+    # truth: the k_d and W where it vanishes, from the closed form with the F.3 blank.
+    from dataclasses import replace
+    pair = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
+    b = pair.blank
+    t = (np.tan(np.radians(b.pressure_angle_drive_deg))
+         + np.tan(np.radians(b.pressure_angle_coast_deg)))
+    land = np.pi * b.mean_normal_module_mm - 1.5 - 2.0 * 1.125 * b.mean_normal_module_mm * t
+    assert gear_top_land_mm(b, 1.5) == pytest.approx(land, rel=1e-12)
+    w_max = 1.5 + land
+    replace(pair, cutter=replace(pair.cutter, point_width_mm=w_max * (1 - 1e-6)))
+    with pytest.raises(InputRangeError) as err:
+        replace(pair, cutter=replace(pair.cutter, point_width_mm=w_max * (1 + 1e-6)))
+    assert err.value.field == "cutter.point_width_mm" and f"< {w_max:.4g}" in err.value.allowed
+    # issue 28: k_d = 50 was blamed on gear_addendum_factor; no point width helps there
+    # (alpha_n does not depend on k_d, so the closed form k_max = pi / ((1 + k_c) t) holds)
+    with pytest.raises(InputRangeError) as err:
+        replace(pair, working_depth_factor=50.0)
+    assert err.value.field == "design.working_depth_factor"
+    assert f"< {np.pi / (1.125 * t):.4g}" in err.value.allowed
+
+
+def test_absurd_gear_teeth_blamed_on_the_gear_teeth():
+    # issue 28: 100,000 gear teeth were blamed on the spiral angle and cutter radius.
+    # The error names gear_teeth and the largest tooth number with pitch cones; that
+    # bound is checked against the design itself (it designs, one more does not).
+    import re
+    base = dict(pinion_teeth=13, offset_mm=15.0, pinion_spiral_angle_deg=50.0,
+                cutter_radius_mm=63.5, gear_mean_pitch_radius_mm=70.9)
+    with pytest.raises(InputRangeError) as err:
+        design_blank(gear_teeth=100_000, **base)
+    assert err.value.field == "gear_teeth"
+    bound = int(re.match(r"<= (\d+)", err.value.allowed).group(1))
+    design_blank(gear_teeth=bound, **base)
+    with pytest.raises(InputRangeError):
+        design_blank(gear_teeth=bound + 1, **base)
+
+
 @pytest.mark.parametrize("kwargs, field", [
     (dict(pinion_teeth=3), "pinion_teeth"),
-    (dict(gear_teeth=7), "gear_teeth"),
+    (dict(gear_teeth=6), "gear_teeth"),
     (dict(offset_mm=30.0), "offset_mm"),
     (dict(offset_mm=-1.0), "offset_mm"),
     (dict(shaft_angle_deg=80.0), "shaft_angle_deg"),

@@ -76,7 +76,7 @@ def test_unknown_key_rejected():
     ("axes", "offset_mm", 25.0, "offset_mm"),
     ("teeth", "pinion", 3, "pinion_teeth"),
     ("cutter", "edge_radius_mm", 0.3, "cutter.edge_radius_mm"),
-    ("design", "pinion_hand", "left", "design.pinion_hand"),
+    ("design", "pinion_hand", "up", "design.pinion_hand"),
     ("design", "pinion_face_width_mm", 5.0, "design.pinion_face_width_mm"),
 ])
 def test_impossible_pair(section, key, value, field):

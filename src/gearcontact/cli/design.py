@@ -1,9 +1,10 @@
 """``gearcontact design``: the blank (pitch-cone) data of a gear pair.
 
 Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its ISO 23509
-Method 1 blank design as a table; ``--json`` prints one JSON object instead (with at
-least ``pitch_angles_deg``, ``spiral_angles_deg``, ``mean_cone_distances_mm``, each
-``[pinion, gear]``).
+Method 1 blank design as a table (after checking that the gear generates the pinion
+flanks: :func:`~gearcontact.geometry.generation.check_generation`); ``--json`` prints one
+JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
+``mean_cone_distances_mm``, each ``[pinion, gear]``).
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from ..geometry.generation import check_generation
 from ..geometry.pair import PRESETS, load_pair
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
@@ -85,6 +87,8 @@ def check(args) -> None:
     --calibrate or --synthesize-easeoff --out (under the output-directory policy,
     :mod:`.outdir`)."""
     pair = args.gear_pair = load_pair(args.pair)
+    # a pair whose pinion the gear cannot generate (limit line) is refused here
+    check_generation(pair)
     if args.calibrate and args.synthesize_easeoff:
         raise InputRangeError("--calibrate / --synthesize-easeoff", "both", "one of the two")
     # an option of a mode that is not asked for would be ignored without a word

@@ -45,7 +45,8 @@ from scipy.optimize import brentq
 
 from ..validation import InputRangeError, check_positive, check_range
 
-__all__ = ["BlankDesign", "design_blank", "limit_pressure_angle_rad", "limit_radius_mm"]
+__all__ = ["BlankDesign", "design_blank", "gear_top_land_mm", "limit_pressure_angle_rad",
+           "limit_radius_mm"]
 
 #: Largest gear mean pitch radius / mean cone distance accepted, mm.
 MAX_GEAR_SIZE_MM = 5000.0
@@ -167,7 +168,7 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     Parameters
     ----------
     pinion_teeth, gear_teeth : int
-        Tooth numbers z1 (>= 5) and z2 (> z1).
+        Tooth numbers z1 (>= 5) and z2 (>= z1; z2 = z1 is a miter pair).
     offset_mm : float
         Hypoid offset E, mm (>= 0; 0 gives a spiral bevel pair).
     pinion_spiral_angle_deg : float
@@ -199,8 +200,9 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     """
     if int(pinion_teeth) != pinion_teeth or pinion_teeth < 5:
         raise InputRangeError("pinion_teeth", pinion_teeth, "an integer >= 5")
-    if int(gear_teeth) != gear_teeth or gear_teeth <= pinion_teeth:
-        raise InputRangeError("gear_teeth", gear_teeth, f"an integer > pinion_teeth = {pinion_teeth}")
+    if int(gear_teeth) != gear_teeth or gear_teeth < pinion_teeth:
+        raise InputRangeError("gear_teeth", gear_teeth,
+                              f"an integer >= pinion_teeth = {pinion_teeth} (1:1 is a miter pair)")
     if abs(float(shaft_angle_deg) - 90.0) > 1e-12:
         raise InputRangeError("shaft_angle_deg", shaft_angle_deg, "exactly 90 (Method 1, Sigma = 90 deg)")
     E = check_range("offset_mm", offset_mm, 0.0, np.inf)
@@ -236,7 +238,11 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     if E == 0.0:
         cones, alim = _bevel_cones(b1=b1, u=u, r2=r2, R2=R2), 0.0
     else:
-        cones, alim = _solve_hypoid(E=E, b1=b1, u=u, r2=r2, R2=R2, rc0=rc0)
+        try:
+            cones, alim = _solve_hypoid(E=E, b1=b1, u=u, r2=r2, R2=R2, rc0=rc0)
+        except _NoCones:
+            raise _blame_no_cones(E=E, b1=b1, z1=int(pinion_teeth), z2=int(gear_teeth), r2=r2,
+                                  R2=R2, rc0=rc0) from None
 
     m_mn = 2.0 * cones.r2 * np.cos(cones.b2) / gear_teeth
     h_mw = k_d * m_mn
@@ -269,6 +275,23 @@ def design_blank(*, pinion_teeth: int, gear_teeth: int, offset_mm: float,
     )
 
 
+def gear_top_land_mm(blank: BlankDesign, point_width_mm: float) -> float:
+    """Mean normal top land of the formate gear tooth, mm (negative: pointed teeth).
+
+    Rack approximation of the mean normal section: the gear slot is the blade profile,
+    ``W`` wide at the root and widening by ``tan(alpha_nD) + tan(alpha_nC)`` per mm of
+    height; with the normal circular pitch ``pi m_mn`` the tooth left between two slots
+    has at the gear tip (height ``h_fm2 + h_am2`` above the root) the top land
+    ``s_a2 = pi m_mn - W - (h_fm2 + h_am2) (tan alpha_nD + tan alpha_nC)``.
+    (The conjugate pinion's top land is, in the same approximation,
+    ``W + c (tan alpha_nD + tan alpha_nC) > 0``: never pointed.)
+    """
+    t = np.tan(np.radians(blank.pressure_angle_drive_deg)) + np.tan(
+        np.radians(blank.pressure_angle_coast_deg))
+    return float(np.pi * blank.mean_normal_module_mm - point_width_mm
+                 - (blank.dedendum_gear_mm + blank.addendum_gear_mm) * t)
+
+
 def _bevel_cones(*, b1: float, u: float, r2: float | None, R2: float | None) -> _Cones:
     """Spiral bevel limit (E = 0): tan(delta1) = 1/u, equal spiral angles (ISO Method 0)."""
     d1 = float(np.arctan(1.0 / u))
@@ -276,6 +299,59 @@ def _bevel_cones(*, b1: float, u: float, r2: float | None, R2: float | None) -> 
     r2v = r2 if r2 is not None else R2 * np.sin(d2)
     r1 = r2v / u
     return _Cones(d1, d2, 0.0, 0.0, 0.0, b1, r1, r2v, r1 / np.sin(d1), r2v / np.sin(d2))
+
+
+class _NoCones(ArithmeticError):
+    """No pitch cones with rho_lim = r_c0 for the given data (diagnosed by the caller)."""
+
+
+#: Ratios above this are unusual for hypoids (issue 28's design space is 1-10): when no
+#: pitch cones exist there, the gear tooth number is blamed before the spiral angle.
+_USUAL_MAX_RATIO = 10.0
+#: Spiral angles tried when no pitch cones exist, deg (which input to blame).
+_TRY_SPIRAL_DEG = (20.0, 30.0, 40.0, 50.0, 60.0)
+
+
+def _blame_no_cones(*, E, b1, z1, z2, r2, R2, rc0) -> InputRangeError:
+    """The input error for "no pitch cones with rho_lim = r_c0": the gear tooth number
+    for a ratio above ``_USUAL_MAX_RATIO`` (naming the largest with cones at this spiral
+    angle, by bisection), else the spiral angle when another one has cones (naming
+    it), else the gear tooth number, else the offset."""
+    kw = dict(E=E, r2=r2, R2=R2, rc0=rc0)
+
+    def has(beta_rad, teeth):
+        try:
+            with np.errstate(all="ignore"):
+                _solve_hypoid(b1=beta_rad, u=teeth / z1, **kw)
+        except (_NoCones, InputRangeError):
+            return False
+        return True
+
+    def fewer_teeth() -> InputRangeError:
+        lo, hi = z1, z2   # has(lo) and not has(hi)
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (mid, hi) if has(b1, mid) else (lo, mid)
+        return InputRangeError("gear_teeth", z2,
+                               f"<= {lo} (ratio {lo / z1:.4g}): beyond it no hypoid pitch "
+                               f"cones with rho_lim = r_c0 exist at offset {E:g} mm and this "
+                               "spiral angle")
+
+    ratio_ok = has(b1, z1)
+    if z2 / z1 > _USUAL_MAX_RATIO and ratio_ok:  # an unusual ratio: blame the teeth first
+        return fewer_teeth()
+    ok = [b for b in _TRY_SPIRAL_DEG if has(np.radians(b), z2)]
+    if ok:
+        best = min(ok, key=lambda b: abs(b - np.degrees(b1)))
+        return InputRangeError("pinion_spiral_angle_deg / cutter_radius_mm",
+                               (float(np.degrees(b1)), rc0),
+                               "a combination for which pitch cones with rho_lim = r_c0 exist "
+                               f"(e.g. pinion_spiral_angle_deg = {best:g}, or another cutter "
+                               "radius)")
+    if ratio_ok:
+        return fewer_teeth()
+    return InputRangeError("offset_mm", E, "a smaller offset: no hypoid pitch cones with "
+                           "rho_lim = r_c0 exist for these teeth at any spiral angle tried")
 
 
 def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float | None,
@@ -317,10 +393,7 @@ def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float 
             if abs(residual(root)) < 1e-6 * rc0:  # a sign change through a pole is no root
                 roots.append(root)
     if not roots:
-        raise InputRangeError("pinion_spiral_angle_deg / cutter_radius_mm",
-                              (float(np.degrees(b1)), rc0),
-                              "a combination for which pitch cones with rho_lim = r_c0 exist "
-                              "(try a larger spiral angle or another cutter radius)")
+        raise _NoCones()
     eta = roots[0]  # the smallest wheel offset angle: the ISO iteration's branch
     c = _cones(zeta_for(eta), eta, **kw)
     if c.b2 <= 0.0:

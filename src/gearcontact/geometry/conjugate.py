@@ -27,11 +27,17 @@ the gear-tip line is fillet). The node grid extends ``NODE_MARGIN_MM`` beyond th
 
 Regularity (Litvin & Fuentes 2004, sec. 6.3-6.4): the envelope exists and is free of
 undercut where ``df/dphi2 != 0`` (no limit line) and the Jacobian of the node equations
-is non-singular (``r_u x r_v != 0`` on the generated sheet). If the envelope folds
-before the gear-tip (or gear-root) line is reached, the active flank is undercut and
-:class:`UndercutError` names flank and location; a fold in the fillet zone within the
-node margin only moves the active edge inwards. Both conditions are also checked on
-every node of the final grid.
+is non-singular (``r_u x r_v != 0`` on the generated sheet). Towards the pinion root the
+envelope of a formate gear may reach its limit line (a cusp: det J -> 0 while df/dphi2
+stays well away from 0) before the gear-tip line, most often at the toe, at low spiral
+angles and low ratios: the gear's tip zone then undercuts the pinion, and the active
+profile ends where the envelope is still regular (:func:`_active_box`; the depth of the
+gear tip zone without a conjugate partner is ``ConjugateFlank.gear_tip_undercut_mm``).
+Beyond half the gear addendum the active flank itself is undercut:
+:class:`UndercutError` naming ``gear_addendum_factor`` and a value that avoids it (or
+the tooth numbers when none does); :func:`~.generation.check_generation` finds this
+before any flank work. A fold before the gear-root line is always an error. Both conditions are
+also checked on every node of the final grid.
 """
 
 from __future__ import annotations
@@ -45,10 +51,11 @@ from ..validation import InputRangeError
 from .blank import BlankDesign
 from .flank import FlankBoundary, FormateFlank
 from .kinematics import MeshKinematics
+from .mirror import mirror_solution
 from .sheet import PinionCone, RadialSheet
 
 __all__ = ["UndercutError", "MeshingError", "MeshingSolution", "MeshingSolver",
-           "ConjugateFlank", "conjugate_pinion_flank", "NODE_MARGIN_MM"]
+           "ConjugateFlank", "conjugate_pinion_flank", "pinion_active_box", "NODE_MARGIN_MM"]
 
 _TOL = 1e-13          # Newton step tolerance (mm, rad): well below 1 nm
 _MAX_ITER = 40
@@ -61,7 +68,14 @@ _LIMIT_FRACTION = 1e-3
 
 
 class UndercutError(InputRangeError):
-    """The generated pinion flank has a limit line / undercut inside its active box."""
+    """The generated pinion flank has a limit line / undercut inside its active box.
+
+    ``fix`` (when known) is a value of ``field`` that avoids the undercut.
+    """
+
+    def __init__(self, field: str, value, allowed: str, *, fix: float | None = None):
+        super().__init__(field, value, allowed)
+        self.fix = fix
 
 
 class MeshingError(ArithmeticError):
@@ -129,6 +143,9 @@ class MeshingSolver:
     """
 
     def __init__(self, gear: FormateFlank, kinematics: MeshKinematics, cone: PinionCone):
+        if kinematics.hand != "right":  # the node equations use the right-hand frame
+            raise ValueError("MeshingSolver takes the right-hand twin's kinematics "
+                             "(a left-hand pair is generated as its mirror image)")
         self.gear, self.kin, self.cone = gear, kinematics, cone
         # v12 is affine in X: v12(X) = M X + v0, M and v0 read off relative_velocity once
         self._v0 = kinematics.relative_velocity(np.zeros(3))
@@ -216,20 +233,29 @@ class MeshingSolver:
 class ConjugateFlank(RadialSheet):
     """Exactly conjugate pinion flank: spline sheet plus the exact node solutions.
 
-    Extra attributes: ``solver`` (:class:`MeshingSolver`) and ``nodes``
-    (:class:`MeshingSolution` on the grid, shape (n_u, n_v)).
+    Extra attributes: ``solver`` (:class:`MeshingSolver`), ``nodes``
+    (:class:`MeshingSolution` on the grid, shape (n_u, n_v)) and
+    ``gear_tip_undercut_mm``: depth of the gear tip zone without a conjugate partner
+    (the envelope's limit line lies above the gear-tip line; the active profile is
+    trimmed there, :func:`_active_box`), mm, 0 without one; ``mirrored``: the flank of
+    a left-hand pair (:mod:`.mirror`).
     """
 
     solver: MeshingSolver = None
     nodes: MeshingSolution = None
+    gear_tip_undercut_mm: float = 0.0
+    mirrored: bool = False
 
     def exact(self, u, v) -> MeshingSolution:
-        """Exact solve of the node equations at arbitrary (u, v) (guess from the nodes)."""
+        """Exact solve of the node equations at arbitrary (u, v) (guess from the nodes);
+        reflected for a mirrored (left-hand) flank, whose ``solver`` is its right-hand
+        twin's (:func:`~.mirror.mirror_solution`)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         guess = np.stack([RectBivariateSpline(self.u_nodes, self.v_nodes, g, kx=3, ky=3)(
             u.ravel(), v.ravel(), grid=False).reshape(u.shape)
             for g in (self.nodes.h_mm, self.nodes.theta_rad, self.nodes.phi2_rad)], axis=-1)
-        return self.solver.solve(u, v, guess)
+        sol = self.solver.solve(u, v, guess)
+        return mirror_solution(sol) if self.mirrored else sol
 
 
 def _nominal_pinion_box(blank: BlankDesign, pinion_face_width_mm: float) -> tuple[PinionCone, FlankBoundary]:
@@ -266,35 +292,87 @@ def conjugate_pinion_flank(gear: FormateFlank, *, blank: BlankDesign, kinematics
     """
     if int(n_u) != n_u or n_u < 6 or int(n_v) != n_v or n_v < 6:
         raise InputRangeError("n_u, n_v", (n_u, n_v), "integers >= 6 (quintic spline)")
-    cone, nominal = _nominal_pinion_box(blank, pinion_face_width_mm)
-    solver = MeshingSolver(gear, kinematics, cone)
+    solver, box, undercut = pinion_active_box(gear, blank=blank, kinematics=kinematics,
+                                              pinion_face_width_mm=pinion_face_width_mm)
+    cone = solver.cone
     try:
-        box = _active_box(solver, nominal, blank)
         us, vs, U, V, nodes, mean, (i0, j0), u_m, v_m = _solve_grid(solver, box, blank, n_u, n_v)
     except MeshingError as exc:
-        # for an envelope, a pinion point without a solution lies beyond the limit line
-        raise UndercutError(f"pinion {gear.side} flank", str(exc),
-                            "a pinion box fully covered by the regular envelope (no limit "
-                            "line / undercut: change pressure angles, addenda or cutter)") from exc
+        raise _undercut_from(exc, gear.side) from exc
     _check_regular(nodes, mean, gear.side, U, V)
     psi = np.unwrap(np.unwrap(nodes.psi_rad, axis=0), axis=1)
     flank = ConjugateFlank(side=gear.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
-                           normal_sign=1.0, boundary=box, solver=solver, nodes=nodes)
+                           normal_sign=1.0, boundary=box, solver=solver, nodes=nodes,
+                           gear_tip_undercut_mm=undercut)
     s = flank.evaluate(us[i0], vs[j0])
     sign = float(np.sign(s.n @ nodes.n1[i0, j0]))
     flank = ConjugateFlank(side=gear.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
-                           normal_sign=sign, boundary=box, solver=solver, nodes=nodes)
+                           normal_sign=sign, boundary=box, solver=solver, nodes=nodes,
+                           gear_tip_undercut_mm=undercut)
     gear_uv = gear.surface_parameters(mean.h_mm, mean.theta_rad)
     return flank, {"pinion_uv": (u_m, v_m), "gear_uv": tuple(float(x) for x in gear_uv),
                    "phi2_rad": float(mean.phi2_rad)}
 
 
+def _undercut_from(exc: MeshingError, side: str) -> UndercutError:
+    # for an envelope, a pinion point without a solution lies beyond the limit line
+    return UndercutError(f"pinion {side} flank", str(exc),
+                         "a pinion box fully covered by the regular envelope (no limit "
+                         "line / undercut: change pressure angles, addenda or cutter)")
+
+
+def pinion_active_box(gear: FormateFlank, *, blank: BlankDesign, kinematics: MeshKinematics,
+                      pinion_face_width_mm: float) -> tuple[MeshingSolver, FlankBoundary, float]:
+    """The meshing solver of ``gear``, the pinion's active box and the gear tip undercut.
+
+    The cheap first step of :func:`conjugate_pinion_flank` (a few lengthwise sections,
+    no grid; about 0.5 s): it finds every limit-line violation, so
+    :func:`~.generation.check_generation` runs it before any flank work.
+
+    Returns
+    -------
+    solver : MeshingSolver
+    box : FlankBoundary
+        Active pinion box (see :func:`_active_box`).
+    gear_tip_undercut_mm : float
+        Depth of the gear tip zone without a conjugate partner, mm.
+
+    Raises
+    ------
+    UndercutError
+        Limit line beyond the tolerated trim, or an envelope that ends before the
+        gear-root line.
+    """
+    cone, nominal = _nominal_pinion_box(blank, pinion_face_width_mm)
+    solver = MeshingSolver(gear, kinematics, cone)
+    try:
+        box, undercut = _active_box(solver, nominal, blank)
+    except MeshingError as exc:
+        raise _undercut_from(exc, gear.side) from exc
+    return solver, box, undercut
+
+
 #: Lengthwise sections used to trace the lines generated by the gear tip and root.
 _SECTIONS = 9
 _MARCH_STEPS = 24
+#: The active profile ends where |det J| of the node equations falls below this fraction
+#: of its mean-point value (towards a limit line the flank curvature grows like
+#: 1/sqrt(distance) and the spline interpolant loses accuracy).
+_CUSP_FRACTION = 0.1
+#: Below this ratio a formate gear (a copy of the straight blade, far from the profile
+#: a generated gear would have) typically undercuts its conjugate pinion; the undercut
+#: message says so (generated gears are not modelled).
+_FORMATE_MIN_RATIO = 2.5
+_FORMATE_HINT = (" (the gear is formate, a copy of the straight blade: at ratios below "
+                 f"about {_FORMATE_MIN_RATIO:g} its conjugate pinion is undercut unless the gear "
+                 "addendum is short; generated gears are not modelled)")
+#: Largest share of the gear addendum whose tip zone may lack a conjugate partner
+#: (limit line at the pinion root, trimmed) before the active flank counts as undercut.
+_MAX_UNDERCUT = 0.5
 
 
-def _active_box(solver: MeshingSolver, nominal: FlankBoundary, blank: BlankDesign) -> FlankBoundary:
+def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
+                blank: BlankDesign) -> tuple[FlankBoundary, float]:
     """Shrink the nominal pinion box to the part generated by the active gear flank.
 
     The pinion flank is generated by gear flank points with ``-h_a2 <= h <= h_root``
@@ -302,10 +380,24 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary, blank: BlankDesig
     gear tip the pinion has its fillet, above the line generated by the gear root it
     would interfere. Both lines are traced on ``_SECTIONS`` lengthwise sections by
     marching along the profile from the mean radius (Litvin & Fuentes 2004, sec. 6.3),
-    and the rectangular (u, v) box is the intersection over the sections. If the
-    envelope ends (folds, limit line) before reaching a line, the flank is undercut:
-    :class:`UndercutError`; if it folds within the node margin beyond the line, the
-    active edge moves inwards so that the nodes keep their margin.
+    and the rectangular (u, v) box is the intersection over the sections.
+
+    Towards the pinion root the envelope may reach its limit line (a cusp: the node
+    Jacobian vanishes while df/dphi2 does not) before the gear-tip line, most often at
+    the toe of low spiral angles: the gear's tip zone then undercuts the pinion and has
+    no conjugate partner. The active profile ends where the envelope is still regular
+    (``|det J|`` at least ``_CUSP_FRACTION`` of its mean-point value, so that the
+    flank's curvature stays bounded); the depth of the gear tip zone cut off is returned.
+    Beyond ``_MAX_UNDERCUT`` of the gear addendum the active flank itself is undercut:
+    :class:`UndercutError` naming the gear addendum factor that avoids it. A fold before
+    the gear-root line is always an error.
+
+    Returns
+    -------
+    box : FlankBoundary
+    undercut_mm : float
+        Depth of the gear tip zone (along the gear depth h, mm) without conjugate
+        contact, largest over the sections; 0 without a limit line.
     """
     gear = solver.gear
     h_lo = -blank.addendum_gear_mm
@@ -316,6 +408,7 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary, blank: BlankDesig
     # mean-radius guesses on every section: continuation along the face from the mean
     q_m = solver.solve(u_m, v_m, np.zeros(3))
     q_mean = np.array([q_m.h_mm, q_m.theta_rad, q_m.phi2_rad], dtype=float)
+    det_min = _CUSP_FRACTION * abs(float(q_m.jacobian_det))
     guess = np.empty((len(vs), 3))
     for order in (np.arange(len(vs))[vs >= v_m], np.arange(len(vs))[vs < v_m][::-1]):
         q, v_prev = q_mean, v_m
@@ -326,7 +419,10 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary, blank: BlankDesig
             guess[k], v_prev = q, vs[k]
     limits = []
     margin = NODE_MARGIN_MM[0]
+    edge_h = np.full(len(vs), np.nan)   # gear h at a limit-line edge (gear-tip side)
     for u_end, h_target in ((nominal.u_root - margin, h_lo), (nominal.u_tip + margin, h_hi)):
+        tip_side = h_target == h_lo
+        d_min = det_min if tip_side else 0.0
         q = guess.copy()
         u_prev = np.full(len(vs), u_m)
         h_prev = q[:, 0].copy()
@@ -334,24 +430,31 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary, blank: BlankDesig
         alive = np.ones(len(vs), dtype=bool)
         for u in np.linspace(u_m, u_end, _MARCH_STEPS + 1)[1:]:
             s = solver.solve(np.full(len(vs), u), vs, q, strict=False)
-            lost = alive & ~s.converged
+            lost = alive & ~_regular(s, d_min)
             for k in np.flatnonzero(lost & np.isnan(found)):
                 # the step lost the envelope before a crossing was seen: retrace it finely
-                u_ok, h_ok, u_cross = _retrace(solver, u_prev[k], u, vs[k], q[k], h_prev[k], h_target)
+                u_ok, h_ok, u_cross = _retrace(solver, u_prev[k], u, vs[k], q[k], h_prev[k],
+                                               h_target, d_min)
                 u_prev[k], h_prev[k], found[k] = u_ok, h_ok, u_cross
             folded = lost & np.isnan(found)
-            if folded.any():  # the envelope ends inside the generated region: undercut
+            if folded.any() and tip_side:
+                # limit line before the gear-tip line: the active profile ends at the
+                # last regular point (the nodes' margin lies inside the envelope)
+                edge_h = np.where(folded, h_prev, edge_h)
+                found = np.where(folded, u_prev, found)
+            elif folded.any():  # the envelope ends before the gear-root line
                 k = int(np.argmax(folded))
                 raise UndercutError(
                     f"pinion {gear.side} flank at (u, v) = ({u_prev[k]:.4f}, {vs[k]:.4f}) mm",
                     f"gear h = {h_prev[k]:.4f} mm",
-                    f"an envelope reaching the line generated by the gear "
-                    f"{'tip' if h_target == h_lo else 'root'} (h = {h_target:.4f} mm); it ends "
-                    "before (limit line / undercut: change pressure angles, addenda or cutter)")
+                    f"an envelope reaching the line generated by the gear root "
+                    f"(h = {h_target:.4f} mm); it ends before (limit line: change pressure "
+                    "angles, addenda or cutter)")
             # the envelope folds within the node margin beyond the gear line: move the
             # active edge so that the nodes keep their margin inside the envelope
             sign = np.sign(u_end - u_m)
-            found = np.where(lost, u_prev - sign * margin, found)
+            inner = u_prev - sign * margin
+            found = np.where(lost & ~(sign * (found - inner) < 0.0), inner, found)
             alive &= ~lost
             h = s.h_mm
             crossed = alive & np.isnan(found) & ((h - h_target) * (h_prev - h_target) <= 0.0)
@@ -364,24 +467,53 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary, blank: BlankDesig
             if not alive.any():
                 break
         limits.append(np.where(np.isnan(found), u_end, found))
+    undercut = float(np.nanmax(edge_h) - h_lo) if np.isfinite(edge_h).any() else 0.0
+    if undercut > _MAX_UNDERCUT * blank.addendum_gear_mm:
+        k = int(np.nanargmax(edge_h))
+        # the limit line is a property of the blade and the kinematics (the addenda move
+        # it only slightly): a gear tip at the limit-line depth removes the undercut
+        fix = np.floor(max(-float(edge_h[k]), 0.0) / blank.working_depth_mm * 1e3) / 1e3
+        where = (f"the pinion {gear.side} flank is undercut (limit line of the envelope) at "
+                 f"v = {vs[k]:.3f} mm, where the gear tip zone h = [{h_lo:.3f}, "
+                 f"{edge_h[k]:.3f}] mm ({undercut / blank.addendum_gear_mm:.0%} of the gear "
+                 f"addendum, more than {_MAX_UNDERCUT:.0%}) generates no pinion flank"
+                 f"{_FORMATE_HINT if blank.ratio < _FORMATE_MIN_RATIO else ''}")
+        if fix <= 0.0:  # the limit line reaches the pitch plane: no addendum avoids it
+            raise UndercutError(
+                "pinion_teeth / gear_teeth", (blank.pinion_teeth, blank.gear_teeth),
+                f"a pair whose pinion the formate gear generates: {where}, and no gear "
+                "addendum factor avoids it (raise the tooth numbers or the ratio, the "
+                f"{gear.side} pressure angle or the spiral angle)")
+        raise UndercutError(
+            "gear_addendum_factor", float(f"{blank.addendum_gear_mm / blank.working_depth_mm:.6g}"),
+            f"<= {fix:.3f} (or no undercut): {where}; or raise the spiral angle, the pressure "
+            "angle or the pinion tooth count", fix=float(fix))
     u_root = max(nominal.u_root, float(np.max(limits[0])))
     u_tip = min(nominal.u_tip, float(np.min(limits[1])))
     if not u_tip - u_root > 0.1 * (nominal.u_tip - nominal.u_root):
         raise UndercutError("pinion flank active profile", (u_root, u_tip),
-                            "a generated profile of at least 10 % of the working depth")
-    return FlankBoundary(u_root=u_root, u_tip=u_tip, v_toe=nominal.v_toe, v_heel=nominal.v_heel)
+                            "a generated profile of at least 10 % of the working depth "
+                            "(the limit lines / undercut leave less)")
+    box = FlankBoundary(u_root=u_root, u_tip=u_tip, v_toe=nominal.v_toe, v_heel=nominal.v_heel)
+    return box, undercut
+
+
+def _regular(s: MeshingSolution, det_min: float) -> np.ndarray:
+    """Converged nodes whose node Jacobian is at least ``det_min`` (away from a cusp)."""
+    return s.converged & (np.abs(s.jacobian_det) >= det_min)
 
 
 def _retrace(solver: MeshingSolver, u_from: float, u_to: float, v: float, q: np.ndarray,
-             h_from: float, h_target: float, substeps: int = 32):
-    """March one section finely from ``u_from`` towards ``u_to`` until the envelope is lost.
+             h_from: float, h_target: float, det_min: float = 0.0, substeps: int = 32):
+    """March one section finely from ``u_from`` towards ``u_to`` until the envelope is lost
+    (no convergence, or ``|det J| < det_min``).
 
-    Returns (last converged u, its gear h, u where h crosses ``h_target`` or NaN).
+    Returns (last regular u, its gear h, u where h crosses ``h_target`` or NaN).
     """
     u_ok, h_ok, q = u_from, h_from, np.array(q, dtype=float)
     for u in np.linspace(u_from, u_to, substeps + 1)[1:]:
         s = solver.solve(u, v, q, strict=False)
-        if not bool(s.converged):
+        if not bool(_regular(s, det_min)):
             break
         h = float(s.h_mm)
         if (h - h_target) * (h_ok - h_target) <= 0.0:
@@ -444,4 +576,5 @@ def _check_regular(nodes: MeshingSolution, mean: MeshingSolution, side: str, U, 
     if np.any(sing):
         i = tuple(int(k) for k in np.argwhere(sing)[0])
         raise UndercutError(f"pinion {side} flank at (u, v) = ({U[i]:.4f}, {V[i]:.4f}) mm",
-                            float(det[i]), "a regular envelope (r_u x r_v != 0)")
+                            float(det[i]),
+                            "a regular envelope (r_u x r_v != 0: no limit line)")

@@ -35,6 +35,7 @@ ISO 23509:2016 (blank data).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,11 +46,13 @@ from ..validation import InputRangeError
 from .blank import BlankDesign
 from .cutter import BladeCone, CutterPlacement, place_cutter
 from .kinematics import MeshKinematics
+from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, SurfaceArrays, point_from_arrays, sample_grid
 from .surface import SurfacePoint
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "cone_vector", "gear_flank", "with_easeoff"]
+           "build_flanks", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
+           "with_easeoff"]
 
 #: Flank sides, in the order used everywhere.
 SIDES = ("drive", "coast")
@@ -222,6 +225,17 @@ def gear_flank(blank: BlankDesign, blade: BladeCone, *, side: str, gear_face_wid
                                                v_toe=float(ends[0]), v_heel=float(ends[1])))
 
 
+def gear_flanks(pair) -> tuple[CutterPlacement, dict]:
+    """The cutter placement and the formate gear flanks ``{side: FormateFlank}`` of
+    ``pair`` (inside blade -> drive, outside blade -> coast)."""
+    blank = pair.blank
+    placement, inside, outside = place_cutter(blank, point_width_mm=pair.cutter.point_width_mm)
+    return placement, {side: gear_flank(blank, blade, side=side,
+                                        gear_face_width_mm=pair.gear_face_width_mm,
+                                        edge_radius_mm=pair.cutter.edge_radius_mm)
+                       for side, blade in zip(SIDES, (inside, outside))}
+
+
 @dataclass(frozen=True, eq=False)
 class MemberFlanks:
     """The drive and coast flanks of one member (each a Surface in its body frame)."""
@@ -313,12 +327,13 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     from .conjugate import conjugate_pinion_flank
     from .easeoff import mean_normal_thickness_mm
 
+    if pair.pinion_hand == "left":  # the mirror image of the right-hand twin
+        twin = dataclasses.replace(pair, pinion_hand="right")
+        return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v),
+                                pair.kinematics(with_errors=False))
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
-    placement, inside, outside = place_cutter(blank, point_width_mm=pair.cutter.point_width_mm)
-    gear = {side: gear_flank(blank, blade, side=side, gear_face_width_mm=pair.gear_face_width_mm,
-                             edge_radius_mm=pair.cutter.edge_radius_mm)
-            for side, blade in zip(SIDES, (inside, outside))}
+    placement, gear = gear_flanks(pair)
     conj, mean = {}, {}
     for side in SIDES:
         conj[side], mean[side] = conjugate_pinion_flank(
@@ -332,6 +347,25 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
                          pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
                          pinion_normal_thickness_mm=thickness)
     return with_easeoff(conjugate, pair)
+
+
+def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
+    """The left-hand flank set: every flank of the right-hand ``flanks`` reflected
+    (:mod:`.mirror`).
+
+    ``kinematics`` is the left-hand pair's nominal kinematics (``hand="left"``). The
+    blank's pitch point is reflected with the frame; mean contacts (u, v, phi2) are
+    unchanged (:mod:`.kinematics`: the mirrored pair meshes at the same phases).
+    """
+    placement = mirror_placement(flanks.cutter)
+    P = flanks.blank.pitch_point_mm
+    return dataclasses.replace(
+        flanks, blank=dataclasses.replace(flanks.blank, pitch_point_mm=(P[0], -P[1], P[2])),
+        kinematics=kinematics, cutter=placement,
+        gear=MemberFlanks(**{s: mirror_gear_flank(flanks.gear.side(s), placement) for s in SIDES}),
+        pinion=MemberFlanks(**{s: mirror_sheet(flanks.pinion.side(s)) for s in SIDES}),
+        pinion_conjugate=MemberFlanks(**{s: mirror_sheet(flanks.pinion_conjugate.side(s))
+                                         for s in SIDES}))
 
 
 def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
@@ -349,8 +383,6 @@ def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
     InputRangeError
         An ease-off beyond its limit (:func:`~.easeoff.apply_easeoff`).
     """
-    import dataclasses
-
     from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um
 
     limit = easeoff_limit_um(flanks.pinion_normal_thickness_mm)

@@ -6,6 +6,12 @@ The gear turns with angular velocity ``w2 = +z`` (1 rad per unit phase) and the 
 with ``w1 = -u x`` (u = z2/z1), so that a gear rotation ``phi2`` pairs with a pinion
 rotation ``phi1 = u phi2`` about ``-x``.
 
+Left-hand pinion (``hand="left"``): the pair is the mirror image ``M = diag(1, -1, 1)``
+of the right-hand pair, pinion axis through ``(0, +E, 0)``; the mirrored motion turns
+both members the other way, so the rotation axes become ``w2 = -z`` and ``w1 = +u x``
+and every pose is ``M R M`` of the right-hand one. A mirrored pair thus meshes at the
+same phases (phi1, phi2) as its right-hand twin, with mirrored contact points.
+
 Body frames: each member's flank is defined in its own body frame (gear: axis z,
 apex-side conventions of :mod:`gearcontact.geometry.flank`; pinion: axis x, origin on
 its axis at the point that coincides with C1 in the nominal assembly). A pose maps
@@ -36,7 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_finite, check_positive
+from ..validation import InputRangeError, check_finite, check_positive
 
 __all__ = ["AssemblyErrors", "MeshKinematics", "ASSEMBLY_KEYS", "ASSEMBLY_LIMITS",
            "rot_x", "rot_y", "rot_z"]
@@ -110,40 +116,52 @@ class MeshKinematics:
     offset_mm: float
     ratio: float
     errors: AssemblyErrors = AssemblyErrors()
+    hand: str = "right"
 
     def __post_init__(self):
         check_finite("offset_mm", self.offset_mm)
         check_positive("ratio", self.ratio)
+        if self.hand not in ("right", "left"):
+            raise InputRangeError("pinion_hand", self.hand, "'right' or 'left'")
+
+    @property
+    def _side(self) -> float:
+        """+1 (right-hand pinion) or -1: the mirror image y -> -y of the right-hand pair."""
+        return 1.0 if self.hand == "right" else -1.0
 
     @property
     def pinion_centre(self) -> np.ndarray:
-        """C1: the pinion's crossing point on its axis in the meshing frame, mm."""
-        return np.array([self.errors.P_mm, -(self.offset_mm + self.errors.E_mm), 0.0])
+        """C1: the pinion's crossing point on its axis in the meshing frame, mm
+        (y = -(E0 + E) for a right-hand pinion, mirrored to +(E0 + E) for a left-hand)."""
+        return np.array([self.errors.P_mm, -self._side * (self.offset_mm + self.errors.E_mm), 0.0])
 
     @property
     def pinion_axis(self) -> np.ndarray:
-        """Unit vector of the pinion axis (+x tilted by the shaft-angle error)."""
-        return rot_y(-np.radians(self.errors.alpha_deg)) @ np.array([1.0, 0.0, 0.0])
+        """Unit vector of the pinion axis (+x tilted by the shaft-angle error), oriented
+        so that ``-ratio * pinion_axis`` is the pinion's angular velocity per unit gear
+        rate (a left-hand pair, mirrored, turns the other way: -x)."""
+        return self._side * (rot_y(-np.radians(self.errors.alpha_deg)) @ np.array([1.0, 0.0, 0.0]))
 
     @property
     def gear_axis(self) -> np.ndarray:
-        """Unit vector of the gear axis (+z)."""
-        return np.array([0.0, 0.0, 1.0])
+        """Unit vector of the gear's rotation axis (+z; -z for the mirrored left-hand pair)."""
+        return np.array([0.0, 0.0, self._side])
 
     def gear_pose(self, phi2_rad: float) -> tuple[np.ndarray, np.ndarray]:
-        """Gear body -> meshing frame after a gear rotation ``phi2`` about +z.
+        """Gear body -> meshing frame after a gear rotation ``phi2`` about ``gear_axis``.
 
         Returns ``(R, t)`` with ``X_f = R @ X_body + t``; t carries the G error.
         """
-        return rot_z(phi2_rad), np.array([0.0, 0.0, self.errors.G_mm])
+        return rot_z(self._side * phi2_rad), np.array([0.0, 0.0, self.errors.G_mm])
 
     def pinion_pose(self, phi1_rad: float) -> tuple[np.ndarray, np.ndarray]:
-        """Pinion body -> meshing frame after a pinion rotation ``phi1`` about -x.
+        """Pinion body -> meshing frame after a pinion rotation ``phi1`` about -x (+x for
+        a left-hand pinion: the mirror image M R M of the right-hand pose, M = diag(1, -1, 1)).
 
         The body frame's x axis is the pinion axis; errors move and tilt it.
         """
         tilt = rot_y(-np.radians(self.errors.alpha_deg))
-        return tilt @ rot_x(-phi1_rad), self.pinion_centre
+        return tilt @ rot_x(-self._side * phi1_rad), self.pinion_centre
 
     def relative_velocity(self, x_f: np.ndarray) -> np.ndarray:
         """Nominal sliding velocity v12 = w1 x (X - C1) - w2 x X per unit gear rate.

@@ -76,9 +76,11 @@ from functools import cached_property
 from importlib import resources
 from pathlib import Path
 
+import numpy as np
+
 from ..materials import STEEL, Material
 from ..validation import InputRangeError, check_positive, check_range, read_text_file
-from .blank import BlankDesign, design_blank
+from .blank import BlankDesign, design_blank, gear_top_land_mm
 from .kinematics import AssemblyErrors, MeshKinematics
 
 __all__ = ["CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
@@ -160,11 +162,13 @@ class GearPair:
     name : str
         Label.
     pinion_teeth, gear_teeth : int
-        z1 >= 5, z2 > z1.
+        z1 >= 5, z2 >= z1 (z2 = z1: a miter pair).
     offset_mm : float
         Hypoid offset E, mm, >= 0 (pinion axis at y = -E in the meshing frame).
     pinion_hand : str
-        "right" (the meshing frame's offset sign); the gear has the opposite hand.
+        "right" or "left"; the gear has the opposite hand. A left-hand pair is the
+        mirror image (y -> -y) of the right-hand one: pinion axis at y = +E, flanks
+        reflected (:mod:`.mirror`, :func:`~.flank.build_flanks`).
     pinion_spiral_angle_deg : float
         Mean spiral angle beta1, degrees.
     gear_face_width_mm, pinion_face_width_mm : float
@@ -215,11 +219,8 @@ class GearPair:
     def __post_init__(self):
         if self.design_side not in ("drive", "coast"):
             raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
-        if self.pinion_hand != "right":
-            raise InputRangeError(
-                "design.pinion_hand", self.pinion_hand,
-                "'right' (the meshing frame puts the pinion axis at y = -E; a left-hand "
-                "pinion is its mirror image and needs the mirrored frame)")
+        if self.pinion_hand not in ("right", "left"):
+            raise InputRangeError("design.pinion_hand", self.pinion_hand, "'right' or 'left'")
         check_positive("design.gear_face_width_mm", self.gear_face_width_mm)
         check_range("design.pinion_face_width_mm", self.pinion_face_width_mm,
                     self.gear_face_width_mm, 3.0 * self.gear_face_width_mm)
@@ -229,9 +230,28 @@ class GearPair:
             raise InputRangeError("design.gear_face_width_mm", self.gear_face_width_mm,
                                   f"(0, {blank.mean_cone_distance_gear_mm:.3f}) mm "
                                   "(less than the gear mean cone distance)")
+        land = gear_top_land_mm(blank, self.cutter.point_width_mm)
+        if land <= 0.0:
+            # the point width that leaves a zero top land, else the working depth
+            w_max = self.cutter.point_width_mm + land
+            if w_max > 0.0:
+                raise InputRangeError("cutter.point_width_mm", self.cutter.point_width_mm,
+                                      f"< {w_max:.4g} mm (pointed gear teeth: the mean normal "
+                                      f"top land is {land:.4g} mm)")
+            t = (np.tan(np.radians(blank.pressure_angle_drive_deg))
+                 + np.tan(np.radians(blank.pressure_angle_coast_deg)))
+            k_max = np.pi / ((1.0 + self.clearance_factor) * t)
+            raise InputRangeError("design.working_depth_factor", self.working_depth_factor,
+                                  f"< {k_max:.4g} (pointed gear teeth: the mean normal top "
+                                  f"land is {land:.4g} mm for any cutter point width)")
         if blank.dedendum_pinion_mm >= blank.mean_pitch_radius_pinion_mm:
-            raise InputRangeError("design.gear_addendum_factor", self.gear_addendum_factor,
-                                  "a value leaving the pinion root radius positive")
+            # h_fm1 = (c_ham + k_c) k_d m_mn must stay below the pinion pitch radius
+            bound = blank.mean_pitch_radius_pinion_mm / (
+                (self.gear_addendum_factor + self.clearance_factor) * blank.mean_normal_module_mm)
+            raise InputRangeError("design.working_depth_factor", self.working_depth_factor,
+                                  f"< {bound:.4g} (the pinion dedendum must stay below the "
+                                  f"pinion mean pitch radius "
+                                  f"{blank.mean_pitch_radius_pinion_mm:.4g} mm)")
 
     @cached_property
     def blank(self) -> BlankDesign:
@@ -258,7 +278,8 @@ class GearPair:
     def kinematics(self, *, with_errors: bool = True) -> MeshKinematics:
         """Meshing kinematics; ``with_errors=False`` gives the nominal (generating) one."""
         errors = self.assembly if with_errors else AssemblyErrors()
-        return MeshKinematics(offset_mm=self.offset_mm, ratio=self.ratio, errors=errors)
+        return MeshKinematics(offset_mm=self.offset_mm, ratio=self.ratio, errors=errors,
+                              hand=self.pinion_hand)
 
 
 # --------------------------------------------------------------------------- TOML
