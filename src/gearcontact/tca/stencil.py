@@ -63,7 +63,8 @@ from .gap_kernel import intersect_lines, kernel_surface
 from .solve import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
-           "hardware_stencil", "write_stencil_csv", "tangent_frame", "tangent_parameters"]
+           "hardware_stencil", "fill_off_flank", "write_stencil_csv", "tangent_frame",
+           "tangent_parameters"]
 
 #: Nodes per side of the host gap field (docs/spec.md sec. 3).
 GAP_GRID_SIDE = 80
@@ -326,11 +327,19 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
         * ``"continuation"`` - the surfaces' own continuation beyond their parameter
           boxes (exact for analytic flanks; unreliable for interpolated ones);
         * ``"quadric"`` - the osculating quadric of the gap at P0,
-          ``(1/2) q^T B q`` with the relative curvature tensor B of
-          :mod:`.curvature` (exact to second order; it carries exactly the P0
-          curvatures, so stage C is unbiased by the fill). Needed when the baked
-          +-1.5 mm window is deeper than the tooth, as for s0003 (working depth
-          ~2.2 mm).
+          ``Q(q) = (1/2) q^T B q`` with the relative curvature tensor B of
+          :mod:`.curvature`, completed so that stage C reads exactly the P0
+          curvatures from every point-symmetric pair of samples that is not wholly on
+          the flank: a sample ``q`` off the flank whose mirror ``-q`` is on it gets
+          ``2 Q(q) - g(-q)``, one whose mirror is off too gets ``Q(q)``. The stencil is
+          point-symmetric, so the fit's quadratic coefficients see only the even part
+          ``(g(q) + g(-q)) / 2`` of each pair, which this fill makes ``Q(q)``; the
+          odd (cubic) part of the true gap, which a complete stencil cancels, then
+          cannot alias into them. The plain ``Q(q)`` beside a true ``g(-q)`` left
+          half the cubic term in the even part: at the path ends of the ISO 23509 F3
+          pair (B- = 2.45e-4 1/mm, 22 of 49 samples off the flank) stage C read B-
+          = 4.9e-7 1/mm (docs/twin.md). Needed when the +-0.6 mm window reaches over a
+          flank edge (path ends, edge pairs of the loaded TE, small teeth).
     """
     if off_flank not in ("nan", "continuation", "quadric"):
         raise ValueError(f"off_flank = {off_flank!r} is not 'nan', 'continuation' or 'quadric'")
@@ -345,9 +354,36 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
     tensor = rot.T @ rc.tensor_per_mm @ rot
     q = np.column_stack([s, t])
     quad = 0.5 * np.einsum("ni,ij,nj->n", q, tensor, q)
-    gap = np.where(field.on_flank, field.gap_mm, quad)
-    return GapField(field.s_mm, field.t_mm, gap, field.on_flank, field.origin_mm,
-                    field.frame, field.frame_name)
+    return GapField(field.s_mm, field.t_mm, fill_off_flank(field.gap_mm, field.on_flank, quad),
+                    field.on_flank, field.origin_mm, field.frame, field.frame_name)
+
+
+def fill_off_flank(gap_mm, on_flank, quadric_mm) -> np.ndarray:
+    """The 49 stencil samples with those off the flank filled from the osculating
+    quadric ``Q`` so that every point-symmetric pair not wholly on the flank has the
+    even part ``Q`` (:func:`hardware_stencil` ``off_flank="quadric"``).
+
+    Parameters
+    ----------
+    gap_mm : array_like (49,)
+        Samples in the stencil order, mm (any value where off the flank).
+    on_flank : array_like of bool (49,)
+        Sample on both flanks.
+    quadric_mm : array_like (49,)
+        ``Q(q) = (1/2) q^T B q`` at the samples, mm.
+
+    Returns
+    -------
+    ndarray (49,)
+        ``g(q)`` on the flank; off it ``2 Q(q) - g(-q)`` if the mirror ``-q`` (sample
+        ``48 - i`` of the row-major, point-symmetric grid) is on the flank, else
+        ``Q(q)``.
+    """
+    g = np.asarray(gap_mm, float)
+    on = np.asarray(on_flank, bool)
+    quad = np.asarray(quadric_mm, float)
+    fill = np.where(on[::-1], 2.0 * quad - g[::-1], quad)
+    return np.where(on, g, fill)
 
 
 def write_stencil_csv(field: GapField, path) -> Path:
