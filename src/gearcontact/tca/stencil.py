@@ -31,8 +31,8 @@ Grids:
   :mod:`gearcontact.preview.fit.stencil` (spacing ``STENCIL_SPACING_MM``, row-major,
   s fastest) in the **flank** frame; stage C recovers A-, B- independently of the
   rotation of the frame. Written by :func:`write_stencil_csv` as ``gap_stencil.csv``
-  (header ``s_mm,t_mm,gap_mm``). Samples beyond the flank are filled as chosen by
-  ``off_flank`` (:func:`hardware_stencil`).
+  (header ``s_mm,t_mm,gap_mm``). A window reaching beyond the flank is filled as chosen
+  by ``off_flank`` (:func:`hardware_stencil`).
 
 Points whose line leaves either flank's parameter box are not extrapolated: their gap
 is NaN and ``on_flank`` is False, unless ``allow_outside=True`` is given, in which case
@@ -63,8 +63,7 @@ from .gap_kernel import intersect_lines, kernel_surface
 from .solve import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
-           "hardware_stencil", "fill_off_flank", "write_stencil_csv", "tangent_frame",
-           "tangent_parameters"]
+           "hardware_stencil", "write_stencil_csv", "tangent_frame", "tangent_parameters"]
 
 #: Nodes per side of the host gap field (docs/spec.md sec. 3).
 GAP_GRID_SIDE = 80
@@ -326,20 +325,20 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
         * ``"nan"`` - NaN (not writable as a hardware stencil);
         * ``"continuation"`` - the surfaces' own continuation beyond their parameter
           boxes (exact for analytic flanks; unreliable for interpolated ones);
-        * ``"quadric"`` - the osculating quadric of the gap at P0,
-          ``Q(q) = (1/2) q^T B q`` with the relative curvature tensor B of
-          :mod:`.curvature`, completed so that stage C reads exactly the P0
-          curvatures from every point-symmetric pair of samples that is not wholly on
-          the flank: a sample ``q`` off the flank whose mirror ``-q`` is on it gets
-          ``2 Q(q) - g(-q)``, one whose mirror is off too gets ``Q(q)``. The stencil is
-          point-symmetric, so the fit's quadratic coefficients see only the even part
-          ``(g(q) + g(-q)) / 2`` of each pair, which this fill makes ``Q(q)``; the
-          odd (cubic) part of the true gap, which a complete stencil cancels, then
-          cannot alias into them. The plain ``Q(q)`` beside a true ``g(-q)`` left
-          half the cubic term in the even part: at the path ends of the ISO 23509 F3
-          pair (B- = 2.45e-4 1/mm, 22 of 49 samples off the flank) stage C read B-
-          = 4.9e-7 1/mm (docs/twin.md). Needed when the +-0.6 mm window reaches over a
-          flank edge (path ends, edge pairs of the loaded TE, small teeth).
+        * ``"quadric"`` - where the window leaves the flank, the osculating quadric
+          of the gap at P0, ``Q(q) = (1/2) q^T B q`` with the relative curvature
+          tensor B of :mod:`.curvature`, at **every** sample of the window, so that
+          stage C reads exactly the P0 curvatures there. A window over a flank edge
+          (path ends, edge pairs of the loaded TE, small teeth, bearings at the tip)
+          has no gap to sample beyond the edge, and a mixture of the true gap with
+          any fill biases the fit: the point-symmetric stencil cancels the gap's cubic
+          terms only in pairs ``(q, -q)`` wholly on the flank and spreads its quartic
+          terms by the pairs it has. With ``Q`` beside the true samples the ISO
+          23509 F3 pair's path ends read B- = 4.9e-7 1/mm for the TCA's 2.45e-4 (the
+          twin refused the pair), and completing each pair to ``Q`` still left
+          s0003-centred's coast path ends 58 % low (docs/twin.md). A window on the
+          flank carries the true gap (stage C's own quartic bias: +5 % on s0003's
+          B-, ``tests/tca/test_s0003.py``).
     """
     if off_flank not in ("nan", "continuation", "quadric"):
         raise ValueError(f"off_flank = {off_flank!r} is not 'nan', 'continuation' or 'quadric'")
@@ -354,36 +353,8 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
     tensor = rot.T @ rc.tensor_per_mm @ rot
     q = np.column_stack([s, t])
     quad = 0.5 * np.einsum("ni,ij,nj->n", q, tensor, q)
-    return GapField(field.s_mm, field.t_mm, fill_off_flank(field.gap_mm, field.on_flank, quad),
-                    field.on_flank, field.origin_mm, field.frame, field.frame_name)
-
-
-def fill_off_flank(gap_mm, on_flank, quadric_mm) -> np.ndarray:
-    """The 49 stencil samples with those off the flank filled from the osculating
-    quadric ``Q`` so that every point-symmetric pair not wholly on the flank has the
-    even part ``Q`` (:func:`hardware_stencil` ``off_flank="quadric"``).
-
-    Parameters
-    ----------
-    gap_mm : array_like (49,)
-        Samples in the stencil order, mm (any value where off the flank).
-    on_flank : array_like of bool (49,)
-        Sample on both flanks.
-    quadric_mm : array_like (49,)
-        ``Q(q) = (1/2) q^T B q`` at the samples, mm.
-
-    Returns
-    -------
-    ndarray (49,)
-        ``g(q)`` on the flank; off it ``2 Q(q) - g(-q)`` if the mirror ``-q`` (sample
-        ``48 - i`` of the row-major, point-symmetric grid) is on the flank, else
-        ``Q(q)``.
-    """
-    g = np.asarray(gap_mm, float)
-    on = np.asarray(on_flank, bool)
-    quad = np.asarray(quadric_mm, float)
-    fill = np.where(on[::-1], 2.0 * quad - g[::-1], quad)
-    return np.where(on, g, fill)
+    return GapField(field.s_mm, field.t_mm, quad, field.on_flank, field.origin_mm,
+                    field.frame, field.frame_name)
 
 
 def write_stencil_csv(field: GapField, path) -> Path:
