@@ -138,6 +138,10 @@ def run(args) -> int:
           f"{s['dte_pp_arcsec']:.2f} arcsec; real-time factor "
           f"{res.timings['real_time_factor']:.2f} "
           f"-> {final_path(args, args.out)}")
+    if s.get("previews_outside_datapath"):      # a result of the pair, in twin.json too
+        print(f"  {s['previews_outside_datapath']} previews in {s['steps_outside_datapath']} "
+              "steps lie outside the fixed-point datapath's domain (long bearings): "
+              f"evaluated by {s['outside_datapath_evaluated_by']}")
     return 0
 
 
