@@ -11,8 +11,6 @@ slow test here runs it in every command).
 """
 
 import dataclasses
-from importlib import resources
-
 import pytest
 
 import gearcontact.tca.synthesis as synthesis
@@ -35,16 +33,6 @@ COMMANDS = {
 
 class _Reached(Exception):
     """The command reached its analysis (the pair is captured)."""
-
-
-@pytest.fixture(scope="module")
-def bare_pair_file(tmp_path_factory):
-    """s0003-centred without its [easeoff.drive] table (the drive side is prepared)."""
-    text = resources.files("gearcontact").joinpath("data/pairs/s0003-centred.toml").read_text()
-    head, rest = text.split("[easeoff.drive]", 1)
-    path = tmp_path_factory.mktemp("pair") / "bare.toml"
-    path.write_text(head + "[easeoff.coast]" + rest.split("[easeoff.coast]", 1)[1])
-    return path
 
 
 @pytest.fixture(scope="module")
