@@ -41,10 +41,13 @@ def test_identical_runs_identical_files(tmp_path, argv):
             assert "timings_s" not in text and "solve_ms" not in text, name
 
 
+@pytest.mark.slow
 def test_a_pair_without_easeoff_writes_identical_files(tmp_path, bare_pair_file):
     """A pair file without an [easeoff.drive] table: analyze synthesizes the ease-off in
     each run and summary.md carries its block, with the same bytes in both runs (the
-    note counts TCA runs, not seconds); the synthesis time is in run.json only."""
+    note counts TCA runs, not seconds); the synthesis time is in run.json only. Slow:
+    two syntheses (~15 s CPU each); the default suite checks the note itself
+    (tests/cli/test_pair_preparation.py::test_the_note_holds_no_timing)."""
     argv = ["analyze", "--pair", str(bare_pair_file), "--side", "drive", "--phases", "5",
             "--lte-phases", "0", "--torques", "64.5", "--no-figures", "--quiet"]
     outs = [tmp_path / "a", tmp_path / "b"]

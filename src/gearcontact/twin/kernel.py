@@ -66,17 +66,16 @@ Per backend:
 * ``golden`` (1): the bit-exact fixed-point stage D (:func:`gearcontact.preview.hertz.
   golden_vec.hertz_element`) on the fit core's codes (stencil) or the round-half-up
   codes of A-, B- (exact), and W's;
-
-A preview outside the datapath's domain (B- below its curvature format, ratio beyond
-alpha_max: ordinary long bearings) is a result, not an error: it is counted (previews
-and steps) and evaluated by the fp64 Hamrock–Brewe law on the fp64 curvatures, in the
-reference backend (which the datapath would have flagged) and in the golden one (where
-its chain flagged);
 * ``table`` (2): no preview; ``T_el`` from the offline loaded-TE table
   (:mod:`.ltca_table`);
 * ``rtl`` / ``soc``: the golden loop, every preview traced and replayed on the RTL core
   (the C -> D chain core with stencils, the stage-D core without) or through the
   SoC's register driver (:mod:`.cosim`).
+
+A preview outside the datapath's domain (B- below its curvature format, ratio beyond
+alpha_max: ordinary long bearings) is a result, not an error: counted (previews, steps)
+and evaluated by the fp64 Hamrock–Brewe law on the fp64 curvatures, by the reference
+backend (the datapath would flag it) and the golden one (where its chain flags).
 
 For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
 rounding, and the load at which it is sampled is clamped to the datapath envelope
@@ -200,12 +199,19 @@ def _row(cv_t, s, j, i, f, q):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _in_domain(A, B, prm):
-    """The curvatures lie in the fixed-point datapath's domain (``prm[P_CLO..P_AHI]``,
-    :data:`gearcontact.preview.hertz.reference.ENVELOPE`: both in [lo, hi], ratio
-    <= alpha_max); the load is clamped into it by the caller."""
+def _fp64_law(A, B, we, prm, tcount, out3, flagged):
+    """kappa of the fp64 law on A-, B-; counts the preview in ``tcount[3]`` if it lies
+    outside the datapath's domain (``flagged``: the golden chain said so; else
+    ``prm[P_CLO..P_AHI]``, the curvature range and alpha_max of :data:`gearcontact.
+    preview.hertz.reference.ENVELOPE`; the load is clamped into it by the caller), and
+    returns -1, counted in ``tcount[5]``, without a contact law (a saddle, B- <= 0)."""
     lo, hi = min(A, B), max(A, B)
-    return lo >= prm[P_CLO] and hi <= prm[P_CHI] and hi <= prm[P_AHI] * lo
+    if flagged or not (lo >= prm[P_CLO] and hi <= prm[P_CHI] and hi <= prm[P_AHI] * lo):
+        tcount[3] += 1
+    if lo <= 0.0:
+        tcount[5] += 1
+        return -1.0
+    return _kappa_reference(A, B, we, prm, out3)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -213,35 +219,25 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
            out3):
     """kappa of pair j of table s at row interval (i, f) and evaluation load ``we``:
     the preview's stage D on the curvatures of the source ``prm[P_STAGEC]``
-    (:data:`CURVATURE_SOURCES`).
-
-    A preview outside the fixed-point datapath's domain (curvatures below its
-    curvature format, ratio beyond alpha_max: the long bearings of ordinary pairs) is
-    counted in ``tcount[3]`` and evaluated by the fp64 Hamrock–Brewe law: the reference
-    backend always is; the golden one, where its chain flags the inputs, on the fp64
-    curvatures (the TCA's, or stage C's fp64 fit: ``cv_t`` columns ``N_TAPS..+3``). -1
-    (counted in ``tcount[5]``): no contact law (a saddle, B- <= 0)."""
+    (:data:`CURVATURE_SOURCES`); outside the datapath's domain the fp64 law
+    (:func:`_fp64_law`; golden: on the TCA's curvatures, or on stage C's fp64 fit,
+    ``cv_t`` columns ``N_TAPS..+3``); -1 without a contact law."""
+    golden = backend != 0
     if prm[P_STAGEC] == 0.0:
         A, B = _row(cv_t, s, j, i, f, 0), _row(cv_t, s, j, i, f, 1)
-        if backend != 0:
+        if golden:
             kap = _kappa_golden(np.int64(math.floor(min(A, B) * _S20 + 0.5)),
                                 np.int64(math.floor(max(A, B) * _S20 + 0.5)), 0, we, prm,
                                 pow_lut, cbrt_lut, cst, trace, tcount, fit, out3)
             if kap > 0.0:
                 return kap
-            tcount[3] += 1
-        elif not _in_domain(A, B, prm):
-            tcount[3] += 1
-        if min(A, B) <= 0.0:
-            tcount[5] += 1
-            return -1.0
-        return _kappa_reference(A, B, we, prm, out3)
-    g = fit[2]
-    n_taps = g.shape[1]
-    if backend != 0:
-        # golden: the samples interpolated and quantized (GAP Q(32,16), round half up),
-        # the bit-exact fit core, its latched codes into stage D (the C -> D chain)
-        for q in range(n_taps):
+        return _fp64_law(A, B, we, prm, tcount, out3, golden)
+    c0 = 0
+    if golden:
+        # the samples interpolated and quantized (GAP Q(32,16), round half up), the
+        # bit-exact fit core, its latched codes into stage D (the C -> D chain)
+        g = fit[2]
+        for q in range(g.shape[1]):
             g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
         am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
         if ff < 0:      # a sample beyond GAP's +-32768 mm: flagged like a coefficient overflow
@@ -250,23 +246,14 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
                             trace, tcount, fit, out3)
         if kap > 0.0:
             return kap
-        tcount[3] += 1
-        if cv_t.shape[3] < n_taps + 3:      # no fp64 fit stacked with the samples
-            tcount[5] += 1
-            return -1.0
-        c0 = n_taps
-    else:
-        c0 = 0
+        c0 = g.shape[1]
+        if cv_t.shape[3] < c0 + 3:      # no fp64 fit stacked with the samples
+            return _fp64_law(0.0, 0.0, we, prm, tcount, out3, True)
     # stage C is linear in the samples: the fit of the samples interpolated between two
     # rows is the interpolation of the rows' fitted coefficients (exactly)
     A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
                          _row(cv_t, s, j, i, f, c0 + 2))
-    if backend == 0 and not _in_domain(A, B, prm):
-        tcount[3] += 1
-    if B <= 0.0:
-        tcount[5] += 1
-        return -1.0
-    return _kappa_reference(A, B, we, prm, out3)
+    return _fp64_law(A, B, we, prm, tcount, out3, golden)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
