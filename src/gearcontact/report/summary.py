@@ -259,9 +259,15 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     out.append(_table(["torque (N·m)", "fp64 p_max", "golden D p_max", "golden D vs fp64 (%)",
                        "golden C->D p_max (stencil)", "C->D vs fp64 (%)", "C->D flags",
                        "C->D cycles"], rows))
-    out += ["", f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm "
-            "spacing) of the real gap field, so it also carries the curvature-fit error of a "
-            "non-quadratic surface.", ""]
+    if tca.stencil.on_flank.all():
+        out += ["", f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} "
+                "mm spacing) of the real gap field, so it also carries the curvature-fit "
+                "error of a non-quadratic surface.", ""]
+    else:       # tca.stencil.hardware_stencil: a window over the flank edge
+        out += ["", f"The 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm spacing) at P0 "
+                "reaches beyond the flank, so it is the osculating quadric of the gap there: "
+                "the C->D column carries the TCA's curvatures, without a curvature-fit "
+                "error.", ""]
     if getattr(result, "lte", None) is not None:
         out += _lte_section(result.lte, pub)
     if getattr(result, "multitooth", None) is not None:
