@@ -22,7 +22,8 @@ import gearcontact
 ROOT = Path(__file__).resolve().parents[2]
 
 #: CPU time of the run on the project machine (docs/twin.md): the cheapest shipped
-#: example (F2 spiral bevel: 76 TCA runs of synthesis, ~90 s) stays in the default suite.
+#: example (F2 spiral bevel: 76 TCA runs of synthesis, ~90 s) stays in the default suite;
+#: s0003 (12 s) runs with other options in tests/cli/test_twin.py.
 CASES = [
     pytest.param(str(ROOT / "examples" / "iso23509_f2_spiral_bevel.toml"),
                  id="f2-spiral-bevel"),
