@@ -41,6 +41,26 @@ def test_identical_runs_identical_files(tmp_path, argv):
             assert "timings_s" not in text and "solve_ms" not in text, name
 
 
+@pytest.mark.slow
+def test_a_pair_without_easeoff_writes_identical_files(tmp_path, bare_pair_file):
+    """A pair file without an [easeoff.drive] table: analyze synthesizes the ease-off in
+    each run and summary.md carries its block, with the same bytes in both runs (the
+    note counts TCA runs, not seconds); the synthesis time is in run.json only. Slow:
+    two syntheses (~15 s CPU each); the default suite checks the note itself
+    (tests/cli/test_pair_preparation.py::test_the_note_holds_no_timing)."""
+    argv = ["analyze", "--pair", str(bare_pair_file), "--side", "drive", "--phases", "5",
+            "--lte-phases", "0", "--torques", "64.5", "--no-figures", "--quiet"]
+    outs = [tmp_path / "a", tmp_path / "b"]
+    for out in outs:
+        assert main(argv + ["--out", str(out)]) == 0
+    manifests = [json.loads((d / MANIFEST).read_text()) for d in outs]
+    files = [{f["path"]: f["sha256"] for f in m["files"]} for m in manifests]
+    assert files[0] == files[1] and "summary.md" in files[0]
+    summary = (outs[0] / "summary.md").read_text()
+    assert "**Ease-off synthesized.**" in summary and "[easeoff.drive]" in summary
+    assert all(m["timings_s"]["easeoff_synthesis_s"] > 0 for m in manifests)
+
+
 def _run_cli(argv, out, *, hash_seed):
     """``gearcontact argv --out out`` in a fresh interpreter (its own hash seed and
     object addresses, as two separate runs have)."""

@@ -127,7 +127,7 @@ def test_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, capsys):
 def test_pair_without_easeoff_is_swept_with_the_synthesized_one(tmp_path, capsys):
     """A pair file without an [easeoff.drive] table: the sweep uses the synthesized
     ease-off, says so, and reproduces `gearcontact tca` of the same file exactly (both go
-    through tca.synthesis.with_easeoff, deterministic)."""
+    through tca.synthesis.prepare_pair, deterministic)."""
     from importlib import resources
 
     text = resources.files("gearcontact").joinpath("data/pairs/s0003-centred.toml").read_text()

@@ -10,8 +10,8 @@ import dataclasses
 import pytest
 
 from gearcontact.tca.calibration import conjugate_contact, eased_design_point
-from gearcontact.tca.synthesis import (SynthesisTargets, easeoff_toml, synthesize_easeoff,
-                                       with_easeoff)
+from gearcontact.tca.synthesis import (SynthesisTargets, easeoff_toml, prepare_pair,
+                                       synthesize_easeoff)
 from gearcontact.validation import InputRangeError
 
 
@@ -65,10 +65,11 @@ def test_synthesized_toml_is_a_pair_table(round_trip, s0003_pair):
         assert got[k] == pytest.approx(v, rel=1e-5, abs=1e-12)
 
 
-def test_with_easeoff_is_never_silent(s0003_pair):
-    """A pair with its table is left alone; the note is empty."""
-    pair, note = with_easeoff(s0003_pair)
-    assert pair is s0003_pair and note == ""
+def test_prepare_pair_leaves_a_pair_with_its_table_alone(s0003_pair):
+    """A pair with its table is left alone: nothing synthesized, no note, no timing."""
+    prepared = prepare_pair(s0003_pair, side="drive")
+    assert prepared.pair is s0003_pair and not prepared.synthesized
+    assert prepared.note == "" and prepared.timings_s == {}
 
 
 @pytest.mark.parametrize("field, value", [("te0_pp_arcsec", 0.0),

@@ -50,7 +50,7 @@ def test_a_wrong_output_is_caught(s0003_twin):
     prm = _prm(m, 0.0)
     trace = np.zeros((40, 9), np.int64)
     fit = _fit_args(a, 40)
-    tcount = np.zeros(4, np.int64)
+    tcount = np.zeros(K.N_COUNT, np.int64)
     y = np.zeros(K.N_STATE)
     y[2] = mesh.eps_rad[0] - static_rotation(m)[0]      # static start, at rest
     K.run_steps(y, 0.0, 10, 1e-5, prm, a["eps"], a["lever"], a["opening"], a["cv"],

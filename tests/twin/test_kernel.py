@@ -53,7 +53,7 @@ def _fit(trace_rows=1):
 def _kappa(cv, f, W, backend, source, trace, fit):
     """The loop's preview of pair 0 between rows 0 and 1 of ``cv`` (2, C) at fraction f."""
     out = np.zeros(3)
-    tcount = np.zeros(4, np.int64)
+    tcount = np.zeros(K.N_COUNT, np.int64)
     kap = K._kappa(0, 0, 0, f, W, _prm(source), np.asarray(cv, float)[None, None],
                    backend, *golden_constants(), trace, tcount, fit, out)
     return kap, out

@@ -309,17 +309,37 @@ def test_bad_input_names_the_field(model, s0003_twin):
     with pytest.raises(InputRangeError, match="duration_s"):
         simulate(build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="soc"),
                  speed_rpm=3000.0, duration_s=0.1, step_s=1e-5)
-    steep = replace(mesh, A_minus_per_mm=300.0 * mesh.A_minus_per_mm)   # 26 1/mm > 16
-    with pytest.raises(InputRangeError, match="A_minus_per_mm"):
-        build_model(steep, default_drivetrain(pair), TORQUE_NM, backend="golden",
-                    curvatures="exact")
-    steep = replace(mesh, stencil_gaps_mm=300.0 * mesh.stencil_gaps_mm)   # fitted: 26 1/mm
-    with pytest.raises(InputRangeError, match="stage-C fitted A_minus_per_mm"):
-        build_model(steep, default_drivetrain(pair), TORQUE_NM, backend="golden")
     with pytest.raises(InputRangeError, match="curvatures"):
         build_model(mesh, default_drivetrain(pair), TORQUE_NM, curvatures="fitted")
     with pytest.raises(InputRangeError, match="pinion_inertia_kgm2"):
         replace(default_drivetrain(pair), pinion_inertia_kgm2=-1e-6)
+
+
+@pytest.mark.parametrize("curvatures", ["exact", "stencil"])
+def test_previews_outside_the_datapath_are_counted_and_run_in_fp64(s0003_twin, curvatures):
+    """Curvatures outside the fixed-point domain (A- x 300 = 26 1/mm > 16, every row) are
+    a result, not a refusal: the golden twin, whose chain flags every preview, evaluates
+    them with the fp64 law on the fp64 curvatures, so its trajectory is the reference
+    twin's bit for bit (the same law on the same numbers), and both report the same
+    counts: every preview and every step outside the domain, none without a law."""
+    pair, _, _, mesh = s0003_twin
+    steep = replace(mesh, A_minus_per_mm=300.0 * mesh.A_minus_per_mm,
+                    stencil_gaps_mm=300.0 * mesh.stencil_gaps_mm)
+    runs = {}
+    for backend in ("reference", "golden"):
+        m = build_model(steep, default_drivetrain(pair), TORQUE_NM, backend=backend,
+                        curvatures=curvatures)
+        runs[backend] = simulate(m, speed_rpm=3000.0, duration_s=2e-3, step_s=1e-5)
+    ref, gold = runs["reference"], runs["golden"]
+    for name in ("theta_rad", "mesh_load_n", "a_mm", "p_max_mpa"):
+        np.testing.assert_array_equal(gold.columns[name], ref.columns[name])
+    for r in (ref, gold):
+        s = r.summary
+        assert s["steps_outside_datapath"] == s["steps"] == 200
+        assert s["previews_outside_datapath"] >= s["steps"]
+        assert s["previews_without_contact_law"] == 0
+        assert s["outside_datapath_evaluated_by"].startswith("fp64 Hamrock-Brewe")
+    assert gold.summary["previews_outside_datapath"] == ref.summary["previews_outside_datapath"]
 
 
 def test_contact_loss_at_light_load_in_resonance(s0003_twin):

@@ -15,11 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry.flank import build_flanks
-from ..geometry.pair import load_pair
 from ..structure.compliance import FeMesh, flank_compliance, write_compliance
 from ..structure.shell import ORDER, ORDER_FACE
 from ..validation import InputRangeError
-from .options import add_pair_arguments, check_count, check_pair_arguments, run_timings
+from .options import (add_pair_arguments, check_count, check_pair_arguments, load_pair_for,
+                      run_timings)
 from .outdir import final_path
 
 
@@ -65,12 +65,12 @@ def check(args) -> None:
 
 
 def run(args) -> int:
-    pair = getattr(args, "gear_pair", None) or load_pair(args.pair)
+    pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
     flanks = build_flanks(pair)
     # lattice over the inner part of the flank (xi in +-0.5, eta in +-1/3)
     lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
                for s, n in zip((0.5, 1 / 3), args.points)]
-    side = pair.design_side if args.side is None else args.side
+    side = args.prepared_pair.side
     res = flank_compliance(pair, args.member, side=side, flanks=flanks, xi=lattice[0],
                            eta=lattice[1], order=args.order, order_face=args.order_face, fe=args.fe,
                            fe_mesh=FeMesh(*args.fe_mesh))

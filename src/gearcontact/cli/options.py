@@ -232,13 +232,19 @@ def warn(command: str, message: str) -> None:
 
 
 def load_pair_for(args):
-    """The pair of ``--pair`` (loaded by :func:`check_pair_arguments`) with, if the pair
-    file has no ease-off table for ``args.side``, the synthesized one (the note printed)."""
-    from ..tca.synthesis import with_easeoff
+    """The pair of ``--pair`` (loaded by :func:`check_pair_arguments`) prepared by
+    :func:`gearcontact.tca.synthesis.prepare_pair`, the one preparation of every command
+    that takes ``--pair``: if the pair file has no ease-off table for ``args.side``
+    (default the design side), the synthesized one (the note printed, the synthesis
+    time into run.json). The :class:`~gearcontact.tca.synthesis.PreparedPair` is kept
+    as ``args.prepared_pair``."""
+    from ..tca.synthesis import prepare_pair
 
     if getattr(args, "gear_pair", None) is None:
         check_pair_arguments(args)
-    pair, note = with_easeoff(args.gear_pair, side=args.side)
-    if note:
-        print(note)
-    return pair
+    prepared = args.prepared_pair = prepare_pair(args.gear_pair,
+                                                 side=getattr(args, "side", None))
+    if prepared.note:
+        print(prepared.note)
+    run_timings(args, **prepared.timings_s)
+    return prepared.pair

@@ -14,14 +14,13 @@ of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.param
 
 from __future__ import annotations
 
-from ..geometry.pair import load_pair
 from ..twin.params import check_drivetrain_file, load_drivetrain
 from ..twin.report import write_sweep_outputs, write_twin_outputs
 from ..twin.simulate import (BACKENDS, CURVATURE_SOURCES, STEP_RANGE_US, build_model,
                              model_for_pair, simulate)
 from ..twin.sweep import parse_speed_range, speed_sweep
 from ..validation import InputRangeError, check_positive, check_range
-from .options import add_pair_arguments, check_pair_arguments, run_timings
+from .options import add_pair_arguments, check_pair_arguments, load_pair_for, run_timings
 from .outdir import final_path
 
 #: Longest simulated time one run accepts (s): 6 million steps at 10 us, about 10 s of
@@ -112,7 +111,7 @@ def run(args) -> int:
     if not hasattr(args, "duration_s"):
         check(args)
     duration_s, speeds = args.duration_s, args.speeds
-    pair = load_pair(args.pair)
+    pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
     drivetrain = load_drivetrain(args.drivetrain, pair)
     if speeds is not None:
         return _sweep(args, pair, drivetrain, speeds)
@@ -124,7 +123,9 @@ def run(args) -> int:
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
                    progress=not args.quiet, board=args.board_address)
     run_timings(args, **res.timings)
-    extra = {"pair": pair.name, "side": args.side, "drivetrain": drivetrain.as_dict()}
+    extra = {"pair": pair.name, "side": args.side,
+             "easeoff_synthesized": args.prepared_pair.synthesized,
+             "drivetrain": drivetrain.as_dict()}
     if args.backend == "table":
         extra["table_source"] = args.table_source
     s = write_twin_outputs(res, args.out, figures=not args.no_figures,
@@ -137,6 +138,10 @@ def run(args) -> int:
           f"{s['dte_pp_arcsec']:.2f} arcsec; real-time factor "
           f"{res.timings['real_time_factor']:.2f} "
           f"-> {final_path(args, args.out)}")
+    if s.get("previews_outside_datapath"):      # a result of the pair, in twin.json too
+        print(f"  {s['previews_outside_datapath']} previews in {s['steps_outside_datapath']} "
+              "steps lie outside the fixed-point datapath's domain (long bearings): "
+              f"evaluated by {s['outside_datapath_evaluated_by']}")
     return 0
 
 

@@ -58,7 +58,7 @@ from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
 from ..preview.qformat import FixedPointOverflow
 from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import without_timings, write_csv, write_tca_outputs
-from ..tca.synthesis import with_easeoff
+from ..tca.synthesis import prepare_pair
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
 from .latency import core_cycles, scalar_latency
@@ -106,7 +106,8 @@ class Analysis:
         The flanks the analysis ran on.
     easeoff_note : str
         Non-empty when the pair came without an ease-off for ``side`` and it was
-        synthesized (:func:`gearcontact.tca.synthesis.with_easeoff`).
+        synthesized (:attr:`gearcontact.tca.synthesis.PreparedPair.note`; no timing: it goes into
+        summary.md).
     multitooth : MultiToothCase or None
         Multi-tooth LTCA at P0 at the LTE torque, rigid and with tooth bending
         (:mod:`gearcontact.contact.multitooth`; None when the LTE is skipped).
@@ -286,10 +287,11 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:
         raise InputRangeError("torques_nm", torques_nm, "at least one torque")
-    pair, easeoff_note = with_easeoff(pair, side=side)
+    prepared = prepare_pair(pair, side=side)
+    pair, easeoff_note = prepared.pair, prepared.note
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    timings = {}
+    timings = dict(prepared.timings_s)
     steps = tqdm(total=5 + len(torques), desc=f"analyze {pair.name}", disable=not progress)
 
     (out / "design.json").write_text(json.dumps(pair.blank.as_dict(), indent=2))

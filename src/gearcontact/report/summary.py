@@ -266,10 +266,16 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
                        "C->D flags", "C->D cycles"], rows))
     out += ["", "Stage D here is the line core: the Hertz ellipse, or the Hertz line contact "
             "of the flank's contact line where the flank truncates a longer ellipse (mode "
-            "`line`). The C->D chain is the published elliptic core.", "",
-            f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm "
-            "spacing) of the real gap field, so it also carries the curvature-fit error of a "
-            "non-quadratic surface.", ""]
+            "`line`). The C->D chain is the published elliptic core.", ""]
+    if tca.stencil.on_flank.all():
+        out += [f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} "
+                "mm spacing) of the real gap field, so it also carries the curvature-fit "
+                "error of a non-quadratic surface.", ""]
+    else:       # tca.stencil.hardware_stencil: a window over the flank edge
+        out += [f"The 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} mm spacing) at P0 "
+                "reaches beyond the flank, so it is the osculating quadric of the gap there: "
+                "the C->D column carries the TCA's curvatures, without a curvature-fit "
+                "error.", ""]
     if getattr(result, "lte", None) is not None:
         out += _lte_section(result.lte, pub)
     if getattr(result, "multitooth", None) is not None:

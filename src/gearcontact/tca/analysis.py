@@ -127,9 +127,10 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     pairs : int
         Neighbouring pairs either side.
     stencil_off_flank : str
-        Fill of 7 x 7 stencil samples (fixed +-1.5 mm window) that lie beyond a flank
-        boundary (:func:`~gearcontact.tca.stencil.hardware_stencil`); the samples
-        concerned are recorded in ``stencil.on_flank``. The 80 x 80 field never
+        Fill of a 7 x 7 stencil (fixed +-0.6 mm window) that reaches beyond a flank
+        boundary (:func:`~gearcontact.tca.stencil.hardware_stencil`; ``"quadric"``:
+        the osculating quadric at every sample); the samples beyond it are recorded in
+        ``stencil.on_flank``. The 80 x 80 field never
         extrapolates (NaN, ``on_flank`` False).
     edge_contact : bool
         Edge-to-surface contact where the surface contact leaves a flank (default), or

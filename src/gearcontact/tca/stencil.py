@@ -31,8 +31,8 @@ Grids:
   :mod:`gearcontact.preview.fit.stencil` (spacing ``STENCIL_SPACING_MM``, row-major,
   s fastest) in the **flank** frame; stage C recovers A-, B- independently of the
   rotation of the frame. Written by :func:`write_stencil_csv` as ``gap_stencil.csv``
-  (header ``s_mm,t_mm,gap_mm``). Samples beyond the flank are filled as chosen by
-  ``off_flank`` (:func:`hardware_stencil`).
+  (header ``s_mm,t_mm,gap_mm``). A window reaching beyond the flank is filled as chosen
+  by ``off_flank`` (:func:`hardware_stencil`).
 
 Points whose line leaves either flank's parameter box are not extrapolated: their gap
 is NaN and ``on_flank`` is False, unless ``allow_outside=True`` is given, in which case
@@ -325,12 +325,20 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
         * ``"nan"`` - NaN (not writable as a hardware stencil);
         * ``"continuation"`` - the surfaces' own continuation beyond their parameter
           boxes (exact for analytic flanks; unreliable for interpolated ones);
-        * ``"quadric"`` - the osculating quadric of the gap at P0,
-          ``(1/2) q^T B q`` with the relative curvature tensor B of
-          :mod:`.curvature` (exact to second order; it carries exactly the P0
-          curvatures, so stage C is unbiased by the fill). Needed when the baked
-          +-1.5 mm window is deeper than the tooth, as for s0003 (working depth
-          ~2.2 mm).
+        * ``"quadric"`` - where the window leaves the flank, the osculating quadric
+          of the gap at P0, ``Q(q) = (1/2) q^T B q`` with the relative curvature
+          tensor B of :mod:`.curvature`, at **every** sample of the window, so that
+          stage C reads exactly the P0 curvatures there. A window over a flank edge
+          (path ends, edge pairs of the loaded TE, small teeth, bearings at the tip)
+          has no gap to sample beyond the edge, and a mixture of the true gap with
+          any fill biases the fit: the point-symmetric stencil cancels the gap's cubic
+          terms only in pairs ``(q, -q)`` wholly on the flank and spreads its quartic
+          terms by the pairs it has. With ``Q`` beside the true samples the ISO
+          23509 F3 pair's path ends read B- = 4.9e-7 1/mm for the TCA's 2.45e-4 (the
+          twin refused the pair), and completing each pair to ``Q`` still left
+          s0003-centred's coast path ends 58 % low (docs/twin.md). A window on the
+          flank carries the true gap (stage C's own quartic bias: +5 % on s0003's
+          B-, ``tests/tca/test_s0003.py``).
     """
     if off_flank not in ("nan", "continuation", "quadric"):
         raise ValueError(f"off_flank = {off_flank!r} is not 'nan', 'continuation' or 'quadric'")
@@ -345,8 +353,7 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
     tensor = rot.T @ rc.tensor_per_mm @ rot
     q = np.column_stack([s, t])
     quad = 0.5 * np.einsum("ni,ij,nj->n", q, tensor, q)
-    gap = np.where(field.on_flank, field.gap_mm, quad)
-    return GapField(field.s_mm, field.t_mm, gap, field.on_flank, field.origin_mm,
+    return GapField(field.s_mm, field.t_mm, quad, field.on_flank, field.origin_mm,
                     field.frame, field.frame_name)
 
 

@@ -52,14 +52,14 @@ from scipy.optimize import least_squares
 
 from ..geometry.flank import SIDES, build_flanks
 from ..geometry.kinematics import AssemblyErrors
-from ..geometry.pair import EaseOffCoefficients, GearPair
+from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
 from .calibration import (DesignPoint, centred_coefficients, conjugate_contact,
                           eased_design_point)
 from .solve import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
-           "easeoff_toml", "with_easeoff"]
+           "easeoff_toml", "PreparedPair", "prepare_pair"]
 
 #: Design torque of the Hertz ellipse reported beside the paint ellipse, N·m (not a
 #: target of the synthesis; the pattern length is the paint ellipse).
@@ -407,23 +407,75 @@ def synthesize_pair(pair: GearPair, *, sides=SIDES, targets: SynthesisTargets = 
                                         for s, r in done.items()}), done
 
 
-def with_easeoff(pair: GearPair, *, side: str | None = None) -> tuple[GearPair, str]:
-    """``pair`` ready for TCA: if the ease-off table of ``side`` (default the design
-    side) was not given, it is synthesized with the default :class:`SynthesisTargets`.
+@dataclass(frozen=True)
+class PreparedPair:
+    """A pair ready for TCA (:func:`prepare_pair`).
 
-    Returns the pair and a note for the output (``""`` if nothing was synthesized); a
-    synthesized ease-off is never silent.
+    Attributes
+    ----------
+    pair : GearPair
+        The pair with an ease-off table of ``side`` (the synthesized one if its file
+        had none: ``side`` is then added to ``easeoff_tables``).
+    side : str
+        The flank side prepared.
+    synthesis : Synthesis or None
+        The local synthesis of ``side``, None if the pair brought its table.
     """
+
+    pair: GearPair
+    side: str
+    synthesis: Synthesis | None = None
+
+    @property
+    def synthesized(self) -> bool:
+        """The ease-off of ``side`` was synthesized (the pair had no table)."""
+        return self.synthesis is not None
+
+    @property
+    def note(self) -> str:
+        """What the output says about a synthesized ease-off (``""`` if none was): one
+        line, then the ``[easeoff.<side>]`` TOML block. Deterministic (the synthesis
+        time is in :attr:`timings_s`, not here), so result files holding it are
+        identical across identical runs."""
+        s = self.synthesis
+        if s is None:
+            return ""
+        name = self.pair.name
+        return (f"{name} has no [easeoff.{self.side}] table: ease-off synthesized (local "
+                f"synthesis, {s.evaluations} TCA runs): TE0 {s.point.te0_pp_arcsec:.2f} "
+                f"arcsec, paint ellipse {s.point.paint_length_mm:.2f} mm (targets "
+                f"{s.targets.te0_pp_arcsec:g} arcsec, {s.pattern_length_mm:.2f} mm); keep it "
+                f"with `gearcontact design --pair FILE --synthesize-easeoff`:\n"
+                + easeoff_toml({self.side: s}, pair_name=name))
+
+    @property
+    def timings_s(self) -> dict:
+        """Wall time of the synthesis, s (``{"easeoff_synthesis_s": ...}``; empty if
+        nothing was synthesized): a timing, for run.json only."""
+        return {} if self.synthesis is None else {"easeoff_synthesis_s": self.synthesis.seconds}
+
+
+def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
+    """The one pair preparation of every command that takes a pair: ``pair`` (a
+    :class:`GearPair`, preset name or TOML path) with, if it has no ease-off table of
+    ``side`` (default its design side), the ease-off of that side synthesized with the
+    default :class:`SynthesisTargets` (deterministic: the same pair gives the same
+    coefficients in every command). The other side is left as given.
+
+    Raises
+    ------
+    InputRangeError
+        A bad pair file or side (before any synthesis).
+    ArithmeticError
+        If the synthesis finds no interior contact (:func:`synthesize_easeoff`).
+    """
+    if not isinstance(pair, GearPair):
+        pair = load_pair(pair)
     side = pair.design_side if side is None else side
+    if side not in SIDES:
+        raise InputRangeError("side", side, f"one of {SIDES}")
     if side in pair.easeoff_tables:
-        return pair, ""
+        return PreparedPair(pair, side)
     new, done = synthesize_pair(pair, sides=(side,))
-    s = done[side]
     new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
-    note = (f"{pair.name} has no [easeoff.{side}] table: ease-off synthesized (local "
-            f"synthesis, {s.evaluations} TCA runs, {s.seconds:.0f} s): TE0 "
-            f"{s.point.te0_pp_arcsec:.2f} arcsec, paint ellipse {s.point.paint_length_mm:.2f} mm "
-            f"(targets {s.targets.te0_pp_arcsec:g} arcsec, {s.pattern_length_mm:.2f} mm); keep "
-            f"it with `gearcontact design --pair FILE --synthesize-easeoff`:\n"
-            + easeoff_toml(done, pair_name=pair.name))
-    return new, note
+    return PreparedPair(new, side, done[side])

@@ -72,6 +72,11 @@ Per backend:
   (the C -> D chain core with stencils, the stage-D core without) or through the
   SoC's register driver (:mod:`.cosim`).
 
+A preview outside the datapath's domain (B- below its curvature format, ratio beyond
+alpha_max: ordinary long bearings) is a result, not an error: counted (previews, steps)
+and evaluated by the fp64 Hamrock–Brewe law on the fp64 curvatures, by the reference
+backend (the datapath would flag it) and the golden one (where its chain flags).
+
 For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
 rounding, and the load at which it is sampled is clamped to the datapath envelope
 (:data:`W_EVAL_MIN_N` .. 2^17 N).
@@ -120,8 +125,12 @@ _HB_E = 0.5 * math.pi - 1.0
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
  P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
- P_CR, P_MIRROR, P_STAGEC) = range(28)
-N_PRM = 28
+ P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI) = range(31)
+N_PRM = 31
+#: Entries of the counters ``tcount``: trace rows written, step index of the trace rows,
+#: steps, previews outside the datapath's domain, steps with such a preview, previews
+#: without a contact law (:func:`run_steps`).
+N_COUNT = 6
 #: Curvature sources of the preview (``prm[P_STAGEC]``): the TCA's shape-operator
 #: curvatures per row (``cv`` columns A-, B-), or stage C per step on the 7 x 7 stencil
 #: (fp64: ``cv`` the fitted c3, c4, c5 per row; golden: ``cv`` the 49 gap samples).
@@ -190,36 +199,61 @@ def _row(cv_t, s, j, i, f, q):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _fp64_law(A, B, we, prm, tcount, out3, flagged):
+    """kappa of the fp64 law on A-, B-; counts the preview in ``tcount[3]`` if it lies
+    outside the datapath's domain (``flagged``: the golden chain said so; else
+    ``prm[P_CLO..P_AHI]``, the curvature range and alpha_max of :data:`gearcontact.
+    preview.hertz.reference.ENVELOPE`; the load is clamped into it by the caller), and
+    returns -1, counted in ``tcount[5]``, without a contact law (a saddle, B- <= 0)."""
+    lo, hi = min(A, B), max(A, B)
+    if flagged or not (lo >= prm[P_CLO] and hi <= prm[P_CHI] and hi <= prm[P_AHI] * lo):
+        tcount[3] += 1
+    if lo <= 0.0:
+        tcount[5] += 1
+        return -1.0
+    return _kappa_reference(A, B, we, prm, out3)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tcount, fit,
            out3):
     """kappa of pair j of table s at row interval (i, f) and evaluation load ``we``:
     the preview's stage D on the curvatures of the source ``prm[P_STAGEC]``
-    (:data:`CURVATURE_SOURCES`); -1 where the preview flags its inputs."""
+    (:data:`CURVATURE_SOURCES`); outside the datapath's domain the fp64 law
+    (:func:`_fp64_law`; golden: on the TCA's curvatures, or on stage C's fp64 fit,
+    ``cv_t`` columns ``N_TAPS..+3``); -1 without a contact law."""
+    golden = backend != 0
     if prm[P_STAGEC] == 0.0:
         A, B = _row(cv_t, s, j, i, f, 0), _row(cv_t, s, j, i, f, 1)
-        if backend == 0:
-            return _kappa_reference(A, B, we, prm, out3)
-        return _kappa_golden(np.int64(math.floor(min(A, B) * _S20 + 0.5)),
-                             np.int64(math.floor(max(A, B) * _S20 + 0.5)), 0, we, prm,
-                             pow_lut, cbrt_lut, cst, trace, tcount, fit, out3)
-    if backend == 0:
-        # stage C is linear in the samples: the fit of the samples interpolated between
-        # two rows is the interpolation of the rows' fitted coefficients (exactly)
-        A, B, _ = _principal(_row(cv_t, s, j, i, f, 0), _row(cv_t, s, j, i, f, 1),
-                             _row(cv_t, s, j, i, f, 2))
-        if B <= 0.0:
-            return -1.0
-        return _kappa_reference(A, B, we, prm, out3)
-    # golden: the samples interpolated and quantized (GAP Q(32,16), round half up), the
-    # bit-exact fit core, its latched codes into stage D (the C -> D chain)
-    g = fit[2]
-    for q in range(cv_t.shape[3]):
-        g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
-    am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
-    if ff < 0:      # a sample beyond GAP's +-32768 mm: flagged like a coefficient overflow
-        ff = 1
-    return _kappa_golden(min(am, bm), max(am, bm), ff, we, prm, pow_lut, cbrt_lut, cst,
-                         trace, tcount, fit, out3)
+        if golden:
+            kap = _kappa_golden(np.int64(math.floor(min(A, B) * _S20 + 0.5)),
+                                np.int64(math.floor(max(A, B) * _S20 + 0.5)), 0, we, prm,
+                                pow_lut, cbrt_lut, cst, trace, tcount, fit, out3)
+            if kap > 0.0:
+                return kap
+        return _fp64_law(A, B, we, prm, tcount, out3, golden)
+    c0 = 0
+    if golden:
+        # the samples interpolated and quantized (GAP Q(32,16), round half up), the
+        # bit-exact fit core, its latched codes into stage D (the C -> D chain)
+        g = fit[2]
+        for q in range(g.shape[1]):
+            g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
+        am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
+        if ff < 0:      # a sample beyond GAP's +-32768 mm: flagged like a coefficient overflow
+            ff = 1
+        kap = _kappa_golden(min(am, bm), max(am, bm), ff, we, prm, pow_lut, cbrt_lut, cst,
+                            trace, tcount, fit, out3)
+        if kap > 0.0:
+            return kap
+        c0 = g.shape[1]
+        if cv_t.shape[3] < c0 + 3:      # no fp64 fit stacked with the samples
+            return _fp64_law(0.0, 0.0, we, prm, tcount, out3, True)
+    # stage C is linear in the samples: the fit of the samples interpolated between two
+    # rows is the interpolation of the rows' fitted coefficients (exactly)
+    A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
+                         _row(cv_t, s, j, i, f, c0 + 2))
+    return _fp64_law(A, B, we, prm, tcount, out3, golden)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -301,8 +335,8 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
     """Elastic mesh torque T_el (N·m) and total normal load (N) of one flank's law at
     its rotation theta >= 0 and row interval (i, f) of table ``s`` (0 loaded side, 1
     reverse side); per-pair loads into ``w_pairs[sd]``, (a, b, p) of the most loaded
-    pair into ``abp[sd, 0:3]`` (zeros when none), ``abp[sd, 3]`` flags a golden pair
-    outside the envelope; ``w_eval[sd]``, ``cache[sd]`` are the slot's preview loads and
+    pair into ``abp[sd, 0:3]`` (zeros when none), ``abp[sd, 3]`` flags a pair without
+    a contact law; ``w_eval[sd]``, ``cache[sd]`` are the slot's preview loads and
     cache, ``out3`` (3,) scratch. Plain indexing throughout (no array views in the
     loop compiled without the runtime's reference counting)."""
     n_p = lever.shape[1]
@@ -336,9 +370,8 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             cache[sd, j, 4] = out3[2]
             cache[sd, j, 5] = we
         kap = cache[sd, j, 1]
-        if kap <= 0.0:      # golden outside the datapath envelope: counted, reported
+        if kap <= 0.0:      # no contact law (a saddle): counted by _kappa, reported
             abp[sd, 3] = 1.0
-            tcount[3] += 1
             continue
         we = cache[sd, j, 5]
         cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
@@ -489,10 +522,12 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     sampled). ``trace`` (int64, rows x 9) receives every golden stage-D evaluation while
     rows remain, ``[step, A_code, B_code, W_code, flags, a_code, b_code, p_max_code,
     k_code]`` (A <= B the stage-D inputs; with stage C the flags word is the chain's and
-    the stencil trace receives the 49 gap codes), counted in ``tcount[0]``
-    (``tcount[2]`` counts the steps, ``tcount[3]`` the golden previews flagged outside
-    the datapath envelope, whose pair then carries nothing); a trace of 0 rows records
-    nothing. Returns the number of rows written to ``rec``.
+    the stencil trace receives the 49 gap codes), counted in ``tcount[0]``; a trace of
+    0 rows records nothing. ``tcount`` (:data:`N_COUNT`): ``[2]`` counts the steps,
+    ``[3]`` the previews outside the datapath's domain (evaluated by the fp64 law,
+    :func:`_kappa`), ``[4]`` the steps with at least one, ``[5]`` the previews without
+    a contact law (the pair then carries nothing). Returns the number of rows written
+    to ``rec``.
     """
     n_y = y.shape[0]
     n_p = lever.shape[1]
@@ -528,6 +563,7 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend
                 cache[sd, j, 0] = -1.0      # a fresh preview of every loaded pair each step
         tcount[1] = tcount[2]       # step index of the trace rows
         tcount[2] += 1
+        outside = tcount[3]
         for st in range(4):
             if st == 0:
                 for m in range(n_y):
@@ -555,6 +591,8 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend
                        tab_w23, k, st, pairs1, abp1, out3)
         for m in range(n_y):
             y[m] += h / 6.0 * (k[0, m] + 2.0 * k[1, m] + 2.0 * k[2, m] + k[3, m])
+        if tcount[3] > outside:
+            tcount[4] += 1
     return rows
 
 

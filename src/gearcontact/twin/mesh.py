@@ -11,8 +11,8 @@ and for each neighbouring pair ``j``:
 * ``A_minus, B_minus``: half relative principal curvatures at its mating point, 1/mm,
   the inputs of the Hertz stage of the preview;
 * ``stencil_gaps_mm``: the 49 gap samples of the preview's 7 x 7 stage-C stencil at the
-  same point (:func:`gearcontact.tca.stencil.hardware_stencil`, off-flank samples
-  filled by the osculating quadric), the input of the whole C -> D preview;
+  same point (:func:`gearcontact.tca.stencil.hardware_stencil`; a window reaching
+  beyond the flank is the osculating quadric), the input of the whole C -> D preview;
 
 and the unloaded TE envelope. Everything is re-expressed along the *motion*: the
 pinion angle ``psi`` and the gear angle increase in the direction the pinion drives the
