@@ -229,7 +229,7 @@ def test_two_processes_cannot_interleave(tmp_path, capsys):
     holder = subprocess.Popen(
         [sys.executable, "-c",
          "import sys\nfrom gearcontact.cli.outdir import RunDirectory\n"
-         f"with RunDirectory({str(tmp_path)!r}, ['x']) as run:\n"
+         f"with RunDirectory({str(tmp_path)!r}, ['vectors']) as run:\n"
          "    (run.work / 'a.txt').write_text('first')\n"
          "    print('held', flush=True)\n"
          "    sys.stdin.readline()\n"],
@@ -283,7 +283,8 @@ def test_soc_lanes_checked_before_the_directory_is_touched(tmp_path, capsys):
 
 def test_failed_in_place_run_leaves_no_unlisted_directory(tmp_path):
     """An in-place run that made an empty directory and then failed on bad input: the
-    directory is removed, run.json records exit 2, and the next run is not refused."""
+    directory is removed and, as the run left nothing, so are its run.json and lock
+    (the directory is as before: empty); the next run is not refused."""
     from gearcontact.validation import InputRangeError
 
     with pytest.raises(InputRangeError):
@@ -291,7 +292,7 @@ def test_failed_in_place_run_leaves_no_unlisted_directory(tmp_path):
             (run.work / "amaranth" / "deep").mkdir(parents=True)
             raise InputRangeError("lanes", 4, "a power of two in [8, 64]")
     assert not (tmp_path / "amaranth").exists()
-    assert json.loads((tmp_path / MANIFEST).read_text())["exit_code"] == 2
+    assert list(tmp_path.iterdir()) == []
     with RunDirectory(str(tmp_path), ["rtl", "soc"], staged=False) as run:
         (run.work / "csr.csv").write_text("ok")
     assert json.loads((tmp_path / MANIFEST).read_text())["files"][0]["path"] == "csr.csv"
