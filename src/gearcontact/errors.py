@@ -24,11 +24,21 @@ input check keeps working. This module imports nothing: every other module may u
 
 from __future__ import annotations
 
-__all__ = ["GearcontactError", "BadInput", "ToolUnavailable", "DatapathFlagged", "CheckFailed"]
+__all__ = ["GearcontactError", "BadInput", "ToolUnavailable", "DatapathFlagged", "CheckFailed",
+           "RtlMismatch"]
 
 
 class GearcontactError(Exception):
-    """Base of every error the package raises on purpose (not a bug)."""
+    """Base of every error the package raises on purpose (not a bug).
+
+    Pickled with its attributes and message as they are, whatever its ``__init__``
+    takes: it crosses a process pool intact (the default, ``cls(*args)``, fails in the
+    parent for an ``__init__`` of other arguments, which then reports a
+    ``BrokenProcessPool`` instead of this error).
+    """
+
+    def __reduce__(self):
+        return (_restore, (type(self), self.args, self.__dict__))
 
 
 class BadInput(GearcontactError, ValueError):
@@ -48,3 +58,15 @@ class DatapathFlagged(GearcontactError, ArithmeticError):
 class CheckFailed(GearcontactError, ArithmeticError):
     """A computation did not pass its own check (exit 4): an LCP that did not converge,
     a Newton iteration that failed inside a run, RTL != golden."""
+
+
+class RtlMismatch(CheckFailed):
+    """The RTL disagrees with the bit-exact golden model (bits or cycle counts)."""
+
+
+def _restore(cls, args, state):
+    """Unpickle a :class:`GearcontactError` without calling its ``__init__``."""
+    exc = cls.__new__(cls, *args)
+    exc.args = args
+    exc.__dict__.update(state)
+    return exc

@@ -29,14 +29,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contact.lcp import SOLVERS, warm_up
+from ..contact.lcp import SOLVERS, LcpConvergenceError, warm_up
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
 from ..tca.analysis import analyze_pair
 from ..tca.edges import loaded_patch_edges
 from ..tca.export import without_timings, write_csv
+from ..errors import CheckFailed
 from ..validation import InputRangeError
-from . import EXIT_CHECK_FAILED
 from .options import (
     MAX_CELLS,
     add_pair_arguments,
@@ -155,13 +155,12 @@ def run(args) -> int:
     if tca.mean_point.edge_contact:
         warn("ltca", f"unloaded contact at P0 is edge contact ({tca.mean_point.edge_contact} "
                      "touching the other flank)")
+    # the files stay (run.json records exit 4) for inspection of the failed solve
     if not case.patch.converged:
-        warn("ltca", f"LCP {case.patch.lcp.status}: {case.patch.lcp.message}")
-        return EXIT_CHECK_FAILED
+        raise LcpConvergenceError(case.patch.lcp)
     if multi is not None and not multi.converged:
-        warn("ltca", f"multi-tooth LCP not converged (rigid {multi.status_rigid}, "
-                     f"bending {multi.status})")
-        return EXIT_CHECK_FAILED
+        raise CheckFailed(f"multi-tooth LCP not converged (rigid {multi.status_rigid}, "
+                          f"bending {multi.status})")
     return 0
 
 

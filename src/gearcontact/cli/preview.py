@@ -17,6 +17,8 @@ from ..hw import backends as _hardware_backends  # noqa: F401 (registers rtl, rt
 from ..preview.engine import BACKENDS, get_engine
 from ..preview.fit.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
+from ..preview.qformat import GAP, FixedPointOverflow
+from ..validation import InputRangeError, format_range
 from . import EXIT_FLAGGED
 
 
@@ -49,6 +51,17 @@ def check(args) -> None:
     curvatures and the load, the same domain for every backend)."""
     args.material = Material.from_gpa(args.modulus, args.poisson, name="cli")
     args.gaps_mm = None if args.stencil is None else read_stencil_csv(args.stencil)
+    if args.gaps_mm is not None and args.backend != "reference":
+        # the fixed-point backends take the gaps in GAP Q(32,16): one that does not fit
+        # is the file's value, named with its row, not a datapath result
+        for i, gap in enumerate(args.gaps_mm):
+            try:
+                GAP.quantize(gap, field="gap_mm")
+            except FixedPointOverflow:
+                raise InputRangeError(
+                    f"{args.stencil}: row {i + 1} (sample {i}), column gap_mm", float(gap),
+                    f"{format_range(GAP.min_value, GAP.max_value)} mm, the {GAP} gap format "
+                    f"of the --backend {args.backend} datapath") from None
 
 
 def run(args) -> int:

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
+from ..errors import CheckFailed
 from ..validation import InputRangeError
 from .blank import BlankDesign
 from .flank import FlankBoundary, FormateFlank
@@ -64,8 +65,9 @@ class UndercutError(InputRangeError):
     """The generated pinion flank has a limit line / undercut inside its active box."""
 
 
-class MeshingError(ArithmeticError):
-    """Newton's method on the node equations did not converge (names node and residual)."""
+class MeshingError(CheckFailed):
+    """Newton's method on the node equations did not converge (names node and residual;
+    a failed check, exit 4)."""
 
 
 @dataclass(frozen=True)
