@@ -63,9 +63,10 @@ def register(sub) -> None:
     p.add_argument("--multi-tooth", action="store_true",
                    help="also solve all engaged pairs together at P0, rigid and with tooth "
                         "bending: multitooth.json/.csv/.png")
-    p.add_argument("--multi-tooth-cells", type=int, default=40,
-                   help=f"cells per side of each pair's field in the multi-tooth solve, 16 "
-                        f"to {MAX_CELLS} (default 40, as gearcontact lte)")
+    p.add_argument("--multi-tooth-cells", type=int, default=None,
+                   help=f"with --multi-tooth: cells per side of each pair's field in the "
+                        f"multi-tooth solve, 16 to {MAX_CELLS} (default "
+                        f"{MULTI_TOOTH_CELLS}, as gearcontact lte)")
     p.set_defaults(func=run, check=_check)
 
 
@@ -75,8 +76,18 @@ def register(sub) -> None:
 MAX_DENSE_CELLS = 80
 
 
+#: Default ``--multi-tooth-cells``.
+MULTI_TOOTH_CELLS = 40
+
+
 def _check(args) -> None:
     check_pair_arguments(args)
+    if args.multi_tooth_cells is not None and not args.multi_tooth:
+        raise InputRangeError("--multi-tooth-cells", args.multi_tooth_cells,
+                              "given only with --multi-tooth (without it the option has "
+                              "no effect)")
+    if args.multi_tooth_cells is None:
+        args.multi_tooth_cells = MULTI_TOOTH_CELLS
     check_count("--multi-tooth-cells", args.multi_tooth_cells, 16, MAX_CELLS, note=" per side")
     if args.solver != "pk_cg":
         check_count("--cells", args.cells, 16, MAX_DENSE_CELLS,
