@@ -38,7 +38,8 @@ from ..preview.fit.reference import principal_curvatures
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
-from ..validation import InputRangeError, check_array_finite, check_positive, check_range
+from ..validation import (InputRangeError, check_array_finite, check_positive, check_range,
+                          format_range)
 from . import kernel as K
 from .mesh import MeshTable
 from .params import DrivetrainParams
@@ -231,8 +232,8 @@ def _check_envelope(mesh: MeshTable, source: str = "exact") -> None:
         x = arr[v]
         if x.size and not (x.min() >= lo and x.max() <= hi):
             bad = x[np.argmax((x < lo) | (x > hi))]
-            raise InputRangeError(f"mesh {what}{name}", float(bad), f"[{lo:g}, {hi:g}] 1/mm "
-                                  "(preview envelope)")
+            raise InputRangeError(f"mesh {what}{name}", float(bad),
+                                  f"{format_range(lo, hi)} 1/mm (preview envelope)")
     a, b = a_all[v], b_all[v]
     if a.size:
         ratio = float((np.maximum(a, b) / np.minimum(a, b)).max())
