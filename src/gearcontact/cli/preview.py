@@ -3,15 +3,15 @@
 Either from half relative curvatures and a load (stage D), or from a 49-sample gap
 stencil file (stage C then D). Prints a, b, k, p_max (and raw codes, flags and cycles
 for the fixed-point backend); ``--json`` prints one JSON object instead. When the
-fixed-point datapath flags the input, each flag is printed on stderr and the exit code
+fixed-point datapath flags the input, the flags are printed on stderr and the exit code
 is 3.
 """
 
 from __future__ import annotations
 
 import json
-import sys
 
+from ..errors import DatapathFlagged
 from ..materials import STEEL, Material
 from ..hw import backends as _hardware_backends  # noqa: F401 (registers rtl, rtl-soc)
 from ..preview.engine import BACKENDS, get_engine
@@ -19,7 +19,6 @@ from ..preview.fit.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
 from ..preview.qformat import GAP, FixedPointOverflow
 from ..validation import InputRangeError, format_range
-from . import EXIT_FLAGGED
 
 
 def register(sub) -> None:
@@ -88,7 +87,6 @@ def run(args) -> int:
             print("codes          " + ", ".join(f"{k}={v}" for k, v in res.codes.items()))
             print(f"cycles         {res.cycles}")
         print(f"flags          {', '.join(res.flags) if res.flags else 'none'}")
-    for flag in res.flags:   # the outputs are invalid (zero): say so where users look
-        print(f"gearcontact preview: datapath flag: {flag} (outputs invalid; exit "
-              f"{EXIT_FLAGGED})", file=sys.stderr)
-    return EXIT_FLAGGED if res.flags else 0
+    if res.flags:            # the outputs are invalid (zero): exit 3, said on stderr
+        raise DatapathFlagged(f"{', '.join(res.flags)} (outputs invalid)")
+    return 0
