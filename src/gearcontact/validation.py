@@ -11,18 +11,20 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["InputRangeError", "check_finite", "check_positive", "check_range",
-           "check_array_finite", "read_text_file"]
+from .errors import BadInput
+
+__all__ = ["InputRangeError", "UnusableInput", "check_finite", "check_positive", "check_range",
+           "check_array_finite", "read_text_file", "format_number", "format_range"]
 
 
-class UnusableInput(ValueError):
+class UnusableInput(BadInput):
     """The input is valid field by field but cannot be analysed as given (a pattern that
     has left the flanks, line contact where an ellipse is needed, a contact ratio below
     one). Like :class:`InputRangeError` it is the user's input, not a bug: the CLI
     reports it in one line with exit code 2."""
 
 
-class InputRangeError(ValueError):
+class InputRangeError(BadInput):
     """A physical input is outside its allowed range.
 
     Attributes
@@ -39,7 +41,22 @@ class InputRangeError(ValueError):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{field} = {value!r} is outside the allowed range: {allowed}")
+        shown = value.item() if isinstance(value, np.generic) else value
+        super().__init__(f"{field} = {shown!r} is outside the allowed range: {allowed}")
+
+
+def format_number(x) -> str:
+    """``x`` with every digit it needs (Python's shortest round-trip repr, ``16`` for
+    ``16.0``): a value just outside a bound never prints equal to it, as ``:g`` would
+    (``0.00048828 is outside [0.000488281, 16]``)."""
+    text = repr(float(x))
+    return text[:-2] if text.endswith(".0") else text
+
+
+def format_range(lo, hi, *, lo_open: bool = False, hi_open: bool = False) -> str:
+    """``[lo, hi]`` (or with open ends) in :func:`format_number` digits."""
+    return (f"{'(' if lo_open else '['}{format_number(lo)}, {format_number(hi)}"
+            f"{')' if hi_open else ']'}")
 
 
 def check_finite(field: str, value) -> float:
@@ -78,9 +95,8 @@ def check_range(field: str, value, lo: float, hi: float, *,
     below = x <= lo if lo_open else x < lo
     above = x >= hi if hi_open else x > hi
     if below or above:
-        lb = "(" if lo_open else "["
-        rb = ")" if hi_open else "]"
-        raise InputRangeError(field, value, f"{lb}{lo:g}, {hi:g}{rb}")
+        raise InputRangeError(field, value, format_range(lo, hi, lo_open=lo_open,
+                                                         hi_open=hi_open))
     return x
 
 

@@ -81,3 +81,38 @@ def test_bending_samples_the_design_side(tmp_path):
     assert gap.min() > 1.0
     ratio = np.array(data[None]["shell_mm_per_n"]) / np.array(data["drive"]["shell_mm_per_n"])
     assert ratio.max() > 1.02
+
+
+@pytest.mark.parametrize("mesh, needle", [
+    ("1 6 3 4", "--fe-mesh NXI = 1 is outside the allowed range: an integer in [6, 32]"),
+    ("5 6 3 4", "[6, 32]"),                           # was "n_xi >= 6" after the pair
+    ("12 1 3 4", "--fe-mesh NETA = 1"),               # was n_eta in build_fe
+    ("64 64 64 64", "--fe-mesh NXI = 64"),            # was "1612 inverted cells"
+    ("12 6 3 12", "--fe-mesh NRIM = 12"),             # 2 inverted rim cells on s0003
+    ("32 16 8 8", "this mesh has 54,145"),            # (65)(49)(17) P2 nodes
+])
+def test_fe_mesh_range_is_the_accepted_one(tmp_path, capsys, monkeypatch, mesh, needle):
+    """Issue 28 probe: --fe-mesh advertised [1, 64] and rejected 1-5 or inverted cells
+    after the work had begun; the ranges in --help are now the ones accepted, checked
+    before any work."""
+    import gearcontact.cli.bending as cli_bending
+
+    monkeypatch.setattr(cli_bending, "build_flanks",
+                        lambda *a, **k: pytest.fail("the work started"))
+    code = main(["bending", "--fe", "--fe-mesh", *mesh.split(), "--out",
+                 str(tmp_path / "x"), "--no-figures"])
+    err = capsys.readouterr().err
+    assert code == 2 and needle in err, err
+    assert not (tmp_path / "x").exists()
+
+
+def test_fe_mesh_help_states_the_accepted_ranges(capsys):
+    from gearcontact.cli.bending import FE_MESH_RANGES, MAX_FE_NODES, fe_nodes
+
+    assert fe_nodes(12, 6, 3, 4) == 25 * 21 * 7 == 3675
+    with pytest.raises(SystemExit):
+        main(["bending", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert ("face (6-32), height (2-16), thickness (1-8) and rim (1-8), at most 13,000 P2 "
+            "nodes") in text
+    assert MAX_FE_NODES == 13_000 and FE_MESH_RANGES["NXI"] == (6, 32)

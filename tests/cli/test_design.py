@@ -85,7 +85,7 @@ def test_synthesize_easeoff_bad_target_exits_2_before_work(capsys):
 
     assert main(["design", "--pair", "s0003-centred", "--synthesize-easeoff",
                  "--te0-arcsec", "0"]) == 2
-    assert "te0_pp_arcsec" in capsys.readouterr().err
+    assert "--te0-arcsec = 0.0 is outside the allowed range" in capsys.readouterr().err
 
 
 @pytest.mark.slow
@@ -113,3 +113,45 @@ def test_option_of_a_mode_not_asked_for_is_refused(tmp_path, capsys, argv, named
     err = capsys.readouterr().err
     assert named in err and "given only with" in err
     assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("argv, named", [
+    (["--path-angle-deg", "95"], "--path-angle-deg = 95.0 is outside the allowed range: "
+                                 "[-89.9, 90]"),
+    (["--pattern-length-ratio", "0.9"], "--pattern-length-ratio = 0.9"),
+    (["--te0-arcsec", "nan"], "--te0-arcsec = nan")])
+def test_synthesis_targets_checked_before_the_directory_and_work(tmp_path, capsys,
+                                                                monkeypatch, argv, named):
+    """Issue 28 probe: the targets were checked once the output directory was made; now
+    in the command's check, named by their options."""
+    import gearcontact.tca.synthesis as synthesis
+    from gearcontact.cli import main
+
+    monkeypatch.setattr(synthesis, "synthesize_pair", lambda *a, **k: pytest.fail("work"))
+    assert main(["design", "--pair", "s0003", "--synthesize-easeoff", *argv,
+                 "--out", str(tmp_path / "x")]) == 2
+    assert named in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, monkeypatch):
+    """Issue 28 probe: "NOT all targets met" exited 0. It is the synthesis failing its
+    own check: exit 4, the table and the TOML printed and easeoff.toml kept."""
+    from types import SimpleNamespace
+
+    import gearcontact.tca.synthesis as synthesis
+    from gearcontact.cli import main
+
+    done = {side: SimpleNamespace(evaluations=3, seconds=1.0, met=side == "drive",
+                                  table=lambda side=side: f"| {side} table |")
+            for side in ("drive", "coast")}
+    monkeypatch.setattr(synthesis, "synthesize_pair", lambda pair, targets: (pair, done))
+    monkeypatch.setattr(synthesis, "easeoff_toml", lambda done, pair_name: "[easeoff.drive]\n")
+    code = main(["design", "--pair", "s0003", "--synthesize-easeoff", "--path-angle-deg",
+                 "60", "--out", str(tmp_path / "x")])
+    out, err = capsys.readouterr()
+    assert code == 4
+    assert "| coast table |" in out and "[easeoff.drive]" in out
+    assert err == ("gearcontact design: check failed: ease-off synthesis of s0003: not all "
+                   "targets met on the coast side (see the table)\n")
+    assert (tmp_path / "x" / "easeoff.toml").read_text() == "[easeoff.drive]\n"

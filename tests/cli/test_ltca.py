@@ -164,6 +164,10 @@ def test_multi_tooth(tmp_path):
     assert set(rows[:, 0].astype(int)) == set(data["pair_offsets"])
 
 
-def test_multi_tooth_cells_checked(tmp_path):
+def test_multi_tooth_cells_checked(tmp_path, capsys):
     assert main(["ltca", "--multi-tooth", "--multi-tooth-cells", "8",
                  "--out", str(tmp_path / "x")]) == 2
+    # issue 28 probe: without --multi-tooth the option was silently ignored
+    assert main(["ltca", "--multi-tooth-cells", "40", "--out", str(tmp_path / "x")]) == 2
+    assert "only with --multi-tooth" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()

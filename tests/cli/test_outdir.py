@@ -16,7 +16,8 @@ import pytest
 
 import gearcontact.cli.vectors as cli_vectors
 from gearcontact.cli import main
-from gearcontact.cli.outdir import LOCK_NAME, MANIFEST, RunDirectory, write_atomic
+from gearcontact.cli.outdir import (LOCK_NAME, MANIFEST, OutputDirectoryError, RunDirectory,
+                                    write_atomic)
 
 
 def _vectors(out, *extra, cores="hertz"):
@@ -229,7 +230,7 @@ def test_two_processes_cannot_interleave(tmp_path, capsys):
     holder = subprocess.Popen(
         [sys.executable, "-c",
          "import sys\nfrom gearcontact.cli.outdir import RunDirectory\n"
-         f"with RunDirectory({str(tmp_path)!r}, ['x']) as run:\n"
+         f"with RunDirectory({str(tmp_path)!r}, ['vectors']) as run:\n"
          "    (run.work / 'a.txt').write_text('first')\n"
          "    print('held', flush=True)\n"
          "    sys.stdin.readline()\n"],
@@ -283,7 +284,8 @@ def test_soc_lanes_checked_before_the_directory_is_touched(tmp_path, capsys):
 
 def test_failed_in_place_run_leaves_no_unlisted_directory(tmp_path):
     """An in-place run that made an empty directory and then failed on bad input: the
-    directory is removed, run.json records exit 2, and the next run is not refused."""
+    directory is removed and, as the run left nothing, so are its run.json and lock
+    (the directory is as before: empty); the next run is not refused."""
     from gearcontact.validation import InputRangeError
 
     with pytest.raises(InputRangeError):
@@ -291,7 +293,71 @@ def test_failed_in_place_run_leaves_no_unlisted_directory(tmp_path):
             (run.work / "amaranth" / "deep").mkdir(parents=True)
             raise InputRangeError("lanes", 4, "a power of two in [8, 64]")
     assert not (tmp_path / "amaranth").exists()
-    assert json.loads((tmp_path / MANIFEST).read_text())["exit_code"] == 2
+    assert list(tmp_path.iterdir()) == []
     with RunDirectory(str(tmp_path), ["rtl", "soc"], staged=False) as run:
         (run.work / "csr.csv").write_text("ok")
     assert json.loads((tmp_path / MANIFEST).read_text())["files"][0]["path"] == "csr.csv"
+
+
+def test_refused_foreign_directory_keeps_no_lock(tmp_path, capsys, no_work):
+    """Issue 28 probe: a refused foreign --out kept an empty .gearcontact.lock; the
+    directory is now left exactly as it was."""
+    (tmp_path / "notes.txt").write_text("mine")
+    assert _vectors(tmp_path) == 2
+    assert "--force" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["notes.txt"]
+    assert not no_work
+
+
+def test_run_of_another_command_is_refused_without_force(tmp_path, capsys):
+    """Issue 28 probe: `tca --out DIR` where DIR held an `analyze` run deleted the
+    analyze files (the policy replaced "the previous run"). A run of another command is
+    refused (run.json names the command); with --force its files stay beside ours."""
+    with RunDirectory(str(tmp_path), ["analyze", "--pair", "s0003"]) as run:
+        (run.work / "summary.md").write_text("analyze result")
+    assert json.loads((tmp_path / MANIFEST).read_text())["command_name"] == "analyze"
+    assert _vectors(tmp_path) == 2
+    err = capsys.readouterr().err
+    assert "holds a run of `gearcontact analyze`" in err and "--force" in err
+    assert (tmp_path / "summary.md").read_text() == "analyze result"
+    assert _vectors(tmp_path, "--force") == 0
+    assert (tmp_path / "summary.md").read_text() == "analyze result"
+    doc = json.loads((tmp_path / MANIFEST).read_text())
+    assert doc["command_name"] == "vectors"
+    assert "summary.md" not in [f["path"] for f in doc["files"]]
+    assert _vectors(tmp_path, "--force", cores="fit") == 0     # a rerun keeps it too
+    assert (tmp_path / "summary.md").read_text() == "analyze result"
+
+
+def test_same_command_replaces_its_run_and_old_manifests_name_theirs(tmp_path):
+    """A rerun of the same command needs no --force; a run.json written before it named
+    the command (no command_name) is read from its command line ("rtl soc": two
+    words)."""
+    assert _vectors(tmp_path) == 0
+    assert _vectors(tmp_path, cores="fit") == 0
+    doc = json.loads((tmp_path / MANIFEST).read_text())
+    del doc["command_name"]
+    doc["command"] = ["gearcontact", "rtl", "soc", "--out", str(tmp_path)]
+    (tmp_path / MANIFEST).write_text(json.dumps(doc))
+    with pytest.raises(OutputDirectoryError, match="gearcontact rtl soc"):
+        with RunDirectory(str(tmp_path), ["rtl", "verilog", "--core", "fit"]):
+            pass
+    with RunDirectory(str(tmp_path), ["rtl", "soc"], staged=False):
+        pass                                                     # same command: accepted
+
+
+def test_finished_run_with_a_failed_check_keeps_its_files(tmp_path, capsys, monkeypatch):
+    """A computation that ends in CheckFailed (exit 4) or DatapathFlagged (exit 3)
+    keeps what it wrote, run.json recording the code; bad input keeps nothing."""
+    from gearcontact.errors import CheckFailed
+
+    def written_then_failed(out, **kw):
+        (out / "hertz.jsonl").write_text("result")
+        raise CheckFailed("LCP not converged")
+
+    monkeypatch.setattr(cli_vectors, "export_vectors", written_then_failed)
+    assert _vectors(tmp_path / "o") == 4
+    assert capsys.readouterr().err == ("gearcontact vectors: check failed: LCP not "
+                                       "converged\n")
+    doc = json.loads((tmp_path / "o" / MANIFEST).read_text())
+    assert doc["exit_code"] == 4 and [f["path"] for f in doc["files"]] == ["hertz.jsonl"]

@@ -115,3 +115,39 @@ def test_hertz_form_exact_on_rtl_soc_reads_back_the_exact_tables(capsys):
     assert soc["cycles"] == 756
     for k in ("a_mm", "b_mm", "k", "p_max_mpa"):
         assert soc[k] == gold[k], k
+
+
+@pytest.mark.parametrize("column", [0, 1, 2])
+def test_nan_in_any_stencil_column_is_named(tmp_path, capsys, column):
+    """Issue 28 probe: `nan` in the s_mm column was accepted (exit 0): NaN passes every
+    |s - s_grid| > 1e-9 test. Exit 2 naming the file, the row and the column."""
+    s, t = stencil_coordinates()
+    data = np.column_stack([s, t, 0.01 * (s ** 2 + t ** 2)]).astype(object)
+    data[4, column] = "nan"
+    path = tmp_path / "nan.csv"
+    path.write_text("s_mm,t_mm,gap_mm\n" + "".join(",".join(map(str, r)) + "\n"
+                                                    for r in data))
+    code, out, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10")
+    name = ("s_mm", "t_mm", "gap_mm")[column]
+    assert code == 2 and out == ""
+    assert f"{path}: row 5 (sample 4), column {name} = nan is outside" in err
+
+
+def test_gap_beyond_the_datapath_format_is_bad_input_for_fixed_point_only(tmp_path, capsys):
+    """A gap outside GAP Q(32,16) ([-32768, 32768 - 2^-16] mm) is the file's value for the
+    fixed-point backends (exit 2 naming file and row; it was exit 1); fp64 takes it."""
+    s, t = stencil_coordinates()
+    gaps = 0.01 * (s ** 2 + t ** 2)
+    gaps[0] = -40000.0
+    path = write_stencil_csv(tmp_path / "deep.csv", gaps)
+    for backend in ("golden", "rtl"):
+        code, _, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
+                            "--backend", backend)
+        assert code == 2 and f"{path}: row 1 (sample 0), column gap_mm = -40000.0" in err
+        assert f"the Q(32,16) gap format of the --backend {backend} datapath" in err
+    # at the format's end the fixed-point path runs (no FixedPointOverflow)
+    gaps[0] = -32768.0
+    path = write_stencil_csv(tmp_path / "edge.csv", gaps)
+    code, _, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
+                        "--backend", "golden")
+    assert code in (0, 3) and "gap_mm" not in err

@@ -94,7 +94,7 @@ def test_sim_without_verilator_names_the_package(capsys, monkeypatch):
     assert main(["rtl", "sim", "--core", "gap", "--vectors", "1",
                  "--simulator", "verilator"]) == 2
     err = capsys.readouterr().err
-    assert "gearcontact rtl: error:" in err and "apt-get install" in err
+    assert "gearcontact rtl sim: error:" in err and "apt-get install" in err
     assert "verilator" in err
 
 

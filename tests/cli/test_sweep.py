@@ -183,7 +183,8 @@ def test_cutter_radius_sweep_builds_each_variant_and_draws_it(tmp_path, capsys):
 
 def test_unreachable_scheduler_is_bad_input_before_the_store(tmp_path, capsys):
     """Nothing listens on the port: exit 2 naming --scheduler (was an internal error
-    after 30 s, with an empty store left behind)."""
+    after 30 s, with an empty store left behind; then a run.json and the lock in a
+    directory the run created: the probe of issue 28). The directory is not created."""
     import dask
 
     out = tmp_path / "o"
@@ -192,4 +193,4 @@ def test_unreachable_scheduler_is_bad_input_before_the_store(tmp_path, capsys):
                             "--out", str(out)])
     assert code == 2
     assert "--scheduler" in capsys.readouterr().err
-    assert not (out / "sweep.zarr").exists()
+    assert not out.exists()

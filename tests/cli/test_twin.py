@@ -121,3 +121,48 @@ def test_speed_sweep_files(tmp_path):
     assert rows.shape == (3, 7)
     assert data["reference"]["max_dynamic_factor"] == pytest.approx(rows[:, 1].max())
     assert (d / "sweep.png").stat().st_size > 0
+
+
+@pytest.fixture
+def no_twin_work(monkeypatch):
+    """The first expensive stage of both twin paths fails the test if reached."""
+    import gearcontact.cli.twin as cli_twin
+
+    def fail(*a, **k):
+        raise AssertionError("the twin's work started before the options were checked")
+
+    monkeypatch.setattr(cli_twin, "model_for_pair", fail)
+
+
+@pytest.mark.parametrize("argv, needles", [
+    # was a BrokenProcessPool (exit 1) once the workers met the --speed-rpm limit
+    (["--speed-sweep", "90000:110000:5000"], ("--speed-sweep", "(0, 100000] rpm")),
+    # was 64 forks for 4 tasks
+    (["--speed-sweep", "1000:2000:1000", "--workers", "64"],
+     ("--workers = 64", "(the CPU count)")),
+    (["--workers", "2"], ("--workers", "only with --speed-sweep")),
+    # was a 60M x 16 record in memory, MemoryError after 71 s
+    (["--duration", "60", "--step-us", "1"],
+     ("--record-every = 1", ">= 10: 60,000,000 rows", "6,000,000")),
+])
+def test_sizes_and_speeds_checked_before_work(tmp_path, capsys, no_twin_work, argv, needles):
+    """Issue 28 probe: each exits 2 before any work, naming the option and the limit."""
+    code = main(["twin", "--out", str(tmp_path / "x"), "--quiet", *argv])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    for needle in needles:
+        assert needle in err, (needle, err)
+    assert not (tmp_path / "x").exists()
+
+
+def test_record_limit_is_the_longest_run_at_the_default_step(tmp_path, capsys, no_twin_work):
+    """60 s at 10 us (the documented longest run) is 6,000,000 rows: accepted; the
+    check is the record's size, so --record-every 10 admits 60 s at 1 us."""
+    from gearcontact.cli.twin import MAX_DURATION_S, MAX_RECORD_ROWS
+
+    assert MAX_RECORD_ROWS == round(MAX_DURATION_S / 10e-6)
+    for argv in (["--duration", "60"], ["--duration", "60", "--step-us", "1",
+                                        "--record-every", "10"]):
+        # past every check: the stand-in for the work is reached (main reports it as a bug)
+        assert main(["twin", "--out", str(tmp_path / "x"), "--quiet", *argv]) == 1
+        assert "the twin's work started" in capsys.readouterr().err

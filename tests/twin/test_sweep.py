@@ -45,3 +45,36 @@ def test_speed_range_parsing():
     for bad in ("500:100:10", "a:b:c", "0:100:10", "100:200:-5"):
         with pytest.raises(InputRangeError, match="--speed-sweep"):
             parse_speed_range(bad)
+
+
+def test_speeds_checked_before_the_workers(s0003_twin, monkeypatch):
+    """A speed above simulate's limit was met inside a worker, whose InputRangeError
+    (not picklable then) broke the pool: BrokenProcessPool, exit 1 (issue 28 probe).
+    Now every speed is checked before any worker starts."""
+    import gearcontact.twin.sweep as sweep_mod
+
+    pair, _, _, mesh = s0003_twin
+    model = build_model(mesh, default_drivetrain(pair), TORQUE_NM)
+    monkeypatch.setattr(sweep_mod, "ProcessPoolExecutor",
+                        lambda *a, **k: pytest.fail("a worker started"))
+    with pytest.raises(InputRangeError, match=r"speeds_rpm = 105000.0 .*\[0, 100000\]"):
+        speed_sweep({"r": model}, [95000.0, 105000.0], workers=2)
+
+
+def test_errors_cross_the_process_pool_intact():
+    """The root of the BrokenProcessPool: InputRangeError's pickle rebuilt it from its
+    message alone, a TypeError in the parent. Every package error now round-trips with
+    its class, message and fields (OutputDirectoryError: another __init__)."""
+    import pickle
+    from types import SimpleNamespace
+
+    from gearcontact.cli.outdir import OutputDirectoryError
+    from gearcontact.contact.lcp import LcpConvergenceError
+
+    # what LcpConvergenceError reads of an LcpResult
+    result = SimpleNamespace(solver="pk_cg", status="max_iter", message="1000 iterations")
+    for exc in (InputRangeError("speed_rpm", 1.05e5, "[0, 100000]"),
+                OutputDirectoryError("/x", "why"), LcpConvergenceError(result)):
+        back = pickle.loads(pickle.dumps(exc))
+        assert type(back) is type(exc) and str(back) == str(exc)
+        assert back.__dict__.keys() == exc.__dict__.keys()

@@ -5,23 +5,32 @@ optional cheap ``check(args)`` (all option and input-file validation) as ``check
 
 :func:`main` runs, in this order: the command's ``check``, the output-directory policy
 of :mod:`.outdir` (commands with ``--out``), the handler. One exit-code convention
-holds for every command:
+holds for every command, mapped in one place (:data:`EXIT_CODES`, by the class of what
+the command raised; :mod:`gearcontact.errors` holds the bases):
 
 ====  ==================================================================================
 code  meaning
 ====  ==================================================================================
 0     success
-1     internal error (a bug): one line "internal error, please report"; the traceback
-      is printed only with ``--debug``. Also a write the system refused (disk full,
-      read-only file system), said as such
-2     bad input: an option, an input file or the output directory, reported in one line
-      naming the field, the value, the allowed range and the file where one is
-      involved; also a missing optional tool
-3     the fixed-point datapath flagged this input (golden / rtl preview): the flags are
-      printed on stderr, one line each; the outputs are invalid
-4     the computation did not pass its own check: an LCP did not converge, or the RTL
-      disagrees with the golden model
+1     internal error (a bug: any exception outside :mod:`gearcontact.errors`' classes):
+      one line "internal error, please report"; the traceback is printed only with
+      ``--debug``. Also a write the system refused (disk full, read-only file system),
+      said as such
+2     bad input (:class:`~gearcontact.errors.BadInput`): an option, an input file or the
+      output directory, reported in one line naming the field, the value, the allowed
+      range and the file where one is involved, before any work; also a missing
+      optional tool
+3     the fixed-point datapath flagged this input
+      (:class:`~gearcontact.errors.DatapathFlagged`; golden / rtl preview, twin): the
+      flags are printed on stderr; the outputs are invalid
+4     the computation did not pass its own check
+      (:class:`~gearcontact.errors.CheckFailed`): an LCP did not converge, a Newton
+      iteration failed inside a run, or the RTL disagrees with the golden model
 ====  ==================================================================================
+
+A command whose computation ends with 3 or 4 keeps the files it wrote (``run.json``
+records the exit code); after 1, 2 or an interrupt the output directory keeps its
+previous run.
 """
 
 from __future__ import annotations
@@ -34,8 +43,11 @@ import sys
 import traceback
 import warnings
 
-__all__ = ["main", "console_main", "build_parser", "EXIT_OK", "EXIT_INTERNAL", "EXIT_BAD_INPUT",
-           "EXIT_FLAGGED", "EXIT_CHECK_FAILED"]
+from ..errors import BadInput, CheckFailed, DatapathFlagged, GearcontactError
+
+__all__ = ["main", "console_main", "build_parser", "exit_code_of", "EXIT_OK", "EXIT_INTERNAL",
+           "EXIT_BAD_INPUT", "EXIT_FLAGGED", "EXIT_CHECK_FAILED", "EXIT_CODES",
+           "EXIT_INTERRUPTED"]
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
 COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
@@ -50,6 +62,22 @@ EXIT_BAD_INPUT = 2
 EXIT_FLAGGED = 3
 #: The computation failed its own check (LCP not converged, RTL != golden).
 EXIT_CHECK_FAILED = 4
+#: Ctrl-C (128 + SIGINT, as a shell reports it).
+EXIT_INTERRUPTED = 130
+
+#: The one map from what a command raised to the exit code (first match; anything
+#: else is a bug, :data:`EXIT_INTERNAL`), with the word stderr shows before the message.
+EXIT_CODES = ((BadInput, EXIT_BAD_INPUT, "error"),
+              (DatapathFlagged, EXIT_FLAGGED, "datapath flag"),
+              (CheckFailed, EXIT_CHECK_FAILED, "check failed"),
+              (KeyboardInterrupt, EXIT_INTERRUPTED, "interrupted"))
+
+
+def exit_code_of(exc: BaseException | type) -> int:
+    """The exit code of a command that raised ``exc`` (an exception or its class)."""
+    cls = exc if isinstance(exc, type) else type(exc)
+    return next((code for base, code, _ in EXIT_CODES if issubclass(cls, base)),
+                EXIT_INTERNAL)
 
 
 def _leaf_parsers(parser: argparse.ArgumentParser):
@@ -91,10 +119,10 @@ def _run(args, argv: list[str], name: str) -> int:
 
     with warnings.catch_warnings():           # the filters stay Python's defaults
         warnings.showwarning = one_line
-        return _run_command(args, argv)
+        return _run_command(args, argv, name)
 
 
-def _run_command(args, argv: list[str]) -> int:
+def _run_command(args, argv: list[str], name: str) -> int:
     check = getattr(args, "check", None)
     if check is not None:
         check(args)                 # cheap validation before any work or output
@@ -106,7 +134,7 @@ def _run_command(args, argv: list[str]) -> int:
 
     with RunDirectory(args.out, argv, force=args.force,
                       staged=getattr(args, "staged_output", True),
-                      resume=getattr(args, "resume_entries", ())) as run:
+                      resume=getattr(args, "resume_entries", ()), command=name) as run:
         args.run, args.out = run, run.work
         run.exit_code = int(args.func(args) or 0)
         if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):
@@ -120,24 +148,22 @@ def main(argv: list[str] | None = None) -> int:
     try:
         # everything heavy (numpy, the command modules: seconds when cold) is imported
         # here, inside the Ctrl-C handler; ``import gearcontact.cli`` itself is light
-        from ..validation import InputRangeError, UnusableInput
-
         parser = build_parser()
         args = parser.parse_args(argv)
     except KeyboardInterrupt:
         print("gearcontact: interrupted", file=sys.stderr)
-        return 130
+        return EXIT_INTERRUPTED
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
         return _run(args, argv, name)
-    except (InputRangeError, UnusableInput) as exc:
-        # bad input: one line naming the field, the value and the allowed range (or why
-        # the pair cannot be analysed as given)
-        print(f"gearcontact {name}: error: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    except KeyboardInterrupt:
-        print(f"gearcontact {name}: interrupted", file=sys.stderr)
-        return 130
+    except (GearcontactError, KeyboardInterrupt) as exc:
+        # one line: bad input names the field, the value and the allowed range (or why
+        # the pair cannot be analysed as given); a flag or a failed check says what
+        code = exit_code_of(exc)
+        word = next(w for base, c, w in EXIT_CODES if c == code)
+        print(f"gearcontact {name}: {word}" + (f": {exc}" if str(exc) else ""),
+              file=sys.stderr)
+        return code
     except BrokenPipeError:
         # the reader of stdout went away (``| head``): not an error of ours
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

@@ -15,12 +15,28 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry.flank import build_flanks
-from ..structure.compliance import FeMesh, flank_compliance, write_compliance
+from ..structure.compliance import SEGMENT_NODES, FeMesh, flank_compliance, write_compliance
 from ..structure.shell import ORDER, ORDER_FACE
 from ..validation import InputRangeError
 from .options import (add_pair_arguments, check_count, check_pair_arguments, load_pair_for,
                       run_timings)
 from .outdir import final_path
+
+
+#: Accepted cells of ``--fe-mesh`` per direction: face (at least the segment-load
+#: stencil, SEGMENT_NODES + 1), height (2: the FE model), thickness, rim layers (above 8
+#: the quadratically graded rim layers of s0003 invert cells: 12 give 2 inverted).
+FE_MESH_RANGES = {"NXI": (SEGMENT_NODES + 1, 32), "NETA": (2, 16), "NZETA": (1, 8),
+                  "NRIM": (1, 8)}
+#: Most P2 nodes of the FE model, (2 NXI + 1)(2 (NETA + NRIM) + 1)(2 NZETA + 1): the
+#: default 12 6 3 4 has 3,675 (FE build 5 s); 24 8 4 6 has 12,789 (FE build 156 s,
+#: 1.4 GB peak, 2 busy cores); the sparse factorization grows about quadratically.
+MAX_FE_NODES = 13_000
+
+
+def fe_nodes(n_xi: int, n_eta: int, n_zeta: int, n_rim: int) -> int:
+    """P2 nodes of the FE mesh of ``--fe-mesh n_xi n_eta n_zeta n_rim``."""
+    return (2 * n_xi + 1) * (2 * (n_eta + n_rim) + 1) * (2 * n_zeta + 1)
 
 
 def register(sub) -> None:
@@ -43,7 +59,10 @@ def register(sub) -> None:
                    help="also solve the 3D P2 finite-element model (needs the 'fe' extra)")
     p.add_argument("--fe-mesh", type=int, nargs=4, default=(12, 6, 3, 4),
                    metavar=("NXI", "NETA", "NZETA", "NRIM"),
-                   help="FE cells along face, height, thickness and rim (default 12 6 3 4)")
+                   help="FE cells along face ({}-{}), height ({}-{}), thickness ({}-{}) and "
+                        "rim ({}-{}), at most {:,} P2 nodes in all (default 12 6 3 4: "
+                        "3,675)".format(*(n for r in FE_MESH_RANGES.values() for n in r),
+                                        MAX_FE_NODES))
     p.set_defaults(func=run, check=check)
 
 
@@ -54,8 +73,13 @@ def check(args) -> None:
         check_count(name, n, 1, 50)
     check_count("--order", args.order, 1, 16)
     check_count("--order-face", args.order_face, 1, 24)
-    for name, n in zip(("NXI", "NETA", "NZETA", "NRIM"), args.fe_mesh):
-        check_count(f"--fe-mesh {name}", n, 1, 64)
+    for (name, (lo, hi)), n in zip(FE_MESH_RANGES.items(), args.fe_mesh):
+        check_count(f"--fe-mesh {name}", n, lo, hi)
+    if args.fe and fe_nodes(*args.fe_mesh) > MAX_FE_NODES:
+        raise InputRangeError("--fe-mesh", " ".join(map(str, args.fe_mesh)),
+                              f"at most {MAX_FE_NODES:,} P2 nodes, (2 NXI + 1)(2 (NETA + "
+                              f"NRIM) + 1)(2 NZETA + 1); this mesh has "
+                              f"{fe_nodes(*args.fe_mesh):,}")
     if args.fe:
         try:
             import skfem  # noqa: F401

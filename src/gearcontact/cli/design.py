@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from ..errors import CheckFailed
 from ..geometry.generation import check_generation
 from ..geometry.pair import PRESETS, load_pair
 from ..validation import InputRangeError, check_range
@@ -109,6 +110,7 @@ def check(args) -> None:
             else args.te0_arcsec
         args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
             if args.pattern_length_ratio is None else args.pattern_length_ratio
+        args.targets = _synthesis_targets(args)     # their ranges, before any TCA
     if args.calibrate:
         from ..report.analyze import published_values
 
@@ -120,6 +122,25 @@ def check(args) -> None:
         if args.tip_margin is not None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
     args.writes_files = bool(args.calibrate or (args.synthesize_easeoff and args.out))
+
+
+#: Option of each :class:`~gearcontact.tca.synthesis.SynthesisTargets` field it sets.
+_TARGET_OPTIONS = {"te0_pp_arcsec": "--te0-arcsec",
+                   "pattern_length_ratio": "--pattern-length-ratio",
+                   "path_angle_deg": "--path-angle-deg"}
+
+
+def _synthesis_targets(args):
+    """The synthesis targets of the options; a target out of range names its option."""
+    from ..tca.synthesis import SynthesisTargets
+
+    try:
+        return SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
+                                pattern_length_ratio=args.pattern_length_ratio,
+                                path_angle_deg=args.path_angle_deg)
+    except InputRangeError as exc:
+        raise InputRangeError(_TARGET_OPTIONS.get(exc.field, exc.field), exc.value,
+                              exc.allowed) from None
 
 
 def _fmt(x) -> str:
@@ -144,11 +165,9 @@ def _calibrate(args, pair) -> int:
 
 
 def _synthesize(args, pair) -> int:
-    from ..tca.synthesis import SynthesisTargets, easeoff_toml, synthesize_pair
+    from ..tca.synthesis import easeoff_toml, synthesize_pair
 
-    targets = SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
-                               pattern_length_ratio=args.pattern_length_ratio,
-                               path_angle_deg=args.path_angle_deg)
+    targets = getattr(args, "targets", None) or _synthesis_targets(args)
     _, done = synthesize_pair(pair, targets=targets)
     for side, s in done.items():
         print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
@@ -158,6 +177,11 @@ def _synthesize(args, pair) -> int:
         out = Path(args.out)
         (out / "easeoff.toml").write_text(text)
         print(f"-> {final_path(args, out / 'easeoff.toml')}")
+    missed = [side for side, s in done.items() if not s.met]
+    if missed:              # the table says which; the TOML (and easeoff.toml) stay
+        raise CheckFailed(f"ease-off synthesis of {pair.name}: not all targets met on the "
+                          f"{' and '.join(missed)} side{'s' if len(missed) > 1 else ''} "
+                          "(see the table)")
     return 0
 
 

@@ -29,14 +29,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contact.lcp import SOLVERS, warm_up
+from ..contact.lcp import SOLVERS, LcpConvergenceError, warm_up
 from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning, plot_patch
 from ..tca.analysis import analyze_pair
 from ..tca.edges import loaded_patch_edges
 from ..tca.export import without_timings, write_csv
+from ..errors import CheckFailed
 from ..validation import InputRangeError
-from . import EXIT_CHECK_FAILED
 from .options import (
     MAX_CELLS,
     add_pair_arguments,
@@ -63,9 +63,10 @@ def register(sub) -> None:
     p.add_argument("--multi-tooth", action="store_true",
                    help="also solve all engaged pairs together at P0, rigid and with tooth "
                         "bending: multitooth.json/.csv/.png")
-    p.add_argument("--multi-tooth-cells", type=int, default=40,
-                   help=f"cells per side of each pair's field in the multi-tooth solve, 16 "
-                        f"to {MAX_CELLS} (default 40, as gearcontact lte)")
+    p.add_argument("--multi-tooth-cells", type=int, default=None,
+                   help=f"with --multi-tooth: cells per side of each pair's field in the "
+                        f"multi-tooth solve, 16 to {MAX_CELLS} (default "
+                        f"{MULTI_TOOTH_CELLS}, as gearcontact lte)")
     p.set_defaults(func=run, check=_check)
 
 
@@ -75,8 +76,18 @@ def register(sub) -> None:
 MAX_DENSE_CELLS = 80
 
 
+#: Default ``--multi-tooth-cells``.
+MULTI_TOOTH_CELLS = 40
+
+
 def _check(args) -> None:
     check_pair_arguments(args)
+    if args.multi_tooth_cells is not None and not args.multi_tooth:
+        raise InputRangeError("--multi-tooth-cells", args.multi_tooth_cells,
+                              "given only with --multi-tooth (without it the option has "
+                              "no effect)")
+    if args.multi_tooth_cells is None:
+        args.multi_tooth_cells = MULTI_TOOTH_CELLS
     check_count("--multi-tooth-cells", args.multi_tooth_cells, 16, MAX_CELLS, note=" per side")
     if args.solver != "pk_cg":
         check_count("--cells", args.cells, 16, MAX_DENSE_CELLS,
@@ -155,13 +166,12 @@ def run(args) -> int:
     if tca.mean_point.edge_contact:
         warn("ltca", f"unloaded contact at P0 is edge contact ({tca.mean_point.edge_contact} "
                      "touching the other flank)")
+    # the files stay (run.json records exit 4) for inspection of the failed solve
     if not case.patch.converged:
-        warn("ltca", f"LCP {case.patch.lcp.status}: {case.patch.lcp.message}")
-        return EXIT_CHECK_FAILED
+        raise LcpConvergenceError(case.patch.lcp)
     if multi is not None and not multi.converged:
-        warn("ltca", f"multi-tooth LCP not converged (rigid {multi.status_rigid}, "
-                     f"bending {multi.status})")
-        return EXIT_CHECK_FAILED
+        raise CheckFailed(f"multi-tooth LCP not converged (rigid {multi.status_rigid}, "
+                          f"bending {multi.status})")
     return 0
 
 

@@ -17,10 +17,10 @@ import time
 
 from ..contact.constrained_cg import SolveStatus
 from ..contact.lte import loaded_te
+from ..errors import CheckFailed
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
 from ..validation import InputRangeError
-from . import EXIT_CHECK_FAILED
 from .options import (
     add_pair_arguments,
     check_pair_arguments,
@@ -88,6 +88,5 @@ def run(args) -> int:
         warn("lte", line)
     if not res.converged:
         bad = [k for k, s in enumerate(res.status) if s is not SolveStatus.CONVERGED]
-        warn("lte", f"LCP not converged at phases {bad}")
-        return EXIT_CHECK_FAILED
+        raise CheckFailed(f"LCP not converged at phases {bad}")   # the files stay
     return 0

@@ -7,19 +7,24 @@ One policy, applied by :func:`gearcontact.cli.main` around each such command:
    creating the lock file. A refusal is bad input (exit 2) naming ``--out``, the value
    and the reason.
 2. **One run owns the directory.** The directory must be empty or hold the files of a
-   previous gearcontact run (listed in its ``run.json``). Anything else (files gearcontact
-   did not write, a directory named like an output file) makes the command refuse
-   before any work, unless ``--force`` is given: foreign entries then stay untouched
-   and same-named files are replaced.
+   previous run of the same command (listed in its ``run.json``, which names the
+   command). Anything else (files gearcontact did not write, a run of another command,
+   a directory named like an output file) makes the command refuse before any work,
+   unless ``--force`` is given: foreign entries (and another command's files) then stay
+   untouched and same-named files are replaced. A refused directory is left as it was
+   (no lock file remains).
 3. **Atomic files, no stale files.** The command writes into a hidden staging directory
    inside ``--out``; when it finishes, every file is moved into place with
    :func:`os.replace` (atomic per file), the previous run's files that this run did not
-   write are removed, and ``run.json`` is written last (temporary file + replace). When
-   the command fails, the staging directory is removed and the previous run stays as it
-   was (a directory this run created is removed again). Commands whose generated files embed their own absolute paths (``rtl soc``,
+   write are removed, and ``run.json`` is written last (temporary file + replace). A
+   run that finished with a datapath flag (exit 3) or a failed check (exit 4) is
+   committed the same way, its exit code in ``run.json``. When the command fails (bad
+   input, a bug, an interrupt), the staging directory is removed and the previous run
+   stays as it was (a directory this run created is removed again). Commands whose generated files embed their own absolute paths (``rtl soc``,
    ``rtl synth``: LiteX/Yosys scripts) write in place instead (``staged=False``): the
    previous run's files are removed before the work starts, and a failed run's
-   ``run.json`` lists what it left (so that the next run removes it). A resumable
+   ``run.json`` lists what it left (so that the next run removes it; a failed run that
+   left nothing in a directory it created leaves no directory). A resumable
    command (``sweep``) names the entries it continues (``resume=("sweep.zarr",)``):
    they count as its own even without a ``run.json`` (a killed run) and are kept.
 4. **A lock.** An exclusive :func:`fcntl.flock` on ``.gearcontact.lock`` is held for the
@@ -46,7 +51,8 @@ from datetime import datetime, timezone
 from importlib import metadata
 from pathlib import Path
 
-from ..validation import InputRangeError, UnusableInput
+from ..validation import InputRangeError
+from . import EXIT_CHECK_FAILED, EXIT_FLAGGED, EXIT_OK, exit_code_of
 
 __all__ = ["MANIFEST", "LOCK_NAME", "OutputDirectoryError", "RunDirectory",
            "add_out_argument", "final_path", "write_atomic"]
@@ -170,11 +176,9 @@ def _remove_empty_dirs(root: Path, rel_files) -> None:
             pass  # not empty (foreign or new files) or already gone
 
 
-def _exit_code_of(exc_type) -> int:
-    """The exit code :func:`gearcontact.cli.main` gives a run that raised ``exc_type``."""
-    if issubclass(exc_type, (InputRangeError, UnusableInput)):
-        return 2
-    return 130 if issubclass(exc_type, KeyboardInterrupt) else 1
+#: Exit codes of a run whose computation finished: its files replace the previous run's
+#: (a flagged or failed-check result is kept for inspection; run.json says which).
+_FINISHED = (EXIT_OK, EXIT_FLAGGED, EXIT_CHECK_FAILED)
 
 
 class RunDirectory:
@@ -193,6 +197,9 @@ class RunDirectory:
     resume : tuple of str, keyword-only
         Top-level entries an in-place command continues from run to run: never foreign,
         never removed before the work.
+    command : str, keyword-only
+        The command's name (``"tca"``, ``"rtl verilog"``; default: from ``argv``): a
+        directory holding a run of another command is refused without ``force``.
 
     Attributes
     ----------
@@ -207,8 +214,9 @@ class RunDirectory:
     """
 
     def __init__(self, out, argv, *, force: bool = False, staged: bool = True,
-                 resume: tuple[str, ...] = ()):
+                 resume: tuple[str, ...] = (), command: str | None = None):
         self.given = out
+        self.command = command if command is not None else _command_name(argv)
         self.resume = tuple(resume)
         self.argv = list(argv)
         self.force = force
@@ -244,6 +252,7 @@ class RunDirectory:
 
     def _lock(self) -> None:
         self._created = not self.path.exists()
+        self._lock_created = self._created or not (self.path / LOCK_NAME).exists()
         try:
             self.path.mkdir(parents=True, exist_ok=True)
             fd = os.open(self.path / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
@@ -264,10 +273,18 @@ class RunDirectory:
             if entry.name.startswith(STAGING_PREFIX):
                 shutil.rmtree(entry, ignore_errors=True)
         previous = _previous_files(self.path)
+        other = _previous_command(self.path)
+        if previous is not None and other not in (None, self.command):
+            if not self.force:              # its files are not this command's to replace
+                raise OutputDirectoryError(
+                    self.given, f"holds a run of `gearcontact {other}` (run.json), not of "
+                    f"`gearcontact {self.command}`; use another directory, or --force to "
+                    "write beside its files (they are kept)")
+            previous = None                 # --force: its files stay, as foreign ones
         if previous is None:                # not a gearcontact run: refuse at a glance
             top = sorted(e.name for e in self.path.iterdir()
                          if not _ours(e.name) and e.name not in self.resume)
-            top += [MANIFEST] if (self.path / MANIFEST).exists() else []
+            top += [MANIFEST] if (self.path / MANIFEST).exists() and other is None else []
             if top and not self.force:
                 self._refuse(top)
             previous = []
@@ -301,7 +318,7 @@ class RunDirectory:
                 self._remove_previous(keep=[f for f in self._previous
                                             if Path(f).parts[0] in self.resume])
         except BaseException:
-            self._unlock()
+            self._release(remove=self._lock_created)
             raise
         return self
 
@@ -360,6 +377,7 @@ class RunDirectory:
             entries.append({"path": f, "bytes": len(data),
                             "sha256": hashlib.sha256(data).hexdigest()})
         return {"manifest": "gearcontact run", "command": ["gearcontact", *self.argv],
+                "command_name": self.command,
                 "exit_code": self.exit_code, "versions": _versions(),
                 "started_utc": self._started_utc,
                 "wall_s": round(time.perf_counter() - self._started, 3),
@@ -376,25 +394,56 @@ class RunDirectory:
             os.close(self._lock_fd)
             self._lock_fd = None
 
+    def _release(self, *, remove: bool) -> None:
+        """Unlock; with ``remove`` also delete the lock file this run created (while
+        still holding it: a run opening it meanwhile is refused, not let in twice) and
+        the directory when this run created it and it is empty again."""
+        if remove:
+            (self.path / LOCK_NAME).unlink(missing_ok=True)
+        self._unlock()
+        if remove and self._created:
+            try:
+                self.path.rmdir()
+            except OSError:
+                pass                        # not empty
+
     def __exit__(self, exc_type, exc, tb) -> bool:
-        failed = exc_type is not None or self._discard
+        if exc_type is not None:
+            self.exit_code = exit_code_of(exc_type)     # as gearcontact.cli.main reports it
+        failed = self._discard or self.exit_code not in _FINISHED
+        left_nothing = False
         try:
             # in place, the previous run is gone already: a failed run still lists what
             # it left (exit code 1 when it raised), so that the next run removes it
             if not failed or not self.staged:
                 files = self._commit()
-                if exc_type is not None:
-                    self.exit_code = _exit_code_of(exc_type)
-                write_atomic(self.path / MANIFEST,
-                             json.dumps(self._manifest(files), indent=2) + "\n")
+                left_nothing = failed and not files and not self._previous
+                if not left_nothing:        # a failed run that wrote nothing: no run.json
+                    write_atomic(self.path / MANIFEST,
+                                 json.dumps(self._manifest(files), indent=2) + "\n")
         finally:
             if self.staged and self.work != self.path:
                 shutil.rmtree(self.work, ignore_errors=True)
-            self._unlock()
-            if failed and self._created and self.staged:   # a failed first run leaves nothing
-                (self.path / LOCK_NAME).unlink(missing_ok=True)
-                try:
-                    self.path.rmdir()
-                except OSError:
-                    pass
+            # a failed first run leaves nothing (staged, or in place with nothing written)
+            self._release(remove=failed and self._lock_created
+                          and (self.staged or left_nothing))
         return False
+
+
+def _previous_command(root: Path) -> str | None:
+    """The command name of the run recorded in ``root``'s run.json (None: no readable
+    gearcontact manifest)."""
+    try:
+        doc = json.loads((root / MANIFEST).read_text(encoding="utf-8"))
+        if "command_name" in doc:
+            return str(doc["command_name"])
+        return _command_name([str(w) for w in doc["command"][1:]]) or None
+    except (OSError, ValueError, KeyError, TypeError, IndexError):
+        return None
+
+
+def _command_name(argv) -> str:
+    """``"tca"`` of ``["tca", "--pair", ...]``, ``"rtl soc"`` of ``["rtl", "soc", ...]``
+    (the rtl actions are commands of their own)."""
+    n = 2 if list(argv[:1]) == ["rtl"] else 1
+    return " ".join(w for w in argv[:n] if not w.startswith("-"))

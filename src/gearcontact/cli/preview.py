@@ -3,21 +3,22 @@
 Either from half relative curvatures and a load (stage D), or from a 49-sample gap
 stencil file (stage C then D). Prints a, b, k, p_max (and raw codes, flags and cycles
 for the fixed-point backend); ``--json`` prints one JSON object instead. When the
-fixed-point datapath flags the input, each flag is printed on stderr and the exit code
+fixed-point datapath flags the input, the flags are printed on stderr and the exit code
 is 3.
 """
 
 from __future__ import annotations
 
 import json
-import sys
 
+from ..errors import DatapathFlagged
 from ..materials import STEEL, Material
 from ..hw import backends as _hardware_backends  # noqa: F401 (registers rtl, rtl-soc)
 from ..preview.engine import BACKENDS, get_engine
 from ..preview.fit.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
-from . import EXIT_FLAGGED
+from ..preview.qformat import GAP, FixedPointOverflow
+from ..validation import InputRangeError, format_range
 
 
 def register(sub) -> None:
@@ -49,6 +50,17 @@ def check(args) -> None:
     curvatures and the load, the same domain for every backend)."""
     args.material = Material.from_gpa(args.modulus, args.poisson, name="cli")
     args.gaps_mm = None if args.stencil is None else read_stencil_csv(args.stencil)
+    if args.gaps_mm is not None and args.backend != "reference":
+        # the fixed-point backends take the gaps in GAP Q(32,16): one that does not fit
+        # is the file's value, named with its row, not a datapath result
+        for i, gap in enumerate(args.gaps_mm):
+            try:
+                GAP.quantize(gap, field="gap_mm")
+            except FixedPointOverflow:
+                raise InputRangeError(
+                    f"{args.stencil}: row {i + 1} (sample {i}), column gap_mm", float(gap),
+                    f"{format_range(GAP.min_value, GAP.max_value)} mm, the {GAP} gap format "
+                    f"of the --backend {args.backend} datapath") from None
 
 
 def run(args) -> int:
@@ -75,7 +87,6 @@ def run(args) -> int:
             print("codes          " + ", ".join(f"{k}={v}" for k, v in res.codes.items()))
             print(f"cycles         {res.cycles}")
         print(f"flags          {', '.join(res.flags) if res.flags else 'none'}")
-    for flag in res.flags:   # the outputs are invalid (zero): say so where users look
-        print(f"gearcontact preview: datapath flag: {flag} (outputs invalid; exit "
-              f"{EXIT_FLAGGED})", file=sys.stderr)
-    return EXIT_FLAGGED if res.flags else 0
+    if res.flags:            # the outputs are invalid (zero): exit 3, said on stderr
+        raise DatapathFlagged(f"{', '.join(res.flags)} (outputs invalid)")
+    return 0

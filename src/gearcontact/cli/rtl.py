@@ -16,25 +16,15 @@ import re
 import sys
 from pathlib import Path
 
-from ..hw.harness_cores import CORE_NAMES, SIMULATORS, CoreUnavailable, get_bench
+from ..errors import RtlMismatch
+from ..hw.harness_cores import CORE_NAMES, SIMULATORS, get_bench
 from ..hw.reproducible import portable_src
-from ..hw.verilator import (
-    VerilatorBuildError,
-    VerilatorNotFound,
-    require_verilator,
-    verilator_available,
-    verilator_version,
-)
+from ..hw.verilator import require_verilator, verilator_available, verilator_version
 
 from ..validation import InputRangeError
-from . import EXIT_BAD_INPUT, EXIT_CHECK_FAILED
 from .options import check_count
 from .outdir import add_out_argument, final_path
 
-#: Exit code when the RTL disagrees with the golden model (bits or cycles).
-EXIT_MISMATCH = EXIT_CHECK_FAILED
-#: Exit code when the simulator or a core is unavailable.
-EXIT_UNAVAILABLE = EXIT_BAD_INPUT
 #: Most random vectors of one ``rtl sim`` run (the slow suite runs 100,000).
 MAX_SIM_VECTORS = 10_000_000
 #: Most parallel Verilator processes.
@@ -74,11 +64,6 @@ def register(sub) -> None:
     register_rtl_subcommands(cmds)
 
 
-def _error(msg: str) -> int:
-    print(f"gearcontact rtl: error: {msg}", file=sys.stderr)
-    return EXIT_UNAVAILABLE
-
-
 def check_sim(args) -> None:
     """Every ``rtl sim`` option, before any build or simulation."""
     check_count("--vectors", args.vectors, 1 if args.no_corners else 0, MAX_SIM_VECTORS,
@@ -101,13 +86,10 @@ def run_sim(args) -> int:
         if simulator == "amaranth":
             print("gearcontact rtl: Verilator not installed, using the Amaranth simulator "
                   "(slow); apt-get install verilator for bulk runs", file=sys.stderr)
-    try:
-        if simulator == "verilator":
-            require_verilator()
-        rep = run_equivalence(args.core, args.vectors, args.seed, simulator=simulator,
-                              corners=not args.no_corners, jobs=args.jobs, **kwargs)
-    except (VerilatorNotFound, VerilatorBuildError, CoreUnavailable) as exc:
-        return _error(str(exc))
+    if simulator == "verilator":        # missing or broken: ToolUnavailable (exit 2)
+        require_verilator()
+    rep = run_equivalence(args.core, args.vectors, args.seed, simulator=simulator,
+                          corners=not args.no_corners, jobs=args.jobs, **kwargs)
     version = verilator_version() if simulator == "verilator" else None
     if args.json:
         print(json.dumps({**rep.as_dict(), "seed": args.seed, "simulator_version": version},
@@ -133,7 +115,12 @@ def run_sim(args) -> int:
         print(f"speed        {rep.cycles_per_second:,.0f} cycles/s ({rep.sim_cycles:,} cycles "
               f"in {rep.sim_seconds:.3g} s; build {rep.build_seconds:.3g} s, golden "
               f"{rep.golden_seconds:.3g} s)")
-    return 0 if rep.ok else EXIT_MISMATCH
+    if not rep.ok:
+        raise RtlMismatch(f"RTL != golden on core {rep.core}: {rep.mismatches} of "
+                          f"{rep.vectors} vectors mismatch; cycles {rep.cycles} (expected "
+                          f"{rep.cycles_expected}), initiation interval "
+                          f"{rep.measured_ii if rep.streaming else 'n/a'}")
+    return 0
 
 
 _PORT = re.compile(r"^\s*(input|output)\s+(?:reg\s+|wire\s+)?(?:signed\s+)?"
@@ -188,10 +175,7 @@ def run_verilog(args) -> int:
     out.mkdir(parents=True, exist_ok=True)
     for core in (CORE_NAMES if args.core == "all" else (args.core,)):
         bench = get_bench(core)
-        try:
-            text = portable_src(bench.verilog())    # same bytes wherever installed
-        except CoreUnavailable as exc:
-            return _error(str(exc))
+        text = portable_src(bench.verilog())    # same bytes wherever installed
         path = out / f"{bench.spec.top}.v"
         path.write_text(text)
         (out / f"{bench.spec.top}.README.md").write_text(_readme(core, text))

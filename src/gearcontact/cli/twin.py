@@ -14,18 +14,27 @@ of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.param
 
 from __future__ import annotations
 
+import math
+import os
+
 from ..twin.params import check_drivetrain_file, load_drivetrain
 from ..twin.report import write_sweep_outputs, write_twin_outputs
-from ..twin.simulate import (BACKENDS, CURVATURE_SOURCES, STEP_RANGE_US, build_model,
-                             model_for_pair, simulate)
+from ..twin.simulate import (BACKENDS, CURVATURE_SOURCES, MAX_SPEED_RPM, STEP_RANGE_US,
+                             build_model, model_for_pair, simulate)
 from ..twin.sweep import parse_speed_range, speed_sweep
 from ..validation import InputRangeError, check_positive, check_range
-from .options import add_pair_arguments, check_pair_arguments, load_pair_for, run_timings
+from .options import (add_pair_arguments, check_count, check_pair_arguments, load_pair_for,
+                      run_timings)
 from .outdir import final_path
 
 #: Longest simulated time one run accepts (s): 6 million steps at 10 us, about 10 s of
 #: wall time on the compiled fp64 backend; longer studies are several runs.
 MAX_DURATION_S = 60.0
+#: Most rows of the time series one run keeps (steps / --record-every): the longest run
+#: at the default step (MAX_DURATION_S at 10 us). The record is held in memory, 16
+#: float64 per row: 6 million rows are 0.77 GB. Without this check 60 s at 1 us (60
+#: million rows, 7.7 GB) ended in a MemoryError after a minute of work.
+MAX_RECORD_ROWS = 6_000_000
 
 
 def register(sub) -> None:
@@ -62,11 +71,13 @@ def register(sub) -> None:
                         "HOST:PORT (a board built with this pair's E', or `gearcontact rtl "
                         "serve`) instead of the SoC simulation in this process")
     p.add_argument("--record-every", type=int, default=1,
-                   help="write every n-th step to twin.csv (default 1)")
+                   help=f"write every n-th step to twin.csv (default 1); steps / n must "
+                        f"not exceed {MAX_RECORD_ROWS:,} rows (held in memory)")
     p.add_argument("--speed-sweep", default=None, metavar="START:STOP:STEP",
                    help="rpm range: dynamic factor vs speed, preview and table twins")
     p.add_argument("--workers", type=int, default=None,
-                   help="worker processes of the speed sweep (default: CPU count)")
+                   help="worker processes of the speed sweep, 1 to the CPU count (default: "
+                        "CPU count; never more than the sweep's runs are started)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=run, check=check)
 
@@ -89,15 +100,27 @@ def check(args) -> None:
                               f"at most {MAX_DURATION_S:g} s of simulated time")
     if args.drivetrain is not None:
         check_drivetrain_file(args.drivetrain)
-    check_range("--speed-rpm", args.speed_rpm, 0.0, 1e5)
+    check_range("--speed-rpm", args.speed_rpm, 0.0, MAX_SPEED_RPM)
     if args.record_every < 1:
         raise InputRangeError("--record-every", args.record_every, ">= 1")
     speeds = parse_speed_range(args.speed_sweep) if args.speed_sweep else None
+    rows = math.ceil(round(duration_s / (1e-6 * args.step_us)) / args.record_every)
+    if speeds is None and rows > MAX_RECORD_ROWS:     # before the record is allocated
+        raise InputRangeError("--record-every", args.record_every, f">= "
+                              f"{math.ceil(rows * args.record_every / MAX_RECORD_ROWS)}: "
+                              f"{rows:,} rows of the time series (duration / step / "
+                              f"--record-every) exceed the {MAX_RECORD_ROWS:,} one run holds")
+    if speeds is not None and speeds[-1] > MAX_SPEED_RPM:
+        raise InputRangeError("--speed-sweep", args.speed_sweep, f"speeds in (0, "
+                              f"{MAX_SPEED_RPM:g}] rpm (the --speed-rpm limit)")
     if speeds is not None and args.backend not in ("reference", "golden"):
         raise InputRangeError("--backend", args.backend, "reference or golden with "
                               "--speed-sweep (the table twin runs beside it)")
-    if args.workers is not None and args.workers < 1:
-        raise InputRangeError("--workers", args.workers, ">= 1")
+    if args.workers is not None:
+        if speeds is None:
+            raise InputRangeError("--workers", args.workers, "only with --speed-sweep")
+        check_count("--workers", args.workers, 1, os.cpu_count() or 1,
+                    note=" (the CPU count)")
     args.board_address = None
     if args.board is not None:
         if args.backend != "soc":

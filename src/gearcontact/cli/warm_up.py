@@ -78,7 +78,7 @@ def note_cold_cache(command: str) -> None:
 
 
 def run(args) -> int:
-    from . import EXIT_INTERNAL, main
+    from . import main
 
     start = time.perf_counter()
     where = cache_directory()
@@ -88,9 +88,8 @@ def run(args) -> int:
             code = main([*WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "run")])
     if code != 0:
         print(captured.getvalue().rstrip(), file=sys.stderr)
-        print(f"gearcontact warm-up: error: the warm-up run ended with exit code {code}",
-              file=sys.stderr)
-        return EXIT_INTERNAL
+        # the fixed s0003 run cannot meet bad input: a bug (exit 1, cli.EXIT_CODES)
+        raise RuntimeError(f"the warm-up run ended with exit code {code}")
     if not args.quiet:
         print(f"numba kernels compiled or loaded in {time.perf_counter() - start:.1f} s; "
               f"cache: {where if where is not None else 'numba default'}")

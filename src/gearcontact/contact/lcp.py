@@ -50,6 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import linalg, optimize
 
+from ..errors import CheckFailed
 from ..materials import STEEL, Material, reduced_modulus_mpa
 from ..validation import InputRangeError, check_positive
 from .ellipse import warn_if_coarse
@@ -133,8 +134,9 @@ class LcpResult:
         return int(self.contact_mask.sum())
 
 
-class LcpConvergenceError(RuntimeError):
-    """An LCP solve did not converge; ``.result`` holds the (unconverged) result."""
+class LcpConvergenceError(CheckFailed, RuntimeError):
+    """An LCP solve did not converge (a failed check, exit 4); ``.result`` holds the
+    (unconverged) result."""
 
     def __init__(self, result: LcpResult):
         self.result = result

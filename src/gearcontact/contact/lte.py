@@ -81,6 +81,7 @@ import numpy as np
 from scipy.optimize import brentq
 from tqdm import tqdm
 
+from ..errors import CheckFailed
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, UnusableInput, check_positive, check_range
 from .lte_pairs import PairContact, PairFields, phase_contacts
@@ -441,7 +442,7 @@ def _compliances(ref, fields: PairFields, torque: float, eps: float, materials,
             res, *_ = solve_phase(group, fields, tq, materials, tol=tol, warm=warm,
                                    theta_pre=th)
             if not res.converged:
-                raise ArithmeticError(f"compliance at {tq / 1e3:g} N·m: {res.message}")
+                raise CheckFailed(f"compliance at {tq / 1e3:g} N·m: {res.message}")
             th_lcp.append(res.rotation_rad)
             th_pre.append(th)
         d_t = 2.0 * eps * torque

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
+from ..errors import CheckFailed
 from ..validation import InputRangeError
 from .blank import BlankDesign
 from .flank import FlankBoundary, FormateFlank
@@ -78,8 +79,9 @@ class UndercutError(InputRangeError):
         self.fix = fix
 
 
-class MeshingError(ArithmeticError):
-    """Newton's method on the node equations did not converge (names node and residual)."""
+class MeshingError(CheckFailed):
+    """Newton's method on the node equations did not converge (names node and residual;
+    a failed check, exit 4)."""
 
 
 @dataclass(frozen=True)

@@ -38,6 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import CheckFailed
 from ..validation import InputRangeError
 from .sheet import RadialSheet
 
@@ -201,8 +202,8 @@ def apply_easeoff(base: RadialSheet, easeoff: EaseOff, *, limit_um: float) -> Ra
         u0 = u0 - (d * dx - b * dR) / det
         v0 = v0 - (-c * dx + a * dR) / det
     else:
-        raise ArithmeticError(f"ease-off node mapping of the {base.side} flank did not converge "
-                              f"(residual {max(np.abs(dx).max(), np.abs(dR).max()):.2e} mm)")
+        raise CheckFailed(f"ease-off node mapping of the {base.side} flank did not converge "
+                          f"(residual {max(np.abs(dx).max(), np.abs(dR).max()):.2e} mm)")
     # p (from the converged last iterate) has the node's x and R; its angle, unwrapped
     # against the base nodes (at most 0.04 mm away, << pi), is the new sample
     ang = np.arctan2(p[..., 2], p[..., 1])

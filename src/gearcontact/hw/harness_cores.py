@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import ToolUnavailable
 from ..preview.core import CoreDescriptor, core_descriptors
 from ..preview.stimulus import Stimulus
 from ..validation import InputRangeError
@@ -42,7 +43,7 @@ __all__ = ["CoreBench", "CoreUnavailable", "EquivalenceReport", "BENCHES", "CORE
 SIMULATORS = ("verilator", "amaranth")
 
 
-class CoreUnavailable(RuntimeError):
+class CoreUnavailable(ToolUnavailable, RuntimeError):
     """The RTL module of a core is not importable (not built yet in this checkout)."""
 
 

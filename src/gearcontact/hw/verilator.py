@@ -38,6 +38,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import ToolUnavailable
+
 from .harness import HarnessSpec, generate_harness, pack_stimulus, unpack_results
 
 __all__ = ["VerilatorNotFound", "VerilatorBuildError", "VerilatorModel", "SimRun",
@@ -54,12 +56,13 @@ INSTALL_HINT = ("install it with: apt-get install -y --no-install-recommends "
 _TOOLS = ("verilator", "g++", "make")
 
 
-class VerilatorNotFound(RuntimeError):
+class VerilatorNotFound(ToolUnavailable, RuntimeError):
     """Verilator (or the C++ toolchain it drives) is not installed."""
 
 
-class VerilatorBuildError(RuntimeError):
-    """``verilator --build`` failed; the message carries the log tail and the directory."""
+class VerilatorBuildError(ToolUnavailable, RuntimeError):
+    """``verilator --build`` failed (the toolchain here cannot build the harness: exit 2);
+    the message carries the log tail and the directory."""
 
 
 def _missing_tools() -> list[str]:

@@ -17,12 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import DatapathFlagged
+
 __all__ = ["QFormat", "FixedPointOverflow", "round_shift", "sq", "uq",
            "COORD", "NORMAL", "LOAD", "CURVATURE", "SEMI_AXIS", "PMAX", "GAP"]
 
 
-class FixedPointOverflow(ArithmeticError):
-    """A value does not fit its fixed-point format.
+class FixedPointOverflow(DatapathFlagged):
+    """A value does not fit its fixed-point format (the datapath cannot take it: exit 3
+    where it escapes a command; an input file's value is checked as bad input first).
 
     Attributes
     ----------

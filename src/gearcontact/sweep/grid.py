@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
-from ..validation import InputRangeError
+from ..validation import InputRangeError, check_finite
 from .design import DESIGN_KEYS, design_key, design_unit
 
 __all__ = ["MAX_STEPS", "MAX_CELLS", "VarySpec", "SweepGrid", "parse_vary"]
@@ -87,6 +87,8 @@ def parse_vary(text: str) -> VarySpec:
                               " STOP and an integer STEPS") from None
     if not 1 <= steps <= MAX_STEPS:
         raise InputRangeError(f"--vary {key} STEPS", steps, f"an integer in [1, {MAX_STEPS}]")
+    for name, x in (("START", start), ("STOP", stop)):   # nan, inf: not a reversed range
+        check_finite(f"--vary {key} {name}", x)
     if not stop >= start:
         raise InputRangeError(f"--vary {key}", rng, "STOP >= START (a reversed range)")
     if steps == 1 and stop != start:

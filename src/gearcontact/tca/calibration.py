@@ -48,6 +48,7 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..contact.load import normal_load_from_torque
+from ..errors import CheckFailed
 from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um, mean_normal_thickness_mm
 from ..geometry.flank import SIDES, build_flanks
 from ..geometry.pair import EaseOffCoefficients, GearPair
@@ -657,8 +658,8 @@ def calibrate_pair(pair: GearPair, targets: CalibrationTargets, *,
             x = place(np.array([*centre, pc, lc, 0.0]), max_nfev=8)
             fun(x)
     if evals["best"][1] is None:
-        raise ArithmeticError("calibration: no ease-off of the start grid gave a TCA with the "
-                              "mean contact on the flanks")
+        raise CheckFailed("calibration: no ease-off of the start grid gave a TCA with the "
+                          "mean contact on the flanks")
     least_squares(fun, np.clip(evals["best"][1], lo, hi), bounds=(lo, hi), x_scale=scale,
                   diff_step=1e-2, max_nfev=int(max_evaluations))
     x_best = place(evals["best"][1], max_nfev=30)

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from tqdm import tqdm
 
+from ..errors import CheckFailed
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface, SurfacePoint
 from ..validation import check_positive
@@ -74,8 +75,9 @@ class EdgeContact(Exception):
                          f"mating point leaves the flank at the {where} boundary")
 
 
-class TcaConvergenceError(ArithmeticError):
-    """Newton's method did not converge at a mesh phase.
+class TcaConvergenceError(CheckFailed):
+    """Newton's method did not converge at a mesh phase (a failed check, exit 4, when it
+    escapes a run).
 
     Attributes
     ----------

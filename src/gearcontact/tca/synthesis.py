@@ -50,6 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
+from ..errors import CheckFailed
 from ..geometry.flank import SIDES, build_flanks
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
@@ -341,8 +342,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
             _recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
                        targets.tol_centre_mm, lo, hi)
     if evals["best"][1] is None:
-        raise ArithmeticError(f"ease-off synthesis of {pair.name} {side}: no start of the "
-                              "search gave an interior TCA contact")
+        raise CheckFailed(f"ease-off synthesis of {pair.name} {side}: no start of the "
+                          "search gave an interior TCA contact")
     # the local search runs in variables normalized by ``scale`` (each of order one
     # per scale step), so that the finite-difference step (1 % of max(1, |z|) scale
     # steps) is a small, comparable change of every coefficient. A pass that stalls

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..contact.lte import loaded_te
 from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..errors import CheckFailed
 from ..validation import InputRangeError, check_positive
 
 __all__ = ["TorqueTable", "torque_table", "TABLE_SOURCES", "DEFAULT_LADDER"]
@@ -99,7 +100,7 @@ def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "driv
                         progress=progress)
         if source == "lcp":
             if not res.converged:
-                raise ArithmeticError(f"loaded TE at {f * t:g} N·m did not converge")
+                raise CheckFailed(f"loaded TE at {f * t:g} N·m did not converge")
             rot, w = res.rotation_lcp_arcsec, res.pair_loads_lcp_n
         else:
             rot, w = res.rotation_pre_arcsec, res.pair_loads_pre_n

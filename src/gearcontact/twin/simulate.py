@@ -31,6 +31,7 @@ from tqdm import tqdm
 
 from ..contact.lte import preview_balance
 from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..errors import CheckFailed, RtlMismatch
 from ..preview.fit.golden import element_constants
 from ..preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
 from ..preview.hertz.golden import encode_e_prime
@@ -45,7 +46,7 @@ __all__ = ["TwinModel", "TwinResult", "build_model", "model_for_pair", "simulate
            "linearized_modes", "linear_matrices", "check_step", "static_rotation",
            "speed_controller_gains",
            "mesh_damping_n_s_per_mm", "BACKENDS", "CURVATURE_SOURCES", "STABILITY_LIMIT",
-           "STEP_RANGE_US",
+           "STEP_RANGE_US", "MAX_SPEED_RPM",
            "LOCKSTEP_MAX_STEPS"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
@@ -55,6 +56,8 @@ CURVATURE_SOURCES = tuple(K.CURVATURE_SOURCES)
 STABILITY_LIMIT = 2.0
 #: Accepted fixed steps, us.
 STEP_RANGE_US = (1.0, 50.0)
+#: Highest pinion speed a run accepts, rpm.
+MAX_SPEED_RPM = 1e5
 _CHUNK = 256          # steps per compiled call: the step-time percentiles' granularity
 #: Longest lockstep runs (the trace holds every preview; the SoC driver takes ~0.3 s per
 #: preview in simulation), steps.
@@ -481,7 +484,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     ArithmeticError
         Non-finite state or a lockstep mismatch.
     """
-    speed = check_range("speed_rpm", speed_rpm, 0.0, 1e5)
+    speed = check_range("speed_rpm", speed_rpm, 0.0, MAX_SPEED_RPM)
     dur = check_positive("duration_s", duration_s)
     h_us = check_range("step_us", 1e6 * float(step_s), *STEP_RANGE_US)
     h = 1e-6 * h_us
@@ -567,14 +570,14 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         if rtl[f"{be}_mismatches"]:
             hint = ("" if board is None else f" (was the board built with E' code "
                     f"{int(prm[K.P_ECODE])} MPa, this pair's?)")
-            raise ArithmeticError(f"{be} != golden in {rtl[f'{be}_mismatches']} previews, "
+            raise RtlMismatch(f"{be} != golden in {rtl[f'{be}_mismatches']} previews, "
                                   f"first at step {rtl[f'{be}_first_mismatch_step']}{hint}")
     wall = time.perf_counter() - wall0
     cols = {name: rec[:rows, i] for i, name in enumerate(K.RECORD_COLUMNS)}
     eps = np.interp(np.mod(cols["psi_p_rad"], m.pitch_rad), m.psi_rad, m.eps_rad)
     cols["te_arcsec"] = m.motion_sign * (eps - cols["theta_rad"]) * ARCSEC_PER_RAD
     if not np.all(np.isfinite(rec[:rows])):
-        raise ArithmeticError("twin: non-finite state (step too large for this load?)")
+        raise CheckFailed("twin: non-finite state (step too large for this load?)")
     sel = cols["t_s"] >= settle_fraction * dur
     if not sel.any():
         sel[:] = True

@@ -22,7 +22,7 @@ import numpy as np
 from tqdm import tqdm
 
 from ..validation import InputRangeError, check_range
-from .simulate import TwinModel, check_step, linearized_modes, simulate
+from .simulate import MAX_SPEED_RPM, TwinModel, check_step, linearized_modes, simulate
 
 __all__ = ["SweepResult", "speed_sweep", "parse_speed_range"]
 
@@ -109,11 +109,14 @@ def speed_sweep(models: dict, speeds_rpm, *, step_s: float = 10e-6, settle_s: fl
     mesh_cycles : int
         Mesh periods after the transient (>= 2).
     workers : int or None
-        Worker processes (default: the CPU count; 1 runs in this process).
+        Worker processes (default: the CPU count; 1 runs in this process); at most one
+        per task (model x speed) is started.
     """
     speeds = np.asarray(speeds_rpm, float).ravel()
     if speeds.size == 0 or not np.all(speeds > 0):
         raise InputRangeError("speeds_rpm", speeds_rpm, "one or more speeds > 0 rpm")
+    for v in speeds:            # every speed before the workers start, as simulate checks it
+        check_range("speeds_rpm", v, 0.0, MAX_SPEED_RPM)
     check_range("settle_s", settle_s, 0.0, 10.0)
     if int(mesh_cycles) != mesh_cycles or mesh_cycles < 2:
         raise InputRangeError("mesh_cycles", mesh_cycles, "an integer >= 2")
@@ -122,9 +125,10 @@ def speed_sweep(models: dict, speeds_rpm, *, step_s: float = 10e-6, settle_s: fl
     # check the step (stability) once per model before the workers start
     for model in models.values():
         check_step(model, step_s)
-    n_workers = int(workers or os.cpu_count() or 1)
     tasks = [(label, model, float(v), step_s, settle_s, int(mesh_cycles))
              for label, model in models.items() for v in speeds]
+    # no idle processes: never more workers than tasks
+    n_workers = min(int(workers or os.cpu_count() or 1), len(tasks))
     index = {float(v): i for i, v in enumerate(speeds)}
     keys = ("dynamic_factor", "dte_pp_arcsec", "contact_loss", "real_time_factor")
     rows = {label: {k: np.zeros(speeds.size) for k in keys} for label in models}

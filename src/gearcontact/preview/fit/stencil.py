@@ -100,6 +100,12 @@ def read_stencil_csv(path, *, spacing_mm: float = STENCIL_SPACING_MM) -> np.ndar
         raise InputRangeError(f"{path.name}: row", str(exc), "three numbers per row") from None
     if data.shape != (STENCIL_SIZE, 3):
         raise InputRangeError(f"{path.name}: columns", data.shape[1:], "3 (s_mm, t_mm, gap_mm)")
+    bad = np.argwhere(~np.isfinite(data))      # a NaN coordinate passes every |x - s| test
+    if bad.size:
+        i, j = (int(k) for k in bad[0])
+        raise InputRangeError(f"{path}: row {i + 1} (sample {i}), column "
+                              f"{('s_mm', 't_mm', 'gap_mm')[j]}", float(data[i, j]),
+                              "a finite number")
     s, t = stencil_coordinates(spacing_mm)
     off = np.flatnonzero((np.abs(data[:, 0] - s) > 1e-9) | (np.abs(data[:, 1] - t) > 1e-9))
     if off.size:

@@ -37,7 +37,8 @@ import numpy as np
 
 from ...analytic.hertz import (exact_elliptic_hertz, hamrock_brewe_hertz_array,
                                hamrock_brewe_terms, line_contact_hertz)
-from ...validation import InputRangeError, check_array_finite, check_positive, check_range
+from ...validation import (InputRangeError, check_array_finite, check_positive, check_range,
+                           format_range)
 from ..qformat import CURVATURE, LOAD
 from . import formats as F
 
@@ -217,7 +218,7 @@ def hertz_preview_array(A_minus, B_minus, load_n, *, e_prime_mpa, envelope: bool
             if bad.any():
                 idx = tuple(int(i) for i in np.argwhere(bad)[0])
                 raise InputRangeError(f"{name}[{', '.join(map(str, idx))}]" if x.ndim
-                                      else name, x[idx], f"[{lo:g}, {hi:g}]")
+                                      else name, x[idx], format_range(lo, hi))
         A, B = np.broadcast_arrays(A, B)
         ratio = np.maximum(A, B) / np.minimum(A, B)
         bad = ratio > _ALPHA_HI
