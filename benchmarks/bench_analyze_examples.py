@@ -1,0 +1,79 @@
+"""Benchmark: ``gearcontact analyze --pair examples/<pair>.toml`` with default options on
+every shipped example (issue 28: the main job on ordinary pairs), wall and CPU time.
+
+Each run is the console script in its own process (numba's on-disk cache as it is: run
+``gearcontact warm-up`` first to exclude compilation), into a temporary directory. The
+table gives wall time, the child's CPU time (user + system, the fairer figure on a
+shared machine), the split of run.json's stage timings (ease-off synthesis, TCA, LTCA,
+LTE, multi-tooth) and the load average before and after.
+
+Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _examples() -> list[Path]:
+    return sorted(p for p in (ROOT / "examples").glob("*.toml") if "[teeth]" in p.read_text())
+
+
+def _timings(run_json: Path) -> dict:
+    """Every float timing of run.json (seconds), flattened with dotted keys."""
+    flat = {}
+
+    def walk(prefix, obj):
+        if isinstance(obj, dict):
+            for k, v in obj.items():
+                walk(f"{prefix}.{k}" if prefix else k, v)
+        elif isinstance(obj, float):
+            flat[prefix] = obj
+
+    walk("", json.loads(run_json.read_text()).get("timings_s", {}))
+    return flat
+
+
+def bench(pair: Path) -> dict:
+    with tempfile.TemporaryDirectory() as tmp:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        t0 = time.perf_counter()
+        proc = subprocess.run([sys.executable, "-m", "gearcontact", "analyze", "--pair",
+                               str(pair), "--out", tmp], capture_output=True, text=True,
+                              check=False)
+        wall = time.perf_counter() - t0
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        timings = _timings(Path(tmp) / "run.json") if proc.returncode == 0 else {}
+    return {"pair": pair.stem, "exit": proc.returncode, "wall_s": wall, "cpu_s": cpu,
+            "timings": timings, "stderr": proc.stderr.strip().splitlines()[-1:]}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--pair", action="append", type=Path, help="pair file (default: every "
+                    "example in examples/)")
+    args = ap.parse_args()
+    pairs = args.pair or _examples()
+    print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    rows = [bench(p) for p in pairs]
+    print(f"{'pair':<28}{'exit':>5}{'wall s':>9}{'CPU s':>9}  stages (wall s)")
+    for r in rows:
+        stages = ", ".join(f"{k} {v:.1f}" for k, v in r["timings"].items() if v >= 0.5)
+        print(f"{r['pair']:<28}{r['exit']:>5}{r['wall_s']:>9.1f}{r['cpu_s']:>9.1f}  "
+              f"{stages or r['stderr']}")
+    print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+
+
+if __name__ == "__main__":
+    main()
