@@ -4,18 +4,14 @@ Every error the library raises on purpose derives from one of these bases, so th
 caller (and :func:`gearcontact.cli.main`, which maps them to exit codes in one table,
 :data:`gearcontact.cli.EXIT_CODES`) tells them apart by class:
 
-=======================  =========================================================  ====
-base                     meaning                                                    exit
-=======================  =========================================================  ====
-:class:`BadInput`        the user's input (an option, an input file, the output     2
-                         directory, a missing optional tool); raised before work
-:class:`DatapathFlagged` the fixed-point datapath flagged what it was given: its    3
-                         outputs are invalid
-:class:`CheckFailed`     a computation did not pass its own check (an LCP did not   4
-                         converge, a Newton iteration inside a run failed, the RTL
-                         disagrees with the golden model)
-anything else            a bug                                                      1
-=======================  =========================================================  ====
+- :class:`BadInput` (exit 2): the user's input (an option, an input file, the output
+  directory, a missing optional tool); raised before work.
+- :class:`DatapathFlagged` (exit 3): the fixed-point datapath flagged what it was given;
+  its outputs are invalid.
+- :class:`CheckFailed` (exit 4): a computation did not pass its own check (an LCP did not
+  converge, a Newton iteration inside a run failed, the RTL disagrees with the golden
+  model).
+- anything else (exit 1): a bug.
 
 The bases also derive from the builtin class their subclasses had before
 (:class:`ValueError`, :class:`ArithmeticError`), so ``except ValueError`` around an
