@@ -8,8 +8,9 @@ itself one file from another: the torque balance of every single-pair LTCA, load
 summing to 100 %, the loaded TE's TE0 equal to the TCA's te0.csv, every preview value
 present or a status saying why.
 
-Cost (2 shared cores, warm numba cache): 25-45 s per analyze at 11 phases, so the
-default suite runs one accepted pair; ``--runslow`` runs eight more.
+Cost (2 shared cores, warm numba cache, 11 phases): 21-26 s per analyze with the
+machine otherwise quiet, up to 80 s under load; the default test runs one accepted pair
+(28-50 s), the slow one nine (257 s quiet, 438 s under load).
 """
 
 import csv
@@ -17,6 +18,7 @@ import json
 import shutil
 import subprocess
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -48,9 +50,14 @@ def _analyze_accepted_pair(z1, ratio, offset_frac, beta, face_frac, side):
         tmp = Path(tmp)
         (tmp / "pair.toml").write_text(pair_to_toml(pair))
         out = tmp / "out"
+        t0 = time.perf_counter()
         run = subprocess.run([exe, "analyze", "--pair", str(tmp / "pair.toml"), "--out",
                               str(out), "--phases", str(PHASES), "--quiet"],
                              capture_output=True, text=True)
+        # the pair and the wall time, for the record (shown by pytest -s)
+        print(f"analyze z1={z1} z2={pair.gear_teeth} offset={offset_frac:.4f} r2 "
+              f"beta1={beta:.3f} face={face_frac:.4f} R_m {side}: exit {run.returncode}, "
+              f"{time.perf_counter() - t0:.1f} s")
         assert run.returncode == 0, run.stderr
         _check_results(out)
 
