@@ -362,9 +362,11 @@ def _sign_changes(x: np.ndarray, f: np.ndarray) -> list[tuple[float, float]]:
 
 def _root(f, lo: float, hi: float) -> float | None:
     """The root of ``f`` in the bracket ``[lo, hi]`` (brentq), or None when ``f`` is
-    undefined (NaN) somewhere brentq evaluates it."""
+    undefined (NaN) somewhere brentq evaluates it (a division by zero on the way there
+    is that case, not a warning)."""
     try:
-        return brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
     except ValueError:
         return None
 
