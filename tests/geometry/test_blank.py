@@ -1,5 +1,6 @@
 """Blank design against ISO 23509:2016 Annex F.3 and the published s0003 pitch cones."""
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -166,3 +167,21 @@ def test_impossible_designs(kwargs, field):
     with pytest.raises(InputRangeError) as err:
         design_blank(**base)
     assert field in err.value.field
+
+
+def test_no_cones_blame_survives_an_undefined_residual():
+    # found by issue 28's design-space runs: z1/z2 = 5/36, E = 0.09 r2, beta1 = 22.3 deg.
+    # The rho_lim = r_c0 residual is undefined (NaN) at points inside a sign-change
+    # bracket of one of the spiral angles tried for the blame; brentq raised a bare
+    # ValueError from design instead of the named condition
+    base = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
+    kw = dict(pinion_teeth=5, gear_teeth=36, offset_mm=0.09005790994924236
+              * base.gear_mean_pitch_radius_mm, gear_face_width_mm=10.0,
+              pinion_face_width_mm=10.5)
+    with pytest.raises(InputRangeError) as err:
+        replace(base, pinion_spiral_angle_deg=22.294710334644698, **kw)
+    assert err.value.field == "pinion_spiral_angle_deg / cutter_radius_mm"
+    # the named spiral angle has pitch cones with rho_lim = r_c0 (the blank designs)
+    named = float(err.value.allowed.split("pinion_spiral_angle_deg = ")[1].split(",")[0])
+    blank = replace(base, pinion_spiral_angle_deg=named, **kw).blank
+    assert blank.spiral_angle_pinion_deg == pytest.approx(named, abs=1e-9)

@@ -1,16 +1,15 @@
 """Formate gear flanks: blade-cone curvatures, hand, sliding direction, grids, FlankSet."""
 
-from dataclasses import replace
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from gearcontact.geometry.flank import SIDES, build_flanks
 from gearcontact.geometry.sampling import sample_grid
 from gearcontact.geometry.surface import Surface
 from gearcontact.validation import InputRangeError
+
+from design_space import DESIGN_FIELDS, SPACE, design_space_pair
 
 
 def _unit(x):
@@ -182,49 +181,16 @@ def test_gear_principal_directions(flanks, side):
 
 # ---------------------------------------------------------------- the design space
 
-#: Fields a refused design may name (ISO 23509 conditions: offset limit, pitch cones
-#: with rho_lim = r_c0, pointed teeth, pinion root, face width; undercut of the pinion).
-_DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
-                  "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
-                  "pinion_teeth / gear_teeth", "design.working_depth_factor",
-                  "cutter.point_width_mm", "design.gear_face_width_mm"}
-
-
-def _design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
-    """An F.3-like pair (r2 = 70.94 mm, r_c0 = 63.5 mm) at a point of issue 28's design
-    space, with a crowning of about 10 um at the flank corners (so that TCA has an
-    ease-off), or the InputRangeError that ``design`` raises for it."""
-    from pathlib import Path
-
-    from gearcontact.geometry.generation import check_generation
-    from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
-    base = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
-    z2 = max(z1, int(round(z1 * ratio)))
-    r2 = base.gear_mean_pitch_radius_mm
-    pair = replace(base, pinion_teeth=z1, gear_teeth=z2, offset_mm=offset_frac * r2,
-                   pinion_spiral_angle_deg=beta, gear_face_width_mm=10.0,
-                   pinion_face_width_mm=10.5, design_side=side)
-    # face width up to the standard limit F <= 0.3 R_e (R_e = R_m + F/2)
-    face = face_frac * pair.blank.mean_cone_distance_gear_mm
-    b = pair.blank
-    crown = EaseOffCoefficients(profile_crowning_um_per_mm2=10.0 / (0.5 * b.working_depth_mm) ** 2,
-                                lengthwise_crowning_um_per_mm2=10.0 / (0.5 * face) ** 2)
-    pair = replace(pair, gear_face_width_mm=face, pinion_face_width_mm=1.05 * face,
-                   easeoff_drive=crown, easeoff_coast=crown)
-    check_generation(pair)
-    return pair
-
-
 def _design_space_case(z1, ratio, offset_frac, beta, face_frac, side, *, tca):
     from gearcontact.geometry.conjugate import UndercutError
     try:
-        pair = _design_space_pair(z1, ratio, offset_frac, beta, face_frac, side)
+        pair = design_space_pair(z1, ratio, offset_frac, beta, face_frac, side)
     except UndercutError as err:     # refused by design: undercut / limit line, named
-        assert err.field in _DESIGN_FIELDS or err.field.startswith("pinion "), err
+        assert err.field in DESIGN_FIELDS or err.field.startswith("pinion "), err
         assert "undercut" in err.allowed or "limit line" in err.allowed
         return None
     except InputRangeError as err:   # refused by design, naming an ISO condition
-        assert err.field in _DESIGN_FIELDS, err
+        assert err.field in DESIGN_FIELDS, err
         assert err.allowed
         return None
     fs = build_flanks(pair, n_u=30, n_v=40)
@@ -241,15 +207,8 @@ def _design_space_case(z1, ratio, offset_frac, beta, face_frac, side, *, tca):
     return fs
 
 
-_SPACE = dict(z1=st.integers(5, 20),
-              ratio=st.one_of(st.just(1.0), st.floats(1.0, 10.0)),
-              offset_frac=st.one_of(st.just(0.0), st.floats(0.0, 0.55)),
-              beta=st.floats(20.0, 55.0), face_frac=st.floats(0.15, 0.353),
-              side=st.sampled_from(SIDES))
-
-
 @settings(max_examples=4, deadline=None, derandomize=True, database=None)
-@given(**_SPACE)
+@given(**SPACE)
 def test_design_space_accepts_or_names_the_condition(z1, ratio, offset_frac, beta, face_frac,
                                                       side):
     # issue 28: every pair of the design space either passes design (and then its
@@ -259,7 +218,7 @@ def test_design_space_accepts_or_names_the_condition(z1, ratio, offset_frac, bet
 
 @pytest.mark.slow
 @settings(max_examples=25, deadline=None, derandomize=True, database=None)
-@given(**_SPACE)
+@given(**SPACE)
 def test_design_space_accepts_or_names_the_condition_slow(z1, ratio, offset_frac, beta,
                                                            face_frac, side):
     # the same over many more pairs, with TCA on every accepted pair

@@ -354,6 +354,23 @@ def _blame_no_cones(*, E, b1, z1, z2, r2, R2, rc0) -> InputRangeError:
                            "rho_lim = r_c0 exist for these teeth at any spiral angle tried")
 
 
+def _sign_changes(x: np.ndarray, f: np.ndarray) -> list[tuple[float, float]]:
+    """Brackets ``(x[i], x[i + 1])`` where the finite values ``f`` change sign."""
+    ok = np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (f[:-1] * f[1:] <= 0.0)
+    return [(float(x[i]), float(x[i + 1])) for i in np.flatnonzero(ok)]
+
+
+def _root(f, lo: float, hi: float) -> float | None:
+    """The root of ``f`` in the bracket ``[lo, hi]`` (brentq), or None when ``f`` is
+    undefined (NaN) somewhere brentq evaluates it (a division by zero on the way there
+    is that case, not a warning)."""
+    try:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+    except ValueError:
+        return None
+
+
 def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float | None,
                   rc0: float) -> tuple[_Cones, float]:
     """Solve offset equation and rho_lim = r_c0 for (zeta_m, eta); returns cones, alpha_lim."""
@@ -386,12 +403,21 @@ def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float 
     with np.errstate(all="ignore"):
         vals = np.array([residual(e) for e in etas])
     roots = []
-    for i in range(len(etas) - 1):
-        a, b = vals[i], vals[i + 1]
-        if np.isfinite(a) and np.isfinite(b) and a * b <= 0.0:
-            root = brentq(residual, etas[i], etas[i + 1], xtol=1e-15, rtol=1e-15, maxiter=200)
-            if abs(residual(root)) < 1e-6 * rc0:  # a sign change through a pole is no root
-                roots.append(root)
+    for lo, hi in _sign_changes(etas, vals):
+        root = _root(residual, lo, hi)
+        if root is None:
+            # undefined (NaN) inside the bracket: a sign change across a gap of the
+            # domain; look for a root in the defined parts of a finer scan
+            fine = np.linspace(lo, hi, _SCAN_POINTS)
+            with np.errstate(all="ignore"):
+                fine_vals = np.array([residual(e) for e in fine])
+            sub = [r for a, b in _sign_changes(fine, fine_vals)
+                   if (r := _root(residual, a, b)) is not None]
+            if not sub:
+                continue
+            root = sub[0]
+        if abs(residual(root)) < 1e-6 * rc0:  # a sign change through a pole is no root
+            roots.append(root)
     if not roots:
         raise _NoCones()
     eta = roots[0]  # the smallest wheel offset angle: the ISO iteration's branch

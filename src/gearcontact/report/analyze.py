@@ -53,6 +53,7 @@ from ..contact.lte import loaded_te
 from ..contact.line_peak import contact_line_length_mm
 from ..contact.pair_ltca import PairLoadCase, single_pair_ltca
 from ..contact.patch import ContactAtEdgeWarning
+from ..geometry.generation import check_generation
 from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
 from ..preview.qformat import FixedPointOverflow
@@ -283,6 +284,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
     side = pair.design_side if side is None else side
+    check_generation(pair)  # design's checks, before any flank work (named refusals)
     # validate cheap inputs before the expensive stages
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:

@@ -270,13 +270,15 @@ class ToothGeometry:
 
     def mid_surface(self, xi, eta) -> MidSurfaceArrays:
         xi, eta = np.broadcast_arrays(np.asarray(xi, float), np.asarray(eta, float))
-        rd, rd_xi, rd_eta, _ = self.flank_arrays("drive", xi, eta)
+        rd, rd_xi, rd_eta, nd = self.flank_arrays("drive", xi, eta)
         rc, rc_xi, rc_eta, _ = self.flank_arrays("coast", xi, eta)
         x_xi, x_eta = 0.5 * (rd_xi + rc_xi), 0.5 * (rd_eta + rc_eta)
         m = np.cross(x_xi, x_eta)
         m /= np.linalg.norm(m, axis=-1, keepdims=True)
+        # m points coast -> drive: along the drive flank's outward normal (not along the
+        # chord, which reverses where the flanks cross and would hide a negative thickness)
+        m *= np.sign(np.einsum("...i,...i->...", m, nd))[..., None]
         chord = rd - rc
-        m *= np.sign(np.einsum("...i,...i->...", m, chord))[..., None]
         t = np.einsum("...i,...i->...", chord, m)
         t = check_array_finite(f"{self.member} tooth thickness (mm)", t)
         if np.any(t <= 0.0):

@@ -1,0 +1,49 @@
+"""Issue 28's design space of hypoid pairs: a hypothesis strategy and the pair builder
+shared by tests/geometry/test_flank.py (design accepts or names the condition) and
+tests/report/test_design_space.py (every accepted pair runs ``analyze`` to exit 0)."""
+
+from dataclasses import replace
+from pathlib import Path
+
+from hypothesis import strategies as st
+
+from gearcontact.geometry.flank import SIDES
+from gearcontact.geometry.generation import check_generation
+from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
+
+#: Fields a refused design may name (ISO 23509 conditions: offset limit, pitch cones
+#: with rho_lim = r_c0, pointed teeth, pinion root, face width; undercut of the pinion).
+DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
+                 "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
+                 "pinion_teeth / gear_teeth", "design.working_depth_factor",
+                 "cutter.point_width_mm", "design.gear_face_width_mm"}
+
+
+def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
+    """An F.3-like pair (r2 = 70.94 mm, r_c0 = 63.5 mm) at a point of issue 28's design
+    space, with a crowning of about 10 um at the flank corners (so that TCA has an
+    ease-off), or the InputRangeError that ``design`` raises for it."""
+    base = load_pair(Path(__file__).resolve().parents[1] / "examples" / "iso23509_f3.toml")
+    z2 = max(z1, int(round(z1 * ratio)))
+    r2 = base.gear_mean_pitch_radius_mm
+    pair = replace(base, pinion_teeth=z1, gear_teeth=z2, offset_mm=offset_frac * r2,
+                   pinion_spiral_angle_deg=beta, gear_face_width_mm=10.0,
+                   pinion_face_width_mm=10.5, design_side=side)
+    # face width up to the standard limit F <= 0.3 R_e (R_e = R_m + F/2)
+    face = face_frac * pair.blank.mean_cone_distance_gear_mm
+    b = pair.blank
+    crown = EaseOffCoefficients(profile_crowning_um_per_mm2=10.0 / (0.5 * b.working_depth_mm) ** 2,
+                                lengthwise_crowning_um_per_mm2=10.0 / (0.5 * face) ** 2)
+    pair = replace(pair, gear_face_width_mm=face, pinion_face_width_mm=1.05 * face,
+                   easeoff_drive=crown, easeoff_coast=crown)
+    check_generation(pair)
+    return pair
+
+
+#: The ranges of issue 28 item 1 (z1 5-20, ratio 1-10, offset up to 0.55 r2, spiral
+#: angle 20-55 deg, face width up to the standard limit, design side).
+SPACE = dict(z1=st.integers(5, 20),
+             ratio=st.one_of(st.just(1.0), st.floats(1.0, 10.0)),
+             offset_frac=st.one_of(st.just(0.0), st.floats(0.0, 0.55)),
+             beta=st.floats(20.0, 55.0), face_frac=st.floats(0.15, 0.353),
+             side=st.sampled_from(SIDES))
