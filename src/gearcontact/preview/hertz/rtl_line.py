@@ -120,7 +120,7 @@ class HertzLineCore(wiring.Component):
     e_prime     in     signed(32)    E' = 2E*, Q(32,0), MPa
     L           in     signed(32)    contact-line length, LINE_LENGTH Q(32,20), mm
     go          in     1             start (idle only)
-    busy, done, done_pulse           as :class:`.rtl.HertzCore`
+    busy        out    1             running; ``done``, ``done_pulse`` as :class:`.rtl.HertzCore`
     a, b        out    signed(32)    semi-axes / L/2 and half-width, Q(32,20), mm
     p_max       out    signed(32)    peak pressure, Q(32,8), MPa
     k           out    signed(32)    ellipticity (elliptic mode; 0 in line mode)
