@@ -407,13 +407,20 @@ def hertz_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     A, B = (np.floor(x).astype(np.int64) for x in
             _curvature_pairs(rng, n, HF.CURV_MIN_CODE, HF.CURV_MAX_CODE))
     fields = {"A": A, "B": B, "W": _loads(rng, n), "e_prime": _e_primes(rng, n)}
+    labels = _raw_words(rng, fields, n)
+    return _concat("hertz", _hertz_corners() if corners else [], fields, labels, seed)
+
+
+def _raw_words(rng, fields: dict, n: int) -> list[str]:
+    """About 10 % of the vectors draw every word over its whole 32-bit range (envelope
+    flags); returns the labels ("random" / "raw"). Overwrites ``fields`` in place."""
     labels = ["random"] * n
     raw = rng.random(n) < 0.1
     for k in fields:
         fields[k][raw] = rng.integers(*_I32, int(raw.sum()), endpoint=True)
     for i in np.flatnonzero(raw):
         labels[i] = "raw"
-    return _concat("hertz", _hertz_corners() if corners else [], fields, labels, seed)
+    return labels
 
 
 def _line_corners() -> list:
@@ -462,12 +469,7 @@ def line_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     fields = {"A": code(np.where(swap, b, a)), "B": code(np.where(swap, a, b)),
               "W": _loads(rng, n), "e_prime": _e_primes(rng, n),
               "L": np.minimum(code(length), _I32[1])}
-    labels = ["random"] * n
-    raw = rng.random(n) < 0.1
-    for k in fields:
-        fields[k][raw] = rng.integers(*_I32, int(raw.sum()), endpoint=True)
-    for i in np.flatnonzero(raw):
-        labels[i] = "raw"
+    labels = _raw_words(rng, fields, n)
     return _concat("line", _line_corners() if corners else [], fields, labels, seed)
 
 
