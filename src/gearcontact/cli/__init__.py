@@ -39,7 +39,9 @@ import argparse
 import errno
 import importlib
 import os
+import signal
 import sys
+import threading
 import traceback
 import warnings
 
@@ -111,6 +113,41 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _SigintLatch:
+    """Remember every Ctrl-C while a command runs, even one an extension swallowed.
+
+    Python raises ``KeyboardInterrupt`` at the next bytecode boundary after SIGINT; when
+    that boundary lies inside an import that an extension module drives through the C
+    API and then clears the pending error (optional-submodule probes do), the interrupt
+    is lost and the command would run on to exit 0. The latch records the signal itself,
+    so :func:`main` can still end the run as interrupted. Installed only in the main
+    thread (``signal.signal`` refuses elsewhere); a no-op otherwise.
+    """
+
+    def __init__(self):
+        self.hit = False
+        self._previous = None
+
+    def _handler(self, signum, frame):
+        self.hit = True
+        signal.default_int_handler(signum, frame)
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGINT, self._handler)
+        return self
+
+    def __exit__(self, *exc):
+        if self._previous is not None:
+            signal.signal(signal.SIGINT, self._previous)
+        return False
+
+    def check(self) -> None:
+        """Raise ``KeyboardInterrupt`` if a Ctrl-C arrived and was swallowed."""
+        if self.hit:
+            raise KeyboardInterrupt
+
+
 def _run(args, argv: list[str], name: str) -> int:
     def one_line(message, category, *_args, **_kwargs):
         # warnings users must see: one line each on stderr, no source excerpt
@@ -123,13 +160,17 @@ def _run(args, argv: list[str], name: str) -> int:
 
 
 def _run_command(args, argv: list[str], name: str) -> int:
+    latch = args.sigint_latch
     check = getattr(args, "check", None)
     if check is not None:
         check(args)                 # cheap validation before any work or output
     from .warm_up import note_cold_cache
     note_cold_cache(args.command)
+    latch.check()
     if not getattr(args, "writes_files", False):
-        return int(args.func(args) or 0)
+        code = int(args.func(args) or 0)
+        latch.check()
+        return code
     from .outdir import RunDirectory
 
     with RunDirectory(args.out, argv, force=args.force,
@@ -137,6 +178,7 @@ def _run_command(args, argv: list[str], name: str) -> int:
                       resume=getattr(args, "resume_entries", ()), command=name) as run:
         args.run, args.out = run, run.work
         run.exit_code = int(args.func(args) or 0)
+        latch.check()           # a swallowed Ctrl-C still discards the run
         if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):
             run.discard()       # a refused run keeps nothing; the previous run stays
     return run.exit_code
@@ -145,14 +187,21 @@ def _run_command(args, argv: list[str], name: str) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the process exit code."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    with _SigintLatch() as latch:
+        return _main(argv, latch)
+
+
+def _main(argv: list[str], latch: _SigintLatch) -> int:
     try:
         # everything heavy (numpy, the command modules: seconds when cold) is imported
         # here, inside the Ctrl-C handler; ``import gearcontact.cli`` itself is light
         parser = build_parser()
         args = parser.parse_args(argv)
+        latch.check()
     except KeyboardInterrupt:
         print("gearcontact: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    args.sigint_latch = latch
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
         return _run(args, argv, name)
