@@ -195,22 +195,28 @@ def test_ctrl_c_while_the_commands_load(monkeypatch, capsys):
     assert err == "gearcontact: interrupted\n"
 
 
-@pytest.mark.parametrize("delay_s", [0.15, 0.3, 1.0])
+@pytest.mark.parametrize("delay_s", [0.0, 0.05, 0.3, 1.0])
 def test_ctrl_c_early_in_a_real_process(tmp_path, delay_s):
-    """Ctrl-C in the first fraction of a second (numpy and the command modules still
-    importing) gives the one line and exit 130, never a traceback: ``import
-    gearcontact.cli`` is light (no numpy), so the handler in ``main`` is in place after
-    a few milliseconds of the process; the delays stay above the interpreter's own start
-    (~30 ms), where Python itself owns SIGINT. Exit 130, not -2: see
+    """Ctrl-C in the first fraction of a second of a command (numpy and the command
+    modules still importing) gives the one line and exit 130, never a traceback:
+    ``import gearcontact.cli`` is light (no numpy), so the handler in ``main`` is in place
+    after a few milliseconds. The child says "ready" once ``gearcontact.cli`` is imported
+    and then runs :func:`gearcontact.cli.console_main` exactly as the console script
+    does; the delays count from there, not from the process start, because the
+    interpreter's own start (where Python itself owns SIGINT) takes from 30 ms to
+    seconds on a loaded machine. Exit 130, not -2: see
     :func:`gearcontact.cli.console_main`."""
     import signal
     import subprocess
     import sys
     import time
 
-    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "tca", "--pair", "s0003",
-                             "--out", str(tmp_path / "out")],
+    child = ("import sys; from gearcontact.cli import console_main; "
+             f"sys.argv = ['gearcontact', 'tca', '--pair', 's0003', '--out', {str(tmp_path / 'out')!r}]; "
+             "print('ready', file=sys.stderr, flush=True); console_main()")
+    proc = subprocess.Popen([sys.executable, "-c", child],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stderr.readline().strip() == "ready"
     time.sleep(delay_s)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)

@@ -238,7 +238,11 @@ def console_main() -> None:
     Nothing is left to clean up at that point: the output directory was restored by
     its context manager before the handler ran.
     """
-    code = main()
+    try:
+        code = main()
+    except KeyboardInterrupt:       # in the instant before main's own handler was set
+        print("gearcontact: interrupted", file=sys.stderr)
+        code = EXIT_INTERRUPTED
     if code == 130:
         sys.stdout.flush()
         sys.stderr.flush()
