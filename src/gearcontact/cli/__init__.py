@@ -198,14 +198,29 @@ def _main(argv: list[str], latch: _SigintLatch) -> int:
         parser = build_parser()
         args = parser.parse_args(argv)
         latch.check()
-    except KeyboardInterrupt:
+    except BaseException as exc:
+        # an interrupt inside an extension's import can surface as the ImportError it
+        # caused (numpy: "PyCapsule_Import could not import module 'datetime'")
+        if not (latch.hit or isinstance(exc, KeyboardInterrupt)):
+            raise
         print("gearcontact: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     args.sigint_latch = latch
     name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
     try:
         return _run(args, argv, name)
-    except (GearcontactError, KeyboardInterrupt) as exc:
+    except Exception as exc:
+        if not latch.hit:
+            return _failed(exc, name, args)
+        print(f"gearcontact {name}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except KeyboardInterrupt as exc:
+        return _failed(exc, name, args)
+
+
+def _failed(exc: BaseException, name: str, args) -> int:
+    """Say in one line on stderr how a command that raised ``exc`` ended; its exit code."""
+    if isinstance(exc, (GearcontactError, KeyboardInterrupt)):
         # one line: bad input names the field, the value and the allowed range (or why
         # the pair cannot be analysed as given); a flag or a failed check says what
         code = exit_code_of(exc)
@@ -213,18 +228,15 @@ def _main(argv: list[str], latch: _SigintLatch) -> int:
         print(f"gearcontact {name}: {word}" + (f": {exc}" if str(exc) else ""),
               file=sys.stderr)
         return code
-    except BrokenPipeError:
+    if isinstance(exc, BrokenPipeError):
         # the reader of stdout went away (``| head``): not an error of ours
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
-    except OSError as exc:
-        if exc.errno not in _SYSTEM_REFUSED:
-            return _internal(name, exc, args)
+    if isinstance(exc, OSError) and exc.errno in _SYSTEM_REFUSED:
         print(f"gearcontact {name}: error: the system refused a write ({exc}); the "
               "output directory keeps its previous run", file=sys.stderr)
         return EXIT_INTERNAL
-    except Exception as exc:  # noqa: BLE001  (the last line of defence: report a bug)
-        return _internal(name, exc, args)
+    return _internal(name, exc, args)   # the last line of defence: report a bug
 
 
 def console_main() -> None:
