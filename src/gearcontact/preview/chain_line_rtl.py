@@ -50,7 +50,7 @@ from amaranth.lib.wiring import In, Out
 
 from .chain import (CHAIN_LINE_CYCLES, FIT_FLAG_SHIFT, LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS,
                     ChainLineCodes)
-from .chain_rtl import check_chain_inputs, connect_front_end
+from .chain_rtl import connect_front_end, run_chain_like
 from .fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from .fit.golden import GoldenFit
 from .fit.pinv import BakedPinv
@@ -59,7 +59,7 @@ from .hertz import formats as HF
 from .hertz import line as LN
 from .hertz.rtl_line import LINE_FLAG_BITS, LINE_OUTPUT_PORTS, HertzLineCore
 from .qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
-from .simulation import CycleCounter, read_ports, run_testbench, write_stencil
+from .simulation import read_ports
 
 __all__ = ["ChainLineCore", "convert_verilog", "simulate_chain_line_core"]
 
@@ -182,23 +182,9 @@ def simulate_chain_line_core(stencils, W_codes, L_codes, *, e_prime_code: int,
     """
     import numpy as np
 
-    codes, ws, e = check_chain_inputs(stencils, W_codes, e_prime_code)
-    ls = np.broadcast_to(np.asarray(L_codes, dtype=object), (codes.shape[0],))
+    n = np.shape(stencils)[0] if np.ndim(stencils) == 2 else 1
+    ls = np.broadcast_to(np.asarray(L_codes, dtype=object), (n,))
     ls = [int(LN.LINE_LENGTH.check(int(x), field=f"L_codes[{i}]")) for i, x in enumerate(ls)]
-    dut = ChainLineCore(rom=rom, hertz_form=hertz_form)
-    cc = CycleCounter(dut)
-    outputs, cycles = [], []
-
-    async def bench(ctx):
-        ctx.set(dut.e_prime, e)
-        for row, w, length in zip(codes, ws, ls):
-            await write_stencil(ctx, dut, row)
-            ctx.set(dut.W, w)
-            ctx.set(dut.L, length)
-            t_go = await cc.start(ctx, dut.go)
-            n = await cc.wait_done(ctx, dut.done, t_go, max_cycles, "line chain core")
-            cycles.append(n)
-            outputs.append(_read(ctx, dut, n))
-
-    run_testbench(cc.top, bench)
-    return outputs, cycles
+    return run_chain_like(ChainLineCore(rom=rom, hertz_form=hertz_form), stencils, W_codes,
+                          e_prime_code, max_cycles=max_cycles, what="line chain core",
+                          extra={"L": ls}, read=_read)

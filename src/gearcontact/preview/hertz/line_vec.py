@@ -30,7 +30,8 @@ import numpy as np
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from . import line as LN
-from .golden_vec import _as_codes, _div_wide, _rs, golden_constants, hertz_element, njit, prange
+from .golden_vec import (_div_wide, _rs, golden_constants, hertz_element, njit, prange,
+                         run_batch)
 
 __all__ = ["LineCodesArray", "line_golden_array", "line_element", "line_constants"]
 
@@ -234,13 +235,8 @@ def line_golden_array(A_code, B_code, W_code, L_code, *, e_prime_code,
         Unknown ``hertz_form``.
     """
     F.check_hertz_form(hertz_form)
-    arrs = np.broadcast_arrays(_as_codes(A_code, CURVATURE, "A_code"),
-                               _as_codes(B_code, CURVATURE, "B_code"),
-                               _as_codes(W_code, LOAD, "W_code"),
-                               _as_codes(L_code, LN.LINE_LENGTH, "L_code"),
-                               _as_codes(e_prime_code, F.E_PRIME, "e_prime_code"))
-    shape = arrs[0].shape
-    flat = [np.array(a.reshape(-1), dtype=np.int64) for a in arrs]   # owned copies
-    out = np.zeros((len(_FIELDS), flat[0].size), dtype=np.int64)
-    _kernel(*flat, *golden_constants(hertz_form), line_constants(), out)
-    return LineCodesArray(*(out[i].reshape(shape) for i in range(len(_FIELDS))))
+    return run_batch(_kernel, LineCodesArray, len(_FIELDS),
+                     ((A_code, CURVATURE, "A_code"), (B_code, CURVATURE, "B_code"),
+                      (W_code, LOAD, "W_code"), (L_code, LN.LINE_LENGTH, "L_code"),
+                      (e_prime_code, F.E_PRIME, "e_prime_code")),
+                     (*golden_constants(hertz_form), line_constants()))
