@@ -151,3 +151,68 @@ def test_gap_beyond_the_datapath_format_is_bad_input_for_fixed_point_only(tmp_pa
     code, _, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
                         "--backend", "golden")
     assert code in (0, 3) and "gap_mm" not in err
+
+
+# ---- --line-length-mm: the line core -------------------------------------------------
+E_STEEL = 209000 / (1 - 0.09)       # E' = 2 E* of the CLI's default steel pair, MPa
+
+
+@pytest.mark.parametrize("backend", ["reference", "golden"])
+def test_line_length_runs_the_line_core(capsys, backend):
+    """A long ellipse (B- = 1e-6 1/mm along the line) on a 10 mm contact line: the Hertz
+    line contact of length L (Johnson 1985 sec. 4.3). Golden: within the input rounding
+    of A- (2^-21 / 0.0246 = 1.9e-5, half of it in p) and one output LSB."""
+    from gearcontact.analytic.hertz import line_contact_hertz
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.0246", "1e-6", "--load", "2000",
+                        "--line-length-mm", "10", "--backend", backend, "--json")
+    assert code == 0
+    d = json.loads(out)
+    truth = line_contact_hertz(0.5 / 0.0246, 2000.0, 10.0, e_prime_mpa=E_STEEL)
+    assert d["mode"] == "line" and d["a_mm"] == pytest.approx(5.0, abs=2 ** -20)
+    if backend == "reference":
+        assert d["p_max_mpa"] == pytest.approx(truth.p_max_mpa, rel=1e-12)
+    else:
+        assert d["cycles"] == 759 and d["codes"]["mode"] == 1 and d["codes"]["scale"] == 3
+        assert abs(d["p_max_mpa"] - truth.p_max_mpa) <= 1e-5 * truth.p_max_mpa + 2 ** -8
+
+
+def test_line_length_text_output_says_the_mode(capsys):
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.1", "0.02", "--load", "1000",
+                        "--line-length-mm", "50", "--backend", "golden")
+    assert code == 0
+    assert "mode           elliptic   (contact line L = 50 mm)" in out
+    assert "cycles         759" in out
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.1", "0.02", "--load", "1000")
+    assert "mode           elliptic\n" in out                # the published core
+
+
+def test_line_length_with_a_stencil(tmp_path, capsys):
+    # a cylinder's stencil (B- = 0): line chain, 811 cycles, the line contact of L
+    from gearcontact.analytic.hertz import line_contact_hertz
+    s, t = stencil_coordinates()
+    path = write_stencil_csv(tmp_path / "cyl.csv", 0.0246 * s ** 2)
+    for backend in ("reference", "golden"):
+        code, out, _ = _run(capsys, "preview", "--stencil", str(path), "--load", "2000",
+                            "--line-length-mm", "10", "--backend", backend, "--json")
+        d = json.loads(out)
+        assert code == 0 and d["mode"] == "line", d
+        truth = line_contact_hertz(0.5 / 0.0246, 2000.0, 10.0, e_prime_mpa=E_STEEL)
+        # golden: the fit's A- error from the gap rounding (< 1e-4 relative here)
+        assert d["p_max_mpa"] == pytest.approx(truth.p_max_mpa, rel=1e-4)
+    assert d["cycles"] == 811
+
+
+@pytest.mark.parametrize("value", ["0.5", "2000", "nan", "-3"])
+def test_line_length_outside_its_range_is_named_before_work(capsys, value):
+    code, out, err = _run(capsys, "preview", "--curvatures", "0.1", "0.02", "--load", "1000",
+                          "--line-length-mm", value, "--backend", "golden")
+    assert code == 2 and out == ""
+    assert f"--line-length-mm (mm) = {float(value)}" in err
+    assert "[1, 1024]" in err or "finite" in err
+
+
+def test_line_length_refused_on_the_soc_backend(capsys):
+    code, out, err = _run(capsys, "preview", "--curvatures", "0.1", "0.02", "--load", "1000",
+                          "--line-length-mm", "20", "--backend", "rtl-soc")
+    assert code == 2 and out == ""
+    assert "--backend (with --line-length-mm) = 'rtl-soc'" in err and "golden" in err

@@ -1,10 +1,12 @@
 """``gearcontact preview``: the physics-direct preview of one contact.
 
 Either from half relative curvatures and a load (stage D), or from a 49-sample gap
-stencil file (stage C then D). Prints a, b, k, p_max (and raw codes, flags and cycles
-for the fixed-point backend); ``--json`` prints one JSON object instead. When the
-fixed-point datapath flags the input, the flags are printed on stderr and the exit code
-is 3.
+stencil file (stage C then D). With --line-length-mm L (the contact line's length on
+the flank, mm) stage D is the line core: an ellipse longer than the flank is truncated
+to a Hertz line contact of length L. Prints a, b, k, p_max, the stage-D mode that
+evaluated them (elliptic | line) and, for the fixed-point backends, raw codes, flags and
+cycles; --json prints one JSON object instead. When the fixed-point datapath flags the
+input, the flags are printed on stderr and the exit code is 3.
 """
 
 from __future__ import annotations
@@ -18,7 +20,11 @@ from ..preview.engine import BACKENDS, get_engine
 from ..preview.fit.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
 from ..preview.qformat import GAP, FixedPointOverflow
-from ..validation import InputRangeError, format_range
+from ..preview.hertz.reference import LINE_ENVELOPE
+from ..validation import InputRangeError, check_range, format_range
+
+#: Backends with the line core (``--line-length-mm``).
+LINE_BACKENDS = ("reference", "golden", "rtl")
 
 
 def register(sub) -> None:
@@ -41,6 +47,11 @@ def register(sub) -> None:
     p.add_argument("--hertz-form", choices=HERTZ_FORMS, default=DEFAULT_HERTZ_FORM,
                    help="stage-D Hertz form: the published simplified forms (default) or "
                         "exact elliptic Hertz in the same tables (not for rtl-soc)")
+    p.add_argument("--line-length-mm", type=float, default=None, metavar="L",
+                   help="length of the contact line on the flank through the contact "
+                        "point, mm, in [1, 1024]: stage D is the line core (an ellipse "
+                        "longer than L is truncated to a Hertz line contact; not for "
+                        "rtl-soc). Default: the published elliptic core")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run, check=check)
 
@@ -49,6 +60,13 @@ def check(args) -> None:
     """Material and stencil file before any engine is built (the engine validates the
     curvatures and the load, the same domain for every backend)."""
     args.material = Material.from_gpa(args.modulus, args.poisson, name="cli")
+    if args.line_length_mm is not None:
+        lo, hi = LINE_ENVELOPE["line_length_mm"]
+        check_range("--line-length-mm (mm)", args.line_length_mm, lo, hi)
+        if args.backend not in LINE_BACKENDS:
+            raise InputRangeError("--backend (with --line-length-mm)", args.backend,
+                                  f"one of {list(LINE_BACKENDS)}: the backends with the "
+                                  "line core")
     args.gaps_mm = None if args.stencil is None else read_stencil_csv(args.stencil)
     if args.gaps_mm is not None and args.backend != "reference":
         # the fixed-point backends take the gaps in GAP Q(32,16): one that does not fit
@@ -67,10 +85,11 @@ def run(args) -> int:
     if getattr(args, "material", None) is None:
         check(args)
     engine = get_engine(args.backend, material=args.material, hertz_form=args.hertz_form)
+    line = {} if args.line_length_mm is None else {"line_length_mm": args.line_length_mm}
     if args.gaps_mm is not None:
-        res = engine.stencil(args.gaps_mm, args.load)
+        res = engine.stencil(args.gaps_mm, args.load, **line)
     else:
-        res = engine.hertz(args.curvatures[0], args.curvatures[1], args.load)
+        res = engine.hertz(args.curvatures[0], args.curvatures[1], args.load, **line)
     if args.json:
         print(json.dumps(res.as_dict(), indent=2))
     else:
@@ -81,6 +100,9 @@ def run(args) -> int:
               f"(2a x 2b = {2 * res.a_mm:.4g} x {2 * res.b_mm:.4g} mm)")
         print(f"k = a/b        {res.k:.6g}")
         print(f"p_max          {res.p_max_mpa:.6g} MPa")
+        length = "" if args.line_length_mm is None else \
+            f"   (contact line L = {args.line_length_mm:.6g} mm)"
+        print(f"mode           {res.mode}{length}")
         if res.angle_deg is not None:
             print(f"A- axis        {res.angle_deg:.4g} deg from the stencil s axis")
         if res.codes is not None:

@@ -523,21 +523,34 @@ class SocEngine(GoldenEngine):
                         alpha_code=0, flags=hertz_flags)
         return self._result(hz, load_n, dict(codes, flags=rb.flags), flag_names, rb.cycles)
 
-    def stencil(self, gaps_mm, load_n):
+    @staticmethod
+    def _no_line_core(line_length_mm) -> None:
+        """The SoCs hold the published cores only: line mode is refused, named."""
+        if line_length_mm is not None:
+            raise InputRangeError("line_length_mm (backend rtl-soc)", line_length_mm,
+                                  "None: the SoCs have no line core (use --backend "
+                                  "reference, golden or rtl for near-line contact)")
+
+    def stencil(self, gaps_mm, load_n, *, line_length_mm=None):
         from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
+        self._no_line_core(line_length_mm)
         w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
         rb = self._driver("tri_core").run([int(x) for x in gap_codes], w_c)
         codes = {"W": w_c, "e_prime": self.e_prime_code, "A_fit": rb.A, "B_fit": rb.B}
         return self._from_readback(rb, w, codes, rb.flags & ((1 << FIT_FLAG_SHIFT) - 1),
                                    chain_flag_names(rb.flags))
 
-    def hertz(self, A_minus, B_minus, load_n):
+    def hertz(self, A_minus, B_minus, load_n, *, line_length_mm=None):
+        self._no_line_core(line_length_mm)
         w, codes = self.encode_hertz(A_minus, B_minus, load_n)
         rb = self._driver("bhseq_core").run(codes["A_in"], codes["B_in"], codes["W"])
         return self._from_readback(rb, w, codes, rb.flags, HF.flag_names(rb.flags))
 
-    def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
+    def hertz_batch(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewBatch:
         import numpy as np
+
+        from ..preview.engine import elliptic_modes
+        self._no_line_core(line_length_mm)
         A, B, W = np.broadcast_arrays(np.asarray(A_minus, float), np.asarray(B_minus, float),
                                       np.asarray(load_n, float))
         res = [self.hertz(a, b, w) for a, b, w in zip(A.ravel(), B.ravel(), W.ravel())]
@@ -547,4 +560,5 @@ class SocEngine(GoldenEngine):
             return np.array([f(r) for r in res]).reshape(shape)
         return PreviewBatch(self.name, col(lambda r: r.a_mm), col(lambda r: r.b_mm),
                             col(lambda r: r.k), col(lambda r: r.p_max_mpa),
-                            col(lambda r: r.codes["flags"]).astype(np.int64))
+                            flags := col(lambda r: r.codes["flags"]).astype(np.int64),
+                            elliptic_modes(shape, flags))

@@ -239,22 +239,30 @@ def check_chain_inputs(stencils, W_codes, e_prime_code):
     return codes, w, e
 
 
-def run_chain_like(dut, stencils, W_codes, e_prime_code, *, max_cycles: int, what: str
-                   ) -> tuple[list[ChainCodes], list[int]]:
-    """Shared runner: write each stencil, pulse ``go``, wait for ``done``, read."""
+def run_chain_like(dut, stencils, W_codes, e_prime_code, *, max_cycles: int, what: str,
+                   extra: dict | None = None, read=None) -> tuple[list, list[int]]:
+    """Shared runner: write each stencil, pulse ``go``, wait for ``done``, read.
+
+    ``extra``: more per-stencil inputs (port name -> checked codes, one per stencil),
+    set with ``W``; ``read(ctx, dut, cycles)``: the result reader (default
+    :func:`read_chain_codes`)."""
     codes, ws, e = check_chain_inputs(stencils, W_codes, e_prime_code)
+    extra = extra or {}
+    read = read_chain_codes if read is None else read
     cc = CycleCounter(dut)
     outputs, cycles = [], []
 
     async def bench(ctx):
         ctx.set(dut.e_prime, e)
-        for row, w in zip(codes, ws):
+        for i, (row, w) in enumerate(zip(codes, ws)):
             await write_stencil(ctx, dut, row)
             ctx.set(dut.W, w)
+            for port, values in extra.items():
+                ctx.set(getattr(dut, port), values[i])
             t_go = await cc.start(ctx, dut.go)
             n = await cc.wait_done(ctx, dut.done, t_go, max_cycles, what)
             cycles.append(n)
-            outputs.append(read_chain_codes(ctx, dut, n))
+            outputs.append(read(ctx, dut, n))
 
     run_testbench(cc.top, bench)
     return outputs, cycles

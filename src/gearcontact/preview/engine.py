@@ -21,13 +21,16 @@ Every backend evaluates stage D in either Hertz form, ``get_engine(name, hertz_f
 "exact")`` (:data:`.hertz.formats.HERTZ_FORMS`; the fixed-point ``"exact"`` form holds the
 exact k and elliptic-integral terms in the same tables, :mod:`.hertz.luts`).
 
-Near-line contact: ``hertz(A, B, W, line_length_mm=L)`` (reference, golden) runs the
-*line core* of stage D (:mod:`.hertz.line`; 759 cycles): the Hertz ellipse (reduced
+Near-line contact: ``hertz(A, B, W, line_length_mm=L)``, ``hertz_batch(A, B, W,
+line_length_mm=L)`` and ``stencil(gaps, W, line_length_mm=L)`` (reference, golden, rtl)
+run the *line core* of stage D (:mod:`.hertz.line`; 759 cycles; the stencil path: the
+fit core's codes into it, :func:`.chain.chain_line_golden`): the Hertz ellipse (reduced
 radii beyond the published 1 m by the Hertz similarity) or, where the flank (contact line
-of length L) truncates a longer ellipse, the Hertz line contact; ``PreviewResult.mode``
-says which. The golden line core reports its domain through flags (never raises for
-it); the reference mirrors that domain unless ``envelope=False`` (host-side previews:
-any positive input, the physics alone).
+of length L) truncates a longer ellipse, the Hertz line contact; ``PreviewResult.mode`` /
+``PreviewBatch.mode`` say which. The fixed-point line core reports its domain through
+flags (never raises for it); the reference mirrors that domain unless ``envelope=False``
+(host-side previews: any positive input, the physics alone). ``rtl-soc`` has no line
+core (the SoCs hold the published cores) and refuses ``line_length_mm``.
 
 Physical inputs are validated the same way for every backend (finite, positive; errors
 name the field); range limits specific to a representation are then reported by that
@@ -53,6 +56,7 @@ from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
 from .hertz.line import LINE_CYCLES, decode_line_codes, encode_length, line_golden
+from .hertz.line_vec import line_golden_array
 from .hertz.reference import (ENVELOPE, check_envelope, hertz_preview, hertz_preview_array,
                               truncated_preview)
 from .hertz.schedule import HERTZ_CYCLES
@@ -62,7 +66,7 @@ MATERIALS = {"steel": STEEL}
 
 __all__ = ["PreviewResult", "PreviewBatch", "PreviewEngine", "ReferenceEngine",
            "GoldenEngine", "get_engine", "register_backend", "load_backend_plugins",
-           "BACKENDS", "BACKEND_HERTZ_FORMS", "MODES"]
+           "BACKENDS", "BACKEND_HERTZ_FORMS", "MODES", "elliptic_modes"]
 
 #: Stage-D modes a :class:`PreviewResult` names (``mode``).
 MODES = ("elliptic", "line", "flagged")
@@ -139,7 +143,8 @@ class PreviewResult:
 @dataclass(frozen=True)
 class PreviewBatch:
     """Previews of many contacts (float64 arrays of one shape; flags as int words,
-    0 = valid, 0 everywhere for the reference)."""
+    0 = valid, 0 everywhere for the reference; ``mode`` a str array of :data:`MODES`,
+    what evaluated each element; in line mode ``a_mm`` is L/2 and ``k`` = a/b)."""
 
     backend: str
     a_mm: np.ndarray
@@ -147,6 +152,7 @@ class PreviewBatch:
     k: np.ndarray
     p_max_mpa: np.ndarray
     flags: np.ndarray = field(default=None)
+    mode: np.ndarray = field(default=None)
 
 
 @runtime_checkable
@@ -166,12 +172,43 @@ class PreviewEngine(Protocol):
         ...
 
     def stencil(self, gaps_mm, load_n: float) -> PreviewResult:
-        """Stage C then D on a 49-sample gap stencil (mm, :mod:`.fit.stencil` order)."""
+        """Stage C then D on a 49-sample gap stencil (mm, :mod:`.fit.stencil` order);
+        ``line_length_mm=L`` (keyword; reference, golden, rtl): stage D is the line
+        core."""
         ...
 
     def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
-        """Stage D over broadcastable arrays."""
+        """Stage D over broadcastable arrays; ``line_length_mm=L`` (keyword, scalar or
+        broadcastable array; reference, golden, rtl): the line core."""
         ...
+
+
+def elliptic_modes(shape, flags=None) -> np.ndarray:
+    """The :data:`MODES` array of a batch evaluated by the published (elliptic) core:
+    ``"elliptic"``, ``"flagged"`` where ``flags`` (int words) are not 0."""
+    mode = np.full(shape, "elliptic", dtype="<U8")
+    if flags is not None:
+        mode[np.asarray(flags) != 0] = "flagged"
+    return mode
+
+
+def _check_positive_array(field_name: str, x) -> np.ndarray:
+    """A finite float array, every element > 0 (else InputRangeError naming the field
+    and the first offending index)."""
+    arr = check_array_finite(field_name, x)
+    bad = ~(arr > 0.0)
+    if bad.any():
+        i = tuple(int(j) for j in np.argwhere(bad)[0])
+        raise InputRangeError(f"{field_name}[{', '.join(map(str, i))}]" if i else field_name,
+                              float(arr[i]), "> 0")
+    return arr
+
+
+def _check_line_batch(A_minus, B_minus, load_n, line_length_mm) -> tuple[np.ndarray, ...]:
+    """Line-core batch inputs: finite, > 0, broadcast to one shape (at least 1-d)."""
+    return np.broadcast_arrays(*(np.atleast_1d(_check_positive_array(n, v)) for n, v in (
+        ("A_minus (1/mm)", A_minus), ("B_minus (1/mm)", B_minus), ("load_n (N)", load_n),
+        ("line_length_mm", line_length_mm))))
 
 
 def _check_physical(A_minus, B_minus, load_n, e_prime_mpa: float
@@ -259,22 +296,48 @@ class ReferenceEngine:
         return PreviewResult(self.name, w, max(a, b), min(a, b), tp.a_mm, tp.b_mm, tp.k,
                              tp.p_max_mpa, hertz_form=self.hertz_form, mode=tp.mode)
 
-    def stencil(self, gaps_mm, load_n) -> PreviewResult:
+    def stencil(self, gaps_mm, load_n, *, line_length_mm=None) -> PreviewResult:
         g = _check_stencil(gaps_mm)
         w = _check_load(load_n)
-        res = chain.chain_reference(g, w, e_prime_mpa=self.e_prime_mpa,
-                                    hertz_form=self.hertz_form)
+        if line_length_mm is not None:
+            length = check_positive("line_length_mm", line_length_mm)
+            res = chain.chain_line_reference(g, w, length, e_prime_mpa=self.e_prime_mpa,
+                                             envelope=self.envelope,
+                                             hertz_form=self.hertz_form)
+            mode = res.hertz.mode
+        else:
+            res = chain.chain_reference(g, w, e_prime_mpa=self.e_prime_mpa,
+                                        hertz_form=self.hertz_form)
+            mode = "elliptic"
         hp = res.hertz
         return PreviewResult(self.name, w, res.fit.A_minus_per_mm, res.fit.B_minus_per_mm,
                              hp.a_mm, hp.b_mm, hp.k, hp.p_max_mpa, angle_deg=res.fit.angle_deg,
-                             hertz_form=self.hertz_form)
+                             hertz_form=self.hertz_form, mode=mode)
 
-    def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
+    def hertz_batch(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewBatch:
+        if line_length_mm is not None:
+            return self._line_batch(A_minus, B_minus, load_n, line_length_mm)
         out = hertz_preview_array(A_minus, B_minus, load_n, e_prime_mpa=self.e_prime_mpa,
                                   hertz_form=self.hertz_form)
         a = np.asarray(out["a_mm"])
         return PreviewBatch(self.name, a, np.asarray(out["b_mm"]), np.asarray(out["k"]),
-                            np.asarray(out["p_max_mpa"]), np.zeros(a.shape, dtype=np.int64))
+                            np.asarray(out["p_max_mpa"]), np.zeros(a.shape, dtype=np.int64),
+                            elliptic_modes(a.shape))
+
+    def _line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewBatch:
+        """:func:`.hertz.reference.truncated_preview` elementwise (a few us each)."""
+        a, b, w, length = _check_line_batch(A_minus, B_minus, load_n, line_length_mm)
+        out = {k: np.empty(a.shape) for k in ("a_mm", "b_mm", "k", "p_max_mpa")}
+        mode = np.empty(a.shape, dtype="<U8")
+        for idx in np.ndindex(a.shape):
+            tp = truncated_preview(a[idx], b[idx], w[idx], length[idx],
+                                   e_prime_mpa=self.e_prime_mpa, envelope=self.envelope,
+                                   hertz_form=self.hertz_form)
+            for k in out:
+                out[k][idx] = getattr(tp, k)
+            mode[idx] = tp.mode
+        return PreviewBatch(self.name, out["a_mm"], out["b_mm"], out["k"], out["p_max_mpa"],
+                            np.zeros(a.shape, dtype=np.int64), mode)
 
 
 class GoldenEngine:
@@ -341,14 +404,41 @@ class GoldenEngine:
         w, codes = self.encode_line(A_minus, B_minus, load_n, line_length_mm)
         lc = line_golden(codes["A_in"], codes["B_in"], codes["W"], codes["L"],
                          e_prime_code=codes["e_prime"], hertz_form=self.hertz_form)
+        return self._line_result(lc, w, codes, LINE_CYCLES)
+
+    def _line_result(self, lc, w, codes: dict, cycles: int, flags=None) -> PreviewResult:
+        """A PreviewResult from line-core codes (:class:`.hertz.line.LineCodes`);
+        ``flags``: the names to report (default the line core's)."""
         codes.update(A_min=lc.A_min_code, B_max=lc.B_max_code, a=lc.a_code, b=lc.b_code,
                      k=lc.k_code, p_max=lc.p_max_code, mode=lc.mode, scale=lc.scale,
-                     flags=lc.flags)
+                     flags=codes.get("flags", lc.flags))
         v = decode_line_codes(lc)
+        flags = lc.flag_names if flags is None else flags
         return PreviewResult(self.name, w, v["B_max_per_mm"], v["A_min_per_mm"], v["a_mm"],
-                             v["b_mm"], v["k"], v["p_max_mpa"], codes=codes, flags=lc.flag_names,
-                             cycles=LINE_CYCLES, hertz_form=self.hertz_form,
-                             mode=lc.mode_name)
+                             v["b_mm"], v["k"], v["p_max_mpa"], codes=codes, flags=flags,
+                             cycles=cycles, hertz_form=self.hertz_form,
+                             mode="flagged" if flags else lc.mode_name)
+
+    def encode_line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> dict:
+        """The line core's input codes of a batch (``int64`` arrays of one shape):
+        ``{"A_in", "B_in", "W", "L", "e_prime"}`` (no envelope check: the line core flags
+        its own domain). Raises as :meth:`encode_line`, naming the element."""
+        a, b, w, length = _check_line_batch(A_minus, B_minus, load_n, line_length_mm)
+        a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
+        return {"A_in": a_c, "B_in": b_c, "W": w_c, "L": encode_length(length),
+                "e_prime": np.full(a.shape, e_c, dtype=np.int64)}
+
+    def _line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewBatch:
+        c = self.encode_line_batch(A_minus, B_minus, load_n, line_length_mm)
+        return self._line_batch_result(line_golden_array(
+            c["A_in"], c["B_in"], c["W"], c["L"], e_prime_code=c["e_prime"],
+            hertz_form=self.hertz_form))
+
+    def _line_batch_result(self, lc) -> PreviewBatch:
+        """A PreviewBatch from a :class:`.hertz.line_vec.LineCodesArray`."""
+        v = decode_line_codes(lc)
+        return PreviewBatch(self.name, v["a_mm"], v["b_mm"], v["k"], v["p_max_mpa"],
+                            lc.flags, lc.mode_names)
 
     def hertz(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewResult:
         if line_length_mm is not None:
@@ -358,7 +448,9 @@ class GoldenEngine:
                           e_prime_code=codes["e_prime"], hertz_form=self.hertz_form)
         return self._result(hz, w, codes, hz.flag_names, HERTZ_CYCLES)
 
-    def stencil(self, gaps_mm, load_n) -> PreviewResult:
+    def stencil(self, gaps_mm, load_n, *, line_length_mm=None) -> PreviewResult:
+        if line_length_mm is not None:
+            return self._stencil_line(gaps_mm, load_n, line_length_mm)
         w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
         res = chain.chain_golden([int(x) for x in gap_codes], w_c, e_prime_code=self.e_prime_code,
                                  hertz_form=self.hertz_form)
@@ -367,14 +459,35 @@ class GoldenEngine:
                  "flags": res.flags}
         return self._result(res.hertz, w, codes, res.flag_names, res.cycles)
 
-    def hertz_batch(self, A_minus, B_minus, load_n) -> PreviewBatch:
+    def encode_stencil_line(self, gaps_mm, load_n, line_length_mm) -> tuple[float, np.ndarray,
+                                                                             int, int]:
+        """Checked load (N), the 49 GAP codes, the LOAD code and the LINE_LENGTH code of
+        one stencil in line mode."""
+        w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
+        return w, gap_codes, w_c, encode_length(check_positive("line_length_mm",
+                                                               line_length_mm))
+
+    def _stencil_line(self, gaps_mm, load_n, line_length_mm) -> PreviewResult:
+        """C -> line core (:func:`.chain.chain_line_golden`, :data:`.chain.CHAIN_LINE_CYCLES`)."""
+        w, gap_codes, w_c, l_c = self.encode_stencil_line(gaps_mm, load_n, line_length_mm)
+        res = chain.chain_line_golden([int(x) for x in gap_codes], w_c, l_c,
+                                      e_prime_code=self.e_prime_code, hertz_form=self.hertz_form)
+        codes = {"W": w_c, "L": l_c, "e_prime": self.e_prime_code,
+                 "A_fit": res.fit.a_minus_code, "B_fit": res.fit.b_minus_code,
+                 "flags": res.flags}
+        return self._line_result(res.hertz, w, codes, res.cycles, res.flag_names)
+
+    def hertz_batch(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewBatch:
+        if line_length_mm is not None:
+            return self._line_batch(A_minus, B_minus, load_n, line_length_mm)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(
             np.atleast_1d(np.asarray(A_minus, dtype=float)),
             np.atleast_1d(np.asarray(B_minus, dtype=float)),
             np.atleast_1d(np.asarray(load_n, dtype=float)), e_prime_mpa=self.e_prime_mpa)
         hz = hertz_golden_array(a_c, b_c, w_c, e_prime_code=e_c, hertz_form=self.hertz_form)
         v = decode_hertz_codes(hz)
-        return PreviewBatch(self.name, v.a_mm, v.b_mm, v.k, v.p_max_mpa, hz.flags)
+        return PreviewBatch(self.name, v.a_mm, v.b_mm, v.k, v.p_max_mpa, hz.flags,
+                            elliptic_modes(hz.flags.shape, hz.flags))
 
 
 #: Registered backends: name -> factory(material=..., material2=...[, hertz_form=...]).

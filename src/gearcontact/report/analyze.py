@@ -12,7 +12,7 @@ TCA files                     see :mod:`gearcontact.tca.export` (``tca.json``, `
 ``ltca_torques.csv``          the table "preview vs LCP mean / p90 / peak" over the torques
 ``preview.csv``               per torque: contact-line length on the flank, reference and
                               golden line-core previews (A-, B-, L -> D) and golden C -> D
-                              (published chain, hardware stencil) with codes, the stage-D
+                              (line chain, hardware stencil, same L) with codes, the stage-D
                               mode (elliptic | line) and a status each (``ok``, or why the
                               result is missing: then one :class:`PreviewDomainWarning`
                               line names the count)
@@ -89,7 +89,9 @@ class Analysis:
         :mod:`gearcontact.preview.hertz.line`, with the contact line's length in the
         case's field) at each case's load (None: not evaluated, see ``golden_status``).
     golden_chain : tuple of PreviewResult or None
-        Golden C -> D on the hardware stencil at each case's load.
+        Golden C -> D on the hardware stencil at each case's load: the line chain
+        (:func:`gearcontact.preview.chain.chain_line_golden`) with the case's contact
+        line, the published chain where the case has none.
     timings_s : dict
         Wall-clock seconds per stage (``*_s``), LCP solve times (``ltca_solve_ms``) and
         the fp64 preview's CPU latency (``preview_cpu``: p50/p99 in us, jitter).
@@ -219,7 +221,7 @@ def _missing_warning(golden, chain) -> str | None:
     """One line naming how many torques lack which fixed-point result, or None."""
     parts = []
     for name, results in (("golden D (line core)", golden),
-                          ("golden C->D (published chain core, hardware stencil)", chain)):
+                          ("golden C->D (line chain, hardware stencil)", chain)):
         bad = [status for res, status in results if status != "ok"]
         if bad:
             parts.append(f"{name} p_max missing for {len(bad)} of {len(results)} torques "
@@ -326,7 +328,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                                     line_length_mm=length))
         gold.append(_golden_preview(golden.hertz, rc.A_minus_per_mm, rc.B_minus_per_mm,
                                     case.load_n, line_length_mm=length))
-        chain.append(_golden_preview(golden.stencil, stencil, case.load_n))
+        chain.append(_golden_preview(golden.stencil, stencil, case.load_n,
+                                     **({} if length is None else {"line_length_mm": length})))
         steps.update(1)
     timings["ltca_s"] = time.perf_counter() - t0
 

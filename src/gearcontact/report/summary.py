@@ -258,15 +258,16 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
                      g.mode if g_ok else None,
                      ch.p_max_mpa if ch_ok else f"missing ({ch_st})",
                      _pct(ch.p_max_mpa, c.preview.p_max_mpa) if ch_ok else None,
-                     "none" if ch_ok else ch_st,
+                     "none" if ch_ok else ch_st, ch.mode if ch_ok else None,
                      None if ch is None else ch.cycles])
     out.append(_table(["torque (N·m)", "fp64 p_max", "fp64 mode", "golden D p_max",
                        "golden D vs fp64 (%)", "golden D mode",
                        "golden C->D p_max (stencil)", "C->D vs fp64 ellipse (%)",
-                       "C->D flags", "C->D cycles"], rows))
+                       "C->D flags", "C->D mode", "C->D cycles"], rows))
     out += ["", "Stage D here is the line core: the Hertz ellipse, or the Hertz line contact "
             "of the flank's contact line where the flank truncates a longer ellipse (mode "
-            "`line`). The C->D chain is the published elliptic core.", ""]
+            "`line`). The C->D chain is the line chain (the fit core into the line core, "
+            "811 cycles) with the same contact line.", ""]
     if tca.stencil.on_flank.all():
         out += [f"The C->D column fits the 7 x 7 hardware stencil ({STENCIL_SPACING_MM:g} "
                 "mm spacing) of the real gap field, so it also carries the curvature-fit "

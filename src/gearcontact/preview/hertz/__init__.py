@@ -16,7 +16,9 @@ Three models side by side sharing one set of constants:
 * the line core for near-line contact (docs/hertz.md sec. 6): :mod:`.line` (golden,
   formats, schedule), :func:`.reference.truncated_preview` (fp64), :mod:`.sqrt`
   (restoring square root) and :mod:`.rtl_line` (``HertzLineCore``: the 756-cycle core
-  unchanged inside, 759 cycles), core ``hertz_line`` in :mod:`.cores`.
+  unchanged inside, 759 cycles), core ``hertz_line`` in :mod:`.cores`, and
+  :mod:`.line_vec`, the line core's vectorized bit-identical twin
+  (:func:`.line_vec.line_golden_array`, numba; not imported here either).
 
 Hertz forms (``hertz_form=``, :data:`.formats.HERTZ_FORMS`, in every model and in
 ``HertzCore``): ``"hamrock-brewe"`` (default) is the published datapath with

@@ -99,16 +99,18 @@ def _line_ports(st: Stimulus):
 
 
 def _line_columns(codes) -> dict:
+    """Output columns (by port) from a LineCodesArray or a list of LineCodes."""
     from .rtl_line import LINE_OUTPUT_PORTS
-    return {p: np.array([getattr(c, f) for c in codes], np.int64)
-            for p, f in LINE_OUTPUT_PORTS.items()}
+    if isinstance(codes, list):
+        return {p: np.array([getattr(c, f) for c in codes], np.int64)
+                for p, f in LINE_OUTPUT_PORTS.items()}
+    return {p: np.asarray(getattr(codes, f), np.int64) for p, f in LINE_OUTPUT_PORTS.items()}
 
 
 def _line_golden(st: Stimulus) -> dict:
-    # scalar golden per vector (~30 us each; no vectorized twin of the line core yet)
-    from .line import line_golden
-    return _line_columns([line_golden(int(a), int(b), int(w), int(length), e_prime_code=int(e))
-                          for a, b, w, length, e in zip(*_line_fields(st))])
+    from .line_vec import line_golden_array
+    a, b, w, length, e = _line_fields(st)
+    return _line_columns(line_golden_array(a, b, w, length, e_prime_code=e))
 
 
 def _line_amaranth(st: Stimulus):

@@ -39,7 +39,7 @@ from . import formats as F
 from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, POW_SPEC, POW_SPECS, lut_array
 
 __all__ = ["HertzCodesArray", "hertz_golden_array", "hertz_element", "golden_constants",
-           "HAVE_NUMBA"]
+           "run_batch", "HAVE_NUMBA"]
 
 _U = np.uint64
 
@@ -289,12 +289,27 @@ def hertz_golden_array(A_code, B_code, W_code, *, e_prime_code,
         Unknown ``hertz_form``.
     """
     F.check_hertz_form(hertz_form)
-    arrs = np.broadcast_arrays(_as_codes(A_code, CURVATURE, "A_code"),
-                               _as_codes(B_code, CURVATURE, "B_code"),
-                               _as_codes(W_code, LOAD, "W_code"),
-                               _as_codes(e_prime_code, F.E_PRIME, "e_prime_code"))
+    return run_batch(_kernel, HertzCodesArray, 10,
+                     ((A_code, CURVATURE, "A_code"), (B_code, CURVATURE, "B_code"),
+                      (W_code, LOAD, "W_code"), (e_prime_code, F.E_PRIME, "e_prime_code")),
+                     golden_constants(hertz_form))
+
+
+def run_batch(kernel, result_type, n_rows: int, inputs, constants):
+    """Check and broadcast ``inputs`` ((value, format, field) triples: integer codes
+    that must fit their register), run ``kernel(*flat inputs, *constants, out)`` over
+    them and return ``result_type`` of the ``n_rows`` output rows in the broadcast shape.
+
+    Raises
+    ------
+    TypeError
+        A non-integer array.
+    FixedPointOverflow
+        A code that does not fit its register (naming field and index).
+    """
+    arrs = np.broadcast_arrays(*(_as_codes(v, fmt, name) for v, fmt, name in inputs))
     shape = arrs[0].shape
     flat = [np.array(a.reshape(-1), dtype=np.int64) for a in arrs]   # owned copies
-    out = np.zeros((10, flat[0].size), dtype=np.int64)
-    _kernel(*flat, *golden_constants(hertz_form), out)
-    return HertzCodesArray(*(out[i].reshape(shape) for i in range(10)))
+    out = np.zeros((n_rows, flat[0].size), dtype=np.int64)
+    kernel(*flat, *constants, out)
+    return result_type(*(out[i].reshape(shape) for i in range(n_rows)))

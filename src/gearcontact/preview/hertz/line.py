@@ -102,7 +102,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ...validation import check_finite
+import numpy as np
+
+from ...validation import check_array_finite, check_finite
 from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift, sq, uq
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVISION_CYCLES, floor_divide
@@ -328,23 +330,31 @@ def line_golden(A_code: int, B_code: int, W_code: int, L_code: int, *, e_prime_c
     return LineCodes(a_c, b_c, p_c, 0, a_min, b_max, MODE_LINE, n, 0)
 
 
-def decode_line_codes(codes: LineCodes) -> dict:
-    """Physical values of a line-core result: ``a_mm, b_mm, p_max_mpa, k`` (the k
-    register in elliptic mode; a/b in line mode, where the datapath has no k; 0 when
-    flagged), ``A_min_per_mm, B_max_per_mm``."""
-    a = math.ldexp(codes.a_code, -SEMI_AXIS.frac)
-    b = math.ldexp(codes.b_code, -SEMI_AXIS.frac)
-    if codes.mode == MODE_LINE and codes.valid:
-        k = a / b
+def decode_line_codes(codes) -> dict:
+    """Physical values of a line-core result (:class:`LineCodes`, floats, or the
+    :class:`.line_vec.LineCodesArray` of a batch, float64 arrays): ``a_mm, b_mm,
+    p_max_mpa, k`` (the k register in elliptic mode; a/b in line mode, where the
+    datapath has no k; 0 when flagged), ``A_min_per_mm, B_max_per_mm``."""
+    if isinstance(codes.a_code, np.ndarray):
+        def ld(code, frac):
+            return np.ldexp(np.asarray(code, dtype=float), -frac)
+        a, b = ld(codes.a_code, SEMI_AXIS.frac), ld(codes.b_code, SEMI_AXIS.frac)
+        line = (codes.mode == MODE_LINE) & (codes.flags == 0) & (codes.b_code > 0)
+        k = np.where(line, a / np.where(line, b, 1.0), ld(codes.k_code, F.K_OUT.frac))
     else:
-        k = math.ldexp(codes.k_code, -F.K_OUT.frac)
-    return {"a_mm": a, "b_mm": b, "p_max_mpa": math.ldexp(codes.p_max_code, -PMAX.frac),
-            "k": k, "A_min_per_mm": math.ldexp(codes.A_min_code, -CURVATURE.frac),
-            "B_max_per_mm": math.ldexp(codes.B_max_code, -CURVATURE.frac)}
+        def ld(code, frac):
+            return math.ldexp(int(code), -frac)
+        a, b = ld(codes.a_code, SEMI_AXIS.frac), ld(codes.b_code, SEMI_AXIS.frac)
+        k = a / b if codes.mode == MODE_LINE and codes.valid else ld(codes.k_code,
+                                                                      F.K_OUT.frac)
+    return {"a_mm": a, "b_mm": b, "p_max_mpa": ld(codes.p_max_code, PMAX.frac), "k": k,
+            "A_min_per_mm": ld(codes.A_min_code, CURVATURE.frac),
+            "B_max_per_mm": ld(codes.B_max_code, CURVATURE.frac)}
 
 
-def encode_length(length_mm) -> int:
-    """Contact-line length (mm) as a :data:`LINE_LENGTH` code (round half up).
+def encode_length(length_mm):
+    """Contact-line length (mm) as a :data:`LINE_LENGTH` code (round half up): an int
+    for a scalar, an ``int64`` array for an array.
 
     Raises
     ------
@@ -353,5 +363,8 @@ def encode_length(length_mm) -> int:
     FixedPointOverflow
         The value does not fit Q(32,20).
     """
+    if np.ndim(length_mm):
+        return LINE_LENGTH.quantize_array(check_array_finite("line_length_mm", length_mm),
+                                          field="line_length_mm")
     return LINE_LENGTH.quantize(check_finite("line_length_mm", length_mm),
                                 field="line_length_mm")
