@@ -155,3 +155,29 @@ def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, 
     assert err == ("gearcontact design: check failed: ease-off synthesis of s0003: not all "
                    "targets met on the coast side (see the table)\n")
     assert (tmp_path / "x" / "easeoff.toml").read_text() == "[easeoff.drive]\n"
+
+
+def test_design_refuses_a_pinion_pointed_at_the_toe_naming_the_point_width(tmp_path, capsys):
+    """Issue 28: 9/32 (E = 0, beta1 = 22.1 deg) passed design and analyze then stopped in
+    the tooth shell. design now names the condition and a width it has verified
+    (tests/geometry/test_generation.py checks that the width works)."""
+    import sys
+    from dataclasses import replace
+
+    sys.path.insert(0, str(ROOT / "tests"))
+    import design_space
+    from gearcontact.geometry.pair import pair_to_toml
+
+    saved = design_space.check_generation
+    design_space.check_generation = lambda pair: None
+    try:
+        pair = design_space.design_space_pair(z1=9, ratio=32 / 9, offset_frac=0.0, beta=22.1,
+                                              face_frac=0.192, side="drive")
+    finally:
+        design_space.check_generation = saved
+    path = tmp_path / "p9x32.toml"
+    path.write_text(pair_to_toml(replace(pair, name="p9x32")))
+    assert main(["design", "--pair", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "cutter.point_width_mm = 1.5 is outside the allowed range: >= 1.5" in err
+    assert "pointed pinion teeth at the toe" in err

@@ -122,3 +122,60 @@ def test_one_map_from_class_to_code(exc, code):
     ValueError or ArithmeticError is not input or a check: it is 1)."""
     assert exit_code_of(exc) == exit_code_of(type(exc)) == code
     assert [c for _, c, _ in EXIT_CODES] == [2, 3, 4, 130]
+
+
+# ------------------------------------------------------------------ twin: exits 3 and 4
+def _module(*argv):
+    """Run ``python -m gearcontact`` in a fresh interpreter; (return code, stdout, stderr)."""
+    p = subprocess.run([sys.executable, "-m", "gearcontact", *argv], capture_output=True,
+                       text=True, env=ENV, timeout=600)
+    return p.returncode, p.stdout, p.stderr
+
+
+def _s0003_with(tmp_path, name, **moduli_mpa):
+    """s0003 as a pair TOML with other Young's moduli (``pinion=``, ``gear=``, MPa)."""
+    from dataclasses import replace
+
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+    pair = load_pair("s0003")
+    mats = {f"{member}_material": replace(getattr(pair, f"{member}_material"),
+                                          youngs_modulus_mpa=e)
+            for member, e in moduli_mpa.items()}
+    path = tmp_path / f"{name}.toml"
+    path.write_text(pair_to_toml(replace(pair, name=name, **mats)))
+    return path
+
+
+def test_twin_datapath_flag_exit_3(tmp_path):
+    """The twin evaluates a preview outside the datapath's domain by the fp64 law (a
+    result, issue 28 item 2), so what makes its golden datapath refuse is an input the
+    datapath cannot hold at all: E' is a Q(32,0) register (MPa), and moduli of 5e9 MPa
+    give E' = 5.49e9 > 2^31 - 1. Found by a real run, no patch: exit 3 naming the signal
+    and the format (the E' the material check accepts: any positive modulus)."""
+    path = _s0003_with(tmp_path, "stiff", pinion=5e9, gear=5e9)
+    code, out, err = _module("twin", "--pair", str(path), "--backend", "golden",
+                             "--phases", "11", "--duration-ms", "0.05", "--no-figures",
+                             "--quiet", "--out", str(tmp_path / "x"))
+    assert code == 3, err
+    assert err.startswith("gearcontact twin: datapath flag: e_prime_mpa = 549450549")
+    assert "does not fit Q(32,0)" in err
+
+
+@pytest.mark.slow
+def test_twin_failed_check_exit_4(tmp_path, served_tri_core):
+    """A board built for another pair: `gearcontact rtl serve` bakes steel-on-steel E'
+    into its SoC (as a board build would), the twin runs s0003 with a bronze gear
+    (E = 110 GPa) through it. The golden loop's previews replayed on that board differ
+    (its E' register is another pair's): RTL != golden, a failed check, exit 4, with the
+    hint that names the E' code. Real processes, no patch (~1 min: the SoC is simulated
+    behind litex_server's protocol)."""
+    path = _s0003_with(tmp_path, "bronze_gear", gear=110e3)
+    host, port = served_tri_core
+    code, out, err = _module("twin", "--pair", str(path), "--backend", "soc", "--board",
+                             f"{host}:{port}", "--phases", "11", "--duration-ms", "0.03",
+                             "--step-us", "10", "--no-figures", "--quiet",
+                             "--out", str(tmp_path / "x"))
+    assert code == 4, err
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("gearcontact twin: check failed: soc != golden in ")
+    assert "was the board built with E' code" in last

@@ -1,4 +1,5 @@
-"""geometry.generation: the gear top land along the tip line (pointed toe refused)."""
+"""geometry.generation: the gear and pinion top lands along the tip line (pointed toe
+refused, with a fix that works)."""
 
 from dataclasses import replace
 from pathlib import Path
@@ -7,7 +8,9 @@ import numpy as np
 import pytest
 
 from gearcontact.geometry.blank import gear_top_land_mm
-from gearcontact.geometry.generation import check_gear_top_land, gear_tip_top_lands
+from gearcontact.geometry.generation import (check_gear_top_land, check_generation,
+                                             check_pinion_top_land, gear_tip_top_lands,
+                                             pinion_tip_top_lands)
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 
@@ -56,3 +59,99 @@ def test_pointed_toe_is_refused_by_design_naming_the_point_width():
     fixed = replace(base, cutter=replace(base.cutter, point_width_mm=bound - 0.05))
     assert check_gear_top_land(fixed) > 0.0
     assert np.all(gear_tip_top_lands(fixed)[1] > 0.0)
+
+
+# --------------------------------------------------------------------- pinion top land
+#: Issue 28's pinions pointed at the toe: they passed design, and analyze then stopped in
+#: the tooth shell ("pinion tooth thickness ... the drive and coast flanks must not cross").
+_POINTED_PINIONS = {
+    "9/32": dict(z1=9, ratio=32 / 9, offset_frac=0.0, beta=22.1, face_frac=0.192, side="drive"),
+    "5/15": dict(z1=5, ratio=3.0, offset_frac=0.442, beta=51.2, face_frac=0.216, side="drive"),
+}
+
+
+def _unchecked_pair(args):
+    """The design-space pair of ``args`` without design's checks (to build it anyway)."""
+    import design_space
+    saved = design_space.check_generation
+    design_space.check_generation = lambda pair: None
+    try:
+        return design_space_pair(**args)
+    finally:
+        design_space.check_generation = saved
+
+
+def _shell_tip_lands(flanks):
+    """Top land along the tip line of the tooth the shell builds (structure.tooth: spline
+    flanks of the 120 x 150 node grid, ease-off applied by resampling)."""
+    from gearcontact.materials import STEEL
+    from gearcontact.structure.tooth import tooth_geometry
+    tooth = tooth_geometry(flanks, "pinion", material=STEEL)
+    xi = np.linspace(-1.0, 1.0, 41)
+    rd, _, _, nd = tooth.flank_arrays("drive", xi, np.ones_like(xi))
+    rc = tooth.flank_arrays("coast", xi, np.ones_like(xi))[0]
+    return -np.einsum("ni,ni->n", rc - rd, nd)
+
+
+def test_pinion_tip_top_land_is_the_tooth_shells(s0003, flanks):
+    # independent path: exact node solves along the tip line plus the first-order ease-off
+    # relief, against the spline flanks of the full grid with the ease-off resampled (the
+    # tooth the shell builds). 5 um: the relief's gradient tilts the eased normal, which
+    # the first-order shift ignores (measured 2.6e-3 mm on s0003-centred, whose calibrated
+    # ease-off is steep; 1.2e-3 mm on 9/32 and 5/15 with ~20 um corner crowning)
+    _, land = pinion_tip_top_lands(s0003)
+    assert land == pytest.approx(_shell_tip_lands(flanks), abs=5e-3)
+
+
+def test_pinion_top_land_grows_with_the_point_width_one_for_one():
+    # a wider blade point widens the gear slot by dW in the normal section, and the
+    # conjugate pinion tooth filling it grows alike (first order; measured 0.105 per
+    # 0.1 mm on F.3, 0.097-0.107 on the examples and s0003): 10 %
+    pair = load_pair(_EXAMPLES / "iso23509_f3.toml")
+    _, land = pinion_tip_top_lands(pair)
+    wider = replace(pair, cutter=replace(pair.cutter,
+                                         point_width_mm=pair.cutter.point_width_mm + 0.1))
+    assert pinion_tip_top_lands(wider)[1] - land == pytest.approx(np.full_like(land, 0.1),
+                                                                 abs=0.01)
+
+
+@pytest.mark.parametrize("name", ["iso23509_f3", "hypoid_11x41_rear_axle",
+                                  "iso23509_f2_spiral_bevel", "s0003"])
+def test_shipped_pairs_pass_the_pinion_top_land_check(name):
+    pair = load_pair(name if name == "s0003" else _EXAMPLES / f"{name}.toml")
+    boxes = check_generation(pair)
+    # measured smallest lands: F.3 1.35, 11/41 1.90, F.2 1.13, s0003 0.19 mm (toe)
+    assert check_pinion_top_land(pair, boxes=boxes) > 0.15
+
+
+def _check_pointed_pinion_refused(args, *, build: bool):
+    pair = _unchecked_pair(args)
+    frac, land = pinion_tip_top_lands(pair)
+    assert land.min() < 0.0 and frac[int(np.argmin(land))] < 0.5   # at the toe
+    with pytest.raises(InputRangeError) as err:
+        check_generation(pair)
+    assert err.value.field == "cutter.point_width_mm"
+    assert "pointed pinion teeth at the toe" in err.value.allowed
+    bound = float(err.value.allowed.split()[1])
+    assert bound > pair.cutter.point_width_mm
+    # the named width works: every check of design passes, both members keep a top land
+    fixed = replace(pair, cutter=replace(pair.cutter, point_width_mm=bound))
+    boxes = check_generation(fixed)
+    assert check_pinion_top_land(fixed, boxes=boxes) > 0.0
+    assert check_gear_top_land(fixed) > 0.0
+    if build:   # and the tooth shell of the built flanks finds no crossing
+        from gearcontact.geometry.flank import build_flanks
+        assert _shell_tip_lands(build_flanks(fixed)).min() > 0.0
+        # the shell of the refused pair did cross, where the check found it (5 um, as above)
+        assert _shell_tip_lands(build_flanks(pair)) == pytest.approx(land, abs=5e-3)
+
+
+def test_pinion_pointed_at_the_toe_is_refused_by_design_naming_a_width_that_works():
+    # 9/32, E = 0, beta1 = 22.1 deg: top land -0.062 mm at the toe (0.20 mm mid-face)
+    _check_pointed_pinion_refused(_POINTED_PINIONS["9/32"], build=False)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(_POINTED_PINIONS))
+def test_pinion_pointed_at_the_toe_refused_and_fixed_in_the_built_tooth(name):
+    _check_pointed_pinion_refused(_POINTED_PINIONS[name], build=True)

@@ -119,3 +119,28 @@ def test_left_hand_conjugate_nodes_meet_the_mirrored_meshing_equation(left, side
     ex, s = c.exact(u, v), c.evaluate(u, v)
     assert np.linalg.norm(s.r - ex.x1_mm, axis=-1).max() < 5e-5
     assert np.linalg.norm(s.n - ex.n1, axis=-1).max() < 1e-7
+
+
+def _design_point(pair, flanks, side="drive"):
+    from gearcontact.tca.calibration import conjugate_contact, evaluate_design_point
+    u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+    gear = flanks.flank("gear", side)
+    start = conjugate_contact(flanks.pinion_conjugate.side(side), gear, pair, u_m, v_m)
+    return evaluate_design_point(flanks.flank("pinion", side), gear, pair, start,
+                                 torque_nm=64.5, phases=21)
+
+
+def test_left_hand_design_point_reports_the_right_hand_angles(s0003, flanks, left):
+    # The synthesis' design point (TE0 vertex, paint ellipse, path direction) of the mirror
+    # image is the same bearing: the path and ellipse angles, measured in the flank frame
+    # (l, p, n) that the reflection turns left-handed, must come out with the right-hand
+    # pair's sign (a --path-angle-deg target means the same bearing for both hands).
+    # Tolerance 1e-6 deg: the mirrored TCA agrees to rounding (test above, 1e-6 mm on
+    # the contact points over a path step of ~1 mm).
+    pair, lh = left
+    a, b = _design_point(s0003, flanks), _design_point(pair, lh)
+    assert np.isfinite(a.path_angle_deg) and abs(a.path_angle_deg) > 1.0  # not trivially 0
+    assert b.path_angle_deg == pytest.approx(a.path_angle_deg, abs=1e-6)
+    assert b.ellipse_angle_deg == pytest.approx(a.ellipse_angle_deg, abs=1e-6)
+    assert b.te0_pp_arcsec == pytest.approx(a.te0_pp_arcsec, abs=1e-6)
+    assert np.allclose(MIRROR @ a.point_mm, b.point_mm, atol=1e-6)

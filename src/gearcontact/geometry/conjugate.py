@@ -56,7 +56,8 @@ from .mirror import mirror_solution
 from .sheet import PinionCone, RadialSheet
 
 __all__ = ["UndercutError", "MeshingError", "MeshingSolution", "MeshingSolver",
-           "ConjugateFlank", "conjugate_pinion_flank", "pinion_active_box", "NODE_MARGIN_MM"]
+           "ConjugateFlank", "conjugate_pinion_flank", "pinion_active_box", "section_guesses",
+           "NODE_MARGIN_MM"]
 
 _TOL = 1e-13          # Newton step tolerance (mm, rad): well below 1 nm
 _MAX_ITER = 40
@@ -407,18 +408,8 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
     u_m, v_m = float(solver.cone.root_offset_mm), float(blank.pitch_point_mm[0])
     vs = np.linspace(nominal.v_toe - NODE_MARGIN_MM[1], nominal.v_heel + NODE_MARGIN_MM[1],
                      _SECTIONS)
-    # mean-radius guesses on every section: continuation along the face from the mean
-    q_m = solver.solve(u_m, v_m, np.zeros(3))
-    q_mean = np.array([q_m.h_mm, q_m.theta_rad, q_m.phi2_rad], dtype=float)
+    guess, q_m = section_guesses(solver, vs, u_m, v_m)
     det_min = _CUSP_FRACTION * abs(float(q_m.jacobian_det))
-    guess = np.empty((len(vs), 3))
-    for order in (np.arange(len(vs))[vs >= v_m], np.arange(len(vs))[vs < v_m][::-1]):
-        q, v_prev = q_mean, v_m
-        for k in order:
-            for v in np.linspace(v_prev, vs[k], 5)[1:]:
-                s = solver.solve(u_m, v, q)
-                q = np.array([s.h_mm, s.theta_rad, s.phi2_rad])
-            guess[k], v_prev = q, vs[k]
     limits = []
     margin = NODE_MARGIN_MM[0]
     edge_h = np.full(len(vs), np.nan)   # gear h at a limit-line edge (gear-tip side)
@@ -498,6 +489,25 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
                             "(the limit lines / undercut leave less)")
     box = FlankBoundary(u_root=u_root, u_tip=u_tip, v_toe=nominal.v_toe, v_heel=nominal.v_heel)
     return box, undercut
+
+
+def section_guesses(solver: MeshingSolver, vs: np.ndarray, u_m: float, v_m: float, *,
+                    substeps: int = 4) -> tuple[np.ndarray, MeshingSolution]:
+    """Node solutions ``(h, theta, phi2)`` at height ``u_m`` on the sorted lengthwise
+    sections ``vs`` (mm), by continuation along the face from the mean point
+    ``(u_m, v_m)`` in ``substeps`` steps per section (the root of the meshing equation
+    that continues from the mean contact); also the mean-point solution."""
+    q_m = solver.solve(u_m, v_m, np.zeros(3))
+    q_mean = np.array([q_m.h_mm, q_m.theta_rad, q_m.phi2_rad], dtype=float)
+    guess = np.empty((len(vs), 3))
+    for order in (np.arange(len(vs))[vs >= v_m], np.arange(len(vs))[vs < v_m][::-1]):
+        q, v_prev = q_mean, v_m
+        for k in order:
+            for v in np.linspace(v_prev, vs[k], substeps + 1)[1:]:
+                s = solver.solve(u_m, v, q)
+                q = np.array([s.h_mm, s.theta_rad, s.phi2_rad])
+            guess[k], v_prev = q, vs[k]
+    return guess, q_m
 
 
 def _regular(s: MeshingSolution, det_min: float) -> np.ndarray:

@@ -6,9 +6,10 @@ on a few lengthwise sections, no node grid) on both flanks of a pair. A limit li
 leaves more than half the gear addendum without a conjugate partner is refused there
 (:class:`~.conjugate.UndercutError`), naming a gear addendum factor that avoids it,
 verified by running the check again with it, or the tooth numbers when none does
-(docs/geometry.md sec. 7). It also refuses a formate gear whose teeth are pointed
-anywhere along the face (:func:`check_gear_top_land`): ISO 23509's top-land check is
-made at the mean section only, and the toe is narrower.
+(docs/geometry.md sec. 7). It also refuses teeth that are pointed anywhere along the
+face, the formate gear's (:func:`check_gear_top_land`) and the conjugate pinion's
+(:func:`check_pinion_top_land`, tracing the pinion tip line with exact node solves):
+ISO 23509's top-land check is made at the mean section only, and the toe is narrower.
 """
 
 from __future__ import annotations
@@ -18,33 +19,51 @@ import dataclasses
 import numpy as np
 
 from ..validation import InputRangeError
-from .conjugate import UndercutError, pinion_active_box
+from .conjugate import UndercutError, pinion_active_box, section_guesses
+from .easeoff import EaseOff
 from .flank import gear_flanks
 
-__all__ = ["check_gear_top_land", "check_generation"]
+__all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
+           "gear_tip_top_lands", "pinion_tip_top_lands"]
 
 
 def check_generation(pair) -> dict:
     """Check that the pinion flanks of ``pair`` can be generated, before any flank work.
 
-    Runs :func:`~.conjugate.pinion_active_box` on both sides (no node grid). An
-    undercut names a gear addendum factor that avoids it, verified here (the limit line
-    moves slightly with the addenda: up to ``_FIX_TRIALS`` smaller values are tried);
-    when none does, the tooth numbers are named.
+    Checks, in order: the gear top land along its tip line (:func:`check_gear_top_land`);
+    :func:`~.conjugate.pinion_active_box` on both sides (no node grid) -- an undercut
+    names a gear addendum factor that avoids it, verified here (the limit line moves
+    slightly with the addenda: up to ``_FIX_TRIALS`` smaller values are tried); when
+    none does, the tooth numbers are named; the conjugate pinion's top land along its
+    tip line (:func:`check_pinion_top_land`, verified fix).
 
     Returns
     -------
     dict
-        ``{side: {"active_box": FlankBoundary, "gear_tip_undercut_mm": float}}``.
+        ``{side: {"active_box": FlankBoundary, "gear_tip_undercut_mm": float,
+        "solver": MeshingSolver}}``.
 
     Raises
     ------
     UndercutError
         As :func:`~.conjugate.pinion_active_box`, with a verified ``fix``.
+    InputRangeError
+        Pointed gear or pinion teeth (a verified fix named).
     """
-    if pair.pinion_hand == "left":  # its mirror image generates alike (:mod:`.mirror`)
-        pair = dataclasses.replace(pair, pinion_hand="right")
+    pair = _right_hand(pair)
     check_gear_top_land(pair)
+    boxes = _undercut_checked_boxes(pair)
+    check_pinion_top_land(pair, boxes=boxes)
+    return boxes
+
+
+def _right_hand(pair):
+    """The right-hand twin of ``pair``: its mirror image generates alike (:mod:`.mirror`)."""
+    return dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
+
+
+def _undercut_checked_boxes(pair) -> dict:
+    """:func:`_generation_boxes`, an undercut refused with a verified gear addendum fix."""
     try:
         return _generation_boxes(pair)
     except UndercutError as err:
@@ -76,9 +95,9 @@ def _generation_boxes(pair) -> dict:
     kin = pair.kinematics(with_errors=False)
     out = {}
     for side, gear in gear_flanks(pair)[1].items():
-        _, box, undercut = pinion_active_box(gear, blank=pair.blank, kinematics=kin,
-                                             pinion_face_width_mm=pair.pinion_face_width_mm)
-        out[side] = {"active_box": box, "gear_tip_undercut_mm": undercut}
+        solver, box, undercut = pinion_active_box(gear, blank=pair.blank, kinematics=kin,
+                                                  pinion_face_width_mm=pair.pinion_face_width_mm)
+        out[side] = {"active_box": box, "gear_tip_undercut_mm": undercut, "solver": solver}
     return out
 
 
@@ -145,26 +164,184 @@ def gear_tip_top_lands(pair) -> tuple[np.ndarray, np.ndarray]:
                            second=False)
         return s.r[0], s.n[0]
 
-    z = pair.gear_teeth
-    (rd, nd), (rc0, nc0) = mid(drive), mid(coast)
-    best = None
-    for k in (0, 1, -1):
-        turn = _turn_z(2.0 * np.pi * k / z)
-        rc, nc = rc0 @ turn.T, nc0 @ turn.T
-        gap = float(np.linalg.norm(rd - rc))
-        if nd @ (rc - rd) < 0.0 and nc @ (rd - rc) < 0.0 and (best is None or gap < best[0]):
-            best = (gap, turn)
-    if best is None:
+    turn = _one_tooth_turn(*mid(drive), *mid(coast), axis=_Z, teeth=pair.gear_teeth)
+    if turn is None:
         raise InputRangeError("cutter.point_width_mm", pair.cutter.point_width_mm,
                               "a gear slot narrower than the pitch (no tooth between the "
                               "drive and coast flanks at mid-face)")
     u_tip = min(drive.u_range[1], coast.u_range[1])
     rd, nd = tip_line(drive, u_tip)
-    rc = tip_line(coast, u_tip)[0] @ best[1].T
+    rc = tip_line(coast, u_tip)[0] @ turn.T
     return frac, -np.einsum("ni,ni->n", rc - rd, nd)
 
 
-def _turn_z(angle_rad: float) -> np.ndarray:
-    """Rotation matrix about the gear axis z by ``angle_rad``."""
-    c, s = np.cos(angle_rad), np.sin(angle_rad)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+_X, _Z = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
+
+
+def _one_tooth_turn(rd, nd, rc, nc, *, axis: np.ndarray, teeth: int):
+    """Rotation (3, 3) about the member ``axis`` by 0 or +-1 pitch that puts the coast
+    point ``rc`` (normal ``nc``) and the drive point ``rd`` (``nd``) behind each other's
+    outward normal with the smallest gap (one tooth, not a slot), or None."""
+    best = None
+    for k in (0, 1, -1):
+        turn = _turn(axis, 2.0 * np.pi * k / teeth)
+        rc_k, nc_k = rc @ turn.T, nc @ turn.T
+        gap = float(np.linalg.norm(rd - rc_k))
+        if nd @ (rc_k - rd) < 0.0 and nc_k @ (rd - rc_k) < 0.0 and (best is None or gap < best[0]):
+            best = (gap, turn)
+    return None if best is None else best[1]
+
+
+def _turn(axis: np.ndarray, angle_rad: float) -> np.ndarray:
+    """Rotation matrix about the unit ``axis`` by ``angle_rad`` (Rodrigues)."""
+    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    return np.eye(3) + np.sin(angle_rad) * k + (1.0 - np.cos(angle_rad)) * (k @ k)
+
+
+#: Profile steps marching the conjugate pinion's node solutions from the mean radius
+#: to its tip line (continuation; each step well inside Newton's convergence radius).
+_TIP_MARCH = 12
+#: Cutter point widths / working depth factors tried by :func:`check_pinion_top_land`
+#: to verify its fix (each trial adds the remaining first-order deficit).
+_LAND_TRIALS = 3
+#: Top land the named fix aims at, mm: a first-order estimate aimed at exactly zero
+#: would land on either side of it.
+_LAND_MARGIN_MM = 0.02
+
+
+def pinion_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Normal top land of the conjugate pinion tooth along its tip line.
+
+    The pinion flanks exist only as envelopes of the gear flanks, so the tip line is
+    traced with exact node solves (:class:`~.conjugate.MeshingSolver`, no node grid):
+    at ``_TIP_STATIONS`` lengthwise stations of each flank's active box (both flanks at
+    the same fraction, as the tooth shell ``structure.tooth`` pairs them) the solutions
+    are continued along the face at the mean radius (:func:`~.conjugate.section_guesses`),
+    then along the profile to the common tip ``u = min(u_tip drive, u_tip coast)``, the
+    height where the shell's tooth ends. One pinion tooth lies between the drive flank and
+    the coast flank turned by 0 or +-1 pitch about the pinion axis (chosen at mid-face);
+    the top land is the coast point's depth behind the drive flank's tangent plane, as
+    :func:`gear_tip_top_lands` measures it for the gear, with the pair's ease-off relief
+    E applied as the eased sheet applies it (:mod:`.easeoff`: same radius and axial
+    position, the point turned about the axis by ``E / (n . e_psi)``, first order in E).
+    An ease-off still to be synthesized is not known here and counts as zero.
+
+    Parameters
+    ----------
+    pair : GearPair
+    boxes : dict, optional
+        :func:`check_generation`'s active boxes and solvers (computed when omitted).
+
+    Returns
+    -------
+    frac, land_mm : ndarray (_TIP_STATIONS,)
+        As :func:`gear_tip_top_lands` (toe 0 .. heel 1; top land, mm, negative where the
+        flanks cross below the tip).
+    """
+    pair = _right_hand(pair)
+    boxes = _generation_boxes(pair) if boxes is None else boxes
+    frac = np.linspace(0.0, 1.0, _TIP_STATIONS)
+    u_tip = min(got["active_box"].u_tip for got in boxes.values())
+    mid, tip = {}, {}
+    for side in ("drive", "coast"):
+        solver, box = boxes[side]["solver"], boxes[side]["active_box"]
+        u_m, v_m = float(solver.cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
+        vs = box.v_toe + frac * (box.v_heel - box.v_toe)
+        coeffs = pair.easeoff_drive if side == "drive" else pair.easeoff_coast
+        relief = EaseOff.from_coefficients(coeffs, u_mean_mm=u_m, v_mean_mm=v_m
+                                           ).relief_mm(u_tip, vs)
+        q, _ = section_guesses(solver, vs, u_m, v_m, substeps=1)  # stations F/40 apart
+        c = _TIP_STATIONS // 2
+        s = solver.solve(u_m, vs[c], q[c])
+        mid[side] = (s.x1_mm, s.n1)
+        for u in np.linspace(u_m, u_tip, _TIP_MARCH + 1)[1:]:
+            s = solver.solve(np.full_like(vs, u), vs, q)
+            q = np.stack([s.h_mm, s.theta_rad, s.phi2_rad], axis=-1)
+        # the eased sheet keeps (u, v), i.e. radius and axial position: its point is
+        # turned about the axis until it meets the relieved surface r - E n (first order)
+        e_psi = np.stack([np.zeros_like(vs), -s.x1_mm[:, 2], s.x1_mm[:, 1]], axis=-1)
+        e_psi /= np.linalg.norm(e_psi, axis=-1, keepdims=True)
+        shift = relief / np.einsum("ni,ni->n", s.n1, e_psi)
+        tip[side] = (s.x1_mm - shift[:, None] * e_psi, s.n1)
+    turn = _one_tooth_turn(*mid["drive"], *mid["coast"], axis=_X, teeth=pair.pinion_teeth)
+    if turn is None:
+        raise InputRangeError("cutter.point_width_mm", pair.cutter.point_width_mm,
+                              "a pinion tooth between the drive and coast flanks at mid-face "
+                              "(the gear slot is wider than the pitch)")
+    (rd, nd), rc = tip["drive"], tip["coast"][0] @ turn.T
+    return frac, -np.einsum("ni,ni->n", rc - rd, nd)
+
+
+def check_pinion_top_land(pair, *, boxes: dict | None = None) -> float:
+    """Smallest normal top land of the conjugate pinion tooth along its tip line, mm
+    (:func:`pinion_tip_top_lands`); refuses pinion teeth pointed anywhere along the face.
+
+    ISO 23509 checks no pinion top land at all; the conjugate pinion of a formate gear is
+    thinnest at the toe tip (z1/z2 = 9/32, E = 0, beta1 = 22.1 deg: -0.06 mm at the
+    toe, 0.20 mm at mid-face), where the tooth shell would find its flanks crossing.
+
+    The fix named is verified by running the checks of :func:`check_generation` again
+    with it (up to ``_LAND_TRIALS`` values, each adding the remaining first-order
+    deficit plus ``_LAND_MARGIN_MM``): first a wider cutter point width ``W`` (a wider
+    gear slot: the pinion's normal top land grows about one for one with W, the gear's
+    shrinks alike), else a smaller working depth factor (a lower pinion tip:
+    the top land grows by ``dh (tan alpha_nD + tan alpha_nC)``, dh the drop of the tip).
+
+    Raises
+    ------
+    InputRangeError
+        Naming ``cutter.point_width_mm`` (a lower bound that works) or
+        ``design.working_depth_factor`` (an upper bound that works), with the top land
+        found; else ``design.gear_face_width_mm`` (a narrower face) without a value.
+    """
+    pair = _right_hand(pair)
+    frac, land = pinion_tip_top_lands(pair, boxes=boxes)
+    worst = int(np.argmin(land))
+    if land[worst] > 0.0:
+        return float(land[worst])
+    where = (f"pointed pinion teeth at the {'toe' if frac[worst] < 0.5 else 'heel'}: the "
+             f"normal top land of the conjugate pinion along its tip line is "
+             f"{land[worst]:.4g} mm there")
+    w = pair.cutter.point_width_mm
+    fixed = _verified_fix(pair, float(land[worst]), lambda deficit, w_try: w_try + deficit,
+                          w, lambda p, x: dataclasses.replace(
+                              p, cutter=dataclasses.replace(p.cutter, point_width_mm=x)))
+    if fixed is not None:
+        raise InputRangeError("cutter.point_width_mm", w,
+                              f">= {fixed[0]:.3f} mm ({where}; with {fixed[0]:.3f} mm it is "
+                              f"{fixed[1]:.3g} mm)")
+    b = pair.blank
+    per_kd = (1.0 - pair.gear_addendum_factor) * b.mean_normal_module_mm * sum(
+        np.tan(np.radians(a)) for a in (b.pressure_angle_drive_deg, b.pressure_angle_coast_deg))
+    kd = pair.working_depth_factor
+    fixed = _verified_fix(pair, float(land[worst]), lambda deficit, k: k - deficit / per_kd,
+                          kd, lambda p, x: dataclasses.replace(p, working_depth_factor=x))
+    if fixed is not None:
+        raise InputRangeError("design.working_depth_factor", kd,
+                              f"<= {fixed[0]:.3f} ({where}; with {fixed[0]:.3f} it is "
+                              f"{fixed[1]:.3g} mm)")
+    raise InputRangeError("design.gear_face_width_mm", pair.gear_face_width_mm,
+                          f"a narrower face ({where}; no cutter point width or working depth "
+                          "factor tried gives both members a top land)")
+
+
+def _verified_fix(pair, land_mm: float, step, start: float, change):
+    """``(value, smallest pinion top land)`` of the first trial value of one field that
+    passes every check of :func:`check_generation`, or None (see
+    :func:`check_pinion_top_land`)."""
+    x, land = start, land_mm
+    for _ in range(_LAND_TRIALS):
+        new = step(_LAND_MARGIN_MM - land, x)
+        # 3 digits, rounded away from the given value (the safe side)
+        x = float((np.ceil if new > start else np.floor)(new * 1e3) / 1e3)
+        if not x > 0.0:
+            return None
+        try:
+            trial = change(pair, x)
+            check_gear_top_land(trial)
+            land = float(np.min(pinion_tip_top_lands(trial, boxes=_generation_boxes(trial))[1]))
+        except InputRangeError:
+            return None
+        if land > 0.0:
+            return x, land
+    return None

@@ -162,7 +162,8 @@ class DesignPoint:
         direction in the right-handed flank frame ``(l, p, n)``: the angle of
         :func:`~gearcontact.tca.curvature.contact_ellipse` on the side where that frame
         is right-handed, its negative on the other side, so that mirror-image bearings
-        on the two sides have the same angle.
+        on the two sides have the same angle; a left-hand pair reports the angle of its
+        right-hand mirror image.
     easeoff_max_um : float
         Largest |E| of the ease-off over the pinion flank, um.
     paint_length_mm : float
@@ -170,7 +171,8 @@ class DesignPoint:
     path_angle_deg : float
         Direction of the contact path at the point (phase increasing), deg from the
         lengthwise direction, in the same right-handed frame as ``ellipse_angle_deg``,
-        folded into (-90, 90]; NaN if the path has no interior neighbour there.
+        folded into (-90, 90]; NaN if the path has no interior neighbour there. A
+        left-hand pair reports the angle of its right-hand mirror image.
     """
 
     point_mm: np.ndarray
@@ -323,7 +325,11 @@ def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
     ell = contact_ellipse(rc)
     # the flank frame (l, p, n) is right-handed on one side and left-handed on the other
     # (tca.curvature); compare orientations in the right-handed frame of either side
+    # a left-hand pair is the mirror image (geometry.mirror): the reflection turns the
+    # frame's handedness while the path and the ellipse axes keep their (l, p)
+    # components, so the hand's sign gives the angles of the right-hand mirror image
     handed = float(np.sign(np.cross(rc.lengthwise, rc.profile) @ rc.normal))
+    handed *= -1.0 if pair.pinion_hand == "left" else 1.0
     path_angle = float("nan")
     if path_tangent is not None and np.all(np.isfinite(path_tangent)):
         path_angle = _fold_deg(handed * float(np.degrees(np.arctan2(

@@ -1,0 +1,36 @@
+"""Memory layout of the twin's compiled step loop (:mod:`.kernel`): the backend and
+curvature-source codes, the parameter vector ``prm``, the counters ``tcount``, the
+state vector ``y`` and the record columns."""
+
+
+#: Contact backends; ``rtl`` and ``soc`` run the golden loop and replay its previews on
+#: the RTL core / through the SoC register driver (:mod:`.cosim`).
+BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1, "soc": 1}
+
+
+# prm indices
+(P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
+ P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
+ P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI) = range(31)
+N_PRM = 31
+#: Entries of the counters ``tcount``: trace rows written, step index of the trace rows,
+#: steps, previews outside the datapath's domain, steps with such a preview, previews
+#: without a contact law (:func:`~.kernel.run_steps`).
+N_COUNT = 6
+#: Curvature sources of the preview (``prm[P_STAGEC]``): the TCA's shape-operator
+#: curvatures per row (``cv`` columns A-, B-), or stage C per step on the 7 x 7 stencil
+#: (fp64: ``cv`` the fitted c3, c4, c5 per row; golden: ``cv`` the 49 gap samples).
+CURVATURE_SOURCES = {"exact": 0, "stencil": 1}
+#: Length of the state vector y.
+N_STATE = 11
+# record columns
+(R_T, R_THETA, R_PSI, R_TMESH, R_W, R_A, R_B, R_P, R_NPAIRS, R_KE, R_PE, R_V, R_D, R_WIN,
+ R_WP, R_WG) = range(16)
+N_REC = 16
+#: Recorded columns (SI; loads N, semi-axes mm, pressure MPa). The table backend holds no
+#: contact state: its a_mm, b_mm, p_max_mpa, pairs_loaded and mesh_energy_j are 0.
+RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_n",
+                  "a_mm", "b_mm", "p_max_mpa", "pairs_loaded", "kinetic_j",
+                  "shaft_energy_j", "mesh_energy_j", "dissipated_j", "input_work_j",
+                  "pinion_speed_rad_s", "gear_speed_rad_s")
+

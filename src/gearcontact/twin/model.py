@@ -1,0 +1,279 @@
+"""The drivetrain twin's model: a :class:`TwinModel` joins the drivetrain (:mod:`.params`),
+the mesh of the pair (:mod:`.mesh`; and for the ``table`` backend the loaded-TE table of
+:mod:`.ltca_table`) and one contact backend, laid out as the compiled loop of
+:mod:`.kernel` takes it (:func:`build_model`, :func:`model_for_pair`); its static
+operating point and linearised modes are :mod:`.statics`, its time run
+:mod:`.simulate`.
+
+Tooth bending (switchable: ``mesh_table(..., bending=...)``, ``model_for_pair(...,
+bending=True)``, ``gearcontact twin --bending``): each pair's bending compliance of the
+pinion and gear tooth (:func:`~.mesh.pair_bending_compliance`, the shell operator of
+:mod:`gearcontact.contact.tooth_bending` weighted by the pair's Hertz pressure) is in
+series with its Hertzian approach, ``d_j = kappa_j W_j^(2/3) + c_b,j W_j``, solved per
+pair and step in the kernel; without it the teeth are rigid.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..preview.fit.golden import element_constants
+from ..preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
+from ..preview.hertz.golden import encode_e_prime
+from ..preview.hertz.golden_vec import golden_constants
+from ..preview.hertz.reference import ENVELOPE
+from ..validation import InputRangeError, check_positive
+from . import kernel as K
+from .mesh import MeshTable
+from .params import DrivetrainParams
+
+__all__ = ["TwinModel", "build_model", "model_for_pair", "BACKENDS", "CURVATURE_SOURCES"]
+
+BACKENDS = tuple(K.BACKEND_CODES)
+#: Curvature sources of the preview (:class:`TwinModel` ``curvatures``).
+CURVATURE_SOURCES = tuple(K.CURVATURE_SOURCES)
+
+
+@dataclass(frozen=True, eq=False)
+class TwinModel:
+    """Everything a run needs (build with :func:`build_model`).
+
+    Attributes
+    ----------
+    mesh : MeshTable
+    drivetrain : DrivetrainParams
+    backend : str
+        One of :data:`BACKENDS`.
+    torque_nm : float
+        Load torque on the gear, N·m (the motor gives ``torque / u``).
+    table : gearcontact.twin.ltca_table.TorqueTable or None
+        The loaded-TE table (``table`` backend).
+    reverse : MeshTable or None
+        The other flank side's table (its own TCA): the law of the reverse flank
+        (torque reversal through the backlash). None: the loaded side's law mirrored
+        about the designed backlash (``reverse_note`` says why).
+    reverse_note : str
+        How the reverse flank is modelled (written to ``twin.json``).
+    curvatures : str
+        Where the preview's curvatures come from (:data:`CURVATURE_SOURCES`):
+        ``"stencil"``, stage C per step on the 7 x 7 gap stencil (the whole C -> D
+        preview); ``"exact"``, the TCA's shape-operator curvatures (the law of the
+        loaded TE's preview).
+    """
+
+    mesh: MeshTable
+    drivetrain: DrivetrainParams
+    backend: str
+    torque_nm: float
+    table: object = None
+    arrays: dict = field(default_factory=dict, repr=False)
+    reverse: MeshTable | None = None
+    reverse_note: str = ""
+    curvatures: str = "stencil"
+
+    @property
+    def curvature_source(self) -> str:
+        """The curvature source the kernel runs (:func:`_curvature_source`)."""
+        return _curvature_source(self.backend, self.curvatures)
+
+
+def _curvature_source(backend: str, curvatures: str) -> str:
+    """The table backend has no preview: its arrays are packed with the exact
+    curvatures, never read; every other backend runs ``curvatures``."""
+    return "exact" if backend == "table" else curvatures
+
+
+def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
+                backend: str = "reference", table=None, reverse: MeshTable | None = None,
+                reverse_note: str = "", curvatures: str = "stencil") -> TwinModel:
+    """Check the inputs and pack the compiled loop's arrays.
+
+    Tooth bending comes with the mesh tables (their ``bending_mm_per_n``).
+
+    Curvatures outside the fixed-point datapath's domain are not refused: the run
+    counts and reports the previews that leave it (:func:`~.simulate.simulate`).
+
+    Raises
+    ------
+    InputRangeError
+        Unknown backend or curvature source, ``table`` backend without a table, torque
+        <= 0, a designed backlash that does not clear an interference of the generated
+        flanks.
+    """
+    if backend not in BACKENDS:
+        raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    if curvatures not in CURVATURE_SOURCES:
+        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if backend == "table" and table is None:
+        raise InputRangeError("table", None, "a loaded-TE table for the table backend")
+    if reverse is not None:
+        from .mesh import free_play_rad
+        # opposite motion signs (reverse_law), and a positive total free play: the
+        # designed backlash must exceed an interference of the generated flanks
+        geo = float(free_play_rad(mesh, reverse, mesh.psi_rad).min()) * mesh.reference_lever_mm
+        if geo + drivetrain.backlash_mm <= 0.0:
+            raise InputRangeError("drivetrain.backlash_mm", drivetrain.backlash_mm,
+                                  f"> {-geo:.4g} mm (the generated {mesh.side} and "
+                                  f"{reverse.side} flanks interfere by {-1e3 * geo:.3g} um)")
+        reverse_note = reverse_note or (f"own law: the {reverse.side} flanks' TCA (levers, "
+                                        "openings, curvatures, TE0), geometric free play "
+                                        "plus backlash_mm")
+    else:
+        reverse_note = reverse_note or "loaded side's law mirrored about backlash_mm"
+    pow_lut, cbrt_lut, cst = golden_constants()
+    if table is not None:
+        tab = (np.ascontiguousarray(table.theta_rad),
+               np.ascontiguousarray(np.broadcast_to(table.torques_nm ** (2.0 / 3.0),
+                                                    table.theta_rad.shape)),
+               np.ascontiguousarray(table.load_n ** (2.0 / 3.0)))
+    else:
+        tab = (np.ones((1, 2)), np.zeros((1, 2)), np.zeros((1, 2)))
+    fit_w, fit_cst = element_constants()
+    source = _curvature_source(backend, curvatures)
+    arrays = {**_stack(mesh, reverse if reverse is not None else mesh, source,
+                       golden=backend not in ("reference", "table")),
+              "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
+              "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2],
+              "fit_w": fit_w, "fit_cst": fit_cst}
+    return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note,
+                     curvatures)
+
+
+def _stack(mesh: MeshTable, rev: MeshTable, source: str, *, golden: bool) -> dict:
+    """The kernel's per-flank arrays: index 0 the loaded side, 1 the reverse side, padded
+    to the larger pair and row counts (padding is never valid). ``cv``: the preview's
+    curvature source per row (:mod:`.kernel`): A-, B- (``exact``); the stencil's fitted
+    c3, c4, c5 (``stencil``, fp64) or its 49 samples and then c3, c4, c5 (``stencil``,
+    golden: the fp64 fit evaluates the previews the datapath flags)."""
+    n_p = max(mesh.lever_mm.shape[0], rev.lever_mm.shape[0])
+    n_k = max(mesh.lever_mm.shape[1], rev.lever_mm.shape[1])
+    out = {"eps": np.zeros((2, n_k))}
+    for s, m in enumerate((mesh, rev)):
+        out["eps"][s, :m.eps_rad.size] = m.eps_rad
+    for key, attr in (("lever", "lever_mm"), ("opening", "opening_mm"), ("valid", "valid"),
+                      ("cb", "bending_mm_per_n")):
+        arr = np.zeros((2, n_p, n_k), bool if key == "valid" else float)
+        for s, m in enumerate((mesh, rev)):
+            v = getattr(m, attr)
+            if v is None:
+                continue
+            arr[s, :v.shape[0], :v.shape[1]] = v
+        out[key] = arr
+    srcs = [_curvature_rows(m, source, golden=golden) for m in (mesh, rev)]
+    cv = np.zeros((2, n_p, n_k, srcs[0].shape[2]))
+    for s, v in enumerate(srcs):
+        cv[s, :v.shape[0], :v.shape[1]] = v
+    out["cv"] = cv
+    return out
+
+
+def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray:
+    """(P, K, C) curvature source of one table (:func:`_stack`)."""
+    if source == "exact":
+        return np.stack([mesh.A_minus_per_mm, mesh.B_minus_per_mm], axis=-1)
+    if golden:      # the samples for the fit core, the fp64 fit for the fp64 fallback
+        return np.concatenate([np.asarray(mesh.stencil_gaps_mm, float),
+                               _fitted_coefficients(mesh)], axis=-1)
+    return _fitted_coefficients(mesh)
+
+
+def _fitted_coefficients(mesh: MeshTable) -> np.ndarray:
+    """fp64 stage-C coefficients c3, c4, c5 (1/mm) of every row's stencil (P, K, 3): the
+    fit of :func:`gearcontact.preview.fit.reference.fit_curvatures` (the baked ROM's
+    weights), for all rows at once."""
+    return np.asarray(mesh.stencil_gaps_mm, float) @ baked_pinv().weights[3:6].T
+
+
+def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
+    dt, m = model.drivetrain, model.mesh
+    c1, c2 = dt.shaft_damping()
+    prm = np.zeros(K.N_PRM)
+    prm[[K.P_JM, K.P_JP, K.P_JG, K.P_JL]] = (dt.motor_inertia_kgm2, dt.pinion_inertia_kgm2,
+                                             dt.gear_inertia_kgm2, dt.load_inertia_kgm2)
+    prm[K.P_K1], prm[K.P_K2] = dt.input_stiffness_nm_per_rad, dt.output_stiffness_nm_per_rad
+    prm[K.P_C1], prm[K.P_C2], prm[K.P_CM] = c1, c2, c_mesh_n_s_per_mm
+    prm[K.P_THB] = dt.backlash_mm / m.reference_lever_mm
+    prm[K.P_U] = m.ratio
+    prm[K.P_TL] = model.torque_nm
+    prm[K.P_TM] = model.torque_nm / m.ratio
+    prm[K.P_L0] = m.reference_lever_mm
+    rev = model.reverse
+    if rev is None:
+        prm[K.P_MIRROR] = 1.0
+        prm[K.P_DPSIR], prm[K.P_NROWR] = m.step_rad, len(m.psi_rad)
+    else:
+        from .mesh import reverse_law
+        prm[K.P_PSIR], prm[K.P_CR] = reverse_law(m, rev)
+        prm[K.P_DPSIR], prm[K.P_NROWR] = rev.step_rad, len(rev.psi_rad)
+    prm[K.P_EP] = m.e_prime_mpa
+    prm[K.P_DPSI] = m.step_rad
+    prm[K.P_PITCH] = m.pitch_rad
+    prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
+    prm[K.P_NROW] = len(m.psi_rad)
+    prm[K.P_STAGEC] = K.CURVATURE_SOURCES[model.curvature_source]
+    prm[K.P_CLO], prm[K.P_CHI] = ENVELOPE["curvature_per_mm"]
+    prm[K.P_AHI] = ENVELOPE["alpha"][1]
+    return prm
+
+
+
+def _fit_args(a: dict, trace_rows: int) -> tuple:
+    """The kernel's ``fit`` tuple: the golden stage C's ROM and constants, its scratch,
+    and a stencil trace of ``trace_rows`` rows (:func:`.kernel.run_steps`)."""
+    return (a["fit_w"], a["fit_cst"], np.zeros((1, N_TAPS), np.int64),
+            np.zeros((1, N_COEFFS), np.int64), np.zeros((trace_rows, N_TAPS), np.int64))
+
+
+
+def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
+                   drivetrain: DrivetrainParams | None = None, side: str = "drive",
+                   phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
+                   bending: bool = False, curvatures: str = "stencil",
+                   progress: bool = False) -> TwinModel:
+    """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
+    :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
+    The TCA is surface-to-surface (``edge_contact=False``: the Hertzian law has no
+    meaning at an edge touching the other flank). The reverse flank is the other side's
+    own TCA (mirrored loaded law if that side is in line contact). ``bending``: tooth bending of both members in series with the
+    Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`). ``curvatures``:
+    the preview's curvature source (:class:`TwinModel`)."""
+    from ..tca.analysis import analyze_pair
+    from ..tca.line_contact import LineContact
+    from .ltca_table import torque_table
+    from .mesh import mesh_table
+    from .params import default_drivetrain
+
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if backend not in BACKENDS:     # before the expensive stages
+        raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
+    if curvatures not in CURVATURE_SOURCES:
+        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
+    from ..contact.tooth_bending import tooth_bending
+
+    # Surface-to-surface TCA (edge_contact=False): the twin's contact law is Hertzian,
+    # and an edge touching the other flank has no Hertzian law; pairs beyond the end of
+    # their path enter as edge pairs resolved on their posed fields, as in the loaded TE
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False,
+                               progress=progress)
+    bend = (lambda s: tooth_bending(flanks, pair, side=s)) if bending else (lambda s: None)
+    mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t, bending=bend(side))
+    other = "coast" if side == "drive" else "drive"
+    reverse, note = None, ""
+    try:
+        rtca, _ = analyze_pair(pair, side=other, phases=phases, flanks=flanks,
+                               edge_contact=False, progress=progress)
+        reverse = mesh_table(rtca, flanks, pair, side=other, torque_nm=t,
+                             bending=bend(other))
+    except LineContact as exc:     # conjugate flanks: no contact ellipse to load
+        note = (f"loaded side's law mirrored about backlash_mm: the {other} flanks are in "
+                f"line contact ({str(exc).split(';')[0]}), outside the Hertzian preview")
+    table = None
+    if backend == "table":
+        table = torque_table(tca, flanks, pair, mesh, t, side=side, source=table_source,
+                             cells=table_cells, bending=bend(side), progress=progress)
+    return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
+                       table=table, reverse=reverse, reverse_note=note,
+                       curvatures=curvatures)
