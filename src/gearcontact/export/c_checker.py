@@ -1,0 +1,85 @@
+"""What the exported checker program knows of each core: vector layouts and C calls.
+
+``gearcontact_check`` reads the ``$readmemh`` files of ``gearcontact vectors``; its field
+tables are :func:`gearcontact.hw.vectors.vector_layout` (the same layouts the writer
+and the Verilator harness use), and each core's C call is described here once
+(:data:`C_CORES`: function, argument ports, the form argument, result struct). The
+template ``data/templates/c/gearcontact_check.c.j2`` turns :func:`checker_cores` into
+C tables and one adapter per core.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..hw.harness_cores import get_bench
+from ..hw.vectors import EXPORT_CORES, vector_layout
+
+__all__ = ["CCall", "C_CORES", "checker_cores", "other_cores"]
+
+
+@dataclass(frozen=True)
+class CCall:
+    """The golden C function that computes one vector core.
+
+    Attributes
+    ----------
+    function : str
+        C function name.
+    args : tuple of str
+        Input ports passed, in argument order (one element each).
+    extra : str
+        Trailing C argument(s) (the Hertz form), verbatim.
+    result_type : str
+        Returned struct type; its members are named after the output ports.
+    arg_type : str
+        C type the 64-bit decoded codes are converted to.
+    """
+
+    function: str
+    args: tuple
+    extra: str
+    result_type: str
+    arg_type: str = "int32_t"
+
+
+#: Vector cores the golden C library implements, in checker order.
+C_CORES = {
+    "hertz": CCall("gc_hertz_golden", ("A", "B", "W", "e_prime"), "GC_HERTZ_HAMROCK_BREWE",
+                   "gc_hertz_codes"),
+    "hertz_exact": CCall("gc_hertz_golden", ("A", "B", "W", "e_prime"), "GC_HERTZ_EXACT",
+                         "gc_hertz_codes"),
+}
+
+
+def _offsets(fields) -> dict[str, int]:
+    """Position of each field's first element among the flattened values of a line."""
+    out, pos = {}, 0
+    for f in fields:
+        out[f.name] = pos
+        pos += f.count
+    return out
+
+
+def checker_cores() -> list[dict]:
+    """Template context of every core in :data:`C_CORES`: name, summary, input and
+    output fields (:class:`~gearcontact.hw.vectors.HexField`), argument offsets and
+    ``(member, offset)`` of every output element."""
+    cores = []
+    for name, call in C_CORES.items():
+        ins, outs = vector_layout(name)
+        in_at, out_at = _offsets(ins), _offsets(outs)
+        if any(f.count != 1 for f in outs):
+            raise ValueError(f"core {name}: array outputs need an adapter of their own")
+        cores.append({"name": name, "summary": get_bench(name).summary,
+                      "ins": ins, "outs": outs,
+                      "args": [in_at[a] for a in call.args], "extra": call.extra,
+                      "function": call.function, "result_type": call.result_type,
+                      "arg_type": call.arg_type,
+                      "out_members": [(f.name, out_at[f.name]) for f in outs]})
+    return cores
+
+
+def other_cores() -> list[str]:
+    """Vector cores of ``gearcontact vectors`` the C library does not implement yet."""
+    return [c for c in EXPORT_CORES if c not in C_CORES]

@@ -1,0 +1,83 @@
+"""Constants of the exported C library, read from the package's own tables.
+
+Everything the C sources need (register fraction bits, shifts, constants, operating
+envelope, flags, the ROM words and their interpolation geometry) is collected here
+from :mod:`gearcontact.preview.hertz.formats`, :mod:`gearcontact.preview.hertz.luts`
+and :mod:`gearcontact.preview.qformat`; the templates print these numbers and never
+hold one of their own. Nothing is retyped: a change of a table in the package changes
+the exported C on the next ``gearcontact export c``.
+"""
+
+from __future__ import annotations
+
+from ..preview.hertz import formats as F
+from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
+                                  POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
+                                  same_geometry)
+from ..preview.hertz.divider import DIVIDER_BITS
+from ..preview.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+
+__all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry"]
+
+
+def lut_geometry(spec: LutSpec) -> dict:
+    """Interpolation geometry of one ROM (argument offset, sub-step bits, Q field, shift
+    of the quadratic term, fraction bits of the result)."""
+    return {"x0_code": spec.x0_code, "tbits": spec.tbits, "qbits": spec.qbits,
+            "corr_shift": spec.corr_shift, "out_frac": spec.out_frac}
+
+
+def hertz_flags() -> list[tuple[str, int]]:
+    """``(name, bit)`` of every stage-D flag, bit order."""
+    return [(name, bit) for bit, name in sorted(F.FLAG_NAMES.items())]
+
+
+def hertz_roms() -> dict[str, tuple[int, ...]]:
+    """The four stage-D ROMs (256 words each): POW and its exact twin POWX, the exact
+    E_e numerator EEX, and CBRT, as the golden model and the RTL read them."""
+    assert same_geometry(POW_SPEC, POW_EXACT_SPEC) and same_geometry(POW_SPEC, EE_EXACT_SPEC)
+    return {"pow": rom_words(POW_SPEC), "pow_exact": rom_words(POW_EXACT_SPEC),
+            "ee_exact": rom_words(EE_EXACT_SPEC), "cbrt": rom_words(CBRT_SPEC)}
+
+
+def hertz_constants() -> dict[str, int]:
+    """Named integer constants of the stage-D datapath (macro name -> value)."""
+    c = {
+        # dividends of DIV_RX/DIV_RY (one extra bit for the rounding) and DIV_R
+        "RXY_DIVIDEND_LOG2": 2 * CURVATURE.frac,
+        "R_DIVIDEND_LOG2": F.RADIUS.frac + CURVATURE.frac - 1,
+        "ALPHA_FRAC": F.ALPHA.frac,
+        "K_INT_FRAC": F.K_INT.frac, "K2_FRAC": F.K2.frac, "E6_FRAC": F.E6.frac,
+        "T1_FRAC": F.T1.frac, "T2_FRAC": F.T2.frac, "T3_FRAC": F.T3.frac,
+        "RADIUS_FRAC": F.RADIUS.frac, "CA_FRAC": F.CA.frac, "M_RED_FRAC": F.M_RED.frac,
+        "CBRT_VAL_FRAC": F.CBRT_VAL.frac, "AXIS_W_FRAC": F.AXIS_W.frac,
+        "SEMI_AXIS_FRAC": SEMI_AXIS.frac, "K_OUT_FRAC": F.K_OUT.frac,
+        "PN2_SHIFT": F.PN2_SHIFT, "PMAX_SHIFT": F.PMAX_SHIFT,
+        "EE_DIVIDEND_SHIFT": EE_DIVIDEND_SHIFT,
+        "C6": F.C6, "N5": F.N5, "C3": F.C3,
+        "CURV_MIN_CODE": F.CURV_MIN_CODE, "CURV_MAX_CODE": F.CURV_MAX_CODE,
+        "LOAD_MIN_CODE": F.LOAD_MIN_CODE, "LOAD_MAX_CODE": F.LOAD_MAX_CODE,
+        "E_PRIME_MIN_CODE": F.E_PRIME_MIN_CODE, "E_PRIME_MAX_CODE": F.E_PRIME_MAX_CODE,
+        "ALPHA_MAX_CODE": F.ALPHA_MAX_CODE,
+        # largest code of each output register (FLAG_OVERFLOW beyond it)
+        "SEMI_AXIS_MAX_CODE": SEMI_AXIS.max_code, "PMAX_MAX_CODE": PMAX.max_code,
+        "K_OUT_MAX_CODE": F.K_OUT.max_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
+        "CURVATURE_FRAC": CURVATURE.frac, "LOAD_FRAC": LOAD.frac, "PMAX_FRAC": PMAX.frac,
+        "LUT_SIZE": LUT_SIZE, "DIVIDER_BITS": DIVIDER_BITS,
+        # right shifts of the golden model's round_shift steps (module docstring of
+        # gearcontact.preview.hertz.golden)
+        "K_SHIFT": POW_SPEC.out_frac - F.K_INT.frac,
+        "K2_SHIFT": 2 * F.K_INT.frac - F.K2.frac,
+        "T1_SHIFT": F.K2.frac + F.E6.frac - F.T1.frac,
+        "T2_SHIFT": F.T1.frac + F.RADIUS.frac - F.T2.frac,
+        "CA_SHIFT": F.CA.frac - F.T3.frac,
+        "AXIS_SHIFT": F.CBRT_VAL.frac - F.AXIS_W.frac,
+        "OUT_AXIS_SHIFT": F.AXIS_W.frac - SEMI_AXIS.frac,
+        "K_OUT_SHIFT": F.K_INT.frac - F.K_OUT.frac,
+    }
+    # the golden model reads the CBRT interpolation as CBRT_VAL without a shift
+    assert CBRT_SPEC.out_frac == F.CBRT_VAL.frac
+    for name, spec in (("POW", POW_SPEC), ("CBRT", CBRT_SPEC)):
+        for key, value in lut_geometry(spec).items():
+            c[f"{name}_{key.upper()}"] = value
+    return c
