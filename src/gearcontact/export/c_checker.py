@@ -27,7 +27,8 @@ class CCall:
     function : str
         C function name.
     args : tuple of str
-        Input ports passed, in argument order (one element each).
+        Input ports passed, in argument order (a scalar port as a value, an array
+        port, e.g. the 49 gap samples, as a pointer to its elements).
     extra : str
         Trailing C argument(s) (the Hertz form), verbatim.
     result_type : str
@@ -45,10 +46,15 @@ class CCall:
 
 #: Vector cores the golden C library implements, in checker order.
 C_CORES = {
+    "fit": CCall("gc_fit_golden", ("wr_data",), "", "gc_fit_codes"),
     "hertz": CCall("gc_hertz_golden", ("A", "B", "W", "e_prime"), "GC_HERTZ_HAMROCK_BREWE",
                    "gc_hertz_codes"),
+    "chain": CCall("gc_chain_golden", ("wr_data", "W", "e_prime"), "GC_HERTZ_HAMROCK_BREWE",
+                   "gc_chain_codes"),
     "hertz_exact": CCall("gc_hertz_golden", ("A", "B", "W", "e_prime"), "GC_HERTZ_EXACT",
                          "gc_hertz_codes"),
+    "chain_exact": CCall("gc_chain_golden", ("wr_data", "W", "e_prime"), "GC_HERTZ_EXACT",
+                         "gc_chain_codes"),
 }
 
 
@@ -63,17 +69,22 @@ def _offsets(fields) -> dict[str, int]:
 
 def checker_cores() -> list[dict]:
     """Template context of every core in :data:`C_CORES`: name, summary, input and
-    output fields (:class:`~gearcontact.hw.vectors.HexField`), argument offsets and
-    ``(member, offset)`` of every output element."""
+    output fields (:class:`~gearcontact.hw.vectors.HexField`), each argument's offset
+    and element count, the C call's argument list and ``(member, offset)`` of every
+    output element."""
     cores = []
     for name, call in C_CORES.items():
         ins, outs = vector_layout(name)
         in_at, out_at = _offsets(ins), _offsets(outs)
         if any(f.count != 1 for f in outs):
             raise ValueError(f"core {name}: array outputs need an adapter of their own")
+        count = {f.name: f.count for f in ins}
+        args = [{"offset": in_at[a], "count": count[a]} for a in call.args]
+        call_args = [f"v{i}" if a["count"] > 1 else f"v{i}[0]" for i, a in enumerate(args)]
         cores.append({"name": name, "summary": get_bench(name).summary,
                       "ins": ins, "outs": outs,
-                      "args": [in_at[a] for a in call.args], "extra": call.extra,
+                      "args": args,
+                      "call_args": call_args + ([call.extra] if call.extra else []),
                       "function": call.function, "result_type": call.result_type,
                       "arg_type": call.arg_type,
                       "out_members": [(f.name, out_at[f.name]) for f in outs]})

@@ -10,14 +10,20 @@ the exported C on the next ``gearcontact export c``.
 
 from __future__ import annotations
 
+import math
+
+from ..preview.chain import FIT_FLAG_SHIFT
+from ..preview.fit import golden as G
+from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
 from ..preview.hertz import formats as F
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
                                   POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
                                   same_geometry)
 from ..preview.hertz.divider import DIVIDER_BITS
-from ..preview.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
 
-__all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry"]
+__all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
+           "fit_flags", "fit_weight_codes", "fit_weights_fp64"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -81,3 +87,46 @@ def hertz_constants() -> dict[str, int]:
         for key, value in lut_geometry(spec).items():
             c[f"{name}_{key.upper()}"] = value
     return c
+
+
+def fit_flags() -> list[tuple[str, int]]:
+    """``(name, bit)`` of every stage-C flag (the fit core's flags word)."""
+    return [("coefficient_overflow", G.FLAG_COEFF_OVERFLOW),
+            ("discriminant_overflow", G.FLAG_D_OVERFLOW),
+            ("curvature_overflow", G.FLAG_CURV_OVERFLOW),
+            ("not_elliptic", G.FLAG_NOT_ELLIPTIC)]
+
+
+def fit_weight_codes() -> tuple[tuple[int, ...], ...]:
+    """The pseudo-inverse ROM, WEIGHT Q(32,20) codes ``[j][i]`` (6 x 49), as the golden
+    fit and the RTL read it.
+
+    Raises
+    ------
+    FixedPointOverflow
+        A row's ``sum_i |M_ji|`` reaches 2^31: the 64-bit MAC of the C code would no
+        longer be exact (``|acc| <= 2^31 sum_i |M_ji| < 2^62``).
+    """
+    rom = baked_pinv()
+    if max(rom.weight_l1_codes) >= (1 << 31):
+        raise FixedPointOverflow("sum_i |M_ji| (64-bit MAC bound)",
+                                 max(rom.weight_l1_codes), sq(32, 0))
+    return tuple(tuple(int(w) for w in row) for row in rom.weight_codes)
+
+
+def fit_weights_fp64() -> list[list[str]]:
+    """The fp64 pseudo-inverse of the fit reference (6 x 49) as exact C99 hexadecimal
+    floating literals (``float.hex``: no decimal rounding)."""
+    return [[float(w).hex() for w in row] for row in baked_pinv().weights]
+
+
+def fit_constants() -> dict[str, int]:
+    """Named integer constants of the stage-C fit core (macro name -> value)."""
+    d_max = G.D_FMT.max_code
+    return {"N_TAPS": N_TAPS, "N_COEFFS": N_COEFFS,
+            "COEFF_SHIFT": ACC.frac - COEFF.frac,
+            "COEFF_MIN_CODE": COEFF.min_code, "COEFF_MAX_CODE": COEFF.max_code,
+            "D_MAX_CODE": d_max, "E_MAX_CODE": math.isqrt(d_max),
+            "ISQRT_STEPS": G.ROOT_FMT.bits,
+            "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
+            "GAP_FRAC": GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}

@@ -20,21 +20,23 @@ from pathlib import Path
 
 from ..errors import ToolUnavailable
 from .c_checker import checker_cores, other_cores
-from .c_constants import hertz_constants, hertz_flags, hertz_roms
+from .c_constants import (fit_constants, fit_flags, fit_weight_codes, fit_weights_fp64,
+                          hertz_constants, hertz_flags, hertz_roms)
 
 __all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
            "export_c_library"]
 
 #: Golden fixed-point sources (integer arithmetic only).
-GOLDEN_SOURCES = ("gc_hertz_golden.c", "gc_tables.c")
+GOLDEN_SOURCES = ("gc_hertz_golden.c", "gc_fit_golden.c", "gc_tables.c")
 #: fp64 sources.
-FP64_SOURCES = ("gc_hertz_fp64.c",)
+FP64_SOURCES = ("gc_hertz_fp64.c", "gc_fit_fp64.c")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
 C_FILES = ("gearcontact.h", "gc_tables.h") + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
 #: Stages in this export (the header lists them).
-STAGES = ("stage D elliptic Hertz (Hamrock-Brewe and exact-Hertz tables; golden and "
-          "fp64 Hamrock-Brewe)",)
+STAGES = ("stage C curvature fit (golden, fp64)",
+          "stage D elliptic Hertz (Hamrock-Brewe and exact-Hertz tables; golden and "
+          "fp64 Hamrock-Brewe)", "the C -> D chain (golden in both Hertz forms, fp64)")
 
 
 def _environment():
@@ -56,6 +58,8 @@ def _context() -> dict:
     values = [sum(f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
+            "fit_constants": fit_constants(), "fit_flags": fit_flags(),
+            "fit_weights": fit_weight_codes(), "fit_weights_fp64": fit_weights_fp64(),
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
             "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
 
