@@ -33,19 +33,28 @@ class CCall:
         Trailing C argument(s) (the Hertz form), verbatim.
     result_type : str
         Returned struct type; its members are named after the output ports.
-    arg_type : str
-        C type the 64-bit decoded codes are converted to.
+    arg_types : tuple of (str, str), optional
+        ``(port, C type)`` of the arguments that are not ``int32_t`` (the 64-bit gate,
+        the sample count).
     """
 
     function: str
     args: tuple
     extra: str
     result_type: str
-    arg_type: str = "int32_t"
+    arg_types: tuple = ()
 
+    def arg_type(self, port: str) -> str:
+        """C type of argument port ``port``."""
+        return dict(self.arg_types).get(port, "int32_t")
+
+
+_GAP_ARGS = ("w_g", "w_n", "r", "t", "p", "tau2", "n_samples")
+_GAP_TYPES = (("tau2", "uint64_t"), ("n_samples", "int"))
 
 #: Vector cores the golden C library implements, in checker order.
 C_CORES = {
+    "gap": CCall("gc_gap_golden", _GAP_ARGS, "GC_GAP_PUBLISHED", "gc_gap_codes", _GAP_TYPES),
     "fit": CCall("gc_fit_golden", ("wr_data",), "", "gc_fit_codes"),
     "hertz": CCall("gc_hertz_golden", ("A", "B", "W", "e_prime"), "GC_HERTZ_HAMROCK_BREWE",
                    "gc_hertz_codes"),
@@ -55,6 +64,7 @@ C_CORES = {
                          "gc_hertz_codes"),
     "chain_exact": CCall("gc_chain_golden", ("wr_data", "W", "e_prime"), "GC_HERTZ_EXACT",
                          "gc_chain_codes"),
+    "gap_lean": CCall("gc_gap_golden", _GAP_ARGS, "GC_GAP_LEAN", "gc_gap_codes", _GAP_TYPES),
 }
 
 
@@ -79,14 +89,14 @@ def checker_cores() -> list[dict]:
         if any(f.count != 1 for f in outs):
             raise ValueError(f"core {name}: array outputs need an adapter of their own")
         count = {f.name: f.count for f in ins}
-        args = [{"offset": in_at[a], "count": count[a]} for a in call.args]
+        args = [{"offset": in_at[a], "count": count[a], "type": call.arg_type(a)}
+                for a in call.args]
         call_args = [f"v{i}" if a["count"] > 1 else f"v{i}[0]" for i, a in enumerate(args)]
         cores.append({"name": name, "summary": get_bench(name).summary,
                       "ins": ins, "outs": outs,
                       "args": args,
                       "call_args": call_args + ([call.extra] if call.extra else []),
                       "function": call.function, "result_type": call.result_type,
-                      "arg_type": call.arg_type,
                       "out_members": [(f.name, out_at[f.name]) for f in outs]})
     return cores
 

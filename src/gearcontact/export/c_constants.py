@@ -14,6 +14,9 @@ import math
 
 from ..preview.chain import FIT_FLAG_SHIFT
 from ..preview.fit import golden as G
+from ..preview.gap.cores import GAP_LANES
+from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
+from ..preview.gap.variants import residual_limit
 from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
 from ..preview.hertz import formats as F
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
@@ -23,7 +26,7 @@ from ..preview.hertz.divider import DIVIDER_BITS
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
-           "fit_flags", "fit_weight_codes", "fit_weights_fp64"]
+           "fit_flags", "fit_weight_codes", "fit_weights_fp64", "gap_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -130,3 +133,15 @@ def fit_constants() -> dict[str, int]:
             "ISQRT_STEPS": G.ROOT_FMT.bits,
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
             "GAP_FRAC": GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
+
+
+def gap_constants() -> dict[str, int]:
+    """Named integer constants of the stage A/B gap core (default formats, L lanes)."""
+    fmt = DEFAULT_FORMAT
+    # the C code keeps e_k at 16 fraction bits (no e_shift) and rho in 64 bits
+    assert fmt.e_shift == 0
+    return {"LANES": GAP_LANES, "MAX_SAMPLES": 16 * GAP_LANES,
+            "NORMAL_FRAC": fmt.normal_frac,
+            "COORD_MIN_CODE": fmt.coord.min_code, "COORD_MAX_CODE": fmt.coord.max_code,
+            "GAP_SENTINEL": fmt.gap_sentinel, "IDX_SENTINEL": IDX_SENTINEL,
+            "KEY_INF": fmt.key_inf, "LEAN_E_LIMIT": residual_limit("lean")}

@@ -3,7 +3,8 @@
 :func:`export_c_library` renders the Jinja2 templates of ``data/templates/c`` with the
 package's own tables (:mod:`.c_constants`) and vector layouts (:mod:`.c_checker`) into
 one directory: the public header ``gearcontact.h``, the internal ``gc_tables.h`` /
-``gc_tables.c`` (constants and ROM words), one source per stage and flavour, the
+``gc_tables.c`` (constants and ROM words), ``gc_arith.h`` (shift helpers), one
+source per stage and flavour, the
 checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 ``libgearcontact.a``, ``libgearcontact.so`` and ``gearcontact_check``). No file holds a
 time stamp or a path: identical package versions write identical files.
@@ -21,20 +22,21 @@ from pathlib import Path
 from ..errors import ToolUnavailable
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_weight_codes, fit_weights_fp64,
-                          hertz_constants, hertz_flags, hertz_roms)
+                          gap_constants, hertz_constants, hertz_flags, hertz_roms)
 
 __all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
            "export_c_library"]
 
 #: Golden fixed-point sources (integer arithmetic only).
-GOLDEN_SOURCES = ("gc_hertz_golden.c", "gc_fit_golden.c", "gc_tables.c")
+GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc_tables.c")
 #: fp64 sources.
 FP64_SOURCES = ("gc_hertz_fp64.c", "gc_fit_fp64.c")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
-C_FILES = ("gearcontact.h", "gc_tables.h") + GOLDEN_SOURCES + FP64_SOURCES \
+C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
 #: Stages in this export (the header lists them).
-STAGES = ("stage C curvature fit (golden, fp64)",
+STAGES = ("stage A/B gap kernel (golden, published and lean datapaths)",
+          "stage C curvature fit (golden, fp64)",
           "stage D elliptic Hertz (Hamrock-Brewe and exact-Hertz tables; golden and "
           "fp64 Hamrock-Brewe)", "the C -> D chain (golden in both Hertz forms, fp64)")
 
@@ -58,7 +60,7 @@ def _context() -> dict:
     values = [sum(f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
-            "fit_constants": fit_constants(), "fit_flags": fit_flags(),
+            "gap_constants": gap_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
             "fit_weights": fit_weight_codes(), "fit_weights_fp64": fit_weights_fp64(),
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
             "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
