@@ -31,12 +31,14 @@ from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_
 from gearcontact.preview.chain import chain_reference
 from gearcontact.preview.fit.pinv import baked_pinv
 from gearcontact.preview.fit.reference import fit_curvatures
+from gearcontact.preview.gap.reference import gap_reference
 from gearcontact.preview.hertz.reference import hertz_preview
 from gearcontact.validation import InputRangeError
 
 ROOT = Path(__file__).resolve().parents[2]
 COUNT = 10_000                      # random vectors per core (the corner cases on top)
-CORES = ("fit", "hertz", "chain", "hertz_exact", "chain_exact")   # checker order
+#: every core ``gearcontact vectors`` writes, in the checker's order
+CORES = ("gap", "fit", "hertz", "chain", "gap_lean", "hertz_exact", "chain_exact")
 FP64_STENCILS = 3000                # stencils of the fp64 fit/chain comparison
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror"]
 
@@ -217,6 +219,49 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built):
     assert valid >= 1500 and refused >= 300
     assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-12, \
         (worst_c, worst_ab, worst_hz)
+
+
+class _Gap(ctypes.Structure):
+    _fields_ = [("gap_mm", ctypes.c_double), ("idx", ctypes.c_int), ("valid", ctypes.c_int)]
+
+
+def _doubles(a) -> ctypes.Array:
+    a = np.ascontiguousarray(a, float).ravel()
+    return (ctypes.c_double * a.size)(*a)
+
+
+def test_fp64_gap_within_1e12_of_the_python_reference(built):
+    """Seeded passes the reference accepts (orthonormal R, unit normals; the quantized
+    vector operands are not, to its tolerances): 16 samples scattered within 1 mm of
+    the posed point, gates of 0.2 to 2 mm. The winning sample and validity must be
+    equal; gamma (a difference of coordinates of up to ~60 mm) within 1e-12 of the
+    coordinates' magnitude (it is not a relative quantity: it may be ~0)."""
+    lib, _ = built
+    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so.gc_gap_fp64.restype = _Gap
+    ptr = ctypes.POINTER(ctypes.c_double)
+    so.gc_gap_fp64.argtypes = [ptr] * 5 + [ctypes.c_double, ctypes.c_int]
+    rng = np.random.default_rng(25)
+    worst, valid = 0.0, 0
+    for _ in range(2000):
+        q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+        rot = q * np.sign(np.diag(r))
+        rot = rot if np.linalg.det(rot) > 0 else -rot
+        t, p = rng.uniform(-30, 30, 3), rng.uniform(-30, 30, 3)
+        g = rot @ p + t + rng.uniform(-1, 1, (16, 3))
+        nrm = rng.normal(size=(16, 3))
+        nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+        tau = rng.uniform(0.2, 2.0)
+        ref = gap_reference(rot, t, p, g, nrm, tau_mm=tau, lanes=16)
+        c = so.gc_gap_fp64(_doubles(g), _doubles(nrm), _doubles(rot), _doubles(t),
+                           _doubles(p), tau, 16)
+        assert bool(c.valid) == ref.valid
+        if ref.valid:
+            assert c.idx == ref.min_idx
+            worst = max(worst, abs(c.gap_mm - ref.min_gap_mm) / np.abs(g).max())
+            valid += 1
+    assert valid >= 1000
+    assert worst <= 1e-12, worst
 
 
 def test_golden_sources_hold_no_floating_point(built):

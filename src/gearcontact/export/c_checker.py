@@ -52,7 +52,8 @@ class CCall:
 _GAP_ARGS = ("w_g", "w_n", "r", "t", "p", "tau2", "n_samples")
 _GAP_TYPES = (("tau2", "uint64_t"), ("n_samples", "int"))
 
-#: Vector cores the golden C library implements, in checker order.
+#: Vector cores the golden C library implements (the checker runs them in the file
+#: order of ``gearcontact vectors``, :data:`~gearcontact.hw.vectors.EXPORT_CORES`).
 C_CORES = {
     "gap": CCall("gc_gap_golden", _GAP_ARGS, "GC_GAP_PUBLISHED", "gc_gap_codes", _GAP_TYPES),
     "fit": CCall("gc_fit_golden", ("wr_data",), "", "gc_fit_codes"),
@@ -83,7 +84,8 @@ def checker_cores() -> list[dict]:
     and element count, the C call's argument list and ``(member, offset)`` of every
     output element."""
     cores = []
-    for name, call in C_CORES.items():
+    for name in (c for c in EXPORT_CORES if c in C_CORES):
+        call = C_CORES[name]
         ins, outs = vector_layout(name)
         in_at, out_at = _offsets(ins), _offsets(outs)
         if any(f.count != 1 for f in outs):

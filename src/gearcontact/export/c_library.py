@@ -30,12 +30,12 @@ __all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
 #: Golden fixed-point sources (integer arithmetic only).
 GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc_tables.c")
 #: fp64 sources.
-FP64_SOURCES = ("gc_hertz_fp64.c", "gc_fit_fp64.c")
+FP64_SOURCES = ("gc_gap_fp64.c", "gc_fit_fp64.c", "gc_hertz_fp64.c")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
 C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
 #: Stages in this export (the header lists them).
-STAGES = ("stage A/B gap kernel (golden, published and lean datapaths)",
+STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
           "stage C curvature fit (golden, fp64)",
           "stage D elliptic Hertz (Hamrock-Brewe and exact-Hertz tables; golden and "
           "fp64 Hamrock-Brewe)", "the C -> D chain (golden in both Hertz forms, fp64)")
