@@ -137,29 +137,39 @@ class _Chain(ctypes.Structure):
     _fields_ = [("fit", _Fit), ("hertz", _Fp64)]
 
 
+FORMS = {"hamrock-brewe": (0, "gc_hertz_fp64"), "exact": (1, "gc_hertz_exact_fp64")}
+
+
 def _library(lib: Path):
     so = ctypes.CDLL(str(lib / "libgearcontact.so"))
-    so.gc_hertz_fp64.restype = _Fp64
-    so.gc_hertz_fp64.argtypes = [ctypes.c_double] * 4
+    for _, name in FORMS.values():
+        getattr(so, name).restype = _Fp64
+        getattr(so, name).argtypes = [ctypes.c_double] * 4
     so.gc_fit_fp64.restype = _Fit
     so.gc_fit_fp64.argtypes = [ctypes.POINTER(ctypes.c_double)]
     so.gc_chain_fp64.restype = _Chain
     so.gc_chain_fp64.argtypes = [ctypes.POINTER(ctypes.c_double), ctypes.c_double,
-                                 ctypes.c_double]
+                                 ctypes.c_double, ctypes.c_int]
     return so
 
 
-def test_fp64_hertz_within_1e12_of_the_python_reference(built):
+@pytest.mark.parametrize("form", list(FORMS))
+def test_fp64_hertz_within_1e12_of_the_python_reference(built, form):
+    """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same operations on the
+    same libm (measured bit-identical). Exact: Carlson's R_F, R_D and a bisection to
+    adjacent doubles against scipy's and Brent's to 4 eps (measured 1.8e-15)."""
     lib, vec = built
     so = _library(lib)
-    ins = read_hex(vec / "hertz_in.hex", "hertz", "in")
+    code, function = FORMS[form]
+    core = "hertz" if form == "hamrock-brewe" else "hertz_exact"
+    ins = read_hex(vec / f"{core}_in.hex", core, "in")
     A, B = np.ldexp(ins["A"], -20), np.ldexp(ins["B"], -20)
     W, E = np.ldexp(ins["W"], -8), ins["e_prime"].astype(float)
     worst, valid, flagged = 0.0, 0, 0
     for a, b, w, e in zip(A, B, W, E):
-        c = so.gc_hertz_fp64(a, b, w, e)
+        c = getattr(so, function)(a, b, w, e)
         try:
-            ref = hertz_preview(a, b, w, e_prime_mpa=e)
+            ref = hertz_preview(a, b, w, e_prime_mpa=e, hertz_form=form)
         except InputRangeError:
             assert c.flags != 0 and c.a_mm == 0.0   # same domain: refused in both
             flagged += 1
@@ -173,7 +183,8 @@ def test_fp64_hertz_within_1e12_of_the_python_reference(built):
     assert worst <= 1e-12, worst
 
 
-def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built):
+@pytest.mark.parametrize("form", list(FORMS))
+def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     """The chain vectors' stencils (plausible elliptic ones and whole-range words).
     Coefficients: within 1e-12 of the dot product's own scale sum_i |M_ji g_i| (the
     reference sums through BLAS in another order; its rounding is ~1e-16 of that
@@ -183,7 +194,7 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built):
     h and r cancel or the quadratic part is rounding noise (a flat stencil). Chain
     Hertz outputs where the reference accepts the stencil: 1e-12 relative (measured
     3.5e-13). The first 3,000 stencils (corner cases first): the Python reference
-    takes ~1 ms per stencil."""
+    takes ~1 ms per stencil (exact Hertz: the first 1,000)."""
     lib, vec = built
     so = _library(lib)
     ins = read_hex(vec / "chain_in.hex", "chain", "in")
@@ -192,7 +203,9 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built):
     m = baked_pinv().weights
     worst_c = worst_ab = worst_hz = 0.0
     valid = refused = 0
-    for g, w, e in zip(gaps[:FP64_STENCILS], loads, moduli):
+    code = FORMS[form][0]
+    count = FP64_STENCILS if form == "hamrock-brewe" else FP64_STENCILS // 3
+    for g, w, e in zip(gaps[:count], loads, moduli):
         arr = (ctypes.c_double * 49)(*g)
         fit, ref = so.gc_fit_fp64(arr), fit_curvatures(g)
         scale = np.abs(m * g).sum(axis=1)
@@ -204,9 +217,9 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built):
                      (fit.B_minus_per_mm, ref.B_minus_per_mm)):
             worst_ab = max(worst_ab, abs(x - y) / quad if quad else abs(x - y))
         assert bool(fit.elliptic) == ref.elliptic
-        chain = so.gc_chain_fp64(arr, w, e)
+        chain = so.gc_chain_fp64(arr, w, e, code)
         try:
-            hz = chain_reference(g, w, e_prime_mpa=e).hertz
+            hz = chain_reference(g, w, e_prime_mpa=e, hertz_form=form).hertz
         except InputRangeError:
             assert chain.hertz.flags != 0
             refused += 1
@@ -216,7 +229,7 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built):
             want = getattr(hz, name)
             worst_hz = max(worst_hz, abs(getattr(chain.hertz, name) - want) / abs(want))
         valid += 1
-    assert valid >= 1500 and refused >= 300
+    assert valid >= count // 2 and refused >= count // 10
     assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-12, \
         (worst_c, worst_ab, worst_hz)
 

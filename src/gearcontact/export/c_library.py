@@ -37,8 +37,8 @@ C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64
 #: Stages in this export (the header lists them).
 STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
           "stage C curvature fit (golden, fp64)",
-          "stage D elliptic Hertz (Hamrock-Brewe and exact-Hertz tables; golden and "
-          "fp64 Hamrock-Brewe)", "the C -> D chain (golden in both Hertz forms, fp64)")
+          "stage D elliptic Hertz (Hamrock-Brewe and exact Hertz; golden, fp64)",
+          "the C -> D chain (both Hertz forms; golden, fp64)")
 
 
 def _environment():
