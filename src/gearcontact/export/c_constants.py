@@ -22,7 +22,6 @@ from ..preview.hertz import formats as F
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
                                   POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
                                   same_geometry)
-from ..preview.hertz.divider import DIVIDER_BITS
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
@@ -72,7 +71,7 @@ def hertz_constants() -> dict[str, int]:
         "SEMI_AXIS_MAX_CODE": SEMI_AXIS.max_code, "PMAX_MAX_CODE": PMAX.max_code,
         "K_OUT_MAX_CODE": F.K_OUT.max_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
         "CURVATURE_FRAC": CURVATURE.frac, "LOAD_FRAC": LOAD.frac, "PMAX_FRAC": PMAX.frac,
-        "LUT_SIZE": LUT_SIZE, "DIVIDER_BITS": DIVIDER_BITS,
+        "LUT_SIZE": LUT_SIZE,
         # right shifts of the golden model's round_shift steps (module docstring of
         # gearcontact.preview.hertz.golden)
         "K_SHIFT": POW_SPEC.out_frac - F.K_INT.frac,
