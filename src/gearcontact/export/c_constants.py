@@ -1,10 +1,12 @@
 """Constants of the exported C library, read from the package's own tables.
 
 Everything the C sources need (register fraction bits, shifts, constants, operating
-envelope, flags, the ROM words and their interpolation geometry) is collected here
-from :mod:`gearcontact.preview.hertz.formats`, :mod:`gearcontact.preview.hertz.luts`
-and :mod:`gearcontact.preview.qformat`; the templates print these numbers and never
-hold one of their own. Nothing is retyped: a change of a table in the package changes
+envelope, flags, the ROM words and their interpolation geometry, the pseudo-inverse,
+the gap kernel's sentinels and lane count) is collected here from
+:mod:`gearcontact.preview.hertz.formats`, :mod:`gearcontact.preview.hertz.luts`,
+:mod:`gearcontact.preview.fit.golden`, :mod:`gearcontact.preview.fit.pinv`,
+:mod:`gearcontact.preview.gap.golden` and :mod:`gearcontact.preview.qformat`; the
+templates print these numbers and never hold one of their own. Nothing is retyped: a change of a table in the package changes
 the exported C on the next ``gearcontact export c``.
 """
 
@@ -12,12 +14,12 @@ from __future__ import annotations
 
 import math
 
-from ..preview.chain import FIT_FLAG_SHIFT
+from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.fit import golden as G
+from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
 from ..preview.gap.cores import GAP_LANES
 from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
 from ..preview.gap.variants import residual_limit
-from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
 from ..preview.hertz import formats as F
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
                                   POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
@@ -93,10 +95,10 @@ def hertz_constants() -> dict[str, int]:
 
 def fit_flags() -> list[tuple[str, int]]:
     """``(name, bit)`` of every stage-C flag (the fit core's flags word)."""
-    return [("coefficient_overflow", G.FLAG_COEFF_OVERFLOW),
-            ("discriminant_overflow", G.FLAG_D_OVERFLOW),
-            ("curvature_overflow", G.FLAG_CURV_OVERFLOW),
-            ("not_elliptic", G.FLAG_NOT_ELLIPTIC)]
+    bits = [1 << i for i in range(G.FLAG_BITS)]
+    # the chain's names of the fit bits, without their "fit_" prefix
+    return [(chain_flag_names(bit << FIT_FLAG_SHIFT)[0].removeprefix("fit_"), bit)
+            for bit in bits]
 
 
 def fit_weight_codes() -> tuple[tuple[int, ...], ...]:
