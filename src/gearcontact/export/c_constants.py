@@ -21,13 +21,16 @@ from ..preview.gap.cores import GAP_LANES
 from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
 from ..preview.gap.variants import residual_limit
 from ..preview.hertz import formats as F
+from ..preview.hertz import line as LN
+from ..preview.hertz.sqrt import SQRT_BITS
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
                                   POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
                                   same_geometry)
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
-           "fit_flags", "fit_weight_codes", "fit_weights_fp64", "gap_constants"]
+           "fit_flags", "fit_weight_codes", "fit_weights_fp64", "gap_constants",
+           "line_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -146,3 +149,16 @@ def gap_constants() -> dict[str, int]:
             "COORD_MIN_CODE": fmt.coord.min_code, "COORD_MAX_CODE": fmt.coord.max_code,
             "GAP_SENTINEL": fmt.gap_sentinel, "IDX_SENTINEL": IDX_SENTINEL,
             "KEY_INF": fmt.key_inf, "LEAN_E_LIMIT": residual_limit("lean")}
+
+
+def line_constants() -> dict[str, int]:
+    """Named integer constants of the stage-D line core (:mod:`gearcontact.preview.
+    hertz.line`): envelope of L, similarity range, the line stage's constant and shifts,
+    its flag bit and modes."""
+    return {"LENGTH_MIN_CODE": LN.LENGTH_MIN_CODE, "LENGTH_MAX_CODE": LN.LENGTH_MAX_CODE,
+            "SCALE_MAX": LN.SCALE_MAX, "C_IPI": LN.C_IPI, "QPI_SHIFT": LN.QPI_SHIFT,
+            "Y_SHIFT": LN.Y_SHIFT, "SQRT_SHIFT": LN.SQRT_SHIFT, "BL_SHIFT": LN.BL_SHIFT,
+            "P_SHIFT": LN.SQRT_OUT.frac - PMAX.frac,
+            "B_SHIFT": LN.B_LINE.frac - SEMI_AXIS.frac, "SQRT_BITS": SQRT_BITS,
+            "FLAG_LENGTH_RANGE": LN.FLAG_LENGTH_RANGE, "MODE_ELLIPTIC": LN.MODE_ELLIPTIC,
+            "MODE_LINE": LN.MODE_LINE}

@@ -22,7 +22,8 @@ from pathlib import Path
 from ..errors import ToolUnavailable
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_weight_codes, fit_weights_fp64,
-                          gap_constants, hertz_constants, hertz_flags, hertz_roms)
+                          gap_constants, hertz_constants, hertz_flags, hertz_roms,
+                          line_constants)
 
 __all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
            "export_c_library"]
@@ -38,6 +39,7 @@ C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64
 STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
           "stage C curvature fit (golden, fp64)",
           "stage D elliptic Hertz (Hamrock-Brewe and exact Hertz; golden, fp64)",
+          "stage D line core (near-line contact; golden)",
           "the C -> D chain (both Hertz forms; golden, fp64)")
 
 
@@ -60,7 +62,7 @@ def _context() -> dict:
     values = [sum(f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
-            "gap_constants": gap_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
+            "gap_constants": gap_constants(), "line_constants": line_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
             "fit_weights": fit_weight_codes(), "fit_weights_fp64": fit_weights_fp64(),
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
             "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
