@@ -39,7 +39,7 @@ C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64
 STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
           "stage C curvature fit (golden, fp64)",
           "stage D elliptic Hertz (Hamrock-Brewe and exact Hertz; golden, fp64)",
-          "stage D line core (near-line contact; golden)",
+          "stage D line core (near-line contact; golden, fp64)",
           "the C -> D chain (both Hertz forms; golden, fp64)")
 
 
