@@ -53,7 +53,7 @@ __all__ = ["main", "console_main", "build_parser", "exit_code_of", "EXIT_OK", "E
 
 #: Subcommand modules, in the order ``gearcontact --help`` lists them.
 COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
-            "bending", "twin", "sweep", "warm_up")
+            "bending", "twin", "sweep", "export", "warm_up")
 
 EXIT_OK = 0
 #: A bug: "internal error, please report" (traceback with --debug).
@@ -206,7 +206,8 @@ def _main(argv: list[str], latch: _SigintLatch) -> int:
         print("gearcontact: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     args.sigint_latch = latch
-    name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None))))
+    name = " ".join(filter(None, (args.command, getattr(args, "rtl_command", None),
+                                  getattr(args, "export_command", None))))
     try:
         return _run(args, argv, name)
     except Exception as exc:

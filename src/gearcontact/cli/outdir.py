@@ -444,6 +444,6 @@ def _previous_command(root: Path) -> str | None:
 
 def _command_name(argv) -> str:
     """``"tca"`` of ``["tca", "--pair", ...]``, ``"rtl soc"`` of ``["rtl", "soc", ...]``
-    (the rtl actions are commands of their own)."""
-    n = 2 if list(argv[:1]) == ["rtl"] else 1
+    (the rtl and export actions are commands of their own)."""
+    n = 2 if list(argv[:1]) in (["rtl"], ["export"]) else 1
     return " ".join(w for w in argv[:n] if not w.startswith("-"))

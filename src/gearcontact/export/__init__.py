@@ -1,0 +1,10 @@
+"""Export of the preview datapath for use outside Python (issue 25).
+
+:mod:`.c_library` writes the self-contained C99 library (golden fixed point and fp64)
+with its checker program; :mod:`.c_constants` and :mod:`.c_checker` collect what the
+templates print from the package's own tables and vector layouts.
+"""
+
+from .c_library import export_c_library, render_c_library
+
+__all__ = ["export_c_library", "render_c_library"]

@@ -1,0 +1,164 @@
+"""Constants of the exported C library, read from the package's own tables.
+
+Everything the C sources need (register fraction bits, shifts, constants, operating
+envelope, flags, the ROM words and their interpolation geometry, the pseudo-inverse,
+the gap kernel's sentinels and lane count) is collected here from
+:mod:`gearcontact.preview.hertz.formats`, :mod:`gearcontact.preview.hertz.luts`,
+:mod:`gearcontact.preview.fit.golden`, :mod:`gearcontact.preview.fit.pinv`,
+:mod:`gearcontact.preview.gap.golden` and :mod:`gearcontact.preview.qformat`; the
+templates print these numbers and never hold one of their own. Nothing is retyped: a change of a table in the package changes
+the exported C on the next ``gearcontact export c``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
+from ..preview.fit import golden as G
+from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
+from ..preview.gap.cores import GAP_LANES
+from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
+from ..preview.gap.variants import residual_limit
+from ..preview.hertz import formats as F
+from ..preview.hertz import line as LN
+from ..preview.hertz.sqrt import SQRT_BITS
+from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
+                                  POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
+                                  same_geometry)
+from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
+
+__all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
+           "fit_flags", "fit_weight_codes", "fit_weights_fp64", "gap_constants",
+           "line_constants"]
+
+
+def lut_geometry(spec: LutSpec) -> dict:
+    """Interpolation geometry of one ROM (argument offset, sub-step bits, Q field, shift
+    of the quadratic term, fraction bits of the result)."""
+    return {"x0_code": spec.x0_code, "tbits": spec.tbits, "qbits": spec.qbits,
+            "corr_shift": spec.corr_shift, "out_frac": spec.out_frac}
+
+
+def hertz_flags() -> list[tuple[str, int]]:
+    """``(name, bit)`` of every stage-D flag, bit order."""
+    return [(name, bit) for bit, name in sorted(F.FLAG_NAMES.items())]
+
+
+def hertz_roms() -> dict[str, tuple[int, ...]]:
+    """The four stage-D ROMs (256 words each): POW and its exact twin POWX, the exact
+    E_e numerator EEX, and CBRT, as the golden model and the RTL read them."""
+    assert same_geometry(POW_SPEC, POW_EXACT_SPEC) and same_geometry(POW_SPEC, EE_EXACT_SPEC)
+    return {"pow": rom_words(POW_SPEC), "pow_exact": rom_words(POW_EXACT_SPEC),
+            "ee_exact": rom_words(EE_EXACT_SPEC), "cbrt": rom_words(CBRT_SPEC)}
+
+
+def hertz_constants() -> dict[str, int]:
+    """Named integer constants of the stage-D datapath (macro name -> value)."""
+    c = {
+        # dividends of DIV_RX/DIV_RY (one extra bit for the rounding) and DIV_R
+        "RXY_DIVIDEND_LOG2": 2 * CURVATURE.frac,
+        "R_DIVIDEND_LOG2": F.RADIUS.frac + CURVATURE.frac - 1,
+        "ALPHA_FRAC": F.ALPHA.frac,
+        "K_INT_FRAC": F.K_INT.frac, "K2_FRAC": F.K2.frac, "E6_FRAC": F.E6.frac,
+        "T1_FRAC": F.T1.frac, "T2_FRAC": F.T2.frac, "T3_FRAC": F.T3.frac,
+        "RADIUS_FRAC": F.RADIUS.frac, "CA_FRAC": F.CA.frac, "M_RED_FRAC": F.M_RED.frac,
+        "CBRT_VAL_FRAC": F.CBRT_VAL.frac, "AXIS_W_FRAC": F.AXIS_W.frac,
+        "SEMI_AXIS_FRAC": SEMI_AXIS.frac, "K_OUT_FRAC": F.K_OUT.frac,
+        "PN2_SHIFT": F.PN2_SHIFT, "PMAX_SHIFT": F.PMAX_SHIFT,
+        "EE_DIVIDEND_SHIFT": EE_DIVIDEND_SHIFT,
+        "C6": F.C6, "N5": F.N5, "C3": F.C3,
+        "CURV_MIN_CODE": F.CURV_MIN_CODE, "CURV_MAX_CODE": F.CURV_MAX_CODE,
+        "LOAD_MIN_CODE": F.LOAD_MIN_CODE, "LOAD_MAX_CODE": F.LOAD_MAX_CODE,
+        "E_PRIME_MIN_CODE": F.E_PRIME_MIN_CODE, "E_PRIME_MAX_CODE": F.E_PRIME_MAX_CODE,
+        "ALPHA_MAX_CODE": F.ALPHA_MAX_CODE,
+        # largest code of each output register (FLAG_OVERFLOW beyond it)
+        "SEMI_AXIS_MAX_CODE": SEMI_AXIS.max_code, "PMAX_MAX_CODE": PMAX.max_code,
+        "K_OUT_MAX_CODE": F.K_OUT.max_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
+        "CURVATURE_FRAC": CURVATURE.frac, "LOAD_FRAC": LOAD.frac, "PMAX_FRAC": PMAX.frac,
+        "LUT_SIZE": LUT_SIZE,
+        # right shifts of the golden model's round_shift steps (module docstring of
+        # gearcontact.preview.hertz.golden)
+        "K_SHIFT": POW_SPEC.out_frac - F.K_INT.frac,
+        "K2_SHIFT": 2 * F.K_INT.frac - F.K2.frac,
+        "T1_SHIFT": F.K2.frac + F.E6.frac - F.T1.frac,
+        "T2_SHIFT": F.T1.frac + F.RADIUS.frac - F.T2.frac,
+        "CA_SHIFT": F.CA.frac - F.T3.frac,
+        "AXIS_SHIFT": F.CBRT_VAL.frac - F.AXIS_W.frac,
+        "OUT_AXIS_SHIFT": F.AXIS_W.frac - SEMI_AXIS.frac,
+        "K_OUT_SHIFT": F.K_INT.frac - F.K_OUT.frac,
+    }
+    # the golden model reads the CBRT interpolation as CBRT_VAL without a shift
+    assert CBRT_SPEC.out_frac == F.CBRT_VAL.frac
+    for name, spec in (("POW", POW_SPEC), ("CBRT", CBRT_SPEC)):
+        for key, value in lut_geometry(spec).items():
+            c[f"{name}_{key.upper()}"] = value
+    return c
+
+
+def fit_flags() -> list[tuple[str, int]]:
+    """``(name, bit)`` of every stage-C flag (the fit core's flags word)."""
+    bits = [1 << i for i in range(G.FLAG_BITS)]
+    # the chain's names of the fit bits, without their "fit_" prefix
+    return [(chain_flag_names(bit << FIT_FLAG_SHIFT)[0].removeprefix("fit_"), bit)
+            for bit in bits]
+
+
+def fit_weight_codes() -> tuple[tuple[int, ...], ...]:
+    """The pseudo-inverse ROM, WEIGHT Q(32,20) codes ``[j][i]`` (6 x 49), as the golden
+    fit and the RTL read it.
+
+    Raises
+    ------
+    FixedPointOverflow
+        A row's ``sum_i |M_ji|`` reaches 2^31: the 64-bit MAC of the C code would no
+        longer be exact (``|acc| <= 2^31 sum_i |M_ji| < 2^62``).
+    """
+    rom = baked_pinv()
+    if max(rom.weight_l1_codes) >= (1 << 31):
+        raise FixedPointOverflow("sum_i |M_ji| (64-bit MAC bound)",
+                                 max(rom.weight_l1_codes), sq(32, 0))
+    return tuple(tuple(int(w) for w in row) for row in rom.weight_codes)
+
+
+def fit_weights_fp64() -> list[list[str]]:
+    """The fp64 pseudo-inverse of the fit reference (6 x 49) as exact C99 hexadecimal
+    floating literals (``float.hex``: no decimal rounding)."""
+    return [[float(w).hex() for w in row] for row in baked_pinv().weights]
+
+
+def fit_constants() -> dict[str, int]:
+    """Named integer constants of the stage-C fit core (macro name -> value)."""
+    d_max = G.D_FMT.max_code
+    return {"N_TAPS": N_TAPS, "N_COEFFS": N_COEFFS,
+            "COEFF_SHIFT": ACC.frac - COEFF.frac,
+            "COEFF_MIN_CODE": COEFF.min_code, "COEFF_MAX_CODE": COEFF.max_code,
+            "D_MAX_CODE": d_max, "E_MAX_CODE": math.isqrt(d_max),
+            "ISQRT_STEPS": G.ROOT_FMT.bits,
+            "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
+            "GAP_FRAC": GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
+
+
+def gap_constants() -> dict[str, int]:
+    """Named integer constants of the stage A/B gap core (default formats, L lanes)."""
+    fmt = DEFAULT_FORMAT
+    # the C code keeps e_k at 16 fraction bits (no e_shift) and rho in 64 bits
+    assert fmt.e_shift == 0
+    return {"LANES": GAP_LANES, "MAX_SAMPLES": 16 * GAP_LANES,
+            "NORMAL_FRAC": fmt.normal_frac,
+            "COORD_MIN_CODE": fmt.coord.min_code, "COORD_MAX_CODE": fmt.coord.max_code,
+            "GAP_SENTINEL": fmt.gap_sentinel, "IDX_SENTINEL": IDX_SENTINEL,
+            "KEY_INF": fmt.key_inf, "LEAN_E_LIMIT": residual_limit("lean")}
+
+
+def line_constants() -> dict[str, int]:
+    """Named integer constants of the stage-D line core (:mod:`gearcontact.preview.
+    hertz.line`): envelope of L, similarity range, the line stage's constant and shifts,
+    its flag bit and modes."""
+    return {"LENGTH_MIN_CODE": LN.LENGTH_MIN_CODE, "LENGTH_MAX_CODE": LN.LENGTH_MAX_CODE,
+            "SCALE_MAX": LN.SCALE_MAX, "C_IPI": LN.C_IPI, "QPI_SHIFT": LN.QPI_SHIFT,
+            "Y_SHIFT": LN.Y_SHIFT, "SQRT_SHIFT": LN.SQRT_SHIFT, "BL_SHIFT": LN.BL_SHIFT,
+            "P_SHIFT": LN.SQRT_OUT.frac - PMAX.frac,
+            "B_SHIFT": LN.B_LINE.frac - SEMI_AXIS.frac, "SQRT_BITS": SQRT_BITS,
+            "FLAG_LENGTH_RANGE": LN.FLAG_LENGTH_RANGE, "MODE_ELLIPTIC": LN.MODE_ELLIPTIC,
+            "MODE_LINE": LN.MODE_LINE}

@@ -1,0 +1,112 @@
+"""``gearcontact export c``: the preview datapath as a self-contained C99 library.
+
+:func:`export_c_library` renders the Jinja2 templates of ``data/templates/c`` with the
+package's own tables (:mod:`.c_constants`) and vector layouts (:mod:`.c_checker`) into
+one directory: the public header ``gearcontact.h``, the internal ``gc_tables.h`` /
+``gc_tables.c`` (constants and ROM words), ``gc_arith.h`` (shift helpers), one
+source per stage and flavour, the
+checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
+``libgearcontact.a``, ``libgearcontact.so`` and ``gearcontact_check``). No file holds a
+time stamp or a path: identical package versions write identical files.
+
+The golden sources use integer arithmetic only and constant loop counts; the fp64
+sources follow the fp64 reference formulas operation by operation. How to build and
+use the library, and the determinism argument: docs/export.md.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+from ..errors import ToolUnavailable
+from .c_checker import checker_cores, other_cores
+from .c_constants import (fit_constants, fit_flags, fit_weight_codes, fit_weights_fp64,
+                          gap_constants, hertz_constants, hertz_flags, hertz_roms,
+                          line_constants)
+
+__all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
+           "export_c_library"]
+
+#: Golden fixed-point sources (integer arithmetic only).
+GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc_tables.c")
+#: fp64 sources.
+FP64_SOURCES = ("gc_gap_fp64.c", "gc_fit_fp64.c", "gc_hertz_fp64.c")
+#: Every file of an export, in write order (each rendered from ``<name>.j2``).
+C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES \
+    + ("gearcontact_check.c", "Makefile")
+#: Stages in this export (the header lists them).
+STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
+          "stage C curvature fit (golden, fp64)",
+          "stage D elliptic Hertz (Hamrock-Brewe and exact Hertz; golden, fp64)",
+          "stage D line core (near-line contact; golden, fp64)",
+          "the C -> D chain (both Hertz forms; golden, fp64)")
+
+
+def _environment():
+    try:
+        from jinja2 import Environment, StrictUndefined
+    except ImportError as exc:
+        raise ToolUnavailable("gearcontact export c needs Jinja2: pip install "
+                              "'gearcontact[export]' (or jinja2>=3.1)") from exc
+    env = Environment(trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
+                      undefined=StrictUndefined, autoescape=False)
+    env.filters["c_hex32"] = lambda w: f"0x{int(w):08x}u"
+    return env
+
+
+def _context() -> dict:
+    from .. import __version__
+    cores = checker_cores()
+    digits = [sum(f.digits * f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
+    values = [sum(f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
+    return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
+            "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
+            "gap_constants": gap_constants(), "line_constants": line_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
+            "fit_weights": fit_weight_codes(), "fit_weights_fp64": fit_weights_fp64(),
+            "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
+            "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
+
+
+def render_c_library() -> dict[str, str]:
+    """Every file of the C library: {file name: text} in :data:`C_FILES` order.
+
+    Raises
+    ------
+    ToolUnavailable
+        Jinja2 is not installed.
+    """
+    env = _environment()
+    ctx = _context()
+    folder = resources.files("gearcontact").joinpath("data/templates/c")
+    return {name: env.from_string(folder.joinpath(f"{name}.j2").read_text()).render(ctx)
+            for name in C_FILES}
+
+
+def export_c_library(out_dir) -> list[Path]:
+    """Write the C library into ``out_dir`` (created if missing).
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Output directory.
+
+    Returns
+    -------
+    list of Path
+        The files written, :data:`C_FILES` order.
+
+    Raises
+    ------
+    ToolUnavailable
+        Jinja2 is not installed.
+    """
+    texts = render_c_library()
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, text in texts.items():
+        path = out / name
+        path.write_text(text)
+        paths.append(path)
+    return paths

@@ -1,0 +1,377 @@
+"""``gearcontact export c``: the generated C99 library against the golden model.
+
+Truth: the golden Python model's expected outputs as ``gearcontact vectors`` writes them
+(the RTL test vectors: corner cases, 10,000 seeded random and raw whole-range words
+per core), bit for bit; the fp64 Python reference
+(:func:`gearcontact.preview.hertz.reference.hertz_preview`) within 1e-12 relative (the C
+code repeats its operations in the same order on the same libm: the bound leaves room
+for a libm that rounds exp/log/cbrt differently by an ulp or two, ~1e-15 each, amplified
+at most ~10x through the formulas); the ROM words of the package's tables. Everything
+runs the way a user does: real subprocesses of ``python -m gearcontact``, ``make``, the
+checker.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
+from gearcontact.hw.vectors import read_hex
+from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
+                                            POW_SPEC, rom_words)
+from gearcontact.preview.chain import chain_reference
+from gearcontact.preview.fit.pinv import baked_pinv
+from gearcontact.preview.fit.reference import fit_curvatures
+from gearcontact.preview.gap.reference import gap_reference
+from gearcontact.preview.hertz.line import line_golden
+from gearcontact.preview.hertz.reference import hertz_preview, truncated_preview
+from gearcontact.preview.stimulus import line_stimulus
+from gearcontact.validation import InputRangeError
+
+ROOT = Path(__file__).resolve().parents[2]
+COUNT = 10_000                      # random vectors per core (the corner cases on top)
+#: every core ``gearcontact vectors`` writes, in the checker's order
+CORES = ("gap", "fit", "hertz", "chain", "gap_lean", "hertz_exact", "chain_exact")
+FP64_STENCILS = 3000                # stencils of the fp64 fit/chain comparison
+STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror"]
+
+pytestmark = pytest.mark.skipif(
+    shutil.which("gcc") is None or shutil.which("make") is None,
+    reason="gcc and make are needed to build the exported C library (Debian: gcc make)")
+
+
+def _gearcontact(*argv, timeout=600):
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    run = subprocess.run([sys.executable, "-m", "gearcontact", *argv], env=env,
+                         capture_output=True, text=True, timeout=timeout)
+    assert run.returncode == 0, run.stderr[-3000:]
+    return run
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """An export built with its Makefile, and the vectors of the Hertz cores."""
+    base = tmp_path_factory.mktemp("cexport")
+    lib, vec = base / "lib", base / "vectors"
+    _gearcontact("export", "c", "--out", str(lib))
+    make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
+                          text=True, timeout=300)
+    assert make.returncode == 0, make.stdout[-3000:] + make.stderr[-3000:]
+    _gearcontact("vectors", "--out", str(vec), "--count", str(COUNT), "--cores",
+                 ",".join(CORES))
+    return lib, vec
+
+
+def _check(lib: Path, vec: Path):
+    return subprocess.run([str(lib / "gearcontact_check"), str(vec)], capture_output=True,
+                          text=True, timeout=300)
+
+
+def test_every_source_compiles_strict_c99(built):
+    lib, _ = built
+    for name in (n for n in C_FILES if n.endswith(".c")):
+        run = subprocess.run(["gcc", *STRICT, "-c", "-o", os.devnull, str(lib / name)],
+                             capture_output=True, text=True, timeout=120)
+        assert run.returncode == 0, (name, run.stderr)
+    assert all(flag in (lib / "Makefile").read_text() for flag in STRICT)
+
+
+def test_golden_c_equals_the_golden_model_on_the_rtl_vectors(built):
+    lib, vec = built
+    run = _check(lib, vec)
+    assert run.returncode == 0, run.stdout + run.stderr
+    lines = run.stdout.splitlines()
+    n = {c: sum(1 for _ in (vec / f"{c}_in.hex").open()) for c in CORES}
+    assert all(v >= COUNT for v in n.values())
+    assert lines == [f"{c}: {n[c]} vectors, 0 mismatches" for c in CORES]
+
+
+def test_checker_names_the_core_of_a_corrupted_output_word(built, tmp_path):
+    lib, vec = built
+    bad = tmp_path / "vectors"
+    shutil.copytree(vec, bad)
+    path = bad / "hertz_exact_out.hex"
+    lines = path.read_text().splitlines()
+    k = next(i for i in range(500, len(lines)) if lines[i].endswith("00"))   # flags 0
+    word = lines[k][16:24]                      # output field 2, p_max (8 digits)
+    lines[k] = lines[k][:16] + f"{int(word, 16) ^ 1:08x}" + lines[k][24:]
+    path.write_text("\n".join(lines) + "\n")
+    run = _check(lib, bad)
+    assert run.returncode == 1
+    n = len(lines)
+    assert f"hertz_exact: {n} vectors, 1 mismatches" in run.stdout.splitlines()
+    assert f"hertz: {n} vectors, 0 mismatches" in run.stdout.splitlines()
+    assert f"hertz_exact: vector {k} field p_max" in run.stderr
+
+
+def test_checker_refuses_a_truncated_file_and_an_empty_directory(built, tmp_path):
+    lib, vec = built
+    bad = tmp_path / "vectors"
+    bad.mkdir()
+    assert _check(lib, bad).returncode == 2
+    shutil.copy(vec / "hertz_in.hex", bad)
+    (bad / "hertz_out.hex").write_text("".join((vec / "hertz_out.hex").open().readlines()[:-1]))
+    run = _check(lib, bad)
+    assert run.returncode == 2 and "hertz: line" in run.stderr
+
+
+class _Line(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int32) for n in ("a", "b", "p_max", "k", "A_min", "B_max")] \
+        + [(n, ctypes.c_uint32) for n in ("mode", "scale", "flags")]
+
+
+@pytest.mark.parametrize("form, count", [("hamrock-brewe", COUNT), ("exact", 1000)])
+def test_golden_line_core_equals_the_golden_model(built, form, count):
+    """The line core is not a `gearcontact vectors` core: its stimulus (corner cases +
+    seeded random, both modes, every similarity exponent, flagged inputs) through the
+    scalar golden model (~0.5 ms each: exact Hertz on 1,000) against the C code."""
+    lib, _ = built
+    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so.gc_line_golden.restype = _Line
+    so.gc_line_golden.argtypes = [ctypes.c_int32] * 5 + [ctypes.c_int]
+    st = line_stimulus(count, 0)
+    cols = [st.fields[k].tolist() for k in ("A", "B", "W", "L", "e_prime")]
+    modes = set()
+    for a, b, w, length, e in zip(*cols):
+        want = line_golden(a, b, w, length, e_prime_code=e, hertz_form=form)
+        c = so.gc_line_golden(a, b, w, length, e, FORMS[form][0])
+        assert (c.a, c.b, c.p_max, c.k, c.A_min, c.B_max, c.mode, c.scale, c.flags) == (
+            want.a_code, want.b_code, want.p_max_code, want.k_code, want.A_min_code,
+            want.B_max_code, want.mode, want.scale, want.flags), (a, b, w, length, e)
+        modes.add((want.mode, want.scale) if want.flags == 0 else "flagged")
+    assert {(0, 0), (1, 0), (1, 3), "flagged"} <= modes
+
+
+class _Fp64(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_double) for n in ("a_mm", "b_mm", "k", "p_max_mpa", "alpha",
+                                               "R_x_mm", "R_y_mm", "approach_mm")] \
+        + [("flags", ctypes.c_uint32)]
+
+
+class _Fit(ctypes.Structure):
+    _fields_ = [("c", ctypes.c_double * 6), ("A_minus_per_mm", ctypes.c_double),
+                ("B_minus_per_mm", ctypes.c_double), ("elliptic", ctypes.c_int)]
+
+
+class _Chain(ctypes.Structure):
+    _fields_ = [("fit", _Fit), ("hertz", _Fp64)]
+
+
+FORMS = {"hamrock-brewe": (0, "gc_hertz_fp64"), "exact": (1, "gc_hertz_exact_fp64")}
+
+
+def _library(lib: Path):
+    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    for _, name in FORMS.values():
+        getattr(so, name).restype = _Fp64
+        getattr(so, name).argtypes = [ctypes.c_double] * 4
+    so.gc_fit_fp64.restype = _Fit
+    so.gc_fit_fp64.argtypes = [ctypes.POINTER(ctypes.c_double)]
+    so.gc_chain_fp64.restype = _Chain
+    so.gc_chain_fp64.argtypes = [ctypes.POINTER(ctypes.c_double), ctypes.c_double,
+                                 ctypes.c_double, ctypes.c_int]
+    return so
+
+
+@pytest.mark.parametrize("form", list(FORMS))
+def test_fp64_hertz_within_1e12_of_the_python_reference(built, form):
+    """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same operations on the
+    same libm (measured bit-identical). Exact: Carlson's R_F, R_D and a bisection to
+    adjacent doubles against scipy's and Brent's to 4 eps (measured 1.8e-15)."""
+    lib, vec = built
+    so = _library(lib)
+    code, function = FORMS[form]
+    core = "hertz" if form == "hamrock-brewe" else "hertz_exact"
+    ins = read_hex(vec / f"{core}_in.hex", core, "in")
+    A, B = np.ldexp(ins["A"], -20), np.ldexp(ins["B"], -20)
+    W, E = np.ldexp(ins["W"], -8), ins["e_prime"].astype(float)
+    worst, valid, flagged = 0.0, 0, 0
+    for a, b, w, e in zip(A, B, W, E):
+        c = getattr(so, function)(a, b, w, e)
+        try:
+            ref = hertz_preview(a, b, w, e_prime_mpa=e, hertz_form=form)
+        except InputRangeError:
+            assert c.flags != 0 and c.a_mm == 0.0   # same domain: refused in both
+            flagged += 1
+            continue
+        assert c.flags == 0
+        for name, _ in _Fp64._fields_[:-1]:
+            want = getattr(ref, name)
+            worst = max(worst, abs(getattr(c, name) - want) / abs(want))
+        valid += 1
+    assert valid >= 8000 and flagged >= 500
+    assert worst <= 1e-12, worst
+
+
+@pytest.mark.parametrize("form", list(FORMS))
+def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
+    """The chain vectors' stencils (plausible elliptic ones and whole-range words).
+    Coefficients: within 1e-12 of the dot product's own scale sum_i |M_ji g_i| (the
+    reference sums through BLAS in another order; its rounding is ~1e-16 of that
+    scale, measured 7.7e-16). A-, B-: within 1e-12 of the scale of c3, c4, c5 (their
+    dot-product scales plus |c3| + |c4| + |c5|: an eigenvalue moves by at most the
+    coefficients' error, Weyl); relative to themselves they are ill-conditioned where
+    h and r cancel or the quadratic part is rounding noise (a flat stencil). Chain
+    Hertz outputs where the reference accepts the stencil: 1e-12 relative (measured
+    3.5e-13). The first 3,000 stencils (corner cases first): the Python reference
+    takes ~1 ms per stencil (exact Hertz: the first 1,000)."""
+    lib, vec = built
+    so = _library(lib)
+    ins = read_hex(vec / "chain_in.hex", "chain", "in")
+    gaps = np.ldexp(ins["wr_data"].astype(float), -16)
+    loads, moduli = np.ldexp(ins["W"].astype(float), -8), ins["e_prime"].astype(float)
+    m = baked_pinv().weights
+    worst_c = worst_ab = worst_hz = 0.0
+    valid = refused = 0
+    code = FORMS[form][0]
+    count = FP64_STENCILS if form == "hamrock-brewe" else FP64_STENCILS // 3
+    for g, w, e in zip(gaps[:count], loads, moduli):
+        arr = (ctypes.c_double * 49)(*g)
+        fit, ref = so.gc_fit_fp64(arr), fit_curvatures(g)
+        scale = np.abs(m * g).sum(axis=1)
+        dc = np.abs(np.array(fit.c[:]) - np.array(ref.coefficients))
+        assert (dc[scale == 0] == 0).all()
+        worst_c = max(worst_c, float(np.max(dc / np.where(scale > 0, scale, 1.0))))
+        quad = float(scale[3:].sum() + np.abs(ref.coefficients[3:]).sum())
+        for x, y in ((fit.A_minus_per_mm, ref.A_minus_per_mm),
+                     (fit.B_minus_per_mm, ref.B_minus_per_mm)):
+            worst_ab = max(worst_ab, abs(x - y) / quad if quad else abs(x - y))
+        assert bool(fit.elliptic) == ref.elliptic
+        chain = so.gc_chain_fp64(arr, w, e, code)
+        try:
+            hz = chain_reference(g, w, e_prime_mpa=e, hertz_form=form).hertz
+        except InputRangeError:
+            assert chain.hertz.flags != 0
+            refused += 1
+            continue
+        assert chain.hertz.flags == 0
+        for name, _ in _Fp64._fields_[:-1]:
+            want = getattr(hz, name)
+            worst_hz = max(worst_hz, abs(getattr(chain.hertz, name) - want) / abs(want))
+        valid += 1
+    assert valid >= count // 2 and refused >= count // 10
+    assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-12, \
+        (worst_c, worst_ab, worst_hz)
+
+
+class _Gap(ctypes.Structure):
+    _fields_ = [("gap_mm", ctypes.c_double), ("idx", ctypes.c_int), ("valid", ctypes.c_int)]
+
+
+def _doubles(a) -> ctypes.Array:
+    a = np.ascontiguousarray(a, float).ravel()
+    return (ctypes.c_double * a.size)(*a)
+
+
+def test_fp64_gap_within_1e12_of_the_python_reference(built):
+    """Seeded passes the reference accepts (orthonormal R, unit normals; the quantized
+    vector operands are not, to its tolerances): 16 samples scattered within 1 mm of
+    the posed point, gates of 0.2 to 2 mm. The winning sample and validity must be
+    equal; gamma (a difference of coordinates of up to ~60 mm) within 1e-12 of the
+    coordinates' magnitude (it is not a relative quantity: it may be ~0)."""
+    lib, _ = built
+    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so.gc_gap_fp64.restype = _Gap
+    ptr = ctypes.POINTER(ctypes.c_double)
+    so.gc_gap_fp64.argtypes = [ptr] * 5 + [ctypes.c_double, ctypes.c_int]
+    rng = np.random.default_rng(25)
+    worst, valid = 0.0, 0
+    for _ in range(2000):
+        q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+        rot = q * np.sign(np.diag(r))
+        rot = rot if np.linalg.det(rot) > 0 else -rot
+        t, p = rng.uniform(-30, 30, 3), rng.uniform(-30, 30, 3)
+        g = rot @ p + t + rng.uniform(-1, 1, (16, 3))
+        nrm = rng.normal(size=(16, 3))
+        nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+        tau = rng.uniform(0.2, 2.0)
+        ref = gap_reference(rot, t, p, g, nrm, tau_mm=tau, lanes=16)
+        c = so.gc_gap_fp64(_doubles(g), _doubles(nrm), _doubles(rot), _doubles(t),
+                           _doubles(p), tau, 16)
+        assert bool(c.valid) == ref.valid
+        if ref.valid:
+            assert c.idx == ref.min_idx
+            worst = max(worst, abs(c.gap_mm - ref.min_gap_mm) / np.abs(g).max())
+            valid += 1
+    assert valid >= 1000
+    assert worst <= 1e-12, worst
+
+
+class _LineFp64(ctypes.Structure):
+    _fields_ = [("mode", ctypes.c_uint32)] \
+        + [(n, ctypes.c_double) for n in ("a_mm", "b_mm", "k", "p_max_mpa", "p_ellipse_mpa",
+                                          "p_line_mpa")] + [("flags", ctypes.c_uint32)]
+
+
+@pytest.mark.parametrize("form", list(FORMS))
+def test_fp64_line_core_within_1e12_of_the_python_reference(built, form):
+    """The line stimulus (3,000 random + corners, decoded) through
+    :func:`truncated_preview` (envelope=True) and ``gc_line_fp64``: the same mode, every
+    output within 1e-12 relative (measured: bit-identical with Hamrock-Brewe, 1.6e-15
+    exact), and an input the reference refuses is flagged."""
+    lib, _ = built
+    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so.gc_line_fp64.restype = _LineFp64
+    so.gc_line_fp64.argtypes = [ctypes.c_double] * 5 + [ctypes.c_int]
+    f = line_stimulus(3000, 0).fields
+    cols = (np.ldexp(f["A"].astype(float), -20), np.ldexp(f["B"].astype(float), -20),
+            np.ldexp(f["W"].astype(float), -8), np.ldexp(f["L"].astype(float), -20),
+            f["e_prime"].astype(float))
+    worst, modes = 0.0, set()
+    for a, b, w, length, e in zip(*cols):
+        c = so.gc_line_fp64(a, b, w, length, e, FORMS[form][0])
+        try:
+            ref = truncated_preview(a, b, w, length, e_prime_mpa=e, hertz_form=form)
+        except InputRangeError:
+            assert c.flags != 0
+            continue
+        assert c.flags == 0 and c.mode == {"elliptic": 0, "line": 1}[ref.mode]
+        modes.add(ref.mode)
+        for name, _ in _LineFp64._fields_[1:-1]:
+            want = getattr(ref, name)
+            worst = max(worst, abs(getattr(c, name) - want) / abs(want) if want
+                        else abs(getattr(c, name)))
+    assert modes == {"elliptic", "line"}
+    assert worst <= 1e-12, worst
+
+
+def test_golden_sources_hold_no_floating_point(built):
+    lib, _ = built
+    for name in GOLDEN_SOURCES + ("gc_tables.h",):
+        code = re.sub(r"/\*.*?\*/", "", (lib / name).read_text(), flags=re.S)
+        # no floating type, no libm, no decimal floating literal (1.5, 2e3)
+        assert not re.search(r"\b(float|double)\b|math\.h|\b\d+\.\d*|\b\d+[eE][+-]?\d+\b",
+                             code), name
+    # the test would see them (the fp64 sources have them)
+    assert re.search(r"\bdouble\b", (lib / "gc_hertz_fp64.c").read_text())
+    assert re.search(r"\b\d+\.\d*", (lib / "gc_fit_fp64.c").read_text())
+
+
+def test_roms_are_the_package_tables(built):
+    lib, _ = built
+    text = (lib / "gc_tables.c").read_text()
+    for name, spec in (("pow", POW_SPEC), ("pow_exact", POW_EXACT_SPEC),
+                       ("ee_exact", EE_EXACT_SPEC), ("cbrt", CBRT_SPEC)):
+        body = re.search(rf"gc_rom_{name}\[256\] = \{{(.*?)\}};", text, re.S).group(1)
+        words = tuple(int(w, 16) for w in re.findall(r"0x([0-9a-f]{8})u", body))
+        assert words == rom_words(spec), name
+    rows = re.search(r"gc_rom_fit\[6\]\[49\] = \{(.*?)\n\};", text, re.S).group(1)
+    codes = [int(x) for x in re.findall(r"-?\d+", rows)]
+    assert codes == [w for row in baked_pinv().weight_codes for w in row]
+
+
+def test_identical_runs_write_identical_files(built):
+    lib, _ = built
+    again = render_c_library()          # a second run, in this process
+    assert list(again) == list(C_FILES)
+    for name, text in again.items():
+        assert text.encode() == (lib / name).read_bytes(), name
