@@ -49,3 +49,20 @@ def served_tri_core():
     finally:
         proc.terminate()
         proc.wait(30)
+
+
+@pytest.fixture(scope="session")
+def make_hertz():
+    """Factory fixture returning ``hertz_problems.hertz_problem`` (cached per arguments):
+    the Hertzian gaps of the halfspace and ltca solver tests."""
+    from hertz_problems import LOAD_N, hertz_problem
+
+    cache = {}
+
+    def make(ratio, n, extent=1.3, load_n=LOAD_N):
+        key = (ratio, n, extent, load_n)
+        if key not in cache:
+            cache[key] = hertz_problem(ratio, n, extent, load_n=load_n)
+        return cache[key]
+
+    return make

@@ -1,5 +1,5 @@
 """s0003 mesh for the twin tests (one TCA per session: 31 phases per pitch keep the
-neighbouring pairs' paths, see tests/contact/test_lte.py, at half the cost of 61)."""
+neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61)."""
 
 import pytest
 

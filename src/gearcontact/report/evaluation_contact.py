@@ -284,8 +284,8 @@ def _multitooth_published(pub) -> dict:
 
 
 def multitooth_section(analysis, pub, settings) -> Section:
-    from ..contact.lte import loaded_te
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.lte import loaded_te
+    from ..ltca.tooth_bending import tooth_bending
 
     main = analysis.lte
     if main is None:
@@ -371,7 +371,7 @@ def multitooth_section(analysis, pub, settings) -> Section:
              ["preview p_max", mt.preview_p_max_mpa, None]]))
         text.append(
             f"CP_max is computed as published: boundary-inadmissible edge cells trimmed, then "
-            f"the strip-wise Hertz line-contact peak (gearcontact.contact.line_peak). Ours "
+            f"the strip-wise Hertz line-contact peak (gearcontact.halfspace.line_peak). Ours "
             f"{mt.cp_max_mpa:.0f} MPa against the published {pub['cp_max_mpa']} MPa "
             f"({pct_diff(mt.cp_max_mpa, pub['cp_max_mpa']):+.0f} %). Part of it is the load "
             f"sharing above: our pair at P0 carries {share_pct:.1f} % of the load, the "

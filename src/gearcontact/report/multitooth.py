@@ -2,7 +2,7 @@
 flank, load share per pair).
 
 :func:`write_multitooth_outputs` writes ``multitooth.json``
-(:meth:`~gearcontact.contact.multitooth.MultiToothCase.summary`, no timings),
+(:meth:`~gearcontact.ltca.multitooth.MultiToothCase.summary`, no timings),
 ``multitooth.csv`` (one row per loaded cell of every pair: pair, meshing-frame point
 (z = gear-axial position), radius about the gear axis, pressure, trimmed as
 boundary-inadmissible) and ``multitooth.png``
@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
-from ..contact.line_peak import inadmissible_cells  # noqa: E402
+from ..halfspace.line_peak import inadmissible_cells  # noqa: E402
 from ..figure_files import save_figure  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
@@ -131,7 +131,7 @@ def multitooth_section(case, pub: dict) -> list[str]:
            "with rigid teeth and with the shell bending of both teeth "
            "(`gearcontact ltca --multi-tooth`; docs/bending.md). CP_max: the "
            "incomplete-ellipse line-contact peak after trimming the boundary-inadmissible "
-           "edge cells (`gearcontact.contact.line_peak`).", ""]
+           "edge cells (`gearcontact.halfspace.line_peak`).", ""]
     out.append(_table(["quantity", "ours", "published"], [
         ["engaged pairs (bending)", sum(p.load_n > 0 for p in case.pairs),
          len(shares) if shares else None],

@@ -28,7 +28,7 @@ def _pct(a: float, b: float) -> float:
 
 def lte_rows(lte, pub: dict) -> list[list]:
     """Rows (quantity, ours, published) of the loaded-TE comparison
-    (:class:`~gearcontact.contact.lte.LoadedTE`; also the ``lte`` item of the
+    (:class:`~gearcontact.ltca.lte.LoadedTE`; also the ``lte`` item of the
     reproduction report)."""
     pp, comp = pub.get("lte_pp_arcsec", {}), pub.get("compliance_mm_per_n", {})
     k0 = lte.reference_index
@@ -66,7 +66,7 @@ TORQUE_HEADER = ["torque (N·m)", "W (N)", "W published (N)", "preview p_max", "
 
 def torque_rows(cases, pub: dict) -> list[list]:
     """Rows of the preview-vs-LCP table over the torques (:data:`TORQUE_HEADER`;
-    cases are :class:`~gearcontact.contact.pair_ltca.PairLoadCase`)."""
+    cases are :class:`~gearcontact.ltca.pair_ltca.PairLoadCase`)."""
     loads = pub.get("loads_n", {})
     return [[c.torque_nm, c.load_n, loads.get(f"{c.torque_nm:g}"), c.preview.p_max_mpa,
              c.patch.p_mean_mpa, c.patch.p90_mpa, c.patch.p_peak_mpa,
@@ -76,7 +76,7 @@ def torque_rows(cases, pub: dict) -> list[list]:
 
 
 def _lte_section(lte, pub: dict) -> list[str]:
-    """Markdown of the loaded-TE section (:class:`~gearcontact.contact.lte.LoadedTE`)."""
+    """Markdown of the loaded-TE section (:class:`~gearcontact.ltca.lte.LoadedTE`)."""
     teeth = "with tooth bending" if lte.bending else "rigid teeth"
     out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m ({teeth})", "",
            f"{len(lte.phi1_rad)} phases over one pinion pitch; every tooth pair within reach "

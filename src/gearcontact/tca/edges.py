@@ -183,7 +183,7 @@ def loaded_patch_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, mp, 
                        frame: str = "principal") -> PatchEdges:
     """The flank edges a loaded patch reaches.
 
-    ``case`` is a :class:`~gearcontact.contact.pair_ltca.PairLoadCase` solved at the
+    ``case`` is a :class:`~gearcontact.ltca.pair_ltca.PairLoadCase` solved at the
     mating point ``mp`` (its grid lies in the ``frame`` tangent plane there, its
     ``on_flank`` mask marks the
     cells whose normal line meets both flanks). The off-flank cells next to loaded

@@ -8,14 +8,14 @@ compiled loop of :mod:`.kernel` (equations and integrator documented there).
 Operating point: the motor torque balances the load (gear) torque through the ratio,
 ``T_m = T_l / u`` (no losses); the run starts from the static equilibrium at the first
 phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
-:func:`gearcontact.contact.lte.preview_balance`) with the members at the nominal
+:func:`gearcontact.ltca.lte.preview_balance`) with the members at the nominal
 speeds, so that what follows is the response to the mesh excitation (unloaded TE and
 the phase-varying stiffness).
 
 Tooth bending (switchable: ``mesh_table(..., bending=...)``, ``model_for_pair(...,
 bending=True)``, ``gearcontact twin --bending``): each pair's bending compliance of the
 pinion and gear tooth (:func:`~.mesh.pair_bending_compliance`, the shell operator of
-:mod:`gearcontact.contact.tooth_bending` weighted by the pair's Hertz pressure) is in
+:mod:`gearcontact.ltca.tooth_bending` weighted by the pair's Hertz pressure) is in
 series with its Hertzian approach, ``d_j = kappa_j W_j^(2/3) + c_b,j W_j``, solved per
 pair and step in the kernel; without it the teeth are rigid.
 """
@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from tqdm import tqdm
 
-from ..contact.lte import preview_balance
-from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..ltca.lte import preview_balance
+from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..errors import CheckFailed, RtlMismatch
 from ..preview.fit.golden import element_constants
 from ..preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
@@ -307,7 +307,7 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     """Mesh rotation theta (rad) and pair loads (N) that carry the load torque at the
     first phase, with the model's own contact law.
 
-    The Hertzian balance of :func:`~gearcontact.contact.lte.preview_balance` gives the
+    The Hertzian balance of :func:`~gearcontact.ltca.lte.preview_balance` gives the
     starting point; it is then refined by bisection on the backend's torque (golden:
     its rounding; table: its interpolation).
     """
@@ -667,7 +667,7 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     if curvatures not in CURVATURE_SOURCES:
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.tooth_bending import tooth_bending
 
     # Surface-to-surface TCA (edge_contact=False): the twin's contact law is Hertzian,
     # and an edge touching the other flank has no Hertzian law; pairs beyond the end of

@@ -22,8 +22,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..analytic.hertz import hamrock_brewe_hertz
-from .grid import TangentGrid
-from .load import torque_lever_mm
+from ..halfspace.grid import TangentGrid
+from ..tca.load import torque_lever_mm
 from .mesh_lcp import PairBlock
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
