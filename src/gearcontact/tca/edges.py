@@ -28,6 +28,7 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..validation import UnusableInput
+from .stencil import tangent_frame, tangent_parameters
 
 __all__ = ["EDGES", "edge_name", "solver_boundary", "exit_counts", "PatternOffFlank",
            "ContactGap", "pattern_edges",
@@ -191,7 +192,6 @@ def loaded_patch_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, mp, 
     (:func:`~gearcontact.tca.stencil.tangent_parameters`) and named by the box side
     they lie beyond.
     """
-    from .stencil import tangent_frame, tangent_parameters
 
     patch = case.patch
     off = ~np.asarray(case.on_flank, bool)

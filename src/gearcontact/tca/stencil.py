@@ -60,7 +60,7 @@ from ..preview.fit.stencil import write_stencil_csv as write_stencil_file
 from ..validation import check_positive
 from .curvature import PAINT_THICKNESS_MM, contact_ellipse, relative_curvature
 from .gap_kernel import intersect_lines, kernel_surface
-from .solve import MatingPoint
+from .types import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
            "hardware_stencil", "write_stencil_csv", "tangent_frame", "tangent_parameters"]
