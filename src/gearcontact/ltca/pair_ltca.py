@@ -30,14 +30,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..preview.engine import PreviewResult, ReferenceEngine
-from ..tca.solve import ARCSEC_PER_RAD
-from ..validation import InputRangeError, check_positive, check_range
+from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.ellipse import ContactEllipse
 from ..halfspace.grid import TangentGrid
 from ..halfspace.line_peak import LinePeak, line_contact_peak, trimmed_gap
-from ..tca.load import normal_load_from_torque, torque_lever_mm
 from ..halfspace.patch import PatchContact, solve_patch
+from ..materials import effective_modulus_mpa
+from ..preview.engine import PreviewResult, ReferenceEngine
+from ..preview.hertz.reference import ENVELOPE
+from ..tca.load import normal_load_from_torque, torque_lever_mm
+from ..tca.solve import ARCSEC_PER_RAD
+from ..tca.stencil import gap_field
+from ..validation import InputRangeError, check_positive, check_range
 
 __all__ = ["PairLoadCase", "single_pair_ltca", "preview_ellipse", "OFF_FLANK_GAP_MM"]
 
@@ -168,8 +172,6 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     warm_start : PatchContact, optional
         Previous solution on the same grid (ignored when the grid differs).
     """
-    from ..tca.stencil import gap_field
-
     side = pair.design_side if side is None else side
     t = check_positive("torque_nm (N·m)", torque_nm)
     if int(cells) < 16:
@@ -183,8 +185,6 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     # the load keeps the preview's range (the torque the CLI names); the curvatures may
     # leave it: host-side fp64 preview without the datapath envelope (a large gear's B-
     # lies below the fixed-point range; the golden/RTL stages report that themselves)
-    from ..preview.hertz.reference import ENVELOPE
-
     check_range("load_n (N)", load, *ENVELOPE["load_n"])
     engine = ReferenceEngine(material=pair.pinion_material, material2=pair.gear_material,
                              envelope=False)
@@ -244,9 +244,6 @@ torque_nm=t, lever_mm=lever, load_n=load, preview=pre, patch=patch,
 
 def _preview_approach(pre: PreviewResult, rc, pair, load: float) -> float:
     """Hertzian approach of the preview (Hamrock–Brewe), mm."""
-    from ..analytic.hertz import hamrock_brewe_hertz
-    from ..materials import effective_modulus_mpa
-
     hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
                              e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
                                                                 pair.gear_material))
