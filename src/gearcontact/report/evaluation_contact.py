@@ -328,7 +328,7 @@ def multitooth_section(analysis, pub, settings) -> Section:
               f"{s_b['active_pairs_lcp_max']}", "3"]]
     text = [f"The coupled multi-pair LCP at {rigid.torque_nm:g} N·m over {len(bent.phi1_rad)} "
             f"phases, rigid teeth and with the shell bending "
-            f"compliance of both teeth added to every pair (gearcontact.contact."
+            f"compliance of both teeth added to every pair (gearcontact.ltca."
             f"tooth_bending; the main job's loaded TE is the "
             f"{'bending' if main.bending else 'rigid'} one). Bending raises the loaded "
             f"rotation at P0 by "
