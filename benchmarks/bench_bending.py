@@ -84,8 +84,8 @@ def main() -> None:
 
 def _bench_lte(pair, flanks) -> None:
     """Loaded TE over one pitch, rigid vs bending (default shell orders in the LCP)."""
-    from gearcontact.contact.lte import loaded_te
-    from gearcontact.contact.tooth_bending import tooth_bending
+    from gearcontact.ltca.lte import loaded_te
+    from gearcontact.ltca.tooth_bending import tooth_bending
     from gearcontact.tca.analysis import analyze_pair
 
     side = pair.design_side

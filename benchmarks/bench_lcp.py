@@ -43,8 +43,8 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 from gearcontact.analytic.hertz import exact_elliptic_hertz  # noqa: E402
-from gearcontact.contact.grid import TangentGrid  # noqa: E402
-from gearcontact.contact.lcp import solve_lcp  # noqa: E402
+from gearcontact.halfspace.grid import TangentGrid  # noqa: E402
+from gearcontact.halfspace.lcp import solve_lcp  # noqa: E402
 from gearcontact.materials import STEEL, reduced_modulus_mpa  # noqa: E402
 
 E_STAR = reduced_modulus_mpa(STEEL, STEEL)

@@ -2,7 +2,7 @@
 <= 20 ms per phase).
 
 The TCA (mean point P0, curvatures) and the flanks are built once, untimed. Then
-:func:`gearcontact.contact.pair_ltca.single_pair_ltca` runs at each published torque
+:func:`gearcontact.ltca.pair_ltca.single_pair_ltca` runs at each published torque
 (32.25 / 64.5 / 129 / 258 N·m, ``--cells`` per side, default 80 as in ``gearcontact
 ltca``), timed as a whole (best of ``--repeat``, wall-clock and process CPU) and split
 into the exact tangent-plane gap field (:func:`gearcontact.tca.stencil.gap_field`, timed
@@ -22,7 +22,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 from gearcontact.tca.stencil import gap_field

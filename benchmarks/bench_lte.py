@@ -3,27 +3,27 @@ target <= 0.5 s CPU per pitch, issue 10; issue 4 had asked <= 2 s), and the sing
 LTCA at P0.
 
 The TCA (61 phases, neighbouring pairs) runs once untimed. Then
-:func:`gearcontact.contact.lte.loaded_te` at 64.5 N·m is timed as a whole (wall-clock
+:func:`gearcontact.ltca.lte.loaded_te` at 64.5 N·m is timed as a whole (wall-clock
 and process CPU, best of ``--repeat``), split into
 
 * gap fields: one exact tangent-plane field per tooth pair within reach and phase
   (:func:`gearcontact.tca.stencil.gap_field`, ``--cells`` per side);
-* coupled torque-constrained LCP solves (:func:`gearcontact.contact.mesh_lcp.
+* coupled torque-constrained LCP solves (:func:`gearcontact.ltca.mesh_lcp.
   solve_mesh_lcp`), warm-started along the phase (issue 4 target: well under 10 ms per
   phase);
 * the compliance solves at P0 (central differences in torque, cold);
 * the rest (curvatures, preview balance, bookkeeping).
 
 Each stage is given in wall and process-CPU seconds (CPU is the fairer figure on a
-shared machine). Last, :func:`gearcontact.contact.pair_ltca.single_pair_ltca` at P0
+shared machine). Last, :func:`gearcontact.ltca.pair_ltca.single_pair_ltca` at P0
 (80 x 80 field, ``pk_cg``; target: gap field + solve <= 20 ms) split into its gap
-field and its LCP solve (:func:`gearcontact.contact.lcp.solve_lcp`), best of
+field and its LCP solve (:func:`gearcontact.halfspace.lcp.solve_lcp`), best of
 ``--repeat`` (at least 5).
 
 Peer: the published host LCP costs 2005 ms per phase for one pair (docs/spec.md sec. 5).
 
 With ``--bending`` the pitch runs with the shell bending of both teeth
-(:func:`gearcontact.contact.tooth_bending.tooth_bending`, target <= 1 s; the shell
+(:func:`gearcontact.ltca.tooth_bending.tooth_bending`, target <= 1 s; the shell
 models are built once before, untimed, as the cache holds them), and the per-field
 bending factors are a stage of their own. The machine's load average is printed.
 
@@ -36,12 +36,12 @@ import argparse
 import os
 import time
 
-import gearcontact.contact.lte as lte_mod
-import gearcontact.contact.patch as patch_mod
-from gearcontact.contact.lte import loaded_te
-from gearcontact.contact.lte_pairs import PairFields
-from gearcontact.contact.tooth_bending import ToothBending, tooth_bending
-from gearcontact.contact.pair_ltca import single_pair_ltca
+import gearcontact.ltca.lte as lte_mod
+import gearcontact.halfspace.patch as patch_mod
+from gearcontact.ltca.lte import loaded_te
+from gearcontact.ltca.lte_pairs import PairFields
+from gearcontact.ltca.tooth_bending import ToothBending, tooth_bending
+from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 

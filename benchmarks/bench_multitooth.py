@@ -17,9 +17,9 @@ import argparse
 import os
 import time
 
-from gearcontact.contact.mesh_lcp import warm_up_mesh_lcp
-from gearcontact.contact.multitooth import multi_tooth_ltca
-from gearcontact.contact.tooth_bending import tooth_bending
+from gearcontact.ltca.mesh_lcp import warm_up_mesh_lcp
+from gearcontact.ltca.multitooth import multi_tooth_ltca
+from gearcontact.ltca.tooth_bending import tooth_bending
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 

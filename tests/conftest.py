@@ -49,3 +49,34 @@ def served_tri_core():
     finally:
         proc.terminate()
         proc.wait(30)
+
+
+@pytest.fixture(scope="session")
+def s0003_centred():
+    """``(pair, flanks)`` of the built-in s0003-centred pair and its production flank set
+    (120 x 150 pinion nodes, about 2 s): the one s0003 set-up of the geometry,
+    structure, tca, ltca, sweep and twin tests, built once per session (their local
+    fixtures ``s0003``, ``flanks``, ``pair``, ``s0003_pair``, ``s0003_flanks`` are views
+    of it)."""
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+
+    pair = load_pair("s0003-centred")
+    return pair, build_flanks(pair)
+
+
+@pytest.fixture(scope="session")
+def make_hertz():
+    """Factory fixture returning ``hertz_problems.hertz_problem`` (cached per arguments):
+    the Hertzian gaps of the halfspace and ltca solver tests."""
+    from hertz_problems import LOAD_N, hertz_problem
+
+    cache = {}
+
+    def make(ratio, n, extent=1.3, load_n=LOAD_N):
+        key = (ratio, n, extent, load_n)
+        if key not in cache:
+            cache[key] = hertz_problem(ratio, n, extent, load_n=load_n)
+        return cache[key]
+
+    return make

@@ -7,7 +7,7 @@ import pytest
 
 from gearcontact.cli import exit_code_of
 from gearcontact.cli.outdir import OutputDirectoryError
-from gearcontact.contact.lcp import LcpConvergenceError
+from gearcontact.halfspace.lcp import LcpConvergenceError
 from gearcontact.errors import BadInput, CheckFailed, DatapathFlagged, RtlMismatch, ToolUnavailable
 from gearcontact.geometry.conjugate import MeshingError, UndercutError
 from gearcontact.hw.harness_cores import CoreUnavailable

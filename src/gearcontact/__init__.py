@@ -22,8 +22,8 @@ _LAZY = {
     # TCA
     "analyze_pair": "tca.analysis",
     # loaded contact
-    "solve_lcp": "contact.lcp", "solve_patch": "contact.patch",
-    "TangentGrid": "contact.grid", "single_pair_ltca": "contact.pair_ltca",
+    "solve_lcp": "halfspace.lcp", "solve_patch": "halfspace.patch",
+    "TangentGrid": "halfspace.grid", "single_pair_ltca": "ltca.pair_ltca",
     # analytic truths
     "exact_elliptic_hertz": "analytic.hertz", "hamrock_brewe_hertz": "analytic.hertz",
     "circular_hertz": "analytic.hertz",

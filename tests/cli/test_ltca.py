@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from gearcontact.cli import main
-from gearcontact.contact.pair_ltca import ARCSEC_PER_RAD
+from gearcontact.ltca.pair_ltca import ARCSEC_PER_RAD
 
 KEYS = ("load_n", "p_mean_mpa", "p90_mpa", "p_peak_mpa", "delta_mm", "mesh_rotation_arcsec",
         "n_contact_cells", "preview_p_max_mpa", "solver")
@@ -100,8 +100,8 @@ def test_exported_problem_resolves_with_another_solver(overload):
     """The exported LCP is complete: the active-set solver (Cholesky, bordered load
     constraint) on the file's arrays alone reproduces pk_cg's pressure within the two
     solvers' tolerances (1e-6 of the peak) and closes the load exactly."""
-    from gearcontact.contact.grid import TangentGrid
-    from gearcontact.contact.lcp import solve_lcp
+    from gearcontact.halfspace.grid import TangentGrid
+    from gearcontact.halfspace.lcp import solve_lcp
 
     _, _, d = overload
     z = np.load(d / "ltca_problem.npz")
@@ -150,7 +150,7 @@ def test_multi_tooth(tmp_path):
     assert data["converged"] and data["edge_contact"]
     assert data["trimmed_cells"] > 0 and data["p_peak_cell_mpa"] > data["cp_max_mpa"]
     # the edge loaded the boundary row: re-solved without it (converged; load balance
-    # and the spike of the re-solve: tests/contact/test_line_peak.py); the spike re-forms
+    # and the spike of the re-solve: tests/halfspace/test_line_peak.py); the spike re-forms
     # on the new boundary row (a sharp-edge singularity), so the re-solved cell peak
     # stays far above CP_max
     assert data["edge_resolved"] and data["status_resolved"] == "converged"

@@ -66,7 +66,7 @@ def test_bad_input(tmp_path, capsys, argv, word):
 
 
 def test_lte_with_bending(out, tmp_path):
-    # the shell bending of both teeth in the coupled LCP (tests/contact/
+    # the shell bending of both teeth in the coupled LCP (tests/ltca/
     # test_tooth_bending.py checks it against its limits): the same command without
     # --rigid (bending is the default) is flagged, converges, balances the shares and
     # is more compliant

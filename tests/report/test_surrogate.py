@@ -16,7 +16,7 @@ import pytest
 
 pytest.importorskip("sklearn")
 
-from gearcontact.contact.pair_ltca import single_pair_ltca  # noqa: E402
+from gearcontact.ltca.pair_ltca import single_pair_ltca  # noqa: E402
 from gearcontact.geometry.pair import load_pair  # noqa: E402
 from gearcontact.report.surrogate import (  # noqa: E402
     MlpSpec, anchored_study, relative_rmse_pct, synthetic_study)

@@ -7,9 +7,9 @@ from gearcontact.geometry.pair import load_pair
 
 
 @pytest.fixture(scope="session")
-def s0003():
-    pair = load_pair("s0003-centred")
-    return pair, build_flanks(pair)
+def s0003(s0003_centred):
+    """``(pair, flanks)`` of s0003-centred (tests/conftest.py)."""
+    return s0003_centred
 
 
 @pytest.fixture(scope="session")

@@ -5,17 +5,13 @@ import pytest
 
 
 @pytest.fixture(scope="package")
-def pair():
-    from gearcontact.geometry.pair import load_pair
-
-    return load_pair("s0003-centred")
+def pair(s0003_centred):
+    return s0003_centred[0]
 
 
 @pytest.fixture(scope="package")
-def flanks(pair):
-    from gearcontact.geometry.flank import build_flanks
-
-    return build_flanks(pair)
+def flanks(s0003_centred):
+    return s0003_centred[1]
 
 
 @pytest.fixture(scope="package")

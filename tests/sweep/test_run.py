@@ -46,11 +46,11 @@ def test_cluster_sweep_equals_serial_points(pair, flanks, client, tmp_path):
     assert (ds["status"].values == store_mod.DONE).all()
 
 
-@pytest.mark.filterwarnings("error::gearcontact.contact.ellipse.CoarseGridWarning")
+@pytest.mark.filterwarnings("error::gearcontact.halfspace.ellipse.CoarseGridWarning")
 def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(pair, flanks, tmp_path):
-    from gearcontact.contact.ellipse import CoarseGridWarning
-    from gearcontact.contact.lte import loaded_te
-    from gearcontact.contact.pair_ltca import single_pair_ltca
+    from gearcontact.halfspace.ellipse import CoarseGridWarning
+    from gearcontact.ltca.lte import loaded_te
+    from gearcontact.ltca.pair_ltca import single_pair_ltca
     from gearcontact.sweep.cell import LTE_CELLS, LTE_PHASES, lte_stride
     from gearcontact.tca.analysis import analyze_pair
 

@@ -1,20 +1,19 @@
-"""Shared TCA fixtures on the built-in s0003 pair (flanks built once per session)."""
+"""Shared TCA fixtures on the built-in s0003-centred pair (tests/conftest.py builds the
+pair and its flanks once per session)."""
 
 import pytest
 
-from gearcontact.geometry.flank import build_flanks
-from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 
 
 @pytest.fixture(scope="session")
-def s0003_pair():
-    return load_pair("s0003-centred")
+def s0003_pair(s0003_centred):
+    return s0003_centred[0]
 
 
 @pytest.fixture(scope="session")
-def s0003_flanks(s0003_pair):
-    return build_flanks(s0003_pair)
+def s0003_flanks(s0003_centred):
+    return s0003_centred[1]
 
 
 @pytest.fixture(scope="session")

@@ -15,7 +15,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair, pair_to_toml, parse_pair
 from gearcontact.report.analyze import published_values
 from gearcontact.tca.analysis import analyze_pair

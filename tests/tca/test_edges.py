@@ -20,7 +20,7 @@ import pytest
 from gearcontact.geometry.kinematics import AssemblyErrors
 from gearcontact.tca.analysis import analyze_pair
 from gearcontact.tca.curvature import curvature_tensor, relative_curvature
-from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.edges import PatternOffFlank, edge_name, loaded_patch_edges

@@ -10,9 +10,9 @@ from scipy.optimize import brentq
 import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors
+from gearcontact.tca.mating import _residual_and_jacobian
 from gearcontact.tca.solve import (ARCSEC_PER_RAD, ContactGuess, EdgeContact,
-                                   TcaConvergenceError, _residual_and_jacobian,
-                                   solve_mating_point, solve_tca)
+                                   TcaConvergenceError, solve_mating_point, solve_tca)
 
 from .analytic import Torus, sphere_torus_case
 
@@ -67,7 +67,7 @@ def test_normal_rows_of_jacobian_at_contact():
     mp = solve_mating_point(case.pinion, case.gear, case.kin, _guess(case))
     x = np.array([mp.u1, mp.v1, mp.u2, mp.v2, mp.phi1_rad, mp.phi2_rad])
     _, (_, n2), jac = _residual_and_jacobian(case.pinion, case.gear, case.kin, x)
-    from gearcontact.tca.solve import _tangent_basis
+    from gearcontact.tca.mating import _tangent_basis
     basis = _tangent_basis(n2)
     h = 1e-6
     for k in range(6):

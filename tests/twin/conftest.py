@@ -1,5 +1,5 @@
 """s0003 mesh for the twin tests (one TCA per session: 31 phases per pitch keep the
-neighbouring pairs' paths, see tests/contact/test_lte.py, at half the cost of 61)."""
+neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61)."""
 
 import pytest
 
@@ -8,13 +8,13 @@ TORQUE_NM = 64.5
 
 
 @pytest.fixture(scope="session")
-def s0003_twin():
-    from gearcontact.geometry.pair import load_pair
+def s0003_twin(s0003_centred):
     from gearcontact.tca.analysis import analyze_pair
     from gearcontact.twin.mesh import mesh_table
 
-    pair = load_pair("s0003-centred")
-    tca, flanks = analyze_pair(pair, side="drive", phases=PHASES, edge_contact=False)
+    pair, flanks = s0003_centred
+    tca, flanks = analyze_pair(pair, side="drive", phases=PHASES, edge_contact=False,
+                               flanks=flanks)
     return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM)
 
 

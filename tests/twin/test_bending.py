@@ -1,6 +1,6 @@
 """Tooth bending in series with the Hertzian law, against the loaded TE with bending.
 
-Truth: :func:`gearcontact.contact.lte.loaded_te` with ``bending=`` (the coupled LCP
+Truth: :func:`gearcontact.ltca.lte.loaded_te` with ``bending=`` (the coupled LCP
 with the same shell compliance of both teeth, i.e. ``gearcontact lte --bending``).
 The twin's pairs are Hertzian (the preview) where the LTE solves the half-space LCP,
 so the rotations differ by the rigid Hertz-vs-LCP margin already (measured <= 4 % of
@@ -18,9 +18,9 @@ import math
 import numpy as np
 import pytest
 
-from gearcontact.contact.lte import loaded_te
-from gearcontact.contact.pair_ltca import ARCSEC_PER_RAD
-from gearcontact.contact.tooth_bending import tooth_bending
+from gearcontact.ltca.lte import loaded_te
+from gearcontact.ltca.pair_ltca import ARCSEC_PER_RAD
+from gearcontact.ltca.tooth_bending import tooth_bending
 from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain
 from gearcontact.twin.simulate import _elastic, _prm, build_model, simulate

@@ -6,7 +6,7 @@ Truth:
   reference twin), the table twin reproduces the reference twin up to the table's
   interpolation in torque and phase;
 * built from the LTCA (``TE_LCP``), its quasi-static TE at a ladder torque is the loaded
-  TE of :func:`gearcontact.contact.lte.loaded_te` at that torque (rows of the phase
+  TE of :func:`gearcontact.ltca.lte.loaded_te` at that torque (rows of the phase
   grid), i.e. the table is read back at the right phase and rotation.
 """
 
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from dataclasses import replace
 
-from gearcontact.contact.lte import loaded_te
+from gearcontact.ltca.lte import loaded_te
 from gearcontact.twin.ltca_table import torque_table
 from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
-from gearcontact.contact.load import torque_lever_mm
+from gearcontact.tca.load import torque_lever_mm
 from gearcontact.tca.stencil import gap_field
 from gearcontact.twin import kernel as K
 from gearcontact.twin.mesh import free_play_rad, reverse_law

@@ -1,7 +1,7 @@
 """The twin on the calibrated s0003 preset, whose design (loaded) side is coast.
 
 Truth: the quasi-static limit (60 rpm) of the twin equals the preview loaded TE
-(``TE_pre`` of :func:`gearcontact.contact.lte.loaded_te` on the coast side, the same
+(``TE_pre`` of :func:`gearcontact.ltca.lte.loaded_te` on the coast side, the same
 Hertzian pairs) at the phase rows, within the bound of :func:`.conftest.
 quasi_static_bound_arcsec`; the reverse flank (drive) is in line contact (zero
 ease-off), so the twin states that it mirrors the loaded law there.
@@ -12,7 +12,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from gearcontact.contact.lte import loaded_te
+from gearcontact.ltca.lte import loaded_te
 from gearcontact.geometry.pair import load_pair
 from gearcontact.twin.simulate import build_model, model_for_pair, simulate
 

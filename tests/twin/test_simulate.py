@@ -1,7 +1,7 @@
 """The drivetrain twin against independent truth.
 
 * quasi-static limit: at 60 rpm (mesh 7 Hz, 25x below the lowest elastic mode) the
-  dynamic TE equals the static loaded TE ``TE_pre`` of :func:`gearcontact.contact.lte.
+  dynamic TE equals the static loaded TE ``TE_pre`` of :func:`gearcontact.ltca.lte.
   loaded_te` (same Hertzian pairs, solved there by Brent on the torque balance), and the
   mean mesh torque over whole pitches equals the load torque;
 * energy: kinetic + shaft + mesh potential + dissipated = work of the end torques
@@ -20,7 +20,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from gearcontact.contact.lte import loaded_te, preview_balance
+from gearcontact.ltca.lte import loaded_te, preview_balance
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain

@@ -69,7 +69,7 @@ def test_errors_cross_the_process_pool_intact():
     from types import SimpleNamespace
 
     from gearcontact.cli.outdir import OutputDirectoryError
-    from gearcontact.contact.lcp import LcpConvergenceError
+    from gearcontact.halfspace.lcp import LcpConvergenceError
 
     # what LcpConvergenceError reads of an LcpResult
     result = SimpleNamespace(solver="pk_cg", status="max_iter", message="1000 iterations")

@@ -2,13 +2,13 @@
 
 Writes into ``--out`` (created if missing): ``ltca.json`` (load, LCP mean / p90 / peak
 pressure, approach, mesh rotation, contact cells, preview p_max, solver and
-the rest of :meth:`~gearcontact.contact.pair_ltca.PairLoadCase.summary`),
+the rest of :meth:`~gearcontact.ltca.pair_ltca.PairLoadCase.summary`),
 ``pressure_map.csv`` (``s_mm,t_mm,pressure_mpa`` over the principal-frame field),
 ``pressure_map.png`` (pressure map with the Hertzian preview ellipse overlaid) and, with
 ``--export-problem``, the solved LCP as ``ltca_problem.npz`` with
-``ltca_problem.README.md`` (:mod:`gearcontact.contact.problem_export`). With
+``ltca_problem.README.md`` (:mod:`gearcontact.ltca.problem_export`). With
 ``--multi-tooth`` also the coupled LCP of all engaged pairs at P0, rigid and with the
-shell bending of both teeth (:mod:`gearcontact.contact.multitooth`): ``multitooth.json``
+shell bending of both teeth (:mod:`gearcontact.ltca.multitooth`): ``multitooth.json``
 (load shares, rotations, CP_max, cell peak, preview p_max), ``multitooth.csv`` and the
 full-wheel figure ``multitooth.png`` (:mod:`gearcontact.report.multitooth`). The
 solve times (``solve_ms``, ``multi_tooth_solve_ms``, ``multi_tooth_solve_rigid_ms``) go
@@ -29,9 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contact.lcp import SOLVERS, LcpConvergenceError, warm_up
-from ..contact.pair_ltca import preview_ellipse, single_pair_ltca
-from ..contact.patch import ContactAtEdgeWarning, plot_patch
+from ..halfspace.lcp import SOLVERS, LcpConvergenceError, warm_up
+from ..ltca.pair_ltca import preview_ellipse, single_pair_ltca
+from ..halfspace.patch import ContactAtEdgeWarning, plot_patch
 from ..tca.analysis import analyze_pair
 from ..tca.edges import loaded_patch_edges
 from ..tca.export import without_timings, write_csv
@@ -146,7 +146,7 @@ def run(args) -> int:
         fig.savefig(out / "pressure_map.png", dpi=120)
         plt.close(fig)
     if args.export_problem:
-        from ..contact.problem_export import write_lcp_problem
+        from ..ltca.problem_export import write_lcp_problem
 
         write_lcp_problem(case, (pair.pinion_material, pair.gear_material), out,
                           title=f"{pair.name} {args.side}, {args.torque:g} N·m at P0")
@@ -177,9 +177,9 @@ def run(args) -> int:
 
 def _multi_tooth(args, tca, flanks, pair, out):
     """The multi-tooth solve at P0 and its files; returns the case."""
-    from ..contact.mesh_lcp import warm_up_mesh_lcp
-    from ..contact.multitooth import multi_tooth_ltca
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.mesh_lcp import warm_up_mesh_lcp
+    from ..ltca.multitooth import multi_tooth_ltca
+    from ..ltca.tooth_bending import tooth_bending
     from ..report.analyze import published_values
     from ..report.multitooth import write_multitooth_outputs
 

@@ -5,7 +5,7 @@ Writes into ``--out`` (created if missing): ``lte.json`` (peak-to-peaks of TE0, 
 and TE_pre, contact and mesh compliances, active pairs, load shares at P0, mesh
 stiffness statistics rigid and, unless ``--rigid``, with bending; ``bending`` records
 which tooth model ran; see
-:meth:`~gearcontact.contact.lte.LoadedTE.summary`), ``lte.csv`` (one row per phase: TE0,
+:meth:`~gearcontact.ltca.lte.LoadedTE.summary`), ``lte.csv`` (one row per phase: TE0,
 TE_LCP, TE_pre, rotations, active pairs, load per pair, mesh stiffness in N·m/rad and
 N/mm rigid and with bending) and ``lte.png``; timings go to ``run.json`` only.
 """
@@ -15,8 +15,8 @@ from __future__ import annotations
 import dataclasses
 import time
 
-from ..contact.constrained_cg import SolveStatus
-from ..contact.lte import loaded_te
+from ..halfspace.constrained_cg import SolveStatus
+from ..ltca.lte import loaded_te
 from ..errors import CheckFailed
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
@@ -57,7 +57,7 @@ def run(args) -> int:
                                progress=not args.quiet)
     bending = None
     if not args.rigid:
-        from ..contact.tooth_bending import tooth_bending
+        from ..ltca.tooth_bending import tooth_bending
 
         bending = tooth_bending(flanks, pair, side=args.side)
     try:

@@ -167,7 +167,7 @@ def rename_load_error(exc: InputRangeError, torque_nm: float, pair, tca) -> Inpu
     lever comes from the TCA's mean mating point)."""
     if not str(exc.field).startswith("load_n"):
         return exc
-    from ..contact.load import torque_lever_mm
+    from ..tca.load import torque_lever_mm
 
     lever = torque_lever_mm(tca.mean_point.point_mm, tca.mean_point.normal)
     hi = torque_limit_nm(pair, lever)
@@ -183,10 +183,10 @@ EDGE_SPIKE_RATIO = 1.5
 
 def case_warnings(case, *, label: str = "") -> list[str]:
     """What a user must see about one loaded case
-    (:class:`~gearcontact.contact.pair_ltca.PairLoadCase`), one line each: contact at
+    (:class:`~gearcontact.ltca.pair_ltca.PairLoadCase`), one line each: contact at
     the flank edge (the LCP peak is then an edge spike of rigid teeth, not a Hertzian
     pressure) or the edge of the gap field. Run the LTCA with
-    :class:`~gearcontact.contact.patch.ContactAtEdgeWarning` ignored: this replaces it."""
+    :class:`~gearcontact.halfspace.patch.ContactAtEdgeWarning` ignored: this replaces it."""
     at = label or f"{case.torque_nm:g} N·m"
     out = []
     p = case.patch
@@ -204,7 +204,7 @@ def case_warnings(case, *, label: str = "") -> list[str]:
 
 
 def lte_warnings(lte) -> list[str]:
-    """What a user must see about a loaded TE (:class:`~gearcontact.contact.lte.LoadedTE`),
+    """What a user must see about a loaded TE (:class:`~gearcontact.ltca.lte.LoadedTE`),
     one line each: the phases with edge contact."""
     edge = [int(k) for k in lte.edge_contact.nonzero()[0]]
     if not edge:

@@ -50,7 +50,7 @@ from scipy.interpolate import RectBivariateSpline
 from ..errors import CheckFailed
 from ..validation import InputRangeError
 from .blank import BlankDesign
-from .flank import FlankBoundary, FormateFlank
+from .formate import FlankBoundary, FormateFlank
 from .kinematics import MeshKinematics
 from .mirror import mirror_solution
 from .sheet import PinionCone, RadialSheet

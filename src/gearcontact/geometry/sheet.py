@@ -40,7 +40,7 @@ import numpy as np
 from numba import njit
 from scipy.interpolate import RectBivariateSpline
 
-from .flank import FlankBoundary
+from .formate import FlankBoundary
 from .sampling import SurfaceArrays
 from .spline_kernel import pp_coefficients, pp_derivatives
 from .surface import SurfacePoint

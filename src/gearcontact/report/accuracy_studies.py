@@ -15,7 +15,7 @@ number:
 * the centred set-up itself is the first row of the sweep (the unmodified pair).
 
 Every row is one TCA (15 phases) and one single-pair LTCA at the given torque
-(:func:`gearcontact.contact.pair_ltca.single_pair_ltca`).
+(:func:`gearcontact.ltca.pair_ltca.single_pair_ltca`).
 """
 
 from __future__ import annotations
@@ -118,8 +118,8 @@ def bearing_sweep(pair, torque_nm: float, *, steps=BEARING_STEPS_QUICK, phases: 
     side : str, optional
         Flank pair; default the pair's ``design_side``.
     """
-    from ..contact.pair_ltca import single_pair_ltca
-    from ..contact.patch import ContactAtEdgeWarning
+    from ..ltca.pair_ltca import single_pair_ltca
+    from ..halfspace.patch import ContactAtEdgeWarning
     from ..tca.analysis import analyze_pair
 
     if not steps:
@@ -143,8 +143,8 @@ def bearing_sweep(pair, torque_nm: float, *, steps=BEARING_STEPS_QUICK, phases: 
 def grid_study(tca, flanks, pair, torque_nm: float, *, cells=(40, 80, 120),
                side: str | None = None) -> tuple[StudyRow, ...]:
     """The same single-pair LCP on square grids of ``cells`` per side."""
-    from ..contact.pair_ltca import single_pair_ltca
-    from ..contact.patch import ContactAtEdgeWarning
+    from ..ltca.pair_ltca import single_pair_ltca
+    from ..halfspace.patch import ContactAtEdgeWarning
 
     side = pair.design_side if side is None else side
     rows = []

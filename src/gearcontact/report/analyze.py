@@ -20,7 +20,7 @@ TCA files                     see :mod:`gearcontact.tca.export` (``tca.json``, `
 ``pressure_maps.png``         LCP pressure maps with the preview ellipse overlaid
 ``pressure_vs_load.png``      log-log preview p_max and LCP mean / p90 / peak vs W, W^(1/3)
 ``lte.json``, ``lte.csv``     loaded TE over one pitch at the design torque (TE0, TE_LCP,
-                              TE_pre, active pairs, compliances; :mod:`gearcontact.contact.lte`)
+                              TE_pre, active pairs, compliances; :mod:`gearcontact.ltca.lte`)
 ``lte.png``                   TE0, TE_LCP, TE_pre and active pairs along the phase
 ``precision.csv``, ``.png``   gap-kernel fixed-point error vs coordinate / normal width
                               beside the first-order bound (:mod:`.precision`)
@@ -48,11 +48,11 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from ..contact.lcp import warm_up
-from ..contact.lte import loaded_te
-from ..contact.line_peak import contact_line_length_mm
-from ..contact.pair_ltca import PairLoadCase, single_pair_ltca
-from ..contact.patch import ContactAtEdgeWarning
+from ..halfspace.lcp import warm_up
+from ..ltca.lte import loaded_te
+from ..halfspace.line_peak import contact_line_length_mm
+from ..ltca.pair_ltca import PairLoadCase, single_pair_ltca
+from ..halfspace.patch import ContactAtEdgeWarning
 from ..geometry.generation import check_generation
 from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
@@ -113,7 +113,7 @@ class Analysis:
         summary.md).
     multitooth : MultiToothCase or None
         Multi-tooth LTCA at P0 at the LTE torque, rigid and with tooth bending
-        (:mod:`gearcontact.contact.multitooth`; None when the LTE is skipped).
+        (:mod:`gearcontact.ltca.multitooth`; None when the LTE is skipped).
     golden_status, chain_status : tuple of str
         Per torque, the status of ``golden`` / ``golden_chain``: ``ok``,
         ``flagged:<flags>`` (outputs 0), or ``outside_envelope`` / ``outside_registers``
@@ -236,9 +236,9 @@ def _multi_tooth(tca, flanks, pair, torque_nm: float, side: str, out: Path, figu
                  timings: dict):
     """Multi-tooth LTCA at P0 (rigid and with tooth bending) and its files; solve times
     into ``timings``."""
-    from ..contact.mesh_lcp import warm_up_mesh_lcp
-    from ..contact.multitooth import multi_tooth_ltca
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.mesh_lcp import warm_up_mesh_lcp
+    from ..ltca.multitooth import multi_tooth_ltca
+    from ..ltca.tooth_bending import tooth_bending
     from .multitooth import write_multitooth_outputs
 
     t0 = time.perf_counter()
@@ -371,7 +371,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         stride = max(1, -(-(len(tca.cycle.phi1_rad) - 1) // max(int(lte_phases) - 1, 1)))
         bending = None
         if lte_bending:
-            from ..contact.tooth_bending import tooth_bending
+            from ..ltca.tooth_bending import tooth_bending
 
             bending = tooth_bending(flanks, pair, side=side)
         lte = loaded_te(tca, flanks, pair, lte_torque_nm, side=side, stride=stride,

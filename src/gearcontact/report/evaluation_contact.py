@@ -284,8 +284,8 @@ def _multitooth_published(pub) -> dict:
 
 
 def multitooth_section(analysis, pub, settings) -> Section:
-    from ..contact.lte import loaded_te
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.lte import loaded_te
+    from ..ltca.tooth_bending import tooth_bending
 
     main = analysis.lte
     if main is None:
@@ -328,7 +328,7 @@ def multitooth_section(analysis, pub, settings) -> Section:
               f"{s_b['active_pairs_lcp_max']}", "3"]]
     text = [f"The coupled multi-pair LCP at {rigid.torque_nm:g} N·m over {len(bent.phi1_rad)} "
             f"phases, rigid teeth and with the shell bending "
-            f"compliance of both teeth added to every pair (gearcontact.contact."
+            f"compliance of both teeth added to every pair (gearcontact.ltca."
             f"tooth_bending; the main job's loaded TE is the "
             f"{'bending' if main.bending else 'rigid'} one). Bending raises the loaded "
             f"rotation at P0 by "
@@ -371,7 +371,7 @@ def multitooth_section(analysis, pub, settings) -> Section:
              ["preview p_max", mt.preview_p_max_mpa, None]]))
         text.append(
             f"CP_max is computed as published: boundary-inadmissible edge cells trimmed, then "
-            f"the strip-wise Hertz line-contact peak (gearcontact.contact.line_peak). Ours "
+            f"the strip-wise Hertz line-contact peak (gearcontact.halfspace.line_peak). Ours "
             f"{mt.cp_max_mpa:.0f} MPa against the published {pub['cp_max_mpa']} MPa "
             f"({pct_diff(mt.cp_max_mpa, pub['cp_max_mpa']):+.0f} %). Part of it is the load "
             f"sharing above: our pair at P0 carries {share_pct:.1f} % of the load, the "

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from .document import Table
 
 __all__ = ["BENDING_SCALES", "sharing_explanation"]
@@ -35,8 +35,8 @@ def _scale_trend(analysis):
     """(s, reference share %, rotation increase %) per :data:`BENDING_SCALES`. The main
     job's case gives s = 0 (its rigid solve) and s = 1 (its bending solve); only the
     other scales are solved here."""
-    from ..contact.multitooth import multi_tooth_ltca
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.multitooth import multi_tooth_ltca
+    from ..ltca.tooth_bending import tooth_bending
 
     mt = analysis.multitooth
     known = {0.0: (mt.load_share_rigid_pct[0], 0.0)}

@@ -11,8 +11,8 @@ import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 from matplotlib.collections import QuadMesh  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ..contact.pair_ltca import preview_ellipse  # noqa: E402
-from ..contact.patch import EDGE_SPIKE_CLIP, plot_patch  # noqa: E402
+from ..ltca.pair_ltca import preview_ellipse  # noqa: E402
+from ..halfspace.patch import EDGE_SPIKE_CLIP, plot_patch  # noqa: E402
 from ..figure_files import save_figure  # noqa: E402
 
 __all__ = ["plot_pressure_maps", "plot_pressure_vs_load"]
@@ -24,7 +24,7 @@ def plot_pressure_maps(cases, path, *, title: str = "") -> Path:
 
     Each panel shows the loaded cells and the preview ellipse with a margin (not the
     whole computational grid), at true scale. Where the peak is an edge spike the colour
-    scale stops at ``EDGE_SPIKE_CLIP`` x p90 (:func:`gearcontact.contact.patch.plot_patch`)
+    scale stops at ``EDGE_SPIKE_CLIP`` x p90 (:func:`gearcontact.halfspace.patch.plot_patch`)
     and the colour bar says so.
     """
     n = len(cases)

@@ -1,6 +1,6 @@
 """Loaded-TE figure and files: TE0, TE_LCP, TE_pre and the active pairs along the phase.
 
-:func:`write_lte_outputs` writes ``lte.json`` (:meth:`~gearcontact.contact.lte.LoadedTE.
+:func:`write_lte_outputs` writes ``lte.json`` (:meth:`~gearcontact.ltca.lte.LoadedTE.
 summary`), ``lte.csv`` (one row per phase) and ``lte.png`` (:func:`plot_lte`); used by
 ``gearcontact lte`` and the main job.
 """

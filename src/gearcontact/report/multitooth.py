@@ -2,7 +2,7 @@
 flank, load share per pair).
 
 :func:`write_multitooth_outputs` writes ``multitooth.json``
-(:meth:`~gearcontact.contact.multitooth.MultiToothCase.summary`, no timings),
+(:meth:`~gearcontact.ltca.multitooth.MultiToothCase.summary`, no timings),
 ``multitooth.csv`` (one row per loaded cell of every pair: pair, meshing-frame point
 (z = gear-axial position), radius about the gear axis, pressure, trimmed as
 boundary-inadmissible) and ``multitooth.png``
@@ -21,9 +21,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
-from ..contact.line_peak import inadmissible_cells  # noqa: E402
+from ..halfspace.line_peak import inadmissible_cells  # noqa: E402
 from ..figure_files import save_figure  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
+from .markdown import md_table, pct_diff  # noqa: E402
 
 __all__ = ["multitooth_section", "plot_multitooth", "write_multitooth_outputs"]
 
@@ -116,8 +117,6 @@ def write_multitooth_outputs(case, out_dir, *, figures: bool = True, title: str 
 def multitooth_section(case, pub: dict) -> list[str]:
     """Markdown of the multi-tooth section of ``summary.md``: ours beside the published
     load shares, rotation increase from bending, and CP_max vs the preview."""
-    from .summary import _pct, _table
-
     shares = pub.get("multi_tooth_load_share_pct")
 
     def fmt(values):
@@ -131,8 +130,8 @@ def multitooth_section(case, pub: dict) -> list[str]:
            "with rigid teeth and with the shell bending of both teeth "
            "(`gearcontact ltca --multi-tooth`; docs/bending.md). CP_max: the "
            "incomplete-ellipse line-contact peak after trimming the boundary-inadmissible "
-           "edge cells (`gearcontact.contact.line_peak`).", ""]
-    out.append(_table(["quantity", "ours", "published"], [
+           "edge cells (`gearcontact.halfspace.line_peak`).", ""]
+    out.append(md_table(["quantity", "ours", "published"], [
         ["engaged pairs (bending)", sum(p.load_n > 0 for p in case.pairs),
          len(shares) if shares else None],
         ["load shares rigid (%)", fmt(case.load_share_rigid_pct), None],
@@ -145,13 +144,13 @@ def multitooth_section(case, pub: dict) -> list[str]:
         ["mesh rotation with bending (arcsec)", case.rotation_arcsec,
          pub.get("mesh_rotation_bending_arcsec_at_design")],
         ["rotation increase from bending (%)",
-         _pct(case.rotation_arcsec, case.rotation_rigid_arcsec),
+         pct_diff(case.rotation_arcsec, case.rotation_rigid_arcsec),
          pub.get("mesh_rotation_bending_increase_pct")],
         ["CP_max (MPa)", case.cp_max_mpa, pub.get("cp_max_mpa_at_design")],
         ["preview p_max, reference pair at its load (MPa)", case.preview_p_max_mpa,
          pub.get("preview_p_max_mpa_at_design")],
-        ["CP_max vs preview (%)", _pct(case.cp_max_mpa, case.preview_p_max_mpa),
-         _pct(pub["cp_max_mpa_at_design"], pub["preview_p_max_mpa_at_design"])
+        ["CP_max vs preview (%)", pct_diff(case.cp_max_mpa, case.preview_p_max_mpa),
+         pct_diff(pub["cp_max_mpa_at_design"], pub["preview_p_max_mpa_at_design"])
          if "cp_max_mpa_at_design" in pub else None],
         ["raw cell peak (MPa)", case.p_peak_cell_mpa, None],
         ["trimmed edge cells / their load (N)",

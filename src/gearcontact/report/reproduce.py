@@ -6,7 +6,7 @@ torques, loaded TE, fixed-point precision, latency) once and builds the eight it
 the evaluation from its results, adding only what the main job does not compute: the
 neural-surrogate study (:mod:`.surrogate`), the explanation studies of the accuracy
 item (:mod:`.accuracy_studies`), the loaded TE with tooth bending for the multi-tooth item
-(:mod:`gearcontact.contact.tooth_bending`) and, with ``synth=True``, the synthesis sweep
+(:mod:`gearcontact.ltca.tooth_bending`) and, with ``synth=True``, the synthesis sweep
 (:mod:`gearcontact.hw.synth`; otherwise the committed ``data/synth/resources.json``).
 The items themselves are built in :mod:`.evaluation_contact` (1, 2, 6, 7) and
 :mod:`.evaluation_datapath` (3, 4, 5, 8); the document and its renderings are in

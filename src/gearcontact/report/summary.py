@@ -6,29 +6,16 @@ import re
 from pathlib import Path
 
 from ..preview.fit.stencil import STENCIL_SPACING_MM
+from .markdown import md_table, pct_diff
+from .multitooth import multitooth_section
 
 __all__ = ["DESIGN_POINT_HEADER", "TORQUE_HEADER", "cpu_latency_rows", "design_point_table_rows",
            "lte_rows", "torque_rows", "write_summary"]
 
 
-def _table(header: list[str], rows: list[list]) -> str:
-    def fmt(x):
-        if isinstance(x, float):
-            return f"{x:.4g}"
-        return "" if x is None else str(x)
-
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(fmt(x) for x in r) + " |" for r in rows]
-    return "\n".join(lines)
-
-
-def _pct(a: float, b: float) -> float:
-    return 100.0 * (a / b - 1.0)
-
-
 def lte_rows(lte, pub: dict) -> list[list]:
     """Rows (quantity, ours, published) of the loaded-TE comparison
-    (:class:`~gearcontact.contact.lte.LoadedTE`; also the ``lte`` item of the
+    (:class:`~gearcontact.ltca.lte.LoadedTE`; also the ``lte`` item of the
     reproduction report)."""
     pp, comp = pub.get("lte_pp_arcsec", {}), pub.get("compliance_mm_per_n", {})
     k0 = lte.reference_index
@@ -37,8 +24,8 @@ def lte_rows(lte, pub: dict) -> list[list]:
         ["TE0 peak-to-peak (arcsec)", lte.te0_pp_arcsec, pub.get("te0_pp_arcsec")],
         ["TE_LCP peak-to-peak (arcsec)", lte.te_lcp_pp_arcsec, pp.get("lcp")],
         ["TE_pre peak-to-peak (arcsec)", lte.te_pre_pp_arcsec, pp.get("preview")],
-        ["TE_pre vs TE_LCP p-p (%)", _pct(lte.te_pre_pp_arcsec, lte.te_lcp_pp_arcsec),
-         _pct(pp["preview"], pp["lcp"]) if pp else None],
+        ["TE_pre vs TE_LCP p-p (%)", pct_diff(lte.te_pre_pp_arcsec, lte.te_lcp_pp_arcsec),
+         pct_diff(pp["preview"], pp["lcp"]) if pp else None],
         ["contact compliance LCP at P0 (mm/N)", lte.compliance_lcp_mm_per_n, comp.get("lcp")],
         ["contact compliance preview at P0 (mm/N)", lte.compliance_pre_mm_per_n,
          comp.get("preview")],
@@ -66,23 +53,23 @@ TORQUE_HEADER = ["torque (N·m)", "W (N)", "W published (N)", "preview p_max", "
 
 def torque_rows(cases, pub: dict) -> list[list]:
     """Rows of the preview-vs-LCP table over the torques (:data:`TORQUE_HEADER`;
-    cases are :class:`~gearcontact.contact.pair_ltca.PairLoadCase`)."""
+    cases are :class:`~gearcontact.ltca.pair_ltca.PairLoadCase`)."""
     loads = pub.get("loads_n", {})
     return [[c.torque_nm, c.load_n, loads.get(f"{c.torque_nm:g}"), c.preview.p_max_mpa,
              c.patch.p_mean_mpa, c.patch.p90_mpa, c.patch.p_peak_mpa,
-             _pct(c.preview.p_max_mpa, c.patch.p90_mpa), c.patch.p_peak_mpa / c.patch.p90_mpa,
+             pct_diff(c.preview.p_max_mpa, c.patch.p90_mpa), c.patch.p_peak_mpa / c.patch.p90_mpa,
              1e3 * c.patch.delta_mm, c.mesh_rotation_arcsec, c.patch.n_contact_cells,
              c.edge_contact] for c in cases]
 
 
 def _lte_section(lte, pub: dict) -> list[str]:
-    """Markdown of the loaded-TE section (:class:`~gearcontact.contact.lte.LoadedTE`)."""
+    """Markdown of the loaded-TE section (:class:`~gearcontact.ltca.lte.LoadedTE`)."""
     teeth = "with tooth bending" if lte.bending else "rigid teeth"
     out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m ({teeth})", "",
            f"{len(lte.phi1_rad)} phases over one pinion pitch; every tooth pair within reach "
            "with its own gap field, one shared gear rotation, torque balance; TE_pre from "
            "the Hamrock–Brewe approach of each pair.", ""]
-    out.append(_table(["quantity", "ours", "published"], lte_rows(lte, pub)))
+    out.append(md_table(["quantity", "ours", "published"], lte_rows(lte, pub)))
     return out + [
         "", "The contact compliance is d(delta)/dW of the transmitting pair alone; the mesh "
         "compliance lets the neighbouring pairs share the torque. Pairs up to half a pitch "
@@ -127,7 +114,7 @@ def _design_point_section(result, pub: dict) -> list[str]:
             "this set-up is not calibrated to the published design point (the centred "
             "set-up `s0003-centred` is the Hertzian reference case), so P0 differs by design")
     return [f"## Design point ({side} flank pair) vs the published one", "",
-            _table(DESIGN_POINT_HEADER, rows), "",
+            md_table(DESIGN_POINT_HEADER, rows), "",
             f"P0 as frame invariants (radius / axial position on each member); ellipse "
             f"angle in the right-handed flank frame; {note}.", ""]
 
@@ -138,7 +125,7 @@ def _precision_section(precision) -> list[str]:
     hw = next(p for p in by_coord if p.coord_frac == 16)
     worst = max(p.max_bound_ratio for p in by_coord + by_normal)
     return ["## Fixed-point precision of the gap kernel", "",
-            _table(["quantity", "value"], [
+            md_table(["quantity", "value"], [
                 ["max / RMS gap error at the hardware widths cf 16, rf 19 (um)",
                  f"{hw.max_error_mm * 1e3:.4g} / {hw.rms_error_mm * 1e3:.4g}"],
                 ["first-order bound there (um)", hw.bound_mm * 1e3],
@@ -152,7 +139,7 @@ def _latency_section(lat) -> list[str]:
 
     rows = [[name, cycles, 0] for name, cycles in core_cycles().items()]
     return ["## Determinism and latency", "",
-            _table(["RTL core", "cycles go -> done", "spread (cycles)"], rows), "",
+            md_table(["RTL core", "cycles go -> done", "spread (cycles)"], rows), "",
             "Every RTL run in the test suite takes exactly these cycles (asserted), for "
             "any input.", "",
             f"The fp64 preview's CPU latency on this machine is a timing, so it is in "
@@ -206,7 +193,7 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         head, _, toml = result.easeoff_note.partition("\n")
         out += ["**Ease-off synthesized.** " + head, "", "```toml", toml.strip(), "```", ""]
     out += ["## Blank (ISO 23509 Method 1)", ""]
-    out.append(_table(["quantity", "ours", "published"], [
+    out.append(md_table(["quantity", "ours", "published"], [
         ["pinion pitch angle (deg)", blank["pitch_angles_deg"][0], pub.get("pitch_angle_pinion_deg")],
         ["gear pitch angle (deg)", blank["pitch_angles_deg"][1], pub.get("pitch_angle_gear_deg")],
         ["pinion / gear spiral angle (deg)",
@@ -214,7 +201,7 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         ["gear mean cone distance (mm)", blank["mean_cone_distances_mm"][1],
          pub.get("mean_cone_distance_gear_mm")]]))
     out += ["", "## Unloaded TCA", ""]
-    out.append(_table(["quantity", "ours", "published"], [
+    out.append(md_table(["quantity", "ours", "published"], [
         ["TE0 peak-to-peak (arcsec)", cyc.te0_pp_arcsec, pub.get("te0_pp_arcsec")],
         ["max. pairs in contact", int(cyc.pairs_in_contact.max()), None],
         ["A-, B- at P0 (1/mm)", f"{rc.A_minus_per_mm:.5g}, {rc.B_minus_per_mm:.5g}", None],
@@ -227,7 +214,7 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     out += ["", "Figures: ![TE0](te0.png) ![contact pattern](contact_pattern.png)", ""]
     out += _design_point_section(result, pub)
     out += ["## Loaded contact: preview vs LCP (single pair at P0, rigid teeth)", ""]
-    out.append(_table(TORQUE_HEADER, torque_rows(cases, pub)))
+    out.append(md_table(TORQUE_HEADER, torque_rows(cases, pub)))
     if pub:
         out += ["", f"Published: preview vs p90 mean error {pub['preview_vs_p90_mean_error_pct']} % "
                 f"(per torque {pub['preview_vs_p90_error_range_pct'][0]} % to "
@@ -238,7 +225,7 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     design = min(cases, key=lambda c: abs(c.torque_nm - pub.get("design_torque_nm", 64.5)))
     p = design.preview
     out += ["", f"### Preview at the design torque {design.torque_nm:g} N·m", ""]
-    out.append(_table(["quantity", "ours", "published"], [
+    out.append(md_table(["quantity", "ours", "published"], [
         ["2a x 2b (mm)", f"{2 * p.a_mm:.3f} x {2 * p.b_mm:.3f}",
          f"{pub['preview_ellipse_2a_mm']} x {pub['preview_ellipse_2b_mm']}" if pub else None],
         ["p_max (MPa)", p.p_max_mpa, pub.get("preview_p_max_mpa_at_design")],
@@ -254,13 +241,13 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
         g_ok, ch_ok = g_st == "ok", ch_st == "ok"
         rows.append([c.torque_nm, ref.p_max_mpa, ref.mode,
                      g.p_max_mpa if g_ok else f"missing ({g_st})",
-                     _pct(g.p_max_mpa, ref.p_max_mpa) if g_ok else None,
+                     pct_diff(g.p_max_mpa, ref.p_max_mpa) if g_ok else None,
                      g.mode if g_ok else None,
                      ch.p_max_mpa if ch_ok else f"missing ({ch_st})",
-                     _pct(ch.p_max_mpa, c.preview.p_max_mpa) if ch_ok else None,
+                     pct_diff(ch.p_max_mpa, c.preview.p_max_mpa) if ch_ok else None,
                      "none" if ch_ok else ch_st, ch.mode if ch_ok else None,
                      None if ch is None else ch.cycles])
-    out.append(_table(["torque (N·m)", "fp64 p_max", "fp64 mode", "golden D p_max",
+    out.append(md_table(["torque (N·m)", "fp64 p_max", "fp64 mode", "golden D p_max",
                        "golden D vs fp64 (%)", "golden D mode",
                        "golden C->D p_max (stencil)", "C->D vs fp64 ellipse (%)",
                        "C->D flags", "C->D mode", "C->D cycles"], rows))
@@ -280,7 +267,6 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     if getattr(result, "lte", None) is not None:
         out += _lte_section(result.lte, pub)
     if getattr(result, "multitooth", None) is not None:
-        from .multitooth import multitooth_section
 
         out += multitooth_section(result.multitooth, pub)
     if getattr(result, "precision", None) is not None:

@@ -326,7 +326,7 @@ def anchored_study(tca, flanks, pair, *, train_torques_nm, extrap_torques_nm,
     Parameters
     ----------
     tca, flanks, pair
-        As for :func:`gearcontact.contact.pair_ltca.single_pair_ltca` (the TCA of the
+        As for :func:`gearcontact.ltca.pair_ltca.single_pair_ltca` (the TCA of the
         pair on ``side``).
     train_torques_nm : sequence of float
         Gear torques of the training set, N·m (>= 2, > 0); every one costs one timed
@@ -342,8 +342,8 @@ def anchored_study(tca, flanks, pair, *, train_torques_nm, extrap_torques_nm,
     solver : str
         LCP solver.
     """
-    from ..contact.pair_ltca import single_pair_ltca
-    from ..contact.patch import ContactAtEdgeWarning
+    from ..ltca.pair_ltca import single_pair_ltca
+    from ..halfspace.patch import ContactAtEdgeWarning
 
     train = sorted(check_positive("train_torques_nm (N·m)", t) for t in train_torques_nm)
     extrap = sorted(check_positive("extrap_torques_nm (N·m)", t) for t in extrap_torques_nm)

@@ -17,8 +17,8 @@ import warnings
 
 import numpy as np
 
-from ..contact.ellipse import CoarseGridWarning
-from ..contact.patch import ContactAtEdgeWarning
+from ..halfspace.ellipse import CoarseGridWarning
+from ..halfspace.patch import ContactAtEdgeWarning
 from ..tca.solve import EdgeContact, TcaConvergenceError
 from ..validation import InputRangeError
 
@@ -33,7 +33,7 @@ __all__ = ["CELL_VARIABLES", "LTE_CELLS", "LTE_PHASES", "lte_stride", "TCA_VARIA
 LTE_PHASES = 11
 #: Cells per side of the loaded TE's fields (40: the minor semi-axis of the fully
 #: loaded pair resolved by about 10 cells, the approach within ~1 %;
-#: :func:`gearcontact.contact.lte.loaded_te`).
+#: :func:`gearcontact.ltca.lte.loaded_te`).
 LTE_CELLS = 40
 #: Per grid point (TCA does not depend on torque): name -> (unit, description).
 TCA_VARIABLES = {
@@ -115,8 +115,8 @@ def compute_point(pair, flanks, assembly: dict, torques_nm, *, side: str, comput
         ``variable -> list over torques`` (:data:`CELL_VARIABLES` computed; the TCA
         values repeated per torque) and ``error``: ``""`` or ``"Name: message"``.
     """
-    from ..contact.lte import loaded_te
-    from ..contact.pair_ltca import single_pair_ltca
+    from ..ltca.lte import loaded_te
+    from ..ltca.pair_ltca import single_pair_ltca
     from ..tca.analysis import analyze_pair
 
     n = len(torques_nm)

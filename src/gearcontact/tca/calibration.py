@@ -47,7 +47,6 @@ import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from ..analytic.hertz import hamrock_brewe_hertz
-from ..contact.load import normal_load_from_torque
 from ..errors import CheckFailed
 from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um, mean_normal_thickness_mm
 from ..geometry.flank import SIDES, build_flanks
@@ -55,6 +54,7 @@ from ..geometry.pair import EaseOffCoefficients, GearPair
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive
 from .curvature import contact_ellipse, relative_curvature
+from .load import normal_load_from_torque
 from .mesh import mesh_cycle
 from .solve import ContactGuess, EdgeContact, solve_mating_point
 

@@ -41,7 +41,7 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface, SurfacePoint
 from ..validation import check_positive
-from .solve import MatingPoint
+from .types import MatingPoint
 
 __all__ = ["PAINT_THICKNESS_MM", "RelativeCurvature", "ContactEllipse",
            "curvature_tensor", "relative_curvature", "contact_ellipse", "flank_frame"]

@@ -46,8 +46,8 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
-from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError, _cross,
-                    posed_point, solve_mating_point)
+from .mating import _cross, posed_point, solve_mating_point
+from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
            "pushes_forward", "inward_slope", "solve_edge_contact", "contact_state"]

@@ -28,6 +28,7 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..validation import UnusableInput
+from .stencil import tangent_frame, tangent_parameters
 
 __all__ = ["EDGES", "edge_name", "solver_boundary", "exit_counts", "PatternOffFlank",
            "ContactGap", "pattern_edges",
@@ -183,7 +184,7 @@ def loaded_patch_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, mp, 
                        frame: str = "principal") -> PatchEdges:
     """The flank edges a loaded patch reaches.
 
-    ``case`` is a :class:`~gearcontact.contact.pair_ltca.PairLoadCase` solved at the
+    ``case`` is a :class:`~gearcontact.ltca.pair_ltca.PairLoadCase` solved at the
     mating point ``mp`` (its grid lies in the ``frame`` tangent plane there, its
     ``on_flank`` mask marks the
     cells whose normal line meets both flanks). The off-flank cells next to loaded
@@ -191,7 +192,6 @@ def loaded_patch_edges(pinion: Surface, gear: Surface, kin: MeshKinematics, mp, 
     (:func:`~gearcontact.tca.stencil.tangent_parameters`) and named by the box side
     they lie beyond.
     """
-    from .stencil import tangent_frame, tangent_parameters
 
     patch = case.patch
     off = ~np.asarray(case.on_flank, bool)

@@ -156,7 +156,7 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
         Neighbouring pairs on each side (``j = -pairs .. pairs``); default 3: a hypoid
         pair with a contact ratio near 3 loads pairs -3..0 over one pitch of the
         reference window (s0003), and a window one pair too narrow drops a loaded pair
-        at the pitch's end (:func:`gearcontact.contact.lte.loaded_te` checks it).
+        at the pitch's end (:func:`gearcontact.ltca.lte.loaded_te` checks it).
     paint_mm : float
         Paint thickness of the instantaneous ellipses, mm.
     center : str

@@ -60,7 +60,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..preview.qformat import COORD, CURVATURE, QFormat, sq
+from ..contract.qformat import COORD, CURVATURE, QFormat, sq
 from .mesh import MeshCycle
 
 __all__ = ["PhaseTable", "DecodedPhaseTable", "ANGLE", "TE0", "ELLIPSE_ANGLE",

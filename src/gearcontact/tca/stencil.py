@@ -55,12 +55,12 @@ import numpy as np
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
-from ..preview.fit.stencil import STENCIL_SIDE, STENCIL_SPACING_MM, stencil_coordinates
-from ..preview.fit.stencil import write_stencil_csv as write_stencil_file
+from ..contract.stencil import STENCIL_SIDE, STENCIL_SPACING_MM, stencil_coordinates
+from ..contract.stencil import write_stencil_csv as write_stencil_file
 from ..validation import check_positive
 from .curvature import PAINT_THICKNESS_MM, contact_ellipse, relative_curvature
 from .gap_kernel import intersect_lines, kernel_surface
-from .solve import MatingPoint
+from .types import MatingPoint
 
 __all__ = ["GapField", "GAP_GRID_SIDE", "evaluate_many", "gap_at", "gap_field", "gap_field_80",
            "hardware_stencil", "write_stencil_csv", "tangent_frame", "tangent_parameters"]

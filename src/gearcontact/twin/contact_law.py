@@ -26,7 +26,7 @@ them. The curvatures the preview takes (``prm[P_STAGEC]``, :data:`~.layout.CURVA
   codes and run through the bit-exact fit core (:func:`gearcontact.preview.fit.
   golden_vec.fit_element`) into the golden stage D, as the tri_core chain does;
 * ``exact``: the TCA's shape-operator curvatures A-, B- interpolated between rows
-  (the law of the loaded TE's preview, :mod:`gearcontact.contact.lte`).
+  (the law of the loaded TE's preview, :mod:`gearcontact.ltca.lte`).
 
 Per backend:
 

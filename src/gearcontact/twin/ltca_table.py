@@ -1,6 +1,6 @@
 """The conventional twin's input: an offline loaded-TE table over phase x torque.
 
-The loaded TE of :func:`gearcontact.contact.lte.loaded_te` is run at a ladder of gear
+The loaded TE of :func:`gearcontact.ltca.lte.loaded_te` is run at a ladder of gear
 torques ``T_i``; at every phase it gives the mesh rotation ``theta(phase, T_i)`` (gear
 lag behind the unloaded pose, rad) and the total normal load. The twin then needs the
 inverse, the mesh torque at the current rotation: per phase, ``T^(2/3)`` is
@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.lte import loaded_te
-from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..ltca.lte import loaded_te
+from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..errors import CheckFailed
 from ..validation import InputRangeError, check_positive
 
@@ -66,7 +66,7 @@ def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "driv
     Parameters
     ----------
     tca, flanks, pair
-        As for :func:`gearcontact.contact.lte.loaded_te` (``tca`` the analysis the
+        As for :func:`gearcontact.ltca.lte.loaded_te` (``tca`` the analysis the
         ``mesh`` was built from).
     mesh : gearcontact.twin.mesh.MeshTable
         Sets the row order (motion).
@@ -78,7 +78,7 @@ def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "driv
         Torque fractions, increasing, > 0.
     cells : int
         Cells per side of each pair's field (32 puts the rotation within ~1-2 % of the
-        converged LCP, :func:`~gearcontact.contact.lte.loaded_te`).
+        converged LCP, :func:`~gearcontact.ltca.lte.loaded_te`).
     bending : ToothBending or None
         Tooth bending in the LCP (``lcp`` source; the ``preview`` source is the rigid
         Hertzian TE_pre of the loaded TE, so bending is refused there).

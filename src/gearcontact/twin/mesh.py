@@ -1,7 +1,7 @@
 """The mesh of the twin: per phase and tooth pair, what the contact law needs.
 
 From the unloaded TCA over one pinion pitch (:class:`~gearcontact.tca.mesh.MeshCycle`)
-and the potential contacts of the loaded TE (:func:`~gearcontact.contact.lte_pairs.
+and the potential contacts of the loaded TE (:func:`~gearcontact.ltca.lte_pairs.
 phase_contacts`, edge pairs resolved on their posed fields), at each of the ``K`` phases
 and for each neighbouring pair ``j``:
 
@@ -23,7 +23,7 @@ envelope is the max over the pairs, i.e. the pinion pushes the gear towards +phi
     theta = psi_p / u + eps(psi_p) - psi_g          (gear lag behind its unloaded pose)
 
 closes pair ``j`` by ``d_j = l_j theta - g_j`` exactly as the rotation ``theta`` of
-:mod:`gearcontact.contact.lte`, with ``eps = m TE0_env`` (rad). The loaded TE in the
+:mod:`gearcontact.ltca.lte`, with ``eps = m TE0_env`` (rad). The loaded TE in the
 TCA's sign is ``TE = TE0_env - m theta`` (the ``TE = TE0_env + s theta`` of the LTE,
 ``s = -m``).
 
@@ -38,10 +38,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.lte_pairs import PairFields, curvature_point, phase_contacts
+from ..ltca.lte_pairs import PairFields, curvature_point, phase_contacts
 from ..preview.fit.pinv import N_TAPS
 from ..tca.stencil import hardware_stencil
-from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
@@ -147,13 +147,13 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         Gear torque that sizes the posed fields of edge pairs (their opening is the
         smallest separation on the flank; the size only has to cover it), N·m.
     edge_reach : float
-        As in :func:`gearcontact.contact.lte.loaded_te`: pairs up to this fraction of a
+        As in :func:`gearcontact.ltca.lte.loaded_te`: pairs up to this fraction of a
         pitch beyond their path end are kept as edge contacts.
     cells : int
         Cells per side of an edge pair's posed field, whose smallest separation on the
         flank is the pair's opening (resolution dependent: use the ``cells`` of the
         loaded TE the twin is compared with; 40 is its default).
-    bending : gearcontact.contact.tooth_bending.ToothBending or None
+    bending : gearcontact.ltca.tooth_bending.ToothBending or None
         Tooth bending of both members: each pair's bending compliance
         :func:`pair_bending_compliance` at every phase into ``bending_mm_per_n`` (in
         series with the Hertzian approach in the twin's contact law); None: rigid
@@ -223,7 +223,7 @@ def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:
 
     ``c_b = p^T G p / W^2 = |F^T p|^2 / W^2`` with ``G = F F^T`` the shell compliance
     of the pinion and gear tooth at the cells of the pair's field
-    (:class:`gearcontact.contact.tooth_bending.ToothBending`, as the loaded TE's LCP
+    (:class:`gearcontact.ltca.tooth_bending.ToothBending`, as the loaded TE's LCP
     uses it) and ``p`` the semi-ellipsoidal Hertz pressure of the pair carrying the
     torque alone (its semi-axes from Hamrock–Brewe; the field's own sizing load): the
     work-conjugate compliance of that pressure shape (Castigliano), so that ``W c_b``

@@ -8,7 +8,7 @@ operating point and linearised modes are :mod:`.statics`, its time run
 Tooth bending (switchable: ``mesh_table(..., bending=...)``, ``model_for_pair(...,
 bending=True)``, ``gearcontact twin --bending``): each pair's bending compliance of the
 pinion and gear tooth (:func:`~.mesh.pair_bending_compliance`, the shell operator of
-:mod:`gearcontact.contact.tooth_bending` weighted by the pair's Hertz pressure) is in
+:mod:`gearcontact.ltca.tooth_bending` weighted by the pair's Hertz pressure) is in
 series with its Hertzian approach, ``d_j = kappa_j W_j^(2/3) + c_b,j W_j``, solved per
 pair and step in the kernel; without it the teeth are rigid.
 """
@@ -251,7 +251,7 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     if curvatures not in CURVATURE_SOURCES:
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
-    from ..contact.tooth_bending import tooth_bending
+    from ..ltca.tooth_bending import tooth_bending
 
     # Surface-to-surface TCA (edge_contact=False): the twin's contact law is Hertzian,
     # and an edge touching the other flank has no Hertzian law; pairs beyond the end of

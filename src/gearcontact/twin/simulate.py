@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from tqdm import tqdm
 
-from ..contact.pair_ltca import ARCSEC_PER_RAD
+from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..errors import CheckFailed, RtlMismatch
 from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import kernel as K

@@ -3,7 +3,7 @@
 Operating point: the motor torque balances the load (gear) torque through the ratio,
 ``T_m = T_l / u`` (no losses); the run starts from the static equilibrium at the first
 phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
-:func:`gearcontact.contact.lte.preview_balance`) with the members at the nominal
+:func:`gearcontact.ltca.lte.preview_balance`) with the members at the nominal
 speeds, so that what follows is the response to the mesh excitation (unloaded TE and
 the phase-varying stiffness).
 
@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ..contact.lte import preview_balance
+from ..ltca.lte import preview_balance
 from ..validation import InputRangeError, check_range
 from . import kernel as K
 from .model import TwinModel, _fit_args, _prm
@@ -86,7 +86,7 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     """Mesh rotation theta (rad) and pair loads (N) that carry the load torque at the
     first phase, with the model's own contact law.
 
-    The Hertzian balance of :func:`~gearcontact.contact.lte.preview_balance` gives the
+    The Hertzian balance of :func:`~gearcontact.ltca.lte.preview_balance` gives the
     starting point; it is then refined by bisection on the backend's torque (golden:
     its rounding; table: its interpolation).
     """

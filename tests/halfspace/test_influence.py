@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.influence import (
+from gearcontact.halfspace.grid import TangentGrid
+from gearcontact.halfspace.influence import (
     FftInfluence,
     StackedFftInfluence,
     boussinesq_inverse,

@@ -92,7 +92,7 @@ class ToothBending:
         """Bending factor ``F`` (ny, nx, r), single precision, at a grid of cells with
         pinion / gear flank parameters ``uv_*`` (ny * nx, 2, row-major over ``shape``),
         mm: ``G = F F^T`` (mm/N; the LCP applies it in single precision with double
-        sums, :class:`~.compliance.BlockCompliance`).
+        sums, :class:`~..halfspace.compliance.BlockCompliance`).
 
         The shell operator is evaluated exactly on a ``nodes`` (rows, columns)
         sub-lattice of the cells (all cells of a shorter axis), compressed there, and

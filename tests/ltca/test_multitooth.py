@@ -1,4 +1,4 @@
-"""Multi-tooth LTCA at P0, rigid and with tooth bending (gearcontact.contact.multitooth).
+"""Multi-tooth LTCA at P0, rigid and with tooth bending (gearcontact.ltca.multitooth).
 
 Truths:
 * the same problem as the loaded TE: the rigid rotation and pair loads equal
@@ -23,9 +23,9 @@ Truths:
 import numpy as np
 import pytest
 
-from gearcontact.contact.lte import loaded_te
-from gearcontact.contact.multitooth import multi_tooth_ltca
-from gearcontact.contact.tooth_bending import tooth_bending
+from gearcontact.ltca.lte import loaded_te
+from gearcontact.ltca.multitooth import multi_tooth_ltca
+from gearcontact.ltca.tooth_bending import tooth_bending
 from gearcontact.validation import InputRangeError
 
 CELLS, TORQUE = 24, 64.5  # TCA: 11 phases per pitch (conftest centred_drive_11)

@@ -1,20 +1,20 @@
-"""Hertzian test problems for the contact solvers (truth: gearcontact.analytic.hertz).
+"""Hertzian test problems for the half-space contact solvers (truth: gearcontact.analytic.hertz).
 
 The gap ``h = A x^2 + B y^2`` (A <= B, half the relative principal curvatures) between
 steel bodies has the exact elliptical Hertz solution of
 :func:`gearcontact.analytic.hertz.exact_elliptic_hertz` (Johnson 1985, sec. 4.2), with
 the major semi-axis ``a`` along x. Grids are centred (a cell centre at the pressure
 peak) with ``n`` cells per semi-axis in each direction (``dx = a/n``, ``dy = b/n``), so
-every curvature ratio has the same ~pi n^2 contact cells.
+every curvature ratio has the same ~pi n^2 contact cells. The ``make_hertz`` fixture
+(tests/conftest.py) caches them for the halfspace and ltca tests.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
-import pytest
 
 from gearcontact.analytic.hertz import HertzContact, exact_elliptic_hertz
-from gearcontact.contact.grid import TangentGrid
+from gearcontact.halfspace.grid import TangentGrid
 from gearcontact.materials import STEEL, reduced_modulus_mpa
 
 E_STAR_MPA = reduced_modulus_mpa(STEEL, STEEL)
@@ -42,31 +42,3 @@ def hertz_problem(ratio: float, n: int, extent: float = 1.3, *,
                                 dy_mm=hz.b_mm / n)
     X, Y = grid.mesh()
     return HertzProblem(grid, A_PER_MM * X ** 2 + b_coef * Y ** 2, hz, ratio, n)
-
-
-@pytest.fixture(scope="session")
-def make_hertz():
-    """Factory fixture returning :func:`hertz_problem` (cached per arguments)."""
-    cache = {}
-
-    def make(ratio, n, extent=1.3, load_n=LOAD_N):
-        key = (ratio, n, extent, load_n)
-        if key not in cache:
-            cache[key] = hertz_problem(ratio, n, extent, load_n=load_n)
-        return cache[key]
-
-    return make
-
-
-@pytest.fixture(scope="session")
-def centred_drive_11():
-    """``(pair, flanks, tca)`` of s0003-centred, drive side, 11 TCA phases per pitch:
-    the shared set-up of the tooth-bending and multi-tooth tests (built once)."""
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
-    from gearcontact.tca.analysis import analyze_pair
-
-    pair = load_pair("s0003-centred")
-    flanks = build_flanks(pair)
-    tca = analyze_pair(pair, side="drive", phases=11, flanks=flanks)[0]
-    return pair, flanks, tca

@@ -9,7 +9,7 @@ phase (so the rigid rotation equals the LTE's ``rotation_lcp_arcsec`` at P0).
 
 Reported per engaged pair (reference pair first): total normal load and share of the
 gear torque's normal loads, pressure map, and the incomplete-ellipse line-contact peak
-(:mod:`.line_peak`); overall: the loaded mesh rotation rigid and with bending,
+(:mod:`..halfspace.line_peak`); overall: the loaded mesh rotation rigid and with bending,
 ``CP_max`` (largest line-contact peak over the engaged pairs, bending solution) beside
 the raw cell peak and the Hamrock–Brewe preview of the reference pair at the load the
 LCP gives it (``preview_p_max_mpa``; docs/spec.md sec. 5: *paper* 2714 MPa vs 2038 MPa).
@@ -30,8 +30,8 @@ import numpy as np
 from ..materials import effective_modulus_mpa
 from ..preview.engine import ReferenceEngine
 from ..validation import InputRangeError, check_positive, check_range
-from .grid import TangentGrid
-from .line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
+from ..halfspace.grid import TangentGrid
+from ..halfspace.line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
 from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
 from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
@@ -69,7 +69,7 @@ class EngagedPair:
         Line-contact peak of the bending solution.
     load_resolved_n : float
         Normal load of the bending solution re-solved without the flanks' boundary
-        rows (:func:`.line_peak.trimmed_gap`), N (= ``load_n`` when not re-solved).
+        rows (:func:`..halfspace.line_peak.trimmed_gap`), N (= ``load_n`` when not re-solved).
     peak_resolved : LinePeak
         Line-contact peak of the re-solved solution (= ``peak`` when not re-solved).
     """
@@ -127,7 +127,7 @@ class MultiToothCase:
         Which of the two answered (``"elliptic"`` | ``"line"``).
     line_length_mm : float or None
         Length of the reference pair's contact line on the flank through its contact
-        point (:func:`.line_peak.contact_line_length_mm`), mm; None: no on-flank cell
+        point (:func:`..halfspace.line_peak.contact_line_length_mm`), mm; None: no on-flank cell
         on the field's centre row (plain ellipse).
     bending : bool
         The second solve had tooth bending (False: both solves are rigid).

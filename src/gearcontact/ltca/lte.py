@@ -17,7 +17,7 @@ still touch at a flank boundary, e.g. the tip, entering or leaving mesh). Each h
   :func:`~.pair_ltca.single_pair_ltca`, which trims an edge pair's contact at the
   boundary; the field is sized by the Hertzian ellipse of the pair carrying the whole
   torque (``extent_factor`` semi-axes);
-* its lever ``l_j`` about the gear axis (:func:`~.load.torque_lever_mm`).
+* its lever ``l_j`` about the gear axis (:func:`~..tca.load.torque_lever_mm`).
 
 Under the gear torque ``T`` the gear turns by one shared rotation ``theta >= 0``
 (towards the pinion, i.e. lagging) and closes pair ``j`` by ``l_j theta`` (on the posed

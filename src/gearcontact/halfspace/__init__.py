@@ -1,5 +1,9 @@
-"""Loaded tooth contact analysis (LTCA): Love influence operators and LCP solvers.
+"""Elastic half-space contact: Love influence operators and LCP solvers, for any two bodies.
 
+Nothing here knows about gears: the input is a gap field ``h`` (mm) on a tangent-plane
+grid, a normal load (N) and the materials; the output is the contact pressure, the
+approach and the contact ellipse fitted to the patch (docs/halfspace.md shows a sphere
+on a flat). The gear LTCA (:mod:`gearcontact.ltca`) is built on this package.
 Fields on a :class:`TangentGrid` are ``(ny, nx)`` arrays ``h[j, i]`` with x along axis 1.
 """
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcontact import InputRangeError
-from gearcontact.contact.load import normal_load_from_torque, torque_lever_mm
+from gearcontact.tca.load import normal_load_from_torque, torque_lever_mm
 
 
 def test_tangential_force_lever_is_radius():

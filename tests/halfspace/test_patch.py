@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 
 from gearcontact.analytic.hertz import exact_elliptic_hertz
-from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.patch import (ContactAtEdgeWarning, PatchContact, plot_patch,
+from gearcontact.halfspace.grid import TangentGrid
+from gearcontact.halfspace.patch import (ContactAtEdgeWarning, PatchContact, plot_patch,
                                        solve_patch)
 
-from .conftest import A_PER_MM, E_STAR_MPA, LOAD_N
+from hertz_problems import A_PER_MM, E_STAR_MPA, LOAD_N
 
 matplotlib.use("Agg")
 
@@ -94,7 +94,7 @@ def test_plot_patch_clips_the_colour_scale_only_for_edge_spikes(make_hertz):
     # a Hertz patch (peak = p_max, p90 below it but within EDGE_SPIKE_RATIO) keeps the
     # full scale; a patch truncated by the field edge (the half-space edge spike of a
     # flat-ended punch: peak >> p90) gets the scale clipped at EDGE_SPIKE_CLIP x p90
-    from gearcontact.contact.patch import EDGE_SPIKE_CLIP, EDGE_SPIKE_RATIO
+    from gearcontact.halfspace.patch import EDGE_SPIKE_CLIP, EDGE_SPIKE_RATIO
     prob = make_hertz(1.0, 8)
     patch = solve_patch(prob.gap_mm, prob.grid, LOAD_N, e_star_mpa=E_STAR_MPA)
     assert patch.p_peak_mpa <= EDGE_SPIKE_RATIO * patch.p90_mpa

@@ -1,4 +1,4 @@
-"""Incomplete-ellipse line-contact peak CP_max (gearcontact.contact.line_peak).
+"""Incomplete-ellipse line-contact peak CP_max (gearcontact.halfspace.line_peak).
 
 Truths (closed forms, independent of the code):
 
@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.line_peak import (boundary_cells, contact_line_length_mm,
+from gearcontact.halfspace.grid import TangentGrid
+from gearcontact.halfspace.line_peak import (boundary_cells, contact_line_length_mm,
                                            inadmissible_cells,
                                          line_contact_peak, trimmed_gap)
 from gearcontact.validation import InputRangeError
@@ -115,7 +115,7 @@ def _cut_hertz(n: int, cut_mm: float):
     """Hertz gap (R = 20 mm along x, 5 mm along y, W = 2000 N, steel) on an n x n field
     of 4.8 x 2.4 mm with the flank ending at ``y = cut_mm`` (off-flank beyond: the
     separation 1 mm, as the LTCA gives cells without material)."""
-    from gearcontact.contact.lcp import solve_lcp
+    from gearcontact.halfspace.lcp import solve_lcp
 
     grid = TangentGrid.centered(n, n, dx_mm=4.8 / n, dy_mm=2.4 / n)
     x, y = grid.mesh()
@@ -130,7 +130,7 @@ def test_edge_cut_hertz_trimmed_and_resolved():
     # singularity of a half-space pressed by a truncated punch, p ~ r^(-1/2) at the
     # edge (Johnson 1985 sec. 5.2): its cell average in the edge cell is 1/(sqrt 2 - 1)
     # = 2.41 times the next cell's, and grows as sqrt(n) under refinement.
-    from gearcontact.contact.lcp import solve_lcp
+    from gearcontact.halfspace.lcp import solve_lcp
 
     # the edge beyond the patch (b ~ 0.55 mm): nothing to trim, the solution stands
     grid, gap, off, raw = _cut_hertz(40, 0.9)

@@ -13,7 +13,7 @@ operator ``C_j`` the contact conditions and the torque balance are
     sum_j l_j sum(w_j) = T                                     (T in N·mm).
 
 Coupled formulation: with the torque shares ``x_j = l_j w_j`` (N·mm) the system becomes
-the load-constrained LCP of :mod:`.lcp`,
+the load-constrained LCP of :mod:`..halfspace.lcp`,
 
     s~ = C~ x + h~ - theta 1 >= 0,  x >= 0,  x . s~ = 0,  sum(x) = T,
     C~ = blockdiag(C_j / l_j^2),  h~_j = (h_j + g_j) / l_j,  s~_j = s_j / l_j,
@@ -21,14 +21,14 @@ the load-constrained LCP of :mod:`.lcp`,
 with the rotation in the place of the approach: the pairs are uncoupled elastically
 (different teeth), coupled only through ``theta`` and the torque constraint. It is solved
 in one go by the package's one constrained conjugate gradient,
-:func:`.constrained_cg.constrained_cg` (mean over the contact set of all pairs
+:func:`..halfspace.constrained_cg.constrained_cg` (mean over the contact set of all pairs
 eliminates ``theta``; rescaling to ``sum(x) = T`` after each step), with the
-compliance operator :class:`.compliance.BlockCompliance`: each block its zero-padded
+compliance operator :class:`..halfspace.compliance.BlockCompliance`: each block its zero-padded
 FFT Love operator scaled by ``1 / l_j^2``, preconditioned by its inverse Boussinesq
 symbol (Vollebregt 2014), all blocks in one batched transform on a window per loaded
 pair around its contact (certified on the whole fields at convergence). For a single
-pair with ``l = 1``, ``g = 0`` this is exactly the problem :func:`.lcp.solve_lcp`
-solves; the tests check that, and check two-pair solutions against a nested root find built on :func:`.lcp.solve_lcp`.
+pair with ``l = 1``, ``g = 0`` this is exactly the problem :func:`..halfspace.lcp.solve_lcp`
+solves; the tests check that, and check two-pair solutions against a nested root find built on :func:`..halfspace.lcp.solve_lcp`.
 
 Tooth bending (optional): a block may carry the bending compliance of its two teeth at
 its cells as a low-rank factor ``F_j`` (``PairBlock.bending_factor``, from
@@ -55,10 +55,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..validation import InputRangeError, check_finite, check_positive
-from .compliance import BlockCompliance
-from .constrained_cg import SolveStatus, constrained_cg
-from .grid import TangentGrid
-from .lcp import resolve_e_star
+from ..halfspace.compliance import BlockCompliance
+from ..halfspace.constrained_cg import SolveStatus, constrained_cg
+from ..halfspace.grid import TangentGrid
+from ..halfspace.lcp import resolve_e_star
 from .tooth_bending import bending_stack
 
 __all__ = ["MeshLcpResult", "PairBlock", "SolveStatus", "solve_mesh_lcp", "warm_up_mesh_lcp"]
@@ -192,7 +192,7 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     torque_nmm : float
         Gear torque, N·mm (> 0).
     materials, e_star_mpa
-        As :func:`.lcp.solve_lcp` (default steel on steel).
+        As :func:`..halfspace.lcp.solve_lcp` (default steel on steel).
     tol : float
         Stop when ``sum |x - x_prev| <= tol T``.
     max_iter : int

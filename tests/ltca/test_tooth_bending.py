@@ -1,4 +1,4 @@
-"""Loaded TE of s0003 with tooth bending (gearcontact.contact.tooth_bending + lte).
+"""Loaded TE of s0003 with tooth bending (gearcontact.ltca.tooth_bending + lte).
 
 Truths:
 * zero-compliance limit (bending scale 0): the rigid-tooth loaded TE (rotations and
@@ -23,8 +23,8 @@ Truths:
 import numpy as np
 import pytest
 
-from gearcontact.contact.lte import loaded_te
-from gearcontact.contact.tooth_bending import flank_rows, tooth_bending
+from gearcontact.ltca.lte import loaded_te
+from gearcontact.ltca.tooth_bending import flank_rows, tooth_bending
 from gearcontact.validation import InputRangeError
 
 CELLS, STRIDE = 24, 5  # TCA: 11 phases per pitch (conftest centred_drive_11)

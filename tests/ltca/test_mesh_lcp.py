@@ -1,4 +1,4 @@
-"""The coupled multi-pair LCP with tooth bending blocks (gearcontact.contact.mesh_lcp).
+"""The coupled multi-pair LCP with tooth bending blocks (gearcontact.ltca.mesh_lcp).
 
 Independent truths (the rigid-tooth solver itself is checked in test_lte.py):
 
@@ -6,7 +6,7 @@ Independent truths (the rigid-tooth solver itself is checked in test_lte.py):
   ``c W`` to every cell's displacement: the pressures are those of the rigid pair and the
   approach grows by exactly ``c W`` (Johnson 1985: a rigid-body shift of the indenter);
 * two pairs with uniform bending ``c_1``, ``c_2``: the nested root find on the load
-  split built on :func:`gearcontact.contact.lcp.solve_lcp` with ``delta_j + c_j W_j``
+  split built on :func:`gearcontact.halfspace.lcp.solve_lcp` with ``delta_j + c_j W_j``
   (a different algorithm for the same equations);
 * zero-compliance limit: a zero factor gives the rigid solution (1e-9), no factor the
   rigid code path bit for bit;
@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from gearcontact.contact.lcp import solve_lcp
-from gearcontact.contact.mesh_lcp import PairBlock, solve_mesh_lcp
+from gearcontact.halfspace.lcp import solve_lcp
+from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
 from gearcontact.validation import InputRangeError
 
 #: Relative agreement of two converged solvers of the same LCP (tolerance 1e-8 on the

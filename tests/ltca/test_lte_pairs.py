@@ -3,7 +3,7 @@ touching the other flank (tca.edge_contact)."""
 
 import numpy as np
 
-from gearcontact.contact.lte_pairs import phase_contacts
+from gearcontact.ltca.lte_pairs import phase_contacts
 from gearcontact.geometry.pair import load_pair
 from gearcontact.materials import effective_modulus_mpa
 from gearcontact.preview.hertz.reference import ENVELOPE

@@ -4,7 +4,7 @@ The unloaded TCA gives the mating point P0, the common normal and the relative
 curvatures; from them:
 
 1. the member torque becomes the normal load through the contact geometry
-   (:mod:`.load`, gear axis);
+   (:mod:`..tca.load`, gear axis);
 2. the Hertzian preview (reference backend) at that load sizes the tangent-plane field:
    an ``n x n`` cell-centred grid in the principal frame (s along the long axis) with half
    extents ``extent_factor`` times the preview semi-axes, so that the minor semi-axis is
@@ -12,7 +12,7 @@ curvatures; from them:
    analytic-Hertz solver tests require for 1 % peak accuracy);
 3. the gap between the real flanks over that grid (:func:`gearcontact.tca.stencil.gap_field`,
    exact intersections, never extrapolated) is solved as the load-constrained LCP
-   (:func:`.patch.solve_patch`). Cells whose normal line misses a flank (beyond the tooth
+   (:func:`..halfspace.patch.solve_patch`). Cells whose normal line misses a flank (beyond the tooth
    tip, root or ends) carry no material: they get the separation
    :data:`OFF_FLANK_GAP_MM`, which no load in the operating range can close (the
    approach is tens of micrometres; checked after every solve), so the patch is trimmed
@@ -30,14 +30,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..analytic.hertz import hamrock_brewe_hertz
+from ..halfspace.ellipse import ContactEllipse
+from ..halfspace.grid import TangentGrid
+from ..halfspace.line_peak import LinePeak, line_contact_peak, trimmed_gap
+from ..halfspace.patch import PatchContact, solve_patch
+from ..materials import effective_modulus_mpa
 from ..preview.engine import PreviewResult, ReferenceEngine
+from ..preview.hertz.reference import ENVELOPE
+from ..tca.load import normal_load_from_torque, torque_lever_mm
 from ..tca.solve import ARCSEC_PER_RAD
+from ..tca.stencil import gap_field
 from ..validation import InputRangeError, check_positive, check_range
-from .ellipse import ContactEllipse
-from .grid import TangentGrid
-from .line_peak import LinePeak, line_contact_peak, trimmed_gap
-from .load import normal_load_from_torque, torque_lever_mm
-from .patch import PatchContact, solve_patch
 
 __all__ = ["PairLoadCase", "single_pair_ltca", "preview_ellipse", "OFF_FLANK_GAP_MM"]
 
@@ -76,9 +80,9 @@ class PairLoadCase:
         Cells whose normal line meets both flanks.
     peak : LinePeak or None
         Line-contact peak ``CP_max`` of the solution, boundary-inadmissible cells
-        trimmed afterwards (:mod:`.line_peak`).
+        trimmed afterwards (:mod:`..halfspace.line_peak`).
     resolved : PatchContact or None
-        The LCP re-solved without the flank's boundary row (:func:`.line_peak.trimmed_gap`)
+        The LCP re-solved without the flank's boundary row (:func:`..halfspace.line_peak.trimmed_gap`)
         when the solution loaded it; None: no boundary cell carried load.
     peak_resolved : LinePeak or None
         Line-contact peak of ``resolved`` (None when not re-solved).
@@ -164,12 +168,10 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     extent_factor : (float, float)
         Half extents of the field in preview semi-axes (major, minor), each >= 1.1.
     solver : str
-        LCP solver (:func:`gearcontact.contact.lcp.solve_lcp`).
+        LCP solver (:func:`gearcontact.halfspace.lcp.solve_lcp`).
     warm_start : PatchContact, optional
         Previous solution on the same grid (ignored when the grid differs).
     """
-    from ..tca.stencil import gap_field
-
     side = pair.design_side if side is None else side
     t = check_positive("torque_nm (N·m)", torque_nm)
     if int(cells) < 16:
@@ -183,8 +185,6 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     # the load keeps the preview's range (the torque the CLI names); the curvatures may
     # leave it: host-side fp64 preview without the datapath envelope (a large gear's B-
     # lies below the fixed-point range; the golden/RTL stages report that themselves)
-    from ..preview.hertz.reference import ENVELOPE
-
     check_range("load_n (N)", load, *ENVELOPE["load_n"])
     engine = ReferenceEngine(material=pair.pinion_material, material2=pair.gear_material,
                              envelope=False)
@@ -244,9 +244,6 @@ torque_nm=t, lever_mm=lever, load_n=load, preview=pre, patch=patch,
 
 def _preview_approach(pre: PreviewResult, rc, pair, load: float) -> float:
     """Hertzian approach of the preview (Hamrock–Brewe), mm."""
-    from ..analytic.hertz import hamrock_brewe_hertz
-    from ..materials import effective_modulus_mpa
-
     hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
                              e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
                                                                 pair.gear_material))

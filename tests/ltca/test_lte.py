@@ -3,7 +3,7 @@
 Independent truths:
 
 * one pair with lever 1 and no opening is exactly the load-constrained LCP of
-  :func:`gearcontact.contact.lcp.solve_lcp` (theta = delta, same loads), for every
+  :func:`gearcontact.halfspace.lcp.solve_lcp` (theta = delta, same loads), for every
   solver there (agreement to their tolerance, 1e-6 relative);
 * two pairs: a nested root find on the load split built on ``solve_lcp`` (equal rotation
   of both pairs, torque balance) -- a different algorithm for the same equations;
@@ -21,14 +21,14 @@ import pytest
 from scipy.optimize import brentq
 
 from gearcontact.analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz
-from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.lcp import solve_lcp
-from gearcontact.contact.lte import ARCSEC_PER_RAD, loaded_te, preview_balance
-from gearcontact.contact.mesh_lcp import PairBlock, solve_mesh_lcp
-from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.halfspace.grid import TangentGrid
+from gearcontact.halfspace.lcp import solve_lcp
+from gearcontact.ltca.lte import ARCSEC_PER_RAD, loaded_te, preview_balance
+from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
+from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.validation import InputRangeError
 
-from .conftest import A_PER_MM, E_STAR_MPA
+from hertz_problems import A_PER_MM, E_STAR_MPA
 
 #: Relative agreement of two converged solvers of the same LCP (their tolerance 1e-8 on
 #: the load change; residual_tol 1e-6).
@@ -147,7 +147,7 @@ def test_incremental_displacement_matches_recomputed(make_hertz, monkeypatch):
     # (_REFRESH = 1) follows the same iterates up to round-off: same iteration count,
     # loads within 1e-9 of the largest (the solver tolerance is 1e-8 T), and both final
     # residuals (computed from an exact C x) below the solver's residual_tol.
-    from gearcontact.contact import constrained_cg
+    from gearcontact.halfspace import constrained_cg
 
     blocks = _two_pairs(make_hertz)
     fast = solve_mesh_lcp(blocks, 40000.0)
@@ -169,7 +169,7 @@ def test_pair_closing_outside_the_windows(make_hertz, monkeypatch, checks, probe
     # probe once the change falls below _PROBE (probe = 0: only by the check at
     # convergence) and joins (its window widened, or with _CHECKS = 0 the whole
     # fields): same solution as a cold start, to the solver tolerance.
-    from gearcontact.contact import constrained_cg
+    from gearcontact.halfspace import constrained_cg
 
     monkeypatch.setattr(constrained_cg, "_CHECKS", checks)
     monkeypatch.setattr(constrained_cg, "_PROBE", probe)
@@ -188,7 +188,7 @@ def test_probe_widens_the_windows_before_converging(make_hertz, monkeypatch):
     # widen at once, instead of converging on the first window to the tolerance and
     # then again on the widened one. Same solution (solver tolerance), fewer steps
     # (27 against 35 when this was written).
-    from gearcontact.contact import constrained_cg
+    from gearcontact.halfspace import constrained_cg
 
     blocks = _two_pairs(make_hertz)
     probed = solve_mesh_lcp(blocks, 40000.0)
@@ -386,7 +386,7 @@ def test_s0003_posed_field_contains_the_opening(s0003_tca, s0003_flanks, s0003_p
     # minimum over the flank is the TCA opening g_j = |TE0_j - TE0_env| l_j, up to the
     # cell-centred sampling of the minimum (at most A-(dt/2)^2 + B-(ds/2)^2 of the local
     # quadric) plus 10 nm for the rotation's non-uniform closing across the field
-    from gearcontact.contact.lte_pairs import PairFields, phase_contacts
+    from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
     from gearcontact.materials import effective_modulus_mpa
     cyc = s0003_tca.cycle
     kin = s0003_pair.kinematics()
@@ -435,7 +435,7 @@ def test_s0003_mesh_stiffness(s0003_tca, s0003_flanks, s0003_pair):
     tolerance 1e-8, allowed 1e-6);
     (3) zero-compliance limit: bending scale 0 gives the rigid stiffness (1e-9);
     (4) bending makes the mesh softer at every phase."""
-    from gearcontact.contact.tooth_bending import tooth_bending
+    from gearcontact.ltca.tooth_bending import tooth_bending
 
     kw = dict(side="drive", cells=24, stride=5)
     pair, flanks, tca = s0003_pair, s0003_flanks, s0003_tca

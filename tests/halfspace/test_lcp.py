@@ -12,14 +12,14 @@ import warnings
 import numpy as np
 import pytest
 
-from gearcontact.contact import constrained_cg, lcp
-from gearcontact.contact.ellipse import CoarseGridWarning
-from gearcontact.contact.grid import TangentGrid
-from gearcontact.contact.influence import dense_influence_matrix
-from gearcontact.contact.lcp import LcpConvergenceError, solve_lcp
+from gearcontact.halfspace import constrained_cg, lcp
+from gearcontact.halfspace.ellipse import CoarseGridWarning
+from gearcontact.halfspace.grid import TangentGrid
+from gearcontact.halfspace.influence import dense_influence_matrix
+from gearcontact.halfspace.lcp import LcpConvergenceError, solve_lcp
 from gearcontact.validation import InputRangeError
 
-from .conftest import E_STAR_MPA, LOAD_N, hertz_problem
+from hertz_problems import E_STAR_MPA, LOAD_N, hertz_problem
 
 RATIOS = (1.0, 10.0, 50.0)
 

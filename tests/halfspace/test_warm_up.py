@@ -1,4 +1,4 @@
-"""``contact.lcp.warm_up`` compiles every kernel specialization a real solve needs.
+"""``halfspace.lcp.warm_up`` compiles every kernel specialization a real solve needs.
 
 Truth: in a fresh process with an empty numba cache (``NUMBA_CACHE_DIR``), after
 ``warm_up`` no compiled function of the LCP path gains a signature while single-pair
@@ -15,13 +15,13 @@ import pytest
 
 SCRIPT = r"""
 import warnings
-from gearcontact.contact import constrained_cg, influence, lcp
+from gearcontact.halfspace import constrained_cg, influence, lcp
 def sigs():
     return {f"{m.__name__}.{k}": set(map(str, v.signatures)) for m in (constrained_cg, influence, lcp)
             for k, v in vars(m).items() if hasattr(v, "signatures") and hasattr(v, "py_func")}
 lcp.warm_up()
 before = sigs()
-from gearcontact.contact.pair_ltca import single_pair_ltca
+from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
 pair = load_pair("s0003-centred")  # drive; the calibrated s0003 puts P0 at the flank edge

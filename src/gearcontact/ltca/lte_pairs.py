@@ -22,8 +22,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..analytic.hertz import hamrock_brewe_hertz
-from .grid import TangentGrid
-from .load import torque_lever_mm
+from ..halfspace.grid import TangentGrid
+from ..tca.curvature import relative_curvature
+from ..tca.load import torque_lever_mm
+from ..tca.stencil import gap_field, tangent_parameters
+from ..tca.types import MatingPoint
 from .mesh_lcp import PairBlock
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
@@ -105,9 +108,6 @@ class PairFields:
 
     def get(self, pc: PairContact):
         """(gap, grid, off-flank mask, lever) of a pair contact."""
-        from ..tca.solve import MatingPoint
-        from ..tca.stencil import gap_field
-
         hit = self.cache.get(pc.path_index)
         if hit is None:
             t0 = time.perf_counter()
@@ -157,8 +157,6 @@ class PairFields:
 
     def _bending_factor(self, f, mp) -> np.ndarray:
         """Bending factor of the teeth at the field's cells (first-order flank map)."""
-        from ..tca.stencil import tangent_parameters
-
         pinion, gear, kin = self.args
         st = np.column_stack([f.s_mm.ravel(), f.t_mm.ravel()])
         uv1 = tangent_parameters(pinion, kin.pinion_pose(mp.phi1_rad), f.frame, (mp.u1, mp.v1), st)
@@ -204,8 +202,6 @@ def phase_contacts(pinion, gear, kin, cycle, k: int, base: int, e_prime: float,
                     curv_cache: dict, edge_steps: int) -> list[PairContact]:
     """The potential contacts at phase k: pairs with a mating point on both flanks, and
     pairs within ``edge_steps`` path steps beyond an end of their path (edge pairs)."""
-    from ..tca.curvature import relative_curvature
-
     out = []
     env = float(cycle.envelope_arcsec[k])
     n = cycle.step_index
