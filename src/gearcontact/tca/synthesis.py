@@ -321,9 +321,12 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     def model(tca: dict):
         """Residual function of the TCA options ``tca`` and its record: the best point
         so far ``(cost, x, (coeffs, point))`` and the number of runs."""
-        state = {"n": 0, "best": (np.inf, None, None), "r": None}
+        state = {"n": 0, "best": (np.inf, None, None), "r": None, "seen": {}}
 
         def residual(x):
+            key = tuple(float(c) for c in x)
+            if key in state["seen"]:            # a point evaluated before (same TCA)
+                return state["seen"][key]
             if state["n"] >= budget:
                 raise _BudgetSpent
             state["n"] += 1
@@ -334,7 +337,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
                                         limit_um=limit, torque_nm=_REPORT_TORQUE_NM,
                                         phases=phases, **tca)
             except (EdgeContact, ArithmeticError, ValueError):
-                return np.full(5, 1e3)
+                state["seen"][key] = np.full(5, 1e3)
+                return state["seen"][key]
             r = [(dp.pinion_uv[0] - centre[0]) / targets.tol_centre_mm,
                  (dp.pinion_uv[1] - centre[1]) / targets.tol_centre_mm,
                  (dp.te0_pp_arcsec / targets.te0_pp_arcsec - 1.0) / targets.tol_te0_rel,
@@ -349,6 +353,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
             if cost < state["best"][0]:
                 state["best"] = (cost, np.array(x, float), (coeffs, dp))
                 state["r"] = r
+            state["seen"][key] = r
             return r
 
         return residual, state
@@ -387,43 +392,45 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
                 return
         _polish(residual, state["best"][1], lo, hi, targets)
 
-    # The searches run on the surface-only TCA of pairs -1..1 (``reduced``: the design
+    def stages(residual, state) -> None:
+        """Without a path-angle target, the decoupled rounds from the middle of the
+        start grid, converged to a fraction of the tolerances (the full TCA's check must
+        meet them); then, if they miss, :func:`search`."""
+        try:
+            if not with_bias:
+                _polish(residual, x_mid, lo, hi, targets, rounds=12, within=_ROUND_TOL)
+                # met with room for the full TCA's difference from the reduced one
+                if (state["r"] is not None
+                        and np.max(np.abs(state["r"][0:4])) <= 1.0 - _FAITHFUL_TOL):
+                    return
+            search(residual, state)
+        except _BudgetSpent:
+            pass
+
+    def agree(r_reduced, r_full) -> bool:
+        return bool(np.max(np.abs(r_full - r_reduced)) <= _FAITHFUL_TOL)
+
+    # The search runs on the surface-only TCA of pairs -1..1 (``reduced``: the design
     # point, the TE0 level over the pitch and the paint ellipse at the vertex are the
     # same wherever the contact that carries stays off the edges, at 1/2 to 1/5 of the
-    # cost of the full TCA with its edge-contact tails); every result is checked by the
-    # full TCA (``full``, edge contact, pairs -2..2), which also gives the reported point.
-    # The search on the full TCA runs only where the two disagree at the reduced
-    # search's best point.
+    # cost of the full TCA with its edge-contact tails) if the two agree at the first
+    # start; its best point is checked by the full TCA (``full``, edge contact, pairs
+    # -2..2), which gives the reported point. Where they disagree (a bearing at an edge)
+    # the search runs on the full TCA.
     reduced, on_reduced = model({"pairs": 1, "edge_contact": False})
     full, on_full = model({"pairs": 2, "edge_contact": True})
-    stages = [lambda: search(reduced, on_reduced)]
-    if not with_bias:
-        # first the decoupled rounds from the middle of the start grid, converged to
-        # a fraction of the tolerances (the full TCA's check must meet them)
-        x_mid = np.array([eta_c, xi_c, 8.0 * k, 0.15 * k, 0.0])
-        stages.insert(0, lambda: _polish(reduced, x_mid, lo, hi, targets, rounds=12,
-                                         within=_ROUND_TOL))
-    verified, faithful = False, True
-    for last, stage in enumerate(stages, 1 - len(stages)):
-        try:
-            stage()
-        except _BudgetSpent:
-            pass
-        if on_reduced["best"][1] is None or not (met(on_reduced) or last == 0):
-            continue
-        try:
-            r_full = full(on_reduced["best"][1])
-        except _BudgetSpent:
-            break
-        verified = met(on_full)
-        faithful = bool(np.max(np.abs(r_full - on_reduced["r"])) <= _FAITHFUL_TOL)
-        if verified or not faithful:
-            break
-    if not verified and (not faithful or on_reduced["best"][1] is None):
-        try:
-            search(full, on_full)
-        except _BudgetSpent:
-            pass
+    x_mid = np.array([eta_c, xi_c, 8.0 * k, 0.15 * k, 0.0])
+    faithful = agree(reduced(x_mid), full(x_mid))
+    if faithful:
+        stages(reduced, on_reduced)
+        faithful = on_reduced["best"][1] is not None
+        if faithful:
+            try:
+                faithful = agree(on_reduced["r"], full(on_reduced["best"][1]))
+            except _BudgetSpent:
+                pass
+    if not faithful and not met(on_full):
+        stages(full, on_full)
     if on_full["best"][1] is None:
         raise CheckFailed(f"ease-off synthesis of {pair.name} {side}: no start of the "
                           "search gave an interior TCA contact")
