@@ -408,7 +408,9 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
             pass
 
     def agree(r_reduced, r_full) -> bool:
-        return bool(np.max(np.abs(r_full - r_reduced)) <= _FAITHFUL_TOL)
+        """Both TCAs reach an interior contact and their residuals agree."""
+        return bool(max(r_reduced[0], r_full[0]) < 1e3
+                    and np.max(np.abs(r_full - r_reduced)) <= _FAITHFUL_TOL)
 
     # The search runs on the surface-only TCA of pairs -1..1 (``reduced``: the design
     # point, the TE0 level over the pitch and the paint ellipse at the vertex are the
