@@ -169,9 +169,9 @@ def test_synthesis_near_the_calibrated_tip_edge_preset():
                                      "iso23509_f2_spiral_bevel"])
 def test_every_shipped_example_side_meets_the_default_targets(example, side):
     """The default targets (TE0 3 arcsec, pattern 0.35 x face, centred bearing) met on
-    both sides of the three shipped examples (10-50 s each; the F2 spiral bevel coast
-    needs the re-centred starts and the decoupled rounds: before them it stopped at TE0
-    4.54 arcsec and a 16.8 mm pattern against 8.9)."""
+    both sides of the three shipped examples, in the full TCA (4-13 TCA runs each,
+    docs/synthesis.md; the F2 spiral bevel coast needs the decoupled rounds: before them
+    it stopped at TE0 4.54 arcsec and a 16.8 mm pattern against 8.9)."""
     from pathlib import Path
 
     from gearcontact.geometry.flank import build_flanks
