@@ -12,6 +12,12 @@ s: hypoid 11x41 168 / 162 (ease-off synthesis 144), F.2 spiral bevel 95 / 96 (73
 F.3 99 / 100 (77): the synthesis is 75-85 % of the main job on a pair without an
 ease-off table; TCA 4.5-6.2 s, LTE 4.3-4.8 s, multi-tooth 1.2-1.3 s.
 
+After the reduced-TCA synthesis (session 7, docs/synthesis.md; machine shared, load
+5.5-7 on 2 cores, numba cache of a fresh worktree: the first run compiled), wall / CPU
+s: hypoid 11x41 219 / 50 (ease-off synthesis 10.1), F.2 spiral bevel 176 / 32 (22.6),
+F.3 158 / 31 (13.4): CPU time down 3.0-3.3x, the synthesis 6-14x; the wall times are
+those of the load (the child had about a fifth of a core).
+
 Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]``.
 """
 

@@ -15,8 +15,9 @@ LCPs converged. Truths (``twin``): the mesh carries the load torque on average (
 balance T_mesh = T_load, 3 %: the mean over the second half of the run within the
 dynamic swing); the preview law is defined at every loaded step (no saddle).
 
-Cost on the project machine (2 cores): ``analyze`` of an example ~2 min CPU, mostly
-the ease-off synthesis; ``twin`` ~1.5 min. The F2 twin (cheapest) is in the default
+Cost on the project machine (2 cores): ``analyze`` of an example 31-50 s CPU (the
+ease-off synthesis 10-23 s of it, benchmarks/bench_analyze_examples.py); ``twin``
+~1.5 min. The F2 twin (cheapest) is in the default
 suite, the other twins are slow.
 """
 

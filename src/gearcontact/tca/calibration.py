@@ -388,7 +388,8 @@ def tip_margin_for_top_land(pair: GearPair, point_mm, *, lo_mm: float = 0.01,
 
 
 def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
-                          torque_nm: float, phases: int = 61) -> DesignPoint:
+                          torque_nm: float, phases: int = 61, pairs: int = 2,
+                          edge_contact: bool = True) -> DesignPoint:
     """TCA of one eased pinion flank against ``gear`` at the continuous TE0 vertex.
 
     ``start`` is a contact guess whose pinion height ``u1`` the first solve holds (the
@@ -396,7 +397,8 @@ def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
     """
     kin = pair.kinematics()
     cycle = mesh_cycle(eased, gear, kin, pinion_teeth=pair.pinion_teeth, start=start,
-                       start_fixed="u1", phases=phases, pairs=2)
+                       start_fixed="u1", phases=phases, pairs=pairs,
+                       edge_contact=edge_contact)
     path = cycle.path
     i = int(np.argmin(np.abs(path.phi1_rad - path.phi1_ref_rad)))
     te = path.te0_arcsec
@@ -422,7 +424,8 @@ def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
 
 def eased_design_point(coeffs: EaseOffCoefficients, conj, gear, pair: GearPair, starts, *,
                        mean_uv: tuple[float, float], limit_um: float, torque_nm: float,
-                       phases: int = 61) -> DesignPoint:
+                       phases: int = 61, pairs: int = 2, edge_contact: bool = True
+                       ) -> DesignPoint:
     """:func:`evaluate_design_point` of the conjugate pinion flank ``conj`` eased by
     ``coeffs`` (about the pinion mean node ``mean_uv``, within ``limit_um``), from the
     first of ``starts`` (contact guesses, ``u1`` held) that reaches an interior contact;
@@ -438,7 +441,7 @@ def eased_design_point(coeffs: EaseOffCoefficients, conj, gear, pair: GearPair, 
     for k, start in enumerate(starts):
         try:
             dp = evaluate_design_point(eased, gear, pair, start, torque_nm=torque_nm,
-                                       phases=phases)
+                                       phases=phases, pairs=pairs, edge_contact=edge_contact)
             break
         except (EdgeContact, ArithmeticError, ValueError):
             if k == len(starts) - 1:
