@@ -4,25 +4,58 @@
 datapath (golden fixed point and fp64) with a Makefile and the checker
 ``gearcontact_check VECTOR_DIR``, which compares it with the files of
 ``gearcontact vectors`` (:mod:`gearcontact.export.c_library`; docs/export.md).
+``gearcontact export fmu --pair PAIR --kind mesh --out DIR`` writes an FMI 3.0 FMU
+(co-simulation and model exchange, plain C, a Linux x86-64 binary built at export) of
+one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`).
 """
 
 from __future__ import annotations
 
+from .options import MAX_PHASES, check_pair_arguments, load_pair_for
 from .outdir import add_out_argument, final_path
 
 
 def register(sub) -> None:
-    p = sub.add_parser("export", help="export the preview datapath (C99 library)",
+    p = sub.add_parser("export", help="export the preview datapath (C99 library) or a gear "
+                                      "mesh (FMI 3.0 FMU)",
                        description=__doc__.split("\n\n")[1])
     cmds = p.add_subparsers(dest="export_command", metavar="ACTION", required=True)
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
                                   "fp64) with a Makefile and the vector checker")
     add_out_argument(c)
     c.set_defaults(func=run_c)
+    f = cmds.add_parser("fmu", help="FMI 3.0 FMU in C of one gear mesh (co-simulation and "
+                                    "model exchange)")
+    f.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
+    f.add_argument("--kind", default="mesh",
+                   help="what the FMU models: mesh (default; drivetrain: not yet)")
+    add_out_argument(f)
+    f.add_argument("--side", default=None, choices=("drive", "coast"),
+                   help="loaded flank (default: the pair's design_side)")
+    f.add_argument("--phases", type=int, default=61,
+                   help=f"TCA phases per pinion pitch baked into the table, 3 to "
+                        f"{MAX_PHASES} (default 61)")
+    f.set_defaults(func=run_fmu, check=check_fmu)
 
 
 def run_c(args) -> int:
     from ..export.c_library import export_c_library
     for path in export_c_library(args.out):
+        print(final_path(args, path))
+    return 0
+
+
+def check_fmu(args) -> None:
+    """Cheap checks before the TCA: the kind, the phase count, the pair."""
+    from ..export.fmu import check_fmu_kind
+    check_fmu_kind(args.kind)
+    check_pair_arguments(args)
+
+
+def run_fmu(args) -> int:
+    from ..export.fmu import export_mesh_fmu
+    fmu = export_mesh_fmu(load_pair_for(args), args.out, pair_name=args.gear_pair.name,
+                          side=args.side, phases=args.phases)
+    for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

@@ -1,0 +1,264 @@
+"""``gearcontact export fmu --kind mesh``: an FMI 3.0 FMU of one gear mesh in plain C.
+
+:func:`export_mesh_fmu` runs the pair's unloaded TCA (surface to surface, as the twin),
+builds the loaded flank's mesh table (:func:`gearcontact.twin.mesh.mesh_table`), bakes
+it into the C model (``data/templates/fmu``) beside the preview's C library
+(:mod:`.c_library`: stage D golden and fp64), compiles the shared library with the
+system C compiler (``-std=c99 -Wall -Wextra -Werror``) against the FMI 3.0 headers
+FMPy ships, and zips ``modelDescription.xml``, ``sources/`` (with
+``buildDescription.xml``) and ``binaries/x86_64-linux/<model>.so``. No Python inside
+the FMU; its law is :mod:`.mesh_law` (the twin's contact law at one instant).
+Importer facts (variables, units, causality, step sizes): docs/export.md.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import re
+import shutil
+import subprocess
+import tempfile
+import zipfile
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from ..errors import ToolUnavailable
+from ..tca.types import ARCSEC_PER_RAD
+from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N
+from ..validation import InputRangeError
+from .c_library import FP64_SOURCES, GOLDEN_SOURCES, _environment, render_c_library
+from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
+
+__all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
+           "fmi3_header_dir"]
+
+#: ``--kind`` values; ``drivetrain`` is planned (issue 25), not built yet.
+FMU_KINDS = ("mesh",)
+#: (name, value reference, type, causality, variability, unit, description).
+MESH_VARIABLES = (
+    ("time", 0, "Float64", "independent", "continuous", "s", "simulation time"),
+    ("phi_pinion_rad", 1, "Float64", "input", "continuous", "rad",
+     "pinion angle along the motion (twin's psi_p)"),
+    ("phi_gear_rad", 2, "Float64", "input", "continuous", "rad",
+     "gear angle along the motion (twin's psi_g)"),
+    ("omega_pinion_rad_s", 3, "Float64", "input", "continuous", "rad/s", "pinion speed"),
+    ("omega_gear_rad_s", 4, "Float64", "input", "continuous", "rad/s", "gear speed"),
+    ("torque_pinion_nm", 5, "Float64", "output", "continuous", "N.m",
+     "mesh torque on the pinion along the motion"),
+    ("torque_gear_nm", 6, "Float64", "output", "continuous", "N.m",
+     "mesh torque on the gear along the motion"),
+    ("mesh_force_n", 7, "Float64", "output", "continuous", "N", "total normal load"),
+    ("te_arcsec", 8, "Float64", "output", "continuous", "arcsec",
+     "loaded transmission error, TCA sign"),
+    ("p_max_mpa", 9, "Float64", "output", "continuous", "MPa",
+     "peak pressure of the most loaded pair"),
+    ("a_mm", 10, "Float64", "output", "continuous", "mm", "its semi-axis a"),
+    ("b_mm", 11, "Float64", "output", "continuous", "mm", "its semi-axis b"),
+    ("active_pairs", 12, "Int32", "output", "discrete", "", "pairs carrying load"),
+    ("backend", 13, "Enumeration", "parameter", "fixed", "",
+     "contact law: fp64 or golden (fixed-point stage D)"),
+    ("mesh_damping_n_s_per_mm", 14, "Float64", "parameter", "fixed", "N.s/mm",
+     "mesh damping on the line of action"),
+)
+#: FMI functions the C model implements; every other one is a stub returning fmi3Error.
+_IMPLEMENTED = {
+    "fmi3GetVersion", "fmi3SetDebugLogging", "fmi3InstantiateModelExchange",
+    "fmi3InstantiateCoSimulation", "fmi3InstantiateScheduledExecution", "fmi3FreeInstance",
+    "fmi3EnterInitializationMode", "fmi3ExitInitializationMode", "fmi3EnterEventMode",
+    "fmi3Terminate", "fmi3Reset", "fmi3GetFloat64", "fmi3SetFloat64", "fmi3GetInt32",
+    "fmi3GetInt64", "fmi3SetInt64", "fmi3DoStep", "fmi3SetTime", "fmi3UpdateDiscreteStates",
+    "fmi3CompletedIntegratorStep", "fmi3GetNumberOfContinuousStates",
+    "fmi3GetNumberOfEventIndicators", "fmi3SetContinuousStates", "fmi3GetContinuousStates",
+    "fmi3GetContinuousStateDerivatives", "fmi3GetNominalsOfContinuousStates",
+    "fmi3GetEventIndicators", "fmi3EnterContinuousTimeMode", "fmi3EnterStepMode",
+    "fmi3EnterConfigurationMode", "fmi3ExitConfigurationMode", "fmi3EvaluateDiscreteStates"}
+_CFLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-ffp-contract=off", "-fPIC",
+           "-shared", "-fvisibility=default")
+
+
+@dataclass(frozen=True)
+class MeshFmu:
+    """What :func:`export_mesh_fmu` wrote.
+
+    Attributes
+    ----------
+    fmu_path : Path
+        The ``.fmu`` archive.
+    table_path : Path
+        The baked table as ``.npz`` (:meth:`MeshLawTable.from_npz`), beside the FMU.
+    model_identifier : str
+        The shared library's name (without ``.so``).
+    """
+
+    fmu_path: Path
+    table_path: Path
+    model_identifier: str
+
+
+def check_fmu_kind(kind: str) -> str:
+    """``kind`` if the export can build it, else :class:`InputRangeError` naming it."""
+    if kind not in FMU_KINDS:
+        note = " (drivetrain: not yet)" if kind == "drivetrain" else ""
+        raise InputRangeError("--kind", kind, f"one of {list(FMU_KINDS)}{note}")
+    return kind
+
+
+def fmi3_header_dir() -> Path:
+    """The FMI 3.0 headers (``fmi3Functions.h`` ...) inside the installed FMPy.
+
+    Raises
+    ------
+    ToolUnavailable
+        FMPy is not installed or ships no FMI 3.0 headers.
+    """
+    try:
+        import fmpy
+    except ImportError as exc:
+        raise ToolUnavailable("gearcontact export fmu needs FMPy's FMI 3.0 headers: pip "
+                              "install 'gearcontact[fmu]' (or fmpy)") from exc
+    d = Path(fmpy.__file__).parent / "c-code"
+    if not (d / "fmi3Functions.h").is_file():
+        raise ToolUnavailable(f"FMPy {fmpy.__version__} ships no fmi3Functions.h in {d}")
+    return d
+
+
+def _unsupported(header_dir: Path) -> list[tuple[str, str, list[str]]]:
+    """(name, parameter list, parameter names) of every FMI 3.0 function returning
+    fmi3Status that the model does not implement, parsed from fmi3FunctionTypes.h."""
+    text = (header_dir / "fmi3FunctionTypes.h").read_text()
+    out = []
+    for name, args in re.findall(r"typedef\s+fmi3Status\s+(fmi3\w+)TYPE\s*\(([^;]*?)\)\s*;",
+                                 text, re.S):
+        if name in _IMPLEMENTED:
+            continue
+        args = " ".join(args.split())
+        names = [re.findall(r"(\w+)\s*(?:\[\])?$", a.strip())[0] for a in args.split(",")]
+        out.append((name, args, names))
+    return out
+
+
+def _c_double(x) -> str:
+    """Exact C99 hexadecimal literal of a double."""
+    return float(x).hex()
+
+
+def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
+                  header_dir: Path) -> dict:
+    from .. import __version__
+    from ..preview.hertz.golden import encode_e_prime
+
+    def rows(a):
+        return [[_c_double(v) for v in r] for r in a]
+
+    return {
+        "version": __version__, "pair_name": pair_name, "side": side, "token": token,
+        "n_rows": tab.eps_rad.shape[0], "n_pairs": tab.lever_mm.shape[0],
+        "step_rad": _c_double(tab.step_rad), "pitch_rad": _c_double(tab.pitch_rad),
+        "ratio": _c_double(tab.ratio), "lever0_mm": _c_double(tab.reference_lever_mm),
+        "e_prime_mpa": _c_double(tab.e_prime_mpa), "e_code": int(encode_e_prime(tab.e_prime_mpa)),
+        "motion_sign": int(tab.motion_sign), "arcsec_per_rad": _c_double(ARCSEC_PER_RAD),
+        "pi": _c_double(math.pi), "w_eval_min": _c_double(W_EVAL_MIN_N), "w_eval_max": _c_double(_W_EVAL_MAX_N),
+        "variables": [{"name": v[0], "vr": v[1]} for v in MESH_VARIABLES],
+        "eps": [_c_double(v) for v in tab.eps_rad],
+        "tables": [("LEVER_MM", rows(tab.lever_mm)), ("OPENING_MM", rows(tab.opening_mm)),
+                   ("A_MINUS", rows(tab.A_minus_per_mm)), ("B_MINUS", rows(tab.B_minus_per_mm))],
+        "valid": [[int(v) for v in r] for r in tab.valid],
+        "unsupported": _unsupported(header_dir),
+        "model_variables": MESH_VARIABLES, "backends": BACKENDS,
+    }
+
+
+def _render(env, name: str, ctx: dict) -> str:
+    folder = resources.files("gearcontact").joinpath("data/templates/fmu")
+    return env.from_string(folder.joinpath(f"{name}.j2").read_text()).render(ctx)
+
+
+def _compile(src_dir: Path, sources: list[str], header_dir: Path, so_path: Path) -> None:
+    cc = shutil.which("gcc") or shutil.which("cc")
+    if cc is None:
+        raise ToolUnavailable("gearcontact export fmu needs a C compiler (gcc or cc) on PATH")
+    cmd = [cc, *_CFLAGS, "-I", str(src_dir), "-I", str(header_dir), "-o", str(so_path),
+           *[str(src_dir / s) for s in sources], "-lm"]
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    if run.returncode != 0:     # a bug of the generator, never the user's input
+        raise RuntimeError(f"compiling the FMU failed:\n{' '.join(cmd)}\n{run.stderr}")
+
+
+def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
+                    torque_nm: float = 64.5) -> MeshFmu:
+    """Write the mesh FMU of ``pair`` into ``out_dir`` (module docstring).
+
+    Parameters
+    ----------
+    pair : gearcontact.geometry.pair.GearPair
+        The pair, prepared (an ease-off table on ``side``).
+    out_dir : str or Path
+        Output directory (created if missing).
+    pair_name : str
+        Name of the pair in the model name and description.
+    side : str
+        ``"drive"`` or ``"coast"``: the loaded flank.
+    phases : int
+        TCA phases per pinion pitch (rows of the baked table).
+    torque_nm : float
+        Gear torque sizing the posed fields of edge pairs (:func:`~gearcontact.twin.
+        mesh.mesh_table`), N·m; the FMU's law holds at any load in the envelope.
+
+    Returns
+    -------
+    MeshFmu
+
+    Raises
+    ------
+    ToolUnavailable
+        Jinja2, FMPy's headers or a C compiler missing.
+    """
+    from ..tca.analysis import analyze_pair
+    from ..twin.mesh import mesh_table
+
+    env = _environment()
+    header_dir = fmi3_header_dir()
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False)
+    tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm))
+    ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    table_path = out / f"{ident}_table.npz"
+    tab.to_npz(table_path)
+    c_files = render_c_library()
+    lib = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES
+    digest = hashlib.sha256(table_path.read_bytes()).hexdigest()
+    token = "{%s-%s-%s-%s-%s}" % (digest[:8], digest[8:12], digest[12:16], digest[16:20],
+                                  digest[20:32])
+    ctx = _mesh_context(tab, pair_name=pair_name, side=side, token=token,
+                        header_dir=header_dir)
+    ctx.update(model_identifier=ident,
+               c_sources=[s for s in ("gc_mesh_fmu.c",) + lib if s.endswith(".c")])
+    fmu_path = out / f"{ident}.fmu"
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "sources"
+        src.mkdir()
+        for name in lib:
+            (src / name).write_text(c_files[name])
+        (src / "gc_mesh_fmu.c").write_text(_render(env, "gc_mesh_fmu.c", ctx))
+        (src / "buildDescription.xml").write_text(_render(env, "buildDescription.xml", ctx))
+        so = Path(tmp) / f"{ident}.so"
+        _compile(src, ctx["c_sources"], header_dir, so)
+        with zipfile.ZipFile(fmu_path, "w", zipfile.ZIP_DEFLATED) as z:
+            z.writestr(_entry("modelDescription.xml"),
+                       _render(env, "modelDescription.xml", ctx))
+            for p in sorted(src.iterdir()):
+                z.writestr(_entry(f"sources/{p.name}"), p.read_bytes())
+            z.writestr(_entry(f"binaries/x86_64-linux/{ident}.so"), so.read_bytes())
+    return MeshFmu(fmu_path, table_path, ident)
+
+
+def _entry(name: str) -> zipfile.ZipInfo:
+    """A zip entry with a fixed time stamp (identical exports, identical archives but
+    for the compiler's binary)."""
+    info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+    info.compress_type = zipfile.ZIP_DEFLATED
+    info.external_attr = 0o644 << 16
+    return info
