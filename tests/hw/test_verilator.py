@@ -333,7 +333,7 @@ def test_derived_spec_matches_the_verilog_ports(core):
     """Each derived port (operands, burst fields, outputs) has the direction and total
     width of the exported Verilog's port (independent truth: Amaranth's backend), and
     the spec names every Verilog port except the declared control/protocol ones."""
-    from gearcontact.cli.rtl import verilog_ports
+    from gearcontact.hw.verilog_export import verilog_ports
     bench = hc.get_bench(core)
     spec = bench.spec
     ports = {n: (d, w) for d, n, w in verilog_ports(bench.verilog(), spec.top)}

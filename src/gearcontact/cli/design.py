@@ -165,6 +165,7 @@ def _calibrate(args, pair) -> int:
 
 
 def _synthesize(args, pair) -> int:
+    from ..report.design import write_easeoff_toml
     from ..tca.synthesis import easeoff_toml, synthesize_pair
 
     targets = getattr(args, "targets", None) or _synthesis_targets(args)
@@ -174,9 +175,7 @@ def _synthesize(args, pair) -> int:
     text = easeoff_toml(done, pair_name=pair.name)
     print(text)
     if args.out is not None:
-        out = Path(args.out)
-        (out / "easeoff.toml").write_text(text)
-        print(f"-> {final_path(args, out / 'easeoff.toml')}")
+        print(f"-> {final_path(args, write_easeoff_toml(text, args.out))}")
     missed = [side for side, s in done.items() if not s.met]
     if missed:              # the table says which; the TOML (and easeoff.toml) stay
         raise CheckFailed(f"ease-off synthesis of {pair.name}: not all targets met on the "

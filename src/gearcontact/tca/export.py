@@ -5,7 +5,8 @@
 :mod:`gearcontact.preview.fit.stencil`), ``gap_field.csv`` (80 x 80 host field),
 ``phase_table.json``, ``phase_table.bin`` and the figures ``te0.png``,
 ``contact_pattern.png`` and ``flanks_in_mesh.png`` (the geometry's flank-sheet view at
-P0). Used by the ``tca`` and ``analyze`` commands.
+P0). Used by the ``tca`` and ``analyze`` commands. ``write_line_contact_outputs``
+writes the ``tca.json`` of a conjugate pair (line contact, :mod:`.line_contact`).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from .phase_table import encode_binary, write_json
 from .plots import plot_contact_pattern, plot_te0
 from .stencil import write_stencil_csv
 
-__all__ = ["write_tca_outputs", "write_csv", "without_timings", "TIMING_KEYS"]
+__all__ = ["write_tca_outputs", "write_line_contact_outputs", "write_csv", "without_timings", "TIMING_KEYS"]
 
 #: Keys of result dicts that hold wall-clock timings. Result files leave them out (two
 #: identical runs give byte-identical files); the command line records them in run.json.
@@ -146,3 +147,14 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         plot_contact_pattern(pinion, gear, kin, cyc, out / "contact_pattern.png",
                              title=f"{pair.name} {side}", edges=res.edges)
     return summary
+
+
+def write_line_contact_outputs(result, out, *, pair_name: str, side: str | None) -> dict:
+    """Write ``tca.json`` of a line contact into the directory ``out`` (created if
+    missing): ``pair``, ``side`` (as requested; ``None`` for the design side) and
+    :meth:`~.line_contact.LineContactResult.as_dict`. Returns that dict."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    doc = {"pair": pair_name, "side": side, **result.as_dict()}
+    (out / "tca.json").write_text(json.dumps(doc, indent=2))
+    return doc
