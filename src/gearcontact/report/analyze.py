@@ -45,7 +45,6 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-import numpy as np
 from tqdm import tqdm
 
 from ..halfspace.lcp import warm_up
@@ -64,6 +63,7 @@ from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
 from .latency import core_cycles, scalar_latency
 from .lte_plot import write_lte_outputs
+from .ltca import write_pressure_csv
 from .precision import write_precision_outputs
 from .summary import write_summary
 
@@ -354,11 +354,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     write_csv(out / "preview.csv", PREVIEW_COLUMNS,
               _preview_rows(cases, reference, gold, chain))
     for c in cases:
-        g = c.patch.grid
-        s, t = np.meshgrid(g.x_mm, g.y_mm)
-        write_csv(out / f"pressure_{c.torque_nm:g}Nm.csv", ["s_mm", "t_mm", "pressure_mpa"],
-                  zip(map(float, s.ravel()), map(float, t.ravel()),
-                      map(float, c.patch.pressure_mpa.ravel())))
+        write_pressure_csv(c, out / f"pressure_{c.torque_nm:g}Nm.csv")
     if figures:
         plot_pressure_maps(cases, out / "pressure_maps.png", title=f"{pair.name} {side}")
         plot_pressure_vs_load(cases, out / "pressure_vs_load.png", title=f"{pair.name} {side}",

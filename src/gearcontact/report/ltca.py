@@ -24,7 +24,7 @@ from ..ltca.pair_ltca import preview_ellipse  # noqa: E402
 from ..ltca.problem_export import write_lcp_problem  # noqa: E402
 from ..tca.export import without_timings, write_csv  # noqa: E402
 
-__all__ = ["plot_pressure_map", "write_ltca_outputs"]
+__all__ = ["plot_pressure_map", "write_pressure_csv", "write_ltca_outputs"]
 
 
 def plot_pressure_map(case, path, *, title: str = "") -> Path:
@@ -58,6 +58,30 @@ def plot_pressure_map(case, path, *, title: str = "") -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def write_pressure_csv(case, path) -> Path:
+    """Write the LCP pressure of ``case`` over its principal-frame field as CSV, one row
+    per cell: ``s_mm,t_mm,pressure_mpa`` (s along the long axis, mm; MPa).
+
+    Parameters
+    ----------
+    case : PairLoadCase
+        A solved load case (its ``patch``).
+    path : str or Path
+        Target CSV file.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    g = case.patch.grid
+    s, t = np.meshgrid(g.x_mm, g.y_mm)
+    write_csv(path, ["s_mm", "t_mm", "pressure_mpa"],
+              zip(map(float, s.ravel()), map(float, t.ravel()),
+                  map(float, case.patch.pressure_mpa.ravel())))
+    return Path(path)
 
 
 def write_ltca_outputs(case, out, *, figures: bool = True, title: str = "",
@@ -95,11 +119,7 @@ def write_ltca_outputs(case, out, *, figures: bool = True, title: str = "",
     summary, _ = without_timings(case.summary())    # the solve time goes to run.json
     summary.update(extra or {})
     (out / "ltca.json").write_text(json.dumps(summary, indent=2))
-    g = case.patch.grid
-    s, t = np.meshgrid(g.x_mm, g.y_mm)
-    write_csv(out / "pressure_map.csv", ["s_mm", "t_mm", "pressure_mpa"],
-              zip(map(float, s.ravel()), map(float, t.ravel()),
-                  map(float, case.patch.pressure_mpa.ravel())))
+    write_pressure_csv(case, out / "pressure_map.csv")
     if figures:
         plot_pressure_map(case, out / "pressure_map.png", title=title)
     if problem_materials is not None:
