@@ -81,9 +81,12 @@ import numpy as np
 from ..materials import STEEL, Material
 from ..validation import InputRangeError, check_positive, check_range, read_text_file
 from .blank import BlankDesign, design_blank, gear_top_land_mm
+from .cylindrical.pair import KIND as CYLINDRICAL_KIND
+from .cylindrical.pair import parse_cylindrical_pair
 from .kinematics import AssemblyErrors, MeshKinematics
+from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
-__all__ = ["CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
+__all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
            "parse_pair", "pair_to_toml"]
 
 #: Built-in presets (resource files ``gearcontact/data/pairs/<name>.toml``): ``s0003``
@@ -284,9 +287,9 @@ class GearPair:
 
 # --------------------------------------------------------------------------- TOML
 
-_FLOAT, _INT, _STR = "a number (float)", "an integer", "a string"
+_FLOAT, _INT, _STR = FLOAT, INT, STR
 
-#: section -> {key: (expected type, required)}; ``None`` section = top level.
+#: section -> {key: (expected type, required)}; ``""`` section = top level.
 _SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
     "": {"name": (_STR, False)},
     "teeth": {"pinion": (_INT, True), "gear": (_INT, True)},
@@ -304,76 +307,19 @@ _SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
     "easeoff.drive": {k: (_FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
     "easeoff.coast": {k: (_FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
     "assembly": {k: (_FLOAT, False) for k in ("E_mm", "P_mm", "G_mm", "alpha_deg")},
-    "material.pinion": {"youngs_modulus_gpa": (_FLOAT, True), "poisson_ratio": (_FLOAT, True)},
-    "material.gear": {"youngs_modulus_gpa": (_FLOAT, True), "poisson_ratio": (_FLOAT, True)},
+    **MATERIAL_SCHEMA,
 }
 _REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
 
 
-def _typed(key: str, value, kind: str):
-    """Return ``value`` converted to the schema type or raise naming the key."""
-    if kind == _INT:
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise InputRangeError(key, value, kind)
-        return value
-    if kind == _FLOAT:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise InputRangeError(key, value, kind)
-        return float(value)
-    if not isinstance(value, str):
-        raise InputRangeError(key, value, kind)
-    return value
-
-
-def _flatten(doc: dict) -> dict[str, dict]:
-    """Split a parsed TOML document into the schema's sections; reject unknown keys."""
-    sections: dict[str, dict] = {"": {}}
-    for key, value in doc.items():
-        if isinstance(value, dict) and key in ("easeoff", "material"):
-            for sub, table in value.items():
-                name = f"{key}.{sub}"
-                if name not in _SCHEMA or not isinstance(table, dict):
-                    raise InputRangeError(name, table, f"one of the tables {sorted(_SCHEMA)}")
-                sections[name] = table
-        elif isinstance(value, dict):
-            if key not in _SCHEMA:
-                raise InputRangeError(key, "table", f"one of the tables {sorted(s for s in _SCHEMA if s)}")
-            sections[key] = value
-        else:
-            sections[""][key] = value
-    out: dict[str, dict] = {}
-    for name, table in sections.items():
-        schema = _SCHEMA[name]
-        typed = {}
-        for key, value in table.items():
-            dotted = f"{name}.{key}" if name else key
-            if key not in schema:
-                raise InputRangeError(dotted, value, f"a known key of [{name or 'top level'}]: "
-                                      f"{sorted(schema)}")
-            typed[key] = _typed(dotted, value, schema[key][0])
-        for key, (kind, required) in schema.items():
-            if required and key not in typed:
-                raise InputRangeError(f"{name}.{key}" if name else key, None,
-                                      f"required: {kind}")
-        out[name] = typed
-    for name in _REQUIRED_SECTIONS:
-        if name not in out:
-            raise InputRangeError(f"[{name}]", None, "a required table")
-    return out
-
-
 def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
     """Build a :class:`GearPair` from a parsed TOML document (see module docstring)."""
-    s = _flatten(doc)
+    s = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)
     design = dict(s["design"])
     if ("gear_mean_cone_distance_mm" in design) == ("gear_mean_pitch_radius_mm" in design):
         raise InputRangeError("design.gear_mean_cone_distance_mm / design.gear_mean_pitch_radius_mm",
                               None, "exactly one of the two keys")
-    materials = {}
-    for member in ("pinion", "gear"):
-        table = s.get(f"material.{member}")
-        materials[member] = STEEL if table is None else Material.from_gpa(
-            table["youngs_modulus_gpa"], table["poisson_ratio"], name=f"{member} material")
+    materials = materials_of(s)
     return GearPair(
         name=s[""].get("name", name),
         pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
@@ -388,15 +334,34 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         **design)
 
 
-def load_pair(source: str | Path) -> GearPair:
+#: ``kind`` values of the pair files; absent is a bevel/hypoid pair (:class:`GearPair`).
+BEVEL, CYLINDRICAL = "bevel", CYLINDRICAL_KIND
+#: What each kind can be used for today (the message of a command that refuses one).
+_KIND_USE = {CYLINDRICAL: "only `gearcontact design` reads cylindrical pairs so far "
+                          "(docs/cylindrical.md)"}
+
+
+def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)):
     """Load a pair from a preset name (``"s0003"``) or a ``.toml`` file path.
+
+    The file's top-level ``kind`` selects the format: absent, a bevel/hypoid
+    :class:`GearPair`; ``"cylindrical"``, a
+    :class:`~gearcontact.geometry.cylindrical.pair.CylindricalPair`.
+
+    Parameters
+    ----------
+    source : str or Path
+    kinds : tuple of str
+        The kinds the caller can use (``"bevel"``, ``"cylindrical"``); a file of
+        another kind is refused before it is validated.
 
     Raises
     ------
     InputRangeError
         If ``source`` is neither a preset nor a readable UTF-8 TOML file, for a TOML
-        syntax error, and for a missing, mistyped or out-of-range field or an impossible
-        design; the message names the file (when one is involved) and the field.
+        syntax error, a ``kind`` the caller cannot use, and for a missing, mistyped or
+        out-of-range field or an impossible design; the message names the file (when
+        one is involved) and the field.
     """
     text = str(source)
     if text in PRESETS:
@@ -414,7 +379,16 @@ def load_pair(source: str | Path) -> GearPair:
     except tomllib.TOMLDecodeError as exc:
         raise InputRangeError(f"{where or label + ' '}(TOML syntax)", str(exc),
                               "valid TOML") from None
+    kind = doc.get("kind", BEVEL)
     try:
+        if "kind" in doc and kind != CYLINDRICAL:
+            raise InputRangeError("kind", kind, f"'{CYLINDRICAL}' or absent (a bevel/hypoid "
+                                                "pair)")
+        if kind not in kinds:
+            raise InputRangeError("kind", kind, f"absent (a bevel/hypoid pair) for this "
+                                                f"command: {_KIND_USE[kind]}")
+        if kind == CYLINDRICAL:
+            return parse_cylindrical_pair(doc, name=label)
         return parse_pair(doc, name=label)
     except InputRangeError as exc:
         if not where:
