@@ -10,9 +10,10 @@ from gearcontact.materials import STEEL
 from gearcontact.validation import InputRangeError
 
 ROOT = Path(__file__).resolve().parents[2]
-#: The example pair files (examples/ also holds other tables, e.g. [drivetrain] files).
+#: The bevel/hypoid example pair files (examples/ also holds other tables, e.g.
+#: [drivetrain] files, and cylindrical pairs: tests/geometry/cylindrical).
 EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.toml")
-                  if "teeth" in tomllib.loads(p.read_text()))
+                  if "teeth" in (doc := tomllib.loads(p.read_text())) and "kind" not in doc)
 
 
 def _s0003_doc():
