@@ -4,7 +4,8 @@ Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its I
 Method 1 blank design as a table (after checking that the gear generates the pinion
 flanks: :func:`~gearcontact.geometry.generation.check_generation`); ``--json`` prints one
 JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
-``mean_cone_distances_mm``, each ``[pinion, gear]``).
+``mean_cone_distances_mm``, each ``[pinion, gear]``). A cylindrical pair
+(``kind = "cylindrical"``) prints its ISO 21771 geometry (docs/cylindrical.md).
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from pathlib import Path
 
 from ..errors import CheckFailed
 from ..geometry.generation import check_generation
-from ..geometry.pair import PRESETS, load_pair
+from ..geometry.pair import BEVEL, CYLINDRICAL, PRESETS, load_pair
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
 
@@ -87,7 +88,19 @@ def check(args) -> None:
     """--calibrate needs published values and --out; design writes files only with
     --calibrate or --synthesize-easeoff --out (under the output-directory policy,
     :mod:`.outdir`)."""
-    pair = args.gear_pair = load_pair(args.pair)
+    pair = args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+    if pair.kind == CYLINDRICAL:
+        for option, value in (("--calibrate", args.calibrate),
+                              ("--synthesize-easeoff", args.synthesize_easeoff),
+                              ("--out", args.out), ("--tip-margin", args.tip_margin),
+                              ("--te0-arcsec", args.te0_arcsec),
+                              ("--pattern-length-ratio", args.pattern_length_ratio),
+                              ("--path-angle-deg", args.path_angle_deg)):
+            if value not in (None, False):
+                raise InputRangeError(option, value, "not given for a cylindrical pair "
+                                      "(kind = 'cylindrical': design prints its geometry)")
+        args.writes_files = False
+        return
     # a pair whose pinion the gear cannot generate (limit line) is refused here
     check_generation(pair)
     if args.calibrate and args.synthesize_easeoff:
@@ -185,7 +198,12 @@ def _synthesize(args, pair) -> int:
 
 
 def run(args) -> int:
-    pair = getattr(args, "gear_pair", None) or load_pair(args.pair)
+    pair = getattr(args, "gear_pair", None) or load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+    if pair.kind == CYLINDRICAL:
+        from ..report.design_cylindrical import cylindrical_design_text
+
+        print(cylindrical_design_text(pair, as_json=args.json))
+        return 0
     if args.calibrate:
         return _calibrate(args, pair)
     if args.synthesize_easeoff:

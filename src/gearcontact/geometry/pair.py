@@ -219,6 +219,9 @@ class GearPair:
     design_side: str = "drive"
     easeoff_tables: tuple = ("drive", "coast")
 
+    #: the pair-file kind (a file without ``kind``; cylindrical pairs: ``"cylindrical"``)
+    kind = "bevel"
+
     def __post_init__(self):
         if self.design_side not in ("drive", "coast"):
             raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
@@ -335,7 +338,7 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
 
 
 #: ``kind`` values of the pair files; absent is a bevel/hypoid pair (:class:`GearPair`).
-BEVEL, CYLINDRICAL = "bevel", CYLINDRICAL_KIND
+BEVEL, CYLINDRICAL = GearPair.kind, CYLINDRICAL_KIND
 #: What each kind can be used for today (the message of a command that refuses one).
 _KIND_USE = {CYLINDRICAL: "only `gearcontact design` reads cylindrical pairs so far "
                           "(docs/cylindrical.md)"}
