@@ -4,7 +4,8 @@ the trochoidal root fillet (docs/cylindrical.md).
 
 Data flow: :func:`~.pair.parse_cylindrical_pair` -> :class:`~.pair.CylindricalPair`
 -> ``.geometry`` (:func:`~.iso21771.involute_geometry`) -> :func:`~.flank.involute_flank`
-(a :class:`~gearcontact.geometry.surface.Surface`) and :func:`~.fillet.root_fillet`.
+(a :class:`~gearcontact.geometry.surface.Surface`) and :func:`~.fillet.root_fillet`;
+:class:`~.kinematics.ParallelKinematics` poses the pair for the TCA solvers.
 """
 
 from .iso21771 import InvoluteGeometry, inv, inv_inverse, involute_geometry

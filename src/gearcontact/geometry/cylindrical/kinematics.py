@@ -1,0 +1,86 @@
+"""Meshing frame and rigid-body poses of a parallel-axis (cylindrical) pair.
+
+The same interface as the crossed-axis :class:`~gearcontact.geometry.kinematics.MeshKinematics`
+(``ratio``, ``pinion_axis``, ``gear_axis``, ``pinion_pose``, ``gear_pose``,
+``relative_velocity``), so that the TCA's mating-point and contact-line solvers
+(:mod:`gearcontact.tca.mating`, :mod:`gearcontact.tca.line_contact`) run unchanged on
+either kind of pair: the pinion turns about ``-pinion_axis`` by ``phi1``, the gear about
+``gear_axis`` by ``phi2``, and ``phi1 = u phi2`` for a perfect mesh.
+
+Meshing frame: the gear axis is +z through the origin, the pinion axis +z through
+``C1 = (-a_w, 0, 0)``. Body frames are those of :mod:`.flank` (tooth centred on +x at
+z = 0). At ``phi1 = phi2 = 0`` the pinion tooth points at the gear centre and the gear,
+turned by ``π + π/z2``, offers it a tooth space: with zero backlash both flank pairs
+touch at the pitch point ``(-r_w2, 0, 0)``. A positive ``phi1`` turns the pinion
+clockwise (seen from +z) and the gear counter-clockwise: the pinion's "cw" flanks drive
+the gear's "cw" flanks.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 14
+(parallel-axis involute helical gears).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...validation import check_positive
+from ..kinematics import rot_z
+
+__all__ = ["ParallelKinematics"]
+
+
+@dataclass(frozen=True)
+class ParallelKinematics:
+    """Rigid-body kinematics of an external parallel-axis pair.
+
+    Parameters
+    ----------
+    centre_distance_mm : float
+        a_w, mm.
+    ratio : float
+        u = z2 / z1.
+    gear_teeth : int
+        z2 (the gear's start orientation offers a tooth space to the pinion).
+    """
+
+    centre_distance_mm: float
+    ratio: float
+    gear_teeth: int
+
+    def __post_init__(self):
+        check_positive("centre_distance_mm", self.centre_distance_mm)
+        check_positive("ratio", self.ratio)
+
+    @property
+    def pinion_centre(self) -> np.ndarray:
+        """C1, the pinion axis' point at z = 0, mm."""
+        return np.array([-self.centre_distance_mm, 0.0, 0.0])
+
+    @property
+    def pinion_axis(self) -> np.ndarray:
+        """+z: the pinion turns about ``-pinion_axis`` (clockwise) by ``phi1``."""
+        return np.array([0.0, 0.0, 1.0])
+
+    @property
+    def gear_axis(self) -> np.ndarray:
+        """+z: the gear turns about it (counter-clockwise) by ``phi2``."""
+        return np.array([0.0, 0.0, 1.0])
+
+    def gear_pose(self, phi2_rad: float) -> tuple[np.ndarray, np.ndarray]:
+        """Gear body -> meshing frame ``(R, t)``, ``X_f = R @ X_body + t``."""
+        return rot_z(phi2_rad + math.pi + math.pi / self.gear_teeth), np.zeros(3)
+
+    def pinion_pose(self, phi1_rad: float) -> tuple[np.ndarray, np.ndarray]:
+        """Pinion body -> meshing frame after a turn ``phi1`` about -z through C1."""
+        return rot_z(-phi1_rad), self.pinion_centre
+
+    def relative_velocity(self, x_f: np.ndarray) -> np.ndarray:
+        """Sliding velocity v12 = w1 x (X - C1) - w2 x X per unit gear rate, mm/rad."""
+        x = np.asarray(x_f, dtype=float)
+        w1 = -self.ratio * self.pinion_axis
+        return np.cross(w1, x - self.pinion_centre) - np.cross(self.gear_axis, x)
