@@ -65,3 +65,47 @@ def test_contact_line_length_and_plane_of_action(beta, hand):
     np.testing.assert_allclose(np.abs((xy - kin.pinion_centre[:2]) @ normal),
                                0.5 * g.base_diameter_pinion_mm, atol=1e-6)
     assert LINE_TOLERANCE_MM <= 1e-7
+
+
+@pytest.mark.parametrize("beta, hand", [(0.0, None), (25.0, "left")])
+@pytest.mark.parametrize("facing", FACINGS)
+def test_pitch_point_phase(beta, hand, facing):
+    """The pitch point is passed at phi1 = -+ s_w1 / d_w1, phi2 = phi1 / u (ISO 21771
+    tooth thickness on the working circle): solved from that guess with phi1 and v2
+    held, the contact sits at roll lengths r_w sin a_wt and phi2 = phi1 / u (less one
+    gear pitch for the ccw facing; 1e-6 mm and 1e-8 rad: the solve stops at 1e-7 mm
+    over radii ~ 25-75 mm)."""
+    from gearcontact.geometry.cylindrical.flank import involute_flank
+    from gearcontact.tca.mating import solve_mating_point
+    from gearcontact.tca.parallel_axes import pitch_point_guess
+
+    pair = _pair(beta, hand, 20.0)
+    guess = pitch_point_guess(pair, facing)
+    mp = solve_mating_point(involute_flank(pair, "pinion", facing),
+                            involute_flank(pair, "gear", facing), parallel_kinematics(pair),
+                            guess, fixed=("phi1", "v2"), tol_mm=LINE_TOLERANCE_MM)
+    assert (mp.u1, mp.u2) == pytest.approx((guess.u1, guess.u2), abs=1e-6)
+    assert mp.phi2_rad == pytest.approx(guess.phi2_rad, abs=1e-8)
+    assert abs(mp.v1) < 1e-6
+
+
+def test_lead_crowned_spur_point_contact():
+    """A spur pinion with lead crowning only (C_beta 10 um) meets the unmodified gear in
+    a point at mid-face, where its section is the exact involute: the point-contact TCA
+    (tca.solve, edges off) gives TE0 = 0 (1e-3 arcsec) and v1 = 0 at every phase in
+    the flanks, by symmetry and conjugacy of the mid-face sections."""
+    from gearcontact.geometry.cylindrical.flank import involute_flank
+    from gearcontact.geometry.cylindrical.pair import ToothModifications
+    from gearcontact.tca.parallel_axes import pitch_point_guess
+    from gearcontact.tca.solve import solve_tca
+
+    pair = _pair(0.0, None, 20.0,
+                 modifications_pinion=ToothModifications(lead_crowning_um=10.0))
+    start = pitch_point_guess(pair, "cw")
+    phis = start.phi1_rad + np.linspace(-0.1, 0.1, 11)
+    path = solve_tca(involute_flank(pair, "pinion", "cw"), involute_flank(pair, "gear", "cw"),
+                     parallel_kinematics(pair), phis, start=start, edges=False)
+    inside = [p for p in path.points if not p.edge]
+    assert len(inside) == 11
+    assert max(abs(p.te0_arcsec) for p in inside) < TE0_LIMIT_ARCSEC
+    assert max(abs(p.v1) for p in inside) < 1e-9

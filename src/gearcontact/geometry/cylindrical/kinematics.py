@@ -9,9 +9,11 @@ either kind of pair: the pinion turns about ``-pinion_axis`` by ``phi1``, the ge
 
 Meshing frame: the gear axis is +z through the origin, the pinion axis +z through
 ``C1 = (-a_w, 0, 0)``. Body frames are those of :mod:`.flank` (tooth centred on +x at
-z = 0). At ``phi1 = phi2 = 0`` the pinion tooth points at the gear centre and the gear,
-turned by ``π + π/z2``, offers it a tooth space: with zero backlash both flank pairs
-touch at the pitch point ``(-r_w2, 0, 0)``. A positive ``phi1`` turns the pinion
+z = 0). At ``phi1 = phi2 = 0`` the pinion tooth is centred on the line of centres and
+the gear, turned by ``π + π/z2``, offers it a tooth space centred there: with zero
+backlash both flank pairs touch, at mirror-image points of their lines of action (the
+pitch point ``(-r_w2, 0, 0)`` is passed half a working tooth thickness earlier or
+later, :func:`gearcontact.tca.parallel_axes.pitch_point_guess`). A positive ``phi1`` turns the pinion
 clockwise (seen from +z) and the gear counter-clockwise: the pinion's "cw" flanks drive
 the gear's "cw" flanks.
 
