@@ -65,3 +65,34 @@ def test_fillet_tangent_and_lead(case):
     a0 = math.atan2(*fillet.points(tau_end, 0.0)[1::-1])
     turn = (1 if case[2] != "left" else -1) * z * math.tan(math.radians(case[1])) / r
     assert math.atan2(*p[1::-1]) - a0 == pytest.approx(turn, abs=1e-12)
+
+
+@pytest.mark.parametrize("case", CASES[:4])
+@pytest.mark.parametrize("facing", FACINGS)
+def test_fillet_surface(case, facing):
+    """The fillet as a Surface: closed-form derivatives against central differences
+    (h 1e-5: truncation ~1e-9, rounding ~1e-11 over radii ~25 mm: atol 1e-8); at the form
+    circle its position and outward unit normal equal the flank's (1e-9) at any z."""
+    from gearcontact.geometry.surface import Surface
+
+    pair = _pair(*case)
+    fillet = root_fillet(pair, "pinion", facing)
+    flank = involute_flank(pair, "pinion", facing)
+    assert isinstance(fillet, Surface)
+    for z in (-12.0, 0.0, 9.0):
+        a, b = fillet.evaluate(fillet.u_range[1], z), flank.evaluate(flank.u_range[0], z)
+        np.testing.assert_allclose(a.r, b.r, atol=1e-9)
+        np.testing.assert_allclose(a.n, b.n, atol=1e-9)
+    h = 1e-5
+    for tau in np.linspace(fillet.u_range[0] + 0.01, fillet.u_range[1] - 0.01, 4):
+        for z in (-10.0, 4.0):
+            s = fillet.evaluate(tau, z)
+            fd = lambda name, du, dv: (getattr(fillet.evaluate(tau + du, z + dv), name)  # noqa: E731
+                                       - getattr(fillet.evaluate(tau - du, z - dv), name)) / (2 * h)
+            np.testing.assert_allclose(fd("r", h, 0), s.r_u, atol=1e-8)
+            np.testing.assert_allclose(fd("r", 0, h), s.r_v, atol=1e-8)
+            np.testing.assert_allclose(fd("r_u", h, 0), s.r_uu, atol=1e-8)
+            np.testing.assert_allclose(fd("r_u", 0, h), s.r_uv, atol=1e-8)
+            np.testing.assert_allclose(fd("r_v", 0, h), s.r_vv, atol=1e-8)
+            p = fillet.point(tau, z)
+            assert abs(p.n @ p.r_u) < 1e-12 and abs(p.n @ p.r_v) < 1e-12

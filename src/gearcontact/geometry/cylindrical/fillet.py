@@ -29,6 +29,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...validation import InputRangeError
+from ..sampling import SurfaceArrays, point_from_arrays
+from ..surface import SurfacePoint
 from .flank import FACINGS
 from .pair import CylindricalPair
 
@@ -37,9 +39,11 @@ __all__ = ["RootFillet", "root_fillet"]
 
 @dataclass(frozen=True)
 class RootFillet:
-    """The trochoidal fillet of one flank in the transverse section z = 0 (mm).
+    """The trochoidal fillet of one flank: a :class:`~gearcontact.geometry.surface.Surface`
+    in (u = τ, v = z), and its transverse section z = 0 (mm).
 
-    ``tau_range`` runs from the root (-π/2, on d_f) to the form point (-α_n, on d_Ff).
+    ``tau_range`` (= ``u_range``) runs from the root (-π/2, on d_f) to the form point
+    (-α_n, on d_Ff); ``v_range`` is the member's face width.
     """
 
     reference_radius_mm: float          # r = d/2, the generating pitch circle
@@ -54,26 +58,50 @@ class RootFillet:
     lead_rate_rad_per_mm: float         # section turn per mm of z (tan β / r, signed)
     tau_range: tuple[float, float]
 
-    def transverse(self, tau):
-        """Points (..., 2) and tangents d/dτ (..., 2) of the fillet at z = 0."""
+    v_range: tuple[float, float] = (-0.5, 0.5)     # axial range (the face width), mm
+
+    @property
+    def u_range(self) -> tuple[float, float]:
+        """τ from the root (-π/2) to the form point (-α_n), rad."""
+        return self.tau_range
+
+    def _native(self, tau):
+        """The ccw-facing section (before any mirror): G, dG/dτ, d2G/dτ2, each (..., 2)."""
         tau = np.asarray(tau, dtype=float)
         rho, cb, r = self.tip_radius_mm, self.cos_beta, self.reference_radius_mm
-        px = (self.centre_x_mm + rho * np.cos(tau)) / cb
-        py = self.centre_y_mm + rho * np.sin(tau)
-        dpx, dpy = -rho * np.sin(tau) / cb, rho * np.cos(tau)
-        cot = np.cos(tau) / np.sin(tau)
+        c, sn = np.cos(tau), np.sin(tau)
+        px, py = (self.centre_x_mm + rho * c) / cb, self.centre_y_mm + rho * sn
+        px1, py1 = -rho * sn / cb, rho * c
+        px2, py2 = -rho * c / cb, -rho * sn
+        cot, csc2 = c / sn, 1.0 / sn ** 2
+        # rack displacement of contact: the normal through the pitch point (Willis)
         s = (py - r) * cb * cot - px
-        ds = dpy * cb * cot - (py - r) * cb / np.sin(tau) ** 2 - dpx
-        qx, qy = px + s, py
+        s1 = py1 * cb * cot - (py - r) * cb * csc2 - px1
+        s2 = py2 * cb * cot - 2.0 * py1 * cb * csc2 + 2.0 * (py - r) * cb * csc2 * cot - px2
+        q = np.stack([px + s, py], axis=-1)
+        q1 = np.stack([px1 + s1, py1], axis=-1)
+        q2 = np.stack([px2 + s2, py2], axis=-1)
         phi = s / r + self.space_angle_rad
-        c, sn = np.cos(phi), np.sin(phi)
-        gx, gy = c * qx - sn * qy, sn * qx + c * qy
-        # d/dτ of Rot(phi) q: Rot(phi) (q' + phi' J q), J (x, y) = (-y, x)
-        tx0, ty0 = dpx + ds - (ds / r) * qy, dpy + (ds / r) * qx
-        tx, ty = c * tx0 - sn * ty0, sn * tx0 + c * ty0
+        f1, f2 = (s1 / r)[..., None], (s2 / r)[..., None]
+
+        def turn(a):        # Rot(phi) a
+            return np.stack([np.cos(phi) * a[..., 0] - np.sin(phi) * a[..., 1],
+                             np.sin(phi) * a[..., 0] + np.cos(phi) * a[..., 1]], axis=-1)
+
+        def perp(a):        # J a = (-a_y, a_x)
+            return np.stack([-a[..., 1], a[..., 0]], axis=-1)
+
+        # G = Rot(phi) q; G' = Rot(q' + phi' J q); G'' = Rot(q'' + 2 phi' J q'
+        # + phi'' J q - phi'^2 q)
+        return (turn(q), turn(q1 + f1 * perp(q)),
+                turn(q2 + 2.0 * f1 * perp(q1) + f2 * perp(q) - f1 * f1 * q))
+
+    def transverse(self, tau):
+        """Points (..., 2) and tangents d/dτ (..., 2) of the fillet at z = 0."""
+        g, g1, _ = self._native(tau)
         if self.facing == "cw":
-            gy, ty = -gy, -ty
-        return np.stack([gx, gy], axis=-1), np.stack([tx, ty], axis=-1)
+            g, g1 = g * np.array([1.0, -1.0]), g1 * np.array([1.0, -1.0])
+        return g, g1
 
     def points(self, tau, z):
         """Fillet points (..., 3) at (τ, z), mm: the section turned by its lead."""
@@ -82,6 +110,43 @@ class RootFillet:
         c, s = np.cos(a), np.sin(a)
         return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1],
                          np.broadcast_to(z, c.shape)], axis=-1)
+
+    def evaluate(self, u, v, *, second: bool = True) -> SurfaceArrays:
+        """The fillet surface at (u = τ, v = z) with closed-form first and second
+        derivatives and the unit normal out of the tooth (the
+        :class:`~gearcontact.geometry.surface.Surface` contract)."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        # the cw fillet is the mirror image of the ccw one of the other hand (as flank.py)
+        k = self.lead_rate_rad_per_mm * (-1.0 if self.facing == "cw" else 1.0)
+        g, g1, g2 = self._native(u)
+        a = k * v
+        c, s = np.cos(a), np.sin(a)
+
+        def lift(w):        # Rz(a) (w, 0)
+            return np.stack([c * w[..., 0] - s * w[..., 1], s * w[..., 0] + c * w[..., 1],
+                             np.zeros_like(c)], axis=-1)
+
+        jg = np.stack([-g[..., 1], g[..., 0]], axis=-1)
+        jg1 = np.stack([-g1[..., 1], g1[..., 0]], axis=-1)
+        z = np.zeros(u.shape + (3,))
+        z[..., 2] = 1.0
+        r = lift(g) + v[..., None] * z
+        r_u, r_v = lift(g1), k * lift(jg) + z
+        r_uu, r_uv, r_vv = lift(g2), k * lift(jg1), -k * k * lift(g)
+        # on the native (ccw) side r_u runs root -> form and r_v ~ +z, so r_v x r_u
+        # points out of the tooth (continuous with the flank's normal at d_Ff: tested)
+        n = np.cross(r_v, r_u)
+        n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+        out = [r, r_u, r_v, r_uu, r_uv, r_vv, n]
+        if self.facing == "cw":
+            out = [w * np.array([1.0, -1.0, 1.0]) for w in out]
+        if not second:
+            out[3:6] = [np.full_like(r, np.nan)] * 3
+        return SurfaceArrays(u, v, *out)
+
+    def point(self, u: float, v: float) -> SurfacePoint:
+        """The :class:`~gearcontact.geometry.surface.SurfacePoint` at (τ, z)."""
+        return point_from_arrays(self.evaluate(u, v))
 
 
 def root_fillet(pair: CylindricalPair, member: str, facing: str) -> RootFillet:
@@ -112,4 +177,5 @@ def root_fillet(pair: CylindricalPair, member: str, facing: str) -> RootFillet:
                       centre_x_mm=cx, centre_y_mm=cy, tip_radius_mm=rho,
                       cos_beta=math.cos(beta), space_angle_rad=-(0.5 * math.pi - math.pi / z),
                       facing=facing, lead_rate_rad_per_mm=lead,
-                      tau_range=(-0.5 * math.pi, -alpha_n))
+                      tau_range=(-0.5 * math.pi, -alpha_n),
+                      v_range=(-0.5 * pair.face_width_mm(member), 0.5 * pair.face_width_mm(member)))
