@@ -25,10 +25,17 @@ from .types import ContactGuess
 __all__ = ["cylindrical_line_contact", "parallel_kinematics", "pitch_point_guess"]
 
 
-def parallel_kinematics(pair: CylindricalPair) -> ParallelKinematics:
-    """The meshing kinematics of ``pair`` at its centre distance a_w."""
+def parallel_kinematics(pair: CylindricalPair, *, with_errors: bool = True
+                        ) -> ParallelKinematics:
+    """The meshing kinematics of ``pair`` at its centre distance a_w, with the axis
+    misalignment of its ``[assembly]`` table as angles f / b over the common face width
+    (``with_errors=False``: aligned)."""
+    a, b = pair.assembly, pair.geometry.face_width_mm
+    scale = 1e-3 / b if with_errors else 0.0            # um over b mm -> rad
     return ParallelKinematics(centre_distance_mm=pair.geometry.centre_distance_mm,
-                              ratio=pair.ratio, gear_teeth=pair.gear_teeth)
+                              ratio=pair.ratio, gear_teeth=pair.gear_teeth,
+                              axis_inclination_rad=a.axis_inclination_um * scale,
+                              axis_deviation_rad=a.axis_deviation_um * scale)
 
 
 def pitch_point_guess(pair: CylindricalPair, facing: str) -> ContactGuess:

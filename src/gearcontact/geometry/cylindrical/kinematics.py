@@ -17,6 +17,11 @@ later, :func:`gearcontact.tca.parallel_axes.pitch_point_guess`). A positive ``ph
 clockwise (seen from +z) and the gear counter-clockwise: the pinion's "cw" flanks drive
 the gear's "cw" flanks.
 
+Axis misalignment (ISO 1328-1's f_Σδ and f_Σβ over the face width b, as angles
+f / b) tilts the gear axis about the mid-face point O: the inclination ``ε`` about +y
+(in the plane of the axes, x-z), the deviation ``γ`` about +x (the line of centres, out
+of that plane), ``T = rot_y(ε) rot_x(γ)``; the gear turns about ``T ẑ``.
+
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 14
@@ -30,8 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...validation import check_positive
-from ..kinematics import rot_z
+from ...validation import check_positive, check_range
+from ..kinematics import rot_x, rot_y, rot_z
 
 __all__ = ["ParallelKinematics"]
 
@@ -48,15 +53,26 @@ class ParallelKinematics:
         u = z2 / z1.
     gear_teeth : int
         z2 (the gear's start orientation offers a tooth space to the pinion).
+    axis_inclination_rad, axis_deviation_rad : float
+        ε and γ of the module docstring, rad (default 0).
     """
 
     centre_distance_mm: float
     ratio: float
     gear_teeth: int
+    axis_inclination_rad: float = 0.0
+    axis_deviation_rad: float = 0.0
 
     def __post_init__(self):
         check_positive("centre_distance_mm", self.centre_distance_mm)
         check_positive("ratio", self.ratio)
+        for name in ("axis_inclination_rad", "axis_deviation_rad"):
+            check_range(name, getattr(self, name), -0.05, 0.05)
+
+    @property
+    def _tilt(self) -> np.ndarray:
+        """T: the gear axis' misalignment rotation."""
+        return rot_y(self.axis_inclination_rad) @ rot_x(self.axis_deviation_rad)
 
     @property
     def pinion_centre(self) -> np.ndarray:
@@ -70,12 +86,13 @@ class ParallelKinematics:
 
     @property
     def gear_axis(self) -> np.ndarray:
-        """+z: the gear turns about it (counter-clockwise) by ``phi2``."""
-        return np.array([0.0, 0.0, 1.0])
+        """T ẑ (+z when aligned): the gear turns about it (counter-clockwise) by ``phi2``."""
+        return self._tilt[:, 2].copy()
 
     def gear_pose(self, phi2_rad: float) -> tuple[np.ndarray, np.ndarray]:
         """Gear body -> meshing frame ``(R, t)``, ``X_f = R @ X_body + t``."""
-        return rot_z(phi2_rad + math.pi + math.pi / self.gear_teeth), np.zeros(3)
+        return (self._tilt @ rot_z(phi2_rad + math.pi + math.pi / self.gear_teeth),
+                np.zeros(3))
 
     def pinion_pose(self, phi1_rad: float) -> tuple[np.ndarray, np.ndarray]:
         """Pinion body -> meshing frame after a turn ``phi1`` about -z through C1."""

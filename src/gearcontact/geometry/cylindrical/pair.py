@@ -129,8 +129,8 @@ class MeshAlignment:
     axis_inclination_um : float
         f_Sigma_delta: inclination of the gear axis in the plane of the axes, [-500, 500].
     axis_deviation_um : float
-        f_Sigma_beta: deviation out of that plane (acts along the line of action),
-        [-500, 500].
+        f_Sigma_beta: deviation out of that plane, [-500, 500]. Signs and the tilt they
+        make: :mod:`gearcontact.geometry.cylindrical.kinematics`.
     """
 
     axis_inclination_um: float = 0.0
