@@ -236,6 +236,10 @@ class CylindricalPair:
             if getattr(self, key) is not None:
                 check_positive(c + key, getattr(self, key))
         self.geometry           # an impossible pair fails on construction
+        b = min(self.pinion_face_width_mm, self.gear_face_width_mm)
+        for key in ("axis_inclination_um", "axis_deviation_um"):
+            # the kinematics takes tilts up to 0.05 rad (f / b)
+            check_range(f"assembly.{key}", getattr(self.assembly, key), -50.0 * b, 50.0 * b)
         for member in ("pinion", "gear"):
             self._check_modifications(member)
 
