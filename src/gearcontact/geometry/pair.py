@@ -82,12 +82,12 @@ from ..materials import STEEL, Material
 from ..validation import InputRangeError, check_positive, check_range, read_text_file
 from .blank import BlankDesign, design_blank, gear_top_land_mm
 from .cylindrical.pair import KIND as CYLINDRICAL_KIND
-from .cylindrical.pair import parse_cylindrical_pair
+from .cylindrical.pair import CylindricalPair, parse_cylindrical_pair
 from .kinematics import AssemblyErrors, MeshKinematics
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
-__all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
-           "parse_pair", "pair_to_toml"]
+__all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
+           "load_pair", "parse_pair", "pair_to_toml"]
 
 #: Built-in presets (resource files ``gearcontact/data/pairs/<name>.toml``): ``s0003``
 #: calibrated to the published design point (tip-edge bearing on the coast flank pair,
@@ -290,26 +290,24 @@ class GearPair:
 
 # --------------------------------------------------------------------------- TOML
 
-_FLOAT, _INT, _STR = FLOAT, INT, STR
-
 #: section -> {key: (expected type, required)}; ``""`` section = top level.
 _SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
-    "": {"name": (_STR, False)},
-    "teeth": {"pinion": (_INT, True), "gear": (_INT, True)},
-    "axes": {"shaft_angle_deg": (_FLOAT, False), "offset_mm": (_FLOAT, True)},
-    "design": {"pinion_hand": (_STR, True), "gear_mean_cone_distance_mm": (_FLOAT, False),
-               "gear_mean_pitch_radius_mm": (_FLOAT, False),
-               "pinion_spiral_angle_deg": (_FLOAT, True), "gear_face_width_mm": (_FLOAT, True),
-               "pinion_face_width_mm": (_FLOAT, True), "working_depth_factor": (_FLOAT, False),
-               "clearance_factor": (_FLOAT, False), "gear_addendum_factor": (_FLOAT, False),
-               "design_side": (_STR, False)},
-    "cutter": {"radius_mm": (_FLOAT, True), "point_width_mm": (_FLOAT, True),
-               "edge_radius_mm": (_FLOAT, True), "pressure_angle_drive_deg": (_FLOAT, False),
-               "pressure_angle_coast_deg": (_FLOAT, False),
-               "limit_pressure_angle_factor": (_FLOAT, False)},
-    "easeoff.drive": {k: (_FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
-    "easeoff.coast": {k: (_FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
-    "assembly": {k: (_FLOAT, False) for k in ("E_mm", "P_mm", "G_mm", "alpha_deg")},
+    "": {"name": (STR, False)},
+    "teeth": {"pinion": (INT, True), "gear": (INT, True)},
+    "axes": {"shaft_angle_deg": (FLOAT, False), "offset_mm": (FLOAT, True)},
+    "design": {"pinion_hand": (STR, True), "gear_mean_cone_distance_mm": (FLOAT, False),
+               "gear_mean_pitch_radius_mm": (FLOAT, False),
+               "pinion_spiral_angle_deg": (FLOAT, True), "gear_face_width_mm": (FLOAT, True),
+               "pinion_face_width_mm": (FLOAT, True), "working_depth_factor": (FLOAT, False),
+               "clearance_factor": (FLOAT, False), "gear_addendum_factor": (FLOAT, False),
+               "design_side": (STR, False)},
+    "cutter": {"radius_mm": (FLOAT, True), "point_width_mm": (FLOAT, True),
+               "edge_radius_mm": (FLOAT, True), "pressure_angle_drive_deg": (FLOAT, False),
+               "pressure_angle_coast_deg": (FLOAT, False),
+               "limit_pressure_angle_factor": (FLOAT, False)},
+    "easeoff.drive": {k: (FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
+    "easeoff.coast": {k: (FLOAT, False) for k in EaseOffCoefficients.__dataclass_fields__},
+    "assembly": {k: (FLOAT, False) for k in ("E_mm", "P_mm", "G_mm", "alpha_deg")},
     **MATERIAL_SCHEMA,
 }
 _REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
@@ -344,7 +342,8 @@ _KIND_USE = {CYLINDRICAL: "only `gearcontact design` reads cylindrical pairs so 
                           "(docs/cylindrical.md)"}
 
 
-def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)):
+def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
+              ) -> GearPair | CylindricalPair:
     """Load a pair from a preset name (``"s0003"``) or a ``.toml`` file path.
 
     The file's top-level ``kind`` selects the format: absent, a bevel/hypoid
