@@ -39,12 +39,13 @@ from .cutter import CutterPlacement
 from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
 from .formate import (SIDES, FlankBoundary, FormateFlank, cone_vector, gear_flank,
                       gear_flanks)
+from .generated import formate_gear_flank, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
+           "build_flanks", "build_machine_flanks", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
            "with_easeoff"]
 
 
@@ -139,6 +140,8 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         twin = dataclasses.replace(pair, pinion_hand="right")
         return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v),
                                 pair.kinematics(with_errors=False))
+    if pair.machine:
+        return build_machine_flanks(pair, n_u=n_u, n_v=n_v)
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
     placement, gear = gear_flanks(pair)
@@ -155,6 +158,50 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
                          pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
                          pinion_normal_thickness_mm=thickness)
     return with_easeoff(conjugate, pair)
+
+
+def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
+    """The flanks cut with the machine settings of ``pair`` (``pair.machine``,
+    :mod:`.generated`): formate gear flanks, generated pinion flanks (right-hand pairs;
+    :func:`build_flanks` mirrors a left-hand one).
+
+    The pinion's angular position is a mounting choice: both pinion flanks are turned
+    about the pinion axis together so that the design side's mean contact (pinion mean
+    node) falls at ``phi1 = u phi2`` as TCA starts it; ``pinion_conjugate`` holds the
+    same generated flanks (there is no separate conjugate reference).
+    """
+    blank = pair.blank
+    kin = pair.kinematics(with_errors=False)
+    setups = {(s.member, s.side): s for s in pair.machine}
+    gear = {side: formate_gear_flank(setups["gear", side], blank,
+                                     gear_face_width_mm=pair.gear_face_width_mm)
+            for side in SIDES}
+    pinion = {side: generated_pinion_flank(setups["pinion", side], blank,
+                                           pinion_face_width_mm=pair.pinion_face_width_mm,
+                                           n_u=n_u, n_v=n_v)[0] for side in SIDES}
+    u_m, v_m = float(pinion["drive"].cone.root_offset_mm), float(blank.pitch_point_mm[0])
+
+    def contact(side):
+        g = gear[side]
+        return mean_contact_guess(pinion[side], g, kin, pinion_uv=(u_m, v_m),
+                                  gear_uv=(g.dedendum_mm, 0.0))
+
+    first = contact(pair.design_side)
+    turn = first["phi1_rad"] - pair.ratio * first["phi2_rad"]
+    pinion = {side: dataclasses.replace(f, psi_nodes=f.psi_nodes - turn)
+              for side, f in pinion.items()}
+    mean = {}
+    for side in SIDES:
+        got = contact(side)
+        # TCA starts at phi1 = u phi2: keep the pinion phase, its solve finds phi2
+        mean[side] = {"pinion_uv": got["pinion_uv"], "gear_uv": got["gear_uv"],
+                      "phi2_rad": got["phi1_rad"] / pair.ratio}
+    thickness = mean_normal_thickness_mm(pinion["drive"], pinion["coast"], u_mm=u_m, v_mm=v_m,
+                                         spiral_angle_deg=blank.spiral_angle_pinion_deg)
+    return FlankSet(blank=blank, kinematics=kin, cutter=gear["drive"].blade.placement,
+                    gear=MemberFlanks(**gear), pinion=MemberFlanks(**pinion),
+                    pinion_conjugate=MemberFlanks(**pinion), mean_contact=mean,
+                    pinion_normal_thickness_mm=thickness)
 
 
 def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:

@@ -56,6 +56,35 @@ is a complete, commented example; ``examples/`` holds more.
     poisson_ratio = 0.3
     [material.gear]
 
+Machine settings (optional, :mod:`.machine`; docs/machine_settings.md has the figure and
+the sign table): with them all four flanks are cut from cutter and machine settings
+(:mod:`.generated`) instead of today's formate gear + conjugate pinion + ease-off, so
+``[easeoff.*]`` must then be absent. All eight tables are required together:
+
+.. code-block:: toml
+
+    [machine.gear.drive]                # also gear.coast, pinion.drive, pinion.coast
+    radial_distance_mm = 48.31          # S_r
+    cradle_angle_deg = -59.2            # q (signed, about the cradle axis)
+    machine_root_angle_deg = 83.15      # gamma_m
+    machine_centre_to_back_mm = 0.0     # X_D (default 0)
+    sliding_base_mm = -1.1              # X_B (default 0)
+    blank_offset_mm = 0.0               # E_m (default 0)
+    ratio_of_roll = 0.0                 # R_a = work / cradle rotation; 0 = formate
+    modified_roll_2c_per_rad = 0.0      # 2C (also _6d_per_rad2, _24e_per_rad3,
+                                        #   _120f_per_rad4), default 0
+    tilt_deg = 0.0                      # i, [0, 60]
+    swivel_deg = 0.0                    # j
+    helical_motion_mm_per_rad = 0.0     # V_1 (also helical_motion_mm_per_rad2)
+
+    [blade.gear.drive]
+    kind = "inside"                     # gear drive / pinion coast: inside
+    blade_angle_deg = 20.0
+    point_radius_mm = 43.9
+    edge_radius_mm = 0.1                # default 0
+    profile_radius_mm = 0.0             # 0 = straight (default)
+    profile_reference_mm = 0.0          # where blade_angle_deg holds (curved blade)
+
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`
 naming the dotted key, the value and the expected type/range; impossible designs
@@ -82,6 +111,8 @@ from ..materials import STEEL, Material
 from ..validation import InputRangeError, check_positive, check_range, read_text_file
 from .blank import BlankDesign, design_blank, gear_top_land_mm
 from .kinematics import AssemblyErrors, MeshKinematics
+from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_ROLL_KEYS,
+                      setup_from_tables, setup_to_tables)
 
 __all__ = ["CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS", "load_pair",
            "parse_pair", "pair_to_toml"]
@@ -191,6 +222,10 @@ class GearPair:
     easeoff_tables : tuple of str
         Sides whose ease-off was given (a TOML without ``[easeoff.<side>]`` leaves the
         side out; the commands then synthesize it, :mod:`gearcontact.tca.synthesis`).
+    machine : tuple of MachineSetup
+        Empty, or the machine settings and blades of all four flanks
+        (:mod:`.machine`): the flanks are then cut from them (:mod:`.generated`) instead
+        of today's formate gear + conjugate pinion + ease-off.
     """
 
     name: str
@@ -215,8 +250,15 @@ class GearPair:
     gear_material: Material = STEEL
     design_side: str = "drive"
     easeoff_tables: tuple = ("drive", "coast")
+    machine: tuple = ()
 
     def __post_init__(self):
+        if self.machine:
+            got = sorted((s.member, s.side) for s in self.machine)
+            want = sorted((m, side) for m in MEMBERS for side in ("drive", "coast"))
+            if got != want:
+                raise InputRangeError("[machine] / [blade]", [f"{m}.{side}" for m, side in got],
+                                      "all four flanks: " + ", ".join(f"{m}.{side}" for m, side in want))
         if self.design_side not in ("drive", "coast"):
             raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
         if self.pinion_hand not in ("right", "left"):
@@ -307,6 +349,14 @@ _SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
     "material.pinion": {"youngs_modulus_gpa": (_FLOAT, True), "poisson_ratio": (_FLOAT, True)},
     "material.gear": {"youngs_modulus_gpa": (_FLOAT, True), "poisson_ratio": (_FLOAT, True)},
 }
+for _m in MEMBERS:
+    for _side in ("drive", "coast"):
+        _SCHEMA[f"machine.{_m}.{_side}"] = {
+            **{k: (_FLOAT, req) for k, (_, req) in MACHINE_KEYS.items()},
+            **{k: (_FLOAT, False) for k in MODIFIED_ROLL_KEYS + HELICAL_KEYS}}
+        _SCHEMA[f"blade.{_m}.{_side}"] = {k: (_STR if k == "kind" else _FLOAT, req)
+                                          for k, req in BLADE_KEYS.items()}
+_NESTED = {"easeoff": 1, "material": 1, "machine": 2, "blade": 2}
 _REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
 
 
@@ -329,12 +379,20 @@ def _flatten(doc: dict) -> dict[str, dict]:
     """Split a parsed TOML document into the schema's sections; reject unknown keys."""
     sections: dict[str, dict] = {"": {}}
     for key, value in doc.items():
-        if isinstance(value, dict) and key in ("easeoff", "material"):
-            for sub, table in value.items():
-                name = f"{key}.{sub}"
-                if name not in _SCHEMA or not isinstance(table, dict):
-                    raise InputRangeError(name, table, f"one of the tables {sorted(_SCHEMA)}")
-                sections[name] = table
+        if isinstance(value, dict) and key in _NESTED:
+            tables = {key: value}
+            for _ in range(_NESTED[key]):
+                nxt = {}
+                for prefix, table in tables.items():
+                    for sub, inner in table.items():
+                        name = f"{prefix}.{sub}"
+                        if not isinstance(inner, dict) or not any(
+                                s == name or s.startswith(name + ".") for s in _SCHEMA):
+                            raise InputRangeError(name, inner, "one of the tables " + str(
+                                sorted(s for s in _SCHEMA if s.startswith(key + "."))))
+                        nxt[name] = inner
+                tables = nxt
+            sections.update(tables)
         elif isinstance(value, dict):
             if key not in _SCHEMA:
                 raise InputRangeError(key, "table", f"one of the tables {sorted(s for s in _SCHEMA if s)}")
@@ -374,8 +432,23 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         table = s.get(f"material.{member}")
         materials[member] = STEEL if table is None else Material.from_gpa(
             table["youngs_modulus_gpa"], table["poisson_ratio"], name=f"{member} material")
+    named = [n for n in s if n.startswith(("machine.", "blade."))]
+    machine = ()
+    if named:
+        if any(n.startswith("easeoff.") for n in s):
+            raise InputRangeError("[easeoff.*]", "given with [machine.*] / [blade.*]",
+                                  "either machine settings (the flanks are cut from them) or "
+                                  "an ease-off on today's conjugate pinion, not both")
+        missing = [f"[{kind}.{m}.{side}]" for kind in ("machine", "blade") for m in MEMBERS
+                   for side in ("drive", "coast") if f"{kind}.{m}.{side}" not in s]
+        if missing:
+            raise InputRangeError(", ".join(missing), None, "required with any [machine.*] / "
+                                  "[blade.*] table (all four flanks are cut from settings)")
+        machine = tuple(setup_from_tables(m, side, s[f"machine.{m}.{side}"],
+                                          s[f"blade.{m}.{side}"])
+                        for m in MEMBERS for side in ("drive", "coast"))
     return GearPair(
-        name=s[""].get("name", name),
+        name=s[""].get("name", name), machine=machine,
         pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
         offset_mm=s["axes"]["offset_mm"],
         shaft_angle_deg=s["axes"].get("shaft_angle_deg", 90.0),
@@ -384,7 +457,8 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         easeoff_coast=EaseOffCoefficients(**s.get("easeoff.coast", {})),
         assembly=AssemblyErrors(**s.get("assembly", {})),
         pinion_material=materials["pinion"], gear_material=materials["gear"],
-        easeoff_tables=tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s),
+        easeoff_tables=(("drive", "coast") if machine else
+                        tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s)),
         **design)
 
 
@@ -457,9 +531,13 @@ def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> s
     out += block("axes", {"shaft_angle_deg": pair.shaft_angle_deg, "offset_mm": pair.offset_mm})
     out += block("design", design)
     out += block("cutter", dataclasses.asdict(pair.cutter))
-    for side in ("drive", "coast"):
+    for side in ("drive", "coast") if not pair.machine else ():
         c = getattr(pair, f"easeoff_{side}")
         out += block(f"easeoff.{side}", {k: float(v) for k, v in dataclasses.asdict(c).items()})
+    for setup in pair.machine:
+        machine, blade = setup_to_tables(setup)
+        out += block(f"machine.{setup.member}.{setup.side}", machine)
+        out += block(f"blade.{setup.member}.{setup.side}", blade)
     out += block("assembly", {"E_mm": a.E_mm, "P_mm": a.P_mm, "G_mm": a.G_mm,
                               "alpha_deg": a.alpha_deg})
     for member in ("pinion", "gear"):
