@@ -175,14 +175,14 @@ class EnvelopeSolver:
         x, _, f = self.points(q)
         return np.stack([x[..., 0] - x_t, np.hypot(x[..., 1], x[..., 2]) - r_t, f], axis=-1)
 
-    def _jacobian(self, q, x_t, r_t):
-        cols = []
-        for k in range(3):
-            d = np.zeros(3)
-            d[k] = _FD
-            cols.append((self._residual(q + d, x_t, r_t) - self._residual(q - d, x_t, r_t))
-                        / (2.0 * _FD))
-        return np.stack(cols, axis=-1)
+    def _system(self, q, x_t, r_t):
+        """Residual (..., 3) and central-difference Jacobian (..., 3, 3), one batched
+        evaluation of the seven parameter sets."""
+        d = _FD * np.vstack([np.zeros(3), np.eye(3), -np.eye(3)])       # (7, 3)
+        qs = q[None] + d.reshape((7,) + (1,) * (q.ndim - 1) + (3,))
+        F = self._residual(qs, x_t, r_t)
+        J = np.stack([(F[1 + k] - F[4 + k]) / (2.0 * _FD) for k in range(3)], axis=-1)
+        return F[0], J
 
     def initial_guess(self, u: float, v: float) -> np.ndarray:
         """(l, theta, psi) of the blade point nearest the sheet point (u, v) at zero roll."""
@@ -206,15 +206,13 @@ class EnvelopeSolver:
         x_t, r_t = v, self.cone.radius_mm(u, v)
         q = np.array(np.broadcast_to(guess, u.shape + (3,)), dtype=float)
         for _ in range(_MAX_ITER):
-            F = self._residual(q, x_t, r_t)
-            J = self._jacobian(q, x_t, r_t)
+            F, J = self._system(q, x_t, r_t)
             step = -np.linalg.solve(J, F[..., None])[..., 0]
             scale = np.max(np.abs(step) / _MAX_STEP, axis=-1, keepdims=True)
             q = q + step / np.maximum(scale, 1.0)
             if np.all(np.abs(step) < 1e-13):
                 break
-        F = self._residual(q, x_t, r_t)
-        J = self._jacobian(q, x_t, r_t)
+        F, J = self._system(q, x_t, r_t)
         res = np.max(np.abs(F), axis=-1)
         ok = (res < _TOL) & np.all(np.isfinite(q), axis=-1)
         if strict and not np.all(ok):

@@ -319,20 +319,26 @@ class MachineKinematics:
         psi = np.asarray(psi_rad, dtype=float)
         x0 = np.asarray(x_t) @ t0.T + c0              # machine frame, zero roll
         n0 = np.asarray(n_t) @ t0.T
-        rc = _rz(psi)
-        xm = np.einsum("...ij,...j->...i", rc, x0)
-        nm = np.einsum("...ij,...j->...i", rc, n0)
+        c, s = np.cos(psi)[..., None], np.sin(psi)[..., None]
         hel, dhel = _series(psi, self.settings.helical_motion, 1)
-        apex = a0 + hel[..., None] * np.array([0.0, 0.0, 1.0])
-        dxm = np.stack([-xm[..., 1], xm[..., 0], np.zeros_like(xm[..., 0])], axis=-1)
-        dxm = dxm - dhel[..., None] * np.array([0.0, 0.0, 1.0])
+        # cradle roll about z_m, then the apex (with helical motion) and the work axes
+        xm = np.concatenate([c * x0[..., :1] - s * x0[..., 1:2], s * x0[..., :1] + c * x0[..., 1:2],
+                             x0[..., 2:] - hel[..., None]], axis=-1) - a0
+        nm = np.concatenate([c * n0[..., :1] - s * n0[..., 1:2], s * n0[..., :1] + c * n0[..., 1:2],
+                             n0[..., 2:]], axis=-1)
+        dxm = np.concatenate([-(xm[..., 1:2] + a0[1]), xm[..., :1] + a0[0],
+                              -dhel[..., None]], axis=-1)
         phi, dphi = self.work_rotation(psi)
-        rw = _rz(-phi)
-        y = (xm - apex) @ b
-        x_w = np.einsum("...ij,...j->...i", rw, y)
-        n_w = np.einsum("...ij,...j->...i", rw, nm @ b)
-        zx = np.stack([-x_w[..., 1], x_w[..., 0], np.zeros_like(x_w[..., 0])], axis=-1)
-        v_w = -dphi[..., None] * zx + np.einsum("...ij,...j->...i", rw, dxm @ b)
+        cw, sw = np.cos(phi)[..., None], np.sin(phi)[..., None]
+
+        def work(v):  # Rz(-phi) B^T v
+            y = v @ b
+            return np.concatenate([cw * y[..., :1] + sw * y[..., 1:2],
+                                   -sw * y[..., :1] + cw * y[..., 1:2], y[..., 2:]], axis=-1)
+
+        x_w, n_w, dx = work(xm), work(nm), work(dxm)
+        v_w = dx + dphi[..., None] * np.concatenate([x_w[..., 1:2], -x_w[..., :1],
+                                                     np.zeros_like(x_w[..., :1])], axis=-1)
         return x_w, n_w, v_w
 
 
