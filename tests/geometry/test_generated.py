@@ -186,3 +186,27 @@ def test_wrong_blade_kind_and_generated_gear_are_refused(pair):
     with pytest.raises(InputRangeError, match=r"blade\.pinion\.coast\.kind.*'inside'"):
         generated_pinion_flank(dataclasses.replace(p, blade=dataclasses.replace(p.blade, kind="outside")),
                                pair.blank, pinion_face_width_mm=pair.pinion_face_width_mm)
+
+
+@pytest.mark.slow
+def test_pair_file_with_machine_tables_builds_todays_flank_set(tmp_path):
+    # the settings of today's flanks typed into a pair file: build_flanks cuts the flanks
+    # from them, and the flank set TCA consumes (mean contacts, pinion mean normal
+    # thickness) equals today's formate + conjugate set: 1e-9 in mm and rad (both exact
+    # solves; measured ~1e-13)
+    from gearcontact.geometry.pair import pair_to_toml
+
+    pair = load_pair(PAIRS["spiral_bevel"])
+    setups = tuple(formate_gear_setups(pair).values()) + tuple(
+        complementary_pinion_setups(pair).values())
+    path = tmp_path / "machine.toml"
+    path.write_text(pair_to_toml(dataclasses.replace(pair, machine=setups)))
+    cut = build_flanks(load_pair(path))
+    today = build_flanks(pair)
+    assert cut.pinion_normal_thickness_mm == pytest.approx(today.pinion_normal_thickness_mm,
+                                                           abs=1e-9)
+    for side in SIDES:
+        a, b = cut.mean_contact[side], today.mean_contact[side]
+        assert np.allclose(a["gear_uv"], b["gear_uv"], atol=1e-9)
+        assert np.allclose(a["pinion_uv"], b["pinion_uv"], atol=1e-12)
+        assert a["phi2_rad"] == pytest.approx(b["phi2_rad"], abs=1e-9)

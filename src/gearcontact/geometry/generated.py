@@ -44,8 +44,8 @@ from .kinematics import MeshKinematics
 from .machine import MachineKinematics, MachineSetup, blade_point
 from .sheet import PinionCone, RadialSheet
 
-__all__ = ["EnvelopeSolution", "EnvelopeSolver", "formate_gear_flank", "generated_pinion_flank",
-           "mean_contact_guess", "work_to_body"]
+__all__ = ["EnvelopeSolution", "EnvelopeSolver", "formate_gear_flank", "generated_pinion_box",
+           "generated_pinion_flank", "mean_contact_guess", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
 _MAX_ITER = 40
@@ -252,18 +252,12 @@ def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
         vanishing) or a singular envelope inside the node box, or an active flank
         reaching the blade's edge round.
     """
-    want = "outside" if setup.side == "drive" else "inside"
-    if setup.blade.kind != want:
-        raise InputRangeError(f"blade.pinion.{setup.side}.kind", setup.blade.kind,
-                              f"'{want}' (the pinion {setup.side} flank is "
-                              f"{'concave' if want == 'outside' else 'convex'})")
     if int(n_u) != n_u or n_u < 6 or int(n_v) != n_v or n_v < 6:
         raise InputRangeError("n_u, n_v", (n_u, n_v), "integers >= 6 (quintic spline)")
-    cone, nominal = nominal_pinion_box(blank, pinion_face_width_mm)
-    solver = EnvelopeSolver(setup, blank, cone)
+    solver, box, mean = generated_pinion_box(setup, blank,
+                                             pinion_face_width_mm=pinion_face_width_mm)
+    cone = solver.cone
     u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
-    mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
-    box = _active_box(solver, nominal, u_m, v_m, mean, _edge_length_mm(setup))
     us = np.linspace(box.u_root - NODE_MARGIN_MM[0], box.u_tip + NODE_MARGIN_MM[0], int(n_u))
     vs = np.linspace(box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1], int(n_v))
     nodes = _solve_grid(solver, us, vs, u_m, v_m, mean.q)
@@ -278,6 +272,32 @@ def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
         flank = RadialSheet(side=setup.side, cone=cone, u_nodes=us, v_nodes=vs,
                             psi_nodes=psi, normal_sign=-1.0, boundary=box)
     return flank, nodes
+
+
+def generated_pinion_box(setup: MachineSetup, blank: BlankDesign, *,
+                         pinion_face_width_mm: float
+                         ) -> tuple[EnvelopeSolver, FlankBoundary, EnvelopeSolution]:
+    """The envelope solver, the active box and the mean-node solution of the pinion flank
+    ``setup`` generates: the cheap first step of :func:`generated_pinion_flank` (a few
+    lengthwise sections, no grid), run by :func:`~.generation.check_generation`.
+
+    Raises
+    ------
+    InputRangeError
+        Wrong blade kind for the flank (pinion drive = concave = outside blade).
+    UndercutError
+        No mean node, or an active profile under 10 % of the nominal one.
+    """
+    want = "outside" if setup.side == "drive" else "inside"
+    if setup.blade.kind != want:
+        raise InputRangeError(f"blade.pinion.{setup.side}.kind", setup.blade.kind,
+                              f"'{want}' (the pinion {setup.side} flank is "
+                              f"{'concave' if want == 'outside' else 'convex'})")
+    cone, nominal = nominal_pinion_box(blank, pinion_face_width_mm)
+    solver = EnvelopeSolver(setup, blank, cone)
+    u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
+    mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
+    return solver, _active_box(solver, nominal, u_m, v_m, mean, _edge_length_mm(setup)), mean
 
 
 def _edge_length_mm(setup: MachineSetup) -> float:

@@ -316,9 +316,12 @@ class MachineKinematics:
             Point (mm), unit normal and ``dX_w/dpsi`` at fixed cutter point (mm/rad).
         """
         c0, t0, b, a0 = self._fixed
-        psi = np.asarray(psi_rad, dtype=float)
-        x0 = np.asarray(x_t) @ t0.T + c0              # machine frame, zero roll
-        n0 = np.asarray(n_t) @ t0.T
+        x_t, n_t, psi = np.asarray(x_t, dtype=float), np.asarray(n_t, dtype=float), np.asarray(
+            psi_rad, dtype=float)
+        shape = np.broadcast_shapes(x_t.shape[:-1], n_t.shape[:-1], psi.shape)
+        psi = np.broadcast_to(psi, shape)
+        x0 = np.broadcast_to(x_t @ t0.T + c0, shape + (3,))   # machine frame, zero roll
+        n0 = np.broadcast_to(n_t @ t0.T, shape + (3,))
         c, s = np.cos(psi)[..., None], np.sin(psi)[..., None]
         hel, dhel = _series(psi, self.settings.helical_motion, 1)
         # cradle roll about z_m, then the apex (with helical motion) and the work axes
