@@ -37,15 +37,16 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from ..validation import check_range
+from ..validation import InputRangeError, check_range
 from .conjugate import nominal_pinion_box
 from .cutter import place_cutter
 from .formate import SIDES
 from .generated import EnvelopeSolver
-from .machine import BladeSettings, MachineKinematics, MachineSettings, MachineSetup, blade_profile
+from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings, MachineSetup,
+                      blade_profile)
 
 __all__ = ["complementary_pinion_setups", "crown_profile", "formate_gear_setups",
-           "mismatch_radius", "standard_setups"]
+           "mismatch_radius", "standard_machine_pair", "standard_setups"]
 
 
 def _gear_cones(pair):
@@ -175,6 +176,10 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
     dict
         ``{(member, side): MachineSetup}`` of all four flanks.
     """
+    if pair.pinion_hand != "right":
+        raise InputRangeError("design.pinion_hand", pair.pinion_hand,
+                              "'right' (machine settings of left-hand pairs are not modelled "
+                              "yet)")
     c_l = check_range("lengthwise_crowning_um", lengthwise_crowning_um, 0.0, 200.0)
     c_p = check_range("blade_profile_crowning_um", blade_profile_crowning_um, 0.0, 200.0)
     blank = pair.blank
@@ -196,3 +201,16 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
                                                                    at_length_mm=l_m))
         out["pinion", side] = setup
     return out
+
+
+def standard_machine_pair(pair, *, lengthwise_crowning_um: float = 25.0,
+                          blade_profile_crowning_um: float = 10.0):
+    """``pair`` with the machine settings of :func:`standard_setups` for all four flanks
+    (its ``[easeoff.*]`` then no longer applies; :func:`~.pair.pair_to_toml` writes the
+    machine and blade tables instead): what ``gearcontact design --machine-settings``
+    writes."""
+    got = standard_setups(pair, lengthwise_crowning_um=lengthwise_crowning_um,
+                          blade_profile_crowning_um=blade_profile_crowning_um)
+    return dataclasses.replace(pair, machine=tuple(got[m, side] for m in MEMBERS
+                                                   for side in SIDES),
+                               easeoff_tables=("drive", "coast"))
