@@ -210,3 +210,29 @@ def test_pair_file_with_machine_tables_builds_todays_flank_set(tmp_path):
         assert np.allclose(a["gear_uv"], b["gear_uv"], atol=1e-9)
         assert np.allclose(a["pinion_uv"], b["pinion_uv"], atol=1e-12)
         assert a["phi2_rad"] == pytest.approx(b["phi2_rad"], abs=1e-9)
+
+
+@pytest.mark.slow
+def test_contact_of_a_pinion_point_without_conjugate_reference():
+    # tca.analysis falls back to the nearest touch (geometry.generated.mean_contact_guess)
+    # for flanks cut from settings; on the complementary (conjugate) pinion it must find
+    # the exact conjugate contact of today's flanks at the same pinion point: gear (u, v)
+    # and phi2 within 2e-5 mm / rad (the 60 x 80 sheets interpolate to ~1e-6 mm)
+    from gearcontact.tca.analysis import _contact_of
+    from gearcontact.tca.calibration import conjugate_contact
+
+    pair = load_pair(PAIRS["spiral_bevel"])
+    setups = tuple(formate_gear_setups(pair).values()) + tuple(
+        complementary_pinion_setups(pair).values())
+    cut = build_flanks(dataclasses.replace(pair, machine=setups), n_u=60, n_v=80)
+    today = build_flanks(pair, n_u=60, n_v=80)
+    b = today.pinion_conjugate.drive.boundary
+    for u1, v1 in ((0.7 * b.u_root + 0.3 * b.u_tip, 0.8 * b.v_toe + 0.2 * b.v_heel),
+                   (0.2 * b.u_root + 0.8 * b.u_tip, 0.3 * b.v_toe + 0.7 * b.v_heel)):
+        ref = conjugate_contact(today.pinion_conjugate.drive, today.gear.drive, pair, u1, v1)
+        got = _contact_of(cut.pinion_conjugate.drive, cut.gear.drive, pair, u1, v1,
+                          cut.mean_contact["drive"])
+        assert (got.u2, got.v2) == pytest.approx((ref.u2, ref.v2), abs=2e-5)
+        # phases: the machine set's pinion is turned to mesh at phi1 = u phi2 (mean node)
+        assert got.phi1_rad - pair.ratio * got.phi2_rad == pytest.approx(
+            ref.phi1_rad - pair.ratio * ref.phi2_rad, abs=2e-5)
