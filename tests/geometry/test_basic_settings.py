@@ -95,3 +95,28 @@ def test_crowning_out_of_range_is_refused():
         standard_setups(pair, lengthwise_crowning_um=-1.0)
     with pytest.raises(InputRangeError, match="blade_profile_crowning_um"):
         standard_setups(pair, blade_profile_crowning_um=500.0)
+
+
+def test_example_summary_sheet_is_the_standard_settings_rounded():
+    # examples/machine_settings/iso23509_f2_machine.toml (provenance in its header): the standard settings
+    # of the F.2 blank typed with 4 decimals (ratio of roll 6): every setting within the
+    # rounding, 5e-5 (5e-7 for the ratio of roll)
+    import dataclasses as dc
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    typed = load_pair(root / "examples" / "machine_settings" / "iso23509_f2_machine.toml")
+    want = {(s.member, s.side): s for s in standard_setups(load_pair(F2)).values()}
+    assert len(typed.machine) == 4
+    for s in typed.machine:
+        w = want[s.member, s.side]
+        for a, b in ((s.settings, w.settings), (s.blade, w.blade)):
+            for f in dc.fields(a):
+                x, y = getattr(a, f.name), getattr(b, f.name)
+                if isinstance(x, str) or f.name == "where":
+                    assert f.name == "where" or x == y
+                elif isinstance(x, tuple):
+                    assert x == y
+                else:
+                    tol = 5e-7 if f.name == "ratio_of_roll" else 5e-5
+                    assert x == pytest.approx(y, abs=tol), (s.member, s.side, f.name)
