@@ -39,7 +39,7 @@ from .cutter import CutterPlacement
 from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
 from .formate import (SIDES, FlankBoundary, FormateFlank, cone_vector, gear_flank,
                       gear_flanks)
-from .generated import formate_gear_flank, generated_pinion_flank, mean_contact_guess
+from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
@@ -162,8 +162,8 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
 
 def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     """The flanks cut with the machine settings of ``pair`` (``pair.machine``,
-    :mod:`.generated`): formate gear flanks, generated pinion flanks (right-hand pairs;
-    :func:`build_flanks` mirrors a left-hand one).
+    :mod:`.generated`): formate or generated gear flanks, generated pinion flanks
+    (right-hand pairs only).
 
     The pinion's angular position is a mounting choice: both pinion flanks are turned
     about the pinion axis together so that the design side's mean contact (pinion mean
@@ -173,8 +173,8 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
     setups = {(s.member, s.side): s for s in pair.machine}
-    gear = {side: formate_gear_flank(setups["gear", side], blank,
-                                     gear_face_width_mm=pair.gear_face_width_mm)
+    gear = {side: gear_flank_of(setups["gear", side], blank,
+                                gear_face_width_mm=pair.gear_face_width_mm, n_u=n_u, n_v=n_v)
             for side in SIDES}
     pinion = {side: generated_pinion_flank(setups["pinion", side], blank,
                                            pinion_face_width_mm=pair.pinion_face_width_mm,
@@ -184,7 +184,7 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     def contact(side):
         g = gear[side]
         return mean_contact_guess(pinion[side], g, kin, pinion_uv=(u_m, v_m),
-                                  gear_uv=(g.dedendum_mm, 0.0))
+                                  gear_uv=(blank.dedendum_gear_mm, 0.0))
 
     first = contact(pair.design_side)
     turn = first["phi1_rad"] - pair.ratio * first["phi2_rad"]
@@ -198,7 +198,9 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
                       "phi2_rad": got["phi1_rad"] / pair.ratio}
     thickness = mean_normal_thickness_mm(pinion["drive"], pinion["coast"], u_mm=u_m, v_mm=v_m,
                                          spiral_angle_deg=blank.spiral_angle_pinion_deg)
-    return FlankSet(blank=blank, kinematics=kin, cutter=gear["drive"].blade.placement,
+    placement = getattr(gear["drive"], "blade", None)
+    return FlankSet(blank=blank, kinematics=kin,
+                    cutter=placement.placement if placement is not None else None,
                     gear=MemberFlanks(**gear), pinion=MemberFlanks(**pinion),
                     pinion_conjugate=MemberFlanks(**pinion), mean_contact=mean,
                     pinion_normal_thickness_mm=thickness)

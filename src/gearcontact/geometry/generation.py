@@ -22,7 +22,7 @@ from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .easeoff import EaseOff
 from .flank import gear_flanks
-from .generated import formate_gear_flank, generated_pinion_box
+from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands"]
@@ -69,8 +69,11 @@ def _machine_boxes(pair) -> dict:
     setups = {(s.member, s.side): s for s in pair.machine}
     out = {}
     for side in ("drive", "coast"):
-        formate_gear_flank(setups["gear", side], pair.blank,
-                           gear_face_width_mm=pair.gear_face_width_mm)
+        gear = setups["gear", side]
+        if gear.settings.formate:
+            formate_gear_flank(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+        else:
+            generated_gear_box(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
         solver, box, _ = generated_pinion_box(setups["pinion", side], pair.blank,
                                               pinion_face_width_mm=pair.pinion_face_width_mm)
         out[side] = {"active_box": box, "gear_tip_undercut_mm": 0.0, "solver": solver}
