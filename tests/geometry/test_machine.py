@@ -143,3 +143,34 @@ def test_pair_tables_validated_before_work():
                                            "radial_distanse_mm": 1.0}}}}
     with pytest.raises(InputRangeError, match="radial_distanse_mm"):
         parse_pair(typo)
+
+
+def test_mirrored_settings_cut_the_mirrored_flanks():
+    # a left-hand member is the mirror image (y -> -y) of its right-hand twin; its
+    # settings (mirror_setup: cradle angle, swivel, blank offset, 2C, 24E and V_1 change
+    # sign) run through the machine chain directly, with the reflected blank, must cut
+    # the reflected flanks: formate gear to 1e-11 mm, generated pinion with modified
+    # roll and helical motion at every node to 1e-9 mm (exact envelope solves)
+    from gearcontact.geometry.generated import formate_gear_flank, generated_pinion_flank
+    from gearcontact.geometry.machine import mirror_setup
+
+    pair = load_pair("s0003-centred")
+    b = pair.blank
+    P = b.pitch_point_mm
+    mb = dataclasses.replace(b, pitch_point_mm=(P[0], -P[1], P[2]))
+    M = np.diag([1.0, -1.0, 1.0])
+    g = formate_gear_setups(pair)["drive"]
+    right = formate_gear_flank(g, b, gear_face_width_mm=pair.gear_face_width_mm)
+    left = formate_gear_flank(mirror_setup(g), mb, gear_face_width_mm=pair.gear_face_width_mm)
+    U, V = np.meshgrid(np.linspace(*right.u_range, 5), np.linspace(*right.v_range, 6))
+    assert np.abs(left.evaluate(U, V).r - right.evaluate(U, V).r @ M).max() < 1e-11
+    p = complementary_pinion_setups(pair)["coast"]
+    p = dataclasses.replace(p, settings=dataclasses.replace(
+        p.settings, modified_roll=(0.01, 0.02, 0.05), helical_motion=(0.05, 0.02)))
+    assert mirror_setup(p).settings.modified_roll == (-0.01, 0.02, -0.05)
+    assert mirror_setup(p).settings.helical_motion == (-0.05, 0.02)
+    kw = dict(pinion_face_width_mm=pair.pinion_face_width_mm, n_u=10, n_v=12)
+    _, n_right = generated_pinion_flank(p, b, **kw)
+    _, n_left = generated_pinion_flank(mirror_setup(p), mb, **kw)
+    assert np.abs(n_left.x_mm - n_right.x_mm @ M).max() < 1e-9
+    assert np.abs(n_left.psi_rad + n_right.psi_rad).max() < 1e-10

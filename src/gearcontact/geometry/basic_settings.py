@@ -43,7 +43,7 @@ from .cutter import place_cutter
 from .formate import SIDES
 from .generated import EnvelopeSolver
 from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings, MachineSetup,
-                      blade_profile)
+                      blade_profile, mirror_setup)
 
 __all__ = ["complementary_pinion_setups", "crown_pinion_setups", "crown_profile",
            "formate_gear_setups", "generated_gear_setups", "mismatch_radius",
@@ -196,7 +196,8 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
     Parameters
     ----------
     pair : GearPair
-        Right-hand pair (a left-hand pair is the mirror image).
+        A left-hand pair gets its right-hand twin's settings mirrored
+        (:func:`~.machine.mirror_setup`).
     lengthwise_crowning_um : float
         Lengthwise crowning c, um, in [0, 200]: the pinion cutter circle departs from
         the gear's by c at +-F2/2 from the mean point along it (pinion cutter radius
@@ -214,10 +215,11 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
     dict
         ``{(member, side): MachineSetup}`` of all four flanks.
     """
-    if pair.pinion_hand != "right":
-        raise InputRangeError("design.pinion_hand", pair.pinion_hand,
-                              "'right' (machine settings of left-hand pairs are not modelled "
-                              "yet)")
+    if pair.pinion_hand == "left":   # the mirror image of the right-hand twin's
+        twin = standard_setups(dataclasses.replace(pair, pinion_hand="right", machine=()),
+                               lengthwise_crowning_um=lengthwise_crowning_um,
+                               blade_profile_crowning_um=blade_profile_crowning_um)
+        return {k: mirror_setup(s) for k, s in twin.items()}
     c_l = check_range("lengthwise_crowning_um", lengthwise_crowning_um, 0.0, 200.0)
     c_p = check_range("blade_profile_crowning_um", blade_profile_crowning_um, 0.0, 200.0)
     blank = pair.blank

@@ -41,11 +41,12 @@ from .formate import (SIDES, FlankBoundary, FormateFlank, cone_vector, gear_flan
                       gear_flanks)
 from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
+from .machine import mirror_setup
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "build_machine_flanks", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
+           "build_flanks", "build_machine_flanks", "right_hand_twin", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
            "with_easeoff"]
 
 
@@ -137,7 +138,7 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         (:class:`~.conjugate.UndercutError`).
     """
     if pair.pinion_hand == "left":  # the mirror image of the right-hand twin
-        twin = dataclasses.replace(pair, pinion_hand="right")
+        twin = right_hand_twin(pair)
         return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v),
                                 pair.kinematics(with_errors=False))
     if pair.machine:
@@ -163,7 +164,8 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
 def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     """The flanks cut with the machine settings of ``pair`` (``pair.machine``,
     :mod:`.generated`): formate or generated gear flanks, generated pinion flanks
-    (right-hand pairs only).
+    (right-hand pairs; :func:`build_flanks` mirrors a left-hand pair's right-hand twin,
+    :func:`right_hand_twin`).
 
     The pinion's angular position is a mounting choice: both pinion flanks are turned
     about the pinion axis together so that the design side's mean contact (pinion mean
@@ -206,6 +208,23 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
                     pinion_normal_thickness_mm=thickness)
 
 
+def right_hand_twin(pair):
+    """The right-hand twin of a left-hand ``pair``: the same pair, hand right, machine
+    settings mirrored (:func:`~.machine.mirror_setup`)."""
+    return dataclasses.replace(pair, pinion_hand="right",
+                               machine=tuple(mirror_setup(s) for s in pair.machine))
+
+
+def _mirror_gear(flank):
+    """A reflected gear flank: the blade cone of a formate flank in its own reflected
+    cutter frame, or a generated :class:`~.sheet.GearSheet` with ``psi -> -psi``."""
+    if isinstance(flank, FormateFlank):
+        return mirror_gear_flank(flank, mirror_placement(flank.blade.placement))
+    return dataclasses.replace(flank, psi_nodes=-flank.psi_nodes,
+                               normal_sign=-flank.normal_sign,
+                               cone=dataclasses.replace(flank.cone, mean_azimuth_rad=-flank.cone.mean_azimuth_rad))
+
+
 def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
     """The left-hand flank set: every flank of the right-hand ``flanks`` reflected
     (:mod:`.mirror`).
@@ -214,12 +233,12 @@ def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
     blank's pitch point is reflected with the frame; mean contacts (u, v, phi2) are
     unchanged (:mod:`.kinematics`: the mirrored pair meshes at the same phases).
     """
-    placement = mirror_placement(flanks.cutter)
+    placement = None if flanks.cutter is None else mirror_placement(flanks.cutter)
     P = flanks.blank.pitch_point_mm
     return dataclasses.replace(
         flanks, blank=dataclasses.replace(flanks.blank, pitch_point_mm=(P[0], -P[1], P[2])),
         kinematics=kinematics, cutter=placement,
-        gear=MemberFlanks(**{s: mirror_gear_flank(flanks.gear.side(s), placement) for s in SIDES}),
+        gear=MemberFlanks(**{s: _mirror_gear(flanks.gear.side(s)) for s in SIDES}),
         pinion=MemberFlanks(**{s: mirror_sheet(flanks.pinion.side(s)) for s in SIDES}),
         pinion_conjugate=MemberFlanks(**{s: mirror_sheet(flanks.pinion_conjugate.side(s))
                                          for s in SIDES}))

@@ -21,7 +21,7 @@ import numpy as np
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .easeoff import EaseOff
-from .flank import gear_flanks
+from .flank import gear_flanks, right_hand_twin
 from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
@@ -81,8 +81,9 @@ def _machine_boxes(pair) -> dict:
 
 
 def _right_hand(pair):
-    """The right-hand twin of ``pair``: its mirror image generates alike (:mod:`.mirror`)."""
-    return dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
+    """The right-hand twin of ``pair``: its mirror image generates alike (:mod:`.mirror`;
+    machine settings mirrored, :func:`~.flank.right_hand_twin`)."""
+    return right_hand_twin(pair) if pair.pinion_hand == "left" else pair
 
 
 def _undercut_checked_boxes(pair) -> dict:

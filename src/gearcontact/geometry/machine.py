@@ -58,6 +58,7 @@ based on ease-off topology", *ASME J. Mech. Des.* 129 (2007) 1294-1302.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -67,7 +68,8 @@ from ..validation import InputRangeError, check_finite, check_positive, check_ra
 
 __all__ = ["BLADE_KEYS", "BladeSettings", "HELICAL_KEYS", "MACHINE_KEYS", "MEMBERS",
            "MODIFIED_ROLL_KEYS", "MachineKinematics", "MachineSettings", "MachineSetup",
-           "blade_point", "blade_profile", "setup_from_tables", "setup_to_tables"]
+           "blade_point", "blade_profile", "mirror_setup", "setup_from_tables",
+           "setup_to_tables"]
 
 #: Members of a pair, in the order used by the pair format.
 MEMBERS = ("gear", "pinion")
@@ -207,6 +209,23 @@ class MachineSetup:
     side: str
     settings: MachineSettings
     blade: BladeSettings
+
+
+def mirror_setup(setup: MachineSetup) -> MachineSetup:
+    """The set-up of the mirror image (``y_m -> -y_m``, the plane of the cradle axis and
+    the work axis): the cradle and the work turn the other way (``psi -> -psi``,
+    ``phi -> -phi``), so the cradle angle, swivel and blank offset change sign, and so
+    do the even-order modified-roll terms (2C, 24E) and the odd-order helical term
+    (V_1); the ratio of roll, machine root, tilt, MCTB and sliding base stay. A
+    left-hand pair's settings are those of its right-hand twin mirrored."""
+    st = setup.settings
+    flip = lambda vals, first: tuple(-x if (k + first) % 2 == 0 else x  # noqa: E731
+                                     for k, x in enumerate(vals))
+    return dataclasses.replace(setup, settings=dataclasses.replace(
+        st, cradle_angle_deg=-st.cradle_angle_deg if st.cradle_angle_deg != 180.0 else 180.0,
+        swivel_deg=-st.swivel_deg if st.swivel_deg != 180.0 else 180.0,
+        blank_offset_mm=-st.blank_offset_mm, modified_roll=flip(st.modified_roll, 2),
+        helical_motion=flip(st.helical_motion, 2)))
 
 
 def blade_profile(blade: BladeSettings, l_mm):

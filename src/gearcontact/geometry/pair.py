@@ -253,10 +253,6 @@ class GearPair:
     machine: tuple = ()
 
     def __post_init__(self):
-        if self.machine and self.pinion_hand != "right":
-            raise InputRangeError("design.pinion_hand", self.pinion_hand,
-                                  "'right' with [machine.*] tables (machine settings of "
-                                  "left-hand pairs are not modelled yet)")
         if self.machine:
             got = sorted((s.member, s.side) for s in self.machine)
             want = sorted((m, side) for m in MEMBERS for side in ("drive", "coast"))
