@@ -181,3 +181,25 @@ def test_design_refuses_a_pinion_pointed_at_the_toe_naming_the_point_width(tmp_p
     err = capsys.readouterr().err
     assert "cutter.point_width_mm = 1.5 is outside the allowed range: >= 1.5" in err
     assert "pointed pinion teeth at the toe" in err
+
+
+def test_design_machine_settings_writes_a_pair_that_loads(capsys, tmp_path):
+    # the standard settings printed and written as machine_settings.toml; the file is a
+    # pair TOML whose machine tables are exactly the library's (floats at full precision)
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.geometry.pair import load_pair
+
+    f2 = str(ROOT / "examples" / "iso23509_f2_spiral_bevel.toml")
+    assert main(["design", "--pair", f2, "--machine-settings", "--lengthwise-crowning-um", "30",
+                 "--out", str(tmp_path)]) == 0
+    text = capsys.readouterr().out
+    assert "[machine.pinion.drive]" in text and "ratio_of_roll" in text
+    cut = load_pair(tmp_path / "machine_settings.toml")
+    want = standard_machine_pair(load_pair(f2), lengthwise_crowning_um=30.0)
+    assert cut.machine == want.machine
+    # an option of the mode, given without it, and an out-of-range crowning: exit 2
+    assert main(["design", "--pair", f2, "--lengthwise-crowning-um", "30"]) == 2
+    assert "--machine-settings" in capsys.readouterr().err
+    assert main(["design", "--pair", f2, "--machine-settings",
+                 "--blade-profile-crowning-um", "900"]) == 2
+    assert "--blade-profile-crowning-um" in capsys.readouterr().err

@@ -81,6 +81,18 @@ def register(sub) -> None:
     p.add_argument("--path-angle-deg", type=float, default=None,
                    help="with --synthesize-easeoff: contact-path angle from the lengthwise "
                         "direction, deg (default free, bias 0)")
+    p.add_argument("--machine-settings", action="store_true",
+                   help="standard machine settings of both members from the blank "
+                        "(formate gear, generated pinion with lengthwise and profile "
+                        "crowning; docs/machine_settings.md); prints the pair TOML with "
+                        "its [machine.*]/[blade.*] tables, written as machine_settings.toml "
+                        "with --out")
+    p.add_argument("--lengthwise-crowning-um", type=float, default=None,
+                   help="with --machine-settings: pinion cutter circle departure at the "
+                        "face ends, um, 0 to 200 (default 25)")
+    p.add_argument("--blade-profile-crowning-um", type=float, default=None,
+                   help="with --machine-settings: pinion blade profile departure at "
+                        "+-h_mw/2, um, 0 to 200 (default 10)")
     p.set_defaults(func=run, check=check)
 
 
@@ -95,7 +107,10 @@ def check(args) -> None:
                               ("--out", args.out), ("--tip-margin", args.tip_margin),
                               ("--te0-arcsec", args.te0_arcsec),
                               ("--pattern-length-ratio", args.pattern_length_ratio),
-                              ("--path-angle-deg", args.path_angle_deg)):
+                              ("--path-angle-deg", args.path_angle_deg),
+                              ("--machine-settings", args.machine_settings),
+                              ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
+                              ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
             if value not in (None, False):
                 raise InputRangeError(option, value, "not given for a cylindrical pair "
                                       "(kind = 'cylindrical': design prints its geometry)")
@@ -103,8 +118,18 @@ def check(args) -> None:
         return
     # a pair whose pinion the gear cannot generate (limit line) is refused here
     check_generation(pair)
-    if args.calibrate and args.synthesize_easeoff:
-        raise InputRangeError("--calibrate / --synthesize-easeoff", "both", "one of the two")
+    modes = [m for m, on in (("--calibrate", args.calibrate),
+                             ("--synthesize-easeoff", args.synthesize_easeoff),
+                             ("--machine-settings", args.machine_settings)) if on]
+    if len(modes) > 1:
+        raise InputRangeError(" / ".join(modes), "all given", "one of them")
+    for option, value in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
+                          ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
+        if value is not None and not args.machine_settings:
+            raise InputRangeError(option, value, "given only with --machine-settings "
+                                                 "(without it the option has no effect)")
+        if value is not None:
+            check_range(f"{option} (um)", value, 0.0, 200.0)
     # an option of a mode that is not asked for would be ignored without a word
     for option, value, mode in (("--tip-margin", args.tip_margin, args.calibrate),
                                 ("--te0-arcsec", args.te0_arcsec, args.synthesize_easeoff),
@@ -112,10 +137,12 @@ def check(args) -> None:
                                  args.synthesize_easeoff),
                                 ("--path-angle-deg", args.path_angle_deg,
                                  args.synthesize_easeoff),
-                                ("--out", args.out, args.calibrate or args.synthesize_easeoff)):
+                                ("--out", args.out, args.calibrate or args.synthesize_easeoff
+                                 or args.machine_settings)):
         if value is not None and not mode:
             needs = ("--calibrate" if option == "--tip-margin" else "--synthesize-easeoff"
-                     if option != "--out" else "--calibrate or --synthesize-easeoff")
+                     if option != "--out" else
+                     "--calibrate, --synthesize-easeoff or --machine-settings")
             raise InputRangeError(option, value, f"given only with {needs} (without it "
                                                  "the option has no effect)")
     if args.synthesize_easeoff:
@@ -134,7 +161,8 @@ def check(args) -> None:
             raise InputRangeError("--out", None, "an output directory for calibrated.toml")
         if args.tip_margin is not None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
-    args.writes_files = bool(args.calibrate or (args.synthesize_easeoff and args.out))
+    args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
+                                                and args.out))
 
 
 #: Option of each :class:`~gearcontact.tca.synthesis.SynthesisTargets` field it sets.
@@ -197,6 +225,23 @@ def _synthesize(args, pair) -> int:
     return 0
 
 
+def _machine_settings(args, pair) -> int:
+    from ..geometry.basic_settings import standard_machine_pair
+    from ..geometry.pair import pair_to_toml
+    from ..report.design import write_machine_settings_toml
+
+    crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
+                                  ("blade_profile_crowning_um", args.blade_profile_crowning_um))
+                if v is not None}
+    text = pair_to_toml(standard_machine_pair(pair, **crowning), comments={
+        "": f"{pair.name}: standard machine settings from the blank (gearcontact design "
+            "--machine-settings;\nsigns: docs/machine_settings.md)"})
+    print(text)
+    if args.out is not None:
+        print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+    return 0
+
+
 def run(args) -> int:
     pair = getattr(args, "gear_pair", None) or load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
     if pair.kind == CYLINDRICAL:
@@ -204,6 +249,8 @@ def run(args) -> int:
 
         print(cylindrical_design_text(pair, as_json=args.json))
         return 0
+    if args.machine_settings:
+        return _machine_settings(args, pair)
     if args.calibrate:
         return _calibrate(args, pair)
     if args.synthesize_easeoff:

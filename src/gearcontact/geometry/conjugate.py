@@ -56,8 +56,8 @@ from .mirror import mirror_solution
 from .sheet import PinionCone, RadialSheet
 
 __all__ = ["UndercutError", "MeshingError", "MeshingSolution", "MeshingSolver",
-           "ConjugateFlank", "conjugate_pinion_flank", "pinion_active_box", "section_guesses",
-           "NODE_MARGIN_MM"]
+           "ConjugateFlank", "conjugate_pinion_flank", "nominal_pinion_box", "pinion_active_box",
+           "section_guesses", "NODE_MARGIN_MM"]
 
 _TOL = 1e-13          # Newton step tolerance (mm, rad): well below 1 nm
 _MAX_ITER = 40
@@ -261,7 +261,9 @@ class ConjugateFlank(RadialSheet):
         return mirror_solution(sol) if self.mirrored else sol
 
 
-def _nominal_pinion_box(blank: BlankDesign, pinion_face_width_mm: float) -> tuple[PinionCone, FlankBoundary]:
+def nominal_pinion_box(blank: BlankDesign, pinion_face_width_mm: float) -> tuple[PinionCone, FlankBoundary]:
+    """The pinion sheet's root cone and its nominal box: clearance line to tip over the
+    pinion face width (before any trimming at the lines the gear tip and root generate)."""
     d1 = np.radians(blank.pitch_angle_pinion_deg)
     cone = PinionCone(apex_x_mm=blank.pinion_apex_x_mm, tan_delta=float(np.tan(d1)),
                       root_offset_mm=blank.dedendum_pinion_mm / np.cos(d1))
@@ -346,7 +348,7 @@ def pinion_active_box(gear: FormateFlank, *, blank: BlankDesign, kinematics: Mes
         Limit line beyond the tolerated trim, or an envelope that ends before the
         gear-root line.
     """
-    cone, nominal = _nominal_pinion_box(blank, pinion_face_width_mm)
+    cone, nominal = nominal_pinion_box(blank, pinion_face_width_mm)
     solver = MeshingSolver(gear, kinematics, cone)
     try:
         box, undercut = _active_box(solver, nominal, blank)

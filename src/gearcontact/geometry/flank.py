@@ -39,12 +39,14 @@ from .cutter import CutterPlacement
 from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
 from .formate import (SIDES, FlankBoundary, FormateFlank, cone_vector, gear_flank,
                       gear_flanks)
+from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
+from .machine import mirror_setup
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
 
 __all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
+           "build_flanks", "build_machine_flanks", "right_hand_twin", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
            "with_easeoff"]
 
 
@@ -136,9 +138,11 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         (:class:`~.conjugate.UndercutError`).
     """
     if pair.pinion_hand == "left":  # the mirror image of the right-hand twin
-        twin = dataclasses.replace(pair, pinion_hand="right")
+        twin = right_hand_twin(pair)
         return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v),
                                 pair.kinematics(with_errors=False))
+    if pair.machine:
+        return build_machine_flanks(pair, n_u=n_u, n_v=n_v)
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
     placement, gear = gear_flanks(pair)
@@ -157,6 +161,70 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     return with_easeoff(conjugate, pair)
 
 
+def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
+    """The flanks cut with the machine settings of ``pair`` (``pair.machine``,
+    :mod:`.generated`): formate or generated gear flanks, generated pinion flanks
+    (right-hand pairs; :func:`build_flanks` mirrors a left-hand pair's right-hand twin,
+    :func:`right_hand_twin`).
+
+    The pinion's angular position is a mounting choice: both pinion flanks are turned
+    about the pinion axis together so that the design side's mean contact (pinion mean
+    node) falls at ``phi1 = u phi2`` as TCA starts it; ``pinion_conjugate`` holds the
+    same generated flanks (there is no separate conjugate reference).
+    """
+    blank = pair.blank
+    kin = pair.kinematics(with_errors=False)
+    setups = {(s.member, s.side): s for s in pair.machine}
+    gear = {side: gear_flank_of(setups["gear", side], blank,
+                                gear_face_width_mm=pair.gear_face_width_mm, n_u=n_u, n_v=n_v)
+            for side in SIDES}
+    pinion = {side: generated_pinion_flank(setups["pinion", side], blank,
+                                           pinion_face_width_mm=pair.pinion_face_width_mm,
+                                           n_u=n_u, n_v=n_v)[0] for side in SIDES}
+    u_m, v_m = float(pinion["drive"].cone.root_offset_mm), float(blank.pitch_point_mm[0])
+
+    def contact(side):
+        g = gear[side]
+        return mean_contact_guess(pinion[side], g, kin, pinion_uv=(u_m, v_m),
+                                  gear_uv=(blank.dedendum_gear_mm, 0.0))
+
+    first = contact(pair.design_side)
+    turn = first["phi1_rad"] - pair.ratio * first["phi2_rad"]
+    pinion = {side: dataclasses.replace(f, psi_nodes=f.psi_nodes - turn)
+              for side, f in pinion.items()}
+    mean = {}
+    for side in SIDES:
+        got = contact(side)
+        # TCA starts at phi1 = u phi2: keep the pinion phase, its solve finds phi2
+        mean[side] = {"pinion_uv": got["pinion_uv"], "gear_uv": got["gear_uv"],
+                      "phi2_rad": got["phi1_rad"] / pair.ratio}
+    thickness = mean_normal_thickness_mm(pinion["drive"], pinion["coast"], u_mm=u_m, v_mm=v_m,
+                                         spiral_angle_deg=blank.spiral_angle_pinion_deg)
+    placement = getattr(gear["drive"], "blade", None)
+    return FlankSet(blank=blank, kinematics=kin,
+                    cutter=placement.placement if placement is not None else None,
+                    gear=MemberFlanks(**gear), pinion=MemberFlanks(**pinion),
+                    pinion_conjugate=MemberFlanks(**pinion), mean_contact=mean,
+                    pinion_normal_thickness_mm=thickness)
+
+
+def right_hand_twin(pair):
+    """The right-hand twin of a left-hand ``pair``: the same pair, hand right, machine
+    settings mirrored (:func:`~.machine.mirror_setup`)."""
+    return dataclasses.replace(pair, pinion_hand="right",
+                               machine=tuple(mirror_setup(s) for s in pair.machine))
+
+
+def _mirror_gear(flank):
+    """A reflected gear flank: the blade cone of a formate flank in its own reflected
+    cutter frame, or a generated :class:`~.sheet.GearSheet` with ``psi -> -psi``."""
+    if isinstance(flank, FormateFlank):
+        return mirror_gear_flank(flank, mirror_placement(flank.blade.placement))
+    return dataclasses.replace(flank, psi_nodes=-flank.psi_nodes,
+                               normal_sign=-flank.normal_sign,
+                               cone=dataclasses.replace(flank.cone, mean_azimuth_rad=-flank.cone.mean_azimuth_rad))
+
+
 def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
     """The left-hand flank set: every flank of the right-hand ``flanks`` reflected
     (:mod:`.mirror`).
@@ -165,12 +233,12 @@ def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
     blank's pitch point is reflected with the frame; mean contacts (u, v, phi2) are
     unchanged (:mod:`.kinematics`: the mirrored pair meshes at the same phases).
     """
-    placement = mirror_placement(flanks.cutter)
+    placement = None if flanks.cutter is None else mirror_placement(flanks.cutter)
     P = flanks.blank.pitch_point_mm
     return dataclasses.replace(
         flanks, blank=dataclasses.replace(flanks.blank, pitch_point_mm=(P[0], -P[1], P[2])),
         kinematics=kinematics, cutter=placement,
-        gear=MemberFlanks(**{s: mirror_gear_flank(flanks.gear.side(s), placement) for s in SIDES}),
+        gear=MemberFlanks(**{s: _mirror_gear(flanks.gear.side(s)) for s in SIDES}),
         pinion=MemberFlanks(**{s: mirror_sheet(flanks.pinion.side(s)) for s in SIDES}),
         pinion_conjugate=MemberFlanks(**{s: mirror_sheet(flanks.pinion_conjugate.side(s))
                                          for s in SIDES}))

@@ -21,7 +21,8 @@ import numpy as np
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .easeoff import EaseOff
-from .flank import gear_flanks
+from .flank import gear_flanks, right_hand_twin
+from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands"]
@@ -30,7 +31,9 @@ __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
 def check_generation(pair) -> dict:
     """Check that the pinion flanks of ``pair`` can be generated, before any flank work.
 
-    Checks, in order: the gear top land along its tip line (:func:`check_gear_top_land`);
+    A pair cut from machine settings (``pair.machine``) is checked by
+    :func:`_machine_boxes` instead (settings, blade kinds, the generated pinion's active
+    box). Otherwise, in order: the gear top land along its tip line (:func:`check_gear_top_land`);
     :func:`~.conjugate.pinion_active_box` on both sides (no node grid) -- an undercut
     names a gear addendum factor that avoids it, verified here (the limit line moves
     slightly with the addenda: up to ``_FIX_TRIALS`` smaller values are tried); when
@@ -51,15 +54,36 @@ def check_generation(pair) -> dict:
         Pointed gear or pinion teeth (a verified fix named).
     """
     pair = _right_hand(pair)
+    if pair.machine:
+        return _machine_boxes(pair)
     check_gear_top_land(pair)
     boxes = _undercut_checked_boxes(pair)
     check_pinion_top_land(pair, boxes=boxes)
     return boxes
 
 
+def _machine_boxes(pair) -> dict:
+    """The checks of a pair cut from machine settings (:mod:`.generated`): each gear
+    flank's settings and blade (formate, blade kind), each pinion flank's active box
+    (blade kind, the envelope reaching the mean node, the edge / limit line)."""
+    setups = {(s.member, s.side): s for s in pair.machine}
+    out = {}
+    for side in ("drive", "coast"):
+        gear = setups["gear", side]
+        if gear.settings.formate:
+            formate_gear_flank(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+        else:
+            generated_gear_box(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+        solver, box, _ = generated_pinion_box(setups["pinion", side], pair.blank,
+                                              pinion_face_width_mm=pair.pinion_face_width_mm)
+        out[side] = {"active_box": box, "gear_tip_undercut_mm": 0.0, "solver": solver}
+    return out
+
+
 def _right_hand(pair):
-    """The right-hand twin of ``pair``: its mirror image generates alike (:mod:`.mirror`)."""
-    return dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
+    """The right-hand twin of ``pair``: its mirror image generates alike (:mod:`.mirror`;
+    machine settings mirrored, :func:`~.flank.right_hand_twin`)."""
+    return right_hand_twin(pair) if pair.pinion_hand == "left" else pair
 
 
 def _undercut_checked_boxes(pair) -> dict:

@@ -56,6 +56,35 @@ is a complete, commented example; ``examples/`` holds more.
     poisson_ratio = 0.3
     [material.gear]
 
+Machine settings (optional, :mod:`.machine`; docs/machine_settings.md has the figure and
+the sign table): with them all four flanks are cut from cutter and machine settings
+(:mod:`.generated`) instead of today's formate gear + conjugate pinion + ease-off, so
+``[easeoff.*]`` must then be absent. All eight tables are required together:
+
+.. code-block:: toml
+
+    [machine.gear.drive]                # also gear.coast, pinion.drive, pinion.coast
+    radial_distance_mm = 48.31          # S_r
+    cradle_angle_deg = -59.2            # q (signed, about the cradle axis)
+    machine_root_angle_deg = 83.15      # gamma_m
+    machine_centre_to_back_mm = 0.0     # X_D (default 0)
+    sliding_base_mm = -1.1              # X_B (default 0)
+    blank_offset_mm = 0.0               # E_m (default 0)
+    ratio_of_roll = 0.0                 # R_a = work / cradle rotation; 0 = formate
+    modified_roll_2c_per_rad = 0.0      # 2C (also _6d_per_rad2, _24e_per_rad3,
+                                        #   _120f_per_rad4), default 0
+    tilt_deg = 0.0                      # i, [0, 60]
+    swivel_deg = 0.0                    # j
+    helical_motion_mm_per_rad = 0.0     # V_1 (also helical_motion_mm_per_rad2)
+
+    [blade.gear.drive]
+    kind = "inside"                     # gear drive / pinion coast: inside
+    blade_angle_deg = 20.0
+    point_radius_mm = 43.9
+    edge_radius_mm = 0.1                # default 0
+    profile_radius_mm = 0.0             # 0 = straight (default)
+    profile_reference_mm = 0.0          # where blade_angle_deg holds (curved blade)
+
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`
 naming the dotted key, the value and the expected type/range; impossible designs
@@ -84,6 +113,8 @@ from .blank import BlankDesign, design_blank, gear_top_land_mm
 from .cylindrical.pair import KIND as CYLINDRICAL_KIND
 from .cylindrical.pair import CylindricalPair, parse_cylindrical_pair
 from .kinematics import AssemblyErrors, MeshKinematics
+from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_ROLL_KEYS,
+                      setup_from_tables, setup_to_tables)
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
 __all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
@@ -194,6 +225,10 @@ class GearPair:
     easeoff_tables : tuple of str
         Sides whose ease-off was given (a TOML without ``[easeoff.<side>]`` leaves the
         side out; the commands then synthesize it, :mod:`gearcontact.tca.synthesis`).
+    machine : tuple of MachineSetup
+        Empty, or the machine settings and blades of all four flanks
+        (:mod:`.machine`): the flanks are then cut from them (:mod:`.generated`) instead
+        of today's formate gear + conjugate pinion + ease-off.
     """
 
     name: str
@@ -218,11 +253,18 @@ class GearPair:
     gear_material: Material = STEEL
     design_side: str = "drive"
     easeoff_tables: tuple = ("drive", "coast")
+    machine: tuple = ()
 
     #: the pair-file kind (a file without ``kind``; cylindrical pairs: ``"cylindrical"``)
     kind = "bevel"
 
     def __post_init__(self):
+        if self.machine:
+            got = sorted((s.member, s.side) for s in self.machine)
+            want = sorted((m, side) for m in MEMBERS for side in ("drive", "coast"))
+            if got != want:
+                raise InputRangeError("[machine] / [blade]", [f"{m}.{side}" for m, side in got],
+                                      "all four flanks: " + ", ".join(f"{m}.{side}" for m, side in want))
         if self.design_side not in ("drive", "coast"):
             raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
         if self.pinion_hand not in ("right", "left"):
@@ -310,6 +352,13 @@ _SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
     "assembly": {k: (FLOAT, False) for k in ("E_mm", "P_mm", "G_mm", "alpha_deg")},
     **MATERIAL_SCHEMA,
 }
+for _m in MEMBERS:
+    for _side in ("drive", "coast"):
+        _SCHEMA[f"machine.{_m}.{_side}"] = {
+            **{k: (FLOAT, req) for k, (_, req) in MACHINE_KEYS.items()},
+            **{k: (FLOAT, False) for k in MODIFIED_ROLL_KEYS + HELICAL_KEYS}}
+        _SCHEMA[f"blade.{_m}.{_side}"] = {k: (STR if k == "kind" else FLOAT, req)
+                                          for k, req in BLADE_KEYS.items()}
 _REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
 
 
@@ -321,8 +370,23 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         raise InputRangeError("design.gear_mean_cone_distance_mm / design.gear_mean_pitch_radius_mm",
                               None, "exactly one of the two keys")
     materials = materials_of(s)
+    named = [n for n in s if n.startswith(("machine.", "blade."))]
+    machine = ()
+    if named:
+        if any(n.startswith("easeoff.") for n in s):
+            raise InputRangeError("[easeoff.*]", "given with [machine.*] / [blade.*]",
+                                  "either machine settings (the flanks are cut from them) or "
+                                  "an ease-off on today's conjugate pinion, not both")
+        missing = [f"[{kind}.{m}.{side}]" for kind in ("machine", "blade") for m in MEMBERS
+                   for side in ("drive", "coast") if f"{kind}.{m}.{side}" not in s]
+        if missing:
+            raise InputRangeError(", ".join(missing), None, "required with any [machine.*] / "
+                                  "[blade.*] table (all four flanks are cut from settings)")
+        machine = tuple(setup_from_tables(m, side, s[f"machine.{m}.{side}"],
+                                          s[f"blade.{m}.{side}"])
+                        for m in MEMBERS for side in ("drive", "coast"))
     return GearPair(
-        name=s[""].get("name", name),
+        name=s[""].get("name", name), machine=machine,
         pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
         offset_mm=s["axes"]["offset_mm"],
         shaft_angle_deg=s["axes"].get("shaft_angle_deg", 90.0),
@@ -331,7 +395,8 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         easeoff_coast=EaseOffCoefficients(**s.get("easeoff.coast", {})),
         assembly=AssemblyErrors(**s.get("assembly", {})),
         pinion_material=materials["pinion"], gear_material=materials["gear"],
-        easeoff_tables=tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s),
+        easeoff_tables=(("drive", "coast") if machine else
+                        tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s)),
         **design)
 
 
@@ -433,9 +498,13 @@ def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> s
     out += block("axes", {"shaft_angle_deg": pair.shaft_angle_deg, "offset_mm": pair.offset_mm})
     out += block("design", design)
     out += block("cutter", dataclasses.asdict(pair.cutter))
-    for side in ("drive", "coast"):
+    for side in ("drive", "coast") if not pair.machine else ():
         c = getattr(pair, f"easeoff_{side}")
         out += block(f"easeoff.{side}", {k: float(v) for k, v in dataclasses.asdict(c).items()})
+    for setup in pair.machine:
+        machine, blade = setup_to_tables(setup)
+        out += block(f"machine.{setup.member}.{setup.side}", machine)
+        out += block(f"blade.{setup.member}.{setup.side}", blade)
     out += block("assembly", {"E_mm": a.E_mm, "P_mm": a.P_mm, "G_mm": a.G_mm,
                               "alpha_deg": a.alpha_deg})
     for member in ("pinion", "gear"):

@@ -45,7 +45,7 @@ from .sampling import SurfaceArrays
 from .spline_kernel import pp_coefficients, pp_derivatives
 from .surface import SurfacePoint
 
-__all__ = ["PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
+__all__ = ["GearCone", "GearSheet", "PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
 
 
 @njit(cache=True, inline="always")
@@ -105,6 +105,10 @@ class PinionCone:
     def parameters(self, x_mm, radius_mm):
         """(u, v) of a body-frame point given its axial position and radius, mm."""
         return np.asarray(radius_mm) - self.root_radius_mm(x_mm), np.asarray(x_mm)
+
+    def height_mm(self, u, v):
+        """Axial position of the sheet point (u, v): ``v``, mm."""
+        return np.asarray(v) + 0.0 * np.asarray(u)
 
 
 @dataclass(frozen=True, eq=False)
@@ -203,3 +207,71 @@ class RadialSheet:
         x = np.asarray(x_mm, dtype=float)
         u, v = self.cone.parameters(x[..., 0], np.hypot(x[..., 1], x[..., 2]))
         return u, v, np.arctan2(x[..., 2], x[..., 1])
+
+
+@dataclass(frozen=True)
+class GearCone:
+    """Axial-plane coordinates of a gear flank sheet (:class:`GearSheet`), gear body frame.
+
+    A point at height ``u`` above the root (uniform depth, along the outward normal of
+    the pitch cone in the axial plane) and cone distance ``R2 + v`` lies at radius and
+    height ``R = (R2 + v) sin(delta) + (u - h_f) cos(delta)``,
+    ``z = z_A + (R2 + v) cos(delta) - (u - h_f) sin(delta)`` (lengths mm).
+    """
+
+    apex_z_mm: float
+    sin_delta: float
+    cos_delta: float
+    mean_cone_distance_mm: float
+    dedendum_mm: float
+    mean_azimuth_rad: float
+
+    def radius_mm(self, u, v):
+        """R(u, v), mm."""
+        return ((self.mean_cone_distance_mm + np.asarray(v)) * self.sin_delta
+                + (np.asarray(u) - self.dedendum_mm) * self.cos_delta)
+
+    def height_mm(self, u, v):
+        """z(u, v), mm."""
+        return (self.apex_z_mm + (self.mean_cone_distance_mm + np.asarray(v)) * self.cos_delta
+                - (np.asarray(u) - self.dedendum_mm) * self.sin_delta)
+
+
+@dataclass(frozen=True, eq=False)
+class GearSheet(RadialSheet):
+    """A generated gear flank: spline of the angle ``psi`` about the gear axis over the
+    (u, v) box of :class:`GearCone` (``u`` root -> tip, ``v`` toe -> heel, 0 at the mean
+    section); ``r = (R cos psi, R sin psi, z)``. With ``e_R = (cos psi, sin psi, 0)``,
+    ``e_psi = (-sin psi, cos psi, 0)`` and the constant ``R_u = cos(delta)``,
+    ``R_v = sin(delta)``, ``z_u = -sin(delta)``, ``z_v = cos(delta)``:
+
+        r_u  = R_u e_R + R psi_u e_psi + z_u z
+        r_uu = (2 R_u psi_u + R psi_uu) e_psi - R psi_u^2 e_R   (and alike for uv, vv)
+
+    ``cone`` is a :class:`GearCone`. Evaluated with numpy (TCA takes its generic path).
+    """
+
+    def locate(self, x_mm):
+        raise NotImplementedError("GearSheet.locate")
+
+    def _vectors(self, u: np.ndarray, v: np.ndarray, second: bool) -> np.ndarray:
+        d = self.psi_derivatives(u, v, second=second).reshape(-1, 6)
+        u, v = u.ravel(), v.ravel()
+        c = self.cone
+        ru, rv, zu, zv = c.cos_delta, c.sin_delta, -c.sin_delta, c.cos_delta
+        rad = c.radius_mm(u, v)
+        p, pu, pv, puu, puv, pvv = (d[:, k] for k in range(6))
+        er = np.stack([np.cos(p), np.sin(p), np.zeros_like(p)], axis=-1)
+        ep = np.stack([-np.sin(p), np.cos(p), np.zeros_like(p)], axis=-1)
+        z = np.array([0.0, 0.0, 1.0])
+        col = lambda a: np.asarray(a)[:, None] if np.ndim(a) else a  # noqa: E731
+        out = np.empty((u.shape[0], 7, 3))
+        out[:, 0] = col(rad) * er + col(c.height_mm(u, v)) * z
+        out[:, 1] = ru * er + col(rad * pu) * ep + zu * z
+        out[:, 2] = rv * er + col(rad * pv) * ep + zv * z
+        out[:, 3] = col(2 * ru * pu + rad * puu) * ep - col(rad * pu * pu) * er
+        out[:, 4] = col(ru * pv + rv * pu + rad * puv) * ep - col(rad * pu * pv) * er
+        out[:, 5] = col(2 * rv * pv + rad * pvv) * ep - col(rad * pv * pv) * er
+        n = np.cross(out[:, 1], out[:, 2])
+        out[:, 6] = self.normal_sign * n / np.linalg.norm(n, axis=-1, keepdims=True)
+        return out

@@ -41,18 +41,31 @@ def check_tables(doc: dict, schema: dict[str, dict[str, tuple[str, bool]]],
                  required: tuple[str, ...]) -> dict[str, dict]:
     """Split a parsed TOML document into the tables of ``schema``, typed and checked.
 
-    Tables whose name holds a dot (``material.pinion``) are nested one level in the
-    document; ``required`` names the tables that must be present.
+    Tables whose name holds dots (``material.pinion``, ``machine.pinion.drive``) are
+    nested as deep in the document; ``required`` names the tables that must be present.
     """
-    nested = {name.split(".")[0] for name in schema if "." in name}
+    # depth of each nested table family: material.pinion -> 1, machine.pinion.drive -> 2
+    nested: dict[str, int] = {}
+    for name in schema:
+        if "." in name:
+            head = name.split(".")[0]
+            nested[head] = max(nested.get(head, 0), name.count("."))
     sections: dict[str, dict] = {"": {}}
     for key, value in doc.items():
         if isinstance(value, dict) and key in nested:
-            for sub, table in value.items():
-                name = f"{key}.{sub}"
-                if name not in schema or not isinstance(table, dict):
-                    raise InputRangeError(name, table, f"one of the tables {sorted(schema)}")
-                sections[name] = table
+            tables = {key: value}
+            for _ in range(nested[key]):
+                deeper = {}
+                for prefix, table in tables.items():
+                    for sub, inner in table.items():
+                        name = f"{prefix}.{sub}"
+                        if not isinstance(inner, dict) or not any(
+                                s == name or s.startswith(name + ".") for s in schema):
+                            raise InputRangeError(name, inner, "one of the tables " + str(
+                                sorted(s for s in schema if s.startswith(key + "."))))
+                        deeper[name] = inner
+                tables = deeper
+            sections.update(tables)
         elif isinstance(value, dict):
             if key not in schema:
                 raise InputRangeError(key, "table", "one of the tables "

@@ -215,6 +215,22 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     return result, flanks
 
 
+def _contact_of(conj, gear, pair, u1: float, v1: float, mean: dict) -> ContactGuess:
+    """The contact state of the pinion point (u1, v1) with the gear: exact for today's
+    conjugate pinion (:func:`~.calibration.conjugate_contact`); for flanks cut from
+    machine settings (no conjugate reference) the nearest touch
+    (:func:`~gearcontact.geometry.generated.mean_contact_guess`)."""
+    from ..geometry.generated import mean_contact_guess
+    from .calibration import conjugate_contact
+
+    if hasattr(conj, "exact"):
+        return conjugate_contact(conj, gear, pair, u1, v1)
+    got = mean_contact_guess(conj, gear, pair.kinematics(with_errors=False),
+                             pinion_uv=(u1, v1), gear_uv=mean["gear_uv"])
+    return ContactGuess(u1, v1, *map(float, got["gear_uv"]), float(got["phi1_rad"]),
+                        float(got["phi2_rad"]))
+
+
 def reference_start(pair, flanks, side: str, *,
                     edge_contact: bool = True) -> tuple[ContactGuess, str]:
     """A contact state from which the mesh cycle of ``side`` can start, and the variable
@@ -236,7 +252,6 @@ def reference_start(pair, flanks, side: str, *,
         flank at every phase tried); it names the edge most trial contacts left by.
     """
     from ..geometry.easeoff import EaseOff
-    from .calibration import conjugate_contact
 
     mean = flanks.mean_contact[side]
     kin = pair.kinematics()
@@ -269,7 +284,7 @@ def reference_start(pair, flanks, side: str, *,
     exits = [error.where if isinstance(error, EdgeContact) else "no convergence"]
     tried = [first]
     for u1, v1 in near + grid:
-        guess = conjugate_contact(conj, gear, pair, u1, v1)
+        guess = _contact_of(conj, gear, pair, u1, v1, mean)
         tried.append(guess)
         try:
             solve_mating_point(pinion, gear, kin, guess, fixed="u1")

@@ -92,7 +92,10 @@ class LineContact(UnusableInput):
 
 
 def is_conjugate(pair, side: str) -> bool:
-    """True if ``side`` of ``pair`` has zero ease-off and no assembly errors."""
+    """True if ``side`` of ``pair`` has zero ease-off and no assembly errors (flanks cut
+    from machine settings, ``pair.machine``, are not known to be conjugate: False)."""
+    if getattr(pair, "machine", ()):
+        return False
     c = dataclasses.astuple(getattr(pair, f"easeoff_{side}"))
     a = pair.assembly
     return (not any(c)) and not any((a.E_mm, a.P_mm, a.G_mm, a.alpha_deg))
