@@ -1,0 +1,199 @@
+"""``gearcontact export fmu --kind drivetrain``: the drivetrain FMU against ``gearcontact
+twin``.
+
+Truth: the twin itself -- :func:`gearcontact.twin.model.model_for_pair` and
+:func:`gearcontact.twin.simulate.simulate`, the two library calls ``gearcontact twin``
+makes, with the pair prepared as the CLI prepares it, ``curvatures="exact"`` (the
+FMU's curvature source) -- at the same pair, side, phases, drivetrain file, torque,
+speed, step and duration; FMPy's FMI 3.0 schema validation. The FMU is exported once
+per module the way a user does (a real subprocess of ``python -m gearcontact``, s0003
+with 9 phases, a drivetrain file that switches the PI speed controller on and changes
+the backlash, a non-default torque; ~15 s) and simulated by FMPy at parameters other
+than its start values (speed, step).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+fmpy = pytest.importorskip("fmpy")
+from fmpy.validation import validate_fmu  # noqa: E402
+
+from gearcontact.export.mesh_law import BACKENDS  # noqa: E402
+
+from .conftest import simulate_isolated  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+TORQUE_NM = 50.0
+SPEED_RPM = 4500.0
+STEP_US = 5.0
+DURATION_S = 2e-3           # 400 steps: a few mesh periods at 4500 rpm (z1 = 13: 975 Hz)
+DRIVETRAIN = "[drivetrain]\nspeed_control_bandwidth_hz = 40.0\nbacklash_mm = 0.08\n"
+#: FMU output -> twin column (the twin's te_arcsec is the DTE)
+PAIRS = {"pinion_speed_rad_s": "pinion_speed_rad_s", "gear_speed_rad_s": "gear_speed_rad_s",
+         "dte_arcsec": "te_arcsec", "mesh_force_n": "mesh_load_n",
+         "mesh_torque_nm": "mesh_torque_nm", "mesh_rotation_rad": "theta_rad",
+         "p_max_mpa": "p_max_mpa", "a_mm": "a_mm", "b_mm": "b_mm",
+         "pairs_loaded": "pairs_loaded"}
+
+
+def _cli(*args, cwd):
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    return subprocess.run([sys.executable, "-m", "gearcontact", "export", "fmu", *args],
+                          capture_output=True, text=True, env=env, cwd=cwd, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    base = tmp_path_factory.mktemp("fmu_drivetrain")
+    (base / "dt.toml").write_text(DRIVETRAIN)
+    out = base / "s0003"
+    run = _cli("--pair", "s0003", "--kind", "drivetrain", "--phases", "9", "--torque",
+               str(TORQUE_NM), "--drivetrain", str(base / "dt.toml"), "--out", str(out),
+               cwd=base)
+    assert run.returncode == 0, run.stderr
+    return out / "gearcontact_drivetrain_s0003.fmu", base / "dt.toml"
+
+
+def _fmu_run(fmu, backend, **kw):
+    return fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=DURATION_S,
+                             output_interval=1e-6 * STEP_US, output=list(PAIRS) + [
+                                 "pinion_speed_rpm"],
+                             start_values={"backend": BACKENDS[backend],
+                                           "speed_rpm": SPEED_RPM, "step_us": STEP_US}, **kw)
+
+
+@pytest.fixture(scope="module")
+def twin_runs(exported):
+    """``gearcontact twin --pair s0003 --phases 9 --torque 50 --drivetrain dt.toml
+    --curvatures exact --speed-rpm 4500 --step-us 5 --duration-ms 2`` per backend, by
+    the library calls of :mod:`gearcontact.cli.twin`."""
+    from gearcontact.tca.synthesis import prepare_pair
+    from gearcontact.twin.params import load_drivetrain
+    from gearcontact.twin.simulate import model_for_pair, simulate
+
+    _, dt_file = exported
+    prepared = prepare_pair("s0003")
+    pair = prepared.pair
+    drivetrain = load_drivetrain(dt_file, pair)
+    out = {}
+    for backend, twin_backend in (("fp64", "reference"), ("golden", "golden")):
+        model = model_for_pair(pair, torque_nm=TORQUE_NM, backend=twin_backend,
+                               drivetrain=drivetrain, side=prepared.side, phases=9,
+                               curvatures="exact")
+        out[backend] = simulate(model, speed_rpm=SPEED_RPM, duration_s=DURATION_S,
+                                step_s=1e-6 * STEP_US)
+    return out
+
+
+def test_fmu_validates_against_the_fmi3_schema(exported):
+    fmu, _ = exported
+    assert validate_fmu(str(fmu)) == []
+    names = set(zipfile.ZipFile(fmu).namelist())
+    assert {"modelDescription.xml", "sources/buildDescription.xml",
+            "sources/gc_drivetrain_fmu.c", "sources/gc_contact_law.c",
+            "binaries/x86_64-linux/gearcontact_drivetrain_s0003.so"} <= names
+    md = fmpy.read_model_description(str(fmu))
+    assert md.fmiVersion == "3.0" and md.coSimulation and not md.modelExchange
+    var = {v.name: v for v in md.modelVariables}
+    for name in ("pinion_speed_rpm", "dte_arcsec", "mesh_force_n", "p_max_mpa"):
+        assert var[name].causality == "output"
+    assert {n: (var[n].causality, var[n].unit, var[n].start) for n in
+            ("speed_rpm", "torque_nm", "step_us")} == {
+        "speed_rpm": ("parameter", "rpm", "3000"), "torque_nm": ("parameter", "N.m", "50.0"),
+        "step_us": ("parameter", "us", "10")}
+    assert var["backend"].causality == "parameter"
+    assert md.defaultExperiment.stepSize == "1e-05"
+
+
+@pytest.mark.parametrize("backend", ["fp64", "golden"])
+def test_fmu_reproduces_gearcontact_twin(exported, twin_runs, backend):
+    """Every recorded step of the twin (the state at the start of each step) equals the
+    FMU's output at that communication point. Tolerance: fp64 1e-9 relative (the bound
+    the issue sets; the C repeats the twin's operations in the same order, and another
+    libm's pow/log/cbrt may differ by an ulp), golden identical. Measured: identical
+    in both backends, every column."""
+    fmu, _ = exported
+    res = _fmu_run(fmu, backend)
+    twin = twin_runs[backend]
+    n = twin.summary["steps"]
+    assert n == 400 and len(res) == n + 1
+    assert res["time"][n] == pytest.approx(DURATION_S, rel=1e-12)
+    for name, col in PAIRS.items():
+        got, want = np.asarray(res[name][:n], float), twin.columns[col]
+        if backend == "golden":
+            np.testing.assert_array_equal(got, want, err_msg=name)
+        else:
+            np.testing.assert_allclose(got, want, rtol=1e-9, atol=0.0, err_msg=name)
+    np.testing.assert_array_equal(res["pinion_speed_rpm"],
+                                  res["pinion_speed_rad_s"] * 30.0 / math.pi)
+    # the run is loaded and dynamic: the mesh carries the torque, the DTE moves
+    assert 0.5 * TORQUE_NM < np.mean(res["mesh_torque_nm"]) < 1.5 * TORQUE_NM
+    assert np.ptp(res["dte_arcsec"]) > 0.1
+
+
+def test_fmu_static_start_is_the_balance(exported):
+    """Independent of the twin: at t = 0 the members turn at the nominal speeds (pinion
+    speed_rpm, gear speed_rpm / u: the pinion's 1e-12 relative) and, at rest (speed 0:
+    no mesh damping torque), the mesh carries the load torque (the static point,
+    bisection to 1e-15: 1e-9 relative)."""
+    fmu, _ = exported
+    res = _fmu_run(fmu, "fp64")
+    assert res["pinion_speed_rpm"][0] == pytest.approx(SPEED_RPM, rel=1e-12)
+    rest = fmpy.simulate_fmu(str(fmu), stop_time=1e-4, output_interval=1e-5,
+                             start_values={"speed_rpm": 0.0})
+    assert rest["mesh_torque_nm"][0] == pytest.approx(TORQUE_NM, rel=1e-9)
+    assert rest["pinion_speed_rpm"][0] == 0.0
+
+
+@pytest.mark.parametrize("start, words", [
+    # in the range, beyond the RK4 bound h omega_max <= 2: the mesh stiffens with the
+    # load (omega ~ W^(1/6)); this model at 50 N.m has h omega_max = 1.93 at 50 us
+    # (gearcontact.twin.statics.check_step), at 100 N.m 1.93 * 2^(1/6) = 2.17
+    ({"step_us": 50.0, "torque_nm": 100.0}, ("step_us = 50", "RK4 stability")),
+    ({"step_us": 0.5}, ("step_us = 0.5", "[1, 50]")),
+    ({"speed_rpm": 2e5}, ("speed_rpm = 200000", "[0, 100000]")),
+    ({"torque_nm": -1.0}, ("torque_nm = -1", "> 0")),
+])
+def test_fmu_refuses_bad_parameters(exported, start, words):
+    """fmi3ExitInitializationMode fails with one log message naming the parameter, its
+    value and the allowed range (the twin's checks: simulate, check_step)."""
+    fmu, _ = exported
+    messages = []
+    with pytest.raises(fmpy.fmi1.FMICallException, match="ExitInitializationMode"):
+        fmpy.simulate_fmu(str(fmu), stop_time=1e-3, output_interval=5e-5,
+                          start_values=start,
+                          logger=lambda env, status, cat, msg: messages.append(msg.decode()))
+    assert len(messages) == 1 and all(w in messages[0] for w in words), messages
+
+
+def test_fmu_refuses_a_communication_step_off_the_grid(exported):
+    fmu, _ = exported
+    messages = []
+    with pytest.raises(fmpy.fmi1.FMICallException, match="DoStep"):
+        fmpy.simulate_fmu(str(fmu), stop_time=1e-3, output_interval=2.5e-5,
+                          start_values={"step_us": 10.0},
+                          logger=lambda env, status, cat, msg: messages.append(msg.decode()))
+    assert "whole number of internal steps" in messages[0]
+
+
+def test_fmu_runs_without_gearcontact(exported):
+    """The FMU simulates in a Python process where gearcontact cannot be imported, with
+    the very numbers of this process's FMPy run (same binary: identical)."""
+    fmu, _ = exported
+    here = _fmu_run(fmu, "golden")
+    there = simulate_isolated(fmu, start_time=0.0, stop_time=DURATION_S,
+                              output_interval=1e-6 * STEP_US, output=list(PAIRS),
+                              start_values={"backend": 1, "speed_rpm": SPEED_RPM,
+                                            "step_us": STEP_US})
+    for name in PAIRS:
+        np.testing.assert_array_equal(there[name], np.asarray(here[name], float),
+                                      err_msg=name)
