@@ -275,7 +275,7 @@ def main(argv=None) -> None:
         subprocess.run(["make", "-s", "-C", str(lib), "CC=gcc"], check=True)
         (lib / "bench.c").write_text(DRIVER)
         subprocess.run(["gcc", "-O2", "-std=c99", "-o", str(lib / "bench"),
-                        str(lib / "bench.c"), str(lib / "libgearcontact.a"), "-lm",
+                        str(lib / "bench.c"), str(lib / "build" / "libgearcontact.a"), "-lm",
                         f"-I{lib}"], check=True)
         data = Path(tmp) / "ops.bin"
         data.write_bytes(np.int64(len(w)).tobytes() + gaps.tobytes() + w.tobytes()

@@ -1,7 +1,7 @@
 """The README's export lines, exactly as written, in a real shell.
 
 The README shows ``gearcontact vectors --out vectors/ ...`` (twice) and then
-``gearcontact export c --out clib/ && make -C clib/ && clib/gearcontact_check vectors/``
+``gearcontact export c --out clib/ && make -C clib/ && clib/build/gearcontact_check vectors/``
 and ``gearcontact export fmu --pair s0003 --kind mesh --out clib_fmu/``. They run here
 verbatim (default options; the relative directories land in the test's directory).
 Truth: the checker's own per-core comparison of the golden C with the golden model's

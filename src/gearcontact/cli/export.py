@@ -26,7 +26,9 @@ def register(sub) -> None:
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
                                   "fp64) with a Makefile and the vector checker")
     add_out_argument(c)
-    c.set_defaults(func=run_c)
+    # make's build/ beside the export is the user's, kept from run to run (never
+    # foreign, never removed): a new export into a built directory replaces the sources
+    c.set_defaults(func=run_c, resume_entries=("build",))
     f = cmds.add_parser("fmu", help="FMI 3.0 FMU in C of one gear mesh (co-simulation and "
                                     "model exchange) or of the drivetrain twin "
                                     "(co-simulation)")
