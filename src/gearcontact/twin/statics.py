@@ -2,9 +2,9 @@
 
 Operating point: the motor torque balances the load (gear) torque through the ratio,
 ``T_m = T_l / u`` (no losses); the run starts from the static equilibrium at the first
-phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
-:func:`gearcontact.ltca.lte.preview_balance`, refined on the backend's law) with the members at the nominal
-speeds, so that what follows is the response to the mesh excitation (unloaded TE and
+phase (shaft twists ``T/k``, mesh rotation from the torque balance on the backend's
+law, :func:`static_rotation`) with the members at the nominal speeds, so that what
+follows is the response to the mesh excitation (unloaded TE and
 the phase-varying stiffness).
 
 The chain linearised there gives the undamped modes (:func:`linearized_modes`), the
