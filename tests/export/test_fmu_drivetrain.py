@@ -3,16 +3,17 @@ twin``.
 
 Truth: the twin itself -- :func:`gearcontact.twin.model.model_for_pair` and
 :func:`gearcontact.twin.simulate.simulate`, the two library calls ``gearcontact twin``
-makes, with the pair prepared as the CLI prepares it, ``curvatures="exact"`` (the
-FMU's curvature source) -- at the same pair, side, phases, drivetrain file, torque,
-speed, step and duration; FMPy's FMI 3.0 schema validation. The FMU is exported once
+makes, with the pair prepared as the CLI prepares it -- at the same pair, side, phases,
+drivetrain file, curvature source, torque, speed, step and duration; FMPy's FMI 3.0
+schema validation. The FMU is exported once
 per module the way a user does (a real subprocess of ``python -m gearcontact``, s0003
 with 9 phases, a drivetrain file that switches the PI speed controller on and removes
-the backlash, a light torque; ~15 s) and simulated by FMPy at parameters other than its
+the backlash, a light torque, the twin's default curvature source ``stencil``: the
+C -> D preview per pair and step; ~15 s) and simulated by FMPy at parameters other than its
 start values (speed, step): at 20000 rpm the mesh frequency (4.3 kHz) excites the
 2.8 kHz mode enough for contact loss and impacts on the reverse flank (the loaded law
-mirrored: s0003's drive side is in line contact). A second export (s0003-centred) runs
-the reverse flank's own law through rattle.
+mirrored: s0003's drive side is in line contact). A second export (s0003-centred,
+``--curvatures exact``) runs the reverse flank's own law through rattle.
 """
 
 from __future__ import annotations
@@ -79,7 +80,7 @@ def _fmu_run(fmu, backend, **kw):
 @pytest.fixture(scope="module")
 def twin_models(exported):
     """The models of ``gearcontact twin --pair s0003 --phases 9 --torque 5 --drivetrain
-    dt.toml --curvatures exact`` per FMU backend, by the library call of
+    dt.toml`` per FMU backend, by the library call of
     :mod:`gearcontact.cli.twin` (the pair prepared as the CLI prepares it)."""
     from gearcontact.tca.synthesis import prepare_pair
     from gearcontact.twin.params import load_drivetrain
@@ -91,7 +92,7 @@ def twin_models(exported):
     drivetrain = load_drivetrain(dt_file, pair)
     return {backend: model_for_pair(pair, torque_nm=TORQUE_NM, backend=twin_backend,
                                     drivetrain=drivetrain, side=prepared.side, phases=9,
-                                    curvatures="exact")
+                                    curvatures="stencil")
             for backend, twin_backend in (("fp64", "reference"), ("golden", "golden"))}
 
 
@@ -243,7 +244,7 @@ def rattle_fmu(tmp_path_factory):
     base = tmp_path_factory.mktemp("rattle")
     (base / "dt.toml").write_text("[drivetrain]\nbacklash_mm = 0.0095\n")
     run = _cli("--pair", "s0003-centred", "--side", "drive", "--kind", "drivetrain",
-               "--phases", "9", "--torque", "0.5", "--drivetrain", str(base / "dt.toml"),
+               "--curvatures", "exact", "--phases", "9", "--torque", "0.5", "--drivetrain", str(base / "dt.toml"),
                "--out", str(base / "o"), cwd=base)
     assert run.returncode == 0, run.stderr
     return base / "o" / "gearcontact_drivetrain_s0003_centred.fmu", base / "dt.toml"
@@ -252,9 +253,10 @@ def rattle_fmu(tmp_path_factory):
 @pytest.mark.parametrize("backend", ["fp64", "golden"])
 def test_fmu_reproduces_the_twin_through_rattle(rattle_fmu, backend):
     """The reverse flank's own law (s0003-centred, drive side loaded: its coast side has
-    a contact ellipse, so the twin runs that side's own TCA, its phase and closure)
-    through contact loss and back-flank impacts: 0.5 N.m, the backlash 0.0095 mm just
-    clearing the flanks' 9.48 um interference, 14000 rpm, 2000 steps of 5 us. Measured
+    a contact ellipse, so the twin runs that side's own TCA, its phase and closure), with
+    the TCA's curvatures (``--curvatures exact``), through contact loss and back-flank
+    impacts: 0.5 N.m, the backlash 0.0095 mm just clearing the flanks' 9.48 um
+    interference, 14000 rpm, 2000 steps of 5 us. Measured
     in the twin: 161 steps on the reverse flank (mesh torque < 0), 440 in free flight.
     Same tolerances as above; measured identical. ~30 s (both sides' TCA at export and
     in the twin)."""

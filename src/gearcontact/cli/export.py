@@ -8,7 +8,7 @@ datapath (golden fixed point and fp64) with a Makefile and the checker
 (co-simulation and model exchange, plain C, a Linux x86-64 binary built at export) of
 one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`);
 ``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
-``gearcontact twin --curvatures exact`` (:mod:`gearcontact.export.fmu_drivetrain`).
+``gearcontact twin`` (rigid teeth; :mod:`gearcontact.export.fmu_drivetrain`).
 """
 
 from __future__ import annotations
@@ -44,6 +44,9 @@ def register(sub) -> None:
     f.add_argument("--torque", type=float, default=64.5,
                    help="gear torque in N·m sizing the mesh table (default 64.5); "
                         "drivetrain: also the start value of its torque_nm")
+    f.add_argument("--curvatures", default=None, choices=("stencil", "exact"),
+                   help="drivetrain: the preview's curvature source, as gearcontact twin "
+                        "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -64,6 +67,9 @@ def check_fmu(args) -> None:
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
     check_positive("--torque", args.torque)
+    if args.kind == "mesh" and args.curvatures not in (None, "exact"):
+        raise InputRangeError("--curvatures", args.curvatures, "exact with --kind mesh "
+                              "(stencil: --kind drivetrain)")
     if args.drivetrain is not None:
         if args.kind != "drivetrain":
             raise InputRangeError("--drivetrain", args.drivetrain, "only with --kind "
@@ -80,7 +86,8 @@ def run_fmu(args) -> int:
         fmu = export_drivetrain_fmu(pair, args.out, pair_name=args.gear_pair.name,
                                     side=args.side, phases=args.phases,
                                     torque_nm=args.torque,
-                                    drivetrain=load_drivetrain(args.drivetrain, pair))
+                                    drivetrain=load_drivetrain(args.drivetrain, pair),
+                                    curvatures=args.curvatures or "stencil")
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu import export_mesh_fmu

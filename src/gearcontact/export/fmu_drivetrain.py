@@ -2,14 +2,16 @@
 co-simulation FMU in plain C.
 
 :func:`export_drivetrain_fmu` builds the twin's model of the pair exactly as
-``gearcontact twin --curvatures exact`` does (:func:`gearcontact.twin.model.
-model_for_pair`: the loaded flank's TCA and mesh table, the reverse flank's own table or
-the mirrored law, the ``[drivetrain]`` parameters; rigid teeth), bakes its per-flank
-arrays and constants into ``data/templates/fmu/gc_drivetrain_fmu.c.j2`` -- a port of
+``gearcontact twin`` does (:func:`gearcontact.twin.model.model_for_pair`: the loaded
+flank's TCA and mesh table, the reverse flank's own table or the mirrored law, the
+``[drivetrain]`` parameters, the preview's curvature source ``stencil`` or ``exact``;
+rigid teeth), bakes its per-flank arrays and constants into
+``data/templates/fmu/gc_drivetrain_fmu.c.j2`` -- a port of
 the twin's step loop (:mod:`gearcontact.twin.kernel`), static point, mesh damping and
 speed controller (:mod:`gearcontact.twin.statics`) and start
 (:func:`gearcontact.twin.simulate.simulate`), operation by operation -- beside the
-contact law the mesh FMU uses (``gc_contact_law.c``) and the preview's C library, and
+contact law the mesh FMU uses (``gc_contact_law.c``: stage D, and for the stencil
+source stage C, of the preview's C library), and
 builds the FMU with :func:`.fmu.build_fmu`. Parameters ``backend`` (fp64 = the twin's
 ``reference``, golden), ``speed_rpm``, ``torque_nm``, ``step_us``; the mesh table's
 edge-pair fields are sized at the export torque (``--torque``), as the twin sizes them at
@@ -88,15 +90,16 @@ class DrivetrainFmu:
 
 
 def drivetrain_fmu_model(pair, *, side: str, phases: int, torque_nm: float,
-                         drivetrain=None):
+                         drivetrain=None, curvatures: str = "stencil"):
     """The twin's model the drivetrain FMU bakes: :func:`~gearcontact.twin.model.
-    model_for_pair` with the TCA's curvatures and rigid teeth (the reference backend's
-    arrays; the golden backend runs on the same arrays)."""
+    model_for_pair` with rigid teeth and the preview's curvature source ``curvatures``
+    (the reference backend's arrays; the golden backend's stencil samples are added by
+    :func:`export_drivetrain_fmu`)."""
     from ..twin.model import model_for_pair
 
     return model_for_pair(pair, torque_nm=torque_nm, backend="reference",
                           drivetrain=drivetrain, side=side, phases=phases,
-                          curvatures="exact")
+                          curvatures=curvatures)
 
 
 def _constants(model) -> list[tuple[str, str]]:
@@ -128,7 +131,8 @@ def _constants(model) -> list[tuple[str, str]]:
 
 
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
-                          torque_nm: float = 64.5, drivetrain=None) -> DrivetrainFmu:
+                          torque_nm: float = 64.5, drivetrain=None,
+                          curvatures: str = "stencil") -> DrivetrainFmu:
     """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring).
 
     Parameters
@@ -148,6 +152,10 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         start value of the FMU's ``torque_nm``, N·m.
     drivetrain : gearcontact.twin.params.DrivetrainParams or None
         The ``[drivetrain]`` parameters (None: the pair's defaults).
+    curvatures : str
+        The preview's curvature source, as ``gearcontact twin --curvatures``:
+        ``"stencil"`` (the twin's default: stage C on the 7 x 7 gap stencil, then stage
+        D) or ``"exact"`` (the TCA's curvatures).
 
     Returns
     -------
@@ -162,9 +170,21 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
+    from ..twin.model import CURVATURE_SOURCES, _stack
+    from ..validation import InputRangeError
+
+    if curvatures not in CURVATURE_SOURCES:     # before the TCA
+        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
     model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
-                                 drivetrain=drivetrain)
+                                 drivetrain=drivetrain, curvatures=curvatures)
     a, m = model.arrays, model.mesh
+    stencil = curvatures == "stencil"
+    # exact A-, B- always (the static start's bracket); the stencil source as the golden
+    # twin stacks it: the 49 samples, then the fp64 fit's c3, c4, c5
+    exact = _stack(m, model.reverse if model.reverse is not None else m, "exact",
+                   golden=False)["cv"]
+    cv = (_stack(m, model.reverse if model.reverse is not None else m, "stencil",
+                 golden=True)["cv"] if stencil else None)
     ident = "gearcontact_drivetrain_" + re.sub(r"\W", "_", pair_name)
 
     def hexes(x):
@@ -172,22 +192,26 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         return [_c_double(v) for v in x] if x.ndim == 1 else [hexes(r) for r in x]
 
     consts = _constants(model)
-    baked = repr((consts, [np.asarray(a[k]).tobytes().hex() for k in
-                           ("eps", "lever", "opening", "cv", "valid")])).encode()
+    baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
+                                       (a["eps"], a["lever"], a["opening"], a["valid"],
+                                        exact, cv)])).encode()
     ctx = fmu_context(
         model_identifier=ident, token=model_token(baked), header_dir=header_dir,
         variables=DRIVETRAIN_VARIABLES, implemented=_IMPLEMENTED, trivial=_TRIVIAL,
         model_source="gc_drivetrain_fmu.c",
         description=f"Drivetrain twin of {pair_name} ({side} flank loaded): motor, input "
                     "shaft, pinion, mesh (the gearcontact preview's contact law on the "
-                    "TCA's curvatures, both flanks), gear, output shaft, load; RK4 at "
-                    "step_us, PI speed control per [drivetrain]")
+                    f"{'7 x 7 gap stencil' if stencil else 'TCA'}'s curvatures, both flanks), "
+                    "gear, output shaft, load; RK4 at step_us, PI speed control per "
+                    "[drivetrain]")
     ctx.update({
         "pair_name": pair_name, "side": side, "constants": consts,
         "n_pairs": a["lever"].shape[1], "n_rows": a["lever"].shape[2],
         "n_rows0": len(m.psi_rad), "eps": hexes(a["eps"]),
         "tables": [("LEVER", hexes(a["lever"])), ("OPENING", hexes(a["opening"])),
-                   ("A_MINUS", hexes(a["cv"][..., 0])), ("B_MINUS", hexes(a["cv"][..., 1]))],
+                   ("A_MINUS", hexes(exact[..., 0])), ("B_MINUS", hexes(exact[..., 1]))],
+        "stencil": stencil, "curvatures": curvatures,
+        "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
         "psi0": hexes(m.psi_rad), "eps0": hexes(m.eps_rad),
         "default_step": "1e-05", "default_stop": "0.05",
