@@ -24,7 +24,8 @@ mean), per backend, beside the compiled Python twin's step (numba,
 The process pins itself to one core (``os.sched_setaffinity``, inherited by the
 drivers; ``--cpu``) and prints the load average: figures taken under load say so.
 
-Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K]``.
+Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curvatures
+stencil|exact] [--twin-only]``.
 """
 
 from __future__ import annotations
@@ -210,7 +211,7 @@ def _pin(cpu: int | None) -> str:
     return f"pinned to CPU {cpu} of {cpus}"
 
 
-def bench_twin_step(steps: int, phases: int) -> None:
+def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
     """ns per twin step of the drivetrain FMU's C (module docstring)."""
     from fmpy import __file__ as fmpy_file
 
@@ -224,7 +225,8 @@ def bench_twin_step(steps: int, phases: int) -> None:
     vr = {v[0]: v[1] for v in DRIVETRAIN_VARIABLES}
     with tempfile.TemporaryDirectory() as tmp:
         fmu = export_drivetrain_fmu(prepared.pair, tmp, pair_name="s0003",
-                                    side=prepared.side, phases=phases)
+                                    side=prepared.side, phases=phases,
+                                    curvatures=curvatures)
         src = Path(tmp) / "src"
         with zipfile.ZipFile(fmu.fmu_path) as z:
             for name in z.namelist():
@@ -238,7 +240,8 @@ def bench_twin_step(steps: int, phases: int) -> None:
                         "-I", str(src), "-I", str(Path(fmpy_file).parent / "c-code"),
                         "-o", str(exe), *sorted(str(p) for p in src.glob("*.c")), "-lm"],
                        check=True)
-        print(f"\ntwin step of the drivetrain FMU (s0003, {phases} phases, 3000 rpm, "
+        print(f"\ntwin step of the drivetrain FMU (s0003, curvatures {curvatures}, "
+              f"{phases} phases, 3000 rpm, "
               f"64.5 N.m, 10 us; {steps} steps timed one by one, {steps} sustained)")
         print(f"{'backend':<8} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} "
               f"{'p99/p50':>8} {'mean ns':>8} {'RTF @10us':>10}")
@@ -249,23 +252,17 @@ def bench_twin_step(steps: int, phases: int) -> None:
             print(f"{name:<8} {p50:>10} {p99:>8} {mx:>9} {p99 / max(p50, 1):>8.2f} "
                   f"{mean:>8.1f} {1e4 / mean:>9.1f}x   (timer {out[4]} ns subtracted)")
     model = drivetrain_fmu_model(prepared.pair, side=prepared.side, phases=phases,
-                                 torque_nm=64.5)
+                                 torque_nm=64.5, curvatures=curvatures)
     res = simulate(model, speed_rpm=3000.0, duration_s=1e-5 * steps, step_s=1e-5)
-    print(f"numba twin (gearcontact twin, reference, curvatures exact): step "
+    print(f"numba twin (gearcontact twin, reference, curvatures {curvatures}): step "
           f"{1e3 * res.timings['step_time_p50_us']:.0f} ns p50 of 256-step blocks, "
           f"{1e3 * res.timings['step_time_p99_us']:.0f} ns p99, RTF "
           f"{res.timings['real_time_factor']:.1f}x; target <= 500 ns per step (>= 20x)")
 
 
-def main(argv=None) -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--vectors", type=int, default=20000, help="random chain vectors")
-    ap.add_argument("--steps", type=int, default=200000, help="twin steps timed")
-    ap.add_argument("--phases", type=int, default=61, help="TCA phases of the twin's table")
-    ap.add_argument("--cpu", type=int, default=None, help="core to pin (default: the last)")
-    args = ap.parse_args(argv)
-    print(_pin(args.cpu) + "; load average %.2f %.2f %.2f" % os.getloadavg())
-    stim = vector_stimulus("chain", args.vectors, 7)
+def bench_previews(vectors: int) -> None:
+    """ns per preview of the C library (module docstring)."""
+    stim = vector_stimulus("chain", vectors, 7)
     gaps = np.asarray(stim.fields["gaps"], np.int32)
     w = np.asarray(stim.fields["W"], np.int32)
     e = np.asarray(stim.fields["e_prime"], np.int32)
@@ -293,7 +290,22 @@ def main(argv=None) -> None:
     print("reference: Python fp64 preview 920 ns median (docs/performance.md); FPGA "
           "chain 806 cycles = 16,120 ns at 50 MHz; targets golden chain <= 200 ns, "
           "fp64 <= 100 ns, p99/p50 <= 1.5")
-    bench_twin_step(args.steps, args.phases)
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--vectors", type=int, default=20000, help="random chain vectors")
+    ap.add_argument("--steps", type=int, default=200000, help="twin steps timed")
+    ap.add_argument("--phases", type=int, default=61, help="TCA phases of the twin's table")
+    ap.add_argument("--cpu", type=int, default=None, help="core to pin (default: the last)")
+    ap.add_argument("--curvatures", default="stencil", choices=("stencil", "exact"),
+                    help="the twin's curvature source (default stencil, the twin's)")
+    ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
+    args = ap.parse_args(argv)
+    print(_pin(args.cpu) + "; load average %.2f %.2f %.2f" % os.getloadavg())
+    if not args.twin_only:
+        bench_previews(args.vectors)
+    bench_twin_step(args.steps, args.phases, args.curvatures)
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
 
 
