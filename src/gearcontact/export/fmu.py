@@ -32,7 +32,8 @@ from .c_library import FP64_SOURCES, GOLDEN_SOURCES, _environment, render_c_libr
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
 __all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
-           "fmi3_header_dir", "build_fmu", "fmu_context", "UNITS"]
+           "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
+           "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES"]
 
 #: ``--kind`` values (``drivetrain``: :mod:`.fmu_drivetrain`).
 FMU_KINDS = ("mesh", "drivetrain")
@@ -154,7 +155,7 @@ def _unsupported(header_dir: Path, implemented) -> list[tuple[str, str, list[str
     return out
 
 
-def _c_double(x) -> str:
+def c_double(x) -> str:
     """Exact C99 hexadecimal literal of a double."""
     return float(x).hex()
 
@@ -175,8 +176,8 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "units": [(u, UNITS[u]) for u in units], "backends": BACKENDS,
         "unsupported": _unsupported(header_dir, implemented), "trivial": tuple(trivial),
         "c_sources": [model_source, "gc_contact_law.c", *GOLDEN_SOURCES, *FP64_SOURCES],
-        "pi": _c_double(math.pi), "hb_e": _c_double(_HB_E),
-        "w_eval_min": _c_double(W_EVAL_MIN_N), "w_eval_max": _c_double(_W_EVAL_MAX_N),
+        "pi": c_double(math.pi), "hb_e": c_double(_HB_E),
+        "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
         "output_dependencies": None, "initial_dependencies": ""}
 
@@ -186,7 +187,7 @@ def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
     from ..preview.hertz.golden import encode_e_prime
 
     def rows(a):
-        return [[_c_double(v) for v in r] for r in a]
+        return [[c_double(v) for v in r] for r in a]
 
     n_rows, n_pairs = tab.eps_rad.shape[0], tab.lever_mm.shape[0]
     ctx = fmu_context(
@@ -198,11 +199,11 @@ def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
                     f"teeth), table of {n_rows} phases x {n_pairs} pairs baked in")
     ctx.update({
         "pair_name": pair_name, "side": side, "n_rows": n_rows, "n_pairs": n_pairs,
-        "step_rad": _c_double(tab.step_rad), "pitch_rad": _c_double(tab.pitch_rad),
-        "ratio": _c_double(tab.ratio), "lever0_mm": _c_double(tab.reference_lever_mm),
-        "e_prime_mpa": _c_double(tab.e_prime_mpa), "e_code": int(encode_e_prime(tab.e_prime_mpa)),
-        "motion_sign": int(tab.motion_sign), "arcsec_per_rad": _c_double(ARCSEC_PER_RAD),
-        "eps": [_c_double(v) for v in tab.eps_rad],
+        "step_rad": c_double(tab.step_rad), "pitch_rad": c_double(tab.pitch_rad),
+        "ratio": c_double(tab.ratio), "lever0_mm": c_double(tab.reference_lever_mm),
+        "e_prime_mpa": c_double(tab.e_prime_mpa), "e_code": int(encode_e_prime(tab.e_prime_mpa)),
+        "motion_sign": int(tab.motion_sign), "arcsec_per_rad": c_double(ARCSEC_PER_RAD),
+        "eps": [c_double(v) for v in tab.eps_rad],
         "tables": [("LEVER_MM", rows(tab.lever_mm)), ("OPENING_MM", rows(tab.opening_mm)),
                    ("A_MINUS", rows(tab.A_minus_per_mm)), ("B_MINUS", rows(tab.B_minus_per_mm))],
         "valid": [[int(v) for v in r] for r in tab.valid],

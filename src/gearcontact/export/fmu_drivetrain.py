@@ -28,8 +28,8 @@ from pathlib import Path
 import numpy as np
 
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
-from .fmu import COMMON_IMPLEMENTED, _c_double, build_fmu, fmi3_header_dir, fmu_context, \
-    model_token
+from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, fmi3_header_dir, fmu_context,
+                  model_token)
 
 __all__ = ["DRIVETRAIN_VARIABLES", "DrivetrainFmu", "export_drivetrain_fmu",
            "drivetrain_fmu_model"]
@@ -109,7 +109,7 @@ def _constants(model) -> list[tuple[str, str]]:
 
     prm = _prm(model, 0.0)
     m, dt = model.mesh, model.drivetrain
-    c = _c_double
+    c = c_double
     return [
         ("RATIO", c(prm[L.P_U])), ("L0_MM", c(prm[L.P_L0])), ("J_M", c(prm[L.P_JM])),
         ("J_P", c(prm[L.P_JP])), ("J_G", c(prm[L.P_JG])), ("J_L", c(prm[L.P_JL])),
@@ -189,7 +189,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     def hexes(x):
         x = np.asarray(x, float)
-        return [_c_double(v) for v in x] if x.ndim == 1 else [hexes(r) for r in x]
+        return [c_double(v) for v in x] if x.ndim == 1 else [hexes(r) for r in x]
 
     consts = _constants(model)
     baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
