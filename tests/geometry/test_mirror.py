@@ -122,7 +122,7 @@ def test_left_hand_conjugate_nodes_meet_the_mirrored_meshing_equation(left, side
 
 
 def _design_point(pair, flanks, side="drive"):
-    from gearcontact.tca.calibration import conjugate_contact, evaluate_design_point
+    from gearcontact.tca.design_point import conjugate_contact, evaluate_design_point
     u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
     gear = flanks.flank("gear", side)
     start = conjugate_contact(flanks.pinion_conjugate.side(side), gear, pair, u_m, v_m)

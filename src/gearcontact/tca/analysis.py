@@ -236,7 +236,7 @@ def reference_start(pair, flanks, side: str, *,
         flank at every phase tried); it names the edge most trial contacts left by.
     """
     from ..geometry.easeoff import EaseOff
-    from .calibration import conjugate_contact
+    from .design_point import conjugate_contact
 
     mean = flanks.mean_contact[side]
     kin = pair.kinematics()

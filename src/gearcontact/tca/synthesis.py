@@ -6,9 +6,9 @@ ellipse (paint thickness 6.35 um) and the level of the parabolic transmission er
 and solves the machine-tool settings for them (Litvin & Fuentes 2004, sec. 21.8; Litvin
 et al. 2006). gearcontact's flanks carry the relief as the 5-term pinion ease-off, so
 the unknowns are its five coefficients, written in the centre form of
-:func:`~gearcontact.tca.calibration.centred_coefficients` (bearing centre
+:func:`~gearcontact.tca.design_point.centred_coefficients` (bearing centre
 ``(eta_c, xi_c)``, profile and lengthwise crowning, bias), and the conditions are met
-with TCA in the loop: :func:`~gearcontact.tca.calibration.eased_design_point` (the TCA
+with TCA in the loop: :func:`~gearcontact.tca.design_point.eased_design_point` (the TCA
 at the continuous TE0 vertex) and bounded least squares, the machinery of the
 calibration (docs/calibration.md), here with design targets instead of published ones.
 
@@ -55,8 +55,8 @@ from ..geometry.flank import SIDES, build_flanks
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
-from .calibration import (DesignPoint, centred_coefficients, conjugate_contact,
-                          eased_design_point)
+from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
+                           eased_design_point)
 from .solve import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
@@ -103,7 +103,7 @@ class SynthesisTargets:
     path_angle_deg : float or None
         Contact-path direction at the bearing centre from the lengthwise direction,
         deg in (-90, 90] (right-handed flank frame, as the ellipse angle of
-        :class:`~gearcontact.tca.calibration.DesignPoint`); None: not prescribed
+        :class:`~gearcontact.tca.design_point.DesignPoint`); None: not prescribed
         (bias drawn weakly towards 0).
     centre_face, centre_profile : float
         Bearing centre (TE0 vertex) on the pinion flank as fractions of the face
