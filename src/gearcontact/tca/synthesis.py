@@ -51,7 +51,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
-from ..geometry.flank import SIDES, build_flanks
+from ..geometry.flank import SIDES, FlankSet, build_flanks, with_easeoff
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
@@ -488,11 +488,15 @@ class PreparedPair:
         The flank side prepared.
     synthesis : Synthesis or None
         The local synthesis of ``side``, None if the pair brought its table.
+    flanks : FlankSet or None
+        ``build_flanks(pair)`` (bit for bit) if the synthesis built the flanks, so that
+        a command does not build them again; None if nothing was synthesized.
     """
 
     pair: GearPair
     side: str
     synthesis: Synthesis | None = None
+    flanks: FlankSet | None = None
 
     @property
     def synthesized(self) -> bool:
@@ -544,6 +548,9 @@ def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
         raise InputRangeError("side", side, f"one of {SIDES}")
     if side in pair.easeoff_tables:
         return PreparedPair(pair, side)
-    new, done = synthesize_pair(pair, sides=(side,))
+    base = build_flanks(pair)
+    new, done = synthesize_pair(pair, sides=(side,), flanks=base)
     new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
-    return PreparedPair(new, side, done[side])
+    # the conjugate flanks do not depend on the ease-off: only the ease-off is applied
+    # again (geometry.flank.with_easeoff, the last step of build_flanks)
+    return PreparedPair(new, side, done[side], with_easeoff(base, new))
