@@ -19,8 +19,9 @@ from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair, pair_to_toml, parse_pair
 from gearcontact.report.analyze import published_values
 from gearcontact.tca.analysis import analyze_pair
-from gearcontact.tca.calibration import (CalibrationTargets, point_invariants,
-                                         surface_of_action_offset, working_depth_for_tip)
+from gearcontact.tca.calibration import (CalibrationTargets, surface_of_action_offset,
+                                         working_depth_for_tip)
+from gearcontact.tca.design_point import point_invariants
 from gearcontact.validation import InputRangeError
 
 P0 = (41.679, -16.164, 7.949)

@@ -55,7 +55,8 @@ def run(args) -> int:
     out = Path(args.out)
     try:
         res, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
-                                   pairs=args.pairs, progress=not args.quiet)
+                                   pairs=args.pairs, flanks=args.prepared_pair.flanks,
+                                   progress=not args.quiet)
     except LineContact as line:
         write_line_contact_outputs(line.result, out, pair_name=pair.name, side=args.side)
         print(f"{pair.name} {args.side}: {line} -> {final_path(args, out)}")
