@@ -80,8 +80,9 @@ def register(sub) -> None:
                         "width (default 0.35; practice 1/3 to 1/2)")
     p.add_argument("--path-angle-deg", type=float, default=None,
                    help="with --synthesize-easeoff: contact-path angle from the lengthwise "
-<<<<<<< HEAD
-                        "direction, deg (default free, bias 0)")
+                        "direction, deg (default free, bias 0); the angles the synthesis "
+                        "reaches on the pair are checked before any TCA (an error names "
+                        "them)")
     p.add_argument("--machine-settings", action="store_true",
                    help="standard machine settings of both members from the blank "
                         "(formate gear, generated pinion with lengthwise and profile "
@@ -94,11 +95,6 @@ def register(sub) -> None:
     p.add_argument("--blade-profile-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion blade profile departure at "
                         "+-h_mw/2, um, 0 to 200 (default 10)")
-=======
-                        "direction, deg (default free, bias 0); the angles the synthesis "
-                        "reaches on the pair are checked before any TCA (an error names "
-                        "them)")
->>>>>>> i28
     p.set_defaults(func=run, check=check)
 
 
