@@ -200,3 +200,20 @@ def test_misaligned_pair_touches_and_rejects_bad_input():
         cylindrical_mesh_cycle(pair, facing="drive")
     with pytest.raises(InputRangeError, match="phases"):
         cylindrical_mesh_cycle(pair, phases=2)
+
+
+@pytest.mark.parametrize("beta, hand", [(0.0, None), (25.0, "left")])
+@pytest.mark.parametrize("facing", FACINGS)
+def test_backlash_offsets_te0(beta, hand, facing):
+    """A centre distance 0.1 mm beyond zero backlash: the ISO 21771 normal backlash j_bn
+    splits evenly between the facings (the gear offers the pinion a centred space), so
+    TE0 = ∓ j_bn / (2 r_b2 cos β_b) (cw: the gear lags), constant over the cycle: the
+    involute's insensitivity to the centre distance. 1e-6 arcsec (solves at 1e-12 mm)."""
+    pair = _pair(beta, hand)
+    pair = _pair(beta, hand, centre_distance_mm=pair.geometry.centre_distance_mm + 0.1)
+    g = pair.geometry
+    c = cylindrical_mesh_cycle(pair, facing=facing, phases=21)
+    half = g.normal_backlash_mm / (g.base_diameter_gear_mm
+                                   * math.cos(math.radians(g.base_helix_angle_deg)))
+    truth = (-1 if facing == "cw" else 1) * half * ARCSEC_PER_RAD
+    np.testing.assert_allclose(c.envelope_arcsec, truth, atol=1e-6)
