@@ -53,7 +53,7 @@ from ..geometry.cylindrical.pair import CylindricalPair
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM
 from .parallel_axes import parallel_kinematics, pitch_point_guess
-from .types import ARCSEC_PER_RAD, MatingPoint
+from .types import ARCSEC_PER_RAD, MatingPoint, TcaConvergenceError
 
 __all__ = ["CONTACT_TOLERANCE_MM", "CylindricalMeshCycle", "cylindrical_mesh_cycle"]
 
@@ -61,11 +61,21 @@ __all__ = ["CONTACT_TOLERANCE_MM", "CylindricalMeshCycle", "cylindrical_mesh_cyc
 #: residual (1e-11 mm), far below any modification (0.1 um and up).
 CONTACT_TOLERANCE_MM = 1e-6
 #: Newton iterations of the pinion and gear point solves (both converge quadratically
-#: from the linear start; 1e-11 mm is reached in 2-3).
+#: from the affine start; 1e-11 mm is reached in 2-3); more raise TcaConvergenceError.
 _NEWTON = 8
 #: Golden-section and bisection steps (0.618^60 and 2^-45 of a face width < 1e-11 mm).
 _GOLDEN, _BISECT = 60, 45
 _GR = 0.5 * (math.sqrt(5.0) - 1.0)
+#: Residual (mm) at which the point solves stop: a few hundred ulps of the coordinates.
+_RESIDUAL_MM = 1e-11
+
+
+def _turns(angle_rad):
+    """Batched rotations about +z by ``angle_rad`` (N,) -> (N, 3, 3)."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    zero, one = np.zeros_like(c), np.ones_like(c)
+    return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1),
+                     np.stack([zero, zero, one], -1)], -2)
 
 
 @dataclass(frozen=True)
@@ -176,12 +186,12 @@ class _Mesh:
         self.phi2_offset = start.phi2_rad - start.phi1_rad / pair.ratio
         self.ratio = pair.ratio
         self.rot2_0 = self.kin.gear_pose(0.0)[0]
+        self.rot1_0, self.t1 = self.kin.pinion_pose(0.0)
         # the plane of action: through the pitch point along the transverse part of the
         # unmodified pinion normal there (the gear lies along +d)
         ideal = replace(self.pinion, modification=ProfileLeadModification())
-        rot1, t1 = self.kin.pinion_pose(self.phi1_p)
-        s = ideal.evaluate(start.u1, 0.0, second=False)
-        n = rot1 @ s.n
+        rot1, _ = self.kin.pinion_pose(self.phi1_p)
+        n = rot1 @ ideal.evaluate(start.u1, 0.0, second=False).n
         self.d = np.array([n[0], n[1], 0.0]) / math.hypot(n[0], n[1])
         self.m = np.cross([0.0, 0.0, 1.0], self.d)
         self.p0 = np.array([-0.5 * g.working_pitch_diameter_gear_mm, 0.0, 0.0])
@@ -192,21 +202,20 @@ class _Mesh:
                            np.array([0.0, 0.0, 1.0]), np.full(3, start.u1))
         self._u_fit = (u[0], (u[1] - u[0]) / 1e-3, u[2] - u[0])
 
+    def _pinion_pose(self, phi1):
+        """Batched pinion poses: pinion_pose(phi1) = pinion_pose(0) rot_z(-phi1)."""
+        return np.einsum("ij,njk->nik", self.rot1_0, _turns(-phi1)), self.t1
+
     def _pinion_u(self, phi1, z, u):
-        c, s = np.cos(-phi1), np.sin(-phi1)
+        rot1, t1 = self._pinion_pose(phi1)
         for _ in range(_NEWTON):
             a = self.pinion.evaluate(u, z, second=False)
-            r, r_u = a.r, a.r_u
-            x = c * r[:, 0] - s * r[:, 1] - self.kin.centre_distance_mm - self.p0[0]
-            y = s * r[:, 0] + c * r[:, 1] - self.p0[1]
-            h = x * self.m[0] + y * self.m[1]
-            dh = (c * r_u[:, 0] - s * r_u[:, 1]) * self.m[0] + \
-                (s * r_u[:, 0] + c * r_u[:, 1]) * self.m[1]
-            step = h / dh
-            u = u - step
-            if np.max(np.abs(step), initial=0.0) < 1e-12:
-                break
-        return u
+            h = (np.einsum("nij,nj->ni", rot1, a.r) + t1 - self.p0) @ self.m
+            if np.max(np.abs(h), initial=0.0) < _RESIDUAL_MM:
+                return u
+            u = u - h / (np.einsum("nij,nj->ni", rot1, a.r_u) @ self.m)
+        k = int(np.argmax(np.abs(h)))
+        raise TcaConvergenceError(float(phi1[k]), float(abs(h[k])), _NEWTON)
 
     def pinion_u(self, phi1, z):
         """Roll length of the pinion point on the plane of action (NaN where z is)."""
@@ -218,7 +227,7 @@ class _Mesh:
                            + a_z * zz)
         return np.where(ok, u.reshape(z.shape), np.nan)
 
-    def section(self, phi1, z, guess=None):
+    def section(self, phi1, z):
         """Per element: pinion point P on the plane of action at axial z, the gear point
         G along d, the gap g, gear (u2, v2), gear normal and the rate dg/dphi2."""
         phi1, z = np.broadcast_arrays(np.asarray(phi1, float), np.asarray(z, float))
@@ -226,30 +235,26 @@ class _Mesh:
         phi1, z = phi1.ravel(), z.ravel()
         u1 = self.pinion_u(phi1, z)
         a = self.pinion.evaluate(u1, z, second=False)
-        c, s = np.cos(-phi1), np.sin(-phi1)
-        P = np.column_stack([c * a.r[:, 0] - s * a.r[:, 1] - self.kin.centre_distance_mm,
-                             s * a.r[:, 0] + c * a.r[:, 1], a.r[:, 2]])
+        rot1, t1 = self._pinion_pose(phi1)
+        P = np.einsum("nij,nj->ni", rot1, a.r) + t1
         phi2 = phi1 / self.ratio + self.phi2_offset
         # gear_pose(phi2) = gear_pose(0) rot_z(phi2) (the gear turns about its own axis)
-        cz, sz, zero, one = np.cos(phi2), np.sin(phi2), np.zeros_like(phi2), np.ones_like(phi2)
-        turn = np.stack([np.stack([cz, -sz, zero], -1), np.stack([sz, cz, zero], -1),
-                         np.stack([zero, zero, one], -1)], -2)
-        rot2 = np.einsum("ij,njk->nik", self.rot2_0, turn)
-        if guess is None:
-            u2, v2, g = self.roll_sum - u1, z.copy(), np.zeros_like(z)
-        else:
-            u2, v2, g = (x.ravel().copy() for x in guess)
+        rot2 = np.einsum("ij,njk->nik", self.rot2_0, _turns(phi2))
+        u2, v2, g = self.roll_sum - u1, z.copy(), np.zeros_like(z)
         for _ in range(_NEWTON):
             b = self.gear.evaluate(u2, v2, second=False)
             G = np.einsum("nij,nj->ni", rot2, b.r)
             res = G - P - g[:, None] * self.d
+            if np.max(np.abs(res), initial=0.0) < _RESIDUAL_MM:
+                break
             jac = np.stack([np.einsum("nij,nj->ni", rot2, b.r_u),
                             np.einsum("nij,nj->ni", rot2, b.r_v),
                             np.broadcast_to(-self.d, G.shape)], axis=-1)
             step = np.linalg.solve(jac, -res[..., None])[..., 0]
             u2, v2, g = u2 + step[:, 0], v2 + step[:, 1], g + step[:, 2]
-            if np.max(np.abs(step), initial=0.0) < 1e-12:
-                break
+        else:
+            k = int(np.argmax(np.abs(res).max(axis=1)))
+            raise TcaConvergenceError(float(phi1[k]), float(np.linalg.norm(res[k])), _NEWTON)
         b = self.gear.evaluate(u2, v2, second=False)
         G = np.einsum("nij,nj->ni", rot2, b.r)
         n2 = np.einsum("nij,nj->ni", rot2, b.n)
