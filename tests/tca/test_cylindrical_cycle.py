@@ -107,11 +107,14 @@ def test_helix_slope_te0(beta, hand, facing):
 
 @pytest.mark.parametrize("f_beta, f_delta", [(10.0, 0.0), (0.0, 10.0), (-8.0, 6.0)])
 def test_axis_misalignment_te0_small_angle(f_beta, f_delta):
-    """Axis deviation f_Σβ and inclination f_Σδ over b tilt a spur gear's flank along
-    its normal by -z (f_Σβ cos α_wt + f_Σδ sin α_wt) / b (docs/cylindrical.md sec. 5):
-    the gap's minimum over the face is -|f_Σβ cos α_wt + f_Σδ sin α_wt| / 2 and
-    TE0 = that / r_b2, constant. First order in the tilt (5e-4 rad): the neglected
-    terms ~ tilt^2 r_b2 ~ 2e-5 mm against ~5e-3 mm, so 1 % of TE0."""
+    """Axis deviation f_Σβ (about the line of centres x) and inclination f_Σδ (about y)
+    over b turn the gear about the mid-face point by ω = (f_Σβ, f_Σδ, 0) / b; a spur
+    gear point X moves along the transverse line of action d = (sin α_wt, -cos α_wt, 0)
+    by ω·(X × d) = z (f_Σβ cos α_wt + f_Σδ sin α_wt) / b (its axial motion is along
+    the spur flank). The lines cross the whole face, so the gap's minimum is
+    -|f_Σβ cos α_wt + f_Σδ sin α_wt| / 2 and TE0 = that / r_b2, constant. First order
+    in the tilt (5e-4 rad): the neglected terms ~ tilt^2 r_b2 ~ 2e-5 mm against
+    ~5e-3 mm, so 1 % of TE0."""
     pair = _pair(0.0, None, b=20.0,
                  assembly=MeshAlignment(axis_deviation_um=f_beta, axis_inclination_um=f_delta))
     g = pair.geometry

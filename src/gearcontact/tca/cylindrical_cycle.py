@@ -66,6 +66,9 @@ _NEWTON = 8
 #: Golden-section and bisection steps (0.618^60 and 2^-45 of a face width < 1e-11 mm).
 _GOLDEN, _BISECT = 60, 45
 _GR = 0.5 * (math.sqrt(5.0) - 1.0)
+#: Roll-length margin of the lines solved beyond the zone of action, mm (far above the
+#: micro-geometry's and the tilt's shifts of the zone, ~0.01 mm).
+_SCREEN_MM = 1.0
 #: Residual (mm) at which the point solves stop: a few hundred ulps of the coordinates.
 _RESIDUAL_MM = 1e-11
 
@@ -217,14 +220,17 @@ class _Mesh:
         k = int(np.argmax(np.abs(h)))
         raise TcaConvergenceError(float(phi1[k]), float(abs(h[k])), _NEWTON)
 
+    def pinion_u_affine(self, phi1, z):
+        """The affine start of :meth:`pinion_u` (exact for unmodified flanks)."""
+        u0, a_phi, a_z = self._u_fit
+        return u0 + a_phi * (np.asarray(phi1, float) - self.phi1_p) + a_z * np.asarray(z, float)
+
     def pinion_u(self, phi1, z):
         """Roll length of the pinion point on the plane of action (NaN where z is)."""
         phi1, z = np.broadcast_arrays(np.asarray(phi1, float), np.asarray(z, float))
         ok = np.isfinite(z)
-        u0, a_phi, a_z = self._u_fit
         zz = np.where(ok, z, 0.0).ravel()
-        u = self._pinion_u(phi1.ravel(), zz, u0 + a_phi * (phi1.ravel() - self.phi1_p)
-                           + a_z * zz)
+        u = self._pinion_u(phi1.ravel(), zz, self.pinion_u_affine(phi1.ravel(), zz))
         return np.where(ok, u.reshape(z.shape), np.nan)
 
     def section(self, phi1, z):
@@ -285,6 +291,21 @@ def _interval(zlo, zhi, c_lo, c_hi, lo, hi):
 def _line_ends(mesh: _Mesh, phi1: np.ndarray):
     """Solved ends ``(z_lo, z_hi)`` of the contact line in the zone at each phase (NaN
     where it misses the zone)."""
+    lo, hi = np.full_like(phi1, np.nan), np.full_like(phi1, np.nan)
+    # lines beyond the zone by more than _SCREEN_MM in roll length are not solved (the
+    # involutes are singular at their base circles, u = 0)
+    (pu0, pu1), (gu0, gu1) = mesh.pinion.u_range, mesh.gear.u_range
+    ua, ub = (mesh.pinion_u_affine(phi1, z) for z in mesh.pinion.v_range)
+    # the line's pinion roll lengths against those where both flanks are (u1 + u2 is the
+    # roll_sum on the plane of action)
+    near = ((np.maximum(ua, ub) > max(pu0, mesh.roll_sum - gu1) - _SCREEN_MM)
+            & (np.minimum(ua, ub) < min(pu1, mesh.roll_sum - gu0) + _SCREEN_MM))
+    if near.any():
+        lo[near], hi[near] = _solved_ends(mesh, phi1[near])
+    return lo, hi
+
+
+def _solved_ends(mesh: _Mesh, phi1: np.ndarray):
     p, gflank = mesh.pinion, mesh.gear
     z0, z1 = p.v_range
     za, zb = np.full_like(phi1, z0), np.full_like(phi1, z1)
