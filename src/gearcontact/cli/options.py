@@ -95,7 +95,8 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
     if phases:
         p.add_argument("--side", default=None, choices=("drive", "coast"),
                        help="flank pair (default: the pair's design_side; s0003: coast, the "
-                            "published design point)")
+                            "published design point; a cylindrical pair: drive, its pinion's "
+                            "cw flanks, docs/cylindrical.md)")
         p.add_argument("--phases", type=int, default=61,
                        help=f"TCA mesh phases per pinion pitch, both ends included, 3 to "
                             f"{MAX_PHASES} (default 61)")
