@@ -73,3 +73,19 @@ def test_refused_options(option, tmp_path, capsys):
     err = capsys.readouterr().err
     assert option[0] in err and "cylindrical" in err and "Traceback" not in err
     assert not (tmp_path / "o").exists()
+
+
+def test_coast_side(tmp_path):
+    """--side coast analyses the ccw flanks: the pinion turns the other way, TE0 changes
+    sign (TE0 = phi2 - phi1 / u), so it is at least plus the half backlash (0.01 arcsec
+    as above), with the same pairs in the zone."""
+    d = tmp_path / "coast"
+    assert main(["tca", "--pair", EV, "--out", str(d), "--side", "coast", "--no-figures"]) == 0
+    g = load_pair(EV, kinds=(CYLINDRICAL,)).geometry
+    doc = json.loads((d / "tca.json").read_text())
+    assert doc["side"] == "coast" and doc["facing"] == "ccw"
+    beta_b = math.radians(g.base_helix_angle_deg)
+    half = g.normal_backlash_mm / (g.base_diameter_gear_mm * math.cos(beta_b)) * ARCSEC_PER_RAD
+    assert doc["te0_min_arcsec"] >= half - 1e-6
+    assert doc["te0_min_arcsec"] == pytest.approx(half, abs=0.01)
+    assert doc["mean_pairs_in_zone"] == pytest.approx(g.total_contact_ratio, abs=2 / 60)
