@@ -58,14 +58,27 @@ def _gearcontact(*argv, timeout=600):
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    """An export built with its Makefile, and the vectors of the Hertz cores."""
+def built(request, tmp_path_factory):
+    """An export built with its Makefile, and the vectors of the Hertz cores. The
+    library is the README's ``gearcontact export c --out clib/ && make -C clib/``
+    (default options, run once per session: tests/export/conftest.py), or without the
+    console script the same export through ``python -m gearcontact``."""
     base = tmp_path_factory.mktemp("cexport")
-    lib, vec = base / "lib", base / "vectors"
-    _gearcontact("export", "c", "--out", str(lib))
-    make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
-                          text=True, timeout=300)
-    assert make.returncode == 0, make.stdout[-3000:] + make.stderr[-3000:]
+    vec = base / "vectors"
+    try:
+        readme_dir, lines, runs = request.getfixturevalue("readme_export")
+    except pytest.skip.Exception:
+        readme_dir = None
+    if readme_dir is not None:
+        run = runs.get(lines["export_c"][0])
+        assert run is not None and run.returncode == 0, "the README's export c line failed"
+        lib = readme_dir / "clib"
+    else:
+        lib = base / "lib"
+        _gearcontact("export", "c", "--out", str(lib))
+        make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
+                              text=True, timeout=300)
+        assert make.returncode == 0, make.stdout[-3000:] + make.stderr[-3000:]
     _gearcontact("vectors", "--out", str(vec), "--count", str(COUNT), "--cores",
                  ",".join(CORES))
     return lib, vec
