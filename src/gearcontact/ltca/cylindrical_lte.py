@@ -96,6 +96,8 @@ class CylindricalLoadedTE:
         Axial cell centres on the pinion face, mm.
     line_load_n_per_mm : ndarray (P, K, N)
         Load per unit face width along each contact line, N/mm.
+    line_pressure_mpa : ndarray (P, K, N)
+        Peak pressure across each line (the largest cell of each row), MPa.
     stiffness_n_per_mm_um : ndarray (K,)
         Secant mesh stiffness per unit face width, N/(mm·µm) (module docstring).
     face_width_mm : float
@@ -121,6 +123,7 @@ class CylindricalLoadedTE:
     max_pressure_mpa: np.ndarray
     z_mm: np.ndarray
     line_load_n_per_mm: np.ndarray
+    line_pressure_mpa: np.ndarray
     stiffness_n_per_mm_um: np.ndarray
     face_width_mm: float
     grid_dx_mm: float
@@ -202,6 +205,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     n_pairs, n_phase = lg.gap_mm.shape[:2]
     share = np.zeros((n_pairs, n_phase))
     line_load = np.zeros((n_pairs, n_phase, cells_along))
+    line_p = np.zeros_like(line_load)
     lte, pmax = np.zeros(n_phase), np.zeros(n_phase)
     stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
     ok, edge = True, False
@@ -230,6 +234,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             w = res.loads_n[i]
             share[j, k] = res.pair_loads_n[i] / load
             line_load[j, k] = w.sum(axis=1) / dz
+            line_p[j, k] = press[i].max(axis=1)
             edge |= bool(res.contact_masks[i][:, [0, -1]].any())
         pmax[k] = max(float(p.max()) for p in press)
         rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
@@ -240,6 +245,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         phi1_rad=cycle.phi1_rad, pair_offsets=cycle.pair_offsets, torque_nm=float(torque_nm),
         normal_load_n=load, te0_arcsec=cycle.envelope_arcsec, lte_arcsec=lte,
         load_share=share, max_pressure_mpa=pmax, z_mm=z, line_load_n_per_mm=line_load,
+        line_pressure_mpa=line_p,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0)
