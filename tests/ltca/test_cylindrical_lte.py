@@ -26,7 +26,7 @@ def _load(name):
 @pytest.fixture(scope="module")
 def spur():
     """The standard 20/40 m 3 spur pair with 1 um lead crowning on the pinion (a full-face
-    line at 200 N·m) and its 21-phase cycle."""
+    line at T2 = 400 N·m) and its 21-phase cycle."""
     p = _load("spur_20x40_m3.toml")
     p = replace(p, modifications_pinion=replace(p.modifications_pinion, lead_crowning_um=1.0))
     return p, cylindrical_mesh_cycle(p, phases=21)
@@ -47,7 +47,7 @@ def test_line_contact_hertz_at_the_pitch_point(spur):
     the peak lie dx/2 off it, p0 (1 - (dx/2b)^2/2), plus 0.5 % for the piecewise-constant
     pressure (measured -0.08 % at 48 cells across, -0.32 % at 24)."""
     p, c = spur
-    r = cylindrical_loaded_te(p, 200.0, cycle=c, cells_across=48, cells_along=40)
+    r = cylindrical_loaded_te(p, 400.0, cycle=c, cells_across=48, cells_along=40)
     k = 10
     assert np.count_nonzero(r.load_share[:, k]) == 1
     j = int(np.argmax(r.load_share[:, k]))
@@ -66,12 +66,15 @@ def test_line_contact_hertz_at_the_pitch_point(spur):
 
 
 def test_load_balance_of_the_torque(helical):
-    """Sum of cell loads over all pairs = F_n = T1 / (r_b1 cos beta_b) at every phase
+    """Sum of cell loads over all pairs = F_n = T2 / (r_b2 cos beta_b) at every phase
     (the LCP's torque constraint: 1e-9 relative), and the line loads integrate to it."""
     p, c = helical
-    r = cylindrical_loaded_te(p, 150.0, cycle=c)
+    r = cylindrical_loaded_te(p, 400.0, cycle=c)
     g = p.geometry
-    fn = 150e3 / (0.5 * g.base_diameter_pinion_mm * math.cos(math.radians(g.base_helix_angle_deg)))
+    cb = math.cos(math.radians(g.base_helix_angle_deg))
+    fn = 400e3 / (0.5 * g.base_diameter_gear_mm * cb)
+    # the pinion's torque balance of the same load (ISO 6336-1: T1 / (r_b1 cos beta_b))
+    assert fn == pytest.approx(400e3 / p.ratio / (0.5 * g.base_diameter_pinion_mm * cb), rel=1e-12)
     assert r.normal_load_n == pytest.approx(fn, rel=1e-12)
     np.testing.assert_allclose(r.load_share.sum(axis=0), 1.0, rtol=1e-9)
     dz = r.z_mm[1] - r.z_mm[0]
@@ -86,7 +89,7 @@ def test_load_turns_the_gear_further_the_way_it_lags(helical, facing):
     load adds the contact's approach the same way, more at a higher torque."""
     p, _ = helical
     c = cylindrical_mesh_cycle(p, facing=facing, phases=7)
-    lo, hi = (cylindrical_loaded_te(p, t, cycle=c) for t in (50.0, 200.0))
+    lo, hi = (cylindrical_loaded_te(p, t, cycle=c) for t in (150.0, 600.0))
     s = np.sign(c.envelope_arcsec)
     assert (s == s[0]).all()
     assert (s * (lo.lte_arcsec - lo.te0_arcsec) > 0).all()
@@ -98,11 +101,11 @@ def test_mesh_stiffness_against_iso_6336_method_b(spur):
     (0.8, 1, 0.975: h_fP 1.25 m) = 12.7 and c_gamma_alpha = c' (0.75 eps_alpha + 0.25)
     = 18.7 N/(mm·µm). The rigid-tooth half-space holds only the contact flattening, so
     it must be stiffer than the standard's contact + bending + foundation; we assert only
-    that and the order of magnitude (ratio < 10). Measured at 200 N·m (355 N/mm): single-
+    that and the order of magnitude (ratio < 10). Measured at T2 = 400 N·m (355 N/mm): single-
     contact stiffness 31.9 (ratio 2.5 to c'), mean 49.8 (2.7 to c_gamma_alpha). The
     full check needs tooth bending (a later slice)."""
     p, c = spur
-    r = cylindrical_loaded_te(p, 200.0, cycle=c)
+    r = cylindrical_loaded_te(p, 400.0, cycle=c)
     c_th = theoretical_single_stiffness(z_n1=20.0, z_n2=40.0)
     c_single = c_th * 0.8 * 1.0 * (1.0 + 0.5 * (1.2 - 1.25))
     assert c_single == pytest.approx(12.7, abs=0.05)      # docs/cylindrical.md's check
@@ -117,10 +120,10 @@ def test_harris_map_matches_the_direct_solves(helical):
     """Each cell of the map is the loaded TE p-p of the pair with that C_a on both members
     (bit for bit the direct call), and a bad torque is refused naming the field."""
     p, _ = helical
-    m = harris_map(p, [50.0, 200.0], [0.0, 8.0], phases=7)
+    m = harris_map(p, [150.0, 600.0], [0.0, 8.0], phases=7)
     assert m.lte_pp_arcsec.shape == (2, 2) and m.converged
     c = cylindrical_mesh_cycle(p, phases=7)      # the example has C_a = 8 um
-    direct = cylindrical_loaded_te(p, 200.0, cycle=c)
+    direct = cylindrical_loaded_te(p, 600.0, cycle=c)
     assert m.lte_pp_arcsec[1, 1] == direct.lte_pp_arcsec
     assert m.te0_pp_arcsec[1] == c.te0_pp_arcsec
     with pytest.raises(InputRangeError, match="torques_nm"):

@@ -27,8 +27,11 @@ The profile modifications enter through ``g(z)`` along the line only: across the
 tip across the strip (a loaded cell in the first or last column of the grid is
 reported, ``edge_touch``).
 
-Loads: the pinion torque ``T1`` gives the normal load ``F_n = T1 / (r_b1 cos(beta_b))``
-(ISO 6336-1) and the gear torque of the LCP ``F_n r_b2 cos(beta_b)``. Mesh stiffness per
+Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
+normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).
+The Harris map's default torques (:func:`harris_torques_nm`) are those of the ISO 6336
+line loads ``F_t / b`` = 50 to 400 N/mm (``F_t = 2 T2 / d2`` at the reference circle;
+Method B's stiffness holds from 100 N/mm). Mesh stiffness per
 phase is the secant ``k = F_n / delta`` with ``delta = r_b2 cos(beta_b) theta`` the normal
 approach from the unloaded rest, given per unit face width in N/(mm·µm) (the unit of
 ISO 6336-1's c' and c_gamma). Tooth bending of cylindrical teeth is a later slice:
@@ -57,18 +60,39 @@ from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
-__all__ = ["OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap", "cylindrical_loaded_te",
-           "harris_map", "normal_load_n"]
+__all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
+           "cylindrical_loaded_te", "harris_map", "harris_tip_reliefs_um", "harris_torques_nm",
+           "normal_load_n"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
 
 
 def normal_load_n(pair: CylindricalPair, torque_nm: float) -> float:
-    """Normal tooth load of the pinion torque, ``T1 / (r_b1 cos(beta_b))`` (N; ISO 6336-1)."""
+    """Normal tooth load of the gear torque, ``T2 / (r_b2 cos(beta_b))`` (N; ISO 6336-1)."""
     t = check_positive("torque_nm", torque_nm)
     g = pair.geometry
-    return 2e3 * t / (g.base_diameter_pinion_mm * math.cos(math.radians(g.base_helix_angle_deg)))
+    return 2e3 * t / (g.base_diameter_gear_mm * math.cos(math.radians(g.base_helix_angle_deg)))
+
+
+#: Line loads F_t / b of the default Harris-map torques, N/mm.
+HARRIS_LINE_LOADS_N_PER_MM = (50.0, 100.0, 200.0, 300.0, 400.0)
+
+
+def harris_torques_nm(pair: CylindricalPair, line_loads_n_per_mm=HARRIS_LINE_LOADS_N_PER_MM
+                      ) -> np.ndarray:
+    """Gear torques (N·m) of the tangential line loads ``F_t / b`` (N/mm) at the gear's
+    reference circle, ``T2 = (F_t / b) b d2 / 2000``."""
+    g = pair.geometry
+    w = np.asarray(line_loads_n_per_mm, dtype=float)
+    return w * g.face_width_mm * g.reference_diameter_gear_mm / 2e3
+
+
+def harris_tip_reliefs_um(pair: CylindricalPair) -> np.ndarray:
+    """Default tip reliefs of the Harris map: 0, 1/2, 1, 3/2 and 2 times the pinion's C_a
+    (µm; 0 to 20 µm in steps of 5 when the pair has none)."""
+    c = pair.modifications_pinion.tip_relief_um
+    return np.array([0.0, 0.5, 1.0, 1.5, 2.0]) * (c if c > 0.0 else 10.0)
 
 
 @dataclass(frozen=True)
@@ -83,7 +107,7 @@ class CylindricalLoadedTE:
     phi1_rad : ndarray (K,)
     pair_offsets : tuple of int
     torque_nm : float
-        Pinion torque, N·m.
+        Gear torque, N·m.
     normal_load_n : float
         ``F_n``, N.
     te0_arcsec, lte_arcsec : ndarray (K,)
@@ -167,7 +191,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     ----------
     pair : CylindricalPair
     torque_nm : float
-        Pinion torque, N·m (> 0).
+        Gear torque, N·m (> 0).
     cycle : CylindricalMeshCycle, optional
         The unloaded cycle of ``pair`` (computed with ``facing``, ``phases`` if None).
     facing, phases
@@ -258,7 +282,7 @@ class HarrisMap:
     Attributes
     ----------
     torques_nm : ndarray (T,)
-        Pinion torques, N·m.
+        Gear torques, N·m.
     tip_reliefs_um : ndarray (R,)
         Tip relief C_a applied to both members (at their own start diameters), µm.
     lte_pp_arcsec : ndarray (R, T)
@@ -292,14 +316,14 @@ def _with_tip_relief(pair: CylindricalPair, relief_um: float) -> CylindricalPair
 
 def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str = "cw",
                phases: int = 61, **options) -> HarrisMap:
-    """The Harris map: loaded TE p-p vs pinion torque for each tip relief.
+    """The Harris map: loaded TE p-p vs gear torque for each tip relief.
 
     Parameters
     ----------
     pair : CylindricalPair
         Its tip-relief start diameters are kept; C_a is set on both members.
     torques_nm : array_like (T,)
-        Pinion torques, N·m (> 0).
+        Gear torques, N·m (> 0).
     tip_reliefs_um : array_like (R,)
         C_a, µm (>= 0).
     facing, phases, **options
