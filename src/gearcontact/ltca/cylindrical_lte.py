@@ -291,6 +291,8 @@ class HarrisMap:
         Unloaded TE peak-to-peak, arcsec.
     mean_stiffness_n_per_mm_um : ndarray (R, T)
         Mean secant mesh stiffness, N/(mm·µm).
+    edge_touch : bool
+        Some solve loaded the edge of its strip across a line.
     converged : bool
     """
 
@@ -299,6 +301,7 @@ class HarrisMap:
     lte_pp_arcsec: np.ndarray
     te0_pp_arcsec: np.ndarray
     mean_stiffness_n_per_mm_um: np.ndarray
+    edge_touch: bool
     converged: bool
 
 
@@ -340,7 +343,7 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
     pp = np.zeros((reliefs.size, torques.size))
     stiff = np.zeros_like(pp)
     te0 = np.zeros(reliefs.size)
-    ok = True
+    ok, edge = True, False
     for r, p in enumerate(pairs):
         cycle = cylindrical_mesh_cycle(p, facing=facing, phases=phases)
         te0[r] = cycle.te0_pp_arcsec
@@ -349,5 +352,7 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
             pp[r, t] = res.lte_pp_arcsec
             stiff[r, t] = res.mean_stiffness_n_per_mm_um
             ok &= res.converged
+            edge |= res.edge_touch
     return HarrisMap(torques_nm=torques, tip_reliefs_um=reliefs, lte_pp_arcsec=pp,
-                     te0_pp_arcsec=te0, mean_stiffness_n_per_mm_um=stiff, converged=bool(ok))
+                     te0_pp_arcsec=te0, mean_stiffness_n_per_mm_um=stiff, edge_touch=edge,
+                     converged=bool(ok))
