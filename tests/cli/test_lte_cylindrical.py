@@ -44,6 +44,13 @@ def test_files_and_numbers(out):
     fn = torque * 1e3 / (0.5 * g.base_diameter_gear_mm * math.cos(math.radians(
         g.base_helix_angle_deg)))
     assert doc["normal_load_n"] == pytest.approx(fn, rel=1e-12)
+    iso = doc["iso6336_method_b"]
+    assert iso["mean_stiffness_over_c_gamma_alpha"] == pytest.approx(
+        doc["mesh_stiffness_mean_n_per_mm_um"] / iso["c_gamma_alpha_n_per_mm_um"], rel=1e-12)
+    # 64.5 N·m is 29 N/mm: below Method B's 100 N/mm (no ratio asserted here)
+    assert iso["line_load_ft_per_b_n_per_mm"] == pytest.approx(
+        64.5e3 / (0.5 * 67 * 2.0 / math.cos(math.radians(25.0))) / 30.0, rel=1e-12)
+    assert iso["within_validity"] is False
     lte = np.genfromtxt(out / "lte.csv", delimiter=",", names=True)
     assert len(lte) == int(PHASES)
     assert doc["lte_pp_arcsec"] == pytest.approx(np.ptp(lte["lte_arcsec"]), abs=1e-9)

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearcontact.analytic.iso6336 import theoretical_single_stiffness
+from gearcontact.analytic.iso6336 import cylindrical_pair_stiffness, theoretical_single_stiffness
 from gearcontact.geometry.pair import load_pair
 from gearcontact.halfspace.lcp import resolve_e_star
 from gearcontact.ltca.cylindrical_lte import cylindrical_loaded_te, harris_map, normal_load_n
@@ -106,10 +106,13 @@ def test_mesh_stiffness_against_iso_6336_method_b(spur):
     full check needs tooth bending (a later slice)."""
     p, c = spur
     r = cylindrical_loaded_te(p, 400.0, cycle=c)
+    iso = cylindrical_pair_stiffness(pinion_teeth=20, gear_teeth=40, helix_angle_deg=0.0,
+                                     base_helix_angle_deg=0.0,
+                                     transverse_contact_ratio=p.geometry.transverse_contact_ratio)
+    c_single, c_gamma = iso.c_n_per_mm_um, iso.c_gamma_alpha_n_per_mm_um
+    # the same from the flexibility polynomial by hand (C_M 0.8, C_R 1, C_B 0.975)
     c_th = theoretical_single_stiffness(z_n1=20.0, z_n2=40.0)
-    c_single = c_th * 0.8 * 1.0 * (1.0 + 0.5 * (1.2 - 1.25))
-    assert c_single == pytest.approx(12.7, abs=0.05)      # docs/cylindrical.md's check
-    c_gamma = c_single * (0.75 * p.geometry.transverse_contact_ratio + 0.25)
+    assert c_single == pytest.approx(c_th * 0.8 * (1.0 + 0.5 * (1.2 - 1.25)), rel=1e-12)
     single = r.stiffness_n_per_mm_um[np.count_nonzero(r.load_share, axis=0) == 1]
     assert single.size > 0
     assert 1.0 < single.mean() / c_single < 10.0
