@@ -220,3 +220,30 @@ def test_backlash_offsets_te0(beta, hand, facing):
                                    * math.cos(math.radians(g.base_helix_angle_deg)))
     truth = (-1 if facing == "cw" else 1) * half * ARCSEC_PER_RAD
     np.testing.assert_allclose(c.envelope_arcsec, truth, atol=1e-6)
+
+
+def test_contact_line_gaps_sample_the_cycles_lines():
+    """contact_line_gaps samples the same gap as the cycle: on every line its samples lie
+    at or above the cycle's least gap (a golden-section minimum: 1e-9 mm) and within the
+    gap's largest slope times a sample step of it (the least gap may sit at a line end,
+    between samples); samples beyond the line ends are
+    NaN; the rate is r_b2 on an aligned pair (a gear turn moves its flank by r_b2 along
+    the transverse line of action)."""
+    from gearcontact.tca.cylindrical_cycle import contact_line_gaps
+
+    p = _pair(25.0, "left", modifications_pinion=ToothModifications(lead_crowning_um=5.0))
+    c = cylindrical_mesh_cycle(p, phases=7)
+    z = np.linspace(*c.pinion_v_range_mm, 301)
+    lg = contact_line_gaps(p, c, z)
+    live = np.isfinite(c.gap_min_mm)
+    smin = np.where(live, np.nanmin(np.where(np.isfinite(lg.gap_mm), lg.gap_mm, np.inf), -1),
+                    np.nan)
+    # 5 um lead crowning over b = 30 mm: 4 C z^2 / b^2, slope at most 4 C / b
+    h = z[1] - z[0]
+    assert np.all(smin[live] >= c.gap_min_mm[live] - 1e-9)
+    assert np.all(smin[live] - c.gap_min_mm[live] <= 4 * 5e-3 / 30.0 * h + 1e-9)
+    lo, hi = c.line_ends_zu_mm[..., 0, 0], c.line_ends_zu_mm[..., 1, 0]
+    out = (z < np.nan_to_num(lo, nan=np.inf)[..., None]) | (z > np.nan_to_num(hi, nan=-np.inf)[..., None])
+    assert np.isnan(lg.gap_mm[out]).all() and np.isfinite(lg.gap_mm[~out]).all()
+    rb2 = 0.5 * p.geometry.base_diameter_gear_mm
+    np.testing.assert_allclose(np.abs(lg.rate_mm_per_rad[~out]), rb2, rtol=1e-9)

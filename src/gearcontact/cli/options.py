@@ -129,7 +129,10 @@ def check_pair_arguments(args, *, kinds: tuple[str, ...] = (BEVEL,)) -> None:
     if hasattr(args, "side"):
         args.side = args.side or getattr(args.gear_pair, "design_side", "drive")
     if getattr(args, "torque", None) is not None:
-        check_torque("--torque (N·m)", args.torque, args.gear_pair)
+        if args.gear_pair.kind == BEVEL:
+            check_torque("--torque (N·m)", args.torque, args.gear_pair)
+        else:       # no preview envelope on a cylindrical pair's load (yet)
+            check_positive("--torque (N·m)", args.torque)
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:

@@ -55,7 +55,8 @@ from .curvature import PAINT_THICKNESS_MM
 from .parallel_axes import parallel_kinematics, pitch_point_guess
 from .types import ARCSEC_PER_RAD, MatingPoint, TcaConvergenceError
 
-__all__ = ["CONTACT_TOLERANCE_MM", "CylindricalMeshCycle", "cylindrical_mesh_cycle"]
+__all__ = ["CONTACT_TOLERANCE_MM", "CylindricalMeshCycle", "LineGaps", "contact_line_gaps",
+           "cylindrical_mesh_cycle"]
 
 #: A pair touches (unloaded) if its closed gap is within this, mm: far above the solves'
 #: residual (1e-11 mm), far below any modification (0.1 um and up).
@@ -486,3 +487,65 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
         pinion_teeth=z1, gear_teeth=pair.gear_teeth,
         pinion_u_range_mm=tuple(mesh.pinion.u_range), pinion_v_range_mm=tuple(mesh.pinion.v_range),
         pinion_base_radius_mm=mesh.pinion.base_radius_mm)
+
+
+@dataclass(frozen=True)
+class LineGaps:
+    """The gap along the contact lines of a mesh cycle, sampled at given axial positions.
+
+    Shapes (P, K, N): pairs of the cycle, its phases, the axial samples ``z_mm``; NaN
+    where the sample lies off the pair's line in the zone of action.
+
+    Attributes
+    ----------
+    z_mm : ndarray (N,)
+        Axial positions on the pinion flank, mm.
+    gap_mm : ndarray (P, K, N)
+        Gap along the transverse line of action ``d`` (> 0 apart), mm, with both members
+        posed on the perfect mesh ``phi2 = phi1 / u`` (the cycle's datum, before TE0).
+    pinion_roll_mm, gear_roll_mm : ndarray (P, K, N)
+        Roll lengths ``u1``, ``u2`` of the line point (transverse radii of curvature of
+        the involutes), mm.
+    rate_mm_per_rad : ndarray (P, K, N)
+        ``d g / d phi2`` (about ``r_b2``, signed by the facing), mm/rad.
+    """
+
+    z_mm: np.ndarray
+    gap_mm: np.ndarray
+    pinion_roll_mm: np.ndarray
+    gear_roll_mm: np.ndarray
+    rate_mm_per_rad: np.ndarray
+
+
+def contact_line_gaps(pair: CylindricalPair, cycle: CylindricalMeshCycle, z_mm) -> LineGaps:
+    """Sample the gap of every contact line of ``cycle`` at the axial positions ``z_mm``.
+
+    The same plane-of-action solve as the cycle's (module docstring): the gap field the
+    loaded contact starts from (docs/cylindrical.md sec. 7).
+
+    Parameters
+    ----------
+    pair : CylindricalPair
+        The pair ``cycle`` was computed for.
+    cycle : CylindricalMeshCycle
+    z_mm : array_like (N,)
+        Axial positions, mm (finite).
+    """
+    z = np.asarray(z_mm, dtype=float).ravel()
+    if z.size == 0 or not np.isfinite(z).all():
+        raise InputRangeError("z_mm", z_mm, "a non-empty array of finite axial positions, mm")
+    mesh = _Mesh(pair, cycle.facing)
+    pitch = 2.0 * math.pi / cycle.pinion_teeth
+    phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
+    lo, hi = cycle.line_ends_zu_mm[..., 0, 0], cycle.line_ends_zu_mm[..., 1, 0]
+    on = np.isfinite(lo)[..., None] & (z >= np.where(np.isfinite(lo), lo, 0.0)[..., None]) \
+        & (z <= np.where(np.isfinite(hi), hi, 0.0)[..., None])
+    shape = on.shape
+    out = {k: np.full(shape, np.nan) for k in ("g", "u1", "u2", "rate")}
+    if on.any():
+        ph = np.broadcast_to(phi[..., None], shape)[on]
+        s = mesh.section(ph, np.broadcast_to(z, shape)[on])
+        for k in out:
+            out[k][on] = s[k]
+    return LineGaps(z_mm=z, gap_mm=out["g"], pinion_roll_mm=out["u1"],
+                    gear_roll_mm=out["u2"], rate_mm_per_rad=out["rate"])
