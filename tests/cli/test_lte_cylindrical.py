@@ -1,6 +1,6 @@
-"""``gearcontact lte`` on a cylindrical pair, run as a user runs it (through
-`gearcontact.cli.main`; 7 phases instead of the default 61 to keep the suite
-fast), and the option it refuses.
+"""``gearcontact lte`` on a cylindrical pair, run as a user runs it: the README's line
+(default options: 61 phases, the Harris map) through `gearcontact.cli.main`, and the
+option it refuses.
 
 Truths: the normal load of the torque, F_n = T2 / (r_b2 cos beta_b) (ISO 6336-1), which
 the line loads of every phase must integrate to (the LCP's torque balance, 1e-9); the
@@ -11,23 +11,29 @@ tip relief (8 um) and torque equal to a loaded TE run at that torque.
 
 import json
 import math
+import shlex
 from pathlib import Path
 
 import numpy as np
 import pytest
+from readme_lines import readme_commands
 
 from gearcontact.cli import main
 from gearcontact.geometry.pair import CYLINDRICAL, load_pair
 
 ROOT = Path(__file__).resolve().parents[2]
 EV = str(ROOT / "examples" / "ev_reducer_helical_23x67.toml")
-PHASES = "7"
+PHASES = "61"  # the default
 
 
 @pytest.fixture(scope="module")
 def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("lte_cyl") / "run"
-    assert main(["lte", "--pair", EV, "--out", str(d), "--phases", PHASES, "--quiet"]) == 0
+    line = [c for c in readme_commands() if c.startswith("gearcontact lte --pair examples/ev_")]
+    assert len(line) == 1, "README has one lte line for the helical example"
+    argv = shlex.split(line[0])[1:]
+    argv[argv.index("--out") + 1] = str(d)
+    assert main(argv) == 0
     return d
 
 

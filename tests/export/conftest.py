@@ -23,18 +23,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from readme_lines import readme_commands
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-def readme_lines(prefix: str) -> list[str]:
-    """Lines of README.md that start with ``prefix``, comments stripped."""
-    lines = []
-    for line in (ROOT / "README.md").read_text().splitlines():
-        line = line.split("#", 1)[0].strip()
-        if line.startswith(prefix):
-            lines.append(line)
-    return lines
 
 
 def _shell(line: str, cwd: Path) -> subprocess.CompletedProcess:
@@ -51,9 +42,9 @@ def readme_export(tmp_path_factory):
     if (shutil.which("gearcontact") is None or shutil.which("make") is None
             or shutil.which("gcc") is None):
         pytest.skip("the console script, make and gcc are needed")
-    lines = {"vectors": readme_lines("gearcontact vectors --out vectors/"),
-             "export_c": readme_lines("gearcontact export c"),
-             "export_fmu": readme_lines("gearcontact export fmu")}
+    lines = {"vectors": readme_commands("gearcontact vectors --out vectors/"),
+             "export_c": readme_commands("gearcontact export c"),
+             "export_fmu": readme_commands("gearcontact export fmu")}
     base = tmp_path_factory.mktemp("readme_export")
     runs = {}
     for line in lines["vectors"] + lines["export_c"] + lines["export_fmu"]:

@@ -23,7 +23,6 @@ suite, the other twins are slow.
 
 import json
 import os
-import re
 import shlex
 import subprocess
 import sys
@@ -31,6 +30,7 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from readme_lines import readme_commands
 
 import gearcontact
 from gearcontact.geometry.pair import load_pair
@@ -42,18 +42,6 @@ EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.toml")
                   if "[teeth]" in p.read_text() and "kind" not in tomllib.loads(p.read_text()))
 #: twin commands in the default suite (the others carry the slow mark)
 DEFAULT_TWINS = {"iso23509_f2_spiral_bevel.toml"}
-
-
-def readme_commands() -> list[str]:
-    """``gearcontact ...`` lines of the README's sh blocks, comments stripped."""
-    text = (ROOT / "README.md").read_text()
-    lines = []
-    for block in re.findall(r"```sh\n(.*?)```", text, re.S):
-        for line in block.splitlines():
-            line = line.split(" #", 1)[0].strip()
-            if line.startswith("gearcontact "):
-                lines.append(line)
-    return lines
 
 
 def _example_commands(command: str) -> dict[str, list[str]]:

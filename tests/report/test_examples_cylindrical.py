@@ -23,11 +23,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from readme_lines import readme_commands
 
 from gearcontact.cli import main
 from gearcontact.geometry.pair import CYLINDRICAL, load_pair
-
-from .test_examples import readme_commands
 
 ROOT = Path(__file__).resolve().parents[2]
 CYLINDRICAL_EXAMPLES = sorted(p.name for p in (ROOT / "examples").glob("*.toml")

@@ -21,11 +21,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from readme_lines import readme_commands
 
 import gearcontact
 from gearcontact.geometry.pair import load_pair
-
-from .test_examples import readme_commands
 
 ROOT = Path(__file__).resolve().parents[2]
 
