@@ -7,6 +7,9 @@ datapath (golden fixed point and fp64) with a Makefile and the checker
 ``gearcontact export fmu --pair PAIR --kind mesh --out DIR`` writes an FMI 3.0 FMU
 (co-simulation and model exchange, plain C, a Linux x86-64 binary built at export) of
 one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`).
+``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members as
+STEP (B-spline surfaces) and as CMM point grids with normals
+(:mod:`gearcontact.export.flanks`).
 """
 
 from __future__ import annotations
@@ -36,6 +39,15 @@ def register(sub) -> None:
                    help=f"TCA phases per pinion pitch baked into the table, 3 to "
                         f"{MAX_PHASES} (default 61)")
     f.set_defaults(func=run_fmu, check=check_fmu)
+    g = cmds.add_parser("flanks", help="the flanks (and fillets) of both members as STEP "
+                                       "B-spline surfaces and CMM point grids with normals")
+    g.add_argument("--pair", default="s0003", help="preset name or TOML file, bevel/hypoid "
+                                                   "or cylindrical (default s0003)")
+    add_out_argument(g)
+    g.add_argument("--grid", default="5x9", metavar="ROWSxCOLS",
+                   help="CSV grid per flank: rows along the profile x columns along the face "
+                        "width, each 2 to 201 (default 5x9, the Gleason grid)")
+    g.set_defaults(func=run_flanks, check=check_flanks)
 
 
 def run_c(args) -> int:
@@ -58,4 +70,29 @@ def run_fmu(args) -> int:
                           side=args.side, phases=args.phases)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
+    return 0
+
+
+def check_flanks(args) -> None:
+    """Cheap checks before the flanks are built: the grid, the pair (either kind)."""
+    from ..export.flanks import parse_grid
+    from ..geometry.pair import BEVEL, CYLINDRICAL, load_pair
+    from ..validation import InputRangeError
+    args.grid_size = parse_grid(args.grid)
+    try:
+        args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+    except InputRangeError as exc:
+        if exc.field != "pair":     # a field inside the file: named as it is
+            raise
+        raise InputRangeError("--pair", exc.value, exc.allowed) from None
+
+
+def run_flanks(args) -> int:
+    from ..export.flanks import export_flanks
+    from ..geometry.pair import CYLINDRICAL
+    pair = args.gear_pair if args.gear_pair.kind == CYLINDRICAL else load_pair_for(args)
+    done = export_flanks(pair, args.out, pair_name=args.gear_pair.name, grid=args.grid_size)
+    for path in (*done.step_paths, *done.csv_paths, done.summary_path):
+        print(final_path(args, path))
+    print(f"STEP faces within {done.fit_error_mm * 1e3:.3g} um of the flanks (check grid)")
     return 0
