@@ -13,8 +13,9 @@ to Splines*, 2001, ch. V), so one refinement divides it by about 16.
 
 :func:`write_step` hands the control nets to ``gmsh.model.occ.addBSplineSurface``
 (one face each, its natural boundary) and writes the STEP file (AP214, mm) with
-OpenCASCADE's writer; the header's time stamp is then set to a fixed value and the
-products get the flank names, so identical runs write identical files.
+OpenCASCADE's writer; the header's time stamp is then set to a fixed value, the
+assembly occurrences are numbered per file (OpenCASCADE counts them over the whole
+process) and the products get the flank names, so identical runs write identical files.
 
 References
 ----------
@@ -83,7 +84,8 @@ class BSplineFlank:
                                    extrapolate=True).toarray()
         bv = BSpline.design_matrix(np.asarray(v, float), self.knots_v, DEGREE,
                                    extrapolate=True).toarray()
-        return np.einsum("ia,jb,abk->ijk", bu, bv, self.control_mm)
+        along_u = np.tensordot(bu, self.control_mm, axes=(1, 0))      # (i, b, k)
+        return np.moveaxis(np.tensordot(bv, along_u, axes=(1, 1)), 0, 1)
 
 
 def _interpolate(u, v, points):
@@ -191,6 +193,7 @@ def _add_surface(gmsh, fit: BSplineFlank) -> int:
 
 _PRODUCT = re.compile(r"PRODUCT\('([^']*)',\s*'([^']*)'")
 _FILE_NAME = re.compile(r"(FILE_NAME\('[^']*',\s*)'[^']*'")
+_OCCURRENCE = re.compile(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('\d+'")
 
 
 def _name_products(text: str, title: str, names: list[str]) -> str:
@@ -220,5 +223,8 @@ def write_step(path, fits: list[BSplineFlank], *, title: str) -> Path:
     text = path.read_text()
     text = _FILE_NAME.sub(lambda m: f"FILE_NAME('{title}','{STEP_TIMESTAMP}'", text, count=1)
     text = _name_products(text, title, [f.name for f in fits])
+    # the occurrence ids come from a counter of the whole process: number them per file
+    count = iter(range(1, len(fits) + 1))
+    text = _OCCURRENCE.sub(lambda m: f"NEXT_ASSEMBLY_USAGE_OCCURRENCE('{next(count)}'", text)
     path.write_text(text)
     return path
