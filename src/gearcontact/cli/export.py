@@ -19,8 +19,8 @@ from .outdir import add_out_argument, final_path
 
 
 def register(sub) -> None:
-    p = sub.add_parser("export", help="export the preview datapath (C99 library) or a gear "
-                                      "mesh (FMI 3.0 FMU)",
+    p = sub.add_parser("export", help="export the preview datapath (C99 library), a gear "
+                                      "mesh (FMI 3.0 FMU) or the flanks (STEP, CMM grids)",
                        description=__doc__.split("\n\n")[1])
     cmds = p.add_subparsers(dest="export_command", metavar="ACTION", required=True)
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
@@ -45,8 +45,9 @@ def register(sub) -> None:
                                                    "or cylindrical (default s0003)")
     add_out_argument(g)
     g.add_argument("--grid", default="5x9", metavar="ROWSxCOLS",
-                   help="CSV grid per flank: rows along the profile x columns along the face "
-                        "width, each 2 to 201 (default 5x9, the Gleason grid)")
+                   help="CSV grid per flank: ROWS lines along the face width (root to tip) x "
+                        "COLS points on each (toe to heel), each 2 to 201 (default 5x9, the "
+                        "Gleason grid)")
     g.set_defaults(func=run_flanks, check=check_flanks)
 
 

@@ -2,7 +2,9 @@
 
 :mod:`.c_library` writes the self-contained C99 library (golden fixed point and fp64)
 with its checker program; :mod:`.c_constants` and :mod:`.c_checker` collect what the
-templates print from the package's own tables and vector layouts.
+templates print from the package's own tables and vector layouts. :mod:`.fmu` and
+:mod:`.mesh_law` build the FMI 3.0 mesh FMU; :mod:`.flanks` and :mod:`.flank_step` write
+the flanks of a pair as STEP B-spline faces and CMM point grids (issue 27).
 """
 
 from .c_library import export_c_library, render_c_library

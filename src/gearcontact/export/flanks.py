@@ -49,7 +49,8 @@ MEMBERS = ("pinion", "gear")
 
 
 def parse_grid(text: str, *, field: str = "--grid") -> tuple[int, int]:
-    """``"5x9"`` -> ``(5, 9)``: rows (along the profile) x columns (along the face).
+    """``"5x9"`` -> ``(5, 9)``: rows (lines along the face width, spaced root -> tip) x
+    columns (points on each line, toe -> heel).
 
     Raises
     ------
@@ -129,8 +130,9 @@ def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str
     head = [
         f"# gearcontact export flanks: {pair_name}, {flank.name} "
         f"({type(flank.surface).__name__})",
-        f"# grid {rows} x {cols}: row 1..{rows} along the profile (root -> tip, u), "
-        f"col 1..{cols} along the face width (v), uniform in (u, v), edges included",
+        f"# grid {rows} x {cols}: row i = a line along the face width at u_i (row 1 "
+        f"root .. row {rows} tip), col j = the point at v_j on it (col 1 at v_min), "
+        "uniform in (u, v), edges included",
         f"# u in [{float(u[0])!r}, {float(u[-1])!r}], v in [{float(v[0])!r}, {float(v[-1])!r}] "
         "(the flank's own parameters, docs/export.md)",
         "# frame: the member's axis frame, axis along +z, mm"
@@ -173,8 +175,8 @@ def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 
     pair_name : str
         Name written into the headers.
     grid : (int, int)
-        CSV rows (along the profile) x columns (along the face width), each in
-        :data:`GRID_LIMITS`.
+        CSV rows (lines along the face width, root -> tip) x columns (points on each
+        line), each in :data:`GRID_LIMITS`.
     flanks : FlankSet, optional
         Already built flanks of a bevel ``pair``.
 
