@@ -138,9 +138,9 @@ def gmsh_session(model: str):
     model ``model``; finalized at the end if this session initialized it."""
     try:
         import gmsh
-    except ImportError:
+    except (ImportError, OSError) as exc:    # OSError: libgmsh's system libraries
         raise ToolUnavailable("gearcontact export flanks needs gmsh (OpenCASCADE): pip "
-                              "install 'gearcontact[export]'") from None
+                              f"install 'gearcontact[export]' ({exc})") from None
     owner = not gmsh.isInitialized()
     if owner:
         gmsh.initialize(argv=[], readConfigFiles=False, interruptible=False)
