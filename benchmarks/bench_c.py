@@ -1,4 +1,5 @@
-"""Benchmark of the exported C library (``gearcontact export c``): ns per preview.
+"""Benchmark of the exported C: ns per preview (``gearcontact export c``) and ns per twin
+step of the drivetrain FMU (``gearcontact export fmu --kind drivetrain``).
 
 Exports the library into a temporary directory, builds it with its Makefile (gcc -O2)
 and a small timing driver, and times every call individually (``clock_gettime``,
@@ -11,13 +12,28 @@ p99/p50 <= 1.5. Pin one core on a quiet machine for the targets
 (``taskset -c 1 python benchmarks/bench_c.py``); on a shared machine the tail
 includes other load.
 
-Run: ``python benchmarks/bench_c.py [--vectors N]``.
+The twin step: the drivetrain FMU of s0003 is exported, its ``sources/`` built with a
+timing driver into one program (gcc -O2 -ffp-contract=off, as its
+buildDescription.xml), and ``fmi3DoStep`` of one 10 us step timed call by call (one
+RK4 step with its 4 mesh evaluations of both flanks, the record and the finiteness
+check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
+mean), per backend, beside the compiled Python twin's step (numba,
+``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
+(>= 20x real time at 10 us).
+
+The process pins itself to one core (``os.sched_setaffinity``, inherited by the
+drivers; ``--cpu``) and prints the load average: figures taken under load say so.
+
+Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curvatures
+stencil|exact] [--twin-only]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import subprocess
+import zipfile
 import tempfile
 from pathlib import Path
 
@@ -112,11 +128,141 @@ int main(int argc, char **argv)
 """
 
 
-def main(argv=None) -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--vectors", type=int, default=20000, help="random chain vectors")
-    args = ap.parse_args(argv)
-    stim = vector_stimulus("chain", args.vectors, 7)
+STEP_DRIVER = r"""
+#define _POSIX_C_SOURCE 199309L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include "fmi3Functions.h"
+
+static int64_t now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+static void say(fmi3InstanceEnvironment env, fmi3Status s, fmi3String c, fmi3String msg)
+{
+    (void)env; (void)s; (void)c;
+    fprintf(stderr, "%s\n", msg);
+}
+
+int main(int argc, char **argv)
+{
+    long n = atol(argv[1]), i;
+    fmi3Int64 backend = atol(argv[2]);
+    fmi3Float64 step_us = 10.0, h = 1e-5, t = 0.0;
+    fmi3ValueReference vr_backend = VR_BACKEND, vr_step = VR_STEP_US;
+    fmi3Boolean ev, term, early;
+    fmi3Float64 last;
+    int64_t *dt = malloc(sizeof *dt * (size_t)n), t0, floor_ns, total;
+    fmi3Instance m = fmi3InstantiateCoSimulation("bench", NULL, NULL, fmi3False, fmi3False,
+        fmi3False, fmi3False, NULL, 0, NULL, say, NULL);
+    (void)argc;
+    if (!m || fmi3SetInt64(m, &vr_backend, 1, &backend, 1) != fmi3OK
+        || fmi3SetFloat64(m, &vr_step, 1, &step_us, 1) != fmi3OK
+        || fmi3EnterInitializationMode(m, fmi3False, 0.0, 0.0, fmi3False, 0.0) != fmi3OK
+        || fmi3ExitInitializationMode(m) != fmi3OK)
+        return 2;
+    for (i = 0; i < n; ++i) {           /* the timer's own cost */
+        t0 = now_ns();
+        dt[i] = now_ns() - t0;
+    }
+    qsort(dt, (size_t)n, sizeof dt[0], cmp);
+    floor_ns = dt[n / 2];
+    for (i = 0; i < n; ++i, t += h)     /* warm-up */
+        fmi3DoStep(m, t, h, fmi3True, &ev, &term, &early, &last);
+    for (i = 0; i < n; ++i, t += h) {
+        t0 = now_ns();
+        if (fmi3DoStep(m, t, h, fmi3True, &ev, &term, &early, &last) != fmi3OK)
+            return 3;
+        dt[i] = now_ns() - t0 - floor_ns;
+    }
+    t0 = now_ns();
+    for (i = 0; i < n; ++i, t += h)
+        if (fmi3DoStep(m, t, h, fmi3True, &ev, &term, &early, &last) != fmi3OK)
+            return 3;
+    total = now_ns() - t0;
+    qsort(dt, (size_t)n, sizeof dt[0], cmp);
+    printf("%lld %lld %lld %.1f %lld\n", (long long)dt[n / 2],
+           (long long)dt[(long)(0.99 * (double)(n - 1))], (long long)dt[n - 1],
+           (double)total / (double)n, (long long)floor_ns);
+    fmi3FreeInstance(m);
+    return 0;
+}
+"""
+
+
+def _pin(cpu: int | None) -> str:
+    """Pin this process (and the drivers it starts) to one core; a note saying which."""
+    if not hasattr(os, "sched_setaffinity"):
+        return "not pinned (no sched_setaffinity)"
+    cpus = sorted(os.sched_getaffinity(0))
+    cpu = cpus[-1] if cpu is None else cpu
+    os.sched_setaffinity(0, {cpu})
+    return f"pinned to CPU {cpu} of {cpus}"
+
+
+def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
+    """ns per twin step of the drivetrain FMU's C (module docstring)."""
+    from fmpy import __file__ as fmpy_file
+
+    from gearcontact.export.fmu_drivetrain import (DRIVETRAIN_VARIABLES,
+                                                   drivetrain_fmu_model,
+                                                   export_drivetrain_fmu)
+    from gearcontact.tca.synthesis import prepare_pair
+    from gearcontact.twin.simulate import simulate
+
+    prepared = prepare_pair("s0003")
+    vr = {v[0]: v[1] for v in DRIVETRAIN_VARIABLES}
+    with tempfile.TemporaryDirectory() as tmp:
+        fmu = export_drivetrain_fmu(prepared.pair, tmp, pair_name="s0003",
+                                    side=prepared.side, phases=phases,
+                                    curvatures=curvatures)
+        src = Path(tmp) / "src"
+        with zipfile.ZipFile(fmu.fmu_path) as z:
+            for name in z.namelist():
+                if name.startswith("sources/") and name.endswith((".c", ".h")):
+                    (src / Path(name).name).parent.mkdir(exist_ok=True)
+                    (src / Path(name).name).write_bytes(z.read(name))
+        (src / "bench_step.c").write_text(STEP_DRIVER)
+        exe = Path(tmp) / "bench_step"
+        subprocess.run(["gcc", "-O2", "-std=c99", "-ffp-contract=off",
+                        f"-DVR_BACKEND={vr['backend']}", f"-DVR_STEP_US={vr['step_us']}",
+                        "-I", str(src), "-I", str(Path(fmpy_file).parent / "c-code"),
+                        "-o", str(exe), *sorted(str(p) for p in src.glob("*.c")), "-lm"],
+                       check=True)
+        print(f"\ntwin step of the drivetrain FMU (s0003, curvatures {curvatures}, "
+              f"{phases} phases, 3000 rpm, "
+              f"64.5 N.m, 10 us; {steps} steps timed one by one, {steps} sustained)")
+        print(f"{'backend':<8} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} "
+              f"{'p99/p50':>8} {'mean ns':>8} {'RTF @10us':>10}")
+        for name, code in (("fp64", 0), ("golden", 1)):
+            out = subprocess.run([str(exe), str(steps), str(code)], check=True,
+                                 capture_output=True, text=True).stdout.split()
+            p50, p99, mx, mean = int(out[0]), int(out[1]), int(out[2]), float(out[3])
+            print(f"{name:<8} {p50:>10} {p99:>8} {mx:>9} {p99 / max(p50, 1):>8.2f} "
+                  f"{mean:>8.1f} {1e4 / mean:>9.1f}x   (timer {out[4]} ns subtracted)")
+    model = drivetrain_fmu_model(prepared.pair, side=prepared.side, phases=phases,
+                                 torque_nm=64.5, curvatures=curvatures)
+    res = simulate(model, speed_rpm=3000.0, duration_s=1e-5 * steps, step_s=1e-5)
+    print(f"numba twin (gearcontact twin, reference, curvatures {curvatures}): step "
+          f"{1e3 * res.timings['step_time_p50_us']:.0f} ns p50 of 256-step blocks, "
+          f"{1e3 * res.timings['step_time_p99_us']:.0f} ns p99, RTF "
+          f"{res.timings['real_time_factor']:.1f}x; target <= 500 ns per step (>= 20x)")
+
+
+def bench_previews(vectors: int) -> None:
+    """ns per preview of the C library (module docstring)."""
+    stim = vector_stimulus("chain", vectors, 7)
     gaps = np.asarray(stim.fields["gaps"], np.int32)
     w = np.asarray(stim.fields["W"], np.int32)
     e = np.asarray(stim.fields["e_prime"], np.int32)
@@ -126,7 +272,7 @@ def main(argv=None) -> None:
         subprocess.run(["make", "-s", "-C", str(lib), "CC=gcc"], check=True)
         (lib / "bench.c").write_text(DRIVER)
         subprocess.run(["gcc", "-O2", "-std=c99", "-o", str(lib / "bench"),
-                        str(lib / "bench.c"), str(lib / "libgearcontact.a"), "-lm",
+                        str(lib / "bench.c"), str(lib / "build" / "libgearcontact.a"), "-lm",
                         f"-I{lib}"], check=True)
         data = Path(tmp) / "ops.bin"
         data.write_bytes(np.int64(len(w)).tobytes() + gaps.tobytes() + w.tobytes()
@@ -144,6 +290,23 @@ def main(argv=None) -> None:
     print("reference: Python fp64 preview 920 ns median (docs/performance.md); FPGA "
           "chain 806 cycles = 16,120 ns at 50 MHz; targets golden chain <= 200 ns, "
           "fp64 <= 100 ns, p99/p50 <= 1.5")
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--vectors", type=int, default=20000, help="random chain vectors")
+    ap.add_argument("--steps", type=int, default=200000, help="twin steps timed")
+    ap.add_argument("--phases", type=int, default=61, help="TCA phases of the twin's table")
+    ap.add_argument("--cpu", type=int, default=None, help="core to pin (default: the last)")
+    ap.add_argument("--curvatures", default="stencil", choices=("stencil", "exact"),
+                    help="the twin's curvature source (default stencil, the twin's)")
+    ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
+    args = ap.parse_args(argv)
+    print(_pin(args.cpu) + "; load average %.2f %.2f %.2f" % os.getloadavg())
+    if not args.twin_only:
+        bench_previews(args.vectors)
+    bench_twin_step(args.steps, args.phases, args.curvatures)
+    print("load average after: %.2f %.2f %.2f" % os.getloadavg())
 
 
 if __name__ == "__main__":

@@ -66,6 +66,39 @@ def s0003_centred():
 
 
 @pytest.fixture(scope="session")
+def s0003_calibrated():
+    """``(pair, flanks)`` of the calibrated s0003 preset (design side coast, tip-edge
+    bearing) and its production flank set, built once per session for the structure,
+    tca, ltca, twin and report tests (``analyze_pair(pair)`` builds the same flanks)."""
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+
+    pair = load_pair("s0003")
+    return pair, build_flanks(pair)
+
+
+@pytest.fixture(scope="session")
+def s0003_calibrated_tca(s0003_calibrated):
+    """The nominal TCA of the calibrated s0003 on its design side (coast) at the default
+    61 phases per pitch, ``analyze_pair(pair)``: shared by tests/tca/test_calibration.py
+    and tests/tca/test_edges.py."""
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair, flanks = s0003_calibrated
+    return analyze_pair(pair, flanks=flanks)[0]
+
+
+@pytest.fixture(scope="session")
+def s0003_calibrated_tca15(s0003_calibrated):
+    """The calibrated s0003's TCA on its design side at 15 phases per pitch: the set-up
+    of both accuracy studies (tests/report/test_accuracy_studies.py)."""
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair, flanks = s0003_calibrated
+    return analyze_pair(pair, side=pair.design_side, phases=15, flanks=flanks)[0]
+
+
+@pytest.fixture(scope="session")
 def make_hertz():
     """Factory fixture returning ``hertz_problems.hertz_problem`` (cached per arguments):
     the Hertzian gaps of the halfspace and ltca solver tests."""

@@ -51,3 +51,20 @@ def test_bad_input_names_the_field():
         theoretical_single_stiffness(z_n1=2, z_n2=40)
     with pytest.raises(InputRangeError, match="face_width_mm"):
         bevel_pair_stiffness(load_pair("s0003").blank, face_width_mm=0.0)
+
+
+def test_cylindrical_pair_stiffness_worked_check():
+    """The standard 20/40 spur pair (x = 0, h_fP = 1.25 m): c' = 12.7 and c_gamma_alpha =
+    18.7 N/(mm·µm) (hand evaluation of ISO 6336-1 eq. 70-75 in docs/cylindrical.md sec. 7,
+    to the 3 digits quoted); a helical pair's virtual teeth z / (cos^2 beta_b cos beta)."""
+    from gearcontact.analytic.iso6336 import cylindrical_pair_stiffness
+
+    s = cylindrical_pair_stiffness(pinion_teeth=20, gear_teeth=40, helix_angle_deg=0.0,
+                                   base_helix_angle_deg=0.0, transverse_contact_ratio=1.635186)
+    assert s.c_n_per_mm_um == pytest.approx(12.7, abs=0.05)
+    assert s.c_gamma_alpha_n_per_mm_um == pytest.approx(18.7, abs=0.05)
+    assert s.c_gamma_beta_n_per_mm_um == pytest.approx(0.85 * s.c_gamma_alpha_n_per_mm_um)
+    h = cylindrical_pair_stiffness(pinion_teeth=23, gear_teeth=67, helix_angle_deg=25.0,
+                                   base_helix_angle_deg=23.4, transverse_contact_ratio=1.4)
+    f = math.cos(math.radians(23.4)) ** 2 * math.cos(math.radians(25.0))
+    assert h.z_n1 == pytest.approx(23 / f, rel=1e-12) and h.z_n2 == pytest.approx(67 / f, rel=1e-12)

@@ -145,10 +145,11 @@ def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, 
     done = {side: SimpleNamespace(evaluations=3, seconds=1.0, met=side == "drive",
                                   table=lambda side=side: f"| {side} table |")
             for side in ("drive", "coast")}
-    monkeypatch.setattr(synthesis, "synthesize_pair", lambda pair, targets: (pair, done))
+    monkeypatch.setattr(synthesis, "synthesize_pair",
+                        lambda pair, targets, flanks=None: (pair, done))
     monkeypatch.setattr(synthesis, "easeoff_toml", lambda done, pair_name: "[easeoff.drive]\n")
-    code = main(["design", "--pair", "s0003", "--synthesize-easeoff", "--path-angle-deg",
-                 "60", "--out", str(tmp_path / "x")])
+    code = main(["design", "--pair", "s0003", "--synthesize-easeoff", "--te0-arcsec",
+                 "6", "--out", str(tmp_path / "x")])
     out, err = capsys.readouterr()
     assert code == 4
     assert "| coast table |" in out and "[easeoff.drive]" in out

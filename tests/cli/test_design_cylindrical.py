@@ -40,7 +40,7 @@ def test_design_json_helical(capsys):
 
 
 @pytest.mark.parametrize("argv", [["analyze", "--pair", FZG, "--out", "OUT"],
-                                  ["tca", "--pair", EV, "--out", "OUT"],
+                                  ["ltca", "--pair", EV, "--out", "OUT"],
                                   ["design", "--pair", FZG, "--synthesize-easeoff"]])
 def test_other_commands_refuse_cylindrical(argv, capsys, tmp_path):
     argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]

@@ -58,21 +58,34 @@ def _gearcontact(*argv, timeout=600):
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    """An export built with its Makefile, and the vectors of the Hertz cores."""
+def built(request, tmp_path_factory):
+    """An export built with its Makefile, and the vectors of the Hertz cores. The
+    library is the README's ``gearcontact export c --out clib/ && make -C clib/``
+    (default options, run once per session: tests/export/conftest.py), or without the
+    console script the same export through ``python -m gearcontact``."""
     base = tmp_path_factory.mktemp("cexport")
-    lib, vec = base / "lib", base / "vectors"
-    _gearcontact("export", "c", "--out", str(lib))
-    make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
-                          text=True, timeout=300)
-    assert make.returncode == 0, make.stdout[-3000:] + make.stderr[-3000:]
+    vec = base / "vectors"
+    try:
+        readme_dir, lines, runs = request.getfixturevalue("readme_export")
+    except pytest.skip.Exception:
+        readme_dir = None
+    if readme_dir is not None:
+        run = runs.get(lines["export_c"][0])
+        assert run is not None and run.returncode == 0, "the README's export c line failed"
+        lib = readme_dir / "clib"
+    else:
+        lib = base / "lib"
+        _gearcontact("export", "c", "--out", str(lib))
+        make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
+                              text=True, timeout=300)
+        assert make.returncode == 0, make.stdout[-3000:] + make.stderr[-3000:]
     _gearcontact("vectors", "--out", str(vec), "--count", str(COUNT), "--cores",
                  ",".join(CORES))
     return lib, vec
 
 
 def _check(lib: Path, vec: Path):
-    return subprocess.run([str(lib / "gearcontact_check"), str(vec)], capture_output=True,
+    return subprocess.run([str(lib / "build" / "gearcontact_check"), str(vec)], capture_output=True,
                           text=True, timeout=300)
 
 
@@ -135,7 +148,7 @@ def test_golden_line_core_equals_the_golden_model(built, form, count):
     seeded random, both modes, every similarity exponent, flagged inputs) through the
     scalar golden model (~0.5 ms each: exact Hertz on 1,000) against the C code."""
     lib, _ = built
-    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
     so.gc_line_golden.restype = _Line
     so.gc_line_golden.argtypes = [ctypes.c_int32] * 5 + [ctypes.c_int]
     st = line_stimulus(count, 0)
@@ -170,7 +183,7 @@ FORMS = {"hamrock-brewe": (0, "gc_hertz_fp64"), "exact": (1, "gc_hertz_exact_fp6
 
 
 def _library(lib: Path):
-    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
     for _, name in FORMS.values():
         getattr(so, name).restype = _Fp64
         getattr(so, name).argtypes = [ctypes.c_double] * 4
@@ -279,7 +292,7 @@ def test_fp64_gap_within_1e12_of_the_python_reference(built):
     equal; gamma (a difference of coordinates of up to ~60 mm) within 1e-12 of the
     coordinates' magnitude (it is not a relative quantity: it may be ~0)."""
     lib, _ = built
-    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
     so.gc_gap_fp64.restype = _Gap
     ptr = ctypes.POINTER(ctypes.c_double)
     so.gc_gap_fp64.argtypes = [ptr] * 5 + [ctypes.c_double, ctypes.c_int]
@@ -319,7 +332,7 @@ def test_fp64_line_core_within_1e12_of_the_python_reference(built, form):
     output within 1e-12 relative (measured: bit-identical with Hamrock-Brewe, 1.6e-15
     exact), and an input the reference refuses is flagged."""
     lib, _ = built
-    so = ctypes.CDLL(str(lib / "libgearcontact.so"))
+    so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
     so.gc_line_fp64.restype = _LineFp64
     so.gc_line_fp64.argtypes = [ctypes.c_double] * 5 + [ctypes.c_int]
     f = line_stimulus(3000, 0).fields
@@ -375,3 +388,31 @@ def test_identical_runs_write_identical_files(built):
     assert list(again) == list(C_FILES)
     for name, text in again.items():
         assert text.encode() == (lib / name).read_bytes(), name
+
+
+def test_a_new_export_into_a_built_directory(tmp_path):
+    """``make`` builds into build/, which the export keeps as the user's: a second export
+    into the built directory succeeds (exit 0), leaves build/ and a foreign-free
+    directory (the export's files, run.json, build/), and make rebuilds from the new
+    sources into a checker that runs; a file the export did not write is still
+    refused (exit 2, named)."""
+    lib = tmp_path / "lib"
+    _gearcontact("export", "c", "--out", str(lib))
+    for _ in range(2):
+        make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
+                              text=True, timeout=300)
+        assert make.returncode == 0, make.stderr[-3000:]
+        assert (lib / "build" / "gearcontact_check").is_file()
+        assert not list(lib.glob("*.o")) and not list(lib.glob("*.a"))
+        _gearcontact("export", "c", "--out", str(lib))      # the rerun: accepted
+        assert (lib / "build" / "libgearcontact.a").is_file()
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    run = subprocess.run([str(lib / "build" / "gearcontact_check"), str(empty)],
+                         capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2          # the checker runs (and refuses an empty directory)
+    (lib / "notes.txt").write_text("mine")
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    run = subprocess.run([sys.executable, "-m", "gearcontact", "export", "c", "--out",
+                          str(lib)], env=env, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 2 and "notes.txt" in run.stderr and "--force" in run.stderr

@@ -1,74 +1,58 @@
 """The README's export lines, exactly as written, in a real shell.
 
 The README shows ``gearcontact vectors --out vectors/ ...`` (twice) and then
-``gearcontact export c --out clib/ && make -C clib/ && clib/gearcontact_check vectors/``
-and ``gearcontact export fmu --pair s0003 --kind mesh --out clib_fmu/``, then
-``gearcontact export flanks --pair s0003 --out flanks/``. They run here verbatim
-(default options; the relative directories land in the test's directory). Truth: the
-checker's own per-core comparison of the golden C with the golden model's vectors (0
-mismatches, no tolerance), FMPy's FMI 3.0 schema validation, and for the flanks the CMM
-grid points of the CSV files (the Surface contract's points, tests/export/
-test_flanks.py) lying on the STEP faces read back by gmsh within the issue's 0.5 um.
+``gearcontact export c --out clib/ && make -C clib/ && clib/build/gearcontact_check vectors/``
+and ``gearcontact export fmu --pair s0003 --kind mesh|drivetrain --out ...`` (the mesh
+and the drivetrain FMU, ~16 s each: the default 61 phases). They run
+verbatim (default options; the relative directories land in one directory), once per
+session in tests/export/conftest.py (``readme_export``, whose ``clib/`` the C library
+tests reuse). Truth: the checker's own per-core comparison of the golden C with the
+golden model's vectors (0 mismatches, no tolerance) and FMPy's FMI 3.0 schema
+validation. The README's ``gearcontact export flanks --pair s0003 --out flanks/`` runs
+on its own (no other line's files needed); truth: the CMM grid points of its CSV files
+(the Surface contract's points, tests/export/test_flanks.py) lie on the STEP faces read
+back by gmsh within the issue's 0.5 um.
 """
 
 from __future__ import annotations
 
 import re
 import shutil
-import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from .conftest import _shell, readme_lines
 
 
-def _readme_lines(prefix: str) -> list[str]:
-    lines = []
-    for line in (ROOT / "README.md").read_text().splitlines():
-        line = line.split("#", 1)[0].strip()
-        if line.startswith(prefix):
-            lines.append(line)
-    return lines
-
-
-def _shell(line: str, cwd: Path) -> subprocess.CompletedProcess:
-    return subprocess.run(["bash", "-c", line], cwd=cwd, capture_output=True, text=True,
-                          timeout=900)
-
-
-@pytest.mark.skipif(shutil.which("gearcontact") is None or shutil.which("make") is None
-                    or shutil.which("gcc") is None,
-                    reason="the console script, make and gcc are needed")
-def test_readme_export_lines_as_written(tmp_path):
-    vectors = _readme_lines("gearcontact vectors --out vectors/")
-    export_c = _readme_lines("gearcontact export c")
-    export_fmu = _readme_lines("gearcontact export fmu")
-    assert vectors and len(export_c) == 1 and len(export_fmu) == 1
+def test_readme_export_lines_as_written(readme_export):
+    base, lines, runs = readme_export
+    vectors, export_c, export_fmu = lines["vectors"], lines["export_c"], lines["export_fmu"]
+    assert vectors and len(export_c) == 1 and len(export_fmu) == 2
     for line in vectors:
-        run = _shell(line, tmp_path)
+        run = runs[line]
         assert run.returncode == 0, (line, run.stderr)
-    run = _shell(export_c[0], tmp_path)
+    run = runs[export_c[0]]
     assert run.returncode == 0, (export_c[0], run.stdout, run.stderr)
     checked = re.findall(r"^(\w+): (\d+) vectors, (\d+) mismatches$", run.stdout, re.M)
-    written = {p.stem for p in (tmp_path / "vectors").glob("*.jsonl")}
+    written = {p.stem for p in (base / "vectors").glob("*.jsonl")}
     assert written and {core for core, _, _ in checked} == written, run.stdout
     assert all(int(n) > 0 and int(m) == 0 for _, n, m in checked), run.stdout
 
-    run = _shell(export_fmu[0], tmp_path)
-    assert run.returncode == 0, (export_fmu[0], run.stderr)
-    fmus = list((tmp_path / "clib_fmu").glob("*.fmu"))
-    assert len(fmus) == 1
     fmpy = pytest.importorskip("fmpy.validation", reason="the fmu extra (FMPy)")
-    assert fmpy.validate_fmu(str(fmus[0])) == []
+    for line, out in zip(export_fmu, ("clib_fmu", "twin_fmu")):
+        run = runs[line]
+        assert run.returncode == 0, (line, run.stderr)
+        fmus = list((base / out).glob("*.fmu"))
+        assert len(fmus) == 1
+        assert fmpy.validate_fmu(str(fmus[0])) == []
 
 
 @pytest.mark.skipif(shutil.which("gearcontact") is None,
                     reason="the console script is needed")
 def test_readme_export_flanks_line_as_written(tmp_path):
     gmsh = pytest.importorskip("gmsh", reason="the export extra (gmsh)")
-    lines = _readme_lines("gearcontact export flanks")
+    lines = readme_lines("gearcontact export flanks")
     assert len(lines) == 1
     run = _shell(lines[0], tmp_path)
     assert run.returncode == 0, (lines[0], run.stderr)

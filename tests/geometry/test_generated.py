@@ -219,7 +219,7 @@ def test_contact_of_a_pinion_point_without_conjugate_reference():
     # the exact conjugate contact of today's flanks at the same pinion point: gear (u, v)
     # and phi2 within 2e-5 mm / rad (the 60 x 80 sheets interpolate to ~1e-6 mm)
     from gearcontact.tca.analysis import _contact_of
-    from gearcontact.tca.calibration import conjugate_contact
+    from gearcontact.tca.design_point import conjugate_contact
 
     pair = load_pair(PAIRS["spiral_bevel"])
     setups = tuple(formate_gear_setups(pair).values()) + tuple(

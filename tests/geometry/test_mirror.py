@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from gearcontact.geometry.flank import SIDES, build_flanks
+from gearcontact.geometry.flank import SIDES, build_flanks, with_easeoff
 from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.geometry.mirror import MIRROR
 from gearcontact.geometry.sampling import sample_grid
@@ -22,6 +22,26 @@ def _unit(x):
 def left(s0003):
     pair = replace(s0003, pinion_hand="left")
     return pair, build_flanks(pair)
+
+
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_with_easeoff_is_build_flanks_bit_for_bit(s0003, flanks, left, hand):
+    """Another ease-off applied to a built flank set (geometry.flank.with_easeoff: what
+    analyze does with the synthesis' flanks instead of building them again) is
+    build_flanks of that pair bit for bit, for both hands (a left-hand set eases its
+    right-hand twin and mirrors it, as build_flanks does: pi - (pi - psi) is not
+    always psi)."""
+    pair, base = (s0003, flanks) if hand == "right" else left
+    c = pair.easeoff_drive
+    varied = replace(pair, easeoff_drive=replace(
+        c, profile_crowning_um_per_mm2=1.25 * c.profile_crowning_um_per_mm2 + 0.5,
+        bias_um_per_mm2=c.bias_um_per_mm2 + 0.05))
+    got, want = with_easeoff(base, varied), build_flanks(varied)
+    for side in SIDES:
+        g, w = got.pinion.side(side), want.pinion.side(side)
+        np.testing.assert_array_equal(g.psi_nodes, w.psi_nodes)
+        assert g.normal_sign == w.normal_sign
+    assert not np.array_equal(got.pinion.drive.psi_nodes, base.pinion.drive.psi_nodes)
 
 
 def test_left_hand_flanks_are_the_mirror_image(flanks, left):
@@ -122,7 +142,7 @@ def test_left_hand_conjugate_nodes_meet_the_mirrored_meshing_equation(left, side
 
 
 def _design_point(pair, flanks, side="drive"):
-    from gearcontact.tca.calibration import conjugate_contact, evaluate_design_point
+    from gearcontact.tca.design_point import conjugate_contact, evaluate_design_point
     u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
     gear = flanks.flank("gear", side)
     start = conjugate_contact(flanks.pinion_conjugate.side(side), gear, pair, u_m, v_m)

@@ -1,7 +1,7 @@
 """Bulk RTL equivalence through Verilator (generic C++ harness) against the golden models.
 
 Default run: every core (gap L = 16, fit, hertz, chain, comb) on its corner cases plus
-1,000 seeded random vectors, zero mismatches on every checked output port and the same,
+1,000 seeded random vectors (the line chain and the exact-form line core: 10,000), zero mismatches on every checked output port and the same,
 expected cycle count for every vector. ``python -m pytest --runslow tests/hw`` adds the
 100,000-vector sweeps. Builds are cached (``~/.cache/gearcontact/verilator``), so only
 the first run on a machine pays for them.
@@ -235,14 +235,30 @@ def test_build_error_carries_the_log(tmp_path, monkeypatch):
 #: vectors passing, docs/hertz.md sec. 6); tests/preview/hertz/test_rtl_line.py checks it
 #: in the Amaranth simulator by default.
 _SLOW_BUILDS = ("chain_exact", "hertz_pipe_exact", "chain_pipe", "comb_exact", "hertz_line")
+#: Cores with their own 10,000-vector default run (test_line_cores_10k).
+_LINE_CORES = {"chain_line": 811, "hertz_line_exact": 759}
 _DEFAULT_CORES = [pytest.param(c, marks=pytest.mark.slow) if c in _SLOW_BUILDS else c
-                  for c in hc.CORE_NAMES]
+                  for c in hc.CORE_NAMES if c not in _LINE_CORES]
+LINE_VECTORS = 10_000
 
 
 @needs_verilator
 @pytest.mark.parametrize("core", _DEFAULT_CORES)
 def test_bulk_equivalence(core):
     _assert_equivalent(_report(core, DEFAULT_VECTORS, SEED), DEFAULT_VECTORS)
+
+
+@needs_verilator
+@pytest.mark.parametrize("core", sorted(_LINE_CORES))
+def test_line_cores_10k(core):
+    """The line chain (fit core -> line core, preview.chain_line_rtl.ChainLineCore) and
+    the line core with the exact Hertz tables: RTL == golden bit for bit on every output
+    port over 10,000 seeded random vectors + the corner cases, and the cycle count of the
+    design for every vector (811 = 52 fit + 759 line core; 759). Their Verilator builds
+    take ~1-3 min on a fresh machine (cached afterwards, then ~10-30 s each here)."""
+    rep = _report(core, LINE_VECTORS, SEED + 28)
+    _assert_equivalent(rep, LINE_VECTORS)
+    assert rep.cycles_expected == _LINE_CORES[core]
 
 
 @needs_verilator
@@ -328,7 +344,8 @@ def test_bulk_equivalence_100k(core):
 # ---------------------------------------------------------------------------------
 # descriptors: every harness width derived from the component's signature
 # ---------------------------------------------------------------------------------
-@pytest.mark.parametrize("core", ["gap", "fit", "hertz", "hertz_pipe", "chain", "hertz_line"])
+@pytest.mark.parametrize("core", ["gap", "fit", "hertz", "hertz_pipe", "chain", "hertz_line",
+                                  "chain_line"])
 def test_derived_spec_matches_the_verilog_ports(core):
     """Each derived port (operands, burst fields, outputs) has the direction and total
     width of the exported Verilog's port (independent truth: Amaranth's backend), and

@@ -466,14 +466,6 @@ def test_s0003_mesh_stiffness(s0003_tca, s0003_flanks, s0003_pair):
     assert [r[col] for r in rows] == list(kr)
 
 
-@pytest.fixture(scope="module")
-def s0003_calibrated():
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
-    pair = load_pair("s0003")
-    return pair, build_flanks(pair)
-
-
 def test_calibrated_s0003_needs_three_pairs_and_is_then_periodic(s0003_calibrated):
     """The calibrated preset (coast, tip-edge bearing) loads pairs -3..0 over the pitch
     of its reference window. With the window -2..2 pair -2 carries load at the first

@@ -15,7 +15,6 @@ import pytest
 
 from gearcontact.geometry.pair import load_pair
 from gearcontact.report.accuracy_studies import HERTZ_P90_OVER_P0, bearing_sweep, grid_study
-from gearcontact.tca.analysis import analyze_pair
 from gearcontact.validation import InputRangeError
 
 
@@ -39,9 +38,9 @@ def test_bearing_sweep_turns_the_error_negative_at_the_edge():
 
 
 @pytest.mark.filterwarnings("ignore::UserWarning")
-def test_grid_study():
-    pair = load_pair("s0003")
-    tca, flanks = analyze_pair(pair, side=pair.design_side, phases=15, progress=False)
+def test_grid_study(s0003_calibrated, s0003_calibrated_tca15):
+    pair, flanks = s0003_calibrated
+    tca = s0003_calibrated_tca15
     rows = grid_study(tca, flanks, pair, 64.5, cells=(40, 64))
     assert rows[0].preview_p_max_mpa == rows[1].preview_p_max_mpa
     assert rows[1].contact_cells > rows[0].contact_cells

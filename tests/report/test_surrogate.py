@@ -20,7 +20,6 @@ from gearcontact.ltca.pair_ltca import single_pair_ltca  # noqa: E402
 from gearcontact.geometry.pair import load_pair  # noqa: E402
 from gearcontact.report.surrogate import (  # noqa: E402
     MlpSpec, anchored_study, relative_rmse_pct, synthetic_study)
-from gearcontact.tca.analysis import analyze_pair  # noqa: E402
 from gearcontact.validation import InputRangeError  # noqa: E402
 
 
@@ -76,9 +75,9 @@ def test_mlp_spec_describes_itself():
 
 
 @pytest.mark.filterwarnings("ignore::UserWarning")
-def test_anchored_study_on_s0003():
-    pair = load_pair("s0003")
-    tca, flanks = analyze_pair(pair, side=pair.design_side, phases=15, progress=False)
+def test_anchored_study_on_s0003(s0003_calibrated, s0003_calibrated_tca15):
+    pair, flanks = s0003_calibrated
+    tca = s0003_calibrated_tca15
     train = (32.25, 45.0, 64.5)
     st = anchored_study(tca, flanks, pair, train_torques_nm=train, extrap_torques_nm=(258.0,))
     # training cost: one LCP solve per training torque, timed

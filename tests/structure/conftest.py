@@ -2,8 +2,6 @@
 
 import pytest
 
-from gearcontact.geometry.flank import build_flanks
-from gearcontact.geometry.pair import load_pair
 
 
 @pytest.fixture(scope="session")
@@ -13,8 +11,7 @@ def s0003(s0003_centred):
 
 
 @pytest.fixture(scope="session")
-def pairs(s0003):
+def pairs(s0003, s0003_calibrated):
     """``name -> (pair, flanks)`` of both calibration pairs: s0003-centred and the
     calibrated s0003 (deeper teeth: 2.9 mm against 2.4 mm)."""
-    pair = load_pair("s0003")
-    return {"s0003-centred": s0003, "s0003": (pair, build_flanks(pair))}
+    return {"s0003-centred": s0003, "s0003": s0003_calibrated}

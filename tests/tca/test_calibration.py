@@ -19,18 +19,19 @@ from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair, pair_to_toml, parse_pair
 from gearcontact.report.analyze import published_values
 from gearcontact.tca.analysis import analyze_pair
-from gearcontact.tca.calibration import (CalibrationTargets, point_invariants,
-                                         surface_of_action_offset, working_depth_for_tip)
+from gearcontact.tca.calibration import (CalibrationTargets, surface_of_action_offset,
+                                         working_depth_for_tip)
+from gearcontact.tca.design_point import point_invariants
 from gearcontact.validation import InputRangeError
 
 P0 = (41.679, -16.164, 7.949)
 
 
 @pytest.fixture(scope="module")
-def calibrated():
-    pair = load_pair("s0003")
-    tca, flanks = analyze_pair(pair)
-    return pair, tca, flanks
+def calibrated(s0003_calibrated, s0003_calibrated_tca):
+    """``analyze_pair(load_pair("s0003"))``, built once per session (tests/conftest.py)."""
+    pair, flanks = s0003_calibrated
+    return pair, s0003_calibrated_tca, flanks
 
 
 def test_p0_invariants_are_frame_invariant():
@@ -75,14 +76,13 @@ def test_p0_on_pinion_flank_at_its_tip_edge(calibrated):
     assert b.u_tip - mp.u1 == pytest.approx(0.09, abs=0.03)
 
 
-def test_tip_choice_keeps_the_top_land():
+def test_tip_choice_keeps_the_top_land(s0003_calibrated):
     # independent measure of the top land: the angular gap of the two conjugate flanks at
     # the tip radius (mean_normal_thickness_mm at u_tip) >= 0.25 m_mn along the face
-    from gearcontact.geometry.flank import build_flanks
     from gearcontact.tca.calibration import MIN_TOP_LAND_MODULES, top_land_mm
 
-    pair = load_pair("s0003")
-    land = top_land_mm(build_flanks(pair))
+    pair, flanks = s0003_calibrated
+    land = top_land_mm(flanks)
     m = pair.blank.mean_normal_module_mm
     assert MIN_TOP_LAND_MODULES * m <= land < MIN_TOP_LAND_MODULES * m + 0.01
 

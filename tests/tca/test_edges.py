@@ -21,7 +21,6 @@ from gearcontact.geometry.kinematics import AssemblyErrors
 from gearcontact.tca.analysis import analyze_pair
 from gearcontact.tca.curvature import curvature_tensor, relative_curvature
 from gearcontact.ltca.pair_ltca import single_pair_ltca
-from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.edges import PatternOffFlank, edge_name, loaded_patch_edges
 from gearcontact.tca.stencil import gap_at
@@ -172,12 +171,11 @@ _TRANSLATION = {"E_mm": np.array([0.0, 1.0, 0.0]), "G_mm": np.array([0.0, 0.0, 1
 
 
 @pytest.fixture(scope="module")
-def calibrated():
-    """The calibrated s0003 preset (coast, tip-edge bearing) and its nominal TCA."""
-    pair = load_pair("s0003")
-    flanks = build_flanks(pair)
-    nominal, _ = analyze_pair(pair, flanks=flanks)
-    return pair, flanks, nominal
+def calibrated(s0003_calibrated, s0003_calibrated_tca):
+    """The calibrated s0003 preset (coast, tip-edge bearing) and its nominal TCA (both
+    built once per session, tests/conftest.py)."""
+    pair, flanks = s0003_calibrated
+    return pair, flanks, s0003_calibrated_tca
 
 
 def _assert_edges_flagged(res, pair, flanks):

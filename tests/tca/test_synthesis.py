@@ -13,7 +13,7 @@ import dataclasses
 import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors
-from gearcontact.tca.calibration import conjugate_contact, eased_design_point
+from gearcontact.tca.design_point import conjugate_contact, eased_design_point
 from gearcontact.tca.synthesis import (SynthesisTargets, easeoff_toml, prepare_pair,
                                        synthesize_easeoff)
 from gearcontact.validation import InputRangeError

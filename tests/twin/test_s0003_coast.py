@@ -13,20 +13,20 @@ from dataclasses import replace
 import numpy as np
 
 from gearcontact.ltca.lte import loaded_te
-from gearcontact.geometry.pair import load_pair
 from gearcontact.twin.simulate import build_model, model_for_pair, simulate
 
 from .conftest import PHASES, TORQUE_NM, quasi_static_bound_arcsec
 
 
-def test_s0003_coast_quasi_static_is_the_loaded_te():
-    pair = load_pair("s0003")
+def test_s0003_coast_quasi_static_is_the_loaded_te(s0003_calibrated):
+    pair, flanks = s0003_calibrated       # load_pair("s0003"), built once per session
     assert pair.design_side == "coast"
     base = model_for_pair(pair, torque_nm=TORQUE_NM, side="coast", phases=PHASES)
     assert base.reverse is None and "line contact" in base.reverse_note
     mesh = base.mesh
     from gearcontact.tca.analysis import analyze_pair
-    tca, flanks = analyze_pair(pair, side="coast", phases=PHASES, edge_contact=False)
+    tca, _ = analyze_pair(pair, side="coast", phases=PHASES, edge_contact=False,
+                          flanks=flanks)
     lte = loaded_te(tca, flanks, pair, TORQUE_NM, side="coast")
     dt = replace(base.drivetrain, input_damping_ratio=0.3, output_damping_ratio=0.3)
     m = build_model(mesh, dt, TORQUE_NM, reverse_note=base.reverse_note,

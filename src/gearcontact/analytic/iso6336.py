@@ -13,7 +13,10 @@ and the single stiffness of the real pair is ``c' = c'_th C_M C_R C_B cos(beta)`
 (eq. 71), with C_M = 0.8 (measured against theory), C_R = 1 (solid blanks) and the
 basic-rack factor ``C_B = [1 + 0.5 (1.2 - h_fP / m_n)] [1 - 0.02 (20 deg - alpha_n)]``
 (eq. 73). A bevel or hypoid pair enters through its virtual cylindrical gears,
-``z_n = z / (cos(delta) cos^3(beta_m))`` (ISO 10300-1), at the mean spiral angle.
+``z_n = z / (cos(delta) cos^3(beta_m))`` (ISO 10300-1), at the mean spiral angle; a
+cylindrical pair through ``z_n = z / (cos^2(beta_b) cos(beta))`` with the mesh stiffness
+``c_gamma_alpha = c' (0.75 eps_alpha + 0.25)`` and ``c_gamma_beta = 0.85 c_gamma_alpha``
+(eq. 74-75).
 Multiplied by the face width this is the stiffness of a contact line over the whole
 face: contact flattening, tooth bending and foundation together. A localized bearing
 loads only part of the face, so its pair compliance must lie *above* this value.
@@ -32,8 +35,9 @@ from dataclasses import dataclass
 
 from ..validation import check_positive, check_range
 
-__all__ = ["FLEXIBILITY_COEFFICIENTS", "IsoPairStiffness", "theoretical_single_stiffness",
-           "virtual_teeth", "bevel_pair_stiffness"]
+__all__ = ["FLEXIBILITY_COEFFICIENTS", "IsoPairStiffness", "IsoMeshStiffness",
+           "theoretical_single_stiffness", "virtual_teeth", "bevel_pair_stiffness",
+           "cylindrical_pair_stiffness"]
 
 #: C1..C9 of ISO 6336-1:2006 table 8 (mm µm / N; x dimensionless).
 FLEXIBILITY_COEFFICIENTS = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193,
@@ -102,6 +106,12 @@ class IsoPairStiffness:
     compliance_mm_per_n: float
 
 
+def _c_b(dedendum_per_module: float, rack_pressure_angle_deg: float) -> float:
+    """Basic-rack factor C_B of eq. (73)."""
+    return ((1.0 + 0.5 * (1.2 - dedendum_per_module))
+            * (1.0 - 0.02 * (20.0 - rack_pressure_angle_deg)))
+
+
 def bevel_pair_stiffness(blank, *, face_width_mm: float, c_m: float = 0.8, c_r: float = 1.0,
                          dedendum_per_module: float = 1.25,
                          rack_pressure_angle_deg: float = 20.0) -> IsoPairStiffness:
@@ -133,3 +143,58 @@ def bevel_pair_stiffness(blank, *, face_width_mm: float, c_m: float = 0.8, c_r: 
     return IsoPairStiffness(z_n1=z1, z_n2=z2, spiral_angle_deg=beta, c_th_n_per_mm_um=c_th,
                             c_n_per_mm_um=c, face_width_mm=b, stiffness_n_per_um=k,
                             compliance_mm_per_n=1e-3 / k)
+
+
+@dataclass(frozen=True)
+class IsoMeshStiffness:
+    """ISO 6336-1 Method B stiffness of a cylindrical pair, N/(mm·µm) per mm of face.
+
+    Attributes
+    ----------
+    z_n1, z_n2 : float
+        Virtual numbers of teeth ``z / (cos^2(beta_b) cos(beta))``.
+    c_th_n_per_mm_um, c_n_per_mm_um : float
+        c'_th and the single stiffness c' = c'_th C_M C_R C_B cos(beta).
+    c_gamma_alpha_n_per_mm_um, c_gamma_beta_n_per_mm_um : float
+        Mesh stiffness c' (0.75 eps_alpha + 0.25) and 0.85 times it.
+    """
+
+    z_n1: float
+    z_n2: float
+    c_th_n_per_mm_um: float
+    c_n_per_mm_um: float
+    c_gamma_alpha_n_per_mm_um: float
+    c_gamma_beta_n_per_mm_um: float
+
+
+def cylindrical_pair_stiffness(*, pinion_teeth: int, gear_teeth: int, helix_angle_deg: float,
+                               base_helix_angle_deg: float, transverse_contact_ratio: float,
+                               profile_shift_pinion: float = 0.0,
+                               profile_shift_gear: float = 0.0, c_m: float = 0.8,
+                               c_r: float = 1.0, dedendum_per_module: float = 1.25,
+                               rack_pressure_angle_deg: float = 20.0) -> IsoMeshStiffness:
+    """Method B single and mesh stiffness of a spur or helical pair (eq. 70-75).
+
+    Parameters
+    ----------
+    pinion_teeth, gear_teeth : int, keyword-only
+    helix_angle_deg, base_helix_angle_deg : float, keyword-only
+        beta and beta_b, degrees, [0, 45].
+    transverse_contact_ratio : float, keyword-only
+        eps_alpha (>= 1; the standard's c_gamma holds from 1.2).
+    profile_shift_pinion, profile_shift_gear : float, keyword-only
+    c_m, c_r, dedendum_per_module, rack_pressure_angle_deg
+        As :func:`bevel_pair_stiffness`.
+    """
+    check_range("helix_angle_deg", helix_angle_deg, 0.0, 45.0)
+    check_range("base_helix_angle_deg", base_helix_angle_deg, 0.0, 45.0)
+    check_range("transverse_contact_ratio", transverse_contact_ratio, 1.0, 10.0)
+    beta, beta_b = math.radians(helix_angle_deg), math.radians(base_helix_angle_deg)
+    f = math.cos(beta_b) ** 2 * math.cos(beta)
+    z1, z2 = pinion_teeth / f, gear_teeth / f
+    c_th = theoretical_single_stiffness(z_n1=z1, z_n2=z2, x1=profile_shift_pinion,
+                                        x2=profile_shift_gear)
+    c = c_th * c_m * c_r * _c_b(dedendum_per_module, rack_pressure_angle_deg) * math.cos(beta)
+    c_ga = c * (0.75 * transverse_contact_ratio + 0.25)
+    return IsoMeshStiffness(z_n1=z1, z_n2=z2, c_th_n_per_mm_um=c_th, c_n_per_mm_um=c,
+                            c_gamma_alpha_n_per_mm_um=c_ga, c_gamma_beta_n_per_mm_um=0.85 * c_ga)

@@ -80,7 +80,9 @@ def register(sub) -> None:
                         "width (default 0.35; practice 1/3 to 1/2)")
     p.add_argument("--path-angle-deg", type=float, default=None,
                    help="with --synthesize-easeoff: contact-path angle from the lengthwise "
-                        "direction, deg (default free, bias 0)")
+                        "direction, deg (default free, bias 0); the angles the synthesis "
+                        "reaches on the pair are checked before any TCA (an error names "
+                        "them)")
     p.add_argument("--machine-settings", action="store_true",
                    help="standard machine settings of both members from the blank "
                         "(formate gear, generated pinion with lengthwise and profile "
@@ -151,6 +153,8 @@ def check(args) -> None:
         args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
             if args.pattern_length_ratio is None else args.pattern_length_ratio
         args.targets = _synthesis_targets(args)     # their ranges, before any TCA
+        if args.targets.path_angle_deg is not None:
+            args.flanks = _check_path_angle(pair, args.targets)
     if args.calibrate:
         from ..report.analyze import published_values
 
@@ -184,6 +188,21 @@ def _synthesis_targets(args):
                               exc.allowed) from None
 
 
+def _check_path_angle(pair, targets):
+    """The pair's flanks, after refusing a path angle the synthesis cannot reach on a
+    side (:func:`gearcontact.tca.path_reach.check_path_angle`: closed form, no TCA)."""
+    from ..geometry.flank import build_flanks
+    from ..tca.path_reach import check_path_angle
+
+    flanks = build_flanks(pair)
+    try:
+        check_path_angle(pair, targets=targets, flanks=flanks)
+    except InputRangeError as exc:
+        raise InputRangeError(_TARGET_OPTIONS.get(exc.field, exc.field), exc.value,
+                              exc.allowed) from None
+    return flanks
+
+
 def _fmt(x) -> str:
     return str(x) if isinstance(x, int) else f"{x:.4f}"
 
@@ -210,7 +229,7 @@ def _synthesize(args, pair) -> int:
     from ..tca.synthesis import easeoff_toml, synthesize_pair
 
     targets = getattr(args, "targets", None) or _synthesis_targets(args)
-    _, done = synthesize_pair(pair, targets=targets)
+    _, done = synthesize_pair(pair, targets=targets, flanks=getattr(args, "flanks", None))
     for side, s in done.items():
         print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
     text = easeoff_toml(done, pair_name=pair.name)

@@ -6,7 +6,9 @@ datapath (golden fixed point and fp64) with a Makefile and the checker
 ``gearcontact vectors`` (:mod:`gearcontact.export.c_library`; docs/export.md).
 ``gearcontact export fmu --pair PAIR --kind mesh --out DIR`` writes an FMI 3.0 FMU
 (co-simulation and model exchange, plain C, a Linux x86-64 binary built at export) of
-one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`).
+one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`);
+``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
+``gearcontact twin`` (rigid teeth; :mod:`gearcontact.export.fmu_drivetrain`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members as
 STEP (B-spline surfaces) and as CMM point grids with normals
 (:mod:`gearcontact.export.flanks`).
@@ -14,6 +16,7 @@ STEP (B-spline surfaces) and as CMM point grids with normals
 
 from __future__ import annotations
 
+from ..validation import InputRangeError, check_positive
 from .options import MAX_PHASES, check_pair_arguments, load_pair_for
 from .outdir import add_out_argument, final_path
 
@@ -26,18 +29,30 @@ def register(sub) -> None:
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
                                   "fp64) with a Makefile and the vector checker")
     add_out_argument(c)
-    c.set_defaults(func=run_c)
+    # make's build/ beside the export is the user's, kept from run to run (never
+    # foreign, never removed): a new export into a built directory replaces the sources
+    c.set_defaults(func=run_c, resume_entries=("build",))
     f = cmds.add_parser("fmu", help="FMI 3.0 FMU in C of one gear mesh (co-simulation and "
-                                    "model exchange)")
+                                    "model exchange) or of the drivetrain twin "
+                                    "(co-simulation)")
     f.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
     f.add_argument("--kind", default="mesh",
-                   help="what the FMU models: mesh (default; drivetrain: not yet)")
+                   help="what the FMU models: mesh (default) or drivetrain (the twin)")
     add_out_argument(f)
     f.add_argument("--side", default=None, choices=("drive", "coast"),
                    help="loaded flank (default: the pair's design_side)")
     f.add_argument("--phases", type=int, default=61,
                    help=f"TCA phases per pinion pitch baked into the table, 3 to "
                         f"{MAX_PHASES} (default 61)")
+    f.add_argument("--torque", type=float, default=64.5,
+                   help="gear torque in N·m sizing the mesh table (default 64.5); "
+                        "drivetrain: also the start value of its torque_nm")
+    f.add_argument("--curvatures", default=None, choices=("stencil", "exact"),
+                   help="drivetrain: the preview's curvature source, as gearcontact twin "
+                        "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
+    f.add_argument("--drivetrain", default=None,
+                   help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
+                        "twin (default: the pair's estimates)")
     f.set_defaults(func=run_fmu, check=check_fmu)
     g = cmds.add_parser("flanks", help="the flanks (and fillets) of both members as STEP "
                                        "B-spline surfaces and CMM point grids with normals")
@@ -59,16 +74,38 @@ def run_c(args) -> int:
 
 
 def check_fmu(args) -> None:
-    """Cheap checks before the TCA: the kind, the phase count, the pair."""
+    """Cheap checks before the TCA: the kind, the phase count, the torque, the
+    drivetrain file, the pair."""
     from ..export.fmu import check_fmu_kind
+    from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
+    check_positive("--torque", args.torque)
+    if args.kind == "mesh" and args.curvatures not in (None, "exact"):
+        raise InputRangeError("--curvatures", args.curvatures, "exact with --kind mesh "
+                              "(stencil: --kind drivetrain)")
+    if args.drivetrain is not None:
+        if args.kind != "drivetrain":
+            raise InputRangeError("--drivetrain", args.drivetrain, "only with --kind "
+                                  "drivetrain")
+        check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args)
 
 
 def run_fmu(args) -> int:
+    pair = load_pair_for(args)
+    if args.kind == "drivetrain":
+        from ..export.fmu_drivetrain import export_drivetrain_fmu
+        from ..twin.params import load_drivetrain
+        fmu = export_drivetrain_fmu(pair, args.out, pair_name=args.gear_pair.name,
+                                    side=args.side, phases=args.phases,
+                                    torque_nm=args.torque,
+                                    drivetrain=load_drivetrain(args.drivetrain, pair),
+                                    curvatures=args.curvatures or "stencil")
+        print(final_path(args, fmu.fmu_path))
+        return 0
     from ..export.fmu import export_mesh_fmu
-    fmu = export_mesh_fmu(load_pair_for(args), args.out, pair_name=args.gear_pair.name,
-                          side=args.side, phases=args.phases)
+    fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
+                          phases=args.phases, torque_nm=args.torque)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0
@@ -78,7 +115,6 @@ def check_flanks(args) -> None:
     """Cheap checks before the flanks are built: the grid, the pair (either kind)."""
     from ..export.flanks import parse_grid
     from ..geometry.pair import BEVEL, CYLINDRICAL, load_pair
-    from ..validation import InputRangeError
     args.grid_size = parse_grid(args.grid)
     try:
         args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))

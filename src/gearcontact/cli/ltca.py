@@ -98,7 +98,8 @@ def run(args) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases)
+    tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
+                               flanks=args.prepared_pair.flanks)
     jit_s = warm_up(args.solver)   # solve_ms below then excludes the JIT compilation
     t1 = time.perf_counter()
     try:

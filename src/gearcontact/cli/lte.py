@@ -8,6 +8,14 @@ which tooth model ran; see
 :meth:`~gearcontact.ltca.lte.LoadedTE.summary`), ``lte.csv`` (one row per phase: TE0,
 TE_LCP, TE_pre, rotations, active pairs, load per pair, mesh stiffness in N·m/rad and
 N/mm rigid and with bending) and ``lte.png``; timings go to ``run.json`` only.
+
+A cylindrical pair (``kind = "cylindrical"``) gets the loaded TE over its mesh cycle
+with rigid teeth (tooth bending of cylindrical teeth is a later slice; ``--bending`` is
+refused), ``--cells`` cells along the face, and the Harris map (loaded TE p-p at the
+ISO line loads 50-400 N/mm for 0 to 2 times the pinion's tip relief):
+``lte.json``, ``lte.csv``, ``line_load.csv``, ``harris_map.csv``, ``lte.png``,
+``harris_map.png`` (:mod:`gearcontact.report.cylindrical_lte`; docs/cylindrical.md
+sec. 7).
 """
 
 from __future__ import annotations
@@ -15,9 +23,13 @@ from __future__ import annotations
 import dataclasses
 import time
 
+from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..halfspace.constrained_cg import SolveStatus
+from ..ltca.cylindrical_lte import (cylindrical_loaded_te, harris_map, harris_tip_reliefs_um,
+                                    harris_torques_nm)
 from ..ltca.lte import loaded_te
 from ..errors import CheckFailed
+from ..report.cylindrical_lte import write_cylindrical_lte_outputs
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
 from ..validation import InputRangeError
@@ -46,15 +58,58 @@ def register(sub) -> None:
                        help="tooth bending in the coupled LCP (the default; kept for "
                             "scripts)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
-    p.set_defaults(func=run, check=check_pair_arguments)
+    p.set_defaults(func=run, check=check)
+
+
+def check(args) -> None:
+    """Every option and the pair file, before any work."""
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
+    if args.gear_pair.kind == CYLINDRICAL and args.bending:
+        raise InputRangeError("--bending", True, "not given for a cylindrical pair (its teeth "
+                                                 "are rigid until the tooth-bending slice: "
+                                                 "docs/cylindrical.md sec. 7)")
+
+
+#: ``--side`` of a cylindrical pair -> the flank facing in mesh (as ``gearcontact tca``).
+CYLINDRICAL_FACING = {"drive": "cw", "coast": "ccw"}
+
+
+def run_cylindrical(args) -> int:
+    pair = args.gear_pair
+    facing = CYLINDRICAL_FACING[args.side]
+    t0 = time.process_time()
+    res = cylindrical_loaded_te(pair, args.torque, facing=facing, phases=args.phases,
+                                cells_along=args.cells)
+    t1 = time.process_time()
+    harris = harris_map(pair, harris_torques_nm(pair), harris_tip_reliefs_um(pair),
+                        facing=facing, phases=args.phases, cells_along=args.cells)
+    run_timings(args, lte_cpu_s=t1 - t0, lcp_cpu_s=res.solve_time_s,
+                harris_map_cpu_s=time.process_time() - t1)
+    write_cylindrical_lte_outputs(res, harris, pair, args.out, side=args.side,
+                                  figures=not args.no_figures)
+    print(f"{pair.name} {args.side} ({facing} flanks) {args.torque:g} N·m, "
+          f"{len(res.phi1_rad)} phases, rigid teeth: TE p-p TE0 "
+          f"{res.te0_arcsec.max() - res.te0_arcsec.min():.2f} / loaded "
+          f"{res.lte_pp_arcsec:.2f} arcsec, p_max {res.max_pressure_mpa.max():.0f} MPa, "
+          f"mesh stiffness {res.mean_stiffness_n_per_mm_um:.1f} N/(mm·µm) mean; Harris map "
+          f"{len(harris.tip_reliefs_um)} x {len(harris.torques_nm)} -> "
+          f"{final_path(args, args.out)}")
+    if res.edge_touch or harris.edge_touch:
+        warn("lte", "loaded cells on the edge of the strip across a line: the strip is "
+                    "too narrow for this load")
+    if not (res.converged and harris.converged):
+        raise CheckFailed("LCP not converged")   # the files stay
+    return 0
 
 
 def run(args) -> int:
+    if args.gear_pair.kind == CYLINDRICAL:
+        return run_cylindrical(args)
     pair = load_pair_for(args)
     from ..report.analyze import published_values
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
-                               progress=not args.quiet)
+                               flanks=args.prepared_pair.flanks, progress=not args.quiet)
     bending = None
     if not args.rigid:
         from ..ltca.tooth_bending import tooth_bending

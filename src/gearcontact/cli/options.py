@@ -8,7 +8,7 @@ import dataclasses
 import sys
 
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
-from ..geometry.pair import load_pair
+from ..geometry.pair import BEVEL, load_pair
 from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument
 
@@ -95,7 +95,8 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
     if phases:
         p.add_argument("--side", default=None, choices=("drive", "coast"),
                        help="flank pair (default: the pair's design_side; s0003: coast, the "
-                            "published design point)")
+                            "published design point; a cylindrical pair: drive, its pinion's "
+                            "cw flanks, docs/cylindrical.md)")
         p.add_argument("--phases", type=int, default=61,
                        help=f"TCA mesh phases per pinion pitch, both ends included, 3 to "
                             f"{MAX_PHASES} (default 61)")
@@ -106,23 +107,32 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
 
 
-def check_pair_arguments(args) -> None:
+def check_pair_arguments(args, *, kinds: tuple[str, ...] = (BEVEL,)) -> None:
     """Cheap checks before the expensive stages (the library checks again); loads the
-    pair (TOML errors name the file and the field) into ``args.gear_pair``."""
+    pair (TOML errors name the file and the field) into ``args.gear_pair``; ``kinds``:
+    the pair kinds the command reads (:func:`~gearcontact.geometry.pair.load_pair`). A
+    pair without a design side (cylindrical) defaults ``--side`` to drive."""
     if getattr(args, "phases", None) is not None:
         check_count("--phases", args.phases, 3, MAX_PHASES)
     if getattr(args, "cells", None) is not None:
         check_count("--cells", args.cells, 16, MAX_CELLS, note=" per side")
-    override = (parse_misalignment(args.misalignment)
-                if getattr(args, "misalignment", None) is not None else {})
-    args.gear_pair = load_pair(args.pair)
+    args.gear_pair = load_pair(args.pair, kinds=kinds)
+    given = getattr(args, "misalignment", None)
+    if given is not None and args.gear_pair.kind != BEVEL:
+        raise InputRangeError("--misalignment", given, "not given for a cylindrical pair (E, "
+                              "P, G, alpha are hypoid mounting errors; its [assembly] table "
+                              "gives f_Sigma_delta, f_Sigma_beta: docs/cylindrical.md)")
+    override = parse_misalignment(given) if given is not None else {}
     if override:    # the pair's assembly errors are what TCA and every JSON use
         assembly = dataclasses.replace(args.gear_pair.assembly, **override)
         args.gear_pair = dataclasses.replace(args.gear_pair, assembly=assembly)
     if hasattr(args, "side"):
-        args.side = args.side or args.gear_pair.design_side
+        args.side = args.side or getattr(args.gear_pair, "design_side", "drive")
     if getattr(args, "torque", None) is not None:
-        check_torque("--torque (N·m)", args.torque, args.gear_pair)
+        if args.gear_pair.kind == BEVEL:
+            check_torque("--torque (N·m)", args.torque, args.gear_pair)
+        else:       # no preview envelope on a cylindrical pair's load (yet)
+            check_positive("--torque (N·m)", args.torque)
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:

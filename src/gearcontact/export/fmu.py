@@ -32,10 +32,11 @@ from .c_library import FP64_SOURCES, GOLDEN_SOURCES, _environment, render_c_libr
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
 __all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
-           "fmi3_header_dir"]
+           "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
+           "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES"]
 
-#: ``--kind`` values; ``drivetrain`` is planned (issue 25), not built yet.
-FMU_KINDS = ("mesh",)
+#: ``--kind`` values (``drivetrain``: :mod:`.fmu_drivetrain`).
+FMU_KINDS = ("mesh", "drivetrain")
 #: (name, value reference, type, causality, variability, unit, description).
 MESH_VARIABLES = (
     ("time", 0, "Float64", "independent", "continuous", "s", "simulation time"),
@@ -62,18 +63,34 @@ MESH_VARIABLES = (
     ("mesh_damping_n_s_per_mm", 14, "Float64", "parameter", "fixed", "N.s/mm",
      "mesh damping on the line of action"),
 )
-#: FMI functions the C model implements; every other one is a stub returning fmi3Error.
-_IMPLEMENTED = {
-    "fmi3GetVersion", "fmi3SetDebugLogging", "fmi3InstantiateModelExchange",
-    "fmi3InstantiateCoSimulation", "fmi3InstantiateScheduledExecution", "fmi3FreeInstance",
-    "fmi3EnterInitializationMode", "fmi3ExitInitializationMode", "fmi3EnterEventMode",
-    "fmi3Terminate", "fmi3Reset", "fmi3GetFloat64", "fmi3SetFloat64", "fmi3GetInt32",
-    "fmi3GetInt64", "fmi3SetInt64", "fmi3DoStep", "fmi3SetTime", "fmi3UpdateDiscreteStates",
-    "fmi3CompletedIntegratorStep", "fmi3GetNumberOfContinuousStates",
-    "fmi3GetNumberOfEventIndicators", "fmi3SetContinuousStates", "fmi3GetContinuousStates",
+#: FMI functions of the shared interface (``data/templates/fmu/fmi3_common.c.j2``).
+COMMON_IMPLEMENTED = frozenset({
+    "fmi3GetVersion", "fmi3SetDebugLogging", "fmi3InstantiateCoSimulation",
+    "fmi3InstantiateScheduledExecution", "fmi3FreeInstance", "fmi3Reset"})
+#: Functions the mesh model implements beside them (trivial: return fmi3OK); every other
+#: one is a stub returning fmi3Error.
+_MESH_TRIVIAL = ("fmi3ExitInitializationMode", "fmi3EnterEventMode", "fmi3Terminate",
+                 "fmi3EnterContinuousTimeMode", "fmi3EnterStepMode",
+                 "fmi3EnterConfigurationMode", "fmi3ExitConfigurationMode",
+                 "fmi3EvaluateDiscreteStates")
+_MESH_IMPLEMENTED = COMMON_IMPLEMENTED | set(_MESH_TRIVIAL) | {
+    "fmi3InstantiateModelExchange", "fmi3EnterInitializationMode", "fmi3GetFloat64",
+    "fmi3SetFloat64", "fmi3GetInt32", "fmi3GetInt64", "fmi3SetInt64", "fmi3DoStep",
+    "fmi3SetTime", "fmi3UpdateDiscreteStates", "fmi3CompletedIntegratorStep",
+    "fmi3GetNumberOfContinuousStates", "fmi3GetNumberOfEventIndicators",
+    "fmi3SetContinuousStates", "fmi3GetContinuousStates",
     "fmi3GetContinuousStateDerivatives", "fmi3GetNominalsOfContinuousStates",
-    "fmi3GetEventIndicators", "fmi3EnterContinuousTimeMode", "fmi3EnterStepMode",
-    "fmi3EnterConfigurationMode", "fmi3ExitConfigurationMode", "fmi3EvaluateDiscreteStates"}
+    "fmi3GetEventIndicators"}
+#: Units of the FMUs' variables: name -> BaseUnit attributes.
+UNITS = {
+    "s": 's="1"', "rad": 'rad="1"', "rad/s": 's="-1" rad="1"', "rpm": 's="-1" rad="1" '
+    'factor="0.10471975511965977"', "us": 's="1" factor="1e-06"',
+    "N.m": 'kg="1" m="2" s="-2"', "N": 'kg="1" m="1" s="-2"',
+    "arcsec": 'rad="1" factor="4.84813681109536e-06"',
+    "MPa": 'kg="1" m="-1" s="-2" factor="1000000"', "mm": 'm="1" factor="0.001"',
+    "N.s/mm": 'kg="1" s="-1" factor="1000"'}
+#: The shared contact-law sources inside every FMU (``data/templates/fmu``).
+LAW_FILES = ("gc_contact_law.h", "gc_contact_law.c")
 _CFLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-ffp-contract=off", "-fPIC",
            "-shared", "-fvisibility=default")
 
@@ -100,8 +117,7 @@ class MeshFmu:
 def check_fmu_kind(kind: str) -> str:
     """``kind`` if the export can build it, else :class:`InputRangeError` naming it."""
     if kind not in FMU_KINDS:
-        note = " (drivetrain: not yet)" if kind == "drivetrain" else ""
-        raise InputRangeError("--kind", kind, f"one of {list(FMU_KINDS)}{note}")
+        raise InputRangeError("--kind", kind, f"one of {list(FMU_KINDS)}")
     return kind
 
 
@@ -124,14 +140,14 @@ def fmi3_header_dir() -> Path:
     return d
 
 
-def _unsupported(header_dir: Path) -> list[tuple[str, str, list[str]]]:
+def _unsupported(header_dir: Path, implemented) -> list[tuple[str, str, list[str]]]:
     """(name, parameter list, parameter names) of every FMI 3.0 function returning
-    fmi3Status that the model does not implement, parsed from fmi3FunctionTypes.h."""
+    fmi3Status not in ``implemented``, parsed from fmi3FunctionTypes.h."""
     text = (header_dir / "fmi3FunctionTypes.h").read_text()
     out = []
     for name, args in re.findall(r"typedef\s+fmi3Status\s+(fmi3\w+)TYPE\s*\(([^;]*?)\)\s*;",
                                  text, re.S):
-        if name in _IMPLEMENTED:
+        if name in implemented:
             continue
         args = " ".join(args.split())
         names = [re.findall(r"(\w+)\s*(?:\[\])?$", a.strip())[0] for a in args.split(",")]
@@ -139,40 +155,107 @@ def _unsupported(header_dir: Path) -> list[tuple[str, str, list[str]]]:
     return out
 
 
-def _c_double(x) -> str:
+def c_double(x) -> str:
     """Exact C99 hexadecimal literal of a double."""
     return float(x).hex()
 
 
-def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
-                  header_dir: Path) -> dict:
+def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variables,
+                implemented, trivial, description: str, model_source: str) -> dict:
+    """The template context every FMU shares: identity, the variable table (``(name,
+    value reference, type, causality, variability, unit, description)``), the units it
+    uses, the FMI functions to stub, the C sources and the contact law's constants."""
     from .. import __version__
+    from ..twin.contact_law import _HB_E
+
+    units = sorted({v[5] for v in variables if v[5]})
+    return {
+        "version": __version__, "model_identifier": model_identifier, "token": token,
+        "description": description, "model_variables": tuple(variables),
+        "variables": [{"name": v[0], "vr": v[1]} for v in variables],
+        "units": [(u, UNITS[u]) for u in units], "backends": BACKENDS,
+        "unsupported": _unsupported(header_dir, implemented), "trivial": tuple(trivial),
+        "c_sources": [model_source, "gc_contact_law.c", *GOLDEN_SOURCES, *FP64_SOURCES],
+        "pi": c_double(math.pi), "hb_e": c_double(_HB_E),
+        "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
+        "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
+        "output_dependencies": None, "initial_dependencies": ""}
+
+
+def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
+                  ident: str, header_dir: Path) -> dict:
     from ..preview.hertz.golden import encode_e_prime
 
     def rows(a):
-        return [[_c_double(v) for v in r] for r in a]
+        return [[c_double(v) for v in r] for r in a]
 
-    return {
-        "version": __version__, "pair_name": pair_name, "side": side, "token": token,
-        "n_rows": tab.eps_rad.shape[0], "n_pairs": tab.lever_mm.shape[0],
-        "step_rad": _c_double(tab.step_rad), "pitch_rad": _c_double(tab.pitch_rad),
-        "ratio": _c_double(tab.ratio), "lever0_mm": _c_double(tab.reference_lever_mm),
-        "e_prime_mpa": _c_double(tab.e_prime_mpa), "e_code": int(encode_e_prime(tab.e_prime_mpa)),
-        "motion_sign": int(tab.motion_sign), "arcsec_per_rad": _c_double(ARCSEC_PER_RAD),
-        "pi": _c_double(math.pi), "w_eval_min": _c_double(W_EVAL_MIN_N), "w_eval_max": _c_double(_W_EVAL_MAX_N),
-        "variables": [{"name": v[0], "vr": v[1]} for v in MESH_VARIABLES],
-        "eps": [_c_double(v) for v in tab.eps_rad],
+    n_rows, n_pairs = tab.eps_rad.shape[0], tab.lever_mm.shape[0]
+    ctx = fmu_context(
+        model_identifier=ident, token=token, header_dir=header_dir,
+        variables=MESH_VARIABLES, implemented=_MESH_IMPLEMENTED, trivial=_MESH_TRIVIAL,
+        model_source="gc_mesh_fmu.c",
+        description=f"Gear mesh element of {pair_name} ({side} flank): the gearcontact "
+                    "twin's contact law (preview stage D on the TCA's curvatures, rigid "
+                    f"teeth), table of {n_rows} phases x {n_pairs} pairs baked in")
+    ctx.update({
+        "pair_name": pair_name, "side": side, "n_rows": n_rows, "n_pairs": n_pairs,
+        "step_rad": c_double(tab.step_rad), "pitch_rad": c_double(tab.pitch_rad),
+        "ratio": c_double(tab.ratio), "lever0_mm": c_double(tab.reference_lever_mm),
+        "e_prime_mpa": c_double(tab.e_prime_mpa), "e_code": int(encode_e_prime(tab.e_prime_mpa)),
+        "motion_sign": int(tab.motion_sign), "arcsec_per_rad": c_double(ARCSEC_PER_RAD),
+        "eps": [c_double(v) for v in tab.eps_rad],
         "tables": [("LEVER_MM", rows(tab.lever_mm)), ("OPENING_MM", rows(tab.opening_mm)),
                    ("A_MINUS", rows(tab.A_minus_per_mm)), ("B_MINUS", rows(tab.B_minus_per_mm))],
         "valid": [[int(v) for v in r] for r in tab.valid],
-        "unsupported": _unsupported(header_dir),
-        "model_variables": MESH_VARIABLES, "backends": BACKENDS,
-    }
+        "model_exchange": True, "output_dependencies": "1 2 3 4 13 14",
+        "initial_dependencies": "1 2 3 4 13 14"})
+    return ctx
+
+
+def _environment_fmu():
+    """The C library's Jinja2 environment, loading ``{% include %}`` from the FMU
+    templates."""
+    from jinja2 import FunctionLoader
+
+    env = _environment()
+    folder = resources.files("gearcontact").joinpath("data/templates/fmu")
+    env.loader = FunctionLoader(lambda name: folder.joinpath(name).read_text())
+    return env
 
 
 def _render(env, name: str, ctx: dict) -> str:
-    folder = resources.files("gearcontact").joinpath("data/templates/fmu")
-    return env.from_string(folder.joinpath(f"{name}.j2").read_text()).render(ctx)
+    return env.get_template(f"{name}.j2").render(ctx)
+
+
+def model_token(data: bytes) -> str:
+    """The instantiation token: a GUID-shaped digest of the baked data."""
+    d = hashlib.sha256(data).hexdigest()
+    return "{%s-%s-%s-%s-%s}" % (d[:8], d[8:12], d[12:16], d[16:20], d[20:32])
+
+
+def build_fmu(fmu_path: Path, ctx: dict, header_dir: Path) -> None:
+    """Render the model source ``ctx["c_sources"][0]`` with the shared contact law and
+    the preview's C library, compile the shared library and zip the FMU at
+    ``fmu_path`` (``modelDescription.xml``, ``sources/``, ``binaries/x86_64-linux/``)."""
+    env = _environment_fmu()
+    c_files = render_c_library()
+    lib = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES
+    ident, model_source = ctx["model_identifier"], ctx["c_sources"][0]
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "sources"
+        src.mkdir()
+        for name in lib:
+            (src / name).write_text(c_files[name])
+        for name in LAW_FILES + (model_source, "buildDescription.xml"):
+            (src / name).write_text(_render(env, name, ctx))
+        so = Path(tmp) / f"{ident}.so"
+        _compile(src, ctx["c_sources"], header_dir, so)
+        with zipfile.ZipFile(fmu_path, "w", zipfile.ZIP_DEFLATED) as z:
+            z.writestr(_entry("modelDescription.xml"),
+                       _render(env, "modelDescription.xml", ctx))
+            for p in sorted(src.iterdir()):
+                z.writestr(_entry(f"sources/{p.name}"), p.read_bytes())
+            z.writestr(_entry(f"binaries/x86_64-linux/{ident}.so"), so.read_bytes())
 
 
 def _compile(src_dir: Path, sources: list[str], header_dir: Path, so_path: Path) -> None:
@@ -218,8 +301,8 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     from ..tca.analysis import analyze_pair
     from ..twin.mesh import mesh_table
 
-    env = _environment()
     header_dir = fmi3_header_dir()
+    _environment()      # Jinja2 before the TCA
     tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False)
     tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm))
     ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
@@ -227,31 +310,10 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     out.mkdir(parents=True, exist_ok=True)
     table_path = out / f"{ident}_table.npz"
     tab.to_npz(table_path)
-    c_files = render_c_library()
-    lib = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES
-    digest = hashlib.sha256(table_path.read_bytes()).hexdigest()
-    token = "{%s-%s-%s-%s-%s}" % (digest[:8], digest[8:12], digest[12:16], digest[16:20],
-                                  digest[20:32])
-    ctx = _mesh_context(tab, pair_name=pair_name, side=side, token=token,
-                        header_dir=header_dir)
-    ctx.update(model_identifier=ident,
-               c_sources=[s for s in ("gc_mesh_fmu.c",) + lib if s.endswith(".c")])
+    ctx = _mesh_context(tab, pair_name=pair_name, side=side, ident=ident,
+                        token=model_token(table_path.read_bytes()), header_dir=header_dir)
     fmu_path = out / f"{ident}.fmu"
-    with tempfile.TemporaryDirectory() as tmp:
-        src = Path(tmp) / "sources"
-        src.mkdir()
-        for name in lib:
-            (src / name).write_text(c_files[name])
-        (src / "gc_mesh_fmu.c").write_text(_render(env, "gc_mesh_fmu.c", ctx))
-        (src / "buildDescription.xml").write_text(_render(env, "buildDescription.xml", ctx))
-        so = Path(tmp) / f"{ident}.so"
-        _compile(src, ctx["c_sources"], header_dir, so)
-        with zipfile.ZipFile(fmu_path, "w", zipfile.ZIP_DEFLATED) as z:
-            z.writestr(_entry("modelDescription.xml"),
-                       _render(env, "modelDescription.xml", ctx))
-            for p in sorted(src.iterdir()):
-                z.writestr(_entry(f"sources/{p.name}"), p.read_bytes())
-            z.writestr(_entry(f"binaries/x86_64-linux/{ident}.so"), so.read_bytes())
+    build_fmu(fmu_path, ctx, header_dir)
     return MeshFmu(fmu_path, table_path, ident)
 
 

@@ -88,6 +88,11 @@ class FlankSet:
     pinion_normal_thickness_mm : float
         Pinion mean normal tooth thickness s_mn of the conjugate flanks, mm
         (:func:`~.easeoff.mean_normal_thickness_mm`); sets the ease-off limit.
+    right_hand_twin : FlankSet or None
+        Of a left-hand set, the right-hand set it mirrors (:func:`with_easeoff` eases
+        that one and mirrors it again, as :func:`build_flanks` does, so that the result
+        is the same bit for bit: ``pi - (pi - psi)`` is not always ``psi`` in floating
+        point); None for a right-hand set.
     """
 
     blank: BlankDesign
@@ -98,6 +103,7 @@ class FlankSet:
     pinion_conjugate: MemberFlanks
     mean_contact: dict
     pinion_normal_thickness_mm: float
+    right_hand_twin: "FlankSet | None" = None
 
     @property
     def easeoff_limit_um(self) -> float:
@@ -241,7 +247,8 @@ def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
         gear=MemberFlanks(**{s: _mirror_gear(flanks.gear.side(s)) for s in SIDES}),
         pinion=MemberFlanks(**{s: mirror_sheet(flanks.pinion.side(s)) for s in SIDES}),
         pinion_conjugate=MemberFlanks(**{s: mirror_sheet(flanks.pinion_conjugate.side(s))
-                                         for s in SIDES}))
+                                         for s in SIDES}),
+        right_hand_twin=flanks)
 
 
 def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
@@ -253,12 +260,18 @@ def with_easeoff(flanks: FlankSet, pair) -> FlankSet:
     ``[easeoff.*]`` coefficients only (the conjugate flanks do not depend on them): an
     ease-off design variant at the cost of the ease-off alone, about a tenth of
     :func:`build_flanks` (whose last step it is).
+    The result is :func:`build_flanks` of ``pair`` bit for bit (a left-hand set: its
+    right-hand twin eased and mirrored, as there).
 
     Raises
     ------
     InputRangeError
         An ease-off beyond its limit (:func:`~.easeoff.apply_easeoff`).
     """
+    if flanks.right_hand_twin is not None:
+        twin = with_easeoff(flanks.right_hand_twin,
+                            dataclasses.replace(pair, pinion_hand="right"))
+        return mirror_flank_set(twin, flanks.kinematics)
     limit = easeoff_limit_um(flanks.pinion_normal_thickness_mm)
     eased = {}
     for side in SIDES:

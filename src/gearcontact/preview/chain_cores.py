@@ -1,6 +1,7 @@
 """Descriptors of the C -> D chains (:class:`.chain_rtl.ChainCore` in both Hertz forms,
-:class:`.chain_pipe.ChainPipe` with the pipelined stage D) and of the combinational
-C + D core (:class:`.comb_rtl.CombCore`); see :mod:`.core`."""
+:class:`.chain_pipe.ChainPipe` with the pipelined stage D, the line chain
+:class:`.chain_line_rtl.ChainLineCore`) and of the combinational C + D core
+(:class:`.comb_rtl.CombCore`); see :mod:`.core`."""
 
 from __future__ import annotations
 
@@ -58,6 +59,49 @@ def _chain_amaranth(module: str, runner: str, **kwargs):
     return run
 
 
+def _line_chain_ports(st: Stimulus):
+    f = st.fields
+    return {"W": f["W"], "e_prime": f["e_prime"], "L": f["L"]}, {"wr_data": f["gaps"]}, None
+
+
+def _line_chain_cols(fit_c, fit_a, fit_b, fit_flags, line, flags) -> dict:
+    """Line-chain output columns: the line core's, the fit registers, the chain flags
+    (line-core flags and the fit's overflow bits) and the fit's whole flags word."""
+    from .hertz.cores import _line_columns
+    cols = fit_columns(fit_c, fit_a, fit_b, flags)
+    cols.update({p: v for p, v in _line_columns(line).items() if p != "flags"})
+    cols["fit_flags"] = np.asarray(fit_flags, np.int64)
+    return cols
+
+
+def _line_chain_golden(st: Stimulus) -> dict:
+    from .chain import chain_line_golden_batch
+    f = st.fields
+    res = chain_line_golden_batch(f["gaps"], f["W"], f["L"], e_prime_code=f["e_prime"])
+    return _line_chain_cols(res.fit.c_codes, res.fit.a_minus_codes, res.fit.b_minus_codes,
+                            res.fit.flags, res.hertz, res.flags)
+
+
+def _line_chain_amaranth(st: Stimulus):
+    from .chain_line_rtl import simulate_chain_line_core
+    f = st.fields
+    outs, cycles = [None] * len(st), np.zeros(len(st), np.int64)
+    for e in np.unique(f["e_prime"]):              # the runner takes one E' per call
+        idx = np.flatnonzero(f["e_prime"] == e)
+        o, c = simulate_chain_line_core(f["gaps"][idx], f["W"][idx], f["L"][idx],
+                                        e_prime_code=int(e))
+        for i, oi, ci in zip(idx, o, c):
+            outs[i], cycles[i] = oi, ci
+    return _line_chain_cols([o.fit.c_codes for o in outs], [o.fit.a_minus_code for o in outs],
+                            [o.fit.b_minus_code for o in outs], [o.fit.flags for o in outs],
+                            [o.hertz for o in outs], [o.flags for o in outs]), cycles
+
+
+def _line_chain_cycles(st: Stimulus) -> int:
+    from .chain import CHAIN_LINE_CYCLES
+    return CHAIN_LINE_CYCLES
+
+
 def _chain_cycles(st: Stimulus) -> int:
     from .hertz.schedule import CHAIN_CYCLES
     return CHAIN_CYCLES
@@ -99,4 +143,10 @@ DESCRIPTORS = (
                   _chain_amaranth("comb_rtl", "simulate_comb_core", hertz_form="exact"),
                   _comb_cycles, "combinational C + D with hertz_form='exact' (58 cycles)",
                   verilog_kwargs={"hertz_form": "exact"}),
+    CoreDescriptor("chain_line", "chain_line_rtl", lazy("chain_line_rtl", "ChainLineCore"),
+                   "chain_line_core", _line_chain_ports, _line_chain_golden,
+                   _line_chain_amaranth, _line_chain_cycles, control=STENCIL_CONTROL,
+                   write=STENCIL_WRITE, stimulus_core="chain_line",
+                   summary="C -> line core chain: fit core feeding the line core of stage D "
+                           "(811 cycles)"),
 )

@@ -19,6 +19,8 @@ line     as hertz plus ``L`` (n,) LINE_LENGTH Q(32,20) mm (the line core,
          :mod:`.hertz.line`)
 chain    ``gaps`` (n, 49) as for fit; ``W``, ``e_prime`` as for hertz (the C -> D
          chain and the combinational C + D core take the same inputs)
+chain_   as chain plus ``L`` as for line (the C -> line-core chain,
+line     :mod:`.chain_line_rtl`)
 =======  ==========================================================================
 
 Random vectors mix physically plausible operands (posed points near a sampled flank,
@@ -42,7 +44,7 @@ from .hertz import formats as HF
 from .qformat import CURVATURE, GAP, LOAD
 
 __all__ = ["Stimulus", "gap_stimulus", "fit_stimulus", "hertz_stimulus", "chain_stimulus",
-           "line_stimulus",
+           "line_stimulus", "chain_line_stimulus",
            "stimulus", "STIMULUS_CORES", "STEEL_E_PRIME_CODE"]
 
 #: E' of steel/steel (2E*, 209 GPa, nu 0.3), integer MPa: the default constant register.
@@ -504,13 +506,46 @@ def chain_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     return _concat("chain", corner, fields, labels, seed)
 
 
+def chain_line_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
+    """C -> line-core inputs: the vectors of :func:`chain_stimulus` (same seed), each
+    with a contact-line length ``L`` drawn as :func:`line_stimulus` does (log-uniform in
+    [0.5, 2048] mm, a little beyond the envelope each side; about 10 % over the whole
+    32-bit range), from its own stream of the seed. Corner cases: the chain's at L =
+    20 mm, then the elliptic stencil at the envelope's lengths and one code beyond."""
+    chain = chain_stimulus(n, seed, corners=corners)
+    rng = np.random.default_rng([seed, 1])         # an independent stream for L
+    code = (lambda x: np.floor(x * (1 << CURVATURE.frac) + 0.5).astype(np.int64))
+    length = np.minimum(code(np.exp(rng.uniform(np.log(0.5), np.log(2048.0), n))), _I32[1])
+    raw = rng.random(n) < 0.1
+    length[raw] = rng.integers(*_I32, int(raw.sum()), endpoint=True)
+    fields = {k: v[chain.n_corner:] for k, v in chain.fields.items()}
+    fields["L"] = length
+    corner = []
+    if corners:
+        l20, lmin, lmax = (x << CURVATURE.frac for x in (20, 1, 1024))
+        corner = [(lab, {**{k: v[i] for k, v in chain.fields.items()}, "L": l20})
+                  for i, lab in enumerate(chain.labels[:chain.n_corner])]
+        ell = _gcode(_elliptic(0.05, 0.01, 0.4, 0.0, 0.05, -0.02))
+        w1k = 1000 << LOAD.frac
+        for lab, length_code in (("length at the minimum", lmin),
+                                 ("length at the maximum", lmax),
+                                 ("length below the envelope", lmin - 1),
+                                 ("length above the envelope", lmax + 1),
+                                 ("zero length", 0)):
+            corner.append((f"elliptic stencil, {lab}", {"gaps": ell, "W": w1k,
+                                                        "e_prime": STEEL_E_PRIME_CODE,
+                                                        "L": length_code}))
+    return _concat("chain_line", corner, fields, list(chain.labels[chain.n_corner:]), seed)
+
+
 #: Generator per core name (``comb`` shares the chain's inputs).
 STIMULUS_CORES = {"gap": gap_stimulus, "fit": fit_stimulus, "hertz": hertz_stimulus,
                   "chain": chain_stimulus, "comb": chain_stimulus,
                   "hertz_exact": hertz_stimulus, "chain_exact": chain_stimulus,
                   "hertz_pipe": hertz_stimulus, "hertz_pipe_exact": hertz_stimulus,
                   "chain_pipe": chain_stimulus, "gap_lean": gap_stimulus,
-                  "comb_exact": chain_stimulus, "hertz_line": line_stimulus}
+                  "comb_exact": chain_stimulus, "hertz_line": line_stimulus,
+                  "hertz_line_exact": line_stimulus, "chain_line": chain_line_stimulus}
 
 
 def stimulus(core: str, n: int, seed: int = 0, **kwargs) -> Stimulus:

@@ -88,7 +88,7 @@ class StudyRow:
 
 
 def _row(label, case, point_mm, offset_mm) -> StudyRow:
-    from ..tca.calibration import point_invariants
+    from ..tca.design_point import point_invariants
 
     p = case.patch
     inv = point_invariants(point_mm, offset_mm)

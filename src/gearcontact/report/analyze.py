@@ -300,7 +300,9 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
 
     (out / "design.json").write_text(json.dumps(pair.blank.as_dict(), indent=2))
     t0 = time.perf_counter()
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, progress=False)
+    # the flanks the synthesis built, eased (None: analyze_pair builds them)
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, flanks=prepared.flanks,
+                               progress=False)
     write_tca_outputs(tca, flanks, pair, out, side=side, figures=figures)
     timings["tca_s"] = time.perf_counter() - t0
     steps.update(2)

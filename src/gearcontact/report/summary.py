@@ -87,7 +87,8 @@ def design_point_table_rows(result, pub: dict) -> list[list] | None:
     """Rows (:data:`DESIGN_POINT_HEADER`) of the published design point against this
     set-up at the design torque (docs/calibration.md), or None without published P0.
     ``result`` is an :class:`~.analyze.Analysis`."""
-    from ..tca.calibration import CalibrationTargets, design_point_at, design_point_rows
+    from ..tca.calibration import CalibrationTargets, design_point_rows
+    from ..tca.design_point import design_point_at
 
     if "design_point_mm" not in pub:
         return None

@@ -217,11 +217,11 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
 
 def _contact_of(conj, gear, pair, u1: float, v1: float, mean: dict) -> ContactGuess:
     """The contact state of the pinion point (u1, v1) with the gear: exact for today's
-    conjugate pinion (:func:`~.calibration.conjugate_contact`); for flanks cut from
+    conjugate pinion (:func:`~.design_point.conjugate_contact`); for flanks cut from
     machine settings (no conjugate reference) the nearest touch
     (:func:`~gearcontact.geometry.generated.mean_contact_guess`)."""
     from ..geometry.generated import mean_contact_guess
-    from .calibration import conjugate_contact
+    from .design_point import conjugate_contact
 
     if hasattr(conj, "exact"):
         return conjugate_contact(conj, gear, pair, u1, v1)

@@ -6,9 +6,9 @@ ellipse (paint thickness 6.35 um) and the level of the parabolic transmission er
 and solves the machine-tool settings for them (Litvin & Fuentes 2004, sec. 21.8; Litvin
 et al. 2006). gearcontact's flanks carry the relief as the 5-term pinion ease-off, so
 the unknowns are its five coefficients, written in the centre form of
-:func:`~gearcontact.tca.calibration.centred_coefficients` (bearing centre
+:func:`~gearcontact.tca.design_point.centred_coefficients` (bearing centre
 ``(eta_c, xi_c)``, profile and lengthwise crowning, bias), and the conditions are met
-with TCA in the loop: :func:`~gearcontact.tca.calibration.eased_design_point` (the TCA
+with TCA in the loop: :func:`~gearcontact.tca.design_point.eased_design_point` (the TCA
 at the continuous TE0 vertex) and bounded least squares, the machinery of the
 calibration (docs/calibration.md), here with design targets instead of published ones.
 
@@ -51,12 +51,13 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
-from ..geometry.flank import SIDES, build_flanks
+from ..geometry.flank import SIDES, FlankSet, build_flanks, with_easeoff
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
-from .calibration import (DesignPoint, centred_coefficients, conjugate_contact,
-                          eased_design_point)
+from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
+                           eased_design_point)
+from .path_reach import check_path_angle
 from .solve import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
@@ -103,7 +104,7 @@ class SynthesisTargets:
     path_angle_deg : float or None
         Contact-path direction at the bearing centre from the lengthwise direction,
         deg in (-90, 90] (right-handed flank frame, as the ellipse angle of
-        :class:`~gearcontact.tca.calibration.DesignPoint`); None: not prescribed
+        :class:`~gearcontact.tca.design_point.DesignPoint`); None: not prescribed
         (bias drawn weakly towards 0).
     centre_face, centre_profile : float
         Bearing centre (TE0 vertex) on the pinion flank as fractions of the face
@@ -283,7 +284,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     Raises
     ------
     InputRangeError
-        Bad side.
+        Bad side, or a path angle the synthesis cannot reach on ``side``
+        (:func:`~.path_reach.check_path_angle`, before any TCA).
     ArithmeticError
         If no start of the search reaches an interior contact.
     """
@@ -314,6 +316,14 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     eta_c, xi_c = centre[0] - u_m, centre[1] - v_m
     lo = np.array([eta_c - 0.5 * depth, xi_c - 0.4 * face, 0.05 * k, 0.002 * k, -2.0 * k])
     hi = np.array([eta_c + 0.5 * depth, xi_c + 0.4 * face, 60.0 * k, 2.0 * k, 2.0 * k])
+    x_mid = np.array([eta_c, xi_c, 8.0 * k, 0.15 * k, 0.0])
+    if with_bias:
+        # a path angle the synthesis cannot reach is refused here, before any TCA; one it
+        # can starts from its first-order design (.path_reach), the box widened to hold it
+        reach = check_path_angle(pair, targets=targets, flanks=flanks, sides=(side,))[side]
+        x_mid = np.array([eta_c, xi_c, *reach.start(targets.path_angle_deg)])
+        lo[2:] = np.minimum(lo[2:], [0.5 * x_mid[2], 0.5 * x_mid[3], x_mid[4] - abs(x_mid[4])])
+        hi[2:] = np.maximum(hi[2:], [2.0 * x_mid[2], 2.0 * x_mid[3], x_mid[4] + abs(x_mid[4])])
     scale = np.array([0.02 * depth, 0.02 * face, 0.5 * k, 0.05 * k, 0.05 * k])
     budget = 9 + 2 * int(max_evaluations)
     runs = {"n": 0}
@@ -362,20 +372,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         return (state["best"][1] is not None and
                 all(r[5] for r in _targets_rows(state["best"][2][1], targets, centre, length)))
 
-    def search(residual, state) -> None:
-        """Start grid, Levenberg-Marquardt passes, decoupled rounds (docs/synthesis.md)."""
-        # start grid over the two crownings (the objective has several basins: the path
-        # turns with the profile crowning), each start re-centred before it is ranked:
-        # the TE0 vertex moves with the crownings along an inclined path (F2 spiral bevel
-        # coast: 5 mm towards the toe at 4x the profile crowning), so a start ranked with
-        # its ease-off centre at the target bearing centre is ranked by that drift, not
-        # by the TE0 and pattern length it gives
-        for pc in (4.0, 8.0, 16.0, 24.0, 32.0):
-            for lc in (0.06, 0.15, 0.4):
-                _recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
-                           targets.tol_centre_mm, lo, hi)
-        if state["best"][1] is None:
-            return
+    def refine(residual, state) -> bool:
+        """Levenberg-Marquardt passes from the best point so far; True if met."""
         # the local search runs in variables normalized by ``scale`` (each of order one
         # per scale step), so that the finite-difference step (1 % of max(1, |z|) scale
         # steps) is a small, comparable change of every coefficient. A pass that stalls
@@ -389,8 +387,30 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
             least_squares(lambda z, x0=x0, step=step: residual(x0 + z * step), np.zeros(5),
                           method="lm", diff_step=1e-2, max_nfev=int(max_evaluations))
             if met(state):
+                return True
+        return False
+
+    def search(residual, state) -> None:
+        """(With a path-angle target: its first-order design, refined.) Start grid,
+        Levenberg-Marquardt passes, decoupled rounds (docs/synthesis.md)."""
+        if with_bias:
+            _recentred(residual, x_mid, centre, targets.tol_centre_mm, lo, hi)
+            if state["best"][1] is not None and refine(residual, state):
                 return
-        _polish(residual, state["best"][1], lo, hi, targets)
+        # start grid over the two crownings (the objective has several basins: the path
+        # turns with the profile crowning), each start re-centred before it is ranked:
+        # the TE0 vertex moves with the crownings along an inclined path (F2 spiral bevel
+        # coast: 5 mm towards the toe at 4x the profile crowning), so a start ranked with
+        # its ease-off centre at the target bearing centre is ranked by that drift, not
+        # by the TE0 and pattern length it gives
+        for pc in (4.0, 8.0, 16.0, 24.0, 32.0):
+            for lc in (0.06, 0.15, 0.4):
+                _recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
+                           targets.tol_centre_mm, lo, hi)
+        if state["best"][1] is None:
+            return
+        if not refine(residual, state):
+            _polish(residual, state["best"][1], lo, hi, targets)
 
     def stages(residual, state) -> None:
         """Without a path-angle target, the decoupled rounds from the middle of the
@@ -421,7 +441,6 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     # the search runs on the full TCA.
     reduced, on_reduced = model({"pairs": 1, "edge_contact": False})
     full, on_full = model({"pairs": 2, "edge_contact": True})
-    x_mid = np.array([eta_c, xi_c, 8.0 * k, 0.15 * k, 0.0])
     faithful = agree(reduced(x_mid), full(x_mid))
     if faithful:
         stages(reduced, on_reduced)
@@ -470,6 +489,7 @@ def synthesize_pair(pair: GearPair, *, sides=SIDES, targets: SynthesisTargets = 
     :class:`Synthesis` of each side."""
     if flanks is None:
         flanks = build_flanks(pair)
+    check_path_angle(pair, targets=targets, flanks=flanks, sides=sides)   # every side first
     done = {s: synthesize_easeoff(pair, side=s, targets=targets, flanks=flanks) for s in sides}
     return dataclasses.replace(pair, **{f"easeoff_{s}": r.coefficients
                                         for s, r in done.items()}), done
@@ -488,11 +508,15 @@ class PreparedPair:
         The flank side prepared.
     synthesis : Synthesis or None
         The local synthesis of ``side``, None if the pair brought its table.
+    flanks : FlankSet or None
+        ``build_flanks(pair)`` (bit for bit) if the synthesis built the flanks, so that
+        a command does not build them again; None if nothing was synthesized.
     """
 
     pair: GearPair
     side: str
     synthesis: Synthesis | None = None
+    flanks: FlankSet | None = None
 
     @property
     def synthesized(self) -> bool:
@@ -544,6 +568,9 @@ def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
         raise InputRangeError("side", side, f"one of {SIDES}")
     if side in pair.easeoff_tables:
         return PreparedPair(pair, side)
-    new, done = synthesize_pair(pair, sides=(side,))
+    base = build_flanks(pair)
+    new, done = synthesize_pair(pair, sides=(side,), flanks=base)
     new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
-    return PreparedPair(new, side, done[side])
+    # the conjugate flanks do not depend on the ease-off: only the ease-off is applied
+    # again (geometry.flank.with_easeoff, the last step of build_flanks)
+    return PreparedPair(new, side, done[side], with_easeoff(base, new))

@@ -2,9 +2,9 @@
 
 Operating point: the motor torque balances the load (gear) torque through the ratio,
 ``T_m = T_l / u`` (no losses); the run starts from the static equilibrium at the first
-phase (shaft twists ``T/k``, mesh rotation from the Hertzian torque balance of
-:func:`gearcontact.ltca.lte.preview_balance`) with the members at the nominal
-speeds, so that what follows is the response to the mesh excitation (unloaded TE and
+phase (shaft twists ``T/k``, mesh rotation from the torque balance on the backend's
+law, :func:`static_rotation`) with the members at the nominal speeds, so that what
+follows is the response to the mesh excitation (unloaded TE and
 the phase-varying stiffness).
 
 The chain linearised there gives the undamped modes (:func:`linearized_modes`), the
@@ -18,7 +18,6 @@ import math
 
 import numpy as np
 
-from ..ltca.lte import preview_balance
 from ..validation import InputRangeError, check_range
 from . import kernel as K
 from .model import TwinModel, _fit_args, _prm
@@ -86,19 +85,25 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     """Mesh rotation theta (rad) and pair loads (N) that carry the load torque at the
     first phase, with the model's own contact law.
 
-    The Hertzian balance of :func:`~gearcontact.ltca.lte.preview_balance` gives the
-    starting point; it is then refined by bisection on the backend's torque (golden:
-    its rounding; table: its interpolation).
+    Bisection on the backend's torque (golden: its rounding; table: its
+    interpolation) from the bracket ``[0, 4 theta_1]``, ``theta_1 = (g_j + kappa_j
+    (T / l_j)^(2/3)) / l_j`` the rotation at which the least open pair ``j`` alone
+    carries the torque under the fp64 Hertz law (an upper bound of the balance of
+    :func:`~gearcontact.ltca.lte.preview_balance`), doubled until it holds the root.
+    The bracket is closed form (no iterative solver) so that the drivetrain FMU's C
+    (:mod:`gearcontact.export.fmu_drivetrain`) starts from the same bits.
     """
     m = model.mesh
     prm = _prm(model, 0.0)
-    ok = m.valid[:, 0] & m.valid[:, 1]
-    kap = np.array([K._kappa_reference(a, b, 1e3, prm, np.empty(3)) for a, b in
-                    zip(m.A_minus_per_mm[ok, 0], m.B_minus_per_mm[ok, 0])])
-    th0, _ = preview_balance(m.lever_mm[ok, 0], m.opening_mm[ok, 0], kap,
-                             1e3 * model.torque_nm)
+    ok = np.flatnonzero(m.valid[:, 0] & m.valid[:, 1])
+    # the least open pair (first of equals, as the C port's strict <)
+    j = int(ok[np.argmin(m.opening_mm[ok, 0] / m.lever_mm[ok, 0])])
+    lv, g = float(m.lever_mm[j, 0]), float(m.opening_mm[j, 0])
+    kap = K._kappa_reference(float(m.A_minus_per_mm[j, 0]), float(m.B_minus_per_mm[j, 0]),
+                             1e3, prm, np.empty(3))
+    th1 = (g + kap * (1e3 * model.torque_nm / lv) ** (2.0 / 3.0)) / lv
     target = model.torque_nm
-    lo, hi = 0.0, 4.0 * th0
+    lo, hi = 0.0, 4.0 * th1
     while _elastic(model, prm, hi)[0] < target:
         hi *= 2.0
     w_eval = np.full(model.arrays["lever"].shape[1], 1e3)

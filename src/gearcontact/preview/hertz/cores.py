@@ -1,7 +1,7 @@
 """Descriptors of the stage-D cores: the serialized :class:`.rtl.HertzCore` (756 cycles)
 and the pipelined :class:`.rtl_pipe.HertzPipe` (initiation interval 1), each in both
 Hertz forms, and the line core :class:`.rtl_line.HertzLineCore` (759 cycles, near-line
-contact, :mod:`.line`); see :mod:`gearcontact.preview.core`."""
+contact, :mod:`.line`), also in both forms; see :mod:`gearcontact.preview.core`."""
 
 from __future__ import annotations
 
@@ -107,16 +107,30 @@ def _line_columns(codes) -> dict:
     return {p: np.asarray(getattr(codes, f), np.int64) for p, f in LINE_OUTPUT_PORTS.items()}
 
 
-def _line_golden(st: Stimulus) -> dict:
-    from .line_vec import line_golden_array
-    a, b, w, length, e = _line_fields(st)
-    return _line_columns(line_golden_array(a, b, w, length, e_prime_code=e))
+def _line_golden(hertz_form: str):
+    def run(st: Stimulus) -> dict:
+        from .line_vec import line_golden_array
+        a, b, w, length, e = _line_fields(st)
+        return _line_columns(line_golden_array(a, b, w, length, e_prime_code=e,
+                                               hertz_form=hertz_form))
+    return run
 
 
-def _line_amaranth(st: Stimulus):
-    from .rtl_line import simulate_line_core
-    outs, cycles = simulate_line_core(list(zip(*_line_fields(st))))
-    return _line_columns(outs), np.asarray(cycles, np.int64)
+def _line_amaranth(hertz_form: str):
+    def run(st: Stimulus):
+        from .rtl_line import simulate_line_core
+        outs, cycles = simulate_line_core(list(zip(*_line_fields(st))), hertz_form=hertz_form)
+        return _line_columns(outs), np.asarray(cycles, np.int64)
+    return run
+
+
+def _line(name, top, hertz_form, summary):
+    return CoreDescriptor(
+        name, "hertz.rtl_line", lazy("hertz.rtl_line", "HertzLineCore"), top, _line_ports,
+        _line_golden(hertz_form), _line_amaranth(hertz_form), _line_cycles,
+        control=("busy", "done_pulse"), stimulus_core="hertz_line",
+        verilog_kwargs={"hertz_form": hertz_form} if hertz_form == "exact" else {},
+        summary=summary)
 
 
 def _line_cycles(st: Stimulus) -> int:
@@ -133,10 +147,9 @@ DESCRIPTORS = (
           "stage D pipelined, initiation interval 1 (one preview per clock, valid/ready "
           "stream; cycles = latency)"),
     _pipe("hertz_pipe_exact", "exact", "pipelined stage D (II = 1) with hertz_form='exact'"),
-    CoreDescriptor(
-        "hertz_line", "hertz.rtl_line", lazy("hertz.rtl_line", "HertzLineCore"),
-        "hertz_line_core", _line_ports, _line_golden, _line_amaranth, _line_cycles,
-        control=("busy", "done_pulse"), stimulus_core="hertz_line",
-        summary="stage D line core: ellipse (radii beyond 1 m by Hertz similarity) or "
-                "Hertz line contact of the flank's contact line L, 759 cycles"),
+    _line("hertz_line", "hertz_line_core", "hamrock-brewe",
+          "stage D line core: ellipse (radii beyond 1 m by Hertz similarity) or Hertz line "
+          "contact of the flank's contact line L, 759 cycles"),
+    _line("hertz_line_exact", "hertz_line_exact_core", "exact",
+          "stage D line core with hertz_form='exact' (exact k and E tables, 759 cycles)"),
 )

@@ -1,0 +1,225 @@
+"""``gearcontact export fmu --kind drivetrain``: the drivetrain twin as an FMI 3.0
+co-simulation FMU in plain C.
+
+:func:`export_drivetrain_fmu` builds the twin's model of the pair exactly as
+``gearcontact twin`` does (:func:`gearcontact.twin.model.model_for_pair`: the loaded
+flank's TCA and mesh table, the reverse flank's own table or the mirrored law, the
+``[drivetrain]`` parameters, the preview's curvature source ``stencil`` or ``exact``;
+rigid teeth), bakes its per-flank arrays and constants into
+``data/templates/fmu/gc_drivetrain_fmu.c.j2`` -- a port of
+the twin's step loop (:mod:`gearcontact.twin.kernel`), static point, mesh damping and
+speed controller (:mod:`gearcontact.twin.statics`) and start
+(:func:`gearcontact.twin.simulate.simulate`), operation by operation -- beside the
+contact law the mesh FMU uses (``gc_contact_law.c``: stage D, and for the stencil
+source stage C, of the preview's C library), and
+builds the FMU with :func:`.fmu.build_fmu`. Parameters ``backend`` (fp64 = the twin's
+``reference``, golden), ``speed_rpm``, ``torque_nm``, ``step_us``; the mesh table's
+edge-pair fields are sized at the export torque (``--torque``), as the twin sizes them at
+its run's. Importer facts: docs/export.md.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..ltca.pair_ltca import ARCSEC_PER_RAD
+from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, fmi3_header_dir, fmu_context,
+                  model_token)
+
+__all__ = ["DRIVETRAIN_VARIABLES", "DrivetrainFmu", "export_drivetrain_fmu",
+           "drivetrain_fmu_model"]
+
+#: (name, value reference, type, causality, variability, unit, description).
+DRIVETRAIN_VARIABLES = (
+    ("time", 0, "Float64", "independent", "continuous", "s", "simulation time"),
+    ("pinion_speed_rpm", 1, "Float64", "output", "continuous", "rpm", "pinion speed"),
+    ("pinion_speed_rad_s", 2, "Float64", "output", "continuous", "rad/s", "pinion speed"),
+    ("gear_speed_rad_s", 3, "Float64", "output", "continuous", "rad/s", "gear speed"),
+    ("dte_arcsec", 4, "Float64", "output", "continuous", "arcsec",
+     "dynamic transmission error, TCA sign (twin's te_arcsec)"),
+    ("mesh_rotation_rad", 5, "Float64", "output", "continuous", "rad",
+     "mesh rotation theta of the loaded flank"),
+    ("mesh_torque_nm", 6, "Float64", "output", "continuous", "N.m",
+     "mesh torque on the gear along the motion (loaded minus reverse flank)"),
+    ("mesh_force_n", 7, "Float64", "output", "continuous", "N",
+     "total normal load of both flanks"),
+    ("p_max_mpa", 8, "Float64", "output", "continuous", "MPa",
+     "peak pressure of the most loaded pair"),
+    ("a_mm", 9, "Float64", "output", "continuous", "mm", "its semi-axis a"),
+    ("b_mm", 10, "Float64", "output", "continuous", "mm", "its semi-axis b"),
+    ("pairs_loaded", 11, "Int32", "output", "discrete", "", "pairs carrying load"),
+    ("backend", 12, "Enumeration", "parameter", "fixed", "",
+     "contact law: fp64 (the twin's reference backend) or golden (fixed-point stage D)"),
+    ("speed_rpm", 13, "Float64", "parameter", "fixed", "rpm",
+     "nominal pinion (motor) speed, 0 to 1e5"),
+    ("torque_nm", 14, "Float64", "parameter", "fixed", "N.m", "load torque on the gear, > 0"),
+    ("step_us", 15, "Float64", "parameter", "fixed", "us",
+     "fixed RK4 step, 1 to 50 us and h omega_max <= 2"),
+)
+#: FMI functions the drivetrain model implements beside the shared ones.
+_TRIVIAL = ("fmi3Terminate", "fmi3EnterStepMode", "fmi3EnterConfigurationMode",
+            "fmi3ExitConfigurationMode")
+_IMPLEMENTED = COMMON_IMPLEMENTED | set(_TRIVIAL) | {
+    "fmi3EnterInitializationMode", "fmi3ExitInitializationMode", "fmi3GetFloat64",
+    "fmi3SetFloat64", "fmi3GetInt32", "fmi3GetInt64", "fmi3SetInt64", "fmi3DoStep",
+    "fmi3InstantiateModelExchange"}
+
+
+@dataclass(frozen=True)
+class DrivetrainFmu:
+    """What :func:`export_drivetrain_fmu` wrote.
+
+    Attributes
+    ----------
+    fmu_path : Path
+        The ``.fmu`` archive.
+    model_identifier : str
+        The shared library's name (without ``.so``).
+    torque_nm : float
+        The export torque (the ``torque_nm`` parameter's start value), N·m.
+    """
+
+    fmu_path: Path
+    model_identifier: str
+    torque_nm: float
+
+
+def drivetrain_fmu_model(pair, *, side: str, phases: int, torque_nm: float,
+                         drivetrain=None, curvatures: str = "stencil"):
+    """The twin's model the drivetrain FMU bakes: :func:`~gearcontact.twin.model.
+    model_for_pair` with rigid teeth and the preview's curvature source ``curvatures``
+    (the reference backend's arrays; the golden backend's stencil samples are added by
+    :func:`export_drivetrain_fmu`)."""
+    from ..twin.model import model_for_pair
+
+    return model_for_pair(pair, torque_nm=torque_nm, backend="reference",
+                          drivetrain=drivetrain, side=side, phases=phases,
+                          curvatures=curvatures)
+
+
+def _constants(model) -> list[tuple[str, str]]:
+    from ..twin import layout as L
+    from ..twin.model import _prm
+    from ..twin.simulate import MAX_SPEED_RPM, STABILITY_LIMIT, STEP_RANGE_US
+
+    prm = _prm(model, 0.0)
+    m, dt = model.mesh, model.drivetrain
+    c = c_double
+    return [
+        ("RATIO", c(prm[L.P_U])), ("L0_MM", c(prm[L.P_L0])), ("J_M", c(prm[L.P_JM])),
+        ("J_P", c(prm[L.P_JP])), ("J_G", c(prm[L.P_JG])), ("J_L", c(prm[L.P_JL])),
+        ("K1", c(prm[L.P_K1])), ("K2", c(prm[L.P_K2])), ("C1", c(prm[L.P_C1])),
+        ("C2", c(prm[L.P_C2])), ("THETA_B_RAD", c(prm[L.P_THB])),
+        ("E_PRIME_MPA", c(prm[L.P_EP])), ("E_CODE", str(int(prm[L.P_ECODE]))),
+        ("DPSI_RAD", c(prm[L.P_DPSI])), ("PITCH_RAD", c(prm[L.P_PITCH])),
+        ("NROW", str(int(prm[L.P_NROW]))), ("DPSI_R_RAD", c(prm[L.P_DPSIR])),
+        ("NROW_R", str(int(prm[L.P_NROWR]))), ("PSI_R_RAD", c(prm[L.P_PSIR])),
+        ("C_R_RAD", c(prm[L.P_CR])), ("MIRROR", str(int(prm[L.P_MIRROR] != 0.0))),
+        ("PITCH0_RAD", c(m.pitch_rad)), ("MOTION_SIGN", c(float(m.motion_sign))),
+        ("ARCSEC_PER_RAD", c(ARCSEC_PER_RAD)), ("PI", c(math.pi)),
+        ("MESH_DAMPING_RATIO", c(dt.mesh_damping_ratio)),
+        ("SPEED_CONTROL_HZ", c(dt.speed_control_bandwidth_hz)),
+        ("STABILITY_LIMIT", c(STABILITY_LIMIT)), ("MAX_SPEED_RPM", c(MAX_SPEED_RPM)),
+        ("STEP_US_MIN", c(STEP_RANGE_US[0])), ("STEP_US_MAX", c(STEP_RANGE_US[1])),
+        ("SPEED_RPM_START", c(3000.0)), ("TORQUE_NM_START", c(model.torque_nm)),
+        ("STEP_US_START", c(10.0))]
+
+
+def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
+                          torque_nm: float = 64.5, drivetrain=None,
+                          curvatures: str = "stencil") -> DrivetrainFmu:
+    """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring).
+
+    Parameters
+    ----------
+    pair : gearcontact.geometry.pair.GearPair
+        The pair, prepared (an ease-off table on ``side``).
+    out_dir : str or Path
+        Output directory (created if missing).
+    pair_name : str
+        Name of the pair in the model name and description.
+    side : str
+        ``"drive"`` or ``"coast"``: the loaded flank.
+    phases : int
+        TCA phases per pinion pitch.
+    torque_nm : float
+        Gear torque sizing the mesh table (as ``gearcontact twin --torque``) and the
+        start value of the FMU's ``torque_nm``, N·m.
+    drivetrain : gearcontact.twin.params.DrivetrainParams or None
+        The ``[drivetrain]`` parameters (None: the pair's defaults).
+    curvatures : str
+        The preview's curvature source, as ``gearcontact twin --curvatures``:
+        ``"stencil"`` (the twin's default: stage C on the 7 x 7 gap stencil, then stage
+        D) or ``"exact"`` (the TCA's curvatures).
+
+    Returns
+    -------
+    DrivetrainFmu
+
+    Raises
+    ------
+    ToolUnavailable
+        Jinja2, FMPy's headers or a C compiler missing.
+    """
+    from .c_library import _environment
+
+    header_dir = fmi3_header_dir()
+    _environment()      # Jinja2 before the TCA
+    from ..twin.model import CURVATURE_SOURCES, _stack
+    from ..validation import InputRangeError
+
+    if curvatures not in CURVATURE_SOURCES:     # before the TCA
+        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
+    model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
+                                 drivetrain=drivetrain, curvatures=curvatures)
+    a, m = model.arrays, model.mesh
+    stencil = curvatures == "stencil"
+    # exact A-, B- always (the static start's bracket); the stencil source as the golden
+    # twin stacks it: the 49 samples, then the fp64 fit's c3, c4, c5
+    exact = _stack(m, model.reverse if model.reverse is not None else m, "exact",
+                   golden=False)["cv"]
+    cv = (_stack(m, model.reverse if model.reverse is not None else m, "stencil",
+                 golden=True)["cv"] if stencil else None)
+    ident = "gearcontact_drivetrain_" + re.sub(r"\W", "_", pair_name)
+
+    def hexes(x):
+        x = np.asarray(x, float)
+        return [c_double(v) for v in x] if x.ndim == 1 else [hexes(r) for r in x]
+
+    consts = _constants(model)
+    baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
+                                       (a["eps"], a["lever"], a["opening"], a["valid"],
+                                        exact, cv)])).encode()
+    ctx = fmu_context(
+        model_identifier=ident, token=model_token(baked), header_dir=header_dir,
+        variables=DRIVETRAIN_VARIABLES, implemented=_IMPLEMENTED, trivial=_TRIVIAL,
+        model_source="gc_drivetrain_fmu.c",
+        description=f"Drivetrain twin of {pair_name} ({side} flank loaded): motor, input "
+                    "shaft, pinion, mesh (the gearcontact preview's contact law on the "
+                    f"{'7 x 7 gap stencil' if stencil else 'TCA'}'s curvatures, both flanks), "
+                    "gear, output shaft, load; RK4 at step_us, PI speed control per "
+                    "[drivetrain]")
+    ctx.update({
+        "pair_name": pair_name, "side": side, "constants": consts,
+        "n_pairs": a["lever"].shape[1], "n_rows": a["lever"].shape[2],
+        "n_rows0": len(m.psi_rad), "eps": hexes(a["eps"]),
+        "tables": [("LEVER", hexes(a["lever"])), ("OPENING", hexes(a["opening"])),
+                   ("A_MINUS", hexes(exact[..., 0])), ("B_MINUS", hexes(exact[..., 1]))],
+        "stencil": stencil, "curvatures": curvatures,
+        "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
+        "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
+        "psi0": hexes(m.psi_rad), "eps0": hexes(m.eps_rad),
+        "default_step": "1e-05", "default_stop": "0.05",
+        "starts": {"speed_rpm": "3000", "torque_nm": repr(float(model.torque_nm)),
+                   "step_us": "10"},
+        "initial_dependencies": "12 13 14 15"})
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    fmu_path = out / f"{ident}.fmu"
+    build_fmu(fmu_path, ctx, header_dir)
+    return DrivetrainFmu(fmu_path, ident, float(model.torque_nm))

@@ -1,0 +1,358 @@
+"""Loaded transmission error of a cylindrical pair over a mesh cycle, rigid teeth
+(docs/cylindrical.md sec. 7).
+
+At each phase of the unloaded cycle (:func:`~gearcontact.tca.cylindrical_cycle.
+cylindrical_mesh_cycle`) every tooth pair with a contact line in the zone of action is
+one block of the torque-constrained LCP of :mod:`.mesh_lcp` (all pairs in one solve, the
+shared gear rotation ``theta`` its multiplier: loaded TE = TE0 plus ``theta``).
+
+Grid. The contact line of an involute pair lies in the plane of action; its common
+tangent plane contains the line and is perpendicular to that plane. Each pair gets a
+uniform grid in it: ``y`` along the line (``y = z / cos(beta_b)`` over the pinion face,
+the same for every pair and phase, cells off the line in the zone get a separation of
+:data:`OFF_LINE_GAP_MM`) and ``x`` across it (the profile direction). The gap is
+
+    h(x, y) = cos(beta_b) (g(z) - g_j) + x^2 / (2 R(z)),
+    1 / R = cos(beta_b) (1 / u1 + 1 / u2),
+
+with ``g(z)`` the gap along the transverse line of action of the unloaded cycle
+(:func:`~gearcontact.tca.cylindrical_cycle.contact_line_gaps`; ``cos(beta_b)`` turns it
+into the normal), ``g_j`` its least value on the line and ``R`` the relative radius of
+curvature normal to the line (transverse radii ``u1``, ``u2``, the roll lengths, over
+``cos(beta_b)``: ISO 6336-2's normal-section radii). The pair's opening is
+``cos(beta_b) (g_j - min_k g_k)`` and its lever about the gear axis ``r_b2 cos(beta_b)``
+(a gear rotation moves its flank by ``r_b2`` along the transverse line of action).
+The profile modifications enter through ``g(z)`` along the line only: across the strip
+(a few tenths of a mm) their change is neglected, and a contact is not truncated at the
+tip across the strip (a loaded cell in the first or last column of the grid is
+reported, ``edge_touch``).
+
+Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
+normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).
+The Harris map's default torques (:func:`harris_torques_nm`) are those of the ISO 6336
+line loads ``F_t / b`` = 50 to 400 N/mm (``F_t = 2 T2 / d2`` at the reference circle;
+Method B's stiffness holds from 100 N/mm). Mesh stiffness per
+phase is the secant ``k = F_n / delta`` with ``delta = r_b2 cos(beta_b) theta`` the normal
+approach from the unloaded rest, given per unit face width in N/(mm·µm) (the unit of
+ISO 6336-1's c' and c_gamma). Tooth bending of cylindrical teeth is a later slice:
+these teeth are rigid, so the stiffness is that of the contact alone.
+
+References
+----------
+K. L. Johnson, *Contact Mechanics*, 1985, sec. 4.3 (line contact).
+ISO 6336-1:2006 (normal load, c', c_gamma); ISO 6336-2:2006 (normal radii of curvature).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..geometry.cylindrical.pair import CylindricalPair
+from ..halfspace.grid import TangentGrid
+from ..halfspace.lcp import resolve_e_star
+from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
+    cylindrical_mesh_cycle
+from ..tca.types import ARCSEC_PER_RAD
+from ..validation import InputRangeError, check_positive
+from .mesh_lcp import PairBlock, solve_mesh_lcp
+
+__all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
+           "cylindrical_loaded_te", "harris_map", "harris_tip_reliefs_um", "harris_torques_nm",
+           "normal_load_n"]
+
+#: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
+OFF_LINE_GAP_MM = 1.0
+
+
+def normal_load_n(pair: CylindricalPair, torque_nm: float) -> float:
+    """Normal tooth load of the gear torque, ``T2 / (r_b2 cos(beta_b))`` (N; ISO 6336-1)."""
+    t = check_positive("torque_nm", torque_nm)
+    g = pair.geometry
+    return 2e3 * t / (g.base_diameter_gear_mm * math.cos(math.radians(g.base_helix_angle_deg)))
+
+
+#: Line loads F_t / b of the default Harris-map torques, N/mm.
+HARRIS_LINE_LOADS_N_PER_MM = (50.0, 100.0, 200.0, 300.0, 400.0)
+
+
+def harris_torques_nm(pair: CylindricalPair, line_loads_n_per_mm=HARRIS_LINE_LOADS_N_PER_MM
+                      ) -> np.ndarray:
+    """Gear torques (N·m) of the tangential line loads ``F_t / b`` (N/mm) at the gear's
+    reference circle, ``T2 = (F_t / b) b d2 / 2000``."""
+    g = pair.geometry
+    w = np.asarray(line_loads_n_per_mm, dtype=float)
+    return w * g.face_width_mm * g.reference_diameter_gear_mm / 2e3
+
+
+def harris_tip_reliefs_um(pair: CylindricalPair) -> np.ndarray:
+    """Default tip reliefs of the Harris map: 0, 1/2, 1, 3/2 and 2 times the pinion's C_a
+    (µm; 0 to 20 µm in steps of 5 when the pair has none)."""
+    c = pair.modifications_pinion.tip_relief_um
+    return np.array([0.0, 0.5, 1.0, 1.5, 2.0]) * (c if c > 0.0 else 10.0)
+
+
+@dataclass(frozen=True)
+class CylindricalLoadedTE:
+    """Loaded TE of a cylindrical pair over one pinion pitch (rigid teeth).
+
+    Shapes: K phases, P tooth pairs (``pair_offsets``, as the unloaded cycle), N cells
+    along the face (``z_mm``).
+
+    Attributes
+    ----------
+    phi1_rad : ndarray (K,)
+    pair_offsets : tuple of int
+    torque_nm : float
+        Gear torque, N·m.
+    normal_load_n : float
+        ``F_n``, N.
+    te0_arcsec, lte_arcsec : ndarray (K,)
+        Unloaded and loaded TE, arcsec (the TCA's sign: negative, the gear lags).
+    load_share : ndarray (P, K)
+        Normal load of each pair over ``F_n`` (0 for a pair out of the zone).
+    max_pressure_mpa : ndarray (K,)
+        Largest cell pressure, MPa.
+    z_mm : ndarray (N,)
+        Axial cell centres on the pinion face, mm.
+    line_load_n_per_mm : ndarray (P, K, N)
+        Load per unit face width along each contact line, N/mm.
+    line_pressure_mpa : ndarray (P, K, N)
+        Peak pressure across each line (the largest cell of each row), MPa.
+    stiffness_n_per_mm_um : ndarray (K,)
+        Secant mesh stiffness per unit face width, N/(mm·µm) (module docstring).
+    face_width_mm : float
+        Common face width b, mm.
+    grid_dx_mm, grid_dy_mm : float
+        Cell widths across and along the lines, mm.
+    edge_touch : bool
+        A loaded cell on the grid's first or last column across (strip too narrow).
+    iterations : ndarray (K,) of int
+    converged : bool
+        Every phase's LCP converged.
+    solve_time_s : float
+        CPU time of the LCP solves, s.
+    """
+
+    phi1_rad: np.ndarray
+    pair_offsets: tuple[int, ...]
+    torque_nm: float
+    normal_load_n: float
+    te0_arcsec: np.ndarray
+    lte_arcsec: np.ndarray
+    load_share: np.ndarray
+    max_pressure_mpa: np.ndarray
+    z_mm: np.ndarray
+    line_load_n_per_mm: np.ndarray
+    line_pressure_mpa: np.ndarray
+    stiffness_n_per_mm_um: np.ndarray
+    face_width_mm: float
+    grid_dx_mm: float
+    grid_dy_mm: float
+    edge_touch: bool
+    iterations: np.ndarray
+    converged: bool
+    solve_time_s: float
+
+    @property
+    def lte_pp_arcsec(self) -> float:
+        """Peak-to-peak loaded TE over the pitch, arcsec."""
+        return float(self.lte_arcsec.max() - self.lte_arcsec.min())
+
+    @property
+    def mean_stiffness_n_per_mm_um(self) -> float:
+        """Mean secant mesh stiffness over the pitch (one end left out: periodic)."""
+        return float(np.mean(self.stiffness_n_per_mm_um[:-1]))
+
+
+def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n: float,
+                      e_star: float, factor: float) -> float:
+    """Half-width of the strip: ``factor`` Hertz half-widths of the whole load on the
+    shortest total line length (Johnson 1985 eq. 4.43, b = sqrt(4 w R / (pi E*)))."""
+    g = pair.geometry
+    cb = math.cos(math.radians(g.base_helix_angle_deg))
+    u_mid = 0.5 * g.centre_distance_mm * math.sin(math.radians(g.working_pressure_angle_deg))
+    r = u_mid / (2.0 * cb)                       # equal roll lengths: the largest R
+    w = load_n / max(float(cycle.line_length_mm.min()), 1e-3)
+    return factor * math.sqrt(4.0 * w * r / (math.pi * e_star))
+
+
+def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
+                          cycle: CylindricalMeshCycle | None = None, facing: str = "cw",
+                          phases: int = 61, cells_across: int = 24, cells_along: int = 64,
+                          extent_factor: float = 2.0, tol: float = 1e-8
+                          ) -> CylindricalLoadedTE:
+    """Loaded TE, load sharing, pressure and mesh stiffness over one pinion pitch.
+
+    Parameters
+    ----------
+    pair : CylindricalPair
+    torque_nm : float
+        Gear torque, N·m (> 0).
+    cycle : CylindricalMeshCycle, optional
+        The unloaded cycle of ``pair`` (computed with ``facing``, ``phases`` if None).
+    facing, phases
+        As :func:`~gearcontact.tca.cylindrical_cycle.cylindrical_mesh_cycle`.
+    cells_across, cells_along : int
+        Grid cells across the lines (>= 4) and along the pinion face (>= 4).
+    extent_factor : float
+        Strip half-width in Hertz half-widths of the whole load on the shortest total
+        line length (> 0; module docstring).
+    tol : float
+        LCP tolerance (:func:`.mesh_lcp.solve_mesh_lcp`).
+    """
+    load = normal_load_n(pair, torque_nm)
+    for key, n in (("cells_across", cells_across), ("cells_along", cells_along)):
+        if isinstance(n, bool) or int(n) != n or n < 4:
+            raise InputRangeError(key, n, "an integer >= 4")
+    check_positive("extent_factor", extent_factor)
+    if cycle is None:
+        cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    g = pair.geometry
+    cb = math.cos(math.radians(g.base_helix_angle_deg))
+    e_star = resolve_e_star((pair.pinion_material, pair.gear_material))
+    half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
+    z0, z1 = cycle.pinion_v_range_mm
+    dz = (z1 - z0) / cells_along
+    z = z0 + dz * (np.arange(cells_along) + 0.5)
+    lg = contact_line_gaps(pair, cycle, z)
+    nx = int(cells_across)
+    dx = 2.0 * half / nx
+    grid = TangentGrid.uniform(nx, cells_along, dx_mm=dx, dy_mm=dz / cb,
+                               x0_mm=-half + 0.5 * dx, y0_mm=z[0] / cb)
+    x2 = (grid.x_mm ** 2)[None, :]
+    lever = 0.5 * g.base_diameter_gear_mm * cb
+    gear_torque = load * lever
+    n_pairs, n_phase = lg.gap_mm.shape[:2]
+    share = np.zeros((n_pairs, n_phase))
+    line_load = np.zeros((n_pairs, n_phase, cells_along))
+    line_p = np.zeros_like(line_load)
+    lte, pmax = np.zeros(n_phase), np.zeros(n_phase)
+    stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
+    ok, edge = True, False
+    warm: dict[int, np.ndarray] = {}
+    t0 = time.process_time()
+    for k in range(n_phase):
+        live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
+        g_line = {j: lg.gap_mm[j, k] for j in live}
+        g_env = min(float(np.nanmin(g_line[j])) for j in live)
+        blocks = []
+        for j in live:
+            gj = float(np.nanmin(g_line[j]))
+            on = np.isfinite(g_line[j])
+            inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
+                                       + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
+            h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj, 0.0)[:, None]
+                         + 0.5 * inv_r[:, None] * x2, OFF_LINE_GAP_MM)
+            blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env)))
+        res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
+                             warm_start=[warm.get(j) for j in live])
+        ok &= res.converged
+        iters[k] = res.iterations
+        press = res.pressures_mpa(blocks)
+        warm = dict(zip(live, press))
+        for i, j in enumerate(live):
+            w = res.loads_n[i]
+            share[j, k] = res.pair_loads_n[i] / load
+            line_load[j, k] = w.sum(axis=1) / dz
+            line_p[j, k] = press[i].max(axis=1)
+            edge |= bool(res.contact_masks[i][:, [0, -1]].any())
+        pmax[k] = max(float(p.max()) for p in press)
+        rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
+        # the gear lags (TE0 < 0 on the cw facing): the load turns it further the same way
+        lte[k] = cycle.envelope_arcsec[k] - math.copysign(res.rotation_rad, rate) * ARCSEC_PER_RAD
+        stiff[k] = load / (lever * res.rotation_rad * 1e3 * g.face_width_mm)
+    return CylindricalLoadedTE(
+        phi1_rad=cycle.phi1_rad, pair_offsets=cycle.pair_offsets, torque_nm=float(torque_nm),
+        normal_load_n=load, te0_arcsec=cycle.envelope_arcsec, lte_arcsec=lte,
+        load_share=share, max_pressure_mpa=pmax, z_mm=z, line_load_n_per_mm=line_load,
+        line_pressure_mpa=line_p,
+        stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
+        grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
+        solve_time_s=time.process_time() - t0)
+
+
+@dataclass(frozen=True)
+class HarrisMap:
+    """Loaded-TE peak-to-peak vs torque for several tip-relief amounts.
+
+    Attributes
+    ----------
+    torques_nm : ndarray (T,)
+        Gear torques, N·m.
+    tip_reliefs_um : ndarray (R,)
+        Tip relief C_a applied to both members (at their own start diameters), µm.
+    lte_pp_arcsec : ndarray (R, T)
+        Loaded TE peak-to-peak, arcsec.
+    te0_pp_arcsec : ndarray (R,)
+        Unloaded TE peak-to-peak, arcsec.
+    mean_stiffness_n_per_mm_um : ndarray (R, T)
+        Mean secant mesh stiffness, N/(mm·µm).
+    edge_touch : bool
+        Some solve loaded the edge of its strip across a line.
+    converged : bool
+    """
+
+    torques_nm: np.ndarray
+    tip_reliefs_um: np.ndarray
+    lte_pp_arcsec: np.ndarray
+    te0_pp_arcsec: np.ndarray
+    mean_stiffness_n_per_mm_um: np.ndarray
+    edge_touch: bool
+    converged: bool
+
+
+def _with_tip_relief(pair: CylindricalPair, relief_um: float) -> CylindricalPair:
+    mods = {}
+    for member in ("pinion", "gear"):
+        m = getattr(pair, f"modifications_{member}")
+        if relief_um > 0.0 and m.tip_relief_start_diameter_mm == 0.0:
+            raise InputRangeError(f"modifications.{member}.tip_relief_start_diameter_mm", 0.0,
+                                  "> 0 mm (the Harris map varies C_a at the pair's start "
+                                  "diameters)")
+        mods[f"modifications_{member}"] = replace(m, tip_relief_um=float(relief_um))
+    return replace(pair, **mods)
+
+
+def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str = "cw",
+               phases: int = 61, **options) -> HarrisMap:
+    """The Harris map: loaded TE p-p vs gear torque for each tip relief.
+
+    Parameters
+    ----------
+    pair : CylindricalPair
+        Its tip-relief start diameters are kept; C_a is set on both members.
+    torques_nm : array_like (T,)
+        Gear torques, N·m (> 0).
+    tip_reliefs_um : array_like (R,)
+        C_a, µm (>= 0).
+    facing, phases, **options
+        As :func:`cylindrical_loaded_te`.
+    """
+    torques = np.asarray(torques_nm, dtype=float).ravel()
+    reliefs = np.asarray(tip_reliefs_um, dtype=float).ravel()
+    if torques.size == 0 or not (np.isfinite(torques).all() and (torques > 0).all()):
+        raise InputRangeError("torques_nm", torques_nm, "a non-empty list of torques > 0 N·m")
+    if reliefs.size == 0 or not (np.isfinite(reliefs).all() and (reliefs >= 0).all()):
+        raise InputRangeError("tip_reliefs_um", tip_reliefs_um,
+                              "a non-empty list of tip reliefs >= 0 um")
+    pairs = [_with_tip_relief(pair, c) for c in reliefs]   # all checked before any solve
+    pp = np.zeros((reliefs.size, torques.size))
+    stiff = np.zeros_like(pp)
+    te0 = np.zeros(reliefs.size)
+    ok, edge = True, False
+    for r, p in enumerate(pairs):
+        cycle = cylindrical_mesh_cycle(p, facing=facing, phases=phases)
+        te0[r] = cycle.te0_pp_arcsec
+        for t, torque in enumerate(torques):
+            res = cylindrical_loaded_te(p, torque, cycle=cycle, **options)
+            pp[r, t] = res.lte_pp_arcsec
+            stiff[r, t] = res.mean_stiffness_n_per_mm_um
+            ok &= res.converged
+            edge |= res.edge_touch
+    return HarrisMap(torques_nm=torques, tip_reliefs_um=reliefs, lte_pp_arcsec=pp,
+                     te0_pp_arcsec=te0, mean_stiffness_n_per_mm_um=stiff, edge_touch=edge,
+                     converged=bool(ok))

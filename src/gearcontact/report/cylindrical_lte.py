@@ -1,0 +1,171 @@
+"""Files of the loaded TE of a cylindrical pair and its Harris map (docs/cylindrical.md
+sec. 7): what ``gearcontact lte`` writes for a ``kind = "cylindrical"`` pair.
+
+:func:`write_cylindrical_lte_outputs` writes into one directory ``lte.json`` (summary),
+``lte.csv`` (per phase: TE0, loaded TE, load share per pair, peak pressure, mesh
+stiffness), ``line_load.csv`` (per phase, pair in the zone and face cell: load per unit
+face width and the peak pressure across the line), ``harris_map.csv`` (loaded TE p-p per
+tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
+identical runs write identical files.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
+import numpy as np  # noqa: E402
+
+from ..analytic.iso6336 import cylindrical_pair_stiffness  # noqa: E402
+from ..figure_files import save_figure  # noqa: E402
+from ..ltca.cylindrical_lte import CylindricalLoadedTE, HarrisMap  # noqa: E402
+from ..tca.export import write_csv  # noqa: E402
+
+__all__ = ["cylindrical_lte_summary", "plot_cylindrical_lte", "plot_harris_map",
+           "write_cylindrical_lte_outputs"]
+
+
+def _iso(pair, lte: CylindricalLoadedTE) -> dict:
+    """ISO 6336-1 Method B c' and c_gamma_alpha beside the rigid-tooth stiffness, with the
+    tangential line load F_t / b at the gear's reference circle (the standard holds from
+    100 N/mm; docs/cylindrical.md sec. 7)."""
+    g = pair.geometry
+    iso = cylindrical_pair_stiffness(
+        pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
+        helix_angle_deg=g.helix_angle_deg, base_helix_angle_deg=g.base_helix_angle_deg,
+        transverse_contact_ratio=g.transverse_contact_ratio,
+        profile_shift_pinion=g.profile_shift_pinion, profile_shift_gear=g.profile_shift_gear,
+        dedendum_per_module=pair.dedendum_factor,
+        rack_pressure_angle_deg=g.normal_pressure_angle_deg)
+    c_ga = iso.c_gamma_alpha_n_per_mm_um
+    ft_b = 2e3 * lte.torque_nm / (g.reference_diameter_gear_mm * g.face_width_mm)
+    return {"line_load_ft_per_b_n_per_mm": ft_b, "within_validity": ft_b >= 100.0,
+            "c_single_n_per_mm_um": iso.c_n_per_mm_um,
+            "c_gamma_alpha_n_per_mm_um": c_ga,
+            "c_gamma_beta_n_per_mm_um": iso.c_gamma_beta_n_per_mm_um,
+            "mean_stiffness_over_c_gamma_alpha": lte.mean_stiffness_n_per_mm_um / c_ga,
+            "note": "rigid teeth: contact flattening only, where the standard adds bending "
+                    "and foundation; it holds from F_t / b = 100 N/mm for full lines of "
+                    "contact (below, or with crowning and relief, the half-space's secant "
+                    "stiffness falls: docs/cylindrical.md sec. 7)"}
+
+
+def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, pair, *,
+                            side: str) -> dict:
+    """The ``lte.json`` dict."""
+    out = {
+        "pair": pair.name, "kind": "cylindrical", "side": side, "teeth": "rigid",
+        "phases_per_pitch": len(lte.phi1_rad), "torque_gear_nm": lte.torque_nm,
+        "normal_load_n": lte.normal_load_n,
+        "te0_pp_arcsec": float(lte.te0_arcsec.max() - lte.te0_arcsec.min()),
+        "lte_pp_arcsec": lte.lte_pp_arcsec,
+        "lte_mean_arcsec": float(np.mean(lte.lte_arcsec[:-1])),
+        "max_pressure_mpa": float(lte.max_pressure_mpa.max()),
+        "max_line_load_n_per_mm": float(lte.line_load_n_per_mm.max()),
+        "mean_line_load_n_per_mm": lte.normal_load_n / lte.face_width_mm,
+        "mesh_stiffness_mean_n_per_mm_um": lte.mean_stiffness_n_per_mm_um,
+        "mesh_stiffness_min_max_n_per_mm_um": [float(lte.stiffness_n_per_mm_um.min()),
+                                               float(lte.stiffness_n_per_mm_um.max())],
+        "mesh_stiffness_definition": "secant F_n / (b delta), delta the normal approach "
+                                     "from the unloaded rest (docs/cylindrical.md sec. 7)",
+        "iso6336_method_b": _iso(pair, lte),
+        "max_load_share": float(lte.load_share.max()),
+        "grid_dx_mm": lte.grid_dx_mm, "grid_dy_mm": lte.grid_dy_mm,
+        "edge_touch": lte.edge_touch, "converged": lte.converged,
+        "lcp_iterations_max": int(lte.iterations.max()),
+    }
+    if harris is not None:
+        out["harris_map"] = {
+            "torques_gear_nm": harris.torques_nm.tolist(),
+            "tip_reliefs_um": harris.tip_reliefs_um.tolist(),
+            "lte_pp_arcsec": harris.lte_pp_arcsec.tolist(),
+            "te0_pp_arcsec": harris.te0_pp_arcsec.tolist(),
+            "mean_stiffness_n_per_mm_um": harris.mean_stiffness_n_per_mm_um.tolist(),
+            "edge_touch": harris.edge_touch, "converged": harris.converged}
+    return out
+
+
+def plot_cylindrical_lte(lte: CylindricalLoadedTE, path, *, title: str = "") -> Path:
+    """TE0 and loaded TE over the pitch (top), load share per pair and the mesh
+    stiffness (bottom)."""
+    phi = np.degrees(lte.phi1_rad)
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    ax.plot(phi, lte.te0_arcsec, "k-", label=f"TE0 (p-p {np.ptp(lte.te0_arcsec):.2f})")
+    ax.plot(phi, lte.lte_arcsec, "C0.-", ms=3,
+            label=f"loaded TE, {lte.torque_nm:g} N·m (p-p {lte.lte_pp_arcsec:.2f})")
+    ax.set_ylabel("TE (arcsec)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    for j, s in zip(lte.pair_offsets, lte.load_share):
+        if s.max() > 0.0:
+            ax2.plot(phi, s, lw=1.2, label=f"pair {j:+d}")
+    ax2.set_ylabel("load share")
+    ax2.set_xlabel("pinion rotation phi1 (deg)")
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=8, loc="upper left")
+    right = ax2.twinx()
+    right.plot(phi, lte.stiffness_n_per_mm_um, "k--", lw=1.0)
+    right.set_ylabel("mesh stiffness (N/(mm·µm), dashed)")
+    if title:
+        ax.set_title(title)
+    return save_figure(fig, path, tight=True)
+
+
+def plot_harris_map(harris: HarrisMap, path, *, title: str = "") -> Path:
+    """Loaded TE p-p vs gear torque, one curve per tip relief."""
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for c, pp in zip(harris.tip_reliefs_um, harris.lte_pp_arcsec):
+        ax.plot(harris.torques_nm, pp, "o-", ms=4, label=f"C_a {c:g} µm")
+    ax.set_xlabel("gear torque (N·m)")
+    ax.set_ylabel("loaded TE p-p (arcsec)")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title or "Harris map (rigid teeth)")
+    return save_figure(fig, path, tight=True)
+
+
+def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | None, pair,
+                                  out, *, side: str, figures: bool = True) -> dict:
+    """Write the files of the module docstring into ``out`` (created if missing; the Harris
+    map's files only with ``harris``); returns the ``lte.json`` dict."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    phi = np.degrees(lte.phi1_rad)
+    write_csv(out / "lte.csv",
+              ["phi1_deg", "te0_arcsec", "lte_arcsec"]
+              + [f"load_share_pair{j:+d}" for j in lte.pair_offsets]
+              + ["max_pressure_mpa", "mesh_stiffness_n_per_mm_um"],
+              [[float(phi[k]), float(lte.te0_arcsec[k]), float(lte.lte_arcsec[k])]
+               + [float(s) for s in lte.load_share[:, k]]
+               + [float(lte.max_pressure_mpa[k]), float(lte.stiffness_n_per_mm_um[k])]
+               for k in range(len(phi))])
+    rows = []
+    for k in range(len(phi)):
+        for p, j in enumerate(lte.pair_offsets):
+            if lte.load_share[p, k] <= 0.0:
+                continue
+            rows += [[float(phi[k]), j, float(z), float(w), float(pm)] for z, w, pm in zip(
+                lte.z_mm, lte.line_load_n_per_mm[p, k], lte.line_pressure_mpa[p, k])]
+    write_csv(out / "line_load.csv", ["phi1_deg", "pair", "pinion_z_mm", "load_n_per_mm",
+                                      "peak_pressure_mpa"], rows)
+    if harris is not None:
+        write_csv(out / "harris_map.csv",
+                  ["tip_relief_um", "te0_pp_arcsec"]
+                  + [f"lte_pp_{t:g}nm_arcsec" for t in harris.torques_nm],
+                  [[float(c), float(harris.te0_pp_arcsec[r])]
+                   + [float(x) for x in harris.lte_pp_arcsec[r]]
+                   for r, c in enumerate(harris.tip_reliefs_um)])
+    summary = cylindrical_lte_summary(lte, harris, pair, side=side)
+    (out / "lte.json").write_text(json.dumps(summary, indent=2))
+    if figures:
+        label = f"{pair.name} {side}"
+        plot_cylindrical_lte(lte, out / "lte.png", title=f"{label}: loaded TE (rigid teeth)")
+        if harris is not None:
+            plot_harris_map(harris, out / "harris_map.png",
+                            title=f"{label}: Harris map (rigid teeth)")
+    return summary

@@ -1,0 +1,237 @@
+"""The design point of an ease-off: TCA at the continuous TE0 vertex.
+
+The calibration (:mod:`.calibration`) and the local synthesis (:mod:`.synthesis`) both
+run the TCA in the loop and judge an ease-off by its results at the mean contact: the
+mating point, TE0 peak-to-peak over one pinion pitch, the Hertz and paint ellipses and
+the direction of the contact path there (:class:`DesignPoint`). The reference point is
+the *continuous* TE0 vertex (parabolic interpolation of the path's TE0 at the discrete
+vertex, then a mating-point solve at that phase), so that these results are smooth in
+the ease-off coefficients (docs/calibration.md).
+
+The ease-off is searched in its centre form (:func:`centred_coefficients`: bearing
+centre, profile and lengthwise crowning, bias), in which the bearing position and the
+three second-order terms are nearly independent.
+
+Frame invariants (:func:`point_invariants`): gear radius ``sqrt(x^2 + y^2)`` and axial
+position ``z``; pinion radius ``sqrt((y + E)^2 + z^2)`` and axial position ``x``
+(meshing frame of :mod:`gearcontact.geometry.kinematics`). They do not depend on the
+rotation phase at which a point is reported, so they compare design points across
+frames.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 9
+(TCA), sec. 21.8 (local synthesis: bearing position, path, TE level prescribed at the
+mean point).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..analytic.hertz import hamrock_brewe_hertz
+from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um
+from ..geometry.pair import EaseOffCoefficients, GearPair
+from ..materials import effective_modulus_mpa
+from .curvature import contact_ellipse, relative_curvature
+from .load import normal_load_from_torque
+from .mesh import mesh_cycle
+from .solve import ContactGuess, EdgeContact, solve_mating_point
+
+__all__ = ["point_invariants", "DesignPoint", "conjugate_contact", "design_point_at",
+           "evaluate_design_point", "eased_design_point", "centred_coefficients"]
+
+
+
+def point_invariants(point_mm, offset_mm: float) -> np.ndarray:
+    """Frame-invariant coordinates of a meshing-frame point, mm.
+
+    Returns ``(gear radius, gear axial z, pinion radius, pinion axial x)``.
+    """
+    x, y, z = (float(c) for c in point_mm)
+    return np.array([np.hypot(x, y), z, np.hypot(y + offset_mm, z), x])
+
+
+@dataclass(frozen=True)
+class DesignPoint:
+    """TCA results at the (continuous) TE0 vertex of one ease-off.
+
+    Attributes
+    ----------
+    point_mm, normal : ndarray (3,)
+        Mating point (meshing frame, mm) and common unit normal.
+    invariants_mm : ndarray (4,)
+        :func:`point_invariants` of ``point_mm``.
+    pinion_uv, gear_uv : (float, float)
+        Flank parameters of the mating point, mm.
+    te0_pp_arcsec : float
+        TE0 peak-to-peak over one pinion pitch (61 phases), arcsec.
+    load_n : float
+        Normal load at the design torque, N.
+    ellipse_length_mm, ellipse_width_mm : float
+        Hamrock–Brewe Hertz ellipse 2a x 2b at ``load_n``, mm.
+    ellipse_angle_deg : float
+        Major axis from the lengthwise direction, deg, positive towards the profile
+        direction in the right-handed flank frame ``(l, p, n)``: the angle of
+        :func:`~gearcontact.tca.curvature.contact_ellipse` on the side where that frame
+        is right-handed, its negative on the other side, so that mirror-image bearings
+        on the two sides have the same angle; a left-hand pair reports the angle of its
+        right-hand mirror image.
+    easeoff_max_um : float
+        Largest |E| of the ease-off over the pinion flank, um.
+    paint_length_mm : float
+        Major axis 2a of the paint ellipse (6.35 um, :mod:`.curvature`), mm.
+    path_angle_deg : float
+        Direction of the contact path at the point (phase increasing), deg from the
+        lengthwise direction, in the same right-handed frame as ``ellipse_angle_deg``,
+        folded into (-90, 90]; NaN if the path has no interior neighbour there. A
+        left-hand pair reports the angle of its right-hand mirror image.
+    """
+
+    point_mm: np.ndarray
+    normal: np.ndarray
+    invariants_mm: np.ndarray
+    pinion_uv: tuple[float, float]
+    gear_uv: tuple[float, float]
+    te0_pp_arcsec: float
+    load_n: float
+    ellipse_length_mm: float
+    ellipse_width_mm: float
+    ellipse_angle_deg: float
+    easeoff_max_um: float
+    paint_length_mm: float = float("nan")
+    path_angle_deg: float = float("nan")
+
+
+
+def conjugate_contact(conj, gear, pair: GearPair, u1: float, v1: float) -> ContactGuess:
+    """Contact state of the conjugate pinion point (u1, v1) with its generating gear."""
+    ms = conj.exact(np.array(float(u1)), np.array(float(v1)))
+    u2, v2 = gear.surface_parameters(ms.h_mm, ms.theta_rad)
+    phi2 = float(ms.phi2_rad)
+    return ContactGuess(float(u1), float(v1), float(u2), float(v2), pair.ratio * phi2, phi2)
+
+
+
+def _fold_deg(angle: float) -> float:
+    """An axis direction in (-90, 90] deg."""
+    return float((angle + 90.0) % 180.0 - 90.0) if (angle + 90.0) % 180.0 != 0.0 else 90.0
+
+
+
+def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
+                    torque_nm: float, path_tangent=None) -> DesignPoint:
+    """:class:`DesignPoint` of the mating point ``mp`` of ``pinion`` and ``gear`` (the
+    pair's kinematics), with the Hamrock–Brewe ellipse at the gear torque ``torque_nm``
+    and, given the meshing-frame ``path_tangent`` (3,), the path angle."""
+    kin = pair.kinematics()
+    rc = relative_curvature(pinion, gear, kin, mp)
+    ell = contact_ellipse(rc)
+    # the flank frame (l, p, n) is right-handed on one side and left-handed on the other
+    # (tca.curvature); compare orientations in the right-handed frame of either side
+    # a left-hand pair is the mirror image (geometry.mirror): the reflection turns the
+    # frame's handedness while the path and the ellipse axes keep their (l, p)
+    # components, so the hand's sign gives the angles of the right-hand mirror image
+    handed = float(np.sign(np.cross(rc.lengthwise, rc.profile) @ rc.normal))
+    handed *= -1.0 if pair.pinion_hand == "left" else 1.0
+    path_angle = float("nan")
+    if path_tangent is not None and np.all(np.isfinite(path_tangent)):
+        path_angle = _fold_deg(handed * float(np.degrees(np.arctan2(
+            path_tangent @ rc.profile, path_tangent @ rc.lengthwise))))
+    load = normal_load_from_torque(torque_nm, mp.point_mm, mp.normal)
+    hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, load,
+                             e_prime_mpa=effective_modulus_mpa(pair.pinion_material,
+                                                               pair.gear_material))
+    return DesignPoint(point_mm=np.asarray(mp.point_mm), normal=np.asarray(mp.normal),
+                       invariants_mm=point_invariants(mp.point_mm, pair.offset_mm),
+                       pinion_uv=(mp.u1, mp.v1), gear_uv=(mp.u2, mp.v2),
+                       te0_pp_arcsec=float(te0_pp_arcsec), load_n=float(load),
+                       ellipse_length_mm=2.0 * hb.a_mm, ellipse_width_mm=2.0 * hb.b_mm,
+                       ellipse_angle_deg=handed * float(ell.angle_deg),
+                       easeoff_max_um=float(np.nan), paint_length_mm=2.0 * ell.semi_major_mm,
+                       path_angle_deg=path_angle)
+
+
+
+def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
+                          torque_nm: float, phases: int = 61, pairs: int = 2,
+                          edge_contact: bool = True) -> DesignPoint:
+    """TCA of one eased pinion flank against ``gear`` at the continuous TE0 vertex.
+
+    ``start`` is a contact guess whose pinion height ``u1`` the first solve holds (the
+    phase is free), then the mesh cycle continues along the phase.
+    """
+    kin = pair.kinematics()
+    cycle = mesh_cycle(eased, gear, kin, pinion_teeth=pair.pinion_teeth, start=start,
+                       start_fixed="u1", phases=phases, pairs=pairs,
+                       edge_contact=edge_contact)
+    path = cycle.path
+    i = int(np.argmin(np.abs(path.phi1_rad - path.phi1_ref_rad)))
+    te = path.te0_arcsec
+    mp = path.points[i]
+    if 0 < i < len(te) - 1 and np.all(np.isfinite(te[i - 1:i + 2])):
+        # vertex of the parabola through the three phases around the discrete vertex
+        y0, y1, y2 = te[i - 1], te[i], te[i + 1]
+        den = y0 - 2.0 * y1 + y2
+        if den != 0.0:
+            h = float(np.clip(0.5 * (y0 - y2) / den, -0.5, 0.5))
+            step = path.phi1_rad[i + 1] - path.phi1_rad[i]
+            g = mp.as_guess()
+            guess = ContactGuess.from_vector(g.vector() + h * (path.points[i + 1].as_guess().vector()
+                                                               - g.vector()))
+            mp = solve_mating_point(eased, gear, kin, dataclasses.replace(
+                guess, phi1_rad=g.phi1_rad + h * step))
+    tangent = None
+    if 0 < i < len(te) - 1 and not (path.points[i - 1].edge or path.points[i + 1].edge):
+        tangent = path.points[i + 1].point_mm - path.points[i - 1].point_mm
+    return design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
+                           torque_nm=torque_nm, path_tangent=tangent)
+
+
+
+def eased_design_point(coeffs: EaseOffCoefficients, conj, gear, pair: GearPair, starts, *,
+                       mean_uv: tuple[float, float], limit_um: float, torque_nm: float,
+                       phases: int = 61, pairs: int = 2, edge_contact: bool = True
+                       ) -> DesignPoint:
+    """:func:`evaluate_design_point` of the conjugate pinion flank ``conj`` eased by
+    ``coeffs`` (about the pinion mean node ``mean_uv``, within ``limit_um``), from the
+    first of ``starts`` (contact guesses, ``u1`` held) that reaches an interior contact;
+    ``easeoff_max_um`` is filled in.
+
+    Raises
+    ------
+    EdgeContact, ArithmeticError, ValueError
+        From the last start if none succeeds (edge, no pair in mesh, relief limit).
+    """
+    eo = EaseOff.from_coefficients(coeffs, u_mean_mm=mean_uv[0], v_mean_mm=mean_uv[1])
+    eased = apply_easeoff(conj, eo, limit_um=limit_um)
+    for k, start in enumerate(starts):
+        try:
+            dp = evaluate_design_point(eased, gear, pair, start, torque_nm=torque_nm,
+                                       phases=phases, pairs=pairs, edge_contact=edge_contact)
+            break
+        except (EdgeContact, ArithmeticError, ValueError):
+            if k == len(starts) - 1:
+                raise
+    return dataclasses.replace(dp, easeoff_max_um=max_relief_um(eo, conj.boundary)[0])
+
+
+
+def centred_coefficients(eta_c: float, xi_c: float, profile_crowning: float,
+                         lengthwise_crowning: float, bias: float) -> EaseOffCoefficients:
+    """Five-term coefficients of the ease-off written about its centre (mm, um/mm^2):
+
+    ``E = c_PC (eta - eta_c)^2 + c_LC (xi - xi_c)^2 + c_TW (xi - xi_c)(eta - eta_c) + const``
+
+    i.e. ``c_PA = -2 c_PC eta_c - c_TW xi_c`` and ``c_SA = -2 c_LC xi_c - c_TW eta_c``
+    (the constant is dropped: the pair format has none; it only shifts TE0).
+    """
+    return EaseOffCoefficients(
+        profile_angle_um_per_mm=float(-2.0 * profile_crowning * eta_c - bias * xi_c),
+        spiral_angle_um_per_mm=float(-2.0 * lengthwise_crowning * xi_c - bias * eta_c),
+        profile_crowning_um_per_mm2=float(profile_crowning),
+        lengthwise_crowning_um_per_mm2=float(lengthwise_crowning),
+        bias_um_per_mm2=float(bias))

@@ -1,0 +1,263 @@
+"""Path angles the local synthesis can reach: a closed-form range, checked before any TCA.
+
+The ease-off synthesis (:mod:`.synthesis`) prescribes at the bearing centre the paint
+ellipse length ``2a``, the TE0 level and, optionally, the direction of the contact path.
+Its unknowns are the second-order terms of the ease-off (profile and lengthwise
+crowning, bias). To first order they fix all three targets (Litvin & Fuentes 2004,
+sec. 21.8, local synthesis; the same relations here in the ease-off's own terms):
+
+* the conjugate flanks touch along lines; at phase ``phi1`` the line through ``n nu``
+  (``t`` its direction, ``nu`` the unit normal to it in the tangent plane, ``n`` moving at
+  ``dn/dphi1 = 1 / (ratio |grad phi2|)``, ``phi2(u, v)`` the conjugate phase of a pinion
+  point) carries the ease-off ``E = q^T H q / 2`` as its separation, and the eased
+  contact is where ``E`` is least on it: ``t^T H q = 0``, the on-flank path, whose
+  direction ``d`` is normal to ``H t``;
+* with ``H = [[a, b], [b, c]]`` in ``(t, nu)``: the paint ellipse at the paint thickness
+  ``delta`` has ``a = 8 delta / (2a)^2`` (the curvature along the contact line, the
+  conjugate pair's being zero); the least ``E`` on the line at ``n`` is
+  ``n^2 det(H) / (2 a)``, so that TE0 peak-to-peak over one pinion pitch (pairs one
+  pitch ``Delta N`` apart, the gear lever ``h2``) is ``det(H) / a * Delta N^2 / (8 h2)``;
+* the bias ``b`` is then free and turns the path: ``b = -a tan(psi)``, ``psi`` the path's
+  angle from ``nu`` towards ``t``, and ``c = (det(H) + b^2) / a``.
+
+The path angle the synthesis judges (:attr:`~.design_point.DesignPoint.path_angle_deg`)
+is that of the contact point's motion in the meshing frame, projected on the tangent
+plane: the on-flank motion ``d dn/dphi1 / cos(psi)`` plus the pinion's rotation of the
+point. As ``psi`` runs over (-90, 90) deg it turns once round all directions; near the
+ends (a path along the contact line) the crownings and the bias grow without bound. A
+``psi`` is reachable when both crownings are positive and the ease-off (centred at the
+target bearing centre, zero at the mean node as
+:func:`~.design_point.centred_coefficients` writes it) stays within half the pair's
+relief limit over the flank (:attr:`~gearcontact.geometry.flank.FlankSet.easeoff_limit_um`,
+which the eased flanks enforce). Half, not all: towards the contact line's direction one
+crowning falls towards zero (F3 drive, 0.2 deg inside the edge at 0.8 of the limit: a
+profile crowning of 0.065 um/mm^2, a tenth of the free-bias design's), the bearing
+spreads to the flank's edges and the search no longer converges (not met after 10 min);
+at half the limit the synthesis meets the angles at both edges (tests/tca/
+test_path_reach.py). The bearing may reach an edge over the pitch: the synthesis' full
+TCA has edge contact (the s0003 tip-edge preset's own path angle is met).
+
+The reachable path angles are the image of that ``psi`` interval: one arc of directions,
+:class:`PathAngleRange`. Measured on the F.3 example (drive): the first-order crownings
+and bias agree with those the TCA-in-the-loop synthesis finds to 2-5 % (0.628 / 0.119 /
+0.397 against 0.638 / 0.124 / 0.400 um/mm^2 at a path angle of 0 deg) and the free-bias
+path angle to 0.12 deg (docs/synthesis.md).
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 21.8.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..geometry.flank import SIDES
+from ..validation import InputRangeError
+from .curvature import PAINT_THICKNESS_MM, flank_frame
+
+__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle"]
+
+_ARCSEC = np.pi / (180.0 * 3600.0)
+#: Finite-difference step of the exact node solves, mm (the node equations are solved
+#: to ~1e-12: the derivatives are good to ~1e-8 relative).
+_STEP_MM = 0.02
+#: Grid of the on-flank path angle psi, deg: 0.05 deg steps over (-90, 90).
+_PSI_DEG = np.linspace(-89.95, 89.95, 3599)
+#: Share of the relief limit the first-order design may use (module docstring: the
+#: synthesis must meet the angles at the range's edges, tests/tca/test_path_reach.py).
+_ROOM = 0.5
+
+
+@dataclass(frozen=True)
+class PathAngleRange:
+    """Path angles the synthesis can reach on one side (:func:`path_angle_range`).
+
+    Attributes
+    ----------
+    side : str
+    lo_deg, hi_deg : float
+        The reachable arc of directions, from ``lo_deg`` turning positive to ``hi_deg``
+        (``lo_deg`` in (-90, 90], ``lo_deg <= hi_deg < lo_deg + 180``): a path angle is
+        reachable if it equals some angle of ``[lo_deg, hi_deg]`` modulo 180 deg.
+    contact_line_deg : float
+        Meshing-frame direction of the contact line at the bearing centre (the direction
+        no ease-off reaches), deg in (-90, 90].
+    free_bias_deg : float
+        The path angle with zero bias (first order), deg in (-90, 90].
+    angles_deg, coefficients : ndarray
+        Over the reachable arc: the path angle (unwrapped, increasing) and the
+        first-order profile crowning, lengthwise crowning and bias (um/mm^2, (n, 3)) that
+        give it (:meth:`start`).
+    """
+
+    side: str
+    lo_deg: float
+    hi_deg: float
+    contact_line_deg: float
+    free_bias_deg: float
+    angles_deg: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    coefficients: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)), repr=False)
+
+    def start(self, angle_deg: float) -> tuple[float, float, float]:
+        """First-order (profile crowning, lengthwise crowning, bias), um/mm^2, of the
+        reachable path angle nearest ``angle_deg``: the synthesis' start for it (the
+        least squares cannot cross the contact line's direction from the zero-bias
+        start: its angle residual takes the short way round)."""
+        k = int(np.argmin(np.abs(_fold(self.angles_deg - angle_deg))))
+        return tuple(float(x) for x in self.coefficients[k])
+
+    def contains(self, angle_deg: float) -> bool:
+        """``angle_deg`` (an axis direction, deg) is in the reachable arc."""
+        return bool((float(angle_deg) - self.lo_deg) % 180.0 <= self.hi_deg - self.lo_deg)
+
+    def describe(self) -> str:
+        """The arc as intervals of (-90, 90] deg."""
+        lo, hi = self.lo_deg, self.hi_deg
+        if not np.isfinite(lo):
+            return "none (no path angle is reachable)"
+        if hi <= 90.0:
+            return f"[{lo:.1f}, {hi:.1f}] deg"
+        return f"[{lo:.1f}, 90] or (-90, {hi - 180.0:.1f}] deg"
+
+
+def _fold(angle_deg):
+    """Axis directions in (-90, 90] deg."""
+    a = (np.asarray(angle_deg, float) + 90.0) % 180.0 - 90.0
+    return np.where(a == -90.0, 90.0, a)
+
+
+def path_angle_range(pair, *, side: str, targets, flanks) -> PathAngleRange:
+    """The path angles the ease-off synthesis of ``side`` can reach (module docstring).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its ease-off is not used).
+    side : str
+    targets : SynthesisTargets
+        Bearing centre, TE0 level and paint-ellipse length (the path angle is not used).
+    flanks : FlankSet
+        ``build_flanks(pair)``: the conjugate pinion's exact node solves and the gear
+        flank (no TCA).
+
+    Returns
+    -------
+    PathAngleRange
+
+    Raises
+    ------
+    InputRangeError
+        Bad side.
+    """
+    if side not in SIDES:
+        raise InputRangeError("side", side, f"one of {SIDES}")
+    conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
+    kin = pair.kinematics(with_errors=False)
+    bx = conj.boundary
+    uc = bx.u_root + targets.centre_profile * (bx.u_tip - bx.u_root)
+    vc = bx.v_toe + targets.centre_face * (bx.v_heel - bx.v_toe)
+    h = _STEP_MM
+    us = np.array([uc, uc + h, uc - h, uc, uc])
+    vs = np.array([vc, vc, vc, vc + h, vc - h])
+    ms = conj.exact(us, vs)
+    phi2 = float(ms.phi2_rad[0])
+    phi1 = pair.ratio * phi2
+    rot1, tr1 = kin.pinion_pose(phi1)
+    rot2 = kin.gear_pose(phi2)[0]
+    x1 = np.asarray(ms.x1_mm)
+    r_u = rot1 @ (x1[1] - x1[2]) / (2.0 * h)
+    r_v = rot1 @ (x1[3] - x1[4]) / (2.0 * h)
+    grad_uv = np.array([ms.phi2_rad[1] - ms.phi2_rad[2], ms.phi2_rad[3] - ms.phi2_rad[4]]) \
+        / (2.0 * h)
+    u2, v2 = gear.surface_parameters(ms.h_mm[0], ms.theta_rad[0])
+    frame = flank_frame(gear.point(float(u2), float(v2)), rot2)
+    basis, normal = frame[:, :2], frame[:, 2]
+    handed = float(np.sign(np.cross(frame[:, 0], frame[:, 1]) @ normal))
+    handed *= -1.0 if pair.pinion_hand == "left" else 1.0
+    m = basis.T @ np.column_stack([r_u, r_v])              # q = m (du, dv), mm
+    grad_q = np.linalg.solve(m.T, grad_uv)                  # grad phi2 in q, rad/mm
+    nu = grad_q / np.linalg.norm(grad_q)
+    t = np.array([-nu[1], nu[0]])
+    dn_dphi1 = 1.0 / (pair.ratio * np.linalg.norm(grad_q))  # mm/rad
+    point = rot1 @ x1[0] + tr1
+    spin = basis.T @ (kin.pinion_pose(phi1 + 1e-6)[0] - kin.pinion_pose(phi1 - 1e-6)[0]) \
+        @ x1[0] / 2e-6                                      # rotation of the point, mm/rad
+    lever = abs(normal @ np.cross(kin.gear_axis, point))    # gear lever h2, mm
+    dN = 2.0 * np.pi / pair.pinion_teeth * dn_dphi1         # contact-line spacing, mm
+    a = 8.0 * PAINT_THICKNESS_MM / (targets.pattern_length_ratio * pair.gear_face_width_mm) ** 2
+    det_over_a = 8.0 * lever * targets.te0_pp_arcsec * _ARCSEC / dN ** 2
+    psi = np.radians(_PSI_DEG)
+    b = -a * np.tan(psi)
+    c = det_over_a + b * b / a
+    rot = np.column_stack([t, nu])
+    # H in (u, v) per psi, um/mm^2: m^T R [[a, b], [b, c]] R^T m
+    h_tn = np.stack([np.stack([np.full_like(b, a), b], -1), np.stack([b, c], -1)], -2)
+    h_uv = 1e3 * np.einsum("ji,jk,nkl,ml,mo->nio", m, rot, h_tn, rot, m)
+    pc, lc, tw = 0.5 * h_uv[:, 0, 0], 0.5 * h_uv[:, 1, 1], h_uv[:, 0, 1]
+    # relief of the centred ease-off, E = Q(x - centre) - Q(mean - centre) (the mean node
+    # carries E = 0, .design_point.centred_coefficients): H is positive definite, so |E|
+    # is largest at a corner of the flank box or, as -E, at the centre
+    u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+
+    def quad(du, dv):
+        return pc * du * du + lc * dv * dv + tw * du * dv
+
+    at_mean = quad(u_m - uc, v_m - vc)
+    relief = np.max([np.abs(quad(u - uc, v - vc) - at_mean)
+                     for u in (bx.u_root, bx.u_tip) for v in (bx.v_toe, bx.v_heel)], axis=0)
+    relief_ok = np.maximum(relief, at_mean) <= _ROOM * flanks.easeoff_limit_um
+    d = np.outer(np.cos(psi), nu) + np.outer(np.sin(psi), t)
+    on_flank = d * (dn_dphi1 / np.cos(psi))[:, None]        # mm/rad, tangent plane
+    motion = on_flank + spin
+    theta = np.unwrap(np.radians(handed * np.degrees(np.arctan2(motion[:, 1], motion[:, 0]))),
+                      period=np.pi)
+    theta = np.degrees(theta)
+    ok = relief_ok & (pc > 0.0) & (lc > 0.0)
+    line_deg = float(_fold(handed * np.degrees(np.arctan2(t[1], t[0]))))
+    free = float(_fold(theta[int(np.argmin(np.where(ok, np.abs(tw), np.inf)))])) \
+        if ok.any() else float("nan")
+    if not ok.any():
+        return PathAngleRange(side, float("nan"), float("nan"), line_deg, free)
+    # the longest run of reachable psi (one interval in practice)
+    runs, start = [], None
+    for i, flag in enumerate(np.append(ok, False)):
+        if flag and start is None:
+            start = i
+        elif not flag and start is not None:
+            runs.append((start, i - 1))
+            start = None
+    i0, i1 = max(runs, key=lambda r: r[1] - r[0])
+    sel = slice(i0, i1 + 1)
+    angles, coeffs = theta[sel], np.column_stack([pc, lc, tw])[sel]
+    if angles[-1] < angles[0]:
+        angles, coeffs = angles[::-1], coeffs[::-1]
+    shift = float(_fold(angles[0])) - angles[0]
+    return PathAngleRange(side, float(angles[0] + shift), float(angles[-1] + shift), line_deg,
+                          free, angles + shift, coeffs)
+
+
+def check_path_angle(pair, *, targets, flanks, sides=SIDES) -> dict:
+    """Refuse a path-angle target that the synthesis cannot reach on one of ``sides``,
+    before any TCA (:func:`path_angle_range`); returns the range of each side (empty
+    without a path-angle target).
+
+    Raises
+    ------
+    InputRangeError
+        Naming ``path_angle_deg``, its value and the reachable range of the side.
+    """
+    if targets.path_angle_deg is None:
+        return {}
+    out = {}
+    for side in sides:
+        r = out[side] = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
+        if not r.contains(targets.path_angle_deg):
+            raise InputRangeError(
+                "path_angle_deg", targets.path_angle_deg,
+                f"{r.describe()} on the {side} side of {pair.name} (the path angles the "
+                f"ease-off synthesis reaches within the relief limit; the "
+                f"contact line runs at {r.contact_line_deg:.1f} deg, docs/synthesis.md)")
+    return out

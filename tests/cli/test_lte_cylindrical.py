@@ -1,0 +1,90 @@
+"""``gearcontact lte`` on a cylindrical pair, run as a user runs it (through
+`gearcontact.cli.main`; 7 phases instead of the default 61 to keep the suite
+fast), and the option it refuses.
+
+Truths: the normal load of the torque, F_n = T2 / (r_b2 cos beta_b) (ISO 6336-1), which
+the line loads of every phase must integrate to (the LCP's torque balance, 1e-9); the
+Harris map's torques, those of the ISO tangential line loads F_t / b = 50 ... 400 N/mm at
+the gear's reference circle d2 = z2 m_n / cos beta; the map's row at the example's own
+tip relief (8 um) and torque equal to a loaded TE run at that torque.
+"""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcontact.cli import main
+from gearcontact.geometry.pair import CYLINDRICAL, load_pair
+
+ROOT = Path(__file__).resolve().parents[2]
+EV = str(ROOT / "examples" / "ev_reducer_helical_23x67.toml")
+PHASES = "7"
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    d = tmp_path_factory.mktemp("lte_cyl") / "run"
+    assert main(["lte", "--pair", EV, "--out", str(d), "--phases", PHASES, "--quiet"]) == 0
+    return d
+
+
+def test_files_and_numbers(out):
+    for name in ("lte.json", "lte.csv", "line_load.csv", "harris_map.csv", "lte.png",
+                 "harris_map.png"):
+        assert (out / name).stat().st_size > 0, name
+    pair = load_pair(EV, kinds=(CYLINDRICAL,))
+    g = pair.geometry
+    doc = json.loads((out / "lte.json").read_text())
+    assert doc["teeth"] == "rigid" and doc["converged"] and not doc["edge_touch"]
+    torque = doc["torque_gear_nm"]
+    assert torque == 64.5                                    # the command's default
+    fn = torque * 1e3 / (0.5 * g.base_diameter_gear_mm * math.cos(math.radians(
+        g.base_helix_angle_deg)))
+    assert doc["normal_load_n"] == pytest.approx(fn, rel=1e-12)
+    iso = doc["iso6336_method_b"]
+    assert iso["mean_stiffness_over_c_gamma_alpha"] == pytest.approx(
+        doc["mesh_stiffness_mean_n_per_mm_um"] / iso["c_gamma_alpha_n_per_mm_um"], rel=1e-12)
+    # 64.5 N·m is 29 N/mm: below Method B's 100 N/mm (no ratio asserted here)
+    assert iso["line_load_ft_per_b_n_per_mm"] == pytest.approx(
+        64.5e3 / (0.5 * 67 * 2.0 / math.cos(math.radians(25.0))) / 30.0, rel=1e-12)
+    assert iso["within_validity"] is False
+    lte = np.genfromtxt(out / "lte.csv", delimiter=",", names=True)
+    assert len(lte) == int(PHASES)
+    assert doc["lte_pp_arcsec"] == pytest.approx(np.ptp(lte["lte_arcsec"]), abs=1e-9)
+    # loaded: the gear lags beyond TE0 at every phase (cw facing, TE0 < 0)
+    assert (lte["lte_arcsec"] < lte["te0_arcsec"]).all()
+    shares = np.column_stack([lte[n] for n in lte.dtype.names if n.startswith("load_share")])
+    np.testing.assert_allclose(shares.sum(axis=1), 1.0, rtol=1e-9)
+    lines = np.genfromtxt(out / "line_load.csv", delimiter=",", names=True)
+    z = np.unique(lines["pinion_z_mm"])
+    dz = z[1] - z[0]
+    for phi in np.unique(lines["phi1_deg"]):
+        at = lines["phi1_deg"] == phi
+        assert lines["load_n_per_mm"][at].sum() * dz == pytest.approx(fn, rel=1e-9)
+
+
+def test_harris_map(out):
+    pair = load_pair(EV, kinds=(CYLINDRICAL,))
+    g = pair.geometry
+    d2 = 67 * 2.0 / math.cos(math.radians(25.0))
+    harris = np.genfromtxt(out / "harris_map.csv", delimiter=",", names=True)
+    assert list(harris["tip_relief_um"]) == [0.0, 4.0, 8.0, 12.0, 16.0]
+    doc = json.loads((out / "lte.json").read_text())["harris_map"]
+    np.testing.assert_allclose(doc["torques_gear_nm"],
+                               np.array([50, 100, 200, 300, 400]) * g.face_width_mm * d2 / 2e3,
+                               rtol=1e-12)
+    pp = np.array(doc["lte_pp_arcsec"])
+    assert pp.shape == (5, 5) and (pp > 0).all() and doc["converged"]
+    # every row has one TE0 (the example's relief only shifts where it lies)
+    assert np.array(doc["te0_pp_arcsec"]) == pytest.approx(harris["te0_pp_arcsec"], abs=1e-9)
+
+
+def test_bending_refused(tmp_path, capsys):
+    d = tmp_path / "out"
+    assert main(["lte", "--pair", EV, "--out", str(d), "--bending"]) == 2
+    err = capsys.readouterr().err
+    assert "--bending" in err and "Traceback" not in err
+    assert not d.exists()
