@@ -8,14 +8,21 @@ verbatim (default options; the relative directories land in one directory), once
 session in tests/export/conftest.py (``readme_export``, whose ``clib/`` the C library
 tests reuse). Truth: the checker's own per-core comparison of the golden C with the
 golden model's vectors (0 mismatches, no tolerance) and FMPy's FMI 3.0 schema
-validation.
+validation. The README's ``gearcontact export flanks --pair s0003 --out flanks/`` runs
+on its own (no other line's files needed); truth: the CMM grid points of its CSV files
+(the Surface contract's points, tests/export/test_flanks.py) lie on the STEP faces read
+back by gmsh within the issue's 0.5 um.
 """
 
 from __future__ import annotations
 
 import re
+import shutil
 
+import numpy as np
 import pytest
+
+from .conftest import _shell, readme_lines
 
 
 def test_readme_export_lines_as_written(readme_export):
@@ -39,3 +46,35 @@ def test_readme_export_lines_as_written(readme_export):
         fmus = list((base / out).glob("*.fmu"))
         assert len(fmus) == 1
         assert fmpy.validate_fmu(str(fmus[0])) == []
+
+
+@pytest.mark.skipif(shutil.which("gearcontact") is None,
+                    reason="the console script is needed")
+def test_readme_export_flanks_line_as_written(tmp_path):
+    gmsh = pytest.importorskip("gmsh", reason="the export extra (gmsh)")
+    lines = readme_lines("gearcontact export flanks")
+    assert len(lines) == 1
+    run = _shell(lines[0], tmp_path)
+    assert run.returncode == 0, (lines[0], run.stderr)
+    out = tmp_path / "flanks"
+    gmsh.initialize(argv=[], readConfigFiles=False, interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    try:
+        for member in ("pinion", "gear"):
+            gmsh.model.add(member)
+            ents = gmsh.model.occ.importShapes(str(out / f"{member}_flanks.step"))
+            gmsh.model.occ.synchronize()
+            faces = {gmsh.model.getEntityName(*e).rsplit("/", 1)[-1]: e[1] for e in ents}
+            for side in ("drive", "coast"):
+                rows = [line.split(",") for line in
+                        (out / f"{member}_{side}.csv").read_text().splitlines()
+                        if line[:1].isdigit()]
+                pts = np.array([[float(x) for x in r[4:7]] for r in rows])
+                assert pts.shape == (45, 3)             # the default 5 x 9 grid
+                near, _ = gmsh.model.getClosestPoint(2, faces[f"{member}_{side}"],
+                                                     pts.ravel())
+                gap = np.linalg.norm(np.reshape(near, (-1, 3)) - pts, axis=-1).max()
+                assert gap <= 0.5e-3, (member, side, gap)
+            gmsh.model.remove()
+    finally:
+        gmsh.finalize()

@@ -9,6 +9,9 @@ datapath (golden fixed point and fp64) with a Makefile and the checker
 one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`);
 ``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
 ``gearcontact twin`` (rigid teeth; :mod:`gearcontact.export.fmu_drivetrain`).
+``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members as
+STEP (B-spline surfaces) and as CMM point grids with normals
+(:mod:`gearcontact.export.flanks`).
 """
 
 from __future__ import annotations
@@ -19,8 +22,8 @@ from .outdir import add_out_argument, final_path
 
 
 def register(sub) -> None:
-    p = sub.add_parser("export", help="export the preview datapath (C99 library) or a gear "
-                                      "mesh (FMI 3.0 FMU)",
+    p = sub.add_parser("export", help="export the preview datapath (C99 library), a gear "
+                                      "mesh (FMI 3.0 FMU) or the flanks (STEP, CMM grids)",
                        description=__doc__.split("\n\n")[1])
     cmds = p.add_subparsers(dest="export_command", metavar="ACTION", required=True)
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
@@ -51,6 +54,16 @@ def register(sub) -> None:
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
     f.set_defaults(func=run_fmu, check=check_fmu)
+    g = cmds.add_parser("flanks", help="the flanks (and fillets) of both members as STEP "
+                                       "B-spline surfaces and CMM point grids with normals")
+    g.add_argument("--pair", default="s0003", help="preset name or TOML file, bevel/hypoid "
+                                                   "or cylindrical (default s0003)")
+    add_out_argument(g)
+    g.add_argument("--grid", default="5x9", metavar="ROWSxCOLS",
+                   help="CSV grid per flank: ROWS lines along the face width (root to tip) x "
+                        "COLS points on each (toe to heel), each 2 to 201 (default 5x9, the "
+                        "Gleason grid)")
+    g.set_defaults(func=run_flanks, check=check_flanks)
 
 
 def run_c(args) -> int:
@@ -95,4 +108,28 @@ def run_fmu(args) -> int:
                           phases=args.phases, torque_nm=args.torque)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
+    return 0
+
+
+def check_flanks(args) -> None:
+    """Cheap checks before the flanks are built: the grid, the pair (either kind)."""
+    from ..export.flanks import parse_grid
+    from ..geometry.pair import BEVEL, CYLINDRICAL, load_pair
+    args.grid_size = parse_grid(args.grid)
+    try:
+        args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+    except InputRangeError as exc:
+        if exc.field != "pair":     # a field inside the file: named as it is
+            raise
+        raise InputRangeError("--pair", exc.value, exc.allowed) from None
+
+
+def run_flanks(args) -> int:
+    from ..export.flanks import export_flanks
+    from ..geometry.pair import CYLINDRICAL
+    pair = args.gear_pair if args.gear_pair.kind == CYLINDRICAL else load_pair_for(args)
+    done = export_flanks(pair, args.out, pair_name=args.gear_pair.name, grid=args.grid_size)
+    for path in (*done.step_paths, *done.csv_paths, done.summary_path):
+        print(final_path(args, path))
+    print(f"STEP faces within {done.fit_error_mm * 1e3:.3g} um of the flanks (check grid)")
     return 0

@@ -1,0 +1,217 @@
+"""``gearcontact export flanks``: the flanks of both members as STEP and as CMM grids.
+
+:func:`pair_flanks` collects the surfaces a pair's analysis uses (the Surface contract
+of :mod:`gearcontact.geometry.surface`), each member in its own axis frame (axis along
+z, mm):
+
+- bevel / hypoid pairs (:func:`gearcontact.geometry.flank.build_flanks`: formate gear
+  and conjugate pinion with the pair's ease-off, or all four flanks cut from the pair's
+  machine settings): the drive and coast flanks of gear and pinion over their active
+  boxes. The gear keeps its body frame (axis z); the pinion body frame (axis x,
+  docs/geometry.md sec. 1) is turned by the cyclic permutation
+  ``(X, Y, Z) = (y, z, x)`` (a rotation: right-handed, lengths and normals kept).
+  These flanks have no root fillet surface in the package (the structure layer's
+  fillet is a plate-model widening, not a cut surface), so none is exported;
+- cylindrical pairs (:mod:`gearcontact.geometry.cylindrical`): the cw and ccw
+  involute-helicoid flanks of the tooth on +x and their trochoidal root fillets, in
+  the member frame of :mod:`~gearcontact.geometry.cylindrical.flank` (already axis z).
+
+:func:`export_flanks` writes per member a STEP file of bicubic B-spline faces
+(:mod:`.flank_step`) and per flank a CSV grid in the Gleason / CMM style: ``rows``
+lines along the face width (row 1 at the root, the last at the tip) by ``cols``
+points along each (col 1 at the toe / v_min), uniform in the flank's own ``(u, v)``
+over its active box (edges included), each with its point and unit normal (out of
+the tooth material) in the member's axis frame. ``flanks.json`` records the frames,
+the grids and the measured fit error of every STEP face. File layout and how to load
+them in CAD: docs/export.md.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry.pair import CYLINDRICAL
+from ..validation import InputRangeError
+from .flank_step import FIT_TARGET_MM, fit_bspline, write_step
+
+__all__ = ["GRID_LIMITS", "ExportFlank", "FlankExport", "parse_grid", "pair_flanks",
+           "flank_grid", "grid_csv", "export_flanks"]
+
+#: Smallest and largest row / column count of ``--grid``.
+GRID_LIMITS = (2, 201)
+#: Pinion body frame (axis x) -> axis frame (axis z): (X, Y, Z) = (y, z, x).
+PINION_TO_AXIS = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
+MEMBERS = ("pinion", "gear")
+
+
+def parse_grid(text: str, *, field: str = "--grid") -> tuple[int, int]:
+    """``"5x9"`` -> ``(5, 9)``: rows (lines along the face width, spaced root -> tip) x
+    columns (points on each line, toe -> heel).
+
+    Raises
+    ------
+    InputRangeError
+        Naming ``field`` unless both are integers in :data:`GRID_LIMITS`.
+    """
+    lo, hi = GRID_LIMITS
+    allowed = f"ROWSxCOLS, each an integer in [{lo}, {hi}] (e.g. 5x9)"
+    parts = str(text).lower().split("x")
+    if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
+        raise InputRangeError(field, text, allowed)
+    rows, cols = (int(p) for p in parts)
+    if not (lo <= rows <= hi and lo <= cols <= hi):
+        raise InputRangeError(field, text, allowed)
+    return rows, cols
+
+
+@dataclass(frozen=True)
+class ExportFlank:
+    """One surface to export: ``surface`` (Surface contract, body frame) and the
+    rotation ``to_axis`` from its body frame to the member's axis frame."""
+
+    member: str
+    flank: str          # drive, coast, cw, ccw, fillet_cw, fillet_ccw
+    surface: object
+    to_axis: np.ndarray
+
+    @property
+    def name(self) -> str:
+        """``<member>_<flank>``: the file stem and the STEP product name."""
+        return f"{self.member}_{self.flank}"
+
+    def points(self, u, v) -> tuple[np.ndarray, np.ndarray]:
+        """Points (mm) and unit normals (..., 3) at ``(u, v)`` in the axis frame."""
+        s = self.surface.evaluate(u, v)
+        return s.r @ self.to_axis.T, s.n @ self.to_axis.T
+
+
+def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
+    """The flanks of both members of ``pair`` (module docstring), pinion first.
+
+    ``flanks`` : a :class:`~gearcontact.geometry.flank.FlankSet` already built for a
+    bevel ``pair`` (default: built here).
+    """
+    if getattr(pair, "kind", None) == CYLINDRICAL:
+        from ..geometry.cylindrical.fillet import root_fillet
+        from ..geometry.cylindrical.flank import FACINGS, involute_flank
+
+        out = []
+        for member in MEMBERS:
+            out += [ExportFlank(member, f, involute_flank(pair, member, f), np.eye(3))
+                    for f in FACINGS]
+            out += [ExportFlank(member, f"fillet_{f}", root_fillet(pair, member, f),
+                                np.eye(3)) for f in FACINGS]
+        return out
+    from ..geometry.flank import SIDES, build_flanks
+
+    flanks = build_flanks(pair) if flanks is None else flanks
+    frames = {"pinion": PINION_TO_AXIS, "gear": np.eye(3)}
+    return [ExportFlank(member, side, flanks.flank(member, side), frames[member])
+            for member in MEMBERS for side in SIDES]
+
+
+def flank_grid(flank: ExportFlank, rows: int, cols: int):
+    """The CMM grid of ``flank``: ``(u (rows,), v (cols,), points, normals)``, the
+    arrays (rows, cols, 3) in the axis frame; row i at ``u_i``, column j at ``v_j``."""
+    u = np.linspace(*flank.surface.u_range, rows)
+    v = np.linspace(*flank.surface.v_range, cols)
+    r, n = flank.points(*np.meshgrid(u, v, indexing="ij"))
+    return u, v, r, n
+
+
+def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str:
+    """The CSV text of ``flank``'s grid: ``#`` header lines (frame, grid, units), then
+    ``row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz`` (every number with all its digits)."""
+    u, v, r, n = flank_grid(flank, rows, cols)
+    head = [
+        f"# gearcontact export flanks: {pair_name}, {flank.name} "
+        f"({type(flank.surface).__name__})",
+        f"# grid {rows} x {cols}: row i = a line along the face width at u_i (row 1 "
+        f"root .. row {rows} tip), col j = the point at v_j on it (col 1 at v_min), "
+        "uniform in (u, v), edges included",
+        f"# u in [{float(u[0])!r}, {float(u[-1])!r}], v in [{float(v[0])!r}, {float(v[-1])!r}] "
+        "(the flank's own parameters, docs/export.md)",
+        "# frame: the member's axis frame, axis along +z, mm"
+        + (" (pinion body frame turned: X = y, Y = z, Z = x)"
+           if flank.to_axis is PINION_TO_AXIS else ""),
+        "# normal: unit, out of the tooth material into the tooth space",
+        "row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz",
+    ]
+    lines = [",".join([str(i + 1), str(j + 1), repr(float(u[i])), repr(float(v[j]))]
+                      + [repr(float(x)) for x in (*r[i, j], *n[i, j])])
+             for i in range(rows) for j in range(cols)]
+    return "\n".join(head + lines) + "\n"
+
+
+@dataclass(frozen=True)
+class FlankExport:
+    """What :func:`export_flanks` wrote: the STEP files, the CSV files, the summary
+    ``flanks.json`` and the largest fit error of the STEP faces (mm)."""
+
+    step_paths: tuple[Path, ...]
+    csv_paths: tuple[Path, ...]
+    summary_path: Path
+    fit_error_mm: float
+
+
+def _safe(text: str) -> str:
+    """A name fit for a STEP string (no quotes, no backslashes)."""
+    return "".join(c if c.isalnum() or c in " ._-" else "_" for c in str(text))
+
+
+def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 9),
+                  flanks=None) -> FlankExport:
+    """Write the flanks of ``pair`` into ``out_dir`` (module docstring): per member
+    ``<member>_flanks.step``, per flank ``<member>_<flank>.csv``, and ``flanks.json``.
+
+    Parameters
+    ----------
+    pair : GearPair or CylindricalPair
+    out_dir : path
+    pair_name : str
+        Name written into the headers.
+    grid : (int, int)
+        CSV rows (lines along the face width, root -> tip) x columns (points on each
+        line), each in :data:`GRID_LIMITS`.
+    flanks : FlankSet, optional
+        Already built flanks of a bevel ``pair``.
+
+    Raises
+    ------
+    InputRangeError
+        A bad grid (before any work).
+    """
+    rows, cols = parse_grid(f"{grid[0]}x{grid[1]}", field="grid")
+    out = Path(out_dir)
+    items = pair_flanks(pair, flanks=flanks)
+    csvs, steps, summary = [], [], {"pair": pair_name, "grid": [rows, cols],
+                                    "fit_target_um": FIT_TARGET_MM * 1e3, "flanks": {}}
+    for f in items:
+        path = out / f"{f.name}.csv"
+        path.write_text(grid_csv(f, rows, cols, pair_name=pair_name))
+        csvs.append(path)
+    worst = 0.0
+    for member in MEMBERS:
+        fits = []
+        for f in (f for f in items if f.member == member):
+            fit = fit_bspline(f.name, lambda U, V, f=f: f.points(U, V)[0],
+                              f.surface.u_range, f.surface.v_range)
+            fits.append(fit)
+            worst = max(worst, fit.fit_error_mm)
+            summary["flanks"][f.name] = {
+                "surface": type(f.surface).__name__,
+                "u_range": [float(x) for x in f.surface.u_range],
+                "v_range": [float(x) for x in f.surface.v_range],
+                "to_axis_frame": f.to_axis.tolist(),
+                "step_file": f"{member}_flanks.step", "csv_file": f"{f.name}.csv",
+                "bspline_nodes": list(fit.nodes),
+                "fit_error_um": round(fit.fit_error_mm * 1e3, 6)}
+        steps.append(write_step(out / f"{member}_flanks.step", fits,
+                                title=_safe(f"{pair_name} {member} flanks")))
+    summary_path = out / "flanks.json"
+    summary_path.write_text(json.dumps(summary, indent=2) + "\n")
+    return FlankExport(tuple(steps), tuple(csvs), summary_path, worst)
