@@ -31,6 +31,7 @@ from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointO
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
+           "fit_isqrt_seeds",
            "fit_weights_fp64", "gap_constants", "line_constants"]
 
 
@@ -202,6 +203,23 @@ def expand_fit_mac_plan(plan: list[dict], rom) -> tuple[tuple[int, ...], ...]:
     return tuple(out)
 
 
+#: Leading bits of the normalized radicand that index the seed table of the fit's
+#: integer square root (:func:`fit_isqrt_seeds`): relative seed error <= 2^-8.
+ISQRT_SEED_BITS = 9
+
+
+def fit_isqrt_seeds() -> tuple[int, ...]:
+    """Seeds of the C fit's floor(sqrt(d)): for the normalized radicand
+    ``d' in [2^62, 2^64)`` with leading ``ISQRT_SEED_BITS`` bits ``k`` (``2^(b-2) <= k <
+    2^b``), entry ``k - 2^(b-2)`` is ``isqrt(m - 1) + 1 > sqrt(d')`` with
+    ``m = (k + 1) 2^(64 - b)``: an over-estimate within ``sqrt(1 + 2^(2-b)) - 1 <= 2^-8``
+    relative (+1), from which two Newton steps land on floor(sqrt(d)) or one above
+    (the proof: gc_fit_golden.c)."""
+    b = ISQRT_SEED_BITS
+    return tuple(math.isqrt(((k + 1) << (64 - b)) - 1) + 1
+                 for k in range(1 << (b - 2), 1 << b))
+
+
 def fit_weights_fp64() -> list[list[str]]:
     """The fp64 pseudo-inverse of the fit reference (6 x 49) as exact C99 hexadecimal
     floating literals (``float.hex``: no decimal rounding)."""
@@ -215,7 +233,9 @@ def fit_constants() -> dict[str, int]:
             "COEFF_SHIFT": ACC.frac - COEFF.frac,
             "COEFF_MIN_CODE": COEFF.min_code, "COEFF_MAX_CODE": COEFF.max_code,
             "D_MAX_CODE": d_max, "E_MAX_CODE": math.isqrt(d_max),
-            "ISQRT_STEPS": G.ROOT_FMT.bits,
+            "ISQRT_STEPS": G.ROOT_FMT.bits, "ISQRT_SEED_BITS": ISQRT_SEED_BITS,
+            "ISQRT_SEED_SHIFT": 64 - ISQRT_SEED_BITS,
+            "ISQRT_SEED_OFFSET": 1 << (ISQRT_SEED_BITS - 2),
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
             "GAP_FRAC": GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
 
