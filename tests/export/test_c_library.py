@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearcontact.export.c_constants import expand_fit_mac_plan, fit_mac_plan
 from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
@@ -476,3 +477,20 @@ def test_fit_square_root_equals_the_rtl_recurrence(built, tmp_path):
     n, bad = map(int, subprocess.run([str(exe)], capture_output=True, text=True,
                                      timeout=120, check=True).stdout.split())
     assert n > 3_000_000 and bad == 0, (n, bad)
+
+
+def test_fit_mac_plan_multiplies_out_to_the_rom():
+    """The regrouped golden MAC of gc_fit_golden.c (column sums, row sums, one multiply
+    per distinct |M_ji|) is the ROM's linear form exactly: expanded term by term it
+    gives back every word, for the baked ROM (26 multiplies) and for a random integer
+    matrix without symmetry (tap by tap, one multiply per distinct magnitude)."""
+    rom = tuple(tuple(int(w) for w in row) for row in baked_pinv().weight_codes)
+    plan = fit_mac_plan()
+    assert expand_fit_mac_plan(plan, rom) == rom
+    assert [c["basis"] for c in plan] == ["g", "col", "row", "col", "g", "row"]
+    assert sum(len(c["terms"]) for c in plan) == 26
+    rnd = tuple(tuple(int(w) for w in row)
+                for row in np.random.default_rng(0).integers(-9, 10, (6, 49)))
+    other = fit_mac_plan(rnd)
+    assert expand_fit_mac_plan(other, rnd) == rnd
+    assert {c["basis"] for c in other} == {"g"}
