@@ -21,17 +21,23 @@ mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
 (>= 20x real time at 10 us).
 
+Instruction counts (``--instructions``, needs valgrind): the same calls once each
+under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
+of libm): independent of the machine's load, unlike the nanoseconds.
+
 The process pins itself to one core (``os.sched_setaffinity``, inherited by the
 drivers; ``--cpu``) and prints the load average: figures taken under load say so.
 
 Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curvatures
-stencil|exact] [--twin-only]``.
+stencil|exact] [--twin-only | --previews-only] [--instructions]``.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import re
+import shutil
 import subprocess
 import zipfile
 import tempfile
@@ -122,6 +128,59 @@ int main(int argc, char **argv)
         TIME("golden_hertz", sink ^= gc_hertz_golden(40000 + (int32_t)(i % 1000) * 97, 900000, w[i], e[i], 0).flags)
         TIME("fp64_hertz", sink ^= gc_hertz_fp64(0.04 + (double)(i % 1000) * 1e-4, 0.9, w_n[i], e_mpa[i]).flags)
     }
+    printf("sink %u\n", sink);
+    return 0;
+}
+"""
+
+
+#: Instruction-count driver: each function once per operand, in its own loop (callgrind
+#: reports each loop's instructions inclusive of what it calls).
+COUNT_DRIVER = r"""
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include "gearcontact.h"
+
+static long n;
+static int32_t *gaps, *w, *e;
+static double *gmm, *wn, *em;
+static uint32_t sink;
+#define LOOP(NAME, CALL) \
+    __attribute__((noinline)) static void loop_##NAME(void) \
+    { long i; for (i = 0; i < n; ++i) CALL; }
+LOOP(golden_chain, sink ^= gc_chain_golden(gaps + 49 * i, w[i], e[i], 0).flags)
+LOOP(fp64_chain, sink ^= gc_chain_fp64(gmm + 49 * i, wn[i], em[i], 0).hertz.flags)
+LOOP(golden_fit, sink ^= gc_fit_golden(gaps + 49 * i).flags)
+LOOP(golden_hertz, sink ^= gc_hertz_golden(40000 + (int32_t)(i % 1000) * 97, 900000, w[i], e[i], 0).flags)
+LOOP(fp64_fit, sink ^= (uint32_t)gc_fit_fp64(gmm + 49 * i).elliptic)
+LOOP(fp64_hertz, sink ^= gc_hertz_fp64(0.04 + (double)(i % 1000) * 1e-4, 0.9, wn[i], em[i]).flags)
+
+int main(int argc, char **argv)
+{
+    long i, k;
+    FILE *fp = fopen(argv[1], "rb");
+    (void)argc;
+    if (!fp || fread(&n, sizeof n, 1, fp) != 1)
+        return 2;
+    gaps = malloc(sizeof *gaps * 49 * (size_t)n);
+    w = malloc(sizeof *w * (size_t)n);
+    e = malloc(sizeof *e * (size_t)n);
+    gmm = malloc(sizeof *gmm * 49 * (size_t)n);
+    wn = malloc(sizeof *wn * (size_t)n);
+    em = malloc(sizeof *em * (size_t)n);
+    if (fread(gaps, sizeof *gaps, 49 * (size_t)n, fp) != 49 * (size_t)n
+        || fread(w, sizeof *w, (size_t)n, fp) != (size_t)n
+        || fread(e, sizeof *e, (size_t)n, fp) != (size_t)n)
+        return 2;
+    for (i = 0; i < n; ++i) {
+        for (k = 0; k < 49; ++k)
+            gmm[49 * i + k] = gaps[49 * i + k] / 65536.0;
+        wn[i] = w[i] / 256.0;
+        em[i] = (double)e[i];
+    }
+    loop_golden_chain(); loop_fp64_chain(); loop_golden_fit(); loop_golden_hertz();
+    loop_fp64_fit(); loop_fp64_hertz();
     printf("sink %u\n", sink);
     return 0;
 }
@@ -260,7 +319,28 @@ def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
           f"{res.timings['real_time_factor']:.1f}x; target <= 500 ns per step (>= 20x)")
 
 
-def bench_previews(vectors: int) -> None:
+def _instructions(lib: Path, data: Path, n: int) -> None:
+    """Instructions per call of each timed function, under callgrind (module docstring)."""
+    if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
+        print("instructions: valgrind not installed, skipped")
+        return
+    (lib / "count.c").write_text(COUNT_DRIVER)
+    exe, out = lib / "count", lib / "callgrind.out"
+    subprocess.run(["gcc", "-O2", "-std=gnu99", "-o", str(exe), str(lib / "count.c"),
+                    str(lib / "build" / "libgearcontact.a"), "-lm", f"-I{lib}"], check=True)
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe),
+                    str(data)], check=True, capture_output=True)
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(out)], check=True,
+                          capture_output=True, text=True).stdout
+    counts = {m.group(2): int(m.group(1).replace(",", "")) / n
+              for m in re.finditer(r"^\s*([\d,]+) .*?:loop_(\w+) ", text, re.M)}
+    print(f"instructions per call (callgrind, {n} operands, gcc -O2; load independent):")
+    for name in ("golden_chain", "fp64_chain", "golden_fit", "golden_hertz", "fp64_fit",
+                 "fp64_hertz"):
+        print(f"  {name:<14} {counts.get(name, float('nan')):>8.0f}")
+
+
+def bench_previews(vectors: int, instructions: bool = False) -> None:
     """ns per preview of the C library (module docstring)."""
     stim = vector_stimulus("chain", vectors, 7)
     gaps = np.asarray(stim.fields["gaps"], np.int32)
@@ -279,17 +359,19 @@ def bench_previews(vectors: int) -> None:
                          + e.tobytes())
         out = subprocess.run([str(lib / "bench"), str(data)], check=True,
                              capture_output=True, text=True).stdout.splitlines()
-    rows = [ln.split() for ln in out if ln.split()[0] not in ("timer", "sink")]
-    rows = rows[len(rows) // 2:]                  # the second (warm) round
-    print(f"{len(w)} chain vectors (seed 7, corner cases first); timer overhead "
-          f"{out[0].split()[1]} ns subtracted")
-    print(f"{'function':<14} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} {'p99/p50':>8}")
-    for name, p50, p99, mx in rows:
-        print(f"{name:<14} {int(p50):>10} {int(p99):>8} {int(mx):>9} "
-              f"{int(p99) / max(int(p50), 1):>8.2f}")
-    print("reference: Python fp64 preview 920 ns median (docs/performance.md); FPGA "
-          "chain 806 cycles = 16,120 ns at 50 MHz; targets golden chain <= 200 ns, "
-          "fp64 <= 100 ns, p99/p50 <= 1.5")
+        rows = [ln.split() for ln in out if ln.split()[0] not in ("timer", "sink")]
+        rows = rows[len(rows) // 2:]                  # the second (warm) round
+        print(f"{len(w)} chain vectors (seed 7, corner cases first); timer overhead "
+              f"{out[0].split()[1]} ns subtracted")
+        print(f"{'function':<14} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} {'p99/p50':>8}")
+        for name, p50, p99, mx in rows:
+            print(f"{name:<14} {int(p50):>10} {int(p99):>8} {int(mx):>9} "
+                  f"{int(p99) / max(int(p50), 1):>8.2f}")
+        print("reference: Python fp64 preview 920 ns median (docs/performance.md); FPGA "
+              "chain 806 cycles = 16,120 ns at 50 MHz; targets golden chain <= 200 ns, "
+              "fp64 <= 100 ns, p99/p50 <= 1.5")
+        if instructions:
+            _instructions(lib, data, len(w))
 
 
 def main(argv=None) -> None:
@@ -301,11 +383,15 @@ def main(argv=None) -> None:
     ap.add_argument("--curvatures", default="stencil", choices=("stencil", "exact"),
                     help="the twin's curvature source (default stencil, the twin's)")
     ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
+    ap.add_argument("--previews-only", action="store_true", help="skip the twin step")
+    ap.add_argument("--instructions", action="store_true",
+                    help="also count instructions per call under valgrind's callgrind")
     args = ap.parse_args(argv)
     print(_pin(args.cpu) + "; load average %.2f %.2f %.2f" % os.getloadavg())
     if not args.twin_only:
-        bench_previews(args.vectors)
-    bench_twin_step(args.steps, args.phases, args.curvatures)
+        bench_previews(args.vectors, args.instructions)
+    if not args.previews_only:
+        bench_twin_step(args.steps, args.phases, args.curvatures)
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
 
 

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearcontact.export.c_constants import expand_fit_mac_plan, fit_mac_plan
 from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
@@ -416,3 +417,93 @@ def test_a_new_export_into_a_built_directory(tmp_path):
     run = subprocess.run([sys.executable, "-m", "gearcontact", "export", "c", "--out",
                           str(lib)], env=env, capture_output=True, text=True, timeout=600)
     assert run.returncode == 2 and "notes.txt" in run.stderr and "--force" in run.stderr
+
+
+#: Harness of :func:`test_fit_square_root_equals_the_rtl_recurrence`: the fit's static
+#: isqrt_floor (table seed + two Newton steps) against the RTL's 32-step non-restoring
+#: recurrence (gearcontact.preview.fit.golden.isqrt_nonrestoring, the previous C code).
+_ISQRT_HARNESS = r"""
+#include <stdio.h>
+#include "gc_fit_golden.c"
+
+static uint64_t rtl(uint64_t d)
+{
+    int64_t q = 0, rem = 0;
+    int i;
+    for (i = 31; i >= 0; --i) {
+        int64_t pair = (int64_t)((d >> (2 * i)) & 3u);
+        rem = rem >= 0 ? rem * 4 + pair - (q * 4 + 1) : rem * 4 + pair + (q * 4 + 3);
+        q = q * 2 + (int64_t)(rem >= 0);
+    }
+    return (uint64_t)q;
+}
+
+static long bad, n;
+static void check(uint64_t d)
+{
+    if (d <= (uint64_t)GC_C_D_MAX_CODE) {
+        bad += (uint64_t)isqrt_floor(d) != rtl(d);
+        ++n;
+    }
+}
+
+int main(void)
+{
+    uint64_t d, k, x = 88172645463325252u;
+    int i;
+    for (d = 0; d < ((uint64_t)1 << 20); ++d)          /* every small radicand */
+        check(d);
+    for (k = 1; k <= (uint64_t)GC_C_E_MAX_CODE + 1u; k += 1u + k / 4096u) {
+        check(k * k - 1u);                             /* both sides of every square */
+        check(k * k);
+        check(k * k + 1u);
+    }
+    for (i = 0; i < 63; ++i) {                         /* powers of two and neighbours */
+        check(((uint64_t)1 << i) - 1u);
+        check((uint64_t)1 << i);
+        check(((uint64_t)1 << i) + 1u);
+    }
+    for (i = 0; i < 1000000; ++i) {                    /* xorshift64 radicands */
+        x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+        check(x >> 1);
+        check(x >> (1 + i % 62));
+    }
+    printf("%ld %ld\n", n, bad);
+    return 0;
+}
+"""
+
+
+def test_fit_square_root_equals_the_rtl_recurrence(built, tmp_path):
+    """The C fit computes r = floor(sqrt(d)) from a seed table and two Newton steps
+    (proof in gc_fit_golden.c), not by the RTL's recurrence: the two agree on every
+    radicand below 2^20, on k^2 - 1, k^2, k^2 + 1 for ~58,000 k up to
+    isqrt(D_MAX) + 1, on 2^i and its neighbours and on 2 million random radicands."""
+    lib, _ = built
+    (tmp_path / "harness.c").write_text(_ISQRT_HARNESS)
+    exe = tmp_path / "harness"
+    run = subprocess.run(["gcc", *STRICT, "-O2", f"-I{lib}", "-o", str(exe),
+                          str(tmp_path / "harness.c"), str(lib / "gc_hertz_golden.c"),
+                          str(lib / "gc_tables.c")], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr
+    n, bad = map(int, subprocess.run([str(exe)], capture_output=True, text=True,
+                                     timeout=120, check=True).stdout.split())
+    assert n > 3_000_000 and bad == 0, (n, bad)
+
+
+def test_fit_mac_plan_multiplies_out_to_the_rom():
+    """The regrouped golden MAC of gc_fit_golden.c (column sums, row sums, one multiply
+    per distinct |M_ji|) is the ROM's linear form exactly: expanded term by term it
+    gives back every word, for the baked ROM (26 multiplies) and for a random integer
+    matrix without symmetry (tap by tap, one multiply per distinct magnitude)."""
+    rom = tuple(tuple(int(w) for w in row) for row in baked_pinv().weight_codes)
+    plan = fit_mac_plan()
+    assert expand_fit_mac_plan(plan, rom) == rom
+    assert [c["basis"] for c in plan] == ["g", "col", "row", "col", "g", "row"]
+    assert sum(len(c["terms"]) for c in plan) == 26
+    rnd = tuple(tuple(int(w) for w in row)
+                for row in np.random.default_rng(0).integers(-9, 10, (6, 49)))
+    other = fit_mac_plan(rnd)
+    assert expand_fit_mac_plan(other, rnd) == rnd
+    assert {c["basis"] for c in other} == {"g"}

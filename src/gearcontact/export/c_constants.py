@@ -17,6 +17,7 @@ import math
 from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.fit import golden as G
 from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
+from ..preview.fit.stencil import STENCIL_SIDE
 from ..preview.gap.cores import GAP_LANES
 from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
 from ..preview.gap.variants import residual_limit
@@ -29,8 +30,9 @@ from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, L
 from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
-           "fit_flags", "fit_weight_codes", "fit_weights_fp64", "gap_constants",
-           "line_constants"]
+           "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
+           "fit_isqrt_seeds",
+           "fit_weights_fp64", "gap_constants", "line_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -87,6 +89,9 @@ def hertz_constants() -> dict[str, int]:
         "AXIS_SHIFT": F.CBRT_VAL.frac - F.AXIS_W.frac,
         "OUT_AXIS_SHIFT": F.AXIS_W.frac - SEMI_AXIS.frac,
         "K_OUT_SHIFT": F.K_INT.frac - F.K_OUT.frac,
+        # register widths bounding the divisors of DIV_B (k_int) and DIV_PMAX (b_w): the
+        # C code's divider steps (gc_hertz_golden.c) are proven from them
+        "K_INT_BITS": F.K_INT.bits, "AXIS_W_BITS": F.AXIS_W.bits,
     }
     # the golden model reads the CBRT interpolation as CBRT_VAL without a shift
     assert CBRT_SPEC.out_frac == F.CBRT_VAL.frac
@@ -121,6 +126,100 @@ def fit_weight_codes() -> tuple[tuple[int, ...], ...]:
     return tuple(tuple(int(w) for w in row) for row in rom.weight_codes)
 
 
+#: Sums a row of the golden MAC plan may read (:func:`fit_mac_plan`): the taps g_i, the
+#: column sums S_k = sum_j g_(7j+k) (over t) and the row sums R_j = sum_k g_(7j+k).
+MAC_BASES = ("g", "col", "row")
+
+
+def _basis_weights(row: tuple[int, ...]) -> tuple[str, list[int], list[int]]:
+    """The cheapest basis of one ROM row: ``(basis, weight per basis element, ROM tap
+    holding it)``. ``col`` when the word depends on the column k only, ``row`` when on
+    the row j only, else the taps themselves."""
+    n = STENCIL_SIDE
+    grid = [row[n * j:n * (j + 1)] for j in range(n)]
+    if all(grid[j] == grid[0] for j in range(n)):
+        return "col", list(grid[0]), list(range(n))
+    if all(len(set(r)) == 1 for r in grid):
+        return "row", [r[0] for r in grid], [n * j for j in range(n)]
+    return "g", list(row), list(range(N_TAPS))
+
+
+def fit_mac_plan(rom=None) -> list[dict]:
+    """The golden fit's MAC ``acc_j = sum_i M_ji g_i`` regrouped for the C code.
+
+    The ROM has few distinct words (the stencil's symmetry: c1 depends on the column
+    only, c2 on the row only, ...). Per coefficient j the plan names a basis
+    (:data:`MAC_BASES`) and one term per distinct nonzero ``|M_ji|``: ``M_j,rep *
+    (sum of plus - sum of minus)`` over basis elements, where ``plus`` holds the word
+    ``M_j,rep`` and ``minus`` its negation. The regrouped sum is the same integer (the
+    distributive law on exact integers; :func:`expand_fit_mac_plan` multiplies it out
+    and this function checks it equals the ROM); no partial sum exceeds
+    ``2^31 sum_i |M_ji| < 2^62`` (:func:`fit_weight_codes`).
+
+    Parameters
+    ----------
+    rom : sequence of sequences of int, optional
+        Weight codes ``[j][i]`` (default: :func:`fit_weight_codes`).
+
+    Returns
+    -------
+    list of dict
+        Per coefficient: ``basis`` (str) and ``terms``, a list of dicts with ``rep``
+        (the ROM tap i holding the multiplier), ``plus`` and ``minus`` (basis indices).
+    """
+    rom = fit_weight_codes() if rom is None else tuple(tuple(r) for r in rom)
+    plan = []
+    for row in rom:
+        basis, weights, taps = _basis_weights(row)
+        terms = []
+        for mag in sorted({abs(w) for w in weights if w}, reverse=True):
+            first = next(k for k, w in enumerate(weights) if abs(w) == mag)
+            word = weights[first]
+            terms.append({"rep": taps[first],
+                          "plus": [k for k, w in enumerate(weights) if w == word],
+                          "minus": [k for k, w in enumerate(weights) if w == -word]})
+        plan.append({"basis": basis, "terms": terms})
+    if expand_fit_mac_plan(plan, rom) != rom:         # by construction; never silently
+        raise AssertionError("the regrouped fit MAC differs from the ROM")
+    return plan
+
+
+def expand_fit_mac_plan(plan: list[dict], rom) -> tuple[tuple[int, ...], ...]:
+    """The weight matrix ``[j][i]`` a plan of :func:`fit_mac_plan` computes (each basis
+    element expanded into its taps, each term's word read from ``rom``)."""
+    n = STENCIL_SIDE
+    members = {"g": lambda k: [k], "col": lambda k: [n * j + k for j in range(n)],
+               "row": lambda k: [n * k + i for i in range(n)]}
+    out = []
+    for j, coeff in enumerate(plan):
+        w = [0] * N_TAPS
+        for term in coeff["terms"]:
+            word = rom[j][term["rep"]]
+            for sign, ks in ((1, term["plus"]), (-1, term["minus"])):
+                for k in ks:
+                    for i in members[coeff["basis"]](k):
+                        w[i] += sign * word
+        out.append(tuple(w))
+    return tuple(out)
+
+
+#: Leading bits of the normalized radicand that index the seed table of the fit's
+#: integer square root (:func:`fit_isqrt_seeds`): relative seed error <= 2^-8.
+ISQRT_SEED_BITS = 9
+
+
+def fit_isqrt_seeds() -> tuple[int, ...]:
+    """Seeds of the C fit's floor(sqrt(d)): for the normalized radicand
+    ``d' in [2^62, 2^64)`` with leading ``ISQRT_SEED_BITS`` bits ``k`` (``2^(b-2) <= k <
+    2^b``), entry ``k - 2^(b-2)`` is ``isqrt(m - 1) + 1 > sqrt(d')`` with
+    ``m = (k + 1) 2^(64 - b)``: an over-estimate within ``sqrt(1 + 2^(2-b)) - 1 <= 2^-8``
+    relative (+1), from which two Newton steps land on floor(sqrt(d)) or one above
+    (the proof: gc_fit_golden.c)."""
+    b = ISQRT_SEED_BITS
+    return tuple(math.isqrt(((k + 1) << (64 - b)) - 1) + 1
+                 for k in range(1 << (b - 2), 1 << b))
+
+
 def fit_weights_fp64() -> list[list[str]]:
     """The fp64 pseudo-inverse of the fit reference (6 x 49) as exact C99 hexadecimal
     floating literals (``float.hex``: no decimal rounding)."""
@@ -134,7 +233,9 @@ def fit_constants() -> dict[str, int]:
             "COEFF_SHIFT": ACC.frac - COEFF.frac,
             "COEFF_MIN_CODE": COEFF.min_code, "COEFF_MAX_CODE": COEFF.max_code,
             "D_MAX_CODE": d_max, "E_MAX_CODE": math.isqrt(d_max),
-            "ISQRT_STEPS": G.ROOT_FMT.bits,
+            "ISQRT_STEPS": G.ROOT_FMT.bits, "ISQRT_SEED_BITS": ISQRT_SEED_BITS,
+            "ISQRT_SEED_SHIFT": 64 - ISQRT_SEED_BITS,
+            "ISQRT_SEED_OFFSET": 1 << (ISQRT_SEED_BITS - 2),
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
             "GAP_FRAC": GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
 
