@@ -393,16 +393,22 @@ def test_identical_runs_write_identical_files(built):
 
 def test_a_new_export_into_a_built_directory(tmp_path):
     """``make`` builds into build/, which the export keeps as the user's: a second export
-    into the built directory succeeds (exit 0), leaves build/ and a foreign-free
+    into the built directory succeeds (exit 0; the second make with the user's own
+``CFLAGS=-O3``, which adds to the strict flags rather than replacing them), leaves build/ and a foreign-free
     directory (the export's files, run.json, build/), and make rebuilds from the new
     sources into a checker that runs; a file the export did not write is still
     refused (exit 2, named)."""
     lib = tmp_path / "lib"
     _gearcontact("export", "c", "--out", str(lib))
-    for _ in range(2):
-        make = subprocess.run(["make", "-C", str(lib), "CC=gcc"], capture_output=True,
+    for flags in ([], ["CFLAGS=-O3"]):
+        # a CFLAGS of the user's own (second round) adds to the contract's flags
+        make = subprocess.run(["make", "-C", str(lib), "CC=gcc", *flags], capture_output=True,
                               text=True, timeout=300)
         assert make.returncode == 0, make.stderr[-3000:]
+        compiles = [ln for ln in make.stdout.splitlines() if " -c -o " in ln]
+        assert compiles and all("-std=c99" in ln and "-Werror" in ln and "-fPIC" in ln
+                                and "-ffp-contract=off" in ln for ln in compiles)
+        assert all("-O3" in ln for ln in compiles) == bool(flags)
         assert (lib / "build" / "gearcontact_check").is_file()
         assert not list(lib.glob("*.o")) and not list(lib.glob("*.a"))
         _gearcontact("export", "c", "--out", str(lib))      # the rerun: accepted
