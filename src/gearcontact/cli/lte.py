@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 import time
 
-from ..halfspace.constrained_cg import SolveStatus
+from ..halfspace.result import SolveStatus
 from ..ltca.lte import loaded_te
 from ..errors import CheckFailed
 from ..report.lte_plot import write_lte_outputs
