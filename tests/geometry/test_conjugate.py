@@ -6,7 +6,7 @@ import pytest
 from gearcontact.geometry.conjugate import (MeshingError, UndercutError,
                                             conjugate_pinion_flank)
 from gearcontact.geometry.cutter import place_cutter
-from gearcontact.geometry.flank import SIDES, gear_flank
+from gearcontact.geometry.formate import SIDES, gear_flank
 from gearcontact.geometry.kinematics import rot_x, rot_z
 from gearcontact.geometry.sampling import sample_grid
 

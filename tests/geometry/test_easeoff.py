@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcontact.geometry.easeoff import EaseOff, apply_easeoff
-from gearcontact.geometry.flank import SIDES
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.pair import EaseOffCoefficients
 from gearcontact.validation import InputRangeError
 

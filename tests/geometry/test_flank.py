@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from gearcontact.geometry.flank import SIDES, build_flanks
+from gearcontact.geometry.flank import build_flanks
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.sampling import sample_grid
 from gearcontact.geometry.surface import Surface
 from gearcontact.validation import InputRangeError

@@ -13,7 +13,7 @@ import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.tca.analysis import analyze_pair
-from gearcontact.tca.solve import solve_mating_point
+from gearcontact.tca.mating import solve_mating_point
 
 
 @pytest.fixture(scope="module")

@@ -5,7 +5,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from gearcontact.geometry.flank import SIDES, build_flanks
+from gearcontact.geometry.flank import build_flanks
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.geometry.mirror import MIRROR
 from gearcontact.geometry.sampling import sample_grid

@@ -17,7 +17,9 @@ from scipy.optimize import least_squares
 
 from gearcontact.tca.edge_contact import (FLANK_EDGES, edge_parameters, edge_span,
                                           solve_edge_contact)
-from gearcontact.tca.solve import ARCSEC_PER_RAD, ContactGuess, solve_mating_point, solve_tca
+from gearcontact.tca.mating import solve_mating_point
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 #: Solver boundary variable of each edge.
 _HELD = {"pinion toe": ("v1", 1, 0), "pinion heel": ("v1", 1, 1),

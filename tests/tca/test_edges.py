@@ -25,7 +25,7 @@ from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.edges import PatternOffFlank, edge_name, loaded_patch_edges
 from gearcontact.tca.stencil import gap_at
-from gearcontact.tca.solve import solve_mating_point
+from gearcontact.tca.mating import solve_mating_point
 
 
 def _misaligned(pair, **err):

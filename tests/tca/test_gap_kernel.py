@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from gearcontact.geometry.flank import FlankBoundary, cone_vector
+from gearcontact.geometry.formate import FlankBoundary, cone_vector
 from gearcontact.geometry.sheet import PinionCone, RadialSheet
 from gearcontact.tca import stencil
 from gearcontact.tca.gap_kernel import kernel_surface, sheet_point

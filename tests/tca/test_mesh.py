@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from gearcontact.tca.mesh import mesh_cycle
-from gearcontact.tca.solve import ARCSEC_PER_RAD, ContactGuess
+from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 from .analytic import sphere_torus_case
 

@@ -19,7 +19,7 @@ from gearcontact.geometry.pair import CutterSpec, EaseOffCoefficients, GearPair
 from gearcontact.tca.analysis import analyze_pair
 from gearcontact.tca.edges import ContactGap, PatternOffFlank
 from gearcontact.tca.line_contact import LineContact
-from gearcontact.tca.solve import EdgeContact, TcaConvergenceError
+from gearcontact.tca.types import EdgeContact, TcaConvergenceError
 from gearcontact.validation import InputRangeError
 
 NAMED = (InputRangeError, UndercutError, MeshingError, PatternOffFlank, ContactGap,

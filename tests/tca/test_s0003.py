@@ -15,8 +15,9 @@ from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.geometry.pair import EaseOffCoefficients
 from gearcontact.materials import effective_modulus_mpa
 from gearcontact.tca.curvature import relative_curvature
-from gearcontact.tca.solve import (ARCSEC_PER_RAD, ContactGuess, solve_mating_point,
-                                   solve_tca)
+from gearcontact.tca.mating import solve_mating_point
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 #: gear torque 64.5 N m -> normal load 1971 N (docs/spec.md sec. 3, docs/geometry.md sec. 2)
 W_DESIGN_N = 1971.0

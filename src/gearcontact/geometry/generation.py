@@ -21,7 +21,7 @@ import numpy as np
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .easeoff import EaseOff
-from .flank import gear_flanks
+from .formate import gear_flanks
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands"]

@@ -12,7 +12,8 @@ core     fields of :attr:`Stimulus.fields` (``int64``, first axis = vector)
 gap      ``r`` (n, 3, 3) Q(21,19) with ``|c| <= 2^19``; ``t``, ``p`` (n, 3) and ``g``
          (n, N, 3) Q(24,16) mm; ``nrm`` (n, N, 3) normals like ``r``; ``tau2`` (n,)
          UQ(64,32) mm^2 in [1, 2^63 - 1]
-fit      ``gaps`` (n, 49) GAP Q(32,16) mm, stencil order of :mod:`gearcontact.contract.stencil`
+fit      ``gaps`` (n, 49) GAP Q(32,16) mm, in the stencil order of
+         :mod:`gearcontact.contract.stencil`
 hertz    ``A``, ``B`` (n,) CURVATURE Q(32,20) 1/mm; ``W`` (n,) LOAD Q(32,8) N;
          ``e_prime`` (n,) Q(32,0) MPa
 line     as hertz plus ``L`` (n,) LINE_LENGTH Q(32,20) mm (the line core,

@@ -49,14 +49,16 @@ from scipy.optimize import least_squares, minimize_scalar
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..errors import CheckFailed
 from ..geometry.easeoff import EaseOff, apply_easeoff, max_relief_um, mean_normal_thickness_mm
-from ..geometry.flank import SIDES, build_flanks
+from ..geometry.flank import build_flanks
+from ..geometry.formate import SIDES
 from ..geometry.pair import EaseOffCoefficients, GearPair
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive
 from .curvature import contact_ellipse, relative_curvature
 from .load import normal_load_from_torque
 from .mesh import mesh_cycle
-from .solve import ContactGuess, EdgeContact, solve_mating_point
+from .mating import solve_mating_point
+from .types import ContactGuess, EdgeContact
 
 __all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibration", "calibrate_pair",
            "point_invariants", "surface_of_action_offset", "working_depth_for_tip",

@@ -51,13 +51,14 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
-from ..geometry.flank import SIDES, build_flanks
+from ..geometry.flank import build_flanks
+from ..geometry.formate import SIDES
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
 from .calibration import (DesignPoint, centred_coefficients, conjugate_contact,
                           eased_design_point)
-from .solve import EdgeContact
+from .types import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
            "easeoff_toml", "PreparedPair", "prepare_pair"]

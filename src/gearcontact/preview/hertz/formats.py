@@ -56,7 +56,7 @@ import math
 from ...contract.envelope import (CURV_MAX_CODE, CURV_MIN_CODE, E_PRIME_MAX_CODE,
                                   E_PRIME_MIN_CODE, LOAD_MAX_CODE, LOAD_MIN_CODE)
 from ...validation import InputRangeError
-from ..qformat import CURVATURE, LOAD, PMAX, sq, uq
+from ...contract.qformat import CURVATURE, LOAD, PMAX, sq, uq
 
 __all__ = [
     "E_PRIME", "K_OUT", "ALPHA", "RADIUS", "E6", "K_INT", "K2", "T1", "T2", "T3", "CA",
