@@ -1,4 +1,5 @@
-"""Shared fixtures: the s0003 pairs and their flanks (built once per session)."""
+"""Shared fixtures: both s0003 pairs and their flanks (built once per session; the
+centred one is the shared ``s0003_centred`` of tests/conftest.py)."""
 
 import pytest
 
@@ -7,14 +8,8 @@ from gearcontact.geometry.pair import load_pair
 
 
 @pytest.fixture(scope="session")
-def s0003(s0003_centred):
-    """``(pair, flanks)`` of s0003-centred (tests/conftest.py)."""
-    return s0003_centred
-
-
-@pytest.fixture(scope="session")
-def pairs(s0003):
+def pairs(s0003_centred):
     """``name -> (pair, flanks)`` of both calibration pairs: s0003-centred and the
     calibrated s0003 (deeper teeth: 2.9 mm against 2.4 mm)."""
     pair = load_pair("s0003")
-    return {"s0003-centred": s0003, "s0003": (pair, build_flanks(pair))}
+    return {"s0003-centred": s0003_centred, "s0003": (pair, build_flanks(pair))}
