@@ -19,7 +19,7 @@ from gearcontact.preview.fit.golden import (FIT_CYCLES, encode_gaps, golden_fit,
                                             golden_fit_batch)
 from gearcontact.preview.fit.reference import fit_curvatures
 from gearcontact.preview.fit.rtl import simulate_fit_core
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.contract.stencil import stencil_coordinates
 
 
 def random_fields(n: int, seed: int) -> np.ndarray:

@@ -30,7 +30,8 @@ from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze
 from gearcontact.tca.mesh import mesh_cycle
-from gearcontact.tca.solve import ContactGuess, solve_tca
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import ContactGuess
 from gearcontact.tca.stencil import gap_field_80, hardware_stencil
 
 TARGET_S = 1.0

@@ -55,9 +55,8 @@ def served_tri_core():
 def s0003_centred():
     """``(pair, flanks)`` of the built-in s0003-centred pair and its production flank set
     (120 x 150 pinion nodes, about 2 s): the one s0003 set-up of the geometry,
-    structure, tca, ltca, sweep and twin tests, built once per session (their local
-    fixtures ``s0003``, ``flanks``, ``pair``, ``s0003_pair``, ``s0003_flanks`` are views
-    of it)."""
+    structure, tca, ltca, sweep and twin tests, built once per session; they take it
+    directly (no per-directory alias fixtures)."""
     from gearcontact.geometry.flank import build_flanks
     from gearcontact.geometry.pair import load_pair
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from hypothesis import strategies as st
 
-from gearcontact.geometry.flank import SIDES
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
 

@@ -13,9 +13,9 @@ from gearcontact.geometry.conjugate import MeshingError, UndercutError
 from gearcontact.hw.harness_cores import CoreUnavailable
 from gearcontact.hw.synth import YosysNotFound
 from gearcontact.hw.verilator import VerilatorBuildError, VerilatorNotFound
-from gearcontact.preview.qformat import FixedPointOverflow
+from gearcontact.contract.qformat import FixedPointOverflow
 from gearcontact.tca.edges import PatternOffFlank
-from gearcontact.tca.solve import TcaConvergenceError
+from gearcontact.tca.types import TcaConvergenceError
 from gearcontact.validation import InputRangeError, UnusableInput
 
 

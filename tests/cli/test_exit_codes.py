@@ -21,7 +21,7 @@ import pytest
 
 from gearcontact.errors import BadInput, CheckFailed, DatapathFlagged, ToolUnavailable
 from gearcontact.cli import EXIT_CODES, exit_code_of
-from gearcontact.preview.fit.stencil import stencil_coordinates, write_stencil_csv
+from gearcontact.contract.stencil import stencil_coordinates, write_stencil_csv
 
 #: This checkout's package first, for the child processes.
 ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}

@@ -16,7 +16,7 @@ import gearcontact.cli.lte as cli_lte
 import gearcontact.cli.preview as cli_preview
 import gearcontact.cli.tca as cli_tca
 from gearcontact.cli import EXIT_BAD_INPUT, EXIT_FLAGGED, EXIT_INTERNAL, main
-from gearcontact.preview.fit.stencil import stencil_coordinates, write_stencil_csv
+from gearcontact.contract.stencil import stencil_coordinates, write_stencil_csv
 
 S0003 = (__import__("importlib.resources").resources.files("gearcontact")
          / "data/pairs/s0003.toml").read_text()

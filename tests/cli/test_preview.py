@@ -7,7 +7,7 @@ import pytest
 
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.cli import main
-from gearcontact.preview.fit.stencil import stencil_coordinates, write_stencil_csv
+from gearcontact.contract.stencil import stencil_coordinates, write_stencil_csv
 
 
 def _run(capsys, *argv):

@@ -18,7 +18,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from gearcontact.cli import main
-from gearcontact.preview.fit.stencil import stencil_coordinates, write_stencil_csv
+from gearcontact.contract.stencil import stencil_coordinates, write_stencil_csv
 
 numbers = st.one_of(st.floats(allow_nan=True, allow_infinity=True, width=64),
                     st.floats(1e-5, 1e6), st.sampled_from([0.0, -0.0, 1.0, 1755.0]))

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from gearcontact.cli import main
-from gearcontact.preview.fit.stencil import read_stencil_csv
-from gearcontact.preview.qformat import COORD, CURVATURE
+from gearcontact.contract.stencil import read_stencil_csv
+from gearcontact.contract.qformat import COORD, CURVATURE
 from gearcontact.tca.phase_table import decode_binary, read_json
 
 

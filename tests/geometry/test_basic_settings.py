@@ -16,7 +16,7 @@ import pytest
 from gearcontact.geometry.basic_settings import (complementary_pinion_setups, crown_profile,
                                                  standard_setups)
 from gearcontact.geometry.conjugate import nominal_pinion_box
-from gearcontact.geometry.flank import SIDES
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.generated import EnvelopeSolver, generated_pinion_flank
 from gearcontact.geometry.machine import BladeSettings, blade_profile
 from gearcontact.geometry.pair import load_pair

@@ -6,13 +6,14 @@ import pytest
 from gearcontact.geometry.conjugate import (MeshingError, UndercutError,
                                             conjugate_pinion_flank)
 from gearcontact.geometry.cutter import place_cutter
-from gearcontact.geometry.flank import SIDES, gear_flank
+from gearcontact.geometry.formate import SIDES, gear_flank
 from gearcontact.geometry.kinematics import rot_x, rot_z
 from gearcontact.geometry.sampling import sample_grid
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_meshing_equation_at_every_node(flanks, side):
+def test_meshing_equation_at_every_node(s0003_centred, side):
+    flanks = s0003_centred[1]
     c = flanks.pinion_conjugate.side(side)
     n = c.nodes
     assert n.psi_rad.shape == (120, 150)
@@ -32,11 +33,12 @@ def test_meshing_equation_at_every_node(flanks, side):
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_line_contact_without_easeoff(flanks, side):
+def test_line_contact_without_easeoff(s0003_centred, side):
     # Independent construction of the instantaneous contact line at gear angle phi2:
     # on the gear flank solve f(h, theta, phi2) = 0 for theta at fixed h (1-D Newton with
     # a finite-difference slope), carry the points to the pinion body frame and compare
     # with the interpolated conjugate pinion sheet. Required: gap < 1e-6 mm along it.
+    flanks = s0003_centred[1]
     c = flanks.pinion_conjugate.side(side)
     g = flanks.flank("gear", side)
     kin = flanks.kinematics
@@ -64,9 +66,10 @@ def test_line_contact_without_easeoff(flanks, side):
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_interpolant_matches_exact_solves(flanks, side):
+def test_interpolant_matches_exact_solves(s0003_centred, side):
     # flanks from the 120 x 150 exact grid, evaluated at random off-grid points, against
     # an exact solve of the node equations there: < 0.05 um (5e-5 mm) required.
+    flanks = s0003_centred[1]
     c = flanks.pinion_conjugate.side(side)
     rng = np.random.default_rng(7)
     u = rng.uniform(*c.u_range, 200)
@@ -81,9 +84,10 @@ def test_interpolant_matches_exact_solves(flanks, side):
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_pinion_second_derivatives_consistent(flanks, side):
+def test_pinion_second_derivatives_consistent(s0003_centred, side):
     # r_uu, r_uv, r_vv from the spline formulas vs central differences of r_u, r_v
     # (step 1e-5 mm: truncation ~1e-10, rounding ~1e-9 relative)
+    flanks = s0003_centred[1]
     f = flanks.pinion.side(side)
     u0, v0, e = 1.1, 36.0, 1e-5
     p = f.point(u0, v0)
@@ -92,9 +96,10 @@ def test_pinion_second_derivatives_consistent(flanks, side):
     assert np.allclose((f.point(u0, v0 + e).r_v - f.point(u0, v0 - e).r_v) / (2 * e), p.r_vv, atol=1e-6)
 
 
-def test_pinion_flank_orientation(flanks):
+def test_pinion_flank_orientation(s0003_centred):
     # the pinion tooth lies between its drive and coast flanks: both outward normals
     # point away from the tooth centre (mean angular position of the two flanks)
+    flanks = s0003_centred[1]
     d, c = flanks.pinion.side("drive"), flanks.pinion.side("coast")
     u, v = 1.0, 36.0
     pd, pc = d.point(u, v), c.point(u, v)
@@ -106,21 +111,23 @@ def test_pinion_flank_orientation(flanks):
     assert gap.min() > 0.1
 
 
-def test_drive_flank_is_gear_convex(flanks):
+def test_drive_flank_is_gear_convex(s0003_centred):
     # drive: the pinion pushes the gear when the gear turns towards -z (documented sign):
     # the gear convex flank's normal has n . (z x X) > 0 at the mean contact
+    flanks = s0003_centred[1]
     g = flanks.flank("gear", "drive")
     p = g.point(*flanks.mean_contact["drive"]["gear_uv"])
     assert p.n @ np.cross([0, 0, 1.0], p.r) > 0
     assert sample_grid(g, 4, 4).curvatures_per_mm[..., 0].max() < 0  # convex
 
 
-def test_limit_line_detected(s0003):
+def test_limit_line_detected(s0003_centred):
     # A 5-tooth pinion with a large gear addendum (c_ham = 0.5) and an 8 deg drive blade:
     # the envelope folds (limit line, Litvin & Fuentes 2004, sec. 6.3) above the line
     # the gear tip generates, i.e. inside the active pinion flank. Must raise with the
     # location, never return a flank.
     from dataclasses import replace
+    s0003 = s0003_centred[0]
     pair = replace(s0003, pinion_teeth=5, gear_teeth=70, gear_addendum_factor=0.5,
                    cutter=replace(s0003.cutter, pressure_angle_drive_deg=8.0))
     blank = pair.blank

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcontact.geometry.easeoff import EaseOff, apply_easeoff
-from gearcontact.geometry.flank import SIDES
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.pair import EaseOffCoefficients
 from gearcontact.validation import InputRangeError
 
@@ -18,7 +18,8 @@ def _easeoff(flanks, pair, side):
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_displacement_is_exactly_E_along_normal(flanks, s0003, side):
+def test_displacement_is_exactly_E_along_normal(s0003_centred, side):
+    s0003, flanks = s0003_centred
     base = flanks.pinion_conjugate.side(side)
     eased = flanks.pinion.side(side)
     eo = _easeoff(flanks, s0003, side)
@@ -64,9 +65,10 @@ def test_polynomial_terms():
     assert eo.relief_mm(1.0, 10.0) == 0.0
 
 
-def test_lengthwise_crowning_curvature(flanks):
+def test_lengthwise_crowning_curvature(s0003_centred):
     # pure lengthwise crowning c_LC changes the normal curvature along the face by
     # -2 c_LC (E subtracted along the outward normal), to first order in E
+    flanks = s0003_centred[1]
     base = flanks.pinion_conjugate.side("drive")
     u_m, v_m = flanks.mean_contact["drive"]["pinion_uv"]
     c = 0.5  # um/mm^2 (|E| <= 22 um over the face)
@@ -85,7 +87,8 @@ def test_lengthwise_crowning_curvature(flanks):
     assert dk == pytest.approx(expect, rel=2e-2)  # first-order theory: 2 % (E/curvature terms)
 
 
-def test_zero_easeoff_is_conjugate(flanks):
+def test_zero_easeoff_is_conjugate(s0003_centred):
+    flanks = s0003_centred[1]
     base = flanks.pinion_conjugate.side("coast")
     eo = EaseOff.from_coefficients(EaseOffCoefficients(), u_mean_mm=0.6, v_mean_mm=35.8)
     same = apply_easeoff(base, eo, limit_um=flanks.easeoff_limit_um)
@@ -93,7 +96,8 @@ def test_zero_easeoff_is_conjugate(flanks):
     assert np.allclose(p.r, q.r, atol=0) and np.allclose(p.n, q.n, atol=0)
 
 
-def test_too_large_easeoff_rejected(flanks):
+def test_too_large_easeoff_rejected(s0003_centred):
+    flanks = s0003_centred[1]
     base = flanks.pinion_conjugate.side("drive")
     eo = EaseOff.from_coefficients(EaseOffCoefficients(lengthwise_crowning_um_per_mm2=50.0),
                                    u_mean_mm=0.6, v_mean_mm=35.8)
@@ -104,9 +108,10 @@ def test_too_large_easeoff_rejected(flanks):
     assert "tooth thickness" in str(err.value)
 
 
-def test_easeoff_limit_is_a_fraction_of_the_measured_tooth_thickness(flanks):
+def test_easeoff_limit_is_a_fraction_of_the_measured_tooth_thickness(s0003_centred):
     # s_mn from the two conjugate flanks against the ISO 23509 order of magnitude: the
     # pinion of a 7-tooth hypoid is thickened above half the normal pitch pi m_mn / 2
+    flanks = s0003_centred[1]
     m = flanks.blank.mean_normal_module_mm
     s_mn = flanks.pinion_normal_thickness_mm
     assert 0.5 * np.pi * m < s_mn < np.pi * m
@@ -115,8 +120,9 @@ def test_easeoff_limit_is_a_fraction_of_the_measured_tooth_thickness(flanks):
         EaseOffCoefficients(bias_um_per_mm2=float("nan"))
 
 
-def test_pair_easeoff_values_used(flanks, s0003):
+def test_pair_easeoff_values_used(s0003_centred):
     # build_flanks used the pair's coefficients for each side
+    s0003, flanks = s0003_centred
     for side in SIDES:
         eo = _easeoff(flanks, s0003, side)
         coeffs = s0003.easeoff_drive if side == "drive" else s0003.easeoff_coast

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from gearcontact.geometry.flank import SIDES, build_flanks
+from gearcontact.geometry.flank import build_flanks
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.sampling import sample_grid
 from gearcontact.geometry.surface import Surface
 from gearcontact.validation import InputRangeError
@@ -17,7 +18,8 @@ def _unit(x):
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_gear_curvatures_equal_blade_cone(flanks, side):
+def test_gear_curvatures_equal_blade_cone(s0003_centred, side):
+    flanks = s0003_centred[1]
     g = flanks.flank("gear", side)
     grid = sample_grid(g, 16, 22)
     # Independent truth: a cone of revolution with half-angle (90 deg - alpha) has the
@@ -38,7 +40,8 @@ def test_gear_curvatures_equal_blade_cone(flanks, side):
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_gear_normals_and_derivatives(flanks, side):
+def test_gear_normals_and_derivatives(s0003_centred, side):
+    flanks = s0003_centred[1]
     g = flanks.flank("gear", side)
     assert isinstance(g, Surface)
     p = g.point(1.0, 0.5)
@@ -58,7 +61,8 @@ def test_gear_normals_and_derivatives(flanks, side):
     assert (P - q.r) @ q.n > 0
 
 
-def test_sliding_velocity_at_pitch_point_along_trace(flanks):
+def test_sliding_velocity_at_pitch_point_along_trace(s0003_centred):
+    flanks = s0003_centred[1]
     b = flanks.blank
     P = np.array(b.pitch_point_mm)
     v12 = flanks.kinematics.relative_velocity(P)
@@ -84,11 +88,12 @@ def test_sliding_velocity_at_pitch_point_along_trace(flanks):
         assert abs(_unit(q.r_v) @ t) == pytest.approx(1.0, abs=1e-12)
 
 
-def test_hands(flanks):
+def test_hands(s0003_centred):
     # ISO/AGMA: a right-hand member's tooth, outer half, is inclined clockwise as seen by
     # an observer looking at the face (from the apex side along the axis into the body).
     # Clockwise seen looking along +axis = positive rotation about +axis, so
     # right-hand <=> t_out . (axis x e_r) > 0, t_out = trace direction heel-wards.
+    flanks = s0003_centred[1]
     b = flanks.blank
     P = np.array(b.pitch_point_mm)
     t = _unit(flanks.kinematics.relative_velocity(P))
@@ -101,7 +106,8 @@ def test_hands(flanks):
     assert t @ np.cross(x, e_r1) > 0     # pinion: right hand (s0003)
 
 
-def test_grid_shapes_and_flank_set(flanks):
+def test_grid_shapes_and_flank_set(s0003_centred):
+    flanks = s0003_centred[1]
     for member in ("gear", "pinion"):
         for side in SIDES:
             f = flanks.flank(member, side)
@@ -119,7 +125,8 @@ def test_grid_shapes_and_flank_set(flanks):
         sample_grid(flanks.flank("gear", "drive"), 1, 22)
 
 
-def test_boundaries(flanks):
+def test_boundaries(s0003_centred):
+    flanks = s0003_centred[1]
     b = flanks.blank
     for side in SIDES:
         g = flanks.flank("gear", side)
@@ -166,9 +173,10 @@ def test_spiral_bevel_example_generates():
 
 
 @pytest.mark.parametrize("side", SIDES)
-def test_gear_principal_directions(flanks, side):
+def test_gear_principal_directions(s0003_centred, side):
     # cone: the zero-curvature direction is the generator (the blade line, along r_u),
     # the other one is the circle direction (along r_v); both unit and orthogonal
+    flanks = s0003_centred[1]
     g = flanks.flank("gear", side)
     grid = sample_grid(g, 5, 6)
     s = g.evaluate(*np.meshgrid(grid.u, grid.v, indexing="ij"))

@@ -21,14 +21,15 @@ from scipy.interpolate import RectBivariateSpline
 
 from gearcontact.geometry.basic_settings import complementary_pinion_setups, formate_gear_setups
 from gearcontact.geometry.conjugate import conjugate_pinion_flank
-from gearcontact.geometry.flank import SIDES, build_flanks, gear_flanks
+from gearcontact.geometry.flank import build_flanks
+from gearcontact.geometry.formate import SIDES, gear_flanks
 from gearcontact.geometry.generated import (EnvelopeSolver, formate_gear_flank,
                                             generated_pinion_flank, mean_contact_guess,
                                             work_to_body)
 from gearcontact.geometry.machine import MachineKinematics
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.line_contact import line_contact
-from gearcontact.tca.solve import ContactGuess
+from gearcontact.tca.types import ContactGuess
 from gearcontact.validation import InputRangeError
 
 PAIRS = {"spiral_bevel": "examples/iso23509_f2_spiral_bevel.toml", "hypoid": "s0003-centred"}

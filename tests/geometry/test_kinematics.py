@@ -13,11 +13,12 @@ import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.tca.analysis import analyze_pair
-from gearcontact.tca.solve import solve_mating_point
+from gearcontact.tca.mating import solve_mating_point
 
 
 @pytest.fixture(scope="module")
-def reference(s0003, flanks):
+def reference(s0003_centred):
+    s0003, flanks = s0003_centred
     res, _ = analyze_pair(s0003, phases=21, flanks=flanks)
     side = s0003.design_side
     return res.mean_point, flanks.flank("pinion", side), flanks.flank("gear", side)
@@ -31,7 +32,9 @@ def _solve(pair, reference, errors):
 
 @pytest.mark.parametrize("key,d_mm", [("P_mm", (1.0, 0.0, 0.0)), ("E_mm", (0.0, -1.0, 0.0))])
 @pytest.mark.parametrize("size_mm", [0.02, -0.02])
-def test_pinion_shift_is_taken_up_by_gear_rotation(s0003, reference, key, d_mm, size_mm):
+def test_pinion_shift_is_taken_up_by_gear_rotation(s0003_centred, reference, key, d_mm,
+                                                   size_mm):
+    s0003 = s0003_centred[0]
     mp = reference[0]
     moved = _solve(s0003, reference, AssemblyErrors(**{key: size_mm}))
     d = size_mm * np.array(d_mm)
@@ -42,7 +45,8 @@ def test_pinion_shift_is_taken_up_by_gear_rotation(s0003, reference, key, d_mm, 
 
 
 @pytest.mark.parametrize("key", ["P_mm", "E_mm"])
-def test_mating_point_shift_is_odd_in_the_error(s0003, reference, key):
+def test_mating_point_shift_is_odd_in_the_error(s0003_centred, reference, key):
+    s0003 = s0003_centred[0]
     mp = reference[0]
     plus = _solve(s0003, reference, AssemblyErrors(**{key: 0.01})).point_mm - mp.point_mm
     minus = _solve(s0003, reference, AssemblyErrors(**{key: -0.01})).point_mm - mp.point_mm

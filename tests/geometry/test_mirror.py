@@ -5,7 +5,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from gearcontact.geometry.flank import SIDES, build_flanks, with_easeoff
+from gearcontact.geometry.flank import build_flanks, with_easeoff
+from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.geometry.mirror import MIRROR
 from gearcontact.geometry.sampling import sample_grid
@@ -19,19 +20,20 @@ def _unit(x):
 
 
 @pytest.fixture(scope="module")
-def left(s0003):
+def left(s0003_centred):
+    s0003 = s0003_centred[0]
     pair = replace(s0003, pinion_hand="left")
     return pair, build_flanks(pair)
 
 
 @pytest.mark.parametrize("hand", ["right", "left"])
-def test_with_easeoff_is_build_flanks_bit_for_bit(s0003, flanks, left, hand):
+def test_with_easeoff_is_build_flanks_bit_for_bit(s0003_centred, left, hand):
     """Another ease-off applied to a built flank set (geometry.flank.with_easeoff: what
     analyze does with the synthesis' flanks instead of building them again) is
     build_flanks of that pair bit for bit, for both hands (a left-hand set eases its
     right-hand twin and mirrors it, as build_flanks does: pi - (pi - psi) is not
     always psi)."""
-    pair, base = (s0003, flanks) if hand == "right" else left
+    pair, base = s0003_centred if hand == "right" else left
     c = pair.easeoff_drive
     varied = replace(pair, easeoff_drive=replace(
         c, profile_crowning_um_per_mm2=1.25 * c.profile_crowning_um_per_mm2 + 0.5,
@@ -44,13 +46,14 @@ def test_with_easeoff_is_build_flanks_bit_for_bit(s0003, flanks, left, hand):
     assert not np.array_equal(got.pinion.drive.psi_nodes, base.pinion.drive.psi_nodes)
 
 
-def test_left_hand_flanks_are_the_mirror_image(flanks, left):
+def test_left_hand_flanks_are_the_mirror_image(s0003_centred, left):
     # Every Surface quantity of the left-hand flank at (u, v) is M times the right-hand
     # one (the second fundamental form, hence the principal curvatures, is invariant).
     # Gear: closed form with the reflected cutter frame -> rounding. Pinion: quintic
     # spline of pi - psi vs pi - spline(psi): rounding of psi (~1e-16 rad) amplified by
     # k derivatives ~ R / h^k (R ~ 40 mm, node spacing h ~ 0.02-0.05 mm): tolerances
     # 1e-12 mm (r), 1e-10 (first), 1e-8 1/mm (second; measured 1.3e-10).
+    flanks = s0003_centred[1]
     _, lh = left
     for member in ("gear", "pinion"):
         for side in SIDES:
@@ -101,12 +104,13 @@ def test_left_hand_kinematics_mirror():
             assert np.allclose(tl, MIRROR @ tr, rtol=0, atol=1e-15)
 
 
-def test_left_hand_tca_is_the_mirror_image(s0003, flanks, left):
+def test_left_hand_tca_is_the_mirror_image(s0003_centred, left):
     # The whole TCA of the mirrored pair (assembly errors of s0003-centred: none) meets
     # the right-hand one: per phase TE0 (Newton stops at 1e-11 mm, i.e. ~1e-7 arcsec),
     # contact points mirrored (1e-6 mm), relative principal curvatures (1e-9 1/mm).
     # Measured: 1.2e-10 arcsec on TE0.
     from gearcontact.tca.analysis import analyze_pair
+    s0003, flanks = s0003_centred
     pair, lh = left
     a = analyze_pair(s0003, side="drive", flanks=flanks, phases=21)[0]
     b = analyze_pair(pair, side="drive", flanks=lh, phases=21)[0]
@@ -150,13 +154,14 @@ def _design_point(pair, flanks, side="drive"):
                                  torque_nm=64.5, phases=21)
 
 
-def test_left_hand_design_point_reports_the_right_hand_angles(s0003, flanks, left):
+def test_left_hand_design_point_reports_the_right_hand_angles(s0003_centred, left):
     # The synthesis' design point (TE0 vertex, paint ellipse, path direction) of the mirror
     # image is the same bearing: the path and ellipse angles, measured in the flank frame
     # (l, p, n) that the reflection turns left-handed, must come out with the right-hand
     # pair's sign (a --path-angle-deg target means the same bearing for both hands).
     # Tolerance 1e-6 deg: the mirrored TCA agrees to rounding (test above, 1e-6 mm on
     # the contact points over a path step of ~1 mm).
+    s0003, flanks = s0003_centred
     pair, lh = left
     a, b = _design_point(s0003, flanks), _design_point(pair, lh)
     assert np.isfinite(a.path_angle_deg) and abs(a.path_angle_deg) > 1.0  # not trivially 0

@@ -74,7 +74,8 @@ def test_spline_zero_outside_has_constant_continuation():
 
 
 @pytest.mark.parametrize("side", ["drive", "coast"])
-def test_sheet_point_equals_fitpack_formulas(flanks, side):
+def test_sheet_point_equals_fitpack_formulas(s0003_centred, side):
+    flanks = s0003_centred[1]
     sheet = flanks.flank("pinion", side)
     rng = np.random.default_rng(7)
     lo = np.array([sheet.u_range[0], sheet.v_range[0]])
@@ -101,7 +102,8 @@ def test_sheet_point_equals_fitpack_formulas(flanks, side):
 
 
 @pytest.mark.parametrize("side", ["drive", "coast"])
-def test_cone_point_equals_numpy_evaluate(flanks, side):
+def test_cone_point_equals_numpy_evaluate(s0003_centred, side):
+    flanks = s0003_centred[1]
     gear = flanks.flank("gear", side)
     rng = np.random.default_rng(11)
     lo = np.array([gear.u_range[0], gear.v_range[0]])

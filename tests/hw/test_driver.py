@@ -11,7 +11,7 @@ from gearcontact.hw.regmap import DONE_FLAGS_SHIFT, MAGIC, get_map, identifier_b
 from gearcontact.preview.chain import chain_golden
 from gearcontact.preview.hertz.golden import hertz_golden
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, HERTZ_CYCLES
-from gearcontact.preview.qformat import FixedPointOverflow
+from gearcontact.contract.qformat import FixedPointOverflow
 from gearcontact.preview.stimulus import (
     STEEL_E_PRIME_CODE,
     chain_stimulus,
@@ -82,7 +82,7 @@ def _rtl_soc():
 
 
 def _soc_stencil():
-    from gearcontact.preview.fit.stencil import stencil_coordinates
+    from gearcontact.contract.stencil import stencil_coordinates
     s, t = stencil_coordinates()
     return 0.04 * s ** 2 + 0.01 * t ** 2 + 0.002 * s * t
 

@@ -11,7 +11,7 @@ import pytest
 from gearcontact.hw import backends as hardware_backends
 from gearcontact.hw import verilator as vl
 from gearcontact.preview.engine import BACKENDS, get_engine
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, HERTZ_CYCLES
 
 needs_verilator = pytest.mark.skipif(

@@ -19,7 +19,7 @@ from gearcontact.hw.regmap import MAGIC, get_map
 from gearcontact.hw.serve import SimComm, parse_address
 from gearcontact.preview.chain import chain_golden
 from gearcontact.preview.fit.golden import encode_gaps
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.stimulus import STEEL_E_PRIME_CODE
 from gearcontact.validation import InputRangeError
 

@@ -8,7 +8,7 @@ from gearcontact.hw.harness_cores import CORE_NAMES, get_bench
 from gearcontact.preview import stimulus as S
 from gearcontact.preview.gap.golden import GapVector, check_vector, gap_golden_codes
 from gearcontact.preview.hertz import formats as HF
-from gearcontact.preview.qformat import GAP
+from gearcontact.contract.qformat import GAP
 from gearcontact.validation import InputRangeError
 
 

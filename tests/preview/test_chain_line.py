@@ -118,7 +118,7 @@ def test_rtl_equals_golden_bit_for_bit_811_cycles():
     """Amaranth simulator, five stencils: elliptic (n = 0 and n = 1), a cylinder (line),
     a saddle (flagged not_elliptic), a fit overflow (flagged; about 8 s)."""
     from gearcontact.preview.chain_line_rtl import simulate_chain_line_core
-    from gearcontact.preview.qformat import GAP
+    from gearcontact.contract.qformat import GAP
     stencils = [_elliptic(0.05, 0.01, 0.4, 0.0, 0.05, -0.02),
                 _elliptic(0.0246, 2.3e-4, 0.3, 0.0, 0.01, -0.02),
                 _elliptic(0.0246, 0.0, 0.3, 0.0, 0.01, -0.02),

@@ -19,11 +19,11 @@ from gearcontact.preview.comb_rtl import CombCore, simulate_comb_core
 from gearcontact.preview.comb_rtl import convert_verilog as comb_verilog
 from gearcontact.preview.fit import golden as fit_golden
 from gearcontact.preview.fit.golden import FIT_CYCLES, encode_gaps
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.hertz import formats as F
 from gearcontact.preview.hertz.golden import encode_e_prime
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, COMB_CYCLES
-from gearcontact.preview.qformat import GAP, LOAD
+from gearcontact.contract.qformat import GAP, LOAD
 from gearcontact.preview.simulation import pulse, run_to_done, simulate_bench
 
 S, T = stencil_coordinates()

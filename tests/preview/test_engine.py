@@ -14,7 +14,7 @@ from gearcontact import STEEL, InputRangeError, Material, effective_modulus_mpa
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.preview.engine import (BACKENDS, GoldenEngine, PreviewEngine, ReferenceEngine,
                                         get_engine)
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.contract.stencil import stencil_coordinates
 
 E_PRIME_STEEL = effective_modulus_mpa(STEEL)
 

@@ -104,7 +104,7 @@ def test_shell_vs_fe_fine(pairs, name, member):
     assert np.all(np.abs(ratio - 1.0) <= TOLERANCE_FINE), ratio
 
 
-def test_bad_input(s0003):
+def test_bad_input(s0003_centred):
     plate = RectangularPlate(6.0, 4.0, 2.0, Material(E_MPA, NU))
     with pytest.raises(InputRangeError, match="n_eta"):
         build_fe(plate, n_eta=1, n_rim=0)
@@ -113,7 +113,7 @@ def test_bad_input(s0003):
     # a body whose faces cross (thickness < 0 towards the tip): inverted cells
     with pytest.raises(InputRangeError, match="FE mesh"):
         build_fe(_Crossing(Material(E_MPA, NU)), n_xi=2, n_eta=4, n_zeta=1, n_rim=0)
-    pair, flanks = s0003
+    pair, flanks = s0003_centred
     from gearcontact.structure.tooth import tooth_geometry
 
     tooth = tooth_geometry(flanks, "gear", material=pair.gear_material)

@@ -75,8 +75,8 @@ def test_tapered_cantilever_against_beam_integral():
 
 
 @pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_tooth_reciprocity_definiteness_convergence(s0003, member):
-    pair, flanks = s0003
+def test_tooth_reciprocity_definiteness_convergence(s0003_centred, member):
+    pair, flanks = s0003_centred
     tooth = tooth_geometry(flanks, member, material=pair.pinion_material)
     XI, ETA = np.meshgrid(np.linspace(-0.8, 0.8, 5), np.linspace(-0.8, 0.8, 4), indexing="ij")
     pts_d = tooth.points_at("drive", XI.ravel(), ETA.ravel())
@@ -109,8 +109,8 @@ def test_tooth_reciprocity_definiteness_convergence(s0003, member):
     assert shell.n_functions == 3 * 13 ** 2
 
 
-def test_tooth_shell_is_cached_and_rim_softens(s0003):
-    pair, flanks = s0003
+def test_tooth_shell_is_cached_and_rim_softens(s0003_centred):
+    pair, flanks = s0003_centred
     a = tooth_shell(flanks, "gear", material=pair.gear_material, order=5)
     assert tooth_shell(flanks, "gear", material=pair.gear_material, order=5) is a
     assert a.rim.stiffening == RIM_STIFFENING["gear"]

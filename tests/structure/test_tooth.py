@@ -13,8 +13,8 @@ from gearcontact.validation import InputRangeError
 
 
 @pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_mid_surface_normal_points_coast_to_drive(s0003, member):
-    pair, flanks = s0003
+def test_mid_surface_normal_points_coast_to_drive(s0003_centred, member):
+    pair, flanks = s0003_centred
     tooth = tooth_geometry(flanks, member, material=pair.gear_material)
     g = np.linspace(-1.0, 1.0, 9)
     xi, eta = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))

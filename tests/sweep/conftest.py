@@ -1,17 +1,8 @@
-"""Fixtures of the sweep tests: the centred pair, its flanks and one LocalCluster of
-two worker processes shared by the modules (its start-up costs seconds)."""
+"""Fixtures of the sweep tests: one LocalCluster of two worker processes shared by the
+modules (its start-up costs seconds); the centred pair and its flanks are the shared
+``s0003_centred`` of tests/conftest.py."""
 
 import pytest
-
-
-@pytest.fixture(scope="package")
-def pair(s0003_centred):
-    return s0003_centred[0]
-
-
-@pytest.fixture(scope="package")
-def flanks(s0003_centred):
-    return s0003_centred[1]
 
 
 @pytest.fixture(scope="package")

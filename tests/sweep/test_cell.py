@@ -37,7 +37,8 @@ Z = np.array([0.0, 0.0, 1.0])
 
 
 @pytest.fixture(scope="module")
-def nominal(pair, flanks):
+def nominal(s0003_centred):
+    pair, flanks = s0003_centred
     res, _ = analyze_pair(pair, side="drive", phases=PHASES, flanks=flanks)
     return res, compute_point(pair, flanks, {}, [64.5], side="drive", compute=("tca",),
                               phases=PHASES)
@@ -76,8 +77,9 @@ def _predicted_face_shift_mm(res, pair, flanks, d) -> float:
 
 @pytest.mark.parametrize("key,direction", [("E_mm", (0.0, -1.0, 0.0)),
                                            ("P_mm", (1.0, 0.0, 0.0))])
-def test_pure_e_or_p_moves_the_pattern_as_the_kinematics_predict(pair, flanks, nominal,
+def test_pure_e_or_p_moves_the_pattern_as_the_kinematics_predict(s0003_centred, nominal,
                                                                  key, direction):
+    pair, flanks = s0003_centred
     res, base = nominal
     d = STEP_MM * np.array(direction)
     want = _predicted_face_shift_mm(res, pair, flanks, d)

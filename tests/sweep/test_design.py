@@ -53,13 +53,15 @@ def _open(report):
 
 
 @pytest.fixture(scope="module")
-def serial(pair, tmp_path_factory):
+def serial(s0003_centred, tmp_path_factory):
+    pair = s0003_centred[0]
     rep = run_sweep(pair, GRID, out=tmp_path_factory.mktemp("serial"), side="drive",
                     phases=PHASES, workers=0, progress=False)
     return rep, _open(rep)
 
 
-def test_variant_replaces_exactly_the_named_key(pair):
+def test_variant_replaces_exactly_the_named_key(s0003_centred):
+    pair = s0003_centred[0]
     v = vary_design(pair, {KEY: 0.2, "cutter.radius_mm": 44.0})
     assert v.easeoff_drive.lengthwise_crowning_um_per_mm2 == 0.2
     assert v.cutter.radius_mm == 44.0
@@ -75,14 +77,17 @@ def test_variant_replaces_exactly_the_named_key(pair):
     ("cutter.radius_mm=-1:45:2", "cutter.radius_mm"),
     ("cutter.edge_radius_mm=0.1:0.3:2", "cutter.edge_radius_mm"),
     ("easeoff.coast.bias_um_per_mm2=0:2000:2", "easeoff.bias_um_per_mm2")])
-def test_impossible_variant_is_named_before_any_build(pair, spec, named):
+def test_impossible_variant_is_named_before_any_build(s0003_centred, spec, named):
+    pair = s0003_centred[0]
     grid = SweepGrid((parse_vary(spec),), (64.5,))
     with pytest.raises(InputRangeError) as exc:
         check_variants(pair, grid)
     assert f"--vary {spec.split('=')[0]}=" in str(exc.value) and named in str(exc.value)
 
 
-def test_cluster_equals_serial_with_one_build_per_variant(pair, client, serial, tmp_path):
+def test_cluster_equals_serial_with_one_build_per_variant(s0003_centred, client,
+                                                          serial, tmp_path):
+    pair = s0003_centred[0]
     rep_s, ds_s = serial
     rep = run_sweep(pair, GRID, out=tmp_path, side="drive", phases=PHASES, client=client,
                     progress=False)
@@ -118,9 +123,10 @@ def test_lengthwise_crowning_raises_te0_linearly_and_shortens_the_paint(serial):
         assert bound <= a[2] / a[0] < 1.0
 
 
-def test_failed_variant_is_recorded_on_its_cells_only(pair, tmp_path):
+def test_failed_variant_is_recorded_on_its_cells_only(s0003_centred, tmp_path):
     # 1000 um/mm^2 of profile crowning is far beyond the ease-off limit (5 % of the
     # tooth thickness, geometry.easeoff): that variant's flank build fails by name
+    pair = s0003_centred[0]
     grid = SweepGrid((parse_vary("easeoff.drive.profile_crowning_um_per_mm2=8:1000:2"),),
                      (64.5,))
     rep = run_sweep(pair, grid, out=tmp_path, side="drive", phases=PHASES, workers=0,
@@ -133,7 +139,8 @@ def test_failed_variant_is_recorded_on_its_cells_only(pair, tmp_path):
         "easeoff" in ds["error"].values[1, 0].lower()
 
 
-def test_easeoff_variant_on_the_nominal_conjugate_flanks_is_the_full_build(pair, flanks):
+def test_easeoff_variant_on_the_nominal_conjugate_flanks_is_the_full_build(s0003_centred):
+    pair, flanks = s0003_centred
     design = ((KEY, 0.2), ("easeoff.coast.bias_um_per_mm2", 0.5))
     quick = build_variant(pair, design, Variant(pair, flanks, 0.0))
     full = build_variant(pair, design)

@@ -29,7 +29,8 @@ def _open(report):
     return xr.open_zarr(report.store, consolidated=False).load()
 
 
-def test_cluster_sweep_equals_serial_points(pair, flanks, client, tmp_path):
+def test_cluster_sweep_equals_serial_points(s0003_centred, client, tmp_path):
+    pair, flanks = s0003_centred
     rep = run_sweep(pair, GRID, out=tmp_path, side="drive", phases=PHASES, client=client,
                     progress=False)
     assert (rep.computed, rep.skipped, rep.failed) == (4, 0, 0)
@@ -47,13 +48,14 @@ def test_cluster_sweep_equals_serial_points(pair, flanks, client, tmp_path):
 
 
 @pytest.mark.filterwarnings("error::gearcontact.halfspace.ellipse.CoarseGridWarning")
-def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(pair, flanks, tmp_path):
+def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(s0003_centred, tmp_path):
     from gearcontact.halfspace.ellipse import CoarseGridWarning
     from gearcontact.ltca.lte import loaded_te
     from gearcontact.ltca.pair_ltca import single_pair_ltca
     from gearcontact.sweep.cell import LTE_CELLS, LTE_PHASES, lte_stride
     from gearcontact.tca.analysis import analyze_pair
 
+    pair, flanks = s0003_centred
     grid = SweepGrid((parse_vary("E=0:0:1"),), (64.5, 129.0))
     rep = run_sweep(pair, grid, out=tmp_path, side="drive", compute=("tca", "ltca"),
                     phases=PHASES, cells=24, workers=0, progress=False)
@@ -80,7 +82,9 @@ def test_zero_misalignment_reproduces_the_nominal_tca_and_ltca(pair, flanks, tmp
     assert p[1] / p[0] == pytest.approx(2 ** (1 / 3), rel=1e-9)
 
 
-def test_interrupted_sweep_resumes_without_recomputing(pair, client, tmp_path, monkeypatch):
+def test_interrupted_sweep_resumes_without_recomputing(s0003_centred, client, tmp_path,
+                                                       monkeypatch):
+    pair = s0003_centred[0]
     whole = _open(run_sweep(pair, GRID, out=tmp_path / "whole", side="drive",
                             phases=PHASES, client=client, progress=False))
     real_write, written = store_mod.write_point, []
@@ -105,12 +109,13 @@ def test_interrupted_sweep_resumes_without_recomputing(pair, client, tmp_path, m
     xr.testing.assert_identical(_open(rep), whole)
 
 
-def test_failed_point_is_recorded_not_fatal(pair, tmp_path):
+def test_failed_point_is_recorded_not_fatal(s0003_centred, tmp_path):
     # A lengthwise crowning of 40 um/mm^2 relieves the toe/tip corner by ~1.7 mm, far
     # beyond the ease-off limit (5 % of the pinion mean normal tooth thickness, ~0.1 mm):
     # that variant's flanks cannot be built, a named error recorded on its point. (A
     # misalignment no longer serves here: since edge-to-surface contact is modelled,
     # every error within the sweep limits gives a result.)
+    pair = s0003_centred[0]
     grid = SweepGrid((parse_vary("easeoff.drive.lengthwise_crowning_um_per_mm2=0.1:40:2"),),
                      (64.5,))
     rep = run_sweep(pair, grid, out=tmp_path, side="drive", phases=PHASES, workers=0,
@@ -126,9 +131,10 @@ def test_failed_point_is_recorded_not_fatal(pair, tmp_path):
     assert set(CELL_VARIABLES) >= set(TCA_VARIABLES) and "lcp_p90_mpa" not in ds
 
 
-def test_other_grid_in_the_same_store_is_refused(pair, tmp_path):
+def test_other_grid_in_the_same_store_is_refused(s0003_centred, tmp_path):
     from gearcontact.validation import InputRangeError
 
+    pair = s0003_centred[0]
     grid = SweepGrid((parse_vary("E=0:0:1"),), (64.5,))
     run_sweep(pair, grid, out=tmp_path, side="drive", phases=PHASES, workers=0,
               progress=False)

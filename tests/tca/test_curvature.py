@@ -9,7 +9,8 @@ import pytest
 
 from gearcontact.tca.curvature import (PAINT_THICKNESS_MM, contact_ellipse,
                                        relative_curvature)
-from gearcontact.tca.solve import ContactGuess, solve_tca
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import ContactGuess
 
 from .analytic import sphere_torus_case
 
@@ -53,7 +54,7 @@ def test_contact_ellipse_axes_and_orientation(case_path):
 
 
 def test_edge_phase_has_no_curvature(case_path):
-    from gearcontact.tca.solve import MatingPoint
+    from gearcontact.tca.types import MatingPoint
     case, _ = case_path
     with pytest.raises(ValueError, match="edge-contact phase"):
         relative_curvature(case.pinion, case.gear, case.kin,

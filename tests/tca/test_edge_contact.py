@@ -17,7 +17,9 @@ from scipy.optimize import least_squares
 
 from gearcontact.tca.edge_contact import (FLANK_EDGES, edge_parameters, edge_span,
                                           solve_edge_contact)
-from gearcontact.tca.solve import ARCSEC_PER_RAD, ContactGuess, solve_mating_point, solve_tca
+from gearcontact.tca.mating import solve_mating_point
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 #: Solver boundary variable of each edge.
 _HELD = {"pinion toe": ("v1", 1, 0), "pinion heel": ("v1", 1, 1),
@@ -31,9 +33,10 @@ def _flanks(flanks):
 
 
 @pytest.fixture(scope="module")
-def full_path(s0003_pair, s0003_flanks, s0003_drive):
+def full_path(s0003_centred, s0003_drive):
     """The nominal drive path of one pair over the mesh cycle's phases with its whole
     edge tails (no TE0 limit: the mesh cycle cuts tails that cannot carry)."""
+    s0003_pair, s0003_flanks = s0003_centred
     pinion, gear = _flanks(s0003_flanks)
     return solve_tca(pinion, gear, s0003_pair.kinematics(), s0003_drive.cycle.path.phi1_rad,
                      start=s0003_drive.mean_point.as_guess(), edge_te_limit_arcsec=np.inf)
@@ -57,12 +60,13 @@ def test_nominal_path_switches_to_edge_contact_at_both_ends(full_path):
     assert edge_pts and all(np.isfinite(p.te0_arcsec) for p in edge_pts)
 
 
-def test_edge_contact_equals_surface_contact_exactly_on_the_edge(s0003_pair, s0003_flanks,
+def test_edge_contact_equals_surface_contact_exactly_on_the_edge(s0003_centred,
                                                                  s0003_drive, full_path):
     """At the phase where the surface mating point lies on the edge, the edge contact
     gives the same gear angle within 1e-4 arcsec and the same point within 1e-6 mm
     (both Newton solves converge to 1e-10 mm; the 1-D Brent search along the edge to
     1e-5 mm, whose error enters phi2 only at second order)."""
+    s0003_pair, s0003_flanks = s0003_centred
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
     for surf, edge in _transitions(full_path):
@@ -96,12 +100,13 @@ def _signed_distances(surface, pose, points, normal_sign, uv0):
     return np.array(out)
 
 
-def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, full_path):
+def test_no_edge_point_penetrates_at_an_edge_contact(s0003_centred, full_path):
     """At an edge phase a few steps past the switch the flanks are posed at the edge
     contact's angles: dense samples (41 per edge) of all eight edges keep a signed
     distance >= -1e-7 mm to the other flank (no penetration: the contact is the first
     touch; tolerance: projection residual), and the touching point has distance 0
     within 1e-7 mm."""
+    s0003_pair, s0003_flanks = s0003_centred
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
     path = full_path
@@ -131,10 +136,11 @@ def test_no_edge_point_penetrates_at_an_edge_contact(s0003_pair, s0003_flanks, f
 
 
 def test_interior_edge_contact_has_the_edge_tangent_in_the_touched_plane(
-        s0003_pair, s0003_flanks, full_path):
+        s0003_centred, full_path):
     """At an edge contact inside its edge (not a corner), d phi2/ds = 0: the edge
     tangent lies in the touched surface's tangent plane (|t . n| < 1e-5, the Brent
     tolerance 1e-5 mm times the rate of turn of the edge tangent, well below 1/mm)."""
+    s0003_pair, s0003_flanks = s0003_centred
     pinion, gear = _flanks(s0003_flanks)
     kin = s0003_pair.kinematics()
     checked = 0
@@ -162,7 +168,8 @@ def test_interior_edge_contact_has_the_edge_tangent_in_the_touched_plane(
 
 
 @pytest.mark.parametrize("samples", [2])
-def test_too_few_samples_is_refused(s0003_pair, s0003_flanks, s0003_drive, samples):
+def test_too_few_samples_is_refused(s0003_centred, s0003_drive, samples):
+    s0003_pair, s0003_flanks = s0003_centred
     pinion, gear = _flanks(s0003_flanks)
     mp = s0003_drive.mean_point
     with pytest.raises(ValueError, match="samples"):

@@ -24,7 +24,7 @@ from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.edges import PatternOffFlank, edge_name, loaded_patch_edges
 from gearcontact.tca.stencil import gap_at
-from gearcontact.tca.solve import solve_mating_point
+from gearcontact.tca.mating import solve_mating_point
 
 
 def _misaligned(pair, **err):
@@ -73,11 +73,12 @@ def _first_order_bearing_shift(pair, flanks, nominal, d, side="drive"):
     ({"G_mm": 0.01}, np.array([0.0, 0.0, 0.01])),     # gear along +z
     ({"P_mm": 0.01}, np.array([-0.01, 0.0, 0.0])),    # pinion along +x
 ])
-def test_contact_shift_follows_first_order_kinematics(s0003_pair, s0003_flanks, s0003_drive,
+def test_contact_shift_follows_first_order_kinematics(s0003_centred, s0003_drive,
                                                       err, d):
     """The misaligned contact at the reference phase moves as the first-order
     sensitivity predicts: direction and size within 5 % (second-order terms of a
     0.01 mm error and the flanks' non-quadratic shape; measured 0.3-2 %)."""
+    s0003_pair, s0003_flanks = s0003_centred
     mp = s0003_drive.mean_point
     q_pred, basis = _first_order_shift(s0003_pair, s0003_flanks, mp, d)
     kin = _misaligned(s0003_pair, **err).kinematics()
@@ -93,12 +94,13 @@ def test_contact_shift_follows_first_order_kinematics(s0003_pair, s0003_flanks, 
                                  {"P_mm": -0.1}, {"G_mm": 0.1}, {"G_mm": -0.1},
                                  {"alpha_deg": 0.05}, {"alpha_deg": -0.05}])
 def test_misaligned_tca_runs_and_pattern_moves_with_the_kinematics(
-        s0003_pair, s0003_flanks, s0003_drive, err):
+        s0003_centred, s0003_drive, err):
     """Every mounting-tolerance case of issue 11 gives a TCA result; the bearing (TE0
     vertex) moves as the first-order kinematics of the nominal contact predict
     (:func:`_first_order_bearing_shift`), and the edges reached are named per phase
     (alpha = +-0.05 deg: result and edge naming only; its first-order term is a
     rotation, not modelled by the helper)."""
+    s0003_pair, s0003_flanks = s0003_centred
     res, _ = analyze_pair(_misaligned(s0003_pair, **err), flanks=s0003_flanks, phases=15)
     mp0 = s0003_drive.mean_point
     key, value = next(iter(err.items()))
@@ -128,9 +130,10 @@ def test_misaligned_tca_runs_and_pattern_moves_with_the_kinematics(
             assert member in ("pinion", "gear") and where in ("toe", "heel", "tip", "root")
 
 
-def test_large_offset_error_reaches_the_heel_side_edge(s0003_pair, s0003_flanks):
+def test_large_offset_error_reaches_the_heel_side_edge(s0003_centred):
     """E = -0.2 mm moves the bearing heelwards by several mm (first-order: heelwards);
     the pattern reaches an edge at every phase and says which."""
+    s0003_pair, s0003_flanks = s0003_centred
     res, _ = analyze_pair(_misaligned(s0003_pair, E_mm=-0.2), flanks=s0003_flanks, phases=15)
     assert not res.pattern_on_flank.any()
     assert sum(res.edge_counts.values()) == 15
@@ -138,9 +141,10 @@ def test_large_offset_error_reaches_the_heel_side_edge(s0003_pair, s0003_flanks)
 
 @pytest.mark.parametrize("err, edge", [({"G_mm": -10.0}, "pinion heel"),
                                        ({"alpha_deg": 45.0}, "pinion heel")])
-def test_pattern_off_the_flank_is_a_named_error(s0003_pair, s0003_flanks, err, edge):
+def test_pattern_off_the_flank_is_a_named_error(s0003_centred, err, edge):
     """Wild errors leave the flank at every start and no flank edge touches the other
     flank there either: PatternOffFlank names the edge, never a bare EdgeContact."""
+    s0003_pair, s0003_flanks = s0003_centred
     with pytest.raises(PatternOffFlank) as info:
         analyze_pair(_misaligned(s0003_pair, **err), flanks=s0003_flanks, phases=15)
     assert info.value.where == edge
@@ -242,7 +246,7 @@ def test_ltca_of_an_edge_contact_is_edge_loaded_at_that_edge(name):
 
 @pytest.mark.parametrize("torque, reaches", [(48.0, False), (64.5, True)])
 def test_ltca_edge_flag_follows_the_ellipse_reaching_the_flank_boundary(
-        s0003_pair, s0003_flanks, s0003_drive, torque, reaches):
+        s0003_centred, s0003_drive, torque, reaches):
     """The LTCA's edge_contact flag means the loaded patch reaches a flank boundary.
     Independent geometry: the Hertz ellipse of the preview at that load (semi-axes
     a, b, untruncated), its outline projected on both flanks (gap_at): at 48 N·m it is
@@ -250,6 +254,7 @@ def test_ltca_edge_flag_follows_the_ellipse_reaching_the_flank_boundary(
     7 of 64 outline points). The centred preset at 64.5 N·m is still Hertzian (peak
     within 10 % of p90): the patch grazes the boundary with its rim, whose pressure
     stays below p90 (measured 0.49 p90) - the flag and PatchEdges say both."""
+    s0003_pair, s0003_flanks = s0003_centred
     pinion, gear = s0003_flanks.flank("pinion", "drive"), s0003_flanks.flank("gear", "drive")
     kin = s0003_pair.kinematics()
     case = single_pair_ltca(s0003_drive, s0003_flanks, s0003_pair, torque, cells=64)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from gearcontact.geometry.flank import FlankBoundary, cone_vector
+from gearcontact.geometry.formate import FlankBoundary, cone_vector
 from gearcontact.geometry.sheet import PinionCone, RadialSheet
 from gearcontact.tca import stencil
 from gearcontact.tca.gap_kernel import kernel_surface, sheet_point
@@ -24,7 +24,8 @@ def _numpy_path(monkeypatch):
 
 
 @pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_compiled_evaluation_equals_flank_evaluate(s0003_flanks, member):
+def test_compiled_evaluation_equals_flank_evaluate(s0003_centred, member):
+    s0003_flanks = s0003_centred[1]
     rng = np.random.default_rng(3)
     d = np.zeros(6)
     vec = np.empty((7, 3))
@@ -54,8 +55,9 @@ def _fields(flanks, pair, mp, allow_outside, frame="principal"):
 
 
 @pytest.mark.parametrize("allow_outside", [False, True])
-def test_compiled_gap_field_equals_numpy_path(s0003_pair, s0003_flanks, s0003_drive,
+def test_compiled_gap_field_equals_numpy_path(s0003_centred, s0003_drive,
                                                allow_outside, monkeypatch):
+    s0003_pair, s0003_flanks = s0003_centred
     path = s0003_drive.cycle.path
     interior = np.flatnonzero(~path.edge)
     # P0, and a point near the path's end whose field is partly off the flanks
@@ -76,8 +78,9 @@ def test_compiled_gap_field_equals_numpy_path(s0003_pair, s0003_flanks, s0003_dr
     assert slow[1].on_flank.any() and not slow[1].on_flank.all()
 
 
-def test_compiled_stencil_equals_numpy_path(s0003_pair, s0003_flanks, s0003_drive,
+def test_compiled_stencil_equals_numpy_path(s0003_centred, s0003_drive,
                                             monkeypatch):
+    s0003_pair, s0003_flanks = s0003_centred
     pin, gear = s0003_flanks.flank("pinion", "drive"), s0003_flanks.flank("gear", "drive")
     kin, mp = s0003_pair.kinematics(), s0003_drive.mean_point
     fast = stencil.hardware_stencil(pin, gear, kin, mp, off_flank="quadric")
@@ -125,11 +128,12 @@ def test_sheet_intersections_match_closed_form():
     assert np.abs(lam - truth).max() < 1e-9
 
 
-def test_cone_lines_closed_form(s0003_flanks):
+def test_cone_lines_closed_form(s0003_centred):
     # a line through a flank point along its normal meets the blade cone there
     # (lambda = 0 to rounding) and again across the cutter (the far root is not
     # taken); a line parallel to the axis at the axis never meets it (NaN)
     from gearcontact.tca.gap_kernel import cone_lines
+    s0003_flanks = s0003_centred[1]
     gear = s0003_flanks.flank("gear", "drive")
     par = gear.kernel_parameters
     rot, trans = np.eye(3), np.zeros(3)

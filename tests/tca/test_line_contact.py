@@ -16,7 +16,8 @@ from gearcontact.tca.line_contact import LineContact, is_conjugate
 
 
 @pytest.fixture(scope="module")
-def conjugate_pair(s0003_pair):
+def conjugate_pair(s0003_centred):
+    s0003_pair = s0003_centred[0]
     return dataclasses.replace(s0003_pair, easeoff_drive=EaseOffCoefficients())
 
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from gearcontact.tca.mesh import mesh_cycle
-from gearcontact.tca.solve import ARCSEC_PER_RAD, ContactGuess
+from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 from .analytic import sphere_torus_case
 
@@ -76,10 +76,11 @@ def test_short_path_is_reported():
 
 
 @pytest.mark.parametrize("side", ["drive", "coast"])
-def test_coarse_phase_grid_follows_the_paths_to_their_ends(s0003_pair, s0003_flanks, side):
+def test_coarse_phase_grid_follows_the_paths_to_their_ends(s0003_centred, side):
     """7 phases per pitch (substeps of the continuation): the contact path of pair 0
     reaches as far as with 61 phases, to within one coarse step, and its points are
     the fine path's at the shared phases."""
+    s0003_pair, s0003_flanks = s0003_centred
     pin, gear = s0003_flanks.flank("pinion", side), s0003_flanks.flank("gear", side)
     kin = s0003_pair.kinematics()
     mean = s0003_flanks.mean_contact[side]

@@ -10,12 +10,12 @@ import zlib
 import numpy as np
 import pytest
 
-from gearcontact.preview.qformat import COORD, CURVATURE, FixedPointOverflow
+from gearcontact.contract.qformat import COORD, CURVATURE, FixedPointOverflow
 from gearcontact.tca.mesh import mesh_cycle
 from gearcontact.tca.phase_table import (ELLIPSE_ANGLE, HEADER_BYTES, RECORD_BYTES, TE0,
                                          PhaseTable, decode_binary, encode_binary,
                                          phase_table, read_json, write_json)
-from gearcontact.tca.solve import ContactGuess
+from gearcontact.tca.types import ContactGuess
 
 from .analytic import sphere_torus_case
 

@@ -15,8 +15,9 @@ from gearcontact.geometry.kinematics import AssemblyErrors, MeshKinematics
 from gearcontact.geometry.pair import EaseOffCoefficients
 from gearcontact.materials import effective_modulus_mpa
 from gearcontact.tca.curvature import relative_curvature
-from gearcontact.tca.solve import (ARCSEC_PER_RAD, ContactGuess, solve_mating_point,
-                                   solve_tca)
+from gearcontact.tca.mating import solve_mating_point
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 #: gear torque 64.5 N m -> normal load 1971 N (docs/spec.md sec. 3, docs/geometry.md sec. 2)
 W_DESIGN_N = 1971.0
@@ -29,7 +30,8 @@ def _start(pair, flanks, side):
                         pair.ratio * phi2, phi2)
 
 
-def test_calibrated_te0_and_bearing(s0003_pair, s0003_drive):
+def test_calibrated_te0_and_bearing(s0003_centred, s0003_drive):
+    s0003_pair = s0003_centred[0]
     res = s0003_drive
     cyc = res.cycle
     assert len(cyc.phi1_rad) >= 61
@@ -59,10 +61,11 @@ def test_calibrated_te0_and_bearing(s0003_pair, s0003_drive):
     assert cyc.envelope_arcsec[cyc.mean_index] == pytest.approx(0.0, abs=1e-9)
 
 
-def test_conjugate_pair_has_line_contact_and_zero_te(s0003_pair, s0003_flanks, s0003_drive):
+def test_conjugate_pair_has_line_contact_and_zero_te(s0003_centred, s0003_drive):
     """Without ease-off the contact equations are consistent along a whole line: with
     phi1 and the gear's lengthwise parameter both fixed, Gauss-Newton still reaches a
     zero residual, and every point of the line has the same phi2 (TE0 = 0)."""
+    s0003_pair, s0003_flanks = s0003_centred
     flanks, pair = s0003_flanks, s0003_pair
     pin, gear = flanks.pinion_conjugate.side("drive"), flanks.flank("gear", "drive")
     kin = pair.kinematics()
@@ -119,7 +122,8 @@ def _predicted_te(path, eo, kin):
     return te - te[i]
 
 
-def test_lengthwise_crowning_gives_predicted_parabolic_te(s0003_pair, s0003_flanks):
+def test_lengthwise_crowning_gives_predicted_parabolic_te(s0003_centred):
+    s0003_pair, s0003_flanks = s0003_centred
     pair, flanks = s0003_pair, s0003_flanks
     kin = pair.kinematics()
     # (1) relief constant along the valley (no lengthwise crowning): the path follows
@@ -169,10 +173,11 @@ def _shift(pair, flanks, side, errors):
 
 
 @pytest.mark.parametrize("name", ["E", "P", "G", "alpha"])
-def test_assembly_errors_shift_te_by_rigid_body_kinematics(s0003_pair, s0003_flanks, name):
+def test_assembly_errors_shift_te_by_rigid_body_kinematics(s0003_centred, name):
     """A small mounting error displaces the pinion (E, P, alpha) or the gear (G); to
     first order the gear must turn by dpsi with dpsi n.(z x X) = n.(pinion
     displacement - gear displacement) at the mating point to keep contact."""
+    s0003_pair, s0003_flanks = s0003_centred
     pair, flanks = s0003_pair, s0003_flanks
     size = 0.01
     errors = AssemblyErrors(**{{"E": "E_mm", "P": "P_mm", "G": "G_mm",
@@ -194,10 +199,11 @@ def test_assembly_errors_shift_te_by_rigid_body_kinematics(s0003_pair, s0003_fla
 
 
 def test_offset_and_pinion_axial_errors_move_bearings_lengthwise_oppositely(
-        s0003_pair, s0003_flanks):
+        s0003_centred):
     """Gear practice (V/H check): an offset (V) or pinion-axial (H) change moves the
     bearing along the face (toe <-> heel), in opposite directions on drive and coast;
     a gear-axial (J) change moves both sides the same way."""
+    s0003_pair, s0003_flanks = s0003_centred
     pair, flanks = s0003_pair, s0003_flanks
     moves = {}
     for name, err in (("E", AssemblyErrors(E_mm=0.05)), ("P", AssemblyErrors(P_mm=0.05)),
@@ -215,7 +221,7 @@ def test_offset_and_pinion_axial_errors_move_bearings_lengthwise_oppositely(
     assert moves["G", "drive"][0] * moves["G", "coast"][0] > 0
 
 
-def test_shape_operator_curvatures_match_gap_field_fit(s0003_pair, s0003_flanks, s0003_drive):
+def test_shape_operator_curvatures_match_gap_field_fit(s0003_centred, s0003_drive):
     """A least-squares quadratic fitted to the exact gap field on small symmetric 7 x 7
     stencils (flank frame) converges to the shape-operator A-, B- as the spacing h -> 0:
     the fit is biased by the quartic terms of the real gap, ~h^2, so the two finest
@@ -224,6 +230,7 @@ def test_shape_operator_curvatures_match_gap_field_fit(s0003_pair, s0003_flanks,
     along the contact line, where the quartic terms weigh most: +5 % at h = 0.2 mm)."""
     from gearcontact.tca.stencil import hardware_stencil
 
+    s0003_pair, s0003_flanks = s0003_centred
     pair, flanks, mp = s0003_pair, s0003_flanks, s0003_drive.mean_point
     pin, gear = flanks.flank("pinion", "drive"), flanks.flank("gear", "drive")
     fits = []

@@ -11,8 +11,10 @@ import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors
 from gearcontact.tca.mating import _residual_and_jacobian
-from gearcontact.tca.solve import (ARCSEC_PER_RAD, ContactGuess, EdgeContact,
-                                   TcaConvergenceError, solve_mating_point, solve_tca)
+from gearcontact.tca.mating import solve_mating_point
+from gearcontact.tca.solve import solve_tca
+from gearcontact.tca.types import (ARCSEC_PER_RAD, ContactGuess, EdgeContact,
+                                   TcaConvergenceError)
 
 from .analytic import Torus, sphere_torus_case
 
@@ -146,7 +148,7 @@ def test_edge_contact_beyond_a_narrow_face_matches_the_closed_form():
     torus's edge circle touching the sphere; its gear angle matches the closed-form
     circle-sphere touch within 1e-9 rad (Newton 1e-10 mm over ~30 mm radii; Brent along
     the edge 1e-5 mm, second order in phi2), and TE0 is continuous across the switch."""
-    from gearcontact.tca.solve import ARCSEC_PER_RAD
+    from gearcontact.tca.types import ARCSEC_PER_RAD
 
     case = sphere_torus_case()
     g = case.gear

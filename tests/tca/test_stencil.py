@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM, stencil_coordinates
+from gearcontact.contract.stencil import STENCIL_SPACING_MM, stencil_coordinates
 from gearcontact.tca.curvature import contact_ellipse, relative_curvature
-from gearcontact.tca.solve import ContactGuess, solve_mating_point
-from gearcontact.preview.fit.stencil import read_stencil_csv
+from gearcontact.tca.mating import solve_mating_point
+from gearcontact.tca.types import ContactGuess
+from gearcontact.contract.stencil import read_stencil_csv
 from gearcontact.tca.stencil import gap_at, gap_field_80, hardware_stencil, write_stencil_csv
 
 from .analytic import Torus, sphere_torus_case

@@ -55,7 +55,8 @@ def assert_met_by_full_tca(pair, flanks, side, syn):
 
 
 @pytest.fixture(scope="module")
-def round_trip(s0003_pair, s0003_flanks):
+def round_trip(s0003_centred):
+    s0003_pair, s0003_flanks = s0003_centred
     side = "drive"
     conj = s0003_flanks.pinion_conjugate.side(side)
     gear = s0003_flanks.flank("gear", side)
@@ -92,18 +93,20 @@ def test_synthesis_recovers_a_known_easeoff(round_trip):
     assert abs(c.spiral_angle_um_per_mm) < 0.1 and abs(c.bias_um_per_mm2) < 0.05
 
 
-def test_round_trip_targets_met_by_the_full_tca(round_trip, s0003_pair, s0003_flanks):
+def test_round_trip_targets_met_by_the_full_tca(round_trip, s0003_centred):
     """The synthesized s0003-centred drive ease-off meets every target in the full TCA
     (tolerances of SynthesisTargets: centre 0.05 mm, TE0 and 2a 5 %), which is the
     design point the synthesis reports."""
+    s0003_pair, s0003_flanks = s0003_centred
     assert_met_by_full_tca(s0003_pair, s0003_flanks, "drive", round_trip[1])
 
 
-def test_synthesized_toml_is_a_pair_table(round_trip, s0003_pair):
+def test_synthesized_toml_is_a_pair_table(round_trip, s0003_centred):
     """The printed block parses as the pair format's [easeoff.<side>] table and holds
     the synthesized coefficients."""
     import tomllib
 
+    s0003_pair = s0003_centred[0]
     _, syn = round_trip
     doc = tomllib.loads(easeoff_toml({"drive": syn}, pair_name=s0003_pair.name))
     got = doc["easeoff"]["drive"]
@@ -111,8 +114,9 @@ def test_synthesized_toml_is_a_pair_table(round_trip, s0003_pair):
         assert got[k] == pytest.approx(v, rel=1e-5, abs=1e-12)
 
 
-def test_prepare_pair_leaves_a_pair_with_its_table_alone(s0003_pair):
+def test_prepare_pair_leaves_a_pair_with_its_table_alone(s0003_centred):
     """A pair with its table is left alone: nothing synthesized, no note, no timing."""
+    s0003_pair = s0003_centred[0]
     prepared = prepare_pair(s0003_pair, side="drive")
     assert prepared.pair is s0003_pair and not prepared.synthesized
     assert prepared.note == "" and prepared.timings_s == {}

@@ -21,7 +21,7 @@ from gearcontact.preview.engine import get_engine
 from gearcontact.preview.chain import FIT_FLAG_SHIFT, chain_golden, chain_reference
 from gearcontact.preview.fit.golden import element_constants, encode_gaps
 from gearcontact.preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
-from gearcontact.preview.fit.stencil import stencil_coordinates
+from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.hertz.golden import encode_e_prime
 from gearcontact.preview.hertz.golden_vec import golden_constants
 from gearcontact.twin import kernel as K

@@ -71,7 +71,7 @@ def test_errors_cross_the_process_pool_intact():
     from gearcontact.cli.outdir import OutputDirectoryError
     from gearcontact.halfspace.lcp import LcpConvergenceError
 
-    # what LcpConvergenceError reads of an LcpResult
+    # what LcpConvergenceError reads of a ContactResult
     result = SimpleNamespace(solver="pk_cg", status="max_iter", message="1000 iterations")
     for exc in (InputRangeError("speed_rpm", 1.05e5, "[0, 100000]"),
                 OutputDirectoryError("/x", "why"), LcpConvergenceError(result)):

@@ -11,7 +11,6 @@ JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from ..errors import CheckFailed
 from ..geometry.generation import check_generation
@@ -208,19 +207,13 @@ def _fmt(x) -> str:
 
 
 def _calibrate(args, pair) -> int:
-    from ..report.analyze import published_values
-    from ..tca.calibration import CalibrationTargets, calibrate_pair, calibration_toml
+    from ..report.design import calibrate_to_published, write_calibration
 
-    targets = CalibrationTargets.from_published(published_values(pair.name))
-    cal = calibrate_pair(pair, targets, tip_margin_mm=args.tip_margin, progress=True)
-    out = Path(args.out)
-    (out / "calibrated.toml").write_text(
-        calibration_toml(cal, name=pair.name.removesuffix("-centred")))
-    (out / "calibration.json").write_text(json.dumps(cal.as_dict(), indent=2))
+    cal = calibrate_to_published(pair, tip_margin_mm=args.tip_margin, progress=True)
+    path = write_calibration(cal, args.out)
     print(cal.table())
     print(f"design side {cal.side}; working depth factor {cal.pair.working_depth_factor:g}; "
-          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> "
-          f"{final_path(args, out / 'calibrated.toml')}")
+          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> {final_path(args, path)}")
     return 0
 
 

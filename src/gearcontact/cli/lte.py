@@ -24,7 +24,7 @@ import dataclasses
 import time
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
-from ..halfspace.constrained_cg import SolveStatus
+from ..halfspace.result import SolveStatus
 from ..ltca.cylindrical_lte import (cylindrical_loaded_te, harris_map, harris_tip_reliefs_um,
                                     harris_torques_nm)
 from ..ltca.lte import loaded_te

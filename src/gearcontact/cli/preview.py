@@ -17,9 +17,9 @@ from ..errors import DatapathFlagged
 from ..materials import STEEL, Material
 from ..hw import backends as _hardware_backends  # noqa: F401 (registers rtl, rtl-soc)
 from ..preview.engine import BACKENDS, get_engine
-from ..preview.fit.stencil import read_stencil_csv
+from ..contract.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
-from ..preview.qformat import GAP, FixedPointOverflow
+from ..contract.qformat import GAP, FixedPointOverflow
 from ..preview.hertz.reference import LINE_ENVELOPE
 from ..validation import InputRangeError, check_range, format_range
 
@@ -36,7 +36,7 @@ def register(sub) -> None:
                      help="half relative principal curvatures A-, B- in 1/mm")
     src.add_argument("--stencil", metavar="FILE",
                      help="49-sample gap stencil CSV (s_mm,t_mm,gap_mm; see "
-                          "gearcontact.preview.fit.stencil)")
+                          "gearcontact.contract.stencil)")
     p.add_argument("--load", type=float, required=True, metavar="W", help="normal load, N")
     p.add_argument("--modulus", type=float, default=STEEL.youngs_modulus_mpa / 1e3,
                    metavar="E_GPA", help="Young's modulus of both bodies, GPa (default 209)")

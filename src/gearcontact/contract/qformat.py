@@ -9,7 +9,8 @@ so -0.5 LSB rounds to 0 and -1.5 LSB to -1). Nothing saturates or wraps silently
 :meth:`QFormat.check` raises :class:`FixedPointOverflow` naming the signal, and the
 golden models turn that into a flag where the hardware has one. The host (the TCA's
 phase table) encodes with these formats and the three datapath stages decode them, so
-they live below both (:mod:`gearcontact.preview.qformat` is the datapath's name for them).
+they live below both (every module imports them from here; the former
+``gearcontact.preview.qformat`` is a deprecated alias).
 """
 
 from __future__ import annotations

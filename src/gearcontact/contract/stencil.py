@@ -4,8 +4,8 @@ The datapath fits a quadratic to ``N = 49`` gap samples on a fixed 7 x 7 grid in
 local tangent frame (s, t) centred on the contact point (docs/spec.md sec. 6, Algorithm 2).
 The grid is a compile-time constant: its pseudo-inverse is baked into a ROM, so the
 spacing below is part of the hardware contract: the host's TCA samples the gap on it and
-stage C fits it, so it lives below both (:mod:`gearcontact.preview.fit.stencil` is the
-datapath's name for it).
+stage C fits it, so it lives below both (the former ``gearcontact.contract.stencil``
+is a deprecated alias).
 
 Sample order (row-major, s fastest)::
 

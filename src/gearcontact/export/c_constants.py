@@ -5,7 +5,7 @@ envelope, flags, the ROM words and their interpolation geometry, the pseudo-inve
 the gap kernel's sentinels and lane count) is collected here from
 :mod:`gearcontact.preview.hertz.formats`, :mod:`gearcontact.preview.hertz.luts`,
 :mod:`gearcontact.preview.fit.golden`, :mod:`gearcontact.preview.fit.pinv`,
-:mod:`gearcontact.preview.gap.golden` and :mod:`gearcontact.preview.qformat`; the
+:mod:`gearcontact.preview.gap.golden` and :mod:`gearcontact.contract.qformat`; the
 templates print these numbers and never hold one of their own. Nothing is retyped: a change of a table in the package changes
 the exported C on the next ``gearcontact export c``.
 """
@@ -17,7 +17,7 @@ import math
 from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.fit import golden as G
 from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
-from ..preview.fit.stencil import STENCIL_SIDE
+from ..contract.stencil import STENCIL_SIDE
 from ..preview.gap.cores import GAP_LANES
 from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
 from ..preview.gap.variants import residual_limit
@@ -27,7 +27,8 @@ from ..preview.hertz.sqrt import SQRT_BITS
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
                                   POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
                                   same_geometry)
-from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, FixedPointOverflow, sq
+from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS,
+                                FixedPointOverflow, sq)
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",

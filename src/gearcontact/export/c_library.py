@@ -20,7 +20,7 @@ from importlib import resources
 from pathlib import Path
 
 from ..errors import ToolUnavailable
-from ..preview.fit.stencil import STENCIL_SIDE
+from ..contract.stencil import STENCIL_SIDE
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
                           fit_weight_codes,

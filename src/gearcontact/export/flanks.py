@@ -106,7 +106,8 @@ def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
             out += [ExportFlank(member, f"fillet_{f}", root_fillet(pair, member, f),
                                 np.eye(3)) for f in FACINGS]
         return out
-    from ..geometry.flank import SIDES, build_flanks
+    from ..geometry.flank import build_flanks
+    from ..geometry.formate import SIDES
 
     flanks = build_flanks(pair) if flanks is None else flanks
     frames = {"pinion": PINION_TO_AXIS, "gear": np.eye(3)}

@@ -9,7 +9,8 @@ flanks with ease-off), each flank a :class:`Surface` in its member's body frame.
 from .blank import BlankDesign, design_blank
 from .conjugate import ConjugateFlank, MeshingError, UndercutError
 from .easeoff import EaseOff, apply_easeoff
-from .flank import SIDES, FlankBoundary, FlankSet, FormateFlank, MemberFlanks, build_flanks
+from .flank import FlankSet, MemberFlanks, build_flanks
+from .formate import SIDES, FlankBoundary, FormateFlank
 from .kinematics import AssemblyErrors, MeshKinematics
 from .pair import CutterSpec, EaseOffCoefficients, GearPair, load_pair, parse_pair
 from .sampling import FlankGrid, principal_curvatures, sample_grid

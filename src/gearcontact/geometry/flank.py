@@ -3,8 +3,8 @@ contract).
 
 Gear (formate, non-generated): each gear flank is a copy of a blade cone, the inside
 blade the convex (drive) flank, the outside blade the concave (coast) flank
-(:mod:`.formate`: :class:`FormateFlank`, its ``(u, v)`` parameters and
-:class:`FlankBoundary`; re-exported here).
+(:mod:`.formate`: :class:`~.formate.FormateFlank`, its ``(u, v)`` parameters and
+:class:`~.formate.FlankBoundary`; their former names here are deprecated).
 
 The pinion flanks are the numerical conjugates of these (:mod:`.conjugate`) with the
 pair's ease-off (:mod:`.easeoff`), parameterized by radial height u above the root cone
@@ -32,22 +32,28 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
+from ..deprecation import moved_names
 from ..validation import InputRangeError
 from .blank import BlankDesign
 from .conjugate import conjugate_pinion_flank
 from .cutter import CutterPlacement
 from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
-from .formate import (SIDES, FlankBoundary, FormateFlank, cone_vector, gear_flank,
-                      gear_flanks)
+from .formate import SIDES, gear_flanks
+from .formate import FormateFlank as _FormateFlank
 from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
 from .machine import mirror_setup
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
 
-__all__ = ["SIDES", "FlankBoundary", "FormateFlank", "MemberFlanks", "FlankSet",
-           "build_flanks", "build_machine_flanks", "right_hand_twin", "cone_vector", "gear_flank", "gear_flanks", "mirror_flank_set",
+__all__ = ["MemberFlanks", "FlankSet", "build_flanks", "build_machine_flanks", "right_hand_twin",
+           "mirror_flank_set",
            "with_easeoff"]
+
+#: Deprecated for one release: the formate gear's names live in :mod:`.formate`.
+__getattr__ = moved_names(__name__, {
+    name: f"gearcontact.geometry.formate:{name}"
+    for name in ("FlankBoundary", "FormateFlank", "cone_vector", "gear_flank")})
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,7 +82,7 @@ class FlankSet:
         (``pair.kinematics()``).
     cutter : CutterPlacement
     gear : MemberFlanks
-        Formate gear flanks (:class:`FormateFlank`), gear body frame.
+        Formate gear flanks (:class:`~.formate.FormateFlank`), gear body frame.
     pinion : MemberFlanks
         Pinion flanks with the pair's ease-off (:class:`~.sheet.RadialSheet`), pinion
         body frame.
@@ -224,7 +230,7 @@ def right_hand_twin(pair):
 def _mirror_gear(flank):
     """A reflected gear flank: the blade cone of a formate flank in its own reflected
     cutter frame, or a generated :class:`~.sheet.GearSheet` with ``psi -> -psi``."""
-    if isinstance(flank, FormateFlank):
+    if isinstance(flank, _FormateFlank):
         return mirror_gear_flank(flank, mirror_placement(flank.blade.placement))
     return dataclasses.replace(flank, psi_nodes=-flank.psi_nodes,
                                normal_sign=-flank.normal_sign,

@@ -21,7 +21,8 @@ import numpy as np
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .easeoff import EaseOff
-from .flank import gear_flanks, right_hand_twin
+from .flank import right_hand_twin
+from .formate import gear_flanks
 from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",

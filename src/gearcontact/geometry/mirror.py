@@ -5,7 +5,7 @@ under ``M = diag(1, -1, 1)`` (the plane y = 0 of the meshing frame, which holds 
 axes' directions; the pinion axis moves from y = -E to y = +E). The flanks are built for
 the right-hand twin and reflected, parameter for parameter:
 
-- gear (:class:`~.flank.FormateFlank`): the blade cone with the reflected cutter frame
+- gear (:class:`~.formate.FormateFlank`): the blade cone with the reflected cutter frame
   ``(M C, M a, M e1, M e2)``; the closed-form position, derivatives and normal
   (``sigma cos(alpha) e_rho - sin(alpha) a``) are then exactly ``M r``, ``M r_u``, ...,
   ``M n``;
@@ -41,7 +41,7 @@ def mirror_placement(pl: CutterPlacement) -> CutterPlacement:
 
 
 def mirror_gear_flank(gear, placement: CutterPlacement):
-    """The mirror image of a :class:`~.flank.FormateFlank` (``placement``: the reflected
+    """The mirror image of a :class:`~.formate.FormateFlank` (``placement``: the reflected
     cutter frame, :func:`mirror_placement`)."""
     return dataclasses.replace(gear, blade=dataclasses.replace(gear.blade, placement=placement))
 

@@ -15,7 +15,8 @@ from matplotlib.figure import Figure
 
 from ..figure_files import save_figure
 from ..validation import InputRangeError
-from .flank import SIDES, FlankSet
+from .flank import FlankSet
+from .formate import SIDES
 from .sampling import sample_grid
 
 __all__ = ["plot_flanks_in_mesh"]

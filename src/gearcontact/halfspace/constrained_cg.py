@@ -43,28 +43,20 @@ L. Pastewka, M. O. Robbins, Appl. Phys. Lett. 108 (2016) 221601 (ContactMechanic
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from enum import Enum, StrEnum
+from enum import Enum
 
 import numpy as np
 from numba import njit
 
+from ..deprecation import moved_names
 from ..threads import one_blas_thread
 from .compliance import BlockCompliance
+from .result import ContactResult, SolveStatus
 
-__all__ = ["SolveStatus", "CgOutcome", "constrained_cg"]
+__all__ = ["constrained_cg"]
 
-
-class SolveStatus(StrEnum):
-    """Outcome of an LCP solve (a ``str``: JSON/CSV files show the value)."""
-
-    #: Converged; complementarity residual within the requested tolerance.
-    CONVERGED = "converged"
-    #: The iteration cap was reached.
-    MAX_ITER = "max_iter"
-    #: Stopped otherwise: lost descent, residual above tolerance, a linear-algebra
-    #: failure of a direct solver, or windows that kept growing (see the message).
-    FAILED = "failed"
+#: Deprecated for one release: the CG's result is the family's :class:`.result.ContactResult`.
+__getattr__ = moved_names(__name__, {"CgOutcome": "gearcontact.halfspace.result:ContactResult"})
 
 
 class _Stop(Enum):
@@ -76,33 +68,6 @@ class _Stop(Enum):
     LOST = 4       # rt <= 0 otherwise: lost descent
     MAX_ITER = 5
     PENETRATES = 6  # the probe found cells outside the windows closing
-
-
-@dataclass(frozen=True, eq=False)
-class CgOutcome:
-    """Result of :func:`constrained_cg`.
-
-    Attributes
-    ----------
-    x : ndarray (blocks, ny, nx)
-        Solution, in the units of the input ``x`` (N, or N·mm for torque shares).
-    u : ndarray (blocks, ny, nx)
-        ``C x`` on the whole fields, computed exactly at the end, mm.
-    iterations : int
-        CG steps.
-    status : SolveStatus
-        CONVERGED, MAX_ITER or FAILED (lost descent).
-    """
-
-    x: np.ndarray
-    u: np.ndarray
-    iterations: int
-    status: SolveStatus
-
-    @property
-    def converged(self) -> bool:
-        """True when ``status`` is CONVERGED."""
-        return self.status is SolveStatus.CONVERGED
 
 
 #: The incrementally updated displacement is recomputed at least this often (steps).
@@ -306,7 +271,7 @@ def _holds(box, org, gy, gx, ny, nx, margin):  # pragma: no cover - compiled
 
 
 def constrained_cg(op: BlockCompliance, h: np.ndarray, x: np.ndarray, total: float, *,
-                   tol: float, max_iter: int, precondition: bool = True) -> CgOutcome:
+                   tol: float, max_iter: int, precondition: bool = True) -> ContactResult:
     """Solve the load-constrained LCP of the module docstring.
 
     Parameters
@@ -328,7 +293,10 @@ def constrained_cg(op: BlockCompliance, h: np.ndarray, x: np.ndarray, total: flo
 
     Returns
     -------
-    CgOutcome
+    ContactResult
+        ``x_stack`` (the solution, in ``x``'s units), ``u_stack_mm`` (``C x`` on the
+        whole fields, computed exactly at the end, mm), ``iterations`` (CG steps) and
+        ``status`` (CONVERGED, MAX_ITER or FAILED: lost descent).
     """
     x = np.asarray(x, float) * (total / float(np.sum(x)))
     if op.low_rank is None:
@@ -337,7 +305,7 @@ def constrained_cg(op: BlockCompliance, h: np.ndarray, x: np.ndarray, total: flo
         return _solve(op, h, x, total, tol, max_iter, precondition)
 
 
-def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
+def _solve(op, h, x, total, tol, max_iter, precondition) -> ContactResult:
     """:func:`constrained_cg` after the start is scaled (``x`` is the iterate)."""
     box, whole, it, checks = _boxes(x), False, 0, 0
     while True:
@@ -384,7 +352,8 @@ def _solve(op, h, x, total, tol, max_iter, precondition) -> CgOutcome:
                           min(box[k, 2], cols[0]), max(box[k, 3], cols[-1] + 1))
     status = SolveStatus.CONVERGED if ok else (
         SolveStatus.MAX_ITER if stop is _Stop.MAX_ITER else SolveStatus.FAILED)
-    return CgOutcome(x=x, u=u, iterations=int(it), status=status)
+    return ContactResult(x_stack=x, u_stack_mm=u, iterations=int(it), status=status,
+                         solver="pk_cg")
 
 
 def _penetration(op, h, x, win, u=None):

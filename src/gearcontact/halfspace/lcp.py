@@ -6,7 +6,7 @@ rigid approach ``delta`` (mm), find
     s = C w + h - delta * 1 >= 0,   w >= 0,   w . s = 0,   sum(w) = W,
 
 with ``C`` the Boussinesq (Love) influence operator of :mod:`.influence`. Three solvers
-return the same :class:`LcpResult`:
+return the contact family's one result type, :class:`.result.ContactResult`:
 
 ``"pk_cg"`` (fast)
     Polonsky & Keer's constrained conjugate gradient (Wear 231 (1999) 206-219) with the
@@ -45,22 +45,25 @@ K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 
 import numpy as np
 from scipy import linalg, optimize
 
+from ..deprecation import moved_names
 from ..errors import CheckFailed
 from ..materials import STEEL, Material, reduced_modulus_mpa
 from ..validation import InputRangeError, check_positive
 from .ellipse import warn_if_coarse
 from .grid import TangentGrid
 from .compliance import BlockCompliance
-from .constrained_cg import SolveStatus, constrained_cg
+from .constrained_cg import constrained_cg
 from .influence import dense_influence_matrix
+from .result import ContactResult, SolveStatus
 
-__all__ = ["LcpResult", "LcpConvergenceError", "solve_lcp", "SOLVERS", "SolveStatus",
-           "resolve_e_star", "warm_up"]
+__all__ = ["LcpConvergenceError", "solve_lcp", "SOLVERS", "resolve_e_star", "warm_up"]
+
+#: Deprecated for one release: the LCP's result is the family's :class:`.result.ContactResult`.
+__getattr__ = moved_names(__name__, {"LcpResult": "gearcontact.halfspace.result:ContactResult"})
 
 #: Solver names accepted by :func:`solve_lcp`.
 SOLVERS = ("pk_cg", "nnls", "active_set")
@@ -73,72 +76,11 @@ _WINDOW_GROWTH = 1.5
 _MAX_WINDOWS = 8
 
 
-@dataclass(frozen=True, eq=False)
-class LcpResult:
-    """Solution of the load-constrained contact LCP on a grid.
-
-    Attributes
-    ----------
-    pressure_mpa : ndarray, shape (ny, nx)
-        Cell pressures in MPa (``loads_n / cell area``).
-    loads_n : ndarray, shape (ny, nx)
-        Nodal loads ``w`` in N.
-    delta_mm : float
-        Rigid approach ``delta`` in mm (same datum as the gap).
-    contact_mask : ndarray of bool, shape (ny, nx)
-        Cells carrying load (``w > 0``).
-    iterations : int
-        Solver iterations (pk_cg: CG steps; nnls: NNLS solves; active_set: pivots),
-        summed over window rounds.
-    complementarity_residual : float
-        Natural residual ``max_i |min(w_i / max(w), s_i / (delta - min h))|``,
-        dimensionless (covers penetration, negative loads and open loaded cells).
-    load_residual : float
-        ``|sum(w) - W| / W``.
-    status : SolveStatus
-        CONVERGED, MAX_ITER or FAILED (a ``str`` enum).
-    message : str
-        Human-readable account of the solve (window, certificate, failure cause).
-    solve_time_ms : float
-        Wall time of the solve in ms.
-    solver : str
-        Solver name.
-    load_n : float
-        Prescribed total load ``W`` in N.
-    window : tuple of int
-        ``(j0, j1, i0, i1)``: rows ``j0:j1`` and columns ``i0:i1`` of the final window.
-    """
-
-    pressure_mpa: np.ndarray
-    loads_n: np.ndarray
-    delta_mm: float
-    contact_mask: np.ndarray
-    iterations: int
-    complementarity_residual: float
-    load_residual: float
-    status: SolveStatus
-    message: str
-    solve_time_ms: float
-    solver: str
-    load_n: float
-    window: tuple[int, int, int, int]
-
-    @property
-    def converged(self) -> bool:
-        """True when ``status`` is CONVERGED."""
-        return self.status is SolveStatus.CONVERGED
-
-    @property
-    def n_contact_cells(self) -> int:
-        """Number of cells carrying load."""
-        return int(self.contact_mask.sum())
-
-
 class LcpConvergenceError(CheckFailed, RuntimeError):
     """An LCP solve did not converge (a failed check, exit 4); ``.result`` holds the
     (unconverged) result."""
 
-    def __init__(self, result: LcpResult):
+    def __init__(self, result: ContactResult):
         self.result = result
         super().__init__(f"{result.solver}: {result.status}: {result.message}")
 
@@ -280,7 +222,7 @@ def _initial_bound(h: np.ndarray, area: np.ndarray, load_n: float, e_star: float
 
 def _residuals(u: np.ndarray, h: np.ndarray, w: np.ndarray, load_n: float,
                delta: float) -> tuple[float, float]:
-    """(complementarity, load) residuals on a window, see :class:`LcpResult`."""
+    """(complementarity, load) residuals on a window, see :class:`.result.ContactResult`."""
     s = u + h - delta
     scale = max(delta - float(h.min()), np.finfo(float).tiny)
     wmax = float(w.max()) if w.size and w.max() > 0 else 1.0
@@ -292,7 +234,7 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
               e_star_mpa: float | None = None, solver: str = "pk_cg",
               tol: float = 1e-8, max_iter: int | None = None, warm_start=None,
               residual_tol: float = 1e-6, raise_on_failure: bool = False,
-              warn_coarse: bool = True, precondition: bool = True) -> LcpResult:
+              warn_coarse: bool = True, precondition: bool = True) -> ContactResult:
     """Solve the load-constrained normal-contact LCP on a tangent-plane grid.
 
     Parameters
@@ -314,7 +256,7 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
         as a fraction of the approach; nnls: unused (exact support solve).
     max_iter : int, optional
         Iteration cap per window (defaults: pk_cg 2000, nnls 200, active_set 200).
-    warm_start : LcpResult or array_like (ny, nx), optional
+    warm_start : ContactResult or array_like (ny, nx), optional
         A previous solution (its pressure in MPa) to start pk_cg from / seed the
         active set. Ignored by the nnls reference, which always starts cold.
     residual_tol : float
@@ -330,7 +272,11 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
 
     Returns
     -------
-    LcpResult
+    ContactResult
+        The one-body fields: ``pressure_mpa``, ``loads_n``, ``delta_mm``,
+        ``contact_mask``, ``load_n``, ``load_residual``, ``complementarity_residual``,
+        ``window``, and the solve record (``status``, ``message``, ``iterations``,
+        ``solver``, ``solve_time_ms``).
 
     Raises
     ------
@@ -354,7 +300,7 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
     area_full = grid.cell_area_mm2
     w_prev = None
     if warm_start is not None:
-        p_prev = warm_start.pressure_mpa if isinstance(warm_start, LcpResult) else \
+        p_prev = warm_start.pressure_mpa if isinstance(warm_start, ContactResult) else \
             grid.check_field("warm_start", warm_start)
         if p_prev.shape != grid.shape:
             raise InputRangeError("warm_start.shape", p_prev.shape, f"{grid.shape}")
@@ -384,7 +330,7 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
                                  e_star_mpa=e_star)
             out = constrained_cg(op, h[None], w0[None], load, tol=tol, max_iter=n_iter,
                                  precondition=precondition)
-            w, u, it, ok = out.x[0], out.u[0], out.iterations, out.converged
+            w, u, it, ok = out.x_stack[0], out.u_stack_mm[0], out.iterations, out.converged
             contact = w > 0.0
             delta = float((u + h)[contact].mean())
             msg = f"pk_cg {out.status}"
@@ -445,10 +391,14 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
     mask.setflags(write=False)
     status = SolveStatus.CONVERGED if ok else (SolveStatus.MAX_ITER if max_iter_hit
                                                else SolveStatus.FAILED)
-    result = LcpResult(pressure, loads_full, float(delta), mask, int(iterations),
-                       float(comp), float(load_res), status, "; ".join(notes),
-                       1e3 * (time.perf_counter() - t_start), solver, load,
-                       (int(j0), int(j1), int(i0), int(i1)))
+    result = ContactResult(pressure_mpa=pressure, loads_n=loads_full, delta_mm=float(delta),
+                           contact_mask=mask, iterations=int(iterations),
+                           complementarity_residual=float(comp),
+                           load_residual=float(load_res), status=status,
+                           message="; ".join(notes),
+                           solve_time_ms=1e3 * (time.perf_counter() - t_start),
+                           solver=solver, load_n=load,
+                           window=(int(j0), int(j1), int(i0), int(i1)))
     if raise_on_failure and not result.converged:
         raise LcpConvergenceError(result)
     if warn_coarse and mask.any():  # the contact's bounding box: same moments, less work

@@ -25,7 +25,8 @@ import numpy as np
 
 from .ellipse import ContactEllipse, fit_contact_ellipse
 from .grid import TangentGrid
-from .lcp import LcpResult, solve_lcp
+from .lcp import solve_lcp
+from .result import ContactResult
 
 __all__ = ["PatchContact", "ContactAtEdgeWarning", "solve_patch", "patch_statistics",
            "plot_patch"]
@@ -37,13 +38,16 @@ class ContactAtEdgeWarning(UserWarning):
 
 @dataclass(frozen=True, eq=False)
 class PatchContact:
-    """A solved single contact patch.
+    """The statistics of a solved single contact patch.
+
+    Not a second solver result: the solve is ``lcp``, the contact family's one result
+    type (:class:`.result.ContactResult`); this adds what gear engineers read of it.
 
     Attributes
     ----------
     grid : TangentGrid
         The tangent-plane grid (fields are ``(ny, nx)``, x along axis 1).
-    lcp : LcpResult
+    lcp : ContactResult
         The solver's result (pressure map, loads, residuals, status, timing).
     load_n : float
         Normal load W in N.
@@ -74,7 +78,7 @@ class PatchContact:
     """
 
     grid: TangentGrid
-    lcp: LcpResult
+    lcp: ContactResult
     load_n: float
     delta_mm: float
     n_contact_cells: int
@@ -120,7 +124,7 @@ class PatchContact:
                 "solve_ms": self.lcp.solve_time_ms, "iterations": self.lcp.iterations}
 
 
-def patch_statistics(grid: TangentGrid, result: LcpResult, *,
+def patch_statistics(grid: TangentGrid, result: ContactResult, *,
                      warn_edge: bool = True) -> PatchContact:
     """Contacting-cell statistics of a solved LCP (see :class:`PatchContact`).
 

@@ -36,7 +36,7 @@ from typing import Protocol, runtime_checkable
 from ..preview.engine import GoldenEngine, PreviewBatch
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
-from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
+from ..contract.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
 from ..validation import InputRangeError
 from .regmap import (
     CONTACT_FLAG_BITS,

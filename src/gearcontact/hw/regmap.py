@@ -41,7 +41,7 @@ from ..preview.chain import FIT_FLAG_SHIFT
 from ..preview.fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
-from ..preview.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
+from ..contract.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
 
 __all__ = [
     "CONTACT_FLAG_BITS",

@@ -65,8 +65,8 @@ MAX_COUNT = 100_000
 WRITE_BLOCK = 10_000
 
 # Q format, unit and meaning of every port (README and HexField); ``flags`` per core.
-_S = "the 49 gap samples, stencil order i = 7 j + k (s fastest, gearcontact.preview." \
-     "fit.stencil); beat i = sample i"
+_S = "the 49 gap samples, stencil order i = 7 j + k (s fastest, gearcontact." \
+     "contract.stencil); beat i = sample i"
 _PORT_DOC = {
     "r": ("Q(21,19)", "1", "rotation R, row-major (R00 R01 R02 R10 .. R22), "
           "|code| <= 2^19"),

@@ -84,8 +84,9 @@ from tqdm import tqdm
 from ..errors import CheckFailed
 from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, UnusableInput, check_positive, check_range
+from ..halfspace.result import ContactResult, SolveStatus
 from .lte_pairs import PairContact, PairFields, phase_contacts
-from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
+from .mesh_lcp import solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
 __all__ = ["ACTIVE_SHARE", "LoadedTE", "PairContact", "check_loaded", "loaded_te",
@@ -366,7 +367,7 @@ def _warm(p, off):
     return None if p is None or p.shape != off.shape else np.where(off, 0.0, p)
 
 
-def check_loaded(res: MeshLcpResult, reach, offs, torque_nm: float) -> bool:
+def check_loaded(res: ContactResult, reach, offs, torque_nm: float) -> bool:
     """Raise if a load closes an off-flank cell; return the edge-contact flag."""
     edge = False
     for pc, mask, off, d in zip(reach, res.contact_masks, offs, res.approach_mm):

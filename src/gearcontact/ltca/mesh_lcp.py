@@ -54,14 +54,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..deprecation import moved_names
 from ..validation import InputRangeError, check_finite, check_positive
 from ..halfspace.compliance import BlockCompliance
-from ..halfspace.constrained_cg import SolveStatus, constrained_cg
+from ..halfspace.constrained_cg import constrained_cg
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
+from ..halfspace.result import ContactResult, SolveStatus
 from .tooth_bending import bending_stack
 
-__all__ = ["MeshLcpResult", "PairBlock", "SolveStatus", "solve_mesh_lcp", "warm_up_mesh_lcp"]
+__all__ = ["PairBlock", "solve_mesh_lcp", "warm_up_mesh_lcp"]
+
+#: Deprecated for one release: the result is the contact family's one type.
+__getattr__ = moved_names(__name__, {
+    "MeshLcpResult": "gearcontact.halfspace.result:ContactResult"})
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,62 +113,6 @@ class PairBlock:
             object.__setattr__(self, "bending_factor", f)
 
 
-@dataclass(frozen=True, eq=False)
-class MeshLcpResult:
-    """Solution of the torque-constrained multi-pair LCP.
-
-    Attributes
-    ----------
-    rotation_rad : float
-        Shared gear rotation ``theta`` from the unloaded rest position, rad.
-    loads_n : tuple of ndarray
-        Nodal loads ``w_j`` (N) per pair, each of its grid's shape.
-    pair_loads_n : ndarray (P,)
-        Total normal load per pair, N.
-    approach_mm : ndarray (P,)
-        ``delta_j = l_j theta - g_j`` per pair, mm (negative: the pair stays open).
-    contact_masks : tuple of ndarray of bool
-        Loaded cells per pair.
-    torque_nmm : float
-        Prescribed torque, N·mm.
-    iterations : int
-        Conjugate-gradient steps.
-    complementarity_residual : float
-        ``max |min(x / max x, s~ / (theta - min h~))|`` over all cells, dimensionless.
-    torque_residual : float
-        ``|sum_j l_j W_j - T| / T``.
-    status : SolveStatus
-        CONVERGED, MAX_ITER or FAILED (also: converged iteration whose
-        complementarity residual exceeds ``residual_tol``).
-    message : str
-        Account of the solve.
-    solve_time_ms : float
-        Wall time, ms.
-    """
-
-    rotation_rad: float
-    loads_n: tuple
-    pair_loads_n: np.ndarray
-    approach_mm: np.ndarray
-    contact_masks: tuple
-    torque_nmm: float
-    iterations: int
-    complementarity_residual: float
-    torque_residual: float
-    status: SolveStatus
-    message: str
-    solve_time_ms: float
-
-    @property
-    def converged(self) -> bool:
-        """True when ``status`` is CONVERGED."""
-        return self.status is SolveStatus.CONVERGED
-
-    def pressures_mpa(self, blocks) -> tuple:
-        """Pressure maps (MPa) per pair on the blocks' grids."""
-        return tuple(w / b.grid.cell_area_mm2 for w, b in zip(self.loads_n, blocks))
-
-
 def _stack(hs, xs) -> tuple[np.ndarray, np.ndarray]:
     """Stacks of ``h~`` and ``x`` on one shape.
 
@@ -182,7 +132,7 @@ def _stack(hs, xs) -> tuple[np.ndarray, np.ndarray]:
 def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
                    e_star_mpa: float | None = None, tol: float = 1e-8,
                    max_iter: int = 2000, warm_start=None, rotation_guess_rad=None,
-                   residual_tol: float = 1e-6, precondition: bool = True) -> MeshLcpResult:
+                   residual_tol: float = 1e-6, precondition: bool = True) -> ContactResult:
     """Solve the torque-constrained LCP of several tooth pairs (module docstring).
 
     Parameters
@@ -210,8 +160,14 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
 
     Returns
     -------
-    MeshLcpResult
-        Check ``.converged`` (never raises on non-convergence).
+    ContactResult
+        The tooth-pair fields: ``rotation_rad``, ``loads_n`` (a tuple of fields, one
+        per pair), ``pair_loads_n``, ``approach_mm``, ``contact_masks``, ``torque_nmm``,
+        ``torque_residual``, ``complementarity_residual``, and the solve record
+        (``status``: CONVERGED, MAX_ITER or FAILED, also for a converged iteration whose
+        complementarity residual exceeds ``residual_tol``; ``message``,
+        ``iterations``: CG steps, ``solve_time_ms``). Check ``.converged`` (never
+        raises on non-convergence).
     """
     t_start = time.perf_counter()
     blocks = list(blocks)
@@ -248,12 +204,12 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
                          low_rank=bending_stack(blocks, h.shape[1:]))
     out = constrained_cg(op, h, x, torque, tol=tol, max_iter=int(max_iter),
                          precondition=precondition)
-    x, u, iters, ok = out.x, out.u, out.iterations, out.converged
+    x, u, iters, ok = out.x_stack, out.u_stack_mm, out.iterations, out.converged
     x = [x[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     u = [u[k][:hk.shape[0], :hk.shape[1]] for k, hk in enumerate(hs)]
     contact = [xi > 0.0 for xi in x]
     theta = float(np.concatenate([(ui + hk)[c] for ui, hk, c in zip(u, hs, contact)]).mean())
-    # residuals over all cells of all blocks (see LcpResult)
+    # residuals over all cells of all blocks (see ContactResult)
     scale = max(theta - hmin, np.finfo(float).tiny)
     xmax = max(float(xi.max()) for xi in x) or 1.0
     comp = max(float(np.abs(np.minimum(xi / xmax, (ui + hk - theta) / scale)).max())
@@ -271,8 +227,8 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
         out.status if out.status is not SolveStatus.CONVERGED else SolveStatus.FAILED)
     for w in loads:
         w.setflags(write=False)
-    return MeshLcpResult(
-        rotation_rad=theta, loads_n=loads, pair_loads_n=pair_loads,
+    return ContactResult(
+        solver="pk_cg", rotation_rad=theta, loads_n=loads, pair_loads_n=pair_loads,
         approach_mm=levers * theta - np.array([b.offset_mm for b in blocks]),
         contact_masks=tuple(contact), torque_nmm=torque, iterations=int(iters),
         complementarity_residual=comp, torque_residual=float(torque_res), status=status,

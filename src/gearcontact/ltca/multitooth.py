@@ -32,9 +32,10 @@ from ..preview.engine import ReferenceEngine
 from ..validation import InputRangeError, check_positive, check_range
 from ..halfspace.grid import TangentGrid
 from ..halfspace.line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
+from ..halfspace.result import ContactResult, SolveStatus
 from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
-from .mesh_lcp import MeshLcpResult, SolveStatus, solve_mesh_lcp
+from .mesh_lcp import solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
 __all__ = ["EngagedPair", "MultiToothCase", "multi_tooth_ltca"]
@@ -236,7 +237,7 @@ class MultiToothCase:
 
 
 def _solve(contacts, fields: PairFields, torque: float, materials, tol: float,
-           torque_nm: float, *, rigid: bool) -> tuple[MeshLcpResult, list, list, list, bool]:
+           torque_nm: float, *, rigid: bool) -> tuple[ContactResult, list, list, list, bool]:
     """The coupled LCP at one phase as :func:`.lte.loaded_te` solves it (cold start;
     ``rigid``: without the fields' bending factors)."""
     lv = np.array([pc.lever_mm for pc in contacts])

@@ -39,7 +39,7 @@ from ..materials import effective_modulus_mpa
 from ..preview.engine import PreviewResult, ReferenceEngine
 from ..preview.hertz.reference import ENVELOPE
 from ..tca.load import normal_load_from_torque, torque_lever_mm
-from ..tca.solve import ARCSEC_PER_RAD
+from ..tca.types import ARCSEC_PER_RAD
 from ..tca.stencil import gap_field
 from ..validation import InputRangeError, check_positive, check_range
 

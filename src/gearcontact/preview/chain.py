@@ -52,7 +52,7 @@ from .hertz.line import LINE_CYCLES, LineCodes, line_flag_names, line_golden
 from .hertz.line_vec import LineCodesArray, line_golden_array
 from .hertz.reference import HertzPreview, TruncatedPreview, hertz_preview, truncated_preview
 from .hertz.schedule import CHAIN_CYCLES
-from .qformat import CURVATURE
+from ..contract.qformat import CURVATURE
 
 __all__ = ["ChainReference", "ChainCodes", "ChainCodesBatch", "chain_reference",
            "chain_golden", "chain_golden_batch", "chain_flag_names", "FIT_FLAG_SHIFT",
@@ -86,7 +86,7 @@ def _b_zero_codes() -> int:
     (B- = h - r, h = (c3 + c5)/2, r = |((c3 - c5)/2, c4/2)|), plus 5 codes for the
     coefficient rounding (2.5) and the fit's own rounding and floor square root (2)."""
     from .fit.pinv import baked_pinv
-    from .qformat import GAP
+    from ..contract.qformat import GAP
     l1 = np.abs(baked_pinv().quantized_weights).sum(axis=1)
     bound = GAP.lsb / 2 * (l1[3] + l1[5] + l1[4] / 2)
     return int(np.ceil(bound * (1 << CURVATURE.frac))) + 5
@@ -159,8 +159,9 @@ class ChainCodesBatch:
 
 def chain_reference(gaps_mm, load_n: float, *, e_prime_mpa: float,
                     hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainReference:
-    """fp64 C -> D on one stencil (gaps in mm, order of :mod:`.fit.stencil`); stage D in
-    the Hertz form ``hertz_form`` (:data:`.hertz.formats.HERTZ_FORMS`).
+    """fp64 C -> D on one stencil (gaps in mm, order of
+    :mod:`gearcontact.contract.stencil`); stage D in the Hertz form ``hertz_form``
+    (:data:`.hertz.formats.HERTZ_FORMS`).
 
     Raises
     ------

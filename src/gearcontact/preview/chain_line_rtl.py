@@ -58,7 +58,7 @@ from .fit.rtl import COEFF_PORTS, FitCore, fit_front_end_ports
 from .hertz import formats as HF
 from .hertz import line as LN
 from .hertz.rtl_line import LINE_FLAG_BITS, LINE_OUTPUT_PORTS, HertzLineCore
-from .qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ..contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from .simulation import read_ports
 
 __all__ = ["ChainLineCore", "convert_verilog", "simulate_chain_line_core"]

@@ -45,7 +45,7 @@ from .fit.pinv import BakedPinv
 from .fit.rtl import FitCore
 from .hertz import formats as HF
 from .hertz.rtl_pipe import HertzPipe, pipe_latency
-from .qformat import LOAD
+from ..contract.qformat import LOAD
 
 __all__ = ["ChainPipe", "CHAIN_PIPE_CYCLES", "chain_pipe_cycles", "convert_verilog",
            "simulate_chain_pipe"]

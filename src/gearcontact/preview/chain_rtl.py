@@ -53,7 +53,7 @@ from .hertz.golden import HertzCodes
 from .hertz.rtl import HertzCore
 from .hertz.rtl_datapath import FLAG_BITS as HERTZ_FLAG_BITS
 from .hertz.schedule import CHAIN_CYCLES
-from .qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ..contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from .simulation import CycleCounter, read_ports, run_testbench, write_stencil
 
 __all__ = [

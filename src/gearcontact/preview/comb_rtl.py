@@ -43,7 +43,7 @@ from .hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_
 from .hertz import rtl_datapath as dp
 from .hertz.rtl_divider import array_divide
 from .hertz.schedule import COMB_CYCLES, COMB_D_STAGES
-from .qformat import CURVATURE, LOAD
+from ..contract.qformat import CURVATURE, LOAD
 
 __all__ = ["CombCore", "convert_verilog", "simulate_comb_core"]
 

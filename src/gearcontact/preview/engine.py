@@ -36,7 +36,7 @@ Physical inputs are validated the same way for every backend (finite, positive; 
 name the field); range limits specific to a representation are then reported by that
 representation: the reference raises :class:`~gearcontact.validation.InputRangeError`
 outside its envelope, the golden model raises
-:class:`~gearcontact.preview.qformat.FixedPointOverflow` for values that do not fit a
+:class:`~gearcontact.contract.qformat.FixedPointOverflow` for values that do not fit a
 register and otherwise returns datapath flags (never a silently wrapped number).
 """
 
@@ -51,7 +51,7 @@ from ..materials import STEEL, Material, effective_modulus_mpa
 from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import chain
 from .fit.golden import encode_gaps
-from .fit.stencil import STENCIL_SIZE
+from ..contract.stencil import STENCIL_SIZE
 from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
@@ -96,7 +96,7 @@ class PreviewResult:
         (reference backend; None otherwise).
     codes : dict or None
         Raw register codes (golden/rtl): inputs and outputs by name, with Q formats in
-        :mod:`.hertz.formats` / :mod:`.qformat`.
+        :mod:`.hertz.formats` / :mod:`gearcontact.contract.qformat`.
     flags : tuple of str
         Names of raised datapath flags; empty when valid. Outputs are 0 when flagged.
     cycles : int or None
@@ -172,7 +172,8 @@ class PreviewEngine(Protocol):
         ...
 
     def stencil(self, gaps_mm, load_n: float) -> PreviewResult:
-        """Stage C then D on a 49-sample gap stencil (mm, :mod:`.fit.stencil` order);
+        """Stage C then D on a 49-sample gap stencil (mm, in the order of
+        :mod:`gearcontact.contract.stencil`);
         ``line_length_mm=L`` (keyword; reference, golden, rtl): stage D is the line
         core."""
         ...

@@ -1,11 +1,15 @@
-"""Fixed-point Q formats of the preview datapath: the data contract's formats.
+"""Deprecated: the Q formats moved to :mod:`gearcontact.contract.qformat`.
 
-Defined in :mod:`gearcontact.contract.qformat` (below the host and the datapath, which
-both use them); the datapath's modules name them from here.
+The data contract's formats live below the host and the datapath; every module of the
+package imports them from there. The old names still resolve here for one release and
+emit a :class:`DeprecationWarning`.
 """
 
-from ..contract.qformat import (COORD, CURVATURE, GAP, LOAD, NORMAL, PMAX, SEMI_AXIS,
-                                FixedPointOverflow, QFormat, round_shift, sq, uq)
+from ..deprecation import moved_names
 
-__all__ = ["QFormat", "FixedPointOverflow", "round_shift", "sq", "uq",
-           "COORD", "NORMAL", "LOAD", "CURVATURE", "SEMI_AXIS", "PMAX", "GAP"]
+__all__: list[str] = []
+
+__getattr__ = moved_names(__name__, {
+    name: f"gearcontact.contract.qformat:{name}"
+    for name in ("QFormat", "FixedPointOverflow", "round_shift", "sq", "uq", "COORD",
+                 "NORMAL", "LOAD", "CURVATURE", "SEMI_AXIS", "PMAX", "GAP")})

@@ -6,23 +6,7 @@ vectors. The same function feeds the Verilator equivalence tests, the
 ``gearcontact rtl sim`` command and the golden-vector export, so "vector k of seed s"
 means the same operands everywhere.
 
-==========  ==========================================================================
-core        fields of :attr:`Stimulus.fields` (``int64``, first axis = vector)
-==========  ==========================================================================
-gap         ``r`` (n, 3, 3) Q(21,19) with ``|c| <= 2^19``; ``t``, ``p`` (n, 3) and ``g``
-            (n, N, 3) Q(24,16) mm; ``nrm`` (n, N, 3) normals like ``r``; ``tau2`` (n,)
-            UQ(64,32) mm^2 in [1, 2^63 - 1]
-fit         ``gaps`` (n, 49) GAP Q(32,16) mm, stencil order of :mod:`.fit.stencil`
-hertz       ``A``, ``B`` (n,) CURVATURE Q(32,20) 1/mm; ``W`` (n,) LOAD Q(32,8) N;
-            ``e_prime`` (n,) Q(32,0) MPa
-line        as hertz plus ``L`` (n,) LINE_LENGTH Q(32,20) mm (the line core,
-            :mod:`.hertz.line`)
-chain       ``gaps`` (n, 49) as for fit; ``W``, ``e_prime`` as for hertz (the C -> D
-            chain and the combinational C + D core take the same inputs)
-chain_line  as chain plus ``L`` as for line (the C -> line-core chain,
-            :mod:`.chain_line_rtl`)
-==========  ==========================================================================
-
+==========  ===================================================================
 Random vectors mix physically plausible operands (posed points near a sampled flank,
 quadratic gap surfaces with curvatures in the envelope, log-uniform loads) with raw codes
 drawn over each word's whole range, which exercise the overflow and envelope flags.
@@ -38,10 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..contract import envelope as ENV
+from ..contract.qformat import CURVATURE, GAP, LOAD
+from ..contract.stencil import STENCIL_SIZE, stencil_coordinates
 from ..validation import InputRangeError
-from .fit.stencil import STENCIL_SIZE, stencil_coordinates
-from .hertz import formats as HF
-from .qformat import CURVATURE, GAP, LOAD
 
 __all__ = ["Stimulus", "gap_stimulus", "fit_stimulus", "hertz_stimulus", "chain_stimulus",
            "line_stimulus", "chain_line_stimulus",
@@ -342,13 +326,13 @@ def fit_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
 # ---------------------------------------------------------------------------------
 def _loads(rng, n: int) -> np.ndarray:
     w = np.exp(rng.uniform(np.log(1.0), np.log(2.0 ** 17), n))
-    return np.clip(np.floor(w * 256 + 0.5), HF.LOAD_MIN_CODE, HF.LOAD_MAX_CODE).astype(np.int64)
+    return np.clip(np.floor(w * 256 + 0.5), ENV.LOAD_MIN_CODE, ENV.LOAD_MAX_CODE).astype(np.int64)
 
 
 def _e_primes(rng, n: int) -> np.ndarray:
     e = np.full(n, STEEL_E_PRIME_CODE, np.int64)
     other = rng.random(n) < 0.25
-    e[other] = rng.integers(HF.E_PRIME_MIN_CODE, HF.E_PRIME_MAX_CODE, int(other.sum()),
+    e[other] = rng.integers(ENV.E_PRIME_MIN_CODE, ENV.E_PRIME_MAX_CODE, int(other.sum()),
                             endpoint=True)
     return e
 
@@ -357,8 +341,8 @@ _I32 = (-(1 << 31), (1 << 31) - 1)
 
 
 def _hertz_corners() -> list:
-    cmin, cmax = HF.CURV_MIN_CODE, HF.CURV_MAX_CODE
-    wmin, wmax = HF.LOAD_MIN_CODE, HF.LOAD_MAX_CODE
+    cmin, cmax = ENV.CURV_MIN_CODE, ENV.CURV_MAX_CODE
+    wmin, wmax = ENV.LOAD_MIN_CODE, ENV.LOAD_MAX_CODE
     one, w1k, st = 1 << CURVATURE.frac, 1000 << LOAD.frac, STEEL_E_PRIME_CODE
     a128 = 1 << 12
 
@@ -387,10 +371,10 @@ def _hertz_corners() -> list:
         case("curvature above the envelope", one, cmax + 1),
         case("zero curvature", 0, one),
         case("negative curvature", -one, one),
-        case("E' at the minimum", one // 4, one // 2, w1k, HF.E_PRIME_MIN_CODE),
-        case("E' at the maximum", one // 4, one // 2, w1k, HF.E_PRIME_MAX_CODE),
-        case("E' below the envelope", one // 4, one // 2, w1k, HF.E_PRIME_MIN_CODE - 1),
-        case("E' above the envelope", one // 4, one // 2, w1k, HF.E_PRIME_MAX_CODE + 1),
+        case("E' at the minimum", one // 4, one // 2, w1k, ENV.E_PRIME_MIN_CODE),
+        case("E' at the maximum", one // 4, one // 2, w1k, ENV.E_PRIME_MAX_CODE),
+        case("E' below the envelope", one // 4, one // 2, w1k, ENV.E_PRIME_MIN_CODE - 1),
+        case("E' above the envelope", one // 4, one // 2, w1k, ENV.E_PRIME_MAX_CODE + 1),
         case("largest codes", _I32[1], _I32[1], _I32[1], _I32[1]),
         case("smallest codes", _I32[0], _I32[0], _I32[0], _I32[0]),
     ]
@@ -407,7 +391,7 @@ def hertz_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
     n = _check_n(n)
     rng = np.random.default_rng(seed)
     A, B = (np.floor(x).astype(np.int64) for x in
-            _curvature_pairs(rng, n, HF.CURV_MIN_CODE, HF.CURV_MAX_CODE))
+            _curvature_pairs(rng, n, ENV.CURV_MIN_CODE, ENV.CURV_MAX_CODE))
     fields = {"A": A, "B": B, "W": _loads(rng, n), "e_prime": _e_primes(rng, n)}
     labels = _raw_words(rng, fields, n)
     return _concat("hertz", _hertz_corners() if corners else [], fields, labels, seed)
@@ -447,8 +431,8 @@ def _line_corners() -> list:
         case("length at the maximum", one // 8, one // 32, lmax),
         case("length below the envelope", one // 8, one // 32, lmin - 1),
         case("length above the envelope", one // 8, one // 32, lmax + 1),
-        case("B_max above the envelope", 0, HF.CURV_MAX_CODE + 1),
-        case("B_max below the envelope", 0, HF.CURV_MIN_CODE - 1),
+        case("B_max above the envelope", 0, ENV.CURV_MAX_CODE + 1),
+        case("B_max below the envelope", 0, ENV.CURV_MIN_CODE - 1),
         case("negative A_min (saddle)", -one, one),
         case("largest codes", *(_I32[1],) * 5),
         case("smallest codes", *(_I32[0],) * 5),
@@ -494,14 +478,14 @@ def chain_stimulus(n: int, seed: int = 0, *, corners: bool = True) -> Stimulus:
         corner = [(lab, {"gaps": g, "W": w1k, "e_prime": STEEL_E_PRIME_CODE})
                   for lab, g in _stencil_corners()]
         ell = _gcode(_elliptic(0.05, 0.01, 0.4, 0.0, 0.05, -0.02))
-        for lab, w, e in (("minimum load", HF.LOAD_MIN_CODE, STEEL_E_PRIME_CODE),
-                          ("maximum load", HF.LOAD_MAX_CODE, STEEL_E_PRIME_CODE),
-                          ("load below the envelope", HF.LOAD_MIN_CODE - 1,
+        for lab, w, e in (("minimum load", ENV.LOAD_MIN_CODE, STEEL_E_PRIME_CODE),
+                          ("maximum load", ENV.LOAD_MAX_CODE, STEEL_E_PRIME_CODE),
+                          ("load below the envelope", ENV.LOAD_MIN_CODE - 1,
                            STEEL_E_PRIME_CODE),
-                          ("load above the envelope", HF.LOAD_MAX_CODE + 1,
+                          ("load above the envelope", ENV.LOAD_MAX_CODE + 1,
                            STEEL_E_PRIME_CODE),
-                          ("E' at the minimum", w1k, HF.E_PRIME_MIN_CODE),
-                          ("E' above the envelope", w1k, HF.E_PRIME_MAX_CODE + 1)):
+                          ("E' at the minimum", w1k, ENV.E_PRIME_MIN_CODE),
+                          ("E' above the envelope", w1k, ENV.E_PRIME_MAX_CODE + 1)):
             corner.append((f"elliptic stencil, {lab}", {"gaps": ell, "W": w, "e_prime": e}))
     return _concat("chain", corner, fields, labels, seed)
 

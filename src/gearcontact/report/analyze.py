@@ -55,7 +55,7 @@ from ..halfspace.patch import ContactAtEdgeWarning
 from ..geometry.generation import check_generation
 from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
-from ..preview.qformat import FixedPointOverflow
+from ..contract.qformat import FixedPointOverflow
 from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import without_timings, write_csv, write_tca_outputs
 from ..tca.synthesis import prepare_pair

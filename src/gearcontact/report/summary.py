@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from ..preview.fit.stencil import STENCIL_SPACING_MM
+from ..contract.stencil import STENCIL_SPACING_MM
 from .markdown import md_table, pct_diff
 from .multitooth import multitooth_section
 

@@ -35,7 +35,8 @@ from typing import Protocol
 
 import numpy as np
 
-from ..geometry.flank import SIDES, FlankSet
+from ..geometry.flank import FlankSet
+from ..geometry.formate import SIDES
 from ..materials import Material
 from ..validation import InputRangeError, check_array_finite, check_positive
 

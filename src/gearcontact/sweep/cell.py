@@ -19,7 +19,7 @@ import numpy as np
 
 from ..halfspace.ellipse import CoarseGridWarning
 from ..halfspace.patch import ContactAtEdgeWarning
-from ..tca.solve import EdgeContact, TcaConvergenceError
+from ..tca.types import EdgeContact, TcaConvergenceError
 from ..validation import InputRangeError
 
 __all__ = ["CELL_VARIABLES", "LTE_CELLS", "LTE_PHASES", "lte_stride", "TCA_VARIABLES", "LTCA_VARIABLES", "RECORDED_ERRORS",

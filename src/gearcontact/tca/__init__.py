@@ -13,8 +13,9 @@ from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
 from .mesh import MeshCycle, mesh_cycle
 from .phase_table import PhaseTable, decode_binary, encode_binary, phase_table
-from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError, TcaPath,
-                    solve_mating_point, solve_tca)
+from .mating import solve_mating_point
+from .solve import solve_tca
+from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError, TcaPath
 from .stencil import GapField, gap_at, gap_field, gap_field_80, hardware_stencil
 
 __all__ = ["TcaAnalysis", "analyze", "analyze_pair", "PAINT_THICKNESS_MM",

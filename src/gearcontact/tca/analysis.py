@@ -19,8 +19,8 @@ from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
                         relative_curvature)
 from .mesh import MeshCycle, mesh_cycle
 from .phase_table import PhaseTable, phase_table
-from .solve import (ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError,
-                    solve_mating_point)
+from .mating import solve_mating_point
+from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError
 from .stencil import GapField, gap_at, gap_field_80, hardware_stencil
 
 __all__ = ["TcaAnalysis", "analyze", "analyze_pair", "pattern_on_flank", "reference_start"]
@@ -190,7 +190,8 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     PatternOffFlank
         The contact has left the flanks at every phase tried.
     """
-    from ..geometry.flank import SIDES, build_flanks
+    from ..geometry.flank import build_flanks
+    from ..geometry.formate import SIDES
 
     if side is None:
         side = pair.design_side

@@ -42,12 +42,13 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from ..errors import CheckFailed
 from ..geometry.easeoff import mean_normal_thickness_mm
-from ..geometry.flank import SIDES, build_flanks
+from ..geometry.flank import build_flanks
+from ..geometry.formate import SIDES
 from ..geometry.pair import EaseOffCoefficients, GearPair
 from ..validation import InputRangeError, check_positive
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point, point_invariants)
-from .solve import EdgeContact
+from .types import EdgeContact
 
 __all__ = ["calibration_toml", "CalibrationTargets", "CalibrationRow", "Calibration",
            "calibrate_pair", "surface_of_action_offset", "working_depth_for_tip",

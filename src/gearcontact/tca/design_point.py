@@ -39,7 +39,8 @@ from ..materials import effective_modulus_mpa
 from .curvature import contact_ellipse, relative_curvature
 from .load import normal_load_from_torque
 from .mesh import mesh_cycle
-from .solve import ContactGuess, EdgeContact, solve_mating_point
+from .types import ContactGuess, EdgeContact
+from .mating import solve_mating_point
 
 __all__ = ["point_invariants", "DesignPoint", "conjugate_contact", "design_point_at",
            "evaluate_design_point", "eased_design_point", "centred_coefficients"]

@@ -22,7 +22,7 @@ touched surface's tangent plane; at an end of the edge the contact is a corner. 
 surface mating point reaches the edge from inside, it satisfies both systems, so the
 edge solution continues the surface one with continuous TE0 (tested).
 
-The result is a :class:`~gearcontact.tca.solve.MatingPoint` whose ``edge_contact`` names
+The result is a :class:`~gearcontact.tca.types.MatingPoint` whose ``edge_contact`` names
 the edge (``"pinion toe"``) and whose ``normal`` is the touched surface's normal
 oriented like every mating normal (out of the gear tooth, into the pinion tooth). Edge
 contact is singular (no contact ellipse across the edge); downstream the loaded contact

@@ -6,7 +6,7 @@ V/H check moves the pattern to toe/heel and tip/root), so an edge is reported, n
 fatal: per phase of the pitch the transmitting contact is either interior with its
 paint ellipse inside both flanks (``""``), or its pattern or its mating point reaches an
 edge, named ``"<member> <edge>"`` with ``member`` pinion or gear and ``edge`` one of
-toe / heel / tip / root (:class:`~gearcontact.geometry.flank.FlankBoundary`: ``u`` runs
+toe / heel / tip / root (:class:`~gearcontact.geometry.formate.FlankBoundary`: ``u`` runs
 root -> tip, ``v`` toe -> heel on both members).
 
 Only a contact that has left the flanks at every phase tried is an error,

@@ -2,7 +2,7 @@
 
 ``write_tca_outputs`` writes into one directory: ``tca.json`` (summary), ``te0.csv``,
 ``contact_path.csv``, ``gap_stencil.csv`` (49-sample hardware stencil, format of
-:mod:`gearcontact.preview.fit.stencil`), ``gap_field.csv`` (80 x 80 host field),
+:mod:`gearcontact.contract.stencil`), ``gap_field.csv`` (80 x 80 host field),
 ``phase_table.json``, ``phase_table.bin`` and the figures ``te0.png``,
 ``contact_pattern.png`` and ``flanks_in_mesh.png`` (the geometry's flank-sheet view at
 P0). Used by the ``tca`` and ``analyze`` commands. ``write_line_contact_outputs``

@@ -12,10 +12,10 @@ compiled code, with the surfaces evaluated as their ``evaluate`` methods do:
   :func:`gearcontact.geometry.spline_kernel.pp_point`; arguments clamped to the knot
   box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
   ``r_u``, ``r_v`` (:func:`~gearcontact.geometry.sheet.sheet_vector`);
-* :class:`~gearcontact.geometry.flank.FormateFlank` (gear): the blade cone, a circular
+* :class:`~gearcontact.geometry.formate.FormateFlank` (gear): the blade cone, a circular
   cone, which a line meets where a quadratic vanishes (:func:`cone_lines`: no Newton;
   the root nearest the tangent plane; (u, v) back from the point by the inverse of
-  :func:`~gearcontact.geometry.flank.cone_vector`).
+  :func:`~gearcontact.geometry.formate.cone_vector`).
 
 Three things make it converge in fewer steps without moving any root: each line starts
 from the tangent-plane prediction at an already solved neighbour (order given by the
@@ -39,7 +39,7 @@ import weakref
 import numpy as np
 from numba import njit
 
-from ..geometry.flank import FormateFlank
+from ..geometry.formate import FormateFlank
 from ..geometry.sheet import RadialSheet, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
@@ -68,7 +68,7 @@ def kernel_surface(surface):
     """The kernel form ``(kind, par, tx, ty, pc)`` of a flank, or None.
 
     Sheet ``par``: ``(kx, ky, apex_x, tan_delta, root_offset)``; cone ``par``:
-    :attr:`~gearcontact.geometry.flank.FormateFlank.kernel_parameters`.
+    :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`.
     """
     try:
         return _CACHE[surface]
@@ -127,7 +127,7 @@ def _solve3(a, b, x):
 @njit(cache=True)
 def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
     """Closed-form intersections of the lines ``q_i + lambda n`` with a posed blade
-    cone (``par``: :attr:`~gearcontact.geometry.flank.FormateFlank.kernel_parameters`).
+    cone (``par``: :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`).
 
     In the body frame a cone point ``w = x - C`` has height ``h = w.a`` along the axis
     and radius ``|w - h a| = rho_0 + k h``; along a line ``w = w_0 + lambda m`` squaring

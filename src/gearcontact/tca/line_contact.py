@@ -28,8 +28,8 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..validation import UnusableInput
-from .solve import (ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError,
-                    solve_mating_point)
+from .mating import solve_mating_point
+from .types import ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError
 
 __all__ = ["LINE_TOLERANCE_MM", "LineContactResult", "LineContact", "line_contact",
            "is_conjugate"]

@@ -34,8 +34,9 @@ from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
                         contact_ellipse, relative_curvature)
 from .edge_contact import contact_state
 from .edges import ContactGap
-from .solve import (EDGE_TE_LIMIT_ARCSEC, ContactGuess, MatingPoint, TcaPath,
-                    solve_mating_point, solve_tca)
+from .mating import solve_mating_point
+from .solve import solve_tca
+from .types import EDGE_TE_LIMIT_ARCSEC, ContactGuess, MatingPoint, TcaPath
 
 __all__ = ["CONTINUATION_STEPS_PER_PITCH", "MeshCycle", "mesh_cycle", "rebase"]
 

@@ -54,7 +54,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..geometry.flank import SIDES
+from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM, flank_frame
 

@@ -35,7 +35,7 @@ offset  bytes   field                      encoding
 Record, 22 bytes:
 
 ======  ======  =================  ===========================================
-offset  bytes   field              format (:mod:`gearcontact.preview.qformat`)
+offset  bytes   field              format (:mod:`gearcontact.contract.qformat`)
 ======  ======  =================  ===========================================
 0       9       x, y, z            3 x COORD Q(24,16), mm
 9       3       te0                Q(24,12), arcsec (:data:`TE0`)
@@ -46,7 +46,7 @@ offset  bytes   field              format (:mod:`gearcontact.preview.qformat`)
 
 Multi-byte fields are two's complement, little-endian; quantization is
 round-half-up (:meth:`QFormat.quantize`); out-of-range values raise
-:class:`~gearcontact.preview.qformat.FixedPointOverflow`, never wrap.
+:class:`~gearcontact.contract.qformat.FixedPointOverflow`, never wrap.
 """
 
 from __future__ import annotations

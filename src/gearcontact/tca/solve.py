@@ -3,8 +3,8 @@
 :func:`solve_tca` follows the mating point of two flanks (:mod:`.mating`, Newton per
 phase) along the pinion phases by continuation, and through edge-to-surface contact
 (:mod:`.edge_contact`) where the surface mating point leaves a flank. The types, the
-constants and the errors of the TCA (:mod:`.types`) and the mating-point solver are
-re-exported here.
+constants and the errors of the TCA are in :mod:`.types`, the mating-point solver in
+:mod:`.mating` (their former names here are deprecated).
 
 Transmission error (docs/geometry.md sec. 4):
 ``TE0 = (phi2 - phi2_0) - (z1/z2)(phi1 - phi1_0)`` converted to arcsec
@@ -18,18 +18,23 @@ from dataclasses import replace
 import numpy as np
 from tqdm import tqdm
 
+from ..deprecation import moved_names
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
 from .edges import solver_boundary
-from .mating import normal_derivatives, posed_point, solve_mating_point
-from .types import (ARCSEC_PER_RAD, EDGE_TE_LIMIT_ARCSEC, VARIABLES, ContactGuess,
-                    EdgeContact, MatingPoint, TcaConvergenceError, TcaPath)
+from .mating import solve_mating_point
+from .types import (ARCSEC_PER_RAD, EDGE_TE_LIMIT_ARCSEC, ContactGuess, EdgeContact,
+                    MatingPoint, TcaConvergenceError, TcaPath)
 
-__all__ = ["ARCSEC_PER_RAD", "EDGE_TE_LIMIT_ARCSEC", "VARIABLES", "ContactGuess",
-           "MatingPoint", "TcaPath", "EdgeContact", "TcaConvergenceError",
-           "solve_mating_point", "solve_tca",
-           "posed_point", "normal_derivatives"]
+__all__ = ["solve_tca"]
+
+#: Deprecated for one release: the TCA's types are in :mod:`.types`, the mating point's
+#: functions in :mod:`.mating`.
+__getattr__ = moved_names(__name__, {
+    "VARIABLES": "gearcontact.tca.types:VARIABLES",
+    "posed_point": "gearcontact.tca.mating:posed_point",
+    "normal_derivatives": "gearcontact.tca.mating:normal_derivatives"})
 
 
 def _predict(prev: MatingPoint, prev2: MatingPoint | None, phi1: float,

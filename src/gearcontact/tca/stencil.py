@@ -28,7 +28,7 @@ Grids:
   resolves the narrow direction; for s0003 this is about +-3.6 mm x +-0.5 mm and also
   contains the loaded Hertz ellipse up to 258 N m;
 * the hardware stencil (:func:`hardware_stencil`): the baked 7 x 7 grid of
-  :mod:`gearcontact.preview.fit.stencil` (spacing ``STENCIL_SPACING_MM``, row-major,
+  :mod:`gearcontact.contract.stencil` (spacing ``STENCIL_SPACING_MM``, row-major,
   s fastest) in the **flank** frame; stage C recovers A-, B- independently of the
   rotation of the frame. Written by :func:`write_stencil_csv` as ``gap_stencil.csv``
   (header ``s_mm,t_mm,gap_mm``). A window reaching beyond the flank is filled as chosen
@@ -359,8 +359,8 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
 
 def write_stencil_csv(field: GapField, path) -> Path:
     """Write a 49-sample stencil as ``gap_stencil.csv`` through the format owner,
-    :func:`gearcontact.preview.fit.stencil.write_stencil_csv` (read it back with
-    :func:`~gearcontact.preview.fit.stencil.read_stencil_csv`). Raises ``ValueError``
+    :func:`gearcontact.contract.stencil.write_stencil_csv` (read it back with
+    :func:`~gearcontact.contract.stencil.read_stencil_csv`). Raises ``ValueError``
     if a sample lies off the flank without a fill (NaN)."""
     if field.gap_mm.size != STENCIL_SIDE * STENCIL_SIDE:
         raise ValueError(f"a hardware stencil has {STENCIL_SIDE ** 2} samples, "

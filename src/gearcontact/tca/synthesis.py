@@ -51,14 +51,15 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
-from ..geometry.flank import SIDES, FlankSet, build_flanks, with_easeoff
+from ..geometry.flank import FlankSet, build_flanks, with_easeoff
+from ..geometry.formate import SIDES
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point)
 from .path_reach import check_path_angle
-from .solve import EdgeContact
+from .types import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
            "easeoff_toml", "PreparedPair", "prepare_pair"]

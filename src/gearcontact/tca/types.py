@@ -2,7 +2,7 @@
 
 Shared by the mating-point solver (:mod:`.mating`), the edge-contact solver
 (:mod:`.edge_contact`), the curvatures and stencils built on a mating point and the
-path continuation (:mod:`.solve`), which re-exports them.
+path continuation (:mod:`.solve`).
 """
 
 from __future__ import annotations

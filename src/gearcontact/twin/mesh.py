@@ -95,7 +95,7 @@ class MeshTable:
         contact), mm/N; zeros for rigid teeth (:func:`mesh_table` ``bending``).
     stencil_gaps_mm : ndarray (P, K, 49)
         The stage-C stencil of each pair at each phase (zeros where not ``valid``), mm,
-        in the order of :mod:`gearcontact.preview.fit.stencil`.
+        in the order of :mod:`gearcontact.contract.stencil`.
     """
 
     psi_rad: np.ndarray

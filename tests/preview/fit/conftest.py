@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM, stencil_coordinates
+from gearcontact.contract.stencil import STENCIL_SPACING_MM, stencil_coordinates
 
 
 def quadratic_field(a_minus, b_minus, angle_deg, c0=0.0, c1=0.0, c2=0.0,

@@ -16,10 +16,10 @@ from gearcontact.preview.fit.golden import (
     golden_fit, golden_fit_batch, isqrt_nonrestoring, isqrt_nonrestoring_array)
 from gearcontact.preview.fit.pinv import coefficient_error_bound
 from gearcontact.preview.fit.reference import fit_curvatures
-from gearcontact.preview.fit.stencil import stencil_coordinates
-from gearcontact.preview.qformat import CURVATURE, GAP, FixedPointOverflow
+from gearcontact.contract.stencil import stencil_coordinates
+from gearcontact.contract.qformat import CURVATURE, GAP, FixedPointOverflow
 from gearcontact.validation import InputRangeError
-from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM
+from gearcontact.contract.stencil import STENCIL_SPACING_MM
 
 LSB = CURVATURE.lsb
 

@@ -13,7 +13,7 @@ from gearcontact.preview.fit import golden as G
 from gearcontact.preview.fit.golden import golden_fit, golden_fit_batch
 from gearcontact.preview.fit.golden_vec import _isqrt, fit_kernel
 from gearcontact.preview.fit.pinv import baked_pinv
-from gearcontact.preview.qformat import GAP, FixedPointOverflow
+from gearcontact.contract.qformat import GAP, FixedPointOverflow
 from gearcontact.preview.stimulus import fit_stimulus
 
 from .test_golden import corner_stencils, random_stencils

@@ -7,8 +7,8 @@ from gearcontact.preview.fit.pinv import (ACC, N_TAPS, ROM_WORD, ROM_WORD_BITS, 
                                           bake_pseudo_inverse, baked_pinv,
                                           coefficient_error_bound, design_matrix,
                                           pseudo_inverse)
-from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM, stencil_coordinates
-from gearcontact.preview.qformat import GAP, FixedPointOverflow
+from gearcontact.contract.stencil import STENCIL_SPACING_MM, stencil_coordinates
+from gearcontact.contract.qformat import GAP, FixedPointOverflow
 from gearcontact.validation import InputRangeError
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcontact.preview.fit.reference import fit_curvatures, principal_curvatures
-from gearcontact.preview.fit.stencil import STENCIL_SIDE
+from gearcontact.contract.stencil import STENCIL_SIDE
 from gearcontact.validation import InputRangeError
 
 

@@ -13,8 +13,8 @@ from gearcontact.preview.fit.golden import (FIT_CYCLES, FLAG_COEFF_OVERFLOW,
                                             golden_fit)
 from gearcontact.preview.fit.rtl import (FitCore, convert_verilog, read_fit_codes,
                                         simulate_fit_core)
-from gearcontact.preview.fit.stencil import stencil_coordinates
-from gearcontact.preview.qformat import GAP
+from gearcontact.contract.stencil import stencil_coordinates
+from gearcontact.contract.qformat import GAP
 from gearcontact.preview.simulation import (pulse, run_to_done, simulate_bench,
                                             write_stencil)
 

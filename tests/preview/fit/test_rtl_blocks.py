@@ -13,8 +13,8 @@ from gearcontact.preview.fit.pinv import N_COEFFS, N_TAPS, bake_pseudo_inverse, 
 from gearcontact.preview.fit.rtl import SCHEDULE, simulate_fit_core
 from gearcontact.preview.fit.rtl_isqrt import IsqrtSequential
 from gearcontact.preview.fit.rtl_mac import N_PAIRS, PairMac, weight_bits
-from gearcontact.preview.fit.stencil import stencil_coordinates
-from gearcontact.preview.qformat import GAP
+from gearcontact.contract.stencil import stencil_coordinates
+from gearcontact.contract.qformat import GAP
 from gearcontact.preview.simulation import simulate_bench
 from gearcontact.validation import InputRangeError
 

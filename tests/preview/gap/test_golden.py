@@ -12,7 +12,7 @@ from gearcontact.preview.gap.golden import (DEFAULT_FORMAT, IDX_SENTINEL,
                                             quantize_tau2)
 from gearcontact.preview.gap.precision import gap_precision_sweep
 from gearcontact.preview.gap.reference import gap_reference, gap_sample_terms
-from gearcontact.preview.qformat import FixedPointOverflow
+from gearcontact.contract.qformat import FixedPointOverflow
 from gearcontact.validation import InputRangeError
 
 ONE = 1 << 19                        # 1.0 in the normal format

@@ -10,7 +10,7 @@ from gearcontact.preview.gap.golden import (GapVector, gap_golden, gap_golden_co
 from gearcontact.preview.gap.variants import (GAP_VARIANTS, LEAN_E_BITS, check_variant,
                                               lean_tau2_max, lean_tau_max_mm,
                                               residual_limit)
-from gearcontact.preview.qformat import FixedPointOverflow
+from gearcontact.contract.qformat import FixedPointOverflow
 from gearcontact.preview.stimulus import gap_stimulus
 from gearcontact.validation import InputRangeError
 

@@ -17,7 +17,7 @@ from gearcontact.preview.hertz.golden import (decode_hertz_codes, encode_e_prime
                                               encode_hertz_inputs, hertz_golden)
 from gearcontact.preview.hertz.golden_vec import hertz_golden_array
 from gearcontact.preview.hertz.reference import hertz_preview_array
-from gearcontact.preview.qformat import PMAX, FixedPointOverflow
+from gearcontact.contract.qformat import PMAX, FixedPointOverflow
 from gearcontact.validation import InputRangeError
 
 from .conftest import E_PRIMES, accuracy_domain

@@ -34,7 +34,7 @@ from gearcontact.preview.hertz.schedule import (
     STATES,
     state_start_cycles,
 )
-from gearcontact.preview.qformat import CURVATURE, LOAD
+from gearcontact.contract.qformat import CURVATURE, LOAD
 from gearcontact.preview.simulation import (pulse, run_testbench, run_to_done,
                                             simulate_bench)
 

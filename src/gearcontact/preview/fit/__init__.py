@@ -14,8 +14,8 @@ from gearcontact.preview.fit.golden import (FIT_CYCLES, FLAG_ANY_OVERFLOW,
                                             encode_gaps, golden_fit, golden_fit_batch)
 from gearcontact.preview.fit.pinv import BakedPinv, baked_pinv
 from gearcontact.preview.fit.reference import CurvatureFit, fit_curvatures
-from gearcontact.preview.fit.stencil import (STENCIL_SIDE, STENCIL_SIZE, STENCIL_SPACING_MM,
-                                             stencil_coordinates)
+from gearcontact.contract.stencil import (STENCIL_SIDE, STENCIL_SIZE,
+                                          STENCIL_SPACING_MM, stencil_coordinates)
 
 __all__ = ["FIT_CYCLES", "FLAG_ANY_OVERFLOW", "FLAG_COEFF_OVERFLOW", "FLAG_CURV_OVERFLOW",
            "FLAG_D_OVERFLOW", "FLAG_NOT_ELLIPTIC", "GoldenFit", "GoldenFitBatch",

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..core import CoreDescriptor, WriteNames, lazy
 from ..stimulus import Stimulus
-from .stencil import STENCIL_SIZE
+from ...contract.stencil import STENCIL_SIZE
 
 __all__ = ["DESCRIPTORS", "STENCIL_WRITE", "STENCIL_CONTROL", "fit_columns"]
 

@@ -17,9 +17,10 @@ A-, B-      CURVATURE       ``round_shift(h + r, 1)``, ``round_shift(h - r, 1)``
             Q(32,20)        1/mm; overflow -> flag; B- <= 0 -> not elliptic
 ==========  ==============  ===================================================
 
-``round_shift`` is round-half-up by arithmetic shift (:mod:`..qformat`). A- >= B- by
-construction (r >= 0 and rounding is monotone). Nothing wraps: whenever an overflow
-flag is set, *every* numeric output of that run reads 0 and the flags word says why.
+``round_shift`` is round-half-up by arithmetic shift (:mod:`gearcontact.contract.qformat`).
+A- >= B- by construction (r >= 0 and rounding is monotone). Nothing wraps: whenever an
+overflow flag is set, *every* numeric output of that run reads 0 and the flags word says
+why.
 
 Error bound against the exact eigenvalues (used by the tests): the coefficient error
 ``|c_q - c|`` is bounded by :func:`.pinv.coefficient_error_bound`; by Weyl's
@@ -56,7 +57,8 @@ import numpy as np
 
 from gearcontact.preview.fit.golden_vec import fit_constants, fit_kernel
 from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv, baked_pinv
-from gearcontact.preview.qformat import CURVATURE, GAP, FixedPointOverflow, round_shift, sq, uq
+from gearcontact.contract.qformat import (CURVATURE, GAP, FixedPointOverflow,
+                                          round_shift, sq, uq)
 from gearcontact.validation import InputRangeError
 
 __all__ = ["FLAG_COEFF_OVERFLOW", "FLAG_D_OVERFLOW", "FLAG_CURV_OVERFLOW",
@@ -191,7 +193,7 @@ def encode_gaps(gaps_mm) -> np.ndarray:
     ------
     gearcontact.validation.InputRangeError
         If the last axis is not 49 long.
-    gearcontact.preview.qformat.FixedPointOverflow
+    gearcontact.contract.qformat.FixedPointOverflow
         A sample is NaN/inf or outside +-32768 mm; the message names it, e.g.
         ``gaps_mm[12]`` or ``gaps_mm[3, 12]`` (stencil 3, sample 12).
     """

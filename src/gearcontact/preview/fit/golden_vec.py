@@ -49,7 +49,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
         return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
 from ...validation import InputRangeError
-from ..qformat import CURVATURE, GAP, FixedPointOverflow
+from ...contract.qformat import CURVATURE, GAP, FixedPointOverflow
 from .pinv import COEFF, N_COEFFS, N_TAPS
 
 __all__ = ["HAVE_NUMBA", "fit_kernel", "fit_element", "fit_constants"]
@@ -183,7 +183,7 @@ def fit_kernel(gap_codes: np.ndarray, weight_codes: np.ndarray, *, coeff_shift: 
     ------
     gearcontact.validation.InputRangeError
         Wrong shapes.
-    gearcontact.preview.qformat.FixedPointOverflow
+    gearcontact.contract.qformat.FixedPointOverflow
         A gap code outside GAP Q(32,16), named ``gap_codes[k, i]`` (stencil k, tap i).
     """
     g = np.ascontiguousarray(gap_codes, dtype=np.int64)

@@ -48,8 +48,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcontact.preview.fit.stencil import STENCIL_SIZE, STENCIL_SPACING_MM, stencil_coordinates
-from gearcontact.preview.qformat import GAP, QFormat, sq
+from gearcontact.contract.stencil import (STENCIL_SIZE, STENCIL_SPACING_MM,
+                                          stencil_coordinates)
+from gearcontact.contract.qformat import GAP, QFormat, sq
 from gearcontact.validation import check_array_finite, check_positive, InputRangeError
 
 __all__ = ["N_COEFFS", "N_TAPS", "WEIGHT", "ROM_WORD", "ROM_WORD_BITS", "ACC", "COEFF",
@@ -73,7 +74,7 @@ def design_matrix(spacing_mm: float = STENCIL_SPACING_MM) -> np.ndarray:
     ----------
     spacing_mm : float
         Stencil grid spacing h, mm (> 0). Rows follow the sample order of
-        :mod:`.stencil`; column k has unit mm^deg(k).
+        :mod:`gearcontact.contract.stencil`; column k has unit mm^deg(k).
     """
     h = check_positive("spacing_mm", spacing_mm)
     s, t = stencil_coordinates(h)
@@ -143,7 +144,7 @@ def bake_pseudo_inverse(*, spacing_mm: float = STENCIL_SPACING_MM) -> BakedPinv:
 
     Raises
     ------
-    gearcontact.preview.qformat.FixedPointOverflow
+    gearcontact.contract.qformat.FixedPointOverflow
         If a weight does not fit WEIGHT Q(32,20) (message names ``M[j, i]``).
     """
     m = pseudo_inverse(spacing_mm)

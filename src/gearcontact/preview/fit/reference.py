@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcontact.preview.fit.pinv import N_TAPS, baked_pinv, design_matrix, pseudo_inverse
-from gearcontact.preview.fit.stencil import STENCIL_SPACING_MM
+from gearcontact.contract.stencil import STENCIL_SPACING_MM
 from gearcontact.validation import InputRangeError, check_array_finite, check_positive
 
 __all__ = ["CurvatureFit", "fit_curvatures", "principal_curvatures"]
@@ -108,7 +108,8 @@ def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> Curvat
     Parameters
     ----------
     gaps_mm : array_like, shape (49,)
-        Gap samples in the order of :mod:`.stencil`, mm (positive = open).
+        Gap samples in the order of :mod:`gearcontact.contract.stencil`, mm (positive =
+        open).
     spacing_mm : float, keyword-only
         Stencil spacing, mm (> 0; default the baked hardware spacing).
 

@@ -93,7 +93,7 @@ from gearcontact.preview.fit.golden import (D_FMT, FIT_CYCLES, FLAG_BITS,
 from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv
 from gearcontact.preview.fit.rtl_isqrt import IsqrtSequential
 from gearcontact.preview.fit.rtl_mac import N_PAIRS, PairMac
-from gearcontact.preview.qformat import CURVATURE, GAP
+from gearcontact.contract.qformat import CURVATURE, GAP
 from gearcontact.preview.simulation import (read_record, run_testbench, run_to_done,
                                             write_stencil)
 

@@ -47,7 +47,7 @@ from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
 from gearcontact.preview.fit.pinv import ACC, N_COEFFS, N_TAPS, WEIGHT, BakedPinv, baked_pinv
-from gearcontact.preview.qformat import GAP
+from gearcontact.contract.qformat import GAP
 
 __all__ = ["G_LO_BITS", "N_PAIRS", "W_LO_BITS", "PairMac", "weight_bits"]
 

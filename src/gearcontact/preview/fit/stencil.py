@@ -1,11 +1,15 @@
-"""Geometry of the hardware curvature-fit stencil (stage C) and its file format.
+"""Deprecated: the stencil geometry moved to :mod:`gearcontact.contract.stencil`.
 
-Defined in :mod:`gearcontact.contract.stencil` (below the host TCA, which samples the
-gap on it, and stage C, which fits it); the datapath's modules name it from here.
+The 7 x 7 stencil is part of the host <-> datapath data contract, below the host TCA
+and stage C; every module of the package imports it from there. The old names still
+resolve here for one release and emit a :class:`DeprecationWarning`.
 """
 
-from ...contract.stencil import (STENCIL_SIDE, STENCIL_SIZE, STENCIL_SPACING_MM,
-                                 read_stencil_csv, stencil_coordinates, write_stencil_csv)
+from ...deprecation import moved_names
 
-__all__ = ["STENCIL_SIDE", "STENCIL_SIZE", "STENCIL_SPACING_MM", "stencil_coordinates",
-           "read_stencil_csv", "write_stencil_csv"]
+__all__: list[str] = []
+
+__getattr__ = moved_names(__name__, {
+    name: f"gearcontact.contract.stencil:{name}"
+    for name in ("STENCIL_SIDE", "STENCIL_SIZE", "STENCIL_SPACING_MM",
+                 "stencil_coordinates", "read_stencil_csv", "write_stencil_csv")})

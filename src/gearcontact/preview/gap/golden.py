@@ -34,7 +34,7 @@ of clipping, the word is widened by one integer bit to Q(21,19) and restricted t
 closed unit interval, codes in [-2^19, +2^19]; the product magnitude stays
 <= 2^42, so the 44-bit products and 48-bit accumulator of docs/spec.md sec. 6 are
 unchanged. A component whose rounded code leaves [-2^19, 2^19] raises
-:class:`~gearcontact.preview.qformat.FixedPointOverflow`.
+:class:`~gearcontact.contract.qformat.FixedPointOverflow`.
 
 For ``cf > 16`` (precision sweep, docs/spec.md sec. 8) ``e_k`` is round-shifted back to
 16 fraction bits before squaring (``e_shift = cf - 16``) so that rho keeps the
@@ -95,7 +95,7 @@ from fractions import Fraction
 import numpy as np
 
 from ...validation import InputRangeError, check_positive, check_range
-from ..qformat import FixedPointOverflow, QFormat, round_shift, sq, uq
+from ...contract.qformat import FixedPointOverflow, QFormat, round_shift, sq, uq
 from .reference import MAX_SAMPLES, check_lanes, validate_gap_inputs
 from .variants import residual_limit
 

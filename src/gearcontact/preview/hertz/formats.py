@@ -53,8 +53,10 @@ from __future__ import annotations
 
 import math
 
+from ...contract.envelope import (CURV_MAX_CODE, CURV_MIN_CODE, E_PRIME_MAX_CODE,
+                                  E_PRIME_MIN_CODE, LOAD_MAX_CODE, LOAD_MIN_CODE)
 from ...validation import InputRangeError
-from ..qformat import CURVATURE, LOAD, PMAX, sq, uq
+from ...contract.qformat import CURVATURE, LOAD, PMAX, sq, uq
 
 __all__ = [
     "E_PRIME", "K_OUT", "ALPHA", "RADIUS", "E6", "K_INT", "K2", "T1", "T2", "T3", "CA",
@@ -91,13 +93,8 @@ C3 = math.floor(3.0 / (2.0 * math.pi) * 2.0 ** C3_FRAC + 0.5)              #: 3/
 PN2_SHIFT = PN2.frac + AXIS_W.frac - LOAD.frac - C3_FRAC
 PMAX_SHIFT = PMAX.frac + 1 + AXIS_W.frac - PN2.frac
 
-# ---- operating envelope (codes, inclusive) ------------------------------------------
-CURV_MIN_CODE = 1 << (CURVATURE.frac - 11)     #: 2^-11 1/mm
-CURV_MAX_CODE = 1 << (CURVATURE.frac + 4)      #: 16 1/mm
-LOAD_MIN_CODE = 1 << LOAD.frac                 #: 1 N
-LOAD_MAX_CODE = 1 << (LOAD.frac + 17)          #: 131 072 N
-E_PRIME_MIN_CODE = 1 << 12                     #: 4 096 MPa
-E_PRIME_MAX_CODE = 1 << 21                     #: 2 097 152 MPa
+# ---- operating envelope (codes, inclusive): the inputs' ranges are the data contract's
+# (gearcontact.contract.envelope, imported above); the internal alpha bound is stage D's
 ALPHA_MAX_CODE = 128 << ALPHA.frac             #: alpha <= 128 (POW LUT segment <= 254)
 
 # ---- flags --------------------------------------------------------------------------

@@ -67,7 +67,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...validation import check_array_finite, check_finite
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift
 from . import formats as F
 from .divider import DIVIDER_BITS, floor_divide, restoring_divide
 from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, POW_SPECS, lut_interpolate

@@ -34,7 +34,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
     def njit(*args, **kwargs):
         return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, POW_SPEC, POW_SPECS, lut_array
 

@@ -105,7 +105,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...validation import check_array_finite, check_finite
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift, sq, uq
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift, sq, uq
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVISION_CYCLES, floor_divide
 from .golden import _check_code, hertz_golden

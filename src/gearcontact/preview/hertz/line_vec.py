@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from . import line as LN
 from .golden_vec import (_div_wide, _rs, golden_constants, hertz_element, njit, prange,

@@ -67,7 +67,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..qformat import round_shift
+from ...contract.qformat import round_shift
 from . import formats as F
 
 __all__ = ["LutSpec", "POW_SPEC", "CBRT_SPEC", "POW_EXACT_SPEC", "EE_EXACT_SPEC",

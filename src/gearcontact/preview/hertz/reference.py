@@ -39,7 +39,7 @@ from ...analytic.hertz import (exact_elliptic_hertz, hamrock_brewe_hertz_array,
                                hamrock_brewe_terms, line_contact_hertz)
 from ...validation import (InputRangeError, check_array_finite, check_positive, check_range,
                            format_range)
-from ..qformat import CURVATURE, LOAD
+from ...contract.qformat import CURVATURE, LOAD
 from . import formats as F
 
 __all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",

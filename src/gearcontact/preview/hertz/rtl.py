@@ -57,7 +57,7 @@ from amaranth.lib import wiring
 from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from ..simulation import CycleCounter, read_record, run_testbench
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVIDER_CYCLES, DIVIDER_HANDSHAKE_CYCLES
@@ -405,7 +405,7 @@ def read_hertz_codes(ctx, dut) -> HertzCodes:
 def _check_vectors(vectors):
     import numpy as np
 
-    from ..qformat import CURVATURE as Cv
+    from ...contract.qformat import CURVATURE as Cv
     rows = np.asarray(vectors, dtype=object)
     if rows.ndim != 2 or rows.shape[1] != 4:
         from ...validation import InputRangeError

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from amaranth import Cat, Const, Module, Mux, Signal
 
-from ..qformat import PMAX, SEMI_AXIS
+from ...contract.qformat import PMAX, SEMI_AXIS
 from . import formats as F
 from .divider import DIVIDER_BITS
 from .luts import EE_DIVIDEND_SHIFT, LUT_SIZE, POW_SPEC, LutSpec

@@ -28,7 +28,7 @@ from amaranth import Cat, Module, Mux, Signal, unsigned
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
-from ..qformat import CURVATURE
+from ...contract.qformat import CURVATURE
 from . import formats as F
 from .divider import DIVIDER_BITS
 

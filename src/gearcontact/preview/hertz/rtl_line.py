@@ -36,7 +36,7 @@ from amaranth.back import verilog
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from ..simulation import CycleCounter, read_record, run_testbench
 from . import formats as F
 from . import line as LN

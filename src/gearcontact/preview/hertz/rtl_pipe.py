@@ -68,7 +68,7 @@ from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
 from ...validation import InputRangeError
-from ..qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
+from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS
 from . import formats as F
 from . import rtl_datapath as dp
 from .luts import CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE, LUT_WORD_BITS, POW_SPEC, POW_SPECS, rom_words
