@@ -21,8 +21,9 @@ import shutil
 
 import numpy as np
 import pytest
+from readme_lines import readme_commands
 
-from .conftest import _shell, readme_lines
+from .conftest import _shell
 
 
 def test_readme_export_lines_as_written(readme_export):
@@ -52,7 +53,7 @@ def test_readme_export_lines_as_written(readme_export):
                     reason="the console script is needed")
 def test_readme_export_flanks_line_as_written(tmp_path):
     gmsh = pytest.importorskip("gmsh", reason="the export extra (gmsh)")
-    lines = readme_lines("gearcontact export flanks")
+    lines = readme_commands("gearcontact export flanks")
     assert len(lines) == 1
     run = _shell(lines[0], tmp_path)
     assert run.returncode == 0, (lines[0], run.stderr)
