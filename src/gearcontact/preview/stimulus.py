@@ -6,7 +6,24 @@ vectors. The same function feeds the Verilator equivalence tests, the
 ``gearcontact rtl sim`` command and the golden-vector export, so "vector k of seed s"
 means the same operands everywhere.
 
-==========  ===================================================================
+==========  ==========================================================================
+core        fields of :attr:`Stimulus.fields` (``int64``, first axis = vector)
+==========  ==========================================================================
+gap         ``r`` (n, 3, 3) Q(21,19) with ``|c| <= 2^19``; ``t``, ``p`` (n, 3) and ``g``
+            (n, N, 3) Q(24,16) mm; ``nrm`` (n, N, 3) normals like ``r``; ``tau2`` (n,)
+            UQ(64,32) mm^2 in [1, 2^63 - 1]
+fit         ``gaps`` (n, 49) GAP Q(32,16) mm, in the stencil order of
+            :mod:`gearcontact.contract.stencil`
+hertz       ``A``, ``B`` (n,) CURVATURE Q(32,20) 1/mm; ``W`` (n,) LOAD Q(32,8) N;
+            ``e_prime`` (n,) Q(32,0) MPa
+line        as hertz plus ``L`` (n,) LINE_LENGTH Q(32,20) mm (the line core,
+            :mod:`.hertz.line`)
+chain       ``gaps`` (n, 49) as for fit; ``W``, ``e_prime`` as for hertz (the C -> D
+            chain and the combinational C + D core take the same inputs)
+chain_line  as chain plus ``L`` as for line (the C -> line-core chain,
+            :mod:`.chain_line_rtl`)
+==========  ==========================================================================
+
 Random vectors mix physically plausible operands (posed points near a sampled flank,
 quadratic gap surfaces with curvatures in the envelope, log-uniform loads) with raw codes
 drawn over each word's whole range, which exercise the overflow and envelope flags.
