@@ -49,7 +49,7 @@ from .sheet import GearCone, GearSheet, RadialSheet
 
 __all__ = ["EnvelopeSolution", "EnvelopeSolver", "formate_gear_flank", "gear_flank_of",
            "generated_gear_box", "generated_gear_flank", "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
-           "work_to_body"]
+           "solve_node_grid", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
 _MAX_ITER = 40
@@ -284,7 +284,7 @@ def _sheet_of(solver, box, mean, setup, n_u, n_v, kind):
     u_m, v_m = _mean_uv(setup, solver.blank, cone)
     us = np.linspace(box.u_root - NODE_MARGIN_MM[0], box.u_tip + NODE_MARGIN_MM[0], int(n_u))
     vs = np.linspace(box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1], int(n_v))
-    nodes = _solve_grid(solver, us, vs, u_m, v_m, mean.q)
+    nodes = solve_node_grid(solver, us, vs, u_m, v_m, mean.q)
     _check_regular(nodes, mean, setup, us, vs, box)
     psi = np.unwrap(np.unwrap(solver.angle(nodes.x_mm), axis=0), axis=1)
     flank = kind(side=setup.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
@@ -439,9 +439,10 @@ def _active_box(solver: EnvelopeSolver, nominal: FlankBoundary, u_m: float, v_m:
                          v_heel=nominal.v_heel)
 
 
-def _solve_grid(solver: EnvelopeSolver, us, vs, u_m, v_m, q_mean) -> EnvelopeSolution:
-    """Continuation over the node grid: the profile column nearest the mean section from
-    the mean node, then column by column with extrapolated guesses."""
+def solve_node_grid(solver: EnvelopeSolver, us, vs, u_m, v_m, q_mean) -> EnvelopeSolution:
+    """Node solutions on the grid ``us`` x ``vs``, shape (n_u, n_v), by continuation
+    from the mean node ``(u_m, v_m)`` (guess ``q_mean``): the profile column nearest
+    the mean section first, then column by column with extrapolated guesses."""
     j0, i0 = int(np.argmin(np.abs(vs - v_m))), int(np.argmin(np.abs(us - u_m)))
     q = np.empty((len(us), len(vs), 3))
     q[i0, j0] = solver.solve(us[i0], vs[j0], q_mean).q

@@ -246,9 +246,13 @@ def blade_profile(blade: BladeSettings, l_mm):
     k = 1.0 / blade.profile_radius_mm
     alpha = a0 + k * (l_mm - blade.profile_reference_mm)
     alpha_tip = a0 - k * blade.profile_reference_mm
-    # rho' = -sigma sin(alpha), z' = cos(alpha), integrated in closed form
-    rho = blade.point_radius_mm + sig * (np.cos(alpha) - math.cos(alpha_tip)) / k
-    z = (np.sin(alpha) - math.sin(alpha_tip)) / k
+    # rho' = -sigma sin(alpha), z' = cos(alpha), integrated in closed form; the
+    # differences of cosines and sines as products (no cancellation as r_b grows:
+    # a fit steps the curvature through 0)
+    half = np.sin(0.5 * k * l_mm) / k
+    mid = 0.5 * (alpha + alpha_tip)
+    rho = blade.point_radius_mm - 2.0 * sig * np.sin(mid) * half
+    z = 2.0 * np.cos(mid) * half
     return rho, z, alpha, np.full_like(l_mm, k)
 
 

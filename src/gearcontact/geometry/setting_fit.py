@@ -1,0 +1,345 @@
+"""Machine settings from a target flank: the pinion settings that cut a given ease-off.
+
+The inverse of :mod:`.generated` ("machine-setting correction", issue item 4): given a
+target pinion flank (today's conjugate pinion with its ease-off, :mod:`.easeoff`, or
+any pinion :class:`~.sheet.RadialSheet`), find the corrections ``x`` of a chosen subset
+of one flank's machine and blade settings, from a seed set-up, whose generated flank
+reproduces the target:
+
+    min_x  sum_k d_k(x)^2,   d_k = R_k (psi_gen(u_k, v_k; x) - psi_t(u_k, v_k)) (e_psi . n_t)
+
+the normal deviation (um, generated minus target along the target's outward normal n_t:
+positive = material left, the opposite sign of an ease-off, :mod:`.easeoff`) at the
+nodes ``(u_k, v_k)`` of a coarse grid over the target's active box. Both flanks live on
+the same pinion sheet (axial position ``v``, radius ``R_f(v) + u``, :mod:`.sheet`), so
+the generated node solution (:class:`~.generated.EnvelopeSolver`, warm-started from the
+previous iterate) differs from the target only in its angular coordinate; to first
+order in the deviation ``d_k`` is the normal distance of the two surfaces.
+``scipy.optimize.least_squares`` (trust-region reflective) solves it with a
+forward-difference Jacobian in scaled parameters (:data:`PARAMETERS`); the residual
+over the full flank is then measured on a dense grid of the final generated sheet
+(:func:`flank_deviation_um`).
+
+Parameters (:data:`PARAMETERS`): the machine settings of :class:`~.machine.MachineSettings`
+by name, the modified roll 2C / 6D, and three blade parameters pivoting about the
+blade point P that generates the mean node at the seed (so that a blade change does
+not move the mean point): ``blade_angle_deg`` (profile angle at P), ``blade_curvature_per_mm``
+(``1/r_b``, 0 = straight) and ``blade_radius_mm`` (the blade's radius at P: a cutter
+radius change with the cutter centre kept). The cradle angle with the swivel kept
+turns the whole generating gear about the cradle axis, which for a linear roll is a
+rigid turn of the generated flank about the work axis (``q -> q + d`` at roll
+``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's angular position
+(tooth thickness) and belongs in every subset.
+
+The default subset :data:`DEFAULT_PARAMETERS` and why (docs/machine_settings.md sec. 6
+has the sensitivity study): cradle angle (position), blade angle (profile angle,
+c_PA), blade curvature (profile crowning, c_PC), blade radius (lengthwise crowning,
+c_LC), radial distance and swivel (spiral angle c_SA and lengthwise position),
+modified roll 2C (bias c_TW and profile curvature) and 6D (higher-order lengthwise
+form). Tilt, machine root, sliding base, blank offset and the ratio of roll duplicate
+these directions (their columns of the sensitivity matrix lie within a few per cent of
+the span of the others) and make the problem ill-conditioned.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 6.1,
+ch. 21 (envelopes, machine-tool settings, modified roll).
+M. Artoni, M. Gabiccini, M. Guiggiani, "Nonlinear identification of machine settings
+for flank form modifications in hypoid gears", *ASME J. Mech. Des.* 130 (2008) 112602.
+Q. Fan, R. S. DaFoe, J. W. Swanger, "Higher-order tooth flank form error correction for
+face-milled spiral bevel and hypoid gears", *ASME J. Mech. Des.* 129 (2007) 31-37.
+G. H. Golub, C. F. Van Loan, *Matrix Computations*, 4th ed., 2013, sec. 5.4.6 (QR with
+column pivoting, subset selection).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..validation import InputRangeError, check_range
+from .blank import BlankDesign
+from .conjugate import nominal_pinion_box
+from .generated import EnvelopeSolver, solve_node_grid
+from .machine import BladeSettings, MachineSetup, blade_profile
+
+__all__ = ["DEFAULT_PARAMETERS", "PARAMETERS", "SettingFit", "apply_corrections",
+           "fit_pinion_setup", "flank_deviation_um", "sensitivity"]
+
+#: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
+#: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
+#: by roughly 1-10 um (so that the trust region starts balanced).
+PARAMETERS = {
+    "cradle_angle_deg": ("deg", 1e-3),
+    "radial_distance_mm": ("mm", 1e-3),
+    "swivel_deg": ("deg", 1e-2),
+    "tilt_deg": ("deg", 1e-2),
+    "machine_root_angle_deg": ("deg", 1e-2),
+    "machine_centre_to_back_mm": ("mm", 1e-3),
+    "sliding_base_mm": ("mm", 1e-3),
+    "blank_offset_mm": ("mm", 1e-3),
+    "ratio_of_roll": ("-", 1e-4),
+    "modified_roll_2c_per_rad": ("1/rad", 1e-3),
+    "modified_roll_6d_per_rad2": ("1/rad^2", 1e-2),
+    "blade_angle_deg": ("deg", 1e-2),
+    "blade_curvature_per_mm": ("1/mm", 1e-4),
+    "blade_radius_mm": ("mm", 1e-3),
+}
+#: The default subset (module docstring).
+DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
+                      "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
+                      "blade_angle_deg", "blade_curvature_per_mm")
+_ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1}
+_BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm")
+_FD_STEP = 1e-3          # forward-difference step of the scaled variables
+
+
+@dataclass(frozen=True)
+class _Pivot:
+    """The blade point P that generates the seed's mean node: radius and depth in the
+    cutter frame (mm) and the seed's profile angle (rad) and curvature (1/mm) there."""
+
+    rho_mm: float
+    z_mm: float
+    alpha_rad: float
+    curvature_per_mm: float
+
+
+def _pivot(setup: MachineSetup, l_mm: float) -> _Pivot:
+    rho, z, alpha, k = (float(a) for a in blade_profile(setup.blade, l_mm))
+    return _Pivot(rho, z, alpha, k)
+
+
+def _blade_through(blade: BladeSettings, pivot: _Pivot, *, alpha: float, k: float,
+                   rho: float) -> BladeSettings:
+    """The blade of ``blade``'s kind and edge through the point (``rho``, ``pivot.z``) of
+    the cutter frame with profile angle ``alpha`` and curvature ``k`` there
+    (:func:`~.machine.blade_profile`: ``z(l) = (sin alpha - sin(alpha - k l)) / k``)."""
+    sig, z = blade.sigma, pivot.z_mm
+    if k == 0.0:
+        l_p = z / math.cos(alpha)
+        return dataclasses.replace(blade, blade_angle_deg=math.degrees(alpha),
+                                   point_radius_mm=rho + sig * math.sin(alpha) * l_p,
+                                   profile_radius_mm=0.0, profile_reference_mm=0.0)
+    s_tip = math.sin(alpha) - k * z
+    if not abs(s_tip) < 1.0:
+        raise InputRangeError("blade_curvature_per_mm", k, "a profile circle that reaches "
+                              "the blade tip plane")
+    # cos(alpha_tip) - cos(alpha) = k z t with t below: the arc k l_p and the tip
+    # radius without the cancellation of the plain closed forms as k -> 0
+    t = (math.sin(alpha) + s_tip) / (math.cos(alpha) + math.sqrt(1.0 - s_tip ** 2))
+    l_p = math.asin(k * z * (math.sin(alpha) * t + math.cos(alpha))) / k
+    return dataclasses.replace(blade, blade_angle_deg=math.degrees(alpha),
+                               point_radius_mm=rho + sig * z * t,
+                               profile_radius_mm=1.0 / k, profile_reference_mm=l_p)
+
+
+def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm: float
+                      ) -> MachineSetup:
+    """``setup`` with the corrections ``{parameter: delta}`` (:data:`PARAMETERS`, in their
+    units) added; blade parameters pivot about the blade point at arc length
+    ``pivot_length_mm`` from the tip (module docstring).
+
+    Raises
+    ------
+    InputRangeError
+        An unknown parameter, or a corrected value out of its range (the message names
+        the setting).
+    """
+    for name in corrections:
+        if name not in PARAMETERS:
+            raise InputRangeError("parameters", name, f"one of {tuple(PARAMETERS)}")
+    st, blade = setup.settings, setup.blade
+    fields = {n: getattr(st, n) + float(d) for n, d in corrections.items()
+              if n not in _ROLL and n not in _BLADE}
+    roll = list(st.modified_roll)
+    for n, k in _ROLL.items():
+        if n in corrections:
+            roll += [0.0] * (k + 1 - len(roll))
+            roll[k] += float(corrections[n])
+    while roll and roll[-1] == 0.0:
+        roll.pop()
+    st = dataclasses.replace(st, **fields, modified_roll=tuple(roll))
+    if any(n in corrections for n in _BLADE):
+        p = _pivot(setup, pivot_length_mm)
+        blade = _blade_through(blade, p,
+                               alpha=p.alpha_rad + math.radians(corrections.get("blade_angle_deg", 0.0)),
+                               k=p.curvature_per_mm + corrections.get("blade_curvature_per_mm", 0.0),
+                               rho=p.rho_mm + corrections.get("blade_radius_mm", 0.0))
+    return dataclasses.replace(setup, settings=st, blade=blade)
+
+
+class _Problem:
+    """Residual and Jacobian of the fit on a coarse node grid (module docstring)."""
+
+    def __init__(self, seed: MachineSetup, blank: BlankDesign, target, names, us, vs):
+        self.seed, self.blank, self.names = seed, blank, tuple(names)
+        self.scale = np.array([PARAMETERS[n][1] for n in self.names])
+        self.cone, _ = nominal_pinion_box(blank, 1.0)
+        solver = EnvelopeSolver(seed, blank, self.cone)
+        u_m, v_m = float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0])
+        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
+        self.pivot_length_mm = float(mean.l_mm)
+        self.U, self.V = np.meshgrid(us, vs, indexing="ij")
+        self.q = solve_node_grid(solver, us, vs, u_m, v_m, mean.q).q
+        self._grid = (us, vs, u_m, v_m)
+        t = target.evaluate(self.U, self.V, second=False)
+        self.psi_t = np.arctan2(t.r[..., 2], t.r[..., 1])
+        rad = np.hypot(t.r[..., 1], t.r[..., 2])
+        e_psi = np.stack([np.zeros_like(rad), -np.sin(self.psi_t), np.cos(self.psi_t)], -1)
+        self.lever_um = 1e3 * rad * np.einsum("...i,...i->...", e_psi, t.n)
+        self.evaluations = 0
+
+    def setup(self, x) -> MachineSetup:
+        return apply_corrections(self.seed, dict(zip(self.names, np.asarray(x) * self.scale)),
+                                 pivot_length_mm=self.pivot_length_mm)
+
+    def deviation_um(self, x, *, keep: bool = False) -> np.ndarray:
+        """Normal deviation (um) at the grid nodes of the flank the corrections ``x``
+        (scaled) generate; ``keep`` stores the node solutions as the next guesses."""
+        self.evaluations += 1
+        solver = EnvelopeSolver(self.setup(x), self.blank, self.cone)
+        s = solver.solve(self.U, self.V, self.q, strict=False)
+        if not np.all(s.converged):      # a long step: start over from the mean node
+            us, vs, u_m, v_m = self._grid
+            s = solve_node_grid(solver, us, vs, u_m, v_m,
+                                solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
+        if keep:
+            self.q = s.q
+        d = (solver.angle(s.x_mm) - self.psi_t + math.pi) % (2.0 * math.pi) - math.pi
+        return (d * self.lever_um).ravel()
+
+    def jacobian(self, x) -> np.ndarray:
+        f0 = self.deviation_um(x, keep=True)
+        cols = []
+        for k in range(len(x)):
+            xk = np.array(x, dtype=float)
+            xk[k] += _FD_STEP
+            cols.append((self.deviation_um(xk) - f0) / _FD_STEP)
+        return np.column_stack(cols)
+
+
+def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(PARAMETERS),
+                n_u: int = 9, n_v: int = 11) -> tuple[np.ndarray, tuple]:
+    """The sensitivity matrix of the flank's normal deviation (um per scaled unit,
+    :data:`PARAMETERS`) at the seed on the coarse fit grid, columns ``names``:
+    ``(J, names)``. Its singular values and a column-pivoted QR show which subsets are
+    well conditioned (docs/machine_settings.md sec. 6)."""
+    prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    return prob.jacobian(np.zeros(len(names))), prob.names
+
+
+def _fit_grid(box, n_u: int, n_v: int):
+    if int(n_u) != n_u or n_u < 3 or int(n_v) != n_v or n_v < 3:
+        raise InputRangeError("n_u, n_v (fit grid)", (n_u, n_v), "integers >= 3")
+    return (np.linspace(box.u_root, box.u_tip, int(n_u)),
+            np.linspace(box.v_toe, box.v_heel, int(n_v)))
+
+
+@dataclass(frozen=True)
+class SettingFit:
+    """A fitted pinion flank set-up and its residual against the target.
+
+    Attributes
+    ----------
+    setup : MachineSetup
+        The fitted settings and blade.
+    seed : MachineSetup
+    corrections : dict
+        ``{parameter: delta}`` in the units of :data:`PARAMETERS` (setup - seed).
+    fit_rms_um, fit_max_um : float
+        RMS and largest |normal deviation| on the coarse fit grid, um.
+    evaluations : int
+        Flank evaluations (coarse grid) of the fit, Jacobian columns included.
+    condition_number : float
+        Of the scaled Jacobian at the solution.
+    seconds : float
+    status : int
+        ``least_squares`` status (> 0: converged).
+    """
+
+    setup: MachineSetup
+    seed: MachineSetup
+    corrections: dict
+    fit_rms_um: float
+    fit_max_um: float
+    evaluations: int
+    condition_number: float
+    seconds: float
+    status: int
+
+
+def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
+                     parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
+                     tolerance_um: float = 1e-6) -> SettingFit:
+    """Fit the ``parameters`` of the pinion set-up ``seed`` so that its generated flank
+    reproduces ``target`` on an n_u x n_v grid over the target's active box.
+
+    Parameters
+    ----------
+    seed : MachineSetup
+        A pinion flank set-up that generates the target's box (the complementary
+        settings of :func:`~.basic_settings.complementary_pinion_setups` or the
+        standard ones of :func:`~.basic_settings.standard_setups`).
+    blank : BlankDesign
+    target : RadialSheet
+        The target pinion flank (with ``evaluate`` and ``boundary``), same side as
+        ``seed``, right-hand body frame.
+    parameters : tuple of str
+        Names from :data:`PARAMETERS` (default :data:`DEFAULT_PARAMETERS`).
+    n_u, n_v : int
+        Fit grid (profile x lengthwise), each >= 3.
+    tolerance_um : float
+        Stop when the step changes the residual's sum of squares by less than
+        ``tolerance_um**2`` relative (``ftol``), um-scaled, in (0, 1].
+
+    Returns
+    -------
+    SettingFit
+
+    Raises
+    ------
+    InputRangeError
+        A member other than the pinion, an unknown or repeated parameter, or a fit
+        grid smaller than 3 x 3.
+    UndercutError
+        The seed's envelope does not reach a node of the grid.
+    """
+    if seed.member != "pinion":
+        raise InputRangeError("seed.member", seed.member, "'pinion'")
+    names = tuple(parameters)
+    if not names or len(set(names)) != len(names) or any(n not in PARAMETERS for n in names):
+        raise InputRangeError("parameters", names, f"distinct names from {tuple(PARAMETERS)}")
+    check_range("tolerance_um", tolerance_um, 0.0, 1.0, lo_open=True)
+    t0 = time.perf_counter()
+    prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    sol = least_squares(lambda x: prob.deviation_um(x, keep=True), np.zeros(len(names)),
+                        jac=prob.jacobian, method="trf", x_scale="jac",
+                        ftol=tolerance_um ** 2, xtol=1e-12, gtol=1e-12, max_nfev=200)
+    s = np.linalg.svd(sol.jac, compute_uv=False)
+    dev = prob.deviation_um(sol.x)
+    return SettingFit(setup=prob.setup(sol.x), seed=seed,
+                      corrections={n: float(x * sc) for n, x, sc in zip(names, sol.x, prob.scale)},
+                      fit_rms_um=float(np.sqrt(np.mean(dev ** 2))),
+                      fit_max_um=float(np.abs(dev).max()), evaluations=prob.evaluations,
+                      condition_number=float(s[0] / s[-1]) if s[-1] > 0 else math.inf,
+                      seconds=time.perf_counter() - t0, status=int(sol.status))
+
+
+def flank_deviation_um(flank, target, *, n_u: int = 60, n_v: int = 75):
+    """Normal deviation of ``flank`` from ``target`` (two pinion sheets on the same
+    cone), um, on an n_u x n_v grid over the part of ``target``'s box that ``flank``
+    covers: ``(u, v, deviation)`` arrays (n_u, n_v) (generated minus target along the
+    target's outward normal, module docstring)."""
+    a, b = flank.boundary, target.boundary
+    box = dataclasses.replace(b, u_root=max(a.u_root, b.u_root), u_tip=min(a.u_tip, b.u_tip),
+                              v_toe=max(a.v_toe, b.v_toe), v_heel=min(a.v_heel, b.v_heel))
+    U, V = np.meshgrid(*_fit_grid(box, n_u, n_v), indexing="ij")
+    f, t = flank.evaluate(U, V, second=False), target.evaluate(U, V, second=False)
+    return U, V, 1e3 * np.einsum("...i,...i->...", f.r - t.r, t.n)
+
