@@ -14,7 +14,7 @@ import json
 
 from ..errors import CheckFailed
 from ..geometry.generation import check_generation
-from ..geometry.pair import BEVEL, CYLINDRICAL, PRESETS, load_pair
+from ..geometry.pair import BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
 
@@ -83,11 +83,13 @@ def register(sub) -> None:
                         "reaches on the pair are checked before any TCA (an error names "
                         "them)")
     p.add_argument("--machine-settings", action="store_true",
-                   help="standard machine settings of both members from the blank "
-                        "(formate gear, generated pinion with lengthwise and profile "
-                        "crowning; docs/machine_settings.md); prints the pair TOML with "
-                        "its [machine.*]/[blade.*] tables, written as machine_settings.toml "
-                        "with --out")
+                   help="machine settings of both members (docs/machine_settings.md): for "
+                        "a pair with an ease-off, the formate gear and the pinion settings "
+                        "fitted to cut that ease-off (the residual over each flank printed, "
+                        "~15 s); else the standard settings from the blank (generated "
+                        "pinion with lengthwise and profile crowning); prints the pair TOML "
+                        "with its [machine.*]/[blade.*] tables, written as "
+                        "machine_settings.toml (and the residual map) with --out")
     p.add_argument("--lengthwise-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion cutter circle departure at the "
                         "face ends, um, 0 to 200 (default 25)")
@@ -129,6 +131,10 @@ def check(args) -> None:
         if value is not None and not args.machine_settings:
             raise InputRangeError(option, value, "given only with --machine-settings "
                                                  "(without it the option has no effect)")
+        if value is not None and has_easeoff(pair):
+            raise InputRangeError(option, value, "not given for a pair with an ease-off "
+                                  "(--machine-settings fits the settings that cut it; "
+                                  "remove the [easeoff.*] tables for standard settings)")
         if value is not None:
             check_range(f"{option} (um)", value, 0.0, 200.0)
     # an option of a mode that is not asked for would be ignored without a word
@@ -242,6 +248,9 @@ def _machine_settings(args, pair) -> int:
     from ..geometry.pair import pair_to_toml
     from ..report.design import write_machine_settings_toml
 
+    if has_easeoff(pair):
+        return _easeoff_settings(args, pair)
+
     crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
                                   ("blade_profile_crowning_um", args.blade_profile_crowning_um))
                 if v is not None}
@@ -251,6 +260,18 @@ def _machine_settings(args, pair) -> int:
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+    return 0
+
+
+def _easeoff_settings(args, pair) -> int:
+    from ..geometry.setting_fit import easeoff_machine_pair
+    from ..report.design import easeoff_settings_toml, write_easeoff_settings
+
+    fit = easeoff_machine_pair(pair)
+    print(easeoff_settings_toml(fit))
+    print(fit.table())
+    if args.out is not None:
+        print(f"-> {final_path(args, write_easeoff_settings(fit, args.out))}")
     return 0
 
 

@@ -118,7 +118,7 @@ from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
 __all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
-           "load_pair", "parse_pair", "pair_to_toml"]
+           "has_easeoff", "load_pair", "parse_pair", "pair_to_toml"]
 
 #: Built-in presets (resource files ``gearcontact/data/pairs/<name>.toml``): ``s0003``
 #: calibrated to the published design point (tip-edge bearing on the coast flank pair,
@@ -461,6 +461,13 @@ def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
         if not where:
             raise
         raise InputRangeError(f"{where}{exc.field}", exc.value, exc.allowed) from None
+
+
+def has_easeoff(pair: GearPair) -> bool:
+    """True if ``pair`` (a bevel pair without machine tables) has a non-zero ease-off
+    coefficient on either side: its analysed pinion is not the conjugate one."""
+    return not pair.machine and any(
+        any(dataclasses.astuple(getattr(pair, f"easeoff_{side}"))) for side in ("drive", "coast"))
 
 
 def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> str:

@@ -19,7 +19,7 @@ from .flank import FlankSet
 from .formate import SIDES
 from .sampling import sample_grid
 
-__all__ = ["plot_flanks_in_mesh"]
+__all__ = ["plot_flanks_in_mesh", "plot_setting_residual"]
 
 
 def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: float | None = None,
@@ -78,4 +78,25 @@ def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: floa
     ax.set_box_aspect((np.ptp(ax.get_xlim3d()), np.ptp(ax.get_ylim3d()), np.ptp(ax.get_zlim3d())))
     if path is not None:
         save_figure(fig, path, dpi=150)
+    return fig
+
+
+def plot_setting_residual(fit) -> Figure:
+    """Maps of the residual of the fitted pinion flanks against their targets, one panel
+    per side (:class:`~.setting_fit.EaseOffSettings`): generated minus target along the
+    target's outward normal, um, over the flank (axial position v, radial height u)."""
+    sides = list(fit.sides.values())
+    fig = Figure(figsize=(5.0 * len(sides), 4.2))
+    FigureCanvasAgg(fig)
+    lim = max(max(float(np.abs(r.residual_um).max()) for r in sides), 1e-3)
+    for k, r in enumerate(sides):
+        ax = fig.add_subplot(1, len(sides), k + 1)
+        m = ax.pcolormesh(r.v_mm, r.u_mm, r.residual_um, cmap="RdBu_r", vmin=-lim, vmax=lim,
+                          shading="gouraud")
+        fig.colorbar(m, ax=ax, label="residual (um)")
+        ax.set_title(f"pinion {r.side}: max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um\n"
+                     f"(ease-off max {r.easeoff_max_um:.1f} um)", fontsize=9)
+        ax.set_xlabel("axial position v (mm), toe -> heel")
+        ax.set_ylabel("height above root u (mm)")
+    fig.tight_layout()
     return fig

@@ -64,11 +64,15 @@ from scipy.optimize import least_squares
 
 from ..validation import InputRangeError, check_range
 from .blank import BlankDesign
+from .basic_settings import complementary_pinion_setups, formate_gear_setups
 from .conjugate import nominal_pinion_box
-from .generated import EnvelopeSolver, solve_node_grid
-from .machine import BladeSettings, MachineSetup, blade_profile
+from .flank import build_flanks
+from .formate import SIDES
+from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
+from .machine import BladeSettings, MachineSetup, blade_profile, mirror_setup
 
-__all__ = ["DEFAULT_PARAMETERS", "PARAMETERS", "SettingFit", "apply_corrections",
+__all__ = ["DEFAULT_PARAMETERS", "EaseOffSettings", "PARAMETERS", "SettingFit", "SideResidual",
+           "apply_corrections", "easeoff_machine_pair",
            "fit_pinion_setup", "flank_deviation_um", "sensitivity"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
@@ -86,6 +90,8 @@ PARAMETERS = {
     "ratio_of_roll": ("-", 1e-4),
     "modified_roll_2c_per_rad": ("1/rad", 1e-3),
     "modified_roll_6d_per_rad2": ("1/rad^2", 1e-2),
+    "modified_roll_24e_per_rad3": ("1/rad^3", 1e-1),
+    "helical_motion_mm_per_rad": ("mm/rad", 1e-2),
     "blade_angle_deg": ("deg", 1e-2),
     "blade_curvature_per_mm": ("1/mm", 1e-4),
     "blade_radius_mm": ("mm", 1e-3),
@@ -94,7 +100,9 @@ PARAMETERS = {
 DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
                       "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
                       "blade_angle_deg", "blade_curvature_per_mm")
-_ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1}
+_ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
+         "modified_roll_24e_per_rad3": 2}
+_HELICAL = {"helical_motion_mm_per_rad": 0}
 _BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm")
 _FD_STEP = 1e-3          # forward-difference step of the scaled variables
 
@@ -156,15 +164,18 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
             raise InputRangeError("parameters", name, f"one of {tuple(PARAMETERS)}")
     st, blade = setup.settings, setup.blade
     fields = {n: getattr(st, n) + float(d) for n, d in corrections.items()
-              if n not in _ROLL and n not in _BLADE}
-    roll = list(st.modified_roll)
-    for n, k in _ROLL.items():
-        if n in corrections:
-            roll += [0.0] * (k + 1 - len(roll))
-            roll[k] += float(corrections[n])
-    while roll and roll[-1] == 0.0:
-        roll.pop()
-    st = dataclasses.replace(st, **fields, modified_roll=tuple(roll))
+              if n not in _ROLL and n not in _HELICAL and n not in _BLADE}
+    series = {}
+    for attr, keys in (("modified_roll", _ROLL), ("helical_motion", _HELICAL)):
+        vals = list(getattr(st, attr))
+        for n, k in keys.items():
+            if n in corrections:
+                vals += [0.0] * (k + 1 - len(vals))
+                vals[k] += float(corrections[n])
+        while vals and vals[-1] == 0.0:
+            vals.pop()
+        series[attr] = tuple(vals)
+    st = dataclasses.replace(st, **fields, **series)
     if any(n in corrections for n in _BLADE):
         p = _pivot(setup, pivot_length_mm)
         blade = _blade_through(blade, p,
@@ -343,3 +354,126 @@ def flank_deviation_um(flank, target, *, n_u: int = 60, n_v: int = 75):
     f, t = flank.evaluate(U, V, second=False), target.evaluate(U, V, second=False)
     return U, V, 1e3 * np.einsum("...i,...i->...", f.r - t.r, t.n)
 
+
+
+@dataclass(frozen=True)
+class SideResidual:
+    """The fit of one pinion flank and its residual over the full flank.
+
+    Attributes
+    ----------
+    side : str
+    fit : SettingFit
+    easeoff_max_um : float
+        Largest |normal distance| of the target from the conjugate pinion over the
+        residual grid, um (the ease-off to cut).
+    max_um, rms_um : float
+        Largest |residual| and RMS residual over the full flank, um (the final
+        generated sheet, 120 x 150 nodes, against the target on a 60 x 75 grid over
+        their common box).
+    u_mm, v_mm, residual_um : ndarray (60, 75)
+        The residual map (generated minus target along the target's outward normal).
+    """
+
+    side: str
+    fit: SettingFit
+    easeoff_max_um: float
+    max_um: float
+    rms_um: float
+    u_mm: np.ndarray
+    v_mm: np.ndarray
+    residual_um: np.ndarray
+
+
+@dataclass(frozen=True)
+class EaseOffSettings:
+    """Machine settings that cut a pair's pinion ease-off (:func:`easeoff_machine_pair`).
+
+    Attributes
+    ----------
+    pair : GearPair
+        The pair with the settings of all four flanks (``[machine.*]``/``[blade.*]``):
+        the formate gear of today's flanks, the fitted pinion flanks.
+    sides : dict
+        ``{side: SideResidual}``, right-hand frame (a left-hand pair's twin).
+    """
+
+    pair: object
+    sides: dict
+
+    def table(self) -> str:
+        """The residual and the corrections per side, as a Markdown table."""
+        rows = ["| side | ease-off max (um) | residual max (um) | residual RMS (um) | "
+                "fit evaluations | fit time (s) |", "|---|---:|---:|---:|---:|---:|"]
+        for side, r in self.sides.items():
+            rows.append(f"| {side} | {r.easeoff_max_um:.2f} | {r.max_um:.3f} | "
+                        f"{r.rms_um:.3f} | {r.fit.evaluations} | {r.fit.seconds:.1f} |")
+        rows += ["", "| correction | unit | " + " | ".join(self.sides) + " |",
+                 "|---|---|" + "---:|" * len(self.sides)]
+        names = next(iter(self.sides.values())).fit.corrections
+        for n in names:
+            rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
+                f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
+        return "\n".join(rows)
+
+
+def easeoff_machine_pair(pair, *, parameters=DEFAULT_PARAMETERS, n_u: int = 9,
+                         n_v: int = 11) -> EaseOffSettings:
+    """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
+
+    The gear keeps today's formate flanks (:func:`~.basic_settings.formate_gear_setups`);
+    each pinion flank is fitted (:func:`fit_pinion_setup`) from the complementary
+    settings (:func:`~.basic_settings.complementary_pinion_setups`, the exactly
+    conjugate pinion: zero ease-off) to the conjugate pinion with the pair's ease-off
+    (:func:`~.flank.build_flanks`), and its residual measured over the full flank. A
+    left-hand pair is fitted on its right-hand twin and its settings mirrored
+    (:func:`~.machine.mirror_setup`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A pair defined by its blank, cutter and ease-off (no ``[machine.*]`` tables).
+    parameters : tuple of str
+        The fitted subset (:data:`PARAMETERS`; default :data:`DEFAULT_PARAMETERS`).
+    n_u, n_v : int
+        The coarse fit grid.
+
+    Returns
+    -------
+    EaseOffSettings
+
+    Raises
+    ------
+    InputRangeError
+        A pair already cut from machine settings.
+    UndercutError
+        A fitted flank the envelope does not generate over its box.
+    """
+    if pair.machine:
+        raise InputRangeError("pair", f"{pair.name} with [machine.*] tables",
+                              "a pair with an ease-off and no machine tables (its flanks "
+                              "are already the machine's)")
+    twin = dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
+    flanks = build_flanks(twin)
+    seeds = complementary_pinion_setups(twin)
+    gear = formate_gear_setups(twin)
+    sides, pinion = {}, {}
+    for side in SIDES:
+        target = flanks.pinion.side(side)
+        fit = fit_pinion_setup(seeds[side], twin.blank, target, parameters=parameters,
+                               n_u=n_u, n_v=n_v)
+        cut, _ = generated_pinion_flank(fit.setup, twin.blank,
+                                        pinion_face_width_mm=twin.pinion_face_width_mm)
+        u, v, res = flank_deviation_um(cut, target)
+        _, _, eased = flank_deviation_um(flanks.pinion_conjugate.side(side), target)
+        sides[side] = SideResidual(side=side, fit=fit, easeoff_max_um=float(np.abs(eased).max()),
+                                   max_um=float(np.abs(res).max()),
+                                   rms_um=float(np.sqrt(np.mean(res ** 2))),
+                                   u_mm=u, v_mm=v, residual_um=res)
+        pinion[side] = fit.setup
+    setups = [gear[s] for s in SIDES] + [pinion[s] for s in SIDES]
+    if pair.pinion_hand == "left":
+        setups = [mirror_setup(s) for s in setups]
+    return EaseOffSettings(pair=dataclasses.replace(pair, machine=tuple(setups),
+                                                    easeoff_tables=("drive", "coast")),
+                           sides=sides)

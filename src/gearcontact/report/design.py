@@ -8,7 +8,9 @@ its ``calibrated.toml`` and ``calibration.json``. :func:`write_easeoff_toml` wri
 ``easeoff.toml`` (:func:`~gearcontact.tca.synthesis.easeoff_toml`);
 :func:`write_machine_settings_toml` writes ``machine_settings.toml``
 (:func:`~gearcontact.geometry.pair.pair_to_toml` of the pair with its standard machine
-settings, docs/machine_settings.md).
+settings, docs/machine_settings.md); :func:`write_easeoff_settings` writes it for
+the settings fitted to a pair's ease-off (:func:`easeoff_settings_toml`) with the map
+of their residual (``machine_settings_residual.png`` / ``.svg``).
 """
 
 from __future__ import annotations
@@ -16,14 +18,16 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..geometry.pair import GearPair
+from ..figure_files import save_figure
+from ..geometry.pair import GearPair, pair_to_toml
+from ..geometry.plots import plot_setting_residual
 from ..tca.calibration import (Calibration, CalibrationTargets, calibrate_pair,
                                calibration_toml)
 from ..validation import InputRangeError
 from .analyze import published_values
 
-__all__ = ["calibrate_to_published", "write_calibration", "write_easeoff_toml",
-           "write_machine_settings_toml"]
+__all__ = ["calibrate_to_published", "easeoff_settings_toml", "write_calibration",
+           "write_easeoff_settings", "write_easeoff_toml", "write_machine_settings_toml"]
 
 
 def calibrate_to_published(pair: GearPair, *, tip_margin_mm: float | None = None,
@@ -89,4 +93,28 @@ def write_machine_settings_toml(text: str, out) -> Path:
     out.mkdir(parents=True, exist_ok=True)
     path = out / "machine_settings.toml"
     path.write_text(text)
+    return path
+
+
+def easeoff_settings_toml(fit) -> str:
+    """The pair TOML of the settings fitted to a pair's ease-off
+    (:class:`~gearcontact.geometry.setting_fit.EaseOffSettings`), its head comment the
+    residual per side."""
+    pair = fit.pair
+    lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
+             "--machine-settings;", "signs: docs/machine_settings.md). Gear: today's "
+             "formate gear; pinion: fitted from", "the complementary (conjugate) settings "
+             "to the conjugate pinion + ease-off."]
+    for side, r in fit.sides.items():
+        lines.append(f"pinion {side}: ease-off max {r.easeoff_max_um:.2f} um, residual max "
+                     f"{r.max_um:.3f} um, RMS {r.rms_um:.3f} um over the flank")
+    return pair_to_toml(pair, comments={"": "\n".join(lines)})
+
+
+def write_easeoff_settings(fit, out) -> Path:
+    """Write ``machine_settings.toml`` (:func:`easeoff_settings_toml`) and the residual
+    map ``machine_settings_residual.png`` / ``.svg`` into the directory ``out`` (created
+    if missing); returns the TOML's path."""
+    path = write_machine_settings_toml(easeoff_settings_toml(fit), out)
+    save_figure(plot_setting_residual(fit), Path(out) / "machine_settings_residual.png")
     return path
