@@ -204,3 +204,27 @@ def test_design_machine_settings_writes_a_pair_that_loads(capsys, tmp_path):
     assert main(["design", "--pair", f2, "--machine-settings",
                  "--blade-profile-crowning-um", "900"]) == 2
     assert "--blade-profile-crowning-um" in capsys.readouterr().err
+
+
+def test_design_machine_settings_of_an_easeoff_pair_refuses_crowning_options(capsys):
+    # s0003 has an ease-off: --machine-settings fits the settings that cut it, so the
+    # crowning options of the standard settings would have no effect (the fit itself:
+    # tests/geometry/test_setting_fit.py)
+    assert main(["design", "--pair", "s0003", "--machine-settings",
+                 "--lengthwise-crowning-um", "30"]) == 2
+    assert "pair with an ease-off" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_design_machine_settings_cuts_the_easeoff_of_s0003(capsys, tmp_path):
+    # the printed table and the written file: the fitted settings of the library call
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.geometry.setting_fit import easeoff_machine_pair
+
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--out",
+                 str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "| coast | 22.62 | 1.228 | 0.392 |" in out
+    cut = load_pair(tmp_path / "machine_settings.toml")
+    assert cut.machine == easeoff_machine_pair(load_pair("s0003")).pair.machine
+    assert (tmp_path / "machine_settings_residual.svg").is_file()
