@@ -228,3 +228,28 @@ def test_design_machine_settings_cuts_the_easeoff_of_s0003(capsys, tmp_path):
     cut = load_pair(tmp_path / "machine_settings.toml")
     assert cut.machine == easeoff_machine_pair(load_pair("s0003")).pair.machine
     assert (tmp_path / "machine_settings_residual.svg").is_file()
+
+
+def test_design_target_flank_needs_machine_settings(capsys, tmp_path):
+    grid = tmp_path / "g.csv"
+    grid.write_text("side,v_mm,u_mm,easeoff_um\n")
+    assert main(["design", "--pair", "s0003", "--target-flank", str(grid)]) == 2
+    assert "--target-flank" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_design_machine_settings_cuts_a_measured_grid(capsys, tmp_path):
+    # s0003's coast ease-off sampled on a 6 x 9 grid (the bicubic through it is the
+    # polynomial: tests/geometry/test_setting_fit.py) gives the table of the pair's own
+    # ease-off, and the file names the measured side
+    from gearcontact.geometry.flank import build_flanks
+    from easeoff_grid import write_grid_csv
+
+    from gearcontact.geometry.pair import load_pair
+
+    pair = load_pair("s0003")
+    csv = write_grid_csv(tmp_path / "g.csv", pair, build_flanks(pair), "coast")
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--target-flank",
+                 str(csv), "--out", str(tmp_path / "o")]) == 0
+    assert "| coast | 22.62 | 1.228 | 0.392 |" in capsys.readouterr().out
+    assert "coast (measured grid" in (tmp_path / "o" / "machine_settings.toml").read_text()

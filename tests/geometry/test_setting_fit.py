@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 import pytest
+from easeoff_grid import write_grid_csv
 from scipy.integrate import quad
 
 from gearcontact.geometry.basic_settings import complementary_pinion_setups
@@ -154,3 +155,40 @@ def test_s0003_fitted_pair_tca_matches_todays(s0003_fit, tmp_path):
     # 0.09 mm under the tip) in both; measured 1.6 deg today, 0.0 deg cut (the +0.7 um
     # of residual at the tip puts the path on the tip line): within 2 deg of lengthwise
     assert abs(ang0) < 2.0 and abs(ang1) < 2.0
+
+
+def test_measured_grid_reproduces_the_polynomial_target(tmp_path):
+    # a bicubic spline through samples of the (quadratic) ease-off is the ease-off
+    # itself: the eased flank from the CSV equals build_flanks' to rounding (1e-15 rad
+    # measured, asserted 1e-12 rad ~ 1e-11 mm at R ~ 9 mm)
+    from gearcontact.geometry.easeoff import apply_easeoff, read_easeoff_grid
+    from gearcontact.geometry.flank import build_flanks
+
+    pair = load_pair("s0003")
+    flanks = build_flanks(pair)
+    grid = read_easeoff_grid(write_grid_csv(tmp_path / "g.csv", pair, flanks, "coast"))
+    assert list(grid) == ["coast"]
+    eased = apply_easeoff(flanks.pinion_conjugate.coast, grid["coast"],
+                          limit_um=flanks.easeoff_limit_um)
+    assert np.abs(eased.psi_nodes - flanks.pinion.coast.psi_nodes).max() < 1e-12
+    # a grid short of the flank (0.5 mm under the tip) is refused before any fit
+    short = read_easeoff_grid(write_grid_csv(tmp_path / "s.csv", pair, flanks, "coast", pad=0.5))
+    with pytest.raises(InputRangeError, match="covering the active flank"):
+        easeoff_machine_pair(pair, easeoff_grid=short)
+
+
+@pytest.mark.parametrize("text, match", [
+    ("side,u_mm,v_mm,easeoff_um\n", "header"),
+    ("side,v_mm,u_mm,easeoff_um\nflank,1,2,3\n", "row 2"),
+    ("side,v_mm,u_mm,easeoff_um\ncoast,1,2,nan\n", "finite"),
+    ("side,v_mm,u_mm,easeoff_um\n" + "".join(f"coast,{v},{u},0\n" for u in range(4)
+                                             for v in range(4) if (u, v) != (3, 3)),
+     "complete grid"),
+])
+def test_measured_grid_refuses_bad_files(tmp_path, text, match):
+    from gearcontact.geometry.easeoff import read_easeoff_grid
+
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    with pytest.raises(InputRangeError, match=match):
+        read_easeoff_grid(path)

@@ -90,6 +90,11 @@ def register(sub) -> None:
                         "pinion with lengthwise and profile crowning); prints the pair TOML "
                         "with its [machine.*]/[blade.*] tables, written as "
                         "machine_settings.toml (and the residual map) with --out")
+    p.add_argument("--target-flank", default=None, metavar="CSV",
+                   help="with --machine-settings: a measured ease-off grid (columns "
+                        "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) that "
+                        "replaces the pair's ease-off of the sides it lists; the settings "
+                        "that cut it are fitted")
     p.add_argument("--lengthwise-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion cutter circle departure at the "
                         "face ends, um, 0 to 200 (default 25)")
@@ -112,6 +117,7 @@ def check(args) -> None:
                               ("--pattern-length-ratio", args.pattern_length_ratio),
                               ("--path-angle-deg", args.path_angle_deg),
                               ("--machine-settings", args.machine_settings),
+                              ("--target-flank", args.target_flank),
                               ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                               ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
             if value not in (None, False):
@@ -126,15 +132,24 @@ def check(args) -> None:
                              ("--machine-settings", args.machine_settings)) if on]
     if len(modes) > 1:
         raise InputRangeError(" / ".join(modes), "all given", "one of them")
+    if args.target_flank is not None:
+        if not args.machine_settings:
+            raise InputRangeError("--target-flank", args.target_flank, "given only with "
+                                  "--machine-settings (without it the option has no effect)")
+        from ..geometry.easeoff import read_easeoff_grid
+
+        args.easeoff_grid = read_easeoff_grid(args.target_flank)
+    fitted = has_easeoff(pair) or args.target_flank is not None
     for option, value in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                           ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
         if value is not None and not args.machine_settings:
             raise InputRangeError(option, value, "given only with --machine-settings "
                                                  "(without it the option has no effect)")
-        if value is not None and has_easeoff(pair):
-            raise InputRangeError(option, value, "not given for a pair with an ease-off "
-                                  "(--machine-settings fits the settings that cut it; "
-                                  "remove the [easeoff.*] tables for standard settings)")
+        if value is not None and fitted:
+            raise InputRangeError(option, value, "not given for a pair with an ease-off or "
+                                  "with --target-flank (--machine-settings fits the settings "
+                                  "that cut it; remove the [easeoff.*] tables for standard "
+                                  "settings)")
         if value is not None:
             check_range(f"{option} (um)", value, 0.0, 200.0)
     # an option of a mode that is not asked for would be ignored without a word
@@ -248,7 +263,7 @@ def _machine_settings(args, pair) -> int:
     from ..geometry.pair import pair_to_toml
     from ..report.design import write_machine_settings_toml
 
-    if has_easeoff(pair):
+    if has_easeoff(pair) or args.target_flank is not None:
         return _easeoff_settings(args, pair)
 
     crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
@@ -267,7 +282,7 @@ def _easeoff_settings(args, pair) -> int:
     from ..geometry.setting_fit import easeoff_machine_pair
     from ..report.design import easeoff_settings_toml, write_easeoff_settings
 
-    fit = easeoff_machine_pair(pair)
+    fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None))
     print(easeoff_settings_toml(fit))
     print(fit.table())
     if args.out is not None:

@@ -38,12 +38,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+import csv
+import io
+import math
+
+from scipy.interpolate import NdBSpline, RectBivariateSpline
+
 from ..errors import CheckFailed
-from ..validation import InputRangeError
+from ..validation import InputRangeError, read_text_file
 from .sheet import RadialSheet
 
-__all__ = ["EaseOff", "apply_easeoff", "easeoff_limit_um", "max_relief_um",
-           "mean_normal_thickness_mm",
+__all__ = ["EaseOff", "GridEaseOff", "apply_easeoff", "easeoff_limit_um", "max_relief_um",
+           "mean_normal_thickness_mm", "read_easeoff_grid", "GRID_COLUMNS",
            "MAX_EASEOFF_THICKNESS_FRACTION"]
 
 #: Largest |E| accepted over the flank as a fraction of the pinion mean normal tooth
@@ -94,6 +100,111 @@ class EaseOff:
         return 1e-3 * um
 
 
+@dataclass(frozen=True, eq=False)
+class GridEaseOff:
+    """An ease-off sampled on a rectangular (u, v) grid of the pinion sheet (a measured
+    deviation grid), interpolated by the bicubic spline through the samples (exact for
+    polynomials up to degree 3 in each direction: the five-term :class:`EaseOff`
+    sampled on a grid is reproduced to rounding) and continued beyond the grid by its
+    edge polynomials (the node margin of :func:`apply_easeoff`).
+
+    Parameters
+    ----------
+    u_mm, v_mm : ndarray
+        Increasing grid lines: height above the root cone and axial position, mm
+        (:mod:`.sheet`), at least 4 each.
+    relief_um : ndarray (len(u_mm), len(v_mm))
+        E at the nodes, um (positive = material removed, as :class:`EaseOff`).
+    """
+
+    u_mm: np.ndarray
+    v_mm: np.ndarray
+    relief_um: np.ndarray
+
+    def __post_init__(self):
+        fit = RectBivariateSpline(self.u_mm, self.v_mm, self.relief_um, kx=3, ky=3, s=0)
+        tx, ty, c = fit.tck
+        object.__setattr__(self, "_spline", NdBSpline(
+            (tx, ty), np.asarray(c).reshape(len(tx) - 4, len(ty) - 4), 3, extrapolate=True))
+
+    @property
+    def is_zero(self) -> bool:
+        """True if every sample is zero."""
+        return not np.any(self.relief_um)
+
+    def relief_mm(self, u, v) -> np.ndarray:
+        """E at pinion parameters (u, v), mm (positive = material removed)."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        pts = np.stack([u.ravel(), v.ravel()], axis=-1)
+        return 1e-3 * self._spline(pts).reshape(u.shape)
+
+    def check_covers(self, boundary, *, where: str) -> None:
+        """Refuse a grid that does not cover the flank box ``boundary`` (1 um slack)."""
+        b, tol = boundary, 1e-3
+        if (self.u_mm[0] > b.u_root + tol or self.u_mm[-1] < b.u_tip - tol
+                or self.v_mm[0] > b.v_toe + tol or self.v_mm[-1] < b.v_heel - tol):
+            raise InputRangeError(
+                f"{where} grid (u {self.u_mm[0]:.3f}..{self.u_mm[-1]:.3f}, v "
+                f"{self.v_mm[0]:.3f}..{self.v_mm[-1]:.3f} mm)", "a grid short of the flank",
+                f"a grid covering the active flank u {b.u_root:.3f}..{b.u_tip:.3f}, "
+                f"v {b.v_toe:.3f}..{b.v_heel:.3f} mm")
+
+
+#: Columns of a deviation grid CSV (:func:`read_easeoff_grid`).
+GRID_COLUMNS = ("side", "v_mm", "u_mm", "easeoff_um")
+
+
+def read_easeoff_grid(path) -> dict:
+    """A measured ease-off grid from a CSV file: ``{side: GridEaseOff}``.
+
+    Columns ``side,v_mm,u_mm,easeoff_um`` (header row; ``side`` drive | coast; ``v``
+    axial position in the pinion body frame, ``u`` height above the root cone, mm,
+    :mod:`.sheet`; ``easeoff_um`` the deviation from the conjugate pinion along its
+    outward normal, positive = material removed, the sign of :class:`EaseOff`). Each
+    side listed is a complete rectangular grid of at least 4 x 4 distinct (u, v),
+    every node once.
+
+    Raises
+    ------
+    InputRangeError
+        A missing column, a non-numeric or non-finite value, an unknown side, or an
+        incomplete / repeated / too small grid (the message names the row or side).
+    """
+    text = read_text_file(path, field="target flank", what="a CSV deviation grid")
+    rows = list(csv.reader(io.StringIO(text)))
+    head = [h.strip() for h in rows[0]] if rows else []
+    if head != list(GRID_COLUMNS):
+        raise InputRangeError(f"{path}: header", ",".join(head), ",".join(GRID_COLUMNS))
+    nodes: dict = {}
+    for k, row in enumerate(rows[1:], start=2):
+        if not row or not "".join(row).strip():
+            continue
+        if len(row) != 4 or row[0].strip() not in ("drive", "coast"):
+            raise InputRangeError(f"{path}: row {k}", ",".join(row),
+                                  "side (drive | coast), v_mm, u_mm, easeoff_um")
+        try:
+            v, u, e = (float(x) for x in row[1:])
+        except ValueError:
+            raise InputRangeError(f"{path}: row {k}", ",".join(row), "numbers") from None
+        if not all(math.isfinite(x) for x in (v, u, e)):
+            raise InputRangeError(f"{path}: row {k}", ",".join(row), "finite numbers")
+        side = nodes.setdefault(row[0].strip(), {})
+        if (u, v) in side:
+            raise InputRangeError(f"{path}: row {k}", ",".join(row), "each (u, v) once per side")
+        side[u, v] = e
+    if not nodes:
+        raise InputRangeError(f"{path}", "no rows", "at least one side's grid")
+    out = {}
+    for name, side in nodes.items():
+        us, vs = sorted({u for u, _ in side}), sorted({v for _, v in side})
+        if len(us) < 4 or len(vs) < 4 or len(side) != len(us) * len(vs):
+            raise InputRangeError(f"{path}: {name} grid", f"{len(side)} nodes on {len(us)} u x "
+                                  f"{len(vs)} v lines", "a complete grid of at least 4 x 4")
+        out[name] = GridEaseOff(u_mm=np.array(us), v_mm=np.array(vs), relief_um=np.array(
+            [[side[u, v] for v in vs] for u in us]))
+    return out
+
+
 def mean_normal_thickness_mm(drive: RadialSheet, coast: RadialSheet, *, u_mm: float,
                              v_mm: float, spiral_angle_deg: float) -> float:
     """Pinion mean normal tooth thickness s_mn from its two flanks, mm.
@@ -136,14 +247,15 @@ def _corner_name(base: RadialSheet, u: float, v: float) -> str:
     return f"{face}/{prof}"
 
 
-def apply_easeoff(base: RadialSheet, easeoff: EaseOff, *, limit_um: float) -> RadialSheet:
+def apply_easeoff(base: RadialSheet, easeoff: "EaseOff | GridEaseOff", *, limit_um: float
+                  ) -> RadialSheet:
     """The eased flank ``r - E N`` of ``base`` as a new :class:`RadialSheet`.
 
     Parameters
     ----------
     base : RadialSheet
         The conjugate (un-eased) pinion flank.
-    easeoff : EaseOff
+    easeoff : EaseOff or GridEaseOff
     limit_um : float
         Largest |E| accepted over the flank, um (:func:`easeoff_limit_um`).
 

@@ -66,6 +66,7 @@ from ..validation import InputRangeError, check_range
 from .blank import BlankDesign
 from .basic_settings import complementary_pinion_setups, formate_gear_setups
 from .conjugate import nominal_pinion_box
+from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
 from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
@@ -396,10 +397,14 @@ class EaseOffSettings:
         the formate gear of today's flanks, the fitted pinion flanks.
     sides : dict
         ``{side: SideResidual}``, right-hand frame (a left-hand pair's twin).
+    measured_sides : tuple of str
+        Sides whose target was a measured grid (``easeoff_grid``), not the pair's
+        ``[easeoff.<side>]``.
     """
 
     pair: object
     sides: dict
+    measured_sides: tuple = ()
 
     def table(self) -> str:
         """The residual and the corrections per side, as a Markdown table."""
@@ -417,8 +422,9 @@ class EaseOffSettings:
         return "\n".join(rows)
 
 
-def easeoff_machine_pair(pair, *, parameters=DEFAULT_PARAMETERS, n_u: int = 9,
-                         n_v: int = 11) -> EaseOffSettings:
+def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
+                         parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11
+                         ) -> EaseOffSettings:
     """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
 
     The gear keeps today's formate flanks (:func:`~.basic_settings.formate_gear_setups`);
@@ -433,6 +439,10 @@ def easeoff_machine_pair(pair, *, parameters=DEFAULT_PARAMETERS, n_u: int = 9,
     ----------
     pair : GearPair
         A pair defined by its blank, cutter and ease-off (no ``[machine.*]`` tables).
+    easeoff_grid : dict, optional
+        ``{side: GridEaseOff}`` (a measured deviation grid,
+        :func:`~.easeoff.read_easeoff_grid`): the target of the sides it holds instead
+        of the pair's ``[easeoff.<side>]``; each must cover its flank's active box.
     parameters : tuple of str
         The fitted subset (:data:`PARAMETERS`; default :data:`DEFAULT_PARAMETERS`).
     n_u, n_v : int
@@ -445,7 +455,8 @@ def easeoff_machine_pair(pair, *, parameters=DEFAULT_PARAMETERS, n_u: int = 9,
     Raises
     ------
     InputRangeError
-        A pair already cut from machine settings.
+        A pair already cut from machine settings, an unknown side in ``easeoff_grid``
+        or a grid short of its flank.
     UndercutError
         A fitted flank the envelope does not generate over its box.
     """
@@ -454,12 +465,20 @@ def easeoff_machine_pair(pair, *, parameters=DEFAULT_PARAMETERS, n_u: int = 9,
                               "a pair with an ease-off and no machine tables (its flanks "
                               "are already the machine's)")
     twin = dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
+    grids = dict(easeoff_grid or {})
+    for side in grids:
+        if side not in SIDES:
+            raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
     flanks = build_flanks(twin)
     seeds = complementary_pinion_setups(twin)
     gear = formate_gear_setups(twin)
     sides, pinion = {}, {}
     for side in SIDES:
         target = flanks.pinion.side(side)
+        if side in grids:
+            conj = flanks.pinion_conjugate.side(side)
+            grids[side].check_covers(conj.boundary, where=f"target flank {side}")
+            target = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
         fit = fit_pinion_setup(seeds[side], twin.blank, target, parameters=parameters,
                                n_u=n_u, n_v=n_v)
         cut, _ = generated_pinion_flank(fit.setup, twin.blank,
@@ -476,4 +495,4 @@ def easeoff_machine_pair(pair, *, parameters=DEFAULT_PARAMETERS, n_u: int = 9,
         setups = [mirror_setup(s) for s in setups]
     return EaseOffSettings(pair=dataclasses.replace(pair, machine=tuple(setups),
                                                     easeoff_tables=("drive", "coast")),
-                           sides=sides)
+                           sides=sides, measured_sides=tuple(s for s in SIDES if s in grids))

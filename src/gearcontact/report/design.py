@@ -106,7 +106,9 @@ def easeoff_settings_toml(fit) -> str:
              "formate gear; pinion: fitted from", "the complementary (conjugate) settings "
              "to the conjugate pinion + ease-off."]
     for side, r in fit.sides.items():
-        lines.append(f"pinion {side}: ease-off max {r.easeoff_max_um:.2f} um, residual max "
+        source = "measured grid (--target-flank)" if side in fit.measured_sides else \
+            f"[easeoff.{side}] of the pair"
+        lines.append(f"pinion {side} ({source}): ease-off max {r.easeoff_max_um:.2f} um, residual max "
                      f"{r.max_um:.3f} um, RMS {r.rms_um:.3f} um over the flank")
     return pair_to_toml(pair, comments={"": "\n".join(lines)})
 
