@@ -171,10 +171,13 @@ def test_measured_grid_reproduces_the_polynomial_target(tmp_path):
     eased = apply_easeoff(flanks.pinion_conjugate.coast, grid["coast"],
                           limit_um=flanks.easeoff_limit_um)
     assert np.abs(eased.psi_nodes - flanks.pinion.coast.psi_nodes).max() < 1e-12
-    # a grid short of the flank (0.5 mm under the tip) is refused before any fit
+    # a grid short of the flank (0.5 mm under the tip) is refused (easeoff_machine_pair
+    # runs this check before any fit)
     short = read_easeoff_grid(write_grid_csv(tmp_path / "s.csv", pair, flanks, "coast", pad=0.5))
     with pytest.raises(InputRangeError, match="covering the active flank"):
-        easeoff_machine_pair(pair, easeoff_grid=short)
+        short["coast"].check_covers(flanks.pinion_conjugate.coast.boundary, where="coast")
+    with pytest.raises(InputRangeError, match="easeoff_grid"):
+        easeoff_machine_pair(pair, easeoff_grid={"flank": short["coast"]})
 
 
 @pytest.mark.parametrize("text, match", [
