@@ -195,3 +195,23 @@ def test_measured_grid_refuses_bad_files(tmp_path, text, match):
     path.write_text(text)
     with pytest.raises(InputRangeError, match=match):
         read_easeoff_grid(path)
+
+
+def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
+    # with a linear roll, q -> q + d is the roll psi + d: the generated flank turns by
+    # R_a d about the work axis, so the sensitivity column of the cradle angle is
+    # R_a * (1e-3 deg in rad) times the lever R (e_psi . n) of every node (exact in
+    # d; measured relative spread 5e-8: the envelope solves' rounding through the
+    # forward difference), asserted to 1e-6
+    from gearcontact.geometry.setting_fit import _fit_grid, _Problem, sensitivity
+
+    pair = load_pair("s0003")
+    seed = complementary_pinion_setups(pair)["drive"]
+    target, _ = generated_pinion_flank(seed, pair.blank, n_u=20, n_v=25,
+                                       pinion_face_width_mm=pair.pinion_face_width_mm)
+    jac, names = sensitivity(seed, pair.blank, target, names=("cradle_angle_deg",), n_u=5,
+                             n_v=6)
+    lever = _Problem(seed, pair.blank, target, names,
+                     *_fit_grid(target.boundary, 5, 6)).lever_um.ravel()
+    want = seed.settings.ratio_of_roll * math.radians(1e-3)
+    assert jac[:, 0] / lever == pytest.approx(np.full(30, want), rel=1e-6)
