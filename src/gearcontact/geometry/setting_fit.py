@@ -181,10 +181,11 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     st = dataclasses.replace(st, **fields, **series)
     if any(n in corrections for n in _BLADE):
         p = _pivot(setup, pivot_length_mm)
+        get = corrections.get
         blade = _blade_through(blade, p,
-                               alpha=p.alpha_rad + math.radians(corrections.get("blade_angle_deg", 0.0)),
-                               k=p.curvature_per_mm + corrections.get("blade_curvature_per_mm", 0.0),
-                               rho=p.rho_mm + corrections.get("blade_radius_mm", 0.0))
+                               alpha=p.alpha_rad + math.radians(get("blade_angle_deg", 0.0)),
+                               k=p.curvature_per_mm + get("blade_curvature_per_mm", 0.0),
+                               rho=p.rho_mm + get("blade_radius_mm", 0.0))
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 

@@ -108,8 +108,8 @@ def easeoff_settings_toml(fit) -> str:
     for side, r in fit.sides.items():
         source = "measured grid (--target-flank)" if side in fit.measured_sides else \
             f"[easeoff.{side}] of the pair"
-        lines.append(f"pinion {side} ({source}): ease-off max {r.easeoff_max_um:.2f} um, residual max "
-                     f"{r.max_um:.3f} um, RMS {r.rms_um:.3f} um over the flank")
+        lines.append(f"pinion {side} ({source}): ease-off max {r.easeoff_max_um:.2f} um, "
+                     f"residual max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um over the flank")
     return pair_to_toml(pair, comments={"": "\n".join(lines)})
 
 
