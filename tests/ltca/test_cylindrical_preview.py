@@ -146,3 +146,35 @@ def test_rtl_equals_golden_on_cylindrical_stencils(spur_pitch):
     # and the engine's golden results are those codes (what the analysis reports)
     for o, (j, k) in zip(outs, idx):
         assert o.hertz.p_max_code * LSB_P == pv.results["golden"][j][k].p_max_mpa
+
+
+def test_verilator_chain_line_on_cylindrical_vectors():
+    """The Verilator harness (hw.harness_cores, core ``chain_line``) on every loaded
+    pair's stencil of the spur pair (21 phases) and the EV helical pair (21 phases, LCP
+    shares at 64.5 N·m): RTL == golden on every output port, 811 cycles each (the
+    harness build is cached after its first run, ~1-3 min on a fresh machine)."""
+    from gearcontact.hw import harness_cores as hc
+    from gearcontact.hw.verilator import VerilatorNotFound
+    from gearcontact.preview.stimulus import Stimulus
+
+    fields = {"gaps": [], "W": [], "L": [], "e_prime": []}
+    for name, phases, torque in (("spur_20x40_m3.toml", 21, 200.0),
+                                 ("ev_reducer_helical_23x67.toml", 21, 64.5)):
+        p = load_pair(EXAMPLES / name, kinds=("cylindrical",))
+        cyc = cylindrical_mesh_cycle(p, phases=phases)
+        lte = cylindrical_loaded_te(p, torque, cycle=cyc, cells_along=40)
+        pv = cylindrical_preview(p, torque, cycle=cyc, loaded_te=lte, backends=("golden",))
+        for j, k in zip(*np.nonzero(pv.loaded)):
+            c = pv.results["golden"][j][k].codes
+            fields["gaps"].append(encode_gaps(pv.stencils.gaps_mm[j, k]))
+            for key in ("W", "L", "e_prime"):
+                fields[key].append(c[key])
+    st = Stimulus("chain_line", {k: np.asarray(v, dtype=np.int64) for k, v in fields.items()},
+                  tuple(["cylindrical"] * len(fields["W"])), 0)
+    try:
+        rep = hc.run_equivalence("chain_line", 0, stim=st)
+    except (VerilatorNotFound, hc.CoreUnavailable) as exc:
+        pytest.skip(str(exc))
+    assert rep.vectors == len(st) >= 60
+    assert rep.mismatches == 0, rep.mismatch_examples
+    assert rep.cycle_counts == {811: len(st)}
