@@ -41,16 +41,14 @@ from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_lte import (CylindricalLoadedTE, HarrisMap, cylindrical_loaded_te,
                                     harris_map, harris_tip_reliefs_um, harris_torques_nm)
 from ..ltca.cylindrical_preview import CylindricalPreview, cylindrical_preview
-from ..tca.cylindrical_cycle import CylindricalMeshCycle, cylindrical_mesh_cycle
+from ..tca.cylindrical_cycle import FACING_OF_SIDE, CylindricalMeshCycle, cylindrical_mesh_cycle
 from ..tca.cylindrical_export import write_cylindrical_tca_outputs
 from ..tca.export import write_csv
 from ..validation import InputRangeError
 from .cylindrical_lte import write_cylindrical_lte_outputs
 
-__all__ = ["CylindricalAnalysis", "FACING_OF_SIDE", "run_cylindrical_analysis"]
+__all__ = ["CylindricalAnalysis", "run_cylindrical_analysis"]
 
-#: ``side`` of a cylindrical pair -> the flank facing in mesh (as ``gearcontact tca``).
-FACING_OF_SIDE = {"drive": "cw", "coast": "ccw"}
 #: The preview backends the job evaluates (fp64 and the bit-exact fixed point).
 BACKENDS = ("reference", "golden")
 

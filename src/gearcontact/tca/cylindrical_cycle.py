@@ -55,9 +55,11 @@ from .curvature import PAINT_THICKNESS_MM
 from .parallel_axes import parallel_kinematics, pitch_point_guess
 from .types import ARCSEC_PER_RAD, MatingPoint, TcaConvergenceError
 
-__all__ = ["CONTACT_TOLERANCE_MM", "CylindricalMeshCycle", "LineGaps", "contact_line_gaps",
+__all__ = ["CONTACT_TOLERANCE_MM", "FACING_OF_SIDE", "CylindricalMeshCycle", "LineGaps", "contact_line_gaps",
            "cylindrical_mesh_cycle", "pair_contact_points"]
 
+#: ``side`` of a cylindrical pair (the commands' ``--side``) -> the flank facing in mesh.
+FACING_OF_SIDE = {"drive": "cw", "coast": "ccw"}
 #: A pair touches (unloaded) if its closed gap is within this, mm: far above the solves'
 #: residual (1e-11 mm), far below any modification (0.1 um and up).
 CONTACT_TOLERANCE_MM = 1e-6
