@@ -8,12 +8,11 @@ and the README line run exactly as written."""
 import csv
 import json
 import math
-import shlex
 from pathlib import Path
 
 import numpy as np
 import pytest
-from readme_lines import readme_commands
+from readme_lines import readme_argv
 
 from gearcontact.cli import main
 from gearcontact.geometry.pair import CYLINDRICAL, load_pair
@@ -93,11 +92,8 @@ def test_cli_cylindrical_refuses_torques(tmp_path, capsys):
 @pytest.mark.slow
 def test_readme_analyze_cylindrical(tmp_path):
     """The README line as written (61 phases, figures; about 40 s)."""
-    line = [c for c in readme_commands()
-            if c.startswith("gearcontact analyze --pair examples/ev_reducer_helical")]
-    assert len(line) == 1
-    argv = shlex.split(line[0])[1:]
-    argv[argv.index("--out") + 1] = str(tmp_path / "run")
+    argv = readme_argv("gearcontact analyze --pair examples/ev_reducer_helical",
+                       tmp_path / "run")
     assert main(argv) == 0
     out = tmp_path / "run"
     head = _check_outputs(out, 64.5, 61)
