@@ -101,3 +101,19 @@ def test_preview_backends_refused_before_work(pair):
     for backend in ("reference", "golden", "rtl", "soc"):
         with pytest.raises(InputRangeError, match="line mode"):
             cylindrical_model(pair, torque_nm=TORQUE_NM, backend=backend)
+
+
+@pytest.mark.slow
+def test_dynamic_factor_peaks_at_the_mesh_mode(pair, model):
+    """Time-domain sweep (table law, RK4 10 us) at 0.8, 0.95, 1.0, 1.05, 1.2 times the
+    linearised mesh mode's speed (25,644 rpm): the dynamic factor is largest at the mode
+    (the primary resonance, Kahraman & Singh 1990) and above 1.15 there (measured 1.234
+    at 26,000 rpm in benchmarks/bench_twin_cylindrical_resonance.py); about 15 s."""
+    from gearcontact.twin.sweep import speed_sweep
+
+    n_mode = 60.0 * linearized_modes(model)[-1] / pair.pinion_teeth
+    speeds = n_mode * np.array([0.8, 0.95, 1.0, 1.05, 1.2])
+    sw = speed_sweep({"table": model}, speeds, settle_s=0.02, mesh_cycles=10, workers=1)
+    k = sw.rows["table"]["dynamic_factor"]
+    assert int(np.argmax(k)) == 2 and k[2] > 1.15
+    assert np.all(sw.rows["table"]["contact_loss"] == 0.0)
