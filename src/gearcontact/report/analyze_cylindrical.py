@@ -6,13 +6,13 @@ readable summary (docs/cylindrical.md sec. 9).
 ``kind = "cylindrical"`` pair. Files written into ``out``:
 
 =========================================  ==================================================
-``tca.json``, ``te0.csv``,                 the unloaded cycle (:mod:`gearcontact.tca.
-``contact_lines.csv``, ``te0.png``,        cylindrical_export`): TE0 per pair and envelope,
-``contact_pattern.png``                    contact lines, pattern
+``tca.json``, ``te0.csv``,                 the unloaded cycle (``tca.cylindrical_export``):
+``contact_lines.csv``, ``te0.png``,        TE0 per pair and envelope, contact lines,
+``contact_pattern.png``                    pattern
 ``lte.json``, ``lte.csv``,                 the loaded TE at the torque, load sharing, peak
 ``line_load.csv``, ``harris_map.csv``,     pressure, line loads, secant mesh stiffness
 ``lte.png``, ``harris_map.png``            beside ISO 6336-1 Method B, and the Harris map
-                                           (:mod:`.cylindrical_lte`)
+                                           (``report.cylindrical_lte``)
 ``preview.csv``                            per phase and loaded pair: load, line length,
                                            exact and fitted curvatures, the fp64 and golden
                                            line chain (mode, p_max, b, flags) beside the
