@@ -62,12 +62,11 @@ def main() -> None:
     m_red = reduced_mass_kg_per_mm(
         mean_diameter_pinion_mm=0.5 * (g.tip_diameter_pinion_mm + g.root_diameter_pinion_mm),
         base_diameter_pinion_mm=g.base_diameter_pinion_mm, ratio=pair.ratio)
-    iso = cylindrical_pair_stiffness(
-        pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
-        helix_angle_deg=g.helix_angle_deg, base_helix_angle_deg=g.base_helix_angle_deg,
-        transverse_contact_ratio=g.transverse_contact_ratio,
-        profile_shift_pinion=g.profile_shift_pinion, profile_shift_gear=g.profile_shift_gear,
-        dedendum_per_module=pair.dedendum_factor)
+    geo = ("helix_angle_deg", "base_helix_angle_deg", "transverse_contact_ratio",
+           "profile_shift_pinion", "profile_shift_gear")
+    iso = cylindrical_pair_stiffness(pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
+                                     dedendum_per_module=pair.dedendum_factor,
+                                     **{k: getattr(g, k) for k in geo})
     for label, c in (("twin's c_t", c_t), ("Method B c_gamma_alpha", iso.c_gamma_alpha_n_per_mm_um)):
         n = resonance_speed_rpm(pinion_teeth=pair.pinion_teeth, c_gamma_n_per_mm_um=c,
                                 reduced_mass_kg_per_mm=m_red)
