@@ -17,3 +17,15 @@ def readme_commands(prefix: str = "gearcontact ") -> list[str]:
             if line.startswith(prefix):
                 lines.append(line)
     return lines
+
+
+def readme_argv(prefix: str, out) -> list[str]:
+    """The argv (without ``gearcontact``) of the README's one line starting with
+    ``prefix``, its ``--out`` redirected to ``out``."""
+    import shlex
+
+    lines = [c for c in readme_commands() if c.startswith(prefix)]
+    assert len(lines) == 1, f"README has {len(lines)} lines starting with {prefix!r}"
+    argv = shlex.split(lines[0])[1:]
+    argv[argv.index("--out") + 1] = str(out)
+    return argv

@@ -68,3 +68,31 @@ def test_cylindrical_pair_stiffness_worked_check():
                                    base_helix_angle_deg=23.4, transverse_contact_ratio=1.4)
     f = math.cos(math.radians(23.4)) ** 2 * math.cos(math.radians(25.0))
     assert h.z_n1 == pytest.approx(23 / f, rel=1e-12) and h.z_n2 == pytest.approx(67 / f, rel=1e-12)
+
+
+def test_resonance_speed_is_the_two_disc_natural_frequency():
+    """n_E1 against the natural frequency of two solid steel discs coupled by a spring on
+    their base circles (derived independently: J = rho pi b d^4 / 32, omega^2 = k (r_b1^2
+    / J1 + r_b2^2 / J2), n = 60 omega / (2 pi z1)), for a pair whose gear mean diameter
+    is exactly u times the pinion's (where the standard's u^2 form is exact): 1e-12.
+    Worked numbers: 20/40 m 3 spur, d_m1 = 59.25 mm, c_gamma = 18.7 N/(mm·µm) (the
+    worked check above), m_red = 9.56e-3 kg/mm, n_E1 = 21,116 rpm."""
+    from gearcontact.analytic.iso6336 import reduced_mass_kg_per_mm, resonance_speed_rpm
+
+    z1, u, b = 20, 2.0, 20.0
+    dm1, db1 = 60.0 - 0.75, 60.0 * math.cos(math.radians(20.0))
+    m_red = reduced_mass_kg_per_mm(mean_diameter_pinion_mm=dm1, base_diameter_pinion_mm=db1,
+                                   ratio=u)
+    n = resonance_speed_rpm(pinion_teeth=z1, c_gamma_n_per_mm_um=18.7,
+                            reduced_mass_kg_per_mm=m_red)
+    rho = 7850.0
+    j1 = rho * math.pi * (b * 1e-3) * (dm1 * 1e-3) ** 4 / 32
+    j2 = rho * math.pi * (b * 1e-3) * (u * dm1 * 1e-3) ** 4 / 32
+    k = 18.7 * b * 1e6                                   # N/(mm µm) x mm -> N/m
+    rb1, rb2 = 0.5e-3 * db1, 0.5e-3 * u * db1
+    omega = math.sqrt(k * (rb1 ** 2 / j1 + rb2 ** 2 / j2))
+    assert n == pytest.approx(60 * omega / (2 * math.pi * z1), rel=1e-12)
+    assert m_red == pytest.approx(9.5609e-3, rel=1e-4) and n == pytest.approx(21116, rel=1e-4)
+    with pytest.raises(InputRangeError, match="bore_ratio_gear"):
+        reduced_mass_kg_per_mm(mean_diameter_pinion_mm=dm1, base_diameter_pinion_mm=db1,
+                               ratio=u, bore_ratio_gear=1.0)

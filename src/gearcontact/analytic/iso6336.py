@@ -21,10 +21,21 @@ Multiplied by the face width this is the stiffness of a contact line over the wh
 face: contact flattening, tooth bending and foundation together. A localized bearing
 loads only part of the face, so its pair compliance must lie *above* this value.
 
+The resonance speed of the pinion (clause 6.5.3, the reference speed of the dynamic
+factor K_v) follows from the mesh stiffness and the reduced mass of the pair per unit
+face width on the line of action, for solid or bored blanks of mean diameter
+``d_m = (d_a + d_f) / 2``::
+
+    m_red = (pi/8) (d_m1/d_b1)^2 d_m1^2 / (1/((1 - q1^4) rho1) + 1/((1 - q2^4) rho2 u^2))
+    n_E1  = 30 000 / (pi z1) sqrt(c_gamma_alpha / m_red)        (rpm; N/(mm µm), kg/mm)
+
+(:func:`reduced_mass_kg_per_mm`, :func:`resonance_speed_rpm`; the gear's ``m*`` taken
+as ``u^2`` times the pinion's geometric factor, the standard's form).
+
 References
 ----------
 ISO 6336-1:2006, *Calculation of load capacity of spur and helical gears — Part 1*,
-clause 9 (Method B), eq. (70)–(73), table 8. ISO 10300-1:2014, *Calculation of load
+clause 9 (Method B), eq. (70)–(73), table 8; clause 6.5.3 (resonance running speed). ISO 10300-1:2014, *Calculation of load
 capacity of bevel gears*, virtual cylindrical gears.
 """
 
@@ -37,7 +48,7 @@ from ..validation import check_positive, check_range
 
 __all__ = ["FLEXIBILITY_COEFFICIENTS", "IsoPairStiffness", "IsoMeshStiffness",
            "theoretical_single_stiffness", "virtual_teeth", "bevel_pair_stiffness",
-           "cylindrical_pair_stiffness"]
+           "cylindrical_pair_stiffness", "reduced_mass_kg_per_mm", "resonance_speed_rpm"]
 
 #: C1..C9 of ISO 6336-1:2006 table 8 (mm µm / N; x dimensionless).
 FLEXIBILITY_COEFFICIENTS = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193,
@@ -198,3 +209,47 @@ def cylindrical_pair_stiffness(*, pinion_teeth: int, gear_teeth: int, helix_angl
     c_ga = c * (0.75 * transverse_contact_ratio + 0.25)
     return IsoMeshStiffness(z_n1=z1, z_n2=z2, c_th_n_per_mm_um=c_th, c_n_per_mm_um=c,
                             c_gamma_alpha_n_per_mm_um=c_ga, c_gamma_beta_n_per_mm_um=0.85 * c_ga)
+
+
+#: Density of steel in the standard's units, kg/mm^3.
+STEEL_DENSITY_KG_PER_MM3 = 7.85e-6
+
+
+def reduced_mass_kg_per_mm(*, mean_diameter_pinion_mm: float, base_diameter_pinion_mm: float,
+                           ratio: float, density_pinion_kg_per_mm3: float = STEEL_DENSITY_KG_PER_MM3,
+                           density_gear_kg_per_mm3: float = STEEL_DENSITY_KG_PER_MM3,
+                           bore_ratio_pinion: float = 0.0, bore_ratio_gear: float = 0.0) -> float:
+    """Reduced mass of the pair per unit face width on the line of action, kg/mm (ISO
+    6336-1:2006 clause 6.5.3; module docstring).
+
+    Parameters
+    ----------
+    mean_diameter_pinion_mm, base_diameter_pinion_mm : float, keyword-only
+        ``d_m1 = (d_a1 + d_f1) / 2`` and ``d_b1``, mm.
+    ratio : float, keyword-only
+        ``u = z2 / z1`` (>= 1).
+    density_pinion_kg_per_mm3, density_gear_kg_per_mm3 : float, keyword-only
+    bore_ratio_pinion, bore_ratio_gear : float, keyword-only
+        ``q = d_i / d_m`` in [0, 1) (0: solid).
+    """
+    dm = check_positive("mean_diameter_pinion_mm", mean_diameter_pinion_mm)
+    db = check_positive("base_diameter_pinion_mm", base_diameter_pinion_mm)
+    u = check_range("ratio", ratio, 1.0, 1e3)
+    rho1 = check_positive("density_pinion_kg_per_mm3", density_pinion_kg_per_mm3)
+    rho2 = check_positive("density_gear_kg_per_mm3", density_gear_kg_per_mm3)
+    q1 = check_range("bore_ratio_pinion", bore_ratio_pinion, 0.0, 1.0, hi_open=True)
+    q2 = check_range("bore_ratio_gear", bore_ratio_gear, 0.0, 1.0, hi_open=True)
+    return (math.pi / 8.0) * (dm / db) ** 2 * dm ** 2 / (
+        1.0 / ((1.0 - q1 ** 4) * rho1) + 1.0 / ((1.0 - q2 ** 4) * rho2 * u ** 2))
+
+
+def resonance_speed_rpm(*, pinion_teeth: int, c_gamma_n_per_mm_um: float,
+                        reduced_mass_kg_per_mm: float) -> float:
+    """Resonance speed of the pinion ``n_E1 = 30 000 / (pi z1) sqrt(c_gamma / m_red)``,
+    rpm (ISO 6336-1:2006 clause 6.5.3): the pinion speed whose mesh frequency equals
+    the natural frequency of the two members on the mesh stiffness ``c_gamma``
+    (N/(mm·µm)) with the reduced mass ``m_red`` (kg/mm)."""
+    z1 = check_range("pinion_teeth", pinion_teeth, 1, 10_000)
+    c = check_positive("c_gamma_n_per_mm_um", c_gamma_n_per_mm_um)
+    m = check_positive("reduced_mass_kg_per_mm", reduced_mass_kg_per_mm)
+    return 30_000.0 / (math.pi * z1) * math.sqrt(c / m)

@@ -1,11 +1,19 @@
 """``gearcontact analyze``: the main job — design, TCA, loaded contact at the operating
 torques and the physics-direct preview, written to one directory with ``summary.md``.
+
+A cylindrical pair (``kind = "cylindrical"``) gets TE0, the loaded TE at
+``--lte-torque`` over ``--lte-phases`` phases (rigid teeth), the Harris map, mesh
+stiffness, pressure and the preview's line chain per phase and loaded pair
+(:mod:`gearcontact.report.analyze_cylindrical`; docs/cylindrical.md sec. 9).
 """
 
 from __future__ import annotations
 
+from ..errors import CheckFailed
+from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
-from ..validation import InputRangeError
+from ..report.analyze_cylindrical import run_cylindrical_analysis
+from ..validation import InputRangeError, check_positive
 from .options import (
     MAX_PHASES,
     add_pair_arguments,
@@ -44,7 +52,10 @@ def register(sub) -> None:
 
 def check(args) -> None:
     """Every option and the pair file, before any work."""
-    check_pair_arguments(args)
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
+    if args.gear_pair.kind == CYLINDRICAL:
+        check_cylindrical(args)
+        return
     if not 1 <= len(args.torques) <= MAX_TORQUES:
         raise InputRangeError("--torques", args.torques, f"1 to {MAX_TORQUES} torques")
     for t in args.torques:
@@ -59,9 +70,44 @@ def check(args) -> None:
                          "runs on TCA phases)")
 
 
+def check_cylindrical(args) -> None:
+    """The options of a cylindrical pair: one torque (``--lte-torque``), its teeth rigid."""
+    if list(args.torques) != list(DEFAULT_TORQUES_NM):
+        raise InputRangeError("--torques", args.torques, "not given for a cylindrical pair (the "
+                                                         "loaded TE and the preview run at "
+                                                         "--lte-torque, the Harris map at the ISO "
+                                                         "line loads 50-400 N/mm)")
+    check_positive("--lte-torque (N·m)", args.lte_torque)
+    if args.lte_phases is None:
+        args.lte_phases = args.phases
+    check_count("--lte-phases", args.lte_phases, 3, MAX_PHASES,
+                note=" (a cylindrical pair's loaded TE is the job)")
+
+
+def run_cylindrical(args) -> int:
+    res = run_cylindrical_analysis(args.gear_pair, out_dir=args.out, torque_nm=args.lte_torque,
+                                   phases=args.lte_phases, side=args.side,
+                                   figures=not args.no_figures)
+    run_timings(args, **res.timings_s)
+    h = res.summary
+    print(f"{res.pair.name} {args.side}, {h['torque_nm']:g} N·m, rigid teeth: TE0 p-p "
+          f"{h['te0_pp_arcsec']:.2f} / loaded TE p-p {h['lte_pp_arcsec']:.2f} arcsec, mesh "
+          f"stiffness {h['mesh_stiffness_n_per_mm_um']['mean']:.1f} N/(mm·µm), p_max LCP "
+          f"{h['lcp_max_pressure_mpa']:.0f} / preview {h['preview_max_pressure_mpa']['golden']:.0f}"
+          f" MPa -> {final_path(args, res.out_dir / 'summary.md')}")
+    if h["edge_touch"]:
+        warn("analyze", "loaded cells on the edge of the strip across a line: the strip is "
+                        "too narrow for this load")
+    if not h["converged"]:
+        raise CheckFailed("LCP not converged")   # the files stay
+    return 0
+
+
 def run(args) -> int:
     if getattr(args, "gear_pair", None) is None:
         check(args)
+    if args.gear_pair.kind == CYLINDRICAL:
+        return run_cylindrical(args)
     res = run_analysis(args.gear_pair, out_dir=args.out, torques_nm=args.torques,
                        phases=args.phases, side=args.side, figures=not args.no_figures,
                        progress=not args.quiet,

@@ -10,6 +10,11 @@ dynamic factor vs speed curve instead, for the preview twin (``--backend``) and 
 twin side by side, in parallel over the speeds: ``sweep.json``, ``sweep.csv``,
 ``sweep.png`` (:mod:`gearcontact.twin.sweep`). Drivetrain parameters: the ``[drivetrain]`` table
 of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.params`.
+
+A cylindrical pair (``kind = "cylindrical"``) runs the table backend (``--backend
+table``: the loaded TE of its mesh cycle over a torque ladder, rigid teeth;
+:mod:`gearcontact.twin.cylindrical`, docs/cylindrical.md sec. 10); the preview backends,
+``--bending`` and ``--speed-sweep`` are refused for it.
 """
 
 from __future__ import annotations
@@ -17,6 +22,8 @@ from __future__ import annotations
 import math
 import os
 
+from ..geometry.pair import BEVEL, CYLINDRICAL
+from ..twin.cylindrical import CYLINDRICAL_BACKENDS, cylindrical_model
 from ..twin.params import check_drivetrain_file, load_drivetrain
 from ..twin.report import write_sweep_outputs, write_twin_outputs
 from ..twin.simulate import (BACKENDS, CURVATURE_SOURCES, MAX_SPEED_RPM, STEP_RANGE_US,
@@ -84,9 +91,11 @@ def register(sub) -> None:
 
 def check(args) -> None:
     """Every option before any work (and before the output directory is touched)."""
-    check_pair_arguments(args)
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     if args.backend not in BACKENDS:
         raise InputRangeError("--backend", args.backend, f"one of {list(BACKENDS)}")
+    if args.gear_pair.kind == CYLINDRICAL:
+        check_cylindrical(args)
     check_range("--step-us", args.step_us, *STEP_RANGE_US)
     if args.duration is not None:
         duration_s = check_positive("--duration", args.duration)
@@ -130,10 +139,33 @@ def check(args) -> None:
     args.duration_s, args.speeds = duration_s, speeds
 
 
+def check_cylindrical(args) -> None:
+    """The options a cylindrical pair's twin takes (module docstring)."""
+    if args.backend not in CYLINDRICAL_BACKENDS:
+        raise InputRangeError("--backend", args.backend, f"one of {list(CYLINDRICAL_BACKENDS)}"
+                                                         " for a cylindrical pair (the "
+                                                         "twin's kernel has no line-contact "
+                                                         "law yet: docs/cylindrical.md "
+                                                         "sec. 10)")
+    if args.table_source != "lcp":
+        raise InputRangeError("--table-source", args.table_source, "lcp for a cylindrical pair "
+                                                                   "(its loaded TE is the LCP's)")
+    for flag, given in (("--bending", args.bending), ("--speed-sweep", args.speed_sweep)):
+        if given:
+            raise InputRangeError(flag, given, "not given for a cylindrical pair "
+                                               "(docs/cylindrical.md sec. 10)")
+
+
 def run(args) -> int:
     if not hasattr(args, "duration_s"):
         check(args)
-    duration_s, speeds = args.duration_s, args.speeds
+    speeds = args.speeds
+    if args.gear_pair.kind == CYLINDRICAL:
+        pair = args.gear_pair
+        drivetrain = load_drivetrain(args.drivetrain, pair)
+        model = cylindrical_model(pair, torque_nm=args.torque, backend=args.backend,
+                                  drivetrain=drivetrain, side=args.side, phases=args.phases)
+        return _simulate(args, pair, model, drivetrain, {})
     pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
     drivetrain = load_drivetrain(args.drivetrain, pair)
     if speeds is not None:
@@ -142,12 +174,17 @@ def run(args) -> int:
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, bending=args.bending,
                            curvatures=args.curvatures, progress=not args.quiet)
+    return _simulate(args, pair, model, drivetrain,
+                     {"easeoff_synthesized": args.prepared_pair.synthesized})
+
+
+def _simulate(args, pair, model, drivetrain, extra: dict) -> int:
+    duration_s = args.duration_s
     res = simulate(model, speed_rpm=args.speed_rpm, duration_s=duration_s,
                    step_s=1e-6 * args.step_us, record_every=args.record_every,
                    progress=not args.quiet, board=args.board_address)
     run_timings(args, **res.timings)
-    extra = {"pair": pair.name, "side": args.side,
-             "easeoff_synthesized": args.prepared_pair.synthesized,
+    extra = {"pair": pair.name, "side": args.side, **extra,
              "drivetrain": drivetrain.as_dict()}
     if args.backend == "table":
         extra["table_source"] = args.table_source

@@ -55,9 +55,11 @@ from .curvature import PAINT_THICKNESS_MM
 from .parallel_axes import parallel_kinematics, pitch_point_guess
 from .types import ARCSEC_PER_RAD, MatingPoint, TcaConvergenceError
 
-__all__ = ["CONTACT_TOLERANCE_MM", "CylindricalMeshCycle", "LineGaps", "contact_line_gaps",
-           "cylindrical_mesh_cycle"]
+__all__ = ["CONTACT_TOLERANCE_MM", "FACING_OF_SIDE", "CylindricalMeshCycle", "LineGaps", "contact_line_gaps",
+           "cylindrical_mesh_cycle", "pair_contact_points"]
 
+#: ``side`` of a cylindrical pair (the commands' ``--side``) -> the flank facing in mesh.
+FACING_OF_SIDE = {"drive": "cw", "coast": "ccw"}
 #: A pair touches (unloaded) if its closed gap is within this, mm: far above the solves'
 #: residual (1e-11 mm), far below any modification (0.1 um and up).
 CONTACT_TOLERANCE_MM = 1e-6
@@ -549,3 +551,32 @@ def contact_line_gaps(pair: CylindricalPair, cycle: CylindricalMeshCycle, z_mm) 
             out[k][on] = s[k]
     return LineGaps(z_mm=z, gap_mm=out["g"], pinion_roll_mm=out["u1"],
                     gear_roll_mm=out["u2"], rate_mm_per_rad=out["rate"])
+
+
+def pair_contact_points(pair: CylindricalPair, cycle: CylindricalMeshCycle
+                        ) -> list[list[MatingPoint | None]]:
+    """The least-gap point of every pair's contact line as a :class:`MatingPoint`.
+
+    Same solve as the cycle's (module docstring): pinion point on the plane of action at
+    the line's least-gap axial position, gear point along ``d``, gear normal; both
+    members posed with the gear resting on the transmitting pair (``phi2`` of the perfect
+    mesh plus the envelope's TE0), so a pair that is not transmitting stands open by its
+    gap there. Returns rows per pair of ``cycle.pair_offsets``, one entry per phase
+    (None where the pair has no line in the zone of action).
+    """
+    mesh = _Mesh(pair, cycle.facing)
+    pitch = 2.0 * math.pi / cycle.pinion_teeth
+    phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
+    z = cycle.contact_zu_mm[..., 0]
+    on = np.isfinite(z)
+    out: list[list[MatingPoint | None]] = [[None] * z.shape[1] for _ in range(z.shape[0])]
+    if not on.any():
+        return out
+    s = mesh.section(phi[on], z[on])
+    te = np.broadcast_to(cycle.envelope_arcsec[None, :], z.shape)[on]
+    for i, (j, k) in enumerate(zip(*np.nonzero(on))):
+        out[j][k] = MatingPoint(
+            phi1_rad=float(phi[j, k]), phi2_rad=float(s["phi2"][i] + te[i] / ARCSEC_PER_RAD),
+            u1=float(s["u1"][i]), v1=float(z[j, k]), u2=float(s["u2"][i]), v2=float(s["v2"][i]),
+            point_mm=s["G"][i].copy(), normal=s["n2"][i].copy(), te0_arcsec=float(te[i]))
+    return out

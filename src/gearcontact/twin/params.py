@@ -13,6 +13,9 @@ Defaults for s0003 (:func:`default_drivetrain`) and their sources:
   of the input shaft (lumped-mass convention: half a shaft's inertia at each end node);
 * gear: a solid steel disc of the outer radius ``r_2m + (F_2/2) sin delta_2 + h_a2`` and
   thickness ``F_2`` (blank geometry) plus half of the output shaft;
+* cylindrical pairs: pinion and gear solid steel cylinders of the mean diameter
+  ``(d_a + d_f) / 2`` over their face widths (ISO 6336-1:2006 clause 6.5.3's body of
+  the reduced mass), plus half of their shafts;
 * shafts: solid steel, input 20 mm x 150 mm, output 30 mm x 200 mm (assumed: s0003's
   shafts are not published; diameters sized for the 6.45 / 64.5 N·m torques at < 50 MPa
   shear); torsional stiffness ``k = G pi d^4 / (32 L)`` with ``G = E / (2 (1 + nu))`` of
@@ -126,23 +129,36 @@ def shaft_inertia_kgm2(diameter_mm: float, length_mm: float) -> float:
     return STEEL_DENSITY_KG_M3 * math.pi * length * d ** 4 / 32.0
 
 
-def default_drivetrain(pair) -> DrivetrainParams:
-    """Defaults estimated from the pair's blank (module docstring states every source).
-
-    Parameters
-    ----------
-    pair : gearcontact.geometry.pair.GearPair
-    """
+def _member_inertias(pair) -> tuple[float, float]:
+    """Pinion and gear bodies, kg·m^2: bevel, the blank's head and disc (module
+    docstring); cylindrical, solid steel cylinders of the mean diameter ``(d_a + d_f)/2``
+    over each member's face width (the body of ISO 6336-1's reduced mass, clause 6.5.3)."""
+    if getattr(pair, "kind", None) == "cylindrical":
+        g = pair.geometry
+        return (shaft_inertia_kgm2(0.5 * (g.tip_diameter_pinion_mm + g.root_diameter_pinion_mm),
+                                   pair.pinion_face_width_mm),
+                shaft_inertia_kgm2(0.5 * (g.tip_diameter_gear_mm + g.root_diameter_gear_mm),
+                                   pair.gear_face_width_mm))
     bd = pair.blank
-    m1, m2 = pair.pinion_material, pair.gear_material
-    g1 = m1.youngs_modulus_mpa / (2.0 * (1.0 + m1.poisson_ratio))
-    g2 = m2.youngs_modulus_mpa / (2.0 * (1.0 + m2.poisson_ratio))
     r1 = bd.mean_pitch_radius_pinion_mm + bd.addendum_pinion_mm
     j_head1 = shaft_inertia_kgm2(2.0 * r1, pair.pinion_face_width_mm)
     delta2 = math.radians(bd.pitch_angle_gear_deg)
     r2 = (bd.mean_pitch_radius_gear_mm + 0.5 * pair.gear_face_width_mm * math.sin(delta2)
           + bd.addendum_gear_mm)
-    j_disc2 = shaft_inertia_kgm2(2.0 * r2, pair.gear_face_width_mm)
+    return j_head1, shaft_inertia_kgm2(2.0 * r2, pair.gear_face_width_mm)
+
+
+def default_drivetrain(pair) -> DrivetrainParams:
+    """Defaults estimated from the pair's blank (module docstring states every source).
+
+    Parameters
+    ----------
+    pair : gearcontact.geometry.pair.GearPair or CylindricalPair
+    """
+    m1, m2 = pair.pinion_material, pair.gear_material
+    g1 = m1.youngs_modulus_mpa / (2.0 * (1.0 + m1.poisson_ratio))
+    g2 = m2.youngs_modulus_mpa / (2.0 * (1.0 + m2.poisson_ratio))
+    j_head1, j_disc2 = _member_inertias(pair)
     j_s1 = shaft_inertia_kgm2(*_INPUT_SHAFT_MM)
     j_s2 = shaft_inertia_kgm2(*_OUTPUT_SHAFT_MM)
     return DrivetrainParams(

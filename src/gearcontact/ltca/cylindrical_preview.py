@@ -1,0 +1,170 @@
+"""The preview (stages C -> D, the line chain) on the contact of a cylindrical pair, per
+phase and loaded tooth pair (docs/cylindrical.md sec. 8).
+
+Per phase of the unloaded cycle and tooth pair carrying load: the pair's 7 x 7 gap
+stencil at the least-gap point of its contact line (:mod:`gearcontact.tca.
+cylindrical_stencil`), its load ``W`` and the length ``L`` of its contact line in the
+zone of action go through the *line chain* of the datapath (:func:`gearcontact.preview.
+chain.chain_line_reference`, ``chain_line_golden``; the fit core into the line core of
+stage D, :mod:`gearcontact.preview.hertz.line`): the curvature fit, then the Hertz
+ellipse where it fits the line or else the Hertz line contact of length ``L`` (Johnson
+1985 sec. 4.3), which is what the unmodified and the lightly crowned flanks of a spur
+or helical pair give. Every backend of :mod:`gearcontact.preview.engine` evaluates the
+same stencils (``reference``: fp64; ``golden``: the bit-exact fixed point; ``rtl`` once
+:mod:`gearcontact.hw.backends` is imported: the ChainLineCore in simulation).
+
+Loads. With a loaded TE (:func:`.cylindrical_lte.cylindrical_loaded_te` at the same
+torque and cycle) each pair carries its LCP load share of ``F_n``; without it the pairs
+touching unloaded share ``F_n`` in proportion to their line lengths (rigid flanks in
+line contact close by the same approach, and the line contact's approach is, to its
+logarithmic term, that of the load per unit length). An input outside a backend's
+domain is a result, not an abort: the reference's refusal is kept as text in
+``errors``, the fixed point's flags as mode ``"flagged"``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..geometry.cylindrical.pair import CylindricalPair
+from ..preview.engine import PreviewResult, get_engine
+from ..tca.cylindrical_cycle import CylindricalMeshCycle, cylindrical_mesh_cycle
+from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
+from ..errors import BadInput
+from ..validation import InputRangeError
+from .cylindrical_lte import CylindricalLoadedTE, normal_load_n
+
+__all__ = ["CylindricalPreview", "cylindrical_preview", "pair_loads_n"]
+
+
+@dataclass(frozen=True)
+class CylindricalPreview:
+    """The preview of every loaded pair over one pinion pitch, per backend.
+
+    Shapes (P, K) as the cycle's; ``loaded`` marks the evaluated entries.
+
+    Attributes
+    ----------
+    torque_nm : float
+        Gear torque, N·m.
+    normal_load_n : float
+        ``F_n``, N.
+    load_source : str
+        ``"ltca"`` (LCP load shares) or ``"line_length"`` (module docstring).
+    load_n : ndarray (P, K)
+        Normal load of each pair, N (0 where not loaded).
+    loaded : ndarray (P, K) of bool
+    stencils : CylindricalStencils
+        The inputs (stencils, exact curvatures, line lengths).
+    results : dict
+        Backend name -> nested list (P rows of K) of :class:`PreviewResult` or None.
+    errors : dict
+        ``(backend, j, k)`` -> the refusal's text, where a backend raised.
+    """
+
+    torque_nm: float
+    normal_load_n: float
+    load_source: str
+    load_n: np.ndarray
+    loaded: np.ndarray
+    stencils: CylindricalStencils
+    results: dict = field(repr=False)
+    errors: dict = field(default_factory=dict)
+
+    @property
+    def backends(self) -> tuple[str, ...]:
+        return tuple(self.results)
+
+    def values(self, backend: str, name: str) -> np.ndarray:
+        """(P, K) array of a :class:`PreviewResult` field (``p_max_mpa``, ``a_mm``,
+        ``b_mm``, ...) of ``backend``; NaN where not evaluated or refused."""
+        rows = self.results[backend]
+        return np.array([[np.nan if r is None else float(getattr(r, name)) for r in row]
+                         for row in rows])
+
+    def modes(self, backend: str) -> np.ndarray:
+        """(P, K) array of the modes (``"elliptic"``, ``"line"``, ``"flagged"``; ``""``
+        where not evaluated, ``"refused"`` where the backend raised)."""
+        out = np.full(self.load_n.shape, "", dtype=object)
+        for j, row in enumerate(self.results[backend]):
+            for k, r in enumerate(row):
+                if r is not None:
+                    out[j, k] = r.mode
+                elif (backend, j, k) in self.errors:
+                    out[j, k] = "refused"
+        return out
+
+    def max_pressure_mpa(self, backend: str) -> np.ndarray:
+        """(K,) largest previewed peak pressure over the loaded pairs, MPa."""
+        p = np.where(self.loaded, self.values(backend, "p_max_mpa"), np.nan)
+        return np.nanmax(np.where(np.isnan(p), -np.inf, p), axis=0)
+
+
+def pair_loads_n(stencils: CylindricalStencils, normal_load: float,
+                 loaded_te: CylindricalLoadedTE | None = None) -> tuple[np.ndarray, str]:
+    """Normal load per pair and phase (N) and its source (module docstring)."""
+    if loaded_te is not None:
+        if loaded_te.load_share.shape != stencils.valid.shape:
+            raise InputRangeError("loaded_te.load_share shape", loaded_te.load_share.shape,
+                                  f"{stencils.valid.shape} (the cycle's pairs x phases)")
+        return np.where(stencils.valid, loaded_te.load_share * normal_load, 0.0), "ltca"
+    length = np.where(stencils.in_contact, stencils.line_length_mm, 0.0)
+    return normal_load * length / length.sum(axis=0)[None, :], "line_length"
+
+
+def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
+                        cycle: CylindricalMeshCycle | None = None,
+                        stencils: CylindricalStencils | None = None,
+                        loaded_te: CylindricalLoadedTE | None = None,
+                        backends=("reference", "golden"), phases: int = 61,
+                        min_share: float = 1e-3) -> CylindricalPreview:
+    """The line-chain preview of every loaded pair at every phase (module docstring).
+
+    Parameters
+    ----------
+    pair : CylindricalPair
+        With its micro-geometry and misalignment.
+    torque_nm : float
+        Gear torque (> 0), N·m, the package's convention (as the loaded TE's).
+    cycle : CylindricalMeshCycle, optional
+        The unloaded cycle (computed with ``phases`` if None).
+    stencils : CylindricalStencils, optional
+        Its stencils (computed if None).
+    loaded_te : CylindricalLoadedTE, optional
+        Loaded TE of the same cycle and torque: its load shares (module docstring).
+    backends : sequence of str
+        Preview backends (:func:`gearcontact.preview.engine.get_engine` names).
+    min_share : float
+        A pair is previewed when it carries at least this share of ``F_n``.
+    """
+    load = normal_load_n(pair, torque_nm)
+    engines = {name: get_engine(name, material=pair.pinion_material,
+                                material2=pair.gear_material) for name in backends}
+    if not 0.0 <= min_share < 1.0:
+        raise InputRangeError("min_share", min_share, "in [0, 1)")
+    if loaded_te is not None and abs(loaded_te.torque_nm - float(torque_nm)) > 1e-12 * load:
+        raise InputRangeError("loaded_te.torque_nm", loaded_te.torque_nm,
+                              f"{float(torque_nm)!r} N·m (the preview's torque)")
+    if cycle is None:
+        cycle = cylindrical_mesh_cycle(pair, phases=phases)
+    if stencils is None:
+        stencils = cylindrical_stencils(pair, cycle)
+    loads, source = pair_loads_n(stencils, load, loaded_te)
+    loaded = stencils.valid & (loads >= min_share * load) & (loads > 0.0)
+    n_p, n_k = loaded.shape
+    results: dict[str, list[list[PreviewResult | None]]] = {}
+    errors: dict[tuple[str, int, int], str] = {}
+    for name, engine in engines.items():
+        rows = [[None] * n_k for _ in range(n_p)]
+        for j, k in zip(*np.nonzero(loaded)):
+            try:
+                rows[j][k] = engine.stencil(stencils.gaps_mm[j, k], float(loads[j, k]),
+                                            line_length_mm=float(stencils.line_length_mm[j, k]))
+            except BadInput as exc:       # outside this backend's domain: a result
+                errors[(name, int(j), int(k))] = str(exc)
+        results[name] = rows
+    return CylindricalPreview(torque_nm=float(torque_nm), normal_load_n=load,
+                              load_source=source, load_n=np.where(loaded, loads, 0.0),
+                              loaded=loaded, stencils=stencils, results=results, errors=errors)

@@ -1,0 +1,241 @@
+"""The main job for a cylindrical pair: TE0, loaded TE, Harris map, mesh stiffness,
+pressure and the preview on the cylindrical contact, written to one directory with a
+readable summary (docs/cylindrical.md sec. 9).
+
+:func:`run_cylindrical_analysis` is what ``gearcontact analyze`` calls for a
+``kind = "cylindrical"`` pair. Files written into ``out``:
+
+=========================================  ==================================================
+``tca.json``, ``te0.csv``,                 the unloaded cycle (``tca.cylindrical_export``):
+``contact_lines.csv``, ``te0.png``,        TE0 per pair and envelope, contact lines,
+``contact_pattern.png``                    pattern
+``lte.json``, ``lte.csv``,                 the loaded TE at the torque, load sharing, peak
+``line_load.csv``, ``harris_map.csv``,     pressure, line loads, secant mesh stiffness
+``lte.png``, ``harris_map.png``            beside ISO 6336-1 Method B, and the Harris map
+                                           (``report.cylindrical_lte``)
+``preview.csv``                            per phase and loaded pair: load, line length,
+                                           exact and fitted curvatures, the fp64 and golden
+                                           line chain (mode, p_max, b, flags) beside the
+                                           LCP's peak pressure on that line
+``preview.png``                            p_max along the phase: LCP, fp64 and golden
+``analyze.json``                           the headline numbers of ``summary.md``
+``summary.md``                             readable summary
+=========================================  ==================================================
+
+No file holds a timing (identical runs write identical files): the stage times are in
+:attr:`CylindricalAnalysis.timings_s` (``gearcontact analyze`` writes them into
+``run.json``).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..figure_files import save_figure
+from ..geometry.cylindrical.pair import CylindricalPair
+from ..ltca.cylindrical_lte import (CylindricalLoadedTE, HarrisMap, cylindrical_loaded_te,
+                                    harris_map, harris_tip_reliefs_um, harris_torques_nm)
+from ..ltca.cylindrical_preview import CylindricalPreview, cylindrical_preview
+from ..tca.cylindrical_cycle import FACING_OF_SIDE, CylindricalMeshCycle, cylindrical_mesh_cycle
+from ..tca.cylindrical_export import write_cylindrical_tca_outputs
+from ..tca.export import write_csv
+from ..validation import InputRangeError
+from .cylindrical_lte import write_cylindrical_lte_outputs
+
+__all__ = ["CylindricalAnalysis", "run_cylindrical_analysis"]
+
+#: The preview backends the job evaluates (fp64 and the bit-exact fixed point).
+BACKENDS = ("reference", "golden")
+
+
+@dataclass(frozen=True)
+class CylindricalAnalysis:
+    """Everything one run computed (files in ``out_dir``)."""
+
+    pair: CylindricalPair
+    out_dir: Path
+    cycle: CylindricalMeshCycle
+    lte: CylindricalLoadedTE
+    harris: HarrisMap
+    preview: CylindricalPreview
+    summary: dict
+    timings_s: dict = field(default_factory=dict)
+
+
+def _preview_rows(pv: CylindricalPreview, lte: CylindricalLoadedTE) -> list[list]:
+    st = pv.stencils
+    phi = np.degrees(st.phi1_rad)
+    vals = {b: {n: pv.values(b, n) for n in ("p_max_mpa", "b_mm", "A_minus_per_mm",
+                                               "B_minus_per_mm")} for b in BACKENDS}
+    modes = {b: pv.modes(b) for b in BACKENDS}
+    rows = []
+    for k in range(len(phi)):
+        for j, off in enumerate(st.pair_offsets):
+            if not pv.loaded[j, k]:
+                continue
+            gold = pv.results["golden"][j][k]
+            rows.append([float(phi[k]), off, float(pv.load_n[j, k]),
+                         float(st.line_length_mm[j, k]), float(st.A_minus_per_mm[j, k]),
+                         float(st.B_minus_per_mm[j, k]), bool(st.on_flank[j, k]),
+                         float(vals["reference"]["A_minus_per_mm"][j, k]),
+                         float(vals["reference"]["B_minus_per_mm"][j, k])]
+                        + [x for b in BACKENDS for x in (
+                            str(modes[b][j, k]), float(vals[b]["p_max_mpa"][j, k]),
+                            float(vals[b]["b_mm"][j, k]))]
+                        + ["|".join(gold.flags) if gold is not None else "refused",
+                           float(lte.line_pressure_mpa[j, k].max())])
+    return rows
+
+
+_PREVIEW_HEADER = (["phi1_deg", "pair", "load_n", "line_length_mm", "A_minus_exact_per_mm",
+                    "B_minus_exact_per_mm", "stencil_on_flank", "A_minus_fit_per_mm",
+                    "B_minus_fit_per_mm"]
+                   + [f"{b}_{n}" for b in BACKENDS for n in ("mode", "p_max_mpa", "b_mm")]
+                   + ["golden_flags", "lcp_peak_mpa"])
+
+
+def _plot_preview(pv: CylindricalPreview, lte: CylindricalLoadedTE, path, *, title: str):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    phi = np.degrees(pv.stencils.phi1_rad)
+    fig, ax = plt.subplots(figsize=(7.0, 4.0))
+    ax.plot(phi, lte.max_pressure_mpa, "k-", label="LCP peak (rigid teeth)")
+    for b, style in zip(BACKENDS, ("C0--", "C1:")):
+        ax.plot(phi, pv.max_pressure_mpa(b), style, label=f"preview {b} (line chain)")
+    ax.set_xlabel("pinion phase, deg")
+    ax.set_ylabel("peak pressure, MPa")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title)
+    return save_figure(fig, path, tight=True)
+
+
+def _headline(cycle, lte, harris, pv, lte_json) -> dict:
+    k0 = int(np.argmin(np.abs(cycle.phi1_rad - 0.5 * (cycle.phi1_rad[0] + cycle.phi1_rad[-1]))))
+    ref, gold = pv.max_pressure_mpa("reference"), pv.max_pressure_mpa("golden")
+    best = np.argmin(harris.lte_pp_arcsec, axis=0)
+    modes = {b: sorted({str(m) for m in pv.modes(b)[pv.loaded]}) for b in BACKENDS}
+    return {
+        "te0_pp_arcsec": float(cycle.te0_pp_arcsec),
+        "torque_nm": lte.torque_nm, "normal_load_n": lte.normal_load_n,
+        "lte_pp_arcsec": lte.lte_pp_arcsec,
+        "mesh_stiffness_n_per_mm_um": {
+            "mean": lte.mean_stiffness_n_per_mm_um,
+            "min": float(lte.stiffness_n_per_mm_um.min()),
+            "max": float(lte.stiffness_n_per_mm_um.max())},
+        "iso6336": lte_json.get("iso6336_method_b"),
+        "lcp_max_pressure_mpa": float(lte.max_pressure_mpa.max()),
+        "preview_max_pressure_mpa": {"reference": float(ref.max()), "golden": float(gold.max())},
+        "pitch_phase": {"phi1_deg": float(np.degrees(cycle.phi1_rad[k0])),
+                        "lcp_max_pressure_mpa": float(lte.max_pressure_mpa[k0]),
+                        "preview_reference_mpa": float(ref[k0]),
+                        "preview_golden_mpa": float(gold[k0])},
+        "preview_modes": modes, "preview_load_source": pv.load_source,
+        "preview_evaluations": int(pv.loaded.sum()), "preview_refused": len(pv.errors),
+        "harris_best_tip_relief_um": {f"{t:g}": float(harris.tip_reliefs_um[r])
+                                      for t, r in zip(harris.torques_nm, best)},
+        "converged": bool(lte.converged and harris.converged),
+        "edge_touch": bool(lte.edge_touch or harris.edge_touch), "teeth": "rigid"}
+
+
+def _summary_md(pair, side, facing, h, harris) -> str:
+    ms = h["mesh_stiffness_n_per_mm_um"]
+    iso = h["iso6336"] or {}
+    pp = h["pitch_phase"]
+    lines = [
+        f"# {pair.name}: cylindrical pair, {side} ({facing} flanks)", "",
+        "Rigid teeth (the Love half-space alone); docs/cylindrical.md.", "",
+        "| quantity | value |", "|---|---|",
+        f"| TE0 p-p | {h['te0_pp_arcsec']:.3f} arcsec |",
+        f"| gear torque, F_n | {h['torque_nm']:g} N·m, {h['normal_load_n']:.1f} N |",
+        f"| loaded TE p-p | {h['lte_pp_arcsec']:.3f} arcsec |",
+        f"| mesh stiffness mean / min / max | {ms['mean']:.2f} / {ms['min']:.2f} / "
+        f"{ms['max']:.2f} N/(mm·µm) |"]
+    if iso:
+        lines.append(f"| ISO 6336-1 Method B c_γα (c′) | {iso['c_gamma_alpha_n_per_mm_um']:.2f} "
+                     f"({iso['c_single_n_per_mm_um']:.2f}) N/(mm·µm) at F_t/b = "
+                     f"{iso['line_load_ft_per_b_n_per_mm']:.0f} N/mm |")
+    lines += [
+        f"| LCP peak pressure (max over the pitch) | {h['lcp_max_pressure_mpa']:.1f} MPa |",
+        f"| preview p_max fp64 / golden (max) | "
+        f"{h['preview_max_pressure_mpa']['reference']:.1f} / "
+        f"{h['preview_max_pressure_mpa']['golden']:.1f} MPa |",
+        f"| at the pitch-point phase ({pp['phi1_deg']:.3f} deg): LCP / fp64 / golden | "
+        f"{pp['lcp_max_pressure_mpa']:.1f} / {pp['preview_reference_mpa']:.1f} / "
+        f"{pp['preview_golden_mpa']:.1f} MPa |",
+        f"| preview modes (fp64; golden) | {', '.join(h['preview_modes']['reference'])}; "
+        f"{', '.join(h['preview_modes']['golden'])} |",
+        "", "The preview is the datapath's line chain (stage C fit -> line core of stage D) "
+        "on each loaded pair's 7 x 7 stencil with its LCP load share and contact-line "
+        "length; the LCP peak includes the finite line's end effects, which the preview's "
+        "uniform line does not (docs/cylindrical.md sec. 8).", "",
+        "## Harris map: loaded TE p-p (arcsec)", "",
+        "| C_a µm | TE0 p-p | " + " | ".join(f"{t:g} N·m" for t in harris.torques_nm) + " |",
+        "|---" * (2 + len(harris.torques_nm)) + "|"]
+    for r, c in enumerate(harris.tip_reliefs_um):
+        lines.append(f"| {c:g} | {harris.te0_pp_arcsec[r]:.3f} | "
+                     + " | ".join(f"{x:.3f}" for x in harris.lte_pp_arcsec[r]) + " |")
+    lines += ["", "Files: tca.json, te0.csv, contact_lines.csv, lte.json, lte.csv, "
+                  "line_load.csv, harris_map.csv, preview.csv, analyze.json (+ figures)."]
+    return "\n".join(lines) + "\n"
+
+
+def run_cylindrical_analysis(pair: CylindricalPair, *, out_dir, torque_nm: float = 64.5,
+                             phases: int = 61, side: str = "drive", cells: int = 40,
+                             figures: bool = True) -> CylindricalAnalysis:
+    """TE0, loaded TE, Harris map, mesh stiffness, pressure and the preview of a
+    cylindrical pair into ``out_dir`` (module docstring).
+
+    Parameters
+    ----------
+    pair : CylindricalPair
+    out_dir : path
+        Created if missing.
+    torque_nm : float
+        Gear torque of the loaded TE and the preview, N·m (> 0).
+    phases : int
+        Phases per pinion pitch of every cycle (the Harris map's too), >= 3.
+    side : str
+        ``"drive"`` (cw flanks) or ``"coast"`` (ccw).
+    cells : int
+        LCP cells along the face (>= 4).
+    figures : bool
+        Write the figures.
+    """
+    if side not in FACING_OF_SIDE:
+        raise InputRangeError("side", side, f"one of {sorted(FACING_OF_SIDE)}")
+    facing = FACING_OF_SIDE[side]
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    times = {}
+    t = time.process_time()
+    cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    write_cylindrical_tca_outputs(cycle, pair, out, side=side, figures=figures)
+    times["tca_cpu_s"], t = time.process_time() - t, time.process_time()
+    lte = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, cells_along=cells)
+    times["lte_cpu_s"], t = time.process_time() - t, time.process_time()
+    harris = harris_map(pair, harris_torques_nm(pair), harris_tip_reliefs_um(pair),
+                        facing=facing, phases=phases, cells_along=cells)
+    times["harris_map_cpu_s"], t = time.process_time() - t, time.process_time()
+    lte_json = write_cylindrical_lte_outputs(lte, harris, pair, out, side=side,
+                                             figures=figures)
+    pv = cylindrical_preview(pair, torque_nm, cycle=cycle, loaded_te=lte, backends=BACKENDS)
+    times["preview_cpu_s"] = time.process_time() - t
+    write_csv(out / "preview.csv", _PREVIEW_HEADER, _preview_rows(pv, lte))
+    if figures:
+        _plot_preview(pv, lte, out / "preview.png",
+                      title=f"{pair.name} {side}: preview (line chain) vs LCP, "
+                            f"{torque_nm:g} N·m")
+    head = _headline(cycle, lte, harris, pv, lte_json)
+    (out / "analyze.json").write_text(json.dumps(head, indent=2))
+    (out / "summary.md").write_text(_summary_md(pair, side, facing, head, harris))
+    return CylindricalAnalysis(pair=pair, out_dir=out, cycle=cycle, lte=lte, harris=harris,
+                               preview=pv, summary=head, timings_s=times)

@@ -1,0 +1,132 @@
+"""The twin of a cylindrical pair: its mesh table, the conventional loaded-TE table and
+the model (docs/cylindrical.md sec. 10).
+
+Mesh (:func:`cylindrical_mesh_table`): from the unloaded cycle and the preview's inputs
+(:mod:`gearcontact.tca.cylindrical_stencil`) per phase and tooth pair: the lever
+``r_b2 cos(beta_b)`` of the normal about the gear axis, the opening ``cos(beta_b)(g_j -
+min g)``, the exact curvatures, the 7 x 7 stencil; the unloaded TE envelope along the
+motion. The motion sign ``m`` is the sign of ``d g / d phi2`` (the gear lags by
+``theta`` under load, so ``TE = TE0_env - m theta`` as the loaded TE of
+:func:`gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` gives it).
+
+Contact law: the ``table`` backend, the loaded TE (LCP, rigid teeth) over the phase at a
+torque ladder (:func:`cylindrical_torque_table`, the conventional twin's input). The
+preview backends (``reference``, ``golden``, ``rtl``, ``soc``) are refused for a
+cylindrical pair: the twin's compiled law is the Hertzian point contact
+``d = kappa W^(2/3)``, while the preview on these flanks answers in line mode (section
+8), whose approach has no such closed form (it depends on the bodies, Johnson 1985 sec.
+5.6); a line law in the kernel is the next slice.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry.cylindrical.pair import CylindricalPair
+from ..ltca.cylindrical_lte import cylindrical_loaded_te
+from ..materials import effective_modulus_mpa
+from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle,
+                                     contact_line_gaps, cylindrical_mesh_cycle)
+from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
+from ..tca.types import ARCSEC_PER_RAD
+from ..errors import CheckFailed
+from ..validation import InputRangeError, check_positive
+from .ltca_table import DEFAULT_LADDER, TorqueTable
+from .mesh import MeshTable
+from .model import BACKENDS, TwinModel, build_model
+from .params import DrivetrainParams, default_drivetrain
+
+__all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
+           "cylindrical_model", "motion_sign"]
+
+#: The twin backends a cylindrical pair runs (module docstring).
+CYLINDRICAL_BACKENDS = ("table",)
+
+
+def motion_sign(pair: CylindricalPair, cycle: CylindricalMeshCycle) -> int:
+    """``m``: the sign of ``d g / d phi2`` on the cycle's lines (+1 on the cw facing)."""
+    z0, z1 = cycle.pinion_v_range_mm
+    rate = contact_line_gaps(pair, cycle, [0.5 * (z0 + z1)]).rate_mm_per_rad
+    return 1 if float(np.nanmean(rate)) > 0.0 else -1
+
+
+def _order(m: int, n: int) -> np.ndarray:
+    return np.arange(n) if m == 1 else np.arange(n)[::-1]
+
+
+def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
+                           stencils: CylindricalStencils | None = None, *,
+                           side: str = "drive") -> MeshTable:
+    """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring)."""
+    st = stencils if stencils is not None else cylindrical_stencils(pair, cycle)
+    m = motion_sign(pair, cycle)
+    order = _order(m, len(cycle.phi1_rad))
+    phi1 = np.asarray(cycle.phi1_rad, float)[order]
+    env = np.asarray(cycle.envelope_arcsec, float)[order]
+    k0 = len(order) // 2
+    return MeshTable(
+        psi_rad=m * (phi1 - phi1[0]), eps_rad=m * env / ARCSEC_PER_RAD,
+        lever_mm=np.where(st.valid, st.lever_mm, 0.0)[:, order],
+        opening_mm=st.opening_mm[:, order], A_minus_per_mm=st.A_minus_per_mm[:, order],
+        B_minus_per_mm=st.B_minus_per_mm[:, order], valid=st.valid[:, order],
+        motion_sign=m, ratio=float(pair.ratio), pinion_teeth=int(pair.pinion_teeth),
+        reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
+        e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
+        phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
+        bending_mm_per_n=np.zeros(st.valid.shape), stencil_gaps_mm=st.gaps_mm[:, order])
+
+
+def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
+                             mesh: MeshTable, torque_nm: float, *, ladder=DEFAULT_LADDER,
+                             cells_along: int = 40) -> TorqueTable:
+    """The loaded TE (LCP, rigid teeth) at ``ladder x torque_nm``, as the mesh rotation
+    ``theta = |TE - TE0| `` (rad) per phase in the motion order of ``mesh``."""
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    lad = np.asarray(ladder, float)
+    if lad.ndim != 1 or lad.size < 2 or not (np.all(lad > 0) and np.all(np.diff(lad) > 0)):
+        raise InputRangeError("table ladder", ladder, "at least 2 increasing fractions > 0")
+    order = _order(mesh.motion_sign, len(mesh.psi_rad))
+    theta = np.zeros((len(order), lad.size))
+    load = np.zeros_like(theta)
+    for i, f in enumerate(lad):
+        res = cylindrical_loaded_te(pair, f * t, cycle=cycle, cells_along=cells_along)
+        if not res.converged:
+            raise CheckFailed(f"loaded TE at {f * t:g} N·m did not converge")
+        # TE = TE0 - m theta (module docstring)
+        theta[:, i] = (mesh.motion_sign * (res.te0_arcsec - res.lte_arcsec)
+                       / ARCSEC_PER_RAD)[order]
+        load[:, i] = res.normal_load_n
+    return TorqueTable(lad * t, theta, load, "lcp")
+
+
+def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str = "table",
+                      drivetrain: DrivetrainParams | None = None, side: str = "drive",
+                      phases: int = 61, table_cells: int = 40) -> TwinModel:
+    """Cycle, mesh table and loaded-TE table of ``pair``, then
+    :func:`~.model.build_model` (module docstring; the reverse flank is the loaded
+    law mirrored about the backlash).
+
+    Raises
+    ------
+    InputRangeError
+        A backend other than :data:`CYLINDRICAL_BACKENDS` (before any work), a bad side.
+    """
+    t = check_positive("torque_nm (N·m)", torque_nm)
+    if backend not in CYLINDRICAL_BACKENDS:
+        allowed = [b for b in BACKENDS if b in CYLINDRICAL_BACKENDS]
+        raise InputRangeError("backend", backend, f"one of {allowed} for a cylindrical pair "
+                                                  "(the twin's kernel has the Hertzian "
+                                                  "point law only; the preview answers "
+                                                  "these flanks in line mode: "
+                                                  "docs/cylindrical.md sec. 10)")
+    facing = FACING_OF_SIDE.get(side)
+    if facing is None:
+        raise InputRangeError("side", side, "'drive' or 'coast'")
+    cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    mesh = cylindrical_mesh_table(pair, cycle, side=side)
+    table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells)
+    return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
+                       table=table, curvatures="exact",
+                       reverse_note="loaded side's law mirrored about backlash_mm (the "
+                                    "other facing's own table is not built for a "
+                                    "cylindrical pair)")

@@ -1,0 +1,102 @@
+"""``gearcontact analyze`` on a cylindrical pair (report.analyze_cylindrical) against
+independent truths: the normal load F_n = T2 / (r_b2 cos(beta_b)) (ISO 6336-1), load
+balance (the previewed pairs' loads sum to F_n at every phase, the LCP's shares), the
+golden line chain within the fit's rigorous coefficient bound of the fp64 chain,
+the summary equal to the files it summarizes, identical runs writing identical files;
+and the README line run exactly as written."""
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from readme_lines import readme_argv
+
+from gearcontact.cli import main
+from gearcontact.geometry.pair import CYLINDRICAL, load_pair
+
+ROOT = Path(__file__).resolve().parents[2]
+EV = str(ROOT / "examples" / "ev_reducer_helical_23x67.toml")
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _check_outputs(out: Path, torque_nm: float, phases: int):
+    pair = load_pair(EV, kinds=(CYLINDRICAL,))
+    g = pair.geometry
+    head = json.loads((out / "analyze.json").read_text())
+    lte = json.loads((out / "lte.json").read_text())
+    tca = json.loads((out / "tca.json").read_text())
+    fn = torque_nm * 1e3 / (0.5 * g.base_diameter_gear_mm * math.cos(math.radians(
+        g.base_helix_angle_deg)))
+    assert head["normal_load_n"] == pytest.approx(fn, rel=1e-12)
+    assert head["converged"] and head["teeth"] == "rigid"
+    # the summary is the files': TE0 and loaded TE p-p, stiffness, peak pressure
+    assert head["te0_pp_arcsec"] == pytest.approx(tca["te0_pp_arcsec"], rel=1e-12)
+    assert head["lte_pp_arcsec"] == lte["lte_pp_arcsec"]
+    assert head["mesh_stiffness_n_per_mm_um"]["mean"] == lte["mesh_stiffness_mean_n_per_mm_um"]
+    assert head["lcp_max_pressure_mpa"] == lte["max_pressure_mpa"]
+    rows = _rows(out / "preview.csv")
+    phi = sorted({float(r["phi1_deg"]) for r in rows})
+    assert len(phi) == phases and head["preview_evaluations"] == len(rows)
+    for p in phi:       # load balance: the LCP shares of F_n (shares below 1e-3 dropped)
+        w = sum(float(r["load_n"]) for r in rows if float(r["phi1_deg"]) == p)
+        assert fn * (1 - 2e-3) <= w <= fn * (1 + 1e-9)
+    for r in rows:
+        assert r["reference_mode"] == r["golden_mode"] == "line" and r["golden_flags"] == ""
+        # p0 ~ sqrt(A-): the fit's A- error at half weight; 2.5e-3 covers the rigorous
+        # bound of every stencil here (tests/ltca/test_cylindrical_preview.py asserts it
+        # per stencil) plus one output LSB
+        ref, gold = float(r["reference_p_max_mpa"]), float(r["golden_p_max_mpa"])
+        assert abs(gold - ref) <= 2.5e-3 * ref + 2 ** -8
+        # the line core's answer: p0 = sqrt(W E' B_max / (pi L)), Johnson eq. 4.45
+        e_prime = 2 * 210e3 / (2 * (1 - 0.3 ** 2))
+        p0 = math.sqrt(float(r["load_n"]) * e_prime * float(r["A_minus_fit_per_mm"])
+                       / (math.pi * float(r["line_length_mm"])))
+        assert ref == pytest.approx(p0, rel=1e-9)
+    md = (out / "summary.md").read_text()
+    assert f"{head['lte_pp_arcsec']:.3f} arcsec" in md and "Harris map" in md
+    return head
+
+
+def test_cli_cylindrical_identical_runs(tmp_path, capsys):
+    """Seven phases, no figures: the files above, twice, byte for byte (run.json aside)."""
+    outs = []
+    for name in ("a", "b"):
+        d = tmp_path / name
+        assert main(["analyze", "--pair", EV, "--out", str(d), "--lte-phases", "7",
+                     "--no-figures", "--quiet"]) == 0
+        outs.append(d)
+    assert "rigid teeth" in capsys.readouterr().out
+    _check_outputs(outs[0], 64.5, 7)
+    names = sorted(p.name for p in outs[0].iterdir() if p.name != "run.json")
+    assert names == sorted(p.name for p in outs[1].iterdir() if p.name != "run.json")
+    assert {"tca.json", "te0.csv", "lte.json", "harris_map.csv", "preview.csv",
+            "analyze.json", "summary.md"} <= set(names)
+    for n in names:
+        assert (outs[0] / n).read_bytes() == (outs[1] / n).read_bytes(), n
+
+
+def test_cli_cylindrical_refuses_torques(tmp_path, capsys):
+    assert main(["analyze", "--pair", EV, "--out", str(tmp_path / "o"), "--torques", "50"]) == 2
+    err = capsys.readouterr().err
+    assert "--torques" in err and "--lte-torque" in err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.slow
+def test_readme_analyze_cylindrical(tmp_path):
+    """The README line as written (61 phases, figures; about 40 s)."""
+    argv = readme_argv("gearcontact analyze --pair examples/ev_reducer_helical",
+                       tmp_path / "run")
+    assert main(argv) == 0
+    out = tmp_path / "run"
+    head = _check_outputs(out, 64.5, 61)
+    for name in ("preview.png", "harris_map.png", "lte.png", "te0.png"):
+        assert (out / name).stat().st_size > 0
+    assert np.isfinite(head["pitch_phase"]["preview_golden_mpa"])
