@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearcontact.export.c_constants import expand_fit_mac_plan, fit_mac_plan
+from gearcontact.export.c_constants import expand_fit_mac_plan, fit_mac_plan, fit_mac_plan_fp64
 from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
@@ -513,3 +513,30 @@ def test_fit_mac_plan_multiplies_out_to_the_rom():
     other = fit_mac_plan(rnd)
     assert expand_fit_mac_plan(other, rnd) == rnd
     assert {c["basis"] for c in other} == {"g"}
+
+
+def test_fp64_fit_plan_applies_every_weight_bit_for_bit():
+    """The regrouped fp64 MAC of gc_fit_fp64.c applies the fp64 pseudo-inverse's own
+    words: its terms expanded (each with its hexadecimal literal) plus the residue taps
+    give back every weight exactly, each tap once; the residues are the words below
+    1e-12 of their row (the rounding of exact zeros: 55 of them, all below 2e-15)."""
+    plan = fit_mac_plan_fp64()
+    rows = [[float(w) for w in row] for row in baked_pinv().weights]
+    got = [[0.0] * 49 for _ in rows]
+    seen = [[0] * 49 for _ in rows]
+    for j, coeff in enumerate(plan["plan"]):
+        assert coeff["basis"] == "g"
+        for term in coeff["terms"]:
+            w = float.fromhex(term["weight"])
+            for sign, taps in ((1.0, term["plus"]), (-1.0, term["minus"])):
+                for i in taps:
+                    got[j][i] += sign * w
+                    seen[j][i] += 1
+        for i, lit in plan["residues"][j]:
+            got[j][i] += float.fromhex(lit)
+            seen[j][i] += 1
+            assert abs(rows[j][i]) <= 2e-15 * max(abs(w) for w in rows[j])
+    assert got == rows
+    assert all(s == 1 for row in seen for s in row)
+    assert sum(len(r) for r in plan["residues"]) == 55
+    assert plan["muls"] < 294 // 2

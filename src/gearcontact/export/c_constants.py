@@ -13,6 +13,7 @@ the exported C on the next ``gearcontact export c``.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.fit import golden as G
@@ -33,7 +34,7 @@ from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS,
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
            "fit_isqrt_seeds",
-           "fit_weights_fp64", "gap_constants", "line_constants"]
+           "fit_mac_plan_fp64", "gap_constants", "line_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -221,10 +222,54 @@ def fit_isqrt_seeds() -> tuple[int, ...]:
                  for k in range(1 << (b - 2), 1 << b))
 
 
-def fit_weights_fp64() -> list[list[str]]:
-    """The fp64 pseudo-inverse of the fit reference (6 x 49) as exact C99 hexadecimal
-    floating literals (``float.hex``: no decimal rounding)."""
-    return [[float(w).hex() for w in row] for row in baked_pinv().weights]
+#: An fp64 pseudo-inverse weight at most this fraction of its row's largest is the
+#: rounding residue of an exact zero of the least-squares fit (measured <= 1.8e-15 of the
+#: row; the smallest true weight is 0.03 of it): :func:`fit_mac_plan_fp64` keeps it as a
+#: tap of its own.
+FP64_RESIDUE = 1e-12
+
+
+def fit_mac_plan_fp64() -> dict:
+    """The fp64 fit's dot products ``c_j = sum_i M_ji g_i`` regrouped by equal weights.
+
+    The plan of :func:`fit_mac_plan` over the fp64 pseudo-inverse's exact values: one
+    term per distinct ``|M_ji|``, ``M_j,rep * (sum of the taps holding it - sum of those
+    holding its negation)``. Every tap keeps its own weight bit for bit (the symmetric
+    taps of the stencil hold equal words up to ~75 ulp: grouping those as equal moved
+    the chain's Hertz outputs by 2e-12 of the reference's; equal words only, by 2e-13);
+    the taps holding only the rounding residue of an exact zero (``|M_ji| <=``
+    :data:`FP64_RESIDUE` of the row's largest) stay terms of their own, so that a
+    stencil on them alone sums as the reference does. The result differs from the
+    reference's tap-by-tap sum by the rounding of the regrouped additions (measured
+    5.5e-16 of the dot product's scale ``sum_i |M_ji g_i|``; tests/export hold it to
+    1e-12 of it).
+
+    Returns
+    -------
+    dict
+        ``plan``: as :func:`fit_mac_plan`, each term with ``weight`` (its C99 hexadecimal
+        literal; basis ``g``, the taps); ``residues``: per coefficient ``[(tap,
+        literal), ...]``; ``muls`` and ``adds``, the operation counts.
+    """
+    rows = [[float(w) for w in row] for row in baked_pinv().weights]
+    exact = []                            # the words as exact integers (units 2^-1100)
+    for row in rows:
+        top = max(abs(w) for w in row)
+        exact.append(tuple(0 if abs(w) <= FP64_RESIDUE * top else int(Fraction(w) * 2 ** 1100)
+                           for w in row))
+    plan = fit_mac_plan(exact)
+    residues = []
+    for j, coeff in enumerate(plan):
+        for term in coeff["terms"]:
+            term["weight"] = rows[j][term["rep"]].hex()
+        residues.append([(i, w.hex()) for i, w in enumerate(rows[j])
+                         if exact[j][i] == 0 and w != 0.0])
+    bases = {c["basis"] for c in plan}
+    muls = sum(len(c["terms"]) for c in plan) + sum(len(r) for r in residues)
+    adds = (STENCIL_SIDE * (STENCIL_SIDE - 1) * len(bases - {"g"}) + muls - len(plan)
+            + sum(len(t["plus"]) + len(t["minus"]) - 1 for c in plan for t in c["terms"]))
+    return {"plan": plan, "residues": residues, "bases": sorted(bases), "muls": muls,
+            "adds": adds}
 
 
 def fit_constants() -> dict[str, int]:
