@@ -7,7 +7,8 @@ the gap kernel's sentinels and lane count) is collected here from
 :mod:`gearcontact.preview.fit.golden`, :mod:`gearcontact.preview.fit.pinv`,
 :mod:`gearcontact.preview.gap.golden` and :mod:`gearcontact.contract.qformat`; the
 templates print these numbers and never hold one of their own. Nothing is retyped: a change of a table in the package changes
-the exported C on the next ``gearcontact export c``.
+the exported C on the next ``gearcontact export c``. The fp64 cube root's seed
+polynomial (:func:`cbrt_seed`) is computed here too, in exact rational arithmetic.
 """
 
 from __future__ import annotations
