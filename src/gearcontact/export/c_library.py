@@ -10,8 +10,10 @@ checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 time stamp or a path: identical package versions write identical files.
 
 The golden sources use integer arithmetic only and constant loop counts; the fp64
-sources follow the fp64 reference formulas operation by operation. How to build and
-use the library, and the determinism argument: docs/export.md.
+sources follow the fp64 reference formulas operation by operation, except the fit's dot
+products (regrouped by the pseudo-inverse's equal words) and the preview's Hamrock-Brewe
+cube root (a seed polynomial and one Halley step), both within 1e-12 of the reference.
+How to build and use the library, and the determinism argument: docs/export.md.
 """
 
 from __future__ import annotations
