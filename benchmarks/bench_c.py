@@ -48,6 +48,41 @@ import numpy as np
 from gearcontact.export.c_library import export_c_library
 from gearcontact.hw.vectors import vector_stimulus
 
+#: The operands of both drivers: ``n``, then the chain vectors' gap codes (49 per
+#: vector), W and E' codes as int32, read from the file ``path``, and the same in
+#: physical units (mm, N, MPa) for the fp64 functions.
+OPERANDS = r"""
+static long n;
+static int32_t *gaps, *w, *e;
+static double *gmm, *wn, *em;
+
+static int read_operands(const char *path)
+{
+    long i, k;
+    FILE *fp = fopen(path, "rb");
+    if (!fp || fread(&n, sizeof n, 1, fp) != 1)
+        return 0;
+    gaps = malloc(sizeof *gaps * 49 * (size_t)n);
+    w = malloc(sizeof *w * (size_t)n);
+    e = malloc(sizeof *e * (size_t)n);
+    gmm = malloc(sizeof *gmm * 49 * (size_t)n);
+    wn = malloc(sizeof *wn * (size_t)n);
+    em = malloc(sizeof *em * (size_t)n);
+    if (fread(gaps, sizeof *gaps, 49 * (size_t)n, fp) != 49 * (size_t)n
+        || fread(w, sizeof *w, (size_t)n, fp) != (size_t)n
+        || fread(e, sizeof *e, (size_t)n, fp) != (size_t)n)
+        return 0;
+    fclose(fp);
+    for (i = 0; i < n; ++i) {
+        for (k = 0; k < 49; ++k)
+            gmm[49 * i + k] = gaps[49 * i + k] / 65536.0;
+        wn[i] = w[i] / 256.0;
+        em[i] = (double)e[i];
+    }
+    return 1;
+}
+"""
+
 DRIVER = r"""
 #define _POSIX_C_SOURCE 199309L
 #include <stdint.h>
@@ -55,7 +90,7 @@ DRIVER = r"""
 #include <stdlib.h>
 #include <time.h>
 #include "gearcontact.h"
-
+""" + OPERANDS + r"""
 static int64_t now_ns(void)
 {
     struct timespec ts;
@@ -81,32 +116,12 @@ static void report(const char *name, int64_t *dt, long n, int64_t floor_ns)
 
 int main(int argc, char **argv)
 {
-    long n, i, k;
-    int32_t *gaps, *w, *e;
-    double *gaps_mm, *w_n, *e_mpa;
+    long i, k;
     int64_t *dt, t0, floor_ns;
     uint32_t sink = 0u;
-    FILE *fp = fopen(argv[1], "rb");
-    (void)argc;
-    if (!fp || fread(&n, sizeof n, 1, fp) != 1)
+    if (argc < 2 || !read_operands(argv[1]))
         return 2;
-    gaps = malloc(sizeof *gaps * 49 * (size_t)n);
-    w = malloc(sizeof *w * (size_t)n);
-    e = malloc(sizeof *e * (size_t)n);
-    gaps_mm = malloc(sizeof *gaps_mm * 49 * (size_t)n);
-    w_n = malloc(sizeof *w_n * (size_t)n);
-    e_mpa = malloc(sizeof *e_mpa * (size_t)n);
     dt = malloc(sizeof *dt * (size_t)n);
-    if (fread(gaps, sizeof *gaps, 49 * (size_t)n, fp) != 49 * (size_t)n
-        || fread(w, sizeof *w, (size_t)n, fp) != (size_t)n
-        || fread(e, sizeof *e, (size_t)n, fp) != (size_t)n)
-        return 2;
-    for (i = 0; i < n; ++i) {
-        for (k = 0; k < 49; ++k)
-            gaps_mm[49 * i + k] = gaps[49 * i + k] / 65536.0;
-        w_n[i] = w[i] / 256.0;
-        e_mpa[i] = (double)e[i];
-    }
     for (i = 0; i < n; ++i) {           /* the timer's own cost */
         t0 = now_ns();
         dt[i] = now_ns() - t0;
@@ -123,10 +138,10 @@ int main(int argc, char **argv)
     report(NAME, dt, n, floor_ns);
     for (k = 0; k < 2; ++k) {                     /* the first round warms the caches */
         TIME("golden_chain", sink ^= gc_chain_golden(gaps + 49 * i, w[i], e[i], 0).flags)
-        TIME("fp64_chain", sink ^= gc_chain_fp64(gaps_mm + 49 * i, w_n[i], e_mpa[i], 0).hertz.flags)
+        TIME("fp64_chain", sink ^= gc_chain_fp64(gmm + 49 * i, wn[i], em[i], 0).hertz.flags)
         TIME("golden_fit", sink ^= gc_fit_golden(gaps + 49 * i).flags)
         TIME("golden_hertz", sink ^= gc_hertz_golden(40000 + (int32_t)(i % 1000) * 97, 900000, w[i], e[i], 0).flags)
-        TIME("fp64_hertz", sink ^= gc_hertz_fp64(0.04 + (double)(i % 1000) * 1e-4, 0.9, w_n[i], e_mpa[i]).flags)
+        TIME("fp64_hertz", sink ^= gc_hertz_fp64(0.04 + (double)(i % 1000) * 1e-4, 0.9, wn[i], em[i]).flags)
     }
     printf("sink %u\n", sink);
     return 0;
@@ -141,10 +156,7 @@ COUNT_DRIVER = r"""
 #include <stdio.h>
 #include <stdlib.h>
 #include "gearcontact.h"
-
-static long n;
-static int32_t *gaps, *w, *e;
-static double *gmm, *wn, *em;
+""" + OPERANDS + r"""
 static uint32_t sink;
 #define LOOP(NAME, CALL) \
     __attribute__((noinline)) static void loop_##NAME(void) \
@@ -158,27 +170,8 @@ LOOP(fp64_hertz, sink ^= gc_hertz_fp64(0.04 + (double)(i % 1000) * 1e-4, 0.9, wn
 
 int main(int argc, char **argv)
 {
-    long i, k;
-    FILE *fp = fopen(argv[1], "rb");
-    (void)argc;
-    if (!fp || fread(&n, sizeof n, 1, fp) != 1)
+    if (argc < 2 || !read_operands(argv[1]))
         return 2;
-    gaps = malloc(sizeof *gaps * 49 * (size_t)n);
-    w = malloc(sizeof *w * (size_t)n);
-    e = malloc(sizeof *e * (size_t)n);
-    gmm = malloc(sizeof *gmm * 49 * (size_t)n);
-    wn = malloc(sizeof *wn * (size_t)n);
-    em = malloc(sizeof *em * (size_t)n);
-    if (fread(gaps, sizeof *gaps, 49 * (size_t)n, fp) != 49 * (size_t)n
-        || fread(w, sizeof *w, (size_t)n, fp) != (size_t)n
-        || fread(e, sizeof *e, (size_t)n, fp) != (size_t)n)
-        return 2;
-    for (i = 0; i < n; ++i) {
-        for (k = 0; k < 49; ++k)
-            gmm[49 * i + k] = gaps[49 * i + k] / 65536.0;
-        wn[i] = w[i] / 256.0;
-        em[i] = (double)e[i];
-    }
     loop_golden_chain(); loop_fp64_chain(); loop_golden_fit(); loop_golden_hertz();
     loop_fp64_fit(); loop_fp64_hertz();
     printf("sink %u\n", sink);

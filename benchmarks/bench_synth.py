@@ -88,6 +88,7 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from gearcontact.hw import dsp_study as D
 from gearcontact.hw import synth as S
 
 
@@ -214,9 +215,9 @@ def main(argv=None) -> int:
                          "L ~ 63)")
             S.plot_sweep(gap, out / f"{core}_sweep.png", fit)
     if args.dsp_study:
-        st = S.dsp_study(out / "dsp_study", timeout=args.timeout)
+        st = D.dsp_study(out / "dsp_study", timeout=args.timeout)
         lines.append("DSP48E1 per multiplier: " + ", ".join(
-            f"{m} {st[m]['DSP48E1']}" for m in S.DSP_STUDY_COUNTS))
+            f"{m} {st[m]['DSP48E1']}" for m in D.DSP_STUDY_COUNTS))
         lines.append(f"per lane: {st['per_lane']} as published, {st['per_lane_split']} with "
                      f"split partial products; per core (pose): {st['per_core']}")
     if args.stage_b:

@@ -28,6 +28,8 @@ MOVED = {
     "gearcontact.preview.fit.stencil": {n: "gearcontact.contract.stencil" for n in (
         "STENCIL_SIDE", "STENCIL_SIZE", "STENCIL_SPACING_MM", "stencil_coordinates",
         "read_stencil_csv", "write_stencil_csv")},
+    "gearcontact.hw.synth": {n: "gearcontact.hw.dsp_study" for n in (
+        "DSP_STUDY_VERILOG", "DSP_STUDY_COUNTS", "parse_stat_modules", "dsp_study")},
 }
 #: Names the old module still imports for its own use: importable there without a
 #: warning (an ordinary import), but no longer exported and used by nobody else.

@@ -171,25 +171,58 @@ def test_fmu_static_start_is_the_balance(exported):
     assert rest["pinion_speed_rpm"][0] == 0.0
 
 
-@pytest.mark.parametrize("start, words", [
-    # in the range, beyond the RK4 bound h omega_max <= 2: the mesh stiffens with the
-    # load (omega ~ W^(1/6)); s0003 (9 phases) at 50 N.m has h omega_max = 1.93 at 50 us
-    # (gearcontact.twin.statics.check_step), at 100 N.m 1.93 * 2^(1/6) = 2.17
-    ({"step_us": 50.0, "torque_nm": 100.0}, ("step_us = 50", "RK4 stability")),
-    ({"step_us": 0.5}, ("step_us = 0.5", "[1, 50]")),
-    ({"speed_rpm": 2e5}, ("speed_rpm = 200000", "[0, 100000]")),
-    ({"torque_nm": -1.0}, ("torque_nm = -1", "> 0")),
-])
-def test_fmu_refuses_bad_parameters(exported, start, words):
-    """fmi3ExitInitializationMode fails with one log message naming the parameter, its
-    value and the allowed range (the twin's checks: simulate, check_step)."""
-    fmu, _ = exported
+def _refusal(fmu, start):
+    """The log messages of an FMPy run whose fmi3ExitInitializationMode fails."""
     messages = []
     with pytest.raises(fmpy.fmi1.FMICallException, match="ExitInitializationMode"):
         fmpy.simulate_fmu(str(fmu), stop_time=1e-3, output_interval=5e-5,
                           start_values=start,
                           logger=lambda env, status, cat, msg: messages.append(msg.decode()))
+    return messages
+
+
+@pytest.mark.parametrize("start, words", [
+    ({"step_us": 0.5}, ("step_us = 0.5", "[1, 50]")),
+    ({"speed_rpm": 2e5}, ("speed_rpm = 200000", "[0, 100000]")),
+    ({"torque_nm": -1.0}, ("torque_nm = -1", "(0, 5]")),
+    # above the export torque the table's edge-pair fields (sized at it) no longer cover
+    # the contact: refused, not run on a table out of its range
+    ({"torque_nm": 5.5}, ("torque_nm = 5.5", "(0, 5]", "--torque 5.5")),
+    ({"torque_nm": 100.0, "step_us": 50.0}, ("torque_nm = 100", "(0, 5]")),
+])
+def test_fmu_refuses_bad_parameters(exported, start, words):
+    """fmi3ExitInitializationMode fails with one log message naming the parameter, its
+    value and the allowed range (the twin's checks: simulate, check_step; the torque
+    at most the export torque, the table's size)."""
+    fmu, _ = exported
+    messages = _refusal(fmu, start)
     assert len(messages) == 1 and all(w in messages[0] for w in words), messages
+
+
+def test_fmu_torque_range_is_the_variables_max(exported):
+    """The modelDescription says the range too: torque_nm's max is the export torque,
+    the start value; the FMU runs at it (the edge of the range is inside)."""
+    fmu, _ = exported
+    md = fmpy.read_model_description(str(fmu))
+    var = next(v for v in md.modelVariables if v.name == "torque_nm")
+    assert float(var.max) == TORQUE_NM == float(var.start)
+    res = fmpy.simulate_fmu(str(fmu), stop_time=2e-4, output_interval=1e-5,
+                            output=["mesh_force_n"], start_values={"torque_nm": TORQUE_NM})
+    assert res["mesh_force_n"][-1] > 0.0
+
+
+@pytest.mark.slow
+def test_fmu_refuses_a_step_beyond_the_rk4_bound(tmp_path):
+    """In the torque range, beyond the RK4 bound h omega_max <= 2: the mesh stiffens
+    with the load (omega ~ W^(1/6)); s0003 (9 phases) at 50 N.m has h omega_max = 1.93
+    at 50 us (gearcontact.twin.statics.check_step), at 100 N.m 1.93 * 2^(1/6) = 2.17:
+    an export at 100 N.m refuses 50 us (the default export of 5 N.m cannot reach it)."""
+    run = _cli("--pair", "s0003", "--kind", "drivetrain", "--phases", "9", "--torque",
+               "100", "--out", str(tmp_path), cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    messages = _refusal(tmp_path / "gearcontact_drivetrain_s0003.fmu", {"step_us": 50.0})
+    assert len(messages) == 1 and "step_us = 50" in messages[0] \
+        and "RK4 stability" in messages[0], messages
 
 
 def test_fmu_refuses_a_communication_step_off_the_grid(exported):

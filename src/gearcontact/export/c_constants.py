@@ -7,12 +7,14 @@ the gap kernel's sentinels and lane count) is collected here from
 :mod:`gearcontact.preview.fit.golden`, :mod:`gearcontact.preview.fit.pinv`,
 :mod:`gearcontact.preview.gap.golden` and :mod:`gearcontact.contract.qformat`; the
 templates print these numbers and never hold one of their own. Nothing is retyped: a change of a table in the package changes
-the exported C on the next ``gearcontact export c``.
+the exported C on the next ``gearcontact export c``. The fp64 cube root's seed
+polynomial (:func:`cbrt_seed`) is computed here too, in exact rational arithmetic.
 """
 
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.fit import golden as G
@@ -33,7 +35,7 @@ from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS,
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
            "fit_isqrt_seeds",
-           "fit_weights_fp64", "gap_constants", "line_constants"]
+           "fit_mac_plan_fp64", "cbrt_seed", "gap_constants", "line_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -221,10 +223,131 @@ def fit_isqrt_seeds() -> tuple[int, ...]:
                  for k in range(1 << (b - 2), 1 << b))
 
 
-def fit_weights_fp64() -> list[list[str]]:
-    """The fp64 pseudo-inverse of the fit reference (6 x 49) as exact C99 hexadecimal
-    floating literals (``float.hex``: no decimal rounding)."""
-    return [[float(w).hex() for w in row] for row in baked_pinv().weights]
+#: An fp64 pseudo-inverse weight at most this fraction of its row's largest is the
+#: rounding residue of an exact zero of the least-squares fit (measured <= 1.8e-15 of the
+#: row; the smallest true weight is 0.03 of it): :func:`fit_mac_plan_fp64` keeps it as a
+#: tap of its own.
+FP64_RESIDUE = 1e-12
+
+
+def fit_mac_plan_fp64() -> dict:
+    """The fp64 fit's dot products ``c_j = sum_i M_ji g_i`` regrouped by equal weights.
+
+    The plan of :func:`fit_mac_plan` over the fp64 pseudo-inverse's exact values: one
+    term per distinct ``|M_ji|``, ``M_j,rep * (sum of the taps holding it - sum of those
+    holding its negation)``. Every tap keeps its own weight bit for bit (the symmetric
+    taps of the stencil hold equal words up to ~75 ulp: grouping those as equal moved
+    the chain's Hertz outputs by 2e-12 of the reference's; equal words only, by 2e-13);
+    the taps holding only the rounding residue of an exact zero (``|M_ji| <=``
+    :data:`FP64_RESIDUE` of the row's largest) stay terms of their own, so that a
+    stencil on them alone sums as the reference does. The result differs from the
+    reference's tap-by-tap sum by the rounding of the regrouped additions (measured
+    5.5e-16 of the dot product's scale ``sum_i |M_ji g_i|``; tests/export hold it to
+    1e-12 of it).
+
+    Returns
+    -------
+    dict
+        ``plan``: as :func:`fit_mac_plan`, each term with ``weight`` (its C99 hexadecimal
+        literal; basis ``g``, the taps); ``residues``: per coefficient ``[(tap,
+        literal), ...]``; ``muls`` and ``adds``, the operation counts.
+    """
+    rows = [[float(w) for w in row] for row in baked_pinv().weights]
+    exact = []                            # the words as exact integers (units 2^-1100)
+    for row in rows:
+        top = max(abs(w) for w in row)
+        exact.append(tuple(0 if abs(w) <= FP64_RESIDUE * top else int(Fraction(w) * 2 ** 1100)
+                           for w in row))
+    plan = fit_mac_plan(exact)
+    residues = []
+    for j, coeff in enumerate(plan):
+        for term in coeff["terms"]:
+            term["weight"] = rows[j][term["rep"]].hex()
+        residues.append([(i, w.hex()) for i, w in enumerate(rows[j])
+                         if exact[j][i] == 0 and w != 0.0])
+    bases = {c["basis"] for c in plan}
+    muls = sum(len(c["terms"]) for c in plan) + sum(len(r) for r in residues)
+    adds = (STENCIL_SIDE * (STENCIL_SIDE - 1) * len(bases - {"g"}) + muls - len(plan)
+            + sum(len(t["plus"]) + len(t["minus"]) - 1 for c in plan for t in c["terms"]))
+    return {"plan": plan, "residues": residues, "bases": sorted(bases), "muls": muls,
+            "adds": adds}
+
+
+#: Degree of the fp64 cube root's seed polynomial (:func:`cbrt_seed`) and the grid
+#: (2^-SEED_BITS) its coefficients are rounded to.
+CBRT_SEED_DEGREE, CBRT_SEED_BITS = 5, 50
+
+
+def _icbrt(n: int) -> int:
+    """floor(n^(1/3)) of an integer n >= 0 (integer Newton from above)."""
+    if n < 2:
+        return n
+    y = 1 << -(-n.bit_length() // 3)              # > n^(1/3)
+    while True:
+        z = (2 * y + n // (y * y)) // 3
+        if z >= y:
+            return y
+        y = z
+
+
+def _cbrt_fraction(x: Fraction, bits: int = 80) -> Fraction:
+    """x^(1/3) of a rational x > 0 within 2^-bits (integer arithmetic: the same on
+    every machine)."""
+    return Fraction(_icbrt(math.floor(x * 2 ** (3 * bits))), 2 ** bits)
+
+
+def cbrt_seed() -> dict:
+    """Seed of the fp64 cube root of gc_hertz_fp64.c: ``m^(1/3) ~ p(m - 3/2)`` on
+    ``m in [1, 2)``, times ``2^(r/3)`` for ``r in {0, 1, 2}``.
+
+    ``p`` interpolates ``m^(1/3)`` at the CBRT_SEED_DEGREE + 1 Chebyshev points of [1, 2]
+    (nodes on a 2^-20 grid), solved in exact rationals from cube roots in integer
+    arithmetic, coefficients rounded to 2^-CBRT_SEED_BITS: the same literals on every
+    machine. The seed's relative error, measured here on 2^16 + 1 points of [1, 2]
+    (the error of a degree-5 interpolant of a function this smooth varies slowly
+    between them), is at most ``bound`` (< 2^-18: one Halley step then leaves
+    ``2 bound^3 / 3`` < 2^-54, below the rounding; the proof: gc_hertz_fp64.c).
+
+    Returns
+    -------
+    dict
+        ``poly``: C99 hexadecimal literals of p's coefficients, constant first;
+        ``scale``: of ``2^(r/3)``, r = 0, 1, 2; ``bound``: the seed's relative error.
+
+    Raises
+    ------
+    AssertionError
+        The seed's error reaches 2^-18 (never silently).
+    """
+    n = CBRT_SEED_DEGREE + 1
+    grid = 2 ** 20
+    nodes = [Fraction(round(math.cos(math.pi * (k + 0.5) / n) * grid / 2), grid)
+             for k in range(n)]                     # u = m - 3/2 in [-1/2, 1/2]
+    values = [_cbrt_fraction(Fraction(3, 2) + u) for u in nodes]
+    # Vandermonde solve in exact rationals (Gauss-Jordan)
+    a = [[u ** j for j in range(n)] + [v] for u, v in zip(nodes, values)]
+    for col in range(n):
+        piv = next(r for r in range(col, n) if a[r][col] != 0)
+        a[col], a[piv] = a[piv], a[col]
+        a[col] = [x / a[col][col] for x in a[col]]
+        for r in range(n):
+            if r != col and a[r][col] != 0:
+                a[r] = [x - a[r][col] * y for x, y in zip(a[r], a[col])]
+    step = 2 ** CBRT_SEED_BITS
+    poly = [float(Fraction(round(a[j][n] * step), step)) for j in range(n)]
+    scale = [float(Fraction(round(_cbrt_fraction(Fraction(2 ** r)) * step), step))
+             for r in range(3)]
+    bound = 0.0
+    for k in range(2 ** 16 + 1):
+        m = 1.0 + k / 2 ** 16
+        u, y = m - 1.5, 0.0
+        for c in reversed(poly):
+            y = y * u + c
+        bound = max(bound, abs(y / m ** (1.0 / 3.0) - 1.0))
+    if bound >= 2.0 ** -18:
+        raise AssertionError(f"cube-root seed error {bound:.3g} >= 2^-18")
+    return {"poly": [c.hex() for c in poly], "scale": [c.hex() for c in scale],
+            "bound": bound}
 
 
 def fit_constants() -> dict[str, int]:

@@ -10,8 +10,10 @@ checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 time stamp or a path: identical package versions write identical files.
 
 The golden sources use integer arithmetic only and constant loop counts; the fp64
-sources follow the fp64 reference formulas operation by operation. How to build and
-use the library, and the determinism argument: docs/export.md.
+sources follow the fp64 reference formulas operation by operation, except the fit's dot
+products (regrouped by the pseudo-inverse's equal words) and the preview's Hamrock-Brewe
+cube root (a seed polynomial and one Halley step), both within 1e-12 of the reference.
+How to build and use the library, and the determinism argument: docs/export.md.
 """
 
 from __future__ import annotations
@@ -23,8 +25,9 @@ from ..errors import ToolUnavailable
 from ..contract.stencil import STENCIL_SIDE
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
+                          fit_mac_plan_fp64, cbrt_seed,
                           fit_weight_codes,
-                          fit_weights_fp64, gap_constants, hertz_constants, hertz_flags,
+                          gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
 
 __all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
@@ -69,7 +72,7 @@ def _context() -> dict:
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
             "gap_constants": gap_constants(), "line_constants": line_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
-            "fit_weights": fit_weight_codes(), "fit_weights_fp64": fit_weights_fp64(),
+            "fit_weights": fit_weight_codes(), "fit_fp64": fit_mac_plan_fp64(), "cbrt": cbrt_seed(),
             "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "fit_mac_bases": bases, "stencil_side": STENCIL_SIDE,
             "fit_mac_ops": {"muls": sum(len(c["terms"]) for c in plan), "adds": adds},
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),

@@ -15,7 +15,8 @@ source stage C, of the preview's C library), and
 builds the FMU with :func:`.fmu.build_fmu`. Parameters ``backend`` (fp64 = the twin's
 ``reference``, golden), ``speed_rpm``, ``torque_nm``, ``step_us``; the mesh table's
 edge-pair fields are sized at the export torque (``--torque``), as the twin sizes them at
-its run's. Importer facts: docs/export.md.
+its run's, and cover every load up to it: a ``torque_nm`` above it is refused at
+initialisation (and is the variable's ``max``). Importer facts: docs/export.md.
 """
 
 from __future__ import annotations
@@ -57,7 +58,8 @@ DRIVETRAIN_VARIABLES = (
      "contact law: fp64 (the twin's reference backend) or golden (fixed-point stage D)"),
     ("speed_rpm", 13, "Float64", "parameter", "fixed", "rpm",
      "nominal pinion (motor) speed, 0 to 1e5"),
-    ("torque_nm", 14, "Float64", "parameter", "fixed", "N.m", "load torque on the gear, > 0"),
+    ("torque_nm", 14, "Float64", "parameter", "fixed", "N.m",
+     "load torque on the gear, > 0 and at most the export torque (the mesh table's size)"),
     ("step_us", 15, "Float64", "parameter", "fixed", "us",
      "fixed RK4 step, 1 to 50 us and h omega_max <= 2"),
 )
@@ -127,6 +129,7 @@ def _constants(model) -> list[tuple[str, str]]:
         ("STABILITY_LIMIT", c(STABILITY_LIMIT)), ("MAX_SPEED_RPM", c(MAX_SPEED_RPM)),
         ("STEP_US_MIN", c(STEP_RANGE_US[0])), ("STEP_US_MAX", c(STEP_RANGE_US[1])),
         ("SPEED_RPM_START", c(3000.0)), ("TORQUE_NM_START", c(model.torque_nm)),
+        ("TORQUE_NM_MAX", c(model.torque_nm)),
         ("STEP_US_START", c(10.0))]
 
 
@@ -217,6 +220,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "default_step": "1e-05", "default_stop": "0.05",
         "starts": {"speed_rpm": "3000", "torque_nm": repr(float(model.torque_nm)),
                    "step_us": "10"},
+        "maxima": {"torque_nm": repr(float(model.torque_nm))},
         "initial_dependencies": "12 13 14 15"})
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
