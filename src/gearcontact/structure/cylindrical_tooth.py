@@ -35,6 +35,7 @@ import numpy as np
 
 from ..geometry.cylindrical.flank import FACINGS, involute_flank
 from ..geometry.cylindrical.pair import CylindricalPair
+from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import RimSegment, rim_segment
 from .shell import ORDER, ORDER_FACE, ShellModel, build_shell
@@ -82,8 +83,7 @@ def cylindrical_rim(pair: CylindricalPair, tooth: ToothGeometry, *,
         raise InputRangeError(f"{m} form diameter (mm)", getattr(g, f"form_diameter_{m}_mm"),
                               "above the root diameter (a root fillet)")
     k = CYLINDRICAL_RIM_STIFFENING[m] if stiffening is None else stiffening
-    seg = rim_segment(tooth, fillet_mm=fillet, stiffening=k)
-    return seg
+    return rim_segment(tooth, fillet_mm=fillet, stiffening=k)
 
 
 @lru_cache(maxsize=8)
@@ -94,4 +94,5 @@ def cylindrical_tooth_shell(pair: CylindricalPair, member: str, *, order: int = 
     dataclass: hashed by value; both flanks share the model)."""
     tooth = cylindrical_tooth(pair, member)
     rim = cylindrical_rim(pair, tooth, stiffening=stiffening)
-    return build_shell(tooth, order=order, order_face=order_face, rim=rim)
+    with one_blas_thread():       # threaded BLAS of these sizes spins on a busy machine
+        return build_shell(tooth, order=order, order_face=order_face, rim=rim)
