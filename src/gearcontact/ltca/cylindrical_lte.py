@@ -67,8 +67,8 @@ from .cylindrical_bending import cylindrical_bending, line_bending_factor
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
-           "cylindrical_loaded_te", "harris_map", "harris_tip_reliefs_um", "harris_torques_nm",
-           "normal_load_n"]
+           "cylindrical_loaded_te", "cylindrical_loaded_te_models", "harris_map",
+           "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -290,6 +290,21 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         solve_time_s=time.process_time() - t0, bending=teeth is not None)
 
 
+def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,
+                                 bending: bool = True, facing: str = "cw", phases: int = 61,
+                                 **options) -> tuple[CylindricalLoadedTE,
+                                                     CylindricalLoadedTE | None]:
+    """The loaded TE with ``bending`` and, when that is True, the rigid-tooth one beside
+    it on the same unloaded cycle (what ``gearcontact lte`` writes side by side);
+    ``options`` as :func:`cylindrical_loaded_te`. Returns ``(result, rigid or None)``."""
+    normal_load_n(pair, torque_nm)                       # checked before the cycle
+    cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    res = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, bending=bending, **options)
+    rigid = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, bending=False,
+                                  **options) if bending else None
+    return res, rigid
+
+
 @dataclass(frozen=True)
 class HarrisMap:
     """Loaded-TE peak-to-peak vs torque for several tip-relief amounts.
@@ -309,6 +324,8 @@ class HarrisMap:
     edge_touch : bool
         Some solve loaded the edge of its strip across a line.
     converged : bool
+    bending : bool
+        Tooth bending was in the LCPs (else rigid teeth).
     """
 
     torques_nm: np.ndarray
@@ -318,6 +335,7 @@ class HarrisMap:
     mean_stiffness_n_per_mm_um: np.ndarray
     edge_touch: bool
     converged: bool
+    bending: bool = False
 
 
 def _with_tip_relief(pair: CylindricalPair, relief_um: float) -> CylindricalPair:
@@ -358,7 +376,7 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
     pp = np.zeros((reliefs.size, torques.size))
     stiff = np.zeros_like(pp)
     te0 = np.zeros(reliefs.size)
-    ok, edge = True, False
+    ok, edge, bent = True, False, False
     for r, p in enumerate(pairs):
         cycle = cylindrical_mesh_cycle(p, facing=facing, phases=phases)
         te0[r] = cycle.te0_pp_arcsec
@@ -368,6 +386,7 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
             stiff[r, t] = res.mean_stiffness_n_per_mm_um
             ok &= res.converged
             edge |= res.edge_touch
+            bent = res.bending
     return HarrisMap(torques_nm=torques, tip_reliefs_um=reliefs, lte_pp_arcsec=pp,
                      te0_pp_arcsec=te0, mean_stiffness_n_per_mm_um=stiff, edge_touch=edge,
-                     converged=bool(ok))
+                     converged=bool(ok), bending=bent)
