@@ -1,5 +1,5 @@
 """Tooth bending blocks of a cylindrical pair's loaded TE: the shell compliance of the
-pinion and gear tooth along each contact line (docs/bending.md sec. 8).
+pinion and gear tooth along each contact line (docs/bending.md sec. 9).
 
 A pair's field in :mod:`.cylindrical_lte` has one row of cells per axial position ``z``
 of the pinion face (the contact line) and a strip of cells across it. Its bending

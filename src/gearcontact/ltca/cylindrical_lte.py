@@ -1,5 +1,5 @@
 """Loaded transmission error of a cylindrical pair over a mesh cycle, with the shell
-bending of both teeth or rigid teeth (docs/cylindrical.md sec. 7, docs/bending.md sec. 8).
+bending of both teeth or rigid teeth (docs/cylindrical.md sec. 7, docs/bending.md sec. 9).
 
 At each phase of the unloaded cycle (:func:`~gearcontact.tca.cylindrical_cycle.
 cylindrical_mesh_cycle`) every tooth pair with a contact line in the zone of action is

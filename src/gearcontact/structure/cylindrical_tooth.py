@@ -1,5 +1,5 @@
 """One tooth of a cylindrical (spur or helical) gear as a plate body, and its shell model
-(docs/bending.md sec. 8).
+(docs/bending.md sec. 9).
 
 The tooth between the two involute-helicoid flanks of a member
 (:func:`~gearcontact.geometry.cylindrical.flank.involute_flank`, body frame: axis z,
@@ -46,7 +46,9 @@ __all__ = ["CYLINDRICAL_RIM_STIFFENING", "cylindrical_tooth", "cylindrical_rim",
 
 #: Factor on the modulus of the shell's fillet and rim of a cylindrical tooth
 #: (:func:`~.rim.rim_modulus_factor`), calibrated against the 3D FE of the same teeth
-#: with the same rim (docs/bending.md sec. 8).
+#: with the same rim (P2; spur 20/40 m 3 and helical 23/67 m 2, both members; segment and
+#: line loads at three heights): shell / FE 0.94 .. 1.08 on the 12 x 6 x 3 + 4 mesh,
+#: 0.93 .. 1.16 on 20 x 8 x 4 + 6 (docs/bending.md sec. 9).
 CYLINDRICAL_RIM_STIFFENING = {"pinion": 1.4, "gear": 1.4}
 
 
