@@ -89,8 +89,9 @@ def cylindrical_rim(pair: CylindricalPair, tooth: ToothGeometry, *,
 
 
 @lru_cache(maxsize=8)
-def cylindrical_tooth_shell(pair: CylindricalPair, member: str, *, order: int = ORDER, order_face: int = ORDER_FACE,
-                            stiffening: float | None = None) -> ShellModel:
+def cylindrical_tooth_shell(pair: CylindricalPair, member: str, *, order: int = ORDER,
+                            order_face: int = ORDER_FACE, stiffening: float | None = None
+                            ) -> ShellModel:
     """The shell model (:func:`~.shell.build_shell`) of one tooth of ``member`` with its
     calibrated fillet and rim, cached per pair, member and options (the pair is a frozen
     dataclass: hashed by value; both flanks share the model)."""
