@@ -80,8 +80,8 @@ def main() -> int:
           f"{ross.max():.2f} N/(mm·µm); {t_ross:.3f} s CPU")
     print(f"  ratio ours / ROSS: mean {k.mean() / ross.mean():.3f}, "
           f"min {k.min() / ross.min():.3f}, max {k.max() / ross.max():.3f}; waveform (best "
-          f"shift) rms difference {np.sqrt(np.mean((best - k) ** 2)):.2f} N/(mm·µm); load average "
-          f"{os.getloadavg()[0]:.2f}")
+          f"shift) rms difference {np.sqrt(np.mean((best - k) ** 2)):.2f} N/(mm·µm); "
+          f"load average {os.getloadavg()[0]:.2f}")
     return 0
 
 
