@@ -1,6 +1,6 @@
 """``gearcontact lte`` on a cylindrical pair, run as a user runs it: the README's line
-(default options: 61 phases, the Harris map) through `gearcontact.cli.main`, and the
-option it refuses.
+(default options: 61 phases, tooth bending with the rigid-tooth run beside it, the
+Harris map) through `gearcontact.cli.main`, and the options it refuses together.
 
 Truths: the normal load of the torque, F_n = T2 / (r_b2 cos beta_b) (ISO 6336-1), which
 the line loads of every phase must integrate to (the LCP's torque balance, 1e-9); the
@@ -44,7 +44,8 @@ def test_files_and_numbers(out):
     pair = load_pair(EV, kinds=(CYLINDRICAL,))
     g = pair.geometry
     doc = json.loads((out / "lte.json").read_text())
-    assert doc["teeth"] == "rigid" and doc["converged"] and not doc["edge_touch"]
+    assert doc["teeth"] == "bending" and doc["converged"] and not doc["edge_touch"]
+    assert doc["rigid"]["converged"] and doc["harris_map"]["teeth"] == "bending"
     torque = doc["torque_gear_nm"]
     assert torque == 64.5                                    # the command's default
     fn = torque * 1e3 / (0.5 * g.base_diameter_gear_mm * math.cos(math.radians(
@@ -60,8 +61,13 @@ def test_files_and_numbers(out):
     lte = np.genfromtxt(out / "lte.csv", delimiter=",", names=True)
     assert len(lte) == int(PHASES)
     assert doc["lte_pp_arcsec"] == pytest.approx(np.ptp(lte["lte_arcsec"]), abs=1e-9)
-    # loaded: the gear lags beyond TE0 at every phase (cw facing, TE0 < 0)
+    # loaded: the gear lags beyond TE0 at every phase (cw facing, TE0 < 0), further with
+    # bending than with rigid teeth, whose mesh is stiffer at every phase
     assert (lte["lte_arcsec"] < lte["te0_arcsec"]).all()
+    assert (lte["lte_arcsec"] < lte["lte_rigid_arcsec"]).all()
+    assert (lte["mesh_stiffness_n_per_mm_um"] < lte["mesh_stiffness_rigid_n_per_mm_um"]).all()
+    assert doc["rigid"]["lte_pp_arcsec"] == pytest.approx(np.ptp(lte["lte_rigid_arcsec"]),
+                                                          abs=1e-9)
     shares = np.column_stack([lte[n] for n in lte.dtype.names if n.startswith("load_share")])
     np.testing.assert_allclose(shares.sum(axis=1), 1.0, rtol=1e-9)
     lines = np.genfromtxt(out / "line_load.csv", delimiter=",", names=True)
@@ -88,9 +94,11 @@ def test_harris_map(out):
     assert np.array(doc["te0_pp_arcsec"]) == pytest.approx(harris["te0_pp_arcsec"], abs=1e-9)
 
 
-def test_bending_refused(tmp_path, capsys):
+def test_rigid_and_bending_refused_together(tmp_path, capsys):
     d = tmp_path / "out"
-    assert main(["lte", "--pair", EV, "--out", str(d), "--bending"]) == 2
+    with pytest.raises(SystemExit) as exc:              # argparse's own refusal
+        main(["lte", "--pair", EV, "--out", str(d), "--bending", "--rigid"])
+    assert exc.value.code == 2
     err = capsys.readouterr().err
-    assert "--bending" in err and "Traceback" not in err
+    assert "--rigid" in err and "Traceback" not in err
     assert not d.exists()

@@ -10,9 +10,10 @@ TE_LCP, TE_pre, rotations, active pairs, load per pair, mesh stiffness in N·m/r
 N/mm rigid and with bending) and ``lte.png``; timings go to ``run.json`` only.
 
 A cylindrical pair (``kind = "cylindrical"``) gets the loaded TE over its mesh cycle
-with rigid teeth (tooth bending of cylindrical teeth is a later slice; ``--bending`` is
-refused), ``--cells`` cells along the face, and the Harris map (loaded TE p-p at the
-ISO line loads 50-400 N/mm for 0 to 2 times the pinion's tip relief):
+with the shell bending of both teeth (and the rigid-tooth one beside it; ``--rigid``:
+rigid teeth only), ``--cells`` cells along the face, and the Harris map (loaded TE p-p
+at the ISO line loads 50-400 N/mm for 0 to 2 times the pinion's tip relief, same tooth
+model):
 ``lte.json``, ``lte.csv``, ``line_load.csv``, ``harris_map.csv``, ``lte.png``,
 ``harris_map.png`` (:mod:`gearcontact.report.cylindrical_lte`; docs/cylindrical.md
 sec. 7).
@@ -25,8 +26,8 @@ import time
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..halfspace.result import SolveStatus
-from ..ltca.cylindrical_lte import (cylindrical_loaded_te, harris_map, harris_tip_reliefs_um,
-                                    harris_torques_nm)
+from ..ltca.cylindrical_lte import (cylindrical_loaded_te_models, harris_map,
+                                    harris_tip_reliefs_um, harris_torques_nm)
 from ..ltca.lte import loaded_te
 from ..errors import CheckFailed
 from ..report.cylindrical_lte import write_cylindrical_lte_outputs
@@ -64,10 +65,6 @@ def register(sub) -> None:
 def check(args) -> None:
     """Every option and the pair file, before any work."""
     check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
-    if args.gear_pair.kind == CYLINDRICAL and args.bending:
-        raise InputRangeError("--bending", True, "not given for a cylindrical pair (its teeth "
-                                                 "are rigid until the tooth-bending slice: "
-                                                 "docs/cylindrical.md sec. 7)")
 
 
 #: ``--side`` of a cylindrical pair -> the flank facing in mesh (as ``gearcontact tca``).
@@ -77,18 +74,21 @@ CYLINDRICAL_FACING = {"drive": "cw", "coast": "ccw"}
 def run_cylindrical(args) -> int:
     pair = args.gear_pair
     facing = CYLINDRICAL_FACING[args.side]
+    bending = not args.rigid
     t0 = time.process_time()
-    res = cylindrical_loaded_te(pair, args.torque, facing=facing, phases=args.phases,
-                                cells_along=args.cells)
+    res, rigid = cylindrical_loaded_te_models(pair, args.torque, bending=bending,
+                                              facing=facing, phases=args.phases,
+                                              cells_along=args.cells)
     t1 = time.process_time()
     harris = harris_map(pair, harris_torques_nm(pair), harris_tip_reliefs_um(pair),
-                        facing=facing, phases=args.phases, cells_along=args.cells)
+                        facing=facing, phases=args.phases, cells_along=args.cells,
+                        bending=bending)
     run_timings(args, lte_cpu_s=t1 - t0, lcp_cpu_s=res.solve_time_s,
                 harris_map_cpu_s=time.process_time() - t1)
     write_cylindrical_lte_outputs(res, harris, pair, args.out, side=args.side,
-                                  figures=not args.no_figures)
+                                  figures=not args.no_figures, rigid=rigid)
     print(f"{pair.name} {args.side} ({facing} flanks) {args.torque:g} N·m, "
-          f"{len(res.phi1_rad)} phases, rigid teeth: TE p-p TE0 "
+          f"{len(res.phi1_rad)} phases, {'bending' if bending else 'rigid teeth'}: TE p-p TE0 "
           f"{res.te0_arcsec.max() - res.te0_arcsec.min():.2f} / loaded "
           f"{res.lte_pp_arcsec:.2f} arcsec, p_max {res.max_pressure_mpa.max():.0f} MPa, "
           f"mesh stiffness {res.mean_stiffness_n_per_mm_um:.1f} N/(mm·µm) mean; Harris map "
@@ -97,7 +97,7 @@ def run_cylindrical(args) -> int:
     if res.edge_touch or harris.edge_touch:
         warn("lte", "loaded cells on the edge of the strip across a line: the strip is "
                     "too narrow for this load")
-    if not (res.converged and harris.converged):
+    if not (res.converged and harris.converged and (rigid is None or rigid.converged)):
         raise CheckFailed("LCP not converged")   # the files stay
     return 0
 

@@ -1,5 +1,5 @@
-"""Loaded transmission error of a cylindrical pair over a mesh cycle, rigid teeth
-(docs/cylindrical.md sec. 7).
+"""Loaded transmission error of a cylindrical pair over a mesh cycle, with the shell
+bending of both teeth or rigid teeth (docs/cylindrical.md sec. 7, docs/bending.md sec. 9).
 
 At each phase of the unloaded cycle (:func:`~gearcontact.tca.cylindrical_cycle.
 cylindrical_mesh_cycle`) every tooth pair with a contact line in the zone of action is
@@ -34,8 +34,13 @@ line loads ``F_t / b`` = 50 to 400 N/mm (``F_t = 2 T2 / d2`` at the reference ci
 Method B's stiffness holds from 100 N/mm). Mesh stiffness per
 phase is the secant ``k = F_n / delta`` with ``delta = r_b2 cos(beta_b) theta`` the normal
 approach from the unloaded rest, given per unit face width in N/(mm·µm) (the unit of
-ISO 6336-1's c' and c_gamma). Tooth bending of cylindrical teeth is a later slice:
-these teeth are rigid, so the stiffness is that of the contact alone.
+ISO 6336-1's c' and c_gamma).
+
+Tooth bending (``bending=True``, the default as for bevel pairs' ``gearcontact lte``):
+each pair's block carries the shell compliance of its pinion and gear tooth along the
+line (:mod:`.cylindrical_bending`; G_pinion + G_gear, block diagonal across pairs) beside
+the Love half-space; ``bending=False`` gives rigid teeth, the contact's compliance
+alone.
 
 References
 ----------
@@ -58,11 +63,12 @@ from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
     cylindrical_mesh_cycle
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
+from .cylindrical_bending import cylindrical_bending, line_bending_factor
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
-           "cylindrical_loaded_te", "harris_map", "harris_tip_reliefs_um", "harris_torques_nm",
-           "normal_load_n"]
+           "cylindrical_loaded_te", "cylindrical_loaded_te_models", "harris_map",
+           "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -97,7 +103,7 @@ def harris_tip_reliefs_um(pair: CylindricalPair) -> np.ndarray:
 
 @dataclass(frozen=True)
 class CylindricalLoadedTE:
-    """Loaded TE of a cylindrical pair over one pinion pitch (rigid teeth).
+    """Loaded TE of a cylindrical pair over one pinion pitch.
 
     Shapes: K phases, P tooth pairs (``pair_offsets``, as the unloaded cycle), N cells
     along the face (``z_mm``).
@@ -135,6 +141,8 @@ class CylindricalLoadedTE:
         Every phase's LCP converged.
     solve_time_s : float
         CPU time of the LCP solves, s.
+    bending : bool
+        Tooth bending was in the LCP (else rigid teeth).
     """
 
     phi1_rad: np.ndarray
@@ -156,6 +164,7 @@ class CylindricalLoadedTE:
     iterations: np.ndarray
     converged: bool
     solve_time_s: float
+    bending: bool = False
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -183,8 +192,8 @@ def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n
 def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                           cycle: CylindricalMeshCycle | None = None, facing: str = "cw",
                           phases: int = 61, cells_across: int = 24, cells_along: int = 64,
-                          extent_factor: float = 2.0, tol: float = 1e-8
-                          ) -> CylindricalLoadedTE:
+                          extent_factor: float = 2.0, tol: float = 1e-8,
+                          bending: bool = True) -> CylindricalLoadedTE:
     """Loaded TE, load sharing, pressure and mesh stiffness over one pinion pitch.
 
     Parameters
@@ -203,6 +212,9 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         line length (> 0; module docstring).
     tol : float
         LCP tolerance (:func:`.mesh_lcp.solve_mesh_lcp`).
+    bending : bool
+        Add the shell bending compliance of both teeth (module docstring; default);
+        False: rigid teeth.
     """
     load = normal_load_n(pair, torque_nm)
     for key, n in (("cells_across", cells_across), ("cells_along", cells_along)):
@@ -211,6 +223,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     check_positive("extent_factor", extent_factor)
     if cycle is None:
         cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    teeth = cylindrical_bending(pair, facing=cycle.facing) if bending else None
     g = pair.geometry
     cb = math.cos(math.radians(g.base_helix_angle_deg))
     e_star = resolve_e_star((pair.pinion_material, pair.gear_material))
@@ -247,7 +260,9 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                                        + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
             h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj, 0.0)[:, None]
                          + 0.5 * inv_r[:, None] * x2, OFF_LINE_GAP_MM)
-            blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env)))
+            factor = None if teeth is None else line_bending_factor(
+                teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
+            blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
         res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
                              warm_start=[warm.get(j) for j in live])
         ok &= res.converged
@@ -272,7 +287,22 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         line_pressure_mpa=line_p,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
-        solve_time_s=time.process_time() - t0)
+        solve_time_s=time.process_time() - t0, bending=teeth is not None)
+
+
+def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,
+                                 bending: bool = True, facing: str = "cw", phases: int = 61,
+                                 **options) -> tuple[CylindricalLoadedTE,
+                                                     CylindricalLoadedTE | None]:
+    """The loaded TE with ``bending`` and, when that is True, the rigid-tooth one beside
+    it on the same unloaded cycle (what ``gearcontact lte`` writes side by side);
+    ``options`` as :func:`cylindrical_loaded_te`. Returns ``(result, rigid or None)``."""
+    normal_load_n(pair, torque_nm)                       # checked before the cycle
+    cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    res = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, bending=bending, **options)
+    rigid = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, bending=False,
+                                  **options) if bending else None
+    return res, rigid
 
 
 @dataclass(frozen=True)
@@ -294,6 +324,8 @@ class HarrisMap:
     edge_touch : bool
         Some solve loaded the edge of its strip across a line.
     converged : bool
+    bending : bool
+        Tooth bending was in the LCPs (else rigid teeth).
     """
 
     torques_nm: np.ndarray
@@ -303,6 +335,7 @@ class HarrisMap:
     mean_stiffness_n_per_mm_um: np.ndarray
     edge_touch: bool
     converged: bool
+    bending: bool = False
 
 
 def _with_tip_relief(pair: CylindricalPair, relief_um: float) -> CylindricalPair:
@@ -343,7 +376,7 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
     pp = np.zeros((reliefs.size, torques.size))
     stiff = np.zeros_like(pp)
     te0 = np.zeros(reliefs.size)
-    ok, edge = True, False
+    ok, edge, bent = True, False, False
     for r, p in enumerate(pairs):
         cycle = cylindrical_mesh_cycle(p, facing=facing, phases=phases)
         te0[r] = cycle.te0_pp_arcsec
@@ -353,6 +386,7 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
             stiff[r, t] = res.mean_stiffness_n_per_mm_um
             ok &= res.converged
             edge |= res.edge_touch
+            bent = res.bending
     return HarrisMap(torques_nm=torques, tip_reliefs_um=reliefs, lte_pp_arcsec=pp,
                      te0_pp_arcsec=te0, mean_stiffness_n_per_mm_um=stiff, edge_touch=edge,
-                     converged=bool(ok))
+                     converged=bool(ok), bending=bent)

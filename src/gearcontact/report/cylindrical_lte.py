@@ -1,9 +1,11 @@
 """Files of the loaded TE of a cylindrical pair and its Harris map (docs/cylindrical.md
 sec. 7): what ``gearcontact lte`` writes for a ``kind = "cylindrical"`` pair.
 
-:func:`write_cylindrical_lte_outputs` writes into one directory ``lte.json`` (summary),
-``lte.csv`` (per phase: TE0, loaded TE, load share per pair, peak pressure, mesh
-stiffness), ``line_load.csv`` (per phase, pair in the zone and face cell: load per unit
+:func:`write_cylindrical_lte_outputs` writes into one directory ``lte.json`` (summary;
+``teeth`` names the tooth model, and with a rigid-tooth run beside a bending one its
+key ``rigid`` holds the rigid loaded TE and stiffness), ``lte.csv`` (per phase: TE0,
+loaded TE, load share per pair, peak pressure, mesh stiffness; the rigid loaded TE and
+stiffness beside them), ``line_load.csv`` (per phase, pair in the zone and face cell: load per unit
 face width and the peak pressure across the line), ``harris_map.csv`` (loaded TE p-p per
 tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
 identical runs write identical files.
@@ -29,10 +31,10 @@ __all__ = ["cylindrical_lte_summary", "plot_cylindrical_lte", "plot_harris_map",
            "write_cylindrical_lte_outputs"]
 
 
-def _iso(pair, lte: CylindricalLoadedTE) -> dict:
-    """ISO 6336-1 Method B c' and c_gamma_alpha beside the rigid-tooth stiffness, with the
-    tangential line load F_t / b at the gear's reference circle (the standard holds from
-    100 N/mm; docs/cylindrical.md sec. 7)."""
+def _iso(pair, lte: CylindricalLoadedTE, rigid: CylindricalLoadedTE | None) -> dict:
+    """ISO 6336-1 Method B c' and c_gamma_alpha beside the computed stiffness (and the
+    rigid-tooth one), with the tangential line load F_t / b at the gear's reference
+    circle (the standard holds from 100 N/mm; docs/cylindrical.md sec. 7)."""
     g = pair.geometry
     iso = cylindrical_pair_stiffness(
         pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
@@ -43,22 +45,33 @@ def _iso(pair, lte: CylindricalLoadedTE) -> dict:
         rack_pressure_angle_deg=g.normal_pressure_angle_deg)
     c_ga = iso.c_gamma_alpha_n_per_mm_um
     ft_b = 2e3 * lte.torque_nm / (g.reference_diameter_gear_mm * g.face_width_mm)
-    return {"line_load_ft_per_b_n_per_mm": ft_b, "within_validity": ft_b >= 100.0,
-            "c_single_n_per_mm_um": iso.c_n_per_mm_um,
-            "c_gamma_alpha_n_per_mm_um": c_ga,
-            "c_gamma_beta_n_per_mm_um": iso.c_gamma_beta_n_per_mm_um,
-            "mean_stiffness_over_c_gamma_alpha": lte.mean_stiffness_n_per_mm_um / c_ga,
-            "note": "rigid teeth: contact flattening only, where the standard adds bending "
-                    "and foundation; it holds from F_t / b = 100 N/mm for full lines of "
-                    "contact (below, or with crowning and relief, the half-space's secant "
-                    "stiffness falls: docs/cylindrical.md sec. 7)"}
+    out = {"line_load_ft_per_b_n_per_mm": ft_b, "within_validity": ft_b >= 100.0,
+           "c_single_n_per_mm_um": iso.c_n_per_mm_um,
+           "c_gamma_alpha_n_per_mm_um": c_ga,
+           "c_gamma_beta_n_per_mm_um": iso.c_gamma_beta_n_per_mm_um,
+           "mean_stiffness_over_c_gamma_alpha": lte.mean_stiffness_n_per_mm_um / c_ga}
+    if rigid is not None:
+        out["rigid_mean_stiffness_over_c_gamma_alpha"] = rigid.mean_stiffness_n_per_mm_um / c_ga
+    out["note"] = (
+        ("contact, shell bending of both teeth and their fillet and rim: a theory like "
+         "the standard's c'_th, which C_M = 0.8 corrects to measured gears (the model "
+         "lands near c_gamma_alpha / C_M on the 20/40 spur pair)" if lte.bending else
+         "rigid teeth: contact flattening only, where the standard adds bending and "
+         "foundation")
+        + "; it holds from F_t / b = 100 N/mm for full lines of contact (below, or with "
+          "crowning and relief, the secant stiffness falls: docs/cylindrical.md sec. 7)")
+    return out
+
+
+def _teeth(bending: bool) -> str:
+    return "bending" if bending else "rigid"
 
 
 def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, pair, *,
-                            side: str) -> dict:
-    """The ``lte.json`` dict."""
+                            side: str, rigid: CylindricalLoadedTE | None = None) -> dict:
+    """The ``lte.json`` dict (``rigid``: the rigid-tooth run beside a bending one)."""
     out = {
-        "pair": pair.name, "kind": "cylindrical", "side": side, "teeth": "rigid",
+        "pair": pair.name, "kind": "cylindrical", "side": side, "teeth": _teeth(lte.bending),
         "phases_per_pitch": len(lte.phi1_rad), "torque_gear_nm": lte.torque_nm,
         "normal_load_n": lte.normal_load_n,
         "te0_pp_arcsec": float(lte.te0_arcsec.max() - lte.te0_arcsec.min()),
@@ -72,12 +85,21 @@ def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, 
                                                float(lte.stiffness_n_per_mm_um.max())],
         "mesh_stiffness_definition": "secant F_n / (b delta), delta the normal approach "
                                      "from the unloaded rest (docs/cylindrical.md sec. 7)",
-        "iso6336_method_b": _iso(pair, lte),
+        "iso6336_method_b": _iso(pair, lte, rigid),
         "max_load_share": float(lte.load_share.max()),
         "grid_dx_mm": lte.grid_dx_mm, "grid_dy_mm": lte.grid_dy_mm,
         "edge_touch": lte.edge_touch, "converged": lte.converged,
         "lcp_iterations_max": int(lte.iterations.max()),
     }
+    if rigid is not None:
+        out["rigid"] = {
+            "lte_pp_arcsec": rigid.lte_pp_arcsec,
+            "lte_mean_arcsec": float(np.mean(rigid.lte_arcsec[:-1])),
+            "max_pressure_mpa": float(rigid.max_pressure_mpa.max()),
+            "mesh_stiffness_mean_n_per_mm_um": rigid.mean_stiffness_n_per_mm_um,
+            "mesh_stiffness_min_max_n_per_mm_um": [float(rigid.stiffness_n_per_mm_um.min()),
+                                                   float(rigid.stiffness_n_per_mm_um.max())],
+            "max_load_share": float(rigid.load_share.max()), "converged": rigid.converged}
     if harris is not None:
         out["harris_map"] = {
             "torques_gear_nm": harris.torques_nm.tolist(),
@@ -85,18 +107,24 @@ def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, 
             "lte_pp_arcsec": harris.lte_pp_arcsec.tolist(),
             "te0_pp_arcsec": harris.te0_pp_arcsec.tolist(),
             "mean_stiffness_n_per_mm_um": harris.mean_stiffness_n_per_mm_um.tolist(),
+            "teeth": _teeth(harris.bending),
             "edge_touch": harris.edge_touch, "converged": harris.converged}
     return out
 
 
-def plot_cylindrical_lte(lte: CylindricalLoadedTE, path, *, title: str = "") -> Path:
-    """TE0 and loaded TE over the pitch (top), load share per pair and the mesh
-    stiffness (bottom)."""
+def plot_cylindrical_lte(lte: CylindricalLoadedTE, path, *, title: str = "",
+                         rigid: CylindricalLoadedTE | None = None) -> Path:
+    """TE0 and loaded TE over the pitch (top; the rigid-tooth one dashed when given), load
+    share per pair and the mesh stiffness (bottom)."""
     phi = np.degrees(lte.phi1_rad)
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
     ax.plot(phi, lte.te0_arcsec, "k-", label=f"TE0 (p-p {np.ptp(lte.te0_arcsec):.2f})")
     ax.plot(phi, lte.lte_arcsec, "C0.-", ms=3,
-            label=f"loaded TE, {lte.torque_nm:g} N·m (p-p {lte.lte_pp_arcsec:.2f})")
+            label=f"loaded TE, {_teeth(lte.bending)}, {lte.torque_nm:g} N·m "
+                  f"(p-p {lte.lte_pp_arcsec:.2f})")
+    if rigid is not None:
+        ax.plot(phi, rigid.lte_arcsec, "C1--", lw=1.0,
+                label=f"loaded TE, rigid teeth (p-p {rigid.lte_pp_arcsec:.2f})")
     ax.set_ylabel("TE (arcsec)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
@@ -109,7 +137,10 @@ def plot_cylindrical_lte(lte: CylindricalLoadedTE, path, *, title: str = "") -> 
     ax2.legend(fontsize=8, loc="upper left")
     right = ax2.twinx()
     right.plot(phi, lte.stiffness_n_per_mm_um, "k--", lw=1.0)
-    right.set_ylabel("mesh stiffness (N/(mm·µm), dashed)")
+    if rigid is not None:
+        right.plot(phi, rigid.stiffness_n_per_mm_um, "k:", lw=1.0)
+    right.set_ylabel("mesh stiffness (N/(mm·µm), dashed"
+                     + ("; rigid dotted)" if rigid is not None else ")"))
     if title:
         ax.set_title(title)
     return save_figure(fig, path, tight=True)
@@ -125,24 +156,29 @@ def plot_harris_map(harris: HarrisMap, path, *, title: str = "") -> Path:
     ax.set_ylim(bottom=0.0)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(title or "Harris map (rigid teeth)")
+    ax.set_title(title or f"Harris map ({_teeth(harris.bending)})")
     return save_figure(fig, path, tight=True)
 
 
 def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | None, pair,
-                                  out, *, side: str, figures: bool = True) -> dict:
+                                  out, *, side: str, figures: bool = True,
+                                  rigid: CylindricalLoadedTE | None = None) -> dict:
     """Write the files of the module docstring into ``out`` (created if missing; the Harris
-    map's files only with ``harris``); returns the ``lte.json`` dict."""
+    map's files only with ``harris``; the rigid columns and key only with ``rigid``, the
+    rigid-tooth run on the same cycle); returns the ``lte.json`` dict."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     phi = np.degrees(lte.phi1_rad)
+    extra = ["lte_rigid_arcsec", "mesh_stiffness_rigid_n_per_mm_um"] if rigid is not None else []
     write_csv(out / "lte.csv",
               ["phi1_deg", "te0_arcsec", "lte_arcsec"]
               + [f"load_share_pair{j:+d}" for j in lte.pair_offsets]
-              + ["max_pressure_mpa", "mesh_stiffness_n_per_mm_um"],
+              + ["max_pressure_mpa", "mesh_stiffness_n_per_mm_um"] + extra,
               [[float(phi[k]), float(lte.te0_arcsec[k]), float(lte.lte_arcsec[k])]
                + [float(s) for s in lte.load_share[:, k]]
                + [float(lte.max_pressure_mpa[k]), float(lte.stiffness_n_per_mm_um[k])]
+               + ([float(rigid.lte_arcsec[k]), float(rigid.stiffness_n_per_mm_um[k])]
+                  if rigid is not None else [])
                for k in range(len(phi))])
     rows = []
     for k in range(len(phi)):
@@ -160,12 +196,13 @@ def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | 
                   [[float(c), float(harris.te0_pp_arcsec[r])]
                    + [float(x) for x in harris.lte_pp_arcsec[r]]
                    for r, c in enumerate(harris.tip_reliefs_um)])
-    summary = cylindrical_lte_summary(lte, harris, pair, side=side)
+    summary = cylindrical_lte_summary(lte, harris, pair, side=side, rigid=rigid)
     (out / "lte.json").write_text(json.dumps(summary, indent=2))
     if figures:
         label = f"{pair.name} {side}"
-        plot_cylindrical_lte(lte, out / "lte.png", title=f"{label}: loaded TE (rigid teeth)")
+        plot_cylindrical_lte(lte, out / "lte.png", rigid=rigid,
+                             title=f"{label}: loaded TE ({_teeth(lte.bending)})")
         if harris is not None:
             plot_harris_map(harris, out / "harris_map.png",
-                            title=f"{label}: Harris map (rigid teeth)")
+                            title=f"{label}: Harris map ({_teeth(harris.bending)})")
     return summary

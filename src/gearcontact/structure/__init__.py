@@ -2,6 +2,8 @@
 
 - :mod:`.tooth`: one tooth between its real drive and coast flanks (mid-surface,
   thickness, flank load points), and the rectangular test plate;
+- :mod:`.cylindrical_tooth`: the involute (spur/helical) tooth as such a body, with its
+  fillet, rim and calibrated shell;
 - :mod:`.rim`: the root fillet and rim segment below a tooth's root line, one geometry
   for the shell and the FE;
 - :mod:`.shell`: Mindlin-Reissner plate Rayleigh-Ritz compliance operator (low rank)

@@ -35,11 +35,11 @@ import numpy as np
 from ..geometry.flank import FlankSet, build_flanks
 from ..validation import InputRangeError
 from .rim import RimSegment
-from .shell import ORDER, ORDER_FACE, tooth_shell
+from .shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
 from .tooth import LoadPoints
 
-__all__ = ["FlankCompliance", "FeMesh", "flank_compliance", "write_compliance",
-           "concat_points", "SEGMENT_NODES"]
+__all__ = ["FlankCompliance", "FeMesh", "flank_compliance", "shell_compliance",
+           "write_compliance", "concat_points", "SEGMENT_NODES"]
 
 #: Node columns of a segment load.
 SEGMENT_NODES = 5
@@ -156,6 +156,19 @@ def _distributed(G: np.ndarray, sets) -> np.ndarray:
     return np.array([-np.mean(G[n:, :n][np.ix_(s, s)]) for s in sets])
 
 
+def _check_lattice(side, xi, eta, fe_mesh: FeMesh):
+    """The lattice (xi, eta) as flat arrays, after checking it, the side and the mesh."""
+    if side not in ("drive", "coast"):
+        raise InputRangeError("side", side, "'drive' or 'coast'")
+    xi, eta = (np.asarray(a, float).ravel() for a in (xi, eta))
+    for name, a in (("xi", xi), ("eta", eta)):
+        if a.size == 0 or np.any(np.abs(a) > 1.0) or not np.all(np.isfinite(a)):
+            raise InputRangeError(name, a.tolist(), "a non-empty list of values in [-1, 1]")
+    if fe_mesh.n_xi < SEGMENT_NODES + 1:
+        raise InputRangeError("fe_mesh.n_xi", fe_mesh.n_xi, f">= {SEGMENT_NODES + 1}")
+    return xi, eta
+
+
 def flank_compliance(pair, member: str, *, side: str = "drive",
                      flanks: FlankSet | None = None,
                      xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = ORDER,
@@ -191,32 +204,35 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
     """
     if member not in ("pinion", "gear"):
         raise InputRangeError("member", member, "'pinion' or 'gear'")
-    if side not in ("drive", "coast"):
-        raise InputRangeError("side", side, "'drive' or 'coast'")
-    back = "coast" if side == "drive" else "drive"
-    xi, eta = (np.asarray(a, float).ravel() for a in (xi, eta))
-    for name, a in (("xi", xi), ("eta", eta)):
-        if a.size == 0 or np.any(np.abs(a) > 1.0) or not np.all(np.isfinite(a)):
-            raise InputRangeError(name, a.tolist(), "a non-empty list of values in [-1, 1]")
-    if fe_mesh.n_xi < SEGMENT_NODES + 1:
-        raise InputRangeError("fe_mesh.n_xi", fe_mesh.n_xi, f">= {SEGMENT_NODES + 1}")
+    _check_lattice(side, xi, eta, fe_mesh)      # before the flanks and the shell
     flanks = build_flanks(pair) if flanks is None else flanks
     material = pair.pinion_material if member == "pinion" else pair.gear_material
+    shell = tooth_shell(flanks, member, material=material, order=order,
+                        order_face=order_face, rim=rim)
+    return shell_compliance(shell, side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh)
+
+
+def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0.5),
+                     eta=(-1 / 3, 0.0, 1 / 3), fe: bool = False,
+                     fe_mesh: FeMesh = FeMesh()) -> FlankCompliance:
+    """:func:`flank_compliance` of any tooth's shell model (its body, a
+    :class:`~.tooth.ToothGeometry`, and its rim; the FE meshes the same rim)."""
+    xi, eta = _check_lattice(side, xi, eta, fe_mesh)
+    back = "coast" if side == "drive" else "drive"
     xl = np.linspace(-1.0, 1.0, fe_mesh.n_xi + 1)
     el = np.linspace(-1.0, 1.0, fe_mesh.n_eta + 1)
     I, J = np.meshgrid(np.abs(xi[:, None] - xl).argmin(1), np.abs(eta[:, None] - el).argmin(1),
                        indexing="ij")
     I, J = I.ravel(), J.ravel()
     nodes, sets, heights = _load_sets(I, J, fe_mesh.n_xi)
-    shell = tooth_shell(flanks, member, material=material, order=order,
-                        order_face=order_face, rim=rim)
     tooth = shell.body
     lattice = tooth.points_at(side, xl[I], el[J])
     nx, ny = xl[nodes[:, 0]], el[nodes[:, 1]]
     both = concat_points(tooth.points_at(side, nx, ny), tooth.points_at(back, nx, ny))
     Gs = shell.compliance(both).matrix()
     n = len(I)
-    kw = dict(member=member, side=side, xi=xl[I], eta=el[J], points_mm=lattice.position_mm,
+    kw = dict(member=tooth.member, side=side, xi=xl[I], eta=el[J],
+              points_mm=lattice.position_mm,
               shell_mm_per_n=shell.compliance(lattice).matrix(),
               segment_shell_mm_per_n=_distributed(Gs, sets[:n]), line_eta=el[heights],
               line_shell_mm_per_n=_distributed(Gs, sets[n:]))
