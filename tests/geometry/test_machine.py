@@ -242,7 +242,7 @@ def test_blade_through_point_keeps_the_profile_shape():
 
 
 @pytest.mark.parametrize("key, value, allowed", [
-    ("profile_cubic_per_mm2", 0.2, "0.1"), ("profile_quartic_per_mm3", -0.02, "0.01"),
+    ("profile_cubic_per_mm2", 1.5, "1"), ("profile_quartic_per_mm3", -2.0, "1"),
     ("profile_quartic_per_mm3", float("inf"), "finite")])
 def test_higher_order_terms_out_of_range_name_the_key(key, value, allowed):
     with pytest.raises(InputRangeError) as err:

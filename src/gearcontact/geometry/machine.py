@@ -112,10 +112,10 @@ class BladeSettings:
     profile_reference_mm : float
         Arc length from the tip at which the blade angle alpha_0 holds (curved blades), mm.
     profile_cubic_per_mm2 : float
-        c_3 = d^2 alpha / dl^2 at ``l_ref``, 1/mm^2, |c_3| <= 0.1 (higher-order profile,
-        module docstring; 0 = none).
+        c_3 = d^2 alpha / dl^2 at ``l_ref``, 1/mm^2, |c_3| <= 1 (higher-order profile,
+        module docstring; 0 = none; 1 /mm^2 is a 0.17 mm offset 1 mm from ``l_ref``).
     profile_quartic_per_mm3 : float
-        c_4 = d^3 alpha / dl^3, 1/mm^3, |c_4| <= 0.01; > 0 adds curvature on both sides
+        c_4 = d^3 alpha / dl^3, 1/mm^3, |c_4| <= 1; > 0 adds curvature on both sides
         of ``l_ref`` (a quartic relief towards the tip and the top of the blade).
     """
 
@@ -141,8 +141,8 @@ class BladeSettings:
             raise InputRangeError(f"{w}.profile_radius_mm", r,
                                   "0 (straight blade) or |r| >= 10 mm")
         check_range(f"{w}.profile_reference_mm", self.profile_reference_mm, 0.0, 50.0)
-        check_range(f"{w}.profile_cubic_per_mm2", self.profile_cubic_per_mm2, -0.1, 0.1)
-        check_range(f"{w}.profile_quartic_per_mm3", self.profile_quartic_per_mm3, -0.01, 0.01)
+        check_range(f"{w}.profile_cubic_per_mm2", self.profile_cubic_per_mm2, -1.0, 1.0)
+        check_range(f"{w}.profile_quartic_per_mm3", self.profile_quartic_per_mm3, -1.0, 1.0)
 
     @property
     def sigma(self) -> float:
