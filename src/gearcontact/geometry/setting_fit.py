@@ -34,17 +34,19 @@ it sets the flank's angular position (tooth thickness) and belongs in every subs
 
 The default subset :data:`DEFAULT_PARAMETERS` (docs/machine_settings.md sec. 6 has the
 sensitivity study): cradle angle, radial distance, ratio of roll, modified roll 2C and
-6D, blade angle, blade curvature and the blade's cubic profile term (a curvature that
-varies along the blade: on s0003 it cuts the fourth-order profile residual the seven
-others leave, 1.23 -> 0.56 um max at a condition of 741 -> 809; the quartic term
-reaches 0.69 um at 2.0e3, both 0.52 um at 2.0e3). To first order a generated flank moves in six
-well-separated shapes (a rigid turn and five ease-off-like terms: the column-normalized
-sensitivity matrix of 14 candidates has 6 singular values above 0.18, the 7th at
-7.6e-3 on s0003); these seven span them at a condition of ~10^3, the settings a summary
-sheet corrects first. Tilt, swivel, machine root, MCTB, sliding base, blank offset and
-the blade radius duplicate these directions: on s0003 the best subsets of 8 lower the
-linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, and tilt, swivel or
-the blade radius added to the seven leave 1.09-1.26 um at conditions of 2e4-4e4.
+6D, blade angle, blade curvature and the blade's cubic profile term. To first order a
+generated flank moves in six well-separated shapes (a rigid turn and five
+ease-off-like terms: the column-normalized sensitivity matrix of 14 candidates without
+the higher-order blade terms has 6 singular values above 0.18, the 7th at 7.6e-3 on
+s0003); the first seven span them at a condition of ~10^3, the settings a summary sheet
+corrects first. They leave a fourth-order profile form that no machine setting cuts;
+the blade's cubic term (a curvature varying along the blade) does: on s0003 coast
+1.23 -> 0.56 um max at a condition of 741 -> 809 (the quartic term: 0.69 um at 2.0e3;
+both: 0.52 um at 2.0e3). Tilt, swivel, machine root, MCTB, sliding base, blank offset
+and the blade radius duplicate the first seven's directions: on s0003 the best subsets
+of 8 lower the linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, and
+tilt, swivel or the blade radius added to the seven leave 1.09-1.26 um at conditions
+of 2e4-4e4.
 
 References
 ----------
