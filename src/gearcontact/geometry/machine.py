@@ -80,8 +80,8 @@ from ..validation import InputRangeError, check_finite, check_positive, check_ra
 
 __all__ = ["BLADE_KEYS", "BladeSettings", "HELICAL_KEYS", "MACHINE_KEYS", "MEMBERS",
            "MODIFIED_ROLL_KEYS", "MachineKinematics", "MachineSettings", "MachineSetup",
-           "blade_point", "blade_profile", "blade_through_point", "mirror_setup", "setup_from_tables",
-           "setup_to_tables"]
+           "blade_point", "blade_profile", "blade_through_point", "mirror_setup",
+           "setup_from_tables", "setup_to_tables"]
 
 #: Members of a pair, in the order used by the pair format.
 MEMBERS = ("gear", "pinion")

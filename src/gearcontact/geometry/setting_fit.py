@@ -21,16 +21,16 @@ over the full flank is then measured on a dense grid of the final generated shee
 (:func:`flank_deviation_um`).
 
 Parameters (:data:`PARAMETERS`): the machine settings of :class:`~.machine.MachineSettings`
-by name, the modified roll 2C / 6D / 24E, the helical motion V_1, and three blade
+by name, the modified roll 2C / 6D / 24E, the helical motion V_1, and five blade
 parameters pivoting about the blade point P that generates the mean node at the seed
 (so that a blade change does not move the mean point): ``blade_angle_deg`` (profile
 angle at P), ``blade_curvature_per_mm`` (``1/r_b``, 0 = straight),
 ``blade_cubic_per_mm2`` and ``blade_quartic_per_mm3`` (the higher-order profile terms
 ``c_3``, ``c_4`` of :class:`~.machine.BladeSettings` at P) and ``blade_radius_mm`` (the
-blade's radius at P: a cutter radius change with the cutter centre kept). The cradle angle with the swivel kept turns the whole generating gear
-about the cradle axis, which for a linear roll is a rigid turn of the generated flank
-about the work axis (``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``):
-it sets the flank's angular position (tooth thickness) and belongs in every subset.
+blade's radius at P: a cutter radius change with the cutter centre kept). The cradle
+angle with the swivel kept turns the whole generating gear about the cradle axis,
+which for a linear roll is a rigid turn of the generated flank about the work axis
+(``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's angular position (tooth thickness) and belongs in every subset.
 
 The default subset :data:`DEFAULT_PARAMETERS` (docs/machine_settings.md sec. 6 has the
 sensitivity study): cradle angle, radial distance, ratio of roll, modified roll 2C and
