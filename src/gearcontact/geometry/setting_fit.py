@@ -30,7 +30,8 @@ angle at P), ``blade_curvature_per_mm`` (``1/r_b``, 0 = straight),
 blade's radius at P: a cutter radius change with the cutter centre kept). The cradle
 angle with the swivel kept turns the whole generating gear about the cradle axis,
 which for a linear roll is a rigid turn of the generated flank about the work axis
-(``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's angular position (tooth thickness) and belongs in every subset.
+(``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's
+angular position (tooth thickness) and belongs in every subset.
 
 The default subset :data:`DEFAULT_PARAMETERS` (docs/machine_settings.md sec. 6 has the
 sensitivity study): cradle angle, radial distance, ratio of roll, modified roll 2C and
