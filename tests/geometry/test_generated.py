@@ -20,7 +20,7 @@ import pytest
 from scipy.interpolate import RectBivariateSpline
 
 from gearcontact.geometry.basic_settings import complementary_pinion_setups, formate_gear_setups
-from gearcontact.geometry.conjugate import conjugate_pinion_flank
+from gearcontact.geometry.conjugate import conjugate_pinion_flank, nominal_pinion_box
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.formate import SIDES, gear_flanks
 from gearcontact.geometry.generated import (EnvelopeSolver, formate_gear_flank,
@@ -290,3 +290,46 @@ def test_gear_sheet_derivatives_match_differences():
         assert np.allclose((rv(u + h, v) - rv(u - h, v)) / (2 * h), p.r_uv, atol=1e-5)
         assert np.allclose((rv(u, v + h) - rv(u, v - h)) / (2 * h), p.r_vv, atol=1e-5)
         assert np.dot(p.n, p.r_u) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_higher_order_blade_flank_second_derivatives_match_the_exact_envelope():
+    # a pinion cut by a blade with cubic and quartic profile terms (s0003 coast, the
+    # size the fit finds): through the Surface contract, the sheet's positions and
+    # second derivatives against central differences of the exact envelope solved at
+    # the points themselves (EnvelopeSolver; its points agree with the sheet's to
+    # 3e-12 mm, 1e-9 asserted). Step 0.01 mm: measured differences <= 9e-7 /mm
+    # (truncation: 2e-5 at a step of 0.05 mm; rounding ~1e-14 / h^2 ~ 1e-10);
+    # 1e-5 /mm required
+    from gearcontact.geometry.setting_fit import apply_corrections
+
+    pair = load_pair("s0003")
+    seed = complementary_pinion_setups(pair)["coast"]
+    cone, _ = nominal_pinion_box(pair.blank, 1.0)
+    s = EnvelopeSolver(seed, pair.blank, cone)
+    u_m, v_m = float(cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
+    l_p = float(s.solve(u_m, v_m, s.initial_guess(u_m, v_m)).l_mm)
+    setup = apply_corrections(seed, {"blade_curvature_per_mm": -0.0012,
+                                     "blade_cubic_per_mm2": 0.009,
+                                     "blade_quartic_per_mm3": -0.005}, pivot_length_mm=l_p)
+    assert setup.blade.higher_order
+    flank, nodes = generated_pinion_flank(setup, pair.blank, n_u=40, n_v=50,
+                                          pinion_face_width_mm=pair.pinion_face_width_mm)
+    exact = EnvelopeSolver(setup, pair.blank, flank.cone)
+    guess = nodes.q[20, 25]
+    h = 0.01
+
+    def r(u, v):
+        return exact.solve(u, v, guess).x_mm
+
+    b = flank.boundary
+    for u, v in ((0.5 * (b.u_root + b.u_tip), 0.5 * (b.v_toe + b.v_heel)),
+                 (b.u_root + 0.3, b.v_heel - 1.0)):
+        p = flank.point(u, v)
+        assert np.allclose(p.r, r(u, v), atol=1e-9)
+        r_uu = (r(u + h, v) - 2 * r(u, v) + r(u - h, v)) / h**2
+        r_vv = (r(u, v + h) - 2 * r(u, v) + r(u, v - h)) / h**2
+        r_uv = (r(u + h, v + h) - r(u + h, v - h) - r(u - h, v + h)
+                + r(u - h, v - h)) / (4 * h * h)
+        assert np.allclose(p.r_uu, r_uu, atol=1e-5)
+        assert np.allclose(p.r_uv, r_uv, atol=1e-5)
+        assert np.allclose(p.r_vv, r_vv, atol=1e-5)

@@ -174,3 +174,97 @@ def test_mirrored_settings_cut_the_mirrored_flanks():
     _, n_left = generated_pinion_flank(mirror_setup(p), mb, **kw)
     assert np.abs(n_left.x_mm - n_right.x_mm @ M).max() < 1e-9
     assert np.abs(n_left.psi_rad + n_right.psi_rad).max() < 1e-10
+
+
+# ------------------------------------------------------------- higher-order blade profile
+
+_HO = dict(blade_angle_deg=20.0, point_radius_mm=60.0, profile_radius_mm=150.0,
+           profile_reference_mm=3.0, profile_cubic_per_mm2=0.01,
+           profile_quartic_per_mm3=0.004)
+
+
+@pytest.mark.parametrize("kind", ["inside", "outside"])
+def test_higher_order_blade_against_quadrature_and_differences(kind):
+    from scipy.integrate import quad
+    b = BladeSettings(kind=kind, **_HO)
+    sig, a0 = b.sigma, math.radians(20.0)
+
+    def alpha(t):   # the defining series, typed independently of the module
+        s = t - 3.0
+        return a0 + s / 150.0 + 0.01 * s**2 / 2 + 0.004 * s**3 / 6
+
+    l = np.linspace(-0.4, 12.0, 11)
+    rho, z, a, da = blade_profile(b, l)
+    # rho, z against adaptive quadrature of rho' = -sigma sin(alpha), z' = cos(alpha)
+    # (quad reaches ~1e-14 mm; 1e-12 mm asserted: 16 Gauss nodes integrate to rounding)
+    q_rho = [60.0 - sig * quad(lambda t: math.sin(alpha(t)), 0.0, x, epsabs=1e-14)[0] for x in l]
+    q_z = [quad(lambda t: math.cos(alpha(t)), 0.0, x, epsabs=1e-14)[0] for x in l]
+    assert np.allclose(rho, q_rho, atol=1e-12, rtol=0) and np.allclose(z, q_z, atol=1e-12, rtol=0)
+    assert np.allclose(a, [alpha(x) for x in l], atol=1e-15, rtol=0)
+    # the exact second derivative d alpha/dl (the profile curvature) against a central
+    # difference of alpha (truncation h^2 c_4 / 6 ~ 7e-11 with h = 1e-4; 1e-8 asserted),
+    # and the first derivatives of the profile against a central difference of rho, z
+    h = 1e-4
+    ap, am = blade_profile(b, l + h)[2], blade_profile(b, l - h)[2]
+    assert np.allclose(da, (ap - am) / (2 * h), atol=1e-8, rtol=0)
+    rp, zp, _, _ = blade_profile(b, l + h)
+    rm, zm, _, _ = blade_profile(b, l - h)
+    assert np.allclose((rp - rm) / (2 * h), -sig * np.sin(a), atol=1e-8, rtol=0)
+    assert np.allclose((zp - zm) / (2 * h), np.cos(a), atol=1e-8, rtol=0)
+    # the normal of blade_point is normal to the profile (central difference, 1e-8)
+    x_p, _ = blade_point(b, l + h, 0.3)
+    x_m, _ = blade_point(b, l - h, 0.3)
+    _, n = blade_point(b, l, 0.3)
+    assert np.abs(np.einsum("ij,ij->i", (x_p - x_m) / (2 * h), n)).max() < 1e-8
+
+
+def test_higher_order_terms_vanishing_give_the_circle():
+    # a cubic term of 1e-300 takes the quadrature path: it equals the closed-form
+    # circle to rounding (1e-13 mm over 12 mm of blade)
+    circ = BladeSettings(kind="inside", **{**_HO, "profile_cubic_per_mm2": 0.0,
+                                           "profile_quartic_per_mm3": 0.0})
+    tiny = dataclasses.replace(circ, profile_cubic_per_mm2=1e-300)
+    assert tiny.higher_order and not circ.higher_order
+    l = np.linspace(0.0, 12.0, 13)
+    assert np.allclose(np.array(blade_profile(tiny, l)), np.array(blade_profile(circ, l)),
+                       atol=1e-13, rtol=0)
+
+
+def test_blade_through_point_keeps_the_profile_shape():
+    from gearcontact.geometry.machine import blade_through_point
+    b = BladeSettings(kind="outside", **_HO)
+    placed = blade_through_point(b, rho_mm=61.2, z_mm=4.5)
+    rho, z, a, da = (float(x) for x in blade_profile(placed, placed.profile_reference_mm))
+    assert (rho, z) == (pytest.approx(61.2, abs=1e-12), pytest.approx(4.5, abs=1e-12))
+    # the same angle and curvature at the reference: the profile slid, not reshaped
+    assert a == pytest.approx(math.radians(20.0), abs=1e-15)
+    assert da == pytest.approx(1.0 / 150.0, abs=1e-15)
+
+
+@pytest.mark.parametrize("key, value, allowed", [
+    ("profile_cubic_per_mm2", 1.5, "1"), ("profile_quartic_per_mm3", -2.0, "1"),
+    ("profile_quartic_per_mm3", float("inf"), "finite")])
+def test_higher_order_terms_out_of_range_name_the_key(key, value, allowed):
+    with pytest.raises(InputRangeError) as err:
+        BladeSettings(kind="inside", blade_angle_deg=20.0, point_radius_mm=60.0,
+                      **{key: value}, where="blade.pinion.coast")
+    assert f"blade.pinion.coast.{key}" in str(err.value) and allowed in str(err.value)
+
+
+def test_higher_order_blade_tables_round_trip_and_formate_refusal():
+    from gearcontact.geometry.generated import formate_gear_flank
+    from gearcontact.geometry.machine import setup_to_tables
+    pair = _f2_machine_pair()
+    # written only when non-zero: a circular blade's table is unchanged
+    assert "profile_quartic_per_mm3" not in pair_to_toml(pair)
+    ho = dataclasses.replace(pair.machine[3].blade, profile_quartic_per_mm3=2e-4,
+                             profile_cubic_per_mm2=-1e-3)
+    machine = pair.machine[:3] + (dataclasses.replace(pair.machine[3], blade=ho),)
+    ho_pair = dataclasses.replace(pair, machine=machine + pair.machine[4:])
+    assert setup_to_tables(machine[3])[1]["profile_quartic_per_mm3"] == 2e-4
+    back = parse_pair(tomllib.loads(pair_to_toml(ho_pair)))
+    assert back.machine == ho_pair.machine
+    gear = dataclasses.replace(pair.machine[0], blade=dataclasses.replace(
+        pair.machine[0].blade, profile_quartic_per_mm3=1e-4))
+    with pytest.raises(InputRangeError, match=r"blade\.gear\.drive\.profile_quartic_per_mm3"):
+        formate_gear_flank(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)

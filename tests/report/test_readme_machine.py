@@ -1,5 +1,11 @@
 """The README's machine-settings lines, verbatim, in a real process (issue 27).
 
+``gearcontact design --pair s0003 --machine-settings --out mach_s0003/`` fits the pinion
+settings that cut s0003's ease-off (slow: ~20 s; the default suite parses the line with
+the CLI's own parser). Truths: its residual table is the library's measured one
+(tests/geometry/test_setting_fit.py: coast 0.560 / 0.119 um max / RMS) and the written
+pair loads back with settings for all four flanks, the coast blade with its cubic term.
+
 ``gearcontact design --pair examples/iso23509_f2_spiral_bevel.toml --machine-settings
 --out mach/`` writes the standard settings of the F.2 pair; ``gearcontact analyze --pair
 mach/machine_settings.toml --out results/f2_machine`` runs the main job on the flanks cut
@@ -30,7 +36,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def _readme_lines() -> list[str]:
-    design = [c for c in readme_commands() if "--machine-settings" in c]
+    design = [c for c in readme_commands()
+              if "--machine-settings" in c and "iso23509_f2_spiral_bevel" in c]
     analyze = [c for c in readme_commands()
                if c.startswith("gearcontact analyze") and "machine_settings.toml" in c]
     assert len(design) == 1 and len(analyze) == 1, (design, analyze)
@@ -66,3 +73,34 @@ def test_readme_machine_settings_lines(tmp_path):
     lte = json.loads((out / "lte.json").read_text())
     for rec in (lte if isinstance(lte, list) else [lte]):
         assert rec["converged"], rec.get("unconverged_phases")
+
+
+def _s0003_line() -> str:
+    lines = [c for c in readme_commands() if c.startswith("gearcontact design --pair s0003 ")
+             and "--machine-settings" in c]
+    assert len(lines) == 1, lines
+    return lines[0]
+
+
+def test_readme_s0003_machine_settings_line_parses():
+    # the line as written, through the CLI's parser: the built-in pair, the fit, the
+    # output directory (running it is the slow test below)
+    from gearcontact.cli import build_parser
+
+    args = build_parser().parse_args(shlex.split(_s0003_line())[1:])
+    assert (args.command, args.pair, args.machine_settings) == ("design", "s0003", True)
+    assert args.out is not None and Path(args.out) == Path("mach_s0003")
+
+
+@pytest.mark.slow
+def test_readme_s0003_machine_settings_line(tmp_path):
+    proc = _run(_s0003_line(), tmp_path)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    # drive: the conjugate seed (0.000 um); coast: the measured residual of the fit
+    assert "| drive | 0.00 | 0.000 | 0.000 |" in proc.stdout
+    assert "| coast | 22.62 | 0.560 | 0.119 |" in proc.stdout
+    pair = load_pair(tmp_path / "mach_s0003" / "machine_settings.toml")
+    assert len(pair.machine) == 4
+    coast = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "coast"))
+    assert coast.blade.profile_cubic_per_mm2 != 0.0
+    assert (tmp_path / "mach_s0003" / "machine_settings_residual.svg").is_file()

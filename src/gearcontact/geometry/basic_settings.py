@@ -35,7 +35,6 @@ import dataclasses
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..validation import InputRangeError, check_range
 from .conjugate import nominal_pinion_box
@@ -43,7 +42,7 @@ from .cutter import place_cutter
 from .formate import SIDES
 from .generated import EnvelopeSolver
 from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings, MachineSetup,
-                      blade_profile, mirror_setup)
+                      blade_profile, blade_through_point, mirror_setup)
 
 __all__ = ["complementary_pinion_setups", "crown_pinion_setups", "crown_profile",
            "formate_gear_setups", "generated_gear_setups", "mismatch_radius",
@@ -177,16 +176,8 @@ def crown_profile(blade: BladeSettings, *, radius_mm: float, at_length_mm: float
     """A circular blade profile of ``radius_mm`` tangent to the straight ``blade`` at its
     arc length ``at_length_mm`` from the tip (same point, same normal there)."""
     rho_s, z_s, _, _ = blade_profile(blade, at_length_mm)
-    trial = dataclasses.replace(blade, profile_radius_mm=radius_mm)
-
-    def depth(l_ref):
-        return float(blade_profile(dataclasses.replace(trial, profile_reference_mm=l_ref),
-                                   l_ref)[1]) - float(z_s)
-
-    l_ref = brentq(depth, 0.0, 3.0 * at_length_mm + 1.0, xtol=1e-14)
-    curved = dataclasses.replace(trial, profile_reference_mm=l_ref)
-    rho_c = float(blade_profile(curved, l_ref)[0])
-    return dataclasses.replace(curved, point_radius_mm=blade.point_radius_mm + float(rho_s) - rho_c)
+    return blade_through_point(dataclasses.replace(blade, profile_radius_mm=radius_mm),
+                               rho_mm=float(rho_s), z_mm=float(z_s))
 
 
 def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,

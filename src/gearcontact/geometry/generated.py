@@ -103,10 +103,11 @@ def formate_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
         raise InputRangeError(f"blade.gear.{setup.side}.kind", setup.blade.kind,
                               f"'{want}' (the gear {setup.side} flank is "
                               f"{'convex' if want == 'inside' else 'concave'})")
-    if setup.blade.profile_radius_mm != 0.0:
-        raise InputRangeError(f"blade.gear.{setup.side}.profile_radius_mm",
-                              setup.blade.profile_radius_mm,
-                              "0 for a formate gear (curved formate blades are not modelled)")
+    for key in ("profile_radius_mm", "profile_cubic_per_mm2", "profile_quartic_per_mm3"):
+        if getattr(setup.blade, key) != 0.0:
+            raise InputRangeError(f"blade.gear.{setup.side}.{key}", getattr(setup.blade, key),
+                                  "0 for a formate gear (curved formate blades are not "
+                                  "modelled)")
     tip, axis = _cutter_in_body(setup, blank)
     d = blank.dedendum_gear_mm
     centre = tip - d * axis          # the pitch plane of FormateFlank, h = 0

@@ -84,6 +84,8 @@ the sign table): with them all four flanks are cut from cutter and machine setti
     edge_radius_mm = 0.1                # default 0
     profile_radius_mm = 0.0             # 0 = straight (default)
     profile_reference_mm = 0.0          # where blade_angle_deg holds (curved blade)
+    profile_cubic_per_mm2 = 0.0         # c_3, higher-order profile (default 0; also
+                                        #   profile_quartic_per_mm3, c_4)
 
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`

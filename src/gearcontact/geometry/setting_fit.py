@@ -21,26 +21,33 @@ over the full flank is then measured on a dense grid of the final generated shee
 (:func:`flank_deviation_um`).
 
 Parameters (:data:`PARAMETERS`): the machine settings of :class:`~.machine.MachineSettings`
-by name, the modified roll 2C / 6D / 24E, the helical motion V_1, and three blade
+by name, the modified roll 2C / 6D / 24E, the helical motion V_1, and five blade
 parameters pivoting about the blade point P that generates the mean node at the seed
 (so that a blade change does not move the mean point): ``blade_angle_deg`` (profile
-angle at P), ``blade_curvature_per_mm`` (``1/r_b``, 0 = straight) and
-``blade_radius_mm`` (the blade's radius at P: a cutter radius change with the cutter
-centre kept). The cradle angle with the swivel kept turns the whole generating gear
-about the cradle axis, which for a linear roll is a rigid turn of the generated flank
-about the work axis (``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``):
-it sets the flank's angular position (tooth thickness) and belongs in every subset.
+angle at P), ``blade_curvature_per_mm`` (``1/r_b``, 0 = straight),
+``blade_cubic_per_mm2`` and ``blade_quartic_per_mm3`` (the higher-order profile terms
+``c_3``, ``c_4`` of :class:`~.machine.BladeSettings` at P) and ``blade_radius_mm`` (the
+blade's radius at P: a cutter radius change with the cutter centre kept). The cradle
+angle with the swivel kept turns the whole generating gear about the cradle axis,
+which for a linear roll is a rigid turn of the generated flank about the work axis
+(``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's
+angular position (tooth thickness) and belongs in every subset.
 
 The default subset :data:`DEFAULT_PARAMETERS` (docs/machine_settings.md sec. 6 has the
 sensitivity study): cradle angle, radial distance, ratio of roll, modified roll 2C and
-6D, blade angle and blade curvature. To first order a generated flank moves in six
-well-separated shapes (a rigid turn and five ease-off-like terms: the column-normalized
-sensitivity matrix of 14 candidates has 6 singular values above 0.18, the 7th at
-7.6e-3 on s0003); these seven span them at a condition of ~10^3, the settings a summary
-sheet corrects first. Tilt, swivel, machine root, MCTB, sliding base, blank offset and
-the blade radius duplicate these directions: on s0003 the best subsets of 8 lower the
-linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, and tilt, swivel or
-the blade radius added to the seven leave 1.09-1.26 um at conditions of 2e4-4e4.
+6D, blade angle, blade curvature and the blade's cubic profile term. To first order a
+generated flank moves in six well-separated shapes (a rigid turn and five
+ease-off-like terms: the column-normalized sensitivity matrix of 14 candidates without
+the higher-order blade terms has 6 singular values above 0.18, the 7th at 7.6e-3 on
+s0003); the first seven span them at a condition of ~10^3, the settings a summary sheet
+corrects first. They leave a fourth-order profile form that no machine setting cuts;
+the blade's cubic term (a curvature varying along the blade) does: on s0003 coast
+1.23 -> 0.56 um max at a condition of 741 -> 809 (the quartic term: 0.69 um at 2.0e3;
+both: 0.52 um at 2.0e3). Tilt, swivel, machine root, MCTB, sliding base, blank offset
+and the blade radius duplicate the first seven's directions: on s0003 the best subsets
+of 8 lower the linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, and
+tilt, swivel or the blade radius added to the seven leave 1.09-1.26 um at conditions
+of 2e4-4e4.
 
 References
 ----------
@@ -72,7 +79,8 @@ from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
 from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
-from .machine import BladeSettings, MachineSetup, blade_profile, mirror_setup
+from .machine import (BladeSettings, MachineSetup, blade_profile, blade_through_point,
+                      mirror_setup)
 
 __all__ = ["DEFAULT_PARAMETERS", "EaseOffSettings", "PARAMETERS", "SettingFit", "SideResidual",
            "apply_corrections", "easeoff_machine_pair",
@@ -98,40 +106,53 @@ PARAMETERS = {
     "blade_angle_deg": ("deg", 1e-2),
     "blade_curvature_per_mm": ("1/mm", 1e-4),
     "blade_radius_mm": ("mm", 1e-3),
+    "blade_cubic_per_mm2": ("1/mm^2", 1e-3),
+    "blade_quartic_per_mm3": ("1/mm^3", 1e-2),
 }
 #: The default subset (module docstring).
 DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
                       "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
-                      "blade_angle_deg", "blade_curvature_per_mm")
+                      "blade_angle_deg", "blade_curvature_per_mm", "blade_cubic_per_mm2")
 _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
          "modified_roll_24e_per_rad3": 2}
 _HELICAL = {"helical_motion_mm_per_rad": 0}
-_BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm")
+_BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm",
+          "blade_cubic_per_mm2", "blade_quartic_per_mm3")
 _FD_STEP = 1e-3          # forward-difference step of the scaled variables
 
 
 @dataclass(frozen=True)
 class _Pivot:
     """The blade point P that generates the seed's mean node: radius and depth in the
-    cutter frame (mm) and the seed's profile angle (rad) and curvature (1/mm) there."""
+    cutter frame (mm) and the seed's profile angle (rad), curvature (1/mm) and cubic
+    term ``d^2 alpha/dl^2`` (1/mm^2) there."""
 
     rho_mm: float
     z_mm: float
     alpha_rad: float
     curvature_per_mm: float
+    cubic_per_mm2: float = 0.0
 
 
 def _pivot(setup: MachineSetup, l_mm: float) -> _Pivot:
-    rho, z, alpha, k = (float(a) for a in blade_profile(setup.blade, l_mm))
-    return _Pivot(rho, z, alpha, k)
+    b = setup.blade
+    rho, z, alpha, k = (float(a) for a in blade_profile(b, l_mm))
+    c3 = b.profile_cubic_per_mm2 + b.profile_quartic_per_mm3 * (l_mm - b.profile_reference_mm)
+    return _Pivot(rho, z, alpha, k, c3)
 
 
 def _blade_through(blade: BladeSettings, pivot: _Pivot, *, alpha: float, k: float,
-                   rho: float) -> BladeSettings:
+                   rho: float, c3: float = 0.0, c4: float = 0.0) -> BladeSettings:
     """The blade of ``blade``'s kind and edge through the point (``rho``, ``pivot.z``) of
-    the cutter frame with profile angle ``alpha`` and curvature ``k`` there
-    (:func:`~.machine.blade_profile`: ``z(l) = (sin alpha - sin(alpha - k l)) / k``)."""
+    the cutter frame with profile angle ``alpha``, curvature ``k`` and higher-order
+    terms ``c3``, ``c4`` there (:func:`~.machine.blade_profile`; circular blades in
+    closed form, ``z(l) = (sin alpha - sin(alpha - k l)) / k``)."""
     sig, z = blade.sigma, pivot.z_mm
+    if c3 != 0.0 or c4 != 0.0:
+        shape = dataclasses.replace(blade, blade_angle_deg=math.degrees(alpha),
+                                    profile_radius_mm=0.0 if k == 0.0 else 1.0 / k,
+                                    profile_cubic_per_mm2=c3, profile_quartic_per_mm3=c4)
+        return blade_through_point(shape, rho_mm=rho, z_mm=z)
     if k == 0.0:
         l_p = z / math.cos(alpha)
         return dataclasses.replace(blade, blade_angle_deg=math.degrees(alpha),
@@ -185,7 +206,10 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
         blade = _blade_through(blade, p,
                                alpha=p.alpha_rad + math.radians(get("blade_angle_deg", 0.0)),
                                k=p.curvature_per_mm + get("blade_curvature_per_mm", 0.0),
-                               rho=p.rho_mm + get("blade_radius_mm", 0.0))
+                               rho=p.rho_mm + get("blade_radius_mm", 0.0),
+                               c3=p.cubic_per_mm2 + get("blade_cubic_per_mm2", 0.0),
+                               c4=(blade.profile_quartic_per_mm3
+                                   + get("blade_quartic_per_mm3", 0.0)))
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 
