@@ -51,14 +51,17 @@ def test_mesh_table(pair):
         assert np.all((mesh.valid & (mesh.opening_mm == 0.0)).any(axis=0))
 
 
-def test_static_point_is_the_loaded_te(pair, model):
+@pytest.mark.parametrize("bending", [False, True])
+def test_static_point_is_the_loaded_te(pair, model, bending):
     """The table interpolates the LCP's rotation between ladder torques; at the nominal
     torque (a ladder point) the static rotation at the first phase is the loaded TE's
     |TE - TE0| there, to the bisection (1e-15 relative) and the table's T^(2/3) read-back
-    (1e-9)."""
+    (1e-9): rigid teeth (the twin's default) and with tooth bending (``bending=True``)."""
+    if bending:
+        model = cylindrical_model(pair, torque_nm=TORQUE_NM, phases=7, bending=True)
     theta, _ = static_rotation(model)
     cyc = cylindrical_mesh_cycle(pair, phases=7)
-    lte = cylindrical_loaded_te(pair, TORQUE_NM, cycle=cyc, cells_along=40)
+    lte = cylindrical_loaded_te(pair, TORQUE_NM, cycle=cyc, cells_along=40, bending=bending)
     want = abs(lte.te0_arcsec[0] - lte.lte_arcsec[0]) / ARCSEC_PER_RAD
     assert theta == pytest.approx(want, rel=1e-9)
 
@@ -70,10 +73,8 @@ def test_first_mesh_resonance_against_iso_n_e1(pair, model):
     members and couples them to motor and load through the shafts; the standard takes
     the gear's m* as u^2 times the pinion's geometric factor: measured -4.2 %); and
     against n_E1 with Method B's c_gamma_alpha: the ratio is sqrt(c_t / c_gamma_alpha)
-    within the same 5 %. With tooth bending (the loaded TE's default) the twin's mesh
-    stiffness is of the standard's size, so n_E1 itself is met within 15 % (the bending
-    model is up to 1.24x the standard's empirical stiffness on the ISO spur check,
-    sqrt(1.24) = 1.11, plus the 5 % above; measured 0.97; rigid teeth gave 1.37)."""
+    within the same 5 % (rigid teeth are stiffer than the standard's tooth with bending
+    and foundation: 36 against 17.6 N/(mm·µm), ratio 1.37)."""
     g = pair.geometry
     modes = linearized_modes(model)
     _, _, k_th = linear_matrices(model)
@@ -96,7 +97,7 @@ def test_first_mesh_resonance_against_iso_n_e1(pair, model):
     n_e1 = resonance_speed_rpm(pinion_teeth=pair.pinion_teeth, c_gamma_n_per_mm_um=c_ga,
                                reduced_mass_kg_per_mm=m_red)
     assert n_twin / n_e1 == pytest.approx(math.sqrt(c_t / c_ga), rel=5e-2)
-    assert n_twin / n_e1 == pytest.approx(1.0, rel=0.15)
+    assert 1.0 < n_twin / n_e1 < math.sqrt(10.0)
 
 
 def test_preview_backends_refused_before_work(pair):

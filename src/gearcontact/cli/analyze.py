@@ -2,9 +2,9 @@
 torques and the physics-direct preview, written to one directory with ``summary.md``.
 
 A cylindrical pair (``kind = "cylindrical"``) gets TE0, the loaded TE at
-``--lte-torque`` over ``--lte-phases`` phases (rigid teeth), the Harris map, mesh
-stiffness, pressure and the preview's line chain per phase and loaded pair
-(:mod:`gearcontact.report.analyze_cylindrical`; docs/cylindrical.md sec. 9).
+``--lte-torque`` over ``--lte-phases`` phases (tooth bending; ``--rigid``: rigid
+teeth), the Harris map, mesh stiffness, pressure and the preview's line chain per
+phase and loaded pair (:mod:`gearcontact.report.analyze_cylindrical`; docs/cylindrical.md sec. 9).
 """
 
 from __future__ import annotations
@@ -71,7 +71,8 @@ def check(args) -> None:
 
 
 def check_cylindrical(args) -> None:
-    """The options of a cylindrical pair: one torque (``--lte-torque``), its teeth rigid."""
+    """The options of a cylindrical pair: one torque (``--lte-torque``); tooth bending
+    unless ``--rigid``."""
     if list(args.torques) != list(DEFAULT_TORQUES_NM):
         raise InputRangeError("--torques", args.torques, "not given for a cylindrical pair (the "
                                                          "loaded TE and the preview run at "
@@ -87,10 +88,11 @@ def check_cylindrical(args) -> None:
 def run_cylindrical(args) -> int:
     res = run_cylindrical_analysis(args.gear_pair, out_dir=args.out, torque_nm=args.lte_torque,
                                    phases=args.lte_phases, side=args.side,
-                                   figures=not args.no_figures)
+                                   figures=not args.no_figures, bending=not args.rigid)
     run_timings(args, **res.timings_s)
     h = res.summary
-    print(f"{res.pair.name} {args.side}, {h['torque_nm']:g} N·m, rigid teeth: TE0 p-p "
+    teeth = "tooth bending" if h["teeth"] == "bending" else "rigid teeth"
+    print(f"{res.pair.name} {args.side}, {h['torque_nm']:g} N·m, {teeth}: TE0 p-p "
           f"{h['te0_pp_arcsec']:.2f} / loaded TE p-p {h['lte_pp_arcsec']:.2f} arcsec, mesh "
           f"stiffness {h['mesh_stiffness_n_per_mm_um']['mean']:.1f} N/(mm·µm), p_max LCP "
           f"{h['lcp_max_pressure_mpa']:.0f} / preview {h['preview_max_pressure_mpa']['golden']:.0f}"

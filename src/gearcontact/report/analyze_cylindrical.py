@@ -107,7 +107,7 @@ def _plot_preview(pv: CylindricalPreview, lte: CylindricalLoadedTE, path, *, tit
 
     phi = np.degrees(pv.stencils.phi1_rad)
     fig, ax = plt.subplots(figsize=(7.0, 4.0))
-    ax.plot(phi, lte.max_pressure_mpa, "k-", label="LCP peak (rigid teeth)")
+    ax.plot(phi, lte.max_pressure_mpa, "k-", label="LCP peak (tooth bending)" if lte.bending else "LCP peak (rigid teeth)")
     for b, style in zip(BACKENDS, ("C0--", "C1:")):
         ax.plot(phi, pv.max_pressure_mpa(b), style, label=f"preview {b} (line chain)")
     ax.set_xlabel("pinion phase, deg")
@@ -143,7 +143,8 @@ def _headline(cycle, lte, harris, pv, lte_json) -> dict:
         "harris_best_tip_relief_um": {f"{t:g}": float(harris.tip_reliefs_um[r])
                                       for t, r in zip(harris.torques_nm, best)},
         "converged": bool(lte.converged and harris.converged),
-        "edge_touch": bool(lte.edge_touch or harris.edge_touch), "teeth": "rigid"}
+        "edge_touch": bool(lte.edge_touch or harris.edge_touch),
+        "teeth": "bending" if lte.bending else "rigid"}
 
 
 def _summary_md(pair, side, facing, h, harris) -> str:
@@ -152,7 +153,9 @@ def _summary_md(pair, side, facing, h, harris) -> str:
     pp = h["pitch_phase"]
     lines = [
         f"# {pair.name}: cylindrical pair, {side} ({facing} flanks)", "",
-        "Rigid teeth (the Love half-space alone); docs/cylindrical.md.", "",
+        ("Tooth bending of both teeth beside the Love half-space (docs/bending.md sec. 9)"
+         if h["teeth"] == "bending" else "Rigid teeth (the Love half-space alone)")
+        + "; docs/cylindrical.md.", "",
         "| quantity | value |", "|---|---|",
         f"| TE0 p-p | {h['te0_pp_arcsec']:.3f} arcsec |",
         f"| gear torque, F_n | {h['torque_nm']:g} N·m, {h['normal_load_n']:.1f} N |",
@@ -190,7 +193,7 @@ def _summary_md(pair, side, facing, h, harris) -> str:
 
 def run_cylindrical_analysis(pair: CylindricalPair, *, out_dir, torque_nm: float = 64.5,
                              phases: int = 61, side: str = "drive", cells: int = 40,
-                             figures: bool = True) -> CylindricalAnalysis:
+                             figures: bool = True, bending: bool = True) -> CylindricalAnalysis:
     """TE0, loaded TE, Harris map, mesh stiffness, pressure and the preview of a
     cylindrical pair into ``out_dir`` (module docstring).
 
@@ -209,6 +212,8 @@ def run_cylindrical_analysis(pair: CylindricalPair, *, out_dir, torque_nm: float
         LCP cells along the face (>= 4).
     figures : bool
         Write the figures.
+    bending : bool
+        Tooth bending in the loaded TE and the Harris map (default), else rigid teeth.
     """
     if side not in FACING_OF_SIDE:
         raise InputRangeError("side", side, f"one of {sorted(FACING_OF_SIDE)}")
@@ -220,10 +225,11 @@ def run_cylindrical_analysis(pair: CylindricalPair, *, out_dir, torque_nm: float
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
     write_cylindrical_tca_outputs(cycle, pair, out, side=side, figures=figures)
     times["tca_cpu_s"], t = time.process_time() - t, time.process_time()
-    lte = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, cells_along=cells)
+    lte = cylindrical_loaded_te(pair, torque_nm, cycle=cycle, cells_along=cells,
+                                bending=bending)
     times["lte_cpu_s"], t = time.process_time() - t, time.process_time()
     harris = harris_map(pair, harris_torques_nm(pair), harris_tip_reliefs_um(pair),
-                        facing=facing, phases=phases, cells_along=cells)
+                        facing=facing, phases=phases, cells_along=cells, bending=bending)
     times["harris_map_cpu_s"], t = time.process_time() - t, time.process_time()
     lte_json = write_cylindrical_lte_outputs(lte, harris, pair, out, side=side,
                                              figures=figures)

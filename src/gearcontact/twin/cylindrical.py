@@ -9,8 +9,8 @@ motion. The motion sign ``m`` is the sign of ``d g / d phi2`` (the gear lags by
 ``theta`` under load, so ``TE = TE0_env - m theta`` as the loaded TE of
 :func:`gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` gives it).
 
-Contact law: the ``table`` backend, the loaded TE (LCP, rigid teeth) over the phase at a
-torque ladder (:func:`cylindrical_torque_table`, the conventional twin's input). The
+Contact law: the ``table`` backend, the loaded TE (LCP; rigid teeth, or with tooth
+bending as the twin's ``bending`` option) over the phase at a torque ladder (:func:`cylindrical_torque_table`, the conventional twin's input). The
 preview backends (``reference``, ``golden``, ``rtl``, ``soc``) are refused for a
 cylindrical pair: the twin's compiled law is the Hertzian point contact
 ``d = kappa W^(2/3)``, while the preview on these flanks answers in line mode (section
@@ -78,9 +78,10 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                              mesh: MeshTable, torque_nm: float, *, ladder=DEFAULT_LADDER,
-                             cells_along: int = 40) -> TorqueTable:
-    """The loaded TE (LCP, rigid teeth) at ``ladder x torque_nm``, as the mesh rotation
-    ``theta = |TE - TE0| `` (rad) per phase in the motion order of ``mesh``."""
+                             cells_along: int = 40, bending: bool = False) -> TorqueTable:
+    """The loaded TE (LCP; rigid teeth, or with tooth bending when ``bending``) at
+    ``ladder x torque_nm``, as the mesh rotation ``theta = |TE - TE0| `` (rad) per phase
+    in the motion order of ``mesh``."""
     t = check_positive("torque_nm (N·m)", torque_nm)
     lad = np.asarray(ladder, float)
     if lad.ndim != 1 or lad.size < 2 or not (np.all(lad > 0) and np.all(np.diff(lad) > 0)):
@@ -89,7 +90,8 @@ def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     theta = np.zeros((len(order), lad.size))
     load = np.zeros_like(theta)
     for i, f in enumerate(lad):
-        res = cylindrical_loaded_te(pair, f * t, cycle=cycle, cells_along=cells_along)
+        res = cylindrical_loaded_te(pair, f * t, cycle=cycle, cells_along=cells_along,
+                                    bending=bending)
         if not res.converged:
             raise CheckFailed(f"loaded TE at {f * t:g} N·m did not converge")
         # TE = TE0 - m theta (module docstring)
@@ -101,10 +103,12 @@ def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
 
 def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str = "table",
                       drivetrain: DrivetrainParams | None = None, side: str = "drive",
-                      phases: int = 61, table_cells: int = 40) -> TwinModel:
+                      phases: int = 61, table_cells: int = 40,
+                      bending: bool = False) -> TwinModel:
     """Cycle, mesh table and loaded-TE table of ``pair``, then
     :func:`~.model.build_model` (module docstring; the reverse flank is the loaded
-    law mirrored about the backlash).
+    law mirrored about the backlash). ``bending``: the loaded-TE table with the shell
+    bending of both teeth (rigid teeth by default, as the bevel twin's ``bending``).
 
     Raises
     ------
@@ -124,7 +128,8 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
         raise InputRangeError("side", side, "'drive' or 'coast'")
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
     mesh = cylindrical_mesh_table(pair, cycle, side=side)
-    table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells)
+    table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,
+                                     bending=bending)
     return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
                        table=table, curvatures="exact",
                        reverse_note="loaded side's law mirrored about backlash_mm (the "
