@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -484,14 +485,27 @@ def easeoff_toml(synth: dict, *, pair_name: str) -> str:
     return "\n".join(out)
 
 
-def synthesize_pair(pair: GearPair, *, sides=SIDES, targets: SynthesisTargets = SynthesisTargets(),
+def synthesize_pair(pair: GearPair, *, sides=SIDES,
+                    targets: SynthesisTargets | Mapping = SynthesisTargets(),
                     flanks=None) -> tuple[GearPair, dict]:
     """``pair`` with the ease-off of each of ``sides`` synthesized, and the
-    :class:`Synthesis` of each side."""
+    :class:`Synthesis` of each side.
+
+    ``targets`` is one :class:`SynthesisTargets` for every side or a mapping side ->
+    targets (a path angle of each side: the sides' reachable ranges differ, s0003 drive
+    [-19.7, 84.5] deg, coast [-82.1, -25.0] deg). Every side's path angle is checked
+    before any TCA (:func:`~.path_reach.check_path_angle`).
+    """
+    per_side = targets if isinstance(targets, Mapping) else dict.fromkeys(sides, targets)
+    missing = [s for s in sides if s not in per_side]
+    if missing:
+        raise InputRangeError("targets", sorted(per_side), f"a mapping with the sides {sides}")
     if flanks is None:
         flanks = build_flanks(pair)
-    check_path_angle(pair, targets=targets, flanks=flanks, sides=sides)   # every side first
-    done = {s: synthesize_easeoff(pair, side=s, targets=targets, flanks=flanks) for s in sides}
+    for s in sides:                                                    # every side first
+        check_path_angle(pair, targets=per_side[s], flanks=flanks, sides=(s,))
+    done = {s: synthesize_easeoff(pair, side=s, targets=per_side[s], flanks=flanks)
+            for s in sides}
     return dataclasses.replace(pair, **{f"easeoff_{s}": r.coefficients
                                         for s, r in done.items()}), done
 
