@@ -79,8 +79,8 @@ def register(sub) -> None:
                    help="with --synthesize-easeoff: paint-ellipse length over the gear face "
                         "width (default 0.35; practice 1/3 to 1/2)")
     p.add_argument("--path-angle-deg", type=float, default=None,
-                   help="with --synthesize-easeoff: contact-path angle from the lengthwise "
-                        "direction on both sides, deg (default free, bias 0); the angles "
+                   help="with --synthesize-easeoff: angle of the contact path on the gear "
+                        "flank from the lengthwise direction on both sides, deg (default free, bias 0); the angles "
                         "the synthesis reaches on the pair are checked before any TCA (an "
                         "error names them)")
     for side in SIDES:

@@ -104,7 +104,8 @@ class SynthesisTargets:
     pattern_length_ratio : float
         Paint-ellipse major axis 2a over the gear face width, in [0.1, 0.8].
     path_angle_deg : float or None
-        Contact-path direction at the bearing centre from the lengthwise direction,
+        Direction of the contact path on the gear flank at the bearing centre from the
+        lengthwise direction,
         deg in (-90, 90] (right-handed flank frame, as the ellipse angle of
         :class:`~gearcontact.tca.design_point.DesignPoint`); None: not prescribed
         (bias drawn weakly towards 0).
@@ -493,7 +494,7 @@ def synthesize_pair(pair: GearPair, *, sides=SIDES,
 
     ``targets`` is one :class:`SynthesisTargets` for every side or a mapping side ->
     targets (a path angle of each side: the sides' reachable ranges differ, s0003 drive
-    [-19.7, 84.5] deg, coast [-82.1, -25.0] deg). Every side's path angle is checked
+    [-7.8, 42.9] deg, coast [-6.8, 43.6] deg). Every side's path angle is checked
     before any TCA (:func:`~.path_reach.check_path_angle`).
     """
     per_side = targets if isinstance(targets, Mapping) else dict.fromkeys(sides, targets)
