@@ -534,6 +534,11 @@ class PreparedPair:
     synthesis: Synthesis | None = None
     flanks: FlankSet | None = None
 
+    def flank_set(self) -> FlankSet:
+        """The flanks of :attr:`pair`: those the synthesis built (its ease-off applied),
+        else ``build_flanks(pair)``, so that a command builds them once."""
+        return self.flanks if self.flanks is not None else build_flanks(self.pair)
+
     @property
     def synthesized(self) -> bool:
         """The ease-off of ``side`` was synthesized (the pair had no table)."""
