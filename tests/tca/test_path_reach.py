@@ -134,3 +134,26 @@ def test_the_synthesis_meets_angles_at_the_edges_of_the_range(edge):
     assert max(abs(m) for m in misses) <= 1.0, misses
     assert abs((dp.path_angle_deg - angle + 90.0) % 180.0 - 90.0) <= syn.targets.tol_angle_deg
     assert np.isfinite(dp.path_angle_deg)
+
+
+def test_synthesize_pair_checks_each_side_against_its_own_range(s0003_centred, no_tca):
+    """Targets per side (a mapping): each side's path angle is checked against that
+    side's range before any TCA, the error naming the side; a mapping without a side
+    asked for is refused before any work."""
+    from gearcontact.tca.synthesis import synthesize_pair
+
+    pair, flanks = s0003_centred
+    ranges = {s: path_angle_range(pair, side=s, targets=SynthesisTargets(), flanks=flanks)
+              for s in ("drive", "coast")}
+    inside = 0.5 * (ranges["drive"].lo_deg + ranges["drive"].hi_deg)
+    outside = round(ranges["coast"].contact_line_deg, 1)
+    assert ranges["drive"].contains(inside) and not ranges["coast"].contains(outside)
+    with pytest.raises(InputRangeError) as err:
+        synthesize_pair(pair, flanks=flanks,
+                        targets={"drive": SynthesisTargets(path_angle_deg=inside),
+                                 "coast": SynthesisTargets(path_angle_deg=outside)})
+    assert str(err.value).startswith(
+        f"path_angle_deg = {outside:g} is outside the allowed range: "
+        f"{ranges['coast'].describe()} on the coast side of {pair.name}")
+    with pytest.raises(InputRangeError, match="targets"):
+        synthesize_pair(pair, flanks=flanks, targets={"drive": SynthesisTargets()})
