@@ -41,7 +41,7 @@ TCA has edge contact (the s0003 tip-edge preset's own path angle is met).
 The reachable path angles are the image of that ``psi`` interval: one arc of directions,
 :class:`PathAngleRange`. Measured (docs/synthesis.md): over the reachable designs of
 s0003 and the F.3 example the closed form gives the TCA's path angle on the gear flank
-to 0.3 deg; on F.3 drive the synthesis (TCA in the loop) from the closed-form start meets
+to 0.4 deg; on F.3 drive the synthesis (TCA in the loop) from the closed-form start meets
 0, 30 and 60 deg with crownings and bias within 1-5 % of the closed form's.
 
 References
