@@ -38,6 +38,9 @@ KEPT = {
     "gearcontact.tca.solve": {"ARCSEC_PER_RAD", "EDGE_TE_LIMIT_ARCSEC", "ContactGuess",
                               "MatingPoint", "TcaPath", "EdgeContact",
                               "TcaConvergenceError", "solve_mating_point"},
+    # one phase's solve moved to gearcontact.ltca.lte_phase (lte.py past 600 lines)
+    "gearcontact.ltca.lte": {"ACTIVE_SHARE", "check_loaded", "preview_balance",
+                             "solve_phase"},
 }
 
 

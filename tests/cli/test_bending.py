@@ -97,7 +97,8 @@ def test_fe_mesh_range_is_the_accepted_one(tmp_path, capsys, monkeypatch, mesh, 
     before any work."""
     import gearcontact.cli.bending as cli_bending
 
-    monkeypatch.setattr(cli_bending, "build_flanks",
+    # the first work is the pair's preparation (its flanks, a synthesis if needed)
+    monkeypatch.setattr(cli_bending, "load_pair_for",
                         lambda *a, **k: pytest.fail("the work started"))
     code = main(["bending", "--fe", "--fe-mesh", *mesh.split(), "--out",
                  str(tmp_path / "x"), "--no-figures"])

@@ -105,7 +105,8 @@ def test_synthesize_easeoff_prints_and_writes_the_tables(tmp_path, capsys):
 @pytest.mark.parametrize("argv, named", [
     (["--out", "x"], "--out = "), (["--te0-arcsec", "3"], "--te0-arcsec"),
     (["--pattern-length-ratio", "0.4"], "--pattern-length-ratio"),
-    (["--path-angle-deg", "10"], "--path-angle-deg"), (["--tip-margin", "0.1"], "--tip-margin")])
+    (["--path-angle-deg", "10"], "--path-angle-deg"), (["--tip-margin", "0.1"], "--tip-margin"),
+    (["--path-angle-coast-deg", "-40"], "--path-angle-coast-deg")])
 def test_option_of_a_mode_not_asked_for_is_refused(tmp_path, capsys, argv, named):
     """These were silently ignored (exit 0, nothing written) without their mode."""
     argv = [str(tmp_path / "x") if a == "x" else a for a in argv]
@@ -118,6 +119,11 @@ def test_option_of_a_mode_not_asked_for_is_refused(tmp_path, capsys, argv, named
 @pytest.mark.parametrize("argv, named", [
     (["--path-angle-deg", "95"], "--path-angle-deg = 95.0 is outside the allowed range: "
                                  "[-89.9, 90]"),
+    (["--path-angle-drive-deg", "95"], "--path-angle-drive-deg = 95.0 is outside the allowed "
+                                       "range: [-89.9, 90]"),
+    (["--path-angle-deg", "-10", "--path-angle-coast-deg", "-40"],
+     "--path-angle-deg = -10.0 is outside the allowed range: not given with "
+     "--path-angle-coast-deg (it sets both sides"),
     (["--pattern-length-ratio", "0.9"], "--pattern-length-ratio = 0.9"),
     (["--te0-arcsec", "nan"], "--te0-arcsec = nan")])
 def test_synthesis_targets_checked_before_the_directory_and_work(tmp_path, capsys,

@@ -7,7 +7,9 @@ command (tca, ltca, lte, analyze, sweep, twin, bending) with the same ease-off: 
 coefficients of one real local synthesis of that pair, and the table marked as given
 (``easeoff_tables``). The synthesis is deterministic (the same pair, the same
 coefficients: `tests/cli/test_sweep.py` compares tca and sweep results exactly, and the
-slow test here runs it in every command).
+slow test here runs it in every command). The flanks the synthesis built (the
+conjugate flanks with the synthesized ease-off applied, ``geometry.flank.with_easeoff``)
+are the very object every command analyses: none builds them a second time.
 """
 
 import dataclasses
@@ -26,8 +28,8 @@ COMMANDS = {
     "analyze": (["--lte-phases", "0"], "gearcontact.report.analyze", "analyze_pair"),
     "sweep": (["--vary", "E=0:0:1", "--workers", "0"], "gearcontact.sweep.run",
               "run_sweep"),
-    "twin": ([], "gearcontact.cli.twin", "load_drivetrain"),
-    "bending": ([], "gearcontact.cli.bending", "build_flanks"),
+    "twin": ([], "gearcontact.cli.twin", "model_for_pair"),
+    "bending": ([], "gearcontact.cli.bending", "flank_compliance"),
 }
 
 
@@ -48,7 +50,7 @@ def _capture(monkeypatch, module: str, name: str, seen: list):
     the command there."""
     def reached(*args, **kwargs):
         pair = next(a for a in (*args, *kwargs.values()) if hasattr(a, "easeoff_drive"))
-        seen.append(pair)
+        seen.append((pair, kwargs.get("flanks")))
         raise _Reached
 
     monkeypatch.setattr(f"{module}.{name}", reached)
@@ -59,7 +61,7 @@ def test_every_pair_command_gets_the_prepared_pair(command, bare_pair_file, synt
                                                   monkeypatch, tmp_path, capsys):
     """Each command synthesizes once (through prepare_pair, the synthesis replaced by the
     fixture's real result to keep the suite fast) and analyses the pair with exactly
-    those coefficients; the note on stdout names the synthesis without a time (analyze
+    those coefficients and the flanks the preparation built; the note on stdout names the synthesis without a time (analyze
     prints it at the end)."""
     calls = []
 
@@ -68,6 +70,13 @@ def test_every_pair_command_gets_the_prepared_pair(command, bare_pair_file, synt
         return synthesized.pair, {"drive": synthesized.synthesis}
 
     monkeypatch.setattr(synthesis, "synthesize_pair", synthesize_pair)
+    built = []
+
+    def with_easeoff(*args, _real=synthesis.with_easeoff):
+        built.append(_real(*args))
+        return built[-1]
+
+    monkeypatch.setattr(synthesis, "with_easeoff", with_easeoff)
     seen = []
     extra, module, name = COMMANDS[command]
     if command == "sweep":      # the sweep command imports run_sweep when it runs
@@ -76,7 +85,8 @@ def test_every_pair_command_gets_the_prepared_pair(command, bare_pair_file, synt
     main([command, "--pair", str(bare_pair_file), "--side", "drive", *extra,
           "--out", str(tmp_path / "out")])
     assert calls == [("drive",)]
-    (pair,) = seen
+    ((pair, flanks),) = seen
+    assert len(built) == 1 and flanks is built[0]       # the synthesis' flanks, once
     assert pair.easeoff_drive == synthesized.pair.easeoff_drive
     assert "drive" in pair.easeoff_tables
     if command != "analyze":    # analyze prints it when done (and writes it to summary.md)

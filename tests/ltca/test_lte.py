@@ -23,7 +23,8 @@ from scipy.optimize import brentq
 from gearcontact.analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz
 from gearcontact.halfspace.grid import TangentGrid
 from gearcontact.halfspace.lcp import solve_lcp
-from gearcontact.ltca.lte import ARCSEC_PER_RAD, loaded_te, preview_balance
+from gearcontact.ltca.lte import ARCSEC_PER_RAD, loaded_te
+from gearcontact.ltca.lte_phase import preview_balance
 from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
 from gearcontact.ltca.pair_ltca import single_pair_ltca
 from gearcontact.validation import InputRangeError

@@ -135,10 +135,17 @@ def test_bad_targets_name_the_field(field, value):
 def test_synthesis_near_the_calibrated_tip_edge_preset():
     """s0003 (calibrated coast ease-off, tip-edge bearing 0.05 mm below the tip): its
     own design point, path angle included, as targets, gives the calibrated ease-off
-    back: every target met, crownings within 2 % and 10 % (measured 0.3 %, 4 %), bias
-    within 0.01 um/mm^2."""
+    back: every target met, crownings within 2 % and 10 %, and the relief within 5 % of
+    the calibrated one's largest |E| everywhere on the flank (the share to which TE0 and
+    the pattern length, whose tolerances are 5 %, fix it). Measured: crownings 0.5 % and
+    4.4 %, relief 0.87 um (3.9 % of 22.5 um). The bias alone is not fixed to better than
+    that: -0.023 against -0.0057 um/mm^2 (session 10, with the path angle in space:
+    within 0.01); the path angle on the gear flank moves by 7.2 deg per um/mm^2 of bias
+    here (0.12 deg for that difference, its tolerance 2 deg) and the crownings take the
+    rest."""
     from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
+    from gearcontact.geometry.easeoff import EaseOff, max_relief_um
+    from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
 
     pair = load_pair("s0003")
     side = "coast"
@@ -164,7 +171,11 @@ def test_synthesis_near_the_calibrated_tip_edge_preset():
                                                           rel=0.02)
     assert c.lengthwise_crowning_um_per_mm2 == pytest.approx(
         known.lengthwise_crowning_um_per_mm2, rel=0.10)
-    assert c.bias_um_per_mm2 == pytest.approx(known.bias_um_per_mm2, abs=0.01)
+    diff = EaseOffCoefficients(**{k: v - getattr(known, k)
+                                  for k, v in dataclasses.asdict(c).items()})
+    relief = [max_relief_um(EaseOff.from_coefficients(x, u_mean_mm=u_m, v_mean_mm=v_m), b)[0]
+              for x in (diff, known)]
+    assert relief[0] <= 0.05 * relief[1], relief
 
 
 @pytest.mark.slow

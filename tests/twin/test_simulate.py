@@ -20,7 +20,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from gearcontact.ltca.lte import loaded_te, preview_balance
+from gearcontact.ltca.lte import loaded_te
+from gearcontact.ltca.lte_phase import preview_balance
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain

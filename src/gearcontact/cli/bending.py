@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.flank import build_flanks
 from ..structure.compliance import SEGMENT_NODES, FeMesh, flank_compliance, write_compliance
 from ..structure.shell import ORDER, ORDER_FACE
 from ..validation import InputRangeError
@@ -90,7 +89,7 @@ def check(args) -> None:
 
 def run(args) -> int:
     pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
-    flanks = build_flanks(pair)
+    flanks = args.prepared_pair.flank_set()     # built once (the synthesis' if it ran)
     # lattice over the inner part of the flank (xi in +-0.5, eta in +-1/3)
     lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
                for s, n in zip((0.5, 1 / 3), args.points)]

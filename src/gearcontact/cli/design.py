@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 
 from ..errors import CheckFailed
+from ..geometry.formate import SIDES
 from ..geometry.generation import check_generation
 from ..geometry.pair import BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair
 from ..validation import InputRangeError, check_range
@@ -78,10 +79,15 @@ def register(sub) -> None:
                    help="with --synthesize-easeoff: paint-ellipse length over the gear face "
                         "width (default 0.35; practice 1/3 to 1/2)")
     p.add_argument("--path-angle-deg", type=float, default=None,
-                   help="with --synthesize-easeoff: contact-path angle from the lengthwise "
-                        "direction, deg (default free, bias 0); the angles the synthesis "
-                        "reaches on the pair are checked before any TCA (an error names "
-                        "them)")
+                   help="with --synthesize-easeoff: angle of the contact path on the gear "
+                        "flank from the lengthwise direction on both sides, deg (default free, bias 0); the angles "
+                        "the synthesis reaches on the pair are checked before any TCA (an "
+                        "error names them)")
+    for side in SIDES:
+        p.add_argument(f"--path-angle-{side}-deg", type=float, default=None,
+                       help=f"with --synthesize-easeoff: the path angle of the {side} side "
+                            "only, deg (the sides reach different ranges; not with "
+                            "--path-angle-deg)")
     p.add_argument("--machine-settings", action="store_true",
                    help="machine settings of both members (docs/machine_settings.md): for "
                         "a pair with an ease-off, the formate gear and the pinion settings "
@@ -115,7 +121,7 @@ def check(args) -> None:
                               ("--out", args.out), ("--tip-margin", args.tip_margin),
                               ("--te0-arcsec", args.te0_arcsec),
                               ("--pattern-length-ratio", args.pattern_length_ratio),
-                              ("--path-angle-deg", args.path_angle_deg),
+                              *_path_angle_options(args).items(),
                               ("--machine-settings", args.machine_settings),
                               ("--target-flank", args.target_flank),
                               ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
@@ -157,8 +163,8 @@ def check(args) -> None:
                                 ("--te0-arcsec", args.te0_arcsec, args.synthesize_easeoff),
                                 ("--pattern-length-ratio", args.pattern_length_ratio,
                                  args.synthesize_easeoff),
-                                ("--path-angle-deg", args.path_angle_deg,
-                                 args.synthesize_easeoff),
+                                *((o, v, args.synthesize_easeoff)
+                                  for o, v in _path_angle_options(args).items()),
                                 ("--out", args.out, args.calibrate or args.synthesize_easeoff
                                  or args.machine_settings)):
         if value is not None and not mode:
@@ -173,8 +179,8 @@ def check(args) -> None:
         args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
             if args.pattern_length_ratio is None else args.pattern_length_ratio
         args.targets = _synthesis_targets(args)     # their ranges, before any TCA
-        if args.targets.path_angle_deg is not None:
-            args.flanks = _check_path_angle(pair, args.targets)
+        if any(t.path_angle_deg is not None for t in args.targets.values()):
+            args.flanks = _check_path_angle(pair, args, args.targets)
     if args.calibrate:
         from ..report.analyze import published_values
 
@@ -189,37 +195,69 @@ def check(args) -> None:
                                                 and args.out))
 
 
-#: Option of each :class:`~gearcontact.tca.synthesis.SynthesisTargets` field it sets.
+#: Option of each :class:`~gearcontact.tca.synthesis.SynthesisTargets` field it sets
+#: (the path angle's: :func:`_path_angle_option`).
 _TARGET_OPTIONS = {"te0_pp_arcsec": "--te0-arcsec",
-                   "pattern_length_ratio": "--pattern-length-ratio",
-                   "path_angle_deg": "--path-angle-deg"}
+                   "pattern_length_ratio": "--pattern-length-ratio"}
 
 
-def _synthesis_targets(args):
-    """The synthesis targets of the options; a target out of range names its option."""
+def _path_angle_options(args) -> dict:
+    """The path-angle options, option -> value (None if not given)."""
+    return {"--path-angle-deg": args.path_angle_deg,
+            **{f"--path-angle-{side}-deg": getattr(args, f"path_angle_{side}_deg")
+               for side in SIDES}}
+
+
+def _path_angle_option(args, side: str) -> str:
+    """The option that sets the path angle of ``side``."""
+    return "--path-angle-deg" if args.path_angle_deg is not None else f"--path-angle-{side}-deg"
+
+
+def _renamed(exc: InputRangeError, option: str | None = None) -> InputRangeError:
+    """``exc`` naming the option of its field (``option`` for the path angle's)."""
+    field = option if exc.field == "path_angle_deg" and option else exc.field
+    return InputRangeError(_TARGET_OPTIONS.get(field, field), exc.value, exc.allowed)
+
+
+def _synthesis_targets(args) -> dict:
+    """The synthesis targets of each side (side -> SynthesisTargets) of the options; a
+    target out of range names its option. ``--path-angle-deg`` sets both sides, a
+    ``--path-angle-<side>-deg`` one side (the other is free); the two kinds together
+    are refused (which would win is not obvious)."""
     from ..tca.synthesis import SynthesisTargets
 
-    try:
-        return SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
-                                pattern_length_ratio=args.pattern_length_ratio,
-                                path_angle_deg=args.path_angle_deg)
-    except InputRangeError as exc:
-        raise InputRangeError(_TARGET_OPTIONS.get(exc.field, exc.field), exc.value,
-                              exc.allowed) from None
+    per_side = {side: getattr(args, f"path_angle_{side}_deg") for side in SIDES}
+    if args.path_angle_deg is not None:
+        given = [f"--path-angle-{s}-deg" for s, v in per_side.items() if v is not None]
+        if given:
+            raise InputRangeError("--path-angle-deg", args.path_angle_deg,
+                                  f"not given with {' / '.join(given)} (it sets both "
+                                  "sides; give one option per side instead)")
+        per_side = dict.fromkeys(SIDES, args.path_angle_deg)
+    out = {}
+    for side, angle in per_side.items():
+        try:
+            out[side] = SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
+                                         pattern_length_ratio=args.pattern_length_ratio,
+                                         path_angle_deg=angle)
+        except InputRangeError as exc:
+            raise _renamed(exc, _path_angle_option(args, side)) from None
+    return out
 
 
-def _check_path_angle(pair, targets):
-    """The pair's flanks, after refusing a path angle the synthesis cannot reach on a
-    side (:func:`gearcontact.tca.path_reach.check_path_angle`: closed form, no TCA)."""
+def _check_path_angle(pair, args, targets: dict):
+    """The pair's flanks, after refusing a path angle the synthesis cannot reach on its
+    side (:func:`gearcontact.tca.path_reach.check_path_angle`: closed form, no TCA), the
+    error naming the option that set it."""
     from ..geometry.flank import build_flanks
     from ..tca.path_reach import check_path_angle
 
     flanks = build_flanks(pair)
-    try:
-        check_path_angle(pair, targets=targets, flanks=flanks)
-    except InputRangeError as exc:
-        raise InputRangeError(_TARGET_OPTIONS.get(exc.field, exc.field), exc.value,
-                              exc.allowed) from None
+    for side, t in targets.items():
+        try:
+            check_path_angle(pair, targets=t, flanks=flanks, sides=(side,))
+        except InputRangeError as exc:
+            raise _renamed(exc, _path_angle_option(args, side)) from None
     return flanks
 
 

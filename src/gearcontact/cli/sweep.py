@@ -124,7 +124,8 @@ def run(args) -> int:
         report = run_sweep(pair, grid, out=args.out, side=args.side,
                            compute=tuple(args.compute.split(",")), phases=args.phases,
                            cells=args.cells, solver=SOLVER, workers=args.workers,
-                           client=client, progress=not args.quiet)
+                           client=client, flanks=args.prepared_pair.flanks,
+                           progress=not args.quiet)
     finally:
         if client is not None:
             client.close()

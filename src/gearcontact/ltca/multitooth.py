@@ -33,7 +33,7 @@ from ..validation import InputRangeError, check_positive, check_range
 from ..halfspace.grid import TangentGrid
 from ..halfspace.line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
 from ..halfspace.result import ContactResult, SolveStatus
-from .lte import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
+from .lte_phase import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
 from .lte_pairs import PairFields, phase_contacts
 from .mesh_lcp import solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM

@@ -73,8 +73,8 @@ class SweepReport:
 
 def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
               cells: int = 80, solver: str = "pk_cg", scheduler: str | None = None,
-              workers: int | None = None, client=None, progress: bool = True
-              ) -> SweepReport:
+              workers: int | None = None, client=None, flanks=None,
+              progress: bool = True) -> SweepReport:
     """Compute the pending cells of ``grid`` into ``out/sweep.zarr``.
 
     Parameters
@@ -93,6 +93,9 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         cells in this process without Dask.
     client : distributed.Client, optional
         A client to use (then neither ``scheduler`` nor ``workers`` apply).
+    flanks : FlankSet, optional
+        ``build_flanks(pair)`` if already built (a prepared pair's,
+        :class:`~gearcontact.tca.synthesis.PreparedPair`).
     progress : bool
         Progress bar of cells done / total.
     """
@@ -117,7 +120,8 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         # built here once and shipped to the workers: the flanks of every point, or
         # (ease-off keys only) the conjugate flanks every variant's ease-off goes on
         if not design_keys or easeoff_only(design_keys):
-            nominal = Variant(pair, build_flanks(pair), time.perf_counter() - tf)
+            nominal = Variant(pair, build_flanks(pair) if flanks is None else flanks,
+                              time.perf_counter() - tf)
         t1 = time.perf_counter()
         report.flanks_s = t1 - tf
         for idx, result in _results(pair, nominal, grid, todo, kwargs, scheduler=scheduler,

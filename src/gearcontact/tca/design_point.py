@@ -86,8 +86,9 @@ class DesignPoint:
     paint_length_mm : float
         Major axis 2a of the paint ellipse (6.35 um, :mod:`.curvature`), mm.
     path_angle_deg : float
-        Direction of the contact path at the point (phase increasing), deg from the
-        lengthwise direction, in the same right-handed frame as ``ellipse_angle_deg``,
+        Direction of the contact path on the gear flank at the point (phase increasing;
+        the path the bearing draws on the gear tooth, Litvin & Fuentes 2004 sec. 21.8,
+        not the contact point's motion in space), deg from the lengthwise direction, in the same right-handed frame as ``ellipse_angle_deg``,
         folded into (-90, 90]; NaN if the path has no interior neighbour there. A
         left-hand pair reports the angle of its right-hand mirror image.
     """
@@ -127,7 +128,8 @@ def design_point_at(pair: GearPair, pinion, gear, mp, *, te0_pp_arcsec: float,
                     torque_nm: float, path_tangent=None) -> DesignPoint:
     """:class:`DesignPoint` of the mating point ``mp`` of ``pinion`` and ``gear`` (the
     pair's kinematics), with the Hamrock–Brewe ellipse at the gear torque ``torque_nm``
-    and, given the meshing-frame ``path_tangent`` (3,), the path angle."""
+    and, given the meshing-frame ``path_tangent`` (3,), the path angle (the tangent of
+    the path on the gear flank, posed at ``mp``'s phase)."""
     kin = pair.kinematics()
     rc = relative_curvature(pinion, gear, kin, mp)
     ell = contact_ellipse(rc)
@@ -187,7 +189,12 @@ def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
                 guess, phi1_rad=g.phi1_rad + h * step))
     tangent = None
     if 0 < i < len(te) - 1 and not (path.points[i - 1].edge or path.points[i + 1].edge):
-        tangent = path.points[i + 1].point_mm - path.points[i - 1].point_mm
+        # the path on the gear flank (its body frame, posed at the point's phase), not
+        # the contact point's motion in space: that adds the gear's rotation of the
+        # point and stays near the contact line's direction (docs/synthesis.md)
+        a, b = path.points[i - 1], path.points[i + 1]
+        tangent = kin.gear_pose(mp.phi2_rad)[0] @ (gear.point(b.u2, b.v2).r
+                                                   - gear.point(a.u2, a.v2).r)
     return design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
                            torque_nm=torque_nm, path_tangent=tangent)
 

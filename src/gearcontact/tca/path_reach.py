@@ -21,12 +21,13 @@ sec. 21.8, local synthesis; the same relations here in the ease-off's own terms)
   angle from ``nu`` towards ``t``, and ``c = (det(H) + b^2) / a``.
 
 The path angle the synthesis judges (:attr:`~.design_point.DesignPoint.path_angle_deg`)
-is that of the contact point's motion in the meshing frame, projected on the tangent
-plane: the on-flank motion ``d dn/dphi1 / cos(psi)`` plus the pinion's rotation of the
-point. As ``psi`` runs over (-90, 90) deg it turns once round all directions; near the
-ends (a path along the contact line) the crownings and the bias grow without bound. A
-``psi`` is reachable when both crownings are positive and the ease-off (centred at the
-target bearing centre, zero at the mean node as
+is that of the contact path on the gear flank (Litvin's local synthesis prescribes the
+path on the gear tooth surface), projected on the tangent plane: the on-flank motion
+``d dn/dphi1 / cos(psi)`` over the pinion plus the relative rotation of the point (the
+pinion's minus the gear's). As ``psi`` runs over (-90, 90) deg it turns once round all
+directions; near the ends (a path along the contact line) the crownings and the bias
+grow without bound. A ``psi`` is reachable when both crownings are positive and the
+ease-off (centred at the target bearing centre, zero at the mean node as
 :func:`~.design_point.centred_coefficients` writes it) stays within half the pair's
 relief limit over the flank (:attr:`~gearcontact.geometry.flank.FlankSet.easeoff_limit_um`,
 which the eased flanks enforce). Half, not all: towards the contact line's direction one
@@ -38,10 +39,10 @@ test_path_reach.py). The bearing may reach an edge over the pitch: the synthesis
 TCA has edge contact (the s0003 tip-edge preset's own path angle is met).
 
 The reachable path angles are the image of that ``psi`` interval: one arc of directions,
-:class:`PathAngleRange`. Measured on the F.3 example (drive): the first-order crownings
-and bias agree with those the TCA-in-the-loop synthesis finds to 2-5 % (0.628 / 0.119 /
-0.397 against 0.638 / 0.124 / 0.400 um/mm^2 at a path angle of 0 deg) and the free-bias
-path angle to 0.12 deg (docs/synthesis.md).
+:class:`PathAngleRange`. Measured (docs/synthesis.md): over the reachable designs of
+s0003 and the F.3 example the closed form gives the TCA's path angle on the gear flank
+to 0.4 deg; on F.3 drive the synthesis (TCA in the loop) from the closed-form start meets
+0, 30 and 60 deg with crownings and bias within 1-5 % of the closed form's.
 
 References
 ----------
@@ -183,8 +184,12 @@ def path_angle_range(pair, *, side: str, targets, flanks) -> PathAngleRange:
     t = np.array([-nu[1], nu[0]])
     dn_dphi1 = 1.0 / (pair.ratio * np.linalg.norm(grad_q))  # mm/rad
     point = rot1 @ x1[0] + tr1
-    spin = basis.T @ (kin.pinion_pose(phi1 + 1e-6)[0] - kin.pinion_pose(phi1 - 1e-6)[0]) \
-        @ x1[0] / 2e-6                                      # rotation of the point, mm/rad
+    # the on-flank path of the gear (the design point's path angle): the pinion-flank
+    # motion plus the relative rotation of the point (pinion's minus gear's), mm/rad
+    x2 = rot2.T @ (point - kin.gear_pose(phi2)[1])          # gear body frame, mm
+    spin = basis.T @ ((kin.pinion_pose(phi1 + 1e-6)[0] - kin.pinion_pose(phi1 - 1e-6)[0])
+                      @ x1[0] - (kin.gear_pose(phi2 + 1e-6 / pair.ratio)[0]
+                                 - kin.gear_pose(phi2 - 1e-6 / pair.ratio)[0]) @ x2) / 2e-6
     lever = abs(normal @ np.cross(kin.gear_axis, point))    # gear lever h2, mm
     dN = 2.0 * np.pi / pair.pinion_teeth * dn_dphi1         # contact-line spacing, mm
     a = 8.0 * PAINT_THICKNESS_MM / (targets.pattern_length_ratio * pair.gear_face_width_mm) ** 2

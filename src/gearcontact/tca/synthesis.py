@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -103,7 +104,8 @@ class SynthesisTargets:
     pattern_length_ratio : float
         Paint-ellipse major axis 2a over the gear face width, in [0.1, 0.8].
     path_angle_deg : float or None
-        Contact-path direction at the bearing centre from the lengthwise direction,
+        Direction of the contact path on the gear flank at the bearing centre from the
+        lengthwise direction,
         deg in (-90, 90] (right-handed flank frame, as the ellipse angle of
         :class:`~gearcontact.tca.design_point.DesignPoint`); None: not prescribed
         (bias drawn weakly towards 0).
@@ -484,14 +486,27 @@ def easeoff_toml(synth: dict, *, pair_name: str) -> str:
     return "\n".join(out)
 
 
-def synthesize_pair(pair: GearPair, *, sides=SIDES, targets: SynthesisTargets = SynthesisTargets(),
+def synthesize_pair(pair: GearPair, *, sides=SIDES,
+                    targets: SynthesisTargets | Mapping = SynthesisTargets(),
                     flanks=None) -> tuple[GearPair, dict]:
     """``pair`` with the ease-off of each of ``sides`` synthesized, and the
-    :class:`Synthesis` of each side."""
+    :class:`Synthesis` of each side.
+
+    ``targets`` is one :class:`SynthesisTargets` for every side or a mapping side ->
+    targets (a path angle of each side: the sides' reachable ranges differ, s0003 drive
+    [-7.8, 42.9] deg, coast [-6.8, 43.6] deg). Every side's path angle is checked
+    before any TCA (:func:`~.path_reach.check_path_angle`).
+    """
+    per_side = targets if isinstance(targets, Mapping) else dict.fromkeys(sides, targets)
+    missing = [s for s in sides if s not in per_side]
+    if missing:
+        raise InputRangeError("targets", sorted(per_side), f"a mapping with the sides {sides}")
     if flanks is None:
         flanks = build_flanks(pair)
-    check_path_angle(pair, targets=targets, flanks=flanks, sides=sides)   # every side first
-    done = {s: synthesize_easeoff(pair, side=s, targets=targets, flanks=flanks) for s in sides}
+    for s in sides:                                                    # every side first
+        check_path_angle(pair, targets=per_side[s], flanks=flanks, sides=(s,))
+    done = {s: synthesize_easeoff(pair, side=s, targets=per_side[s], flanks=flanks)
+            for s in sides}
     return dataclasses.replace(pair, **{f"easeoff_{s}": r.coefficients
                                         for s, r in done.items()}), done
 
@@ -518,6 +533,11 @@ class PreparedPair:
     side: str
     synthesis: Synthesis | None = None
     flanks: FlankSet | None = None
+
+    def flank_set(self) -> FlankSet:
+        """The flanks of :attr:`pair`: those the synthesis built (its ease-off applied),
+        else ``build_flanks(pair)``, so that a command builds them once."""
+        return self.flanks if self.flanks is not None else build_flanks(self.pair)
 
     @property
     def synthesized(self) -> bool:

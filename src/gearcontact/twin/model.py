@@ -232,14 +232,15 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                    drivetrain: DrivetrainParams | None = None, side: str = "drive",
                    phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
                    bending: bool = False, curvatures: str = "stencil",
-                   progress: bool = False) -> TwinModel:
+                   flanks=None, progress: bool = False) -> TwinModel:
     """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
     :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
     The TCA is surface-to-surface (``edge_contact=False``: the Hertzian law has no
     meaning at an edge touching the other flank). The reverse flank is the other side's
     own TCA (mirrored loaded law if that side is in line contact). ``bending``: tooth bending of both members in series with the
     Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`). ``curvatures``:
-    the preview's curvature source (:class:`TwinModel`)."""
+    the preview's curvature source (:class:`TwinModel`). ``flanks``: ``build_flanks(pair)``
+    if already built (a prepared pair's, :class:`~gearcontact.tca.synthesis.PreparedPair`)."""
     from ..tca.analysis import analyze_pair
     from ..tca.line_contact import LineContact
     from .ltca_table import torque_table
@@ -257,7 +258,7 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     # and an edge touching the other flank has no Hertzian law; pairs beyond the end of
     # their path enter as edge pairs resolved on their posed fields, as in the loaded TE
     tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False,
-                               progress=progress)
+                               flanks=flanks, progress=progress)
     bend = (lambda s: tooth_bending(flanks, pair, side=s)) if bending else (lambda s: None)
     mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=t, bending=bend(side))
     other = "coast" if side == "drive" else "drive"

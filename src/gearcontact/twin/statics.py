@@ -89,7 +89,7 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     interpolation) from the bracket ``[0, 4 theta_1]``, ``theta_1 = (g_j + kappa_j
     (T / l_j)^(2/3)) / l_j`` the rotation at which the least open pair ``j`` alone
     carries the torque under the fp64 Hertz law (an upper bound of the balance of
-    :func:`~gearcontact.ltca.lte.preview_balance`), doubled until it holds the root.
+    :func:`~gearcontact.ltca.lte_phase.preview_balance`), doubled until it holds the root.
     The bracket is closed form (no iterative solver) so that the drivetrain FMU's C
     (:mod:`gearcontact.export.fmu_drivetrain`) starts from the same bits.
     """
