@@ -76,9 +76,8 @@ def test_identical_runs_identical_files(tmp_path, capsys):
 @pytest.mark.slow
 def test_readme_ev_sweep(tmp_path, capsys):
     """The README line as written (22 s warm, 38 s with the numba compile, two cores):
-    exit 0, the 5 x 3 x 2 grid
-    done; the cell at the file's own values equals the direct cycle and loaded TE of
-    the example (==: the same pair and options)."""
+    exit 0, the 5 x 3 x 2 grid done; the cell at the file's own values equals the direct
+    cycle and loaded TE of the example (==: the same pair and options)."""
     from gearcontact.geometry.pair import load_pair
     from gearcontact.ltca.cylindrical_lte import cylindrical_loaded_te
     from gearcontact.tca.cylindrical_cycle import cylindrical_mesh_cycle

@@ -105,3 +105,19 @@ def test_misalignment_axes_closed_form(tmp_path):
     got = ds["te0_mean_arcsec"].isel(torque_nm=0).values
     np.testing.assert_allclose(got, truth, rtol=0.01, atol=1e-6)
     assert truth.max() > 10.0     # the grid reaches a TE0 well above the tolerances
+
+
+def test_dask_cluster_equals_in_process(client, tmp_path):
+    """The same unloaded sweep of the spur 23/67 on the package's two-worker cluster and
+    in this process (workers=0): every variable equal (the pair travels to the workers
+    by pickle; nothing of the cell depends on where it runs)."""
+    pair = _ev_class(0.0, None, 20.0)
+    vary = ["modifications.pinion.lead_crowning_um=0:8:2",
+            "assembly.axis_deviation_um=-5:5:2"]
+    grid = SweepGrid(tuple(parse_vary(v, kind="cylindrical") for v in vary), (100.0,))
+    report = run_sweep(pair, grid, out=tmp_path / "dask", side="drive", phases=11,
+                       client=client, progress=False)
+    assert report.failed == 0, report.errors
+    on_cluster = xr.open_zarr(report.store, consolidated=False).load()
+    here = _sweep(pair, vary, tmp_path / "here", torques=(100.0,), phases=11)
+    xr.testing.assert_identical(on_cluster, here)
