@@ -67,8 +67,8 @@ def compute_cylindrical_point(pair, torques_nm, *, side: str, compute: tuple,
     torques_nm : sequence of float
         Gear torques, N·m (``ltca`` only).
     side : str
-        ``"drive"`` or ``"coast"`` (:data:`~gearcontact.tca.cylindrical_cycle.
-        FACING_OF_SIDE`).
+        ``"drive"`` or ``"coast"`` (the facing:
+        :data:`~gearcontact.tca.cylindrical_cycle.FACING_OF_SIDE`).
     compute : tuple of str
         ``("tca",)`` or ``("tca", "ltca")``.
     phases, cells : int
