@@ -1,6 +1,7 @@
 """Sweeps of the contact analysis over assembly errors and torque on Dask distributed
 (docs/sweeps.md): :mod:`.grid` (the ``--vary`` grid), :mod:`.cell` (one grid point's
-results; a cylindrical pair's: :mod:`.cylindrical`), :mod:`.store` (the zarr Dataset, resumable), :mod:`.run` (the scheduler)."""
+results; a cylindrical pair's: :mod:`.cylindrical`), :mod:`.store` (the zarr Dataset,
+resumable), :mod:`.run` (the scheduler)."""
 
 from .cell import CELL_VARIABLES, compute_point
 from .cylindrical import compute_cylindrical_point
