@@ -6,8 +6,8 @@ Without design keys the flanks are built once here and scattered to every worker
 (broadcast); with them, one task per design variant builds its flanks on a worker and
 the points of that variant depend on it (:mod:`.design`). One task is one grid point
 (one TCA, then per torque one LTCA and one loaded TE). A cylindrical pair's points
-each run their own mesh cycle and loaded TEs (:mod:`.cylindrical`). Results are written into the zarr
-store (:mod:`.store`) by this process as tasks finish, so an interrupted sweep keeps
+each run their own mesh cycle and loaded TEs (:mod:`.cylindrical`). Results are
+written into the zarr store (:mod:`.store`) by this process as tasks finish, so an interrupted sweep keeps
 every finished point and its rerun computes only the rest.
 
 References
