@@ -5,9 +5,10 @@ names (``E``, ``P``, ``G`` in mm, ``alpha`` in deg; sign conventions there) or d
 keys of the pair's TOML (``easeoff.<side>.<coefficient>``, ``cutter.<key>``;
 :mod:`.design`); for a cylindrical pair the keys of its ``[modifications.*]`` and
 ``[assembly]`` tables (:mod:`.cylindrical`). Each spec spans
-``numpy.linspace(START, STOP, STEPS)``, both ends included. The torques form the last dimension. A grid point (one design variant and one
-set of assembly errors) is one task; a cell is one point at one torque; a design
-variant is the set of points sharing their design values (one flank build).
+``numpy.linspace(START, STOP, STEPS)``, both ends included. The torques form the last
+dimension. A grid point (one design variant and one set of assembly errors) is one
+task; a cell is one point at one torque; a design variant is the set of points sharing
+their design values (one flank build).
 """
 
 from __future__ import annotations
