@@ -58,7 +58,8 @@ def _files(root: Path) -> dict:
 
 def test_identical_runs_identical_files(tmp_path, capsys):
     """Twice the same loaded sweep of the spur pair (lead crowning x torque, in
-    process): the store and the figure are the same bytes."""
+    process): the store and the figure are the same bytes; a third run into the first
+    directory computes nothing (resumed, all cells finished)."""
     argv = ["sweep", "--pair", SPUR, "--vary", "modifications.pinion.lead_crowning_um=0:10:2",
             "--torques", "100", "200", "--compute", "tca,ltca", "--phases", "11", "--cells",
             "16", "--workers", "0", "--quiet"]
@@ -70,6 +71,10 @@ def test_identical_runs_identical_files(tmp_path, capsys):
     assert [k for k in a if a[k] != b[k]] == []
     ds = xr.open_zarr(tmp_path / "a" / "sweep.zarr", consolidated=False)
     assert (ds["status"].values == 1).all()
+    # the rerun into the same directory finds every cell finished (the settings match)
+    capsys.readouterr()
+    assert main([*argv, "--out", str(tmp_path / "a")]) == 0
+    assert "0 computed, 4 already finished" in capsys.readouterr().out
     assert set(ds.dims) == {"modifications_pinion_lead_crowning_um", "torque_nm"}
 
 

@@ -119,8 +119,10 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
     bar = tqdm(total=grid.cells, initial=report.skipped, desc="sweep cells",
                unit="cell", disable=not progress)
     kwargs = dict(side=side, compute=tuple(compute), phases=phases, cells=cells)
-    kwargs.update(options=dict(options or {}) if pair.kind == CYLINDRICAL else
-                  {"solver": solver})
+    if pair.kind == CYLINDRICAL:
+        kwargs["options"] = dict(options or {})
+    else:
+        kwargs["solver"] = solver
     if todo:
         tf = time.perf_counter()
         design_keys = [v.key for v in grid.vary if v.design]
