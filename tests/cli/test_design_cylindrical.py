@@ -39,7 +39,7 @@ def test_design_json_helical(capsys):
         out["transverse_contact_ratio"] + out["overlap_ratio"], rel=1e-12)
 
 
-@pytest.mark.parametrize("argv", [["sweep", "--pair", FZG, "--out", "OUT"],
+@pytest.mark.parametrize("argv", [["bending", "--pair", FZG, "--out", "OUT"],
                                   ["ltca", "--pair", EV, "--out", "OUT"],
                                   ["design", "--pair", FZG, "--synthesize-easeoff"]])
 def test_other_commands_refuse_cylindrical(argv, capsys, tmp_path):

@@ -6,6 +6,11 @@ dimensions of the ``--vary`` keys (``E_mm``, ``P_mm``, ``G_mm``, ``alpha_deg``, 
 keys with ``_`` for ``.``) and ``torque_nm``, filled as grid points finish. A rerun of the same command computes only
 the cells still pending (resumable after a crash or Ctrl-C); a rerun with another grid
 or other settings into the same directory is refused.
+
+A cylindrical pair (``kind = "cylindrical"``) sweeps the keys of its
+``[modifications.pinion]``, ``[modifications.gear]`` and ``[assembly]`` tables by their
+dotted names; a cell holds TE0 and (``--compute tca,ltca``) the loaded TE peak-to-peak,
+peak pressure and mean mesh stiffness at its torque (:mod:`gearcontact.sweep.cylindrical`).
 """
 
 from __future__ import annotations
@@ -13,12 +18,14 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..sweep.design import check_variants
 from ..sweep.grid import SweepGrid, parse_vary
 from ..sweep.run import sweep_settings
 from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
-from ..validation import InputRangeError
+from ..validation import InputRangeError, check_positive
 from .options import (
+    MAX_CELLS,
     add_pair_arguments,
     check_count,
     check_pair_arguments,
@@ -35,6 +42,9 @@ MAX_WORKERS = 256
 COMPUTE = ("tca", "tca,ltca")
 #: LCP solver of the LTCA cells.
 SOLVER = "pk_cg"
+#: Default ``--cells``: per side of the LTCA's gap field (bevel), along the face of the
+#: loaded TE (cylindrical, as ``gearcontact lte``).
+DEFAULT_CELLS = {BEVEL: 80, CYLINDRICAL: 40}
 _ADDRESS = re.compile(r"^(tcp|tls)://[^\s:/]+:\d{1,5}$")
 
 
@@ -42,7 +52,12 @@ def register(sub) -> None:
     p = sub.add_parser("sweep", help="TCA / LTCA over a grid of assembly errors and "
                                      "torques on Dask distributed (zarr, resumable)",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    add_pair_arguments(p, cells=80, misalignment=True)
+    add_pair_arguments(p, misalignment=True)
+    p.add_argument("--cells", type=int, default=None,
+                   help=f"LTCA cells per side of the gap field of a bevel pair (default "
+                        f"{DEFAULT_CELLS[BEVEL]}); of a cylindrical pair, cells along the "
+                        f"face of its loaded TE (default {DEFAULT_CELLS[CYLINDRICAL]}); 16 "
+                        f"to {MAX_CELLS}")
     p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:STEPS",
                    help="KEY over numpy.linspace(START, STOP, STEPS), ends included; KEY "
                         "an assembly error E, P, G (mm), alpha (deg) with the signs of "
@@ -51,6 +66,10 @@ def register(sub) -> None:
                         "('ease-off.' also accepted), cutter.<key> (e.g. "
                         "easeoff.drive.lengthwise_crowning_um_per_mm2=0.08:0.16:5, "
                         "cutter.radius_mm=44:46:5; flanks rebuilt once per variant); "
+                        "a cylindrical pair: modifications.pinion.<key>, "
+                        "modifications.gear.<key>, assembly.<key> (e.g. "
+                        "modifications.pinion.tip_relief_um=0:20:5, "
+                        "assembly.axis_inclination_um=-20:20:5); "
                         "repeat for more dimensions")
     p.add_argument("--torques", type=float, nargs="+", default=[64.5], metavar="T",
                    help="gear torques in N·m (default 64.5; used by ltca)")
@@ -79,11 +98,18 @@ def check(args) -> None:
         raise InputRangeError("gearcontact sweep", f"without {', '.join(missing)}",
                               "installed with the 'sweep' extra: pip install "
                               "'gearcontact[sweep]'")
-    check_pair_arguments(args)
-    args.grid = SweepGrid(tuple(parse_vary(v) for v in args.vary), tuple(args.torques))
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
+    kind = args.gear_pair.kind
+    if args.cells is None:
+        args.cells = DEFAULT_CELLS[kind]
+    args.grid = SweepGrid(tuple(parse_vary(v, kind=kind) for v in args.vary),
+                          tuple(args.torques))
     check_variants(args.gear_pair, args.grid)
     for t in args.torques:
-        check_torque("--torques (N·m)", t, args.gear_pair)
+        if kind == BEVEL:
+            check_torque("--torques (N·m)", t, args.gear_pair)
+        else:       # no preview envelope on a cylindrical pair's load
+            check_positive("--torques (N·m)", t)
     if args.workers is not None:
         check_count("--workers", args.workers, 0, MAX_WORKERS)
     if args.scheduler is not None and not _ADDRESS.match(args.scheduler):
@@ -118,13 +144,17 @@ def run(args) -> int:
         check(args)
     # a pair file without an ease-off table of the side: the synthesized one (said on
     # stdout, as every pair command does), the base of every grid point and variant
-    pair, grid = load_pair_for(args), args.grid
+    # (a cylindrical pair as loaded: it has no ease-off)
+    cylindrical = args.gear_pair.kind == CYLINDRICAL
+    pair = args.gear_pair if cylindrical else load_pair_for(args)
+    grid = args.grid
     client = args.client
     try:
         report = run_sweep(pair, grid, out=args.out, side=args.side,
                            compute=tuple(args.compute.split(",")), phases=args.phases,
                            cells=args.cells, solver=SOLVER, workers=args.workers,
-                           client=client, flanks=args.prepared_pair.flanks,
+                           client=client,
+                           flanks=None if cylindrical else args.prepared_pair.flanks,
                            progress=not args.quiet)
     finally:
         if client is not None:
@@ -134,7 +164,7 @@ def run(args) -> int:
         from ..sweep.plots import plot_design, plot_maps
 
         title = f"{pair.name} {args.side}"
-        if len(grid.vary) >= 2:
+        if len(grid.vary) >= 2 and pair.kind == BEVEL:     # the V/H chart of E, P
             plot_maps(report.store, args.out / "sweep_maps.png", title=title)
         if any(v.design for v in grid.vary):
             plot_design(report.store, args.out / "sweep_design.png", title=title)

@@ -18,8 +18,9 @@ import dataclasses
 import time
 from dataclasses import dataclass
 
-from ..geometry.pair import CutterSpec, EaseOffCoefficients
+from ..geometry.pair import CYLINDRICAL, CutterSpec, EaseOffCoefficients
 from ..validation import InputRangeError
+from .cylindrical import CYLINDRICAL_KEYS
 
 __all__ = ["DESIGN_KEYS", "Variant", "build_variant", "check_variants", "design_key",
            "design_unit", "easeoff_only", "vary_design"]
@@ -31,7 +32,8 @@ DESIGN_KEYS: dict[str, tuple[str, str]] = {
     **{f"cutter.{name}": ("cutter", name) for name in CutterSpec.__dataclass_fields__},
 }
 _ALIASES = {"ease-off.": "easeoff."}
-_UNIT_SUFFIXES = (("_um_per_mm2", "um/mm^2"), ("_um_per_mm", "um/mm"), ("_mm", "mm"),
+_UNIT_SUFFIXES = (("_um_per_mm2", "um/mm^2"), ("_um_per_mm", "um/mm"), ("_um", "um"),
+                  ("_mm", "mm"),
                   ("_deg", "deg"), ("_factor", "1"))
 
 
@@ -61,10 +63,12 @@ def easeoff_only(keys) -> bool:
 def vary_design(pair, design: dict):
     """``pair`` with the design keys of ``design`` (TOML key -> value) replaced; the
     pair's own checks run again (named :class:`InputRangeError` on an impossible
-    value or design)."""
+    value or design). A cylindrical pair: the keys of
+    :data:`.cylindrical.CYLINDRICAL_KEYS`."""
+    keys = CYLINDRICAL_KEYS if pair.kind == CYLINDRICAL else DESIGN_KEYS
     changes: dict = {}
     for key, value in design.items():
-        attr, name = DESIGN_KEYS[key]
+        attr, name = keys[key]
         changes[attr] = dataclasses.replace(changes.get(attr, getattr(pair, attr)),
                                             **{name: float(value)})
     return dataclasses.replace(pair, **changes) if changes else pair
@@ -108,14 +112,17 @@ def build_variant(pair, design: tuple, base: Variant | None = None) -> Variant:
     replaced; an error of the build is the variant's result.
 
     ``base``: the nominal pair's built variant; with ease-off keys only, its conjugate
-    flanks are reused and only the variant's ease-off is applied.
+    flanks are reused and only the variant's ease-off is applied. A cylindrical pair has
+    no flanks to build (its TCA builds them): ``flanks`` is None.
     """
     from ..geometry.flank import build_flanks, with_easeoff
 
     t0 = time.perf_counter()
     try:
         varied = vary_design(pair, dict(design))
-        if base is not None and easeoff_only(k for k, _ in design):
+        if pair.kind == CYLINDRICAL:
+            flanks = None
+        elif base is not None and easeoff_only(k for k, _ in design):
             flanks = with_easeoff(base.flanks, varied)
         else:
             flanks = build_flanks(varied)

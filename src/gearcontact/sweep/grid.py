@@ -3,10 +3,12 @@
 Keys are the assembly errors of :mod:`gearcontact.geometry.kinematics` by their short
 names (``E``, ``P``, ``G`` in mm, ``alpha`` in deg; sign conventions there) or design
 keys of the pair's TOML (``easeoff.<side>.<coefficient>``, ``cutter.<key>``;
-:mod:`.design`); each spec spans ``numpy.linspace(START, STOP, STEPS)``, both ends
-included. The torques form the last dimension. A grid point (one design variant and one
-set of assembly errors) is one task; a cell is one point at one torque; a design
-variant is the set of points sharing their design values (one flank build).
+:mod:`.design`); for a cylindrical pair the keys of its ``[modifications.*]`` and
+``[assembly]`` tables (:mod:`.cylindrical`). Each spec spans
+``numpy.linspace(START, STOP, STEPS)``, both ends included. The torques form the last
+dimension. A grid point (one design variant and one set of assembly errors) is one
+task; a cell is one point at one torque; a design variant is the set of points sharing
+their design values (one flank build).
 """
 
 from __future__ import annotations
@@ -18,7 +20,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
+from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..validation import InputRangeError, check_finite
+from .cylindrical import CYLINDRICAL_KEYS
 from .design import DESIGN_KEYS, design_key, design_unit
 
 __all__ = ["MAX_STEPS", "MAX_CELLS", "VarySpec", "SweepGrid", "parse_vary"]
@@ -49,16 +53,18 @@ class VarySpec:
 
     @property
     def design(self) -> bool:
-        """True for a design key (the flanks change)."""
-        return self.key in DESIGN_KEYS
+        """True for a design key (the flanks change; every key of a cylindrical pair)."""
+        return self.key in DESIGN_KEYS or self.key in CYLINDRICAL_KEYS
 
     @property
     def values(self) -> np.ndarray:
         return np.linspace(self.start, self.stop, self.steps)
 
 
-def parse_vary(text: str) -> VarySpec:
-    """``"E=-0.1:0.1:9"`` -> :class:`VarySpec`.
+def parse_vary(text: str, *, kind: str = BEVEL) -> VarySpec:
+    """``"E=-0.1:0.1:9"`` -> :class:`VarySpec`; ``kind``: the pair's (``"cylindrical"``:
+    the keys of :data:`.cylindrical.CYLINDRICAL_KEYS`, ranges checked by
+    :func:`.design.check_variants`).
 
     Raises
     ------
@@ -72,7 +78,12 @@ def parse_vary(text: str) -> VarySpec:
     key, eq, rng = (s.strip() for s in str(text).partition("="))
     if not eq:
         raise InputRangeError("--vary", text, "KEY=START:STOP:STEPS")
-    if key not in ASSEMBLY_KEYS and design_key(key) is None:
+    if kind == CYLINDRICAL:
+        if key not in CYLINDRICAL_KEYS:
+            raise InputRangeError("--vary KEY", key, "a key of the cylindrical pair's "
+                                  "[modifications.pinion] / [modifications.gear] / "
+                                  f"[assembly] tables: {', '.join(CYLINDRICAL_KEYS)}")
+    elif key not in ASSEMBLY_KEYS and design_key(key) is None:
         raise InputRangeError("--vary KEY", key, "one of the assembly errors "
                               f"{', '.join(ASSEMBLY_KEYS)} or a key of the pair's TOML "
                               f"[easeoff.*] / [cutter] tables: {', '.join(DESIGN_KEYS)}")
@@ -93,6 +104,8 @@ def parse_vary(text: str) -> VarySpec:
         raise InputRangeError(f"--vary {key}", rng, "STOP >= START (a reversed range)")
     if steps == 1 and stop != start:
         raise InputRangeError(f"--vary {key}", rng, "STEPS >= 2 when STOP != START")
+    if key in CYLINDRICAL_KEYS:
+        return VarySpec(key, key.replace(".", "_"), start, stop, steps, design_unit(key))
     if key not in ASSEMBLY_KEYS:
         key = design_key(key)
         return VarySpec(key, key.replace(".", "_"), start, stop, steps, design_unit(key))

@@ -5,7 +5,8 @@
   height) and as two maps, TE0, and with LTCA one row per torque (preview p_max, LCP
   p90, loaded TE p-p); the pattern-on-flank boundary and the failed cells on each.
 * :func:`plot_design` -- the outputs over each swept design key (lines; one per torque
-  for the loaded values).
+  for the loaded values); of a cylindrical pair, TE0 and loaded TE p-p, peak pressure
+  and mean mesh stiffness.
 
 Keys not drawn are held at their reference value: the grid value nearest 0 for an
 assembly error, the middle of the range for a design key.
@@ -27,6 +28,11 @@ _ASSEMBLY_LABELS = {"E_mm": "E, offset change (V)", "P_mm": "P, pinion axial (H)
                     "G_mm": "G, gear axial", "alpha_deg": "alpha, shaft angle"}
 _LOADED = (("preview_p_max_mpa", "preview p_max"), ("lcp_p90_mpa", "LCP p90"),
            ("lte_lcp_pp_arcsec", "loaded TE p-p (LCP)"))
+#: The panels of a cylindrical pair's sweep (:mod:`.cylindrical`).
+_CYLINDRICAL = ((("te0_pp_arcsec", "TE0 p-p"), ("te0_mean_arcsec", "TE0 mean")),)
+_CYLINDRICAL_LOADED = (("lte_pp_arcsec", "loaded TE p-p"), ("p_max_mpa", "peak pressure"),
+                       ("stiffness_mean_n_per_mm_um", "mesh stiffness, mean"))
+_PER_TORQUE = {name for name, _ in (*_LOADED, *_CYLINDRICAL_LOADED)}
 
 
 def _open(store):
@@ -167,9 +173,12 @@ def plot_design(store, path, *, title: str = "") -> Path:
     """PNG of the outputs over every swept design key (lines; module docstring)."""
     ds = _open(store)
     design = [d for d in ds.dims if d != "torque_nm" and _is_design(ds, d)]
-    panels = [(("te0_pp_arcsec", "TE0 p-p"),), (("pattern_length_mm", "pattern length"),
-                                                 ("paint_major_mm", "paint ellipse 2a"))]
-    panels += [(item,) for item in _LOADED if item[0] in ds]
+    if "pattern_length_mm" in ds:
+        panels = [(("te0_pp_arcsec", "TE0 p-p"),), (("pattern_length_mm", "pattern length"),
+                                                     ("paint_major_mm", "paint ellipse 2a"))]
+        panels += [(item,) for item in _LOADED if item[0] in ds]
+    else:
+        panels = [*_CYLINDRICAL, *((item,) for item in _CYLINDRICAL_LOADED if item[0] in ds)]
     n_col = 3
     per_dim = -(-len(panels) // n_col)          # rows of panels per design key
     fig, axes = plt.subplots(per_dim * len(design), n_col, squeeze=False,
@@ -183,7 +192,7 @@ def plot_design(store, path, *, title: str = "") -> Path:
         for c, panel in enumerate(panels):
             ax = axes[r * per_dim + c // n_col, c % n_col]
             for name, text in panel:
-                if name in dict(_LOADED):
+                if name in _PER_TORQUE:
                     for k, torque in enumerate(one["torque_nm"].values):
                         ax.plot(x, one[name].isel(torque_nm=k).values, "o-",
                                 label=f"{text}, {torque:g} N·m")

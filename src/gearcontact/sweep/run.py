@@ -5,8 +5,9 @@ each) by default, an existing cluster by its scheduler address, or in this proce
 Without design keys the flanks are built once here and scattered to every worker
 (broadcast); with them, one task per design variant builds its flanks on a worker and
 the points of that variant depend on it (:mod:`.design`). One task is one grid point
-(one TCA, then per torque one LTCA and one loaded TE). Results are written into the zarr
-store (:mod:`.store`) by this process as tasks finish, so an interrupted sweep keeps
+(one TCA, then per torque one LTCA and one loaded TE). A cylindrical pair's points
+each run their own mesh cycle and loaded TEs (:mod:`.cylindrical`). Results are
+written into the zarr store (:mod:`.store`) by this process as tasks finish, so an interrupted sweep keeps
 every finished point and its rerun computes only the rest.
 
 References
@@ -17,7 +18,9 @@ M. Rocklin, "Dask: parallel computation with blocked algorithms and task schedul
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
+import json
 import os
 import time
 from dataclasses import dataclass, field
@@ -26,7 +29,9 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
+from ..geometry.pair import CYLINDRICAL
 from .cell import LTE_CELLS, compute_point, lte_stride
+from .cylindrical import compute_cylindrical_point
 from .design import Variant, build_variant, easeoff_only
 from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
 
@@ -74,13 +79,14 @@ class SweepReport:
 def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
               cells: int = 80, solver: str = "pk_cg", scheduler: str | None = None,
               workers: int | None = None, client=None, flanks=None,
-              progress: bool = True) -> SweepReport:
+              progress: bool = True, options: dict | None = None) -> SweepReport:
     """Compute the pending cells of ``grid`` into ``out/sweep.zarr``.
 
     Parameters
     ----------
-    pair : GearPair
-        The nominal pair (a grid with design keys varies it, :mod:`.design`).
+    pair : GearPair or CylindricalPair
+        The nominal pair (a grid with design keys varies it, :mod:`.design`; a
+        cylindrical pair's keys: :mod:`.cylindrical`).
     grid : SweepGrid
     out : path
         Directory of the store.
@@ -98,28 +104,37 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         :class:`~gearcontact.tca.synthesis.PreparedPair`).
     progress : bool
         Progress bar of cells done / total.
+    options : dict, optional
+        A cylindrical pair: further keyword options of its loaded TE
+        (:func:`~gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te`; part of the
+        settings a resumed sweep must share).
     """
     from ..geometry.flank import build_flanks
 
     t0 = time.perf_counter()
     store = Path(out) / STORE_NAME
     settings = sweep_settings(pair, side=side, compute=compute, phases=phases, cells=cells,
-                              solver=solver)
+                              solver=solver, options=options)
     status = prepare_store(store, grid, compute, settings)
     todo = [p for p in grid.points() if (status[p[0]] == PENDING).any()]
     n_t = len(grid.torques_nm)
     report = SweepReport(store, grid.cells, skipped=grid.cells - n_t * len(todo))
     bar = tqdm(total=grid.cells, initial=report.skipped, desc="sweep cells",
                unit="cell", disable=not progress)
-    kwargs = dict(side=side, compute=tuple(compute), phases=phases, cells=cells,
-                  solver=solver)
+    kwargs = dict(side=side, compute=tuple(compute), phases=phases, cells=cells)
+    if pair.kind == CYLINDRICAL:
+        kwargs["options"] = dict(options or {})
+    else:
+        kwargs["solver"] = solver
     if todo:
         tf = time.perf_counter()
         design_keys = [v.key for v in grid.vary if v.design]
         nominal = None
         # built here once and shipped to the workers: the flanks of every point, or
         # (ease-off keys only) the conjugate flanks every variant's ease-off goes on
-        if not design_keys or easeoff_only(design_keys):
+        if pair.kind == CYLINDRICAL:       # no flanks to build: the TCA makes them
+            nominal = Variant(pair, None, 0.0)
+        elif not design_keys or easeoff_only(design_keys):
             nominal = Variant(pair, build_flanks(pair) if flanks is None else flanks,
                               time.perf_counter() - tf)
         t1 = time.perf_counter()
@@ -142,11 +157,20 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
     return report
 
 
-def sweep_settings(pair, *, side: str, compute, phases: int, cells: int, solver: str
-                   ) -> dict:
+def sweep_settings(pair, *, side: str, compute, phases: int, cells: int, solver: str,
+                   options: dict | None = None) -> dict:
     """Settings a resumed sweep must share with the run that began its store (the
-    pair by name and by the SHA-256 of its TOML, which holds every design value)."""
+    pair by name and by the SHA-256 of its TOML, which holds every design value; a
+    cylindrical pair by the SHA-256 of its fields, with its ``kind`` and ``options``)."""
     from ..geometry.pair import pair_to_toml
+
+    if pair.kind == CYLINDRICAL:
+        fields = json.dumps(dataclasses.asdict(pair), sort_keys=True, default=str)
+        ltca = ({"cells": cells, "options": dict(options or {})} if "ltca" in compute
+                else {})
+        return {"kind": CYLINDRICAL, "pair": pair.name,
+                "pair_sha256": hashlib.sha256(fields.encode()).hexdigest(), "side": side,
+                "phases": phases, **ltca}
 
     a = pair.assembly
     digest = hashlib.sha256(pair_to_toml(pair).encode()).hexdigest()
@@ -217,13 +241,17 @@ def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
 
 def _guarded(variant, assembly, torques, kwargs) -> dict:
     """:func:`compute_point` on a built design variant, with the variant's flank build
-    time; a failed build or any unexpected exception recorded as the point's error (a
-    sweep of hundreds of points must not die of one)."""
+    time (:func:`compute_cylindrical_point` on a cylindrical pair, without: it has no
+    flank build); a failed build or any unexpected exception recorded as the point's
+    error (a sweep of hundreds of points must not die of one)."""
     n = len(torques)
-    timing = {"flank_build_s": [variant.build_s] * n}
+    cylindrical = "options" in kwargs
+    timing = {} if cylindrical else {"flank_build_s": [variant.build_s] * n}
     if variant.error:
         return {"error": [variant.error] * n, **timing}
     try:
+        if cylindrical:
+            return compute_cylindrical_point(variant.pair, torques, **kwargs)
         return {**compute_point(variant.pair, variant.flanks, assembly, torques, **kwargs),
                 **timing}
     except Exception as exc:  # noqa: BLE001  (recorded with its type; see the store)

@@ -22,7 +22,10 @@ from pathlib import Path
 import numpy as np
 
 from ..validation import InputRangeError
+from ..geometry.pair import CYLINDRICAL
 from .cell import BOOL_VARIABLES, CELL_VARIABLES, LTCA_VARIABLES, TCA_VARIABLES
+from .cylindrical import (CYLINDRICAL_BOOL_VARIABLES, CYLINDRICAL_LTCA_VARIABLES,
+                          CYLINDRICAL_TCA_VARIABLES)
 
 __all__ = ["STORE_NAME", "CREATING_NAME", "TIMING_VARIABLES", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
            "prepare_store", "write_point"]
@@ -38,7 +41,10 @@ TIMING_VARIABLES = {"flank_build_s": ("s", "wall time of the flank build of this
                                            "design variant (once per variant)")}
 
 
-def _variables(grid, compute) -> dict:
+def _variables(grid, compute, settings: dict) -> dict:
+    if settings.get("kind") == CYLINDRICAL:      # no flank build, so no timing either
+        return {**CYLINDRICAL_TCA_VARIABLES,
+                **(CYLINDRICAL_LTCA_VARIABLES if "ltca" in compute else {})}
     timing = TIMING_VARIABLES if any(v.design for v in grid.vary) else {}
     return {**TCA_VARIABLES, **(LTCA_VARIABLES if "ltca" in compute else {}), **timing}
 
@@ -52,8 +58,9 @@ def empty_dataset(grid, compute, settings: dict):
     coords["torque_nm"] = ("torque_nm", np.asarray(grid.torques_nm, float),
                            {"units": "N m"})
     data = {}
-    for name, (unit, text) in _variables(grid, compute).items():
-        fill = (np.zeros(grid.shape, bool) if name in BOOL_VARIABLES
+    for name, (unit, text) in _variables(grid, compute, settings).items():
+        fill = (np.zeros(grid.shape, bool)
+                if name in BOOL_VARIABLES or name in CYLINDRICAL_BOOL_VARIABLES
                 else np.full(grid.shape, np.nan))
         data[name] = (grid.dims, fill, {"units": unit, "long_name": text})
     data["error"] = (grid.dims, np.full(grid.shape, "", dtype=object),
@@ -117,8 +124,9 @@ def write_point(path, grid, index: tuple, result: dict) -> int:
     errors = np.asarray(result["error"], dtype=object)
     status = np.where(errors == "", DONE, FAILED).astype(np.int8)
     shape = (1,) * len(index) + (len(grid.torques_nm),)
-    names = {*CELL_VARIABLES, *(TIMING_VARIABLES if any(v.design for v in grid.vary)
-                                else ())}
+    # a cylindrical point returns its own variables and no timing
+    names = {*CELL_VARIABLES, *CYLINDRICAL_TCA_VARIABLES, *CYLINDRICAL_LTCA_VARIABLES,
+             *(TIMING_VARIABLES if any(v.design for v in grid.vary) else ())}
     data = {k: (grid.dims, np.asarray(v).reshape(shape))
             for k, v in result.items() if k in names}
     data["error"] = (grid.dims, errors.reshape(shape))
