@@ -78,7 +78,6 @@ def test_identical_runs_identical_files(tmp_path, capsys):
     assert set(ds.dims) == {"modifications_pinion_lead_crowning_um", "torque_nm"}
 
 
-@pytest.mark.slow
 def test_readme_ev_sweep(tmp_path, capsys):
     """The README line as written (22 s warm, 38 s with the numba compile, two cores):
     exit 0, the 5 x 3 x 2 grid done; the cell at the file's own values equals the direct

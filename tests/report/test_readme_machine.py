@@ -92,7 +92,6 @@ def test_readme_s0003_machine_settings_line_parses():
     assert args.out is not None and Path(args.out) == Path("mach_s0003")
 
 
-@pytest.mark.slow
 def test_readme_s0003_machine_settings_line(tmp_path):
     proc = _run(_s0003_line(), tmp_path)
     assert proc.returncode == 0, proc.stderr[-3000:]
