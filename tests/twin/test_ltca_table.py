@@ -89,3 +89,34 @@ def test_table_errors(s0003_twin):
         torque_table(tca, flanks, pair, mesh, TORQUE_NM, source="fem")
     with pytest.raises(InputRangeError, match="ladder"):
         torque_table(tca, flanks, pair, mesh, TORQUE_NM, ladder=(1.0, 0.5))
+
+
+@pytest.mark.parametrize("share, tol_all, tol_half", [(0.0, 1e-12, 1e-12),
+                                                      (0.5, 0.02, 0.004),
+                                                      (1.0, 0.05, 0.007)])
+def test_table_law_reads_back_a_bent_hertzian_law(share, tol_all, tol_half):
+    """The table law (``T^(2/3)`` linear in theta between the rungs of the default
+    ladder) read back on the synthetic law ``theta = a T + b T^(2/3)``, ``share`` the
+    linear (tooth bending) part of theta at the nominal torque: exact in the Hertzian
+    limit (share 0; 1e-12: round-off); for a bending share of 1/2 and in the linear
+    limit the chord of ``T^(2/3)`` between rungs gives the relative torque error,
+    largest on the widest rung ratio (0.05 -> 0.15, 3x) and small from 0.5x nominal on
+    (rung ratios <= 1.5). Tolerances: measured maxima 1.97e-2 / 3.83e-3 (share 1/2) and
+    4.84e-2 / 6.81e-3 (linear limit) over 400 torques, rounded up."""
+    from gearcontact.twin.contact_law import _table_torque
+    from gearcontact.twin.ltca_table import DEFAULT_LADDER
+
+    t0 = 64.5
+    rungs = np.asarray(DEFAULT_LADDER) * t0
+    a, b = share * 1e-5 / t0, (1.0 - share) * 1e-5 / t0 ** (2.0 / 3.0)   # theta(t0) 1e-5 rad
+
+    def theta(t):
+        return a * t + b * t ** (2.0 / 3.0)
+
+    tab_theta = np.tile(theta(rungs), (2, 1))
+    tab_t23 = np.tile(rungs ** (2.0 / 3.0), (2, 1))
+    torques = np.geomspace(rungs[0], rungs[-1], 400)
+    err = np.array([_table_torque(theta(t), 0, 0.0, tab_theta, tab_t23, tab_t23)[0] / t - 1.0
+                    for t in torques])
+    assert np.abs(err).max() <= tol_all
+    assert np.abs(err[torques >= 0.5 * t0]).max() <= tol_half
