@@ -26,7 +26,7 @@ def test_quasi_static_twin_is_the_loaded_te(bending, rpm, tmp_path, capsys):
 
     The twin is quasi-static only well below the mesh mode, which its loaded TE's
     harmonics excite (``q_n / (1 - r_n^2 + 2 i zeta r_n)``, ``r_n = n f_mesh / f_mode``,
-    zeta 0.05). At 11 phases the mesh mode is 7582 Hz rigid: at 3000 rpm (1150 Hz mesh)
+    zeta 0.05). At 64.5 N·m and 11 phases the mesh mode is 7582 Hz rigid: at 3000 rpm
     3.6 % measured. Tooth bending softens the mesh and moves it to 5736 Hz, where at
     3000 rpm the 5th mesh harmonic (5750 Hz) sits on it: 0.2375 vs 0.1910 arcsec (+24 %;
     the single-mode forced response of the loaded TE's harmonics predicts +35 %, and
