@@ -1,6 +1,6 @@
-"""``gearcontact twin`` on a cylindrical pair (table backend): at 3000 rpm, far below
-the mesh resonance (25,600 rpm, tests/twin/test_cylindrical.py), the twin is
-quasi-static, so its dynamic TE is the loaded TE of ltca.cylindrical_lte at the same
+"""``gearcontact twin`` on a cylindrical pair (table backend): well below the mesh
+mode (rigid teeth at 3000 rpm, tooth bending at 300 rpm: the test's docstring) the twin
+is quasi-static, so its dynamic TE is the loaded TE of ltca.cylindrical_lte at the same
 torque and phases (the table's own LCP) and its mean mesh torque the load torque; the
 preview backends and the options a cylindrical pair has no meaning for are refused
 before any work; the README line runs as written."""
@@ -19,21 +19,33 @@ ROOT = Path(__file__).resolve().parents[2]
 EV = str(ROOT / "examples" / "ev_reducer_helical_23x67.toml")
 
 
-def test_quasi_static_twin_is_the_loaded_te(tmp_path, capsys):
-    """DTE p-p within 5 % of the loaded TE p-p (the mesh excitation at 1150 Hz
-    amplifies by 1/(1 - (1150/9830)^2) = 1.014 on the mesh mode, the RK4 step and the
-    table's linear interpolation between the 11 rows add less); mean mesh torque within
-    0.1 % of 64.5 N·m."""
+@pytest.mark.parametrize("bending, rpm", [(False, 3000), (True, 300)])
+def test_quasi_static_twin_is_the_loaded_te(bending, rpm, tmp_path, capsys):
+    """DTE p-p within 5 % of the loaded TE p-p of the same teeth (rigid, or with tooth
+    bending: ``--bending``), mean mesh torque within 0.1 % of 64.5 N·m.
+
+    The twin is quasi-static only well below the mesh mode, which its loaded TE's
+    harmonics excite (``q_n / (1 - r_n^2 + 2 i zeta r_n)``, ``r_n = n f_mesh / f_mode``,
+    zeta 0.05). At 64.5 N·m and 11 phases the mesh mode is 7582 Hz rigid: at 3000 rpm
+    3.6 % measured. Tooth bending softens the mesh and moves it to 5736 Hz, where at
+    3000 rpm the 5th mesh harmonic (5750 Hz) sits on it: 0.2375 vs 0.1910 arcsec (+24 %;
+    the single-mode forced response of the loaded TE's harmonics predicts +35 %, and
+    follows the twin's +9 % / +24 % / +27 % / +35 % at 2500 / 3000 / 3500 / 4000 rpm
+    within 10 points), not the table law, which reads the nominal torque (a rung of the
+    ladder) back exactly at every row. So the bending case runs at 300 rpm (115 Hz
+    mesh): +3.0 % measured, the remainder from the drivetrain mode at 249 Hz near the
+    2nd mesh harmonic."""
     out = tmp_path / "tw"
     assert main(["twin", "--pair", EV, "--backend", "table", "--phases", "11",
-                 "--duration-ms", "30", "--out", str(out), "--no-figures", "--quiet"]) == 0
+                 "--duration-ms", "30", "--speed-rpm", str(rpm), "--out", str(out),
+                 "--no-figures", "--quiet", *(["--bending"] if bending else [])]) == 0
     doc = json.loads((out / "twin.json").read_text())
     lte = cylindrical_loaded_te(load_pair(EV, kinds=("cylindrical",)), 64.5, phases=11,
-                                cells_along=40, bending=False)   # the twin's rigid default
+                                cells_along=40, bending=bending)   # the twin's table
     assert doc["backend"] == "table" and doc["contact_loss"] == 0.0
     assert doc["dte_pp_arcsec"] == pytest.approx(lte.lte_pp_arcsec, rel=5e-2)
     assert doc["mean_mesh_torque_nm"] == pytest.approx(64.5, rel=1e-3)
-    assert doc["mesh_frequency_hz"] == pytest.approx(23 * 3000 / 60, rel=1e-12)
+    assert doc["mesh_frequency_hz"] == pytest.approx(23 * rpm / 60, rel=1e-12)
     assert "ev_reducer_helical_23x67 twin table" in capsys.readouterr().out
 
 

@@ -20,7 +20,6 @@ import pytest
 
 from gearcontact.ltca.lte import loaded_te
 from gearcontact.ltca.pair_ltca import ARCSEC_PER_RAD
-from gearcontact.ltca.tooth_bending import tooth_bending
 from gearcontact.twin.mesh import mesh_table
 from gearcontact.twin.params import default_drivetrain
 from gearcontact.twin.simulate import _elastic, _prm, build_model, simulate
@@ -39,9 +38,10 @@ def _static_theta(model, psi, torque=TORQUE_NM):
     return hi
 
 
-def test_bending_in_series_matches_the_loaded_te_with_bending(s0003_twin):
+def test_bending_in_series_matches_the_loaded_te_with_bending(s0003_twin,
+                                                             s0003_drive_bending):
     pair, tca, flanks, _ = s0003_twin
-    bend = tooth_bending(flanks, pair, side="drive")
+    bend = s0003_drive_bending
     rigid = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS)
     bent = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS, bending=bend)
     assert np.all(bent.bending_mm_per_n[bent.valid] > 0)
