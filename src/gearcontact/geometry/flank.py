@@ -38,8 +38,9 @@ from .blank import BlankDesign
 from .conjugate import conjugate_pinion_flank
 from .cutter import CutterPlacement
 from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
-from .formate import SIDES, gear_flanks
+from .formate import SIDES
 from .formate import FormateFlank as _FormateFlank
+from .gear_generation import gear_generation, pair_gear_flanks
 from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
 from .machine import mirror_setup
@@ -82,7 +83,8 @@ class FlankSet:
         (``pair.kinematics()``).
     cutter : CutterPlacement
     gear : MemberFlanks
-        Formate gear flanks (:class:`~.formate.FormateFlank`), gear body frame.
+        Gear flanks, gear body frame: formate (:class:`~.formate.FormateFlank`) or
+        generated (:class:`~.sheet.GearSheet`), see ``gear_generation``.
     pinion : MemberFlanks
         Pinion flanks with the pair's ease-off (:class:`~.sheet.RadialSheet`), pinion
         body frame.
@@ -99,6 +101,11 @@ class FlankSet:
         that one and mirrors it again, as :func:`build_flanks` does, so that the result
         is the same bit for bit: ``pi - (pi - psi)`` is not always ``psi`` in floating
         point); None for a right-hand set.
+    gear_generation : str
+        How the gear flanks were made (:mod:`.gear_generation`): ``"formate"`` (copies of
+        the blade), ``"generated"`` (rolled on the crown gear of the pitch plane; where
+        the formate gear undercuts its conjugate pinion) or ``"machine"`` (the pair's
+        machine settings, :func:`build_machine_flanks`).
     """
 
     blank: BlankDesign
@@ -110,6 +117,7 @@ class FlankSet:
     mean_contact: dict
     pinion_normal_thickness_mm: float
     right_hand_twin: "FlankSet | None" = None
+    gear_generation: str = "formate"
 
     @property
     def easeoff_limit_um(self) -> float:
@@ -157,19 +165,21 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
         return build_machine_flanks(pair, n_u=n_u, n_v=n_v)
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
-    placement, gear = gear_flanks(pair)
+    generation, boxes = gear_generation(pair)
+    placement, gear, generators = pair_gear_flanks(pair, generation, n_u=n_u, n_v=n_v)
     conj, mean = {}, {}
     for side in SIDES:
         conj[side], mean[side] = conjugate_pinion_flank(
-            gear[side], blank=blank, kinematics=kin,
-            pinion_face_width_mm=pair.pinion_face_width_mm, n_u=n_u, n_v=n_v)
+            generators[side], blank=blank, kinematics=kin,
+            pinion_face_width_mm=pair.pinion_face_width_mm, n_u=n_u, n_v=n_v,
+            active=None if boxes is None else boxes[side])
     u_m, v_m = mean["drive"]["pinion_uv"]
     thickness = mean_normal_thickness_mm(conj["drive"], conj["coast"], u_mm=u_m, v_mm=v_m,
                                          spiral_angle_deg=blank.spiral_angle_pinion_deg)
     conjugate = FlankSet(blank=blank, kinematics=kin, cutter=placement,
                          gear=MemberFlanks(**gear), pinion=MemberFlanks(**conj),
                          pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
-                         pinion_normal_thickness_mm=thickness)
+                         pinion_normal_thickness_mm=thickness, gear_generation=generation)
     return with_easeoff(conjugate, pair)
 
 
@@ -217,7 +227,7 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
                     cutter=placement.placement if placement is not None else None,
                     gear=MemberFlanks(**gear), pinion=MemberFlanks(**pinion),
                     pinion_conjugate=MemberFlanks(**pinion), mean_contact=mean,
-                    pinion_normal_thickness_mm=thickness)
+                    pinion_normal_thickness_mm=thickness, gear_generation="machine")
 
 
 def right_hand_twin(pair):

@@ -1,0 +1,150 @@
+"""Which gear a pair's flanks start from: the formate gear, or a generated gear when the
+formate gear undercuts its conjugate pinion.
+
+A pair without machine settings gets its gear flanks from the blank and the cutter
+(docs/geometry.md, docs/machine_settings.md sec. 4) and its pinion flanks as their
+exact conjugates (:mod:`.conjugate`) with the pair's ease-off. Two gears are possible:
+
+- ``"formate"``: each flank a copy of the straight blade (:mod:`.formate`); exact,
+  compiled in TCA. At low ratios the formate profile is far from the profile a rolled
+  gear has, and its tip zone undercuts the conjugate pinion (the envelope's limit line,
+  :func:`~.conjugate.pinion_active_box`): 20/20 and 20/30 with ISO 23509 F.2's data lose
+  77 % and more of the gear addendum.
+- ``"generated"``: each flank the envelope of the same blade rolled on the crown gear
+  of the gear's pitch plane (:func:`~.basic_settings.generated_gear_setups`: the formate
+  settings with ratio of roll ``1/sin(delta2)``, no modified roll; Litvin & Fuentes
+  2004, sec. 20.2-20.3), a :class:`~.sheet.GearSheet`. The pitch cone rolls on the
+  cradle plane, so the blank's mean point keeps its normal (spiral and pressure angle)
+  on the generated flank. Its conjugate pinion (:class:`SheetGenerator` feeds the sheet
+  to the meshing solver of :mod:`.conjugate`) is, for a spiral bevel pair, the pinion
+  the same crown gear generates: the classic generated pair, free of undercut down to
+  the miter pair.
+
+Rule (:func:`gear_generation`, deterministic): the formate gear unless the active-box
+step of its conjugate pinion (:func:`~.conjugate.pinion_active_box`, no node grid)
+refuses either flank with an :class:`~.conjugate.UndercutError`; then the generated
+gear. Every pair that generated before keeps its formate gear bit for bit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .basic_settings import generated_gear_setups
+from .conjugate import UndercutError, pinion_active_box
+from .cutter import BladeEval
+from .formate import SIDES, FlankBoundary, gear_flanks
+from .generated import generated_gear_flank
+from .sheet import GearSheet
+
+__all__ = ["GEAR_GENERATIONS", "SheetGenerator", "gear_generation", "generated_gear_sheets",
+           "generation_of", "generation_text", "pair_gear_flanks"]
+
+#: The two gear generations of a pair without machine settings (module docstring).
+GEAR_GENERATIONS = ("formate", "generated")
+
+
+@dataclass(frozen=True, eq=False)
+class SheetGenerator:
+    """A generated gear flank (:class:`~.sheet.GearSheet`) in the role of the blade cone
+    of :class:`~.conjugate.MeshingSolver`: ``h = h_f2 - u`` (depth below the pitch cone,
+    as a formate flank's) and ``theta = v / R2`` (rad, ``R2`` the mean cone distance, so
+    that the solver's step limits keep their scale). The normal's derivatives follow
+    from the sheet's second derivatives (Weingarten equations, do Carmo 1976,
+    sec. 3-3)."""
+
+    sheet: GearSheet
+
+    @property
+    def side(self) -> str:
+        return self.sheet.side
+
+    @property
+    def boundary(self) -> FlankBoundary:
+        return self.sheet.boundary
+
+    @property
+    def blade(self) -> "SheetGenerator":
+        return self
+
+    def blade_parameters(self, u, v):
+        """(h, theta) of the sheet point (u, v) (:meth:`~.sheet.GearSheet.blade_parameters`)."""
+        return self.sheet.blade_parameters(u, v)
+
+    def surface_parameters(self, h_mm, theta_rad):
+        """(u, v) of the solver's (h, theta), mm."""
+        return self.sheet.surface_parameters(h_mm, theta_rad)
+
+    def evaluate(self, h_mm, theta_rad) -> BladeEval:
+        """Point, derivatives w.r.t. (h, theta) and unit normal (broadcast arrays)."""
+        s = self.sheet.evaluate(*self.surface_parameters(np.asarray(h_mm, dtype=float),
+                                                         np.asarray(theta_rad, dtype=float)),
+                                second=True)
+        g11, g12, g22 = (np.einsum("...i,...i->...", a, b)
+                         for a, b in ((s.r_u, s.r_u), (s.r_u, s.r_v), (s.r_v, s.r_v)))
+        l11, l12, l22 = (np.einsum("...i,...i->...", a, s.n) for a in (s.r_uu, s.r_uv, s.r_vv))
+        det = g11 * g22 - g12 * g12
+        col = lambda a: a[..., None]  # noqa: E731
+        n_u = col((l12 * g12 - l11 * g22) / det) * s.r_u + col((l11 * g12 - l12 * g11) / det) * s.r_v
+        n_v = col((l22 * g12 - l12 * g22) / det) * s.r_u + col((l12 * g12 - l22 * g11) / det) * s.r_v
+        k = float(self.sheet.cone.mean_cone_distance_mm)   # dv/dtheta
+        return BladeEval(x=s.r, x_h=-s.r_u, x_t=k * s.r_v, x_tt=k * k * s.r_vv,
+                         x_ht=-k * s.r_uv, n=s.n, n_t=k * n_v,
+                         rho=np.linalg.norm(s.r[..., :2], axis=-1), n_h=-n_u)
+
+
+def generated_gear_sheets(pair, *, n_u: int = 120, n_v: int = 150) -> dict:
+    """``{side: GearSheet}``: the gear flanks rolled on the crown gear of the pitch plane
+    (:func:`~.basic_settings.generated_gear_setups`), on an n_u x n_v node grid."""
+    setups = generated_gear_setups(pair)
+    return {side: generated_gear_flank(setups[side], pair.blank,
+                                       gear_face_width_mm=pair.gear_face_width_mm,
+                                       n_u=n_u, n_v=n_v)[0] for side in SIDES}
+
+
+def gear_generation(pair) -> tuple[str, dict | None]:
+    """The gear generation of the right-hand ``pair`` without machine settings (module
+    docstring) and, for a formate gear, its pinion active boxes
+    ``{side: (solver, box, gear_tip_undercut_mm)}`` (:func:`~.conjugate.pinion_active_box`,
+    reused by the flank generation); ``None`` for a generated gear."""
+    kin = pair.kinematics(with_errors=False)
+    boxes = {}
+    for side, gear in gear_flanks(pair)[1].items():
+        try:
+            boxes[side] = pinion_active_box(gear, blank=pair.blank, kinematics=kin,
+                                            pinion_face_width_mm=pair.pinion_face_width_mm)
+        except UndercutError:
+            return "generated", None
+    return "formate", boxes
+
+
+def pair_gear_flanks(pair, generation: str, *, n_u: int = 120, n_v: int = 150):
+    """``(placement, {side: gear flank}, {side: generator})`` of ``generation``: the
+    formate flanks (each its own generator) or the generated sheets (each wrapped in a
+    :class:`SheetGenerator`); the cutter placement is the formate cut's (the generated
+    gear rolls the same cutter)."""
+    placement, formate = gear_flanks(pair)
+    if generation == "formate":
+        return placement, formate, formate
+    sheets = generated_gear_sheets(pair, n_u=n_u, n_v=n_v)
+    return placement, sheets, {side: SheetGenerator(s) for side, s in sheets.items()}
+
+
+def generation_of(boxes: dict) -> str:
+    """The gear generation recorded in :func:`~.generation.check_generation`'s result:
+    ``"formate"``, ``"generated"`` or ``"machine"`` (a pair cut from machine settings)."""
+    return boxes["drive"].get("gear_generation", "machine")
+
+
+def generation_text(generation: str, pair) -> str:
+    """One line saying how the gear flanks of ``pair`` are made (``design`` prints it)."""
+    if generation == "formate":
+        return "formate (each flank a copy of the straight blade; conjugate pinion)"
+    if generation == "generated":
+        r_a = 1.0 / np.sin(np.radians(pair.blank.pitch_angle_gear_deg))
+        return ("generated (the blade rolled on the crown gear of the pitch plane, ratio of "
+                f"roll 1/sin(delta2) = {r_a:.4f}; conjugate pinion): the formate gear would "
+                "undercut the pinion (docs/machine_settings.md sec. 5)")
+    return "cut from the pair's machine settings"
