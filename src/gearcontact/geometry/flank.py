@@ -166,7 +166,7 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
     generation, boxes = gear_generation(pair)
-    placement, gear, generators = pair_gear_flanks(pair, generation, n_u=n_u, n_v=n_v)
+    placement, gear, generators = pair_gear_flanks(pair, generation)
     conj, mean = {}, {}
     for side in SIDES:
         conj[side], mean[side] = conjugate_pinion_flank(

@@ -123,13 +123,11 @@ _FIX_TRIALS = 3
 def _generation_boxes(pair) -> dict:
     """Per side: the pinion's active box, gear tip undercut and meshing solver, the gear
     flank that generates it and its generation (:func:`~.gear_generation.gear_generation`:
-    formate, or generated where the formate gear undercuts; the generated gear's sheets
-    on the coarse ``_CHECK_GRID``)."""
+    formate, or generated where the formate gear undercuts)."""
     generation, boxes = gear_generation(pair)
     if boxes is None:
         kin = pair.kinematics(with_errors=False)
-        _, gears, generators = pair_gear_flanks(pair, generation, n_u=_CHECK_GRID[0],
-                                                n_v=_CHECK_GRID[1])
+        _, gears, generators = pair_gear_flanks(pair, generation)
         boxes = {side: pinion_active_box(gen, blank=pair.blank, kinematics=kin,
                                          pinion_face_width_mm=pair.pinion_face_width_mm)
                  for side, gen in generators.items()}
@@ -138,11 +136,6 @@ def _generation_boxes(pair) -> dict:
     return {side: {"active_box": box, "gear_tip_undercut_mm": undercut, "solver": solver,
                    "gear_flank": gears[side], "gear_generation": generation}
             for side, (solver, box, undercut) in boxes.items()}
-
-
-#: Node grid (profile x lengthwise) of a generated gear's sheets in design's checks: the
-#: quintic spline's error on it is far below the top lands and limit lines checked.
-_CHECK_GRID = (30, 40)
 
 
 #: Lengthwise stations of the gear tip line checked by :func:`check_gear_top_land`.
