@@ -1,5 +1,8 @@
 """The conjugate pinion: envelope of the formate gear flank (equation of meshing).
 
+The same solver takes a generated gear's sheet in the blade's role
+(:class:`~.gear_generation.SheetGenerator`: ``h = h_f2 - u``, ``theta = v / R2``).
+
 With the gear turned by phi2 about +z, ``X_f = Rz(phi2) X(h, theta)`` and
 ``N_f = Rz(phi2) n(h, theta)``; the gear flank generates the pinion where the equation
 of meshing holds (Litvin & Fuentes 2004, sec. 6.1, eq. (6.1.10)):
