@@ -119,3 +119,40 @@ def test_accepted_pair_runs_analyze(z1, ratio, offset_frac, beta, face_frac, sid
 @given(**SPACE)
 def test_accepted_pairs_run_analyze_slow(z1, ratio, offset_frac, beta, face_frac, side):
     _analyze_accepted_pair(z1, ratio, offset_frac, beta, face_frac, side)
+
+
+#: Issue 28 item 1's low-ratio spiral bevel pairs (ISO 23509 F.2's data, 20 pinion
+#: teeth, 25 mm faces): the 1:1 miter pair of the issue's reproduction (F.2's gear
+#: addendum factor) and 20/30 with ISO's c_ham = 0.21 + 0.29 / u^2 for u = 1.5. The
+#: formate gear undercuts both pinions; both get the generated gear
+#: (docs/geometry.md sec. 7.6). Cost on the loaded 2-core machine: see the module doc.
+LOW_RATIO = {"20-20": (20, 0.24737), "20-30": (30, 0.33889)}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(LOW_RATIO))
+def test_low_ratio_pairs_design_and_analyze(tmp_path, name):
+    import sys
+    from dataclasses import replace
+
+    from gearcontact.geometry.pair import load_pair
+
+    z2, c_ham = LOW_RATIO[name]
+    f2 = load_pair(Path(__file__).resolve().parents[2] / "examples"
+                   / "iso23509_f2_spiral_bevel.toml")
+    pair = replace(f2, pinion_teeth=20, gear_teeth=z2, gear_addendum_factor=c_ham,
+                   gear_face_width_mm=25.0, pinion_face_width_mm=25.0)
+    (tmp_path / "pair.toml").write_text(pair_to_toml(pair))
+    cmd = [sys.executable, "-m", "gearcontact"]
+    run = subprocess.run(cmd + ["design", "--pair", str(tmp_path / "pair.toml")],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "gear flanks: generated" in run.stdout
+    out = tmp_path / "out"
+    t0 = time.perf_counter()
+    run = subprocess.run(cmd + ["analyze", "--pair", str(tmp_path / "pair.toml"), "--out",
+                                str(out), "--phases", str(PHASES), "--quiet"],
+                         capture_output=True, text=True)
+    print(f"analyze {name}: exit {run.returncode}, {time.perf_counter() - t0:.1f} s")
+    assert run.returncode == 0, run.stderr
+    _check_results(out)

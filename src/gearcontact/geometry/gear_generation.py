@@ -108,12 +108,22 @@ _EXTENSION_STEPS = 16
 _EXTENSION_CUSP = 0.1
 
 
-def generator_node_box(solver, box: FlankBoundary, mean) -> FlankBoundary:
+#: Shares of the traced lengthwise extension tried in turn when the node grid's
+#: continuation loses the envelope inside it (the trace follows three node rows only;
+#: measured on 9/9, E = 0: the gear's toe tip corner): the last, 0, keeps the default
+#: node margins and continues every row by its Taylor polynomial.
+_EXTENSION_TRIALS = (1.0, 0.5, 0.0)
+
+
+def generator_node_box(solver, box: FlankBoundary, mean, *, share: float = 1.0
+                       ) -> FlankBoundary:
     """The enveloped node box of a generating gear sheet: ``box`` widened by
-    ``GENERATOR_MARGIN_MM`` in profile and, towards toe and heel, as far as the gear's
-    envelope stays regular on its lowest, mean and highest node rows (up to
-    ``GENERATOR_EXTENSION`` of the face width; see :func:`generated_gear_sheets`)."""
-    u_lo, u_hi = box.u_root - GENERATOR_MARGIN_MM, box.u_tip + GENERATOR_MARGIN_MM
+    ``GENERATOR_MARGIN_MM`` in profile and, towards toe and heel, by ``share`` of the
+    length over which the gear's envelope stays regular on its lowest, mean and highest
+    node rows (up to ``GENERATOR_EXTENSION`` of the face width; see
+    :func:`generated_gear_sheets`)."""
+    margin = GENERATOR_MARGIN_MM if share > 0.0 else NODE_MARGIN_MM[0]
+    u_lo, u_hi = box.u_root - margin, box.u_tip + margin
     rows = np.array([u_lo, float(solver.cone.dedendum_mm), u_hi])
     det_min = _EXTENSION_CUSP * abs(float(mean.jacobian_det))
     ends = []
@@ -126,9 +136,10 @@ def generator_node_box(solver, box: FlankBoundary, mean) -> FlankBoundary:
                 break
             q, last = s.q, v
         ends.append(last)
+    toe, heel = box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1]
     return FlankBoundary(u_root=u_lo, u_tip=u_hi,
-                         v_toe=min(ends[0], box.v_toe - NODE_MARGIN_MM[1]),
-                         v_heel=max(ends[1], box.v_heel + NODE_MARGIN_MM[1]))
+                         v_toe=float(min(toe + share * (ends[0] - toe), toe)),
+                         v_heel=float(max(heel + share * (ends[1] - heel), heel)))
 
 
 def _rows_at_mean(solver, rows: np.ndarray, mean) -> np.ndarray:
@@ -189,10 +200,21 @@ def generated_gear_sheets(pair) -> dict:
     setups = generated_gear_setups(pair)
     out = {}
     for side in SIDES:
-        sheet = generated_gear_flank(setups[side], pair.blank,
-                                     gear_face_width_mm=pair.gear_face_width_mm,
-                                     n_u=GENERATOR_GRID[0], n_v=GENERATOR_GRID[1],
-                                     node_box=generator_node_box)[0]
+        for share in _EXTENSION_TRIALS:
+            try:
+                sheet = generated_gear_flank(
+                    setups[side], pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
+                    n_u=GENERATOR_GRID[0], n_v=GENERATOR_GRID[1],
+                    node_box=lambda *a, share=share: generator_node_box(*a, share=share))[0]
+                break
+            except UndercutError as err:
+                if share == _EXTENSION_TRIALS[-1]:
+                    raise UndercutError(
+                        "pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
+                        "a pair whose gear the formate cut or the crown gear generates: the "
+                        "formate gear undercuts the pinion, and the generated gear's "
+                        f"envelope does not reach its {err.field} (undercut / limit line of "
+                        "the gear; raise the tooth numbers or the spiral angle)") from err
         b, ext = sheet.boundary, GENERATOR_EXTENSION * pair.gear_face_width_mm
         out[side] = _extended(sheet, b.v_toe - ext, b.v_heel + ext)
     return out
