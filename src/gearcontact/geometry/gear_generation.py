@@ -100,8 +100,9 @@ class SheetGenerator:
 #: pinion's :data:`~.conjugate.NODE_MARGIN_MM`).
 GENERATOR_MARGIN_MM = 2.0 * NODE_MARGIN_MM[0]
 #: Lengthwise extension of a generating gear sheet beyond each end of the face, as a
-#: fraction of the gear face width (the 20/20 pair with F.2's data needs 0.3 at the heel).
-GENERATOR_EXTENSION = 0.4
+#: fraction of the gear face width (the 20/20 pair with F.2's data needs 0.3 at the heel,
+#: 5/6 with beta1 46 deg 0.64).
+GENERATOR_EXTENSION = 1.0
 _EXTENSION_STEPS = 16
 #: The envelope's extension ends where |det J| of the gear's node equations falls below
 #: this fraction of the mean node's (the generated gear's own limit line, blade tip).
