@@ -14,11 +14,13 @@ exact conjugates (:mod:`.conjugate`) with the pair's ease-off. Two gears are pos
   of the gear's pitch plane (:func:`~.basic_settings.generated_gear_setups`: the formate
   settings with ratio of roll ``1/sin(delta2)``, no modified roll; Litvin & Fuentes
   2004, sec. 20.2-20.3), a :class:`~.sheet.GearSheet`. The pitch cone rolls on the
-  cradle plane, so the blank's mean point keeps its normal (spiral and pressure angle)
-  on the generated flank. Its conjugate pinion (:class:`SheetGenerator` feeds the sheet
-  to the meshing solver of :mod:`.conjugate`) is, for a spiral bevel pair, the pinion
-  the same crown gear generates: the classic generated pair, free of undercut down to
-  the miter pair.
+  cradle plane, so on the pitch cone the flank is the cutter circle rolled onto it:
+  pressure angle = blade angle, spiral angle that of the cutter circle
+  (tests/geometry/test_gear_generation.py). Its conjugate pinion
+  (:class:`SheetGenerator` feeds the sheet to the meshing solver of :mod:`.conjugate`)
+  is, for a spiral bevel pair, the pinion the same crown gear generates: the classic
+  generated pair (F.3's data, u 1-2.5: undercut left only at z1 = 5, E = 0;
+  docs/geometry.md sec. 7.6).
 
 Rule (:func:`gear_generation`, deterministic): the formate gear unless the active-box
 step of its conjugate pinion (:func:`~.conjugate.pinion_active_box`, no node grid)
