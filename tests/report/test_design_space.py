@@ -125,7 +125,8 @@ def test_accepted_pairs_run_analyze_slow(z1, ratio, offset_frac, beta, face_frac
 #: teeth, 25 mm faces): the 1:1 miter pair of the issue's reproduction (F.2's gear
 #: addendum factor) and 20/30 with ISO's c_ham = 0.21 + 0.29 / u^2 for u = 1.5. The
 #: formate gear undercuts both pinions; both get the generated gear
-#: (docs/geometry.md sec. 7.6). Cost on the loaded 2-core machine: see the module doc.
+#: (docs/geometry.md sec. 7.6). Cost on the loaded 2-core machine: 20/30 126 s (test),
+#: 20/20 about 14 min (its ease-off synthesis, 207 TCA runs, does not meet the targets).
 LOW_RATIO = {"20-20": (20, 0.24737), "20-30": (30, 0.33889)}
 
 
@@ -133,16 +134,18 @@ LOW_RATIO = {"20-20": (20, 0.24737), "20-30": (30, 0.33889)}
 @pytest.mark.parametrize("name", sorted(LOW_RATIO))
 def test_low_ratio_pairs_design_and_analyze(tmp_path, name):
     import sys
-    from dataclasses import replace
-
-    from gearcontact.geometry.pair import load_pair
 
     z2, c_ham = LOW_RATIO[name]
-    f2 = load_pair(Path(__file__).resolve().parents[2] / "examples"
-                   / "iso23509_f2_spiral_bevel.toml")
-    pair = replace(f2, pinion_teeth=20, gear_teeth=z2, gear_addendum_factor=c_ham,
-                   gear_face_width_mm=25.0, pinion_face_width_mm=25.0)
-    (tmp_path / "pair.toml").write_text(pair_to_toml(pair))
+    # the issue's reproduction: the example's lines edited (no [easeoff.*] table, so
+    # analyze synthesizes the ease-off as for every pair without one)
+    text = (Path(__file__).resolve().parents[2] / "examples"
+            / "iso23509_f2_spiral_bevel.toml").read_text()
+    for old, new in (("pinion = 14", "pinion = 20"), ("gear = 39", f"gear = {z2}"),
+                     ("gear_addendum_factor = 0.24737", f"gear_addendum_factor = {c_ham}"),
+                     ("face_width_mm = 25.4", "face_width_mm = 25.0")):
+        assert old in text
+        text = text.replace(old, new)
+    (tmp_path / "pair.toml").write_text(text)
     cmd = [sys.executable, "-m", "gearcontact"]
     run = subprocess.run(cmd + ["design", "--pair", str(tmp_path / "pair.toml")],
                          capture_output=True, text=True)
