@@ -236,20 +236,29 @@ def test_f3_spiral_45_generates_trimmed_at_the_limit_line():
 
 def test_f3_spiral_25_undercut_names_the_fix():
     # At beta1 = 25 deg the limit line on the coast flank's toe leaves 53 % of the gear
-    # addendum without a conjugate partner (> 50 %): the active flank is undercut.
-    # design's check (no grid) names gear_addendum_factor and a value it has verified;
-    # with it the pair generates (measured fix 0.164, docs/geometry.md sec. 7.2).
+    # addendum without a conjugate partner (> 50 %): the formate gear's active flank is
+    # undercut, and its active-box step names gear_addendum_factor and a value that
+    # avoids it. design now takes the generated gear for this pair instead
+    # (docs/geometry.md sec. 7.6); with the fix it verified before (0.164, sec. 7.2)
+    # the formate gear generates, trimmed at the limit line.
     from dataclasses import replace
 
-    from gearcontact.geometry.generation import check_generation
+    from gearcontact.geometry.conjugate import pinion_active_box
     from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.formate import gear_flanks
+    from gearcontact.geometry.gear_generation import gear_generation
     pair = _f3(pinion_spiral_angle_deg=25.0)
     with pytest.raises(UndercutError) as err:
-        check_generation(pair)
+        pinion_active_box(gear_flanks(pair)[1]["coast"], blank=pair.blank,
+                          kinematics=pair.kinematics(with_errors=False),
+                          pinion_face_width_mm=pair.pinion_face_width_mm)
     assert err.value.field == "gear_addendum_factor" and err.value.value == 0.35
     assert 0.0 < err.value.fix < 0.35
     assert "coast flank is undercut" in err.value.allowed
-    fs = build_flanks(replace(pair, gear_addendum_factor=err.value.fix), n_u=60, n_v=80)
+    assert gear_generation(pair)[0] == "generated"
+    fixed = replace(pair, gear_addendum_factor=0.164)
+    assert gear_generation(fixed)[0] == "formate"
+    fs = build_flanks(fixed, n_u=60, n_v=80)
     _check_trimmed_at_limit_line(fs)
 
 

@@ -14,6 +14,7 @@ import json
 
 from ..errors import CheckFailed
 from ..geometry.formate import SIDES
+from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation
 from ..geometry.pair import BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair
 from ..validation import InputRangeError, check_range
@@ -132,7 +133,7 @@ def check(args) -> None:
         args.writes_files = False
         return
     # a pair whose pinion the gear cannot generate (limit line) is refused here
-    check_generation(pair)
+    args.gear_generation = generation_of(check_generation(pair))
     modes = [m for m, on in (("--calibrate", args.calibrate),
                              ("--synthesize-easeoff", args.synthesize_easeoff),
                              ("--machine-settings", args.machine_settings)) if on]
@@ -342,8 +343,9 @@ def run(args) -> int:
     if args.synthesize_easeoff:
         return _synthesize(args, pair)
     blank = pair.blank
+    generation = getattr(args, "gear_generation", None) or generation_of(check_generation(pair))
     if args.json:
-        out = {"pair": pair.name, **blank.as_dict()}
+        out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
@@ -358,4 +360,5 @@ def run(args) -> int:
         print(f"{name:<{width}} {_fmt(getattr(blank, attr)):>12}")
     P = ", ".join(f"{c:.4f}" for c in blank.pitch_point_mm)
     print(f"{'pitch point P (meshing frame) [mm]':<{width}} ({P})")
+    print(f"gear flanks: {generation_text(generation, pair)}")
     return 0

@@ -1,5 +1,8 @@
 """The conjugate pinion: envelope of the formate gear flank (equation of meshing).
 
+The same solver takes a generated gear's sheet in the blade's role
+(:class:`~.gear_generation.SheetGenerator`: ``h = h_f2 - u``, ``theta = v / R2``).
+
 With the gear turned by phi2 about +z, ``X_f = Rz(phi2) X(h, theta)`` and
 ``N_f = Rz(phi2) n(h, theta)``; the gear flank generates the pinion where the equation
 of meshing holds (Litvin & Fuentes 2004, sec. 6.1, eq. (6.1.10)):
@@ -137,8 +140,9 @@ class MeshingSolver:
 
     Parameters
     ----------
-    gear : FormateFlank
-        The generating gear flank (gear body frame).
+    gear : FormateFlank or SheetGenerator
+        The generating gear flank (gear body frame): a formate flank, or a generated
+        gear's sheet in the blade's role (:class:`~.gear_generation.SheetGenerator`).
     kinematics : MeshKinematics
         Nominal meshing kinematics (no assembly errors).
     cone : PinionCone
@@ -175,7 +179,8 @@ class MeshingSolver:
         c, s = np.cos(ph), np.sin(ph)
         xf, nf = _rotz(b.x, c, s), _rotz(b.n, c, s)
         dx = np.stack([_rotz(b.x_h, c, s), _rotz(b.x_t, c, s), _zcross(xf)], axis=-2)
-        dn = np.stack([np.zeros_like(nf), _rotz(b.n_t, c, s), _zcross(nf)], axis=-2)
+        n_h = np.zeros_like(nf) if b.n_h is None else _rotz(b.n_h, c, s)
+        dn = np.stack([n_h, _rotz(b.n_t, c, s), _zcross(nf)], axis=-2)
         y = xf - self.kin.pinion_centre
         rho = np.hypot(y[..., 1], y[..., 2])
         v12 = self._v12(xf)
@@ -277,9 +282,11 @@ def nominal_pinion_box(blank: BlankDesign, pinion_face_width_mm: float) -> tuple
 
 
 def conjugate_pinion_flank(gear: FormateFlank, *, blank: BlankDesign, kinematics: MeshKinematics,
-                           pinion_face_width_mm: float, n_u: int = 120,
-                           n_v: int = 150) -> tuple[ConjugateFlank, dict]:
-    """Generate the pinion flank conjugate to ``gear`` on an n_u x n_v exact grid.
+                           pinion_face_width_mm: float, n_u: int = 120, n_v: int = 150,
+                           active: tuple | None = None) -> tuple[ConjugateFlank, dict]:
+    """Generate the pinion flank conjugate to ``gear`` (a :class:`~.formate.FormateFlank`
+    or a :class:`~.gear_generation.SheetGenerator`) on an n_u x n_v exact grid;
+    ``active``: :func:`pinion_active_box` of the same arguments when already computed.
 
     Returns
     -------
@@ -297,8 +304,8 @@ def conjugate_pinion_flank(gear: FormateFlank, *, blank: BlankDesign, kinematics
     """
     if int(n_u) != n_u or n_u < 6 or int(n_v) != n_v or n_v < 6:
         raise InputRangeError("n_u, n_v", (n_u, n_v), "integers >= 6 (quintic spline)")
-    solver, box, undercut = pinion_active_box(gear, blank=blank, kinematics=kinematics,
-                                              pinion_face_width_mm=pinion_face_width_mm)
+    solver, box, undercut = active if active is not None else pinion_active_box(
+        gear, blank=blank, kinematics=kinematics, pinion_face_width_mm=pinion_face_width_mm)
     cone = solver.cone
     try:
         us, vs, U, V, nodes, mean, (i0, j0), u_m, v_m = _solve_grid(solver, box, blank, n_u, n_v)
@@ -364,13 +371,10 @@ _MARCH_STEPS = 24
 #: of its mean-point value (towards a limit line the flank curvature grows like
 #: 1/sqrt(distance) and the spline interpolant loses accuracy).
 _CUSP_FRACTION = 0.1
-#: Below this ratio a formate gear (a copy of the straight blade, far from the profile
-#: a generated gear would have) typically undercuts its conjugate pinion; the undercut
-#: message says so (generated gears are not modelled).
-_FORMATE_MIN_RATIO = 2.5
-_FORMATE_HINT = (" (the gear is formate, a copy of the straight blade: at ratios below "
-                 f"about {_FORMATE_MIN_RATIO:g} its conjugate pinion is undercut unless the gear "
-                 "addendum is short; generated gears are not modelled)")
+#: The undercut message of a generated gear's pinion (:mod:`.gear_generation`: the
+#: formate gear undercut it first).
+_GENERATED_HINT = (" (the gear is generated, rolled on the crown gear of its pitch plane: "
+                   "its formate twin undercuts the pinion still more)")
 #: Largest share of the gear addendum whose tip zone may lack a conjugate partner
 #: (limit line at the pinion root, trimmed) before the active flank counts as undercut.
 _MAX_UNDERCUT = 0.5
@@ -472,11 +476,11 @@ def _active_box(solver: MeshingSolver, nominal: FlankBoundary,
                  f"v = {vs[k]:.3f} mm, where the gear tip zone h = [{h_lo:.3f}, "
                  f"{edge_h[k]:.3f}] mm ({undercut / blank.addendum_gear_mm:.0%} of the gear "
                  f"addendum, more than {_MAX_UNDERCUT:.0%}) generates no pinion flank"
-                 f"{_FORMATE_HINT if blank.ratio < _FORMATE_MIN_RATIO else ''}")
+                 f"{'' if isinstance(gear, FormateFlank) else _GENERATED_HINT}")
         if fix <= 0.0:  # the limit line reaches the pitch plane: no addendum avoids it
             raise UndercutError(
                 "pinion_teeth / gear_teeth", (blank.pinion_teeth, blank.gear_teeth),
-                f"a pair whose pinion the formate gear generates: {where}, and no gear "
+                f"a pair whose pinion the gear generates: {where}, and no gear "
                 "addendum factor avoids it (raise the tooth numbers or the ratio, the "
                 f"{gear.side} pressure angle or the spiral angle)")
         raise UndercutError(

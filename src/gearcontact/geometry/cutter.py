@@ -81,6 +81,8 @@ class BladeEval:
     n: np.ndarray
     n_t: np.ndarray
     rho: np.ndarray
+    #: Normal derivative w.r.t. h; None for a cone (its normal is constant along h).
+    n_h: np.ndarray | None = None
 
 
 @dataclass(frozen=True, eq=False)

@@ -276,15 +276,17 @@ def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
     return _sheet_of(solver, box, mean, setup, n_u, n_v, RadialSheet)
 
 
-def _sheet_of(solver, box, mean, setup, n_u, n_v, kind):
-    """The node grid over ``box`` (with the node margin) solved by continuation from
-    the mean node, checked, and its spline sheet of class ``kind``."""
+def _sheet_of(solver, box, mean, setup, n_u, n_v, kind, node_box=None):
+    """The node grid over ``node_box`` (default: ``box`` with the node margin) solved by
+    continuation from the mean node, checked, and its spline sheet of class ``kind``."""
     if int(n_u) != n_u or n_u < 6 or int(n_v) != n_v or n_v < 6:
         raise InputRangeError("n_u, n_v", (n_u, n_v), "integers >= 6 (quintic spline)")
     cone = solver.cone
     u_m, v_m = _mean_uv(setup, solver.blank, cone)
-    us = np.linspace(box.u_root - NODE_MARGIN_MM[0], box.u_tip + NODE_MARGIN_MM[0], int(n_u))
-    vs = np.linspace(box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1], int(n_v))
+    nb = node_box or FlankBoundary(box.u_root - NODE_MARGIN_MM[0], box.u_tip + NODE_MARGIN_MM[0],
+                                   box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1])
+    us = np.linspace(nb.u_root, nb.u_tip, int(n_u))
+    vs = np.linspace(nb.v_toe, nb.v_heel, int(n_v))
     nodes = solve_node_grid(solver, us, vs, u_m, v_m, mean.q)
     _check_regular(nodes, mean, setup, us, vs, box)
     psi = np.unwrap(np.unwrap(solver.angle(nodes.x_mm), axis=0), axis=1)
@@ -305,12 +307,16 @@ def _mean_uv(setup: MachineSetup, blank: BlankDesign, cone) -> tuple[float, floa
 
 
 def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_width_mm: float,
-                         n_u: int = 120, n_v: int = 150) -> tuple[GearSheet, EnvelopeSolution]:
+                         n_u: int = 120, n_v: int = 150, node_box=None
+                         ) -> tuple[GearSheet, EnvelopeSolution]:
     """The gear flank ``setup`` generates (ratio of roll or helical motion), on an
     n_u x n_v exact node grid: a :class:`~.sheet.GearSheet` over the gear's pitch-cone
     coordinates (``u`` above the root along the pitch-cone normal, ``v`` cone distance
     from the mean section), box from the blade edge line (:func:`_active_box`) to the
-    tip and over the gear face width.
+    tip and over the gear face width; the nodes cover ``node_box`` (a
+    :class:`~.formate.FlankBoundary` holding the box; default: the box with the node
+    margin; a gear that generates a conjugate pinion needs more, a function of ``box``
+    and the solver: :mod:`.gear_generation`).
 
     Raises
     ------
@@ -320,7 +326,9 @@ def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_w
         As :func:`generated_pinion_flank`.
     """
     solver, box, mean = generated_gear_box(setup, blank, gear_face_width_mm=gear_face_width_mm)
-    return _sheet_of(solver, box, mean, setup, n_u, n_v, GearSheet)
+    if callable(node_box):
+        node_box = node_box(solver, box, mean)
+    return _sheet_of(solver, box, mean, setup, n_u, n_v, GearSheet, node_box)
 
 
 def generated_gear_box(setup: MachineSetup, blank: BlankDesign, *, gear_face_width_mm: float

@@ -22,7 +22,7 @@ from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .easeoff import EaseOff
 from .flank import right_hand_twin
-from .formate import gear_flanks
+from .gear_generation import gear_generation, pair_gear_flanks
 from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
@@ -34,18 +34,22 @@ def check_generation(pair) -> dict:
 
     A pair cut from machine settings (``pair.machine``) is checked by
     :func:`_machine_boxes` instead (settings, blade kinds, the generated pinion's active
-    box). Otherwise, in order: the gear top land along its tip line (:func:`check_gear_top_land`);
-    :func:`~.conjugate.pinion_active_box` on both sides (no node grid) -- an undercut
-    names a gear addendum factor that avoids it, verified here (the limit line moves
-    slightly with the addenda: up to ``_FIX_TRIALS`` smaller values are tried); when
-    none does, the tooth numbers are named; the conjugate pinion's top land along its
-    tip line (:func:`check_pinion_top_land`, verified fix).
+    box). Otherwise, in order: the gear generation (:func:`~.gear_generation.gear_generation`:
+    the formate gear, or the generated gear where the formate gear undercuts its pinion)
+    and :func:`~.conjugate.pinion_active_box` on both sides (no node grid) -- an undercut
+    of the generated gear's pinion names a gear addendum factor that avoids it, verified
+    here (the limit line moves slightly with the addenda: up to ``_FIX_TRIALS`` smaller
+    values are tried); when none does, the tooth numbers are named; the gear top land
+    along its tip line (:func:`check_gear_top_land`); the conjugate pinion's top land
+    along its tip line (:func:`check_pinion_top_land`, verified fix).
 
     Returns
     -------
     dict
         ``{side: {"active_box": FlankBoundary, "gear_tip_undercut_mm": float,
-        "solver": MeshingSolver}}``.
+        "solver": MeshingSolver, "gear_flank": FormateFlank | GearSheet,
+        "gear_generation": "formate" | "generated"}}`` (a machine-settings pair: the
+        first three).
 
     Raises
     ------
@@ -57,8 +61,8 @@ def check_generation(pair) -> dict:
     pair = _right_hand(pair)
     if pair.machine:
         return _machine_boxes(pair)
-    check_gear_top_land(pair)
     boxes = _undercut_checked_boxes(pair)
+    check_gear_top_land(pair, boxes=boxes)
     check_pinion_top_land(pair, boxes=boxes)
     return boxes
 
@@ -108,7 +112,7 @@ def _undercut_checked_boxes(pair) -> dict:
             tail = first.allowed[first.allowed.index(" (or no undercut)"):]
             raise UndercutError(first.field, first.value, f"<= {fix:.3f}{tail}", fix=fix)
     raise UndercutError("pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
-                        "a pair whose pinion the formate gear generates: no gear addendum "
+                        "a pair whose pinion the gear generates: no gear addendum "
                         f"factor avoids the undercut ({first.allowed.split(': ', 1)[1]})")
 
 
@@ -117,21 +121,29 @@ _FIX_TRIALS = 3
 
 
 def _generation_boxes(pair) -> dict:
-    kin = pair.kinematics(with_errors=False)
-    out = {}
-    for side, gear in gear_flanks(pair)[1].items():
-        solver, box, undercut = pinion_active_box(gear, blank=pair.blank, kinematics=kin,
-                                                  pinion_face_width_mm=pair.pinion_face_width_mm)
-        out[side] = {"active_box": box, "gear_tip_undercut_mm": undercut, "solver": solver}
-    return out
+    """Per side: the pinion's active box, gear tip undercut and meshing solver, the gear
+    flank that generates it and its generation (:func:`~.gear_generation.gear_generation`:
+    formate, or generated where the formate gear undercuts)."""
+    generation, boxes = gear_generation(pair)
+    if boxes is None:
+        kin = pair.kinematics(with_errors=False)
+        _, gears, generators = pair_gear_flanks(pair, generation)
+        boxes = {side: pinion_active_box(gen, blank=pair.blank, kinematics=kin,
+                                         pinion_face_width_mm=pair.pinion_face_width_mm)
+                 for side, gen in generators.items()}
+    else:
+        gears = {side: got[0].gear for side, got in boxes.items()}
+    return {side: {"active_box": box, "gear_tip_undercut_mm": undercut, "solver": solver,
+                   "gear_flank": gears[side], "gear_generation": generation}
+            for side, (solver, box, undercut) in boxes.items()}
 
 
 #: Lengthwise stations of the gear tip line checked by :func:`check_gear_top_land`.
 _TIP_STATIONS = 41
 
 
-def check_gear_top_land(pair) -> float:
-    """Smallest normal top land of the formate gear tooth along its tip line, mm
+def check_gear_top_land(pair, *, boxes: dict | None = None) -> float:
+    """Smallest normal top land of the gear tooth along its tip line, mm
     (:func:`gear_tip_top_lands`); refuses pointed teeth.
 
     Raises
@@ -140,7 +152,7 @@ def check_gear_top_land(pair) -> float:
         Naming ``cutter.point_width_mm`` (the width that leaves a zero top land) or,
         when no width does, ``design.gear_face_width_mm``.
     """
-    frac, land = gear_tip_top_lands(pair)
+    frac, land = gear_tip_top_lands(pair, boxes=boxes)
     worst = int(np.argmin(land))
     if land[worst] > 0.0:
         return float(land[worst])
@@ -155,8 +167,10 @@ def check_gear_top_land(pair) -> float:
                           f"point width: the normal top land there is {land[worst]:.4g} mm)")
 
 
-def gear_tip_top_lands(pair) -> tuple[np.ndarray, np.ndarray]:
-    """Normal top land of the formate gear tooth along its tip line.
+def gear_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Normal top land of the gear tooth along its tip line (the formate or generated
+    gear of the pair, :func:`~.gear_generation.gear_generation`; ``boxes`` as
+    :func:`pinion_tip_top_lands`'s).
 
     One gear tooth lies between the drive flank and the coast flank turned by 0 or +-1
     pitch about the gear axis (the turn that puts each flank behind the other's outward
@@ -174,8 +188,8 @@ def gear_tip_top_lands(pair) -> tuple[np.ndarray, np.ndarray]:
     land_mm : ndarray (_TIP_STATIONS,)
         Top land, mm (negative: the flanks cross below the tip).
     """
-    _, flanks = gear_flanks(pair)
-    drive, coast = flanks["drive"], flanks["coast"]
+    boxes = _generation_boxes(_right_hand(pair)) if boxes is None else boxes
+    drive, coast = boxes["drive"]["gear_flank"], boxes["coast"]["gear_flank"]
     frac = np.linspace(0.0, 1.0, _TIP_STATIONS)
 
     def tip_line(flank, u):
@@ -363,8 +377,9 @@ def _verified_fix(pair, land_mm: float, step, start: float, change):
             return None
         try:
             trial = change(pair, x)
-            check_gear_top_land(trial)
-            land = float(np.min(pinion_tip_top_lands(trial, boxes=_generation_boxes(trial))[1]))
+            boxes = _generation_boxes(trial)
+            check_gear_top_land(trial, boxes=boxes)
+            land = float(np.min(pinion_tip_top_lands(trial, boxes=boxes)[1]))
         except InputRangeError:
             return None
         if land > 0.0:

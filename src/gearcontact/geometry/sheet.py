@@ -254,6 +254,20 @@ class GearSheet(RadialSheet):
     def locate(self, x_mm):
         raise NotImplementedError("GearSheet.locate")
 
+    def blade_parameters(self, u, v):
+        """(h, theta) of the sheet point (u, v) as the meshing solver of the conjugate
+        pinion takes it (:class:`~.gear_generation.SheetGenerator`): depth below the
+        pitch cone ``h = h_f2 - u`` (mm, as a formate flank's) and ``theta = v / R2``
+        (rad, ``R2`` the mean cone distance)."""
+        c = self.cone
+        return (c.dedendum_mm - np.asarray(u, dtype=float),
+                np.asarray(v, dtype=float) / c.mean_cone_distance_mm)
+
+    def surface_parameters(self, h_mm, theta_rad):
+        """Inverse of :meth:`blade_parameters`: (u, v) in mm."""
+        c = self.cone
+        return c.dedendum_mm - np.asarray(h_mm), np.asarray(theta_rad) * c.mean_cone_distance_mm
+
     def _vectors(self, u: np.ndarray, v: np.ndarray, second: bool) -> np.ndarray:
         d = self.psi_derivatives(u, v, second=second).reshape(-1, 6)
         u, v = u.ravel(), v.ravel()
