@@ -28,6 +28,14 @@ def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
     """An F.3-like pair (r2 = 70.94 mm, r_c0 = 63.5 mm) at a point of issue 28's design
     space, with a crowning of about 10 um at the flank corners (so that TCA has an
     ease-off), or the InputRangeError that ``design`` raises for it."""
+    pair = design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side)
+    check_generation(pair)
+    return pair
+
+
+def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side):
+    """:func:`design_space_pair` before ``design``'s checks (the pitch-cone design's own
+    refusals only)."""
     base = load_pair(Path(__file__).resolve().parents[1] / "examples" / "iso23509_f3.toml")
     z2 = max(z1, int(round(z1 * ratio)))
     r2 = base.gear_mean_pitch_radius_mm
@@ -41,7 +49,6 @@ def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
                                 lengthwise_crowning_um_per_mm2=10.0 / (0.5 * face) ** 2)
     pair = replace(pair, gear_face_width_mm=face, pinion_face_width_mm=1.05 * face,
                    easeoff_drive=crown, easeoff_coast=crown)
-    check_generation(pair)
     return pair
 
 

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
+from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
 from .gear_generation import gear_generation, pair_gear_flanks
@@ -56,8 +57,10 @@ def check_generation(pair) -> dict:
     UndercutError
         As :func:`~.conjugate.pinion_active_box`, with a verified ``fix``.
     InputRangeError
-        Pointed gear or pinion teeth (a verified fix named).
+        A contact ratio below one (closed form); pointed gear or pinion teeth (a
+        verified fix named).
     """
+    check_contact_ratio(pair)   # closed form (ISO 10300-1), before the gear generation
     pair = _right_hand(pair)
     if pair.machine:
         return _machine_boxes(pair)
