@@ -100,8 +100,8 @@ def test_design_refuses_the_5_5_pair_naming_the_field(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("point, field", [
-    ((12, 2.5, 0.3, 35.0, 0.15, "drive"), "design.gear_face_width_mm"),
-    ((16, 1.5, 0.0, 20.0, 0.3, "drive"), "pinion_spiral_angle_deg"),
+    ((12, 1.5, 0.3, 35.0, 0.15, "drive"), "design.gear_face_width_mm"),
+    ((16, 1.0, 0.0, 25.0, 0.353, "drive"), "pinion_spiral_angle_deg"),
     ((8, 1.0, 0.0, 20.0, 0.15, "drive"), "pinion_teeth / gear_teeth")])
 def test_the_named_fix_reaches_the_threshold(point, field):
     """The face width if within F <= 0.3 R_e, else the spiral angle, else the teeth; the
