@@ -16,8 +16,10 @@ from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
 #: Where the formate gear undercuts its pinion the pair gets a generated gear
 #: (docs/geometry.md sec. 7.6): low ratios are accepted (F.3's data at beta1 35 deg,
 #: face 0.3 R_m: 29 of 32 pairs with z1 5-20, u 1-2.5, E 0 and 0.3 r2, 23 of them on the
-#: generated gear); an undercut left with the generated gear names the gear addendum
-#: factor or the tooth numbers, as the formate gear's did.
+#: generated gear; counted before the contact-ratio check); an undercut left with the
+#: generated gear names the gear addendum factor or the tooth numbers, as the formate
+#: gear's did. A closed-form contact ratio below the threshold (docs/geometry.md
+#: sec. 7.7) names the face width, the spiral angle or the tooth numbers.
 DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
                  "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
                  "pinion_teeth / gear_teeth", "design.working_depth_factor",
@@ -28,6 +30,14 @@ def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
     """An F.3-like pair (r2 = 70.94 mm, r_c0 = 63.5 mm) at a point of issue 28's design
     space, with a crowning of about 10 um at the flank corners (so that TCA has an
     ease-off), or the InputRangeError that ``design`` raises for it."""
+    pair = design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side)
+    check_generation(pair)
+    return pair
+
+
+def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side):
+    """:func:`design_space_pair` before ``design``'s checks (the pitch-cone design's own
+    refusals only)."""
     base = load_pair(Path(__file__).resolve().parents[1] / "examples" / "iso23509_f3.toml")
     z2 = max(z1, int(round(z1 * ratio)))
     r2 = base.gear_mean_pitch_radius_mm
@@ -41,7 +51,6 @@ def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
                                 lengthwise_crowning_um_per_mm2=10.0 / (0.5 * face) ** 2)
     pair = replace(pair, gear_face_width_mm=face, pinion_face_width_mm=1.05 * face,
                    easeoff_drive=crown, easeoff_coast=crown)
-    check_generation(pair)
     return pair
 
 

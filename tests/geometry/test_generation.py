@@ -135,9 +135,11 @@ def _check_pointed_pinion_refused(args, *, build: bool):
     assert "pointed pinion teeth at the toe" in err.value.allowed
     bound = float(err.value.allowed.split()[1])
     assert bound > pair.cutter.point_width_mm
-    # the named width works: every check of design passes, both members keep a top land
+    # the named width works: every flank-generation check of design passes, both members
+    # keep a top land (the pair's closed-form contact ratio, 9/32 eps_vg 1.41, 5/15 1.08,
+    # is below the threshold: design then names that, tests/geometry/test_contact_ratio.py)
     fixed = replace(pair, cutter=replace(pair.cutter, point_width_mm=bound))
-    boxes = check_generation(fixed)
+    boxes = check_generation(fixed, contact_ratio=False)
     assert check_pinion_top_land(fixed, boxes=boxes) > 0.0
     assert check_gear_top_land(fixed) > 0.0
     if build:   # and the tooth shell of the built flanks finds no crossing

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
+from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
 from .gear_generation import gear_generation, pair_gear_flanks
@@ -29,7 +30,7 @@ __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands"]
 
 
-def check_generation(pair) -> dict:
+def check_generation(pair, *, contact_ratio: bool = True) -> dict:
     """Check that the pinion flanks of ``pair`` can be generated, before any flank work.
 
     A pair cut from machine settings (``pair.machine``) is checked by
@@ -41,7 +42,10 @@ def check_generation(pair) -> dict:
     here (the limit line moves slightly with the addenda: up to ``_FIX_TRIALS`` smaller
     values are tried); when none does, the tooth numbers are named; the gear top land
     along its tip line (:func:`check_gear_top_land`); the conjugate pinion's top land
-    along its tip line (:func:`check_pinion_top_land`, verified fix).
+    along its tip line (:func:`check_pinion_top_land`, verified fix). Last, unless
+    ``contact_ratio=False``, the closed-form contact ratio of the virtual cylindrical
+    gears (:func:`~.contact_ratio.check_contact_ratio`: a pair whose unloaded mesh may
+    have a gap is refused, naming the face width, the spiral angle or the teeth).
 
     Returns
     -------
@@ -56,14 +60,20 @@ def check_generation(pair) -> dict:
     UndercutError
         As :func:`~.conjugate.pinion_active_box`, with a verified ``fix``.
     InputRangeError
-        Pointed gear or pinion teeth (a verified fix named).
+        Pointed gear or pinion teeth (a verified fix named); a closed-form contact
+        ratio below :data:`~.contact_ratio.MIN_CONTACT_RATIO`.
     """
     pair = _right_hand(pair)
     if pair.machine:
-        return _machine_boxes(pair)
-    boxes = _undercut_checked_boxes(pair)
-    check_gear_top_land(pair, boxes=boxes)
-    check_pinion_top_land(pair, boxes=boxes)
+        boxes = _machine_boxes(pair)
+    else:
+        boxes = _undercut_checked_boxes(pair)
+        check_gear_top_land(pair, boxes=boxes)
+        check_pinion_top_land(pair, boxes=boxes)
+    if contact_ratio:
+        # last, so that a pair failing a check above is named by that (a fix of its
+        # own, verified with contact_ratio=False); closed form, no flank work
+        check_contact_ratio(pair)
     return boxes
 
 
