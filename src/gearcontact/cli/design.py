@@ -308,9 +308,12 @@ def _machine_settings(args, pair) -> int:
     crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
                                   ("blade_profile_crowning_um", args.blade_profile_crowning_um))
                 if v is not None}
-    text = pair_to_toml(standard_machine_pair(pair, **crowning), comments={
-        "": f"{pair.name}: standard machine settings from the blank (gearcontact design "
-            "--machine-settings;\nsigns: docs/machine_settings.md)"})
+    # the gear of the default flanks (check: generated where the formate gear undercuts)
+    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+    text = pair_to_toml(standard_machine_pair(pair, gear_generation=generation, **crowning),
+                        comments={"": f"{pair.name}: standard machine settings from the blank "
+                                      "(gearcontact design --machine-settings;\nsigns: "
+                                      f"docs/machine_settings.md); gear: {generation}"})
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")

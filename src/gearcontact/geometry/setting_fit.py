@@ -73,7 +73,7 @@ from scipy.optimize import least_squares
 
 from ..validation import InputRangeError, check_range
 from .blank import BlankDesign
-from .basic_settings import complementary_pinion_setups, formate_gear_setups
+from .basic_settings import member_setups
 from .conjugate import nominal_pinion_box
 from .easeoff import apply_easeoff
 from .flank import build_flanks
@@ -454,10 +454,10 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
                          ) -> EaseOffSettings:
     """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
 
-    The gear keeps today's formate flanks (:func:`~.basic_settings.formate_gear_setups`);
-    each pinion flank is fitted (:func:`fit_pinion_setup`) from the complementary
-    settings (:func:`~.basic_settings.complementary_pinion_setups`, the exactly
-    conjugate pinion: zero ease-off) to the conjugate pinion with the pair's ease-off
+    The gear keeps the flanks of the pair's default (formate, or generated where the
+    formate gear undercuts its pinion: :func:`~.basic_settings.member_setups`); each
+    pinion flank is fitted (:func:`fit_pinion_setup`) from the settings of the exactly
+    conjugate pinion (complementary or the crown gear's: zero ease-off) to the conjugate pinion with the pair's ease-off
     (:func:`~.flank.build_flanks`), and its residual measured over the full flank. A
     left-hand pair is fitted on its right-hand twin and its settings mirrored
     (:func:`~.machine.mirror_setup`).
@@ -497,8 +497,8 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         if side not in SIDES:
             raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
     flanks = build_flanks(twin)
-    seeds = complementary_pinion_setups(twin)
-    gear = formate_gear_setups(twin)
+    # the gear of the default flanks and the pinion exactly conjugate to it
+    gear, seeds = member_setups(twin, flanks.gear_generation)
     sides, pinion = {}, {}
     for side in SIDES:
         target = flanks.pinion.side(side)

@@ -102,8 +102,8 @@ def easeoff_settings_toml(fit) -> str:
     residual per side."""
     pair = fit.pair
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
-             "--machine-settings;", "signs: docs/machine_settings.md). Gear: today's "
-             "formate gear; pinion: fitted from", "the complementary (conjugate) settings "
+             "--machine-settings;", "signs: docs/machine_settings.md). Gear: the default "
+             "flanks' gear; pinion: fitted from", "the exactly conjugate settings "
              "to the conjugate pinion + ease-off."]
     for side, r in fit.sides.items():
         source = "measured grid (--target-flank)" if side in fit.measured_sides else \
