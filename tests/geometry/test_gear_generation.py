@@ -171,3 +171,52 @@ def test_design_names_the_gear_generation(tmp_path, miter):
     assert run.returncode == 0, run.stderr
     assert "gear flanks: generated (the blade rolled on the crown gear" in run.stdout
     assert "ratio of roll 1/sin(delta2) = 1.4142" in run.stdout     # 1/sin(45 deg)
+
+
+def test_standard_settings_of_the_miter_pair_cut_the_generated_gear(miter):
+    # the settings --machine-settings writes for a pair whose default gear is generated:
+    # the gear's are generated_gear_setups' (the settings the default flanks roll),
+    # ratio of roll 1/sin(delta2) = sqrt(2) for the miter (closed form, to 1e-12: float
+    # rounding); without crowning the pinion's are exactly the crown gear's pinion
+    # (module doc (c): the pinion exactly conjugate to the generated gear)
+    from gearcontact.geometry.basic_settings import generated_gear_setups, standard_setups
+
+    std = standard_setups(miter, lengthwise_crowning_um=0.0, blade_profile_crowning_um=0.0,
+                          gear_generation="generated")
+    gear, crown = generated_gear_setups(miter), crown_pinion_setups(miter)
+    for side in SIDES:
+        assert std["gear", side] == gear[side]
+        assert std["pinion", side] == crown[side]
+        assert abs(std["gear", side].settings.ratio_of_roll - math.sqrt(2.0)) < 1e-12
+
+
+def test_design_machine_settings_of_the_miter_pair_write_the_generated_gear(tmp_path, miter):
+    # through the CLI (~6 s): the written pair's gear flanks, cut from its settings at
+    # the machine path's 120 x 150 nodes, against the default generated gear's exact
+    # envelope nodes on the face (the nodes of generated_gear_sheets: node solves to
+    # 1e-10): 1e-8 mm along the arc (measured 7e-14 drive, 4.4e-9 coast: the written
+    # sheet's spline error near the coast root); design on the written file exits 0
+    from gearcontact.cli import main
+    from gearcontact.geometry.generated import generated_gear_flank
+    from gearcontact.geometry.pair import pair_to_toml
+
+    path = tmp_path / "miter.toml"
+    path.write_text(pair_to_toml(miter))
+    out = tmp_path / "out"
+    assert main(["design", "--pair", str(path), "--machine-settings", "--out", str(out)]) == 0
+    written = load_pair(out / "machine_settings.toml")
+    setups = {(s.member, s.side): s for s in written.machine}
+    ref = generated_gear_sheets(miter)
+    for side in SIDES:
+        assert setups["gear", side].settings.ratio_of_roll == pytest.approx(
+            1.0 / math.sin(math.radians(miter.blank.pitch_angle_gear_deg)), abs=1e-12)
+        cut, _ = generated_gear_flank(setups["gear", side], written.blank,
+                                      gear_face_width_mm=written.gear_face_width_mm)
+        r, b = ref[side], ref[side].boundary
+        iu = (r.u_nodes >= b.u_root) & (r.u_nodes <= b.u_tip)
+        iv = (r.v_nodes >= b.v_toe) & (r.v_nodes <= b.v_heel)
+        U, V = np.meshgrid(r.u_nodes[iu], r.v_nodes[iv], indexing="ij")
+        assert U.size > 500
+        arc = (cut.psi(U, V) - r.psi_nodes[np.ix_(iu, iv)]) * cut.cone.radius_mm(U, V)
+        assert np.abs(arc).max() < 1e-8
+    assert main(["design", "--pair", str(out / "machine_settings.toml")]) == 0
