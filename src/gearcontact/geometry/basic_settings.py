@@ -123,6 +123,11 @@ def member_setups(pair, gear_generation: str) -> tuple[dict, dict]:
     if gear_generation == "formate":
         return formate_gear_setups(pair), complementary_pinion_setups(pair)
     if gear_generation == "generated":
+        if pair.offset_mm != 0.0:   # before any work; the crown pinion needs offset 0
+            raise InputRangeError(
+                "axes.offset_mm", pair.offset_mm, "0 for the machine settings of a pair "
+                "whose gear is generated (the crown gear's pinion needs a common apex; a "
+                "hypoid's are not derived yet: docs/machine_settings.md sec. 7)")
         return generated_gear_setups(pair), crown_pinion_setups(pair)
     raise InputRangeError("gear_generation", gear_generation, "'formate' or 'generated'")
 
