@@ -90,8 +90,9 @@ def register(sub) -> None:
                             "only, deg (the sides reach different ranges; not with "
                             "--path-angle-deg)")
     p.add_argument("--machine-settings", action="store_true",
-                   help="machine settings of both members (docs/machine_settings.md): for "
-                        "a pair with an ease-off, the formate gear and the pinion settings "
+                   help="machine settings of both members (docs/machine_settings.md): the "
+                        "gear of the default flanks (formate, or generated where the formate "
+                        "gear undercuts); for a pair with an ease-off, the pinion settings "
                         "fitted to cut that ease-off (the residual over each flank printed, "
                         "~15 s); else the standard settings from the blank (generated "
                         "pinion with lengthwise and profile crowning); prints the pair TOML "
