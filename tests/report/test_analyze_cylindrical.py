@@ -100,3 +100,20 @@ def test_readme_analyze_cylindrical(tmp_path):
     for name in ("preview.png", "harris_map.png", "lte.png", "te0.png"):
         assert (out / name).stat().st_size > 0
     assert np.isfinite(head["pitch_phase"]["preview_golden_mpa"])
+
+
+@pytest.mark.parametrize("name", ["spur_20x40_m3", "fzg_c_type"])
+def test_analyze_without_tip_relief(name, tmp_path):
+    """A pair without tip relief (no start diameters) runs ``analyze`` with default
+    options: its Harris map relieves both members from their highest point of single
+    tooth contact (short relief). The unrelieved row's TE0 is that of the unmodified
+    flanks (spur: 0 within 1e-3 arcsec, the TCA's own tolerance; FZG C has no
+    modifications either) and every relieved row's TE0 grows with C_a (the relief is
+    applied)."""
+    out = tmp_path / "run"
+    assert main(["analyze", "--pair", str(ROOT / "examples" / f"{name}.toml"), "--out",
+                 str(out), "--quiet"]) == 0
+    rows = _rows(out / "harris_map.csv")
+    te0 = [float(r["te0_pp_arcsec"]) for r in rows]
+    assert float(rows[0]["tip_relief_um"]) == 0.0 and te0[0] < 1e-3
+    assert all(b > a for a, b in zip(te0, te0[1:]))

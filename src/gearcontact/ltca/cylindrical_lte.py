@@ -339,14 +339,17 @@ class HarrisMap:
 
 
 def _with_tip_relief(pair: CylindricalPair, relief_um: float) -> CylindricalPair:
+    """``pair`` with C_a = ``relief_um`` on both members, from their start diameters; a
+    member without one (0) gets the short relief, from its highest point of single tooth
+    contact (:meth:`~gearcontact.geometry.cylindrical.iso21771.InvoluteGeometry.single_contact_tip_diameter_mm`)."""
     mods = {}
     for member in ("pinion", "gear"):
         m = getattr(pair, f"modifications_{member}")
-        if relief_um > 0.0 and m.tip_relief_start_diameter_mm == 0.0:
-            raise InputRangeError(f"modifications.{member}.tip_relief_start_diameter_mm", 0.0,
-                                  "> 0 mm (the Harris map varies C_a at the pair's start "
-                                  "diameters)")
-        mods[f"modifications_{member}"] = replace(m, tip_relief_um=float(relief_um))
+        start = m.tip_relief_start_diameter_mm
+        if relief_um > 0.0 and start == 0.0:
+            start = pair.geometry.single_contact_tip_diameter_mm(member)
+        mods[f"modifications_{member}"] = replace(m, tip_relief_um=float(relief_um),
+                                                  tip_relief_start_diameter_mm=start)
     return replace(pair, **mods)
 
 
@@ -357,7 +360,8 @@ def harris_map(pair: CylindricalPair, torques_nm, tip_reliefs_um, *, facing: str
     Parameters
     ----------
     pair : CylindricalPair
-        Its tip-relief start diameters are kept; C_a is set on both members.
+        Its tip-relief start diameters are kept (a member without one: the short relief,
+        from its highest point of single tooth contact); C_a is set on both members.
     torques_nm : array_like (T,)
         Gear torques, N·m (> 0).
     tip_reliefs_um : array_like (R,)

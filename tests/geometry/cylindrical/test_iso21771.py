@@ -101,3 +101,21 @@ def test_fzg_c_type_published():
     k_mn = 91.5 - 90.0 - (0.1817 + 0.1715) * 4.5
     for d, x, published in ((72.0, 0.1817, 82.46), (108.0, 0.1715, 118.36)):
         assert d + 2 * 4.5 * (1 + x) + 2 * k_mn == pytest.approx(published, abs=0.005)
+
+
+@pytest.mark.parametrize("name", ["spur_20x40_m3", "ev_reducer_helical_23x67", "fzg_c_type"])
+def test_single_contact_tip_diameter(name):
+    """The highest point of single tooth contact of each member, against the lowest point
+    of single contact of its mate taken from the other end of the path (the mate's tip
+    roll length less one base pitch): both on one point of the line of action,
+    u1 + u2 = a_w sin(alpha_wt), to 1e-9 mm; and inside the active profile."""
+    g = load_pair(EXAMPLES / f"{name}.toml", kinds=BOTH).geometry
+    line = g.centre_distance_mm * math.sin(math.radians(g.working_pressure_angle_deg))
+    for member, mate in (("pinion", "gear"), ("gear", "pinion")):
+        d = g.single_contact_tip_diameter_mm(member)
+        u = math.sqrt((0.5 * d) ** 2 - (0.5 * getattr(g, f"base_diameter_{member}_mm")) ** 2)
+        r_am, r_bm = (0.5 * getattr(g, f"{k}_diameter_{mate}_mm") for k in ("tip", "base"))
+        u_mate = math.sqrt(r_am ** 2 - r_bm ** 2) - g.transverse_base_pitch_mm
+        assert u + u_mate == pytest.approx(line, abs=1e-9)
+        assert (getattr(g, f"active_start_diameter_{member}_mm") < d
+                < getattr(g, f"tip_diameter_{member}_mm"))

@@ -118,6 +118,16 @@ class InvoluteGeometry:
         """All fields (JSON-ready)."""
         return asdict(self)
 
+    def single_contact_tip_diameter_mm(self, member: str) -> float:
+        """Diameter of the member's highest point of single tooth contact, mm: the
+        transverse roll length of its active start plus one base pitch,
+        ``u_Nf + p_bt`` (the tip-side end of single contact for 1 <= eps_alpha < 2;
+        where a "short" tip relief starts)."""
+        d_b = getattr(self, f"base_diameter_{member}_mm")
+        u = (roll_length_mm(getattr(self, f"active_start_diameter_{member}_mm"), d_b)
+             + self.transverse_base_pitch_mm)
+        return 2.0 * math.hypot(0.5 * d_b, u)
+
     def roll_lengths_mm(self, member: str) -> dict[str, float]:
         """Roll lengths (mm, transverse line of action from the member's base tangency
         point) at the form circle, the start of the active profile, and the tip."""
