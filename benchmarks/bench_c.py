@@ -83,14 +83,15 @@ static int read_operands(const char *path)
 }
 """
 
-DRIVER = r"""
+#: the drivers' clock: headers, a monotonic ns clock, the sort order and the
+#: timer's own median cost (timer_floor), shared by DRIVER and STEP_DRIVER.
+TIMING = r"""
 #define _POSIX_C_SOURCE 199309L
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
-#include "gearcontact.h"
-""" + OPERANDS + r"""
+
 static int64_t now_ns(void)
 {
     struct timespec ts;
@@ -104,6 +105,23 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* the median cost of the timer itself, over n reads, using dt as scratch */
+static int64_t timer_floor(int64_t *dt, long n)
+{
+    long i;
+    int64_t t0;
+    for (i = 0; i < n; ++i) {
+        t0 = now_ns();
+        dt[i] = now_ns() - t0;
+    }
+    qsort(dt, (size_t)n, sizeof dt[0], cmp);
+    return dt[n / 2];
+}
+"""
+
+DRIVER = TIMING + r"""
+#include "gearcontact.h"
+""" + OPERANDS + r"""
 static void report(const char *name, int64_t *dt, long n, int64_t floor_ns)
 {
     long i;
@@ -122,12 +140,7 @@ int main(int argc, char **argv)
     if (argc < 2 || !read_operands(argv[1]))
         return 2;
     dt = malloc(sizeof *dt * (size_t)n);
-    for (i = 0; i < n; ++i) {           /* the timer's own cost */
-        t0 = now_ns();
-        dt[i] = now_ns() - t0;
-    }
-    qsort(dt, (size_t)n, sizeof dt[0], cmp);
-    floor_ns = dt[n / 2];
+    floor_ns = timer_floor(dt, n);
     printf("timer %lld\n", (long long)floor_ns);
 #define TIME(NAME, CALL)                          \
     for (i = 0; i < n; ++i) {                     \
@@ -180,26 +193,8 @@ int main(int argc, char **argv)
 """
 
 
-STEP_DRIVER = r"""
-#define _POSIX_C_SOURCE 199309L
-#include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <time.h>
+STEP_DRIVER = TIMING + r"""
 #include "fmi3Functions.h"
-
-static int64_t now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
-    return (x > y) - (x < y);
-}
 
 static void say(fmi3InstanceEnvironment env, fmi3Status s, fmi3String c, fmi3String msg)
 {
@@ -224,12 +219,7 @@ int main(int argc, char **argv)
         || fmi3EnterInitializationMode(m, fmi3False, 0.0, 0.0, fmi3False, 0.0) != fmi3OK
         || fmi3ExitInitializationMode(m) != fmi3OK)
         return 2;
-    for (i = 0; i < n; ++i) {           /* the timer's own cost */
-        t0 = now_ns();
-        dt[i] = now_ns() - t0;
-    }
-    qsort(dt, (size_t)n, sizeof dt[0], cmp);
-    floor_ns = dt[n / 2];
+    floor_ns = timer_floor(dt, n);
     for (i = 0; i < n; ++i, t += h)     /* warm-up */
         fmi3DoStep(m, t, h, fmi3True, &ev, &term, &early, &last);
     for (i = 0; i < n; ++i, t += h) {
