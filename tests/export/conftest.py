@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -26,6 +27,13 @@ import pytest
 from readme_lines import readme_commands
 
 ROOT = Path(__file__).resolve().parents[2]
+
+
+def export_fmu_cli(*args, cwd) -> subprocess.CompletedProcess:
+    """``gearcontact export fmu ARGS`` in a real process from this checkout's sources."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    return subprocess.run([sys.executable, "-m", "gearcontact", "export", "fmu", *args],
+                          capture_output=True, text=True, env=env, cwd=cwd, timeout=600)
 
 
 def _shell(line: str, cwd: Path) -> subprocess.CompletedProcess:

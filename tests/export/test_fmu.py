@@ -13,9 +13,6 @@ by a mesh rotation that sweeps from open flanks to a few times the rated load.
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 import zipfile
 from pathlib import Path
 
@@ -27,18 +24,12 @@ from fmpy.validation import validate_fmu  # noqa: E402
 
 from gearcontact.export.mesh_law import BACKENDS, MeshLawTable, mesh_outputs  # noqa: E402
 
-from .conftest import simulate_isolated  # noqa: E402
+from .conftest import export_fmu_cli as _cli, simulate_isolated  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 OUTPUTS = ("torque_pinion_nm", "torque_gear_nm", "mesh_force_n", "te_arcsec", "p_max_mpa",
            "a_mm", "b_mm", "active_pairs")
 INPUTS = ("phi_pinion_rad", "phi_gear_rad", "omega_pinion_rad_s", "omega_gear_rad_s")
-
-
-def _cli(*args, cwd):
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
-    return subprocess.run([sys.executable, "-m", "gearcontact", "export", "fmu", *args],
-                          capture_output=True, text=True, env=env, cwd=cwd, timeout=600)
 
 
 @pytest.fixture(scope="module")

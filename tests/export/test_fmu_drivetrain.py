@@ -19,9 +19,6 @@ mirrored: s0003's drive side is in line contact). A second export (s0003-centred
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 import zipfile
 from pathlib import Path
 
@@ -33,7 +30,7 @@ from fmpy.validation import validate_fmu  # noqa: E402
 
 from gearcontact.export.mesh_law import BACKENDS  # noqa: E402
 
-from .conftest import simulate_isolated  # noqa: E402
+from .conftest import export_fmu_cli as _cli, simulate_isolated  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 TORQUE_NM = 5.0
@@ -49,12 +46,6 @@ PAIRS = {"pinion_speed_rad_s": "pinion_speed_rad_s", "gear_speed_rad_s": "gear_s
          "mesh_torque_nm": "mesh_torque_nm", "mesh_rotation_rad": "theta_rad",
          "p_max_mpa": "p_max_mpa", "a_mm": "a_mm", "b_mm": "b_mm",
          "pairs_loaded": "pairs_loaded"}
-
-
-def _cli(*args, cwd):
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
-    return subprocess.run([sys.executable, "-m", "gearcontact", "export", "fmu", *args],
-                          capture_output=True, text=True, env=env, cwd=cwd, timeout=600)
 
 
 @pytest.fixture(scope="module")
