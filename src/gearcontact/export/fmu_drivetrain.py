@@ -184,10 +184,9 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     stencil = curvatures == "stencil"
     # exact A-, B- always (the static start's bracket); the stencil source as the golden
     # twin stacks it: the 49 samples, then the fp64 fit's c3, c4, c5
-    exact = _stack(m, model.reverse if model.reverse is not None else m, "exact",
-                   golden=False)["cv"]
-    cv = (_stack(m, model.reverse if model.reverse is not None else m, "stencil",
-                 golden=True)["cv"] if stencil else None)
+    rev = model.reverse if model.reverse is not None else m
+    exact = _stack(m, rev, "exact", golden=False)["cv"]
+    cv = _stack(m, rev, "stencil", golden=True)["cv"] if stencil else None
     ident = "gearcontact_drivetrain_" + re.sub(r"\W", "_", pair_name)
 
     def hexes(x):
