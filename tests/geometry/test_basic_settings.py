@@ -120,3 +120,89 @@ def test_example_summary_sheet_is_the_standard_settings_rounded():
                 else:
                     tol = 5e-7 if f.name == "ratio_of_roll" else 5e-5
                     assert x == pytest.approx(y, abs=tol), (s.member, s.side, f.name)
+
+
+# --- a hypoid whose default gear is generated (issue 27 item 3 with issue 28's low ratios)
+
+def _hypoid_generated():
+    """13/26, E = 0.3 r2 = 21.3 mm, beta1 35 deg, face 0.3 R_m: F.3's data at a point of
+    issue 28's design space (tests/design_space.py) where the formate gear undercuts its
+    pinion, so the default gear is generated; no ease-off (the standard settings)."""
+    import dataclasses as dc
+
+    from design_space import design_space_candidate
+    from gearcontact.geometry.pair import EaseOffCoefficients
+
+    pair = design_space_candidate(13, 2.0, 0.3, 35.0, 0.3, "drive")
+    return dc.replace(pair, name="hypoid_13x26_generated", easeoff_drive=EaseOffCoefficients(),
+                      easeoff_coast=EaseOffCoefficients())
+
+
+@pytest.fixture(scope="module")
+def hypoid_generated():
+    return _hypoid_generated()
+
+
+def test_hypoid_with_a_generated_gear(hypoid_generated):
+    from gearcontact.geometry.gear_generation import gear_generation
+
+    pair = hypoid_generated
+    assert pair.offset_mm == pytest.approx(21.28, abs=0.01)
+    assert gear_generation(pair)[0] == "generated"
+
+
+def test_crown_pinion_of_a_hypoid_is_a_point_contact_conjugate(hypoid_generated):
+    # The crown gear of the gear's pitch plane turns about a line fixed in the housing,
+    # the gear at 1/sin(delta2) and the pinion (in its mounting position, offset E) at
+    # u/sin(delta2) times its rate: one mesh of three members, so gear and pinion touch
+    # where the crown gear's two contact lines cross, with TE0 = 0 (Litvin & Fuentes
+    # 2004, sec. 20.2). Truths:
+    # (a) TCA (tca.solve, surface contact only) of the generated gear with the uncrowned
+    #     crown pinion as design --machine-settings writes it (40 x 50 nodes): TE0 = 0 to
+    #     1e-4 arcsec over the 15 / 9 phases of two pitches on the flank (measured 4.3e-6
+    #     / 1.1e-6 drive / coast; 2.4e-4 while the tilt was written as 8.5e-7 deg, an
+    #     acos rounding). Not vacuous: the ratio of roll off by 1e-6 of itself gives
+    #     0.035 arcsec;
+    # (b) each contact point lies on the default pair's line-contact conjugate pinion
+    #     (build_flanks, 30 x 40: the envelope of the same gear) up to a rigid turn about
+    #     the pinion axis (a mounting choice): the turn is constant along the path to
+    #     1e-4 um of arc (measured 1.0e-5 / 7e-7 um; path points inside its box);
+    # (c) off the path the crown pinion is eased off against it (point contact, not line
+    #     contact): more than 50 um of arc at a corner (measured 115 um drive, 74 um coast, the
+    #     toe-root corner).
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.geometry.flank import build_flanks, build_machine_flanks
+    from gearcontact.tca.solve import solve_tca
+    from gearcontact.tca.types import ContactGuess
+
+    pair = hypoid_generated
+    cut = standard_machine_pair(pair, lengthwise_crowning_um=0.0, blade_profile_crowning_um=0.0,
+                                gear_generation="generated")
+    fs = build_machine_flanks(cut, n_u=40, n_v=50)
+    ref = build_flanks(pair, n_u=30, n_v=40)
+    kin = pair.kinematics(with_errors=False)
+    pitch = 2.0 * math.pi / pair.pinion_teeth
+    for side in SIDES:
+        m = fs.mean_contact[side]
+        phi1 = pair.ratio * m["phi2_rad"]
+        path = solve_tca(fs.pinion.side(side), fs.gear.side(side), kin,
+                         phi1 + np.linspace(-pitch, pitch, 21),
+                         start=ContactGuess(*m["pinion_uv"], *m["gear_uv"], phi1, m["phi2_rad"]),
+                         edges=False)
+        te = np.asarray(path.te0_arcsec, dtype=float)
+        assert np.isfinite(te).sum() >= 8
+        assert np.nanmax(np.abs(te)) < 1e-4
+        conj, pin = ref.pinion_conjugate.side(side), fs.pinion.side(side)
+        pts = [p for p in path.points
+               if np.isfinite(p.u1) and conj.boundary.contains(p.u1, p.v1)]
+        assert len(pts) >= 8
+        u1, v1 = np.array([p.u1 for p in pts]), np.array([p.v1 for p in pts])
+        turn = pin.psi(u1, v1) - conj.psi(u1, v1)       # rad, constant: a rigid turn
+        arc = np.ptp(turn) * conj.cone.radius_mm(u1, v1).max()
+        assert 1e3 * arc < 1e-4
+        b = conj.boundary
+        corners = np.array([[b.u_root, b.u_root, b.u_tip, b.u_tip],
+                            [b.v_toe, b.v_heel, b.v_toe, b.v_heel]])
+        ease = 1e3 * (pin.psi(*corners) - turn.mean() - conj.psi(*corners)) * \
+            conj.cone.radius_mm(*corners)       # um of arc about the pinion axis
+        assert np.abs(ease).max() > 50.0
