@@ -206,3 +206,58 @@ def test_crown_pinion_of_a_hypoid_is_a_point_contact_conjugate(hypoid_generated)
         ease = 1e3 * (pin.psi(*corners) - turn.mean() - conj.psi(*corners)) * \
             conj.cone.radius_mm(*corners)       # um of arc about the pinion axis
         assert np.abs(ease).max() > 50.0
+
+
+def test_design_machine_settings_of_a_generated_hypoid(tmp_path, hypoid_generated):
+    # through the CLI (~15 s) as for the miter pair (tests/geometry/
+    # test_gear_generation.py): the written gear, cut from its settings (40 x 60 nodes,
+    # the quintic sheet good to ~1e-10 mm), against the default generated gear's exact
+    # envelope nodes on the face (generated_gear_sheets: node solves to 1e-10 mm):
+    # 1e-8 mm of arc (measured 2.5e-9 / 1.0e-9 mm drive / coast); the gear's ratio of roll 1/sin(delta2)
+    # and the pinion's u/sin(delta2) to 1e-12 (closed forms, float rounding), the
+    # pinion's blank offset the hypoid's (non-zero: the pinion in its mounting
+    # position); the standard pinion keeps the crown pinion's mean node and normal
+    # (1e-9 mm / 1e-12: the crowning pivots on the blade point generating it); design
+    # on the written file exits 0
+    from gearcontact.cli import main
+    from gearcontact.geometry.basic_settings import crown_pinion_setups
+    from gearcontact.geometry.gear_generation import generated_gear_sheets
+    from gearcontact.geometry.generated import generated_gear_flank
+    from gearcontact.geometry.pair import pair_to_toml
+
+    pair = hypoid_generated
+    path = tmp_path / "hypoid.toml"
+    path.write_text(pair_to_toml(pair))
+    out = tmp_path / "out"
+    assert main(["design", "--pair", str(path), "--machine-settings", "--out", str(out)]) == 0
+    assert "gear: generated" in (out / "machine_settings.toml").read_text()
+    written = load_pair(out / "machine_settings.toml")
+    setups = {(s.member, s.side): s for s in written.machine}
+    sin_d2 = math.sin(math.radians(pair.blank.pitch_angle_gear_deg))
+    ref = generated_gear_sheets(pair)
+    cone, _ = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
+    u_m, v_m = float(cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
+    for side in SIDES:
+        assert setups["gear", side].settings.ratio_of_roll == pytest.approx(1.0 / sin_d2,
+                                                                             abs=1e-12)
+        pin = setups["pinion", side]
+        assert pin.settings.ratio_of_roll == pytest.approx(2.0 / sin_d2, abs=1e-12)
+        assert abs(pin.settings.blank_offset_mm) > 10.0
+        cut, _ = generated_gear_flank(setups["gear", side], written.blank,
+                                      gear_face_width_mm=written.gear_face_width_mm,
+                                      n_u=40, n_v=60)
+        r, b = ref[side], ref[side].boundary
+        iu = (r.u_nodes >= b.u_root) & (r.u_nodes <= b.u_tip)
+        iv = (r.v_nodes >= b.v_toe) & (r.v_nodes <= b.v_heel)
+        U, V = np.meshgrid(r.u_nodes[iu], r.v_nodes[iv], indexing="ij")
+        assert U.size > 500
+        arc = (cut.psi(U, V) - r.psi_nodes[np.ix_(iu, iv)]) * cut.cone.radius_mm(U, V)
+        assert np.abs(arc).max() < 1e-8
+        crown = crown_pinion_setups(pair)[side]
+        a = EnvelopeSolver(crown, pair.blank, cone)
+        m0 = a.solve(u_m, v_m, a.initial_guess(u_m, v_m))
+        m1 = EnvelopeSolver(pin, pair.blank, cone).solve(u_m, v_m, m0.q)
+        assert np.abs(m1.x_mm - m0.x_mm).max() < 1e-9
+        assert np.abs(m1.n - m0.n).max() < 1e-12
+        assert pin.blade.profile_radius_mm > 0.0          # crowned: not vacuous
+    assert main(["design", "--pair", str(out / "machine_settings.toml")]) == 0

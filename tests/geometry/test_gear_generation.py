@@ -190,16 +190,11 @@ def test_standard_settings_of_the_miter_pair_cut_the_generated_gear(miter):
         assert abs(std["gear", side].settings.ratio_of_roll - math.sqrt(2.0)) < 1e-12
 
 
-def test_settings_of_a_generated_hypoid_gear_are_refused(miter):
-    # the crown gear's pinion needs a common apex: the generated gear's settings of a
-    # hypoid (E = 19 mm here) are refused naming the offset, not replaced by the
-    # formate gear's; an unknown generation is refused naming it
+def test_an_unknown_gear_generation_is_refused(miter):
+    # (a hypoid's generated gear has settings: tests/geometry/test_basic_settings.py)
     from gearcontact.geometry.basic_settings import member_setups
     from gearcontact.validation import InputRangeError
 
-    with pytest.raises(InputRangeError, match="axes.offset_mm"):
-        member_setups(load_pair(_ROOT / "examples" / "hypoid_11x41_rear_axle.toml"),
-                      "generated")
     with pytest.raises(InputRangeError, match="gear_generation"):
         member_setups(miter, "machine")
 
