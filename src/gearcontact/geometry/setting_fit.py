@@ -74,7 +74,7 @@ from scipy.optimize import least_squares
 from ..validation import InputRangeError, check_range
 from .blank import BlankDesign
 from .basic_settings import member_setups
-from .conjugate import nominal_pinion_box
+from .conjugate import UndercutError, nominal_pinion_box
 from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
@@ -119,6 +119,10 @@ _HELICAL = {"helical_motion_mm_per_rad": 0}
 _BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm",
           "blade_cubic_per_mm2", "blade_quartic_per_mm3")
 _FD_STEP = 1e-3          # forward-difference step of the scaled variables
+#: Deviation (um) returned at every node for a trial step whose envelope does not reach
+#: the grid: the trust-region step is then rejected and shortened (a seed far from the
+#: target, e.g. the crown gear's pinion of a hypoid, 115 um off its conjugate).
+_UNREACHED_UM = 1e6
 
 
 @dataclass(frozen=True)
@@ -246,8 +250,13 @@ class _Problem:
         s = solver.solve(self.U, self.V, self.q, strict=False)
         if not np.all(s.converged):      # a long step: start over from the mean node
             us, vs, u_m, v_m = self._grid
-            s = solve_node_grid(solver, us, vs, u_m, v_m,
-                                solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
+            try:
+                s = solve_node_grid(solver, us, vs, u_m, v_m,
+                                    solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
+            except UndercutError:
+                if not np.any(x):        # the seed itself: the caller's error
+                    raise
+                return np.full(self.U.size, _UNREACHED_UM)
         if keep:
             self.q = s.q
         d = (solver.angle(s.x_mm) - self.psi_t + math.pi) % (2.0 * math.pi) - math.pi
