@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from design_space import design_space_candidate
 
 from gearcontact.geometry.basic_settings import (complementary_pinion_setups, crown_profile,
                                                  standard_setups)
@@ -130,7 +131,6 @@ def _hypoid_generated():
     pinion, so the default gear is generated; no ease-off (the standard settings)."""
     import dataclasses as dc
 
-    from design_space import design_space_candidate
     from gearcontact.geometry.pair import EaseOffCoefficients
 
     pair = design_space_candidate(13, 2.0, 0.3, 35.0, 0.3, "drive")

@@ -78,6 +78,7 @@ from .conjugate import UndercutError, nominal_pinion_box
 from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
+from .gear_generation import gear_generation
 from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
 from .machine import (BladeSettings, MachineSetup, blade_profile, blade_through_point,
                       mirror_setup)
@@ -246,21 +247,25 @@ class _Problem:
         """Normal deviation (um) at the grid nodes of the flank the corrections ``x``
         (scaled) generate; ``keep`` stores the node solutions as the next guesses."""
         self.evaluations += 1
-        solver = EnvelopeSolver(self.setup(x), self.blank, self.cone)
-        s = solver.solve(self.U, self.V, self.q, strict=False)
-        if not np.all(s.converged):      # a long step: start over from the mean node
-            us, vs, u_m, v_m = self._grid
-            try:
-                s = solve_node_grid(solver, us, vs, u_m, v_m,
-                                    solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
-            except UndercutError:
-                if not np.any(x):        # the seed itself: the caller's error
-                    raise
-                return np.full(self.U.size, _UNREACHED_UM)
+        try:
+            s, solver = self._nodes(x)
+        except (UndercutError, ValueError):   # no envelope (or no blade) at a trial step
+            if not np.any(x):                # the seed itself: the caller's error
+                raise
+            return np.full(self.U.size, _UNREACHED_UM)
         if keep:
             self.q = s.q
         d = (solver.angle(s.x_mm) - self.psi_t + math.pi) % (2.0 * math.pi) - math.pi
         return (d * self.lever_um).ravel()
+
+    def _nodes(self, x):
+        solver = EnvelopeSolver(self.setup(x), self.blank, self.cone)
+        s = solver.solve(self.U, self.V, self.q, strict=False)
+        if not np.all(s.converged):      # a long step: start over from the mean node
+            us, vs, u_m, v_m = self._grid
+            s = solve_node_grid(solver, us, vs, u_m, v_m,
+                                solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
+        return s, solver
 
     def jacobian(self, x) -> np.ndarray:
         f0 = self.deviation_um(x, keep=True)
@@ -491,7 +496,8 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     Raises
     ------
     InputRangeError
-        A pair already cut from machine settings, an unknown side in ``easeoff_grid``
+        A pair already cut from machine settings, a hypoid whose gear is generated
+        (``axes.offset_mm``, before any flank work), an unknown side in ``easeoff_grid``
         or a grid short of its flank.
     UndercutError
         A fitted flank the envelope does not generate over its box.
@@ -505,8 +511,16 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     for side in grids:
         if side not in SIDES:
             raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
+    if twin.offset_mm != 0.0 and gear_generation(twin)[0] == "generated":
+        raise InputRangeError(  # before the flanks and the fits
+            "axes.offset_mm", twin.offset_mm,
+            "0 for the settings that cut an ease-off on a pair whose gear is generated: the "
+            "seed of a hypoid, the crown gear's pinion, is a point-contact conjugate up to "
+            "0.1 mm off the conjugate pinion and the fit does not reach the target from it "
+            "(docs/machine_settings.md sec. 6; design --machine-settings on the pair without "
+            "an ease-off writes its standard settings)")
     flanks = build_flanks(twin)
-    # the gear of the default flanks and the pinion exactly conjugate to it
+    # the gear of the default flanks and the pinion conjugate to it
     gear, seeds = member_setups(twin, flanks.gear_generation)
     sides, pinion = {}, {}
     for side in SIDES:
