@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pytest
 from design_space import design_space_candidate
+from gear_sheets import face_node_arc_mm
 
 from gearcontact.geometry.basic_settings import (complementary_pinion_setups, crown_profile,
                                                  standard_setups)
@@ -246,12 +247,8 @@ def test_design_machine_settings_of_a_generated_hypoid(tmp_path, hypoid_generate
         cut, _ = generated_gear_flank(setups["gear", side], written.blank,
                                       gear_face_width_mm=written.gear_face_width_mm,
                                       n_u=40, n_v=60)
-        r, b = ref[side], ref[side].boundary
-        iu = (r.u_nodes >= b.u_root) & (r.u_nodes <= b.u_tip)
-        iv = (r.v_nodes >= b.v_toe) & (r.v_nodes <= b.v_heel)
-        U, V = np.meshgrid(r.u_nodes[iu], r.v_nodes[iv], indexing="ij")
-        assert U.size > 500
-        arc = (cut.psi(U, V) - r.psi_nodes[np.ix_(iu, iv)]) * cut.cone.radius_mm(U, V)
+        arc = face_node_arc_mm(cut, ref[side])
+        assert arc.size > 500
         assert np.abs(arc).max() < 1e-8
         crown = crown_pinion_setups(pair)[side]
         a = EnvelopeSolver(crown, pair.blank, cone)
