@@ -259,3 +259,24 @@ def test_design_machine_settings_cuts_a_measured_grid(capsys, tmp_path):
                  str(csv), "--out", str(tmp_path / "o")]) == 0
     assert "| coast | 22.62 | 0.560 | 0.119 |" in capsys.readouterr().out
     assert "coast (measured grid" in (tmp_path / "o" / "machine_settings.toml").read_text()
+
+
+def test_design_fit_needs_machine_settings_of_an_easeoff_pair(capsys):
+    # --fit chooses the objective of the settings fit: without --machine-settings, or on
+    # a pair without an ease-off (standard settings, no fit), it would have no effect
+    assert main(["design", "--pair", "s0003", "--fit", "minimax"]) == 2
+    assert "--fit" in capsys.readouterr().err
+    f2 = str(ROOT / "examples" / "iso23509_f2_spiral_bevel.toml")
+    assert main(["design", "--pair", f2, "--machine-settings", "--fit", "minimax"]) == 2
+    assert "--fit" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_design_machine_settings_minimax_fit_of_s0003(capsys, tmp_path):
+    # the table names the objective and the two maxima on the fit grid, the file's head
+    # comment the objective (the fit itself: tests/geometry/test_setting_fit.py)
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--fit", "minimax",
+                 "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "fit objective minimax: largest deviation on the fit grid" in out
+    assert "--fit minimax" in (tmp_path / "machine_settings.toml").read_text()

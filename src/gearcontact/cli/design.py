@@ -103,6 +103,10 @@ def register(sub) -> None:
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) that "
                         "replaces the pair's ease-off of the sides it lists; the settings "
                         "that cut it are fitted")
+    p.add_argument("--fit", choices=("rms", "minimax"), default=None,
+                   help="with --machine-settings on a pair with an ease-off: the objective of "
+                        "the settings fit, the RMS deviation (default) or the largest one "
+                        "(from the RMS fit; docs/machine_settings.md sec. 6)")
     p.add_argument("--lengthwise-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion cutter circle departure at the "
                         "face ends, um, 0 to 200 (default 25)")
@@ -126,6 +130,7 @@ def check(args) -> None:
                               *_path_angle_options(args).items(),
                               ("--machine-settings", args.machine_settings),
                               ("--target-flank", args.target_flank),
+                              ("--fit", args.fit),
                               ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                               ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
             if value not in (None, False):
@@ -148,6 +153,10 @@ def check(args) -> None:
 
         args.easeoff_grid = read_easeoff_grid(args.target_flank)
     fitted = has_easeoff(pair) or args.target_flank is not None
+    if args.fit is not None and not (args.machine_settings and fitted):
+        raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
+                              "with an ease-off or --target-flank (the settings fit; without "
+                              "it the option has no effect)")
     for option, value in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                           ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
         if value is not None and not args.machine_settings:
@@ -325,7 +334,8 @@ def _easeoff_settings(args, pair) -> int:
     from ..geometry.setting_fit import easeoff_machine_pair
     from ..report.design import easeoff_settings_toml, write_easeoff_settings
 
-    fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None))
+    fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
+                               objective=args.fit or "rms")
     print(easeoff_settings_toml(fit))
     print(fit.table())
     if args.out is not None:

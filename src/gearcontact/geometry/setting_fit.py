@@ -82,6 +82,7 @@ from .gear_generation import gear_generation
 from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
 from .machine import (BladeSettings, MachineSetup, blade_profile, blade_through_point,
                       mirror_setup)
+from .minimax_fit import minimize_max_abs
 
 __all__ = ["DEFAULT_PARAMETERS", "EaseOffSettings", "PARAMETERS", "SettingFit", "SideResidual",
            "apply_corrections", "easeoff_machine_pair",
@@ -114,6 +115,8 @@ PARAMETERS = {
 DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
                       "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
                       "blade_angle_deg", "blade_curvature_per_mm", "blade_cubic_per_mm2")
+#: Objectives of the fit (:func:`fit_pinion_setup`).
+OBJECTIVES = ("rms", "minimax")
 _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
          "modified_roll_24e_per_rad3": 2}
 _HELICAL = {"helical_motion_mm_per_rad": 0}
@@ -314,6 +317,12 @@ class SettingFit:
     seconds : float
     status : int
         ``least_squares`` status (> 0: converged).
+    objective : str
+        ``"rms"`` (least squares) or ``"minimax"`` (the largest deviation minimized from
+        the least-squares solution, :mod:`.minimax_fit`).
+    rms_fit_max_um : float
+        Largest |normal deviation| on the fit grid of the least-squares solution, um
+        (equal to ``fit_max_um`` for ``"rms"``): what the minimax objective improved on.
     """
 
     setup: MachineSetup
@@ -325,11 +334,13 @@ class SettingFit:
     condition_number: float
     seconds: float
     status: int
+    objective: str = "rms"
+    rms_fit_max_um: float = math.nan
 
 
 def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                      parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
-                     tolerance_um: float = 1e-6) -> SettingFit:
+                     tolerance_um: float = 1e-6, objective: str = "rms") -> SettingFit:
     """Fit the ``parameters`` of the pinion set-up ``seed`` so that its generated flank
     reproduces ``target`` on an n_u x n_v grid over the target's active box.
 
@@ -350,6 +361,11 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     tolerance_um : float
         Stop when the step changes the residual's sum of squares by less than
         ``tolerance_um**2`` relative (``ftol``), um-scaled, in (0, 1].
+    objective : str
+        ``"rms"``: minimize the sum of squared deviations (``least_squares``, trust-region
+        reflective); ``"minimax"``: then, from that solution, the largest |deviation| on
+        the fit grid (sequential linear programming, :func:`~.minimax_fit.minimize_max_abs`,
+        to ``tolerance_um``; docs/machine_settings.md sec. 6).
 
     Returns
     -------
@@ -369,19 +385,28 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     if not names or len(set(names)) != len(names) or any(n not in PARAMETERS for n in names):
         raise InputRangeError("parameters", names, f"distinct names from {tuple(PARAMETERS)}")
     check_range("tolerance_um", tolerance_um, 0.0, 1.0, lo_open=True)
+    if objective not in OBJECTIVES:
+        raise InputRangeError("objective", objective, f"one of {OBJECTIVES}")
     t0 = time.perf_counter()
     prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
     sol = least_squares(lambda x: prob.deviation_um(x, keep=True), np.zeros(len(names)),
                         jac=prob.jacobian, method="trf", x_scale="jac",
                         ftol=tolerance_um ** 2, xtol=1e-12, gtol=1e-12, max_nfev=200)
     s = np.linalg.svd(sol.jac, compute_uv=False)
-    dev = prob.deviation_um(sol.x)
-    return SettingFit(setup=prob.setup(sol.x), seed=seed,
-                      corrections={n: float(x * sc) for n, x, sc in zip(names, sol.x, prob.scale)},
+    x = sol.x
+    dev = prob.deviation_um(x)
+    rms_fit_max = float(np.abs(dev).max())
+    if objective == "minimax":
+        x = minimize_max_abs(lambda y: prob.deviation_um(y, keep=True), prob.jacobian, x,
+                             tol=tolerance_um).x
+        dev = prob.deviation_um(x)
+    return SettingFit(setup=prob.setup(x), seed=seed,
+                      corrections={n: float(v * sc) for n, v, sc in zip(names, x, prob.scale)},
                       fit_rms_um=float(np.sqrt(np.mean(dev ** 2))),
                       fit_max_um=float(np.abs(dev).max()), evaluations=prob.evaluations,
                       condition_number=float(s[0] / s[-1]) if s[-1] > 0 else math.inf,
-                      seconds=time.perf_counter() - t0, status=int(sol.status))
+                      seconds=time.perf_counter() - t0, status=int(sol.status),
+                      objective=objective, rms_fit_max_um=rms_fit_max)
 
 
 def flank_deviation_um(flank, target, *, n_u: int = 60, n_v: int = 75):
@@ -460,18 +485,23 @@ class EaseOffSettings:
         for n in names:
             rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
                 f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
+        if any(r.fit.objective == "minimax" for r in self.sides.values()):
+            rows += ["", "fit objective minimax: largest deviation on the fit grid " + ", ".join(
+                f"{side} {r.fit.fit_max_um:.3f} um (least squares {r.fit.rms_fit_max_um:.3f})"
+                for side, r in self.sides.items())]
         return "\n".join(rows)
 
 
 def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
-                         parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11
-                         ) -> EaseOffSettings:
+                         parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
+                         objective: str = "rms") -> EaseOffSettings:
     """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
 
     The gear keeps the flanks of the pair's default (formate, or generated where the
     formate gear undercuts its pinion: :func:`~.basic_settings.member_setups`); each
     pinion flank is fitted (:func:`fit_pinion_setup`) from the settings of the exactly
-    conjugate pinion (complementary or the crown gear's: zero ease-off) to the conjugate pinion with the pair's ease-off
+    conjugate pinion (complementary or the crown gear's: zero ease-off) to the conjugate
+    pinion with the pair's ease-off
     (:func:`~.flank.build_flanks`), and its residual measured over the full flank. A
     left-hand pair is fitted on its right-hand twin and its settings mirrored
     (:func:`~.machine.mirror_setup`).
@@ -488,6 +518,8 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         The fitted subset (:data:`PARAMETERS`; default :data:`DEFAULT_PARAMETERS`).
     n_u, n_v : int
         The coarse fit grid.
+    objective : str
+        ``"rms"`` or ``"minimax"`` (:func:`fit_pinion_setup`).
 
     Returns
     -------
@@ -530,7 +562,7 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
             grids[side].check_covers(conj.boundary, where=f"target flank {side}")
             target = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
         fit = fit_pinion_setup(seeds[side], twin.blank, target, parameters=parameters,
-                               n_u=n_u, n_v=n_v)
+                               n_u=n_u, n_v=n_v, objective=objective)
         cut, _ = generated_pinion_flank(fit.setup, twin.blank,
                                         pinion_face_width_mm=twin.pinion_face_width_mm)
         u, v, res = flank_deviation_um(cut, target)

@@ -104,7 +104,9 @@ def easeoff_settings_toml(fit) -> str:
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
              "--machine-settings;", "signs: docs/machine_settings.md). Gear: the default "
              "flanks' gear; pinion: fitted from", "the exactly conjugate settings "
-             "to the conjugate pinion + ease-off."]
+             "to the conjugate pinion + ease-off" + (
+                 " (fit objective: the largest deviation, --fit minimax)." if any(
+                     r.fit.objective == "minimax" for r in fit.sides.values()) else ".")]
     for side, r in fit.sides.items():
         source = "measured grid (--target-flank)" if side in fit.measured_sides else \
             f"[easeoff.{side}] of the pair"
