@@ -238,8 +238,9 @@ def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
 def test_easeoff_of_a_generated_hypoid_is_refused_before_work():
     # 13/26, E = 21.3 mm (tests/design_space.py) gets a generated gear; the fit from the
     # crown gear's pinion (a point-contact conjugate 115 um off the conjugate pinion at
-    # a corner) does not reach the target (measured: drive ends on an unreached step
-    # after 792 evaluations, coast 62 um max): refused naming the offset, within the
+    # a corner, 3.45 deg turned) does not reach the target (measured: drive ends on an
+    # unreached step after 792 evaluations, coast 62 um max; turned first, 19 / 9 um
+    # max, docs/machine_settings.md sec. 6): refused naming the offset, within the
     # cost of the generation check (~1 s, no flank grid)
     import time
 
