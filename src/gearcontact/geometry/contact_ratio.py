@@ -34,7 +34,7 @@ tip to root, and the TCA's contact ratio falls to 0.69 eps_vg.
 (:func:`~.conjugate.pinion_active_box`, computed by
 :func:`~.generation.check_generation`): the locus of least ease-off on each contact line
 of the conjugate pair, inside both flanks, in gear pitches (eps_p). It
-follows the TCA's interior contact to the TCA's own resolution (-0.030 .. +0.002 on
+follows the TCA's interior contact to the TCA's own resolution (-0.033 .. +0.002 on
 nine pairs). :func:`check_contact_ratio` refuses ``eps_p < MIN_CONTACT_RATIO`` (0.85:
 the largest eps_p measured with a gap in the TCA is 0.752, a 13 % margin); a pair cut
 from machine settings, whose path is not known here, keeps the closed form's
@@ -134,7 +134,7 @@ def virtual_contact_ratio(blank, *, gear_face_width_mm: float,
 #: Refusal threshold on the path contact ratio eps_p (:func:`path_contact_ratio`). Not a
 #: fit: the largest eps_p measured with a gap in the TCA is 0.752 (8/8, E 0, beta1 20 deg,
 #: face 0.15 R_m; TCA interior 0.750), and 0.85 keeps a 13 % margin over it, more than
-#: the path's deviation from the TCA's interior contact (-0.030 .. +0.002). Between 0.85
+#: the path's deviation from the TCA's interior contact (-0.033 .. +0.002). Between 0.85
 #: and 1 the unloaded bearing leaves part of each pitch to edge contact, which the TCA
 #: follows (every pair measured with eps_p >= 0.64 ran; none with a gap above 0.752;
 #: docs/geometry.md sec. 7.7).
