@@ -217,7 +217,8 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
         except InputRangeError:   # the trial fails another check of design
             return None
 
-    near = got.total >= _FIX_REACH * threshold
+    # trials need the boxes of a trial pair; without boxes_of only the teeth are named
+    near = boxes_of is not None and got.total >= _FIX_REACH * threshold
     if near and any(e.endswith(("toe", "heel")) for e in got.ends):
         fixed = _face_fix(pair, got.total, threshold, path_ratio)
         if fixed is not None:
