@@ -18,8 +18,9 @@ from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
 #: face 0.3 R_m: 29 of 32 pairs with z1 5-20, u 1-2.5, E 0 and 0.3 r2, 23 of them on the
 #: generated gear; counted before the contact-ratio check); an undercut left with the
 #: generated gear names the gear addendum factor or the tooth numbers, as the formate
-#: gear's did. A closed-form contact ratio below the threshold (docs/geometry.md
-#: sec. 7.7) names the face width, the spiral angle or the tooth numbers.
+#: gear's did. A contact path covering less than the threshold (docs/geometry.md
+#: sec. 7.7: eps_p < 0.85; of the 32 pairs above 23 pass it) names the face width, the
+#: spiral angle or the tooth numbers.
 DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
                  "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
                  "pinion_teeth / gear_teeth", "design.working_depth_factor",

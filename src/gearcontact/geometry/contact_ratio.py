@@ -1,5 +1,7 @@
-"""Contact ratio of a bevel or hypoid pair from its virtual cylindrical gears, in closed
-form: the check ``design`` runs before any flank work (docs/geometry.md sec. 7.7).
+"""Contact ratio of a bevel or hypoid pair: from its contact path inside the active
+flanks (the check ``design`` runs before any flank work) and from its virtual
+cylindrical gears in closed form (ISO 10300-1, reported beside it; docs/geometry.md
+sec. 7.7).
 
 The virtual cylindrical gears of ISO 10300-1:2014 (Method B) replace the
 pair at its mean section by a helical pair in the transverse section of the mean
@@ -25,16 +27,27 @@ sum of squares, not the cylindrical gears' sum ``eps_alpha + eps_beta``, is Meth
 total for a crowned (localized) bearing: the path of a crowned pair crosses the
 flank diagonally, its length the diagonal of the transverse and face spans.
 
-:func:`check_contact_ratio` refuses ``eps_vg < MIN_CONTACT_RATIO`` (1.55): not a fit
-but the measured worst over-estimate of the TCA's contact ratio (narrow, low-spiral
-hypoid faces: TCA / eps_vg down to 0.69) with a 7 % margin over a gap; docs/geometry.md
-sec. 7.7 has the 17 pairs measured.
+The closed form cannot see where a crowned pair's contact path leaves the flanks: on
+narrow, low-spiral faces it leaves through toe or heel, or runs along the profile from
+tip to root, and the TCA's contact ratio falls to 0.69 eps_vg.
+:func:`~.contact_path.path_contact_ratio` traces that path over the pinion's active box
+(:func:`~.conjugate.pinion_active_box`, computed by
+:func:`~.generation.check_generation`): the locus of least ease-off on each contact line
+of the conjugate pair, inside both flanks, in gear pitches (eps_p). It
+follows the TCA's interior contact to the TCA's own resolution (-0.033 .. +0.002 on
+nine pairs). :func:`check_contact_ratio` refuses ``eps_p < MIN_CONTACT_RATIO`` (0.85:
+the largest eps_p measured with a gap in the TCA is 0.752, a 13 % margin); a pair cut
+from machine settings, whose path is not known here, keeps the closed form's
+``eps_vg < MIN_VIRTUAL_CONTACT_RATIO`` (1.55). docs/geometry.md sec. 7.7 has the
+measurements.
 
 References
 ----------
 ISO 10300-1:2014, *Calculation of load capacity of bevel gears — Part 1*: virtual
 cylindrical gears, Method B. ISO 21771:2007, length of path of contact. ISO 23509:2016,
 effective pressure angles ``alpha_eD``, ``alpha_eC`` (``geometry.blank``).
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 9.2
+(TCA of localized contact), sec. 21.8 (local synthesis).
 """
 
 from __future__ import annotations
@@ -43,9 +56,10 @@ import math
 from dataclasses import dataclass, replace
 
 from ..validation import InputRangeError
+from .contact_path import path_contact_ratio
 
-__all__ = ["MIN_CONTACT_RATIO", "VirtualContactRatio", "check_contact_ratio",
-           "virtual_contact_ratio"]
+__all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "VirtualContactRatio",
+           "check_contact_ratio", "virtual_contact_ratio"]
 
 
 @dataclass(frozen=True)
@@ -117,30 +131,138 @@ def virtual_contact_ratio(blank, *, gear_face_width_mm: float,
                                math.degrees(alpha_t))
 
 
-#: Refusal threshold on eps_vg. Not a fit: the closed form over-estimates the TCA's
-#: measured contact ratio by up to 1 / 0.69 (a 10/15 hypoid, E = 0.3 r2, beta1 20 deg,
-#: face 0.15 R_m: eps_vg 1.524, TCA 1.05), and 1.55 x 0.69 = 1.07 keeps a 7 % margin
-#: over a gap at the worst pair measured (docs/geometry.md sec. 7.7).
-MIN_CONTACT_RATIO = 1.55
+#: Refusal threshold on the path contact ratio eps_p (:func:`path_contact_ratio`). Not a
+#: fit: the largest eps_p measured with a gap in the TCA is 0.752 (8/8, E 0, beta1 20 deg,
+#: face 0.15 R_m; TCA interior 0.750), and 0.85 keeps a 13 % margin over it, more than
+#: the path's deviation from the TCA's interior contact (-0.033 .. +0.002). Between 0.85
+#: and 1 the unloaded bearing leaves part of each pitch to edge contact, which the TCA
+#: follows (every pair measured with eps_p >= 0.64 ran; none with a gap above 0.752;
+#: docs/geometry.md sec. 7.7).
+MIN_CONTACT_RATIO = 0.85
+
+#: Refusal threshold on the closed form eps_vg where no contact path is known (a pair
+#: cut from machine settings: its flanks are not a conjugate pinion plus an ease-off).
+#: Not a fit: the closed form over-estimates the TCA's measured contact ratio by up to
+#: 1 / 0.69 (a 10/15 hypoid, E = 0.3 r2, beta1 20 deg, face 0.15 R_m: eps_vg 1.524, TCA
+#: 1.05), and 1.55 x 0.69 = 1.07 keeps a 7 % margin over a gap at the worst pair
+#: measured (docs/geometry.md sec. 7.7).
+MIN_VIRTUAL_CONTACT_RATIO = 1.55
 
 #: The standard face-width limit F <= 0.3 R_e, R_e = R_m + F/2, as a fraction of R_m.
 _FACE_LIMIT = 0.3 / 0.85
+#: Trial values of one field by which :func:`check_contact_ratio` verifies a named fix.
+_FIX_TRIALS = 3
+#: Aim of a trial above the threshold (each trial scales the field by the deficit: the
+#: path ratio is not exactly proportional to it).
+_FIX_MARGIN = 0.02
+#: Pinion spiral angles tried above the pair's, deg.
+_SPIRAL_STEPS_DEG = (10.0, 20.0)
+#: Share of the threshold below which no fix but the tooth numbers is tried.
+_FIX_REACH = 0.75
 
 
-def check_contact_ratio(pair, *, threshold: float = MIN_CONTACT_RATIO) -> VirtualContactRatio:
-    """Refuse ``pair`` if its virtual contact ratio eps_vg (:func:`virtual_contact_ratio`,
-    design side) is below ``threshold``, before any flank work.
+def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
+                        threshold: float | None = None):
+    """Refuse ``pair`` if its contact ratio on the design side is below ``threshold``,
+    before any flank work (docs/geometry.md sec. 7.7).
 
-    The error names the field that fixes it, with a value found from the closed form:
-    the gear face width that gives ``eps_vg = threshold`` if it is within the standard
-    limit ``F <= 0.3 R_e``; else the pinion spiral angle (bisection over
-    ``beta_1 < 60 deg`` on the ISO 23509 blank); else the tooth numbers.
+    With the active boxes of :func:`~.generation.check_generation` (``boxes``) the ratio
+    is the contact path's, :func:`path_contact_ratio` (threshold default
+    :data:`MIN_CONTACT_RATIO`); the named fix is verified: ``boxes_of(trial)`` gives a
+    trial pair's boxes (the checks of :func:`~.generation.check_generation` without this
+    one; a trial those checks refuse does not count) and the trial's path ratio must
+    reach the threshold. In order: a wider gear face (the pinion face in the same
+    proportion; within the standard limit ``F <= 0.3 R_e``) when the path leaves through
+    toe or heel, up to ``_FIX_TRIALS`` trials each scaling the face by the deficit; a
+    larger pinion spiral angle (``_SPIRAL_STEPS_DEG`` above the pair's, below 60 deg: eps_p
+    is not monotonic in it, 10/15 E 0.3 r2 at 25, 35, 45 deg: 0.778, 0.851, 0.692, so the
+    angle verified is named, not a bound); else the tooth numbers. No trial is made below
+    ``_FIX_REACH`` of the threshold (neither face nor spiral angle moved eps_p by a
+    quarter in the measurements).
+
+    Without boxes, or for a pair cut from machine settings (no conjugate pinion and
+    ease-off whose path is known), the closed form eps_vg of
+    :func:`virtual_contact_ratio` is checked against
+    :data:`MIN_VIRTUAL_CONTACT_RATIO`, its fix found from the closed form: the gear face
+    width that gives ``eps_vg = threshold`` if within the standard limit, else the
+    pinion spiral angle (bisection over ``beta_1 < 60 deg``), else the tooth numbers.
+
+    Returns
+    -------
+    ~.contact_path.PathContactRatio or VirtualContactRatio
 
     Raises
     ------
     InputRangeError
-        ``eps_vg < threshold``.
+        The ratio is below ``threshold``.
     """
+    if boxes is None or pair.machine:
+        return _check_virtual(pair, MIN_VIRTUAL_CONTACT_RATIO if threshold is None
+                              else threshold)
+    threshold = MIN_CONTACT_RATIO if threshold is None else threshold
+    got = path_contact_ratio(pair, boxes=boxes)
+    if got.total >= threshold:
+        return got
+    v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
+                              side=got.side)
+    why = (f"the contact path inside the flanks covers eps_p = {got.total:.3f} pitches, "
+           f"leaving through the {got.ends[0]} and the {got.ends[1]} (ISO 10300-1: eps_vg "
+           f"{v.total:.3f}, eps_va {v.transverse:.3f}, eps_vb {v.face:.3f}), below "
+           f"{threshold:g} (docs/geometry.md sec. 7.7): the unloaded mesh would leave "
+           f"{1.0 - got.total:.0%} of each pitch to edge contact or to a gap")
+
+    def path_ratio(trial):
+        try:
+            return path_contact_ratio(trial, boxes=boxes_of(trial)).total
+        except InputRangeError:   # the trial fails another check of design
+            return None
+
+    # trials need the boxes of a trial pair; without boxes_of only the teeth are named
+    near = boxes_of is not None and got.total >= _FIX_REACH * threshold
+    if near and any(e.endswith(("toe", "heel")) for e in got.ends):
+        fixed = _face_fix(pair, got.total, threshold, path_ratio)
+        if fixed is not None:
+            raise InputRangeError("design.gear_face_width_mm", pair.gear_face_width_mm,
+                                  f">= {fixed[0]:.3f} mm ({why}; with {fixed[0]:.3f} mm and "
+                                  f"the pinion face in the same proportion eps_p = "
+                                  f"{fixed[1]:.3f})")
+    for step in _SPIRAL_STEPS_DEG if near else ():
+        beta = pair.pinion_spiral_angle_deg + step
+        ratio = path_ratio(replace(pair, pinion_spiral_angle_deg=beta)) if beta < 60.0 else None
+        if ratio is not None and ratio >= threshold:
+            raise InputRangeError("pinion_spiral_angle_deg", pair.pinion_spiral_angle_deg,
+                                  f"{beta:.2f} deg ({why}; with {beta:.2f} deg eps_p = "
+                                  f"{ratio:.3f}; eps_p is not monotonic in the spiral angle)")
+    raise InputRangeError("pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
+                          f"more teeth ({why}; no face width or spiral angle tried fixes it)")
+
+
+def _with_face(pair, face_mm: float):
+    """``pair`` with the gear face ``face_mm`` and the pinion face in the same proportion."""
+    return replace(pair, gear_face_width_mm=face_mm, pinion_face_width_mm=face_mm
+                   * pair.pinion_face_width_mm / pair.gear_face_width_mm)
+
+
+def _face_fix(pair, ratio: float, threshold: float, path_ratio):
+    """``(gear face width, its eps_p)`` reaching ``threshold`` within the face limit, or
+    None (:func:`check_contact_ratio`)."""
+    limit = math.floor(_FACE_LIMIT * pair.blank.mean_cone_distance_gear_mm * 1e3) / 1e3
+    face = pair.gear_face_width_mm
+    for _ in range(_FIX_TRIALS):
+        if face >= limit:
+            return None
+        # a path leaving through toe and heel grows with the face about in proportion
+        face = min(limit, math.ceil(face * (threshold + _FIX_MARGIN) / ratio * 1e3) / 1e3)
+        ratio = path_ratio(_with_face(pair, face))
+        if ratio is None:
+            return None
+        if ratio >= threshold:
+            return face, ratio
+    return None
+
+
+def _check_virtual(pair, threshold: float) -> VirtualContactRatio:
+    """The closed-form check of :func:`check_contact_ratio` (no contact path known)."""
     def ratio(p):
         return virtual_contact_ratio(p.blank, gear_face_width_mm=p.gear_face_width_mm,
                                      side=p.design_side)

@@ -43,8 +43,9 @@ def check_generation(pair, *, contact_ratio: bool = True) -> dict:
     values are tried); when none does, the tooth numbers are named; the gear top land
     along its tip line (:func:`check_gear_top_land`); the conjugate pinion's top land
     along its tip line (:func:`check_pinion_top_land`, verified fix). Last, unless
-    ``contact_ratio=False``, the closed-form contact ratio of the virtual cylindrical
-    gears (:func:`~.contact_ratio.check_contact_ratio`: a pair whose unloaded mesh may
+    ``contact_ratio=False``, the contact ratio of the design side's contact path inside
+    the active boxes (:func:`~.contact_ratio.check_contact_ratio`; the ISO 10300-1
+    closed form for a pair cut from machine settings: a pair whose unloaded mesh may
     have a gap is refused, naming the face width, the spiral angle or the teeth).
 
     Returns
@@ -60,8 +61,8 @@ def check_generation(pair, *, contact_ratio: bool = True) -> dict:
     UndercutError
         As :func:`~.conjugate.pinion_active_box`, with a verified ``fix``.
     InputRangeError
-        Pointed gear or pinion teeth (a verified fix named); a closed-form contact
-        ratio below :data:`~.contact_ratio.MIN_CONTACT_RATIO`.
+        Pointed gear or pinion teeth (a verified fix named); a contact ratio below
+        :data:`~.contact_ratio.MIN_CONTACT_RATIO` (a verified fix named).
     """
     pair = _right_hand(pair)
     if pair.machine:
@@ -72,8 +73,10 @@ def check_generation(pair, *, contact_ratio: bool = True) -> dict:
         check_pinion_top_land(pair, boxes=boxes)
     if contact_ratio:
         # last, so that a pair failing a check above is named by that (a fix of its
-        # own, verified with contact_ratio=False); closed form, no flank work
-        check_contact_ratio(pair)
+        # own, verified with contact_ratio=False); the contact path over the active
+        # boxes, no flank work; its named fix verified on the trial pair's boxes
+        check_contact_ratio(pair, boxes=boxes,
+                            boxes_of=lambda p: check_generation(p, contact_ratio=False))
     return boxes
 
 
