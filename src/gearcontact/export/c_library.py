@@ -25,7 +25,7 @@ from ..errors import ToolUnavailable
 from ..contract.stencil import STENCIL_SIDE
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
-                          fit_mac_plan_fp64, cbrt_seed,
+                          fit_lanes_fp64, cbrt_seed,
                           fit_weight_codes,
                           gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
@@ -72,7 +72,7 @@ def _context() -> dict:
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
             "gap_constants": gap_constants(), "line_constants": line_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
-            "fit_weights": fit_weight_codes(), "fit_fp64": fit_mac_plan_fp64(), "cbrt": cbrt_seed(),
+            "fit_weights": fit_weight_codes(), "fit_fp64": fit_lanes_fp64(), "cbrt": cbrt_seed(),
             "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "fit_mac_bases": bases, "stencil_side": STENCIL_SIDE,
             "fit_mac_ops": {"muls": sum(len(c["terms"]) for c in plan), "adds": adds},
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
