@@ -133,6 +133,20 @@ def _constants(model) -> list[tuple[str, str]]:
         ("STEP_US_START", c(10.0))]
 
 
+def _row_pairs(valid) -> list:
+    """Per table and row interval ``(i, i + 1)`` (the last row's padded with zeros): the
+    count of pairs valid at both rows, then those pairs ascending, padded to
+    ``pairs + 1`` entries (the C loop's list, ``ROW_PAIRS``)."""
+    valid = np.asarray(valid, bool)
+    n_p, n_k = valid.shape[1], valid.shape[2]
+    rows = []
+    for side in valid:
+        both = side[:, :-1] & side[:, 1:]
+        lists = [[int(j) for j in np.flatnonzero(both[:, i])] for i in range(n_k - 1)] + [[]]
+        rows.append([[len(x), *x] + [0] * (n_p - len(x)) for x in lists])
+    return rows
+
+
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                           torque_nm: float = 64.5, drivetrain=None,
                           curvatures: str = "stencil") -> DrivetrainFmu:
@@ -215,6 +229,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "stencil": stencil, "curvatures": curvatures,
         "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
+        "row_pairs": _row_pairs(a["valid"]),
         "psi0": hexes(m.psi_rad), "eps0": hexes(m.eps_rad),
         "default_step": "1e-05", "default_stop": "0.05",
         "starts": {"speed_rpm": "3000", "torque_nm": repr(float(model.torque_nm)),
