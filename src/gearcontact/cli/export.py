@@ -50,6 +50,9 @@ def register(sub) -> None:
     f.add_argument("--curvatures", default=None, choices=("stencil", "exact"),
                    help="drivetrain: the preview's curvature source, as gearcontact twin "
                         "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
+    f.add_argument("--bending", action="store_true",
+                   help="drivetrain: tooth bending of both members in series with the "
+                        "Hertzian law, as gearcontact twin --bending (default rigid teeth)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -83,6 +86,9 @@ def check_fmu(args) -> None:
     if args.kind == "mesh" and args.curvatures not in (None, "exact"):
         raise InputRangeError("--curvatures", args.curvatures, "exact with --kind mesh "
                               "(stencil: --kind drivetrain)")
+    if args.bending and args.kind != "drivetrain":
+        raise InputRangeError("--bending", True, "only with --kind drivetrain (the mesh "
+                              "FMU's law is the rigid teeth' Hertzian law)")
     if args.drivetrain is not None:
         if args.kind != "drivetrain":
             raise InputRangeError("--drivetrain", args.drivetrain, "only with --kind "
@@ -100,7 +106,8 @@ def run_fmu(args) -> int:
                                     side=args.side, phases=args.phases,
                                     torque_nm=args.torque,
                                     drivetrain=load_drivetrain(args.drivetrain, pair),
-                                    curvatures=args.curvatures or "stencil")
+                                    curvatures=args.curvatures or "stencil",
+                                    bending=args.bending)
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu import export_mesh_fmu
