@@ -11,8 +11,10 @@ time stamp or a path: identical package versions write identical files.
 
 The golden sources use integer arithmetic only and constant loop counts; the fp64
 sources follow the fp64 reference formulas operation by operation, except the fit's dot
-products (regrouped by the pseudo-inverse's equal words) and the preview's Hamrock-Brewe
-cube root (a seed polynomial and one Halley step), both within 1e-12 of the reference.
+products (four lanes of the pseudo-inverse's own words, the same bits with or without
+SIMD) and the preview's Hamrock-Brewe terms (the cube root, a seed polynomial and one
+Halley step, beside the logarithm and the exponential instead of after them), both
+within 1e-12 of the reference.
 How to build and use the library, and the determinism argument: docs/export.md.
 """
 
