@@ -51,8 +51,8 @@ def register(sub) -> None:
                    help="drivetrain: the preview's curvature source, as gearcontact twin "
                         "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
     f.add_argument("--bending", action="store_true",
-                   help="drivetrain: tooth bending of both members in series with the "
-                        "Hertzian law, as gearcontact twin --bending (default rigid teeth)")
+                   help="tooth bending of both members in series with the Hertzian law, "
+                        "as gearcontact twin --bending (default rigid teeth)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -86,9 +86,6 @@ def check_fmu(args) -> None:
     if args.kind == "mesh" and args.curvatures not in (None, "exact"):
         raise InputRangeError("--curvatures", args.curvatures, "exact with --kind mesh "
                               "(stencil: --kind drivetrain)")
-    if args.bending and args.kind != "drivetrain":
-        raise InputRangeError("--bending", True, "only with --kind drivetrain (the mesh "
-                              "FMU's law is the rigid teeth' Hertzian law)")
     if args.drivetrain is not None:
         if args.kind != "drivetrain":
             raise InputRangeError("--drivetrain", args.drivetrain, "only with --kind "
@@ -112,7 +109,7 @@ def run_fmu(args) -> int:
         return 0
     from ..export.fmu import export_mesh_fmu
     fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
-                          phases=args.phases, torque_nm=args.torque)
+                          phases=args.phases, torque_nm=args.torque, bending=args.bending)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0
