@@ -56,6 +56,24 @@ def _signal(tab: MeshLawTable):
     return sig
 
 
+def _assert_law(res, tab: MeshLawTable, backend: str) -> list:
+    """Every output of the FMU run ``res`` at every recorded instant equals
+    :func:`mesh_outputs` at the inputs the FMU held then: golden identical, fp64 within
+    1e-9 relative (reasons at :func:`test_fmu_equals_the_twin_contact_law`). Returns
+    the Python law's outputs, row by row."""
+    refs = []
+    for row in res:
+        ref = mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
+        for name in OUTPUTS:
+            got, want = float(row[name]), float(getattr(ref, name))
+            if backend == "golden":
+                assert got == want, (name, float(row["time"]))
+            else:
+                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
+        refs.append(ref)
+    return refs
+
+
 def test_fmu_validates_against_the_fmi3_schema(exported):
     fmu, _ = exported
     assert validate_fmu(str(fmu)) == []
@@ -85,16 +103,7 @@ def test_fmu_equals_the_twin_contact_law(exported, backend, fmi_type):
                             output=list(INPUTS + OUTPUTS),
                             start_values={"backend": BACKENDS[backend]})
     assert len(res) == 401
-    loaded = 0
-    for row in res:
-        ref = mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
-        for name in OUTPUTS:
-            got, want = float(row[name]), float(getattr(ref, name))
-            if backend == "golden":
-                assert got == want, (name, float(row["time"]))
-            else:
-                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
-        loaded += ref.torque_gear_nm > 0.0
+    loaded = sum(ref.torque_gear_nm > 0.0 for ref in _assert_law(res, tab, backend))
     # the sweep covers open flanks, one and several pairs, and the rated torque
     assert res["torque_gear_nm"][0] == 0.0 and res["active_pairs"][0] == 0
     assert 0 < loaded < len(res) and res["active_pairs"].max() >= 2
@@ -285,14 +294,7 @@ def test_fmu_with_tooth_bending_equals_the_twin_contact_law(tmp_path, backend):
                             stop_time=0.02, output_interval=5e-5, input=_signal(tab),
                             output=list(INPUTS + OUTPUTS),
                             start_values={"backend": BACKENDS[backend]})
-    for row in res:
-        ref = mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
-        for name in OUTPUTS:
-            got, want = float(row[name]), float(getattr(ref, name))
-            if backend == "golden":
-                assert got == want, (name, float(row["time"]))
-            else:
-                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
+    _assert_law(res, tab, backend)
     last = [float(res[n][-1]) for n in INPUTS]
     rigid = mesh_outputs(dataclasses.replace(tab, bending_mm_per_n=None), *last,
                          backend=backend)
