@@ -199,8 +199,8 @@ def _library(lib: Path):
 
 @pytest.mark.parametrize("form", list(FORMS))
 def test_fp64_hertz_within_1e12_of_the_python_reference(built, form):
-    """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same operations, the cube
-    root within 5 ulp instead of libm's (measured 1.4e-15). Exact: Carlson's R_F, R_D and a bisection to
+    """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same quantities on two
+    independent paths, the cube root within 5 ulp instead of libm's (measured 1.8e-15). Exact: Carlson's R_F, R_D and a bisection to
     adjacent doubles against scipy's and Brent's to 4 eps (measured 1.8e-15)."""
     lib, vec = built
     so = _library(lib)
@@ -232,12 +232,12 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     """The chain vectors' stencils (plausible elliptic ones and whole-range words).
     Coefficients: within 1e-12 of the dot product's own scale sum_i |M_ji g_i| (the
     reference sums through BLAS in another order; its rounding is ~1e-16 of that
-    scale, measured 7.7e-16). A-, B-: within 1e-12 of the scale of c3, c4, c5 (their
+    scale, measured 3.6e-16). A-, B-: within 1e-12 of the scale of c3, c4, c5 (their
     dot-product scales plus |c3| + |c4| + |c5|: an eigenvalue moves by at most the
     coefficients' error, Weyl); relative to themselves they are ill-conditioned where
     h and r cancel or the quadratic part is rounding noise (a flat stencil). Chain
     Hertz outputs where the reference accepts the stencil: 1e-12 relative (measured
-    3.5e-13). The first 3,000 stencils (corner cases first): the Python reference
+    1.2e-13). The first 3,000 stencils (corner cases first): the Python reference
     takes ~1 ms per stencil (exact Hertz: the first 1,000)."""
     lib, vec = built
     so = _library(lib)
