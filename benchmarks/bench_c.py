@@ -1,7 +1,9 @@
 """Benchmark of the exported C: ns per preview (``gearcontact export c``) and ns per twin
 step of the drivetrain FMU (``gearcontact export fmu --kind drivetrain``).
 
-Exports the library into a temporary directory, builds it with its Makefile (gcc -O2)
+Exports the library into a temporary directory, builds it with its Makefile (gcc -O2,
+the Makefile's default; ``--cflags`` replaces it, e.g. ``--cflags "-O2 -mavx2"`` for
+the fp64 fit's lanes in one AVX register instead of two SSE2 ones: the same bits)
 and a small timing driver, and times every call individually (``clock_gettime``,
 timer overhead subtracted) on the chain vectors' operands (seeded, corner cases
 first): stage D alone and the C -> D chain, golden and fp64, Hamrock–Brewe. Prints
@@ -29,7 +31,7 @@ The process pins itself to one core (``os.sched_setaffinity``, inherited by the
 drivers; ``--cpu``) and prints the load average: figures taken under load say so.
 
 Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curvatures
-stencil|exact] [--twin-only | --previews-only] [--instructions]``.
+stencil|exact] [--twin-only | --previews-only] [--instructions] [--cflags FLAGS]``.
 """
 
 from __future__ import annotations
@@ -302,7 +304,7 @@ def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
           f"{res.timings['real_time_factor']:.1f}x; target <= 500 ns per step (>= 20x)")
 
 
-def _instructions(lib: Path, data: Path, n: int) -> None:
+def _instructions(lib: Path, data: Path, n: int, cflags: str) -> None:
     """Instructions per call of each timed function, under callgrind (module docstring)."""
     if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
         print("instructions: valgrind not installed, skipped")
@@ -317,14 +319,15 @@ def _instructions(lib: Path, data: Path, n: int) -> None:
                           capture_output=True, text=True).stdout
     counts = {m.group(2): int(m.group(1).replace(",", "")) / n
               for m in re.finditer(r"^\s*([\d,]+) .*?:loop_(\w+) ", text, re.M)}
-    print(f"instructions per call (callgrind, {n} operands, gcc -O2; load independent):")
+    print(f"instructions per call (callgrind, {n} operands, library gcc {cflags}; load "
+          "independent):")
     for name in ("golden_chain", "fp64_chain", "golden_fit", "golden_hertz", "fp64_fit",
                  "fp64_hertz"):
         print(f"  {name:<14} {counts.get(name, float('nan')):>8.0f}")
 
 
-def bench_previews(vectors: int, instructions: bool = False) -> None:
-    """ns per preview of the C library (module docstring)."""
+def bench_previews(vectors: int, instructions: bool = False, cflags: str = "-O2") -> None:
+    """ns per preview of the C library built with ``CFLAGS=cflags`` (module docstring)."""
     stim = vector_stimulus("chain", vectors, 7)
     gaps = np.asarray(stim.fields["gaps"], np.int32)
     w = np.asarray(stim.fields["W"], np.int32)
@@ -332,7 +335,8 @@ def bench_previews(vectors: int, instructions: bool = False) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         lib = Path(tmp) / "lib"
         export_c_library(lib)
-        subprocess.run(["make", "-s", "-C", str(lib), "CC=gcc"], check=True)
+        subprocess.run(["make", "-s", "-C", str(lib), "CC=gcc", f"CFLAGS={cflags}"],
+                       check=True)
         (lib / "bench.c").write_text(DRIVER)
         subprocess.run(["gcc", "-O2", "-std=c99", "-o", str(lib / "bench"),
                         str(lib / "bench.c"), str(lib / "build" / "libgearcontact.a"), "-lm",
@@ -344,8 +348,8 @@ def bench_previews(vectors: int, instructions: bool = False) -> None:
                              capture_output=True, text=True).stdout.splitlines()
         rows = [ln.split() for ln in out if ln.split()[0] not in ("timer", "sink")]
         rows = rows[len(rows) // 2:]                  # the second (warm) round
-        print(f"{len(w)} chain vectors (seed 7, corner cases first); timer overhead "
-              f"{out[0].split()[1]} ns subtracted")
+        print(f"{len(w)} chain vectors (seed 7, corner cases first); library CFLAGS "
+              f"{cflags}; timer overhead {out[0].split()[1]} ns subtracted")
         print(f"{'function':<14} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} {'p99/p50':>8}")
         for name, p50, p99, mx in rows:
             print(f"{name:<14} {int(p50):>10} {int(p99):>8} {int(mx):>9} "
@@ -354,7 +358,7 @@ def bench_previews(vectors: int, instructions: bool = False) -> None:
               "chain 806 cycles = 16,120 ns at 50 MHz; targets golden chain <= 200 ns, "
               "fp64 <= 100 ns, p99/p50 <= 1.5")
         if instructions:
-            _instructions(lib, data, len(w))
+            _instructions(lib, data, len(w), cflags)
 
 
 def main(argv=None) -> None:
@@ -367,12 +371,15 @@ def main(argv=None) -> None:
                     help="the twin's curvature source (default stencil, the twin's)")
     ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
     ap.add_argument("--previews-only", action="store_true", help="skip the twin step")
+    ap.add_argument("--cflags", default="-O2",
+                    help="the library's CFLAGS (default -O2, its Makefile's), e.g. "
+                         "'-O2 -mavx2'")
     ap.add_argument("--instructions", action="store_true",
                     help="also count instructions per call under valgrind's callgrind")
     args = ap.parse_args(argv)
     print(_pin(args.cpu) + "; load average %.2f %.2f %.2f" % os.getloadavg())
     if not args.twin_only:
-        bench_previews(args.vectors, args.instructions)
+        bench_previews(args.vectors, args.instructions, args.cflags)
     if not args.previews_only:
         bench_twin_step(args.steps, args.phases, args.curvatures)
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())

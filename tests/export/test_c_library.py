@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearcontact.export.c_constants import expand_fit_mac_plan, fit_mac_plan, fit_mac_plan_fp64
+from gearcontact.export.c_constants import FIT_LANES, expand_fit_mac_plan, fit_mac_plan
 from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
@@ -199,8 +199,8 @@ def _library(lib: Path):
 
 @pytest.mark.parametrize("form", list(FORMS))
 def test_fp64_hertz_within_1e12_of_the_python_reference(built, form):
-    """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same operations, the cube
-    root within 5 ulp instead of libm's (measured 1.4e-15). Exact: Carlson's R_F, R_D and a bisection to
+    """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same quantities on two
+    independent paths, the cube root within 5 ulp instead of libm's (measured 1.8e-15). Exact: Carlson's R_F, R_D and a bisection to
     adjacent doubles against scipy's and Brent's to 4 eps (measured 1.8e-15)."""
     lib, vec = built
     so = _library(lib)
@@ -232,12 +232,12 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     """The chain vectors' stencils (plausible elliptic ones and whole-range words).
     Coefficients: within 1e-12 of the dot product's own scale sum_i |M_ji g_i| (the
     reference sums through BLAS in another order; its rounding is ~1e-16 of that
-    scale, measured 7.7e-16). A-, B-: within 1e-12 of the scale of c3, c4, c5 (their
+    scale, measured 3.6e-16). A-, B-: within 1e-12 of the scale of c3, c4, c5 (their
     dot-product scales plus |c3| + |c4| + |c5|: an eigenvalue moves by at most the
     coefficients' error, Weyl); relative to themselves they are ill-conditioned where
     h and r cancel or the quadratic part is rounding noise (a flat stencil). Chain
     Hertz outputs where the reference accepts the stencil: 1e-12 relative (measured
-    3.5e-13). The first 3,000 stencils (corner cases first): the Python reference
+    1.2e-13). The first 3,000 stencils (corner cases first): the Python reference
     takes ~1 ms per stencil (exact Hertz: the first 1,000)."""
     lib, vec = built
     so = _library(lib)
@@ -516,31 +516,76 @@ def test_fit_mac_plan_multiplies_out_to_the_rom():
     assert {c["basis"] for c in other} == {"g"}
 
 
-def test_fp64_fit_plan_applies_every_weight_bit_for_bit():
-    """The regrouped fp64 MAC of gc_fit_fp64.c applies the fp64 pseudo-inverse's own
-    words: its terms expanded (each with its hexadecimal literal) plus the residue taps
-    give back every weight exactly, each tap once; the residues are the words below
-    1e-12 of their row (the rounding of exact zeros: 55 of them, all below 2e-15)."""
-    plan = fit_mac_plan_fp64()
+def test_fp64_fit_applies_every_weight_bit_for_bit(built):
+    """gc_fit_fp64.c's table holds the fp64 pseudo-inverse's own words: its hexadecimal
+    literals, read back in lane order (FIT_LANES consecutive taps per vector, then the
+    remaining taps), give every weight exactly, each tap once."""
+    lib, _ = built
+    text = (lib / "gc_fit_fp64.c").read_text()
+    table = text[text.index("static const gc_lanes FIT_M"):text.index("gc_fit_fp64_result gc_fit_fp64(")]
+    groups = [[float.fromhex(w) for w in m.group(1).split(", ")]
+              for m in re.finditer(r"GC_LANES\((.*?)\)", table)]
     rows = [[float(w) for w in row] for row in baked_pinv().weights]
-    got = [[0.0] * 49 for _ in rows]
-    seen = [[0] * 49 for _ in rows]
-    for j, coeff in enumerate(plan["plan"]):
-        assert coeff["basis"] == "g"
-        for term in coeff["terms"]:
-            w = float.fromhex(term["weight"])
-            for sign, taps in ((1.0, term["plus"]), (-1.0, term["minus"])):
-                for i in taps:
-                    got[j][i] += sign * w
-                    seen[j][i] += 1
-        for i, lit in plan["residues"][j]:
-            got[j][i] += float.fromhex(lit)
-            seen[j][i] += 1
-            assert abs(rows[j][i]) <= 2e-15 * max(abs(w) for w in rows[j])
-    assert got == rows
-    assert all(s == 1 for row in seen for s in row)
-    assert sum(len(r) for r in plan["residues"]) == 55
-    assert plan["muls"] < 294 // 2
+    per_row = 49 // FIT_LANES
+    assert len(groups) == 6 * per_row and all(len(g) == FIT_LANES for g in groups)
+    for j, row in enumerate(rows):
+        got = [w for g in groups[j * per_row:(j + 1) * per_row] for w in g]
+        tail = re.search(rf"c\[{j}\] = .*?;", text).group(0)
+        got += [float.fromhex(w) for w in re.findall(r"(-?0x[0-9a-f.]+p[-+]\d+) \* gaps_mm", tail)]
+        assert got == row
+
+
+#: Harness of :func:`test_fp64_fit_same_bits_with_and_without_simd`: gc_fit_fp64 on
+#: xorshift stencils (gaps of either sign over six decades), every output as hexadecimal.
+_LANES_HARNESS = r"""
+#include <stdio.h>
+#include <stdint.h>
+#include "gearcontact.h"
+
+int main(void)
+{
+    uint64_t x = 88172645463325252u;
+    double g[GC_FIT_TAPS];
+    int n, i;
+    for (n = 0; n < 2000; ++n) {
+        gc_fit_fp64_result r;
+        for (i = 0; i < GC_FIT_TAPS; ++i) {
+            x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+            g[i] = ((double)(x >> 11) / 9007199254740992.0 - 0.3) * (double)(1 << (n % 20));
+        }
+        r = gc_fit_fp64(g);
+        for (i = 0; i < 6; ++i)
+            printf("%a ", r.c[i]);
+        printf("%a %a %d\n", r.A_minus_per_mm, r.B_minus_per_mm, r.elliptic);
+    }
+    return 0;
+}
+"""
+
+
+def test_fp64_fit_same_bits_with_and_without_simd(built, tmp_path):
+    """The fit's lanes give the same bits as a GNU C vector (SSE2 on x86-64), as four
+    doubles one by one (-DGC_SCALAR_LANES, the code other compilers get) and as one AVX
+    register (-mavx2, where the CPU has it): the same operations in the same order."""
+    lib, _ = built
+    (tmp_path / "harness.c").write_text(_LANES_HARNESS)
+    flavours = {"vector": [], "scalar": ["-DGC_SCALAR_LANES"]}
+    cpuinfo = Path("/proc/cpuinfo")
+    if cpuinfo.exists() and " avx2" in cpuinfo.read_text():
+        flavours["avx2"] = ["-mavx2"]
+    outputs = {}
+    for name, flags in flavours.items():
+        exe = tmp_path / name
+        run = subprocess.run(["gcc", *STRICT, "-O2", "-ffp-contract=off", *flags, f"-I{lib}",
+                              "-o", str(exe), str(tmp_path / "harness.c"),
+                              *(str(lib / n) for n in ("gc_fit_fp64.c", "gc_hertz_fp64.c",
+                                                       "gc_tables.c")), "-lm"],
+                             capture_output=True, text=True, timeout=120)
+        assert run.returncode == 0, (name, run.stderr)
+        outputs[name] = subprocess.run([str(exe)], capture_output=True, text=True,
+                                       timeout=60, check=True).stdout
+    assert outputs["vector"].count("\n") == 2000
+    assert all(out == outputs["vector"] for out in outputs.values()), list(outputs)
 
 
 #: Harness of :func:`test_fp64_cube_root_within_5_ulp_of_the_exact_root`: gc_hertz_fp64.c's

@@ -50,6 +50,9 @@ def register(sub) -> None:
     f.add_argument("--curvatures", default=None, choices=("stencil", "exact"),
                    help="drivetrain: the preview's curvature source, as gearcontact twin "
                         "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
+    f.add_argument("--bending", action="store_true",
+                   help="tooth bending of both members in series with the Hertzian law, "
+                        "as gearcontact twin --bending (default rigid teeth)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -100,12 +103,13 @@ def run_fmu(args) -> int:
                                     side=args.side, phases=args.phases,
                                     torque_nm=args.torque,
                                     drivetrain=load_drivetrain(args.drivetrain, pair),
-                                    curvatures=args.curvatures or "stencil")
+                                    curvatures=args.curvatures or "stencil",
+                                    bending=args.bending)
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu import export_mesh_fmu
     fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
-                          phases=args.phases, torque_nm=args.torque)
+                          phases=args.phases, torque_nm=args.torque, bending=args.bending)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

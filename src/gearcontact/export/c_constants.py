@@ -35,7 +35,7 @@ from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS,
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
            "fit_isqrt_seeds",
-           "fit_mac_plan_fp64", "cbrt_seed", "gap_constants", "line_constants"]
+           "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -223,54 +223,30 @@ def fit_isqrt_seeds() -> tuple[int, ...]:
                  for k in range(1 << (b - 2), 1 << b))
 
 
-#: An fp64 pseudo-inverse weight at most this fraction of its row's largest is the
-#: rounding residue of an exact zero of the least-squares fit (measured <= 1.8e-15 of the
-#: row; the smallest true weight is 0.03 of it): :func:`fit_mac_plan_fp64` keeps it as a
-#: tap of its own.
-FP64_RESIDUE = 1e-12
+#: Lanes of the fp64 fit's dot products (gc_fit_fp64.c): lane ``l`` sums the taps
+#: ``FIT_LANES * k + l``; the taps past the last whole group of lanes are summed after.
+FIT_LANES = 4
 
 
-def fit_mac_plan_fp64() -> dict:
-    """The fp64 fit's dot products ``c_j = sum_i M_ji g_i`` regrouped by equal weights.
+def fit_lanes_fp64() -> dict:
+    """The fp64 fit's weights as gc_fit_fp64.c applies them, tap by tap.
 
-    The plan of :func:`fit_mac_plan` over the fp64 pseudo-inverse's exact values: one
-    term per distinct ``|M_ji|``, ``M_j,rep * (sum of the taps holding it - sum of those
-    holding its negation)``. Every tap keeps its own weight bit for bit (the symmetric
-    taps of the stencil hold equal words up to ~75 ulp: grouping those as equal moved
-    the chain's Hertz outputs by 2e-12 of the reference's; equal words only, by 2e-13);
-    the taps holding only the rounding residue of an exact zero (``|M_ji| <=``
-    :data:`FP64_RESIDUE` of the row's largest) stay terms of their own, so that a
-    stencil on them alone sums as the reference does. The result differs from the
-    reference's tap-by-tap sum by the rounding of the regrouped additions (measured
-    5.5e-16 of the dot product's scale ``sum_i |M_ji g_i|``; tests/export hold it to
-    1e-12 of it).
+    Every weight ``M_ji`` of the fp64 pseudo-inverse as its exact C99 hexadecimal
+    literal, in groups of :data:`FIT_LANES` consecutive taps (one vector of weights per
+    group and coefficient) and the taps after the last whole group.
 
     Returns
     -------
     dict
-        ``plan``: as :func:`fit_mac_plan`, each term with ``weight`` (its C99 hexadecimal
-        literal; basis ``g``, the taps); ``residues``: per coefficient ``[(tap,
-        literal), ...]``; ``muls`` and ``adds``, the operation counts.
+        ``lanes`` (:data:`FIT_LANES`); ``groups``: per coefficient, per group, the
+        literals of its taps; ``tail``: per coefficient ``[(tap, literal), ...]``.
     """
     rows = [[float(w) for w in row] for row in baked_pinv().weights]
-    exact = []                            # the words as exact integers (units 2^-1100)
-    for row in rows:
-        top = max(abs(w) for w in row)
-        exact.append(tuple(0 if abs(w) <= FP64_RESIDUE * top else int(Fraction(w) * 2 ** 1100)
-                           for w in row))
-    plan = fit_mac_plan(exact)
-    residues = []
-    for j, coeff in enumerate(plan):
-        for term in coeff["terms"]:
-            term["weight"] = rows[j][term["rep"]].hex()
-        residues.append([(i, w.hex()) for i, w in enumerate(rows[j])
-                         if exact[j][i] == 0 and w != 0.0])
-    bases = {c["basis"] for c in plan}
-    muls = sum(len(c["terms"]) for c in plan) + sum(len(r) for r in residues)
-    adds = (STENCIL_SIDE * (STENCIL_SIDE - 1) * len(bases - {"g"}) + muls - len(plan)
-            + sum(len(t["plus"]) + len(t["minus"]) - 1 for c in plan for t in c["terms"]))
-    return {"plan": plan, "residues": residues, "bases": sorted(bases), "muls": muls,
-            "adds": adds}
+    whole = N_TAPS // FIT_LANES * FIT_LANES
+    return {"lanes": FIT_LANES,
+            "groups": [[[w.hex() for w in row[k:k + FIT_LANES]]
+                        for k in range(0, whole, FIT_LANES)] for row in rows],
+            "tail": [[(i, row[i].hex()) for i in range(whole, N_TAPS)] for row in rows]}
 
 
 #: Degree of the fp64 cube root's seed polynomial (:func:`cbrt_seed`) and the grid

@@ -11,8 +11,10 @@ time stamp or a path: identical package versions write identical files.
 
 The golden sources use integer arithmetic only and constant loop counts; the fp64
 sources follow the fp64 reference formulas operation by operation, except the fit's dot
-products (regrouped by the pseudo-inverse's equal words) and the preview's Hamrock-Brewe
-cube root (a seed polynomial and one Halley step), both within 1e-12 of the reference.
+products (four lanes of the pseudo-inverse's own words, the same bits with or without
+SIMD) and the preview's Hamrock-Brewe terms (the cube root, a seed polynomial and one
+Halley step, beside the logarithm and the exponential instead of after them), both
+within 1e-12 of the reference.
 How to build and use the library, and the determinism argument: docs/export.md.
 """
 
@@ -25,7 +27,7 @@ from ..errors import ToolUnavailable
 from ..contract.stencil import STENCIL_SIDE
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
-                          fit_mac_plan_fp64, cbrt_seed,
+                          fit_lanes_fp64, cbrt_seed,
                           fit_weight_codes,
                           gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
@@ -72,7 +74,7 @@ def _context() -> dict:
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
             "gap_constants": gap_constants(), "line_constants": line_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
-            "fit_weights": fit_weight_codes(), "fit_fp64": fit_mac_plan_fp64(), "cbrt": cbrt_seed(),
+            "fit_weights": fit_weight_codes(), "fit_fp64": fit_lanes_fp64(), "cbrt": cbrt_seed(),
             "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "fit_mac_bases": bases, "stencil_side": STENCIL_SIDE,
             "fit_mac_ops": {"muls": sum(len(c["terms"]) for c in plan), "adds": adds},
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),

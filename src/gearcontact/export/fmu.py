@@ -190,13 +190,15 @@ def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
         return [[c_double(v) for v in r] for r in a]
 
     n_rows, n_pairs = tab.eps_rad.shape[0], tab.lever_mm.shape[0]
+    bending = tab.bending_mm_per_n is not None
     ctx = fmu_context(
         model_identifier=ident, token=token, header_dir=header_dir,
         variables=MESH_VARIABLES, implemented=_MESH_IMPLEMENTED, trivial=_MESH_TRIVIAL,
         model_source="gc_mesh_fmu.c",
         description=f"Gear mesh element of {pair_name} ({side} flank): the gearcontact "
-                    "twin's contact law (preview stage D on the TCA's curvatures, rigid "
-                    f"teeth), table of {n_rows} phases x {n_pairs} pairs baked in")
+                    "twin's contact law (preview stage D on the TCA's curvatures, "
+                    f"{'tooth bending in series' if bending else 'rigid teeth'}), table of "
+                    f"{n_rows} phases x {n_pairs} pairs baked in")
     ctx.update({
         "pair_name": pair_name, "side": side, "n_rows": n_rows, "n_pairs": n_pairs,
         "step_rad": c_double(tab.step_rad), "pitch_rad": c_double(tab.pitch_rad),
@@ -207,6 +209,7 @@ def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
         "tables": [("LEVER_MM", rows(tab.lever_mm)), ("OPENING_MM", rows(tab.opening_mm)),
                    ("A_MINUS", rows(tab.A_minus_per_mm)), ("B_MINUS", rows(tab.B_minus_per_mm))],
         "valid": [[int(v) for v in r] for r in tab.valid],
+        "bending": bending, "cb": rows(tab.bending_mm_per_n) if bending else [],
         "model_exchange": True, "output_dependencies": "1 2 3 4 13 14",
         "initial_dependencies": "1 2 3 4 13 14"})
     return ctx
@@ -270,7 +273,7 @@ def _compile(src_dir: Path, sources: list[str], header_dir: Path, so_path: Path)
 
 
 def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
-                    torque_nm: float = 64.5) -> MeshFmu:
+                    torque_nm: float = 64.5, bending: bool = False) -> MeshFmu:
     """Write the mesh FMU of ``pair`` into ``out_dir`` (module docstring).
 
     Parameters
@@ -288,6 +291,10 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     torque_nm : float
         Gear torque sizing the posed fields of edge pairs (:func:`~gearcontact.twin.
         mesh.mesh_table`), N·m; the FMU's law holds at any load in the envelope.
+    bending : bool
+        Tooth bending of both members in series with the Hertzian law (each pair's
+        bending compliance in the table, as ``gearcontact twin --bending``); rigid teeth
+        by default.
 
     Returns
     -------
@@ -298,13 +305,16 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
     """
+    from ..ltca.tooth_bending import tooth_bending
     from ..tca.analysis import analyze_pair
     from ..twin.mesh import mesh_table
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
     tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False)
-    tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm))
+    bend = tooth_bending(flanks, pair, side=side) if bending else None
+    tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
+                                    bending=bend))
     ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -5,7 +5,8 @@ co-simulation FMU in plain C.
 ``gearcontact twin`` does (:func:`gearcontact.twin.model.model_for_pair`: the loaded
 flank's TCA and mesh table, the reverse flank's own table or the mirrored law, the
 ``[drivetrain]`` parameters, the preview's curvature source ``stencil`` or ``exact``;
-rigid teeth), bakes its per-flank arrays and constants into
+rigid teeth, or with ``bending`` the tooth bending of both members in series with the
+Hertzian law, as ``gearcontact twin --bending``), bakes its per-flank arrays and constants into
 ``data/templates/fmu/gc_drivetrain_fmu.c.j2`` -- a port of
 the twin's step loop (:mod:`gearcontact.twin.kernel`), static point, mesh damping and
 speed controller (:mod:`gearcontact.twin.statics`) and start
@@ -92,16 +93,17 @@ class DrivetrainFmu:
 
 
 def drivetrain_fmu_model(pair, *, side: str, phases: int, torque_nm: float,
-                         drivetrain=None, curvatures: str = "stencil"):
+                         drivetrain=None, curvatures: str = "stencil", bending: bool = False):
     """The twin's model the drivetrain FMU bakes: :func:`~gearcontact.twin.model.
-    model_for_pair` with rigid teeth and the preview's curvature source ``curvatures``
+    model_for_pair` with rigid teeth (or tooth bending, ``bending``) and the preview's
+    curvature source ``curvatures``
     (the reference backend's arrays; the golden backend's stencil samples are added by
     :func:`export_drivetrain_fmu`)."""
     from ..twin.model import model_for_pair
 
     return model_for_pair(pair, torque_nm=torque_nm, backend="reference",
                           drivetrain=drivetrain, side=side, phases=phases,
-                          curvatures=curvatures)
+                          curvatures=curvatures, bending=bending)
 
 
 def _constants(model) -> list[tuple[str, str]]:
@@ -133,9 +135,23 @@ def _constants(model) -> list[tuple[str, str]]:
         ("STEP_US_START", c(10.0))]
 
 
+def _row_pairs(valid) -> list:
+    """Per table and row interval ``(i, i + 1)`` (the last row's padded with zeros): the
+    count of pairs valid at both rows, then those pairs ascending, padded to
+    ``pairs + 1`` entries (the C loop's list, ``ROW_PAIRS``)."""
+    valid = np.asarray(valid, bool)
+    n_p, n_k = valid.shape[1], valid.shape[2]
+    rows = []
+    for side in valid:
+        both = side[:, :-1] & side[:, 1:]
+        lists = [[int(j) for j in np.flatnonzero(both[:, i])] for i in range(n_k - 1)] + [[]]
+        rows.append([[len(x), *x] + [0] * (n_p - len(x)) for x in lists])
+    return rows
+
+
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                           torque_nm: float = 64.5, drivetrain=None,
-                          curvatures: str = "stencil") -> DrivetrainFmu:
+                          curvatures: str = "stencil", bending: bool = False) -> DrivetrainFmu:
     """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring).
 
     Parameters
@@ -159,6 +175,10 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         The preview's curvature source, as ``gearcontact twin --curvatures``:
         ``"stencil"`` (the twin's default: stage C on the 7 x 7 gap stencil, then stage
         D) or ``"exact"`` (the TCA's curvatures).
+    bending : bool
+        Tooth bending of both members in series with the Hertzian law (the mesh table's
+        pair bending compliances, as ``gearcontact twin --bending``); rigid teeth by
+        default.
 
     Returns
     -------
@@ -174,12 +194,14 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
     from ..twin.model import CURVATURE_SOURCES, _stack
+    from ..twin.simulate import _CHUNK
     from ..validation import InputRangeError
 
     if curvatures not in CURVATURE_SOURCES:     # before the TCA
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
     model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
-                                 drivetrain=drivetrain, curvatures=curvatures)
+                                 drivetrain=drivetrain, curvatures=curvatures,
+                                 bending=bending)
     a, m = model.arrays, model.mesh
     stencil = curvatures == "stencil"
     # exact A-, B- always (the static start's bracket); the stencil source as the golden
@@ -196,14 +218,15 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     consts = _constants(model)
     baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
                                        (a["eps"], a["lever"], a["opening"], a["valid"],
-                                        exact, cv)])).encode()
+                                        exact, cv, a["cb"] if bending else None)])).encode()
     ctx = fmu_context(
         model_identifier=ident, token=model_token(baked), header_dir=header_dir,
         variables=DRIVETRAIN_VARIABLES, implemented=_IMPLEMENTED, trivial=_TRIVIAL,
         model_source="gc_drivetrain_fmu.c",
         description=f"Drivetrain twin of {pair_name} ({side} flank loaded): motor, input "
                     "shaft, pinion, mesh (the gearcontact preview's contact law on the "
-                    f"{'7 x 7 gap stencil' if stencil else 'TCA'}'s curvatures, both flanks), "
+                    f"{'7 x 7 gap stencil' if stencil else 'TCA'}'s curvatures, both flanks"
+                    f"{'; tooth bending in series' if bending else ''}), "
                     "gear, output shaft, load; RK4 at step_us, PI speed control per "
                     "[drivetrain]")
     ctx.update({
@@ -212,9 +235,11 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "n_rows0": len(m.psi_rad), "eps": hexes(a["eps"]),
         "tables": [("LEVER", hexes(a["lever"])), ("OPENING", hexes(a["opening"])),
                    ("A_MINUS", hexes(exact[..., 0])), ("B_MINUS", hexes(exact[..., 1]))],
-        "stencil": stencil, "curvatures": curvatures,
+        "stencil": stencil, "curvatures": curvatures, "bending": bool(bending),
+        "cb": hexes(a["cb"]) if bending else [], "block_steps": _CHUNK,
         "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
+        "row_pairs": _row_pairs(a["valid"]),
         "psi0": hexes(m.psi_rad), "eps0": hexes(m.eps_rad),
         "default_step": "1e-05", "default_stop": "0.05",
         "starts": {"speed_rpm": "3000", "torque_nm": repr(float(model.torque_nm)),

@@ -4,7 +4,8 @@
 FMU (the loaded flank's :class:`~gearcontact.twin.mesh.MeshTable` rows, curvatures the
 TCA's A-, B-); :func:`mesh_outputs` evaluates the outputs of the FMU at given inputs
 with the twin's own compiled contact law (:func:`gearcontact.twin.contact_law._kappa`,
-``curvatures="exact"``; rigid teeth), the reference the C code of the FMU is tested
+``curvatures="exact"``; rigid teeth, or the pairs' tooth bending in series,
+:func:`gearcontact.twin.contact_law._pair_load`), the reference the C code of the FMU is tested
 against (docs/export.md, "The mesh FMU").
 
 The law, at pinion and gear angles ``psi_p``, ``psi_g`` along the motion (rad, the
@@ -14,7 +15,8 @@ twin's coordinates, :mod:`gearcontact.twin.mesh`) and their speeds:
   interpolated, ``theta = psi_p / u + eps - psi_g``, ``theta' = w_p (1/u + eps') - w_g``;
 * per pair valid at both rows with ``d_j = l_j theta - g_j > 0``: ``kappa_j`` from one
   preview (stage D on the interpolated A-, B-) at the load ``W_eval``, ``W_j = (d_j /
-  kappa_j)^(3/2)``. The twin samples the preview at the pair's load of its previous
+  kappa_j)^(3/2)`` (with tooth bending, ``d_j = kappa_j W_j^(2/3) + c_b W_j`` by the
+  twin's Newton, started afresh: no state). The twin samples the preview at the pair's load of its previous
   step; the FMU has no step of its own (model exchange), so it samples twice: at 1 N
   (:data:`~gearcontact.twin.contact_law.W_EVAL_MIN_N`), then at the load that gives,
   clamped to the datapath envelope (1 .. 2^17 N). fp64: kappa does not depend on the
@@ -41,7 +43,7 @@ from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
 from ..twin import layout as L
-from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa
+from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _pair_load
 
 __all__ = ["MeshLawTable", "MeshOutputs", "mesh_law_table", "mesh_outputs", "BACKENDS"]
 
@@ -70,6 +72,8 @@ class MeshLawTable:
         Effective modulus E', MPa.
     motion_sign : int
         ``m`` of the TCA (+1 / -1).
+    bending_mm_per_n : ndarray (P, K) or None
+        Tooth-bending compliance of each pair, mm/N (None: rigid teeth).
     """
 
     eps_rad: np.ndarray
@@ -84,10 +88,13 @@ class MeshLawTable:
     reference_lever_mm: float
     e_prime_mpa: float
     motion_sign: int
+    bending_mm_per_n: np.ndarray | None = None
 
     def to_npz(self, path) -> None:
-        """Write the table as ``.npz`` (every attribute under its name)."""
-        np.savez(path, **{k: np.asarray(v) for k, v in self.__dict__.items()})
+        """Write the table as ``.npz`` (every attribute under its name; no
+        ``bending_mm_per_n`` for rigid teeth)."""
+        np.savez(path, **{k: np.asarray(v) for k, v in self.__dict__.items()
+                          if v is not None})
 
     @classmethod
     def from_npz(cls, path) -> "MeshLawTable":
@@ -101,7 +108,9 @@ class MeshLawTable:
 
 
 def mesh_law_table(mesh) -> MeshLawTable:
-    """The FMU's table of a :class:`~gearcontact.twin.mesh.MeshTable` (loaded flank)."""
+    """The FMU's table of a :class:`~gearcontact.twin.mesh.MeshTable` (loaded flank);
+    its bending compliance if any pair has one (else rigid teeth)."""
+    cb = mesh.bending_mm_per_n
     return MeshLawTable(
         eps_rad=np.asarray(mesh.eps_rad, float), lever_mm=np.asarray(mesh.lever_mm, float),
         opening_mm=np.asarray(mesh.opening_mm, float),
@@ -110,7 +119,9 @@ def mesh_law_table(mesh) -> MeshLawTable:
         valid=np.asarray(mesh.valid, bool), step_rad=float(mesh.step_rad),
         pitch_rad=float(mesh.pitch_rad), ratio=float(mesh.ratio),
         reference_lever_mm=float(mesh.reference_lever_mm),
-        e_prime_mpa=float(mesh.e_prime_mpa), motion_sign=int(mesh.motion_sign))
+        e_prime_mpa=float(mesh.e_prime_mpa), motion_sign=int(mesh.motion_sign),
+        bending_mm_per_n=None if cb is None or not np.any(np.asarray(cb) > 0.0)
+        else np.asarray(cb, float))
 
 
 @dataclass(frozen=True)
@@ -195,6 +206,7 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
+    cbs = tab.bending_mm_per_n
     for j in range(tab.lever_mm.shape[0]):
         if not (tab.valid[j, i] and tab.valid[j, i + 1]):
             continue
@@ -206,13 +218,12 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
         kap = law.kappa(j, i, f, W_EVAL_MIN_N, code, out3)
         if kap <= 0.0:      # no contact law (a saddle): the pair carries nothing
             continue
-        r = d / kap
-        we = min(max(r * math.sqrt(r), W_EVAL_MIN_N), _W_EVAL_MAX_N)
+        cb = 0.0 if cbs is None else cbs[j, i] + f * (cbs[j, i + 1] - cbs[j, i])
+        we = min(max(_pair_load(d, kap, cb, 0.0)[0], W_EVAL_MIN_N), _W_EVAL_MAX_N)
         kap = law.kappa(j, i, f, we, code, out3)
         if kap <= 0.0:
             continue
-        r = d / kap
-        w = r * math.sqrt(r)
+        w = _pair_load(d, kap, cb, 0.0)[0]
         t_el += 1e-3 * w * lv
         w_tot += w
         pairs += 1
