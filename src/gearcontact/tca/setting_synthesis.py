@@ -69,7 +69,7 @@ from .edges import pattern_edges
 from .mesh import mesh_cycle
 from .mating import solve_mating_point
 from .solve import solve_tca
-from .synthesis import SynthesisTargets, _angle_diff
+from .synthesis import SynthesisTargets, _angle_diff, targets_rows, targets_table
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["PARAMETER_NAMES", "MeanPointContact", "SettingSynthesis", "SynthesisProblem",
@@ -228,32 +228,12 @@ class SettingSynthesis:
 
     @property
     def met(self) -> bool:
-        """Every target within its tolerance."""
+        """Every target at M within its tolerance."""
         return all(r[5] for r in self.rows)
 
     def table(self) -> str:
-        """Target / achieved / tolerance as Markdown."""
-        lines = ["| target | aim | achieved | tolerance | met |", "|---|---:|---:|---:|---|"]
-        for name, unit, aim, got, tol, ok in self.rows:
-            lines.append(f"| {self.side} {name} ({unit}) | {aim:.4g} | {got:.4g} | {tol:.3g} "
-                         f"| {'yes' if ok else 'NO'} |")
-        return "\n".join(lines)
-
-
-def _rows(dp: DesignPoint, t: SynthesisTargets, length_mm: float, angle_deg):
-    rows = [("TE0 peak-to-peak", "arcsec", t.te0_pp_arcsec, dp.te0_pp_arcsec,
-             t.tol_te0_rel * t.te0_pp_arcsec),
-            ("paint ellipse 2a", "mm", length_mm, dp.paint_length_mm,
-             t.tol_length_rel * length_mm)]
-    if angle_deg is not None:
-        rows.append(("path angle from lengthwise", "deg", angle_deg, dp.path_angle_deg,
-                     t.tol_angle_deg))
-    out = []
-    for name, unit, aim, got, tol in rows:
-        miss = _angle_diff(got, aim) if unit == "deg" else got - aim
-        out.append((name, unit, float(aim), float(got), float(tol),
-                    bool(np.isfinite(miss) and abs(miss) <= tol)))
-    return tuple(out)
+        """Target / achieved / tolerance at M as Markdown."""
+        return targets_table(self.rows, prefix=f"{self.side} ")
 
 
 def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
@@ -437,12 +417,12 @@ def synthesize_settings(pair, *, targets: SynthesisTargets = SynthesisTargets(),
 
         least_squares(residual, np.zeros(len(active)), method="trf", diff_step=1e-3,
                       max_nfev=int(max_evaluations))
-        out[side] = _checked(prob, side, runs["best"][1], targets, length, angle, phases,
+        out[side] = _checked(prob, side, runs["best"][1], targets, length, phases,
                              runs["n"], t0)
     return out
 
 
-def _checked(prob: SynthesisProblem, side, x, targets, length, angle, phases, runs, t0):
+def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0):
     """:class:`SettingSynthesis` of the corrections ``x``: the local contact at M and
     the full TCA over one pitch (edge contact, pairs -2..2) with its pattern edges."""
     pair = prob.pair
@@ -455,7 +435,7 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, angle, phases, ru
     u_m, v_m = prob.mean_uv[side]
     vertex = cyc.contact[len(cyc.contact) // 2]
     return SettingSynthesis(side, prob.setup(side, x), x, local.point,
-                            _rows(local.point, targets, length, angle),
+                            targets_rows(local.point, targets, None, length),
                             float(cyc.te0_pp_arcsec), tuple(edges),
                             float(np.hypot(vertex.u1 - u_m, vertex.v1 - v_m)), runs,
                             time.perf_counter() - t0)
