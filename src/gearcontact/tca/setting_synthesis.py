@@ -270,7 +270,8 @@ class SynthesisProblem:
     complementary pinion and the spiral bevel crown pinion (line contact) a point of the
     contact line there, for a hypoid's crown pinion (point contact, TE0 = 0 along the
     path) the path's point there, which passes near, not through, the pinion's mean
-    node (13/26 hypoid: 0.4 / 1.2 mm away, drive / coast). The corrections pivot on the
+    node (13/26 hypoid: drive 0.68 mm up the profile; coast, its path nearly along the
+    profile, 2.68 mm off the section where the secant stops). The corrections pivot on the
     generation of M, so the corrected pinion keeps M, its normal and the nominal ratio
     there: tangency at M.
 
