@@ -238,24 +238,23 @@ class SettingSynthesis:
 
 def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
     """The mating point of the path through ``guess`` whose pinion ``v1`` is ``v1_mm``
-    to ~1e-6 mm (secant on the phase from a local TCA over +-2 steps of
-    :data:`_LOCAL_STEP_PITCH`; the system with ``v1`` held is singular where TE0 is
+    within 1e-6 mm: secant on the phase, started from a local TCA over +-2 steps of
+    :data:`_LOCAL_STEP_PITCH` (the system with ``v1`` held is singular where TE0 is
     constant along the path, as on the crown gear's pinion)."""
     kin = pair.kinematics()
     h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
     path = solve_tca(pinion, gear, kin, guess.phi1_rad + h * np.arange(-2, 3), start=guess,
                      start_fixed="phi1", edges=False)
-    phi = np.asarray(path.phi1_rad, float)
-    v = np.array([p.v1 for p in path.points])
-    k = int(np.argmin(np.abs(v - v1_mm)))
-    mp = path.points[k]
-    for _ in range(4):
-        dv = (v[min(k + 1, 4)] - v[max(k - 1, 0)]) / (phi[min(k + 1, 4)] - phi[max(k - 1, 0)])
+    k = int(np.argmin([abs(p.v1 - v1_mm) for p in path.points]))
+    prev, mp = path.points[k - 1 if k else 1], path.points[k]
+    for _ in range(20):
         if abs(mp.v1 - v1_mm) < 1e-6:
-            break
-        mp = solve_mating_point(pinion, gear, kin, dataclasses.replace(
-            mp.as_guess(), phi1_rad=mp.phi1_rad - (mp.v1 - v1_mm) / dv))
-    return mp
+            return mp
+        slope = (mp.v1 - prev.v1) / (mp.phi1_rad - prev.phi1_rad)
+        prev, mp = mp, solve_mating_point(pinion, gear, kin, dataclasses.replace(
+            mp.as_guess(), phi1_rad=mp.phi1_rad - (mp.v1 - v1_mm) / slope))
+    raise ArithmeticError(f"no point of the contact path at v1 = {v1_mm:.4f} mm (secant "
+                          f"stopped at {mp.v1:.4f} mm)")
 
 
 class SynthesisProblem:
@@ -266,12 +265,10 @@ class SynthesisProblem:
     pinion flank of any corrections.
 
     M is the point of the base pinion's contact path on the pinion's mean section
-    (``v`` of the blank's mean point, to a secant's accuracy, :func:`_path_point_at`): for the
-    complementary pinion and the spiral bevel crown pinion (line contact) a point of the
-    contact line there, for a hypoid's crown pinion (point contact, TE0 = 0 along the
-    path) the path's point there, which passes near, not through, the pinion's mean
-    node (13/26 hypoid: drive 0.68 mm up the profile; coast, its path nearly along the
-    profile, 2.68 mm off the section where the secant stops). The corrections pivot on the
+    (``v`` of the blank's mean point, :func:`_path_point_at`):
+    the crown gear's pinion of a hypoid has point contact with TE0 = 0 along a path,
+    which passes near, not through, the pinion's mean
+    node (13/26 hypoid: 0.68 / 2.30 mm above it, drive / coast). The corrections pivot on the
     generation of M, so the corrected pinion keeps M, its normal and the nominal ratio
     there: tangency at M.
 
