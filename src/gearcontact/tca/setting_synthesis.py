@@ -7,15 +7,16 @@ pinion's second-order surface at M, three numbers (two principal curvatures and 
 direction), so that three conditions hold at M: the direction of the contact path on
 the gear flank, the length of the instantaneous contact ellipse and the level of the
 parabolic transmission error. Here the three second-order unknowns are three pinion
-corrections, each of which keeps the pinion's mean node and its normal exactly:
+corrections, each of which keeps M (a pinion node) and its normal exactly:
 
 * ``roll_curvature``: the second derivative of the work roll at the cradle roll
-  ``psi_m`` that generates the mean node, as ``-phi''(psi_m) / R_a0`` (the 2C of a roll
+  ``psi_m`` that generates M, as ``-phi''(psi_m) / R_a0`` (the 2C of a roll
   about ``psi_m``). Written as cradle angle, ratio of roll and 2C whose roll keeps its
   value and slope at ``psi_m`` (the envelope at the mean node depends on ``phi`` and
-  ``phi'`` there only: the equation of meshing) (:func:`roll_about`);
+  ``phi'`` there only: the equation of meshing; :func:`roll_about`);
 * ``blade_curvature_per_mm``: a circular pinion blade tangent to the straight one at the
-  blade point that generates the mean node (:func:`~gearcontact.geometry.basic_settings.crown_profile`);
+  blade point that generates M
+  (:func:`~gearcontact.geometry.basic_settings.crown_profile`);
 * ``radius_delta_mm``: the pinion cutter radius changed with the cutter centre moved
   along the blade's radial line through that point
   (:func:`~gearcontact.geometry.basic_settings.mismatch_radius`).
@@ -69,7 +70,7 @@ from .edges import pattern_edges
 from .mesh import mesh_cycle
 from .mating import solve_mating_point
 from .solve import solve_tca
-from .synthesis import SynthesisTargets, _angle_diff, targets_rows, targets_table
+from .synthesis import SynthesisTargets, TargetRows, _angle_diff, targets_rows
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["PARAMETER_NAMES", "MeanPointContact", "SettingSynthesis", "SynthesisProblem",
@@ -188,7 +189,7 @@ def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
 
 
 @dataclass(frozen=True)
-class SettingSynthesis:
+class SettingSynthesis(TargetRows):
     """Result of :func:`synthesize_settings` for one side.
 
     Attributes
@@ -227,13 +228,9 @@ class SettingSynthesis:
     seconds: float
 
     @property
-    def met(self) -> bool:
-        """Every target at M within its tolerance."""
-        return all(r[5] for r in self.rows)
-
-    def table(self) -> str:
-        """Target / achieved / tolerance at M as Markdown."""
-        return targets_table(self.rows, prefix=f"{self.side} ")
+    def table_prefix(self) -> str:
+        """The side, before each quantity of :meth:`table`."""
+        return f"{self.side} "
 
 
 def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):

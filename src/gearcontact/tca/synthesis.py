@@ -62,7 +62,7 @@ from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
 from .path_reach import check_path_angle
 from .types import EdgeContact
 
-__all__ = ["SynthesisTargets", "Synthesis", "targets_rows", "targets_table", "synthesize_easeoff", "synthesize_pair",
+__all__ = ["SynthesisTargets", "Synthesis", "TargetRows", "targets_rows", "targets_table", "synthesize_easeoff", "synthesize_pair",
            "easeoff_toml", "PreparedPair", "prepare_pair"]
 
 #: Design torque of the Hertz ellipse reported beside the paint ellipse, N·m (not a
@@ -138,8 +138,25 @@ class SynthesisTargets:
             check_positive(name, getattr(self, name))
 
 
+class TargetRows:
+    """``met`` and ``table`` of a result with ``rows`` of ``(quantity, unit, target,
+    achieved, tolerance, met)`` (each quantity after ``table_prefix``)."""
+
+    rows: tuple
+    table_prefix = ""
+
+    @property
+    def met(self) -> bool:
+        """Every target within its tolerance."""
+        return all(r[5] for r in self.rows)
+
+    def table(self) -> str:
+        """Target / achieved / tolerance as Markdown."""
+        return targets_table(self.rows, prefix=self.table_prefix)
+
+
 @dataclass(frozen=True)
-class Synthesis:
+class Synthesis(TargetRows):
     """Result of :func:`synthesize_easeoff`.
 
     Attributes
@@ -170,15 +187,6 @@ class Synthesis:
     rows: tuple
     evaluations: int
     seconds: float
-
-    @property
-    def met(self) -> bool:
-        """Every target within its tolerance."""
-        return all(r[5] for r in self.rows)
-
-    def table(self) -> str:
-        """Target / achieved / tolerance as Markdown."""
-        return targets_table(self.rows)
 
 
 def targets_table(rows, *, prefix: str = "") -> str:
