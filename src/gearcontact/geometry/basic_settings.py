@@ -116,10 +116,11 @@ def crown_pinion_setups(pair) -> dict:
     ``u / sin(delta2) = 1/sin(delta1)``) both relative motions turn about the common
     pitch line, the contact lines coincide and the pinion is the line-contact conjugate
     of the generated gear. For a hypoid they cross at one point: the pinion is a
-    point-contact conjugate, TE0 = 0 along a contact path through the blank's mean point
+    point-contact conjugate, TE0 = 0 along a contact path near the blank's mean point
     (where the relative velocity lies along the tooth trace, ISO 23509's pitch-point
-    condition), eased off across the path against the line-contact conjugate
-    (docs/machine_settings.md sec. 5)."""
+    condition; measured 0.68 / 2.30 mm from the pinion's mean node on the 13/26 hypoid),
+    eased off across the path against the line-contact conjugate
+    (docs/machine_settings.md sec. 4-5)."""
     pl, _ = _gear_cones(pair)
     return _pinion_setups(pair, axis_point=np.array([0.0, 0.0, pair.blank.gear_apex_z_mm]),
                           z_m=-pl.axis, ratio_of_roll=pair.ratio / math.sin(
