@@ -36,6 +36,15 @@ def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
     return pair
 
 
+def generated_hypoid():
+    """13/26, E = 0.3 r2 = 21.3 mm, beta1 35 deg, face 0.3 R_m: F.3's data at a point of
+    the design space where the formate gear undercuts its pinion, so the default gear is
+    generated; no ease-off (the standard settings, docs/machine_settings.md sec. 4-5)."""
+    pair = design_space_candidate(13, 2.0, 0.3, 35.0, 0.3, "drive")
+    return replace(pair, name="hypoid_13x26_generated", easeoff_drive=EaseOffCoefficients(),
+                   easeoff_coast=EaseOffCoefficients())
+
+
 def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side):
     """:func:`design_space_pair` before ``design``'s checks (the pitch-cone design's own
     refusals only)."""

@@ -280,3 +280,20 @@ def test_design_machine_settings_minimax_fit_of_s0003(capsys, tmp_path):
     out = capsys.readouterr().out
     assert "fit objective minimax: largest deviation on the fit grid" in out
     assert "--fit minimax" in (tmp_path / "machine_settings.toml").read_text()
+
+
+def test_design_local_synthesis_refusals(capsys):
+    # --local-synthesis (the run itself: tests/tca/test_setting_synthesis.py, slow) is
+    # refused before any flank: without --machine-settings, on a pair with an ease-off
+    # (the fit decides), on a formate-gear pair (F.2: its complementary pinion has line
+    # contact, no point to pivot on) and with a crowning option: exit 2, the option named
+    f2 = "examples/iso23509_f2_spiral_bevel.toml"
+    for argv, word in ((["--local-synthesis"], "--machine-settings"),
+                       (["--machine-settings", "--local-synthesis"], "generated"),
+                       (["--machine-settings", "--local-synthesis",
+                         "--lengthwise-crowning-um", "30"], "generated")):
+        assert main(["design", "--pair", f2, *argv]) == 2
+        err = capsys.readouterr().err
+        assert "--local-synthesis" in err and word in err, err
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--local-synthesis"]) == 2
+    assert "ease-off" in capsys.readouterr().err

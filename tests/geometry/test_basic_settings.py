@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 import pytest
-from design_space import design_space_candidate
+from design_space import generated_hypoid
 from gear_sheets import face_node_arc_mm
 
 from gearcontact.geometry.basic_settings import (complementary_pinion_setups, crown_profile,
@@ -126,22 +126,9 @@ def test_example_summary_sheet_is_the_standard_settings_rounded():
 
 # --- a hypoid whose default gear is generated (issue 27 item 3 with issue 28's low ratios)
 
-def _hypoid_generated():
-    """13/26, E = 0.3 r2 = 21.3 mm, beta1 35 deg, face 0.3 R_m: F.3's data at a point of
-    issue 28's design space (tests/design_space.py) where the formate gear undercuts its
-    pinion, so the default gear is generated; no ease-off (the standard settings)."""
-    import dataclasses as dc
-
-    from gearcontact.geometry.pair import EaseOffCoefficients
-
-    pair = design_space_candidate(13, 2.0, 0.3, 35.0, 0.3, "drive")
-    return dc.replace(pair, name="hypoid_13x26_generated", easeoff_drive=EaseOffCoefficients(),
-                      easeoff_coast=EaseOffCoefficients())
-
-
 @pytest.fixture(scope="module")
 def hypoid_generated():
-    return _hypoid_generated()
+    return generated_hypoid()
 
 
 def test_hypoid_with_a_generated_gear(hypoid_generated):

@@ -98,6 +98,12 @@ def register(sub) -> None:
                         "pinion with lengthwise and profile crowning); prints the pair TOML "
                         "with its [machine.*]/[blade.*] tables, written as "
                         "machine_settings.toml (and the residual map) with --out")
+    p.add_argument("--local-synthesis", action="store_true",
+                   help="with --machine-settings on a hypoid whose gear is generated: the "
+                        "pinion settings from local synthesis at the mean point (roll "
+                        "curvature and cutter radius for TE0 3 arcsec and a paint ellipse "
+                        "of 0.35 face; TCA in the loop, ~1 min; docs/machine_settings.md "
+                        "sec. 5) instead of the standard crowning")
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) that "
@@ -157,8 +163,20 @@ def check(args) -> None:
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
                               "with an ease-off or --target-flank (the settings fit; without "
                               "it the option has no effect)")
+    if args.local_synthesis:
+        if not args.machine_settings or fitted:
+            raise InputRangeError("--local-synthesis", True, "given only with "
+                                  "--machine-settings on a pair without an ease-off or "
+                                  "--target-flank (without it the option has no effect)")
+        if args.gear_generation != "generated" or pair.offset_mm == 0.0:
+            raise InputRangeError("--local-synthesis", (pair.offset_mm, args.gear_generation),
+                                  "a hypoid (axes.offset_mm != 0) whose default gear is "
+                                  "generated (its pinion cut by the crown gear: point contact)")
     for option, value in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                           ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
+        if value is not None and args.local_synthesis:
+            raise InputRangeError(option, value, "not given with --local-synthesis (the "
+                                  "synthesis sets the crowning)")
         if value is not None and not args.machine_settings:
             raise InputRangeError(option, value, "given only with --machine-settings "
                                                  "(without it the option has no effect)")
@@ -315,6 +333,8 @@ def _machine_settings(args, pair) -> int:
     if has_easeoff(pair) or args.target_flank is not None:
         return _easeoff_settings(args, pair)
 
+    if args.local_synthesis:
+        return _local_synthesis(args, pair)
     crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
                                   ("blade_profile_crowning_um", args.blade_profile_crowning_um))
                 if v is not None}
@@ -324,6 +344,18 @@ def _machine_settings(args, pair) -> int:
                         comments={"": f"{pair.name}: standard machine settings from the blank "
                                       "(gearcontact design --machine-settings;\nsigns: "
                                       f"docs/machine_settings.md); gear: {generation}"})
+    print(text)
+    if args.out is not None:
+        print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+    return 0
+
+
+def _local_synthesis(args, pair) -> int:
+    from ..report.design import local_synthesis_toml, write_machine_settings_toml
+    from ..tca.setting_synthesis import synthesized_machine_pair
+
+    cut, done = synthesized_machine_pair(pair)
+    text = local_synthesis_toml(cut, done)
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")

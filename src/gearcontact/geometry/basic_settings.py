@@ -48,6 +48,7 @@ from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings
                       blade_profile, blade_through_point, mirror_setup)
 
 __all__ = ["complementary_pinion_setups", "crown_pinion_setups", "crown_profile",
+           "crowning_corrections",
            "formate_gear_setups", "generated_gear_setups", "member_setups", "mismatch_radius",
            "standard_machine_pair", "standard_setups"]
 
@@ -115,10 +116,11 @@ def crown_pinion_setups(pair) -> dict:
     ``u / sin(delta2) = 1/sin(delta1)``) both relative motions turn about the common
     pitch line, the contact lines coincide and the pinion is the line-contact conjugate
     of the generated gear. For a hypoid they cross at one point: the pinion is a
-    point-contact conjugate, TE0 = 0 along a contact path through the blank's mean point
+    point-contact conjugate, TE0 = 0 along a contact path near the blank's mean point
     (where the relative velocity lies along the tooth trace, ISO 23509's pitch-point
-    condition), eased off across the path against the line-contact conjugate
-    (docs/machine_settings.md sec. 5)."""
+    condition; measured 0.68 / 2.30 mm from the pinion's mean node on the 13/26 hypoid),
+    eased off across the path against the line-contact conjugate
+    (docs/machine_settings.md sec. 4-5)."""
     pl, _ = _gear_cones(pair)
     return _pinion_setups(pair, axis_point=np.array([0.0, 0.0, pair.blank.gear_apex_z_mm]),
                           z_m=-pl.axis, ratio_of_roll=pair.ratio / math.sin(
@@ -254,21 +256,33 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
     out = {("gear", side): s for side, s in gear.items()}
     cone, _ = nominal_pinion_box(blank, pair.pinion_face_width_mm)
     u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
-    half_face = 0.5 * pair.gear_face_width_mm
     for side, setup in pinion.items():
         solver = EnvelopeSolver(setup, blank, cone)
         mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
         l_m, th_m = float(mean.l_mm), float(mean.theta_rad)
-        rho_m = float(blade_profile(setup.blade, l_m)[0])
-        if c_l > 0.0:
-            delta = -setup.blade.sigma * 2e-3 * c_l * rho_m ** 2 / half_face ** 2
+        delta, k_b = crowning_corrections(pair, setup, l_mm=l_m, lengthwise_crowning_um=c_l,
+                                          blade_profile_crowning_um=c_p)
+        if delta:
             setup = mismatch_radius(setup, delta_mm=delta, theta_rad=th_m)
-        if c_p > 0.0:
-            r_b = (0.5 * blank.working_depth_mm) ** 2 / (2e-3 * c_p)
-            setup = dataclasses.replace(setup, blade=crown_profile(setup.blade, radius_mm=r_b,
-                                                                   at_length_mm=l_m))
+        if k_b:
+            setup = dataclasses.replace(setup, blade=crown_profile(
+                setup.blade, radius_mm=1.0 / k_b, at_length_mm=l_m))
         out["pinion", side] = setup
     return out
+
+
+def crowning_corrections(pair, setup: MachineSetup, *, l_mm: float,
+                         lengthwise_crowning_um: float, blade_profile_crowning_um: float
+                         ) -> tuple[float, float]:
+    """(cutter radius change, mm; blade curvature, 1/mm) of the standard crowning of the
+    pinion ``setup`` (straight blade) whose mean node the blade point at arc length
+    ``l_mm`` generates (:func:`standard_setups`: ``-+ 2 c rho^2 / (F2/2)^2`` and
+    ``2 c / (h_mw/2)^2``; 0 for no crowning)."""
+    rho_m = float(blade_profile(setup.blade, l_mm)[0])
+    half_face = 0.5 * pair.gear_face_width_mm
+    delta = -setup.blade.sigma * 2e-3 * lengthwise_crowning_um * rho_m ** 2 / half_face ** 2
+    k_b = 2e-3 * blade_profile_crowning_um / (0.5 * pair.blank.working_depth_mm) ** 2
+    return float(delta), float(k_b)
 
 
 def standard_machine_pair(pair, *, lengthwise_crowning_um: float = 25.0,

@@ -96,6 +96,25 @@ def write_machine_settings_toml(text: str, out) -> Path:
     return path
 
 
+def local_synthesis_toml(cut, done: dict) -> str:
+    """The pair TOML of the settings from local synthesis
+    (:func:`~gearcontact.tca.setting_synthesis.synthesized_machine_pair`), its head
+    comment the target / achieved table at the mean point and the full TCA's check per
+    side."""
+    from ..geometry.pair import pair_to_toml
+
+    lines = [f"{cut.name}: machine settings from local synthesis at the mean point "
+             "(gearcontact design --machine-settings --local-synthesis;",
+             "signs: docs/machine_settings.md); gear: generated"]
+    for side, r in done.items():
+        lines += r.table().splitlines()
+        edges = sum(1 for e in r.edges if e)
+        lines.append(f"{side}: full TCA TE0 p-p {r.tca_te0_pp_arcsec:.2f} arcsec, vertex "
+                     f"{r.vertex_offset_mm:.1e} mm from M, paint ellipse at a flank edge at "
+                     f"{edges} of {len(r.edges)} phases")
+    return pair_to_toml(cut, comments={"": "\n".join(lines)})
+
+
 def easeoff_settings_toml(fit) -> str:
     """The pair TOML of the settings fitted to a pair's ease-off
     (:class:`~gearcontact.geometry.setting_fit.EaseOffSettings`), its head comment the

@@ -62,7 +62,7 @@ from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
 from .path_reach import check_path_angle
 from .types import EdgeContact
 
-__all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
+__all__ = ["SynthesisTargets", "Synthesis", "TargetRows", "targets_rows", "targets_table", "synthesize_easeoff", "synthesize_pair",
            "easeoff_toml", "PreparedPair", "prepare_pair"]
 
 #: Design torque of the Hertz ellipse reported beside the paint ellipse, N·m (not a
@@ -138,8 +138,25 @@ class SynthesisTargets:
             check_positive(name, getattr(self, name))
 
 
+class TargetRows:
+    """``met`` and ``table`` of a result with ``rows`` of ``(quantity, unit, target,
+    achieved, tolerance, met)`` (each quantity after ``table_prefix``)."""
+
+    rows: tuple
+    table_prefix = ""
+
+    @property
+    def met(self) -> bool:
+        """Every target within its tolerance."""
+        return all(r[5] for r in self.rows)
+
+    def table(self) -> str:
+        """Target / achieved / tolerance as Markdown."""
+        return targets_table(self.rows, prefix=self.table_prefix)
+
+
 @dataclass(frozen=True)
-class Synthesis:
+class Synthesis(TargetRows):
     """Result of :func:`synthesize_easeoff`.
 
     Attributes
@@ -171,24 +188,25 @@ class Synthesis:
     evaluations: int
     seconds: float
 
-    @property
-    def met(self) -> bool:
-        """Every target within its tolerance."""
-        return all(r[5] for r in self.rows)
 
-    def table(self) -> str:
-        """Target / achieved / tolerance as Markdown."""
-        lines = ["| target | aim | achieved | tolerance | met |", "|---|---:|---:|---:|---|"]
-        for name, unit, aim, got, tol, ok in self.rows:
-            lines.append(f"| {name} ({unit}) | {aim:.4g} | {got:.4g} | {tol:.3g} | "
-                         f"{'yes' if ok else 'NO'} |")
-        return "\n".join(lines)
+def targets_table(rows, *, prefix: str = "") -> str:
+    """Rows ``(quantity, unit, target, achieved, tolerance, met)`` as a Markdown table,
+    each quantity after ``prefix``."""
+    lines = ["| target | aim | achieved | tolerance | met |", "|---|---:|---:|---:|---|"]
+    for name, unit, aim, got, tol, ok in rows:
+        lines.append(f"| {prefix}{name} ({unit}) | {aim:.4g} | {got:.4g} | {tol:.3g} | "
+                     f"{'yes' if ok else 'NO'} |")
+    return "\n".join(lines)
 
 
-def _targets_rows(dp: DesignPoint, t: SynthesisTargets, centre, length_mm: float):
-    rows = [("bearing centre pinion u", "mm", centre[0], dp.pinion_uv[0], t.tol_centre_mm),
-            ("bearing centre pinion v", "mm", centre[1], dp.pinion_uv[1], t.tol_centre_mm),
-            ("TE0 peak-to-peak", "arcsec", t.te0_pp_arcsec, dp.te0_pp_arcsec,
+def targets_rows(dp: DesignPoint, t: SynthesisTargets, centre, length_mm: float) -> tuple:
+    """``(quantity, unit, target, achieved, tolerance, met)`` of the targets ``t`` at the
+    design point ``dp``: bearing centre (pinion u, v; not checked if ``centre`` is
+    None), TE0 level, paint-ellipse length ``length_mm`` and, if prescribed, path angle."""
+    rows = [] if centre is None else [
+        ("bearing centre pinion u", "mm", centre[0], dp.pinion_uv[0], t.tol_centre_mm),
+        ("bearing centre pinion v", "mm", centre[1], dp.pinion_uv[1], t.tol_centre_mm)]
+    rows += [("TE0 peak-to-peak", "arcsec", t.te0_pp_arcsec, dp.te0_pp_arcsec,
              t.tol_te0_rel * t.te0_pp_arcsec),
             ("paint ellipse 2a", "mm", length_mm, dp.paint_length_mm,
              t.tol_length_rel * length_mm)]
@@ -373,7 +391,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
 
     def met(state) -> bool:
         return (state["best"][1] is not None and
-                all(r[5] for r in _targets_rows(state["best"][2][1], targets, centre, length)))
+                all(r[5] for r in targets_rows(state["best"][2][1], targets, centre, length)))
 
     def refine(residual, state) -> bool:
         """Levenberg-Marquardt passes from the best point so far; True if met."""
@@ -460,7 +478,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
                           "search gave an interior TCA contact")
     _, _, (coeffs, dp) = on_full["best"]
     return Synthesis(side, coeffs, targets, dp, centre, length,
-                     _targets_rows(dp, targets, centre, length), runs["n"],
+                     targets_rows(dp, targets, centre, length), runs["n"],
                      time.perf_counter() - t_start)
 
 
