@@ -29,7 +29,9 @@ from gearcontact.geometry.basic_settings import crown_pinion_setups
 from gearcontact.geometry.cutter import place_cutter
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.formate import SIDES
+from gearcontact.geometry import gear_generation as gear_generation_module
 from gearcontact.geometry.gear_generation import gear_generation, generated_gear_sheets
+from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.generated import generated_pinion_flank
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.line_contact import line_contact
@@ -146,6 +148,33 @@ def test_conjugate_pinion_is_the_crown_gears_pinion(miter, miter_flanks, side):
     dpsi = np.arctan2(ex.x1_mm[..., 2], ex.x1_mm[..., 1]) - crown.psi(U, V)
     dpsi = np.angle(np.exp(1j * (dpsi - dpsi[on_face][0])))
     assert np.ptp((dpsi * conj.cone.radius_mm(U, V))[on_face]) < 1e-6
+
+
+def test_the_checks_generated_sheets_are_built_once(miter, miter_flanks, monkeypatch):
+    # issue 28: design's check builds the generated gear sheets; build_flanks given the
+    # check's result reuses them (one generation, the same objects) and its flanks are
+    # bit for bit those built from scratch (miter_flanks, built without the check)
+    calls = []
+    made = gear_generation_module.generated_gear_sheets
+    monkeypatch.setattr(gear_generation_module, "generated_gear_sheets",
+                        lambda pair: calls.append(pair) or made(pair))
+    checked = check_generation(miter)
+    fs = build_flanks(replace(miter, name="renamed"), n_u=30, n_v=40,
+                      checked=checked)
+    assert len(calls) == 1
+    for side in SIDES:
+        assert fs.gear.side(side) is checked[side]["gear_flank"]
+        for member in ("gear", "pinion", "pinion_conjugate"):
+            a, b = getattr(fs, member).side(side), getattr(miter_flanks, member).side(side)
+            assert np.array_equal(a.psi_nodes, b.psi_nodes)
+            assert np.array_equal(a.u_nodes, b.u_nodes) and np.array_equal(a.v_nodes, b.v_nodes)
+    assert fs.mean_contact == miter_flanks.mean_contact
+    assert fs.pinion_normal_thickness_mm == miter_flanks.pinion_normal_thickness_mm
+    # a check made for another geometry is refused, naming both pairs, before any work
+    other = replace(miter, gear_face_width_mm=24.0, pinion_face_width_mm=24.0)
+    with pytest.raises(ValueError, match="does not hold the flank geometry"):
+        build_flanks(other, n_u=30, n_v=40, checked=checked)
+    assert len(calls) == 1
 
 
 def test_tca_of_the_unmodified_generated_pair_is_line_contact(miter, miter_flanks):

@@ -134,7 +134,8 @@ def check(args) -> None:
         args.writes_files = False
         return
     # a pair whose pinion the gear cannot generate (limit line) is refused here
-    args.gear_generation = generation_of(check_generation(pair))
+    args.generation_check = check_generation(pair)      # its gear flanks are reused
+    args.gear_generation = generation_of(args.generation_check)
     modes = [m for m, on in (("--calibrate", args.calibrate),
                              ("--synthesize-easeoff", args.synthesize_easeoff),
                              ("--machine-settings", args.machine_settings)) if on]
@@ -254,7 +255,7 @@ def _check_path_angle(pair, args, targets: dict):
     from ..geometry.flank import build_flanks
     from ..tca.path_reach import check_path_angle
 
-    flanks = build_flanks(pair)
+    flanks = build_flanks(pair, checked=args.generation_check)
     for side, t in targets.items():
         try:
             check_path_angle(pair, targets=t, flanks=flanks, sides=(side,))
@@ -279,11 +280,14 @@ def _calibrate(args, pair) -> int:
 
 
 def _synthesize(args, pair) -> int:
+    from ..geometry.flank import build_flanks
     from ..report.design import write_easeoff_toml
     from ..tca.synthesis import easeoff_toml, synthesize_pair
 
     targets = getattr(args, "targets", None) or _synthesis_targets(args)
-    _, done = synthesize_pair(pair, targets=targets, flanks=getattr(args, "flanks", None))
+    flanks = getattr(args, "flanks", None) or build_flanks(
+        pair, checked=getattr(args, "generation_check", None))
+    _, done = synthesize_pair(pair, targets=targets, flanks=flanks)
     for side, s in done.items():
         print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
     text = easeoff_toml(done, pair_name=pair.name)

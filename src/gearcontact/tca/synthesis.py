@@ -527,17 +527,23 @@ class PreparedPair:
     flanks : FlankSet or None
         ``build_flanks(pair)`` (bit for bit) if the synthesis built the flanks, so that
         a command does not build them again; None if nothing was synthesized.
+    checked : dict or None
+        :func:`~gearcontact.geometry.generation.check_generation`'s result for the pair,
+        if the command ran it (its gear flanks are reused by :meth:`flank_set`).
     """
 
     pair: GearPair
     side: str
     synthesis: Synthesis | None = None
     flanks: FlankSet | None = None
+    checked: dict | None = dataclasses.field(default=None, compare=False, repr=False)
 
     def flank_set(self) -> FlankSet:
         """The flanks of :attr:`pair`: those the synthesis built (its ease-off applied),
-        else ``build_flanks(pair)``, so that a command builds them once."""
-        return self.flanks if self.flanks is not None else build_flanks(self.pair)
+        else ``build_flanks(pair)`` (reusing :attr:`checked`), so that a command builds
+        them once."""
+        return (self.flanks if self.flanks is not None
+                else build_flanks(self.pair, checked=self.checked))
 
     @property
     def synthesized(self) -> bool:
@@ -568,12 +574,16 @@ class PreparedPair:
         return {} if self.synthesis is None else {"easeoff_synthesis_s": self.synthesis.seconds}
 
 
-def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
+def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
+                 ) -> PreparedPair:
     """The one pair preparation of every command that takes a pair: ``pair`` (a
     :class:`GearPair`, preset name or TOML path) with, if it has no ease-off table of
     ``side`` (default its design side), the ease-off of that side synthesized with the
     default :class:`SynthesisTargets` (deterministic: the same pair gives the same
-    coefficients in every command). The other side is left as given.
+    coefficients in every command). The other side is left as given. ``checked``:
+    :func:`~gearcontact.geometry.generation.check_generation`'s result for ``pair``, if
+    the command ran it: the flanks reuse its gear flanks (a generated gear's sheets are
+    built once, :func:`~gearcontact.geometry.flank.build_flanks`).
 
     Raises
     ------
@@ -588,10 +598,10 @@ def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
     if side in pair.easeoff_tables:
-        return PreparedPair(pair, side)
-    base = build_flanks(pair)
+        return PreparedPair(pair, side, checked=checked)
+    base = build_flanks(pair, checked=checked)
     new, done = synthesize_pair(pair, sides=(side,), flanks=base)
     new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
     # the conjugate flanks do not depend on the ease-off: only the ease-off is applied
     # again (geometry.flank.with_easeoff, the last step of build_flanks)
-    return PreparedPair(new, side, done[side], with_easeoff(base, new))
+    return PreparedPair(new, side, done[side], with_easeoff(base, new), checked=checked)
