@@ -296,9 +296,11 @@ def _synthesize(args, pair) -> int:
         print(f"-> {final_path(args, write_easeoff_toml(text, args.out))}")
     missed = [side for side, s in done.items() if not s.met]
     if missed:              # the table says which; the TOML (and easeoff.toml) stay
+        why = "".join(f"; not reachable: {done[side].unreachable}" for side in missed
+                      if done[side].unreachable)
         raise CheckFailed(f"ease-off synthesis of {pair.name}: not all targets met on the "
                           f"{' and '.join(missed)} side{'s' if len(missed) > 1 else ''} "
-                          "(see the table)")
+                          f"(see the table){why}")
     return 0
 
 

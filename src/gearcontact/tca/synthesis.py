@@ -58,8 +58,8 @@ from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
-                           eased_design_point)
-from .path_reach import check_path_angle
+                           eased_design_point, turn_relief)
+from .path_reach import check_path_angle, overlap_path_angle, path_angle_range
 from .types import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
@@ -159,6 +159,14 @@ class Synthesis:
     evaluations : int
         TCA runs.
     seconds : float
+    unreachable : str
+        Why a target cannot be met on this pair, found at the search's first full TCA
+        (:func:`te0_unreachable`; the search then stops after the decoupled rounds);
+        ``""`` if none.
+    path_choice : str
+        Why the synthesis chose the path angle of ``targets`` itself (none was given:
+        the zero-bias path's surface contact lasts less than a pitch,
+        :func:`synthesize_easeoff`); ``""`` if it did not.
     """
 
     side: str
@@ -170,6 +178,8 @@ class Synthesis:
     rows: tuple
     evaluations: int
     seconds: float
+    unreachable: str = ""
+    path_choice: str = ""
 
     @property
     def met(self) -> bool:
@@ -182,6 +192,10 @@ class Synthesis:
         for name, unit, aim, got, tol, ok in self.rows:
             lines.append(f"| {name} ({unit}) | {aim:.4g} | {got:.4g} | {tol:.3g} | "
                          f"{'yes' if ok else 'NO'} |")
+        if self.path_choice:
+            lines.append(f"\nPath angle chosen: {self.path_choice}")
+        if self.unreachable:
+            lines.append(f"\nNot reachable: {self.unreachable}")
         return "\n".join(lines)
 
 
@@ -301,6 +315,9 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         flanks = build_flanks(pair)
     conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
     u_m, v_m = (float(x) for x in flanks.mean_contact[side]["pinion_uv"])
+    # the relief at the centre is a rigid turn, so that the TE0 vertex stays there
+    # (design_point.centred_coefficients)
+    turn = turn_relief(conj, (u_m, v_m))
     b = conj.boundary
     centre = (b.u_root + targets.centre_profile * (b.u_tip - b.u_root),
               b.v_toe + targets.centre_face * (b.v_heel - b.v_toe))
@@ -334,7 +351,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     def model(tca: dict):
         """Residual function of the TCA options ``tca`` and its record: the best point
         so far ``(cost, x, (coeffs, point))`` and the number of runs."""
-        state = {"n": 0, "best": (np.inf, None, None), "r": None, "seen": {}}
+        state = {"n": 0, "best": (np.inf, None, None), "r": None, "seen": {}, "points": {}}
 
         def residual(x):
             key = tuple(float(c) for c in x)
@@ -344,7 +361,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
                 raise _BudgetSpent
             state["n"] += 1
             runs["n"] += 1
-            coeffs = centred_coefficients(*x)
+            coeffs = centred_coefficients(*x, turn=turn)
             try:
                 dp = eased_design_point(coeffs, conj, gear, pair, starts, mean_uv=(u_m, v_m),
                                         limit_um=limit, torque_nm=_REPORT_TORQUE_NM,
@@ -366,7 +383,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
             if cost < state["best"][0]:
                 state["best"] = (cost, np.array(x, float), (coeffs, dp))
                 state["r"] = r
-            state["seen"][key] = r
+            state["seen"][key], state["points"][key] = r, dp
             return r
 
         return residual, state
@@ -418,13 +435,13 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     def stages(residual, state) -> None:
         """Without a path-angle target, the decoupled rounds from the middle of the
         start grid, converged to a fraction of the tolerances (the full TCA's check must
-        meet them); then, if they miss, :func:`search`."""
+        meet them); then, if they miss and the targets are reachable, :func:`search`."""
         try:
             if not with_bias:
                 _polish(residual, x_mid, lo, hi, targets, rounds=12, within=_ROUND_TOL)
                 # met with room for the full TCA's difference from the reduced one
-                if (state["r"] is not None
-                        and np.max(np.abs(state["r"][0:4])) <= 1.0 - _FAITHFUL_TOL):
+                if unreachable or (state["r"] is not None
+                                   and np.max(np.abs(state["r"][0:4])) <= 1.0 - _FAITHFUL_TOL):
                     return
             search(residual, state)
         except _BudgetSpent:
@@ -445,6 +462,30 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     reduced, on_reduced = model({"pairs": 1, "edge_contact": False})
     full, on_full = model({"pairs": 2, "edge_contact": True})
     faithful = agree(reduced(x_mid), full(x_mid))
+    # a zero-bias path whose surface contact lasts less than a pitch is turned to the
+    # path angle of the longest overlap (closed form), or the TE0 target is named
+    # unreachable, here at the first full TCA
+    first = on_full["points"].get(tuple(float(c) for c in x_mid))
+    short = None if with_bias else _short_overlap(first, phases)
+    unreachable = ""
+    if short is not None:
+        reach = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
+        angle, ratio = overlap_path_angle(reach, flanks=flanks, side=side)
+        if ratio >= 1.0 + _OVERLAP_MARGIN:
+            angle = float(np.clip(angle, -89.9, 90.0))
+            again = synthesize_easeoff(
+                pair, side=side, targets=dataclasses.replace(targets, path_angle_deg=angle),
+                flanks=flanks, phases=phases, max_evaluations=max_evaluations)
+            return dataclasses.replace(
+                again, evaluations=again.evaluations + runs["n"],
+                seconds=time.perf_counter() - t_start, path_choice=(
+                    f"{angle:.1f} deg on the {side} side: with the bias near zero (path "
+                    f"angle {first.path_angle_deg:.1f} deg) one pair's surface contact "
+                    f"lasts {short:.2f} of a pinion pitch, so TE0 would be set by the "
+                    "edge contact that passes it to the next pair; along "
+                    f"{angle:.1f} deg it lasts {ratio:.2f} pitches (first order, the "
+                    "longest of the reachable path angles; docs/synthesis.md)"))
+        unreachable = te0_unreachable(short, targets, side=side, best=(angle, ratio))
     if faithful:
         stages(reduced, on_reduced)
         faithful = on_reduced["best"][1] is not None
@@ -461,7 +502,46 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     _, _, (coeffs, dp) = on_full["best"]
     return Synthesis(side, coeffs, targets, dp, centre, length,
                      _targets_rows(dp, targets, centre, length), runs["n"],
-                     time.perf_counter() - t_start)
+                     time.perf_counter() - t_start, unreachable)
+
+
+#: Margin of a surface contact ratio above 1 (in pitches) within which it does not
+#: count as an overlap: one phase step of the synthesis' TCA (31 phases) for the TCA's
+#: count, and for the closed form (:func:`~.path_reach.overlap_path_angle`, 1.71
+#: against the TCA's 1.73 on the 20/20 miter) as well.
+_OVERLAP_MARGIN = 1.0 / 30.0
+
+
+def _short_overlap(point: DesignPoint | None, phases: int) -> float | None:
+    """The surface contact ratio of ``point`` if it is short of a pitch even counted
+    generously (one phase step added), else None (None also without a point)."""
+    if point is None or not np.isfinite(point.surface_contact_ratio):
+        return None
+    ratio = point.surface_contact_ratio
+    return ratio if ratio + 1.0 / (int(phases) - 1) < 1.0 else None
+
+
+def te0_unreachable(ratio: float, targets: SynthesisTargets, *, side: str,
+                    best: tuple[float, float]) -> str:
+    """Why the TE0 target cannot be set by the ease-off on ``side``: the zero-bias
+    path's surface contact lasts ``ratio`` pitches and the best reachable path angle
+    ``best = (angle, ratio)`` (:func:`~.path_reach.overlap_path_angle`) gives no
+    overlap either.
+
+    TE0 is a crowning's level only where neighbouring pairs' parabolic TE curves cross
+    on the flanks, i.e. where one pair's surface contact lasts at least a pinion pitch
+    (:attr:`~.design_point.DesignPoint.surface_contact_ratio`). Where it lasts less the
+    contact passes to the next pair through an edge contact, and TE0 over the pitch is
+    that contact's. The synthesis then stops after the decoupled rounds, which still
+    meet the bearing centre and the pattern length (docs/synthesis.md)."""
+    angle, most = best
+    where = (f"; the longest reachable, along {angle:.1f} deg, lasts {most:.2f}"
+             if np.isfinite(most) else "; no path angle is reachable")
+    return (f"TE0 {targets.te0_pp_arcsec:g} arcsec on the {side} side: one pair's surface "
+            f"contact lasts {ratio:.2f} of a pinion pitch along the path of the bearing"
+            f"{where} (< 1: the contact passes to the next pair through an edge contact, "
+            "whose TE the ease-off does not set; a wider face or more teeth give more "
+            "overlap, docs/synthesis.md)")
 
 
 def easeoff_toml(synth: dict, *, pair_name: str) -> str:
@@ -480,6 +560,10 @@ def easeoff_toml(synth: dict, *, pair_name: str) -> str:
                    f"{s.point.paint_length_mm:.2f} mm, path angle {s.point.path_angle_deg:.1f} "
                    f"deg, max |E| {s.point.easeoff_max_um:.1f} um"
                    + ("" if s.met else " (NOT all targets met: see the table)"))
+        for what, text in (("path angle chosen", s.path_choice),
+                           ("not reachable", s.unreachable)):
+            if text:
+                out.append(f"# {what}: {text}")
         for k, v in dataclasses.asdict(s.coefficients).items():
             out.append(f"{k} = {float(v):.6g}")
         out.append("")
