@@ -294,28 +294,31 @@ def centred_coefficients(eta_c: float, xi_c: float, profile_crowning: float,
         bias_um_per_mm2=float(c[4]))
 
 
-#: Central-difference step of :func:`turn_relief`, mm (the lever is smooth over the
-#: flank: its second derivatives are ~1e-4 of it per mm^2).
-_TURN_STEP_MM = 0.5
+#: Nodes per direction of the grid over the active box on which :func:`turn_relief`
+#: fits the lever (the fit's residual is what the five terms cannot hold).
+_TURN_GRID = 9
 
 
 def turn_relief(conj, mean_uv: tuple[float, float]) -> np.ndarray:
     """The relief of a rigid turn of the pinion about its axis, relative to its value at
     the mean node, as the five ease-off terms about the mean node ``(u_m, v_m)``:
-    ``(a_eta, a_xi, a_eta2, a_xi2, a_xieta)`` of the second-order Taylor polynomial of
-    ``L(p) / L(mean) - 1`` (1/mm, 1/mm^2), ``L = n . (e_x x r)`` the lever of the flank
-    normal about the pinion axis ``x`` of the body frame (a turn ``d psi`` moves the
-    flank by ``d psi L`` along its normal; Litvin & Fuentes 2004, sec. 9.4: the TE of a
-    relief is the relief over this lever). Central differences on ``conj``
-    (:data:`_TURN_STEP_MM`); see :func:`centred_coefficients`."""
+    ``(a_eta, a_xi, a_eta2, a_xi2, a_xieta)`` of ``L(p) / L(mean) - 1`` (1/mm, 1/mm^2),
+    ``L = n . (e_x x r)`` the lever of the flank normal about the pinion axis ``x`` of
+    the body frame (a turn ``d psi`` moves the flank by ``d psi L`` along its normal;
+    the TE of a relief is the relief over this lever, Litvin & Fuentes 2004, sec. 9.4).
+    Least squares over a ``_TURN_GRID`` square grid of the flank's active box (the
+    five terms vanish at the mean node, as the ratio does): the lever is far from
+    quadratic across the profile of a small pinion (s0003: a Taylor polynomial at the
+    mean node is 1e-2 off 1 mm away), and the bearing centre lies anywhere on the box
+    (see :func:`centred_coefficients`)."""
     u_m, v_m = (float(x) for x in mean_uv)
-    h = _TURN_STEP_MM
-    du = np.array([0.0, h, -h, 0.0, 0.0, h, h, -h, -h])
-    dv = np.array([0.0, 0.0, 0.0, h, -h, h, -h, h, -h])
-    s = conj.evaluate(u_m + du, v_m + dv, second=False)
+    b = conj.boundary
+    U, V = np.meshgrid(np.linspace(b.u_root, b.u_tip, _TURN_GRID),
+                       np.linspace(b.v_toe, b.v_heel, _TURN_GRID), indexing="ij")
+    u = np.append(U.ravel(), u_m)
+    v = np.append(V.ravel(), v_m)
+    s = conj.evaluate(u, v, second=False)
     lever = s.n[:, 1] * -s.r[:, 2] + s.n[:, 2] * s.r[:, 1]
-    l0 = lever[0]
-    return np.array([(lever[1] - lever[2]) / (2.0 * h), (lever[3] - lever[4]) / (2.0 * h),
-                     (lever[1] - 2.0 * l0 + lever[2]) / (2.0 * h * h),
-                     (lever[3] - 2.0 * l0 + lever[4]) / (2.0 * h * h),
-                     (lever[5] - lever[6] - lever[7] + lever[8]) / (4.0 * h * h)]) / l0
+    eta, xi = u[:-1] - u_m, v[:-1] - v_m
+    basis = np.column_stack([eta, xi, eta * eta, xi * xi, xi * eta])
+    return np.linalg.lstsq(basis, lever[:-1] / lever[-1] - 1.0, rcond=None)[0]
