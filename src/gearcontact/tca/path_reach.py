@@ -59,7 +59,8 @@ from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM, flank_frame
 
-__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "overlap_path_angle"]
+__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "overlap_path_angle",
+           "short_overlap", "te0_unreachable", "OVERLAP_MARGIN"]
 
 _ARCSEC = np.pi / (180.0 * 3600.0)
 #: Finite-difference step of the exact node solves, mm (the node equations are solved
@@ -295,7 +296,7 @@ def overlap_path_angle(reach: PathAngleRange, *, flanks, side: str) -> tuple[flo
     its span is the path's extent inside the pinion's active box whose conjugate gear
     point lies on the gear flank (exact node solves, bisection), over the motion per
     pitch. Below one pitch the contact passes between pairs through an edge contact
-    (:func:`~.synthesis.te0_unreachable`)."""
+    (:func:`te0_unreachable`)."""
     if not len(reach.angles_deg):
         return float("nan"), float("nan")
     conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
@@ -331,3 +332,42 @@ def _on_gear(conj, gear_box, gear, u, v) -> np.ndarray:
     ms = conj.exact(np.asarray(u, float), np.asarray(v, float))
     return np.asarray(gear_box.contains(*gear.surface_parameters(ms.h_mm, ms.theta_rad)),
                       bool)
+
+
+#: Margin of a surface contact ratio above 1 (in pitches) within which it does not
+#: count as an overlap: one phase step of the synthesis' TCA (31 phases) for the TCA's
+#: count, and for the closed form (:func:`overlap_path_angle`, 1.71
+#: against the TCA's 1.73 on the 20/20 miter) as well.
+OVERLAP_MARGIN = 1.0 / 30.0
+
+
+def short_overlap(point, phases: int) -> float | None:
+    """The surface contact ratio of ``point`` if it is short of a pitch even counted
+    generously (one phase step added), else None (None also without a point)."""
+    if point is None or not np.isfinite(point.surface_contact_ratio):
+        return None
+    ratio = point.surface_contact_ratio
+    return ratio if ratio + 1.0 / (int(phases) - 1) < 1.0 else None
+
+
+def te0_unreachable(ratio: float, te0_pp_arcsec: float, *, side: str,
+                    best: tuple[float, float]) -> str:
+    """Why the TE0 target cannot be set by the ease-off on ``side``: the zero-bias
+    path's surface contact lasts ``ratio`` pitches and the best reachable path angle
+    ``best = (angle, ratio)`` (:func:`overlap_path_angle`) gives no
+    overlap either.
+
+    TE0 is a crowning's level only where neighbouring pairs' parabolic TE curves cross
+    on the flanks, i.e. where one pair's surface contact lasts at least a pinion pitch
+    (:attr:`~.design_point.DesignPoint.surface_contact_ratio`). Where it lasts less the
+    contact passes to the next pair through an edge contact, and TE0 over the pitch is
+    that contact's. The synthesis then stops after the decoupled rounds, which still
+    meet the bearing centre and the pattern length (docs/synthesis.md)."""
+    angle, most = best
+    where = (f"; the longest reachable, along {angle:.1f} deg, lasts {most:.2f}"
+             if np.isfinite(most) else "; no path angle is reachable")
+    return (f"TE0 {te0_pp_arcsec:g} arcsec on the {side} side: one pair's surface "
+            f"contact lasts {ratio:.2f} of a pinion pitch along the path of the bearing"
+            f"{where} (< 1: the contact passes to the next pair through an edge contact, "
+            "whose TE the ease-off does not set; a wider face or more teeth give more "
+            "overlap, docs/synthesis.md)")

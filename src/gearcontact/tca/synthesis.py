@@ -30,6 +30,14 @@ Targets (:class:`SynthesisTargets`) and their defaults, from common practice:
   towards zero (a regularizing residual of weight :data:`BIAS_WEIGHT`), so that a
   path along the relief valley is preferred where it meets the targets, and a twisted
   one is used where TE0 and the ellipse length cannot be met together without it.
+  Where the zero-bias path's surface contact lasts less than a pinion pitch (TE0 then
+  an edge contact's, which no crowning sets: the 20/20 miter), the reachable path angle
+  of the longest overlap is taken as the target (:func:`~.path_reach.overlap_path_angle`),
+  or TE0 is named unreachable before the search (:func:`~.path_reach.te0_unreachable`).
+
+The relief at the bearing centre is carried as a rigid turn of the pinion
+(:func:`~gearcontact.tca.design_point.centred_coefficients` with ``turn``), so that the
+TE0 vertex stays at the centre (docs/synthesis.md, "Low ratios").
 
 References
 ----------
@@ -59,7 +67,9 @@ from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point, turn_relief)
-from .path_reach import check_path_angle, overlap_path_angle, path_angle_range
+from .path_reach import (OVERLAP_MARGIN, check_path_angle, overlap_path_angle,
+                         path_angle_range, short_overlap, te0_unreachable)
+from .synthesis_rounds import polish, recentred
 from .types import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "synthesize_easeoff", "synthesize_pair",
@@ -161,8 +171,8 @@ class Synthesis:
     seconds : float
     unreachable : str
         Why a target cannot be met on this pair, found at the search's first full TCA
-        (:func:`te0_unreachable`; the search then stops after the decoupled rounds);
-        ``""`` if none.
+        (:func:`~.path_reach.te0_unreachable`; the search then stops after the
+        decoupled rounds); ``""`` if none.
     path_choice : str
         Why the synthesis chose the path angle of ``targets`` itself (none was given:
         the zero-bias path's surface contact lasts less than a pitch,
@@ -211,59 +221,6 @@ def _targets_rows(dp: DesignPoint, t: SynthesisTargets, centre, length_mm: float
                      dp.path_angle_deg, t.tol_angle_deg))
     return tuple((n, u, float(a), float(g), float(tol), bool(abs(g - a) <= tol))
                  for n, u, a, g, tol in rows)
-
-
-def _recentred(residual, x, centre, tol_mm: float, lo, hi, *, rounds: int = 2) -> None:
-    """Evaluate ``x`` and move its ease-off centre (``x[0:2]``, pinion u, v offsets) by
-    the bearing centre's miss, at most ``rounds`` times (the vertex follows the relief
-    centre about one to one), until the centre is within ``tol_mm``; every evaluation
-    enters the search's ranking through ``residual``."""
-    x = np.array(x, float)
-    for _ in range(rounds + 1):
-        r = residual(x)
-        if r[0] >= 1e3:                     # no interior contact at this start
-            return
-        miss = np.array([r[0], r[1]]) * tol_mm
-        if np.all(np.abs(miss) <= tol_mm):
-            return
-        x[0:2] = np.clip(x[0:2] - miss, lo[0:2], hi[0:2])
-
-
-def _polish(residual, x, lo, hi, targets: SynthesisTargets, *, rounds: int = 8,
-            within: float = 1.0) -> None:
-    """Decoupled fixed-point rounds from the best point when the least squares stalls
-    short of the targets (the residuals carry the TCA's discretization noise, which
-    misleads its finite-difference Jacobian: F2 spiral bevel coast stopped with the
-    pattern 7 % long). Each round scales the lengthwise crowning by the TE0 miss (the
-    parabolic TE level is proportional to it, Litvin & Fuentes 2004 sec. 21.8) and the
-    profile crowning by the pattern-length miss to the power -2 (the paint ellipse
-    half-length goes as the inverse square root of the relative curvature across the
-    path at a fixed paint thickness), exponents refined by secant from the rounds'
-    own results, and re-centres the ease-off (:func:`_recentred`). Stops when the
-    centre, TE0 and length residuals are all within ``within`` tolerances."""
-    x = np.array(x, float)
-    expo = {2: -2.0, 3: 1.0}                # d log(coefficient) / d log(miss)
-    prev = None
-    for _ in range(rounds):
-        r = residual(x)
-        if r[0] >= 1e3:
-            return
-        miss = {2: 1.0 + r[3] * targets.tol_length_rel, 3: 1.0 + r[2] * targets.tol_te0_rel}
-        if np.max(np.abs(r[0:4])) <= within:
-            return
-        if prev is not None:                # secant on log-log, kept to a sane range
-            for i in (2, 3):
-                dm = np.log(miss[i]) - np.log(prev[1][i])
-                dx = np.log(x[i]) - np.log(prev[0][i])
-                if abs(dm) > 1e-3 and abs(dx) > 1e-6:
-                    expo[i] = float(np.clip(dx / dm, 4.0 * expo[i], 0.25 * expo[i])
-                                    if expo[i] < 0 else
-                                    np.clip(dx / dm, 0.25 * expo[i], 4.0 * expo[i]))
-        prev = (x.copy(), miss)
-        for i in (2, 3):                    # log x moves by expo * (0 - log miss)
-            x[i] = x[i] * miss[i] ** (-expo[i])
-        x[0:2] -= np.array([r[0], r[1]]) * targets.tol_centre_mm
-        x = np.clip(x, lo, hi)
 
 
 def _angle_diff(a: float, b: float) -> float:
@@ -414,7 +371,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         """(With a path-angle target: its first-order design, refined.) Start grid,
         Levenberg-Marquardt passes, decoupled rounds (docs/synthesis.md)."""
         if with_bias:
-            _recentred(residual, x_mid, centre, targets.tol_centre_mm, lo, hi)
+            recentred(residual, x_mid, centre, targets.tol_centre_mm, lo, hi)
             if state["best"][1] is not None and refine(residual, state):
                 return
         # start grid over the two crownings (the objective has several basins: the path
@@ -425,12 +382,12 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         # by the TE0 and pattern length it gives
         for pc in (4.0, 8.0, 16.0, 24.0, 32.0):
             for lc in (0.06, 0.15, 0.4):
-                _recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
+                recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
                            targets.tol_centre_mm, lo, hi)
         if state["best"][1] is None:
             return
         if not refine(residual, state):
-            _polish(residual, state["best"][1], lo, hi, targets)
+            polish(residual, state["best"][1], lo, hi, targets)
 
     def stages(residual, state) -> None:
         """Without a path-angle target, the decoupled rounds from the middle of the
@@ -438,7 +395,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         meet them); then, if they miss and the targets are reachable, :func:`search`."""
         try:
             if not with_bias:
-                _polish(residual, x_mid, lo, hi, targets, rounds=12, within=_ROUND_TOL)
+                polish(residual, x_mid, lo, hi, targets, rounds=12, within=_ROUND_TOL)
                 # met with room for the full TCA's difference from the reduced one
                 if unreachable or (state["r"] is not None
                                    and np.max(np.abs(state["r"][0:4])) <= 1.0 - _FAITHFUL_TOL):
@@ -466,12 +423,12 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     # path angle of the longest overlap (closed form), or the TE0 target is named
     # unreachable, here at the first full TCA
     first = on_full["points"].get(tuple(float(c) for c in x_mid))
-    short = None if with_bias else _short_overlap(first, phases)
+    short = None if with_bias else short_overlap(first, phases)
     unreachable = ""
     if short is not None:
         reach = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
         angle, ratio = overlap_path_angle(reach, flanks=flanks, side=side)
-        if ratio >= 1.0 + _OVERLAP_MARGIN:
+        if ratio >= 1.0 + OVERLAP_MARGIN:
             angle = float(np.clip(angle, -89.9, 90.0))
             again = synthesize_easeoff(
                 pair, side=side, targets=dataclasses.replace(targets, path_angle_deg=angle),
@@ -485,7 +442,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
                     "edge contact that passes it to the next pair; along "
                     f"{angle:.1f} deg it lasts {ratio:.2f} pitches (first order, the "
                     "longest of the reachable path angles; docs/synthesis.md)"))
-        unreachable = te0_unreachable(short, targets, side=side, best=(angle, ratio))
+        unreachable = te0_unreachable(short, targets.te0_pp_arcsec, side=side,
+                                      best=(angle, ratio))
     if faithful:
         stages(reduced, on_reduced)
         faithful = on_reduced["best"][1] is not None
@@ -503,45 +461,6 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     return Synthesis(side, coeffs, targets, dp, centre, length,
                      _targets_rows(dp, targets, centre, length), runs["n"],
                      time.perf_counter() - t_start, unreachable)
-
-
-#: Margin of a surface contact ratio above 1 (in pitches) within which it does not
-#: count as an overlap: one phase step of the synthesis' TCA (31 phases) for the TCA's
-#: count, and for the closed form (:func:`~.path_reach.overlap_path_angle`, 1.71
-#: against the TCA's 1.73 on the 20/20 miter) as well.
-_OVERLAP_MARGIN = 1.0 / 30.0
-
-
-def _short_overlap(point: DesignPoint | None, phases: int) -> float | None:
-    """The surface contact ratio of ``point`` if it is short of a pitch even counted
-    generously (one phase step added), else None (None also without a point)."""
-    if point is None or not np.isfinite(point.surface_contact_ratio):
-        return None
-    ratio = point.surface_contact_ratio
-    return ratio if ratio + 1.0 / (int(phases) - 1) < 1.0 else None
-
-
-def te0_unreachable(ratio: float, targets: SynthesisTargets, *, side: str,
-                    best: tuple[float, float]) -> str:
-    """Why the TE0 target cannot be set by the ease-off on ``side``: the zero-bias
-    path's surface contact lasts ``ratio`` pitches and the best reachable path angle
-    ``best = (angle, ratio)`` (:func:`~.path_reach.overlap_path_angle`) gives no
-    overlap either.
-
-    TE0 is a crowning's level only where neighbouring pairs' parabolic TE curves cross
-    on the flanks, i.e. where one pair's surface contact lasts at least a pinion pitch
-    (:attr:`~.design_point.DesignPoint.surface_contact_ratio`). Where it lasts less the
-    contact passes to the next pair through an edge contact, and TE0 over the pitch is
-    that contact's. The synthesis then stops after the decoupled rounds, which still
-    meet the bearing centre and the pattern length (docs/synthesis.md)."""
-    angle, most = best
-    where = (f"; the longest reachable, along {angle:.1f} deg, lasts {most:.2f}"
-             if np.isfinite(most) else "; no path angle is reachable")
-    return (f"TE0 {targets.te0_pp_arcsec:g} arcsec on the {side} side: one pair's surface "
-            f"contact lasts {ratio:.2f} of a pinion pitch along the path of the bearing"
-            f"{where} (< 1: the contact passes to the next pair through an edge contact, "
-            "whose TE the ease-off does not set; a wider face or more teeth give more "
-            "overlap, docs/synthesis.md)")
 
 
 def easeoff_toml(synth: dict, *, pair_name: str) -> str:
