@@ -10,6 +10,7 @@ contacts, and must meet the targets there and reproduce the reported design poin
 
 import dataclasses
 
+import numpy as np
 import pytest
 
 from gearcontact.geometry.kinematics import AssemblyErrors
@@ -137,8 +138,10 @@ def test_synthesis_near_the_calibrated_tip_edge_preset():
     own design point, path angle included, as targets, gives the calibrated ease-off
     back: every target met, crownings within 2 % and 10 %, and the relief within 5 % of
     the calibrated one's largest |E| everywhere on the flank (the share to which TE0 and
-    the pattern length, whose tolerances are 5 %, fix it). Measured: crownings 0.5 % and
-    4.4 %, relief 0.87 um (3.9 % of 22.5 um). The bias alone is not fixed to better than
+    the pattern length, whose tolerances are 5 %, fix it), up to a rigid turn of the
+    pinion. Measured: crownings 0.5 % and 4.4 %, relief 0.87 um (3.9 % of 22.5 um;
+    session 12, the centre's relief carried as a turn: 1.20 um with the turn, 0.56 um
+    = 2.5 % without it). The bias alone is not fixed to better than
     that: -0.023 against -0.0057 um/mm^2 (session 10, with the path angle in space:
     within 0.01); the path angle on the gear flank moves by 7.2 deg per um/mm^2 of bias
     here (0.12 deg for that difference, its tolerance 2 deg) and the crownings take the
@@ -146,6 +149,7 @@ def test_synthesis_near_the_calibrated_tip_edge_preset():
     from gearcontact.geometry.flank import build_flanks
     from gearcontact.geometry.easeoff import EaseOff, max_relief_um
     from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
+    from gearcontact.tca.design_point import turn_relief
 
     pair = load_pair("s0003")
     side = "coast"
@@ -171,10 +175,23 @@ def test_synthesis_near_the_calibrated_tip_edge_preset():
                                                           rel=0.02)
     assert c.lengthwise_crowning_um_per_mm2 == pytest.approx(
         known.lengthwise_crowning_um_per_mm2, rel=0.10)
-    diff = EaseOffCoefficients(**{k: v - getattr(known, k)
-                                  for k, v in dataclasses.asdict(c).items()})
+    # an ease-off is a flank up to a rigid turn of the pinion (its relief L(p) dpsi only
+    # shifts TE0; the synthesis carries the relief at its centre as one: design_point.
+    # turn_relief): the difference is compared without its turn component (least
+    # squares over a 9 x 9 grid of the flank)
+    names = list(dataclasses.asdict(c))
+    diff = np.array([getattr(c, k) - getattr(known, k) for k in names])
+    turn = turn_relief(conj, (u_m, v_m))
+    U, V = np.meshgrid(np.linspace(b.u_root, b.u_tip, 9), np.linspace(b.v_toe, b.v_heel, 9))
+
+    def relief(x):
+        return EaseOff.from_coefficients(EaseOffCoefficients(**dict(zip(names, x))),
+                                         u_mean_mm=u_m, v_mean_mm=v_m).relief_mm(U, V).ravel()
+
+    share = float(np.linalg.lstsq(relief(turn)[:, None], relief(diff), rcond=None)[0][0])
+    rest = EaseOffCoefficients(**dict(zip(names, diff - share * turn)))
     relief = [max_relief_um(EaseOff.from_coefficients(x, u_mean_mm=u_m, v_mean_mm=v_m), b)[0]
-              for x in (diff, known)]
+              for x in (rest, known)]
     assert relief[0] <= 0.05 * relief[1], relief
 
 
