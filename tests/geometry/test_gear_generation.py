@@ -263,3 +263,34 @@ def test_design_machine_settings_of_the_miter_pair_write_the_generated_gear(tmp_
         arc = (cut.psi(U, V) - r.psi_nodes[np.ix_(iu, iv)]) * cut.cone.radius_mm(U, V)
         assert np.abs(arc).max() < 1e-8
     assert main(["design", "--pair", str(out / "machine_settings.toml")]) == 0
+
+
+@pytest.mark.slow
+def test_analyze_builds_the_generated_sheets_once(tmp_path, monkeypatch):
+    # issue 28: run_analysis checks the 20/30 pair (design's checks: the generated
+    # gear's sheets), synthesizes its ease-off and reaches the TCA with one generation
+    # of the sheets (before: two, about 10-20 s of the miter's run); the TCA gets the
+    # flanks the synthesis built, on the check's gear sheets (the same objects). 11 s
+    # at load ~2 (slow: the synthesis and two flank builds)
+    import gearcontact.report.analyze as analyze
+
+    calls, seen = [], []
+    made = gear_generation_module.generated_gear_sheets
+    monkeypatch.setattr(gear_generation_module, "generated_gear_sheets",
+                        lambda pair: calls.append(made(pair)) or calls[-1])
+
+    class Reached(Exception):
+        pass
+
+    def analyze_pair(pair, *, flanks, **_):
+        seen.append(flanks)
+        raise Reached
+
+    monkeypatch.setattr(analyze, "analyze_pair", analyze_pair)
+    pair = replace(_spiral_bevel(20, 30), gear_addendum_factor=0.33889)
+    with pytest.raises(Reached):
+        analyze.run_analysis(pair, out_dir=tmp_path, progress=False, figures=False)
+    assert len(calls) == 1
+    (flanks,) = seen
+    assert flanks.gear_generation == "generated"
+    assert all(flanks.gear.side(side) is calls[0][side] for side in SIDES)
