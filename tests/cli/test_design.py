@@ -142,14 +142,16 @@ def test_synthesis_targets_checked_before_the_directory_and_work(tmp_path, capsy
 
 def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, monkeypatch):
     """Issue 28 probe: "NOT all targets met" exited 0. It is the synthesis failing its
-    own check: exit 4, the table and the TOML printed and easeoff.toml kept."""
+    own check: exit 4, the table and the TOML printed and easeoff.toml kept; a target the
+    synthesis found unreachable is named with its reason (tca.path_reach.te0_unreachable)."""
     from types import SimpleNamespace
 
     import gearcontact.tca.synthesis as synthesis
     from gearcontact.cli import main
 
     done = {side: SimpleNamespace(evaluations=3, seconds=1.0, met=side == "drive",
-                                  table=lambda side=side: f"| {side} table |")
+                                  table=lambda side=side: f"| {side} table |",
+                                  unreachable="" if side == "drive" else "the reason")
             for side in ("drive", "coast")}
     monkeypatch.setattr(synthesis, "synthesize_pair",
                         lambda pair, targets, flanks=None: (pair, done))
@@ -160,7 +162,8 @@ def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, 
     assert code == 4
     assert "| coast table |" in out and "[easeoff.drive]" in out
     assert err == ("gearcontact design: check failed: ease-off synthesis of s0003: not all "
-                   "targets met on the coast side (see the table)\n")
+                   "targets met on the coast side (see the table); not reachable: the "
+                   "reason\n")
     assert (tmp_path / "x" / "easeoff.toml").read_text() == "[easeoff.drive]\n"
 
 

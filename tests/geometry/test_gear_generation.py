@@ -30,7 +30,9 @@ from gearcontact.geometry.basic_settings import crown_pinion_setups
 from gearcontact.geometry.cutter import place_cutter
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.formate import SIDES
+from gearcontact.geometry import gear_generation as gear_generation_module
 from gearcontact.geometry.gear_generation import gear_generation, generated_gear_sheets
+from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.generated import generated_pinion_flank
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.line_contact import line_contact
@@ -149,6 +151,33 @@ def test_conjugate_pinion_is_the_crown_gears_pinion(miter, miter_flanks, side):
     assert np.ptp((dpsi * conj.cone.radius_mm(U, V))[on_face]) < 1e-6
 
 
+def test_the_checks_generated_sheets_are_built_once(miter, miter_flanks, monkeypatch):
+    # issue 28: design's check builds the generated gear sheets; build_flanks given the
+    # check's result reuses them (one generation, the same objects) and its flanks are
+    # bit for bit those built from scratch (miter_flanks, built without the check)
+    calls = []
+    made = gear_generation_module.generated_gear_sheets
+    monkeypatch.setattr(gear_generation_module, "generated_gear_sheets",
+                        lambda pair: calls.append(pair) or made(pair))
+    checked = check_generation(miter)
+    fs = build_flanks(replace(miter, name="renamed"), n_u=30, n_v=40,
+                      checked=checked)
+    assert len(calls) == 1
+    for side in SIDES:
+        assert fs.gear.side(side) is checked[side]["gear_flank"]
+        for member in ("gear", "pinion", "pinion_conjugate"):
+            a, b = getattr(fs, member).side(side), getattr(miter_flanks, member).side(side)
+            assert np.array_equal(a.psi_nodes, b.psi_nodes)
+            assert np.array_equal(a.u_nodes, b.u_nodes) and np.array_equal(a.v_nodes, b.v_nodes)
+    assert fs.mean_contact == miter_flanks.mean_contact
+    assert fs.pinion_normal_thickness_mm == miter_flanks.pinion_normal_thickness_mm
+    # a check made for another geometry is refused, naming both pairs, before any work
+    other = replace(miter, gear_face_width_mm=24.0, pinion_face_width_mm=24.0)
+    with pytest.raises(ValueError, match="does not hold the flank geometry"):
+        build_flanks(other, n_u=30, n_v=40, checked=checked)
+    assert len(calls) == 1
+
+
 def test_tca_of_the_unmodified_generated_pair_is_line_contact(miter, miter_flanks):
     # (d): TE0 = 0 to 1e-4 arcsec (as tests/geometry/test_generated.py for the machined
     # pairs) on at least 15 of 21 phases of one pitch
@@ -226,3 +255,34 @@ def test_design_machine_settings_of_the_miter_pair_write_the_generated_gear(tmp_
         assert arc.size > 500
         assert np.abs(arc).max() < 1e-8
     assert main(["design", "--pair", str(out / "machine_settings.toml")]) == 0
+
+
+@pytest.mark.slow
+def test_analyze_builds_the_generated_sheets_once(tmp_path, monkeypatch):
+    # issue 28: run_analysis checks the 20/30 pair (design's checks: the generated
+    # gear's sheets), synthesizes its ease-off and reaches the TCA with one generation
+    # of the sheets (before: two, about 10-20 s of the miter's run); the TCA gets the
+    # flanks the synthesis built, on the check's gear sheets (the same objects). 11 s
+    # at load ~2 (slow: the synthesis and two flank builds)
+    import gearcontact.report.analyze as analyze
+
+    calls, seen = [], []
+    made = gear_generation_module.generated_gear_sheets
+    monkeypatch.setattr(gear_generation_module, "generated_gear_sheets",
+                        lambda pair: calls.append(made(pair)) or calls[-1])
+
+    class Reached(Exception):
+        pass
+
+    def analyze_pair(pair, *, flanks, **_):
+        seen.append(flanks)
+        raise Reached
+
+    monkeypatch.setattr(analyze, "analyze_pair", analyze_pair)
+    pair = replace(_spiral_bevel(20, 30), gear_addendum_factor=0.33889)
+    with pytest.raises(Reached):
+        analyze.run_analysis(pair, out_dir=tmp_path, progress=False, figures=False)
+    assert len(calls) == 1
+    (flanks,) = seen
+    assert flanks.gear_generation == "generated"
+    assert all(flanks.gear.side(side) is calls[0][side] for side in SIDES)

@@ -125,8 +125,10 @@ def test_accepted_pairs_run_analyze_slow(z1, ratio, offset_frac, beta, face_frac
 #: teeth, 25 mm faces): the 1:1 miter pair of the issue's reproduction (F.2's gear
 #: addendum factor) and 20/30 with ISO's c_ham = 0.21 + 0.29 / u^2 for u = 1.5. The
 #: formate gear undercuts both pinions; both get the generated gear
-#: (docs/geometry.md sec. 7.6). Cost on the loaded 2-core machine: 20/30 126 s (test),
-#: 20/20 about 14 min (its ease-off synthesis, 207 TCA runs, does not meet the targets).
+#: (docs/geometry.md sec. 7.6). Cost (test, load ~3 on 2 cores): 20/30 47 s, 20/20
+#: 57 s (session 11: 126 s and about 14 min, the 20/20 synthesis 207 TCA runs without
+#: meeting its targets; now 51 runs, all met through the overlap path angle,
+#: docs/synthesis.md "Low ratios").
 LOW_RATIO = {"20-20": (20, 0.24737), "20-30": (30, 0.33889)}
 
 

@@ -145,7 +145,8 @@ def check(args) -> None:
         args.writes_files = False
         return
     # a pair whose pinion the gear cannot generate (limit line) is refused here
-    args.gear_generation = generation_of(check_generation(pair))
+    args.generation_check = check_generation(pair)      # its gear flanks are reused
+    args.gear_generation = generation_of(args.generation_check)
     modes = [m for m, on in (("--calibrate", args.calibrate),
                              ("--synthesize-easeoff", args.synthesize_easeoff),
                              ("--machine-settings", args.machine_settings)) if on]
@@ -281,7 +282,7 @@ def _check_path_angle(pair, args, targets: dict):
     from ..geometry.flank import build_flanks
     from ..tca.path_reach import check_path_angle
 
-    flanks = build_flanks(pair)
+    flanks = build_flanks(pair, checked=args.generation_check)
     for side, t in targets.items():
         try:
             check_path_angle(pair, targets=t, flanks=flanks, sides=(side,))
@@ -306,11 +307,14 @@ def _calibrate(args, pair) -> int:
 
 
 def _synthesize(args, pair) -> int:
+    from ..geometry.flank import build_flanks
     from ..report.design import write_easeoff_toml
     from ..tca.synthesis import easeoff_toml, synthesize_pair
 
     targets = getattr(args, "targets", None) or _synthesis_targets(args)
-    _, done = synthesize_pair(pair, targets=targets, flanks=getattr(args, "flanks", None))
+    flanks = getattr(args, "flanks", None) or build_flanks(
+        pair, checked=getattr(args, "generation_check", None))
+    _, done = synthesize_pair(pair, targets=targets, flanks=flanks)
     for side, s in done.items():
         print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
     text = easeoff_toml(done, pair_name=pair.name)
@@ -319,9 +323,11 @@ def _synthesize(args, pair) -> int:
         print(f"-> {final_path(args, write_easeoff_toml(text, args.out))}")
     missed = [side for side, s in done.items() if not s.met]
     if missed:              # the table says which; the TOML (and easeoff.toml) stay
+        why = "".join(f"; not reachable: {done[side].unreachable}" for side in missed
+                      if done[side].unreachable)
         raise CheckFailed(f"ease-off synthesis of {pair.name}: not all targets met on the "
                           f"{' and '.join(missed)} side{'s' if len(missed) > 1 else ''} "
-                          "(see the table)")
+                          f"(see the table){why}")
     return 0
 
 

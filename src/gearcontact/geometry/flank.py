@@ -44,7 +44,7 @@ from .cutter import CutterPlacement
 from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thickness_mm
 from .formate import SIDES
 from .formate import FormateFlank as _FormateFlank
-from .gear_generation import gear_generation, pair_gear_flanks
+from .gear_generation import PairGeneration, pair_generation
 from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
 from .kinematics import MeshKinematics
 from .machine import mirror_setup
@@ -140,7 +140,8 @@ class FlankSet:
         return sample_grid(self.flank(member, side), n_u, n_v)
 
 
-def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
+def build_flanks(pair, *, n_u: int = 120, n_v: int = 150, checked: dict | None = None
+                 ) -> FlankSet:
     """Generate all flanks of ``pair``: formate (or generated,
     :func:`~.gear_generation.gear_generation`) gear, conjugate pinion, ease-off.
 
@@ -151,6 +152,11 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     n_u, n_v : int
         Size of the dense exact pinion grid (profile x lengthwise) behind the quintic
         spline interpolant of the pinion flanks (default 120 x 150).
+    checked : dict, optional
+        :func:`~.generation.check_generation`'s result for ``pair`` (or for a pair with
+        the same geometry: ease-off, assembly errors and materials may differ): its gear
+        flanks, generated gear sheets included, and pinion active boxes are reused
+        instead of built again (bit for bit the same flanks).
 
     Returns
     -------
@@ -161,31 +167,45 @@ def build_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     InputRangeError
         For impossible cutters or an undercut / limit-line violation on a pinion flank
         (:class:`~.conjugate.UndercutError`).
+    ValueError
+        ``checked`` was made for a pair of another geometry.
     """
     if pair.pinion_hand == "left":  # the mirror image of the right-hand twin
         twin = right_hand_twin(pair)
-        return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v),
+        return mirror_flank_set(build_flanks(twin, n_u=n_u, n_v=n_v, checked=checked),
                                 pair.kinematics(with_errors=False))
     if pair.machine:
         return build_machine_flanks(pair, n_u=n_u, n_v=n_v)
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
-    generation, boxes = gear_generation(pair)
-    placement, gear, generators = pair_gear_flanks(pair, generation)
+    made = _checked_generation(checked, pair)
     conj, mean = {}, {}
     for side in SIDES:
         conj[side], mean[side] = conjugate_pinion_flank(
-            generators[side], blank=blank, kinematics=kin,
+            made.generators[side], blank=blank, kinematics=kin,
             pinion_face_width_mm=pair.pinion_face_width_mm, n_u=n_u, n_v=n_v,
-            active=None if boxes is None else boxes[side])
+            active=made.active[side])
     u_m, v_m = mean["drive"]["pinion_uv"]
     thickness = mean_normal_thickness_mm(conj["drive"], conj["coast"], u_mm=u_m, v_mm=v_m,
                                          spiral_angle_deg=blank.spiral_angle_pinion_deg)
-    conjugate = FlankSet(blank=blank, kinematics=kin, cutter=placement,
-                         gear=MemberFlanks(**gear), pinion=MemberFlanks(**conj),
+    conjugate = FlankSet(blank=blank, kinematics=kin, cutter=made.placement,
+                         gear=MemberFlanks(**made.gear), pinion=MemberFlanks(**conj),
                          pinion_conjugate=MemberFlanks(**conj), mean_contact=mean,
-                         pinion_normal_thickness_mm=thickness, gear_generation=generation)
+                         pinion_normal_thickness_mm=thickness,
+                         gear_generation=made.generation)
     return with_easeoff(conjugate, pair)
+
+
+def _checked_generation(checked: dict | None, pair) -> PairGeneration:
+    """The :class:`~.gear_generation.PairGeneration` of the right-hand ``pair``: the one
+    :func:`~.generation.check_generation` made (``checked``), else made here."""
+    if checked is None:
+        return pair_generation(pair)
+    made = checked["drive"]["pair_generation"]
+    if not made.serves(pair):
+        raise ValueError(f"checked: check_generation's result for {made.pair.name!r} "
+                         f"does not hold the flank geometry of {pair.name!r}")
+    return made
 
 
 def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:

@@ -42,8 +42,9 @@ from .formate import SIDES, FlankBoundary, gear_flanks
 from .generated import generated_gear_flank
 from .sheet import GearSheet
 
-__all__ = ["GEAR_GENERATIONS", "SheetGenerator", "gear_generation", "generated_gear_sheets",
-           "generation_of", "generation_text", "pair_gear_flanks"]
+__all__ = ["GEAR_GENERATIONS", "PairGeneration", "SheetGenerator", "gear_generation",
+           "generated_gear_sheets", "generation_of", "generation_text", "pair_gear_flanks",
+           "pair_generation"]
 
 #: The two gear generations of a pair without machine settings (module docstring).
 GEAR_GENERATIONS = ("formate", "generated")
@@ -249,6 +250,75 @@ def pair_gear_flanks(pair, generation: str):
         return placement, formate, formate
     sheets = generated_gear_sheets(pair)
     return placement, sheets, {side: SheetGenerator(s) for side, s in sheets.items()}
+
+
+@dataclass(frozen=True, eq=False)
+class PairGeneration:
+    """The gear flanks of a right-hand pair without machine settings and the first step
+    of its conjugate pinion generation (:func:`pair_generation`): what
+    :func:`~.generation.check_generation` computes and :func:`~.flank.build_flanks`
+    reuses, so that a command builds a generated gear's sheets once.
+
+    Attributes
+    ----------
+    pair : GearPair
+        The pair it was made for (right-hand, no machine settings).
+    generation : str
+        ``"formate"`` or ``"generated"`` (:func:`gear_generation`).
+    placement : CutterPlacement
+        The formate cut's cutter placement.
+    gear, generators : dict
+        ``{side: gear flank}`` and ``{side: generator}`` (:func:`pair_gear_flanks`).
+    active : dict
+        ``{side: (solver, box, gear_tip_undercut_mm)}``
+        (:func:`~.conjugate.pinion_active_box` of each generator).
+    """
+
+    pair: object
+    generation: str
+    placement: object
+    gear: dict
+    generators: dict
+    active: dict
+
+    def serves(self, pair) -> bool:
+        """``pair`` has the same flank geometry as :attr:`pair` (it may differ in what
+        the gear flanks and the conjugate pinion do not depend on: name, ease-off,
+        assembly errors, materials, design side)."""
+        return _geometry(pair) == _geometry(self.pair)
+
+
+#: GearPair fields the gear flanks and the conjugate pinion's active box do not depend on.
+_NOT_GEOMETRY = frozenset({"name", "easeoff_drive", "easeoff_coast", "assembly",
+                           "pinion_material", "gear_material", "design_side",
+                           "easeoff_tables"})
+
+
+def _geometry(pair) -> tuple:
+    return tuple((f.name, getattr(pair, f.name)) for f in dataclasses.fields(pair)
+                 if f.name not in _NOT_GEOMETRY)
+
+
+def pair_generation(pair) -> PairGeneration:
+    """The :class:`PairGeneration` of the right-hand ``pair`` without machine settings:
+    its gear generation (:func:`gear_generation`), gear flanks (:func:`pair_gear_flanks`)
+    and the pinion active box of each side (reused from :func:`gear_generation` for a
+    formate gear).
+
+    Raises
+    ------
+    UndercutError
+        As :func:`~.conjugate.pinion_active_box` on the generated gear.
+    """
+    generation, boxes = gear_generation(pair)
+    placement, gear, generators = pair_gear_flanks(pair, generation)
+    if boxes is None:
+        kin = pair.kinematics(with_errors=False)
+        boxes = {side: pinion_active_box(gen, blank=pair.blank, kinematics=kin,
+                                         pinion_face_width_mm=pair.pinion_face_width_mm)
+                 for side, gen in generators.items()}
+    return PairGeneration(pair=pair, generation=generation, placement=placement, gear=gear,
+                          generators=generators, active=boxes)
 
 
 def generation_of(boxes: dict) -> str:

@@ -23,7 +23,7 @@ from .conjugate import UndercutError, pinion_active_box, section_guesses
 from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
-from .gear_generation import gear_generation, pair_gear_flanks
+from .gear_generation import pair_generation
 from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
@@ -53,8 +53,9 @@ def check_generation(pair, *, contact_ratio: bool = True) -> dict:
     dict
         ``{side: {"active_box": FlankBoundary, "gear_tip_undercut_mm": float,
         "solver": MeshingSolver, "gear_flank": FormateFlank | GearSheet,
-        "gear_generation": "formate" | "generated"}}`` (a machine-settings pair: the
-        first three).
+        "gear_generation": "formate" | "generated", "pair_generation":
+        PairGeneration}}`` (a machine-settings pair: the first three). Pass it to
+        :func:`~.flank.build_flanks` (``checked=``) to reuse its gear flanks.
 
     Raises
     ------
@@ -136,19 +137,14 @@ _FIX_TRIALS = 3
 def _generation_boxes(pair) -> dict:
     """Per side: the pinion's active box, gear tip undercut and meshing solver, the gear
     flank that generates it and its generation (:func:`~.gear_generation.gear_generation`:
-    formate, or generated where the formate gear undercuts)."""
-    generation, boxes = gear_generation(pair)
-    if boxes is None:
-        kin = pair.kinematics(with_errors=False)
-        _, gears, generators = pair_gear_flanks(pair, generation)
-        boxes = {side: pinion_active_box(gen, blank=pair.blank, kinematics=kin,
-                                         pinion_face_width_mm=pair.pinion_face_width_mm)
-                 for side, gen in generators.items()}
-    else:
-        gears = {side: got[0].gear for side, got in boxes.items()}
+    formate, or generated where the formate gear undercuts), and the
+    :class:`~.gear_generation.PairGeneration` they come from (``"pair_generation"``:
+    :func:`~.flank.build_flanks` reuses it)."""
+    made = pair_generation(pair)
     return {side: {"active_box": box, "gear_tip_undercut_mm": undercut, "solver": solver,
-                   "gear_flank": gears[side], "gear_generation": generation}
-            for side, (solver, box, undercut) in boxes.items()}
+                   "gear_flank": made.gear[side], "gear_generation": made.generation,
+                   "pair_generation": made}
+            for side, (solver, box, undercut) in made.active.items()}
 
 
 #: Lengthwise stations of the gear tip line checked by :func:`check_gear_top_land`.

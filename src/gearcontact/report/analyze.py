@@ -286,12 +286,13 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
     side = pair.design_side if side is None else side
-    check_generation(pair)  # design's checks, before any flank work (named refusals)
+    # design's checks, before any flank work (named refusals); its gear flanks are reused
+    checked = check_generation(pair)
     # validate cheap inputs before the expensive stages
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:
         raise InputRangeError("torques_nm", torques_nm, "at least one torque")
-    prepared = prepare_pair(pair, side=side)
+    prepared = prepare_pair(pair, side=side, checked=checked)
     pair, easeoff_note = prepared.pair, prepared.note
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -300,8 +301,8 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
 
     (out / "design.json").write_text(json.dumps(pair.blank.as_dict(), indent=2))
     t0 = time.perf_counter()
-    # the flanks the synthesis built, eased (None: analyze_pair builds them)
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, flanks=prepared.flanks,
+    # the flanks the synthesis built, eased, else built on the check's gear flanks
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, flanks=prepared.flank_set(),
                                progress=False)
     write_tca_outputs(tca, flanks, pair, out, side=side, figures=figures)
     timings["tca_s"] = time.perf_counter() - t0

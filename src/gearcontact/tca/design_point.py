@@ -43,7 +43,8 @@ from .types import ContactGuess, EdgeContact
 from .mating import solve_mating_point
 
 __all__ = ["point_invariants", "DesignPoint", "conjugate_contact", "design_point_at",
-           "evaluate_design_point", "eased_design_point", "centred_coefficients"]
+           "evaluate_design_point", "eased_design_point", "centred_coefficients",
+           "surface_contact_ratio", "turn_relief"]
 
 
 
@@ -85,6 +86,11 @@ class DesignPoint:
         Largest |E| of the ease-off over the pinion flank, um.
     paint_length_mm : float
         Major axis 2a of the paint ellipse (6.35 um, :mod:`.curvature`), mm.
+    surface_contact_ratio : float
+        Phase span of the design point's own surface contact (the run of surface-to-
+        surface mating points of its pair around it, edge contacts and phases without
+        contact excluded) over one pinion pitch, measured on the TCA's phase grid to
+        one step (:func:`surface_contact_ratio`); NaN if not evaluated.
     path_angle_deg : float
         Direction of the contact path on the gear flank at the point (phase increasing;
         the path the bearing draws on the gear tooth, Litvin & Fuentes 2004 sec. 21.8,
@@ -106,6 +112,7 @@ class DesignPoint:
     easeoff_max_um: float
     paint_length_mm: float = float("nan")
     path_angle_deg: float = float("nan")
+    surface_contact_ratio: float = float("nan")
 
 
 
@@ -195,8 +202,32 @@ def evaluate_design_point(eased, gear, pair: GearPair, start: ContactGuess, *,
         a, b = path.points[i - 1], path.points[i + 1]
         tangent = kin.gear_pose(mp.phi2_rad)[0] @ (gear.point(b.u2, b.v2).r
                                                    - gear.point(a.u2, a.v2).r)
-    return design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
-                           torque_nm=torque_nm, path_tangent=tangent)
+    dp = design_point_at(pair, eased, gear, mp, te0_pp_arcsec=float(cycle.te0_pp_arcsec),
+                         torque_nm=torque_nm, path_tangent=tangent)
+    return dataclasses.replace(dp, surface_contact_ratio=surface_contact_ratio(
+        path, i, steps_per_pitch=cycle.step_index))
+
+
+def surface_contact_ratio(path, index: int, *, steps_per_pitch: int) -> float:
+    """Phase span of the surface contact of ``path`` (one tooth pair) through its point
+    ``index``, in pinion pitches: the run of surface mating points (``path.surface``)
+    around ``index`` times the phase step (each point stands for one step; the run's
+    true ends lie within a step of its outer points, so the span is good to one step,
+    ``1 / steps_per_pitch``); 0 if the point is no surface contact.
+
+    Below 1 the pair's surface contact leaves the flank before the next pair's begins
+    (the path of one pitch is longer than the flank along it): the contact passes
+    through an edge contact, whose TE the ease-off's crownings do not set."""
+    surface = np.asarray(path.surface, bool)
+    if not surface[index]:
+        return 0.0
+    lo = index
+    while lo > 0 and surface[lo - 1]:
+        lo -= 1
+    hi = index
+    while hi < len(surface) - 1 and surface[hi + 1]:
+        hi += 1
+    return float((hi - lo + 1) / steps_per_pitch)
 
 
 
@@ -229,17 +260,65 @@ def eased_design_point(coeffs: EaseOffCoefficients, conj, gear, pair: GearPair, 
 
 
 def centred_coefficients(eta_c: float, xi_c: float, profile_crowning: float,
-                         lengthwise_crowning: float, bias: float) -> EaseOffCoefficients:
+                         lengthwise_crowning: float, bias: float, *,
+                         turn: np.ndarray | None = None) -> EaseOffCoefficients:
     """Five-term coefficients of the ease-off written about its centre (mm, um/mm^2):
 
     ``E = c_PC (eta - eta_c)^2 + c_LC (xi - xi_c)^2 + c_TW (xi - xi_c)(eta - eta_c) + const``
 
-    i.e. ``c_PA = -2 c_PC eta_c - c_TW xi_c`` and ``c_SA = -2 c_LC xi_c - c_TW eta_c``
-    (the constant is dropped: the pair format has none; it only shifts TE0).
+    i.e. ``c_PA = -2 c_PC eta_c - c_TW xi_c`` and ``c_SA = -2 c_LC xi_c - c_TW eta_c``.
+    The pair format has no constant: the relief is zero at the mean node, so the form
+    above carries ``const = -Q0``, ``Q0 = c_PC eta_c^2 + c_LC xi_c^2 + c_TW xi_c eta_c``
+    (the relief at the centre). A uniform relief is no rigid turn of the pinion: a turn
+    by ``d psi`` relieves the flank by ``d psi L(p)``, ``L = n . (e_x x r)`` the lever
+    of the normal about the pinion axis, which grows from toe to heel (cone radius), so
+    ``-Q0`` tilts the TE function like a spiral-angle term and moves the TE0 vertex off
+    the centre by about ``Q0 (dL/dv / L) / (2 c_LC)`` lengthwise (20/20 miter of ISO
+    23509 F.2's data, centre 3.7 mm above the mean node: 5.7 mm at c_LC = 0.035,
+    beyond the toe at the c_LC that TE0 = 3 arcsec needs; docs/synthesis.md). With
+    ``turn`` (:func:`turn_relief`) the constant is made a rigid turn instead,
+    ``-Q0 L(p) / L(mean)``: its first- and second-order parts enter the coefficients,
+    and the TE0 vertex stays at the centre. Without it (the calibration's form) the
+    constant is dropped.
     """
+    c = np.array([-2.0 * profile_crowning * eta_c - bias * xi_c,
+                  -2.0 * lengthwise_crowning * xi_c - bias * eta_c,
+                  profile_crowning, lengthwise_crowning, bias], dtype=float)
+    if turn is not None:
+        q0 = (profile_crowning * eta_c ** 2 + lengthwise_crowning * xi_c ** 2
+              + bias * xi_c * eta_c)
+        c = c - q0 * np.asarray(turn, dtype=float)
     return EaseOffCoefficients(
-        profile_angle_um_per_mm=float(-2.0 * profile_crowning * eta_c - bias * xi_c),
-        spiral_angle_um_per_mm=float(-2.0 * lengthwise_crowning * xi_c - bias * eta_c),
-        profile_crowning_um_per_mm2=float(profile_crowning),
-        lengthwise_crowning_um_per_mm2=float(lengthwise_crowning),
-        bias_um_per_mm2=float(bias))
+        profile_angle_um_per_mm=float(c[0]), spiral_angle_um_per_mm=float(c[1]),
+        profile_crowning_um_per_mm2=float(c[2]), lengthwise_crowning_um_per_mm2=float(c[3]),
+        bias_um_per_mm2=float(c[4]))
+
+
+#: Nodes per direction of the grid over the active box on which :func:`turn_relief`
+#: fits the lever (the fit's residual is what the five terms cannot hold).
+_TURN_GRID = 9
+
+
+def turn_relief(conj, mean_uv: tuple[float, float]) -> np.ndarray:
+    """The relief of a rigid turn of the pinion about its axis, relative to its value at
+    the mean node, as the five ease-off terms about the mean node ``(u_m, v_m)``:
+    ``(a_eta, a_xi, a_eta2, a_xi2, a_xieta)`` of ``L(p) / L(mean) - 1`` (1/mm, 1/mm^2),
+    ``L = n . (e_x x r)`` the lever of the flank normal about the pinion axis ``x`` of
+    the body frame (a turn ``d psi`` moves the flank by ``d psi L`` along its normal;
+    the TE of a relief is the relief over this lever, Litvin & Fuentes 2004, sec. 9.4).
+    Least squares over a ``_TURN_GRID`` square grid of the flank's active box (the
+    five terms vanish at the mean node, as the ratio does): the lever is far from
+    quadratic across the profile of a small pinion (s0003: a Taylor polynomial at the
+    mean node is 1e-2 off 1 mm away), and the bearing centre lies anywhere on the box
+    (see :func:`centred_coefficients`)."""
+    u_m, v_m = (float(x) for x in mean_uv)
+    b = conj.boundary
+    U, V = np.meshgrid(np.linspace(b.u_root, b.u_tip, _TURN_GRID),
+                       np.linspace(b.v_toe, b.v_heel, _TURN_GRID), indexing="ij")
+    u = np.append(U.ravel(), u_m)
+    v = np.append(V.ravel(), v_m)
+    s = conj.evaluate(u, v, second=False)
+    lever = s.n[:, 1] * -s.r[:, 2] + s.n[:, 2] * s.r[:, 1]
+    eta, xi = u[:-1] - u_m, v[:-1] - v_m
+    basis = np.column_stack([eta, xi, eta * eta, xi * xi, xi * eta])
+    return np.linalg.lstsq(basis, lever[:-1] / lever[-1] - 1.0, rcond=None)[0]

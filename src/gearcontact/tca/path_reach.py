@@ -59,7 +59,8 @@ from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM, flank_frame
 
-__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle"]
+__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "overlap_path_angle",
+           "short_overlap", "te0_unreachable", "OVERLAP_MARGIN"]
 
 _ARCSEC = np.pi / (180.0 * 3600.0)
 #: Finite-difference step of the exact node solves, mm (the node equations are solved
@@ -92,6 +93,12 @@ class PathAngleRange:
         Over the reachable arc: the path angle (unwrapped, increasing) and the
         first-order profile crowning, lengthwise crowning and bias (um/mm^2, (n, 3)) that
         give it (:meth:`start`).
+    pitch_uv_mm : ndarray (n, 2)
+        Over the reachable arc: the first-order motion ``(du, dv)`` of the contact point
+        on the pinion flank over one pinion pitch (the contact-line spacing over
+        ``cos(psi)`` along the path), mm.
+    centre_uv_mm : (float, float)
+        The bearing centre (pinion u, v), mm.
     """
 
     side: str
@@ -101,6 +108,8 @@ class PathAngleRange:
     free_bias_deg: float
     angles_deg: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     coefficients: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)), repr=False)
+    pitch_uv_mm: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)
+    centre_uv_mm: tuple = (float("nan"), float("nan"))
 
     def start(self, angle_deg: float) -> tuple[float, float, float]:
         """First-order (profile crowning, lengthwise crowning, bias), um/mm^2, of the
@@ -236,12 +245,14 @@ def path_angle_range(pair, *, side: str, targets, flanks) -> PathAngleRange:
             start = None
     i0, i1 = max(runs, key=lambda r: r[1] - r[0])
     sel = slice(i0, i1 + 1)
-    angles, coeffs = theta[sel], np.column_stack([pc, lc, tw])[sel]
+    # (du, dv) over one pitch: dN / cos(psi) along d in the tangent plane, mapped by m^-1
+    pitch_uv = np.linalg.solve(m, (d * (dN / np.cos(psi))[:, None]).T).T
+    angles, coeffs, pitch_uv = theta[sel], np.column_stack([pc, lc, tw])[sel], pitch_uv[sel]
     if angles[-1] < angles[0]:
-        angles, coeffs = angles[::-1], coeffs[::-1]
+        angles, coeffs, pitch_uv = angles[::-1], coeffs[::-1], pitch_uv[::-1]
     shift = float(_fold(angles[0])) - angles[0]
     return PathAngleRange(side, float(angles[0] + shift), float(angles[-1] + shift), line_deg,
-                          free, angles + shift, coeffs)
+                          free, angles + shift, coeffs, pitch_uv, (float(uc), float(vc)))
 
 
 def check_path_angle(pair, *, targets, flanks, sides=SIDES) -> dict:
@@ -266,3 +277,97 @@ def check_path_angle(pair, *, targets, flanks, sides=SIDES) -> dict:
                 f"ease-off synthesis reaches within the relief limit; the "
                 f"contact line runs at {r.contact_line_deg:.1f} deg, docs/synthesis.md)")
     return out
+
+
+#: Bisection steps of the flank extent along a path in :func:`overlap_path_angle`
+#: (the extent to 2^-16 of the box diagonal, far below the one-step resolution of the TCA).
+_EXTENT_BISECTIONS = 16
+#: Every how many psi grid points (0.05 deg) :func:`overlap_path_angle` evaluates.
+_OVERLAP_STRIDE = 20
+
+
+def overlap_path_angle(reach: PathAngleRange, *, flanks, side: str) -> tuple[float, float]:
+    """The reachable path angle whose first-order path gives the longest surface
+    contact per pinion pitch, and that length in pitches (NaN, NaN when no angle is
+    reachable).
+
+    The surface contact of one pair lasts while its contact point is on both flanks:
+    along a straight path through the bearing centre (``reach.pitch_uv_mm`` per pitch)
+    its span is the path's extent inside the pinion's active box whose conjugate gear
+    point lies on the gear flank (exact node solves, bisection), over the motion per
+    pitch. Below one pitch the contact passes between pairs through an edge contact
+    (:func:`te0_unreachable`)."""
+    if not len(reach.angles_deg):
+        return float("nan"), float("nan")
+    conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
+    box, gear_box = conj.boundary, gear.boundary
+    pick = np.arange(0, len(reach.angles_deg), _OVERLAP_STRIDE)
+    step = reach.pitch_uv_mm[pick]
+    per_pitch = np.linalg.norm(step, axis=1)
+    uc, vc = reach.centre_uv_mm
+    extent = np.zeros(len(pick))
+    for sign in (1.0, -1.0):
+        d = sign * step / per_pitch[:, None]                 # unit (u, v) direction
+        with np.errstate(divide="ignore"):
+            to_box = np.min([np.where(d[:, 0] > 0, (box.u_tip - uc) / d[:, 0], np.inf),
+                             np.where(d[:, 0] < 0, (box.u_root - uc) / d[:, 0], np.inf),
+                             np.where(d[:, 1] > 0, (box.v_heel - vc) / d[:, 1], np.inf),
+                             np.where(d[:, 1] < 0, (box.v_toe - vc) / d[:, 1], np.inf)],
+                            axis=0)
+        lo, hi = np.zeros(len(pick)), to_box
+        on = _on_gear(conj, gear_box, gear, uc + hi * d[:, 0], vc + hi * d[:, 1])
+        lo = np.where(on, hi, lo)
+        for _ in range(_EXTENT_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            ok = _on_gear(conj, gear_box, gear, uc + mid * d[:, 0], vc + mid * d[:, 1])
+            lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
+        extent += lo
+    ratio = extent / per_pitch
+    k = int(np.argmax(ratio))
+    return float(_fold(reach.angles_deg[pick[k]])), float(ratio[k])
+
+
+def _on_gear(conj, gear_box, gear, u, v) -> np.ndarray:
+    """Whether the gear point conjugate to each pinion point (u, v) is on the gear flank."""
+    ms = conj.exact(np.asarray(u, float), np.asarray(v, float))
+    return np.asarray(gear_box.contains(*gear.surface_parameters(ms.h_mm, ms.theta_rad)),
+                      bool)
+
+
+#: Margin of a surface contact ratio above 1 (in pitches) within which it does not
+#: count as an overlap: one phase step of the synthesis' TCA (31 phases) for the TCA's
+#: count, and for the closed form (:func:`overlap_path_angle`, 1.71
+#: against the TCA's 1.73 on the 20/20 miter) as well.
+OVERLAP_MARGIN = 1.0 / 30.0
+
+
+def short_overlap(point, phases: int) -> float | None:
+    """The surface contact ratio of ``point`` if it is short of a pitch even counted
+    generously (one phase step added), else None (None also without a point)."""
+    if point is None or not np.isfinite(point.surface_contact_ratio):
+        return None
+    ratio = point.surface_contact_ratio
+    return ratio if ratio + 1.0 / (int(phases) - 1) < 1.0 else None
+
+
+def te0_unreachable(ratio: float, te0_pp_arcsec: float, *, side: str,
+                    best: tuple[float, float]) -> str:
+    """Why the TE0 target cannot be set by the ease-off on ``side``: the zero-bias
+    path's surface contact lasts ``ratio`` pitches and the best reachable path angle
+    ``best = (angle, ratio)`` (:func:`overlap_path_angle`) gives no
+    overlap either.
+
+    TE0 is a crowning's level only where neighbouring pairs' parabolic TE curves cross
+    on the flanks, i.e. where one pair's surface contact lasts at least a pinion pitch
+    (:attr:`~.design_point.DesignPoint.surface_contact_ratio`). Where it lasts less the
+    contact passes to the next pair through an edge contact, and TE0 over the pitch is
+    that contact's. The synthesis then stops after the decoupled rounds, which still
+    meet the bearing centre and the pattern length (docs/synthesis.md)."""
+    angle, most = best
+    where = (f"; the longest reachable, along {angle:.1f} deg, lasts {most:.2f}"
+             if np.isfinite(most) else "; no path angle is reachable")
+    return (f"TE0 {te0_pp_arcsec:g} arcsec on the {side} side: one pair's surface "
+            f"contact lasts {ratio:.2f} of a pinion pitch along the path of the bearing"
+            f"{where} (< 1: the contact passes to the next pair through an edge contact, "
+            "whose TE the ease-off does not set; a wider face or more teeth give more "
+            "overlap, docs/synthesis.md)")

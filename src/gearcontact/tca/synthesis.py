@@ -30,6 +30,14 @@ Targets (:class:`SynthesisTargets`) and their defaults, from common practice:
   towards zero (a regularizing residual of weight :data:`BIAS_WEIGHT`), so that a
   path along the relief valley is preferred where it meets the targets, and a twisted
   one is used where TE0 and the ellipse length cannot be met together without it.
+  Where the zero-bias path's surface contact lasts less than a pinion pitch (TE0 then
+  an edge contact's, which no crowning sets: the 20/20 miter), the reachable path angle
+  of the longest overlap is taken as the target (:func:`~.path_reach.overlap_path_angle`),
+  or TE0 is named unreachable before the search (:func:`~.path_reach.te0_unreachable`).
+
+The relief at the bearing centre is carried as a rigid turn of the pinion
+(:func:`~gearcontact.tca.design_point.centred_coefficients` with ``turn``), so that the
+TE0 vertex stays at the centre (docs/synthesis.md, "Low ratios").
 
 References
 ----------
@@ -58,8 +66,10 @@ from ..geometry.kinematics import AssemblyErrors
 from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError, check_positive, check_range
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
-                           eased_design_point)
-from .path_reach import check_path_angle
+                           eased_design_point, turn_relief)
+from .path_reach import (OVERLAP_MARGIN, check_path_angle, overlap_path_angle,
+                         path_angle_range, short_overlap, te0_unreachable)
+from .synthesis_rounds import polish, recentred
 from .types import EdgeContact
 
 __all__ = ["SynthesisTargets", "Synthesis", "TargetRows", "targets_rows", "targets_table", "synthesize_easeoff", "synthesize_pair",
@@ -176,6 +186,14 @@ class Synthesis(TargetRows):
     evaluations : int
         TCA runs.
     seconds : float
+    unreachable : str
+        Why a target cannot be met on this pair, found at the search's first full TCA
+        (:func:`~.path_reach.te0_unreachable`; the search then stops after the
+        decoupled rounds); ``""`` if none.
+    path_choice : str
+        Why the synthesis chose the path angle of ``targets`` itself (none was given:
+        the zero-bias path's surface contact lasts less than a pitch,
+        :func:`synthesize_easeoff`); ``""`` if it did not.
     """
 
     side: str
@@ -187,6 +205,18 @@ class Synthesis(TargetRows):
     rows: tuple
     evaluations: int
     seconds: float
+    unreachable: str = ""
+    path_choice: str = ""
+
+    def table(self) -> str:
+        """Target / achieved / tolerance as Markdown, with the path choice and what is
+        unreachable."""
+        text = targets_table(self.rows, prefix=self.table_prefix)
+        if self.path_choice:
+            text += f"\n\nPath angle chosen: {self.path_choice}"
+        if self.unreachable:
+            text += f"\n\nNot reachable: {self.unreachable}"
+        return text
 
 
 def targets_table(rows, *, prefix: str = "") -> str:
@@ -215,59 +245,6 @@ def targets_rows(dp: DesignPoint, t: SynthesisTargets, centre, length_mm: float)
                      dp.path_angle_deg, t.tol_angle_deg))
     return tuple((n, u, float(a), float(g), float(tol), bool(abs(g - a) <= tol))
                  for n, u, a, g, tol in rows)
-
-
-def _recentred(residual, x, centre, tol_mm: float, lo, hi, *, rounds: int = 2) -> None:
-    """Evaluate ``x`` and move its ease-off centre (``x[0:2]``, pinion u, v offsets) by
-    the bearing centre's miss, at most ``rounds`` times (the vertex follows the relief
-    centre about one to one), until the centre is within ``tol_mm``; every evaluation
-    enters the search's ranking through ``residual``."""
-    x = np.array(x, float)
-    for _ in range(rounds + 1):
-        r = residual(x)
-        if r[0] >= 1e3:                     # no interior contact at this start
-            return
-        miss = np.array([r[0], r[1]]) * tol_mm
-        if np.all(np.abs(miss) <= tol_mm):
-            return
-        x[0:2] = np.clip(x[0:2] - miss, lo[0:2], hi[0:2])
-
-
-def _polish(residual, x, lo, hi, targets: SynthesisTargets, *, rounds: int = 8,
-            within: float = 1.0) -> None:
-    """Decoupled fixed-point rounds from the best point when the least squares stalls
-    short of the targets (the residuals carry the TCA's discretization noise, which
-    misleads its finite-difference Jacobian: F2 spiral bevel coast stopped with the
-    pattern 7 % long). Each round scales the lengthwise crowning by the TE0 miss (the
-    parabolic TE level is proportional to it, Litvin & Fuentes 2004 sec. 21.8) and the
-    profile crowning by the pattern-length miss to the power -2 (the paint ellipse
-    half-length goes as the inverse square root of the relative curvature across the
-    path at a fixed paint thickness), exponents refined by secant from the rounds'
-    own results, and re-centres the ease-off (:func:`_recentred`). Stops when the
-    centre, TE0 and length residuals are all within ``within`` tolerances."""
-    x = np.array(x, float)
-    expo = {2: -2.0, 3: 1.0}                # d log(coefficient) / d log(miss)
-    prev = None
-    for _ in range(rounds):
-        r = residual(x)
-        if r[0] >= 1e3:
-            return
-        miss = {2: 1.0 + r[3] * targets.tol_length_rel, 3: 1.0 + r[2] * targets.tol_te0_rel}
-        if np.max(np.abs(r[0:4])) <= within:
-            return
-        if prev is not None:                # secant on log-log, kept to a sane range
-            for i in (2, 3):
-                dm = np.log(miss[i]) - np.log(prev[1][i])
-                dx = np.log(x[i]) - np.log(prev[0][i])
-                if abs(dm) > 1e-3 and abs(dx) > 1e-6:
-                    expo[i] = float(np.clip(dx / dm, 4.0 * expo[i], 0.25 * expo[i])
-                                    if expo[i] < 0 else
-                                    np.clip(dx / dm, 0.25 * expo[i], 4.0 * expo[i]))
-        prev = (x.copy(), miss)
-        for i in (2, 3):                    # log x moves by expo * (0 - log miss)
-            x[i] = x[i] * miss[i] ** (-expo[i])
-        x[0:2] -= np.array([r[0], r[1]]) * targets.tol_centre_mm
-        x = np.clip(x, lo, hi)
 
 
 def _angle_diff(a: float, b: float) -> float:
@@ -319,6 +296,9 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         flanks = build_flanks(pair)
     conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
     u_m, v_m = (float(x) for x in flanks.mean_contact[side]["pinion_uv"])
+    # the relief at the centre is a rigid turn, so that the TE0 vertex stays there
+    # (design_point.centred_coefficients)
+    turn = turn_relief(conj, (u_m, v_m))
     b = conj.boundary
     centre = (b.u_root + targets.centre_profile * (b.u_tip - b.u_root),
               b.v_toe + targets.centre_face * (b.v_heel - b.v_toe))
@@ -352,7 +332,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     def model(tca: dict):
         """Residual function of the TCA options ``tca`` and its record: the best point
         so far ``(cost, x, (coeffs, point))`` and the number of runs."""
-        state = {"n": 0, "best": (np.inf, None, None), "r": None, "seen": {}}
+        state = {"n": 0, "best": (np.inf, None, None), "r": None, "seen": {}, "points": {}}
 
         def residual(x):
             key = tuple(float(c) for c in x)
@@ -362,7 +342,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
                 raise _BudgetSpent
             state["n"] += 1
             runs["n"] += 1
-            coeffs = centred_coefficients(*x)
+            coeffs = centred_coefficients(*x, turn=turn)
             try:
                 dp = eased_design_point(coeffs, conj, gear, pair, starts, mean_uv=(u_m, v_m),
                                         limit_um=limit, torque_nm=_REPORT_TORQUE_NM,
@@ -384,7 +364,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
             if cost < state["best"][0]:
                 state["best"] = (cost, np.array(x, float), (coeffs, dp))
                 state["r"] = r
-            state["seen"][key] = r
+            state["seen"][key], state["points"][key] = r, dp
             return r
 
         return residual, state
@@ -415,7 +395,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         """(With a path-angle target: its first-order design, refined.) Start grid,
         Levenberg-Marquardt passes, decoupled rounds (docs/synthesis.md)."""
         if with_bias:
-            _recentred(residual, x_mid, centre, targets.tol_centre_mm, lo, hi)
+            recentred(residual, x_mid, centre, targets.tol_centre_mm, lo, hi)
             if state["best"][1] is not None and refine(residual, state):
                 return
         # start grid over the two crownings (the objective has several basins: the path
@@ -426,23 +406,23 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
         # by the TE0 and pattern length it gives
         for pc in (4.0, 8.0, 16.0, 24.0, 32.0):
             for lc in (0.06, 0.15, 0.4):
-                _recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
+                recentred(residual, np.array([eta_c, xi_c, pc * k, lc * k, 0.0]), centre,
                            targets.tol_centre_mm, lo, hi)
         if state["best"][1] is None:
             return
         if not refine(residual, state):
-            _polish(residual, state["best"][1], lo, hi, targets)
+            polish(residual, state["best"][1], lo, hi, targets)
 
     def stages(residual, state) -> None:
         """Without a path-angle target, the decoupled rounds from the middle of the
         start grid, converged to a fraction of the tolerances (the full TCA's check must
-        meet them); then, if they miss, :func:`search`."""
+        meet them); then, if they miss and the targets are reachable, :func:`search`."""
         try:
             if not with_bias:
-                _polish(residual, x_mid, lo, hi, targets, rounds=12, within=_ROUND_TOL)
+                polish(residual, x_mid, lo, hi, targets, rounds=12, within=_ROUND_TOL)
                 # met with room for the full TCA's difference from the reduced one
-                if (state["r"] is not None
-                        and np.max(np.abs(state["r"][0:4])) <= 1.0 - _FAITHFUL_TOL):
+                if unreachable or (state["r"] is not None
+                                   and np.max(np.abs(state["r"][0:4])) <= 1.0 - _FAITHFUL_TOL):
                     return
             search(residual, state)
         except _BudgetSpent:
@@ -463,6 +443,31 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     reduced, on_reduced = model({"pairs": 1, "edge_contact": False})
     full, on_full = model({"pairs": 2, "edge_contact": True})
     faithful = agree(reduced(x_mid), full(x_mid))
+    # a zero-bias path whose surface contact lasts less than a pitch is turned to the
+    # path angle of the longest overlap (closed form), or the TE0 target is named
+    # unreachable, here at the first full TCA
+    first = on_full["points"].get(tuple(float(c) for c in x_mid))
+    short = None if with_bias else short_overlap(first, phases)
+    unreachable = ""
+    if short is not None:
+        reach = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
+        angle, ratio = overlap_path_angle(reach, flanks=flanks, side=side)
+        if ratio >= 1.0 + OVERLAP_MARGIN:
+            angle = float(np.clip(angle, -89.9, 90.0))
+            again = synthesize_easeoff(
+                pair, side=side, targets=dataclasses.replace(targets, path_angle_deg=angle),
+                flanks=flanks, phases=phases, max_evaluations=max_evaluations)
+            return dataclasses.replace(
+                again, evaluations=again.evaluations + runs["n"],
+                seconds=time.perf_counter() - t_start, path_choice=(
+                    f"{angle:.1f} deg on the {side} side: with the bias near zero (path "
+                    f"angle {first.path_angle_deg:.1f} deg) one pair's surface contact "
+                    f"lasts {short:.2f} of a pinion pitch, so TE0 would be set by the "
+                    "edge contact that passes it to the next pair; along "
+                    f"{angle:.1f} deg it lasts {ratio:.2f} pitches (first order, the "
+                    "longest of the reachable path angles; docs/synthesis.md)"))
+        unreachable = te0_unreachable(short, targets.te0_pp_arcsec, side=side,
+                                      best=(angle, ratio))
     if faithful:
         stages(reduced, on_reduced)
         faithful = on_reduced["best"][1] is not None
@@ -479,7 +484,7 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     _, _, (coeffs, dp) = on_full["best"]
     return Synthesis(side, coeffs, targets, dp, centre, length,
                      targets_rows(dp, targets, centre, length), runs["n"],
-                     time.perf_counter() - t_start)
+                     time.perf_counter() - t_start, unreachable)
 
 
 def easeoff_toml(synth: dict, *, pair_name: str) -> str:
@@ -498,6 +503,10 @@ def easeoff_toml(synth: dict, *, pair_name: str) -> str:
                    f"{s.point.paint_length_mm:.2f} mm, path angle {s.point.path_angle_deg:.1f} "
                    f"deg, max |E| {s.point.easeoff_max_um:.1f} um"
                    + ("" if s.met else " (NOT all targets met: see the table)"))
+        for what, text in (("path angle chosen", s.path_choice),
+                           ("not reachable", s.unreachable)):
+            if text:
+                out.append(f"# {what}: {text}")
         for k, v in dataclasses.asdict(s.coefficients).items():
             out.append(f"{k} = {float(v):.6g}")
         out.append("")
@@ -545,17 +554,23 @@ class PreparedPair:
     flanks : FlankSet or None
         ``build_flanks(pair)`` (bit for bit) if the synthesis built the flanks, so that
         a command does not build them again; None if nothing was synthesized.
+    checked : dict or None
+        :func:`~gearcontact.geometry.generation.check_generation`'s result for the pair,
+        if the command ran it (its gear flanks are reused by :meth:`flank_set`).
     """
 
     pair: GearPair
     side: str
     synthesis: Synthesis | None = None
     flanks: FlankSet | None = None
+    checked: dict | None = dataclasses.field(default=None, compare=False, repr=False)
 
     def flank_set(self) -> FlankSet:
         """The flanks of :attr:`pair`: those the synthesis built (its ease-off applied),
-        else ``build_flanks(pair)``, so that a command builds them once."""
-        return self.flanks if self.flanks is not None else build_flanks(self.pair)
+        else ``build_flanks(pair)`` (reusing :attr:`checked`), so that a command builds
+        them once."""
+        return (self.flanks if self.flanks is not None
+                else build_flanks(self.pair, checked=self.checked))
 
     @property
     def synthesized(self) -> bool:
@@ -586,12 +601,16 @@ class PreparedPair:
         return {} if self.synthesis is None else {"easeoff_synthesis_s": self.synthesis.seconds}
 
 
-def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
+def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
+                 ) -> PreparedPair:
     """The one pair preparation of every command that takes a pair: ``pair`` (a
     :class:`GearPair`, preset name or TOML path) with, if it has no ease-off table of
     ``side`` (default its design side), the ease-off of that side synthesized with the
     default :class:`SynthesisTargets` (deterministic: the same pair gives the same
-    coefficients in every command). The other side is left as given.
+    coefficients in every command). The other side is left as given. ``checked``:
+    :func:`~gearcontact.geometry.generation.check_generation`'s result for ``pair``, if
+    the command ran it: the flanks reuse its gear flanks (a generated gear's sheets are
+    built once, :func:`~gearcontact.geometry.flank.build_flanks`).
 
     Raises
     ------
@@ -606,10 +625,10 @@ def prepare_pair(pair, *, side: str | None = None) -> PreparedPair:
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
     if side in pair.easeoff_tables:
-        return PreparedPair(pair, side)
-    base = build_flanks(pair)
+        return PreparedPair(pair, side, checked=checked)
+    base = build_flanks(pair, checked=checked)
     new, done = synthesize_pair(pair, sides=(side,), flanks=base)
     new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
     # the conjugate flanks do not depend on the ease-off: only the ease-off is applied
     # again (geometry.flank.with_easeoff, the last step of build_flanks)
-    return PreparedPair(new, side, done[side], with_easeoff(base, new))
+    return PreparedPair(new, side, done[side], with_easeoff(base, new), checked=checked)
