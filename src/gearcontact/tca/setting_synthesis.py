@@ -70,7 +70,7 @@ from .edges import pattern_edges
 from .mesh import mesh_cycle
 from .mating import solve_mating_point
 from .solve import solve_tca
-from .synthesis import SynthesisTargets, TargetRows, _angle_diff, targets_rows
+from .synthesis_targets import SynthesisTargets, TargetRows, angle_diff, targets_rows
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["PARAMETER_NAMES", "MeanPointContact", "SettingSynthesis", "SynthesisProblem",
@@ -404,7 +404,7 @@ def synthesize_settings(pair, *, targets: SynthesisTargets = SynthesisTargets(),
                  (dp.paint_length_mm / length - 1.0) / targets.tol_length_rel]
             if angle is not None:
                 ang = dp.path_angle_deg if np.isfinite(dp.path_angle_deg) else angle + 90.0
-                r.append(_angle_diff(ang, angle) / targets.tol_angle_deg)
+                r.append(angle_diff(ang, angle) / targets.tol_angle_deg)
             r = np.asarray(r)
             if r @ r < runs["best"][0]:
                 runs["best"] = (float(r @ r), x.copy())
