@@ -49,12 +49,13 @@ def test_quasi_static_twin_is_the_loaded_te(bending, rpm, tmp_path, capsys):
     assert "ev_reducer_helical_23x67 twin table" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("extra, field", [([], "--backend"),
-                                          (["--backend", "golden"], "--backend"),
+@pytest.mark.parametrize("extra, field", [(["--backend", "soc"], "--backend"),
                                           (["--backend", "table", "--table-source",
                                             "preview"], "--table-source"),
-                                          (["--backend", "table", "--speed-sweep",
-                                            "1000:3000:1000"], "--speed-sweep")])
+                                          (["--curvatures", "exact"], "--curvatures"),
+                                          (["--bending"], "--bending"),
+                                          (["--bending", "--speed-sweep", "1000:3000:1000"],
+                                           "--bending")])
 def test_refused_before_work(extra, field, tmp_path, capsys):
     assert main(["twin", "--pair", EV, "--out", str(tmp_path / "o"), *extra]) == 2
     err = capsys.readouterr().err
@@ -63,7 +64,26 @@ def test_refused_before_work(extra, field, tmp_path, capsys):
 
 
 def test_readme_twin_cylindrical(tmp_path):
+    """The README line (default backend: the fp64 line chain, 61 phases, 3000 rpm, 50
+    ms): mean mesh torque the load torque (conservation, 0.1 %), every preview inside
+    the datapath's domain, quasi-static (mesh 1150 Hz far below the mesh mode)."""
     argv = readme_argv("gearcontact twin --pair examples/ev_reducer_helical", tmp_path / "run")
     assert main(argv) == 0
     doc = json.loads((tmp_path / "run" / "twin.json").read_text())
-    assert doc["backend"] == "table" and 1.0 < doc["dynamic_factor"] < 1.05
+    assert doc["backend"] == "reference" and doc["curvatures"] == "line"
+    assert doc["mean_mesh_torque_nm"] == pytest.approx(64.5, rel=1e-3)
+    assert doc["previews_outside_datapath"] == 0 and doc["previews_without_contact_law"] == 0
+    assert 1.0 < doc["dynamic_factor"] < 1.1
+
+
+def test_speed_sweep_beside_the_table_twin(tmp_path):
+    """``--speed-sweep`` on a cylindrical pair: the fp64 preview twin and the table twin
+    side by side (300 N·m, 5 phases, 3 speeds well below the mesh mode): both carry
+    the load, dynamic factors near 1."""
+    out = tmp_path / "sw"
+    assert main(["twin", "--pair", EV, "--torque", "300", "--phases", "5", "--speed-sweep",
+                 "2000:4000:1000", "--workers", "1", "--out", str(out), "--no-figures",
+                 "--quiet"]) == 0
+    doc = json.loads((out / "sweep.json").read_text())
+    for label in ("reference", "table"):
+        assert 1.0 <= doc[label]["max_dynamic_factor"] < 1.2
