@@ -1,9 +1,10 @@
-"""``gearcontact twin`` on a cylindrical pair (table backend): well below the mesh
+"""``gearcontact twin`` on a cylindrical pair. Table backend: well below the mesh
 mode (rigid teeth at 3000 rpm, tooth bending at 300 rpm: the test's docstring) the twin
 is quasi-static, so its dynamic TE is the loaded TE of ltca.cylindrical_lte at the same
-torque and phases (the table's own LCP) and its mean mesh torque the load torque; the
-preview backends and the options a cylindrical pair has no meaning for are refused
-before any work; the README line runs as written."""
+torque and phases (the table's own LCP) and its mean mesh torque the load torque. The
+preview backends (the line chain, default fp64): the README lines run as written
+(conservation; the speed sweep's peak at the mesh mode); the options a cylindrical pair
+has no meaning for are refused before any work."""
 
 import json
 from pathlib import Path
