@@ -79,11 +79,11 @@ def test_reverse_flank_has_its_own_hertzian_law(s0003_twin, s0003_coast):
     dy = np.zeros((1, K.N_STATE))
     th, th_r_k, t_mesh, w = K._deriv(y, prm, a["eps"], a["lever"], a["opening"], a["cv"],
                                      a["valid"], a["cb"], 0, np.full((2, n_p), 1e3),
-                                     np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"],
-                                     a["cst"], np.zeros((0, 9), np.int64),
+                                     np.full((2, n_p, K.N_CACHE), -1.0), a["pow_lut"],
+                                     a["cbrt_lut"], a["cst"], np.zeros((0, K.N_TRACE), np.int64),
                                      np.zeros(K.N_COUNT, np.int64), _fit_args(a, 0), a["tab_theta"], a["tab_t23"],
                                      a["tab_w23"], dy, 0, np.zeros((2, n_p)), np.zeros((2, 4)),
-                                     np.zeros(3))
+                                     np.zeros(K.N_PREVIEW))
     dy = dy[0]
     assert th_r_k == pytest.approx(th_r, rel=1e-6)
     assert th < 0.0                                   # the drive flanks are open

@@ -10,8 +10,10 @@ MPa, lengths in mm, pressures in MPa.
   of Hamrock & Brewe (1983), the one implementation in the package (docs/hertz.md
   sec. 3; docs/spec.md sec. 6, Algorithm 3);
 * :func:`circular_hertz` — the axisymmetric case ``A = B`` (docs/hertz.md sec. 4);
-* :func:`line_contact_hertz` — two-dimensional Hertz contact of a cylinder of length L
-  (a contact ellipse longer than the flank, truncated by it; docs/hertz.md sec. 6).
+* :func:`line_contact_hertz` / :func:`line_contact_terms` — two-dimensional Hertz
+  contact of a cylinder of length L (a contact ellipse longer than the flank, truncated
+  by it; docs/hertz.md sec. 6), and :func:`line_contact_approach_mm`, the approach of
+  that finite line on the two elastic half-spaces (docs/cylindrical.md sec. 10).
 
 References are listed in docs/hertz.md sec. 5.
 """
@@ -27,7 +29,8 @@ from scipy.special import elliprd, elliprf
 
 from ..validation import InputRangeError, check_array_finite, check_positive
 
-__all__ = ["HertzContact", "LineContactHertz", "line_contact_hertz", "exact_elliptic_hertz", "exact_ellipticity", "hamrock_brewe_hertz",
+__all__ = ["HertzContact", "LineContactHertz", "line_contact_hertz", "line_contact_terms",
+           "line_contact_approach_mm", "exact_elliptic_hertz", "exact_ellipticity", "hamrock_brewe_hertz",
            "hamrock_brewe_hertz_array", "hamrock_brewe_terms", "circular_hertz",
            "hamrock_brewe_error_table", "HB_ERROR_RATIOS"]
 
@@ -219,12 +222,44 @@ def line_contact_hertz(radius_mm: float, load_n: float, length_mm: float, *,
     r = check_positive("radius_mm", radius_mm)
     w = check_positive("load_n", load_n)
     length = check_positive("length_mm", length_mm)
-    e_star = 0.5 * check_positive("e_prime_mpa", e_prime_mpa)
-    q = w / length
-    return LineContactHertz(p_max_mpa=math.sqrt(q * e_star / (math.pi * r)),
-                            b_mm=math.sqrt(4.0 * q * r / (math.pi * e_star)),
-                            half_length_mm=0.5 * length, load_per_length_n_per_mm=q,
-                            radius_mm=r, load_n=w)
+    p0, b = line_contact_terms(0.5 / r, w, length, check_positive("e_prime_mpa", e_prime_mpa))
+    return LineContactHertz(p_max_mpa=p0, b_mm=b, half_length_mm=0.5 * length,
+                            load_per_length_n_per_mm=w / length, radius_mm=r, load_n=w)
+
+
+def line_contact_terms(b_max: float, load_n: float, length_mm: float, e_prime_mpa: float):
+    """Unchecked scalar kernel of :func:`line_contact_hertz` (pure ``math``; the twin
+    compiles it): ``(p0 MPa, b mm)`` of the load ``W`` (N) on a line of length ``L``
+    (mm) with the half relative curvature ``B_max = 1/(2R)`` (1/mm) across it::
+
+        p0 = sqrt(W E' B_max / (pi L)),   b = 2 W / (pi L p0)
+
+    The caller guarantees positive finite inputs."""
+    p0 = math.sqrt(load_n * e_prime_mpa * b_max / (math.pi * length_mm))
+    return p0, 2.0 * load_n / (math.pi * length_mm * p0)
+
+
+def line_contact_approach_mm(load_n: float, length_mm: float, b_mm: float,
+                             e_prime_mpa: float) -> float:
+    """Approach (mm) of a Hertz line contact of finite length on two elastic half-spaces
+    (unchecked, pure ``math``; the twin's line law compiles it)::
+
+        delta = 4 W / (pi E' L) (ln(4 L / b) - 3/4)
+
+    The load ``W`` (N) spread evenly along the line of length ``L`` (mm) with the
+    semi-elliptic pressure of half-width ``b`` (mm) across it (:func:`line_contact_terms`);
+    ``delta`` is the energy mean of the surface displacement, ``integral(p u dA) / W``:
+    the Boussinesq displacement ``u = 1/(pi E*) integral(p / r dA)`` (Johnson 1985,
+    eq. 3.20, E' = 2 E*) of the strip, with ``integral(dy / r) = 2 ln(L / |x|)`` along
+    a line far from its ends (``L >> b``) averaged over it (``2 ln(2 L / |x|) - 2``), and
+    the semicircle's logarithmic energy ``E[ln|x - x'|] = ln(b / 2) - 1/4`` across. Unlike
+    the point contact's ``kappa W^(2/3)`` it depends on the length: a 2-D line has no
+    finite approach (Johnson 1985, sec. 5.6), a finite one on the 3-D half-space has.
+    The rigid cylinder of length L, whose pressure rises towards its ends, approaches by
+    3.2-3.4 % more on the half-space LCP (tests/analytic/test_hertz.py). ``0 < b < 4 L
+    e^(-3/4)`` and positive finite inputs are the caller's guarantee."""
+    return (4.0 * load_n / (math.pi * e_prime_mpa * length_mm)
+            * (math.log(4.0 * length_mm / b_mm) - 0.75))
 
 
 # ----------------------------------------------------------------------------------

@@ -11,10 +11,13 @@ twin side by side, in parallel over the speeds: ``sweep.json``, ``sweep.csv``,
 ``sweep.png`` (:mod:`gearcontact.twin.sweep`). Drivetrain parameters: the ``[drivetrain]`` table
 of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.params`.
 
-A cylindrical pair (``kind = "cylindrical"``) runs the table backend (``--backend
-table``: the loaded TE of its mesh cycle over a torque ladder, rigid teeth or with
-``--bending``; :mod:`gearcontact.twin.cylindrical`, docs/cylindrical.md sec. 10); the
-preview backends and ``--speed-sweep`` are refused for it.
+A cylindrical pair (``kind = "cylindrical"``) runs the preview's line chain as the
+contact law (``--backend reference``, the default, ``golden`` or ``rtl``: the ChainLineCore
+replay) or its loaded-TE table (``--backend table``: the loaded TE of its mesh cycle over
+a torque ladder, rigid teeth or with ``--bending``), and ``--speed-sweep`` beside the
+table twin (:mod:`gearcontact.twin.cylindrical`, docs/cylindrical.md sec. 10); ``soc``,
+``--curvatures exact``, ``--table-source preview`` and ``--bending`` with a preview
+backend are refused for it.
 """
 
 from __future__ import annotations
@@ -23,7 +26,8 @@ import math
 import os
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
-from ..twin.cylindrical import CYLINDRICAL_BACKENDS, cylindrical_model
+from ..twin.cylindrical import (CYLINDRICAL_BACKENDS, cylindrical_model,
+                                cylindrical_sweep_models)
 from ..twin.params import check_drivetrain_file, load_drivetrain
 from ..twin.report import write_sweep_outputs, write_twin_outputs
 from ..twin.simulate import (BACKENDS, CURVATURE_SOURCES, MAX_SPEED_RPM, STEP_RANGE_US,
@@ -143,17 +147,20 @@ def check_cylindrical(args) -> None:
     """The options a cylindrical pair's twin takes (module docstring)."""
     if args.backend not in CYLINDRICAL_BACKENDS:
         raise InputRangeError("--backend", args.backend, f"one of {list(CYLINDRICAL_BACKENDS)}"
-                                                         " for a cylindrical pair (the "
-                                                         "twin's kernel has no line-contact "
-                                                         "law yet: docs/cylindrical.md "
-                                                         "sec. 10)")
+                                                         " for a cylindrical pair (the SoCs "
+                                                         "carry no line core: "
+                                                         "docs/cylindrical.md sec. 10)")
     if args.table_source != "lcp":
         raise InputRangeError("--table-source", args.table_source, "lcp for a cylindrical pair "
                                                                    "(its loaded TE is the LCP's)")
-    if args.speed_sweep:
-        raise InputRangeError("--speed-sweep", args.speed_sweep, "not given for a cylindrical "
-                                                                 "pair (docs/cylindrical.md "
-                                                                 "sec. 10)")
+    if args.curvatures != "stencil":
+        raise InputRangeError("--curvatures", args.curvatures, "stencil for a cylindrical pair "
+                                                               "(the line chain: stage C on "
+                                                               "the stencil per step)")
+    if args.bending and (args.backend != "table" or args.speed_sweep):
+        raise InputRangeError("--bending", True, "only with --backend table for a cylindrical "
+                                                 "pair (its preview backends run rigid teeth: "
+                                                 "docs/cylindrical.md sec. 10)")
 
 
 def run(args) -> int:
@@ -163,6 +170,10 @@ def run(args) -> int:
     if args.gear_pair.kind == CYLINDRICAL:
         pair = args.gear_pair
         drivetrain = load_drivetrain(args.drivetrain, pair)
+        if speeds is not None:
+            return _sweep(args, pair, drivetrain, speeds, cylindrical_sweep_models(
+                pair, torque_nm=args.torque, backend=args.backend, drivetrain=drivetrain,
+                side=args.side, phases=args.phases))
         model = cylindrical_model(pair, torque_nm=args.torque, backend=args.backend,
                                   drivetrain=drivetrain, side=args.side, phases=args.phases,
                                   bending=args.bending)
@@ -170,7 +181,8 @@ def run(args) -> int:
     pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
     drivetrain = load_drivetrain(args.drivetrain, pair)
     if speeds is not None:
-        return _sweep(args, pair, drivetrain, speeds)
+        return _sweep(args, pair, drivetrain, speeds, _bevel_sweep_models(args, pair,
+                                                                          drivetrain))
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, bending=args.bending,
@@ -207,7 +219,7 @@ def _simulate(args, pair, model, drivetrain, extra: dict) -> int:
     return 0
 
 
-def _sweep(args, pair, drivetrain, speeds) -> int:
+def _bevel_sweep_models(args, pair, drivetrain) -> dict:
     table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
                                  drivetrain=drivetrain, side=args.side, phases=args.phases,
                                  table_source=args.table_source, bending=args.bending,
@@ -215,8 +227,12 @@ def _sweep(args, pair, drivetrain, speeds) -> int:
     preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
                           reverse=table_model.reverse, reverse_note=table_model.reverse_note,
                           curvatures=args.curvatures)
-    sw = speed_sweep({args.backend: preview, "table": table_model}, speeds,
-                     step_s=1e-6 * args.step_us, workers=args.workers, progress=not args.quiet)
+    return {args.backend: preview, "table": table_model}
+
+
+def _sweep(args, pair, drivetrain, speeds, models: dict) -> int:
+    sw = speed_sweep(models, speeds, step_s=1e-6 * args.step_us, workers=args.workers,
+                     progress=not args.quiet)
     run_timings(args, **{f"{label}_mean_real_time_factor": float(rows["real_time_factor"].mean())
                          for label, rows in sw.rows.items()})
     s = write_sweep_outputs(sw, args.out, figures=not args.no_figures,

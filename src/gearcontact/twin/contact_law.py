@@ -113,14 +113,20 @@ def _kappa_golden(a_code, b_code, fit_flags, w, prm, pow_lut, cbrt_lut, cst, tra
     if flags != 0 or a_c == 0 or k_c == 0:
         return -1.0
     a = a_c / _S20
-    k = k_c / _S20
     wq = w_code / 256.0
-    f = 0.5 * math.pi + _HB_E * (0.5 * math.pi) * math.log(k)
-    delta = 3.0 * wq * f / (math.pi * a * prm[P_ECODE])
     out3[0] = a
     out3[1] = b_c / _S20
     out3[2] = p_c / 256.0
-    return delta / wq ** (2.0 / 3.0)
+    return hertz_kappa(a, k_c / _S20, wq, prm[P_ECODE])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def hertz_kappa(a, k, w, e_prime):
+    """kappa (mm/N^(2/3)) of a preview's semi-axis ``a`` (mm) and ellipticity ``k`` at
+    the load ``w`` (N): Hamrock-Brewe's approach ``3 W F / (pi a E')``, ``F = pi/2 +
+    (pi/2 - 1) ln alpha``, ``alpha = k^(pi/2)`` (module docstring), over ``w^(2/3)``."""
+    f = 0.5 * math.pi + _HB_E * (0.5 * math.pi) * math.log(k)
+    return 3.0 * w * f / (math.pi * a * e_prime) / w ** (2.0 / 3.0)
 
 
 @njit(cache=True, inline="always", error_model="numpy")

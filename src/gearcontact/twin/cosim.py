@@ -30,17 +30,20 @@ import time
 import numpy as np
 
 from ..preview.stimulus import Stimulus
+from .layout import N_TRACE
 from ..validation import UnusableInput
 
 __all__ = ["replay_on_rtl", "replay_on_soc", "TRACE_COLUMNS"]
 
-#: Columns of the golden preview trace.
+#: Columns of the golden preview trace (the line chain's runs fill the last two; A, B
+#: are then the line core's sorted A_min, B_max, :mod:`.line_law`).
 TRACE_COLUMNS = ("step", "A_code", "B_code", "W_code", "flags", "a_code", "b_code",
-                 "p_max_code", "k_code")
+                 "p_max_code", "k_code", "L_code", "mode")
+assert len(TRACE_COLUMNS) == N_TRACE
 
 
 def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None = None,
-                  stencils: np.ndarray | None = None) -> dict:
+                  stencils: np.ndarray | None = None, line: bool = False) -> dict:
     """Run the traced previews on the RTL and compare every output code.
 
     Parameters
@@ -55,6 +58,10 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
     stencils : ndarray (N, 49) of int64, optional
         The gap codes of each preview (stage C per step): replayed on the C -> D chain
         core instead of stage D alone.
+    line : bool
+        The previews are the line chain's (a cylindrical pair, :mod:`.line_law`; with
+        ``stencils``): replayed on the ChainLineCore with their ``L`` codes, the line
+        core's A_min, B_max and mode compared too.
 
     Returns
     -------
@@ -69,7 +76,9 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
 
     sim = simulator or default_simulator()
     n = int(trace.shape[0])
-    core = "hertz" if stencils is None else "chain"
+    if line and stencils is None:
+        raise ValueError("replay_on_rtl: the line chain replays stencils")
+    core = "hertz" if stencils is None else ("chain_line" if line else "chain")
     out = {"rtl_previews": n, "rtl_core": core, "rtl_mismatches": 0,
            "rtl_first_mismatch_step": None, "rtl_simulator": sim, "rtl_seconds": 0.0,
            "rtl_previews_per_s": 0.0}
@@ -80,6 +89,8 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
         fields = {"A": trace[:, 1], "B": trace[:, 2], "W": trace[:, 3], "e_prime": e}
     else:
         fields = {"gaps": stencils, "W": trace[:, 3], "e_prime": e}
+    if line:
+        fields["L"] = trace[:, 9]
     st = Stimulus(core, {k: np.asarray(v, np.int64) for k, v in fields.items()},
                   ("twin",) * n, 0)
     t0 = time.perf_counter()
@@ -87,7 +98,10 @@ def replay_on_rtl(trace: np.ndarray, e_prime_code: int, *, simulator: str | None
     secs = time.perf_counter() - t0
     port = {f: p for p, f in OUTPUT_PORTS.items()}
     got = np.column_stack([np.asarray(outs[port[f]], np.int64) for f in _FIELDS])
-    if stencils is not None:        # the fit core's latched A- >= B-: stage D's B, A
+    if line:        # the line core's sorted inputs and its mode
+        got = np.column_stack([got] + [np.asarray(outs[p], np.int64)
+                                       for p in ("A_min", "B_max", "mode")])
+    elif stencils is not None:        # the fit core's latched A- >= B-: stage D's B, A
         got = np.column_stack([got, np.asarray(outs["b_minus"], np.int64),
                                np.asarray(outs["a_minus"], np.int64)])
     return _compare(trace, got, out, "rtl", secs)
@@ -98,9 +112,12 @@ _FIELDS = ("flags", "a_code", "b_code", "p_max_code", "k_code")
 
 
 def _compare(trace, got, out: dict, prefix: str, secs: float) -> dict:
-    """Rows of ``got`` (flags, a, b, p_max, k[, stage D's A, B]) against the trace."""
-    want = trace[:, 4:9] if got.shape[1] == 5 else np.column_stack([trace[:, 4:9],
-                                                                    trace[:, 1:3]])
+    """Rows of ``got`` (flags, a, b, p_max, k[, stage D's A, B[, mode]]) against the
+    trace."""
+    want = trace[:, 4:9]
+    if got.shape[1] > 5:
+        want = np.column_stack([want, trace[:, 1:3]] + ([trace[:, 10]] if got.shape[1] == 8
+                                                        else []))
     bad = np.any(got != want, axis=1)
     n = int(trace.shape[0])
     out.update({f"{prefix}_mismatches": int(bad.sum()), f"{prefix}_seconds": secs,

@@ -9,13 +9,23 @@ motion. The motion sign ``m`` is the sign of ``d g / d phi2`` (the gear lags by
 ``theta`` under load, so ``TE = TE0_env - m theta`` as the loaded TE of
 :func:`gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` gives it).
 
-Contact law: the ``table`` backend, the loaded TE (LCP; rigid teeth, or with tooth
-bending as the twin's ``bending`` option) over the phase at a torque ladder (:func:`cylindrical_torque_table`, the conventional twin's input). The
-preview backends (``reference``, ``golden``, ``rtl``, ``soc``) are refused for a
-cylindrical pair: the twin's compiled law is the Hertzian point contact
-``d = kappa W^(2/3)``, while the preview on these flanks answers in line mode (section
-8), whose approach has no such closed form (it depends on the bodies, Johnson 1985 sec.
-5.6); a line law in the kernel is the next slice.
+Contact law, per backend (``--backend``, as the bevel twin's):
+
+* ``reference`` (fp64), ``golden`` (the bit-exact fixed point) and ``rtl`` (the golden
+  run replayed on the ChainLineCore, :func:`.cosim.replay_on_rtl`): the preview's *line
+  chain* per loaded pair and step (stage C on the pair's 7 x 7 stencil into the line
+  core with the pair's contact-line length, docs/cylindrical.md sec. 8), whose answer
+  gives the pair's law -- Hertz ``d = kappa W^(2/3)`` where the ellipse fits, the
+  approach of the finite line contact on the half-spaces where the line core answers
+  in line mode (:mod:`.line_law`); the ``soc`` backend is refused (the SoCs carry no
+  line core);
+* ``table``: the loaded TE (LCP; rigid teeth, or with tooth bending as the twin's
+  ``bending`` option) over the phase at a torque ladder
+  (:func:`cylindrical_torque_table`, the conventional twin's input).
+
+Tooth bending (``bending``) is the table's alone: the preview backends run rigid teeth
+(the cylindrical tooth's per-pair compliance along its line is not tabulated), so
+``bending`` with them is refused.
 """
 
 from __future__ import annotations
@@ -31,16 +41,17 @@ from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
 from ..tca.types import ARCSEC_PER_RAD
 from ..errors import CheckFailed
 from ..validation import InputRangeError, check_positive
+from .layout import LINE_SOURCE
 from .ltca_table import DEFAULT_LADDER, TorqueTable
 from .mesh import MeshTable
-from .model import BACKENDS, TwinModel, build_model
+from .model import TwinModel, build_model
 from .params import DrivetrainParams, default_drivetrain
 
 __all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
-           "cylindrical_model", "motion_sign"]
+           "cylindrical_model", "cylindrical_sweep_models", "motion_sign"]
 
 #: The twin backends a cylindrical pair runs (module docstring).
-CYLINDRICAL_BACKENDS = ("table",)
+CYLINDRICAL_BACKENDS = ("reference", "golden", "rtl", "table")
 
 
 def motion_sign(pair: CylindricalPair, cycle: CylindricalMeshCycle) -> int:
@@ -73,7 +84,8 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
         e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
         phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
-        bending_mm_per_n=np.zeros(st.valid.shape), stencil_gaps_mm=st.gaps_mm[:, order])
+        bending_mm_per_n=np.zeros(st.valid.shape), stencil_gaps_mm=st.gaps_mm[:, order],
+        line_length_mm=np.where(st.valid, st.line_length_mm, 0.0)[:, order])
 
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
@@ -101,37 +113,66 @@ def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     return TorqueTable(lad * t, theta, load, "lcp")
 
 
-def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str = "table",
+def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str = "reference",
                       drivetrain: DrivetrainParams | None = None, side: str = "drive",
                       phases: int = 61, table_cells: int = 40,
                       bending: bool = False) -> TwinModel:
-    """Cycle, mesh table and loaded-TE table of ``pair``, then
-    :func:`~.model.build_model` (module docstring; the reverse flank is the loaded
-    law mirrored about the backlash). ``bending``: the loaded-TE table with the shell
-    bending of both teeth (rigid teeth by default, as the bevel twin's ``bending``).
+    """Cycle and mesh table of ``pair`` (and for the ``table`` backend the loaded-TE
+    table), then :func:`~.model.build_model` (module docstring; the reverse flank is the
+    loaded law mirrored about the backlash). The preview backends run the line chain
+    (curvature source :data:`~.layout.LINE_SOURCE`). ``bending``: the loaded-TE table
+    with the shell bending of both teeth (``table`` only; rigid teeth by default, as
+    the bevel twin's ``bending``).
 
     Raises
     ------
     InputRangeError
-        A backend other than :data:`CYLINDRICAL_BACKENDS` (before any work), a bad side.
+        A backend other than :data:`CYLINDRICAL_BACKENDS`, ``bending`` with a preview
+        backend (before any work), a bad side.
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in CYLINDRICAL_BACKENDS:
-        allowed = [b for b in BACKENDS if b in CYLINDRICAL_BACKENDS]
-        raise InputRangeError("backend", backend, f"one of {allowed} for a cylindrical pair "
-                                                  "(the twin's kernel has the Hertzian "
-                                                  "point law only; the preview answers "
-                                                  "these flanks in line mode: "
+        raise InputRangeError("backend", backend, f"one of {list(CYLINDRICAL_BACKENDS)} for a "
+                                                  "cylindrical pair (the SoCs carry no line "
+                                                  "core: docs/cylindrical.md sec. 10)")
+    if bending and backend != "table":
+        raise InputRangeError("bending", bending, "False with the preview backends of a "
+                                                  "cylindrical pair (tooth bending is in the "
+                                                  "table backend's loaded TE: "
                                                   "docs/cylindrical.md sec. 10)")
     facing = FACING_OF_SIDE.get(side)
     if facing is None:
         raise InputRangeError("side", side, "'drive' or 'coast'")
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
     mesh = cylindrical_mesh_table(pair, cycle, side=side)
-    table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,
-                                     bending=bending)
+    table = None
+    if backend == "table":
+        table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,
+                                         bending=bending)
     return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
-                       table=table, curvatures="exact",
+                       table=table, curvatures="exact" if table is not None else LINE_SOURCE,
                        reverse_note="loaded side's law mirrored about backlash_mm (the "
                                     "other facing's own table is not built for a "
                                     "cylindrical pair)")
+
+
+def cylindrical_sweep_models(pair: CylindricalPair, *, torque_nm: float, backend: str,
+                             drivetrain: DrivetrainParams | None = None, side: str = "drive",
+                             phases: int = 61, table_cells: int = 40) -> dict:
+    """The models of a speed sweep (:func:`.sweep.speed_sweep`): the preview twin of
+    ``backend`` (``reference`` or ``golden``) beside the table twin, on one cycle and
+    mesh table (rigid teeth: the preview backends have no bending).
+
+    Raises
+    ------
+    InputRangeError
+        Another backend (before any work); as :func:`cylindrical_model`.
+    """
+    if backend not in ("reference", "golden"):
+        raise InputRangeError("backend", backend, "reference or golden for a speed sweep "
+                                                  "(the table twin runs beside it)")
+    table = cylindrical_model(pair, torque_nm=torque_nm, backend="table", drivetrain=drivetrain,
+                              side=side, phases=phases, table_cells=table_cells)
+    preview = build_model(table.mesh, table.drivetrain, table.torque_nm, backend=backend,
+                          curvatures=LINE_SOURCE, reverse_note=table.reverse_note)
+    return {backend: preview, "table": table}

@@ -56,7 +56,9 @@ from numba import njit
 # the contact law's entry points and the layout, re-exported as the kernel's interface
 from .contact_law import (W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _kappa_reference,  # noqa: F401
                           _pair_load, _table_torque)
+from .line_law import MODE_LINE, _line_law, line_pair_load, line_potential_j
 from .layout import (  # noqa: F401
+                     LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE,
                      BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
                      P_AHI, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI, P_DPSIR, P_ECODE,
                      P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP, P_L0, P_MIRROR,
@@ -80,13 +82,13 @@ def _phase(psi, pitch, dpsi, nrow):
 @njit(cache=True, inline="always", error_model="numpy")
 def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend,
              w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23,
-             tab_w23, w_pairs, abp, out3):
+             tab_w23, w_pairs, abp, pv):
     """Elastic mesh torque T_el (N·m) and total normal load (N) of one flank's law at
     its rotation theta >= 0 and row interval (i, f) of table ``s`` (0 loaded side, 1
     reverse side); per-pair loads into ``w_pairs[sd]``, (a, b, p) of the most loaded
     pair into ``abp[sd, 0:3]`` (zeros when none), ``abp[sd, 3]`` flags a pair without
     a contact law; ``w_eval[sd]``, ``cache[sd]`` are the slot's preview loads and
-    cache, ``out3`` (3,) scratch. Plain indexing throughout (no array views in the
+    cache, ``pv`` (:data:`~.layout.N_PREVIEW`,) the preview's outputs (scratch). Plain indexing throughout (no array views in the
     loop compiled without the runtime's reference counting)."""
     n_p = lever.shape[1]
     t_el = 0.0
@@ -100,6 +102,7 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
     if backend == 2:
         return _table_torque(theta, i, f, tab_theta, tab_t23, tab_w23)
     w_max = 0.0
+    line = prm[P_STAGEC] == LINE_SOURCE_CODE
     for j in range(n_p):
         if not (valid[s, j, i] and valid[s, j, i + 1]):
             continue
@@ -110,30 +113,44 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             continue
         if cache[sd, j, 0] != i:    # one preview per pair and step (and per new interval)
             we = min(max(w_eval[sd, j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
-            kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
-                         tcount, fit, out3)
+            pv[3] = 0.0
+            pv[4] = 0.0
+            if line:
+                kap = _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
+                                trace, tcount, fit, pv)
+            else:
+                kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
+                             trace, tcount, fit, pv)
             cache[sd, j, 0] = i
             cache[sd, j, 1] = kap
-            cache[sd, j, 2] = out3[0]
-            cache[sd, j, 3] = out3[1]
-            cache[sd, j, 4] = out3[2]
+            cache[sd, j, 2] = pv[0]
+            cache[sd, j, 3] = pv[1]
+            cache[sd, j, 4] = pv[2]
             cache[sd, j, 5] = we
+            cache[sd, j, 7] = pv[3]
+            cache[sd, j, 8] = pv[4]
         kap = cache[sd, j, 1]
         if kap <= 0.0:      # no contact law (a saddle): counted by _kappa, reported
             abp[sd, 3] = 1.0
             continue
         we = cache[sd, j, 5]
         cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
-        w, s_new = _pair_load(d, kap, cb, cache[sd, j, 6])
-        if cb > 0.0:
-            cache[sd, j, 6] = s_new
+        in_line = cache[sd, j, 7] == MODE_LINE
+        if in_line:     # the line law (.line_law): kap is its lambda
+            w = line_pair_load(d, kap, cache[sd, j, 8], cb, cache[sd, j, 6])
+            cache[sd, j, 6] = w
+        else:
+            w, s_new = _pair_load(d, kap, cb, cache[sd, j, 6])
+            if cb > 0.0:
+                cache[sd, j, 6] = s_new
         w_pairs[sd, j] = w
         t_el += 1e-3 * w * lv
         w_tot += w
         if w > w_max:
             w_max = w
-            scale = (w / we) ** (1.0 / 3.0)     # Hertz similarity a, b, p ~ W^(1/3)
-            abp[sd, 0] = cache[sd, j, 2] * scale
+            # similarity: Hertz a, b, p ~ W^(1/3); line a = L/2, b, p ~ W^(1/2)
+            scale = (w / we) ** (0.5 if in_line else 1.0 / 3.0)
+            abp[sd, 0] = cache[sd, j, 2] * (1.0 if in_line else scale)
             abp[sd, 1] = cache[sd, j, 3] * scale
             abp[sd, 2] = cache[sd, j, 4] * scale
     return t_el, w_tot
@@ -142,7 +159,7 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
 @njit(cache=True, inline="always", error_model="numpy")
 def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, cv_t, valid, cb_t, backend,
            w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23,
-           tab_w23, w_pairs, abp, out3, ip, fp):
+           tab_w23, w_pairs, abp, pv, ip, fp):
     """(T N·m >= 0, T_el N·m, W N) of flank ``sd`` (0: loaded side, 1: reverse) at its
     rotation theta and rate theta_dot; 0 out of contact (``theta < 0``). The table
     backend and a mirrored reverse law use the loaded side's rows (ip, fp)."""
@@ -158,7 +175,7 @@ def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, cv_t, valid, cb_t, b
         i, f = ip, fp
     t_el, w_tot = _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t,
                            backend, w_eval, cache, pow_lut, cbrt_lut, cst, trace, tcount, fit,
-                           tab_theta, tab_t23, tab_w23, w_pairs, abp, out3)
+                           tab_theta, tab_t23, tab_w23, w_pairs, abp, pv)
     if t_el <= 0.0:
         return 0.0, 0.0, w_tot
     l0 = prm[P_L0]
@@ -169,7 +186,7 @@ def _flank(sd, theta, theta_dot, i, f, prm, lever, opening, cv_t, valid, cb_t, b
 @njit(cache=True, inline="always", error_model="numpy")
 def _deriv(y, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval, cache,
            pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23, dy, row, w_pairs,
-           abp, out3):
+           abp, pv):
     """dy/dt into dy[row]; returns (theta, theta_r, T_mesh N·m, total normal load N)."""
     u = prm[P_U]
     psi_p = y[1]
@@ -191,10 +208,10 @@ def _deriv(y, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval, cach
     theta_r_dot = y[6] - y[5] * (1.0 / u + der)
     t_p, el_p, w_p = _flank(0, theta, theta_dot, i, f, prm, lever, opening, cv_t,
                             valid, cb_t, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                            trace, tcount, fit, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
+                            trace, tcount, fit, tab_theta, tab_t23, tab_w23, w_pairs, abp, pv, i, f)
     t_r, el_r, w_r = _flank(1, theta_r, theta_r_dot, ir, fr, prm, lever, opening, cv_t,
                             valid, cb_t, backend, w_eval, cache, pow_lut, cbrt_lut, cst,
-                            trace, tcount, fit, tab_theta, tab_t23, tab_w23, w_pairs, abp, out3, i, f)
+                            trace, tcount, fit, tab_theta, tab_t23, tab_w23, w_pairs, abp, pv, i, f)
     t_mesh = t_p - t_r
     tw1 = prm[P_K1] * (y[0] - y[1]) + prm[P_C1] * (y[4] - y[5])
     tw2 = prm[P_K2] * (y[2] - y[3]) + prm[P_C2] * (y[6] - y[7])
@@ -228,8 +245,9 @@ def _pair_potential(w, d, cb):
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _mesh_potential(theta, theta_r, psi, prm, lever, opening, cb_t, w_pairs):
-    """Mesh potential of both flanks (J) at the loads in w_pairs."""
+def _mesh_potential(theta, theta_r, psi, prm, lever, opening, cb_t, w_pairs, cache):
+    """Mesh potential of both flanks (J) at the loads in w_pairs (each pair's law in
+    ``cache``: Hertz, or the line law's lambda in column 1 where column 7 says line)."""
     pitch = prm[P_PITCH]
     v = 0.0
     for sd in range(2):
@@ -248,7 +266,10 @@ def _mesh_potential(theta, theta_r, psi, prm, lever, opening, cb_t, w_pairs):
                 lv = lever[s, j, i] + f * (lever[s, j, i + 1] - lever[s, j, i])
                 g = opening[s, j, i] + f * (opening[s, j, i + 1] - opening[s, j, i])
                 cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
-                v += _pair_potential(w, lv * th - g, cb)
+                if cache[sd, j, 7] == MODE_LINE:
+                    v += line_potential_j(w, lv * th - g, cb, cache[sd, j, 1])
+                else:
+                    v += _pair_potential(w, lv * th - g, cb)
     return v
 
 
@@ -288,11 +309,13 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     pairs1 = np.zeros((2, n_p))
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
-    out3 = np.zeros(3)
-    cache = np.zeros((2, n_p, 7))     # preview per pair; column 6 the last W^(1/3)
+    pv = np.zeros(N_PREVIEW)
+    # preview per pair: interval, law, a, b, p, W_e, the last W^(1/3) (Hertz) or W
+    # (line), mode, the line law's beta (N_CACHE columns)
+    cache = np.zeros((2, n_p, N_CACHE))
     return _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend,
                 w_eval, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23,
-                rec, rec_start, record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache)
+                rec, rec_start, record_every, k, ys, pairs0, pairs1, abp0, abp1, pv, cache)
 
 
 # Without the runtime's reference counting: every array is owned by run_steps, and the
@@ -302,7 +325,7 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval,
          pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23, rec, rec_start,
-         record_every, k, ys, pairs0, pairs1, abp0, abp1, out3, cache):
+         record_every, k, ys, pairs0, pairs1, abp0, abp1, pv, cache):
     n_y = y.shape[0]
     n_p = lever.shape[1]
     rows = 0
@@ -325,10 +348,10 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend
                 theta, theta_r, t_mesh, w_tot = _deriv(
                     ys, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval,
                     cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23,
-                    k, st, pairs0, abp0, out3)
+                    k, st, pairs0, abp0, pv)
                 if n % record_every == 0:
                     _record(rec, rec_start + rows, t0 + n * h, theta, theta_r, t_mesh, w_tot,
-                            y, prm, lever, opening, cb_t, backend, pairs0, abp0)
+                            y, prm, lever, opening, cb_t, backend, pairs0, abp0, cache)
                     rows += 1
                 for sd in range(2):
                     for j in range(n_p):
@@ -337,7 +360,7 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend
             else:
                 _deriv(ys, prm, eps, lever, opening, cv_t, valid, cb_t, backend, w_eval,
                        cache, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23,
-                       tab_w23, k, st, pairs1, abp1, out3)
+                       tab_w23, k, st, pairs1, abp1, pv)
         for m in range(n_y):
             y[m] += h / 6.0 * (k[0, m] + 2.0 * k[1, m] + 2.0 * k[2, m] + k[3, m])
         if tcount[3] > outside:
@@ -347,7 +370,7 @@ def _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _record(rec, r, t, theta, theta_r, t_mesh, w_tot, y, prm, lever, opening, cb_t, backend,
-            w_pairs, abp):
+            w_pairs, abp, cache):
     """One row of :data:`RECORD_COLUMNS` (state at the start of a step)."""
     n_p = lever.shape[1]
     rec[r, R_T] = t
@@ -369,7 +392,7 @@ def _record(rec, r, t, theta, theta_r, t_mesh, w_tot, y, prm, lever, opening, cb
                           + prm[P_JG] * y[6] ** 2 + prm[P_JL] * y[7] ** 2)
     rec[r, R_PE] = 0.5 * (prm[P_K1] * (y[0] - y[1]) ** 2 + prm[P_K2] * (y[2] - y[3]) ** 2)
     rec[r, R_V] = _mesh_potential(theta, theta_r, y[1], prm, lever, opening, cb_t,
-                                  w_pairs) if backend != 2 else 0.0
+                                  w_pairs, cache) if backend != 2 else 0.0
     rec[r, R_D] = y[8]
     rec[r, R_WIN] = y[9]
     rec[r, R_WP] = y[5]

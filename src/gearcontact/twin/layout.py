@@ -21,6 +21,17 @@ N_COUNT = 6
 #: curvatures per row (``cv`` columns A-, B-), or stage C per step on the 7 x 7 stencil
 #: (fp64: ``cv`` the fitted c3, c4, c5 per row; golden: ``cv`` the 49 gap samples).
 CURVATURE_SOURCES = {"exact": 0, "stencil": 1}
+#: The line chain of a cylindrical pair (``prm[P_STAGEC]``): stage C per step on the 7 x 7
+#: stencil into the line core with the pair's contact-line length (``cv`` the fitted
+#: c3, c4, c5 and L; golden: the 49 gap samples before them; :mod:`.line_law`).
+LINE_SOURCE = "line"
+LINE_SOURCE_CODE = 2
+#: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta.
+N_PREVIEW = 5
+#: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
+N_CACHE = 9
+#: Columns of the golden preview trace (:data:`~.cosim.TRACE_COLUMNS`).
+N_TRACE = 11
 #: Length of the state vector y.
 N_STATE = 11
 # record columns

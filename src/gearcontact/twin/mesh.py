@@ -96,6 +96,9 @@ class MeshTable:
     stencil_gaps_mm : ndarray (P, K, 49)
         The stage-C stencil of each pair at each phase (zeros where not ``valid``), mm,
         in the order of :mod:`gearcontact.contract.stencil`.
+    line_length_mm : ndarray (P, K) or None
+        Length of each pair's contact line in the zone of action, mm (a cylindrical
+        pair's: the line core's ``L``, :mod:`.line_law`); None for point contact.
     """
 
     psi_rad: np.ndarray
@@ -117,6 +120,7 @@ class MeshTable:
     side: str = "drive"
     bending_mm_per_n: np.ndarray | None = None
     stencil_gaps_mm: np.ndarray | None = None
+    line_length_mm: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:

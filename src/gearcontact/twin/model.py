@@ -26,6 +26,8 @@ from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
 from ..validation import InputRangeError, check_positive
 from . import kernel as K
+from .layout import LINE_SOURCE
+from .line_law import line_law_constants
 from .mesh import MeshTable
 from .params import DrivetrainParams
 
@@ -104,8 +106,13 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
-    if curvatures not in CURVATURE_SOURCES:
+    if curvatures not in CURVATURE_SOURCES + (LINE_SOURCE,):
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
+    if curvatures == LINE_SOURCE and any(m is not None and m.line_length_mm is None
+                                         for m in (mesh, reverse)):
+        raise InputRangeError("curvatures", curvatures, "a mesh table with the pairs' "
+                                                        "contact-line lengths (a cylindrical "
+                                                        "pair's) for the line chain")
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
@@ -137,7 +144,7 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                        golden=backend not in ("reference", "table")),
               "pow_lut": pow_lut, "cbrt_lut": cbrt_lut, "cst": cst,
               "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2],
-              "fit_w": fit_w, "fit_cst": fit_cst}
+              "fit_w": fit_w, "fit_cst": fit_cst, "line_cst": line_law_constants()}
     return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note,
                      curvatures)
 
@@ -171,13 +178,16 @@ def _stack(mesh: MeshTable, rev: MeshTable, source: str, *, golden: bool) -> dic
 
 
 def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray:
-    """(P, K, C) curvature source of one table (:func:`_stack`)."""
+    """(P, K, C) curvature source of one table (:func:`_stack`); the line chain
+    (:data:`~.layout.LINE_SOURCE`) appends the contact-line length L, mm."""
     if source == "exact":
         return np.stack([mesh.A_minus_per_mm, mesh.B_minus_per_mm], axis=-1)
+    cols = [_fitted_coefficients(mesh)]
     if golden:      # the samples for the fit core, the fp64 fit for the fp64 fallback
-        return np.concatenate([np.asarray(mesh.stencil_gaps_mm, float),
-                               _fitted_coefficients(mesh)], axis=-1)
-    return _fitted_coefficients(mesh)
+        cols.insert(0, np.asarray(mesh.stencil_gaps_mm, float))
+    if source == LINE_SOURCE:
+        cols.append(np.asarray(mesh.line_length_mm, float)[..., None])
+    return np.concatenate(cols, axis=-1) if len(cols) > 1 else cols[0]
 
 
 def _fitted_coefficients(mesh: MeshTable) -> np.ndarray:
@@ -213,7 +223,7 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_PITCH] = m.pitch_rad
     prm[K.P_ECODE] = encode_e_prime(m.e_prime_mpa)
     prm[K.P_NROW] = len(m.psi_rad)
-    prm[K.P_STAGEC] = K.CURVATURE_SOURCES[model.curvature_source]
+    prm[K.P_STAGEC] = K.CURVATURE_SOURCES.get(model.curvature_source, K.LINE_SOURCE_CODE)
     prm[K.P_CLO], prm[K.P_CHI] = ENVELOPE["curvature_per_mm"]
     prm[K.P_AHI] = ENVELOPE["alpha"][1]
     return prm
@@ -222,9 +232,11 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
 
 def _fit_args(a: dict, trace_rows: int) -> tuple:
     """The kernel's ``fit`` tuple: the golden stage C's ROM and constants, its scratch,
-    and a stencil trace of ``trace_rows`` rows (:func:`.kernel.run_steps`)."""
+    a stencil trace of ``trace_rows`` rows (:func:`.kernel.run_steps`) and the line
+    core's constants (:mod:`.line_law`)."""
     return (a["fit_w"], a["fit_cst"], np.zeros((1, N_TAPS), np.int64),
-            np.zeros((1, N_COEFFS), np.int64), np.zeros((trace_rows, N_TAPS), np.int64))
+            np.zeros((1, N_COEFFS), np.int64), np.zeros((trace_rows, N_TAPS), np.int64),
+            a["line_cst"])
 
 
 

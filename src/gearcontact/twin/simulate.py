@@ -19,6 +19,7 @@ from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..errors import CheckFailed, RtlMismatch
 from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import kernel as K
+from .layout import LINE_SOURCE
 # the set-up and the static point, re-exported: the twin's one entry point
 from .model import (BACKENDS, CURVATURE_SOURCES, TwinModel, _fit_args,  # noqa: F401
                     _fitted_coefficients, _prm, build_model, model_for_pair)
@@ -169,9 +170,10 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     n_p = a["lever"].shape[1]
     # rtl: the golden loop records every preview for the lockstep replay (.cosim)
     lockstep = model.backend in ("rtl", "soc")
-    trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, 9), np.int64)
+    trace = np.zeros(((n_steps * (n_p + 2)) if lockstep else 0, K.N_TRACE), np.int64)
     tcount = np.zeros(K.N_COUNT, np.int64)
-    stencil = prm[K.P_STAGEC] == K.CURVATURE_SOURCES["stencil"]
+    line = model.curvature_source == LINE_SOURCE
+    stencil = line or prm[K.P_STAGEC] == K.CURVATURE_SOURCES["stencil"]
     fit = _fit_args(a, trace.shape[0] if stencil else 0)
     tail = (a["pow_lut"], a["cbrt_lut"], a["cst"], trace, tcount, fit, a["tab_theta"],
             a["tab_t23"], a["tab_w23"])
@@ -205,6 +207,8 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         kw = {"stencils": fit[4][:tcount[0]] if stencil else None}
         if be == "soc":
             kw["board"] = board
+        elif line:      # the line chain: its L codes and modes, on the ChainLineCore
+            kw["line"] = True
         replay = cosim.replay_on_rtl if be == "rtl" else cosim.replay_on_soc
         rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]), **kw)
         if rtl[f"{be}_mismatches"]:
@@ -253,11 +257,13 @@ def _domain_summary(model: TwinModel, tcount: np.ndarray) -> dict:
     a result of the run, never an abort."""
     if model.backend == "table":
         return {}
-    fit = ("the TCA's curvatures" if model.curvature_source == "exact"
-           else "stage C's fp64 fit of the stencil")
+    src = model.curvature_source
+    fit = "the TCA's curvatures" if src == "exact" else "stage C's fp64 fit of the stencil"
+    law = "the fp64 line chain (line contact or Hamrock-Brewe)" if src == LINE_SOURCE \
+        else "fp64 Hamrock-Brewe"
     return {"previews_outside_datapath": int(tcount[3]),
             "steps_outside_datapath": int(tcount[4]),
-            "outside_datapath_evaluated_by": f"fp64 Hamrock-Brewe on {fit}",
+            "outside_datapath_evaluated_by": f"{law} on {fit}",
             "previews_without_contact_law": int(tcount[5])}
 
 

@@ -18,8 +18,10 @@ import math
 
 import numpy as np
 
+from ..analytic.hertz import line_contact_approach_mm, line_contact_terms
 from ..validation import InputRangeError, check_range
 from . import kernel as K
+from .layout import LINE_SOURCE
 from .model import TwinModel, _fit_args, _prm
 
 __all__ = ["static_rotation", "linear_matrices", "linearized_modes", "mesh_damping_n_s_per_mm",
@@ -73,10 +75,10 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
     i = min(int(x), int(prm[K.P_NROW]) - 2)
     t, _ = K._elastic(theta, i, x - i, 0, 0, prm, a["lever"], a["opening"], a["cv"],
                       a["valid"], a["cb"], K.BACKEND_CODES[model.backend], w_ev,
-                      np.full((2, n_p, 7), -1.0), a["pow_lut"], a["cbrt_lut"], a["cst"],
-                      np.zeros((0, 9), np.int64), np.zeros(K.N_COUNT, np.int64), _fit_args(a, 0),
-                      a["tab_theta"], a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)),
-                      np.zeros(3))
+                      np.full((2, n_p, K.N_CACHE), -1.0), a["pow_lut"], a["cbrt_lut"],
+                      a["cst"], np.zeros((0, K.N_TRACE), np.int64),
+                      np.zeros(K.N_COUNT, np.int64), _fit_args(a, 0), a["tab_theta"],
+                      a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)), np.zeros(K.N_PREVIEW))
     return t, w[0]
 
 
@@ -91,7 +93,9 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     carries the torque under the fp64 Hertz law (an upper bound of the balance of
     :func:`~gearcontact.ltca.lte_phase.preview_balance`), doubled until it holds the root.
     The bracket is closed form (no iterative solver) so that the drivetrain FMU's C
-    (:mod:`gearcontact.export.fmu_drivetrain`) starts from the same bits.
+    (:mod:`gearcontact.export.fmu_drivetrain`) starts from the same bits. The line chain
+    (a cylindrical pair) takes the approach of the line contact of the pair's line
+    instead (:func:`~gearcontact.analytic.hertz.line_contact_approach_mm`).
     """
     m = model.mesh
     prm = _prm(model, 0.0)
@@ -99,9 +103,16 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     # the least open pair (first of equals, as the C port's strict <)
     j = int(ok[np.argmin(m.opening_mm[ok, 0] / m.lever_mm[ok, 0])])
     lv, g = float(m.lever_mm[j, 0]), float(m.opening_mm[j, 0])
-    kap = K._kappa_reference(float(m.A_minus_per_mm[j, 0]), float(m.B_minus_per_mm[j, 0]),
-                             1e3, prm, np.empty(3))
-    th1 = (g + kap * (1e3 * model.torque_nm / lv) ** (2.0 / 3.0)) / lv
+    w1 = 1e3 * model.torque_nm / lv
+    if model.curvature_source == LINE_SOURCE:
+        b_max = float(max(m.A_minus_per_mm[j, 0], m.B_minus_per_mm[j, 0]))
+        length = float(m.line_length_mm[j, 0])
+        _, b = line_contact_terms(b_max, w1, length, m.e_prime_mpa)
+        th1 = (g + line_contact_approach_mm(w1, length, b, m.e_prime_mpa)) / lv
+    else:
+        kap = K._kappa_reference(float(m.A_minus_per_mm[j, 0]),
+                                 float(m.B_minus_per_mm[j, 0]), 1e3, prm, np.empty(3))
+        th1 = (g + kap * w1 ** (2.0 / 3.0)) / lv
     target = model.torque_nm
     lo, hi = 0.0, 4.0 * th1
     while _elastic(model, prm, hi)[0] < target:

@@ -43,7 +43,8 @@ from ...contract.qformat import CURVATURE, LOAD
 from . import formats as F
 
 __all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
-           "check_envelope", "LINE_ENVELOPE", "TruncatedPreview", "truncated_preview"]
+           "check_envelope", "LINE_ENVELOPE", "TruncatedPreview", "truncated_preview",
+           "keeps_ellipse"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
 ENVELOPE = {
@@ -286,6 +287,14 @@ class TruncatedPreview:
     p_line_mpa: float
 
 
+def keeps_ellipse(a_mm: float, p_ellipse_mpa: float, p_line_mpa: float,
+                  length_mm: float) -> bool:
+    """The line core's SELECT on an evaluated ellipse (pure; the twin compiles it): the
+    ellipse when it fits the line (``a <= L/2``) or its peak is the higher of the two
+    lower bounds of the truncated ellipse's (:mod:`.line`), else the line contact."""
+    return a_mm <= 0.5 * length_mm or p_ellipse_mpa >= p_line_mpa
+
+
 def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: float, *,
                       e_prime_mpa: float, envelope: bool = True,
                       hertz_form: str = F.DEFAULT_HERTZ_FORM) -> TruncatedPreview:
@@ -342,7 +351,7 @@ def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: 
     if a_min > 0.0 and (not envelope or b_max <= _ALPHA_HI * a_min):
         ell = hertz_preview(a_min, b_max, w, e_prime_mpa=e, envelope=False,
                             hertz_form=hertz_form)
-        if ell.a_mm <= 0.5 * length or ell.p_max_mpa >= line.p_max_mpa:
+        if keeps_ellipse(ell.a_mm, ell.p_max_mpa, line.p_max_mpa, length):
             return TruncatedPreview("elliptic", ell.a_mm, ell.b_mm, ell.k, ell.p_max_mpa,
                                     ell.p_max_mpa, line.p_max_mpa)
         p_ellipse = ell.p_max_mpa

@@ -1,0 +1,211 @@
+"""The twin's contact law on a cylindrical pair: the preview's line chain per loaded pair
+and step (compiled with numba; called by :mod:`.kernel`; docs/cylindrical.md sec. 10).
+
+The flanks of a spur or helical pair touch along lines, which the preview answers with
+the *line chain* (:mod:`gearcontact.preview.chain`: stage C on the pair's 7 x 7 gap
+stencil into the line core of stage D with the length ``L`` of the pair's contact line,
+docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse fits the line, or its peak is
+the higher bound) or in ``line`` mode (the Hertz line contact of length ``L``). One
+preview per loaded pair and step, at the phase of the step's start and the pair's load
+``W_e`` of the previous step (as :mod:`.contact_law`), gives the law held over the
+step's four stages, ``d = d_c(W) + c_b W`` (``c_b`` the tooth-bending compliance, 0 for
+rigid teeth):
+
+* ``elliptic``: Hertz ``d_c = kappa W^(2/3)``, ``kappa`` from the preview's ``a`` and
+  ``k`` by Hamrock-Brewe's approach (:func:`.contact_law.hertz_kappa`);
+* ``line``: the approach of the finite line on the two half-spaces
+  (:func:`gearcontact.analytic.hertz.line_contact_approach_mm`), ``d_c = lambda W (beta -
+  ln(W)/2)`` with ``lambda = 4 / (pi E' L)`` and ``beta = ln(4 L / b_e) - 3/4 +
+  ln(W_e)/2``: the preview's half-width ``b_e`` at ``W_e`` carried to ``W`` by the line
+  contact's similarity ``b ~ W^(1/2)`` at fixed ``L`` (``L = 2 a``, the preview's
+  half-length). Solved per pair and stage by Newton on ``W`` (:func:`line_pair_load`).
+
+Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
+
+* ``reference`` (0): the fp64 line chain -- stage C's fit interpolated between the
+  rows (it is linear in the samples), its principal curvatures, the fit's resolution
+  rule for ``B- ~ 0`` (:func:`gearcontact.preview.chain.line_b_minus`), the line
+  contact (:func:`gearcontact.analytic.hertz.line_contact_terms`), Hamrock-Brewe's
+  ellipse where the datapath evaluates one (ratio within its POW table) and the line
+  core's SELECT (:func:`gearcontact.preview.hertz.reference.keeps_ellipse`);
+* ``golden`` (1): the stencil samples interpolated and quantized (GAP Q(32,16)), the
+  bit-exact fit core (:func:`gearcontact.preview.fit.golden_vec.fit_element`), the fit's
+  B- rule on its code, the bit-exact line core (:func:`gearcontact.preview.hertz.
+  line_vec.line_element`) at ``W_e`` in LOAD Q(32,8) and ``L`` in Q(32,20); each run
+  is traced with its ``L`` code and mode for the ``rtl`` replay on the ChainLineCore
+  (:func:`.cosim.replay_on_rtl`, ``line=True``).
+
+A preview outside the datapath's domain (``B_max`` or ``L`` outside the line core's
+envelope; golden: flagged by the chain) is counted and evaluated by the fp64 line chain,
+as :mod:`.contact_law` does; a saddle (B- below the fit's resolution) has no law (the
+pair carries nothing, counted).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..analytic.hertz import line_contact_terms
+from ..contract.qformat import CURVATURE
+from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
+from ..preview.fit.golden_vec import fit_element
+from ..preview.hertz.line_vec import line_constants, line_element
+from ..preview.hertz.reference import LINE_ENVELOPE, keeps_ellipse
+from .contact_law import _hb, _principal, _row, hertz_kappa
+from .layout import P_AHI, P_CHI, P_CLO, P_ECODE, P_EP
+
+__all__ = ["line_pair_load", "line_law_constants", "MODE_LINE"]
+
+#: ``pv[3]`` of a preview answered in line mode (:func:`_line_law`).
+MODE_LINE = 1.0
+_line_terms = njit(cache=True, inline="always")(line_contact_terms)
+_keeps = njit(cache=True, inline="always")(keeps_ellipse)
+_B_ZERO = LINE_B_ZERO_CODES * CURVATURE.lsb        # 1/mm: the fit's resolution of B-
+_L_LO, _L_HI = LINE_ENVELOPE["line_length_mm"]
+_S16 = 65536.0
+_S20 = 1048576.0
+
+
+def line_law_constants() -> np.ndarray:
+    """The line core's constants (:func:`~gearcontact.preview.hertz.line_vec.
+    line_constants`), element 5 of the kernel's ``fit`` tuple."""
+    return line_constants()
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _line_coefficient(a, b, w, e_prime, pv):
+    """The line mode's ``lambda`` (mm/N) and, into ``pv[4]``, ``beta`` from the
+    preview's half-length ``a = L/2`` and half-width ``b`` (mm) at the load ``w`` (N)
+    (module docstring): ``d_c(w) = lambda w (beta - ln(w)/2)`` is the approach of
+    :func:`~gearcontact.analytic.hertz.line_contact_approach_mm` at ``w`` exactly."""
+    length = 2.0 * a
+    pv[4] = math.log(4.0 * length / b) - 0.75 + 0.5 * math.log(w)
+    return 4.0 / (math.pi * e_prime * length)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _line_fp64(A, B, length, we, prm, tcount, pv, flagged):
+    """The fp64 line chain on the fitted principal curvatures (any order) and ``L``:
+    the law's coefficient (``kappa`` elliptic, ``lambda`` line; -1 without a law, a
+    saddle, counted in ``tcount[5]``), ``pv = (a, b, p_max, mode, beta)`` at ``we``.
+    Counts the preview in ``tcount[3]`` outside the line core's domain (``flagged``:
+    the golden chain said so)."""
+    lo, hi = min(A, B), max(A, B)
+    if -_B_ZERO <= lo < 0.0:        # within the fit's resolution: a line (chain rule)
+        lo = 0.0
+    if flagged or not (prm[P_CLO] <= hi <= prm[P_CHI] and _L_LO <= length <= _L_HI):
+        tcount[3] += 1
+    if lo < 0.0 or hi <= 0.0 or length <= 0.0:
+        tcount[5] += 1
+        return -1.0
+    ep = prm[P_EP]
+    p_l, b_l = _line_terms(hi, we, length, ep)
+    if lo > 0.0 and hi <= prm[P_AHI] * lo:
+        a, b, k, p, delta, alpha, e_e, f, r = _hb(lo, hi, we, ep)
+        if _keeps(a, p, p_l, length):
+            pv[0], pv[1], pv[2], pv[3], pv[4] = a, b, p, 0.0, 0.0
+            return delta / we ** (2.0 / 3.0)
+    pv[0], pv[1], pv[2], pv[3] = 0.5 * length, b_l, p_l, MODE_LINE
+    return _line_coefficient(0.5 * length, b_l, we, ep, pv)
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut, cst,
+                 length, pv):
+    """The golden line chain on pair j's interpolated stencil (module docstring): the
+    law's coefficient and ``pv`` as :func:`_line_fp64`, -1 when the chain flags (the
+    caller then evaluates the fp64 chain). Traces the run: ``[step, A_min, B_max, W,
+    flags, a, b, p_max, k, L, mode]`` codes (:data:`.cosim.TRACE_COLUMNS`), the 49 gap
+    codes into the stencil trace."""
+    g = fit[2]
+    for q in range(g.shape[1]):
+        g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
+    am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
+    ff = 1 if ff < 0 else ff & LINE_CHAIN_FIT_FLAGS     # a GAP overflow as a coefficient one
+    if -LINE_B_ZERO_CODES <= bm < 0:
+        bm = np.int64(0)
+    a_min, b_max = min(am, bm), max(am, bm)
+    w_code = np.int64(math.floor(we * 256.0 + 0.5))
+    l_code = np.int64(math.floor(length * _S20 + 0.5))
+    flags, a_c, b_c, p_c, k_c, mode, scale = line_element(
+        a_min, b_max, w_code, l_code, np.int64(prm[P_ECODE]), pow_lut, cbrt_lut, cst, fit[5])
+    flags |= ff << 8
+    t = tcount[0]
+    if t < trace.shape[0]:
+        row = (tcount[1], a_min, b_max, w_code, flags, a_c, b_c, p_c, k_c, l_code, mode)
+        for q in range(11):
+            trace[t, q] = row[q]
+        tg = fit[4]
+        if t < tg.shape[0]:
+            for q in range(tg.shape[1]):
+                tg[t, q] = g[0, q]
+        tcount[0] = t + 1
+    if flags != 0 or a_c == 0 or b_c == 0:
+        return -1.0
+    wq = w_code / 256.0
+    pv[0], pv[1], pv[2] = a_c / _S20, b_c / _S20, p_c / 256.0
+    if mode == 0:
+        pv[3], pv[4] = 0.0, 0.0
+        return hertz_kappa(pv[0], k_c / _S20, wq, prm[P_ECODE])
+    pv[3] = MODE_LINE
+    return _line_coefficient(pv[0], pv[1], wq, prm[P_ECODE], pv)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tcount,
+              fit, pv):
+    """The law of pair j of table s at row interval (i, f) and evaluation load ``we``
+    (module docstring): returns ``kappa`` (elliptic, ``pv[3] = 0``) or ``lambda`` (line,
+    ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a law; ``pv[0:3]`` the
+    preview's a, b (mm), p_max (MPa) at ``we``. ``cv_t`` columns: (golden) the 49 gap
+    samples, then stage C's fp64 c3, c4, c5, then ``L`` (mm)."""
+    n_c = cv_t.shape[3]
+    length = _row(cv_t, s, j, i, f, n_c - 1)
+    golden = backend != 0
+    if golden:
+        lam = _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut,
+                           cst, length, pv)
+        if lam > 0.0:
+            return lam
+    # stage C is linear in the samples: the interpolated rows' fits (contact_law._kappa)
+    c0 = n_c - 4
+    A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
+                         _row(cv_t, s, j, i, f, c0 + 2))
+    return _line_fp64(A, B, length, we, prm, tcount, pv, golden)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def line_pair_load(d, lam, beta, cb, w_prev):
+    """Load W (N) of a pair in line mode at approach ``d`` (mm): the root of ``f(W) =
+    lam W (beta - ln(W)/2) + cb W - d``. ``f`` is concave (``f'' = -lam / (2 W)``) and
+    increasing while ``beta - 1/2 - ln(W)/2 > 0``, i.e. while the half-width stays below
+    ``4 L e^(-5/4) ~ 1.15 L`` (always, on a gear's contact line). So Newton from any
+    start there lands left of the root after at most one step (the tangent lies above
+    ``f``) and then rises monotonically to it; the start is the pair's previous load
+    ``w_prev`` (> 0), else the load of the law's secant at 1 N. Stops at a relative step of
+    1e-14."""
+    w = w_prev if w_prev > 0.0 else d / (lam * max(beta, 1.0) + cb)
+    for _ in range(60):
+        lw = math.log(w)
+        r = lam * w * (beta - 0.5 * lw) + cb * w - d
+        slope = lam * (beta - 0.5 - 0.5 * lw) + cb
+        if slope <= 0.0:            # beyond the law's range (never in a gear): halve
+            w *= 0.5
+            continue
+        dw = r / slope
+        w_new = w - dw
+        w = w_new if w_new > 0.0 else 0.5 * w
+        if abs(dw) <= 1e-14 * w:
+            break
+    return w
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def line_potential_j(w, d, cb, lam):
+    """Mesh potential (J) of a pair in line mode at load ``w`` (N) and approach ``d``
+    (mm): ``integral(W dd) = W d_c / 2 - lam W^2 / 8 + cb W^2 / 2`` with ``d_c = d - cb
+    W`` the contact's share (the line law integrated by parts)."""
+    return 1e-3 * (0.5 * w * (d - cb * w) - 0.125 * lam * w * w + 0.5 * cb * w * w)

@@ -1,0 +1,140 @@
+"""The cylindrical twin's preview backends (twin.line_law, twin.cylindrical) against
+independent truths:
+
+* the law: the line mode's ``lambda W (beta - ln(W)/2)`` is the closed-form approach of
+  the finite line contact (analytic.hertz.line_contact_approach_mm, itself checked
+  against the half-space LCP in tests/analytic/test_hertz.py) at every load, its Newton
+  inverts it, its potential's derivative is the load;
+* the unmodified spur pair's static rotation (the preview's law) against the rigid
+  loaded TE of ltca.cylindrical_lte (the half-space LCP of the same lines, an
+  independent solver);
+* golden against fp64 within the fixed-point resolution of the line chain;
+* RTL (ChainLineCore) == golden bit for bit on every preview of a short run.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcontact.analytic.hertz import line_contact_approach_mm
+from gearcontact.contract.qformat import CURVATURE
+from gearcontact.geometry.pair import load_pair
+from gearcontact.ltca.cylindrical_lte import cylindrical_loaded_te
+from gearcontact.preview.chain import LINE_B_ZERO_CODES
+from gearcontact.tca.cylindrical_cycle import cylindrical_mesh_cycle
+from gearcontact.tca.types import ARCSEC_PER_RAD
+from gearcontact.twin.cylindrical import cylindrical_mesh_table
+from gearcontact.twin.line_law import (_line_coefficient, line_pair_load,
+                                       line_potential_j)
+from gearcontact.twin.params import default_drivetrain
+from gearcontact.twin.simulate import build_model, simulate, static_rotation
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+SPUR_TORQUE_NM = 200.0
+
+
+@pytest.fixture(scope="module")
+def spur():
+    pair = load_pair(EXAMPLES / "spur_20x40_m3.toml", kinds=("cylindrical",))
+    cycle = cylindrical_mesh_cycle(pair, phases=3)
+    return pair, cycle, cylindrical_mesh_table(pair, cycle)
+
+
+def _model(spur, backend):
+    pair, _, mesh = spur
+    return build_model(mesh, default_drivetrain(pair), SPUR_TORQUE_NM, backend=backend,
+                       curvatures="line")
+
+
+def test_line_law_is_the_finite_line_approach():
+    """lambda, beta from a preview (L, b_e at W_e) reproduce the closed form at any load
+    with b = b_e (W/W_e)^(1/2) (1e-13: rounding); Newton returns the load from any
+    start, rigid and with a bending compliance in series (1e-12); the potential's
+    derivative along the approach is the load (central difference, 1e-6)."""
+    length, b_e, w_e, e_prime = 20.0, 0.15, 800.0, 229_670.0
+    pv = np.zeros(5)
+    lam = _line_coefficient(0.5 * length, b_e, w_e, e_prime, pv)
+    beta = pv[4]
+    for w in (5.0, 800.0, 3000.0, 60_000.0):
+        d = lam * w * (beta - 0.5 * math.log(w))
+        truth = line_contact_approach_mm(w, length, b_e * math.sqrt(w / w_e), e_prime)
+        assert d == pytest.approx(truth, rel=1e-13)
+        for cb in (0.0, 2e-6):
+            for start in (0.0, 1e-3 * w, 7.0 * w):
+                assert line_pair_load(d + cb * w, lam, beta, cb, start) == pytest.approx(
+                    w, rel=1e-12)
+            h = 1e-4 * w
+            v = [line_potential_j(x, lam * x * (beta - 0.5 * math.log(x)) + cb * x, cb, lam)
+                 for x in (w - h, w + h)]
+            dd = [lam * x * (beta - 0.5 * math.log(x)) + cb * x for x in (w - h, w + h)]
+            assert 1e3 * (v[1] - v[0]) / (dd[1] - dd[0]) == pytest.approx(w, rel=1e-6)
+
+
+def test_spur_pitch_point_rotation_against_the_lcp(spur):
+    """Unmodified spur 20/40 (line contact along the whole face) at T2 = 200 N·m in
+    single contact at the pitch point (the cycle's middle row): the rotation at which
+    the fp64 twin's law carries the torque (bisection on its elastic torque) against the
+    rigid loaded TE's |TE - TE0| there (the half-space LCP of the same line,
+    cells_along 40). The law is the uniform line's energy-mean approach; the LCP's line
+    loads its sharp ends more (+3.2-3.4 % on a lone cylinder at fine grids, tests/
+    analytic/test_hertz.py) and the loaded TE's grid is coarser (24 cells across), so
+    the bound is -2 % < LCP / twin - 1 < 6 % (measured +0.40 %)."""
+    from gearcontact.twin.statics import _elastic
+    from gearcontact.twin.model import _prm
+
+    pair, cycle, mesh = spur
+    k = 1
+    assert mesh.valid[:, k].sum() == 1 and mesh.A_minus_per_mm[1, k] == pytest.approx(
+        0.0730951, rel=1e-6)                        # the pitch point's 1/(2R)
+    model = _model(spur, "reference")
+    prm = _prm(model, 0.0)
+    lo, hi = 0.0, 1e-3
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        t, _ = _elastic(model, prm, mid, mesh.psi_rad[k], w_eval=np.full(3, 3547.0))
+        lo, hi = (mid, hi) if t < SPUR_TORQUE_NM else (lo, mid)
+    lte = cylindrical_loaded_te(pair, SPUR_TORQUE_NM, cycle=cycle, cells_along=40,
+                                bending=False)
+    want = abs(lte.te0_arcsec[k] - lte.lte_arcsec[k]) / ARCSEC_PER_RAD
+    assert -0.02 < want / hi - 1.0 < 0.06
+
+
+def test_golden_within_the_fixed_point_resolution(spur):
+    """Golden against fp64: the static rotation and a 5 ms run (3000 rpm) agree within
+    the line chain's resolution. Its coarsest step is the fit's on the curvature
+    across the line (LINE_B_ZERO_CODES codes, 1.1e-4 1/mm against A- = 0.073 1/mm):
+    through b ~ B^(-1/2) it moves the law's ln(4L/b) by half of that relative error,
+    i.e. theta by at most ``0.5 (1.1e-4 / A-) / (ln(4L/b) - 3/4)``; the load, L and
+    the outputs' codes are far finer (2^-8 N, 2^-20 mm)."""
+    ref, gold = _model(spur, "reference"), _model(spur, "golden")
+    _, _, mesh = spur
+    j = int(np.argmax(mesh.valid[:, 0] & (mesh.opening_mm[:, 0] == 0.0)))
+    a_minus = float(max(mesh.A_minus_per_mm[j, 0], mesh.B_minus_per_mm[j, 0]))
+    bound = 0.5 * LINE_B_ZERO_CODES * CURVATURE.lsb / a_minus / 5.0
+    th_r, th_g = static_rotation(ref)[0], static_rotation(gold)[0]
+    assert abs(th_g / th_r - 1.0) < bound
+    kw = dict(speed_rpm=3000.0, duration_s=5e-3, step_s=10e-6)
+    r, g = simulate(ref, **kw), simulate(gold, **kw)
+    for key in ("theta_rad", "mesh_load_n"):
+        np.testing.assert_allclose(g.columns[key], r.columns[key], rtol=2 * bound, atol=0,
+                                   err_msg=key)
+    assert g.summary["previews_outside_datapath"] == 0
+    assert g.summary["previews_without_contact_law"] == 0
+
+
+def test_rtl_twin_is_the_golden_twin_bit_for_bit(spur):
+    """0.5 ms at 10 us (50 steps, 1-2 loaded pairs): every preview of the golden line
+    chain replayed on the ChainLineCore (Verilator, else the Amaranth simulator) is
+    bit-identical (outputs, flags, the line core's A_min, B_max and mode), so the rtl
+    twin's trajectory is the golden one exactly (tests/twin/test_cosim.py shows the
+    comparison catches one wrong LSB)."""
+    kw = dict(speed_rpm=3000.0, duration_s=0.5e-3, step_s=10e-6)
+    rtl = simulate(_model(spur, "rtl"), **kw)
+    gold = simulate(_model(spur, "golden"), **kw)
+    s = rtl.summary
+    assert s["rtl_core"] == "chain_line" and s["rtl_mismatches"] == 0
+    assert s["rtl_previews"] >= 50
+    for key, col in gold.columns.items():
+        np.testing.assert_array_equal(rtl.columns[key], col, err_msg=key)
