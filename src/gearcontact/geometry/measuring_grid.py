@@ -106,7 +106,7 @@ def _flank_range(surface, to_axis) -> str:
             f"{rad.max():.4f} mm")
 
 
-def flank_parameters_at(surface, *, member: str, L_mm, R_mm, where: str
+def flank_parameters_at(surface, *, member: str, L_mm, R_mm, where: str, lines=None
                         ) -> tuple[np.ndarray, np.ndarray]:
     """The parameters (u, v) of the points of ``surface`` at axial positions ``L_mm``
     and radii ``R_mm`` (arrays, mm, member axis frame; module docstring).
@@ -115,7 +115,8 @@ def flank_parameters_at(surface, *, member: str, L_mm, R_mm, where: str
     ------
     InputRangeError
         A point with no flank point at its (L, R) inside the active box (1 um slack):
-        the message names ``where``, the point's index, L and R, and the flank's range.
+        the message names ``where``, the point's file line (``lines``, else its
+        1-based index), L and R, and the flank's range.
     """
     to_axis = AXIS_FRAMES[member]
     (u0, u1), (v0, v1) = surface.u_range, surface.v_range
@@ -140,7 +141,8 @@ def flank_parameters_at(surface, *, member: str, L_mm, R_mm, where: str
               and u0 - _ON_FLANK_MM <= u <= u1 + _ON_FLANK_MM
               and v0 - _ON_FLANK_MM <= v <= v1 + _ON_FLANK_MM)
         if not ok:
-            raise InputRangeError(f"{where}: point {k + 1} (L = {L!r} mm, R = {R!r} mm)",
+            name = f"point {k + 1}" if lines is None else f"line {int(lines[k])}"
+            raise InputRangeError(f"{where}: {name} (L = {float(L)!r} mm, R = {float(R)!r} mm)",
                                   "off the flank", f"a point on the {member} flank's active "
                                   f"box: {_flank_range(surface, to_axis)}")
         out[k] = u, v
@@ -280,7 +282,7 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, easeoff, *, where: s
     from .easeoff import GridEaseOff
 
     u, v = flank_parameters_at(nominal, member="pinion", L_mm=measured.L_mm,
-                               R_mm=measured.R_mm, where=where)
+                               R_mm=measured.R_mm, where=where, lines=measured.line)
     iu, iv = _grid_lines(u), _grid_lines(v)
     nu, nv = iu.max() + 1, iv.max() + 1
     cells = set(zip(iu.tolist(), iv.tolist()))
