@@ -261,6 +261,70 @@ def test_design_machine_settings_cuts_a_measured_grid(capsys, tmp_path):
     assert "coast (measured grid" in (tmp_path / "o" / "machine_settings.toml").read_text()
 
 
+@pytest.mark.parametrize("body, word", [
+    ("member,flank,L_mm,R_mm,deviation_um\npinion,coast,30,5,nan\n", "finite"),
+    ("member,flank,L_mm,R_mm,deviation_um\ngear,coast,5,30,1\n", "member"),
+    ("member,flank,L_mm,R_mm,deviation_um,temp_c\npinion,coast,30,5,1,20\n", "temp_c"),
+    ("member,flank,L_mm,R_mm,deviation_um\npinion,coast,30,5,1\npinion,coast,30,5,2\n",
+     "each (L, R) once"),
+])
+def test_design_refuses_a_bad_measured_file_before_any_flank(capsys, tmp_path, body, word):
+    # the measured format (docs/export.md "The measuring grid") is told by its header;
+    # its line-level faults exit 2 in the check, before the flanks are built
+    path = tmp_path / "m.csv"
+    path.write_text(body)
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--target-flank",
+                 str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "m.csv" in err and word in err, err
+
+
+@pytest.mark.slow
+def test_design_machine_settings_fit_a_measured_file_in_machine_coordinates(capsys, tmp_path):
+    # s0003's coast pinion measured on its 5 x 9 measuring grid with a pressure-angle
+    # change, deviation = -8 (u - u_m) um (u = R - R_f(L), the closed form), is the pair
+    # with c_PA + 8 um/mm: the settings fitted to the file are those fitted to that
+    # pair's polynomial ease-off (measured: corrections equal to 1e-8 relative,
+    # residual 0.408 um max, 0.113 um RMS both; asserted: the printed residual row and
+    # every correction to 1e-6 of its size + 1e-9)
+    import dataclasses
+
+    import numpy as np
+
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.measuring_grid import measuring_grid
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.geometry.setting_fit import easeoff_machine_pair
+
+    pair = load_pair("s0003")
+    flanks = build_flanks(pair)
+    sheet = flanks.pinion.coast
+    g = measuring_grid(sheet, member="pinion", flank="coast", rows=5, cols=9)
+    u_m, _ = flanks.mean_contact["coast"]["pinion_uv"]
+    u, _ = sheet.cone.parameters(g.L_mm, g.R_mm)
+    path = tmp_path / "measured.csv"
+    path.write_text("member,flank,L_mm,R_mm,deviation_um\n" + "".join(
+        f"pinion,coast,{float(L)!r},{float(R)!r},{-8.0 * float(x - u_m)!r}\n"
+        for L, R, x in zip(g.L_mm, g.R_mm, u)))
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--target-flank",
+                 str(path), "--out", str(tmp_path / "o")]) == 0
+    out = capsys.readouterr().out
+    c = pair.easeoff_coast
+    want = easeoff_machine_pair(dataclasses.replace(pair, easeoff_coast=dataclasses.replace(
+        c, profile_angle_um_per_mm=c.profile_angle_um_per_mm + 8.0)))
+    r = want.sides["coast"]
+    assert f"| coast | {r.easeoff_max_um:.2f} | {r.max_um:.3f} | {r.rms_um:.3f} |" in out
+    assert (r.max_um, r.rms_um) < (0.45, 0.12)
+    got = load_pair(tmp_path / "o" / "machine_settings.toml").machine
+    for a, b in zip(got, want.pair.machine):
+        for part in ("settings", "blade"):
+            x, y = getattr(a, part), getattr(b, part)
+            for f in x.__dataclass_fields__:
+                va, vb = np.atleast_1d(getattr(x, f)), np.atleast_1d(getattr(y, f))
+                if va.dtype.kind == "f":
+                    np.testing.assert_allclose(va, vb, rtol=1e-6, atol=1e-9, err_msg=f)
+
+
 def test_design_fit_needs_machine_settings_of_an_easeoff_pair(capsys):
     # --fit chooses the objective of the settings fit: without --machine-settings, or on
     # a pair without an ease-off (standard settings, no fit), it would have no effect
