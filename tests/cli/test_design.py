@@ -281,31 +281,23 @@ def test_design_refuses_a_bad_measured_file_before_any_flank(capsys, tmp_path, b
 
 @pytest.mark.slow
 def test_design_machine_settings_fit_a_measured_file_in_machine_coordinates(capsys, tmp_path):
-    # s0003's coast pinion measured on its 5 x 9 measuring grid with a pressure-angle
-    # change, deviation = -8 (u - u_m) um (u = R - R_f(L), the closed form), is the pair
-    # with c_PA + 8 um/mm: the settings fitted to the file are those fitted to that
-    # pair's polynomial ease-off (measured: corrections equal to 1e-8 relative,
-    # residual 0.408 um max, 0.113 um RMS both; asserted: the printed residual row and
-    # every correction to 1e-6 of its size + 1e-9)
+    # s0003's coast pinion cut with c_PA + 8 um/mm measured on its 5 x 9 measuring grid
+    # (tests/easeoff_grid.py): the settings fitted to the file are those fitted to
+    # that pair's polynomial ease-off (the two targets 2.8e-4 um apart,
+    # tests/geometry/test_measuring_grid.py): residual 0.408 um max, 0.113 um RMS both
+    # (asserted: the printed residual row equal)
     import dataclasses
 
     import numpy as np
 
     from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.measuring_grid import measuring_grid
+    from easeoff_grid import measured_pressure_angle_csv
     from gearcontact.geometry.pair import load_pair
     from gearcontact.geometry.setting_fit import easeoff_machine_pair
 
     pair = load_pair("s0003")
-    flanks = build_flanks(pair)
-    sheet = flanks.pinion.coast
-    g = measuring_grid(sheet, member="pinion", flank="coast", rows=5, cols=9)
-    u_m, _ = flanks.mean_contact["coast"]["pinion_uv"]
-    u, _ = sheet.cone.parameters(g.L_mm, g.R_mm)
-    path = tmp_path / "measured.csv"
-    path.write_text("member,flank,L_mm,R_mm,deviation_um\n" + "".join(
-        f"pinion,coast,{float(L)!r},{float(R)!r},{-8.0 * float(x - u_m)!r}\n"
-        for L, R, x in zip(g.L_mm, g.R_mm, u)))
+    path, _, _ = measured_pressure_angle_csv(tmp_path / "measured.csv", pair,
+                                             build_flanks(pair), "coast", 8.0)
     assert main(["design", "--pair", "s0003", "--machine-settings", "--target-flank",
                  str(path), "--out", str(tmp_path / "o")]) == 0
     out = capsys.readouterr().out
@@ -315,14 +307,22 @@ def test_design_machine_settings_fit_a_measured_file_in_machine_coordinates(caps
     r = want.sides["coast"]
     assert f"| coast | {r.easeoff_max_um:.2f} | {r.max_um:.3f} | {r.rms_um:.3f} |" in out
     assert (r.max_um, r.rms_um) < (0.45, 0.12)
+    # the settings change the measurement asks for (from the pair's own fit) is
+    # recovered: every setting within 1e-2 of its change (+ 1e-9 of its size; measured
+    # 1.4e-3, the 6D coefficient, ill-conditioned against 2C)
     got = load_pair(tmp_path / "o" / "machine_settings.toml").machine
-    for a, b in zip(got, want.pair.machine):
+    own = easeoff_machine_pair(pair).pair.machine
+    worst = 0.0
+    for a, b, o in zip(got, want.pair.machine, own):
         for part in ("settings", "blade"):
-            x, y = getattr(a, part), getattr(b, part)
+            x, y, z = getattr(a, part), getattr(b, part), getattr(o, part)
             for f in x.__dataclass_fields__:
-                va, vb = np.atleast_1d(getattr(x, f)), np.atleast_1d(getattr(y, f))
-                if va.dtype.kind == "f":
-                    np.testing.assert_allclose(va, vb, rtol=1e-6, atol=1e-9, err_msg=f)
+                va, vb, vo = (np.atleast_1d(getattr(w, f)) for w in (x, y, z))
+                if va.dtype.kind == "f" and va.size:
+                    err = np.abs(va - vb) - 1e-9 * (1 + np.abs(vb))
+                    worst = max(worst, float((err / np.maximum(np.abs(vb - vo), 1e-300)).max()))
+                    assert np.all(err <= 1e-2 * np.abs(vb - vo)), (f, va, vb, vo)
+    print("worst fraction of the change", worst)
 
 
 def test_design_fit_needs_machine_settings_of_an_easeoff_pair(capsys):

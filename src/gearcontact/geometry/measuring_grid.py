@@ -249,7 +249,8 @@ def _grid_lines(x: np.ndarray) -> np.ndarray:
     return out
 
 
-def measured_easeoff_grid(measured: MeasuredFlank, nominal, easeoff, *, where: str):
+def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, *,
+                          where: str):
     """The target relief of a measured pinion flank as a :class:`~.easeoff.GridEaseOff`.
 
     Parameters
@@ -257,21 +258,25 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, easeoff, *, where: s
     measured : MeasuredFlank
         A pinion flank's deviations in machine coordinates.
     nominal : RadialSheet
-        The pinion flank they are measured against (the pair's, eased).
-    easeoff : EaseOff or None
-        The pair's ease-off of that flank (None: the nominal is the conjugate pinion).
+        The pinion flank they are measured against (the pair's: ``conjugate`` eased by
+        ``easeoff``).
+    conjugate : RadialSheet
+        The conjugate pinion flank the relief is measured from (:mod:`.easeoff`).
+    easeoff : EaseOff
+        The pair's ease-off of that flank.
     where : str
         Names the file in messages.
 
     Returns
     -------
     GridEaseOff
-        ``E(u, v) = E_pair(u, v) - deviation`` (um) on the grid of the mapped points'
-        ``(u, v)``: the deviation measured at the nominal point ``(u, v)`` is taken as a
-        change of the relief at the conjugate point of the same parameters. The two
-        points are |E_pair| (< 0.1 mm) apart, so a deviation field of gradient g
-        um/mm is read up to g |E_pair| (e.g. 10 um/mm x 0.03 mm = 0.3 um), the
-        approximation docs/export.md states.
+        On the grid ``(u_i, v_j)`` of the mapped points' parameters:
+        ``E(u, v) = E_pair(u, v) - d(u', v')`` (um), ``(u', v')`` the nominal
+        parameters of the eased image ``r - E_pair n`` of the conjugate point ``(u,
+        v)`` and ``d`` the bicubic through the measured deviations over the nominal
+        grid: the relief that moves that image by the deviation measured there. Both
+        ends are along nearly the same normal (they differ by the slope of E_pair,
+        ~1e-2 rad): the target passes within ~1e-4 |d| of the measured points.
 
     Raises
     ------
@@ -291,14 +296,17 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, easeoff, *, where: s
                               f"{len(u)} points on {nu} lines of constant u x {nv} of v",
                               "a complete grid of at least 4 x 4 (rows at constant height "
                               "over the root cone: the nominal grid of export flanks)")
-    rel = -measured.deviation_um.copy()
-    if easeoff is not None:
-        rel += 1e3 * easeoff.relief_mm(u, v)
-    grid = np.empty((nu, nv))
-    grid[iu, iv] = rel
+    dev = np.empty((nu, nv))
+    dev[iu, iv] = measured.deviation_um
     um = np.array([u[iu == i].mean() for i in range(nu)])
     vm = np.array([v[iv == j].mean() for j in range(nv)])
-    return GridEaseOff(u_mm=um, v_mm=vm, relief_um=grid)
+    U, V = np.meshgrid(um, vm, indexing="ij")
+    s = conjugate.evaluate(U, V)
+    e_mm = easeoff.relief_mm(U, V)
+    u_img, v_img, _ = nominal.locate(s.r - e_mm[..., None] * s.n)
+    # the deviation field over the nominal (u, v): the bicubic of GridEaseOff
+    d_um = 1e3 * GridEaseOff(u_mm=um, v_mm=vm, relief_um=dev).relief_mm(u_img, v_img)
+    return GridEaseOff(u_mm=um, v_mm=vm, relief_um=1e3 * e_mm - d_um)
 
 
 def read_target_flank(path) -> dict:
@@ -336,6 +344,7 @@ def target_grids(grids: dict, pair, flanks, *, where: str = "target flank") -> d
             u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
             easeoff = EaseOff.from_coefficients(getattr(pair, f"easeoff_{side}"),
                                                 u_mean_mm=u_m, v_mean_mm=v_m)
-            out[side] = measured_easeoff_grid(data, flanks.pinion.side(side), easeoff,
+            out[side] = measured_easeoff_grid(data, flanks.pinion.side(side),
+                                              flanks.pinion_conjugate.side(side), easeoff,
                                               where=f"{where} {side}")
     return out
