@@ -53,7 +53,8 @@ def measured_pressure_angle_csv(path, pair, flanks, side, d_pa_um_per_mm, rows=5
         d += step
         if np.abs(step).max() < 1e-13:
             break
-    lines = ["member,flank,row,col,L_mm,R_mm,deviation_um"] + [
+    lines = ["# measured on the nominal grid (a comment line, skipped)",
+             "member,flank,row,col,L_mm,R_mm,deviation_um"] + [
         f"pinion,{side},{i},{j},{float(L)!r},{float(R)!r},{1e3 * float(x)!r}"
         for i, j, L, R, x in zip(g.row, g.col, g.L_mm, g.R_mm, d)]
     path.write_text("\n".join(lines) + "\n")

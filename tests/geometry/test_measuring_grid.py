@@ -3,10 +3,10 @@ deviation files onto the flank (gearcontact.geometry.measuring_grid).
 
 Independent truths: the pinion sheet's closed-form parameters of a point
 (``v = x``, ``u = R - R_f(x)``, docs/geometry.md, :class:`PinionCone`) against the root
-finder; the flank points of the mapped parameters against the grid's own points; a
-pure pressure-angle change of the ease-off (``dE = c (u - u_m)``, exact in u) written as
-measured deviations and read back as the pair's polynomial ease-off with the changed
-coefficient.
+finder; the flank points of the mapped parameters against the grid's own points; the
+flank cut with a changed profile-angle coefficient, its deviations from the nominal
+measured in the test (distances along the nominal normals), read back as the pair's
+polynomial ease-off with the changed coefficient and as that flank.
 """
 
 import dataclasses
@@ -14,7 +14,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from gearcontact.geometry.easeoff import EaseOff, apply_easeoff, max_relief_um
+from gearcontact.geometry.easeoff import EaseOff, apply_easeoff
 from gearcontact.geometry.measuring_grid import (
     AXIS_FRAMES, MeasuredFlank, flank_parameters_at, measuring_grid, read_measured_grid,
     read_target_flank, target_grids)
@@ -22,16 +22,7 @@ from gearcontact.validation import InputRangeError
 
 from easeoff_grid import measured_pressure_angle_csv
 
-D_PA = 8.0  # um/mm: the pressure-angle change of the round trip (s0003 coast: c_PA ~ -2)
-
-
-def _measured_csv(path, grid, deviation_um, *, member="pinion"):
-    rows = ["# a measured file: the nominal grid's L, R and a deviation",
-            "member,flank,row,col,L_mm,R_mm,deviation_um"]
-    rows += [f"{member},{grid.flank},{i},{j},{float(L)!r},{float(R)!r},{float(d)!r}"
-             for i, j, L, R, d in zip(grid.row, grid.col, grid.L_mm, grid.R_mm, deviation_um)]
-    path.write_text("\n".join(rows) + "\n")
-    return path
+D_PA = 8.0  # um/mm: the profile-angle change of the round trip
 
 
 @pytest.mark.parametrize("member", ["pinion", "gear"])
