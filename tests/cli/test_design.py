@@ -267,10 +267,15 @@ def test_design_machine_settings_cuts_a_measured_grid(capsys, tmp_path):
     ("member,flank,L_mm,R_mm,deviation_um,temp_c\npinion,coast,30,5,1,20\n", "temp_c"),
     ("member,flank,L_mm,R_mm,deviation_um\npinion,coast,30,5,1\npinion,coast,30,5,2\n",
      "each (L, R) once"),
+    # 6 mm past the heel of s0003's pinion (L 27.70..43.91 mm): named with the range
+    ("member,flank,L_mm,R_mm,deviation_um\n# x\npinion,coast,35,6.5,0\npinion,coast,50,9,0\n",
+     "line 4 (pinion coast, L = 50.0 mm, R = 9.0 mm) = 'off the flank of the pinion blank' is "
+     "outside the allowed range: L 27.7045..43.9131 mm"),
 ])
 def test_design_refuses_a_bad_measured_file_before_any_flank(capsys, tmp_path, body, word):
     # the measured format (docs/export.md "The measuring grid") is told by its header;
-    # its line-level faults exit 2 in the check, before the flanks are built
+    # its line-level faults and points off the pinion blank exit 2 in the check, before
+    # the flanks are built
     path = tmp_path / "m.csv"
     path.write_text(body)
     assert main(["design", "--pair", "s0003", "--machine-settings", "--target-flank",

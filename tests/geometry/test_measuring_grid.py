@@ -65,7 +65,7 @@ def test_pressure_angle_change_reads_back_as_the_changed_easeoff(s0003_calibrate
     pair, flanks = s0003_calibrated
     path, g, truth = measured_pressure_angle_csv(tmp_path / "m.csv", pair, flanks,
                                                  "coast", D_PA)
-    grids = read_target_flank(path)
+    grids = read_target_flank(path, pair=pair)   # the grid's edges lie on the blank
     assert list(grids) == ["coast"] and isinstance(grids["coast"], MeasuredFlank)
     target = target_grids(grids, pair, flanks)["coast"]
     c = pair.easeoff_coast

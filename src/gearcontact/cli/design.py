@@ -159,7 +159,7 @@ def check(args) -> None:
                                   "--machine-settings (without it the option has no effect)")
         from ..geometry.measuring_grid import read_target_flank
 
-        args.easeoff_grid = read_target_flank(args.target_flank)
+        args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
     fitted = has_easeoff(pair) or args.target_flank is not None
     if args.fit is not None and not (args.machine_settings and fitted):
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "

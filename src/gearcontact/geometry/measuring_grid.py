@@ -44,7 +44,7 @@ from ..validation import InputRangeError, read_text_file
 
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
            "MeasuredFlank", "measuring_grid", "flank_parameters_at", "read_measured_grid",
-           "is_measured_header", "measured_easeoff_grid", "read_target_flank",
+           "is_measured_header", "measured_easeoff_grid", "check_on_blank", "read_target_flank",
            "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
@@ -309,7 +309,34 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     return GridEaseOff(u_mm=um, v_mm=vm, relief_um=1e3 * e_mm - d_um)
 
 
-def read_target_flank(path) -> dict:
+def check_on_blank(grids: dict, pair, *, where: str) -> None:
+    """Refuse, before any flank is built, a measured pinion point (:class:`MeasuredFlank`
+    values of ``grids``) outside the pinion blank's nominal flank box (clearance line to
+    tip over the face width, :func:`~.conjugate.nominal_pinion_box`, which holds every
+    active box), 1 um slack; the message names the file line, L, R and the blank's
+    range at that L. Its parameters are the sheet's closed form ``v = L``,
+    ``u = R - R_f(L)`` (:class:`~.sheet.PinionCone`)."""
+    from .conjugate import nominal_pinion_box
+
+    cone, box = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
+    for side, data in grids.items():
+        if not isinstance(data, MeasuredFlank):
+            continue
+        u, v = cone.parameters(data.L_mm, data.R_mm)
+        off = ((u < box.u_root - _ON_FLANK_MM) | (u > box.u_tip + _ON_FLANK_MM)
+               | (v < box.v_toe - _ON_FLANK_MM) | (v > box.v_heel + _ON_FLANK_MM))
+        if off.any():
+            k = int(np.argmax(off))
+            L, R = float(data.L_mm[k]), float(data.R_mm[k])
+            r0, r1 = (float(cone.radius_mm(x, min(max(L, box.v_toe), box.v_heel)))
+                      for x in (box.u_root, box.u_tip))
+            raise InputRangeError(
+                f"{where}: line {int(data.line[k])} (pinion {side}, L = {L!r} mm, R = {R!r} mm)",
+                "off the flank of the pinion blank", f"L {box.v_toe:.4f}..{box.v_heel:.4f} mm and "
+                f"R {r0:.4f}..{r1:.4f} mm at that L (clearance line to tip)")
+
+
+def read_target_flank(path, *, pair=None) -> dict:
     """A ``--target-flank`` file, its format told by its header: ``{side: grid}``.
 
     A header with ``L_mm`` and ``R_mm`` is a measured file in machine coordinates
@@ -317,19 +344,23 @@ def read_target_flank(path) -> dict:
     pinion), its values :class:`MeasuredFlank` (mapped onto the flanks by
     :func:`target_grids` once they are built); any other is a deviation grid in the
     flank's (u, v) (:func:`~.easeoff.read_easeoff_grid`), its values
-    :class:`~.easeoff.GridEaseOff`.
+    :class:`~.easeoff.GridEaseOff`. With ``pair``, measured points are checked
+    against its pinion blank (:func:`check_on_blank`).
 
     Raises
     ------
     InputRangeError
-        As the reader of the format.
+        As the reader of the format, or a measured point off the blank's flank.
     """
     from .easeoff import read_easeoff_grid
 
     text = read_text_file(path, field="target flank", what="a CSV deviation grid")
     if not is_measured_header(text):
         return read_easeoff_grid(path)
-    return {side: m for (_, side), m in read_measured_grid(path, members=("pinion",)).items()}
+    grids = {side: m for (_, side), m in read_measured_grid(path, members=("pinion",)).items()}
+    if pair is not None:
+        check_on_blank(grids, pair, where=str(path))
+    return grids
 
 
 def target_grids(grids: dict, pair, flanks, *, where: str = "target flank") -> dict:
