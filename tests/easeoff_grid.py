@@ -19,3 +19,43 @@ def write_grid_csv(path, pair, flanks, side, n_u=6, n_v=9, pad=0.0):
             rows.append(f"{side},{float(v)!r},{float(u)!r},{1e3 * float(eo.relief_mm(u, v))!r}")
     path.write_text("\n".join(rows) + "\n")
     return path
+
+
+def measured_pressure_angle_csv(path, pair, flanks, side, d_pa_um_per_mm, rows=5, cols=9):
+    """The pinion flank ``side`` of ``pair`` measured on its nominal ``rows x cols``
+    measuring grid (machine coordinates, docs/export.md "The measuring grid") when it is
+    cut with the profile-angle coefficient changed by ``d_pa_um_per_mm``: each
+    deviation is the distance along the nominal normal from the nominal point to that
+    flank (``apply_easeoff`` of the changed polynomial, found by iterating the point
+    onto it along the normal: 3 steps to 1e-12 mm). Returns ``(path, grid, truth)``
+    with the true eased flank ``truth``."""
+    import dataclasses
+
+    from gearcontact.geometry.easeoff import apply_easeoff
+    from gearcontact.geometry.measuring_grid import measuring_grid
+
+    nominal = flanks.pinion.side(side)
+    c = getattr(pair, f"easeoff_{side}")
+    u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+    changed = EaseOff.from_coefficients(dataclasses.replace(
+        c, profile_angle_um_per_mm=c.profile_angle_um_per_mm + d_pa_um_per_mm),
+        u_mean_mm=u_m, v_mean_mm=v_m)
+    truth = apply_easeoff(flanks.pinion_conjugate.side(side), changed,
+                          limit_um=flanks.easeoff_limit_um)
+    g = measuring_grid(nominal, member="pinion", flank=side, rows=rows, cols=cols)
+    p = nominal.evaluate(g.u_mm, g.v_mm)
+    d = np.zeros(len(g.u_mm))
+    for _ in range(8):      # Newton along the normal onto the truth's tangent plane
+        q = p.r + d[:, None] * p.n
+        u, v, _ = truth.locate(q)
+        t = truth.evaluate(u, v)
+        step = np.einsum("ij,ij->i", t.r - q, t.n) / np.einsum("ij,ij->i", p.n, t.n)
+        d += step
+        if np.abs(step).max() < 1e-13:
+            break
+    lines = ["# measured on the nominal grid (a comment line, skipped)",
+             "member,flank,row,col,L_mm,R_mm,deviation_um"] + [
+        f"pinion,{side},{i},{j},{float(L)!r},{float(R)!r},{1e3 * float(x)!r}"
+        for i, j, L, R, x in zip(g.row, g.col, g.L_mm, g.R_mm, d)]
+    path.write_text("\n".join(lines) + "\n")
+    return path, g, truth

@@ -159,6 +159,28 @@ def test_csv_grid_is_the_surface_contract(s0003_export):
     assert any("axis along +z" in h and "X = y, Y = z, Z = x" in h for h in head)
 
 
+def test_measuring_grid_is_the_cmm_grid_in_machine_coordinates(s0003_export):
+    # the measuring grid (docs/export.md "The measuring grid") holds the CMM grid's
+    # points and normals (same digits) with L = z and R = sqrt(x^2 + y^2) of each, in
+    # the same row / column order, and its member / flank on every line
+    _, _, out, done = s0003_export
+    for member in ("pinion", "gear"):
+        for side in ("drive", "coast"):
+            path = out / f"{member}_{side}_measuring.csv"
+            assert path in done.csv_paths
+            rows, get = _read_csv(path)
+            _, plain = _read_csv(out / f"{member}_{side}.csv")
+            assert list(rows[0]) == ["member", "flank", "row", "col", "L_mm", "R_mm", "x_mm",
+                                     "y_mm", "z_mm", "nx", "ny", "nz"]
+            assert {(r["member"], r["flank"]) for r in rows} == {(member, side)}
+            cols = ("row", "col", "x_mm", "y_mm", "z_mm", "nx", "ny", "nz")
+            assert np.array_equal(get(*cols), plain(*cols))
+            xyz = get("x_mm", "y_mm", "z_mm")
+            assert np.array_equal(get("L_mm")[:, 0], xyz[:, 2])
+            np.testing.assert_allclose(get("R_mm")[:, 0], np.hypot(xyz[:, 0], xyz[:, 1]),
+                                       rtol=0, atol=1e-12)
+
+
 def test_identical_runs_write_identical_files(s0003_export, tmp_path):
     pair, flanks, first, _ = s0003_export
     export_flanks(pair, tmp_path, pair_name="s0003", flanks=flanks)

@@ -106,7 +106,9 @@ def register(sub) -> None:
                         "sec. 5) instead of the standard crowning")
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
-                        "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) that "
+                        "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "
+                        "measured pinion deviations in machine coordinates (columns "
+                        "member,flank,L_mm,R_mm,deviation_um; docs/export.md) that "
                         "replaces the pair's ease-off of the sides it lists; the settings "
                         "that cut it are fitted")
     p.add_argument("--fit", choices=("rms", "minimax"), default=None,
@@ -156,9 +158,9 @@ def check(args) -> None:
         if not args.machine_settings:
             raise InputRangeError("--target-flank", args.target_flank, "given only with "
                                   "--machine-settings (without it the option has no effect)")
-        from ..geometry.easeoff import read_easeoff_grid
+        from ..geometry.measuring_grid import read_target_flank
 
-        args.easeoff_grid = read_easeoff_grid(args.target_flank)
+        args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
     fitted = has_easeoff(pair) or args.target_flank is not None
     if args.fit is not None and not (args.machine_settings and fitted):
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "

@@ -22,8 +22,11 @@ lines along the face width (row 1 at the root, the last at the tip) by ``cols``
 points along each (col 1 at the toe / v_min), uniform in the flank's own ``(u, v)``
 over its active box (edges included), each with its point and unit normal (out of
 the tooth material) in the member's axis frame. ``flanks.json`` records the frames,
-the grids and the measured fit error of every STEP face. File layout and how to load
-them in CAD: docs/export.md.
+the grids and the measured fit error of every STEP face. A bevel flank also gets
+``<member>_<flank>_measuring.csv``: the same grid in a measuring machine's coordinates
+(axial position L, radius R; :mod:`gearcontact.geometry.measuring_grid`), the nominal
+a measured deviation file refers to (``design --target-flank``). File layout and how
+to load them in CAD: docs/export.md.
 """
 
 from __future__ import annotations
@@ -34,17 +37,18 @@ from pathlib import Path
 
 import numpy as np
 
+from ..geometry.measuring_grid import AXIS_FRAMES, NOMINAL_COLUMNS, measuring_grid
 from ..geometry.pair import CYLINDRICAL
 from ..validation import InputRangeError
 from .flank_step import FIT_TARGET_MM, fit_bspline, write_step
 
 __all__ = ["GRID_LIMITS", "ExportFlank", "FlankExport", "parse_grid", "pair_flanks",
-           "flank_grid", "grid_csv", "export_flanks"]
+           "flank_grid", "grid_csv", "measuring_csv", "export_flanks"]
 
 #: Smallest and largest row / column count of ``--grid``.
 GRID_LIMITS = (2, 201)
 #: Pinion body frame (axis x) -> axis frame (axis z): (X, Y, Z) = (y, z, x).
-PINION_TO_AXIS = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
+PINION_TO_AXIS = AXIS_FRAMES["pinion"]
 MEMBERS = ("pinion", "gear")
 
 
@@ -110,8 +114,7 @@ def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
     from ..geometry.formate import SIDES
 
     flanks = build_flanks(pair) if flanks is None else flanks
-    frames = {"pinion": PINION_TO_AXIS, "gear": np.eye(3)}
-    return [ExportFlank(member, side, flanks.flank(member, side), frames[member])
+    return [ExportFlank(member, side, flanks.flank(member, side), AXIS_FRAMES[member])
             for member in MEMBERS for side in SIDES]
 
 
@@ -148,6 +151,29 @@ def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str
     return "\n".join(head + lines) + "\n"
 
 
+def measuring_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str:
+    """The CSV text of ``flank``'s nominal measuring grid in machine coordinates (axial
+    position L, radius R; :mod:`gearcontact.geometry.measuring_grid`): ``#`` header
+    lines, then :data:`~gearcontact.geometry.measuring_grid.NOMINAL_COLUMNS`."""
+    g = measuring_grid(flank.surface, member=flank.member, flank=flank.flank, rows=rows,
+                       cols=cols)
+    head = [
+        f"# gearcontact export flanks: {pair_name}, {flank.name} nominal measuring grid",
+        f"# grid {rows} x {cols}: row 1 root .. row {rows} tip, col 1 toe .. col {cols} heel "
+        "(uniform in the flank's (u, v) over its active box, edges included)",
+        "# L_mm: axial position along the member axis (+Z) from the crossing point; R_mm: "
+        "radius about the axis; x, y, z: the member's axis frame, mm (docs/export.md)",
+        "# normal: unit, out of the tooth; a measured deviation_um is along it, "
+        "+ = material added",
+        ",".join(NOMINAL_COLUMNS),
+    ]
+    lines = [",".join([flank.member, flank.flank, str(int(g.row[k])), str(int(g.col[k]))]
+                      + [repr(float(x)) for x in (g.L_mm[k], g.R_mm[k], *g.xyz_mm[k],
+                                                   *g.normal[k])])
+             for k in range(len(g.row))]
+    return "\n".join(head + lines) + "\n"
+
+
 @dataclass(frozen=True)
 class FlankExport:
     """What :func:`export_flanks` wrote: the STEP files, the CSV files, the summary
@@ -167,7 +193,8 @@ def _safe(text: str) -> str:
 def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 9),
                   flanks=None) -> FlankExport:
     """Write the flanks of ``pair`` into ``out_dir`` (module docstring): per member
-    ``<member>_flanks.step``, per flank ``<member>_<flank>.csv``, and ``flanks.json``.
+    ``<member>_flanks.step``, per flank ``<member>_<flank>.csv`` (a bevel flank also
+    ``<member>_<flank>_measuring.csv``), and ``flanks.json``.
 
     Parameters
     ----------
@@ -195,6 +222,10 @@ def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 
         path = out / f"{f.name}.csv"
         path.write_text(grid_csv(f, rows, cols, pair_name=pair_name))
         csvs.append(path)
+        if getattr(pair, "kind", None) != CYLINDRICAL:
+            path = out / f"{f.name}_measuring.csv"
+            path.write_text(measuring_csv(f, rows, cols, pair_name=pair_name))
+            csvs.append(path)
     worst = 0.0
     for member in MEMBERS:
         fits = []

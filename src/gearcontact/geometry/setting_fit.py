@@ -78,6 +78,7 @@ from .conjugate import UndercutError, nominal_pinion_box
 from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
+from .measuring_grid import target_grids
 from .gear_generation import gear_generation
 from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
 from .machine import (BladeSettings, MachineSetup, blade_profile, blade_through_point,
@@ -511,9 +512,11 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     pair : GearPair
         A pair defined by its blank, cutter and ease-off (no ``[machine.*]`` tables).
     easeoff_grid : dict, optional
-        ``{side: GridEaseOff}`` (a measured deviation grid,
-        :func:`~.easeoff.read_easeoff_grid`): the target of the sides it holds instead
-        of the pair's ``[easeoff.<side>]``; each must cover its flank's active box.
+        ``{side: GridEaseOff or MeasuredFlank}`` (a measured deviation grid,
+        :func:`~.measuring_grid.read_target_flank`; a ``MeasuredFlank`` is mapped onto
+        the pair's pinion flank, :func:`~.measuring_grid.target_grids`): the target of
+        the sides it holds instead of the pair's ``[easeoff.<side>]``; each must cover
+        its flank's active box.
     parameters : tuple of str
         The fitted subset (:data:`PARAMETERS`; default :data:`DEFAULT_PARAMETERS`).
     n_u, n_v : int
@@ -552,6 +555,8 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
             "(docs/machine_settings.md sec. 6; design --machine-settings on the pair without "
             "an ease-off writes its standard settings)")
     flanks = build_flanks(twin)
+    # measured grids in machine coordinates onto the flanks (points off them refused here)
+    grids = target_grids(grids, twin, flanks)
     # the gear of the default flanks and the pinion conjugate to it
     gear, seeds = member_setups(twin, flanks.gear_generation)
     sides, pinion = {}, {}
