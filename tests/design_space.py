@@ -1,15 +1,23 @@
 """Issue 28's design space of hypoid pairs: a hypothesis strategy and the pair builder
 shared by tests/geometry/test_flank.py (design accepts or names the condition) and
-tests/report/test_design_space.py (every accepted pair runs ``analyze`` to exit 0)."""
+tests/report/test_design_space.py and tests/twin/test_design_space.py (every accepted
+pair runs ``analyze`` / ``twin`` to exit 0: :func:`command_on_accepted_pair`)."""
 
+import shutil
+import subprocess
+import tempfile
+import time
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 
+from hypothesis import assume
 from hypothesis import strategies as st
 
 from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.generation import check_generation
-from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
+from gearcontact.geometry.pair import EaseOffCoefficients, load_pair, pair_to_toml
+from gearcontact.validation import InputRangeError
 
 #: Fields a refused design may name (ISO 23509 conditions: offset limit, pitch cones
 #: with rho_lim = r_c0, pointed teeth, pinion root, face width; undercut of the pinion).
@@ -65,3 +73,32 @@ SPACE = dict(z1=st.integers(5, 20),
 #: Both hands (issue 28 item 1), drawn besides :data:`SPACE` by the tests that run
 #: whole commands on the pairs.
 HANDS = st.sampled_from(("right", "left"))
+
+
+@contextmanager
+def command_on_accepted_pair(command, point, *, options=()):
+    """Run ``gearcontact COMMAND --pair FILE --out DIR --quiet OPTIONS`` (the console
+    script, a real process) on the :func:`design_space_pair` of ``point`` (its
+    arguments in order) written to a temporary TOML file; yield ``(pair, run, out)``
+    (the CompletedProcess and the output directory, removed afterwards). A pair that
+    ``design`` refuses (named: tests/geometry/test_flank.py) is rejected from the
+    hypothesis draw."""
+    try:
+        pair = design_space_pair(*point)
+    except InputRangeError:
+        assume(False)
+    exe = shutil.which("gearcontact")
+    assert exe, "the gearcontact console script is installed"
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "pair.toml").write_text(pair_to_toml(pair))
+        out = tmp / "out"
+        t0 = time.perf_counter()
+        run = subprocess.run([exe, command, "--pair", str(tmp / "pair.toml"), "--out",
+                              str(out), "--quiet", *options], capture_output=True, text=True)
+        # the pair and the wall time, for the record (shown by pytest -s)
+        z1, _, offset_frac, beta, face_frac, *rest = point
+        print(f"{command} z1={z1} z2={pair.gear_teeth} offset={offset_frac:.4f} r2 "
+              f"beta1={beta:.3f} face={face_frac:.4f} R_m {' '.join(rest)}: exit "
+              f"{run.returncode}, {time.perf_counter() - t0:.1f} s")
+        yield pair, run, out

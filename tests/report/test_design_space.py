@@ -16,20 +16,15 @@ machine otherwise quiet, up to 80 s under load; the default test runs one accept
 
 import csv
 import json
-import shutil
 import subprocess
-import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, given, settings
 
-from gearcontact.geometry.pair import pair_to_toml
-from gearcontact.validation import InputRangeError
-
-from design_space import HANDS, SPACE, design_space_pair
+from design_space import HANDS, SPACE, command_on_accepted_pair
 
 #: TCA phases per pitch of the runs here (default 61): the loaded TE runs on all of them.
 PHASES = 11
@@ -40,25 +35,9 @@ def _rows(path: Path) -> list[dict]:
         return list(csv.DictReader(f))
 
 
-def _analyze_accepted_pair(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
-    try:
-        pair = design_space_pair(z1, ratio, offset_frac, beta, face_frac, side, hand)
-    except InputRangeError:      # refused by design: named (tests/geometry/test_flank.py)
-        assume(False)
-    exe = shutil.which("gearcontact")
-    assert exe, "the gearcontact console script is installed"
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        (tmp / "pair.toml").write_text(pair_to_toml(pair))
-        out = tmp / "out"
-        t0 = time.perf_counter()
-        run = subprocess.run([exe, "analyze", "--pair", str(tmp / "pair.toml"), "--out",
-                              str(out), "--phases", str(PHASES), "--quiet"],
-                             capture_output=True, text=True)
-        # the pair and the wall time, for the record (shown by pytest -s)
-        print(f"analyze z1={z1} z2={pair.gear_teeth} offset={offset_frac:.4f} r2 "
-              f"beta1={beta:.3f} face={face_frac:.4f} R_m {side} {hand}: exit {run.returncode}, "
-              f"{time.perf_counter() - t0:.1f} s")
+def _analyze_accepted_pair(*point):
+    with command_on_accepted_pair("analyze", point,
+                                  options=("--phases", str(PHASES))) as (_, run, out):
         assert run.returncode == 0, run.stderr
         _check_results(out)
 
