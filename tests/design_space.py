@@ -1,15 +1,23 @@
 """Issue 28's design space of hypoid pairs: a hypothesis strategy and the pair builder
 shared by tests/geometry/test_flank.py (design accepts or names the condition) and
-tests/report/test_design_space.py (every accepted pair runs ``analyze`` to exit 0)."""
+tests/report/test_design_space.py and tests/twin/test_design_space.py (every accepted
+pair runs ``analyze`` / ``twin`` to exit 0: :func:`command_on_accepted_pair`)."""
 
+import shutil
+import subprocess
+import tempfile
+import time
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 
+from hypothesis import assume
 from hypothesis import strategies as st
 
 from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.generation import check_generation
-from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
+from gearcontact.geometry.pair import EaseOffCoefficients, load_pair, pair_to_toml
+from gearcontact.validation import InputRangeError
 
 #: Fields a refused design may name (ISO 23509 conditions: offset limit, pitch cones
 #: with rho_lim = r_c0, pointed teeth, pinion root, face width; undercut of the pinion).
@@ -27,11 +35,12 @@ DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
                  "cutter.point_width_mm", "design.gear_face_width_mm"}
 
 
-def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side):
+def design_space_pair(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
     """An F.3-like pair (r2 = 70.94 mm, r_c0 = 63.5 mm) at a point of issue 28's design
     space, with a crowning of about 10 um at the flank corners (so that TCA has an
-    ease-off), or the InputRangeError that ``design`` raises for it."""
-    pair = design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side)
+    ease-off), or the InputRangeError that ``design`` raises for it; ``hand``: the
+    pinion's ("left": the mirror image of the right-hand pair)."""
+    pair = design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand)
     check_generation(pair)
     return pair
 
@@ -45,7 +54,7 @@ def generated_hypoid():
                    easeoff_coast=EaseOffCoefficients())
 
 
-def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side):
+def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
     """:func:`design_space_pair` before ``design``'s checks (the pitch-cone design's own
     refusals only)."""
     base = load_pair(Path(__file__).resolve().parents[1] / "examples" / "iso23509_f3.toml")
@@ -53,7 +62,7 @@ def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side):
     r2 = base.gear_mean_pitch_radius_mm
     pair = replace(base, pinion_teeth=z1, gear_teeth=z2, offset_mm=offset_frac * r2,
                    pinion_spiral_angle_deg=beta, gear_face_width_mm=10.0,
-                   pinion_face_width_mm=10.5, design_side=side)
+                   pinion_face_width_mm=10.5, design_side=side, pinion_hand=hand)
     # face width up to the standard limit F <= 0.3 R_e (R_e = R_m + F/2)
     face = face_frac * pair.blank.mean_cone_distance_gear_mm
     b = pair.blank
@@ -71,3 +80,35 @@ SPACE = dict(z1=st.integers(5, 20),
              offset_frac=st.one_of(st.just(0.0), st.floats(0.0, 0.55)),
              beta=st.floats(20.0, 55.0), face_frac=st.floats(0.15, 0.353),
              side=st.sampled_from(SIDES))
+#: Both hands (issue 28 item 1), drawn besides :data:`SPACE` by the tests that run
+#: whole commands on the pairs.
+HANDS = st.sampled_from(("right", "left"))
+
+
+@contextmanager
+def command_on_accepted_pair(command, point, *, options=()):
+    """Run ``gearcontact COMMAND --pair FILE --out DIR --quiet OPTIONS`` (the console
+    script, a real process) on the :func:`design_space_pair` of ``point`` (its
+    arguments in order) written to a temporary TOML file; yield ``(pair, run, out)``
+    (the CompletedProcess and the output directory, removed afterwards). A pair that
+    ``design`` refuses (named: tests/geometry/test_flank.py) is rejected from the
+    hypothesis draw."""
+    try:
+        pair = design_space_pair(*point)
+    except InputRangeError:
+        assume(False)
+    exe = shutil.which("gearcontact")
+    assert exe, "the gearcontact console script is installed"
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "pair.toml").write_text(pair_to_toml(pair))
+        out = tmp / "out"
+        t0 = time.perf_counter()
+        run = subprocess.run([exe, command, "--pair", str(tmp / "pair.toml"), "--out",
+                              str(out), "--quiet", *options], capture_output=True, text=True)
+        # the pair and the wall time, for the record (shown by pytest -s)
+        z1, _, offset_frac, beta, face_frac, *rest = point
+        print(f"{command} z1={z1} z2={pair.gear_teeth} offset={offset_frac:.4f} r2 "
+              f"beta1={beta:.3f} face={face_frac:.4f} R_m {' '.join(rest)}: exit "
+              f"{run.returncode}, {time.perf_counter() - t0:.1f} s")
+        yield pair, run, out

@@ -169,6 +169,26 @@ def test_impossible_designs(kwargs, field):
     assert field in err.value.field
 
 
+def test_flat_cone_inside_a_bracket_is_no_warning():
+    # found by issue 28's probe: design of 12/12, E = 0.3 r2, beta1 = 45 deg printed
+    # "warning: divide by zero" - the contact-ratio fix search designs beta1 = 59.648 deg,
+    # where an offset-equation root bracket holds a flat gear cone (sin(delta2) = 0 in
+    # the cone distance, which that equation does not use). The blank still solves: its
+    # offset equation holds to rounding (1e-10 mm)
+    import warnings
+
+    r2 = load_pair(Path(__file__).resolve().parents[2] / "examples"
+                   / "iso23509_f3.toml").gear_mean_pitch_radius_mm
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        b = design_blank(pinion_teeth=12, gear_teeth=12, offset_mm=0.3 * r2,
+                         pinion_spiral_angle_deg=59.6484375, cutter_radius_mm=63.5,
+                         gear_mean_pitch_radius_mm=r2, gear_addendum_factor=0.35)
+    zm, eta = np.radians([b.offset_angle_axial_pinion_deg, b.offset_angle_axial_gear_deg])
+    assert (b.mean_pitch_radius_gear_mm * np.sin(zm) + b.mean_pitch_radius_pinion_mm
+            * np.sin(eta)) == pytest.approx(0.3 * r2, abs=1e-10)
+
+
 def test_no_cones_blame_survives_an_undefined_residual():
     # found by issue 28's design-space runs: z1/z2 = 5/36, E = 0.09 r2, beta1 = 22.3 deg.
     # The rho_lim = r_c0 residual is undefined (NaN) at points inside a sign-change

@@ -3,10 +3,11 @@
 ``gearcontact analyze --pair FILE --out DIR --phases N`` with every other option at its
 default (four operating torques, the multi-tooth LTCA with tooth bending, the loaded TE
 over every TCA phase, the ease-off synthesis, the figures) exits 0 on random accepted
-pairs of tests/design_space.py, and its files obey truths the job does not impose on
-itself one file from another: the torque balance of every single-pair LTCA, load shares
-summing to 100 %, the loaded TE's TE0 equal to the TCA's te0.csv, every preview value
-present or a status saying why.
+pairs of tests/design_space.py (the slow test draws both hands: a left-hand pair's
+tooth bending once stopped every run, tests/structure/test_shell.py), and its files obey
+truths the job does not impose on itself one file from another: the torque balance of
+every single-pair LTCA, load shares summing to 100 %, the loaded TE's TE0 equal to the
+TCA's te0.csv, every preview value present or a status saying why.
 
 Cost (2 shared cores, warm numba cache, 11 phases): 21-26 s per analyze with the
 machine otherwise quiet, up to 80 s under load; the default test runs one accepted pair
@@ -15,20 +16,15 @@ machine otherwise quiet, up to 80 s under load; the default test runs one accept
 
 import csv
 import json
-import shutil
 import subprocess
-import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, given, settings
 
-from gearcontact.geometry.pair import pair_to_toml
-from gearcontact.validation import InputRangeError
-
-from design_space import SPACE, design_space_pair
+from design_space import HANDS, SPACE, command_on_accepted_pair
 
 #: TCA phases per pitch of the runs here (default 61): the loaded TE runs on all of them.
 PHASES = 11
@@ -39,25 +35,9 @@ def _rows(path: Path) -> list[dict]:
         return list(csv.DictReader(f))
 
 
-def _analyze_accepted_pair(z1, ratio, offset_frac, beta, face_frac, side):
-    try:
-        pair = design_space_pair(z1, ratio, offset_frac, beta, face_frac, side)
-    except InputRangeError:      # refused by design: named (tests/geometry/test_flank.py)
-        assume(False)
-    exe = shutil.which("gearcontact")
-    assert exe, "the gearcontact console script is installed"
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        (tmp / "pair.toml").write_text(pair_to_toml(pair))
-        out = tmp / "out"
-        t0 = time.perf_counter()
-        run = subprocess.run([exe, "analyze", "--pair", str(tmp / "pair.toml"), "--out",
-                              str(out), "--phases", str(PHASES), "--quiet"],
-                             capture_output=True, text=True)
-        # the pair and the wall time, for the record (shown by pytest -s)
-        print(f"analyze z1={z1} z2={pair.gear_teeth} offset={offset_frac:.4f} r2 "
-              f"beta1={beta:.3f} face={face_frac:.4f} R_m {side}: exit {run.returncode}, "
-              f"{time.perf_counter() - t0:.1f} s")
+def _analyze_accepted_pair(*point):
+    with command_on_accepted_pair("analyze", point,
+                                  options=("--phases", str(PHASES))) as (_, run, out):
         assert run.returncode == 0, run.stderr
         _check_results(out)
 
@@ -116,9 +96,9 @@ def test_accepted_pair_runs_analyze(z1, ratio, offset_frac, beta, face_frac, sid
 @pytest.mark.slow
 @settings(max_examples=9, deadline=None, derandomize=True, database=None,
           suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
-@given(**SPACE)
-def test_accepted_pairs_run_analyze_slow(z1, ratio, offset_frac, beta, face_frac, side):
-    _analyze_accepted_pair(z1, ratio, offset_frac, beta, face_frac, side)
+@given(**SPACE, hand=HANDS)
+def test_accepted_pairs_run_analyze_slow(z1, ratio, offset_frac, beta, face_frac, side, hand):
+    _analyze_accepted_pair(z1, ratio, offset_frac, beta, face_frac, side, hand)
 
 
 #: Issue 28 item 1's low-ratio spiral bevel pairs (ISO 23509 F.2's data, 20 pinion

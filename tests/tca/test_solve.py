@@ -3,7 +3,14 @@
 Truth: a sphere on the pinion against a torus on the gear touch where the distance of
 the sphere centre from the posed core circle equals r + Rs; phi2(phi1) is an
 independent scalar root (brentq, xtol 1e-15 rad).
+
+A surface path that folds back in phi1 (issue 28: 7/70 teeth, offset 0.49 r2, 50 deg,
+where ``twin``'s surface-only TCA stopped with a Newton failure) ends at the fold: its
+last surface phase lies before the largest phi1 of the mating path (the path followed
+with the pinion height ``u1`` held instead of phi1), the next one is an edge phase.
 """
+
+from dataclasses import replace
 
 import numpy as np
 from scipy.optimize import brentq
@@ -189,6 +196,45 @@ def test_non_convergence_names_phase_and_residual():
     with pytest.raises(TcaConvergenceError, match=r"phi1 = 5\.000000 deg: residual"):
         solve_mating_point(case.pinion, case.gear, case.kin,
                            _guess(case, np.radians(5.0)), max_iter=1)
+
+
+@pytest.fixture(scope="module")
+def folding_pair():
+    """A design-space pair whose drive path folds back near the pinion root at phi1
+    ~92.3 deg (coarse flank grid, 40 x 50 nodes: 4-12 s; the fold is 0.05 deg from
+    that of the production grid), its drive flanks and kinematics."""
+    from design_space import design_space_candidate
+
+    from gearcontact.geometry.flank import build_flanks
+
+    pair = design_space_candidate(7, 10.0, 0.49, 50.0, 0.3, "drive")
+    flanks = build_flanks(pair, n_u=40, n_v=50)
+    return (flanks.flank("pinion", "drive"), flanks.flank("gear", "drive"),
+            pair.kinematics(with_errors=True))
+
+
+def test_surface_path_ends_at_a_fold(folding_pair):
+    pinion, gear, kin = folding_pair
+    start = ContactGuess(1.098, 72.206, 3.735, 9.735, np.radians(88.0), 0.1539)
+    phis = np.radians(np.arange(88.0, 95.0, 0.5))
+    path = solve_tca(pinion, gear, kin, phis, start=start, edges=False)
+    # the fold: the largest phi1 of the mating path, u1 held over the path's last 0.07 mm
+    fold = max(solve_mating_point(pinion, gear, kin, replace(start, u1=u1, phi1_rad=np.radians(
+        92.0), u2=3.99, v2=9.72, v1=72.4, phi2_rad=0.1613), fixed="u1").phi1_rad
+               for u1 in np.linspace(0.93, 1.0, 15))
+    surface = [mp for mp in path.points if not mp.edge]
+    assert surface and max(mp.phi1_rad for mp in surface) < fold
+    first_edge = next(mp for mp in path.points if mp.edge)
+    assert first_edge.phi1_rad > fold
+    assert np.degrees(first_edge.phi1_rad - max(mp.phi1_rad for mp in surface)) == \
+        pytest.approx(0.5)          # the next phase of the grid, not an earlier stop
+    assert first_edge.edge_where == "pinion u min"   # an edge at the pinion root
+    assert all(mp.residual < 1e-9 for mp in surface)
+    # the edge-contact path (analyze's) takes the same surface points before the fold
+    full = solve_tca(pinion, gear, kin, phis, start=start)
+    for a, b in zip(path.points, full.points):
+        if not a.edge:
+            assert (a.u1, a.v1, a.phi2_rad) == (b.u1, b.v1, b.phi2_rad)
 
 
 def test_phases_must_increase():

@@ -82,3 +82,29 @@ def test_stencil_fit_gives_the_tca_curvatures(name, subs, tmp_path):
     side = pair.design_side
     tca, flanks = analyze_pair(pair, side=side, phases=31, edge_contact=False)
     _check(mesh_table(tca, flanks, pair, side=side))
+
+
+def test_an_edge_pair_touching_first_carries_the_envelope():
+    """An edge pair with a negative opening (issue 28 probe: 7/60 teeth, up to -6.9 um)
+    touches before the surface envelope's pair: the envelope moves by max(-g/l) and
+    every pair's closure ``l (theta - s) - g`` is unchanged (rounding, 1e-15 mm), the
+    first-touching pair open by exactly 0, the others open (>= 0); rows without such a
+    pair are untouched bit for bit."""
+    from gearcontact.twin.mesh import _first_touch
+
+    lever = np.array([[55.0, 56.0, 57.0], [62.0, 62.5, 63.0], [60.0, 60.0, 60.0]])
+    opening = np.array([[0.0, 0.0, 0.0], [4.6e-3, -0.1e-3, -6.9e-3], [0.02, 0.01, 0.0]])
+    valid = np.array([[True, True, True], [True, True, True], [True, True, False]])
+    arrays = {"lever": lever.copy(), "opening": opening.copy()}
+    shift = _first_touch(arrays, valid)
+    assert shift[0] == 0.0
+    assert shift[1:] == pytest.approx([0.1e-3 / 62.5, 6.9e-3 / 63.0], rel=1e-12)
+    np.testing.assert_array_equal(arrays["opening"][:, 0], opening[:, 0])
+    assert arrays["opening"][1, 1] == 0.0 and arrays["opening"][1, 2] == 0.0
+    assert np.all(arrays["opening"][valid] >= 0.0)
+    # the closure at the same gear position: theta' = theta + s on the moved envelope
+    theta = 3e-5                                    # rad, any rotation
+    for k in (1, 2):
+        v = valid[:, k]
+        np.testing.assert_allclose(lever[v, k] * (theta + shift[k]) - arrays["opening"][v, k],
+                                   lever[v, k] * theta - opening[v, k], rtol=0, atol=1e-15)

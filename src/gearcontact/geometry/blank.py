@@ -387,7 +387,9 @@ def _solve_hypoid(*, E: float, b1: float, u: float, r2: float | None, R2: float 
         if not ok.any():
             return None
         i = int(np.argmax(ok))  # the smallest pinion offset angle that meets the offset
-        return brentq(off, grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15, maxiter=200)
+        # _root: a cone of the bracket may be flat (sin(delta) = 0 in the cone distances
+        # the offset equation does not use): no RuntimeWarning on the user's screen
+        return _root(off, grid[i], grid[i + 1])
 
     def residual(eta: float) -> float:
         zm = zeta_for(eta)

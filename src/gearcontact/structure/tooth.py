@@ -93,9 +93,15 @@ class LoadPoints:
 
 def local_frame(mid: MidSurfaceArrays) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Orthonormal frame (e1, e2, m) of the mid-surface: e1 along x_xi (lengthwise),
-    m the normal, e2 = m x e1 (towards the tip)."""
+    e2 the part of x_eta normal to it (towards the tip), m the normal (coast -> drive).
+
+    The frame is right- or left-handed as the tooth is: the mirror image of a tooth
+    (a left-hand pair, :mod:`gearcontact.geometry.mirror`) has the mirrored frame, so
+    that (xi, eta) -> (x1, x2) keeps a positive Jacobian and the plate energy is the
+    same (``e2 = m x e1`` would point to the root on a left-hand tooth)."""
     e1 = mid.x_xi / np.linalg.norm(mid.x_xi, axis=-1, keepdims=True)
-    e2 = np.cross(mid.normal, e1)
+    e2 = mid.x_eta - np.einsum("...i,...i->...", mid.x_eta, e1)[..., None] * e1
+    e2 /= np.linalg.norm(e2, axis=-1, keepdims=True)
     return e1, e2, mid.normal
 
 

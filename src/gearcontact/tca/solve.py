@@ -147,18 +147,28 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                         gap = phis[i] - prev.phi1_rad
                     mp = step
                 except (EdgeContact, TcaConvergenceError) as exc:
-                    if not edges and isinstance(exc, TcaConvergenceError):
-                        raise
-                    stopped = exc.where if isinstance(exc, EdgeContact) else "no convergence"
-                    if not edges:
+                    if isinstance(exc, EdgeContact):
+                        where = exc.where
+                    else:
+                        # no surface mating point: the path may have folded back in
+                        # phi1 (a turning point near the limit line, the Jacobian
+                        # singular there) while an edge takes over the contact; only if
+                        # no edge touches either is it a failure of the solve
+                        where = "no convergence"
+                        mp = solve_edge_contact(pinion, gear, kin, phis[i],
+                                                guess=prev.as_guess(), forward=forward,
+                                                tol_mm=tol_mm)
+                        if mp is None:
+                            raise
+                    if not edges:       # surface contact only: the path ends here
+                        stopped = (where if mp is None
+                                   else solver_boundary(mp.edge_contact))
                         results[i] = MatingPoint.edge_phase(phis[i], stopped)
                         continue
-                    stopped = None
-                    mp = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
-                                            forward=forward, tol_mm=tol_mm)
-                    if mp is None and isinstance(exc, TcaConvergenceError):
-                        raise
-                    where = exc.where if isinstance(exc, EdgeContact) else "no convergence"
+                    if isinstance(exc, EdgeContact):
+                        mp = solve_edge_contact(pinion, gear, kin, phis[i],
+                                                guess=prev.as_guess(), forward=forward,
+                                                tol_mm=tol_mm)
             else:
                 # edge mode: the edge contact, or the surface point if it is back on the
                 # flanks and touches first

@@ -202,6 +202,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
+    env = env + m * ARCSEC_PER_RAD * _first_touch(arrays, valid)
     order = np.arange(n_k) if m == 1 else np.arange(n_k)[::-1]
     k0 = cycle.mean_index
     main = [i for i in range(n_p) if valid[i, k0] and arrays["opening"][i, k0] == 0.0]
@@ -220,6 +221,28 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
                              / cycle.path.ratio),
         side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order])
+
+
+def _first_touch(arrays: dict, valid: np.ndarray) -> np.ndarray:
+    """Rotation (rad, along the motion) per phase by which an edge pair touches before
+    the transmitting pair of the surface TCA's envelope (0 where none does); the
+    openings are re-based on it in place, so that the first-touching pair is open by 0.
+
+    An edge pair resolved on its posed field may close at a negative opening ``g_j``
+    (it interferes where the envelope's pair would touch): the unloaded mesh then rests
+    on it, at ``theta = max_j (-g_j / l_j)``. Taking that into the envelope ``eps`` keeps
+    the mesh conservative in it (the pinion's factor ``1/u + eps'`` is then the
+    derivative of the first touch, as the kernel assumes), instead of a pre-loaded
+    pair whose closing opening pushes the gear at no cost to the pinion.
+    """
+    lever, opening = arrays["lever"], arrays["opening"]
+    ahead = np.where(valid, -opening / np.where(valid, lever, 1.0), 0.0)
+    shift = np.maximum(ahead.max(axis=0), 0.0)
+    first = np.argmax(ahead, axis=0)
+    opening += np.where(valid, lever * shift, 0.0)
+    cols = np.flatnonzero(shift > 0.0)
+    opening[first[cols], cols] = 0.0        # exactly: the pair the mesh rests on
+    return shift
 
 
 def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:
