@@ -230,13 +230,13 @@ def test_bending_compliance_rows_are_the_loaded_te_rows(spur, spur_bent):
     (ltca.cylindrical_bending.line_bending_factor at the same 40 rows) under a uniform q
     along the line: against G = F F^T summed by hand, 1e-12."""
     from gearcontact.ltca.cylindrical_bending import line_bending_factor
+    from gearcontact.ltca.cylindrical_lte import axial_rows_mm
     from gearcontact.tca.cylindrical_cycle import contact_line_gaps
 
     pair, cycle, _ = spur
     bend, _ = spur_bent
     cb = line_bending_compliance(pair, cycle, bend, cells_along=40)
-    z0, z1 = cycle.pinion_v_range_mm
-    z = z0 + (z1 - z0) / 40 * (np.arange(40) + 0.5)
+    z = axial_rows_mm(cycle, 40)
     lg = contact_line_gaps(pair, cycle, z)
     f = line_bending_factor(bend, z, lg.pinion_roll_mm[1, 1], lg.gear_roll_mm[1, 1], 1)[:, 0]
     on = np.isfinite(lg.pinion_roll_mm[1, 1])

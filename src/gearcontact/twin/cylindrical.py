@@ -40,7 +40,7 @@ import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
-from ..ltca.cylindrical_lte import cylindrical_loaded_te
+from ..ltca.cylindrical_lte import axial_rows_mm, check_cells, cylindrical_loaded_te
 from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
 from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle,
@@ -81,9 +81,7 @@ def line_bending_compliance(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     :func:`~gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` places its rows), a
     uniform load on the rows on the pair's contact line, ``c_b = |F^T q|^2`` with
     ``sum q = 1`` (module docstring); 0 where the pair has no line."""
-    z0, z1 = cycle.pinion_v_range_mm
-    dz = (z1 - z0) / cells_along
-    z = z0 + dz * (np.arange(cells_along) + 0.5)
+    z = axial_rows_mm(cycle, cells_along)
     lg = contact_line_gaps(pair, cycle, z)
     n_p, n_k = lg.gap_mm.shape[:2]
     out = np.zeros((n_p, n_k))
@@ -167,13 +165,16 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
     Raises
     ------
     InputRangeError
-        A backend other than :data:`CYLINDRICAL_BACKENDS` (before any work), a bad side.
+        A backend other than :data:`CYLINDRICAL_BACKENDS`, ``table_cells`` not an
+        integer >= 4 where it is used (before any work), a bad side.
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in CYLINDRICAL_BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(CYLINDRICAL_BACKENDS)} for a "
                                                   "cylindrical pair (the SoCs carry no line "
                                                   "core: docs/cylindrical.md sec. 10)")
+    if bending or backend == "table":
+        check_cells("table_cells", table_cells)
     facing = FACING_OF_SIDE.get(side)
     if facing is None:
         raise InputRangeError("side", side, "'drive' or 'coast'")
