@@ -14,10 +14,11 @@ of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.param
 A cylindrical pair (``kind = "cylindrical"``) runs the preview's line chain as the
 contact law (``--backend reference``, the default, ``golden`` or ``rtl``: the ChainLineCore
 replay) or its loaded-TE table (``--backend table``: the loaded TE of its mesh cycle over
-a torque ladder, rigid teeth or with ``--bending``), and ``--speed-sweep`` beside the
-table twin (:mod:`gearcontact.twin.cylindrical`, docs/cylindrical.md sec. 10); ``soc``,
-``--curvatures exact``, ``--table-source preview`` and ``--bending`` with a preview
-backend are refused for it.
+a torque ladder), rigid teeth or with ``--bending`` (the preview backends: each pair's
+tooth-bending compliance along its contact line in series with the line law), and
+``--speed-sweep`` beside the table twin (:mod:`gearcontact.twin.cylindrical`,
+docs/cylindrical.md sec. 10); ``soc``, ``--curvatures exact`` and ``--table-source
+preview`` are refused for it.
 """
 
 from __future__ import annotations
@@ -70,8 +71,9 @@ def register(sub) -> None:
     p.add_argument("--table-source", default="lcp", choices=("lcp", "preview"),
                    help="table backend: LTCA (lcp, default) or Hertz preview loaded TE")
     p.add_argument("--bending", action="store_true",
-                   help="tooth bending of both members in series with the Hertzian law "
-                        "(shell model; default rigid teeth)")
+                   help="tooth bending of both members (shell model) in series with the "
+                        "contact law, Hertzian or a cylindrical pair's line law (default "
+                        "rigid teeth)")
     p.add_argument("--curvatures", default="stencil", choices=CURVATURE_SOURCES,
                    help="where the preview's curvatures come from: stencil (default: stage "
                         "C per step, the curvature fit of the 7 x 7 gap stencil, then "
@@ -157,10 +159,6 @@ def check_cylindrical(args) -> None:
         raise InputRangeError("--curvatures", args.curvatures, "stencil for a cylindrical pair "
                                                                "(the line chain: stage C on "
                                                                "the stencil per step)")
-    if args.bending and (args.backend != "table" or args.speed_sweep):
-        raise InputRangeError("--bending", True, "only with --backend table for a cylindrical "
-                                                 "pair (its preview backends run rigid teeth: "
-                                                 "docs/cylindrical.md sec. 10)")
 
 
 def run(args) -> int:
@@ -173,7 +171,7 @@ def run(args) -> int:
         if speeds is not None:
             return _sweep(args, pair, drivetrain, speeds, cylindrical_sweep_models(
                 pair, torque_nm=args.torque, backend=args.backend, drivetrain=drivetrain,
-                side=args.side, phases=args.phases))
+                side=args.side, phases=args.phases, bending=args.bending))
         model = cylindrical_model(pair, torque_nm=args.torque, backend=args.backend,
                                   drivetrain=drivetrain, side=args.side, phases=args.phases,
                                   bending=args.bending)

@@ -67,8 +67,8 @@ from .cylindrical_bending import cylindrical_bending, line_bending_factor
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
-           "cylindrical_loaded_te", "cylindrical_loaded_te_models", "harris_map",
-           "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n"]
+           "axial_rows_mm", "check_cells", "cylindrical_loaded_te", "cylindrical_loaded_te_models",
+           "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -177,6 +177,24 @@ class CylindricalLoadedTE:
         return float(np.mean(self.stiffness_n_per_mm_um[:-1]))
 
 
+def check_cells(field: str, n) -> int:
+    """``n`` cells of a pair's grid along one axis: an integer >= 4, else
+    :class:`~gearcontact.validation.InputRangeError` naming ``field``."""
+    if isinstance(n, bool) or int(n) != n or n < 4:
+        raise InputRangeError(field, n, "an integer >= 4")
+    return int(n)
+
+
+def axial_rows_mm(cycle: CylindricalMeshCycle, cells_along: int) -> np.ndarray:
+    """Axial positions (mm) of the grid's ``cells_along`` rows (:func:`check_cells`):
+    the cell centres of a uniform division of the cycle's pinion face (module
+    docstring, Grid)."""
+    cells_along = check_cells("cells_along", cells_along)
+    z0, z1 = cycle.pinion_v_range_mm
+    dz = (z1 - z0) / cells_along
+    return z0 + dz * (np.arange(cells_along) + 0.5)
+
+
 def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n: float,
                       e_star: float, factor: float) -> float:
     """Half-width of the strip: ``factor`` Hertz half-widths of the whole load on the
@@ -218,8 +236,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     """
     load = normal_load_n(pair, torque_nm)
     for key, n in (("cells_across", cells_across), ("cells_along", cells_along)):
-        if isinstance(n, bool) or int(n) != n or n < 4:
-            raise InputRangeError(key, n, "an integer >= 4")
+        check_cells(key, n)
     check_positive("extent_factor", extent_factor)
     if cycle is None:
         cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
@@ -228,9 +245,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     cb = math.cos(math.radians(g.base_helix_angle_deg))
     e_star = resolve_e_star((pair.pinion_material, pair.gear_material))
     half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
-    z0, z1 = cycle.pinion_v_range_mm
-    dz = (z1 - z0) / cells_along
-    z = z0 + dz * (np.arange(cells_along) + 0.5)
+    z = axial_rows_mm(cycle, cells_along)
+    dz = (cycle.pinion_v_range_mm[1] - cycle.pinion_v_range_mm[0]) / cells_along
     lg = contact_line_gaps(pair, cycle, z)
     nx = int(cells_across)
     dx = 2.0 * half / nx

@@ -23,9 +23,15 @@ Contact law, per backend (``--backend``, as the bevel twin's):
   ``bending`` option) over the phase at a torque ladder
   (:func:`cylindrical_torque_table`, the conventional twin's input).
 
-Tooth bending (``bending``) is the table's alone: the preview backends run rigid teeth
-(the cylindrical tooth's per-pair compliance along its line is not tabulated), so
-``bending`` with them is refused.
+Tooth bending (``bending``): the ``table`` backend's loaded TE carries it in its LCP;
+the preview backends put each pair's bending compliance ``c_b`` in series with the line
+chain's law, ``d = d_c(W) + c_b W`` (Newton per pair and stage in :mod:`.kernel`, as the
+bevel twin's). ``c_b`` (:func:`line_bending_compliance`, per pair and phase into the
+mesh table's ``bending_mm_per_n``) is the work-conjugate compliance of the pinion and
+gear tooth shells (:func:`gearcontact.ltca.cylindrical_bending.line_bending_factor`, the
+loaded TE's own rows) under a load spread evenly along the pair's contact line -- the
+load shape of the line core's law, so the bending and the contact take the same shape
+(:func:`.mesh.conjugate_compliance`).
 """
 
 from __future__ import annotations
@@ -33,7 +39,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
-from ..ltca.cylindrical_lte import cylindrical_loaded_te
+from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
+from ..ltca.cylindrical_lte import axial_rows_mm, check_cells, cylindrical_loaded_te
+from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
 from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle,
                                      contact_line_gaps, cylindrical_mesh_cycle)
@@ -43,12 +51,13 @@ from ..errors import CheckFailed
 from ..validation import InputRangeError, check_positive
 from .layout import LINE_SOURCE
 from .ltca_table import DEFAULT_LADDER, TorqueTable
-from .mesh import MeshTable
+from .mesh import MeshTable, conjugate_compliance
 from .model import TwinModel, build_model
 from .params import DrivetrainParams, default_drivetrain
 
 __all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
-           "cylindrical_model", "cylindrical_sweep_models", "motion_sign"]
+           "cylindrical_model", "cylindrical_sweep_models", "line_bending_compliance",
+           "motion_sign"]
 
 #: The twin backends a cylindrical pair runs (module docstring).
 CYLINDRICAL_BACKENDS = ("reference", "golden", "rtl", "table")
@@ -65,13 +74,40 @@ def _order(m: int, n: int) -> np.ndarray:
     return np.arange(n) if m == 1 else np.arange(n)[::-1]
 
 
+def line_bending_compliance(pair: CylindricalPair, cycle: CylindricalMeshCycle,
+                            bending: ToothBending, *, cells_along: int = 40) -> np.ndarray:
+    """Bending compliance ``c_b`` (P, K) of each pair and phase of ``cycle``, mm/N: the
+    shells' factor rows at ``cells_along`` axial positions over the pinion face (as
+    :func:`~gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` places its rows), a
+    uniform load on the rows on the pair's contact line, ``c_b = |F^T q|^2`` with
+    ``sum q = 1`` (module docstring); 0 where the pair has no line."""
+    z = axial_rows_mm(cycle, cells_along)
+    lg = contact_line_gaps(pair, cycle, z)
+    n_p, n_k = lg.gap_mm.shape[:2]
+    out = np.zeros((n_p, n_k))
+    for j in range(n_p):
+        for k in range(n_k):
+            on = np.isfinite(lg.pinion_roll_mm[j, k]) & np.isfinite(lg.gear_roll_mm[j, k])
+            if on.any():
+                f = line_bending_factor(bending, z, lg.pinion_roll_mm[j, k],
+                                        lg.gear_roll_mm[j, k], 1)[:, 0]
+                out[j, k] = conjugate_compliance(f, on)
+    return out
+
+
 def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                            stencils: CylindricalStencils | None = None, *,
-                           side: str = "drive") -> MeshTable:
-    """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring)."""
+                           side: str = "drive", bending: ToothBending | None = None,
+                           cells_along: int = 40) -> MeshTable:
+    """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring);
+    ``bending``: the tooth shells (:func:`~gearcontact.ltca.cylindrical_bending.
+    cylindrical_bending` on the cycle's facing) whose :func:`line_bending_compliance` at
+    ``cells_along`` rows fills ``bending_mm_per_n`` (None: rigid teeth, zeros)."""
     st = stencils if stencils is not None else cylindrical_stencils(pair, cycle)
     m = motion_sign(pair, cycle)
     order = _order(m, len(cycle.phi1_rad))
+    cb = np.zeros(st.valid.shape) if bending is None else np.where(
+        st.valid, line_bending_compliance(pair, cycle, bending, cells_along=cells_along), 0.0)
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2
@@ -84,7 +120,7 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
         e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
         phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
-        bending_mm_per_n=np.zeros(st.valid.shape), stencil_gaps_mm=st.gaps_mm[:, order],
+        bending_mm_per_n=cb[:, order], stencil_gaps_mm=st.gaps_mm[:, order],
         line_length_mm=np.where(st.valid, st.line_length_mm, 0.0)[:, order])
 
 
@@ -120,31 +156,31 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
     """Cycle and mesh table of ``pair`` (and for the ``table`` backend the loaded-TE
     table), then :func:`~.model.build_model` (module docstring; the reverse flank is the
     loaded law mirrored about the backlash). The preview backends run the line chain
-    (curvature source :data:`~.layout.LINE_SOURCE`). ``bending``: the loaded-TE table
-    with the shell bending of both teeth (``table`` only; rigid teeth by default, as
-    the bevel twin's ``bending``).
+    (curvature source :data:`~.layout.LINE_SOURCE`). ``bending``: the shell bending of
+    both teeth (rigid teeth by default, as the bevel twin's ``bending``): in the
+    loaded-TE table's LCP (``table``) and, for every backend, each pair's
+    :func:`line_bending_compliance` at ``table_cells`` rows in the mesh table (the
+    preview backends' law in series; the table backend only reports it).
 
     Raises
     ------
     InputRangeError
-        A backend other than :data:`CYLINDRICAL_BACKENDS`, ``bending`` with a preview
-        backend (before any work), a bad side.
+        A backend other than :data:`CYLINDRICAL_BACKENDS`, ``table_cells`` not an
+        integer >= 4 where it is used (before any work), a bad side.
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in CYLINDRICAL_BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(CYLINDRICAL_BACKENDS)} for a "
                                                   "cylindrical pair (the SoCs carry no line "
                                                   "core: docs/cylindrical.md sec. 10)")
-    if bending and backend != "table":
-        raise InputRangeError("bending", bending, "False with the preview backends of a "
-                                                  "cylindrical pair (tooth bending is in the "
-                                                  "table backend's loaded TE: "
-                                                  "docs/cylindrical.md sec. 10)")
+    if bending or backend == "table":
+        check_cells("table_cells", table_cells)
     facing = FACING_OF_SIDE.get(side)
     if facing is None:
         raise InputRangeError("side", side, "'drive' or 'coast'")
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
-    mesh = cylindrical_mesh_table(pair, cycle, side=side)
+    teeth = cylindrical_bending(pair, facing=facing) if bending else None
+    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth, cells_along=table_cells)
     table = None
     if backend == "table":
         table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,
@@ -158,10 +194,12 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
 
 def cylindrical_sweep_models(pair: CylindricalPair, *, torque_nm: float, backend: str,
                              drivetrain: DrivetrainParams | None = None, side: str = "drive",
-                             phases: int = 61, table_cells: int = 40) -> dict:
+                             phases: int = 61, table_cells: int = 40,
+                             bending: bool = False) -> dict:
     """The models of a speed sweep (:func:`.sweep.speed_sweep`): the preview twin of
     ``backend`` (``reference`` or ``golden``) beside the table twin, on one cycle and
-    mesh table (rigid teeth: the preview backends have no bending).
+    mesh table (rigid teeth, or both with tooth bending: ``bending`` as
+    :func:`cylindrical_model`).
 
     Raises
     ------
@@ -172,7 +210,8 @@ def cylindrical_sweep_models(pair: CylindricalPair, *, torque_nm: float, backend
         raise InputRangeError("backend", backend, "reference or golden for a speed sweep "
                                                   "(the table twin runs beside it)")
     table = cylindrical_model(pair, torque_nm=torque_nm, backend="table", drivetrain=drivetrain,
-                              side=side, phases=phases, table_cells=table_cells)
+                              side=side, phases=phases, table_cells=table_cells,
+                              bending=bending)
     preview = build_model(table.mesh, table.drivetrain, table.torque_nm, backend=backend,
                           curvatures=LINE_SOURCE, reverse_note=table.reverse_note)
     return {backend: preview, "table": table}

@@ -47,7 +47,7 @@ from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
 
 __all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad",
-           "pair_bending_compliance"]
+           "pair_bending_compliance", "conjugate_compliance"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -263,9 +263,18 @@ def pair_bending_compliance(fields: PairFields, pc, torque_nmm: float) -> float:
                              e_prime_mpa=fields.e_prime)
     s, t = np.meshgrid(grid.x_mm, grid.y_mm)
     q = np.sqrt(np.clip(1.0 - (s / hz.a_mm) ** 2 - (t / hz.b_mm) ** 2, 0.0, None)) * ~off
-    if not q.any():
+    return conjugate_compliance(f, q)
+
+
+def conjugate_compliance(factor: np.ndarray, weights: np.ndarray) -> float:
+    """Work-conjugate compliance ``q^T G q = |F^T q|^2`` (mm/N) of the load shape
+    ``weights`` (any shape S, scaled to a unit total; all zero: 0) on the bending factor
+    ``factor`` (S + (r,), ``G = F F^T`` mm/N): the mean deflection along the normal,
+    weighted by the load, per newton of it (Castigliano)."""
+    w = np.asarray(weights, float)
+    if not w.any():
         return 0.0
-    v = np.einsum("yxr,yx->r", f, q / q.sum())
+    v = np.tensordot(w / w.sum(), np.asarray(factor, float), axes=w.ndim)
     return float(v @ v)
 
 
