@@ -8,7 +8,9 @@ datapath (golden fixed point and fp64) with a Makefile and the checker
 (co-simulation and model exchange, plain C, a Linux x86-64 binary built at export) of
 one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`);
 ``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
-``gearcontact twin`` (rigid teeth; :mod:`gearcontact.export.fmu_drivetrain`).
+``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
+with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
+:mod:`gearcontact.export.fmu_drivetrain`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members as
 STEP (B-spline surfaces) and as CMM point grids with normals
 (:mod:`gearcontact.export.flanks`).
