@@ -300,6 +300,7 @@ def test_design_local_synthesis_refusals(capsys):
     assert "ease-off" in capsys.readouterr().err
 
 
+@pytest.mark.slow       # two generation checks of a generated hypoid: ~26 s on 2 busy cores
 def test_design_machine_settings_of_a_machine_pair_are_its_blanks(capsys, tmp_path):
     # the pair written by --machine-settings, given to --machine-settings again: the
     # settings are the blank's (the pair's own tables replaced), so the same tables come
