@@ -84,3 +84,22 @@ def test_twin_refuses_a_drivetrain_file_as_the_pair(tmp_path):
     _refused(["twin", "--pair", ROOT / "examples" / "drivetrain_s0003.toml", "--out",
               tmp_path / "d"], "drivetrain_s0003.toml", "[drivetrain]", "--drivetrain")
     assert not (tmp_path / "d").exists()
+
+
+@pytest.mark.parametrize("command", [["export", "fmu", "--bending"],
+                                     ["export", "fmu", "--kind", "drivetrain"], ["twin"]])
+def test_a_conjugate_loaded_side_is_refused_before_the_tca(tmp_path, command):
+    # s0003 (no assembly errors) with an [easeoff.coast] table of zeros: the loaded
+    # coast flanks (its design side) are conjugate, line contact. Before: the flanks built and the TCA run
+    # (31 s for a generated hypoid) to exit 2 with the line contact; now refused naming
+    # the table before any flank, the output directory not created
+    from dataclasses import replace
+
+    from gearcontact.geometry.pair import EaseOffCoefficients, load_pair
+
+    pair = tmp_path / "conjugate.toml"
+    pair.write_text(pair_to_toml(replace(load_pair("s0003"),
+                                         easeoff_coast=EaseOffCoefficients())))
+    _refused([*command, "--pair", pair, "--out", tmp_path / "o"], "[easeoff.coast]",
+             "all coefficients 0", "synthesized")
+    assert not (tmp_path / "o").exists()

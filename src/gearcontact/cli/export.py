@@ -82,6 +82,7 @@ def check_fmu(args) -> None:
     """Cheap checks before the TCA: the kind, the phase count, the torque, the
     drivetrain file, the pair."""
     from ..export.fmu import check_fmu_kind
+    from ..tca.line_contact import check_loadable
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
     check_positive("--torque", args.torque)
@@ -94,6 +95,7 @@ def check_fmu(args) -> None:
                                   "drivetrain")
         check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args)
+    check_loadable(args.gear_pair, args.side)
 
 
 def run_fmu(args) -> int:
