@@ -358,14 +358,37 @@ def test_design_local_synthesis_refusals(capsys):
     # --local-synthesis (the run itself: tests/tca/test_setting_synthesis.py, slow) is
     # refused before any flank: without --machine-settings, on a pair with an ease-off
     # (the fit decides), on a formate-gear pair (F.2: its complementary pinion has line
-    # contact, no point to pivot on) and with a crowning option: exit 2, the option named
+    # contact, no point to pivot on) and with a crowning option (the contradiction named
+    # first, before the pair's generation): exit 2, the option named
     f2 = "examples/iso23509_f2_spiral_bevel.toml"
     for argv, word in ((["--local-synthesis"], "--machine-settings"),
                        (["--machine-settings", "--local-synthesis"], "generated"),
                        (["--machine-settings", "--local-synthesis",
-                         "--lengthwise-crowning-um", "30"], "generated")):
+                         "--lengthwise-crowning-um", "30"], "sets the crowning")):
         assert main(["design", "--pair", f2, *argv]) == 2
         err = capsys.readouterr().err
         assert "--local-synthesis" in err and word in err, err
     assert main(["design", "--pair", "s0003", "--machine-settings", "--local-synthesis"]) == 2
     assert "ease-off" in capsys.readouterr().err
+
+
+@pytest.mark.slow       # two generation checks of a generated hypoid: ~26 s on 2 busy cores
+def test_design_machine_settings_of_a_machine_pair_are_its_blanks(capsys, tmp_path):
+    # the pair written by --machine-settings, given to --machine-settings again: the
+    # settings are the blank's (the pair's own tables replaced), so the same tables come
+    # back. Before, the rerun cut the gear formate (a machine pair's generation read as
+    # formate) although the blank's formate gear undercuts its pinion (13/26, E 21.3 mm,
+    # tests/design_space.py: generated gear; ratio of roll 0 instead of 1.2075)
+    from design_space import generated_hypoid
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+
+    first = tmp_path / "generated.toml"
+    first.write_text(pair_to_toml(generated_hypoid()))
+    assert main(["design", "--pair", str(first), "--machine-settings", "--out",
+                 str(tmp_path / "a")]) == 0
+    cut = tmp_path / "a" / "machine_settings.toml"
+    assert main(["design", "--pair", str(cut), "--machine-settings", "--out",
+                 str(tmp_path / "b")]) == 0
+    capsys.readouterr()
+    again = load_pair(tmp_path / "b" / "machine_settings.toml")
+    assert again.machine == load_pair(cut).machine

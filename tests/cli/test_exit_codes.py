@@ -11,8 +11,6 @@ code) after replacing one function: for 4 the golden model the RTL is compared w
 preview engine (it raises ZeroDivisionError, as a bug would).
 """
 
-import os
-import shutil
 import subprocess
 import sys
 import textwrap
@@ -22,18 +20,7 @@ import pytest
 from gearcontact.errors import BadInput, CheckFailed, DatapathFlagged, ToolUnavailable
 from gearcontact.cli import EXIT_CODES, exit_code_of
 from gearcontact.contract.stencil import stencil_coordinates, write_stencil_csv
-
-#: This checkout's package first, for the child processes.
-ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
-
-
-def _script(*argv):
-    """Run the installed console script; (return code, stdout, stderr)."""
-    exe = shutil.which("gearcontact")
-    if exe is None:
-        pytest.skip("the gearcontact console script is not on PATH (pip install -e .)")
-    p = subprocess.run([exe, *argv], capture_output=True, text=True, env=ENV, timeout=300)
-    return p.returncode, p.stdout, p.stderr
+from console_script import ENV, run_console
 
 
 def _entry_point(setup: str, *argv):
@@ -57,7 +44,7 @@ def test_bad_input_exit_2(tmp_path):
     gaps = 0.01 * (s ** 2 + t ** 2)
     gaps[7] = 1e5                                  # mm; Q(32,16) ends at 32768 mm
     path = write_stencil_csv(tmp_path / "far.csv", gaps)
-    code, out, err = _script("preview", "--stencil", str(path), "--load", "10",
+    code, out, err = run_console("preview", "--stencil", str(path), "--load", "10",
                              "--backend", "golden")
     assert code == 2, err
     assert out == ""
@@ -70,7 +57,7 @@ def test_datapath_flag_exit_3(tmp_path):
     """A saddle stencil (A- > 0 > B-): the golden datapath flags fit_not_elliptic."""
     s, t = stencil_coordinates()
     path = write_stencil_csv(tmp_path / "saddle.csv", 0.2 * s ** 2 - 0.01 * t ** 2)
-    code, out, err = _script("preview", "--stencil", str(path), "--load", "10",
+    code, out, err = run_console("preview", "--stencil", str(path), "--load", "10",
                              "--backend", "golden")
     assert code == 3, err
     assert "fit_not_elliptic" in out and "datapath flag: fit_not_elliptic" in err

@@ -426,6 +426,35 @@ def test_a_new_export_into_a_built_directory(tmp_path):
     assert run.returncode == 2 and "notes.txt" in run.stderr and "--force" in run.stderr
 
 
+@pytest.mark.skipif(shutil.which("gcc") is None or shutil.which("objdump") is None
+                    or os.uname().machine != "x86_64", reason="gcc, objdump on x86-64")
+def test_a_cflags_of_the_users_cannot_turn_on_fma_contraction(tmp_path):
+    """The contract's flags come after the user's CFLAGS (the compiler takes the last of
+    two contradicting flags), so ``CFLAGS='-O2 -mfma -ffp-contract=fast -ffast-math'``
+    compiles no fused multiply-add into the fp64 flavour (``gearcontact_check`` checks
+    the golden flavour only, so nothing else would see it). Truth: the machine code --
+    no ``vfmadd`` in build/gc_hertz_fp64.o; the control, the same file compiled with
+    those flags last, has them (measured 15: the test can see a contraction)."""
+    lib = tmp_path / "lib"
+    _gearcontact("export", "c", "--out", str(lib))
+    user = "-O2 -mfma -ffp-contract=fast -ffast-math"
+    make = subprocess.run(["make", "-C", str(lib), "CC=gcc", f"CFLAGS={user}",
+                           "build/gc_hertz_fp64.o"], capture_output=True, text=True,
+                          timeout=120)
+    assert make.returncode == 0, make.stderr[-3000:]
+
+    def fmas(obj):
+        dump = subprocess.run(["objdump", "-d", str(obj)], capture_output=True, text=True,
+                              check=True, timeout=60).stdout
+        return len(re.findall(r"\bvfn?m(add|sub)", dump))
+
+    assert fmas(lib / "build" / "gc_hertz_fp64.o") == 0
+    control = tmp_path / "control.o"
+    subprocess.run(["gcc", "-std=c99", *user.split(), "-c", "-o", str(control),
+                    str(lib / "gc_hertz_fp64.c")], check=True, timeout=120)
+    assert fmas(control) > 0
+
+
 #: Harness of :func:`test_fit_square_root_equals_the_rtl_recurrence`: the fit's static
 #: isqrt_floor (table seed + two Newton steps) against the RTL's 32-step non-restoring
 #: recurrence (gearcontact.preview.fit.golden.isqrt_nonrestoring, the previous C code).

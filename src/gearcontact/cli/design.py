@@ -10,6 +10,7 @@ JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 from ..errors import CheckFailed
@@ -55,7 +56,9 @@ def register(sub) -> None:
                        description=__doc__.split("\n\n")[1])
     p.add_argument("--pair", required=True, metavar="PRESET|FILE.toml",
                    help=f"built-in preset ({', '.join(PRESETS)}) or a pair TOML file")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--json", action="store_true",
+                   help="print the blank design as one JSON object (not with --calibrate, "
+                        "--synthesize-easeoff or --machine-settings)")
     p.add_argument("--calibrate", action="store_true",
                    help="calibrate the unpublished set-up (working depth, design-side "
                         "ease-off) to the pair's published design point (TCA in the loop, "
@@ -66,7 +69,8 @@ def register(sub) -> None:
                         "top land of 0.25 m_mn)")
     p.add_argument("--out", default=None, metavar="DIR",
                    help="with --calibrate: directory for calibrated.toml and "
-                        "calibration.json, with --synthesize-easeoff for easeoff.toml (the "
+                        "calibration.json, with --synthesize-easeoff for easeoff.toml, with "
+                        "--machine-settings for machine_settings.toml (the "
                         "output-directory policy of every command, see run.json)")
     p.add_argument("--force", action="store_true",
                    help="with --out: write into it even if it holds files gearcontact did "
@@ -95,7 +99,8 @@ def register(sub) -> None:
                         "gear undercuts); for a pair with an ease-off, the pinion settings "
                         "fitted to cut that ease-off (the residual over each flank printed, "
                         "~15 s); else the standard settings from the blank (generated "
-                        "pinion with lengthwise and profile crowning); prints the pair TOML "
+                        "pinion with lengthwise and profile crowning; a pair cut from machine "
+                        "settings gets those of its blank); prints the pair TOML "
                         "with its [machine.*]/[blade.*] tables, written as "
                         "machine_settings.toml (and the residual map) with --out")
     p.add_argument("--local-synthesis", action="store_true",
@@ -127,8 +132,12 @@ def register(sub) -> None:
 def check(args) -> None:
     """--calibrate needs published values and --out; design writes files only with
     --calibrate or --synthesize-easeoff --out (under the output-directory policy,
-    :mod:`.outdir`)."""
+    :mod:`.outdir`). The options are checked against each other before the pair's
+    generation (seconds for a generated gear): a contradiction costs nothing."""
     pair = args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+    if args.force and args.out is None:
+        raise InputRangeError("--force", True, "given only with --out (without it the "
+                                               "option has no effect)")
     if pair.kind == CYLINDRICAL:
         for option, value in (("--calibrate", args.calibrate),
                               ("--synthesize-easeoff", args.synthesize_easeoff),
@@ -137,6 +146,7 @@ def check(args) -> None:
                               ("--pattern-length-ratio", args.pattern_length_ratio),
                               *_path_angle_options(args).items(),
                               ("--machine-settings", args.machine_settings),
+                              ("--local-synthesis", args.local_synthesis),
                               ("--target-flank", args.target_flank),
                               ("--fit", args.fit),
                               ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
@@ -146,35 +156,78 @@ def check(args) -> None:
                                       "(kind = 'cylindrical': design prints its geometry)")
         args.writes_files = False
         return
+    _check_options(args, pair)
+    if args.machine_settings and pair.machine:
+        # the settings are those of the blank (the pair's own tables are replaced): its
+        # default gear, formate or generated, decides the gear's settings
+        pair = args.gear_pair = dataclasses.replace(pair, machine=())
     # a pair whose pinion the gear cannot generate (limit line) is refused here
     args.generation_check = check_generation(pair)      # its gear flanks are reused
     args.gear_generation = generation_of(args.generation_check)
+    if args.local_synthesis and (args.gear_generation != "generated"
+                                 or pair.offset_mm == 0.0):
+        raise InputRangeError("--local-synthesis", f"pair {pair.name} (axes.offset_mm = "
+                              f"{pair.offset_mm:g}, default gear {args.gear_generation})",
+                              "a hypoid (axes.offset_mm != 0) whose default gear is "
+                              "generated (its pinion cut by the crown gear: point contact)")
+    if args.synthesize_easeoff:
+        args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
+            else args.te0_arcsec
+        args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
+            if args.pattern_length_ratio is None else args.pattern_length_ratio
+        args.targets = _synthesis_targets(args)     # their ranges, before any TCA
+        if any(t.path_angle_deg is not None for t in args.targets.values()):
+            args.flanks = _check_path_angle(pair, args, args.targets)
+    if args.calibrate:
+        from ..report.analyze import published_values
+
+        if published_values(pair.name) is None:
+            raise InputRangeError("--pair", args.pair, "a built-in pair with published "
+                                  "values (s0003, s0003-centred) for --calibrate")
+        if args.out is None:
+            raise InputRangeError("--out", None, "an output directory for calibrated.toml")
+        if args.tip_margin is not None:
+            check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
+    args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
+                                                and args.out))
+
+
+def _check_options(args, pair) -> None:
+    """The options of a bevel pair against each other and the pair's kind (ease-off or
+    not), without its flanks; reads ``--target-flank``."""
     modes = [m for m, on in (("--calibrate", args.calibrate),
                              ("--synthesize-easeoff", args.synthesize_easeoff),
                              ("--machine-settings", args.machine_settings)) if on]
     if len(modes) > 1:
         raise InputRangeError(" / ".join(modes), "all given", "one of them")
+    if args.json and modes:
+        raise InputRangeError("--json", True, f"not given with {modes[0]} (it prints TOML "
+                                              "and tables; --json prints the blank design)")
     if args.target_flank is not None:
         if not args.machine_settings:
             raise InputRangeError("--target-flank", args.target_flank, "given only with "
                                   "--machine-settings (without it the option has no effect)")
         from ..geometry.measuring_grid import read_target_flank
 
-        args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
+        try:
+            args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
+        except InputRangeError as exc:
+            if exc.field != "target flank":     # a field inside the file: named as it is
+                raise
+            raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
     fitted = has_easeoff(pair) or args.target_flank is not None
     if args.fit is not None and not (args.machine_settings and fitted):
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
                               "with an ease-off or --target-flank (the settings fit; without "
                               "it the option has no effect)")
-    if args.local_synthesis:
-        if not args.machine_settings or fitted:
-            raise InputRangeError("--local-synthesis", True, "given only with "
-                                  "--machine-settings on a pair without an ease-off or "
-                                  "--target-flank (without it the option has no effect)")
-        if args.gear_generation != "generated" or pair.offset_mm == 0.0:
-            raise InputRangeError("--local-synthesis", (pair.offset_mm, args.gear_generation),
-                                  "a hypoid (axes.offset_mm != 0) whose default gear is "
-                                  "generated (its pinion cut by the crown gear: point contact)")
+    if args.local_synthesis and not args.machine_settings:
+        raise InputRangeError("--local-synthesis", True, "given only with --machine-settings "
+                              "(without it the option has no effect)")
+    if args.local_synthesis and fitted:
+        raise InputRangeError("--local-synthesis", True, "not given for a pair with an "
+                              "ease-off or with --target-flank (--machine-settings fits the "
+                              "settings that cut it; remove the [easeoff.*] tables for "
+                              "synthesized settings)")
     for option, value in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                           ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
         if value is not None and args.local_synthesis:
@@ -205,26 +258,6 @@ def check(args) -> None:
                      "--calibrate, --synthesize-easeoff or --machine-settings")
             raise InputRangeError(option, value, f"given only with {needs} (without it "
                                                  "the option has no effect)")
-    if args.synthesize_easeoff:
-        args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
-            else args.te0_arcsec
-        args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
-            if args.pattern_length_ratio is None else args.pattern_length_ratio
-        args.targets = _synthesis_targets(args)     # their ranges, before any TCA
-        if any(t.path_angle_deg is not None for t in args.targets.values()):
-            args.flanks = _check_path_angle(pair, args, args.targets)
-    if args.calibrate:
-        from ..report.analyze import published_values
-
-        if published_values(pair.name) is None:
-            raise InputRangeError("--pair", args.pair, "a built-in pair with published "
-                                  "values (s0003, s0003-centred) for --calibrate")
-        if args.out is None:
-            raise InputRangeError("--out", None, "an output directory for calibrated.toml")
-        if args.tip_margin is not None:
-            check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
-    args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
-                                                and args.out))
 
 
 #: Option of each :class:`~gearcontact.tca.synthesis.SynthesisTargets` field it sets

@@ -8,7 +8,9 @@ datapath (golden fixed point and fp64) with a Makefile and the checker
 (co-simulation and model exchange, plain C, a Linux x86-64 binary built at export) of
 one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`);
 ``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
-``gearcontact twin`` (rigid teeth; :mod:`gearcontact.export.fmu_drivetrain`).
+``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
+with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
+:mod:`gearcontact.export.fmu_drivetrain`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members as
 STEP (B-spline surfaces) and as CMM point grids with normals
 (:mod:`gearcontact.export.flanks`).
@@ -80,6 +82,7 @@ def check_fmu(args) -> None:
     """Cheap checks before the TCA: the kind, the phase count, the torque, the
     drivetrain file, the pair."""
     from ..export.fmu import check_fmu_kind
+    from ..tca.line_contact import check_loadable
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
     check_positive("--torque", args.torque)
@@ -92,6 +95,7 @@ def check_fmu(args) -> None:
                                   "drivetrain")
         check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args)
+    check_loadable(args.gear_pair, args.side)
 
 
 def run_fmu(args) -> int:

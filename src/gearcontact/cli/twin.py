@@ -27,6 +27,7 @@ import math
 import os
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
+from ..tca.line_contact import check_loadable
 from ..twin.cylindrical import (CYLINDRICAL_BACKENDS, cylindrical_model,
                                 cylindrical_sweep_models)
 from ..twin.params import check_drivetrain_file, load_drivetrain
@@ -102,6 +103,8 @@ def check(args) -> None:
         raise InputRangeError("--backend", args.backend, f"one of {list(BACKENDS)}")
     if args.gear_pair.kind == CYLINDRICAL:
         check_cylindrical(args)
+    else:
+        check_loadable(args.gear_pair, args.side)
     check_range("--step-us", args.step_us, *STEP_RANGE_US)
     if args.duration is not None:
         duration_s = check_positive("--duration", args.duration)

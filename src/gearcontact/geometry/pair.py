@@ -451,6 +451,11 @@ def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
                               "valid TOML") from None
     kind = doc.get("kind", BEVEL)
     try:
+        if isinstance(doc.get("drivetrain"), dict):     # the twin's other file kind
+            raise InputRangeError("[drivetrain]", "table", "a pair file ([teeth], [axes], "
+                                  "...): this is a drivetrain file, given with "
+                                  "--drivetrain (gearcontact twin, export fmu --kind "
+                                  "drivetrain) beside a pair")
         if "kind" in doc and kind != CYLINDRICAL:
             raise InputRangeError("kind", kind, f"'{CYLINDRICAL}' or absent (a bevel/hypoid "
                                                 "pair)")

@@ -27,12 +27,12 @@ import numpy as np
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
-from ..validation import UnusableInput
+from ..validation import InputRangeError, UnusableInput
 from .mating import solve_mating_point
 from .types import ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError
 
 __all__ = ["LINE_TOLERANCE_MM", "LineContactResult", "LineContact", "line_contact",
-           "is_conjugate"]
+           "is_conjugate", "check_loadable"]
 
 #: Residual tolerance of the contact-line solve, mm: the pinion sheets interpolate the
 #: exact conjugate nodes with C2 quintic splines, so the flanks are conjugate only to
@@ -99,6 +99,25 @@ def is_conjugate(pair, side: str) -> bool:
     c = dataclasses.astuple(getattr(pair, f"easeoff_{side}"))
     a = pair.assembly
     return (not any(c)) and not any((a.E_mm, a.P_mm, a.G_mm, a.alpha_deg))
+
+
+def check_loadable(pair, side: str) -> None:
+    """Refuse, before any flank work, to load ``side`` of ``pair`` when the pair file
+    gives that side a zero ease-off and no assembly errors (:func:`is_conjugate`): the
+    TCA would find line contact (:class:`LineContact`), which has no contact ellipse to
+    load. A side without an ``[easeoff.<side>]`` table passes (its ease-off is
+    synthesized, :func:`~gearcontact.tca.synthesis.prepare_pair`).
+
+    Raises
+    ------
+    InputRangeError
+        Naming the table, its value and the two ways out.
+    """
+    if side in getattr(pair, "easeoff_tables", ()) and is_conjugate(pair, side):
+        raise InputRangeError(f"[easeoff.{side}]", "all coefficients 0, no assembly errors",
+                              "a non-zero ease-off, or no [easeoff.%s] table to have one "
+                              "synthesized (zero ease-off makes the flanks conjugate: line "
+                              "contact, no contact ellipse to load)" % side)
 
 
 def _line_point(pinion, gear, kin, guess: ContactGuess):
