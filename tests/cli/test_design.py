@@ -371,21 +371,28 @@ def test_design_local_synthesis_refusals(capsys):
     assert "ease-off" in capsys.readouterr().err
 
 
-@pytest.fixture
-def generated_hypoid_file(tmp_path, monkeypatch):
-    """The 13/26 hypoid whose gear is generated (tests/design_space.py) as a pair file,
-    with the generation check (~10 s; its own tests: tests/geometry) replaced by its
-    verdict, so that the option checks of --local-synthesis run in milliseconds."""
-    import gearcontact.cli.design as design
+@pytest.fixture(scope="module")
+def _generated_hypoid_toml(tmp_path_factory):
+    """The 13/26 hypoid whose gear is generated (tests/design_space.py) as a pair file."""
     from design_space import generated_hypoid
 
     from gearcontact.geometry.pair import pair_to_toml
 
-    path = tmp_path / "hypoid.toml"
+    path = tmp_path_factory.mktemp("hypoid") / "hypoid.toml"
     path.write_text(pair_to_toml(generated_hypoid()))
+    return path
+
+
+@pytest.fixture
+def generated_hypoid_file(_generated_hypoid_toml, monkeypatch):
+    """That file, with the generation check (~10 s; its own tests: tests/geometry)
+    replaced by its verdict, so that the option checks of --local-synthesis run in
+    milliseconds."""
+    import gearcontact.cli.design as design
+
     monkeypatch.setattr(design, "check_generation", lambda pair: None)
     monkeypatch.setattr(design, "generation_of", lambda checked: "generated")
-    return path
+    return _generated_hypoid_toml
 
 
 @pytest.mark.parametrize("argv, named", [
