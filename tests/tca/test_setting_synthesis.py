@@ -5,7 +5,9 @@ Truths: the roll about the mean node's roll in closed form (value, slope and cur
 of the written series), the mean point and its normal kept by every correction (exact
 envelope node solves), TE0 = 0 of the uncorrected crown gear's pinion (its TE curvature
 at M vanishes), and for the synthesized settings the targets at M, the full TCA's TE0
-vertex at M and no paint ellipse at a flank edge in the central phases.
+vertex at M and no paint ellipse at a flank edge in the central phases; a left-hand
+pair's settings and TCA are its right-hand twin's mirrored (flanks cut directly by the
+machine chain); a coast path-angle target keeps the full TCA's pattern off the root.
 """
 
 import math
