@@ -218,7 +218,7 @@ def check(args) -> None:
             if args.pattern_length_ratio is None else args.pattern_length_ratio
         args.targets = _synthesis_targets(args)     # their ranges, before any TCA
         # the closed-form reach is the ease-off synthesis' (tca.path_reach); the settings
-        # synthesis reports a path angle it misses in its table (exit 1)
+        # synthesis reports a path angle it misses in its table (exit 4)
         if args.synthesize_easeoff and any(t.path_angle_deg is not None
                                            for t in args.targets.values()):
             args.flanks = _check_path_angle(pair, args, args.targets)
@@ -342,7 +342,7 @@ def _synthesize(args, pair) -> int:
 
 
 def _refuse_missed(what: str, pair, done: dict) -> None:
-    """CheckFailed (exit 1) naming the sides of ``done`` whose targets were missed; the
+    """CheckFailed (exit 4) naming the sides of ``done`` whose targets were missed; the
     table says which, the TOML written stays."""
     missed = [side for side, s in done.items() if not s.met]
     if missed:
