@@ -392,3 +392,85 @@ def test_design_machine_settings_of_a_machine_pair_are_its_blanks(capsys, tmp_pa
     capsys.readouterr()
     again = load_pair(tmp_path / "b" / "machine_settings.toml")
     assert again.machine == load_pair(cut).machine
+
+
+@pytest.fixture(scope="module")
+def _generated_hypoid_toml(tmp_path_factory):
+    """The 13/26 hypoid whose gear is generated (tests/design_space.py) as a pair file."""
+    from design_space import generated_hypoid
+
+    from gearcontact.geometry.pair import pair_to_toml
+
+    path = tmp_path_factory.mktemp("hypoid") / "hypoid.toml"
+    path.write_text(pair_to_toml(generated_hypoid()))
+    return path
+
+
+@pytest.fixture
+def generated_hypoid_file(_generated_hypoid_toml, monkeypatch):
+    """That file, with the generation check (~10 s; its own tests: tests/geometry)
+    replaced by its verdict, so that the option checks of --local-synthesis run in
+    milliseconds."""
+    import gearcontact.cli.design as design
+
+    monkeypatch.setattr(design, "check_generation", lambda pair: None)
+    monkeypatch.setattr(design, "generation_of", lambda checked: "generated")
+    return _generated_hypoid_toml
+
+
+@pytest.mark.parametrize("argv, named", [
+    (["--te0-arcsec", "0"], "--te0-arcsec = 0.0 is outside the allowed range: [0.5, 30]"),
+    (["--pattern-length-ratio", "0.9"], "--pattern-length-ratio = 0.9"),
+    (["--path-angle-deg", "95"], "--path-angle-deg = 95.0 is outside the allowed range: "
+                                 "[-89.9, 90]"),
+    (["--path-angle-coast-deg", "nan"], "--path-angle-coast-deg = nan"),
+    (["--path-angle-deg", "-10", "--path-angle-coast-deg", "-40"],
+     "--path-angle-deg = -10.0 is outside the allowed range: not given with "
+     "--path-angle-coast-deg (it sets both sides")])
+def test_local_synthesis_targets_are_the_easeoff_synthesis_options(
+        generated_hypoid_file, tmp_path, capsys, monkeypatch, argv, named):
+    # --local-synthesis takes the targets of --synthesize-easeoff with the same range
+    # checks (tca.synthesis_targets.SynthesisTargets), refused in the check, named by
+    # their options, before the output directory and any work
+    import gearcontact.tca.setting_synthesis as setting_synthesis
+
+    monkeypatch.setattr(setting_synthesis, "synthesized_machine_pair",
+                        lambda *a, **k: pytest.fail("work"))
+    assert main(["design", "--pair", str(generated_hypoid_file), "--machine-settings",
+                 "--local-synthesis", *argv, "--out", str(tmp_path / "x")]) == 2
+    assert named in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("argv, drive, coast", [
+    ([], (3.0, 0.35, None), (3.0, 0.35, None)),
+    (["--te0-arcsec", "4", "--pattern-length-ratio", "0.4", "--path-angle-deg", "-20"],
+     (4.0, 0.4, -20.0), (4.0, 0.4, -20.0)),
+    (["--path-angle-coast-deg", "-60"], (3.0, 0.35, None), (3.0, 0.35, -60.0))])
+def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, capsys,
+                                                     monkeypatch, argv, drive, coast):
+    # the defaults of --synthesize-easeoff (3 arcsec, 0.35, path free) and a per-side
+    # path angle reach synthesized_machine_pair as {side: SynthesisTargets}; a side whose
+    # targets the synthesis misses is a failed check (exit 4, the TOML printed)
+    from types import SimpleNamespace
+
+    import gearcontact.report.design as report
+    import gearcontact.tca.setting_synthesis as setting_synthesis
+
+    seen = {}
+
+    def fake(pair, *, targets):
+        seen.update(targets)
+        return pair, {side: SimpleNamespace(met=side == "drive") for side in targets}
+
+    monkeypatch.setattr(setting_synthesis, "synthesized_machine_pair", fake)
+    monkeypatch.setattr(report, "local_synthesis_toml", lambda cut, done: "# the toml")
+    assert main(["design", "--pair", str(generated_hypoid_file), "--machine-settings",
+                 "--local-synthesis", *argv]) == 4
+    got = {side: (t.te0_pp_arcsec, t.pattern_length_ratio, t.path_angle_deg)
+           for side, t in seen.items()}
+    assert got == {"drive": drive, "coast": coast}
+    out, err = capsys.readouterr()
+    assert "# the toml" in out
+    assert "setting synthesis of hypoid_13x26_generated: not all targets met on the coast " \
+           "side" in err

@@ -5,7 +5,9 @@ Truths: the roll about the mean node's roll in closed form (value, slope and cur
 of the written series), the mean point and its normal kept by every correction (exact
 envelope node solves), TE0 = 0 of the uncorrected crown gear's pinion (its TE curvature
 at M vanishes), and for the synthesized settings the targets at M, the full TCA's TE0
-vertex at M and no paint ellipse at a flank edge in the central phases.
+vertex at M and no paint ellipse at a flank edge in the central phases; a left-hand
+pair's settings and TCA are its right-hand twin's mirrored (flanks cut directly by the
+machine chain); a coast path-angle target keeps the full TCA's pattern off the root.
 """
 
 import math
@@ -152,3 +154,100 @@ def test_design_local_synthesis_writes_the_settings(tmp_path):
         m1 = EnvelopeSolver(pin, pair.blank, cone).solve(u, v, m0.q)
         assert np.abs(m1.x_mm - m0.x_mm).max() < 1e-9
         assert np.abs(m1.n - m0.n).max() < 1e-12
+
+
+@pytest.mark.slow
+def test_left_hand_settings_are_the_mirror_image(tmp_path):
+    # ~1 min. A left-hand pair is the mirror image (y -> -y) of its right-hand twin
+    # (geometry.mirror): its local synthesis synthesizes the twin and mirrors the settings
+    # (mirror_setup, docs/machine_settings.md sec. 1). The search is cut to 6 local TCAs
+    # per side (the symmetry does not need the targets met). Truths:
+    # (a) the written left-hand file holds the twin's settings with the documented signs:
+    #     cradle angle, swivel, blank offset and 2C negated, the rest equal (exact: a
+    #     sign flip and the TOML's 17 digits);
+    # (b) those settings run directly through the machine chain with the reflected blank
+    #     (no twin in between) cut the reflected pinion flank of the twin's settings at
+    #     every node (1e-9 mm, exact envelope solves; test_machine.py's tolerance);
+    # (c) TCA of the left-hand written file (analyze_pair, 11 phases, edge contact) equals
+    #     the right-hand one's, per side: TE0 per phase to 1e-6 arcsec (Newton stops at
+    #     1e-11 mm), contact points mirrored to 1e-6 mm, the same flank edges per phase
+    #     (the pattern mirrored; tests/geometry/test_mirror.py's tolerances).
+    from dataclasses import replace
+
+    from gearcontact.geometry.generated import generated_pinion_flank
+    from gearcontact.geometry.machine import mirror_setup
+    from gearcontact.geometry.mirror import MIRROR
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.report.design import local_synthesis_toml
+    from gearcontact.tca.analysis import analyze_pair
+    from gearcontact.tca.setting_synthesis import synthesized_machine_pair
+
+    right = generated_hypoid()
+    left = replace(right, pinion_hand="left")
+    cut, done = synthesized_machine_pair(left, max_evaluations=6, phases=5)
+    (tmp_path / "left.toml").write_text(local_synthesis_toml(cut, done))
+    written = load_pair(tmp_path / "left.toml")
+    assert written.pinion_hand == "left"
+    gear, _ = member_setups(right, "generated")
+    twin = replace(right, machine=tuple(gear[s] for s in SIDES)
+                   + tuple(done[s].setup for s in SIDES), easeoff_tables=("drive", "coast"))
+    setups = {(s.member, s.side): s for s in written.machine}
+    for s in twin.machine:
+        w, st = setups[s.member, s.side], s.settings
+        assert w == mirror_setup(s)
+        assert (w.settings.cradle_angle_deg, w.settings.swivel_deg,
+                w.settings.blank_offset_mm) == (-st.cradle_angle_deg, -st.swivel_deg,
+                                                 -st.blank_offset_mm)
+        assert w.settings.modified_roll == tuple(-c for c in st.modified_roll[:1]) \
+            + st.modified_roll[1:]
+        assert (w.settings.ratio_of_roll, w.blade) == (st.ratio_of_roll, s.blade)
+    assert any(setups["pinion", s].settings.modified_roll for s in SIDES)   # not vacuous
+    b = right.blank
+    P = b.pitch_point_mm
+    mb = replace(b, pitch_point_mm=(P[0], -P[1], P[2]))
+    kw = dict(pinion_face_width_mm=right.pinion_face_width_mm, n_u=8, n_v=10)
+    for side in SIDES:
+        _, n_right = generated_pinion_flank(done[side].setup, b, **kw)
+        _, n_left = generated_pinion_flank(setups["pinion", side], mb, **kw)
+        assert np.abs(n_left.x_mm - n_right.x_mm @ MIRROR).max() < 1e-9
+    for side in SIDES:
+        a = analyze_pair(twin, side=side, phases=11)[0]
+        m = analyze_pair(written, side=side, phases=11)[0]
+        ta, tm = a.table, m.table
+        assert np.array_equal(np.isnan(ta.te0_arcsec), np.isnan(tm.te0_arcsec))
+        assert np.nanmax(np.abs(ta.te0_arcsec - tm.te0_arcsec)) < 1e-6
+        assert np.nanmax(np.abs(ta.point_mm @ MIRROR - tm.point_mm)) < 1e-6
+        assert a.edges == m.edges
+        assert ta.te0_pp_arcsec > 0.5           # not vacuous: crowned, not conjugate
+
+
+@pytest.mark.slow
+def test_design_coast_path_angle_lifts_the_bearing_off_the_pinion_root(tmp_path, capsys):
+    # ~5 min on a loaded machine (the coast search with three corrections: 62 local TCAs).
+    # With the path free the coast path runs along the profile (-89 deg at M) and the
+    # pattern reaches the pinion root at the end of the pitch (1-2 of 31 phases, test
+    # above). `design --machine-settings --local-synthesis --path-angle-coast-deg 40` on
+    # the LEFT-hand pair (the CLI options, the mirror and the target end to end): exit 0
+    # (all targets met at M, the path angle within 2 deg), and the full TCA of the written
+    # file (analyze_pair, 31 phases, edge contact: independent of the synthesis' local
+    # TCA) has the coast pattern inside the flanks at every phase (measured: no edge at
+    # 31 of 31) and a TE0 p-p between half the parabolic level at M and that level
+    # (3 arcsec: the pairs change before half a pitch either side of M; measured 2.02
+    # arcsec, 2.05 in the synthesis' own check at 40 x 50 nodes)
+    from dataclasses import replace
+
+    from gearcontact.cli import main
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+    from gearcontact.tca.analysis import analyze_pair
+
+    path = tmp_path / "left.toml"
+    path.write_text(pair_to_toml(replace(generated_hypoid(), pinion_hand="left")))
+    out = tmp_path / "out"
+    assert main(["design", "--pair", str(path), "--machine-settings", "--local-synthesis",
+                 "--path-angle-coast-deg", "40", "--out", str(out)]) == 0
+    assert "| coast path angle from lengthwise (deg) | 40 | 40 |" in capsys.readouterr().out
+    written = load_pair(out / "machine_settings.toml")
+    assert written.pinion_hand == "left"
+    a = analyze_pair(written, side="coast", phases=31)[0]
+    assert len(a.edges) == 31 and not any(a.edges), a.edges
+    assert 1.5 < a.table.te0_pp_arcsec <= 3.0

@@ -79,18 +79,21 @@ def register(sub) -> None:
                    help="local synthesis of the ease-off of both sides (TCA in the loop, "
                         "~10-30 s per side); prints the [easeoff.drive]/[easeoff.coast] TOML")
     p.add_argument("--te0-arcsec", type=float, default=None,
-                   help="with --synthesize-easeoff: TE0 peak-to-peak, arcsec (default 3)")
+                   help="with --synthesize-easeoff or --local-synthesis: TE0 "
+                        "peak-to-peak, arcsec (default 3)")
     p.add_argument("--pattern-length-ratio", type=float, default=None,
-                   help="with --synthesize-easeoff: paint-ellipse length over the gear face "
-                        "width (default 0.35; practice 1/3 to 1/2)")
+                   help="with --synthesize-easeoff or --local-synthesis: paint-ellipse "
+                        "length over the gear face width (default 0.35; practice 1/3 to 1/2)")
     p.add_argument("--path-angle-deg", type=float, default=None,
-                   help="with --synthesize-easeoff: angle of the contact path on the gear "
-                        "flank from the lengthwise direction on both sides, deg (default free, bias 0); the angles "
-                        "the synthesis reaches on the pair are checked before any TCA (an "
-                        "error names them)")
+                   help="with --synthesize-easeoff or --local-synthesis: angle of the "
+                        "contact path on the gear flank from the lengthwise direction on "
+                        "both sides, deg (default free, bias 0); with --synthesize-easeoff "
+                        "the angles the synthesis reaches on the pair are checked before "
+                        "any TCA (an error names them)")
     for side in SIDES:
         p.add_argument(f"--path-angle-{side}-deg", type=float, default=None,
-                       help=f"with --synthesize-easeoff: the path angle of the {side} side "
+                       help=f"with --synthesize-easeoff or --local-synthesis: the path "
+                            f"angle of the {side} side "
                             "only, deg (the sides reach different ranges; not with "
                             "--path-angle-deg)")
     p.add_argument("--machine-settings", action="store_true",
@@ -106,8 +109,9 @@ def register(sub) -> None:
     p.add_argument("--local-synthesis", action="store_true",
                    help="with --machine-settings on a hypoid whose gear is generated: the "
                         "pinion settings from local synthesis at the mean point (roll "
-                        "curvature and cutter radius for TE0 3 arcsec and a paint ellipse "
-                        "of 0.35 face; TCA in the loop, ~1 min; docs/machine_settings.md "
+                        "curvature, cutter radius and, with a path angle, blade curvature "
+                        "for the targets --te0-arcsec, --pattern-length-ratio and "
+                        "--path-angle-*; TCA in the loop, ~1 min; docs/machine_settings.md "
                         "sec. 5) instead of the standard crowning")
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
@@ -170,13 +174,16 @@ def check(args) -> None:
                               f"{pair.offset_mm:g}, default gear {args.gear_generation})",
                               "a hypoid (axes.offset_mm != 0) whose default gear is "
                               "generated (its pinion cut by the crown gear: point contact)")
-    if args.synthesize_easeoff:
+    if args.synthesize_easeoff or args.local_synthesis:   # the same targets and checks
         args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
             else args.te0_arcsec
         args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
             if args.pattern_length_ratio is None else args.pattern_length_ratio
         args.targets = _synthesis_targets(args)     # their ranges, before any TCA
-        if any(t.path_angle_deg is not None for t in args.targets.values()):
+        # the closed-form reach is the ease-off synthesis' (tca.path_reach); the settings
+        # synthesis reports a path angle it misses in its table (exit 4)
+        if args.synthesize_easeoff and any(t.path_angle_deg is not None
+                                           for t in args.targets.values()):
             args.flanks = _check_path_angle(pair, args, args.targets)
     if args.calibrate:
         from ..report.analyze import published_values
@@ -244,16 +251,18 @@ def _check_options(args, pair) -> None:
         if value is not None:
             check_range(f"{option} (um)", value, 0.0, 200.0)
     # an option of a mode that is not asked for would be ignored without a word
+    synthesis = args.synthesize_easeoff or args.local_synthesis
     for option, value, mode in (("--tip-margin", args.tip_margin, args.calibrate),
-                                ("--te0-arcsec", args.te0_arcsec, args.synthesize_easeoff),
+                                ("--te0-arcsec", args.te0_arcsec, synthesis),
                                 ("--pattern-length-ratio", args.pattern_length_ratio,
-                                 args.synthesize_easeoff),
-                                *((o, v, args.synthesize_easeoff)
+                                 synthesis),
+                                *((o, v, synthesis)
                                   for o, v in _path_angle_options(args).items()),
                                 ("--out", args.out, args.calibrate or args.synthesize_easeoff
                                  or args.machine_settings)):
         if value is not None and not mode:
-            needs = ("--calibrate" if option == "--tip-margin" else "--synthesize-easeoff"
+            needs = ("--calibrate" if option == "--tip-margin" else
+                     "--synthesize-easeoff or --machine-settings --local-synthesis"
                      if option != "--out" else
                      "--calibrate, --synthesize-easeoff or --machine-settings")
             raise InputRangeError(option, value, f"given only with {needs} (without it "
@@ -310,6 +319,11 @@ def _synthesis_targets(args) -> dict:
     return out
 
 
+def _checked_targets(args) -> dict:
+    """The targets :func:`check` made, or made of the options (a run without it)."""
+    return getattr(args, "targets", None) or _synthesis_targets(args)
+
+
 def _check_path_angle(pair, args, targets: dict):
     """The pair's flanks, after refusing a path angle the synthesis cannot reach on its
     side (:func:`gearcontact.tca.path_reach.check_path_angle`: closed form, no TCA), the
@@ -346,7 +360,7 @@ def _synthesize(args, pair) -> int:
     from ..report.design import write_easeoff_toml
     from ..tca.synthesis import easeoff_toml, synthesize_pair
 
-    targets = getattr(args, "targets", None) or _synthesis_targets(args)
+    targets = _checked_targets(args)
     flanks = getattr(args, "flanks", None) or build_flanks(
         pair, checked=getattr(args, "generation_check", None))
     _, done = synthesize_pair(pair, targets=targets, flanks=flanks)
@@ -356,14 +370,20 @@ def _synthesize(args, pair) -> int:
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_easeoff_toml(text, args.out))}")
+    _refuse_missed("ease-off synthesis", pair, done)
+    return 0
+
+
+def _refuse_missed(what: str, pair, done: dict) -> None:
+    """CheckFailed (exit 4) naming the sides of ``done`` whose targets were missed; the
+    table says which, the TOML written stays."""
     missed = [side for side, s in done.items() if not s.met]
-    if missed:              # the table says which; the TOML (and easeoff.toml) stay
+    if missed:
         why = "".join(f"; not reachable: {done[side].unreachable}" for side in missed
-                      if done[side].unreachable)
-        raise CheckFailed(f"ease-off synthesis of {pair.name}: not all targets met on the "
+                      if getattr(done[side], "unreachable", None))
+        raise CheckFailed(f"{what} of {pair.name}: not all targets met on the "
                           f"{' and '.join(missed)} side{'s' if len(missed) > 1 else ''} "
                           f"(see the table){why}")
-    return 0
 
 
 def _machine_settings(args, pair) -> int:
@@ -395,11 +415,12 @@ def _local_synthesis(args, pair) -> int:
     from ..report.design import local_synthesis_toml, write_machine_settings_toml
     from ..tca.setting_synthesis import synthesized_machine_pair
 
-    cut, done = synthesized_machine_pair(pair)
+    cut, done = synthesized_machine_pair(pair, targets=_checked_targets(args))
     text = local_synthesis_toml(cut, done)
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+    _refuse_missed("setting synthesis", pair, done)
     return 0
 
 

@@ -335,7 +335,7 @@ class SynthesisProblem:
                                   self.start[side])
 
 
-def synthesize_settings(pair, *, targets: SynthesisTargets = SynthesisTargets(),
+def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                         sides=SIDES, phases: int = 31, max_evaluations: int = 40,
                         problem: SynthesisProblem | None = None) -> dict:
     """Pinion settings of ``sides`` from local synthesis at the mean point (module
@@ -345,9 +345,11 @@ def synthesize_settings(pair, *, targets: SynthesisTargets = SynthesisTargets(),
     ----------
     pair : GearPair
         A right-hand pair (a left-hand pair is refused: mirror its twin's settings).
-    targets : SynthesisTargets
+    targets : SynthesisTargets or dict
         TE0 level, paint-ellipse length and optional path angle (the bearing centre is
-        the mean point; ``centre_*`` only place the first-order path angle).
+        the mean point; ``centre_*`` only place the first-order path angle), for every
+        side or per side (``{side: SynthesisTargets}``: the sides reach different path
+        angles).
     phases : int
         Phases per pitch of the full TCA that checks the result.
     max_evaluations : int
@@ -371,11 +373,16 @@ def synthesize_settings(pair, *, targets: SynthesisTargets = SynthesisTargets(),
     for side in sides:
         if side not in SIDES:
             raise InputRangeError("side", side, f"one of {SIDES}")
+    per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
+    missing = [side for side in sides if side not in per_side]
+    if missing:
+        raise InputRangeError("targets", sorted(per_side), f"targets of the sides {sides}")
     prob = problem or SynthesisProblem(pair)
-    length = targets.pattern_length_ratio * pair.gear_face_width_mm
     out = {}
     for side in sides:
         t0 = time.perf_counter()
+        targets = per_side[side]
+        length = targets.pattern_length_ratio * pair.gear_face_width_mm
         angle = targets.path_angle_deg
         # without a path angle the blade curvature stays the standard crowning's and the
         # roll curvature and the cutter radius meet the TE level and the ellipse length
@@ -436,12 +443,16 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
                             time.perf_counter() - t0)
 
 
-def synthesized_machine_pair(pair, *, targets: SynthesisTargets = SynthesisTargets(),
+def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                              **options):
     """``pair`` with the generated gear's settings and the pinion settings of
-    :func:`synthesize_settings` for both sides, and the per-side results. A left-hand
-    pair gets its right-hand twin's settings mirrored
-    (:func:`~gearcontact.geometry.machine.mirror_setup`)."""
+    :func:`synthesize_settings` (``targets``: for both sides or per side) for both
+    sides, and the per-side results. A left-hand pair is the mirror image of its
+    right-hand twin (:mod:`~gearcontact.geometry.mirror`): the twin is synthesized and
+    its settings mirrored (:func:`~gearcontact.geometry.machine.mirror_setup`; signs:
+    docs/machine_settings.md), so the left-hand pair's TCA is the twin's mirrored (same
+    TE0, the pattern reflected) and the per-side results are the twin's (the path angle
+    is measured so that it means the same bearing for both hands)."""
     if pair.pinion_hand == "left":
         twin, done = synthesized_machine_pair(
             dataclasses.replace(pair, pinion_hand="right", machine=()), targets=targets,
