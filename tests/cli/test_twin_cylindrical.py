@@ -108,7 +108,6 @@ def test_speed_sweep_beside_the_table_twin(tmp_path):
         assert 1.0 <= doc[label]["max_dynamic_factor"] < 1.2
 
 
-@pytest.mark.slow
 def test_readme_speed_sweep_through_the_resonance(tmp_path):
     """The README's sweep line (300 N·m, 11 phases, 20,000-34,000 rpm by 2000): the
     fp64 preview twin's dynamic factor peaks within one speed step of its linearised
@@ -117,7 +116,7 @@ def test_readme_speed_sweep_through_the_resonance(tmp_path):
     these crowned lines: c_t 36.3 against 41.7 N/(mm·µm), modes at 25,639 and 27,478
     rpm in benchmarks/bench_twin_cylindrical_resonance.py), both above 1.1 (measured
     1.158 and 1.262 on a 1500 rpm grid); about a minute, most of it the table's loaded
-    TE."""
+    TE: in the default suite, as every README line."""
     argv = readme_argv("gearcontact twin --pair examples/ev_reducer_helical_23x67.toml "
                        "--torque 300", tmp_path / "sw")
     assert main(argv) == 0
