@@ -48,3 +48,21 @@ def test_pair_command_refuses_as_design_before_the_flanks(short_path, command, t
     assert line == f"gearcontact {' '.join(command)}: error: {design_error}"
     assert "no tooth pair in contact" not in err + out
     assert elapsed < BEFORE_FLANKS_S, elapsed
+
+
+def test_pointed_pinion_refused_before_the_flanks(tmp_path):
+    """10/25, E = 0, beta1 20 deg, face 0.15 R_m (tests/design_space.py): the conjugate
+    pinion is pointed at the toe (top land -0.30 mm along its tip line); before the
+    fix ``twin`` found it after the conjugate flank work (59 s at face 0.3 R_m). Now
+    the generation check refuses it first, naming the verified point width 1.822 mm
+    (geometry.generation.check_pinion_top_land; ~1 s at this face)."""
+    path = tmp_path / "pointed.toml"
+    path.write_text(pair_to_toml(design_space_candidate(10, 2.5, 0.0, 20.0, 0.15, "drive")))
+    start = time.perf_counter()
+    code, _, err = run_console("twin", "--pair", path, "--out", tmp_path / "out")
+    elapsed = time.perf_counter() - start
+    assert code == 2, err
+    line = err.strip().splitlines()[-1]
+    assert line.startswith("gearcontact twin: error: cutter.point_width_mm = "), line
+    assert ">= 1.822 mm (pointed pinion teeth at the toe" in line, line
+    assert elapsed < BEFORE_FLANKS_S, elapsed
