@@ -61,8 +61,9 @@ def test_every_pair_command_gets_the_prepared_pair(command, bare_pair_file, synt
                                                   monkeypatch, tmp_path, capsys):
     """Each command synthesizes once (through prepare_pair, the synthesis replaced by the
     fixture's real result to keep the suite fast) and analyses the pair with exactly
-    those coefficients and the flanks the preparation built; the note on stdout names the synthesis without a time (analyze
-    prints it at the end)."""
+    those coefficients and the flanks the preparation built; the note on stdout names the
+    synthesis without a time and the file holding its TOML block (analyze prints it at
+    the end)."""
     calls = []
 
     def synthesize_pair(pair, *, sides, **_):
@@ -93,6 +94,12 @@ def test_every_pair_command_gets_the_prepared_pair(command, bare_pair_file, synt
         out = capsys.readouterr().out
         assert "has no [easeoff.drive] table: ease-off synthesized" in out
         assert f"{synthesized.synthesis.evaluations} TCA runs)" in out
+        # the TOML block goes to a file named on stdout, as analyze names summary.md
+        # (before: the whole table printed on stdout; the file itself:
+        # tests/export/test_fmu.py, a whole run)
+        toml = tmp_path / "out" / "easeoff.toml"
+        assert f"(the TOML block is in {toml})" in out
+        assert "\n[easeoff.drive]" not in out and out.count("\n") == 1
 
 
 def test_the_note_holds_no_timing(synthesized):

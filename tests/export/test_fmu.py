@@ -202,6 +202,12 @@ def test_fmu_of_a_pair_without_ease_off_table(tmp_path):
                str(tmp_path / "o"), cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     assert "synthes" in run.stdout.lower()
+    # the synthesized table in a file named on stdout, not printed (as analyze's
+    # summary.md): the note's TOML block
+    toml = tmp_path / "o" / "easeoff.toml"
+    assert f"(the TOML block is in {toml})" in run.stdout
+    assert "lengthwise_crowning_um_per_mm2" not in run.stdout
+    assert toml.read_text().startswith("[easeoff.drive]\n")
     fmu = tmp_path / "o" / "gearcontact_mesh_s0003_centred.fmu"
     tab = MeshLawTable.from_npz(tmp_path / "o" / "gearcontact_mesh_s0003_centred_table.npz")
     assert validate_fmu(str(fmu)) == []

@@ -14,7 +14,8 @@ import pytest
 
 from design_space import design_space_candidate
 from gearcontact.geometry.contact_path import path_contact_ratio
-from gearcontact.geometry.contact_ratio import (MIN_CONTACT_RATIO, MIN_VIRTUAL_CONTACT_RATIO,
+from gearcontact.geometry.contact_ratio import (MAX_FIX_SPIRAL_DEG, MIN_CONTACT_RATIO,
+                                                MIN_VIRTUAL_CONTACT_RATIO,
                                                 check_contact_ratio, virtual_contact_ratio)
 from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import load_pair, pair_to_toml
@@ -298,3 +299,37 @@ def test_the_path_fix_is_verified():
     assert got.total >= MIN_CONTACT_RATIO
 
 
+
+
+
+def _refusing(pair, tried):
+    """A ``boxes_of`` refusing every trial pair (recorded in ``tried``)."""
+    def boxes_of(trial):
+        tried.append(trial)
+        raise InputRangeError("trial", trial.name, "refused by the test")
+    return boxes_of
+
+
+@pytest.mark.parametrize("point, field", [
+    ((16, 1.0, 0.3, 45.0, 0.05, "drive"), "design.gear_face_width_mm"),
+    ((16, 1.0, 0.0, 25.0, 0.353, "drive"), "pinion_spiral_angle_deg")])
+def test_a_virtual_fix_the_pair_refuses_is_not_named(point, field):
+    """Issue 28's probe: a refusal named a spiral angle fix (59.74 deg for 12/12) that the
+    pair's other checks never saw. With ``boxes_of`` (as check_generation passes it for
+    a pair cut from machine settings) the closed form's face or spiral-angle fix is
+    named only if the trial pair passes them; refused, the next fix is named (here the
+    teeth), and the trial was the value the unverified message names (a few ms)."""
+    pair = design_space_candidate(*point)
+    with pytest.raises(InputRangeError) as err:
+        check_contact_ratio(pair)
+    assert err.value.field == field                     # no boxes_of: unverified
+    value = float(err.value.allowed.split(">= ", 1)[1].split(" ", 1)[0])
+    assert value <= (0.3 / 0.85 * pair.blank.mean_cone_distance_gear_mm
+                     if field.startswith("design.") else MAX_FIX_SPIRAL_DEG)
+    tried = []
+    with pytest.raises(InputRangeError) as err:
+        check_contact_ratio(pair, boxes_of=_refusing(pair, tried))
+    assert err.value.field == "pinion_teeth / gear_teeth"
+    got = [t.gear_face_width_mm if field.startswith("design.") else t.pinion_spiral_angle_deg
+           for t in tried]
+    assert value in got

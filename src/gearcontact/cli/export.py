@@ -108,12 +108,14 @@ def run_fmu(args) -> int:
                                     torque_nm=args.torque,
                                     drivetrain=load_drivetrain(args.drivetrain, pair),
                                     curvatures=args.curvatures or "stencil",
-                                    bending=args.bending)
+                                    bending=args.bending,
+                                    flanks=args.prepared_pair.flank_set())
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu import export_mesh_fmu
     fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
-                          phases=args.phases, torque_nm=args.torque, bending=args.bending)
+                          phases=args.phases, torque_nm=args.torque, bending=args.bending,
+                          flanks=args.prepared_pair.flank_set())
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

@@ -99,7 +99,7 @@ def run(args) -> int:
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
-                               flanks=args.prepared_pair.flanks)
+                               flanks=args.prepared_pair.flank_set())
     jit_s = warm_up(args.solver)   # solve_ms below then excludes the JIT compilation
     t1 = time.perf_counter()
     try:

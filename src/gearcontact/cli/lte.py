@@ -109,7 +109,7 @@ def run(args) -> int:
     from ..report.analyze import published_values
 
     tca, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
-                               flanks=args.prepared_pair.flanks, progress=not args.quiet)
+                               flanks=args.prepared_pair.flank_set(), progress=not args.quiet)
     bending = None
     if not args.rigid:
         from ..ltca.tooth_bending import tooth_bending

@@ -10,7 +10,7 @@ import sys
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
 from ..geometry.pair import BEVEL, load_pair
 from ..validation import InputRangeError, check_positive
-from .outdir import add_out_argument
+from .outdir import add_out_argument, final_path
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
@@ -246,8 +246,10 @@ def load_pair_for(args):
     :func:`gearcontact.tca.synthesis.prepare_pair`, the one preparation of every command
     that takes ``--pair``: if the pair file has no ease-off table for ``args.side``
     (default the design side), the synthesized one (the note printed, the synthesis
-    time into run.json). The :class:`~gearcontact.tca.synthesis.PreparedPair` is kept
-    as ``args.prepared_pair``."""
+    time into run.json; its TOML block into ``easeoff.toml`` in ``--out``, named by the
+    note's line on stdout, as ``analyze`` names summary.md). A pair ``design`` refuses is
+    refused there, before any flank work. The
+    :class:`~gearcontact.tca.synthesis.PreparedPair` is kept as ``args.prepared_pair``."""
     from ..tca.synthesis import prepare_pair
 
     if getattr(args, "gear_pair", None) is None:
@@ -255,6 +257,10 @@ def load_pair_for(args):
     prepared = args.prepared_pair = prepare_pair(args.gear_pair,
                                                  side=getattr(args, "side", None))
     if prepared.note:
-        print(prepared.note)
+        from ..report.design import write_easeoff_toml
+
+        head, _, block = prepared.note.partition("\n")
+        path = write_easeoff_toml(block, args.out)
+        print(f"{head.rstrip(':')} (the TOML block is in {final_path(args, path)})")
     run_timings(args, **prepared.timings_s)
     return prepared.pair

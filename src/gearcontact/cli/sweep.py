@@ -154,7 +154,7 @@ def run(args) -> int:
                            compute=tuple(args.compute.split(",")), phases=args.phases,
                            cells=args.cells, solver=SOLVER, workers=args.workers,
                            client=client,
-                           flanks=None if cylindrical else args.prepared_pair.flanks,
+                           flanks=None if cylindrical else args.prepared_pair.flank_set(),
                            progress=not args.quiet)
     finally:
         if client is not None:

@@ -102,7 +102,7 @@ def run(args) -> int:
     out = Path(args.out)
     try:
         res, flanks = analyze_pair(pair, side=args.side, phases=args.phases,
-                                   pairs=args.pairs, flanks=args.prepared_pair.flanks,
+                                   pairs=args.pairs, flanks=args.prepared_pair.flank_set(),
                                    progress=not args.quiet)
     except LineContact as line:
         write_line_contact_outputs(line.result, out, pair_name=pair.name, side=args.side)

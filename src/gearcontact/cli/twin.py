@@ -187,7 +187,7 @@ def run(args) -> int:
     model = model_for_pair(pair, torque_nm=args.torque, backend=args.backend,
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, bending=args.bending,
-                           curvatures=args.curvatures, flanks=args.prepared_pair.flanks,
+                           curvatures=args.curvatures, flanks=args.prepared_pair.flank_set(),
                            progress=not args.quiet)
     return _simulate(args, pair, model, drivetrain,
                      {"easeoff_synthesized": args.prepared_pair.synthesized})
@@ -224,7 +224,7 @@ def _bevel_sweep_models(args, pair, drivetrain) -> dict:
     table_model = model_for_pair(pair, torque_nm=args.torque, backend="table",
                                  drivetrain=drivetrain, side=args.side, phases=args.phases,
                                  table_source=args.table_source, bending=args.bending,
-                                 flanks=args.prepared_pair.flanks, progress=not args.quiet)
+                                 flanks=args.prepared_pair.flank_set(), progress=not args.quiet)
     preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
                           reverse=table_model.reverse, reverse_note=table_model.reverse_note,
                           curvatures=args.curvatures)

@@ -273,7 +273,8 @@ def _compile(src_dir: Path, sources: list[str], header_dir: Path, so_path: Path)
 
 
 def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
-                    torque_nm: float = 64.5, bending: bool = False) -> MeshFmu:
+                    torque_nm: float = 64.5, bending: bool = False,
+                    flanks=None) -> MeshFmu:
     """Write the mesh FMU of ``pair`` into ``out_dir`` (module docstring).
 
     Parameters
@@ -295,6 +296,9 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
         Tooth bending of both members in series with the Hertzian law (each pair's
         bending compliance in the table, as ``gearcontact twin --bending``); rigid teeth
         by default.
+    flanks : FlankSet or None
+        ``build_flanks(pair)`` if already built (a prepared pair's,
+        :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); None: built here.
 
     Returns
     -------
@@ -311,7 +315,8 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False)
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False,
+                               flanks=flanks)
     bend = tooth_bending(flanks, pair, side=side) if bending else None
     tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
                                     bending=bend))

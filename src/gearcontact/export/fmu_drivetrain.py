@@ -93,17 +93,18 @@ class DrivetrainFmu:
 
 
 def drivetrain_fmu_model(pair, *, side: str, phases: int, torque_nm: float,
-                         drivetrain=None, curvatures: str = "stencil", bending: bool = False):
+                         drivetrain=None, curvatures: str = "stencil", bending: bool = False,
+                         flanks=None):
     """The twin's model the drivetrain FMU bakes: :func:`~gearcontact.twin.model.
     model_for_pair` with rigid teeth (or tooth bending, ``bending``) and the preview's
     curvature source ``curvatures``
     (the reference backend's arrays; the golden backend's stencil samples are added by
-    :func:`export_drivetrain_fmu`)."""
+    :func:`export_drivetrain_fmu`); ``flanks``: the pair's, if already built."""
     from ..twin.model import model_for_pair
 
     return model_for_pair(pair, torque_nm=torque_nm, backend="reference",
                           drivetrain=drivetrain, side=side, phases=phases,
-                          curvatures=curvatures, bending=bending)
+                          curvatures=curvatures, bending=bending, flanks=flanks)
 
 
 def _constants(model) -> list[tuple[str, str]]:
@@ -151,7 +152,8 @@ def _row_pairs(valid) -> list:
 
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                           torque_nm: float = 64.5, drivetrain=None,
-                          curvatures: str = "stencil", bending: bool = False) -> DrivetrainFmu:
+                          curvatures: str = "stencil", bending: bool = False,
+                          flanks=None) -> DrivetrainFmu:
     """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring).
 
     Parameters
@@ -179,6 +181,9 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         Tooth bending of both members in series with the Hertzian law (the mesh table's
         pair bending compliances, as ``gearcontact twin --bending``); rigid teeth by
         default.
+    flanks : FlankSet or None
+        ``build_flanks(pair)`` if already built (a prepared pair's,
+        :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); None: built here.
 
     Returns
     -------
@@ -201,7 +206,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
     model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
                                  drivetrain=drivetrain, curvatures=curvatures,
-                                 bending=bending)
+                                 bending=bending, flanks=flanks)
     a, m = model.arrays, model.mesh
     stencil = curvatures == "stencil"
     # exact A-, B- always (the static start's bracket); the stencil source as the golden

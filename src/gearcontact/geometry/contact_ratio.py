@@ -157,6 +157,10 @@ _FIX_TRIALS = 3
 _FIX_MARGIN = 0.02
 #: Pinion spiral angles tried above the pair's, deg.
 _SPIRAL_STEPS_DEG = (10.0, 20.0)
+#: Largest pinion spiral angle a fix names, deg: above issue 28's design space (20-55
+#: deg), below the blank's 70 deg limit (:func:`~.blank.design_blank`); a value named
+#: is also one the pair's other checks accept (:func:`check_contact_ratio`).
+MAX_FIX_SPIRAL_DEG = 60.0
 #: Share of the threshold below which no fix but the tooth numbers is tried.
 _FIX_REACH = 0.75
 
@@ -174,9 +178,9 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     reach the threshold. In order: a wider gear face (the pinion face in the same
     proportion; within the standard limit ``F <= 0.3 R_e``) when the path leaves through
     toe or heel, up to ``_FIX_TRIALS`` trials each scaling the face by the deficit; a
-    larger pinion spiral angle (``_SPIRAL_STEPS_DEG`` above the pair's, below 60 deg: eps_p
-    is not monotonic in it, 10/15 E 0.3 r2 at 25, 35, 45 deg: 0.778, 0.851, 0.692, so the
-    angle verified is named, not a bound); else the tooth numbers. No trial is made below
+    larger pinion spiral angle (``_SPIRAL_STEPS_DEG`` above the pair's, below
+    :data:`MAX_FIX_SPIRAL_DEG`: eps_p is not monotonic in it, 10/15 E 0.3 r2 at 25, 35,
+    45 deg: 0.778, 0.851, 0.692, so the angle verified is named, not a bound); else the tooth numbers. No trial is made below
     ``_FIX_REACH`` of the threshold (neither face nor spiral angle moved eps_p by a
     quarter in the measurements).
 
@@ -185,7 +189,9 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     :func:`virtual_contact_ratio` is checked against
     :data:`MIN_VIRTUAL_CONTACT_RATIO`, its fix found from the closed form: the gear face
     width that gives ``eps_vg = threshold`` if within the standard limit, else the
-    pinion spiral angle (bisection over ``beta_1 < 60 deg``), else the tooth numbers.
+    pinion spiral angle (bisection below :data:`MAX_FIX_SPIRAL_DEG`), else the tooth
+    numbers; with ``boxes_of`` a value named is one the other checks accept (else the
+    next fix).
 
     Returns
     -------
@@ -198,7 +204,7 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     """
     if boxes is None or pair.machine:
         return _check_virtual(pair, MIN_VIRTUAL_CONTACT_RATIO if threshold is None
-                              else threshold)
+                              else threshold, boxes_of=boxes_of)
     threshold = MIN_CONTACT_RATIO if threshold is None else threshold
     got = path_contact_ratio(pair, boxes=boxes)
     if got.total >= threshold:
@@ -228,7 +234,8 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
                                   f"{fixed[1]:.3f})")
     for step in _SPIRAL_STEPS_DEG if near else ():
         beta = pair.pinion_spiral_angle_deg + step
-        ratio = path_ratio(replace(pair, pinion_spiral_angle_deg=beta)) if beta < 60.0 else None
+        ratio = (path_ratio(replace(pair, pinion_spiral_angle_deg=beta))
+                 if beta < MAX_FIX_SPIRAL_DEG else None)
         if ratio is not None and ratio >= threshold:
             raise InputRangeError("pinion_spiral_angle_deg", pair.pinion_spiral_angle_deg,
                                   f"{beta:.2f} deg ({why}; with {beta:.2f} deg eps_p = "
@@ -261,8 +268,19 @@ def _face_fix(pair, ratio: float, threshold: float, path_ratio):
     return None
 
 
-def _check_virtual(pair, threshold: float) -> VirtualContactRatio:
-    """The closed-form check of :func:`check_contact_ratio` (no contact path known)."""
+def _check_virtual(pair, threshold: float, *, boxes_of=None) -> VirtualContactRatio:
+    """The closed-form check of :func:`check_contact_ratio` (no contact path known). With
+    ``boxes_of`` a named face or spiral angle is also one the pair's other checks accept
+    (a trial ``boxes_of`` refuses is not named: the next fix is)."""
+    def accepted(trial) -> bool:
+        if boxes_of is None:
+            return True
+        try:
+            boxes_of(trial)
+        except InputRangeError:
+            return False
+        return True
+
     def ratio(p):
         return virtual_contact_ratio(p.blank, gear_face_width_mm=p.gear_face_width_mm,
                                      side=p.design_side)
@@ -277,11 +295,13 @@ def _check_virtual(pair, threshold: float) -> VirtualContactRatio:
         need = math.sqrt(threshold ** 2 - got.transverse ** 2)
         face = need * math.pi * pair.blank.mean_normal_module_mm / math.sin(
             math.radians(got.spiral_angle_deg))
-        if face <= _FACE_LIMIT * pair.blank.mean_cone_distance_gear_mm:
+        face = math.ceil(face * 1e3) / 1e3      # the value named, rounded up
+        if (face <= _FACE_LIMIT * pair.blank.mean_cone_distance_gear_mm
+                and accepted(_with_face(pair, face))):
             raise InputRangeError("design.gear_face_width_mm", pair.gear_face_width_mm,
                                   f">= {face:.3f} mm ({why})")
     beta = _spiral_angle_fix(pair, ratio, threshold)
-    if beta is not None:
+    if beta is not None and accepted(replace(pair, pinion_spiral_angle_deg=beta)):
         raise InputRangeError("pinion_spiral_angle_deg", pair.pinion_spiral_angle_deg,
                               f">= {beta:.2f} deg ({why})")
     raise InputRangeError("pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
@@ -289,17 +309,19 @@ def _check_virtual(pair, threshold: float) -> VirtualContactRatio:
 
 
 def _spiral_angle_fix(pair, ratio, threshold) -> float | None:
-    """The smallest pinion spiral angle (deg, up to 60) at which ``ratio`` reaches
-    ``threshold`` (bisection to 0.01 deg), or None."""
+    """The smallest pinion spiral angle (deg, below :data:`MAX_FIX_SPIRAL_DEG`, rounded up
+    to 0.01 deg) at which ``ratio`` reaches ``threshold`` (bisection to 0.01 deg), or
+    None."""
     def ok(beta):
         try:
             return ratio(replace(pair, pinion_spiral_angle_deg=beta)).total >= threshold
         except InputRangeError:
             return False
-    lo, hi = pair.pinion_spiral_angle_deg, 60.0
+    lo, hi = pair.pinion_spiral_angle_deg, MAX_FIX_SPIRAL_DEG
     if not ok(hi):
         return None
     while hi - lo > 0.01:
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if ok(mid) else (mid, hi)
-    return hi
+    named = math.ceil(hi * 100.0) / 100.0       # the value named (2 decimals)
+    return named if named <= MAX_FIX_SPIRAL_DEG and ok(named) else hi

@@ -52,7 +52,6 @@ from ..ltca.lte import loaded_te
 from ..halfspace.line_peak import contact_line_length_mm
 from ..ltca.pair_ltca import PairLoadCase, single_pair_ltca
 from ..halfspace.patch import ContactAtEdgeWarning
-from ..geometry.generation import check_generation
 from ..geometry.pair import load_pair
 from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
 from ..contract.qformat import FixedPointOverflow
@@ -286,13 +285,12 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
     side = pair.design_side if side is None else side
-    # design's checks, before any flank work (named refusals); its gear flanks are reused
-    checked = check_generation(pair)
     # validate cheap inputs before the expensive stages
     torques = sorted(check_positive("torque_nm (N·m)", t) for t in torques_nm)
     if not torques:
         raise InputRangeError("torques_nm", torques_nm, "at least one torque")
-    prepared = prepare_pair(pair, side=side, checked=checked)
+    # design's checks first, before any flank work (named refusals; its gear flanks reused)
+    prepared = prepare_pair(pair, side=side)
     pair, easeoff_note = prepared.pair, prepared.note
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -63,7 +63,8 @@ from ..errors import CheckFailed
 from ..geometry.flank import FlankSet, build_flanks, with_easeoff
 from ..geometry.formate import SIDES
 from ..geometry.kinematics import AssemblyErrors
-from ..geometry.pair import EaseOffCoefficients, GearPair, load_pair
+from ..geometry.generation import check_generation
+from ..geometry.pair import BEVEL, EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point, turn_relief)
@@ -513,15 +514,20 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
     :class:`GearPair`, preset name or TOML path) with, if it has no ease-off table of
     ``side`` (default its design side), the ease-off of that side synthesized with the
     default :class:`SynthesisTargets` (deterministic: the same pair gives the same
-    coefficients in every command). The other side is left as given. ``checked``:
-    :func:`~gearcontact.geometry.generation.check_generation`'s result for ``pair``, if
-    the command ran it: the flanks reuse its gear flanks (a generated gear's sheets are
-    built once, :func:`~gearcontact.geometry.flank.build_flanks`).
+    coefficients in every command). The other side is left as given.
+
+    Before any flank work a bevel pair passes ``design``'s checks
+    (:func:`~gearcontact.geometry.generation.check_generation`: undercut, pointed
+    teeth, contact ratio), so that every command refuses a pair that cannot be made
+    first, with the same named condition and fix as ``design``. ``checked``: that
+    check's result for ``pair``, if the command already ran it (else run here); the
+    flanks reuse its gear flanks (:meth:`PreparedPair.flank_set`; a generated gear's
+    sheets are built once, :func:`~gearcontact.geometry.flank.build_flanks`).
 
     Raises
     ------
     InputRangeError
-        A bad pair file or side (before any synthesis).
+        A bad pair file or side, or a pair ``design`` refuses (before any flank work).
     ArithmeticError
         If the synthesis finds no interior contact (:func:`synthesize_easeoff`).
     """
@@ -530,6 +536,8 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
     side = pair.design_side if side is None else side
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
+    if checked is None and pair.kind == BEVEL:
+        checked = check_generation(pair)
     if side in pair.easeoff_tables:
         return PreparedPair(pair, side, checked=checked)
     base = build_flanks(pair, checked=checked)
