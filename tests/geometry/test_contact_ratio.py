@@ -276,7 +276,7 @@ def test_synthesis_bearing_uses_the_synthesis_defaults():
     from gearcontact.tca.synthesis import SynthesisTargets
 
     t = SynthesisTargets()
-    assert (contact_path._SYNTHESIS_TE0_ARCSEC, contact_path._SYNTHESIS_PATTERN_RATIO,
+    assert (contact_path.SYNTHESIS_TE0_ARCSEC, contact_path.SYNTHESIS_PATTERN_RATIO,
             contact_path._PAINT_MM) == (t.te0_pp_arcsec, t.pattern_length_ratio,
                                         PAINT_THICKNESS_MM)
     assert t.centre_face == t.centre_profile == 0.5 and t.path_angle_deg is None

@@ -14,6 +14,7 @@ import dataclasses
 import json
 
 from ..errors import CheckFailed
+from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSEC
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation
@@ -48,7 +49,8 @@ _SINGLE = (
 
 
 #: Targets of ``--synthesize-easeoff`` when not given.
-SYNTHESIS_DEFAULTS = {"te0_arcsec": 3.0, "pattern_length_ratio": 0.35}
+SYNTHESIS_DEFAULTS = {"te0_arcsec": SYNTHESIS_TE0_ARCSEC,
+                      "pattern_length_ratio": SYNTHESIS_PATTERN_RATIO}
 
 
 def register(sub) -> None:

@@ -273,10 +273,13 @@ def _easeoff_in_box(pair, side, solver, centre, half, guess):
     return g, h, np.clip(np.linalg.solve(h, -g), -1.0, 1.0)
 
 
-#: The ease-off synthesis' default targets (``tca.synthesis.SynthesisTargets``, checked
-#: equal by tests/geometry/test_contact_ratio.py): TE0 peak-to-peak, arcsec; paint-ellipse
-#: length over the gear face width; and the paint thickness (``tca.curvature``), mm.
-_SYNTHESIS_TE0_ARCSEC, _SYNTHESIS_PATTERN_RATIO, _PAINT_MM = 3.0, 0.35, 6.35e-3
+#: The ease-off synthesis' default targets, defined here (geometry is below tca) and
+#: taken by ``tca.synthesis_targets.SynthesisTargets`` and ``design``'s options: TE0
+#: peak-to-peak, arcsec; paint-ellipse length over the gear face width.
+SYNTHESIS_TE0_ARCSEC, SYNTHESIS_PATTERN_RATIO = 3.0, 0.35
+#: The paint thickness of ``tca.curvature`` (checked equal by
+#: tests/geometry/test_contact_ratio.py), mm.
+_PAINT_MM = 6.35e-3
 #: Finite-difference step of the exact solves at the bearing centre, mm.
 _STEP_MM = 0.02
 
@@ -310,8 +313,8 @@ def _synthesis_hessian(pair, solver, centre, half, guess) -> np.ndarray:
     n = np.column_stack([[-nu[1], nu[0]], nu]).T @ m        # (t, nu) = n (du, dv)
     spacing = 2.0 * math.pi / (pair.gear_teeth * np.linalg.norm(grad_q))   # dN, mm
     lever = abs(float(s.n_f[0] @ np.cross(solver.kin.gear_axis, s.x_f_mm[0])))
-    a = 8.0 * _PAINT_MM / (_SYNTHESIS_PATTERN_RATIO * pair.gear_face_width_mm) ** 2
-    k = 8.0 * lever * math.radians(_SYNTHESIS_TE0_ARCSEC / 3600.0) / spacing ** 2
+    a = 8.0 * _PAINT_MM / (SYNTHESIS_PATTERN_RATIO * pair.gear_face_width_mm) ** 2
+    k = 8.0 * lever * math.radians(SYNTHESIS_TE0_ARCSEC / 3600.0) / spacing ** 2
     # no (u, v) twist: n[:, 0]^T H n[:, 1] = 0 with c = k + b^2 / a, a quadratic in b
     (pt, pn), (rt, rn) = n[:, 0], n[:, 1]
     roots = np.roots([pn * rn / a, pt * rn + pn * rt, a * pt * rt + k * pn * rn])

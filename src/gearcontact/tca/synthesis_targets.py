@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSEC
 from ..validation import check_positive, check_range
 from .design_point import DesignPoint
 
@@ -42,8 +43,8 @@ class SynthesisTargets:
         path angle, deg.
     """
 
-    te0_pp_arcsec: float = 3.0
-    pattern_length_ratio: float = 0.35
+    te0_pp_arcsec: float = SYNTHESIS_TE0_ARCSEC
+    pattern_length_ratio: float = SYNTHESIS_PATTERN_RATIO
     path_angle_deg: float | None = None
     centre_face: float = 0.5
     centre_profile: float = 0.5
