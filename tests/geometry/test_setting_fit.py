@@ -235,20 +235,26 @@ def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
     assert jac[:, 0] / lever == pytest.approx(np.full(30, want), rel=1e-6)
 
 
-def test_easeoff_of_a_generated_hypoid_is_refused_before_work():
-    # 13/26, E = 21.3 mm (tests/design_space.py) gets a generated gear; the fit from the
-    # crown gear's pinion (a point-contact conjugate 115 um off the conjugate pinion at
-    # a corner, 3.45 deg turned) does not reach the target (measured: drive ends on an
-    # unreached step after 792 evaluations, coast 62 um max; turned first, 19 / 9 um
-    # max, docs/machine_settings.md sec. 6): refused naming the offset, within the
-    # cost of the generation check (~1 s, no flank grid)
-    import time
-
+@pytest.mark.slow       # generated gear, two seed fits, two fits, two full flanks: ~90 s
+def test_easeoff_of_a_generated_hypoid_is_cut_from_the_conjugate_seed():
+    # 13/26, E = 21.3 mm (tests/design_space.py) gets a generated gear; its crown gear's
+    # pinion is a point-contact conjugate 115 / 74 um off the line-contact conjugate at
+    # a corner (drive / coast). From it the fit did not reach the crowned target (drive
+    # ended on an unreached step after 792 evaluations, coast at 62 um; turned first,
+    # 19.1 / 9.4 um max). conjugate_seed fits the crown pinion to the conjugate (turn,
+    # then SEED_PARAMETERS), the default fit starts there. Truth: the residual of the
+    # cut flank against the target (the conjugate pinion + the 10 um crowning ease-off),
+    # measured on the full generated flank (120 x 150) by flank_deviation_um, an
+    # independent dense grid. Measured 3.78 / 1.52 um max, 0.78 / 0.42 um RMS;
+    # asserted with ~20 % margin for the trust region's path on another machine
+    # (platform floating point), and well below the crown pinion's 19.1 / 9.4 um
     pair = design_space_candidate(13, 2.0, 0.3, 35.0, 0.3, "drive")   # crowned ease-off
-    t0 = time.perf_counter()
-    with pytest.raises(InputRangeError, match="axes.offset_mm"):
-        easeoff_machine_pair(pair)
-    assert time.perf_counter() - t0 < 8.0
+    got = easeoff_machine_pair(pair)
+    for side, max_um, rms_um in (("drive", 4.5, 1.0), ("coast", 2.0, 0.55)):
+        r = got.sides[side]
+        assert r.easeoff_max_um > 5.0          # a target off the conjugate
+        assert r.max_um < max_um and r.rms_um < rms_um, (side, r.max_um, r.rms_um)
+    assert got.pair.machine[0].settings.ratio_of_roll > 0.0   # the gear stays generated
 
 
 def test_minimax_fit_of_s0003_coast():

@@ -79,14 +79,13 @@ from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
 from .measuring_grid import target_grids
-from .gear_generation import gear_generation
 from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
 from .machine import (BladeSettings, MachineSetup, blade_profile, blade_through_point,
                       mirror_setup)
 from .minimax_fit import minimize_max_abs
 
-__all__ = ["DEFAULT_PARAMETERS", "EaseOffSettings", "PARAMETERS", "SettingFit", "SideResidual",
-           "apply_corrections", "easeoff_machine_pair",
+__all__ = ["DEFAULT_PARAMETERS", "EaseOffSettings", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
+           "SideResidual", "apply_corrections", "conjugate_seed", "easeoff_machine_pair",
            "fit_pinion_setup", "flank_deviation_um", "sensitivity"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
@@ -116,6 +115,9 @@ PARAMETERS = {
 DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
                       "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
                       "blade_angle_deg", "blade_curvature_per_mm", "blade_cubic_per_mm2")
+#: The seed of a hypoid with a generated gear (:func:`conjugate_seed`): the default
+#: subset and the crown pinion's bias directions, blank offset and helical motion.
+SEED_PARAMETERS = DEFAULT_PARAMETERS + ("blank_offset_mm", "helical_motion_mm_per_rad")
 #: Objectives of the fit (:func:`fit_pinion_setup`).
 OBJECTIVES = ("rms", "minimax")
 _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
@@ -410,6 +412,19 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                       objective=objective, rms_fit_max_um=rms_fit_max)
 
 
+def conjugate_seed(seed: MachineSetup, blank: BlankDesign, conjugate, *, n_u: int = 9,
+                   n_v: int = 11) -> SettingFit:
+    """The crown gear's pinion ``seed`` of a hypoid with a generated gear (a point-contact
+    conjugate, up to 115 um off the line-contact ``conjugate`` at a corner) fitted to
+    ``conjugate``: first its rigid turn (cradle angle alone), then
+    :data:`SEED_PARAMETERS` (docs/machine_settings.md sec. 6). The fit of an ease-off
+    starts from its ``setup``."""
+    turned = fit_pinion_setup(seed, blank, conjugate, parameters=("cradle_angle_deg",),
+                              n_u=n_u, n_v=n_v).setup
+    return fit_pinion_setup(turned, blank, conjugate, parameters=SEED_PARAMETERS,
+                            n_u=n_u, n_v=n_v)
+
+
 def flank_deviation_um(flank, target, *, n_u: int = 60, n_v: int = 75):
     """Normal deviation of ``flank`` from ``target`` (two pinion sheets on the same
     cone), um, on an n_u x n_v grid over the part of ``target``'s box that ``flank``
@@ -501,9 +516,10 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     The gear keeps the flanks of the pair's default (formate, or generated where the
     formate gear undercuts its pinion: :func:`~.basic_settings.member_setups`); each
     pinion flank is fitted (:func:`fit_pinion_setup`) from the settings of the exactly
-    conjugate pinion (complementary or the crown gear's: zero ease-off) to the conjugate
-    pinion with the pair's ease-off
-    (:func:`~.flank.build_flanks`), and its residual measured over the full flank. A
+    conjugate pinion (complementary, or the crown gear's of a spiral bevel pair: zero
+    ease-off; of a hypoid with a generated gear the crown gear's pinion fitted to the
+    conjugate first, :func:`conjugate_seed`) to the conjugate pinion with the pair's
+    ease-off (:func:`~.flank.build_flanks`), and its residual measured over the full flank. A
     left-hand pair is fitted on its right-hand twin and its settings mirrored
     (:func:`~.machine.mirror_setup`).
 
@@ -531,8 +547,7 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     Raises
     ------
     InputRangeError
-        A pair already cut from machine settings, a hypoid whose gear is generated
-        (``axes.offset_mm``, before any flank work), an unknown side in ``easeoff_grid``
+        A pair already cut from machine settings, an unknown side in ``easeoff_grid``
         or a grid short of its flank.
     UndercutError
         A fitted flank the envelope does not generate over its box.
@@ -546,14 +561,6 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     for side in grids:
         if side not in SIDES:
             raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
-    if twin.offset_mm != 0.0 and gear_generation(twin)[0] == "generated":
-        raise InputRangeError(  # before the flanks and the fits
-            "axes.offset_mm", twin.offset_mm,
-            "0 for the settings that cut an ease-off on a pair whose gear is generated: the "
-            "seed of a hypoid, the crown gear's pinion, is a point-contact conjugate up to "
-            "0.1 mm off the conjugate pinion and the fit does not reach the target from it "
-            "(docs/machine_settings.md sec. 6; design --machine-settings on the pair without "
-            "an ease-off writes its standard settings)")
     flanks = build_flanks(twin)
     # measured grids in machine coordinates onto the flanks (points off them refused here)
     grids = target_grids(grids, twin, flanks)
@@ -566,7 +573,11 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
             conj = flanks.pinion_conjugate.side(side)
             grids[side].check_covers(conj.boundary, where=f"target flank {side}")
             target = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
-        fit = fit_pinion_setup(seeds[side], twin.blank, target, parameters=parameters,
+        seed = seeds[side]
+        if twin.offset_mm != 0.0 and flanks.gear_generation == "generated":
+            seed = conjugate_seed(seed, twin.blank, flanks.pinion_conjugate.side(side),
+                                  n_u=n_u, n_v=n_v).setup
+        fit = fit_pinion_setup(seed, twin.blank, target, parameters=parameters,
                                n_u=n_u, n_v=n_v, objective=objective)
         cut, _ = generated_pinion_flank(fit.setup, twin.blank,
                                         pinion_face_width_mm=twin.pinion_face_width_mm)
