@@ -122,8 +122,9 @@ def easeoff_settings_toml(fit) -> str:
     pair = fit.pair
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
              "--machine-settings;", "signs: docs/machine_settings.md). Gear: the default "
-             "flanks' gear; pinion: fitted from", "the exactly conjugate settings "
-             "to the conjugate pinion + ease-off" + (
+             "flanks' gear; pinion: fitted from", "the conjugate pinion's settings "
+             "(exact; a hypoid with a generated gear: its crown gear's pinion fitted to "
+             "it first)", "to the conjugate pinion + ease-off" + (
                  " (fit objective: the largest deviation, --fit minimax)." if any(
                      r.fit.objective == "minimax" for r in fit.sides.values()) else ".")]
     for side, r in fit.sides.items():
