@@ -1,0 +1,229 @@
+"""Spiral angle, pressure angle and hand of a flank cut from settings, at its pitch cone
+(geometry.flank_angles), and a published summary sheet typed in (summary_sheets/).
+
+Truths: (1) the blank design the standard settings are built from (ISO 23509 F.2: the
+gear's mean spiral angle and the blade angles, exact by construction of the settings,
+docs/machine_settings.md sec. 4); (2) the printed values of a published summary sheet
+(summary_sheets/README.md: provenance, transcription and the tolerances from the
+print's rounding).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcontact.geometry.basic_settings import formate_gear_setups, generated_gear_setups
+from gearcontact.geometry.conjugate import UndercutError
+from gearcontact.geometry.flank_angles import measure_mean_point
+from gearcontact.geometry.machine import BladeSettings, setup_from_tables
+from gearcontact.geometry.pair import load_pair
+from gearcontact.validation import InputRangeError
+
+ROOT = Path(__file__).resolve().parents[2]
+SHEET = Path(__file__).with_name("summary_sheets") / "hypoid_10x41_no16_gear.toml"
+IN = 25.4
+
+
+@pytest.fixture(scope="module")
+def f2():
+    return load_pair(ROOT / "examples" / "iso23509_f2_spiral_bevel.toml")
+
+
+def test_generated_gear_of_the_blank_cuts_its_spiral_and_pressure_angles(f2):
+    # the gear rolled on the crown gear of its pitch plane (docs/machine_settings.md
+    # sec. 4): the flank's point at cone distance R_m2 on the pitch cone is generated
+    # when it lies in the cradle plane (the pitch plane, which holds the apex and the
+    # cutter centre at S_r), where flank and crown-gear tooth share the normal: the
+    # tooth trace is the blade's circle through it, of radius rho = r_p - sigma d
+    # tan(alpha) at the dedendum d, sin(beta) = (R^2 + rho^2 - S_r^2) / (2 R rho)
+    # (cosine rule; the mean of the two flanks' rho is the cutter radius, whose beta is
+    # the blank's), and the normal pressure angle is the blade angle. 1e-7 deg: the
+    # solve's 1e-9 mm over the lever. (The formate gear's flank points lie off the
+    # axial plane by half a slot, +-0.048 rad, where its pitch plane is not the cradle
+    # plane: 33.27 against the circle's 33.45 deg, drive.)
+    b = f2.blank
+    R = b.mean_cone_distance_gear_mm
+    rhos = []
+    for side, setup in generated_gear_setups(f2).items():
+        got = measure_mean_point(setup, pitch_angle_deg=b.pitch_angle_gear_deg,
+                                 cone_distance_mm=R)
+        bl, s_r = setup.blade, setup.settings.radial_distance_mm
+        rho = bl.point_radius_mm - bl.sigma * b.dedendum_gear_mm * math.tan(
+            math.radians(bl.blade_angle_deg))
+        rhos.append(rho)
+        want = math.degrees(math.asin((R ** 2 + rho ** 2 - s_r ** 2) / (2.0 * R * rho)))
+        assert got.spiral_angle_deg == pytest.approx(want, abs=1e-7), side
+        assert got.pressure_angle_deg == pytest.approx(bl.blade_angle_deg, abs=1e-7)
+        assert got.hand == "left"                    # the gear of a right-hand pinion
+        assert got.depth_mm == pytest.approx(b.dedendum_gear_mm, abs=1e-7)
+    assert np.mean(rhos) == pytest.approx(f2.cutter.radius_mm, abs=1e-9)
+
+
+def test_a_cone_the_flank_does_not_reach_is_refused_naming_it(f2):
+    setup = formate_gear_setups(f2)["drive"]
+    with pytest.raises(UndercutError, match="cone distance"):
+        measure_mean_point(setup, pitch_angle_deg=f2.blank.pitch_angle_gear_deg,
+                           cone_distance_mm=1000.0)
+    with pytest.raises(InputRangeError, match="pitch_angle_deg"):
+        measure_mean_point(setup, pitch_angle_deg=95.0, cone_distance_mm=80.0)
+
+
+# ---------------------------------------------------------------- the published sheet
+
+@pytest.fixture(scope="module")
+def sheet():
+    data = tomllib.loads(SHEET.read_text(encoding="utf-8"))
+    setups = {side: setup_from_tables("gear", side, data["machine"]["gear"][side],
+                                      data["blade"]["gear"][side])
+              for side in ("drive", "coast")}
+    return data["printed"], setups
+
+
+def _pitch_apex_in(p):
+    """Pitch apex from the crossing point, towards the gear (+, "between"), inches: the
+    crown lies a sin(delta) nearer the apex than the outer pitch circle (README)."""
+    d = math.radians(p["gear_pitch_angle_deg"])
+    return p["gear_crown_to_crossing_point_in"] - (
+        p["cone_distance_in"] * math.cos(d) - p["gear_addendum_in"] * math.sin(d))
+
+
+@pytest.fixture(scope="module")
+def measured(sheet):
+    """Both flanks of the sheet at the printed mean point (measured once)."""
+    p, setups = sheet
+    return {side: _mean_point(p, s) for side, s in setups.items()}
+
+
+def _mean_point(p, setup):
+    return measure_mean_point(setup, pitch_angle_deg=p["gear_pitch_angle_deg"],
+                              cone_distance_mm=IN * (p["cone_distance_in"]
+                                                     - 0.5 * p["face_width_in"]))
+
+
+def test_sheet_typed_as_printed(sheet):
+    # transcription: the typed tables are the printed settings in mm and decimal
+    # degrees, to the 4 decimals typed (5e-5), the MCTB with the pitch apex offset
+    p, setups = sheet
+    ratio = p["ratio_nc_75"] * 75.0 / p["gear_teeth"]
+    for side, kind, angle, width in (("drive", "inside", "convex", -1.0),
+                                     ("coast", "outside", "concave", 1.0)):
+        st, bl = setups[side].settings, setups[side].blade
+        assert st.radial_distance_mm == pytest.approx(IN * p["radial_in"], abs=5e-5)
+        assert st.cradle_angle_deg == pytest.approx(p["cradle_angle_deg"], abs=5e-5)
+        assert st.machine_root_angle_deg == pytest.approx(p["machine_root_angle_deg"], abs=5e-5)
+        assert st.machine_centre_to_back_mm == pytest.approx(
+            IN * (p["machine_centre_to_back_in"] + _pitch_apex_in(p)), abs=5e-5)
+        assert st.sliding_base_mm == pytest.approx(IN * p["sliding_base_in"], abs=5e-5)
+        assert st.blank_offset_mm == pytest.approx(-IN * p["blank_offset_in"], abs=5e-5)
+        assert st.ratio_of_roll == pytest.approx(ratio, abs=5e-7)
+        assert bl.kind == kind
+        assert bl.blade_angle_deg == p[f"gear_pressure_angle_{angle}_deg"]
+        assert bl.point_radius_mm == pytest.approx(
+            IN * 0.5 * (p["cutter_diameter_in"] + width * p["point_width_finish_in"]), abs=5e-5)
+    # the test roll printed beside the ratio: work / cradle to its minute (0.5')
+    assert ratio * p["cradle_test_roll_deg"] == pytest.approx(p["work_test_roll_deg"],
+                                                              abs=0.5 / 60)
+
+
+def test_sheet_blank_is_consistent(sheet):
+    # the printed cone distance is the outer one of the printed diametral pitch and
+    # pitch angle (4 decimals printed: 5e-4 in, plus the pitch angle's 0.5' = 1.7e-4 in);
+    # the root apex of the printed blank (root line through the outer root point,
+    # dedendum = whole depth - addendum) is the printed one (2 decimals: 5e-3 in)
+    p, _ = sheet
+    d = math.radians(p["gear_pitch_angle_deg"])
+    r_o = 0.5 * p["gear_teeth"] / p["outer_diametral_pitch_per_in"]
+    assert r_o / math.sin(d) == pytest.approx(p["cone_distance_in"], abs=7e-4)
+    assert p["gear_pitch_angle_deg"] - p["gear_root_angle_deg"] == pytest.approx(
+        p["gear_dedendum_angle_deg"], abs=1.0 / 60)
+    b_o = p["whole_depth_in"] - p["gear_addendum_in"]
+    g_r = math.radians(p["gear_root_angle_deg"])
+    axial = (p["cone_distance_in"] * math.cos(d) + b_o * math.sin(d)
+             - (r_o - b_o * math.cos(d)) / math.tan(g_r))        # root apex - pitch apex
+    assert -(_pitch_apex_in(p) + axial) == pytest.approx(p["gear_root_apex_in"], abs=5e-3)
+
+
+def test_sheet_root_line_lies_in_the_cutter_tip_plane(sheet):
+    # the sign mapping of this print (README): with MD the crossing point's increment
+    # and WITH = +, the gear's root line (the cone tangent to the cradle plane, tilt 0)
+    # lies in the cutter's tip plane z_m = 0, as a generated gear's root must (the
+    # blade tips cut it). Measured -0.065 mm; tolerance: the root apex printed to
+    # 0.005 in (x sin 69.1 deg = 0.119 mm) plus MD and sliding base to 0.0005 in
+    # (0.013 mm each): 0.15 mm. WITH = - would put it 3.62 mm behind the tip plane.
+    p, setups = sheet
+    st = setups["drive"].settings
+    g = math.radians(st.machine_root_angle_deg)
+    d = math.radians(p["gear_pitch_angle_deg"])
+    b_o = p["whole_depth_in"] - p["gear_addendum_in"]
+    r_o = 0.5 * p["gear_teeth"] / p["outer_diametral_pitch_per_in"]
+    axial = IN * (p["cone_distance_in"] * math.cos(d) + b_o * math.sin(d)
+                  - (r_o - b_o * math.cos(d)) / math.tan(math.radians(p["gear_root_angle_deg"])))
+    z_root_apex = (st.machine_centre_to_back_mm + axial) * math.sin(g) + st.sliding_base_mm
+    assert abs(z_root_apex) < 0.15
+    assert z_root_apex == pytest.approx(-0.065, abs=1e-3)     # the measured value
+
+
+def test_sheet_flanks_reach_the_mean_point_with_the_printed_hand(sheet, measured):
+    # both flanks pass through the printed blank's mean point (pitch cone at the outer
+    # cone distance - F/2), generated by a blade point between the edge round and the
+    # whole depth, and the tooth is right hand as printed (cradle angle +, DN = -)
+    p, setups = sheet
+    for side, setup in setups.items():
+        got = measured[side]
+        assert got.hand == p["gear_hand"], side
+        assert setup.blade.edge_radius_mm < got.depth_mm < IN * p["whole_depth_in"]
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "differs: at the mean point the typed settings cut 26.895 deg (convex) and 26.503 deg "
+    "(concave) against the printed 26.95 deg; the print's rounding allows 0.030 / "
+    "0.035 deg (summary_sheets/README.md)"))
+def test_sheet_spiral_angle_is_the_printed_one(sheet, measured):
+    # tolerance: the settings' rounding propagated through the solve (radial, MCTB with
+    # the crown and crossing point, sliding base, blank offset, machine root to their
+    # last printed digit; the cradle angle is a rigid turn): 0.022 / 0.027 deg, plus the
+    # printed angle's 0.5' = 0.008 deg
+    p, setups = sheet
+    for side, tol in (("drive", 0.030), ("coast", 0.035)):
+        got = measured[side]
+        assert got.spiral_angle_deg == pytest.approx(p["gear_spiral_angle_deg"], abs=tol), side
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "differs: the normal pressure angles at the mean point (against the pitch cone) are "
+    "15.263 deg (convex) and 27.499 deg (concave) against the printed 18.0 / 24.5 deg, "
+    "the blade angles: the root is tilted by the dedendum angle 5.7 deg from the pitch "
+    "cone, ~delta_f sin(beta) = 2.6 deg in the normal section (summary_sheets/README.md)"))
+def test_sheet_pressure_angles_are_the_printed_ones(sheet, measured):
+    # tolerance: the settings' rounding propagated (0.026 / 0.036 deg) plus the
+    # printed 0.5' (0.008 deg)
+    p, setups = sheet
+    for side, flank, tol in (("drive", "convex", 0.034), ("coast", "concave", 0.044)):
+        got = measured[side]
+        assert got.pressure_angle_deg == pytest.approx(
+            p[f"gear_pressure_angle_{flank}_deg"], abs=tol), side
+
+
+def test_sheet_measured_values_are_stable(sheet, measured):
+    # the values the README reports ("differs"), kept so that a change of the machine
+    # chain shows up here (rounding of the report: 5e-4 deg)
+    p, setups = sheet
+    got = measured
+    assert got["drive"].spiral_angle_deg == pytest.approx(26.8946, abs=5e-4)
+    assert got["coast"].spiral_angle_deg == pytest.approx(26.5032, abs=5e-4)
+    assert got["drive"].pressure_angle_deg == pytest.approx(15.2631, abs=5e-4)
+    assert got["coast"].pressure_angle_deg == pytest.approx(27.4990, abs=5e-4)
+    assert np.isfinite(got["drive"].roll_rad)
+    # the slot's nominal spiral angle: a 0 deg blade of the cutter's radius 4.500 in
+    # (the slot centre) rolled by the same settings, 26.812 deg against the printed
+    # 26.95 (the radius that would give it: 4.512 in)
+    nominal = BladeSettings(kind="inside", blade_angle_deg=0.0,
+                            point_radius_mm=IN * 0.5 * p["cutter_diameter_in"])
+    slot = _mean_point(p, dataclasses.replace(setups["drive"], blade=nominal))
+    assert slot.spiral_angle_deg == pytest.approx(26.8123, abs=5e-4)
