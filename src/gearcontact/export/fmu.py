@@ -309,17 +309,13 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
     """
-    from ..ltca.tooth_bending import tooth_bending
-    from ..tca.analysis import analyze_pair
-    from ..twin.mesh import mesh_table
+    from ..twin.mesh import pair_mesh_table
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False,
-                               flanks=flanks)
-    bend = tooth_bending(flanks, pair, side=side) if bending else None
-    tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
-                                    bending=bend))
+    # the twin's own mesh table (edge-contact TCA, docs/twin.md)
+    tab = mesh_law_table(pair_mesh_table(pair, side=side, torque_nm=torque_nm, phases=phases,
+                                         flanks=flanks, bending=bending)[2])
     ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

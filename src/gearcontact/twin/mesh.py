@@ -62,7 +62,7 @@ from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
 
-__all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad",
+__all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
 
 #: Codes of :attr:`MeshTable.contact_mode`: 0 a surface contact (or no contact, where
@@ -253,6 +253,31 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                              / cycle.path.ratio),
         side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order],
         contact_mode=mode[:, order], edge_label=label[:, order])
+
+
+def pair_mesh_table(pair, *, side: str, torque_nm: float, phases: int = 61, flanks=None,
+                    bending: bool = False, progress: bool = False):
+    """The twin's TCA of one side of ``pair`` and its :func:`mesh_table`: ``(tca,
+    flanks, mesh)``. The TCA is the edge-contact one ``analyze`` runs
+    (:func:`~gearcontact.tca.analysis.analyze_pair`, ``edge_contact=True``): a pair
+    whose path continues through an edge of one flank touching the other closes where
+    that edge touches (module docstring), not where a surface-only TCA's posed field
+    sees it. ``bending``: the shell tooth bending of both members
+    (:func:`~gearcontact.ltca.tooth_bending.tooth_bending`) in the table; else rigid.
+
+    Raises
+    ------
+    LineContact
+        The side's flanks are conjugate (zero ease-off).
+    """
+    from ..ltca.tooth_bending import tooth_bending
+    from ..tca.analysis import analyze_pair
+
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=True,
+                               flanks=flanks, progress=progress)
+    teeth = tooth_bending(flanks, pair, side=side) if bending else None
+    return tca, flanks, mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
+                                   bending=teeth)
 
 
 def _first_touch(arrays: dict, valid: np.ndarray) -> np.ndarray:
