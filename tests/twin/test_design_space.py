@@ -27,14 +27,15 @@ the twin's mesh is the edge-contact TCA of ``analyze`` (docs/twin.md "Edge conta
 - its unloaded TE envelope (``mesh.csv``) is ``analyze``'s TE0: on CHATTER_PAIR's drive
   side (61 phases) p-p 8.670 arcsec, the pinion's root edge carrying 18 of the 61 rows
   (measured with ``gearcontact analyze`` / ``tca.analysis.analyze_pair``; the former
-  surface-only twin mesh had 24.07 arcsec), within 0.01 arcsec (the same TCA; its
-  envelope is not moved by a posed-field pair);
+  surface-only TCA had 24.07 arcsec, the twin's envelope 19.30 after its posed-field
+  first touch), within 0.01 arcsec (the same TCA; its envelope is not moved by a
+  posed-field pair);
 - at 3000 rpm the mesh stays closed: the mesh frequency (350 Hz) is twice the first
   elastic mode (175 Hz), where a linear mesh's deflection answers a TE excitation of
   amplitude e with at most r^2 / (r^2 - 1) e = 4/3 e (r = 2; higher mesh orders less),
   i.e. +-5.8 arcsec for the 8.7 arcsec p-p, below the mesh rotation under the static
   load (11.8 arcsec): contact loss 0 (measured 0, the rotation swinging 7.0-18.4
-  arcsec; before 10.4 %, dynamic factor 2.94, with the 24-arcsec surface-only
+  arcsec; before 10.4 %, dynamic factor 2.94, with the 19.3-arcsec surface-only
   envelope), and the mean mesh torque is the set torque within 1 % as above (measured
   +0.09 %; before -1.12 %).
 
