@@ -1,7 +1,8 @@
 """``gearcontact export fmu --kind mesh``: an FMI 3.0 FMU of one gear mesh in plain C.
 
-:func:`export_mesh_fmu` runs the pair's unloaded TCA (surface to surface, as the twin),
-builds the loaded flank's mesh table (:func:`gearcontact.twin.mesh.mesh_table`), bakes
+:func:`export_mesh_fmu` runs the twin's unloaded TCA (the edge-contact one, as
+``analyze``) and builds the loaded flank's mesh table
+(:func:`gearcontact.twin.mesh.pair_mesh_table`), bakes
 it into the C model (``data/templates/fmu``) beside the preview's C library
 (:mod:`.c_library`: stage D golden and fp64), compiles the shared library with the
 system C compiler (``-std=c99 -Wall -Wextra -Werror``) against the FMI 3.0 headers
