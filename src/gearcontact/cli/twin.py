@@ -3,7 +3,9 @@
 Writes into ``--out`` (created if missing): ``twin.json`` (backend, steps, step_us,
 mesh frequency, mean mesh torque and load vs the
 static ones, dynamic factor, contact-loss fraction, DTE peak-to-peak, linearised natural
-frequencies; :func:`gearcontact.twin.simulate.simulate`), ``twin.csv`` (time series) and
+frequencies, the mesh rows per contact mode; :func:`gearcontact.twin.simulate.simulate`),
+``twin.csv`` (time series), ``mesh.csv`` (the loaded side's mesh table per phase and pair:
+surface or edge contact, docs/twin.md) and
 ``twin.png`` / ``twin_spectrum.png``; the real-time factor and the step-time p50/p99
 are timings and go to ``run.json`` only (identical runs write byte-identical files). With ``--speed-sweep START:STOP:STEP`` it runs the
 dynamic factor vs speed curve instead, for the preview twin (``--backend``) and the table
@@ -204,7 +206,7 @@ def _simulate(args, pair, model, drivetrain, extra: dict) -> int:
     if args.backend == "table":
         extra["table_source"] = args.table_source
     s = write_twin_outputs(res, args.out, figures=not args.no_figures,
-                           title=f"{pair.name} {args.side}", extra=extra)
+                           title=f"{pair.name} {args.side}", extra=extra, mesh=model.mesh)
     print(f"{pair.name} twin {s['backend']} ({s['curvatures']} curvatures): {s['steps']} "
           f"steps of {s['step_us']:g} us, "
           f"mesh {s['mesh_frequency_hz']:g} Hz; mean mesh torque {s['mean_mesh_torque_nm']:.3f}"

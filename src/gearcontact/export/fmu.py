@@ -1,7 +1,8 @@
 """``gearcontact export fmu --kind mesh``: an FMI 3.0 FMU of one gear mesh in plain C.
 
-:func:`export_mesh_fmu` runs the pair's unloaded TCA (surface to surface, as the twin),
-builds the loaded flank's mesh table (:func:`gearcontact.twin.mesh.mesh_table`), bakes
+:func:`export_mesh_fmu` runs the twin's unloaded TCA (the edge-contact one, as
+``analyze``) and builds the loaded flank's mesh table
+(:func:`gearcontact.twin.mesh.pair_mesh_table`), bakes
 it into the C model (``data/templates/fmu``) beside the preview's C library
 (:mod:`.c_library`: stage D golden and fp64), compiles the shared library with the
 system C compiler (``-std=c99 -Wall -Wextra -Werror``) against the FMI 3.0 headers
@@ -309,17 +310,13 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
     """
-    from ..ltca.tooth_bending import tooth_bending
-    from ..tca.analysis import analyze_pair
-    from ..twin.mesh import mesh_table
+    from ..twin.mesh import pair_mesh_table
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=False,
-                               flanks=flanks)
-    bend = tooth_bending(flanks, pair, side=side) if bending else None
-    tab = mesh_law_table(mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
-                                    bending=bend))
+    # the twin's own mesh table (edge-contact TCA, docs/twin.md)
+    tab = mesh_law_table(pair_mesh_table(pair, side=side, torque_nm=torque_nm, phases=phases,
+                                         flanks=flanks, bending=bending)[2])
     ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -13,6 +13,22 @@ and for each neighbouring pair ``j``:
 * ``stencil_gaps_mm``: the 49 gap samples of the preview's 7 x 7 stage-C stencil at the
   same point (:func:`gearcontact.tca.stencil.hardware_stencil`; a window reaching
   beyond the flank is the osculating quadric), the input of the whole C -> D preview;
+* ``contact_mode``: how the row's opening was found (:data:`CONTACT_MODES`): a surface
+  contact of the TCA, an *edge contact* of the TCA (an edge of one flank touching the
+  other flank, :mod:`gearcontact.tca.edge_contact`: the TCA the twin runs is the
+  edge-contact one ``analyze`` runs), or a pair beyond even its edge contacts resolved
+  on its *posed field* (:meth:`~gearcontact.ltca.lte_pairs.PairFields.resolve`);
+
+The contact law at an edge row (issue 28; docs/twin.md "Edge contact"): the opening
+and the lever are the edge contact's own (its TE0 from the edge-contact TCA, its point
+and the touched flank's normal), so the pair closes at the phase where the edge
+really touches; the curvatures (and the stencil) are those of the pair's nearest
+surface contact along its path (:func:`~gearcontact.ltca.lte_pairs.curvature_point`),
+i.e. the Hertzian law with which the surface contact reached the edge -- continuous
+there, since the edge solution continues the surface one with continuous TE0 and
+point. It is the loaded TE preview's law for edge contacts (:mod:`gearcontact.ltca.
+lte`); it does not truncate the contact ellipse at the edge, so it is stiffer than the
+LCP's trimmed patch on the edge's posed field.
 
 and the unloaded TE envelope. Everything is re-expressed along the *motion*: the
 pinion angle ``psi`` and the gear angle increase in the direction the pinion drives the
@@ -46,8 +62,12 @@ from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
 
-__all__ = ["MeshTable", "mesh_table", "reverse_law", "free_play_rad",
-           "pair_bending_compliance", "conjugate_compliance"]
+__all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
+           "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
+
+#: Codes of :attr:`MeshTable.contact_mode`: 0 a surface contact (or no contact, where
+#: not ``valid``), 1 an edge contact of the TCA, 2 an edge pair on its posed field.
+CONTACT_MODES = ("surface", "edge", "posed field")
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,6 +119,11 @@ class MeshTable:
     line_length_mm : ndarray (P, K) or None
         Length of each pair's contact line in the zone of action, mm (a cylindrical
         pair's: the line core's ``L``, :mod:`.line_law`); None for point contact.
+    contact_mode : ndarray (P, K) of int8 or None
+        Index into :data:`CONTACT_MODES` of each row (module docstring); None: every
+        row a surface (or line) contact.
+    edge_label : ndarray (P, K) of str or None
+        The touching edge of an edge row (``"pinion root"``, ...), else ``""``.
     """
 
     psi_rad: np.ndarray
@@ -121,6 +146,8 @@ class MeshTable:
     bending_mm_per_n: np.ndarray | None = None
     stencil_gaps_mm: np.ndarray | None = None
     line_length_mm: np.ndarray | None = None
+    contact_mode: np.ndarray | None = None
+    edge_label: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:
@@ -177,6 +204,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}
     arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb")}
     valid = np.zeros((n_p, n_k), bool)
+    mode = np.zeros((n_p, n_k), np.int8)
+    label = np.full((n_p, n_k), "", dtype=object)
     stencils = np.zeros((n_p, n_k, N_TAPS))
     curv: dict = {}
     sten: dict = {}
@@ -188,6 +217,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                 continue
             i = row[pc.offset]
             valid[i, k] = True
+            label[i, k] = cycle.path.points[pc.path_index].edge_contact
+            mode[i, k] = 2 if pc.edge else 1 if label[i, k] else 0
             arrays["lever"][i, k] = pc.lever_mm
             arrays["opening"][i, k] = pc.offset_mm
             arrays["A"][i, k] = pc.A_minus_per_mm
@@ -220,7 +251,33 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         phi1_rad=phi1[order], te0_arcsec=env[order],
         gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
                              / cycle.path.ratio),
-        side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order])
+        side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order],
+        contact_mode=mode[:, order], edge_label=label[:, order])
+
+
+def pair_mesh_table(pair, *, side: str, torque_nm: float, phases: int = 61, flanks=None,
+                    bending: bool = False, progress: bool = False):
+    """The twin's TCA of one side of ``pair`` and its :func:`mesh_table`: ``(tca,
+    flanks, mesh)``. The TCA is the edge-contact one ``analyze`` runs
+    (:func:`~gearcontact.tca.analysis.analyze_pair`, ``edge_contact=True``): a pair
+    whose path continues through an edge of one flank touching the other closes where
+    that edge touches (module docstring), not where a surface-only TCA's posed field
+    sees it. ``bending``: the shell tooth bending of both members
+    (:func:`~gearcontact.ltca.tooth_bending.tooth_bending`) in the table; else rigid.
+
+    Raises
+    ------
+    LineContact
+        The side's flanks are conjugate (zero ease-off).
+    """
+    from ..ltca.tooth_bending import tooth_bending
+    from ..tca.analysis import analyze_pair
+
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=True,
+                               flanks=flanks, progress=progress)
+    teeth = tooth_bending(flanks, pair, side=side) if bending else None
+    return tca, flanks, mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
+                                   bending=teeth)
 
 
 def _first_touch(arrays: dict, valid: np.ndarray) -> np.ndarray:

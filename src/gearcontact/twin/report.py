@@ -1,4 +1,6 @@
-"""Twin outputs: ``twin.json`` (summary), ``twin.csv`` (time series) and the figures.
+"""Twin outputs: ``twin.json`` (summary), ``twin.csv`` (time series), ``mesh.csv`` (the
+loaded side's mesh table: per phase and pair the mode that found its opening) and the
+figures.
 
 ``twin.png``: mesh load, dynamic TE, contact-ellipse semi-axes ``a, b`` and ``p_max``
 of the most loaded pair over time; ``twin_spectrum.png``: amplitude spectrum of the
@@ -18,15 +20,37 @@ import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
 from ..tca.export import write_csv  # noqa: E402
+from .mesh import CONTACT_MODES  # noqa: E402
 
-__all__ = ["write_twin_outputs", "write_sweep_outputs", "plot_time", "plot_spectrum",
-           "plot_sweep", "CSV_COLUMNS"]
+__all__ = ["write_twin_outputs", "write_sweep_outputs", "write_mesh_csv", "plot_time",
+           "plot_spectrum", "plot_sweep", "CSV_COLUMNS", "MESH_COLUMNS"]
 
 #: Columns of ``twin.csv`` (time series keys of :class:`~.simulate.TwinResult`).
 CSV_COLUMNS = ("t_s", "te_arcsec", "theta_rad", "mesh_torque_nm", "mesh_load_n", "a_mm",
                "b_mm", "p_max_mpa", "pairs_loaded", "pinion_speed_rad_s", "gear_speed_rad_s",
                "kinetic_j", "shaft_energy_j", "mesh_energy_j", "dissipated_j",
                "input_work_j")
+
+#: Columns of ``mesh.csv`` (:func:`write_mesh_csv`).
+MESH_COLUMNS = ("row", "psi_rad", "phi1_rad", "te0_arcsec", "pair", "mode", "edge",
+                "lever_mm", "opening_um", "A_minus_per_mm", "B_minus_per_mm")
+
+
+def write_mesh_csv(mesh, path) -> Path:
+    """``mesh.csv``: one line per valid row of ``mesh`` (a :class:`~.mesh.MeshTable`
+    with contact modes), phase by phase along the motion: ``pair`` the offset ``j``,
+    ``mode`` one of :data:`~.mesh.CONTACT_MODES` (which mode found the opening; an
+    ``edge`` row names its ``edge`` and carries the nearest surface contact's
+    curvatures, docs/twin.md "Edge contact"), ``opening_um`` the initial separation."""
+    n_p = mesh.valid.shape[0]
+    rows = [[k, float(mesh.psi_rad[k]), float(mesh.phi1_rad[k]), float(mesh.te0_arcsec[k]),
+             i - (n_p - 1) // 2, CONTACT_MODES[mesh.contact_mode[i, k]], mesh.edge_label[i, k],
+             float(mesh.lever_mm[i, k]), 1e3 * float(mesh.opening_mm[i, k]),
+             float(mesh.A_minus_per_mm[i, k]), float(mesh.B_minus_per_mm[i, k])]
+            for k in range(mesh.valid.shape[1]) for i in range(n_p) if mesh.valid[i, k]]
+    path = Path(path)
+    write_csv(path, list(MESH_COLUMNS), rows)
+    return path
 
 
 def _save(fig, axes, path) -> Path:
@@ -106,8 +130,9 @@ def plot_spectrum(result, path, *, settle_fraction: float = 0.5, title: str = ""
 
 
 def write_twin_outputs(result, out, *, figures: bool = True, title: str = "",
-                       extra: dict | None = None) -> dict:
-    """Write ``twin.json``, ``twin.csv`` and (``figures``) ``twin.png``,
+                       extra: dict | None = None, mesh=None) -> dict:
+    """Write ``twin.json``, ``twin.csv``, ``mesh.csv`` (``mesh``: the loaded side's
+    :class:`~.mesh.MeshTable`, if it has contact modes) and (``figures``) ``twin.png``,
     ``twin_spectrum.png`` into ``out``; returns the JSON dict (``extra`` merged in)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -117,6 +142,8 @@ def write_twin_outputs(result, out, *, figures: bool = True, title: str = "",
     cols = result.columns
     rows = np.column_stack([cols[k] for k in CSV_COLUMNS]).tolist()
     write_csv(out / "twin.csv", list(CSV_COLUMNS), rows)
+    if mesh is not None and mesh.contact_mode is not None:
+        write_mesh_csv(mesh, out / "mesh.csv")
     if figures:
         plot_time(result, out / "twin.png", title=title)
         plot_spectrum(result, out / "twin_spectrum.png", title=title)

@@ -20,6 +20,7 @@ from ..errors import CheckFailed, RtlMismatch
 from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import kernel as K
 from .layout import LINE_SOURCE
+from .mesh import CONTACT_MODES
 # the set-up and the static point, re-exported: the twin's one entry point
 from .model import (BACKENDS, CURVATURE_SOURCES, TwinModel, _fit_args,  # noqa: F401
                     _fitted_coefficients, _prm, build_model, model_for_pair)
@@ -241,7 +242,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "dte_pp_arcsec": float(np.ptp(cols["te_arcsec"][sel])),
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
-        **_bending_summary(model), **_domain_summary(model, tcount),
+        **_bending_summary(model), **_domain_summary(model, tcount), **_mode_summary(model),
         "reverse_flank": model.reverse_note, **_free_play_summary(model),
         **{k: v for k, v in rtl.items() if not k.endswith(("_seconds", "_per_s"))}}
     timings = {"real_time_factor": dur / wall,
@@ -265,6 +266,29 @@ def _domain_summary(model: TwinModel, tcount: np.ndarray) -> dict:
             "steps_outside_datapath": int(tcount[4]),
             "outside_datapath_evaluated_by": f"{law} on {fit}",
             "previews_without_contact_law": int(tcount[5])}
+
+
+#: The contact law of an edge row (:mod:`.mesh`), as ``twin.json`` states it.
+EDGE_CONTACT_LAW = ("opening and lever of the edge contact (edge-contact TCA); Hertzian law "
+                    "on the curvatures and stencil of the pair's nearest surface contact "
+                    "along its path (no truncation at the edge)")
+
+
+def _mode_summary(model: TwinModel) -> dict:
+    """How the loaded side's rows were found (:data:`.mesh.CONTACT_MODES`): valid rows
+    per mode, edge rows per edge, phases whose transmitting pair (opening 0) is an
+    edge contact, and the law of an edge row; nothing for a table without modes."""
+    m = model.mesh
+    if m.contact_mode is None:
+        return {}
+    rows = {name: int(np.sum(m.valid & (m.contact_mode == i)))
+            for i, name in enumerate(CONTACT_MODES)}
+    edges = m.edge_label[m.valid & (m.contact_mode == 1)]
+    carry = m.valid & (m.opening_mm == 0.0) & (m.contact_mode == 1)
+    return {"mesh_rows_by_mode": rows,
+            "mesh_edge_rows": {e: int(np.sum(edges == e)) for e in sorted(set(edges))},
+            "transmitting_edge_phases": int(carry.any(axis=0).sum()),
+            "mesh_phases": int(m.valid.shape[1]), "edge_contact_law": EDGE_CONTACT_LAW}
 
 
 def _bending_summary(model: TwinModel) -> dict:
