@@ -44,7 +44,7 @@ from .conjugate import NODE_MARGIN_MM, UndercutError, nominal_pinion_box
 from .cutter import BladeCone, CutterPlacement
 from .formate import FlankBoundary, FormateFlank, gear_flank
 from .kinematics import MeshKinematics
-from .machine import MachineKinematics, MachineSetup, blade_point
+from .machine import MachineKinematics, MachineSetup, blade_point, edge_round
 from .sheet import GearCone, GearSheet, RadialSheet
 
 __all__ = ["EnvelopeSolution", "EnvelopeSolver", "formate_gear_flank", "gear_flank_of",
@@ -176,14 +176,34 @@ class EnvelopeSolver:
     def points(self, q: np.ndarray):
         """Body point, unit normal and meshing function ``f`` at (..., 3) = (l, theta, psi)."""
         x_t, n_t = blade_point(self.setup.blade, q[..., 0], q[..., 1])
-        x_w, n_w, v_w = self.kin.to_work(x_t, n_t, q[..., 2])
+        return self.place(x_t, n_t, q[..., 2])
+
+    def place(self, x_t, n_t, psi_rad):
+        """Cutter-frame points and normals (..., 3) at cradle roll ``psi`` -> body point,
+        unit normal and meshing function ``f = n_w . dX_w/dpsi``."""
+        x_w, n_w, v_w = self.kin.to_work(x_t, n_t, psi_rad)
         f = np.einsum("...i,...i->...", n_w, v_w)
         return x_w @ self._q.T + self._t, n_w @ self._q.T, f
+
+    def sheet_parameters(self, x):
+        """Sheet parameters ``(u, v)`` of body points ``x`` (..., 3) (``cone.parameters``
+        of their axial position and radius)."""
+        a, b, c = self._axes
+        return self.cone.parameters(x[..., a], np.hypot(x[..., b], x[..., c]))
 
     def _residual(self, q, x_t, r_t):
         x, _, f = self.points(q)
         a, b, c = self._axes
         return np.stack([x[..., a] - x_t, np.hypot(x[..., b], x[..., c]) - r_t, f], axis=-1)
+
+    def rotate(self, x, angle_rad: float):
+        """Body vectors ``x`` (..., 3) turned about the member axis by ``angle_rad`` (their
+        :meth:`angle` grows by it)."""
+        _, b, c = self._axes
+        cs, sn = math.cos(angle_rad), math.sin(angle_rad)
+        out = np.array(x, dtype=float, copy=True)
+        out[..., b], out[..., c] = cs * x[..., b] - sn * x[..., c], sn * x[..., b] + cs * x[..., c]
+        return out
 
     def angle(self, x):
         """Angular coordinate of body points about the member axis (the sheet's psi)."""
@@ -392,10 +412,11 @@ def generated_pinion_box(setup: MachineSetup, blank: BlankDesign, *,
 
 
 def _edge_length_mm(setup: MachineSetup) -> float:
-    """Blade arc length from the tip to the top of the edge round, mm (straight-blade
-    value ``r_e (1 - sin alpha) / cos alpha``, the round's tangent point)."""
-    a = math.radians(setup.blade.blade_angle_deg)
-    return setup.blade.edge_radius_mm * (1.0 - math.sin(a)) / math.cos(a)
+    """Blade arc length from the tip to the top of the edge round (the round's tangent
+    point, :func:`~.machine.edge_round`; 0 for a sharp tip), mm."""
+    if setup.blade.edge_radius_mm == 0.0:
+        return 0.0
+    return edge_round(setup.blade).top_length_mm
 
 
 #: Lengthwise sections and profile steps that trace the line the blade's edge top
