@@ -241,6 +241,10 @@ def generated_fillet(setup: MachineSetup, blank, *, face_width_mm: float, flank=
     UndercutError
         A point the edge round's envelope does not reach from the flank's mean node.
     """
+    if setup.blade.edge_radius_mm == 0.0:
+        raise InputRangeError(f"blade.{setup.member}.{setup.side}.edge_radius_mm", 0.0,
+                              "> 0 for a root fillet (a sharp blade tip cuts no fillet "
+                              "surface: the flank runs into the root)")
     rnd = edge_round(setup.blade)
     box_of = generated_pinion_box if setup.member == "pinion" else generated_gear_box
     key = "pinion_face_width_mm" if setup.member == "pinion" else "gear_face_width_mm"
