@@ -45,7 +45,8 @@ from scipy.interpolate import RegularGridInterpolator
 from ..validation import InputRangeError
 from .conjugate import UndercutError
 from .formate import SIDES, FormateFlank
-from .generated import EnvelopeSolver, generated_gear_box, generated_pinion_box
+from .generated import (EnvelopeSolver, central_system, damped_newton, generated_gear_box,
+                        generated_pinion_box)
 from .machine import BladeSettings, EdgeRound, MachineSetup, blade_point, edge_round
 from .mirror import MIRROR
 
@@ -53,9 +54,7 @@ __all__ = ["FilletArrays", "FormateFillet", "GeneratedFillet", "RootFillet",
            "formate_fillet", "generated_fillet", "pair_fillets"]
 
 _TOL = 1e-10          # residual of the fillet equations, mm and mm/rad
-_MAX_ITER = 40
 _MAX_STEP = np.array([0.05, 0.05])   # damping: |dtheta|, |dpsi|, rad
-_FD = 1e-6            # central-difference step (rad)
 #: Steps down the blade profile from the mean node to the round's tangent point.
 _PROFILE_STEPS = 8
 
@@ -171,26 +170,16 @@ def _placed(solver: EnvelopeSolver, cut, a, q):
 
 def _solve(solver: EnvelopeSolver, cut, a, v, guess):
     """Solve ``v(X) = v``, ``f = 0`` for ``(theta, psi)`` at the cutter points
-    ``cut(a, theta)`` (arrays, batched Newton with a central-difference Jacobian from
-    ``guess`` (..., 2)): ``(q, residual, det J)``."""
+    ``cut(a, theta)`` (arrays; :func:`~.generated.damped_newton` with a central-difference
+    Jacobian from ``guess`` (..., 2)): ``(q, residual, det J)``."""
     a, v = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(v, dtype=float))
     q = np.array(np.broadcast_to(guess, a.shape + (2,)), dtype=float)
-    d = _FD * np.vstack([np.zeros(2), np.eye(2), -np.eye(2)])          # (5, 2)
-    shape = (5,) + (1,) * a.ndim + (2,)
 
-    def system(q):
-        _, _, f, vv = _placed(solver, cut, a, q[None] + d.reshape(shape))
-        F = np.stack([vv - v, f], axis=-1)
-        return F[0], np.stack([(F[1 + k] - F[3 + k]) / (2.0 * _FD) for k in range(2)], -1)
+    def residual(qs):
+        _, _, f, vv = _placed(solver, cut, a, qs)
+        return np.stack([vv - v, f], axis=-1)
 
-    for _ in range(_MAX_ITER):
-        F, J = system(q)
-        step = -np.linalg.solve(J, F[..., None])[..., 0]
-        scale = np.max(np.abs(step) / _MAX_STEP, axis=-1, keepdims=True)
-        q = q + step / np.maximum(scale, 1.0)
-        if np.all(np.abs(step) < 1e-13):
-            break
-    F, J = system(q)
+    q, F, J = damped_newton(lambda q: central_system(residual, q), q, _MAX_STEP)
     res = np.where(np.all(np.isfinite(q), axis=-1), np.max(np.abs(F), axis=-1), np.inf)
     return q, res, np.linalg.det(J)
 
@@ -268,10 +257,17 @@ def generated_fillet(setup: MachineSetup, blank, *, face_width_mm: float, flank=
         q, res, _ = _solve(solver, profile, l_mm, vs, q)
         _check(res, f"{where} at blade arc {l_mm:.4f} mm", "the flank's lower limit line")
     ss = np.linspace(rnd.top_arc_mm, 0.0, int(n_s))
-    rows = []
+    rows, sign = [], None
     for s in ss:
-        q, res, _ = _solve(solver, rnd.point, s, vs, q)
+        q, res, det = _solve(solver, rnd.point, s, vs, q)
         _check(res, f"{where} at s = {s:.4f} mm", "the edge round's envelope")
+        sign = np.sign(det[0]) if sign is None else sign
+        if np.any(np.sign(det) != sign):     # the envelope folds: a limit line
+            j = int(np.argmax(np.sign(det) != sign))
+            raise UndercutError(f"{where} at (s, v) = ({s:.4f}, {vs[j]:.4f}) mm",
+                                f"Jacobian determinant {det[j]:.3e}",
+                                "a regular envelope of the edge round (no limit line on "
+                                "the fillet: check the settings and the edge radius)")
         rows.append(q)
     turn = 0.0
     if flank is not None:
