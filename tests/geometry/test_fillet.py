@@ -176,3 +176,37 @@ def test_zero_edge_radius_cuts_no_fillet(pair):
     gen = dataclasses.replace(generated_gear_setups(pair)["drive"], blade=sharp.blade)
     with pytest.raises(InputRangeError, match=r"blade.gear.drive.edge_radius_mm"):
         generated_fillet(gen, pair.blank, face_width_mm=pair.gear_face_width_mm)
+
+
+def test_pair_fillets_of_a_left_hand_pair_meet_its_mirrored_flanks(pair):
+    # a left-hand pair's fillets are its right-hand twin's reflected (geometry.mirror):
+    # the top row meets the left-hand gear flank (the twin's blade cone in the reflected
+    # cutter frame) at its root line with its normal (1e-9, as above); the conjugate
+    # pinion has no cutter and gets a reason instead
+    import dataclasses
+    from types import SimpleNamespace
+
+    from gearcontact.geometry.fillet import pair_fillets
+    from gearcontact.geometry.formate import gear_flanks
+    from gearcontact.geometry.mirror import mirror_gear_flank, mirror_placement
+
+    right = gear_flanks(pair)[1]
+    left = {s: mirror_gear_flank(f, mirror_placement(f.blade.placement))
+            for s, f in right.items()}
+
+    def flank_set(gear):
+        return SimpleNamespace(gear_generation="formate",
+                               flank=lambda m, s: gear[s] if m == "gear" else None)
+
+    lh = dataclasses.replace(pair, pinion_hand="left")
+    got, why = pair_fillets(lh, SimpleNamespace(right_hand_twin=flank_set(right)))
+    assert set(got) == {("gear", "drive"), ("gear", "coast")}
+    assert set(why) == {("pinion", "drive"), ("pinion", "coast")}
+    assert all("no cutter" in w for w in why.values())
+    for side in ("drive", "coast"):
+        f, flank = got["gear", side], left[side]
+        v = np.linspace(*flank.v_range, 7)
+        top = f.evaluate(np.full(7, f.u_range[1]), v)
+        root = flank.evaluate(np.full(7, flank.u_range[0]), v)
+        assert np.abs(top.r - root.r).max() < 1e-9
+        assert np.abs(top.n - root.n).max() < 1e-9
