@@ -146,11 +146,12 @@ def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str
     """The CSV text of ``flank``'s grid: ``#`` header lines (frame, grid, units), then
     ``row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz`` (every number with all its digits)."""
     u, v, r, n = flank_grid(flank, rows, cols)
+    top = "the flank's start" if flank.flank.startswith("fillet") else "tip"
     head = [
         f"# gearcontact export flanks: {pair_name}, {flank.name} "
         f"({type(flank.surface).__name__})",
         f"# grid {rows} x {cols}: row i = a line along the face width at u_i (row 1 "
-        f"root .. row {rows} tip), col j = the point at v_j on it (col 1 at v_min), "
+        f"root .. row {rows} {top}), col j = the point at v_j on it (col 1 at v_min), "
         "uniform in (u, v), edges included",
         f"# u in [{float(u[0])!r}, {float(u[-1])!r}], v in [{float(v[0])!r}, {float(v[-1])!r}] "
         "(the flank's own parameters, docs/export.md)",
