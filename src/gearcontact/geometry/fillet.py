@@ -201,11 +201,10 @@ def formate_fillet(flank: FormateFlank, *, edge_radius_mm: float, where: str = "
         A zero edge radius (:func:`~.machine.edge_round`).
     """
     cone, pl = flank.blade, flank.blade.placement
-    d = flank.dedendum_mm
-    alpha = math.radians(cone.pressure_angle_deg)
+    d = flank.dedendum_mm               # the blade tips lie at depth h = d (the root)
     blade = BladeSettings(kind="inside" if cone.inside else "outside",
                           blade_angle_deg=cone.pressure_angle_deg,
-                          point_radius_mm=cone.radius_pitch_mm + cone.sigma * d * math.tan(alpha),
+                          point_radius_mm=float(cone.radius_mm(d)),
                           edge_radius_mm=edge_radius_mm, where=where)
     a = np.asarray(pl.axis, dtype=float)
     return FormateFillet(member="gear", side=flank.side, edge=edge_round(blade),

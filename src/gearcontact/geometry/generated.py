@@ -48,8 +48,8 @@ from .machine import MachineKinematics, MachineSetup, blade_point, edge_round
 from .sheet import GearCone, GearSheet, RadialSheet
 
 __all__ = ["EnvelopeSolution", "EnvelopeSolver", "central_system", "damped_newton",
-           "formate_gear_flank", "gear_flank_of",
-           "generated_gear_box", "generated_gear_flank", "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
+           "formate_gear_flank", "gear_flank_of", "generated_gear_box", "generated_gear_flank",
+           "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
            "solve_node_grid", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
