@@ -73,9 +73,18 @@ def _imported(path):
     return {gmsh.model.getEntityName(*e).rsplit("/", 1)[-1]: e[1] for e in ents if e[0] == 2}
 
 
-def _read_back(flanks, out):
-    """{flank: (um at the flank's parameters, um to the surface)} of the STEP files in
-    ``out`` against the bevel ``flanks`` (module docstring, (a) and (b))."""
+def _surfaces(pair, flanks):
+    """{name: surface} of the bevel flanks and the root fillets built for them."""
+    from gearcontact.geometry.fillet import pair_fillets
+
+    got = {f"{m}_{s}": flanks.flank(m, s) for m in ("pinion", "gear") for s in ("drive", "coast")}
+    got.update({f"{m}_fillet_{s}": f for (m, s), f in pair_fillets(pair, flanks)[0].items()})
+    return got
+
+
+def _read_back(surfaces, out):
+    """{surface: (um at its parameters, um to the surface)} of the STEP files in ``out``
+    against the bevel ``surfaces`` (:func:`_surfaces`; module docstring, (a) and (b))."""
     summary = json.loads((out / "flanks.json").read_text())
     gmsh.initialize(argv=[], readConfigFiles=False, interruptible=False)
     gmsh.option.setNumber("General.Terminal", 0)
@@ -83,9 +92,10 @@ def _read_back(flanks, out):
     try:
         for member in ("pinion", "gear"):
             faces = _imported(out / f"{member}_flanks.step")
-            assert set(faces) == {f"{member}_drive", f"{member}_coast"}
-            for side in ("drive", "coast"):
-                name, f = f"{member}_{side}", flanks.flank(member, side)
+            mine = {k for k in surfaces if k.startswith(member + "_")}
+            assert set(faces) == mine
+            for name in sorted(mine):
+                f = surfaces[name]
                 n_fit = summary["flanks"][name]["bspline_nodes"][0]
                 # (a) at the flank's parameters, 4x denser than the fitting grid
                 u = np.linspace(*f.u_range, 4 * (n_fit - 1) + 1)
@@ -111,8 +121,9 @@ def _read_back(flanks, out):
 
 
 def test_step_reproduces_s0003_flanks_within_half_micron(s0003_export):
-    _, flanks, out, done = s0003_export
-    worst = _read_back(flanks, out)
+    pair, flanks, out, done = s0003_export
+    worst = _read_back(_surfaces(pair, flanks), out)
+    assert {"gear_fillet_drive", "gear_fillet_coast"} <= set(worst)
     # measured (docs/export.md): at most 0.035 um at the parameters, 0.018 um to the surface
     assert all(a <= TOL_MM * 1e3 and b <= TOL_MM * 1e3 for a, b in worst.values()), worst
     assert done.fit_error_mm <= 0.1 * TOL_MM, worst
@@ -128,7 +139,8 @@ def test_flanks_cut_from_machine_settings_read_back_within_half_micron(tmp_path)
     pair = load_pair(ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml")
     flanks = build_flanks(pair)
     export_flanks(pair, tmp_path, pair_name=pair.name, flanks=flanks, grid=(3, 4))
-    worst = _read_back(flanks, tmp_path)
+    worst = _read_back(_surfaces(pair, flanks), tmp_path)
+    assert len(worst) == 8                  # four flanks, four fillets
     # measured (docs/export.md): at most 0.013 um at the parameters, 0.0087 um to the surface
     assert all(a <= TOL_MM * 1e3 and b <= TOL_MM * 1e3 for a, b in worst.values()), worst
     for member in ("pinion", "gear"):
@@ -157,6 +169,33 @@ def test_csv_grid_is_the_surface_contract(s0003_export):
                                        rtol=0, atol=1e-9)
     head = (out / "pinion_drive.csv").read_text().splitlines()[:5]
     assert any("axis along +z" in h and "X = y, Y = z, Z = x" in h for h in head)
+
+
+def test_root_fillets_leave_with_the_flanks(s0003_export):
+    # the formate gear's fillets (the edge round's torus, geometry.fillet) as CMM grids
+    # equal to the fillet's evaluation, rows from the root (u = 0) to the flank's root
+    # line, where the fillet's point is the flank's (1e-9 mm: tests/geometry/
+    # test_fillet.py); the conjugate pinion has no cutter: no fillet, the reason in
+    # flanks.json; no measuring grid for a fillet
+    pair, flanks, out, done = s0003_export
+    fillets = _surfaces(pair, flanks)
+    for side in ("drive", "coast"):
+        f, flank = fillets[f"gear_fillet_{side}"], flanks.flank("gear", side)
+        rows, get = _read_csv(out / f"gear_fillet_{side}.csv")
+        assert len(rows) == 5 * 9
+        u, v = get("u", "v").T
+        assert u.min() == 0.0 and u.max() == pytest.approx(f.width_mm, abs=1e-15)
+        s = f.evaluate(u, v)
+        np.testing.assert_allclose(get("x_mm", "y_mm", "z_mm"), s.r, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(get("nx", "ny", "nz"), s.n, rtol=0, atol=1e-9)
+        top = u == u.max()
+        np.testing.assert_allclose(s.r[top], flank.evaluate(flank.u_range[0], v[top]).r,
+                                   rtol=0, atol=1e-9)
+        assert not (out / f"gear_fillet_{side}_measuring.csv").exists()
+    summary = json.loads((out / "flanks.json").read_text())
+    assert set(summary["fillets_not_exported"]) == {"pinion_fillet_drive",
+                                                    "pinion_fillet_coast"}
+    assert "no cutter" in summary["fillets_not_exported"]["pinion_fillet_drive"]
 
 
 def test_measuring_grid_is_the_cmm_grid_in_machine_coordinates(s0003_export):

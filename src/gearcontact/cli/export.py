@@ -11,9 +11,9 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 ``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
 :mod:`gearcontact.export.fmu_drivetrain`).
-``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members as
-STEP (B-spline surfaces) and as CMM point grids with normals
-(:mod:`gearcontact.export.flanks`).
+``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
+(and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
+as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
 """
 
 from __future__ import annotations

@@ -10,8 +10,10 @@ z, mm):
   boxes. The gear keeps its body frame (axis z); the pinion body frame (axis x,
   docs/geometry.md sec. 1) is turned by the cyclic permutation
   ``(X, Y, Z) = (y, z, x)`` (a rotation: right-handed, lengths and normals kept).
-  These flanks have no root fillet surface in the package (the structure layer's
-  fillet is a plate-model widening, not a cut surface), so none is exported;
+  Below each flank of a member whose cutter is known (a formate gear, every member
+  cut from machine settings) the root fillet its blade's edge round cuts
+  (:func:`gearcontact.geometry.fillet.pair_fillets`), ``<member>_fillet_<side>``; the
+  conjugate pinion has none (``flanks.json`` says why, as for a zero edge radius);
 - cylindrical pairs (:mod:`gearcontact.geometry.cylindrical`): the cw and ccw
   involute-helicoid flanks of the tooth on +x and their trochoidal root fillets, in
   the member frame of :mod:`~gearcontact.geometry.cylindrical.flank` (already axis z).
@@ -43,7 +45,7 @@ from ..validation import InputRangeError
 from .flank_step import FIT_TARGET_MM, fit_bspline, write_step
 
 __all__ = ["GRID_LIMITS", "ExportFlank", "FlankExport", "parse_grid", "pair_flanks",
-           "flank_grid", "grid_csv", "measuring_csv", "export_flanks"]
+           "pair_surfaces", "flank_grid", "grid_csv", "measuring_csv", "export_flanks"]
 
 #: Smallest and largest row / column count of ``--grid``.
 GRID_LIMITS = (2, 201)
@@ -94,11 +96,17 @@ class ExportFlank:
 
 
 def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
-    """The flanks of both members of ``pair`` (module docstring), pinion first.
+    """The flanks (and fillets) of both members of ``pair`` (module docstring), pinion
+    first.
 
     ``flanks`` : a :class:`~gearcontact.geometry.flank.FlankSet` already built for a
     bevel ``pair`` (default: built here).
     """
+    return pair_surfaces(pair, flanks=flanks)[0]
+
+
+def pair_surfaces(pair, *, flanks=None) -> tuple[list[ExportFlank], dict]:
+    """:func:`pair_flanks` and ``{name: why}`` of the bevel root fillets not exported."""
     if getattr(pair, "kind", None) == CYLINDRICAL:
         from ..geometry.cylindrical.fillet import root_fillet
         from ..geometry.cylindrical.flank import FACINGS, involute_flank
@@ -109,13 +117,20 @@ def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
                     for f in FACINGS]
             out += [ExportFlank(member, f"fillet_{f}", root_fillet(pair, member, f),
                                 np.eye(3)) for f in FACINGS]
-        return out
+        return out, {}
+    from ..geometry.fillet import pair_fillets
     from ..geometry.flank import build_flanks
     from ..geometry.formate import SIDES
 
     flanks = build_flanks(pair) if flanks is None else flanks
-    return [ExportFlank(member, side, flanks.flank(member, side), AXIS_FRAMES[member])
-            for member in MEMBERS for side in SIDES]
+    fillets, missing = pair_fillets(pair, flanks)
+    out = []
+    for member in MEMBERS:
+        out += [ExportFlank(member, side, flanks.flank(member, side), AXIS_FRAMES[member])
+                for side in SIDES]
+        out += [ExportFlank(member, f"fillet_{side}", fillets[member, side],
+                            AXIS_FRAMES[member]) for side in SIDES if (member, side) in fillets]
+    return out, {f"{m}_fillet_{s}": why for (m, s), why in missing.items()}
 
 
 def flank_grid(flank: ExportFlank, rows: int, cols: int):
@@ -131,11 +146,12 @@ def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str
     """The CSV text of ``flank``'s grid: ``#`` header lines (frame, grid, units), then
     ``row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz`` (every number with all its digits)."""
     u, v, r, n = flank_grid(flank, rows, cols)
+    top = "the flank's start" if flank.flank.startswith("fillet") else "tip"
     head = [
         f"# gearcontact export flanks: {pair_name}, {flank.name} "
         f"({type(flank.surface).__name__})",
         f"# grid {rows} x {cols}: row i = a line along the face width at u_i (row 1 "
-        f"root .. row {rows} tip), col j = the point at v_j on it (col 1 at v_min), "
+        f"root .. row {rows} {top}), col j = the point at v_j on it (col 1 at v_min), "
         "uniform in (u, v), edges included",
         f"# u in [{float(u[0])!r}, {float(u[-1])!r}], v in [{float(v[0])!r}, {float(v[-1])!r}] "
         "(the flank's own parameters, docs/export.md)",
@@ -215,14 +231,16 @@ def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 
     """
     rows, cols = parse_grid(f"{grid[0]}x{grid[1]}", field="grid")
     out = Path(out_dir)
-    items = pair_flanks(pair, flanks=flanks)
+    items, missing = pair_surfaces(pair, flanks=flanks)
     csvs, steps, summary = [], [], {"pair": pair_name, "grid": [rows, cols],
                                     "fit_target_um": FIT_TARGET_MM * 1e3, "flanks": {}}
+    if missing:
+        summary["fillets_not_exported"] = missing
     for f in items:
         path = out / f"{f.name}.csv"
         path.write_text(grid_csv(f, rows, cols, pair_name=pair_name))
         csvs.append(path)
-        if getattr(pair, "kind", None) != CYLINDRICAL:
+        if getattr(pair, "kind", None) != CYLINDRICAL and not f.flank.startswith("fillet"):
             path = out / f"{f.name}_measuring.csv"
             path.write_text(measuring_csv(f, rows, cols, pair_name=pair_name))
             csvs.append(path)

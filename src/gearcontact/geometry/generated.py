@@ -44,11 +44,12 @@ from .conjugate import NODE_MARGIN_MM, UndercutError, nominal_pinion_box
 from .cutter import BladeCone, CutterPlacement
 from .formate import FlankBoundary, FormateFlank, gear_flank
 from .kinematics import MeshKinematics
-from .machine import MachineKinematics, MachineSetup, blade_point
+from .machine import MachineKinematics, MachineSetup, blade_point, edge_round
 from .sheet import GearCone, GearSheet, RadialSheet
 
-__all__ = ["EnvelopeSolution", "EnvelopeSolver", "formate_gear_flank", "gear_flank_of",
-           "generated_gear_box", "generated_gear_flank", "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
+__all__ = ["EnvelopeSolution", "EnvelopeSolver", "central_system", "damped_newton",
+           "formate_gear_flank", "gear_flank_of", "generated_gear_box", "generated_gear_flank",
+           "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
            "solve_node_grid", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
@@ -58,6 +59,32 @@ _FD = 1e-6            # central-difference step of the Jacobian (mm, rad)
 #: |df/dpsi| or |det J| below this fraction of the mean node's: limit line / undercut.
 _LIMIT_FRACTION = 1e-3
 _PINION_Q = np.column_stack([[0.0, 0.0, 1.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]])
+
+
+def central_system(residual, q: np.ndarray, step: float = _FD):
+    """``(F, J)``: ``residual(q)`` (..., m) at parameters ``q`` (..., k) and its
+    central-difference Jacobian (..., m, k), one batched evaluation of the ``2 k + 1``
+    parameter sets."""
+    k = q.shape[-1]
+    d = step * np.vstack([np.zeros(k), np.eye(k), -np.eye(k)])
+    F = residual(q[None] + d.reshape((2 * k + 1,) + (1,) * (q.ndim - 1) + (k,)))
+    J = np.stack([(F[1 + i] - F[1 + k + i]) / (2.0 * step) for i in range(k)], axis=-1)
+    return F[0], J
+
+
+def damped_newton(system, q: np.ndarray, max_step: np.ndarray):
+    """Batched Newton on ``system(q) -> (F, J)`` from ``q`` (..., k), each step scaled
+    down to ``|dq_i| <= max_step[i]``, until every step is below 1e-13 (or
+    ``_MAX_ITER`` steps): ``(q, F, J)`` at the result."""
+    for _ in range(_MAX_ITER):
+        F, J = system(q)
+        step = -np.linalg.solve(J, F[..., None])[..., 0]
+        scale = np.max(np.abs(step) / max_step, axis=-1, keepdims=True)
+        q = q + step / np.maximum(scale, 1.0)
+        if np.all(np.abs(step) < 1e-13):
+            break
+    F, J = system(q)
+    return q, F, J
 
 
 def work_to_body(member: str, blank: BlankDesign) -> tuple[np.ndarray, np.ndarray]:
@@ -176,14 +203,34 @@ class EnvelopeSolver:
     def points(self, q: np.ndarray):
         """Body point, unit normal and meshing function ``f`` at (..., 3) = (l, theta, psi)."""
         x_t, n_t = blade_point(self.setup.blade, q[..., 0], q[..., 1])
-        x_w, n_w, v_w = self.kin.to_work(x_t, n_t, q[..., 2])
+        return self.place(x_t, n_t, q[..., 2])
+
+    def place(self, x_t, n_t, psi_rad):
+        """Cutter-frame points and normals (..., 3) at cradle roll ``psi`` -> body point,
+        unit normal and meshing function ``f = n_w . dX_w/dpsi``."""
+        x_w, n_w, v_w = self.kin.to_work(x_t, n_t, psi_rad)
         f = np.einsum("...i,...i->...", n_w, v_w)
         return x_w @ self._q.T + self._t, n_w @ self._q.T, f
+
+    def sheet_parameters(self, x):
+        """Sheet parameters ``(u, v)`` of body points ``x`` (..., 3) (``cone.parameters``
+        of their axial position and radius)."""
+        a, b, c = self._axes
+        return self.cone.parameters(x[..., a], np.hypot(x[..., b], x[..., c]))
 
     def _residual(self, q, x_t, r_t):
         x, _, f = self.points(q)
         a, b, c = self._axes
         return np.stack([x[..., a] - x_t, np.hypot(x[..., b], x[..., c]) - r_t, f], axis=-1)
+
+    def rotate(self, x, angle_rad: float):
+        """Body vectors ``x`` (..., 3) turned about the member axis by ``angle_rad`` (their
+        :meth:`angle` grows by it)."""
+        _, b, c = self._axes
+        cs, sn = math.cos(angle_rad), math.sin(angle_rad)
+        out = np.array(x, dtype=float, copy=True)
+        out[..., b], out[..., c] = cs * x[..., b] - sn * x[..., c], sn * x[..., b] + cs * x[..., c]
+        return out
 
     def angle(self, x):
         """Angular coordinate of body points about the member axis (the sheet's psi)."""
@@ -191,13 +238,8 @@ class EnvelopeSolver:
         return np.arctan2(x[..., c], x[..., b])
 
     def _system(self, q, x_t, r_t):
-        """Residual (..., 3) and central-difference Jacobian (..., 3, 3), one batched
-        evaluation of the seven parameter sets."""
-        d = _FD * np.vstack([np.zeros(3), np.eye(3), -np.eye(3)])       # (7, 3)
-        qs = q[None] + d.reshape((7,) + (1,) * (q.ndim - 1) + (3,))
-        F = self._residual(qs, x_t, r_t)
-        J = np.stack([(F[1 + k] - F[4 + k]) / (2.0 * _FD) for k in range(3)], axis=-1)
-        return F[0], J
+        """Residual (..., 3) and central-difference Jacobian (..., 3, 3)."""
+        return central_system(lambda qs: self._residual(qs, x_t, r_t), q)
 
     def initial_guess(self, u: float, v: float) -> np.ndarray:
         """(l, theta, psi) of the blade point nearest the sheet point (u, v) at zero roll."""
@@ -224,14 +266,7 @@ class EnvelopeSolver:
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         x_t, r_t = self.cone.height_mm(u, v), self.cone.radius_mm(u, v)
         q = np.array(np.broadcast_to(guess, u.shape + (3,)), dtype=float)
-        for _ in range(_MAX_ITER):
-            F, J = self._system(q, x_t, r_t)
-            step = -np.linalg.solve(J, F[..., None])[..., 0]
-            scale = np.max(np.abs(step) / _MAX_STEP, axis=-1, keepdims=True)
-            q = q + step / np.maximum(scale, 1.0)
-            if np.all(np.abs(step) < 1e-13):
-                break
-        F, J = self._system(q, x_t, r_t)
+        q, F, J = damped_newton(lambda q: self._system(q, x_t, r_t), q, _MAX_STEP)
         res = np.max(np.abs(F), axis=-1)
         ok = (res < _TOL) & np.all(np.isfinite(q), axis=-1)
         if strict and not np.all(ok):
@@ -392,10 +427,11 @@ def generated_pinion_box(setup: MachineSetup, blank: BlankDesign, *,
 
 
 def _edge_length_mm(setup: MachineSetup) -> float:
-    """Blade arc length from the tip to the top of the edge round, mm (straight-blade
-    value ``r_e (1 - sin alpha) / cos alpha``, the round's tangent point)."""
-    a = math.radians(setup.blade.blade_angle_deg)
-    return setup.blade.edge_radius_mm * (1.0 - math.sin(a)) / math.cos(a)
+    """Blade arc length from the tip to the top of the edge round (the round's tangent
+    point, :func:`~.machine.edge_round`; 0 for a sharp tip), mm."""
+    if setup.blade.edge_radius_mm == 0.0:
+        return 0.0
+    return edge_round(setup.blade).top_length_mm
 
 
 #: Lengthwise sections and profile steps that trace the line the blade's edge top

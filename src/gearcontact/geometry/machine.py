@@ -78,9 +78,9 @@ from scipy.optimize import brentq
 
 from ..validation import InputRangeError, check_finite, check_positive, check_range
 
-__all__ = ["BLADE_KEYS", "BladeSettings", "HELICAL_KEYS", "MACHINE_KEYS", "MEMBERS",
+__all__ = ["BLADE_KEYS", "BladeSettings", "EdgeRound", "HELICAL_KEYS", "MACHINE_KEYS", "MEMBERS",
            "MODIFIED_ROLL_KEYS", "MachineKinematics", "MachineSettings", "MachineSetup",
-           "blade_point", "blade_profile", "blade_through_point", "mirror_setup",
+           "blade_point", "blade_profile", "blade_through_point", "edge_round", "mirror_setup",
            "setup_from_tables", "setup_to_tables"]
 
 #: Members of a pair, in the order used by the pair format.
@@ -338,6 +338,72 @@ def blade_point(blade: BladeSettings, l_mm, theta_rad):
     sc, sa = blade.sigma * np.cos(alpha), np.sin(alpha)
     n = np.stack([sc * c, sc * s, -sa + 0.0 * th], axis=-1)
     return x, n
+
+
+@dataclass(frozen=True)
+class EdgeRound:
+    """The tip edge round of a blade, in the cutter frame ``S_t``: a circle of radius
+    ``radius_mm`` in the axial half-plane, tangent to the tip plane (at its bottom,
+    ``z = 0``) and to the blade profile (at arc length ``top_length_mm`` from the tip,
+    profile angle ``top_angle_rad``), its centre at radius ``centre_radius_mm`` and depth
+    ``radius_mm`` behind the tip plane. Revolved about ``z_t`` it is the torus that cuts
+    the root fillet. ``s`` is the arc length on the round from its bottom (the root) up
+    to the profile, ``s_top = r_e (pi/2 - alpha_top)``; there the profile angle is
+    ``alpha(s) = pi/2 - s / r_e`` and the point and normal are those of the profile
+    (module docstring) with the same ``sigma``: tangent-continuous at ``s_top``."""
+
+    radius_mm: float
+    centre_radius_mm: float
+    top_length_mm: float
+    top_angle_rad: float
+    sigma: float
+
+    @property
+    def top_arc_mm(self) -> float:
+        """``s_top``, the arc length of the round from the tip plane to the profile, mm."""
+        return self.radius_mm * (0.5 * math.pi - self.top_angle_rad)
+
+    def point(self, s_mm, theta_rad):
+        """Point and unit normal (out of the cut tooth) on the round at arc length ``s``
+        from its bottom and blade angle ``theta``: ``(x, n)``, arrays (..., 3), ``S_t``."""
+        alpha = 0.5 * math.pi - np.asarray(s_mm, dtype=float) / self.radius_mm
+        sc, sa = self.sigma * np.cos(alpha), np.sin(alpha)
+        rho = self.centre_radius_mm - self.radius_mm * sc
+        z = self.radius_mm * (1.0 - sa)
+        th = np.asarray(theta_rad, dtype=float)
+        c, s = np.cos(th), np.sin(th)
+        return (np.stack([rho * c, rho * s, -z + 0.0 * th], axis=-1),
+                np.stack([sc * c, sc * s, -sa + 0.0 * th], axis=-1))
+
+
+def edge_round(blade: BladeSettings) -> EdgeRound:
+    """The :class:`EdgeRound` of ``blade``: the circle of the edge radius tangent to the
+    tip plane and to the profile. The tangent point solves ``z(l) + r_e sin(alpha(l)) =
+    r_e`` (centre at depth ``r_e``): ``l = r_e (1 - sin alpha) / cos alpha`` on a
+    straight blade, by root finding on a curved one (``z + r_e sin(alpha)`` grows with
+    ``l`` while ``alpha`` < 90 deg).
+
+    Raises
+    ------
+    InputRangeError
+        A zero edge radius (a sharp tip cuts no fillet: the flank runs to the root).
+    """
+    r_e = blade.edge_radius_mm
+    if r_e <= 0.0:
+        raise InputRangeError(f"{blade.where}.edge_radius_mm", r_e,
+                              "> 0 for a root fillet (a sharp blade tip cuts no fillet surface:"
+                              " the flank runs into the root)")
+    a0 = math.radians(blade.blade_angle_deg)
+    l_top = r_e * (1.0 - math.sin(a0)) / math.cos(a0)
+    if blade.profile_radius_mm != 0.0 or blade.higher_order:
+        def gap(l_mm):
+            _, z, alpha, _ = blade_profile(blade, l_mm)
+            return float(z) + r_e * math.sin(float(alpha)) - r_e
+
+        l_top = brentq(gap, 0.0, 4.0 * l_top + r_e, xtol=1e-15)
+    rho, _, alpha, _ = (float(x) for x in blade_profile(blade, l_top))
+    return EdgeRound(radius_mm=r_e, centre_radius_mm=rho + blade.sigma * r_e * math.cos(alpha),
+                     top_length_mm=l_top, top_angle_rad=alpha, sigma=blade.sigma)
 
 
 def _rz(angle):

@@ -236,6 +236,13 @@ class GearCone:
         return (self.apex_z_mm + (self.mean_cone_distance_mm + np.asarray(v)) * self.cos_delta
                 - (np.asarray(u) - self.dedendum_mm) * self.sin_delta)
 
+    def parameters(self, z_mm, radius_mm):
+        """Inverse of (height, radius): ``(u, v)`` of the axial-plane point ``(z, R)``, mm."""
+        dz = np.asarray(z_mm) - self.apex_z_mm
+        rad = np.asarray(radius_mm)
+        return (self.dedendum_mm + rad * self.cos_delta - dz * self.sin_delta,
+                rad * self.sin_delta + dz * self.cos_delta - self.mean_cone_distance_mm)
+
 
 @dataclass(frozen=True, eq=False)
 class GearSheet(RadialSheet):
