@@ -2,7 +2,8 @@
 
 - FMPy in a Python process where gearcontact cannot be imported (the situation of a
   twin developer who has only the FMU): :func:`simulate_isolated`.
-- One run of the README's export lines per session, shared by the export tests.
+- One run of the README's export lines per test run (both xdist workers: tests/run_once.py),
+  shared by the export tests.
   
   The README shows ``gearcontact vectors --out vectors/ ...`` (twice), then
   ``gearcontact export c --out clib/ && make -C clib/ && clib/build/gearcontact_check vectors/``
