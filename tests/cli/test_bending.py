@@ -15,7 +15,7 @@ import pytest
 from gearcontact.cli import main
 
 
-def test_bending_gear_with_fe(tmp_path):
+def test_bending_gear_with_fe(tmp_path, s0003_centred):
     pytest.importorskip("skfem")
     out = tmp_path / "b"
     assert main(["bending", "--pair", "s0003-centred", "--member", "gear", "--out", str(out),
@@ -30,11 +30,7 @@ def test_bending_gear_with_fe(tmp_path):
     ratio = np.array(data["ratio_shell_to_fe"])
     assert np.all(np.abs(ratio - 1) <= 0.25)   # tests/structure/test_fe.py states why
     # the points are on the gear drive flank: solve the exact cone for (u, v) and compare
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
-
-    pair = load_pair("s0003-centred")
-    flanks = build_flanks(pair)
+    pair, flanks = s0003_centred            # the session's build_flanks(s0003-centred)
     flank = flanks.gear.drive
     from gearcontact.structure.tooth import tooth_geometry
 
@@ -49,14 +45,12 @@ def test_bending_bad_input(tmp_path, capsys):
     assert "order" in capsys.readouterr().err
 
 
-def test_bending_samples_the_design_side(tmp_path):
+def test_bending_samples_the_design_side(tmp_path, s0003_calibrated):
     """s0003 runs on its coast flanks: without ``--side`` the lattice lies on the gear
     tooth's coast flank (the tooth's own coast face, exact to 1e-12 mm), with
     ``--side drive`` on the drive flank, 1-2.3 mm away; the point compliance is symmetric
     (Maxwell-Betti) on both and differs between the flanks (load offset and tilt
     against the mid-surface: measured 2-26 %)."""
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
     from gearcontact.structure.tooth import tooth_geometry
 
     data = {}
@@ -66,10 +60,10 @@ def test_bending_samples_the_design_side(tmp_path):
         assert main(["bending", "--pair", "s0003", "--member", "gear", "--out", str(out),
                      "--no-figures", *extra]) == 0
         data[side] = json.loads((out / "compliance.json").read_text())
-    pair = load_pair("s0003")
+    pair, flanks = s0003_calibrated          # the session's build_flanks(s0003)
     assert pair.design_side == "coast" and data[None]["side"] == "coast"
     assert data["drive"]["side"] == "drive"
-    tooth = tooth_geometry(build_flanks(pair), "gear", material=pair.gear_material)
+    tooth = tooth_geometry(flanks, "gear", material=pair.gear_material)
     for side, key in (("coast", None), ("drive", "drive")):
         d = data[key]
         pts = tooth.points_at(side, np.array(d["xi"]), np.array(d["eta"])).position_mm

@@ -2,7 +2,8 @@
 
 - FMPy in a Python process where gearcontact cannot be imported (the situation of a
   twin developer who has only the FMU): :func:`simulate_isolated`.
-- One run of the README's export lines per session, shared by the export tests.
+- One run of the README's export lines per test run (both xdist workers: tests/run_once.py),
+  shared by the export tests.
   
   The README shows ``gearcontact vectors --out vectors/ ...`` (twice), then
   ``gearcontact export c --out clib/ && make -C clib/ && clib/build/gearcontact_check vectors/``
@@ -25,6 +26,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from readme_lines import readme_commands
+from run_once import run_once
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,20 +48,27 @@ def readme_export(tmp_path_factory):
     """``(directory, lines, runs)``: the README's vectors, export c and export fmu lines
     (``lines`` a dict of those three lists) run in order in ``directory``; ``runs`` maps
     each line run to its CompletedProcess. The runs stop at the first line that fails
-    (the later lines depend on its files)."""
+    (the later lines depend on its files). Once per test run: the pytest-xdist workers
+    share the directory (tests/run_once.py)."""
     if (shutil.which("gearcontact") is None or shutil.which("make") is None
             or shutil.which("gcc") is None):
         pytest.skip("the console script, make and gcc are needed")
     lines = {"vectors": readme_commands("gearcontact vectors --out vectors/"),
              "export_c": readme_commands("gearcontact export c"),
              "export_fmu": readme_commands("gearcontact export fmu")}
-    base = tmp_path_factory.mktemp("readme_export")
-    runs = {}
-    for line in lines["vectors"] + lines["export_c"] + lines["export_fmu"]:
-        runs[line] = _shell(line, base)
-        if runs[line].returncode != 0:
-            break
-    return base, lines, runs
+
+    def build(base):
+        runs = {}
+        for line in lines["vectors"] + lines["export_c"] + lines["export_fmu"]:
+            run = _shell(line, base)
+            runs[line] = [run.returncode, run.stdout, run.stderr]
+            if run.returncode != 0:
+                break
+        return runs
+
+    base, runs = run_once(tmp_path_factory, "readme_export", build)
+    return base, lines, {line: subprocess.CompletedProcess(["bash", "-c", line], *run)
+                         for line, run in runs.items()}
 
 
 #: Run in ``python -I`` (no PYTHONPATH, no user site): a meta-path finder refuses every

@@ -246,21 +246,21 @@ CELLS = 24
 
 
 @pytest.fixture(scope="module")
-def s0003_pair():
-    from gearcontact.geometry.pair import load_pair
-    return load_pair("s0003-centred")
+def s0003_pair(centred_drive_11):
+    """s0003-centred: the session's set-up (tests/ltca/conftest.py), not a second build."""
+    return centred_drive_11[0]
 
 
 @pytest.fixture(scope="module")
-def s0003_flanks(s0003_pair):
-    from gearcontact.geometry.flank import build_flanks
-    return build_flanks(s0003_pair)
+def s0003_flanks(centred_drive_11):
+    return centred_drive_11[1]
 
 
 @pytest.fixture(scope="module")
-def s0003_tca(s0003_pair, s0003_flanks):
-    from gearcontact.tca.analysis import analyze_pair
-    return analyze_pair(s0003_pair, side="drive", phases=PHASES, flanks=s0003_flanks)[0]
+def s0003_tca(centred_drive_11):
+    """Drive side at PHASES = 11 phases per pitch: the session's ``centred_drive_11``."""
+    assert PHASES == 11
+    return centred_drive_11[2]
 
 
 @pytest.fixture(scope="module")

@@ -132,10 +132,12 @@ def test_calibrated_ltca_is_edge_loaded_at_the_tip(calibrated):
     assert case.preview.p_max_mpa < case.patch.p90_mpa
 
 
-def test_centred_preset_stays_hertzian():
-    pair = load_pair("s0003-centred")
+def test_centred_preset_stays_hertzian(s0003_centred, s0003_drive):
+    """``analyze_pair(pair)`` of s0003-centred is its design (drive) side at the default
+    61 phases: the session's ``s0003_drive`` (tests/tca/conftest.py)."""
+    pair, flanks = s0003_centred
     assert pair.design_side == "drive"
-    tca, flanks = analyze_pair(pair)
+    tca = s0003_drive
     case = single_pair_ltca(tca, flanks, pair, 64.5, cells=64)
     # Hertzian patch: peak close to p90 and the preview within 10 % of p90 (it is +5.5 %
     # on the default 80-cell grid; 10 % leaves room for the coarser test grid)
