@@ -6,19 +6,39 @@ Truth: ``design``'s own refusal of the same pair (the same line after the comman
 name: field, value and the verified fix). Before the fix ``twin`` and ``export fmu``
 exited 2 with "no tooth pair in contact" after ~34 s of conjugate flank work and TCA;
 the check alone takes ~1 s on top of the ~5 s process start-up (project machine, two
-busy cores), so 25 s bounds "before the flanks" with room for a loaded machine.
+busy cores). "Before the flanks" is asserted, not timed: the refused command runs in a
+real process whose conjugate pinion solver (the flank work,
+:func:`gearcontact.geometry.conjugate.conjugate_pinion_flank`) is replaced by one that
+fails with exit 1, so exit 2 with ``design``'s line proves the solver never ran.
 """
 
-import time
+import subprocess
+import sys
 
 import pytest
 
-from console_script import run_console
+from console_script import ENV, run_console
 from design_space import design_space_candidate
 from gearcontact.geometry.pair import pair_to_toml
 
-#: Wall time bound of a refusal before any flank work, s (module docstring).
-BEFORE_FLANKS_S = 25.0
+#: The console script with the flank work forbidden (module docstring).
+_NO_FLANKS = (
+    "import sys\n"
+    "import gearcontact.geometry.flank as flank\n"
+    "def forbidden(*args, **kwargs):\n"
+    "    raise RuntimeError('conjugate flank work started')\n"
+    "flank.conjugate_pinion_flank = forbidden\n"
+    "sys.argv[0] = 'gearcontact'\n"
+    "from gearcontact.cli import console_main\n"
+    "console_main()\n")
+
+
+def run_without_flanks(*argv):
+    """``gearcontact *argv`` in a real process whose conjugate flank solver raises;
+    (return code, stdout, stderr)."""
+    p = subprocess.run([sys.executable, "-c", _NO_FLANKS, *map(str, argv)],
+                       capture_output=True, text=True, env=ENV, timeout=300)
+    return p.returncode, p.stdout, p.stderr
 
 
 @pytest.fixture(scope="module")
@@ -39,15 +59,12 @@ def short_path(tmp_path_factory):
 @pytest.mark.parametrize("command", [["twin"], ["export", "fmu"]])
 def test_pair_command_refuses_as_design_before_the_flanks(short_path, command, tmp_path):
     path, design_error = short_path
-    start = time.perf_counter()
-    code, out, err = run_console(*command, "--pair", path, "--out", tmp_path / "out")
-    elapsed = time.perf_counter() - start
+    code, out, err = run_without_flanks(*command, "--pair", path, "--out", tmp_path / "out")
     assert code == 2, err
     assert "Traceback" not in err, err
     line = err.strip().splitlines()[-1]
     assert line == f"gearcontact {' '.join(command)}: error: {design_error}"
     assert "no tooth pair in contact" not in err + out
-    assert elapsed < BEFORE_FLANKS_S, elapsed
 
 
 def test_pointed_pinion_refused_before_the_flanks(tmp_path):
@@ -58,11 +75,16 @@ def test_pointed_pinion_refused_before_the_flanks(tmp_path):
     (geometry.generation.check_pinion_top_land; ~1 s at this face)."""
     path = tmp_path / "pointed.toml"
     path.write_text(pair_to_toml(design_space_candidate(10, 2.5, 0.0, 20.0, 0.15, "drive")))
-    start = time.perf_counter()
-    code, _, err = run_console("twin", "--pair", path, "--out", tmp_path / "out")
-    elapsed = time.perf_counter() - start
+    code, _, err = run_without_flanks("twin", "--pair", path, "--out", tmp_path / "out")
     assert code == 2, err
     line = err.strip().splitlines()[-1]
     assert line.startswith("gearcontact twin: error: cutter.point_width_mm = "), line
     assert ">= 1.822 mm (pointed pinion teeth at the toe" in line, line
-    assert elapsed < BEFORE_FLANKS_S, elapsed
+
+
+def test_forbidden_flank_work_is_seen(tmp_path):
+    """The control of the module's truth: on a pair ``design`` accepts (s0003), the
+    same process reaches the conjugate flank solver and fails there (exit 1)."""
+    code, _, err = run_without_flanks("tca", "--pair", "s0003", "--out", tmp_path / "out")
+    assert code == 1, err
+    assert "conjugate flank work started" in err, err
