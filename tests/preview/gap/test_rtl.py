@@ -5,7 +5,6 @@ a dozen directed and seeded passes per lane count (a few hundred cycles in all).
 """
 
 import gc
-import time
 
 import numpy as np
 import pytest
@@ -210,10 +209,8 @@ def test_core_parameter_validation():
 
 
 def test_convert_verilog_l8():
-    t0 = time.perf_counter()
     text = convert_verilog(lanes=8)
     assert "module gap_core" in text and "tau2" in text and "w_ready" in text
-    assert time.perf_counter() - t0 < 120               # a smoke bound, not a timing test
 
 
 @pytest.mark.slow
