@@ -31,7 +31,7 @@ from gearcontact.validation import InputRangeError
 #: spiral angle or the tooth numbers.
 #: The 7/60 design-space pair whose contact leaves the pinion's flank over its root edge
 #: (issue 28: the edge-contact TCA, docs/twin.md "Edge contact"; the loaded TE on the
-#: edge's own field, docs/ltca.md): tests/twin/test_design_space.py and
+#: edge's own field, docs/twin.md "Edge contact"): tests/twin/test_design_space.py and
 #: tests/ltca/test_lte_edge_contact.py.
 CHATTER_PAIR = (7, 8.53011882343041, 0.043555845328246544, 25.0, 0.3203125, "drive",
                 "right")
