@@ -29,6 +29,13 @@ from gearcontact.validation import InputRangeError
 #: gear's did. A contact path covering less than the threshold (docs/geometry.md
 #: sec. 7.7: eps_p < 0.85; of the 32 pairs above 23 pass it) names the face width, the
 #: spiral angle or the tooth numbers.
+#: The 7/60 design-space pair whose contact leaves the pinion's flank over its root edge
+#: (issue 28: the edge-contact TCA and the loaded TE on the edge's own field,
+#: docs/twin.md "Edge contact"): tests/twin/test_design_space.py and
+#: tests/ltca/test_lte_edge_contact.py.
+CHATTER_PAIR = (7, 8.53011882343041, 0.043555845328246544, 25.0, 0.3203125, "drive",
+                "right")
+
 DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
                  "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
                  "pinion_teeth / gear_teeth", "design.working_depth_factor",

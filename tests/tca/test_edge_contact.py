@@ -18,7 +18,6 @@ from scipy.optimize import least_squares
 from gearcontact.tca.edge_contact import (FLANK_EDGES, edge_parameters, edge_span,
                                           solve_edge_contact)
 from gearcontact.tca.mating import solve_mating_point
-from gearcontact.tca.solve import solve_tca
 from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
 
 #: Solver boundary variable of each edge.
@@ -30,16 +29,6 @@ _HELD = {"pinion toe": ("v1", 1, 0), "pinion heel": ("v1", 1, 1),
 
 def _flanks(flanks):
     return flanks.flank("pinion", "drive"), flanks.flank("gear", "drive")
-
-
-@pytest.fixture(scope="module")
-def full_path(s0003_centred, s0003_drive):
-    """The nominal drive path of one pair over the mesh cycle's phases with its whole
-    edge tails (no TE0 limit: the mesh cycle cuts tails that cannot carry)."""
-    s0003_pair, s0003_flanks = s0003_centred
-    pinion, gear = _flanks(s0003_flanks)
-    return solve_tca(pinion, gear, s0003_pair.kinematics(), s0003_drive.cycle.path.phi1_rad,
-                     start=s0003_drive.mean_point.as_guess(), edge_te_limit_arcsec=np.inf)
 
 
 def _transitions(path):

@@ -54,7 +54,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from design_space import HANDS, SPACE, command_on_accepted_pair
+from design_space import CHATTER_PAIR, HANDS, SPACE, command_on_accepted_pair
 
 #: The twin's defaults the checks use (gearcontact.cli.twin).
 SPEED_RPM, TORQUE_NM = 3000.0, 64.5
@@ -106,16 +106,15 @@ def test_twin_default_options_on_a_folding_pair():
     _twin_accepted_pair(None, *FOLDING_PAIR)
 
 
-#: 7/60 teeth, offset 0.0436 r2, 25 deg, face 0.32 R_m: found by the slow property test
-#: (mean mesh torque 63.41 N·m at 3000 rpm, dynamic factor 4.18, contact loss 11.5 %;
-#: after the first-touch fix 63.78 N·m, 2.94, 10.4 %; with the edge-contact TCA 64.56
-#: N·m, 1.26, 0).
-#: Its drive paths end at the pinion root/toe, and the next pair, resolved as an edge
-#: pair on its posed field, touches up to 6.9 um before the surface envelope's pair
-#: (twin.mesh._first_touch): pre-loaded off the envelope, it pushed the gear at no cost
-#: to the pinion, and the run lost contact and hammered even at 100 rpm.
-CHATTER_PAIR = (7, 8.53011882343041, 0.043555845328246544, 25.0, 0.3203125, "drive",
-                "right")
+# CHATTER_PAIR (tests/design_space.py): 7/60 teeth, offset 0.0436 r2, 25 deg, face
+# 0.32 R_m: found by the slow property test
+# (mean mesh torque 63.41 N·m at 3000 rpm, dynamic factor 4.18, contact loss 11.5 %;
+# after the first-touch fix 63.78 N·m, 2.94, 10.4 %; with the edge-contact TCA 64.56
+# N·m, 1.26, 0).
+# Its drive paths end at the pinion root/toe, and the next pair, resolved as an edge
+# pair on its posed field, touches up to 6.9 um before the surface envelope's pair
+# (twin.mesh._first_touch): pre-loaded off the envelope, it pushed the gear at no cost
+# to the pinion, and the run lost contact and hammered even at 100 rpm.
 
 
 @pytest.mark.slow

@@ -16,7 +16,9 @@ still touch at a flank boundary, e.g. the tip, entering or leaving mesh). Each h
   cells off a flank get :data:`~.pair_ltca.OFF_FLANK_GAP_MM` as in
   :func:`~.pair_ltca.single_pair_ltca`, which trims an edge pair's contact at the
   boundary; the field is sized by the Hertzian ellipse of the pair carrying the whole
-  torque (``extent_factor`` semi-axes);
+  torque (``extent_factor`` semi-axes); at an edge contact of the TCA the field is fitted
+  to the edge, along it and into its flank (:func:`~gearcontact.tca.edge_field.
+  edge_gap_field`), so that its least gap is the TCA's touch;
 * its lever ``l_j`` about the gear axis (:func:`~..tca.load.torque_lever_mm`).
 
 Under the gear torque ``T`` the gear turns by one shared rotation ``theta >= 0``

@@ -6,7 +6,10 @@ one at most ``edge_steps`` path steps beyond an end of its contact path (edge pa
 Its field is the separation of the flanks posed as they stand unloaded (gear resting on
 the transmitting pair), along the normal lines of the tangent plane at the pair's
 (nearest interior) mating point (:func:`gearcontact.tca.stencil.gap_field`), with
-off-flank cells set to :data:`.pair_ltca.OFF_FLANK_GAP_MM`.
+off-flank cells set to :data:`.pair_ltca.OFF_FLANK_GAP_MM`. At an edge contact of the
+TCA (:mod:`gearcontact.tca.edge_contact`) the field is fitted to the edge instead
+(:func:`gearcontact.tca.edge_field.edge_gap_field`): along it and from it into its flank,
+so that its least gap is the TCA's touch to the grid's resolution.
 
 References
 ----------
@@ -24,6 +27,7 @@ import numpy as np
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.grid import TangentGrid
 from ..tca.curvature import relative_curvature
+from ..tca.edge_field import edge_frame, edge_gap_field
 from ..tca.load import torque_lever_mm
 from ..tca.stencil import gap_field, tangent_parameters
 from ..tca.types import MatingPoint
@@ -122,9 +126,13 @@ class PairFields:
                 mp = replace(mp, phi2_rad=pc.phi2_rad)
             hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm,
                                      self.torque / pc.lever_mm, e_prime_mpa=self.e_prime)
-            f = gap_field(pinion, gear, kin, mp, side=self.cells, frame="principal",
-                          half_extent_mm=(self.extent[0] * hz.a_mm, self.extent[1] * hz.b_mm),
-                          allow_outside=True)  # same values on the flank; faster Newton
+            if mp.edge_contact:   # the TCA's edge contact: a field fitted to the edge
+                f = self._edge_field(mp, pc.center_index, hz)
+            else:
+                f = gap_field(pinion, gear, kin, mp, side=self.cells, frame="principal",
+                              half_extent_mm=(self.extent[0] * hz.a_mm,
+                                              self.extent[1] * hz.b_mm),
+                              allow_outside=True)  # same values on the flank; faster Newton
             off = ~f.on_flank  # near its path's end a pair's field is partly off
             s_axis, t_axis = f.s_mm[0, :], f.t_mm[:, 0]
             grid = TangentGrid.uniform(len(s_axis), len(t_axis),
@@ -139,6 +147,23 @@ class PairFields:
                 self._posed[pc.path_index] = (f, mp)
             self.seconds += time.perf_counter() - t0
         return hit
+
+    def _edge_field(self, mp: MatingPoint, center: int, hz):
+        """Gap field of an edge contact (:func:`~gearcontact.tca.edge_field.
+        edge_gap_field`), sized by the Hertzian ellipse ``hz`` of the pair's nearest
+        surface contact (the one that reached the edge; its axes from that point's
+        principal directions): ``extent[0]`` times its half-width along the edge on
+        either side, ``2 extent[1]`` times its half-width across the edge into the
+        flank (the ellipse, cut by the edge, widens into the flank)."""
+        pinion, gear, kin = self.args
+        rc = relative_curvature(pinion, gear, kin, curvature_point(self.path, center))
+        axes = edge_frame(pinion, gear, kin, mp)
+        # half-width of the ellipse along a unit direction u (its support function)
+        width = [float(np.hypot(hz.a_mm * (u @ rc.dir_min), hz.b_mm * (u @ rc.dir_max)))
+                 for u in axes[:, :2].T]
+        return edge_gap_field(pinion, gear, kin, mp, side=self.cells,
+                              half_length_mm=self.extent[0] * width[0],
+                              depth_mm=2.0 * self.extent[1] * width[1], allow_outside=True)
 
     def factor(self, pc: PairContact) -> np.ndarray | None:
         """The bending factor of a pair's field (None without bending), made when first

@@ -50,7 +50,7 @@ from .mating import _cross, posed_point, solve_mating_point
 from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
-           "pushes_forward", "inward_slope", "solve_edge_contact", "contact_state"]
+           "pushes_forward", "edge_directions", "inward_slope", "solve_edge_contact", "contact_state"]
 
 #: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
 EDGE_NAMES = ("toe", "heel", "root", "tip")
@@ -180,15 +180,13 @@ class _EdgeSolver:
                            float(v2), x, n, edge_contact=self.edge.label)
 
 
-def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
-                 mp: MatingPoint) -> float:
-    """Slope of the separation from the edge into its own flank at an edge contact.
+def edge_directions(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                    mp: MatingPoint) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Posed unit directions of an edge contact (meshing frame).
 
-    ``(d X_own / d q) . n_other`` for a unit step ``q`` on the own flank perpendicular
-    to the edge, inwards, with ``n_other`` the touched flank's normal out of its
-    tooth. Positive: the flank behind the edge recedes from the other flank, so the
-    edge is the first point to touch; negative: the flank surface inside the edge
-    touches first (the surface contact is back on the flanks).
+    Returns ``(along, inward, n_other)``: the edge's tangent (its free parameter
+    increasing), the unit step on the edge's own flank perpendicular to the edge and
+    into that flank, and the touched flank's normal out of its tooth.
     """
     member, _, name = mp.edge_contact.partition(" ")
     if member == "pinion":
@@ -199,7 +197,21 @@ def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
                            "root": (sp.r_v, sp.r_u, 1.0), "tip": (sp.r_v, sp.r_u, -1.0)}[name]
     t = along / np.linalg.norm(along)
     inward = sign * (across - (across @ t) * t)
-    return float((rot @ (inward / np.linalg.norm(inward))) @ n_other)
+    return rot @ t, rot @ (inward / np.linalg.norm(inward)), np.asarray(n_other, float)
+
+
+def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                 mp: MatingPoint) -> float:
+    """Slope of the separation from the edge into its own flank at an edge contact.
+
+    ``(d X_own / d q) . n_other`` for a unit step ``q`` on the own flank perpendicular
+    to the edge, inwards, with ``n_other`` the touched flank's normal out of its
+    tooth. Positive: the flank behind the edge recedes from the other flank, so the
+    edge is the first point to touch; negative: the flank surface inside the edge
+    touches first (the surface contact is back on the flanks).
+    """
+    _, inward, n_other = edge_directions(pinion, gear, kin, mp)
+    return float(inward @ n_other)
 
 
 def _guess_y(edge: FlankEdge, guess: ContactGuess) -> np.ndarray:

@@ -235,7 +235,7 @@ def tangent_parameters(surface: Surface, pose, axes: np.ndarray, uv_p0, st: np.n
 
 def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
            s_mm, t_mm, *, frame: str = "principal", allow_outside: bool = False,
-           tol_mm: float = 1e-11) -> GapField:
+           tol_mm: float = 1e-11, axes: np.ndarray | None = None) -> GapField:
     """Gap field at arbitrary tangent-plane points ``(s_mm, t_mm)`` around ``mp``.
 
     Parameters
@@ -254,13 +254,16 @@ def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
         Evaluate the flanks' continuation beyond their parameter boxes.
     tol_mm : float
         Newton tolerance of each line-surface intersection, mm.
+    axes : ndarray (3, 3), optional
+        Columns ``(e_s, e_t, n)`` of an explicit frame (e.g. :func:`edge_gap_field`'s);
+        ``frame`` then only names it.
     """
     check_positive("tol_mm", tol_mm)
     s = np.asarray(s_mm, dtype=float)
     t = np.asarray(t_mm, dtype=float)
     if s.shape != t.shape:
         raise ValueError(f"s_mm and t_mm must have equal shapes, got {s.shape} and {t.shape}")
-    axes = tangent_frame(pinion, gear, kin, mp, frame)
+    axes = tangent_frame(pinion, gear, kin, mp, frame) if axes is None else np.asarray(axes, float)
     n = axes[:, 2]
     st = np.column_stack([s.ravel(), t.ravel()])
     q = mp.point_mm + st @ axes[:, :2].T
