@@ -37,8 +37,10 @@ class Bearing:
 
     Attributes
     ----------
-    coefficients : EaseOffCoefficients
-        About the pinion's mean node, as the pair's tables (um/mm, um/mm^2).
+    coefficients : EaseOffCoefficients or None
+        About the pinion's mean node, as the pair's tables (um/mm, um/mm^2); None: the
+        synthesis' first-order bearing at its default targets (:data:`DEFAULT_BEARING`,
+        whatever coefficients the pair holds).
     source : str
         What it is, for the refusal's message (e.g. ``"the synthesis' first-order
         bearing along the overlap path angle 30.1 deg"``).
@@ -216,8 +218,8 @@ def path_contact_ratio(pair, *, boxes: dict, side: str | None = None,
     return PathContactRatio(
         total=inside * step * z2 / (2.0 * math.pi), side=side, ends=(ends[0], ends[1]),
         path_angle_deg=angle, line_contact=(hi - lo) * z2 / (2.0 * math.pi),
-        bearing=(DEFAULT_BEARING if not own else "the pair's table" if bearing is None
-                 else bearing.source))
+        bearing=(bearing.source if bearing is not None
+                 else "the pair's table" if own else DEFAULT_BEARING))
 
 
 def _nearest_edge(p) -> str:
@@ -299,10 +301,11 @@ def _easeoff_in_box(c, pair, solver, centre, half, guess):
     is not positive definite (no table) the synthesis' bearing
     (:func:`_synthesis_hessian`) with its vertex at the box centre."""
     u_m, v_m = float(solver.cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
-    h_uv = np.array([[2.0 * c.profile_crowning_um_per_mm2, c.bias_um_per_mm2],
-                     [c.bias_um_per_mm2, 2.0 * c.lengthwise_crowning_um_per_mm2]])
     scale = np.diag(half)
-    if not (h_uv[0, 0] > 0.0 and np.linalg.det(h_uv) > 0.0):
+    h_uv = np.zeros((2, 2)) if c is None else np.array(
+        [[2.0 * c.profile_crowning_um_per_mm2, c.bias_um_per_mm2],
+         [c.bias_um_per_mm2, 2.0 * c.lengthwise_crowning_um_per_mm2]])
+    if c is None or not (h_uv[0, 0] > 0.0 and np.linalg.det(h_uv) > 0.0):
         h_uv = _synthesis_hessian(pair, solver, centre, half, guess)
         return np.zeros(2), scale @ h_uv @ scale, np.zeros(2), False
     g_uv = np.array([c.profile_angle_um_per_mm, c.spiral_angle_um_per_mm]) + h_uv @ (

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.contact_path import Bearing, path_contact_ratio
+from ..geometry.contact_path import DEFAULT_BEARING, Bearing, path_contact_ratio
 from ..geometry.flank import build_flanks
 from ..geometry.pair import EaseOffCoefficients
 from .design_point import centred_coefficients, turn_relief
@@ -107,17 +107,19 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
                     side: str | None = None, flanks=None,
                     turns_short_paths: bool = True) -> Bearing | None:
     """The ease-off the synthesis will make on ``side`` (default the design side) of
-    ``pair``, to first order, or None where the contact-path check's own bearing
-    stands (the pair's table; or the synthesis' zero-bias first-order bearing at its
-    targets, :func:`~gearcontact.geometry.contact_path.path_contact_ratio`'s default).
+    ``pair``, to first order, or None where the pair's table stands. ``Bearing(None,
+    ...)`` is the synthesis' zero-bias first-order bearing at the default targets
+    (:func:`~gearcontact.geometry.contact_path.path_contact_ratio`'s default for a pair
+    without a table).
 
     As :func:`~.synthesis.synthesize_easeoff` decides (module docstring): a pair with a
     table of ``side`` keeps it (None); a path-angle target gives its first-order design;
     without one, if the start's contact path (:func:`synthesis_start`) covers less than
     a pitch even with one phase step of the synthesis' TCA added (``OVERLAP_MARGIN``),
     the first-order design of the reachable path angle of the longest overlap
-    (:func:`~.path_reach.overlap_choice`) if that overlaps, else None (the synthesis
-    names TE0 unreachable and keeps the zero-bias bearing). ``turns_short_paths=False``
+    (:func:`~.path_reach.overlap_choice`) if that overlaps, else the zero-bias bearing
+    (the synthesis names TE0 unreachable and keeps it); where it covers a pitch, the
+    zero-bias bearing. ``turns_short_paths=False``
     for the machine-setting synthesis (:mod:`.setting_synthesis`), which does not turn
     a short path: only its path-angle target is seen.
 
@@ -141,8 +143,9 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
     if side in pair.easeoff_tables:
         return None
     t = targets[side] if isinstance(targets, Mapping) else targets
+    zero_bias = Bearing(None, DEFAULT_BEARING)
     if t.path_angle_deg is None and not turns_short_paths:
-        return None
+        return zero_bias
     if flanks is None:
         flanks = build_flanks(pair, n_u=_FLANK_GRID, n_v=_FLANK_GRID, checked=boxes)
     start = synthesis_start(pair, side=side, targets=t, flanks=flanks)
@@ -152,10 +155,12 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
     first = path_contact_ratio(pair, boxes=boxes, side=side,
                                bearing=Bearing(start.coefficients(), "the synthesis' start"))
     if first.total + OVERLAP_MARGIN >= 1.0:
-        return None
+        return zero_bias
     angle, ratio, overlaps = overlap_choice(pair, side=side, targets=t, flanks=flanks)
     if not overlaps:
-        return None
+        return Bearing(None, f"{DEFAULT_BEARING} (TE0 unreachable: its start's path "
+                       f"covers {first.total:.2f} pitch, the longest reachable overlap "
+                       f"{ratio:.2f}, docs/synthesis.md)")
     turned = synthesis_start(pair, side=side, flanks=flanks,
                              targets=dataclasses.replace(t, path_angle_deg=angle))
     return Bearing(turned.coefficients(), "the synthesis' first-order bearing along the "
