@@ -413,7 +413,7 @@ def generated_hypoid_file(_generated_hypoid_toml, monkeypatch):
     milliseconds."""
     import gearcontact.cli.design as design
 
-    monkeypatch.setattr(design, "check_generation", lambda pair: None)
+    monkeypatch.setattr(design, "check_generation", lambda pair, **_: None)
     monkeypatch.setattr(design, "generation_of", lambda checked: "generated")
     return _generated_hypoid_toml
 
