@@ -119,9 +119,10 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
     the first-order design of the reachable path angle of the longest overlap
     (:func:`~.path_reach.overlap_choice`) if that overlaps, else the zero-bias bearing
     (the synthesis names TE0 unreachable and keeps it); where it covers a pitch, the
-    zero-bias bearing. ``turns_short_paths=False``
-    for the machine-setting synthesis (:mod:`.setting_synthesis`), which does not turn
-    a short path: only its path-angle target is seen.
+    zero-bias bearing (at the default TE0 level and pattern length: other values of
+    those targets are not seen). ``turns_short_paths=False`` for the machine-setting
+    synthesis (:mod:`.setting_synthesis`), which does not turn a short path: only its
+    path-angle target is seen.
 
     Parameters
     ----------
