@@ -61,6 +61,22 @@ def generated_hypoid():
                    easeoff_coast=EaseOffCoefficients())
 
 
+def bare_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
+    """:func:`design_space_candidate` without ease-off tables: the commands synthesize
+    its ease-off (``tca.synthesis.prepare_pair``), and ``design``'s contact-path check
+    takes the bearing the synthesis will make (``tca.predicted_bearing``)."""
+    pair = design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand)
+    return replace(pair, easeoff_drive=EaseOffCoefficients(),
+                   easeoff_coast=EaseOffCoefficients(), easeoff_tables=())
+
+
+def bare_toml(pair) -> str:
+    """The TOML text of ``pair`` without its ``[easeoff.*]`` tables (``pair_to_toml``
+    writes both sides' coefficients, zero or not)."""
+    blocks = pair_to_toml(pair).split("\n\n")
+    return "\n\n".join(b for b in blocks if not b.lstrip().startswith("[easeoff."))
+
+
 def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
     """:func:`design_space_pair` before ``design``'s checks (the pitch-cone design's own
     refusals only)."""

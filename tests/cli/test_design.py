@@ -413,7 +413,7 @@ def generated_hypoid_file(_generated_hypoid_toml, monkeypatch):
     milliseconds."""
     import gearcontact.cli.design as design
 
-    monkeypatch.setattr(design, "check_generation", lambda pair: None)
+    monkeypatch.setattr(design, "check_generation", lambda pair, **_: None)
     monkeypatch.setattr(design, "generation_of", lambda checked: "generated")
     return _generated_hypoid_toml
 
@@ -474,3 +474,35 @@ def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, caps
     assert "# the toml" in out
     assert "setting synthesis of hypoid_13x26_generated: not all targets met on the coast " \
            "side" in err
+
+
+@pytest.mark.parametrize("argv, angle, turns", [
+    ([], None, True),     # analyze synthesizes at the default targets
+    (["--synthesize-easeoff", "--path-angle-drive-deg", "12"], 12.0, True),
+    (["--synthesize-easeoff", "--path-angle-deg", "-4"], -4.0, True),
+    # the setting synthesis turns no short path: only its path angle is seen
+    (["--machine-settings", "--local-synthesis", "--path-angle-deg", "7"], 7.0, False),
+    (["--machine-settings"], "none", None),      # standard settings: no synthesis
+])
+def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, monkeypatch,
+                                                         capsys):
+    """design's contact-path check is given the bearing the synthesis will make with the
+    command's targets (docs/geometry.md sec. 7.7; the check itself: tests/tca/
+    test_predicted_bearing.py)."""
+    import gearcontact.cli.design as design
+    from gearcontact.validation import InputRangeError
+
+    seen = []
+
+    def check_generation(pair, *, bearing_of=None, **_):
+        seen.append(bearing_of)     # and stop design there
+        raise InputRangeError("reached", "the generation check", "-")
+    monkeypatch.setattr(design, "check_generation", check_generation)
+    assert main(["design", "--pair", str(ROOT / "examples" / "iso23509_f3.toml"), *argv]) == 2
+    assert "reached" in capsys.readouterr().err
+    (got,) = seen
+    if angle == "none":
+        assert got is None
+        return
+    targets = got.targets["drive"] if isinstance(got.targets, dict) else got.targets
+    assert targets.path_angle_deg == angle and got.turns_short_paths is turns

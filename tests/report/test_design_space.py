@@ -141,3 +141,37 @@ def test_low_ratio_pairs_design_and_analyze(tmp_path, name):
     print(f"analyze {name}: exit {run.returncode}, {time.perf_counter() - t0:.1f} s")
     assert run.returncode == 0, run.stderr
     _check_results(out)
+
+
+#: Low-ratio pairs without a table (F.3 data, beta1 35 deg, face 0.3 R_m; (z1, u, E / r2)
+#: of tests/tca/test_predicted_bearing.py's RECOUNT) whose contact-path check now takes
+#: the synthesis' overlap path angle (deg, predicted), refused before (the default
+#: bearing's eps_p below 0.85) but for the last two.
+TURNED = {(9, 1.5, 0.0): 22.8, (9, 1.5, 0.3): 28.4, (9, 2.0, 0.0): 17.1,
+          (9, 2.0, 0.3): 28.3, (9, 2.5, 0.3): 26.7, (13, 1.0, 0.0): 23.5,
+          (13, 1.0, 0.3): 21.3, (13, 1.5, 0.3): 21.9, (9, 2.5, 0.0): 13.9,
+          (13, 1.5, 0.0): 16.7}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("point", sorted(TURNED))
+def test_pairs_the_synthesis_bearing_accepts_analyze(point, tmp_path):
+    """``analyze`` (11 phases, every other option default: the synthesis included) exits
+    0 on each, its synthesis turns the path to the predicted angle (the same closed form
+    on the full flanks: within 0.1 deg), and its files obey the truths above (3-8 min a
+    pair under load)."""
+    import re
+    import shutil
+
+    from design_space import bare_candidate, bare_toml
+
+    z1, u, e = point
+    (tmp_path / "pair.toml").write_text(bare_toml(bare_candidate(z1, u, e, 35.0, 0.3, "drive")))
+    out = tmp_path / "out"
+    run = subprocess.run([shutil.which("gearcontact"), "analyze", "--pair",
+                          str(tmp_path / "pair.toml"), "--out", str(out), "--phases",
+                          str(PHASES), "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    chosen = re.search(r"path angle chosen: ([-0-9.]+) deg", (out / "summary.md").read_text())
+    assert float(chosen.group(1)) == pytest.approx(TURNED[point], abs=0.1)
+    _check_results(out)

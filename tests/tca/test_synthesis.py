@@ -257,14 +257,14 @@ def test_miter_synthesis_turns_its_path_to_an_overlap(miter):
 @pytest.mark.slow
 def test_miter_synthesis_names_a_te0_it_cannot_reach(miter, monkeypatch):
     """Where no reachable path angle gives an overlap either (here: the closed form made
-    to say 0.8 pitches), the synthesis says so at its first full TCA and stops after the
+    to say 0.8 pitches; a real pair: tests/tca/test_predicted_bearing.py), the synthesis says so at its first full TCA and stops after the
     decoupled rounds (2 + 12 TCA runs at most) instead of searching: the bearing centre
     and the pattern length are still met, TE0 is not, and the reason names the zero-bias
     path's 0.93 pitches and the best angle's 0.80."""
-    import gearcontact.tca.synthesis as synthesis
+    import gearcontact.tca.path_reach as path_reach
 
     pair, flanks = miter
-    monkeypatch.setattr(synthesis, "overlap_path_angle", lambda *a, **k: (19.3, 0.8))
+    monkeypatch.setattr(path_reach, "overlap_path_angle", lambda *a, **k: (19.3, 0.8))
     syn = synthesize_easeoff(pair, side="drive", flanks=flanks)
     assert not syn.met and syn.path_choice == ""
     assert "lasts 0.93 of a pinion pitch" in syn.unreachable

@@ -167,8 +167,16 @@ def check(args) -> None:
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings
         pair = args.gear_pair = dataclasses.replace(pair, machine=())
-    # a pair whose pinion the gear cannot generate (limit line) is refused here
-    args.generation_check = check_generation(pair)      # its gear flanks are reused
+    if args.synthesize_easeoff or args.local_synthesis:   # the same targets and checks
+        args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
+            else args.te0_arcsec
+        args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
+            if args.pattern_length_ratio is None else args.pattern_length_ratio
+        args.targets = _synthesis_targets(args)     # their ranges, before any TCA
+    # a pair whose pinion the gear cannot generate (limit line) is refused here; its
+    # contact ratio is that of the bearing the synthesis will make (its gear flanks
+    # are reused)
+    args.generation_check = _check_generation(args, pair)
     args.gear_generation = generation_of(args.generation_check)
     if args.local_synthesis and (args.gear_generation != "generated"
                                  or pair.offset_mm == 0.0):
@@ -176,12 +184,7 @@ def check(args) -> None:
                               f"{pair.offset_mm:g}, default gear {args.gear_generation})",
                               "a hypoid (axes.offset_mm != 0) whose default gear is "
                               "generated (its pinion cut by the crown gear: point contact)")
-    if args.synthesize_easeoff or args.local_synthesis:   # the same targets and checks
-        args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
-            else args.te0_arcsec
-        args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
-            if args.pattern_length_ratio is None else args.pattern_length_ratio
-        args.targets = _synthesis_targets(args)     # their ranges, before any TCA
+    if args.synthesize_easeoff or args.local_synthesis:
         # the closed-form reach is the ease-off synthesis' (tca.path_reach); the settings
         # synthesis reports a path angle it misses in its table (exit 4)
         if args.synthesize_easeoff and any(t.path_angle_deg is not None
@@ -199,6 +202,28 @@ def check(args) -> None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
     args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
                                                 and args.out))
+
+
+def _check_generation(args, pair) -> dict:
+    """:func:`~gearcontact.geometry.generation.check_generation` of ``pair``, its
+    contact path that of the bearing the synthesis will make where the design side has
+    no table (:class:`~gearcontact.tca.predicted_bearing.BearingPredictor`): the targets
+    of ``--synthesize-easeoff`` / ``--local-synthesis`` (the setting synthesis turns no
+    short path), the default targets without them (``analyze`` synthesizes with those);
+    a path angle the synthesis cannot reach names its option."""
+    from ..tca.predicted_bearing import BearingPredictor
+    from ..tca.synthesis_targets import SynthesisTargets
+
+    if args.machine_settings and not args.local_synthesis:   # standard settings
+        return check_generation(pair)
+    predictor = BearingPredictor(getattr(args, "targets", None) or SynthesisTargets(),
+                                 turns_short_paths=not args.local_synthesis)
+    try:
+        return check_generation(pair, bearing_of=predictor)
+    except InputRangeError as exc:
+        if exc.field != "path_angle_deg":
+            raise
+        raise _renamed(exc, _path_angle_option(args, pair.design_side)) from None
 
 
 def _check_options(args, pair) -> None:
@@ -453,7 +478,8 @@ def run(args) -> int:
     if args.synthesize_easeoff:
         return _synthesize(args, pair)
     blank = pair.blank
-    generation = getattr(args, "gear_generation", None) or generation_of(check_generation(pair))
+    generation = getattr(args, "gear_generation", None) or generation_of(
+        _check_generation(args, pair))
     if args.json:
         out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation}
         print(json.dumps(out, indent=2))

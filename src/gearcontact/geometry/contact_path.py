@@ -25,7 +25,29 @@ from scipy.interpolate import RectBivariateSpline
 
 from .conjugate import section_guesses
 
-__all__ = ["PathContactRatio", "path_contact_ratio"]
+__all__ = ["Bearing", "PathContactRatio", "path_contact_ratio"]
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """The ease-off a pair will carry on one side where its file has no table: the
+    bearing its ease-off synthesis is predicted to make (``tca.predicted_bearing``, above
+    geometry: passed in by the command), checked by :func:`path_contact_ratio` in place
+    of the pair's coefficients.
+
+    Attributes
+    ----------
+    coefficients : EaseOffCoefficients or None
+        About the pinion's mean node, as the pair's tables (um/mm, um/mm^2); None: the
+        synthesis' first-order bearing at its default targets (:data:`DEFAULT_BEARING`,
+        whatever coefficients the pair holds).
+    source : str
+        What it is, for the refusal's message (e.g. ``"the synthesis' first-order
+        bearing along the overlap path angle 30.1 deg"``).
+    """
+
+    coefficients: object
+    source: str
 
 
 @dataclass(frozen=True)
@@ -51,6 +73,9 @@ class PathContactRatio:
         The conjugate pair's contact ratio: the ``phi2`` range of the whole active box
         in gear pitches (every contact line inside; the limit of a vanishing crowning
         across the lines).
+    bearing : str
+        The ease-off whose path it is: ``"the pair's table"``, :data:`DEFAULT_BEARING`
+        or a :class:`Bearing`'s ``source``.
     """
 
     total: float
@@ -58,6 +83,12 @@ class PathContactRatio:
     ends: tuple[str, str]
     path_angle_deg: float
     line_contact: float
+    bearing: str = "the pair's table"
+
+
+#: What :func:`path_contact_ratio` checks for a pair without a table and no
+#: :class:`Bearing` given.
+DEFAULT_BEARING = "the synthesis' first-order bearing at its default targets"
 
 
 #: Exact node solves over the active box behind :func:`path_contact_ratio`: profile x
@@ -70,7 +101,8 @@ _PATH_GRID = (13, 13)
 _PATH_LEVELS = 300
 
 
-def path_contact_ratio(pair, *, boxes: dict, side: str | None = None) -> PathContactRatio:
+def path_contact_ratio(pair, *, boxes: dict, side: str | None = None,
+                       bearing: Bearing | None = None) -> PathContactRatio:
     """Contact ratio of ``pair`` from its contact path inside the flanks (docs/geometry.md
     sec. 7.7): the mean number of pairs whose mating point lies inside both flanks.
 
@@ -96,7 +128,10 @@ def path_contact_ratio(pair, *, boxes: dict, side: str | None = None) -> PathCon
     synthesis' first-order bearing at its default targets (:func:`_synthesis_hessian`,
     vertex at the box centre): on the three examples its path ratio is that of the
     synthesized ease-off within 1 % (F.3 2.928 against 2.952, F.2 1.444 / 1.444, 11/41
-    2.036 / 2.036; path angles within 0.1 deg).
+    2.036 / 2.036; path angles within 0.1 deg). ``bearing`` replaces the pair's
+    coefficients of ``side``: the bearing the synthesis is predicted to make where it
+    turns the path or takes a path-angle target (``tca.predicted_bearing``,
+    docs/geometry.md sec. 7.7).
 
     Parameters
     ----------
@@ -107,6 +142,8 @@ def path_contact_ratio(pair, *, boxes: dict, side: str | None = None) -> PathCon
         :func:`~.generation.check_generation`'s ``{side: {"active_box", "solver", ...}}``.
     side : str, optional
         Default the pair's design side.
+    bearing : Bearing, optional
+        The ease-off of ``side`` to check instead of the pair's.
 
     Returns
     -------
@@ -139,7 +176,9 @@ def path_contact_ratio(pair, *, boxes: dict, side: str | None = None) -> PathCon
             return "gear " + ("toe" if g < g_box.v_toe else "heel")
         return ""
 
-    b, h, start = _easeoff_in_box(pair, side, solver, (uc, vc), (hu, hv), guess)
+    coeffs = (bearing.coefficients if bearing is not None
+              else pair.easeoff_drive if side == "drive" else pair.easeoff_coast)
+    b, h, start, own = _easeoff_in_box(coeffs, pair, solver, (uc, vc), (hu, hv), guess)
     c0 = phi.value(start)
     inside, ends, steps = 0, [], []
     for sign in (-1.0, 1.0):
@@ -178,7 +217,9 @@ def path_contact_ratio(pair, *, boxes: dict, side: str | None = None) -> PathCon
     z2 = pair.gear_teeth
     return PathContactRatio(
         total=inside * step * z2 / (2.0 * math.pi), side=side, ends=(ends[0], ends[1]),
-        path_angle_deg=angle, line_contact=(hi - lo) * z2 / (2.0 * math.pi))
+        path_angle_deg=angle, line_contact=(hi - lo) * z2 / (2.0 * math.pi),
+        bearing=(bearing.source if bearing is not None
+                 else "the pair's table" if own else DEFAULT_BEARING))
 
 
 def _nearest_edge(p) -> str:
@@ -253,24 +294,24 @@ def _path_point(phi, b, h, level, p, lam):
     return None
 
 
-def _easeoff_in_box(pair, side, solver, centre, half, guess):
+def _easeoff_in_box(c, pair, solver, centre, half, guess):
     """Gradient at the box centre, Hessian (um or any unit) and vertex (clipped to the
-    box) of the ease-off of ``side`` in the box's normalized coordinates
-    ``((u - uc) / hu, (v - vc) / hv)``: the pair's table, or where its Hessian is not
-    positive definite (no table) the synthesis' bearing (:func:`_synthesis_hessian`)
-    with its vertex at the box centre."""
-    c = pair.easeoff_drive if side == "drive" else pair.easeoff_coast
+    box) of the ease-off coefficients ``c`` in the box's normalized coordinates
+    ``((u - uc) / hu, (v - vc) / hv)``, and whether they were used: where their Hessian
+    is not positive definite (no table) the synthesis' bearing
+    (:func:`_synthesis_hessian`) with its vertex at the box centre."""
     u_m, v_m = float(solver.cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
-    h_uv = np.array([[2.0 * c.profile_crowning_um_per_mm2, c.bias_um_per_mm2],
-                     [c.bias_um_per_mm2, 2.0 * c.lengthwise_crowning_um_per_mm2]])
     scale = np.diag(half)
-    if not (h_uv[0, 0] > 0.0 and np.linalg.det(h_uv) > 0.0):
+    h_uv = np.zeros((2, 2)) if c is None else np.array(
+        [[2.0 * c.profile_crowning_um_per_mm2, c.bias_um_per_mm2],
+         [c.bias_um_per_mm2, 2.0 * c.lengthwise_crowning_um_per_mm2]])
+    if c is None or not (h_uv[0, 0] > 0.0 and np.linalg.det(h_uv) > 0.0):
         h_uv = _synthesis_hessian(pair, solver, centre, half, guess)
-        return np.zeros(2), scale @ h_uv @ scale, np.zeros(2)
+        return np.zeros(2), scale @ h_uv @ scale, np.zeros(2), False
     g_uv = np.array([c.profile_angle_um_per_mm, c.spiral_angle_um_per_mm]) + h_uv @ (
         np.asarray(centre) - (u_m, v_m))
     g, h = scale @ g_uv, scale @ h_uv @ scale
-    return g, h, np.clip(np.linalg.solve(h, -g), -1.0, 1.0)
+    return g, h, np.clip(np.linalg.solve(h, -g), -1.0, 1.0), True
 
 
 #: The ease-off synthesis' default targets, defined here (geometry is below tca) and

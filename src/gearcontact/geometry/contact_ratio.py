@@ -166,7 +166,7 @@ _FIX_REACH = 0.75
 
 
 def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
-                        threshold: float | None = None):
+                        threshold: float | None = None, bearing_of=None):
     """Refuse ``pair`` if its contact ratio on the design side is below ``threshold``,
     before any flank work (docs/geometry.md sec. 7.7).
 
@@ -182,7 +182,10 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     :data:`MAX_FIX_SPIRAL_DEG`: eps_p is not monotonic in it, 10/15 E 0.3 r2 at 25, 35,
     45 deg: 0.778, 0.851, 0.692, so the angle verified is named, not a bound); else the tooth numbers. No trial is made below
     ``_FIX_REACH`` of the threshold (neither face nor spiral angle moved eps_p by a
-    quarter in the measurements).
+    quarter in the measurements). ``bearing_of(pair, boxes)``, if given, is the
+    ease-off the pair (and each trial) will carry on its design side where it differs
+    from its table (a :class:`~.contact_path.Bearing`: the synthesis' predicted bearing,
+    ``tca.predicted_bearing``), else None.
 
     Without boxes, or for a pair cut from machine settings (no conjugate pinion and
     ease-off whose path is known), the closed form eps_vg of
@@ -206,12 +209,18 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
         return _check_virtual(pair, MIN_VIRTUAL_CONTACT_RATIO if threshold is None
                               else threshold, boxes_of=boxes_of)
     threshold = MIN_CONTACT_RATIO if threshold is None else threshold
-    got = path_contact_ratio(pair, boxes=boxes)
+
+    def path_of(p, p_boxes):
+        return path_contact_ratio(p, boxes=p_boxes, bearing=None if bearing_of is None
+                                  else bearing_of(p, p_boxes))
+
+    got = path_of(pair, boxes)
     if got.total >= threshold:
         return got
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=got.side)
-    why = (f"the contact path inside the flanks covers eps_p = {got.total:.3f} pitches, "
+    why = (f"the contact path of {got.bearing} inside the flanks covers eps_p = "
+           f"{got.total:.3f} pitches, "
            f"leaving through the {got.ends[0]} and the {got.ends[1]} (ISO 10300-1: eps_vg "
            f"{v.total:.3f}, eps_va {v.transverse:.3f}, eps_vb {v.face:.3f}), below "
            f"{threshold:g} (docs/geometry.md sec. 7.7): the unloaded mesh would leave "
@@ -219,7 +228,7 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
 
     def path_ratio(trial):
         try:
-            return path_contact_ratio(trial, boxes=boxes_of(trial)).total
+            return path_of(trial, boxes_of(trial)).total
         except InputRangeError:   # the trial fails another check of design
             return None
 

@@ -30,7 +30,7 @@ __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands"]
 
 
-def check_generation(pair, *, contact_ratio: bool = True) -> dict:
+def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> dict:
     """Check that the pinion flanks of ``pair`` can be generated, before any flank work.
 
     A pair cut from machine settings (``pair.machine``) is checked by
@@ -47,6 +47,11 @@ def check_generation(pair, *, contact_ratio: bool = True) -> dict:
     the active boxes (:func:`~.contact_ratio.check_contact_ratio`; the ISO 10300-1
     closed form for a pair cut from machine settings: a pair whose unloaded mesh may
     have a gap is refused, naming the face width, the spiral angle or the teeth).
+    ``bearing_of(pair, boxes)``: the ease-off the design side will carry where the pair's
+    table does not say it (:class:`~.contact_path.Bearing` or None; the commands pass the
+    synthesis' predicted bearing, ``tca.predicted_bearing``, geometry being below tca);
+    without it a pair without a table is checked with the synthesis' first-order bearing
+    at its default targets (:func:`~.contact_path.path_contact_ratio`).
 
     Returns
     -------
@@ -76,7 +81,7 @@ def check_generation(pair, *, contact_ratio: bool = True) -> dict:
         # last, so that a pair failing a check above is named by that (a fix of its
         # own, verified with contact_ratio=False); the contact path over the active
         # boxes, no flank work; its named fix verified on the trial pair's boxes
-        check_contact_ratio(pair, boxes=boxes,
+        check_contact_ratio(pair, boxes=boxes, bearing_of=bearing_of,
                             boxes_of=lambda p: check_generation(p, contact_ratio=False))
     return boxes
 

@@ -60,7 +60,7 @@ from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM, flank_frame
 
 __all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "overlap_path_angle",
-           "short_overlap", "te0_unreachable", "OVERLAP_MARGIN"]
+           "overlap_choice", "short_overlap", "te0_unreachable", "OVERLAP_MARGIN"]
 
 _ARCSEC = np.pi / (180.0 * 3600.0)
 #: Finite-difference step of the exact node solves, mm (the node equations are solved
@@ -325,6 +325,16 @@ def overlap_path_angle(reach: PathAngleRange, *, flanks, side: str) -> tuple[flo
     ratio = extent / per_pitch
     k = int(np.argmax(ratio))
     return float(_fold(reach.angles_deg[pick[k]])), float(ratio[k])
+
+
+def overlap_choice(pair, *, side: str, targets, flanks) -> tuple[float, float, bool]:
+    """The path angle the synthesis turns a short zero-bias path to: the reachable one of
+    the longest overlap (:func:`overlap_path_angle`, folded into the targets' range
+    (-89.9, 90] deg), its surface contact in pitches, and whether that overlaps (at
+    least ``1 + OVERLAP_MARGIN``; else TE0 is unreachable, :func:`te0_unreachable`)."""
+    reach = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
+    angle, ratio = overlap_path_angle(reach, flanks=flanks, side=side)
+    return float(np.clip(angle, -89.9, 90.0)), ratio, bool(ratio >= 1.0 + OVERLAP_MARGIN)
 
 
 def _on_gear(conj, gear_box, gear, u, v) -> np.ndarray:

@@ -67,9 +67,9 @@ from ..geometry.generation import check_generation
 from ..geometry.pair import BEVEL, EaseOffCoefficients, GearPair, load_pair
 from ..validation import InputRangeError
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
-                           eased_design_point, turn_relief)
-from .path_reach import (OVERLAP_MARGIN, check_path_angle, overlap_path_angle,
-                         path_angle_range, short_overlap, te0_unreachable)
+                           eased_design_point)
+from .path_reach import check_path_angle, overlap_choice, short_overlap, te0_unreachable
+from .predicted_bearing import BearingPredictor, synthesis_start
 from .synthesis_rounds import polish, recentred
 from .synthesis_targets import (SynthesisTargets, TargetRows, angle_diff, targets_rows,
                                 targets_table)
@@ -202,13 +202,11 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     if flanks is None:
         flanks = build_flanks(pair)
     conj, gear = flanks.pinion_conjugate.side(side), flanks.flank("gear", side)
-    u_m, v_m = (float(x) for x in flanks.mean_contact[side]["pinion_uv"])
-    # the relief at the centre is a rigid turn, so that the TE0 vertex stays there
-    # (design_point.centred_coefficients)
-    turn = turn_relief(conj, (u_m, v_m))
+    # the start (a path angle the synthesis cannot reach is refused there, before any
+    # TCA; one it can starts from its first-order design, .path_reach)
+    first_x = synthesis_start(pair, side=side, targets=targets, flanks=flanks)
+    (u_m, v_m), turn, centre = first_x.mean_uv_mm, first_x.turn, first_x.centre_uv_mm
     b = conj.boundary
-    centre = (b.u_root + targets.centre_profile * (b.u_tip - b.u_root),
-              b.v_toe + targets.centre_face * (b.v_heel - b.v_toe))
     face = pair.gear_face_width_mm
     length = targets.pattern_length_ratio * face
     # starts of the mating-point solve: conjugate contacts at and below the centre (u1
@@ -220,16 +218,13 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     with_bias = targets.path_angle_deg is not None
     # curvature scale: the ellipse length scales with the face, its curvature with
     # 1 / length^2 (s0003-centred: 8 and 0.124 um/mm^2 for a 12 mm face)
-    k = (12.0 / face) ** 2
+    k = first_x.curvature_scale
     eta_c, xi_c = centre[0] - u_m, centre[1] - v_m
     lo = np.array([eta_c - 0.5 * depth, xi_c - 0.4 * face, 0.05 * k, 0.002 * k, -2.0 * k])
     hi = np.array([eta_c + 0.5 * depth, xi_c + 0.4 * face, 60.0 * k, 2.0 * k, 2.0 * k])
-    x_mid = np.array([eta_c, xi_c, 8.0 * k, 0.15 * k, 0.0])
+    x_mid = first_x.x.copy()
     if with_bias:
-        # a path angle the synthesis cannot reach is refused here, before any TCA; one it
-        # can starts from its first-order design (.path_reach), the box widened to hold it
-        reach = check_path_angle(pair, targets=targets, flanks=flanks, sides=(side,))[side]
-        x_mid = np.array([eta_c, xi_c, *reach.start(targets.path_angle_deg)])
+        # the box widened to hold the path angle's first-order design
         lo[2:] = np.minimum(lo[2:], [0.5 * x_mid[2], 0.5 * x_mid[3], x_mid[4] - abs(x_mid[4])])
         hi[2:] = np.maximum(hi[2:], [2.0 * x_mid[2], 2.0 * x_mid[3], x_mid[4] + abs(x_mid[4])])
     scale = np.array([0.02 * depth, 0.02 * face, 0.5 * k, 0.05 * k, 0.05 * k])
@@ -357,10 +352,8 @@ def synthesize_easeoff(pair: GearPair, *, side: str | None = None,
     short = None if with_bias else short_overlap(first, phases)
     unreachable = ""
     if short is not None:
-        reach = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
-        angle, ratio = overlap_path_angle(reach, flanks=flanks, side=side)
-        if ratio >= 1.0 + OVERLAP_MARGIN:
-            angle = float(np.clip(angle, -89.9, 90.0))
+        angle, ratio, overlaps = overlap_choice(pair, side=side, targets=targets, flanks=flanks)
+        if overlaps:
             again = synthesize_easeoff(
                 pair, side=side, targets=dataclasses.replace(targets, path_angle_deg=angle),
                 flanks=flanks, phases=phases, max_evaluations=max_evaluations)
@@ -519,7 +512,9 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
     Before any flank work a bevel pair passes ``design``'s checks
     (:func:`~gearcontact.geometry.generation.check_generation`: undercut, pointed
     teeth, contact ratio), so that every command refuses a pair that cannot be made
-    first, with the same named condition and fix as ``design``. ``checked``: that
+    first, with the same named condition and fix as ``design`` (the contact path of the
+    bearing the synthesis will make, :class:`~.predicted_bearing.BearingPredictor`, where
+    the pair has no table). ``checked``: that
     check's result for ``pair``, if the command already ran it (else run here); the
     flanks reuse its gear flanks (:meth:`PreparedPair.flank_set`; a generated gear's
     sheets are built once, :func:`~gearcontact.geometry.flank.build_flanks`).
@@ -537,7 +532,8 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
     if checked is None and pair.kind == BEVEL:
-        checked = check_generation(pair)
+        # the contact path of the bearing the synthesis below will make (default targets)
+        checked = check_generation(pair, bearing_of=BearingPredictor())
     if side in pair.easeoff_tables:
         return PreparedPair(pair, side, checked=checked)
     base = build_flanks(pair, checked=checked)
