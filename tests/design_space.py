@@ -70,13 +70,6 @@ def bare_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
                    easeoff_coast=EaseOffCoefficients(), easeoff_tables=())
 
 
-def bare_toml(pair) -> str:
-    """The TOML text of ``pair`` without its ``[easeoff.*]`` tables (``pair_to_toml``
-    writes both sides' coefficients, zero or not)."""
-    blocks = pair_to_toml(pair).split("\n\n")
-    return "\n\n".join(b for b in blocks if not b.lstrip().startswith("[easeoff."))
-
-
 def design_space_candidate(z1, ratio, offset_frac, beta, face_frac, side, hand="right"):
     """:func:`design_space_pair` before ``design``'s checks (the pitch-cone design's own
     refusals only)."""

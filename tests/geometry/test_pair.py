@@ -96,3 +96,19 @@ def test_missing_file_and_bad_toml(tmp_path):
     with pytest.raises(InputRangeError) as err:
         load_pair(bad)
     assert "TOML" in err.value.field
+
+
+@pytest.mark.parametrize("source", ["s0003", ROOT / "examples" / "iso23509_f3.toml"])
+def test_toml_round_trip_keeps_which_tables_were_given(source):
+    """``pair_to_toml`` is a fixed point of the round trip and keeps
+    ``easeoff_tables`` (a material's display name is not written): a pair
+    without ``[easeoff.*]`` (F.3: its commands synthesize one) is written without them,
+    not with zero tables (which the commands would take as "no ease-off, given")."""
+    from gearcontact.geometry.pair import pair_to_toml
+
+    pair = load_pair(source)
+    text = pair_to_toml(pair)
+    back = parse_pair(tomllib.loads(text))
+    assert back.easeoff_tables == pair.easeoff_tables
+    assert pair_to_toml(back) == text
+    assert ("[easeoff." in text) == bool(pair.easeoff_tables)

@@ -163,10 +163,11 @@ def test_pairs_the_synthesis_bearing_accepts_analyze(point, tmp_path):
     import re
     import shutil
 
-    from design_space import bare_candidate, bare_toml
+    from design_space import bare_candidate
+    from gearcontact.geometry.pair import pair_to_toml
 
     z1, u, e = point
-    (tmp_path / "pair.toml").write_text(bare_toml(bare_candidate(z1, u, e, 35.0, 0.3, "drive")))
+    (tmp_path / "pair.toml").write_text(pair_to_toml(bare_candidate(z1, u, e, 35.0, 0.3, "drive")))
     out = tmp_path / "out"
     run = subprocess.run([shutil.which("gearcontact"), "analyze", "--pair",
                           str(tmp_path / "pair.toml"), "--out", str(out), "--phases",

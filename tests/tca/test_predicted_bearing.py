@@ -211,7 +211,7 @@ def test_a_real_pair_whose_te0_is_unreachable(tmp_path):
     the drive side with those numbers (the synthesis' own TCA), before the search (13
     TCA runs a side; 515 s for both sides under load)."""
     from console_script import run_console
-    from design_space import bare_toml
+    from gearcontact.geometry.pair import pair_to_toml
 
     bare = bare_candidate(9, 1.0, 0.3, 45.0, 0.3, "drive")
     boxes = check_generation(bare, contact_ratio=False)
@@ -219,7 +219,7 @@ def test_a_real_pair_whose_te0_is_unreachable(tmp_path):
     assert got.total == pytest.approx(0.882, abs=1e-3) and got.total >= MIN_CONTACT_RATIO
     assert "TE0 unreachable: its start's path covers 0.89 pitch" in got.bearing
     assert "the longest reachable overlap 0.97" in got.bearing
-    (tmp_path / "pair.toml").write_text(bare_toml(bare))
+    (tmp_path / "pair.toml").write_text(pair_to_toml(bare))
     code, out, err = run_console("design", "--pair", tmp_path / "pair.toml",
                                  "--synthesize-easeoff", timeout=3000)
     assert code == 4, err

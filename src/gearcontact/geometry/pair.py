@@ -515,6 +515,8 @@ def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> s
     out += block("cutter", dataclasses.asdict(pair.cutter))
     for side in ("drive", "coast") if not pair.machine else ():
         c = getattr(pair, f"easeoff_{side}")
+        if side not in pair.easeoff_tables and not any(dataclasses.astuple(c)):
+            continue            # no table given and none set: it stays "to be synthesized"
         out += block(f"easeoff.{side}", {k: float(v) for k, v in dataclasses.asdict(c).items()})
     for setup in pair.machine:
         machine, blade = setup_to_tables(setup)
