@@ -202,7 +202,7 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     zero = MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
     if theta < 0.0:
         return zero
-    out3 = np.zeros(3)
+    out3 = np.zeros(L.N_PREVIEW)
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
@@ -229,7 +229,8 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
         pairs += 1
         if w > w_max:
             w_max = w
-            scale = (w / we) ** (1.0 / 3.0)     # Hertz similarity a, b, p ~ W^(1/3)
+            # Hertz similarity a, b, p ~ W^(1/3) from the load they hold at
+            scale = (w / out3[L.PV_LOAD]) ** (1.0 / 3.0)
             abp = (out3[0] * scale, out3[1] * scale, out3[2] * scale)
     if t_el <= 0.0:
         return zero
