@@ -19,9 +19,9 @@ twin's coordinates, :mod:`gearcontact.twin.mesh`) and their speeds:
   twin's Newton, started afresh: no state). The twin samples the preview at the pair's load of its previous
   step; the FMU has no step of its own (model exchange), so it samples twice: at 1 N
   (:data:`~gearcontact.twin.contact_law.W_EVAL_MIN_N`), then at the load that gives,
-  clamped to the datapath envelope (1 .. 2^17 N). fp64: kappa does not depend on the
-  load, the second pass changes its rounding only; golden: the fixed point's rounding
-  at the actual load;
+  clamped to the datapath envelope (1 .. 2^17 N). fp64: kappa is the approach at 1 N
+  in both passes (the twin's law, :func:`~gearcontact.twin.contact_law._kappa_reference`),
+  a, b, p_max scaled from there; golden: the fixed point's rounding at the actual load;
 * ``T = max(sum_j 1e-3 W_j l_j + 1e-3 c_m l_0^2 theta', 0)`` (gear torque along the
   motion, N·m) while ``T_el > 0``; the pinion's torque is ``-T (1/u + eps')`` (the
   twin's equation of motion); TE in the TCA's sign ``m (eps - theta)`` arcsec.

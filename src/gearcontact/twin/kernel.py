@@ -311,7 +311,7 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
     pv = np.zeros(N_PREVIEW)
-    # preview per pair: interval, law, a, b, p, W_e, the last W^(1/3) (Hertz) or W
+    # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
     # (line), mode, the line law's beta (N_CACHE columns)
     cache = np.zeros((2, n_p, N_CACHE))
     return _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend,
