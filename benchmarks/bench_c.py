@@ -16,7 +16,7 @@ includes other load.
 
 The twin step: the drivetrain FMU of s0003 is exported, its ``sources/`` built with a
 timing driver into one program (gcc with the flags of the FMU's binary,
-``gearcontact.export.fmu.FMU_CFLAGS``: -O3 -ffp-contract=off), and ``fmi3DoStep`` of
+``gearcontact.export.fmu.FMU_CFLAGS``: -O2 -ffp-contract=off), and ``fmi3DoStep`` of
 one 10 us step timed call by call (one
 RK4 step with its 4 mesh evaluations of both flanks, the record and the finiteness
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
