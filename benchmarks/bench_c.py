@@ -22,7 +22,10 @@ RK4 step with its 4 mesh evaluations of both flanks, the record and the finitene
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us).
+(>= 20x real time at 10 us). Last measured (docs/export.md, the fourth round; load
+average 12-15 on 2 shared cores, alternated with the code before): fp64 step 586 ns
+median (744 before), golden 1,096 (1,569); fp64 chain ~131 ns, golden ~182; p99/p50
+1.4-2.7 (the shared core's).
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
