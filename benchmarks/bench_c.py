@@ -15,13 +15,17 @@ p99/p50 <= 1.5. Pin one core on a quiet machine for the targets
 includes other load.
 
 The twin step: the drivetrain FMU of s0003 is exported, its ``sources/`` built with a
-timing driver into one program (gcc -O2 -ffp-contract=off, as its
-buildDescription.xml), and ``fmi3DoStep`` of one 10 us step timed call by call (one
+timing driver into one program (gcc with the flags of the FMU's binary,
+``gearcontact.export.fmu.FMU_CFLAGS``: -O2 -ffp-contract=off), and ``fmi3DoStep`` of
+one 10 us step timed call by call (one
 RK4 step with its 4 mesh evaluations of both flanks, the record and the finiteness
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us).
+(>= 20x real time at 10 us). Last measured (docs/export.md, the fourth round; load
+average 12-15 on 2 shared cores, alternated with the code before): fp64 step 586 ns
+median (744 before), golden 1,096 (1,569); fp64 chain ~131 ns, golden ~182; p99/p50
+1.4-2.7 (the shared core's).
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
@@ -259,6 +263,7 @@ def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
     """ns per twin step of the drivetrain FMU's C (module docstring)."""
     from fmpy import __file__ as fmpy_file
 
+    from gearcontact.export.fmu import FMU_CFLAGS
     from gearcontact.export.fmu_drivetrain import (DRIVETRAIN_VARIABLES,
                                                    drivetrain_fmu_model,
                                                    export_drivetrain_fmu)
@@ -279,7 +284,7 @@ def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
                     (src / Path(name).name).write_bytes(z.read(name))
         (src / "bench_step.c").write_text(STEP_DRIVER)
         exe = Path(tmp) / "bench_step"
-        subprocess.run(["gcc", "-O2", "-std=c99", "-ffp-contract=off",
+        subprocess.run(["gcc", *FMU_CFLAGS,
                         f"-DVR_BACKEND={vr['backend']}", f"-DVR_STEP_US={vr['step_us']}",
                         "-I", str(src), "-I", str(Path(fmpy_file).parent / "c-code"),
                         "-o", str(exe), *sorted(str(p) for p in src.glob("*.c")), "-lm"],

@@ -52,7 +52,7 @@ def _fit(trace_rows=1):
 
 def _kappa(cv, f, W, backend, source, trace, fit):
     """The loop's preview of pair 0 between rows 0 and 1 of ``cv`` (2, C) at fraction f."""
-    out = np.zeros(3)
+    out = np.zeros(K.N_PREVIEW)
     tcount = np.zeros(K.N_COUNT, np.int64)
     kap = K._kappa(0, 0, 0, f, W, _prm(source), np.asarray(cv, float)[None, None],
                    backend, *golden_constants(), trace, tcount, fit, out)
@@ -61,13 +61,21 @@ def _kappa(cv, f, W, backend, source, trace, fit):
 
 @pytest.mark.parametrize("A, B, W", POINTS)
 def test_reference_preview_is_the_engine(A, B, W):
-    out = np.zeros(3)
-    kap = K._kappa_reference(A, B, W, _prm(), out)
-    res = get_engine("reference").hertz(A, B, W)
+    """The fp64 law's preview at the unit load it reports (the engine's bit for bit), and
+    its kappa and a, b, p_max against Hamrock-Brewe at W: ``kappa W^(2/3)`` is the
+    approach, ``a, b, p_max ~ W^(1/3)`` (Hertz similarity); 1e-13 relative, a few
+    roundings of the power and the cube root beside the closed form's own."""
+    out = np.zeros(K.N_PREVIEW)
+    kap = K._kappa_reference(A, B, _prm(), out)
+    assert out[K.PV_LOAD] == 1.0
+    res = get_engine("reference").hertz(A, B, 1.0)
     assert (out[0], out[1], out[2]) == (res.a_mm, res.b_mm, res.p_max_mpa)
-    # kappa W^(2/3) is the Hamrock–Brewe approach (its own closed form)
+    assert kap == hamrock_brewe_hertz(A, B, 1.0, e_prime_mpa=E_PRIME).approach_mm
     hb = hamrock_brewe_hertz(A, B, W, e_prime_mpa=E_PRIME)
     assert kap * W ** (2.0 / 3.0) == pytest.approx(hb.approach_mm, rel=1e-13)
+    scale = W ** (1.0 / 3.0)
+    assert (out[0] * scale, out[1] * scale, out[2] * scale) == pytest.approx(
+        (hb.a_mm, hb.b_mm, hb.p_max_mpa), rel=1e-13)
 
 
 @pytest.mark.parametrize("A, B, W", POINTS)
@@ -83,7 +91,7 @@ def test_golden_preview_is_the_engine_bit_for_bit(A, B, W):
     assert (out[0], out[1], out[2]) == (res.a_mm, res.b_mm, res.p_max_mpa)
     # kappa from the golden a and k: within the golden error of the fp64 one (a 3.6e-4,
     # k 6.8e-4 end to end; F(k) is log-flat: 1.5e-3 covers both)
-    ref = K._kappa_reference(A, B, W, _prm(), np.zeros(3))
+    ref = K._kappa_reference(A, B, _prm(), np.zeros(K.N_PREVIEW))
     assert kap == pytest.approx(ref, rel=1.5e-3)
     assert math.isfinite(kap)
 
@@ -113,7 +121,10 @@ def test_stencil_reference_preview_is_the_chain(A, B, W, f):
     kap, out = _kappa(cv, f, W, 0, "stencil", np.zeros((0, 9), np.int64), _fit(0))
     ref = chain_reference(g[0] + f * (g[1] - g[0]), W, e_prime_mpa=E_PRIME)
     hz = ref.hertz
-    np.testing.assert_allclose(out, [hz.a_mm, hz.b_mm, hz.p_max_mpa], rtol=1e-12)
+    # the fp64 law's a, b, p_max hold at 1 N (Hertz similarity: ~ W^(1/3) beyond)
+    assert out[K.PV_LOAD] == 1.0
+    np.testing.assert_allclose(out[:3] * W ** (1.0 / 3.0), [hz.a_mm, hz.b_mm, hz.p_max_mpa],
+                               rtol=1e-12)
     hb = hamrock_brewe_hertz(ref.fit.A_minus_per_mm, ref.fit.B_minus_per_mm, W,
                              e_prime_mpa=E_PRIME)
     assert kap * W ** (2.0 / 3.0) == pytest.approx(hb.approach_mm, rel=1e-12)

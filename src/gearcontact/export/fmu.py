@@ -92,8 +92,11 @@ UNITS = {
     "N.s/mm": 'kg="1" s="-1" factor="1000"'}
 #: The shared contact-law sources inside every FMU (``data/templates/fmu``).
 LAW_FILES = ("gc_contact_law.h", "gc_contact_law.c")
-_CFLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-ffp-contract=off", "-fPIC",
-           "-shared", "-fvisibility=default")
+#: The compiler flags of an FMU's binary built at export (with ``-fPIC -shared``): C99,
+#: strict warnings, ``-O2`` and no FMA contraction (the twin's roundings). (``-O3`` gives
+#: the same bits and ~7 % fewer instructions per drivetrain step, but measured no faster.)
+FMU_CFLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-ffp-contract=off")
+_CFLAGS = FMU_CFLAGS + ("-fPIC", "-shared", "-fvisibility=default")
 
 
 @dataclass(frozen=True)

@@ -19,9 +19,9 @@ twin's coordinates, :mod:`gearcontact.twin.mesh`) and their speeds:
   twin's Newton, started afresh: no state). The twin samples the preview at the pair's load of its previous
   step; the FMU has no step of its own (model exchange), so it samples twice: at 1 N
   (:data:`~gearcontact.twin.contact_law.W_EVAL_MIN_N`), then at the load that gives,
-  clamped to the datapath envelope (1 .. 2^17 N). fp64: kappa does not depend on the
-  load, the second pass changes its rounding only; golden: the fixed point's rounding
-  at the actual load;
+  clamped to the datapath envelope (1 .. 2^17 N). fp64: kappa is the approach at 1 N
+  in both passes (the twin's law, :func:`~gearcontact.twin.contact_law._kappa_reference`),
+  a, b, p_max scaled from there; golden: the fixed point's rounding at the actual load;
 * ``T = max(sum_j 1e-3 W_j l_j + 1e-3 c_m l_0^2 theta', 0)`` (gear torque along the
   motion, N·m) while ``T_el > 0``; the pinion's torque is ``-T (1/u + eps')`` (the
   twin's equation of motion); TE in the TCA's sign ``m (eps - theta)`` arcsec.
@@ -202,7 +202,7 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     zero = MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
     if theta < 0.0:
         return zero
-    out3 = np.zeros(3)
+    out3 = np.zeros(L.N_PREVIEW)
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
@@ -229,7 +229,8 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
         pairs += 1
         if w > w_max:
             w_max = w
-            scale = (w / we) ** (1.0 / 3.0)     # Hertz similarity a, b, p ~ W^(1/3)
+            # Hertz similarity a, b, p ~ W^(1/3) from the load they hold at
+            scale = (w / out3[L.PV_LOAD]) ** (1.0 / 3.0)
             abp = (out3[0] * scale, out3[1] * scale, out3[2] * scale)
     if t_el <= 0.0:
         return zero

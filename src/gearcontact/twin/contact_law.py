@@ -46,9 +46,12 @@ alpha_max: ordinary long bearings) is a result, not an error: counted (previews,
 and evaluated by the fp64 Hamrock–Brewe law on the fp64 curvatures, by the reference
 backend (the datapath would flag it) and the golden one (where its chain flags).
 
-For Hertz ``kappa`` does not depend on the load (fp64: exactly); the fixed point adds its
-rounding, and the load at which it is sampled is clamped to the datapath envelope
-(:data:`W_EVAL_MIN_N` .. 2^17 N).
+For Hertz ``kappa`` does not depend on the load: the fp64 law takes it as the approach at
+the unit load (1 N, ``delta = kappa W^(2/3)``), with a, b, p_max there (``pv``'s load,
+:data:`~.layout.PV_LOAD`, says so), instead of ``delta(W_e) / W_e^(2/3)``: no power of
+the load per preview, the same value to rounding. The fixed point adds its rounding at
+the evaluation load, which is clamped to the datapath envelope (:data:`W_EVAL_MIN_N` ..
+2^17 N).
 """
 
 from __future__ import annotations
@@ -63,7 +66,7 @@ from ..analytic.hertz import hamrock_brewe_terms
 from ..preview.fit.golden_vec import fit_element
 from ..preview.fit.reference import principal_curvatures
 from ..preview.hertz.golden_vec import hertz_element
-from .layout import P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_STAGEC
+from .layout import P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_STAGEC, PV_LOAD
 
 @overload(math.cbrt)
 def _cbrt_overload(x):   # numba 0.6x has no math.cbrt; libm cbrt is the same function
@@ -86,7 +89,8 @@ _S20 = 1048576.0
 def _kappa_golden(a_code, b_code, fit_flags, w, prm, pow_lut, cbrt_lut, cst, trace, tcount,
                   fit, out3):
     """kappa (mm/N^(2/3)) from the golden stage D on the curvature codes ``a_code <=
-    b_code`` (Q(32,20)); out3 <- (a, b, p_max) at w_q. ``fit_flags``: the stage-C flags
+    b_code`` (Q(32,20)) at the load w; out3 <- (a, b, p_max) at w_q, out3[PV_LOAD] <- w
+    (the twin scales a, b, p from there). ``fit_flags``: the stage-C flags
     of the codes (0 without stage C), in bits 8.. of the traced flags word (the chain's,
     :mod:`gearcontact.preview.chain`); with stage C the stencil codes ``fit[2][0]`` are
     traced too (``fit[4]``)."""
@@ -117,6 +121,7 @@ def _kappa_golden(a_code, b_code, fit_flags, w, prm, pow_lut, cbrt_lut, cst, tra
     out3[0] = a
     out3[1] = b_c / _S20
     out3[2] = p_c / 256.0
+    out3[PV_LOAD] = w
     return hertz_kappa(a, k_c / _S20, wq, prm[P_ECODE])
 
 
@@ -136,19 +141,19 @@ def _row(cv_t, s, j, i, f, q):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _fp64_law(A, B, we, prm, tcount, out3, flagged):
-    """kappa of the fp64 law on A-, B-; counts the preview in ``tcount[3]`` if it lies
-    outside the datapath's domain (``flagged``: the golden chain said so; else
-    ``prm[P_CLO..P_AHI]``, the curvature range and alpha_max of :data:`gearcontact.
-    preview.hertz.reference.ENVELOPE`; the load is clamped into it by the caller), and
-    returns -1, counted in ``tcount[5]``, without a contact law (a saddle, B- <= 0)."""
+def _fp64_law(A, B, prm, tcount, out3, flagged):
+    """kappa of the fp64 law on A-, B- (:func:`_kappa_reference`); counts the preview in
+    ``tcount[3]`` if it lies outside the datapath's domain (``flagged``: the golden chain
+    said so; else ``prm[P_CLO..P_AHI]``, the curvature range and alpha_max of
+    :data:`gearcontact.preview.hertz.reference.ENVELOPE`), and returns -1, counted in
+    ``tcount[5]``, without a contact law (a saddle, B- <= 0)."""
     lo, hi = min(A, B), max(A, B)
     if flagged or not (lo >= prm[P_CLO] and hi <= prm[P_CHI] and hi <= prm[P_AHI] * lo):
         tcount[3] += 1
     if lo <= 0.0:
         tcount[5] += 1
         return -1.0
-    return _kappa_reference(A, B, we, prm, out3)
+    return _kappa_reference(A, B, prm, out3)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -168,7 +173,7 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
                                 pow_lut, cbrt_lut, cst, trace, tcount, fit, out3)
             if kap > 0.0:
                 return kap
-        return _fp64_law(A, B, we, prm, tcount, out3, golden)
+        return _fp64_law(A, B, prm, tcount, out3, golden)
     c0 = 0
     if golden:
         # the samples interpolated and quantized (GAP Q(32,16), round half up), the
@@ -185,21 +190,25 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
             return kap
         c0 = g.shape[1]
         if cv_t.shape[3] < c0 + 3:      # no fp64 fit stacked with the samples
-            return _fp64_law(0.0, 0.0, we, prm, tcount, out3, True)
+            return _fp64_law(0.0, 0.0, prm, tcount, out3, True)
     # stage C is linear in the samples: the fit of the samples interpolated between two
     # rows is the interpolation of the rows' fitted coefficients (exactly)
     A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
                          _row(cv_t, s, j, i, f, c0 + 2))
-    return _fp64_law(A, B, we, prm, tcount, out3, golden)
+    return _fp64_law(A, B, prm, tcount, out3, golden)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _kappa_reference(A, B, w, prm, out3):
-    a, b, k, p, delta, alpha, e_e, f, r = _hb(min(A, B), max(A, B), w, prm[P_EP])
+def _kappa_reference(A, B, prm, out3):
+    """kappa (mm/N^(2/3)) of the fp64 Hamrock-Brewe law on A-, B- > 0 (1/mm): the
+    approach at W = 1 N (``delta = kappa W^(2/3)`` in the closed form: no power of the
+    load); out3 <- (a, b, p_max) at 1 N, ``out3[PV_LOAD]`` <- 1."""
+    a, b, k, p, delta, alpha, e_e, f, r = _hb(min(A, B), max(A, B), 1.0, prm[P_EP])
     out3[0] = a
     out3[1] = b
     out3[2] = p
-    return delta / w ** (2.0 / 3.0)
+    out3[PV_LOAD] = 1.0
+    return delta
 
 
 

@@ -58,7 +58,7 @@ from .contact_law import (W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _kappa_reference,
                           _pair_load, _table_torque)
 from .line_law import MODE_LINE, _line_law, line_pair_load, line_potential_j
 from .layout import (  # noqa: F401
-                     LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE,
+                     LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LOAD,
                      BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
                      P_AHI, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI, P_DPSIR, P_ECODE,
                      P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP, P_L0, P_MIRROR,
@@ -115,6 +115,7 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             we = min(max(w_eval[sd, j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
             pv[3] = 0.0
             pv[4] = 0.0
+            pv[PV_LOAD] = we
             if line:
                 kap = _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                                 trace, tcount, fit, pv)
@@ -126,7 +127,7 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             cache[sd, j, 2] = pv[0]
             cache[sd, j, 3] = pv[1]
             cache[sd, j, 4] = pv[2]
-            cache[sd, j, 5] = we
+            cache[sd, j, 5] = pv[PV_LOAD]     # the load of a, b, p
             cache[sd, j, 7] = pv[3]
             cache[sd, j, 8] = pv[4]
         kap = cache[sd, j, 1]
@@ -310,7 +311,7 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
     pv = np.zeros(N_PREVIEW)
-    # preview per pair: interval, law, a, b, p, W_e, the last W^(1/3) (Hertz) or W
+    # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
     # (line), mode, the line law's beta (N_CACHE columns)
     cache = np.zeros((2, n_p, N_CACHE))
     return _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend,

@@ -26,8 +26,12 @@ CURVATURE_SOURCES = {"exact": 0, "stencil": 1}
 #: c3, c4, c5 and L; golden: the 49 gap samples before them; :mod:`.line_law`).
 LINE_SOURCE = "line"
 LINE_SOURCE_CODE = 2
-#: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta.
-N_PREVIEW = 5
+#: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta,
+#: the load (N) at which a, b, p_max hold (:data:`PV_LOAD`).
+N_PREVIEW = 6
+#: Index in ``pv`` of the load of its a, b, p_max: the evaluation load ``W_e``, or 1 N
+#: where the fp64 Hertz law answered (:func:`~.contact_law._kappa_reference`).
+PV_LOAD = 5
 #: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
 N_CACHE = 9
 #: Columns of the golden preview trace (:data:`~.cosim.TRACE_COLUMNS`).

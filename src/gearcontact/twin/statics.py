@@ -111,7 +111,7 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
         th1 = (g + line_contact_approach_mm(w1, length, b, m.e_prime_mpa)) / lv
     else:
         kap = K._kappa_reference(float(m.A_minus_per_mm[j, 0]),
-                                 float(m.B_minus_per_mm[j, 0]), 1e3, prm, np.empty(3))
+                                 float(m.B_minus_per_mm[j, 0]), prm, np.empty(K.N_PREVIEW))
         th1 = (g + kap * w1 ** (2.0 / 3.0)) / lv
     target = model.torque_nm
     lo, hi = 0.0, 4.0 * th1

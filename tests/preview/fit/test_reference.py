@@ -80,6 +80,21 @@ def test_principal_curvatures_closed_form():
     assert (a, b) == (-1.0, -2.0)
 
 
+def test_principal_curvatures_root_of_squares_and_its_fallback():
+    """The root from the squares (the common range) and ``hypot`` where the squares
+    would overflow: numpy's symmetric eigen-solver (LAPACK) as the truth, 1e-14
+    relative (a few roundings; LAPACK's own error is of the same order), on 200 seeded
+    matrices with entries from 1e-6 to 1e3; and [[1e200, 0], [0, -1e-200]], whose
+    (c3 - c5)^2 overflows (the root of the squares alone gives inf and -0), exactly."""
+    rng = np.random.default_rng(3)
+    for c3, c4, c5 in 10.0 ** rng.uniform(-6, 3, (200, 3)) * rng.choice([-1, 1], (200, 3)):
+        a, b, _ = principal_curvatures(c3, c4, c5)
+        lo, hi = np.linalg.eigvalsh([[c3, 0.5 * c4], [0.5 * c4, c5]])
+        scale = max(abs(lo), abs(hi))
+        assert abs(a - hi) <= 1e-14 * scale and abs(b - lo) <= 1e-14 * scale
+    assert principal_curvatures(1e200, 0.0, -1e-200)[:2] == (1e200, -1e-200)
+
+
 @pytest.mark.parametrize("bad, field", [
     (np.zeros(48), "gaps_mm.shape"),
     (np.zeros((7, 7)), "gaps_mm.shape"),

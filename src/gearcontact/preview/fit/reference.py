@@ -37,6 +37,11 @@ from gearcontact.validation import InputRangeError, check_array_finite, check_po
 
 __all__ = ["CurvatureFit", "fit_curvatures", "principal_curvatures"]
 
+#: The range of ``(c3 - c5)^2 + c4^2`` where :func:`principal_curvatures` takes its square
+#: root directly (no overflow, no significant underflow; ``hypot`` outside).
+_SQ_LO = 2.0 ** -900
+_SQ_HI = 2.0 ** 1000
+
 
 @dataclass(frozen=True)
 class CurvatureFit:
@@ -86,9 +91,16 @@ def principal_curvatures(c3: float, c4: float, c5: float) -> tuple[float, float,
     -----
     The smaller-magnitude eigenvalue is taken from the determinant
     (``lambda1 * lambda2 = c3 c5 - c4^2/4``) to avoid cancellation in ``h - r``.
+    ``r = sqrt((c3 - c5)^2 + c4^2)`` is formed from the squares where their sum lies in
+    [2^-900, 2^1000) (neither square overflows, and one that underflows is below 2^-121
+    of the sum: the correctly rounded square root of the rounded sum, within an ulp as
+    ``hypot``), ``hypot`` outside: IEEE operations only on the curvatures of any gear, so
+    the twin's compiled law and its C port in the FMUs give the same bits without libm.
     """
     h = c3 + c5
-    r = math.hypot(c3 - c5, c4)
+    d = c3 - c5
+    s = d * d + c4 * c4
+    r = math.sqrt(s) if _SQ_LO <= s < _SQ_HI else math.hypot(d, c4)
     a_minus = 0.5 * (h + r)
     b_minus = 0.5 * (h - r)
     det = c3 * c5 - 0.25 * c4 * c4
