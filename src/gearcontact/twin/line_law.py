@@ -55,7 +55,7 @@ from ..preview.fit.golden_vec import fit_element
 from ..preview.hertz.line_vec import line_constants, line_element
 from ..preview.hertz.reference import LINE_ENVELOPE, keeps_ellipse
 from .contact_law import _hb, _principal, _row, hertz_kappa
-from .layout import P_AHI, P_CHI, P_CLO, P_ECODE, P_EP
+from .layout import N_PREVIEW, P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_NSLICE, P_SLICE_CB
 
 __all__ = ["line_pair_load", "line_law_constants", "MODE_LINE"]
 
@@ -155,26 +155,145 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _interference(pv, n, width, d, shares):
+    """``(I, L_c)`` of the ease-off ``h = pv[N_PREVIEW:N_PREVIEW + n]`` (mm, the slices'
+    centres ``width`` mm apart) at the approach ``d`` (mm): ``I = integral(max(d - h,
+    0) dy)`` (mm^2) and the loaded length ``L_c = |{h < d}|`` (mm), with ``h`` linear
+    between the centres and constant over the two end half-slices, so that ``I`` is
+    convex and ``dI/dd = L_c`` (continuous). ``shares``: each slice's part of ``I``
+    (half of each segment's to either end) into ``pv[N_PREVIEW + n:]``."""
+    o = N_PREVIEW
+    area = 0.0
+    lc = 0.0
+    if shares:
+        for q in range(n):
+            pv[o + n + q] = 0.0
+    for q in range(n - 1):
+        a = pv[o + q]
+        b = pv[o + q + 1]
+        lo, hi = min(a, b), max(a, b)
+        if hi <= d:
+            part, t = width * (d - 0.5 * (a + b)), 1.0
+        elif lo < d:
+            t = (d - lo) / (hi - lo)
+            part = 0.5 * width * t * (d - lo)
+        else:
+            continue
+        area += part
+        lc += width * t
+        if shares:
+            pv[o + n + q] += 0.5 * part
+            pv[o + n + q + 1] += 0.5 * part
+    for q in (0, n - 1):
+        h = pv[o + q]
+        if h < d:
+            area += 0.5 * width * (d - h)
+            lc += 0.5 * width
+            if shares:
+                pv[o + n + q] += 0.5 * width * (d - h)
+    return area, lc
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _loaded_line(pv, n, length, we, b_max, e_prime):
+    """The slice law at the load ``we`` (N) on the ease-off in ``pv`` (module
+    docstring): ``(d_c, L_c, I)``, the contact approach (mm) at which ``I(d_c) =
+    lambda' we (ln(4 L_c / b) - 3/4)`` with ``lambda' = 4 / (pi E')`` and ``b`` the
+    line contact's half-width of ``we`` on ``L_c`` across ``b_max`` (1/mm), the loaded
+    length ``L_c(d_c)`` and ``I(d_c)``. Fixed point on ``L_c`` (from the whole line; the
+    map contracts by ~1/(2 ln(4 L_c / b)), < 0.1) around Newton on the convex ``I``
+    from the left (``I(d) <= (d - h_min) L``: its first step lands right of the root,
+    then it descends monotonically)."""
+    width = length / n
+    h_min = pv[N_PREVIEW]
+    for q in range(1, n):
+        h_min = min(h_min, pv[N_PREVIEW + q])
+    lam = 4.0 / (math.pi * e_prime)
+    lc = length
+    d = h_min
+    area = 0.0
+    for _ in range(40):
+        b = math.sqrt(4.0 * we / (math.pi * lc * e_prime * b_max))
+        # the log of a line >> b; far below 1 N a kink's L_c nears b, a point's regime
+        target = lam * we * max(math.log(4.0 * lc / b) - 0.75, 0.25)
+        d = h_min + target / length
+        l_d = length
+        for _ in range(100):
+            area, l_d = _interference(pv, n, width, d, False)
+            step = (area - target) / l_d
+            d -= step
+            if abs(step) <= 1e-15 * abs(d) + 1e-18:
+                break
+        area, l_d = _interference(pv, n, width, d, False)
+        if abs(l_d - lc) <= 1e-13 * length:
+            lc = l_d
+            break
+        lc = l_d
+    return d, lc, area
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _slice_compliance(cv_t, s, j, i, f, c_g, n, pv):
+    """``q^T G q`` (mm/N) of the slices' shares ``q`` (in ``pv``, scaled to a unit sum)
+    on their bending Gram matrix ``G`` (columns from ``c_g``, linear between the rows):
+    the work-conjugate bending compliance of the loaded part of the line."""
+    o = N_PREVIEW + n
+    tot = 0.0
+    for q in range(n):
+        tot += pv[o + q]
+    if tot <= 0.0:
+        return 0.0
+    c = 0.0
+    for a in range(n):
+        qa = pv[o + a]
+        if qa == 0.0:
+            continue
+        row = 0.0
+        for b in range(n):
+            qb = pv[o + b]
+            if qb != 0.0:
+                row += qb * _row(cv_t, s, j, i, f, c_g + a * n + b)
+        c += qa * row
+    return c / (tot * tot)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tcount,
               fit, pv):
     """The law of pair j of table s at row interval (i, f) and evaluation load ``we``
     (module docstring): returns ``kappa`` (elliptic, ``pv[3] = 0``) or ``lambda`` (line,
     ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a law; ``pv[0:3]`` the
-    preview's a, b (mm), p_max (MPa) at ``we``. ``cv_t`` columns: (golden) the 49 gap
-    samples, then stage C's fp64 c3, c4, c5, then ``L`` (mm)."""
-    n_c = cv_t.shape[3]
-    length = _row(cv_t, s, j, i, f, n_c - 1)
-    golden = backend != 0
-    if golden:
-        lam = _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut,
-                           cst, length, pv)
-        if lam > 0.0:
-            return lam
+    preview's a, b (mm), p_max (MPa) at ``we``, ``pv[5]`` the line law's approach offset
+    ``h_bar`` (mm), ``pv[6]`` the bending compliance of the loaded slices (mm/N; -1:
+    rigid teeth, the mesh table's). ``cv_t`` columns: (golden) the 49 gap samples, then
+    stage C's fp64 c3, c4, c5, ``L`` (mm), the slices' ease-off (mm) and their bending
+    Gram matrix (:data:`~.layout.P_NSLICE`)."""
+    n = int(prm[P_NSLICE])
+    c0 = cv_t.shape[3] - (4 + n + n * n)
+    length = _row(cv_t, s, j, i, f, c0 + 3)
     # stage C is linear in the samples: the interpolated rows' fits (contact_law._kappa)
-    c0 = n_c - 4
     A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
                          _row(cv_t, s, j, i, f, c0 + 2))
-    return _line_fp64(A, B, length, we, prm, tcount, pv, golden)
+    d_c, l_c, area = 0.0, length, 0.0
+    hi = max(A, B)
+    if hi > 0.0 and length > 0.0:
+        for q in range(n):
+            pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
+        d_c, l_c, area = _loaded_line(pv, n, length, we, hi, prm[P_EP])
+    golden = backend != 0
+    lam = -1.0
+    if golden:
+        lam = _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut,
+                           cst, l_c, pv)
+    if lam <= 0.0:
+        lam = _line_fp64(A, B, l_c, we, prm, tcount, pv, golden)
+    # the law's linearisation of I at d_c: L_c (d - h_bar) = lambda' W (ln(4 L_c/b) - 3/4)
+    pv[5] = d_c - area / l_c if (pv[3] == MODE_LINE and l_c > 0.0) else 0.0
+    pv[6] = -1.0
+    if prm[P_SLICE_CB] != 0.0 and hi > 0.0 and length > 0.0:
+        _interference(pv, n, length / n, d_c, True)
+        pv[6] = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + n, n, pv)
+    return lam
 
 
 @njit(cache=True, inline="always", error_model="numpy")
