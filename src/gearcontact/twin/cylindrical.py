@@ -23,15 +23,20 @@ Contact law, per backend (``--backend``, as the bevel twin's):
   ``bending`` option) over the phase at a torque ladder
   (:func:`cylindrical_torque_table`, the conventional twin's input).
 
+The ease-off along each pair's line (:func:`~gearcontact.tca.cylindrical_stencil.
+contact_line_slices`, its normal gap over the line's least at 16 slice centres; mesh
+table ``line_gap_mm``) gives the line law its loaded length (:mod:`.line_law`): a
+crowned, relieved or misaligned line carries load only where its gap lies below the
+approach.
+
 Tooth bending (``bending``): the ``table`` backend's loaded TE carries it in its LCP;
 the preview backends put each pair's bending compliance ``c_b`` in series with the line
 chain's law, ``d = d_c(W) + c_b W`` (Newton per pair and stage in :mod:`.kernel`, as the
-bevel twin's). ``c_b`` (:func:`line_bending_compliance`, per pair and phase into the
-mesh table's ``bending_mm_per_n``) is the work-conjugate compliance of the pinion and
-gear tooth shells (:func:`gearcontact.ltca.cylindrical_bending.line_bending_factor`, the
-loaded TE's own rows) under a load spread evenly along the pair's contact line -- the
-load shape of the line core's law, so the bending and the contact take the same shape
-(:func:`.mesh.conjugate_compliance`).
+bevel twin's). ``c_b`` is the work-conjugate compliance ``q^T G q`` of the pinion and
+gear tooth shells at the line's slices (:func:`line_bending_gram`, the loaded TE's
+factor rows, :func:`gearcontact.ltca.cylindrical_bending.line_bending_factor`) under
+the load shape ``q`` of the line law's loaded slices, once per preview; the mesh
+table's ``bending_mm_per_n`` reports the uniform-load one.
 """
 
 from __future__ import annotations

@@ -117,9 +117,13 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             pv[4] = 0.0
             pv[5] = 0.0
             pv[6] = -1.0
-            if line:
-                kap = _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
-                                trace, tcount, fit, pv)
+            if line:    # sampled at the slice law's load of the approach d (.line_law)
+                cb0 = cache[sd, j, 10]
+                if not cb0 > 0.0:
+                    cb0 = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+                kap = _line_law(s, j, i, f, d, cb0, we, prm, cv_t, backend, pow_lut,
+                                cbrt_lut, cst, trace, tcount, fit, pv)
+                we = pv[7]
             else:
                 kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                              trace, tcount, fit, pv)

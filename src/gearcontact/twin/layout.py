@@ -31,9 +31,10 @@ LINE_SOURCE_CODE = 2
 #: its line, then (``prm[P_SLICE_CB]`` = 1, tooth bending) the slices' bending Gram
 #: matrix G (P_NSLICE^2, row-major, mm/N).
 #: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta,
-#: its approach offset (mm) and bending compliance (mm/N; -1: the mesh table's); then
-#: 2 P_NSLICE scratch entries (:func:`preview_scratch`).
-N_PREVIEW = 7
+#: its approach offset (mm) and bending compliance (mm/N; -1: the mesh table's), the
+#: load (N) the line chain was sampled at; then 2 P_NSLICE scratch entries
+#: (:func:`preview_scratch`).
+N_PREVIEW = 8
 #: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
 N_CACHE = 11
 #: Columns of the golden preview trace (:data:`~.cosim.TRACE_COLUMNS`).

@@ -119,55 +119,24 @@ def static_rotation(model: TwinModel) -> tuple[float, np.ndarray]:
     while _elastic(model, prm, hi)[0] < target:
         hi *= 2.0
     w_eval = np.full(model.arrays["lever"].shape[1], 1e3)
-    hi, w_eval = _bisect(model, prm, target, lo, hi, w_eval, follow=True)
-    if model.curvature_source == LINE_SOURCE:
-        # the line law's loaded length follows the load it is sampled at (.line_law):
-        # the balance at fixed sampling loads, repeated at the loads found until they
-        # hold (a fixed point; the law depends on them through a logarithm and the
-        # loaded length, measured 3-5 passes to 1e-12)
-        for _ in range(50):
-            w_fix = np.where(w_eval > 0, w_eval, K.W_EVAL_MIN_N)
-            top = 2.0 * hi
-            while _elastic(model, prm, top, w_eval=w_fix)[0] < target:
-                top *= 2.0
-            th, w_eval = _bisect(model, prm, target, 0.0, top, w_fix, follow=False)
-            done = abs(th - hi) <= 1e-12 * hi
-            hi = th
-            if done:
-                break
-    return hi, _elastic(model, prm, hi, w_eval=w_eval)[1]
-
-
-def _bisect(model: TwinModel, prm, target: float, lo: float, hi: float, w_eval,
-            *, follow: bool) -> tuple[float, np.ndarray]:
-    """Bisection of the elastic torque on ``target`` (N·m) in ``[lo, hi]`` (rad) to
-    1e-15; the previews sampled at ``w_eval`` (N per pair), which ``follow`` updates to
-    each midpoint's loads. Returns the upper end and the sampling loads."""
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         t, w = _elastic(model, prm, mid, w_eval=w_eval)
-        if follow:
-            w_eval = np.where(w > 0, w, w_eval)
+        w_eval = np.where(w > 0, w, w_eval)
         if t < target:
             lo = mid
         else:
             hi = mid
         if hi - lo <= 1e-15 * hi:
             break
-    if not follow:
-        w = _elastic(model, prm, hi, w_eval=w_eval)[1]
-        w_eval = np.where(w > 0, w, w_eval)
-    return hi, w_eval
+    return hi, _elastic(model, prm, hi, w_eval=w_eval)[1]
 
 
-def _mesh_stiffness(model: TwinModel, prm, theta: float, w_eval=None) -> float:
+def _mesh_stiffness(model: TwinModel, prm, theta: float) -> float:
     """Linearised mesh stiffness dT/dtheta at the first phase, N·m/rad (central
-    difference, 1e-4 relative step: the torque is smooth there), the previews sampled
-    at ``w_eval`` (N per pair; None: 1 kN, where the Hertz and the uniform line laws do
-    not depend on it)."""
+    difference, 1e-4 relative step: the torque is smooth there)."""
     d = 1e-4 * theta
-    return (_elastic(model, prm, theta + d, w_eval=w_eval)[0]
-            - _elastic(model, prm, theta - d, w_eval=w_eval)[0]) / (2 * d)
+    return (_elastic(model, prm, theta + d)[0] - _elastic(model, prm, theta - d)[0]) / (2 * d)
 
 
 def linear_matrices(model: TwinModel) -> tuple[np.ndarray, np.ndarray, float]:
@@ -179,10 +148,8 @@ def linear_matrices(model: TwinModel) -> tuple[np.ndarray, np.ndarray, float]:
     """
     dt, m = model.drivetrain, model.mesh
     prm = _prm(model, 0.0)
-    theta, w = static_rotation(model)
-    # the line chain's loaded length follows the load: sampled at the static loads
-    line = model.curvature_source == LINE_SOURCE
-    k_th = _mesh_stiffness(model, prm, theta, np.where(w > 0, w, 1e3) if line else None)
+    theta, _ = static_rotation(model)
+    k_th = _mesh_stiffness(model, prm, theta)
     de = (m.eps_rad[1] - m.eps_rad[0]) / m.step_rad
     v = np.array([0.0, 1.0 / m.ratio + de, -1.0, 0.0])
     k1, k2 = dt.input_stiffness_nm_per_rad, dt.output_stiffness_nm_per_rad
