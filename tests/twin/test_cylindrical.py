@@ -77,8 +77,8 @@ def test_first_mesh_resonance_against_iso_n_e1(pair, model, backend):
     against n_E1 with Method B's c_gamma_alpha: the ratio is sqrt(c_t / c_gamma_alpha)
     within the same 5 % (rigid teeth are stiffer than the standard's tooth with bending
     and foundation: 36 against 17.6 N/(mm·µm), ratio 1.37). The same for the fp64
-    preview twin, whose line law carries the crowned lines' loaded length (c_t
-    MEASURE)."""
+    preview twin, whose line law carries the crowned lines' loaded length (c_t 37.6
+    N/(mm·µm), mode at 26,109 rpm: as the table's within 4 %)."""
     if backend == "reference":
         model = cylindrical_model(pair, torque_nm=TORQUE_NM, phases=7)
     g = pair.geometry
@@ -159,9 +159,11 @@ def test_preview_static_rotation_against_the_lcp(pair, torque, bending):
     loaded slices, where the shells would spread it (the LCP's line load is flatter
     with bending): a trial shape, which by Castigliano's minimum overestimates the
     compliance, on top of the rigid margin. Before the loaded length (the uniform
-    line over the whole line) the ratios were 0.54 / 0.72 rigid and 0.64 / 0.83 bent."""
-    cyc = cylindrical_mesh_cycle(pair, phases=3)
-    preview = cylindrical_model(pair, torque_nm=torque, phases=3, bending=bending)
+    line over the whole line) the ratios were 0.54 / 0.72 rigid and 0.64 / 0.83 bent.
+    7 phases as the table model: the twin's law takes the pairs on both rows of its
+    interval, so a coarser cycle drops the pairs about to leave (3 phases: a half pitch)."""
+    cyc = cylindrical_mesh_cycle(pair, phases=7)
+    preview = cylindrical_model(pair, torque_nm=torque, phases=7, bending=bending)
     theta, loads = static_rotation(preview)
     lte = cylindrical_loaded_te(pair, torque, cycle=cyc, cells_along=40, bending=bending)
     want = abs(lte.te0_arcsec[0] - lte.lte_arcsec[0]) / ARCSEC_PER_RAD

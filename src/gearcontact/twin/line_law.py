@@ -341,7 +341,9 @@ def _line_state(pv, n, length, d, cb, b_max, e_prime, w_start):
     return d_c, w, lc, area
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+# compiled once, not inlined: one call per loaded pair and step (its array arguments'
+# reference counting is off, as the kernel's)
+@njit(cache=True, error_model="numpy", _nrt=False)
 def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
               tcount, fit, pv):
     """The law of pair j of table s at row interval (i, f) and the approach ``d`` (mm)
