@@ -301,15 +301,17 @@ def _contact_load(pv, n, length, d_c, b_max, e_prime, w_start):
     ln(4 L_c) - ln(4 / (pi L_c E' b_max)) / 2 - 3/4`` (the line contact's ``b`` of ``W``
     on ``L_c``), solved by :func:`line_pair_load` from ``w_start``; 0 where nothing is
     loaded."""
-    area, lc, _ = _interference(pv, n, length / n, d_c, False)
+    area, lc, dens = _interference(pv, n, length / n, d_c, False)
     if area <= 0.0 or lc <= 0.0:
         return 0.0, lc, area, 0.0
     lam = 4.0 / (math.pi * e_prime)
     beta = (math.log(4.0 * lc) - 0.5 * math.log(4.0 / (math.pi * lc * e_prime * b_max))
             - 0.75)
     w = line_pair_load(area, lam, beta, 0.0, w_start)
+    # dI = L_c dd = lam [(beta - 1/2 - ln(W)/2) dW + W 1.5 (dL_c/dd) / L_c dd]
     slope = lam * (beta - 0.5 - 0.5 * math.log(w))
-    return w, lc, area, (lc / slope if slope > 0.0 else 0.0)
+    dw = (lc - 1.5 * lam * w * dens / lc) / slope if slope > 0.0 else 0.0
+    return w, lc, area, max(dw, 0.0)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -324,20 +326,21 @@ def _line_state(pv, n, length, d, cb, b_max, e_prime, w_start):
     for q in range(1, n):
         lo = min(lo, pv[N_PREVIEW + q])
     d_c = d - cb * w                 # the bent share at the rigid load: left of the root
-    for _ in range(100):
+    for _ in range(60):
         if not lo < d_c < hi:
             d_c = 0.5 * (lo + hi)
         w, lc, area, dw = _contact_load(pv, n, length, d_c, b_max, e_prime, w)
         r = d_c + cb * w - d
+        if abs(r) <= 1e-12 * d or hi - lo <= 1e-14 * d:
+            break
         if r > 0.0:
             hi = d_c
         else:
             lo = d_c
         step = r / (1.0 + cb * dw)
         d_c -= step
-        if abs(step) <= 1e-14 * abs(d) or hi - lo <= 1e-15 * abs(d):
+        if abs(step) <= 1e-14 * d:
             break
-    w, lc, area, dw = _contact_load(pv, n, length, d_c, b_max, e_prime, w)
     return d_c, w, lc, area
 
 
@@ -371,13 +374,13 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
         for q in range(n):
             pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
         cb = cb if bent else 0.0
-        for _ in range(8):      # the loaded slices' compliance: a fixed point from cb
+        for _ in range(3):      # the loaded slices' compliance: a fixed point from cb
             d_c, w0, l_c, area = _line_state(pv, n, length, d, cb, hi, ep, we)
             if not bent or w0 <= 0.0:
                 break
             _interference(pv, n, length / n, d_c, True)
             c_new = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + n, n, pv)
-            done = abs(c_new - cb) <= 1e-10 * c_new
+            done = abs(c_new - cb) <= 1e-9 * c_new
             cb = c_new
             if done:
                 break
