@@ -118,9 +118,9 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             pv[5] = 0.0
             pv[6] = -1.0
             if line:    # sampled at the slice law's load of the approach d (.line_law)
-                cb0 = cache[sd, j, 10]
+                cb0 = cache[sd, j, 10]      # the pair's last, else minus the uniform's
                 if not cb0 > 0.0:
-                    cb0 = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+                    cb0 = -(cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i]))
                 kap = _line_law(s, j, i, f, d, cb0, we, prm, cv_t, backend, pow_lut,
                                 cbrt_lut, cst, trace, tcount, fit, pv)
                 we = pv[7]

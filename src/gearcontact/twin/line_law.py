@@ -351,8 +351,9 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
               tcount, fit, pv):
     """The law of pair j of table s at row interval (i, f) and the approach ``d`` (mm)
     of the step's start (module docstring): the slice law's state there, ``cb`` the
-    pair's last bending compliance (mm/N; the loaded slices' is iterated from it; 0
-    rigid), ``we`` (N) the Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
+    pair's last bending compliance (mm/N; one pass of the loaded slices' from it), or
+    minus the uniform load's (a fresh preview: iterated to 1e-6), ``we`` (N) the
+    Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
     ``lambda`` (line, ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a
     law; ``pv[0:3]`` the preview's a, b (mm), p_max (MPa) at the load ``pv[7]`` (N) it
     was sampled at, ``pv[5]`` the line law's approach offset ``h_bar`` (mm), ``pv[6]``
@@ -374,9 +375,12 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
         for q in range(n):
             pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
         cb = cb if bent else 0.0
-        # the loaded slices' compliance: a fixed point from the pair's last one (in a run
-        # the first pass holds; from a uniform load's, 2-3 passes)
-        for _ in range(4):
+        # the loaded slices' compliance: a fixed point from the uniform load's (cb < 0:
+        # a fresh preview, statics) to 1e-6, or one pass from the pair's last (a run:
+        # the shape moves little in a step; the law then lags it by one preview)
+        passes = 1 if cb > 0.0 else 12
+        cb = abs(cb)
+        for _ in range(passes):
             d_c, w0, l_c, area = _line_state(pv, n, length, d, cb, hi, ep, we)
             if not bent or w0 <= 0.0:
                 break
