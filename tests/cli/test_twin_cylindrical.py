@@ -67,7 +67,7 @@ def test_preview_twin_with_bending(tmp_path):
     mesh torque 64.5 N·m within 0.1 %: conservation, as the rigid README line), every
     loaded pair has a compliance, and the softer mesh lowers the linearised mesh mode
     (the highest natural frequency; the compliance's truth: tests/twin/test_line_law.py;
-    11 phases: 9,296 Hz rigid, 6,336 Hz bent)."""
+    11 phases: 7,655 Hz rigid, 5,548 Hz bent)."""
     docs = {}
     for flag in ([], ["--bending"]):
         out = tmp_path / ("b" if flag else "r")
