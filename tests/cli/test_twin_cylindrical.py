@@ -67,7 +67,7 @@ def test_preview_twin_with_bending(tmp_path):
     mesh torque 64.5 N·m within 0.1 %: conservation, as the rigid README line), every
     loaded pair has a compliance, and the softer mesh lowers the linearised mesh mode
     (the highest natural frequency; the compliance's truth: tests/twin/test_line_law.py;
-    11 phases: 9,296 Hz rigid, 6,336 Hz bent)."""
+    11 phases: 7,655 Hz rigid, 5,548 Hz bent)."""
     docs = {}
     for flag in ([], ["--bending"]):
         out = tmp_path / ("b" if flag else "r")
@@ -83,15 +83,19 @@ def test_preview_twin_with_bending(tmp_path):
 
 def test_readme_twin_cylindrical(tmp_path):
     """The README line (default backend: the fp64 line chain, 61 phases, 3000 rpm, 50
-    ms): mean mesh torque the load torque (conservation, 0.1 %), every preview inside
-    the datapath's domain, quasi-static (mesh 1150 Hz far below the mesh mode)."""
+    ms): mean mesh torque the load torque (conservation, 0.1 %), quasi-static (mesh 1150
+    Hz far below the mesh mode), every preview with a law; inside the datapath's domain
+    but for pairs just closing, whose loaded length lies below the line core's 1 mm (the
+    fp64 chain evaluates them; 3-4 steps per entering pair at 3000 rpm): fewer than one
+    in ten steps (measured 42 in 1000 steps at 11 phases, 10 ms)."""
     argv = readme_argv("gearcontact twin --pair examples/ev_reducer_helical_23x67.toml --out",
                        tmp_path / "run")
     assert main(argv) == 0
     doc = json.loads((tmp_path / "run" / "twin.json").read_text())
     assert doc["backend"] == "reference" and doc["curvatures"] == "line"
     assert doc["mean_mesh_torque_nm"] == pytest.approx(64.5, rel=1e-3)
-    assert doc["previews_outside_datapath"] == 0 and doc["previews_without_contact_law"] == 0
+    assert doc["previews_outside_datapath"] < 0.1 * doc["steps"]
+    assert doc["previews_without_contact_law"] == 0
     assert 1.0 < doc["dynamic_factor"] < 1.1
 
 
@@ -113,9 +117,8 @@ def test_readme_speed_sweep_through_the_resonance(tmp_path):
     fp64 preview twin's dynamic factor peaks within one speed step of its linearised
     mesh mode's speed (sweep.json's modes are the first model's; the primary
     resonance), the table twin's no higher in speed (its LCP law is the softer one on
-    these crowned lines: c_t 36.3 against 41.7 N/(mm·µm), modes at 25,639 and 27,478
-    rpm in benchmarks/bench_twin_cylindrical_resonance.py), both above 1.1 (measured
-    1.158 and 1.262 on a 1500 rpm grid); about a minute, most of it the table's loaded
+    these crowned lines: c_t 36.3 against 37.6 N/(mm·µm) at 7 phases, modes at 25,644
+    and 26,109 rpm), both above 1.1; about a minute, most of it the table's loaded
     TE: in the default suite, as every README line."""
     argv = readme_argv("gearcontact twin --pair examples/ev_reducer_helical_23x67.toml "
                        "--torque 300", tmp_path / "sw")

@@ -500,8 +500,8 @@ class LineGaps:
 
     Attributes
     ----------
-    z_mm : ndarray (N,)
-        Axial positions on the pinion flank, mm.
+    z_mm : ndarray (N,) or (P, K, N)
+        Axial positions on the pinion flank, mm (common, or each line's own).
     gap_mm : ndarray (P, K, N)
         Gap along the transverse line of action ``d`` (> 0 apart), mm, with both members
         posed on the perfect mesh ``phi2 = phi1 / u`` (the cycle's datum, before TE0).
@@ -530,18 +530,24 @@ def contact_line_gaps(pair: CylindricalPair, cycle: CylindricalMeshCycle, z_mm) 
     pair : CylindricalPair
         The pair ``cycle`` was computed for.
     cycle : CylindricalMeshCycle
-    z_mm : array_like (N,)
-        Axial positions, mm (finite).
+    z_mm : array_like (N,) or (P, K, N)
+        Axial positions, mm: the same for every line (finite), or each line's own
+        (NaN where the pair has no line).
     """
-    z = np.asarray(z_mm, dtype=float).ravel()
-    if z.size == 0 or not np.isfinite(z).all():
-        raise InputRangeError("z_mm", z_mm, "a non-empty array of finite axial positions, mm")
+    lo, hi = cycle.line_ends_zu_mm[..., 0, 0], cycle.line_ends_zu_mm[..., 1, 0]
+    z = np.asarray(z_mm, dtype=float)
+    per_line = z.ndim == 3 and z.shape[:2] == lo.shape
+    if not per_line:
+        z = z.ravel()
+    if z.size == 0 or not (np.isfinite(z).any() if per_line else np.isfinite(z).all()):
+        raise InputRangeError("z_mm", z_mm, "a non-empty array of finite axial positions, mm "
+                                            f"(N,), or (P, K, N) = {lo.shape} + (N,) per line")
     mesh = _Mesh(pair, cycle.facing)
     pitch = 2.0 * math.pi / cycle.pinion_teeth
     phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
-    lo, hi = cycle.line_ends_zu_mm[..., 0, 0], cycle.line_ends_zu_mm[..., 1, 0]
-    on = np.isfinite(lo)[..., None] & (z >= np.where(np.isfinite(lo), lo, 0.0)[..., None]) \
-        & (z <= np.where(np.isfinite(hi), hi, 0.0)[..., None])
+    with np.errstate(invalid="ignore"):
+        on = np.isfinite(lo)[..., None] & (z >= np.where(np.isfinite(lo), lo, 0.0)[..., None]) \
+            & (z <= np.where(np.isfinite(hi), hi, 0.0)[..., None])
     shape = on.shape
     out = {k: np.full(shape, np.nan) for k in ("g", "u1", "u2", "rate")}
     if on.any():

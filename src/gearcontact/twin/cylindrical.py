@@ -23,40 +23,48 @@ Contact law, per backend (``--backend``, as the bevel twin's):
   ``bending`` option) over the phase at a torque ladder
   (:func:`cylindrical_torque_table`, the conventional twin's input).
 
+The ease-off along each pair's line (:func:`~gearcontact.tca.cylindrical_stencil.
+contact_line_slices`, its normal gap over the line's least at 16 slice centres; mesh
+table ``line_gap_mm``) gives the line law its loaded length (:mod:`.line_law`): a
+crowned, relieved or misaligned line carries load only where its gap lies below the
+approach.
+
 Tooth bending (``bending``): the ``table`` backend's loaded TE carries it in its LCP;
 the preview backends put each pair's bending compliance ``c_b`` in series with the line
 chain's law, ``d = d_c(W) + c_b W`` (Newton per pair and stage in :mod:`.kernel`, as the
-bevel twin's). ``c_b`` (:func:`line_bending_compliance`, per pair and phase into the
-mesh table's ``bending_mm_per_n``) is the work-conjugate compliance of the pinion and
-gear tooth shells (:func:`gearcontact.ltca.cylindrical_bending.line_bending_factor`, the
-loaded TE's own rows) under a load spread evenly along the pair's contact line -- the
-load shape of the line core's law, so the bending and the contact take the same shape
-(:func:`.mesh.conjugate_compliance`).
+bevel twin's). ``c_b`` is the work-conjugate compliance ``q^T G q`` of the pinion and
+gear tooth shells at the line's slices (:func:`line_bending_gram`, the loaded TE's
+factor rows, :func:`gearcontact.ltca.cylindrical_bending.line_bending_factor`) under
+the load shape ``q`` of the line law's loaded slices, once per preview; the mesh
+table's ``bending_mm_per_n`` reports the uniform-load one.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
-from ..ltca.cylindrical_lte import axial_rows_mm, check_cells, cylindrical_loaded_te
+from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
 from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
-from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle,
+from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle, LineGaps,
                                      contact_line_gaps, cylindrical_mesh_cycle)
-from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
+from ..tca.cylindrical_stencil import (LINE_SLICES, CylindricalStencils, contact_line_slices,
+                                       cylindrical_stencils)
 from ..tca.types import ARCSEC_PER_RAD
 from ..errors import CheckFailed
 from ..validation import InputRangeError, check_positive
 from .layout import LINE_SOURCE
 from .ltca_table import DEFAULT_LADDER, TorqueTable
-from .mesh import MeshTable, conjugate_compliance
+from .mesh import MeshTable
 from .model import TwinModel, build_model
 from .params import DrivetrainParams, default_drivetrain
 
 __all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
-           "cylindrical_model", "cylindrical_sweep_models", "line_bending_compliance",
+           "cylindrical_model", "cylindrical_sweep_models", "line_bending_gram",
            "motion_sign"]
 
 #: The twin backends a cylindrical pair runs (module docstring).
@@ -74,40 +82,48 @@ def _order(m: int, n: int) -> np.ndarray:
     return np.arange(n) if m == 1 else np.arange(n)[::-1]
 
 
-def line_bending_compliance(pair: CylindricalPair, cycle: CylindricalMeshCycle,
-                            bending: ToothBending, *, cells_along: int = 40) -> np.ndarray:
-    """Bending compliance ``c_b`` (P, K) of each pair and phase of ``cycle``, mm/N: the
-    shells' factor rows at ``cells_along`` axial positions over the pinion face (as
-    :func:`~gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` places its rows), a
-    uniform load on the rows on the pair's contact line, ``c_b = |F^T q|^2`` with
-    ``sum q = 1`` (module docstring); 0 where the pair has no line."""
-    z = axial_rows_mm(cycle, cells_along)
-    lg = contact_line_gaps(pair, cycle, z)
-    n_p, n_k = lg.gap_mm.shape[:2]
-    out = np.zeros((n_p, n_k))
+def line_bending_gram(bending: ToothBending, slices: LineGaps) -> np.ndarray:
+    """Bending Gram matrices ``G = F F^T`` (P, K, n, n), mm/N, of the pinion and gear
+    shells at each pair's line slices (:func:`~gearcontact.tca.cylindrical_stencil.
+    contact_line_slices`; the shells' factor rows of the loaded TE,
+    :func:`~gearcontact.ltca.cylindrical_bending.line_bending_factor`): the deflection
+    at slice a under a unit load at slice b; zeros where the pair has no line."""
+    n_p, n_k, n = slices.gap_mm.shape
+    out = np.zeros((n_p, n_k, n, n))
     for j in range(n_p):
         for k in range(n_k):
-            on = np.isfinite(lg.pinion_roll_mm[j, k]) & np.isfinite(lg.gear_roll_mm[j, k])
-            if on.any():
-                f = line_bending_factor(bending, z, lg.pinion_roll_mm[j, k],
-                                        lg.gear_roll_mm[j, k], 1)[:, 0]
-                out[j, k] = conjugate_compliance(f, on)
+            on = np.isfinite(slices.pinion_roll_mm[j, k]) & np.isfinite(slices.gear_roll_mm[j, k])
+            if on.all():
+                f = line_bending_factor(bending, slices.z_mm[j, k], slices.pinion_roll_mm[j, k],
+                                        slices.gear_roll_mm[j, k], 1)[:, 0].astype(float)
+                out[j, k] = f @ f.T
     return out
 
 
 def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                            stencils: CylindricalStencils | None = None, *,
                            side: str = "drive", bending: ToothBending | None = None,
-                           cells_along: int = 40) -> MeshTable:
-    """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring);
-    ``bending``: the tooth shells (:func:`~gearcontact.ltca.cylindrical_bending.
-    cylindrical_bending` on the cycle's facing) whose :func:`line_bending_compliance` at
-    ``cells_along`` rows fills ``bending_mm_per_n`` (None: rigid teeth, zeros)."""
+                           slices: int = LINE_SLICES) -> MeshTable:
+    """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring):
+    the ease-off along each pair's line at ``slices`` slices
+    (:func:`~gearcontact.tca.cylindrical_stencil.contact_line_slices`, its normal gap
+    over the line's least); ``bending``: the tooth shells
+    (:func:`~gearcontact.ltca.cylindrical_bending.cylindrical_bending` on the cycle's
+    facing), whose :func:`line_bending_gram` at the slices goes into
+    ``line_bending_gram_mm_per_n`` and its uniform-load compliance ``sum(G) / n^2`` into
+    ``bending_mm_per_n`` (reported); None: rigid teeth."""
     st = stencils if stencils is not None else cylindrical_stencils(pair, cycle)
     m = motion_sign(pair, cycle)
     order = _order(m, len(cycle.phi1_rad))
-    cb = np.zeros(st.valid.shape) if bending is None else np.where(
-        st.valid, line_bending_compliance(pair, cycle, bending, cells_along=cells_along), 0.0)
+    sl = contact_line_slices(pair, cycle, slices=slices)
+    cos_b = math.cos(math.radians(pair.geometry.base_helix_angle_deg))
+    ease = np.where(st.valid[..., None], cos_b * (sl.gap_mm - cycle.gap_min_mm[..., None]), 0.0)
+    if not np.isfinite(ease).all():
+        raise CheckFailed("a contact line's slices left it (docs/cylindrical.md sec. 10)")
+    gram, cb = None, np.zeros(st.valid.shape)
+    if bending is not None:
+        gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl), 0.0)
+        cb = gram.sum(axis=(2, 3)) / sl.gap_mm.shape[-1] ** 2
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2
@@ -121,7 +137,9 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
         phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
         bending_mm_per_n=cb[:, order], stencil_gaps_mm=st.gaps_mm[:, order],
-        line_length_mm=np.where(st.valid, st.line_length_mm, 0.0)[:, order])
+        line_length_mm=np.where(st.valid, st.line_length_mm, 0.0)[:, order],
+        line_gap_mm=ease[:, order],
+        line_bending_gram_mm_per_n=None if gram is None else gram[:, order])
 
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
@@ -158,29 +176,30 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
     loaded law mirrored about the backlash). The preview backends run the line chain
     (curvature source :data:`~.layout.LINE_SOURCE`). ``bending``: the shell bending of
     both teeth (rigid teeth by default, as the bevel twin's ``bending``): in the
-    loaded-TE table's LCP (``table``) and, for every backend, each pair's
-    :func:`line_bending_compliance` at ``table_cells`` rows in the mesh table (the
-    preview backends' law in series; the table backend only reports it).
+    loaded-TE table's LCP (``table``, ``table_cells`` rows along the face) and, for
+    every backend, each pair's :func:`line_bending_gram` at its line's slices in the
+    mesh table (the preview backends' law in series, weighted by the loaded slices; the
+    table backend only reports the uniform-load compliance).
 
     Raises
     ------
     InputRangeError
         A backend other than :data:`CYLINDRICAL_BACKENDS`, ``table_cells`` not an
-        integer >= 4 where it is used (before any work), a bad side.
+        integer >= 4 for the table backend (before any work), a bad side.
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in CYLINDRICAL_BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(CYLINDRICAL_BACKENDS)} for a "
                                                   "cylindrical pair (the SoCs carry no line "
                                                   "core: docs/cylindrical.md sec. 10)")
-    if bending or backend == "table":
+    if backend == "table":
         check_cells("table_cells", table_cells)
     facing = FACING_OF_SIDE.get(side)
     if facing is None:
         raise InputRangeError("side", side, "'drive' or 'coast'")
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
     teeth = cylindrical_bending(pair, facing=facing) if bending else None
-    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth, cells_along=table_cells)
+    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth)
     table = None
     if backend == "table":
         table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,

@@ -58,11 +58,12 @@ from .contact_law import (W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _kappa_reference,
                           _pair_load, _table_torque)
 from .line_law import MODE_LINE, _line_law, line_pair_load, line_potential_j
 from .layout import (  # noqa: F401
-                     LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LOAD,
+                     LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LINE_BENDING,
+                     PV_LINE_OFFSET, PV_LOAD, preview_scratch,
                      BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
                      P_AHI, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI, P_DPSIR, P_ECODE,
                      P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP, P_L0, P_MIRROR,
-                     P_NROW, P_NROWR, P_OMEGA, P_PITCH, P_PSIR, P_STAGEC, P_THB, P_TL,
+                     P_NROW, P_NROWR, P_NSLICE, P_OMEGA, P_SLICE_CB, P_PITCH, P_PSIR, P_STAGEC, P_THB, P_TL,
                      P_TM, P_U, RECORD_COLUMNS, R_A, R_B, R_D, R_KE, R_NPAIRS, R_P, R_PE,
                      R_PSI, R_T, R_THETA, R_TMESH, R_V, R_W, R_WG, R_WIN, R_WP)
 
@@ -116,9 +117,14 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             pv[3] = 0.0
             pv[4] = 0.0
             pv[PV_LOAD] = we
-            if line:
-                kap = _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
-                                trace, tcount, fit, pv)
+            pv[PV_LINE_OFFSET] = 0.0
+            pv[PV_LINE_BENDING] = -1.0
+            if line:    # sampled at the slice law's load of the approach d (.line_law)
+                cb0 = cache[sd, j, 10]      # the pair's last, else minus the uniform's
+                if not cb0 > 0.0:
+                    cb0 = -(cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i]))
+                kap = _line_law(s, j, i, f, d, cb0, we, prm, cv_t, backend, pow_lut,
+                                cbrt_lut, cst, trace, tcount, fit, pv)
             else:
                 kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                              trace, tcount, fit, pv)
@@ -130,14 +136,21 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             cache[sd, j, 5] = pv[PV_LOAD]     # the load of a, b, p
             cache[sd, j, 7] = pv[3]
             cache[sd, j, 8] = pv[4]
+            cache[sd, j, 9] = pv[PV_LINE_OFFSET]
+            cache[sd, j, 10] = pv[PV_LINE_BENDING]
         kap = cache[sd, j, 1]
         if kap <= 0.0:      # no contact law (a saddle): counted by _kappa, reported
             abp[sd, 3] = 1.0
             continue
         we = cache[sd, j, 5]
-        cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+        cb = cache[sd, j, 10]       # the loaded slices' (line chain with bending)
+        if cb < 0.0:
+            cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
         in_line = cache[sd, j, 7] == MODE_LINE
-        if in_line:     # the line law (.line_law): kap is its lambda
+        if in_line:     # the line law (.line_law): kap is its lambda, d from h_bar on
+            d -= cache[sd, j, 9]
+            if d <= 0.0:
+                continue
             w = line_pair_load(d, kap, cache[sd, j, 8], cb, cache[sd, j, 6])
             cache[sd, j, 6] = w
         else:
@@ -266,9 +279,12 @@ def _mesh_potential(theta, theta_r, psi, prm, lever, opening, cb_t, w_pairs, cac
             if w > 0.0:
                 lv = lever[s, j, i] + f * (lever[s, j, i + 1] - lever[s, j, i])
                 g = opening[s, j, i] + f * (opening[s, j, i + 1] - opening[s, j, i])
-                cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
+                cb = cache[sd, j, 10]
+                if cb < 0.0:
+                    cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
                 if cache[sd, j, 7] == MODE_LINE:
-                    v += line_potential_j(w, lv * th - g, cb, cache[sd, j, 1])
+                    v += line_potential_j(w, lv * th - g - cache[sd, j, 9], cb,
+                                          cache[sd, j, 1])
                 else:
                     v += _pair_potential(w, lv * th - g, cb)
     return v
@@ -310,9 +326,10 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     pairs1 = np.zeros((2, n_p))
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
-    pv = np.zeros(N_PREVIEW)
+    pv = np.zeros(preview_scratch(prm))
     # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
-    # (line), mode, the line law's beta (N_CACHE columns)
+    # (line), mode, the line law's beta, its approach offset h_bar and bending
+    # compliance (-1: the table's c_b) (N_CACHE columns)
     cache = np.zeros((2, n_p, N_CACHE))
     return _run(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, backend,
                 w_eval, pow_lut, cbrt_lut, cst, trace, tcount, fit, tab_theta, tab_t23, tab_w23,

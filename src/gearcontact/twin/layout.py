@@ -11,8 +11,8 @@ BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1, "soc": 1}
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
  P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
- P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI) = range(31)
-N_PRM = 31
+ P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI, P_NSLICE, P_SLICE_CB) = range(33)
+N_PRM = 33
 #: Entries of the counters ``tcount``: trace rows written, step index of the trace rows,
 #: steps, previews outside the datapath's domain, steps with such a preview, previews
 #: without a contact law (:func:`~.kernel.run_steps`).
@@ -26,14 +26,26 @@ CURVATURE_SOURCES = {"exact": 0, "stencil": 1}
 #: c3, c4, c5 and L; golden: the 49 gap samples before them; :mod:`.line_law`).
 LINE_SOURCE = "line"
 LINE_SOURCE_CODE = 2
+#: The line chain's ease-off along the line (``prm[P_NSLICE]``, :mod:`.line_law`): ``cv``
+#: columns after L hold the pair's normal gap at the centres of P_NSLICE equal slices of
+#: its line, then (``prm[P_SLICE_CB]`` = 1, tooth bending) the slices' bending Gram
+#: matrix G (P_NSLICE^2, row-major, mm/N).
 #: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta,
-#: the load (N) at which a, b, p_max hold (:data:`PV_LOAD`).
-N_PREVIEW = 6
-#: Index in ``pv`` of the load of its a, b, p_max: the evaluation load ``W_e``, or 1 N
-#: where the fp64 Hertz law answered (:func:`~.contact_law._kappa_reference`).
+#: the load (N) at which a, b, p_max hold (:data:`PV_LOAD`), the line law's approach
+#: offset (mm, :data:`PV_LINE_OFFSET`) and bending compliance (mm/N; -1: the mesh
+#: table's, :data:`PV_LINE_BENDING`); then 2 P_NSLICE scratch entries
+#: (:func:`preview_scratch`).
+N_PREVIEW = 8
+#: Index in ``pv`` of the load of its a, b, p_max: the evaluation load ``W_e``, 1 N
+#: where the fp64 Hertz law answered (:func:`~.contact_law._kappa_reference`), or the
+#: load the line chain was sampled at (:func:`~.line_law._line_law`).
 PV_LOAD = 5
+#: Index in ``pv`` of the line law's approach offset ``h_bar`` (mm).
+PV_LINE_OFFSET = 6
+#: Index in ``pv`` of the loaded slices' bending compliance (mm/N; -1: the table's).
+PV_LINE_BENDING = 7
 #: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
-N_CACHE = 9
+N_CACHE = 11
 #: Columns of the golden preview trace (:data:`~.cosim.TRACE_COLUMNS`).
 N_TRACE = 11
 #: Length of the state vector y.
@@ -49,3 +61,9 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
                   "shaft_energy_j", "mesh_energy_j", "dissipated_j", "input_work_j",
                   "pinion_speed_rad_s", "gear_speed_rad_s")
 
+
+
+def preview_scratch(prm) -> int:
+    """Length of the kernel's ``pv``: :data:`N_PREVIEW` outputs and the line law's two
+    slice vectors (:mod:`.line_law`)."""
+    return N_PREVIEW + 2 * int(prm[P_NSLICE])

@@ -3,22 +3,46 @@ and step (compiled with numba; called by :mod:`.kernel`; docs/cylindrical.md sec
 
 The flanks of a spur or helical pair touch along lines, which the preview answers with
 the *line chain* (:mod:`gearcontact.preview.chain`: stage C on the pair's 7 x 7 gap
-stencil into the line core of stage D with the length ``L`` of the pair's contact line,
-docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse fits the line, or its peak is
-the higher bound) or in ``line`` mode (the Hertz line contact of length ``L``). One
+stencil into the line core of stage D with the loaded length ``L_c`` of the pair's
+contact line, below; docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse fits the
+line, or its peak is the higher bound) or in ``line`` mode (the Hertz line contact of
+length ``L_c``). One
 preview per loaded pair and step, at the phase of the step's start and the pair's load
 ``W_e`` of the previous step (as :mod:`.contact_law`), gives the law held over the
 step's four stages, ``d = d_c(W) + c_b W`` (``c_b`` the tooth-bending compliance, 0 for
-rigid teeth):
+rigid teeth; ``d`` the approach at the line's least gap):
 
 * ``elliptic``: Hertz ``d_c = kappa W^(2/3)``, ``kappa`` from the preview's ``a`` and
   ``k`` by Hamrock-Brewe's approach (:func:`.contact_law.hertz_kappa`);
 * ``line``: the approach of the finite line on the two half-spaces
-  (:func:`gearcontact.analytic.hertz.line_contact_approach_mm`), ``d_c = lambda W (beta -
-  ln(W)/2)`` with ``lambda = 4 / (pi E' L)`` and ``beta = ln(4 L / b_e) - 3/4 +
-  ln(W_e)/2``: the preview's half-width ``b_e`` at ``W_e`` carried to ``W`` by the line
-  contact's similarity ``b ~ W^(1/2)`` at fixed ``L`` (``L = 2 a``, the preview's
-  half-length). Solved per pair and stage by Newton on ``W`` (:func:`line_pair_load`).
+  (:func:`gearcontact.analytic.hertz.line_contact_approach_mm`) over the part of the
+  line that carries load, ``d_c = h_bar + lambda W (beta - ln(W)/2)`` with ``lambda = 4 /
+  (pi E' L_c)`` and ``beta = ln(4 L_c / b_e) - 3/4 + ln(W_e)/2``: the preview's
+  half-width ``b_e`` at ``W_e`` carried to ``W`` by the line contact's similarity ``b ~
+  W^(1/2)`` at fixed ``L_c`` (``L_c = 2 a``, the preview's half-length). Solved per pair
+  and stage by Newton on ``W`` (:func:`line_pair_load`).
+
+The loaded length ``L_c`` and the offset ``h_bar`` come from the ease-off along the
+line (crowning, relief, misalignment: the mesh table's ``line_gap_mm``, the normal gap
+over the line's least at the centres of ``n`` equal slices, linear between them): at
+the approach ``d_c`` the line carries load where its gap lies below ``d_c``, ``L_c =
+|{h < d_c}|``, with the interference ``I(d_c) = integral(max(d_c - h, 0) dy)`` carried
+by the finite line's modulus (a Winkler foundation whose stiffness per length is that
+of the line law, so that a flat line is the uniform line exactly)::
+
+    I(d_c) = 4 W / (pi E') (ln(4 L_c / b) - 3/4),   b = b(W, L_c)
+
+On a crowned line (gap ``A y^2``) this is the exact elongated Hertz ellipse's approach
+within -3.2 % (as the uniform line against the LCP of a finite cylinder) with a loaded
+length 1.08 x Hertz's ``2 a`` (tests/twin/test_line_law.py). Per preview (once per pair
+and step, at ``W_e``) :func:`_loaded_line` solves it for ``d_c`` and ``L_c``; the line
+chain runs on ``L_c`` (stage D's ``L`` input: golden and RTL see the same code), and the
+step's law is ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) =
+lambda' W (...)``, ``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by
+``h_bar``, exact at ``W_e``. With tooth bending, ``c_b`` is the work-conjugate
+compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
+at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
+contact's load shape.
 
 Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
 
@@ -31,7 +55,7 @@ Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
 * ``golden`` (1): the stencil samples interpolated and quantized (GAP Q(32,16)), the
   bit-exact fit core (:func:`gearcontact.preview.fit.golden_vec.fit_element`), the fit's
   B- rule on its code, the bit-exact line core (:func:`gearcontact.preview.hertz.
-  line_vec.line_element`) at ``W_e`` in LOAD Q(32,8) and ``L`` in Q(32,20); each run
+  line_vec.line_element`) at ``W_e`` in LOAD Q(32,8) and ``L_c`` in Q(32,20); each run
   is traced with its ``L`` code and mode for the ``rtl`` replay on the ChainLineCore
   (:func:`.cosim.replay_on_rtl`, ``line=True``).
 
@@ -54,8 +78,9 @@ from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
 from ..preview.fit.golden_vec import fit_element
 from ..preview.hertz.line_vec import line_constants, line_element
 from ..preview.hertz.reference import LINE_ENVELOPE, keeps_ellipse
-from .contact_law import _hb, _principal, _row, hertz_kappa
-from .layout import P_AHI, P_CHI, P_CLO, P_ECODE, P_EP
+from .contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _hb, _principal, _row, hertz_kappa
+from .layout import (N_PREVIEW, P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_NSLICE, P_SLICE_CB,
+                     PV_LINE_BENDING, PV_LINE_OFFSET, PV_LOAD)
 
 __all__ = ["line_pair_load", "line_law_constants", "MODE_LINE"]
 
@@ -155,26 +180,234 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _line_law(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tcount,
-              fit, pv):
-    """The law of pair j of table s at row interval (i, f) and evaluation load ``we``
-    (module docstring): returns ``kappa`` (elliptic, ``pv[3] = 0``) or ``lambda`` (line,
-    ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a law; ``pv[0:3]`` the
-    preview's a, b (mm), p_max (MPa) at ``we``. ``cv_t`` columns: (golden) the 49 gap
-    samples, then stage C's fp64 c3, c4, c5, then ``L`` (mm)."""
-    n_c = cv_t.shape[3]
-    length = _row(cv_t, s, j, i, f, n_c - 1)
-    golden = backend != 0
-    if golden:
-        lam = _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut,
-                           cst, length, pv)
-        if lam > 0.0:
-            return lam
+def _interference(pv, n, width, d, shares):
+    """``(I, L_c, dL_c/dd)`` of the ease-off ``h = pv[N_PREVIEW:N_PREVIEW + n]`` (mm,
+    the slices' centres ``width`` mm apart) at the approach ``d`` (mm): ``I =
+    integral(max(d - h, 0) dy)`` (mm^2) and the loaded length ``L_c = |{h < d}|`` (mm),
+    with ``h`` linear between the centres and constant over the two end half-slices, so
+    that ``I`` is convex with ``dI/dd = L_c``. ``shares``: each slice's part of ``I``
+    (half of each segment's to either end) into ``pv[N_PREVIEW + n:]``."""
+    o = N_PREVIEW
+    area = 0.0
+    lc = 0.0
+    dens = 0.0
+    if shares:
+        for q in range(n):
+            pv[o + n + q] = 0.0
+    for q in range(n - 1):
+        a = pv[o + q]
+        b = pv[o + q + 1]
+        lo, hi = min(a, b), max(a, b)
+        if hi <= d:
+            part, t = width * (d - 0.5 * (a + b)), 1.0
+        elif lo < d:
+            t = (d - lo) / (hi - lo)
+            part = 0.5 * width * t * (d - lo)
+            dens += width / (hi - lo)
+        else:
+            continue
+        area += part
+        lc += width * t
+        if shares:
+            pv[o + n + q] += 0.5 * part
+            pv[o + n + q + 1] += 0.5 * part
+    for q in (0, n - 1):
+        h = pv[o + q]
+        if h < d:
+            area += 0.5 * width * (d - h)
+            lc += 0.5 * width
+            if shares:
+                pv[o + n + q] += 0.5 * width * (d - h)
+    return area, lc, dens
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _loaded_line(pv, n, length, we, b_max, e_prime):
+    """The slice law at the load ``we`` (N) on the ease-off in ``pv`` (module
+    docstring): ``(d_c, L_c, I)``, the contact approach (mm) at which ``F(d) = I(d) -
+    lambda' we g(L_c(d)) = 0``, ``g = ln(4 L_c / b) - 3/4`` with ``lambda' = 4 / (pi
+    E')`` and ``b = (4 we / (pi L_c E' b_max))^(1/2)`` the line contact's half-width of
+    ``we`` on ``L_c`` across ``b_max`` (1/mm), so ``g = 1.5 ln(L_c) + const``; the
+    loaded length ``L_c(d_c)`` and ``I(d_c)``. Newton on ``F`` (``F' = L_c - 1.5
+    lambda' we L_c' / L_c``) kept inside a bracket by bisection: ``F < 0`` at the least
+    gap (nothing loaded), ``F >= 0`` at ``h_max + lambda' we g(L) / L`` (every slice
+    loaded by at least that)."""
+    width = length / n
+    h_min = pv[N_PREVIEW]
+    h_max = h_min
+    for q in range(1, n):
+        h_min = min(h_min, pv[N_PREVIEW + q])
+        h_max = max(h_max, pv[N_PREVIEW + q])
+    lam_w = 4.0 * we / (math.pi * e_prime)
+    # g(L_c) = ln(4 L_c / b) - 3/4 = 1.5 ln(L_c) + c0; far below 1 N a kink's loaded
+    # length nears b (a point's regime): the log is kept >= 0.25 there
+    c0 = math.log(4.0) - 0.5 * math.log(4.0 * we / (math.pi * e_prime * b_max)) - 0.75
+    lo = h_min
+    hi = h_max + lam_w * (1.5 * math.log(length) + c0) / length
+    d = hi
+    area, lc = 0.0, length
+    for _ in range(100):
+        area, lc, dens = _interference(pv, n, width, d, False)
+        g = 1.5 * math.log(lc) + c0 if lc > 0.0 else -math.inf
+        if g < 0.25:
+            g, dg = 0.25, 0.0
+        else:
+            dg = 1.5 * dens / lc
+        r = area - lam_w * g
+        if r > 0.0:
+            hi = d
+        else:
+            lo = d
+        slope = lc - lam_w * dg
+        d_new = d - r / slope if slope > 0.0 else 0.5 * (lo + hi)
+        if not lo < d_new < hi:
+            d_new = 0.5 * (lo + hi)
+        if abs(d_new - d) <= 1e-14 * abs(d) + 1e-20 or hi - lo <= 1e-15 * abs(hi):
+            d = d_new
+            break
+        d = d_new
+    area, lc, _ = _interference(pv, n, width, d, False)
+    return d, lc, area
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _slice_compliance(cv_t, s, j, i, f, c_g, n, pv):
+    """``q^T G q`` (mm/N) of the slices' shares ``q`` (in ``pv``, scaled to a unit sum)
+    on their bending Gram matrix ``G`` (columns from ``c_g``, linear between the rows):
+    the work-conjugate bending compliance of the loaded part of the line."""
+    o = N_PREVIEW + n
+    tot = 0.0
+    for q in range(n):
+        tot += pv[o + q]
+    if tot <= 0.0:
+        return 0.0
+    c = 0.0
+    for a in range(n):
+        qa = pv[o + a]
+        if qa == 0.0:
+            continue
+        row = 0.0
+        for b in range(n):
+            qb = pv[o + b]
+            if qb != 0.0:
+                row += qb * _row(cv_t, s, j, i, f, c_g + a * n + b)
+        c += qa * row
+    return c / (tot * tot)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _contact_load(pv, n, length, d_c, b_max, e_prime, w_start):
+    """``(W, L_c, I, dW/dd_c)`` the slice law carries at the contact approach ``d_c``
+    (mm; module docstring): ``I(d_c) = lambda' W (beta_c - ln(W)/2)`` with ``beta_c =
+    ln(4 L_c) - ln(4 / (pi L_c E' b_max)) / 2 - 3/4`` (the line contact's ``b`` of ``W``
+    on ``L_c``), solved by :func:`line_pair_load` from ``w_start``; 0 where nothing is
+    loaded."""
+    area, lc, dens = _interference(pv, n, length / n, d_c, False)
+    if area <= 0.0 or lc <= 0.0:
+        return 0.0, lc, area, 0.0
+    lam = 4.0 / (math.pi * e_prime)
+    beta = (math.log(4.0 * lc) - 0.5 * math.log(4.0 / (math.pi * lc * e_prime * b_max))
+            - 0.75)
+    w = line_pair_load(area, lam, beta, 0.0, w_start)
+    # dI = L_c dd = lam [(beta - 1/2 - ln(W)/2) dW + W 1.5 (dL_c/dd) / L_c dd]
+    slope = lam * (beta - 0.5 - 0.5 * math.log(w))
+    dw = (lc - 1.5 * lam * w * dens / lc) / slope if slope > 0.0 else 0.0
+    return w, lc, area, max(dw, 0.0)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _line_state(pv, n, length, d, cb, b_max, e_prime, w_start):
+    """``(d_c, W, L_c, I)`` of the slice law in series with the bending compliance ``cb``
+    (mm/N) at the approach ``d`` (mm): the root of ``d_c + cb W(d_c) = d`` on ``[h_min,
+    d]`` (increasing in ``d_c``), Newton kept in the bracket by bisection."""
+    w, lc, area, dw = _contact_load(pv, n, length, d, b_max, e_prime, w_start)
+    if cb <= 0.0 or w <= 0.0:
+        return d, w, lc, area
+    lo, hi = pv[N_PREVIEW], d
+    for q in range(1, n):
+        lo = min(lo, pv[N_PREVIEW + q])
+    d_c = d - cb * w                 # the bent share at the rigid load: left of the root
+    for _ in range(60):
+        if not lo < d_c < hi:
+            d_c = 0.5 * (lo + hi)
+        w, lc, area, dw = _contact_load(pv, n, length, d_c, b_max, e_prime, w)
+        r = d_c + cb * w - d
+        if abs(r) <= 1e-12 * d or hi - lo <= 1e-14 * d:
+            break
+        if r > 0.0:
+            hi = d_c
+        else:
+            lo = d_c
+        step = r / (1.0 + cb * dw)
+        d_c -= step
+        if abs(step) <= 1e-14 * d:
+            break
+    return d_c, w, lc, area
+
+
+# compiled once, not inlined: one call per loaded pair and step (its array arguments'
+# reference counting is off, as the kernel's)
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
+              tcount, fit, pv):
+    """The law of pair j of table s at row interval (i, f) and the approach ``d`` (mm)
+    of the step's start (module docstring): the slice law's state there, ``cb`` the
+    pair's last bending compliance (mm/N; one pass of the loaded slices' from it), or
+    minus the uniform load's (a fresh preview: iterated to 1e-6), ``we`` (N) the
+    Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
+    ``lambda`` (line, ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a
+    law; ``pv[0:3]`` the preview's a, b (mm), p_max (MPa) at the load ``pv[PV_LOAD]``
+    (N) it was sampled at, ``pv[PV_LINE_OFFSET]`` the line law's approach offset
+    ``h_bar`` (mm), ``pv[PV_LINE_BENDING]`` the loaded slices' bending compliance
+    (mm/N; -1: rigid teeth, the mesh table's).
+    ``cv_t`` columns: (golden) the 49 gap samples, then stage C's fp64 c3, c4, c5, ``L``
+    (mm), the slices' ease-off (mm) and their bending Gram matrix
+    (:data:`~.layout.P_NSLICE`)."""
+    n = int(prm[P_NSLICE])
+    c0 = cv_t.shape[3] - (4 + n + n * n)
+    length = _row(cv_t, s, j, i, f, c0 + 3)
     # stage C is linear in the samples: the interpolated rows' fits (contact_law._kappa)
-    c0 = n_c - 4
     A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
                          _row(cv_t, s, j, i, f, c0 + 2))
-    return _line_fp64(A, B, length, we, prm, tcount, pv, golden)
+    d_c, w0, l_c, area = 0.0, 0.0, length, 0.0
+    hi = max(A, B)
+    bent = prm[P_SLICE_CB] != 0.0
+    ep = prm[P_EP]
+    if hi > 0.0 and length > 0.0:
+        for q in range(n):
+            pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
+        cb = cb if bent else 0.0
+        # the loaded slices' compliance: a fixed point from the uniform load's (cb < 0:
+        # a fresh preview, statics) to 1e-6, or one pass from the pair's last (a run:
+        # the shape moves little in a step; the law then lags it by one preview)
+        passes = 1 if cb > 0.0 else 12
+        cb = abs(cb)
+        for _ in range(passes):
+            d_c, w0, l_c, area = _line_state(pv, n, length, d, cb, hi, ep, we)
+            if not bent or w0 <= 0.0:
+                break
+            _interference(pv, n, length / n, d_c, True)
+            c_new = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + n, n, pv)
+            done = abs(c_new - cb) <= 1e-6 * c_new
+            cb = c_new
+            if done:
+                break
+        if w0 < W_EVAL_MIN_N:       # barely closed: the law at the datapath's least load
+            w0 = W_EVAL_MIN_N
+            d_c, l_c, area = _loaded_line(pv, n, length, w0, hi, ep)
+    w0 = min(max(w0, W_EVAL_MIN_N), _W_EVAL_MAX_N)
+    pv[PV_LOAD] = w0
+    golden = backend != 0
+    lam = -1.0
+    if golden:
+        lam = _line_golden(s, j, i, f, w0, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut,
+                           cst, l_c, pv)
+    if lam <= 0.0:
+        lam = _line_fp64(A, B, l_c, w0, prm, tcount, pv, golden)
+    # the law's linearisation of I at d_c: L_c (d - h_bar) = lambda' W (ln(4 L_c/b) - 3/4)
+    pv[PV_LINE_OFFSET] = d_c - area / l_c if (pv[3] == MODE_LINE and l_c > 0.0) else 0.0
+    pv[PV_LINE_BENDING] = cb if bent and hi > 0.0 and length > 0.0 else -1.0
+    return lam
 
 
 @njit(cache=True, inline="always", error_model="numpy")

@@ -124,6 +124,13 @@ class MeshTable:
         row a surface (or line) contact.
     edge_label : ndarray (P, K) of str or None
         The touching edge of an edge row (``"pinion root"``, ...), else ``""``.
+    line_gap_mm : ndarray (P, K, n) or None
+        The ease-off along each pair's line: its normal gap over the line's least one at
+        the centres of ``n`` equal slices between the line's ends, mm (the line law's
+        loaded length, :mod:`.line_law`); None for point contact.
+    line_bending_gram_mm_per_n : ndarray (P, K, n, n) or None
+        Tooth-bending Gram matrix ``G = F F^T`` of the pinion and gear shells at those
+        slices (unit loads on the slices), mm/N; None for rigid teeth.
     """
 
     psi_rad: np.ndarray
@@ -148,6 +155,8 @@ class MeshTable:
     line_length_mm: np.ndarray | None = None
     contact_mode: np.ndarray | None = None
     edge_label: np.ndarray | None = None
+    line_gap_mm: np.ndarray | None = None
+    line_bending_gram_mm_per_n: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:

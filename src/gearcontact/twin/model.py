@@ -108,11 +108,13 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     if curvatures not in CURVATURE_SOURCES + (LINE_SOURCE,):
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
-    if curvatures == LINE_SOURCE and any(m is not None and m.line_length_mm is None
+    if curvatures == LINE_SOURCE and any(m is not None and (m.line_length_mm is None
+                                                            or m.line_gap_mm is None)
                                          for m in (mesh, reverse)):
         raise InputRangeError("curvatures", curvatures, "a mesh table with the pairs' "
-                                                        "contact-line lengths (a cylindrical "
-                                                        "pair's) for the line chain")
+                                                        "contact-line lengths and ease-off "
+                                                        "along them (a cylindrical pair's) "
+                                                        "for the line chain")
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
@@ -185,8 +187,13 @@ def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray
     cols = [_fitted_coefficients(mesh)]
     if golden:      # the samples for the fit core, the fp64 fit for the fp64 fallback
         cols.insert(0, np.asarray(mesh.stencil_gaps_mm, float))
-    if source == LINE_SOURCE:
-        cols.append(np.asarray(mesh.line_length_mm, float)[..., None])
+    if source == LINE_SOURCE:      # L, the slices' ease-off and bending Gram (.line_law)
+        gaps = np.asarray(mesh.line_gap_mm, float)
+        n = gaps.shape[-1]
+        gram = (np.zeros(gaps.shape[:2] + (n * n,)) if mesh.line_bending_gram_mm_per_n is None
+                else np.asarray(mesh.line_bending_gram_mm_per_n, float).reshape(
+                    gaps.shape[:2] + (n * n,)))
+        cols += [np.asarray(mesh.line_length_mm, float)[..., None], gaps, gram]
     return np.concatenate(cols, axis=-1) if len(cols) > 1 else cols[0]
 
 
@@ -226,6 +233,9 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_STAGEC] = K.CURVATURE_SOURCES.get(model.curvature_source, K.LINE_SOURCE_CODE)
     prm[K.P_CLO], prm[K.P_CHI] = ENVELOPE["curvature_per_mm"]
     prm[K.P_AHI] = ENVELOPE["alpha"][1]
+    if model.curvature_source == LINE_SOURCE:
+        prm[K.P_NSLICE] = m.line_gap_mm.shape[-1]
+        prm[K.P_SLICE_CB] = float(m.line_bending_gram_mm_per_n is not None)
     return prm
 
 

@@ -21,7 +21,7 @@ import numpy as np
 from ..analytic.hertz import line_contact_approach_mm, line_contact_terms
 from ..validation import InputRangeError, check_range
 from . import kernel as K
-from .layout import LINE_SOURCE
+from .layout import LINE_SOURCE, preview_scratch
 from .model import TwinModel, _fit_args, _prm
 
 __all__ = ["static_rotation", "linear_matrices", "linearized_modes", "mesh_damping_n_s_per_mm",
@@ -78,7 +78,8 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
                       np.full((2, n_p, K.N_CACHE), -1.0), a["pow_lut"], a["cbrt_lut"],
                       a["cst"], np.zeros((0, K.N_TRACE), np.int64),
                       np.zeros(K.N_COUNT, np.int64), _fit_args(a, 0), a["tab_theta"],
-                      a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)), np.zeros(K.N_PREVIEW))
+                      a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)),
+                      np.zeros(preview_scratch(prm)))
     return t, w[0]
 
 
