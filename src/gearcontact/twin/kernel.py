@@ -59,7 +59,7 @@ from .contact_law import (W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _kappa_reference,
 from .line_law import MODE_LINE, _line_law, line_pair_load, line_potential_j
 from .layout import (  # noqa: F401
                      LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LINE_BENDING,
-                     PV_LINE_OFFSET, PV_LOAD, preview_scratch,
+                     PV_LINE_OFFSET, PV_LOAD,
                      BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
                      P_AHI, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI, P_DPSIR, P_ECODE,
                      P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP, P_L0, P_MIRROR,
@@ -326,7 +326,7 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     pairs1 = np.zeros((2, n_p))
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
-    pv = np.zeros(preview_scratch(prm))
+    pv = np.zeros(N_PREVIEW + 2 * int(prm[P_NSLICE]))     # layout.preview_scratch, compiled
     # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
     # (line), mode, the line law's beta, its approach offset h_bar and bending
     # compliance (-1: the table's c_b) (N_CACHE columns)
