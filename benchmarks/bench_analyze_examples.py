@@ -18,6 +18,12 @@ s: hypoid 11x41 219 / 50 (ease-off synthesis 10.1), F.2 spiral bevel 176 / 32 (2
 F.3 158 / 31 (13.4): CPU time down 3.0-3.3x, the synthesis 6-14x; the wall times are
 those of the load (the child had about a fifth of a core).
 
+After the edge-contact check and the miter's synthesis (session 12; measured on 3c5d414,
+warm cache, load 1.0 rising to 8), wall / CPU s, every example exit 0: hypoid 11x41 42.0 /
+17.9 (synthesis 2.3, LTE 16.3), F.2 50.1 / 19.8 (3.3, 18.7), F.3 72.5 / 24.6 (3.6,
+28.1); cylindrical EV 23x67 38.3 / 38.3 (Harris map 26.2), FZG C 32.9 / 24.6, spur
+20x40 79.8 / 27.7.
+
 Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]``.
 """
 
