@@ -216,8 +216,10 @@ def _simulate(args, pair, model, drivetrain, extra: dict) -> int:
           f"{res.timings['real_time_factor']:.2f} "
           f"-> {final_path(args, args.out)}")
     if s.get("previews_outside_datapath"):      # a result of the pair, in twin.json too
+        why = ("loaded lengths or curvatures outside the line core's ranges"
+               if s["curvatures"] == "line" else "long bearings")
         print(f"  {s['previews_outside_datapath']} previews in {s['steps_outside_datapath']} "
-              "steps lie outside the fixed-point datapath's domain (long bearings): "
+              f"steps lie outside the fixed-point datapath's domain ({why}): "
               f"evaluated by {s['outside_datapath_evaluated_by']}")
     return 0
 
