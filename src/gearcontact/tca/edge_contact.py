@@ -50,7 +50,8 @@ from .mating import _cross, posed_point, solve_mating_point
 from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
-           "pushes_forward", "edge_directions", "inward_slope", "solve_edge_contact", "contact_state"]
+           "pushes_forward", "edge_directions", "inward_slope", "solve_edge_contact",
+           "contact_state"]
 
 #: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
 EDGE_NAMES = ("toe", "heel", "root", "tip")

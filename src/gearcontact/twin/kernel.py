@@ -63,7 +63,8 @@ from .layout import (  # noqa: F401
                      BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
                      P_AHI, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI, P_DPSIR, P_ECODE,
                      P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP, P_L0, P_MIRROR,
-                     P_NROW, P_NROWR, P_NSLICE, P_OMEGA, P_SLICE_CB, P_PITCH, P_PSIR, P_STAGEC, P_THB, P_TL,
+                     P_NROW, P_NROWR, P_NSLICE, P_OMEGA, P_SLICE_CB, P_PITCH, P_PSIR,
+                     P_STAGEC, P_THB, P_TL,
                      P_TM, P_U, RECORD_COLUMNS, R_A, R_B, R_D, R_KE, R_NPAIRS, R_P, R_PE,
                      R_PSI, R_T, R_THETA, R_TMESH, R_V, R_W, R_WG, R_WIN, R_WP)
 
