@@ -47,12 +47,16 @@ SEGMENT_NODES = 5
 
 @dataclass(frozen=True)
 class FeMesh:
-    """Cells of the FE mesh (:func:`~.fe.build_fe`): face, height, thickness, rim."""
+    """Cells of the FE mesh (:func:`~.fe.build_fe`): face, height, thickness, rim; with a
+    real root (:mod:`.root_fillet`) also the fillet zone's layers and each slot bottom's
+    cells across."""
 
     n_xi: int = 12
     n_eta: int = 6
     n_zeta: int = 3
     n_rim: int = 4
+    n_fillet: int = 3
+    n_slot: int = 2
 
 
 @dataclass(frozen=True)
@@ -214,9 +218,10 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
 
 def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0.5),
                      eta=(-1 / 3, 0.0, 1 / 3), fe: bool = False,
-                     fe_mesh: FeMesh = FeMesh()) -> FlankCompliance:
+                     fe_mesh: FeMesh = FeMesh(), fe_root=None) -> FlankCompliance:
     """:func:`flank_compliance` of any tooth's shell model (its body, a
-    :class:`~.tooth.ToothGeometry`, and its rim; the FE meshes the same rim)."""
+    :class:`~.tooth.ToothGeometry`, and its rim; the FE meshes the same rim, or with
+    ``fe_root`` the tooth's real root, a :class:`~.root_fillet.FilletRoot`)."""
     xi, eta = _check_lattice(side, xi, eta, fe_mesh)
     back = "coast" if side == "drive" else "drive"
     xl = np.linspace(-1.0, 1.0, fe_mesh.n_xi + 1)
@@ -241,7 +246,8 @@ def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0
 
         model = build_fe(tooth, n_xi=fe_mesh.n_xi, n_eta=fe_mesh.n_eta,
                          n_zeta=fe_mesh.n_zeta, n_rim=fe_mesh.n_rim,
-                         rim_depth_mm=shell.rim.depth_mm, fillet_mm=shell.rim.fillet_mm)
+                         rim_depth_mm=shell.rim.depth_mm, fillet_mm=shell.rim.fillet_mm,
+                         root=fe_root, n_fillet=fe_mesh.n_fillet, n_slot=fe_mesh.n_slot)
         pd, vd = model.node_points(side, nx, ny)
         pc, vc = model.node_points(back, nx, ny)
         G = model.compliance(concat_points(pd, pc), np.concatenate([vd, vc]))

@@ -70,6 +70,7 @@ class FeTooth:
     _vertex: object      # (i_xi, j_vertical, k_zeta) -> vertex index
     _rim_levels: int
     _n_zeta: int
+    _k_coast: int
     _nodal_dofs: np.ndarray
     _free: np.ndarray
     _lu: object
@@ -81,7 +82,7 @@ class FeTooth:
         xi, eta = (np.atleast_1d(np.asarray(a, float)) for a in (xi, eta))
         i = np.abs(xi[:, None] - self.xi_levels[None, :]).argmin(axis=1)
         j = np.abs(eta[:, None] - self.eta_levels[None, :]).argmin(axis=1)
-        k = self._n_zeta if side == "drive" else 0
+        k = self._k_coast + (self._n_zeta if side == "drive" else 0)
         pts = self.body.points_at(side, self.xi_levels[i], self.eta_levels[j])
         return pts, self._vertex[i, j + self._rim_levels, k]
 
@@ -109,7 +110,8 @@ def _signed_volumes(mesh) -> np.ndarray:
 
 
 def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: int = 4,
-             rim_depth_mm: float | None = None, fillet_mm: float | None = None) -> FeTooth:
+             rim_depth_mm: float | None = None, fillet_mm: float | None = None,
+             root=None, n_fillet: int = 3, n_slot: int = 2) -> FeTooth:
     """Mesh, assemble and factor the P2 elasticity model of a tooth (module docstring).
 
     Parameters
@@ -128,6 +130,15 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
         Height of the fillet widening, mm (default: the larger of the flank's start
         above the root cone, ``u_lo``, and 15 % of the tooth height; both defaults
         from :func:`.rim.rim_segment`).
+    root : FilletRoot or None
+        The real root of the tooth (:mod:`.root_fillet`): the sides follow the cutter's
+        fillets over ``n_fillet`` layers down to the root cone, the slot bottoms
+        beside them span ``n_slot`` cells each, and the rim block below has ``n_rim``
+        layers down to ``root.depth_mm`` (``rim_depth_mm`` and ``fillet_mm`` unused).
+        None: the quarter-ellipse fillet of :mod:`.rim`.
+    n_fillet, n_slot : int
+        Cell layers of the real fillet zone and cells across each slot bottom (>= 1;
+        with ``root`` only).
 
     Raises
     ------
@@ -142,29 +153,21 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError("the FE model needs scikit-fem: pip install 'gearcontact[fe]'") from exc
     for name, n, lo in (("n_xi", n_xi, 2), ("n_eta", n_eta, 2), ("n_zeta", n_zeta, 1),
-                        ("n_rim", n_rim, 0)):
+                        ("n_rim", n_rim, 0 if root is None else 1), ("n_fillet", n_fillet, 1),
+                        ("n_slot", n_slot, 1)):
         if isinstance(n, bool) or int(n) != n or not lo <= n <= 200:
             raise InputRangeError(name, n, f"an integer in [{lo}, 200]")
     t0 = time.perf_counter()
     xi_l = np.linspace(-1.0, 1.0, n_xi + 1)
     eta_l = np.linspace(-1.0, 1.0, n_eta + 1)
     zeta_l = np.linspace(0.0, 1.0, n_zeta + 1)
-    idx = skfem.MeshTet.init_tensor(np.arange(n_xi + 1.0), np.arange(n_rim + n_eta + 1.0),
-                                    np.arange(n_zeta + 1.0))
+    if root is None:
+        idx, pts, n_below, k0 = _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim,
+                                          rim_depth_mm, fillet_mm)
+    else:
+        idx, pts, n_below, k0 = _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_rim,
+                                             n_fillet, n_slot)
     I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
-    pts = np.empty((3, idx.p.shape[1]))
-    tooth = J >= n_rim
-    eta = eta_l[np.clip(J - n_rim, 0, n_eta)]
-    pc, pd = body.side_points(xi_l[I[tooth]], eta[tooth])
-    pts[:, tooth] = (pc + zeta_l[K[tooth], None] * (pd - pc)).T
-    if n_rim:
-        if not hasattr(body, "teeth"):
-            raise InputRangeError("n_rim", n_rim, "0 for a body without a member axis")
-        rim = rim_segment(body, depth_mm=rim_depth_mm, fillet_mm=fillet_mm)
-        # depth of the rim levels: graded towards the root (quadratic), the root level at 0
-        s_lev = rim.depth_mm * ((n_rim - np.arange(n_rim + 1)) / n_rim) ** 2
-        r = ~tooth
-        pts[:, r] = rim_points(body, rim, xi_l[I[r]], s_lev[J[r]], zeta_l[K[r]]).T
     mesh = skfem.MeshTet(pts, idx.t)
     # inverted cells: the map must keep (or flip) the orientation of every index cell
     flips = np.sign(_signed_volumes(mesh)) * np.sign(_signed_volumes(idx))
@@ -179,10 +182,72 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     fixed = basis.get_dofs(facets=bottom).all()
     free = np.setdiff1d(np.arange(basis.N), fixed)
     lu = splu(A[free][:, free].tocsc())
-    vertex = np.empty((n_xi + 1, n_rim + n_eta + 1, n_zeta + 1), dtype=int)
+    vertex = np.full((n_xi + 1, int(J.max()) + 1, int(K.max()) + 1), -1, dtype=int)
     vertex[I, J, K] = np.arange(idx.p.shape[1])
     return FeTooth(body=body, xi_levels=xi_l, eta_levels=eta_l,
                    n_nodes=int(basis.N // 3), n_dofs=int(basis.N),
-                   build_s=time.perf_counter() - t0, _vertex=vertex, _rim_levels=n_rim,
-                   _n_zeta=n_zeta, _nodal_dofs=basis.nodal_dofs, _free=free, _lu=lu,
-                   _points=mesh.p)
+                   build_s=time.perf_counter() - t0, _vertex=vertex, _rim_levels=n_below,
+                   _n_zeta=n_zeta, _k_coast=k0, _nodal_dofs=basis.nodal_dofs, _free=free,
+                   _lu=lu, _points=mesh.p)
+
+
+def _tooth_points(body, xi_l, eta_l, zeta_l, I, j, K) -> np.ndarray:
+    """Positions (3, n) of the tooth's nodes at index (I, eta level j, zeta column K)."""
+    pc, pd = body.side_points(xi_l[I], eta_l[j])
+    return (pc + zeta_l[K, None] * (pd - pc)).T
+
+
+def _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim, rim_depth_mm, fillet_mm):
+    """Index mesh and node positions of the tooth on the quarter-ellipse fillet and rim
+    of :mod:`.rim`: ``(index mesh, points (3, n), levels below the root line, coast
+    column)``."""
+    n_xi, n_eta, n_zeta = len(xi_l) - 1, len(eta_l) - 1, len(zeta_l) - 1
+    idx = skfem.MeshTet.init_tensor(np.arange(n_xi + 1.0), np.arange(n_rim + n_eta + 1.0),
+                                    np.arange(n_zeta + 1.0))
+    I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
+    pts = np.empty((3, idx.p.shape[1]))
+    tooth = J >= n_rim
+    pts[:, tooth] = _tooth_points(body, xi_l, eta_l, zeta_l, I[tooth], J[tooth] - n_rim,
+                                  K[tooth])
+    if n_rim:
+        if not hasattr(body, "teeth"):
+            raise InputRangeError("n_rim", n_rim, "0 for a body without a member axis")
+        rim = rim_segment(body, depth_mm=rim_depth_mm, fillet_mm=fillet_mm)
+        # depth of the rim levels: graded towards the root (quadratic), the root level at 0
+        s_lev = rim.depth_mm * ((n_rim - np.arange(n_rim + 1)) / n_rim) ** 2
+        r = ~tooth
+        pts[:, r] = rim_points(body, rim, xi_l[I[r]], s_lev[J[r]], zeta_l[K[r]]).T
+    return idx, pts, n_rim, 0
+
+
+def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_slot):
+    """Index mesh and node positions of the tooth on its real root (:mod:`.root_fillet`):
+    a tensor index grid across the slot bottoms, the tooth and the fillet zone, without
+    the cells beside the tooth above the root row (module docstring of
+    :func:`build_fe`); as :func:`_rim_mesh`."""
+    n_xi, n_eta, n_zeta = len(xi_l) - 1, len(eta_l) - 1, len(zeta_l) - 1
+    n_k = n_zeta + 2 * n_slot
+    full = skfem.MeshTet.init_tensor(np.arange(n_xi + 1.0),
+                                     np.arange(n_block + n_fillet + n_eta + 1.0),
+                                     np.arange(n_k + 1.0))
+    c = full.p[:, full.t].mean(axis=1)          # index centroids of the tetrahedra
+    keep = (c[1] < n_block) | ((c[2] > n_slot) & (c[2] < n_slot + n_zeta))
+    used, t = np.unique(full.t[:, keep], return_inverse=True)
+    idx = skfem.MeshTet(full.p[:, used], t.reshape(4, -1))
+    I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
+    pts = np.empty((3, idx.p.shape[1]))
+    j_root = n_block + n_fillet                 # the tooth's root line
+    tooth = J >= j_root
+    pts[:, tooth] = _tooth_points(body, xi_l, eta_l, zeta_l, I[tooth], J[tooth] - j_root,
+                                  K[tooth] - n_slot)
+    # levels below the root line: the rim block graded towards the root row
+    # (quadratic, as the ellipse rim), the fillet zone even in arc length
+    s_frac = ((n_block - np.arange(n_block + 1)) / n_block) ** 2
+    q = 1.0 - np.arange(n_fillet) / n_fillet
+    below = root.mesh_points(xi_l, q, s_frac, zeta_l, n_slot)
+    r = ~tooth
+    pts[:, r] = below[I[r], J[r], K[r]].T
+    if not np.all(np.isfinite(pts)):
+        raise InputRangeError("FE mesh", "nodes outside the root", "finite node positions")
+    return idx, pts, j_root, n_slot
+

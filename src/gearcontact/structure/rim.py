@@ -32,7 +32,7 @@ from ..validation import InputRangeError, check_positive
 from .tooth import MidSurfaceArrays
 
 __all__ = ["RimSegment", "rim_segment", "rim_points", "rim_mid_surface", "rim_modulus_factor",
-           "tooth_height_mm"]
+           "root_line_section", "tooth_height_mm"]
 
 #: Step in xi of the central differences of the section's direction along the face.
 _DXI = 1e-4
@@ -86,9 +86,9 @@ def rim_segment(body, *, depth_mm: float | None = None, fillet_mm: float | None 
                       stiffening=float(stiffening))
 
 
-def _section(body, xi):
+def root_line_section(body, xi):
     """(centre, unit down direction, chord P_d - P_c, widening to one pitch) at the root
-    line, each (n, ...)."""
+    line ``eta = -1`` of the face positions ``xi``, each (n, ...)."""
     pc0, pd0 = body.side_points(xi, -np.ones_like(xi))
     mid = body.mid_surface(xi, -np.ones_like(xi))
     down = -mid.x_eta / np.linalg.norm(mid.x_eta, axis=-1, keepdims=True)
@@ -120,7 +120,7 @@ def rim_points(body, rim: RimSegment, xi, s_mm, zeta) -> np.ndarray:
     """Points (n, 3) of the fillet / rim segment at face position ``xi``, depth ``s_mm``
     below the root line and ``zeta`` in [0, 1] across (coast -> drive side), mm."""
     xi, s_mm, zeta = (np.asarray(a, float) for a in np.broadcast_arrays(xi, s_mm, zeta))
-    centre, down, chord, widen = _section(body, xi)
+    centre, down, chord, widen = root_line_section(body, xi)
     f = 1.0 + (widen - 1.0) * _fan(rim, s_mm)
     return centre + s_mm[:, None] * down + ((zeta - 0.5) * f)[:, None] * chord
 
@@ -134,10 +134,10 @@ def rim_mid_surface(body, rim: RimSegment, xi, s_mm) -> MidSurfaceArrays:
     chord's component along the normal.
     """
     xi, s_mm = (np.asarray(a, float) for a in np.broadcast_arrays(xi, s_mm))
-    centre, down, chord, widen = _section(body, xi)
+    centre, down, chord, widen = root_line_section(body, xi)
     lo, hi = np.maximum(xi - _DXI, -1.0), np.minimum(xi + _DXI, 1.0)
-    c_lo, d_lo, _, _ = _section(body, lo)
-    c_hi, d_hi, _, _ = _section(body, hi)
+    c_lo, d_lo, _, _ = root_line_section(body, lo)
+    c_hi, d_hi, _, _ = root_line_section(body, hi)
     span = (hi - lo)[:, None]
     x_xi = (c_hi - c_lo) / span + s_mm[:, None] * (d_hi - d_lo) / span
     x_eta = -down

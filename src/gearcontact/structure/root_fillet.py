@@ -1,0 +1,301 @@
+"""The real root of a cut tooth: its sides down the cutter's root fillets, the slot bottoms
+beside it and the rim block below, for the 3D finite elements (:mod:`.fe`).
+
+Where a member's cutter is known (:func:`gearcontact.geometry.fillet.pair_fillets`:
+machine settings, the formate gear of a ``[cutter]``), the solid below a tooth's root
+line (:mod:`.tooth`: ``eta = -1``, the lowest height both flanks cover) is bounded by
+surfaces the cutter made, not by the quarter-ellipse approximation of :mod:`.rim`
+(``docs/bending.md`` sec. 3 and 6):
+
+- each **side curve** runs, at the face position ``xi`` (the flank's own lengthwise
+  parameter ``v``, which the fillet shares), from the tooth's root point down the flank
+  to the flank box's lower edge ``u_range[0]``, then to the fillet's top row (the round's
+  tangent line; on the generated pinion the flank box of the sheet stops 0.1-0.7 mm
+  above it: that strip of the generated flank is bridged by the cubic Hermite curve of
+  the two end points and tangents; on the formate gear the two coincide to 1e-14 mm
+  and there is no bridge), and down the fillet ``RootFillet.evaluate(u, v)`` from its
+  top ``u = s_top`` to its bottom ``u = 0`` on the root cone;
+- the **slot bottoms**: from the two fillet bottoms ``B_c``, ``B_d`` along the root
+  cone (turned about the member axis, which keeps them on the cone) to the slot
+  middles, half a slot on each side, so that the root row spans one pitch;
+- the **rim block**: the root row moved along the tooth's down direction ``d`` at the
+  root line (:func:`.rim.root_line_section`) to the clamped bottom, whose centre lies
+  ``depth_mm`` below the root line's centre (the depth of :mod:`.rim`'s segment).
+
+The ISO 6336-3 critical section of each face position is where the side curves'
+tangent, in the plane of ``d`` and the root chord, makes 30 deg with ``d``
+(:meth:`FilletRoot.critical_section`).
+
+References
+----------
+ISO 6336-3:2019, *Calculation of load capacity of spur and helical gears - Part 3:
+Calculation of tooth bending strength*, sec. 6.2 (critical section at the 30 deg
+tangent, s_Fn, rho_F).
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 20-21
+(the fillet of face-milled gears).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..validation import InputRangeError
+from .rim import root_line_section, tooth_height_mm
+from .tooth import ToothGeometry, _turn
+
+__all__ = ["CriticalSection", "FilletRoot", "fillet_root", "ISO_TANGENT_DEG"]
+
+#: Angle between the fillet tangent and the tooth centre line at the critical section
+#: (ISO 6336-3 sec. 6.2, external gears), deg.
+ISO_TANGENT_DEG = 30.0
+#: Samples per piece of a side curve for its arc-length table.
+_SAMPLES = 33
+#: Step of the fillet parameter of the tangent at the fillet's top row, mm.
+_DU_MM = 1e-5
+
+
+@dataclass(frozen=True)
+class CriticalSection:
+    """The 30 deg tangent section of a tooth at face positions ``xi`` (arrays (n,)).
+
+    Attributes
+    ----------
+    xi : ndarray
+    thickness_mm : ndarray
+        ``s_Fn``: the chord between the two tangent points, across the centre line (its
+        component along the root chord's direction normal to ``d``), mm.
+    depth_mm : ndarray
+        Depth of the chord's middle below the root line's centre along ``d``, mm.
+    coast_mm, drive_mm : ndarray (n, 3)
+        The tangent points, body frame, mm.
+    """
+
+    xi: np.ndarray
+    thickness_mm: np.ndarray
+    depth_mm: np.ndarray
+    coast_mm: np.ndarray
+    drive_mm: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class FilletRoot:
+    """The root of ``tooth`` bounded by its cutter's fillets (module docstring).
+
+    Attributes
+    ----------
+    tooth : ToothGeometry
+    fillets : dict
+        ``side -> RootFillet`` (:mod:`gearcontact.geometry.fillet`), in the flanks'
+        frames (the coast fillet is turned into the tooth as its flank is).
+    depth_mm : float
+        Depth of the rim's clamped bottom below the root line's centre, mm.
+    """
+
+    tooth: ToothGeometry
+    fillets: dict
+    depth_mm: float
+
+    # ---------------------------------------------------------------- side curves
+    def _pieces(self, side: str, xi: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Side curve points (n, 3) at the piece coordinate ``p`` in [0, 3] (n,): flank
+        (0..1), bridge (1..2), fillet (2..3), body frame (coast turned)."""
+        tooth, fil = self.tooth, self.fillets[side]
+        flank = tooth._flank(side)
+        _, v = tooth.flank_parameters(side, xi, -np.ones_like(xi))
+        u_root, u_lo, s_top = tooth.u_span_mm[0], flank.u_range[0], fil.u_range[1]
+        out = np.empty(xi.shape + (3,))
+        a = p <= 1.0
+        if np.any(a):
+            u = u_root + np.clip(p[a], 0.0, 1.0) * (u_lo - u_root)
+            out[a] = flank.evaluate(u, v[a], second=False).r
+        c = p >= 2.0
+        if np.any(c):
+            out[c] = fil.evaluate(s_top * (3.0 - np.clip(p[c], 2.0, 3.0)), v[c]).r
+        b = ~(a | c)
+        if np.any(b):
+            t = (p[b] - 1.0)[:, None]
+            A, TA, B, TB = self._bridge_ends(side, v[b])
+            L = np.linalg.norm(B - A, axis=-1, keepdims=True)
+            out[b] = ((2 * t ** 3 - 3 * t ** 2 + 1) * A + (t ** 3 - 2 * t ** 2 + t) * L * TA
+                      + (-2 * t ** 3 + 3 * t ** 2) * B + (t ** 3 - t ** 2) * L * TB)
+        return out @ tooth.coast_turn.T if side == "coast" else out
+
+    def _bridge_ends(self, side: str, v):
+        """Ends and unit tangents (down the tooth) of the bridge at ``v``: the flank box's
+        lower edge and the fillet's top row, in the flank's frame."""
+        flank, fil = self.tooth._flank(side), self.fillets[side]
+        s = flank.evaluate(np.full_like(v, flank.u_range[0]), v, second=False)
+        ta = -s.r_u / np.linalg.norm(s.r_u, axis=-1, keepdims=True)
+        s_top = fil.u_range[1]
+        top = fil.evaluate(np.full_like(v, s_top), v).r
+        below = fil.evaluate(np.full_like(v, s_top - _DU_MM), v).r
+        tb = (below - top) / np.linalg.norm(below - top, axis=-1, keepdims=True)
+        return s.r, ta, top, tb
+
+    def bridge_mm(self, side: str, xi) -> np.ndarray:
+        """Length of the chord bridged between the flank box and the fillet (n,), mm."""
+        xi = np.atleast_1d(np.asarray(xi, float))
+        v = self.tooth.flank_parameters(side, xi, -np.ones_like(xi))[1]
+        A, _, B, _ = self._bridge_ends(side, v)
+        return np.linalg.norm(B - A, axis=-1)
+
+    def side_points(self, side: str, xi, q) -> np.ndarray:
+        """Points (n, 3) of the side curve of ``side`` at face positions ``xi`` (n,) and
+        arc-length fractions ``q`` (n,) in [0, 1] (0: the tooth's root point, 1: the
+        fillet's bottom on the root cone): exactly on the flank, bridge and fillet (the
+        fraction is mapped to the piece coordinate through an arc-length table of
+        :data:`_SAMPLES` points per piece)."""
+        xi, q = (np.asarray(a, float) for a in np.broadcast_arrays(xi, q))
+        return self._pieces(side, xi, self._piece_coordinate(side, xi, q))
+
+    def _piece_coordinate(self, side, xi, q):
+        grid = np.concatenate([np.linspace(0.0, 1.0, _SAMPLES),
+                               np.linspace(1.0, 2.0, _SAMPLES)[1:],
+                               np.linspace(2.0, 3.0, _SAMPLES)[1:]])
+        cols, inv = np.unique(xi, return_inverse=True)
+        pts = self._pieces(side, np.repeat(cols, len(grid)), np.tile(grid, len(cols)))
+        seg = np.linalg.norm(np.diff(pts.reshape(len(cols), len(grid), 3), axis=1), axis=-1)
+        arc = np.concatenate([np.zeros((len(cols), 1)), np.cumsum(seg, axis=1)], axis=1)
+        out = np.empty_like(q)
+        for k in range(len(cols)):
+            at = inv.ravel() == k
+            out.ravel()[at] = np.interp(q.ravel()[at] * arc[k, -1], arc[k], grid)
+        return out
+
+    # ---------------------------------------------------------------- slot and rim
+    def root_row(self, xi, n_slot: int) -> np.ndarray:
+        """The root row at face positions ``xi`` (n,): (n, 2 n_slot + 2, 3) points on the
+        root cone, coast slot middle -> ``B_c`` (index n_slot) -> ``B_d`` (n_slot + 1) ->
+        drive slot middle, mm. Raises InputRangeError if the two fillets' bottoms span
+        a pitch or more (no slot between the teeth)."""
+        xi = np.atleast_1d(np.asarray(xi, float))
+        one = np.ones_like(xi)
+        bc, bd = self.side_points("coast", xi, one), self.side_points("drive", xi, one)
+        ax = self.tooth.axis
+        rc, rd = bc - np.outer(bc @ ax, ax), bd - np.outer(bd @ ax, ax)
+        delta = np.arctan2(np.cross(rc, rd) @ ax, np.einsum("ni,ni->n", rc, rd))
+        half = 0.5 * (2.0 * math.pi / self.tooth.teeth - np.abs(delta))
+        if np.any(half <= 0.0):
+            raise InputRangeError(f"{self.tooth.member} root fillets' bottom width (rad)",
+                                  float(np.max(np.abs(delta))), "< one pitch angle")
+        sign = np.sign(delta)
+        frac = np.linspace(0.0, 1.0, n_slot + 1)
+        row = np.empty((len(xi), 2 * n_slot + 2, 3))
+        for i in range(len(xi)):
+            for k, f in enumerate(frac):
+                row[i, n_slot - k] = _turn(ax, -sign[i] * half[i] * f) @ bc[i]
+                row[i, n_slot + 1 + k] = _turn(ax, sign[i] * half[i] * f) @ bd[i]
+        return row
+
+    def cone_depth_mm(self, xi) -> np.ndarray:
+        """Depth of the fillet bottoms' middle below the root line's centre along ``d``
+        (n,), mm: the height of the real fillet zone below the tooth's root line."""
+        xi = np.atleast_1d(np.asarray(xi, float))
+        one = np.ones_like(xi)
+        centre, down, _, _ = root_line_section(self.tooth, xi)
+        mid = 0.5 * (self.side_points("coast", xi, one) + self.side_points("drive", xi, one))
+        return np.einsum("ni,ni->n", mid - centre, down)
+
+    def mesh_points(self, xi_levels, q_levels, s_fractions, zeta_levels, n_slot: int
+                    ) -> np.ndarray:
+        """Node positions below the root line for :func:`.fe.build_fe`:
+        ``(n_xi, n_block + 1 + n_fillet, n_zeta + 2 n_slot + 1, 3)`` with levels from the
+        clamped bottom (0) up: the rim block at ``s_fractions`` (1 at the bottom .. 0 at
+        the root row; descending), then the fillet zone at the side-curve fractions
+        ``q_levels`` (descending from 1 at the root row; the root line ``q = 0`` itself
+        excluded); columns across: the coast slot bottom, the tooth (``zeta_levels``,
+        straight from the coast to the drive side point), the drive slot bottom. Nodes of
+        the fillet zone outside the tooth's columns are unused (NaN)."""
+        xi = np.asarray(xi_levels, float)
+        zeta = np.asarray(zeta_levels, float)
+        nz = len(zeta) - 1
+        row = self.root_row(xi, n_slot)                            # (n_xi, 2 n_slot + 2, 3)
+        # the root row with the tooth's columns between the two fillet bottoms
+        tooth_cols = row[:, n_slot:n_slot + 1] + zeta[None, :, None] * (
+            row[:, n_slot + 1:n_slot + 2] - row[:, n_slot:n_slot + 1])
+        full = np.concatenate([row[:, :n_slot], tooth_cols, row[:, n_slot + 2:]], axis=1)
+        _, down, _, _ = root_line_section(self.tooth, xi)
+        block = self.depth_mm - self.cone_depth_mm(xi)
+        if np.any(block <= 0.0):
+            raise InputRangeError(f"{self.tooth.member} rim depth_mm", self.depth_mm,
+                                  "> the fillet zone's depth "
+                                  f"{float(np.max(self.depth_mm - block)):.3f} mm")
+        s = np.asarray(s_fractions, float)
+        levels = [full + (s[j] * block)[:, None, None] * down[:, None, :]
+                  for j in range(len(s))]
+        q = np.asarray(q_levels, float)
+        for qj in q[1:]:
+            lvl = np.full_like(full, np.nan)
+            pc = self.side_points("coast", xi, np.full_like(xi, qj))
+            pd = self.side_points("drive", xi, np.full_like(xi, qj))
+            lvl[:, n_slot:n_slot + nz + 1] = pc[:, None] + zeta[None, :, None] * (pd - pc)[:, None]
+            levels.append(lvl)
+        return np.stack(levels, axis=1)
+
+    # ---------------------------------------------------------------- ISO section
+    def critical_section(self, xi, *, tangent_deg: float = ISO_TANGENT_DEG
+                         ) -> CriticalSection:
+        """The section where each side curve's tangent (projected into the plane of the
+        down direction ``d`` and the root chord) makes ``tangent_deg`` with ``d``
+        (ISO 6336-3 sec. 6.2), found by Brent's method on the piece coordinate over the
+        bridge and the fillet."""
+        xi = np.atleast_1d(np.asarray(xi, float))
+        _, down, chord, _ = root_line_section(self.tooth, xi)
+        across = chord - np.einsum("ni,ni->n", chord, down)[:, None] * down
+        across /= np.linalg.norm(across, axis=-1, keepdims=True)
+        target = math.radians(tangent_deg)
+        pts, centre = {}, root_line_section(self.tooth, xi)[0]
+        for side in ("coast", "drive"):
+            got = np.empty((len(xi), 3))
+            for i, x in enumerate(xi):
+                def angle(p, side=side, i=i, x=x):
+                    h = 1e-6
+                    a, b = (self._pieces(side, np.array([x]), np.array([p + e]))[0]
+                            for e in (-h, h))
+                    t = b - a
+                    return math.atan2(abs(t @ across[i]), t @ down[i]) - target
+                # the first crossing down the curve (pieces of zero length skipped)
+                grid = [p for p in np.linspace(1e-5, 3.0 - 1e-5, 61)
+                        if self.bridge_mm(side, x)[0] > 1e-9 or not 1.0 < p < 2.0]
+                f = np.array([angle(p) for p in grid])
+                k = int(np.argmax(f > 0.0))
+                if k == 0:
+                    raise InputRangeError(f"{self.tooth.member} {side} root side tangent",
+                                          f"{math.degrees(f[0] + target):.1f} deg",
+                                          f"a tangent through {tangent_deg} deg")
+                p30 = brentq(angle, grid[k - 1], grid[k], xtol=1e-12)
+                got[i] = self._pieces(side, np.array([x]), np.array([p30]))[0]
+            pts[side] = got
+        w = pts["drive"] - pts["coast"]
+        mid = 0.5 * (pts["drive"] + pts["coast"])
+        return CriticalSection(xi=xi, thickness_mm=np.abs(np.einsum("ni,ni->n", w, across)),
+                               depth_mm=np.einsum("ni,ni->n", mid - centre, down),
+                               coast_mm=pts["coast"], drive_mm=pts["drive"])
+
+
+def fillet_root(tooth: ToothGeometry, fillets: dict, *, depth_mm: float | None = None
+                ) -> FilletRoot:
+    """The :class:`FilletRoot` of ``tooth`` from ``fillets`` (``{(member, side):
+    RootFillet}`` of :func:`~gearcontact.geometry.fillet.pair_fillets`, or ``{side:
+    RootFillet}``); ``depth_mm`` defaults to the tooth height (:mod:`.rim`'s depth).
+
+    Raises
+    ------
+    InputRangeError
+        A side without a fillet (its member's cutter unknown: the conjugate pinion).
+    """
+    got = {}
+    for side in ("drive", "coast"):
+        f = fillets.get((tooth.member, side), fillets.get(side))
+        if f is None:
+            raise InputRangeError(f"{tooth.member} {side} root fillet", "none",
+                                  "a fillet of the member's cutter (geometry.fillet)")
+        got[side] = f
+    depth = tooth_height_mm(tooth) if depth_mm is None else float(depth_mm)
+    if not depth > 0.0:
+        raise InputRangeError("rim depth_mm", depth, "> 0")
+    return FilletRoot(tooth=tooth, fillets=got, depth_mm=depth)
