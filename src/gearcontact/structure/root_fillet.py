@@ -66,8 +66,8 @@ class CriticalSection:
     ----------
     xi : ndarray
     thickness_mm : ndarray
-        ``s_Fn``: the chord between the two tangent points, across the centre line (its
-        component along the root chord's direction normal to ``d``), mm.
+        ``s_Fn``: the chord between the two tangent points, its component along the
+        thickness direction ``m`` (:meth:`FilletRoot.section_plane`), mm.
     depth_mm : ndarray
         Depth of the chord's middle below the root line's centre along ``d``, mm.
     coast_mm, drive_mm : ndarray (n, 3)
@@ -237,16 +237,27 @@ class FilletRoot:
         return np.stack(levels, axis=1)
 
     # ---------------------------------------------------------------- ISO section
+    def section_plane(self, xi) -> tuple[np.ndarray, np.ndarray]:
+        """``(m, d)`` (n, 3) at the root line: the tooth's thickness direction (the
+        mid-surface normal, coast -> drive, made normal to ``d``) and the unit down
+        direction. A section at ``xi`` is measured in their plane: the chord of two
+        side points at one ``xi`` runs obliquely through a spiral tooth, its normal
+        thickness is its component along ``m``."""
+        xi = np.atleast_1d(np.asarray(xi, float))
+        _, down, _, _ = root_line_section(self.tooth, xi)
+        m = self.tooth.mid_surface(xi, -np.ones_like(xi)).normal
+        m = m - np.einsum("ni,ni->n", m, down)[:, None] * down
+        return m / np.linalg.norm(m, axis=-1, keepdims=True), down
+
     def critical_section(self, xi, *, tangent_deg: float = ISO_TANGENT_DEG
                          ) -> CriticalSection:
         """The section where each side curve's tangent (projected into the plane of the
-        down direction ``d`` and the root chord) makes ``tangent_deg`` with ``d``
+        down direction ``d`` and the thickness direction ``m``) makes ``tangent_deg`` with
+        ``d``
         (ISO 6336-3 sec. 6.2), found by Brent's method on the piece coordinate over the
         bridge and the fillet."""
         xi = np.atleast_1d(np.asarray(xi, float))
-        _, down, chord, _ = root_line_section(self.tooth, xi)
-        across = chord - np.einsum("ni,ni->n", chord, down)[:, None] * down
-        across /= np.linalg.norm(across, axis=-1, keepdims=True)
+        across, down = self.section_plane(xi)
         target = math.radians(tangent_deg)
         pts, centre = {}, root_line_section(self.tooth, xi)[0]
         for side in ("coast", "drive"):
