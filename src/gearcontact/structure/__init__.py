@@ -6,6 +6,8 @@
   fillet, rim and calibrated shell;
 - :mod:`.rim`: the root fillet and rim segment below a tooth's root line, one geometry
   for the shell and the FE;
+- :mod:`.root_fillet`: the real root of a cut tooth (its cutter's fillets, the slot
+  bottoms, the rim block) for the FE, and its ISO 6336-3 30 deg critical section;
 - :mod:`.shell`: Mindlin-Reissner plate Rayleigh-Ritz compliance operator (low rank)
   over the tooth, its fillet and rim;
 - :mod:`.fe`: 3D finite elements of the tooth with its rim segment (scikit-fem, the

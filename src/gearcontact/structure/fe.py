@@ -12,6 +12,10 @@ root line by the rim segment of :mod:`.rim` (the shell's too) of depth ``rim_dep
 - the rim block below it, whose bottom face is clamped (all displacements zero); its
   sides, the toe / heel ends, the flanks and the top land are free.
 
+With the tooth's real root (:mod:`.root_fillet`, where its cutter is known) the sides
+below the root line follow the cutter's fillets instead, the slot bottoms beside them
+lie on the root cone and the rim block below spans one pitch (``root``).
+
 Each hexahedral cell is split into six tetrahedra (``MeshTet.init_tensor``); linear
 elasticity is solved with quadratic tetrahedra (P2) in scikit-fem with one sparse LU
 factorization per tooth, then one back-substitution per load point. A unit load along

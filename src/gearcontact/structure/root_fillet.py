@@ -5,7 +5,7 @@ Where a member's cutter is known (:func:`gearcontact.geometry.fillet.pair_fillet
 machine settings, the formate gear of a ``[cutter]``), the solid below a tooth's root
 line (:mod:`.tooth`: ``eta = -1``, the lowest height both flanks cover) is bounded by
 surfaces the cutter made, not by the quarter-ellipse approximation of :mod:`.rim`
-(``docs/bending.md`` sec. 3 and 6):
+(``docs/bending.md`` sec. 3 and 10):
 
 - each **side curve** runs, at the face position ``xi`` (the flank's own lengthwise
   parameter ``v``, which the fillet shares), from the tooth's root point down the flank
