@@ -210,3 +210,37 @@ def test_pair_fillets_of_a_left_hand_pair_meet_its_mirrored_flanks(pair):
         root = flank.evaluate(np.full(7, flank.u_range[0]), v)
         assert np.abs(top.r - root.r).max() < 1e-9
         assert np.abs(top.n - root.n).max() < 1e-9
+
+
+def test_conjugate_pinion_fillet_is_cut_by_the_complementary_generating_gear(s0003_centred):
+    # the conjugate pinion is solved, not cut; on request it gets the fillet of the
+    # complementary generating gear (the gear's blade cones rolled in the meshing motion,
+    # basic_settings.member_setups), which cuts exactly the conjugate flank: that
+    # generating motion's flank, solved at the conjugate sheet's lower box edge and turned
+    # as the fillet is, lies on the conjugate sheet (1e-9 mm: two exact solves of the same
+    # surface, one through the gear, one through the tool, measured 4e-12 mm; the sheet
+    # interpolates its nodes, the box edge is a node row), and the fillet's top row (the
+    # same motion's envelope of the round, test_generated_fillet_* above) lies below
+    # the box: the strip between is generated flank the sheet does not cover
+    from gearcontact.geometry.fillet import pair_fillets
+
+    pair, flanks = s0003_centred
+    got, why = pair_fillets(pair, flanks)
+    assert ("pinion", "drive") in why and "no cutter" in why["pinion", "drive"]
+    got, why = pair_fillets(pair, flanks, conjugate_pinion=True)
+    assert not why
+    for side in ("drive", "coast"):
+        f, conj = got["pinion", side], flanks.pinion_conjugate.side(side)
+        assert f.edge.radius_mm == pair.cutter.edge_radius_mm
+        v = np.linspace(*conj.v_range, 9)
+        u = np.full_like(v, conj.u_range[0])
+        s, x = f.solver, np.empty((len(v), 3))
+        for order in (range(4, len(v)), range(4, -1, -1)):    # continuation from the middle
+            q = s.initial_guess(float(u[4]), float(v[4]))
+            for j in order:
+                sol = s.solve(u[j], v[j], q)
+                q, x[j] = sol.q, sol.x_mm
+        gap = np.linalg.norm(s.rotate(x, f.turn_rad) - conj.evaluate(u, v).r, axis=-1)
+        assert gap.max() < 1e-9, gap
+        top = f.evaluate(np.full_like(v, f.u_range[1]), v)
+        assert np.all(conj.locate(top.r)[0] < conj.u_range[0])

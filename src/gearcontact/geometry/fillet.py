@@ -279,7 +279,7 @@ def generated_fillet(setup: MachineSetup, blank, *, face_width_mm: float, flank=
                            turn_rad=turn)
 
 
-def pair_fillets(pair, flanks) -> tuple[dict, dict]:
+def pair_fillets(pair, flanks, *, conjugate_pinion: bool = False) -> tuple[dict, dict]:
     """The root fillets of ``pair``'s members whose cutter is known, as built into
     ``flanks`` (:func:`~.flank.build_flanks`): ``({(member, side): RootFillet},
     {(member, side): why none})``.
@@ -287,18 +287,37 @@ def pair_fillets(pair, flanks) -> tuple[dict, dict]:
     Machine settings: every member (formate gear: the torus; generated gear and pinion:
     the envelope, turned onto the flank). Without: the formate gear with the
     ``[cutter]`` edge radius, or the generated default gear with the settings of
-    :func:`~.basic_settings.generated_gear_setups`; the conjugate pinion has no cutter.
+    :func:`~.basic_settings.generated_gear_setups`; the conjugate pinion has no cutter
+    of its own (it is solved from the gear, not cut).
+
+    ``conjugate_pinion``: give the conjugate pinion the fillet of the generating tool
+    that cuts its flanks exactly, the pinion set-up of
+    :func:`~.basic_settings.member_setups` (formate gear: the complementary generating
+    gear, the gear's own blade cones with the ``[cutter]`` edge radius rolled in the
+    meshing motion, their tips on the pinion's root cone; generated gear: the crown
+    gear). Why this surface (``docs/bending.md`` sec. 10): it is how such a pinion is
+    cut, and the generating gear is the mating gear deepened by the clearance in the same
+    relative motion, so the space it sweeps contains the mating gear tip's: of the two
+    candidate roots (the tool's fillet, the envelope of the mating gear's tip edge) it
+    leaves the thinner, more compliant one, the conservative choice for bending. It
+    meets the flank below the flank box (``u_range[0]``) of the conjugate / eased-off
+    sheet, through the strip of generated flank the sheet does not cover.
+
     A left-hand pair's fillets are its right-hand twin's, mirrored.
     """
-    from .basic_settings import generated_gear_setups
+    from .basic_settings import generated_gear_setups, member_setups
     from .flank import right_hand_twin
 
     if pair.pinion_hand == "left":
-        got, why = pair_fillets(right_hand_twin(pair), flanks.right_hand_twin)
+        got, why = pair_fillets(right_hand_twin(pair), flanks.right_hand_twin,
+                                conjugate_pinion=conjugate_pinion)
         return ({k: _mirrored(f) for k, f in got.items()}, why)
     setups = {(s.member, s.side): s for s in pair.machine}
     if not setups and flanks.gear_generation == "generated":
         setups = {("gear", side): s for side, s in generated_gear_setups(pair).items()}
+    if conjugate_pinion and not pair.machine:
+        setups.update({("pinion", side): s for side, s in
+                       member_setups(pair, flanks.gear_generation)[1].items()})
     got, why = {}, {}
     for member in ("pinion", "gear"):
         for side in SIDES:

@@ -45,7 +45,7 @@ from scipy.optimize import brentq
 
 from ..validation import InputRangeError
 from .rim import root_line_section, tooth_height_mm
-from .tooth import ToothGeometry, _turn
+from .tooth import ToothGeometry, axis_rotation
 
 __all__ = ["CriticalSection", "FilletRoot", "fillet_root", "ISO_TANGENT_DEG"]
 
@@ -104,7 +104,7 @@ class FilletRoot:
         """Side curve points (n, 3) at the piece coordinate ``p`` in [0, 3] (n,): flank
         (0..1), bridge (1..2), fillet (2..3), body frame (coast turned)."""
         tooth, fil = self.tooth, self.fillets[side]
-        flank = tooth._flank(side)
+        flank = getattr(tooth, side)
         _, v = tooth.flank_parameters(side, xi, -np.ones_like(xi))
         u_root, u_lo, s_top = tooth.u_span_mm[0], flank.u_range[0], fil.u_range[1]
         out = np.empty(xi.shape + (3,))
@@ -127,7 +127,7 @@ class FilletRoot:
     def _bridge_ends(self, side: str, v):
         """Ends and unit tangents (down the tooth) of the bridge at ``v``: the flank box's
         lower edge and the fillet's top row, in the flank's frame."""
-        flank, fil = self.tooth._flank(side), self.fillets[side]
+        flank, fil = getattr(self.tooth, side), self.fillets[side]
         s = flank.evaluate(np.full_like(v, flank.u_range[0]), v, second=False)
         ta = -s.r_u / np.linalg.norm(s.r_u, axis=-1, keepdims=True)
         s_top = fil.u_range[1]
@@ -187,8 +187,8 @@ class FilletRoot:
         row = np.empty((len(xi), 2 * n_slot + 2, 3))
         for i in range(len(xi)):
             for k, f in enumerate(frac):
-                row[i, n_slot - k] = _turn(ax, -sign[i] * half[i] * f) @ bc[i]
-                row[i, n_slot + 1 + k] = _turn(ax, sign[i] * half[i] * f) @ bd[i]
+                row[i, n_slot - k] = axis_rotation(ax, -sign[i] * half[i] * f) @ bc[i]
+                row[i, n_slot + 1 + k] = axis_rotation(ax, sign[i] * half[i] * f) @ bd[i]
         return row
 
     def cone_depth_mm(self, xi) -> np.ndarray:
@@ -269,9 +269,10 @@ class FilletRoot:
                             for e in (-h, h))
                     t = b - a
                     return math.atan2(abs(t @ across[i]), t @ down[i]) - target
-                # the first crossing down the curve (pieces of zero length skipped)
+                # the first crossing down the curve (a bridge of zero length skipped)
+                bridged = self.bridge_mm(side, x)[0] > 1e-9
                 grid = [p for p in np.linspace(1e-5, 3.0 - 1e-5, 61)
-                        if self.bridge_mm(side, x)[0] > 1e-9 or not 1.0 < p < 2.0]
+                        if bridged or not 1.0 < p < 2.0]
                 f = np.array([angle(p) for p in grid])
                 k = int(np.argmax(f > 0.0))
                 if k == 0:

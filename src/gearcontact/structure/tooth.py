@@ -41,7 +41,7 @@ from ..materials import Material
 from ..validation import InputRangeError, check_array_finite, check_positive
 
 __all__ = ["MidSurfaceArrays", "LoadPoints", "PlateBody", "ToothGeometry", "RectangularPlate",
-           "tooth_geometry", "local_frame"]
+           "tooth_geometry", "local_frame", "axis_rotation"]
 
 #: Tolerance (mm) on a flank parameter outside its own box before it is rejected.
 _PARAM_TOL_MM = 1e-6
@@ -310,7 +310,7 @@ class ToothGeometry:
         return LoadPoints(xi=xi, eta=eta, direction=-n, offset_mm=off, position_mm=r)
 
 
-def _turn(axis: np.ndarray, angle_rad: float) -> np.ndarray:
+def axis_rotation(axis: np.ndarray, angle_rad: float) -> np.ndarray:
     """Rotation matrix about the unit ``axis`` by ``angle_rad`` (Rodrigues)."""
     k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
     return np.eye(3) + np.sin(angle_rad) * k + (1.0 - np.cos(angle_rad)) * (k @ k)
@@ -334,7 +334,7 @@ def tooth_geometry(flanks: FlankSet, member: str, *, material: Material) -> Toot
         raise InputRangeError(f"{member} flank heights (mm)", u_span, "an overlapping u box")
     best = None
     for k in (0, 1, -1):
-        turn = _turn(axis, 2.0 * np.pi * k / teeth)
+        turn = axis_rotation(axis, 2.0 * np.pi * k / teeth)
         tooth = ToothGeometry(member=member, drive=drive, coast=coast, coast_turn=turn,
                               u_span_mm=u_span, axis=axis, teeth=teeth, material=material)
         rd, _, _, nd = tooth.flank_arrays("drive", 0.0, 0.0)
