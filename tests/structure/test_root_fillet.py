@@ -102,6 +102,11 @@ def test_fillet_root_refuses_a_member_without_a_cutter(gear_root):
         fillet_root(tooth, {"drive": fillets["drive"]})
     with pytest.raises(InputRangeError, match="rim depth_mm"):
         fillet_root(tooth, fillets, depth_mm=0.0)
+    # the FE's root is named before any flank is built
+    from gearcontact.structure.compliance import flank_compliance
+
+    with pytest.raises(InputRangeError, match="fe_root = 'real'.*'ellipse' or 'cutter'"):
+        flank_compliance(load_pair(PAIR), "gear", fe=True, fe_root="real")
 
 
 # ------------------------------------------------------------------ slow: 3D FE

@@ -177,7 +177,8 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
                      flanks: FlankSet | None = None,
                      xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = ORDER,
                      order_face: int = ORDER_FACE, rim: RimSegment | None = None,
-                     fe: bool = False, fe_mesh: FeMesh = FeMesh()) -> FlankCompliance:
+                     fe: bool = False, fe_mesh: FeMesh = FeMesh(),
+                     fe_root: str = "ellipse") -> FlankCompliance:
     """Compliance of one tooth of ``member`` at the lattice ``xi x eta`` of its flank
     ``side`` (loaded there, normal into the tooth).
 
@@ -205,15 +206,34 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
     fe : bool
         Also solve the 3D FE model (needs the ``fe`` extra).
     fe_mesh : FeMesh
+    fe_root : str
+        The FE's root below the tooth: ``"ellipse"``, the quarter-ellipse fillet and rim
+        of :mod:`.rim` (the shell's calibration, ``docs/bending.md`` sec. 3), or
+        ``"cutter"``, the real root the member's cutter leaves
+        (:mod:`.root_fillet`; the conjugate pinion's from the generating tool that cuts
+        it, :func:`~gearcontact.geometry.fillet.pair_fillets`; sec. 10).
     """
     if member not in ("pinion", "gear"):
         raise InputRangeError("member", member, "'pinion' or 'gear'")
+    if fe_root not in ("ellipse", "cutter"):
+        raise InputRangeError("fe_root", fe_root, "'ellipse' or 'cutter'")
     _check_lattice(side, xi, eta, fe_mesh)      # before the flanks and the shell
     flanks = build_flanks(pair) if flanks is None else flanks
     material = pair.pinion_material if member == "pinion" else pair.gear_material
     shell = tooth_shell(flanks, member, material=material, order=order,
                         order_face=order_face, rim=rim)
-    return shell_compliance(shell, side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh)
+    root = None
+    if fe and fe_root == "cutter":
+        from ..geometry.fillet import pair_fillets
+        from .root_fillet import fillet_root
+
+        fillets, why = pair_fillets(pair, flanks, conjugate_pinion=True)
+        for key, reason in why.items():
+            if key[0] == member:
+                raise InputRangeError(f"{member} {key[1]} root fillet", "none", reason)
+        root = fillet_root(shell.body, fillets, depth_mm=shell.rim.depth_mm)
+    return shell_compliance(shell, side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh,
+                            fe_root=root)
 
 
 def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0.5),
