@@ -194,3 +194,31 @@ def test_real_root_softens_the_tooth_as_the_beam_says(machine_pair, member):
     # convergence: the change on the refined mesh (16 x 8 x 4 + 5 rim, 4 fillet layers,
     # 3 slot cells against 12 x 6 x 3 + 4, 3, 2) within 10 % (measured gear -5 %)
     assert (r1 - e1) == pytest.approx(r0 - e0, rel=0.10)
+
+
+def test_a_slot_whose_fillets_cross_is_refused(s0003_calibrated):
+    # the 7-tooth s0003 pinion cut by its complementary generating tool (r_e of
+    # [cutter]): at the toe this tooth's drive fillet and the next tooth's coast fillet
+    # (turned by one pitch) swap their order about the axis between their top rows and
+    # their bottoms on the root cone, so they cross above it (intermediate values): the
+    # slot has no bottom on the root cone and the root row is refused, naming xi
+    from gearcontact.geometry.fillet import pair_fillets
+
+    pair, flanks = s0003_calibrated
+    fillets = pair_fillets(pair, flanks, conjugate_pinion=True)[0]
+    tooth = tooth_geometry(flanks, "pinion", material=pair.pinion_material)
+    root = fillet_root(tooth, fillets)
+    pitch = 2.0 * math.pi / tooth.teeth
+
+    def angle(side, u):
+        f = fillets["pinion", side]
+        v = tooth.flank_parameters(side, np.array([-1.0]), np.array([-1.0]))[1]
+        r = f.evaluate(np.array([u(f)]), v).r[0] @ (tooth.coast_turn.T if side == "coast"
+                                                    else np.eye(3))
+        return math.atan2(r[2], r[1])
+
+    top = angle("coast", lambda f: f.u_range[1]) + pitch - angle("drive", lambda f: f.u_range[1])
+    bottom = angle("coast", lambda f: 0.0) + pitch - angle("drive", lambda f: 0.0)
+    assert top > 0.0 > bottom
+    with pytest.raises(InputRangeError, match="xi = -1.000.*must not cross"):
+        root.root_row(np.array([-1.0, 0.0]), 2)

@@ -171,7 +171,8 @@ class FilletRoot:
         """The root row at face positions ``xi`` (n,): (n, 2 n_slot + 2, 3) points on the
         root cone, coast slot middle -> ``B_c`` (index n_slot) -> ``B_d`` (n_slot + 1) ->
         drive slot middle, mm. Raises InputRangeError if the two fillets' bottoms span
-        a pitch or more (no slot between the teeth)."""
+        a pitch or more: the fillets of a slot cross above the root cone (on the 7-tooth
+        s0003 pinion at the toe with the complementary tool), a root not meshed here."""
         xi = np.atleast_1d(np.asarray(xi, float))
         one = np.ones_like(xi)
         bc, bd = self.side_points("coast", xi, one), self.side_points("drive", xi, one)
@@ -180,8 +181,14 @@ class FilletRoot:
         delta = np.arctan2(np.cross(rc, rd) @ ax, np.einsum("ni,ni->n", rc, rd))
         half = 0.5 * (2.0 * math.pi / self.tooth.teeth - np.abs(delta))
         if np.any(half <= 0.0):
-            raise InputRangeError(f"{self.tooth.member} root fillets' bottom width (rad)",
-                                  float(np.max(np.abs(delta))), "< one pitch angle")
+            # the fillets of a slot cross above the root cone (the slot is narrower than
+            # its two edge rounds): its bottom is their intersection, not meshed here
+            k = int(np.argmin(half))
+            raise InputRangeError(f"{self.tooth.member} root fillets' bottoms at xi = "
+                                  f"{xi[k]:.3f} (angle about the axis, rad)",
+                                  float(abs(delta[k])), f"< one pitch angle "
+                                  f"{2.0 * math.pi / self.tooth.teeth:.4f} (the slot's two "
+                                  "fillets must not cross above the root cone)")
         sign = np.sign(delta)
         frac = np.linspace(0.0, 1.0, n_slot + 1)
         row = np.empty((len(xi), 2 * n_slot + 2, 3))
