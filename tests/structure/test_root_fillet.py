@@ -180,7 +180,6 @@ def test_real_root_softens_the_tooth_as_the_beam_says(machine_pair, member):
         if mesh.n_xi == 12:
             seg = [float(g.segment_fe_mm_per_n[0]) for g in got]
     (e0, r0), (e1, r1) = line.values()
-    print(member, "line ellipse/real", line, "segment", seg)
     # sign: the real root (the sharper fillet, the slot bottom on the root cone: a
     # narrower root row) is softer under both the line and the segment load
     assert r0 > e0 and seg[1] > seg[0]
@@ -189,10 +188,10 @@ def test_real_root_softens_the_tooth_as_the_beam_says(machine_pair, member):
     # overstates the rim's share: measured beam / FE 1.09 (gear), 1.95 (pinion);
     # tolerance a factor 2.2
     beam = _beam_change(tooth, root, shell.rim)
-    print(member, "beam change", beam, "FE change", r0 - e0, r1 - e1)
     assert 1.0 / 2.2 < beam / (r0 - e0) < 2.2, (beam, r0 - e0)
     # convergence: the change on the refined mesh (16 x 8 x 4 + 5 rim, 4 fillet layers,
-    # 3 slot cells against 12 x 6 x 3 + 4, 3, 2) within 10 % (measured gear -5 %)
+    # 3 slot cells against 12 x 6 x 3 + 4, 3, 2) within 10 % (measured gear -5.1 %,
+    # pinion -0.8 %)
     assert (r1 - e1) == pytest.approx(r0 - e0, rel=0.10)
 
 
