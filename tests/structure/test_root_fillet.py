@@ -10,6 +10,9 @@ ISO 23509 F.2 machine-settings pair (examples/machine_settings, edge radius 0.4 
     map); and within r_e sin(delta) of the torus point whose profile angle is 30 deg in
     the cutter's axial plane (the ISO construction in the tool's section; delta the
     angle between the tooth's centre line and the cutter axis);
+    the FE mesh on the real root: its fillet-zone side vertices on the cutter's torus,
+    its slot-bottom vertices on the root cone; the 7-tooth s0003 pinion's slot, whose
+    fillets cross above the root cone (shown by their order about the axis), refused;
 (b) slow (3D FE, minutes): the tooth on its real root against the tooth on the
     quarter-ellipse root of structure.rim at the mean point: the sign and magnitude of
     the compliance change against a Timoshenko beam over the section profiles, and the
@@ -94,6 +97,40 @@ def test_critical_section_lies_at_the_fillets_30_deg_tangent(gear_root):
     # s_Fn of the F.2 gear's tooth (xi = -0.8, 0, 0.8), measured: a regression guard on
     # the section's definition (normal thickness along m), 1e-4 mm
     assert cs.thickness_mm == pytest.approx([6.5439, 7.7327, 8.8049], abs=1e-4)
+
+
+def test_fe_mesh_follows_the_cutters_torus_and_the_root_cone(gear_root):
+    # a small FE mesh on the real root (P2, 6 x 2 x 1 cells, 1 block layer, 2 fillet
+    # layers, 1 slot cell; ~1 s): it has no inverted cells (build_fe checks), every
+    # vertex on a side of the fillet zone lies on the edge round's torus of its blade
+    # (distance r_e from the round's centre circle in the cutter frame, 1e-9 mm: rounding
+    # of ~100 mm coordinates), and every vertex of the root row on the circle about the
+    # gear axis of its slot's fillet bottom (the root cone; 1e-9 mm)
+    pytest.importorskip("skfem")
+    from gearcontact.structure.fe import build_fe
+
+    tooth, fillets, _, root = gear_root
+    n_block, n_fillet, n_slot, n_zeta = 1, 2, 1, 1
+    fe = build_fe(tooth, n_xi=6, n_eta=2, n_zeta=n_zeta, n_rim=n_block, root=root,
+                  n_fillet=n_fillet, n_slot=n_slot)
+    for side, k in (("coast", n_slot), ("drive", n_slot + n_zeta)):
+        f = fillets[side]
+        verts = fe._vertex[:, n_block:n_block + n_fillet + 1, k].ravel()
+        r = fe.vertex_positions_mm(verts)
+        r = r @ tooth.coast_turn if side == "coast" else r       # back into the flank frame
+        x_t = (r - f.origin) @ f.frame
+        rho = np.hypot(x_t[:, 0], x_t[:, 1])
+        dist = np.hypot(rho - f.edge.centre_radius_mm, x_t[:, 2] + f.edge.radius_mm)
+        assert np.abs(dist - f.edge.radius_mm).max() < 1e-9
+    axis = tooth.axis
+    for i in range(len(fe.xi_levels)):
+        row = fe.vertex_positions_mm(fe._vertex[i, n_block, :])
+        for cols, bottom in ((row[:n_slot + 1], row[n_slot]),
+                             (row[n_slot + n_zeta:], row[n_slot + n_zeta])):
+            radius = np.linalg.norm(np.cross(cols, axis), axis=1)
+            assert np.abs(radius - np.linalg.norm(np.cross(bottom, axis))).max() < 1e-9
+            assert np.abs(cols @ axis - bottom @ axis).max() < 1e-9
+    assert fe.n_nodes > 0
 
 
 def test_fillet_root_refuses_a_member_without_a_cutter(gear_root):
