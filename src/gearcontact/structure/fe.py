@@ -227,8 +227,8 @@ def _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim, rim_depth_mm, fillet_mm):
 def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_slot):
     """Index mesh and node positions of the tooth on its real root (:mod:`.root_fillet`):
     a tensor index grid across the slot bottoms, the tooth and the fillet zone, without
-    the cells beside the tooth above the root row (module docstring of
-    :func:`build_fe`); as :func:`_rim_mesh`."""
+    the cells beside the tooth above the root row (``root`` of :func:`build_fe`); as
+    :func:`_rim_mesh`."""
     n_xi, n_eta, n_zeta = len(xi_l) - 1, len(eta_l) - 1, len(zeta_l) - 1
     n_k = n_zeta + 2 * n_slot
     full = skfem.MeshTet.init_tensor(np.arange(n_xi + 1.0),

@@ -210,11 +210,12 @@ class FilletRoot:
     def mesh_points(self, xi_levels, q_levels, s_fractions, zeta_levels, n_slot: int
                     ) -> np.ndarray:
         """Node positions below the root line for :func:`.fe.build_fe`:
-        ``(n_xi, n_block + 1 + n_fillet, n_zeta + 2 n_slot + 1, 3)`` with levels from the
-        clamped bottom (0) up: the rim block at ``s_fractions`` (1 at the bottom .. 0 at
-        the root row; descending), then the fillet zone at the side-curve fractions
-        ``q_levels`` (descending from 1 at the root row; the root line ``q = 0`` itself
-        excluded); columns across: the coast slot bottom, the tooth (``zeta_levels``,
+        ``(n_xi, len(s_fractions) + len(q_levels) - 1, n_zeta + 2 n_slot + 1, 3)`` with
+        levels from the clamped bottom (0) up: the rim block at the depth fractions
+        ``s_fractions`` (descending, 1 at the bottom .. 0 at the root row), then the
+        fillet zone at the side-curve fractions ``q_levels[1:]`` (descending;
+        ``q_levels[0] = 1`` is the root row itself, the root line ``q = 0`` is the
+        tooth's and excluded); columns across: the coast slot bottom, the tooth (``zeta_levels``,
         straight from the coast to the drive side point), the drive slot bottom. Nodes of
         the fillet zone outside the tooth's columns are unused (NaN)."""
         xi = np.asarray(xi_levels, float)
