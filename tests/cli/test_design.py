@@ -476,19 +476,25 @@ def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, caps
            "side" in err
 
 
-@pytest.mark.parametrize("argv, angle, turns", [
-    ([], None, True),     # analyze synthesizes at the default targets
-    (["--synthesize-easeoff", "--path-angle-drive-deg", "12"], 12.0, True),
-    (["--synthesize-easeoff", "--path-angle-deg", "-4"], -4.0, True),
-    # the setting synthesis turns no short path: only its path angle is seen
-    (["--machine-settings", "--local-synthesis", "--path-angle-deg", "7"], 7.0, False),
-    (["--machine-settings"], "none", None),      # standard settings: no synthesis
+@pytest.mark.parametrize("argv, angle, turns, levels", [
+    ([], None, True, (3.0, 0.35)),     # analyze synthesizes at the default targets
+    (["--synthesize-easeoff", "--path-angle-drive-deg", "12"], 12.0, True, (3.0, 0.35)),
+    (["--synthesize-easeoff", "--path-angle-deg", "-4", "--te0-arcsec", "8"], -4.0, True,
+     (8.0, 0.35)),
+    (["--synthesize-easeoff", "--te0-arcsec", "8", "--pattern-length-ratio", "0.6"], None,
+     True, (8.0, 0.6)),
+    # the setting synthesis turns no short path: its targets are seen all the same
+    (["--machine-settings", "--local-synthesis", "--path-angle-deg", "7"], 7.0, False,
+     (3.0, 0.35)),
+    (["--machine-settings", "--local-synthesis", "--pattern-length-ratio", "0.5"], None,
+     False, (3.0, 0.5)),
+    (["--machine-settings"], "none", None, None),      # standard settings: no synthesis
 ])
-def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, monkeypatch,
-                                                         capsys):
+def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, levels,
+                                                         monkeypatch, capsys):
     """design's contact-path check is given the bearing the synthesis will make with the
-    command's targets (docs/geometry.md sec. 7.7; the check itself: tests/tca/
-    test_predicted_bearing.py)."""
+    command's targets: path angle, TE0 level and pattern length (docs/geometry.md sec.
+    7.7; the check itself: tests/tca/test_predicted_bearing.py)."""
     import gearcontact.cli.design as design
     from gearcontact.validation import InputRangeError
 
@@ -506,3 +512,4 @@ def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, mon
         return
     targets = got.targets["drive"] if isinstance(got.targets, dict) else got.targets
     assert targets.path_angle_deg == angle and got.turns_short_paths is turns
+    assert (targets.te0_pp_arcsec, targets.pattern_length_ratio) == levels

@@ -282,17 +282,26 @@ class GearSheet(RadialSheet):
         ru, rv, zu, zv = c.cos_delta, c.sin_delta, -c.sin_delta, c.cos_delta
         rad = c.radius_mm(u, v)
         p, pu, pv, puu, puv, pvv = (d[:, k] for k in range(6))
-        er = np.stack([np.cos(p), np.sin(p), np.zeros_like(p)], axis=-1)
-        ep = np.stack([-np.sin(p), np.cos(p), np.zeros_like(p)], axis=-1)
+        # filled in place, not stacked: the TCA's edge solver evaluates single points,
+        # where np.stack / np.cross cost more than the arithmetic (the same operations in
+        # the same order, so the values are those of the stacked form bit for bit)
+        cos_p, sin_p = np.cos(p), np.sin(p)
+        er, ep = np.zeros((p.shape[0], 3)), np.zeros((p.shape[0], 3))
+        er[:, 0], er[:, 1] = cos_p, sin_p
+        ep[:, 0], ep[:, 1] = -sin_p, cos_p
         z = np.array([0.0, 0.0, 1.0])
-        col = lambda a: np.asarray(a)[:, None] if np.ndim(a) else a  # noqa: E731
         out = np.empty((u.shape[0], 7, 3))
-        out[:, 0] = col(rad) * er + col(c.height_mm(u, v)) * z
-        out[:, 1] = ru * er + col(rad * pu) * ep + zu * z
-        out[:, 2] = rv * er + col(rad * pv) * ep + zv * z
-        out[:, 3] = col(2 * ru * pu + rad * puu) * ep - col(rad * pu * pu) * er
-        out[:, 4] = col(ru * pv + rv * pu + rad * puv) * ep - col(rad * pu * pv) * er
-        out[:, 5] = col(2 * rv * pv + rad * pvv) * ep - col(rad * pv * pv) * er
-        n = np.cross(out[:, 1], out[:, 2])
+        out[:, 0] = rad[:, None] * er + c.height_mm(u, v)[:, None] * z
+        out[:, 1] = ru * er + (rad * pu)[:, None] * ep + zu * z
+        out[:, 2] = rv * er + (rad * pv)[:, None] * ep + zv * z
+        out[:, 3] = (2 * ru * pu + rad * puu)[:, None] * ep - (rad * pu * pu)[:, None] * er
+        out[:, 4] = ((ru * pv + rv * pu + rad * puv)[:, None] * ep
+                     - (rad * pu * pv)[:, None] * er)
+        out[:, 5] = (2 * rv * pv + rad * pvv)[:, None] * ep - (rad * pv * pv)[:, None] * er
+        a, b = out[:, 1], out[:, 2]
+        n = np.empty_like(a)          # r_u x r_v, component by component as np.cross
+        n[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+        n[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+        n[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
         out[:, 6] = self.normal_sign * n / np.linalg.norm(n, axis=-1, keepdims=True)
         return out
