@@ -52,6 +52,7 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -284,8 +285,8 @@ def check_targets(pair, *, targets, flanks, sides=SIDES) -> dict:
     reachable at them, the first-order design of every one exceeding the whole relief
     limit the eased flanks enforce or losing a crowning (a high TE0 or a short pattern
     crowns hard; the whole limit, not the half a path-angle target is held to: the
-    free-bias synthesis of s0003 drive meets TE0 30 arcsec at the pattern 0.35, whose
-    first-order design needs 0.7 of it), the one to change is named with the reachable
+    free-bias synthesis of s0003 drive meets TE0 30 arcsec at the pattern 0.35, where
+    every first-order design needs more than half of it: 20.4 arcsec fills the half), the one to change is named with the reachable
     bound (:func:`_level_error`); then a path-angle target outside the side's range
     (:func:`check_path_angle`).
 
@@ -331,6 +332,13 @@ def _bisect(reaches, good: float, bad: float) -> float:
     return good
 
 
+def _inside_3g(x: float, *, up: bool) -> float:
+    """``x`` to three significant digits, rounded into the reachable side (down for an
+    upper bound, ``up`` for a lower one), so that the bound printed is reachable."""
+    e = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float((math.ceil(x / e) if up else math.floor(x / e)) * e)
+
+
 def _level_error(pair, *, side: str, targets, flanks) -> InputRangeError:
     """The refusal of a TE0 level and pattern length at which no path angle is
     reachable: the TE0 bound at the pattern length (TE0 sets the crowning across the
@@ -343,14 +351,16 @@ def _level_error(pair, *, side: str, targets, flanks) -> InputRangeError:
     if te0 > lo_te0 and _reaches(pair, side, targets, flanks, te0_pp_arcsec=lo_te0):
         bound = _bisect(lambda x: _reaches(pair, side, targets, flanks, te0_pp_arcsec=x),
                         lo_te0, te0)
-        return InputRangeError("te0_pp_arcsec", te0, f"<= {bound:.3g} arcsec with the "
+        most = _inside_3g(bound, up=False)
+        return InputRangeError("te0_pp_arcsec", te0, f"<= {most:.3g} arcsec with the "
                                f"pattern length ratio {ratio:g} {where}")
     if ratio < hi_ratio and _reaches(pair, side, targets, flanks,
                                      pattern_length_ratio=hi_ratio):
         bound = _bisect(lambda x: _reaches(pair, side, targets, flanks,
                                            pattern_length_ratio=x), hi_ratio, ratio)
-        return InputRangeError("pattern_length_ratio", ratio, f">= {bound:.3g} with TE0 "
-                               f"{te0:g} arcsec {where}")
+        least = _inside_3g(bound, up=True)
+        return InputRangeError("pattern_length_ratio", ratio,
+                               f">= {least:.3g} with TE0 {te0:g} arcsec {where}")
     return InputRangeError("te0_pp_arcsec", te0, f"none with the pattern length ratio "
                            f"{ratio:g} (nor at {lo_te0:g} arcsec with any up to {hi_ratio:g}) "
                            f"{where}")
