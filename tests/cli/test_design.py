@@ -140,6 +140,39 @@ def test_synthesis_targets_checked_before_the_directory_and_work(tmp_path, capsy
     assert not (tmp_path / "x").exists()
 
 
+@pytest.mark.parametrize("field, option", [("te0_pp_arcsec", "--te0-arcsec"),
+                                           ("pattern_length_ratio", "--pattern-length-ratio")])
+def test_an_unreachable_level_names_its_option_before_work(tmp_path, capsys, monkeypatch,
+                                                           field, option):
+    """A TE0 level or pattern length the synthesis cannot reach on the pair (tca.path_reach
+    .check_targets: its closed form and bound, tests/tca/test_path_reach.py) exits 2
+    naming the option, before the synthesis and the output directory; the check gets
+    each side's targets (generation check and flanks stubbed: milliseconds)."""
+    import gearcontact.cli.design as design
+    import gearcontact.geometry.flank as flank
+    import gearcontact.tca.path_reach as path_reach
+    import gearcontact.tca.synthesis as synthesis
+    from gearcontact.validation import InputRangeError
+
+    seen = []
+
+    def check_targets(pair, *, targets, flanks, sides):
+        seen.append((sides, targets.te0_pp_arcsec, targets.pattern_length_ratio))
+        raise InputRangeError(field, 9.0, "<= 1 on the drive side of s0003 (...)")
+    monkeypatch.setattr(design, "check_generation", lambda pair, **_: None)
+    monkeypatch.setattr(design, "generation_of", lambda checked: "formate")
+    monkeypatch.setattr(flank, "build_flanks", lambda pair, **_: "flanks")
+    monkeypatch.setattr(path_reach, "check_targets", check_targets)
+    monkeypatch.setattr(synthesis, "synthesize_pair", lambda *a, **k: pytest.fail("work"))
+    assert main(["design", "--pair", "s0003", "--synthesize-easeoff", "--te0-arcsec", "9",
+                 "--pattern-length-ratio", "0.5", "--out", str(tmp_path / "x")]) == 2
+    assert capsys.readouterr().err == (f"gearcontact design: error: {option} = 9.0 is "
+                                       "outside the allowed range: <= 1 on the drive side "
+                                       "of s0003 (...)\n")
+    assert seen == [(("drive",), 9.0, 0.5)]
+    assert not (tmp_path / "x").exists()
+
+
 def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, monkeypatch):
     """Issue 28 probe: "NOT all targets met" exited 0. It is the synthesis failing its
     own check: exit 4, the table and the TOML printed and easeoff.toml kept; a target the
