@@ -211,7 +211,9 @@ class RadialSheet:
         (..., 6) with ``psi, psi_u, psi_v, psi_uu, psi_uv, psi_vv`` (the last three NaN
         unless ``second``); equal to :meth:`psi` to rounding
         (:mod:`.spline_kernel`)."""
-        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+        if u.ndim or v.ndim:    # a single point (the TCA's solvers) needs no broadcast
+            u, v = np.broadcast_arrays(u, v)
         tx, ty, pc, kx, ky = self.pp_arrays
         out = pp_derivatives(tx, ty, pc, kx, ky, np.ascontiguousarray(u.ravel()),
                              np.ascontiguousarray(v.ravel()), 2 if second else 1, False)
