@@ -1,7 +1,8 @@
 """Benchmark of the drivetrain twin: steps per second and real-time factor per backend.
 
 Runs ``gearcontact.twin`` on s0003 (64.5 N·m, 3000 rpm, 10 us RK4 step, default
-drivetrain) for each contact backend and prints steps/s, the real-time factor
+drivetrain) for each contact backend and prints the wall and CPU time of the model's
+build (the edge-contact TCA and mesh table of both sides), steps/s, the real-time factor
 (simulated / wall time), the step time p50 / p99 (over blocks of 256 steps, one
 compiled call each) and their jitter, the process CPU time per step and the load
 average (the machine is shared: wall-clock figures include other load). Targets
@@ -13,7 +14,9 @@ state their rates (the CPU column counts this process only, not the simulator).
 default; ``exact``; ``both``: every backend with each).
 
 Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]
-[--curvatures stencil|exact|both] [--bending]``.
+[--curvatures stencil|exact|both] [--bending] [--pair FILE]`` (the 7/60 pair of
+tests/design_space.py, CHATTER_PAIR, is the one whose build the edge-contact TCA
+dominates).
 """
 
 from __future__ import annotations
@@ -48,14 +51,20 @@ def main() -> None:
     args = ap.parse_args()
     pair = load_pair(args.pair)
     side = pair.design_side
+    w0, c0 = time.perf_counter(), time.process_time()
     base = model_for_pair(pair, torque_nm=args.torque, side=side, phases=61,
                           bending=args.bending)
+    build = (time.perf_counter() - w0, time.process_time() - c0)
     mesh = base.mesh
     tca, flanks = analyze_pair(pair, side=side, phases=61, edge_contact=False)
     dt = default_drivetrain(pair)
     print(f"{pair.name} ({side}) twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, step "
           f"{args.step_us:g} us, {args.duration_ms:g} ms simulated, record every "
           f"{args.record_every}, bending {args.bending}; reverse flank: {base.reverse_note}")
+    # the model's build: the edge-contact TCA of both sides (61 phases) and their mesh
+    # tables, what `gearcontact twin` runs before its first step
+    print(f"model build (edge-contact TCA and mesh table of both sides): wall {build[0]:.1f} "
+          f"s, CPU {build[1]:.1f} s")
     print(f"{'backend':<20}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
           f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
     lines = []

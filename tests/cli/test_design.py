@@ -140,6 +140,39 @@ def test_synthesis_targets_checked_before_the_directory_and_work(tmp_path, capsy
     assert not (tmp_path / "x").exists()
 
 
+@pytest.mark.parametrize("field, option", [("te0_pp_arcsec", "--te0-arcsec"),
+                                           ("pattern_length_ratio", "--pattern-length-ratio")])
+def test_an_unreachable_level_names_its_option_before_work(tmp_path, capsys, monkeypatch,
+                                                           field, option):
+    """A TE0 level or pattern length the synthesis cannot reach on the pair (tca.path_reach
+    .check_targets: its closed form and bound, tests/tca/test_path_reach.py) exits 2
+    naming the option, before the synthesis and the output directory; the check gets
+    each side's targets (generation check and flanks stubbed: milliseconds)."""
+    import gearcontact.cli.design as design
+    import gearcontact.geometry.flank as flank
+    import gearcontact.tca.path_reach as path_reach
+    import gearcontact.tca.synthesis as synthesis
+    from gearcontact.validation import InputRangeError
+
+    seen = []
+
+    def check_targets(pair, *, targets, flanks, sides):
+        seen.append((sides, targets.te0_pp_arcsec, targets.pattern_length_ratio))
+        raise InputRangeError(field, 9.0, "<= 1 on the drive side of s0003 (...)")
+    monkeypatch.setattr(design, "check_generation", lambda pair, **_: None)
+    monkeypatch.setattr(design, "generation_of", lambda checked: "formate")
+    monkeypatch.setattr(flank, "build_flanks", lambda pair, **_: "flanks")
+    monkeypatch.setattr(path_reach, "check_targets", check_targets)
+    monkeypatch.setattr(synthesis, "synthesize_pair", lambda *a, **k: pytest.fail("work"))
+    assert main(["design", "--pair", "s0003", "--synthesize-easeoff", "--te0-arcsec", "9",
+                 "--pattern-length-ratio", "0.5", "--out", str(tmp_path / "x")]) == 2
+    assert capsys.readouterr().err == (f"gearcontact design: error: {option} = 9.0 is "
+                                       "outside the allowed range: <= 1 on the drive side "
+                                       "of s0003 (...)\n")
+    assert seen == [(("drive",), 9.0, 0.5)]
+    assert not (tmp_path / "x").exists()
+
+
 def test_targets_not_met_is_a_failed_check_with_the_toml_kept(tmp_path, capsys, monkeypatch):
     """Issue 28 probe: "NOT all targets met" exited 0. It is the synthesis failing its
     own check: exit 4, the table and the TOML printed and easeoff.toml kept; a target the
@@ -476,19 +509,25 @@ def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, caps
            "side" in err
 
 
-@pytest.mark.parametrize("argv, angle, turns", [
-    ([], None, True),     # analyze synthesizes at the default targets
-    (["--synthesize-easeoff", "--path-angle-drive-deg", "12"], 12.0, True),
-    (["--synthesize-easeoff", "--path-angle-deg", "-4"], -4.0, True),
-    # the setting synthesis turns no short path: only its path angle is seen
-    (["--machine-settings", "--local-synthesis", "--path-angle-deg", "7"], 7.0, False),
-    (["--machine-settings"], "none", None),      # standard settings: no synthesis
+@pytest.mark.parametrize("argv, angle, turns, levels", [
+    ([], None, True, (3.0, 0.35)),     # analyze synthesizes at the default targets
+    (["--synthesize-easeoff", "--path-angle-drive-deg", "12"], 12.0, True, (3.0, 0.35)),
+    (["--synthesize-easeoff", "--path-angle-deg", "-4", "--te0-arcsec", "8"], -4.0, True,
+     (8.0, 0.35)),
+    (["--synthesize-easeoff", "--te0-arcsec", "8", "--pattern-length-ratio", "0.6"], None,
+     True, (8.0, 0.6)),
+    # the setting synthesis turns no short path: its targets are seen all the same
+    (["--machine-settings", "--local-synthesis", "--path-angle-deg", "7"], 7.0, False,
+     (3.0, 0.35)),
+    (["--machine-settings", "--local-synthesis", "--pattern-length-ratio", "0.5"], None,
+     False, (3.0, 0.5)),
+    (["--machine-settings"], "none", None, None),      # standard settings: no synthesis
 ])
-def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, monkeypatch,
-                                                         capsys):
+def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, levels,
+                                                         monkeypatch, capsys):
     """design's contact-path check is given the bearing the synthesis will make with the
-    command's targets (docs/geometry.md sec. 7.7; the check itself: tests/tca/
-    test_predicted_bearing.py)."""
+    command's targets: path angle, TE0 level and pattern length (docs/geometry.md sec.
+    7.7; the check itself: tests/tca/test_predicted_bearing.py)."""
     import gearcontact.cli.design as design
     from gearcontact.validation import InputRangeError
 
@@ -506,3 +545,4 @@ def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, mon
         return
     targets = got.targets["drive"] if isinstance(got.targets, dict) else got.targets
     assert targets.path_angle_deg == angle and got.turns_short_paths is turns
+    assert (targets.te0_pp_arcsec, targets.pattern_length_ratio) == levels

@@ -90,6 +90,49 @@ def test_an_unreachable_angle_is_refused_before_any_tca(s0003_centred, no_tca):
         f"docs/synthesis.md)")
 
 
+def test_te0_and_pattern_reach_is_the_whole_relief_limit(s0003_centred, no_tca):
+    """The TE0 level and pattern length are refused only where every path angle's
+    first-order ease-off exceeds the whole relief limit (tca.path_reach.check_targets).
+    Truth: the free-bias synthesis of s0003-centred drive met TE0 30 arcsec at the
+    pattern 0.35 (29.98 arcsec, its own full TCA; 324 s under load, measured for issue
+    28) although its first-order designs all need more than half the limit there (the
+    path-angle room): so both ends of the options' ranges pass on s0003. On the same
+    flanks with a pinion a quarter as thick (the relief limit a quarter) TE0 30 is
+    refused, naming the field and the largest TE0 whose first-order ease-off still fits
+    (rounded down to 3 digits: within 1.5 % below the edge of the closed form's reach)."""
+    import dataclasses
+
+    from gearcontact.tca.path_reach import check_targets
+
+    pair, flanks = s0003_centred
+    for te0, ratio in ((30.0, 0.35), (30.0, 0.1), (0.5, 0.8)):
+        check_targets(pair, targets=SynthesisTargets(te0_pp_arcsec=te0,
+                                                     pattern_length_ratio=ratio),
+                      flanks=flanks)
+    half = path_angle_range(pair, side="drive", flanks=flanks,
+                            targets=SynthesisTargets(te0_pp_arcsec=30.0))
+    assert not len(half.angles_deg)
+    thin = dataclasses.replace(flanks, pinion_normal_thickness_mm=0.25
+                               * flanks.pinion_normal_thickness_mm)
+    with pytest.raises(InputRangeError) as err:
+        check_targets(pair, targets=SynthesisTargets(te0_pp_arcsec=30.0), flanks=thin,
+                      sides=("drive",))
+    assert err.value.field == "te0_pp_arcsec" and err.value.value == 30.0
+    allowed = err.value.allowed
+    assert allowed.startswith("<= ") and allowed.endswith(
+        "arcsec with the pattern length ratio 0.35 on the drive side of s0003-centred (the "
+        "first-order ease-off of every path angle exceeds the relief limit or loses a "
+        "crowning, docs/synthesis.md)")
+    bound = float(allowed.split()[1])
+
+    def reaches(te0):
+        t = SynthesisTargets(te0_pp_arcsec=te0)
+        return len(path_angle_range(pair, side="drive", targets=t, flanks=thin,
+                                    room=1.0).angles_deg) > 0
+    assert 0.5 < bound < 30.0
+    assert reaches(bound) and not reaches(1.02 * bound)
+
+
 def test_design_cli_refuses_an_unreachable_angle_with_exit_2(no_tca, capsys):
     """``gearcontact design --synthesize-easeoff --path-angle-deg -23`` on s0003 (its
     contact line runs at -23.1 deg on the drive side): exit 2 naming the option, the

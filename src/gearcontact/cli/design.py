@@ -184,12 +184,10 @@ def check(args) -> None:
                               f"{pair.offset_mm:g}, default gear {args.gear_generation})",
                               "a hypoid (axes.offset_mm != 0) whose default gear is "
                               "generated (its pinion cut by the crown gear: point contact)")
-    if args.synthesize_easeoff or args.local_synthesis:
+    if args.synthesize_easeoff:
         # the closed-form reach is the ease-off synthesis' (tca.path_reach); the settings
-        # synthesis reports a path angle it misses in its table (exit 4)
-        if args.synthesize_easeoff and any(t.path_angle_deg is not None
-                                           for t in args.targets.values()):
-            args.flanks = _check_path_angle(pair, args, args.targets)
+        # synthesis reports a target it misses in its table (exit 4)
+        args.flanks = _check_targets(pair, args, args.targets)
     if args.calibrate:
         from ..report.analyze import published_values
 
@@ -221,7 +219,7 @@ def _check_generation(args, pair) -> dict:
     try:
         return check_generation(pair, bearing_of=predictor)
     except InputRangeError as exc:
-        if exc.field != "path_angle_deg":
+        if exc.field != "path_angle_deg" and exc.field not in _TARGET_OPTIONS:
             raise
         raise _renamed(exc, _path_angle_option(args, pair.design_side)) from None
 
@@ -351,17 +349,17 @@ def _checked_targets(args) -> dict:
     return getattr(args, "targets", None) or _synthesis_targets(args)
 
 
-def _check_path_angle(pair, args, targets: dict):
-    """The pair's flanks, after refusing a path angle the synthesis cannot reach on its
-    side (:func:`gearcontact.tca.path_reach.check_path_angle`: closed form, no TCA), the
-    error naming the option that set it."""
+def _check_targets(pair, args, targets: dict):
+    """The pair's flanks, after refusing a TE0 level, pattern length or path angle the
+    synthesis cannot reach on its side (:func:`gearcontact.tca.path_reach.check_targets`:
+    closed form, no TCA), the error naming the option that set it."""
     from ..geometry.flank import build_flanks
-    from ..tca.path_reach import check_path_angle
+    from ..tca.path_reach import check_targets
 
     flanks = build_flanks(pair, checked=args.generation_check)
     for side, t in targets.items():
         try:
-            check_path_angle(pair, targets=t, flanks=flanks, sides=(side,))
+            check_targets(pair, targets=t, flanks=flanks, sides=(side,))
         except InputRangeError as exc:
             raise _renamed(exc, _path_angle_option(args, side)) from None
     return flanks

@@ -27,6 +27,12 @@ from .conjugate import section_guesses
 
 __all__ = ["Bearing", "PathContactRatio", "path_contact_ratio"]
 
+#: The ease-off synthesis' default targets, defined here (geometry is below tca) and
+#: taken by ``tca.synthesis_targets.SynthesisTargets`` and ``design``'s options: TE0
+#: peak-to-peak, arcsec; paint-ellipse length over the gear face width.
+SYNTHESIS_TE0_ARCSEC, SYNTHESIS_PATTERN_RATIO = 3.0, 0.35
+
+
 
 @dataclass(frozen=True)
 class Bearing:
@@ -39,15 +45,23 @@ class Bearing:
     ----------
     coefficients : EaseOffCoefficients or None
         About the pinion's mean node, as the pair's tables (um/mm, um/mm^2); None: the
-        synthesis' first-order bearing at its default targets (:data:`DEFAULT_BEARING`,
-        whatever coefficients the pair holds).
+        synthesis' zero-twist first-order bearing at the targets below
+        (:func:`_synthesis_hessian`; at the default targets :data:`DEFAULT_BEARING`),
+        whatever coefficients the pair holds.
     source : str
         What it is, for the refusal's message (e.g. ``"the synthesis' first-order
         bearing along the overlap path angle 30.1 deg"``).
+    te0_pp_arcsec : float
+        The synthesis' TE0 target of a bearing without coefficients, arcsec (the
+        parabola's level: the crowning across the contact lines).
+    pattern_length_ratio : float
+        Its paint-ellipse length over the gear face width (the crowning along them).
     """
 
     coefficients: object
     source: str
+    te0_pp_arcsec: float = SYNTHESIS_TE0_ARCSEC
+    pattern_length_ratio: float = SYNTHESIS_PATTERN_RATIO
 
 
 @dataclass(frozen=True)
@@ -178,7 +192,10 @@ def path_contact_ratio(pair, *, boxes: dict, side: str | None = None,
 
     coeffs = (bearing.coefficients if bearing is not None
               else pair.easeoff_drive if side == "drive" else pair.easeoff_coast)
-    b, h, start, own = _easeoff_in_box(coeffs, pair, solver, (uc, vc), (hu, hv), guess)
+    levels = ((SYNTHESIS_TE0_ARCSEC, SYNTHESIS_PATTERN_RATIO) if bearing is None
+              else (bearing.te0_pp_arcsec, bearing.pattern_length_ratio))
+    b, h, start, own = _easeoff_in_box(coeffs, pair, solver, (uc, vc), (hu, hv), guess,
+                                       levels)
     c0 = phi.value(start)
     inside, ends, steps = 0, [], []
     for sign in (-1.0, 1.0):
@@ -294,19 +311,20 @@ def _path_point(phi, b, h, level, p, lam):
     return None
 
 
-def _easeoff_in_box(c, pair, solver, centre, half, guess):
+def _easeoff_in_box(c, pair, solver, centre, half, guess, levels):
     """Gradient at the box centre, Hessian (um or any unit) and vertex (clipped to the
     box) of the ease-off coefficients ``c`` in the box's normalized coordinates
     ``((u - uc) / hu, (v - vc) / hv)``, and whether they were used: where their Hessian
-    is not positive definite (no table) the synthesis' bearing
-    (:func:`_synthesis_hessian`) with its vertex at the box centre."""
+    is not positive definite (no table) the synthesis' bearing at the targets
+    ``levels`` = (TE0 arcsec, pattern-length ratio) (:func:`_synthesis_hessian`) with
+    its vertex at the box centre."""
     u_m, v_m = float(solver.cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
     scale = np.diag(half)
     h_uv = np.zeros((2, 2)) if c is None else np.array(
         [[2.0 * c.profile_crowning_um_per_mm2, c.bias_um_per_mm2],
          [c.bias_um_per_mm2, 2.0 * c.lengthwise_crowning_um_per_mm2]])
     if c is None or not (h_uv[0, 0] > 0.0 and np.linalg.det(h_uv) > 0.0):
-        h_uv = _synthesis_hessian(pair, solver, centre, half, guess)
+        h_uv = _synthesis_hessian(pair, solver, centre, half, guess, *levels)
         return np.zeros(2), scale @ h_uv @ scale, np.zeros(2), False
     g_uv = np.array([c.profile_angle_um_per_mm, c.spiral_angle_um_per_mm]) + h_uv @ (
         np.asarray(centre) - (u_m, v_m))
@@ -314,10 +332,6 @@ def _easeoff_in_box(c, pair, solver, centre, half, guess):
     return g, h, np.clip(np.linalg.solve(h, -g), -1.0, 1.0), True
 
 
-#: The ease-off synthesis' default targets, defined here (geometry is below tca) and
-#: taken by ``tca.synthesis_targets.SynthesisTargets`` and ``design``'s options: TE0
-#: peak-to-peak, arcsec; paint-ellipse length over the gear face width.
-SYNTHESIS_TE0_ARCSEC, SYNTHESIS_PATTERN_RATIO = 3.0, 0.35
 #: The paint thickness of ``tca.curvature`` (checked equal by
 #: tests/geometry/test_contact_ratio.py), mm.
 _PAINT_MM = 6.35e-3
@@ -325,16 +339,22 @@ _PAINT_MM = 6.35e-3
 _STEP_MM = 0.02
 
 
-def _synthesis_hessian(pair, solver, centre, half, guess) -> np.ndarray:
+def _synthesis_hessian(pair, solver, centre, half, guess, te0_pp_arcsec=SYNTHESIS_TE0_ARCSEC,
+                       pattern_length_ratio=SYNTHESIS_PATTERN_RATIO) -> np.ndarray:
     """Hessian (1/mm) in the pinion's (u, v) of the first-order bearing the ease-off
-    synthesis makes of a pair without a table (Litvin & Fuentes 2004, sec. 21.8; the
+    synthesis makes of a pair without a table at its targets ``te0_pp_arcsec`` and
+    ``pattern_length_ratio`` (Litvin & Fuentes 2004, sec. 21.8; the
     relations of ``tca.path_reach``): at the box centre, in the tangent plane's frame
     ``(t, nu)`` of the contact line, ``H = [[a, b], [b, c]]`` with the paint ellipse's
-    curvature along the line ``a = 8 delta / (2a)^2``, the TE0 level
-    ``det H = a 8 h2 TE0 / dN^2`` (``dN`` the contact lines' spacing per pitch, ``h2``
-    the gear's lever) and the bias ``b`` that leaves no twist term in (u, v) (the
-    synthesis draws it towards zero): of the quadratic's two roots the one with the
-    least relief at the box's corners (the synthesis keeps the relief within its limit).
+    curvature along the line ``a = 8 delta / (2a)^2`` (``2a`` the ratio times the gear
+    face), the TE0 level ``det H = a 8 h2 TE0 / dN^2`` (``dN`` the contact lines'
+    spacing per pitch, ``h2`` the gear's lever: the parabolic TE of one pair is
+    ``n^2 det H / (2 a)`` at the distance ``n`` of its line from the vertex) and the
+    bias ``b`` that leaves no twist term in (u, v) (the synthesis draws it towards
+    zero): of the quadratic's two roots the one with the least relief at the box's
+    corners (the synthesis keeps the relief within its limit). Both targets turn the
+    path (its direction is normal to ``H t``, ``tan psi = -b / a``, and ``b`` depends on
+    ``c / a``), so they move eps_p.
     On the examples the ratio of profile to lengthwise crowning is that of their
     synthesized ease-off within 5 % (F.3 39.9 against 38.3)."""
     uc, vc = centre
@@ -354,8 +374,8 @@ def _synthesis_hessian(pair, solver, centre, half, guess) -> np.ndarray:
     n = np.column_stack([[-nu[1], nu[0]], nu]).T @ m        # (t, nu) = n (du, dv)
     spacing = 2.0 * math.pi / (pair.gear_teeth * np.linalg.norm(grad_q))   # dN, mm
     lever = abs(float(s.n_f[0] @ np.cross(solver.kin.gear_axis, s.x_f_mm[0])))
-    a = 8.0 * _PAINT_MM / (SYNTHESIS_PATTERN_RATIO * pair.gear_face_width_mm) ** 2
-    k = 8.0 * lever * math.radians(SYNTHESIS_TE0_ARCSEC / 3600.0) / spacing ** 2
+    a = 8.0 * _PAINT_MM / (pattern_length_ratio * pair.gear_face_width_mm) ** 2
+    k = 8.0 * lever * math.radians(te0_pp_arcsec / 3600.0) / spacing ** 2
     # no (u, v) twist: n[:, 0]^T H n[:, 1] = 0 with c = k + b^2 / a, a quadratic in b
     (pt, pn), (rt, rn) = n[:, 0], n[:, 1]
     roots = np.roots([pn * rn / a, pt * rn + pn * rt, a * pt * rt + k * pn * rn])

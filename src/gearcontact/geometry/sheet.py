@@ -45,7 +45,8 @@ from .sampling import SurfaceArrays
 from .spline_kernel import pp_coefficients, pp_derivatives
 from .surface import SurfacePoint
 
-__all__ = ["GearCone", "GearSheet", "PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector"]
+__all__ = ["GearCone", "GearSheet", "PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector",
+           "gear_sheet_vectors"]
 
 
 @njit(cache=True, inline="always")
@@ -83,6 +84,42 @@ def sheet_vectors(u, v, d, apex_x, tan, root_offset, sign, full):
     out = np.empty((u.shape[0], 7, 3))
     for i in range(u.shape[0]):
         sheet_vector(u[i], v[i], d[i], apex_x, tan, root_offset, sign, full, out[i])
+    return out
+
+
+@njit(cache=True)
+def gear_sheet_vectors(u, v, d, cos_p, sin_p, cone, sign):
+    """(N, 7, 3) of :class:`GearSheet` points from psi's derivatives ``d`` (N, 6) and
+    ``cos psi``, ``sin psi`` (numpy's: the trigonometry stays numpy's); ``cone`` =
+    ``(cos delta, sin delta, R2, h_f, z_A)``. Every component is the operation sequence
+    of the array form (``R e_R + z k``, ``R_u e_R + R psi_u e_psi + z_u k``, ...:
+    :class:`GearSheet`) written out per point, terms with a zero factor included, so the
+    values are the same bits."""
+    ru, rv, mcd, ded, apex_z = cone
+    zu, zv = -rv, ru
+    out = np.empty((u.shape[0], 7, 3))
+    for i in range(u.shape[0]):
+        c, s = cos_p[i], sin_p[i]
+        p_u, p_v = d[i, 1], d[i, 2]
+        rad = (mcd + v[i]) * rv + (u[i] - ded) * ru
+        h = apex_z + (mcd + v[i]) * ru - (u[i] - ded) * rv
+        o = out[i]
+        o[0, 0], o[0, 1], o[0, 2] = rad * c + h * 0.0, rad * s + h * 0.0, rad * 0.0 + h * 1.0
+        for row, rz, zz, a in ((1, ru, zu, rad * p_u), (2, rv, zv, rad * p_v)):
+            o[row, 0] = (rz * c + a * -s) + zz * 0.0
+            o[row, 1] = (rz * s + a * c) + zz * 0.0
+            o[row, 2] = (rz * 0.0 + a * 0.0) + zz * 1.0
+        for row, ep, er in ((3, 2.0 * ru * p_u + rad * d[i, 3], rad * p_u * p_u),
+                            (4, ru * p_v + rv * p_u + rad * d[i, 4], rad * p_u * p_v),
+                            (5, 2.0 * rv * p_v + rad * d[i, 5], rad * p_v * p_v)):
+            o[row, 0] = ep * -s - er * c
+            o[row, 1] = ep * c - er * s
+            o[row, 2] = ep * 0.0 - er * 0.0
+        nx = o[1, 1] * o[2, 2] - o[1, 2] * o[2, 1]
+        ny = o[1, 2] * o[2, 0] - o[1, 0] * o[2, 2]
+        nz = o[1, 0] * o[2, 1] - o[1, 1] * o[2, 0]
+        norm = np.sqrt(nx * nx + ny * ny + nz * nz)
+        o[6, 0], o[6, 1], o[6, 2] = sign * nx / norm, sign * ny / norm, sign * nz / norm
     return out
 
 
@@ -174,7 +211,9 @@ class RadialSheet:
         (..., 6) with ``psi, psi_u, psi_v, psi_uu, psi_uv, psi_vv`` (the last three NaN
         unless ``second``); equal to :meth:`psi` to rounding
         (:mod:`.spline_kernel`)."""
-        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+        if u.ndim or v.ndim:    # a single point (the TCA's solvers) needs no broadcast
+            u, v = np.broadcast_arrays(u, v)
         tx, ty, pc, kx, ky = self.pp_arrays
         out = pp_derivatives(tx, ty, pc, kx, ky, np.ascontiguousarray(u.ravel()),
                              np.ascontiguousarray(v.ravel()), 2 if second else 1, False)
@@ -279,20 +318,9 @@ class GearSheet(RadialSheet):
         d = self.psi_derivatives(u, v, second=second).reshape(-1, 6)
         u, v = u.ravel(), v.ravel()
         c = self.cone
-        ru, rv, zu, zv = c.cos_delta, c.sin_delta, -c.sin_delta, c.cos_delta
-        rad = c.radius_mm(u, v)
-        p, pu, pv, puu, puv, pvv = (d[:, k] for k in range(6))
-        er = np.stack([np.cos(p), np.sin(p), np.zeros_like(p)], axis=-1)
-        ep = np.stack([-np.sin(p), np.cos(p), np.zeros_like(p)], axis=-1)
-        z = np.array([0.0, 0.0, 1.0])
-        col = lambda a: np.asarray(a)[:, None] if np.ndim(a) else a  # noqa: E731
-        out = np.empty((u.shape[0], 7, 3))
-        out[:, 0] = col(rad) * er + col(c.height_mm(u, v)) * z
-        out[:, 1] = ru * er + col(rad * pu) * ep + zu * z
-        out[:, 2] = rv * er + col(rad * pv) * ep + zv * z
-        out[:, 3] = col(2 * ru * pu + rad * puu) * ep - col(rad * pu * pu) * er
-        out[:, 4] = col(ru * pv + rv * pu + rad * puv) * ep - col(rad * pu * pv) * er
-        out[:, 5] = col(2 * rv * pv + rad * pvv) * ep - col(rad * pv * pv) * er
-        n = np.cross(out[:, 1], out[:, 2])
-        out[:, 6] = self.normal_sign * n / np.linalg.norm(n, axis=-1, keepdims=True)
-        return out
+        p = d[:, 0]
+        return gear_sheet_vectors(
+            np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(v, dtype=float),
+            np.ascontiguousarray(d), np.cos(p), np.sin(p),
+            (c.cos_delta, c.sin_delta, c.mean_cone_distance_mm, c.dedendum_mm, c.apex_z_mm),
+            float(self.normal_sign))

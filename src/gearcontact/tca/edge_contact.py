@@ -125,9 +125,20 @@ class _EdgeSolver:
         self.own = pinion if edge.member == "pinion" else gear
         self.other = gear if edge.member == "pinion" else pinion
         self.pose1 = kin.pinion_pose(self.phi1)
+        # solutions by (s, start): the refinement asks again for points it has (the
+        # bracket ends, the boundary crossing's ends and root); a repeated Newton solve
+        # returns the same bits, so it is looked up
+        self._solved: dict = {}
 
     def solve(self, s: float, y0: np.ndarray) -> np.ndarray | None:
         """``(a, b, phi2)`` with edge point ``s`` on the other surface, or None."""
+        y0 = np.asarray(y0, float)
+        key = (float(s), y0.tobytes())
+        if key not in self._solved:
+            self._solved[key] = self._newton(s, y0)
+        return self._solved[key]
+
+    def _newton(self, s: float, y0: np.ndarray) -> np.ndarray | None:
         kin, w2 = self.kin, self.kin.gear_axis
         ue, ve = edge_parameters(self.own, self.edge.name, s)
         y = np.array(y0, float)
@@ -136,22 +147,23 @@ class _EdgeSolver:
             x1 = posed_point(self.pinion, self.pose1, ue, ve)[1]
         else:
             sp_edge = self.gear.point(ue, ve)
+        tol = self.tol
+        jac = np.empty((3, 3))
         for _ in range(self.max_iter):
             rot2, c2 = kin.gear_pose(y[2])
             if on_pinion:
                 sp = self.gear.point(y[0], y[1])
                 x2 = rot2 @ sp.r + c2
                 res = x1 - x2
-                jac = np.column_stack([-(rot2 @ sp.r_u), -(rot2 @ sp.r_v),
-                                       -_cross(w2, x2 - c2)])
+                jac[:, 0], jac[:, 1] = -(rot2 @ sp.r_u), -(rot2 @ sp.r_v)
             else:
                 sp = self.pinion.point(y[0], y[1])
                 x1 = self.pose1[0] @ sp.r + self.pose1[1]
                 x2 = rot2 @ sp_edge.r + c2
                 res = x1 - x2
-                jac = np.column_stack([self.pose1[0] @ sp.r_u, self.pose1[0] @ sp.r_v,
-                                       -_cross(w2, x2 - c2)])
-            if np.all(np.abs(res) < self.tol):
+                jac[:, 0], jac[:, 1] = self.pose1[0] @ sp.r_u, self.pose1[0] @ sp.r_v
+            jac[:, 2] = -_cross(w2, x2 - c2)
+            if abs(res[0]) < tol and abs(res[1]) < tol and abs(res[2]) < tol:
                 return y
             try:
                 step = np.linalg.solve(jac, -res)

@@ -51,6 +51,8 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -59,8 +61,9 @@ from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM, flank_frame
 
-__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "overlap_path_angle",
-           "overlap_choice", "short_overlap", "te0_unreachable", "OVERLAP_MARGIN"]
+__all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "check_targets",
+           "overlap_path_angle", "overlap_choice", "short_overlap", "te0_unreachable",
+           "OVERLAP_MARGIN"]
 
 _ARCSEC = np.pi / (180.0 * 3600.0)
 #: Finite-difference step of the exact node solves, mm (the node equations are solved
@@ -139,7 +142,8 @@ def _fold(angle_deg):
     return np.where(a == -90.0, 90.0, a)
 
 
-def path_angle_range(pair, *, side: str, targets, flanks) -> PathAngleRange:
+def path_angle_range(pair, *, side: str, targets, flanks, room: float = _ROOM
+                     ) -> PathAngleRange:
     """The path angles the ease-off synthesis of ``side`` can reach (module docstring).
 
     Parameters
@@ -152,6 +156,9 @@ def path_angle_range(pair, *, side: str, targets, flanks) -> PathAngleRange:
     flanks : FlankSet
         ``build_flanks(pair)``: the conjugate pinion's exact node solves and the gear
         flank (no TCA).
+    room : float
+        Share of the relief limit a reachable design may use (default ``_ROOM``, module
+        docstring).
 
     Returns
     -------
@@ -222,7 +229,7 @@ def path_angle_range(pair, *, side: str, targets, flanks) -> PathAngleRange:
     at_mean = quad(u_m - uc, v_m - vc)
     relief = np.max([np.abs(quad(u - uc, v - vc) - at_mean)
                      for u in (bx.u_root, bx.u_tip) for v in (bx.v_toe, bx.v_heel)], axis=0)
-    relief_ok = np.maximum(relief, at_mean) <= _ROOM * flanks.easeoff_limit_um
+    relief_ok = np.maximum(relief, at_mean) <= room * flanks.easeoff_limit_um
     d = np.outer(np.cos(psi), nu) + np.outer(np.sin(psi), t)
     on_flank = d * (dn_dphi1 / np.cos(psi))[:, None]        # mm/rad, tangent plane
     motion = on_flank + spin
@@ -267,16 +274,96 @@ def check_path_angle(pair, *, targets, flanks, sides=SIDES) -> dict:
     """
     if targets.path_angle_deg is None:
         return {}
+    return check_targets(pair, targets=targets, flanks=flanks, sides=sides)
+
+
+def check_targets(pair, *, targets, flanks, sides=SIDES) -> dict:
+    """Refuse targets the ease-off synthesis cannot reach on one of ``sides``, before any
+    TCA; returns the :func:`path_angle_range` of each side.
+
+    First the TE0 level and the pattern length: where no path angle at all is
+    reachable at them, the first-order design of every one exceeding the whole relief
+    limit the eased flanks enforce or losing a crowning (a high TE0 or a short pattern
+    crowns hard; the whole limit, not the half a path-angle target is held to: the
+    free-bias synthesis of s0003 drive meets TE0 30 arcsec at the pattern 0.35, where
+    every first-order design needs more than half of it: 20.4 arcsec fills the half), the one to change is named with the reachable
+    bound (:func:`_level_error`); then a path-angle target outside the side's range
+    (:func:`check_path_angle`).
+
+    Raises
+    ------
+    InputRangeError
+        Naming ``te0_pp_arcsec``, ``pattern_length_ratio`` or ``path_angle_deg``, its
+        value and what the side reaches.
+    """
     out = {}
     for side in sides:
+        if not _reaches(pair, side, targets, flanks):
+            raise _level_error(pair, side=side, targets=targets, flanks=flanks)
         r = out[side] = path_angle_range(pair, side=side, targets=targets, flanks=flanks)
-        if not r.contains(targets.path_angle_deg):
+        if targets.path_angle_deg is not None and not r.contains(targets.path_angle_deg):
             raise InputRangeError(
                 "path_angle_deg", targets.path_angle_deg,
                 f"{r.describe()} on the {side} side of {pair.name} (the path angles the "
                 f"ease-off synthesis reaches within the relief limit; the "
                 f"contact line runs at {r.contact_line_deg:.1f} deg, docs/synthesis.md)")
     return out
+
+
+#: Bisection steps of the reachable TE0 level and pattern length (:func:`_level_bounds`;
+#: on a log scale over their ranges: a bound to 0.5 % of it or better).
+_LEVEL_BISECTIONS = 10
+
+
+def _reaches(pair, side, targets, flanks, **change) -> bool:
+    """Some path angle's first-order design at ``targets`` with the fields ``change``
+    keeps both crownings and stays within the whole relief limit (:func:`check_targets`)."""
+    t = dataclasses.replace(targets, path_angle_deg=None, **change)
+    return bool(len(path_angle_range(pair, side=side, targets=t, flanks=flanks,
+                                     room=1.0).angles_deg))
+
+
+def _bisect(reaches, good: float, bad: float) -> float:
+    """The reachable end of ``[good, bad]`` (``reaches(good)``, not ``reaches(bad)``)
+    nearest the unreachable one, on a log scale."""
+    for _ in range(_LEVEL_BISECTIONS):
+        mid = float(np.sqrt(good * bad))
+        good, bad = (mid, bad) if reaches(mid) else (good, mid)
+    return good
+
+
+def _inside_3g(x: float, *, up: bool) -> float:
+    """``x`` to three significant digits, rounded into the reachable side (down for an
+    upper bound, ``up`` for a lower one), so that the bound printed is reachable."""
+    e = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float((math.ceil(x / e) if up else math.floor(x / e)) * e)
+
+
+def _level_error(pair, *, side: str, targets, flanks) -> InputRangeError:
+    """The refusal of a TE0 level and pattern length at which no path angle is
+    reachable: the TE0 bound at the pattern length (TE0 sets the crowning across the
+    contact lines, so relief grows with it), else the pattern-length bound at the TE0
+    level (a longer pattern crowns less along the lines)."""
+    lo_te0, hi_ratio = 0.5, 0.8          # the ends of SynthesisTargets' ranges
+    te0, ratio = targets.te0_pp_arcsec, targets.pattern_length_ratio
+    where = (f"on the {side} side of {pair.name} (the first-order ease-off of every path "
+             "angle exceeds the relief limit or loses a crowning, docs/synthesis.md)")
+    if te0 > lo_te0 and _reaches(pair, side, targets, flanks, te0_pp_arcsec=lo_te0):
+        bound = _bisect(lambda x: _reaches(pair, side, targets, flanks, te0_pp_arcsec=x),
+                        lo_te0, te0)
+        most = _inside_3g(bound, up=False)
+        return InputRangeError("te0_pp_arcsec", te0, f"<= {most:.3g} arcsec with the "
+                               f"pattern length ratio {ratio:g} {where}")
+    if ratio < hi_ratio and _reaches(pair, side, targets, flanks,
+                                     pattern_length_ratio=hi_ratio):
+        bound = _bisect(lambda x: _reaches(pair, side, targets, flanks,
+                                           pattern_length_ratio=x), hi_ratio, ratio)
+        least = _inside_3g(bound, up=True)
+        return InputRangeError("pattern_length_ratio", ratio,
+                               f">= {least:.3g} with TE0 {te0:g} arcsec {where}")
+    return InputRangeError("te0_pp_arcsec", te0, f"none with the pattern length ratio "
+                           f"{ratio:g} (nor at {lo_te0:g} arcsec with any up to {hi_ratio:g}) "
+                           f"{where}")
 
 
 #: Bisection steps of the flank extent along a path in :func:`overlap_path_angle`

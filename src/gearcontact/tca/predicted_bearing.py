@@ -25,14 +25,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.contact_path import DEFAULT_BEARING, Bearing, path_contact_ratio
+from ..geometry.contact_path import (DEFAULT_BEARING, SYNTHESIS_PATTERN_RATIO,
+                                     SYNTHESIS_TE0_ARCSEC, Bearing, path_contact_ratio)
 from ..geometry.flank import build_flanks
 from ..geometry.pair import EaseOffCoefficients
 from .design_point import centred_coefficients, turn_relief
 from .path_reach import OVERLAP_MARGIN, check_path_angle, overlap_choice
 from .synthesis_targets import SynthesisTargets
 
-__all__ = ["SynthesisStart", "synthesis_start", "predict_bearing", "BearingPredictor"]
+__all__ = ["SynthesisStart", "synthesis_start", "predict_bearing", "target_bearing",
+           "BearingPredictor"]
 
 
 @dataclass(frozen=True)
@@ -108,8 +110,9 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
                     turns_short_paths: bool = True) -> Bearing | None:
     """The ease-off the synthesis will make on ``side`` (default the design side) of
     ``pair``, to first order, or None where the pair's table stands. ``Bearing(None,
-    ...)`` is the synthesis' zero-bias first-order bearing at the default targets
-    (:func:`~gearcontact.geometry.contact_path.path_contact_ratio`'s default for a pair
+    ...)`` is the synthesis' zero-bias first-order bearing at the targets' TE0 level and
+    pattern length (:func:`target_bearing`; at the default targets
+    :func:`~gearcontact.geometry.contact_path.path_contact_ratio`'s default for a pair
     without a table).
 
     As :func:`~.synthesis.synthesize_easeoff` decides (module docstring): a pair with a
@@ -119,10 +122,11 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
     the first-order design of the reachable path angle of the longest overlap
     (:func:`~.path_reach.overlap_choice`) if that overlaps, else the zero-bias bearing
     (the synthesis names TE0 unreachable and keeps it); where it covers a pitch, the
-    zero-bias bearing (at the default TE0 level and pattern length: other values of
-    those targets are not seen). ``turns_short_paths=False`` for the machine-setting
-    synthesis (:mod:`.setting_synthesis`), which does not turn a short path: only its
-    path-angle target is seen.
+    zero-bias bearing. Every first-order bearing is that of the targets' TE0 level and
+    pattern length (:func:`target_bearing`; the path-angle designs of
+    :mod:`.path_reach` take them too). ``turns_short_paths=False`` for the
+    machine-setting synthesis (:mod:`.setting_synthesis`), which does not turn a short
+    path: its path-angle target, TE0 level and pattern length are seen.
 
     Parameters
     ----------
@@ -144,7 +148,7 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
     if side in pair.easeoff_tables:
         return None
     t = targets[side] if isinstance(targets, Mapping) else targets
-    zero_bias = Bearing(None, DEFAULT_BEARING)
+    zero_bias = target_bearing(t)
     if t.path_angle_deg is None and not turns_short_paths:
         return zero_bias
     if flanks is None:
@@ -159,14 +163,28 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
         return zero_bias
     angle, ratio, overlaps = overlap_choice(pair, side=side, targets=t, flanks=flanks)
     if not overlaps:
-        return Bearing(None, f"{DEFAULT_BEARING} (TE0 unreachable: its start's path "
-                       f"covers {first.total:.2f} pitch, the longest reachable overlap "
-                       f"{ratio:.2f}, docs/synthesis.md)")
+        return dataclasses.replace(
+            zero_bias, source=f"{zero_bias.source} (TE0 unreachable: its start's path "
+            f"covers {first.total:.2f} pitch, the longest reachable overlap {ratio:.2f}, "
+            "docs/synthesis.md)")
     turned = synthesis_start(pair, side=side, flanks=flanks,
                              targets=dataclasses.replace(t, path_angle_deg=angle))
     return Bearing(turned.coefficients(), "the synthesis' first-order bearing along the "
                    f"overlap path angle {angle:.1f} deg (its zero-bias start's path covers "
                    f"{first.total:.2f} pitch, the turned one {ratio:.2f} to first order)")
+
+
+def target_bearing(targets: SynthesisTargets) -> Bearing:
+    """The synthesis' zero-bias first-order bearing at the TE0 level and pattern length
+    of ``targets`` (:class:`~gearcontact.geometry.contact_path.Bearing` without
+    coefficients: the contact path builds it on the pair's box); at the default targets
+    its source is :data:`~gearcontact.geometry.contact_path.DEFAULT_BEARING`."""
+    te0, ratio = float(targets.te0_pp_arcsec), float(targets.pattern_length_ratio)
+    if (te0, ratio) == (SYNTHESIS_TE0_ARCSEC, SYNTHESIS_PATTERN_RATIO):
+        return Bearing(None, DEFAULT_BEARING)
+    return Bearing(None, f"the synthesis' first-order bearing at TE0 {te0:g} arcsec and a "
+                   f"pattern {ratio:g} x the face", te0_pp_arcsec=te0,
+                   pattern_length_ratio=ratio)
 
 
 class BearingPredictor:
