@@ -13,9 +13,17 @@ state their rates (the CPU column counts this process only, not the simulator).
 ``--curvatures``: the preview's curvature source (``stencil``: stage C per step, the
 default; ``exact``; ``both``: every backend with each).
 
+``--pair`` a cylindrical pair's TOML (e.g. ``examples/ev_reducer_helical_23x67.toml``):
+its twin (:func:`gearcontact.twin.cylindrical.cylindrical_model`, ``--phases`` rows,
+the preview backends on the line chain, the table backend on the loaded-TE table). The
+column ``kernel us/step`` is the compiled loop's thread CPU time per step
+(``time.thread_time`` around each block): on a shared machine the wall-clock
+percentiles count the other processes' time slices too, the thread's own time much
+less so (it still feels their cache and hyperthread contention).
+
 Run: ``python benchmarks/bench_twin.py [--duration-ms 200] [--step-us 10]
-[--curvatures stencil|exact|both] [--bending] [--pair FILE]`` (the 7/60 pair of
-tests/design_space.py, CHATTER_PAIR, is the one whose build the edge-contact TCA
+[--curvatures stencil|exact|both] [--bending] [--pair PAIR] [--phases 61]`` (the 7/60
+pair of tests/design_space.py, CHATTER_PAIR, is the one whose build the edge-contact TCA
 dominates).
 """
 
@@ -25,11 +33,46 @@ import argparse
 import os
 import time
 
+from gearcontact.geometry.cylindrical.pair import CylindricalPair
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
+from gearcontact.twin import kernel
+from gearcontact.twin.cylindrical import CYLINDRICAL_BACKENDS, cylindrical_model
 from gearcontact.twin.ltca_table import torque_table
 from gearcontact.twin.params import default_drivetrain
 from gearcontact.twin.simulate import BACKENDS, build_model, model_for_pair, simulate
+
+
+class _KernelClock:
+    """Thread CPU time of the compiled step loop (``kernel.run_steps`` wrapped for the
+    blocks of more than one step: not the one-step compile call)."""
+
+    def __init__(self):
+        self.seconds, self.steps = 0.0, 0
+        self._run = kernel.run_steps
+        kernel.run_steps = self
+
+    def __call__(self, y, t0, n_steps, *args):
+        c = time.thread_time()
+        rows = self._run(y, t0, n_steps, *args)
+        if n_steps > 1:
+            self.seconds += time.thread_time() - c
+            self.steps += n_steps
+        return rows
+
+    def take(self) -> float:
+        """us per step since the last call."""
+        us = self.seconds / max(self.steps, 1) * 1e6
+        self.seconds, self.steps = 0.0, 0
+        return us
+
+
+def _cylindrical_models(pair, args):
+    """The twin models of a cylindrical pair by backend (module docstring)."""
+    backends = [b for b in args.backends.split(",") if b in CYLINDRICAL_BACKENDS]
+    models = {b: cylindrical_model(pair, torque_nm=args.torque, phases=args.phases,
+                                   backend=b, bending=args.bending) for b in backends}
+    return models
 
 
 def main() -> None:
@@ -48,8 +91,17 @@ def main() -> None:
     ap.add_argument("--bending", action="store_true", help="tooth bending in the law")
     ap.add_argument("--curvatures", default="stencil", choices=("stencil", "exact", "both"),
                     help="the preview's curvature source (default stencil: stage C per step)")
+    ap.add_argument("--phases", type=int, default=61, help="cycle rows (cylindrical pair)")
     args = ap.parse_args()
-    pair = load_pair(args.pair)
+    clock = _KernelClock()
+    pair = load_pair(args.pair, kinds=("bevel", "cylindrical"))
+    if isinstance(pair, CylindricalPair):
+        models = _cylindrical_models(pair, args)
+        print(f"{pair.name} (cylindrical) twin, {args.torque:g} N·m, {args.speed_rpm:g} rpm, "
+              f"step {args.step_us:g} us, {args.duration_ms:g} ms simulated, "
+              f"{args.phases} phases, bending {args.bending}")
+        _table(args, [(be, be, m) for be, m in models.items()], clock)
+        return
     side = pair.design_side
     w0, c0 = time.perf_counter(), time.process_time()
     base = model_for_pair(pair, torque_nm=args.torque, side=side, phases=61,
@@ -65,32 +117,39 @@ def main() -> None:
     # tables, what `gearcontact twin` runs before its first step
     print(f"model build (edge-contact TCA and mesh table of both sides): wall {build[0]:.1f} "
           f"s, CPU {build[1]:.1f} s")
-    print(f"{'backend':<20}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
-          f"{'p99/p50':>9}{'CPU us/step':>13}{'DF':>7}")
-    lines = []
+    runs = []
     sources = ("stencil", "exact") if args.curvatures == "both" else (args.curvatures,)
-    runs = [(be, src) for be in args.backends.split(",") for src in sources
-            if be != "table" or src == sources[0]]
-    for be, src in runs:
+    for be, src in [(be, src) for be in args.backends.split(",") for src in sources
+                    if be != "table" or src == sources[0]]:
         table = None
         if be == "table":
             table = torque_table(tca, flanks, pair, mesh, args.torque, side=side)
         model = build_model(mesh, dt, args.torque, backend=be, table=table,
                             reverse=base.reverse, reverse_note=base.reverse_note,
                             curvatures=src)
+        runs.append((be, be if be == "table" else f"{be} ({src})", model))
+    _table(args, runs, clock)
+
+
+def _table(args, runs, clock) -> None:
+    """Run each ``(backend, label, model)`` and print its row (module docstring)."""
+    print(f"{'backend':<20}{'steps/s':>12}{'RT factor':>11}{'p50 (us)':>10}{'p99 (us)':>10}"
+          f"{'p99/p50':>9}{'CPU us/step':>13}{'kernel us/step':>16}{'DF':>7}")
+    lines = []
+    for be, label, model in runs:
         simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3, step_s=1e-6 * args.step_us)
-        c0 = time.process_time()
         ms = {"rtl": args.rtl_duration_ms, "soc": args.soc_duration_ms}.get(be,
                                                                           args.duration_ms)
+        clock.take()
+        c0 = time.process_time()
         res = simulate(model, speed_rpm=args.speed_rpm, duration_s=1e-3 * ms,
                        step_s=1e-6 * args.step_us, record_every=args.record_every)
         cpu = (time.process_time() - c0) / res.summary["steps"] * 1e6
         s, tm = res.summary, res.timings
-        label = be if be == "table" else f"{be} ({src})"
         print(f"{label:<20}{s['steps'] / tm['wall_s']:>12.4g}{tm['real_time_factor']:>11.2f}"
               f"{tm['step_time_p50_us']:>10.3f}{tm['step_time_p99_us']:>10.3f}"
               f"{tm['step_time_p99_us'] / tm['step_time_p50_us']:>9.2f}{cpu:>13.3f}"
-              f"{s['dynamic_factor']:>7.3f}")
+              f"{clock.take():>16.3f}{s['dynamic_factor']:>7.3f}")
         if be in ("rtl", "soc"):
             where = (f"{s['rtl_core']} core, {s['rtl_simulator']}" if be == "rtl"
                      else f"the {s['soc_kind']} SoC (register driver)")

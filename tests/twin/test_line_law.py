@@ -9,7 +9,9 @@ independent truths:
   loaded TE of ltca.cylindrical_lte (the half-space LCP of the same lines, an
   independent solver);
 * golden against fp64 within the fixed-point resolution of the line chain;
-* RTL (ChainLineCore) == golden bit for bit on every preview of a short run;
+* RTL (ChainLineCore) == golden bit for bit on every preview of a short run, on the
+  unmodified spur pair (the whole line loaded) and on the crowned, tip-relieved EV
+  helical pair, whose loaded length L_c lies below the line's length L;
 * with tooth bending (the line law in series with each pair's bending compliance,
   twin.cylindrical.line_bending_compliance): the static rotation against the loaded TE
   with bending (the LCP with the same shells), the single-pair stiffness against ISO
@@ -37,6 +39,7 @@ from gearcontact.twin.simulate import build_model, simulate, static_rotation
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 SPUR_TORQUE_NM = 200.0
+EV_TORQUE_NM = 64.5     # 29 N/mm: the crowned lines carry on about two thirds of L
 
 
 @pytest.fixture(scope="module")
@@ -306,3 +309,78 @@ def test_golden_and_rtl_with_bending(spur, spur_bent):
     assert rtl.summary["rtl_previews"] >= 50
     for key, col in gold.columns.items():
         np.testing.assert_array_equal(rtl.columns[key], col, err_msg=key)
+
+
+def _traced_rtl_run(monkeypatch, model, golden, duration_s):
+    """The rtl run of ``model`` and the golden run of ``golden`` (3000 rpm, 10 us) with
+    the trace the rtl run replayed (:func:`gearcontact.twin.cosim.replay_on_rtl`,
+    recorded on its way in)."""
+    from gearcontact.twin import cosim
+
+    seen = []
+    replay = cosim.replay_on_rtl
+
+    def recording(trace, e_prime_code, **kw):
+        seen.append(trace.copy())
+        return replay(trace, e_prime_code, **kw)
+
+    monkeypatch.setattr(cosim, "replay_on_rtl", recording)
+    kw = dict(speed_rpm=3000.0, duration_s=duration_s, step_s=10e-6)
+    rtl = simulate(model, **kw)
+    return rtl, simulate(golden, **kw), seen[0]
+
+
+def _ev_models(bending):
+    from gearcontact.twin.cylindrical import cylindrical_model
+
+    pair = load_pair(EXAMPLES / "ev_reducer_helical_23x67.toml", kinds=("cylindrical",))
+    rtl = cylindrical_model(pair, torque_nm=EV_TORQUE_NM, phases=7, backend="rtl",
+                            bending=bending)
+    gold = build_model(rtl.mesh, rtl.drivetrain, rtl.torque_nm, backend="golden",
+                       curvatures="line", reverse_note=rtl.reverse_note)
+    return rtl, gold
+
+
+def _loaded_lengths(rtl, gold, model, trace, min_previews):
+    """Every replayed preview bit-identical and the trajectories equal; returns the
+    replayed ``L`` (mm, Q(32,20) codes) of the previews in line mode and the least full
+    length (mm) of the closed lines of ``model``'s mesh table."""
+    from gearcontact.preview.hertz.line import MODE_LINE
+    from gearcontact.twin.cosim import TRACE_COLUMNS
+
+    s = rtl.summary
+    assert s["rtl_core"] == "chain_line" and s["rtl_mismatches"] == 0
+    assert s["rtl_previews"] == trace.shape[0] >= min_previews
+    for key, col in gold.columns.items():
+        np.testing.assert_array_equal(rtl.columns[key], col, err_msg=key)
+    line = trace[:, TRACE_COLUMNS.index("mode")] == MODE_LINE
+    assert line.sum() >= 0.5 * line.size
+    m = model.mesh
+    full = float(m.line_length_mm[m.valid & (m.opening_mm == 0.0)].min())
+    return trace[line, TRACE_COLUMNS.index("L_code")] / 2.0 ** 20, full
+
+
+def test_rtl_twin_is_the_golden_twin_on_the_loaded_length(monkeypatch):
+    """The EV helical pair (crowning and tip relief) at 64.5 N·m, 0.5 ms at 10 us (50
+    steps, 2-3 loaded pairs, ~120 previews): the golden line chain runs on each pair's
+    loaded length ``L_c`` (twin.line_law), which the ChainLineCore (Verilator, else the
+    Amaranth simulator) must reproduce bit for bit with that ``L`` code; the trajectory
+    is then the golden one exactly. ``L_c`` here: 12-17 mm of closed lines 20.8-22.7 mm
+    long (measured), so the replayed codes are not the full lengths the spur test's
+    unmodified lines carry."""
+    rtl_model, gold_model = _ev_models(bending=False)
+    rtl, gold, trace = _traced_rtl_run(monkeypatch, rtl_model, gold_model, 0.5e-3)
+    loaded, full = _loaded_lengths(rtl, gold, rtl_model, trace, 100)
+    assert loaded.max() < 0.9 * full and np.unique(loaded).size > 10
+
+
+@pytest.mark.slow
+def test_rtl_twin_is_the_golden_twin_on_the_loaded_length_bent(monkeypatch):
+    """As the default test, with tooth bending (the line law in series with the loaded
+    slices' compliance) over 5 ms (500 steps, more than a mesh cycle's worth of pairs
+    entering and leaving, ~1200 previews)."""
+    rtl_model, gold_model = _ev_models(bending=True)
+    rtl, gold, trace = _traced_rtl_run(monkeypatch, rtl_model, gold_model, 5e-3)
+    loaded, full = _loaded_lengths(rtl, gold, rtl_model, trace, 1000)
+    assert rtl.summary["bending"]
+    assert loaded.max() < 0.9 * full and np.unique(loaded).size > 10
