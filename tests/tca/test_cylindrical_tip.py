@@ -10,7 +10,8 @@ from scipy.optimize import brentq
 
 from gearcontact.geometry.cylindrical.iso21771 import inv
 from gearcontact.geometry.cylindrical.pair import CylindricalPair, ToothModifications
-from gearcontact.tca.cylindrical_cycle import (CONTACT_TOLERANCE_MM, _Mesh,
+from gearcontact.tca.plane_of_action import PlaneOfAction
+from gearcontact.tca.cylindrical_cycle import (CONTACT_TOLERANCE_MM,
                                                cylindrical_mesh_cycle)
 from gearcontact.tca.cylindrical_tip import tip_edge_contacts
 from gearcontact.tca.parallel_axes import pitch_point_guess
@@ -88,7 +89,7 @@ def test_tip_corner_against_the_closed_form(member, beyond):
     mesh), the pinion tip trails out; both touch only with the gear lagging (a
     rotation offset against the motion) and the needed lag grows with the distance."""
     pair = _spur()
-    mesh = _Mesh(pair, "cw")
+    mesh = PlaneOfAction(pair, "cw")
     g = pair.geometry
     rb1 = 0.5 * g.base_diameter_pinion_mm
     # pinion phase at which the path ends on the pinion's roll (plane of action: roll

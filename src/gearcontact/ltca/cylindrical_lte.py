@@ -61,6 +61,8 @@ from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
     cylindrical_mesh_cycle
+from ..tca.cylindrical_tip import TIP_EDGES, TipEdgeGaps, tip_edge_gaps
+from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
@@ -143,6 +145,9 @@ class CylindricalLoadedTE:
         CPU time of the LCP solves, s.
     bending : bool
         Tooth bending was in the LCP (else rigid teeth).
+    edge_label : ndarray (P, K) of str
+        ``"pinion tip"`` / ``"gear tip"`` where the pair's block is its tip edge touching
+        the mating flank beyond the path of contact (an ``edge`` row), else ``""``.
     """
 
     phi1_rad: np.ndarray
@@ -165,6 +170,7 @@ class CylindricalLoadedTE:
     converged: bool
     solve_time_s: float
     bending: bool = False
+    edge_label: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -264,13 +270,17 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     ok, edge = True, False
     warm: dict[int, np.ndarray] = {}
     t0 = time.process_time()
+    tg = tip_edge_gaps(PlaneOfAction(pair, cycle.facing), cycle, z)
+    tip_rows = np.zeros((n_pairs, n_phase), bool)
     for k in range(n_phase):
         live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
+        tipped = [j for j in range(n_pairs) if j not in live and np.isfinite(tg.gap_mm[j, k]).any()]
+        tip_rows[tipped, k] = True
         g_line = {j: lg.gap_mm[j, k] for j in live}
-        g_env = min(float(np.nanmin(g_line[j])) for j in live)
+        g_env = float(cycle.closing_gap_mm[k])
         blocks = []
         for j in live:
-            gj = float(np.nanmin(g_line[j]))
+            gj = max(float(np.nanmin(g_line[j])), g_env)
             on = np.isfinite(g_line[j])
             inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
                                        + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
@@ -279,6 +289,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             factor = None if teeth is None else line_bending_factor(
                 teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
             blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
+        blocks += [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in tipped]
+        live = live + tipped
         res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
                              warm_start=[warm.get(j) for j in live])
         ok &= res.converged
@@ -303,7 +315,35 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         line_pressure_mpa=line_p,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
-        solve_time_s=time.process_time() - t0, bending=teeth is not None)
+        solve_time_s=time.process_time() - t0, bending=teeth is not None,
+        edge_label=np.where(tip_rows, _tip_labels(cycle), ""))
+
+
+def _tip_labels(cycle: CylindricalMeshCycle) -> np.ndarray:
+    """``"pinion tip"`` / ``"gear tip"`` of each pair and phase of the cycle's tip touch."""
+    labels = np.array([e.label for e in TIP_EDGES] + [""])
+    return labels[np.where(cycle.tip.edge >= 0, cycle.tip.edge, len(TIP_EDGES))]
+
+
+def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,
+               teeth, nx: int) -> PairBlock:
+    """The LCP block of pair ``j``'s tip edge touching the mating flank at phase ``k``
+    (module docstring, "Tip-edge contact"): rows along the edge at the grid's axial
+    positions, ``x >= 0`` into the edge's own flank (no material at ``x < 0``)."""
+    ratio, gt = tg.normal_gap_per_gap[j, k], tg.gap_mm[j, k]
+    on = np.isfinite(gt)
+    g_first = min(float(cycle.tip.gap_mm[j, k]), float(np.nanmin(gt)))
+    x = grid.x_mm[None, :]
+    across = tg.slope[j, k] * x + 0.5 * tg.inv_radius_per_mm[j, k] * x * x
+    h = np.where(on[:, None] & (x >= 0.0), ratio * np.where(on, gt - g_first, 0.0)[:, None]
+                 + across, OFF_LINE_GAP_MM)
+    factor = None
+    if teeth is not None:
+        tip = cycle.tip
+        factor = line_bending_factor(teeth, tg.z_mm, np.where(on, tip.u1[j, k], np.nan),
+                                     np.where(on, tip.u2[j, k], np.nan), nx)
+    return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
+                     bending_factor=factor)
 
 
 def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,

@@ -41,7 +41,8 @@ import numpy as np
 from .batched_search import golden_min
 from .edge_contact import FlankEdge
 
-__all__ = ["TIP_EDGES", "SAMPLES", "TipContacts", "tip_edge_contacts"]
+__all__ = ["REACH_BASE_PITCHES", "SAMPLES", "TIP_EDGES", "TipContacts", "TipEdgeGaps",
+           "passage_tip_contacts", "tip_edge_contacts", "tip_edge_gaps"]
 
 #: The edges of a cylindrical flank pair that can touch off the plane of action.
 TIP_EDGES = (FlankEdge("pinion", "tip"), FlankEdge("gear", "tip"))
@@ -302,3 +303,92 @@ def passage_tip_contacts(mesh, phi1, live, *, base_pitch_mm: float) -> TipContac
     for name in out.__dataclass_fields__:
         getattr(out, name)[solve] = getattr(got, name)
     return out
+
+
+@dataclass(frozen=True)
+class TipEdgeGaps:
+    """The gap along the first-touching tip edge of every pair and phase of a mesh
+    cycle, at given axial positions (the loaded TE's field of a tip-edge contact).
+
+    Shapes (P, K, N) / (P, K) as :class:`~gearcontact.tca.cylindrical_cycle.LineGaps`;
+    NaN where the pair has no tip-edge touch within reach (``cycle.tip``) or the edge
+    point at that ``z`` meets no mating flank.
+
+    Attributes
+    ----------
+    z_mm : ndarray (N,)
+        Axial positions along the edge, mm.
+    gap_mm : ndarray (P, K, N)
+        Equivalent gap ``-rate Δphi2`` of each edge point (module docstring), mm.
+    normal_gap_per_gap : ndarray (P, K)
+        Normal separation per unit equivalent gap at the first touch, ``lever / |rate|``.
+    lever_mm : ndarray (P, K)
+        Lever of the touched normal about the gear axis, ``|(a2 x X) . n|``, mm.
+    slope : ndarray (P, K)
+        Sine of the angle between the two flanks at the first touch: the separation's
+        slope into the edge's own flank, perpendicular to the edge.
+    inv_radius_per_mm : ndarray (P, K)
+        Relative normal curvature across the edge, ``cos(beta_b) (1/u_own + 1/u_other)``
+        with the transverse radii (roll lengths) of the edge and the touched point, 1/mm.
+    """
+
+    z_mm: np.ndarray
+    gap_mm: np.ndarray
+    normal_gap_per_gap: np.ndarray
+    lever_mm: np.ndarray
+    slope: np.ndarray
+    inv_radius_per_mm: np.ndarray
+
+
+def tip_edge_gaps(mesh, cycle, z_mm) -> TipEdgeGaps:
+    """Sample the first-touching tip edge of every pair and phase of ``cycle`` at the
+    axial positions ``z_mm`` (the same solve as :func:`tip_edge_contacts`, from the
+    cycle's touch).
+
+    Parameters
+    ----------
+    mesh
+        The cycle's :class:`~gearcontact.tca.plane_of_action.PlaneOfAction`.
+    cycle : CylindricalMeshCycle
+    z_mm : array_like (N,)
+        Axial positions (finite), mm.
+    """
+    z = np.asarray(z_mm, float).ravel()
+    tip = cycle.tip
+    shape = tip.gap_mm.shape
+    gaps = np.full(shape + (len(z),), np.nan)
+    per = {k: np.full(shape, np.nan) for k in ("ratio", "lever", "slope", "inv_r")}
+    pitch = 2.0 * math.pi / cycle.pinion_teeth
+    phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
+    cb = 1.0 / math.sqrt(1.0 + (mesh.pinion.lead_rate_rad_per_mm
+                                * mesh.pinion.base_radius_mm) ** 2)
+    for i, edge in enumerate(TIP_EDGES):
+        sel = np.isfinite(tip.gap_mm) & (tip.edge == i)
+        if not sel.any():
+            continue
+        own, other = (mesh.pinion, mesh.gear) if edge.member == "pinion" else \
+            (mesh.gear, mesh.pinion)
+        a = (tip.u2 if edge.member == "pinion" else tip.u1)[sel]
+        turn = tip.turn_rad[sel]
+        m, n = int(sel.sum()), len(z)
+        ph, zz = np.repeat(phi[sel], n), np.tile(z, m)
+        y, ok = _touch(mesh, edge.member, ph, zz, np.column_stack([np.repeat(a, n), zz,
+                                                                  np.repeat(turn, n)]))
+        gaps[sel] = _touch_fields(mesh, edge.member, ph, zz, y, ok)["gap"].reshape(m, n)
+        point, normal = tip.point_mm[sel], tip.normal[sel]
+        lever = np.abs(np.einsum("ni,ni->n", _cross(mesh.kin.gear_axis, point), normal))
+        per["ratio"][sel] = lever / np.abs(tip.rate_mm_per_rad[sel])
+        per["lever"][sel] = lever
+        # the edge's own flank normal at the touch, posed as the touch
+        own_z = (tip.v1 if edge.member == "pinion" else tip.v2)[sel]
+        s_own = own.evaluate(np.full(m, own.u_range[1]), own_z, second=False)
+        if edge.member == "pinion":
+            n_own = _posed(mesh.pinion_poses(phi[sel])[0], s_own.n)
+        else:
+            n_own = _posed(mesh.gear_rotations(phi[sel] / mesh.ratio + mesh.phi2_offset
+                                               + turn), s_own.n)
+        per["slope"][sel] = np.linalg.norm(_cross(n_own, normal), axis=1)
+        per["inv_r"][sel] = cb * (1.0 / own.u_range[1] + 1.0 / a)
+    return TipEdgeGaps(z_mm=z, gap_mm=gaps, normal_gap_per_gap=per["ratio"],
+                       lever_mm=per["lever"], slope=per["slope"],
+                       inv_radius_per_mm=per["inv_r"])
