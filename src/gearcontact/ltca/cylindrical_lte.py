@@ -61,7 +61,7 @@ from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
     cylindrical_mesh_cycle
-from ..tca.cylindrical_tip import TIP_EDGES, TipEdgeGaps, tip_edge_gaps
+from ..tca.cylindrical_tip import TipEdgeGaps, tip_edge_gaps
 from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
@@ -316,13 +316,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
-        edge_label=np.where(tip_rows, _tip_labels(cycle), ""))
-
-
-def _tip_labels(cycle: CylindricalMeshCycle) -> np.ndarray:
-    """``"pinion tip"`` / ``"gear tip"`` of each pair and phase of the cycle's tip touch."""
-    labels = np.array([e.label for e in TIP_EDGES] + [""])
-    return labels[np.where(cycle.tip.edge >= 0, cycle.tip.edge, len(TIP_EDGES))]
+        edge_label=np.where(tip_rows, cycle.tip.labels(), ""))
 
 
 def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,

@@ -96,9 +96,14 @@ class TipContacts:
     point_mm: np.ndarray
     normal: np.ndarray
 
-    def label(self, i: int) -> str:
-        """``"pinion tip"`` / ``"gear tip"`` of phase ``i`` ("" none)."""
+    def label(self, i) -> str:
+        """``"pinion tip"`` / ``"gear tip"`` of entry ``i`` ("" none)."""
         return TIP_EDGES[self.edge[i]].label if self.edge[i] >= 0 else ""
+
+    def labels(self) -> np.ndarray:
+        """:meth:`label` of every entry (an array of the shape of ``edge``)."""
+        names = np.array([e.label for e in TIP_EDGES] + [""])
+        return names[np.where(self.edge >= 0, self.edge, len(TIP_EDGES))]
 
 
 def _cross(a, b):
