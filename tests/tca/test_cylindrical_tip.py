@@ -111,6 +111,13 @@ def test_tip_corner_against_the_closed_form(member, beyond):
     np.testing.assert_allclose(other_roll, [u for _, u in truth], atol=1e-8)
     assert np.all(turn_truth < 0) and np.all(np.diff(turn_truth) < 0)
     assert np.all(tc.gap_mm > 0)            # a lag closes it: the gap is open
+    # the touched normal is the mating involute's: tangent to its base circle, so its
+    # moment arm about the mating axis is that base radius (1e-9 relative)
+    centre, rb = ((np.zeros(3), 0.5 * g.base_diameter_gear_mm) if member == "pinion"
+                  else (np.array([-g.centre_distance_mm, 0.0, 0.0]), rb1))
+    arm = np.abs(np.einsum("ni,ni->n", np.cross([0.0, 0.0, 1.0], tc.point_mm - centre),
+                           tc.normal))
+    np.testing.assert_allclose(arm, rb, rtol=1e-9)
 
 
 @pytest.mark.parametrize("beta, hand", [(0.0, None), (25.0, "left")])

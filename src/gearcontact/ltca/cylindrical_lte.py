@@ -20,12 +20,25 @@ with ``g(z)`` the gap along the transverse line of action of the unloaded cycle
 into the normal), ``g_j`` its least value on the line and ``R`` the relative radius of
 curvature normal to the line (transverse radii ``u1``, ``u2``, the roll lengths, over
 ``cos(beta_b)``: ISO 6336-2's normal-section radii). The pair's opening is
-``cos(beta_b) (g_j - min_k g_k)`` and its lever about the gear axis ``r_b2 cos(beta_b)``
+``cos(beta_b) (g_j - g_c)`` (``g_c`` the mesh's closing gap, a tip edge's where one
+touches first) and its lever about the gear axis ``r_b2 cos(beta_b)``
 (a gear rotation moves its flank by ``r_b2`` along the transverse line of action).
 The profile modifications enter through ``g(z)`` along the line only: across the strip
 (a few tenths of a mm) their change is neglected, and a contact is not truncated at the
 tip across the strip (a loaded cell in the first or last column of the grid is
 reported, ``edge_touch``).
+
+Tip-edge contact. A pair without a line in the zone whose tip edge touches the mating
+flank within reach (the cycle's ``tip``, :mod:`~gearcontact.tca.cylindrical_tip`) is a
+block along that edge: rows at the grid's axial positions with the edge points' normal
+gap ``(lever / |rate|) (g_e(z) - g_e)`` (:func:`~gearcontact.tca.cylindrical_tip.
+tip_edge_gaps`), across only ``x >= 0`` into the edge's own flank (no material beyond
+the edge) with ``sin(angle between the flanks) x + x^2 / (2 R)``; lever the touched
+normal's about the gear axis, opening that lever times its closing turn behind the
+mesh's; bending at the touch's roll lengths. This is the extended contact of deflected
+teeth at the tip of the driven tooth (start of mesh) and of the driver (end). On a
+helical pair the tip edge beyond a line already in the zone is not a block (it is in
+TE0).
 
 Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
 normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).

@@ -27,8 +27,14 @@ minimum along the line by golden-section search (the gap is convex along the lin
 the tilt's linear term), and the painted part (gap within the paint thickness of the
 closed gap) by bisection.
 
+Tip edges. Beyond the ends of its line a pair can still touch: the tip edge of either
+member meets the mating flank off the plane of action when the gear lags by more than
+the edge's separation there (premature contact of the driven tooth's tip, prolonged of
+the driver's; :mod:`.cylindrical_tip`). Its touch is put as a gap ``g = -rate Δφ2`` and
+the pair closes at the least of its line's and its tip edges' gaps.
+
 TE0. Turning the gear by ``Δφ2`` changes the gap by ``Δφ2 (a2 × G)·d`` (``≈ r_b2``
-per rad); unloaded, the gear rests on the pair that closes first, so
+per rad); unloaded, the gear rests on the pair that closes first (line or tip edge), so
 ``TE0 = -min_j g_j / rate`` (rad; reported in arcsec), measured from the perfect
 involute mesh at the working centre distance (``phi2 = phi1 / u``): 0 for unmodified
 aligned flanks, negative (the gear lags) where material is removed. Tooth pair ``j``

@@ -9,6 +9,14 @@ motion. The motion sign ``m`` is the sign of ``d g / d phi2`` (the gear lags by
 ``theta`` under load, so ``TE = TE0_env - m theta`` as the loaded TE of
 :func:`gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` gives it).
 
+Tip-edge rows (:func:`tip_rows`): where a pair closes first at a tip edge (the cycle's
+``tip_first``: before its line enters, after it leaves, or before the line closes), its
+row is an ``edge`` row (``contact_mode`` 1, ``edge_label`` the edge) with the touch's
+own lever and opening, so it closes where the edge really touches; the law's inputs
+(stencil, curvatures, line length, ease-off, bending) are those of the same tooth
+pair's nearest line in the zone, as the bevel twin's edge rows take their nearest
+surface contact's (:mod:`.mesh`).
+
 Contact law, per backend (``--backend``, as the bevel twin's):
 
 * ``reference`` (fp64), ``golden`` (the bit-exact fixed point) and ``rtl`` (the golden
