@@ -127,7 +127,7 @@ def test_axis_misalignment_te0_small_angle(f_beta, f_delta):
     assert c.te0_pp_arcsec < 0.01 * truth
 
 
-def test_spur_tip_relief_te0_pp():
+def test_spur_tip_relief_te0_pp(spur_tip_relief):
     """Spur pinion tip relief C_a from u_Ca between the lowest (u_a1 - p_bt) and the
     highest (u_Nf1 + p_bt) point of single contact: in double contact the other pair
     sits below u_Ca (unrelieved, TE0 = 0); in single contact the relief reaches
@@ -136,17 +136,9 @@ def test_spur_tip_relief_te0_pp():
     over), missed by at most one phase step: slope dC/du times r_b1 h. The lines alone:
     the next pair's gear tip touches before its line enters and lifts the minimum
     (premature contact, tests/tca/test_cylindrical_tip.py)."""
-    base = _pair(0.0, None, b=20.0)
-    g = base.geometry
-    rolls = g.roll_lengths_mm("pinion")
-    p_bt = g.transverse_base_pitch_mm
-    lo, hi = rolls["tip"] - p_bt, rolls["active_start"] + p_bt
-    u_ca = 0.5 * (lo + hi)
-    rb1, rb2 = 0.5 * g.base_diameter_pinion_mm, 0.5 * g.base_diameter_gear_mm
-    c_a = 20.0e-3
-    pair = _pair(0.0, None, b=20.0, modifications_pinion=ToothModifications(
-        tip_relief_um=c_a * 1e3, tip_relief_start_diameter_mm=2 * math.hypot(u_ca, rb1)))
-    c = cylindrical_mesh_cycle(pair, phases=121)
+    t = spur_tip_relief
+    c, c_a, u_ca, hi, rolls = t.cycle, t.c_a, t.u_ca, t.hi, t.rolls
+    rb1, rb2 = t.rb1, t.rb2
     length = rolls["tip"] - u_ca
     relief = c_a * ((hi - u_ca) / length) ** 2
     truth = relief / rb2 * ARCSEC_PER_RAD

@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from gearcontact.geometry.cylindrical.iso21771 import inv
-from gearcontact.geometry.cylindrical.pair import CylindricalPair, ToothModifications
+from gearcontact.geometry.cylindrical.pair import CylindricalPair
 from gearcontact.tca.plane_of_action import PlaneOfAction
 from gearcontact.tca.cylindrical_cycle import (CONTACT_TOLERANCE_MM,
                                                cylindrical_mesh_cycle)
@@ -17,17 +17,11 @@ from gearcontact.tca.cylindrical_tip import tip_edge_contacts
 from gearcontact.tca.parallel_axes import pitch_point_guess
 from gearcontact.tca.types import ARCSEC_PER_RAD
 
+from .conftest import spur_23x67
+
 #: The tip-edge touch is solved to 1e-11 mm (~1e-7 arcsec on r_b2 ~ 63 mm) and the
 #: closed form's root to 1e-13 mm: 1e-5 arcsec leaves two decades.
 TURN_TOL_ARCSEC = 1e-5
-
-
-def _spur(**kw):
-    """The 23/67 m_n 2 spur pair (x = 0.3 / 0.1, zero backlash) of test_cylindrical_cycle."""
-    return CylindricalPair(name="t", pinion_teeth=23, gear_teeth=67, normal_module_mm=2.0,
-                           pinion_face_width_mm=20.0, gear_face_width_mm=20.0,
-                           helix_angle_deg=0.0, pinion_hand=None, profile_shift_pinion=0.3,
-                           profile_shift_gear=0.1, **kw)
 
 
 def _start_angle(pair, member):
@@ -88,7 +82,7 @@ def test_tip_corner_against_the_closed_form(member, beyond):
     meeting the involute. The gear tip leads in (the driven tooth's tip at the start of
     mesh), the pinion tip trails out; both touch only with the gear lagging (a
     rotation offset against the motion) and the needed lag grows with the distance."""
-    pair = _spur()
+    pair = spur_23x67()
     mesh = PlaneOfAction(pair, "cw")
     g = pair.geometry
     rb1 = 0.5 * g.base_diameter_pinion_mm
@@ -141,7 +135,7 @@ def test_unmodified_pairs_have_no_tip_contact(beta, hand, facing):
     assert not c.tip_first[live].any()
 
 
-def test_tip_relief_lag_makes_premature_contact():
+def test_tip_relief_lag_makes_premature_contact(spur_tip_relief):
     """The classical premature contact at the start of mesh. A pinion tip relief C_a =
     20 um from u_Ca between the lowest and highest points of single contact leaves the
     pair at the highest point open by C_a ((u - u_Ca)/(u_a1 - u_Ca))^2 (closed form along
@@ -151,17 +145,9 @@ def test_tip_relief_lag_makes_premature_contact():
     tip corner's closed form (1e-5 arcsec) and the contact is the gear tip; at the
     others TE0 is the relieved line's closed form. The TE0 minimum rises from the
     line-only -C_a(...)^2 / r_b2 at the highest point."""
-    base = _spur()
-    g = base.geometry
-    rolls = g.roll_lengths_mm("pinion")
-    p_bt = g.transverse_base_pitch_mm
-    lo, hi = rolls["tip"] - p_bt, rolls["active_start"] + p_bt
-    u_ca = 0.5 * (lo + hi)
-    rb1, rb2 = 0.5 * g.base_diameter_pinion_mm, 0.5 * g.base_diameter_gear_mm
-    c_a = 20.0e-3
-    pair = _spur(modifications_pinion=ToothModifications(
-        tip_relief_um=c_a * 1e3, tip_relief_start_diameter_mm=2 * math.hypot(u_ca, rb1)))
-    c = cylindrical_mesh_cycle(pair, phases=121)
+    t = spur_tip_relief
+    pair, c, c_a, u_ca, hi, rolls = t.pair, t.cycle, t.c_a, t.u_ca, t.hi, t.rolls
+    p_bt, rb2 = t.p_bt, t.rb2
     tip_phases = [k for k, mp in enumerate(c.contact) if mp.edge_contact]
     assert tip_phases and all(c.contact[k].edge_contact == "gear tip" for k in tip_phases)
     pitch = 2 * math.pi / pair.pinion_teeth
