@@ -134,7 +134,9 @@ class CylindricalLoadedTE:
     te0_arcsec, lte_arcsec : ndarray (K,)
         Unloaded and loaded TE, arcsec (the TCA's sign: negative, the gear lags).
     load_share : ndarray (P, K)
-        Normal load of each pair over ``F_n`` (0 for a pair out of the zone).
+        Normal load of each pair over ``F_n`` (0 for a pair out of the zone). They sum
+        to 1 where only lines carry; a tip edge's normal has its own lever (``lever_mm``):
+        the torque balance is ``sum_j share_j lever_j = r_b2 cos(beta_b)``.
     max_pressure_mpa : ndarray (K,)
         Largest cell pressure, MPa.
     z_mm : ndarray (N,)
@@ -161,6 +163,9 @@ class CylindricalLoadedTE:
     edge_label : ndarray (P, K) of str
         ``"pinion tip"`` / ``"gear tip"`` where the pair's block is its tip edge touching
         the mating flank beyond the path of contact (an ``edge`` row), else ``""``.
+    lever_mm : ndarray (P, K)
+        Lever of each pair's normal force about the gear axis, mm (``r_b2 cos(beta_b)``
+        for a line, the touch's own for a tip edge; 0 for a pair without a block).
     """
 
     phi1_rad: np.ndarray
@@ -184,6 +189,7 @@ class CylindricalLoadedTE:
     solve_time_s: float
     bending: bool = False
     edge_label: np.ndarray | None = None
+    lever_mm: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -285,6 +291,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     t0 = time.process_time()
     tg = tip_edge_gaps(PlaneOfAction(pair, cycle.facing), cycle, z)
     tip_rows = np.zeros((n_pairs, n_phase), bool)
+    levers = np.zeros((n_pairs, n_phase))
     for k in range(n_phase):
         live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
         tipped = [j for j in range(n_pairs) if j not in live and np.isfinite(tg.gap_mm[j, k]).any()]
@@ -313,6 +320,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         for i, j in enumerate(live):
             w = res.loads_n[i]
             share[j, k] = res.pair_loads_n[i] / load
+            levers[j, k] = blocks[i].lever_mm
             line_load[j, k] = w.sum(axis=1) / dz
             line_p[j, k] = press[i].max(axis=1)
             edge |= bool(res.contact_masks[i][:, [0, -1]].any())
@@ -329,7 +337,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
-        edge_label=np.where(tip_rows, cycle.tip.labels(), ""))
+        edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers)
 
 
 def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,
