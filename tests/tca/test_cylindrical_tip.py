@@ -25,7 +25,8 @@ TURN_TOL_ARCSEC = 1e-5
 
 
 def _start_angle(pair, member):
-    """θ0 of the cw involute (docs/cylindrical.md sec. 3): −(π/2 + 2 x tan α_n)/z − inv α_t."""
+    """θ0 of the cw involute (docs/cylindrical.md sec. 3):
+    −(π/2 + 2 x tan α_n)/z − inv α_t."""
     g = pair.geometry
     z, x = getattr(pair, f"{member}_teeth"), getattr(pair, f"profile_shift_{member}")
     return (-(0.5 * math.pi + 2 * x * math.tan(math.radians(g.normal_pressure_angle_deg))) / z

@@ -1,7 +1,8 @@
 """The twin of a cylindrical pair (twin.cylindrical, table backend) against independent
 truths: the mesh table's lever r_b2 cos(beta_b) (ISO 21771 base circle, the normal
-through the base helix; also a pinion tip's edge row, touching the gear's involute), the static point equal to the loaded TE's rotation at the
-torque (the LCP it tabulates), and the first mesh resonance against ISO 6336-1's
+through the base helix; also a pinion tip's edge row, touching the gear's involute),
+the static point equal to the loaded TE's rotation at the torque (the LCP it
+tabulates), and the first mesh resonance against ISO 6336-1's
 resonance speed n_E1 = 30 000 / (pi z1) sqrt(c_gamma / m_red) (clause 6.5.3)."""
 
 import math

@@ -5,10 +5,10 @@ sec. 7): what ``gearcontact lte`` writes for a ``kind = "cylindrical"`` pair.
 ``teeth`` names the tooth model, and with a rigid-tooth run beside a bending one its
 key ``rigid`` holds the rigid loaded TE and stiffness), ``lte.csv`` (per phase: TE0,
 loaded TE, load share per pair, peak pressure, mesh stiffness; the rigid loaded TE and
-stiffness beside them), ``line_load.csv`` (per phase, loaded pair and face cell: ``contact`` line or the tip
-edge touching beyond it, the lever of its normal, load per unit face width and the peak
-pressure across the line), ``harris_map.csv`` (loaded TE p-p per
-tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
+stiffness beside them), ``line_load.csv`` (per phase, loaded pair and face cell:
+``contact`` line or the tip edge touching beyond it, the lever of its normal, load per
+unit face width and the peak pressure across the line), ``harris_map.csv`` (loaded TE
+p-p per tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
 identical runs write identical files.
 """
 

@@ -2,9 +2,9 @@
 ``kind = "cylindrical"`` pair (docs/cylindrical.md sec. 6).
 
 ``write_cylindrical_tca_outputs`` writes into one directory: ``tca.json`` (summary with
-the ISO 21771 contact ratios beside the TCA's), ``te0.csv`` (per phase),
-``contact_lines.csv`` (per phase and tooth pair in the zone of action; ``te0.csv``'s
-``contact``: ``line`` or the tip edge that touches first, docs/cylindrical.md sec. 6) and the figures
+the ISO 21771 contact ratios beside the TCA's), ``te0.csv`` (per phase; ``contact``:
+``line`` or the tip edge that touches first, docs/cylindrical.md sec. 6),
+``contact_lines.csv`` (per phase and tooth pair in the zone of action) and the figures
 ``te0.png`` and ``contact_pattern.png`` (with their SVGs). No timings: identical runs
 write identical files.
 """
