@@ -289,13 +289,14 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     ok, edge = True, False
     warm: dict[int, np.ndarray] = {}
     t0 = time.process_time()
-    tg = tip_edge_gaps(PlaneOfAction(pair, cycle.facing), cycle, z)
+    poa = PlaneOfAction(pair, cycle.facing)
     tip_rows = np.zeros((n_pairs, n_phase), bool)
     levers = np.zeros((n_pairs, n_phase))
+    theta_last = np.inf
     for k in range(n_phase):
         live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
-        tipped = [j for j in range(n_pairs) if j not in live and np.isfinite(tg.gap_mm[j, k]).any()]
-        tip_rows[tipped, k] = True
+        tipped = [j for j in range(n_pairs)
+                  if j not in live and np.isfinite(cycle.tip.gap_mm[j, k])]
         g_line = {j: lg.gap_mm[j, k] for j in live}
         g_env = float(cycle.closing_gap_mm[k])
         blocks = []
@@ -309,10 +310,27 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             factor = None if teeth is None else line_bending_factor(
                 teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
             blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
-        blocks += [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in tipped]
-        live = live + tipped
-        res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
-                             warm_start=[warm.get(j) for j in live])
+        # a tip edge is a block where it may close: its closing turn below twice the last
+        # phase's rotation, and any other whose turn the solved rotation exceeds (then
+        # solved again), so that the blocks left out stand open (complementarity)
+        turn = {j: max(float(cycle.tip.gap_mm[j, k]) - g_env, 0.0)
+                / abs(float(cycle.tip.rate_mm_per_rad[j, k])) for j in tipped}
+        take = [j for j in tipped if turn[j] < 2.0 * theta_last]
+        lines = blocks
+        while True:
+            where = np.zeros((n_pairs, n_phase), bool)
+            where[take, k] = True
+            tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
+            blocks = lines + [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in take]
+            res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
+                                 warm_start=[warm.get(j) for j in live + take])
+            late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
+            if not late:
+                break
+            take += late
+        theta_last = res.rotation_rad
+        tip_rows[take, k] = True
+        live = live + take
         ok &= res.converged
         iters[k] = res.iterations
         press = res.pressures_mpa(blocks)

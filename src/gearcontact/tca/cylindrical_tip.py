@@ -345,7 +345,7 @@ class TipEdgeGaps:
     inv_radius_per_mm: np.ndarray
 
 
-def tip_edge_gaps(mesh, cycle, z_mm) -> TipEdgeGaps:
+def tip_edge_gaps(mesh, cycle, z_mm, *, where=None) -> TipEdgeGaps:
     """Sample the first-touching tip edge of every pair and phase of ``cycle`` at the
     axial positions ``z_mm`` (the same solve as :func:`tip_edge_contacts`, from the
     cycle's touch).
@@ -357,6 +357,8 @@ def tip_edge_gaps(mesh, cycle, z_mm) -> TipEdgeGaps:
     cycle : CylindricalMeshCycle
     z_mm : array_like (N,)
         Axial positions (finite), mm.
+    where : ndarray (P, K) of bool, optional
+        Sample only these pairs and phases (NaN elsewhere); default all.
     """
     z = np.asarray(z_mm, float).ravel()
     tip = cycle.tip
@@ -369,6 +371,8 @@ def tip_edge_gaps(mesh, cycle, z_mm) -> TipEdgeGaps:
                                 * mesh.pinion.base_radius_mm) ** 2)
     for i, edge in enumerate(TIP_EDGES):
         sel = np.isfinite(tip.gap_mm) & (tip.edge == i)
+        if where is not None:
+            sel &= np.asarray(where, bool)
         if not sel.any():
             continue
         own, other = (mesh.pinion, mesh.gear) if edge.member == "pinion" else \
