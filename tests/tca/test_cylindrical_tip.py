@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from gearcontact.geometry.cylindrical.iso21771 import inv
-from gearcontact.geometry.cylindrical.pair import CylindricalPair
+from gearcontact.geometry.cylindrical.pair import CylindricalPair, ToothModifications
 from gearcontact.tca.plane_of_action import PlaneOfAction
 from gearcontact.tca.cylindrical_cycle import (CONTACT_TOLERANCE_MM,
                                                cylindrical_mesh_cycle)
@@ -176,3 +176,32 @@ def test_tip_relief_lag_makes_premature_contact(spur_tip_relief):
     line_only = c_a * ((hi - u_ca) / (rolls["tip"] - u_ca)) ** 2 / rb2 * ARCSEC_PER_RAD
     assert 0.5 * line_only < c.te0_pp_arcsec < 0.9 * line_only
     assert c.tip.gap_mm[np.isfinite(c.tip.gap_mm)].min() > -CONTACT_TOLERANCE_MM
+
+
+def test_preview_loads_where_a_tip_edge_alone_touches():
+    """Without a loaded TE the preview's pairs touching unloaded share F_n by their line
+    lengths (ltca.cylindrical_preview.pair_loads_n). Where a tip edge touches first (the
+    relieved spur pair above at 25 phases: the next pair's gear tip at one phase) no
+    line is closed; the lines next to close (least opening) carry F_n there. Truths: the
+    loads are finite and sum to F_n at every phase (1e-12 relative), and at the tip phase
+    only least-open lines carry."""
+    from gearcontact.ltca.cylindrical_preview import pair_loads_n
+    from gearcontact.tca.cylindrical_stencil import cylindrical_stencils
+
+    g = spur_23x67().geometry
+    rolls = g.roll_lengths_mm("pinion")
+    u_ca = 0.5 * (rolls["tip"] + rolls["active_start"])      # midway between LPSTC, HPSTC
+    rb1 = 0.5 * g.base_diameter_pinion_mm
+    pair = spur_23x67(modifications_pinion=ToothModifications(
+        tip_relief_um=20.0, tip_relief_start_diameter_mm=2 * math.hypot(u_ca, rb1)))
+    c = cylindrical_mesh_cycle(pair, phases=25)
+    tip = [k for k, mp in enumerate(c.contact) if mp.edge_contact]
+    assert tip
+    st = cylindrical_stencils(pair, c)
+    w, source = pair_loads_n(st, 1000.0)
+    assert source == "line_length" and np.isfinite(w).all()
+    np.testing.assert_allclose(w.sum(axis=0), 1000.0, rtol=1e-12)
+    for k in tip:
+        assert not st.in_contact[:, k].any()
+        least = st.opening_mm[st.valid[:, k], k].min()
+        assert np.all(st.opening_mm[w[:, k] > 0, k] == least) and least > 0
