@@ -127,6 +127,18 @@ def test_axis_misalignment_te0_small_angle(f_beta, f_delta):
     assert c.te0_pp_arcsec < 0.01 * truth
 
 
+def test_largest_misalignment_solves_and_mirrors():
+    """At the range's f_Σδ = ±500 um over 20 mm (0.025 rad) the cycle solves (the line
+    ends and least-gap points only on the phases with a line in the zone: far beyond it
+    the tilted gear's ray solve need not converge), and a spur pair is symmetric about
+    mid-face: the inclination's sign mirrors z, so TE0 is the same (1e-6 arcsec)."""
+    cycles = [cylindrical_mesh_cycle(_pair(0.0, None, b=20.0, assembly=MeshAlignment(
+        axis_inclination_um=f)), phases=21) for f in (500.0, -500.0)]
+    assert all(np.isfinite(c.envelope_arcsec).all() for c in cycles)
+    np.testing.assert_allclose(cycles[0].envelope_arcsec, cycles[1].envelope_arcsec,
+                               atol=1e-6)
+
+
 def test_spur_tip_relief_te0_pp(spur_tip_relief):
     """Spur pinion tip relief C_a from u_Ca between the lowest (u_a1 - p_bt) and the
     highest (u_Nf1 + p_bt) point of single contact: in double contact the other pair

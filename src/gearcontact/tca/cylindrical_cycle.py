@@ -245,6 +245,17 @@ def _solved_ends(mesh: PlaneOfAction, phi1: np.ndarray):
     return lo, hi
 
 
+def _on_live(live: np.ndarray, solve) -> dict:
+    """``solve()``'s section fields on the ``live`` phases, NaN-filled to all phases."""
+    got = solve()
+    out = {}
+    for key, val in got.items():
+        full = np.full(live.shape + val.shape[1:], np.nan)
+        full[live] = val
+        out[key] = full
+    return out
+
+
 def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases: int = 61,
                            paint_mm: float = PAINT_THICKNESS_MM) -> CylindricalMeshCycle:
     """TCA over one pinion pitch with every tooth pair in the zone of action.
@@ -289,9 +300,11 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
     best = np.argmin(gc, axis=0)
     zstar[live] = cand[best, np.arange(len(pl))]
     gmin[live] = gc[best, np.arange(len(pl))]
-    ends = mesh.section(np.repeat(phi[:, None], 2, 1), np.column_stack([
-        np.where(live, lo, 0.0), np.where(live, hi, 0.0)]))
-    at = mesh.section(phi, np.where(live, zstar, 0.0))
+    # solved on the live phases only: far beyond the zone a tilted gear's ray solve need
+    # not converge from the plane of action's start (NaN there, never read)
+    ends = _on_live(live, lambda: mesh.section(np.repeat(phi[live, None], 2, 1),
+                                               np.column_stack([lo[live], hi[live]])))
+    at = _on_live(live, lambda: mesh.section(phi[live], zstar[live]))
     tips = passage_tip_contacts(mesh, phi, live,
                                 base_pitch_mm=pair.geometry.transverse_base_pitch_mm)
     near = live | np.isfinite(tips.gap_mm)
@@ -352,7 +365,7 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
     contact = []
     for k, w in enumerate(win):
         i = idx[w, k]
-        phi2 = float(at["phi2"][i] + envelope[k] / ARCSEC_PER_RAD)
+        phi2 = float(phi[i] / mesh.ratio + mesh.phi2_offset + envelope[k] / ARCSEC_PER_RAD)
         if on_tip[w, k]:
             contact.append(MatingPoint(
                 phi1_rad=float(phi[i]), phi2_rad=phi2, u1=float(tips.u1[i]),
