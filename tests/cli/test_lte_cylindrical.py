@@ -3,7 +3,8 @@
 Harris map) through `gearcontact.cli.main`, and the options it refuses together.
 
 Truths: the normal load of the torque, F_n = T2 / (r_b2 cos beta_b) (ISO 6336-1), which
-the line loads of every phase must integrate to (the LCP's torque balance, 1e-9); the
+the line loads of every phase must integrate to about the gear axis with their levers
+(the LCP's torque balance, 1e-9: r_b2 cos beta_b for a line, a tip edge's own); the
 Harris map's torques, those of the ISO tangential line loads F_t / b = 50 ... 400 N/mm at
 the gear's reference circle d2 = z2 m_n / cos beta; the map's row at the example's own
 tip relief (8 um) and torque equal to a loaded TE run at that torque.
@@ -69,13 +70,19 @@ def test_files_and_numbers(out):
     assert doc["rigid"]["lte_pp_arcsec"] == pytest.approx(np.ptp(lte["lte_rigid_arcsec"]),
                                                           abs=1e-9)
     shares = np.column_stack([lte[n] for n in lte.dtype.names if n.startswith("load_share")])
-    np.testing.assert_allclose(shares.sum(axis=1), 1.0, rtol=1e-9)
+    # the normal loads sum to F_n where lines alone carry; a tip edge's lever is at most
+    # a line's (r_b2 cos beta_b: the touched normal is an involute's), so more elsewhere
+    assert np.all(shares.sum(axis=1) >= 1.0 - 1e-9)
+    if doc["tip_contact_phases"] == 0:
+        np.testing.assert_allclose(shares.sum(axis=1), 1.0, rtol=1e-9)
     lines = np.genfromtxt(out / "line_load.csv", delimiter=",", names=True)
     z = np.unique(lines["pinion_z_mm"])
     dz = z[1] - z[0]
+    lever = 0.5 * g.base_diameter_gear_mm * math.cos(math.radians(g.base_helix_angle_deg))
     for phi in np.unique(lines["phi1_deg"]):
         at = lines["phi1_deg"] == phi
-        assert lines["load_n_per_mm"][at].sum() * dz == pytest.approx(fn, rel=1e-9)
+        moment = (lines["load_n_per_mm"][at] * lines["lever_mm"][at]).sum() * dz
+        assert moment == pytest.approx(fn * lever, rel=1e-9)
 
 
 def test_harris_map(out):

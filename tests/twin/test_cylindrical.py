@@ -1,7 +1,8 @@
 """The twin of a cylindrical pair (twin.cylindrical, table backend) against independent
 truths: the mesh table's lever r_b2 cos(beta_b) (ISO 21771 base circle, the normal
-through the base helix), the static point equal to the loaded TE's rotation at the
-torque (the LCP it tabulates), and the first mesh resonance against ISO 6336-1's
+through the base helix; also a pinion tip's edge row, touching the gear's involute),
+the static point equal to the loaded TE's rotation at the torque (the LCP it
+tabulates), and the first mesh resonance against ISO 6336-1's
 resonance speed n_E1 = 30 000 / (pi z1) sqrt(c_gamma / m_red) (clause 6.5.3)."""
 
 import math
@@ -41,7 +42,17 @@ def test_mesh_table(pair):
         mesh = cylindrical_mesh_table(pair, cyc)
         lever = 0.5 * g.base_diameter_gear_mm * math.cos(math.radians(g.base_helix_angle_deg))
         assert mesh.motion_sign == sign
-        np.testing.assert_allclose(mesh.lever_mm[mesh.valid], lever, rtol=1e-15)
+        line = mesh.valid & (mesh.contact_mode == 0)
+        np.testing.assert_allclose(mesh.lever_mm[line], lever, rtol=1e-15)
+        # edge rows (a tip edge touching first): a pinion tip touches the gear's involute
+        # helicoid, whose normal is tangent to its base cylinder: lever r_b2 cos(beta_b)
+        # to the solve (1e-9); a gear tip touches the pinion's, off the plane of action
+        edge = mesh.valid & (mesh.contact_mode == 1)
+        assert edge.any() and set(mesh.edge_label[edge]) <= {"pinion tip", "gear tip"}
+        np.testing.assert_allclose(mesh.lever_mm[edge & (mesh.edge_label == "pinion tip")],
+                                   lever, rtol=1e-9)
+        assert np.all(mesh.lever_mm[edge] > 0.5 * lever)
+        assert np.all(mesh.lever_mm[edge] <= lever * (1 + 1e-9))
         assert mesh.reference_lever_mm == pytest.approx(lever, rel=1e-15)
         # along the motion: psi increasing over one pitch, eps = m TE0 (the gear lags)
         assert mesh.psi_rad[0] == 0.0 and mesh.psi_rad[-1] == pytest.approx(

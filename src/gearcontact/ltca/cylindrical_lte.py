@@ -20,12 +20,25 @@ with ``g(z)`` the gap along the transverse line of action of the unloaded cycle
 into the normal), ``g_j`` its least value on the line and ``R`` the relative radius of
 curvature normal to the line (transverse radii ``u1``, ``u2``, the roll lengths, over
 ``cos(beta_b)``: ISO 6336-2's normal-section radii). The pair's opening is
-``cos(beta_b) (g_j - min_k g_k)`` and its lever about the gear axis ``r_b2 cos(beta_b)``
+``cos(beta_b) (g_j - g_c)`` (``g_c`` the mesh's closing gap, a tip edge's where one
+touches first) and its lever about the gear axis ``r_b2 cos(beta_b)``
 (a gear rotation moves its flank by ``r_b2`` along the transverse line of action).
 The profile modifications enter through ``g(z)`` along the line only: across the strip
 (a few tenths of a mm) their change is neglected, and a contact is not truncated at the
 tip across the strip (a loaded cell in the first or last column of the grid is
 reported, ``edge_touch``).
+
+Tip-edge contact. A pair without a line in the zone whose tip edge touches the mating
+flank within reach (the cycle's ``tip``, :mod:`~gearcontact.tca.cylindrical_tip`) is a
+block along that edge: rows at the grid's axial positions with the edge points' normal
+gap ``(lever / |rate|) (g_e(z) - g_e)`` (:func:`~gearcontact.tca.cylindrical_tip.
+tip_edge_gaps`), across only ``x >= 0`` into the edge's own flank (no material beyond
+the edge) with ``sin(angle between the flanks) x + x^2 / (2 R)``; lever the touched
+normal's about the gear axis, opening that lever times its closing turn behind the
+mesh's; bending at the touch's roll lengths. This is the extended contact of deflected
+teeth at the tip of the driven tooth (start of mesh) and of the driver (end). On a
+helical pair the tip edge beyond a line already in the zone is not a block (it is in
+TE0).
 
 Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
 normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).
@@ -61,6 +74,8 @@ from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
     cylindrical_mesh_cycle
+from ..tca.cylindrical_tip import TipEdgeGaps, tip_edge_gaps
+from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
@@ -119,7 +134,9 @@ class CylindricalLoadedTE:
     te0_arcsec, lte_arcsec : ndarray (K,)
         Unloaded and loaded TE, arcsec (the TCA's sign: negative, the gear lags).
     load_share : ndarray (P, K)
-        Normal load of each pair over ``F_n`` (0 for a pair out of the zone).
+        Normal load of each pair over ``F_n`` (0 for a pair out of the zone). They sum
+        to 1 where only lines carry; a tip edge's normal has its own lever (``lever_mm``):
+        the torque balance is ``sum_j share_j lever_j = r_b2 cos(beta_b)``.
     max_pressure_mpa : ndarray (K,)
         Largest cell pressure, MPa.
     z_mm : ndarray (N,)
@@ -143,6 +160,12 @@ class CylindricalLoadedTE:
         CPU time of the LCP solves, s.
     bending : bool
         Tooth bending was in the LCP (else rigid teeth).
+    edge_label : ndarray (P, K) of str
+        ``"pinion tip"`` / ``"gear tip"`` where the pair's block is its tip edge touching
+        the mating flank beyond the path of contact (an ``edge`` row), else ``""``.
+    lever_mm : ndarray (P, K)
+        Lever of each pair's normal force about the gear axis, mm (``r_b2 cos(beta_b)``
+        for a line, the touch's own for a tip edge; 0 for a pair without a block).
     """
 
     phi1_rad: np.ndarray
@@ -165,6 +188,8 @@ class CylindricalLoadedTE:
     converged: bool
     solve_time_s: float
     bending: bool = False
+    edge_label: np.ndarray | None = None
+    lever_mm: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -264,13 +289,19 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     ok, edge = True, False
     warm: dict[int, np.ndarray] = {}
     t0 = time.process_time()
+    poa = PlaneOfAction(pair, cycle.facing)
+    tip_rows = np.zeros((n_pairs, n_phase), bool)
+    levers = np.zeros((n_pairs, n_phase))
+    theta_last = np.inf
     for k in range(n_phase):
         live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
+        tipped = [j for j in range(n_pairs)
+                  if j not in live and np.isfinite(cycle.tip.gap_mm[j, k])]
         g_line = {j: lg.gap_mm[j, k] for j in live}
-        g_env = min(float(np.nanmin(g_line[j])) for j in live)
+        g_env = float(cycle.closing_gap_mm[k])
         blocks = []
         for j in live:
-            gj = float(np.nanmin(g_line[j]))
+            gj = max(float(np.nanmin(g_line[j])), g_env)
             on = np.isfinite(g_line[j])
             inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
                                        + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
@@ -279,8 +310,27 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             factor = None if teeth is None else line_bending_factor(
                 teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
             blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
-        res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
-                             warm_start=[warm.get(j) for j in live])
+        # a tip edge is a block where it may close: its closing turn below twice the last
+        # phase's rotation, and any other whose turn the solved rotation exceeds (then
+        # solved again), so that the blocks left out stand open (complementarity)
+        turn = {j: max(float(cycle.tip.gap_mm[j, k]) - g_env, 0.0)
+                / abs(float(cycle.tip.rate_mm_per_rad[j, k])) for j in tipped}
+        take = [j for j in tipped if turn[j] < 2.0 * theta_last]
+        lines = blocks
+        while True:
+            where = np.zeros((n_pairs, n_phase), bool)
+            where[take, k] = True
+            tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
+            blocks = lines + [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in take]
+            res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
+                                 warm_start=[warm.get(j) for j in live + take])
+            late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
+            if not late:
+                break
+            take += late
+        theta_last = res.rotation_rad
+        tip_rows[take, k] = True
+        live = live + take
         ok &= res.converged
         iters[k] = res.iterations
         press = res.pressures_mpa(blocks)
@@ -288,6 +338,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         for i, j in enumerate(live):
             w = res.loads_n[i]
             share[j, k] = res.pair_loads_n[i] / load
+            levers[j, k] = blocks[i].lever_mm
             line_load[j, k] = w.sum(axis=1) / dz
             line_p[j, k] = press[i].max(axis=1)
             edge |= bool(res.contact_masks[i][:, [0, -1]].any())
@@ -303,7 +354,29 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         line_pressure_mpa=line_p,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
-        solve_time_s=time.process_time() - t0, bending=teeth is not None)
+        solve_time_s=time.process_time() - t0, bending=teeth is not None,
+        edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers)
+
+
+def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,
+               teeth, nx: int) -> PairBlock:
+    """The LCP block of pair ``j``'s tip edge touching the mating flank at phase ``k``
+    (module docstring, "Tip-edge contact"): rows along the edge at the grid's axial
+    positions, ``x >= 0`` into the edge's own flank (no material at ``x < 0``)."""
+    ratio, gt = tg.normal_gap_per_gap[j, k], tg.gap_mm[j, k]
+    on = np.isfinite(gt)
+    g_first = min(float(cycle.tip.gap_mm[j, k]), float(np.nanmin(gt)))
+    x = grid.x_mm[None, :]
+    across = tg.slope[j, k] * x + 0.5 * tg.inv_radius_per_mm[j, k] * x * x
+    h = np.where(on[:, None] & (x >= 0.0), ratio * np.where(on, gt - g_first, 0.0)[:, None]
+                 + across, OFF_LINE_GAP_MM)
+    factor = None
+    if teeth is not None:
+        tip = cycle.tip
+        factor = line_bending_factor(teeth, tg.z_mm, np.where(on, tip.u1[j, k], np.nan),
+                                     np.where(on, tip.u2[j, k], np.nan), nx)
+    return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
+                     bending_factor=factor)
 
 
 def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,

@@ -17,7 +17,8 @@ Loads. With a loaded TE (:func:`.cylindrical_lte.cylindrical_loaded_te` at the s
 torque and cycle) each pair carries its LCP load share of ``F_n``; without it the pairs
 touching unloaded share ``F_n`` in proportion to their line lengths (rigid flanks in
 line contact close by the same approach, and the line contact's approach is, to its
-logarithmic term, that of the load per unit length). An input outside a backend's
+logarithmic term, that of the load per unit length); at a phase where a tip edge
+alone touches (docs/cylindrical.md sec. 6), the lines next to close share it. An input outside a backend's
 domain is a result, not an abort: the reference's refusal is kept as text in
 ``errors``, the fixed point's flags as mode ``"flagged"``.
 """
@@ -110,7 +111,12 @@ def pair_loads_n(stencils: CylindricalStencils, normal_load: float,
             raise InputRangeError("loaded_te.load_share shape", loaded_te.load_share.shape,
                                   f"{stencils.valid.shape} (the cycle's pairs x phases)")
         return np.where(stencils.valid, loaded_te.load_share * normal_load, 0.0), "ltca"
-    length = np.where(stencils.in_contact, stencils.line_length_mm, 0.0)
+    touch = stencils.in_contact
+    # where a tip edge alone touches (no line closed unloaded), the lines next to close
+    opening = np.where(stencils.valid, stencils.opening_mm, np.inf)
+    nearest = stencils.valid & (opening <= opening.min(axis=0)[None, :])
+    touch = np.where(touch.any(axis=0)[None, :], touch, nearest)
+    length = np.where(touch, stencils.line_length_mm, 0.0)
     return normal_load * length / length.sum(axis=0)[None, :], "line_length"
 
 

@@ -5,9 +5,10 @@ sec. 7): what ``gearcontact lte`` writes for a ``kind = "cylindrical"`` pair.
 ``teeth`` names the tooth model, and with a rigid-tooth run beside a bending one its
 key ``rigid`` holds the rigid loaded TE and stiffness), ``lte.csv`` (per phase: TE0,
 loaded TE, load share per pair, peak pressure, mesh stiffness; the rigid loaded TE and
-stiffness beside them), ``line_load.csv`` (per phase, pair in the zone and face cell: load per unit
-face width and the peak pressure across the line), ``harris_map.csv`` (loaded TE p-p per
-tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
+stiffness beside them), ``line_load.csv`` (per phase, loaded pair and face cell:
+``contact`` line or the tip edge touching beyond it, the lever of its normal, load per
+unit face width and the peak pressure across the line), ``harris_map.csv`` (loaded TE
+p-p per tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
 identical runs write identical files.
 """
 
@@ -87,6 +88,9 @@ def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, 
                                      "from the unloaded rest (docs/cylindrical.md sec. 7)",
         "iso6336_method_b": _iso(pair, lte, rigid),
         "max_load_share": float(lte.load_share.max()),
+        # pairs loaded at a tip edge beyond their line (premature / prolonged contact)
+        "tip_contact_phases": 0 if lte.edge_label is None else int(
+            ((lte.edge_label != "") & (lte.load_share > 0.0)).any(axis=0).sum()),
         "grid_dx_mm": lte.grid_dx_mm, "grid_dy_mm": lte.grid_dy_mm,
         "edge_touch": lte.edge_touch, "converged": lte.converged,
         "lcp_iterations_max": int(lte.iterations.max()),
@@ -185,10 +189,12 @@ def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | 
         for p, j in enumerate(lte.pair_offsets):
             if lte.load_share[p, k] <= 0.0:
                 continue
-            rows += [[float(phi[k]), j, float(z), float(w), float(pm)] for z, w, pm in zip(
-                lte.z_mm, lte.line_load_n_per_mm[p, k], lte.line_pressure_mpa[p, k])]
-    write_csv(out / "line_load.csv", ["phi1_deg", "pair", "pinion_z_mm", "load_n_per_mm",
-                                      "peak_pressure_mpa"], rows)
+            kind = (lte.edge_label[p, k] if lte.edge_label is not None else "") or "line"
+            rows += [[float(phi[k]), j, kind, float(lte.lever_mm[p, k]), float(z), float(w),
+                      float(pm)] for z, w, pm in zip(lte.z_mm, lte.line_load_n_per_mm[p, k],
+                                                     lte.line_pressure_mpa[p, k])]
+    write_csv(out / "line_load.csv", ["phi1_deg", "pair", "contact", "lever_mm", "pinion_z_mm",
+                                      "load_n_per_mm", "peak_pressure_mpa"], rows)
     if harris is not None:
         write_csv(out / "harris_map.csv",
                   ["tip_relief_um", "te0_pp_arcsec"]

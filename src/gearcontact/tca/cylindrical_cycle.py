@@ -27,8 +27,14 @@ minimum along the line by golden-section search (the gap is convex along the lin
 the tilt's linear term), and the painted part (gap within the paint thickness of the
 closed gap) by bisection.
 
+Tip edges. Beyond the ends of its line a pair can still touch: the tip edge of either
+member meets the mating flank off the plane of action when the gear lags by more than
+the edge's separation there (premature contact of the driven tooth's tip, prolonged of
+the driver's; :mod:`.cylindrical_tip`). Its touch is put as a gap ``g = -rate Δφ2`` and
+the pair closes at the least of its line's and its tip edges' gaps.
+
 TE0. Turning the gear by ``Δφ2`` changes the gap by ``Δφ2 (a2 × G)·d`` (``≈ r_b2``
-per rad); unloaded, the gear rests on the pair that closes first, so
+per rad); unloaded, the gear rests on the pair that closes first (line or tip edge), so
 ``TE0 = -min_j g_j / rate`` (rad; reported in arcsec), measured from the perfect
 involute mesh at the working centre distance (``phi2 = phi1 / u``): 0 for unmodified
 aligned flanks, negative (the gear lags) where material is removed. Tooth pair ``j``
@@ -44,16 +50,18 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.cylindrical.flank import FACINGS, ProfileLeadModification, involute_flank
+from ..geometry.cylindrical.flank import FACINGS
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM
-from .parallel_axes import parallel_kinematics, pitch_point_guess
-from .types import ARCSEC_PER_RAD, MatingPoint, TcaConvergenceError
+from .batched_search import affine_interval, bisect_root, golden_min
+from .cylindrical_tip import TipContacts, passage_tip_contacts
+from .plane_of_action import PlaneOfAction
+from .types import ARCSEC_PER_RAD, MatingPoint
 
 __all__ = ["CONTACT_TOLERANCE_MM", "FACING_OF_SIDE", "CylindricalMeshCycle", "LineGaps", "contact_line_gaps",
            "cylindrical_mesh_cycle", "pair_contact_points"]
@@ -63,25 +71,11 @@ FACING_OF_SIDE = {"drive": "cw", "coast": "ccw"}
 #: A pair touches (unloaded) if its closed gap is within this, mm: far above the solves'
 #: residual (1e-11 mm), far below any modification (0.1 um and up).
 CONTACT_TOLERANCE_MM = 1e-6
-#: Newton iterations of the pinion and gear point solves (both converge quadratically
-#: from the affine start; 1e-11 mm is reached in 2-3); more raise TcaConvergenceError.
-_NEWTON = 8
 #: Golden-section and bisection steps (0.618^60 and 2^-45 of a face width < 1e-11 mm).
 _GOLDEN, _BISECT = 60, 45
-_GR = 0.5 * (math.sqrt(5.0) - 1.0)
 #: Roll-length margin of the lines solved beyond the zone of action, mm (far above the
 #: micro-geometry's and the tilt's shifts of the zone, ~0.01 mm).
 _SCREEN_MM = 1.0
-#: Residual (mm) at which the point solves stop: a few hundred ulps of the coordinates.
-_RESIDUAL_MM = 1e-11
-
-
-def _turns(angle_rad):
-    """Batched rotations about +z by ``angle_rad`` (N,) -> (N, 3, 3)."""
-    c, s = np.cos(angle_rad), np.sin(angle_rad)
-    zero, one = np.zeros_like(c), np.ones_like(c)
-    return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1),
-                     np.stack([zero, zero, one], -1)], -2)
 
 
 @dataclass(frozen=True)
@@ -101,7 +95,8 @@ class CylindricalMeshCycle:
     pair_offsets : tuple of int
         Tooth pairs ``j`` with a line in the zone at some phase of the pitch.
     te0_pairs_arcsec : ndarray (P, K)
-        TE0 each pair alone would give, arcsec.
+        TE0 each pair alone would give (its line or, touching first, its tip edge),
+        arcsec.
     envelope_arcsec : ndarray (K,)
         TE0 of the mesh (the pair that closes first), arcsec, from the perfect mesh.
     te0_pp_arcsec : float
@@ -111,7 +106,7 @@ class CylindricalMeshCycle:
     pairs_in_zone : ndarray (K,) of int
         Pairs whose contact line crosses the zone of action (potential contact).
     pairs_in_contact : ndarray (K,) of int
-        Pairs touching: closed gap within :data:`CONTACT_TOLERANCE_MM`.
+        Pairs touching (line or tip edge): closed gap within :data:`CONTACT_TOLERANCE_MM`.
     gap_min_mm : ndarray (P, K)
         Least gap along each line before closure, mm.
     line_ends_mm : ndarray (P, K, 2, 3)
@@ -128,7 +123,20 @@ class CylindricalMeshCycle:
     painted_length_mm : ndarray (K,)
         Total length of the painted parts, mm.
     contact : tuple of MatingPoint
-        The transmitting contact per phase (meshing frame; gear normal; TE0).
+        The transmitting contact per phase (meshing frame; gear normal; TE0); a tip
+        edge touching first has ``edge_contact`` ``"pinion tip"`` / ``"gear tip"``.
+    tip : TipContacts
+        Per pair and phase (arrays (P, K, ...)) the first touch of its tip edges against
+        the mating flank off the plane of action (:mod:`.cylindrical_tip`; NaN where
+        none within reach).
+    tip_first : ndarray (P, K) of bool
+        The pair closes first at a tip edge (before its line, or with no line in the
+        zone: premature or prolonged contact beyond the path of contact).
+    pair_gap_mm : ndarray (P, K)
+        Gap at which each pair closes first, line or tip edge, mm (TE0 of the pair is
+        ``-pair_gap / rate``); NaN where it has neither.
+    closing_gap_mm : ndarray (K,)
+        The least of them: the mesh's closing gap (the envelope's), mm.
     paint_mm : float
     facing : str
         The flanks in mesh ("cw": pinion turning clockwise seen from +z drives).
@@ -154,6 +162,10 @@ class CylindricalMeshCycle:
     line_length_mm: np.ndarray
     painted_length_mm: np.ndarray
     contact: tuple[MatingPoint, ...]
+    tip: TipContacts
+    tip_first: np.ndarray
+    pair_gap_mm: np.ndarray
+    closing_gap_mm: np.ndarray
     paint_mm: float
     facing: str
     pinion_teeth: int
@@ -179,119 +191,7 @@ class CylindricalMeshCycle:
         return float(np.mean(self.line_length_mm[:-1]))
 
 
-class _Mesh:
-    """Pose, flanks and the plane of action of one facing (vectorized point solves)."""
-
-    def __init__(self, pair: CylindricalPair, facing: str):
-        self.kin = parallel_kinematics(pair)
-        self.pinion = involute_flank(pair, "pinion", facing)
-        self.gear = involute_flank(pair, "gear", facing)
-        g = pair.geometry
-        start = pitch_point_guess(pair, facing)
-        self.phi1_p = start.phi1_rad
-        self.phi2_offset = start.phi2_rad - start.phi1_rad / pair.ratio
-        self.ratio = pair.ratio
-        self.rot2_0 = self.kin.gear_pose(0.0)[0]
-        self.rot1_0, self.t1 = self.kin.pinion_pose(0.0)
-        # the plane of action: through the pitch point along the transverse part of the
-        # unmodified pinion normal there (the gear lies along +d)
-        ideal = replace(self.pinion, modification=ProfileLeadModification())
-        rot1, _ = self.kin.pinion_pose(self.phi1_p)
-        n = rot1 @ ideal.evaluate(start.u1, 0.0, second=False).n
-        self.d = np.array([n[0], n[1], 0.0]) / math.hypot(n[0], n[1])
-        self.m = np.cross([0.0, 0.0, 1.0], self.d)
-        self.p0 = np.array([-0.5 * g.working_pitch_diameter_gear_mm, 0.0, 0.0])
-        self.roll_sum = g.centre_distance_mm * math.sin(
-            math.radians(g.working_pressure_angle_deg))
-        # u1 on the plane of action is affine in (phi1, z): fit it from three solves
-        u = self._pinion_u(self.phi1_p + np.array([0.0, 1e-3, 0.0]),
-                           np.array([0.0, 0.0, 1.0]), np.full(3, start.u1))
-        self._u_fit = (u[0], (u[1] - u[0]) / 1e-3, u[2] - u[0])
-
-    def _pinion_pose(self, phi1):
-        """Batched pinion poses: pinion_pose(phi1) = pinion_pose(0) rot_z(-phi1)."""
-        return np.einsum("ij,njk->nik", self.rot1_0, _turns(-phi1)), self.t1
-
-    def _pinion_u(self, phi1, z, u):
-        rot1, t1 = self._pinion_pose(phi1)
-        for _ in range(_NEWTON):
-            a = self.pinion.evaluate(u, z, second=False)
-            h = (np.einsum("nij,nj->ni", rot1, a.r) + t1 - self.p0) @ self.m
-            if np.max(np.abs(h), initial=0.0) < _RESIDUAL_MM:
-                return u
-            u = u - h / (np.einsum("nij,nj->ni", rot1, a.r_u) @ self.m)
-        k = int(np.argmax(np.abs(h)))
-        raise TcaConvergenceError(float(phi1[k]), float(abs(h[k])), _NEWTON)
-
-    def pinion_u_affine(self, phi1, z):
-        """The affine start of :meth:`pinion_u` (exact for unmodified flanks)."""
-        u0, a_phi, a_z = self._u_fit
-        return u0 + a_phi * (np.asarray(phi1, float) - self.phi1_p) + a_z * np.asarray(z, float)
-
-    def pinion_u(self, phi1, z):
-        """Roll length of the pinion point on the plane of action (NaN where z is)."""
-        phi1, z = np.broadcast_arrays(np.asarray(phi1, float), np.asarray(z, float))
-        ok = np.isfinite(z)
-        zz = np.where(ok, z, 0.0).ravel()
-        u = self._pinion_u(phi1.ravel(), zz, self.pinion_u_affine(phi1.ravel(), zz))
-        return np.where(ok, u.reshape(z.shape), np.nan)
-
-    def section(self, phi1, z):
-        """Per element: pinion point P on the plane of action at axial z, the gear point
-        G along d, the gap g, gear (u2, v2), gear normal and the rate dg/dphi2."""
-        phi1, z = np.broadcast_arrays(np.asarray(phi1, float), np.asarray(z, float))
-        shape = phi1.shape
-        phi1, z = phi1.ravel(), z.ravel()
-        u1 = self.pinion_u(phi1, z)
-        a = self.pinion.evaluate(u1, z, second=False)
-        rot1, t1 = self._pinion_pose(phi1)
-        P = np.einsum("nij,nj->ni", rot1, a.r) + t1
-        phi2 = phi1 / self.ratio + self.phi2_offset
-        # gear_pose(phi2) = gear_pose(0) rot_z(phi2) (the gear turns about its own axis)
-        rot2 = np.einsum("ij,njk->nik", self.rot2_0, _turns(phi2))
-        u2, v2, g = self.roll_sum - u1, z.copy(), np.zeros_like(z)
-        for _ in range(_NEWTON):
-            b = self.gear.evaluate(u2, v2, second=False)
-            G = np.einsum("nij,nj->ni", rot2, b.r)
-            res = G - P - g[:, None] * self.d
-            if np.max(np.abs(res), initial=0.0) < _RESIDUAL_MM:
-                break
-            jac = np.stack([np.einsum("nij,nj->ni", rot2, b.r_u),
-                            np.einsum("nij,nj->ni", rot2, b.r_v),
-                            np.broadcast_to(-self.d, G.shape)], axis=-1)
-            step = np.linalg.solve(jac, -res[..., None])[..., 0]
-            u2, v2, g = u2 + step[:, 0], v2 + step[:, 1], g + step[:, 2]
-        else:
-            k = int(np.argmax(np.abs(res).max(axis=1)))
-            raise TcaConvergenceError(float(phi1[k]), float(np.linalg.norm(res[k])), _NEWTON)
-        b = self.gear.evaluate(u2, v2, second=False)
-        G = np.einsum("nij,nj->ni", rot2, b.r)
-        n2 = np.einsum("nij,nj->ni", rot2, b.n)
-        rate = np.cross(self.kin.gear_axis, G) @ self.d
-        out = dict(u1=u1, P=P, u2=u2, v2=v2, g=g, G=G, n2=n2, rate=rate, phi2=phi2)
-        return {k: (v.reshape(shape + v.shape[1:])) for k, v in out.items()}
-
-    def gap(self, phi1, z):
-        return self.section(phi1, z)["g"]
-
-
-def _interval(zlo, zhi, c_lo, c_hi, lo, hi):
-    """Where ``lo <= c(z) <= hi`` on [zlo, zhi] for c affine between its end values."""
-    slope = (c_hi - c_lo) / (zhi - zlo)
-    flat = np.abs(c_hi - c_lo) < 1e-12
-    with np.errstate(divide="ignore", invalid="ignore"):
-        za = zlo + (lo - c_lo) / slope
-        zb = zlo + (hi - c_lo) / slope
-    a = np.where(slope > 0, za, zb)
-    b = np.where(slope > 0, zb, za)
-    mid = 0.5 * (c_lo + c_hi)
-    inside = (mid >= lo) & (mid <= hi)
-    a = np.where(flat, np.where(inside, zlo, np.inf), np.maximum(a, zlo))
-    b = np.where(flat, np.where(inside, zhi, -np.inf), np.minimum(b, zhi))
-    return a, b
-
-
-def _line_ends(mesh: _Mesh, phi1: np.ndarray):
+def _line_ends(mesh: PlaneOfAction, phi1: np.ndarray):
     """Solved ends ``(z_lo, z_hi)`` of the contact line in the zone at each phase (NaN
     where it misses the zone)."""
     lo, hi = np.full_like(phi1, np.nan), np.full_like(phi1, np.nan)
@@ -308,7 +208,7 @@ def _line_ends(mesh: _Mesh, phi1: np.ndarray):
     return lo, hi
 
 
-def _solved_ends(mesh: _Mesh, phi1: np.ndarray):
+def _solved_ends(mesh: PlaneOfAction, phi1: np.ndarray):
     p, gflank = mesh.pinion, mesh.gear
     z0, z1 = p.v_range
     za, zb = np.full_like(phi1, z0), np.full_like(phi1, z1)
@@ -318,7 +218,7 @@ def _solved_ends(mesh: _Mesh, phi1: np.ndarray):
     which_lo = np.full(phi1.shape, -1)
     which_hi = np.full(phi1.shape, -1)
     for i, (key, (a_, b_)) in enumerate(checks):
-        ia, ib = _interval(za, zb, sa[key], sb[key], a_, b_)
+        ia, ib = affine_interval(za, zb, sa[key], sb[key], a_, b_)
         which_lo = np.where(ia > lo, i, which_lo)
         which_hi = np.where(ib < hi, i, which_hi)
         lo, hi = np.maximum(lo, ia), np.minimum(hi, ib)
@@ -345,31 +245,15 @@ def _solved_ends(mesh: _Mesh, phi1: np.ndarray):
     return lo, hi
 
 
-def _golden_min(f, a, b):
-    """Vectorized golden-section minimum of the convex ``f`` on [a, b]."""
-    c, d = b - _GR * (b - a), a + _GR * (b - a)
-    fc, fd = f(c), f(d)
-    for _ in range(_GOLDEN):
-        left = fc < fd
-        b, a = np.where(left, d, b), np.where(left, a, c)
-        c_new = np.where(left, b - _GR * (b - a), d)
-        d_new = np.where(left, c, a + _GR * (b - a))
-        fnew = f(np.where(left, c_new, d_new))
-        fc, fd = np.where(left, fnew, fd), np.where(left, fc, fnew)
-        c, d = c_new, d_new
-    return 0.5 * (a + b)
-
-
-def _root(f, a, b):
-    """Vectorized bisection for ``f(a) <= 0 < f(b)`` or ``f(a) > 0 >= f(b)``."""
-    fa = f(a)
-    for _ in range(_BISECT):
-        m = 0.5 * (a + b)
-        fm = f(m)
-        same = np.sign(fm) == np.sign(fa)
-        a, fa = np.where(same, m, a), np.where(same, fm, fa)
-        b = np.where(same, b, m)
-    return 0.5 * (a + b)
+def _on_live(live: np.ndarray, solve) -> dict:
+    """``solve()``'s section fields on the ``live`` phases, NaN-filled to all phases."""
+    got = solve()
+    out = {}
+    for key, val in got.items():
+        full = np.full(live.shape + val.shape[1:], np.nan)
+        full[live] = val
+        out[key] = full
+    return out
 
 
 def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases: int = 61,
@@ -394,7 +278,7 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
         raise InputRangeError("phases", phases, "an integer >= 3")
     if not paint_mm > 0.0:
         raise InputRangeError("paint_mm", paint_mm, "> 0 mm")
-    mesh = _Mesh(pair, facing)
+    mesh = PlaneOfAction(pair, facing)
     z1, n = pair.pinion_teeth, int(phases) - 1
     pitch = 2.0 * math.pi / z1
     h = pitch / n
@@ -409,29 +293,39 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
     gmin = np.full(phi.shape, np.nan)
     zstar = np.full(phi.shape, np.nan)
     pl, zl, zh = phi[live], lo[live], hi[live]
-    zs = _golden_min(lambda z: mesh.gap(pl, z), zl, zh)
+    zs = golden_min(lambda z: mesh.gap(pl, z), zl, zh, steps=_GOLDEN)
     # the convex minimum may sit at an end: compare with the ends themselves
     cand = np.stack([zl, zs, zh])
     gc = np.stack([mesh.gap(pl, c) for c in cand])
     best = np.argmin(gc, axis=0)
     zstar[live] = cand[best, np.arange(len(pl))]
     gmin[live] = gc[best, np.arange(len(pl))]
-    ends = mesh.section(np.repeat(phi[:, None], 2, 1), np.column_stack([
-        np.where(live, lo, 0.0), np.where(live, hi, 0.0)]))
-    at = mesh.section(phi, np.where(live, zstar, 0.0))
+    # solved on the live phases only: far beyond the zone a tilted gear's ray solve need
+    # not converge from the plane of action's start (NaN there, never read)
+    ends = _on_live(live, lambda: mesh.section(np.repeat(phi[live, None], 2, 1),
+                                               np.column_stack([lo[live], hi[live]])))
+    at = _on_live(live, lambda: mesh.section(phi[live], zstar[live]))
+    tips = passage_tip_contacts(mesh, phi, live,
+                                base_pitch_mm=pair.geometry.transverse_base_pitch_mm)
+    near = live | np.isfinite(tips.gap_mm)
 
     # pair j at window phase k is pair 0 at grid index base + k + j n
     k0 = n // 2
     base = span * n - k0
     offsets = [j for j in range(-span, span + 1)
                if 0 <= base + j * n and base + n + j * n < len(phi)
-               and live[base + j * n: base + n + j * n + 1].any()]
+               and near[base + j * n: base + n + j * n + 1].any()]
     idx = np.array([[base + k + j * n for k in range(n + 1)] for j in offsets])
     L = live[idx]
     g_pairs = np.where(L, gmin[idx], np.nan)
-    rate = at["rate"][idx]
-    te_pairs = np.where(L, -g_pairs / rate * ARCSEC_PER_RAD, np.nan)
-    filled = np.where(L, g_pairs, np.inf)
+    tip = TipContacts(**{f: getattr(tips, f)[idx] for f in TipContacts.__dataclass_fields__})
+    # a pair closes first at a tip edge where that touches before its line (by more
+    # than the contact tolerance: at a line's end on a tip circle the two coincide)
+    on_tip = np.isfinite(tip.gap_mm) & ~(tip.gap_mm >= np.where(L, g_pairs, np.inf)
+                                         - CONTACT_TOLERANCE_MM)
+    filled = np.where(on_tip, tip.gap_mm, np.where(L, g_pairs, np.inf))
+    rate = np.where(on_tip, tip.rate_mm_per_rad, at["rate"][idx])
+    te_pairs = np.where(np.isfinite(filled), -filled / rate * ARCSEC_PER_RAD, np.nan)
     if not L.any(axis=0).all():
         raise RuntimeError("a phase without a pair in the zone (eps_alpha >= 1 is checked "
                            "on load)")
@@ -439,8 +333,7 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
     cols = np.arange(n + 1)
     g_env = filled[win, cols]
     envelope = te_pairs[win, cols]
-    closed = g_pairs - g_env[None, :]
-    in_contact = (L & (closed <= CONTACT_TOLERANCE_MM)).sum(axis=0)
+    in_contact = (filled - g_env[None, :] <= CONTACT_TOLERANCE_MM).sum(axis=0)
 
     # painted part of each line: closed gap <= paint, an interval about the minimum
     level = g_env[None, :] + paint_mm
@@ -451,8 +344,8 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
         lev = np.broadcast_to(level, idx.shape)[painted]
         ph, zlo_, zhi_, zs_ = phi[ii], lo[ii], hi[ii], zstar[ii]
         f = (lambda z: mesh.gap(ph, z) - lev)
-        a = np.where(f(zlo_) <= 0.0, zlo_, _root(f, zlo_, zs_))
-        b = np.where(f(zhi_) <= 0.0, zhi_, _root(f, zs_, zhi_))
+        a = np.where(f(zlo_) <= 0.0, zlo_, bisect_root(f, zlo_, zs_, steps=_BISECT))
+        b = np.where(f(zhi_) <= 0.0, zhi_, bisect_root(f, zs_, zhi_, steps=_BISECT))
         pz[painted] = np.column_stack([a, b])
     pu = mesh.pinion_u(phi[idx][..., None], pz)
     painted_zu = np.where(np.isfinite(pz)[..., None], np.stack([pz, pu], -1), np.nan)
@@ -472,8 +365,16 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
     contact = []
     for k, w in enumerate(win):
         i = idx[w, k]
+        phi2 = float(phi[i] / mesh.ratio + mesh.phi2_offset + envelope[k] / ARCSEC_PER_RAD)
+        if on_tip[w, k]:
+            contact.append(MatingPoint(
+                phi1_rad=float(phi[i]), phi2_rad=phi2, u1=float(tips.u1[i]),
+                v1=float(tips.v1[i]), u2=float(tips.u2[i]), v2=float(tips.v2[i]),
+                point_mm=tips.point_mm[i].copy(), normal=tips.normal[i].copy(),
+                te0_arcsec=float(envelope[k]), edge_contact=tips.label(i)))
+            continue
         contact.append(MatingPoint(
-            phi1_rad=float(phi[i]), phi2_rad=float(at["phi2"][i] + envelope[k] / ARCSEC_PER_RAD),
+            phi1_rad=float(phi[i]), phi2_rad=phi2,
             u1=float(at["u1"][i]), v1=float(zstar[i]), u2=float(at["u2"][i]),
             v2=float(at["v2"][i]), point_mm=at["G"][i].copy(), normal=at["n2"][i].copy(),
             te0_arcsec=float(envelope[k])))
@@ -485,7 +386,9 @@ def cylindrical_mesh_cycle(pair: CylindricalPair, *, facing: str = "cw", phases:
         gap_min_mm=g_pairs, line_ends_mm=ends_P, line_ends_zu_mm=ends_zu,
         contact_zu_mm=contact_zu, painted_ends_zu_mm=painted_zu,
         line_length_mm=length.sum(axis=0), painted_length_mm=painted_len.sum(axis=0),
-        contact=tuple(contact), paint_mm=float(paint_mm), facing=facing,
+        contact=tuple(contact), tip=tip, tip_first=on_tip, pair_gap_mm=np.where(
+            np.isfinite(filled), filled, np.nan), closing_gap_mm=g_env,
+        paint_mm=float(paint_mm), facing=facing,
         pinion_teeth=z1, gear_teeth=pair.gear_teeth,
         pinion_u_range_mm=tuple(mesh.pinion.u_range), pinion_v_range_mm=tuple(mesh.pinion.v_range),
         pinion_base_radius_mm=mesh.pinion.base_radius_mm)
@@ -542,7 +445,7 @@ def contact_line_gaps(pair: CylindricalPair, cycle: CylindricalMeshCycle, z_mm) 
     if z.size == 0 or not (np.isfinite(z).any() if per_line else np.isfinite(z).all()):
         raise InputRangeError("z_mm", z_mm, "a non-empty array of finite axial positions, mm "
                                             f"(N,), or (P, K, N) = {lo.shape} + (N,) per line")
-    mesh = _Mesh(pair, cycle.facing)
+    mesh = PlaneOfAction(pair, cycle.facing)
     pitch = 2.0 * math.pi / cycle.pinion_teeth
     phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
     with np.errstate(invalid="ignore"):
@@ -570,7 +473,7 @@ def pair_contact_points(pair: CylindricalPair, cycle: CylindricalMeshCycle
     gap there. Returns rows per pair of ``cycle.pair_offsets``, one entry per phase
     (None where the pair has no line in the zone of action).
     """
-    mesh = _Mesh(pair, cycle.facing)
+    mesh = PlaneOfAction(pair, cycle.facing)
     pitch = 2.0 * math.pi / cycle.pinion_teeth
     phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
     z = cycle.contact_zu_mm[..., 0]

@@ -2,7 +2,8 @@
 ``kind = "cylindrical"`` pair (docs/cylindrical.md sec. 6).
 
 ``write_cylindrical_tca_outputs`` writes into one directory: ``tca.json`` (summary with
-the ISO 21771 contact ratios beside the TCA's), ``te0.csv`` (per phase),
+the ISO 21771 contact ratios beside the TCA's), ``te0.csv`` (per phase; ``contact``:
+``line`` or the tip edge that touches first, docs/cylindrical.md sec. 6),
 ``contact_lines.csv`` (per phase and tooth pair in the zone of action) and the figures
 ``te0.png`` and ``contact_pattern.png`` (with their SVGs). No timings: identical runs
 write identical files.
@@ -45,6 +46,10 @@ def cylindrical_summary(cycle: CylindricalMeshCycle, pair, *, side: str) -> dict
         "line_length_iso_mean_mm": g.face_width_mm * g.transverse_contact_ratio / math.cos(beta_b),
         "line_length_min_max_mm": [float(cycle.line_length_mm.min()),
                                    float(cycle.line_length_mm.max())],
+        # a tip edge touching first: premature / prolonged contact beyond the path
+        "tip_contact_phases": sum(bool(mp.edge_contact) for mp in cycle.contact),
+        "tip_contact_edges": sorted({mp.edge_contact for mp in cycle.contact
+                                     if mp.edge_contact}),
         "paint_mm": cycle.paint_mm, "contact_tolerance_mm": CONTACT_TOLERANCE_MM,
         "assembly": {"axis_inclination_um": pair.assembly.axis_inclination_um,
                      "axis_deviation_um": pair.assembly.axis_deviation_um},
@@ -62,10 +67,11 @@ def write_cylindrical_tca_outputs(cycle: CylindricalMeshCycle, pair, out, *, sid
     phi_deg = np.degrees(cycle.phi1_rad)
     write_csv(out / "te0.csv",
               ["phi1_deg"] + [f"te0_pair{j:+d}_arcsec" for j in cycle.pair_offsets]
-              + ["te0_arcsec", "active_pair", "pairs_in_zone", "pairs_in_contact",
+              + ["te0_arcsec", "active_pair", "contact", "pairs_in_zone", "pairs_in_contact",
                  "line_length_mm", "painted_length_mm"],
               [[float(phi_deg[k])] + [float(x) for x in cycle.te0_pairs_arcsec[:, k]]
                + [float(cycle.envelope_arcsec[k]), int(cycle.active_pair[k]),
+                  cycle.contact[k].edge_contact or "line",
                   int(cycle.pairs_in_zone[k]), int(cycle.pairs_in_contact[k]),
                   float(cycle.line_length_mm[k]), float(cycle.painted_length_mm[k])]
                for k in range(len(phi_deg))])

@@ -123,7 +123,8 @@ def cylindrical_stencils(pair: CylindricalPair, cycle: CylindricalMeshCycle
     cb = math.cos(math.radians(g.base_helix_angle_deg))
     ends = cycle.line_ends_mm
     length = np.where(valid, np.linalg.norm(ends[..., 1, :] - ends[..., 0, :], axis=-1), 0.0)
-    closed = cycle.gap_min_mm - np.nanmin(cycle.gap_min_mm, axis=0)[None, :]
+    # from the mesh's closing gap: a tip edge touching first leaves every line open
+    closed = cycle.gap_min_mm - cycle.closing_gap_mm[None, :]
     opening = np.where(valid, cb * np.where(valid, closed, 0.0), 0.0)
     return CylindricalStencils(
         phi1_rad=cycle.phi1_rad, pair_offsets=cycle.pair_offsets, valid=valid,

@@ -9,6 +9,14 @@ motion. The motion sign ``m`` is the sign of ``d g / d phi2`` (the gear lags by
 ``theta`` under load, so ``TE = TE0_env - m theta`` as the loaded TE of
 :func:`gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te` gives it).
 
+Tip-edge rows (:func:`tip_rows`): where a pair closes first at a tip edge (the cycle's
+``tip_first``: before its line enters, after it leaves, or before the line closes), its
+row is an ``edge`` row (``contact_mode`` 1, ``edge_label`` the edge) with the touch's
+own lever and opening, so it closes where the edge really touches; the law's inputs
+(stencil, curvatures, line length, ease-off, bending) are those of the same tooth
+pair's nearest line in the zone, as the bevel twin's edge rows take their nearest
+surface contact's (:mod:`.mesh`).
+
 Contact law, per backend (``--backend``, as the bevel twin's):
 
 * ``reference`` (fp64), ``golden`` (the bit-exact fixed point) and ``rtl`` (the golden
@@ -52,6 +60,7 @@ from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
 from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle, LineGaps,
                                      contact_line_gaps, cylindrical_mesh_cycle)
+from ..tca.parallel_axes import parallel_kinematics
 from ..tca.cylindrical_stencil import (LINE_SLICES, CylindricalStencils, contact_line_slices,
                                        cylindrical_stencils)
 from ..tca.types import ARCSEC_PER_RAD
@@ -65,7 +74,7 @@ from .params import DrivetrainParams, default_drivetrain
 
 __all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
            "cylindrical_model", "cylindrical_sweep_models", "line_bending_gram",
-           "motion_sign"]
+           "motion_sign", "tip_rows"]
 
 #: The twin backends a cylindrical pair runs (module docstring).
 CYLINDRICAL_BACKENDS = ("reference", "golden", "rtl", "table")
@@ -100,6 +109,31 @@ def line_bending_gram(bending: ToothBending, slices: LineGaps) -> np.ndarray:
     return out
 
 
+def tip_rows(pair: CylindricalPair, cycle: CylindricalMeshCycle, valid: np.ndarray):
+    """The edge rows of a cylindrical mesh table (module docstring, "Tip-edge rows"):
+    ``(rows, opening_mm, lever_mm, nearest)`` per pair and phase of ``cycle``: where the
+    pair closes first at a tip edge (``cycle.tip_first``), the touch's lever
+    ``|(a2 x X) . n|`` about the gear axis and the opening ``lever theta_j`` with
+    ``theta_j = m (TE0_env - TE0_j)`` its closing turn behind the envelope; ``nearest``
+    (P, K, 2) the row ``(j', k')`` of the pair's nearest line in the zone (``valid``),
+    the same tooth pair by its phase ``phi1 + j pitch``."""
+    rows = np.asarray(cycle.tip_first, bool)
+    m = motion_sign(pair, cycle)
+    theta = m * (cycle.envelope_arcsec[None, :] - cycle.te0_pairs_arcsec) / ARCSEC_PER_RAD
+    axis = parallel_kinematics(pair).gear_axis
+    lever = np.abs(np.einsum("...i,...i->...", np.cross(axis, cycle.tip.point_mm),
+                             cycle.tip.normal))
+    opening = np.where(rows, lever * np.maximum(np.where(rows, theta, 0.0), 0.0), 0.0)
+    pitch = 2.0 * math.pi / cycle.pinion_teeth
+    phase = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
+    jl, kl = np.nonzero(valid)
+    nearest = np.zeros(rows.shape + (2,), int)
+    for j, k in zip(*np.nonzero(rows)):
+        i = int(np.argmin(np.abs(phase[jl, kl] - phase[j, k])))
+        nearest[j, k] = jl[i], kl[i]
+    return rows, opening, np.where(rows, lever, 0.0), nearest
+
+
 def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                            stencils: CylindricalStencils | None = None, *,
                            side: str = "drive", bending: ToothBending | None = None,
@@ -127,19 +161,28 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2
+    rows, tip_open, tip_lever, near = tip_rows(pair, cycle, st.valid)
+    nj, nk = near[..., 0], near[..., 1]
+
+    def law(a):         # an edge row takes its pair's nearest line's law inputs
+        r = rows.reshape(rows.shape + (1,) * (a.ndim - 2))
+        return np.where(r, a[nj, nk], a)[:, order]
+
+    length = np.where(st.valid, st.line_length_mm, 0.0)
     return MeshTable(
         psi_rad=m * (phi1 - phi1[0]), eps_rad=m * env / ARCSEC_PER_RAD,
-        lever_mm=np.where(st.valid, st.lever_mm, 0.0)[:, order],
-        opening_mm=st.opening_mm[:, order], A_minus_per_mm=st.A_minus_per_mm[:, order],
-        B_minus_per_mm=st.B_minus_per_mm[:, order], valid=st.valid[:, order],
+        lever_mm=np.where(rows, tip_lever, np.where(st.valid, st.lever_mm, 0.0))[:, order],
+        opening_mm=np.where(rows, tip_open, st.opening_mm)[:, order],
+        A_minus_per_mm=law(st.A_minus_per_mm), B_minus_per_mm=law(st.B_minus_per_mm),
+        valid=(st.valid | rows)[:, order],
         motion_sign=m, ratio=float(pair.ratio), pinion_teeth=int(pair.pinion_teeth),
         reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
         e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
         phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
-        bending_mm_per_n=cb[:, order], stencil_gaps_mm=st.gaps_mm[:, order],
-        line_length_mm=np.where(st.valid, st.line_length_mm, 0.0)[:, order],
-        line_gap_mm=ease[:, order],
-        line_bending_gram_mm_per_n=None if gram is None else gram[:, order])
+        bending_mm_per_n=law(cb), stencil_gaps_mm=law(st.gaps_mm),
+        line_length_mm=law(length), contact_mode=rows.astype(np.int8)[:, order],
+        edge_label=np.where(rows, cycle.tip.labels(), "")[:, order], line_gap_mm=law(ease),
+        line_bending_gram_mm_per_n=None if gram is None else law(gram))
 
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
