@@ -54,3 +54,18 @@ def s0003_coast(s0003_twin):
     tca, _ = analyze_pair(pair, side="coast", phases=PHASES, flanks=flanks,
                           edge_contact=False)
     return tca, mesh_table(tca, flanks, pair, side="coast", torque_nm=TORQUE_NM)
+
+
+@pytest.fixture(scope="session")
+def s0003_coast_twin(s0003_calibrated):
+    """``(pair, tca, flanks, mesh)``: the twin's own TCA and mesh table of the calibrated
+    s0003 on its design side (coast; :func:`~gearcontact.twin.mesh.pair_mesh_table`,
+    the edge-contact TCA, PHASES per pitch): pair 0 runs onto the gear heel and the
+    pinion tip (corner) edges at its path end, every row's ellipse is cut by the tip
+    (a tip-edge bearing), so its law is the LCP-calibrated one (twin.edge_law)."""
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    pair, flanks = s0003_calibrated
+    tca, flanks, mesh = pair_mesh_table(pair, side="coast", torque_nm=TORQUE_NM,
+                                        phases=PHASES, flanks=flanks)
+    return pair, tca, flanks, mesh

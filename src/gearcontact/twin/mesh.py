@@ -137,7 +137,10 @@ class MeshTable:
         ``c`` of each edge row (:mod:`.edge_law`; its curvatures and stencil carry
         ``c^3``), 1 elsewhere; None: no edge row calibrated.
     edge_exponent : ndarray (P, K) or None
-        Exponent ``n`` of the LCP's ``delta = C W^n`` at each edge row, NaN elsewhere.
+        Exponent ``n`` of the LCP's ``delta = C W^n`` at each calibrated row (2/3 where
+        the patch stayed on the flanks; 0 where the calibration failed -- an LCP not
+        converged or a field that does not close -- and the row kept the Hertzian law,
+        ``c = 1``), NaN at rows no flank boundary cuts.
     """
 
     psi_rad: np.ndarray
@@ -304,9 +307,13 @@ def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: fl
             continue
         if pc.path_index not in done:
             edge = pc.edge or bool(fields.path.points[pc.path_index].edge_contact)
-            done[pc.path_index] = (edge_compliance if edge else trim_compliance)(
-                fields, pc, materials=materials, torque_nmm=torque_nmm)
-        scale[i, k], expo[i, k] = done[pc.path_index].scale, done[pc.path_index].exponent
+            try:
+                law = (edge_compliance if edge else trim_compliance)(
+                    fields, pc, materials=materials, torque_nmm=torque_nmm)
+                done[pc.path_index] = (law.scale, law.exponent)
+            except ArithmeticError:     # no founded calibration: Hertz, n = 0 says so
+                done[pc.path_index] = (1.0, 0.0)
+        scale[i, k], expo[i, k] = done[pc.path_index]
     return scale, expo
 
 
