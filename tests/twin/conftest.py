@@ -1,5 +1,10 @@
 """s0003 mesh for the twin tests (one TCA per session: 31 phases per pitch keep the
-neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61)."""
+neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61).
+
+The s0003-centred tables take the untruncated Hertzian law (``edge_law=False``): their
+truth is the loaded TE's preview ``TE_pre`` (the same Hertzian pairs), and the rows
+whose patch a flank boundary cuts (pairs +-1 near their path ends) would otherwise carry
+the LCP's compliance (twin.edge_law, tested on s0003_coast_twin in test_edge_law.py)."""
 
 import pytest
 
@@ -15,7 +20,8 @@ def s0003_twin(s0003_centred):
     pair, flanks = s0003_centred
     tca, flanks = analyze_pair(pair, side="drive", phases=PHASES, edge_contact=False,
                                flanks=flanks)
-    return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM)
+    return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM,
+                                         edge_law=False)
 
 
 @pytest.fixture(scope="session")
@@ -53,7 +59,8 @@ def s0003_coast(s0003_twin):
     pair, _, flanks, _ = s0003_twin
     tca, _ = analyze_pair(pair, side="coast", phases=PHASES, flanks=flanks,
                           edge_contact=False)
-    return tca, mesh_table(tca, flanks, pair, side="coast", torque_nm=TORQUE_NM)
+    return tca, mesh_table(tca, flanks, pair, side="coast", torque_nm=TORQUE_NM,
+                           edge_law=False)
 
 
 @pytest.fixture(scope="session")

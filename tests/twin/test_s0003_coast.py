@@ -14,9 +14,11 @@ rows carry the LCP-calibrated law of :mod:`gearcontact.twin.edge_law`):
    over loads T/4 .. T (LCP exponents 0.59-0.75 here), the reference of a trimmed surface
    row (its quadric-filled field, against which the twin's Hertz law carries the grid's
    and the quartic terms' difference) and the load sharing of pairs each calibrated
-   alone. The untruncated Hertzian law (``TE_pre``, the twin before) is 20-27 % too stiff
+   alone. The untruncated Hertzian law (``TE_pre``, the twin before) is 17-27 % too stiff
    on every row and 3-4.5 times on the edge rows: its rotation differs from the LCP's by
-   more than twice the tolerance (asserted).
+   up to 37 %, more than twice the tolerance (asserted).
+
+Cost: the loaded TE (31 LCP phases) and 114,000 RK4 steps, about 20 s on an idle core.
 """
 
 import math
@@ -32,7 +34,7 @@ from gearcontact.twin.simulate import build_model, simulate
 
 from .conftest import TORQUE_NM, quasi_static_bound_arcsec
 
-#: Relative tolerance on the LCP rotation (module docstring; measured below).
+#: Relative tolerance on the LCP rotation (module docstring; measured 3.3 %).
 LCP_TOLERANCE = 0.06
 
 
@@ -74,11 +76,10 @@ def test_s0003_coast_quasi_static_is_the_static_and_the_lcp_loaded_te(s0003_coas
     te_static = mesh.motion_sign * (mesh.eps_rad[:-1] - static) * 206264.80624709636
     bound = quasi_static_bound_arcsec(mesh, lte.rotation_lcp_arcsec.mean())
     got = c["te_arcsec"][sel]
-    print("static", np.abs(got - te_static[k]).max(), bound)
+    # measured 0.089 arcsec (bound 0.111)
     assert np.abs(got - te_static[k]).max() < bound
     rot_lcp = lte.rotation_lcp_arcsec[order][:-1]
     rot_twin = static * 206264.80624709636
-    print("lcp rel", np.abs(rot_twin / rot_lcp - 1).max(),
-          "pre rel", np.abs(lte.rotation_pre_arcsec[order][:-1] / rot_lcp - 1).max())
+    # measured: 3.3 % at most; the untruncated law (TE_pre) 37 %
     np.testing.assert_allclose(rot_twin, rot_lcp, rtol=LCP_TOLERANCE)
     assert np.abs(lte.rotation_pre_arcsec[order][:-1] / rot_lcp - 1).max() > 2 * LCP_TOLERANCE
