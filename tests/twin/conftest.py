@@ -76,3 +76,24 @@ def s0003_coast_twin(s0003_calibrated):
     tca, flanks, mesh = pair_mesh_table(pair, side="coast", torque_nm=TORQUE_NM,
                                         phases=PHASES, flanks=flanks)
     return pair, tca, flanks, mesh
+
+
+def static_rotation_at(model, psi_rad: float) -> tuple:
+    """Rotation (rad) and loaded-flank pair loads (N) carrying the model's load torque at
+    the pinion angle ``psi_rad`` on its own compiled law (:func:`gearcontact.twin.
+    statics._elastic`), by bisection to 1e-14 relative: an equilibrium independent of
+    the integrator (``statics.static_rotation`` solves the first phase only)."""
+    from gearcontact.twin import statics
+    from gearcontact.twin.model import _prm
+
+    prm = _prm(model, 0.0)
+    lo, hi = 0.0, 1e-3
+    while statics._elastic(model, prm, hi, psi_rad)[0] < model.torque_nm:
+        hi *= 2.0
+    while hi - lo > 1e-14 * hi:
+        mid = 0.5 * (lo + hi)
+        if statics._elastic(model, prm, mid, psi_rad)[0] < model.torque_nm:
+            lo = mid
+        else:
+            hi = mid
+    return hi, statics._elastic(model, prm, hi, psi_rad)[1]

@@ -30,12 +30,10 @@ import pytest
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.halfspace.lcp import solve_lcp
 from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
-from gearcontact.twin import statics
-from gearcontact.twin.model import _prm
 from gearcontact.twin.params import default_drivetrain
 from gearcontact.twin.simulate import build_model
 
-from .conftest import TORQUE_NM
+from .conftest import TORQUE_NM, static_rotation_at
 
 
 @pytest.fixture(scope="module")
@@ -66,20 +64,6 @@ def rows(s0003_coast_twin):
     return model, fields, out
 
 
-def _equilibrium(model, psi):
-    """Rotation (rad) and pair loads (N) carrying the load torque at ``psi`` on the
-    model's law (bisection, relative 1e-14)."""
-    prm = _prm(model, 0.0)
-    lo, hi = 0.0, 1e-3
-    while statics._elastic(model, prm, hi, psi)[0] < model.torque_nm:
-        hi *= 2.0
-    while hi - lo > 1e-14 * hi:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if statics._elastic(model, prm, mid, psi)[0] < model.torque_nm \
-            else (lo, mid)
-    return hi, statics._elastic(model, prm, hi, psi)[1]
-
-
 def _lcp_approach(fields, pc, load, materials):
     gap, grid, _, _ = fields.get(pc)
     res = solve_lcp(gap, grid, load, materials=materials, warn_coarse=False)
@@ -95,7 +79,7 @@ def test_static_approach_is_the_lcp_and_the_torque_balances(rows, s0003_coast_tw
     checked = 0
     for k, i, pc in picked:
         psi = float(mesh.psi_rad[k]) + 1e-6 * mesh.step_rad     # in row k's interval
-        theta, loads = _equilibrium(model, psi)
+        theta, loads = static_rotation_at(model, psi)
         x = psi / mesh.step_rad         # the kernel's interval (twin.kernel._phase)
         j = min(int(x), len(mesh.psi_rad) - 2)
         f = x - j

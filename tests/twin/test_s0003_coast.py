@@ -6,7 +6,7 @@ overhangs the pinion tip, pair 0 runs onto the gear heel and pinion tip edges, s
 rows carry the LCP-calibrated law of :mod:`gearcontact.twin.edge_law`):
 
 1. the twin's TE equals its own static equilibrium (the torque balance of its compiled
-   law solved by bisection, independent of the integrator) within the bound of
+   law solved by bisection, :func:`.conftest.static_rotation_at`) within the bound of
    :func:`.conftest.quasi_static_bound_arcsec`;
 2. it equals ``analyze``'s loaded TE ``TE_LCP`` (:func:`gearcontact.ltca.lte.loaded_te`,
    the coupled half-space LCP of all pairs on their fields; rigid teeth) within
@@ -27,29 +27,13 @@ from dataclasses import replace
 import numpy as np
 
 from gearcontact.ltca.lte import loaded_te
-from gearcontact.twin import statics
-from gearcontact.twin.model import _prm
 from gearcontact.twin.params import default_drivetrain
 from gearcontact.twin.simulate import build_model, simulate
 
-from .conftest import TORQUE_NM, quasi_static_bound_arcsec
+from .conftest import TORQUE_NM, quasi_static_bound_arcsec, static_rotation_at
 
 #: Relative tolerance on the LCP rotation (module docstring; measured 3.3 %).
 LCP_TOLERANCE = 0.06
-
-
-def _static_rotation(model, psi):
-    """Rotation (rad) carrying the load torque at ``psi`` on the model's law (bisection,
-    relative 1e-13)."""
-    prm = _prm(model, 0.0)
-    lo, hi = 0.0, 1e-3
-    while statics._elastic(model, prm, hi, psi)[0] < model.torque_nm:
-        hi *= 2.0
-    while hi - lo > 1e-13 * hi:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if statics._elastic(model, prm, mid, psi)[0] < model.torque_nm \
-            else (lo, mid)
-    return hi
 
 
 def test_s0003_coast_quasi_static_is_the_static_and_the_lcp_loaded_te(s0003_coast_twin):
@@ -71,8 +55,8 @@ def test_s0003_coast_quasi_static_is_the_static_and_the_lcp_loaded_te(s0003_coas
     second = c["t_s"] >= 0.5 * res.summary["duration_s"]
     sel = second & rows
     k = np.round(psi[sel] / mesh.step_rad).astype(int) % (len(mesh.psi_rad) - 1)
-    static = np.array([_static_rotation(m, float(mesh.psi_rad[i]) + 1e-9 * mesh.step_rad)
-                       for i in range(len(mesh.psi_rad) - 1)])
+    static = np.array([static_rotation_at(m, float(p) + 1e-9 * mesh.step_rad)[0]
+                       for p in mesh.psi_rad[:-1]])
     te_static = mesh.motion_sign * (mesh.eps_rad[:-1] - static) * 206264.80624709636
     bound = quasi_static_bound_arcsec(mesh, lte.rotation_lcp_arcsec.mean())
     got = c["te_arcsec"][sel]
