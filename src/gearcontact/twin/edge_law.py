@@ -69,8 +69,10 @@ __all__ = ["EDGE_LOAD_FRACTIONS", "ELLIPSE_PROBES", "EdgeCompliance", "edge_comp
 ELLIPSE_PROBES = 16
 
 #: Loads of the calibration as fractions of the pair carrying the table's torque alone
-#: (an edge row carries at most that; a quarter of it is the smallest share the twin's
-#: s0003 and 7/60 runs give an edge row that carries).
+#: (a row carries at most that). Below a quarter the LCP's approach on the loaded TE's
+#: 40-cell edge field nears the separation half a cell inside the edge (0.15-0.4 um on
+#: the 7/60 pair), a floor of the grid rather than of the contact: the law extrapolates
+#: the fitted power there.
 EDGE_LOAD_FRACTIONS = (0.25, 0.5, 1.0)
 
 
