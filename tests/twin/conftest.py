@@ -1,5 +1,10 @@
 """s0003 mesh for the twin tests (one TCA per session: 31 phases per pitch keep the
-neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61)."""
+neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61).
+
+The s0003-centred tables take the untruncated Hertzian law (``edge_law=False``): their
+truth is the loaded TE's preview ``TE_pre`` (the same Hertzian pairs), and the rows
+whose patch a flank boundary cuts (pairs +-1 near their path ends) would otherwise carry
+the LCP's compliance (twin.edge_law, tested on s0003_coast_twin in test_edge_law.py)."""
 
 import pytest
 
@@ -15,7 +20,8 @@ def s0003_twin(s0003_centred):
     pair, flanks = s0003_centred
     tca, flanks = analyze_pair(pair, side="drive", phases=PHASES, edge_contact=False,
                                flanks=flanks)
-    return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM)
+    return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM,
+                                         edge_law=False)
 
 
 @pytest.fixture(scope="session")
@@ -53,4 +59,41 @@ def s0003_coast(s0003_twin):
     pair, _, flanks, _ = s0003_twin
     tca, _ = analyze_pair(pair, side="coast", phases=PHASES, flanks=flanks,
                           edge_contact=False)
-    return tca, mesh_table(tca, flanks, pair, side="coast", torque_nm=TORQUE_NM)
+    return tca, mesh_table(tca, flanks, pair, side="coast", torque_nm=TORQUE_NM,
+                           edge_law=False)
+
+
+@pytest.fixture(scope="session")
+def s0003_coast_twin(s0003_calibrated):
+    """``(pair, tca, flanks, mesh)``: the twin's own TCA and mesh table of the calibrated
+    s0003 on its design side (coast; :func:`~gearcontact.twin.mesh.pair_mesh_table`,
+    the edge-contact TCA, PHASES per pitch): pair 0 runs onto the gear heel and the
+    pinion tip (corner) edges at its path end, every row's ellipse is cut by the tip
+    (a tip-edge bearing), so its law is the LCP-calibrated one (twin.edge_law)."""
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    pair, flanks = s0003_calibrated
+    tca, flanks, mesh = pair_mesh_table(pair, side="coast", torque_nm=TORQUE_NM,
+                                        phases=PHASES, flanks=flanks)
+    return pair, tca, flanks, mesh
+
+
+def static_rotation_at(model, psi_rad: float) -> tuple:
+    """Rotation (rad) and loaded-flank pair loads (N) carrying the model's load torque at
+    the pinion angle ``psi_rad`` on its own compiled law (:func:`gearcontact.twin.
+    statics._elastic`), by bisection to 1e-14 relative: an equilibrium independent of
+    the integrator (``statics.static_rotation`` solves the first phase only)."""
+    from gearcontact.twin import statics
+    from gearcontact.twin.model import _prm
+
+    prm = _prm(model, 0.0)
+    lo, hi = 0.0, 1e-3
+    while statics._elastic(model, prm, hi, psi_rad)[0] < model.torque_nm:
+        hi *= 2.0
+    while hi - lo > 1e-14 * hi:
+        mid = 0.5 * (lo + hi)
+        if statics._elastic(model, prm, mid, psi_rad)[0] < model.torque_nm:
+            lo = mid
+        else:
+            hi = mid
+    return hi, statics._elastic(model, prm, hi, psi_rad)[1]

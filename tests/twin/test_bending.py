@@ -42,8 +42,10 @@ def test_bending_in_series_matches_the_loaded_te_with_bending(s0003_twin,
                                                              s0003_drive_bending):
     pair, tca, flanks, _ = s0003_twin
     bend = s0003_drive_bending
-    rigid = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS)
-    bent = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS, bending=bend)
+    rigid = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS,
+                       edge_law=False)
+    bent = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS, bending=bend,
+                      edge_law=False)
     assert np.all(bent.bending_mm_per_n[bent.valid] > 0)
     lte_b = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, bending=bend, stride=5)
     lte_r = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, stride=5)

@@ -34,7 +34,8 @@ LADDER = (0.25, 0.5, 1.0, 1.5, 2.0)
 @pytest.fixture(scope="module")
 def tables(s0003_twin):
     pair, tca, flanks, _ = s0003_twin
-    mesh = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS)
+    mesh = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS,
+                      edge_law=False)
     out = {src: torque_table(tca, flanks, pair, mesh, TORQUE_NM, source=src, ladder=LADDER,
                              cells=CELLS) for src in ("preview", "lcp")}
     return mesh, out
@@ -74,7 +75,8 @@ def test_lcp_table_quasi_static_is_the_loaded_te(s0003_twin, s0003_drive_bending
     mesh, tab = tables
     bend = s0003_drive_bending if bending else None
     if bending:
-        mesh = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS, bending=bend)
+        mesh = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS, bending=bend,
+                          edge_law=False)
         tab = {"lcp": torque_table(tca, flanks, pair, mesh, TORQUE_NM, source="lcp",
                                    ladder=LADDER[1:4], cells=CELLS, bending=bend)}
     lte = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, bending=bend)

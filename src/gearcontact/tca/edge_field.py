@@ -27,7 +27,18 @@ This field is built on the edge instead, in the tangent plane of the touched fla
   one reaching its field's border), and more where the edge curves behind ``t = 0``
   within ``|s| <= L_s`` (a curved root or tip line), so the flank there is still
   covered (at most ``side // 2``); cells beyond the edge are marked off the flank as
-  everywhere.
+  everywhere;
+* a *corner contact* (``frame_name = "edge corner"``): where ``P0`` is also on a second
+  boundary -- an end of its own edge, or the other flank's boundary crossing the edge
+  there (s0003 coast: the pinion tip edge on the gear's heel boundary) -- the node half a
+  cell inside on the line through ``P0`` is off the flank (the second boundary runs
+  through it) and the least gap lay one whole cell along the edge, ``~ m_s h_s`` (``m_s``
+  the separation's slope along the edge, not 0 at a constrained extreme). The ``s``
+  nodes are then shifted by half a cell towards the flank side, ``s_k = (k - side // 2
+  +- 1/2) h_s``, so that ``P0`` is a cell corner and the least gap is at most the
+  separation at ``(+-h_s / 2, h_t / 2)``, ``~ (m_s h_s + m h_t) / 2``. Where neither
+  diagonal node is on both flanks (a corner wedge narrower than a cell's diagonal) the
+  grid is left unshifted (still ``"edge corner"``).
 
 References
 ----------
@@ -46,7 +57,7 @@ from .edge_contact import edge_directions, edge_parameters, edge_span
 from .stencil import GapField, gap_at
 from .types import MatingPoint
 
-__all__ = ["EDGE_CURVE_SAMPLES", "edge_frame", "edge_gap_field"]
+__all__ = ["EDGE_CURVE_SAMPLES", "corner_shift", "edge_frame", "edge_gap_field"]
 
 #: Points along the edge that find how far it curves behind ``t = 0``.
 EDGE_CURVE_SAMPLES = 257
@@ -110,8 +121,9 @@ def edge_gap_field(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: Mati
     Returns
     -------
     GapField
-        ``frame_name = "edge"``; rows (``t``) from the edge (or from behind it where
-        it curves back) into the flank, columns along the edge.
+        ``frame_name = "edge"`` (``"edge corner"`` at a corner contact, module
+        docstring); rows (``t``) from the edge (or from behind it where it curves back)
+        into the flank, columns along the edge.
     """
     ls = check_positive("half_length_mm", half_length_mm)
     depth = check_positive("depth_mm", depth_mm)
@@ -121,8 +133,23 @@ def edge_gap_field(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: Mati
     axes = edge_frame(pinion, gear, kin, mp)
     h_s, h_t = 2.0 * ls / side, depth / side
     back = _rows_behind(pinion, gear, kin, mp, axes, ls, h_t, side)
-    s_axis = (np.arange(side) - side // 2) * h_s
+    shift = corner_shift(pinion, gear, kin, mp, axes, h_s, h_t)
+    s_axis = (np.arange(side) - side // 2 + (shift or 0.0)) * h_s
     t_axis = (np.arange(side + back) - back + 0.5) * h_t
     s, t = np.meshgrid(s_axis, t_axis)
-    return gap_at(pinion, gear, kin, mp, s, t, frame="edge", axes=axes,
-                  allow_outside=allow_outside)
+    return gap_at(pinion, gear, kin, mp, s, t, frame="edge" if shift is None else "edge corner",
+                  axes=axes, allow_outside=allow_outside)
+
+
+def corner_shift(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+                 axes: np.ndarray, h_s: float, h_t: float) -> float | None:
+    """Shift of the ``s`` nodes in cells at an edge contact (module docstring): None
+    if the node half a cell inside on the line through ``P0`` is on both flanks (no
+    corner); else ``+1/2`` or ``-1/2`` towards the diagonal node on both flanks, 0 if
+    neither is (a wedge narrower than a cell's diagonal)."""
+    probe = gap_at(pinion, gear, kin, mp, np.array([0.0, 0.5 * h_s, -0.5 * h_s]),
+                   np.full(3, 0.5 * h_t), frame="edge", axes=axes, allow_outside=True)
+    on = probe.on_flank
+    if on[0]:
+        return None
+    return 0.5 if on[1] else -0.5 if on[2] else 0.0

@@ -24,11 +24,12 @@ and the lever are the edge contact's own (its TE0 from the edge-contact TCA, its
 and the touched flank's normal), so the pair closes at the phase where the edge
 really touches; the curvatures (and the stencil) are those of the pair's nearest
 surface contact along its path (:func:`~gearcontact.ltca.lte_pairs.curvature_point`),
-i.e. the Hertzian law with which the surface contact reached the edge -- continuous
-there, since the edge solution continues the surface one with continuous TE0 and
-point. It is the loaded TE preview's law for edge contacts (:mod:`gearcontact.ltca.
-lte`); it does not truncate the contact ellipse at the edge, so it is stiffer than the
-LCP's trimmed patch on the edge's posed field.
+i.e. the Hertzian law with which the surface contact reached the edge, its approach
+scaled by the row's compliance scale ``c`` from the LCP on the edge's own field
+(:mod:`.edge_law`: the edge bounds the patch, so the untruncated ellipse was 1.8-5 times
+too stiff), baked into the row as equivalent curvatures (A-, B- and stencil times
+``c^3``) so that every backend evaluates it unchanged; ``edge_compliance_scale`` holds
+``c`` (1 on other rows), ``edge_exponent`` the LCP's own power of the load.
 
 and the unloaded TE envelope. Everything is re-expressed along the *motion*: the
 pinion angle ``psi`` and the gear angle increase in the direction the pinion drives the
@@ -50,7 +51,7 @@ numbering (the force is a sum over the pairs and does not care about their names
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -61,6 +62,7 @@ from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
+from .edge_law import edge_compliance, ellipse_leaves_flank, trim_compliance
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
@@ -131,6 +133,14 @@ class MeshTable:
     line_bending_gram_mm_per_n : ndarray (P, K, n, n) or None
         Tooth-bending Gram matrix ``G = F F^T`` of the pinion and gear shells at those
         slices (unit loads on the slices), mm/N; None for rigid teeth.
+    edge_compliance_scale : ndarray (P, K) or None
+        ``c`` of each edge row (:mod:`.edge_law`; its curvatures and stencil carry
+        ``c^3``), 1 elsewhere; None: no edge row calibrated.
+    edge_exponent : ndarray (P, K) or None
+        Exponent ``n`` of the LCP's ``delta = C W^n`` at each calibrated row (2/3 where
+        the patch stayed on the flanks; 0 where the calibration failed -- an LCP not
+        converged or a field that does not close -- and the row kept the Hertzian law,
+        ``c = 1``), NaN at rows no flank boundary cuts.
     """
 
     psi_rad: np.ndarray
@@ -157,6 +167,8 @@ class MeshTable:
     edge_label: np.ndarray | None = None
     line_gap_mm: np.ndarray | None = None
     line_bending_gram_mm_per_n: np.ndarray | None = None
+    edge_compliance_scale: np.ndarray | None = None
+    edge_exponent: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:
@@ -170,7 +182,8 @@ class MeshTable:
 
 
 def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.5,
-               edge_reach: float = 0.5, cells: int = 40, bending=None) -> MeshTable:
+               edge_reach: float = 0.5, cells: int = 40, bending=None,
+               edge_law: bool = True) -> MeshTable:
     """Mesh data of ``tca`` over one pitch (module docstring).
 
     Parameters
@@ -198,6 +211,10 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         :func:`pair_bending_compliance` at every phase into ``bending_mm_per_n`` (in
         series with the Hertzian approach in the twin's contact law); None: rigid
         teeth (zeros).
+    edge_law : bool
+        Calibrate every edge row on its edge field's LCP (:mod:`.edge_law`, at
+        ``torque_nm``; about 0.1 s per row); False: the untruncated Hertzian law of the
+        nearest surface contact (the loaded TE preview's, ``TE_pre``).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
@@ -218,6 +235,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     stencils = np.zeros((n_p, n_k, N_TAPS))
     curv: dict = {}
     sten: dict = {}
+    edges = np.full((n_p, n_k), None, dtype=object)
     steps = round(edge_reach * cycle.step_index)
     for k in range(n_k):
         for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
@@ -239,6 +257,16 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             stencils[i, k] = sten[pc.center_index]
             if bending is not None:
                 arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
+            if edge_law and (mode[i, k] != 0 or ellipse_leaves_flank(
+                    pinion, gear, kin, replace(cycle.path.points[pc.path_index],
+                                               phi2_rad=pc.phi2_rad), pc,
+                    torque_nmm=1e3 * t, e_prime_mpa=e_prime)):
+                edges[i, k] = pc
+    scale, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
+    factor = scale ** 3         # equivalent curvatures (.edge_law)
+    arrays["A"] *= factor
+    arrays["B"] *= factor
+    stencils *= factor[..., None]
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
@@ -261,7 +289,32 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         gear_datum_rad=float(cycle.path.phi2_ref_rad + (phi1[order][0] - cycle.path.phi1_ref_rad)
                              / cycle.path.ratio),
         side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order],
-        contact_mode=mode[:, order], edge_label=label[:, order])
+        contact_mode=mode[:, order], edge_label=label[:, order],
+        edge_compliance_scale=scale[:, order] if edge_law else None,
+        edge_exponent=expo[:, order] if edge_law else None)
+
+
+def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: float
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """``(c, n)`` per row: :func:`.edge_law.edge_compliance` of each edge or posed-field
+    row's contact in ``edges``, :func:`.edge_law.trim_compliance` of each surface row's,
+    once per path index; 1 and NaN elsewhere."""
+    scale, expo = np.ones(edges.shape), np.full(edges.shape, np.nan)
+    done: dict = {}
+    materials = (pair.pinion_material, pair.gear_material)
+    for (i, k), pc in np.ndenumerate(edges):
+        if pc is None:
+            continue
+        if pc.path_index not in done:
+            edge = pc.edge or bool(fields.path.points[pc.path_index].edge_contact)
+            try:
+                law = (edge_compliance if edge else trim_compliance)(
+                    fields, pc, materials=materials, torque_nmm=torque_nmm)
+                done[pc.path_index] = (law.scale, law.exponent)
+            except ArithmeticError:     # no founded calibration: Hertz, n = 0 says so
+                done[pc.path_index] = (1.0, 0.0)
+        scale[i, k], expo[i, k] = done[pc.path_index]
+    return scale, expo
 
 
 def pair_mesh_table(pair, *, side: str, torque_nm: float, phases: int = 61, flanks=None,

@@ -259,7 +259,8 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
     The TCA is the edge-contact one ``analyze`` runs (a pair's path continues through
     an edge of one flank touching the other; its rows carry the edge's own opening and
-    lever and the Hertzian law of the nearest surface contact, :mod:`.mesh`). The
+    lever and the Hertzian law of the nearest surface contact scaled by the LCP's
+    compliance where a flank boundary cuts the patch, :mod:`.mesh`, :mod:`.edge_law`). The
     reverse flank is the other side's own TCA (mirrored loaded law if that side is in
     line contact). ``bending``: tooth bending of both members in series with the
     Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`). ``curvatures``:

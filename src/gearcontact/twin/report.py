@@ -33,7 +33,8 @@ CSV_COLUMNS = ("t_s", "te_arcsec", "theta_rad", "mesh_torque_nm", "mesh_load_n",
 
 #: Columns of ``mesh.csv`` (:func:`write_mesh_csv`).
 MESH_COLUMNS = ("row", "psi_rad", "phi1_rad", "te0_arcsec", "pair", "mode", "edge",
-                "lever_mm", "opening_um", "A_minus_per_mm", "B_minus_per_mm")
+                "lever_mm", "opening_um", "A_minus_per_mm", "B_minus_per_mm",
+                "compliance_scale")
 
 
 def write_mesh_csv(mesh, path) -> Path:
@@ -41,12 +42,18 @@ def write_mesh_csv(mesh, path) -> Path:
     with contact modes), phase by phase along the motion: ``pair`` the offset ``j``,
     ``mode`` one of :data:`~.mesh.CONTACT_MODES` (which mode found the opening; an
     ``edge`` row names its ``edge`` and carries the nearest surface contact's
-    curvatures, docs/twin.md "Edge contact"), ``opening_um`` the initial separation."""
+    curvatures, docs/twin.md "Edge contact"), ``opening_um`` the initial separation,
+    ``compliance_scale`` the row's LCP compliance scale ``c`` (:mod:`.edge_law`; its
+    A-, B- are the equivalent curvatures, ``c^3`` times the Hertzian ones; 1 for a row
+    no flank boundary cuts)."""
     n_p = mesh.valid.shape[0]
+    scale = (np.ones(mesh.valid.shape) if mesh.edge_compliance_scale is None
+             else mesh.edge_compliance_scale)
     rows = [[k, float(mesh.psi_rad[k]), float(mesh.phi1_rad[k]), float(mesh.te0_arcsec[k]),
              i - (n_p - 1) // 2, CONTACT_MODES[mesh.contact_mode[i, k]], mesh.edge_label[i, k],
              float(mesh.lever_mm[i, k]), 1e3 * float(mesh.opening_mm[i, k]),
-             float(mesh.A_minus_per_mm[i, k]), float(mesh.B_minus_per_mm[i, k])]
+             float(mesh.A_minus_per_mm[i, k]), float(mesh.B_minus_per_mm[i, k]),
+             float(scale[i, k])]
             for k in range(mesh.valid.shape[1]) for i in range(n_p) if mesh.valid[i, k]]
     path = Path(path)
     write_csv(path, list(MESH_COLUMNS), rows)

@@ -270,8 +270,11 @@ def _domain_summary(model: TwinModel, tcount: np.ndarray) -> dict:
 
 #: The contact law of an edge row (:mod:`.mesh`), as ``twin.json`` states it.
 EDGE_CONTACT_LAW = ("opening and lever of the edge contact (edge-contact TCA); Hertzian law "
-                    "on the curvatures and stencil of the pair's nearest surface contact "
-                    "along its path (no truncation at the edge)")
+                    "of the pair's nearest surface contact along its path, its approach "
+                    "scaled by the LCP on the edge's own field (the patch bounded by the "
+                    "edge; surface rows whose ellipse a flank boundary cuts likewise, "
+                    "against their untrimmed field), baked in as equivalent curvatures "
+                    "(twin.edge_law)")
 
 
 def _mode_summary(model: TwinModel) -> dict:
@@ -285,10 +288,16 @@ def _mode_summary(model: TwinModel) -> dict:
             for i, name in enumerate(CONTACT_MODES)}
     edges = m.edge_label[m.valid & (m.contact_mode == 1)]
     carry = m.valid & (m.opening_mm == 0.0) & (m.contact_mode == 1)
-    return {"mesh_rows_by_mode": rows,
-            "mesh_edge_rows": {e: int(np.sum(edges == e)) for e in sorted(set(edges))},
-            "transmitting_edge_phases": int(carry.any(axis=0).sum()),
-            "mesh_phases": int(m.valid.shape[1]), "edge_contact_law": EDGE_CONTACT_LAW}
+    out = {"mesh_rows_by_mode": rows,
+           "mesh_edge_rows": {e: int(np.sum(edges == e)) for e in sorted(set(edges))},
+           "transmitting_edge_phases": int(carry.any(axis=0).sum()),
+           "mesh_phases": int(m.valid.shape[1]), "edge_contact_law": EDGE_CONTACT_LAW}
+    if m.edge_compliance_scale is not None:
+        c = m.edge_compliance_scale[m.valid]
+        out["compliance_scaled_rows"] = int(np.sum(c != 1.0))
+        out["compliance_scale_max"] = float(c.max()) if c.size else 1.0
+        out["compliance_uncalibrated_rows"] = int(np.sum(m.edge_exponent[m.valid] == 0.0))
+    return out
 
 
 def _bending_summary(model: TwinModel) -> dict:
