@@ -23,10 +23,11 @@ check; median, p99, max) and over a sustained run (mean; real-time factor = 10 u
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
 (>= 20x real time at 10 us). Last measured (docs/export.md, the fifth round; load
-average 17-19 on 2 shared cores, alternated with the code before): golden chain 153 ns
-median (202 before), fp64 chain 142 (143); fp64 step ~630 ns (~600: within the load's
-scatter; 4,229 instructions instead of 4,622), golden ~1,050 (~1,200; 9,604
-instructions instead of 11,813); p99/p50 1.4-2.6 (the shared core's).
+average ~3.5 on 2 shared cores, alternated with the code before): golden chain 179 ns
+median (210 before), fp64 chain 162 (155); fp64 step 834 ns (887; 4,184 instructions
+instead of 4,622), golden 1,572 (1,893; 9,605 instead of 11,813); p99/p50 1.5-2.2 (the
+shared core's). The machine's state moves the absolute figures more than the code
+does: compare alternated runs.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
