@@ -26,8 +26,9 @@ mean), per backend, beside the compiled Python twin's step (numba,
 average ~3.5 on 2 shared cores, alternated with the code before): golden chain 179 ns
 median (210 before), fp64 chain 162 (155); fp64 step 834 ns (887; 4,184 instructions
 instead of 4,622), golden 1,572 (1,893; 9,605 instead of 11,813); p99/p50 1.5-2.2 (the
-shared core's). The machine's state moves the absolute figures more than the code
-does: compare alternated runs.
+shared core's); at a load of 1.2 later, slower throughout: golden chain 218 (265).
+The machine's state moves the absolute figures more than the code does: compare
+alternated runs.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
