@@ -22,14 +22,18 @@ RK4 step with its 4 mesh evaluations of both flanks, the record and the finitene
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us). Last measured (docs/export.md, the fourth round; load
-average 12-15 on 2 shared cores, alternated with the code before): fp64 step 586 ns
-median (744 before), golden 1,096 (1,569); fp64 chain ~131 ns, golden ~182; p99/p50
-1.4-2.7 (the shared core's).
+(>= 20x real time at 10 us). Last measured (docs/export.md, the fifth round; load
+average ~3.5 on 2 shared cores, alternated with the code before): golden chain 179 ns
+median (210 before), fp64 chain 162 (155); fp64 step 834 ns (887; 4,184 instructions
+instead of 4,622), golden 1,572 (1,893; 9,605 instead of 11,813); p99/p50 1.5-2.2 (the
+shared core's); at a load of 1.2 later, slower throughout: golden chain 218 (265).
+The machine's state moves the absolute figures more than the code does: compare
+alternated runs.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
-of libm): independent of the machine's load, unlike the nanoseconds.
+of libm), and per ``fmi3DoStep`` of the step driver: independent of the machine's load,
+unlike the nanoseconds.
 
 The process pins itself to one core (``os.sched_setaffinity``, inherited by the
 drivers; ``--cpu``) and prints the load average: figures taken under load say so.
@@ -259,8 +263,22 @@ def _pin(cpu: int | None) -> str:
     return f"pinned to CPU {cpu} of {cpus}"
 
 
-def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
-    """ns per twin step of the drivetrain FMU's C (module docstring)."""
+def _step_instructions(exe: Path, code: int, steps: int = 2000) -> float:
+    """Instructions per ``fmi3DoStep`` of the step driver ``exe`` (backend ``code``)
+    under callgrind, inclusive of libm: the driver runs 3 x ``steps`` steps."""
+    out = exe.parent / f"callgrind.step.{code}"
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe),
+                    str(steps), str(code)], check=True, capture_output=True)
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(out)], check=True,
+                          capture_output=True, text=True).stdout
+    m = re.search(r"^\s*([\d,]+) .*?:fmi3DoStep ", text, re.M)
+    return int(m.group(1).replace(",", "")) / (3 * steps) if m else float("nan")
+
+
+def bench_twin_step(steps: int, phases: int, curvatures: str,
+                    instructions: bool = False) -> None:
+    """ns per twin step of the drivetrain FMU's C (module docstring); with
+    ``instructions`` also the instructions per step under callgrind."""
     from fmpy import __file__ as fmpy_file
 
     from gearcontact.export.fmu import FMU_CFLAGS
@@ -300,6 +318,10 @@ def bench_twin_step(steps: int, phases: int, curvatures: str) -> None:
             p50, p99, mx, mean = int(out[0]), int(out[1]), int(out[2]), float(out[3])
             print(f"{name:<8} {p50:>10} {p99:>8} {mx:>9} {p99 / max(p50, 1):>8.2f} "
                   f"{mean:>8.1f} {1e4 / mean:>9.1f}x   (timer {out[4]} ns subtracted)")
+        if instructions and shutil.which("valgrind") and shutil.which("callgrind_annotate"):
+            print("instructions per step (callgrind, 6,000 steps, inclusive of libm; load "
+                  "independent): " + ", ".join(f"{name} {_step_instructions(exe, code):,.0f}"
+                                               for name, code in (("fp64", 0), ("golden", 1))))
     model = drivetrain_fmu_model(prepared.pair, side=prepared.side, phases=phases,
                                  torque_nm=64.5, curvatures=curvatures)
     res = simulate(model, speed_rpm=3000.0, duration_s=1e-5 * steps, step_s=1e-5)
@@ -386,7 +408,7 @@ def main(argv=None) -> None:
     if not args.twin_only:
         bench_previews(args.vectors, args.instructions, args.cflags)
     if not args.previews_only:
-        bench_twin_step(args.steps, args.phases, args.curvatures)
+        bench_twin_step(args.steps, args.phases, args.curvatures, args.instructions)
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
 
 

@@ -474,9 +474,19 @@ static uint64_t rtl(uint64_t d)
     return (uint64_t)q;
 }
 
+/* Python's int.bit_length, one bit at a time (gc_bit_length's truth) */
+static int bits(uint64_t d)
+{
+    int k = 0;
+    for (; d; d >>= 1)
+        ++k;
+    return k;
+}
+
 static long bad, n;
 static void check(uint64_t d)
 {
+    bad += gc_bit_length(d) != bits(d);
     if (d <= (uint64_t)GC_C_D_MAX_CODE) {
         bad += (uint64_t)isqrt_floor(d) != rtl(d);
         ++n;
@@ -514,7 +524,9 @@ def test_fit_square_root_equals_the_rtl_recurrence(built, tmp_path):
     """The C fit computes r = floor(sqrt(d)) from a seed table and two Newton steps
     (proof in gc_fit_golden.c), not by the RTL's recurrence: the two agree on every
     radicand below 2^20, on k^2 - 1, k^2, k^2 + 1 for ~58,000 k up to
-    isqrt(D_MAX) + 1, on 2^i and its neighbours and on 2 million random radicands."""
+    isqrt(D_MAX) + 1, on 2^i and its neighbours and on 2 million random radicands. On
+    the same words (every one, also beyond D_MAX) gc_bit_length, a count-leading-zeros
+    instruction with GNU C, equals the bit-by-bit count."""
     lib, _ = built
     (tmp_path / "harness.c").write_text(_ISQRT_HARNESS)
     exe = tmp_path / "harness"
@@ -661,8 +673,12 @@ def test_fp64_cube_root_within_5_ulp_of_the_exact_root(built, tmp_path):
     against the exact root in rational arithmetic (no libm): (y - 5 ulp)^3 <= x <=
     (y + 5 ulp)^3 for every positive normal input (powers of two over the whole range,
     neighbours of edges, 100,000 random bit patterns; measured 3.25 ulp). Zero,
-    subnormals go to libm's cbrt: equal to math.cbrt (the same libm)."""
+    subnormals go to libm's cbrt: equal to math.cbrt (the same libm). Every result
+    equals the twin's compiled cube root bit for bit (gearcontact.analytic.cube_root
+    under numba, the drivetrain FMU's law repeats the twin's)."""
     from fractions import Fraction
+
+    from gearcontact.twin.contact_law import _cbrt_positive
     lib, _ = built
     (tmp_path / "harness.c").write_text(_CBRT_HARNESS)
     exe = tmp_path / "harness"
@@ -675,6 +691,7 @@ def test_fp64_cube_root_within_5_ulp_of_the_exact_root(built, tmp_path):
     normal = worst = 0
     for line in filter(None, lines):
         x, y = (float.fromhex(w) for w in line.split())
+        assert y == _cbrt_positive(x), (x, y)
         if not 2.2250738585072014e-308 <= x <= 1.7976931348623157e308:
             assert y == math.cbrt(x) or (x != x and y != y), (x, y)
             continue

@@ -359,3 +359,95 @@ def test_fmu_reproduces_the_twin_with_tooth_bending(tmp_path_factory, backend):
     theta_rigid = simulate(rigid_model, speed_rpm=3000.0, duration_s=6e-3,
                            step_s=1e-5).columns["theta_rad"]
     assert np.mean(res["mesh_rotation_rad"][:n]) > 1.1 * np.mean(theta_rigid)
+
+
+#: Harness of :func:`test_stencil_gap_codes_are_the_twin_quantization`: gc_contact_law.c's
+#: static gap_codes on xorshift rows (magnitudes 2^-20 .. 2^17 mm, a sample beyond GAP's
+#: +-32768 mm, an infinity or a NaN now and then, fractions in [0, 1] with both ends),
+#: each vector printed as f, the rows and the result in hexadecimal floats and integers.
+_GAP_HARNESS = r"""
+#include <stdio.h>
+#include "gc_contact_law.c"
+
+static uint64_t x = 88172645463325252u;
+static uint64_t next(void) { x ^= x << 13; x ^= x >> 7; x ^= x << 17; return x; }
+static double unit(void) { return (double)(next() >> 11) / 9007199254740992.0; }
+
+static double sample(void)
+{
+    if (next() % 1000u == 0u)
+        return next() % 2u ? INFINITY : NAN;
+    return (unit() - 0.5) * ldexp(1.0, (int)(next() % 38u) - 20);
+}
+
+int main(void)
+{
+    double r0[GC_FIT_TAPS], r1[GC_FIT_TAPS], f;
+    int32_t codes[GC_FIT_TAPS];
+    int v, q, ok;
+    for (v = 0; v < 3000; ++v) {
+        for (q = 0; q < GC_FIT_TAPS; ++q) {
+            r0[q] = sample();
+            r1[q] = v % 3 == 0 ? r0[q] + ldexp(unit() - 0.5, -12) : sample();
+        }
+        f = v % 5 == 0 ? (double)(v % 2) : unit();
+        ok = gap_codes(r0, r1, f, codes);
+        printf("%a %d", f, ok);
+        for (q = 0; q < GC_FIT_TAPS; ++q)
+            printf(" %a %a %ld", r0[q], r1[q], ok ? (long)codes[q] : 0L);
+        printf("\n");
+    }
+    return 0;
+}
+"""
+
+
+def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
+    """The golden stencil's GAP codes (gc_contact_law.c's gap_codes: two samples per SSE2
+    instruction, or one by one with -DGC_SCALAR_LANES, the code other targets get)
+    equal the twin's quantization computed here in Python's doubles, the operations of
+    :func:`gearcontact.twin.contact_law._kappa`: ``floor((r0 + f (r1 - r0)) 2^16 +
+    1/2)``, flagged where a sample lies outside [-2^31, 2^31) codes (or is not a
+    number), on 3,000 vectors of 49 samples. Exact: the same IEEE operations."""
+    import shutil
+    import subprocess
+
+    from gearcontact.export.fmu import FMU_CFLAGS
+
+    if shutil.which("gcc") is None:
+        pytest.skip("gcc is needed")
+    fmu, _ = exported
+    src = tmp_path / "src"
+    src.mkdir()
+    with zipfile.ZipFile(fmu) as z:
+        for name in z.namelist():
+            if name.startswith("sources/") and name.endswith((".c", ".h")):
+                (src / Path(name).name).write_bytes(z.read(name))
+    (src / "harness.c").write_text(_GAP_HARNESS)
+    library = [str(p) for p in sorted(src.glob("gc_*.c"))
+               if p.name not in ("gc_contact_law.c", "gc_drivetrain_fmu.c")]
+    outputs = {}
+    for flavour, flags in (("sse2", []), ("scalar", ["-DGC_SCALAR_LANES"])):
+        exe = tmp_path / flavour
+        run = subprocess.run(["gcc", *FMU_CFLAGS, *flags, f"-I{src}", "-o", str(exe),
+                              str(src / "harness.c"), *library, "-lm"],
+                             capture_output=True, text=True, timeout=120)
+        assert run.returncode == 0, (flavour, run.stderr)
+        outputs[flavour] = subprocess.run([str(exe)], capture_output=True, text=True,
+                                          timeout=60, check=True).stdout
+    assert outputs["sse2"] == outputs["scalar"]
+    flagged = 0
+    for line in outputs["sse2"].splitlines():
+        words = line.split()
+        f, ok = float.fromhex(words[0]), int(words[1])
+        want, bad = [], False
+        for q in range(49):
+            r0, r1 = float.fromhex(words[2 + 3 * q]), float.fromhex(words[3 + 3 * q])
+            t = (r0 + f * (r1 - r0)) * 65536.0 + 0.5
+            bad |= not (-2.0 ** 31 <= t < 2.0 ** 31)
+            want.append(math.floor(t) if not bad else 0)
+        assert ok == (not bad), line[:80]
+        flagged += bad
+        if ok:
+            assert [int(words[4 + 3 * q]) for q in range(49)] == want
+    assert 100 < flagged < 2900           # both outcomes exercised

@@ -14,8 +14,8 @@ polynomial (:func:`cbrt_seed`) is computed here too, in exact rational arithmeti
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 
+from ..analytic.cube_root import seed_coefficients
 from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.fit import golden as G
 from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
@@ -249,40 +249,15 @@ def fit_lanes_fp64() -> dict:
             "tail": [[(i, row[i].hex()) for i in range(whole, N_TAPS)] for row in rows]}
 
 
-#: Degree of the fp64 cube root's seed polynomial (:func:`cbrt_seed`) and the grid
-#: (2^-SEED_BITS) its coefficients are rounded to.
-CBRT_SEED_DEGREE, CBRT_SEED_BITS = 5, 50
-
-
-def _icbrt(n: int) -> int:
-    """floor(n^(1/3)) of an integer n >= 0 (integer Newton from above)."""
-    if n < 2:
-        return n
-    y = 1 << -(-n.bit_length() // 3)              # > n^(1/3)
-    while True:
-        z = (2 * y + n // (y * y)) // 3
-        if z >= y:
-            return y
-        y = z
-
-
-def _cbrt_fraction(x: Fraction, bits: int = 80) -> Fraction:
-    """x^(1/3) of a rational x > 0 within 2^-bits (integer arithmetic: the same on
-    every machine)."""
-    return Fraction(_icbrt(math.floor(x * 2 ** (3 * bits))), 2 ** bits)
-
-
 def cbrt_seed() -> dict:
     """Seed of the fp64 cube root of gc_hertz_fp64.c: ``m^(1/3) ~ p(m - 3/2)`` on
-    ``m in [1, 2)``, times ``2^(r/3)`` for ``r in {0, 1, 2}``.
-
-    ``p`` interpolates ``m^(1/3)`` at the CBRT_SEED_DEGREE + 1 Chebyshev points of [1, 2]
-    (nodes on a 2^-20 grid), solved in exact rationals from cube roots in integer
-    arithmetic, coefficients rounded to 2^-CBRT_SEED_BITS: the same literals on every
-    machine. The seed's relative error, measured here on 2^16 + 1 points of [1, 2]
-    (the error of a degree-5 interpolant of a function this smooth varies slowly
-    between them), is at most ``bound`` (< 2^-18: one Halley step then leaves
-    ``2 bound^3 / 3`` < 2^-54, below the rounding; the proof: gc_hertz_fp64.c).
+    ``m in [1, 2)``, times ``2^(r/3)`` for ``r in {0, 1, 2}``, the coefficients of
+    :func:`gearcontact.analytic.cube_root.seed_coefficients` (the twin's cube root: the
+    same literals on every machine) as C99 literals. The seed's relative error,
+    measured here on 2^16 + 1 points of [1, 2] (the error of a degree-5 interpolant of
+    a function this smooth varies slowly between them), is at most ``bound`` (< 2^-18:
+    one Halley step then leaves ``2 bound^3 / 3`` < 2^-54, below the rounding; the
+    proof: gc_hertz_fp64.c).
 
     Returns
     -------
@@ -295,24 +270,7 @@ def cbrt_seed() -> dict:
     AssertionError
         The seed's error reaches 2^-18 (never silently).
     """
-    n = CBRT_SEED_DEGREE + 1
-    grid = 2 ** 20
-    nodes = [Fraction(round(math.cos(math.pi * (k + 0.5) / n) * grid / 2), grid)
-             for k in range(n)]                     # u = m - 3/2 in [-1/2, 1/2]
-    values = [_cbrt_fraction(Fraction(3, 2) + u) for u in nodes]
-    # Vandermonde solve in exact rationals (Gauss-Jordan)
-    a = [[u ** j for j in range(n)] + [v] for u, v in zip(nodes, values)]
-    for col in range(n):
-        piv = next(r for r in range(col, n) if a[r][col] != 0)
-        a[col], a[piv] = a[piv], a[col]
-        a[col] = [x / a[col][col] for x in a[col]]
-        for r in range(n):
-            if r != col and a[r][col] != 0:
-                a[r] = [x - a[r][col] * y for x, y in zip(a[r], a[col])]
-    step = 2 ** CBRT_SEED_BITS
-    poly = [float(Fraction(round(a[j][n] * step), step)) for j in range(n)]
-    scale = [float(Fraction(round(_cbrt_fraction(Fraction(2 ** r)) * step), step))
-             for r in range(3)]
+    poly, scale = seed_coefficients()
     bound = 0.0
     for k in range(2 ** 16 + 1):
         m = 1.0 + k / 2 ** 16
