@@ -16,7 +16,6 @@ rotation is within 6 % of the LTE's (measured 5.2 %). The bending mesh table tak
 import math
 
 import numpy as np
-import pytest
 
 from gearcontact.ltca.lte import loaded_te
 from gearcontact.ltca.pair_ltca import ARCSEC_PER_RAD
