@@ -11,9 +11,13 @@ lies on the flank.
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, Phase, assume, given, settings
 
+from design_space import HANDS, SPACE, design_space_pair
+from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.fit.reference import principal_curvatures
 from gearcontact.twin.simulate import _fitted_coefficients
+from gearcontact.validation import InputRangeError
 
 #: Tolerances of the stage-C fit against the shape operator on a window on the flank:
 #: the gap's quartic terms over +-0.6 mm bias the fit, most on the small curvature B-
@@ -23,10 +27,19 @@ from gearcontact.twin.simulate import _fitted_coefficients
 TOL_A, TOL_B = 0.03, 0.08
 
 
-def stencil_errors(mesh):
+def stencil_errors(mesh, *, degree: int = 2):
     """Relative errors of the fitted A-, B- against the mesh's (TCA) ones over the valid
-    rows."""
-    c = _fitted_coefficients(mesh)
+    rows: the stage-C fit (``degree`` 2, the baked ROM's weights), or the quadratic
+    coefficients of a least-squares polynomial of higher ``degree`` in s, t fitted to
+    the same 49 samples (a test-side fp64 fit, not the datapath's)."""
+    if degree == 2:
+        c = _fitted_coefficients(mesh)
+    else:
+        s, t = stencil_coordinates()
+        design = np.column_stack([s ** i * t ** (n - i) for n in range(degree + 1)
+                                  for i in range(n, -1, -1)])
+        # columns 3, 4, 5 are s^2, st, t^2 (as the stage-C fit's c3, c4, c5)
+        c = np.asarray(mesh.stencil_gaps_mm, float) @ np.linalg.pinv(design)[3:6].T
     a, b, _ = np.vectorize(principal_curvatures)(c[..., 0], c[..., 1], c[..., 2])
     v = mesh.valid
     return a[v] / mesh.A_minus_per_mm[v] - 1.0, b[v] / mesh.B_minus_per_mm[v] - 1.0
@@ -108,3 +121,67 @@ def test_an_edge_pair_touching_first_carries_the_envelope():
         v = valid[:, k]
         np.testing.assert_allclose(lever[v, k] * (theta + shift[k]) - arrays["opening"][v, k],
                                    lever[v, k] * theta - opening[v, k], rtol=0, atol=1e-15)
+
+
+def _design_space_mesh(point):
+    """The twin's own mesh table (:func:`gearcontact.twin.mesh.pair_mesh_table`: the
+    edge-contact TCA, 31 phases) of a design-space pair's design side; a pair ``design``
+    refuses is rejected from the draw."""
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    try:
+        pair = design_space_pair(*point)
+    except InputRangeError:
+        assume(False)
+    return pair_mesh_table(pair, side=point[5], torque_nm=64.5, phases=31)[2]
+
+
+#: Tolerances of a degree-6 fit of the same stencils against the shape operator: its
+#: leakage is of 8th order over +-0.6 mm (measured at most 0.01 % on A-, 0.6 % on B-
+#: over the pairs drawn below).
+TOL_A6, TOL_B6 = 0.005, 0.02
+
+
+@pytest.mark.slow
+@settings(max_examples=6, deadline=None, derandomize=True, database=None,
+          phases=(Phase.explicit, Phase.generate),
+          suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@given(**SPACE, hand=HANDS)
+def test_design_space_stencils_carry_the_tca_curvatures(z1, ratio, offset_frac, beta,
+                                                        face_frac, side, hand):
+    """Issue 28 item 6 over the property-test pairs (both hands): every row's stencil
+    (the gap samples the datapath reads) holds the TCA's shape-operator curvatures, and
+    the stage-C fit's A- is the TCA's within TOL_A. Its B- is not, on every pair: see
+    test_stage_c_fit_on_a_near_line_pair. 25-90 s a pair under load."""
+    mesh = _design_space_mesh((z1, ratio, offset_frac, beta, face_frac, side, hand))
+    ea6, eb6 = stencil_errors(mesh, degree=6)
+    assert np.abs(ea6).max() <= TOL_A6 and np.abs(eb6).max() <= TOL_B6, (
+        np.abs(ea6).max(), np.abs(eb6).max())
+    ea, _ = stencil_errors(mesh)
+    assert np.abs(ea).max() <= TOL_A, np.abs(ea).max()
+
+
+#: A design-space pair drawn by the property test whose bearing is near line contact:
+#: 8/25 teeth, offset 0.315 r2, 55 deg, face 0.305 R_m, drive, right hand. Its pair +1
+#: runs into the pinion's heel and root edges at B- = 1.42e-5 1/mm (R_x = 35 m, A-/B-
+#: = 2300).
+NEAR_LINE_PAIR = (8, 25 / 8, 0.315, 55.0, 0.305, "drive", "right")
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
+    "issue 28 item 6 open: the stage-C quadratic fit over the +-0.6 mm window reads "
+    "B- = 2.68e-5 for the TCA's 1.42e-5 1/mm (+88 %, A- +2.5 %; the Hertz approach at "
+    "1 kN +23 %): the gap's quartic terms (A- varying along the line) leak into the t^2 "
+    "coefficient; a degree-6 fit of the same samples gives 0.6 %"))
+def test_stage_c_fit_on_a_near_line_pair():
+    """Where B- is a few 1e-5 1/mm the +-0.6 mm stencil's quadratic fit is no longer
+    the point curvature (the stencil itself still is: degree 6 within TOL_B6)."""
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    mesh = pair_mesh_table(design_space_pair(*NEAR_LINE_PAIR), side="drive",
+                           torque_nm=64.5, phases=31)[2]
+    _, eb6 = stencil_errors(mesh, degree=6)
+    if np.abs(eb6).max() > TOL_B6:      # the samples themselves: a failure, not the xfail
+        pytest.fail(f"degree-6 fit off the TCA's B- by {np.abs(eb6).max():.3f}")
+    _check(mesh)
