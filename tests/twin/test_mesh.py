@@ -6,7 +6,9 @@ fp64 stage-C fit of the row's 7 x 7 stencil (the twin's default curvature source
 give them on every row of every pair: exactly (to the pseudo-inverse's rounding) where
 the +-0.6 mm window leaves the flank (the osculating quadric, :func:`gearcontact.tca.
 stencil.hardware_stencil`), and within the fit's own quartic bias where the window
-lies on the flank.
+lies on the flank. Not yet where B- falls to a few 1e-5 1/mm (a strict xfail with the
+measured values; the stencil's samples are right there: a degree-6 fit of them gives
+the TCA's curvatures, docs/twin.md).
 """
 
 import numpy as np
