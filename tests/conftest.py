@@ -24,7 +24,12 @@ def pytest_collection_modifyitems(config, items):
 @pytest.fixture(scope="session")
 def served_tri_core():
     """``gearcontact rtl serve`` (the simulated tri_core behind litex_server's protocol)
-    in a subprocess on a free local port; yields ``(host, port)``."""
+    in a subprocess on a free local port; yields ``(host, port)``. Its "listening" line
+    is read from the pipe while the server runs (issue 28 probe: the line sat in a
+    block-buffered stdout until exit, so a script reading the pipe never saw it): a
+    line that does not arrive within 300 s fails the fixture instead of blocking."""
+    import os
+    import selectors
     import socket
     import subprocess
     import sys
@@ -34,17 +39,20 @@ def served_tri_core():
         probe.bind(("127.0.0.1", 0))
         port = probe.getsockname()[1]
     proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "rtl", "serve", "--port",
-                             str(port)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            text=True)
+                             str(port)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     try:
-        deadline = time.monotonic() + 120
-        for line in proc.stdout:                # the server says when it listens
-            if line.startswith("gearcontact rtl serve: listening on"):
-                break
-            if time.monotonic() > deadline:
-                raise RuntimeError("gearcontact rtl serve did not start")
-        else:
-            raise RuntimeError(f"gearcontact rtl serve exited: {proc.wait()}")
+        deadline, seen = time.monotonic() + 300, b""
+        with selectors.DefaultSelector() as sel:
+            sel.register(proc.stdout, selectors.EVENT_READ)
+            # the server says when it listens; the pipe's raw bytes, as they arrive
+            while b"gearcontact rtl serve: listening on" not in seen:
+                if not sel.select(timeout=max(deadline - time.monotonic(), 0.0)):
+                    raise RuntimeError("gearcontact rtl serve: no 'listening' line on its "
+                                       f"stdout pipe within 300 s (got {seen!r})")
+                chunk = os.read(proc.stdout.fileno(), 4096)
+                if not chunk:
+                    raise RuntimeError(f"gearcontact rtl serve exited: {proc.wait()}")
+                seen += chunk
         yield "127.0.0.1", port
     finally:
         proc.terminate()

@@ -151,6 +151,32 @@ def test_datapath_flag_exit_code_and_stderr(tmp_path, capsys):
     assert "datapath flag: fit_not_elliptic" in cap.err
 
 
+def test_a_library_warning_is_one_stderr_line_and_the_run_succeeds(capsys, monkeypatch):
+    """Issue 28 probe: `analyze` exited 0 with fixed-point preview results missing and
+    nothing on stderr. The library says so by a PreviewDomainWarning (its text naming
+    which result is missing: tests/report/test_analyze.py); a command prints a library
+    warning as one stderr line naming the command and the class, its exit code
+    unchanged (the route of :func:`gearcontact.cli.main`, here through `preview`)."""
+    import warnings
+
+    from gearcontact.report.analyze import PreviewDomainWarning
+
+    real = cli_preview.get_engine
+
+    def warning_engine(*a, **k):
+        warnings.warn("fixed-point preview outside the datapath's domain: golden D (line "
+                      "core) p_max missing\n for 2 of 3 torques", PreviewDomainWarning)
+        return real(*a, **k)
+
+    monkeypatch.setattr(cli_preview, "get_engine", warning_engine)
+    code = main(["preview", "--curvatures", "0.1", "0.01", "--load", "100"])
+    cap = capsys.readouterr()
+    assert code == 0 and "p_max" in cap.out
+    assert cap.err == ("gearcontact preview: warning: fixed-point preview outside the "
+                       "datapath's domain: golden D (line core) p_max missing for 2 of 3 "
+                       "torques (PreviewDomainWarning)\n")
+
+
 @pytest.mark.parametrize("exc", [ValueError("a bug"), ZeroDivisionError("a bug"),
                                  KeyError("a bug")])
 def test_internal_error_exit_1_traceback_only_with_debug(capsys, monkeypatch, exc):

@@ -6,14 +6,20 @@ fp64 stage-C fit of the row's 7 x 7 stencil (the twin's default curvature source
 give them on every row of every pair: exactly (to the pseudo-inverse's rounding) where
 the +-0.6 mm window leaves the flank (the osculating quadric, :func:`gearcontact.tca.
 stencil.hardware_stencil`), and within the fit's own quartic bias where the window
-lies on the flank.
+lies on the flank. Not yet where B- falls to a few 1e-5 1/mm (a strict xfail with the
+measured values; the stencil's samples are right there: a degree-6 fit of them gives
+the TCA's curvatures; docs/twin.md).
 """
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, Phase, assume, given, settings
 
+from design_space import HANDS, SPACE, design_space_pair
+from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.fit.reference import principal_curvatures
 from gearcontact.twin.simulate import _fitted_coefficients
+from gearcontact.validation import InputRangeError
 
 #: Tolerances of the stage-C fit against the shape operator on a window on the flank:
 #: the gap's quartic terms over +-0.6 mm bias the fit, most on the small curvature B-
@@ -23,10 +29,19 @@ from gearcontact.twin.simulate import _fitted_coefficients
 TOL_A, TOL_B = 0.03, 0.08
 
 
-def stencil_errors(mesh):
+def stencil_errors(mesh, *, degree: int = 2):
     """Relative errors of the fitted A-, B- against the mesh's (TCA) ones over the valid
-    rows."""
-    c = _fitted_coefficients(mesh)
+    rows: the stage-C fit (``degree`` 2, the baked ROM's weights), or the quadratic
+    coefficients of a least-squares polynomial of higher ``degree`` in s, t fitted to
+    the same 49 samples (a test-side fp64 fit, not the datapath's)."""
+    if degree == 2:
+        c = _fitted_coefficients(mesh)
+    else:
+        s, t = stencil_coordinates()
+        design = np.column_stack([s ** i * t ** (n - i) for n in range(degree + 1)
+                                  for i in range(n, -1, -1)])
+        # columns 3, 4, 5 are s^2, st, t^2 (as the stage-C fit's c3, c4, c5)
+        c = np.asarray(mesh.stencil_gaps_mm, float) @ np.linalg.pinv(design)[3:6].T
     a, b, _ = np.vectorize(principal_curvatures)(c[..., 0], c[..., 1], c[..., 2])
     v = mesh.valid
     return a[v] / mesh.A_minus_per_mm[v] - 1.0, b[v] / mesh.B_minus_per_mm[v] - 1.0
@@ -108,3 +123,74 @@ def test_an_edge_pair_touching_first_carries_the_envelope():
         v = valid[:, k]
         np.testing.assert_allclose(lever[v, k] * (theta + shift[k]) - arrays["opening"][v, k],
                                    lever[v, k] * theta - opening[v, k], rtol=0, atol=1e-15)
+
+
+def _design_space_mesh(point):
+    """The twin's own mesh table (:func:`gearcontact.twin.mesh.pair_mesh_table`: the
+    edge-contact TCA, 31 phases) of a design-space pair's design side; a pair ``design``
+    refuses is rejected from the draw."""
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    try:
+        pair = design_space_pair(*point)
+    except InputRangeError:
+        assume(False)
+    return pair_mesh_table(pair, side=point[5], torque_nm=64.5, phases=31)[2]
+
+
+#: Tolerances of a degree-6 fit of the same stencils against the shape operator: its
+#: leakage is of 8th order over +-0.6 mm (measured at most 0.04 % on A-, 1.0 % on B-
+#: over eight drawn pairs; on NOT_YET's 8/25 0.01 % and 0.6 %, its 5/27 within these).
+TOL_A6, TOL_B6 = 0.005, 0.02
+
+
+@pytest.mark.slow
+@settings(max_examples=6, deadline=None, derandomize=True, database=None,
+          phases=(Phase.explicit, Phase.generate),
+          suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@given(**SPACE, hand=HANDS)
+def test_design_space_stencils_carry_the_tca_curvatures(z1, ratio, offset_frac, beta,
+                                                        face_frac, side, hand):
+    """Issue 28 item 6 over the property-test pairs (both hands): every row's stencil
+    (the gap samples the datapath reads) holds the TCA's shape-operator curvatures.
+    Stage C's quadratic fit of them does not on every pair: test_stage_c_fit_not_yet.
+    25-90 s a pair under load."""
+    mesh = _design_space_mesh((z1, ratio, offset_frac, beta, face_frac, side, hand))
+    ea6, eb6 = stencil_errors(mesh, degree=6)
+    assert np.abs(ea6).max() <= TOL_A6 and np.abs(eb6).max() <= TOL_B6, (
+        np.abs(ea6).max(), np.abs(eb6).max())
+
+
+#: Design-space pairs drawn by the property tests on which stage C's fit leaves
+#: TOL_A / TOL_B (issue 28 item 6 not met), with the measured worst rows:
+#: 8/25 teeth, offset 0.315 r2, 55 deg, face 0.305 R_m, drive: pair +1 runs into the
+#: pinion's heel and root edges at B- = 1.42e-5 1/mm (R_x = 35 m): stage C 2.68e-5
+#: (+88 %), A- +2.5 %, the Hamrock-Brewe approach at 1 kN +23 %;
+#: 5/27 (a spiral bevel pair), 46.7 deg, face 0.233 R_m, drive: a transmitting row at
+#: A- = 0.0737, B- = 1.07e-4 1/mm: stage C A- +3.3 %, B- +28 %, approach +8.2 %, p_max
+#: +7 %.
+NOT_YET = {"8-25-near-line": (8, 25 / 8, 0.315, 55.0, 0.305, "drive", "right"),
+           "5-27-spiral-bevel": (5, 5.320092271342461, 0.0, 46.69382818248657,
+                                 0.2332970279261677, "drive", "right")}
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
+    "issue 28 item 6 open: stage C's quadratic fit over the +-0.6 mm window leaks the "
+    "gap's quartic terms (A- varying along the contact line) into A-, B- (8/25: B- +88 %, "
+    "5/27: A- +3.3 %, B- +28 %); a degree-6 fit of the same samples is within 2 %"))
+@pytest.mark.parametrize("name", sorted(NOT_YET))
+def test_stage_c_fit_not_yet(name):
+    """Stage C's fit against the TCA's curvatures on the pairs of NOT_YET (the stencil
+    itself is right there: degree 6 within TOL_A6 / TOL_B6)."""
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    point = NOT_YET[name]
+    mesh = pair_mesh_table(design_space_pair(*point), side=point[5], torque_nm=64.5,
+                           phases=31)[2]
+    ea6, eb6 = stencil_errors(mesh, degree=6)
+    if np.abs(ea6).max() > TOL_A6 or np.abs(eb6).max() > TOL_B6:
+        # the samples themselves: a failure, not the expected one
+        pytest.fail(f"degree-6 fit off the TCA's curvatures by {np.abs(ea6).max():.4f} "
+                    f"(A-), {np.abs(eb6).max():.4f} (B-)")
+    _check(mesh)

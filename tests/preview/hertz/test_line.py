@@ -53,7 +53,12 @@ def test_restoring_sqrt_is_floor_sqrt():
         assert root * root <= n < (root + 1) ** 2 and rem == n - root * root
 
 
-@pytest.mark.parametrize("W, L", [(500.0, 10.0), (4825.0, 13.3), (20_000.0, 60.0)])
+#: (W N, L mm) of the long ellipses truncated to the flank (also run through the RTL:
+#: tests/preview/hertz/test_rtl_line.py).
+JOHNSON_CASES = [(500.0, 10.0), (4825.0, 13.3), (20_000.0, 60.0)]
+
+
+@pytest.mark.parametrize("W, L", JOHNSON_CASES)
 def test_long_ellipse_truncated_to_l_is_johnson_line_contact(W, L):
     # B- = 1e-6 1/mm: a ratio of 2.5e4 (R_x = 500 m), an ellipse far longer than L;
     # the across curvature A- = 0.025 1/mm gives R = 1/(2 A-) = 20 mm

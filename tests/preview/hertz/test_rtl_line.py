@@ -1,7 +1,9 @@
 """RTL of the line core (:mod:`gearcontact.preview.hertz.rtl_line`) in the Amaranth simulator.
 
 Truths: the golden model bit for bit (every output port, the mode, the scale and the
-flags) on corner and seeded random vectors; the cycle count, 759 for every vector
+flags) on corner and seeded random vectors; on the long ellipses truncated to the flank
+of tests/preview/hertz/test_line.py, Hertz line contact (Johnson 1985 sec. 4.3) within
+the datapath's tolerance stated there (issue 28: "golden and RTL bit for bit"); the cycle count, 759 for every vector
 (data independent); the square-root unit equals ``math.isqrt``. The simulator runs the
 core at a few evaluations/s of CPU time, so the default suite runs 14 vectors + 3 with the
 exact-Hertz tables (6 s on an idle machine, 20 s under load).
@@ -14,11 +16,14 @@ import pytest
 
 from gearcontact.preview.hertz import formats as F
 from gearcontact.preview.hertz.golden import encode_hertz_inputs
-from gearcontact.preview.hertz.line import (LENGTH_MAX_CODE, LINE_CYCLES, encode_length,
-                                            line_golden)
+from gearcontact.preview.hertz.line import (LENGTH_MAX_CODE, LINE_CYCLES, MODE_LINE,
+                                            decode_line_codes, encode_length, line_golden)
 from gearcontact.preview.hertz.rtl_line import SerialSqrt, simulate_line_core
 from gearcontact.preview.simulation import run_testbench
 from gearcontact.preview.stimulus import STEEL_E_PRIME_CODE as EP
+
+from .conftest import E_PRIMES
+from .test_line import JOHNSON_CASES, _johnson_line
 
 
 def _codes(A, B, W, L):
@@ -57,9 +62,21 @@ def _random(n, seed):
 
 
 def test_rtl_equals_golden_bit_for_bit_and_759_cycles():
-    vectors = CORNERS + _random(2, seed=20)
+    # the long ellipses of test_line's Johnson cases (A- = 0.025, B- = 1e-6 1/mm) ride
+    # along: one simulation for all vectors
+    johnson = [_codes(0.025, 1e-6, W, L) for W, L in JOHNSON_CASES]
+    vectors = CORNERS + _random(2, seed=20) + johnson
     outs, cycles = simulate_line_core(vectors)
     assert cycles == [LINE_CYCLES] * len(vectors) == [759] * len(vectors)
+    # the RTL's own outputs against Hertz line contact of the flank length (Johnson 1985
+    # sec. 4.3, R = 1/(2 A-) = 20 mm), the tolerance of test_line (A- and W quantized:
+    # 2e-5 relative, plus one output LSB)
+    for (W, L), got in zip(JOHNSON_CASES, outs[-len(johnson):]):
+        p0, b0 = _johnson_line(W, 20.0, L, E_PRIMES["steel"])
+        v = decode_line_codes(got)
+        assert got.mode == MODE_LINE
+        assert abs(v["p_max_mpa"] - p0) <= 2e-5 * p0 + 2.0 ** -8
+        assert abs(v["b_mm"] - b0) <= 2e-5 * b0 + 2.0 ** -20
     modes = set()
     for v, got in zip(vectors, outs):
         want = line_golden(*v[:4], e_prime_code=v[4])
