@@ -121,8 +121,12 @@ def test_spur_pitch_point_rotation_against_the_lcp(spur):
 
     pair, cycle, mesh = spur
     k = 1
-    assert mesh.valid[:, k].sum() == 1 and mesh.A_minus_per_mm[1, k] == pytest.approx(
-        0.0730951, rel=1e-6)                        # the pitch point's 1/(2R)
+    # one closed line at the pitch point; the neighbours are tip-edge rows
+    # (tca.cylindrical_tip) open by 73 and 102 um, far beyond the ~5 um approach here
+    closed = mesh.valid[:, k] & (mesh.opening_mm[:, k] == 0.0)
+    assert closed.sum() == 1 and closed[1]
+    assert mesh.opening_mm[mesh.valid[:, k] & ~closed, k].min() > 0.05
+    assert mesh.A_minus_per_mm[1, k] == pytest.approx(0.0730951, rel=1e-6)  # 1/(2R)
     model = _model(spur, "reference")
     prm = _prm(model, 0.0)
     lo, hi = 0.0, 1e-3
@@ -141,12 +145,16 @@ def test_golden_within_the_fixed_point_resolution(spur):
     the line chain's resolution. Its coarsest step is the fit's on the curvature
     across the line (LINE_B_ZERO_CODES codes, 1.1e-4 1/mm against A- = 0.073 1/mm):
     through b ~ B^(-1/2) it moves the law's ln(4L/b) by half of that relative error,
-    i.e. theta by at most ``0.5 (1.1e-4 / A-) / (ln(4L/b) - 3/4)``; the load, L and
-    the outputs' codes are far finer (2^-8 N, 2^-20 mm)."""
+    i.e. theta by at most ``0.5 (1.1e-4 / A-) / (ln(4L/b) - 3/4)`` at the flattest
+    closed line the run passes (A- = 0.065 1/mm here: the formula's worst case; since
+    the table holds the neighbours' tip-edge rows, tca.cylindrical_tip, the run
+    measures 2.5e-4, above the steepest line's 2.1e-4); the load, L and the outputs'
+    codes are far finer (2^-8 N, 2^-20 mm)."""
     ref, gold = _model(spur, "reference"), _model(spur, "golden")
     _, _, mesh = spur
-    j = int(np.argmax(mesh.valid[:, 0] & (mesh.opening_mm[:, 0] == 0.0)))
-    a_minus = float(max(mesh.A_minus_per_mm[j, 0], mesh.B_minus_per_mm[j, 0]))
+    # the run passes every closed line: the bound at the flattest one (smallest A-)
+    closed = mesh.valid & (mesh.opening_mm == 0.0)
+    a_minus = float(np.maximum(mesh.A_minus_per_mm, mesh.B_minus_per_mm)[closed].min())
     bound = 0.5 * LINE_B_ZERO_CODES * CURVATURE.lsb / a_minus / 5.0
     th_r, th_g = static_rotation(ref)[0], static_rotation(gold)[0]
     assert abs(th_g / th_r - 1.0) < bound
