@@ -60,6 +60,7 @@ import numpy as np
 from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 from .curvature import PAINT_THICKNESS_MM, flank_frame
+from .synthesis_targets import PATTERN_RATIO_RANGE, TE0_RANGE_ARCSEC
 
 __all__ = ["PathAngleRange", "path_angle_range", "check_path_angle", "check_targets",
            "overlap_path_angle", "overlap_choice", "short_overlap", "te0_unreachable",
@@ -344,7 +345,7 @@ def _level_error(pair, *, side: str, targets, flanks) -> InputRangeError:
     reachable: the TE0 bound at the pattern length (TE0 sets the crowning across the
     contact lines, so relief grows with it), else the pattern-length bound at the TE0
     level (a longer pattern crowns less along the lines)."""
-    lo_te0, hi_ratio = 0.5, 0.8          # the ends of SynthesisTargets' ranges
+    lo_te0, hi_ratio = TE0_RANGE_ARCSEC[0], PATTERN_RATIO_RANGE[1]
     te0, ratio = targets.te0_pp_arcsec, targets.pattern_length_ratio
     where = (f"on the {side} side of {pair.name} (the first-order ease-off of every path "
              "angle exceeds the relief limit or loses a crowning, docs/synthesis.md)")

@@ -15,7 +15,12 @@ from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSE
 from ..validation import check_positive, check_range
 from .design_point import DesignPoint
 
-__all__ = ["SynthesisTargets", "TargetRows", "targets_rows", "targets_table", "angle_diff"]
+__all__ = ["SynthesisTargets", "TargetRows", "targets_rows", "targets_table", "angle_diff",
+           "TE0_RANGE_ARCSEC", "PATTERN_RATIO_RANGE"]
+
+#: Allowed TE0 peak-to-peak, arcsec, and pattern length ratio (2a over the face width).
+TE0_RANGE_ARCSEC = (0.5, 30.0)
+PATTERN_RATIO_RANGE = (0.1, 0.8)
 
 
 @dataclass(frozen=True)
@@ -54,8 +59,8 @@ class SynthesisTargets:
     tol_angle_deg: float = 2.0
 
     def __post_init__(self):
-        check_range("te0_pp_arcsec", self.te0_pp_arcsec, 0.5, 30.0)
-        check_range("pattern_length_ratio", self.pattern_length_ratio, 0.1, 0.8)
+        check_range("te0_pp_arcsec", self.te0_pp_arcsec, *TE0_RANGE_ARCSEC)
+        check_range("pattern_length_ratio", self.pattern_length_ratio, *PATTERN_RATIO_RANGE)
         if self.path_angle_deg is not None:
             check_range("path_angle_deg", self.path_angle_deg, -89.9, 90.0)
         check_range("centre_face", self.centre_face, 0.02, 0.98)
