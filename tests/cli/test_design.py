@@ -1,5 +1,6 @@
 """``gearcontact design`` through gearcontact.cli.main, stdout captured."""
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -100,6 +101,50 @@ def test_synthesize_easeoff_prints_and_writes_the_tables(tmp_path, capsys):
     doc = tomllib.loads((tmp_path / "easeoff.toml").read_text())
     assert set(doc["easeoff"]) == {"drive", "coast"}
     assert "[easeoff.drive]" in capsys.readouterr().out
+
+
+def _crowned_s0003_centred(tmp_path, crowning_um_per_mm2: float = 30.0) -> Path:
+    """s0003-centred with a drive table crowned so much that the pinion is pointed at
+    the toe (``design`` refuses it, naming the face width)."""
+    import dataclasses
+
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+
+    p = load_pair("s0003-centred")
+    drive = dataclasses.replace(p.easeoff_drive, profile_crowning_um_per_mm2=crowning_um_per_mm2,
+                                lengthwise_crowning_um_per_mm2=crowning_um_per_mm2)
+    path = tmp_path / "crowned.toml"
+    path.write_text(pair_to_toml(dataclasses.replace(p, easeoff_drive=drive)))
+    return path
+
+
+def test_synthesize_easeoff_checks_the_bearing_it_makes(tmp_path, capsys, monkeypatch):
+    """Issue 28: ``--synthesize-easeoff`` replaces the file's tables, so its checks see
+    the pair without them (before, a pair whose old table pointed the pinion was
+    refused though the synthesis makes a thinner ease-off); the synthesis then starts
+    from that pair (stubbed here: the whole run is the slow test below)."""
+    import gearcontact.cli.design as design
+
+    crowned = _crowned_s0003_centred(tmp_path)
+    assert main(["design", "--pair", str(crowned)]) == 2
+    assert "pointed pinion teeth" in capsys.readouterr().err
+    seen = []
+    monkeypatch.setattr(design, "_synthesize", lambda args, pair: seen.append(pair) or 0)
+    assert main(["design", "--pair", str(crowned), "--synthesize-easeoff"]) == 0
+    assert seen[0].easeoff_tables == ()
+    assert not any(dataclasses.astuple(seen[0].easeoff_drive))
+
+
+@pytest.mark.slow
+def test_synthesize_easeoff_ignores_the_tables_it_replaces(tmp_path):
+    """The crowned pair above and s0003-centred (same blank, other tables) get the same
+    easeoff.toml bit for bit (~50 s)."""
+    crowned = _crowned_s0003_centred(tmp_path)
+    for name, pair in (("a", crowned), ("b", "s0003-centred")):
+        assert main(["design", "--pair", str(pair), "--synthesize-easeoff",
+                     "--out", str(tmp_path / name)]) == 0
+    text = [(tmp_path / n / "easeoff.toml").read_text() for n in "ab"]
+    assert text[0] == text[1] and "[easeoff.drive]" in text[0]
 
 
 @pytest.mark.parametrize("argv, named", [

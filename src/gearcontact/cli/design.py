@@ -18,7 +18,8 @@ from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSE
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation
-from ..geometry.pair import BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair
+from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair,
+                             without_easeoff)
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
 
@@ -167,6 +168,10 @@ def check(args) -> None:
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings
         pair = args.gear_pair = dataclasses.replace(pair, machine=())
+    if args.synthesize_easeoff and pair.easeoff_tables:
+        # the synthesis makes both sides' tables afresh from the conjugate pinion: the
+        # checks below see the bearing it will make, not the tables it replaces
+        pair = args.gear_pair = without_easeoff(pair)
     if args.synthesize_easeoff or args.local_synthesis:   # the same targets and checks
         args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
             else args.te0_arcsec

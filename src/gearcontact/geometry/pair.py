@@ -120,7 +120,7 @@ from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
 __all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
-           "has_easeoff", "load_pair", "parse_pair", "pair_to_toml"]
+           "has_easeoff", "load_pair", "parse_pair", "pair_to_toml", "without_easeoff"]
 
 #: Built-in presets (resource files ``gearcontact/data/pairs/<name>.toml``): ``s0003``
 #: calibrated to the published design point (tip-edge bearing on the coast flank pair,
@@ -476,6 +476,15 @@ def has_easeoff(pair: GearPair) -> bool:
     coefficient on either side: its analysed pinion is not the conjugate one."""
     return not pair.machine and any(
         any(dataclasses.astuple(getattr(pair, f"easeoff_{side}"))) for side in ("drive", "coast"))
+
+
+def without_easeoff(pair: GearPair) -> GearPair:
+    """``pair`` as its file would read without ``[easeoff.*]`` tables: both sides'
+    coefficients zero and none given (``easeoff_tables`` empty), so that every command
+    synthesizes them; what ``design --synthesize-easeoff`` starts from (it makes both
+    tables afresh from the conjugate pinion, whatever tables the file holds)."""
+    return dataclasses.replace(pair, easeoff_drive=EaseOffCoefficients(),
+                               easeoff_coast=EaseOffCoefficients(), easeoff_tables=())
 
 
 def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> str:
