@@ -62,7 +62,7 @@ from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
-from .edge_law import edge_compliance, ellipse_leaves_flank, trim_compliance
+from ..ltca.edge_law import edge_compliance, ellipse_leaves_flank, trim_compliance
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
