@@ -3,7 +3,7 @@
 Truths, at the phase rows of a quasi-static run (15 rpm) on the twin's own mesh
 (conftest.s0003_coast_twin: the edge-contact TCA; every row's Hertzian ellipse
 overhangs the pinion tip, pair 0 runs onto the gear heel and pinion tip edges, so the
-rows carry the LCP-calibrated law of :mod:`gearcontact.twin.edge_law`):
+rows carry the LCP-calibrated law of :mod:`gearcontact.ltca.edge_law`):
 
 1. the twin's TE equals its own static equilibrium (the torque balance of its compiled
    law solved by bisection, :func:`.conftest.static_rotation_at`) within the bound of
