@@ -147,7 +147,7 @@ def test_fmu_reproduces_gearcontact_twin(exported, twin_runs, backend):
     np.testing.assert_array_equal(res["pinion_speed_rpm"],
                                   res["pinion_speed_rad_s"] * 30.0 / math.pi)
     # the run is loaded and dynamic: the mesh carries the torque on average and the DTE
-    # moves. With the cut-patch law (twin.edge_law: s0003's tip-edge bearing 17-27 %
+    # moves. With the cut-patch law (ltca.edge_law: s0003's tip-edge bearing 17-27 %
     # softer, its edge tail 3-4.5 times) it stays on the loaded flank (measured mesh
     # torque 4.5-6.1 N·m; before, with the untruncated law, 43 steps in free flight and
     # 11 on the reverse flank): free flight and the reverse flank are reproduced in

@@ -327,15 +327,21 @@ def test_s0003_lcp_close_to_preview_and_continuous(lte):
 
 
 def test_s0003_preview_compliance_is_hertzian(lte, s0003_tca, s0003_pair):
-    # transmitting pair alone at P0: c_pre = (2/3) kappa W^(-1/3) (Hamrock-Brewe),
-    # central difference +-5 %: truncation 0.074 eps^2 = 1.9e-4 -> tolerance 3e-4
+    # transmitting pair alone at P0: c_pre = (2/3) c kappa W^(-1/3) (Hamrock-Brewe
+    # scaled by the edge law's c of that row), central difference +-5 %: truncation
+    # 0.074 eps^2 = 1.9e-4 -> tolerance 3e-4
     from gearcontact.materials import effective_modulus_mpa
     rc = s0003_tca.mean_curvature
     w = 64.5e3 / lte.reference_lever_mm
     hb = hamrock_brewe_hertz(rc.A_minus_per_mm, rc.B_minus_per_mm, w,
                              e_prime_mpa=effective_modulus_mpa(s0003_pair.pinion_material,
                                                                s0003_pair.gear_material))
-    assert lte.compliance_pre_mm_per_n == pytest.approx(2 / 3 * hb.approach_mm / w, rel=3e-4)
+    c = lte.compliance_scale_pre[lte.pair_offsets.index(0), lte.reference_index]
+    # the centred bearing's ellipse at P0 grazes a flank boundary on the coarse field:
+    # its trimmed LCP is softer by less than 1 % (measured 0.07 %)
+    assert 1.0 <= c < 1.01
+    assert lte.compliance_pre_mm_per_n == pytest.approx(2 / 3 * c * hb.approach_mm / w,
+                                                        rel=3e-4)
     # near-Hertzian real gap: LCP within 5 % of the preview (measured ~1.5 %)
     assert lte.compliance_lcp_mm_per_n == pytest.approx(lte.compliance_pre_mm_per_n, rel=0.05)
     # sharing with the neighbours stiffens the mesh

@@ -54,10 +54,15 @@ def _check_outputs(out: Path, torque_nm: float, phases: int):
         # per stencil) plus one output LSB
         ref, gold = float(r["reference_p_max_mpa"]), float(r["golden_p_max_mpa"])
         assert abs(gold - ref) <= 2.5e-3 * ref + 2 ** -8
-        # the line core's answer: p0 = sqrt(W E' B_max / (pi L)), Johnson eq. 4.45
+        # the line core's answer on the loaded length L_c: p0 = sqrt(W E' B_max / (pi
+        # L_c)) = sqrt(W E* / (pi R L_c)), Johnson 1985 eq. 4.45; L_c is a part of the
+        # line (the slice law's loaded length; its own truths in
+        # tests/ltca/test_slice_law.py and tests/ltca/test_cylindrical_preview.py)
         e_prime = 2 * 210e3 / (2 * (1 - 0.3 ** 2))
+        l_c = float(r["loaded_length_mm"])
+        assert 0.0 < l_c <= float(r["line_length_mm"]) * (1 + 1e-12)
         p0 = math.sqrt(float(r["load_n"]) * e_prime * float(r["A_minus_fit_per_mm"])
-                       / (math.pi * float(r["line_length_mm"])))
+                       / (math.pi * l_c))
         assert ref == pytest.approx(p0, rel=1e-9)
     md = (out / "summary.md").read_text()
     assert f"{head['lte_pp_arcsec']:.3f} arcsec" in md and "Harris map" in md

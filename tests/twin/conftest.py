@@ -4,7 +4,7 @@ neighbouring pairs' paths, see tests/ltca/test_lte.py, at half the cost of 61).
 The s0003-centred tables take the untruncated Hertzian law (``edge_law=False``): their
 truth is the loaded TE's preview ``TE_pre`` (the same Hertzian pairs), and the rows
 whose patch a flank boundary cuts (pairs +-1 near their path ends) would otherwise carry
-the LCP's compliance (twin.edge_law, tested on s0003_coast_twin in test_edge_law.py)."""
+the LCP's compliance (ltca.edge_law, tested on s0003_coast_twin in test_edge_law.py)."""
 
 import pytest
 
@@ -69,7 +69,7 @@ def s0003_coast_twin(s0003_calibrated):
     s0003 on its design side (coast; :func:`~gearcontact.twin.mesh.pair_mesh_table`,
     the edge-contact TCA, PHASES per pitch): pair 0 runs onto the gear heel and the
     pinion tip (corner) edges at its path end, every row's ellipse is cut by the tip
-    (a tip-edge bearing), so its law is the LCP-calibrated one (twin.edge_law)."""
+    (a tip-edge bearing), so its law is the LCP-calibrated one (ltca.edge_law)."""
     from gearcontact.twin.mesh import pair_mesh_table
 
     pair, flanks = s0003_calibrated

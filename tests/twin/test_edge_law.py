@@ -1,4 +1,4 @@
-"""The twin's law at rows whose contact patch a flank boundary cuts (twin.edge_law), on
+"""The twin's law at rows whose contact patch a flank boundary cuts (ltca.edge_law), on
 the calibrated s0003 (coast, 31 phases, 64.5 N·m; conftest.s0003_coast_twin): pair 0
 runs onto the gear heel and then the pinion tip edge (a corner on the gear's heel
 boundary) at the end of its path, and its surface rows there overhang the tip.
@@ -16,7 +16,7 @@ Truths:
    ``n`` the LCP's own exponent between ``W / 2`` and ``2 W`` (fitted here), and 2 % for
    the Hamrock–Brewe vs gridded-LCP difference of a surface row's reference. Rows whose
    pair carries less than a twentieth of the torque are not checked: far below the law's
-   calibrated range (:data:`gearcontact.twin.edge_law.EDGE_LOAD_FRACTIONS`, T/4 .. T)
+   calibrated range (:data:`gearcontact.ltca.edge_law.EDGE_LOAD_FRACTIONS`, T/4 .. T)
    the LCP's approach on a 40-cell edge field nears the separation half a cell inside
    the edge (the grid's floor, 0.2-0.6 um on the 7/60 pair): at 1 % of the torque its
    exponent is 0.24 and it is 2.1 times the twin's. Measured: s0003's rows carry 10-20 %

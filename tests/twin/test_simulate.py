@@ -51,7 +51,9 @@ def test_quasi_static_limit_is_the_loaded_te(s0003_twin):
     pair, tca, flanks, _ = s0003_twin
     mesh = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS,
                       edge_law=False)
-    lte = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS)
+    # the untruncated law on both sides (loaded_te's default takes the edge law, as the
+    # twin's default mesh does: tests/ltca/test_edge_rows.py, tests/twin/test_edge_law.py)
+    lte = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, edge_law=False)
     # shafts well damped so that the start transient dies within the first pitch; the
     # mesh damper kept small (its torque c_m l^2 eps' omega shifts the balance)
     dt = replace(default_drivetrain(pair), input_damping_ratio=0.3, output_damping_ratio=0.3,

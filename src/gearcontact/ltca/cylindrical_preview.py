@@ -3,13 +3,18 @@ phase and loaded tooth pair (docs/cylindrical.md sec. 8).
 
 Per phase of the unloaded cycle and tooth pair carrying load: the pair's 7 x 7 gap
 stencil at the least-gap point of its contact line (:mod:`gearcontact.tca.
-cylindrical_stencil`), its load ``W`` and the length ``L`` of its contact line in the
-zone of action go through the *line chain* of the datapath (:func:`gearcontact.preview.
+cylindrical_stencil`), its load ``W`` and the loaded length ``L_c`` of its contact line
+go through the *line chain* of the datapath (:func:`gearcontact.preview.
 chain.chain_line_reference`, ``chain_line_golden``; the fit core into the line core of
 stage D, :mod:`gearcontact.preview.hertz.line`): the curvature fit, then the Hertz
-ellipse where it fits the line or else the Hertz line contact of length ``L`` (Johnson
+ellipse where it fits the line or else the Hertz line contact of length ``L_c`` (Johnson
 1985 sec. 4.3), which is what the unmodified and the lightly crowned flanks of a spur
-or helical pair give. Every backend of :mod:`gearcontact.preview.engine` evaluates the
+or helical pair give. ``L_c`` is the twin's (:mod:`gearcontact.twin.line_law`): the
+slice law (:func:`.slice_law.loaded_line`) at ``W`` on the ease-off along the line
+(crowning, relief, misalignment; :func:`.slice_law.line_easeoff_mm`) across the fitted
+curvature ``B_max`` (the fp64 stage C of the stencil), the part of the line's length
+``L`` in the zone of action whose gap the approach closes; ``L_c = L`` on a flat line.
+A saddle fit (``B_max <= 0``) keeps ``L``. Every backend of :mod:`gearcontact.preview.engine` evaluates the
 same stencils (``reference``: fp64; ``golden``: the bit-exact fixed point; ``rtl`` once
 :mod:`gearcontact.hw.backends` is imported: the ChainLineCore in simulation).
 
@@ -30,14 +35,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
+from ..materials import effective_modulus_mpa
 from ..preview.engine import PreviewResult, get_engine
+from ..preview.fit.pinv import baked_pinv
+from ..preview.fit.reference import principal_curvatures
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, cylindrical_mesh_cycle
 from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
 from ..errors import BadInput
 from ..validation import InputRangeError
 from .cylindrical_lte import CylindricalLoadedTE, normal_load_n
+from .slice_law import line_easeoff_mm, loaded_length_mm
 
-__all__ = ["CylindricalPreview", "cylindrical_preview", "pair_loads_n"]
+__all__ = ["CylindricalPreview", "cylindrical_preview", "loaded_lengths_mm", "pair_loads_n"]
 
 
 @dataclass(frozen=True)
@@ -59,6 +68,9 @@ class CylindricalPreview:
     loaded : ndarray (P, K) of bool
     stencils : CylindricalStencils
         The inputs (stencils, exact curvatures, line lengths).
+    loaded_length_mm : ndarray (P, K)
+        ``L_c`` of the slice law at each evaluated entry (module docstring), mm; NaN
+        elsewhere.
     results : dict
         Backend name -> nested list (P rows of K) of :class:`PreviewResult` or None.
     errors : dict
@@ -71,6 +83,7 @@ class CylindricalPreview:
     load_n: np.ndarray
     loaded: np.ndarray
     stencils: CylindricalStencils
+    loaded_length_mm: np.ndarray
     results: dict = field(repr=False)
     errors: dict = field(default_factory=dict)
 
@@ -160,6 +173,7 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
     loads, source = pair_loads_n(stencils, load, loaded_te)
     loaded = stencils.valid & (loads >= min_share * load) & (loads > 0.0)
     n_p, n_k = loaded.shape
+    l_c = loaded_lengths_mm(pair, cycle, stencils, loads, loaded)
     results: dict[str, list[list[PreviewResult | None]]] = {}
     errors: dict[tuple[str, int, int], str] = {}
     for name, engine in engines.items():
@@ -167,10 +181,30 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
         for j, k in zip(*np.nonzero(loaded)):
             try:
                 rows[j][k] = engine.stencil(stencils.gaps_mm[j, k], float(loads[j, k]),
-                                            line_length_mm=float(stencils.line_length_mm[j, k]))
+                                            line_length_mm=float(l_c[j, k]))
             except BadInput as exc:       # outside this backend's domain: a result
                 errors[(name, int(j), int(k))] = str(exc)
         results[name] = rows
     return CylindricalPreview(torque_nm=float(torque_nm), normal_load_n=load,
                               load_source=source, load_n=np.where(loaded, loads, 0.0),
-                              loaded=loaded, stencils=stencils, results=results, errors=errors)
+                              loaded=loaded, stencils=stencils, loaded_length_mm=l_c,
+                              results=results, errors=errors)
+
+
+def loaded_lengths_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle,
+                      stencils: CylindricalStencils, loads_n: np.ndarray,
+                      loaded: np.ndarray) -> np.ndarray:
+    """``L_c`` (P, K), mm, of every ``loaded`` entry at its load (module docstring): the
+    slice law (:func:`.slice_law.loaded_length_mm`) on the line's ease-off across the
+    fp64 stage C's larger curvature of the stencil (the twin's inputs, row for row:
+    :func:`gearcontact.twin.model.build_model`); NaN elsewhere."""
+    ease, _ = line_easeoff_mm(pair, cycle, stencils.valid)
+    coeff = np.asarray(stencils.gaps_mm, float) @ baked_pinv().weights[3:6].T
+    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
+    out = np.full(loaded.shape, np.nan)
+    for j, k in zip(*np.nonzero(loaded)):
+        length = float(stencils.line_length_mm[j, k])
+        b_max = max(principal_curvatures(*map(float, coeff[j, k]))[:2])
+        out[j, k] = (loaded_length_mm(ease[j, k], length, float(loads_n[j, k]), b_max,
+                                      e_prime)[1] if b_max > 0.0 else length)
+    return out

@@ -32,9 +32,14 @@ field, i.e. approach ``l_j theta - g_j`` from its own contact); the torque balan
   previous phase;
 * **preview** (``TE_pre``): Hamrock–Brewe Hertz per pair from its own relative
   curvatures (an edge pair: those of its nearest interior mating point, with the
-  opening of its posed field and no truncation at the edge; ``preview_edges``), ``delta_j(W) = kappa_j W^(2/3)`` (:func:`~gearcontact.analytic.hertz.
-  hamrock_brewe_hertz`), i.e. ``W_j = ((l_j theta - g_j)_+ / kappa_j)^(3/2)``; the
-  balance is a monotone scalar equation in ``theta`` solved by Brent's method.
+  opening of its posed field; ``preview_edges``), ``delta_j(W) = c_j kappa_j W^(2/3)``
+  (:func:`~gearcontact.analytic.hertz.hamrock_brewe_hertz`), i.e. ``W_j = ((l_j theta
+  - g_j)_+ / (c_j kappa_j))^(3/2)``; the balance is a monotone scalar equation in
+  ``theta`` solved by Brent's method. ``c_j = 1`` except where a flank boundary cuts
+  the pair's patch (an edge pair, the TCA's edge contact, an ellipse leaving the
+  flank): there ``c_j`` is the twin's LCP-calibrated compliance scale
+  (:mod:`.edge_rows`, :mod:`.edge_law`; ``edge_law=False``: the untruncated law), so
+  that ``TE_pre`` is the twin's static law (docs/twin.md "Edge contact").
 
 Sign convention: TE keeps the TCA's sign (``TE = (phi2 - phi2_0) - (z1/z2)(phi1 -
 phi1_0)``). The loaded gear lags the unloaded one by ``theta`` towards the open pairs, so
@@ -87,7 +92,7 @@ from ..validation import InputRangeError, check_positive, check_range
 from ..halfspace.result import SolveStatus
 from .lte_pairs import PairContact, PairFields, phase_contacts
 from .lte_phase import (ACTIVE_SHARE, check_loaded, check_pair_window, field_edge_reached,
-                        preview_balance, reference_compliances, solve_phase)
+                        preview_edge_balance, reference_compliances, solve_phase)
 from .pair_ltca import ARCSEC_PER_RAD
 
 __all__ = ["LoadedTE", "PairContact", "loaded_te"]
@@ -150,6 +155,9 @@ class LoadedTE:
         at the reference lever: ``k / l_0^2``.
     timings_s : dict
         Wall-clock seconds per stage.
+    compliance_scale_pre : ndarray (P, K) or None
+        ``c_j`` of the preview's law per pair and phase (1 where Hertz; module
+        docstring); None: ``edge_law=False``.
     """
 
     torque_nm: float
@@ -183,6 +191,7 @@ class LoadedTE:
     stiffness_rigid_nm_per_rad: np.ndarray | None = None
     stiffness_bending_nm_per_rad: np.ndarray | None = None
     timings_s: dict = field(default_factory=dict)
+    compliance_scale_pre: np.ndarray | None = None
 
     def mesh_stiffness_n_per_mm(self, k_nm_per_rad: np.ndarray) -> np.ndarray:
         """A mesh stiffness (N·m/rad) along the normal at the reference lever ``l_0``:
@@ -228,6 +237,9 @@ class LoadedTE:
                 "compliance_pre_mm_per_n": self.compliance_pre_mm_per_n,
                 "mesh_compliance_lcp_mm_per_n": self.mesh_compliance_lcp_mm_per_n,
                 "mesh_compliance_pre_mm_per_n": self.mesh_compliance_pre_mm_per_n,
+                "preview_law": "hertz" if self.compliance_scale_pre is None else
+                               "edge law (LCP-calibrated c where a flank boundary cuts)",
+                **self._scale_summary(),
                 "mean_rotation_lcp_arcsec": float(self.rotation_lcp_arcsec.mean()),
                 "mean_rotation_pre_arcsec": float(self.rotation_pre_arcsec.mean()),
                 "reference_rotation_lcp_arcsec": float(self.rotation_lcp_arcsec[k0]),
@@ -248,6 +260,17 @@ class LoadedTE:
                 "solve_ms_per_phase": float(self.solve_ms.mean()),
                 "field_ms_per_phase": float(self.field_ms.mean()),
                 "timings_s": dict(self.timings_s)}
+
+    def _scale_summary(self) -> dict:
+        """Loaded (pair, phase) entries of the preview whose law is scaled, and the
+        range of their ``c``."""
+        if self.compliance_scale_pre is None:
+            return {}
+        c = self.compliance_scale_pre[(self.pair_loads_pre_n > 0.0)
+                                      & (self.compliance_scale_pre != 1.0)]
+        return {"preview_scaled_entries": int(c.size),
+                "preview_scale_min": float(c.min()) if c.size else 1.0,
+                "preview_scale_max": float(c.max()) if c.size else 1.0}
 
     def _stiffness_summary(self) -> dict:
         out = {}
@@ -294,7 +317,7 @@ class LoadedTE:
 def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
-              edge_reach: float = 0.5, preview_edges: bool = True,
+              edge_reach: float = 0.5, preview_edges: bool = True, edge_law: bool = True,
               bending=None, stiffness: bool = False, progress: bool = False) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
@@ -329,8 +352,13 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
     preview_edges : bool
         Give the edge pairs to the preview too, as Hertzian contacts with the
         curvatures of their nearest interior mating point and the opening of their posed
-        field (no truncation at the edge); False: the preview sees only pairs with a
-        mating point.
+        field; False: the preview sees only pairs with a mating point.
+    edge_law : bool
+        The preview's law at a contact whose patch a flank boundary cuts (an edge pair,
+        the TCA's edge contact, a surface contact whose ellipse leaves the flank): Hertz
+        with the approach scaled by the LCP-calibrated ``c`` of
+        :func:`.edge_rows.compliance_scale`, the twin's law (module docstring); False:
+        the untruncated Hertz law there too.
     stride : int
         Use every ``stride``-th phase of the cycle (>= 1), plus the last one and P0: a
         cheaper LTE on a fine TCA (e.g. 61 TCA phases, stride 6 -> 11 LTE phases).
@@ -390,6 +418,8 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
     models = ([(True, np.zeros(n_k))] + ([(False, np.zeros(n_k))] if bending is not None
                                           else [])) if stiffness else []
     warm: dict = {}
+    laws: dict = {}
+    scale_pre = np.ones((n_p, n_k))
     k_ref = int(np.flatnonzero(sel == cycle.mean_index)[0])
     ref = None
     for k in tqdm(range(n_k), desc=f"LTE {t:g} N·m", disable=not progress, leave=False):
@@ -399,10 +429,9 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
                                    curv, edge_steps)]
         valid = contacts if preview_edges else [pc for pc in contacts if not pc.edge]
         considered[[row[pc.offset] for pc in contacts], k] = True
-        lv = np.array([pc.lever_mm for pc in valid])
-        gs = np.array([pc.offset_mm for pc in valid])
-        kap = np.array([pc.kappa_mm_per_n23 for pc in valid])
-        th_pre, wp = preview_balance(lv, gs, kap, torque)
+        valid, scales, th_pre, wp = preview_edge_balance(
+            valid, fields, torque, materials=materials, cache=laws if edge_law else None)
+        scale_pre[[row[pc.offset] for pc in valid], k] = scales
         res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials,
                                                 tol=tol, warm=warm, theta_pre=th_pre)
         field_ms[k] = 1e3 * (fields.seconds - f0)
@@ -459,4 +488,5 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         field_ms=field_ms, reference_index=int(k_ref), cells=int(cells),
         bending=bending is not None, timings_s=timings,
         stiffness_rigid_nm_per_rad=models[0][1] if models else None,
-        stiffness_bending_nm_per_rad=models[1][1] if len(models) > 1 else None, **comp)
+        stiffness_bending_nm_per_rad=models[1][1] if len(models) > 1 else None,
+        compliance_scale_pre=scale_pre if edge_law else None, **comp)

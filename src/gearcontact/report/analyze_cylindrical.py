@@ -14,6 +14,7 @@ readable summary (docs/cylindrical.md sec. 9).
 ``lte.png``, ``harris_map.png``            beside ISO 6336-1 Method B, and the Harris map
                                            (``report.cylindrical_lte``)
 ``preview.csv``                            per phase and loaded pair: load, line length,
+                                           loaded length ``L_c`` (the twin's slice law),
                                            exact and fitted curvatures, the fp64 and golden
                                            line chain (mode, p_max, b, flags) beside the
                                            LCP's peak pressure on that line
@@ -80,7 +81,8 @@ def _preview_rows(pv: CylindricalPreview, lte: CylindricalLoadedTE) -> list[list
                 continue
             gold = pv.results["golden"][j][k]
             rows.append([float(phi[k]), off, float(pv.load_n[j, k]),
-                         float(st.line_length_mm[j, k]), float(st.A_minus_per_mm[j, k]),
+                         float(st.line_length_mm[j, k]), float(pv.loaded_length_mm[j, k]),
+                         float(st.A_minus_per_mm[j, k]),
                          float(st.B_minus_per_mm[j, k]), bool(st.on_flank[j, k]),
                          float(vals["reference"]["A_minus_per_mm"][j, k]),
                          float(vals["reference"]["B_minus_per_mm"][j, k])]
@@ -92,7 +94,8 @@ def _preview_rows(pv: CylindricalPreview, lte: CylindricalLoadedTE) -> list[list
     return rows
 
 
-_PREVIEW_HEADER = (["phi1_deg", "pair", "load_n", "line_length_mm", "A_minus_exact_per_mm",
+_PREVIEW_HEADER = (["phi1_deg", "pair", "load_n", "line_length_mm", "loaded_length_mm",
+                    "A_minus_exact_per_mm",
                     "B_minus_exact_per_mm", "stencil_on_flank", "A_minus_fit_per_mm",
                     "B_minus_fit_per_mm"]
                    + [f"{b}_{n}" for b in BACKENDS for n in ("mode", "p_max_mpa", "b_mm")]
@@ -177,8 +180,9 @@ def _summary_md(pair, side, facing, h, harris) -> str:
         f"| preview modes (fp64; golden) | {', '.join(h['preview_modes']['reference'])}; "
         f"{', '.join(h['preview_modes']['golden'])} |",
         "", "The preview is the datapath's line chain (stage C fit -> line core of stage D) "
-        "on each loaded pair's 7 x 7 stencil with its LCP load share and contact-line "
-        "length; the LCP peak includes the finite line's end effects, which the preview's "
+        "on each loaded pair's 7 x 7 stencil with its LCP load share and the loaded "
+        "length L_c of its contact line (the twin's slice law on the ease-off along the "
+        "line); the LCP peak includes the finite line's end effects, which the preview's "
         "uniform line does not (docs/cylindrical.md sec. 8).", "",
         "## Harris map: loaded TE p-p (arcsec)", "",
         "| C_a µm | TE0 p-p | " + " | ".join(f"{t:g} N·m" for t in harris.torques_nm) + " |",

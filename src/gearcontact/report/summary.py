@@ -68,13 +68,15 @@ def _lte_section(lte, pub: dict) -> list[str]:
     out = [f"## Loaded transmission error at {lte.torque_nm:g} N·m ({teeth})", "",
            f"{len(lte.phi1_rad)} phases over one pinion pitch; every tooth pair within reach "
            "with its own gap field, one shared gear rotation, torque balance; TE_pre from "
-           "the Hamrock–Brewe approach of each pair.", ""]
+           "the Hamrock–Brewe approach of each pair, scaled where a flank boundary cuts "
+           "its patch by the LCP-calibrated compliance of the twin's edge law.", ""]
     out.append(md_table(["quantity", "ours", "published"], lte_rows(lte, pub)))
     return out + [
         "", "The contact compliance is d(delta)/dW of the transmitting pair alone; the mesh "
         "compliance lets the neighbouring pairs share the torque. Pairs up to half a pitch "
         "beyond the ends of their contact path stay in as edge contacts (LCP: field trimmed "
-        "at the flank boundary; preview: Hertzian with the nearest interior curvatures).",
+        "at the flank boundary; preview: Hertzian with the nearest interior curvatures, "
+        "its approach scaled by the edge law's c).",
         "",
         "Figure: ![loaded TE](lte.png)", ""]
 

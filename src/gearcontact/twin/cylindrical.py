@@ -56,13 +56,13 @@ import numpy as np
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
+from ..ltca.slice_law import line_easeoff_mm
 from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
 from ..tca.cylindrical_cycle import (FACING_OF_SIDE, CylindricalMeshCycle, LineGaps,
                                      contact_line_gaps, cylindrical_mesh_cycle)
 from ..tca.parallel_axes import parallel_kinematics
-from ..tca.cylindrical_stencil import (LINE_SLICES, CylindricalStencils, contact_line_slices,
-                                       cylindrical_stencils)
+from ..tca.cylindrical_stencil import LINE_SLICES, CylindricalStencils, cylindrical_stencils
 from ..tca.types import ARCSEC_PER_RAD
 from ..errors import CheckFailed
 from ..validation import InputRangeError, check_positive
@@ -149,11 +149,7 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     st = stencils if stencils is not None else cylindrical_stencils(pair, cycle)
     m = motion_sign(pair, cycle)
     order = _order(m, len(cycle.phi1_rad))
-    sl = contact_line_slices(pair, cycle, slices=slices)
-    cos_b = math.cos(math.radians(pair.geometry.base_helix_angle_deg))
-    ease = np.where(st.valid[..., None], cos_b * (sl.gap_mm - cycle.gap_min_mm[..., None]), 0.0)
-    if not np.isfinite(ease).all():
-        raise CheckFailed("a contact line's slices left it (docs/cylindrical.md sec. 10)")
+    ease, sl = line_easeoff_mm(pair, cycle, st.valid, slices=slices)
     gram, cb = None, np.zeros(st.valid.shape)
     if bending is not None:
         gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl), 0.0)

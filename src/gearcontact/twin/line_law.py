@@ -34,9 +34,10 @@ of the line law, so that a flat line is the uniform line exactly)::
 
 On a crowned line (gap ``A y^2``) this is the exact elongated Hertz ellipse's approach
 within -3.2 % (as the uniform line against the LCP of a finite cylinder) with a loaded
-length 1.08 x Hertz's ``2 a`` (tests/twin/test_line_law.py). Per preview (once per pair
-and step, at ``W_e``) :func:`_loaded_line` solves it for ``d_c`` and ``L_c``; the line
-chain runs on ``L_c`` (stage D's ``L`` input: golden and RTL see the same code), and the
+length 1.08 x Hertz's ``2 a`` (tests/ltca/test_slice_law.py). Per preview (once per
+pair and step, at ``W_e``) the slice law (:func:`gearcontact.ltca.slice_law.loaded_line`,
+the function ``analyze``'s cylindrical preview evaluates too) solves it for ``d_c`` and
+``L_c``; the line chain runs on ``L_c`` (stage D's ``L`` input: golden and RTL see the same code), and the
 step's law is ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) =
 lambda' W (...)``, ``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by
 ``h_bar``, exact at ``W_e``. With tooth bending, ``c_b`` is the work-conjugate
@@ -74,6 +75,7 @@ from numba import njit
 
 from ..analytic.hertz import line_contact_terms
 from ..contract.qformat import CURVATURE
+from ..ltca.slice_law import interference, loaded_line
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
 from ..preview.fit.golden_vec import fit_element
 from ..preview.hertz.line_vec import line_constants, line_element
@@ -180,97 +182,6 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _interference(pv, n, width, d, shares):
-    """``(I, L_c, dL_c/dd)`` of the ease-off ``h = pv[N_PREVIEW:N_PREVIEW + n]`` (mm,
-    the slices' centres ``width`` mm apart) at the approach ``d`` (mm): ``I =
-    integral(max(d - h, 0) dy)`` (mm^2) and the loaded length ``L_c = |{h < d}|`` (mm),
-    with ``h`` linear between the centres and constant over the two end half-slices, so
-    that ``I`` is convex with ``dI/dd = L_c``. ``shares``: each slice's part of ``I``
-    (half of each segment's to either end) into ``pv[N_PREVIEW + n:]``."""
-    o = N_PREVIEW
-    area = 0.0
-    lc = 0.0
-    dens = 0.0
-    if shares:
-        for q in range(n):
-            pv[o + n + q] = 0.0
-    for q in range(n - 1):
-        a = pv[o + q]
-        b = pv[o + q + 1]
-        lo, hi = min(a, b), max(a, b)
-        if hi <= d:
-            part, t = width * (d - 0.5 * (a + b)), 1.0
-        elif lo < d:
-            t = (d - lo) / (hi - lo)
-            part = 0.5 * width * t * (d - lo)
-            dens += width / (hi - lo)
-        else:
-            continue
-        area += part
-        lc += width * t
-        if shares:
-            pv[o + n + q] += 0.5 * part
-            pv[o + n + q + 1] += 0.5 * part
-    for q in (0, n - 1):
-        h = pv[o + q]
-        if h < d:
-            area += 0.5 * width * (d - h)
-            lc += 0.5 * width
-            if shares:
-                pv[o + n + q] += 0.5 * width * (d - h)
-    return area, lc, dens
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _loaded_line(pv, n, length, we, b_max, e_prime):
-    """The slice law at the load ``we`` (N) on the ease-off in ``pv`` (module
-    docstring): ``(d_c, L_c, I)``, the contact approach (mm) at which ``F(d) = I(d) -
-    lambda' we g(L_c(d)) = 0``, ``g = ln(4 L_c / b) - 3/4`` with ``lambda' = 4 / (pi
-    E')`` and ``b = (4 we / (pi L_c E' b_max))^(1/2)`` the line contact's half-width of
-    ``we`` on ``L_c`` across ``b_max`` (1/mm), so ``g = 1.5 ln(L_c) + const``; the
-    loaded length ``L_c(d_c)`` and ``I(d_c)``. Newton on ``F`` (``F' = L_c - 1.5
-    lambda' we L_c' / L_c``) kept inside a bracket by bisection: ``F < 0`` at the least
-    gap (nothing loaded), ``F >= 0`` at ``h_max + lambda' we g(L) / L`` (every slice
-    loaded by at least that)."""
-    width = length / n
-    h_min = pv[N_PREVIEW]
-    h_max = h_min
-    for q in range(1, n):
-        h_min = min(h_min, pv[N_PREVIEW + q])
-        h_max = max(h_max, pv[N_PREVIEW + q])
-    lam_w = 4.0 * we / (math.pi * e_prime)
-    # g(L_c) = ln(4 L_c / b) - 3/4 = 1.5 ln(L_c) + c0; far below 1 N a kink's loaded
-    # length nears b (a point's regime): the log is kept >= 0.25 there
-    c0 = math.log(4.0) - 0.5 * math.log(4.0 * we / (math.pi * e_prime * b_max)) - 0.75
-    lo = h_min
-    hi = h_max + lam_w * (1.5 * math.log(length) + c0) / length
-    d = hi
-    area, lc = 0.0, length
-    for _ in range(100):
-        area, lc, dens = _interference(pv, n, width, d, False)
-        g = 1.5 * math.log(lc) + c0 if lc > 0.0 else -math.inf
-        if g < 0.25:
-            g, dg = 0.25, 0.0
-        else:
-            dg = 1.5 * dens / lc
-        r = area - lam_w * g
-        if r > 0.0:
-            hi = d
-        else:
-            lo = d
-        slope = lc - lam_w * dg
-        d_new = d - r / slope if slope > 0.0 else 0.5 * (lo + hi)
-        if not lo < d_new < hi:
-            d_new = 0.5 * (lo + hi)
-        if abs(d_new - d) <= 1e-14 * abs(d) + 1e-20 or hi - lo <= 1e-15 * abs(hi):
-            d = d_new
-            break
-        d = d_new
-    area, lc, _ = _interference(pv, n, width, d, False)
-    return d, lc, area
-
-
-@njit(cache=True, inline="always", error_model="numpy")
 def _slice_compliance(cv_t, s, j, i, f, c_g, n, pv):
     """``q^T G q`` (mm/N) of the slices' shares ``q`` (in ``pv``, scaled to a unit sum)
     on their bending Gram matrix ``G`` (columns from ``c_g``, linear between the rows):
@@ -307,7 +218,7 @@ def _contact_load(pv, n, length, d_c, b_max, e_prime, w_start):
     ln(4 L_c) - ln(4 / (pi L_c E' b_max)) / 2 - 3/4`` (the line contact's ``b`` of ``W``
     on ``L_c``), solved by :func:`line_pair_load` from ``w_start``; 0 where nothing is
     loaded."""
-    area, lc, dens = _interference(pv, n, length / n, d_c, False)
+    area, lc, dens = interference(pv, N_PREVIEW, n, length / n, d_c, False)
     if area <= 0.0 or lc <= 0.0:
         return 0.0, lc, area, 0.0
     lam = 4.0 / (math.pi * e_prime)
@@ -396,7 +307,7 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
             d_c, w0, l_c, area = _line_state(pv, n, length, d, cb, hi, ep, w0)
             if not bent or w0 <= 0.0:
                 break
-            _interference(pv, n, length / n, d_c, True)
+            interference(pv, N_PREVIEW, n, length / n, d_c, True)
             c_new = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + n, n, pv)
             done = abs(c_new - cb) <= 1e-6 * c_new
             cb = c_new
@@ -404,7 +315,7 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                 break
         if w0 < W_EVAL_MIN_N:       # barely closed: the law at the datapath's least load
             w0 = W_EVAL_MIN_N
-            d_c, l_c, area = _loaded_line(pv, n, length, w0, hi, ep)
+            d_c, l_c, area = loaded_line(pv, N_PREVIEW, n, length, w0, hi, ep)
     w0 = min(max(w0, W_EVAL_MIN_N), _W_EVAL_MAX_N)
     pv[PV_LOAD] = w0
     golden = backend != 0

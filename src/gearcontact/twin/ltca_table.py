@@ -18,7 +18,10 @@ in both limits) measured no closer on the pair's own tables (docs/cylindrical.md
   loaded TCA), the default;
 * ``"preview"`` -- the Hamrock–Brewe balance of the same pairs (``TE_pre``), the same
   contact model as the preview twin: the two twins must then agree up to the table's
-  interpolation (a test).
+  interpolation (a test). With the edge law where the mesh table has it
+  (``edge_compliance_scale``; :mod:`gearcontact.ltca.edge_rows`, calibrated at each
+  ladder torque, where the mesh table's is calibrated at its own), else the untruncated
+  law.
 """
 
 from __future__ import annotations
@@ -103,7 +106,7 @@ def torque_table(tca, flanks, pair, mesh, torque_nm: float, *, side: str = "driv
     load = np.zeros_like(theta)
     for i, f in enumerate(lad):
         res = loaded_te(tca, flanks, pair, f * t, side=side, cells=cells, bending=bending,
-                        progress=progress)
+                        edge_law=mesh.edge_compliance_scale is not None, progress=progress)
         if source == "lcp":
             if not res.converged:
                 raise CheckFailed(f"loaded TE at {f * t:g} N·m did not converge")

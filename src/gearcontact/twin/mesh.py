@@ -26,8 +26,9 @@ really touches; the curvatures (and the stencil) are those of the pair's nearest
 surface contact along its path (:func:`~gearcontact.ltca.lte_pairs.curvature_point`),
 i.e. the Hertzian law with which the surface contact reached the edge, its approach
 scaled by the row's compliance scale ``c`` from the LCP on the edge's own field
-(:mod:`.edge_law`: the edge bounds the patch, so the untruncated ellipse was 1.8-5 times
-too stiff), baked into the row as equivalent curvatures (A-, B- and stencil times
+(:mod:`gearcontact.ltca.edge_law`: the edge bounds the patch, so the untruncated
+ellipse was 1.8-5 times too stiff; the rows and ``c`` chosen by
+:mod:`gearcontact.ltca.edge_rows`, as for the loaded TE's ``TE_pre``), baked into the row as equivalent curvatures (A-, B- and stencil times
 ``c^3``) so that every backend evaluates it unchanged; ``edge_compliance_scale`` holds
 ``c`` (1 on other rows), ``edge_exponent`` the LCP's own power of the load.
 
@@ -51,7 +52,7 @@ numbering (the force is a sum over the pairs and does not care about their names
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -62,7 +63,7 @@ from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
-from .edge_law import edge_compliance, ellipse_leaves_flank, trim_compliance
+from ..ltca.edge_rows import compliance_scale, is_cut
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
@@ -134,8 +135,8 @@ class MeshTable:
         Tooth-bending Gram matrix ``G = F F^T`` of the pinion and gear shells at those
         slices (unit loads on the slices), mm/N; None for rigid teeth.
     edge_compliance_scale : ndarray (P, K) or None
-        ``c`` of each edge row (:mod:`.edge_law`; its curvatures and stencil carry
-        ``c^3``), 1 elsewhere; None: no edge row calibrated.
+        ``c`` of each edge row (:mod:`gearcontact.ltca.edge_law`; its curvatures and
+        stencil carry ``c^3``), 1 elsewhere; None: no edge row calibrated.
     edge_exponent : ndarray (P, K) or None
         Exponent ``n`` of the LCP's ``delta = C W^n`` at each calibrated row (2/3 where
         the patch stayed on the flanks; 0 where the calibration failed -- an LCP not
@@ -212,9 +213,10 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         series with the Hertzian approach in the twin's contact law); None: rigid
         teeth (zeros).
     edge_law : bool
-        Calibrate every edge row on its edge field's LCP (:mod:`.edge_law`, at
-        ``torque_nm``; about 0.1 s per row); False: the untruncated Hertzian law of the
-        nearest surface contact (the loaded TE preview's, ``TE_pre``).
+        Calibrate every edge row on its edge field's LCP
+        (:mod:`gearcontact.ltca.edge_rows`, at ``torque_nm``; about 0.1 s per row);
+        False: the untruncated Hertzian law of the nearest surface contact (the loaded
+        TE preview's with ``loaded_te(edge_law=False)``).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
@@ -257,13 +259,10 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             stencils[i, k] = sten[pc.center_index]
             if bending is not None:
                 arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
-            if edge_law and (mode[i, k] != 0 or ellipse_leaves_flank(
-                    pinion, gear, kin, replace(cycle.path.points[pc.path_index],
-                                               phi2_rad=pc.phi2_rad), pc,
-                    torque_nmm=1e3 * t, e_prime_mpa=e_prime)):
+            if edge_law and is_cut(fields, pc, torque_nmm=1e3 * t):
                 edges[i, k] = pc
     scale, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
-    factor = scale ** 3         # equivalent curvatures (.edge_law)
+    factor = scale ** 3         # equivalent curvatures (gearcontact.ltca.edge_law)
     arrays["A"] *= factor
     arrays["B"] *= factor
     stencils *= factor[..., None]
@@ -296,24 +295,16 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
 
 def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: float
                      ) -> tuple[np.ndarray, np.ndarray]:
-    """``(c, n)`` per row: :func:`.edge_law.edge_compliance` of each edge or posed-field
-    row's contact in ``edges``, :func:`.edge_law.trim_compliance` of each surface row's,
-    once per path index; 1 and NaN elsewhere."""
+    """``(c, n)`` per row: :func:`gearcontact.ltca.edge_rows.compliance_scale` of each
+    row's contact in ``edges`` (the law ``TE_pre`` takes too), once per path index; 1
+    and NaN elsewhere."""
     scale, expo = np.ones(edges.shape), np.full(edges.shape, np.nan)
     done: dict = {}
     materials = (pair.pinion_material, pair.gear_material)
     for (i, k), pc in np.ndenumerate(edges):
-        if pc is None:
-            continue
-        if pc.path_index not in done:
-            edge = pc.edge or bool(fields.path.points[pc.path_index].edge_contact)
-            try:
-                law = (edge_compliance if edge else trim_compliance)(
-                    fields, pc, materials=materials, torque_nmm=torque_nmm)
-                done[pc.path_index] = (law.scale, law.exponent)
-            except ArithmeticError:     # no founded calibration: Hertz, n = 0 says so
-                done[pc.path_index] = (1.0, 0.0)
-        scale[i, k], expo[i, k] = done[pc.path_index]
+        if pc is not None:
+            scale[i, k], expo[i, k] = compliance_scale(fields, pc, materials=materials,
+                                                       torque_nmm=torque_nmm, cache=done)
     return scale, expo
 
 

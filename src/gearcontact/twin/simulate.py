@@ -274,7 +274,7 @@ EDGE_CONTACT_LAW = ("opening and lever of the edge contact (edge-contact TCA); H
                     "scaled by the LCP on the edge's own field (the patch bounded by the "
                     "edge; surface rows whose ellipse a flank boundary cuts likewise, "
                     "against their untrimmed field), baked in as equivalent curvatures "
-                    "(twin.edge_law)")
+                    "(ltca.edge_law)")
 
 
 def _mode_summary(model: TwinModel) -> dict:
