@@ -351,7 +351,7 @@ def test_end_loaded_line_against_the_closed_form(misaligned_spur, incl):
     approach = [abs(r.te0_arcsec[k] - r.lte_arcsec[k]) / 206264.806 * lever for r in runs]
     for r in runs:
         assert not r.edge_touch and r.converged
-        assert r.line_end_loaded[j, k] and r.peak_at_line_end[k]
+        assert r.line_end_loaded[j, k] and r.peak_at_edge[k]
         dz = r.z_mm[1] - r.z_mm[0]
         assert r.line_load_n_per_mm[j, k].sum() * dz == pytest.approx(r.normal_load_n, rel=1e-9)
     coarse = runs[0].z_mm[1] - runs[0].z_mm[0]

@@ -26,7 +26,7 @@ import time
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..halfspace.result import SolveStatus
-from ..ltca.cylindrical_lte import (cylindrical_loaded_te_models, harris_map,
+from ..ltca.cylindrical_lte import (STRIP_TOO_NARROW, cylindrical_loaded_te_models, harris_map,
                                     harris_tip_reliefs_um, harris_torques_nm)
 from ..ltca.lte import loaded_te
 from ..errors import CheckFailed
@@ -95,8 +95,7 @@ def run_cylindrical(args) -> int:
           f"{len(harris.tip_reliefs_um)} x {len(harris.torques_nm)} -> "
           f"{final_path(args, args.out)}")
     if res.edge_touch or harris.edge_touch:
-        warn("lte", "loaded cells on the edge of the strip across a line: the strip is "
-                    "too narrow for this load")
+        warn("lte", STRIP_TOO_NARROW)
     if not (res.converged and harris.converged and (rigid is None or rigid.converged)):
         raise CheckFailed("LCP not converged")   # the files stay
     return 0

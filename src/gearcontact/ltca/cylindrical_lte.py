@@ -36,8 +36,8 @@ load; where a loaded cell then lies on its border, it is widened (to twice, or t
 :func:`~gearcontact.analytic.face_load.end_loaded_line`) and the cycle solved again, at
 most :data:`MAX_WIDENINGS` times (``edge_touch`` then says it stayed too narrow).
 Line ends: a line loaded in its end row (``line_end_loaded``) ends at a sharp edge of
-the half-space model, where the pressure is singular (a flat punch's edge): the peak
-pressure there (``peak_at_line_end``) and the end row's line load grow with the rows
+the half-space model, where the pressure is singular (a flat punch's edge), as on a
+tip-edge block: the peak pressure there (``peak_at_edge``) and the end row's line load grow with the rows
 (about 2^(1/2) per halving), while the loaded length (``loaded_length_mm``) and the
 approach converge (docs/cylindrical.md sec. 7, "End-loaded lines").
 
@@ -82,7 +82,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..analytic.face_load import end_loaded_line
+from ..analytic.face_load import EndLoadedLine, end_loaded_line
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
@@ -97,7 +97,8 @@ from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
            "axial_rows_mm", "check_cells", "cylindrical_loaded_te", "cylindrical_loaded_te_models",
-           "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n"]
+           "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n",
+           "wedge_line", "END_PEAK_MARGIN", "MAX_WIDENINGS", "STRIP_TOO_NARROW"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -109,6 +110,14 @@ END_PEAK_MARGIN = 2.0
 #: Times the strip is widened (and the cycle solved again) while a loaded cell lies on
 #: its border.
 MAX_WIDENINGS = 3
+#: What the commands tell the user when ``edge_touch`` stays set (one line on stderr).
+STRIP_TOO_NARROW = (
+    f"loaded cells on the border of the strip across a contact line after widening it "
+    f"{MAX_WIDENINGS} times: the LCP cuts the contact off across there (pressure and line "
+    "load too low in those rows; line_load.csv shows where). The load is concentrated "
+    "far above its mean, as on a line end-loaded by misalignment: reduce [assembly] "
+    "axis_inclination_um / axis_deviation_um, or centre the load with [modifications."
+    "pinion] lead_crowning_um or a helix_slope_um that cancels the misalignment")
 
 
 def normal_load_n(pair: CylindricalPair, torque_nm: float) -> float:
@@ -194,10 +203,11 @@ class CylindricalLoadedTE:
         The line carries load in its end row at either end (a face end, or where a tip
         or form circle cuts it): a sharp end of the contact (module docstring, "Line
         ends").
-    peak_at_line_end : ndarray (K,) of bool
-        The phase's largest pressure lies in such an end row: a sharp end's singular
-        pressure, which grows with refinement (``max_pressure_mpa`` is then no design
-        value; the loaded length and the approach converge).
+    peak_at_edge : ndarray (K,) of bool
+        The phase's largest pressure lies in such an end row or on a tip-edge block: a
+        sharp edge's singular pressure, which grows with refinement
+        (``max_pressure_mpa`` is then no design value; the loaded length and the
+        approach converge).
     """
 
     phi1_rad: np.ndarray
@@ -224,7 +234,7 @@ class CylindricalLoadedTE:
     lever_mm: np.ndarray | None = None
     loaded_length_mm: np.ndarray | None = None
     line_end_loaded: np.ndarray | None = None
-    peak_at_line_end: np.ndarray | None = None
+    peak_at_edge: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -274,27 +284,38 @@ def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n
 
 def end_loaded_peak_n_per_mm(lines: LineGaps, load_n: float, radius_mm: float,
                              e_star: float, cos_beta_b: float) -> float:
-    """The largest peak line load (N/mm) of :func:`~gearcontact.analytic.face_load.
-    end_loaded_line` over the lines of ``lines`` that it finds end-loaded, each carrying
-    the whole ``load_n`` (N) with the relative radius ``radius_mm`` across it: the
-    normal gap's least-squares slope along the line from its closed end (the
-    misalignment's wedge; a crowned line's is less). 0 where no line is end-loaded."""
+    """The largest peak line load (N/mm) of :func:`wedge_line` over the lines of
+    ``lines``, each carrying the whole ``load_n`` (N) with the relative radius
+    ``radius_mm`` across it; 0 where no line is end-loaded."""
     z = np.broadcast_to(lines.z_mm, lines.gap_mm.shape)
     peak = 0.0
     for j, k in zip(*np.nonzero(np.isfinite(lines.gap_mm).sum(axis=-1) >= 2)):
         on = np.isfinite(lines.gap_mm[j, k])
         y = z[j, k][on] / cos_beta_b
-        h = cos_beta_b * lines.gap_mm[j, k][on]
-        slope = abs(float(np.polyfit(y, h, 1)[0]))
-        length = float(y.max() - y.min()) + (y[1] - y[0] if y.size > 1 else 0.0)
-        try:
-            res = end_loaded_line(load_n=load_n, slope=slope, length_mm=length,
-                                  b_max_per_mm=0.5 / radius_mm, e_prime_mpa=2.0 * e_star)
-        except InputRangeError:      # steeper than the line law: a point's contact
-            continue
-        if res.end_loaded:
+        res = wedge_line(y, cos_beta_b * lines.gap_mm[j, k][on],
+                         float(y[-1] - y[0] + (y[1] - y[0])), load_n=load_n,
+                         b_max_per_mm=0.5 / radius_mm, e_prime_mpa=2.0 * e_star)
+        if res is not None and res.end_loaded:
             peak = max(peak, res.peak_line_load_n_per_mm)
     return peak
+
+
+def wedge_line(y_mm: np.ndarray, gap_mm: np.ndarray, length_mm: float, *, load_n: float,
+               b_max_per_mm: float, e_prime_mpa: float) -> EndLoadedLine | None:
+    """The end-loaded line's closed form (:func:`~gearcontact.analytic.face_load.
+    end_loaded_line`) of a line whose normal gap ``gap_mm`` (mm, at the positions
+    ``y_mm`` along it, ascending) is least at one of its ends: the gap's least-squares
+    slope from that end (the misalignment's wedge; crowning leaves less). None where the
+    least gap lies inside the line (crowning or relief centre the load) or the slope
+    leaves the line law's range (a point's contact)."""
+    if gap_mm.size < 2 or int(np.argmin(gap_mm)) not in (0, gap_mm.size - 1):
+        return None
+    slope = abs(float(np.polyfit(y_mm, gap_mm, 1)[0]))
+    try:
+        return end_loaded_line(load_n=load_n, slope=slope, length_mm=length_mm,
+                               b_max_per_mm=b_max_per_mm, e_prime_mpa=e_prime_mpa)
+    except InputRangeError:
+        return None
 
 
 def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
@@ -418,6 +439,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                 loaded_len[j, k] = hit.sum() * dz / cb
                 end_loaded[j, k] = bool(hit[ends].any())
                 end_peak[k] |= end_loaded[j, k] and float(press[i][ends].max()) >= pmax[k]
+            end_peak[k] |= any(float(p.max()) >= pmax[k] for p in press[len(lines):])
             rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
             # the gear lags (TE0 < 0 on the cw facing): the load turns it further the same way
             lte[k] = (cycle.envelope_arcsec[k]
@@ -436,7 +458,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
         edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers,
-        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_line_end=end_peak)
+        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak)
 
 
 def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,
