@@ -6,7 +6,6 @@ end as a wedge (docs/cylindrical.md sec. 7, "End-loaded lines")."""
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from gearcontact.geometry.cylindrical.pair import MeshAlignment
@@ -17,6 +16,8 @@ from gearcontact.tca.types import ARCSEC_PER_RAD
 from gearcontact.twin.cylindrical import cylindrical_mesh_table
 from gearcontact.twin.params import default_drivetrain
 from gearcontact.twin.simulate import build_model
+
+from .test_line_law import _pitch_point_rotation
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 TORQUE_NM = 64.5
@@ -33,22 +34,12 @@ def test_end_loaded_pitch_point_rotation_against_the_lcp(incl_um):
     1.4 % (tests/ltca/test_cylindrical_lte.py): bound LCP / twin within 4 % (measured
     0.988 / 0.979 at 100 / 300 um; the aligned line's 1.033 is the finite cylinder's
     sharp ends, tests/twin/test_line_law.py)."""
-    from gearcontact.twin.model import _prm
-    from gearcontact.twin.statics import _elastic
-
     pair = load_pair(EXAMPLES / "spur_20x40_m3.toml", kinds=("cylindrical",))
     pair = replace(pair, assembly=MeshAlignment(axis_inclination_um=incl_um))
     cycle = cylindrical_mesh_cycle(pair, phases=3)
-    mesh = cylindrical_mesh_table(pair, cycle)
-    model = build_model(mesh, default_drivetrain(pair), TORQUE_NM, backend="reference",
-                        curvatures="line")
-    prm = _prm(model, 0.0)
-    w = 1e3 * TORQUE_NM / mesh.reference_lever_mm
-    lo, hi = 0.0, 1e-3
-    for _ in range(100):
-        mid = 0.5 * (lo + hi)
-        t, _ = _elastic(model, prm, mid, mesh.psi_rad[1], w_eval=np.full(3, w))
-        lo, hi = (mid, hi) if t < TORQUE_NM else (lo, mid)
+    model = build_model(cylindrical_mesh_table(pair, cycle), default_drivetrain(pair),
+                        TORQUE_NM, backend="reference", curvatures="line")
+    hi = _pitch_point_rotation(model, TORQUE_NM)
     lte = cylindrical_loaded_te(pair, TORQUE_NM, cycle=cycle, cells_along=64, bending=False)
     assert lte.line_end_loaded[:, 1].any() and not lte.edge_touch
     want = abs(lte.te0_arcsec[1] - lte.lte_arcsec[1]) / ARCSEC_PER_RAD
