@@ -445,6 +445,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             lte[k] = (cycle.envelope_arcsec[k]
                       - math.copysign(res.rotation_rad, rate) * ARCSEC_PER_RAD)
             stiff[k] = load / (lever * res.rotation_rad * 1e3 * g.face_width_mm)
+            if edge and widened < MAX_WIDENINGS:
+                break                   # the strip is widened: the phases start again
         if not edge or widened == MAX_WIDENINGS:
             break
         # a loaded cell on the strip's border (an end-loaded line's peak): widen, solve again
