@@ -17,10 +17,10 @@ from gearcontact.validation import InputRangeError
 W, B_MAX, E_PRIME = 1144.0, 0.0731, 2.0 * 210000.0 / (2.0 * (1.0 - 0.3 ** 2))
 
 
-def _springs(w_m, f_um, c, b=20.0, n=200_001):
+def _springs(w_m, f_um, c, b=20.0, n=40_001):
     """Linear springs c (N/(mm·µm)) over the face b (mm), gap f y / b (µm), mean line
-    load w_m: the approach d by bisection on the total load, then (peak / mean, loaded
-    fraction) on n points (trapezoid rule)."""
+    load w_m: the approach d by bisection on the total load (60 halvings), then (peak /
+    mean, loaded fraction) on n points (trapezoid rule)."""
     y = np.linspace(0.0, b, n)
     total = w_m * b
 
@@ -29,7 +29,7 @@ def _springs(w_m, f_um, c, b=20.0, n=200_001):
         return np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(y)), w
 
     lo, hi = 0.0, f_um + total / (c * b)
-    for _ in range(200):
+    for _ in range(60):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if load(mid)[0] < total else (lo, mid)
     w = load(0.5 * (lo + hi))[1]
@@ -40,14 +40,14 @@ def _springs(w_m, f_um, c, b=20.0, n=200_001):
 @pytest.mark.parametrize("f_um", [0.0, 5.0, 11.44, 30.0, 120.0])
 def test_iso_face_load_factor_is_the_linear_springs(f_um):
     """K_Hbeta and b_cal / b of ISO 6336-1 (both branches, and x = 1 where they meet at
-    K = 2) against the springs integrated on 200,001 points: the trapezoid's and the
-    grid's error, 1e-4 relative (the loaded end lies between two points)."""
+    K = 2) against the springs integrated on 40,001 points: the trapezoid's and the
+    grid's error, 2e-4 relative (the loaded end lies between two points 5e-4 mm apart)."""
     w_m, c = 57.2, 20.0
     k, frac = linear_spring_face_load(mean_line_load_n_per_mm=w_m, misalignment_um=f_um,
                                       stiffness_n_per_mm_um=c)
     k_num, frac_num = _springs(w_m, f_um, c)
-    assert k == pytest.approx(k_num, rel=1e-4)
-    assert frac == pytest.approx(frac_num, rel=1e-4)
+    assert k == pytest.approx(k_num, rel=2e-4)
+    assert frac == pytest.approx(frac_num, rel=2e-4)
     if f_um == 11.44:                          # x = F c / (2 w_m) = 2.0: end-loaded
         assert k == pytest.approx(math.sqrt(2.0 * f_um * c / w_m), rel=1e-12)
 
