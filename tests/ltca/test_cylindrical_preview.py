@@ -102,6 +102,45 @@ def test_pitch_point_p0_against_the_lcp(spur_pitch):
     ratio = p_lcp / p_ref
     assert (0.94 < ratio < 0.97) if crowning == 0.0 else (1.02 < ratio < 1.06)
 
+    # a crowned or aligned full-face line is not end-loaded
+    assert not pv.face_load.end_loaded.any()
+
+
+@pytest.mark.parametrize("incl_um", [100.0, 300.0])
+def test_end_loaded_line_of_a_misaligned_spur(incl_um):
+    """The uncrowned spur with its gear axis inclined by f_Sigma_delta over the face (the
+    user's try of issue 26): at the pitch point (single contact, W = F_n) the line is
+    end-loaded, and the preview's closed form is analytic.face_load.end_loaded_line on
+    the gap slope that the tilt projects onto the plane of action, f_Sigma_delta sin
+    (alpha_wt) / b (ISO 6336-1's component of the inclination; independent of the TCA's
+    gap, whose fitted slope it is within 1e-3: small-angle terms) and the line's exact
+    A-: loaded length and peak line load within 0.2 % (the slope's 1e-3 at half weight
+    through L_c ~ s^(-1/2) and below)."""
+    from gearcontact.analytic.face_load import end_loaded_line
+    from gearcontact.geometry.cylindrical.pair import MeshAlignment
+
+    p = replace(_spur(0.0), assembly=MeshAlignment(axis_inclination_um=incl_um))
+    cyc = cylindrical_mesh_cycle(p, phases=3)
+    pv = cylindrical_preview(p, TORQUE_NM, cycle=cyc, backends=("reference",))
+    k = 1
+    j = int(np.argmax(pv.load_n[:, k]))
+    assert pv.load_n[j, k] == pytest.approx(pv.normal_load_n, rel=1e-12)
+    g = p.geometry
+    e_star = resolve_e_star((p.pinion_material, p.gear_material))
+    truth = end_loaded_line(
+        load_n=pv.normal_load_n, slope=incl_um * 1e-3 * math.sin(math.radians(
+            g.working_pressure_angle_deg)) / g.face_width_mm,
+        length_mm=float(pv.stencils.line_length_mm[j, k]),
+        b_max_per_mm=float(pv.stencils.A_minus_per_mm[j, k]), e_prime_mpa=2.0 * e_star)
+    fl = pv.face_load
+    assert fl.end_loaded[j, k] and truth.end_loaded
+    assert fl.loaded_length_mm[j, k] == pytest.approx(truth.loaded_length_mm, rel=2e-3)
+    assert fl.peak_line_load_n_per_mm[j, k] == pytest.approx(truth.peak_line_load_n_per_mm,
+                                                             rel=2e-3)
+    assert fl.face_load_factor[j, k] == pytest.approx(
+        fl.peak_line_load_n_per_mm[j, k] * pv.stencils.line_length_mm[j, k] / pv.load_n[j, k],
+        rel=1e-12)
+
 
 @pytest.fixture(scope="module")
 def ev_preview():

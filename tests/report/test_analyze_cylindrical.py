@@ -122,3 +122,49 @@ def test_analyze_without_tip_relief(name, tmp_path):
     te0 = [float(r["te0_pp_arcsec"]) for r in rows]
     assert float(rows[0]["tip_relief_um"]) == 0.0 and te0[0] < 1e-3
     assert all(b > a for a, b in zip(te0, te0[1:]))
+
+
+def test_end_loaded_note_names_the_numbers_and_the_keys():
+    """The stderr line of an end-loaded mesh (report.analyze_cylindrical.end_loaded_note)
+    and of a strip still too narrow (ltca.cylindrical_lte.STRIP_TOO_NARROW) carry the
+    headline's numbers and name the pair keys that change them."""
+    from gearcontact.ltca.cylindrical_lte import STRIP_TOO_NARROW
+    from gearcontact.report.analyze_cylindrical import end_loaded_note
+
+    h = {"lcp_max_pressure_mpa": 5300.0, "lcp_peak_at_edge": True,
+         "end_loaded_lines": {"previews": 3, "min_loaded_length_mm": 1.87,
+                              "max_peak_line_load_n_per_mm": 782.0,
+                              "max_face_load_factor": 20.46, "max_hertz_pressure_mpa": 2712.0}}
+    note = end_loaded_note(h)
+    for text in ("1.87 mm", "782 N/mm", "20.5 x", "2712 MPa", "5300 MPa", "singular",
+                 "lead_crowning_um", "helix_slope_um"):
+        assert text in note
+    assert "sharp edge" in end_loaded_note({**h, "end_loaded_lines": None})
+    assert "singular" not in end_loaded_note({**h, "lcp_peak_at_edge": False})
+    for key in ("axis_inclination_um", "axis_deviation_um", "lead_crowning_um",
+                "helix_slope_um", "line_load.csv"):
+        assert key in STRIP_TOO_NARROW
+
+
+@pytest.mark.slow
+def test_careless_misaligned_spur(tmp_path, capsys):
+    """Issue 26's careless try: the spur example with ``[assembly] axis_inclination_um =
+    300`` (3 phases, no figures; ~12 s CPU). Before, the LCP's strip was too narrow
+    (p_max 13.3 GPa, the warning naming nothing to change); now no strip warning, the
+    end-loaded lines said with the closed form's numbers (peak line load within 1 % of
+    the 2 W / L_c of end_loaded_line at the pitch point's 1144 N on 19.1 mm: 783 N/mm)
+    and the LCP's peak marked as a sharp edge's."""
+    toml = (ROOT / "examples" / "spur_20x40_m3.toml").read_text()
+    pair_file = tmp_path / "spur300.toml"
+    pair_file.write_text(toml + "\n[assembly]\naxis_inclination_um = 300.0\n")
+    out = tmp_path / "o"
+    assert main(["analyze", "--pair", str(pair_file), "--out", str(out), "--lte-phases", "3",
+                 "--no-figures", "--quiet"]) == 0
+    err = capsys.readouterr().err
+    assert "end-loaded contact lines" in err and "strip" not in err
+    head = json.loads((out / "analyze.json").read_text())
+    assert not head["edge_touch"] and head["lcp_peak_at_edge"]
+    assert head["end_loaded_lines"]["max_peak_line_load_n_per_mm"] == pytest.approx(783.0,
+                                                                                     rel=0.01)
+    rows = _rows(out / "preview.csv")
+    assert any(r["end_loaded"] == "True" and r["lcp_line_end_loaded"] == "True" for r in rows)

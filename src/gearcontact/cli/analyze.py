@@ -12,7 +12,8 @@ from __future__ import annotations
 from ..errors import CheckFailed
 from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
-from ..report.analyze_cylindrical import run_cylindrical_analysis
+from ..ltca.cylindrical_lte import STRIP_TOO_NARROW
+from ..report.analyze_cylindrical import end_loaded_note, run_cylindrical_analysis
 from ..validation import InputRangeError, check_positive
 from .options import (
     MAX_PHASES,
@@ -97,9 +98,10 @@ def run_cylindrical(args) -> int:
           f"stiffness {h['mesh_stiffness_n_per_mm_um']['mean']:.1f} N/(mm·µm), p_max LCP "
           f"{h['lcp_max_pressure_mpa']:.0f} / preview {h['preview_max_pressure_mpa']['golden']:.0f}"
           f" MPa -> {final_path(args, res.out_dir / 'summary.md')}")
+    if h["end_loaded_lines"] is not None or h["lcp_peak_at_edge"]:
+        warn("analyze", end_loaded_note(h))
     if h["edge_touch"]:
-        warn("analyze", "loaded cells on the edge of the strip across a line: the strip is "
-                        "too narrow for this load")
+        warn("analyze", STRIP_TOO_NARROW)
     if not h["converged"]:
         raise CheckFailed("LCP not converged")   # the files stay
     return 0

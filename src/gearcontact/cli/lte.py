@@ -26,10 +26,11 @@ import time
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..halfspace.result import SolveStatus
-from ..ltca.cylindrical_lte import (cylindrical_loaded_te_models, harris_map,
+from ..ltca.cylindrical_lte import (STRIP_TOO_NARROW, cylindrical_loaded_te_models, harris_map,
                                     harris_tip_reliefs_um, harris_torques_nm)
 from ..ltca.lte import loaded_te
 from ..errors import CheckFailed
+from ..report.analyze_cylindrical import end_loaded_note
 from ..report.cylindrical_lte import write_cylindrical_lte_outputs
 from ..report.lte_plot import write_lte_outputs
 from ..tca.analysis import analyze_pair
@@ -94,9 +95,11 @@ def run_cylindrical(args) -> int:
           f"mesh stiffness {res.mean_stiffness_n_per_mm_um:.1f} N/(mm·µm) mean; Harris map "
           f"{len(harris.tip_reliefs_um)} x {len(harris.torques_nm)} -> "
           f"{final_path(args, args.out)}")
+    if res.peak_at_edge[int(res.max_pressure_mpa.argmax())]:
+        warn("lte", end_loaded_note({"lcp_max_pressure_mpa": float(res.max_pressure_mpa.max()),
+                                     "lcp_peak_at_edge": True, "end_loaded_lines": None}))
     if res.edge_touch or harris.edge_touch:
-        warn("lte", "loaded cells on the edge of the strip across a line: the strip is "
-                    "too narrow for this load")
+        warn("lte", STRIP_TOO_NARROW)
     if not (res.converged and harris.converged and (rigid is None or rigid.converged)):
         raise CheckFailed("LCP not converged")   # the files stay
     return 0

@@ -28,6 +28,19 @@ The profile modifications enter through ``g(z)`` along the line only: across the
 tip across the strip (a loaded cell in the first or last column of the grid is
 reported, ``edge_touch``).
 
+End-loaded lines. A misaligned (or helix-sloped) uncrowned line closes over part of
+the face from one end, a wedge: its load runs up to that end, where a face end (or a
+tip or form circle) cuts the flank off sharply. The strip is sized for the mean line
+load; where a loaded cell then lies on its border, it is widened (to twice, or to
+:data:`END_PEAK_MARGIN` times the closed form's peak line load of the end-loaded lines,
+:func:`~gearcontact.analytic.face_load.end_loaded_line`) and the cycle solved again, at
+most :data:`MAX_WIDENINGS` times (``edge_touch`` then says it stayed too narrow).
+Line ends: a line loaded in its end row (``line_end_loaded``) ends at a sharp edge of
+the half-space model, where the pressure is singular (a flat punch's edge), as on a
+tip-edge block: the peak pressure there (``peak_at_edge``) and the end row's line load grow with the rows
+(about 2^(1/2) per halving), while the loaded length (``loaded_length_mm``) and the
+approach converge (docs/cylindrical.md sec. 7, "End-loaded lines").
+
 Tip-edge contact. A pair without a line in the zone whose tip edge touches the mating
 flank within reach (the cycle's ``tip``, :mod:`~gearcontact.tca.cylindrical_tip`) is a
 block along that edge: rows at the grid's axial positions with the edge points' normal
@@ -69,10 +82,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..analytic.face_load import EndLoadedLine, end_loaded_line
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
-from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
+from ..tca.cylindrical_cycle import CylindricalMeshCycle, LineGaps, contact_line_gaps, \
     cylindrical_mesh_cycle
 from ..tca.cylindrical_tip import TipEdgeGaps, tip_edge_gaps
 from ..tca.plane_of_action import PlaneOfAction
@@ -83,10 +97,27 @@ from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
            "axial_rows_mm", "check_cells", "cylindrical_loaded_te", "cylindrical_loaded_te_models",
-           "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n"]
+           "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n",
+           "wedge_line", "END_PEAK_MARGIN", "MAX_WIDENINGS", "STRIP_TOO_NARROW"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
+#: The strip of an end-loaded mesh is sized for this many times the closed form's peak
+#: line load: the LCP's rows at a loaded face end carry 1.2-4.9 times it (the sharp
+#: end's singular load, growing with refinement; spur 20/40 at 300 um, 40-640 rows), and
+#: a loaded cell on the strip's border truncates the contact across.
+END_PEAK_MARGIN = 2.0
+#: Times the strip is widened (and the cycle solved again) while a loaded cell lies on
+#: its border.
+MAX_WIDENINGS = 3
+#: What the commands tell the user when ``edge_touch`` stays set (one line on stderr).
+STRIP_TOO_NARROW = (
+    f"loaded cells on the border of the strip across a contact line after widening it "
+    f"{MAX_WIDENINGS} times: the LCP cuts the contact off across there (pressure and line "
+    "load too low in those rows; line_load.csv shows where). The load is concentrated "
+    "far above its mean, as on a line end-loaded by misalignment: reduce [assembly] "
+    "axis_inclination_um / axis_deviation_um, or centre the load with [modifications."
+    "pinion] lead_crowning_um or a helix_slope_um that cancels the misalignment")
 
 
 def normal_load_n(pair: CylindricalPair, torque_nm: float) -> float:
@@ -166,6 +197,17 @@ class CylindricalLoadedTE:
     lever_mm : ndarray (P, K)
         Lever of each pair's normal force about the gear axis, mm (``r_b2 cos(beta_b)``
         for a line, the touch's own for a tip edge; 0 for a pair without a block).
+    loaded_length_mm : ndarray (P, K)
+        Length of each line's loaded rows, mm (0 for a tip edge or no block).
+    line_end_loaded : ndarray (P, K) of bool
+        The line carries load in its end row at either end (a face end, or where a tip
+        or form circle cuts it): a sharp end of the contact (module docstring, "Line
+        ends").
+    peak_at_edge : ndarray (K,) of bool
+        The phase's largest pressure lies in such an end row or on a tip-edge block: a
+        sharp edge's singular pressure, which grows with refinement
+        (``max_pressure_mpa`` is then no design value; the loaded length and the
+        approach converge).
     """
 
     phi1_rad: np.ndarray
@@ -190,6 +232,9 @@ class CylindricalLoadedTE:
     bending: bool = False
     edge_label: np.ndarray | None = None
     lever_mm: np.ndarray | None = None
+    loaded_length_mm: np.ndarray | None = None
+    line_end_loaded: np.ndarray | None = None
+    peak_at_edge: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -221,15 +266,56 @@ def axial_rows_mm(cycle: CylindricalMeshCycle, cells_along: int) -> np.ndarray:
 
 
 def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n: float,
-                      e_star: float, factor: float) -> float:
+                      e_star: float, factor: float, lines: LineGaps | None = None) -> float:
     """Half-width of the strip: ``factor`` Hertz half-widths of the whole load on the
-    shortest total line length (Johnson 1985 eq. 4.43, b = sqrt(4 w R / (pi E*)))."""
+    shortest total line length (Johnson 1985 eq. 4.43, b = sqrt(4 w R / (pi E*))); with
+    ``lines`` (the widened strip of an end-loaded mesh, module docstring) of
+    :data:`END_PEAK_MARGIN` times the largest peak line load of an end-loaded line
+    (:func:`end_loaded_peak_n_per_mm`) where that is more."""
     g = pair.geometry
     cb = math.cos(math.radians(g.base_helix_angle_deg))
     u_mid = 0.5 * g.centre_distance_mm * math.sin(math.radians(g.working_pressure_angle_deg))
     r = u_mid / (2.0 * cb)                       # equal roll lengths: the largest R
     w = load_n / max(float(cycle.line_length_mm.min()), 1e-3)
+    if lines is not None:
+        w = max(w, END_PEAK_MARGIN * end_loaded_peak_n_per_mm(lines, load_n, r, e_star, cb))
     return factor * math.sqrt(4.0 * w * r / (math.pi * e_star))
+
+
+def end_loaded_peak_n_per_mm(lines: LineGaps, load_n: float, radius_mm: float,
+                             e_star: float, cos_beta_b: float) -> float:
+    """The largest peak line load (N/mm) of :func:`wedge_line` over the lines of
+    ``lines``, each carrying the whole ``load_n`` (N) with the relative radius
+    ``radius_mm`` across it; 0 where no line is end-loaded."""
+    z = np.broadcast_to(lines.z_mm, lines.gap_mm.shape)
+    peak = 0.0
+    for j, k in zip(*np.nonzero(np.isfinite(lines.gap_mm).sum(axis=-1) >= 2)):
+        on = np.isfinite(lines.gap_mm[j, k])
+        y = z[j, k][on] / cos_beta_b
+        res = wedge_line(y, cos_beta_b * lines.gap_mm[j, k][on],
+                         float(y[-1] - y[0] + (y[1] - y[0])), load_n=load_n,
+                         b_max_per_mm=0.5 / radius_mm, e_prime_mpa=2.0 * e_star)
+        if res is not None and res.end_loaded:
+            peak = max(peak, res.peak_line_load_n_per_mm)
+    return peak
+
+
+def wedge_line(y_mm: np.ndarray, gap_mm: np.ndarray, length_mm: float, *, load_n: float,
+               b_max_per_mm: float, e_prime_mpa: float) -> EndLoadedLine | None:
+    """The end-loaded line's closed form (:func:`~gearcontact.analytic.face_load.
+    end_loaded_line`) of a line whose normal gap ``gap_mm`` (mm, at the positions
+    ``y_mm`` along it, ascending) is least at one of its ends: the gap's least-squares
+    slope from that end (the misalignment's wedge; crowning leaves less). None where the
+    least gap lies inside the line (crowning or relief centre the load) or the slope
+    leaves the line law's range (a point's contact)."""
+    if gap_mm.size < 2 or int(np.argmin(gap_mm)) not in (0, gap_mm.size - 1):
+        return None
+    slope = abs(float(np.polyfit(y_mm, gap_mm, 1)[0]))
+    try:
+        return end_loaded_line(load_n=load_n, slope=slope, length_mm=length_mm,
+                               b_max_per_mm=b_max_per_mm, e_prime_mpa=e_prime_mpa)
+    except InputRangeError:
+        return None
 
 
 def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
@@ -269,84 +355,102 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     g = pair.geometry
     cb = math.cos(math.radians(g.base_helix_angle_deg))
     e_star = resolve_e_star((pair.pinion_material, pair.gear_material))
-    half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
     z = axial_rows_mm(cycle, cells_along)
     dz = (cycle.pinion_v_range_mm[1] - cycle.pinion_v_range_mm[0]) / cells_along
     lg = contact_line_gaps(pair, cycle, z)
-    nx = int(cells_across)
-    dx = 2.0 * half / nx
-    grid = TangentGrid.uniform(nx, cells_along, dx_mm=dx, dy_mm=dz / cb,
-                               x0_mm=-half + 0.5 * dx, y0_mm=z[0] / cb)
-    x2 = (grid.x_mm ** 2)[None, :]
-    lever = 0.5 * g.base_diameter_gear_mm * cb
-    gear_torque = load * lever
-    n_pairs, n_phase = lg.gap_mm.shape[:2]
-    share = np.zeros((n_pairs, n_phase))
-    line_load = np.zeros((n_pairs, n_phase, cells_along))
-    line_p = np.zeros_like(line_load)
-    lte, pmax = np.zeros(n_phase), np.zeros(n_phase)
-    stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
-    ok, edge = True, False
-    warm: dict[int, np.ndarray] = {}
+    half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
     t0 = time.process_time()
-    poa = PlaneOfAction(pair, cycle.facing)
-    tip_rows = np.zeros((n_pairs, n_phase), bool)
-    levers = np.zeros((n_pairs, n_phase))
-    theta_last = np.inf
-    for k in range(n_phase):
-        live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
-        tipped = [j for j in range(n_pairs)
-                  if j not in live and np.isfinite(cycle.tip.gap_mm[j, k])]
-        g_line = {j: lg.gap_mm[j, k] for j in live}
-        g_env = float(cycle.closing_gap_mm[k])
-        blocks = []
-        for j in live:
-            gj = max(float(np.nanmin(g_line[j])), g_env)
-            on = np.isfinite(g_line[j])
-            inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
-                                       + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
-            h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj, 0.0)[:, None]
-                         + 0.5 * inv_r[:, None] * x2, OFF_LINE_GAP_MM)
-            factor = None if teeth is None else line_bending_factor(
-                teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
-            blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
-        # a tip edge is a block where it may close: its closing turn below twice the last
-        # phase's rotation, and any other whose turn the solved rotation exceeds (then
-        # solved again), so that the blocks left out stand open (complementarity)
-        turn = {j: max(float(cycle.tip.gap_mm[j, k]) - g_env, 0.0)
-                / abs(float(cycle.tip.rate_mm_per_rad[j, k])) for j in tipped}
-        take = [j for j in tipped if turn[j] < 2.0 * theta_last]
-        lines = blocks
-        while True:
-            where = np.zeros((n_pairs, n_phase), bool)
-            where[take, k] = True
-            tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
-            blocks = lines + [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in take]
-            res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
-                                 warm_start=[warm.get(j) for j in live + take])
-            late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
-            if not late:
-                break
-            take += late
-        theta_last = res.rotation_rad
-        tip_rows[take, k] = True
-        live = live + take
-        ok &= res.converged
-        iters[k] = res.iterations
-        press = res.pressures_mpa(blocks)
-        warm = dict(zip(live, press))
-        for i, j in enumerate(live):
-            w = res.loads_n[i]
-            share[j, k] = res.pair_loads_n[i] / load
-            levers[j, k] = blocks[i].lever_mm
-            line_load[j, k] = w.sum(axis=1) / dz
-            line_p[j, k] = press[i].max(axis=1)
-            edge |= bool(res.contact_masks[i][:, [0, -1]].any())
-        pmax[k] = max(float(p.max()) for p in press)
-        rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
-        # the gear lags (TE0 < 0 on the cw facing): the load turns it further the same way
-        lte[k] = cycle.envelope_arcsec[k] - math.copysign(res.rotation_rad, rate) * ARCSEC_PER_RAD
-        stiff[k] = load / (lever * res.rotation_rad * 1e3 * g.face_width_mm)
+    for widened in range(MAX_WIDENINGS + 1):
+        nx = int(cells_across)
+        dx = 2.0 * half / nx
+        grid = TangentGrid.uniform(nx, cells_along, dx_mm=dx, dy_mm=dz / cb,
+                                   x0_mm=-half + 0.5 * dx, y0_mm=z[0] / cb)
+        x2 = (grid.x_mm ** 2)[None, :]
+        lever = 0.5 * g.base_diameter_gear_mm * cb
+        gear_torque = load * lever
+        n_pairs, n_phase = lg.gap_mm.shape[:2]
+        share = np.zeros((n_pairs, n_phase))
+        line_load = np.zeros((n_pairs, n_phase, cells_along))
+        line_p = np.zeros_like(line_load)
+        lte, pmax = np.zeros(n_phase), np.zeros(n_phase)
+        stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
+        ok, edge = True, False
+        warm: dict[int, np.ndarray] = {}
+        poa = PlaneOfAction(pair, cycle.facing)
+        tip_rows = np.zeros((n_pairs, n_phase), bool)
+        levers = np.zeros((n_pairs, n_phase))
+        loaded_len = np.zeros((n_pairs, n_phase))
+        end_loaded = np.zeros((n_pairs, n_phase), bool)
+        end_peak = np.zeros(n_phase, bool)
+        theta_last = np.inf
+        for k in range(n_phase):
+            live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
+            tipped = [j for j in range(n_pairs)
+                      if j not in live and np.isfinite(cycle.tip.gap_mm[j, k])]
+            g_line = {j: lg.gap_mm[j, k] for j in live}
+            g_env = float(cycle.closing_gap_mm[k])
+            blocks = []
+            for j in live:
+                gj = max(float(np.nanmin(g_line[j])), g_env)
+                on = np.isfinite(g_line[j])
+                inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
+                                           + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
+                h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj, 0.0)[:, None]
+                             + 0.5 * inv_r[:, None] * x2, OFF_LINE_GAP_MM)
+                factor = None if teeth is None else line_bending_factor(
+                    teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
+                blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
+            # a tip edge is a block where it may close: its closing turn below twice the last
+            # phase's rotation, and any other whose turn the solved rotation exceeds (then
+            # solved again), so that the blocks left out stand open (complementarity)
+            turn = {j: max(float(cycle.tip.gap_mm[j, k]) - g_env, 0.0)
+                    / abs(float(cycle.tip.rate_mm_per_rad[j, k])) for j in tipped}
+            take = [j for j in tipped if turn[j] < 2.0 * theta_last]
+            lines = blocks
+            while True:
+                where = np.zeros((n_pairs, n_phase), bool)
+                where[take, k] = True
+                tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
+                blocks = lines + [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in take]
+                res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
+                                     warm_start=[warm.get(j) for j in live + take])
+                late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
+                if not late:
+                    break
+                take += late
+            theta_last = res.rotation_rad
+            tip_rows[take, k] = True
+            live = live + take
+            ok &= res.converged
+            iters[k] = res.iterations
+            press = res.pressures_mpa(blocks)
+            warm = dict(zip(live, press))
+            for i, j in enumerate(live):
+                w = res.loads_n[i]
+                share[j, k] = res.pair_loads_n[i] / load
+                levers[j, k] = blocks[i].lever_mm
+                line_load[j, k] = w.sum(axis=1) / dz
+                line_p[j, k] = press[i].max(axis=1)
+                edge |= bool(res.contact_masks[i][:, [0, -1]].any())
+            pmax[k] = max(float(p.max()) for p in press)
+            for i, j in enumerate(live[:len(lines)]):     # a line reaching its end loaded
+                ends = np.nonzero(np.isfinite(lg.gap_mm[j, k]))[0][[0, -1]]
+                hit = res.contact_masks[i].any(axis=1)
+                loaded_len[j, k] = hit.sum() * dz / cb
+                end_loaded[j, k] = bool(hit[ends].any())
+                end_peak[k] |= end_loaded[j, k] and float(press[i][ends].max()) >= pmax[k]
+            end_peak[k] |= any(float(p.max()) >= pmax[k] for p in press[len(lines):])
+            rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
+            # the gear lags (TE0 < 0 on the cw facing): the load turns it further the same way
+            lte[k] = (cycle.envelope_arcsec[k]
+                      - math.copysign(res.rotation_rad, rate) * ARCSEC_PER_RAD)
+            stiff[k] = load / (lever * res.rotation_rad * 1e3 * g.face_width_mm)
+            if edge and widened < MAX_WIDENINGS:
+                break                   # the strip is widened: the phases start again
+        if not edge or widened == MAX_WIDENINGS:
+            break
+        # a loaded cell on the strip's border (an end-loaded line's peak): widen, solve again
+        half = max(2.0 * half, _across_extent_mm(pair, cycle, load, e_star, extent_factor, lg))
     return CylindricalLoadedTE(
         phi1_rad=cycle.phi1_rad, pair_offsets=cycle.pair_offsets, torque_nm=float(torque_nm),
         normal_load_n=load, te0_arcsec=cycle.envelope_arcsec, lte_arcsec=lte,
@@ -355,7 +459,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         stiffness_n_per_mm_um=stiff, face_width_mm=g.face_width_mm, grid_dx_mm=dx,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
-        edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers)
+        edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers,
+        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak)
 
 
 def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,

@@ -26,10 +26,22 @@ logarithmic term, that of the load per unit length); at a phase where a tip edge
 alone touches (docs/cylindrical.md sec. 6), the lines next to close share it. An input outside a backend's
 domain is a result, not an abort: the reference's refusal is kept as text in
 ``errors``, the fixed point's flags as mode ``"flagged"``.
+
+End-loaded lines (``face_load``, :class:`LineFaceLoad`). A line whose gap is least at
+one of its ends (a misalignment's or helix slope's wedge) carries its load from that
+end over a loaded length ``L_c`` only, a triangle whose peak ``2 W / L_c`` sits on the
+face end: the line chain's uniform line over ``L`` knows nothing of it. Per loaded pair
+the closed form of :func:`gearcontact.analytic.face_load.end_loaded_line` on the gap's
+slope along the line (:func:`.cylindrical_lte.wedge_line`, the gap at the line's 16
+slices) gives ``L_c``, the peak line load, its ratio to the mean ``W / L`` and the Hertz
+pressure of the peak line load (ISO's contact stress with its face load factor). The
+pressure at the sharp face end itself is singular on the half-space: an edge result,
+which the LCP's peak there shows (growing with its rows; docs/cylindrical.md sec. 7).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -40,13 +52,69 @@ from ..preview.engine import PreviewResult, get_engine
 from ..preview.fit.pinv import baked_pinv
 from ..preview.fit.reference import principal_curvatures
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, cylindrical_mesh_cycle
-from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
+from ..tca.cylindrical_stencil import CylindricalStencils, contact_line_slices, \
+    cylindrical_stencils
 from ..errors import BadInput
+from ..halfspace.lcp import resolve_e_star
 from ..validation import InputRangeError
-from .cylindrical_lte import CylindricalLoadedTE, normal_load_n
+from .cylindrical_lte import CylindricalLoadedTE, normal_load_n, wedge_line
 from .slice_law import line_easeoff_mm, loaded_length_mm
 
-__all__ = ["CylindricalPreview", "cylindrical_preview", "loaded_lengths_mm", "pair_loads_n"]
+__all__ = ["CylindricalPreview", "LineFaceLoad", "cylindrical_preview", "line_face_loads",
+           "loaded_lengths_mm", "pair_loads_n"]
+
+
+@dataclass(frozen=True)
+class LineFaceLoad:
+    """The end-loaded lines of the loaded pairs (module docstring), arrays (P, K); NaN
+    (False) where a pair is not loaded or its line not end-loaded.
+
+    Attributes
+    ----------
+    end_loaded : ndarray of bool
+        The load ends inside the line (``L_c < L``), its peak on the line's closed end.
+    loaded_length_mm : ndarray
+        ``L_c``, mm.
+    peak_line_load_n_per_mm : ndarray
+        Line load at the closed end, N/mm.
+    face_load_factor : ndarray
+        Peak over the mean line load ``W / L``.
+    hertz_pressure_mpa : ndarray
+        Hertz line-contact pressure of the peak line load, MPa (not the face end's
+        singular pressure).
+    """
+
+    end_loaded: np.ndarray
+    loaded_length_mm: np.ndarray
+    peak_line_load_n_per_mm: np.ndarray
+    face_load_factor: np.ndarray
+    hertz_pressure_mpa: np.ndarray
+
+
+def line_face_loads(pair: CylindricalPair, cycle: CylindricalMeshCycle,
+                    stencils: CylindricalStencils, loads_n: np.ndarray) -> LineFaceLoad:
+    """:class:`LineFaceLoad` of every pair with a load in ``loads_n`` (N, (P, K)): the
+    closed form on the gap at its line's slices (module docstring)."""
+    cb = math.cos(math.radians(pair.geometry.base_helix_angle_deg))
+    e_prime = 2.0 * resolve_e_star((pair.pinion_material, pair.gear_material))
+    slices = contact_line_slices(pair, cycle)
+    out = {f: np.full(loads_n.shape, np.nan) for f in LineFaceLoad.__dataclass_fields__}
+    out["end_loaded"] = np.zeros(loads_n.shape, bool)
+    for j, k in zip(*np.nonzero(stencils.valid & (loads_n > 0.0))):
+        gap = slices.gap_mm[j, k]
+        if not np.isfinite(gap).all():
+            continue
+        res = wedge_line(slices.z_mm[j, k] / cb, cb * gap, float(stencils.line_length_mm[j, k]),
+                         load_n=float(loads_n[j, k]), b_max_per_mm=float(max(
+                             stencils.A_minus_per_mm[j, k], stencils.B_minus_per_mm[j, k])),
+                         e_prime_mpa=e_prime)
+        if res is None or not res.end_loaded:
+            continue
+        out["end_loaded"][j, k] = True
+        for f in ("loaded_length_mm", "peak_line_load_n_per_mm", "face_load_factor",
+                  "hertz_pressure_mpa"):
+            out[f][j, k] = getattr(res, f)
+    return LineFaceLoad(**out)
 
 
 @dataclass(frozen=True)
@@ -75,6 +143,8 @@ class CylindricalPreview:
         Backend name -> nested list (P rows of K) of :class:`PreviewResult` or None.
     errors : dict
         ``(backend, j, k)`` -> the refusal's text, where a backend raised.
+    face_load : LineFaceLoad or None
+        The end-loaded lines of the loaded pairs (module docstring).
     """
 
     torque_nm: float
@@ -86,6 +156,7 @@ class CylindricalPreview:
     loaded_length_mm: np.ndarray
     results: dict = field(repr=False)
     errors: dict = field(default_factory=dict)
+    face_load: LineFaceLoad | None = None
 
     @property
     def backends(self) -> tuple[str, ...]:
@@ -185,10 +256,12 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
             except BadInput as exc:       # outside this backend's domain: a result
                 errors[(name, int(j), int(k))] = str(exc)
         results[name] = rows
+    pair_load = np.where(loaded, loads, 0.0)
     return CylindricalPreview(torque_nm=float(torque_nm), normal_load_n=load,
-                              load_source=source, load_n=np.where(loaded, loads, 0.0),
+                              load_source=source, load_n=pair_load,
                               loaded=loaded, stencils=stencils, loaded_length_mm=l_c,
-                              results=results, errors=errors)
+                              results=results, errors=errors,
+                              face_load=line_face_loads(pair, cycle, stencils, pair_load))
 
 
 def loaded_lengths_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle,

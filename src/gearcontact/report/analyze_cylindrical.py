@@ -17,7 +17,11 @@ readable summary (docs/cylindrical.md sec. 9).
                                            loaded length ``L_c`` (the twin's slice law),
                                            exact and fitted curvatures, the fp64 and golden
                                            line chain (mode, p_max, b, flags) beside the
-                                           LCP's peak pressure on that line
+                                           LCP's peak pressure on that line, its loaded
+                                           length and whether it loads a line end; an
+                                           end-loaded line's closed form (loaded length,
+                                           peak line load, K_Hbeta, its Hertz pressure:
+                                           ``ltca.cylindrical_preview.LineFaceLoad``)
 ``preview.png``                            p_max along the phase: LCP, fp64 and golden
 ``analyze.json``                           the headline numbers of ``summary.md``
 ``summary.md``                             readable summary
@@ -48,7 +52,7 @@ from ..tca.export import write_csv
 from ..validation import InputRangeError
 from .cylindrical_lte import write_cylindrical_lte_outputs
 
-__all__ = ["CylindricalAnalysis", "run_cylindrical_analysis"]
+__all__ = ["CylindricalAnalysis", "end_loaded_note", "run_cylindrical_analysis"]
 
 #: The preview backends the job evaluates (fp64 and the bit-exact fixed point).
 BACKENDS = ("reference", "golden")
@@ -74,6 +78,7 @@ def _preview_rows(pv: CylindricalPreview, lte: CylindricalLoadedTE) -> list[list
     vals = {b: {n: pv.values(b, n) for n in ("p_max_mpa", "b_mm", "A_minus_per_mm",
                                                "B_minus_per_mm")} for b in BACKENDS}
     modes = {b: pv.modes(b) for b in BACKENDS}
+    fl = pv.face_load
     rows = []
     for k in range(len(phi)):
         for j, off in enumerate(st.pair_offsets):
@@ -90,8 +95,19 @@ def _preview_rows(pv: CylindricalPreview, lte: CylindricalLoadedTE) -> list[list
                             str(modes[b][j, k]), float(vals[b]["p_max_mpa"][j, k]),
                             float(vals[b]["b_mm"][j, k]))]
                         + ["|".join(gold.flags) if gold is not None else "refused",
-                           float(lte.line_pressure_mpa[j, k].max())])
+                           float(lte.line_pressure_mpa[j, k].max()),
+                           float(lte.loaded_length_mm[j, k]), bool(lte.line_end_loaded[j, k])]
+                        + [_csv_value(getattr(fl, n)[j, k]) for n in _FACE_LOAD])
     return rows
+
+
+#: The preview's end-loaded line (ltca.cylindrical_preview.LineFaceLoad) in preview.csv.
+_FACE_LOAD = ("end_loaded", "loaded_length_mm", "peak_line_load_n_per_mm", "face_load_factor",
+              "hertz_pressure_mpa")
+
+
+def _csv_value(x):
+    return bool(x) if isinstance(x, (bool, np.bool_)) else float(x)
 
 
 _PREVIEW_HEADER = (["phi1_deg", "pair", "load_n", "line_length_mm", "loaded_length_mm",
@@ -99,7 +115,10 @@ _PREVIEW_HEADER = (["phi1_deg", "pair", "load_n", "line_length_mm", "loaded_leng
                     "B_minus_exact_per_mm", "stencil_on_flank", "A_minus_fit_per_mm",
                     "B_minus_fit_per_mm"]
                    + [f"{b}_{n}" for b in BACKENDS for n in ("mode", "p_max_mpa", "b_mm")]
-                   + ["golden_flags", "lcp_peak_mpa"])
+                   + ["golden_flags", "lcp_peak_mpa", "lcp_loaded_length_mm",
+                      "lcp_line_end_loaded"]
+                   + ["end_loaded", "end_loaded_length_mm", "end_loaded_peak_line_load_n_per_mm",
+                      "end_loaded_face_load_factor", "end_loaded_hertz_pressure_mpa"])
 
 
 def _plot_preview(pv: CylindricalPreview, lte: CylindricalLoadedTE, path, *, title: str):
@@ -136,6 +155,8 @@ def _headline(cycle, lte, harris, pv, lte_json) -> dict:
             "max": float(lte.stiffness_n_per_mm_um.max())},
         "iso6336": lte_json.get("iso6336_method_b"),
         "lcp_max_pressure_mpa": float(lte.max_pressure_mpa.max()),
+        "lcp_peak_at_edge": bool(lte.peak_at_edge[int(np.argmax(lte.max_pressure_mpa))]),
+        "end_loaded_lines": _end_loaded_headline(pv),
         "preview_max_pressure_mpa": {"reference": float(ref.max()), "golden": float(gold.max())},
         "pitch_phase": {"phi1_deg": float(np.degrees(cycle.phi1_rad[k0])),
                         "lcp_max_pressure_mpa": float(lte.max_pressure_mpa[k0]),
@@ -148,6 +169,45 @@ def _headline(cycle, lte, harris, pv, lte_json) -> dict:
         "converged": bool(lte.converged and harris.converged),
         "edge_touch": bool(lte.edge_touch or harris.edge_touch),
         "teeth": "bending" if lte.bending else "rigid"}
+
+
+def _end_loaded_headline(pv: CylindricalPreview) -> dict | None:
+    """The preview's end-loaded lines over the pitch (None without one): how many
+    previews, the shortest loaded length, the largest peak line load, face load factor
+    and Hertz pressure of the peak line load."""
+    fl = pv.face_load
+    if fl is None or not fl.end_loaded.any():
+        return None
+    on = fl.end_loaded
+    return {"previews": int(on.sum()),
+            "min_loaded_length_mm": float(fl.loaded_length_mm[on].min()),
+            "max_peak_line_load_n_per_mm": float(fl.peak_line_load_n_per_mm[on].max()),
+            "max_face_load_factor": float(fl.face_load_factor[on].max()),
+            "max_hertz_pressure_mpa": float(fl.hertz_pressure_mpa[on].max())}
+
+
+def end_loaded_note(h: dict) -> str:
+    """One line for the user on the headline ``h``'s end-loaded lines and a peak
+    pressure at a line end (what ``gearcontact analyze`` prints on stderr)."""
+    out = []
+    end = h["end_loaded_lines"]
+    if end is not None:
+        out.append(
+            f"end-loaded contact lines (the gap opens along the line from a face end: "
+            f"misalignment or helix slope): loaded length down to "
+            f"{end['min_loaded_length_mm']:.2f} mm, peak line load "
+            f"{end['max_peak_line_load_n_per_mm']:.0f} N/mm = "
+            f"{end['max_face_load_factor']:.1f} x the mean, its Hertz pressure "
+            f"{end['max_hertz_pressure_mpa']:.0f} MPa (closed form, preview.csv)")
+    if h["lcp_peak_at_edge"]:
+        out.append(f"the LCP's p_max {h['lcp_max_pressure_mpa']:.0f} MPa sits on a sharp "
+                   "edge (a loaded line end or a tip edge), where the half-space pressure is "
+                   "singular (it grows with the grid): no design value")
+    if end is not None:
+        out.append("lead crowning or a helix slope that cancels the misalignment "
+                   "([modifications.pinion] lead_crowning_um / helix_slope_um) centres "
+                   "the load")
+    return "; ".join(out)
 
 
 def _summary_md(pair, side, facing, h, harris) -> str:
@@ -179,6 +239,22 @@ def _summary_md(pair, side, facing, h, harris) -> str:
         f"{pp['preview_golden_mpa']:.1f} MPa |",
         f"| preview modes (fp64; golden) | {', '.join(h['preview_modes']['reference'])}; "
         f"{', '.join(h['preview_modes']['golden'])} |",
+        ]
+    end = h["end_loaded_lines"]
+    if end is not None:
+        lines.append(
+            f"| end-loaded lines (closed form, {end['previews']} previews): loaded length "
+            f"min / peak line load max / K_Hβ max / its Hertz pressure max | "
+            f"{end['min_loaded_length_mm']:.2f} mm / {end['max_peak_line_load_n_per_mm']:.0f}"
+            f" N/mm / {end['max_face_load_factor']:.2f} / {end['max_hertz_pressure_mpa']:.0f}"
+            " MPa |")
+    if h["lcp_peak_at_edge"]:
+        lines += ["", "The LCP's peak pressure sits on a sharp edge (a loaded line's end at "
+                  "a face end or a tip or form circle, or a tip edge touching the mating "
+                  "flank): the half-space pressure there is "
+                  "singular and grows with the grid's rows, so it is no design value; the "
+                  "loaded length and the approach converge (docs/cylindrical.md sec. 7)."]
+    lines += [
         "", "The preview is the datapath's line chain (stage C fit -> line core of stage D) "
         "on each loaded pair's 7 x 7 stencil with its LCP load share and the loaded "
         "length L_c of its contact line (the twin's slice law on the ease-off along the "

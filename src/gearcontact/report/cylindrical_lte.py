@@ -79,6 +79,10 @@ def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, 
         "lte_pp_arcsec": lte.lte_pp_arcsec,
         "lte_mean_arcsec": float(np.mean(lte.lte_arcsec[:-1])),
         "max_pressure_mpa": float(lte.max_pressure_mpa.max()),
+        # a peak on a sharp edge (a loaded line end, a tip edge) is the half-space's
+        # singular pressure there, which grows with the grid (docs/cylindrical.md sec. 7)
+        "max_pressure_on_edge": bool(lte.peak_at_edge[int(np.argmax(lte.max_pressure_mpa))]),
+        "pressure_peak_on_edge_phases": int(lte.peak_at_edge.sum()),
         "max_line_load_n_per_mm": float(lte.line_load_n_per_mm.max()),
         "mean_line_load_n_per_mm": lte.normal_load_n / lte.face_width_mm,
         "mesh_stiffness_mean_n_per_mm_um": lte.mean_stiffness_n_per_mm_um,
