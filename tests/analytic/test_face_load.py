@@ -87,21 +87,18 @@ def test_end_loaded_line_is_the_finite_line_on_its_loaded_length(slope_um_per_mm
 
 @pytest.mark.parametrize("slope_um_per_mm", [0.855, 1.71, 5.13])
 def test_end_loaded_line_against_the_twins_slice_law(slope_um_per_mm):
-    """The twin's slice law (twin.line_law._loaded_line: the same law on a gap sampled at
-    slice centres, linear between them, held over the end half-slices) on the straight
-    gap at 1024 slices: loaded length within half a slice plus 0.1 %, approach at the
-    closed end (the flat end half-slice's s w/2 taken off) within 0.5 % (the
-    discretisation; measured 2e-5 mm and -0.1 to -0.3 %)."""
-    from gearcontact.twin.layout import N_PREVIEW
-    from gearcontact.twin.line_law import _loaded_line
+    """The twin's slice law (ltca.slice_law.loaded_line, which twin.line_law runs: the
+    same law on a gap sampled at slice centres, linear between them, held over the end
+    half-slices) on the straight gap at 1024 slices: loaded length within half a slice
+    plus 0.1 %, approach at the closed end (the flat end half-slice's s w/2 taken off)
+    within 0.5 % (the discretisation; measured 2e-5 mm and -0.1 to -0.3 %)."""
+    from gearcontact.ltca.slice_law import loaded_length_mm
 
     s, length, n = slope_um_per_mm * 1e-3, 19.1, 1024
     r = end_loaded_line(load_n=W, slope=s, length_mm=length, b_max_per_mm=B_MAX,
                         e_prime_mpa=E_PRIME)
     width = length / n
-    pv = np.zeros(N_PREVIEW + 2 * n)
-    pv[N_PREVIEW:N_PREVIEW + n] = s * (np.arange(n) + 0.5) * width
-    d, lc, _ = _loaded_line(pv, n, length, W, B_MAX, E_PRIME)
+    d, lc, _ = loaded_length_mm(s * (np.arange(n) + 0.5) * width, length, W, B_MAX, E_PRIME)
     assert abs(lc - r.loaded_length_mm) <= 0.5 * width + 1e-3 * r.loaded_length_mm
     assert d - 0.5 * s * width == pytest.approx(r.approach_mm, rel=5e-3)
 
