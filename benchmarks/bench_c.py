@@ -22,13 +22,13 @@ RK4 step with its 4 mesh evaluations of both flanks, the record and the finitene
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us). Last measured (docs/export.md, the fifth round; load
-average ~3.5 on 2 shared cores, alternated with the code before): golden chain 179 ns
-median (210 before), fp64 chain 162 (155); fp64 step 834 ns (887; 4,184 instructions
-instead of 4,622), golden 1,572 (1,893; 9,605 instead of 11,813); p99/p50 1.5-2.2 (the
-shared core's); at a load of 1.2 later, slower throughout: golden chain 218 (265).
-The machine's state moves the absolute figures more than the code does: compare
-alternated runs.
+(>= 20x real time at 10 us). Last measured (docs/export.md, the sixth round): at a
+load average of 0.4, the code before it, golden chain 166 ns median, fp64 chain 148,
+fp64 step 744 ns, golden 1,417, p99/p50 1.1-2.2; the golden step's kappa without libm's
+pow, 10,046 -> 9,750 instructions (fp64 4,288, library unchanged: golden chain 910,
+fp64 881), alternated at a load of ~14: fp64 626 -> 648 ns, golden 981 -> 998 (median
+ratio 1.00: below the shared machine's noise). The machine's state moves the absolute
+figures more than the code does: compare alternated runs and instructions.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive

@@ -629,16 +629,16 @@ def test_fp64_fit_same_bits_with_and_without_simd(built, tmp_path):
     assert all(out == outputs["vector"] for out in outputs.values()), list(outputs)
 
 
-#: Harness of :func:`test_fp64_cube_root_within_5_ulp_of_the_exact_root`: gc_hertz_fp64.c's
-#: static cbrt_positive on edge and xorshift inputs (random bit patterns of positive
+#: Harness of :func:`test_fp64_cube_root_within_5_ulp_of_the_exact_root`: gc_cbrt.h's
+#: gc_cbrt_positive (the fp64 Hertz forms' and the FMUs' golden kappa's) on edge and xorshift inputs (random bit patterns of positive
 #: doubles), each printed with its result as hexadecimal floats.
 _CBRT_HARNESS = r"""
 #include <stdio.h>
-#include "gc_hertz_fp64.c"
+#include "gc_cbrt.h"
 
 static void show(double x)
 {
-    printf("%a %a\n", x, cbrt_positive(x));
+    printf("%a %a\n", x, gc_cbrt_positive(x));
 }
 
 int main(void)
@@ -668,9 +668,9 @@ int main(void)
 
 
 def test_fp64_cube_root_within_5_ulp_of_the_exact_root(built, tmp_path):
-    """The Hamrock-Brewe forms' cube root (gc_hertz_fp64.c, a seed polynomial and one
-    Halley step instead of libm's cbrt; proof of the 5 ulp bound in its comment),
-    against the exact root in rational arithmetic (no libm): (y - 5 ulp)^3 <= x <=
+    """The Hamrock-Brewe forms' and the golden kappa's cube root (gc_cbrt.h, a seed
+    polynomial and one Halley step instead of libm's cbrt; proof of the 5 ulp bound in
+    its comment), against the exact root in rational arithmetic (no libm): (y - 5 ulp)^3 <= x <=
     (y + 5 ulp)^3 for every positive normal input (powers of two over the whole range,
     neighbours of edges, 100,000 random bit patterns; measured 3.25 ulp). Zero,
     subnormals go to libm's cbrt: equal to math.cbrt (the same libm). Every result

@@ -361,6 +361,36 @@ def test_fmu_reproduces_the_twin_with_tooth_bending(tmp_path_factory, backend):
     assert np.mean(res["mesh_rotation_rad"][:n]) > 1.1 * np.mean(theta_rigid)
 
 
+def _run_harness(fmu, tmp_path, harness: str, name: str, flags=()) -> str:
+    """The stdout of ``harness`` (C including ``gc_contact_law.c``) built as the FMU's
+    binary is (:data:`gearcontact.export.fmu.FMU_CFLAGS`, plus ``flags``) from the
+    sources inside ``fmu`` and the preview library."""
+    import shutil
+    import subprocess
+
+    from gearcontact.export.fmu import FMU_CFLAGS
+
+    if shutil.which("gcc") is None:
+        pytest.skip("gcc is needed")
+    src = tmp_path / "src"
+    if not src.exists():
+        src.mkdir()
+        with zipfile.ZipFile(fmu) as z:
+            for entry in z.namelist():
+                if entry.startswith("sources/") and entry.endswith((".c", ".h")):
+                    (src / Path(entry).name).write_bytes(z.read(entry))
+    (src / f"{name}.c").write_text(harness)
+    library = [str(p) for p in sorted(src.glob("gc_*.c"))
+               if p.name not in ("gc_contact_law.c", "gc_drivetrain_fmu.c")]
+    exe = tmp_path / name
+    run = subprocess.run(["gcc", *FMU_CFLAGS, *flags, f"-I{src}", "-o", str(exe),
+                          str(src / f"{name}.c"), *library, "-lm"],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, (name, run.stderr)
+    return subprocess.run([str(exe)], capture_output=True, text=True, timeout=120,
+                          check=True).stdout
+
+
 #: Harness of :func:`test_stencil_gap_codes_are_the_twin_quantization`: gc_contact_law.c's
 #: static gap_codes on xorshift rows (magnitudes 2^-20 .. 2^17 mm, a sample beyond GAP's
 #: +-32768 mm, an infinity or a NaN now and then, fractions in [0, 1] with both ends),
@@ -409,32 +439,9 @@ def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
     :func:`gearcontact.twin.contact_law._kappa`: ``floor((r0 + f (r1 - r0)) 2^16 +
     1/2)``, flagged where a sample lies outside [-2^31, 2^31) codes (or is not a
     number), on 3,000 vectors of 49 samples. Exact: the same IEEE operations."""
-    import shutil
-    import subprocess
-
-    from gearcontact.export.fmu import FMU_CFLAGS
-
-    if shutil.which("gcc") is None:
-        pytest.skip("gcc is needed")
     fmu, _ = exported
-    src = tmp_path / "src"
-    src.mkdir()
-    with zipfile.ZipFile(fmu) as z:
-        for name in z.namelist():
-            if name.startswith("sources/") and name.endswith((".c", ".h")):
-                (src / Path(name).name).write_bytes(z.read(name))
-    (src / "harness.c").write_text(_GAP_HARNESS)
-    library = [str(p) for p in sorted(src.glob("gc_*.c"))
-               if p.name not in ("gc_contact_law.c", "gc_drivetrain_fmu.c")]
-    outputs = {}
-    for flavour, flags in (("sse2", []), ("scalar", ["-DGC_SCALAR_LANES"])):
-        exe = tmp_path / flavour
-        run = subprocess.run(["gcc", *FMU_CFLAGS, *flags, f"-I{src}", "-o", str(exe),
-                              str(src / "harness.c"), *library, "-lm"],
-                             capture_output=True, text=True, timeout=120)
-        assert run.returncode == 0, (flavour, run.stderr)
-        outputs[flavour] = subprocess.run([str(exe)], capture_output=True, text=True,
-                                          timeout=60, check=True).stdout
+    outputs = {flavour: _run_harness(fmu, tmp_path, _GAP_HARNESS, flavour, flags)
+               for flavour, flags in (("sse2", []), ("scalar", ["-DGC_SCALAR_LANES"]))}
     assert outputs["sse2"] == outputs["scalar"]
     flagged = 0
     for line in outputs["sse2"].splitlines():
@@ -451,3 +458,72 @@ def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
         if ok:
             assert [int(words[4 + 3 * q]) for q in range(49)] == want
     assert 100 < flagged < 2900           # both outcomes exercised
+
+
+#: Harness of :func:`test_golden_kappa_is_the_twin_bit_for_bit`: gc_contact_law.c's
+#: static kappa_golden (stage D's codes, the preview's load and kappa from the library's
+#: cube root) on xorshift operands: curvature codes log-uniform over the datapath's
+#: range and a little beyond (flagged), loads over [1, 2^17] N (the twin's evaluation
+#: envelope) and E' codes over theirs; printed as integers and hexadecimal floats.
+_KAPPA_HARNESS = r"""
+#include <stdio.h>
+#include "gc_contact_law.c"
+
+static uint64_t x = 88172645463325252u;
+static uint64_t next(void) { x ^= x << 13; x ^= x >> 7; x ^= x << 17; return x; }
+static double unit(void) { return (double)(next() >> 11) / 9007199254740992.0; }
+
+int main(void)
+{
+    double out[4], kap, we;
+    int32_t a, b, t, e;
+    int v;
+    for (v = 0; v < 125000; ++v) {
+        a = (int32_t)ldexp(1.0, 8 + (int)(16.2 * unit())) + (int32_t)(next() % 256u);
+        b = (int32_t)ldexp(1.0, 8 + (int)(16.2 * unit())) + (int32_t)(next() % 256u);
+        if (a > b) { t = a; a = b; b = t; }
+        if (v % 8 != 0 && b > 8 * a)        /* mostly below alpha_max: few flagged */
+            b = a + (int32_t)(next() % (uint32_t)(7 * a));
+        we = v % 97 == 0 ? (v % 2 ? 1.0 : 131072.0) : exp(unit() * 11.783);
+        e = 4096 + (int32_t)(next() % 2093057u);
+        out[0] = out[1] = out[2] = out[3] = 0.0;
+        kap = kappa_golden(a, b, we, e, out);
+        printf("%d %d %a %d %a %a %a %a %a\n", a, b, we, e, kap, out[0], out[1], out[2],
+               out[3]);
+    }
+    return 0;
+}
+"""
+
+
+def test_golden_kappa_is_the_twin_bit_for_bit(exported, tmp_path):
+    """The golden law's kappa in the FMU's C (gc_contact_law.c's kappa_golden: stage D,
+    then ``3 F W^(1/3) / (pi a E')`` with the library's cube root ``gc_cbrt_positive``)
+    equals the twin's compiled :func:`gearcontact.twin.contact_law._kappa_golden` bit
+    for bit, kappa and (a, b, p_max, load), on 125,000 operands of which >= 100,000 in
+    the datapath's domain (the others flagged, -1 on both sides). Exact: stage D is
+    integer arithmetic, the rest the same IEEE operations in the same order (no FMA)."""
+    from gearcontact.preview.fit.golden import element_constants
+    from gearcontact.preview.fit.pinv import N_COEFFS, N_TAPS
+    from gearcontact.preview.hertz.golden_vec import golden_constants
+    from gearcontact.twin import kernel as K
+    from gearcontact.twin.contact_law import _kappa_golden
+
+    fmu, _ = exported
+    lines = _run_harness(fmu, tmp_path, _KAPPA_HARNESS, "kappa").splitlines()
+    pow_lut, cbrt_lut, cst = golden_constants()
+    fit = (*element_constants(), np.zeros((1, N_TAPS), np.int64),
+           np.zeros((1, N_COEFFS), np.int64), np.zeros((0, N_TAPS), np.int64))
+    trace, tcount, prm = np.zeros((0, 9), np.int64), np.zeros(K.N_COUNT, np.int64), \
+        np.zeros(K.N_PRM)
+    out, load, valid = np.zeros(K.N_PREVIEW), K.PV_LOAD, 0
+    for line in lines:
+        w = line.split()
+        prm[K.P_ECODE] = int(w[3])
+        want = _kappa_golden(int(w[0]), int(w[1]), 0, float.fromhex(w[2]), prm, pow_lut,
+                             cbrt_lut, cst, trace, tcount, fit, out)
+        assert float.fromhex(w[4]) == want, line
+        if want > 0.0:
+            assert [float.fromhex(s) for s in w[5:]] == [out[0], out[1], out[2], out[load]], line
+            valid += 1
+    assert len(lines) == 125_000 and valid >= 100_000, valid

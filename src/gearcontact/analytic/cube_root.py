@@ -2,9 +2,10 @@
 
 :func:`cbrt_positive` is a seed polynomial on the mantissa and one Halley step, within 5
 ulp of the exact cube root of a positive normal double (libm's ``cbrt`` elsewhere). It
-replaces libm's ``cbrt`` in the twin's compiled Hamrock–Brewe law
-(:mod:`gearcontact.twin.contact_law`) and in the exported C (``gc_hertz_fp64.c``'s
-``cbrt_positive``, every constant printed from :func:`seed_coefficients`): the
+replaces libm's ``cbrt`` in the twin's compiled Hamrock–Brewe law and libm's ``pow(W,
+2/3)`` in its golden kappa (:mod:`gearcontact.twin.contact_law`), and in the exported C
+(``gc_cbrt.h``'s ``gc_cbrt_positive``, every constant printed from
+:func:`seed_coefficients`): the
 drivetrain FMU must repeat the twin bit for bit (through rattle an ulp of difference
 grows to ~5e-8 in 2,000 steps), and glibc's ``cbrt`` costs ~130 instructions with its
 ``frexp`` and ``ldexp`` calls, this one ~35 (docs/export.md). Every operation is an IEEE

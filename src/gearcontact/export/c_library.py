@@ -3,7 +3,8 @@
 :func:`export_c_library` renders the Jinja2 templates of ``data/templates/c`` with the
 package's own tables (:mod:`.c_constants`) and vector layouts (:mod:`.c_checker`) into
 one directory: the public header ``gearcontact.h``, the internal ``gc_tables.h`` /
-``gc_tables.c`` (constants and ROM words), ``gc_arith.h`` (shift helpers), one
+``gc_tables.c`` (constants and ROM words), ``gc_arith.h`` (shift helpers),
+``gc_cbrt.h`` (the fp64 cube root, shared with the FMUs' contact law), one
 source per stage and flavour, the
 checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 ``libgearcontact.a``, ``libgearcontact.so`` and ``gearcontact_check``). No file holds a
@@ -32,15 +33,17 @@ from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_pla
                           gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
 
-__all__ = ["C_FILES", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
+__all__ = ["C_FILES", "HEADERS", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
            "export_c_library"]
 
 #: Golden fixed-point sources (integer arithmetic only).
 GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc_tables.c")
 #: fp64 sources.
 FP64_SOURCES = ("gc_gap_fp64.c", "gc_fit_fp64.c", "gc_hertz_fp64.c")
+#: Headers (the public one first; the others internal).
+HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
-C_FILES = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES \
+C_FILES = HEADERS + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
 #: Stages in this export (the header lists them).
 STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",

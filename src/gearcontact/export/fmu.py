@@ -29,7 +29,7 @@ from ..errors import ToolUnavailable
 from ..tca.types import ARCSEC_PER_RAD
 from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N
 from ..validation import InputRangeError
-from .c_library import FP64_SOURCES, GOLDEN_SOURCES, _environment, render_c_library
+from .c_library import FP64_SOURCES, GOLDEN_SOURCES, HEADERS, _environment, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
 __all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
@@ -246,7 +246,7 @@ def build_fmu(fmu_path: Path, ctx: dict, header_dir: Path) -> None:
     ``fmu_path`` (``modelDescription.xml``, ``sources/``, ``binaries/x86_64-linux/``)."""
     env = _environment_fmu()
     c_files = render_c_library()
-    lib = ("gearcontact.h", "gc_tables.h", "gc_arith.h") + GOLDEN_SOURCES + FP64_SOURCES
+    lib = HEADERS + GOLDEN_SOURCES + FP64_SOURCES
     ident, model_source = ctx["model_identifier"], ctx["c_sources"][0]
     with tempfile.TemporaryDirectory() as tmp:
         src = Path(tmp) / "sources"
