@@ -13,7 +13,8 @@ Truths:
   section's middle (u_f = 0) and perpendicular to the centre line (alpha_m = 0) only P*
   is left; a load line farther from the root gives a larger compliance (L*, M* > 0 over
   the teeth of docs/bending.md sec. 11);
-- bad input names the field.
+- bad input names the field; a tooth and body so far outside the fit that L*, M* or
+  P* changes sign (the s0003 hypoid gear's thin normal-section tooth angle) is refused.
 The 3D check of the formula against the FE and the shell is in
 tests/structure/test_root_fillet.py (docs/bending.md sec. 11).
 """
@@ -59,3 +60,10 @@ def test_structure_of_the_formula():
 def test_bad_input(field, value):
     with pytest.raises(InputRangeError, match=field):
         fillet_foundation_compliance_mm_per_n(**{**ROSS, field: value})
+
+
+def test_outside_the_fit_is_refused():
+    # the s0003-centred gear's normal section (docs/bending.md sec. 11): P* < 0
+    with pytest.raises(InputRangeError, match="root_half_angle_rad.*P\\*"):
+        foundation_coefficients(root_radius_mm=287.7, bore_radius_mm=285.4,
+                                root_half_angle_rad=0.0052)

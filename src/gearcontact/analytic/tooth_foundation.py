@@ -45,7 +45,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..validation import check_positive, check_range
+from ..validation import InputRangeError, check_positive, check_range
 
 __all__ = ["SAINSOT_COEFFICIENTS", "FoundationCoefficients", "foundation_coefficients",
            "fillet_foundation_compliance_mm_per_n"]
@@ -84,6 +84,13 @@ def foundation_coefficients(*, root_radius_mm: float, bore_radius_mm: float,
         Radius r_int of the body's inner (held) boundary, mm, in (0, r_f).
     root_half_angle_rad : float, keyword-only
         Half the tooth's angle at the root circle theta_f, rad, in (0, pi/2).
+
+    Raises
+    ------
+    InputRangeError
+        Out of range, or so far outside the fit's proportions that L*, M* or P* is not
+        positive (the s0003 hypoid gear's normal section: theta_f = 0.005 rad, h_f =
+        1.008 gives P* = -7.1).
     """
     r_f = check_positive("root_radius_mm", root_radius_mm)
     r_int = check_range("bore_radius_mm", bore_radius_mm, 0.0, r_f, lo_open=True,
@@ -97,6 +104,13 @@ def foundation_coefficients(*, root_radius_mm: float, bore_radius_mm: float,
         return a / t ** 2 + b * h ** 2 + cc * h / t + d / t + e * h + f
 
     got = {k: fit(c) for k, c in SAINSOT_COEFFICIENTS.items()}
+    if min(got["L"], got["M"], got["P"]) <= 0.0:
+        # far outside the proportions of the fit (a very thin tooth angle: the 1/theta^2
+        # terms take over) the fitted functions change sign: no compliance to give
+        raise InputRangeError("root_half_angle_rad", t,
+                              f"a tooth and body inside the fit's domain (with h_f = "
+                              f"{h:.4g}: L*, M*, P* = {got['L']:.3g}, {got['M']:.3g}, "
+                              f"{got['P']:.3g}, all must be > 0)")
     return FoundationCoefficients(l_star=got["L"], m_star=got["M"], p_star=got["P"],
                                   q_star=got["Q"], h_f=h, theta_f_rad=t)
 
