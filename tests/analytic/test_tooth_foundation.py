@@ -1,4 +1,4 @@
-"""Fillet-foundation compliance of Sainsot, Velex & Duverger (gearcontact.analytic.tooth_foundation).
+"""Fillet-foundation compliance of Sainsot, Velex & Duverger (analytic.tooth_foundation).
 
 Truths:
 - an independent implementation of the same formula and table: ross-rotordynamics

@@ -65,8 +65,8 @@ def register(sub) -> None:
                    metavar=("NXI", "NETA", "NZETA", "NRIM"),
                    help="FE cells along face ({}-{}), height ({}-{}), thickness ({}-{}) and "
                         "rim ({}-{}), at most {:,} P2 nodes in all (default 12 6 3 4: "
-                        "6,525 on the real root, 3,675 on the ellipse root)".format(*(n for r in FE_MESH_RANGES.values() for n in r),
-                                        MAX_FE_NODES))
+                        "6,525 on the real root, 3,675 on the ellipse root)".format(
+                            *(n for r in FE_MESH_RANGES.values() for n in r), MAX_FE_NODES))
     p.add_argument("--fe-root", choices=("cutter", "ellipse"), default="cutter",
                    help="root of the FE tooth: the real root its cutter leaves (default; "
                         "where it cannot be built, the ellipse root with a warning) or the "
