@@ -85,6 +85,7 @@ def test_bending_samples_the_design_side(tmp_path, s0003_calibrated):
     ("64 64 64 64", "--fe-mesh NXI = 64"),            # was "1612 inverted cells"
     ("12 6 3 12", "--fe-mesh NRIM = 12"),             # 2 inverted rim cells on s0003
     ("32 16 8 8", "this mesh has 69,615"),            # 65 (17 * 25 + 38 * 17) P2 nodes
+    ("24 8 4 6", "cutter root; this mesh has 20,531"),   # 12,789 on the ellipse root
 ])
 def test_fe_mesh_range_is_the_accepted_one(tmp_path, capsys, monkeypatch, mesh, needle):
     """Issue 28 probe: --fe-mesh advertised [1, 64] and rejected 1-5 or inverted cells
