@@ -16,7 +16,9 @@ ISO 23509 F.2 machine-settings pair (examples/machine_settings, edge radius 0.4 
 (b) slow (3D FE, minutes): the tooth on its real root against the tooth on the
     quarter-ellipse root of structure.rim at the mean point: the sign and magnitude of
     the compliance change against a Timoshenko beam over the section profiles, and the
-    change's convergence under mesh refinement.
+    change's convergence under mesh refinement; the root's share of the deflection (FE
+    on both roots, shell) against Sainsot et al.'s closed form of the fillet foundation
+    (analytic.tooth_foundation; docs/bending.md sec. 11).
 """
 
 import math
