@@ -23,6 +23,7 @@ def test_bending_gear_with_fe(tmp_path, s0003_centred):
     data = json.loads((out / "compliance.json").read_text())
     for key in ("points_mm", "shell_mm_per_n", "fe_mm_per_n", "fe_nodes"):
         assert key in data, key
+    assert data["fe_root"] == "cutter" and data["fe_root_note"] is None   # the default
     assert (out / "deflection.png").stat().st_size > 0
     G = np.array(data["shell_mm_per_n"])
     assert G.shape == (6, 6) and np.allclose(G, G.T, rtol=1e-12)
@@ -83,7 +84,8 @@ def test_bending_samples_the_design_side(tmp_path, s0003_calibrated):
     ("12 1 3 4", "--fe-mesh NETA = 1"),               # was n_eta in build_fe
     ("64 64 64 64", "--fe-mesh NXI = 64"),            # was "1612 inverted cells"
     ("12 6 3 12", "--fe-mesh NRIM = 12"),             # 2 inverted rim cells on s0003
-    ("32 16 8 8", "this mesh has 54,145"),            # (65)(49)(17) P2 nodes
+    ("32 16 8 8", "this mesh has 69,615"),            # 65 (17 * 25 + 38 * 17) P2 nodes
+    ("28 8 4 6", "cutter root; this mesh has 23,883"),   # 24 8 4 6 (20,531) is accepted
 ])
 def test_fe_mesh_range_is_the_accepted_one(tmp_path, capsys, monkeypatch, mesh, needle):
     """Issue 28 probe: --fe-mesh advertised [1, 64] and rejected 1-5 or inverted cells
@@ -104,10 +106,14 @@ def test_fe_mesh_range_is_the_accepted_one(tmp_path, capsys, monkeypatch, mesh, 
 def test_fe_mesh_help_states_the_accepted_ranges(capsys):
     from gearcontact.cli.bending import FE_MESH_RANGES, MAX_FE_NODES, fe_nodes
 
-    assert fe_nodes(12, 6, 3, 4) == 25 * 21 * 7 == 3675
+    # the real root (default) adds the slot bottoms beside the rim block and the fillet
+    # zone's layers beside the tooth; structure.fe.fe_node_count is checked against the
+    # built meshes in tests/structure/test_root_fillet.py
+    assert fe_nodes(12, 6, 3, 4, "ellipse") == 25 * 21 * 7 == 3675
+    assert fe_nodes(12, 6, 3, 4) == 25 * (9 * 15 + 18 * 7) == 6525
     with pytest.raises(SystemExit):
         main(["bending", "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    assert ("face (6-32), height (2-16), thickness (1-8) and rim (1-8), at most 13,000 P2 "
+    assert ("face (6-32), height (2-16), thickness (1-8) and rim (1-8), at most 21,000 P2 "
             "nodes") in text
-    assert MAX_FE_NODES == 13_000 and FE_MESH_RANGES["NXI"] == (6, 32)
+    assert MAX_FE_NODES == 21_000 and FE_MESH_RANGES["NXI"] == (6, 32)

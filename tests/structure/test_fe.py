@@ -7,20 +7,29 @@ Truths:
   the coarse default mesh adds ~1-2 %);
 - the same for the shell (independent code): shell and FE agree within 3 % there;
 - Maxwell-Betti symmetry of the FE compliance before symmetrization (1e-9 relative);
-- shell vs FE on the real teeth of both calibration pairs (s0003-centred and the
-  calibrated s0003, whose teeth are 24 % deeper) under distributed loads (segment
-  loads of 5 node columns around a 3 x 3 drive-flank lattice and line loads over the
-  face at its three heights; deflection of the coast-flank points behind the loaded
-  ones): within 15 % on the default mesh (measured pinion 0.89..1.11, gear
-  0.91..1.05) and 25 % on the calibration mesh (slow suite; measured pinion
-  0.82..1.22, gear 0.90..1.13). Point loads are not compared: neither model has a
+- shell vs FE on the real teeth of both s0003 pairs (s0003-centred and the calibrated
+  s0003, whose teeth are 24 % deeper), the FE on the teeth's real roots (the default,
+  structure.root_fillet; docs/bending.md sec. 10), under distributed loads (segment
+  loads of 5 node columns around a 3 x 3 lattice of the design flank and line loads
+  over the face at its three heights; deflection of the back-flank points behind the
+  loaded ones): within 15 % on the default mesh (measured s0003-centred pinion
+  1.02..1.15, gears 0.88..1.02) and 30 % on the finer mesh 20 x 8 x 4 + 6 (slow
+  suite; measured s0003-centred pinion 1.02..1.29, the largest at the segment loads
+  low on the flank: the factor is fitted on the default mesh, where a real-root tooth
+  costs seconds instead of 18 minutes here, and the finer mesh spreads the ratios as
+  it did for the ellipse-root calibration, 0.82..1.22 against 0.89..1.11). The
+  s0003 pinion's real root cannot be meshed (its slot's fillets cross above the root
+  cone at the toe): the FE falls back to the quarter-ellipse root with a warning and
+  says so in the result, and the shell, calibrated on real roots, is softer than
+  that stiffer root by about what the real root adds on the s0003-centred pinion
+  (ellipse -> real +32..+36 %): ratios within [1.0, 1.7] (measured 1.40..1.53).
+  Point loads are not compared: neither model has a
   converged local value under a point load (Mindlin: log-singular, grows with the
   Ritz order; 3D: 1/r, grows with mesh refinement) and the local part is the
   half-space's in the LTCA. What remains: the plate (no membrane-curvature coupling,
   no through-thickness compression) follows the FE's whole-face line load low on the
   flank less well than its short segment loads (docs/bending.md sec. 3); the FE rim
-  segment (free sides, clamped bottom, approximate fillet) is itself a model of the
-  real rim;
+  segment (free sides, clamped bottom) is itself a model of the real rim;
 - bad input: mesh sizes, rim / fillet sizes -> InputRangeError (before meshing); a
   body with crossing faces -> InputRangeError "FE mesh" (inverted cells).
 """
@@ -29,7 +38,8 @@ import numpy as np
 import pytest
 
 from gearcontact.materials import Material
-from gearcontact.structure.compliance import FeMesh, concat_points, flank_compliance
+from gearcontact.structure.compliance import (EllipseRootWarning, FeMesh, concat_points,
+                                              flank_compliance)
 from gearcontact.structure.fe import build_fe
 from gearcontact.structure.shell import build_shell
 from gearcontact.structure.tooth import RectangularPlate
@@ -77,16 +87,33 @@ def test_fe_reciprocity():
 
 
 #: Shell vs FE under distributed loads, default and calibration mesh (module docstring).
-TOLERANCE, TOLERANCE_FINE = 0.15, 0.25
+TOLERANCE, TOLERANCE_FINE = 0.15, 0.30
+
+
+#: The s0003 pinion: shell (real-root calibration) / FE on the ellipse root (docstring).
+FALLBACK_RANGE = (1.0, 1.7)
+
+
+def _shell_vs_fe(pair, flanks, name, member, **kw):
+    """flank_compliance with the FE, and the band its shell / FE ratios must lie in."""
+    if (name, member) != ("s0003", "pinion"):
+        res = flank_compliance(pair, member, flanks=flanks, fe=True, **kw)
+        assert res.fe_root == "cutter" and res.fe_root_note is None
+        return res, None
+    with pytest.warns(EllipseRootWarning, match="s0003 pinion: FE on the ellipse root"):
+        res = flank_compliance(pair, member, flanks=flanks, fe=True, **kw)
+    assert res.fe_root == "ellipse" and "must not cross" in res.fe_root_note
+    return res, FALLBACK_RANGE
 
 
 @pytest.mark.parametrize("name", ["s0003-centred", "s0003"])
 @pytest.mark.parametrize("member", ["pinion", "gear"])
 def test_shell_vs_fe_coarse(pairs, name, member):
     pair, flanks = pairs[name]
-    res = flank_compliance(pair, member, flanks=flanks, fe=True, fe_mesh=FeMesh(12, 6, 3, 4))
+    res, band = _shell_vs_fe(pair, flanks, name, member, fe_mesh=FeMesh(12, 6, 3, 4))
     ratio = res.ratios()
-    assert np.all(np.abs(ratio - 1.0) <= TOLERANCE), ratio
+    lo, hi = band or (1.0 - TOLERANCE, 1.0 + TOLERANCE)
+    assert np.all((ratio >= lo) & (ratio <= hi)), ratio
     # the FE point-load matrix is symmetric and its diagonal (with the local
     # indentation of a point load) exceeds the segment-load deflections
     assert np.allclose(res.fe_mm_per_n, res.fe_mm_per_n.T)
@@ -98,10 +125,11 @@ def test_shell_vs_fe_coarse(pairs, name, member):
 @pytest.mark.parametrize("member", ["pinion", "gear"])
 def test_shell_vs_fe_fine(pairs, name, member):
     pair, flanks = pairs[name]
-    res = flank_compliance(pair, member, flanks=flanks, xi=(-0.5, 0.0, 0.5),
-                           eta=(-0.5, 0.0, 0.5), fe=True, fe_mesh=FeMesh(20, 8, 4, 6))
+    res, band = _shell_vs_fe(pair, flanks, name, member, xi=(-0.5, 0.0, 0.5),
+                             eta=(-0.5, 0.0, 0.5), fe_mesh=FeMesh(20, 8, 4, 6))
     ratio = res.ratios()
-    assert np.all(np.abs(ratio - 1.0) <= TOLERANCE_FINE), ratio
+    lo, hi = band or (1.0 - TOLERANCE_FINE, 1.0 + TOLERANCE_FINE)
+    assert np.all((ratio >= lo) & (ratio <= hi)), ratio
 
 
 def test_bad_input(s0003_centred):

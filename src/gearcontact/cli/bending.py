@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..structure.compliance import SEGMENT_NODES, FeMesh, flank_compliance, write_compliance
+from ..structure.fe import fe_node_count
 from ..structure.shell import ORDER, ORDER_FACE
 from ..validation import InputRangeError
 from .options import (add_pair_arguments, check_count, check_pair_arguments, load_pair_for,
@@ -27,15 +28,20 @@ from .outdir import final_path
 #: the quadratically graded rim layers of s0003 invert cells: 12 give 2 inverted).
 FE_MESH_RANGES = {"NXI": (SEGMENT_NODES + 1, 32), "NETA": (2, 16), "NZETA": (1, 8),
                   "NRIM": (1, 8)}
-#: Most P2 nodes of the FE model, (2 NXI + 1)(2 (NETA + NRIM) + 1)(2 NZETA + 1): the
-#: default 12 6 3 4 has 3,675 (FE build 5 s); 24 8 4 6 has 12,789 (FE build 156 s,
-#: 1.4 GB peak, 2 busy cores); the sparse factorization grows about quadratically.
-MAX_FE_NODES = 13_000
+#: Most P2 nodes of the FE model (:func:`~gearcontact.structure.fe.fe_node_count`; the
+#: real root adds the slot bottoms and the fillet zone, 3 layers and 2 cells across each
+#: slot): the default 12 6 3 4 has 6,525 on the real root (3,675 on the ellipse root);
+#: 24 8 4 6 has 12,789 on the ellipse root (FE build 156 s, 1.4 GB peak, 2 busy cores)
+#: and 20,531 on the real root (s0003-centred pinion: 2.0 GB peak, 95 s CPU for the
+#: whole command; docs/bending.md sec. 10), which the cap keeps; the sparse
+#: factorization grows about quadratically.
+MAX_FE_NODES = 21_000
 
 
-def fe_nodes(n_xi: int, n_eta: int, n_zeta: int, n_rim: int) -> int:
-    """P2 nodes of the FE mesh of ``--fe-mesh n_xi n_eta n_zeta n_rim``."""
-    return (2 * n_xi + 1) * (2 * (n_eta + n_rim) + 1) * (2 * n_zeta + 1)
+def fe_nodes(n_xi: int, n_eta: int, n_zeta: int, n_rim: int, root: str = "cutter") -> int:
+    """P2 nodes of the FE mesh of ``--fe-mesh n_xi n_eta n_zeta n_rim`` on ``--fe-root``
+    (an upper bound where the real root falls back to the ellipse)."""
+    return fe_node_count(n_xi, n_eta, n_zeta, n_rim, root=root == "cutter")
 
 
 def register(sub) -> None:
@@ -60,8 +66,12 @@ def register(sub) -> None:
                    metavar=("NXI", "NETA", "NZETA", "NRIM"),
                    help="FE cells along face ({}-{}), height ({}-{}), thickness ({}-{}) and "
                         "rim ({}-{}), at most {:,} P2 nodes in all (default 12 6 3 4: "
-                        "3,675)".format(*(n for r in FE_MESH_RANGES.values() for n in r),
-                                        MAX_FE_NODES))
+                        "6,525 on the real root, 3,675 on the ellipse root)".format(
+                            *(n for r in FE_MESH_RANGES.values() for n in r), MAX_FE_NODES))
+    p.add_argument("--fe-root", choices=("cutter", "ellipse"), default="cutter",
+                   help="root of the FE tooth: the real root its cutter leaves (default; "
+                        "where it cannot be built, the ellipse root with a warning) or the "
+                        "quarter-ellipse root (docs/bending.md sec. 3, 10)")
     p.set_defaults(func=run, check=check)
 
 
@@ -74,11 +84,11 @@ def check(args) -> None:
     check_count("--order-face", args.order_face, 1, 24)
     for (name, (lo, hi)), n in zip(FE_MESH_RANGES.items(), args.fe_mesh):
         check_count(f"--fe-mesh {name}", n, lo, hi)
-    if args.fe and fe_nodes(*args.fe_mesh) > MAX_FE_NODES:
+    n = fe_nodes(*args.fe_mesh, args.fe_root)
+    if args.fe and n > MAX_FE_NODES:
         raise InputRangeError("--fe-mesh", " ".join(map(str, args.fe_mesh)),
-                              f"at most {MAX_FE_NODES:,} P2 nodes, (2 NXI + 1)(2 (NETA + "
-                              f"NRIM) + 1)(2 NZETA + 1); this mesh has "
-                              f"{fe_nodes(*args.fe_mesh):,}")
+                              f"at most {MAX_FE_NODES:,} P2 nodes on the {args.fe_root} "
+                              f"root; this mesh has {n:,}")
     if args.fe:
         try:
             import skfem  # noqa: F401
@@ -96,7 +106,7 @@ def run(args) -> int:
     side = args.prepared_pair.side
     res = flank_compliance(pair, args.member, side=side, flanks=flanks, xi=lattice[0],
                            eta=lattice[1], order=args.order, order_face=args.order_face, fe=args.fe,
-                           fe_mesh=FeMesh(*args.fe_mesh))
+                           fe_mesh=FeMesh(*args.fe_mesh), fe_root=args.fe_root)
     write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
                      order=args.order, order_face=args.order_face)
     seg = res.segment_shell_mm_per_n
@@ -105,7 +115,8 @@ def run(args) -> int:
     if res.fe_mm_per_n is not None:
         r = res.ratios()
         run_timings(args, fe_build_s=res.fe_build_s)
-        line += (f"; FE ({res.fe_nodes} nodes, {res.fe_build_s:.1f} s) shell/FE "
+        line += (f"; FE ({res.fe_root} root, {res.fe_nodes} nodes, {res.fe_build_s:.1f} s) "
+                 f"shell/FE "
                  f"{r.min():.2f}..{r.max():.2f}")
     print(line + f" -> {final_path(args, args.out)}")
     return 0

@@ -27,7 +27,8 @@ Two kinds of numbers:
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -38,11 +39,16 @@ from .rim import RimSegment
 from .shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
 from .tooth import LoadPoints
 
-__all__ = ["FlankCompliance", "FeMesh", "flank_compliance", "shell_compliance",
-           "write_compliance", "concat_points", "SEGMENT_NODES"]
+__all__ = ["FlankCompliance", "FeMesh", "EllipseRootWarning", "flank_compliance",
+           "shell_compliance", "write_compliance", "concat_points", "SEGMENT_NODES"]
 
 #: Node columns of a segment load.
 SEGMENT_NODES = 5
+
+
+class EllipseRootWarning(UserWarning):
+    """The FE of :func:`flank_compliance` meshes the quarter-ellipse root instead of the
+    tooth's real root (no cutter for the member, or a real root the FE cannot mesh)."""
 
 
 @dataclass(frozen=True)
@@ -86,6 +92,11 @@ class FlankCompliance:
         Nodes of the P2 FE mesh.
     fe_build_s : float or None
         FE meshing + assembly + factorization time, s.
+    fe_root : str or None
+        The root the FE meshed: "cutter" (the real root, :mod:`.root_fillet`) or
+        "ellipse" (:mod:`.rim`); None without FE.
+    fe_root_note : str or None
+        Why the FE meshed the ellipse root where the real one was asked for (else None).
     """
 
     member: str
@@ -102,6 +113,8 @@ class FlankCompliance:
     line_fe_mm_per_n: np.ndarray | None = None
     fe_nodes: int | None = None
     fe_build_s: float | None = None
+    fe_root: str | None = None
+    fe_root_note: str | None = None
 
     def ratios(self) -> np.ndarray:
         """Shell / FE for all segment and line loads (NaN-free; needs the FE)."""
@@ -121,7 +134,8 @@ class FlankCompliance:
             out.update(fe_mm_per_n=self.fe_mm_per_n.tolist(),
                        segment_fe_mm_per_n=self.segment_fe_mm_per_n.tolist(),
                        line_fe_mm_per_n=self.line_fe_mm_per_n.tolist(),
-                       fe_nodes=self.fe_nodes,
+                       fe_nodes=self.fe_nodes, fe_root=self.fe_root,
+                       fe_root_note=self.fe_root_note,
                        ratio_shell_to_fe=self.ratios().tolist())
         return out
 
@@ -178,7 +192,7 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
                      xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3), order: int = ORDER,
                      order_face: int = ORDER_FACE, rim: RimSegment | None = None,
                      fe: bool = False, fe_mesh: FeMesh = FeMesh(),
-                     fe_root: str = "ellipse") -> FlankCompliance:
+                     fe_root: str = "cutter") -> FlankCompliance:
     """Compliance of one tooth of ``member`` at the lattice ``xi x eta`` of its flank
     ``side`` (loaded there, normal into the tooth).
 
@@ -207,11 +221,14 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
         Also solve the 3D FE model (needs the ``fe`` extra).
     fe_mesh : FeMesh
     fe_root : str
-        The FE's root below the tooth: ``"ellipse"``, the quarter-ellipse fillet and rim
-        of :mod:`.rim` (the shell's calibration, ``docs/bending.md`` sec. 3), or
-        ``"cutter"``, the real root the member's cutter leaves
-        (:mod:`.root_fillet`; the conjugate pinion's from the generating tool that cuts
-        it, :func:`~gearcontact.geometry.fillet.pair_fillets`; sec. 10).
+        The FE's root below the tooth: ``"cutter"`` (default), the real root the
+        member's cutter leaves (:mod:`.root_fillet`; the conjugate pinion's from the
+        generating tool that cuts it, :func:`~gearcontact.geometry.fillet.pair_fillets`;
+        the shell's calibration, ``docs/bending.md`` sec. 10), or ``"ellipse"``, the
+        quarter-ellipse fillet and rim of :mod:`.rim` (sec. 3). Where the real root
+        cannot be built (no fillet for the member, or a slot whose fillets cross above
+        the root cone: the s0003 pinion's toe) the FE meshes the ellipse root, warns
+        (:class:`EllipseRootWarning`) and says why in the result (``fe_root_note``).
     """
     if member not in ("pinion", "gear"):
         raise InputRangeError("member", member, "'pinion' or 'gear'")
@@ -222,18 +239,34 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
     material = pair.pinion_material if member == "pinion" else pair.gear_material
     shell = tooth_shell(flanks, member, material=material, order=order,
                         order_face=order_face, rim=rim)
-    root = None
+    root, note = None, None
     if fe and fe_root == "cutter":
-        from ..geometry.fillet import pair_fillets
-        from .root_fillet import fillet_root
+        root, note = _real_root(pair, flanks, shell, fe_mesh)
+        if note is not None:
+            warnings.warn(f"{pair.name} {member}: FE on the ellipse root, not the real "
+                          f"root ({note})", EllipseRootWarning, stacklevel=2)
+    res = shell_compliance(shell, side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh,
+                           fe_root=root)
+    return res if note is None else replace(res, fe_root_note=note)
 
-        fillets, why = pair_fillets(pair, flanks, conjugate_pinion=True)
-        for key, reason in why.items():
-            if key[0] == member:
-                raise InputRangeError(f"{member} {key[1]} root fillet", "none", reason)
-        root = fillet_root(shell.body, fillets, depth_mm=shell.rim.depth_mm)
-    return shell_compliance(shell, side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh,
-                            fe_root=root)
+
+def _real_root(pair, flanks, shell: ShellModel, fe_mesh: FeMesh):
+    """``(FilletRoot, None)`` of the shell's tooth for the FE mesh ``fe_mesh``, or
+    ``(None, why)`` where it cannot be built (:func:`flank_compliance`)."""
+    from ..geometry.fillet import pair_fillets
+    from .root_fillet import fillet_root
+
+    member = shell.body.member
+    fillets, why = pair_fillets(pair, flanks, conjugate_pinion=True)
+    for key, reason in why.items():
+        if key[0] == member:
+            return None, f"no {key[1]} root fillet: {reason}"
+    root = fillet_root(shell.body, fillets, depth_mm=shell.rim.depth_mm)
+    try:
+        root.check_meshable(np.linspace(-1.0, 1.0, fe_mesh.n_xi + 1), fe_mesh.n_slot)
+    except InputRangeError as exc:
+        return None, str(exc)
+    return root, None
 
 
 def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0.5),
@@ -275,7 +308,8 @@ def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0
         kw.update(fe_mm_per_n=model.compliance(pl, vl),
                   segment_fe_mm_per_n=_distributed(G, sets[:n]),
                   line_fe_mm_per_n=_distributed(G, sets[n:]),
-                  fe_nodes=model.n_nodes, fe_build_s=model.build_s)
+                  fe_nodes=model.n_nodes, fe_build_s=model.build_s,
+                  fe_root="ellipse" if fe_root is None else "cutter")
     return FlankCompliance(**kw)
 
 

@@ -47,7 +47,7 @@ from ..validation import InputRangeError
 from .rim import rim_points, rim_segment
 from .tooth import LoadPoints
 
-__all__ = ["FeTooth", "build_fe"]
+__all__ = ["FeTooth", "build_fe", "fe_node_count"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,6 +104,20 @@ class FeTooth:
     def vertex_positions_mm(self, vertices: np.ndarray) -> np.ndarray:
         """Body-frame positions of mesh vertices (n, 3), mm."""
         return self._points[:, vertices].T
+
+
+def fe_node_count(n_xi: int, n_eta: int, n_zeta: int, n_rim: int, *, root: bool = False,
+                  n_fillet: int = 3, n_slot: int = 2) -> int:
+    """P2 nodes of :func:`build_fe`'s mesh (vertices + edge mid-nodes: on the split
+    tensor grid, the points of the grid of half the spacing). Without ``root``:
+    ``(2 n_xi + 1)(2 (n_eta + n_rim) + 1)(2 n_zeta + 1)``; with the real root the rim
+    block spans the slot bottoms too (``n_zeta + 2 n_slot`` cells across) and the
+    fillet zone adds ``n_fillet`` layers beside the tooth's: ``(2 n_xi + 1) [(2 n_rim
+    + 1)(2 (n_zeta + 2 n_slot) + 1) + 2 (n_fillet + n_eta)(2 n_zeta + 1)]``."""
+    if not root:
+        return (2 * n_xi + 1) * (2 * (n_eta + n_rim) + 1) * (2 * n_zeta + 1)
+    return (2 * n_xi + 1) * ((2 * n_rim + 1) * (2 * (n_zeta + 2 * n_slot) + 1)
+                             + 2 * (n_fillet + n_eta) * (2 * n_zeta + 1))
 
 
 def _signed_volumes(mesh) -> np.ndarray:

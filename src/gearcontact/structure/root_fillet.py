@@ -207,6 +207,24 @@ class FilletRoot:
         mid = 0.5 * (self.side_points("coast", xi, one) + self.side_points("drive", xi, one))
         return np.einsum("ni,ni->n", mid - centre, down)
 
+    def _block_mm(self, xi) -> np.ndarray:
+        """Height of the rim block below the fillet zone at ``xi`` (n,), mm; raises
+        InputRangeError where the rim is not deeper than the fillet zone."""
+        block = self.depth_mm - self.cone_depth_mm(xi)
+        if np.any(block <= 0.0):
+            raise InputRangeError(f"{self.tooth.member} rim depth_mm", self.depth_mm,
+                                  "> the fillet zone's depth "
+                                  f"{float(np.max(self.depth_mm - block)):.3f} mm")
+        return block
+
+    def check_meshable(self, xi_levels, n_slot: int) -> None:
+        """Raise InputRangeError, as :meth:`mesh_points` would, where the FE cannot mesh
+        this root at the face positions ``xi_levels``: a slot whose fillets cross above
+        the root cone (:meth:`root_row`) or a rim not deeper than the fillet zone."""
+        xi = np.asarray(xi_levels, float)
+        self.root_row(xi, n_slot)
+        self._block_mm(xi)
+
     def mesh_points(self, xi_levels, q_levels, s_fractions, zeta_levels, n_slot: int
                     ) -> np.ndarray:
         """Node positions below the root line for :func:`.fe.build_fe`:
@@ -227,11 +245,7 @@ class FilletRoot:
             row[:, n_slot + 1:n_slot + 2] - row[:, n_slot:n_slot + 1])
         full = np.concatenate([row[:, :n_slot], tooth_cols, row[:, n_slot + 2:]], axis=1)
         _, down, _, _ = root_line_section(self.tooth, xi)
-        block = self.depth_mm - self.cone_depth_mm(xi)
-        if np.any(block <= 0.0):
-            raise InputRangeError(f"{self.tooth.member} rim depth_mm", self.depth_mm,
-                                  "> the fillet zone's depth "
-                                  f"{float(np.max(self.depth_mm - block)):.3f} mm")
+        block = self._block_mm(xi)
         s = np.asarray(s_fractions, float)
         levels = [full + (s[j] * block)[:, None, None] * down[:, None, :]
                   for j in range(len(s))]
