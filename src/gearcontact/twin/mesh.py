@@ -62,7 +62,7 @@ from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
-from .edge_law import edge_compliance, ellipse_leaves_flank, trim_compliance
+from .edge_law import edge_compliance, ellipse_leaves_flank, operating_scales, trim_compliance
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
@@ -228,7 +228,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
     n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}
-    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb")}
+    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb",
+                                                      "kappa")}
     valid = np.zeros((n_p, n_k), bool)
     mode = np.zeros((n_p, n_k), np.int8)
     label = np.full((n_p, n_k), "", dtype=object)
@@ -250,6 +251,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             arrays["opening"][i, k] = pc.offset_mm
             arrays["A"][i, k] = pc.A_minus_per_mm
             arrays["B"][i, k] = pc.B_minus_per_mm
+            arrays["kappa"][i, k] = pc.kappa_mm_per_n23
             if pc.center_index not in sten:
                 mp = curvature_point(cycle.path, pc.center_index)
                 sten[pc.center_index] = hardware_stencil(pinion, gear, kin, mp,
@@ -262,15 +264,18 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                                                phi2_rad=pc.phi2_rad), pc,
                     torque_nmm=1e3 * t, e_prime_mpa=e_prime)):
                 edges[i, k] = pc
-    scale, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
-    factor = scale ** 3         # equivalent curvatures (.edge_law)
-    arrays["A"] *= factor
-    arrays["B"] *= factor
-    stencils *= factor[..., None]
+    laws, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
     env = env + m * ARCSEC_PER_RAD * _first_touch(arrays, valid)
+    # each cut row's scale at the load it carries in the table's quasi-static mesh
+    scale, _ = operating_scales(laws, arrays["lever"], arrays["opening"], arrays["kappa"],
+                                valid, torque_nmm=1e3 * t)
+    factor = scale ** 3         # equivalent curvatures (.edge_law)
+    arrays["A"] *= factor
+    arrays["B"] *= factor
+    stencils *= factor[..., None]
     order = np.arange(n_k) if m == 1 else np.arange(n_k)[::-1]
     k0 = cycle.mean_index
     main = [i for i in range(n_p) if valid[i, k0] and arrays["opening"][i, k0] == 0.0]
@@ -296,10 +301,11 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
 
 def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: float
                      ) -> tuple[np.ndarray, np.ndarray]:
-    """``(c, n)`` per row: :func:`.edge_law.edge_compliance` of each edge or posed-field
-    row's contact in ``edges``, :func:`.edge_law.trim_compliance` of each surface row's,
-    once per path index; 1 and NaN elsewhere."""
-    scale, expo = np.ones(edges.shape), np.full(edges.shape, np.nan)
+    """``(law, n)`` per row: :func:`.edge_law.edge_compliance` of each edge or
+    posed-field row's contact in ``edges``, :func:`.edge_law.trim_compliance` of each
+    surface row's, once per path index (``law`` None and ``n = 0`` where it failed);
+    None and NaN elsewhere."""
+    laws, expo = np.full(edges.shape, None, dtype=object), np.full(edges.shape, np.nan)
     done: dict = {}
     materials = (pair.pinion_material, pair.gear_material)
     for (i, k), pc in np.ndenumerate(edges):
@@ -310,11 +316,11 @@ def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: fl
             try:
                 law = (edge_compliance if edge else trim_compliance)(
                     fields, pc, materials=materials, torque_nmm=torque_nmm)
-                done[pc.path_index] = (law.scale, law.exponent)
+                done[pc.path_index] = (law, law.exponent)
             except ArithmeticError:     # no founded calibration: Hertz, n = 0 says so
-                done[pc.path_index] = (1.0, 0.0)
-        scale[i, k], expo[i, k] = done[pc.path_index]
-    return scale, expo
+                done[pc.path_index] = (None, 0.0)
+        laws[i, k], expo[i, k] = done[pc.path_index]
+    return laws, expo
 
 
 def pair_mesh_table(pair, *, side: str, torque_nm: float, phases: int = 61, flanks=None,
