@@ -56,10 +56,10 @@ pair entering or leaving the mesh carries a fraction of the torque, and the LCP'
 of the load ``n`` differs from 2/3 (0.55-0.8 on cut patches), so a scale fitted over
 ``T/4 .. T`` was off there by ``|n - 2/3| ln(W_fit / W)`` (the 7/60 pair's approaching
 pair: 6.5-22 %); at the operating load the law is the LCP's to the interpolation
-between calibration loads (about 1 %). ``EdgeCompliance.scale`` keeps the fit at the
-twin's exponent over the calibration loads, ``exponent`` the free power fit ``delta =
-C W^n`` (how far the LCP is from ``n = 2/3``, i.e. how fast the law departs from it
-away from the operating load).
+between calibration loads (within 1.4 % at T/8 on s0003). ``EdgeCompliance.scale``
+keeps the fit at the twin's exponent over the calibration loads, ``exponent`` the free
+power fit ``delta = C W^n`` (how far the LCP is from ``n = 2/3``, i.e. how fast the
+law departs from it away from the operating load).
 
 The row's law is then ``delta = c kappa W^(2/3)``. It reaches every backend unchanged as
 *equivalent curvatures*: the Hertzian approach of a fixed ellipticity scales as the
@@ -99,12 +99,12 @@ ELLIPSE_PROBES = 16
 
 #: Loads of the calibration as fractions of the pair carrying the table's torque alone
 #: (a row carries at most that at rest), a factor 4 apart: ``ln delta`` is smooth enough
-#: in ``ln W`` that interpolating between them is within about 1 % of the LCP at the
-#: loads between (s0003 coast, at T/8: 0.1-1.1 %). The least is T/16: there the contact
-#: patch spans about 10 of the field's 40 cells across (the field is sized by the
-#: ellipse under the whole torque, patch sizes go as ``W^(1/3)``) and the LCP's approach
-#: is within 0.5 % of an 80-cell field's on surface rows and within 5-8 % on edge and
-#: corner rows, whose least gap sits half a cell inside the edge (s0003 coast); at T/64
+#: in ``ln W`` that interpolating between them is within 1.4 % of the LCP at the loads
+#: between (s0003 coast's edge rows at T/8). The least is T/16: there the contact patch
+#: spans about 10 of the field's 40 cells across (the field is sized by the ellipse
+#: under the whole torque, patch sizes go as ``W^(1/3)``) and the LCP's approach is
+#: within 0.5 % of an 80-cell field's on surface rows and within 5-8 % on edge and
+#: corner rows (s0003 coast, measured from the opening; "grid floor" below); at T/64
 #: 8-17 %. Below T/16 the law keeps the scale at T/16.
 EDGE_LOAD_FRACTIONS = (0.0625, 0.25, 1.0)
 #: Iterations of the operating loads and scales (:func:`operating_scales`): the shares
