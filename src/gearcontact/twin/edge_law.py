@@ -107,9 +107,9 @@ ELLIPSE_PROBES = 16
 #: corner rows (s0003 coast, measured from the opening; "grid floor" below); at T/64
 #: 8-17 %. Below T/16 the law keeps the scale at T/16.
 EDGE_LOAD_FRACTIONS = (0.0625, 0.25, 1.0)
-#: Iterations of the operating loads and scales (:func:`operating_scales`): the shares
-#: move the scales by ``|n - 2/3|`` of their own relative change, so two passes settle
-#: them to well below a per cent.
+#: Passes of the operating loads and scales (:func:`operating_scales`): a relative change
+#: of a row's load moves its scale by ``|n - 2/3|`` (0-0.15) of it, so each pass shrinks
+#: the change by that factor or more.
 OPERATING_PASSES = 3
 
 
