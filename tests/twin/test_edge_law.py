@@ -135,23 +135,31 @@ def test_static_approach_is_the_lcp_and_the_torque_balances(s0003_coast_twin):
     assert _check_static_approach(*s0003_coast_twin, min_scale=2.0) >= 2
 
 
+def _design_space_mesh(point, tmp_path):
+    """``(pair, tca, flanks, mesh)`` of a tests/design_space.py pair prepared as the CLI
+    prepares it (drive side, 31 phases)."""
+    from design_space import design_space_pair
+    from gearcontact.geometry.pair import pair_to_toml
+    from gearcontact.tca.synthesis import prepare_pair
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    path = tmp_path / "pair.toml"
+    path.write_text(pair_to_toml(design_space_pair(*point)))
+    prepared = prepare_pair(path)
+    pair = prepared.pair
+    return (pair, *pair_mesh_table(pair, side="drive", torque_nm=TORQUE_NM, phases=31,
+                                   flanks=prepared.flank_set()))
+
+
 @pytest.mark.slow
 def test_static_approach_is_the_lcp_on_the_7_60_pair(tmp_path):
     """Truths 1 and 2 on CHATTER_PAIR (tests/design_space.py; drive, 31 phases): its
     pinion-root edge rows carry the whole torque for a third of the pitch (scales
     1.8-2.5 at 61 phases). About 2 min."""
-    from design_space import CHATTER_PAIR, design_space_pair
-    from gearcontact.geometry.pair import pair_to_toml
-    from gearcontact.tca.synthesis import prepare_pair
-    from gearcontact.twin.mesh import pair_mesh_table
+    from design_space import CHATTER_PAIR
 
-    path = tmp_path / "chatter.toml"
-    path.write_text(pair_to_toml(design_space_pair(*CHATTER_PAIR)))
-    prepared = prepare_pair(path)
-    pair = prepared.pair
-    tca, flanks, mesh = pair_mesh_table(pair, side="drive", torque_nm=TORQUE_NM,
-                                        phases=31, flanks=prepared.flank_set())
-    assert _check_static_approach(pair, tca, flanks, mesh, min_scale=1.5) >= 5
+    assert _check_static_approach(*_design_space_mesh(CHATTER_PAIR, tmp_path),
+                                  min_scale=1.5) >= 5
 
 
 @pytest.mark.slow
@@ -160,18 +168,10 @@ def test_static_approach_is_the_lcp_on_the_miter_pair(tmp_path):
     phases): one pair carries the whole torque over most of the pitch and hands over
     through the pinion's edge rows (scales 1.3-2.7), the entering pair carrying 10-85 %.
     About 2 min."""
-    from design_space import MITER_PAIR, design_space_pair
-    from gearcontact.geometry.pair import pair_to_toml
-    from gearcontact.tca.synthesis import prepare_pair
-    from gearcontact.twin.mesh import pair_mesh_table
+    from design_space import MITER_PAIR
 
-    path = tmp_path / "miter.toml"
-    path.write_text(pair_to_toml(design_space_pair(*MITER_PAIR)))
-    prepared = prepare_pair(path)
-    pair = prepared.pair
-    tca, flanks, mesh = pair_mesh_table(pair, side="drive", torque_nm=TORQUE_NM,
-                                        phases=31, flanks=prepared.flank_set())
-    assert _check_static_approach(pair, tca, flanks, mesh, min_scale=1.2) >= 3
+    assert _check_static_approach(*_design_space_mesh(MITER_PAIR, tmp_path),
+                                  min_scale=1.2) >= 3
 
 
 def test_approach_coefficient_is_continuous_across_switches(s0003_coast_twin):
