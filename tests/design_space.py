@@ -36,6 +36,13 @@ from gearcontact.validation import InputRangeError
 CHATTER_PAIR = (7, 8.53011882343041, 0.043555845328246544, 25.0, 0.3203125, "drive",
                 "right")
 
+#: A 15/15 miter spiral bevel pair (left hand, drive, 23 deg, face 0.25 R_m; the slow
+#: twin property test's examples at 23 / 25.9 deg): one pair carries the whole torque
+#: over most of the pitch and hands over through the pinion's edge rows, and at 3000 rpm
+#: the mesh rattles (docs/twin.md "The law of a cut patch"): tests/twin/test_edge_law.py
+#: and tests/twin/test_design_space.py.
+MITER_PAIR = (15, 1.0, 0.0, 23.0, 0.25, "drive", "left")
+
 DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
                  "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
                  "pinion_teeth / gear_teeth", "design.working_depth_factor",

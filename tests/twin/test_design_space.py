@@ -5,10 +5,24 @@ hands) runs the twin with its default options (reference backend, stencil curvat
 3000 rpm, 64.5 N·m, 50 ms at 10 us, the s0003-scaled drivetrain) to exit 0, and its
 files obey truths the twin does not impose on itself:
 
-- the mesh carries the load torque: the mean mesh torque over the second half of the
-  run (``twin.json``, and the mean of ``twin.csv``'s column) is the set torque within
-  1 % (the load inertia's change of angular momentum over 25 ms: measured at most
-  2.3e-3 on 12 probe pairs);
+- the mesh carries the load torque: the mean mesh torque over the whole mesh periods of
+  the second half of the run (``twin.csv``; the periods from the run's own mesh
+  frequency, counted back from its end) is the set torque within 1 % (the load
+  inertia's change of angular momentum over 25 ms: measured at most 2.3e-3 on 12 probe
+  pairs) plus twice the standard error of that mean from the scatter of the per-period
+  means (:func:`mesh_torque_mean`). A pair whose mesh rattles (contact loss) carries the
+  torque in impacts, so a 25 ms mean has a sampling error of its own, and the plain
+  second-half mean adds a partial period's impacts: the property test's 15/15 miter
+  pair at 25.9 deg (contact loss 34 %) has per-period means scattering by 4.6 N·m (7 %;
+  lag-1 correlation -0.14, so twice the standard error is not optimistic), a
+  whole-period mean of 64.91 N·m (+0.63 %, bound 2.83 N·m) and a plain second-half
+  mean of 65.07 (+0.88 %; with session 14's edge law 65.24, +1.15 %, which failed the
+  old 1 % bound; over 150 ms the later windows' means lie within 0.3 %); the 12/12
+  pair at 27.7 deg (contact loss 70 %, dynamic factor 12) 64.78 N·m, bound 3.86. A
+  quiet pair's per-period means agree to ~0.1 %, so its bound stays 1 % (measured
+  0.66-0.77 N·m on the other examples); ``twin.json``'s second-half mean is the set
+  torque within the same bound plus one partial mesh period's share of the torque's
+  range;
 - the normal load's lever about the gear axis at the static operating point
   (``twin.json``: torque / static mesh load) is the mean pitch radius times
   cos(alpha_n) cos(beta_m2) of ISO 10300-1 (F_n = F_mt / (cos alpha_n cos beta_m))
@@ -54,7 +68,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from design_space import CHATTER_PAIR, HANDS, SPACE, command_on_accepted_pair
+from design_space import CHATTER_PAIR, HANDS, MITER_PAIR, SPACE, command_on_accepted_pair
 
 #: The twin's defaults the checks use (gearcontact.cli.twin).
 SPEED_RPM, TORQUE_NM = 3000.0, 64.5
@@ -78,10 +92,14 @@ def check_twin_outputs(out: Path, pair):
     assert s["speed_rpm"] == SPEED_RPM and s["torque_nm"] == TORQUE_NM
     assert s["mesh_frequency_hz"] == pytest.approx(pair.pinion_teeth * SPEED_RPM / 60.0,
                                                    rel=1e-12)
-    # the mesh carries the load torque on the mean of the second half
-    second = c["t_s"] >= 0.5 * s["duration_s"]
-    assert s["mean_mesh_torque_nm"] == pytest.approx(TORQUE_NM, rel=0.01)
-    assert c["mesh_torque_nm"][second].mean() == pytest.approx(TORQUE_NM, rel=0.01)
+    # the mesh carries the load torque on the mean of the second half's whole periods
+    mean, bound, partial = mesh_torque_mean(c["t_s"], c["mesh_torque_nm"],
+                                            s["mesh_frequency_hz"], 0.5 * s["duration_s"])
+    print(f"mean mesh torque over whole periods {mean:.3f} N·m (bound {bound:.3f}), "
+          f"second half {s['mean_mesh_torque_nm']:.3f}, dynamic factor "
+          f"{s['dynamic_factor']:.3f}, contact loss {s['contact_loss']:.3f}")
+    assert abs(mean - TORQUE_NM) <= bound
+    assert abs(s["mean_mesh_torque_nm"] - TORQUE_NM) <= bound + partial
     # the lever of the normal load: ISO 10300-1's r_m2 cos(alpha_n) cos(beta_m2)
     b = pair.blank
     alpha = b.pressure_angle_drive_deg if s["side"] == "drive" else b.pressure_angle_coast_deg
@@ -94,6 +112,23 @@ def check_twin_outputs(out: Path, pair):
     u = pair.gear_teeth / pair.pinion_teeth
     assert u * c["gear_speed_rad_s"].mean() == pytest.approx(c["pinion_speed_rad_s"].mean(),
                                                              rel=1e-3)
+
+
+def mesh_torque_mean(t_s, torque_nm, mesh_frequency_hz: float, start_s: float):
+    """``(mean, bound, partial)`` of the mesh torque over the whole mesh periods from
+    ``start_s`` to the end of the record (N·m; module docstring): ``bound`` = 1 % of the
+    set torque + twice the standard error of the mean from the per-period means' scatter,
+    ``partial`` = the range of the torque times the share of the rest (the part of a
+    period before the first whole one) in the time from ``start_s``."""
+    step = t_s[1] - t_s[0]
+    end = t_s[-1] + step                # rows are the states at the steps' starts
+    n = int((end - start_s) * mesh_frequency_hz)
+    edges = end - np.arange(n, -1, -1) / mesh_frequency_hz
+    at = np.searchsorted(t_s, edges - 0.5 * step)
+    means = np.array([torque_nm[a:b].mean() for a, b in zip(at[:-1], at[1:])])
+    bound = 0.01 * TORQUE_NM + 2.0 * means.std(ddof=1) / np.sqrt(n)
+    rest = (end - start_s - n / mesh_frequency_hz) / (end - start_s)
+    return float(means.mean()), float(bound), float(rest * np.ptp(torque_nm))
 
 
 #: 7/70 teeth, offset 0.49 r2 (the ISO 23509 limit is 0.5 r2), 50 deg: the drive
@@ -164,3 +199,20 @@ def test_edge_contact_pair_keeps_contact_at_3000_rpm():
 def test_accepted_pairs_run_twin_default_options_slow(z1, ratio, offset_frac, beta, face_frac,
                                                       side, hand):
     _twin_accepted_pair(None, z1, ratio, offset_frac, beta, face_frac, side, hand)
+
+
+@pytest.mark.slow
+def test_rattling_miter_pair_carries_the_torque():
+    """MITER_PAIR (tests/design_space.py) with default options: its mesh rattles at 3000
+    rpm (one pair carries over most of the pitch and hands over through edge rows; the
+    mesh frequency 750 Hz is 3.7 times the first elastic mode) and still carries the set
+    torque on the mean of whole mesh periods within the bound from its own scatter
+    (module docstring; measured: contact loss 19.3 %, dynamic factor 2.90, per-period
+    means 64.0-65.4 N·m, their mean 64.70 N·m, bound 0.83; with session 14's edge law
+    42.3 %, 5.69 and 65.04 N·m, bound 2.56). About 2 min."""
+    with command_on_accepted_pair("twin", MITER_PAIR, options=("--no-figures",)) as (
+            pair, run, out):
+        assert run.returncode == 0, run.stderr
+        check_twin_outputs(out, pair)
+        s = json.loads((out / "twin.json").read_text())
+    assert s["contact_loss"] > 0.0

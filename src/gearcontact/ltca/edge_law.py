@@ -30,9 +30,36 @@ row's closing datum, against a reference ``delta_ref(W_i)``:
   patch stays on the flanks the trimmed problem has the same solution and the row keeps
   ``c = 1`` exactly (:func:`trim_compliance`).
 
-The compliance scale ``c = exp(mean_i ln(delta_i / delta_ref(W_i)))`` is the
-least-squares fit of ``ln delta = ln(c kappa) + (2/3) ln W`` at the twin's exponent; the
-free power fit ``delta = C W^n`` is kept to say how far the LCP is from ``n = 2/3``.
+*Grid floor.* At an edge contact of the TCA the opening ``g`` is the exact touch of
+the edge, but the field's nodes lie half a cell and more inside the edge: its least gap
+on the flank sits ``e`` above ``g`` (0.02-0.3 um at the transmitting edge rows of a
+15/15 miter pair, 3-9 um at an approaching one whose patch the 40-cell field does not
+resolve), and ``delta_LCP - g`` carries ``e`` as a false compliance, largest at small
+loads. The datum of an edge row is therefore that least gap (:func:`edge_datum_mm`):
+the LCP's approach from its own touch. On the miter pair's six transmitting edge rows a
+40- and an 80-cell field extrapolated to ``e = 0`` (Richardson, approach linear in
+``e``) put ``delta_LCP - least gap`` within 16 % below to 2 % above it at T/16 and
+6 % below to 1 % above at T, where ``delta_LCP - g`` is 2-37 % and -1-8 % above it. At
+the approaching rows whose patch the field does not resolve (``e`` of the order of the
+approach) neither datum is founded (the 80-cell field changes the approach by half).
+A posed-field row's opening is its field's least gap already.
+
+The row's compliance scale is the LCP's ratio at the load the row carries: ``c(W) =
+delta_LCP(W) / delta_ref(W)``, ``ln c`` interpolated linearly in ``ln W`` between the
+calibration loads (:meth:`EdgeCompliance.scale_at`; constant beyond them), taken at the
+row's *operating load* (:func:`operating_scales`): its share of the torque in the
+quasi-static mesh of the table's own law (the Hertzian balance of the loaded TE's
+preview, :func:`gearcontact.ltca.lte_phase.preview_balance`, with the scaled rows;
+iterated, as the shares depend on the scales), at least the smallest calibration load
+(a row that carries nothing at rest first carries little when the mesh deflects). A
+pair entering or leaving the mesh carries a fraction of the torque, and the LCP's power
+of the load ``n`` differs from 2/3 (0.55-0.8 on cut patches), so a scale fitted over
+``T/4 .. T`` was off there by ``|n - 2/3| ln(W_fit / W)`` (the 7/60 pair's approaching
+pair: 6.5-22 %); at the operating load the law is the LCP's to the interpolation
+between calibration loads (within 1.4 % at T/8 on s0003). ``EdgeCompliance.scale``
+keeps the fit at the twin's exponent over the calibration loads, ``exponent`` the free
+power fit ``delta = C W^n`` (how far the LCP is from ``n = 2/3``, i.e. how fast the
+law departs from it away from the operating load).
 
 The row's law is then ``delta = c kappa W^(2/3)``. It reaches every backend unchanged as
 *equivalent curvatures*: the Hertzian approach of a fixed ellipticity scales as the
@@ -59,21 +86,31 @@ import numpy as np
 
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.lcp import solve_lcp
+from ..ltca.lte_phase import preview_balance
 from ..tca.stencil import gap_at
 
 __all__ = ["EDGE_LOAD_FRACTIONS", "ELLIPSE_PROBES", "EdgeCompliance", "edge_compliance",
-           "ellipse_leaves_flank", "equivalent_curvature_factor", "trim_compliance"]
+           "edge_datum_mm", "ellipse_leaves_flank", "equivalent_curvature_factor",
+           "operating_scales", "trim_compliance"]
 
 #: Points on the Hertzian ellipse's border that decide whether a surface row's patch is
 #: cut by a flank boundary (:func:`ellipse_leaves_flank`).
 ELLIPSE_PROBES = 16
 
 #: Loads of the calibration as fractions of the pair carrying the table's torque alone
-#: (a row carries at most that). Below a quarter the LCP's approach on the loaded TE's
-#: 40-cell edge field nears the separation half a cell inside the edge (0.15-0.4 um on
-#: the 7/60 pair), a floor of the grid rather than of the contact: the law extrapolates
-#: the fitted power there.
-EDGE_LOAD_FRACTIONS = (0.25, 0.5, 1.0)
+#: (a row carries at most that at rest), a factor 4 apart: ``ln delta`` is smooth enough
+#: in ``ln W`` that interpolating between them is within 1.4 % of the LCP at the loads
+#: between (s0003 coast's edge rows at T/8). The least is T/16: there the contact patch
+#: spans about 10 of the field's 40 cells across (the field is sized by the ellipse
+#: under the whole torque, patch sizes go as ``W^(1/3)``) and the LCP's approach is
+#: within 0.5 % of an 80-cell field's on surface rows and within 5-8 % on edge and
+#: corner rows (s0003 coast, measured from the opening; "grid floor" below); at T/64
+#: 8-17 %. Below T/16 the law keeps the scale at T/16.
+EDGE_LOAD_FRACTIONS = (0.0625, 0.25, 1.0)
+#: Passes of the operating loads and scales (:func:`operating_scales`): a relative change
+#: of a row's load moves its scale by ``|n - 2/3|`` (0-0.15) of it, so each pass shrinks
+#: the change by that factor or more.
+OPERATING_PASSES = 3
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,14 +119,16 @@ class EdgeCompliance:
 
     Attributes
     ----------
-    loads_n : ndarray (3,)
-        Calibration loads ``W_i``, N.
-    approach_lcp_mm, approach_ref_mm : ndarray (3,)
+    loads_n : ndarray (n,)
+        Calibration loads ``W_i`` at which the LCPs converged (at least two of
+        :data:`EDGE_LOAD_FRACTIONS`), N.
+    approach_lcp_mm, approach_ref_mm : ndarray (n,)
         ``delta_LCP(W_i) - g`` on the row's (trimmed) field and the reference approach
         (Hamrock–Brewe's ``delta_H(W_i)`` of the row's curvatures, or the LCP on the
         continued flanks), mm.
     scale : float
-        ``c``: the row's approach over the Hertzian one at fixed exponent 2/3.
+        The fit of ``delta = c delta_ref`` over the calibration loads at fixed exponent
+        2/3 (the law's scale is :meth:`scale_at` the row's operating load).
     exponent : float
         ``n`` of the free fit ``delta = C W^n`` to the LCP approaches.
     """
@@ -104,6 +143,12 @@ class EdgeCompliance:
     def ratio(self) -> np.ndarray:
         """``delta_LCP / delta_ref`` at each load."""
         return self.approach_lcp_mm / self.approach_ref_mm
+
+    def scale_at(self, load_n):
+        """``c(W) = delta_LCP(W) / delta_ref(W)``: ``ln c`` linear in ``ln W`` between the
+        calibration loads, constant beyond them (module docstring); 1 exactly where the
+        row's patch stayed on the flanks."""
+        return np.exp(np.interp(np.log(load_n), np.log(self.loads_n), np.log(self.ratio)))
 
 
 def edge_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeCompliance:
@@ -125,12 +170,12 @@ def edge_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
     Raises
     ------
     ArithmeticError
-        An LCP did not converge, or the pair does not close under load (the row's law
-        would be unfounded).
+        The LCP converged at fewer than two loads, or the pair does not close under load
+        (the row's law would be unfounded).
     """
-    gap, grid, _, _ = fields.get(pc)
+    gap, grid, off, _ = fields.get(pc)
     loads = _loads(pc, torque_nmm)
-    lcp = _approaches(gap, grid, loads, pc, materials)
+    lcp = _approaches(gap, grid, loads, pc, materials, datum_mm=edge_datum_mm(gap, off, pc))
     hz = np.array([hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, float(w),
                                        e_prime_mpa=fields.e_prime).approach_mm
                    for w in loads])
@@ -151,39 +196,99 @@ def trim_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
     quadric = pc.offset_mm + lo * s ** 2 + hi * t ** 2
     cont, masks = _approaches(np.where(off, quadric, gap), grid, loads, pc, materials,
                               masks=True)
-    if not any((m & off).any() for m in masks):
-        return EdgeCompliance(loads, cont, cont, 1.0, 2.0 / 3.0)
+    ok = np.isfinite(cont)
+    if not any((m & off).any() for m, conv in zip(masks, ok) if conv):
+        return EdgeCompliance(loads[ok], cont[ok], cont[ok], 1.0, 2.0 / 3.0)
     return _fit(loads, _approaches(gap, grid, loads, pc, materials), cont)
+
+
+def edge_datum_mm(gap, off, pc) -> float:
+    """The closing datum of an edge row's LCP approach (mm): the least gap of its field
+    on the flank, or the row's opening if that is larger (module docstring, "grid
+    floor"). A posed-field row's opening is that least gap already."""
+    return max(pc.offset_mm, float(gap[~off].min())) if (~off).any() else pc.offset_mm
 
 
 def _loads(pc, torque_nmm: float) -> np.ndarray:
     return np.array([f * torque_nmm / pc.lever_mm for f in EDGE_LOAD_FRACTIONS])
 
 
-def _approaches(gap, grid, loads, pc, materials, *, masks: bool = False):
-    """LCP approaches ``delta_LCP(W_i) - g`` (mm) on one field (and the contact masks)."""
-    out, contact, warm = np.empty(loads.size), [], None
+def _approaches(gap, grid, loads, pc, materials, *, masks: bool = False,
+                datum_mm: float | None = None):
+    """LCP approaches ``delta_LCP(W_i) - datum`` (mm; datum: the row's opening ``g``) on
+    one field (and the contact masks). A solve warm-started from the previous load that
+    does not converge is repeated cold; a load at which it still does not converge is
+    NaN (dropped by :func:`_fit`)."""
+    datum = pc.offset_mm if datum_mm is None else datum_mm
+    out, contact, warm = np.full(loads.size, np.nan), [], None
     for i, w in enumerate(loads):
         res = solve_lcp(gap, grid, float(w), materials=materials, warm_start=warm,
                         warn_coarse=False)
-        if not res.converged:
-            raise ArithmeticError(f"edge_law: the LCP of the row at path index "
-                                  f"{pc.path_index} did not converge at {w:.4g} N "
-                                  f"({res.message})")
-        warm = res
-        out[i] = float(res.delta_mm) - pc.offset_mm
+        if not res.converged and warm is not None:
+            res = solve_lcp(gap, grid, float(w), materials=materials, warn_coarse=False)
         contact.append(res.contact_mask)
-    if not (out > 0.0).all():
+        if res.converged:
+            warm = res
+            out[i] = float(res.delta_mm) - datum
+    if np.isfinite(out).sum() < 2:
+        raise ArithmeticError(f"edge_law: the LCP of the row at path index {pc.path_index} "
+                              f"converged at fewer than two of the loads {loads} N")
+    if not (out[np.isfinite(out)] > 0.0).all():
         raise ArithmeticError(f"edge_law: the row at path index {pc.path_index} closes by "
-                              f"{out.min():.3g} mm <= 0 under load (its field does not "
+                              f"{np.nanmin(out):.3g} mm <= 0 under load (its field does not "
                               f"hold its opening)")
     return (out, contact) if masks else out
 
 
 def _fit(loads, approach, reference) -> EdgeCompliance:
+    """The calibration over the loads where both approaches are known."""
+    ok = np.isfinite(approach) & np.isfinite(reference)
+    if ok.sum() < 2:
+        raise ArithmeticError(f"edge_law: fewer than two calibration loads converged "
+                              f"({loads} N)")
+    loads, approach, reference = loads[ok], approach[ok], reference[ok]
     n = float(np.polyfit(np.log(loads), np.log(approach), 1)[0])
     return EdgeCompliance(loads, approach, reference,
                           float(np.exp(np.mean(np.log(approach / reference)))), n)
+
+
+def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: float
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """The scales ``c`` of the rows at their operating loads (module docstring).
+
+    Parameters
+    ----------
+    laws : ndarray (P, K) of EdgeCompliance or None
+        Each row's calibration (None: the Hertzian law, ``c = 1``).
+    lever_mm, opening_mm, kappa : ndarray (P, K)
+        The rows' levers, openings (one 0 per phase) and unscaled Hertzian approach
+        coefficients ``delta = kappa W^(2/3)`` (mm/N^(2/3)).
+    valid : ndarray (P, K) of bool
+    torque_nmm : float
+        The table's torque, N·mm.
+
+    Returns
+    -------
+    (scale, load_n) : ndarray (P, K)
+        ``c`` (1 where ``laws`` holds None) and the operating load (N; 0 at rows that do
+        not carry at rest) of the last pass.
+    """
+    cut = np.array([[law is not None for law in row] for row in laws], bool)
+    scale, load = np.ones(valid.shape), np.zeros(valid.shape)
+    if not cut.any():
+        return scale, load
+    for i, k in zip(*np.nonzero(cut)):
+        scale[i, k] = laws[i, k].scale
+    for _ in range(OPERATING_PASSES):
+        for k in np.flatnonzero(valid.any(axis=0)):
+            on = valid[:, k]
+            _, w = preview_balance(lever_mm[on, k], opening_mm[on, k],
+                                   scale[on, k] * kappa[on, k], torque_nmm)
+            load[on, k] = w
+        for i, k in zip(*np.nonzero(cut)):
+            floor = EDGE_LOAD_FRACTIONS[0] * torque_nmm / lever_mm[i, k]
+            scale[i, k] = float(laws[i, k].scale_at(max(load[i, k], floor)))
+    return scale, load
 
 
 def equivalent_curvature_factor(scale: float) -> float:

@@ -1,5 +1,5 @@
 """Which contacts of the loaded mesh take the LCP-calibrated edge law, and their
-compliance scale: the one selection and calibration that the loaded TE's preview
+LCP calibration: the one selection and calibration that the loaded TE's preview
 (``TE_pre``, :mod:`.lte`) and the twin's mesh table (:mod:`gearcontact.twin.mesh`) share
 (issue 28; docs/twin.md "Edge contact").
 
@@ -13,19 +13,19 @@ A contact (:class:`.lte_pairs.PairContact`) is *cut* by a flank boundary when
 
 Its law is then Hertz with the approach scaled by ``c`` (:mod:`.edge_law`:
 :func:`~.edge_law.edge_compliance` for an edge row, :func:`~.edge_law.trim_compliance`
-for a surface row), ``delta = c kappa W^(2/3)``; every other contact keeps ``c = 1``.
-A calibration whose LCP fails (``ArithmeticError``) keeps Hertz, ``c = 1`` with the
-exponent 0 saying so.
+for a surface row), ``delta = c kappa W^(2/3)``, ``c`` the calibration's at the load the
+contact carries (:func:`~.edge_law.operating_scales`); every other contact keeps
+``c = 1``. A calibration whose LCP fails (``ArithmeticError``) keeps Hertz (``c = 1``).
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
 
-from .edge_law import edge_compliance, ellipse_leaves_flank, trim_compliance
+from .edge_law import EdgeCompliance, edge_compliance, ellipse_leaves_flank, trim_compliance
 from .lte_pairs import PairContact, PairFields
 
-__all__ = ["is_edge_row", "is_cut", "compliance_scale"]
+__all__ = ["is_edge_row", "is_cut", "row_law"]
 
 
 def is_edge_row(fields: PairFields, pc: PairContact) -> bool:
@@ -46,11 +46,14 @@ def is_cut(fields: PairFields, pc: PairContact, *, torque_nmm: float) -> bool:
                                 e_prime_mpa=fields.e_prime)
 
 
-def compliance_scale(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float,
-                     cache: dict) -> tuple[float, float]:
-    """``(c, n)`` of a cut contact (module docstring): its compliance scale and the
-    LCP's own load exponent, once per TCA path index (``cache``, shared by the callers'
-    phases); ``(1, 0)`` where the calibration fails.
+def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float,
+            cache: dict) -> EdgeCompliance | None:
+    """The LCP calibration of a cut contact (module docstring): :func:`~.edge_law.
+    edge_compliance` of an edge row, :func:`~.edge_law.trim_compliance` of a surface row,
+    once per TCA path index (``cache``, shared by the callers' phases); None where the
+    calibration fails (the contact keeps Hertz). The law's scale at a load is
+    :meth:`~.edge_law.EdgeCompliance.scale_at` (at the operating loads:
+    :func:`~.edge_law.operating_scales`).
 
     Parameters
     ----------
@@ -63,15 +66,12 @@ def compliance_scale(fields: PairFields, pc: PairContact, *, materials, torque_n
     torque_nmm : float
         Gear torque that sets the calibration loads, N·mm.
     cache : dict
-        Path index -> ``(c, n)``.
+        Path index -> EdgeCompliance or None.
     """
-    hit = cache.get(pc.path_index)
-    if hit is None:
+    if pc.path_index not in cache:
         law = edge_compliance if is_edge_row(fields, pc) else trim_compliance
         try:
-            fit = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
-            hit = (fit.scale, fit.exponent)
-        except ArithmeticError:     # no founded calibration: Hertz, n = 0 says so
-            hit = (1.0, 0.0)
-        cache[pc.path_index] = hit
-    return hit
+            cache[pc.path_index] = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
+        except ArithmeticError:     # no founded calibration: Hertz
+            cache[pc.path_index] = None
+    return cache[pc.path_index]

@@ -356,8 +356,8 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
     edge_law : bool
         The preview's law at a contact whose patch a flank boundary cuts (an edge pair,
         the TCA's edge contact, a surface contact whose ellipse leaves the flank): Hertz
-        with the approach scaled by the LCP-calibrated ``c`` of
-        :func:`.edge_rows.compliance_scale`, the twin's law (module docstring); False:
+        with the approach scaled by the LCP calibration's ``c`` at the contact's load
+        (:func:`.edge_rows.row_law`), the twin's law (module docstring); False:
         the untruncated Hertz law there too.
     stride : int
         Use every ``stride``-th phase of the cycle (>= 1), plus the last one and P0: a

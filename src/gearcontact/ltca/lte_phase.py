@@ -33,7 +33,8 @@ from scipy.optimize import brentq
 from ..errors import CheckFailed
 from ..halfspace.result import ContactResult
 from ..validation import InputRangeError, UnusableInput, check_positive
-from .edge_rows import compliance_scale, is_cut
+from .edge_law import operating_scales
+from .edge_rows import is_cut, row_law
 from .lte_pairs import PairFields
 from .mesh_lcp import solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
@@ -85,10 +86,11 @@ def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float
 def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, materials,
                          cache: dict | None):
     """:func:`preview_balance` of the contacts with the edge law (:mod:`.edge_rows`):
-    every loaded contact whose patch a flank boundary cuts takes its LCP-calibrated
-    compliance scale ``c`` (``kappa -> c kappa``), the twin's law. Only a contact that
-    carries load needs its law, and a softer contact moves load onto the others, so the
-    balance is solved again until every loaded contact has been looked at (each once).
+    every loaded contact whose patch a flank boundary cuts takes its LCP calibration's
+    compliance scale ``c`` at the load it carries (``kappa -> c kappa``;
+    :func:`.edge_law.operating_scales`, the twin's law). Only a contact that carries load
+    needs its law, and a softer contact moves load onto the others, so the balance is
+    solved again until every loaded contact has been looked at (each once).
 
     Parameters
     ----------
@@ -100,8 +102,8 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
         Gear torque, N·mm.
     materials : (Material, Material)
     cache : dict or None
-        Path index -> ``(c, n)`` shared over the phases; None: the untruncated Hertz
-        law at every contact (``c = 1``).
+        Path index -> calibration (:func:`.edge_rows.row_law`) shared over the phases;
+        None: the untruncated Hertz law at every contact (``c = 1``).
 
     Returns
     -------
@@ -109,23 +111,28 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
         The contacts with their scaled ``kappa_mm_per_n23``, ``c`` of each (ndarray),
         and :func:`preview_balance` of them.
     """
-    scales = np.ones(len(contacts))
-    seen = np.zeros(len(contacts), bool)
-    scaled = list(contacts)
+    n = len(contacts)
+    lever = np.array([pc.lever_mm for pc in contacts], float)
+    opening = np.array([pc.offset_mm for pc in contacts], float)
+    kappa = np.array([pc.kappa_mm_per_n23 for pc in contacts], float)
+    laws = np.full((n, 1), None, dtype=object)
+    scales = np.ones(n)
+    seen = np.zeros(n, bool)
     while True:
-        theta, loads = preview_balance([pc.lever_mm for pc in scaled],
-                                       [pc.offset_mm for pc in scaled],
-                                       [pc.kappa_mm_per_n23 for pc in scaled], torque_nmm)
+        theta, loads = preview_balance(lever, opening, scales * kappa, torque_nmm)
         new = np.flatnonzero((loads > 0.0) & ~seen)
         if cache is None or new.size == 0:
-            return scaled, scales, theta, loads
+            break
         seen[new] = True
         for i in new:
-            pc = contacts[i]
-            if is_cut(fields, pc, torque_nmm=torque_nmm):
-                scales[i] = compliance_scale(fields, pc, materials=materials,
-                                             torque_nmm=torque_nmm, cache=cache)[0]
-                scaled[i] = replace(pc, kappa_mm_per_n23=scales[i] * pc.kappa_mm_per_n23)
+            if is_cut(fields, contacts[i], torque_nmm=torque_nmm):
+                laws[i, 0] = row_law(fields, contacts[i], materials=materials,
+                                     torque_nmm=torque_nmm, cache=cache)
+        scales = operating_scales(laws, lever[:, None], opening[:, None], kappa[:, None],
+                                  np.ones((n, 1), bool), torque_nmm=torque_nmm)[0][:, 0]
+    scaled = [replace(pc, kappa_mm_per_n23=c * pc.kappa_mm_per_n23) if c != 1.0 else pc
+              for pc, c in zip(contacts, scales)]
+    return scaled, scales, theta, loads
 
 
 def _near(mask: np.ndarray) -> np.ndarray:

@@ -63,7 +63,8 @@ from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..materials import effective_modulus_mpa
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..validation import InputRangeError, check_positive
-from ..ltca.edge_rows import compliance_scale, is_cut
+from ..ltca.edge_law import operating_scales
+from ..ltca.edge_rows import is_cut, row_law
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
@@ -230,7 +231,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
     n_k, n_p = len(cycle.phi1_rad), len(cycle.pair_offsets)
     row = {o: i for i, o in enumerate(cycle.pair_offsets)}
-    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb")}
+    arrays = {name: np.zeros((n_p, n_k)) for name in ("lever", "opening", "A", "B", "cb",
+                                                      "kappa")}
     valid = np.zeros((n_p, n_k), bool)
     mode = np.zeros((n_p, n_k), np.int8)
     label = np.full((n_p, n_k), "", dtype=object)
@@ -252,6 +254,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             arrays["opening"][i, k] = pc.offset_mm
             arrays["A"][i, k] = pc.A_minus_per_mm
             arrays["B"][i, k] = pc.B_minus_per_mm
+            arrays["kappa"][i, k] = pc.kappa_mm_per_n23
             if pc.center_index not in sten:
                 mp = curvature_point(cycle.path, pc.center_index)
                 sten[pc.center_index] = hardware_stencil(pinion, gear, kin, mp,
@@ -261,15 +264,18 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                 arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
             if edge_law and is_cut(fields, pc, torque_nmm=1e3 * t):
                 edges[i, k] = pc
-    scale, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
-    factor = scale ** 3         # equivalent curvatures (gearcontact.ltca.edge_law)
-    arrays["A"] *= factor
-    arrays["B"] *= factor
-    stencils *= factor[..., None]
+    laws, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
     env = env + m * ARCSEC_PER_RAD * _first_touch(arrays, valid)
+    # each cut row's scale at the load it carries in the table's quasi-static mesh
+    scale, _ = operating_scales(laws, arrays["lever"], arrays["opening"], arrays["kappa"],
+                                valid, torque_nmm=1e3 * t)
+    factor = scale ** 3         # equivalent curvatures (gearcontact.ltca.edge_law)
+    arrays["A"] *= factor
+    arrays["B"] *= factor
+    stencils *= factor[..., None]
     order = np.arange(n_k) if m == 1 else np.arange(n_k)[::-1]
     k0 = cycle.mean_index
     main = [i for i in range(n_p) if valid[i, k0] and arrays["opening"][i, k0] == 0.0]
@@ -295,17 +301,17 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
 
 def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: float
                      ) -> tuple[np.ndarray, np.ndarray]:
-    """``(c, n)`` per row: :func:`gearcontact.ltca.edge_rows.compliance_scale` of each
-    row's contact in ``edges`` (the law ``TE_pre`` takes too), once per path index; 1
-    and NaN elsewhere."""
-    scale, expo = np.ones(edges.shape), np.full(edges.shape, np.nan)
+    """``(law, n)`` per row: :func:`gearcontact.ltca.edge_rows.row_law` of each row's
+    contact in ``edges`` (the calibration ``TE_pre`` takes too), once per path index
+    (``law`` None and ``n = 0`` where it failed); None and NaN elsewhere."""
+    laws, expo = np.full(edges.shape, None, dtype=object), np.full(edges.shape, np.nan)
     done: dict = {}
     materials = (pair.pinion_material, pair.gear_material)
     for (i, k), pc in np.ndenumerate(edges):
         if pc is not None:
-            scale[i, k], expo[i, k] = compliance_scale(fields, pc, materials=materials,
-                                                       torque_nmm=torque_nmm, cache=done)
-    return scale, expo
+            law = row_law(fields, pc, materials=materials, torque_nmm=torque_nmm, cache=done)
+            laws[i, k], expo[i, k] = law, (0.0 if law is None else law.exponent)
+    return laws, expo
 
 
 def pair_mesh_table(pair, *, side: str, torque_nm: float, phases: int = 61, flanks=None,

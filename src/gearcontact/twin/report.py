@@ -43,7 +43,7 @@ def write_mesh_csv(mesh, path) -> Path:
     ``mode`` one of :data:`~.mesh.CONTACT_MODES` (which mode found the opening; an
     ``edge`` row names its ``edge`` and carries the nearest surface contact's
     curvatures, docs/twin.md "Edge contact"), ``opening_um`` the initial separation,
-    ``compliance_scale`` the row's LCP compliance scale ``c`` (:mod:`.edge_law`; its
+    ``compliance_scale`` the row's LCP compliance scale ``c`` (:mod:`gearcontact.ltca.edge_law`; its
     A-, B- are the equivalent curvatures, ``c^3`` times the Hertzian ones; 1 for a row
     no flank boundary cuts)."""
     n_p = mesh.valid.shape[0]
