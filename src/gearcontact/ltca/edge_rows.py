@@ -22,10 +22,14 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .edge_law import EdgeCompliance, edge_compliance, ellipse_leaves_flank, trim_compliance
-from .lte_pairs import PairContact, PairFields
+import numpy as np
 
-__all__ = ["is_edge_row", "is_cut", "row_law"]
+from .edge_law import (EdgeCompliance, edge_compliance, ellipse_leaves_flank, operating_scales,
+                       trim_compliance)
+from .lte_pairs import PairContact, PairFields
+from .lte_phase import preview_balance
+
+__all__ = ["is_edge_row", "is_cut", "row_law", "preview_edge_balance"]
 
 
 def is_edge_row(fields: PairFields, pc: PairContact) -> bool:
@@ -75,3 +79,55 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
         except ArithmeticError:     # no founded calibration: Hertz
             cache[pc.path_index] = None
     return cache[pc.path_index]
+
+
+def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, materials,
+                         cache: dict | None):
+    """:func:`.lte_phase.preview_balance` of the contacts with the edge law (this module):
+    every loaded contact whose patch a flank boundary cuts takes its LCP calibration's
+    compliance scale ``c`` at the load it carries (``kappa -> c kappa``;
+    :func:`.edge_law.operating_scales`, the twin's law). Only a contact that carries load
+    needs its law, and a softer contact moves load onto the others, so the balance is
+    solved again until every loaded contact has been looked at (each once).
+
+    Parameters
+    ----------
+    contacts : list of PairContact
+        The preview's contacts of one phase.
+    fields : PairFields
+        Their fields (the calibration's, sized at ``torque_nmm``).
+    torque_nmm : float
+        Gear torque, N·mm.
+    materials : (Material, Material)
+    cache : dict or None
+        Path index -> calibration (:func:`row_law`) shared over the phases;
+        None: the untruncated Hertz law at every contact (``c = 1``).
+
+    Returns
+    -------
+    (contacts, scales, theta_rad, loads_n)
+        The contacts with their scaled ``kappa_mm_per_n23``, ``c`` of each (ndarray),
+        and :func:`.lte_phase.preview_balance` of them.
+    """
+    n = len(contacts)
+    lever = np.array([pc.lever_mm for pc in contacts], float)
+    opening = np.array([pc.offset_mm for pc in contacts], float)
+    kappa = np.array([pc.kappa_mm_per_n23 for pc in contacts], float)
+    laws = np.full((n, 1), None, dtype=object)
+    scales = np.ones(n)
+    seen = np.zeros(n, bool)
+    while True:
+        theta, loads = preview_balance(lever, opening, scales * kappa, torque_nmm)
+        new = np.flatnonzero((loads > 0.0) & ~seen)
+        if cache is None or new.size == 0:
+            break
+        seen[new] = True
+        for i in new:
+            if is_cut(fields, contacts[i], torque_nmm=torque_nmm):
+                laws[i, 0] = row_law(fields, contacts[i], materials=materials,
+                                     torque_nmm=torque_nmm, cache=cache)
+        scales = operating_scales(laws, lever[:, None], opening[:, None], kappa[:, None],
+                                  np.ones((n, 1), bool), torque_nmm=torque_nmm)[0][:, 0]
+    scaled = [replace(pc, kappa_mm_per_n23=c * pc.kappa_mm_per_n23) if c != 1.0 else pc
+              for pc, c in zip(contacts, scales)]
+    return scaled, scales, theta, loads

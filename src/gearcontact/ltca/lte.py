@@ -91,8 +91,9 @@ from ..materials import effective_modulus_mpa
 from ..validation import InputRangeError, check_positive, check_range
 from ..halfspace.result import SolveStatus
 from .lte_pairs import PairContact, PairFields, phase_contacts
+from .edge_rows import preview_edge_balance
 from .lte_phase import (ACTIVE_SHARE, check_loaded, check_pair_window, field_edge_reached,
-                        preview_edge_balance, reference_compliances, solve_phase)
+                        reference_compliances, solve_phase)
 from .pair_ltca import ARCSEC_PER_RAD
 
 __all__ = ["LoadedTE", "PairContact", "loaded_te"]

@@ -6,8 +6,8 @@ phase the same way:
 * **preview** (:func:`preview_balance`): Hamrock–Brewe Hertz per pair, ``W_j =
   ((l_j theta - g_j)_+ / kappa_j)^(3/2)``, and the torque balance ``sum_j W_j l_j = T``,
   a monotone scalar equation in the shared rotation ``theta`` (Brent's method); with
-  the edge law (:func:`preview_edge_balance`) ``kappa_j`` of a contact a flank boundary
-  cuts is scaled by its LCP-calibrated ``c`` (:mod:`.edge_rows`, the twin's law);
+  the edge law (:func:`.edge_rows.preview_edge_balance`) ``kappa_j`` of a contact a
+  flank boundary cuts is scaled by its LCP-calibrated ``c`` (the twin's law);
 * **LCP** (:func:`solve_phase`): the half-space LCP of every pair within reach of the
   preview's rotation, all pairs coupled by the torque (:func:`.mesh_lcp.solve_mesh_lcp`),
   pairs found closed after the solve added and the phase solved again;
@@ -25,7 +25,6 @@ K. L. Johnson, *Contact Mechanics*, 1985, ch. 3-4. docs/spec.md sec. 5.
 
 from __future__ import annotations
 
-from dataclasses import replace
 
 import numpy as np
 from scipy.optimize import brentq
@@ -33,13 +32,11 @@ from scipy.optimize import brentq
 from ..errors import CheckFailed
 from ..halfspace.result import ContactResult
 from ..validation import InputRangeError, UnusableInput, check_positive
-from .edge_law import operating_scales
-from .edge_rows import is_cut, row_law
 from .lte_pairs import PairFields
 from .mesh_lcp import solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
-__all__ = ["ACTIVE_SHARE", "preview_balance", "preview_edge_balance", "solve_phase", "check_loaded",
+__all__ = ["ACTIVE_SHARE", "preview_balance", "solve_phase", "check_loaded",
            "check_pair_window", "field_edge_reached", "reference_compliances"]
 
 #: A pair counts as active when it carries more than this share of the total load.
@@ -81,58 +78,6 @@ def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float
     hi = lo + 1.01 * kap[j] * (t / lv[j]) ** (2.0 / 3.0) / lv[j]
     theta = brentq(lambda th: loads(th) @ lv - t, lo, hi, xtol=1e-16, rtol=1e-14)
     return float(theta), loads(theta)
-
-
-def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, materials,
-                         cache: dict | None):
-    """:func:`preview_balance` of the contacts with the edge law (:mod:`.edge_rows`):
-    every loaded contact whose patch a flank boundary cuts takes its LCP calibration's
-    compliance scale ``c`` at the load it carries (``kappa -> c kappa``;
-    :func:`.edge_law.operating_scales`, the twin's law). Only a contact that carries load
-    needs its law, and a softer contact moves load onto the others, so the balance is
-    solved again until every loaded contact has been looked at (each once).
-
-    Parameters
-    ----------
-    contacts : list of PairContact
-        The preview's contacts of one phase.
-    fields : PairFields
-        Their fields (the calibration's, sized at ``torque_nmm``).
-    torque_nmm : float
-        Gear torque, N·mm.
-    materials : (Material, Material)
-    cache : dict or None
-        Path index -> calibration (:func:`.edge_rows.row_law`) shared over the phases;
-        None: the untruncated Hertz law at every contact (``c = 1``).
-
-    Returns
-    -------
-    (contacts, scales, theta_rad, loads_n)
-        The contacts with their scaled ``kappa_mm_per_n23``, ``c`` of each (ndarray),
-        and :func:`preview_balance` of them.
-    """
-    n = len(contacts)
-    lever = np.array([pc.lever_mm for pc in contacts], float)
-    opening = np.array([pc.offset_mm for pc in contacts], float)
-    kappa = np.array([pc.kappa_mm_per_n23 for pc in contacts], float)
-    laws = np.full((n, 1), None, dtype=object)
-    scales = np.ones(n)
-    seen = np.zeros(n, bool)
-    while True:
-        theta, loads = preview_balance(lever, opening, scales * kappa, torque_nmm)
-        new = np.flatnonzero((loads > 0.0) & ~seen)
-        if cache is None or new.size == 0:
-            break
-        seen[new] = True
-        for i in new:
-            if is_cut(fields, contacts[i], torque_nmm=torque_nmm):
-                laws[i, 0] = row_law(fields, contacts[i], materials=materials,
-                                     torque_nmm=torque_nmm, cache=cache)
-        scales = operating_scales(laws, lever[:, None], opening[:, None], kappa[:, None],
-                                  np.ones((n, 1), bool), torque_nmm=torque_nmm)[0][:, 0]
-    scaled = [replace(pc, kappa_mm_per_n23=c * pc.kappa_mm_per_n23) if c != 1.0 else pc
-              for pc, c in zip(contacts, scales)]
-    return scaled, scales, theta, loads
 
 
 def _near(mask: np.ndarray) -> np.ndarray:
