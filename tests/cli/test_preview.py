@@ -134,19 +134,20 @@ def test_nan_in_any_stencil_column_is_named(tmp_path, capsys, column):
 
 
 def test_gap_beyond_the_datapath_format_is_bad_input_for_fixed_point_only(tmp_path, capsys):
-    """A gap outside GAP Q(32,16) ([-32768, 32768 - 2^-16] mm) is the file's value for the
-    fixed-point backends (exit 2 naming file and row; it was exit 1); fp64 takes it."""
+    """A gap outside STENCIL_GAP Q(32,21) ([-1024, 1024 - 2^-21] mm, stage C's input
+    format) is the file's value for the fixed-point backends (exit 2 naming file and row;
+    it was exit 1); fp64 takes it. -2000 mm fitted the former Q(32,16) input."""
     s, t = stencil_coordinates()
     gaps = 0.01 * (s ** 2 + t ** 2)
-    gaps[0] = -40000.0
+    gaps[0] = -2000.0
     path = write_stencil_csv(tmp_path / "deep.csv", gaps)
     for backend in ("golden", "rtl"):
         code, _, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
                             "--backend", backend)
-        assert code == 2 and f"{path}: row 1 (sample 0), column gap_mm = -40000.0" in err
-        assert f"the Q(32,16) gap format of the --backend {backend} datapath" in err
+        assert code == 2 and f"{path}: row 1 (sample 0), column gap_mm = -2000.0" in err
+        assert f"the Q(32,21) stencil gap format of the --backend {backend} datapath" in err
     # at the format's end the fixed-point path runs (no FixedPointOverflow)
-    gaps[0] = -32768.0
+    gaps[0] = -1024.0
     path = write_stencil_csv(tmp_path / "edge.csv", gaps)
     code, _, err = _run(capsys, "preview", "--stencil", str(path), "--load", "10",
                         "--backend", "golden")
