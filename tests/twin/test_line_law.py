@@ -143,9 +143,9 @@ def test_spur_pitch_point_rotation_against_the_lcp(spur):
 def test_golden_within_the_fixed_point_resolution(spur):
     """Golden against fp64: the static rotation and a 5 ms run (3000 rpm) agree within
     the line chain's resolution. Its coarsest step is the fit's on the curvature
-    across the line (LINE_B_ZERO_CODES codes, 1.1e-4 1/mm against A- = 0.073 1/mm):
+    across the line (LINE_B_ZERO_CODES codes, 5.3e-5 1/mm against A- = 0.073 1/mm):
     through b ~ B^(-1/2) it moves the law's ln(4L/b) by half of that relative error,
-    i.e. theta by at most ``0.5 (1.1e-4 / A-) / (ln(4L/b) - 3/4)`` at the flattest
+    i.e. theta by at most ``0.5 (5.3e-5 / A-) / (ln(4L/b) - 3/4)`` at the flattest
     closed line the run passes (A- = 0.065 1/mm here: the formula's worst case; since
     the table holds the neighbours' tip-edge rows, tca.cylindrical_tip, the run
     measures 2.5e-4, above the steepest line's 2.1e-4); the load, L and the outputs'
