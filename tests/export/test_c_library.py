@@ -543,13 +543,16 @@ def test_fit_square_root_equals_the_rtl_recurrence(built, tmp_path):
 def test_fit_mac_plan_multiplies_out_to_the_rom():
     """The regrouped golden MAC of gc_fit_golden.c (column sums, row sums, one multiply
     per distinct |M_ji|) is the ROM's linear form exactly: expanded term by term it
-    gives back every word, for the baked ROM (26 multiplies) and for a random integer
-    matrix without symmetry (tap by tap, one multiply per distinct magnitude)."""
+    gives back every word, for the baked ROM (72 multiplies: the degree-6 ROM's rows
+    depend on both the column and the row, so every row is grouped tap by tap over the
+    stencil's point symmetries; the degree-2 ROM took column and row sums, 26) and for
+    a random integer matrix without symmetry (tap by tap, one multiply per distinct
+    magnitude)."""
     rom = tuple(tuple(int(w) for w in row) for row in baked_pinv().weight_codes)
     plan = fit_mac_plan()
     assert expand_fit_mac_plan(plan, rom) == rom
-    assert [c["basis"] for c in plan] == ["g", "col", "row", "col", "g", "row"]
-    assert sum(len(c["terms"]) for c in plan) == 26
+    assert [c["basis"] for c in plan] == ["g"] * 6
+    assert [len(c["terms"]) for c in plan] == [10, 12, 12, 16, 6, 16]
     rnd = tuple(tuple(int(w) for w in row)
                 for row in np.random.default_rng(0).integers(-9, 10, (6, 49)))
     other = fit_mac_plan(rnd)

@@ -24,8 +24,12 @@ from gearcontact.validation import InputRangeError
 #: Tolerances of the stage-C fit against the shape operator on a window on the flank.
 #: The fit is the quadratic part of the degree-6 least-squares polynomial: the gap's
 #: terms of degree 8 and up over +-0.6 mm still bias it, most on the small curvature B-
-#: (along the contact line). TOL_A_MEASURED/TOL_B_MEASURED below.
-TOL_A, TOL_B = 0.03, 0.08
+#: (along the contact line). Worst rows measured (|dA-|, |dB-|): s0003-centred drive
+#: 2.8e-6, 7.2e-5, coast 5.9e-6, 1.6e-4; the examples and F3 variants below <= 1.8e-8,
+#: 5.1e-7; the six design-space draws <= 9.7e-8, 1.5e-6; NEAR_LINE 2.0e-5, 1.3e-3
+#: (5/27) and 6.8e-5, 5.9e-3 (8/25, B- = 1.4e-5 1/mm). Tolerances 3x / 1.7x the worst.
+#: (The degree-2 fit needed 3 % / 8 % and missed NEAR_LINE: 3.3 % / 88 %.)
+TOL_A, TOL_B = 2e-4, 1e-2
 
 
 def stencil_errors(mesh, *, degree: int | None = None):
@@ -55,10 +59,8 @@ def _check(mesh):
     ea6, eb6 = stencil_errors(mesh, degree=6)
     np.testing.assert_allclose(ea, ea6, rtol=0, atol=1e-6)
     np.testing.assert_allclose(eb, eb6, rtol=0, atol=1e-6)
-    print("FIT6WORST", np.abs(ea).max(), np.abs(eb).max())  # TEMP measurement
     assert np.abs(ea).max() <= TOL_A, np.abs(ea).max()
     assert np.abs(eb).max() <= TOL_B, np.abs(eb).max()
-    return np.abs(ea).max(), np.abs(eb).max()
 
 
 def test_stencil_fit_gives_the_tca_curvatures_s0003_centred(s0003_twin, s0003_coast):
@@ -159,18 +161,17 @@ def test_design_space_stencils_carry_the_tca_curvatures(z1, ratio, offset_frac, 
 
 
 #: Design-space pairs drawn by the property tests on which the former degree-2 fit left
-#: TOL_A / TOL_B, with their worst rows:
+#: its tolerances (3 % on A-, 8 % on B-), with their worst rows:
 #: 8/25 teeth, offset 0.315 r2, 55 deg, face 0.305 R_m, drive: pair +1 runs into the
 #: pinion's heel and root edges at B- = 1.42e-5 1/mm (R_x = 35 m): degree 2 read
 #: A- +2.5 %, B- +88 % (2.68e-5), the Hamrock-Brewe approach at 1 kN +23 %;
 #: 5/27 (a spiral bevel pair), 46.7 deg, face 0.233 R_m, drive: a transmitting row at
 #: A- = 0.0737, B- = 1.07e-4 1/mm: degree 2 read A- +3.3 %, B- +28 %, approach +8.2 %,
-#: p_max +7 %. Degree 6 (the datapath now): NEAR_LINE_WORST.
+#: p_max +7 %. Degree 6 (the datapath now): 8/25 A- 6.8e-5, B- 0.59 %; 5/27 A- 2.0e-5,
+#: B- 0.13 % (TOL_A / TOL_B).
 NEAR_LINE = {"8-25-near-line": (8, 25 / 8, 0.315, 55.0, 0.305, "drive", "right"),
              "5-27-spiral-bevel": (5, 5.320092271342461, 0.0, 46.69382818248657,
                                    0.2332970279261677, "drive", "right")}
-#: Worst relative A-, B- errors of the degree-6 fit on NEAR_LINE's pairs (measured).
-NEAR_LINE_WORST = {"8-25-near-line": (None, None), "5-27-spiral-bevel": (None, None)}
 
 
 @pytest.mark.slow
@@ -183,5 +184,4 @@ def test_stage_c_fit_near_line(name):
     point = NEAR_LINE[name]
     mesh = pair_mesh_table(design_space_pair(*point), side=point[5], torque_nm=64.5,
                            phases=31)[2]
-    worst_a, worst_b = _check(mesh)
-    print(name, worst_a, worst_b)
+    _check(mesh)
