@@ -30,6 +30,7 @@ from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_libra
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
                                             POW_SPEC, rom_words)
+from gearcontact.contract.qformat import STENCIL_GAP
 from gearcontact.preview.chain import chain_reference
 from gearcontact.preview.fit.pinv import baked_pinv
 from gearcontact.preview.fit.reference import fit_curvatures
@@ -242,7 +243,7 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     lib, vec = built
     so = _library(lib)
     ins = read_hex(vec / "chain_in.hex", "chain", "in")
-    gaps = np.ldexp(ins["wr_data"].astype(float), -16)
+    gaps = np.ldexp(ins["wr_data"].astype(float), -STENCIL_GAP.frac)
     loads, moduli = np.ldexp(ins["W"].astype(float), -8), ins["e_prime"].astype(float)
     m = baked_pinv().weights
     worst_c = worst_ab = worst_hz = 0.0
