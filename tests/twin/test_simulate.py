@@ -248,10 +248,12 @@ def test_golden_equals_reference_within_fixed_point_tolerance(s0003_twin, curvat
     # golden stage D: a within 3.6e-4, k within 6.8e-4 end to end (preview.hertz.golden);
     # kappa = 3 W F(k)/(pi a E') W^(-2/3) within ~1e-3 and W = (d/kappa)^(3/2) within
     # 1.5e-3 of the static load; a, b, p_max within 1e-3 (golden error + the load's).
-    # With stage C the gap samples are quantized too (GAP Q(32,16): 1.5e-5 mm on samples
-    # of up to ~0.04 mm) and B- is a 2^-20 code of ~0.002 1/mm: the fitted curvatures
-    # carry up to ~1e-3 more, the load and TE up to 4e-3 (measured 2.3e-3), the ellipse
-    # of the most loaded pair up to 5e-3 (measured 3.7e-3)
+    # With stage C the gap samples are quantized too (STENCIL_GAP Q(32,21): 4.8e-7 mm on
+    # samples of up to ~0.05 mm, through the degree-6 ROM's noise gain 17: sigma 2.4e-6
+    # 1/mm on c3) and B- is a 2^-20 code of ~0.002 1/mm: the fitted curvatures carry up
+    # to ~1e-3 more, the load and TE up to 4e-3, the ellipse of the most loaded pair up to
+    # 5e-3 (measured 2.3e-3 and 3.7e-3 with the former degree-2 fit at Q(32,16), whose
+    # sigma on c3 was 4.5e-6 1/mm)
     w0 = r["mesh_load_n"].mean()
     assert np.abs(g["mesh_load_n"] - r["mesh_load_n"]).max() < tol * w0
     assert np.abs(g["te_arcsec"] - r["te_arcsec"]).max() < tol * np.abs(r["te_arcsec"]).max()
