@@ -160,8 +160,14 @@ def test_golden_within_the_fixed_point_resolution(spur):
     assert abs(th_g / th_r - 1.0) < bound
     kw = dict(speed_rpm=3000.0, duration_s=5e-3, step_s=10e-6)
     r, g = simulate(ref, **kw), simulate(gold, **kw)
+    # The 5 ms run is not set by the fit's resolution: it measured 2.5e-4 on theta with
+    # the degree-2 fit at Q(32,16) and 2.3e-4 with the degree-6 fit at STENCIL_GAP, whose
+    # A- error on the table's stencils fell from 2.2e-4 to 9.0e-5 (measured) while its
+    # bound above halved (LINE_B_ZERO_CODES 119 -> 56). Its tolerance stays the former
+    # 3.5e-4 (2 x the degree-2 bound at this line) until its dominant term is named.
+    run_tol = 0.5 * 119 * CURVATURE.lsb / a_minus / 5.0 * 2
     for key in ("theta_rad", "mesh_load_n"):
-        np.testing.assert_allclose(g.columns[key], r.columns[key], rtol=2 * bound, atol=0,
+        np.testing.assert_allclose(g.columns[key], r.columns[key], rtol=run_tol, atol=0,
                                    err_msg=key)
     assert g.summary["previews_outside_datapath"] == 0
     assert g.summary["previews_without_contact_law"] == 0
