@@ -237,8 +237,10 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     dot-product scales plus |c3| + |c4| + |c5|: an eigenvalue moves by at most the
     coefficients' error, Weyl); relative to themselves they are ill-conditioned where
     h and r cancel or the quadratic part is rounding noise (a flat stencil). Chain
-    Hertz outputs where the reference accepts the stencil: 1e-12 relative (measured
-    1.2e-13). The first 3,000 stencils (corner cases first): the Python reference
+    Hertz outputs where the reference accepts the stencil: 1e-11 relative (measured
+    1.1e-12; 1.2e-13 with the degree-2 ROM: the coefficients' rounding relative to
+    themselves grows with the ROM's row norm, ||M_c3||_1 88.3 against 6.0 1/mm^2, and
+    the Hertz outputs carry it). The first 3,000 stencils (corner cases first): the Python reference
     takes ~1 ms per stencil (exact Hertz: the first 1,000)."""
     lib, vec = built
     so = _library(lib)
@@ -275,7 +277,7 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
             worst_hz = max(worst_hz, abs(getattr(chain.hertz, name) - want) / abs(want))
         valid += 1
     assert valid >= count // 2 and refused >= count // 10
-    assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-12, \
+    assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-11, \
         (worst_c, worst_ab, worst_hz)
 
 
