@@ -37,20 +37,20 @@ def _entry_point(setup: str, *argv):
 
 
 def test_bad_input_exit_2(tmp_path):
-    """A stencil gap beyond GAP Q(32,16) with the golden datapath was a FixedPointOverflow
-    reported as an internal error (exit 1); it is the file's value: exit 2 naming the
-    file, the row and the column, before any engine is built."""
+    """A stencil gap beyond STENCIL_GAP Q(32,21) with the golden datapath was a
+    FixedPointOverflow reported as an internal error (exit 1); it is the file's value:
+    exit 2 naming the file, the row and the column, before any engine is built."""
     s, t = stencil_coordinates()
     gaps = 0.01 * (s ** 2 + t ** 2)
-    gaps[7] = 1e5                                  # mm; Q(32,16) ends at 32768 mm
+    gaps[7] = 2000.0                               # mm; Q(32,21) ends at 1024 mm
     path = write_stencil_csv(tmp_path / "far.csv", gaps)
     code, out, err = run_console("preview", "--stencil", str(path), "--load", "10",
                              "--backend", "golden")
     assert code == 2, err
     assert out == ""
     assert err.startswith("gearcontact preview: error: ") and len(err.splitlines()) == 1
-    assert f"{path}: row 8 (sample 7), column gap_mm = 100000.0" in err
-    assert "[-32768, 32767.99998474121] mm" in err      # 2^15 - 2^-16: the format's ends
+    assert f"{path}: row 8 (sample 7), column gap_mm = 2000.0" in err
+    assert "[-1024, 1023.9999995231628] mm" in err      # 2^10 - 2^-21: the format's ends
 
 
 def test_datapath_flag_exit_3(tmp_path):

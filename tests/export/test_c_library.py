@@ -30,6 +30,7 @@ from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_libra
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
                                             POW_SPEC, rom_words)
+from gearcontact.contract.qformat import STENCIL_GAP
 from gearcontact.preview.chain import chain_reference
 from gearcontact.preview.fit.pinv import baked_pinv
 from gearcontact.preview.fit.reference import fit_curvatures
@@ -236,13 +237,15 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     dot-product scales plus |c3| + |c4| + |c5|: an eigenvalue moves by at most the
     coefficients' error, Weyl); relative to themselves they are ill-conditioned where
     h and r cancel or the quadratic part is rounding noise (a flat stencil). Chain
-    Hertz outputs where the reference accepts the stencil: 1e-12 relative (measured
-    1.2e-13). The first 3,000 stencils (corner cases first): the Python reference
+    Hertz outputs where the reference accepts the stencil: 1e-11 relative (measured
+    1.1e-12; 1.2e-13 with the degree-2 ROM: the coefficients' rounding relative to
+    themselves grows with the ROM's row norm, ||M_c3||_1 88.3 against 6.0 1/mm^2, and
+    the Hertz outputs carry it). The first 3,000 stencils (corner cases first): the Python reference
     takes ~1 ms per stencil (exact Hertz: the first 1,000)."""
     lib, vec = built
     so = _library(lib)
     ins = read_hex(vec / "chain_in.hex", "chain", "in")
-    gaps = np.ldexp(ins["wr_data"].astype(float), -16)
+    gaps = np.ldexp(ins["wr_data"].astype(float), -STENCIL_GAP.frac)
     loads, moduli = np.ldexp(ins["W"].astype(float), -8), ins["e_prime"].astype(float)
     m = baked_pinv().weights
     worst_c = worst_ab = worst_hz = 0.0
@@ -274,7 +277,7 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
             worst_hz = max(worst_hz, abs(getattr(chain.hertz, name) - want) / abs(want))
         valid += 1
     assert valid >= count // 2 and refused >= count // 10
-    assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-12, \
+    assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-11, \
         (worst_c, worst_ab, worst_hz)
 
 
@@ -543,13 +546,16 @@ def test_fit_square_root_equals_the_rtl_recurrence(built, tmp_path):
 def test_fit_mac_plan_multiplies_out_to_the_rom():
     """The regrouped golden MAC of gc_fit_golden.c (column sums, row sums, one multiply
     per distinct |M_ji|) is the ROM's linear form exactly: expanded term by term it
-    gives back every word, for the baked ROM (26 multiplies) and for a random integer
-    matrix without symmetry (tap by tap, one multiply per distinct magnitude)."""
+    gives back every word, for the baked ROM (72 multiplies: the degree-6 ROM's rows
+    depend on both the column and the row, so every row is grouped tap by tap over the
+    stencil's point symmetries; the degree-2 ROM took column and row sums, 26) and for
+    a random integer matrix without symmetry (tap by tap, one multiply per distinct
+    magnitude)."""
     rom = tuple(tuple(int(w) for w in row) for row in baked_pinv().weight_codes)
     plan = fit_mac_plan()
     assert expand_fit_mac_plan(plan, rom) == rom
-    assert [c["basis"] for c in plan] == ["g", "col", "row", "col", "g", "row"]
-    assert sum(len(c["terms"]) for c in plan) == 26
+    assert [c["basis"] for c in plan] == ["g"] * 6
+    assert [len(c["terms"]) for c in plan] == [10, 12, 12, 16, 6, 16]
     rnd = tuple(tuple(int(w) for w in row)
                 for row in np.random.default_rng(0).integers(-9, 10, (6, 49)))
     other = fit_mac_plan(rnd)

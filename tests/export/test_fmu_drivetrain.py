@@ -394,8 +394,8 @@ def _run_harness(fmu, tmp_path, harness: str, name: str, flags=()) -> str:
 
 
 #: Harness of :func:`test_stencil_gap_codes_are_the_twin_quantization`: gc_contact_law.c's
-#: static gap_codes on xorshift rows (magnitudes 2^-20 .. 2^17 mm, a sample beyond GAP's
-#: +-32768 mm, an infinity or a NaN now and then, fractions in [0, 1] with both ends),
+#: static gap_codes on xorshift rows (magnitudes 2^-25 .. 2^12 mm, a sample beyond
+#: STENCIL_GAP's +-1024 mm, an infinity or a NaN now and then, fractions in [0, 1] with both ends),
 #: each vector printed as f, the rows and the result in hexadecimal floats and integers.
 _GAP_HARNESS = r"""
 #include <stdio.h>
@@ -409,7 +409,7 @@ static double sample(void)
 {
     if (next() % 1000u == 0u)
         return next() % 2u ? INFINITY : NAN;
-    return (unit() - 0.5) * ldexp(1.0, (int)(next() % 38u) - 20);
+    return (unit() - 0.5) * ldexp(1.0, (int)(next() % 38u) - 25);
 }
 
 int main(void)
@@ -435,12 +435,13 @@ int main(void)
 
 
 def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
-    """The golden stencil's GAP codes (gc_contact_law.c's gap_codes: two samples per SSE2
-    instruction, or one by one with -DGC_SCALAR_LANES, the code other targets get)
-    equal the twin's quantization computed here in Python's doubles, the operations of
-    :func:`gearcontact.twin.contact_law._kappa`: ``floor((r0 + f (r1 - r0)) 2^16 +
-    1/2)``, flagged where a sample lies outside [-2^31, 2^31) codes (or is not a
-    number), on 3,000 vectors of 49 samples. Exact: the same IEEE operations."""
+    """The golden stencil's STENCIL_GAP codes (gc_contact_law.c's gap_codes: two samples
+    per SSE2 instruction, or one by one with -DGC_SCALAR_LANES, the code other targets
+    get) equal the twin's quantization computed here in Python's doubles, the operations
+    of :func:`gearcontact.twin.contact_law._kappa`: ``floor((r0 + f (r1 - r0)) 2^21 +
+    1/2)`` (STENCIL_GAP Q(32,21)), flagged where a sample lies outside [-2^31, 2^31)
+    codes (or is not a number), on 3,000 vectors of 49 samples. Exact: the same IEEE
+    operations."""
     fmu, _ = exported
     outputs = {flavour: _run_harness(fmu, tmp_path, _GAP_HARNESS, flavour, flags)
                for flavour, flags in (("sse2", []), ("scalar", ["-DGC_SCALAR_LANES"]))}
@@ -452,7 +453,7 @@ def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
         want, bad = [], False
         for q in range(49):
             r0, r1 = float.fromhex(words[2 + 3 * q]), float.fromhex(words[3 + 3 * q])
-            t = (r0 + f * (r1 - r0)) * 65536.0 + 0.5
+            t = (r0 + f * (r1 - r0)) * 2.0 ** 21 + 0.5
             bad |= not (-2.0 ** 31 <= t < 2.0 ** 31)
             want.append(math.floor(t) if not bad else 0)
         assert ok == (not bad), line[:80]

@@ -8,7 +8,7 @@ from gearcontact.hw.harness_cores import CORE_NAMES, get_bench
 from gearcontact.preview import stimulus as S
 from gearcontact.preview.gap.golden import GapVector, check_vector, gap_golden_codes
 from gearcontact.preview.hertz import formats as HF
-from gearcontact.contract.qformat import GAP
+from gearcontact.contract.qformat import STENCIL_GAP
 from gearcontact.validation import InputRangeError
 
 
@@ -51,7 +51,7 @@ def test_gap_corner_cases_do_what_they_say():
 def test_stencil_codes_and_flag_coverage():
     st = S.fit_stimulus(2000, 1)
     g = st.fields["gaps"]
-    assert g.shape == (len(st), 49) and GAP.fits(g).all()
+    assert g.shape == (len(st), 49) and STENCIL_GAP.fits(g).all()
     flags = get_bench("fit").golden(st)["flags"]
     assert {0, 1, 8} <= set(np.unique(flags).tolist())       # valid, overflow, saddle
 

@@ -118,13 +118,13 @@ def test_rtl_equals_golden_bit_for_bit_811_cycles():
     """Amaranth simulator, five stencils: elliptic (n = 0 and n = 1), a cylinder (line),
     a saddle (flagged not_elliptic), a fit overflow (flagged; about 8 s)."""
     from gearcontact.preview.chain_line_rtl import simulate_chain_line_core
-    from gearcontact.contract.qformat import GAP
+    from gearcontact.contract.qformat import STENCIL_GAP
     stencils = [_elliptic(0.05, 0.01, 0.4, 0.0, 0.05, -0.02),
                 _elliptic(0.0246, 2.3e-4, 0.3, 0.0, 0.01, -0.02),
                 _elliptic(0.0246, 0.0, 0.3, 0.0, 0.01, -0.02),
                 _elliptic(0.02, -0.001, 0.0, 0.0, 0.0, 0.0),
                 _elliptic(0.0, 0.0, 0.0, 0.0, 0.0, 0.0) + np.where(
-                    np.arange(49) % 2, GAP.max_value, GAP.min_value)]
+                    np.arange(49) % 2, STENCIL_GAP.max_value, STENCIL_GAP.min_value)]
     codes = np.array([encode_gaps(g) for g in stencils])
     w = [W1K, 603 << 8, 2000 << 8, W1K, W1K]
     length = [encode_length(x) for x in (50.0, 20.0, 10.0, 10.0, 10.0)]

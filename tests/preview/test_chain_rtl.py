@@ -23,7 +23,7 @@ from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.hertz import formats as F
 from gearcontact.preview.hertz.golden import encode_e_prime
 from gearcontact.preview.hertz.schedule import CHAIN_CYCLES, COMB_CYCLES
-from gearcontact.contract.qformat import GAP, LOAD
+from gearcontact.contract.qformat import LOAD, STENCIL_GAP
 from gearcontact.preview.simulation import pulse, run_to_done, simulate_bench
 
 S, T = stencil_coordinates()
@@ -48,9 +48,10 @@ DIRECTED = [
     ("tiny_curvature_range", _field(1e-3, 0.0, 1e-4), _w(100.0)),
     ("saddle_not_elliptic", _field(0.1, 0.05, -0.08), _w(1500.0)),
     ("zero_go_without_data", np.zeros(49, dtype=np.int64), _w(1500.0)),
-    ("coeff_overflow", _field(3000.0, 0.0, 1.0), _w(1500.0)),
-    ("d_overflow", _field(2000.0, 0.0, -2000.0), _w(1500.0)),
-    ("curv_overflow", _field(2000.0, 2000.0, 1000.0), _w(1500.0)),
+    # samples inside STENCIL_GAP's +-1024 mm (tests/preview/fit/test_golden.py)
+    ("coeff_overflow", _field(3000.0, 0.0, 1.0, -1000.0), _w(1500.0)),
+    ("d_overflow", _field(1500.0, 0.0, -1500.0), _w(1500.0)),
+    ("curv_overflow", _field(1900.0, 600.0, 1900.0, -1000.0), _w(1500.0)),
     ("load_min", _field(0.05, 0.01, 0.5), F.LOAD_MIN_CODE),
     ("load_max", _field(0.05, 0.01, 0.5), F.LOAD_MAX_CODE),
     ("load_zero", _field(0.05, 0.01, 0.5), 0),
@@ -70,8 +71,8 @@ def _random(n, seed):
     rows, ws = [], []
     for i in range(n):
         if i % 4 == 3:
-            rows.append(rng.integers(GAP.min_code >> rng.integers(0, 30), GAP.max_code >> 8,
-                                     size=49, endpoint=True))
+            rows.append(rng.integers(STENCIL_GAP.min_code >> rng.integers(0, 30),
+                                     STENCIL_GAP.max_code >> 8, size=49, endpoint=True))
         else:
             lo = np.exp(rng.uniform(np.log(1e-3), np.log(0.5)))
             hi = min(lo * np.exp(rng.uniform(0.0, np.log(100.0))), 1.0)

@@ -143,9 +143,9 @@ def test_spur_pitch_point_rotation_against_the_lcp(spur):
 def test_golden_within_the_fixed_point_resolution(spur):
     """Golden against fp64: the static rotation and a 5 ms run (3000 rpm) agree within
     the line chain's resolution. Its coarsest step is the fit's on the curvature
-    across the line (LINE_B_ZERO_CODES codes, 1.1e-4 1/mm against A- = 0.073 1/mm):
+    across the line (LINE_B_ZERO_CODES codes, 5.3e-5 1/mm against A- = 0.073 1/mm):
     through b ~ B^(-1/2) it moves the law's ln(4L/b) by half of that relative error,
-    i.e. theta by at most ``0.5 (1.1e-4 / A-) / (ln(4L/b) - 3/4)`` at the flattest
+    i.e. theta by at most ``0.5 (5.3e-5 / A-) / (ln(4L/b) - 3/4)`` at the flattest
     closed line the run passes (A- = 0.065 1/mm here: the formula's worst case; since
     the table holds the neighbours' tip-edge rows, tca.cylindrical_tip, the run
     measures 2.5e-4, above the steepest line's 2.1e-4); the load, L and the outputs'
@@ -160,8 +160,14 @@ def test_golden_within_the_fixed_point_resolution(spur):
     assert abs(th_g / th_r - 1.0) < bound
     kw = dict(speed_rpm=3000.0, duration_s=5e-3, step_s=10e-6)
     r, g = simulate(ref, **kw), simulate(gold, **kw)
+    # The 5 ms run is not set by the fit's resolution: it measured 2.5e-4 on theta with
+    # the degree-2 fit at Q(32,16) and 2.3e-4 with the degree-6 fit at STENCIL_GAP, whose
+    # A- error on the table's stencils fell from 2.2e-4 to 9.0e-5 (measured) while its
+    # bound above halved (LINE_B_ZERO_CODES 119 -> 56). Its tolerance stays the former
+    # 3.5e-4 (2 x the degree-2 bound at this line) until its dominant term is named.
+    run_tol = 0.5 * 119 * CURVATURE.lsb / a_minus / 5.0 * 2
     for key in ("theta_rad", "mesh_load_n"):
-        np.testing.assert_allclose(g.columns[key], r.columns[key], rtol=2 * bound, atol=0,
+        np.testing.assert_allclose(g.columns[key], r.columns[key], rtol=run_tol, atol=0,
                                    err_msg=key)
     assert g.summary["previews_outside_datapath"] == 0
     assert g.summary["previews_without_contact_law"] == 0

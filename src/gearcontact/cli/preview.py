@@ -19,7 +19,7 @@ from ..hw import backends as _hardware_backends  # noqa: F401 (registers rtl, rt
 from ..preview.engine import BACKENDS, get_engine
 from ..contract.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
-from ..contract.qformat import GAP, FixedPointOverflow
+from ..contract.qformat import STENCIL_GAP, FixedPointOverflow
 from ..preview.hertz.reference import LINE_ENVELOPE
 from ..validation import InputRangeError, check_range, format_range
 
@@ -69,16 +69,17 @@ def check(args) -> None:
                                   "line core")
     args.gaps_mm = None if args.stencil is None else read_stencil_csv(args.stencil)
     if args.gaps_mm is not None and args.backend != "reference":
-        # the fixed-point backends take the gaps in GAP Q(32,16): one that does not fit
-        # is the file's value, named with its row, not a datapath result
+        # the fixed-point backends take the gaps in STENCIL_GAP Q(32,21): one that does
+        # not fit is the file's value, named with its row, not a datapath result
         for i, gap in enumerate(args.gaps_mm):
             try:
-                GAP.quantize(gap, field="gap_mm")
+                STENCIL_GAP.quantize(gap, field="gap_mm")
             except FixedPointOverflow:
                 raise InputRangeError(
                     f"{args.stencil}: row {i + 1} (sample {i}), column gap_mm", float(gap),
-                    f"{format_range(GAP.min_value, GAP.max_value)} mm, the {GAP} gap format "
-                    f"of the --backend {args.backend} datapath") from None
+                    f"{format_range(STENCIL_GAP.min_value, STENCIL_GAP.max_value)} mm, the "
+                    f"{STENCIL_GAP} stencil gap format of the --backend {args.backend} "
+                    "datapath") from None
 
 
 def run(args) -> int:

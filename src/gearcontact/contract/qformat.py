@@ -23,7 +23,8 @@ import numpy as np
 from ..errors import DatapathFlagged
 
 __all__ = ["QFormat", "FixedPointOverflow", "round_shift", "sq", "uq",
-           "COORD", "NORMAL", "LOAD", "CURVATURE", "SEMI_AXIS", "PMAX", "GAP"]
+           "COORD", "NORMAL", "LOAD", "CURVATURE", "SEMI_AXIS", "PMAX", "GAP",
+           "STENCIL_GAP"]
 
 
 class FixedPointOverflow(DatapathFlagged):
@@ -183,4 +184,12 @@ LOAD = sq(32, 8)        #: contact load W, N
 CURVATURE = sq(32, 20)  #: relative principal curvature A-, B-, 1/mm
 SEMI_AXIS = sq(32, 20)  #: contact-ellipse semi-axes a, b, mm
 PMAX = sq(32, 8)        #: peak Hertzian pressure, MPa
-GAP = sq(32, 16)        #: signed gap, mm (stage A/B output, stage C input)
+GAP = sq(32, 16)        #: signed gap, mm (stage A/B output)
+#: Stencil gap sample, stage C input, mm. Its own format, finer than GAP: stage C's
+#: degree-6 ROM (docs/spec.md sec. 6) amplifies the input rounding by its row norms
+#: (||M_c3||_1 = 88.3 1/mm^2): at GAP's 2^-16 mm the rounding bound of the fitted B-
+#: would be ~1600 CURVATURE codes, at 2^-21 mm it is 56. Its +-1024 mm range still holds the
+#: term K s^2 at the window's edge (s = 0.6 mm: 0.36 K < 737 mm) for every curvature
+#: |K| < 2048 1/mm that CURVATURE can hold, plus the offset and slopes.
+#: Stage A/B and stage C are not wired together (the host writes the 49 words).
+STENCIL_GAP = sq(32, 21)

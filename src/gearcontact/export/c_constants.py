@@ -29,7 +29,7 @@ from ..preview.hertz.sqrt import SQRT_BITS
 from ..preview.hertz.luts import (CBRT_SPEC, EE_DIVIDEND_SHIFT, EE_EXACT_SPEC, LUT_SIZE,
                                   POW_EXACT_SPEC, POW_SPEC, LutSpec, rom_words,
                                   same_geometry)
-from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS,
+from ..contract.qformat import (CURVATURE, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
                                 FixedPointOverflow, sq)
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
@@ -295,7 +295,7 @@ def fit_constants() -> dict[str, int]:
             "ISQRT_SEED_SHIFT": 64 - ISQRT_SEED_BITS,
             "ISQRT_SEED_OFFSET": 1 << (ISQRT_SEED_BITS - 2),
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
-            "GAP_FRAC": GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
+            "STENCIL_GAP_FRAC": STENCIL_GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
 
 
 def gap_constants() -> dict[str, int]:

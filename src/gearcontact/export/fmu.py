@@ -170,7 +170,7 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
     value reference, type, causality, variability, unit, description)``), the units it
     uses, the FMI functions to stub, the C sources and the contact law's constants."""
     from .. import __version__
-    from ..twin.contact_law import _HB_E
+    from ..twin.contact_law import _HB_E, _S_GAP
 
     units = sorted({v[5] for v in variables if v[5]})
     return {
@@ -180,7 +180,7 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "units": [(u, UNITS[u]) for u in units], "backends": BACKENDS,
         "unsupported": _unsupported(header_dir, implemented), "trivial": tuple(trivial),
         "c_sources": [model_source, "gc_contact_law.c", *GOLDEN_SOURCES, *FP64_SOURCES],
-        "pi": c_double(math.pi), "hb_e": c_double(_HB_E),
+        "pi": c_double(math.pi), "hb_e": c_double(_HB_E), "s_gap": c_double(_S_GAP),
         "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
         "output_dependencies": None, "initial_dependencies": ""}

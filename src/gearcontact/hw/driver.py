@@ -13,7 +13,7 @@ A transport moves 32-bit words at byte addresses (:class:`Transport`):
 
     identify   contact.magic == MAGIC and identifier_mem == "gearcontact tri_core"
     reset      preview.wr_rst <- 1            (rewind the gap RAM write pointer)
-    49 writes  preview.wr_data <- g_i         (GAP Q(32,16))
+    49 writes  preview.wr_data <- g_i         (STENCIL_GAP Q(32,21))
     load       preview.W_load <- W            (LOAD Q(32,8))
     go         preview.go <- 1
     poll       preview.done bit 0 (timeout: DoneTimeout)
@@ -36,7 +36,8 @@ from typing import Protocol, runtime_checkable
 from ..preview.engine import GoldenEngine, PreviewBatch
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
-from ..contract.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
+from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
+                                QFormat)
 from ..validation import InputRangeError
 from .regmap import (
     CONTACT_FLAG_BITS,
@@ -432,12 +433,13 @@ class PreviewDriver(_Driver):
         self.t.write(self.addr("wr_rst"), 1)
 
     def write_stencil(self, gap_codes) -> None:
-        """Reset the pointer and write the 49 GAP Q(32,16) codes."""
+        """Reset the pointer and write the 49 STENCIL_GAP Q(32,21) codes."""
         codes = list(gap_codes)
         if len(codes) != N_TAPS:
             raise InputRangeError("stencil length", len(codes),
-                                  f"exactly {N_TAPS} gap samples (GAP Q(32,16) codes)")
-        words = [self._bits(c, GAP, f"gap_codes[{i}]") for i, c in enumerate(codes)]
+                                  f"exactly {N_TAPS} gap samples (STENCIL_GAP "
+                                  f"{STENCIL_GAP} codes)")
+        words = [self._bits(c, STENCIL_GAP, f"gap_codes[{i}]") for i, c in enumerate(codes)]
         self.reset()
         for w in words:
             self.t.write(self.addr("wr_data"), w)

@@ -41,7 +41,8 @@ from ..preview.chain import FIT_FLAG_SHIFT
 from ..preview.fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
-from ..contract.qformat import CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, QFormat
+from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
+                                QFormat)
 
 __all__ = [
     "CONTACT_FLAG_BITS",
@@ -247,8 +248,9 @@ _ELLIPSE_REGISTERS = (
 PREVIEW = Region("preview", 0x1800, (
     Register("wr_rst", 0x00, "strobe", None, "write 1: rewind the gap RAM write pointer",
              width=1),
-    Register("wr_data", 0x04, "wdata", GAP,
-             f"gap sample, GAP Q(32,16) mm; each write stores one of {N_TAPS}"),
+    Register("wr_data", 0x04, "wdata", STENCIL_GAP,
+             f"stencil gap sample, STENCIL_GAP Q(32,21) mm; each write stores one of "
+             f"{N_TAPS}"),
     Register("W_load", 0x08, "rw", LOAD, "load W, LOAD Q(32,8) N (captured at go)"),
     Register("go", 0x0C, "strobe", None, "write 1: start the C -> D chain (806 cycles)",
              width=1),

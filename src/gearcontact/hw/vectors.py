@@ -80,7 +80,7 @@ _PORT_DOC = {
     "idx": ("UQ(16,0)", "1", "winning sample index i*; 0xFFFF if not valid"),
     "valid": ("UQ(1,0)", "1", "a lane passed the gate and p' did not overflow"),
     "overflow": ("UQ(1,0)", "1", "p' = R p + t left Q(24,16)"),
-    "wr_data": ("Q(32,16)", "mm", _S),
+    "wr_data": ("Q(32,21)", "mm", _S),
     "c0": ("Q(32,20)", "mm", "fitted coefficient c0 (offset)"),
     "c1": ("Q(32,20)", "1", "fitted coefficient c1 (slope along s)"),
     "c2": ("Q(32,20)", "1", "fitted coefficient c2 (slope along t)"),

@@ -31,7 +31,7 @@ line chain carries only the fit's overflow bits (:data:`LINE_CHAIN_FIT_FLAGS`): 
 ``not_elliptic`` (B- <= 0) is the line core's to judge, B- = 0 being a line contact
 (a cylinder) and B- < 0 a saddle the line core flags ``not_elliptic``. The fit resolves
 B- only to the gap rounding's share of its error, :data:`LINE_B_ZERO_CODES` codes
-(1.1e-4 1/mm on the 0.5 mm hardware stencil: a cylinder's stencil fits B- = -5 codes),
+(5.3e-5 1/mm with the degree-6 ROM and STENCIL_GAP Q(32,21) inputs),
 so between the fit and the line core a B- code in ``[-LINE_B_ZERO_CODES, 0)`` is taken
 as 0, a line contact (:func:`line_b_minus`; a saddle is a B- below that).
 """
@@ -81,20 +81,22 @@ LINE_CHAIN_FIT_FLAGS = fit_golden_mod.FLAG_ANY_OVERFLOW
 
 
 def _b_zero_codes() -> int:
-    """Resolution of the fitted B- (CURVATURE codes): the gap rounding (half a GAP LSB)
-    through the ROM, |dB-| <= |dc3| + |dc5| + |dc4|/2 with |dc_j| <= ||Mq_j||_1 lsb/2
-    (B- = h - r, h = (c3 + c5)/2, r = |((c3 - c5)/2, c4/2)|), plus 5 codes for the
+    """Resolution of the fitted B- (CURVATURE codes): the gap rounding (half a
+    STENCIL_GAP LSB) through the ROM, |dB-| <= |dc3| + |dc5| + |dc4|/2 with
+    |dc_j| <= ||Mq_j||_1 lsb/2 (B- = h - r, h = (c3 + c5)/2, r = |((c3 - c5)/2, c4/2)|), plus 5 codes for the
     coefficient rounding (2.5) and the fit's own rounding and floor square root (2)."""
     from .fit.pinv import baked_pinv
-    from ..contract.qformat import GAP
+    from ..contract.qformat import STENCIL_GAP
     l1 = np.abs(baked_pinv().quantized_weights).sum(axis=1)
-    bound = GAP.lsb / 2 * (l1[3] + l1[5] + l1[4] / 2)
+    bound = STENCIL_GAP.lsb / 2 * (l1[3] + l1[5] + l1[4] / 2)
     return int(np.ceil(bound * (1 << CURVATURE.frac))) + 5
 
 
-#: B- codes in ``[-LINE_B_ZERO_CODES, 0)`` are a line contact in the line chain: 119.
+#: B- codes in ``[-LINE_B_ZERO_CODES, 0)`` are a line contact in the line chain: 56 (the
+#: degree-6 ROM's row norms 88.3 / 49.7 / 88.3 1/mm^2 at 2^-22 mm; was 119 with the
+#: degree-2 ROM at GAP's 2^-17 mm).
 LINE_B_ZERO_CODES = _b_zero_codes()
-assert LINE_B_ZERO_CODES == 119
+assert LINE_B_ZERO_CODES == 56
 
 
 def line_b_minus(b_minus):
@@ -182,7 +184,7 @@ def chain_reference(gaps_mm, load_n: float, *, e_prime_mpa: float,
 
 def chain_golden(gap_codes, W_code: int, *, e_prime_code: int,
                  hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainCodes:
-    """Golden C -> D on one stencil of GAP Q(32,16) codes and a LOAD Q(32,8) code
+    """Golden C -> D on one stencil of STENCIL_GAP Q(32,21) codes and a LOAD Q(32,8) code
     (stage D in the Hertz form ``hertz_form``)."""
     fit = fit_golden_mod.golden_fit(gap_codes, bitwise=False)
     hz = hertz_golden(fit.a_minus_code, fit.b_minus_code, W_code, e_prime_code=e_prime_code,
@@ -274,8 +276,8 @@ def chain_line_reference(gaps_mm, load_n: float, length_mm: float, *, e_prime_mp
 
 def chain_line_golden(gap_codes, W_code: int, L_code: int, *, e_prime_code: int,
                       hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainLineCodes:
-    """Golden C -> line core on one stencil of GAP Q(32,16) codes, a LOAD Q(32,8) code
-    and a contact-line length :data:`.hertz.line.LINE_LENGTH` Q(32,20) code."""
+    """Golden C -> line core on one stencil of STENCIL_GAP Q(32,21) codes, a LOAD Q(32,8)
+    code and a contact-line length :data:`.hertz.line.LINE_LENGTH` Q(32,20) code."""
     fit = fit_golden_mod.golden_fit(gap_codes, bitwise=False)
     lc = line_golden(fit.a_minus_code, line_b_minus(fit.b_minus_code), W_code, L_code,
                      e_prime_code=e_prime_code, hertz_form=hertz_form)

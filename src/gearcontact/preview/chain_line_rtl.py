@@ -160,12 +160,12 @@ def simulate_chain_line_core(stencils, W_codes, L_codes, *, e_prime_code: int,
                              max_cycles: int = 2 * CHAIN_LINE_CYCLES,
                              hertz_form: str = HF.DEFAULT_HERTZ_FORM
                              ) -> tuple[list[ChainLineCodes], list[int]]:
-    """Simulate :class:`ChainLineCore` cycle-accurately on GAP code stencils.
+    """Simulate :class:`ChainLineCore` cycle-accurately on STENCIL_GAP code stencils.
 
     Parameters
     ----------
     stencils : array_like of int, shape (n, 49)
-        GAP Q(32,16) codes (:func:`.fit.golden.encode_gaps`).
+        STENCIL_GAP Q(32,21) codes (:func:`.fit.golden.encode_gaps`).
     W_codes, L_codes : int or array_like of int, shape (n,)
         Loads, LOAD Q(32,8); contact-line lengths, LINE_LENGTH Q(32,20).
     e_prime_code : int, keyword-only

@@ -157,7 +157,7 @@ class ChainCore(ChainLikeCore):
     ==========  =====  ==============  ===============================================
     wr_rst      in     1               rewind the gap write pointer
     wr_en       in     1               write ``wr_data`` at the pointer, advance it
-    wr_data     in     signed(32)      gap sample, GAP Q(32,16), mm
+    wr_data     in     signed(32)      gap sample, STENCIL_GAP Q(32,21), mm
     W           in     signed(32)      load, LOAD Q(32,8), N (captured at go)
     e_prime     in     signed(32)      E', E_PRIME Q(32,0), MPa (captured at go)
     go          in     1               start (idle only)
@@ -272,7 +272,7 @@ def simulate_chain_core(stencils, W_codes, *, e_prime_code: int,
                         rom: BakedPinv | None = None, max_cycles: int = 2 * CHAIN_CYCLES,
                         hertz_form: str = HF.DEFAULT_HERTZ_FORM
                         ) -> tuple[list[ChainCodes], list[int]]:
-    """Simulate :class:`ChainCore` cycle-accurately on GAP code stencils.
+    """Simulate :class:`ChainCore` cycle-accurately on STENCIL_GAP code stencils.
 
     For each stencil: pulse ``wr_rst``, write the 49 codes, drive ``W``, assert ``go``
     for one cycle and count edges (the ``go`` edge is edge 1) until ``done`` reads 1.
@@ -280,7 +280,7 @@ def simulate_chain_core(stencils, W_codes, *, e_prime_code: int,
     Parameters
     ----------
     stencils : array_like of int, shape (n, 49)
-        GAP Q(32,16) codes (:func:`.fit.golden.encode_gaps`).
+        STENCIL_GAP Q(32,21) codes (:func:`.fit.golden.encode_gaps`).
     W_codes : int or array_like of int, shape (n,)
         Loads, LOAD Q(32,8).
     e_prime_code : int, keyword-only

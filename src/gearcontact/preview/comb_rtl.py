@@ -70,7 +70,7 @@ class CombCore(ChainLikeCore):
     Notes
     -----
     Ports: exactly those of :class:`.chain_rtl.ChainCore` (``wr_rst``, ``wr_en``,
-    ``wr_data`` GAP Q(32,16); ``W`` LOAD Q(32,8) and ``e_prime`` E_PRIME Q(32,0),
+    ``wr_data`` STENCIL_GAP Q(32,21); ``W`` LOAD Q(32,8) and ``e_prime`` E_PRIME Q(32,0),
     captured at ``go``; ``go``; ``busy``, ``done``, ``done_pulse``, ``wr_count``,
     ``wr_dropped``; ``a``, ``b`` SEMI_AXIS Q(32,20); ``p_max`` PMAX Q(32,8); ``k``
     Q(32,20); ``a_minus``, ``b_minus``, ``R_x``, ``R_y`` CURVATURE Q(32,20); ``alpha``

@@ -376,7 +376,7 @@ class GoldenEngine:
         return w, {"A_in": a_c, "B_in": b_c, "W": w_c, "e_prime": e_c}
 
     def encode_stencil(self, gaps_mm, load_n) -> tuple[float, np.ndarray, int]:
-        """Checked load (N), the 49 GAP codes and the LOAD code of one stencil."""
+        """Checked load (N), the 49 STENCIL_GAP codes and the LOAD code of one stencil."""
         g = _check_stencil(gaps_mm)
         w = _check_load(load_n)
         return w, encode_gaps(g), encode_hertz_inputs(1.0, 1.0, w,
@@ -462,8 +462,8 @@ class GoldenEngine:
 
     def encode_stencil_line(self, gaps_mm, load_n, line_length_mm) -> tuple[float, np.ndarray,
                                                                              int, int]:
-        """Checked load (N), the 49 GAP codes, the LOAD code and the LINE_LENGTH code of
-        one stencil in line mode."""
+        """Checked load (N), the 49 STENCIL_GAP codes, the LOAD code and the LINE_LENGTH
+        code of one stencil in line mode."""
         w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
         return w, gap_codes, w_c, encode_length(check_positive("line_length_mm",
                                                                line_length_mm))

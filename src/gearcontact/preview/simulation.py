@@ -172,7 +172,7 @@ class CycleCounter:
 
 
 async def write_stencil(ctx, dut, row) -> None:
-    """Pulse ``wr_rst`` and write the 49 GAP codes of ``row`` (one per edge).
+    """Pulse ``wr_rst`` and write the 49 STENCIL_GAP codes of ``row`` (one per edge).
 
     Parameters
     ----------
@@ -181,7 +181,7 @@ async def write_stencil(ctx, dut, row) -> None:
     dut : FitCore or a core with its write port (``wr_rst``, ``wr_en``, ``wr_data``)
         Device under test.
     row : sequence of int
-        GAP Q(32,16) codes, written from address 0 up.
+        STENCIL_GAP Q(32,21) codes, written from address 0 up.
     """
     await pulse(ctx, dut.wr_rst)
     ctx.set(dut.wr_en, 1)

@@ -12,7 +12,7 @@ core        fields of :attr:`Stimulus.fields` (``int64``, first axis = vector)
 gap         ``r`` (n, 3, 3) Q(21,19) with ``|c| <= 2^19``; ``t``, ``p`` (n, 3) and ``g``
             (n, N, 3) Q(24,16) mm; ``nrm`` (n, N, 3) normals like ``r``; ``tau2`` (n,)
             UQ(64,32) mm^2 in [1, 2^63 - 1]
-fit         ``gaps`` (n, 49) GAP Q(32,16) mm, in the stencil order of
+fit         ``gaps`` (n, 49) STENCIL_GAP Q(32,21) mm, in the stencil order of
             :mod:`gearcontact.contract.stencil`
 hertz       ``A``, ``B`` (n,) CURVATURE Q(32,20) 1/mm; ``W`` (n,) LOAD Q(32,8) N;
             ``e_prime`` (n,) Q(32,0) MPa
@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contract import envelope as ENV
-from ..contract.qformat import CURVATURE, GAP, LOAD
+from ..contract.qformat import CURVATURE, LOAD, STENCIL_GAP
 from ..contract.stencil import STENCIL_SIZE, stencil_coordinates
 from ..validation import InputRangeError
 
@@ -266,8 +266,8 @@ def _elliptic(A, B, theta, c0, c1, c2) -> np.ndarray:
 
 
 def _gcode(x_mm) -> np.ndarray:
-    return np.clip(np.floor(np.asarray(x_mm) * 65536.0 + 0.5),
-                   GAP.min_code, GAP.max_code).astype(np.int64)
+    return np.clip(np.floor(np.ldexp(np.asarray(x_mm, float), STENCIL_GAP.frac) + 0.5),
+                   STENCIL_GAP.min_code, STENCIL_GAP.max_code).astype(np.int64)
 
 
 def _curvature_pairs(rng, n: int, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
@@ -290,9 +290,9 @@ def _stencils(rng, n: int, lo: float, hi: float) -> tuple[np.ndarray, list]:
     codes[saddle] = _gcode(_surface(0, 0, 0, rng.uniform(-1, 1, (int(saddle.sum()))),
                                     rng.uniform(-1, 1, int(saddle.sum())),
                                     rng.uniform(-1, 1, int(saddle.sum()))))
-    raw = (kind >= 0.08) & (kind < 0.16)      # whole-range GAP codes
-    codes[raw] = rng.integers(GAP.min_code, GAP.max_code, (int(raw.sum()), STENCIL_SIZE),
-                              endpoint=True)
+    raw = (kind >= 0.08) & (kind < 0.16)      # whole-range STENCIL_GAP codes
+    codes[raw] = rng.integers(STENCIL_GAP.min_code, STENCIL_GAP.max_code,
+                              (int(raw.sum()), STENCIL_SIZE), endpoint=True)
     small = (kind >= 0.16) & (kind < 0.22)    # small codes of any shape
     codes[small] = rng.integers(-4096, 4097, (int(small.sum()), STENCIL_SIZE))
     for i in np.flatnonzero(raw | small):
@@ -303,8 +303,9 @@ def _stencils(rng, n: int, lo: float, hi: float) -> tuple[np.ndarray, list]:
 def _stencil_corners() -> list:
     z = np.zeros(STENCIL_SIZE)
     imp = np.zeros(STENCIL_SIZE, np.int64)
-    imp[STENCIL_SIZE // 2] = GAP.max_code
-    alt = np.where(np.arange(STENCIL_SIZE) % 2 == 0, GAP.max_code, GAP.min_code)
+    imp[STENCIL_SIZE // 2] = STENCIL_GAP.max_code
+    alt = np.where(np.arange(STENCIL_SIZE) % 2 == 0, STENCIL_GAP.max_code,
+                   STENCIL_GAP.min_code)
     return [
         ("flat stencil (all zero: go without data)", np.zeros(STENCIL_SIZE, np.int64)),
         ("sphere A = B (tie, d = 0)", _gcode(_elliptic(0.05, 0.05, 0.0, 0.0, 0, 0))),
@@ -316,8 +317,8 @@ def _stencil_corners() -> list:
                                                              0, 0))),
         ("large curvature 16 1/mm", _gcode(_elliptic(16.0, 8.0, 0.2, 0, 0, 0))),
         ("tiny curvature 2^-11 1/mm", _gcode(_elliptic(2.0 ** -11, 2.0 ** -11, 0, 0, 0, 0))),
-        ("every code at the maximum", np.full(STENCIL_SIZE, GAP.max_code)),
-        ("every code at the minimum", np.full(STENCIL_SIZE, GAP.min_code)),
+        ("every code at the maximum", np.full(STENCIL_SIZE, STENCIL_GAP.max_code)),
+        ("every code at the minimum", np.full(STENCIL_SIZE, STENCIL_GAP.min_code)),
         ("alternating min/max codes (coefficient overflow)", alt),
         ("centre impulse at the maximum code", imp),
         ("negative gaps with an offset", _gcode(_elliptic(0.1, 0.05, 0.0, -2.0, 0.1, 0) + z)),

@@ -22,9 +22,10 @@ them. The curvatures the preview takes (``prm[P_STAGEC]``, :data:`~.layout.CURVA
   the step's phase (linear between the TCA rows), stage C's curvature fit, stage D.
   fp64: the fit is linear in the samples, so the rows' fitted coefficients c3, c4, c5
   are interpolated instead (identical, 3 values instead of 49) and the principal
-  curvatures formed from them; golden: the interpolated samples are quantized to GAP
-  codes and run through the bit-exact fit core (:func:`gearcontact.preview.fit.
-  golden_vec.fit_element`) into the golden stage D, as the tri_core chain does;
+  curvatures formed from them; golden: the interpolated samples are quantized to
+  STENCIL_GAP Q(32,21) codes and run through the bit-exact fit core
+  (:func:`gearcontact.preview.fit.golden_vec.fit_element`) into the golden stage D, as
+  the tri_core chain does;
 * ``exact``: the TCA's shape-operator curvatures A-, B- interpolated between rows
   (the law of the loaded TE's preview, :mod:`gearcontact.ltca.lte`).
 
@@ -64,6 +65,7 @@ from numba.extending import overload
 
 from ..analytic.cube_root import cbrt_positive
 from ..analytic.hertz import hamrock_brewe_terms
+from ..contract.qformat import STENCIL_GAP
 from ..preview.fit.golden_vec import fit_element
 from ..preview.fit.reference import principal_curvatures
 from ..preview.hertz.golden_vec import hertz_element
@@ -89,7 +91,8 @@ _principal = njit(cache=True, inline="always")(principal_curvatures)
 W_EVAL_MIN_N = 1.0
 _W_EVAL_MAX_N = 131072.0
 _HB_E = 0.5 * math.pi - 1.0
-_S16 = 65536.0
+#: Scale of a stencil sample's STENCIL_GAP code (2^21 per mm), of a curvature code (2^20).
+_S_GAP = math.ldexp(1.0, STENCIL_GAP.frac)
 _S20 = 1048576.0
 
 
@@ -194,13 +197,13 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
         return _fp64_law(A, B, prm, tcount, out3, golden)
     c0 = 0
     if golden:
-        # the samples interpolated and quantized (GAP Q(32,16), round half up), the
+        # the samples interpolated and quantized (STENCIL_GAP, round half up), the
         # bit-exact fit core, its latched codes into stage D (the C -> D chain)
         g = fit[2]
         for q in range(g.shape[1]):
-            g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
+            g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S_GAP + 0.5))
         am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
-        if ff < 0:      # a sample beyond GAP's +-32768 mm: flagged like a coefficient overflow
+        if ff < 0:      # a sample beyond +-1024 mm: flagged like a coefficient overflow
             ff = 1
         kap = _kappa_golden(min(am, bm), max(am, bm), ff, we, prm, pow_lut, cbrt_lut, cst,
                             trace, tcount, fit, out3)

@@ -53,9 +53,9 @@ Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
   contact (:func:`gearcontact.analytic.hertz.line_contact_terms`), Hamrock-Brewe's
   ellipse where the datapath evaluates one (ratio within its POW table) and the line
   core's SELECT (:func:`gearcontact.preview.hertz.reference.keeps_ellipse`);
-* ``golden`` (1): the stencil samples interpolated and quantized (GAP Q(32,16)), the
-  bit-exact fit core (:func:`gearcontact.preview.fit.golden_vec.fit_element`), the fit's
-  B- rule on its code, the bit-exact line core (:func:`gearcontact.preview.hertz.
+* ``golden`` (1): the stencil samples interpolated and quantized (STENCIL_GAP
+  Q(32,21)), the bit-exact fit core (:func:`gearcontact.preview.fit.golden_vec.
+  fit_element`), the fit's B- rule on its code, the bit-exact line core (:func:`gearcontact.preview.hertz.
   line_vec.line_element`) at ``W_e`` in LOAD Q(32,8) and ``L_c`` in Q(32,20); each run
   is traced with its ``L`` code and mode for the ``rtl`` replay on the ChainLineCore
   (:func:`.cosim.replay_on_rtl`, ``line=True``).
@@ -74,7 +74,7 @@ import numpy as np
 from numba import njit
 
 from ..analytic.hertz import line_contact_terms
-from ..contract.qformat import CURVATURE
+from ..contract.qformat import CURVATURE, STENCIL_GAP
 from ..ltca.slice_law import interference, loaded_line
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
 from ..preview.fit.golden_vec import fit_element
@@ -92,7 +92,7 @@ _line_terms = njit(cache=True, inline="always")(line_contact_terms)
 _keeps = njit(cache=True, inline="always")(keeps_ellipse)
 _B_ZERO = LINE_B_ZERO_CODES * CURVATURE.lsb        # 1/mm: the fit's resolution of B-
 _L_LO, _L_HI = LINE_ENVELOPE["line_length_mm"]
-_S16 = 65536.0
+_S_GAP = math.ldexp(1.0, STENCIL_GAP.frac)      # STENCIL_GAP codes per mm (2^21)
 _S20 = 1048576.0
 
 
@@ -149,9 +149,9 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
     codes into the stencil trace."""
     g = fit[2]
     for q in range(g.shape[1]):
-        g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S16 + 0.5))
+        g[0, q] = np.int64(math.floor(_row(cv_t, s, j, i, f, q) * _S_GAP + 0.5))
     am, bm, ff = fit_element(g, 0, fit[0], fit[1], fit[3])
-    ff = 1 if ff < 0 else ff & LINE_CHAIN_FIT_FLAGS     # a GAP overflow as a coefficient one
+    ff = 1 if ff < 0 else ff & LINE_CHAIN_FIT_FLAGS     # a sample overflow: a coefficient one
     if -LINE_B_ZERO_CODES <= bm < 0:
         bm = np.int64(0)
     a_min, b_max = min(am, bm), max(am, bm)

@@ -17,7 +17,7 @@ from gearcontact.preview.fit.golden import (
 from gearcontact.preview.fit.pinv import coefficient_error_bound
 from gearcontact.preview.fit.reference import fit_curvatures
 from gearcontact.contract.stencil import stencil_coordinates
-from gearcontact.contract.qformat import CURVATURE, GAP, FixedPointOverflow
+from gearcontact.contract.qformat import CURVATURE, STENCIL_GAP, FixedPointOverflow
 from gearcontact.validation import InputRangeError
 from gearcontact.contract.stencil import STENCIL_SPACING_MM
 
@@ -27,10 +27,10 @@ LSB = CURVATURE.lsb
 def corner_stencils():
     """Directed corner stencils (codes): zero, extremes, impulses, alternations."""
     out = [np.zeros(49, dtype=np.int64),
-           np.full(49, GAP.max_code), np.full(49, GAP.min_code),
-           np.where(np.arange(49) % 2, GAP.max_code, GAP.min_code)]
+           np.full(49, STENCIL_GAP.max_code), np.full(49, STENCIL_GAP.min_code),
+           np.where(np.arange(49) % 2, STENCIL_GAP.max_code, STENCIL_GAP.min_code)]
     for i in (0, 3, 24, 48):
-        for v in (GAP.max_code, GAP.min_code, 1, -1):
+        for v in (STENCIL_GAP.max_code, STENCIL_GAP.min_code, 1, -1):
             imp = np.zeros(49, dtype=np.int64)
             imp[i] = v
             out.append(imp)
@@ -44,7 +44,7 @@ def random_stencils(n, seed):
     hi = np.array([int(m) for m in mag[:, 0]], dtype=np.int64)
     u = rng.random((n, 49))
     codes = np.floor(u * (2 * hi[:, None]) - hi[:, None]).astype(np.int64)
-    return np.clip(codes, GAP.min_code, GAP.max_code)
+    return np.clip(codes, STENCIL_GAP.min_code, STENCIL_GAP.max_code)
 
 
 # ----------------------------------------------------------------------------- isqrt
@@ -97,22 +97,26 @@ def test_scalar_bitwise_fast_and_batch_are_identical():
     assert {0, FLAG_COEFF_OVERFLOW, FLAG_NOT_ELLIPTIC} <= seen
 
 
-def test_overflow_paths_and_zeroed_outputs(quadratic):
-    # c3 = 2000, c4 = 2000, c5 = 1000 1/mm (all fit Q(32,20)): d = 1000^2 + 2000^2 fits
-    # Q(64,40) but A- = (3000 + 2236)/2 = 2618 > 2048 = CURVATURE max -> CURV overflow
+def test_overflow_paths_and_zeroed_outputs():
+    # Every field keeps its samples inside STENCIL_GAP's +-1024 mm (an offset c0 lets
+    # the curvature grow: the window holds 0.72 mm^2 of s^2 + t^2 at its corners).
+    # c0 = -1000 mm, c3 = c5 = 1900, c4 = 600 1/mm (all fit Q(32,20)), samples in
+    # [-1000, 584] mm: d = 600^2 fits Q(64,40) but A- = 1900 + 300 = 2200 > 2048 =
+    # CURVATURE max -> CURV overflow
     s, t = stencil_coordinates()
-    g_curv = 2000.0 * s * s + 2000.0 * s * t + 1000.0 * t * t
+    g_curv = -1000.0 + 1900.0 * s * s + 600.0 * s * t + 1900.0 * t * t
     r = golden_fit(encode_gaps(g_curv))
     assert r.flags == FLAG_CURV_OVERFLOW and r.overflow
     assert (r.a_minus_code, r.b_minus_code, r.c_codes) == (0, 0, (0,) * 6)
-    # A- = 2000, B- = -2000: e = 4000, d = 1.6e7 > 2^23 (Q(64,40) max) -> D overflow
-    g, _ = quadratic(2000.0, -2000.0, 0.0)
-    assert golden_fit(encode_gaps(g)).flags == FLAG_D_OVERFLOW
+    # c3 = 1500, c5 = -1500 (samples within +-540 mm): e = 3000, d = 9e6 > 2^23 (Q(64,40)
+    # max) -> D overflow
+    g_d = 1500.0 * (s * s - t * t)
+    assert golden_fit(encode_gaps(g_d)).flags == FLAG_D_OVERFLOW
     # c3 = 3000 1/mm does not fit the Q(32,20) coefficient (max 2048) -> COEFF overflow
-    g, _ = quadratic(3000.0, 1.0, 0.0)
-    assert golden_fit(encode_gaps(g)).flags == FLAG_COEFF_OVERFLOW
-    for gg in (g_curv, quadratic(2000.0, -2000.0, 0.0)[0],
-               quadratic(3000.0, 1.0, 0.0)[0]):
+    # (c0 = -1000 mm: samples in [-1000, 80] mm)
+    g_c = -1000.0 + 3000.0 * s * s + t * t
+    assert golden_fit(encode_gaps(g_c)).flags == FLAG_COEFF_OVERFLOW
+    for gg in (g_curv, g_d, g_c):
         codes = encode_gaps(gg)
         assert golden_fit_batch(codes[None])[0] == golden_fit(codes)
 
@@ -188,11 +192,11 @@ def test_tiny_curvature_is_resolved(quadratic):
 
 def test_encode_rounds_half_up_and_names_sample():
     g = np.zeros(49)
-    g[5] = 1.5 * GAP.lsb      # tie -> up
-    g[6] = -1.5 * GAP.lsb     # tie -> up (towards +inf)
+    g[5] = 1.5 * STENCIL_GAP.lsb      # tie -> up
+    g[6] = -1.5 * STENCIL_GAP.lsb     # tie -> up (towards +inf)
     c = encode_gaps(g)
     assert (c[5], c[6]) == (2, -1)
-    g[17] = 40000.0
+    g[17] = 1100.0                # beyond STENCIL_GAP's +-1024 mm (inside GAP's range)
     with pytest.raises(FixedPointOverflow, match=r"gaps_mm\[17\]"):
         encode_gaps(g)
     g[17] = np.nan

@@ -13,7 +13,7 @@ from gearcontact.preview.fit import golden as G
 from gearcontact.preview.fit.golden import golden_fit, golden_fit_batch
 from gearcontact.preview.fit.golden_vec import _isqrt, fit_kernel
 from gearcontact.preview.fit.pinv import baked_pinv
-from gearcontact.contract.qformat import GAP, FixedPointOverflow
+from gearcontact.contract.qformat import STENCIL_GAP, FixedPointOverflow
 from gearcontact.preview.stimulus import fit_stimulus
 
 from .test_golden import corner_stencils, random_stencils
@@ -39,7 +39,7 @@ def test_kernel_bit_identical_to_scalar_golden():
 
 def test_kernel_equals_batch_entry_point():
     codes = random_stencils(500, seed=3)
-    c, a, b, f = fit_kernel(codes, baked_pinv().weight_codes_array, coeff_shift=16,
+    c, a, b, f = fit_kernel(codes, baked_pinv().weight_codes_array, coeff_shift=21,
                             d_max_code=G.D_FMT.max_code)
     batch = golden_fit_batch(codes)
     assert np.array_equal(c, batch.c_codes) and np.array_equal(f, batch.flags)
@@ -68,10 +68,10 @@ def test_isqrt_is_the_exact_floor():
 
 def test_out_of_range_code_is_named():
     codes = np.zeros((3, 49), np.int64)
-    codes[2, 17] = GAP.max_code + 1
+    codes[2, 17] = STENCIL_GAP.max_code + 1
     with pytest.raises(FixedPointOverflow, match=r"gap_codes\[2, 17\]"):
         golden_fit_batch(codes)
-    codes[2, 17] = GAP.min_code - 1
+    codes[2, 17] = STENCIL_GAP.min_code - 1
     with pytest.raises(FixedPointOverflow, match=r"gap_codes\[2, 17\]"):
         golden_fit_batch(codes)
 

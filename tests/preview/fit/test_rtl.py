@@ -14,7 +14,7 @@ from gearcontact.preview.fit.golden import (FIT_CYCLES, FLAG_COEFF_OVERFLOW,
 from gearcontact.preview.fit.rtl import (FitCore, convert_verilog, read_fit_codes,
                                         simulate_fit_core)
 from gearcontact.contract.stencil import stencil_coordinates
-from gearcontact.contract.qformat import GAP
+from gearcontact.contract.qformat import STENCIL_GAP
 from gearcontact.preview.simulation import (pulse, run_to_done, simulate_bench,
                                             write_stencil)
 
@@ -29,17 +29,18 @@ def _directed():
     """Corners: zero, max-magnitude, saddle, tiny curvature, every overflow path."""
     rows = {
         "zero": np.zeros(49, dtype=np.int64),
-        "all_max": np.full(49, GAP.max_code),
-        "all_min": np.full(49, GAP.min_code),
-        "alternating": np.where(np.arange(49) % 2, GAP.max_code, GAP.min_code),
-        "impulse_centre_max": np.where(np.arange(49) == 24, GAP.max_code, 0),
-        "impulse_corner_min": np.where(np.arange(49) == 0, GAP.min_code, 0),
+        "all_max": np.full(49, STENCIL_GAP.max_code),
+        "all_min": np.full(49, STENCIL_GAP.min_code),
+        "alternating": np.where(np.arange(49) % 2, STENCIL_GAP.max_code, STENCIL_GAP.min_code),
+        "impulse_centre_max": np.where(np.arange(49) == 24, STENCIL_GAP.max_code, 0),
+        "impulse_corner_min": np.where(np.arange(49) == 0, STENCIL_GAP.min_code, 0),
         "saddle": _field(0.1, 0.05, -0.08),
         "tiny": _field(1e-3, 0.0, 1e-3),
         "typical": _field(0.31, 0.1, 0.05, 0.01, 0.02, -0.01),
-        "coeff_overflow": _field(3000.0, 0.0, 1.0),
-        "d_overflow": _field(2000.0, 0.0, -2000.0),
-        "curv_overflow": _field(2000.0, 2000.0, 1000.0),
+        # samples inside STENCIL_GAP's +-1024 mm (test_golden.py's overflow fields)
+        "coeff_overflow": _field(3000.0, 0.0, 1.0, -1000.0),
+        "d_overflow": _field(1500.0, 0.0, -1500.0),
+        "curv_overflow": _field(1900.0, 600.0, 1900.0, -1000.0),
     }
     return list(rows), np.array(list(rows.values()), dtype=np.int64)
 
@@ -51,7 +52,8 @@ def _random(n, seed):
     for k in range(n):
         if k % 2:
             hi = 1 << int(rng.integers(0, 32))
-            out.append(np.clip(rng.integers(-hi, hi, 49), GAP.min_code, GAP.max_code))
+            out.append(np.clip(rng.integers(-hi, hi, 49), STENCIL_GAP.min_code,
+                               STENCIL_GAP.max_code))
         else:
             c = rng.uniform(-1, 1, 3) * 10.0 ** rng.uniform(-3, 0)
             out.append(_field(*c, *rng.uniform(-0.05, 0.05, 3)))

@@ -14,7 +14,7 @@ from gearcontact.preview.fit.rtl import SCHEDULE, simulate_fit_core
 from gearcontact.preview.fit.rtl_isqrt import IsqrtSequential
 from gearcontact.preview.fit.rtl_mac import N_PAIRS, PairMac, weight_bits
 from gearcontact.contract.stencil import stencil_coordinates
-from gearcontact.contract.qformat import GAP
+from gearcontact.contract.qformat import STENCIL_GAP
 from gearcontact.preview.simulation import simulate_bench
 from gearcontact.validation import InputRangeError
 
@@ -131,9 +131,10 @@ def _exact_sums(rom, row):
 
 
 def _extreme_stencils(rng, n):
-    rows = [np.full(N_TAPS, GAP.max_code), np.full(N_TAPS, GAP.min_code),
-            np.where(np.arange(N_TAPS) % 2, GAP.min_code, GAP.max_code)]
-    rows += [rng.integers(GAP.min_code, GAP.max_code + 1, N_TAPS) for _ in range(n)]
+    rows = [np.full(N_TAPS, STENCIL_GAP.max_code), np.full(N_TAPS, STENCIL_GAP.min_code),
+            np.where(np.arange(N_TAPS) % 2, STENCIL_GAP.min_code, STENCIL_GAP.max_code)]
+    rows += [rng.integers(STENCIL_GAP.min_code, STENCIL_GAP.max_code + 1, N_TAPS)
+             for _ in range(n)]
     return rows
 
 
@@ -146,7 +147,7 @@ def test_pair_mac_sums_are_exact_dot_products():
 
 
 def test_pair_mac_wide_weights_split_path_exact():
-    rom = bake_pseudo_inverse(spacing_mm=0.01)   # weights x2500: > 25 bits, split
+    rom = bake_pseudo_inverse(spacing_mm=0.012)  # weights x278: > 25 bits, split
     assert 25 < weight_bits(rom) <= 32
     rows = _extreme_stencils(np.random.default_rng(63), 3)
     for row, got in zip(rows, _run_mac(rom, rows)):
@@ -154,9 +155,9 @@ def test_pair_mac_wide_weights_split_path_exact():
 
 
 def test_fit_core_with_wide_weight_rom_bit_exact():
-    rom = bake_pseudo_inverse(spacing_mm=0.01)
+    rom = bake_pseudo_inverse(spacing_mm=0.012)
     rng = np.random.default_rng(64)
-    s, t = stencil_coordinates(0.01)
+    s, t = stencil_coordinates(0.012)
     bowl = encode_gaps(10.0 * s * s + 1.0 * s * t + 5.0 * t * t + 0.001)
     codes = np.array([rng.integers(-(1 << b), 1 << b, N_TAPS) for b in (14, 8, 31)]
                      + [bowl, np.zeros(N_TAPS, dtype=np.int64)], dtype=np.int64)

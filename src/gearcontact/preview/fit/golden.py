@@ -5,10 +5,11 @@ Datapath (all integers, no floating point; Q formats as in docs/spec.md sec. 6):
 ==========  ==============  ===================================================
 signal      format          definition
 ==========  ==============  ===================================================
-g_i         GAP Q(32,16)    gap sample i, mm (input, 49 words)
-M_ji        ROM Q(40,20)    baked weight (Q(32,20) value, :mod:`.pinv`)
-acc_j       ACC Q(72,36)    ``sum_i M_ji g_i``, exact (cannot wrap, see pinv)
-c_j         COEFF Q(32,20)  ``round_shift(acc_j, 16)``; overflow -> flag
+g_i         STENCIL_GAP     gap sample i, mm (input, 49 words)
+            Q(32,21)
+M_ji        ROM Q(40,20)    baked degree-6 weight (Q(32,20) value, :mod:`.pinv`)
+acc_j       ACC Q(72,41)    ``sum_i M_ji g_i``, exact (cannot wrap, see pinv)
+c_j         COEFF Q(32,20)  ``round_shift(acc_j, 21)``; overflow -> flag
 h           Q(33,20)        ``c3 + c5``, 1/mm (exact)
 e           Q(33,20)        ``c3 - c5``, 1/mm (exact)
 d           D Q(64,40)      ``e^2 + c4^2``, (1/mm)^2 (exact); > max -> flag
@@ -57,7 +58,7 @@ import numpy as np
 
 from gearcontact.preview.fit.golden_vec import fit_constants, fit_kernel
 from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv, baked_pinv
-from gearcontact.contract.qformat import (CURVATURE, GAP, FixedPointOverflow,
+from gearcontact.contract.qformat import (CURVATURE, STENCIL_GAP, FixedPointOverflow,
                                           round_shift, sq, uq)
 from gearcontact.validation import InputRangeError
 
@@ -81,7 +82,7 @@ ROOT_FMT = uq(32, COEFF.frac)              #: r = isqrt(d), UQ(32,20), 1/mm
 #: Partial remainder of the 32-step non-restoring isqrt: |R| <= 2 Q + 1 < 2^33.
 ISQRT_REM_FMT = sq(ROOT_FMT.bits + 2, 0)
 _ISQRT_STEPS = ROOT_FMT.bits               # result bits = half the radicand width
-_COEFF_SHIFT = ACC.frac - COEFF.frac       # 36 - 20 = 16
+_COEFF_SHIFT = ACC.frac - COEFF.frac       # 41 - 20 = 21
 
 FIT_MAC_CYCLES = N_TAPS        #: one tap per cycle through six parallel MACs
 FIT_LATCH_CYCLES = 3           #: coefficient round | d | isqrt + A-, B- registers
@@ -178,7 +179,7 @@ class GoldenFitBatch:
 
 
 def encode_gaps(gaps_mm) -> np.ndarray:
-    """Quantize real gaps (mm) to GAP Q(32,16) codes, round half up.
+    """Quantize real gaps (mm) to STENCIL_GAP Q(32,21) codes, round half up.
 
     Parameters
     ----------
@@ -194,13 +195,13 @@ def encode_gaps(gaps_mm) -> np.ndarray:
     gearcontact.validation.InputRangeError
         If the last axis is not 49 long.
     gearcontact.contract.qformat.FixedPointOverflow
-        A sample is NaN/inf or outside +-32768 mm; the message names it, e.g.
+        A sample is NaN/inf or outside +-1024 mm; the message names it, e.g.
         ``gaps_mm[12]`` or ``gaps_mm[3, 12]`` (stencil 3, sample 12).
     """
     g = np.asarray(gaps_mm, dtype=float)
     if g.ndim not in (1, 2) or g.shape[-1] != N_TAPS:
         raise InputRangeError("gaps_mm.shape", g.shape, f"(49,) or (n, {N_TAPS})")
-    return GAP.quantize_array(g, field="gaps_mm")
+    return STENCIL_GAP.quantize_array(g, field="gaps_mm")
 
 
 def decode_curvature(code):
@@ -247,29 +248,29 @@ def isqrt_nonrestoring_array(d: np.ndarray) -> np.ndarray:
 
 
 def check_gap_codes(gap_codes, ndim: int) -> np.ndarray:
-    """Validate GAP Q(32,16) code stencils of rank ``ndim`` (1: (49,), 2: (n, 49)).
+    """Validate STENCIL_GAP Q(32,21) code stencils of rank ``ndim`` (1: (49,), 2: (n, 49)).
 
     Returns an int64 array; raises InputRangeError (shape, non-integer) or
-    FixedPointOverflow naming the first code outside Q(32,16).
+    FixedPointOverflow naming the first code outside Q(32,21).
     """
     codes = np.asarray(gap_codes)
     if codes.ndim != ndim or codes.shape[-1] != N_TAPS:
         want = f"({N_TAPS},)" if ndim == 1 else f"(n, {N_TAPS})"
         raise InputRangeError("gap_codes.shape", codes.shape, want)
     if codes.dtype.kind == "i":
-        return GAP.check(codes.astype(np.int64), field="gap_codes")
+        return STENCIL_GAP.check(codes.astype(np.int64), field="gap_codes")
     out = np.empty(codes.shape, dtype=np.int64)
     for idx, x in np.ndenumerate(codes):
         name = f"gap_codes[{', '.join(map(str, idx))}]"
         if not isinstance(x, (int, np.integer)) or isinstance(x, bool):
-            raise InputRangeError(name, x, "an integer GAP Q(32,16) code "
+            raise InputRangeError(name, x, f"an integer STENCIL_GAP {STENCIL_GAP} code "
                                   "(use encode_gaps for gaps in mm)")
-        out[idx] = GAP.check(int(x), field=name)
+        out[idx] = STENCIL_GAP.check(int(x), field=name)
     return out
 
 
 def golden_fit(gap_codes, *, rom: BakedPinv | None = None, bitwise: bool = True) -> GoldenFit:
-    """Run the fit core on one stencil of GAP Q(32,16) codes (exact Python ints).
+    """Run the fit core on one stencil of STENCIL_GAP Q(32,21) codes (exact Python ints).
 
     Parameters
     ----------
@@ -333,7 +334,7 @@ def golden_fit_batch(gap_codes, *, rom: BakedPinv | None = None) -> GoldenFitBat
     Parameters
     ----------
     gap_codes : array_like of int, shape (n, 49)
-        GAP Q(32,16) codes.
+        STENCIL_GAP Q(32,21) codes.
     rom : BakedPinv, keyword-only, optional
         Pseudo-inverse ROM (default: the baked hardware ROM).
 

@@ -12,8 +12,8 @@ Register widths in the kernel (formats of :mod:`.golden`):
 value      dtype      why it cannot wrap
 =========  =========  ===========================================================
 acc_j      int64      ``|acc_j| <= 2^31 sum_i |M_ji| < 2^62`` (the caller checks
-                      ``sum_i |M_ji| < 2^31`` for the ROM, ACC Q(72,36) values)
-c_j        int64      ``round_shift(acc_j, 16)``, checked against COEFF Q(32,20)
+                      ``sum_i |M_ji| < 2^31`` for the ROM, ACC Q(72,41) values)
+c_j        int64      ``round_shift(acc_j, 21)``, checked against COEFF Q(32,20)
 h, e       int64      ``|c3 +- c5| < 2^32`` (Q(33,20))
 d          uint64     computed only when ``|e| <= isqrt(2^63 - 1)`` (else D overflow),
                       so ``e^2 + c4^2 < 2^63 + 2^62 < 2^64``; checked against
@@ -49,7 +49,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
         return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
 from ...validation import InputRangeError
-from ...contract.qformat import CURVATURE, GAP, FixedPointOverflow
+from ...contract.qformat import CURVATURE, STENCIL_GAP, FixedPointOverflow
 from .pinv import COEFF, N_COEFFS, N_TAPS
 
 __all__ = ["HAVE_NUMBA", "fit_kernel", "fit_element", "fit_constants"]
@@ -78,9 +78,9 @@ def _isqrt(d):
 
 @njit(cache=True, inline="always")
 def fit_element(g, k, w, cst, c_out):
-    """The fit datapath on stencil ``g[k]`` (49 GAP codes): coefficient codes into
+    """The fit datapath on stencil ``g[k]`` (49 STENCIL_GAP codes): coefficient codes into
     ``c_out[k]``; returns ``(a_minus, b_minus, flags)`` (flags -1: a gap code outside
-    GAP, the caller names it).
+    STENCIL_GAP, the caller names it).
 
     The per-stencil body of the batch kernel, callable from other compiled loops (the
     drivetrain twin runs stage C once per loaded tooth pair and step, :mod:`gearcontact.
@@ -150,7 +150,7 @@ def _kernel(g, w, cst, c_out, a_out, b_out, flags_out):
 
 def fit_constants(shift: int, d_max: int) -> np.ndarray:
     """The constants vector ``cst`` of :func:`fit_element` (int64, 9 entries)."""
-    return np.array([GAP.min_code, GAP.max_code, COEFF.min_code, COEFF.max_code,
+    return np.array([STENCIL_GAP.min_code, STENCIL_GAP.max_code, COEFF.min_code, COEFF.max_code,
                      CURVATURE.min_code,
                      CURVATURE.max_code, math.isqrt(d_max), d_max, shift], dtype=np.int64)
 
@@ -162,11 +162,12 @@ def fit_kernel(gap_codes: np.ndarray, weight_codes: np.ndarray, *, coeff_shift: 
     Parameters
     ----------
     gap_codes : numpy.ndarray of int64, shape (n, 49)
-        GAP Q(32,16) codes (checked inside the kernel, in the same pass as the MAC).
+        STENCIL_GAP Q(32,21) codes (checked inside the kernel, in the same pass as the
+        MAC).
     weight_codes : numpy.ndarray of int64, shape (6, 49)
         WEIGHT Q(32,20) ROM codes with ``sum_i |M_ji| < 2^31`` per row (caller checks).
     coeff_shift : int, keyword-only
-        ACC -> COEFF round shift (16: Q(72,36) -> Q(32,20)).
+        ACC -> COEFF round shift (21: Q(72,41) -> Q(32,20)).
     d_max_code : int, keyword-only
         Largest D Q(64,40) code (``2^63 - 1``).
 
@@ -184,7 +185,8 @@ def fit_kernel(gap_codes: np.ndarray, weight_codes: np.ndarray, *, coeff_shift: 
     gearcontact.validation.InputRangeError
         Wrong shapes.
     gearcontact.contract.qformat.FixedPointOverflow
-        A gap code outside GAP Q(32,16), named ``gap_codes[k, i]`` (stencil k, tap i).
+        A gap code outside STENCIL_GAP Q(32,21), named ``gap_codes[k, i]`` (stencil k,
+        tap i).
     """
     g = np.ascontiguousarray(gap_codes, dtype=np.int64)
     w = np.ascontiguousarray(weight_codes, dtype=np.int64)
@@ -198,8 +200,8 @@ def fit_kernel(gap_codes: np.ndarray, weight_codes: np.ndarray, *, coeff_shift: 
     flags = np.empty(n, np.int64)
     _kernel(g, w, fit_constants(int(coeff_shift), int(d_max_code)), c, a_minus, b_minus, flags)
     bad = np.flatnonzero(flags < 0)
-    if bad.size:                      # name the first code outside GAP Q(32,16)
+    if bad.size:                      # name the first code outside STENCIL_GAP
         k = int(bad[0])
-        i = int(np.flatnonzero(~GAP.fits(g[k]))[0])
-        raise FixedPointOverflow(f"gap_codes[{k}, {i}]", int(g[k, i]), GAP)
+        i = int(np.flatnonzero(~STENCIL_GAP.fits(g[k]))[0])
+        raise FixedPointOverflow(f"gap_codes[{k}, {i}]", int(g[k, i]), STENCIL_GAP)
     return c, a_minus, b_minus, flags

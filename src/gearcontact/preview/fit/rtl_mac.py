@@ -8,17 +8,17 @@ two taps per clock edge, with one DSP-sized multiply and one adder per path:
 * the ROM is twelve 25-word banks (coefficient x even/odd) with synchronous reads at
   the same pair address (the odd bank's word 24 is 0: tap 49 does not exist, so the
   unwritten RAM word it meets adds nothing). ROM words hold the WEIGHT Q(32,20) codes
-  sign-extended only to the widest code of the baked ROM (``weight_bits``, 20 b for
-  the hardware stencil) -- the same values as :attr:`.pinv.BakedPinv.rom_words`;
+  sign-extended only to the widest code of the baked ROM (``weight_bits``, 24 b for
+  the degree-6 hardware ROM) -- the same values as :attr:`.pinv.BakedPinv.rom_words`;
 * each product ``g * M`` is cut into partial products that each fit one DSP48E1
   (25 x 18 signed): ``g = g_hi 2^17 + g_lo`` with ``g_lo`` the *unsigned* low 17 bits
   (fits the 18-bit B port) and ``g_hi`` the arithmetic high part; the weight is cut
   the same way at bit 24 only if it is wider than 25 bits (never for the hardware
   ROM). Partial products are registered (the DSP's M register);
 * every partial product has its own accumulator per bank (``P = P + M``, the DSP's
-  accumulate mode; at most 43 bits for the hardware ROM, inside the 48-bit P);
+  accumulate mode; at most 41 + 5 = 46 bits for the hardware ROM, inside the 48-bit P);
 * ``fold`` adds the even and odd bank accumulators, ``combine`` adds the shifted
-  folded parts into the exact Q(72,36) sums. Two's complement partial sums are exact
+  folded parts into the exact Q(72,41) sums. Two's complement partial sums are exact
   identities, and every register is wide enough for its bound, so ``acc`` equals the
   golden model's exact sum bit for bit.
 
@@ -30,12 +30,13 @@ edge ``3 + p`` (``acc_en``); ``clear`` zeroes the accumulators on its edge.
 ========  ======================  =================================================
 register  format                  meaning
 ========  ======================  =================================================
-g_e, g_o  GAP Q(32,16)            RAM read registers, taps 2p, 2p+1
+g_e, g_o  STENCIL_GAP Q(32,21)  RAM read registers, taps 2p, 2p+1
 w_*       WEIGHT Q(w,20)          ROM read registers (w = ``weight_bits``)
-m_*       Q(g'+w', 36 - shift)    partial products (g', w' = part widths)
-a_*       Q(m + 5, 36 - shift)    bank accumulators (25 terms: 5 guard bits)
-f_*       Q(m + 6, 36 - shift)    folded (even + odd) accumulators
-acc_j     ACC Q(72,36)            exact ``sum_i M_ji g_i`` (output ports ``acc0..5``)
+m_*       Q(g'+w', 41 - shift)    partial products (g', w' = part widths)
+a_*       Q(m + 5, 41 - shift)    bank accumulators (25 terms: 5 guard bits; one
+                                  more over an unsigned product, split weights only)
+f_*       Q(m + 6, 41 - shift)    folded (even + odd) accumulators
+acc_j     ACC Q(72,41)            exact ``sum_i M_ji g_i`` (output ports ``acc0..5``)
 ========  ======================  =================================================
 """
 
@@ -47,7 +48,7 @@ from amaranth.lib.memory import Memory
 from amaranth.lib.wiring import In, Out
 
 from gearcontact.preview.fit.pinv import ACC, N_COEFFS, N_TAPS, WEIGHT, BakedPinv, baked_pinv
-from gearcontact.contract.qformat import GAP
+from gearcontact.contract.qformat import STENCIL_GAP
 
 __all__ = ["G_LO_BITS", "N_PAIRS", "W_LO_BITS", "PairMac", "weight_bits"]
 
@@ -87,10 +88,10 @@ class PairMac(wiring.Component):
     Notes
     -----
     Ports (all synchronous to ``sync``): ``wr_en`` In(1), ``wr_addr``
-    In(range(49)), ``wr_data`` In(signed(32)) GAP Q(32,16) -- write one tap;
+    In(range(49)), ``wr_data`` In(signed(32)) STENCIL_GAP Q(32,21) -- write one tap;
     ``raddr`` In(range(25)) pair to latch on the next edge; ``clear`` In(1),
     ``acc_en`` In(1), ``fold`` In(1), ``combine`` In(1) -- the edges of those steps;
-    ``acc0``..``acc5`` Out(signed(72)) ACC Q(72,36), valid after the ``combine``
+    ``acc0``..``acc5`` Out(signed(72)) ACC Q(72,41), valid after the ``combine``
     edge and held until the next ``combine``.
     """
 
@@ -98,7 +99,8 @@ class PairMac(wiring.Component):
         self._rom = baked_pinv() if rom is None else rom
         self.weight_bits = weight_bits(self._rom)
         super().__init__({
-            "wr_en": In(1), "wr_addr": In(range(N_TAPS)), "wr_data": In(signed(GAP.bits)),
+            "wr_en": In(1), "wr_addr": In(range(N_TAPS)),
+            "wr_data": In(signed(STENCIL_GAP.bits)),
             "raddr": In(range(N_PAIRS)), "clear": In(1), "acc_en": In(1), "fold": In(1),
             "combine": In(1),
             **{f"acc{j}": Out(signed(ACC.bits)) for j in range(N_COEFFS)}})
@@ -117,7 +119,7 @@ class PairMac(wiring.Component):
         wb = self.weight_bits
         g_regs = []
         for bank, name in enumerate(("even", "odd")):
-            ram = Memory(shape=signed(GAP.bits), depth=N_PAIRS, init=[])
+            ram = Memory(shape=signed(STENCIL_GAP.bits), depth=N_PAIRS, init=[])
             m.submodules[f"gap_{name}"] = ram
             wp = ram.write_port()
             rd = ram.read_port()             # synchronous: the RAM read register
@@ -138,7 +140,10 @@ class PairMac(wiring.Component):
                         tag = f"{j}{'eo'[bank]}_{gs}_{ws}"
                         prod = gp * wp_
                         mreg = Signal(prod.shape(), name=f"m{tag}")
-                        acc = Signal(signed(len(prod) + _GUARD_BITS), name=f"a{tag}")
+                        # 25 terms: guard bits, plus a sign bit over an unsigned
+                        # product (low gap part x low weight part of a split weight)
+                        acc = Signal(signed(len(prod) + _GUARD_BITS
+                                            + (not prod.shape().signed)), name=f"a{tag}")
                         m.d.sync += mreg.eq(prod)
                         with m.If(self.clear):
                             m.d.sync += acc.eq(0)
