@@ -135,8 +135,10 @@ def test_te0_and_pattern_reach_is_the_whole_relief_limit(s0003_centred, no_tca):
 
 def test_design_cli_refuses_an_unreachable_angle_with_exit_2(no_tca, capsys):
     """``gearcontact design --synthesize-easeoff --path-angle-deg -23`` on s0003 (its
-    contact line runs at -23.1 deg on the drive side): exit 2 naming the option, the
-    value and the range, before any TCA (the flanks are built, no mesh cycle)."""
+    contact line runs at -23.1 deg on the drive side, -22.6 on the coast side): exit 2
+    naming the option, the value and the range, before any TCA (the flanks are built,
+    no mesh cycle). The synthesis replaces both tables, so the generation check sees
+    the bearing it will make on the design side (coast) first and names that side."""
     from gearcontact.cli import main
 
     code = main(["design", "--pair", "s0003", "--synthesize-easeoff", "--path-angle-deg", "-23"])
@@ -144,7 +146,7 @@ def test_design_cli_refuses_an_unreachable_angle_with_exit_2(no_tca, capsys):
     assert code == 2 and out == ""
     assert err.startswith("gearcontact design: error: --path-angle-deg = -23.0 is outside the "
                           "allowed range: [")
-    assert "deg on the drive side of s0003" in err
+    assert "deg on the coast side of s0003" in err
 
 
 @pytest.mark.slow

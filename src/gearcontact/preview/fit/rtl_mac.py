@@ -30,7 +30,7 @@ edge ``3 + p`` (``acc_en``); ``clear`` zeroes the accumulators on its edge.
 ========  ======================  =================================================
 register  format                  meaning
 ========  ======================  =================================================
-g_e, g_o  STENCIL_GAP Q(32,21)  RAM read registers, taps 2p, 2p+1
+g_e, g_o  STENCIL_GAP Q(32,21)    RAM read registers, taps 2p, 2p+1
 w_*       WEIGHT Q(w,20)          ROM read registers (w = ``weight_bits``)
 m_*       Q(g'+w', 41 - shift)    partial products (g', w' = part widths)
 a_*       Q(m + 5, 41 - shift)    bank accumulators (25 terms: 5 guard bits; one
