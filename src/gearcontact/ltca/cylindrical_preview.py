@@ -49,8 +49,7 @@ import numpy as np
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..materials import effective_modulus_mpa
 from ..preview.engine import PreviewResult, get_engine
-from ..preview.fit.pinv import baked_pinv
-from ..preview.fit.reference import principal_curvatures
+from ..preview.fit.reference import fitted_coefficients, principal_curvatures
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, cylindrical_mesh_cycle
 from ..tca.cylindrical_stencil import CylindricalStencils, contact_line_slices, \
     cylindrical_stencils
@@ -272,7 +271,7 @@ def loaded_lengths_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     fp64 stage C's larger curvature of the stencil (the twin's inputs, row for row:
     :func:`gearcontact.twin.model.build_model`); NaN elsewhere."""
     ease, _ = line_easeoff_mm(pair, cycle, stencils.valid)
-    coeff = np.asarray(stencils.gaps_mm, float) @ baked_pinv().weights[3:6].T
+    coeff = fitted_coefficients(stencils.gaps_mm)
     e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
     out = np.full(loaded.shape, np.nan)
     for j, k in zip(*np.nonzero(loaded)):

@@ -20,7 +20,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..preview.fit.golden import element_constants
-from ..preview.fit.pinv import N_COEFFS, N_TAPS, baked_pinv
+from ..preview.fit.pinv import N_COEFFS, N_TAPS
+from ..preview.fit.reference import fitted_coefficients
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
@@ -198,10 +199,10 @@ def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray
 
 
 def _fitted_coefficients(mesh: MeshTable) -> np.ndarray:
-    """fp64 stage-C coefficients c3, c4, c5 (1/mm) of every row's stencil (P, K, 3): the
-    fit of :func:`gearcontact.preview.fit.reference.fit_curvatures` (the baked ROM's
-    weights), for all rows at once."""
-    return np.asarray(mesh.stencil_gaps_mm, float) @ baked_pinv().weights[3:6].T
+    """fp64 stage-C coefficients c3, c4, c5 (1/mm) of every row's stencil (P, K, 3):
+    :func:`gearcontact.preview.fit.reference.fitted_coefficients`, as the cylindrical
+    preview's."""
+    return fitted_coefficients(mesh.stencil_gaps_mm)
 
 
 def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from gearcontact.preview.fit.reference import fit_curvatures, principal_curvatures
+from gearcontact.preview.fit.reference import (fit_curvatures, fitted_coefficients,
+                                              principal_curvatures)
 from gearcontact.contract.stencil import STENCIL_SIDE
 from gearcontact.validation import InputRangeError
 
@@ -32,6 +33,16 @@ def test_exact_quadratics_recovered(quadratics):
             # the axis is defined; its error ~ eps/(A-B) relative, 1e-7 deg is ample
             assert _angle_diff(fit.angle_deg, ang) < 1e-7
         assert -90.0 < fit.angle_deg <= 90.0
+
+
+def test_fitted_coefficients_of_many_stencils(quadratics):
+    """The batched fit (the preview's and the twin's tables) on an array of stencils:
+    the exact quadratics' c3, c4, c5 (1e-12 absolute, as above), row for row."""
+    cases = list(quadratics(20, seed=3))
+    gaps = np.array([g for g, *_ in cases]).reshape(4, 5, -1)
+    c = fitted_coefficients(gaps)
+    assert c.shape == (4, 5, 3)
+    np.testing.assert_allclose(c.reshape(20, 3), [cc for *_, cc in cases], rtol=0, atol=1e-12)
 
 
 def test_rotation_by_90_deg_is_invariant(quadratics):

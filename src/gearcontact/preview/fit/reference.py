@@ -37,7 +37,7 @@ from gearcontact.preview.fit.pinv import N_TAPS, baked_pinv, design_matrix, pseu
 from gearcontact.contract.stencil import STENCIL_SPACING_MM
 from gearcontact.validation import InputRangeError, check_array_finite, check_positive
 
-__all__ = ["CurvatureFit", "fit_curvatures", "principal_curvatures"]
+__all__ = ["CurvatureFit", "fit_curvatures", "fitted_coefficients", "principal_curvatures"]
 
 #: The range of ``(c3 - c5)^2 + c4^2`` where :func:`principal_curvatures` takes its square
 #: root directly (no overflow, no significant underflow; ``hypot`` outside).
@@ -153,3 +153,10 @@ def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> Curvat
                         angle_deg=angle,
                         residual_rms_mm=float(np.sqrt(np.mean(resid * resid))),
                         elliptic=bool(b_minus > 0.0))
+
+
+def fitted_coefficients(gaps_mm) -> np.ndarray:
+    """fp64 stage-C coefficients c3, c4, c5 (1/mm) of stencils ``gaps_mm`` (..., 49; mm)
+    at once, shape (..., 3): :func:`fit_curvatures`'s (the baked ROM's weights), for
+    the preview's and the twin's tables row by row."""
+    return np.asarray(gaps_mm, float) @ baked_pinv().weights[3:6].T
