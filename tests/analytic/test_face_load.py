@@ -103,6 +103,36 @@ def test_end_loaded_line_against_the_twins_slice_law(slope_um_per_mm):
     assert d - 0.5 * s * width == pytest.approx(r.approach_mm, rel=5e-3)
 
 
+@pytest.mark.parametrize("slope_um_per_mm", [0.855, 1.71, 5.13])
+def test_end_loaded_line_against_the_slice_law_at_16_slices(slope_um_per_mm):
+    """The slice law at the twin's and the preview's 16 slices (w = L / 16) on the
+    straight gap, and its peak line load W d_c / I (ltca.slice_law.equivalent_length:
+    the preview's and the twin's line chain run on L_eq = W / w_peak). The end
+    half-slice is held at s w / 2, so the slice law's interference lacks s w^2 / 8 of
+    the wedge's (exactly, once d_c > s w / 2): with F(L) = s L^2 / 2 - lambda' W g(L)
+    convex (g = 1.5 ln L + const) and F(L_c0) = 0, F(L_c) = s w^2 / 8, so 0 <= L_c -
+    L_c0 <= w^2 / (8 L_c0 (1 - 3 / (4 g0))); the peaks are s L / (lambda' g(L)), so
+    1 <= w_peak / (2 W / L_c0) <= L_c / L_c0 (g grows with L). Measured at 0.855 /
+    1.71 / 5.13 um/mm: L_c - L_c0 = 0.0240 / 0.0370 / 0.0762 mm against the bound's
+    0.0241 / 0.0372 / 0.0778 (its tangent is nearly F itself), peak +0.20 / +0.43 /
+    +1.48 % within +0.28 / +0.64 / +2.6 %; the bounds carry 1e-9 for Newton's stop."""
+    from gearcontact.ltca.slice_law import equivalent_length, loaded_length_mm
+
+    s, length, n = slope_um_per_mm * 1e-3, 19.1, 16
+    r = end_loaded_line(load_n=W, slope=s, length_mm=length, b_max_per_mm=B_MAX,
+                        e_prime_mpa=E_PRIME)
+    width = length / n
+    d, lc, area = loaded_length_mm(s * (np.arange(n) + 0.5) * width, length, W, B_MAX,
+                                   E_PRIME)
+    l0 = r.loaded_length_mm
+    _, b = line_contact_terms(B_MAX, W, l0, E_PRIME)
+    g0 = math.log(4.0 * l0 / b) - 0.75
+    bound = width ** 2 / (8.0 * l0 * (1.0 - 0.75 / g0))
+    assert 0.0 <= lc - l0 <= bound * (1.0 + 1e-9)
+    ratio = W / equivalent_length(d, area, length) / r.peak_line_load_n_per_mm
+    assert 1.0 - 1e-9 <= ratio <= lc / l0 * (1.0 + 1e-9)
+
+
 def test_end_loaded_line_refuses_bad_input():
     kw = dict(load_n=W, length_mm=19.1, b_max_per_mm=B_MAX, e_prime_mpa=E_PRIME)
     with pytest.raises(InputRangeError, match="slope"):

@@ -19,8 +19,15 @@ is that of the Hertz line contact, so that a flat line is the uniform line exact
 (Johnson 1985 sec. 4.3; ``B`` the curvature across the line). On a crowned line (gap
 ``A y^2``) this is the exact elongated Hertz ellipse's approach within -3.2 % with a
 loaded length 1.08 x Hertz's ``2 a`` (tests/ltca/test_slice_law.py). :func:`loaded_line`
-solves it for ``d_c``, ``L_c`` and ``I`` at a load; the preview's line chain then runs on
-``L_c`` (stage D's ``L``).
+solves it for ``d_c``, ``L_c`` and ``I`` at a load.
+
+The foundation's line load is ``w(y) = W max(d_c - h(y), 0) / I``, largest where the
+gap is least: the ease-off is the gap over the line's least, so its peak is
+:func:`peak_line_load` ``w_peak = W d_c / I`` (the triangle's ``2 W / L_c`` on a straight
+gap, ``3 W / (2 L_c)`` on a parabola; ``W / L`` on a flat line). The preview's line chain
+(stage D's inputs ``W`` and ``L``) runs on the *equivalent length* ``L_eq = W / w_peak =
+I / d_c``: its uniform line of ``W`` over ``L_eq`` is the peak line load, so its
+``p_max`` is the Hertz pressure there (docs/cylindrical.md sec. 8, 10).
 
 References
 ----------
@@ -38,7 +45,8 @@ from ..errors import CheckFailed
 from ..tca.cylindrical_cycle import LineGaps
 from ..tca.cylindrical_stencil import LINE_SLICES, contact_line_slices
 
-__all__ = ["interference", "loaded_line", "loaded_length_mm", "line_easeoff_mm"]
+__all__ = ["interference", "loaded_line", "loaded_length_mm", "line_easeoff_mm",
+           "equivalent_length"]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -129,6 +137,18 @@ def loaded_line(h, o, n, length, we, b_max, e_prime):
         d = d_new
     area, lc, _ = interference(h, o, n, width, d, False)
     return d, lc, area
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def equivalent_length(d_c, area, length):
+    """``L_eq = I / d_c`` (mm; module docstring): the length over which the uniform line
+    of ``W`` has the slice law's peak line load ``W d_c / I`` at the approach ``d_c`` (mm)
+    with the interference ``area`` (mm^2); ``length`` (the line's, mm) where nothing is
+    loaded (``d_c <= 0`` or ``area <= 0``). At most ``L_c`` (a flat line), and at least
+    ``L_c / 2`` (a straight gap's triangle) on a convex ease-off."""
+    if d_c > 0.0 and area > 0.0:
+        return area / d_c
+    return length
 
 
 def loaded_length_mm(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
