@@ -3,20 +3,35 @@ phase and loaded tooth pair (docs/cylindrical.md sec. 8).
 
 Per phase of the unloaded cycle and tooth pair carrying load: the pair's 7 x 7 gap
 stencil at the least-gap point of its contact line (:mod:`gearcontact.tca.
-cylindrical_stencil`), its load ``W`` and the loaded length ``L_c`` of its contact line
-go through the *line chain* of the datapath (:func:`gearcontact.preview.
+cylindrical_stencil`), its load ``W`` and the equivalent length ``L_eq`` of its contact
+line (below) go through the *line chain* of the datapath (:func:`gearcontact.preview.
 chain.chain_line_reference`, ``chain_line_golden``; the fit core into the line core of
 stage D, :mod:`gearcontact.preview.hertz.line`): the curvature fit, then the Hertz
-ellipse where it fits the line or else the Hertz line contact of length ``L_c`` (Johnson
-1985 sec. 4.3), which is what the unmodified and the lightly crowned flanks of a spur
-or helical pair give. ``L_c`` is the twin's (:mod:`gearcontact.twin.line_law`): the
-slice law (:func:`.slice_law.loaded_line`) at ``W`` on the ease-off along the line
-(crowning, relief, misalignment; :func:`.slice_law.line_easeoff_mm`) across the fitted
-curvature ``B_max`` (the fp64 stage C of the stencil), the part of the line's length
-``L`` in the zone of action whose gap the approach closes; ``L_c = L`` on a flat line.
-A saddle fit (``B_max <= 0``) keeps ``L``. Every backend of :mod:`gearcontact.preview.engine` evaluates the
-same stencils (``reference``: fp64; ``golden``: the bit-exact fixed point; ``rtl`` once
-:mod:`gearcontact.hw.backends` is imported: the ChainLineCore in simulation).
+ellipse where it fits the line or else the Hertz line contact of ``W`` on ``L_eq``
+(Johnson 1985 sec. 4.3), which is what the unmodified and the lightly crowned flanks of
+a spur or helical pair give. Every backend of :mod:`gearcontact.preview.engine`
+evaluates the same stencils (``reference``: fp64; ``golden``: the bit-exact fixed point;
+``rtl`` once :mod:`gearcontact.hw.backends` is imported: the ChainLineCore in
+simulation).
+
+The line's load (``face_load``, :class:`LineFaceLoad`) is the twin's
+(:mod:`gearcontact.twin.line_law`): the slice law (:func:`.slice_law.loaded_line`) at
+``W`` on the ease-off along the line (crowning, relief, misalignment, helix slope:
+:func:`.slice_law.line_easeoff_mm`, the gap at the line's 16 slices) across the fitted
+curvature ``B_max`` (the fp64 stage C of the stencil) gives the loaded length ``L_c``
+(the part of the line's length ``L`` in the zone of action whose gap the approach
+closes; ``L_c = L`` on a flat line), the peak line load ``w_peak = W d_c / I`` where the
+line's gap is least, and with it ``L_eq = W / w_peak`` (:func:`.slice_law.
+equivalent_length`): the line chain's uniform line of ``W`` over ``L_eq`` carries
+``w_peak``, so its ``p_max`` is the Hertz pressure of the peak line load (ISO's contact
+stress with the contact's own face load factor ``w_peak L / W``). A flat line gives
+``L_eq = L_c = L``; a saddle fit (``B_max <= 0``) keeps ``L``. A line whose load reaches
+one of its ends (a misalignment's or helix slope's wedge, which crowning may lengthen
+but not centre) is *end-loaded*: the pressure at that sharp face end is singular on the
+half-space, an edge result, which the LCP's peak there shows (growing with its rows;
+docs/cylindrical.md sec. 7). On a straight gap the slice law is the closed form of
+:func:`gearcontact.analytic.face_load.end_loaded_line` within its slices
+(docs/cylindrical.md sec. 8).
 
 Loads. With a loaded TE (:func:`.cylindrical_lte.cylindrical_loaded_te` at the same
 torque and cycle) each pair carries its LCP load share of ``F_n``; without it the pairs
@@ -26,22 +41,10 @@ logarithmic term, that of the load per unit length); at a phase where a tip edge
 alone touches (docs/cylindrical.md sec. 6), the lines next to close share it. An input outside a backend's
 domain is a result, not an abort: the reference's refusal is kept as text in
 ``errors``, the fixed point's flags as mode ``"flagged"``.
-
-End-loaded lines (``face_load``, :class:`LineFaceLoad`). A line whose gap is least at
-one of its ends (a misalignment's or helix slope's wedge) carries its load from that
-end over a loaded length ``L_c`` only, a triangle whose peak ``2 W / L_c`` sits on the
-face end: the line chain's uniform line over ``L`` knows nothing of it. Per loaded pair
-the closed form of :func:`gearcontact.analytic.face_load.end_loaded_line` on the gap's
-slope along the line (:func:`.cylindrical_lte.wedge_line`, the gap at the line's 16
-slices) gives ``L_c``, the peak line load, its ratio to the mean ``W / L`` and the Hertz
-pressure of the peak line load (ISO's contact stress with its face load factor). The
-pressure at the sharp face end itself is singular on the half-space: an edge result,
-which the LCP's peak there shows (growing with its rows; docs/cylindrical.md sec. 7).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -51,68 +54,77 @@ from ..materials import effective_modulus_mpa
 from ..preview.engine import PreviewResult, get_engine
 from ..preview.fit.reference import fitted_coefficients, principal_curvatures
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, cylindrical_mesh_cycle
-from ..tca.cylindrical_stencil import CylindricalStencils, contact_line_slices, \
-    cylindrical_stencils
+from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
 from ..errors import BadInput
-from ..halfspace.lcp import resolve_e_star
 from ..validation import InputRangeError
-from .cylindrical_lte import CylindricalLoadedTE, normal_load_n, wedge_line
-from .slice_law import line_easeoff_mm, loaded_length_mm
+from ..analytic.hertz import line_contact_terms
+from .cylindrical_lte import CylindricalLoadedTE, normal_load_n
+from .slice_law import equivalent_length, line_easeoff_mm, loaded_length_mm
 
 __all__ = ["CylindricalPreview", "LineFaceLoad", "cylindrical_preview", "line_face_loads",
-           "loaded_lengths_mm", "pair_loads_n"]
+           "pair_loads_n"]
 
 
 @dataclass(frozen=True)
 class LineFaceLoad:
-    """The end-loaded lines of the loaded pairs (module docstring), arrays (P, K); NaN
-    (False) where a pair is not loaded or its line not end-loaded.
+    """The slice law's line load of every loaded pair (module docstring), arrays (P, K);
+    NaN (False) where a pair is not loaded.
 
     Attributes
     ----------
     end_loaded : ndarray of bool
-        The load ends inside the line (``L_c < L``), its peak on the line's closed end.
+        The load ends inside the line (``L_c < L``) and reaches one of its ends (a face
+        end, or a tip or form circle: an edge of the flank).
     loaded_length_mm : ndarray
         ``L_c``, mm.
+    equivalent_length_mm : ndarray
+        ``L_eq = W / w_peak``, mm: the line chain's ``L``.
     peak_line_load_n_per_mm : ndarray
-        Line load at the closed end, N/mm.
+        ``w_peak``, the line load where the line's gap is least, N/mm.
     face_load_factor : ndarray
-        Peak over the mean line load ``W / L``.
+        Peak over the mean line load ``W / L`` (ISO's ``K_Hbeta`` of the contact alone).
     hertz_pressure_mpa : ndarray
-        Hertz line-contact pressure of the peak line load, MPa (not the face end's
-        singular pressure).
+        Hertz line-contact pressure of the peak line load across the fp64 stage C's
+        larger curvature, MPa (the reference chain's ``p_max`` in line mode; not a face
+        end's singular pressure). NaN on a saddle fit.
     """
 
     end_loaded: np.ndarray
     loaded_length_mm: np.ndarray
+    equivalent_length_mm: np.ndarray
     peak_line_load_n_per_mm: np.ndarray
     face_load_factor: np.ndarray
     hertz_pressure_mpa: np.ndarray
 
 
 def line_face_loads(pair: CylindricalPair, cycle: CylindricalMeshCycle,
-                    stencils: CylindricalStencils, loads_n: np.ndarray) -> LineFaceLoad:
-    """:class:`LineFaceLoad` of every pair with a load in ``loads_n`` (N, (P, K)): the
-    closed form on the gap at its line's slices (module docstring)."""
-    cb = math.cos(math.radians(pair.geometry.base_helix_angle_deg))
-    e_prime = 2.0 * resolve_e_star((pair.pinion_material, pair.gear_material))
-    slices = contact_line_slices(pair, cycle)
-    out = {f: np.full(loads_n.shape, np.nan) for f in LineFaceLoad.__dataclass_fields__}
-    out["end_loaded"] = np.zeros(loads_n.shape, bool)
-    for j, k in zip(*np.nonzero(stencils.valid & (loads_n > 0.0))):
-        gap = slices.gap_mm[j, k]
-        if not np.isfinite(gap).all():
-            continue
-        res = wedge_line(slices.z_mm[j, k] / cb, cb * gap, float(stencils.line_length_mm[j, k]),
-                         load_n=float(loads_n[j, k]), b_max_per_mm=float(max(
-                             stencils.A_minus_per_mm[j, k], stencils.B_minus_per_mm[j, k])),
-                         e_prime_mpa=e_prime)
-        if res is None or not res.end_loaded:
-            continue
-        out["end_loaded"][j, k] = True
-        for f in ("loaded_length_mm", "peak_line_load_n_per_mm", "face_load_factor",
-                  "hertz_pressure_mpa"):
-            out[f][j, k] = getattr(res, f)
+                    stencils: CylindricalStencils, loads_n: np.ndarray,
+                    loaded: np.ndarray) -> LineFaceLoad:
+    """:class:`LineFaceLoad` of every ``loaded`` pair at its load (``loads_n``, N, (P,
+    K)): the slice law (:func:`.slice_law.loaded_line`) on the line's ease-off
+    (:func:`.slice_law.line_easeoff_mm`) across the fp64 stage C's larger curvature of
+    the stencil (the twin's inputs, row for row: :func:`gearcontact.twin.model.
+    build_model`). A saddle fit (``B_max <= 0``) keeps the whole line, uniform."""
+    ease, _ = line_easeoff_mm(pair, cycle, stencils.valid)
+    coeff = fitted_coefficients(stencils.gaps_mm)
+    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
+    out = {f: np.full(loaded.shape, np.nan) for f in LineFaceLoad.__dataclass_fields__}
+    out["end_loaded"] = np.zeros(loaded.shape, bool)
+    for j, k in zip(*np.nonzero(loaded)):
+        length, w = float(stencils.line_length_mm[j, k]), float(loads_n[j, k])
+        b_max = max(principal_curvatures(*map(float, coeff[j, k]))[:2])
+        l_c = l_eq = length
+        if b_max > 0.0:
+            h = ease[j, k]
+            d_c, l_c, area = loaded_length_mm(h, length, w, b_max, e_prime)
+            l_eq = equivalent_length(d_c, area, length)
+            out["end_loaded"][j, k] = l_c < length and min(h[0], h[-1]) < d_c
+            out["hertz_pressure_mpa"][j, k] = line_contact_terms(b_max, w / l_eq, 1.0,
+                                                                 e_prime)[0]
+        out["loaded_length_mm"][j, k] = l_c
+        out["equivalent_length_mm"][j, k] = l_eq
+        out["peak_line_load_n_per_mm"][j, k] = w / l_eq
+        out["face_load_factor"][j, k] = length / l_eq
     return LineFaceLoad(**out)
 
 
@@ -143,7 +155,7 @@ class CylindricalPreview:
     errors : dict
         ``(backend, j, k)`` -> the refusal's text, where a backend raised.
     face_load : LineFaceLoad or None
-        The end-loaded lines of the loaded pairs (module docstring).
+        The slice law's line load of the loaded pairs (module docstring).
     """
 
     torque_nm: float
@@ -243,40 +255,23 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
     loads, source = pair_loads_n(stencils, load, loaded_te)
     loaded = stencils.valid & (loads >= min_share * load) & (loads > 0.0)
     n_p, n_k = loaded.shape
-    l_c = loaded_lengths_mm(pair, cycle, stencils, loads, loaded)
+    face = line_face_loads(pair, cycle, stencils, loads, loaded)
     results: dict[str, list[list[PreviewResult | None]]] = {}
     errors: dict[tuple[str, int, int], str] = {}
     for name, engine in engines.items():
         rows = [[None] * n_k for _ in range(n_p)]
         for j, k in zip(*np.nonzero(loaded)):
             try:
-                rows[j][k] = engine.stencil(stencils.gaps_mm[j, k], float(loads[j, k]),
-                                            line_length_mm=float(l_c[j, k]))
+                rows[j][k] = engine.stencil(
+                    stencils.gaps_mm[j, k], float(loads[j, k]),
+                    line_length_mm=float(face.equivalent_length_mm[j, k]))
             except BadInput as exc:       # outside this backend's domain: a result
                 errors[(name, int(j), int(k))] = str(exc)
         results[name] = rows
     pair_load = np.where(loaded, loads, 0.0)
     return CylindricalPreview(torque_nm=float(torque_nm), normal_load_n=load,
                               load_source=source, load_n=pair_load,
-                              loaded=loaded, stencils=stencils, loaded_length_mm=l_c,
-                              results=results, errors=errors,
-                              face_load=line_face_loads(pair, cycle, stencils, pair_load))
+                              loaded=loaded, stencils=stencils,
+                              loaded_length_mm=face.loaded_length_mm, results=results,
+                              errors=errors, face_load=face)
 
-
-def loaded_lengths_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle,
-                      stencils: CylindricalStencils, loads_n: np.ndarray,
-                      loaded: np.ndarray) -> np.ndarray:
-    """``L_c`` (P, K), mm, of every ``loaded`` entry at its load (module docstring): the
-    slice law (:func:`.slice_law.loaded_length_mm`) on the line's ease-off across the
-    fp64 stage C's larger curvature of the stencil (the twin's inputs, row for row:
-    :func:`gearcontact.twin.model.build_model`); NaN elsewhere."""
-    ease, _ = line_easeoff_mm(pair, cycle, stencils.valid)
-    coeff = fitted_coefficients(stencils.gaps_mm)
-    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
-    out = np.full(loaded.shape, np.nan)
-    for j, k in zip(*np.nonzero(loaded)):
-        length = float(stencils.line_length_mm[j, k])
-        b_max = max(principal_curvatures(*map(float, coeff[j, k]))[:2])
-        out[j, k] = (loaded_length_mm(ease[j, k], length, float(loads_n[j, k]), b_max,
-                                      e_prime)[1] if b_max > 0.0 else length)
-    return out
