@@ -87,11 +87,18 @@ def test_line_law_is_the_finite_line_approach():
     """lambda, beta from a preview (L, b_e at W_e) reproduce the closed form at any load
     with b = b_e (W/W_e)^(1/2) (1e-13: rounding); Newton returns the load from any
     start, rigid and with a bending compliance in series (1e-12); the potential's
-    derivative along the approach is the load (central difference, 1e-6)."""
+    derivative along the approach is the load (central difference, 1e-6). The chain run
+    on the equivalent length L_eq (the peak line load's, twin.line_law) gives the law on
+    L_c from its half-width b_eq of W_e on L_eq: b_e = b_eq (L_eq / L_c)^(1/2) (Johnson
+    eq. 4.44's b ~ (W/L)^(1/2)), same closed form at 1e-13."""
     length, b_e, w_e, e_prime = 20.0, 0.15, 800.0, 229_670.0
     pv = np.zeros(5)
-    lam = _line_coefficient(0.5 * length, b_e, w_e, e_prime, pv)
+    lam = _line_coefficient(length, length, b_e, w_e, e_prime, pv)
     beta = pv[4]
+    assert pv[0] == 0.5 * length
+    l_eq = 0.55 * length
+    lam2 = _line_coefficient(length, l_eq, b_e * math.sqrt(length / l_eq), w_e, e_prime, pv)
+    assert lam2 == lam and pv[4] == pytest.approx(beta, rel=1e-14, abs=1e-14)
     for w in (5.0, 800.0, 3000.0, 60_000.0):
         d = lam * w * (beta - 0.5 * math.log(w))
         truth = line_contact_approach_mm(w, length, b_e * math.sqrt(w / w_e), e_prime)

@@ -3,11 +3,10 @@ and step (compiled with numba; called by :mod:`.kernel`; docs/cylindrical.md sec
 
 The flanks of a spur or helical pair touch along lines, which the preview answers with
 the *line chain* (:mod:`gearcontact.preview.chain`: stage C on the pair's 7 x 7 gap
-stencil into the line core of stage D with the loaded length ``L_c`` of the pair's
-contact line, below; docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse fits the
+stencil into the line core of stage D with the equivalent length ``L_eq`` of the
+pair's contact line, below; docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse fits the
 line, or its peak is the higher bound) or in ``line`` mode (the Hertz line contact of
-length ``L_c``). One
-preview per loaded pair and step, at the phase of the step's start and the pair's load
+length ``L_eq``). One preview per loaded pair and step, at the phase of the step's start and the pair's load
 ``W_e`` of the previous step (as :mod:`.contact_law`), gives the law held over the
 step's four stages, ``d = d_c(W) + c_b W`` (``c_b`` the tooth-bending compliance, 0 for
 rigid teeth; ``d`` the approach at the line's least gap):
@@ -37,8 +36,15 @@ within -3.2 % (as the uniform line against the LCP of a finite cylinder) with a 
 length 1.08 x Hertz's ``2 a`` (tests/ltca/test_slice_law.py). Per preview (once per
 pair and step, at ``W_e``) the slice law (:func:`gearcontact.ltca.slice_law.loaded_line`,
 the function ``analyze``'s cylindrical preview evaluates too) solves it for ``d_c`` and
-``L_c``; the line chain runs on ``L_c`` (stage D's ``L`` input: golden and RTL see the same code), and the
-step's law is ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) =
+``L_c``. The line chain reports the peak of the slice law's line load, ``w_peak = W_e
+d_c / I`` where the line's gap is least (a triangle's ``2 W / L_c`` on an end-loaded
+wedge, ``W / L`` on a flat line): stage D takes ``W`` and ``L``, so it runs on the
+equivalent length ``L_eq = W_e / w_peak = I / d_c``
+(:func:`gearcontact.ltca.slice_law.equivalent_length`; golden and RTL see the same
+``L`` code, traced), and its ``p_max = (w_peak E' B_max / pi)^(1/2)`` and ``b`` are those
+of the peak line load (``a`` is reported as ``L_c / 2``). The law is the uniform line of
+``W`` on ``L_c``, not on ``L_eq``: its ``beta`` takes the chain's ``b`` to ``L_c`` by the
+line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law is ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) =
 lambda' W (...)``, ``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by
 ``h_bar``, exact at ``W_e``. With tooth bending, ``c_b`` is the work-conjugate
 compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
@@ -56,7 +62,7 @@ Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
 * ``golden`` (1): the stencil samples interpolated and quantized (STENCIL_GAP
   Q(32,21)), the bit-exact fit core (:func:`gearcontact.preview.fit.golden_vec.
   fit_element`), the fit's B- rule on its code, the bit-exact line core (:func:`gearcontact.preview.hertz.
-  line_vec.line_element`) at ``W_e`` in LOAD Q(32,8) and ``L_c`` in Q(32,20); each run
+  line_vec.line_element`) at ``W_e`` in LOAD Q(32,8) and ``L_eq`` in Q(32,20); each run
   is traced with its ``L`` code and mode for the ``rtl`` replay on the ChainLineCore
   (:func:`.cosim.replay_on_rtl`, ``line=True``).
 
@@ -75,7 +81,7 @@ from numba import njit
 
 from ..analytic.hertz import line_contact_terms
 from ..contract.qformat import CURVATURE, STENCIL_GAP
-from ..ltca.slice_law import interference, loaded_line
+from ..ltca.slice_law import equivalent_length, interference, loaded_line
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
 from ..preview.fit.golden_vec import fit_element
 from ..preview.hertz.line_vec import line_constants, line_element
@@ -103,21 +109,25 @@ def line_law_constants() -> np.ndarray:
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _line_coefficient(a, b, w, e_prime, pv):
-    """The line mode's ``lambda`` (mm/N) and, into ``pv[4]``, ``beta`` from the
-    preview's half-length ``a = L/2`` and half-width ``b`` (mm) at the load ``w`` (N)
-    (module docstring): ``d_c(w) = lambda w (beta - ln(w)/2)`` is the approach of
-    :func:`~gearcontact.analytic.hertz.line_contact_approach_mm` at ``w`` exactly."""
-    length = 2.0 * a
-    pv[4] = math.log(4.0 * length / b) - 0.75 + 0.5 * math.log(w)
-    return 4.0 / (math.pi * e_prime * length)
+def _line_coefficient(l_c, l_eq, b, w, e_prime, pv):
+    """The line mode's ``lambda`` (mm/N) and, into ``pv[4]``, ``beta`` of the uniform
+    line of ``w`` (N) on the loaded length ``l_c`` (mm) from the chain's half-width ``b``
+    (mm) of ``w`` on its ``L = l_eq`` (mm; module docstring): ``b ~ (w / L)^(1/2)``
+    carries it to ``l_c``, so ``d_c(w) = lambda w (beta - ln(w)/2)`` is the approach of
+    :func:`~gearcontact.analytic.hertz.line_contact_approach_mm` on ``l_c`` at ``w``
+    exactly (``l_eq = l_c``: the same numbers as without the ratio). Sets ``pv[0] = l_c /
+    2``, the line's half-length."""
+    pv[0] = 0.5 * l_c
+    pv[4] = math.log(4.0 * l_c / b) - 0.5 * math.log(l_eq / l_c) - 0.75 + 0.5 * math.log(w)
+    return 4.0 / (math.pi * e_prime * l_c)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _line_fp64(A, B, length, we, prm, tcount, pv, flagged):
-    """The fp64 line chain on the fitted principal curvatures (any order) and ``L``:
-    the law's coefficient (``kappa`` elliptic, ``lambda`` line; -1 without a law, a
-    saddle, counted in ``tcount[5]``), ``pv = (a, b, p_max, mode, beta)`` at ``we``.
+def _line_fp64(A, B, length, l_c, we, prm, tcount, pv, flagged):
+    """The fp64 line chain on the fitted principal curvatures (any order) and ``L =
+    length`` (mm, the equivalent length ``L_eq``): the law's coefficient (``kappa``
+    elliptic, ``lambda`` line on the loaded length ``l_c``; -1 without a law, a saddle,
+    counted in ``tcount[5]``), ``pv = (a, b, p_max, mode, beta)`` at ``we``.
     Counts the preview in ``tcount[3]`` outside the line core's domain (``flagged``:
     the golden chain said so)."""
     lo, hi = min(A, B), max(A, B)
@@ -135,13 +145,13 @@ def _line_fp64(A, B, length, we, prm, tcount, pv, flagged):
         if _keeps(a, p, p_l, length):
             pv[0], pv[1], pv[2], pv[3], pv[4] = a, b, p, 0.0, 0.0
             return delta / we ** (2.0 / 3.0)
-    pv[0], pv[1], pv[2], pv[3] = 0.5 * length, b_l, p_l, MODE_LINE
-    return _line_coefficient(0.5 * length, b_l, we, ep, pv)
+    pv[1], pv[2], pv[3] = b_l, p_l, MODE_LINE
+    return _line_coefficient(l_c, length, b_l, we, ep, pv)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut, cst,
-                 length, pv):
+                 length, l_c, pv):
     """The golden line chain on pair j's interpolated stencil (module docstring): the
     law's coefficient and ``pv`` as :func:`_line_fp64`, -1 when the chain flags (the
     caller then evaluates the fp64 chain). Traces the run: ``[step, A_min, B_max, W,
@@ -178,7 +188,7 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
         pv[3], pv[4] = 0.0, 0.0
         return hertz_kappa(pv[0], k_c / _S20, wq, prm[P_ECODE])
     pv[3] = MODE_LINE
-    return _line_coefficient(pv[0], pv[1], wq, prm[P_ECODE], pv)
+    return _line_coefficient(l_c, 2.0 * pv[0], pv[1], wq, prm[P_ECODE], pv)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -318,13 +328,15 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
             d_c, l_c, area = loaded_line(pv, N_PREVIEW, n, length, w0, hi, ep)
     w0 = min(max(w0, W_EVAL_MIN_N), _W_EVAL_MAX_N)
     pv[PV_LOAD] = w0
+    # the chain's L: the equivalent length of the slice law's peak line load
+    l_eq = equivalent_length(d_c, area, l_c)
     golden = backend != 0
     lam = -1.0
     if golden:
         lam = _line_golden(s, j, i, f, w0, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lut,
-                           cst, l_c, pv)
+                           cst, l_eq, l_c, pv)
     if lam <= 0.0:
-        lam = _line_fp64(A, B, l_c, w0, prm, tcount, pv, golden)
+        lam = _line_fp64(A, B, l_eq, l_c, w0, prm, tcount, pv, golden)
     # the law's linearisation of I at d_c: L_c (d - h_bar) = lambda' W (ln(4 L_c/b) - 3/4)
     pv[PV_LINE_OFFSET] = d_c - area / l_c if (pv[3] == MODE_LINE and l_c > 0.0) else 0.0
     pv[PV_LINE_BENDING] = cb if bent and hi > 0.0 and length > 0.0 else -1.0
