@@ -101,9 +101,10 @@ def _preview_rows(pv: CylindricalPreview, lte: CylindricalLoadedTE) -> list[list
     return rows
 
 
-#: The preview's end-loaded line (ltca.cylindrical_preview.LineFaceLoad) in preview.csv.
-_FACE_LOAD = ("end_loaded", "loaded_length_mm", "peak_line_load_n_per_mm", "face_load_factor",
-              "hertz_pressure_mpa")
+#: The preview's line load (ltca.cylindrical_preview.LineFaceLoad: the slice law's; its
+#: loaded length is the row's ``loaded_length_mm``) in preview.csv.
+_FACE_LOAD = ("end_loaded", "equivalent_length_mm", "peak_line_load_n_per_mm",
+              "face_load_factor", "hertz_pressure_mpa")
 
 
 def _csv_value(x):
@@ -117,8 +118,8 @@ _PREVIEW_HEADER = (["phi1_deg", "pair", "load_n", "line_length_mm", "loaded_leng
                    + [f"{b}_{n}" for b in BACKENDS for n in ("mode", "p_max_mpa", "b_mm")]
                    + ["golden_flags", "lcp_peak_mpa", "lcp_loaded_length_mm",
                       "lcp_line_end_loaded"]
-                   + ["end_loaded", "end_loaded_length_mm", "end_loaded_peak_line_load_n_per_mm",
-                      "end_loaded_face_load_factor", "end_loaded_hertz_pressure_mpa"])
+                   + ["end_loaded", "equivalent_length_mm", "peak_line_load_n_per_mm",
+                      "face_load_factor", "peak_hertz_pressure_mpa"])
 
 
 def _plot_preview(pv: CylindricalPreview, lte: CylindricalLoadedTE, path, *, title: str):
