@@ -63,8 +63,10 @@ def speed_controller_gains(model: TwinModel) -> tuple[float, float]:
 
 
 def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
-             w_eval=None) -> tuple[float, np.ndarray]:
-    """Loaded-flank elastic torque (N·m) and pair loads (N) at (theta, psi)."""
+             w_eval=None, cache=None) -> tuple[float, np.ndarray]:
+    """Loaded-flank elastic torque (N·m) and pair loads (N) at (theta, psi); ``cache``
+    (optional, (2, P, N_CACHE) of -1) receives the previews (:mod:`.kernel`'s layout:
+    ``[:, j, 2:5]`` a, b, p_max)."""
     a = model.arrays
     n_p = a["lever"].shape[1]
     w_ev = np.full((2, n_p), 1e3)
@@ -75,7 +77,8 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
     i = min(int(x), int(prm[K.P_NROW]) - 2)
     t, _ = K._elastic(theta, i, x - i, 0, 0, prm, a["lever"], a["opening"], a["cv"],
                       a["valid"], a["cb"], K.BACKEND_CODES[model.backend], w_ev,
-                      np.full((2, n_p, K.N_CACHE), -1.0), a["pow_lut"], a["cbrt_lut"],
+                      np.full((2, n_p, K.N_CACHE), -1.0) if cache is None else cache,
+                      a["pow_lut"], a["cbrt_lut"],
                       a["cst"], np.zeros((0, K.N_TRACE), np.int64),
                       np.zeros(K.N_COUNT, np.int64), _fit_args(a, 0), a["tab_theta"],
                       a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)),
