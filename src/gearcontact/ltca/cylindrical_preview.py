@@ -25,13 +25,15 @@ line's gap is least, and with it ``L_eq = W / w_peak`` (:func:`.slice_law.
 equivalent_length`): the line chain's uniform line of ``W`` over ``L_eq`` carries
 ``w_peak``, so its ``p_max`` is the Hertz pressure of the peak line load (ISO's contact
 stress with the contact's own face load factor ``w_peak L / W``). A flat line gives
-``L_eq = L_c = L``; a saddle fit (``B_max <= 0``) keeps ``L``. A line whose load reaches
-one of its ends (a misalignment's or helix slope's wedge, which crowning may lengthen
-but not centre) is *end-loaded*: the pressure at that sharp face end is singular on the
-half-space, an edge result, which the LCP's peak there shows (growing with its rows;
+``L_eq = L_c = L``; a saddle fit (``B_max <= 0``) keeps ``L``. A line whose gap is least
+at one of its ends and whose load ends inside it (a misalignment's or helix slope's
+wedge, which crowning may lengthen but not centre) is *end-loaded*: the pressure at
+that sharp face end is singular on the half-space, an edge result, which the LCP's peak there shows (growing with its rows;
 docs/cylindrical.md sec. 7). On a straight gap the slice law is the closed form of
 :func:`gearcontact.analytic.face_load.end_loaded_line` within its slices
-(docs/cylindrical.md sec. 8).
+(docs/cylindrical.md sec. 8). The line core's domain starts at ``L = 1`` mm: a short
+end-loaded line (``L_c`` below about 2 mm, ``L_eq`` below 1 mm) is refused by the
+reference and flagged by golden, its ``face_load`` (fp64) stays.
 
 Loads. With a loaded TE (:func:`.cylindrical_lte.cylindrical_loaded_te` at the same
 torque and cycle) each pair carries its LCP load share of ``F_n``; without it the pairs
@@ -73,8 +75,9 @@ class LineFaceLoad:
     Attributes
     ----------
     end_loaded : ndarray of bool
-        The load ends inside the line (``L_c < L``) and reaches one of its ends (a face
-        end, or a tip or form circle: an edge of the flank).
+        The line's gap (at its slices) is least at one of its ends and the load ends
+        inside the line (``L_c < L``): its peak sits on the line's closed end (a face
+        end under a misalignment's or helix slope's wedge).
     loaded_length_mm : ndarray
         ``L_c``, mm.
     equivalent_length_mm : ndarray
@@ -118,7 +121,7 @@ def line_face_loads(pair: CylindricalPair, cycle: CylindricalMeshCycle,
             h = ease[j, k]
             d_c, l_c, area = loaded_length_mm(h, length, w, b_max, e_prime)
             l_eq = equivalent_length(d_c, area, length)
-            out["end_loaded"][j, k] = l_c < length and min(h[0], h[-1]) < d_c
+            out["end_loaded"][j, k] = l_c < length and int(np.argmin(h)) in (0, h.size - 1)
             out["hertz_pressure_mpa"][j, k] = line_contact_terms(b_max, w / l_eq, 1.0,
                                                                  e_prime)[0]
         out["loaded_length_mm"][j, k] = l_c
