@@ -48,6 +48,15 @@ def _check_outputs(out: Path, torque_nm: float, phases: int):
         w = sum(float(r["load_n"]) for r in rows if float(r["phi1_deg"]) == p)
         assert fn * (1 - 2e-3) <= w <= fn * (1 + 1e-9)
     for r in rows:
+        # a pair entering or leaving with < 1 % of F_n on a short loaded line: its
+        # equivalent length (the slice law's peak line load's) below the line core's
+        # 1 mm (measured: 4 of the 61-phase rows, 0.3-0.7 % of F_n, L_eq 0.62-0.97 mm);
+        # outside the datapath, refused by fp64 and flagged by golden, as results
+        if float(r["equivalent_length_mm"]) < 1.0:
+            assert float(r["load_n"]) < 0.01 * fn
+            assert (r["reference_mode"], r["golden_mode"], r["golden_flags"]) == (
+                "refused", "flagged", "length_range")
+            continue
         assert r["reference_mode"] == r["golden_mode"] == "line" and r["golden_flags"] == ""
         # p0 ~ sqrt(A-): the fit's A- error at half weight; 2.5e-3 covers the rigorous
         # bound of every stencil here (tests/ltca/test_cylindrical_preview.py asserts it

@@ -18,9 +18,10 @@ readable summary (docs/cylindrical.md sec. 9).
                                            exact and fitted curvatures, the fp64 and golden
                                            line chain (mode, p_max, b, flags) beside the
                                            LCP's peak pressure on that line, its loaded
-                                           length and whether it loads a line end; an
-                                           end-loaded line's closed form (loaded length,
-                                           peak line load, K_Hbeta, its Hertz pressure:
+                                           length and whether it loads a line end; the
+                                           slice law's line load (end-loaded, equivalent
+                                           length, peak line load, K_Hbeta, its Hertz
+                                           pressure:
                                            ``ltca.cylindrical_preview.LineFaceLoad``)
 ``preview.png``                            p_max along the phase: LCP, fp64 and golden
 ``analyze.json``                           the headline numbers of ``summary.md``
@@ -199,7 +200,7 @@ def end_loaded_note(h: dict) -> str:
             f"{end['min_loaded_length_mm']:.2f} mm, peak line load "
             f"{end['max_peak_line_load_n_per_mm']:.0f} N/mm = "
             f"{end['max_face_load_factor']:.1f} x the mean, its Hertz pressure "
-            f"{end['max_hertz_pressure_mpa']:.0f} MPa (closed form, preview.csv)")
+            f"{end['max_hertz_pressure_mpa']:.0f} MPa (slice law, preview.csv)")
     if h["lcp_peak_at_edge"]:
         out.append(f"the LCP's p_max {h['lcp_max_pressure_mpa']:.0f} MPa sits on a sharp "
                    "edge (a loaded line end or a tip edge), where the half-space pressure is "
@@ -244,7 +245,7 @@ def _summary_md(pair, side, facing, h, harris) -> str:
     end = h["end_loaded_lines"]
     if end is not None:
         lines.append(
-            f"| end-loaded lines (closed form, {end['previews']} previews): loaded length "
+            f"| end-loaded lines (slice law, {end['previews']} previews): loaded length "
             f"min / peak line load max / K_Hβ max / its Hertz pressure max | "
             f"{end['min_loaded_length_mm']:.2f} mm / {end['max_peak_line_load_n_per_mm']:.0f}"
             f" N/mm / {end['max_face_load_factor']:.2f} / {end['max_hertz_pressure_mpa']:.0f}"
