@@ -29,8 +29,9 @@ def test_slice_law_against_the_elongated_hertz_ellipse():
     own approach: bound 1.0-1.15 (measured 1.077-1.080). The peak line load W d_c / I
     (at the least gap, equivalent_length's L_eq = W / w_peak) against the ellipse's
     along its major axis, pi p0 b / 2 = 3 W / (4 a): the law's is 3 W / (2 L_c) on the
-    parabola, so the same ratio inverted, bound 0.85-1.0 (measured 0.928 at 256 slices, 0.931-0.939 at 16). On a flat line
-    (h = 0) the law is the uniform line's closed form (1e-13) over the whole line, its
+    parabola, so the same ratio inverted, bound 0.85-1.0 (measured 0.928 at 256 slices,
+    0.931-0.939 at 16). On a flat line (h = 0) the law is the uniform line's closed form
+    (1e-13) over the whole line, its
     peak the mean W / L (L_eq = L, 1e-13)."""
     e_prime, b_across = 229_670.0, 0.05
     a_along = b_across / 2000.0

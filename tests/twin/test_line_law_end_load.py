@@ -1,7 +1,8 @@
 """The cylindrical twin's line law (twin.line_law, the slice law on the loaded length)
-on end-loaded lines against the half-space LCP and the closed form of the finite line: the uncrowned spur 20/40 with its gear
-axis inclined over the face (issue 26's careless try), whose lines close from one face
-end as a wedge (docs/cylindrical.md sec. 7, "End-loaded lines")."""
+on end-loaded lines against the half-space LCP and the closed form of the finite line:
+the spur 20/40 with its gear axis inclined over the face (issue 26's careless try),
+whose lines close from one face end as a wedge (docs/cylindrical.md sec. 7,
+"End-loaded lines"), uncrowned and with lead crowning."""
 
 import math
 from dataclasses import replace

@@ -28,8 +28,9 @@ stress with the contact's own face load factor ``w_peak L / W``). A flat line gi
 ``L_eq = L_c = L``; a saddle fit (``B_max <= 0``) keeps ``L``. A line whose gap is least
 at one of its ends and whose load ends inside it (a misalignment's or helix slope's
 wedge, which crowning may lengthen but not centre) is *end-loaded*: the pressure at
-that sharp face end is singular on the half-space, an edge result, which the LCP's peak there shows (growing with its rows;
-docs/cylindrical.md sec. 7). On a straight gap the slice law is the closed form of
+that sharp face end is singular on the half-space, an edge result, which the LCP's
+peak there shows (growing with its rows; docs/cylindrical.md sec. 7). On a straight gap
+the slice law is the closed form of
 :func:`gearcontact.analytic.face_load.end_loaded_line` within its slices
 (docs/cylindrical.md sec. 8). The line core's domain starts at ``L = 1`` mm: a short
 end-loaded line (``L_c`` below about 2 mm, ``L_eq`` below 1 mm) is refused by the

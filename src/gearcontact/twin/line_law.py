@@ -4,12 +4,13 @@ and step (compiled with numba; called by :mod:`.kernel`; docs/cylindrical.md sec
 The flanks of a spur or helical pair touch along lines, which the preview answers with
 the *line chain* (:mod:`gearcontact.preview.chain`: stage C on the pair's 7 x 7 gap
 stencil into the line core of stage D with the equivalent length ``L_eq`` of the
-pair's contact line, below; docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse fits the
-line, or its peak is the higher bound) or in ``line`` mode (the Hertz line contact of
-length ``L_eq``). One preview per loaded pair and step, at the phase of the step's start and the pair's load
-``W_e`` of the previous step (as :mod:`.contact_law`), gives the law held over the
-step's four stages, ``d = d_c(W) + c_b W`` (``c_b`` the tooth-bending compliance, 0 for
-rigid teeth; ``d`` the approach at the line's least gap):
+pair's contact line, below; docs/hertz.md sec. 6): in ``elliptic`` mode (the ellipse
+fits the line, or its peak is the higher bound) or in ``line`` mode (the Hertz line
+contact of length ``L_eq``). One preview per loaded pair and step, at the phase of the
+step's start and the pair's load ``W_e`` of the previous step (as :mod:`.contact_law`),
+gives the law held over the step's four stages, ``d = d_c(W) + c_b W`` (``c_b`` the
+tooth-bending compliance, 0 for rigid teeth; ``d`` the approach at the line's least
+gap):
 
 * ``elliptic``: Hertz ``d_c = kappa W^(2/3)``, ``kappa`` from the preview's ``a`` and
   ``k`` by Hamrock-Brewe's approach (:func:`.contact_law.hertz_kappa`);
@@ -44,9 +45,10 @@ equivalent length ``L_eq = W_e / w_peak = I / d_c``
 ``L`` code, traced), and its ``p_max = (w_peak E' B_max / pi)^(1/2)`` and ``b`` are those
 of the peak line load (``a`` is reported as ``L_c / 2``). The law is the uniform line of
 ``W`` on ``L_c``, not on ``L_eq``: its ``beta`` takes the chain's ``b`` to ``L_c`` by the
-line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law is ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) =
-lambda' W (...)``, ``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by
-``h_bar``, exact at ``W_e``. With tooth bending, ``c_b`` is the work-conjugate
+line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law is
+``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) = lambda' W (...)``,
+``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by ``h_bar``, exact at
+``W_e``. With tooth bending, ``c_b`` is the work-conjugate
 compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
 at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
 contact's load shape.
