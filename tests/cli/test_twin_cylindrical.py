@@ -85,10 +85,12 @@ def test_readme_twin_cylindrical(tmp_path, capsys):
     """The README line (default backend: the fp64 line chain, 61 phases, 3000 rpm, 50
     ms): mean mesh torque the load torque (conservation, 0.1 %), quasi-static (mesh 1150
     Hz far below the mesh mode), every preview with a law; inside the datapath's domain
-    but for pairs just closing, whose loaded length lies below the line core's 1 mm (the
-    fp64 chain evaluates them; 3-4 steps per entering pair at 3000 rpm): fewer than one
-    in ten steps (measured 42 in 1000 steps at 11 phases, 10 ms), and the printed line
-    names the line core's ranges as the reason (not a bevel pair's long bearings)."""
+    but for pairs just closing or leaving, whose equivalent length L_eq = W / w_peak
+    (the chain's L: the slice law's peak line load, 0.55-0.72 of the loaded length
+    here) lies below the line core's 1 mm (the fp64 chain evaluates them): fewer than
+    3 in 20 steps (measured 522 in 5000, 10.4 %; 42 in 1000 at 11 phases, 10 ms, when
+    the chain ran on the loaded length), and the printed line names the line core's
+    ranges as the reason (not a bevel pair's long bearings)."""
     argv = readme_argv("gearcontact twin --pair examples/ev_reducer_helical_23x67.toml --out",
                        tmp_path / "run")
     assert main(argv) == 0
@@ -96,7 +98,7 @@ def test_readme_twin_cylindrical(tmp_path, capsys):
     doc = json.loads((tmp_path / "run" / "twin.json").read_text())
     assert doc["backend"] == "reference" and doc["curvatures"] == "line"
     assert doc["mean_mesh_torque_nm"] == pytest.approx(64.5, rel=1e-3)
-    assert doc["previews_outside_datapath"] < 0.1 * doc["steps"]
+    assert doc["previews_outside_datapath"] < 0.15 * doc["steps"]
     assert doc["previews_without_contact_law"] == 0
     assert 1.0 < doc["dynamic_factor"] < 1.1
     if doc["previews_outside_datapath"]:
