@@ -34,7 +34,7 @@ from ..contract.qformat import (CURVATURE, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
-           "fit_mac_ops", "orbit_members",
+           "fit_mac_ops", "fit_mac_schedule", "orbit_members",
            "fit_isqrt_seeds",
            "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants"]
 
@@ -289,6 +289,36 @@ def expand_fit_mac_plan(plan: dict) -> tuple[tuple[int, ...], ...]:
             raise AssertionError("a halved fit MAC form is odd")
         out.append(tuple(x >> coeff["halve"] for x in twice))
     return tuple(out)
+
+
+def fit_mac_schedule(plan: dict) -> list[dict]:
+    """The order in which gc_fit_golden.c runs a plan of :func:`fit_mac_plan`: the
+    butterfly block of each column pair s = +-a (a = 0, 1, ...: its 7 rows' sums and
+    differences and the orbit sums u_p(a, b)), each followed by the terms whose orbit
+    sums are then all formed, so that few values are live at once (gcc keeps the
+    source's order: the 49 orbit sums formed first spilled to the stack); the forms
+    without a parity (tap by tap) after the last block.
+
+    Returns
+    -------
+    list of dict
+        Per block: ``a`` (None: the tap-by-tap forms) and ``terms``, a list of
+        ``(form index, term, first)``; ``first`` marks the form's first term (it
+        assigns, the others add); ``started``: the forms begun by the block's end
+        (their running sums are pinned there: ``GC_SCHEDULE``, gc_arith.h).
+    """
+    blocks = {a: [] for a in range(STENCIL_SIDE // 2 + 1)}
+    blocks[None] = []
+    for k, f in enumerate(plan["forms"]):
+        for t in f["terms"]:
+            ready = None if f["parity"] is None else max(a for a, _ in t["plus"] + t["minus"])
+            blocks[ready].append((k, t))
+    seen, out = set(), []
+    for a, terms in blocks.items():
+        if terms or a is not None:
+            out.append({"a": a, "terms": [(k, t, k not in seen and not seen.add(k))
+                                          for k, t in terms], "started": sorted(seen)})
+    return out
 
 
 def fit_mac_ops(plan: dict) -> dict[str, int]:

@@ -28,7 +28,7 @@ from ..errors import ToolUnavailable
 from ..contract.stencil import STENCIL_SIDE
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
-                          fit_mac_ops, fit_lanes_fp64, cbrt_seed,
+                          fit_mac_ops, fit_mac_schedule, fit_lanes_fp64, cbrt_seed,
                           fit_weight_codes,
                           gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
@@ -77,7 +77,7 @@ def _context() -> dict:
             "fit_weights": fit_weight_codes(), "fit_fp64": fit_lanes_fp64(), "cbrt": cbrt_seed(),
             "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "stencil_side": STENCIL_SIDE,
             "fit_mac_orbits": any(f["parity"] for f in plan["forms"]),
-            "fit_mac_ops": fit_mac_ops(plan),
+            "fit_mac_ops": fit_mac_ops(plan), "fit_mac_schedule": fit_mac_schedule(plan),
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
             "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
 
