@@ -22,13 +22,13 @@ RK4 step with its 4 mesh evaluations of both flanks, the record and the finitene
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us). Last measured (docs/export.md, the sixth round): at a
-load average of 0.4, the code before it, golden chain 166 ns median, fp64 chain 148,
-fp64 step 744 ns, golden 1,417, p99/p50 1.1-2.2; the golden step's kappa without libm's
-pow, 10,046 -> 9,750 instructions (fp64 4,288, library unchanged: golden chain 910,
-fp64 881), alternated at a load of ~14: fp64 626 -> 648 ns, golden 981 -> 998 (median
-ratio 1.00: below the shared machine's noise). The machine's state moves the absolute
-figures more than the code does: compare alternated runs and instructions.
+(>= 20x real time at 10 us). Last measured (docs/export.md, the seventh round, the
+golden fit's MAC on the stencil's orbit sums): alternated before/after at a load of
+14-17, golden chain 218-247 -> 153-203 ns median (golden fit 116-135 -> 64-91),
+fp64 chain 124-153 both; instructions golden chain 1,100 -> 842, golden step
+10,299 -> 9,043, fp64 step 4,281 (its 605-847 ns move with the machine, not the
+code). The machine's state moves the absolute figures more than the code does: compare
+alternated runs and instructions.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive

@@ -25,7 +25,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearcontact.export.c_constants import FIT_LANES, expand_fit_mac_plan, fit_mac_plan
+from gearcontact.export.c_constants import (FIT_LANES, expand_fit_mac_plan, fit_mac_ops,
+                                            fit_mac_plan, orbit_members)
 from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
 from gearcontact.hw.vectors import read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
@@ -109,6 +110,24 @@ def test_golden_c_equals_the_golden_model_on_the_rtl_vectors(built):
     n = {c: sum(1 for _ in (vec / f"{c}_in.hex").open()) for c in CORES}
     assert all(v >= COUNT for v in n.values())
     assert lines == [f"{c}: {n[c]} vectors, 0 mismatches" for c in CORES]
+
+
+def test_golden_c_portable_build_equals_the_golden_model(built, tmp_path):
+    """The code other compilers get (-DGC_PORTABLE_SCHEDULE: no asm barrier in the fit's
+    MAC; -DGC_PORTABLE_BIT_LENGTH: the six-step bit length) computes the same integers:
+    0 mismatches on the same vectors, built by the export's Makefile into its own
+    directory."""
+    lib, vec = built
+    out = tmp_path / "portable"
+    make = subprocess.run(["make", "-C", str(lib), "CC=gcc", f"BUILD={out}",
+                           "CFLAGS=-O2 -DGC_PORTABLE_SCHEDULE -DGC_PORTABLE_BIT_LENGTH",
+                           str(out / "gearcontact_check")],
+                          capture_output=True, text=True, timeout=300)
+    assert make.returncode == 0, make.stdout[-3000:] + make.stderr[-3000:]
+    run = subprocess.run([str(out / "gearcontact_check"), str(vec)], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.count(", 0 mismatches") == len(CORES)
 
 
 def test_checker_names_the_core_of_a_corrupted_output_word(built, tmp_path):
@@ -544,23 +563,60 @@ def test_fit_square_root_equals_the_rtl_recurrence(built, tmp_path):
 
 
 def test_fit_mac_plan_multiplies_out_to_the_rom():
-    """The regrouped golden MAC of gc_fit_golden.c (column sums, row sums, one multiply
-    per distinct |M_ji|) is the ROM's linear form exactly: expanded term by term it
-    gives back every word, for the baked ROM (72 multiplies: the degree-6 ROM's rows
-    depend on both the column and the row, so every row is grouped tap by tap over the
-    stencil's point symmetries; the degree-2 ROM took column and row sums, 26) and for
-    a random integer matrix without symmetry (tap by tap, one multiply per distinct
-    magnitude)."""
+    """The regrouped golden MAC of gc_fit_golden.c (the stencil's orbit sums shared by
+    every row, one multiply per distinct |word|, c3 and c5 as P = acc3 + acc5 and
+    Q = acc3 - acc5) is the ROM's linear form exactly: expanded term by term, combined
+    and halved it gives back every word, for the baked ROM (56 multiplies, 72 row by
+    row: c0 10, c1 12, c2 12, c4 6 on their orbit sums, P 10 and Q 6 instead of 16 and
+    16) and for a random integer matrix without symmetry (tap by tap, one multiply per
+    distinct magnitude). Every form's sum_i |W_i| stays below 2^32: partial sums below
+    2^31 2^32 = 2^63 (int64); the C code's P +- Q are 2 acc_j, below 2^32 L1(M_j)."""
     rom = tuple(tuple(int(w) for w in row) for row in baked_pinv().weight_codes)
     plan = fit_mac_plan()
-    assert expand_fit_mac_plan(plan, rom) == rom
-    assert [c["basis"] for c in plan] == ["g"] * 6
-    assert [len(c["terms"]) for c in plan] == [10, 12, 12, 16, 6, 16]
+    assert expand_fit_mac_plan(plan) == rom
+    assert [f["parity"] for f in plan["forms"]] == [(0, 0), (1, 0), (0, 1), (0, 0), (0, 0),
+                                                    (1, 1)]
+    assert [len(f["terms"]) for f in plan["forms"]] == [10, 12, 12, 10, 6, 6]
+    assert [c["halve"] for c in plan["coeffs"]] == [0, 0, 0, 1, 0, 1]
+    assert fit_mac_ops(plan) == {"muls": 56, "adds": 157}
+    for f in plan["forms"]:                   # the width bound, recomputed on the taps
+        w = [0] * 49
+        for t in f["terms"]:
+            for sign, keys in ((1, t["plus"]), (-1, t["minus"])):
+                for a, b in keys:
+                    for tap, s in orbit_members(a, b, f["parity"]):
+                        w[tap] += sign * s * t["word"]
+        assert sum(map(abs, w)) < 2 ** 32
+    assert max(sum(map(abs, r)) for r in rom) < 2 ** 31
     rnd = tuple(tuple(int(w) for w in row)
                 for row in np.random.default_rng(0).integers(-9, 10, (6, 49)))
     other = fit_mac_plan(rnd)
-    assert expand_fit_mac_plan(other, rnd) == rnd
-    assert {c["basis"] for c in other} == {"g"}
+    assert expand_fit_mac_plan(other) == rnd
+    assert {f["parity"] for f in other["forms"]} == {None}
+    assert fit_mac_ops(other)["muls"] == sum(len({abs(w) for w in r if w}) for r in rnd)
+
+
+def test_orbit_sums_partition_the_stencil():
+    """The 49 orbit sums u_p(a, b) are a change of basis of the 49 samples with +-1
+    entries: every tap once per parity class it belongs to (4 orbits of 4 points, 12 of
+    2 and the centre), and the sums of the four classes over one orbit recover 4 g(a, b)
+    at its point (a, b >= 0) (the C butterfly's signs, written out here)."""
+    keys = [(a, b, p) for p in ((0, 0), (1, 0), (0, 1), (1, 1)) for a in range(4)
+            for b in range(4) if (a or not p[0]) and (b or not p[1])]
+    assert len(keys) == 49
+    for p in ((0, 0), (1, 0), (0, 1), (1, 1)):
+        taps = [t for a, b, q in keys if q == p for t, _ in orbit_members(a, b, q)]
+        assert len(taps) == len(set(taps))
+    assert sorted(t for a, b, q in keys if q == (0, 0)
+                  for t, _ in orbit_members(a, b, q)) == list(range(49))
+    # u00 + u10 + u01 + u11 at (a, b) = 4 g(a, b): s = a is column 3 + a, t = b row 3 + b
+    for a in range(1, 4):
+        for b in range(1, 4):
+            total = {}
+            for q in ((0, 0), (1, 0), (0, 1), (1, 1)):
+                for tap, s in orbit_members(a, b, q):
+                    total[tap] = total.get(tap, 0) + s
+            assert {t: v for t, v in total.items() if v} == {7 * (3 + b) + 3 + a: 4}
 
 
 def test_fp64_fit_applies_every_weight_bit_for_bit(built):

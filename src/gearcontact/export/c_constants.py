@@ -34,6 +34,7 @@ from ..contract.qformat import (CURVATURE, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
 
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
+           "fit_mac_ops", "fit_mac_schedule", "orbit_members",
            "fit_isqrt_seeds",
            "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants"]
 
@@ -129,35 +130,90 @@ def fit_weight_codes() -> tuple[tuple[int, ...], ...]:
     return tuple(tuple(int(w) for w in row) for row in rom.weight_codes)
 
 
-#: Sums a row of the golden MAC plan may read (:func:`fit_mac_plan`): the taps g_i, the
-#: column sums S_k = sum_j g_(7j+k) (over t) and the row sums R_j = sum_k g_(7j+k).
-MAC_BASES = ("g", "col", "row")
+#: Parities of the stencil's orbit sums (:func:`fit_mac_plan`): even (0) or odd (1) in
+#: s, then in t; ``None`` for a row without one (its MAC runs tap by tap).
+PARITIES = ((0, 0), (1, 0), (0, 1), (1, 1))
 
 
-def _basis_weights(row: tuple[int, ...]) -> tuple[str, list[int], list[int]]:
-    """The cheapest basis of one ROM row: ``(basis, weight per basis element, ROM tap
-    holding it)``. ``col`` when the word depends on the column k only, ``row`` when on
-    the row j only, else the taps themselves."""
+def _tap(a: int, b: int) -> int:
+    """Stencil tap of the point s = a, t = b (s along a row, t down a column)."""
+    c = STENCIL_SIDE // 2
+    return STENCIL_SIDE * (c + b) + c + a
+
+
+def orbit_members(a: int, b: int, parity) -> list[tuple[int, int]]:
+    """``(tap, sign)`` of the orbit sum u_p(a, b) = sum over the distinct points
+    (+-a, +-b) of sign(s)^ps sign(t)^pt g(s, t) (``a, b >= 0``; an odd parity needs
+    its coordinate nonzero)."""
+    ps, pt = parity
+    pts = {(sa * a, sb * b) for sa in (1, -1) for sb in (1, -1)}
+    return sorted((_tap(s, t), (1 if s >= 0 or not ps else -1)
+                   * (1 if t >= 0 or not pt else -1)) for s, t in pts)
+
+
+def _parity(row) -> tuple[int, int] | None:
+    """The parity of a weight row under s -> -s and t -> -t (None: neither even nor
+    odd in one of them)."""
+    c = STENCIL_SIDE // 2
+    w = {(a, b): row[_tap(a, b)] for a in range(-c, c + 1) for b in range(-c, c + 1)}
+    for ps, pt in PARITIES:
+        if all(w[-a, b] == (-1) ** ps * v and w[a, -b] == (-1) ** pt * v
+               for (a, b), v in w.items()):
+            return ps, pt
+    return None
+
+
+def _plan_form(row) -> dict:
+    """One linear form's terms: on the orbit sums of its parity (elements ``(a, b)``)
+    or, without one, on the taps; one term per distinct nonzero magnitude of the word,
+    ``word * (sum of plus - sum of minus)``, ``word`` the weight of the first element
+    holding that magnitude."""
+    parity = _parity(row)
+    c = STENCIL_SIDE // 2
+    if parity is None:
+        weights = {i: w for i, w in enumerate(row)}
+    else:
+        weights = {(a, b): row[_tap(a, b)] for b in range(c + 1) for a in range(c + 1)
+                   if (a or not parity[0]) and (b or not parity[1])}
+    terms = []
+    for mag in sorted({abs(w) for w in weights.values() if w}, reverse=True):
+        word = next(w for w in weights.values() if abs(w) == mag)
+        terms.append({"word": word,
+                      "plus": [k for k, w in weights.items() if w == word],
+                      "minus": [k for k, w in weights.items() if w == -word]})
+    return {"parity": parity, "terms": terms}
+
+
+def _transposed(row) -> tuple[int, ...]:
+    """The row with s and t swapped."""
     n = STENCIL_SIDE
-    grid = [row[n * j:n * (j + 1)] for j in range(n)]
-    if all(grid[j] == grid[0] for j in range(n)):
-        return "col", list(grid[0]), list(range(n))
-    if all(len(set(r)) == 1 for r in grid):
-        return "row", [r[0] for r in grid], [n * j for j in range(n)]
-    return "g", list(row), list(range(N_TAPS))
+    return tuple(row[n * (i % n) + i // n] for i in range(n * n))
 
 
-def fit_mac_plan(rom=None) -> list[dict]:
+def _muls(forms) -> int:
+    return sum(len(f["terms"]) for f in forms)
+
+
+def fit_mac_plan(rom=None) -> dict:
     """The golden fit's MAC ``acc_j = sum_i M_ji g_i`` regrouped for the C code.
 
-    The ROM has few distinct words (the stencil's symmetry: c1 depends on the column
-    only, c2 on the row only, ...). Per coefficient j the plan names a basis
-    (:data:`MAC_BASES`) and one term per distinct nonzero ``|M_ji|``: ``M_j,rep *
-    (sum of plus - sum of minus)`` over basis elements, where ``plus`` holds the word
-    ``M_j,rep`` and ``minus`` its negation. The regrouped sum is the same integer (the
-    distributive law on exact integers; :func:`expand_fit_mac_plan` multiplies it out
-    and this function checks it equals the ROM); no partial sum exceeds
-    ``2^31 sum_i |M_ji| < 2^62`` (:func:`fit_weight_codes`).
+    The stencil's point symmetries: every ROM row is even or odd under s -> -s and
+    under t -> -t, so it is a linear form in the 49 orbit sums u_p(a, b) =
+    sum over (+-a, +-b) of sign(s)^ps sign(t)^pt g (:func:`orbit_members`, formed once
+    by a butterfly and shared by all rows; a row of parity p reads the u_p), with one
+    multiply per distinct ``|word|`` (equal words at (a, b) and (b, a) share one). Two
+    rows that are each other's s <-> t swap with a parity even or odd in both (c3 and
+    c5) are formed as P = acc_j + acc_j' and Q = acc_j - acc_j' (P symmetric under
+    the swap, Q antisymmetric: their words pair up) and ``2 acc_j = P + Q``,
+    ``2 acc_j' = P - Q``; the C code folds the halving into the rounding shift
+    (``round_shift(2 x, s + 1) = round_shift(x, s)``). The regrouped sums are the same
+    integers (the distributive law on exact integers; :func:`expand_fit_mac_plan`
+    multiplies the plan out and this function checks it equals the ROM).
+
+    Accumulator width: a tap enters each form once (orbits partition the stencil), so
+    every partial sum of a form with weights W is at most ``2^31 sum_i |W_i|`` (gaps
+    ``|g_i| <= 2^31``), for P and Q at most ``2^31 (L1(M_j) + L1(M_j'))``; checked here
+    below 2^63 (int64), as ``|P + Q| = 2 |acc_j| < 2^32 L1(M_j)``.
 
     Parameters
     ----------
@@ -166,44 +222,114 @@ def fit_mac_plan(rom=None) -> list[dict]:
 
     Returns
     -------
-    list of dict
-        Per coefficient: ``basis`` (str) and ``terms``, a list of dicts with ``rep``
-        (the ROM tap i holding the multiplier), ``plus`` and ``minus`` (basis indices).
+    dict
+        ``forms``: the linear forms, each ``parity`` ((ps, pt) or None: tap by tap)
+        and ``terms`` (``word``, signed, and ``plus``, ``minus``: orbit points
+        (a, b) or taps); ``coeffs``: per coefficient, ``halve`` (0 or 1) and ``parts``,
+        ``[(sign, form index), ...]``: ``2^halve acc_j = sum sign form``.
+
+    Raises
+    ------
+    FixedPointOverflow
+        A form's partial sums could reach 2^63.
     """
-    rom = fit_weight_codes() if rom is None else tuple(tuple(r) for r in rom)
-    plan = []
-    for row in rom:
-        basis, weights, taps = _basis_weights(row)
-        terms = []
-        for mag in sorted({abs(w) for w in weights if w}, reverse=True):
-            first = next(k for k, w in enumerate(weights) if abs(w) == mag)
-            word = weights[first]
-            terms.append({"rep": taps[first],
-                          "plus": [k for k, w in enumerate(weights) if w == word],
-                          "minus": [k for k, w in enumerate(weights) if w == -word]})
-        plan.append({"basis": basis, "terms": terms})
-    if expand_fit_mac_plan(plan, rom) != rom:         # by construction; never silently
+    rom = fit_weight_codes() if rom is None else tuple(tuple(int(w) for w in r) for r in rom)
+    forms, coeffs, done = [], [None] * len(rom), set()
+    for j, row in enumerate(rom):
+        if j in done:
+            continue
+        pair = next((k for k in range(j + 1, len(rom)) if k not in done
+                     and rom[k] == _transposed(row) and rom[k] != row), None)
+        alone = _plan_form(row)
+        if pair is not None and alone["parity"] in ((0, 0), (1, 1)):
+            p = _plan_form(tuple(x + y for x, y in zip(row, rom[pair])))
+            q = _plan_form(tuple(x - y for x, y in zip(row, rom[pair])))
+            if _muls([p, q]) < 2 * _muls([alone]):
+                forms += [p, q]
+                coeffs[j] = {"halve": 1, "parts": [(1, len(forms) - 2), (1, len(forms) - 1)]}
+                coeffs[pair] = {"halve": 1, "parts": [(1, len(forms) - 2), (-1, len(forms) - 1)]}
+                done |= {j, pair}
+                continue
+        forms.append(alone)
+        coeffs[j] = {"halve": 0, "parts": [(1, len(forms) - 1)]}
+        done.add(j)
+    plan = {"forms": forms, "coeffs": coeffs}
+    for f in forms:
+        l1 = sum(abs(t["word"]) * len(_members(f["parity"], k)) for t in f["terms"]
+                 for k in t["plus"] + t["minus"])
+        if l1 >= 1 << 32:
+            raise FixedPointOverflow("sum_i |W_i| of a fit MAC form (64-bit bound)", l1, sq(33, 0))
+    if expand_fit_mac_plan(plan) != rom:         # by construction; never silently
         raise AssertionError("the regrouped fit MAC differs from the ROM")
     return plan
 
 
-def expand_fit_mac_plan(plan: list[dict], rom) -> tuple[tuple[int, ...], ...]:
-    """The weight matrix ``[j][i]`` a plan of :func:`fit_mac_plan` computes (each basis
-    element expanded into its taps, each term's word read from ``rom``)."""
-    n = STENCIL_SIDE
-    members = {"g": lambda k: [k], "col": lambda k: [n * j + k for j in range(n)],
-               "row": lambda k: [n * k + i for i in range(n)]}
-    out = []
-    for j, coeff in enumerate(plan):
+def _members(parity, key) -> list[tuple[int, int]]:
+    """``(tap, sign)`` of one basis element of a form: an orbit sum, or a tap."""
+    return [(key, 1)] if parity is None else orbit_members(*key, parity)
+
+
+def expand_fit_mac_plan(plan: dict) -> tuple[tuple[int, ...], ...]:
+    """The weight matrix ``[j][i]`` a plan of :func:`fit_mac_plan` computes (each form's
+    basis elements expanded into signed taps, the forms combined and halved as the
+    coefficient says; a halving that leaves a remainder raises)."""
+    rows = []
+    for f in plan["forms"]:
         w = [0] * N_TAPS
-        for term in coeff["terms"]:
-            word = rom[j][term["rep"]]
-            for sign, ks in ((1, term["plus"]), (-1, term["minus"])):
-                for k in ks:
-                    for i in members[coeff["basis"]](k):
-                        w[i] += sign * word
-        out.append(tuple(w))
+        for term in f["terms"]:
+            for sign, keys in ((1, term["plus"]), (-1, term["minus"])):
+                for key in keys:
+                    for tap, s in _members(f["parity"], key):
+                        w[tap] += sign * s * term["word"]
+        rows.append(w)
+    out = []
+    for coeff in plan["coeffs"]:
+        twice = [sum(sign * rows[k][i] for sign, k in coeff["parts"]) for i in range(N_TAPS)]
+        if any(x % (1 << coeff["halve"]) for x in twice):
+            raise AssertionError("a halved fit MAC form is odd")
+        out.append(tuple(x >> coeff["halve"] for x in twice))
     return tuple(out)
+
+
+def fit_mac_schedule(plan: dict) -> list[dict]:
+    """The order in which gc_fit_golden.c runs a plan of :func:`fit_mac_plan`: the
+    butterfly block of each column pair s = +-a (a = 0, 1, ...: its 7 rows' sums and
+    differences and the orbit sums u_p(a, b)), each followed by the terms whose orbit
+    sums are then all formed, so that few values are live at once (gcc keeps the
+    source's order: the 49 orbit sums formed first spilled to the stack); the forms
+    without a parity (tap by tap) after the last block.
+
+    Returns
+    -------
+    list of dict
+        Per block: ``a`` (None: the tap-by-tap forms) and ``terms``, a list of
+        ``(form index, term, first)``; ``first`` marks the form's first term (it
+        assigns, the others add); ``started``: the forms begun by the block's end
+        (their running sums are pinned there: ``GC_SCHEDULE``, gc_arith.h).
+    """
+    blocks = {a: [] for a in range(STENCIL_SIDE // 2 + 1)}
+    blocks[None] = []
+    for k, f in enumerate(plan["forms"]):
+        for t in f["terms"]:
+            ready = None if f["parity"] is None else max(a for a, _ in t["plus"] + t["minus"])
+            blocks[ready].append((k, t))
+    seen, out = set(), []
+    for a, terms in blocks.items():
+        if terms or a is not None:
+            out.append({"a": a, "terms": [(k, t, k not in seen and not seen.add(k))
+                                          for k, t in terms], "started": sorted(seen)})
+    return out
+
+
+def fit_mac_ops(plan: dict) -> dict[str, int]:
+    """Multiplies and additions of a plan as gc_fit_golden.c runs it: the orbit sums'
+    butterfly (when a form reads them), each form's bracketed sums and the P +- Q."""
+    n = STENCIL_SIDE
+    butterfly = 2 * n * (n - 1) if any(f["parity"] for f in plan["forms"]) else 0
+    adds = sum(len(t["plus"]) + len(t["minus"]) for f in plan["forms"] for t in f["terms"])
+    return {"muls": _muls(plan["forms"]),
+            "adds": butterfly + adds - len(plan["forms"])
+            + sum(len(c["parts"]) - 1 for c in plan["coeffs"])}
 
 
 #: Leading bits of the normalized radicand that index the seed table of the fit's

@@ -28,7 +28,7 @@ from ..errors import ToolUnavailable
 from ..contract.stencil import STENCIL_SIDE
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
-                          fit_lanes_fp64, cbrt_seed,
+                          fit_mac_ops, fit_mac_schedule, fit_lanes_fp64, cbrt_seed,
                           fit_weight_codes,
                           gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
@@ -71,15 +71,13 @@ def _context() -> dict:
     digits = [sum(f.digits * f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
     values = [sum(f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
     plan = fit_mac_plan()
-    bases = sorted({c["basis"] for c in plan})
-    adds = (STENCIL_SIDE * (STENCIL_SIDE - 1) * sum(b != "g" for b in bases)
-            + sum(len(t["plus"]) + len(t["minus"]) for c in plan for t in c["terms"]) - len(plan))
     return {"version": __version__, "stages": STAGES, "hertz_flags": hertz_flags(),
             "hertz_constants": hertz_constants(), "hertz_roms": hertz_roms(),
             "gap_constants": gap_constants(), "line_constants": line_constants(), "fit_constants": fit_constants(), "fit_flags": fit_flags(),
             "fit_weights": fit_weight_codes(), "fit_fp64": fit_lanes_fp64(), "cbrt": cbrt_seed(),
-            "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "fit_mac_bases": bases, "stencil_side": STENCIL_SIDE,
-            "fit_mac_ops": {"muls": sum(len(c["terms"]) for c in plan), "adds": adds},
+            "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "stencil_side": STENCIL_SIDE,
+            "fit_mac_orbits": any(f["parity"] for f in plan["forms"]),
+            "fit_mac_ops": fit_mac_ops(plan), "fit_mac_schedule": fit_mac_schedule(plan),
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
             "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
 
