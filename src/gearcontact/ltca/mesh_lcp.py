@@ -181,7 +181,9 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
         None or all zero starts cold.
     rotation_guess_rad : float, optional
         Estimate of ``theta`` (e.g. from the Hertzian preview) for the cold start: the
-        initial loads are ``sqrt(max(theta - h~, 0))`` (Hertz-like caps).
+        initial loads are ``sqrt(max(theta - h~, 0))`` (Hertz-like caps). A warm or
+        guessed start that does not end converged and complementary is solved again
+        from the cold start (the LCP has one solution; ``iterations`` counts both).
     residual_tol : float
         Complementarity residual above which a finished solve is not "converged".
     precondition : bool
@@ -221,7 +223,7 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
         else:
             x0.append(np.zeros(hk.shape))
     cold = sum(float(xi.sum()) for xi in x0) <= 0.0
-    h, _ = _stack(hs, hs)
+    h, _ = _stack(hs, [np.zeros(hk.shape) for hk in hs])   # the gaps, padded
     op = BlockCompliance(h.shape[1:], [(float(b.grid.dx_mm[0]), float(b.grid.dy_mm[0]))
                                        for b in blocks], e_star_mpa=e_star,
                          scales=[b.lever_mm ** 2 for b in blocks],
