@@ -24,7 +24,7 @@ warm cache, load 1.0 rising to 8), wall / CPU s, every example exit 0: hypoid 11
 28.1); cylindrical EV 23x67 38.3 / 38.3 (Harris map 26.2), FZG C 32.9 / 24.6, spur
 20x40 79.8 / 27.7.
 
-Issue 28's acceptance audit (session 16, on 8ba87c6: the operating-load edge law and the
+Issue 28's acceptance audit (session 16, on 9c868c3: the operating-load edge law and the
 degree-6 ROM merged; numba cache filled by ``gearcontact warm-up`` first, which took 293 s
 CPU and 24.5 min wall into the fresh worktree's empty cache; load average 10-14 on the 2
 cores, so wall is 5-7 times CPU), wall / CPU s, every example exit 0: hypoid 11x41 200 /
