@@ -24,6 +24,15 @@ warm cache, load 1.0 rising to 8), wall / CPU s, every example exit 0: hypoid 11
 28.1); cylindrical EV 23x67 38.3 / 38.3 (Harris map 26.2), FZG C 32.9 / 24.6, spur
 20x40 79.8 / 27.7.
 
+Issue 28's acceptance audit (session 16, on 9c868c3: the operating-load edge law and the
+degree-6 ROM merged; numba cache filled by ``gearcontact warm-up`` first, which took 293 s
+CPU and 24.5 min wall into the fresh worktree's empty cache; load average 10-14 on the 2
+cores, so wall is 5-7 times CPU), wall / CPU s, every example exit 0: hypoid 11x41 200 /
+20.3, F.2 163 / 20.9, F.3 143 / 21.5; cylindrical EV 23x67 338 / 51.7, FZG C 115 / 25.9,
+spur 20x40 104 / 30.0; the typed machine settings of F.2 (examples/machine_settings/) 145
+/ 27.1. The whole audit (``twin`` too, and the design-space variants) is the table in
+docs/performance.md, "Issue 28 acceptance audit".
+
 Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]``.
 """
 
@@ -43,7 +52,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _examples() -> list[Path]:
-    return sorted(p for p in (ROOT / "examples").glob("*.toml") if "[teeth]" in p.read_text())
+    # every shipped pair, the typed machine settings in examples/machine_settings/ too
+    return sorted(p for p in (ROOT / "examples").rglob("*.toml") if "[teeth]" in p.read_text())
 
 
 def _timings(run_json: Path) -> dict:

@@ -110,3 +110,44 @@ def test_bad_factor(make_hertz):
     bad[0, 0, 0] = np.nan
     with pytest.raises(InputRangeError, match="bending_factor"):
         PairBlock(pb.gap_mm, pb.grid, 1.0, bending_factor=bad)
+
+
+def _handover_problem():
+    """The two-pair LCP of the 12/12 design-space pair's hand-over phase at 3.225 N·m
+    (tests/ltca/data/README.md): blocks, torque (N·mm), E* (MPa), tol, the warm start
+    of the previous phase and the preview's rotation guess."""
+    from pathlib import Path
+
+    from gearcontact.halfspace.grid import TangentGrid
+
+    d = np.load(Path(__file__).parent / "data" / "handover_12x12_3225nmm.npz")
+    blocks, warm = [], []
+    for i in range(int(d["n_blocks"])):
+        nx, ny, dx, dy, x0, y0 = d[f"grid_{i}"]
+        grid = TangentGrid.uniform(int(nx), int(ny), dx_mm=dx, dy_mm=dy, x0_mm=x0, y0_mm=y0)
+        lever, offset = d[f"lever_offset_{i}"]
+        blocks.append(PairBlock(d[f"gap_mm_{i}"], grid, float(lever), float(offset)))
+        warm.append(d[f"warm_{i}"] if d[f"warm_{i}"].size else None)
+    return (blocks, float(d["torque_nmm"]), float(d["e_star_mpa"]), float(d["tol"]), warm,
+            float(d["rotation_guess_rad"]))
+
+
+def test_a_start_that_stalls_is_solved_from_the_cold_start():
+    """Issue 28 audit: `twin --speed-sweep` on the 12/12 pair stopped with exit 4 (the
+    table twin's loaded TE at T/20 'did not converge'): from the preview's rotation
+    guess the CG stalled at a non-complementary point (residual 0.67) at the hand-over.
+    The LCP of rigid pairs is a strictly convex QP with one solution, so the answer
+    cannot depend on the start: the guessed start must give the cold start's solution
+    (rotation and pair loads within the solvers' agreement, SOLVER_RTOL), with the
+    torque balanced (1e-9) and the complementarity residual within residual_tol."""
+    blocks, torque, e_star, tol, warm, guess = _handover_problem()
+    cold = solve_mesh_lcp(blocks, torque, e_star_mpa=e_star, tol=tol)
+    assert cold.converged, cold.message
+    for kw in ({"rotation_guess_rad": guess}, {"warm_start": warm, "rotation_guess_rad": guess}):
+        res = solve_mesh_lcp(blocks, torque, e_star_mpa=e_star, tol=tol, **kw)
+        assert res.converged, res.message
+        assert res.complementarity_residual <= 1e-6
+        assert res.torque_residual <= 1e-9
+        assert res.rotation_rad == pytest.approx(cold.rotation_rad, rel=SOLVER_RTOL)
+        np.testing.assert_allclose(res.pair_loads_n, cold.pair_loads_n,
+                                   rtol=SOLVER_RTOL, atol=SOLVER_RTOL * torque / 50.0)
