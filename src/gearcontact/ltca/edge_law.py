@@ -88,6 +88,7 @@ from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.lcp import solve_lcp
 from ..ltca.lte_phase import preview_balance
 from ..tca.stencil import gap_at
+from .patch_field import patch_approach
 
 __all__ = ["EDGE_LOAD_FRACTIONS", "ELLIPSE_PROBES", "EdgeCompliance", "edge_compliance",
            "edge_datum_mm", "ellipse_leaves_flank", "equivalent_curvature_factor",
@@ -173,9 +174,12 @@ def edge_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
         The LCP converged at fewer than two loads, or the pair does not close under load
         (the row's law would be unfounded).
     """
-    gap, grid, off, _ = fields.get(pc)
     loads = _loads(pc, torque_nmm)
-    lcp = _approaches(gap, grid, loads, pc, materials, datum_mm=edge_datum_mm(gap, off, pc))
+    lcp, warm = np.full(loads.size, np.nan), None
+    for i, w in enumerate(loads):
+        lcp[i], warm = patch_approach(fields, pc, float(w), materials, warm=warm,
+                                      datum_mm=lambda gap, off: edge_datum_mm(gap, off, pc))
+    _check_approaches(lcp, loads, pc)
     hz = np.array([hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, float(w),
                                        e_prime_mpa=fields.e_prime).approach_mm
                    for w in loads])
@@ -230,6 +234,13 @@ def _approaches(gap, grid, loads, pc, materials, *, masks: bool = False,
         if res.converged:
             warm = res
             out[i] = float(res.delta_mm) - datum
+    _check_approaches(out, loads, pc)
+    return (out, contact) if masks else out
+
+
+def _check_approaches(out, loads, pc) -> None:
+    """Raise ArithmeticError unless at least two loads converged with a positive
+    approach."""
     if np.isfinite(out).sum() < 2:
         raise ArithmeticError(f"edge_law: the LCP of the row at path index {pc.path_index} "
                               f"converged at fewer than two of the loads {loads} N")
@@ -237,7 +248,6 @@ def _approaches(gap, grid, loads, pc, materials, *, masks: bool = False,
         raise ArithmeticError(f"edge_law: the row at path index {pc.path_index} closes by "
                               f"{np.nanmin(out):.3g} mm <= 0 under load (its field does not "
                               f"hold its opening)")
-    return (out, contact) if masks else out
 
 
 def _fit(loads, approach, reference) -> EdgeCompliance:
