@@ -26,10 +26,10 @@ flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
   patch, so the smaller field holds the same problem; its cells are a few times finer
   where the pressure is.
 * :func:`touch_gap_mm`: the least gap of the posed flanks on both flanks, searched from
-  the field's least node by windows of ``TOUCH_SIDE`` x ``TOUCH_SIDE`` points a cell
-  either way, moved downhill (the touch may lie beyond the field's border) and shrunk
-  4 times :data:`TOUCH_LEVELS` times: a posed field's opening to a nanometre instead of
-  a cell's slope.
+  the field's least node by windows of ``TOUCH_SIDE`` x ``TOUCH_SIDE`` points
+  :data:`TOUCH_SPAN` cells either way, moved downhill (the touch may lie beyond the
+  field's border) and shrunk 4 times :data:`TOUCH_LEVELS` times: a posed field's opening
+  to a small fraction of a cell's slope.
 
 References
 ----------
@@ -55,10 +55,11 @@ PATCH_MARGIN = 0.25
 PATCH_PASSES = 2
 #: Doublings of a fitted field whose patch reaches its on-flank border.
 PATCH_GROWTHS = 3
-#: Zoom levels and points per side of :func:`touch_gap_mm`.
-TOUCH_LEVELS, TOUCH_SIDE = 4, 9
+#: Zoom levels and points per side of :func:`touch_gap_mm`; the first window spans
+#: TOUCH_SPAN cells either way (then a cell, a quarter, ...).
+TOUCH_LEVELS, TOUCH_SIDE, TOUCH_SPAN = 5, 9, 4.0
 #: Moves of the window along the flanks before it shrinks, over all levels.
-TOUCH_MOVES = 64
+TOUCH_MOVES = 32
 
 
 def patch_grid(box, cells: int) -> tuple[np.ndarray, np.ndarray, TangentGrid]:
@@ -158,17 +159,17 @@ def patch_approach(fields, pc, load_n: float, materials, *, datum_mm, warm=None)
 def touch_gap_mm(fields, pc) -> float:
     """The least gap of the row's flanks around its field's least node on the flank
     (module docstring): a pattern search of :data:`TOUCH_SIDE` x :data:`TOUCH_SIDE`
-    windows spanning a cell either way, moved while the least point is on the window's
-    border (the touch may lie beyond the field; at most :data:`TOUCH_MOVES` moves) and
-    then shrunk 4 times, :data:`TOUCH_LEVELS` times; ``inf`` if no cell is on the
-    flank."""
+    windows spanning :data:`TOUCH_SPAN` cells either way, moved while the least point is
+    on the window's border (the touch may lie beyond the field; at most
+    :data:`TOUCH_MOVES` moves) and then shrunk 4 times, :data:`TOUCH_LEVELS` times;
+    ``inf`` if no cell is on the flank."""
     gap, grid, off, _ = fields.get(pc)
     if off.all():
         return np.inf
     j, i = np.unravel_index(np.argmin(np.where(off, np.inf, gap)), gap.shape)
     best = float(gap[j, i])
     s0, t0 = float(grid.x_mm[i]), float(grid.y_mm[j])
-    hs, ht = float(grid.dx_mm[0]), float(grid.dy_mm[0])
+    hs, ht = TOUCH_SPAN * float(grid.dx_mm[0]), TOUCH_SPAN * float(grid.dy_mm[0])
     u = np.linspace(-1.0, 1.0, TOUCH_SIDE)
     moves = 0
     for _ in range(TOUCH_LEVELS):
