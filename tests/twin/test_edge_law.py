@@ -24,7 +24,8 @@ Truths:
    the law keeps the scale there and departs by the LCP's own exponent ``n`` (fitted
    here between ``W / 2`` and ``2 W``): ``+ |n - 2/3| ln(W_16 / W)``. Rows whose pair
    carries less than a twentieth of the torque are not checked. Measured: s0003's three
-   rows (11-17 % of the torque) within 1.1-2.8 %; before, with the scale fitted over
+   rows (11-17 % of the torque) within 0.3-0.4 % of the 80-cell patch-fitted truth
+   (session 16; 1.1-2.8 % of the 40-cell field's LCP before); before, with the scale fitted over
    T/4 .. T at fixed exponent and the approach from the opening, within 0.5-18 % (the
    corner row carrying 10 % with n = 0.54); the 7/60 pair (CHATTER_PAIR, slow) 13 rows
    within 1.4 % (before 3.4 % on its transmitting edge rows, 6.5-22 % on its
@@ -40,7 +41,7 @@ Truths:
    was 3.2-4.5 times too stiff on the edge rows (61 phases; checked: c >= 2 here).
 4. *Between the calibration loads*: at s0003's edge rows the law at T/8 (between the
    calibration loads T/16 and T/4) is a fresh LCP's at T/8 within 2 % (the
-   interpolation in ``ln W``; measured 1.4 % at most). The fixed-exponent law fitted
+   interpolation in ``ln W``; measured 0.4 % at most, 1.4 % on the 40-cell field). The fixed-exponent law fitted
    over T/4 .. T was 2-13 % off there (the corner row).
 
 Truths 1 and 2 also hold on the 7/60 pair of tests/design_space.py (CHATTER_PAIR, its
