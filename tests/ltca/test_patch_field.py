@@ -129,3 +129,25 @@ def test_edge_rows_converge_on_the_miter_pair(tmp_path):
     errors = _check_convergence(pair, flanks, tca, "drive")
     print(f"miter edge rows: {len(errors)} approaches, within {100 * max(errors):.2f} %")
     assert len(errors) >= 6
+
+
+@pytest.mark.parametrize("box", [(-0.31, 0.57, 0.0, 0.9), (0.2, 1.1, -0.05, 0.4),
+                                 (-2.0, -0.5, -1.0, -0.2)])
+def test_patch_grid_covers_the_box_with_borders_on_the_axes(box):
+    """The fitted field's cells cover ``box`` with ``cells`` cells across each side
+    (+1 where a border is moved out to a whole cell), uniform, and ``s = 0``, ``t = 0``
+    are cell borders (1e-12 mm: rounding of the cell centres)."""
+    from gearcontact.ltca.patch_field import patch_grid
+
+    cells = 40
+    s_axis, t_axis, grid = patch_grid(box, cells)
+    for axis, (lo, hi) in ((s_axis, box[:2]), (t_axis, box[2:])):
+        h = axis[1] - axis[0]
+        assert h == pytest.approx((hi - lo) / cells, rel=1e-12)
+        np.testing.assert_allclose(np.diff(axis), h, rtol=1e-9)
+        assert axis[0] - h / 2 <= lo + 1e-12 and axis[-1] + h / 2 >= hi - 1e-12
+        assert len(axis) in (cells, cells + 1)
+        borders = axis / h - 0.5
+        np.testing.assert_allclose(borders, np.round(borders), atol=1e-9)
+    np.testing.assert_allclose(grid.x_mm, s_axis)
+    np.testing.assert_allclose(grid.y_mm, t_axis)

@@ -9,9 +9,10 @@ from the touching edge with their inward slope, so the patch is a few cells acro
 edge (s0003 coast's tip and heel-corner rows: 1-3 of 40 rows at ``T/16 .. T/4``, 3 at
 ``T``), and on a posed field it lies at the field's border, two of its 40 columns wide
 and cut by the field's own extent (s0003 coast's entering pair). The LCP's approach
-there is not converged in the cells (an 80-cell field moves it by 5-36 %) and the
-field's least gap on the flank sits up to a cell's slope above the true touch (3 um on
-the heel corner, 6-11 um on the entering pair's posed fields).
+there is not converged in the cells (an 80-cell field moved it by 5-13 % at the TCA's
+edge rows, up to 36 % at the entering pair) and the field's least gap on the flank sits
+up to a cell's slope above the true touch (2.6 um on the heel corner, 4-12 um on the
+posed fields near contact; docs/twin.md, "Edge rows on fields fitted to the patch").
 
 Two remedies, both on the row's own frame (origin and axes of its field, the same
 flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
