@@ -38,6 +38,7 @@ from ..halfspace.grid import TangentGrid
 from ..halfspace.line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
 from ..halfspace.result import ContactResult, SolveStatus
 from .edge_rows import preview_edge_balance
+from .tooth_bending import pair_bending_compliance
 from .lte_phase import ACTIVE_SHARE, check_loaded, solve_phase
 from .lte_pairs import PairFields, phase_contacts
 from .mesh_lcp import solve_mesh_lcp
@@ -161,7 +162,8 @@ class MultiToothCase:
     rotation_pre_arcsec : float
         Loaded rotation of the preview (:func:`.edge_rows.preview_edge_balance`: Hertz
         per pair, the edge law's LCP-calibrated scale where a flank boundary cuts the
-        pair's patch; TE_pre's and the twin's law), arcsec; it also starts the LCPs.
+        pair's patch, with ``bending`` each pair's teeth's bending in series; TE_pre's
+        and the twin's law), arcsec; it also starts the LCPs.
     preview_pairs : tuple of PreviewPair
         The preview's pairs (load, scale, scaled approach coefficient).
     line_length_mm : float or None
@@ -346,9 +348,16 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     contacts = [fields.resolve(pc) for pc in
                 phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, {}, edge_steps)]
     # the preview of TE_pre and the twin (the edge law where a flank cuts a patch)
+    # each solve starts from its own preview (the rigid one from the rigid teeth's)
+    laws = {} if edge_law else None
+    _, _, th_rigid, _ = preview_edge_balance(contacts, fields, torque, materials=materials,
+                                             cache=laws)
+    cb = (None if bending is None else
+          [pair_bending_compliance(fields, pc, torque) for pc in contacts])
     previewed, scales, th_pre, w_pre = preview_edge_balance(
-        contacts, fields, torque, materials=materials, cache={} if edge_law else None)
-    rig, reach_r, *_ = _solve(contacts, fields, torque, materials, tol, t, th_pre, rigid=True)
+        contacts, fields, torque, materials=materials, cache=laws, bending_mm_per_n=cb)
+    rig, reach_r, *_ = _solve(contacts, fields, torque, materials, tol, t, th_rigid,
+                              rigid=True)
     res, reach, blocks, offs, edge = _solve(contacts, fields, torque, materials, tol, t,
                                             th_pre, rigid=bending is None)
     # boundary-inadmissible cells (docs/spec.md sec. 5): re-solve without the flanks'
