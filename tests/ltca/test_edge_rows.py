@@ -104,3 +104,44 @@ def test_te_pre_at_cut_rows_is_the_lcp(coast):
             checked += 1
     assert checked >= 3 and hertz_worse == checked, (checked, hertz_worse)
     assert lte.summary()["preview_scaled_entries"] >= checked
+
+
+def test_multi_tooth_preview_is_te_pre_at_p0(coast):
+    """The multi-tooth step's preview (:func:`gearcontact.ltca.multitooth.multi_tooth_ltca`,
+    issue 28 B) takes the edge law through the same function as ``TE_pre``
+    (:func:`gearcontact.ltca.edge_rows.preview_edge_balance`): on s0003 coast, where the
+    tip cuts every pair's ellipse, its rotation at P0 is the loaded TE's ``TE_pre``
+    rotation there (1e-9: the same balance on the same contacts; the LTE's rows are
+    calibrated in its own cache, so to the law's passes, 1e-6 relative at most), each
+    scaled pair closes by ``c kappa W^(2/3)`` (1e-9), its ``c`` is its row law's at its load
+    (1 %, truth 3) and its approach a fresh LCP's within the bound of truth 1; the
+    untruncated law (``edge_law=False``) gives a stiffer mesh (smaller rotation)."""
+    from gearcontact.ltca.multitooth import multi_tooth_ltca
+
+    pair, flanks, tca, lte = coast
+    materials = (pair.pinion_material, pair.gear_material)
+    torque = 1e3 * TORQUE_NM
+    mt = multi_tooth_ltca(tca, flanks, pair, TORQUE_NM, side="coast")
+    flat = multi_tooth_ltca(tca, flanks, pair, TORQUE_NM, side="coast", edge_law=False)
+    k = lte.reference_index
+    assert mt.rotation_pre_arcsec == pytest.approx(lte.rotation_pre_arcsec[k], rel=1e-6)
+    assert flat.rotation_pre_arcsec < mt.rotation_pre_arcsec
+    theta = mt.rotation_pre_arcsec / ARCSEC_PER_RAD
+    fields, pcs = _contacts(pair, flanks, tca, lte, k)
+    by_offset = {pc.offset: pc for pc in pcs}
+    checked, cache = 0, {}
+    for p in mt.preview_pairs:
+        if p.scale == 1.0 or p.load_n * p.lever_mm < 0.05 * torque:
+            continue
+        pc = by_offset[p.offset]
+        d_pre = p.lever_mm * theta - p.opening_mm
+        assert d_pre == pytest.approx(p.kappa_mm_per_n23 * p.load_n ** (2 / 3), rel=1e-9)
+        assert p.kappa_mm_per_n23 == pytest.approx(p.scale * pc.kappa_mm_per_n23, rel=1e-12)
+        law = row_law(fields, pc, materials=materials, torque_nmm=torque, cache=cache)
+        floor = EDGE_LOAD_FRACTIONS[0] * torque / pc.lever_mm
+        assert p.scale == pytest.approx(float(law.scale_at(max(p.load_n, floor))), rel=0.01)
+        d = [_lcp_approach(fields, pc, s * p.load_n, materials) for s in (0.5, 1.0, 2.0)]
+        n = np.polyfit(np.log([0.5, 1.0, 2.0]), np.log(d), 1)[0]
+        assert abs(np.log(d_pre / d[1])) <= abs(n - 2.0 / 3.0) * np.log(4.0) + 0.02
+        checked += 1
+    assert checked >= 1

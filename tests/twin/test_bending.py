@@ -73,3 +73,39 @@ def test_bending_in_series_matches_the_loaded_te_with_bending(s0003_twin,
     # the kernel's preview held over the step (phase moves 6e-5 rad per step)
     assert np.abs(c["theta_rad"][sel] - th_static).max() * ARCSEC_PER_RAD < 1e-4
     assert res.summary["bending"] and res.summary["bending_compliance_mean_mm_per_n"] > 0
+
+
+def test_te_pre_with_bending_is_the_twins_static_law(s0003_twin, s0003_drive_bending):
+    """Issue 28 C: the loaded TE's preview with bending (``TE_pre``, ``preview_bending``)
+    is the twin's static law with bending: each pair's shell compliance under its Hertzian
+    pressure (:func:`gearcontact.ltca.tooth_bending.pair_bending_compliance`, the table's
+    ``cb``) in series with Hertz through the same pair law
+    (:func:`gearcontact.analytic.series_contact.series_pair_load`, compiled in the
+    twin's kernel). The twin's static rotation (exact curvatures, bisection) equals
+    ``TE_pre``'s rotation at the LTE's phases to 1e-8 relative (the two solvers'
+    precision, as tests/twin/test_s0003_coast.py truth 3); the rigid preview is below it
+    by the bending's share (more than 20 %, as the LCP's: truth above)."""
+    from .conftest import static_rotation_at
+
+    pair, tca, flanks, _ = s0003_twin
+    bend = s0003_drive_bending
+    bent = mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM, cells=CELLS, bending=bend,
+                      edge_law=False)
+    lte = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, bending=bend, stride=5,
+                    edge_law=False)
+    rigid = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, bending=bend, stride=5,
+                      edge_law=False, preview_bending=False)
+    assert lte.preview_bending and not rigid.preview_bending
+    m = build_model(bent, default_drivetrain(pair), TORQUE_NM, curvatures="exact")
+    order = np.arange(len(bent.psi_rad))[::bent.motion_sign]
+    ratios = []
+    for k, ph in enumerate(lte.phi1_rad):
+        row = int(np.flatnonzero(np.isclose(bent.phi1_rad, ph, rtol=0.0, atol=1e-12))[0])
+        if row == len(bent.psi_rad) - 1:
+            continue
+        theta, _ = static_rotation_at(m, float(bent.psi_rad[row]) + 1e-9 * bent.step_rad)
+        ratios.append(lte.rotation_pre_arcsec[k] / (theta * ARCSEC_PER_RAD))
+    assert len(ratios) >= 5 and order.size == len(bent.psi_rad)
+    assert np.abs(np.array(ratios) - 1.0).max() < 1e-8, ratios
+    assert np.all(rigid.rotation_pre_arcsec < 0.8 * lte.rotation_pre_arcsec)
+

@@ -32,17 +32,23 @@ row's closing datum, against a reference ``delta_ref(W_i)``:
 
 *Grid floor.* At an edge contact of the TCA the opening ``g`` is the exact touch of
 the edge, but the field's nodes lie half a cell and more inside the edge: its least gap
-on the flank sits ``e`` above ``g`` (0.02-0.3 um at the transmitting edge rows of a
-15/15 miter pair, 3-9 um at an approaching one whose patch the 40-cell field does not
-resolve), and ``delta_LCP - g`` carries ``e`` as a false compliance, largest at small
-loads. The datum of an edge row is therefore that least gap (:func:`edge_datum_mm`):
-the LCP's approach from its own touch. On the miter pair's six transmitting edge rows a
-40- and an 80-cell field extrapolated to ``e = 0`` (Richardson, approach linear in
-``e``) put ``delta_LCP - least gap`` within 16 % below to 2 % above it at T/16 and
-6 % below to 1 % above at T, where ``delta_LCP - g`` is 2-37 % and -1-8 % above it. At
-the approaching rows whose patch the field does not resolve (``e`` of the order of the
-approach) neither datum is founded (the 80-cell field changes the approach by half).
-A posed-field row's opening is its field's least gap already.
+on the flank sits ``e`` above ``g``, and ``delta_LCP - g`` carries ``e`` as a false
+compliance, largest at small loads. The datum of an edge row is therefore that least gap
+(:func:`edge_datum_mm`): the LCP's approach from its own touch. A posed-field row's
+opening is the touch of its posed flanks (:func:`.patch_field.touch_gap_mm`).
+
+*Patch resolution.* The loaded TE's field of an edge row is sized by the ellipse of the
+whole torque; the patch at an edge is a strip a few of its cells across (s0003 coast's
+tip and heel-corner rows: 1-3 of 40 rows up to ``T/4``), and on a posed field it lay at
+the field's border two cells wide (the entering pair). The calibration's LCP therefore
+solves each load again on fields fitted to its patch (:func:`.patch_field.
+patch_approach`, the same flanks in the same frame, a few times finer where the
+pressure is; its least gap the datum). Measured 40 vs 80 cells (issue 28, session 16):
+s0003 coast's edge rows at ``T/16, T/4, T`` within 1.4 % (before 5-13 % on the TCA's
+edge rows and 14-63 % on the posed rows, whose opening moved by 1-11 um), the twin
+table's static approach of every row carrying at least ``T/16`` within 1.8 % (s0003)
+and 0.4 % (the 15/15 miter pair; before 3.0 %). docs/twin.md, "Edge rows on fields
+fitted to the patch".
 
 The row's compliance scale is the LCP's ratio at the load the row carries: ``c(W) =
 delta_LCP(W) / delta_ref(W)``, ``ln c`` interpolated linearly in ``ln W`` between the
@@ -88,6 +94,7 @@ from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.lcp import solve_lcp
 from ..ltca.lte_phase import preview_balance
 from ..tca.stencil import gap_at
+from .patch_field import patch_approach
 
 __all__ = ["EDGE_LOAD_FRACTIONS", "ELLIPSE_PROBES", "EdgeCompliance", "edge_compliance",
            "edge_datum_mm", "ellipse_leaves_flank", "equivalent_curvature_factor",
@@ -103,9 +110,9 @@ ELLIPSE_PROBES = 16
 #: between (s0003 coast's edge rows at T/8). The least is T/16: there the contact patch
 #: spans about 10 of the field's 40 cells across (the field is sized by the ellipse
 #: under the whole torque, patch sizes go as ``W^(1/3)``) and the LCP's approach is
-#: within 0.5 % of an 80-cell field's on surface rows and within 5-8 % on edge and
-#: corner rows (s0003 coast, measured from the opening; "grid floor" below); at T/64
-#: 8-17 %. Below T/16 the law keeps the scale at T/16.
+#: within 0.5 % of an 80-cell field's on surface rows (edge rows are solved on fields
+#: fitted to their patch at each load, "patch resolution" below); at T/64 8-17 %. Below
+#: T/16 the law keeps the scale at T/16.
 EDGE_LOAD_FRACTIONS = (0.0625, 0.25, 1.0)
 #: Passes of the operating loads and scales (:func:`operating_scales`): a relative change
 #: of a row's load moves its scale by ``|n - 2/3|`` (0-0.15) of it, so each pass shrinks
@@ -173,9 +180,12 @@ def edge_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
         The LCP converged at fewer than two loads, or the pair does not close under load
         (the row's law would be unfounded).
     """
-    gap, grid, off, _ = fields.get(pc)
     loads = _loads(pc, torque_nmm)
-    lcp = _approaches(gap, grid, loads, pc, materials, datum_mm=edge_datum_mm(gap, off, pc))
+    lcp, warm = np.full(loads.size, np.nan), None
+    for i, w in enumerate(loads):
+        lcp[i], warm = patch_approach(fields, pc, float(w), materials, warm=warm,
+                                      datum_mm=lambda gap, off: edge_datum_mm(gap, off, pc))
+    _check_approaches(lcp, loads, pc)
     hz = np.array([hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, float(w),
                                        e_prime_mpa=fields.e_prime).approach_mm
                    for w in loads])
@@ -230,6 +240,13 @@ def _approaches(gap, grid, loads, pc, materials, *, masks: bool = False,
         if res.converged:
             warm = res
             out[i] = float(res.delta_mm) - datum
+    _check_approaches(out, loads, pc)
+    return (out, contact) if masks else out
+
+
+def _check_approaches(out, loads, pc) -> None:
+    """Raise ArithmeticError unless at least two loads converged with a positive
+    approach."""
     if np.isfinite(out).sum() < 2:
         raise ArithmeticError(f"edge_law: the LCP of the row at path index {pc.path_index} "
                               f"converged at fewer than two of the loads {loads} N")
@@ -237,7 +254,6 @@ def _approaches(gap, grid, loads, pc, materials, *, masks: bool = False,
         raise ArithmeticError(f"edge_law: the row at path index {pc.path_index} closes by "
                               f"{np.nanmin(out):.3g} mm <= 0 under load (its field does not "
                               f"hold its opening)")
-    return (out, contact) if masks else out
 
 
 def _fit(loads, approach, reference) -> EdgeCompliance:

@@ -82,7 +82,7 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
 
 
 def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, materials,
-                         cache: dict | None):
+                         cache: dict | None, bending_mm_per_n=None):
     """:func:`.lte_phase.preview_balance` of the contacts with the edge law (this module):
     every loaded contact whose patch a flank boundary cuts takes its LCP calibration's
     compliance scale ``c`` at the load it carries (``kappa -> c kappa``;
@@ -102,6 +102,10 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
     cache : dict or None
         Path index -> calibration (:func:`row_law`) shared over the phases;
         None: the untruncated Hertz law at every contact (``c = 1``).
+    bending_mm_per_n : array_like or None
+        Tooth-bending compliance of each contact in series with its contact law
+        (:func:`.lte_phase.preview_balance`); None: rigid teeth. The scales are taken at
+        the loads of the rigid balance (:func:`.edge_law.operating_scales`, the twin's).
 
     Returns
     -------
@@ -117,7 +121,8 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
     scales = np.ones(n)
     seen = np.zeros(n, bool)
     while True:
-        theta, loads = preview_balance(lever, opening, scales * kappa, torque_nmm)
+        theta, loads = preview_balance(lever, opening, scales * kappa, torque_nmm,
+                                       bending_mm_per_n=bending_mm_per_n)
         new = np.flatnonzero((loads > 0.0) & ~seen)
         if cache is None or new.size == 0:
             break

@@ -63,7 +63,10 @@ transmitting pair):
 
 Tooth bending (optional, ``bending=``): the shell compliance of the pinion and gear
 tooth of every pair (:mod:`.tooth_bending`) is added to its half-space compliance in
-the same coupled LCP (:mod:`.mesh_lcp`); without it the teeth are rigid.
+the same coupled LCP (:mod:`.mesh_lcp`); without it the teeth are rigid. The preview
+takes it too (``preview_bending``): each pair's compliance under its Hertzian pressure
+(:func:`.tooth_bending.pair_bending_compliance`) in series with its contact law, the
+twin's law (:func:`gearcontact.analytic.series_contact.series_pair_load`).
 
 Scope: no base / shaft rotation; the edge is the sharp flank boundary
 (no tip radius); a pair beyond ``edge_reach`` is not considered: if it still carried
@@ -92,6 +95,7 @@ from ..validation import InputRangeError, check_positive, check_range
 from ..halfspace.result import SolveStatus
 from .lte_pairs import PairContact, PairFields, phase_contacts
 from .edge_rows import preview_edge_balance
+from .tooth_bending import pair_bending_compliance
 from .lte_phase import (ACTIVE_SHARE, check_loaded, check_pair_window, field_edge_reached,
                         reference_compliances, solve_phase)
 from .pair_ltca import ARCSEC_PER_RAD
@@ -159,6 +163,9 @@ class LoadedTE:
     compliance_scale_pre : ndarray (P, K) or None
         ``c_j`` of the preview's law per pair and phase (1 where Hertz; module
         docstring); None: ``edge_law=False``.
+    preview_bending : bool
+        The preview's pairs had the teeth's bending in series (``TE_pre`` with bending;
+        its reference compliances stay rigid Hertz).
     """
 
     torque_nm: float
@@ -193,6 +200,7 @@ class LoadedTE:
     stiffness_bending_nm_per_rad: np.ndarray | None = None
     timings_s: dict = field(default_factory=dict)
     compliance_scale_pre: np.ndarray | None = None
+    preview_bending: bool = False
 
     def mesh_stiffness_n_per_mm(self, k_nm_per_rad: np.ndarray) -> np.ndarray:
         """A mesh stiffness (N·m/rad) along the normal at the reference lever ``l_0``:
@@ -240,6 +248,7 @@ class LoadedTE:
                 "mesh_compliance_pre_mm_per_n": self.mesh_compliance_pre_mm_per_n,
                 "preview_law": "hertz" if self.compliance_scale_pre is None else
                                "edge law (LCP-calibrated c where a flank boundary cuts)",
+                "preview_bending": self.preview_bending,
                 **self._scale_summary(),
                 "mean_rotation_lcp_arcsec": float(self.rotation_lcp_arcsec.mean()),
                 "mean_rotation_pre_arcsec": float(self.rotation_pre_arcsec.mean()),
@@ -319,7 +328,8 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
               cells: int = 40, extent_factor: tuple[float, float] = (1.6, 2.0),
               tol: float = 1e-8, compliance_step: float = 0.05, stride: int = 1,
               edge_reach: float = 0.5, preview_edges: bool = True, edge_law: bool = True,
-              bending=None, stiffness: bool = False, progress: bool = False) -> LoadedTE:
+              bending=None, stiffness: bool = False, progress: bool = False,
+              preview_bending: bool = True) -> LoadedTE:
     """Loaded TE over the pitch of ``tca.cycle`` under a gear torque (module docstring).
 
     Parameters
@@ -374,6 +384,12 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         rigid teeth, and with ``bending`` also with bending (4 more solves per phase).
     progress : bool
         Show a progress bar over the phases.
+    preview_bending : bool
+        With ``bending``, the preview's pairs bend too: each pair's shell compliance
+        under its Hertzian pressure (:func:`.tooth_bending.pair_bending_compliance`,
+        the twin's) in series with its contact law (:func:`.lte_phase.preview_balance`,
+        the twin's :func:`gearcontact.analytic.series_contact.series_pair_load`); False:
+        the preview keeps rigid teeth.
 
     Returns
     -------
@@ -430,8 +446,11 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
                                    curv, edge_steps)]
         valid = contacts if preview_edges else [pc for pc in contacts if not pc.edge]
         considered[[row[pc.offset] for pc in contacts], k] = True
+        cb = ([pair_bending_compliance(fields, pc, torque) for pc in valid]
+              if bending is not None and preview_bending else None)
         valid, scales, th_pre, wp = preview_edge_balance(
-            valid, fields, torque, materials=materials, cache=laws if edge_law else None)
+            valid, fields, torque, materials=materials, cache=laws if edge_law else None,
+            bending_mm_per_n=cb)
         scale_pre[[row[pc.offset] for pc in valid], k] = scales
         res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials,
                                                 tol=tol, warm=warm, theta_pre=th_pre)
@@ -490,4 +509,5 @@ def loaded_te(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
         bending=bending is not None, timings_s=timings,
         stiffness_rigid_nm_per_rad=models[0][1] if models else None,
         stiffness_bending_nm_per_rad=models[1][1] if len(models) > 1 else None,
-        compliance_scale_pre=scale_pre if edge_law else None, **comp)
+        compliance_scale_pre=scale_pre if edge_law else None,
+        preview_bending=bending is not None and preview_bending, **comp)

@@ -33,6 +33,7 @@ from ..tca.stencil import gap_field, tangent_parameters
 from ..tca.types import MatingPoint
 from .mesh_lcp import PairBlock
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
+from .patch_field import touch_gap_mm
 
 __all__ = ["PairContact", "PairFields", "phase_contacts", "curvature_point"]
 
@@ -108,6 +109,9 @@ class PairFields:
         self._posed: dict[int, tuple] = {}  # (field, posed point) awaiting a factor
         #: (origin (3,), frame (3, 3): columns e_s, e_t, n) of each field, meshing frame
         self.frames: dict[int, tuple] = {}
+        #: the posed mating point each field was evaluated around (:mod:`.patch_field`)
+        self.points: dict[int, MatingPoint] = {}
+        self._touch: dict[int, float] = {}   # refined openings of edge pairs
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
@@ -143,6 +147,7 @@ class PairFields:
             hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
             self.cache[pc.path_index] = hit
             self.frames[pc.path_index] = (f.origin_mm, f.frame)
+            self.points[pc.path_index] = mp
             if self.bending is not None:  # its factor when a solve first needs it
                 self._posed[pc.path_index] = (f, mp)
             self.seconds += time.perf_counter() - t0
@@ -196,12 +201,15 @@ class PairFields:
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its
-        posed field, arcsec of rotation) and the lever of its field's centre; other
-        pairs unchanged."""
+        posed field refined around its least node, :func:`.patch_field.touch_gap_mm`:
+        the field's least node sits up to a cell's slope above the touch; arcsec of
+        rotation) and the lever of its field's centre; other pairs unchanged."""
         if not pc.edge:
             return pc
-        gap, _, off, lever = self.get(pc)
-        opening = float(gap[~off].min()) / lever * ARCSEC_PER_RAD if (~off).any() else np.inf
+        lever = self.get(pc)[3]
+        if pc.path_index not in self._touch:
+            self._touch[pc.path_index] = touch_gap_mm(self, pc)
+        opening = self._touch[pc.path_index] / lever * ARCSEC_PER_RAD
         return replace(pc, opening_arcsec=opening, lever_mm=lever)
 
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
+from ..analytic.series_contact import series_pair_load
 from ..errors import CheckFailed
 from ..halfspace.result import ContactResult
 from ..validation import InputRangeError, UnusableInput, check_positive
@@ -45,12 +46,15 @@ ACTIVE_SHARE = 1e-6
 _REACH_FACTOR = 3.0
 
 
-def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float
-                    ) -> tuple[float, np.ndarray]:
+def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float, *,
+                    bending_mm_per_n=None) -> tuple[float, np.ndarray]:
     """Shared rotation and pair loads of Hertzian pairs under a torque.
 
     Solves ``sum_j l_j ((l_j theta - g_j)_+ / kappa_j)^(3/2) = T`` (monotone in
-    ``theta``) by Brent's method.
+    ``theta``) by Brent's method; with ``bending_mm_per_n`` each pair's load at its
+    approach ``d_j = l_j theta - g_j`` solves ``d = kappa W^(2/3) + c_b W`` instead (the
+    teeth's bending in series, the twin's law: :func:`gearcontact.analytic.
+    series_contact.series_pair_load`).
 
     Parameters
     ----------
@@ -59,6 +63,9 @@ def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float
         transmitting pair) and approach coefficients ``kappa_j`` (mm/N^(2/3)).
     torque_nmm : float
         Gear torque, N·mm.
+    bending_mm_per_n : array_like (P,), optional
+        Bending compliance ``c_b`` of each pair's teeth (mm/N, >= 0;
+        :func:`gearcontact.ltca.tooth_bending.pair_bending_compliance`); None: rigid.
 
     Returns
     -------
@@ -68,14 +75,21 @@ def preview_balance(levers_mm, offsets_mm, kappas, torque_nmm: float
     g = np.asarray(offsets_mm, float)
     kap = np.asarray(kappas, float)
     t = check_positive("torque_nmm", torque_nmm)
+    cb = None if bending_mm_per_n is None else np.asarray(bending_mm_per_n, float)
 
     def loads(theta):
-        return (np.maximum(lv * theta - g, 0.0) / kap) ** 1.5
+        d = np.maximum(lv * theta - g, 0.0)
+        if cb is None:
+            return (d / kap) ** 1.5
+        return np.array([series_pair_load(dj, kj, cj, 0.0)[0] if dj > 0.0 else 0.0
+                         for dj, kj, cj in zip(d, kap, cb)])
 
     lo = float(np.min(g / lv))
     # the pair open least carries the whole torque at this rotation: an upper bound
     j = int(np.argmin(g / lv))
-    hi = lo + 1.01 * kap[j] * (t / lv[j]) ** (2.0 / 3.0) / lv[j]
+    w_all = t / lv[j]
+    hi = lo + 1.01 * (kap[j] * w_all ** (2.0 / 3.0)
+                      + (0.0 if cb is None else cb[j] * w_all)) / lv[j]
     theta = brentq(lambda th: loads(th) @ lv - t, lo, hi, xtol=1e-16, rtol=1e-14)
     return float(theta), loads(theta)
 

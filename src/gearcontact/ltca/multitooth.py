@@ -10,6 +10,10 @@ phase (so the rigid rotation equals the LTE's ``rotation_lcp_arcsec`` at P0).
 Reported per engaged pair (reference pair first): total normal load and share of the
 gear torque's normal loads, pressure map, and the incomplete-ellipse line-contact peak
 (:mod:`..halfspace.line_peak`); overall: the loaded mesh rotation rigid and with bending,
+the preview's (``TE_pre``'s law at P0, :func:`.edge_rows.preview_edge_balance`: Hertz
+per pair with the edge law's LCP-calibrated scale where a flank boundary cuts a pair's
+patch, the one function the loaded TE's preview and the twin's table take; its rotation
+also starts the LCPs, as in :func:`.lte.loaded_te`),
 ``CP_max`` (largest line-contact peak over the engaged pairs, bending solution) beside
 the raw cell peak and the Hamrock–Brewe preview of the reference pair at the load the
 LCP gives it (``preview_p_max_mpa``; docs/spec.md sec. 5: *paper* 2714 MPa vs 2038 MPa).
@@ -33,12 +37,41 @@ from ..validation import InputRangeError, check_positive, check_range
 from ..halfspace.grid import TangentGrid
 from ..halfspace.line_peak import LinePeak, contact_line_length_mm, line_contact_peak, trimmed_gap
 from ..halfspace.result import ContactResult, SolveStatus
-from .lte_phase import ACTIVE_SHARE, check_loaded, preview_balance, solve_phase
+from .edge_rows import preview_edge_balance
+from .tooth_bending import pair_bending_compliance
+from .lte_phase import ACTIVE_SHARE, check_loaded, solve_phase
 from .lte_pairs import PairFields, phase_contacts
 from .mesh_lcp import solve_mesh_lcp
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
 
-__all__ = ["EngagedPair", "MultiToothCase", "multi_tooth_ltca"]
+__all__ = ["EngagedPair", "MultiToothCase", "PreviewPair", "multi_tooth_ltca"]
+
+
+@dataclass(frozen=True)
+class PreviewPair:
+    """One pair of the multi-tooth step's preview (TE_pre's law at P0).
+
+    Attributes
+    ----------
+    offset : int
+        Pair index ``j``.
+    lever_mm, opening_mm : float
+        Lever about the gear axis and opening ``g`` of the pair's (posed) field, mm.
+    load_n : float
+        Preview load ``W``, N.
+    scale : float
+        Compliance scale ``c`` of the edge law at ``W`` (1: untruncated Hertz).
+    kappa_mm_per_n23 : float
+        The scaled approach coefficient: ``l theta_pre - g = kappa W^(2/3)`` where loaded,
+        mm/N^(2/3).
+    """
+
+    offset: int
+    lever_mm: float
+    opening_mm: float
+    load_n: float
+    scale: float
+    kappa_mm_per_n23: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -126,6 +159,13 @@ class MultiToothCase:
         :func:`gearcontact.preview.hertz.reference.truncated_preview`).
     preview_mode : str
         Which of the two answered (``"elliptic"`` | ``"line"``).
+    rotation_pre_arcsec : float
+        Loaded rotation of the preview (:func:`.edge_rows.preview_edge_balance`: Hertz
+        per pair, the edge law's LCP-calibrated scale where a flank boundary cuts the
+        pair's patch, with ``bending`` each pair's teeth's bending in series; TE_pre's
+        and the twin's law), arcsec; it also starts the LCPs.
+    preview_pairs : tuple of PreviewPair
+        The preview's pairs (load, scale, scaled approach coefficient).
     line_length_mm : float or None
         Length of the reference pair's contact line on the flank through its contact
         point (:func:`..halfspace.line_peak.contact_line_length_mm`), mm; None: no on-flank cell
@@ -165,6 +205,8 @@ class MultiToothCase:
     status_resolved: SolveStatus
     preview_mode: str = "elliptic"
     line_length_mm: float | None = None
+    rotation_pre_arcsec: float = float("nan")
+    preview_pairs: tuple = ()
 
     @property
     def converged(self) -> bool:
@@ -224,6 +266,10 @@ class MultiToothCase:
             "trimmed_load_n": sum(p.peak.trimmed_load_n for p in self.pairs),
             "preview_p_max_mpa": self.preview_p_max_mpa,
             "preview_mode": self.preview_mode, "line_length_mm": self.line_length_mm,
+            "mesh_rotation_pre_arcsec": self.rotation_pre_arcsec,
+            "preview_pair_offsets": [p.offset for p in self.preview_pairs],
+            "preview_pair_loads_n": [p.load_n for p in self.preview_pairs],
+            "preview_compliance_scale": [p.scale for p in self.preview_pairs],
             "edge_resolved": self.resolved,
             "p_peak_trimmed_resolved_mpa": max(float(p.peak_resolved.p_peak_cell_mpa)
                                                for p in self.pairs),
@@ -237,13 +283,10 @@ class MultiToothCase:
 
 
 def _solve(contacts, fields: PairFields, torque: float, materials, tol: float,
-           torque_nm: float, *, rigid: bool) -> tuple[ContactResult, list, list, list, bool]:
-    """The coupled LCP at one phase as :func:`.lte.loaded_te` solves it (cold start;
-    ``rigid``: without the fields' bending factors)."""
-    lv = np.array([pc.lever_mm for pc in contacts])
-    gs = np.array([pc.offset_mm for pc in contacts])
-    kap = np.array([pc.kappa_mm_per_n23 for pc in contacts])
-    th_pre, _ = preview_balance(lv, gs, kap, torque)
+           torque_nm: float, th_pre: float, *, rigid: bool
+           ) -> tuple[ContactResult, list, list, list, bool]:
+    """The coupled LCP at one phase as :func:`.lte.loaded_te` solves it (cold start from
+    the preview's rotation ``th_pre``; ``rigid``: without the fields' bending factors)."""
     res, reach, blocks, offs = solve_phase(contacts, fields, torque, materials, tol=tol,
                                             warm={}, theta_pre=th_pre, rigid=rigid)
     edge = check_loaded(res, reach, offs, torque_nm)
@@ -253,7 +296,7 @@ def _solve(contacts, fields: PairFields, torque: float, materials, tol: float,
 def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = None,
                      bending=None, cells: int = 40,
                      extent_factor: tuple[float, float] = (1.6, 2.0), tol: float = 1e-8,
-                     edge_reach: float = 0.5) -> MultiToothCase:
+                     edge_reach: float = 0.5, edge_law: bool = True) -> MultiToothCase:
     """Coupled multi-pair LCP at P0, rigid and with tooth bending (module docstring).
 
     Parameters
@@ -271,8 +314,9 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     bending : ToothBending or None
         Tooth bending of both members (:func:`.tooth_bending.tooth_bending`); None:
         the second solve is rigid too.
-    cells, extent_factor, tol, edge_reach
-        As :func:`.lte.loaded_te`.
+    cells, extent_factor, tol, edge_reach, edge_law
+        As :func:`.lte.loaded_te` (``edge_law``: the preview's law where a flank boundary
+        cuts a pair's patch, :func:`.edge_rows.preview_edge_balance`).
 
     Returns
     -------
@@ -303,9 +347,19 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
                         bending=bending)
     contacts = [fields.resolve(pc) for pc in
                 phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, {}, edge_steps)]
-    rig, reach_r, *_ = _solve(contacts, fields, torque, materials, tol, t, rigid=True)
+    # the preview of TE_pre and the twin (the edge law where a flank cuts a patch)
+    # each solve starts from its own preview (the rigid one from the rigid teeth's)
+    laws = {} if edge_law else None
+    _, _, th_rigid, _ = preview_edge_balance(contacts, fields, torque, materials=materials,
+                                             cache=laws)
+    cb = (None if bending is None else
+          [pair_bending_compliance(fields, pc, torque) for pc in contacts])
+    previewed, scales, th_pre, w_pre = preview_edge_balance(
+        contacts, fields, torque, materials=materials, cache=laws, bending_mm_per_n=cb)
+    rig, reach_r, *_ = _solve(contacts, fields, torque, materials, tol, t, th_rigid,
+                              rigid=True)
     res, reach, blocks, offs, edge = _solve(contacts, fields, torque, materials, tol, t,
-                                            rigid=bending is None)
+                                            th_pre, rigid=bending is None)
     # boundary-inadmissible cells (docs/spec.md sec. 5): re-solve without the flanks'
     # boundary rows when the bending solution loaded them (warm from it)
     gaps = [trimmed_gap(b.gap_mm, off, m, OFF_FLANK_GAP_MM)
@@ -352,4 +406,7 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
         solve_rigid_ms=float(rig.solve_time_ms), edge_contact=bool(edge),
         rotation_resolved_arcsec=float(fin.rotation_rad * ARCSEC_PER_RAD),
         resolved=fin is not res, status_resolved=fin.status, preview_mode=pre.mode,
-        line_length_mm=length)
+        line_length_mm=length, rotation_pre_arcsec=float(th_pre * ARCSEC_PER_RAD),
+        preview_pairs=tuple(PreviewPair(pc.offset, float(pc.lever_mm), float(pc.offset_mm),
+                                        float(w), float(c), float(pc.kappa_mm_per_n23))
+                            for pc, w, c in zip(previewed, w_pre, scales)))

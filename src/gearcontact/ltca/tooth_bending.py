@@ -37,11 +37,12 @@ import numpy as np
 from numba import njit
 from scipy.interpolate import CubicSpline, make_interp_spline
 
+from ..analytic.hertz import hamrock_brewe_hertz
 from ..structure.shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
 from ..threads import one_blas_thread
 from ..validation import check_range
 
-__all__ = ["ToothBending", "FlankRows", "tooth_bending", "bending_stack", "flank_map",
+__all__ = ["conjugate_compliance", "pair_bending_compliance", "ToothBending", "FlankRows", "tooth_bending", "bending_stack", "flank_map",
            "flank_rows"]
 
 #: Relative cut of the compressed bending factor: the pivoted Cholesky stops when the
@@ -328,3 +329,38 @@ def bending_stack(blocks, shape) -> np.ndarray | None:
             f = b.bending_factor
             out[k, :f.shape[0], :f.shape[1], :f.shape[2]] = f / b.lever_mm
     return out
+
+
+def pair_bending_compliance(fields, pc, torque_nmm: float) -> float:
+    """Bending compliance of a pair's two teeth under its Hertzian pressure, mm/N.
+
+    ``c_b = p^T G p / W^2 = |F^T p|^2 / W^2`` with ``G = F F^T`` the shell compliance
+    of the pinion and gear tooth at the cells of the pair's field
+    (:class:`gearcontact.ltca.tooth_bending.ToothBending`, as the loaded TE's LCP
+    uses it) and ``p`` the semi-ellipsoidal Hertz pressure of the pair carrying the
+    torque alone (its semi-axes from Hamrock–Brewe; the field's own sizing load): the
+    work-conjugate compliance of that pressure shape (Castigliano), so that ``W c_b``
+    is the pressure-weighted mean bending deflection along the normal. Cells off the
+    flank carry no pressure. ``fields``: the loaded mesh's
+    :class:`~gearcontact.ltca.lte_pairs.PairFields` (with bending); the twin's table
+    (:mod:`gearcontact.twin.mesh`) and the loaded TE's preview take it.
+    """
+    gap, grid, off, lever = fields.get(pc)
+    f = fields.factor(pc)
+    hz = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, torque_nmm / pc.lever_mm,
+                             e_prime_mpa=fields.e_prime)
+    s, t = np.meshgrid(grid.x_mm, grid.y_mm)
+    q = np.sqrt(np.clip(1.0 - (s / hz.a_mm) ** 2 - (t / hz.b_mm) ** 2, 0.0, None)) * ~off
+    return conjugate_compliance(f, q)
+
+
+def conjugate_compliance(factor: np.ndarray, weights: np.ndarray) -> float:
+    """Work-conjugate compliance ``q^T G q = |F^T q|^2`` (mm/N) of the load shape
+    ``weights`` (any shape S, scaled to a unit total; all zero: 0) on the bending factor
+    ``factor`` (S + (r,), ``G = F F^T`` mm/N): the mean deflection along the normal,
+    weighted by the load, per newton of it (Castigliano)."""
+    w = np.asarray(weights, float)
+    if not w.any():
+        return 0.0
+    v = np.tensordot(w / w.sum(), np.asarray(factor, float), axes=w.ndim)
+    return float(v @ v)

@@ -4,7 +4,7 @@ Mesh torque, loaded flank (``theta >= 0``; the side the TCA ran on, e.g. coast f
 s0003): the Hertzian pairs of the current phase, ``W_j`` from ``d_j = l_j theta - g_j >
 0`` (else 0) by ``d_j = kappa_j W_j^(2/3) + c_b,j W_j`` (closed form
 ``W = (d/kappa)^(3/2)`` for rigid teeth, ``c_b = 0``; with the tooth-bending compliance
-``c_b`` of :func:`.mesh.pair_bending_compliance` in series, Newton on ``s = W^(1/3)``),
+``c_b`` of :func:`gearcontact.ltca.tooth_bending.pair_bending_compliance` in series, Newton on ``s = W^(1/3)``),
 ``T_el = sum W_j l_j``, plus the mesh damping ``c_m l_0^2 theta'`` while a pair is
 closed; the flanks cannot pull, so ``T = max(T_el + T_d, 0)``.
 
@@ -65,6 +65,7 @@ from numba.extending import overload
 
 from ..analytic.cube_root import cbrt_positive
 from ..analytic.hertz import hamrock_brewe_terms
+from ..analytic.series_contact import series_pair_load
 from ..contract.qformat import STENCIL_GAP
 from ..preview.fit.golden_vec import fit_element
 from ..preview.fit.reference import principal_curvatures
@@ -234,30 +235,9 @@ def _kappa_reference(A, B, prm, out3):
 
 
 
-@njit(cache=True, inline="always", error_model="numpy")
-def _pair_load(d, kap, cb, s_prev):
-    """(W N, s = W^(1/3)) of a pair at approach ``d`` (mm): Hertz ``d = kap W^(2/3)``
-    alone (closed form; s is then not formed and returned as 0), or with the
-    tooth-bending compliance ``cb`` (mm/N) in series, ``d = kap W^(2/3) + cb W``: Newton
-    on ``f(s) = cb s^3 + kap s^2 - d = 0``. ``f`` is convex increasing for s > 0, so
-    Newton from any s > 0 lands right of the root after at most one step and then falls
-    monotonically to it; the start is the pair's previous solution ``s_prev`` (> 0; the
-    load changes little per stage: 2-3 iterations), else ``min(sqrt(d/kap),
-    cbrt(d/cb))`` (where ``f >= 0``). Stops at a relative step of 1e-14. Returning s
-    saves the caller a cube root per pair and stage (the next start)."""
-    x = d / kap
-    if cb <= 0.0:
-        return x * math.sqrt(x), 0.0
-    s = s_prev if s_prev > 0.0 else min(math.sqrt(x), np.cbrt(d / cb))
-    for _ in range(60):
-        r = (cb * s + kap) * s * s - d
-        ds = r / ((3.0 * cb * s + 2.0 * kap) * s)
-        s -= ds
-        if s <= 0.0:            # (only from a far start): restart where f >= 0
-            s = min(math.sqrt(x), np.cbrt(d / cb))
-        elif abs(ds) <= 1e-14 * s:
-            break
-    return s * s * s, s
+#: (W, W^(1/3)) of a pair at an approach, Hertz with tooth bending in series: the
+#: loaded TE's preview takes the same function (:mod:`gearcontact.analytic.series_contact`).
+_pair_load = njit(cache=True, inline="always", error_model="numpy")(series_pair_load)
 
 
 @njit(cache=True, inline="always", error_model="numpy")

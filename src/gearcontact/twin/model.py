@@ -7,7 +7,7 @@ operating point and linearised modes are :mod:`.statics`, its time run
 
 Tooth bending (switchable: ``mesh_table(..., bending=...)``, ``model_for_pair(...,
 bending=True)``, ``gearcontact twin --bending``): each pair's bending compliance of the
-pinion and gear tooth (:func:`~.mesh.pair_bending_compliance`, the shell operator of
+pinion and gear tooth (:func:`~gearcontact.ltca.tooth_bending.pair_bending_compliance`, the shell operator of
 :mod:`gearcontact.ltca.tooth_bending` weighted by the pair's Hertz pressure) is in
 series with its Hertzian approach, ``d_j = kappa_j W_j^(2/3) + c_b,j W_j``, solved per
 pair and step in the kernel; without it the teeth are rigid.
@@ -264,7 +264,7 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     compliance where a flank boundary cuts the patch, :mod:`.mesh`, :mod:`.edge_law`). The
     reverse flank is the other side's own TCA (mirrored loaded law if that side is in
     line contact). ``bending``: tooth bending of both members in series with the
-    Hertzian law of both sides (:func:`~.mesh.pair_bending_compliance`). ``curvatures``:
+    Hertzian law of both sides (:func:`~gearcontact.ltca.tooth_bending.pair_bending_compliance`). ``curvatures``:
     the preview's curvature source (:class:`TwinModel`). ``flanks``: ``build_flanks(pair)``
     if already built (a prepared pair's, :class:`~gearcontact.tca.synthesis.PreparedPair`)."""
     from ..tca.line_contact import LineContact

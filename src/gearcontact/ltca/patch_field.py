@@ -1,0 +1,190 @@
+"""Gap fields fitted to an edge row's contact patch at one load, and the touch of a
+posed field: the resolution of the edge law's calibration (:mod:`.edge_law`).
+
+The loaded TE's field of a pair (:class:`.lte_pairs.PairFields`) is sized by the
+Hertzian ellipse of the pair carrying the whole torque. At an *edge row* (the TCA's edge
+contact, :func:`gearcontact.tca.edge_field.edge_gap_field`, or a pair past its path's
+end on its posed principal field) the patch is not that ellipse: the surfaces recede
+from the touching edge with their inward slope, so the patch is a few cells across the
+edge (s0003 coast's tip and heel-corner rows: 1-3 of 40 rows at ``T/16 .. T/4``, 3 at
+``T``), and on a posed field it lies at the field's border, two of its 40 columns wide
+and cut by the field's own extent (s0003 coast's entering pair). The LCP's approach
+there is not converged in the cells (an 80-cell field moved it by 5-13 % at the TCA's
+edge rows, up to 36 % at the entering pair) and the field's least gap on the flank sits
+up to a cell's slope above the true touch (2.6 um on the heel corner, 4-12 um on the
+posed fields near contact; docs/twin.md, "Edge rows on fields fitted to the patch").
+
+Two remedies, both on the row's own frame (origin and axes of its field, the same
+flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
+
+* :func:`patch_approach`: the LCP at a load solved again on a field fitted to the patch
+  it found: the contact's bounding box widened by :data:`PATCH_MARGIN` and one cell of
+  the field it came from on every side, ``cells`` cells per side (the row's field's),
+  twice (from the row's field, then from the first fit), and widened again (doubled)
+  while the patch reaches a border of its field that is on the flank. Cell borders sit on
+  ``s = 0`` and ``t = 0`` (the edge of an edge field is a cell border: its least gap
+  half a cell inside, :mod:`gearcontact.tca.edge_field`). No load acts outside the
+  patch, so the smaller field holds the same problem; its cells are a few times finer
+  where the pressure is.
+* :func:`touch_gap_mm`: the least gap of the posed flanks on both flanks, searched from
+  the field's least node by windows of ``TOUCH_SIDE`` x ``TOUCH_SIDE`` points
+  :data:`TOUCH_SPAN` cells either way, moved downhill (the touch may lie beyond the
+  field's border) and shrunk 4 times :data:`TOUCH_LEVELS` times: a posed field's opening
+  to a small fraction of a cell's slope.
+
+References
+----------
+K. L. Johnson, *Contact Mechanics*, 1985, sec. 5.2 (contact bounded by an edge).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..halfspace.grid import TangentGrid
+from ..halfspace.lcp import solve_lcp
+from ..tca.stencil import gap_at
+from .pair_ltca import OFF_FLANK_GAP_MM
+
+__all__ = ["PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE", "patch_approach",
+           "patch_grid", "touch_gap_mm"]
+
+#: Relative widening of a patch's bounding box into the field fitted to it (beyond one
+#: cell of the field the patch was found on, each side).
+PATCH_MARGIN = 0.25
+#: Fits of the field to the patch (from the row's field, then from the first fit).
+PATCH_PASSES = 2
+#: Doublings of a fitted field whose patch reaches its on-flank border.
+PATCH_GROWTHS = 3
+#: Zoom levels and points per side of :func:`touch_gap_mm`; the first window spans
+#: TOUCH_SPAN cells either way (then a cell, a quarter, ...).
+TOUCH_LEVELS, TOUCH_SIDE, TOUCH_SPAN = 5, 9, 4.0
+#: Moves of the window along the flanks before it shrinks, over all levels.
+TOUCH_MOVES = 32
+
+
+def patch_grid(box, cells: int) -> tuple[np.ndarray, np.ndarray, TangentGrid]:
+    """Cell centres ``(s_axis, t_axis)`` (mm) and their :class:`TangentGrid` of a field
+    covering ``box = (s_lo, s_hi, t_lo, t_hi)`` (mm) with ``cells`` cells per side, its
+    borders widened to whole cells from ``s = 0`` and ``t = 0`` (both cell borders)."""
+    axes = []
+    for lo, hi in (box[:2], box[2:]):
+        h = (hi - lo) / cells
+        k0 = int(np.floor(lo / h))
+        axes.append((k0 + np.arange(int(np.ceil(hi / h)) - k0) + 0.5) * h)
+    s_axis, t_axis = axes
+    grid = TangentGrid.uniform(len(s_axis), len(t_axis), dx_mm=float(s_axis[1] - s_axis[0]),
+                               dy_mm=float(t_axis[1] - t_axis[0]), x0_mm=float(s_axis[0]),
+                               y0_mm=float(t_axis[0]))
+    return s_axis, t_axis, grid
+
+
+def _field(fields, pc, s_axis, t_axis):
+    """(gap with off-flank cells lifted, off-flank mask) on the row's frame."""
+    pinion, gear, kin = fields.args
+    _, frame = fields.frames[pc.path_index]
+    s, t = np.meshgrid(s_axis, t_axis)
+    f = gap_at(pinion, gear, kin, fields.points[pc.path_index], s, t, frame="patch",
+               axes=frame, allow_outside=True)
+    off = ~f.on_flank
+    return np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), off
+
+
+def _box(mask, grid: TangentGrid, h_s: float, h_t: float):
+    """The patch's bounding box widened by one cell ``(h_s, h_t)`` and PATCH_MARGIN."""
+    rows, cols = np.nonzero(mask)
+    s, t = grid.x_mm[cols], grid.y_mm[rows]
+    box = []
+    for lo, hi, h in ((s.min(), s.max(), h_s), (t.min(), t.max(), h_t)):
+        pad = h + 0.5 * PATCH_MARGIN * (hi - lo)
+        box += [lo - pad, hi + pad]
+    return box
+
+
+def _reaches_border(mask, off) -> bool:
+    """A loaded cell on the field's border with an on-flank neighbour beyond it: the
+    patch may continue outside."""
+    return bool((mask[0] & ~off[0]).any() or (mask[-1] & ~off[-1]).any()
+                or (mask[:, 0] & ~off[:, 0]).any() or (mask[:, -1] & ~off[:, -1]).any())
+
+
+def patch_approach(fields, pc, load_n: float, materials, *, datum_mm, warm=None):
+    """The LCP's approach at ``load_n`` (N) from the datum on fields fitted to its patch
+    (module docstring).
+
+    Parameters
+    ----------
+    fields : gearcontact.ltca.lte_pairs.PairFields
+        The row's fields (its field, frame and posed point).
+    pc : gearcontact.ltca.lte_pairs.PairContact
+        The row.
+    load_n : float
+        Normal load, N.
+    materials : (Material, Material)
+    datum_mm : callable
+        ``datum_mm(gap, off) -> float``: the closing datum on a field (mm).
+    warm : ContactResult, optional
+        Warm start on the row's own field.
+
+    Returns
+    -------
+    (approach_mm, result) : (float, ContactResult)
+        ``delta_LCP - datum`` on the last fitted field (NaN if an LCP failed) and the
+        row's own field's result (the next load's warm start).
+    """
+    gap, grid, off, _ = fields.get(pc)
+    res = solve_lcp(gap, grid, float(load_n), materials=materials, warm_start=warm,
+                    warn_coarse=False)
+    if not res.converged and warm is not None:
+        res = solve_lcp(gap, grid, float(load_n), materials=materials, warn_coarse=False)
+    if not res.converged:
+        return np.nan, res
+    first, fit, h = res, res, (float(grid.dx_mm[0]), float(grid.dy_mm[0]))
+    for _ in range(PATCH_PASSES):
+        box = _box(fit.contact_mask, grid, *h)
+        for _ in range(PATCH_GROWTHS + 1):
+            s_axis, t_axis, grid = patch_grid(box, fields.cells)
+            gap, off = _field(fields, pc, s_axis, t_axis)
+            fit = solve_lcp(gap, grid, float(load_n), materials=materials, warn_coarse=False)
+            if not fit.converged:
+                return np.nan, first
+            if not _reaches_border(fit.contact_mask, off):
+                break
+            mid_s, mid_t = 0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3])
+            box = [mid_s + 2.0 * (box[0] - mid_s), mid_s + 2.0 * (box[1] - mid_s),
+                   mid_t + 2.0 * (box[2] - mid_t), mid_t + 2.0 * (box[3] - mid_t)]
+        h = (float(grid.dx_mm[0]), float(grid.dy_mm[0]))
+    return float(fit.delta_mm) - datum_mm(gap, off), first
+
+
+def touch_gap_mm(fields, pc) -> float:
+    """The least gap of the row's flanks around its field's least node on the flank
+    (module docstring): a pattern search of :data:`TOUCH_SIDE` x :data:`TOUCH_SIDE`
+    windows spanning :data:`TOUCH_SPAN` cells either way, moved while the least point is
+    on the window's border (the touch may lie beyond the field; at most
+    :data:`TOUCH_MOVES` moves) and then shrunk 4 times, :data:`TOUCH_LEVELS` times;
+    ``inf`` if no cell is on the flank."""
+    gap, grid, off, _ = fields.get(pc)
+    if off.all():
+        return np.inf
+    j, i = np.unravel_index(np.argmin(np.where(off, np.inf, gap)), gap.shape)
+    best = float(gap[j, i])
+    s0, t0 = float(grid.x_mm[i]), float(grid.y_mm[j])
+    hs, ht = TOUCH_SPAN * float(grid.dx_mm[0]), TOUCH_SPAN * float(grid.dy_mm[0])
+    u = np.linspace(-1.0, 1.0, TOUCH_SIDE)
+    moves = 0
+    for _ in range(TOUCH_LEVELS):
+        while True:
+            s_ax, t_ax = s0 + hs * u, t0 + ht * u
+            g, o = _field(fields, pc, s_ax, t_ax)
+            g = np.where(o, np.inf, g)
+            jj, ii = np.unravel_index(np.argmin(g), g.shape)
+            if not g[jj, ii] < best:
+                break
+            best, s0, t0 = float(g[jj, ii]), float(s_ax[ii]), float(t_ax[jj])
+            inner = 0 < jj < TOUCH_SIDE - 1 and 0 < ii < TOUCH_SIDE - 1
+            moves += 1
+            if inner or moves > TOUCH_MOVES:
+                break
+        hs, ht = hs / 4.0, ht / 4.0
+    return best
