@@ -64,16 +64,14 @@ def test_design_calibrate_needs_published_values_and_out(capsys, tmp_path):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
-    "the s0003 preset was calibrated with the degree-2 stage-C fit, whose B- read +5 % at "
-    "the mean point; with the degree-6 fit (session 15) the calibration's Hertz ellipse "
-    "target moves it: coast profile_angle_um_per_mm -18.58 against the preset's -17.56. "
-    "Re-baking the preset changes every s0003 figure and is its own slice"))
 def test_design_calibrate_reproduces_the_preset(capsys, tmp_path):
-    # the calibration is deterministic: rerunning it regenerates the s0003 preset's
-    # numbers (docs/calibration.md), ~45 s
+    # the calibration regenerates the s0003 preset (docs/calibration.md; ~3 min CPU)
     import tomllib
 
+    import numpy as np
+
+    from gearcontact.geometry.easeoff import EaseOff
+    from gearcontact.geometry.flank import build_flanks
     from gearcontact.geometry.pair import load_pair, parse_pair
 
     assert main(["design", "--pair", "s0003-centred", "--calibrate", "--out",
@@ -82,8 +80,23 @@ def test_design_calibrate_reproduces_the_preset(capsys, tmp_path):
     got = parse_pair(tomllib.loads((tmp_path / "calibrated.toml").read_text()))
     preset = load_pair("s0003")
     assert got.working_depth_factor == preset.working_depth_factor
-    for name, value in vars(preset.easeoff_coast).items():
-        assert getattr(got.easeoff_coast, name) == pytest.approx(value, rel=1e-6, abs=1e-9)
+    assert got.design_side == preset.design_side == "coast"
+    # the relief surfaces, not the coefficients: the least squares stops in a flat valley
+    # (2a and the angle unmet), at a point that depends on the numerical environment -
+    # the same code gave profile angles -17.56 and -17.82 um/mm on two machines, reliefs
+    # 0.28 um apart over the flank (of 22.8 um). 0.5 um: below what a flank measurement
+    # resolves, 2 % of the largest relief
+    flanks = build_flanks(preset)
+    conj = flanks.pinion_conjugate.side("coast")
+    u_m, v_m = flanks.mean_contact["coast"]["pinion_uv"]
+    b = conj.boundary
+    u, v = np.meshgrid(np.linspace(b.u_root, b.u_tip, 41), np.linspace(b.v_toe, b.v_heel, 81))
+    relief = [EaseOff.from_coefficients(p.easeoff_coast, u_mean_mm=u_m, v_mean_mm=v_m)
+              .relief_mm(u, v) for p in (got, preset)]
+    assert np.max(np.abs(relief[0] - relief[1])) * 1e3 < 0.5
+    # the same targets met as the preset's table (docs/calibration.md): P0, TE0, 2b
+    rows = json.loads((tmp_path / "calibration.json").read_text())["rows"]
+    assert [r["met"] for r in rows] == [True] * 5 + [False, True, False]
 
 
 def test_synthesize_easeoff_bad_target_exits_2_before_work(capsys):
