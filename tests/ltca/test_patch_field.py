@@ -29,7 +29,7 @@ xfail with the measured figures).
 import numpy as np
 import pytest
 
-from gearcontact.ltca.edge_law import _loads, edge_compliance, edge_datum_mm
+from gearcontact.ltca.edge_law import edge_compliance, edge_datum_mm
 from gearcontact.ltca.edge_rows import is_cut, is_edge_row
 from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
 from gearcontact.ltca.patch_field import patch_approach, touch_gap_mm
