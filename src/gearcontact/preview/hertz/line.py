@@ -108,6 +108,7 @@ from ...validation import check_array_finite, check_finite
 from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift, sq, uq
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVISION_CYCLES, floor_divide
+from .golden_vec import njit
 from .golden import _check_code, hertz_golden
 from .schedule import HERTZ_CYCLES
 from .sqrt import SQRT_BITS, SQRT_CYCLES, floor_sqrt
@@ -116,7 +117,8 @@ __all__ = ["LINE_LENGTH", "QPI", "Y_LINE", "P0SQ", "SQRT_OUT", "B_LINE", "C_IPI"
            "LENGTH_MIN_CODE", "LENGTH_MAX_CODE", "SCALE_MAX", "MODE_ELLIPTIC", "MODE_LINE",
            "MODE_NAMES", "FLAG_LENGTH_RANGE", "LINE_FLAG_NAMES", "line_flag_names",
            "LINE_STAGE_CYCLES", "LINE_CYCLES", "LineCodes", "line_golden",
-           "encode_length", "decode_line_codes", "line_envelope_flags", "scale_exponent"]
+           "encode_length", "decode_line_codes", "line_envelope_flags", "scale_exponent",
+           "LIFT_MAX_SHIFT", "length_lift", "unlift_line", "unlift_line_codes"]
 
 # ---- formats (table above) -------------------------------------------------------
 LINE_LENGTH = sq(32, 20)     #: contact-line length L input, mm
@@ -139,6 +141,7 @@ assert P0SQ.frac == Y_LINE.frac + CURVATURE.frac
 LENGTH_MIN_CODE = 1 << LINE_LENGTH.frac            #: 1 mm
 LENGTH_MAX_CODE = 1 << (LINE_LENGTH.frac + 10)     #: 1024 mm
 SCALE_MAX = 3                                      #: curvatures scaled by up to 8^3
+LIFT_MAX_SHIFT = 8                                 #: host lift of L: down to 2^-8 mm
 
 # ---- flags: the published bits plus one (a separate map: the published cores' flag
 # width, register map and the chain's flag packing stay as they are) ------------------
@@ -328,6 +331,46 @@ def line_golden(A_code: int, B_code: int, W_code: int, L_code: int, *, e_prime_c
     if not (SEMI_AXIS.fits(b_c) and PMAX.fits(p_c)):
         return LineCodes(0, 0, 0, 0, a_min, b_max, 0, n, F.FLAG_OVERFLOW)
     return LineCodes(a_c, b_c, p_c, 0, a_min, b_max, MODE_LINE, n, 0)
+
+
+@njit(cache=True)
+def length_lift(w_code, l_code):
+    """The host's lift ``s`` of a line shorter than the core's 1 mm (module docstring,
+    *Short lines*): the smallest ``s`` with ``L << s >= LENGTH_MIN_CODE`` when ``L`` is
+    in ``[LENGTH_MIN_CODE >> LIFT_MAX_SHIFT, LENGTH_MIN_CODE)`` and ``W << s`` stays in
+    the load envelope; else 0 (the core runs on ``(W, L)`` as given and flags what is
+    outside). Compiled (numba): the twin calls it too."""
+    s = 0
+    if (LENGTH_MIN_CODE >> LIFT_MAX_SHIFT) <= l_code < LENGTH_MIN_CODE \
+            and F.LOAD_MIN_CODE <= w_code:
+        while (l_code << s) < LENGTH_MIN_CODE:
+            s += 1
+        if (w_code << s) > F.LOAD_MAX_CODE:
+            s = 0
+    return s
+
+
+@njit(cache=True)
+def unlift_line(a_code, b_code, p_code, k_code, mode, flags, s):
+    """The line core's outputs ``(a, b, p_max, k, mode, flags)`` of a run on the lifted
+    ``(W << s, L << s)`` (:func:`length_lift`) as those of ``(W, L)``: in line mode
+    ``a = rs(a, s)`` (``rs(L, 1)`` of the unlifted ``L``; b, p_max are the same codes);
+    an elliptic answer (the lift grew the ellipse by ``2^(s/3)`` only, not the line's
+    ``2^s``: its decision is not ``(W, L)``'s) and a flagged run are flagged
+    :data:`FLAG_LENGTH_RANGE` (with their own bits), outputs 0. ``s = 0``: unchanged."""
+    if s == 0:
+        return a_code, b_code, p_code, k_code, mode, flags
+    if flags == 0 and mode == MODE_LINE:
+        return (a_code + (1 << (s - 1))) >> s, b_code, p_code, k_code, mode, flags
+    return 0, 0, 0, 0, 0, flags | FLAG_LENGTH_RANGE
+
+
+def unlift_line_codes(codes: LineCodes, s: int) -> LineCodes:
+    """:func:`unlift_line` on a :class:`LineCodes`."""
+    a, b, p, k, mode, flags = unlift_line(codes.a_code, codes.b_code, codes.p_max_code,
+                                          codes.k_code, codes.mode, codes.flags, s)
+    return LineCodes(a, b, p, k, codes.A_min_code, codes.B_max_code, mode, codes.scale,
+                     flags)
 
 
 def decode_line_codes(codes) -> dict:
