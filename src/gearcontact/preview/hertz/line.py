@@ -84,7 +84,20 @@ Line-core envelope (checked in SORT; outside it the run is flagged, outputs 0):
 ``B_max`` in [2^-11, 16] 1/mm (``FLAG_CURV_RANGE``: the reduced radius across the line
 is at most 1 m), load and E' as the published core, ``L`` in [1, 1024] mm
 (:data:`FLAG_LENGTH_RANGE`, bit 7, named in :data:`LINE_FLAG_NAMES` only: the published
-cores' flags word keeps its width).
+cores' flags word keeps its width; the host lifts a shorter line, below).
+
+Short lines (host side, :func:`length_lift`, :func:`unlift_line`; the core and its
+RTL are unchanged). A line shorter than 1 mm (an end-loaded line's equivalent length,
+docs/cylindrical.md sec. 8) runs on ``(W << s, L << s)`` with the least ``s`` that
+brings ``L`` to 1 mm (``s <= LIFT_MAX_SHIFT``: ``L >= 2^-8`` mm; ``W << s`` in the
+load envelope). Every register of the line stage depends on ``W / L`` alone, exactly:
+``QPI = floor(16 W C_IPI / L)`` is the same integer for ``(k W, k L)``, and Y, P0SQ, S,
+b_l, p_max, b follow from it, so the line answer is the floorless core's bit for bit,
+``a = rs(L, 1)`` restored by ``rs(a, s)``. The elliptic datapath is not invariant (its
+ellipse of ``2^s W`` is ``2^(s/3)`` longer, the line ``2^s``): a lifted run that keeps
+the ellipse answers ``2^s W``'s contact, so it is flagged ``length_range`` (outputs 0);
+a lifted line-mode run is the unlifted decision too (``2 a_e(W) > 2^(2s/3) L`` and
+``p_e(W) < 2^(-s/3) p_l``: margins of 59 % and 26 % at ``s = 1``).
 
 Cycle schedule (the RTL's contract; data independent): CAPTURE 1, SORT + SCALE 1, the
 unchanged elliptic core 756 (the line stage runs on its own divider and square-root
