@@ -123,7 +123,7 @@ class RtlEngine(GoldenEngine):
     def _line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewBatch:
         c = self.encode_line_batch(A_minus, B_minus, load_n, line_length_mm)
         lca, _ = self._simulate_line(c["A_in"], c["B_in"], c["W"], c["L"], c["e_prime"])
-        return self._line_batch_result(lca)
+        return self._line_batch_result(lca, c["lift"])
 
     def _stencil_line(self, gaps_mm, load_n, line_length_mm) -> PreviewResult:
         from ..preview.chain_line_rtl import simulate_chain_line_core

@@ -42,7 +42,7 @@ register and otherwise returns datapath flags (never a silently wrapped number).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
@@ -56,7 +56,7 @@ from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
 from .hertz.line import (LINE_CYCLES, decode_line_codes, encode_length, length_lift,
-                         line_golden, unlift_line_codes)
+                         line_golden, unlift_line, unlift_line_codes)
 from .hertz.line_vec import line_golden_array
 from .hertz.reference import (ENVELOPE, check_envelope, hertz_preview, hertz_preview_array,
                               truncated_preview)
@@ -240,8 +240,13 @@ def _check_load(load_n) -> float:
 def _lifted(w_code: int, l_code: int) -> tuple[int, int, int]:
     """``(W << s, L << s, s)`` with the host's lift ``s`` of a line shorter than the line
     core's 1 mm (:func:`.hertz.line.length_lift`; 0 otherwise)."""
-    s = length_lift(w_code, l_code)
-    return w_code << s, l_code << s, s
+    s = int(length_lift(int(w_code), int(l_code)))
+    return int(w_code) << s, int(l_code) << s, s
+
+
+# elementwise over a batch's codes (the same compiled functions)
+_LIFTED = np.vectorize(_lifted, otypes=[np.int64, np.int64, np.int64])
+_UNLIFT = np.vectorize(unlift_line, otypes=[np.int64] * 6)
 
 
 def _check_stencil(gaps_mm) -> np.ndarray:
@@ -444,20 +449,30 @@ class GoldenEngine:
     def encode_line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> dict:
         """The line core's input codes of a batch (``int64`` arrays of one shape):
         ``{"A_in", "B_in", "W", "L", "e_prime"}`` (no envelope check: the line core flags
-        its own domain). Raises as :meth:`encode_line`, naming the element."""
+        its own domain; ``"lift"`` as :meth:`encode_line`). Raises as :meth:`encode_line`,
+        naming the element."""
         a, b, w, length = _check_line_batch(A_minus, B_minus, load_n, line_length_mm)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        return {"A_in": a_c, "B_in": b_c, "W": w_c, "L": encode_length(length),
+        w_c, l_c, lift = _LIFTED(w_c, encode_length(length))
+        return {"A_in": a_c, "B_in": b_c, "W": w_c.astype(np.int64),
+                "L": l_c.astype(np.int64), "lift": lift.astype(np.int64),
                 "e_prime": np.full(a.shape, e_c, dtype=np.int64)}
 
     def _line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewBatch:
         c = self.encode_line_batch(A_minus, B_minus, load_n, line_length_mm)
         return self._line_batch_result(line_golden_array(
             c["A_in"], c["B_in"], c["W"], c["L"], e_prime_code=c["e_prime"],
-            hertz_form=self.hertz_form))
+            hertz_form=self.hertz_form), c["lift"])
 
-    def _line_batch_result(self, lc) -> PreviewBatch:
-        """A PreviewBatch from a :class:`.hertz.line_vec.LineCodesArray`."""
+    def _line_batch_result(self, lc, lift) -> PreviewBatch:
+        """A PreviewBatch from a :class:`.hertz.line_vec.LineCodesArray` of a run on
+        lifted inputs (``lift``: :meth:`encode_line_batch`'s, undone here)."""
+        if lift.any():
+            out = _UNLIFT(lc.a_code, lc.b_code, lc.p_max_code, lc.k_code, lc.mode,
+                          lc.flags, lift)
+            lc = replace(lc, **dict(zip(
+                ("a_code", "b_code", "p_max_code", "k_code", "mode", "flags"),
+                (x.astype(np.int64) for x in out))))
         v = decode_line_codes(lc)
         return PreviewBatch(self.name, v["a_mm"], v["b_mm"], v["k"], v["p_max_mpa"],
                             lc.flags, lc.mode_names)

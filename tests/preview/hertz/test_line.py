@@ -346,3 +346,19 @@ def test_short_line_whose_ellipse_fits_is_refused_and_flagged():
         get_engine("reference").hertz(0.05, 0.05, 10.0, line_length_mm=0.5)
     gold = get_engine("golden").hertz(0.05, 0.05, 10.0, line_length_mm=0.5)
     assert gold.mode == "flagged" and gold.flags == ("length_range",)
+
+
+def test_batch_lifts_as_the_single_run():
+    # hertz_batch runs the same lift elementwise: the 0.4 mm line in line mode with the
+    # single run's numbers, the fitting ellipse on 0.5 mm flagged, a 20 mm line unlifted
+    from gearcontact.preview.engine import get_engine
+
+    gold = get_engine("golden")
+    A, B, W, L = [1e-5, 0.05, 1e-5], [0.05, 0.05, 0.05], [300.0, 10.0, 300.0], [0.4, 0.5, 20.0]
+    batch = gold.hertz_batch(A, B, W, line_length_mm=L)
+    assert list(batch.mode) == ["line", "flagged", "line"]
+    for i in (0, 2):
+        one = gold.hertz(A[i], B[i], W[i], line_length_mm=L[i])
+        assert (batch.p_max_mpa[i], batch.b_mm[i], batch.a_mm[i]) == (one.p_max_mpa,
+                                                                     one.b_mm, one.a_mm)
+    assert batch.flags[1] == LN.FLAG_LENGTH_RANGE
