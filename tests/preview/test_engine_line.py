@@ -136,7 +136,7 @@ def test_batch_inputs_are_checked_naming_the_element():
 
 def test_rtl_batch_and_stencil_equal_golden_bit_for_bit():
     """Amaranth simulator: the line core on three vectors (elliptic at SCALE n = 1, line,
-    flagged) and the line chain on one stencil; about 10 s."""
+    flagged) and the line chain on one stencil (a 0.4 mm line, lifted); about 10 s."""
     from gearcontact.hw.rtl_engine import RtlEngine
     from gearcontact.preview.stimulus import _elliptic
     rtl, gold = RtlEngine(simulator="amaranth"), GoldenEngine()
@@ -146,8 +146,11 @@ def test_rtl_batch_and_stencil_equal_golden_bit_for_bit():
     for f in ("a_mm", "b_mm", "k", "p_max_mpa", "flags", "mode"):
         assert np.array_equal(getattr(got, f), getattr(want, f)), f
     assert list(got.mode) == ["elliptic", "line", "flagged"]
+    # the chain on a line below the core's 1 mm (an end-loaded line's L_eq): both run
+    # the host's lift, 2^2 x (300 N, 0.4 mm), and answer the same codes
     gaps = _elliptic(0.0246, 0.0, 0.3, 0.0, 0.01, -0.02)      # a cylinder: B- = 0
-    got = rtl.stencil(gaps, 2000.0, line_length_mm=10.0)
-    want = gold.stencil(gaps, 2000.0, line_length_mm=10.0)
+    got = rtl.stencil(gaps, 300.0, line_length_mm=0.4)
+    want = gold.stencil(gaps, 300.0, line_length_mm=0.4)
     assert got.codes == want.codes and got.cycles == want.cycles == 811
+    assert got.codes["lift"] == 2 and got.a_mm == pytest.approx(0.2, abs=2.0 ** -20)
     assert got.mode == want.mode == "line" and got.p_max_mpa == want.p_max_mpa

@@ -123,15 +123,16 @@ class RtlEngine(GoldenEngine):
     def _line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewBatch:
         c = self.encode_line_batch(A_minus, B_minus, load_n, line_length_mm)
         lca, _ = self._simulate_line(c["A_in"], c["B_in"], c["W"], c["L"], c["e_prime"])
-        return self._line_batch_result(lca)
+        return self._line_batch_result(lca, c["lift"])
 
     def _stencil_line(self, gaps_mm, load_n, line_length_mm) -> PreviewResult:
         from ..preview.chain_line_rtl import simulate_chain_line_core
-        w, gap_codes, w_c, l_c = self.encode_stencil_line(gaps_mm, load_n, line_length_mm)
+        w, gap_codes, w_c, l_c, lift = self.encode_stencil_line(gaps_mm, load_n,
+                                                                 line_length_mm)
         (res,), (cycles,) = simulate_chain_line_core(gap_codes[None, :], [w_c], [l_c],
                                                      e_prime_code=self.e_prime_code,
                                                      hertz_form=self.hertz_form)
-        codes = {"W": w_c, "L": l_c, "e_prime": self.e_prime_code,
+        codes = {"W": w_c, "L": l_c, "lift": lift, "e_prime": self.e_prime_code,
                  "A_fit": res.fit.a_minus_code, "B_fit": res.fit.b_minus_code,
                  "flags": res.flags}
         return self._line_result(res.hertz, w, codes, int(cycles), res.flag_names)

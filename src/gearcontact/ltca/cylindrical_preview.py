@@ -32,9 +32,10 @@ that sharp face end is singular on the half-space, an edge result, which the LCP
 peak there shows (growing with its rows; docs/cylindrical.md sec. 7). On a straight gap
 the slice law is the closed form of
 :func:`gearcontact.analytic.face_load.end_loaded_line` within its slices
-(docs/cylindrical.md sec. 8). The line core's domain starts at ``L = 1`` mm: a short
-end-loaded line (``L_c`` below about 2 mm, ``L_eq`` below 1 mm) is refused by the
-reference and flagged by golden, its ``face_load`` (fp64) stays.
+(docs/cylindrical.md sec. 8). The line core's domain starts at ``L = 1`` mm: a shorter
+``L_eq`` (a short end-loaded line, ``L_c`` below about 2 mm) is run by the engines on
+``(2^s W, 2^s L_eq)`` (the host's lift, :func:`gearcontact.preview.hertz.line.
+length_lift`), whose line-mode answer is exactly that of ``(W, L_eq)``.
 
 Loads. With a loaded TE (:func:`.cylindrical_lte.cylindrical_loaded_te` at the same
 torque and cycle) each pair carries its LCP load share of ``F_n``; without it the pairs

@@ -42,7 +42,7 @@ register and otherwise returns datapath flags (never a silently wrapped number).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
@@ -55,7 +55,8 @@ from ..contract.stencil import STENCIL_SIZE
 from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
-from .hertz.line import LINE_CYCLES, decode_line_codes, encode_length, line_golden
+from .hertz.line import (LINE_CYCLES, decode_line_codes, encode_length, length_lift,
+                         line_golden, unlift_line, unlift_line_codes)
 from .hertz.line_vec import line_golden_array
 from .hertz.reference import (ENVELOPE, check_envelope, hertz_preview, hertz_preview_array,
                               truncated_preview)
@@ -236,6 +237,18 @@ def _check_load(load_n) -> float:
     return check_range("load_n (N)", check_positive("load_n (N)", load_n), lo, hi)
 
 
+def _lifted(w_code: int, l_code: int) -> tuple[int, int, int]:
+    """``(W << s, L << s, s)`` with the host's lift ``s`` of a line shorter than the line
+    core's 1 mm (:func:`.hertz.line.length_lift`; 0 otherwise)."""
+    s = int(length_lift(int(w_code), int(l_code)))
+    return int(w_code) << s, int(l_code) << s, s
+
+
+# elementwise over a batch's codes (the same compiled functions)
+_LIFTED = np.vectorize(_lifted, otypes=[np.int64, np.int64, np.int64])
+_UNLIFT = np.vectorize(unlift_line, otypes=[np.int64] * 6)
+
+
 def _check_stencil(gaps_mm) -> np.ndarray:
     try:
         g = check_array_finite("gaps_mm", gaps_mm)
@@ -384,7 +397,10 @@ class GoldenEngine:
 
     def encode_line(self, A_minus, B_minus, load_n, line_length_mm) -> tuple[float, dict]:
         """Checked load (N) and the line core's input codes ``{"A_in", "B_in", "W",
-        "L", "e_prime"}`` (no envelope check: the line core flags its own domain).
+        "L", "e_prime"}`` (no envelope check: the line core flags its own domain) and
+        ``"lift"``: a line shorter than the core's 1 mm runs on ``(W << s, L << s)``
+        (:func:`.hertz.line.length_lift`; ``W`` and ``L`` are the codes the core runs
+        on), undone by :meth:`_line_result`.
 
         Raises
         ------
@@ -397,7 +413,8 @@ class GoldenEngine:
                    check_positive("B_minus (1/mm)", B_minus), check_positive("load_n (N)", load_n))
         length = check_positive("line_length_mm", line_length_mm)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        return w, {"A_in": a_c, "B_in": b_c, "W": w_c, "L": encode_length(length),
+        w_c, l_c, lift = _lifted(w_c, encode_length(length))
+        return w, {"A_in": a_c, "B_in": b_c, "W": w_c, "L": l_c, "lift": lift,
                    "e_prime": e_c}
 
     def _line(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewResult:
@@ -408,8 +425,17 @@ class GoldenEngine:
         return self._line_result(lc, w, codes, LINE_CYCLES)
 
     def _line_result(self, lc, w, codes: dict, cycles: int, flags=None) -> PreviewResult:
-        """A PreviewResult from line-core codes (:class:`.hertz.line.LineCodes`);
+        """A PreviewResult from line-core codes (:class:`.hertz.line.LineCodes`) of a run
+        on ``codes``' inputs (their ``"lift"`` undone: :func:`.hertz.line.unlift_line`);
         ``flags``: the names to report (default the line core's)."""
+        if codes.get("lift"):
+            raw = lc
+            lc = unlift_line_codes(raw, codes["lift"])
+            if lc.flags != raw.flags:       # an elliptic answer of the lifted run
+                if "flags" in codes:
+                    codes["flags"] |= lc.flags
+                if flags is not None:
+                    flags = tuple(dict.fromkeys(flags + lc.flag_names))
         codes.update(A_min=lc.A_min_code, B_max=lc.B_max_code, a=lc.a_code, b=lc.b_code,
                      k=lc.k_code, p_max=lc.p_max_code, mode=lc.mode, scale=lc.scale,
                      flags=codes.get("flags", lc.flags))
@@ -423,20 +449,30 @@ class GoldenEngine:
     def encode_line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> dict:
         """The line core's input codes of a batch (``int64`` arrays of one shape):
         ``{"A_in", "B_in", "W", "L", "e_prime"}`` (no envelope check: the line core flags
-        its own domain). Raises as :meth:`encode_line`, naming the element."""
+        its own domain; ``"lift"`` as :meth:`encode_line`). Raises as :meth:`encode_line`,
+        naming the element."""
         a, b, w, length = _check_line_batch(A_minus, B_minus, load_n, line_length_mm)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        return {"A_in": a_c, "B_in": b_c, "W": w_c, "L": encode_length(length),
+        w_c, l_c, lift = _LIFTED(w_c, encode_length(length))
+        return {"A_in": a_c, "B_in": b_c, "W": w_c.astype(np.int64),
+                "L": l_c.astype(np.int64), "lift": lift.astype(np.int64),
                 "e_prime": np.full(a.shape, e_c, dtype=np.int64)}
 
     def _line_batch(self, A_minus, B_minus, load_n, line_length_mm) -> PreviewBatch:
         c = self.encode_line_batch(A_minus, B_minus, load_n, line_length_mm)
         return self._line_batch_result(line_golden_array(
             c["A_in"], c["B_in"], c["W"], c["L"], e_prime_code=c["e_prime"],
-            hertz_form=self.hertz_form))
+            hertz_form=self.hertz_form), c["lift"])
 
-    def _line_batch_result(self, lc) -> PreviewBatch:
-        """A PreviewBatch from a :class:`.hertz.line_vec.LineCodesArray`."""
+    def _line_batch_result(self, lc, lift) -> PreviewBatch:
+        """A PreviewBatch from a :class:`.hertz.line_vec.LineCodesArray` of a run on
+        lifted inputs (``lift``: :meth:`encode_line_batch`'s, undone here)."""
+        if lift.any():
+            out = _UNLIFT(lc.a_code, lc.b_code, lc.p_max_code, lc.k_code, lc.mode,
+                          lc.flags, lift)
+            lc = replace(lc, **dict(zip(
+                ("a_code", "b_code", "p_max_code", "k_code", "mode", "flags"),
+                (x.astype(np.int64) for x in out))))
         v = decode_line_codes(lc)
         return PreviewBatch(self.name, v["a_mm"], v["b_mm"], v["k"], v["p_max_mpa"],
                             lc.flags, lc.mode_names)
@@ -461,19 +497,20 @@ class GoldenEngine:
         return self._result(res.hertz, w, codes, res.flag_names, res.cycles)
 
     def encode_stencil_line(self, gaps_mm, load_n, line_length_mm) -> tuple[float, np.ndarray,
-                                                                             int, int]:
-        """Checked load (N), the 49 STENCIL_GAP codes, the LOAD code and the LINE_LENGTH
-        code of one stencil in line mode."""
+                                                                             int, int, int]:
+        """Checked load (N), the 49 STENCIL_GAP codes, the LOAD and LINE_LENGTH codes the
+        chain runs on and their lift (:meth:`encode_line`) of one stencil in line mode."""
         w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
-        return w, gap_codes, w_c, encode_length(check_positive("line_length_mm",
-                                                               line_length_mm))
+        return w, gap_codes, *_lifted(w_c, encode_length(check_positive("line_length_mm",
+                                                                        line_length_mm)))
 
     def _stencil_line(self, gaps_mm, load_n, line_length_mm) -> PreviewResult:
         """C -> line core (:func:`.chain.chain_line_golden`, :data:`.chain.CHAIN_LINE_CYCLES`)."""
-        w, gap_codes, w_c, l_c = self.encode_stencil_line(gaps_mm, load_n, line_length_mm)
+        w, gap_codes, w_c, l_c, lift = self.encode_stencil_line(gaps_mm, load_n,
+                                                                 line_length_mm)
         res = chain.chain_line_golden([int(x) for x in gap_codes], w_c, l_c,
                                       e_prime_code=self.e_prime_code, hertz_form=self.hertz_form)
-        codes = {"W": w_c, "L": l_c, "e_prime": self.e_prime_code,
+        codes = {"W": w_c, "L": l_c, "lift": lift, "e_prime": self.e_prime_code,
                  "A_fit": res.fit.a_minus_code, "B_fit": res.fit.b_minus_code,
                  "flags": res.flags}
         return self._line_result(res.hertz, w, codes, res.cycles, res.flag_names)

@@ -68,8 +68,11 @@ Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
   is traced with its ``L`` code and mode for the ``rtl`` replay on the ChainLineCore
   (:func:`.cosim.replay_on_rtl`, ``line=True``).
 
-A preview outside the datapath's domain (``B_max`` or ``L`` outside the line core's
-envelope; golden: flagged by the chain) is counted and evaluated by the fp64 line chain,
+An ``L_eq`` below the line core's 1 mm runs on ``(2^s W_e, 2^s L_eq)``, the host's lift
+(:func:`gearcontact.preview.hertz.line.length_lift`, :func:`~gearcontact.preview.hertz.
+line.unlift_line`; traced as run), exact in line mode. A preview outside the datapath's
+domain (``B_max`` or ``L`` outside the line core's envelope, the lift's ellipse kept;
+golden: flagged by the chain) is counted and evaluated by the fp64 line chain,
 as :mod:`.contact_law` does; a saddle (B- below the fit's resolution) has no law (the
 pair carries nothing, counted).
 """
@@ -86,8 +89,10 @@ from ..contract.qformat import CURVATURE, STENCIL_GAP
 from ..ltca.slice_law import equivalent_length, interference, loaded_line
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
 from ..preview.fit.golden_vec import fit_element
+from ..preview.hertz.line import length_lift, unlift_line
 from ..preview.hertz.line_vec import line_constants, line_element
-from ..preview.hertz.reference import LINE_ENVELOPE, keeps_ellipse
+from ..preview.hertz.reference import (LINE_ENVELOPE, keeps_ellipse, lifted_keeps_ellipse,
+                                       line_lift)
 from .contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _hb, _principal, _row, hertz_kappa
 from .layout import (N_PREVIEW, P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_NSLICE, P_SLICE_CB,
                      PV_LINE_BENDING, PV_LINE_OFFSET, PV_LOAD)
@@ -97,9 +102,8 @@ __all__ = ["line_pair_load", "line_law_constants", "MODE_LINE"]
 #: ``pv[3]`` of a preview answered in line mode (:func:`_line_law`).
 MODE_LINE = 1.0
 _line_terms = njit(cache=True, inline="always")(line_contact_terms)
-_keeps = njit(cache=True, inline="always")(keeps_ellipse)
 _B_ZERO = LINE_B_ZERO_CODES * CURVATURE.lsb        # 1/mm: the fit's resolution of B-
-_L_LO, _L_HI = LINE_ENVELOPE["line_length_mm"]
+_L_HI = LINE_ENVELOPE["line_length_mm"][1]
 _S_GAP = math.ldexp(1.0, STENCIL_GAP.frac)      # STENCIL_GAP codes per mm (2^21)
 _S20 = 1048576.0
 
@@ -135,18 +139,27 @@ def _line_fp64(A, B, length, l_c, we, prm, tcount, pv, flagged):
     lo, hi = min(A, B), max(A, B)
     if -_B_ZERO <= lo < 0.0:        # within the fit's resolution: a line (chain rule)
         lo = 0.0
-    if flagged or not (prm[P_CLO] <= hi <= prm[P_CHI] and _L_LO <= length <= _L_HI):
-        tcount[3] += 1
+    # the line core's domain: B_max, and L from 1 mm or lifted below it (line mode only)
+    lift = line_lift(we, length) if 0.0 < length <= _L_HI else 0.0
+    outside = flagged or not prm[P_CLO] <= hi <= prm[P_CHI] or lift == 0.0
     if lo < 0.0 or hi <= 0.0 or length <= 0.0:
+        if outside:
+            tcount[3] += 1
         tcount[5] += 1
         return -1.0
     ep = prm[P_EP]
     p_l, b_l = _line_terms(hi, we, length, ep)
     if lo > 0.0 and hi <= prm[P_AHI] * lo:
         a, b, k, p, delta, alpha, e_e, f, r = _hb(lo, hi, we, ep)
-        if _keeps(a, p, p_l, length):
+        outside = outside or (lift > 1.0 and lifted_keeps_ellipse(a, p, p_l, length, lift))
+        if outside:
+            tcount[3] += 1
+        if keeps_ellipse(a, p, p_l, length):
             pv[0], pv[1], pv[2], pv[3], pv[4] = a, b, p, 0.0, 0.0
             return delta / we ** (2.0 / 3.0)
+    else:
+        if outside:
+            tcount[3] += 1
     pv[1], pv[2], pv[3] = b_l, p_l, MODE_LINE
     return _line_coefficient(l_c, length, b_l, we, ep, pv)
 
@@ -167,8 +180,12 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
     if -LINE_B_ZERO_CODES <= bm < 0:
         bm = np.int64(0)
     a_min, b_max = min(am, bm), max(am, bm)
+    # a line below the core's 1 mm: the host's lift (W << s, L << s), traced as run
     w_code = np.int64(math.floor(we * 256.0 + 0.5))
     l_code = np.int64(math.floor(length * _S20 + 0.5))
+    lift = length_lift(w_code, l_code)
+    w_code <<= lift
+    l_code <<= lift
     flags, a_c, b_c, p_c, k_c, mode, scale = line_element(
         a_min, b_max, w_code, l_code, np.int64(prm[P_ECODE]), pow_lut, cbrt_lut, cst, fit[5])
     flags |= ff << 8
@@ -182,9 +199,10 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
             for q in range(tg.shape[1]):
                 tg[t, q] = g[0, q]
         tcount[0] = t + 1
+    a_c, b_c, p_c, k_c, mode, flags = unlift_line(a_c, b_c, p_c, k_c, mode, flags, lift)
     if flags != 0 or a_c == 0 or b_c == 0:
         return -1.0
-    wq = w_code / 256.0
+    wq = (w_code >> lift) / 256.0
     pv[0], pv[1], pv[2] = a_c / _S20, b_c / _S20, p_c / 256.0
     if mode == 0:
         pv[3], pv[4] = 0.0, 0.0

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from gearcontact.preview.hertz import formats as F
+from gearcontact.preview.hertz import line as LN
 from gearcontact.preview.hertz.golden import encode_hertz_inputs, hertz_golden
 from gearcontact.preview.hertz.line import (LENGTH_MAX_CODE, LINE_CYCLES, LINE_STAGE_CYCLES,
                                             MODE_ELLIPTIC, MODE_LINE, decode_line_codes,
@@ -246,3 +247,118 @@ def test_flag_word_of_the_published_cores_unchanged():
     # the length flag lives in the line core's own name map (the published cores' flag
     # width and the chain's packing of stage-D flags stay as they were)
     assert max(F.FLAG_NAMES) == F.FLAG_DIV_ZERO == 1 << 6
+
+
+EP_CODE = encode_hertz_inputs(1.0, 1.0, 1.0, e_prime_mpa=EP)[3]
+
+
+def _ideal(monkeypatch, A, B, W, L):
+    """The line core without its 1 mm floor (LENGTH_MIN_CODE lowered to the lift's
+    least length): every line-stage register depends on W / L only (QPI = floor(16 W
+    C_IPI / L)), so a lifted input's registers stay within their documented bounds."""
+    monkeypatch.setattr(LN, "LENGTH_MIN_CODE", LN.LENGTH_MIN_CODE >> LN.LIFT_MAX_SHIFT)
+    lc = line_golden(A, B, W, L, e_prime_code=EP_CODE)
+    monkeypatch.undo()
+    return lc
+
+
+def test_lift_is_bit_exact_in_line_mode(monkeypatch):
+    """A line below the core's 1 mm run on (2^s W, 2^s L) (host lift): QPI = floor(16 W
+    C_IPI / L) is the same integer for (k W, k L), so every line register and output but
+    a = rs(L, 1) is the same; unlifted a = rs(rs(2^s L, 1), s) = rs(L, 1). Truth: the
+    core without its floor (:func:`_ideal`), bit for bit on 600 seeded inputs with
+    gear-like curvatures (A_min 0 to 2^-6 1/mm along the line, B_max 2^-9 to 2^-3
+    across), every lifted line-mode answer (mode, scale, every code). The lift's
+    elliptic answer is never returned (flagged length_range): the ellipse of 2^s W is
+    only 2^(s/3) longer while the line is 2^s longer, so the lifted SELECT may keep
+    an ellipse the unlifted one truncates; the converse cannot happen (a lifted line
+    mode means 2 a_e(2^s W) > 2^s L, so 2 a_e(W) > 2^(2s/3) L > L, and p_e(W) < p_l
+    with a margin of 2^(s/3)), which the bit-equality of the mode checks."""
+    rng = np.random.default_rng(26)
+    seen = {"line": 0, "flagged": 0}
+    for _ in range(600):
+        A = int(rng.integers(0, 1 << 14))
+        B = int(rng.integers(1 << 11, 1 << 17))
+        W = int(rng.integers(1 << 8, 1 << 20))           # 1 N to 4 kN
+        L = int(rng.integers(LN.LENGTH_MIN_CODE >> LN.LIFT_MAX_SHIFT, LN.LENGTH_MIN_CODE))
+        s = LN.length_lift(W, L)
+        if s == 0:                                       # 2^s W beyond the load range
+            assert W << (LN.LIFT_MAX_SHIFT) > F.LOAD_MAX_CODE
+            continue
+        assert (L << s) >= LN.LENGTH_MIN_CODE > (L << (s - 1))
+        got = LN.unlift_line_codes(line_golden(A, B, W << s, L << s, e_prime_code=EP_CODE), s)
+        ideal = _ideal(monkeypatch, A, B, W, L)
+        if got.valid:
+            assert got == ideal
+            seen["line"] += 1
+        else:
+            assert got.flag_names == ("length_range",)
+            assert (got.a_code, got.b_code, got.p_max_code, got.k_code) == (0, 0, 0, 0)
+            seen["flagged"] += 1
+    assert seen["line"] > 300 and seen["flagged"] > 0
+
+
+def test_lift_range():
+    # below 2^-8 mm, at or above 1 mm, or a lifted load beyond 2^17 N: no lift
+    one = LN.LENGTH_MIN_CODE
+    assert LN.length_lift(1000 << 8, one) == 0
+    assert LN.length_lift(1000 << 8, one - 1) == 1
+    assert LN.length_lift(1000 << 8, one >> 3) == 3
+    assert LN.length_lift(1000 << 8, (one >> 8) - 1) == 0
+    assert LN.length_lift(F.LOAD_MAX_CODE >> 2, one >> 2) == 2
+    assert LN.length_lift((F.LOAD_MAX_CODE >> 2) + 1, one >> 2) == 0
+    assert LN.length_lift(0, one >> 2) == 0
+    # a = rs(L, 1) of the unlifted L, round half up
+    assert LN.unlift_line(5 << 2, 7, 9, 0, MODE_LINE, 0, 3)[0] == 3
+
+
+@pytest.mark.parametrize("A, L", [(2.0 ** -21, 0.4), (1e-5, 0.4), (2.0 ** -21, 0.03),
+                                  (1e-4, 0.7)])
+def test_short_line_is_johnson_line_contact(A, L):
+    """A line below 1 mm (an end-loaded line's L_eq): fp64 and golden (the engines, the
+    host's lift) against Johnson 1985 eq. 4.45, p0 = sqrt(W E*/(pi R L)), R = 1/(2
+    B-) = 10 mm, W = 300 N. fp64 to 1e-13 (rounding); golden within the quantization of
+    B- (2^-21 / 0.05 = 1e-5 relative, p ~ B^(1/2)), L (2^-21 / L relative, p ~
+    L^(-1/2)) and W (2^-9 / 300) plus one output LSB, as for L >= 1 mm (above)."""
+    from gearcontact.preview.engine import get_engine
+
+    W, B = 300.0, 0.05
+    p0, b0 = _johnson_line(W, 0.5 / B, L, EP)
+    ref = get_engine("reference").hertz(A, B, W, line_length_mm=L)
+    assert ref.mode == "line"
+    assert ref.p_max_mpa == pytest.approx(p0, rel=1e-13)
+    assert ref.b_mm == pytest.approx(b0, rel=1e-13)
+    gold = get_engine("golden").hertz(A, B, W, line_length_mm=L)
+    assert gold.mode == "line" and gold.valid
+    assert gold.codes["lift"] > 0 and gold.codes["L"] >= LN.LENGTH_MIN_CODE
+    q = 1e-5 + 2.0 ** -21 / L + 2.0 ** -9 / W
+    assert abs(gold.p_max_mpa - p0) <= q * p0 + LSB_P
+    assert abs(gold.b_mm - b0) <= q * b0 + LSB_AX
+    assert abs(gold.a_mm - L / 2) <= LSB_AX
+
+
+def test_short_line_whose_ellipse_fits_is_refused_and_flagged():
+    # a ball-like contact (A = B = 0.05 1/mm, R = 10 mm) at 10 N: a = 0.11 mm fits a
+    # 0.5 mm line; the lifted run keeps the ellipse, which is 2^s W's: refused / flagged
+    from gearcontact.preview.engine import get_engine
+
+    with pytest.raises(InputRangeError, match="line_length_mm"):
+        get_engine("reference").hertz(0.05, 0.05, 10.0, line_length_mm=0.5)
+    gold = get_engine("golden").hertz(0.05, 0.05, 10.0, line_length_mm=0.5)
+    assert gold.mode == "flagged" and gold.flags == ("length_range",)
+
+
+def test_batch_lifts_as_the_single_run():
+    # hertz_batch runs the same lift elementwise: the 0.4 mm line in line mode with the
+    # single run's numbers, the fitting ellipse on 0.5 mm flagged, a 20 mm line unlifted
+    from gearcontact.preview.engine import get_engine
+
+    gold = get_engine("golden")
+    A, B, W, L = [1e-5, 0.05, 1e-5], [0.05, 0.05, 0.05], [300.0, 10.0, 300.0], [0.4, 0.5, 20.0]
+    batch = gold.hertz_batch(A, B, W, line_length_mm=L)
+    assert list(batch.mode) == ["line", "flagged", "line"]
+    for i in (0, 2):
+        one = gold.hertz(A[i], B[i], W[i], line_length_mm=L[i])
+        assert (batch.p_max_mpa[i], batch.b_mm[i], batch.a_mm[i]) == (one.p_max_mpa,
+                                                                     one.b_mm, one.a_mm)
+    assert batch.flags[1] == LN.FLAG_LENGTH_RANGE

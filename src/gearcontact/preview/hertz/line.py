@@ -84,7 +84,20 @@ Line-core envelope (checked in SORT; outside it the run is flagged, outputs 0):
 ``B_max`` in [2^-11, 16] 1/mm (``FLAG_CURV_RANGE``: the reduced radius across the line
 is at most 1 m), load and E' as the published core, ``L`` in [1, 1024] mm
 (:data:`FLAG_LENGTH_RANGE`, bit 7, named in :data:`LINE_FLAG_NAMES` only: the published
-cores' flags word keeps its width).
+cores' flags word keeps its width; the host lifts a shorter line, below).
+
+Short lines (host side, :func:`length_lift`, :func:`unlift_line`; the core and its
+RTL are unchanged). A line shorter than 1 mm (an end-loaded line's equivalent length,
+docs/cylindrical.md sec. 8) runs on ``(W << s, L << s)`` with the least ``s`` that
+brings ``L`` to 1 mm (``s <= LIFT_MAX_SHIFT``: ``L >= 2^-8`` mm; ``W << s`` in the
+load envelope). Every register of the line stage depends on ``W / L`` alone, exactly:
+``QPI = floor(16 W C_IPI / L)`` is the same integer for ``(k W, k L)``, and Y, P0SQ, S,
+b_l, p_max, b follow from it, so the line answer is the floorless core's bit for bit,
+``a = rs(L, 1)`` restored by ``rs(a, s)``. The elliptic datapath is not invariant (its
+ellipse of ``2^s W`` is ``2^(s/3)`` longer, the line ``2^s``): a lifted run that keeps
+the ellipse answers ``2^s W``'s contact, so it is flagged ``length_range`` (outputs 0);
+a lifted line-mode run is the unlifted decision too (``2 a_e(W) > 2^(2s/3) L`` and
+``p_e(W) < 2^(-s/3) p_l``: margins of 59 % and 26 % at ``s = 1``).
 
 Cycle schedule (the RTL's contract; data independent): CAPTURE 1, SORT + SCALE 1, the
 unchanged elliptic core 756 (the line stage runs on its own divider and square-root
@@ -108,6 +121,7 @@ from ...validation import check_array_finite, check_finite
 from ...contract.qformat import CURVATURE, LOAD, PMAX, SEMI_AXIS, round_shift, sq, uq
 from . import formats as F
 from .divider import DIVIDER_BITS, DIVISION_CYCLES, floor_divide
+from .golden_vec import njit
 from .golden import _check_code, hertz_golden
 from .schedule import HERTZ_CYCLES
 from .sqrt import SQRT_BITS, SQRT_CYCLES, floor_sqrt
@@ -116,7 +130,8 @@ __all__ = ["LINE_LENGTH", "QPI", "Y_LINE", "P0SQ", "SQRT_OUT", "B_LINE", "C_IPI"
            "LENGTH_MIN_CODE", "LENGTH_MAX_CODE", "SCALE_MAX", "MODE_ELLIPTIC", "MODE_LINE",
            "MODE_NAMES", "FLAG_LENGTH_RANGE", "LINE_FLAG_NAMES", "line_flag_names",
            "LINE_STAGE_CYCLES", "LINE_CYCLES", "LineCodes", "line_golden",
-           "encode_length", "decode_line_codes", "line_envelope_flags", "scale_exponent"]
+           "encode_length", "decode_line_codes", "line_envelope_flags", "scale_exponent",
+           "LIFT_MAX_SHIFT", "length_lift", "unlift_line", "unlift_line_codes"]
 
 # ---- formats (table above) -------------------------------------------------------
 LINE_LENGTH = sq(32, 20)     #: contact-line length L input, mm
@@ -139,6 +154,7 @@ assert P0SQ.frac == Y_LINE.frac + CURVATURE.frac
 LENGTH_MIN_CODE = 1 << LINE_LENGTH.frac            #: 1 mm
 LENGTH_MAX_CODE = 1 << (LINE_LENGTH.frac + 10)     #: 1024 mm
 SCALE_MAX = 3                                      #: curvatures scaled by up to 8^3
+LIFT_MAX_SHIFT = 8                                 #: host lift of L: down to 2^-8 mm
 
 # ---- flags: the published bits plus one (a separate map: the published cores' flag
 # width, register map and the chain's flag packing stay as they are) ------------------
@@ -328,6 +344,46 @@ def line_golden(A_code: int, B_code: int, W_code: int, L_code: int, *, e_prime_c
     if not (SEMI_AXIS.fits(b_c) and PMAX.fits(p_c)):
         return LineCodes(0, 0, 0, 0, a_min, b_max, 0, n, F.FLAG_OVERFLOW)
     return LineCodes(a_c, b_c, p_c, 0, a_min, b_max, MODE_LINE, n, 0)
+
+
+@njit(cache=True)
+def length_lift(w_code, l_code):
+    """The host's lift ``s`` of a line shorter than the core's 1 mm (module docstring,
+    *Short lines*): the smallest ``s`` with ``L << s >= LENGTH_MIN_CODE`` when ``L`` is
+    in ``[LENGTH_MIN_CODE >> LIFT_MAX_SHIFT, LENGTH_MIN_CODE)`` and ``W << s`` stays in
+    the load envelope; else 0 (the core runs on ``(W, L)`` as given and flags what is
+    outside). Compiled (numba): the twin calls it too."""
+    s = 0
+    if (LENGTH_MIN_CODE >> LIFT_MAX_SHIFT) <= l_code < LENGTH_MIN_CODE \
+            and F.LOAD_MIN_CODE <= w_code:
+        while (l_code << s) < LENGTH_MIN_CODE:
+            s += 1
+        if (w_code << s) > F.LOAD_MAX_CODE:
+            s = 0
+    return s
+
+
+@njit(cache=True)
+def unlift_line(a_code, b_code, p_code, k_code, mode, flags, s):
+    """The line core's outputs ``(a, b, p_max, k, mode, flags)`` of a run on the lifted
+    ``(W << s, L << s)`` (:func:`length_lift`) as those of ``(W, L)``: in line mode
+    ``a = rs(a, s)`` (``rs(L, 1)`` of the unlifted ``L``; b, p_max are the same codes);
+    an elliptic answer (the lift grew the ellipse by ``2^(s/3)`` only, not the line's
+    ``2^s``: its decision is not ``(W, L)``'s) and a flagged run are flagged
+    :data:`FLAG_LENGTH_RANGE` (with their own bits), outputs 0. ``s = 0``: unchanged."""
+    if s == 0:
+        return a_code, b_code, p_code, k_code, mode, flags
+    if flags == 0 and mode == MODE_LINE:
+        return (a_code + (1 << (s - 1))) >> s, b_code, p_code, k_code, mode, flags
+    return 0, 0, 0, 0, 0, flags | FLAG_LENGTH_RANGE
+
+
+def unlift_line_codes(codes: LineCodes, s: int) -> LineCodes:
+    """:func:`unlift_line` on a :class:`LineCodes`."""
+    a, b, p, k, mode, flags = unlift_line(codes.a_code, codes.b_code, codes.p_max_code,
+                                          codes.k_code, codes.mode, codes.flags, s)
+    return LineCodes(a, b, p, k, codes.A_min_code, codes.B_max_code, mode, codes.scale,
+                     flags)
 
 
 def decode_line_codes(codes) -> dict:

@@ -41,10 +41,12 @@ from ...validation import (InputRangeError, check_array_finite, check_positive, 
                            format_range)
 from ...contract.qformat import CURVATURE, LOAD
 from . import formats as F
+from . import line as LN
+from .golden_vec import njit
 
 __all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
            "check_envelope", "LINE_ENVELOPE", "TruncatedPreview", "truncated_preview",
-           "keeps_ellipse"]
+           "keeps_ellipse", "line_lift", "lifted_keeps_ellipse"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
 ENVELOPE = {
@@ -64,6 +66,10 @@ _E_LO, _E_HI = ENVELOPE["e_prime_mpa"]
 _ALPHA_HI = ENVELOPE["alpha"][1]
 _new = object.__new__
 _INF = math.inf
+_L_SCALE = math.ldexp(1.0, LN.LINE_LENGTH.frac)     # LINE_LENGTH codes per mm
+_W_SCALE = math.ldexp(1.0, LOAD.frac)               # LOAD codes per N
+_LENGTH_RANGE = (f"[1, 1024] mm, or down to 2^-{LN.LIFT_MAX_SHIFT} mm with load_n x 2^s "
+                 f"<= {_W_HI:g} N for L x 2^s >= 1 mm (the line core's host lift)")
 
 
 @dataclass(frozen=True)
@@ -287,12 +293,36 @@ class TruncatedPreview:
     p_line_mpa: float
 
 
+@njit(cache=True)
 def keeps_ellipse(a_mm: float, p_ellipse_mpa: float, p_line_mpa: float,
                   length_mm: float) -> bool:
     """The line core's SELECT on an evaluated ellipse (pure; the twin compiles it): the
     ellipse when it fits the line (``a <= L/2``) or its peak is the higher of the two
-    lower bounds of the truncated ellipse's (:mod:`.line`), else the line contact."""
+    lower bounds of the truncated ellipse's (:mod:`.line`), else the line contact
+    (compiled: the twin calls it)."""
     return a_mm <= 0.5 * length_mm or p_ellipse_mpa >= p_line_mpa
+
+
+@njit(cache=True)
+def line_lift(load_n: float, length_mm: float) -> float:
+    """``2^s`` of the line core's host lift (:func:`.line.length_lift` on the LOAD and
+    LINE_LENGTH codes of ``load_n`` (N, in the load envelope) and ``length_mm`` (mm)):
+    1 for a length from 1 mm up, 0 where no lift applies (the core flags the length)."""
+    l_code = math.floor(length_mm * _L_SCALE + 0.5)
+    if l_code >= LN.LENGTH_MIN_CODE:
+        return 1.0
+    s = LN.length_lift(math.floor(load_n * _W_SCALE + 0.5), l_code)
+    return 2.0 ** s if s > 0 else 0.0
+
+
+@njit(cache=True)
+def lifted_keeps_ellipse(a_mm: float, p_ellipse_mpa: float, p_line_mpa: float,
+                         length_mm: float, lift: float) -> bool:
+    """:func:`keeps_ellipse` of the line core's run on the lifted ``(k W, k L)``
+    (``k = lift``, :func:`line_lift`): the ellipse of ``k W`` is ``k^(1/3)`` times
+    longer with a ``k^(1/3)`` times higher peak, the line's pressure is unchanged."""
+    c = lift ** (1.0 / 3.0)
+    return keeps_ellipse(c * a_mm, c * p_ellipse_mpa, p_line_mpa, lift * length_mm)
 
 
 def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: float, *,
@@ -320,8 +350,10 @@ def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: 
     envelope : bool
         Mirror the line core's domain (default): :data:`LINE_ENVELOPE` and the load /
         E' ranges of :data:`ENVELOPE` (else InputRangeError), and no ellipse for a
-        ratio ``B_max/A_min > 128`` (the datapath's POW table). False: the physics
-        alone, for host-side previews of any positive input.
+        ratio ``B_max/A_min > 128`` (the datapath's POW table); a length below 1 mm
+        as the host's lift (:func:`.line.length_lift`) runs it: on ``(2^s W, 2^s L)``,
+        answered in line mode only (the lifted run's ellipse kept: InputRangeError).
+        False: the physics alone, for host-side previews of any positive input.
     hertz_form : {"hamrock-brewe", "exact"}
         Form of the elliptic part.
 
@@ -342,16 +374,23 @@ def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: 
     w = check_positive("load_n", load_n)
     length = check_positive("line_length_mm", length_mm)
     e = check_positive("e_prime_mpa", e_prime_mpa)
+    lift = 1.0
     if envelope:
         check_range("B_max = max(A_minus, B_minus)", b_max, *LINE_ENVELOPE["B_max_per_mm"])
-        check_range("line_length_mm", length, *LINE_ENVELOPE["line_length_mm"])
         check_range("load_n", w, _W_LO, _W_HI)
         check_range("e_prime_mpa", e, _E_LO, _E_HI)
+        lift = line_lift(w, length)
+        if lift == 0.0 or length > LINE_ENVELOPE["line_length_mm"][1]:
+            raise InputRangeError("line_length_mm", length, _LENGTH_RANGE)
     line = line_contact_hertz(0.5 / b_max, w, length, e_prime_mpa=e)
     if a_min > 0.0 and (not envelope or b_max <= _ALPHA_HI * a_min):
         ell = hertz_preview(a_min, b_max, w, e_prime_mpa=e, envelope=False,
                             hertz_form=hertz_form)
-        if keeps_ellipse(ell.a_mm, ell.p_max_mpa, line.p_max_mpa, length):
+        if lifted_keeps_ellipse(ell.a_mm, ell.p_max_mpa, line.p_max_mpa, length, lift):
+            if lift > 1.0:
+                raise InputRangeError(
+                    "line_length_mm", length, "[1, 1024] mm where the ellipse is kept "
+                    "(below 1 mm the lifted line core answers in line mode only)")
             return TruncatedPreview("elliptic", ell.a_mm, ell.b_mm, ell.k, ell.p_max_mpa,
                                     ell.p_max_mpa, line.p_max_mpa)
         p_ellipse = ell.p_max_mpa
