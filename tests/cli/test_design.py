@@ -329,7 +329,7 @@ def test_design_machine_settings_cuts_the_easeoff_of_s0003(capsys, tmp_path):
     assert main(["design", "--pair", "s0003", "--machine-settings", "--out",
                  str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "| coast | 22.62 | 0.560 | 0.119 |" in out
+    assert "| coast | 22.90 | 0.566 | 0.120 |" in out
     cut = load_pair(tmp_path / "machine_settings.toml")
     assert cut.machine == easeoff_machine_pair(load_pair("s0003")).pair.machine
     assert (tmp_path / "machine_settings_residual.svg").is_file()
@@ -356,7 +356,7 @@ def test_design_machine_settings_cuts_a_measured_grid(capsys, tmp_path):
     csv = write_grid_csv(tmp_path / "g.csv", pair, build_flanks(pair), "coast")
     assert main(["design", "--pair", "s0003", "--machine-settings", "--target-flank",
                  str(csv), "--out", str(tmp_path / "o")]) == 0
-    assert "| coast | 22.62 | 0.560 | 0.119 |" in capsys.readouterr().out
+    assert "| coast | 22.90 | 0.566 | 0.120 |" in capsys.readouterr().out
     assert "coast (measured grid" in (tmp_path / "o" / "machine_settings.toml").read_text()
 
 

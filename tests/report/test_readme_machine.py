@@ -97,7 +97,7 @@ def test_readme_s0003_machine_settings_line(tmp_path):
     assert proc.returncode == 0, proc.stderr[-3000:]
     # drive: the conjugate seed (0.000 um); coast: the measured residual of the fit
     assert "| drive | 0.00 | 0.000 | 0.000 |" in proc.stdout
-    assert "| coast | 22.62 | 0.560 | 0.119 |" in proc.stdout
+    assert "| coast | 22.90 | 0.566 | 0.120 |" in proc.stdout
     pair = load_pair(tmp_path / "mach_s0003" / "machine_settings.toml")
     assert len(pair.machine) == 4
     coast = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "coast"))
