@@ -13,7 +13,7 @@ searched and law calibrated, the code before the limit):
    touch) over its lever exceeds the phase's reach ``reach_rad`` (its datum), and so
    does the opening the limited table keeps (an upper bound of the touch).
 
-On s0003 coast (31 phases, the session fixture; default suite) and MITER_PAIR (drive,
+On s0003 coast (31 phases, the session fixture; slow: two table builds, ~10 s) and MITER_PAIR (drive,
 61 phases as the twin runs it; slow). Measured mesh_table CPU, 61 phases: MITER_PAIR
 21.8 -> 3.1 s (46 of 120 rows out of reach), s0003 coast 7.2 -> 8.8 s (none out of
 reach: truth 2 is vacuous there; the difference is the shared machine's noise).
@@ -51,6 +51,7 @@ def _check_reach(pair, tca, flanks, side, monkeypatch) -> int:
     return int(far.sum())
 
 
+@pytest.mark.slow
 def test_reach_on_s0003(s0003_coast_twin, monkeypatch):
     pair, tca, flanks, mesh = s0003_coast_twin
     _check_reach(pair, tca, flanks, mesh.side, monkeypatch)
