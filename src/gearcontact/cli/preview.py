@@ -49,10 +49,9 @@ def register(sub) -> None:
                         "exact elliptic Hertz in the same tables (not for rtl-soc)")
     p.add_argument("--line-length-mm", type=float, default=None, metavar="L",
                    help="length of the contact line on the flank through the contact "
-                        "point, mm, in [1, 1024], or down to 2^-8 mm through the line "
-                        "core's host lift (where load x 2^s <= 131072 N): stage D is the "
-                        "line core (an ellipse longer than L is truncated to a Hertz line "
-                        "contact; not for rtl-soc). Default: the published elliptic core")
+                        f"point, in {LINE_LENGTH_RANGE}: stage D is the line core (an "
+                        "ellipse longer than L is truncated to a Hertz line contact; not "
+                        "for rtl-soc). Default: the published elliptic core")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run, check=check)
 
