@@ -208,13 +208,53 @@ def test_line_length_with_a_stencil(tmp_path, capsys):
     assert d["cycles"] == 811
 
 
-@pytest.mark.parametrize("value", ["0.5", "2000", "nan", "-3"])
+@pytest.mark.parametrize("value", ["0.0039", "0", "2000", "nan", "-3"])
 def test_line_length_outside_its_range_is_named_before_work(capsys, value):
+    # the lift's floor is 2^-8 = 0.00390625 mm (preview.hertz.line.LIFT_MAX_SHIFT)
     code, out, err = _run(capsys, "preview", "--curvatures", "0.1", "0.02", "--load", "1000",
                           "--line-length-mm", value, "--backend", "golden")
     assert code == 2 and out == ""
     assert f"--line-length-mm (mm) = {float(value)}" in err
-    assert "[1, 1024]" in err or "finite" in err
+    assert "[1, 1024] mm, or down to 2^-8 = 0.00390625 mm" in err or "finite" in err
+
+
+@pytest.mark.parametrize("length, lift", [(0.5, 1), (0.25, 2), (2.0 ** -8, 8)])
+@pytest.mark.parametrize("backend", ["reference", "golden"])
+def test_short_line_runs_the_lifted_line_core(capsys, backend, length, lift):
+    """A line below the core's 1 mm (exact in Q(32,20)) through the host's lift
+    (docs/hertz.md sec. 6): the Hertz line contact of length L (Johnson 1985 sec. 4.3),
+    a = L/2 exactly; golden on (2^s W, 2^s L) (``codes``: the lifted L, ``lift`` = s),
+    p within the input rounding of A- (1.9e-5, half of it in p) and one output LSB."""
+    from gearcontact.analytic.hertz import line_contact_hertz
+    code, out, _ = _run(capsys, "preview", "--curvatures", "0.0246", "1e-6", "--load", "400",
+                        "--line-length-mm", repr(length), "--backend", backend, "--json")
+    assert code == 0
+    d = json.loads(out)
+    truth = line_contact_hertz(0.5 / 0.0246, 400.0, length, e_prime_mpa=E_STEEL)
+    assert d["mode"] == "line" and d["flags"] == [] and d["a_mm"] == length / 2
+    if backend == "reference":
+        assert d["p_max_mpa"] == pytest.approx(truth.p_max_mpa, rel=1e-12)
+        assert d["b_mm"] == pytest.approx(truth.b_mm, rel=1e-12)
+    else:
+        assert d["codes"]["lift"] == lift and d["codes"]["L"] == round(length * 2 ** 20) << lift
+        assert abs(d["p_max_mpa"] - truth.p_max_mpa) <= 1e-5 * truth.p_max_mpa + 2 ** -8
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["--curvatures", "0.0246", "1e-6", "--load", "1000", "--line-length-mm", "0.004"],
+     "load_n x 2^s <= 131072 N"),
+    (["--curvatures", "0.1", "0.05", "--load", "100", "--line-length-mm", "0.4"],
+     "where the ellipse is kept")])
+def test_short_line_outside_the_lift(capsys, argv, needle):
+    """In the option's range but not answered: 2^8 x 1000 N is beyond the load envelope
+    (no lift), and a lifted run that keeps its ellipse (2 a = 0.41 mm > L unlifted, but
+    the ellipse of 4 W fits 4 L): the reference refuses the length (exit 2, its range
+    named), the golden datapath flags length_range (exit 3)."""
+    code, out, err = _run(capsys, "preview", *argv, "--backend", "reference")
+    assert code == 2 and out == "" and f"line_length_mm = {float(argv[-1])}" in err
+    assert needle in err
+    code, out, err = _run(capsys, "preview", *argv, "--backend", "golden")
+    assert code == 3 and "flags          length_range" in out and "length_range" in err
 
 
 def test_line_length_refused_on_the_soc_backend(capsys):

@@ -36,7 +36,10 @@ from gearcontact.preview.chain import chain_reference
 from gearcontact.preview.fit.pinv import baked_pinv
 from gearcontact.preview.fit.reference import fit_curvatures
 from gearcontact.preview.gap.reference import gap_reference
-from gearcontact.preview.hertz.line import line_golden
+from gearcontact.preview.hertz import formats as F
+from gearcontact.preview.hertz.line import (FLAG_LENGTH_RANGE, LENGTH_MIN_CODE,
+                                            LIFT_MAX_SHIFT, length_lift, line_golden,
+                                            unlift_line_codes)
 from gearcontact.preview.hertz.reference import hertz_preview, truncated_preview
 from gearcontact.preview.stimulus import line_stimulus
 from gearcontact.validation import InputRangeError
@@ -164,26 +167,79 @@ class _Line(ctypes.Structure):
         + [(n, ctypes.c_uint32) for n in ("mode", "scale", "flags")]
 
 
-@pytest.mark.parametrize("form, count", [("hamrock-brewe", COUNT), ("exact", 1000)])
-def test_golden_line_core_equals_the_golden_model(built, form, count):
-    """The line core is not a `gearcontact vectors` core: its stimulus (corner cases +
-    seeded random, both modes, every similarity exponent, flagged inputs) through the
-    scalar golden model (~0.5 ms each: exact Hertz on 1,000) against the C code."""
+def _short_lines(n: int, seed: int) -> dict:
+    """Line-core inputs with L below the core's 1 mm: :func:`line_stimulus`'s curvatures,
+    loads and E' (seed ``seed``, no corners), L log-uniform in [2^-9, 1) mm (every lift
+    1..8 and below the lift's floor), then corners: L at the lift's floor and one code
+    under it, one code under 1 mm, and W at the most the lift allows and one code over."""
+    f = {k: v.tolist() for k, v in line_stimulus(n, seed, corners=False).fields.items()}
+    rng = np.random.default_rng(seed)
+    f["L"] = np.floor(np.exp(rng.uniform(np.log(2.0 ** -9), 0.0, n)) * LENGTH_MIN_CODE
+                      + 0.5).astype(np.int64).tolist()
+    floor_code, w_max = LENGTH_MIN_CODE >> LIFT_MAX_SHIFT, F.LOAD_MAX_CODE
+    corners = [(floor_code, 1000 << 8), (floor_code - 1, 1000 << 8),
+               (LENGTH_MIN_CODE - 1, 1000 << 8), (floor_code, w_max >> LIFT_MAX_SHIFT),
+               (floor_code, (w_max >> LIFT_MAX_SHIFT) + 1)]
+    for length, w in corners:          # a gear-like line contact: A 2^-12, B 2^-5 1/mm
+        for k, v in (("A", 1 << 8), ("B", 1 << 15), ("W", w), ("L", length),
+                     ("e_prime", f["e_prime"][0])):
+            f[k].append(v)
+    return f
+
+
+def _line_vectors(stimulus: str, count: int) -> dict:
+    return (_short_lines(count, 1) if stimulus == "short" else
+            {k: v.tolist() for k, v in line_stimulus(count, 0).fields.items()})
+
+
+def _host_line_golden(a, b, w, length, e, form):
+    """``(s, codes)``: the host's line path (preview.engine): the golden line core on
+    the lifted ``(W << s, L << s)``, ``s = length_lift(W, L)``, undone by
+    ``unlift_line_codes`` (docs/hertz.md sec. 6)."""
+    s = int(length_lift(w, length))
+    return s, unlift_line_codes(line_golden(a, b, w << s, length << s, e_prime_code=e,
+                                            hertz_form=form), s)
+
+
+@pytest.mark.parametrize("stimulus, form, count", [
+    ("full", "hamrock-brewe", COUNT), ("full", "exact", 1000),
+    ("short", "hamrock-brewe", 3000), ("short", "exact", 300)])
+def test_golden_line_core_equals_the_golden_model(built, stimulus, form, count):
+    """The line core is not a `gearcontact vectors` core (the RTL core has no lift: the
+    lift is the host's): its stimulus (corner cases + seeded random, both modes, every
+    similarity exponent, flagged inputs, L from 0.5 mm) and short lines
+    (:func:`_short_lines`) through the host's scalar golden path (~0.5 ms each: exact
+    Hertz on 1,000 and 300) against ``gc_line_golden`` (and its ``gc_line_length_lift``
+    against ``length_lift``), bit for bit. The short lines reach every lift 1..8 in
+    line mode, lifted runs that keep the ellipse (flagged length_range) and unliftable
+    lengths or loads (flagged length_range)."""
     lib, _ = built
     so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
     so.gc_line_golden.restype = _Line
     so.gc_line_golden.argtypes = [ctypes.c_int32] * 5 + [ctypes.c_int]
-    st = line_stimulus(count, 0)
-    cols = [st.fields[k].tolist() for k in ("A", "B", "W", "L", "e_prime")]
+    so.gc_line_length_lift.restype = ctypes.c_int
+    so.gc_line_length_lift.argtypes = [ctypes.c_int32] * 2
+    f = _line_vectors(stimulus, count)
     modes = set()
-    for a, b, w, length, e in zip(*cols):
-        want = line_golden(a, b, w, length, e_prime_code=e, hertz_form=form)
+    for a, b, w, length, e in zip(*(f[k] for k in ("A", "B", "W", "L", "e_prime"))):
+        s, want = _host_line_golden(a, b, w, length, e, form)
+        assert so.gc_line_length_lift(w, length) == s, (w, length)
         c = so.gc_line_golden(a, b, w, length, e, FORMS[form][0])
         assert (c.a, c.b, c.p_max, c.k, c.A_min, c.B_max, c.mode, c.scale, c.flags) == (
             want.a_code, want.b_code, want.p_max_code, want.k_code, want.A_min_code,
             want.B_max_code, want.mode, want.scale, want.flags), (a, b, w, length, e)
-        modes.add((want.mode, want.scale) if want.flags == 0 else "flagged")
-    assert {(0, 0), (1, 0), (1, 3), "flagged"} <= modes
+        if want.flags == 0:
+            modes.add((want.mode, want.scale) if stimulus == "full" else ("lift", s))
+        elif want.flags == FLAG_LENGTH_RANGE:
+            modes.add("flipped" if s else "length_range")
+        else:
+            modes.add("flagged")
+    if stimulus == "full":
+        assert {(0, 0), (1, 0), (1, 3), "flagged", "length_range"} <= modes
+    else:
+        lifts = {m[1] for m in modes if isinstance(m, tuple)}
+        assert {"length_range", "flipped"} <= modes, modes
+        assert lifts == set(range(1, LIFT_MAX_SHIFT + 1)), lifts
 
 
 class _Fp64(ctypes.Structure):
@@ -349,17 +405,20 @@ class _LineFp64(ctypes.Structure):
                                           "p_line_mpa")] + [("flags", ctypes.c_uint32)]
 
 
+@pytest.mark.parametrize("stimulus", ["full", "short"])
 @pytest.mark.parametrize("form", list(FORMS))
-def test_fp64_line_core_within_1e12_of_the_python_reference(built, form):
-    """The line stimulus (3,000 random + corners, decoded) through
+def test_fp64_line_core_within_1e12_of_the_python_reference(built, form, stimulus):
+    """The line stimulus (3,000 random + corners, decoded) and 3,000 short lines
+    (:func:`_short_lines`: the host's lift below 1 mm) through
     :func:`truncated_preview` (envelope=True) and ``gc_line_fp64``: the same mode, every
     output within 1e-12 relative (measured: 1.1e-15 with Hamrock-Brewe, 1.6e-15
-    exact), and an input the reference refuses is flagged."""
+    exact), and an input the reference refuses is flagged (short lines: the lifted
+    run's ellipse, or no lift)."""
     lib, _ = built
     so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
     so.gc_line_fp64.restype = _LineFp64
     so.gc_line_fp64.argtypes = [ctypes.c_double] * 5 + [ctypes.c_int]
-    f = line_stimulus(3000, 0).fields
+    f = {k: np.asarray(v) for k, v in _line_vectors(stimulus, 3000).items()}
     cols = (np.ldexp(f["A"].astype(float), -20), np.ldexp(f["B"].astype(float), -20),
             np.ldexp(f["W"].astype(float), -8), np.ldexp(f["L"].astype(float), -20),
             f["e_prime"].astype(float))
@@ -377,7 +436,7 @@ def test_fp64_line_core_within_1e12_of_the_python_reference(built, form):
             want = getattr(ref, name)
             worst = max(worst, abs(getattr(c, name) - want) / abs(want) if want
                         else abs(getattr(c, name)))
-    assert modes == {"elliptic", "line"}
+    assert modes == ({"elliptic", "line"} if stimulus == "full" else {"line"})
     assert worst <= 1e-12, worst
 
 
@@ -681,8 +740,11 @@ def test_fp64_fit_same_bits_with_and_without_simd(built, tmp_path):
         exe = tmp_path / name
         run = subprocess.run(["gcc", *STRICT, "-O2", "-ffp-contract=off", *flags, f"-I{lib}",
                               "-o", str(exe), str(tmp_path / "harness.c"),
-                              *(str(lib / n) for n in ("gc_fit_fp64.c", "gc_hertz_fp64.c",
-                                                       "gc_tables.c")), "-lm"],
+                              # gc_hertz_golden.c: the fp64 line takes the golden lift's
+                          # domain (gc_line_length_lift), as Python's fp64 reference does
+                          *(str(lib / n) for n in ("gc_fit_fp64.c", "gc_hertz_fp64.c",
+                                                   "gc_hertz_golden.c", "gc_tables.c")),
+                          "-lm"],
                              capture_output=True, text=True, timeout=120)
         assert run.returncode == 0, (name, run.stderr)
         outputs[name] = subprocess.run([str(exe)], capture_output=True, text=True,

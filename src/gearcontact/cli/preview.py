@@ -20,8 +20,8 @@ from ..preview.engine import BACKENDS, get_engine
 from ..contract.stencil import read_stencil_csv
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
 from ..contract.qformat import STENCIL_GAP, FixedPointOverflow
-from ..preview.hertz.reference import LINE_ENVELOPE
-from ..validation import InputRangeError, check_range, format_range
+from ..preview.hertz.reference import LINE_LENGTH_RANGE, LINE_LENGTH_RANGE_MM
+from ..validation import InputRangeError, check_finite, format_range
 
 #: Backends with the line core (``--line-length-mm``).
 LINE_BACKENDS = ("reference", "golden", "rtl")
@@ -49,9 +49,9 @@ def register(sub) -> None:
                         "exact elliptic Hertz in the same tables (not for rtl-soc)")
     p.add_argument("--line-length-mm", type=float, default=None, metavar="L",
                    help="length of the contact line on the flank through the contact "
-                        "point, mm, in [1, 1024]: stage D is the line core (an ellipse "
-                        "longer than L is truncated to a Hertz line contact; not for "
-                        "rtl-soc). Default: the published elliptic core")
+                        f"point, in {LINE_LENGTH_RANGE}: stage D is the line core (an "
+                        "ellipse longer than L is truncated to a Hertz line contact; not "
+                        "for rtl-soc). Default: the published elliptic core")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run, check=check)
 
@@ -61,8 +61,10 @@ def check(args) -> None:
     curvatures and the load, the same domain for every backend)."""
     args.material = Material.from_gpa(args.modulus, args.poisson, name="cli")
     if args.line_length_mm is not None:
-        lo, hi = LINE_ENVELOPE["line_length_mm"]
-        check_range("--line-length-mm (mm)", args.line_length_mm, lo, hi)
+        lo, hi = LINE_LENGTH_RANGE_MM      # below 1 mm: the line core's host lift
+        if not lo <= check_finite("--line-length-mm (mm)", args.line_length_mm) <= hi:
+            raise InputRangeError("--line-length-mm (mm)", args.line_length_mm,
+                                  LINE_LENGTH_RANGE)
         if args.backend not in LINE_BACKENDS:
             raise InputRangeError("--backend (with --line-length-mm)", args.backend,
                                   f"one of {list(LINE_BACKENDS)}: the backends with the "

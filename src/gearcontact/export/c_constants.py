@@ -438,12 +438,14 @@ def gap_constants() -> dict[str, int]:
 
 def line_constants() -> dict[str, int]:
     """Named integer constants of the stage-D line core (:mod:`gearcontact.preview.
-    hertz.line`): envelope of L, similarity range, the line stage's constant and shifts,
-    its flag bit and modes."""
+    hertz.line`): envelope of L and its format, similarity range, the line stage's
+    constant and shifts, its flag bit and modes, and the host's lift of a shorter line
+    (``LIFT_MAX_SHIFT``: down to ``LENGTH_MIN_CODE >> LIFT_MAX_SHIFT``)."""
     return {"LENGTH_MIN_CODE": LN.LENGTH_MIN_CODE, "LENGTH_MAX_CODE": LN.LENGTH_MAX_CODE,
             "SCALE_MAX": LN.SCALE_MAX, "C_IPI": LN.C_IPI, "QPI_SHIFT": LN.QPI_SHIFT,
             "Y_SHIFT": LN.Y_SHIFT, "SQRT_SHIFT": LN.SQRT_SHIFT, "BL_SHIFT": LN.BL_SHIFT,
             "P_SHIFT": LN.SQRT_OUT.frac - PMAX.frac,
             "B_SHIFT": LN.B_LINE.frac - SEMI_AXIS.frac, "SQRT_BITS": SQRT_BITS,
             "FLAG_LENGTH_RANGE": LN.FLAG_LENGTH_RANGE, "MODE_ELLIPTIC": LN.MODE_ELLIPTIC,
-            "MODE_LINE": LN.MODE_LINE}
+            "MODE_LINE": LN.MODE_LINE, "LENGTH_FRAC": LN.LINE_LENGTH.frac,
+            "LIFT_MAX_SHIFT": LN.LIFT_MAX_SHIFT}

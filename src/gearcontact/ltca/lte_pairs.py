@@ -33,7 +33,7 @@ from ..tca.stencil import gap_field, tangent_parameters
 from ..tca.types import MatingPoint
 from .mesh_lcp import PairBlock
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
-from .patch_field import touch_gap_mm
+from .patch_field import touch_bounds_mm, touch_gap_mm
 
 __all__ = ["PairContact", "PairFields", "phase_contacts", "curvature_point"]
 
@@ -211,6 +211,21 @@ class PairFields:
             self._touch[pc.path_index] = touch_gap_mm(self, pc)
         opening = self._touch[pc.path_index] / lever * ARCSEC_PER_RAD
         return replace(pc, opening_arcsec=opening, lever_mm=lever)
+
+    def bound(self, pc: PairContact) -> tuple[PairContact, float]:
+        """``(pair, lower_mm)``: an edge pair with the upper bound of its opening (its
+        field's least gap on the flank, :func:`.patch_field.touch_bounds_mm`) and its
+        field's lever, and the lower bound of the opening (mm), without the touch search
+        of :meth:`resolve`; other pairs unchanged with their opening (mm)."""
+        if not pc.edge:
+            return pc, pc.offset_mm
+        lever = self.get(pc)[3]
+        if pc.path_index in self._touch:
+            touch = self._touch[pc.path_index]
+            return replace(pc, opening_arcsec=touch / lever * ARCSEC_PER_RAD,
+                           lever_mm=lever), touch
+        lower, upper = touch_bounds_mm(self, pc)
+        return replace(pc, opening_arcsec=upper / lever * ARCSEC_PER_RAD, lever_mm=lever), lower
 
 
 def curvature_point(path, center: int):

@@ -31,6 +31,10 @@ flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
   :data:`TOUCH_SPAN` cells either way, moved downhill (the touch may lie beyond the
   field's border) and shrunk 4 times :data:`TOUCH_LEVELS` times: a posed field's opening
   to a small fraction of a cell's slope.
+* :func:`touch_bounds_mm`: bounds of that touch from the field alone (its least gap on
+  the flank, less the largest rise between neighbouring flank cells): the twin's table
+  searches the touch only of rows whose lower bound is within the mesh's reach
+  (:mod:`gearcontact.twin.mesh`).
 
 References
 ----------
@@ -47,7 +51,7 @@ from ..tca.stencil import gap_at
 from .pair_ltca import OFF_FLANK_GAP_MM
 
 __all__ = ["PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE", "patch_approach",
-           "patch_grid", "touch_gap_mm"]
+           "patch_grid", "touch_bounds_mm", "touch_gap_mm"]
 
 #: Relative widening of a patch's bounding box into the field fitted to it (beyond one
 #: cell of the field the patch was found on, each side).
@@ -188,3 +192,20 @@ def touch_gap_mm(fields, pc) -> float:
                 break
         hs, ht = hs / 4.0, ht / 4.0
     return best
+
+
+def touch_bounds_mm(fields, pc) -> tuple[float, float]:
+    """``(lower, upper)`` bounds (mm) of :func:`touch_gap_mm` from the row's field alone:
+    the upper its least gap on the flank (where the search starts), the lower that less
+    twice the largest rise between neighbouring flank cells (the touch between nodes
+    lies within a cell's rise of the least node; twice: the search may move beyond the
+    field's border, tested on MITER_PAIR and s0003, tests/twin/test_mesh_reach.py);
+    ``(inf, inf)`` if no cell is on the flank."""
+    gap, _, off, _ = fields.get(pc)
+    if off.all():
+        return np.inf, np.inf
+    on = np.where(off, np.nan, gap)
+    rise = [np.abs(np.diff(on, axis=a)) for a in (0, 1)]
+    step = max(float(np.nanmax(r)) if np.isfinite(r).any() else 0.0 for r in rise)
+    least = float(np.nanmin(on))
+    return least - 2.0 * step, least

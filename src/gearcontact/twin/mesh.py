@@ -67,11 +67,16 @@ from ..ltca.edge_rows import is_cut, row_law
 from ..ltca.tooth_bending import conjugate_compliance, pair_bending_compliance
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
-           "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES"]
+           "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES",
+           "REACH_TORQUE_FACTOR"]
 
 #: Codes of :attr:`MeshTable.contact_mode`: 0 a surface contact (or no contact, where
 #: not ``valid``), 1 an edge contact of the TCA, 2 an edge pair on its posed field.
 CONTACT_MODES = ("surface", "edge", "posed field")
+#: Torque, in multiples of the table's, up to which a row counts as *within reach*
+#: (:func:`mesh_table`): above the largest dynamic factor measured on the design space
+#: (5.31 on MITER_PAIR, docs/performance.md) with a margin of about 2.
+REACH_TORQUE_FACTOR = 10.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -142,7 +147,12 @@ class MeshTable:
         Exponent ``n`` of the LCP's ``delta = C W^n`` at each calibrated row (2/3 where
         the patch stayed on the flanks; 0 where the calibration failed -- an LCP not
         converged or a field that does not close -- and the row kept the Hertzian law,
-        ``c = 1``), NaN at rows no flank boundary cuts.
+        ``c = 1``), NaN at rows no flank boundary cuts and at rows out of reach.
+    out_of_reach : ndarray (P, K) of bool or None
+        Rows the mesh cannot close under :data:`REACH_TORQUE_FACTOR` times the table's
+        torque (:func:`mesh_table`, "reach"): open by at least the lower bound of their
+        opening, which exceeds that reach; their opening is the upper bound (an edge
+        pair's field's least gap, no touch search), their law uncalibrated (Hertz).
     """
 
     psi_rad: np.ndarray
@@ -171,6 +181,8 @@ class MeshTable:
     line_bending_gram_mm_per_n: np.ndarray | None = None
     edge_compliance_scale: np.ndarray | None = None
     edge_exponent: np.ndarray | None = None
+    out_of_reach: np.ndarray | None = None
+    reach_rad: np.ndarray | None = None
 
     @property
     def pitch_rad(self) -> float:
@@ -218,6 +230,18 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         (:mod:`gearcontact.ltca.edge_rows`, at ``torque_nm``; about 0.1 s per row);
         False: the untruncated Hertzian law of the nearest surface contact (the loaded
         TE preview's with ``loaded_te(edge_law=False)``).
+
+    Notes
+    -----
+    *Reach.* Pairs far past their path's end (a pitch's worth of edge pairs on a miter
+    pair, open by up to 2 mm) need neither the touch search of their posed field nor an
+    edge law: the mesh never closes them. A row is *out of reach* when the lower bound
+    of its opening (:meth:`~gearcontact.ltca.lte_pairs.PairFields.bound`) over its lever
+    exceeds the phase's rotation bound under :data:`REACH_TORQUE_FACTOR` times the
+    torque (:func:`_reach_rad`); it keeps the upper bound as its opening and the Hertzian
+    law (``out_of_reach``). Rows within reach are the unlimited table's bit for bit
+    (tests/twin/test_mesh_reach.py; MITER_PAIR's build at 61 phases 21.8 -> 3.1 s CPU,
+    docs/twin.md "Reach of the mesh table").
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
@@ -240,35 +264,45 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     curv: dict = {}
     sten: dict = {}
     edges = np.full((n_p, n_k), None, dtype=object)
+    far = np.zeros((n_p, n_k), bool)
     steps = round(edge_reach * cycle.step_index)
+    materials = (pair.pinion_material, pair.gear_material)
+    laws: dict = {}
+    rows = {}       # (pair row, phase) -> (contact, lower bound of its opening in mm)
     for k in range(n_k):
         for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
+            pc, lower = fields.bound(pc)
+            if np.isfinite(pc.opening_arcsec):
+                rows[row[pc.offset], k] = (pc, lower)
+    reach = _reach_rad(fields, rows, n_k, torque_nmm=1e3 * t, materials=materials,
+                       cache=laws if edge_law else None, bending=bending is not None)
+    for (i, k), (pc, lower) in rows.items():
+        far[i, k] = lower / pc.lever_mm > reach[k]
+        if not far[i, k]:
             pc = fields.resolve(pc)
-            if not np.isfinite(pc.opening_arcsec):
-                continue
-            i = row[pc.offset]
-            valid[i, k] = True
-            label[i, k] = cycle.path.points[pc.path_index].edge_contact
-            mode[i, k] = 2 if pc.edge else 1 if label[i, k] else 0
-            arrays["lever"][i, k] = pc.lever_mm
-            arrays["opening"][i, k] = pc.offset_mm
-            arrays["A"][i, k] = pc.A_minus_per_mm
-            arrays["B"][i, k] = pc.B_minus_per_mm
-            arrays["kappa"][i, k] = pc.kappa_mm_per_n23
-            if pc.center_index not in sten:
-                mp = curvature_point(cycle.path, pc.center_index)
-                sten[pc.center_index] = hardware_stencil(pinion, gear, kin, mp,
-                                                         off_flank="quadric").gap_mm
-            stencils[i, k] = sten[pc.center_index]
-            if bending is not None:
-                arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
-            if edge_law and is_cut(fields, pc, torque_nmm=1e3 * t):
-                edges[i, k] = pc
-    laws, expo = _calibrate_edges(fields, edges, pair, 1e3 * t)
+        valid[i, k] = True
+        label[i, k] = cycle.path.points[pc.path_index].edge_contact
+        mode[i, k] = 2 if pc.edge else 1 if label[i, k] else 0
+        arrays["lever"][i, k] = pc.lever_mm
+        arrays["opening"][i, k] = pc.offset_mm
+        arrays["A"][i, k] = pc.A_minus_per_mm
+        arrays["B"][i, k] = pc.B_minus_per_mm
+        arrays["kappa"][i, k] = pc.kappa_mm_per_n23
+        if pc.center_index not in sten:
+            mp = curvature_point(cycle.path, pc.center_index)
+            sten[pc.center_index] = hardware_stencil(pinion, gear, kin, mp,
+                                                     off_flank="quadric").gap_mm
+        stencils[i, k] = sten[pc.center_index]
+        if bending is not None:
+            arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
+        if edge_law and not far[i, k] and is_cut(fields, pc, torque_nmm=1e3 * t):
+            edges[i, k] = pc
+    laws, expo = _calibrate_edges(fields, edges, materials, 1e3 * t, laws)
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)
-    env = env + m * ARCSEC_PER_RAD * _first_touch(arrays, valid)
+    shift = _first_touch(arrays, valid)
+    env = env + m * ARCSEC_PER_RAD * shift
     # each cut row's scale at the load it carries in the table's quasi-static mesh
     scale, _ = operating_scales(laws, arrays["lever"], arrays["opening"], arrays["kappa"],
                                 valid, torque_nmm=1e3 * t)
@@ -296,17 +330,16 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
         side=side, bending_mm_per_n=arrays["cb"][:, order], stencil_gaps_mm=stencils[:, order],
         contact_mode=mode[:, order], edge_label=label[:, order],
         edge_compliance_scale=scale[:, order] if edge_law else None,
-        edge_exponent=expo[:, order] if edge_law else None)
+        edge_exponent=expo[:, order] if edge_law else None, out_of_reach=far[:, order],
+        reach_rad=(reach - shift)[order])
 
 
-def _calibrate_edges(fields: PairFields, edges: np.ndarray, pair, torque_nmm: float
-                     ) -> tuple[np.ndarray, np.ndarray]:
+def _calibrate_edges(fields: PairFields, edges: np.ndarray, materials, torque_nmm: float,
+                     done: dict) -> tuple[np.ndarray, np.ndarray]:
     """``(law, n)`` per row: :func:`gearcontact.ltca.edge_rows.row_law` of each row's
     contact in ``edges`` (the calibration ``TE_pre`` takes too), once per path index
-    (``law`` None and ``n = 0`` where it failed); None and NaN elsewhere."""
+    (``done``; ``law`` None and ``n = 0`` where it failed); None and NaN elsewhere."""
     laws, expo = np.full(edges.shape, None, dtype=object), np.full(edges.shape, np.nan)
-    done: dict = {}
-    materials = (pair.pinion_material, pair.gear_material)
     for (i, k), pc in np.ndenumerate(edges):
         if pc is not None:
             law = row_law(fields, pc, materials=materials, torque_nmm=torque_nmm, cache=done)
@@ -337,6 +370,35 @@ def pair_mesh_table(pair, *, side: str, torque_nm: float, phases: int = 61, flan
     teeth = tooth_bending(flanks, pair, side=side) if bending else None
     return tca, flanks, mesh_table(tca, flanks, pair, side=side, torque_nm=torque_nm,
                                    bending=teeth)
+
+
+def _reach_rad(fields: PairFields, rows: dict, n_k: int, *, torque_nmm: float, materials,
+               cache: dict | None, bending: bool) -> np.ndarray:
+    """Per phase, a bound of the rotation ``theta`` (rad, gear) the mesh reaches under
+    :data:`REACH_TORQUE_FACTOR` times the table's torque ``tau``: the rotation at which
+    the phase's first-closing pair ``j`` (least ``g_j / l_j`` of the rows' upper
+    openings, its touch then searched) carries ``tau`` alone, ``(g_j + c kappa_j W^(2/3)
+    + c_b W) / l_j`` with ``W = tau / l_j`` and ``c`` the largest ratio of its edge law
+    (:meth:`~gearcontact.ltca.edge_law.EdgeCompliance.scale_at` stays within them; 1 for
+    Hertz). Other pairs carrying part of ``tau`` only lower the rotation (module
+    docstring of :func:`mesh_table`, "reach"). ``cache``: the edge laws (None: no edge
+    law)."""
+    tau = REACH_TORQUE_FACTOR * torque_nmm
+    reach = np.full(n_k, np.inf)
+    for k in range(n_k):
+        here = [pc for (_, kk), (pc, _) in rows.items() if kk == k]
+        if not here:
+            continue
+        pc = fields.resolve(min(here, key=lambda p: p.offset_mm / p.lever_mm))
+        scale = 1.0
+        if cache is not None and is_cut(fields, pc, torque_nmm=torque_nmm):
+            law = row_law(fields, pc, materials=materials, torque_nmm=torque_nmm, cache=cache)
+            scale = 1.0 if law is None else max(1.0, float(np.max(law.ratio)))
+        w = tau / pc.lever_mm
+        bend = pair_bending_compliance(fields, pc, torque_nmm) if bending else 0.0
+        reach[k] = (pc.offset_mm + scale * pc.kappa_mm_per_n23 * w ** (2.0 / 3.0)
+                    + bend * w) / pc.lever_mm
+    return reach
 
 
 def _first_touch(arrays: dict, valid: np.ndarray) -> np.ndarray:

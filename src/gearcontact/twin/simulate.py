@@ -297,6 +297,8 @@ def _mode_summary(model: TwinModel) -> dict:
         out["compliance_scaled_rows"] = int(np.sum(c != 1.0))
         out["compliance_scale_max"] = float(c.max()) if c.size else 1.0
         out["compliance_uncalibrated_rows"] = int(np.sum(m.edge_exponent[m.valid] == 0.0))
+    if m.out_of_reach is not None:     # no touch search, no edge law (.mesh "reach")
+        out["mesh_rows_out_of_reach"] = int(np.sum(m.valid & m.out_of_reach))
     return out
 
 

@@ -38,14 +38,15 @@ import numpy as np
 from ...analytic.hertz import (exact_elliptic_hertz, hamrock_brewe_hertz_array,
                                hamrock_brewe_terms, line_contact_hertz)
 from ...validation import (InputRangeError, check_array_finite, check_positive, check_range,
-                           format_range)
+                           format_number, format_range)
 from ...contract.qformat import CURVATURE, LOAD
 from . import formats as F
 from . import line as LN
 from .golden_vec import njit
 
 __all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
-           "check_envelope", "LINE_ENVELOPE", "TruncatedPreview", "truncated_preview",
+           "check_envelope", "LINE_ENVELOPE", "LINE_LENGTH_RANGE_MM", "LINE_LENGTH_RANGE",
+           "TruncatedPreview", "truncated_preview",
            "keeps_ellipse", "line_lift", "lifted_keeps_ellipse"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
@@ -68,8 +69,14 @@ _new = object.__new__
 _INF = math.inf
 _L_SCALE = math.ldexp(1.0, LN.LINE_LENGTH.frac)     # LINE_LENGTH codes per mm
 _W_SCALE = math.ldexp(1.0, LOAD.frac)               # LOAD codes per N
-_LENGTH_RANGE = (f"[1, 1024] mm, or down to 2^-{LN.LIFT_MAX_SHIFT} mm with load_n x 2^s "
-                 f"<= {_W_HI:g} N for L x 2^s >= 1 mm (the line core's host lift)")
+#: Contact-line lengths the line path answers (mm): the core's [1, 1024] mm and, through
+#: the host's lift (:func:`.line.length_lift`), down to 2^-LIFT_MAX_SHIFT mm where the
+#: lifted load stays in the envelope (:data:`LINE_LENGTH_RANGE`).
+LINE_LENGTH_RANGE_MM = (math.ldexp(1.0, -LN.LIFT_MAX_SHIFT), LINE_ENVELOPE["line_length_mm"][1])
+#: :data:`LINE_LENGTH_RANGE_MM` in words, with the lift's load condition.
+LINE_LENGTH_RANGE = (f"[1, 1024] mm, or down to 2^-{LN.LIFT_MAX_SHIFT} = "
+                     f"{format_number(LINE_LENGTH_RANGE_MM[0])} mm with load_n x 2^s <= "
+                     f"{_W_HI:g} N for L x 2^s >= 1 mm (the line core's host lift)")
 
 
 @dataclass(frozen=True)
@@ -381,7 +388,7 @@ def truncated_preview(A_minus: float, B_minus: float, load_n: float, length_mm: 
         check_range("e_prime_mpa", e, _E_LO, _E_HI)
         lift = line_lift(w, length)
         if lift == 0.0 or length > LINE_ENVELOPE["line_length_mm"][1]:
-            raise InputRangeError("line_length_mm", length, _LENGTH_RANGE)
+            raise InputRangeError("line_length_mm", length, LINE_LENGTH_RANGE)
     line = line_contact_hertz(0.5 / b_max, w, length, e_prime_mpa=e)
     if a_min > 0.0 and (not envelope or b_max <= _ALPHA_HI * a_min):
         ell = hertz_preview(a_min, b_max, w, e_prime_mpa=e, envelope=False,
