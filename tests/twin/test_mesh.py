@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, Phase, assume, given, settings
 from design_space import HANDS, SPACE, design_space_pair
 from gearcontact.contract.stencil import stencil_coordinates
 from gearcontact.preview.fit.reference import principal_curvatures
-from gearcontact.twin.simulate import _fitted_coefficients
+from gearcontact.preview.fit.reference import fitted_coefficients
 from gearcontact.validation import InputRangeError
 
 #: Tolerances of the stage-C fit against the shape operator on a window on the flank.
@@ -39,7 +39,7 @@ def stencil_errors(mesh, *, degree: int | None = None):
     ``degree`` in s, t fitted to the same 49 samples (a test-side fp64 SVD solve,
     independent of the package's design matrix)."""
     if degree is None:
-        c = _fitted_coefficients(mesh)
+        c = fitted_coefficients(mesh.stencil_gaps_mm)
     else:
         s, t = stencil_coordinates()
         design = np.column_stack([s ** i * t ** (n - i) for n in range(degree + 1)

@@ -185,7 +185,7 @@ def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray
     (:data:`~.layout.LINE_SOURCE`) appends the contact-line length L, mm."""
     if source == "exact":
         return np.stack([mesh.A_minus_per_mm, mesh.B_minus_per_mm], axis=-1)
-    cols = [_fitted_coefficients(mesh)]
+    cols = [fitted_coefficients(mesh.stencil_gaps_mm)]
     if golden:      # the samples for the fit core, the fp64 fit for the fp64 fallback
         cols.insert(0, np.asarray(mesh.stencil_gaps_mm, float))
     if source == LINE_SOURCE:      # L, the slices' ease-off and bending Gram (.line_law)
@@ -196,13 +196,6 @@ def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray
                     gaps.shape[:2] + (n * n,)))
         cols += [np.asarray(mesh.line_length_mm, float)[..., None], gaps, gram]
     return np.concatenate(cols, axis=-1) if len(cols) > 1 else cols[0]
-
-
-def _fitted_coefficients(mesh: MeshTable) -> np.ndarray:
-    """fp64 stage-C coefficients c3, c4, c5 (1/mm) of every row's stencil (P, K, 3):
-    :func:`gearcontact.preview.fit.reference.fitted_coefficients`, as the cylindrical
-    preview's."""
-    return fitted_coefficients(mesh.stencil_gaps_mm)
 
 
 def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:

@@ -23,7 +23,7 @@ from .layout import LINE_SOURCE
 from .mesh import CONTACT_MODES
 # the set-up and the static point, re-exported: the twin's one entry point
 from .model import (BACKENDS, CURVATURE_SOURCES, TwinModel, _fit_args,  # noqa: F401
-                    _fitted_coefficients, _prm, build_model, model_for_pair)
+                    _prm, build_model, model_for_pair)
 from .statics import (STABILITY_LIMIT, STEP_RANGE_US, _elastic, check_step,  # noqa: F401
                       linear_matrices, linearized_modes, mesh_damping_n_s_per_mm,
                       speed_controller_gains, static_rotation)
