@@ -1,9 +1,8 @@
 """The README's machine-settings lines, verbatim, in a real process (issue 27).
 
 ``gearcontact design --pair s0003 --machine-settings --out mach_s0003/`` fits the pinion
-settings that cut s0003's ease-off (slow: ~20 s; the default suite parses the line with
-the CLI's own parser). Truths: its residual table is the library's measured one
-(tests/geometry/test_setting_fit.py: coast 0.560 / 0.119 um max / RMS) and the written
+settings that cut s0003's ease-off (~20 s). Truths: its residual table is the library's measured one
+(tests/geometry/test_setting_fit.py: coast 0.566 / 0.120 um max / RMS) and the written
 pair loads back with settings for all four flanks, the coast blade with its cubic term.
 
 ``gearcontact design --pair examples/iso23509_f2_spiral_bevel.toml --machine-settings
@@ -105,7 +104,6 @@ def test_readme_s0003_machine_settings_line(tmp_path):
     assert (tmp_path / "mach_s0003" / "machine_settings_residual.svg").is_file()
 
 
-@pytest.mark.slow
 def test_readme_typed_machine_settings_example(tmp_path):
     """The shipped typed-settings example (examples/machine_settings/, kept out of the
     `examples/*.toml` glob of test_examples.py) in its README line, as written (issue
