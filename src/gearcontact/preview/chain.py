@@ -19,7 +19,8 @@ core's 2^-11 1/mm) gets the truncated-ellipse answer instead of a flag:
   :func:`.hertz.line.line_golden` (:func:`.hertz.line_vec.line_golden_array`);
   :data:`CHAIN_LINE_CYCLES` = 52 + 759 = 811 (the line core's own capture is not
   absorbed: :class:`.chain_line_rtl.ChainLineCore`). The published chain (806 cycles)
-  is unchanged.
+  is unchanged. :func:`lifted_chain_line_golden_batch` is the host's path around it (a
+  line shorter than the core's 1 mm lifted, :mod:`.hertz.line`).
 
 Chain flags word (what the tri_core ``flags`` readback carries): bits 0..7 are stage D's
 ``FLAG_*`` (:mod:`.hertz.formats`; the line chain: the line core's, bit 7
@@ -49,7 +50,7 @@ from .hertz.formats import flag_names as hertz_flag_names
 from .hertz.golden import HertzCodes, hertz_golden
 from .hertz.golden_vec import HertzCodesArray, hertz_golden_array
 from .hertz.line import LINE_CYCLES, LineCodes, line_flag_names, line_golden
-from .hertz.line_vec import LineCodesArray, line_golden_array
+from .hertz.line_vec import LineCodesArray, lifted_line_golden_array, line_golden_array
 from .hertz.reference import HertzPreview, TruncatedPreview, hertz_preview, truncated_preview
 from .hertz.schedule import CHAIN_CYCLES
 from ..contract.qformat import CURVATURE
@@ -58,8 +59,8 @@ __all__ = ["ChainReference", "ChainCodes", "ChainCodesBatch", "chain_reference",
            "chain_golden", "chain_golden_batch", "chain_flag_names", "FIT_FLAG_SHIFT",
            "CHAIN_CYCLES", "CHAIN_LINE_CYCLES", "ChainLineReference", "ChainLineCodes",
            "ChainLineCodesBatch", "chain_line_reference", "chain_line_golden",
-           "chain_line_golden_batch", "LINE_CHAIN_FIT_FLAGS", "LINE_B_ZERO_CODES",
-           "line_b_minus"]
+           "chain_line_golden_batch", "lifted_chain_line_golden_batch",
+           "LINE_CHAIN_FIT_FLAGS", "LINE_B_ZERO_CODES", "line_b_minus"]
 
 #: Position of the fit core's flags in the chain flags word.
 FIT_FLAG_SHIFT = 8
@@ -288,9 +289,29 @@ def chain_line_golden(gap_codes, W_code: int, L_code: int, *, e_prime_code: int,
 def chain_line_golden_batch(gap_codes, W_code, L_code, *, e_prime_code,
                             hertz_form: str = DEFAULT_HERTZ_FORM) -> ChainLineCodesBatch:
     """Vectorized, bit-identical :func:`chain_line_golden` over n stencils, (n, 49)."""
+    return _chain_line_batch(gap_codes, W_code, L_code, e_prime_code=e_prime_code,
+                             hertz_form=hertz_form, lifted=False)[0]
+
+
+def lifted_chain_line_golden_batch(gap_codes, W_code, L_code, *, e_prime_code,
+                                   hertz_form: str = DEFAULT_HERTZ_FORM
+                                   ) -> tuple[ChainLineCodesBatch, np.ndarray]:
+    """The host's line chain over n stencils: :func:`chain_line_golden_batch` with a line
+    shorter than the core's 1 mm lifted (:func:`.hertz.line_vec.lifted_line_golden_array`:
+    the line core on ``(W << s, L << s)``, undone), as the preview engine runs it.
+    Returns the batch (stage D's outputs and flags unlifted) and the lift ``s`` of each
+    stencil (``int64``)."""
+    return _chain_line_batch(gap_codes, W_code, L_code, e_prime_code=e_prime_code,
+                             hertz_form=hertz_form, lifted=True)
+
+
+def _chain_line_batch(gap_codes, W_code, L_code, *, e_prime_code, hertz_form, lifted):
+    """The fit batch, the line core on its codes (``lifted``: the host's path), the chain
+    flags; ``(batch, lift or None)``."""
     fit = fit_golden_mod.golden_fit_batch(gap_codes)
-    lc = line_golden_array(fit.a_minus_codes, line_b_minus(fit.b_minus_codes), W_code, L_code,
-                           e_prime_code=e_prime_code, hertz_form=hertz_form)
-    return ChainLineCodesBatch(fit=fit, hertz=lc,
-                               flags=lc.flags | ((fit.flags.astype(np.int64)
-                                                  & LINE_CHAIN_FIT_FLAGS) << FIT_FLAG_SHIFT))
+    args = (fit.a_minus_codes, line_b_minus(fit.b_minus_codes), W_code, L_code)
+    kw = {"e_prime_code": e_prime_code, "hertz_form": hertz_form}
+    lc, lift = (lifted_line_golden_array(*args, **kw) if lifted
+                else (line_golden_array(*args, **kw), None))
+    return ChainLineCodesBatch(fit=fit, hertz=lc, flags=lc.flags | (
+        (fit.flags.astype(np.int64) & LINE_CHAIN_FIT_FLAGS) << FIT_FLAG_SHIFT)), lift

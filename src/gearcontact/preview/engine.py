@@ -42,7 +42,7 @@ register and otherwise returns datapath flags (never a silently wrapped number).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
@@ -56,8 +56,8 @@ from .hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS, check_hertz_form
 from .hertz.golden import decode_hertz_codes, encode_e_prime, encode_hertz_inputs, hertz_golden
 from .hertz.golden_vec import hertz_golden_array
 from .hertz.line import (LINE_CYCLES, decode_line_codes, encode_length, length_lift,
-                         line_golden, unlift_line, unlift_line_codes)
-from .hertz.line_vec import line_golden_array
+                         line_golden, unlift_line_codes)
+from .hertz.line_vec import lift_lengths, line_golden_array, unlift_line_array
 from .hertz.reference import (ENVELOPE, check_envelope, hertz_preview, hertz_preview_array,
                               truncated_preview)
 from .hertz.schedule import HERTZ_CYCLES
@@ -243,10 +243,6 @@ def _lifted(w_code: int, l_code: int) -> tuple[int, int, int]:
     s = int(length_lift(int(w_code), int(l_code)))
     return int(w_code) << s, int(l_code) << s, s
 
-
-# elementwise over a batch's codes (the same compiled functions)
-_LIFTED = np.vectorize(_lifted, otypes=[np.int64, np.int64, np.int64])
-_UNLIFT = np.vectorize(unlift_line, otypes=[np.int64] * 6)
 
 
 def _check_stencil(gaps_mm) -> np.ndarray:
@@ -453,7 +449,7 @@ class GoldenEngine:
         naming the element."""
         a, b, w, length = _check_line_batch(A_minus, B_minus, load_n, line_length_mm)
         a_c, b_c, w_c, e_c = encode_hertz_inputs(a, b, w, e_prime_mpa=self.e_prime_mpa)
-        w_c, l_c, lift = _LIFTED(w_c, encode_length(length))
+        w_c, l_c, lift = lift_lengths(w_c, encode_length(length))
         return {"A_in": a_c, "B_in": b_c, "W": w_c.astype(np.int64),
                 "L": l_c.astype(np.int64), "lift": lift.astype(np.int64),
                 "e_prime": np.full(a.shape, e_c, dtype=np.int64)}
@@ -468,11 +464,7 @@ class GoldenEngine:
         """A PreviewBatch from a :class:`.hertz.line_vec.LineCodesArray` of a run on
         lifted inputs (``lift``: :meth:`encode_line_batch`'s, undone here)."""
         if lift.any():
-            out = _UNLIFT(lc.a_code, lc.b_code, lc.p_max_code, lc.k_code, lc.mode,
-                          lc.flags, lift)
-            lc = replace(lc, **dict(zip(
-                ("a_code", "b_code", "p_max_code", "k_code", "mode", "flags"),
-                (x.astype(np.int64) for x in out))))
+            lc = unlift_line_array(lc, lift)
         v = decode_line_codes(lc)
         return PreviewBatch(self.name, v["a_mm"], v["b_mm"], v["k"], v["p_max_mpa"],
                             lc.flags, lc.mode_names)

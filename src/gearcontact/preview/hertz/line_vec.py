@@ -23,7 +23,7 @@ scalar model on seeded vectors of :func:`gearcontact.preview.stimulus.line_stimu
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -33,7 +33,8 @@ from . import line as LN
 from .golden_vec import (_div_wide, _rs, golden_constants, hertz_element, njit, prange,
                          run_batch)
 
-__all__ = ["LineCodesArray", "line_golden_array", "line_element", "line_constants"]
+__all__ = ["LineCodesArray", "line_golden_array", "line_element", "line_constants",
+           "lift_lengths", "unlift_line_array", "lifted_line_golden_array"]
 
 _U = np.uint64
 #: Output rows of the kernel, in :class:`LineCodesArray` field order.
@@ -240,3 +241,63 @@ def line_golden_array(A_code, B_code, W_code, L_code, *, e_prime_code,
                       (W_code, LOAD, "W_code"), (L_code, LN.LINE_LENGTH, "L_code"),
                       (e_prime_code, F.E_PRIME, "e_prime_code")),
                      (*golden_constants(hertz_form), line_constants()))
+
+
+# ---- the host's lift of a line shorter than the core's 1 mm (.line, *Short lines*) ----
+@njit(cache=True)
+def _lift_kernel(W, L, out):
+    for j in range(W.shape[0]):
+        s = LN.length_lift(W[j], L[j])
+        out[0, j] = W[j] << s
+        out[1, j] = L[j] << s
+        out[2, j] = s
+
+
+def lift_lengths(W_code, L_code) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(W << s, L << s, s)`` elementwise (``int64`` arrays of the broadcast shape), with
+    the host's lift ``s`` of :func:`.line.length_lift` (0 for a line of 1 mm or more, or
+    one the lift cannot bring into the envelope: the core then flags it)."""
+    w, length = (np.asarray(x, dtype=np.int64) for x in np.broadcast_arrays(W_code, L_code))
+    out = np.zeros((3, w.size), np.int64)
+    _lift_kernel(np.ascontiguousarray(w.ravel()), np.ascontiguousarray(length.ravel()), out)
+    return tuple(r.reshape(w.shape) for r in out)
+
+
+@njit(cache=True)
+def _unlift_kernel(a, b, p, k, mode, flags, lift):
+    for j in range(a.shape[0]):
+        a[j], b[j], p[j], k[j], mode[j], flags[j] = LN.unlift_line(
+            a[j], b[j], p[j], k[j], mode[j], flags[j], lift[j])
+
+
+def unlift_line_array(codes: LineCodesArray, lift) -> LineCodesArray:
+    """:func:`.line.unlift_line` elementwise: the outputs of runs on lifted inputs
+    (:func:`lift_lengths`) as those of the unlifted ``(W, L)``; a new array set."""
+    cols = [np.array(getattr(codes, f), dtype=np.int64).ravel()
+            for f in ("a_code", "b_code", "p_max_code", "k_code", "mode", "flags")]
+    _unlift_kernel(*cols, np.ascontiguousarray(np.broadcast_to(
+        np.asarray(lift, dtype=np.int64), codes.a_code.shape).ravel()))
+    shape = np.shape(codes.a_code)
+    return replace(codes, **{f: c.reshape(shape) for f, c in zip(
+        ("a_code", "b_code", "p_max_code", "k_code", "mode", "flags"), cols)})
+
+
+def lifted_line_golden_array(A_code, B_code, W_code, L_code, *, e_prime_code,
+                             hertz_form: str = F.DEFAULT_HERTZ_FORM
+                             ) -> tuple[LineCodesArray, np.ndarray]:
+    """The host's line path over a batch (:mod:`.line`, *Short lines*): the line core on
+    the lifted ``(W << s, L << s)`` (:func:`lift_lengths`), undone by
+    :func:`unlift_line_array`; what :func:`gearcontact.preview.engine` answers and the
+    exported C ``gc_line_golden`` computes. Arguments as :func:`line_golden_array`.
+
+    Returns
+    -------
+    codes : LineCodesArray
+        The unlifted outputs.
+    lift : numpy.ndarray
+        The lift ``s`` of each element (``int64``, 0..:data:`.line.LIFT_MAX_SHIFT`).
+    """
+    w, length, lift = lift_lengths(W_code, L_code)
+    codes = line_golden_array(A_code, B_code, w, length, e_prime_code=e_prime_code,
+                              hertz_form=hertz_form)
+    return unlift_line_array(codes, lift), lift
