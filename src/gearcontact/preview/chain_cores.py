@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .core import CoreDescriptor, lazy
+from .core import CoreDescriptor, HostPath, lazy
 from .fit.cores import STENCIL_CONTROL, STENCIL_WRITE, fit_columns
-from .hertz.cores import hertz_columns
+from .hertz.cores import LIFT_OUTPUTS, hertz_columns
 from .stimulus import Stimulus
 
 __all__ = ["DESCRIPTORS", "CHAIN_PORTS"]
@@ -74,12 +74,18 @@ def _line_chain_cols(fit_c, fit_a, fit_b, fit_flags, line, flags) -> dict:
     return cols
 
 
-def _line_chain_golden(st: Stimulus) -> dict:
-    from .chain import chain_line_golden_batch
-    f = st.fields
-    res = chain_line_golden_batch(f["gaps"], f["W"], f["L"], e_prime_code=f["e_prime"])
-    return _line_chain_cols(res.fit.c_codes, res.fit.a_minus_codes, res.fit.b_minus_codes,
-                            res.fit.flags, res.hertz, res.flags)
+def _line_chain_golden(lifted: bool = False):
+    """Golden line chain; ``lifted``: the host's path, with its ``lift`` column."""
+    def run(st: Stimulus) -> dict:
+        from .chain import chain_line_golden_batch, lifted_chain_line_golden_batch
+        f = st.fields
+        args, kw = (f["gaps"], f["W"], f["L"]), {"e_prime_code": f["e_prime"]}
+        res, lift = (lifted_chain_line_golden_batch(*args, **kw) if lifted
+                     else (chain_line_golden_batch(*args, **kw), None))
+        cols = _line_chain_cols(res.fit.c_codes, res.fit.a_minus_codes,
+                                res.fit.b_minus_codes, res.fit.flags, res.hertz, res.flags)
+        return cols if lift is None else {**cols, "lift": lift}
+    return run
 
 
 def _line_chain_amaranth(st: Stimulus):
@@ -144,9 +150,11 @@ DESCRIPTORS = (
                   _comb_cycles, "combinational C + D with hertz_form='exact' (58 cycles)",
                   verilog_kwargs={"hertz_form": "exact"}),
     CoreDescriptor("chain_line", "chain_line_rtl", lazy("chain_line_rtl", "ChainLineCore"),
-                   "chain_line_core", _line_chain_ports, _line_chain_golden,
+                   "chain_line_core", _line_chain_ports, _line_chain_golden(),
                    _line_chain_amaranth, _line_chain_cycles, control=STENCIL_CONTROL,
                    write=STENCIL_WRITE, stimulus_core="chain_line",
+                   host=HostPath(lazy("stimulus_lift", "host_chain_line_stimulus"),
+                                 _line_chain_golden(lifted=True), LIFT_OUTPUTS),
                    summary="C -> line core chain: fit core feeding the line core of stage D "
                            "(811 cycles)"),
 )

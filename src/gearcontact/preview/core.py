@@ -26,7 +26,7 @@ from functools import cache
 from ..validation import InputRangeError
 from .stimulus import Stimulus, stimulus
 
-__all__ = ["WriteNames", "CoreDescriptor", "core_descriptors", "lazy", "DESCRIPTOR_MODULES"]
+__all__ = ["WriteNames", "HostPath", "CoreDescriptor", "core_descriptors", "lazy", "DESCRIPTOR_MODULES"]
 
 #: Modules exporting ``DESCRIPTORS`` (tuples of :class:`CoreDescriptor`), in order.
 DESCRIPTOR_MODULES = ("gearcontact.preview.gap.cores", "gearcontact.preview.fit.cores",
@@ -54,6 +54,29 @@ class WriteNames:
     max_beats: int
     addr: str | None = None
     clear: str | None = None
+
+
+@dataclass(frozen=True)
+class HostPath:
+    """What the host does around a core, which its golden vectors describe: the line
+    cores' vectors are the host's path (a line shorter than the core's 1 mm lifted and
+    the outputs unlifted, :mod:`.hertz.line`), what a driver and the C library compute.
+
+    Attributes
+    ----------
+    stimulus : callable
+        ``stimulus(n, seed) -> Stimulus``: corner cases + ``n`` seeded random vectors.
+    golden : callable
+        ``Stimulus -> {output port: int64 array}``: the core's checked outputs of the
+        host's path, then the :attr:`outputs`.
+    outputs : tuple of (str, int)
+        ``(name, bits)`` of the unsigned outputs the host adds after the core's (the
+        line cores: ``lift``, the shift s).
+    """
+
+    stimulus: Callable
+    golden: Callable
+    outputs: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -100,6 +123,9 @@ class CoreDescriptor:
         Generator name in :data:`.stimulus.STIMULUS_CORES` (default: ``name``).
     summary : str
         One line for ``--help`` and the port README.
+    host : HostPath, optional
+        The host's path around the core, for the golden-vector export
+        (:mod:`gearcontact.hw.vectors`; default: the core alone).
     """
 
     name: str
@@ -120,6 +146,7 @@ class CoreDescriptor:
     stimulus_kwargs: dict = field(default_factory=dict)
     stimulus_core: str | None = None
     summary: str = ""
+    host: HostPath | None = None
 
     def stimulus(self, n: int, seed: int = 0, **kwargs) -> Stimulus:
         """Corner cases + ``n`` random vectors (:mod:`gearcontact.preview.stimulus`)."""

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core import CoreDescriptor, lazy
+from ..core import CoreDescriptor, HostPath, lazy
 from ..stimulus import Stimulus
 
-__all__ = ["DESCRIPTORS", "hertz_columns"]
+__all__ = ["DESCRIPTORS", "hertz_columns", "LIFT_OUTPUTS"]
 
 
 def hertz_columns(codes) -> dict:
@@ -107,12 +107,20 @@ def _line_columns(codes) -> dict:
     return {p: np.asarray(getattr(codes, f), np.int64) for p, f in LINE_OUTPUT_PORTS.items()}
 
 
-def _line_golden(hertz_form: str):
+#: The host's outputs beside the line cores' (the lift s, 0..LIFT_MAX_SHIFT = 8: 4 bits).
+LIFT_OUTPUTS = (("lift", 4),)
+
+
+def _line_golden(hertz_form: str, lifted: bool = False):
+    """Golden line core; ``lifted``: the host's path, with its ``lift`` column."""
     def run(st: Stimulus) -> dict:
-        from .line_vec import line_golden_array
+        from .line_vec import lifted_line_golden_array, line_golden_array
         a, b, w, length, e = _line_fields(st)
-        return _line_columns(line_golden_array(a, b, w, length, e_prime_code=e,
-                                               hertz_form=hertz_form))
+        kw = {"e_prime_code": e, "hertz_form": hertz_form}
+        if not lifted:
+            return _line_columns(line_golden_array(a, b, w, length, **kw))
+        codes, lift = lifted_line_golden_array(a, b, w, length, **kw)
+        return {**_line_columns(codes), "lift": lift}
     return run
 
 
@@ -130,7 +138,9 @@ def _line(name, top, hertz_form, summary):
         _line_golden(hertz_form), _line_amaranth(hertz_form), _line_cycles,
         control=("busy", "done_pulse"), stimulus_core="hertz_line",
         verilog_kwargs={"hertz_form": hertz_form} if hertz_form == "exact" else {},
-        summary=summary)
+        summary=summary,
+        host=HostPath(lazy("stimulus_lift", "host_line_stimulus"),
+                      _line_golden(hertz_form, lifted=True), LIFT_OUTPUTS))
 
 
 def _line_cycles(st: Stimulus) -> int:
