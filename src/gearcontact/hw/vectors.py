@@ -29,6 +29,7 @@ by the operand ports; outputs are the ports the equivalence tests check.
 from __future__ import annotations
 
 import json
+from importlib import import_module
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -36,11 +37,14 @@ import numpy as np
 
 from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
 from ..preview.hertz.formats import FLAG_NAMES as HERTZ_FLAG_NAMES
+from ..preview.hertz.line import LINE_FLAG_NAMES
 from ..preview.stimulus import STIMULUS_CORES, Stimulus
 from ..validation import InputRangeError
+from .harness import Port
 from .harness_cores import get_bench
 
-__all__ = ["VECTOR_CORES", "VARIANT_CORES", "EXPORT_CORES", "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "MAX_COUNT", "HexField",
+__all__ = ["VECTOR_CORES", "VARIANT_CORES", "LINE_CORES", "EXPORT_CORES",
+           "GAP_VECTOR_SAMPLES", "DEFAULT_COUNT", "MAX_COUNT", "HexField",
            "vector_layout", "vector_stimulus", "golden_outputs", "encode_hex",
            "decode_hex", "read_hex", "read_jsonl", "readme_text", "export_vectors"]
 
@@ -50,8 +54,13 @@ VECTOR_CORES = ("gap", "fit", "hertz", "chain")
 #: base core and its own golden model: the lean gap lane, stage D and the C -> D chain
 #: with the exact-Hertz tables.
 VARIANT_CORES = {"gap_lean": "gap", "hertz_exact": "hertz", "chain_exact": "chain"}
+#: Line-contact cores exported on request: the line core of stage D in both Hertz forms
+#: and the C -> line-core chain. Their vectors are the host's path
+#: (:attr:`gearcontact.preview.core.CoreDescriptor.host`): a line shorter than the
+#: core's 1 mm runs lifted, the outputs unlifted, and the lift is one more output.
+LINE_CORES = ("hertz_line", "hertz_line_exact", "chain_line")
 #: Every exportable core, in file order.
-EXPORT_CORES = VECTOR_CORES + tuple(VARIANT_CORES)
+EXPORT_CORES = VECTOR_CORES + tuple(VARIANT_CORES) + LINE_CORES
 #: Gear samples per gap pass (one beat per sample, L = 16 lanes: 26 cycles).
 GAP_VECTOR_SAMPLES = 16
 #: Default number of seeded random vectors per core (corner cases come on top).
@@ -102,27 +111,47 @@ _PORT_DOC = {
     "R_x": ("Q(32,20)", "mm", "R_x = 1/(2 A_min)"),
     "R_y": ("Q(32,20)", "mm", "R_y = 1/(2 B_max)"),
     "alpha": ("UQ(32,24)", "1", "curvature ratio alpha = R_x/R_y"),
+    "L": ("Q(32,20)", "mm", "length of the contact line on the flank through the contact "
+          "point, along the ellipse's major axis; the core takes [1, 1024] mm, the host "
+          "lifts a shorter line (`lift`)"),
+    "mode": ("UQ(1,0)", "1", "0 elliptic, 1 line contact (0 when flagged)"),
+    "scale": ("UQ(2,0)", "1", "Hertz similarity exponent n: curvatures scaled by 8^n"),
+    "lift": ("UQ(4,0)", "1", "the host's lift s of a line shorter than 1 mm (0..8; "
+             "see below): the core ran on W << s, L << s"),
+}
+#: Line cores: their a, b, k (either mode).
+_LINE_PORT_DOC = {
+    "a": ("Q(32,20)", "mm", "semi-axis a (elliptic) or L/2 (line mode)"),
+    "b": ("Q(32,20)", "mm", "semi-axis b (elliptic) or the line's half-width"),
+    "k": ("Q(32,20)", "1", "ellipticity a/b (elliptic; 0 in line mode)"),
 }
 
 
-def _flag_bits(core: str, nbits: int) -> list[str]:
+def _flag_bits(core: str, nbits: int, port: str = "flags") -> list[str]:
     """Name of each bit of the core's flags word (bit 0 first; "-" if unused)."""
     core = VARIANT_CORES.get(core, core)
+    if core in ("hertz_line", "hertz_line_exact"):
+        return [LINE_FLAG_NAMES.get(1 << i, "-") for i in range(nbits)]
+    if core == "chain_line" and port == "flags":
+        return [", ".join(chain_flag_names(1 << i, line=True)) or "-" for i in range(nbits)]
     if core == "hertz":
         return [HERTZ_FLAG_NAMES.get(1 << i, "-") for i in range(nbits)]
     if core == "chain":
         return [", ".join(chain_flag_names(1 << i)) or "-" for i in range(nbits)]
-    if core == "fit":
+    if core in ("fit", "chain_line"):       # the chain's fit_flags: the fit's word
         return [", ".join(chain_flag_names(1 << (i + FIT_FLAG_SHIFT))).replace("fit_", "")
                 or "-" for i in range(nbits)]
     return ["-"] * nbits
 
 
 def _doc(core: str, port) -> tuple[str, str, str]:
-    if port.name == "flags":
-        listing = "; ".join(f"bit {i} {n}" for i, n in enumerate(_flag_bits(core, port.bits))
-                            if n != "-")
-        return f"UQ({port.bits},0)", "1", f"flags word, 0 = valid ({listing})"
+    if port.name in ("flags", "fit_flags"):
+        listing = "; ".join(f"bit {i} {n}" for i, n in
+                            enumerate(_flag_bits(core, port.bits, port.name)) if n != "-")
+        what = "the fit core's flags word" if port.name == "fit_flags" else "flags word"
+        return f"UQ({port.bits},0)", "1", f"{what}, 0 = valid ({listing})"
+    if core in LINE_CORES and port.name in _LINE_PORT_DOC:
+        return _LINE_PORT_DOC[port.name]
     return _PORT_DOC.get(port.name, ("-", "-", "see gearcontact.hw.harness_cores"))
 
 
@@ -197,6 +226,9 @@ def vector_layout(core: str) -> tuple[tuple[HexField, ...], tuple[HexField, ...]
             ins.append(_port_field(core, p, (beats, p.count) if p.count > 1 else (beats,)))
     ins += [_port_field(core, p, (p.count,) if p.count > 1 else ()) for p in spec.inputs]
     outs = [_port_field(core, p, (p.count,) if p.count > 1 else ()) for p in spec.outputs]
+    host = get_bench(core).host
+    outs += [_port_field(core, Port(name, bits, 1, False), ())
+             for name, bits in (host.outputs if host is not None else ())]
     return tuple(ins), tuple(outs)
 
 
@@ -212,16 +244,22 @@ def _base(core: str) -> str:
 
 
 def vector_stimulus(core: str, count: int, seed: int) -> Stimulus:
-    """Corner cases + ``count`` seeded random vectors of ``core`` (gap cores: N = 16);
-    ``Stimulus.core`` names ``core`` (a variant keeps its own name and golden model)."""
-    kw = {"n_samples": GAP_VECTOR_SAMPLES} if _base(_check_core(core)) == "gap" else {}
-    return replace(get_bench(core).stimulus(count, seed, **kw), core=core)
+    """Corner cases + ``count`` seeded random vectors of ``core`` (gap cores: N = 16; the
+    line cores: their host path's stimulus); ``Stimulus.core`` names ``core`` (a variant
+    keeps its own name and golden model)."""
+    bench = get_bench(_check_core(core))
+    if bench.host is not None:
+        return replace(bench.host.stimulus(count, seed), core=core)
+    kw = {"n_samples": GAP_VECTOR_SAMPLES} if _base(core) == "gap" else {}
+    return replace(bench.stimulus(count, seed, **kw), core=core)
 
 
 def golden_outputs(stim: Stimulus) -> dict[str, np.ndarray]:
     """Expected outputs {port: int64 array} of a stimulus: the core bench's golden model
-    (:attr:`gearcontact.hw.harness_cores.CoreBench.golden`), re-exported here."""
-    return get_bench(stim.core).golden(stim)
+    (:attr:`gearcontact.hw.harness_cores.CoreBench.golden`; the line cores: the host's
+    path, :attr:`~gearcontact.preview.core.CoreDescriptor.host`), re-exported here."""
+    bench = get_bench(stim.core)
+    return (bench.host or bench).golden(stim)
 
 
 def _input_arrays(stim: Stimulus) -> dict[str, np.ndarray]:
@@ -386,13 +424,15 @@ def readme_text(summary: dict, *, count: int, seed: int) -> str:
         s = summary[c]
         bench = get_bench(c)
         ins, outs = vector_layout(c)
-        gen = STIMULUS_CORES[c]
+        gen = _generator(c)
         how = " ".join((gen.__doc__ or "").split("Parameters\n")[0].split())
         lines += [f"## {c}", "", f"{bench.summary}. {s['vectors']} vectors: "
                   f"{s['corners']} corner cases (lines 0..{s['corners'] - 1}) + {count} "
                   f"random; {s['cycles']} cycles per vector.", "",
-                  f"Operands: `gearcontact.preview.stimulus.{gen.__name__}` -- {how}", "",
-                  f"### `{c}_in.hex`: {s['in_bits']} bits per line "
+                  f"Operands: `{gen.__module__}.{gen.__name__}` -- {how}", ""]
+        if bench.host is not None:
+            lines += [_LIFT_TEXT, ""]
+        lines += [f"### `{c}_in.hex`: {s['in_bits']} bits per line "
                   f"({s['in_bits'] // 4} hex digits)", ""]
         lines += _field_table(ins)
         lines += ["", f"### `{c}_out.hex`: {s['out_bits']} bits per line "
@@ -402,6 +442,29 @@ def readme_text(summary: dict, *, count: int, seed: int) -> str:
         lines += [f"{i}. {lab}" for i, lab in enumerate(s["labels"][:s["corners"]])]
         lines += [""]
     return "\n".join(lines)
+
+
+#: README paragraph of the line cores (the host's lift, docs/hertz.md sec. 6).
+_LIFT_TEXT = (
+    "The host's path (`gearcontact.preview.hertz.line`, *Short lines*; what the preview "
+    "engine and the C library's `gc_line_golden` compute): the inputs are the host's, "
+    "and a line shorter than the core's 1 mm (L in [2^-8, 1) mm, W << s in the load "
+    "envelope) runs on `W << lift`, `L << lift` with the least `lift` that brings L to "
+    "1 mm. Line mode: the outputs are the lifted run's with `a = (a + 2^(lift-1)) >> "
+    "lift` (every line register depends on W/L alone); a lifted run that keeps the "
+    "ellipse answers another load and is flagged `length_range` with outputs 0. "
+    "Vectors with `lift` = 0 are the core's registers as they are; to drive the RTL "
+    "core from these files, feed `W << lift` and `L << lift` and compare after that "
+    "unlift.")
+
+
+def _generator(core: str):
+    """The stimulus generator of ``core``'s vectors (a function with a docstring)."""
+    host = get_bench(core).host
+    if host is None:
+        return STIMULUS_CORES[core]
+    module, name = host.stimulus.__name__.rsplit(".", 1)       # a preview.core.lazy call
+    return getattr(import_module(f"gearcontact.preview.{module}"), name)
 
 
 def _check_int(name: str, value, lo: int, hi: int | None = None) -> int:
