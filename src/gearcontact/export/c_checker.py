@@ -36,6 +36,10 @@ class CCall:
     arg_types : tuple of (str, str), optional
         ``(port, C type)`` of the arguments that are not ``int32_t`` (the 64-bit gate,
         the sample count).
+    host_outputs : tuple of (str, str, tuple of str), optional
+        ``(port, C function, argument ports)`` of the outputs the host adds (the line
+        cores' ``lift``: ``gc_line_length_lift(W, L)``), each a function of scalar input
+        ports returning an integer.
     """
 
     function: str
@@ -43,6 +47,7 @@ class CCall:
     extra: str
     result_type: str
     arg_types: tuple = ()
+    host_outputs: tuple = ()
 
     def arg_type(self, port: str) -> str:
         """C type of argument port ``port``."""
@@ -51,6 +56,8 @@ class CCall:
 
 _GAP_ARGS = ("w_g", "w_n", "r", "t", "p", "tau2", "n_samples")
 _GAP_TYPES = (("tau2", "uint64_t"), ("n_samples", "int"))
+#: The line cores' host output: the lift of a line shorter than 1 mm.
+_LIFT = (("lift", "gc_line_length_lift", ("W", "L")),)
 
 #: Vector cores the golden C library implements (the checker runs them in the file
 #: order of ``gearcontact vectors``, :data:`~gearcontact.hw.vectors.EXPORT_CORES`).
@@ -66,6 +73,12 @@ C_CORES = {
     "chain_exact": CCall("gc_chain_golden", ("wr_data", "W", "e_prime"), "GC_HERTZ_EXACT",
                          "gc_chain_codes"),
     "gap_lean": CCall("gc_gap_golden", _GAP_ARGS, "GC_GAP_LEAN", "gc_gap_codes", _GAP_TYPES),
+    "hertz_line": CCall("gc_line_golden", ("A", "B", "W", "L", "e_prime"),
+                        "GC_HERTZ_HAMROCK_BREWE", "gc_line_codes", host_outputs=_LIFT),
+    "hertz_line_exact": CCall("gc_line_golden", ("A", "B", "W", "L", "e_prime"),
+                              "GC_HERTZ_EXACT", "gc_line_codes", host_outputs=_LIFT),
+    "chain_line": CCall("gc_chain_line_golden", ("wr_data", "W", "L", "e_prime"),
+                        "GC_HERTZ_HAMROCK_BREWE", "gc_chain_line_codes", host_outputs=_LIFT),
 }
 
 
@@ -94,12 +107,17 @@ def checker_cores() -> list[dict]:
         args = [{"offset": in_at[a], "count": count[a], "type": call.arg_type(a)}
                 for a in call.args]
         call_args = [f"v{i}" if a["count"] > 1 else f"v{i}[0]" for i, a in enumerate(args)]
+        host = {port: f"{fn}({', '.join(call_args[call.args.index(a)] for a in fargs)})"
+                for port, fn, fargs in call.host_outputs}
         cores.append({"name": name, "summary": get_bench(name).summary,
                       "ins": ins, "outs": outs,
                       "args": args,
                       "call_args": call_args + ([call.extra] if call.extra else []),
                       "function": call.function, "result_type": call.result_type,
-                      "out_members": [(f.name, out_at[f.name]) for f in outs]})
+                      "out_members": [(f.name, out_at[f.name]) for f in outs
+                                      if f.name not in host],
+                      "host_outputs": [(host[f.name], out_at[f.name]) for f in outs
+                                       if f.name in host]})
     return cores
 
 

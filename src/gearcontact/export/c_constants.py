@@ -16,7 +16,8 @@ from __future__ import annotations
 import math
 
 from ..analytic.cube_root import seed_coefficients
-from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
+from ..preview.chain import (FIT_FLAG_SHIFT, LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS,
+                             chain_flag_names)
 from ..preview.fit import golden as G
 from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
 from ..contract.stencil import STENCIL_SIDE
@@ -421,7 +422,8 @@ def fit_constants() -> dict[str, int]:
             "ISQRT_SEED_SHIFT": 64 - ISQRT_SEED_BITS,
             "ISQRT_SEED_OFFSET": 1 << (ISQRT_SEED_BITS - 2),
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
-            "STENCIL_GAP_FRAC": STENCIL_GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT}
+            "STENCIL_GAP_FRAC": STENCIL_GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT,
+            "LINE_B_ZERO_CODES": LINE_B_ZERO_CODES, "LINE_CHAIN_FIT_FLAGS": LINE_CHAIN_FIT_FLAGS}
 
 
 def gap_constants() -> dict[str, int]:

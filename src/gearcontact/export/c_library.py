@@ -50,7 +50,8 @@ STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
           "stage C curvature fit (golden, fp64)",
           "stage D elliptic Hertz (Hamrock-Brewe and exact Hertz; golden, fp64)",
           "stage D line core (near-line contact; golden, fp64)",
-          "the C -> D chain (both Hertz forms; golden, fp64)")
+          "the C -> D chain (both Hertz forms; golden, fp64)",
+          "the C -> line-core chain (golden)")
 
 
 def _environment():
