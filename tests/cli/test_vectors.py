@@ -83,10 +83,11 @@ def test_documented_maximum_is_checked_before_work(capsys, tmp_path, monkeypatch
 
 def test_blocks_write_the_same_files(tmp_path, monkeypatch):
     """Written in blocks of WRITE_BLOCK vectors: the files are byte for byte those of one
-    block (7 does not divide 60 + the corner cases: a short last block too)."""
+    block (7 does not divide 60 + the corner cases: a short last block too; the line
+    cores' host path, lift included, per block as well)."""
     import gearcontact.hw.vectors as V
 
-    cores = ("gap", "fit", "hertz", "chain")
+    cores = ("gap", "fit", "hertz", "chain", "hertz_line", "chain_line")
     one = V.export_vectors(tmp_path / "one", cores=cores, count=60, seed=3)
     monkeypatch.setattr(V, "WRITE_BLOCK", 7)
     blocks = V.export_vectors(tmp_path / "blocks", cores=cores, count=60, seed=3)

@@ -28,7 +28,7 @@ import pytest
 from gearcontact.export.c_constants import (FIT_LANES, expand_fit_mac_plan, fit_mac_ops,
                                             fit_mac_plan, orbit_members)
 from gearcontact.export.c_library import C_FILES, GOLDEN_SOURCES, render_c_library
-from gearcontact.hw.vectors import read_hex
+from gearcontact.hw.vectors import LINE_CORES, read_hex
 from gearcontact.preview.hertz.luts import (CBRT_SPEC, EE_EXACT_SPEC, POW_EXACT_SPEC,
                                             POW_SPEC, rom_words)
 from gearcontact.contract.qformat import STENCIL_GAP
@@ -37,17 +37,16 @@ from gearcontact.preview.fit.pinv import baked_pinv
 from gearcontact.preview.fit.reference import fit_curvatures
 from gearcontact.preview.gap.reference import gap_reference
 from gearcontact.preview.hertz import formats as F
-from gearcontact.preview.hertz.line import (FLAG_LENGTH_RANGE, LENGTH_MIN_CODE,
-                                            LIFT_MAX_SHIFT, length_lift, line_golden,
-                                            unlift_line_codes)
+from gearcontact.preview.hertz.line import FLAG_LENGTH_RANGE, LENGTH_MIN_CODE, LIFT_MAX_SHIFT
 from gearcontact.preview.hertz.reference import hertz_preview, truncated_preview
 from gearcontact.preview.stimulus import line_stimulus
+from gearcontact.preview.stimulus_lift import short_line_stimulus
 from gearcontact.validation import InputRangeError
 
 ROOT = Path(__file__).resolve().parents[2]
 COUNT = 10_000                      # random vectors per core (the corner cases on top)
 #: every core ``gearcontact vectors`` writes, in the checker's order
-CORES = ("gap", "fit", "hertz", "chain", "gap_lean", "hertz_exact", "chain_exact")
+CORES = ("gap", "fit", "hertz", "chain", "gap_lean", "hertz_exact", "chain_exact") + LINE_CORES
 FP64_STENCILS = 3000                # stencils of the fp64 fit/chain comparison
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror"]
 
@@ -151,6 +150,35 @@ def test_checker_names_the_core_of_a_corrupted_output_word(built, tmp_path):
     assert f"hertz_exact: vector {k} field p_max" in run.stderr
 
 
+def test_checker_names_the_line_core_of_a_corrupted_lift_and_semi_axis(built, tmp_path):
+    """A lifted line-mode vector's ``lift`` (the last hex digit of hertz_line_out.hex)
+    and a chain_line vector's ``a`` (the first 8 digits) off by one: exit 1, each core
+    counts 1 mismatch and names its vector and field, hertz_line_exact stays clean."""
+    lib, vec = built
+    bad = tmp_path / "vectors"
+    shutil.copytree(vec, bad)
+    y = read_hex(vec / "hertz_line_out.hex", "hertz_line", "out")
+    k = int(np.flatnonzero((y["lift"] > 1) & (y["flags"] == 0))[0])
+    path = bad / "hertz_line_out.hex"
+    lines = path.read_text().splitlines()
+    lines[k] = lines[k][:-1] + f"{int(lines[k][-1], 16) ^ 1:x}"
+    path.write_text("\n".join(lines) + "\n")
+    cpath = bad / "chain_line_out.hex"
+    clines = cpath.read_text().splitlines()
+    j = len(clines) - 1
+    clines[j] = f"{int(clines[j][:8], 16) ^ 1:08x}" + clines[j][8:]
+    cpath.write_text("\n".join(clines) + "\n")
+    run = _check(lib, bad)
+    assert run.returncode == 1
+    out = run.stdout.splitlines()
+    assert f"hertz_line: {len(lines)} vectors, 1 mismatches" in out
+    assert f"chain_line: {len(clines)} vectors, 1 mismatches" in out
+    assert f"hertz_line_exact: {len(lines)} vectors, 0 mismatches" in out
+    assert f"hertz_line: vector {k} field lift: C {y['lift'][k]}, expected " \
+           f"{y['lift'][k] ^ 1}" in run.stderr
+    assert f"chain_line: vector {j} field a" in run.stderr
+
+
 def test_checker_refuses_a_truncated_file_and_an_empty_directory(built, tmp_path):
     lib, vec = built
     bad = tmp_path / "vectors"
@@ -162,84 +190,35 @@ def test_checker_refuses_a_truncated_file_and_an_empty_directory(built, tmp_path
     assert run.returncode == 2 and "hertz: line" in run.stderr
 
 
-class _Line(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int32) for n in ("a", "b", "p_max", "k", "A_min", "B_max")] \
-        + [(n, ctypes.c_uint32) for n in ("mode", "scale", "flags")]
-
-
-def _short_lines(n: int, seed: int) -> dict:
-    """Line-core inputs with L below the core's 1 mm: :func:`line_stimulus`'s curvatures,
-    loads and E' (seed ``seed``, no corners), L log-uniform in [2^-9, 1) mm (every lift
-    1..8 and below the lift's floor), then corners: L at the lift's floor and one code
-    under it, one code under 1 mm, and W at the most the lift allows and one code over."""
-    f = {k: v.tolist() for k, v in line_stimulus(n, seed, corners=False).fields.items()}
-    rng = np.random.default_rng(seed)
-    f["L"] = np.floor(np.exp(rng.uniform(np.log(2.0 ** -9), 0.0, n)) * LENGTH_MIN_CODE
-                      + 0.5).astype(np.int64).tolist()
-    floor_code, w_max = LENGTH_MIN_CODE >> LIFT_MAX_SHIFT, F.LOAD_MAX_CODE
-    corners = [(floor_code, 1000 << 8), (floor_code - 1, 1000 << 8),
-               (LENGTH_MIN_CODE - 1, 1000 << 8), (floor_code, w_max >> LIFT_MAX_SHIFT),
-               (floor_code, (w_max >> LIFT_MAX_SHIFT) + 1)]
-    for length, w in corners:          # a gear-like line contact: A 2^-12, B 2^-5 1/mm
-        for k, v in (("A", 1 << 8), ("B", 1 << 15), ("W", w), ("L", length),
-                     ("e_prime", f["e_prime"][0])):
-            f[k].append(v)
-    return f
-
-
 def _line_vectors(stimulus: str, count: int) -> dict:
-    return (_short_lines(count, 1) if stimulus == "short" else
-            {k: v.tolist() for k, v in line_stimulus(count, 0).fields.items()})
+    """Line-core operands: :func:`line_stimulus` (``"full"``) or the short lines below
+    1 mm of :func:`short_line_stimulus` (``"short"``: every lift 1..8 and the lift's
+    corners)."""
+    gen = short_line_stimulus if stimulus == "short" else line_stimulus
+    return {k: v.tolist() for k, v in gen(count, 0 if stimulus == "full" else 1).fields.items()}
 
 
-def _host_line_golden(a, b, w, length, e, form):
-    """``(s, codes)``: the host's line path (preview.engine): the golden line core on
-    the lifted ``(W << s, L << s)``, ``s = length_lift(W, L)``, undone by
-    ``unlift_line_codes`` (docs/hertz.md sec. 6)."""
-    s = int(length_lift(w, length))
-    return s, unlift_line_codes(line_golden(a, b, w << s, length << s, e_prime_code=e,
-                                            hertz_form=form), s)
-
-
-@pytest.mark.parametrize("stimulus, form, count", [
-    ("full", "hamrock-brewe", COUNT), ("full", "exact", 1000),
-    ("short", "hamrock-brewe", 3000), ("short", "exact", 300)])
-def test_golden_line_core_equals_the_golden_model(built, stimulus, form, count):
-    """The line core is not a `gearcontact vectors` core (the RTL core has no lift: the
-    lift is the host's): its stimulus (corner cases + seeded random, both modes, every
-    similarity exponent, flagged inputs, L from 0.5 mm) and short lines
-    (:func:`_short_lines`) through the host's scalar golden path (~0.5 ms each: exact
-    Hertz on 1,000 and 300) against ``gc_line_golden`` (and its ``gc_line_length_lift``
-    against ``length_lift``), bit for bit. The short lines reach every lift 1..8 in
-    line mode, lifted runs that keep the ellipse (flagged length_range) and unliftable
-    lengths or loads (flagged length_range)."""
-    lib, _ = built
-    so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
-    so.gc_line_golden.restype = _Line
-    so.gc_line_golden.argtypes = [ctypes.c_int32] * 5 + [ctypes.c_int]
-    so.gc_line_length_lift.restype = ctypes.c_int
-    so.gc_line_length_lift.argtypes = [ctypes.c_int32] * 2
-    f = _line_vectors(stimulus, count)
-    modes = set()
-    for a, b, w, length, e in zip(*(f[k] for k in ("A", "B", "W", "L", "e_prime"))):
-        s, want = _host_line_golden(a, b, w, length, e, form)
-        assert so.gc_line_length_lift(w, length) == s, (w, length)
-        c = so.gc_line_golden(a, b, w, length, e, FORMS[form][0])
-        assert (c.a, c.b, c.p_max, c.k, c.A_min, c.B_max, c.mode, c.scale, c.flags) == (
-            want.a_code, want.b_code, want.p_max_code, want.k_code, want.A_min_code,
-            want.B_max_code, want.mode, want.scale, want.flags), (a, b, w, length, e)
-        if want.flags == 0:
-            modes.add((want.mode, want.scale) if stimulus == "full" else ("lift", s))
-        elif want.flags == FLAG_LENGTH_RANGE:
-            modes.add("flipped" if s else "length_range")
-        else:
-            modes.add("flagged")
-    if stimulus == "full":
-        assert {(0, 0), (1, 0), (1, 3), "flagged", "length_range"} <= modes
-    else:
-        lifts = {m[1] for m in modes if isinstance(m, tuple)}
-        assert {"length_range", "flipped"} <= modes, modes
-        assert lifts == set(range(1, LIFT_MAX_SHIFT + 1)), lifts
+@pytest.mark.parametrize("core", LINE_CORES)
+def test_line_vectors_reach_every_mode_and_lift(built, core):
+    """The line cores' vectors the checker passes (``gc_line_golden`` with its lift
+    ``gc_line_length_lift``, ``gc_chain_line_golden``: 0 mismatches above) exercise what
+    the C code branches on: both modes, every similarity exponent (stage D line core),
+    every lift 1..8 answered in line mode, lifted runs that keep the ellipse (flagged
+    ``length_range``) and unliftable lines (flagged, lift 0), flagged inputs."""
+    _, vec = built
+    y = read_hex(vec / f"{core}_out.hex", core, "out")
+    f = y["flags"] & 0xFF
+    lift = y["lift"]
+    assert len(lift) >= COUNT
+    line = (f == 0) & (y["mode"] == 1)
+    assert set(lift[line & (lift > 0)]) == set(range(1, LIFT_MAX_SHIFT + 1))
+    assert ((f == FLAG_LENGTH_RANGE) & (lift > 0)).any()       # lifted ellipse
+    x = read_hex(vec / f"{core}_in.hex", core, "in")
+    short = (x["L"] > 0) & (x["L"] < LENGTH_MIN_CODE)
+    assert (short & (lift == 0) & (f & FLAG_LENGTH_RANGE > 0)).any()   # no lift
+    assert ((f == 0) & (y["mode"] == 0)).any() and (f & ~FLAG_LENGTH_RANGE).any()
+    if core != "chain_line":
+        assert set(y["scale"][f == 0]) == {0, 1, 2, 3}
 
 
 class _Fp64(ctypes.Structure):
@@ -409,7 +388,7 @@ class _LineFp64(ctypes.Structure):
 @pytest.mark.parametrize("form", list(FORMS))
 def test_fp64_line_core_within_1e12_of_the_python_reference(built, form, stimulus):
     """The line stimulus (3,000 random + corners, decoded) and 3,000 short lines
-    (:func:`_short_lines`: the host's lift below 1 mm) through
+    (:func:`short_line_stimulus`: the host's lift below 1 mm) through
     :func:`truncated_preview` (envelope=True) and ``gc_line_fp64``: the same mode, every
     output within 1e-12 relative (measured: 1.1e-15 with Hamrock-Brewe, 1.6e-15
     exact), and an input the reference refuses is flagged (short lines: the lifted

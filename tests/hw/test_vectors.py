@@ -15,19 +15,23 @@ import re
 import numpy as np
 import pytest
 
-from gearcontact.preview.chain import chain_golden, chain_golden_batch
+from gearcontact.hw.harness_cores import get_bench
+from gearcontact.preview.chain import chain_golden, chain_golden_batch, chain_line_golden
 from gearcontact.preview.fit.golden import golden_fit, golden_fit_batch
 from gearcontact.preview.gap.fast import gap_golden_batch
 from gearcontact.preview.gap.golden import GapVector, gap_golden_codes
 from gearcontact.preview.hertz.golden import hertz_golden
 from gearcontact.preview.hertz.golden_vec import hertz_golden_array
+from gearcontact.preview.hertz.line import length_lift, line_golden, unlift_line_codes
 from gearcontact.preview.stimulus import stimulus
-from gearcontact.hw.vectors import (VECTOR_CORES, HexField, decode_hex, encode_hex,
-                                         export_vectors, read_hex, read_jsonl,
-                                         vector_layout)
+from gearcontact.preview.stimulus_lift import host_chain_line_stimulus, host_line_stimulus
+from gearcontact.hw.vectors import (LINE_CORES, VECTOR_CORES, HexField, decode_hex,
+                                    encode_hex, export_vectors, read_hex, read_jsonl,
+                                    vector_layout)
 from gearcontact.validation import InputRangeError
 
 COUNT, SEED = 150, 7
+LINE_COUNT = 120                 # the line cores: scalar host path on every vector
 CYCLES = {"gap": 26, "fit": 52, "hertz": 756, "chain": 806}     # docs/spec.md sec. 6
 HERTZ = ("a", "b", "p_max", "k", "A_min", "B_max", "R_x", "R_y", "alpha")
 
@@ -305,3 +309,70 @@ def test_variant_cores_export_their_own_golden_model(tmp_path):
             (got.min_gap_code, got.min_idx, got.valid)
     with pytest.raises(InputRangeError, match="core = 'comb'"):
         export_vectors(tmp_path, cores=("comb",), count=1)
+
+
+# ------------------------------------------------------------------ the line cores
+def _host_line_scalar(core: str, x: dict, i: int) -> dict:
+    """The host's path on vector ``i`` by the scalar models: ``length_lift``, the line
+    core (:func:`line_golden`; the chain: :func:`chain_line_golden`) on the lifted
+    ``(W << s, L << s)``, ``unlift_line_codes``; the chain's flags recomposed from the
+    unlifted line flags and the fit's overflow bits (preview.engine's rule)."""
+    w, length, e = int(x["W"][i]), int(x["L"][i]), int(x["e_prime"][i])
+    s = int(length_lift(w, length))
+    out = {"lift": s}
+    if core == "chain_line":
+        r = chain_line_golden([int(g) for g in x["wr_data"][i]], w << s, length << s,
+                              e_prime_code=e)
+        lc = unlift_line_codes(r.hertz, s)
+        out.update({f"c{j}": r.fit.c_codes[j] for j in range(6)}, a_minus=r.fit.a_minus_code,
+                   b_minus=r.fit.b_minus_code, fit_flags=r.fit.flags,
+                   flags=lc.flags | (r.flags & ~0xFF))
+    else:
+        lc = unlift_line_codes(line_golden(int(x["A"][i]), int(x["B"][i]), w << s,
+                                           length << s, e_prime_code=e,
+                                           hertz_form="exact" if core.endswith("exact")
+                                           else "hamrock-brewe"), s)
+        out["flags"] = lc.flags
+    out.update(a=lc.a_code, b=lc.b_code, p_max=lc.p_max_code, k=lc.k_code,
+               A_min=lc.A_min_code, B_max=lc.B_max_code, mode=lc.mode, scale=lc.scale)
+    return out
+
+
+@pytest.fixture(scope="module")
+def line_export(tmp_path_factory):
+    out = tmp_path_factory.mktemp("line_vectors")
+    return out, export_vectors(out, cores=LINE_CORES, count=LINE_COUNT, seed=SEED)
+
+
+@pytest.mark.parametrize("core", LINE_CORES)
+def test_line_cores_are_the_host_path_bit_for_bit(line_export, core):
+    """The line cores' files (on request): decoded with the README's own table (Python
+    ints), the inputs are the host stimulus's operands, the outputs the scalar host path
+    (:func:`_host_line_scalar`) on every vector, ``lift`` the last output (UQ(4,0)), and
+    where ``lift`` = 0 the outputs are the RTL core's golden registers unchanged (the
+    bench's golden on the same operands, no lift)."""
+    out, _ = line_export
+    readme = (out / "README.md").read_text()
+    x = _decode_documented(out / f"{core}_in.hex", readme, f"{core}_in.hex")
+    y = _decode_documented(out / f"{core}_out.hex", readme, f"{core}_out.hex")
+    ins, outs = vector_layout(core)
+    assert list(y) == [f.name for f in outs] and outs[-1].name == "lift"
+    assert (outs[-1].qformat, outs[-1].signed) == ("UQ(4,0)", False)
+    st = (host_chain_line_stimulus if core == "chain_line" else host_line_stimulus)(
+        LINE_COUNT, SEED)
+    assert (x["wr_data"] if core == "chain_line" else x["A"]).shape[0] == len(st)
+    for port, field in ({"wr_data": "gaps", "W": "W", "L": "L", "e_prime": "e_prime"}
+                        if core == "chain_line" else {k: k for k in st.fields}).items():
+        assert np.array_equal(x[port], st.fields[field]), port
+    recs = read_jsonl(out / f"{core}.jsonl")
+    assert [r["label"] for r in recs] == list(st.labels)
+    assert {r["cycles"] for r in recs} == {{"chain_line": 811}.get(core, 759)}
+    for i in range(len(st)):
+        want = _host_line_scalar(core, x, i)
+        assert {k: int(v[i]) for k, v in y.items()} == want, (core, i, st.labels[i])
+    assert (y["lift"] > 0).any() and (y["lift"] == 0).any()
+    core_only = get_bench(core).golden(st)
+    rows = y["lift"] == 0
+    for name, v in core_only.items():
+        assert np.array_equal(np.asarray(v)[rows], y[name][rows]), name
+    assert f"## {core}\n" in readme and "`W << lift` and `L << lift`" in readme
