@@ -5,7 +5,8 @@
 - One run of the README's export lines per test run (both xdist workers: tests/run_once.py),
   shared by the export tests.
   
-  The README shows ``gearcontact vectors --out vectors/ ...`` (twice), then
+  The README shows ``gearcontact vectors --out vectors/ ...`` (three times: the default
+  cores, the variants, the line cores), then
   ``gearcontact export c --out clib/ && make -C clib/ && clib/build/gearcontact_check vectors/``
   and ``gearcontact export fmu --pair s0003 --kind mesh|drivetrain --out ...``. They run once,
   verbatim, in a shell (the relative directories land in one session directory):

@@ -1,6 +1,6 @@
 """The README's export lines, exactly as written, in a real shell.
 
-The README shows ``gearcontact vectors --out vectors/ ...`` (twice) and then
+The README shows ``gearcontact vectors --out vectors/ ...`` (three times) and then
 ``gearcontact export c --out clib/ && make -C clib/ && clib/build/gearcontact_check vectors/``
 and ``gearcontact export fmu --pair s0003 --kind mesh|drivetrain --out ...`` (the mesh
 and the drivetrain FMU, ~16 s each: the default 61 phases). They run

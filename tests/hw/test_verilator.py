@@ -381,3 +381,51 @@ def test_descriptor_with_an_unknown_port_is_refused():
     bench = dataclasses.replace(hc.get_bench("hertz"), control=("go_chain", "no_such"))
     with pytest.raises(ValueError, match="no_such"):
         hc.derive_spec(bench)
+
+
+#: The line cores' vector files through their RTL: (core, random vectors); the default
+#: suite runs the line chain (fit + line core; its Verilator build test_line_cores_10k
+#: caches), ~5 s; the slow suite every line core on 10,000.
+_LINE_FILES = [("chain_line", 300),
+               *(pytest.param(c, 10_000, marks=pytest.mark.slow)
+                 for c in ("hertz_line", "hertz_line_exact", "chain_line"))]
+
+
+@needs_verilator
+@pytest.mark.parametrize("core, count", _LINE_FILES)
+def test_line_cores_rtl_equals_their_vector_files(tmp_path, core, count):
+    """``gearcontact vectors``' line-core files (the host's path: inputs, outputs, lift)
+    drive the RTL as the README beside them says: the core on ``W << lift``,
+    ``L << lift`` (Verilator), its outputs unlifted (``unlift_line_array``: a rounding
+    shift of a in line mode, a lifted ellipse flagged ``length_range``; the chain's fit
+    bits kept) equal every expected output field bit for bit, and every vector takes
+    the file's cycle count."""
+    from gearcontact.hw.vectors import export_vectors, read_hex, read_jsonl
+    from gearcontact.preview.hertz.line_vec import LineCodesArray, unlift_line_array
+    from gearcontact.preview.stimulus import Stimulus
+
+    export_vectors(tmp_path, cores=(core,), count=count, seed=SEED)
+    x = read_hex(tmp_path / f"{core}_in.hex", core, "in")
+    y = read_hex(tmp_path / f"{core}_out.hex", core, "out")
+    recs = read_jsonl(tmp_path / f"{core}.jsonl")
+    lift = y["lift"]
+    fields = {"W": x["W"] << lift, "L": x["L"] << lift, "e_prime": x["e_prime"]}
+    fields.update({"gaps": x["wr_data"]} if core == "chain_line"
+                  else {"A": x["A"], "B": x["B"]})
+    st = Stimulus(core, fields, tuple(r["label"] for r in recs), SEED)
+    try:
+        outs, cycles, *_ = hc.simulate(hc.get_bench(core), st)
+    except hc.CoreUnavailable as exc:
+        pytest.skip(str(exc))
+    outs = {k: np.asarray(v, np.int64) for k, v in outs.items()}
+    fit_bits = outs["flags"] & ~0xFF
+    raw = LineCodesArray(outs["a"], outs["b"], outs["p_max"], outs["k"], outs["A_min"],
+                         outs["B_max"], outs["mode"], outs["scale"], outs["flags"] & 0xFF)
+    got = unlift_line_array(raw, lift)
+    outs.update(a=got.a_code, b=got.b_code, p_max=got.p_max_code, k=got.k_code,
+                mode=got.mode, flags=got.flags | fit_bits)
+    assert (lift > 0).sum() >= count // 20
+    for name in (f.name for f in hc.get_bench(core).spec.outputs):
+        bad = np.flatnonzero(outs[name] != y[name])
+        assert bad.size == 0, (name, bad[:5], outs[name][bad[:5]], y[name][bad[:5]])
+    assert set(np.asarray(cycles).tolist()) == {recs[0]["cycles"]}
