@@ -12,10 +12,10 @@ golden-vector export and the C library's tests:
   stimulus with every :data:`SHORT_LINE_EVERY`-th plausible random vector's ``L`` drawn
   that way, and the lift's corner cases after the core's.
 
-Lift corners (a gear-like line contact; the chain: a cylinder stencil): ``L`` at the
-lift's floor ``2^-8`` mm and one code under it, one code under 1 mm, and ``W`` at the
-most the lift allows at the floor (``W << 8`` at the load envelope's top) and one code
-over.
+Lift corners (a gear-like line contact; the chain: a cylinder stencil): at 100 N, ``L``
+at the lift's floor ``2^-8`` mm (lift 8) and one code under it (no lift), one code under
+1 mm (lift 1); at the floor, ``W`` at the most the lift allows (``W << 8`` at the load
+envelope's top, 512 N) and one code over (no lift).
 """
 
 from __future__ import annotations
@@ -46,10 +46,10 @@ def short_lengths(rng, n: int) -> np.ndarray:
 def _lift_cases() -> list[tuple[str, int, int]]:
     """``(label, L code, W code)`` of the lift's corners (module docstring)."""
     floor_code, w_top = LENGTH_MIN_CODE >> LIFT_MAX_SHIFT, ENV.LOAD_MAX_CODE >> LIFT_MAX_SHIFT
-    w1k = 1000 << LOAD.frac
-    return [("lift: L at the floor 2^-8 mm", floor_code, w1k),
-            ("lift: L one code under the floor", floor_code - 1, w1k),
-            ("lift: L one code under 1 mm", LENGTH_MIN_CODE - 1, w1k),
+    w = 100 << LOAD.frac                    # 100 N: lifted by 8, 25.6 kN, in the envelope
+    return [("lift: L at the floor 2^-8 mm", floor_code, w),
+            ("lift: L one code under the floor", floor_code - 1, w),
+            ("lift: L one code under 1 mm", LENGTH_MIN_CODE - 1, w),
             ("lift: W at the most the lift allows", floor_code, w_top),
             ("lift: W one code over", floor_code, w_top + 1)]
 

@@ -62,3 +62,26 @@ def test_shapes_and_broadcast():
 def test_bit_identical_long_sweep(hertz_form):
     """20,000 seeded vectors per form (about 30 s of scalar model each)."""
     _compare(20_000, seed=5, hertz_form=hertz_form)
+
+
+def test_lifted_batch_is_the_scalar_host_path():
+    """``lifted_line_golden_array`` (numba: lift_lengths, the batch core, unlift_line_array)
+    against the scalar host path, ``length_lift`` + ``line_golden`` on ``(W << s, L << s)``
+    + ``unlift_line_codes``, on 600 short lines (every lift 1..8 reached, and the lift's
+    corners) and the line stimulus's 200 + corners (lift 0 mostly): every register, the
+    mode, the flags and the lift."""
+    from gearcontact.preview.hertz.line import length_lift, unlift_line_codes
+    from gearcontact.preview.hertz.line_vec import lifted_line_golden_array
+    from gearcontact.preview.stimulus_lift import short_line_stimulus
+
+    for st in (short_line_stimulus(600, 3), line_stimulus(200, seed=5)):
+        f = st.fields
+        vec, lift = lifted_line_golden_array(f["A"], f["B"], f["W"], f["L"],
+                                             e_prime_code=f["e_prime"])
+        for i in range(len(st)):
+            a, b, w, length, e = (int(f[k][i]) for k in ("A", "B", "W", "L", "e_prime"))
+            s = int(length_lift(w, length))
+            want = unlift_line_codes(line_golden(a, b, w << s, length << s, e_prime_code=e), s)
+            assert lift[i] == s and [int(getattr(vec, k)[i]) for k in FIELDS] == \
+                [getattr(want, k) for k in FIELDS], (i, st.labels[i])
+    assert set(lift.tolist()) >= {0}
