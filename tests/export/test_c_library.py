@@ -36,7 +36,6 @@ from gearcontact.preview.chain import chain_reference
 from gearcontact.preview.fit.pinv import baked_pinv
 from gearcontact.preview.fit.reference import fit_curvatures
 from gearcontact.preview.gap.reference import gap_reference
-from gearcontact.preview.hertz import formats as F
 from gearcontact.preview.hertz.line import FLAG_LENGTH_RANGE, LENGTH_MIN_CODE, LIFT_MAX_SHIFT
 from gearcontact.preview.hertz.reference import hertz_preview, truncated_preview
 from gearcontact.preview.stimulus import line_stimulus
