@@ -124,7 +124,7 @@ _PORT_DOC = {
     "mode": ("UQ(1,0)", "1", "0 elliptic, 1 line contact (0 when flagged)"),
     "scale": ("UQ(2,0)", "1", "Hertz similarity exponent n: curvatures scaled by 8^n"),
     "lift": ("UQ(4,0)", "1", "the host's lift s of a line shorter than 1 mm (0..8; "
-             "see below): the core ran on W << s, L << s"),
+             "the paragraph above): the core ran on W << s, L << s"),
 }
 #: Line cores: their a, b, k (either mode).
 _LINE_PORT_DOC = {
