@@ -27,9 +27,9 @@ from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.generated import EnvelopeSolver, generated_pinion_flank
 from gearcontact.geometry.machine import BladeSettings, blade_profile
 from gearcontact.geometry.pair import load_pair
+from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
 from gearcontact.geometry.setting_fit import (_blade_through, _Pivot, apply_corrections,
-                                              easeoff_machine_pair, fit_pinion_setup,
-                                              flank_deviation_um)
+                                              fit_pinion_setup, flank_deviation_um)
 from gearcontact.validation import InputRangeError
 
 

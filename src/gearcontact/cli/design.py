@@ -455,7 +455,7 @@ def _local_synthesis(args, pair) -> int:
 
 
 def _easeoff_settings(args, pair) -> int:
-    from ..geometry.setting_fit import easeoff_machine_pair
+    from ..geometry.easeoff_settings import easeoff_machine_pair
     from ..report.design import easeoff_settings_toml, write_easeoff_settings
 
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),

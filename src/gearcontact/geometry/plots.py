@@ -83,7 +83,7 @@ def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: floa
 
 def plot_setting_residual(fit) -> Figure:
     """Maps of the residual of the fitted pinion flanks against their targets, one panel
-    per side (:class:`~.setting_fit.EaseOffSettings`): generated minus target along the
+    per side (:class:`~.easeoff_settings.EaseOffSettings`): generated minus target along the
     target's outward normal, um, over the flank (axial position v, radial height u)."""
     sides = list(fit.sides.values())
     fig = Figure(figsize=(5.0 * len(sides), 4.2))

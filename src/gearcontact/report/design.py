@@ -117,7 +117,7 @@ def local_synthesis_toml(cut, done: dict) -> str:
 
 def easeoff_settings_toml(fit) -> str:
     """The pair TOML of the settings fitted to a pair's ease-off
-    (:class:`~gearcontact.geometry.setting_fit.EaseOffSettings`), its head comment the
+    (:class:`~gearcontact.geometry.easeoff_settings.EaseOffSettings`), its head comment the
     residual per side."""
     pair = fit.pair
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
