@@ -78,9 +78,9 @@ from .generated import EnvelopeSolver, solve_node_grid
 from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
 from .minimax_fit import minimize_max_abs
 
-__all__ = ["DEFAULT_PARAMETERS", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
-           "apply_corrections", "conjugate_seed", "fit_pinion_setup", "flank_deviation_um",
-           "sensitivity"]
+__all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
+           "apply_corrections", "checked_options", "conjugate_seed", "fit_pinion_setup",
+           "flank_deviation_um", "sensitivity", "solve_fit"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -218,26 +218,42 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 
-class _Problem:
-    """Residual and Jacobian of the fit on a coarse node grid (module docstring)."""
+class FitProblem:
+    """Residual and Jacobian of the fit on a coarse node grid (module docstring): the
+    target's angle ``psi_t`` and lever ``R (e_psi . n_t)`` (um/rad) at nodes ``(U, V)``
+    of the pinion sheet (:mod:`.point_fit` places them at measured points)."""
 
     def __init__(self, seed: MachineSetup, blank: BlankDesign, target, names, us, vs):
-        self.seed, self.blank, self.names = seed, blank, tuple(names)
-        self.scale = np.array([PARAMETERS[n][1] for n in self.names])
-        self.cone, _ = nominal_pinion_box(blank, 1.0)
-        solver = EnvelopeSolver(seed, blank, self.cone)
-        u_m, v_m = float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0])
-        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
-        self.pivot_length_mm = float(mean.l_mm)
+        solver, mean = self._start(seed, blank, names)
         self.U, self.V = np.meshgrid(us, vs, indexing="ij")
-        self.q = solve_node_grid(solver, us, vs, u_m, v_m, mean.q).q
-        self._grid = (us, vs, u_m, v_m)
+        self._grid = (us, vs)
+        self.q = self._restart(solver, mean.q).q
         t = target.evaluate(self.U, self.V, second=False)
         self.psi_t = np.arctan2(t.r[..., 2], t.r[..., 1])
         rad = np.hypot(t.r[..., 1], t.r[..., 2])
         e_psi = np.stack([np.zeros_like(rad), -np.sin(self.psi_t), np.cos(self.psi_t)], -1)
         self.lever_um = 1e3 * rad * np.einsum("...i,...i->...", e_psi, t.n)
+
+    def _start(self, seed: MachineSetup, blank: BlankDesign, names):
+        """Set the parameters and the pivot: the seed's solver and mean node."""
+        self.seed, self.blank, self.names = seed, blank, tuple(names)
+        self.scale = np.array([PARAMETERS[n][1] for n in self.names])
+        self.cone, _ = nominal_pinion_box(blank, 1.0)
         self.evaluations = 0
+        solver = EnvelopeSolver(seed, blank, self.cone)
+        self.mean_uv = (float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0]))
+        mean = self._mean(solver)
+        self.pivot_length_mm = float(mean.l_mm)
+        return solver, mean
+
+    def _mean(self, solver: EnvelopeSolver):
+        u_m, v_m = self.mean_uv
+        return solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
+
+    def _restart(self, solver: EnvelopeSolver, q_mean):
+        """The node solutions by continuation from the mean node (guess ``q_mean``)."""
+        us, vs = self._grid
+        return solve_node_grid(solver, us, vs, *self.mean_uv, q_mean)
 
     def setup(self, x) -> MachineSetup:
         return apply_corrections(self.seed, dict(zip(self.names, np.asarray(x) * self.scale)),
@@ -262,9 +278,7 @@ class _Problem:
         solver = EnvelopeSolver(self.setup(x), self.blank, self.cone)
         s = solver.solve(self.U, self.V, self.q, strict=False)
         if not np.all(s.converged):      # a long step: start over from the mean node
-            us, vs, u_m, v_m = self._grid
-            s = solve_node_grid(solver, us, vs, u_m, v_m,
-                                solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
+            s = self._restart(solver, self._mean(solver).q)
         return s, solver
 
     def jacobian(self, x) -> np.ndarray:
@@ -283,7 +297,7 @@ def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(P
     :data:`PARAMETERS`) at the seed on the coarse fit grid, columns ``names``:
     ``(J, names)``. Its singular values and a column-pivoted QR show which subsets are
     well conditioned (docs/machine_settings.md sec. 6)."""
-    prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
     return prob.jacobian(np.zeros(len(names))), prob.names
 
 
@@ -376,6 +390,16 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     UndercutError
         The seed's envelope does not reach a node of the grid.
     """
+    names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
+    t0 = time.perf_counter()
+    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    return solve_fit(prob, tolerance_um=tolerance_um, objective=objective, started=t0)
+
+
+def checked_options(seed: MachineSetup, parameters, *, tolerance_um: float,
+                    objective: str) -> tuple:
+    """The fitted ``parameters`` as a tuple, after the checks of
+    :func:`fit_pinion_setup` (seed member, names, tolerance, objective)."""
     if seed.member != "pinion":
         raise InputRangeError("seed.member", seed.member, "'pinion'")
     names = tuple(parameters)
@@ -384,8 +408,14 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     check_range("tolerance_um", tolerance_um, 0.0, 1.0, lo_open=True)
     if objective not in OBJECTIVES:
         raise InputRangeError("objective", objective, f"one of {OBJECTIVES}")
-    t0 = time.perf_counter()
-    prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    return names
+
+
+def solve_fit(prob: FitProblem, *, tolerance_um: float, objective: str, started: float
+              ) -> SettingFit:
+    """The fit of ``prob`` from its seed (:func:`fit_pinion_setup`): least squares, then
+    the minimax objective if asked; ``started`` the ``perf_counter`` of its start."""
+    names = prob.names
     sol = least_squares(lambda x: prob.deviation_um(x, keep=True), np.zeros(len(names)),
                         jac=prob.jacobian, method="trf", x_scale="jac",
                         ftol=tolerance_um ** 2, xtol=1e-12, gtol=1e-12, max_nfev=200)
@@ -397,12 +427,12 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
         x = minimize_max_abs(lambda y: prob.deviation_um(y, keep=True), prob.jacobian, x,
                              tol=tolerance_um).x
         dev = prob.deviation_um(x)
-    return SettingFit(setup=prob.setup(x), seed=seed,
+    return SettingFit(setup=prob.setup(x), seed=prob.seed,
                       corrections={n: float(v * sc) for n, v, sc in zip(names, x, prob.scale)},
                       fit_rms_um=float(np.sqrt(np.mean(dev ** 2))),
                       fit_max_um=float(np.abs(dev).max()), evaluations=prob.evaluations,
                       condition_number=float(s[0] / s[-1]) if s[-1] > 0 else math.inf,
-                      seconds=time.perf_counter() - t0, status=int(sol.status),
+                      seconds=time.perf_counter() - started, status=int(sol.status),
                       objective=objective, rms_fit_max_um=rms_fit_max)
 
 
