@@ -18,13 +18,13 @@ import math
 import numpy as np
 import pytest
 from design_space import design_space_candidate
-from easeoff_grid import write_grid_csv
+from easeoff_grid import pivot_length_mm, write_grid_csv
 from scipy.integrate import quad
 
 from gearcontact.geometry.basic_settings import complementary_pinion_setups
 from gearcontact.geometry.conjugate import nominal_pinion_box
 from gearcontact.geometry.flank import build_flanks
-from gearcontact.geometry.generated import EnvelopeSolver, generated_pinion_flank
+from gearcontact.geometry.generated import generated_pinion_flank
 from gearcontact.geometry.machine import BladeSettings, blade_profile
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
@@ -53,13 +53,6 @@ def test_blade_through_pivot_against_quadrature(kind, k):
     assert rho_q == pytest.approx(48.3, abs=1e-11)
 
 
-def _pivot_length(seed, blank):
-    cone, _ = nominal_pinion_box(blank, 1.0)
-    s = EnvelopeSolver(seed, blank, cone)
-    u, v = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
-    return float(s.solve(u, v, s.initial_guess(u, v)).l_mm)
-
-
 #: Known corrections of the round trip: of the size the s0003 coast ease-off needs.
 _TRUE = {"cradle_angle_deg": -0.2, "radial_distance_mm": 0.2, "ratio_of_roll": 0.06,
          "modified_roll_2c_per_rad": 0.01, "modified_roll_6d_per_rad2": -0.02,
@@ -70,7 +63,7 @@ _TRUE = {"cradle_angle_deg": -0.2, "radial_distance_mm": 0.2, "ratio_of_roll": 0
 def test_round_trip_recovers_flank_and_settings():
     pair = load_pair("s0003")
     seed = complementary_pinion_setups(pair)["coast"]
-    true = apply_corrections(seed, _TRUE, pivot_length_mm=_pivot_length(seed, pair.blank))
+    true = apply_corrections(seed, _TRUE, pivot_length_mm=pivot_length_mm(seed, pair.blank))
     target, _ = generated_pinion_flank(true, pair.blank, n_u=30, n_v=40,
                                        pinion_face_width_mm=pair.pinion_face_width_mm)
     fit = fit_pinion_setup(seed, pair.blank, target)

@@ -245,6 +245,7 @@ def _check_options(args, pair) -> None:
             raise InputRangeError("--target-flank", args.target_flank, "given only with "
                                   "--machine-settings (without it the option has no effect)")
         from ..geometry.measuring_grid import read_target_flank
+        from ..geometry.point_fit import check_point_count
 
         try:
             args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
@@ -252,6 +253,7 @@ def _check_options(args, pair) -> None:
             if exc.field != "target flank":     # a field inside the file: named as it is
                 raise
             raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
+        check_point_count(args.easeoff_grid, where=str(args.target_flank))
     fitted = has_easeoff(pair) or args.target_flank is not None
     if args.fit is not None and not (args.machine_settings and fitted):
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
@@ -459,7 +461,8 @@ def _easeoff_settings(args, pair) -> int:
     from ..report.design import easeoff_settings_toml, write_easeoff_settings
 
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
-                               objective=args.fit or "rms")
+                               objective=args.fit or "rms",
+                               where=str(args.target_flank or "target flank"))
     print(easeoff_settings_toml(fit))
     print(fit.table())
     if args.out is not None:
