@@ -96,3 +96,26 @@ def pivot_length_mm(seed, blank):
     s = EnvelopeSolver(seed, blank, cone)
     u, v = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
     return float(s.solve(u, v, s.initial_guess(u, v)).l_mm)
+
+
+#: A known correction of s0003's coast seed (none of the round trip's values of
+#: tests/geometry/test_setting_fit.py, of the same size: tens of um on the flank).
+KNOWN_CORRECTION = {"cradle_angle_deg": -0.12, "radial_distance_mm": 0.15,
+                    "ratio_of_roll": 0.04, "modified_roll_2c_per_rad": 0.008,
+                    "modified_roll_6d_per_rad2": -0.015, "blade_angle_deg": -1.1,
+                    "blade_curvature_per_mm": 0.004, "blade_cubic_per_mm2": 0.006}
+
+
+def cut_from_known(pair, side="coast"):
+    """``(seed, true, truth)``: the complementary seed of ``pair``'s pinion ``side``, the
+    seed with :data:`KNOWN_CORRECTION` and the flank it cuts (30 x 40 sheet)."""
+    from gearcontact.geometry.basic_settings import complementary_pinion_setups
+    from gearcontact.geometry.generated import generated_pinion_flank
+    from gearcontact.geometry.setting_fit import apply_corrections
+
+    seed = complementary_pinion_setups(pair)[side]
+    true = apply_corrections(seed, KNOWN_CORRECTION,
+                             pivot_length_mm=pivot_length_mm(seed, pair.blank))
+    truth, _ = generated_pinion_flank(true, pair.blank, n_u=30, n_v=40,
+                                      pinion_face_width_mm=pair.pinion_face_width_mm)
+    return seed, true, truth

@@ -13,21 +13,14 @@ combinations of settings that move no point, named in the refusal.
 
 import numpy as np
 import pytest
-from easeoff_grid import pivot_length_mm, write_points_csv
+from easeoff_grid import KNOWN_CORRECTION as KNOWN
+from easeoff_grid import cut_from_known, write_points_csv
 
-from gearcontact.geometry.basic_settings import complementary_pinion_setups
-from gearcontact.geometry.generated import generated_pinion_flank
 from gearcontact.geometry.measuring_grid import measured_points, read_measured_grid
 from gearcontact.geometry.point_fit import PointProblem, fit_points, point_problem
-from gearcontact.geometry.setting_fit import DEFAULT_PARAMETERS, apply_corrections
+from gearcontact.geometry.setting_fit import DEFAULT_PARAMETERS
 from gearcontact.validation import InputRangeError
 
-#: The known correction of the coast seed (none of the round trip's values of
-#: tests/geometry/test_setting_fit.py, of the same size: tens of um on the flank).
-KNOWN = {"cradle_angle_deg": -0.12, "radial_distance_mm": 0.15, "ratio_of_roll": 0.04,
-         "modified_roll_2c_per_rad": 0.008, "modified_roll_6d_per_rad2": -0.015,
-         "blade_angle_deg": -1.1, "blade_curvature_per_mm": 0.004,
-         "blade_cubic_per_mm2": 0.006}
 N_POINTS = 60
 
 
@@ -36,10 +29,7 @@ def cut_coast(s0003_calibrated):
     """``(pair, nominal, seed, truth, box)``: s0003's nominal coast pinion, the seed,
     the flank cut by the seed + KNOWN (30 x 40 sheet) and the box both cover."""
     pair, flanks = s0003_calibrated
-    seed = complementary_pinion_setups(pair)["coast"]
-    true = apply_corrections(seed, KNOWN, pivot_length_mm=pivot_length_mm(seed, pair.blank))
-    truth, _ = generated_pinion_flank(true, pair.blank, n_u=30, n_v=40,
-                                      pinion_face_width_mm=pair.pinion_face_width_mm)
+    seed, _, truth = cut_from_known(pair)
     nominal = flanks.pinion.coast
     a, b = nominal.boundary, truth.boundary
     box = (max(a.u_root, b.u_root), min(a.u_tip, b.u_tip), max(a.v_toe, b.v_toe),
@@ -64,17 +54,20 @@ def _scattered(box, n, seed=27):
 
 def test_scattered_points_give_back_the_known_settings(tmp_path, cut_coast):
     # 60 random points (seed 27) of the flank cut by seed + KNOWN: the fit from the seed
-    # recovers every correction within 1e-4 of its value (measured <= 3e-6: the
-    # truth's 30 x 40 sheet interpolates its envelope to ~5e-4 um, amplified by the
-    # conditioning, smallest relative singular value ~2e-3) and passes through the
-    # points within 1e-3 um (measured ~2e-6 um max); ~1.5 s
+    # recovers every correction within 5e-4 of its value (measured 6.1e-5, the 6D
+    # coefficient, the weakest direction: the truth's 30 x 40 sheet interpolates its
+    # envelope to ~5e-4 um, amplified by the conditioning, smallest relative singular
+    # value ~2e-3) and passes through the points within 1e-3 um (measured 5e-5 um
+    # max); ~2 s
     pair, _, seed, _, box = cut_coast
     points = _measure(tmp_path, cut_coast, *_scattered(box, N_POINTS))
     assert len(points.line) == N_POINTS and np.abs(points.deviation_um).max() > 20.0
     fit = fit_points(seed, pair.blank, points)
+    print("max relative error", max(abs(fit.corrections[n] / w - 1) for n, w in KNOWN.items()),
+          "fit max", fit.fit_max_um, "evaluations", fit.evaluations, "s", fit.seconds)
     assert fit.status > 0 and fit.fit_max_um < 1e-3
     for name, want in KNOWN.items():
-        assert fit.corrections[name] == pytest.approx(want, rel=1e-4), name
+        assert fit.corrections[name] == pytest.approx(want, rel=5e-4), name
 
 
 def test_noise_of_known_sigma_gives_least_squares_statistics(tmp_path, cut_coast):
@@ -99,6 +92,7 @@ def test_noise_of_known_sigma_gives_least_squares_statistics(tmp_path, cut_coast
     se = sigma * np.sqrt(np.diag(np.linalg.inv(jac.T @ jac))) * prob.scale
     err = np.array([fit.corrections[n] - KNOWN[n] for n in DEFAULT_PARAMETERS])
     print("errors in standard errors", dict(zip(DEFAULT_PARAMETERS, np.round(err / se, 2))))
+    print("standard errors", dict(zip(DEFAULT_PARAMETERS, se)))
     assert np.all(np.abs(err) < 4.0 * se)
 
 

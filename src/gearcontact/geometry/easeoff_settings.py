@@ -10,6 +10,7 @@ measured over the flank (or at the points). docs/machine_settings.md sec. 6.
 from __future__ import annotations
 
 import dataclasses
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -133,7 +134,7 @@ def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, 
     measured points (``problem``: residual at the points)."""
     if problem is not None:
         fit = solve_fit(problem, tolerance_um=1e-6, objective=objective,
-                        started=problem.started)
+                        started=time.perf_counter() - problem.setup_seconds)
     else:
         fit = fit_pinion_setup(seed, pair.blank, target, parameters=parameters, n_u=n_u,
                                n_v=n_v, objective=objective)

@@ -128,14 +128,14 @@ def point_problem(seed, blank, points: MeasuredPoints, *, parameters=DEFAULT_PAR
     options (:func:`~.setting_fit.checked_options`), refused if the points cannot
     determine the ``parameters`` (:func:`check_point_count`, :func:`check_observable`
     on the seed's sensitivity: 1 + len(parameters) flank evaluations at the points);
-    its ``started`` the ``perf_counter`` of its start."""
+    its ``setup_seconds`` the time this took."""
     names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
     check_point_count({points.side: points}, names, where=where)
     started = time.perf_counter()
     prob = PointProblem(seed, blank, points, names)
     check_observable(prob.jacobian(np.zeros(len(names))), names,
                      where=f"{where}: pinion {points.side}")
-    prob.started = started
+    prob.setup_seconds = time.perf_counter() - started
     return prob
 
 
@@ -171,7 +171,7 @@ def fit_points(seed, blank, points: MeasuredPoints, *, parameters=DEFAULT_PARAME
     prob = point_problem(seed, blank, points, parameters=parameters,
                          tolerance_um=tolerance_um, objective=objective, where=where)
     return solve_fit(prob, tolerance_um=tolerance_um, objective=objective,
-                     started=prob.started)
+                     started=time.perf_counter() - prob.setup_seconds)
 
 
 def point_deviation_um(flank, points: MeasuredPoints) -> np.ndarray:
