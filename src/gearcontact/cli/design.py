@@ -120,7 +120,9 @@ def register(sub) -> None:
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "
                         "measured pinion deviations in machine coordinates (columns "
-                        "member,flank,L_mm,R_mm,deviation_um; docs/export.md) that "
+                        "member,flank,L_mm,R_mm,deviation_um; docs/export.md: a complete "
+                        "grid, or scattered points fitted at the points, their residual "
+                        "per point in machine_settings_points.csv) that "
                         "replaces the pair's ease-off of the sides it lists; the settings "
                         "that cut it are fitted")
     p.add_argument("--fit", choices=("rms", "minimax"), default=None,

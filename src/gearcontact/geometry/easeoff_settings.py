@@ -105,7 +105,9 @@ class EaseOffSettings:
                 f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
         if any(r.fit.objective == "minimax" for r in self.sides.values()):
             rows += ["", "fit objective minimax: largest deviation on the fit grid " + ", ".join(
-                f"{side} {r.fit.fit_max_um:.3f} um (least squares {r.fit.rms_fit_max_um:.3f})"
+                f"{side} {r.fit.fit_max_um:.3f} um" + (
+                    "" if r.points is None else f" at its {len(r.points.line)} points")
+                + f" (least squares {r.fit.rms_fit_max_um:.3f})"
                 for side, r in self.sides.items())]
         return "\n".join(rows)
 
