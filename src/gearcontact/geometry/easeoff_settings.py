@@ -167,8 +167,9 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     bevel pair: zero ease-off; of a hypoid with a generated gear the crown gear's
     pinion fitted to the conjugate first, :func:`~.setting_fit.conjugate_seed`) to the
     conjugate pinion with the pair's ease-off (:func:`~.flank.build_flanks`), and its
-    residual measured over the full flank. A left-hand pair is fitted on its
-    right-hand twin and its settings mirrored (:func:`~.machine.mirror_setup`).
+    residual measured over the full flank (a side of scattered measured points:
+    fitted and measured at the points, :mod:`.point_fit`). A left-hand pair is fitted
+    on its right-hand twin and its settings mirrored (:func:`~.machine.mirror_setup`).
 
     Parameters
     ----------
@@ -230,8 +231,11 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         elif side in grids:
             grids[side].check_covers(conj.boundary, where=f"target flank {side}")
             targets[side] = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
+    for side in SIDES:          # the seeds, and the points' rank checks before the fits
         if twin.offset_mm != 0.0 and flanks.gear_generation == "generated":
-            seeds[side] = conjugate_seed(seeds[side], twin.blank, conj, n_u=n_u, n_v=n_v).setup
+            seeds[side] = conjugate_seed(seeds[side], twin.blank,
+                                         flanks.pinion_conjugate.side(side), n_u=n_u,
+                                         n_v=n_v).setup
         if isinstance(targets[side], MeasuredPoints):
             problems[side] = point_problem(seeds[side], twin.blank, targets[side],
                                            parameters=parameters, objective=objective,
