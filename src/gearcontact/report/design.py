@@ -10,7 +10,8 @@ its ``calibrated.toml`` and ``calibration.json``. :func:`write_easeoff_toml` wri
 (:func:`~gearcontact.geometry.pair.pair_to_toml` of the pair with its standard machine
 settings, docs/machine_settings.md); :func:`write_easeoff_settings` writes it for
 the settings fitted to a pair's ease-off (:func:`easeoff_settings_toml`) with the map
-of their residual (``machine_settings_residual.png`` / ``.svg``).
+of their residual (``machine_settings_residual.png`` / ``.svg``) and, for scattered
+measured points, the residual per point (``machine_settings_points.csv``).
 """
 
 from __future__ import annotations
