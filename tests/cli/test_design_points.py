@@ -30,7 +30,7 @@ def _run(path, *extra):
     # two points 0.5 um apart (a point given twice, its coordinates rounded differently)
     ([(35.0, 6.5, 1.0), (36.0, 6.6, 0.0), (35.0005, 6.5, 1.2)],
      "m.csv: line 4 = 'pinion coast L = 35.0005, R = 6.5 (also line 2: L = 35.0, R = 6.5)' "
-     "is outside the allowed range: each (L, R) once per flank: points at least 0.001 mm "
+     "is outside the allowed range: each (L, R) once per flank: points more than 0.001 mm "
      "apart in L or R"),
     # NaN deviation, and a point off the blank's flank (6 mm past the heel)
     ([(35.0, 6.5, float("nan"))], "m.csv: line 2 = 'pinion,coast,35.0,6.5,nan' is outside "

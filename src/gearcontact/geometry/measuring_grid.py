@@ -18,6 +18,11 @@ nominal normal at each point (docs/export.md, "The measuring grid"). Here:
   = material added (the measured flank stands proud of the nominal), the opposite sign
   of an ease-off (:mod:`.easeoff`).
 
+A measured file's points may form such a grid (any rows x cols, at least 4 x 4: then
+its deviations are interpolated as a target relief, :func:`measured_easeoff_grid`) or
+be scattered (missing points, irregular positions: :func:`measured_points`, the points
+in space that :mod:`.point_fit` fits the settings at).
+
 A measured point ``(L, R)`` is mapped onto the flank's parameters by solving
 ``(L(u, v), R(u, v)) = (L, R)`` (``scipy.optimize.root``, Powell hybrid method with the
 analytic Jacobian from ``r_u``, ``r_v``), started from the nearest of 11 x 11 samples of
@@ -250,7 +255,7 @@ def _check_distinct(L, R, line, *, where: str, name: str) -> None:
         raise InputRangeError(f"{where}: line {int(line[j])}", f"{name} L = {float(L[j])!r}, "
                               f"R = {float(R[j])!r} (also line {int(line[i])}: L = "
                               f"{float(L[i])!r}, R = {float(R[i])!r})",
-                              f"each (L, R) once per flank: points at least "
+                              f"each (L, R) once per flank: points more than "
                               f"{_SAME_POINT_MM} mm apart in L or R")
 
 
