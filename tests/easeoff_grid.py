@@ -1,6 +1,7 @@
 """A pair's polynomial ease-off sampled as a measured deviation grid CSV (the format of
-``gearcontact.geometry.easeoff.read_easeoff_grid``), shared by the setting-fit tests of
-the library and the command line."""
+``gearcontact.geometry.easeoff.read_easeoff_grid``), and a flank measured in machine
+coordinates on the nominal grid or at scattered points (docs/export.md "The measuring
+grid"), shared by the setting-fit tests of the library and the command line."""
 
 import numpy as np
 
@@ -43,19 +44,78 @@ def measured_pressure_angle_csv(path, pair, flanks, side, d_pa_um_per_mm, rows=5
     truth = apply_easeoff(flanks.pinion_conjugate.side(side), changed,
                           limit_um=flanks.easeoff_limit_um)
     g = measuring_grid(nominal, member="pinion", flank=side, rows=rows, cols=cols)
-    p = nominal.evaluate(g.u_mm, g.v_mm)
-    d = np.zeros(len(g.u_mm))
-    for _ in range(8):      # Newton along the normal onto the truth's tangent plane
-        q = p.r + d[:, None] * p.n
-        u, v, _ = truth.locate(q)
-        t = truth.evaluate(u, v)
-        step = np.einsum("ij,ij->i", t.r - q, t.n) / np.einsum("ij,ij->i", p.n, t.n)
-        d += step
-        if np.abs(step).max() < 1e-13:
-            break
+    d = deviations_mm(nominal, truth, g.u_mm, g.v_mm)
     lines = ["# measured on the nominal grid (a comment line, skipped)",
              "member,flank,row,col,L_mm,R_mm,deviation_um"] + [
         f"pinion,{side},{i},{j},{float(L)!r},{float(R)!r},{1e3 * float(x)!r}"
         for i, j, L, R, x in zip(g.row, g.col, g.L_mm, g.R_mm, d)]
     path.write_text("\n".join(lines) + "\n")
     return path, g, truth
+
+
+def deviations_mm(nominal, truth, u, v):
+    """Distance (mm) along the normal of the pinion sheet ``nominal`` at its points
+    ``(u, v)`` to the pinion sheet ``truth``, found by iterating the point onto
+    ``truth``'s tangent plane along the normal (3 steps to 1e-12 mm)."""
+    p = nominal.evaluate(u, v)
+    d = np.zeros(len(u))
+    for _ in range(8):      # Newton along the normal onto the truth's tangent plane
+        q = p.r + d[:, None] * p.n
+        uq, vq, _ = truth.locate(q)
+        t = truth.evaluate(uq, vq)
+        step = np.einsum("ij,ij->i", t.r - q, t.n) / np.einsum("ij,ij->i", p.n, t.n)
+        d += step
+        if np.abs(step).max() < 1e-13:
+            break
+    return d
+
+
+def write_points_csv(path, nominal, truth, side, u, v, *, noise_um=None):
+    """The pinion flank ``truth`` measured at the points ``(u, v)`` of the nominal flank
+    ``nominal`` (scattered, file order as given): the measured file of
+    docs/export.md "The measuring grid" (no row/col), each deviation the distance along
+    the nominal normal to ``truth`` (:func:`deviations_mm`) plus ``noise_um`` (an
+    array, um) if given. Returns the deviations (um)."""
+    p = nominal.evaluate(u, v, second=False)
+    dev = 1e3 * deviations_mm(nominal, truth, u, v)
+    if noise_um is not None:
+        dev = dev + noise_um
+    path.write_text("member,flank,L_mm,R_mm,deviation_um\n" + "".join(
+        f"pinion,{side},{float(x)!r},{float(np.hypot(y, z))!r},{float(d)!r}\n"
+        for (x, y, z), d in zip(p.r, dev)))
+    return dev
+
+
+def pivot_length_mm(seed, blank):
+    """The blade arc length of the seed's mean node (the pivot of blade corrections,
+    geometry.setting_fit.apply_corrections), solved here from the envelope."""
+    from gearcontact.geometry.conjugate import nominal_pinion_box
+    from gearcontact.geometry.generated import EnvelopeSolver
+
+    cone, _ = nominal_pinion_box(blank, 1.0)
+    s = EnvelopeSolver(seed, blank, cone)
+    u, v = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
+    return float(s.solve(u, v, s.initial_guess(u, v)).l_mm)
+
+
+#: A known correction of s0003's coast seed (none of the round trip's values of
+#: tests/geometry/test_setting_fit.py, of the same size: tens of um on the flank).
+KNOWN_CORRECTION = {"cradle_angle_deg": -0.12, "radial_distance_mm": 0.15,
+                    "ratio_of_roll": 0.04, "modified_roll_2c_per_rad": 0.008,
+                    "modified_roll_6d_per_rad2": -0.015, "blade_angle_deg": -1.1,
+                    "blade_curvature_per_mm": 0.004, "blade_cubic_per_mm2": 0.006}
+
+
+def cut_from_known(pair, side="coast"):
+    """``(seed, true, truth)``: the complementary seed of ``pair``'s pinion ``side``, the
+    seed with :data:`KNOWN_CORRECTION` and the flank it cuts (30 x 40 sheet)."""
+    from gearcontact.geometry.basic_settings import complementary_pinion_setups
+    from gearcontact.geometry.generated import generated_pinion_flank
+    from gearcontact.geometry.setting_fit import apply_corrections
+
+    seed = complementary_pinion_setups(pair)[side]
+    true = apply_corrections(seed, KNOWN_CORRECTION,
+                             pivot_length_mm=pivot_length_mm(seed, pair.blank))
+    truth, _ = generated_pinion_flank(true, pair.blank, n_u=30, n_v=40,
+                                      pinion_face_width_mm=pair.pinion_face_width_mm)
+    return seed, true, truth

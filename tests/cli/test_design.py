@@ -324,7 +324,7 @@ def test_design_machine_settings_of_an_easeoff_pair_refuses_crowning_options(cap
 def test_design_machine_settings_cuts_the_easeoff_of_s0003(capsys, tmp_path):
     # the printed table and the written file: the fitted settings of the library call
     from gearcontact.geometry.pair import load_pair
-    from gearcontact.geometry.setting_fit import easeoff_machine_pair
+    from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
 
     assert main(["design", "--pair", "s0003", "--machine-settings", "--out",
                  str(tmp_path)]) == 0
@@ -397,7 +397,7 @@ def test_design_machine_settings_fit_a_measured_file_in_machine_coordinates(caps
     from gearcontact.geometry.flank import build_flanks
     from easeoff_grid import measured_pressure_angle_csv
     from gearcontact.geometry.pair import load_pair
-    from gearcontact.geometry.setting_fit import easeoff_machine_pair
+    from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
 
     pair = load_pair("s0003")
     path, _, _ = measured_pressure_angle_csv(tmp_path / "measured.csv", pair,

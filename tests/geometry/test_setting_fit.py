@@ -18,18 +18,18 @@ import math
 import numpy as np
 import pytest
 from design_space import design_space_candidate
-from easeoff_grid import write_grid_csv
+from easeoff_grid import pivot_length_mm, write_grid_csv
 from scipy.integrate import quad
 
 from gearcontact.geometry.basic_settings import complementary_pinion_setups
 from gearcontact.geometry.conjugate import nominal_pinion_box
 from gearcontact.geometry.flank import build_flanks
-from gearcontact.geometry.generated import EnvelopeSolver, generated_pinion_flank
+from gearcontact.geometry.generated import generated_pinion_flank
 from gearcontact.geometry.machine import BladeSettings, blade_profile
 from gearcontact.geometry.pair import load_pair
+from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
 from gearcontact.geometry.setting_fit import (_blade_through, _Pivot, apply_corrections,
-                                              easeoff_machine_pair, fit_pinion_setup,
-                                              flank_deviation_um)
+                                              fit_pinion_setup, flank_deviation_um)
 from gearcontact.validation import InputRangeError
 
 
@@ -53,13 +53,6 @@ def test_blade_through_pivot_against_quadrature(kind, k):
     assert rho_q == pytest.approx(48.3, abs=1e-11)
 
 
-def _pivot_length(seed, blank):
-    cone, _ = nominal_pinion_box(blank, 1.0)
-    s = EnvelopeSolver(seed, blank, cone)
-    u, v = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
-    return float(s.solve(u, v, s.initial_guess(u, v)).l_mm)
-
-
 #: Known corrections of the round trip: of the size the s0003 coast ease-off needs.
 _TRUE = {"cradle_angle_deg": -0.2, "radial_distance_mm": 0.2, "ratio_of_roll": 0.06,
          "modified_roll_2c_per_rad": 0.01, "modified_roll_6d_per_rad2": -0.02,
@@ -70,7 +63,7 @@ _TRUE = {"cradle_angle_deg": -0.2, "radial_distance_mm": 0.2, "ratio_of_roll": 0
 def test_round_trip_recovers_flank_and_settings():
     pair = load_pair("s0003")
     seed = complementary_pinion_setups(pair)["coast"]
-    true = apply_corrections(seed, _TRUE, pivot_length_mm=_pivot_length(seed, pair.blank))
+    true = apply_corrections(seed, _TRUE, pivot_length_mm=pivot_length_mm(seed, pair.blank))
     target, _ = generated_pinion_flank(true, pair.blank, n_u=30, n_v=40,
                                        pinion_face_width_mm=pair.pinion_face_width_mm)
     fit = fit_pinion_setup(seed, pair.blank, target)
@@ -223,7 +216,7 @@ def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
     # R_a * (1e-3 deg in rad) times the lever R (e_psi . n) of every node (exact in
     # d; measured relative spread 5e-8: the envelope solves' rounding through the
     # forward difference), asserted to 1e-6
-    from gearcontact.geometry.setting_fit import _fit_grid, _Problem, sensitivity
+    from gearcontact.geometry.setting_fit import _fit_grid, FitProblem, sensitivity
 
     pair = load_pair("s0003")
     seed = complementary_pinion_setups(pair)["drive"]
@@ -231,7 +224,7 @@ def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
                                        pinion_face_width_mm=pair.pinion_face_width_mm)
     jac, names = sensitivity(seed, pair.blank, target, names=("cradle_angle_deg",), n_u=5,
                              n_v=6)
-    lever = _Problem(seed, pair.blank, target, names,
+    lever = FitProblem(seed, pair.blank, target, names,
                      *_fit_grid(target.boundary, 5, 6)).lever_um.ravel()
     want = seed.settings.ratio_of_roll * math.radians(1e-3)
     assert jac[:, 0] / lever == pytest.approx(np.full(30, want), rel=1e-6)
@@ -268,7 +261,7 @@ def test_minimax_fit_of_s0003_coast():
     # parameters: at least n + 1 = 9 grid nodes reach the maximum (to 1e-4 um; measured
     # 9, against 1 for the least-squares fit); (c) the fit's RMS is not below the least
     # squares' (0.148 um, its optimum: measured 0.181 um)
-    from gearcontact.geometry.setting_fit import DEFAULT_PARAMETERS, _fit_grid, _Problem
+    from gearcontact.geometry.setting_fit import DEFAULT_PARAMETERS, _fit_grid, FitProblem
 
     pair = load_pair("s0003")
     target = build_flanks(pair, n_u=30, n_v=40).pinion.side("coast")
@@ -277,7 +270,7 @@ def test_minimax_fit_of_s0003_coast():
     assert fit.objective == "minimax"
     assert fit.rms_fit_max_um == pytest.approx(0.560, abs=0.01)
     assert fit.fit_max_um < 0.35
-    prob = _Problem(seed, pair.blank, target, DEFAULT_PARAMETERS,
+    prob = FitProblem(seed, pair.blank, target, DEFAULT_PARAMETERS,
                     *_fit_grid(target.boundary, 9, 11))
     dev = prob.deviation_um(np.array([fit.corrections[n] for n in DEFAULT_PARAMETERS])
                             / prob.scale)

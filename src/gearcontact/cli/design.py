@@ -120,7 +120,9 @@ def register(sub) -> None:
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "
                         "measured pinion deviations in machine coordinates (columns "
-                        "member,flank,L_mm,R_mm,deviation_um; docs/export.md) that "
+                        "member,flank,L_mm,R_mm,deviation_um; docs/export.md: a complete "
+                        "grid, or scattered points fitted at the points, their residual "
+                        "per point in machine_settings_points.csv) that "
                         "replaces the pair's ease-off of the sides it lists; the settings "
                         "that cut it are fitted")
     p.add_argument("--fit", choices=("rms", "minimax"), default=None,
@@ -245,6 +247,7 @@ def _check_options(args, pair) -> None:
             raise InputRangeError("--target-flank", args.target_flank, "given only with "
                                   "--machine-settings (without it the option has no effect)")
         from ..geometry.measuring_grid import read_target_flank
+        from ..geometry.point_fit import check_point_count
 
         try:
             args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
@@ -252,6 +255,7 @@ def _check_options(args, pair) -> None:
             if exc.field != "target flank":     # a field inside the file: named as it is
                 raise
             raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
+        check_point_count(args.easeoff_grid, where=str(args.target_flank))
     fitted = has_easeoff(pair) or args.target_flank is not None
     if args.fit is not None and not (args.machine_settings and fitted):
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
@@ -455,11 +459,12 @@ def _local_synthesis(args, pair) -> int:
 
 
 def _easeoff_settings(args, pair) -> int:
-    from ..geometry.setting_fit import easeoff_machine_pair
+    from ..geometry.easeoff_settings import easeoff_machine_pair
     from ..report.design import easeoff_settings_toml, write_easeoff_settings
 
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
-                               objective=args.fit or "rms")
+                               objective=args.fit or "rms",
+                               where=str(args.target_flank or "target flank"))
     print(easeoff_settings_toml(fit))
     print(fit.table())
     if args.out is not None:

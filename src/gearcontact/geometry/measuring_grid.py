@@ -18,6 +18,11 @@ nominal normal at each point (docs/export.md, "The measuring grid"). Here:
   = material added (the measured flank stands proud of the nominal), the opposite sign
   of an ease-off (:mod:`.easeoff`).
 
+A measured file's points may form such a grid (any rows x cols, at least 4 x 4: then
+its deviations are interpolated as a target relief, :func:`measured_easeoff_grid`) or
+be scattered (missing points, irregular positions: :func:`measured_points`, the points
+in space that :mod:`.point_fit` fits the settings at).
+
 A measured point ``(L, R)`` is mapped onto the flank's parameters by solving
 ``(L(u, v), R(u, v)) = (L, R)`` (``scipy.optimize.root``, Powell hybrid method with the
 analytic Jacobian from ``r_u``, ``r_v``), started from the nearest of 11 x 11 samples of
@@ -39,12 +44,14 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import root
+from scipy.spatial import cKDTree
 
 from ..validation import InputRangeError, read_text_file
 
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
-           "MeasuredFlank", "measuring_grid", "flank_parameters_at", "read_measured_grid",
-           "is_measured_header", "measured_easeoff_grid", "check_on_blank", "read_target_flank",
+           "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
+           "read_measured_grid", "is_measured_header", "is_complete_grid",
+           "measured_easeoff_grid", "measured_points", "check_on_blank", "read_target_flank",
            "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
@@ -60,6 +67,7 @@ NOMINAL_COLUMNS = ("member", "flank", "row", "col", "L_mm", "R_mm", "x_mm", "y_m
 _ON_FLANK_MM = 1e-3     # slack of the active box (as GridEaseOff.check_covers)
 _ROOT_TOL_MM = 1e-11    # |L, R residual| of an accepted root
 _SAME_LINE_MM = 1e-6    # mapped u (or v) within this of each other: one grid line
+_SAME_POINT_MM = 1e-3   # two measured points closer in L and R: one point given twice
 
 
 @dataclass(frozen=True)
@@ -191,7 +199,7 @@ def read_measured_grid(path, *, members=("pinion", "gear"),
     InputRangeError
         An unknown or missing column, a line of the wrong length, a non-numeric or
         non-finite number, an unknown member or flank, or a point given twice on a flank
-        (each names the file line), or no points.
+        (two within 1 um in L and R; each names the file line), or no points.
     """
     text = read_text_file(path, field="target flank", what="a CSV measured grid")
     lines = _data_lines(text)
@@ -224,20 +232,31 @@ def read_measured_grid(path, *, members=("pinion", "gear"),
         if not all(math.isfinite(x) for x in (L, R, d)):
             raise InputRangeError(f"{path}: line {k}", ",".join(row), "finite numbers for "
                                   "L_mm, R_mm, deviation_um")
-        points = found.setdefault((member, flank), {})
-        if (L, R) in points:
-            raise InputRangeError(f"{path}: line {k}", f"{member} {flank} L = {L!r}, R = "
-                                  f"{R!r} (also line {points[L, R][1]})",
-                                  "each (L, R) once per flank")
-        points[L, R] = (d, k)
+        found.setdefault((member, flank), []).append((L, R, d, k))
     if not found:
         raise InputRangeError(f"{path}", "no points", "at least one measured point")
-    return {key: MeasuredFlank(member=key[0], flank=key[1],
-                               L_mm=np.array([p[0] for p in pts]),
-                               R_mm=np.array([p[1] for p in pts]),
-                               deviation_um=np.array([d for d, _ in pts.values()]),
-                               line=np.array([k for _, k in pts.values()]))
-            for key, pts in found.items()}
+    out = {}
+    for (member, flank), pts in found.items():
+        L, R, d, k = (np.array(c) for c in zip(*pts))
+        _check_distinct(L, R, k, where=f"{path}", name=f"{member} {flank}")
+        out[member, flank] = MeasuredFlank(member=member, flank=flank, L_mm=L, R_mm=R,
+                                           deviation_um=d, line=k)
+    return out
+
+
+def _check_distinct(L, R, line, *, where: str, name: str) -> None:
+    """Refuse two points of a flank within :data:`_SAME_POINT_MM` of each other in both
+    L and R (one point given twice: the fit would weigh it double, or two deviations
+    contradict each other), naming the later line and the earlier."""
+    pairs = cKDTree(np.column_stack([L, R])).query_pairs(_SAME_POINT_MM, p=np.inf,
+                                                          output_type="ndarray")
+    if len(pairs):
+        i, j = sorted(pairs[np.argmin(pairs.max(axis=1))])
+        raise InputRangeError(f"{where}: line {int(line[j])}", f"{name} L = {float(L[j])!r}, "
+                              f"R = {float(R[j])!r} (also line {int(line[i])}: L = "
+                              f"{float(L[i])!r}, R = {float(R[i])!r})",
+                              f"each (L, R) once per flank: points more than "
+                              f"{_SAME_POINT_MM} mm apart in L or R")
 
 
 def _grid_lines(x: np.ndarray) -> np.ndarray:
@@ -250,7 +269,7 @@ def _grid_lines(x: np.ndarray) -> np.ndarray:
 
 
 def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, *,
-                          where: str):
+                          where: str, uv=None):
     """The target relief of a measured pinion flank as a :class:`~.easeoff.GridEaseOff`.
 
     Parameters
@@ -266,6 +285,8 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
         The pair's ease-off of that flank.
     where : str
         Names the file in messages.
+    uv : tuple of ndarray, optional
+        The points' nominal parameters if known (:func:`flank_parameters_at`).
 
     Returns
     -------
@@ -286,12 +307,12 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     """
     from .easeoff import GridEaseOff
 
-    u, v = flank_parameters_at(nominal, member="pinion", L_mm=measured.L_mm,
-                               R_mm=measured.R_mm, where=where, lines=measured.line)
+    u, v = uv if uv is not None else flank_parameters_at(
+        nominal, member="pinion", L_mm=measured.L_mm, R_mm=measured.R_mm, where=where,
+        lines=measured.line)
     iu, iv = _grid_lines(u), _grid_lines(v)
     nu, nv = iu.max() + 1, iv.max() + 1
-    cells = set(zip(iu.tolist(), iv.tolist()))
-    if nu < 4 or nv < 4 or len(cells) != len(u) or len(u) != nu * nv:
+    if not is_complete_grid(u, v):
         raise InputRangeError(f"{where}: pinion {measured.flank} points",
                               f"{len(u)} points on {nu} lines of constant u x {nv} of v",
                               "a complete grid of at least 4 x 4 (rows at constant height "
@@ -307,6 +328,69 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     # the deviation field over the nominal (u, v): the bicubic of GridEaseOff
     d_um = 1e3 * GridEaseOff(u_mm=um, v_mm=vm, relief_um=dev).relief_mm(u_img, v_img)
     return GridEaseOff(u_mm=um, v_mm=vm, relief_um=1e3 * e_mm - d_um)
+
+
+def is_complete_grid(u, v) -> bool:
+    """True if the parameters ``(u, v)`` (arrays, mm) are the nodes of a complete grid
+    of at least 4 x 4 lines of constant u and v (:data:`_SAME_LINE_MM`), each once."""
+    iu, iv = _grid_lines(np.asarray(u)), _grid_lines(np.asarray(v))
+    nu, nv = iu.max() + 1, iv.max() + 1
+    return bool(nu >= 4 and nv >= 4 and len(u) == nu * nv
+                and len(set(zip(iu.tolist(), iv.tolist()))) == len(u))
+
+
+@dataclass(frozen=True)
+class MeasuredPoints:
+    """Measured points of one pinion flank on its sheet: the target of the point fit
+    (:mod:`.point_fit`). Arrays over the points, file order.
+
+    Attributes
+    ----------
+    side : str
+    line : ndarray of int
+        File line of each point.
+    L_mm, R_mm, deviation_um : ndarray
+        As read (:class:`MeasuredFlank`).
+    u_mm, v_mm, psi_rad : ndarray
+        Sheet parameters and angular coordinate of the measured point: the nominal point
+        at (L, R) moved by the deviation along its normal (pinion body frame,
+        :class:`~.sheet.PinionCone`).
+    lever_um : ndarray
+        ``1e3 R (e_psi . n)`` there with the nominal normal n, um per rad: a flank
+        turned by ``dpsi`` about the axis moves ``lever_um * dpsi`` along n.
+    box : FlankBoundary
+        The nominal flank's active box (the points lie on it, 1 um slack).
+    """
+
+    side: str
+    line: np.ndarray
+    L_mm: np.ndarray
+    R_mm: np.ndarray
+    deviation_um: np.ndarray
+    u_mm: np.ndarray
+    v_mm: np.ndarray
+    psi_rad: np.ndarray
+    lever_um: np.ndarray
+    box: object
+
+
+def measured_points(measured: MeasuredFlank, nominal, *, where: str, uv=None
+                    ) -> MeasuredPoints:
+    """The measured points of a pinion flank as points in space: each nominal point at
+    its (L, R) (:func:`flank_parameters_at`; ``uv`` its parameters if known) moved by
+    the deviation along the nominal normal (the point the probe touched), located on
+    the pinion sheet of ``nominal`` (a :class:`~.sheet.RadialSheet`)."""
+    u, v = uv if uv is not None else flank_parameters_at(
+        nominal, member="pinion", L_mm=measured.L_mm, R_mm=measured.R_mm, where=where,
+        lines=measured.line)
+    s = nominal.evaluate(u, v, second=False)
+    q = s.r + 1e-3 * measured.deviation_um[:, None] * s.n
+    uq, vq, psi = nominal.locate(q)
+    rad = np.hypot(q[:, 1], q[:, 2])
+    lever = 1e3 * rad * (-np.sin(psi) * s.n[:, 1] + np.cos(psi) * s.n[:, 2])
+    return MeasuredPoints(side=measured.flank, line=measured.line, L_mm=measured.L_mm,
+                          R_mm=measured.R_mm, deviation_um=measured.deviation_um, u_mm=uq,
+                          v_mm=vq, psi_rad=psi, lever_um=lever, box=nominal.boundary)
 
 
 def check_on_blank(grids: dict, pair, *, where: str) -> None:
@@ -366,16 +450,24 @@ def read_target_flank(path, *, pair=None) -> dict:
 def target_grids(grids: dict, pair, flanks, *, where: str = "target flank") -> dict:
     """``grids`` (:func:`read_target_flank`) with every :class:`MeasuredFlank` mapped
     onto the pinion flank of ``flanks`` (built for ``pair``) it was measured against:
-    :func:`measured_easeoff_grid` with the pair's ease-off of that side."""
+    points on a complete grid (:func:`is_complete_grid`) as a target relief
+    (:func:`measured_easeoff_grid` with the pair's ease-off of that side), scattered
+    points as :class:`MeasuredPoints` (:func:`measured_points`)."""
     from .easeoff import EaseOff
 
     out = dict(grids)
     for side, data in grids.items():
-        if isinstance(data, MeasuredFlank):
-            u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
-            easeoff = EaseOff.from_coefficients(getattr(pair, f"easeoff_{side}"),
-                                                u_mean_mm=u_m, v_mean_mm=v_m)
-            out[side] = measured_easeoff_grid(data, flanks.pinion.side(side),
-                                              flanks.pinion_conjugate.side(side), easeoff,
-                                              where=f"{where} {side}")
+        if not isinstance(data, MeasuredFlank):
+            continue
+        nominal, at = flanks.pinion.side(side), f"{where} {side}"
+        uv = flank_parameters_at(nominal, member="pinion", L_mm=data.L_mm, R_mm=data.R_mm,
+                                 where=at, lines=data.line)
+        if not is_complete_grid(*uv):
+            out[side] = measured_points(data, nominal, where=at, uv=uv)
+            continue
+        u_m, v_m = flanks.mean_contact[side]["pinion_uv"]
+        easeoff = EaseOff.from_coefficients(getattr(pair, f"easeoff_{side}"),
+                                            u_mean_mm=u_m, v_mean_mm=v_m)
+        out[side] = measured_easeoff_grid(data, nominal, flanks.pinion_conjugate.side(side),
+                                          easeoff, where=at, uv=uv)
     return out

@@ -83,18 +83,24 @@ def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: floa
 
 def plot_setting_residual(fit) -> Figure:
     """Maps of the residual of the fitted pinion flanks against their targets, one panel
-    per side (:class:`~.setting_fit.EaseOffSettings`): generated minus target along the
-    target's outward normal, um, over the flank (axial position v, radial height u)."""
+    per side (:class:`~.easeoff_settings.EaseOffSettings`): generated minus target along the
+    target's outward normal, um, over the flank (axial position v, radial height u), or
+    at the measured points of a side fitted to scattered points."""
     sides = list(fit.sides.values())
     fig = Figure(figsize=(5.0 * len(sides), 4.2))
     FigureCanvasAgg(fig)
     lim = max(max(float(np.abs(r.residual_um).max()) for r in sides), 1e-3)
     for k, r in enumerate(sides):
         ax = fig.add_subplot(1, len(sides), k + 1)
-        m = ax.pcolormesh(r.v_mm, r.u_mm, r.residual_um, cmap="RdBu_r", vmin=-lim, vmax=lim,
-                          shading="gouraud")
+        if r.points is None:
+            m = ax.pcolormesh(r.v_mm, r.u_mm, r.residual_um, cmap="RdBu_r", vmin=-lim,
+                              vmax=lim, shading="gouraud")
+        else:       # scattered measured points: the residual at each
+            m = ax.scatter(r.v_mm, r.u_mm, c=r.residual_um, cmap="RdBu_r", vmin=-lim,
+                           vmax=lim, s=18, edgecolors="k", linewidths=0.3)
         fig.colorbar(m, ax=ax, label="residual (um)")
-        ax.set_title(f"pinion {r.side}: max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um\n"
+        at = "" if r.points is None else f" at {len(r.points.line)} points"
+        ax.set_title(f"pinion {r.side}: max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um{at}\n"
                      f"(ease-off max {r.easeoff_max_um:.1f} um)", fontsize=9)
         ax.set_xlabel("axial position v (mm), toe -> heel")
         ax.set_ylabel("height above root u (mm)")

@@ -73,20 +73,14 @@ from scipy.optimize import least_squares
 
 from ..validation import InputRangeError, check_range
 from .blank import BlankDesign
-from .basic_settings import member_setups
 from .conjugate import UndercutError, nominal_pinion_box
-from .easeoff import apply_easeoff
-from .flank import build_flanks
-from .formate import SIDES
-from .measuring_grid import target_grids
-from .generated import EnvelopeSolver, generated_pinion_flank, solve_node_grid
-from .machine import (BladeSettings, MachineSetup, blade_profile, blade_through_point,
-                      mirror_setup)
+from .generated import EnvelopeSolver, solve_node_grid
+from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
 from .minimax_fit import minimize_max_abs
 
-__all__ = ["DEFAULT_PARAMETERS", "EaseOffSettings", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
-           "SideResidual", "apply_corrections", "conjugate_seed", "easeoff_machine_pair",
-           "fit_pinion_setup", "flank_deviation_um", "sensitivity"]
+__all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
+           "apply_corrections", "checked_options", "conjugate_seed", "fit_pinion_setup",
+           "flank_deviation_um", "sensitivity", "solve_fit"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -224,26 +218,42 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 
-class _Problem:
-    """Residual and Jacobian of the fit on a coarse node grid (module docstring)."""
+class FitProblem:
+    """Residual and Jacobian of the fit on a coarse node grid (module docstring): the
+    target's angle ``psi_t`` and lever ``R (e_psi . n_t)`` (um/rad) at nodes ``(U, V)``
+    of the pinion sheet (:mod:`.point_fit` places them at measured points)."""
 
     def __init__(self, seed: MachineSetup, blank: BlankDesign, target, names, us, vs):
-        self.seed, self.blank, self.names = seed, blank, tuple(names)
-        self.scale = np.array([PARAMETERS[n][1] for n in self.names])
-        self.cone, _ = nominal_pinion_box(blank, 1.0)
-        solver = EnvelopeSolver(seed, blank, self.cone)
-        u_m, v_m = float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0])
-        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
-        self.pivot_length_mm = float(mean.l_mm)
+        solver, mean = self._start(seed, blank, names)
         self.U, self.V = np.meshgrid(us, vs, indexing="ij")
-        self.q = solve_node_grid(solver, us, vs, u_m, v_m, mean.q).q
-        self._grid = (us, vs, u_m, v_m)
+        self._grid = (us, vs)
+        self.q = self._restart(solver, mean.q).q
         t = target.evaluate(self.U, self.V, second=False)
         self.psi_t = np.arctan2(t.r[..., 2], t.r[..., 1])
         rad = np.hypot(t.r[..., 1], t.r[..., 2])
         e_psi = np.stack([np.zeros_like(rad), -np.sin(self.psi_t), np.cos(self.psi_t)], -1)
         self.lever_um = 1e3 * rad * np.einsum("...i,...i->...", e_psi, t.n)
+
+    def _start(self, seed: MachineSetup, blank: BlankDesign, names):
+        """Set the parameters and the pivot: the seed's solver and mean node."""
+        self.seed, self.blank, self.names = seed, blank, tuple(names)
+        self.scale = np.array([PARAMETERS[n][1] for n in self.names])
+        self.cone, _ = nominal_pinion_box(blank, 1.0)
         self.evaluations = 0
+        solver = EnvelopeSolver(seed, blank, self.cone)
+        self.mean_uv = (float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0]))
+        mean = self._mean(solver)
+        self.pivot_length_mm = float(mean.l_mm)
+        return solver, mean
+
+    def _mean(self, solver: EnvelopeSolver):
+        u_m, v_m = self.mean_uv
+        return solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
+
+    def _restart(self, solver: EnvelopeSolver, q_mean):
+        """The node solutions by continuation from the mean node (guess ``q_mean``)."""
+        us, vs = self._grid
+        return solve_node_grid(solver, us, vs, *self.mean_uv, q_mean)
 
     def setup(self, x) -> MachineSetup:
         return apply_corrections(self.seed, dict(zip(self.names, np.asarray(x) * self.scale)),
@@ -268,9 +278,7 @@ class _Problem:
         solver = EnvelopeSolver(self.setup(x), self.blank, self.cone)
         s = solver.solve(self.U, self.V, self.q, strict=False)
         if not np.all(s.converged):      # a long step: start over from the mean node
-            us, vs, u_m, v_m = self._grid
-            s = solve_node_grid(solver, us, vs, u_m, v_m,
-                                solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q)
+            s = self._restart(solver, self._mean(solver).q)
         return s, solver
 
     def jacobian(self, x) -> np.ndarray:
@@ -289,7 +297,7 @@ def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(P
     :data:`PARAMETERS`) at the seed on the coarse fit grid, columns ``names``:
     ``(J, names)``. Its singular values and a column-pivoted QR show which subsets are
     well conditioned (docs/machine_settings.md sec. 6)."""
-    prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
     return prob.jacobian(np.zeros(len(names))), prob.names
 
 
@@ -382,6 +390,16 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     UndercutError
         The seed's envelope does not reach a node of the grid.
     """
+    names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
+    t0 = time.perf_counter()
+    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    return solve_fit(prob, tolerance_um=tolerance_um, objective=objective, started=t0)
+
+
+def checked_options(seed: MachineSetup, parameters, *, tolerance_um: float,
+                    objective: str) -> tuple:
+    """The fitted ``parameters`` as a tuple, after the checks of
+    :func:`fit_pinion_setup` (seed member, names, tolerance, objective)."""
     if seed.member != "pinion":
         raise InputRangeError("seed.member", seed.member, "'pinion'")
     names = tuple(parameters)
@@ -390,8 +408,14 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     check_range("tolerance_um", tolerance_um, 0.0, 1.0, lo_open=True)
     if objective not in OBJECTIVES:
         raise InputRangeError("objective", objective, f"one of {OBJECTIVES}")
-    t0 = time.perf_counter()
-    prob = _Problem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    return names
+
+
+def solve_fit(prob: FitProblem, *, tolerance_um: float, objective: str, started: float
+              ) -> SettingFit:
+    """The fit of ``prob`` from its seed (:func:`fit_pinion_setup`): least squares, then
+    the minimax objective if asked; ``started`` the ``perf_counter`` of its start."""
+    names = prob.names
     sol = least_squares(lambda x: prob.deviation_um(x, keep=True), np.zeros(len(names)),
                         jac=prob.jacobian, method="trf", x_scale="jac",
                         ftol=tolerance_um ** 2, xtol=1e-12, gtol=1e-12, max_nfev=200)
@@ -403,12 +427,12 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
         x = minimize_max_abs(lambda y: prob.deviation_um(y, keep=True), prob.jacobian, x,
                              tol=tolerance_um).x
         dev = prob.deviation_um(x)
-    return SettingFit(setup=prob.setup(x), seed=seed,
+    return SettingFit(setup=prob.setup(x), seed=prob.seed,
                       corrections={n: float(v * sc) for n, v, sc in zip(names, x, prob.scale)},
                       fit_rms_um=float(np.sqrt(np.mean(dev ** 2))),
                       fit_max_um=float(np.abs(dev).max()), evaluations=prob.evaluations,
                       condition_number=float(s[0] / s[-1]) if s[-1] > 0 else math.inf,
-                      seconds=time.perf_counter() - t0, status=int(sol.status),
+                      seconds=time.perf_counter() - started, status=int(sol.status),
                       objective=objective, rms_fit_max_um=rms_fit_max)
 
 
@@ -437,160 +461,3 @@ def flank_deviation_um(flank, target, *, n_u: int = 60, n_v: int = 75):
     f, t = flank.evaluate(U, V, second=False), target.evaluate(U, V, second=False)
     return U, V, 1e3 * np.einsum("...i,...i->...", f.r - t.r, t.n)
 
-
-
-@dataclass(frozen=True)
-class SideResidual:
-    """The fit of one pinion flank and its residual over the full flank.
-
-    Attributes
-    ----------
-    side : str
-    fit : SettingFit
-    easeoff_max_um : float
-        Largest |normal distance| of the target from the conjugate pinion over the
-        residual grid, um (the ease-off to cut).
-    max_um, rms_um : float
-        Largest |residual| and RMS residual over the full flank, um (the final
-        generated sheet, 120 x 150 nodes, against the target on a 60 x 75 grid over
-        their common box).
-    u_mm, v_mm, residual_um : ndarray (60, 75)
-        The residual map (generated minus target along the target's outward normal).
-    """
-
-    side: str
-    fit: SettingFit
-    easeoff_max_um: float
-    max_um: float
-    rms_um: float
-    u_mm: np.ndarray
-    v_mm: np.ndarray
-    residual_um: np.ndarray
-
-
-@dataclass(frozen=True)
-class EaseOffSettings:
-    """Machine settings that cut a pair's pinion ease-off (:func:`easeoff_machine_pair`).
-
-    Attributes
-    ----------
-    pair : GearPair
-        The pair with the settings of all four flanks (``[machine.*]``/``[blade.*]``):
-        the formate gear of today's flanks, the fitted pinion flanks.
-    sides : dict
-        ``{side: SideResidual}``, right-hand frame (a left-hand pair's twin).
-    measured_sides : tuple of str
-        Sides whose target was a measured grid (``easeoff_grid``), not the pair's
-        ``[easeoff.<side>]``.
-    """
-
-    pair: object
-    sides: dict
-    measured_sides: tuple = ()
-
-    def table(self) -> str:
-        """The residual and the corrections per side, as a Markdown table."""
-        rows = ["| side | ease-off max (um) | residual max (um) | residual RMS (um) | "
-                "fit evaluations | fit time (s) |", "|---|---:|---:|---:|---:|---:|"]
-        for side, r in self.sides.items():
-            rows.append(f"| {side} | {r.easeoff_max_um:.2f} | {r.max_um:.3f} | "
-                        f"{r.rms_um:.3f} | {r.fit.evaluations} | {r.fit.seconds:.1f} |")
-        rows += ["", "| correction | unit | " + " | ".join(self.sides) + " |",
-                 "|---|---|" + "---:|" * len(self.sides)]
-        names = next(iter(self.sides.values())).fit.corrections
-        for n in names:
-            rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
-                f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
-        if any(r.fit.objective == "minimax" for r in self.sides.values()):
-            rows += ["", "fit objective minimax: largest deviation on the fit grid " + ", ".join(
-                f"{side} {r.fit.fit_max_um:.3f} um (least squares {r.fit.rms_fit_max_um:.3f})"
-                for side, r in self.sides.items())]
-        return "\n".join(rows)
-
-
-def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
-                         parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
-                         objective: str = "rms") -> EaseOffSettings:
-    """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
-
-    The gear keeps the flanks of the pair's default (formate, or generated where the
-    formate gear undercuts its pinion: :func:`~.basic_settings.member_setups`); each
-    pinion flank is fitted (:func:`fit_pinion_setup`) from the settings of the exactly
-    conjugate pinion (complementary, or the crown gear's of a spiral bevel pair: zero
-    ease-off; of a hypoid with a generated gear the crown gear's pinion fitted to the
-    conjugate first, :func:`conjugate_seed`) to the conjugate pinion with the pair's
-    ease-off (:func:`~.flank.build_flanks`), and its residual measured over the full flank. A
-    left-hand pair is fitted on its right-hand twin and its settings mirrored
-    (:func:`~.machine.mirror_setup`).
-
-    Parameters
-    ----------
-    pair : GearPair
-        A pair defined by its blank, cutter and ease-off (no ``[machine.*]`` tables).
-    easeoff_grid : dict, optional
-        ``{side: GridEaseOff or MeasuredFlank}`` (a measured deviation grid,
-        :func:`~.measuring_grid.read_target_flank`; a ``MeasuredFlank`` is mapped onto
-        the pair's pinion flank, :func:`~.measuring_grid.target_grids`): the target of
-        the sides it holds instead of the pair's ``[easeoff.<side>]``; each must cover
-        its flank's active box.
-    parameters : tuple of str
-        The fitted subset (:data:`PARAMETERS`; default :data:`DEFAULT_PARAMETERS`).
-    n_u, n_v : int
-        The coarse fit grid.
-    objective : str
-        ``"rms"`` or ``"minimax"`` (:func:`fit_pinion_setup`).
-
-    Returns
-    -------
-    EaseOffSettings
-
-    Raises
-    ------
-    InputRangeError
-        A pair already cut from machine settings, an unknown side in ``easeoff_grid``
-        or a grid short of its flank.
-    UndercutError
-        A fitted flank the envelope does not generate over its box.
-    """
-    if pair.machine:
-        raise InputRangeError("pair", f"{pair.name} with [machine.*] tables",
-                              "a pair with an ease-off and no machine tables (its flanks "
-                              "are already the machine's)")
-    twin = dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
-    grids = dict(easeoff_grid or {})
-    for side in grids:
-        if side not in SIDES:
-            raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
-    flanks = build_flanks(twin)
-    # measured grids in machine coordinates onto the flanks (points off them refused here)
-    grids = target_grids(grids, twin, flanks)
-    # the gear of the default flanks and the pinion conjugate to it
-    gear, seeds = member_setups(twin, flanks.gear_generation)
-    sides, pinion = {}, {}
-    for side in SIDES:
-        target = flanks.pinion.side(side)
-        if side in grids:
-            conj = flanks.pinion_conjugate.side(side)
-            grids[side].check_covers(conj.boundary, where=f"target flank {side}")
-            target = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
-        seed = seeds[side]
-        if twin.offset_mm != 0.0 and flanks.gear_generation == "generated":
-            seed = conjugate_seed(seed, twin.blank, flanks.pinion_conjugate.side(side),
-                                  n_u=n_u, n_v=n_v).setup
-        fit = fit_pinion_setup(seed, twin.blank, target, parameters=parameters,
-                               n_u=n_u, n_v=n_v, objective=objective)
-        cut, _ = generated_pinion_flank(fit.setup, twin.blank,
-                                        pinion_face_width_mm=twin.pinion_face_width_mm)
-        u, v, res = flank_deviation_um(cut, target)
-        _, _, eased = flank_deviation_um(flanks.pinion_conjugate.side(side), target)
-        sides[side] = SideResidual(side=side, fit=fit, easeoff_max_um=float(np.abs(eased).max()),
-                                   max_um=float(np.abs(res).max()),
-                                   rms_um=float(np.sqrt(np.mean(res ** 2))),
-                                   u_mm=u, v_mm=v, residual_um=res)
-        pinion[side] = fit.setup
-    setups = [gear[s] for s in SIDES] + [pinion[s] for s in SIDES]
-    if pair.pinion_hand == "left":
-        setups = [mirror_setup(s) for s in setups]
-    return EaseOffSettings(pair=dataclasses.replace(pair, machine=tuple(setups),
-                                                    easeoff_tables=("drive", "coast")),
-                           sides=sides, measured_sides=tuple(s for s in SIDES if s in grids))

@@ -10,7 +10,8 @@ its ``calibrated.toml`` and ``calibration.json``. :func:`write_easeoff_toml` wri
 (:func:`~gearcontact.geometry.pair.pair_to_toml` of the pair with its standard machine
 settings, docs/machine_settings.md); :func:`write_easeoff_settings` writes it for
 the settings fitted to a pair's ease-off (:func:`easeoff_settings_toml`) with the map
-of their residual (``machine_settings_residual.png`` / ``.svg``).
+of their residual (``machine_settings_residual.png`` / ``.svg``) and, for scattered
+measured points, the residual per point (``machine_settings_points.csv``).
 """
 
 from __future__ import annotations
@@ -117,7 +118,7 @@ def local_synthesis_toml(cut, done: dict) -> str:
 
 def easeoff_settings_toml(fit) -> str:
     """The pair TOML of the settings fitted to a pair's ease-off
-    (:class:`~gearcontact.geometry.setting_fit.EaseOffSettings`), its head comment the
+    (:class:`~gearcontact.geometry.easeoff_settings.EaseOffSettings`), its head comment the
     residual per side."""
     pair = fit.pair
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
@@ -130,15 +131,24 @@ def easeoff_settings_toml(fit) -> str:
     for side, r in fit.sides.items():
         source = "measured grid (--target-flank)" if side in fit.measured_sides else \
             f"[easeoff.{side}] of the pair"
+        where = "over the flank"
+        if r.points is not None:
+            source = f"{len(r.points.line)} measured points (--target-flank)"
+            where = "at the points"
         lines.append(f"pinion {side} ({source}): ease-off max {r.easeoff_max_um:.2f} um, "
-                     f"residual max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um over the flank")
+                     f"residual max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um {where}")
     return pair_to_toml(pair, comments={"": "\n".join(lines)})
 
 
 def write_easeoff_settings(fit, out) -> Path:
-    """Write ``machine_settings.toml`` (:func:`easeoff_settings_toml`) and the residual
-    map ``machine_settings_residual.png`` / ``.svg`` into the directory ``out`` (created
-    if missing); returns the TOML's path."""
+    """Write ``machine_settings.toml`` (:func:`easeoff_settings_toml`), the residual
+    map ``machine_settings_residual.png`` / ``.svg`` and, for a target of scattered
+    measured points, the residual at each point ``machine_settings_points.csv``
+    (:meth:`~gearcontact.geometry.easeoff_settings.EaseOffSettings.points_csv`) into
+    the directory ``out`` (created if missing); returns the TOML's path."""
     path = write_machine_settings_toml(easeoff_settings_toml(fit), out)
     save_figure(plot_setting_residual(fit), Path(out) / "machine_settings_residual.png")
+    points = fit.points_csv()
+    if points is not None:
+        (Path(out) / "machine_settings_points.csv").write_text(points)
     return path

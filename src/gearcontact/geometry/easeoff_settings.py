@@ -1,0 +1,254 @@
+"""The machine settings that cut a pair's pinion ease-off (issue 27 item 4, the command
+``design --machine-settings`` on a pair with an ease-off or a ``--target-flank``).
+
+The gear keeps the flanks of the pair's default; each pinion flank's settings are
+fitted to its target by :mod:`.setting_fit` (a target flank: the pair's ease-off, or a
+measured grid) or :mod:`.point_fit` (scattered measured points), and the residual is
+measured over the flank (or at the points). docs/machine_settings.md sec. 6.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import InputRangeError
+from .basic_settings import member_setups
+from .easeoff import apply_easeoff
+from .flank import build_flanks
+from .formate import SIDES
+from .generated import generated_pinion_flank
+from .machine import mirror_setup
+from .measuring_grid import MeasuredPoints, target_grids
+from .point_fit import check_point_count, point_deviation_um, point_problem
+from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
+                          fit_pinion_setup, flank_deviation_um, solve_fit)
+
+__all__ = ["EaseOffSettings", "SideResidual", "easeoff_machine_pair"]
+
+@dataclass(frozen=True)
+class SideResidual:
+    """The fit of one pinion flank and its residual over the full flank.
+
+    Attributes
+    ----------
+    side : str
+    fit : SettingFit
+    easeoff_max_um : float
+        Largest |normal distance| of the target from the conjugate pinion over the
+        residual grid, um (the ease-off to cut).
+    max_um, rms_um : float
+        Largest |residual| and RMS residual over the full flank, um (the final
+        generated sheet, 120 x 150 nodes, against the target on a 60 x 75 grid over
+        their common box).
+    u_mm, v_mm, residual_um : ndarray (60, 75)
+        The residual map (generated minus target along the target's outward normal).
+    points : MeasuredPoints or None
+        A target of scattered measured points (:mod:`.point_fit`): then the ease-off
+        (distance of the points from the conjugate pinion) and the residual (of the
+        points from the generated sheet, :func:`~.point_fit.point_deviation_um`) are
+        at the points, ``u_mm``, ``v_mm``, ``residual_um`` arrays over them (file
+        order).
+    """
+
+    side: str
+    fit: SettingFit
+    easeoff_max_um: float
+    max_um: float
+    rms_um: float
+    u_mm: np.ndarray
+    v_mm: np.ndarray
+    residual_um: np.ndarray
+    points: MeasuredPoints | None = None
+
+
+@dataclass(frozen=True)
+class EaseOffSettings:
+    """Machine settings that cut a pair's pinion ease-off (:func:`easeoff_machine_pair`).
+
+    Attributes
+    ----------
+    pair : GearPair
+        The pair with the settings of all four flanks (``[machine.*]``/``[blade.*]``):
+        the formate gear of today's flanks, the fitted pinion flanks.
+    sides : dict
+        ``{side: SideResidual}``, right-hand frame (a left-hand pair's twin).
+    measured_sides : tuple of str
+        Sides whose target was a measured grid (``easeoff_grid``), not the pair's
+        ``[easeoff.<side>]``.
+    """
+
+    pair: object
+    sides: dict
+    measured_sides: tuple = ()
+
+    def table(self) -> str:
+        """The residual and the corrections per side, as a Markdown table."""
+        rows = ["| side | ease-off max (um) | residual max (um) | residual RMS (um) | "
+                "fit evaluations | fit time (s) |", "|---|---:|---:|---:|---:|---:|"]
+        for side, r in self.sides.items():
+            rows.append(f"| {side} | {r.easeoff_max_um:.2f} | {r.max_um:.3f} | "
+                        f"{r.rms_um:.3f} | {r.fit.evaluations} | {r.fit.seconds:.1f} |")
+        for side, r in self.sides.items():
+            if r.points is not None:
+                rows += ["", f"{side}: target {len(r.points.line)} scattered measured points "
+                         "(--target-flank): ease-off and residual at the points, not over "
+                         "the flank"]
+        rows += ["", "| correction | unit | " + " | ".join(self.sides) + " |",
+                 "|---|---|" + "---:|" * len(self.sides)]
+        names = next(iter(self.sides.values())).fit.corrections
+        for n in names:
+            rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
+                f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
+        if any(r.fit.objective == "minimax" for r in self.sides.values()):
+            rows += ["", "fit objective minimax: largest deviation on the fit grid " + ", ".join(
+                f"{side} {r.fit.fit_max_um:.3f} um" + (
+                    "" if r.points is None else f" at its {len(r.points.line)} points")
+                + f" (least squares {r.fit.rms_fit_max_um:.3f})"
+                for side, r in self.sides.items())]
+        return "\n".join(rows)
+
+    def points_csv(self) -> str | None:
+        """The residual at each measured point of the sides fitted to scattered points,
+        as CSV (``None`` without such a side): the file's member, flank, line, L, R and
+        deviation, the measured point's sheet parameters ``u_mm`` (height over the
+        root cone), ``v_mm`` (axial position) and ``residual_um`` (the cut flank minus
+        the measured point along the nominal normal: positive = material left)."""
+        sides = [r for r in self.sides.values() if r.points is not None]
+        if not sides:
+            return None
+        rows = ["member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"]
+        for r in sides:
+            p = r.points
+            rows += [f"pinion,{r.side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
+                     f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
+                     zip(p.line, p.L_mm, p.R_mm, p.deviation_um, r.u_mm, r.v_mm,
+                         r.residual_um)]
+        return "\n".join(rows) + "\n"
+
+
+def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, n_v,
+              objective) -> SideResidual:
+    """The fit of one pinion flank to its target flank (residual over the flank) or to
+    measured points (``problem``: residual at the points)."""
+    if problem is not None:
+        fit = solve_fit(problem, tolerance_um=1e-6, objective=objective,
+                        started=time.perf_counter() - problem.setup_seconds)
+    else:
+        fit = fit_pinion_setup(seed, pair.blank, target, parameters=parameters, n_u=n_u,
+                               n_v=n_v, objective=objective)
+    cut, _ = generated_pinion_flank(fit.setup, pair.blank,
+                                    pinion_face_width_mm=pair.pinion_face_width_mm)
+    if problem is not None:
+        u, v, res = target.u_mm, target.v_mm, point_deviation_um(cut, target)
+        eased = point_deviation_um(conjugate, target)
+    else:
+        u, v, res = flank_deviation_um(cut, target)
+        eased = flank_deviation_um(conjugate, target)[2]
+    return SideResidual(side=side, fit=fit, easeoff_max_um=float(np.abs(eased).max()),
+                        max_um=float(np.abs(res).max()), rms_um=float(np.sqrt(np.mean(res ** 2))),
+                        u_mm=u, v_mm=v, residual_um=res,
+                        points=target if problem is not None else None)
+
+
+def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
+                         parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
+                         objective: str = "rms", where: str = "target flank"
+                         ) -> EaseOffSettings:
+    """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
+
+    The gear keeps the flanks of the pair's default (formate, or generated where the
+    formate gear undercuts its pinion: :func:`~.basic_settings.member_setups`); each
+    pinion flank is fitted (:func:`~.setting_fit.fit_pinion_setup`) from the settings
+    of the exactly conjugate pinion (complementary, or the crown gear's of a spiral
+    bevel pair: zero ease-off; of a hypoid with a generated gear the crown gear's
+    pinion fitted to the conjugate first, :func:`~.setting_fit.conjugate_seed`) to the
+    conjugate pinion with the pair's ease-off (:func:`~.flank.build_flanks`), and its
+    residual measured over the full flank (a side of scattered measured points:
+    fitted and measured at the points, :mod:`.point_fit`). A left-hand pair is fitted
+    on its right-hand twin and its settings mirrored (:func:`~.machine.mirror_setup`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A pair defined by its blank, cutter and ease-off (no ``[machine.*]`` tables).
+    easeoff_grid : dict, optional
+        ``{side: GridEaseOff or MeasuredFlank}`` (a measured deviation grid,
+        :func:`~.measuring_grid.read_target_flank`; a ``MeasuredFlank`` is mapped onto
+        the pair's pinion flank, :func:`~.measuring_grid.target_grids`): the target of
+        the sides it holds instead of the pair's ``[easeoff.<side>]``; each grid must
+        cover its flank's active box. Scattered measured points (not a complete grid)
+        are fitted at the points (:func:`~.point_fit.point_problem`), their residual
+        reported there.
+    parameters : tuple of str
+        The fitted subset (:data:`~.setting_fit.PARAMETERS`; default
+        :data:`~.setting_fit.DEFAULT_PARAMETERS`).
+    n_u, n_v : int
+        The coarse fit grid.
+    objective : str
+        ``"rms"`` or ``"minimax"`` (:func:`~.setting_fit.fit_pinion_setup`).
+    where : str
+        Names the measured file in messages.
+
+    Returns
+    -------
+    EaseOffSettings
+
+    Raises
+    ------
+    InputRangeError
+        A pair already cut from machine settings, an unknown side in ``easeoff_grid``,
+        a grid short of its flank, measured points off the flank, fewer than the
+        settings or leaving them unobservable (:mod:`.point_fit`; all before any fit).
+    UndercutError
+        A fitted flank the envelope does not generate over its box.
+    """
+    if pair.machine:
+        raise InputRangeError("pair", f"{pair.name} with [machine.*] tables",
+                              "a pair with an ease-off and no machine tables (its flanks "
+                              "are already the machine's)")
+    twin = dataclasses.replace(pair, pinion_hand="right") if pair.pinion_hand == "left" else pair
+    grids = dict(easeoff_grid or {})
+    for side in grids:
+        if side not in SIDES:
+            raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
+    check_point_count(grids, parameters, where=where)
+    flanks = build_flanks(twin)
+    # measured files in machine coordinates onto the flanks (points off them refused
+    # here): a complete grid as a target relief, scattered points as points
+    grids = target_grids(grids, twin, flanks, where=where)
+    # the gear of the default flanks and the pinion conjugate to it
+    gear, seeds = member_setups(twin, flanks.gear_generation)
+    targets, problems = {}, {}
+    for side in SIDES:          # every target checked before any fit
+        conj = flanks.pinion_conjugate.side(side)
+        targets[side] = flanks.pinion.side(side)
+        if isinstance(grids.get(side), MeasuredPoints):
+            targets[side] = grids[side]
+        elif side in grids:
+            grids[side].check_covers(conj.boundary, where=f"target flank {side}")
+            targets[side] = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
+    for side in SIDES:          # the seeds, and the points' rank checks before the fits
+        if twin.offset_mm != 0.0 and flanks.gear_generation == "generated":
+            seeds[side] = conjugate_seed(seeds[side], twin.blank,
+                                         flanks.pinion_conjugate.side(side), n_u=n_u,
+                                         n_v=n_v).setup
+        if isinstance(targets[side], MeasuredPoints):
+            problems[side] = point_problem(seeds[side], twin.blank, targets[side],
+                                           parameters=parameters, objective=objective,
+                                           where=where)
+    sides = {}
+    for side in SIDES:
+        sides[side] = _side_fit(side, seeds[side], targets[side], problems.get(side), twin,
+                                flanks.pinion_conjugate.side(side), parameters=parameters,
+                                n_u=n_u, n_v=n_v, objective=objective)
+    pinion = {side: r.fit.setup for side, r in sides.items()}
+    setups = [gear[s] for s in SIDES] + [pinion[s] for s in SIDES]
+    if pair.pinion_hand == "left":
+        setups = [mirror_setup(s) for s in setups]
+    return EaseOffSettings(pair=dataclasses.replace(pair, machine=tuple(setups),
+                                                    easeoff_tables=("drive", "coast")),
+                           sides=sides, measured_sides=tuple(s for s in SIDES if s in grids))
