@@ -267,6 +267,9 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "stencil": stencil, "curvatures": curvatures, "bending": bool(bending),
         "cb": hexes(a["cb"]) if bending else [], "block_steps": _CHUNK,
         "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
+        # the golden quantization's range test is void where every sample is finite and
+        # within +-256 mm (gc_contact_law.c's gap_codes, the bound's argument)
+        "cv_in_range": stencil and bool(np.all(np.abs(cv[..., :-3]) <= 256.0)),
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
         "row_pairs": _row_pairs(a["valid"]),
         "row_law": _row_law(a["lever"], a["opening"], a["valid"]),
