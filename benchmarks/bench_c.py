@@ -22,13 +22,14 @@ RK4 step with its 4 mesh evaluations of both flanks, the record and the finitene
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us). Last measured (docs/export.md, the seventh round, the
-golden fit's MAC on the stencil's orbit sums): alternated before/after at a load of
-14-17, golden chain 218-247 -> 153-203 ns median (golden fit 116-135 -> 64-91),
-fp64 chain 124-153 both; instructions golden chain 1,100 -> 842, golden step
-10,299 -> 9,043, fp64 step 4,281 (its 605-847 ns move with the machine, not the
-code). The machine's state moves the absolute figures more than the code does: compare
-alternated runs and instructions.
+(>= 20x real time at 10 us). Last measured (docs/export.md, the eighth round: the
+step's bookkeeping, the Hamrock-Brewe terms inline, the golden quantization without its
+void range test): instructions per step fp64 4,306 -> 3,607, golden 9,135 -> 7,903;
+alternated before/after, 8 rounds at a load of ~9, median ns per step fp64 820 -> 720
+(ratio 0.87), golden 1,388 -> 1,277 (0.92); the library's chains unchanged (golden 842
+instructions, 170 ns median at a load of 9.5; fp64 750, 123 ns). The machine's state
+moves the absolute figures more than the code does: compare alternated runs and
+instructions.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive

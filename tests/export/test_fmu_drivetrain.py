@@ -396,7 +396,10 @@ def _run_harness(fmu, tmp_path, harness: str, name: str, flags=()) -> str:
 #: Harness of :func:`test_stencil_gap_codes_are_the_twin_quantization`: gc_contact_law.c's
 #: static gap_codes on xorshift rows (magnitudes 2^-25 .. 2^12 mm, a sample beyond
 #: STENCIL_GAP's +-1024 mm, an infinity or a NaN now and then, fractions in [0, 1] with both ends),
-#: each vector printed as f, the rows and the result in hexadecimal floats and integers.
+#: each vector printed as f, the rows and the result in hexadecimal floats and integers;
+#: every fourth vector within +-256 mm (+-256 itself now and then, fractions a few ulp
+#: beyond [0, 1] too) also through the unchecked lanes (checked 0, the drivetrain FMU's
+#: CV_IN_RANGE), printed after "U".
 _GAP_HARNESS = r"""
 #include <stdio.h>
 #include "gc_contact_law.c"
@@ -412,21 +415,41 @@ static double sample(void)
     return (unit() - 0.5) * ldexp(1.0, (int)(next() % 38u) - 25);
 }
 
+/* within +-256 mm, the bound of the unchecked lanes */
+static double sample_in_range(void)
+{
+    if (next() % 50u == 0u)
+        return next() % 2u ? 256.0 : -256.0;
+    return (unit() - 0.5) * ldexp(1.0, (int)(next() % 35u) - 25);
+}
+
 int main(void)
 {
     double r0[GC_FIT_TAPS], r1[GC_FIT_TAPS], f;
     int32_t codes[GC_FIT_TAPS];
-    int v, q, ok;
+    int v, q, ok, in_range;
     for (v = 0; v < 3000; ++v) {
+        in_range = v % 4 == 2;
         for (q = 0; q < GC_FIT_TAPS; ++q) {
-            r0[q] = sample();
-            r1[q] = v % 3 == 0 ? r0[q] + ldexp(unit() - 0.5, -12) : sample();
+            r0[q] = in_range ? sample_in_range() : sample();
+            r1[q] = v % 3 == 0 ? r0[q] + ldexp(unit() - 0.5, -12)
+                    : in_range ? sample_in_range() : sample();
+            if (in_range && fabs(r1[q]) > 256.0)
+                r1[q] = r0[q];
         }
         f = v % 5 == 0 ? (double)(v % 2) : unit();
-        ok = gap_codes(r0, r1, f, codes);
+        if (in_range && v % 3 != 0)
+            f = v % 3 == 1 ? -0x1p-50 : 1.0 + 0x1p-50;
+        ok = gap_codes(r0, r1, f, 1, codes);
         printf("%a %d", f, ok);
         for (q = 0; q < GC_FIT_TAPS; ++q)
             printf(" %a %a %ld", r0[q], r1[q], ok ? (long)codes[q] : 0L);
+        if (in_range) {
+            ok = gap_codes(r0, r1, f, 0, codes);
+            printf(" U %d", ok);
+            for (q = 0; q < GC_FIT_TAPS; ++q)
+                printf(" %ld", (long)codes[q]);
+        }
         printf("\n");
     }
     return 0;
@@ -440,15 +463,22 @@ def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
     get) equal the twin's quantization computed here in Python's doubles, the operations
     of :func:`gearcontact.twin.contact_law._kappa`: ``floor((r0 + f (r1 - r0)) 2^21 +
     1/2)`` (STENCIL_GAP Q(32,21)), flagged where a sample lies outside [-2^31, 2^31)
-    codes (or is not a number), on 3,000 vectors of 49 samples. Exact: the same IEEE
-    operations."""
+    codes (or is not a number), on 3,000 vectors of 49 samples; the unchecked lanes
+    (the drivetrain FMU's CV_IN_RANGE: no range test) give the same codes on the 750
+    vectors within +-256 mm, fractions a few ulp beyond [0, 1] included. Exact: the
+    same IEEE operations."""
     fmu, _ = exported
     outputs = {flavour: _run_harness(fmu, tmp_path, _GAP_HARNESS, flavour, flags)
                for flavour, flags in (("sse2", []), ("scalar", ["-DGC_SCALAR_LANES"]))}
     assert outputs["sse2"] == outputs["scalar"]
-    flagged = 0
+    flagged = unchecked = 0
     for line in outputs["sse2"].splitlines():
         words = line.split()
+        if "U" in words:            # the unchecked lanes: never flagged, the same codes
+            u = words.index("U")
+            assert words[u + 1] == "1" and words[1] == "1", line[:80]
+            assert words[u + 2:] == words[4:u:3], line[:80]
+            unchecked += 1
         f, ok = float.fromhex(words[0]), int(words[1])
         want, bad = [], False
         for q in range(49):
@@ -461,6 +491,7 @@ def test_stencil_gap_codes_are_the_twin_quantization(exported, tmp_path):
         if ok:
             assert [int(words[4 + 3 * q]) for q in range(49)] == want
     assert 100 < flagged < 2900           # both outcomes exercised
+    assert unchecked == 750
 
 
 #: Harness of :func:`test_golden_kappa_is_the_twin_bit_for_bit`: gc_contact_law.c's

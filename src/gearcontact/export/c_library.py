@@ -4,7 +4,8 @@
 package's own tables (:mod:`.c_constants`) and vector layouts (:mod:`.c_checker`) into
 one directory: the public header ``gearcontact.h``, the internal ``gc_tables.h`` /
 ``gc_tables.c`` (constants and ROM words), ``gc_arith.h`` (shift helpers),
-``gc_cbrt.h`` (the fp64 cube root, shared with the FMUs' contact law), one
+``gc_cbrt.h`` (the fp64 cube root) and ``gc_hertz_hb.h`` (the Hamrock-Brewe terms), both
+shared inline with the FMUs' contact law, one
 source per stage and flavour, the
 checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 ``libgearcontact.a``, ``libgearcontact.so`` and ``gearcontact_check``). No file holds a
@@ -41,7 +42,7 @@ GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc
 #: fp64 sources.
 FP64_SOURCES = ("gc_gap_fp64.c", "gc_fit_fp64.c", "gc_hertz_fp64.c")
 #: Headers (the public one first; the others internal).
-HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h")
+HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h", "gc_hertz_hb.h")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
 C_FILES = HEADERS + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")

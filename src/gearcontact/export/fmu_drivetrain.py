@@ -150,6 +150,30 @@ def _row_pairs(valid) -> list:
     return rows
 
 
+def _row_law(lever, opening, valid) -> list:
+    """Per table, row interval ``(i, i + 1)`` and entry of :func:`_row_pairs`' list (pair
+    ``j``): ``lever[j, i]``, ``lever[j, i + 1] - lever[j, i]``, ``opening[j, i]``,
+    ``opening[j, i + 1] - opening[j, i]`` as C literals, padded with zeros to ``pairs``
+    records (the C loop's ``ROW_LAW``: the twin's interpolation operands, its
+    differences formed here in IEEE double as :func:`gearcontact.twin.kernel._elastic`
+    forms them, the same doubles)."""
+    lever, opening = np.asarray(lever, float), np.asarray(opening, float)
+    n_p, n_k = lever.shape[1], lever.shape[2]
+    zero = [c_double(0.0)] * 4
+    tables = []
+    for s, side in enumerate(_row_pairs(valid)):
+        rows = []
+        for i, entry in enumerate(side):
+            recs = [[c_double(float(x)) for x in (
+                lever[s, j, i], lever[s, j, i + 1] - lever[s, j, i],
+                opening[s, j, i], opening[s, j, i + 1] - opening[s, j, i])]
+                for j in entry[1:1 + entry[0]]]
+            rows.append(recs + [zero] * (n_p - len(recs)))
+        assert len(rows) == n_k
+        tables.append(rows)
+    return tables
+
+
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                           torque_nm: float = 64.5, drivetrain=None,
                           curvatures: str = "stencil", bending: bool = False,
@@ -243,8 +267,12 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "stencil": stencil, "curvatures": curvatures, "bending": bool(bending),
         "cb": hexes(a["cb"]) if bending else [], "block_steps": _CHUNK,
         "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
+        # the golden quantization's range test is void where every sample is finite and
+        # within +-256 mm (gc_contact_law.c's gap_codes, the bound's argument)
+        "cv_in_range": stencil and bool(np.all(np.abs(cv[..., :-3]) <= 256.0)),
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
         "row_pairs": _row_pairs(a["valid"]),
+        "row_law": _row_law(a["lever"], a["opening"], a["valid"]),
         "psi0": hexes(m.psi_rad), "eps0": hexes(m.eps_rad),
         "default_step": "1e-05", "default_stop": "0.05",
         "starts": {"speed_rpm": "3000", "torque_nm": repr(float(model.torque_nm)),
