@@ -11,11 +11,12 @@ import pytest
 from gearcontact.contract.qformat import FixedPointOverflow
 from gearcontact.hw import driver as drv
 from gearcontact.hw.line_driver import LineDriver, LineReadback
-from gearcontact.hw.regmap import get_map, identifier_bytes
 from gearcontact.preview.chain import CHAIN_LINE_CYCLES, chain_line_golden
 from gearcontact.preview.fit.pinv import N_TAPS
 from gearcontact.preview.stimulus import STEEL_E_PRIME_CODE, chain_line_stimulus
 from gearcontact.validation import InputRangeError
+
+from .test_driver import FakeTransport
 
 #: Bus edges of one preview: wr_rst, 49 wr_data, W_load, L_line, go (53 writes); one
 #: poll of ``done`` per edge until it rises (811); 9 result reads (A, B, a, b, p_max, k,
@@ -86,26 +87,8 @@ def test_rtl_soc_line_mode_with_the_hosts_lift_equals_golden():
         eng.close()
 
 
-class _FakeLineCore:
-    """Dict-backed registers answering with identifier ``ident``."""
-
-    def __init__(self, ident="gearcontact line_core"):
-        base = get_map("line_core").region("identifier").base
-        self.mem = {base + 4 * i: c for i, c in enumerate(identifier_bytes(ident))}
-        self.writes = []
-
-    def read(self, addr):
-        return self.mem.get(addr, 0)
-
-    def write(self, addr, value):
-        self.writes.append((addr, value))
-
-    def close(self):
-        pass
-
-
 def test_bad_codes_refused_before_any_write_and_the_wrong_soc_named():
-    t = _FakeLineCore()
+    t = FakeTransport(ident="gearcontact line_core")     # the same identifier base
     d = LineDriver(t)
     with pytest.raises(FixedPointOverflow, match="L_code"):
         d.run([0] * N_TAPS, 1000 << 8, 1 << 31)
@@ -117,4 +100,4 @@ def test_bad_codes_refused_before_any_write_and_the_wrong_soc_named():
         d.run([0] * 48, 1000 << 8, 20 << 20)
     assert t.writes == []
     with pytest.raises(drv.WrongIdentifier, match="expected 'gearcontact line_core'"):
-        LineDriver(_FakeLineCore("gearcontact tri_core"))
+        LineDriver(FakeTransport())

@@ -25,30 +25,25 @@ is :meth:`LineReadback.from_golden` of :func:`gearcontact.preview.chain.chain_li
 
 from __future__ import annotations
 
-from dataclasses import astuple, dataclass
+from dataclasses import asdict, dataclass
 
 from ..contract.qformat import CURVATURE, LOAD
+from ..preview.chain import FIT_FLAG_SHIFT
 from ..preview.hertz.line import LINE_LENGTH, LineCodes
-from .driver import PreviewDriver
+from .driver import PreviewDriver, PreviewReadback
 
 __all__ = ["LineDriver", "LineReadback"]
 
 
-@dataclass(frozen=True)
-class LineReadback:
-    """Codes read from the ``line`` region after done.
+@dataclass(frozen=True, kw_only=True)
+class LineReadback(PreviewReadback):
+    """Codes read from the ``line`` region after done: :class:`.driver.PreviewReadback`'s
+    (``A``, ``B`` the fit's A-, B-; ``a``, ``b`` the semi-axes or, in line mode, the
+    half-length L/2 and half-width; ``k`` 0 in line mode; ``flags`` the line chain's
+    word, :mod:`gearcontact.preview.chain`) and the line core's own.
 
     Attributes
     ----------
-    A, B : int
-        The fit's A- and B-, CURVATURE Q(32,20) 1/mm.
-    a, b : int
-        Semi-axes (elliptic) or half-length L/2 and half-width (line), SEMI_AXIS
-        Q(32,20) mm.
-    p_max : int
-        Peak pressure, PMAX Q(32,8) MPa.
-    k : int
-        Ellipticity a/b, K_OUT Q(32,20) (elliptic mode; 0 in line mode).
     A_min, B_max : int
         The line core's sorted curvatures (B- after the fit's zero rule), CURVATURE
         Q(32,20) 1/mm.
@@ -56,24 +51,12 @@ class LineReadback:
         1 line mode, 0 elliptic (or flagged).
     scale : int
         The line core's SCALE exponent n (curvatures scaled by 8^n), 0..3.
-    flags : int
-        Line chain flags word (:mod:`gearcontact.preview.chain`), 0 = valid.
-    cycles : int or None
-        Edges from go to done when the transport measures them (simulation).
     """
 
-    A: int
-    B: int
-    a: int
-    b: int
-    p_max: int
-    k: int
     A_min: int
     B_max: int
     mode: int
     scale: int
-    flags: int
-    cycles: int | None = None
 
     @classmethod
     def from_golden(cls, golden) -> LineReadback:
@@ -81,14 +64,14 @@ class LineReadback:
         ChainLineCodes` projected onto the registers."""
         lc, fit = golden.hertz, golden.fit
         return cls(fit.a_minus_code, fit.b_minus_code, lc.a_code, lc.b_code, lc.p_max_code,
-                   lc.k_code, lc.A_min_code, lc.B_max_code, lc.mode, lc.scale, golden.flags,
-                   golden.cycles)
+                   lc.k_code, golden.flags, golden.cycles, A_min=lc.A_min_code,
+                   B_max=lc.B_max_code, mode=lc.mode, scale=lc.scale)
 
     def line_codes(self) -> LineCodes:
         """The line core's outputs as :class:`~gearcontact.preview.hertz.line.LineCodes`
-        (its flags: the word's line-core bits 0..7)."""
+        (its flags: the word's line-core bits, below the fit's)."""
         return LineCodes(self.a, self.b, self.p_max, self.k, self.A_min, self.B_max,
-                         self.mode, self.scale, self.flags & 0xFF)
+                         self.mode, self.scale, self.flags & ((1 << FIT_FLAG_SHIFT) - 1))
 
     def trace_row(self) -> tuple:
         """``(flags, a, b, p_max, k, A_min, B_max, mode)``: the columns the twin's replay
@@ -123,9 +106,7 @@ class LineDriver(PreviewDriver):
         base = super().read_results(status)
         cur = {r: CURVATURE.from_bits(self.t.read(self.addr(r))) for r in ("A_min", "B_max")}
         mode = self.t.read(self.addr("mode"))
-        *head, flags, cycles = astuple(base)
-        return LineReadback(*head, cur["A_min"], cur["B_max"], mode & 1, mode >> 1 & 3,
-                            flags, cycles)
+        return LineReadback(**asdict(base), **cur, mode=mode & 1, scale=mode >> 1 & 3)
 
     def run(self, gap_codes, W_code: int, L_code: int) -> LineReadback:
         """Full protocol on one stencil: reset, 49 writes, load, length, go, poll, read.
