@@ -7,8 +7,9 @@ build (the edge-contact TCA and mesh table of both sides), steps/s, the real-tim
 compiled call each) and their jitter, the process CPU time per step and the load
 average (the machine is shared: wall-clock figures include other load). Targets
 (issue 14): compiled fp64 backend >= 10x real time on one core, golden >= 1x; the
-``rtl`` and ``soc`` backends (golden loop + lockstep replay on ChainCore / HertzCore or
-through the SoC register driver, :mod:`gearcontact.twin.cosim`) run shorter times and
+``rtl`` and ``soc`` backends (golden loop + lockstep replay on ChainCore / HertzCore /
+ChainLineCore or through the SoC register driver: tri_core / bhseq_core / line_core,
+:mod:`gearcontact.twin.cosim`) run shorter times and
 state their rates (the CPU column counts this process only, not the simulator).
 ``--curvatures``: the preview's curvature source (``stencil``: stage C per step, the
 default; ``exact``; ``both``: every backend with each).

@@ -30,6 +30,8 @@ MOVED = {
         "read_stencil_csv", "write_stencil_csv")},
     "gearcontact.hw.synth": {n: "gearcontact.hw.dsp_study" for n in (
         "DSP_STUDY_VERILOG", "DSP_STUDY_COUNTS", "parse_stat_modules", "dsp_study")},
+    # the rtl-soc backend beside the drivers it runs (tri_core, bhseq_core, line_core)
+    "gearcontact.hw.driver": {"SocEngine": "gearcontact.hw.soc_engine"},
 }
 #: Names the old module still imports for its own use: importable there without a
 #: warning (an ordinary import), but no longer exported and used by nobody else.

@@ -50,8 +50,7 @@ def test_quasi_static_twin_is_the_loaded_te(bending, rpm, tmp_path, capsys):
     assert "ev_reducer_helical_23x67 twin table" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("extra, field", [(["--backend", "soc"], "--backend"),
-                                          (["--backend", "table", "--table-source",
+@pytest.mark.parametrize("extra, field", [(["--backend", "table", "--table-source",
                                             "preview"], "--table-source"),
                                           (["--curvatures", "exact"], "--curvatures")])
 def test_refused_before_work(extra, field, tmp_path, capsys):
@@ -105,6 +104,24 @@ def test_readme_twin_cylindrical(tmp_path, capsys):
     assert 1.0 < doc["dynamic_factor"] < 1.1
     if doc["previews_outside_datapath"]:
         assert "(loaded lengths or curvatures outside the line core's ranges)" in out, out
+
+
+@pytest.mark.slow
+def test_readme_twin_line_with_the_soc_backend(tmp_path, capsys):
+    """The README's cylindrical twin line with ``--backend soc`` (3 phases, 20 us: 2
+    steps, ~6 previews): the line chain's previews go through the host driver on the
+    simulated line_core SoC, every one bit-identical with the golden chain (the golden
+    and rtl comparisons: tests/twin/test_line_law.py, in the default suite), reported in
+    twin.json. ~10 s, most of it the SoC's elaboration: slow."""
+    argv = readme_argv("gearcontact twin --pair examples/ev_reducer_helical_23x67.toml --out",
+                       tmp_path / "soc")
+    argv += ["--backend", "soc", "--phases", "3", "--duration-ms", "0.02", "--no-figures",
+             "--quiet"]
+    assert main(argv) == 0
+    doc = json.loads((tmp_path / "soc" / "twin.json").read_text())
+    assert doc["backend"] == "soc" and doc["curvatures"] == "line"
+    assert doc["soc_kind"] == "line_core" and doc["soc_mismatches"] == 0
+    assert doc["soc_previews"] >= 4 and doc["steps"] == 2
 
 
 def test_speed_sweep_beside_the_table_twin(tmp_path):

@@ -105,3 +105,9 @@ def test_soc_twin_through_a_board_address(s0003_twin, served_tri_core):
                  board=served_tri_core, **kw)
     with pytest.raises(InputRangeError, match="board"):
         simulate(build_model(mesh, dt, TORQUE_NM), board=served_tri_core, **kw)
+    # a cylindrical pair's line chain needs the line_core SoC: the tri_core there (no
+    # line core) is named before any preview is written
+    from gearcontact.twin.cosim import TRACE_COLUMNS, replay_on_soc
+    with pytest.raises(UnusableInput, match="needs a line_core"):
+        replay_on_soc(np.zeros((1, len(TRACE_COLUMNS)), np.int64), 229670,
+                      stencils=np.zeros((1, 49), np.int64), board=served_tri_core, line=True)

@@ -118,9 +118,9 @@ def test_first_mesh_resonance_against_iso_n_e1(pair, model, backend):
 
 
 def test_refused_before_work(pair):
-    """The SoCs carry no line core; the loaded-TE table's rows are counted."""
-    with pytest.raises(InputRangeError, match="line core"):
-        cylindrical_model(pair, torque_nm=TORQUE_NM, backend="soc")
+    """An unknown backend is named; the loaded-TE table's rows are counted."""
+    with pytest.raises(InputRangeError, match="backend.*cylindrical"):
+        cylindrical_model(pair, torque_nm=TORQUE_NM, backend="tri_core")
     with pytest.raises(InputRangeError, match="table_cells"):
         cylindrical_model(pair, torque_nm=TORQUE_NM, bending=True, table_cells=0,
                           backend="table")

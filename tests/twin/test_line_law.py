@@ -11,7 +11,9 @@ independent truths:
 * golden against fp64 within the fixed-point resolution of the line chain;
 * RTL (ChainLineCore) == golden bit for bit on every preview of a short run, on the
   unmodified spur pair (the whole line loaded) and on the crowned, tip-relieved EV
-  helical pair, whose loaded length L_c lies below the line's length L;
+  helical pair, whose loaded length L_c lies below the line's length L; the same
+  through the host driver on the simulated line_core SoC (the soc backend), lines
+  below 1 mm on the host's lift included (slow);
 * with tooth bending (the line law in series with each pair's bending compliance,
   twin.cylindrical.line_bending_compliance): the static rotation against the loaded TE
   with bending (the LCP with the same shells), the single-pair stiffness against ISO
@@ -196,6 +198,27 @@ def test_rtl_twin_is_the_golden_twin_bit_for_bit(spur):
         np.testing.assert_array_equal(rtl.columns[key], col, err_msg=key)
 
 
+def test_soc_twin_is_the_golden_twin_bit_for_bit(spur, monkeypatch):
+    """``--backend soc`` on a cylindrical pair: 30 us at 10 us (3 steps, 5 previews of
+    the spur pair's line chain) replayed through the host driver on the simulated
+    line_core SoC (hw.line_driver: 49 ``wr_data`` writes, ``W_load``, ``L_line``,
+    ``go``, poll, 9 reads; 811 cycles go -> done, tests/hw/test_line_driver.py) are
+    bit-identical, so its trajectory is the golden one exactly; the same trace replayed
+    on the ChainLineCore (the rtl backend's replay) agrees too."""
+    from gearcontact.twin.cosim import replay_on_rtl
+
+    soc, gold, trace, stencils, e_code = _traced_rtl_run(
+        monkeypatch, _model(spur, "soc"), _model(spur, "golden"), 30e-6,
+        replay="replay_on_soc")
+    s = soc.summary
+    assert s["soc_kind"] == "line_core" and s["soc_transport"] == "simulation"
+    assert s["soc_mismatches"] == 0 and s["soc_previews"] == trace.shape[0] >= 5
+    for key, col in gold.columns.items():
+        np.testing.assert_array_equal(soc.columns[key], col, err_msg=key)
+    rtl = replay_on_rtl(trace, e_code, stencils=stencils, line=True)
+    assert rtl["rtl_core"] == "chain_line" and rtl["rtl_mismatches"] == 0
+
+
 def test_spur_pitch_point_with_bending_against_the_lcp(spur, spur_bent):
     """Tooth bending in series with the line law, against the loaded TE with bending
     (``gearcontact lte --bending``: the LCP with the same shells of both teeth), the
@@ -291,23 +314,23 @@ def test_golden_and_rtl_with_bending(spur, spur_bent):
         np.testing.assert_array_equal(rtl.columns[key], col, err_msg=key)
 
 
-def _traced_rtl_run(monkeypatch, model, golden, duration_s):
-    """The rtl run of ``model`` and the golden run of ``golden`` (3000 rpm, 10 us) with
-    the trace the rtl run replayed (:func:`gearcontact.twin.cosim.replay_on_rtl`,
-    recorded on its way in)."""
+def _traced_rtl_run(monkeypatch, model, golden, duration_s, *, replay="replay_on_rtl"):
+    """The rtl (or soc: ``replay="replay_on_soc"``) run of ``model`` and the golden run
+    of ``golden`` (3000 rpm, 10 us) with the trace the run replayed
+    (:func:`gearcontact.twin.cosim.replay_on_rtl`, recorded on its way in)."""
     from gearcontact.twin import cosim
 
     seen = []
-    replay = cosim.replay_on_rtl
+    real = getattr(cosim, replay)
 
     def recording(trace, e_prime_code, **kw):
-        seen.append(trace.copy())
-        return replay(trace, e_prime_code, **kw)
+        seen.append((trace.copy(), kw["stencils"].copy(), e_prime_code))
+        return real(trace, e_prime_code, **kw)
 
-    monkeypatch.setattr(cosim, "replay_on_rtl", recording)
+    monkeypatch.setattr(cosim, replay, recording)
     kw = dict(speed_rpm=3000.0, duration_s=duration_s, step_s=10e-6)
     rtl = simulate(model, **kw)
-    return rtl, simulate(golden, **kw), seen[0]
+    return rtl, simulate(golden, **kw), *seen[0]
 
 
 def _ev_models(bending):
@@ -349,7 +372,7 @@ def test_rtl_twin_is_the_golden_twin_on_the_loaded_length(monkeypatch):
     long (measured), so the replayed codes are not the full lengths the spur test's
     unmodified lines carry."""
     rtl_model, gold_model = _ev_models(bending=False)
-    rtl, gold, trace = _traced_rtl_run(monkeypatch, rtl_model, gold_model, 0.5e-3)
+    rtl, gold, trace, *_ = _traced_rtl_run(monkeypatch, rtl_model, gold_model, 0.5e-3)
     loaded, full = _loaded_lengths(rtl, gold, rtl_model, trace, 100)
     assert loaded.max() < 0.9 * full and np.unique(loaded).size > 10
 
@@ -360,7 +383,35 @@ def test_rtl_twin_is_the_golden_twin_on_the_loaded_length_bent(monkeypatch):
     slices' compliance) over 5 ms (500 steps, more than a mesh cycle's worth of pairs
     entering and leaving, ~1200 previews)."""
     rtl_model, gold_model = _ev_models(bending=True)
-    rtl, gold, trace = _traced_rtl_run(monkeypatch, rtl_model, gold_model, 5e-3)
+    rtl, gold, trace, *_ = _traced_rtl_run(monkeypatch, rtl_model, gold_model, 5e-3)
     loaded, full = _loaded_lengths(rtl, gold, rtl_model, trace, 1000)
     assert rtl.summary["bending"]
     assert loaded.max() < 0.9 * full and np.unique(loaded).size > 10
+
+
+@pytest.mark.slow
+def test_soc_twin_is_the_golden_twin_over_a_thousand_previews(monkeypatch):
+    """The soc backend on the EV helical pair (64.5 N·m, 7 phases, rigid), 4.5 ms at 10
+    us (450 steps, ~1100 previews, pairs entering and leaving the zone): every preview
+    replayed through the host driver on the line_core SoC is bit-identical, the
+    trajectory is the golden one exactly, and the trace replayed on the ChainLineCore
+    agrees. Pairs just closing have an equivalent length below the line core's 1 mm:
+    they run on the host's lift (2^s W, 2^s L), traced as run, and the SoC answers the
+    lifted codes as the golden chain does (at least one such preview; none outside the
+    datapath). ~0.6 s per preview in the Amaranth simulation: ~12 min."""
+    from gearcontact.twin.cosim import replay_on_rtl
+
+    rtl_model, gold_model = _ev_models(bending=False)
+    soc_model = build_model(rtl_model.mesh, rtl_model.drivetrain, rtl_model.torque_nm,
+                            backend="soc", curvatures="line",
+                            reverse_note=rtl_model.reverse_note)
+    soc, gold, trace, stencils, e_code = _traced_rtl_run(
+        monkeypatch, soc_model, gold_model, 4.5e-3, replay="replay_on_soc")
+    s = soc.summary
+    assert s["soc_kind"] == "line_core" and s["soc_mismatches"] == 0
+    assert s["soc_previews"] == trace.shape[0] >= 1000
+    assert s["soc_lifted_previews"] >= 1 and s["previews_outside_datapath"] == 0
+    for key, col in gold.columns.items():
+        np.testing.assert_array_equal(soc.columns[key], col, err_msg=key)
+    rtl = replay_on_rtl(trace, e_code, stencils=stencils, line=True)
+    assert rtl["rtl_mismatches"] == 0 and rtl["rtl_lifted_previews"] == s["soc_lifted_previews"]

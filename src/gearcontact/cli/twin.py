@@ -14,13 +14,14 @@ twin side by side, in parallel over the speeds: ``sweep.json``, ``sweep.csv``,
 of ``--drivetrain FILE`` over the s0003 defaults of :mod:`gearcontact.twin.params`.
 
 A cylindrical pair (``kind = "cylindrical"``) runs the preview's line chain as the
-contact law (``--backend reference``, the default, ``golden`` or ``rtl``: the ChainLineCore
-replay) or its loaded-TE table (``--backend table``: the loaded TE of its mesh cycle over
+contact law (``--backend reference``, the default, ``golden``, ``rtl``: the ChainLineCore
+replay, or ``soc``: the replay through the host driver on the line_core SoC) or its
+loaded-TE table (``--backend table``: the loaded TE of its mesh cycle over
 a torque ladder), rigid teeth or with ``--bending`` (the preview backends: each pair's
 tooth-bending compliance along its contact line in series with the line law), and
 ``--speed-sweep`` beside the table twin (:mod:`gearcontact.twin.cylindrical`,
-docs/cylindrical.md sec. 10); ``soc``, ``--curvatures exact`` and ``--table-source
-preview`` are refused for it.
+docs/cylindrical.md sec. 10); ``--curvatures exact`` and ``--table-source preview``
+are refused for it.
 """
 
 from __future__ import annotations
@@ -154,9 +155,8 @@ def check_cylindrical(args) -> None:
     """The options a cylindrical pair's twin takes (module docstring)."""
     if args.backend not in CYLINDRICAL_BACKENDS:
         raise InputRangeError("--backend", args.backend, f"one of {list(CYLINDRICAL_BACKENDS)}"
-                                                         " for a cylindrical pair (the SoCs "
-                                                         "carry no line core: "
-                                                         "docs/cylindrical.md sec. 10)")
+                                                         " for a cylindrical pair "
+                                                         "(docs/cylindrical.md sec. 10)")
     if args.table_source != "lcp":
         raise InputRangeError("--table-source", args.table_source, "lcp for a cylindrical pair "
                                                                    "(its loaded TE is the LCP's)")

@@ -5,7 +5,7 @@ backends and knows nothing of the hardware; importing this module adds
 
 * ``rtl`` -- :class:`.rtl_engine.RtlEngine`, the RTL cores in simulation (both Hertz
   forms);
-* ``rtl-soc`` -- :class:`.driver.SocEngine`, the SoCs in simulation behind the host
+* ``rtl-soc`` -- :class:`.soc_engine.SocEngine`, the SoCs in simulation behind the host
   driver, returning the register values it reads back (both Hertz forms: the
   simulated SoC is built with the requested tables).
 
@@ -32,7 +32,7 @@ def _rtl(**kwargs) -> PreviewEngine:
 
 
 def _rtl_soc(**kwargs) -> PreviewEngine:
-    from .driver import SocEngine
+    from .soc_engine import SocEngine
     return SocEngine(**kwargs)
 
 

@@ -20,9 +20,9 @@ A transport moves 32-bit words at byte addresses (:class:`Transport`):
     read       A, B, a, b, p_max, k; flags = done[16..27]
 
 :class:`HertzDriver` does the same for stage D alone (bhseq_core, dual_core).
-Importing this module registers the preview engine backend ``rtl-soc``
-(:class:`SocEngine`), which runs the tri_core / bhseq_core simulations through the
-drivers; Amaranth is imported only when a simulation is created.
+The preview engine backend ``rtl-soc`` that runs the simulated SoCs through these
+drivers is :class:`gearcontact.hw.soc_engine.SocEngine`; Amaranth is imported only when
+a simulation is created.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ import time
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
-from ..preview.engine import GoldenEngine, PreviewBatch
+from ..deprecation import moved_names
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
 from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
@@ -59,7 +59,6 @@ __all__ = [
     "PreviewDriver",
     "PreviewReadback",
     "SimTransport",
-    "SocEngine",
     "Transport",
     "WrongIdentifier",
 ]
@@ -424,9 +423,10 @@ class PreviewDriver(_Driver):
     """
 
     region = "preview"
+    kind = "tri_core"
 
     def __init__(self, transport: Transport, **kw):
-        super().__init__(transport, kind="tri_core", **kw)
+        super().__init__(transport, kind=self.kind, **kw)
 
     def reset(self) -> None:
         """Rewind the gap RAM write pointer (``wr_rst``)."""
@@ -486,81 +486,5 @@ class HertzDriver(_Driver):
         return self.read_results(self.wait_done())
 
 
-# ---------------------------------------------------------------------------------
-# preview engine backend
-# ---------------------------------------------------------------------------------
-class SocEngine(GoldenEngine):
-    """Preview backend ``rtl-soc``: the golden model's quantization, evaluated by the
-    simulated SoCs through the register drivers (tri_core for stencils, bhseq_core
-    for stage D). Results are the values read back from the registers (decoded from
-    their Q formats), their flags word and the measured cycles; nothing is taken from
-    the golden model. Both Hertz forms (``hertz_form`` sets the tables of the simulated
-    SoC's stage D). Registered by :mod:`.backends`."""
-
-    name = "rtl-soc"
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self._drivers: dict = {}
-
-    def _driver(self, kind):
-        if kind not in self._drivers:
-            t = SimTransport(kind, e_prime_code=self.e_prime_code, hertz_form=self.hertz_form)
-            self._drivers[kind] = (PreviewDriver(t) if kind == "tri_core"
-                                   else HertzDriver(t, kind=kind))
-        return self._drivers[kind]
-
-    def close(self) -> None:
-        for d in self._drivers.values():
-            d.t.close()
-        self._drivers.clear()
-
-    def _from_readback(self, rb: PreviewReadback, load_n: float, codes: dict,
-                       hertz_flags: int, flag_names: tuple):
-        """PreviewResult of the register codes: A- / B- are stage D's B_max / A_min; the
-        SoC maps have no R_x, R_y, alpha registers (their codes are not reported)."""
-        from ..preview.hertz.golden import HertzCodes
-        hz = HertzCodes(a_code=rb.a, b_code=rb.b, p_max_code=rb.p_max, k_code=rb.k,
-                        A_min_code=rb.B, B_max_code=rb.A, R_x_code=0, R_y_code=0,
-                        alpha_code=0, flags=hertz_flags)
-        return self._result(hz, load_n, dict(codes, flags=rb.flags), flag_names, rb.cycles)
-
-    @staticmethod
-    def _no_line_core(line_length_mm) -> None:
-        """The SoCs hold the published cores only: line mode is refused, named."""
-        if line_length_mm is not None:
-            raise InputRangeError("line_length_mm (backend rtl-soc)", line_length_mm,
-                                  "None: the SoCs have no line core (use --backend "
-                                  "reference, golden or rtl for near-line contact)")
-
-    def stencil(self, gaps_mm, load_n, *, line_length_mm=None):
-        from ..preview.chain import FIT_FLAG_SHIFT, chain_flag_names
-        self._no_line_core(line_length_mm)
-        w, gap_codes, w_c = self.encode_stencil(gaps_mm, load_n)
-        rb = self._driver("tri_core").run([int(x) for x in gap_codes], w_c)
-        codes = {"W": w_c, "e_prime": self.e_prime_code, "A_fit": rb.A, "B_fit": rb.B}
-        return self._from_readback(rb, w, codes, rb.flags & ((1 << FIT_FLAG_SHIFT) - 1),
-                                   chain_flag_names(rb.flags))
-
-    def hertz(self, A_minus, B_minus, load_n, *, line_length_mm=None):
-        self._no_line_core(line_length_mm)
-        w, codes = self.encode_hertz(A_minus, B_minus, load_n)
-        rb = self._driver("bhseq_core").run(codes["A_in"], codes["B_in"], codes["W"])
-        return self._from_readback(rb, w, codes, rb.flags, HF.flag_names(rb.flags))
-
-    def hertz_batch(self, A_minus, B_minus, load_n, *, line_length_mm=None) -> PreviewBatch:
-        import numpy as np
-
-        from ..preview.engine import elliptic_modes
-        self._no_line_core(line_length_mm)
-        A, B, W = np.broadcast_arrays(np.asarray(A_minus, float), np.asarray(B_minus, float),
-                                      np.asarray(load_n, float))
-        res = [self.hertz(a, b, w) for a, b, w in zip(A.ravel(), B.ravel(), W.ravel())]
-        shape = A.shape
-
-        def col(f):
-            return np.array([f(r) for r in res]).reshape(shape)
-        return PreviewBatch(self.name, col(lambda r: r.a_mm), col(lambda r: r.b_mm),
-                            col(lambda r: r.k), col(lambda r: r.p_max_mpa),
-                            flags := col(lambda r: r.codes["flags"]).astype(np.int64),
-                            elliptic_modes(shape, flags))
+# the rtl-soc preview backend, moved to .soc_engine (one release)
+__getattr__ = moved_names(__name__, {"SocEngine": "gearcontact.hw.soc_engine:SocEngine"})

@@ -1,4 +1,4 @@
-"""Register maps of the four SoCs, defined once as data (docs/spec.md sec. 7).
+"""Register maps of the five SoCs, defined once as data (docs/spec.md sec. 7).
 
 Every consumer reads these tables: the Amaranth register block (:mod:`.bus`,
 :mod:`.soc`), the host driver (:mod:`.driver`), the LiteX CSR generation
@@ -11,7 +11,8 @@ region          base         content
 ``contact``     0x0000       stage A/B readback: gap 0x00, idx 0x04, flags 0x08, magic 0x0C
 ``ctrl``        0x0800       LiteX ctrl: reset 0x00, scratch 0x04, bus_errors 0x08
 ``identifier``  0x1000       LiteX ``identifier_mem``: one identifier byte per word
-``preview``     0x1800       tri_core C -> D (table below); ``hertz`` in bhseq / dual
+``preview``     0x1800       tri_core C -> D (table below); ``hertz`` in bhseq / dual;
+                             ``line`` in line_core (the line chain, below)
 ``timer0``      0x2000       LiteX timer: load, reload, en, update_value, value, ev_*
 ``sram``        0x0100_0000  8 KiB scratch RAM (tri_core)
 ==============  ===========  =============================================================
@@ -21,6 +22,13 @@ tri_core ``preview`` region (docs/spec.md sec. 7, exact): wr ``wr_rst`` 0x00, ``
 ``p_max`` 0x20, ``k`` 0x24, ``done`` 0x28. That map has no separate flags word: the
 ``done`` register carries ``done`` in bit 0, ``busy`` in bit 1, and the 12-bit chain
 flags word (:mod:`gearcontact.preview.chain`) in bits 16..27 — still one 32-bit read.
+
+line_core ``line`` region (the C -> line-core chain of a cylindrical pair,
+:class:`gearcontact.preview.chain_line_rtl.ChainLineCore`): the ``preview`` layout up to
+``done`` 0x28 (``A``, ``B`` the fit's A-, B-; ``k`` 0 in line mode; the 12-bit line chain
+flags word in ``done`` bits 16..27), then wr ``L_line`` 0x2C (LINE_LENGTH Q(32,20) mm),
+rd ``A_min`` 0x30, ``B_max`` 0x34 (the line core's sorted curvatures), ``mode`` 0x38
+(bit 0 line mode, bits 1..2 the SCALE exponent n).
 
 Register kinds (:attr:`Register.kind`):
 
@@ -37,10 +45,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..preview.chain import FIT_FLAG_SHIFT
+from ..preview.chain import CHAIN_LINE_CYCLES, FIT_FLAG_SHIFT
 from ..preview.fit.golden import FLAG_BITS as FIT_FLAG_BITS
 from ..preview.fit.pinv import N_TAPS
 from ..preview.hertz import formats as HF
+from ..preview.hertz.line import LINE_LENGTH
 from ..contract.qformat import (CURVATURE, GAP, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
                                 QFormat)
 
@@ -278,11 +287,37 @@ HERTZ = Region("hertz", 0x1800, (
              width=DONE_FLAGS_SHIFT + HERTZ_FLAG_BITS),
 ))
 
+#: The line chain (line_core): the ``preview`` layout plus the line core's length input,
+#: sorted curvatures and mode (module docstring).
+LINE = Region("line", 0x1800, (
+    *PREVIEW.registers[:3],
+    Register("go", 0x0C, "strobe", None,
+             f"write 1: start the C -> line-core chain ({CHAIN_LINE_CYCLES} cycles)", width=1),
+    Register("A", 0x10, "ro", CURVATURE, "fitted A-, Q(32,20) 1/mm"),
+    Register("B", 0x14, "ro", CURVATURE, "fitted B-, Q(32,20) 1/mm"),
+    *_ELLIPSE_REGISTERS[:3],
+    Register("k", 0x24, "ro", HF.K_OUT, "ellipticity a/b, K_OUT Q(32,20) (elliptic mode; "
+                                         "0 in line mode)"),
+    Register("done", 0x28, "ro", None,
+             f"bit 0 done, bit 1 busy, bits {DONE_FLAGS_SHIFT}.."
+             f"{DONE_FLAGS_SHIFT + CHAIN_FLAG_BITS - 1} line chain flags word (line core "
+             f"0..7, fit overflow 8..11)",
+             width=DONE_FLAGS_SHIFT + CHAIN_FLAG_BITS),
+    Register("L_line", 0x2C, "rw", LINE_LENGTH,
+             "contact-line length L, LINE_LENGTH Q(32,20) mm (captured at go; from 1 mm: "
+             "the host lifts a shorter line)"),
+    Register("A_min", 0x30, "ro", CURVATURE,
+             "line core's A_min (B- after the fit's zero rule), Q(32,20) 1/mm"),
+    Register("B_max", 0x34, "ro", CURVATURE, "line core's B_max, Q(32,20) 1/mm"),
+    Register("mode", 0x38, "ro", None, "bit 0: 1 line mode, 0 elliptic (or flagged); "
+                                       "bits 1..2: SCALE exponent n", width=3),
+))
+
 SRAM = Region("sram", SRAM_BASE, size=SRAM_SIZE, memory=True)
 
 #: Identifier strings (what LiteX's ``identifier_mem`` holds; the driver checks them).
 IDENTS = {kind: f"gearcontact {kind}" for kind in
-          ("contact_core", "bhseq_core", "dual_core", "tri_core")}
+          ("contact_core", "bhseq_core", "dual_core", "tri_core", "line_core")}
 
 SOC_MAPS = {
     "contact_core": SocMap("contact_core", IDENTS["contact_core"],
@@ -293,6 +328,7 @@ SOC_MAPS = {
                         (CONTACT, CTRL, IDENTIFIER, HERTZ, TIMER0)),
     "tri_core": SocMap("tri_core", IDENTS["tri_core"],
                        (CONTACT, CTRL, IDENTIFIER, PREVIEW, TIMER0, SRAM)),
+    "line_core": SocMap("line_core", IDENTS["line_core"], (CTRL, IDENTIFIER, LINE, TIMER0)),
 }
 SOC_KINDS = tuple(SOC_MAPS)
 

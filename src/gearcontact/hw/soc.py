@@ -1,4 +1,4 @@
-"""The four SoC tops of docs/spec.md sec. 7 in Amaranth: cores behind the register bus.
+"""The five SoC tops of docs/spec.md sec. 7 in Amaranth: cores behind the register bus.
 
 =================  =====================================================================
 kind               datapath
@@ -8,6 +8,8 @@ kind               datapath
 ``dual_core``      contact + stage D behind one readback
 ``tri_core``       contact + C -> D chain (``ChainCore``: 49-sample gap RAM written over
                    the bus, W_load, go; 806 cycles) behind ``preview``, 8 KiB SRAM
+``line_core``      the line chain of a cylindrical pair (``ChainLineCore``: the same gap
+                   RAM writes, W_load, L_line, go; 811 cycles) behind ``line``
 =================  =====================================================================
 
 Every top is split in two so that the LiteX board flow reuses the same RTL:
@@ -35,6 +37,7 @@ from amaranth.back import verilog
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
+from ..preview.chain_line_rtl import ChainLineCore
 from ..preview.chain_rtl import ChainCore
 from ..preview.gap.golden import GapVector
 from ..preview.gap.rtl import GapCore
@@ -132,7 +135,7 @@ class ContactRunner(wiring.Component):
 
 
 #: Regions whose registers the datapath serves (the rest is system logic).
-_DATAPATH_REGIONS = ("contact", "preview", "hertz")
+_DATAPATH_REGIONS = ("contact", "preview", "hertz", "line")
 
 
 def datapath_ports(soc_map: SocMap, constants: dict) -> dict:
@@ -188,8 +191,8 @@ class SocDatapath(wiring.Component):
     -----
     Ports: :func:`datapath_ports` of the map, plus ``probe_cycles`` (out,
     :data:`PROBE_BITS`): edges from the last accepted ``go`` of the preview / Hertz
-    core to its ``done`` (806 for tri_core, 756 for bhseq/dual), a simulation and
-    bring-up probe that is not on the bus.
+    core to its ``done`` (806 for tri_core, 811 for line_core, 756 for bhseq/dual), a
+    simulation and bring-up probe that is not on the bus.
     """
 
     def __init__(self, kind: str, *, lanes: int = 16, e_prime_code: int = STEEL_E_PRIME_CODE,
@@ -215,13 +218,19 @@ class SocDatapath(wiring.Component):
                          self._p("contact", "idx").eq(c.idx),
                          self._p("contact", "flags").eq(c.flags)]
         core = None
-        if "preview" in names:
-            m.submodules.chain = core = ChainCore(hertz_form=self.hertz_form)
-            P = lambda r: self._p("preview", r)
+        chain = next((r for r in ("preview", "line") if r in names), None)
+        if chain is not None:       # a C -> D chain: the gap RAM written over the bus
+            cls = ChainCore if chain == "preview" else ChainLineCore
+            m.submodules.chain = core = cls(hertz_form=self.hertz_form)
+            P = lambda r: self._p(chain, r)
             m.d.comb += [core.wr_rst.eq(P("wr_rst")), core.wr_en.eq(P("wr_data__stb")),
                          core.wr_data.eq(P("wr_data")), core.W.eq(P("W_load")),
                          core.e_prime.eq(self.e_prime_code), core.go.eq(P("go")),
                          P("A").eq(core.a_minus), P("B").eq(core.b_minus)]
+            if chain == "line":
+                m.d.comb += [core.L.eq(P("L_line")), P("A_min").eq(core.A_min),
+                             P("B_max").eq(core.B_max),
+                             P("mode").eq(Cat(core.mode, core.scale))]
             go = P("go")
         elif "hertz" in names:
             m.submodules.hertz = core = HertzCore(hertz_form=self.hertz_form)

@@ -207,7 +207,8 @@ CORES = {"gap": _gap, "gap_plain": _gap_plain, "gap_lean": _gap_lean, "fit": _fi
          "hertz_exact": _hertz_exact, "hertz_pipe": _hertz_pipe, "chain": _chain,
          "chain_pipe": _chain_pipe, "comb": _comb, "comb_exact": _comb_exact,
          "contact_core": _soc("contact_core"), "bhseq_core": _soc("bhseq_core"),
-         "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core")}
+         "dual_core": _soc("dual_core"), "tri_core": _soc("tri_core"),
+         "line_core": _soc("line_core")}
 
 
 class YosysNotFound(ToolUnavailable, RuntimeError):

@@ -19,14 +19,15 @@ surface contact's (:mod:`.mesh`).
 
 Contact law, per backend (``--backend``, as the bevel twin's):
 
-* ``reference`` (fp64), ``golden`` (the bit-exact fixed point) and ``rtl`` (the golden
-  run replayed on the ChainLineCore, :func:`.cosim.replay_on_rtl`): the preview's *line
+* ``reference`` (fp64), ``golden`` (the bit-exact fixed point), ``rtl`` (the golden
+  run replayed on the ChainLineCore, :func:`.cosim.replay_on_rtl`) and ``soc`` (the
+  golden run replayed through the host driver on the line_core SoC,
+  :func:`.cosim.replay_on_soc`): the preview's *line
   chain* per loaded pair and step (stage C on the pair's 7 x 7 stencil into the line
   core with the pair's contact-line length, docs/cylindrical.md sec. 8), whose answer
   gives the pair's law -- Hertz ``d = kappa W^(2/3)`` where the ellipse fits, the
   approach of the finite line contact on the half-spaces where the line core answers
-  in line mode (:mod:`.line_law`); the ``soc`` backend is refused (the SoCs carry no
-  line core);
+  in line mode (:mod:`.line_law`);
 * ``table``: the loaded TE (LCP; rigid teeth, or with tooth bending as the twin's
   ``bending`` option) over the phase at a torque ladder
   (:func:`cylindrical_torque_table`, the conventional twin's input).
@@ -77,7 +78,7 @@ __all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque
            "motion_sign", "tip_rows"]
 
 #: The twin backends a cylindrical pair runs (module docstring).
-CYLINDRICAL_BACKENDS = ("reference", "golden", "rtl", "table")
+CYLINDRICAL_BACKENDS = ("reference", "golden", "rtl", "soc", "table")
 
 
 def motion_sign(pair: CylindricalPair, cycle: CylindricalMeshCycle) -> int:
@@ -229,8 +230,8 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend not in CYLINDRICAL_BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(CYLINDRICAL_BACKENDS)} for a "
-                                                  "cylindrical pair (the SoCs carry no line "
-                                                  "core: docs/cylindrical.md sec. 10)")
+                                                  "cylindrical pair (docs/cylindrical.md "
+                                                  "sec. 10)")
     if backend == "table":
         check_cells("table_cells", table_cells)
     facing = FACING_OF_SIDE.get(side)

@@ -47,7 +47,7 @@ PV_LINE_BENDING = 7
 #: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
 N_CACHE = 11
 #: Columns of the golden preview trace (:data:`~.cosim.TRACE_COLUMNS`).
-N_TRACE = 11
+N_TRACE = 12
 #: Length of the state vector y.
 N_STATE = 11
 # record columns

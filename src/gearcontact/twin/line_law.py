@@ -170,7 +170,7 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
     """The golden line chain on pair j's interpolated stencil (module docstring): the
     law's coefficient and ``pv`` as :func:`_line_fp64`, -1 when the chain flags (the
     caller then evaluates the fp64 chain). Traces the run: ``[step, A_min, B_max, W,
-    flags, a, b, p_max, k, L, mode]`` codes (:data:`.cosim.TRACE_COLUMNS`), the 49 gap
+    flags, a, b, p_max, k, L, mode, lift]`` codes (:data:`.cosim.TRACE_COLUMNS`), the 49 gap
     codes into the stencil trace."""
     g = fit[2]
     for q in range(g.shape[1]):
@@ -191,8 +191,8 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
     flags |= ff << 8
     t = tcount[0]
     if t < trace.shape[0]:
-        row = (tcount[1], a_min, b_max, w_code, flags, a_c, b_c, p_c, k_c, l_code, mode)
-        for q in range(11):
+        row = (tcount[1], a_min, b_max, w_code, flags, a_c, b_c, p_c, k_c, l_code, mode, lift)
+        for q in range(12):
             trace[t, q] = row[q]
         tg = fit[4]
         if t < tg.shape[0]:

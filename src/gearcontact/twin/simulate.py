@@ -208,7 +208,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         kw = {"stencils": fit[4][:tcount[0]] if stencil else None}
         if be == "soc":
             kw["board"] = board
-        elif line:      # the line chain: its L codes and modes, on the ChainLineCore
+        if line:        # the line chain: its L codes and modes (ChainLineCore, line_core)
             kw["line"] = True
         replay = cosim.replay_on_rtl if be == "rtl" else cosim.replay_on_soc
         rtl = replay(trace[:tcount[0]], int(prm[K.P_ECODE]), **kw)
