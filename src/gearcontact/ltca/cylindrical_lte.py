@@ -48,10 +48,13 @@ gap ``(lever / |rate|) (g_e(z) - g_e)`` (:func:`~gearcontact.tca.cylindrical_tip
 tip_edge_gaps`), across only ``x >= 0`` into the edge's own flank (no material beyond
 the edge) with ``sin(angle between the flanks) x + x^2 / (2 R)``; lever the touched
 normal's about the gear axis, opening that lever times its closing turn behind the
-mesh's; bending at the touch's roll lengths. This is the extended contact of deflected
-teeth at the tip of the driven tooth (start of mesh) and of the driver (end). On a
-helical pair the tip edge beyond a line already in the zone is not a block (it is in
-TE0).
+mesh's; bending at the touch's roll lengths (:mod:`.cylindrical_edges`). This is the
+extended contact of deflected teeth at the tip of the driven tooth (start of mesh) and
+of the driver (end). On a helical pair whose line is in the zone, the tooth's sections
+beyond its tip end (the line crosses the zone diagonally) are such a block too, beside
+the line's: the edge rows at the grid's axial positions beyond the line's end
+(:func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps`), entering by the same
+rule (``beyond_*`` fields).
 
 Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
 normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).
@@ -88,11 +91,12 @@ from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, LineGaps, contact_line_gaps, \
     cylindrical_mesh_cycle
-from ..tca.cylindrical_tip import TipEdgeGaps, tip_edge_gaps
+from ..tca.cylindrical_tip import TIP_EDGES, beyond_line_edge_gaps, tip_edge_gaps
 from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
+from .cylindrical_edges import OFF_LINE_GAP_MM, closing_turn_rad, edge_block
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
@@ -100,8 +104,6 @@ __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE
            "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n",
            "wedge_line", "END_PEAK_MARGIN", "MAX_WIDENINGS", "STRIP_TOO_NARROW"]
 
-#: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
-OFF_LINE_GAP_MM = 1.0
 #: The strip of an end-loaded mesh is sized for this many times the closed form's peak
 #: line load: the LCP's rows at a loaded face end carry 1.2-4.9 times it (the sharp
 #: end's singular load, growing with refinement; spur 20/40 at 300 um, 40-640 rows), and
@@ -208,6 +210,20 @@ class CylindricalLoadedTE:
         sharp edge's singular pressure, which grows with refinement
         (``max_pressure_mpa`` is then no design value; the loaded length and the
         approach converge).
+    beyond_load_share : ndarray (P, K)
+        Normal load over ``F_n`` of the tip edge beyond pair ``j``'s line (a helical
+        pair's sections past its tip end while the line is in the zone; module
+        docstring, "Tip-edge contact"); its rows' loads are in ``line_load_n_per_mm``
+        where ``beyond_rows``. With it the torque balance is ``sum_j (share_j lever_j +
+        beyond_share_j beyond_lever_j) = r_b2 cos(beta_b)``.
+    beyond_lever_mm : ndarray (P, K)
+        Its lever about the gear axis, mm (load-weighted over both edges where both
+        tip ends of a line carry).
+    beyond_rows : ndarray (P, K, N) of bool
+        The face cells of those edge rows.
+    beyond_label : ndarray (P, K) of str
+        ``"pinion tip"`` / ``"gear tip"`` (both joined by ", ") where such an edge was a
+        block of the LCP (it carries where ``beyond_load_share > 0``), else ``""``.
     """
 
     phi1_rad: np.ndarray
@@ -235,6 +251,10 @@ class CylindricalLoadedTE:
     loaded_length_mm: np.ndarray | None = None
     line_end_loaded: np.ndarray | None = None
     peak_at_edge: np.ndarray | None = None
+    beyond_load_share: np.ndarray | None = None
+    beyond_lever_mm: np.ndarray | None = None
+    beyond_rows: np.ndarray | None = None
+    beyond_label: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -358,6 +378,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     z = axial_rows_mm(cycle, cells_along)
     dz = (cycle.pinion_v_range_mm[1] - cycle.pinion_v_range_mm[0]) / cells_along
     lg = contact_line_gaps(pair, cycle, z)
+    poa = PlaneOfAction(pair, cycle.facing)
+    beyond = beyond_line_edge_gaps(poa, cycle, z)
     half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
     t0 = time.process_time()
     for widened in range(MAX_WIDENINGS + 1):
@@ -376,12 +398,14 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
         ok, edge = True, False
         warm: dict[int, np.ndarray] = {}
-        poa = PlaneOfAction(pair, cycle.facing)
         tip_rows = np.zeros((n_pairs, n_phase), bool)
         levers = np.zeros((n_pairs, n_phase))
         loaded_len = np.zeros((n_pairs, n_phase))
         end_loaded = np.zeros((n_pairs, n_phase), bool)
         end_peak = np.zeros(n_phase, bool)
+        b_share, b_lever = np.zeros((n_pairs, n_phase)), np.zeros((n_pairs, n_phase))
+        b_rows = np.zeros((n_pairs, n_phase, cells_along), bool)
+        b_label = np.full((n_pairs, n_phase), "", dtype=object)
         theta_last = np.inf
         for k in range(n_phase):
             live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
@@ -402,36 +426,65 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                 blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
             # a tip edge is a block where it may close: its closing turn below twice the last
             # phase's rotation, and any other whose turn the solved rotation exceeds (then
-            # solved again), so that the blocks left out stand open (complementarity)
-            turn = {j: max(float(cycle.tip.gap_mm[j, k]) - g_env, 0.0)
-                    / abs(float(cycle.tip.rate_mm_per_rad[j, k])) for j in tipped}
-            take = [j for j in tipped if turn[j] < 2.0 * theta_last]
+            # solved again), so that the blocks left out stand open (complementarity); keys:
+            # j a pair without a line, (j, i) edge i beyond pair j's line
+            turn = {j: closing_turn_rad(cycle.tip.gap_mm[j, k], g_env,
+                                        cycle.tip.rate_mm_per_rad[j, k]) for j in tipped}
+            first = {}
+            for j in live:
+                for i, bg in enumerate(beyond):
+                    if np.isfinite(bg.gap_mm[j, k]).any():
+                        first[j, i] = float(np.nanmin(bg.gap_mm[j, k]))
+                        turn[j, i] = closing_turn_rad(first[j, i], g_env,
+                                                      bg.rate_mm_per_rad[j, k])
+            take = [c for c in turn if turn[c] < 2.0 * theta_last]
             lines = blocks
             while True:
+                tips = [c for c in take if c in tipped]
                 where = np.zeros((n_pairs, n_phase), bool)
-                where[take, k] = True
-                tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
-                blocks = lines + [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in take]
+                where[tips, k] = True
+                tg = tip_edge_gaps(poa, cycle, z, where=where) if tips else None
+                edges = [edge_block(tg, c, k, grid, min(float(cycle.tip.gap_mm[c, k]),
+                                                        float(np.nanmin(tg.gap_mm[c, k]))),
+                                    g_env, teeth, nx) if c in tipped else
+                         edge_block(beyond[c[1]], c[0], k, grid, first[c], g_env, teeth, nx)
+                         for c in take]
+                blocks = lines + edges
                 res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
                                      warm_start=[warm.get(j) for j in live + take])
-                late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
+                late = [c for c in turn if c not in take and turn[c] < res.rotation_rad]
                 if not late:
                     break
                 take += late
             theta_last = res.rotation_rad
-            tip_rows[take, k] = True
-            live = live + take
+            tips = [c for c in take if c in tipped]
+            tip_rows[tips, k] = True
+            keys = live + take
             ok &= res.converged
             iters[k] = res.iterations
             press = res.pressures_mpa(blocks)
-            warm = dict(zip(live, press))
-            for i, j in enumerate(live):
+            warm = dict(zip(keys, press))
+            for i, c in enumerate(keys):
                 w = res.loads_n[i]
-                share[j, k] = res.pair_loads_n[i] / load
-                levers[j, k] = blocks[i].lever_mm
-                line_load[j, k] = w.sum(axis=1) / dz
-                line_p[j, k] = press[i].max(axis=1)
                 edge |= bool(res.contact_masks[i][:, [0, -1]].any())
+                if isinstance(c, tuple):            # the edge beyond pair j's line
+                    j, e = c
+                    rows = np.isfinite(beyond[e].gap_mm[j, k])
+                    line_load[j, k, rows] = w.sum(axis=1)[rows] / dz
+                    line_p[j, k, rows] = press[i].max(axis=1)[rows]
+                    torque_j = b_share[j, k] * b_lever[j, k] + res.pair_loads_n[i] / load \
+                        * blocks[i].lever_mm
+                    b_share[j, k] += res.pair_loads_n[i] / load
+                    b_lever[j, k] = torque_j / b_share[j, k] if b_share[j, k] > 0.0 \
+                        else blocks[i].lever_mm
+                    b_rows[j, k] |= rows
+                    b_label[j, k] = ", ".join(filter(None, (b_label[j, k],
+                                                            TIP_EDGES[e].label)))
+                    continue
+                share[c, k] = res.pair_loads_n[i] / load
+                levers[c, k] = blocks[i].lever_mm
+                line_load[c, k] = w.sum(axis=1) / dz
+                line_p[c, k] = press[i].max(axis=1)
             pmax[k] = max(float(p.max()) for p in press)
             for i, j in enumerate(live[:len(lines)]):     # a line reaching its end loaded
                 ends = np.nonzero(np.isfinite(lg.gap_mm[j, k]))[0][[0, -1]]
@@ -460,28 +513,9 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
         edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers,
-        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak)
-
-
-def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,
-               teeth, nx: int) -> PairBlock:
-    """The LCP block of pair ``j``'s tip edge touching the mating flank at phase ``k``
-    (module docstring, "Tip-edge contact"): rows along the edge at the grid's axial
-    positions, ``x >= 0`` into the edge's own flank (no material at ``x < 0``)."""
-    ratio, gt = tg.normal_gap_per_gap[j, k], tg.gap_mm[j, k]
-    on = np.isfinite(gt)
-    g_first = min(float(cycle.tip.gap_mm[j, k]), float(np.nanmin(gt)))
-    x = grid.x_mm[None, :]
-    across = tg.slope[j, k] * x + 0.5 * tg.inv_radius_per_mm[j, k] * x * x
-    h = np.where(on[:, None] & (x >= 0.0), ratio * np.where(on, gt - g_first, 0.0)[:, None]
-                 + across, OFF_LINE_GAP_MM)
-    factor = None
-    if teeth is not None:
-        tip = cycle.tip
-        factor = line_bending_factor(teeth, tg.z_mm, np.where(on, tip.u1[j, k], np.nan),
-                                     np.where(on, tip.u2[j, k], np.nan), nx)
-    return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
-                     bending_factor=factor)
+        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak,
+        beyond_load_share=b_share, beyond_lever_mm=b_lever, beyond_rows=b_rows,
+        beyond_label=b_label.astype(str))
 
 
 def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,

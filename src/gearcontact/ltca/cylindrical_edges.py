@@ -1,0 +1,65 @@
+"""Tip-edge blocks of a cylindrical pair's loaded TE (docs/cylindrical.md sec. 7,
+"Tip-edge contact (edge rows)").
+
+A tip edge touching the mating flank off the plane of action is a block of the mesh
+LCP (:mod:`.mesh_lcp`) along that edge: rows at the grid's axial positions with the
+edge points' normal gap ``(lever / |rate|) (g_e(z) - g_first)``, across only ``x >= 0``
+into the edge's own flank (no material beyond the edge) with
+``sin(angle between the flanks) x + x^2 / (2 R)``; lever the touched normal's about the
+gear axis, opening that lever over ``|rate|`` times the edge's closing gap behind the
+mesh's; bending at the touch's roll lengths. Two kinds (:mod:`~gearcontact.tca.
+cylindrical_tip`):
+
+* a pair with no line in the zone whose tip edge touches within reach (premature
+  contact of the driven tooth's tip, prolonged of the driver's): its edge's rows
+  (:func:`~gearcontact.tca.cylindrical_tip.tip_edge_gaps`);
+* a pair whose line is in the zone at some sections, at the sections beyond its tip
+  end (a helical pair: the line crosses the zone diagonally, the tooth's sections past
+  the path end stand off by a separation growing quadratically from the line's end):
+  the rows beyond the end (:func:`~gearcontact.tca.cylindrical_tip.
+  beyond_line_edge_gaps`), a block beside the line's, sharing the gear rotation.
+
+Either enters the LCP where it may close: its closing turn (the edge's gap behind the
+mesh's over ``|rate|``) below twice the previous phase's rotation, and any other whose
+turn the solved rotation exceeds (:func:`closing_turn_rad`; the phase is then solved
+again), so that the edges left out stand open (complementarity).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..tca.cylindrical_tip import TipEdgeGaps
+from .cylindrical_bending import line_bending_factor
+from .mesh_lcp import PairBlock
+
+__all__ = ["OFF_LINE_GAP_MM", "closing_turn_rad", "edge_block"]
+
+#: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
+OFF_LINE_GAP_MM = 1.0
+
+
+def closing_turn_rad(gap_mm: float, closing_gap_mm: float, rate_mm_per_rad: float) -> float:
+    """Gear turn (rad) behind the mesh's closing that closes an edge of least gap
+    ``gap_mm`` (the cycle's gaps, mm; 0 where it closes with the mesh)."""
+    return max(float(gap_mm) - float(closing_gap_mm), 0.0) / abs(float(rate_mm_per_rad))
+
+
+def edge_block(tg: TipEdgeGaps, j: int, k: int, grid, g_first: float, g_env: float, teeth,
+               nx: int) -> PairBlock:
+    """The LCP block of the tip edge of pair ``j`` at phase ``k`` sampled in ``tg``
+    (module docstring): ``g_first`` its least gap, ``g_env`` the mesh's closing gap
+    (mm, the cycle's), ``teeth`` the :class:`~.tooth_bending.ToothBending` or None
+    (rigid), ``nx`` the grid's cells across."""
+    ratio, gt = tg.normal_gap_per_gap[j, k], tg.gap_mm[j, k]
+    on = np.isfinite(gt)
+    x = grid.x_mm[None, :]
+    across = tg.slope[j, k] * x + 0.5 * tg.inv_radius_per_mm[j, k] * x * x
+    h = np.where(on[:, None] & (x >= 0.0), ratio * np.where(on, gt - g_first, 0.0)[:, None]
+                 + across, OFF_LINE_GAP_MM)
+    factor = None
+    if teeth is not None:
+        factor = line_bending_factor(teeth, tg.z_mm, np.where(on, tg.u1_mm[j, k], np.nan),
+                                     np.where(on, tg.u2_mm[j, k], np.nan), nx)
+    return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
+                     bending_factor=factor)
