@@ -29,11 +29,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..tca.cylindrical_tip import TipEdgeGaps
+from ..tca.cylindrical_tip import TIP_EDGES, TipEdgeGaps
 from .cylindrical_bending import line_bending_factor
 from .mesh_lcp import PairBlock
 
-__all__ = ["OFF_LINE_GAP_MM", "closing_turn_rad", "edge_block"]
+__all__ = ["OFF_LINE_GAP_MM", "BeyondLoads", "beyond_turns", "closing_turn_rad", "edge_block"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -63,3 +63,36 @@ def edge_block(tg: TipEdgeGaps, j: int, k: int, grid, g_first: float, g_env: flo
                                      np.where(on, tg.u2_mm[j, k], np.nan), nx)
     return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
                      bending_factor=factor)
+
+
+def beyond_turns(beyond, live, k: int, g_env: float) -> tuple[dict, dict]:
+    """The edges beyond the lines of the ``live`` pairs at phase ``k`` (``beyond``: the
+    :func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps` of the cycle; ``g_env``
+    the mesh's closing gap, mm): ``(least gap, closing turn)`` keyed ``(j, i)``, pair
+    ``j``, edge ``i`` of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`."""
+    first, turn = {}, {}
+    for j in live:
+        for i, bg in enumerate(beyond):
+            if np.isfinite(bg.gap_mm[j, k]).any():
+                first[j, i] = float(np.nanmin(bg.gap_mm[j, k]))
+                turn[j, i] = closing_turn_rad(first[j, i], g_env, bg.rate_mm_per_rad[j, k])
+    return first, turn
+
+
+class BeyondLoads:
+    """Tally of the edges beyond the lines over a cycle of P pairs, K phases, N rows, per
+    edge of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`: ``share`` (P, K, 2) of
+    ``F_n``, ``lever_mm`` (P, K, 2; 0 where not a block) and ``rows`` (P, K, N), the
+    edge index of each row taken (-1 none)."""
+
+    def __init__(self, n_pairs: int, n_phase: int, n_rows: int):
+        self.share = np.zeros((n_pairs, n_phase, len(TIP_EDGES)))
+        self.lever_mm = np.zeros_like(self.share)
+        self.rows = np.full((n_pairs, n_phase, n_rows), -1, dtype=np.int8)
+
+    def add(self, j: int, k: int, i: int, rows, share: float, lever_mm: float) -> None:
+        """Edge ``i`` beyond pair ``j``'s line at phase ``k`` on ``rows`` (bool, N)
+        carrying ``share`` of ``F_n`` with the lever ``lever_mm``."""
+        self.share[j, k, i] = share
+        self.lever_mm[j, k, i] = lever_mm
+        self.rows[j, k][rows] = i

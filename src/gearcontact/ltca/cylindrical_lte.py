@@ -91,12 +91,13 @@ from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
 from ..tca.cylindrical_cycle import CylindricalMeshCycle, LineGaps, contact_line_gaps, \
     cylindrical_mesh_cycle
-from ..tca.cylindrical_tip import TIP_EDGES, beyond_line_edge_gaps, tip_edge_gaps
+from ..tca.cylindrical_tip import beyond_line_edge_gaps, tip_edge_gaps
 from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
-from .cylindrical_edges import OFF_LINE_GAP_MM, closing_turn_rad, edge_block
+from .cylindrical_edges import OFF_LINE_GAP_MM, BeyondLoads, beyond_turns, closing_turn_rad, \
+    edge_block
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
@@ -210,20 +211,17 @@ class CylindricalLoadedTE:
         sharp edge's singular pressure, which grows with refinement
         (``max_pressure_mpa`` is then no design value; the loaded length and the
         approach converge).
-    beyond_load_share : ndarray (P, K)
-        Normal load over ``F_n`` of the tip edge beyond pair ``j``'s line (a helical
-        pair's sections past its tip end while the line is in the zone; module
-        docstring, "Tip-edge contact"); its rows' loads are in ``line_load_n_per_mm``
-        where ``beyond_rows``. With it the torque balance is ``sum_j (share_j lever_j +
-        beyond_share_j beyond_lever_j) = r_b2 cos(beta_b)``.
-    beyond_lever_mm : ndarray (P, K)
-        Its lever about the gear axis, mm (load-weighted over both edges where both
-        tip ends of a line carry).
-    beyond_rows : ndarray (P, K, N) of bool
-        The face cells of those edge rows.
-    beyond_label : ndarray (P, K) of str
-        ``"pinion tip"`` / ``"gear tip"`` (both joined by ", ") where such an edge was a
-        block of the LCP (it carries where ``beyond_load_share > 0``), else ``""``.
+    beyond_load_share : ndarray (P, K, 2)
+        Normal load over ``F_n`` of each tip edge (pinion, gear: ``TIP_EDGES``) beyond
+        pair ``j``'s line (a helical pair's sections past its tip end while the line is
+        in the zone; module docstring, "Tip-edge contact"); its rows' loads are in
+        ``line_load_n_per_mm`` where ``beyond_rows`` >= 0. The torque balance is then
+        ``sum (share lever) + sum (beyond_share beyond_lever) = r_b2 cos(beta_b)``.
+    beyond_lever_mm : ndarray (P, K, 2)
+        Its lever about the gear axis, mm (0 where the edge was no block).
+    beyond_rows : ndarray (P, K, N) of int8
+        The edge (index into ``TIP_EDGES``) of each face cell's row beyond the line
+        where that edge was a block of the LCP, else -1.
     """
 
     phi1_rad: np.ndarray
@@ -254,7 +252,6 @@ class CylindricalLoadedTE:
     beyond_load_share: np.ndarray | None = None
     beyond_lever_mm: np.ndarray | None = None
     beyond_rows: np.ndarray | None = None
-    beyond_label: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -403,9 +400,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         loaded_len = np.zeros((n_pairs, n_phase))
         end_loaded = np.zeros((n_pairs, n_phase), bool)
         end_peak = np.zeros(n_phase, bool)
-        b_share, b_lever = np.zeros((n_pairs, n_phase)), np.zeros((n_pairs, n_phase))
-        b_rows = np.zeros((n_pairs, n_phase, cells_along), bool)
-        b_label = np.full((n_pairs, n_phase), "", dtype=object)
+        tally = BeyondLoads(n_pairs, n_phase, cells_along)
         theta_last = np.inf
         for k in range(n_phase):
             live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
@@ -430,13 +425,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             # j a pair without a line, (j, i) edge i beyond pair j's line
             turn = {j: closing_turn_rad(cycle.tip.gap_mm[j, k], g_env,
                                         cycle.tip.rate_mm_per_rad[j, k]) for j in tipped}
-            first = {}
-            for j in live:
-                for i, bg in enumerate(beyond):
-                    if np.isfinite(bg.gap_mm[j, k]).any():
-                        first[j, i] = float(np.nanmin(bg.gap_mm[j, k]))
-                        turn[j, i] = closing_turn_rad(first[j, i], g_env,
-                                                      bg.rate_mm_per_rad[j, k])
+            first, more = beyond_turns(beyond, live, k, g_env)
+            turn.update(more)
             take = [c for c in turn if turn[c] < 2.0 * theta_last]
             lines = blocks
             while True:
@@ -468,18 +458,11 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                 w = res.loads_n[i]
                 edge |= bool(res.contact_masks[i][:, [0, -1]].any())
                 if isinstance(c, tuple):            # the edge beyond pair j's line
-                    j, e = c
-                    rows = np.isfinite(beyond[e].gap_mm[j, k])
-                    line_load[j, k, rows] = w.sum(axis=1)[rows] / dz
-                    line_p[j, k, rows] = press[i].max(axis=1)[rows]
-                    torque_j = b_share[j, k] * b_lever[j, k] + res.pair_loads_n[i] / load \
-                        * blocks[i].lever_mm
-                    b_share[j, k] += res.pair_loads_n[i] / load
-                    b_lever[j, k] = torque_j / b_share[j, k] if b_share[j, k] > 0.0 \
-                        else blocks[i].lever_mm
-                    b_rows[j, k] |= rows
-                    b_label[j, k] = ", ".join(filter(None, (b_label[j, k],
-                                                            TIP_EDGES[e].label)))
+                    rows = np.isfinite(beyond[c[1]].gap_mm[c[0], k])
+                    line_load[c[0], k, rows] = w.sum(axis=1)[rows] / dz
+                    line_p[c[0], k, rows] = press[i].max(axis=1)[rows]
+                    tally.add(c[0], k, c[1], rows, res.pair_loads_n[i] / load,
+                              blocks[i].lever_mm)
                     continue
                 share[c, k] = res.pair_loads_n[i] / load
                 levers[c, k] = blocks[i].lever_mm
@@ -514,8 +497,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
         edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers,
         loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak,
-        beyond_load_share=b_share, beyond_lever_mm=b_lever, beyond_rows=b_rows,
-        beyond_label=b_label.astype(str))
+        beyond_load_share=tally.share, beyond_lever_mm=tally.lever_mm, beyond_rows=tally.rows)
 
 
 def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,
