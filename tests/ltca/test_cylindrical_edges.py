@@ -39,6 +39,15 @@ def ev():
     return load_pair(EXAMPLES / "ev_reducer_helical_23x67.toml", kinds=("cylindrical",))
 
 
+@pytest.fixture(scope="module")
+def unrelieved(ev):
+    """The EV pair without micro-geometry (a left-hand pinion), its 7-phase cycle and
+    loaded TE at T2 = 400 N·m."""
+    p = _unmodified(ev)
+    c = cylindrical_mesh_cycle(p, phases=7)
+    return p, c, lte_module.cylindrical_loaded_te(p, 400.0, cycle=c, **GRID)
+
+
 def _without_edges(monkeypatch):
     """The loaded TE as before the edges beyond the lines: their gaps all NaN."""
     real = lte_module.beyond_line_edge_gaps
@@ -53,7 +62,7 @@ def _theta(r):
     return np.abs(r.lte_arcsec - r.te0_arcsec) / ARCSEC
 
 
-def test_edges_beyond_the_lines_of_an_unrelieved_helical_pair(ev, monkeypatch):
+def test_edges_beyond_the_lines_of_an_unrelieved_helical_pair(unrelieved, monkeypatch):
     """The EV pair without micro-geometry at T2 = 400 N·m: the tip edges just beyond the
     lines' tip ends (separation growing from 0 at the end) carry. Truths: (a) the torque
     balance with each block's own lever (1e-9: the LCP's constraint); (b) complementarity:
@@ -65,9 +74,7 @@ def test_edges_beyond_the_lines_of_an_unrelieved_helical_pair(ev, monkeypatch):
     the gear turns less at every phase than without them (1e-9 relative: the LCP's
     tolerance), by more than 1 % where an edge carries (4-6 % measured), and the loaded
     TE p-p drops (1.31 to 0.74 arcsec)."""
-    p = _unmodified(ev)
-    c = cylindrical_mesh_cycle(p, phases=7)
-    r = lte_module.cylindrical_loaded_te(p, 400.0, cycle=c, **GRID)
+    p, c, r = unrelieved
     g = p.geometry
     lever = 0.5 * g.base_diameter_gear_mm * math.cos(math.radians(g.base_helix_angle_deg))
     moment = (r.load_share * r.lever_mm).sum(axis=0) \
@@ -121,17 +128,16 @@ def test_relieved_helical_pair_at_light_load_is_unchanged(ev, monkeypatch):
     np.testing.assert_array_equal(r.lte_arcsec[1:], r0.lte_arcsec[1:])
 
 
-def test_mirror_hands_give_the_mirrored_edges(ev):
+def test_mirror_hands_give_the_mirrored_edges(ev, unrelieved):
     """Left- and right-hand pinions (the EV pair without micro-geometry, 400 N·m) are
     mirror images through the mid-face plane: the same loaded TE (1e-9 relative: the
     LCP's tolerance on mirrored, otherwise identical, fields), the same edge loads and
     levers, on the mirrored rows."""
-    out = []
-    for hand in ("left", "right"):
-        p = _unmodified(replace(ev, pinion_hand=hand))
-        c = cylindrical_mesh_cycle(p, phases=7)
-        out.append(lte_module.cylindrical_loaded_te(p, 400.0, cycle=c, **GRID))
-    a, b = out
+    assert ev.pinion_hand == "left"
+    a = unrelieved[2]
+    p = _unmodified(replace(ev, pinion_hand="right"))
+    b = lte_module.cylindrical_loaded_te(p, 400.0, cycle=cylindrical_mesh_cycle(p, phases=7),
+                                         **GRID)
     np.testing.assert_allclose(a.lte_arcsec, b.lte_arcsec, rtol=1e-9)
     np.testing.assert_allclose(a.beyond_load_share, b.beyond_load_share, rtol=1e-6, atol=1e-9)
     np.testing.assert_allclose(a.beyond_lever_mm, b.beyond_lever_mm, rtol=1e-9)
