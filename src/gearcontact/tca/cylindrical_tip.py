@@ -446,11 +446,8 @@ def beyond_line_edge_gaps(mesh, cycle, z_mm) -> tuple[TipEdgeGaps, TipEdgeGaps]:
 
     Parameters
     ----------
-    mesh
-        The cycle's :class:`~gearcontact.tca.plane_of_action.PlaneOfAction`.
-    cycle : CylindricalMeshCycle
-    z_mm : array_like (N,)
-        Axial positions (finite), mm.
+    mesh, cycle, z_mm
+        As :func:`tip_edge_gaps`.
 
     Returns
     -------
