@@ -33,7 +33,8 @@ from ..tca.cylindrical_tip import TIP_EDGES, TipEdgeGaps
 from .cylindrical_bending import line_bending_factor
 from .mesh_lcp import PairBlock
 
-__all__ = ["OFF_LINE_GAP_MM", "BeyondLoads", "beyond_turns", "closing_turn_rad", "edge_block"]
+__all__ = ["OFF_LINE_GAP_MM", "BeyondLoads", "beyond_rows", "closing_turn_rad", "edge_block",
+           "join_beyond"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -65,18 +66,41 @@ def edge_block(tg: TipEdgeGaps, j: int, k: int, grid, g_first: float, g_env: flo
                      bending_factor=factor)
 
 
-def beyond_turns(beyond, live, k: int, g_env: float) -> tuple[dict, dict]:
-    """The edges beyond the lines of the ``live`` pairs at phase ``k`` (``beyond``: the
-    :func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps` of the cycle; ``g_env``
-    the mesh's closing gap, mm): ``(least gap, closing turn)`` keyed ``(j, i)``, pair
-    ``j``, edge ``i`` of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`."""
-    first, turn = {}, {}
-    for j in live:
-        for i, bg in enumerate(beyond):
-            if np.isfinite(bg.gap_mm[j, k]).any():
-                first[j, i] = float(np.nanmin(bg.gap_mm[j, k]))
-                turn[j, i] = closing_turn_rad(first[j, i], g_env, bg.rate_mm_per_rad[j, k])
-    return first, turn
+def beyond_rows(beyond, j: int, k: int, g_env: float, limit_rad: float) -> np.ndarray:
+    """Rows (N,) beyond pair ``j``'s line at phase ``k`` that may close: the edge (index
+    into :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`) of each row whose closing
+    turn (:func:`closing_turn_rad`) is below ``limit_rad``, else -1 (``beyond``: the
+    :func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps` of the cycle;
+    ``g_env`` the mesh's closing gap, mm)."""
+    out = np.full(beyond[0].gap_mm.shape[-1], -1, dtype=np.int8)
+    for i, bg in enumerate(beyond):
+        g = bg.gap_mm[j, k]
+        on = np.isfinite(g)
+        if on.any():
+            turn = np.maximum(np.where(on, g, np.inf) - g_env, 0.0) / abs(bg.rate_mm_per_rad[j, k])
+            out[on & (turn < limit_rad)] = i
+    return out
+
+
+def join_beyond(h, u1, u2, rows, beyond, j: int, k: int, x_mm, lever_mm: float,
+                offset_mm: float, g_env: float) -> None:
+    """Fill the edge rows ``rows`` (:func:`beyond_rows`) into pair ``j``'s line block at
+    phase ``k`` in place: its field ``h`` (N, nx; the line's datum, opening
+    ``offset_mm``, lever ``lever_mm``) with the edge's normal gap behind the mesh's
+    closing ``g_env`` across ``x >= 0`` (module docstring), scaled to close at the line's
+    lever under the shared rotation (the edge's own lever differs by < 0.5 %: the
+    elastic term of those rows is scaled alike), and the bending's roll lengths ``u1``,
+    ``u2`` (N,) with the touch's."""
+    x = np.asarray(x_mm)[None, :]
+    for i, bg in enumerate(beyond):
+        sel = rows == i
+        if not sel.any():
+            continue
+        across = bg.slope[j, k] * x + 0.5 * bg.inv_radius_per_mm[j, k] * x * x
+        normal = bg.normal_gap_per_gap[j, k] * (bg.gap_mm[j, k][sel] - g_env)[:, None] + across
+        h[sel] = np.where(x >= 0.0, normal * (lever_mm / bg.lever_mm[j, k]) - offset_mm,
+                          OFF_LINE_GAP_MM)
+        u1[sel], u2[sel] = bg.u1_mm[j, k], bg.u2_mm[j, k]
 
 
 class BeyondLoads:

@@ -96,8 +96,8 @@ from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
-from .cylindrical_edges import OFF_LINE_GAP_MM, BeyondLoads, beyond_turns, closing_turn_rad, \
-    edge_block
+from .cylindrical_edges import OFF_LINE_GAP_MM, BeyondLoads, beyond_rows, closing_turn_rad, \
+    edge_block, join_beyond
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
@@ -408,74 +408,79 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                       if j not in live and np.isfinite(cycle.tip.gap_mm[j, k])]
             g_line = {j: lg.gap_mm[j, k] for j in live}
             g_env = float(cycle.closing_gap_mm[k])
-            blocks = []
-            for j in live:
-                gj = max(float(np.nanmin(g_line[j])), g_env)
+            gj = {j: max(float(np.nanmin(g_line[j])), g_env) for j in live}
+
+            def line_block(j, rows):
+                """Pair j's line block, with the edge rows ``rows`` beyond its ends."""
                 on = np.isfinite(g_line[j])
                 inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
                                            + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
-                h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj, 0.0)[:, None]
+                h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj[j], 0.0)[:, None]
                              + 0.5 * inv_r[:, None] * x2, OFF_LINE_GAP_MM)
-                factor = None if teeth is None else line_bending_factor(
-                    teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
-                blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
-            # a tip edge is a block where it may close: its closing turn below twice the last
-            # phase's rotation, and any other whose turn the solved rotation exceeds (then
-            # solved again), so that the blocks left out stand open (complementarity); keys:
-            # j a pair without a line, (j, i) edge i beyond pair j's line
+                u1, u2 = lg.pinion_roll_mm[j, k].copy(), lg.gear_roll_mm[j, k].copy()
+                join_beyond(h, u1, u2, rows, beyond, j, k, grid.x_mm, lever,
+                            cb * (gj[j] - g_env), g_env)
+                factor = None if teeth is None else line_bending_factor(teeth, z, u1, u2, nx)
+                return PairBlock(h, grid, lever, cb * (gj[j] - g_env), bending_factor=factor)
+            # a tip edge may close where its closing turn is below twice the last phase's
+            # rotation, and any other whose turn the solved rotation exceeds (then solved
+            # again), so that those left out stand open (complementarity): a pair without a
+            # line is a block along its edge, edge rows beyond a line join the line's block
             turn = {j: closing_turn_rad(cycle.tip.gap_mm[j, k], g_env,
                                         cycle.tip.rate_mm_per_rad[j, k]) for j in tipped}
-            first, more = beyond_turns(beyond, live, k, g_env)
-            turn.update(more)
-            take = [c for c in turn if turn[c] < 2.0 * theta_last]
-            lines = blocks
+            take = [j for j in tipped if turn[j] < 2.0 * theta_last]
+            rows = {j: beyond_rows(beyond, j, k, g_env, 2.0 * theta_last) for j in live}
+            lines = {j: line_block(j, rows[j]) for j in live}
             while True:
-                tips = [c for c in take if c in tipped]
                 where = np.zeros((n_pairs, n_phase), bool)
-                where[tips, k] = True
-                tg = tip_edge_gaps(poa, cycle, z, where=where) if tips else None
-                edges = [edge_block(tg, c, k, grid, min(float(cycle.tip.gap_mm[c, k]),
-                                                        float(np.nanmin(tg.gap_mm[c, k]))),
-                                    g_env, teeth, nx) if c in tipped else
-                         edge_block(beyond[c[1]], c[0], k, grid, first[c], g_env, teeth, nx)
-                         for c in take]
-                blocks = lines + edges
+                where[take, k] = True
+                tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
+                blocks = [lines[j] for j in live] + [
+                    edge_block(tg, j, k, grid, min(float(cycle.tip.gap_mm[j, k]),
+                                                   float(np.nanmin(tg.gap_mm[j, k]))),
+                               g_env, teeth, nx) for j in take]
                 res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
                                      warm_start=[warm.get(j) for j in live + take])
-                late = [c for c in turn if c not in take and turn[c] < res.rotation_rad]
-                if not late:
+                late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
+                grown = {}
+                for j in live:
+                    more = beyond_rows(beyond, j, k, g_env, res.rotation_rad)
+                    if ((more >= 0) & (rows[j] < 0)).any():
+                        grown[j] = np.maximum(rows[j], more)
+                if not late and not grown:
                     break
                 take += late
+                for j, r_j in grown.items():
+                    rows[j], lines[j] = r_j, line_block(j, r_j)
             theta_last = res.rotation_rad
-            tips = [c for c in take if c in tipped]
-            tip_rows[tips, k] = True
+            tip_rows[take, k] = True
             keys = live + take
             ok &= res.converged
             iters[k] = res.iterations
             press = res.pressures_mpa(blocks)
             warm = dict(zip(keys, press))
-            for i, c in enumerate(keys):
+            for i, j in enumerate(keys):
                 w = res.loads_n[i]
                 edge |= bool(res.contact_masks[i][:, [0, -1]].any())
-                if isinstance(c, tuple):            # the edge beyond pair j's line
-                    rows = np.isfinite(beyond[c[1]].gap_mm[c[0], k])
-                    line_load[c[0], k, rows] = w.sum(axis=1)[rows] / dz
-                    line_p[c[0], k, rows] = press[i].max(axis=1)[rows]
-                    tally.add(c[0], k, c[1], rows, res.pair_loads_n[i] / load,
-                              blocks[i].lever_mm)
-                    continue
-                share[c, k] = res.pair_loads_n[i] / load
-                levers[c, k] = blocks[i].lever_mm
-                line_load[c, k] = w.sum(axis=1) / dz
-                line_p[c, k] = press[i].max(axis=1)
+                beyond_n = 0.0
+                for e in range(len(beyond)) if j in rows else ():
+                    on_e = rows[j] == e
+                    if on_e.any():
+                        tally.add(j, k, e, on_e, float(w[on_e].sum()) / load, lever)
+                        beyond_n += float(w[on_e].sum())
+                share[j, k] = (res.pair_loads_n[i] - beyond_n) / load
+                levers[j, k] = blocks[i].lever_mm
+                line_load[j, k] = w.sum(axis=1) / dz
+                line_p[j, k] = press[i].max(axis=1)
             pmax[k] = max(float(p.max()) for p in press)
-            for i, j in enumerate(live[:len(lines)]):     # a line reaching its end loaded
+            for i, j in enumerate(live):     # a line reaching its end loaded
                 ends = np.nonzero(np.isfinite(lg.gap_mm[j, k]))[0][[0, -1]]
-                hit = res.contact_masks[i].any(axis=1)
+                hit = res.contact_masks[i].any(axis=1) & (rows[j] < 0)
                 loaded_len[j, k] = hit.sum() * dz / cb
                 end_loaded[j, k] = bool(hit[ends].any())
                 end_peak[k] |= end_loaded[j, k] and float(press[i][ends].max()) >= pmax[k]
-            end_peak[k] |= any(float(p.max()) >= pmax[k] for p in press[len(lines):])
+            end_peak[k] |= any(float(p.max()) >= pmax[k] for p in press[len(live):]) or any(
+                float(p[rows[j] >= 0].max(initial=0.0)) >= pmax[k] for p, j in zip(press, live))
             rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
             # the gear lags (TE0 < 0 on the cw facing): the load turns it further the same way
             lte[k] = (cycle.envelope_arcsec[k]
