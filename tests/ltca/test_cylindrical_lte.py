@@ -71,9 +71,7 @@ def test_load_balance_of_the_torque(helical):
     """The torque balance of every phase, ``sum (share lever) = r_b2 cos beta_b`` over the
     lines and the tip edges beyond them, each block with its own lever (the LCP's torque
     constraint: 1e-9 relative), F_n = T2 / (r_b2 cos beta_b), and the line loads integrate
-    to the blocks' normal loads; with tooth bending (the default). At 400 N·m the relieved
-    EV pair's deflected teeth also load the pinion and gear tip edges beyond their lines
-    (the edges' levers differ from the lines' r_b2 cos beta_b by < 1 %)."""
+    to the blocks' normal loads; with tooth bending (the default)."""
     p, c = helical
     r = cylindrical_loaded_te(p, 400.0, cycle=c)
     g = p.geometry
@@ -86,9 +84,6 @@ def test_load_balance_of_the_torque(helical):
     moment = (r.load_share * r.lever_mm).sum(axis=0) \
         + (r.beyond_load_share * r.beyond_lever_mm).sum(axis=(0, 2))
     np.testing.assert_allclose(moment, lever, rtol=1e-9)
-    edges = r.beyond_load_share > 0.0
-    assert edges.any()
-    np.testing.assert_allclose(r.beyond_lever_mm[edges], lever, rtol=1e-2)
     dz = r.z_mm[1] - r.z_mm[0]
     total = r.load_share.sum(axis=0) + r.beyond_load_share.sum(axis=(0, 2))
     np.testing.assert_allclose(r.line_load_n_per_mm.sum(axis=(0, 2)) * dz, fn * total,

@@ -17,12 +17,14 @@ cylindrical_tip`):
   end (a helical pair: the line crosses the zone diagonally, the tooth's sections past
   the path end stand off by a separation growing quadratically from the line's end):
   the rows beyond the end (:func:`~gearcontact.tca.cylindrical_tip.
-  beyond_line_edge_gaps`), a block beside the line's, sharing the gear rotation.
+  beyond_line_edge_gaps`) join the line's own block (:func:`join_beyond`), coupled with
+  the line through the half-space and the bending of the same teeth, closing at the
+  line's lever under the shared rotation.
 
 Either enters the LCP where it may close: its closing turn (the edge's gap behind the
 mesh's over ``|rate|``) below twice the previous phase's rotation, and any other whose
-turn the solved rotation exceeds (:func:`closing_turn_rad`; the phase is then solved
-again), so that the edges left out stand open (complementarity).
+turn the solved rotation exceeds (:func:`closing_turn_rad`, :func:`beyond_rows`; the
+phase is then solved again), so that the edges left out stand open (complementarity).
 """
 
 from __future__ import annotations
@@ -106,8 +108,8 @@ def join_beyond(h, u1, u2, rows, beyond, j: int, k: int, x_mm, lever_mm: float,
 class BeyondLoads:
     """Tally of the edges beyond the lines over a cycle of P pairs, K phases, N rows, per
     edge of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`: ``share`` (P, K, 2) of
-    ``F_n``, ``lever_mm`` (P, K, 2; 0 where not a block) and ``rows`` (P, K, N), the
-    edge index of each row taken (-1 none)."""
+    ``F_n``, ``lever_mm`` (P, K, 2; the line's, 0 where no row was in the LCP) and
+    ``rows`` (P, K, N), the edge index of each row in the LCP (-1 none)."""
 
     def __init__(self, n_pairs: int, n_phase: int, n_rows: int):
         self.share = np.zeros((n_pairs, n_phase, len(TIP_EDGES)))

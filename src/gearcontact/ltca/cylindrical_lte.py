@@ -51,10 +51,11 @@ normal's about the gear axis, opening that lever times its closing turn behind t
 mesh's; bending at the touch's roll lengths (:mod:`.cylindrical_edges`). This is the
 extended contact of deflected teeth at the tip of the driven tooth (start of mesh) and
 of the driver (end). On a helical pair whose line is in the zone, the tooth's sections
-beyond its tip end (the line crosses the zone diagonally) are such a block too, beside
-the line's: the edge rows at the grid's axial positions beyond the line's end
-(:func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps`), entering by the same
-rule (``beyond_*`` fields).
+beyond its tip end (the line crosses the zone diagonally) are such edge rows too, joined
+to the line's block (elastic and bending coupling with the line, the line's lever): the
+rows at the grid's axial positions beyond the line's end (:func:`~gearcontact.tca.
+cylindrical_tip.beyond_line_edge_gaps`), entering by the same rule (``beyond_*``
+fields).
 
 Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
 normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).
@@ -218,10 +219,11 @@ class CylindricalLoadedTE:
         ``line_load_n_per_mm`` where ``beyond_rows`` >= 0. The torque balance is then
         ``sum (share lever) + sum (beyond_share beyond_lever) = r_b2 cos(beta_b)``.
     beyond_lever_mm : ndarray (P, K, 2)
-        Its lever about the gear axis, mm (0 where the edge was no block).
+        Its lever about the gear axis, mm: the line's, whose block the rows join (0
+        where none was in the LCP).
     beyond_rows : ndarray (P, K, N) of int8
         The edge (index into ``TIP_EDGES``) of each face cell's row beyond the line
-        where that edge was a block of the LCP, else -1.
+        that was in the LCP, else -1.
     """
 
     phi1_rad: np.ndarray
