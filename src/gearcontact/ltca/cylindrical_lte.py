@@ -86,11 +86,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..analytic.face_load import EndLoadedLine, end_loaded_line
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
-from ..tca.cylindrical_cycle import CylindricalMeshCycle, LineGaps, contact_line_gaps, \
+from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
     cylindrical_mesh_cycle
 from ..tca.cylindrical_tip import beyond_line_edge_gaps, tip_edge_gaps
 from ..tca.plane_of_action import PlaneOfAction
@@ -99,6 +98,7 @@ from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
 from .cylindrical_edges import OFF_LINE_GAP_MM, BeyondLoads, beyond_rows, closing_turn_rad, \
     edge_block, join_beyond
+from .cylindrical_strip import END_PEAK_MARGIN, across_extent_mm, wedge_line
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
@@ -106,11 +106,6 @@ __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE
            "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n",
            "wedge_line", "END_PEAK_MARGIN", "MAX_WIDENINGS", "STRIP_TOO_NARROW"]
 
-#: The strip of an end-loaded mesh is sized for this many times the closed form's peak
-#: line load: the LCP's rows at a loaded face end carry 1.2-4.9 times it (the sharp
-#: end's singular load, growing with refinement; spur 20/40 at 300 um, 40-640 rows), and
-#: a loaded cell on the strip's border truncates the contact across.
-END_PEAK_MARGIN = 2.0
 #: Times the strip is widened (and the cycle solved again) while a loaded cell lies on
 #: its border.
 MAX_WIDENINGS = 3
@@ -284,59 +279,6 @@ def axial_rows_mm(cycle: CylindricalMeshCycle, cells_along: int) -> np.ndarray:
     return z0 + dz * (np.arange(cells_along) + 0.5)
 
 
-def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n: float,
-                      e_star: float, factor: float, lines: LineGaps | None = None) -> float:
-    """Half-width of the strip: ``factor`` Hertz half-widths of the whole load on the
-    shortest total line length (Johnson 1985 eq. 4.43, b = sqrt(4 w R / (pi E*))); with
-    ``lines`` (the widened strip of an end-loaded mesh, module docstring) of
-    :data:`END_PEAK_MARGIN` times the largest peak line load of an end-loaded line
-    (:func:`end_loaded_peak_n_per_mm`) where that is more."""
-    g = pair.geometry
-    cb = math.cos(math.radians(g.base_helix_angle_deg))
-    u_mid = 0.5 * g.centre_distance_mm * math.sin(math.radians(g.working_pressure_angle_deg))
-    r = u_mid / (2.0 * cb)                       # equal roll lengths: the largest R
-    w = load_n / max(float(cycle.line_length_mm.min()), 1e-3)
-    if lines is not None:
-        w = max(w, END_PEAK_MARGIN * end_loaded_peak_n_per_mm(lines, load_n, r, e_star, cb))
-    return factor * math.sqrt(4.0 * w * r / (math.pi * e_star))
-
-
-def end_loaded_peak_n_per_mm(lines: LineGaps, load_n: float, radius_mm: float,
-                             e_star: float, cos_beta_b: float) -> float:
-    """The largest peak line load (N/mm) of :func:`wedge_line` over the lines of
-    ``lines``, each carrying the whole ``load_n`` (N) with the relative radius
-    ``radius_mm`` across it; 0 where no line is end-loaded."""
-    z = np.broadcast_to(lines.z_mm, lines.gap_mm.shape)
-    peak = 0.0
-    for j, k in zip(*np.nonzero(np.isfinite(lines.gap_mm).sum(axis=-1) >= 2)):
-        on = np.isfinite(lines.gap_mm[j, k])
-        y = z[j, k][on] / cos_beta_b
-        res = wedge_line(y, cos_beta_b * lines.gap_mm[j, k][on],
-                         float(y[-1] - y[0] + (y[1] - y[0])), load_n=load_n,
-                         b_max_per_mm=0.5 / radius_mm, e_prime_mpa=2.0 * e_star)
-        if res is not None and res.end_loaded:
-            peak = max(peak, res.peak_line_load_n_per_mm)
-    return peak
-
-
-def wedge_line(y_mm: np.ndarray, gap_mm: np.ndarray, length_mm: float, *, load_n: float,
-               b_max_per_mm: float, e_prime_mpa: float) -> EndLoadedLine | None:
-    """The end-loaded line's closed form (:func:`~gearcontact.analytic.face_load.
-    end_loaded_line`) of a line whose normal gap ``gap_mm`` (mm, at the positions
-    ``y_mm`` along it, ascending) is least at one of its ends: the gap's least-squares
-    slope from that end (the misalignment's wedge; crowning leaves less). None where the
-    least gap lies inside the line (crowning or relief centre the load) or the slope
-    leaves the line law's range (a point's contact)."""
-    if gap_mm.size < 2 or int(np.argmin(gap_mm)) not in (0, gap_mm.size - 1):
-        return None
-    slope = abs(float(np.polyfit(y_mm, gap_mm, 1)[0]))
-    try:
-        return end_loaded_line(load_n=load_n, slope=slope, length_mm=length_mm,
-                               b_max_per_mm=b_max_per_mm, e_prime_mpa=e_prime_mpa)
-    except InputRangeError:
-        return None
-
-
 def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                           cycle: CylindricalMeshCycle | None = None, facing: str = "cw",
                           phases: int = 61, cells_across: int = 24, cells_along: int = 64,
@@ -379,7 +321,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     lg = contact_line_gaps(pair, cycle, z)
     poa = PlaneOfAction(pair, cycle.facing)
     beyond = beyond_line_edge_gaps(poa, cycle, z)
-    half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
+    half = across_extent_mm(pair, cycle, load, e_star, extent_factor)
     t0 = time.process_time()
     for widened in range(MAX_WIDENINGS + 1):
         nx = int(cells_across)
@@ -493,7 +435,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         if not edge or widened == MAX_WIDENINGS:
             break
         # a loaded cell on the strip's border (an end-loaded line's peak): widen, solve again
-        half = max(2.0 * half, _across_extent_mm(pair, cycle, load, e_star, extent_factor, lg))
+        half = max(2.0 * half, across_extent_mm(pair, cycle, load, e_star, extent_factor, lg))
     return CylindricalLoadedTE(
         phi1_rad=cycle.phi1_rad, pair_offsets=cycle.pair_offsets, torque_nm=float(torque_nm),
         normal_load_n=load, te0_arcsec=cycle.envelope_arcsec, lte_arcsec=lte,
