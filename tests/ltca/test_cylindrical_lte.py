@@ -68,20 +68,26 @@ def test_line_contact_hertz_at_the_pitch_point(spur):
 
 
 def test_load_balance_of_the_torque(helical):
-    """Sum of cell loads over all pairs = F_n = T2 / (r_b2 cos beta_b) at every phase
-    (the LCP's torque constraint: 1e-9 relative), and the line loads integrate to it; with
-    tooth bending (the default)."""
+    """The torque balance of every phase, ``sum (share lever) = r_b2 cos beta_b`` over the
+    lines and the tip edges beyond them, each block with its own lever (the LCP's torque
+    constraint: 1e-9 relative), F_n = T2 / (r_b2 cos beta_b), and the line loads integrate
+    to the blocks' normal loads; with tooth bending (the default)."""
     p, c = helical
     r = cylindrical_loaded_te(p, 400.0, cycle=c)
     g = p.geometry
     cb = math.cos(math.radians(g.base_helix_angle_deg))
-    fn = 400e3 / (0.5 * g.base_diameter_gear_mm * cb)
+    lever = 0.5 * g.base_diameter_gear_mm * cb
+    fn = 400e3 / lever
     # the pinion's torque balance of the same load (ISO 6336-1: T1 / (r_b1 cos beta_b))
     assert fn == pytest.approx(400e3 / p.ratio / (0.5 * g.base_diameter_pinion_mm * cb), rel=1e-12)
     assert r.normal_load_n == pytest.approx(fn, rel=1e-12)
-    np.testing.assert_allclose(r.load_share.sum(axis=0), 1.0, rtol=1e-9)
+    moment = (r.load_share * r.lever_mm).sum(axis=0) \
+        + (r.beyond_load_share * r.beyond_lever_mm).sum(axis=(0, 2))
+    np.testing.assert_allclose(moment, lever, rtol=1e-9)
     dz = r.z_mm[1] - r.z_mm[0]
-    np.testing.assert_allclose(r.line_load_n_per_mm.sum(axis=(0, 2)) * dz, fn, rtol=1e-9)
+    total = r.load_share.sum(axis=0) + r.beyond_load_share.sum(axis=(0, 2))
+    np.testing.assert_allclose(r.line_load_n_per_mm.sum(axis=(0, 2)) * dz, fn * total,
+                               rtol=1e-9)
     # more than one pair shares the load (eps_gamma 3.4) and the solves converged
     assert (np.count_nonzero(r.load_share > 1e-3, axis=0) >= 2).all() and r.converged
 

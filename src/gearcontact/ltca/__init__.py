@@ -4,8 +4,8 @@ The gear side of loaded contact, built on :mod:`gearcontact.halfspace`: the sing
 LTCA at a mesh phase (:mod:`.pair_ltca`), the loaded transmission error over one pitch
 with every pair that can touch (:mod:`.lte`, :mod:`.lte_pairs`, :mod:`.mesh_lcp`), the
 multi-tooth LTCA at P0 (:mod:`.multitooth`), the shell bending of both teeth in the
-coupled LCP (:mod:`.tooth_bending`; cylindrical pairs :mod:`.cylindrical_lte` and
-:mod:`.cylindrical_bending`) and the export of one LCP problem
+coupled LCP (:mod:`.tooth_bending`; cylindrical pairs :mod:`.cylindrical_lte`, its
+tip-edge blocks :mod:`.cylindrical_edges` and :mod:`.cylindrical_bending`) and the export of one LCP problem
 (:mod:`.problem_export`). The unloaded TCA (:mod:`gearcontact.tca`) gives the mating
 points, normals and curvatures these start from.
 """

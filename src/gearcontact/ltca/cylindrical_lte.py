@@ -48,10 +48,14 @@ gap ``(lever / |rate|) (g_e(z) - g_e)`` (:func:`~gearcontact.tca.cylindrical_tip
 tip_edge_gaps`), across only ``x >= 0`` into the edge's own flank (no material beyond
 the edge) with ``sin(angle between the flanks) x + x^2 / (2 R)``; lever the touched
 normal's about the gear axis, opening that lever times its closing turn behind the
-mesh's; bending at the touch's roll lengths. This is the extended contact of deflected
-teeth at the tip of the driven tooth (start of mesh) and of the driver (end). On a
-helical pair the tip edge beyond a line already in the zone is not a block (it is in
-TE0).
+mesh's; bending at the touch's roll lengths (:mod:`.cylindrical_edges`). This is the
+extended contact of deflected teeth at the tip of the driven tooth (start of mesh) and
+of the driver (end). On a helical pair whose line is in the zone, the tooth's sections
+beyond its tip end (the line crosses the zone diagonally) are such edge rows too, joined
+to the line's block (elastic and bending coupling with the line, the line's lever): the
+rows at the grid's axial positions beyond the line's end (:func:`~gearcontact.tca.
+cylindrical_tip.beyond_line_edge_gaps`), entering by the same rule (``beyond_*``
+fields).
 
 Loads: the gear torque ``T2`` (the package's convention, as :mod:`.lte`) gives the
 normal load ``F_n = T2 / (r_b2 cos(beta_b))`` (ISO 6336-1: ``T1 / (r_b1 cos(beta_b))``).
@@ -82,17 +86,19 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..analytic.face_load import EndLoadedLine, end_loaded_line
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
-from ..tca.cylindrical_cycle import CylindricalMeshCycle, LineGaps, contact_line_gaps, \
+from ..tca.cylindrical_cycle import CylindricalMeshCycle, contact_line_gaps, \
     cylindrical_mesh_cycle
-from ..tca.cylindrical_tip import TipEdgeGaps, tip_edge_gaps
+from ..tca.cylindrical_tip import beyond_line_edge_gaps, tip_edge_gaps
 from ..tca.plane_of_action import PlaneOfAction
 from ..tca.types import ARCSEC_PER_RAD
 from ..validation import InputRangeError, check_positive
 from .cylindrical_bending import cylindrical_bending, line_bending_factor
+from .cylindrical_edges import OFF_LINE_GAP_MM, BeyondLoads, beyond_rows, closing_turn_rad, \
+    edge_block, join_beyond
+from .cylindrical_strip import END_PEAK_MARGIN, across_extent_mm, wedge_line
 from .mesh_lcp import PairBlock, solve_mesh_lcp
 
 __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE", "HarrisMap",
@@ -100,13 +106,6 @@ __all__ = ["HARRIS_LINE_LOADS_N_PER_MM", "OFF_LINE_GAP_MM", "CylindricalLoadedTE
            "harris_map", "harris_tip_reliefs_um", "harris_torques_nm", "normal_load_n",
            "wedge_line", "END_PEAK_MARGIN", "MAX_WIDENINGS", "STRIP_TOO_NARROW"]
 
-#: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
-OFF_LINE_GAP_MM = 1.0
-#: The strip of an end-loaded mesh is sized for this many times the closed form's peak
-#: line load: the LCP's rows at a loaded face end carry 1.2-4.9 times it (the sharp
-#: end's singular load, growing with refinement; spur 20/40 at 300 um, 40-640 rows), and
-#: a loaded cell on the strip's border truncates the contact across.
-END_PEAK_MARGIN = 2.0
 #: Times the strip is widened (and the cycle solved again) while a loaded cell lies on
 #: its border.
 MAX_WIDENINGS = 3
@@ -208,6 +207,18 @@ class CylindricalLoadedTE:
         sharp edge's singular pressure, which grows with refinement
         (``max_pressure_mpa`` is then no design value; the loaded length and the
         approach converge).
+    beyond_load_share : ndarray (P, K, 2)
+        Normal load over ``F_n`` of each tip edge (pinion, gear: ``TIP_EDGES``) beyond
+        pair ``j``'s line (a helical pair's sections past its tip end while the line is
+        in the zone; module docstring, "Tip-edge contact"); its rows' loads are in
+        ``line_load_n_per_mm`` where ``beyond_rows`` >= 0. The torque balance is then
+        ``sum (share lever) + sum (beyond_share beyond_lever) = r_b2 cos(beta_b)``.
+    beyond_lever_mm : ndarray (P, K, 2)
+        Its lever about the gear axis, mm: the line's, whose block the rows join (0
+        where none was in the LCP).
+    beyond_rows : ndarray (P, K, N) of int8
+        The edge (index into ``TIP_EDGES``) of each face cell's row beyond the line
+        that was in the LCP, else -1.
     """
 
     phi1_rad: np.ndarray
@@ -235,6 +246,9 @@ class CylindricalLoadedTE:
     loaded_length_mm: np.ndarray | None = None
     line_end_loaded: np.ndarray | None = None
     peak_at_edge: np.ndarray | None = None
+    beyond_load_share: np.ndarray | None = None
+    beyond_lever_mm: np.ndarray | None = None
+    beyond_rows: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -263,59 +277,6 @@ def axial_rows_mm(cycle: CylindricalMeshCycle, cells_along: int) -> np.ndarray:
     z0, z1 = cycle.pinion_v_range_mm
     dz = (z1 - z0) / cells_along
     return z0 + dz * (np.arange(cells_along) + 0.5)
-
-
-def _across_extent_mm(pair: CylindricalPair, cycle: CylindricalMeshCycle, load_n: float,
-                      e_star: float, factor: float, lines: LineGaps | None = None) -> float:
-    """Half-width of the strip: ``factor`` Hertz half-widths of the whole load on the
-    shortest total line length (Johnson 1985 eq. 4.43, b = sqrt(4 w R / (pi E*))); with
-    ``lines`` (the widened strip of an end-loaded mesh, module docstring) of
-    :data:`END_PEAK_MARGIN` times the largest peak line load of an end-loaded line
-    (:func:`end_loaded_peak_n_per_mm`) where that is more."""
-    g = pair.geometry
-    cb = math.cos(math.radians(g.base_helix_angle_deg))
-    u_mid = 0.5 * g.centre_distance_mm * math.sin(math.radians(g.working_pressure_angle_deg))
-    r = u_mid / (2.0 * cb)                       # equal roll lengths: the largest R
-    w = load_n / max(float(cycle.line_length_mm.min()), 1e-3)
-    if lines is not None:
-        w = max(w, END_PEAK_MARGIN * end_loaded_peak_n_per_mm(lines, load_n, r, e_star, cb))
-    return factor * math.sqrt(4.0 * w * r / (math.pi * e_star))
-
-
-def end_loaded_peak_n_per_mm(lines: LineGaps, load_n: float, radius_mm: float,
-                             e_star: float, cos_beta_b: float) -> float:
-    """The largest peak line load (N/mm) of :func:`wedge_line` over the lines of
-    ``lines``, each carrying the whole ``load_n`` (N) with the relative radius
-    ``radius_mm`` across it; 0 where no line is end-loaded."""
-    z = np.broadcast_to(lines.z_mm, lines.gap_mm.shape)
-    peak = 0.0
-    for j, k in zip(*np.nonzero(np.isfinite(lines.gap_mm).sum(axis=-1) >= 2)):
-        on = np.isfinite(lines.gap_mm[j, k])
-        y = z[j, k][on] / cos_beta_b
-        res = wedge_line(y, cos_beta_b * lines.gap_mm[j, k][on],
-                         float(y[-1] - y[0] + (y[1] - y[0])), load_n=load_n,
-                         b_max_per_mm=0.5 / radius_mm, e_prime_mpa=2.0 * e_star)
-        if res is not None and res.end_loaded:
-            peak = max(peak, res.peak_line_load_n_per_mm)
-    return peak
-
-
-def wedge_line(y_mm: np.ndarray, gap_mm: np.ndarray, length_mm: float, *, load_n: float,
-               b_max_per_mm: float, e_prime_mpa: float) -> EndLoadedLine | None:
-    """The end-loaded line's closed form (:func:`~gearcontact.analytic.face_load.
-    end_loaded_line`) of a line whose normal gap ``gap_mm`` (mm, at the positions
-    ``y_mm`` along it, ascending) is least at one of its ends: the gap's least-squares
-    slope from that end (the misalignment's wedge; crowning leaves less). None where the
-    least gap lies inside the line (crowning or relief centre the load) or the slope
-    leaves the line law's range (a point's contact)."""
-    if gap_mm.size < 2 or int(np.argmin(gap_mm)) not in (0, gap_mm.size - 1):
-        return None
-    slope = abs(float(np.polyfit(y_mm, gap_mm, 1)[0]))
-    try:
-        return end_loaded_line(load_n=load_n, slope=slope, length_mm=length_mm,
-                               b_max_per_mm=b_max_per_mm, e_prime_mpa=e_prime_mpa)
-    except InputRangeError:
-        return None
 
 
 def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
@@ -358,7 +319,9 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     z = axial_rows_mm(cycle, cells_along)
     dz = (cycle.pinion_v_range_mm[1] - cycle.pinion_v_range_mm[0]) / cells_along
     lg = contact_line_gaps(pair, cycle, z)
-    half = _across_extent_mm(pair, cycle, load, e_star, extent_factor)
+    poa = PlaneOfAction(pair, cycle.facing)
+    beyond = beyond_line_edge_gaps(poa, cycle, z)
+    half = across_extent_mm(pair, cycle, load, e_star, extent_factor)
     t0 = time.process_time()
     for widened in range(MAX_WIDENINGS + 1):
         nx = int(cells_across)
@@ -376,12 +339,12 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
         ok, edge = True, False
         warm: dict[int, np.ndarray] = {}
-        poa = PlaneOfAction(pair, cycle.facing)
         tip_rows = np.zeros((n_pairs, n_phase), bool)
         levers = np.zeros((n_pairs, n_phase))
         loaded_len = np.zeros((n_pairs, n_phase))
         end_loaded = np.zeros((n_pairs, n_phase), bool)
         end_peak = np.zeros(n_phase, bool)
+        tally = BeyondLoads(n_pairs, n_phase, cells_along)
         theta_last = np.inf
         for k in range(n_phase):
             live = [j for j in range(n_pairs) if np.isfinite(lg.gap_mm[j, k]).any()]
@@ -389,57 +352,79 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                       if j not in live and np.isfinite(cycle.tip.gap_mm[j, k])]
             g_line = {j: lg.gap_mm[j, k] for j in live}
             g_env = float(cycle.closing_gap_mm[k])
-            blocks = []
-            for j in live:
-                gj = max(float(np.nanmin(g_line[j])), g_env)
+            gj = {j: max(float(np.nanmin(g_line[j])), g_env) for j in live}
+
+            def line_block(j, rows):
+                """Pair j's line block, with the edge rows ``rows`` beyond its ends."""
                 on = np.isfinite(g_line[j])
                 inv_r = np.where(on, cb * (1.0 / lg.pinion_roll_mm[j, k]
                                            + 1.0 / lg.gear_roll_mm[j, k]), 0.0)
-                h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj, 0.0)[:, None]
+                h = np.where(on[:, None], cb * np.where(on, g_line[j] - gj[j], 0.0)[:, None]
                              + 0.5 * inv_r[:, None] * x2, OFF_LINE_GAP_MM)
-                factor = None if teeth is None else line_bending_factor(
-                    teeth, z, lg.pinion_roll_mm[j, k], lg.gear_roll_mm[j, k], nx)
-                blocks.append(PairBlock(h, grid, lever, cb * (gj - g_env), bending_factor=factor))
-            # a tip edge is a block where it may close: its closing turn below twice the last
-            # phase's rotation, and any other whose turn the solved rotation exceeds (then
-            # solved again), so that the blocks left out stand open (complementarity)
-            turn = {j: max(float(cycle.tip.gap_mm[j, k]) - g_env, 0.0)
-                    / abs(float(cycle.tip.rate_mm_per_rad[j, k])) for j in tipped}
+                u1, u2 = lg.pinion_roll_mm[j, k].copy(), lg.gear_roll_mm[j, k].copy()
+                join_beyond(h, u1, u2, rows, beyond, j, k, grid.x_mm, lever,
+                            cb * (gj[j] - g_env), g_env)
+                factor = None if teeth is None else line_bending_factor(teeth, z, u1, u2, nx)
+                return PairBlock(h, grid, lever, cb * (gj[j] - g_env), bending_factor=factor)
+            # a tip edge may close where its closing turn is below twice the last phase's
+            # rotation, and any other whose turn the solved rotation exceeds (then solved
+            # again), so that those left out stand open (complementarity): a pair without a
+            # line is a block along its edge, edge rows beyond a line join the line's block
+            turn = {j: closing_turn_rad(cycle.tip.gap_mm[j, k], g_env,
+                                        cycle.tip.rate_mm_per_rad[j, k]) for j in tipped}
             take = [j for j in tipped if turn[j] < 2.0 * theta_last]
-            lines = blocks
+            rows = {j: beyond_rows(beyond, j, k, g_env, 2.0 * theta_last) for j in live}
+            lines = {j: line_block(j, rows[j]) for j in live}
             while True:
                 where = np.zeros((n_pairs, n_phase), bool)
                 where[take, k] = True
                 tg = tip_edge_gaps(poa, cycle, z, where=where) if take else None
-                blocks = lines + [_tip_block(cycle, tg, j, k, grid, g_env, teeth, nx) for j in take]
+                blocks = [lines[j] for j in live] + [
+                    edge_block(tg, j, k, grid, min(float(cycle.tip.gap_mm[j, k]),
+                                                   float(np.nanmin(tg.gap_mm[j, k]))),
+                               g_env, teeth, nx) for j in take]
                 res = solve_mesh_lcp(blocks, gear_torque, e_star_mpa=e_star, tol=tol,
                                      warm_start=[warm.get(j) for j in live + take])
                 late = [j for j in tipped if j not in take and turn[j] < res.rotation_rad]
-                if not late:
+                grown = {}
+                for j in live:
+                    more = beyond_rows(beyond, j, k, g_env, res.rotation_rad)
+                    if ((more >= 0) & (rows[j] < 0)).any():
+                        grown[j] = np.maximum(rows[j], more)
+                if not late and not grown:
                     break
                 take += late
+                for j, r_j in grown.items():
+                    rows[j], lines[j] = r_j, line_block(j, r_j)
             theta_last = res.rotation_rad
             tip_rows[take, k] = True
-            live = live + take
+            keys = live + take
             ok &= res.converged
             iters[k] = res.iterations
             press = res.pressures_mpa(blocks)
-            warm = dict(zip(live, press))
-            for i, j in enumerate(live):
+            warm = dict(zip(keys, press))
+            for i, j in enumerate(keys):
                 w = res.loads_n[i]
-                share[j, k] = res.pair_loads_n[i] / load
+                edge |= bool(res.contact_masks[i][:, [0, -1]].any())
+                beyond_n = 0.0
+                for e in range(len(beyond)) if j in rows else ():
+                    on_e = rows[j] == e
+                    if on_e.any():
+                        tally.add(j, k, e, on_e, float(w[on_e].sum()) / load, lever)
+                        beyond_n += float(w[on_e].sum())
+                share[j, k] = (res.pair_loads_n[i] - beyond_n) / load
                 levers[j, k] = blocks[i].lever_mm
                 line_load[j, k] = w.sum(axis=1) / dz
                 line_p[j, k] = press[i].max(axis=1)
-                edge |= bool(res.contact_masks[i][:, [0, -1]].any())
             pmax[k] = max(float(p.max()) for p in press)
-            for i, j in enumerate(live[:len(lines)]):     # a line reaching its end loaded
+            for i, j in enumerate(live):     # a line reaching its end loaded
                 ends = np.nonzero(np.isfinite(lg.gap_mm[j, k]))[0][[0, -1]]
-                hit = res.contact_masks[i].any(axis=1)
+                hit = res.contact_masks[i].any(axis=1) & (rows[j] < 0)
                 loaded_len[j, k] = hit.sum() * dz / cb
                 end_loaded[j, k] = bool(hit[ends].any())
                 end_peak[k] |= end_loaded[j, k] and float(press[i][ends].max()) >= pmax[k]
-            end_peak[k] |= any(float(p.max()) >= pmax[k] for p in press[len(lines):])
+            end_peak[k] |= any(float(p.max()) >= pmax[k] for p in press[len(live):]) or any(
+                float(p[rows[j] >= 0].max(initial=0.0)) >= pmax[k] for p, j in zip(press, live))
             rate = float(np.nanmean(lg.rate_mm_per_rad[live[0], k]))
             # the gear lags (TE0 < 0 on the cw facing): the load turns it further the same way
             lte[k] = (cycle.envelope_arcsec[k]
@@ -450,7 +435,7 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         if not edge or widened == MAX_WIDENINGS:
             break
         # a loaded cell on the strip's border (an end-loaded line's peak): widen, solve again
-        half = max(2.0 * half, _across_extent_mm(pair, cycle, load, e_star, extent_factor, lg))
+        half = max(2.0 * half, across_extent_mm(pair, cycle, load, e_star, extent_factor, lg))
     return CylindricalLoadedTE(
         phi1_rad=cycle.phi1_rad, pair_offsets=cycle.pair_offsets, torque_nm=float(torque_nm),
         normal_load_n=load, te0_arcsec=cycle.envelope_arcsec, lte_arcsec=lte,
@@ -460,28 +445,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         grid_dy_mm=dz / cb, edge_touch=edge, iterations=iters, converged=bool(ok),
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
         edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers,
-        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak)
-
-
-def _tip_block(cycle: CylindricalMeshCycle, tg: TipEdgeGaps, j: int, k: int, grid, g_env: float,
-               teeth, nx: int) -> PairBlock:
-    """The LCP block of pair ``j``'s tip edge touching the mating flank at phase ``k``
-    (module docstring, "Tip-edge contact"): rows along the edge at the grid's axial
-    positions, ``x >= 0`` into the edge's own flank (no material at ``x < 0``)."""
-    ratio, gt = tg.normal_gap_per_gap[j, k], tg.gap_mm[j, k]
-    on = np.isfinite(gt)
-    g_first = min(float(cycle.tip.gap_mm[j, k]), float(np.nanmin(gt)))
-    x = grid.x_mm[None, :]
-    across = tg.slope[j, k] * x + 0.5 * tg.inv_radius_per_mm[j, k] * x * x
-    h = np.where(on[:, None] & (x >= 0.0), ratio * np.where(on, gt - g_first, 0.0)[:, None]
-                 + across, OFF_LINE_GAP_MM)
-    factor = None
-    if teeth is not None:
-        tip = cycle.tip
-        factor = line_bending_factor(teeth, tg.z_mm, np.where(on, tip.u1[j, k], np.nan),
-                                     np.where(on, tip.u2[j, k], np.nan), nx)
-    return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
-                     bending_factor=factor)
+        loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak,
+        beyond_load_share=tally.share, beyond_lever_mm=tally.lever_mm, beyond_rows=tally.rows)
 
 
 def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,

@@ -6,7 +6,8 @@ sec. 7): what ``gearcontact lte`` writes for a ``kind = "cylindrical"`` pair.
 key ``rigid`` holds the rigid loaded TE and stiffness), ``lte.csv`` (per phase: TE0,
 loaded TE, load share per pair, peak pressure, mesh stiffness; the rigid loaded TE and
 stiffness beside them), ``line_load.csv`` (per phase, loaded pair and face cell:
-``contact`` line or the tip edge touching beyond it, the lever of its normal, load per
+``contact``: line, a tip edge touching beyond the path with no line, or one beyond a
+helical line in the zone (``"pinion tip beyond line"``), the lever of its normal, load per
 unit face width and the peak pressure across the line), ``harris_map.csv`` (loaded TE
 p-p per tip relief and torque) and the figures ``lte.png`` and ``harris_map.png``. No timings:
 identical runs write identical files.
@@ -26,6 +27,7 @@ import numpy as np  # noqa: E402
 from ..analytic.iso6336 import cylindrical_pair_stiffness  # noqa: E402
 from ..figure_files import save_figure  # noqa: E402
 from ..ltca.cylindrical_lte import CylindricalLoadedTE, HarrisMap  # noqa: E402
+from ..tca.cylindrical_tip import TIP_EDGES  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
 __all__ = ["cylindrical_lte_summary", "plot_cylindrical_lte", "plot_harris_map",
@@ -95,6 +97,11 @@ def cylindrical_lte_summary(lte: CylindricalLoadedTE, harris: HarrisMap | None, 
         # pairs loaded at a tip edge beyond their line (premature / prolonged contact)
         "tip_contact_phases": 0 if lte.edge_label is None else int(
             ((lte.edge_label != "") & (lte.load_share > 0.0)).any(axis=0).sum()),
+        # tip edges beyond a helical line in the zone carrying (sections past the path end)
+        "beyond_line_tip_phases": 0 if lte.beyond_load_share is None else int(
+            (lte.beyond_load_share > 0.0).any(axis=(0, 2)).sum()),
+        "beyond_line_max_load_share": 0.0 if lte.beyond_load_share is None else float(
+            lte.beyond_load_share.max()),
         "grid_dx_mm": lte.grid_dx_mm, "grid_dy_mm": lte.grid_dy_mm,
         "edge_touch": lte.edge_touch, "converged": lte.converged,
         "lcp_iterations_max": int(lte.iterations.max()),
@@ -189,14 +196,22 @@ def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | 
                   if rigid is not None else [])
                for k in range(len(phi))])
     rows = []
+    beyond = lte.beyond_rows if lte.beyond_rows is not None else \
+        np.full(lte.line_load_n_per_mm.shape, -1)
     for k in range(len(phi)):
         for p, j in enumerate(lte.pair_offsets):
-            if lte.load_share[p, k] <= 0.0:
-                continue
             kind = (lte.edge_label[p, k] if lte.edge_label is not None else "") or "line"
-            rows += [[float(phi[k]), j, kind, float(lte.lever_mm[p, k]), float(z), float(w),
-                      float(pm)] for z, w, pm in zip(lte.z_mm, lte.line_load_n_per_mm[p, k],
-                                                     lte.line_pressure_mpa[p, k])]
+            # the line's (or tip edge's) cells, then those of a tip edge beyond the line
+            for e, label, share, lever in [(-1, kind, lte.load_share[p, k], lte.lever_mm[p, k])] \
+                    + [(e, f"{edge.label} beyond line", lte.beyond_load_share[p, k, e],
+                        lte.beyond_lever_mm[p, k, e]) for e, edge in enumerate(TIP_EDGES)
+                       if lte.beyond_load_share is not None]:
+                if share <= 0.0:
+                    continue
+                rows += [[float(phi[k]), j, label, float(lever), float(z), float(w), float(pm)]
+                         for z, w, pm, b in zip(lte.z_mm, lte.line_load_n_per_mm[p, k],
+                                                lte.line_pressure_mpa[p, k], beyond[p, k])
+                         if b == e]
     write_csv(out / "line_load.csv", ["phi1_deg", "pair", "contact", "lever_mm", "pinion_z_mm",
                                       "load_n_per_mm", "peak_pressure_mpa"], rows)
     if harris is not None:

@@ -42,7 +42,7 @@ from .batched_search import golden_min
 from .edge_contact import FlankEdge
 
 __all__ = ["REACH_BASE_PITCHES", "SAMPLES", "TIP_EDGES", "TipContacts", "TipEdgeGaps",
-           "passage_tip_contacts", "tip_edge_contacts", "tip_edge_gaps"]
+           "beyond_line_edge_gaps", "passage_tip_contacts", "tip_edge_contacts", "tip_edge_gaps"]
 
 #: The edges of a cylindrical flank pair that can touch off the plane of action.
 TIP_EDGES = (FlankEdge("pinion", "tip"), FlankEdge("gear", "tip"))
@@ -335,6 +335,10 @@ class TipEdgeGaps:
     inv_radius_per_mm : ndarray (P, K)
         Relative normal curvature across the edge, ``cos(beta_b) (1/u_own + 1/u_other)``
         with the transverse radii (roll lengths) of the edge and the touched point, 1/mm.
+    u1_mm, u2_mm : ndarray (P, K)
+        Pinion and gear roll lengths of that touch, mm (the bending's flank points).
+    rate_mm_per_rad : ndarray (P, K)
+        ``d g / d phi2`` at that touch, mm/rad.
     """
 
     z_mm: np.ndarray
@@ -343,6 +347,39 @@ class TipEdgeGaps:
     lever_mm: np.ndarray
     slope: np.ndarray
     inv_radius_per_mm: np.ndarray
+    u1_mm: np.ndarray
+    u2_mm: np.ndarray
+    rate_mm_per_rad: np.ndarray
+
+
+def _touch_geometry(mesh, member: str, phi, own_z, other_u, turn, point, normal):
+    """Lever ``|(a2 x X) . n|`` (mm), the sine of the angle between the flanks and the
+    relative curvature across the edge (1/mm) of tip-edge touches of ``member`` at the
+    phases ``phi`` (edge point ``own_z``, touched roll length ``other_u``, gear turn
+    ``turn``, point and touched normal as :func:`_touch_fields`)."""
+    own = mesh.pinion if member == "pinion" else mesh.gear
+    cb = 1.0 / math.sqrt(1.0 + (mesh.pinion.lead_rate_rad_per_mm
+                                * mesh.pinion.base_radius_mm) ** 2)
+    lever = np.abs(np.einsum("ni,ni->n", _cross(mesh.kin.gear_axis, point), normal))
+    # the edge's own flank normal at the touch, posed as the touch
+    s_own = own.evaluate(np.full(len(phi), own.u_range[1]), own_z, second=False)
+    if member == "pinion":
+        n_own = _posed(mesh.pinion_poses(phi)[0], s_own.n)
+    else:
+        n_own = _posed(mesh.gear_rotations(phi / mesh.ratio + mesh.phi2_offset + turn),
+                       s_own.n)
+    slope = np.linalg.norm(_cross(n_own, normal), axis=1)
+    return lever, slope, cb * (1.0 / own.u_range[1] + 1.0 / other_u)
+
+
+def _edge_gaps(z, gaps, fields: dict) -> TipEdgeGaps:
+    """:class:`TipEdgeGaps` of sampled ``gaps`` (P, K, N) and the touches' per-pair
+    ``fields`` (``lever``, ``rate``, ``slope``, ``inv_r``, ``u1``, ``u2``; (P, K))."""
+    return TipEdgeGaps(z_mm=z, gap_mm=gaps,
+                       normal_gap_per_gap=fields["lever"] / np.abs(fields["rate"]),
+                       lever_mm=fields["lever"], slope=fields["slope"],
+                       inv_radius_per_mm=fields["inv_r"], u1_mm=fields["u1"],
+                       u2_mm=fields["u2"], rate_mm_per_rad=fields["rate"])
 
 
 def tip_edge_gaps(mesh, cycle, z_mm, *, where=None) -> TipEdgeGaps:
@@ -364,19 +401,15 @@ def tip_edge_gaps(mesh, cycle, z_mm, *, where=None) -> TipEdgeGaps:
     tip = cycle.tip
     shape = tip.gap_mm.shape
     gaps = np.full(shape + (len(z),), np.nan)
-    per = {k: np.full(shape, np.nan) for k in ("ratio", "lever", "slope", "inv_r")}
+    per = {k: np.full(shape, np.nan) for k in ("lever", "slope", "inv_r")}
     pitch = 2.0 * math.pi / cycle.pinion_teeth
     phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
-    cb = 1.0 / math.sqrt(1.0 + (mesh.pinion.lead_rate_rad_per_mm
-                                * mesh.pinion.base_radius_mm) ** 2)
     for i, edge in enumerate(TIP_EDGES):
         sel = np.isfinite(tip.gap_mm) & (tip.edge == i)
         if where is not None:
             sel &= np.asarray(where, bool)
         if not sel.any():
             continue
-        own, other = (mesh.pinion, mesh.gear) if edge.member == "pinion" else \
-            (mesh.gear, mesh.pinion)
         a = (tip.u2 if edge.member == "pinion" else tip.u1)[sel]
         turn = tip.turn_rad[sel]
         m, n = int(sel.sum()), len(z)
@@ -384,20 +417,83 @@ def tip_edge_gaps(mesh, cycle, z_mm, *, where=None) -> TipEdgeGaps:
         y, ok = _touch(mesh, edge.member, ph, zz, np.column_stack([np.repeat(a, n), zz,
                                                                   np.repeat(turn, n)]))
         gaps[sel] = _touch_fields(mesh, edge.member, ph, zz, y, ok)["gap"].reshape(m, n)
-        point, normal = tip.point_mm[sel], tip.normal[sel]
-        lever = np.abs(np.einsum("ni,ni->n", _cross(mesh.kin.gear_axis, point), normal))
-        per["ratio"][sel] = lever / np.abs(tip.rate_mm_per_rad[sel])
-        per["lever"][sel] = lever
-        # the edge's own flank normal at the touch, posed as the touch
         own_z = (tip.v1 if edge.member == "pinion" else tip.v2)[sel]
-        s_own = own.evaluate(np.full(m, own.u_range[1]), own_z, second=False)
-        if edge.member == "pinion":
-            n_own = _posed(mesh.pinion_poses(phi[sel])[0], s_own.n)
-        else:
-            n_own = _posed(mesh.gear_rotations(phi[sel] / mesh.ratio + mesh.phi2_offset
-                                               + turn), s_own.n)
-        per["slope"][sel] = np.linalg.norm(_cross(n_own, normal), axis=1)
-        per["inv_r"][sel] = cb * (1.0 / own.u_range[1] + 1.0 / a)
-    return TipEdgeGaps(z_mm=z, gap_mm=gaps, normal_gap_per_gap=per["ratio"],
-                       lever_mm=per["lever"], slope=per["slope"],
-                       inv_radius_per_mm=per["inv_r"])
+        got = _touch_geometry(mesh, edge.member, phi[sel], own_z, a, turn,
+                              tip.point_mm[sel], tip.normal[sel])
+        for key, val in zip(("lever", "slope", "inv_r"), got):
+            per[key][sel] = val
+    touched = np.isfinite(per["lever"])
+    per.update(rate=np.where(touched, tip.rate_mm_per_rad, np.nan),
+               u1=np.where(touched, tip.u1, np.nan), u2=np.where(touched, tip.u2, np.nan))
+    return _edge_gaps(z, gaps, per)
+
+
+def beyond_line_edge_gaps(mesh, cycle, z_mm) -> tuple[TipEdgeGaps, TipEdgeGaps]:
+    """The tip edges beyond the ends of the contact lines in the zone (a helical pair):
+    per edge of :data:`TIP_EDGES`, the gap of its points at the axial positions
+    ``z_mm`` whose transverse section lies beyond that member's path end (the section's
+    plane-of-action roll length beyond its tip circle, by at most
+    :data:`REACH_BASE_PITCHES` base pitches) while the pair's line is in the zone at
+    other sections (docs/cylindrical.md sec. 7, "Tip-edge contact").
+
+    The touch is solved as :func:`tip_edge_contacts`' (from the plane of action, no
+    turn) at every such point; the per-pair fields of :class:`TipEdgeGaps` are those of
+    the point touching first (least gap). The sections are classed on the affine
+    plane of action of the unmodified flanks (micro-geometry shifts it by ~0.01 mm of
+    roll length, a tenth of a row on the examples): a row off the line within that of
+    a tip end may be left out (it stays off-line). NaN where the point is not beyond
+    a tip end or meets no mating flank (beyond its box: its face end or its fillet).
+
+    Parameters
+    ----------
+    mesh, cycle, z_mm
+        As :func:`tip_edge_gaps`.
+
+    Returns
+    -------
+    tuple of TipEdgeGaps
+        Pinion tip, gear tip (the order of :data:`TIP_EDGES`).
+    """
+    z = np.asarray(z_mm, float).ravel()
+    lo, hi = cycle.line_ends_zu_mm[..., 0, 0], cycle.line_ends_zu_mm[..., 1, 0]
+    live = np.isfinite(lo)
+    shape = lo.shape + (len(z),)
+    pitch = 2.0 * math.pi / cycle.pinion_teeth
+    phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
+    phis = np.broadcast_to(phi[..., None], shape)
+    zs = np.broadcast_to(z, shape)
+    u1 = mesh.pinion_u_affine(phis, zs)
+    with np.errstate(invalid="ignore"):
+        off = live[..., None] & ((zs < lo[..., None]) | (zs > hi[..., None]))
+    # sections beyond a tip end, within the reach of the tip-edge solve (the separation
+    # grows as s^2 / (2 rho): hundreds of um there)
+    reach = REACH_BASE_PITCHES * 2.0 * math.pi * mesh.pinion.base_radius_mm / cycle.pinion_teeth
+    s1, s2 = u1 - mesh.pinion.u_range[1], mesh.roll_sum - u1 - mesh.gear.u_range[1]
+    beyond = (off & (s1 > 0.0) & (s1 <= reach), off & (s2 > 0.0) & (s2 <= reach))
+    out = []
+    for edge, sel in zip(TIP_EDGES, beyond):
+        gaps = np.full(shape, np.nan)
+        per = {k: np.full(lo.shape, np.nan)
+               for k in ("lever", "slope", "inv_r", "rate", "u1", "u2")}
+        if sel.any():
+            ph, zz = phis[sel], zs[sel]
+            y, ok = _touch(mesh, edge.member, ph, zz, _start(mesh, edge.member, zz))
+            f = _touch_fields(mesh, edge.member, ph, zz, y, ok)
+            gaps[sel] = f["gap"]
+            first = np.isfinite(gaps).any(axis=-1)
+            best = np.argmin(np.where(np.isfinite(gaps), gaps, np.inf), axis=-1)
+            # the flat index of each pair-phase's first touch among the solved points
+            flat = np.full(shape, -1)
+            flat[sel] = np.arange(int(sel.sum()))
+            i = flat[first, best[first]] if first.any() else np.zeros(0, int)
+            if i.size:
+                own_u = f["tip_u"]
+                got = _touch_geometry(mesh, edge.member, ph[i], zz[i], y[i, 0], y[i, 2],
+                                      f["point"][i], f["normal"][i])
+                for key, val in zip(("lever", "slope", "inv_r"), got):
+                    per[key][first] = val
+                per["rate"][first] = f["rate"][i]
+                pin, gear = (own_u, y[i, 0]) if edge.member == "pinion" else (y[i, 0], own_u)
+                per["u1"][first], per["u2"][first] = pin, gear
+        out.append(_edge_gaps(z, gaps, per))
+    return tuple(out)

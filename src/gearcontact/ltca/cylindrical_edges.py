@@ -1,0 +1,124 @@
+"""Tip-edge blocks of a cylindrical pair's loaded TE (docs/cylindrical.md sec. 7,
+"Tip-edge contact (edge rows)").
+
+A tip edge touching the mating flank off the plane of action is a block of the mesh
+LCP (:mod:`.mesh_lcp`) along that edge: rows at the grid's axial positions with the
+edge points' normal gap ``(lever / |rate|) (g_e(z) - g_first)``, across only ``x >= 0``
+into the edge's own flank (no material beyond the edge) with
+``sin(angle between the flanks) x + x^2 / (2 R)``; lever the touched normal's about the
+gear axis, opening that lever over ``|rate|`` times the edge's closing gap behind the
+mesh's; bending at the touch's roll lengths. Two kinds (:mod:`~gearcontact.tca.
+cylindrical_tip`):
+
+* a pair with no line in the zone whose tip edge touches within reach (premature
+  contact of the driven tooth's tip, prolonged of the driver's): its edge's rows
+  (:func:`~gearcontact.tca.cylindrical_tip.tip_edge_gaps`);
+* a pair whose line is in the zone at some sections, at the sections beyond its tip
+  end (a helical pair: the line crosses the zone diagonally, the tooth's sections past
+  the path end stand off by a separation growing quadratically from the line's end):
+  the rows beyond the end (:func:`~gearcontact.tca.cylindrical_tip.
+  beyond_line_edge_gaps`) join the line's own block (:func:`join_beyond`), coupled with
+  the line through the half-space and the bending of the same teeth, closing at the
+  line's lever under the shared rotation.
+
+Either enters the LCP where it may close: its closing turn (the edge's gap behind the
+mesh's over ``|rate|``) below twice the previous phase's rotation, and any other whose
+turn the solved rotation exceeds (:func:`closing_turn_rad`, :func:`beyond_rows`; the
+phase is then solved again), so that the edges left out stand open (complementarity).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..tca.cylindrical_tip import TIP_EDGES, TipEdgeGaps
+from .cylindrical_bending import line_bending_factor
+from .mesh_lcp import PairBlock
+
+__all__ = ["OFF_LINE_GAP_MM", "BeyondLoads", "beyond_rows", "closing_turn_rad", "edge_block",
+           "join_beyond"]
+
+#: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
+OFF_LINE_GAP_MM = 1.0
+
+
+def closing_turn_rad(gap_mm: float, closing_gap_mm: float, rate_mm_per_rad: float) -> float:
+    """Gear turn (rad) behind the mesh's closing that closes an edge of least gap
+    ``gap_mm`` (the cycle's gaps, mm; 0 where it closes with the mesh)."""
+    return max(float(gap_mm) - float(closing_gap_mm), 0.0) / abs(float(rate_mm_per_rad))
+
+
+def edge_block(tg: TipEdgeGaps, j: int, k: int, grid, g_first: float, g_env: float, teeth,
+               nx: int) -> PairBlock:
+    """The LCP block of the tip edge of pair ``j`` at phase ``k`` sampled in ``tg``
+    (module docstring): ``g_first`` its least gap, ``g_env`` the mesh's closing gap
+    (mm, the cycle's), ``teeth`` the :class:`~.tooth_bending.ToothBending` or None
+    (rigid), ``nx`` the grid's cells across."""
+    ratio, gt = tg.normal_gap_per_gap[j, k], tg.gap_mm[j, k]
+    on = np.isfinite(gt)
+    x = grid.x_mm[None, :]
+    across = tg.slope[j, k] * x + 0.5 * tg.inv_radius_per_mm[j, k] * x * x
+    h = np.where(on[:, None] & (x >= 0.0), ratio * np.where(on, gt - g_first, 0.0)[:, None]
+                 + across, OFF_LINE_GAP_MM)
+    factor = None
+    if teeth is not None:
+        factor = line_bending_factor(teeth, tg.z_mm, np.where(on, tg.u1_mm[j, k], np.nan),
+                                     np.where(on, tg.u2_mm[j, k], np.nan), nx)
+    return PairBlock(h, grid, float(tg.lever_mm[j, k]), ratio * max(g_first - g_env, 0.0),
+                     bending_factor=factor)
+
+
+def beyond_rows(beyond, j: int, k: int, g_env: float, limit_rad: float) -> np.ndarray:
+    """Rows (N,) beyond pair ``j``'s line at phase ``k`` that may close: the edge (index
+    into :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`) of each row whose closing
+    turn (:func:`closing_turn_rad`) is below ``limit_rad``, else -1 (``beyond``: the
+    :func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps` of the cycle;
+    ``g_env`` the mesh's closing gap, mm)."""
+    out = np.full(beyond[0].gap_mm.shape[-1], -1, dtype=np.int8)
+    for i, bg in enumerate(beyond):
+        g = bg.gap_mm[j, k]
+        on = np.isfinite(g)
+        if on.any():
+            turn = np.maximum(np.where(on, g, np.inf) - g_env, 0.0) / abs(bg.rate_mm_per_rad[j, k])
+            out[on & (turn < limit_rad)] = i
+    return out
+
+
+def join_beyond(h, u1, u2, rows, beyond, j: int, k: int, x_mm, lever_mm: float,
+                offset_mm: float, g_env: float) -> None:
+    """Fill the edge rows ``rows`` (:func:`beyond_rows`) into pair ``j``'s line block at
+    phase ``k`` in place: its field ``h`` (N, nx; the line's datum, opening
+    ``offset_mm``, lever ``lever_mm``) with the edge's normal gap behind the mesh's
+    closing ``g_env`` across ``x >= 0`` (module docstring), scaled to close at the line's
+    lever under the shared rotation (the edge's own lever differs by < 0.5 %: the
+    elastic term of those rows is scaled alike), and the bending's roll lengths ``u1``,
+    ``u2`` (N,) with the touch's."""
+    x = np.asarray(x_mm)[None, :]
+    for i, bg in enumerate(beyond):
+        sel = rows == i
+        if not sel.any():
+            continue
+        across = bg.slope[j, k] * x + 0.5 * bg.inv_radius_per_mm[j, k] * x * x
+        normal = bg.normal_gap_per_gap[j, k] * (bg.gap_mm[j, k][sel] - g_env)[:, None] + across
+        h[sel] = np.where(x >= 0.0, normal * (lever_mm / bg.lever_mm[j, k]) - offset_mm,
+                          OFF_LINE_GAP_MM)
+        u1[sel], u2[sel] = bg.u1_mm[j, k], bg.u2_mm[j, k]
+
+
+class BeyondLoads:
+    """Tally of the edges beyond the lines over a cycle of P pairs, K phases, N rows, per
+    edge of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`: ``share`` (P, K, 2) of
+    ``F_n``, ``lever_mm`` (P, K, 2; the line's, 0 where no row was in the LCP) and
+    ``rows`` (P, K, N), the edge index of each row in the LCP (-1 none)."""
+
+    def __init__(self, n_pairs: int, n_phase: int, n_rows: int):
+        self.share = np.zeros((n_pairs, n_phase, len(TIP_EDGES)))
+        self.lever_mm = np.zeros_like(self.share)
+        self.rows = np.full((n_pairs, n_phase, n_rows), -1, dtype=np.int8)
+
+    def add(self, j: int, k: int, i: int, rows, share: float, lever_mm: float) -> None:
+        """Edge ``i`` beyond pair ``j``'s line at phase ``k`` on ``rows`` (bool, N)
+        carrying ``share`` of ``F_n`` with the lever ``lever_mm``."""
+        self.share[j, k, i] = share
+        self.lever_mm[j, k, i] = lever_mm
+        self.rows[j, k][rows] = i
