@@ -208,11 +208,11 @@ def test_disk_full_is_said_as_such(tmp_path, capsys, monkeypatch):
 
 
 def test_ctrl_c_while_the_commands_load(monkeypatch, capsys):
-    """Ctrl-C during ``build_parser`` (it imports every command module: seconds on a
+    """Ctrl-C during ``build_parser`` (it imports the command's module: seconds on a
     cold start) printed a KeyboardInterrupt traceback; now one line and exit 130."""
     import gearcontact.cli as cli
 
-    def interrupted():
+    def interrupted(argv=None):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(cli, "build_parser", interrupted)
@@ -264,12 +264,12 @@ def test_ctrl_c_swallowed_by_an_import_still_interrupts(tmp_path, monkeypatch, c
 
     real_build = cli.build_parser
 
-    def swallowing_build():
+    def swallowing_build(argv=None):
         try:
             os.kill(os.getpid(), signal.SIGINT)         # the handler runs on return
         except KeyboardInterrupt:
             pass                                         # what the extension did
-        return real_build()
+        return real_build(argv)
 
     monkeypatch.setattr(cli, "build_parser", swallowing_build)
     out = tmp_path / "out"
