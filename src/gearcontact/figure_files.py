@@ -12,8 +12,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
-
 __all__ = ["SVG_HASHSALT", "save_figure"]
 
 #: Fixed salt of the SVG element ids (any constant makes them reproducible).
@@ -40,6 +38,8 @@ def save_figure(fig, path, *, dpi: int = 120, tight: bool = False) -> Path:
     Path
         The PNG file; the SVG is the same path with suffix ``.svg``.
     """
+    import matplotlib   # here: a process that draws nothing never loads it
+
     path = Path(path)
     png, svg = path.with_suffix(".png"), path.with_suffix(".svg")
     extra = {"bbox_inches": "tight"} if tight else {}

@@ -289,3 +289,28 @@ def test_package_import_is_light():
     code = ("import sys, gearcontact.cli; assert 'numpy' not in sys.modules; "
             "import gearcontact; assert gearcontact.STEEL.youngs_modulus_mpa == 209000.0")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_a_command_imports_only_its_own_module():
+    """``gearcontact design`` imports its command module and none of the other 12 nor
+    matplotlib (docs/performance.md, "Test suite budget": importing every command module
+    and the plotting code cost 1.4 s of CPU in every process); ``gearcontact --help``
+    still lists every command."""
+    import subprocess
+    import sys
+
+    from gearcontact.cli import COMMANDS
+
+    code = ("import contextlib, io, sys\nfrom gearcontact.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            "    assert main(['design', '--pair', 's0003', '--json']) == 0\n"
+            "print(' '.join(sorted(m for m in sys.modules if m.startswith('gearcontact.cli.')\n"
+            "                      or m.split('.')[0] == 'matplotlib')))")
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            check=True, timeout=300).stdout.split()
+    # warm_up: its first-run note (``note_cold_cache``, no numpy), before every command
+    assert loaded == ["gearcontact.cli.design", "gearcontact.cli.outdir",
+                      "gearcontact.cli.warm_up"], loaded
+    usage = subprocess.run([sys.executable, "-m", "gearcontact", "--help"], capture_output=True,
+                           text=True, check=True, timeout=300).stdout
+    assert all(f"    {name} " in usage or f"    {name}\n" in usage for name in COMMANDS), usage
