@@ -12,8 +12,8 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_public_api_resolves():
     import importlib
 
-    for package in ("gearcontact", "gearcontact.geometry", "gearcontact.tca",
-                    "gearcontact.halfspace", "gearcontact.sweep"):
+    for package in ("gearcontact", "gearcontact.geometry", "gearcontact.halfspace",
+                    "gearcontact.sweep"):
         module = importlib.import_module(package)       # names served by lazy_names
         for name in module.__all__:
             assert getattr(module, name) is not None, (package, name)

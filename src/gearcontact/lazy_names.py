@@ -26,6 +26,10 @@ def lazy_names(package: str, homes: dict[str, tuple[str, ...]], *, fallback=None
         The package's ``__name__``.
     homes : dict of str to tuple of str
         Module (relative to ``package``, e.g. ``"pair"``) -> the public names it defines.
+        No name may be that of a submodule of the package: importing the submodule
+        binds its name on the package to the module, which ``__getattr__`` never sees
+        (``gearcontact.tca`` re-exports the function ``phase_table`` of the module
+        ``tca.phase_table`` and therefore imports its names at once).
     fallback : callable, optional
         The ``__getattr__`` to ask for any other name (e.g.
         :func:`gearcontact.deprecation.moved_names`); without it, ``AttributeError``.

@@ -8,7 +8,15 @@ hardware stencil (:mod:`.stencil`); the phase table for the device (:mod:`.phase
 figures (:mod:`.plots`) and files (:mod:`.export`). :func:`analyze_pair` runs it all.
 """
 
-from ..lazy_names import lazy_names
+from .analysis import TcaAnalysis, analyze, analyze_pair
+from .curvature import (PAINT_THICKNESS_MM, ContactEllipse, RelativeCurvature,
+                        contact_ellipse, relative_curvature)
+from .mesh import MeshCycle, mesh_cycle
+from .phase_table import PhaseTable, decode_binary, encode_binary, phase_table
+from .mating import solve_mating_point
+from .solve import solve_tca
+from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError, TcaPath
+from .stencil import GapField, gap_at, gap_field, gap_field_80, hardware_stencil
 
 __all__ = ["TcaAnalysis", "analyze", "analyze_pair", "PAINT_THICKNESS_MM",
            "ContactEllipse", "RelativeCurvature", "contact_ellipse", "relative_curvature",
@@ -16,17 +24,3 @@ __all__ = ["TcaAnalysis", "analyze", "analyze_pair", "PAINT_THICKNESS_MM",
            "phase_table", "ContactGuess", "EdgeContact", "MatingPoint",
            "TcaConvergenceError", "TcaPath", "solve_mating_point", "solve_tca", "GapField",
            "gap_at", "gap_field", "gap_field_80", "hardware_stencil"]
-
-#: Each public name imports its module on first use: importing one module of the package
-#: does not import the others (and their numpy, scipy and numba).
-__getattr__ = lazy_names(__name__, {
-    "analysis": ("TcaAnalysis", "analyze", "analyze_pair"),
-    "curvature": ("PAINT_THICKNESS_MM", "ContactEllipse", "RelativeCurvature",
-                  "contact_ellipse", "relative_curvature"),
-    "mesh": ("MeshCycle", "mesh_cycle"),
-    "phase_table": ("PhaseTable", "decode_binary", "encode_binary", "phase_table"),
-    "mating": ("solve_mating_point",),
-    "solve": ("solve_tca",),
-    "types": ("ContactGuess", "EdgeContact", "MatingPoint", "TcaConvergenceError", "TcaPath"),
-    "stencil": ("GapField", "gap_at", "gap_field", "gap_field_80", "hardware_stencil"),
-})
