@@ -301,13 +301,16 @@ def test_a_command_imports_only_its_own_module():
 
     from gearcontact.cli import COMMANDS
 
-    code = ("import contextlib, io, sys\nfrom gearcontact.cli import main\n"
-            "with contextlib.redirect_stdout(io.StringIO()):\n"
-            "    assert main(['design', '--pair', 's0003', '--json']) == 0\n"
-            "print(' '.join(sorted(m for m in sys.modules if m.startswith('gearcontact.cli.')\n"
-            "                      or m.split('.')[0] == 'matplotlib')))")
-    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                            check=True, timeout=300).stdout.split()
+    code = """if True:
+        import contextlib, io, sys
+        from gearcontact.cli import main
+        with contextlib.redirect_stdout(io.StringIO()):
+            assert main(["design", "--pair", "s0003", "--json"]) == 0
+        print(*sorted(m for m in sys.modules if m.startswith("gearcontact.cli.")
+                      or m.split(".")[0] == "matplotlib"))"""
+    child = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           check=True, timeout=300)
+    loaded = child.stdout.split()
     # warm_up: its first-run note (``note_cold_cache``, no numpy), before every command
     assert loaded == ["gearcontact.cli.design", "gearcontact.cli.outdir",
                       "gearcontact.cli.warm_up"], loaded
