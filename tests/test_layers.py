@@ -16,7 +16,7 @@ import gearcontact
 
 ROOT = Path(__file__).resolve().parents[1]
 #: Modules below every layer that any layer may use (no gearcontact imports of their own).
-UTILITIES = {"threads", "figure_files", "errors", "deprecation"}
+UTILITIES = {"threads", "figure_files", "errors", "deprecation", "lazy_names"}
 
 
 def _config() -> dict:

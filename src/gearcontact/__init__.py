@@ -5,47 +5,40 @@ Amaranth, matplotlib) load on first use of the name that needs them. See
 ``docs/architecture.md`` for the data flow.
 """
 
-from importlib import import_module
+from .lazy_names import lazy_names
 
 __version__ = "0.1.0"
 
-#: public name -> module that defines it (imported lazily)
+#: module -> public names it defines (imported lazily: ``import gearcontact`` stays free
+#: of numpy, so the console script reaches its Ctrl-C handler within milliseconds)
 _LAZY = {
-    # materials and errors (lazy too: ``import gearcontact`` stays free of numpy, so the
-    # console script reaches its Ctrl-C handler within milliseconds)
-    "Material": "materials", "STEEL": "materials", "effective_modulus_mpa": "materials",
-    "reduced_modulus_mpa": "materials", "InputRangeError": "validation",
+    # materials and errors
+    "materials": ("Material", "STEEL", "effective_modulus_mpa", "reduced_modulus_mpa"),
+    "validation": ("InputRangeError",),
     # geometry
-    "GearPair": "geometry.pair", "load_pair": "geometry.pair",
-    "design_blank": "geometry.blank", "build_flanks": "geometry.flank",
-    "AssemblyErrors": "geometry.kinematics", "MeshKinematics": "geometry.kinematics",
+    "geometry.pair": ("GearPair", "load_pair"),
+    "geometry.blank": ("design_blank",),
+    "geometry.flank": ("build_flanks",),
+    "geometry.kinematics": ("AssemblyErrors", "MeshKinematics"),
     # TCA
-    "analyze_pair": "tca.analysis",
+    "tca.analysis": ("analyze_pair",),
     # loaded contact
-    "solve_lcp": "halfspace.lcp", "solve_patch": "halfspace.patch",
-    "TangentGrid": "halfspace.grid", "single_pair_ltca": "ltca.pair_ltca",
+    "halfspace.lcp": ("solve_lcp",),
+    "halfspace.patch": ("solve_patch",),
+    "halfspace.grid": ("TangentGrid",),
+    "ltca.pair_ltca": ("single_pair_ltca",),
     # analytic truths
-    "exact_elliptic_hertz": "analytic.hertz", "hamrock_brewe_hertz": "analytic.hertz",
-    "circular_hertz": "analytic.hertz",
+    "analytic.hertz": ("exact_elliptic_hertz", "hamrock_brewe_hertz", "circular_hertz"),
     # physics-direct preview
-    "get_engine": "preview.engine", "PreviewResult": "preview.engine",
-    "PreviewEngine": "preview.engine",
+    "preview.engine": ("get_engine", "PreviewResult", "PreviewEngine"),
     # the main job
-    "run_analysis": "report.analyze",
+    "report.analyze": ("run_analysis",),
 }
 
-__all__ = ["__version__", *_LAZY]
+__all__ = ["__version__", *(name for names in _LAZY.values() for name in names)]
 
-
-def __getattr__(name):
-    try:
-        module = _LAZY[name]
-    except KeyError:
-        raise AttributeError(f"module 'gearcontact' has no attribute {name!r}") from None
-    value = getattr(import_module(f".{module}", __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = lazy_names(__name__, _LAZY)
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(__all__))

@@ -12,12 +12,22 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
-
-__all__ = ["SVG_HASHSALT", "save_figure"]
+__all__ = ["SVG_HASHSALT", "save_figure", "pyplot"]
 
 #: Fixed salt of the SVG element ids (any constant makes them reproducible).
 SVG_HASHSALT = "gearcontact"
+
+
+def pyplot():
+    """``matplotlib.pyplot`` on the Agg backend, imported on the first call: a process
+    that draws nothing (a refused option, ``--no-figures``) never pays its 0.5 s of CPU
+    (docs/performance.md, "Test suite budget")."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
 
 
 def save_figure(fig, path, *, dpi: int = 120, tight: bool = False) -> Path:
@@ -40,6 +50,8 @@ def save_figure(fig, path, *, dpi: int = 120, tight: bool = False) -> Path:
     Path
         The PNG file; the SVG is the same path with suffix ``.svg``.
     """
+    import matplotlib   # here: a process that draws nothing never loads it
+
     path = Path(path)
     png, svg = path.with_suffix(".png"), path.with_suffix(".svg")
     extra = {"bbox_inches": "tight"} if tight else {}

@@ -208,11 +208,11 @@ def test_disk_full_is_said_as_such(tmp_path, capsys, monkeypatch):
 
 
 def test_ctrl_c_while_the_commands_load(monkeypatch, capsys):
-    """Ctrl-C during ``build_parser`` (it imports every command module: seconds on a
+    """Ctrl-C during ``build_parser`` (it imports the command's module: seconds on a
     cold start) printed a KeyboardInterrupt traceback; now one line and exit 130."""
     import gearcontact.cli as cli
 
-    def interrupted():
+    def interrupted(argv=None):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(cli, "build_parser", interrupted)
@@ -264,12 +264,12 @@ def test_ctrl_c_swallowed_by_an_import_still_interrupts(tmp_path, monkeypatch, c
 
     real_build = cli.build_parser
 
-    def swallowing_build():
+    def swallowing_build(argv=None):
         try:
             os.kill(os.getpid(), signal.SIGINT)         # the handler runs on return
         except KeyboardInterrupt:
             pass                                         # what the extension did
-        return real_build()
+        return real_build(argv)
 
     monkeypatch.setattr(cli, "build_parser", swallowing_build)
     out = tmp_path / "out"
@@ -289,3 +289,31 @@ def test_package_import_is_light():
     code = ("import sys, gearcontact.cli; assert 'numpy' not in sys.modules; "
             "import gearcontact; assert gearcontact.STEEL.youngs_modulus_mpa == 209000.0")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_a_command_imports_only_its_own_module():
+    """``gearcontact design`` imports its command module and none of the other 12 nor
+    matplotlib (docs/performance.md, "Test suite budget": importing every command module
+    and the plotting code cost 1.4 s of CPU in every process); ``gearcontact --help``
+    still lists every command."""
+    import subprocess
+    import sys
+
+    from gearcontact.cli import COMMANDS
+
+    code = """if True:
+        import contextlib, io, sys
+        from gearcontact.cli import main
+        with contextlib.redirect_stdout(io.StringIO()):
+            assert main(["design", "--pair", "s0003", "--json"]) == 0
+        print(*sorted(m for m in sys.modules if m.startswith("gearcontact.cli.")
+                      or m.split(".")[0] == "matplotlib"))"""
+    child = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           check=True, timeout=300)
+    loaded = child.stdout.split()
+    # warm_up: its first-run note (``note_cold_cache``, no numpy), before every command
+    assert loaded == ["gearcontact.cli.design", "gearcontact.cli.outdir",
+                      "gearcontact.cli.warm_up"], loaded
+    usage = subprocess.run([sys.executable, "-m", "gearcontact", "--help"], capture_output=True,
+                           text=True, check=True, timeout=300).stdout
+    assert all(f"    {name} " in usage or f"    {name}\n" in usage for name in COMMANDS), usage

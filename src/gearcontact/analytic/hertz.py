@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 from scipy.special import elliprd, elliprf
 
 from ..validation import InputRangeError, check_array_finite, check_positive
@@ -277,6 +276,8 @@ def _ratio_of_p(p: float) -> float:
 def _solve_p(lam: float) -> float:
     """``p = (b/a)^2`` of the exact solution for the curvature ratio ``lam > 1``
     (Brent's method on Johnson's eq. 4.40, relative tolerance 4 eps)."""
+    from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
+
     # k = a/b <= lam for lam >= 1 (k ~ lam^0.64), so p = 1/k^2 lies in [1/lam^2, 1).
     lo = 0.5 / (lam * lam)
     while _ratio_of_p(lo) <= lam:          # defensive widening; never taken in practice

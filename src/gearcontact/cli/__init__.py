@@ -51,9 +51,12 @@ __all__ = ["main", "console_main", "build_parser", "exit_code_of", "EXIT_OK", "E
            "EXIT_BAD_INPUT", "EXIT_FLAGGED", "EXIT_CHECK_FAILED", "EXIT_CODES",
            "EXIT_INTERRUPTED"]
 
-#: Subcommand modules, in the order ``gearcontact --help`` lists them.
-COMMANDS = ("analyze", "reproduce", "preview", "design", "tca", "rtl", "vectors", "ltca", "lte",
-            "bending", "twin", "sweep", "export", "warm_up")
+#: Subcommand -> its module ``gearcontact.cli.<module>``, in the order ``gearcontact
+#: --help`` lists them.
+COMMANDS = {"analyze": "analyze", "reproduce": "reproduce", "preview": "preview",
+            "design": "design", "tca": "tca", "rtl": "rtl", "vectors": "vectors",
+            "ltca": "ltca", "lte": "lte", "bending": "bending", "twin": "twin",
+            "sweep": "sweep", "export": "export", "warm-up": "warm_up"}
 
 EXIT_OK = 0
 #: A bug: "internal error, please report" (traceback with --debug).
@@ -93,7 +96,18 @@ def _leaf_parsers(parser: argparse.ArgumentParser):
             yield from _leaf_parsers(child)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The parser of the command line.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments it will parse. When the first one names a command, only that
+        command's module is imported and registered: the command modules import numpy,
+        scipy, numba and the plotting code, about 2 s of CPU for all of them against a
+        fraction for one. Otherwise (none given, ``--help``, ``--version``, a misspelt
+        command) every command is registered, so that help and errors list them all.
+    """
     from .. import __version__
 
     parser = argparse.ArgumentParser(
@@ -105,8 +119,9 @@ def build_parser() -> argparse.ArgumentParser:
                "its own check (LCP not converged, RTL != golden)")
     parser.add_argument("--version", action="version", version=f"gearcontact {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    for name in COMMANDS:
-        importlib.import_module(f"{__name__}.{name}").register(sub)
+    chosen = [argv[0]] if argv and argv[0] in COMMANDS else COMMANDS
+    for name in chosen:
+        importlib.import_module(f"{__name__}.{COMMANDS[name]}").register(sub)
     for leaf in _leaf_parsers(parser):
         leaf.add_argument("--debug", action="store_true",
                           help="print the traceback of an internal error")
@@ -193,9 +208,9 @@ def main(argv: list[str] | None = None) -> int:
 
 def _main(argv: list[str], latch: _SigintLatch) -> int:
     try:
-        # everything heavy (numpy, the command modules: seconds when cold) is imported
+        # everything heavy (numpy, the command's module: seconds when cold) is imported
         # here, inside the Ctrl-C handler; ``import gearcontact.cli`` itself is light
-        parser = build_parser()
+        parser = build_parser(argv)
         args = parser.parse_args(argv)
         latch.check()
     except BaseException as exc:

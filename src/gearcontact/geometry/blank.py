@@ -41,7 +41,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..validation import InputRangeError, check_positive, check_range
 
@@ -364,6 +363,8 @@ def _root(f, lo: float, hi: float) -> float | None:
     """The root of ``f`` in the bracket ``[lo, hi]`` (brentq), or None when ``f`` is
     undefined (NaN) somewhere brentq evaluates it (a division by zero on the way there
     is that case, not a warning)."""
+    from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
+
     try:
         with np.errstate(divide="ignore", invalid="ignore"):
             return brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)

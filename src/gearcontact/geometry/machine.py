@@ -74,7 +74,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..validation import InputRangeError, check_finite, check_positive, check_range
 
@@ -318,6 +317,8 @@ def blade_through_point(blade: BladeSettings, *, rho_mm: float, z_mm: float) -> 
     ``rho_mm`` and depth ``z_mm`` (> 0) behind the tip plane: the reference arc length
     solves ``z(l_ref) = z_mm`` (monotone while ``|alpha| < 90 deg``), then the point
     radius puts ``rho(l_ref) = rho_mm``."""
+    from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
+
     def depth(l_ref):
         placed = dataclasses.replace(blade, profile_reference_mm=l_ref)
         return float(blade_profile(placed, l_ref)[1]) - z_mm
@@ -396,6 +397,8 @@ def edge_round(blade: BladeSettings) -> EdgeRound:
     a0 = math.radians(blade.blade_angle_deg)
     l_top = r_e * (1.0 - math.sin(a0)) / math.cos(a0)
     if blade.profile_radius_mm != 0.0 or blade.higher_order:
+        from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
+
         def gap(l_mm):
             _, z, alpha, _ = blade_profile(blade, l_mm)
             return float(z) + r_e * math.sin(float(alpha)) - r_e

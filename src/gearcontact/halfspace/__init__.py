@@ -8,15 +8,7 @@ Fields on a :class:`TangentGrid` are ``(ny, nx)`` arrays ``h[j, i]`` with x alon
 """
 
 from ..deprecation import moved_names
-from .compliance import BlockCompliance
-from .ellipse import CoarseGridWarning, ContactEllipse, fit_contact_ellipse
-from .grid import TangentGrid
-from .influence import (FftInfluence, dense_influence_matrix, fft_influence,
-                        love_rectangle_displacement)
-from .lcp import SOLVERS, LcpConvergenceError, solve_lcp
-from .patch import (ContactAtEdgeWarning, PatchContact, patch_statistics, plot_patch,
-                    solve_patch)
-from .result import ContactResult, SolveStatus
+from ..lazy_names import lazy_names
 
 __all__ = ["TangentGrid", "love_rectangle_displacement", "dense_influence_matrix",
            "FftInfluence", "fft_influence", "ContactResult", "LcpConvergenceError",
@@ -24,5 +16,17 @@ __all__ = ["TangentGrid", "love_rectangle_displacement", "dense_influence_matrix
            "solve_patch", "patch_statistics", "plot_patch", "ContactEllipse",
            "CoarseGridWarning", "fit_contact_ellipse", "BlockCompliance", "SolveStatus"]
 
-#: Deprecated for one release: every solver returns :class:`ContactResult` (issue 24).
-__getattr__ = moved_names(__name__, {"LcpResult": "gearcontact.halfspace.result:ContactResult"})
+#: Each public name imports its module on first use (``import gearcontact.halfspace.grid``
+#: stays free of the solvers' numba); deprecated for one release: every solver returns
+#: :class:`ContactResult` (issue 24).
+__getattr__ = lazy_names(__name__, {
+    "compliance": ("BlockCompliance",),
+    "ellipse": ("CoarseGridWarning", "ContactEllipse", "fit_contact_ellipse"),
+    "grid": ("TangentGrid",),
+    "influence": ("FftInfluence", "dense_influence_matrix", "fft_influence",
+                  "love_rectangle_displacement"),
+    "lcp": ("SOLVERS", "LcpConvergenceError", "solve_lcp"),
+    "patch": ("ContactAtEdgeWarning", "PatchContact", "patch_statistics", "plot_patch",
+              "solve_patch"),
+    "result": ("ContactResult", "SolveStatus"),
+}, fallback=moved_names(__name__, {"LcpResult": "gearcontact.halfspace.result:ContactResult"}))

@@ -19,7 +19,6 @@ import numpy as np
 from ..preview.fit.reference import fit_curvatures
 from .curvature import contact_ellipse, relative_curvature
 from .phase_table import encode_binary, write_json
-from .plots import plot_contact_pattern, plot_te0
 from .stencil import write_stencil_csv
 
 __all__ = ["write_tca_outputs", "write_line_contact_outputs", "write_csv", "without_timings", "TIMING_KEYS"]
@@ -136,7 +135,9 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
     }   # no timings: identical runs give identical files (res.timings_s has them)
     (out / "tca.json").write_text(json.dumps(summary, indent=2))
     if figures:
-        import matplotlib.pyplot as plt
+        # matplotlib only here (0.5 s of CPU per process): .plots chooses Agg first
+        from .plots import plot_contact_pattern, plot_te0
+        import matplotlib.pyplot as plt  # noqa: I001 (after .plots: Agg chosen there)
 
         from ..geometry.plots import plot_flanks_in_mesh
 

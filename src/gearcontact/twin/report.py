@@ -13,14 +13,11 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
-import numpy as np  # noqa: E402
-
-from ..tca.export import write_csv  # noqa: E402
-from .mesh import CONTACT_MODES  # noqa: E402
+from ..figure_files import pyplot
+from ..tca.export import write_csv
+from .mesh import CONTACT_MODES
 
 __all__ = ["write_twin_outputs", "write_sweep_outputs", "write_mesh_csv", "plot_time",
            "plot_spectrum", "plot_sweep", "CSV_COLUMNS", "MESH_COLUMNS"]
@@ -67,7 +64,7 @@ def _save(fig, axes, path) -> Path:
     fig.tight_layout()
     path = Path(path)
     fig.savefig(path, dpi=110)
-    plt.close(fig)
+    pyplot().close(fig)
     return path
 
 
@@ -76,7 +73,7 @@ def plot_time(result, path, *, title: str = "") -> Path:
     p_max (MPa)."""
     c, s = result.columns, result.summary
     t = 1e3 * c["t_s"]
-    fig, axes = plt.subplots(4, 1, figsize=(8, 9), sharex=True)
+    fig, axes = pyplot().subplots(4, 1, figsize=(8, 9), sharex=True)
     axes[0].plot(t, c["mesh_load_n"], lw=0.8)
     axes[0].axhline(s["static_mesh_load_n"], color="k", ls=":", lw=1, label="static")
     axes[0].set_ylabel("mesh load (N)")
@@ -104,6 +101,7 @@ def plot_time(result, path, *, title: str = "") -> Path:
 def plot_spectrum(result, path, *, settle_fraction: float = 0.5, title: str = "") -> Path:
     """Amplitude spectrum of the dynamic TE after the transient (Hann window), mesh
     orders and natural frequencies marked."""
+    plt = pyplot()
     c, s = result.columns, result.summary
     sel = c["t_s"] >= settle_fraction * s["duration_s"]
     te = c["te_arcsec"][sel]
@@ -160,7 +158,7 @@ def write_twin_outputs(result, out, *, figures: bool = True, title: str = "",
 def plot_sweep(sweep, path, *, title: str = "") -> Path:
     """Dynamic factor and DTE p-p vs pinion speed for every model, the resonance speeds
     ``60 f_n / (k z1)`` (mesh orders k = 1..6, labelled) marked."""
-    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    fig, (ax, ax2) = pyplot().subplots(2, 1, figsize=(8, 7), sharex=True)
     v = sweep.speeds_rpm
     for i, (label, rows) in enumerate(sweep.rows.items()):
         ax.plot(v, rows["dynamic_factor"], f"C{i}.-", ms=3, label=f"{label} twin")
