@@ -33,15 +33,23 @@ spur 20x40 104 / 30.0; the typed machine settings of F.2 (examples/machine_setti
 / 27.1. The whole audit (``twin`` too, and the design-space variants) is the table in
 docs/performance.md, "Issue 28 acceptance audit".
 
-Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]``.
+Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]`` (``analyze`` on the
+examples), or ``python benchmarks/bench_analyze_examples.py --audit DIR`` (issue 28's
+acceptance audit: ``analyze`` and ``twin`` with default options on the 29 pairs of
+:func:`audit_pairs`, one run at a time; the variant TOMLs are written into ``DIR/pairs``,
+each run's files into ``DIR/runs``, one JSON line per run into ``DIR/audit.jsonl`` and the
+table into ``DIR/audit.md``; ``--only TEXT`` and ``--command`` select runs).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
+import re
 import resource
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -49,6 +57,90 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+
+#: Issue 28's F.3 variants and catalogue pairs: (name, label, example, fields changed) —
+#: the example's file with ``name`` and those ``section.key`` values replaced
+#: (docs/performance.md, "Issue 28 acceptance audit"; the c_ham values are those
+#: docs/geometry.md sec. 7.2 names; F.2's 25.4 mm face is beyond the 20/20 pair's limit).
+F3, F2 = "iso23509_f3.toml", "iso23509_f2_spiral_bevel.toml"
+VARIANTS = (
+    ("f2_20x20", "F.2 data, 20/20 miter", F2, {
+        "teeth.pinion": 20, "teeth.gear": 20, "design.gear_face_width_mm": 25.0,
+        "design.pinion_face_width_mm": 25.0}),
+    ("cat_15x45_E0_b35", "F.3 data, 15/45, E 0, β1 35°", F3, {
+        "teeth.pinion": 15, "teeth.gear": 45, "axes.offset_mm": 0.0,
+        "design.pinion_spiral_angle_deg": 35.0}),
+    ("cat_17x29_E12", "F.3 data, 17/29, E 12 mm", F3, {
+        "teeth.pinion": 17, "teeth.gear": 29, "axes.offset_mm": 12.0}),
+    ("cat_17x29_E12_cham038", "F.3 data, 17/29, E 12 mm, c_ham 0.038", F3, {
+        "teeth.pinion": 17, "teeth.gear": 29, "axes.offset_mm": 12.0,
+        "design.gear_addendum_factor": 0.038}),
+    ("cat_8x39_E25", "F.3 data, 8/39, E 25 mm", F3, {
+        "teeth.pinion": 8, "teeth.gear": 39, "axes.offset_mm": 25.0}),
+    ("f3_9x37", "F.3, 9/37", F3, {"teeth.pinion": 9, "teeth.gear": 37}),
+    ("f3_10x43", "F.3, 10/43", F3, {"teeth.pinion": 10, "teeth.gear": 43}),
+    ("f3_13x45", "F.3, 13/45", F3, {"teeth.gear": 45}),
+    *((f"f3_E{e:g}", f"F.3, E {e:g}" + (" mm" if e else ""), F3, {"axes.offset_mm": e})
+      for e in (0.0, 10.0, 20.0, 30.0)),
+    ("f3_left", "F.3, left hand", F3, {"design.pinion_hand": "left"}),
+    *((f"f3_b{b:g}", f"F.3, β1 {b:g}°", F3, {"design.pinion_spiral_angle_deg": b})
+      for b in (25.0, 30.0, 35.0, 40.0, 45.0)),
+    ("f3_b25_cham0164", "F.3, β1 25°, c_ham 0.164", F3, {
+        "design.pinion_spiral_angle_deg": 25.0, "design.gear_addendum_factor": 0.164}),
+)
+
+#: Design-space pairs of tests/design_space.py (``design_space_pair`` arguments, each its
+#: own crowning, so no synthesized ease-off): the rattling miter pairs, MITER_PAIR and two
+#: draws of the slow twin property test (tests/twin/test_design_space.py, derandomized).
+RATTLING = (
+    ("ds_miter", "MITER_PAIR (15/15, 23°, left)", (15, 1.0, 0.0, 23.0, 0.25, "drive", "left")),
+    ("dsp3_12x12_b27p7_dl", "property test's 12/12, 27.7°, left",
+     (12, 1.0, 0.0, 27.74456822895699, 0.1893217700722522, "drive", "left")),
+    ("dsp5_15x15_b25p9_dl", "property test's 15/15, 25.9°, left",
+     (15, 1.0, 0.0, 25.885061880332398, 0.198538005841265, "drive", "left")),
+)
+
+
+def _toml_value(v) -> str:
+    return f'"{v}"' if isinstance(v, str) else repr(v)
+
+
+def with_fields(text: str, fields: dict) -> str:
+    """``text`` (a pair TOML) with each ``section.key`` line's value replaced."""
+    for dotted, value in fields.items():
+        section, _, key = dotted.rpartition(".")
+        block = rf"^\[{section}\]\n(?:(?!^\[).*\n)*?" if section else r"\A(?:(?!^\[).*\n)*?"
+        pattern = re.compile(rf"({block}^{key}\s*=\s*)[^\n#]*", re.M)
+        text, n = pattern.subn(lambda m: m.group(1) + _toml_value(value), text)
+        if n != 1:
+            raise KeyError(f"{dotted} not found once in the pair file")
+    return text
+
+
+def audit_pairs(pairs_dir: Path) -> list[tuple[str, Path]]:
+    """The 29 pairs of the audit, ``(label, TOML file)``: the shipped examples as they
+    are, the variants written into ``pairs_dir`` (identical every time)."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from dataclasses import replace
+
+    from design_space import MITER_PAIR, design_space_pair
+    from gearcontact.geometry.pair import pair_to_toml
+
+    assert RATTLING[0][2] == MITER_PAIR
+    pairs_dir.mkdir(parents=True, exist_ok=True)
+    out = [(f"examples/{p.relative_to(ROOT / 'examples').with_suffix('')}", p)
+           for p in _examples()]
+    for name, label, example, fields in VARIANTS:
+        path = pairs_dir / f"{name}.toml"
+        text = with_fields((ROOT / "examples" / example).read_text(), {"name": name, **fields})
+        path.write_text(f"# {label}: examples/{example} with {fields}\n" + text)
+        out.append((label, path))
+    for name, label, point in RATTLING:
+        path = pairs_dir / f"{name}.toml"
+        path.write_text(f"# {label}: tests/design_space.py design_space_pair{point}\n"
+                        + pair_to_toml(replace(design_space_pair(*point), name=name)))
+        out.append((label, path))
+    return out
 
 
 def _examples() -> list[Path]:
@@ -71,13 +163,107 @@ def _timings(run_json: Path) -> dict:
     return flat
 
 
+def _command() -> list[str]:
+    # the console script, as a user runs it (python -m gearcontact where it is missing)
+    exe = shutil.which("gearcontact")
+    return [exe] if exe else [sys.executable, "-m", "gearcontact"]
+
+
+def _nan_cells(out: Path) -> dict:
+    """Files of a run holding a NaN (count of cells), CSV and JSON."""
+    found = {}
+    for f in sorted(out.glob("*.csv")) + sorted(out.glob("*.json")):
+        n = len(re.findall(r"(?<![A-Za-z])nan(?![A-Za-z])|NaN", f.read_text(errors="replace")))
+        if n:
+            found[f.name] = n
+    return found
+
+
+def run_command(command: str, pair: Path, out: Path) -> dict:
+    """``gearcontact COMMAND --pair PAIR --out OUT`` (default options) in its own process:
+    exit code, wall and child CPU time, load average, stdout, stderr, NaN cells."""
+    if out.exists():
+        shutil.rmtree(out)
+    load = os.getloadavg()[0]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run([*_command(), command, "--pair", str(pair), "--out", str(out)],
+                          capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    row = {"command": command, "pair_file": str(pair), "exit": proc.returncode,
+           "wall_s": wall, "cpu_s": cpu, "load_before": load, "load_after": os.getloadavg()[0],
+           "stdout": proc.stdout.strip().splitlines(),
+           "stderr": [ln for ln in proc.stderr.strip().splitlines() if ln.strip()],
+           "nan_cells": _nan_cells(out) if out.is_dir() else {}}
+    if command == "twin" and (out / "twin.json").is_file():
+        s = json.loads((out / "twin.json").read_text())
+        row["twin"] = {k: s.get(k) for k in ("dynamic_factor", "contact_loss", "dte_pp_arcsec",
+                                             "mean_mesh_torque_nm")}
+    if command == "analyze" and (out / "lte.json").is_file():
+        s = json.loads((out / "lte.json").read_text())
+        row["lte"] = {k: s.get(k) for k in ("te0_pp_arcsec", "te_lcp_pp_arcsec",
+                                            "te_pre_pp_arcsec")}
+    return row
+
+
+def headline(row: dict) -> str:
+    """One table cell: the key results and the stderr lines' count."""
+    warnings = [ln for ln in row["stderr"] if ": warning:" in ln]
+    parts = []
+    if row["exit"] != 0:
+        parts.append(f"`{row['stderr'][-1] if row['stderr'] else ''}`")
+    elif row["command"] == "twin" and "twin" in row:
+        t = row["twin"]
+        parts.append(f"DF {t['dynamic_factor']:.2f}, loss {100 * t['contact_loss']:.1f} %, "
+                     f"DTE {t['dte_pp_arcsec']:.1f}″, mean {t['mean_mesh_torque_nm']:.2f} N·m")
+    elif row["stdout"]:
+        line = next((ln for ln in reversed(row["stdout"]) if "TE0 p-p" in ln), row["stdout"][-1])
+        parts.append(re.sub(r"^[^:]*: ", "", line.split(" -> ")[0]).replace(" arcsec", " ″"))
+    if any("synthesized" in ln for ln in row["stdout"]):
+        parts.append("ease-off synthesized")
+    if row["nan_cells"]:
+        parts.append("NaN in " + ", ".join(f"{k} ({v})" for k, v in row["nan_cells"].items()))
+    parts.append(f"{len(warnings)} warning(s)")
+    return "; ".join(parts)
+
+
+def audit(out_dir: Path, *, only: str | None, commands: tuple[str, ...]) -> None:
+    """Issue 28's acceptance audit into ``out_dir`` (module docstring)."""
+    pairs = audit_pairs(out_dir / "pairs")
+    log = out_dir / "audit.jsonl"
+    for label, pair in pairs:
+        if only and only not in label:
+            continue
+        for command in commands:
+            slug = re.sub(r"[^A-Za-z0-9]+", "_", f"{pair.stem}_{command}")
+            row = {"pair": label, **run_command(command, pair, out_dir / "runs" / slug)}
+            with log.open("a") as f:
+                f.write(json.dumps(row) + "\n")
+            print(f"| {label} | {command} | {row['exit']} | {row['wall_s']:.0f} | "
+                  f"{row['cpu_s']:.1f} | {row['load_before']:.1f} | {headline(row)} |",
+                  flush=True)
+    rows = {}
+    for line in log.read_text().splitlines():     # the last run of each pair and command
+        r = json.loads(line)
+        rows[(r["pair"], r["command"])] = r
+    table = ["| pair | command | exit | wall s | CPU s | load | headline |",
+             "|---|---|---:|---:|---:|---:|---|"]
+    order = {label: i for i, (label, _) in enumerate(pairs)}
+    for (label, command), r in sorted(rows.items(), key=lambda kv: (order.get(kv[0][0], 99),
+                                                                   kv[0][1])):
+        table.append(f"| {label} | {command} | {r['exit']} | {r['wall_s']:.0f} | "
+                     f"{r['cpu_s']:.1f} | {r['load_before']:.1f} | {headline(r)} |")
+    (out_dir / "audit.md").write_text("\n".join(table) + "\n")
+
+
 def bench(pair: Path) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
-        proc = subprocess.run([sys.executable, "-m", "gearcontact", "analyze", "--pair",
-                               str(pair), "--out", tmp], capture_output=True, text=True,
-                              check=False)
+        proc = subprocess.run([*_command(), "analyze", "--pair", str(pair), "--out", tmp],
+                              capture_output=True, text=True, check=False)
         wall = time.perf_counter() - t0
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
@@ -90,7 +276,15 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pair", action="append", type=Path, help="pair file (default: every "
                     "example in examples/)")
+    ap.add_argument("--audit", type=Path, metavar="DIR", help="issue 28's acceptance audit "
+                    "into DIR (analyze and twin on the 29 pairs)")
+    ap.add_argument("--only", help="--audit: the pairs whose label holds this text")
+    ap.add_argument("--command", choices=("analyze", "twin"), action="append",
+                    help="--audit: this command only (default both)")
     args = ap.parse_args()
+    if args.audit:
+        audit(args.audit, only=args.only, commands=tuple(args.command or ("analyze", "twin")))
+        return
     pairs = args.pair or _examples()
     print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     rows = [bench(p) for p in pairs]
