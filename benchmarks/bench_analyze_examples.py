@@ -30,7 +30,15 @@ CPU and 24.5 min wall into the fresh worktree's empty cache; load average 10-14 
 cores, so wall is 5-7 times CPU), wall / CPU s, every example exit 0: hypoid 11x41 200 /
 20.3, F.2 163 / 20.9, F.3 143 / 21.5; cylindrical EV 23x67 338 / 51.7, FZG C 115 / 25.9,
 spur 20x40 104 / 30.0; the typed machine settings of F.2 (examples/machine_settings/) 145
-/ 27.1. The whole audit (``twin`` too, and the design-space variants) is the table in
+/ 27.1.
+
+The acceptance audit on the final tree (session 17, 332ef0b; ``--audit``; numba cache
+filled by ``gearcontact warm-up``, 243 s CPU, 8.1 min wall; load average 3.3-15.6 on the
+2 cores), analyze wall / CPU s, every example exit 0: hypoid 11x41 57 / 19.6, F.2 55 /
+18.2, F.3 106 / 21.5; cylindrical EV 23x67 115 / 41.4, FZG C 70 / 24.2, spur 20x40 125 /
+25.6; the typed machine settings of F.2 156 / 20.8. ``twin`` 6.1-15.5 s CPU on the
+examples. All 58 runs of the 29 pairs: 56 exit 0, 2 named refusals before work (F.3 at
+beta1 25 deg with c_ham 0.164: the blade point width); 1002 s CPU, 60 min wall. Table:
 docs/performance.md, "Issue 28 acceptance audit".
 
 Run: ``python benchmarks/bench_analyze_examples.py [--pair FILE ...]`` (``analyze`` on the
