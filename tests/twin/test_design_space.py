@@ -147,7 +147,7 @@ def test_twin_default_options_on_a_folding_pair():
 #: -11.54 deg), so the reverse flank's TCA raised ContactGap after the loaded side's
 #: table was built: exit 2 after the work. The reverse flank now takes the loaded side's
 #: law mirrored about the backlash, as for a reverse side in line contact, and says so.
-REVERSE_GAP_PAIR = (9, 1.0, 0.0, 55.0, 0.1933, "coast", "left")
+REVERSE_GAP_PAIR = (9, 1.0, 0.0, 55.0, 0.19328974711495756, "coast", "left")
 
 
 @pytest.mark.slow
