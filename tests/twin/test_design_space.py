@@ -141,6 +141,29 @@ def test_twin_default_options_on_a_folding_pair():
     _twin_accepted_pair(None, *FOLDING_PAIR)
 
 
+#: 9/9 spiral bevel, 55 deg, face 0.1933 R_m, designed for coast, left hand: found by the
+#: slow property test (session 17's audit). ``design`` checks the contact ratio of the
+#: design side; the drive flanks' unloaded mesh has a gap (no pair in contact at phi1 =
+#: -11.54 deg), so the reverse flank's TCA raised ContactGap after the loaded side's
+#: table was built: exit 2 after the work. The reverse flank now takes the loaded side's
+#: law mirrored about the backlash, as for a reverse side in line contact, and says so.
+REVERSE_GAP_PAIR = (9, 1.0, 0.0, 55.0, 0.19328974711495756, "coast", "left")
+
+
+@pytest.mark.slow
+def test_twin_runs_a_pair_whose_reverse_flanks_have_a_gap():
+    """Exit 0 and the module docstring's truths (measured: dynamic factor 2.52, contact
+    loss 7.0 %, mean mesh torque 64.67 N·m; about 30 s CPU); ``twin.json`` names the
+    gap of the drive flanks as the reason for the mirrored reverse law."""
+    with command_on_accepted_pair("twin", REVERSE_GAP_PAIR, options=("--no-figures",)) as (
+            pair, run, out):
+        assert run.returncode == 0, run.stderr
+        check_twin_outputs(out, pair)
+        s = json.loads((out / "twin.json").read_text())
+    assert s["reverse_flank"].startswith("loaded side's law mirrored about backlash_mm: "
+                                         "the drive flanks' unloaded mesh has a gap")
+
+
 # CHATTER_PAIR (tests/design_space.py): 7/60 teeth, offset 0.0436 r2, 25 deg, face
 # 0.32 R_m: found by the slow property test
 # (mean mesh torque 63.41 N·m at 3000 rpm, dynamic factor 4.18, contact loss 11.5 %;

@@ -256,10 +256,12 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     lever and the Hertzian law of the nearest surface contact scaled by the LCP's
     compliance where a flank boundary cuts the patch, :mod:`.mesh`, :mod:`.edge_law`). The
     reverse flank is the other side's own TCA (mirrored loaded law if that side is in
-    line contact). ``bending``: tooth bending of both members in series with the
+    line contact, or if its unloaded mesh has a gap: ``design`` checks the contact ratio
+    of the design side only; ``reverse_note`` says which). ``bending``: tooth bending of both members in series with the
     Hertzian law of both sides (:func:`~gearcontact.ltca.tooth_bending.pair_bending_compliance`). ``curvatures``:
     the preview's curvature source (:class:`TwinModel`). ``flanks``: ``build_flanks(pair)``
     if already built (a prepared pair's, :class:`~gearcontact.tca.synthesis.PreparedPair`)."""
+    from ..tca.edges import ContactGap
     from ..tca.line_contact import LineContact
     from .ltca_table import torque_table
     from .mesh import pair_mesh_table
@@ -286,6 +288,13 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     except LineContact as exc:     # conjugate flanks: no contact ellipse to load
         note = (f"loaded side's law mirrored about backlash_mm: the {other} flanks are in "
                 f"line contact ({str(exc).split(';')[0]}), outside the Hertzian preview")
+    except ContactGap as exc:
+        # design checks the contact ratio of the design side only: the other side's
+        # unloaded mesh may have a gap (issue 28 audit: 9/9, E 0, 55 deg, coast), which
+        # the reverse flank meets only after crossing the backlash
+        note = (f"loaded side's law mirrored about backlash_mm: the {other} flanks' "
+                f"unloaded mesh has a gap (contact ratio < 1: no tooth pair in contact at "
+                f"phi1 = {np.degrees(exc.phi1_rad):.4f} deg)")
     table = None
     if backend == "table":
         table = torque_table(tca, flanks, pair, mesh, t, side=side, source=table_source,
