@@ -191,7 +191,7 @@ def test_hardware_backends_found_through_the_entry_point():
             "print(type(e).__module__)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
-    assert out.strip() == "gearcontact.hw.driver"
+    assert out.strip() == "gearcontact.hw.soc_engine"
 
 
 @pytest.mark.parametrize("A, B, W, L, mode", [
