@@ -203,8 +203,6 @@ def chain_golden_batch(gap_codes, W_code, *, e_prime_code,
                            flags=hz.flags | (fit.flags.astype(np.int64) << FIT_FLAG_SHIFT))
 
 
-
-
 # ---------------------------------------------------------------------------------
 # the line chain: fit -> line core (near-line contact)
 # ---------------------------------------------------------------------------------

@@ -244,7 +244,6 @@ def _lifted(w_code: int, l_code: int) -> tuple[int, int, int]:
     return int(w_code) << s, int(l_code) << s, s
 
 
-
 def _check_stencil(gaps_mm) -> np.ndarray:
     try:
         g = check_array_finite("gaps_mm", gaps_mm)

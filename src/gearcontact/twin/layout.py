@@ -62,7 +62,6 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
                   "pinion_speed_rad_s", "gear_speed_rad_s")
 
 
-
 def preview_scratch(prm) -> int:
     """Length of the kernel's ``pv``: :data:`N_PREVIEW` outputs and the line law's two
     slice vectors (:mod:`.line_law`)."""

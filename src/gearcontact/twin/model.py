@@ -233,7 +233,6 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     return prm
 
 
-
 def _fit_args(a: dict, trace_rows: int) -> tuple:
     """The kernel's ``fit`` tuple: the golden stage C's ROM and constants, its scratch,
     a stencil trace of ``trace_rows`` rows (:func:`.kernel.run_steps`) and the line
@@ -241,7 +240,6 @@ def _fit_args(a: dict, trace_rows: int) -> tuple:
     return (a["fit_w"], a["fit_cst"], np.zeros((1, N_TAPS), np.int64),
             np.zeros((1, N_COEFFS), np.int64), np.zeros((trace_rows, N_TAPS), np.int64),
             a["line_cst"])
-
 
 
 def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
