@@ -32,8 +32,11 @@ import numpy as np
 
 from ..validation import InputRangeError, check_finite, check_positive, check_range
 
-__all__ = ["BladeSettings", "EdgeRound", "blade_point", "blade_profile", "blade_through_point",
-           "edge_round"]
+__all__ = ["BladeSegment", "BladeSettings", "EdgeRound", "MAX_RELIEF_DEG", "blade_point",
+           "blade_profile", "blade_segments", "blade_through_point", "edge_round"]
+
+#: Largest Toprem / Flankrem relief angle, degrees (blade grinders give a few degrees).
+MAX_RELIEF_DEG = 10.0
 
 @dataclass(frozen=True)
 class BladeSettings:
@@ -71,6 +74,10 @@ class BladeSettings:
     profile_reference_mm: float = 0.0
     profile_cubic_per_mm2: float = 0.0
     profile_quartic_per_mm3: float = 0.0
+    toprem_angle_deg: float = 0.0
+    toprem_depth_mm: float = 0.0
+    flankrem_angle_deg: float = 0.0
+    flankrem_depth_mm: float = 0.0
     where: str = field(default="blade", compare=False, repr=False)
 
     def __post_init__(self):
@@ -87,11 +94,22 @@ class BladeSettings:
         check_range(f"{w}.profile_reference_mm", self.profile_reference_mm, 0.0, 50.0)
         check_range(f"{w}.profile_cubic_per_mm2", self.profile_cubic_per_mm2, -1.0, 1.0)
         check_range(f"{w}.profile_quartic_per_mm3", self.profile_quartic_per_mm3, -1.0, 1.0)
+        for name in ("toprem", "flankrem"):
+            check_range(f"{w}.{name}_angle_deg", getattr(self, f"{name}_angle_deg"), 0.0,
+                        MAX_RELIEF_DEG)
+            check_range(f"{w}.{name}_depth_mm", getattr(self, f"{name}_depth_mm"), 0.0, 50.0)
+        if self.relieved:
+            _check_reliefs(self)
 
     @property
     def sigma(self) -> float:
         """+1 for an inside blade, -1 for an outside blade."""
         return 1.0 if self.kind == "inside" else -1.0
+
+    @property
+    def relieved(self) -> bool:
+        """True for a blade with a Toprem or a Flankrem (a kinked profile)."""
+        return self.toprem_angle_deg != 0.0 or self.flankrem_angle_deg != 0.0
 
     @property
     def higher_order(self) -> bool:
@@ -111,6 +129,8 @@ def blade_profile(blade: BladeSettings, l_mm):
     """
     l_mm = np.asarray(l_mm, dtype=float)
     a0, sig = math.radians(blade.blade_angle_deg), blade.sigma
+    if blade.relieved:
+        return _relieved_profile(blade, l_mm)
     if blade.higher_order:
         return _higher_order_profile(blade, l_mm)
     if blade.profile_radius_mm == 0.0:
@@ -169,7 +189,8 @@ def blade_through_point(blade: BladeSettings, *, rho_mm: float, z_mm: float) -> 
         placed = dataclasses.replace(blade, profile_reference_mm=l_ref)
         return float(blade_profile(placed, l_ref)[1]) - z_mm
 
-    l_ref = brentq(depth, 0.0, 3.0 * z_mm + 1.0, xtol=1e-14)
+    l_ref = (z_mm / math.cos(math.radians(blade.blade_angle_deg))
+             if _straight(blade) else brentq(depth, 0.0, 3.0 * z_mm + 1.0, xtol=1e-14))
     placed = dataclasses.replace(blade, profile_reference_mm=l_ref)
     rho = float(blade_profile(placed, l_ref)[0])
     return dataclasses.replace(placed, point_radius_mm=blade.point_radius_mm + rho_mm - rho)
@@ -236,6 +257,8 @@ def edge_round(blade: BladeSettings) -> EdgeRound:
         A zero edge radius (a sharp tip cuts no fillet: the flank runs to the root).
     """
     r_e = blade.edge_radius_mm
+    if blade.relieved and r_e > 0.0:    # the round is tangent to the tip segment
+        return edge_round(blade_segments(blade)[0].blade)
     if r_e <= 0.0:
         raise InputRangeError(f"{blade.where}.edge_radius_mm", r_e,
                               "> 0 for a root fillet (a sharp blade tip cuts no fillet surface:"
@@ -253,3 +276,147 @@ def edge_round(blade: BladeSettings) -> EdgeRound:
     rho, _, alpha, _ = (float(x) for x in blade_profile(blade, l_top))
     return EdgeRound(radius_mm=r_e, centre_radius_mm=rho + blade.sigma * r_e * math.cos(alpha),
                      top_length_mm=l_top, top_angle_rad=alpha, sigma=blade.sigma)
+
+
+def _straight(blade: BladeSettings) -> bool:
+    return blade.profile_radius_mm == 0.0 and not blade.higher_order and not blade.relieved
+
+
+def _arc_at_depth(blade: BladeSettings, z_mm: float) -> float:
+    """Arc length from the tip of the smooth ``blade`` at depth ``z_mm`` behind the tip
+    plane (``z`` grows with ``l`` while ``|alpha| < 90 deg``)."""
+    if _straight(blade):
+        return z_mm / math.cos(math.radians(blade.blade_angle_deg))
+    from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
+
+    return brentq(lambda l: float(blade_profile(blade, l)[1]) - z_mm, 0.0, 3.0 * z_mm + 1.0,
+                  xtol=1e-14)
+
+
+@dataclass(frozen=True)
+class BladeSegment:
+    """One smooth piece of a relieved blade's profile (docs/machine_settings.md sec. 1).
+
+    Attributes
+    ----------
+    name : str
+        ``"toprem"`` (from the tip to the Toprem kink), ``"main"`` or ``"flankrem"``
+        (from the Flankrem kink to the top).
+    blade : BladeSettings
+        The smooth blade whose profile the segment follows; its profile continued past
+        the segment's kinks is the blade that piece of the flank is generated with.
+    depth_mm : tuple of float
+        Depths behind the tip plane where the segment starts and ends (inf: the top).
+    arc_mm : float
+        Arc length from the relieved blade's tip where the segment starts, mm.
+    own_arc_mm : float
+        The same point's arc length on ``blade`` (from its own tip), mm.
+    """
+
+    name: str
+    blade: BladeSettings
+    depth_mm: tuple
+    arc_mm: float
+    own_arc_mm: float
+
+
+def _smooth(blade: BladeSettings, **changes) -> BladeSettings:
+    return dataclasses.replace(blade, toprem_angle_deg=0.0, toprem_depth_mm=0.0,
+                               flankrem_angle_deg=0.0, flankrem_depth_mm=0.0, **changes)
+
+
+def _relief_blade(main: BladeSettings, depth_mm: float, relief_deg: float, name: str):
+    """The straight blade of a relief segment: the main profile's tangent at
+    ``depth_mm`` turned by ``relief_deg`` away from the slot (into the cut tooth): the
+    profile angle drops by it on the tip side (Toprem) and grows on the top side
+    (Flankrem), module docstring of :func:`blade_segments`."""
+    rho, _, alpha, _ = (float(x) for x in blade_profile(main, _arc_at_depth(main, depth_mm)))
+    angle = math.degrees(alpha) + (-relief_deg if name == "toprem" else relief_deg)
+    if not 0.0 <= angle < 45.0:
+        key, a = f"{main.where}.{name}_angle_deg", math.degrees(alpha)
+        raise InputRangeError(key, relief_deg,
+                              f"[0, {a:.4f}] deg (the Toprem segment's profile angle "
+                              f"{a:.4f} - relief must stay >= 0)" if name == "toprem" else
+                              f"[0, {45.0 - a:.4f}) deg (the Flankrem segment's profile "
+                              f"angle {a:.4f} + relief must stay < 45)")
+    straight = BladeSettings(main.kind, angle, main.point_radius_mm, where=main.where)
+    return blade_through_point(straight, rho_mm=rho, z_mm=depth_mm)
+
+
+def blade_segments(blade: BladeSettings) -> tuple:
+    """The smooth :class:`BladeSegment` pieces of ``blade``, tip to top.
+
+    Toprem: from the tip plane to the depth ``z_T = toprem_depth_mm`` the profile is the
+    straight line through the main profile's point at ``z_T`` at the profile angle
+    ``alpha(z_T) - delta_T``; Flankrem: from ``z_F`` upwards, the straight line at
+    ``alpha(z_F) + delta_F``. Both turn the profile into the cut tooth (material
+    removed, growing as ``s sin(delta)`` with the arc ``s`` from the kink); the main
+    segment is the blade's own profile (its point radius that of the main profile
+    continued to the tip plane). The tip segment carries the edge radius (the round is
+    tangent to it), the others none. A blade without relief is one ``"main"`` segment.
+    """
+    got = blade.__dict__.get("_segments")
+    if got is None:
+        got = _segments(blade)
+        object.__setattr__(blade, "_segments", got)
+    return got
+
+
+def _segments(blade: BladeSettings) -> tuple:
+    main = _smooth(blade)
+    if not blade.relieved:
+        return (BladeSegment("main", main, (0.0, math.inf), 0.0, 0.0),)
+    segs, arc, start = [], 0.0, 0.0
+    top = math.inf
+    if blade.flankrem_angle_deg != 0.0:
+        top = blade.flankrem_depth_mm
+    if blade.toprem_angle_deg != 0.0:
+        z_t = blade.toprem_depth_mm
+        tip = dataclasses.replace(_relief_blade(main, z_t, blade.toprem_angle_deg, "toprem"),
+                                  edge_radius_mm=blade.edge_radius_mm)
+        segs.append(BladeSegment("toprem", tip, (0.0, z_t), 0.0, 0.0))
+        arc, start = _arc_at_depth(tip, z_t), z_t
+    own = _arc_at_depth(main, start) if start > 0.0 else 0.0
+    segs.append(BladeSegment("main", _smooth(blade, edge_radius_mm=0.0) if segs else main,
+                             (start, top), arc, own))
+    if top < math.inf:
+        up = _relief_blade(main, top, blade.flankrem_angle_deg, "flankrem")
+        segs.append(BladeSegment("flankrem", _smooth(up, edge_radius_mm=0.0), (top, math.inf),
+                                 arc + _arc_at_depth(main, top) - own, _arc_at_depth(up, top)))
+    return tuple(segs)
+
+
+def _relieved_profile(blade: BladeSettings, l_mm):
+    """:func:`blade_profile` of a relieved blade: each segment's smooth profile over its
+    arc (:func:`blade_segments`)."""
+    out = None
+    for seg in blade_segments(blade):
+        got = blade_profile(seg.blade, l_mm - seg.arc_mm + seg.own_arc_mm)
+        out = got if out is None else tuple(np.where(l_mm >= seg.arc_mm, g, o)
+                                            for g, o in zip(got, out))
+    return out
+
+
+def _check_reliefs(blade: BladeSettings) -> None:
+    """Cross-checks of the relief keys (their ranges are checked by the caller)."""
+    w = blade.where
+    for name in ("toprem", "flankrem"):
+        if getattr(blade, f"{name}_angle_deg") != 0.0 and getattr(blade, f"{name}_depth_mm") <= 0.0:
+            raise InputRangeError(f"{w}.{name}_depth_mm", getattr(blade, f"{name}_depth_mm"),
+                                  f"(0, 50] mm with {name}_angle_deg > 0 (the kink's depth "
+                                  "behind the blade tip plane)")
+    if (blade.toprem_angle_deg != 0.0 and blade.flankrem_angle_deg != 0.0
+            and not blade.flankrem_depth_mm > blade.toprem_depth_mm):
+        raise InputRangeError(f"{w}.flankrem_depth_mm", blade.flankrem_depth_mm,
+                              f"> toprem_depth_mm = {blade.toprem_depth_mm} mm (the Flankrem "
+                              "kink lies above the Toprem kink)")
+    segs = blade_segments(blade)
+    if blade.edge_radius_mm > 0.0:
+        tip = segs[0]
+        rnd = edge_round(tip.blade)
+        z_top = float(blade_profile(tip.blade, rnd.top_length_mm)[1])
+        if not z_top < tip.depth_mm[1]:
+            key = "toprem" if tip.name == "toprem" else "flankrem"
+            raise InputRangeError(f"{w}.{key}_depth_mm", getattr(blade, f"{key}_depth_mm"),
+                                  f"> {z_top:.4f} mm (the depth where the edge round of "
+                                  f"radius {blade.edge_radius_mm} mm meets the profile)")

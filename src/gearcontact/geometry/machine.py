@@ -315,9 +315,11 @@ HELICAL_KEYS = ("helical_motion_mm_per_rad", "helical_motion_mm_per_rad2")
 BLADE_KEYS = {"kind": True, "blade_angle_deg": True, "point_radius_mm": True,
               "edge_radius_mm": False, "profile_radius_mm": False,
               "profile_reference_mm": False, "profile_cubic_per_mm2": False,
-              "profile_quartic_per_mm3": False}
+              "profile_quartic_per_mm3": False, "toprem_angle_deg": False,
+              "toprem_depth_mm": False, "flankrem_angle_deg": False, "flankrem_depth_mm": False}
 #: Blade keys written only when non-zero (a circular blade's table stays as it was).
-_HIGHER_ORDER_KEYS = ("profile_cubic_per_mm2", "profile_quartic_per_mm3")
+_HIGHER_ORDER_KEYS = ("profile_cubic_per_mm2", "profile_quartic_per_mm3", "toprem_angle_deg",
+                      "toprem_depth_mm", "flankrem_angle_deg", "flankrem_depth_mm")
 
 
 def _series_from(table: dict, keys: tuple) -> tuple:

@@ -86,6 +86,9 @@ the sign table): with them all four flanks are cut from cutter and machine setti
     profile_reference_mm = 0.0          # where blade_angle_deg holds (curved blade)
     profile_cubic_per_mm2 = 0.0         # c_3, higher-order profile (default 0; also
                                         #   profile_quartic_per_mm3, c_4)
+    toprem_angle_deg = 0.0              # Toprem relief at the blade tip, [0, 10] (default 0)
+    toprem_depth_mm = 0.0               # its kink's depth behind the tip plane (also
+                                        #   flankrem_angle_deg / flankrem_depth_mm at the top)
 
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`
