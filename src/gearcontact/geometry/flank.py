@@ -45,13 +45,15 @@ from .easeoff import EaseOff, apply_easeoff, easeoff_limit_um, mean_normal_thick
 from .formate import SIDES
 from .formate import FormateFlank as _FormateFlank
 from .gear_generation import PairGeneration, pair_generation
-from .generated import gear_flank_of, generated_pinion_flank, mean_contact_guess
+from .generated import mean_contact_guess
+from .kinked import KinkedFlank, machine_flank
 from .kinematics import MeshKinematics
 from .machine import mirror_setup
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
 
-__all__ = ["MemberFlanks", "FlankSet", "build_flanks", "build_machine_flanks", "right_hand_twin",
+__all__ = ["MemberFlanks", "FlankSet", "build_flanks", "build_machine_flanks", "each_piece",
+           "right_hand_twin",
            "mirror_flank_set",
            "with_easeoff"]
 
@@ -222,12 +224,12 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     blank = pair.blank
     kin = pair.kinematics(with_errors=False)
     setups = {(s.member, s.side): s for s in pair.machine}
-    gear = {side: gear_flank_of(setups["gear", side], blank,
-                                gear_face_width_mm=pair.gear_face_width_mm, n_u=n_u, n_v=n_v)
+    gear = {side: machine_flank(setups["gear", side], blank,
+                                face_width_mm=pair.gear_face_width_mm, n_u=n_u, n_v=n_v)
             for side in SIDES}
-    pinion = {side: generated_pinion_flank(setups["pinion", side], blank,
-                                           pinion_face_width_mm=pair.pinion_face_width_mm,
-                                           n_u=n_u, n_v=n_v)[0] for side in SIDES}
+    pinion = {side: machine_flank(setups["pinion", side], blank,
+                                  face_width_mm=pair.pinion_face_width_mm, n_u=n_u, n_v=n_v)
+              for side in SIDES}
     u_m, v_m = float(pinion["drive"].cone.root_offset_mm), float(blank.pitch_point_mm[0])
 
     def contact(side):
@@ -237,8 +239,8 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
 
     first = contact(pair.design_side)
     turn = first["phi1_rad"] - pair.ratio * first["phi2_rad"]
-    pinion = {side: dataclasses.replace(f, psi_nodes=f.psi_nodes - turn)
-              for side, f in pinion.items()}
+    pinion = {side: each_piece(lambda g: dataclasses.replace(g, psi_nodes=g.psi_nodes - turn),
+                               f) for side, f in pinion.items()}
     mean = {}
     for side in SIDES:
         got = contact(side)
@@ -262,9 +264,17 @@ def right_hand_twin(pair):
                                machine=tuple(mirror_setup(s) for s in pair.machine))
 
 
+def each_piece(fn, flank):
+    """``fn(flank)``, or a :class:`~.kinked.KinkedFlank` with ``fn`` applied to each piece."""
+    return flank.map_pieces(fn) if isinstance(flank, KinkedFlank) else fn(flank)
+
+
 def _mirror_gear(flank):
     """A reflected gear flank: the blade cone of a formate flank in its own reflected
-    cutter frame, or a generated :class:`~.sheet.GearSheet` with ``psi -> -psi``."""
+    cutter frame, or a generated :class:`~.sheet.GearSheet` with ``psi -> -psi`` (each
+    piece of a :class:`~.kinked.KinkedFlank`)."""
+    if isinstance(flank, KinkedFlank):
+        return flank.map_pieces(_mirror_gear)
     if isinstance(flank, _FormateFlank):
         return mirror_gear_flank(flank, mirror_placement(flank.blade.placement))
     return dataclasses.replace(flank, psi_nodes=-flank.psi_nodes,
@@ -286,8 +296,10 @@ def mirror_flank_set(flanks: FlankSet, kinematics: MeshKinematics) -> FlankSet:
         flanks, blank=dataclasses.replace(flanks.blank, pitch_point_mm=(P[0], -P[1], P[2])),
         kinematics=kinematics, cutter=placement,
         gear=MemberFlanks(**{s: _mirror_gear(flanks.gear.side(s)) for s in SIDES}),
-        pinion=MemberFlanks(**{s: mirror_sheet(flanks.pinion.side(s)) for s in SIDES}),
-        pinion_conjugate=MemberFlanks(**{s: mirror_sheet(flanks.pinion_conjugate.side(s))
+        pinion=MemberFlanks(**{s: each_piece(mirror_sheet, flanks.pinion.side(s))
+                               for s in SIDES}),
+        pinion_conjugate=MemberFlanks(**{s: each_piece(mirror_sheet,
+                                                       flanks.pinion_conjugate.side(s))
                                          for s in SIDES}),
         right_hand_twin=flanks)
 

@@ -32,6 +32,7 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -39,6 +40,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..validation import InputRangeError
+from .blade import blade_segments
 from .blank import BlankDesign
 from .conjugate import NODE_MARGIN_MM, UndercutError, nominal_pinion_box
 from .cutter import BladeCone, CutterPlacement
@@ -50,7 +52,7 @@ from .sheet import GearCone, GearSheet, RadialSheet
 __all__ = ["EnvelopeSolution", "EnvelopeSolver", "central_system", "damped_newton",
            "formate_gear_flank", "gear_flank_of", "generated_gear_box", "generated_gear_flank",
            "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
-           "solve_node_grid", "work_to_body"]
+           "solve_node_grid", "tip_setup", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
 _MAX_ITER = 40
@@ -282,7 +284,8 @@ class EnvelopeSolver:
 
 
 def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
-                           pinion_face_width_mm: float, n_u: int = 120, n_v: int = 150
+                           pinion_face_width_mm: float, n_u: int = 120, n_v: int = 150,
+                           box: FlankBoundary | None = None
                            ) -> tuple[RadialSheet, EnvelopeSolution]:
     """The pinion flank ``setup`` generates, on an n_u x n_v exact node grid.
 
@@ -297,6 +300,9 @@ def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
     nodes : EnvelopeSolution
         The exact node solutions, shape (n_u, n_v).
 
+    ``box`` replaces the active box traced with ``setup``'s blade (a piece of a
+    relieved blade's flank takes the box its tip segment traces, :mod:`.kinked`).
+
     Raises
     ------
     InputRangeError
@@ -306,9 +312,21 @@ def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
         vanishing) or a singular envelope inside the node box, or an active flank
         reaching the blade's edge round.
     """
-    solver, box, mean = generated_pinion_box(setup, blank,
-                                             pinion_face_width_mm=pinion_face_width_mm)
+    if box is None:
+        solver, box, mean = generated_pinion_box(setup, blank,
+                                                 pinion_face_width_mm=pinion_face_width_mm)
+    else:
+        _check_kind(setup, "outside" if setup.side == "drive" else "inside")
+        solver, mean = _solver_at_mean(setup, blank, nominal_pinion_box(
+            blank, pinion_face_width_mm)[0])
     return _sheet_of(solver, box, mean, setup, n_u, n_v, RadialSheet)
+
+
+def _solver_at_mean(setup: MachineSetup, blank: BlankDesign, cone):
+    """The :class:`EnvelopeSolver` of ``setup`` on ``cone`` and its mean-node solution."""
+    solver = EnvelopeSolver(setup, blank, cone)
+    u_m, v_m = _mean_uv(setup, blank, cone)
+    return solver, solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
 
 
 def _sheet_of(solver, box, mean, setup, n_u, n_v, kind, node_box=None):
@@ -342,7 +360,8 @@ def _mean_uv(setup: MachineSetup, blank: BlankDesign, cone) -> tuple[float, floa
 
 
 def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_width_mm: float,
-                         n_u: int = 120, n_v: int = 150, node_box=None
+                         n_u: int = 120, n_v: int = 150, node_box=None,
+                         box: FlankBoundary | None = None
                          ) -> tuple[GearSheet, EnvelopeSolution]:
     """The gear flank ``setup`` generates (ratio of roll or helical motion), on an
     n_u x n_v exact node grid: a :class:`~.sheet.GearSheet` over the gear's pitch-cone
@@ -351,7 +370,7 @@ def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_w
     tip and over the gear face width; the nodes cover ``node_box`` (a
     :class:`~.formate.FlankBoundary` holding the box; default: the box with the node
     margin; a gear that generates a conjugate pinion needs more, a function of ``box``
-    and the solver: :mod:`.gear_generation`).
+    and the solver: :mod:`.gear_generation`); ``box`` as :func:`generated_pinion_flank`'s.
 
     Raises
     ------
@@ -360,7 +379,12 @@ def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_w
     UndercutError
         As :func:`generated_pinion_flank`.
     """
-    solver, box, mean = generated_gear_box(setup, blank, gear_face_width_mm=gear_face_width_mm)
+    if box is None:
+        solver, box, mean = generated_gear_box(setup, blank,
+                                               gear_face_width_mm=gear_face_width_mm)
+    else:
+        _check_kind(setup, "inside" if setup.side == "drive" else "outside")
+        solver, mean = _solver_at_mean(setup, blank, _gear_cone(blank))
     if callable(node_box):
         node_box = node_box(solver, box, mean)
     return _sheet_of(solver, box, mean, setup, n_u, n_v, GearSheet, node_box)
@@ -371,20 +395,33 @@ def generated_gear_box(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
     """The cheap first step of :func:`generated_gear_flank` (as
     :func:`generated_pinion_box`)."""
     _check_kind(setup, "inside" if setup.side == "drive" else "outside")
+    setup = tip_setup(setup)
+    cone = _gear_cone(blank)
+    half = 0.5 * gear_face_width_mm
+    nominal = FlankBoundary(u_root=0.0, u_tip=blank.dedendum_gear_mm + blank.addendum_gear_mm,
+                            v_toe=-half, v_heel=half)
+    solver, mean = _solver_at_mean(setup, blank, cone)
+    u_m, v_m = _mean_uv(setup, blank, cone)
+    return solver, _active_box(solver, nominal, u_m, v_m, mean, _edge_length_mm(setup)), mean
+
+
+def _gear_cone(blank: BlankDesign) -> GearCone:
     d2 = math.radians(blank.pitch_angle_gear_deg)
     p = blank.pitch_point_mm
-    cone = GearCone(apex_z_mm=blank.gear_apex_z_mm, sin_delta=math.sin(d2),
+    return GearCone(apex_z_mm=blank.gear_apex_z_mm, sin_delta=math.sin(d2),
                     cos_delta=math.cos(d2),
                     mean_cone_distance_mm=blank.mean_cone_distance_gear_mm,
                     dedendum_mm=blank.dedendum_gear_mm,
                     mean_azimuth_rad=math.atan2(p[1], p[0]))
-    half = 0.5 * gear_face_width_mm
-    nominal = FlankBoundary(u_root=0.0, u_tip=blank.dedendum_gear_mm + blank.addendum_gear_mm,
-                            v_toe=-half, v_heel=half)
-    solver = EnvelopeSolver(setup, blank, cone)
-    u_m, v_m = _mean_uv(setup, blank, cone)
-    mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
-    return solver, _active_box(solver, nominal, u_m, v_m, mean, _edge_length_mm(setup)), mean
+
+
+def tip_setup(setup: MachineSetup) -> MachineSetup:
+    """``setup`` with a relieved blade replaced by its tip segment's smooth blade
+    (:func:`~.blade.blade_segments`: it carries the edge round and generates the root of
+    the active flank, hence its box and fillet); ``setup`` itself otherwise."""
+    if not setup.blade.relieved:
+        return setup
+    return dataclasses.replace(setup, blade=blade_segments(setup.blade)[0].blade)
 
 
 def gear_flank_of(setup: MachineSetup, blank: BlankDesign, *, gear_face_width_mm: float,
@@ -419,10 +456,10 @@ def generated_pinion_box(setup: MachineSetup, blank: BlankDesign, *,
         No mean node, or an active profile under 10 % of the nominal one.
     """
     _check_kind(setup, "outside" if setup.side == "drive" else "inside")
+    setup = tip_setup(setup)
     cone, nominal = nominal_pinion_box(blank, pinion_face_width_mm)
-    solver = EnvelopeSolver(setup, blank, cone)
+    solver, mean = _solver_at_mean(setup, blank, cone)
     u_m, v_m = _mean_uv(setup, blank, cone)
-    mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
     return solver, _active_box(solver, nominal, u_m, v_m, mean, _edge_length_mm(setup)), mean
 
 

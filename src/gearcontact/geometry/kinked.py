@@ -1,0 +1,235 @@
+"""A flank cut by a relieved (Toprem / Flankrem) blade: smooth pieces meeting along kinks.
+
+A relieved blade is the union of the smooth blades of its segments
+(:func:`~.blade.blade_segments`), each continued past its kinks: locally at a kink the
+tool is the union of the two continued blades (the relief turns the profile into the
+cut tooth, a concave corner of the tool). The work a union of tools leaves is the
+intersection of what each leaves, so the flank is, point by point, the deeper (into
+the tooth) of the flanks the continued segment blades generate, and a kink of the blade
+maps to the line where two of these smooth flanks intersect: a curve of tangent-plane
+discontinuity on the flank (docs/machine_settings.md sec. 1, "Toprem and Flankrem").
+For a formate cut the flanks are the blade surfaces and the kink is the blade's
+circle at its depth; in generation the two pieces' generating points on the kink
+circle differ (their normals differ), so the kink line is not the trace of one blade
+circle.
+
+:class:`KinkedFlank` keeps each piece a :class:`~.surface.Surface` with its own
+closed-form (or C2 spline) derivatives and selects the piece by the kink lines
+``u = u_k(v)`` (``u`` root -> tip): curvature is one-sided at a kink, never across it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from .blade import blade_segments
+from .formate import FlankBoundary
+from .generated import (formate_gear_flank, gear_flank_of, generated_gear_box,
+                        generated_gear_flank, generated_pinion_box, generated_pinion_flank)
+from .sampling import SurfaceArrays, point_from_arrays
+from .surface import SurfacePoint
+
+__all__ = ["KINK_NODES", "KinkLine", "KinkedFlank", "kinked_flank", "machine_flank"]
+
+#: Lengthwise nodes on which each kink line is solved (interpolated between them by a
+#: cubic spline; tests/geometry/test_kinked.py measures the interpolation error).
+KINK_NODES = 41
+_BISECTIONS = 64
+
+
+@dataclass(frozen=True, eq=False)
+class KinkLine:
+    """The kink between pieces ``lower`` and ``lower + 1`` of a :class:`KinkedFlank`:
+    ``u = u_k(v)`` solved at ``v_nodes`` (``u_nodes``; -inf / +inf where the kink lies
+    below / above the flank's box)."""
+
+    name: str
+    lower: int
+    v_nodes: np.ndarray
+    u_nodes: np.ndarray
+
+    def u(self, v):
+        """``u_k(v)``, mm (cubic spline through the nodes; a kink leaving the box
+        between two nodes: linear towards the huge value standing for its side)."""
+        v = np.asarray(v, dtype=float)
+        fit = self.__dict__.get("_fit")
+        if fit is None:
+            finite = np.isfinite(self.u_nodes)
+            if finite.all():
+                fit = CubicSpline(self.v_nodes, self.u_nodes)
+            else:
+                big = np.where(finite, self.u_nodes, np.sign(self.u_nodes) * 1e300)
+                fit = lambda x: np.interp(x, self.v_nodes, big)  # noqa: E731
+            object.__setattr__(self, "_fit", fit)
+        return fit(v)
+
+
+@dataclass(frozen=True, eq=False)
+class KinkedFlank:
+    """A flank of smooth pieces (each a :class:`~.surface.Surface` over the same
+    ``(u, v)``, ordered root -> tip) separated by :class:`KinkLine` s.
+
+    Attributes
+    ----------
+    pieces : tuple
+        Piece surfaces; piece ``k`` is evaluated at ``(u, v_scales[k] v)`` (formate
+        pieces: the blade angle per unit ``v`` differs from cone to cone).
+    names : tuple of str
+        ``"toprem"``, ``"main"``, ``"flankrem"`` (:class:`~.blade.BladeSegment`).
+    kinks : tuple of KinkLine
+    v_scales : tuple of float
+    """
+
+    pieces: tuple
+    names: tuple
+    kinks: tuple
+    v_scales: tuple
+
+    @property
+    def main(self):
+        """The main piece (the blade's own profile)."""
+        return self.pieces[self.names.index("main")]
+
+    @property
+    def boundary(self):
+        return self.main.boundary
+
+    @property
+    def u_range(self) -> tuple[float, float]:
+        return self.main.u_range
+
+    @property
+    def v_range(self) -> tuple[float, float]:
+        return self.main.v_range
+
+    @property
+    def side(self) -> str:
+        return self.main.side
+
+    def __getattr__(self, name):
+        # the main piece's own attributes (cone, blade, dedendum_mm, ...) for the code
+        # that reads them; never its evaluation (point / evaluate are this class's)
+        if name.startswith("_") or name in ("pieces", "names", "kinks", "v_scales"):
+            raise AttributeError(name)
+        return getattr(self.main, name)
+
+    def piece_index(self, u, v) -> np.ndarray:
+        """Index of the piece that holds ``(u, v)`` (arrays): the number of kinks below."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        k = np.zeros(u.shape, dtype=int)
+        for kink in self.kinks:
+            k += u > kink.u(v)
+        return k
+
+    def kink_name(self, u0, u1, v) -> str | None:
+        """The kink crossed between ``(u0, v)`` and ``(u1, v)``, or None."""
+        a, b = (int(x) for x in self.piece_index([u0, u1], [v, v]))
+        if a == b:
+            return None
+        return self.kinks[min(a, b)].name
+
+    def map_pieces(self, fn) -> KinkedFlank:
+        """The flank with ``fn`` applied to every piece (a turn about the member axis, a
+        reflection): the kinks' ``(u, v)`` stay."""
+        return dataclasses.replace(self, pieces=tuple(fn(p) for p in self.pieces))
+
+    def evaluate(self, u, v, *, second: bool = True) -> SurfaceArrays:
+        """Vectorized evaluation, each point on its piece (one-sided at a kink)."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        k = self.piece_index(u, v)
+        names = ("r", "r_u", "r_v", "r_uu", "r_uv", "r_vv", "n")
+        out = {f: np.empty(u.shape + (3,)) for f in names}
+        for i, piece in enumerate(self.pieces):
+            m = k == i
+            if not m.any():
+                continue
+            s = self.v_scales[i]
+            got = piece.evaluate(u[m], s * v[m], second=second)
+            for f, scale in zip(names, (1.0, 1.0, s, 1.0, s, s * s, 1.0)):
+                out[f][m] = scale * getattr(got, f)
+        return SurfaceArrays(u=u, v=v, **out)
+
+    def point(self, u: float, v: float) -> SurfacePoint:
+        """:class:`~.surface.SurfacePoint` of the piece that holds ``(u, v)``."""
+        i = int(self.piece_index(u, v))
+        s = self.v_scales[i]
+        p = self.pieces[i].point(u, s * v)
+        if s == 1.0:
+            return p
+        return point_from_arrays(SurfaceArrays(u=u, v=v, r=p.r, r_u=p.r_u, r_v=s * p.r_v,
+                                               r_uu=p.r_uu, r_uv=s * p.r_uv, r_vv=s * s * p.r_vv,
+                                               n=p.n))
+
+
+def _depth_gap(lower, s_lower, upper, s_upper, u, v):
+    """``(r_lower - r_upper) . n_upper`` at (u, v): > 0 where the upper piece is the
+    deeper (the lower one lies towards the slot)."""
+    a = lower.evaluate(u, s_lower * v, second=False)
+    b = upper.evaluate(u, s_upper * v, second=False)
+    return np.einsum("...i,...i->...", a.r - b.r, b.n)
+
+
+def kinked_flank(pieces, names, *, v_scales=None, n_nodes: int = KINK_NODES) -> KinkedFlank:
+    """The :class:`KinkedFlank` of ``pieces`` (root -> tip, one box): each kink solved by
+    bisection of :func:`_depth_gap` over the box's ``u`` at ``n_nodes`` lengthwise nodes
+    (to rounding, 64 halvings). A kink with no sign change over the box lies outside it
+    (``u_k = -inf``: the upper piece is the deeper everywhere; ``+inf``: the lower)."""
+    v_scales = tuple(1.0 for _ in pieces) if v_scales is None else tuple(v_scales)
+    main = pieces[names.index("main")]
+    (u_lo, u_hi), (v_lo, v_hi) = main.u_range, main.v_range
+    vs = np.linspace(v_lo, v_hi, n_nodes)
+    kinks = []
+    for i in range(len(pieces) - 1):
+        args = (pieces[i], v_scales[i], pieces[i + 1], v_scales[i + 1])
+        lo, hi = np.full_like(vs, u_lo), np.full_like(vs, u_hi)
+        g_lo, g_hi = _depth_gap(*args, lo, vs), _depth_gap(*args, hi, vs)
+        for _ in range(_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            below = _depth_gap(*args, mid, vs) < 0.0
+            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+        u_k = np.where(g_lo >= 0.0, -np.inf, np.where(g_hi <= 0.0, np.inf, 0.5 * (lo + hi)))
+        kinks.append(KinkLine(name=names[i + 1] if names[i] == "main" else names[i],
+                              lower=i, v_nodes=vs, u_nodes=u_k))
+    return KinkedFlank(pieces=tuple(pieces), names=tuple(names), kinks=tuple(kinks),
+                       v_scales=v_scales)
+
+
+def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: int = 150):
+    """The flank ``setup`` cuts on its member: :func:`~.generated.gear_flank_of` /
+    :func:`~.generated.generated_pinion_flank` for a smooth blade (unchanged), a
+    :class:`KinkedFlank` for a relieved one (module docstring): one piece per blade
+    segment, all on the active box the tip segment traces (formate gear: the blade
+    cones, the kink at the relief depth)."""
+    segs = blade_segments(setup.blade)
+    gear = setup.member == "gear"
+    if len(segs) == 1:
+        if gear:
+            return gear_flank_of(setup, blank, gear_face_width_mm=face_width_mm, n_u=n_u, n_v=n_v)
+        return generated_pinion_flank(setup, blank, pinion_face_width_mm=face_width_mm,
+                                      n_u=n_u, n_v=n_v)[0]
+    setups = [dataclasses.replace(setup, blade=seg.blade) for seg in segs]
+    names = [seg.name for seg in segs]
+    if gear and setup.settings.formate:
+        cones = [formate_gear_flank(s, blank, gear_face_width_mm=face_width_mm) for s in setups]
+        main = cones[names.index("main")]
+        kv = [c.blade.placement.heel_sign / c.blade.radius_pitch_mm for c in cones]
+        k_main = kv[names.index("main")]
+        scales = [k_main / k for k in kv]     # the same blade angle at the same v
+        box = FlankBoundary(cones[0].boundary.u_root, main.boundary.u_tip, main.boundary.v_toe,
+                            main.boundary.v_heel)
+        pieces = [dataclasses.replace(c, boundary=dataclasses.replace(
+            box, v_toe=box.v_toe * s, v_heel=box.v_heel * s)) for c, s in zip(cones, scales)]
+        return kinked_flank(pieces, names, v_scales=scales)
+    if gear:
+        box = generated_gear_box(setup, blank, gear_face_width_mm=face_width_mm)[1]
+        pieces = [generated_gear_flank(s, blank, gear_face_width_mm=face_width_mm, n_u=n_u,
+                                       n_v=n_v, box=box)[0] for s in setups]
+    else:
+        box = generated_pinion_box(setup, blank, pinion_face_width_mm=face_width_mm)[1]
+        pieces = [generated_pinion_flank(s, blank, pinion_face_width_mm=face_width_mm, n_u=n_u,
+                                         n_v=n_v, box=box)[0] for s in setups]
+    return kinked_flank(pieces, names)
