@@ -267,6 +267,11 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
                 "reaches beyond the flank, so it is the osculating quadric of the gap there: "
                 "the C->D column carries the TCA's curvatures, without a curvature-fit "
                 "error.", ""]
+    if getattr(tca.stencil, "kinks", ()):
+        out += ["The hardware stencil at P0 straddles the blade-relief kink "
+                f"({', '.join(tca.stencil.kinks)}): the flank's curvature is not defined "
+                "across it and the gap there is no quadric, so the C->D column's fitted "
+                "curvatures are not the flank's (docs/machine_settings.md sec. 1).", ""]
     if getattr(result, "lte", None) is not None:
         out += _lte_section(result.lte, pub)
     if getattr(result, "multitooth", None) is not None:

@@ -87,6 +87,10 @@ class GapField:
         Columns ``e_s, e_t, n`` in the meshing frame.
     frame_name : str
         ``"principal"`` or ``"flank"``.
+    kinks : tuple of str
+        The blade-relief kinks (:class:`~gearcontact.geometry.kinked.KinkedFlank`) the
+        samples straddle, as ``"<member> <kink>"`` (e.g. ``"pinion toprem"``): across a
+        kink the gap's slope jumps and no quadric fits it (empty: none).
     """
 
     s_mm: np.ndarray
@@ -96,6 +100,7 @@ class GapField:
     origin_mm: np.ndarray
     frame: np.ndarray
     frame_name: str
+    kinks: tuple = ()
 
 
 def tangent_frame(pinion: Surface, gear: Surface, kin: MeshKinematics,
@@ -174,7 +179,7 @@ def _grid_sweep(shape: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
 
 def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
                     uv0: np.ndarray, *, clamp: bool, tol_mm: float, max_iter: int = 25,
-                    sweep=None):
+                    sweep=None, uv_out: np.ndarray | None = None):
     """Intersections of the lines ``q_i + lambda n`` with a posed surface (Newton,
     vectorized over the lines).
 
@@ -182,7 +187,8 @@ def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
     or, with ``clamp``, where the intersection lies outside the parameter box. The
     flanks of :mod:`gearcontact.geometry` run the same iteration compiled
     (:mod:`.gap_kernel`), started along ``sweep`` (:func:`_sweep`; default: every
-    line from ``uv0``); other surfaces run it vectorized in numpy from ``uv0``.
+    line from ``uv0``); other surfaces run it vectorized in numpy from ``uv0`` (and
+    leave the intersections' ``(u, v)`` in ``uv_out`` when given).
     """
     rot, c = pose
     lo = np.array([surface.u_range[0], surface.v_range[0]], float)
@@ -219,6 +225,8 @@ def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
         active[idx[done]] = False
     inside = converged & np.all((uv > lo) & (uv < hi), axis=1)
     lam = np.where(converged & (inside | ~clamp), lam, np.nan)
+    if uv_out is not None:
+        uv_out[...] = np.where(converged[:, None], uv, np.nan)
     return lam, inside
 
 
@@ -267,19 +275,34 @@ def gap_at(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
     n = axes[:, 2]
     st = np.column_stack([s.ravel(), t.ravel()])
     q = mp.point_mm + st @ axes[:, :2].T
-    lams, insides = [], []
+    lams, insides, kinks = [], [], []
     sweep = _sweep(st, s.shape)
-    for surf, pose, uv_p0 in ((pinion, kin.pinion_pose(mp.phi1_rad), (mp.u1, mp.v1)),
-                              (gear, kin.gear_pose(mp.phi2_rad), (mp.u2, mp.v2))):
+    for member, surf, pose, uv_p0 in (
+            ("pinion", pinion, kin.pinion_pose(mp.phi1_rad), (mp.u1, mp.v1)),
+            ("gear", gear, kin.gear_pose(mp.phi2_rad), (mp.u2, mp.v2))):
         # Newton starts from the first-order map (s, t) -> (u, v) of the tangent plane
         uv0 = tangent_parameters(surf, pose, axes, uv_p0, st)
+        uv = np.full_like(uv0, np.nan)
         lam, inside = _intersect_many(surf, pose, q, n, uv0, clamp=not allow_outside,
-                                      tol_mm=tol_mm, sweep=sweep)
+                                      tol_mm=tol_mm, sweep=sweep, uv_out=uv)
         lams.append(lam)
         insides.append(inside)
+        kinks += [f"{member} {name}" for name in _kinks_crossed(surf, uv)]
     gap = (lams[0] - lams[1]).reshape(s.shape)
     on_flank = (insides[0] & insides[1]).reshape(s.shape)
-    return GapField(s, t, gap, on_flank, np.array(mp.point_mm, float), axes, frame)
+    return GapField(s, t, gap, on_flank, np.array(mp.point_mm, float), axes, frame,
+                    tuple(kinks))
+
+
+def _kinks_crossed(surface: Surface, uv: np.ndarray) -> list[str]:
+    """Names of the kinks of a :class:`~gearcontact.geometry.kinked.KinkedFlank` with
+    intersections ``uv`` (n, 2) on both sides; none for a smooth flank."""
+    if not hasattr(surface, "kinks"):
+        return []
+    ok = np.all(np.isfinite(uv), axis=1)
+    k = surface.piece_index(uv[ok, 0], uv[ok, 1])
+    return [kink.name for kink in surface.kinks
+            if np.any(k <= kink.lower) and np.any(k > kink.lower)]
 
 
 def gap_field(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
@@ -357,7 +380,7 @@ def hardware_stencil(pinion: Surface, gear: Surface, kin: MeshKinematics,
     q = np.column_stack([s, t])
     quad = 0.5 * np.einsum("ni,ij,nj->n", q, tensor, q)
     return GapField(field.s_mm, field.t_mm, quad, field.on_flank, field.origin_mm,
-                    field.frame, field.frame_name)
+                    field.frame, field.frame_name, field.kinks)
 
 
 def write_stencil_csv(field: GapField, path) -> Path:
