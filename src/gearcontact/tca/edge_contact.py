@@ -50,8 +50,8 @@ from .mating import _cross, posed_point, solve_mating_point
 from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError
 
 __all__ = ["EDGE_NAMES", "FlankEdge", "FLANK_EDGES", "edge_parameters", "edge_span",
-           "pushes_forward", "edge_directions", "inward_slope", "solve_edge_contact",
-           "contact_state"]
+           "flank_edges", "is_kink", "pushes_forward", "edge_directions", "inward_slope",
+           "solve_edge_contact", "contact_state"]
 
 #: Edges of a flank's parameter box (``u`` root -> tip, ``v`` toe -> heel).
 EDGE_NAMES = ("toe", "heel", "root", "tip")
@@ -86,8 +86,35 @@ class FlankEdge:
 FLANK_EDGES = tuple(FlankEdge(m, e) for m in ("pinion", "gear") for e in EDGE_NAMES)
 
 
+def _kink(surface: Surface, name: str):
+    """The :class:`~gearcontact.geometry.kinked.KinkLine` ``name`` of ``surface``, or None."""
+    for kink in getattr(surface, "kinks", ()):
+        if kink.name == name:
+            return kink
+    return None
+
+
+def is_kink(surface: Surface, name: str) -> bool:
+    """True if ``name`` is a blade-relief kink line of ``surface`` (an interior ridge of
+    a :class:`~gearcontact.geometry.kinked.KinkedFlank`, docs/machine_settings.md
+    sec. 1), not a boundary of its box."""
+    return _kink(surface, name) is not None
+
+
+def flank_edges(pinion: Surface, gear: Surface) -> tuple[FlankEdge, ...]:
+    """The candidate edges of a flank pair: the eight box edges and every kink line of a
+    relieved flank (a convex ridge: a curve of the flank that can touch the other flank
+    first, like an edge, with material on both sides)."""
+    kinks = tuple(FlankEdge(member, kink.name) for member, surface in
+                  (("pinion", pinion), ("gear", gear)) for kink in getattr(surface, "kinks", ()))
+    return FLANK_EDGES + kinks
+
+
 def edge_span(surface: Surface, name: str) -> tuple[float, float]:
-    """Range of the free parameter ``s`` along the edge ``name``, mm."""
+    """Range of the free parameter ``s`` along the edge ``name``, mm (a kink line: its
+    ``v``)."""
+    if is_kink(surface, name):
+        return tuple(map(float, surface.v_range))
     if name in ("toe", "heel"):
         return tuple(map(float, surface.u_range))
     if name in ("root", "tip"):
@@ -96,8 +123,12 @@ def edge_span(surface: Surface, name: str) -> tuple[float, float]:
 
 
 def edge_parameters(surface: Surface, name: str, s: float) -> tuple[float, float]:
-    """Flank parameters ``(u, v)`` of the point ``s`` of the edge ``name``."""
+    """Flank parameters ``(u, v)`` of the point ``s`` of the edge ``name`` (a kink line:
+    ``(u_k(s), s)``, held in the box where the kink leaves it)."""
     (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    kink = _kink(surface, name)
+    if kink is not None:
+        return float(np.clip(kink.u(s), u0, u1)), float(s)
     return {"toe": (s, v0), "heel": (s, v1), "root": (u0, s), "tip": (u1, s)}[name]
 
 
@@ -203,9 +234,13 @@ def edge_directions(pinion: Surface, gear: Surface, kin: MeshKinematics,
     """
     member, _, name = mp.edge_contact.partition(" ")
     if member == "pinion":
-        sp, rot, n_other = pinion.point(mp.u1, mp.v1), kin.pinion_pose(mp.phi1_rad)[0], mp.normal
+        own, uv, rot, n_other = pinion, (mp.u1, mp.v1), kin.pinion_pose(mp.phi1_rad)[0], mp.normal
     else:
-        sp, rot, n_other = gear.point(mp.u2, mp.v2), kin.gear_pose(mp.phi2_rad)[0], -mp.normal
+        own, uv, rot, n_other = gear, (mp.u2, mp.v2), kin.gear_pose(mp.phi2_rad)[0], -mp.normal
+    if is_kink(own, name):
+        along, inward = _kink_directions(own, name, *uv)
+        return rot @ along, rot @ inward[1], np.asarray(n_other, float)
+    sp = own.point(*uv)
     along, across, sign = {"toe": (sp.r_u, sp.r_v, 1.0), "heel": (sp.r_u, sp.r_v, -1.0),
                            "root": (sp.r_v, sp.r_u, 1.0), "tip": (sp.r_v, sp.r_u, -1.0)}[name]
     t = along / np.linalg.norm(along)
@@ -223,8 +258,34 @@ def inward_slope(pinion: Surface, gear: Surface, kin: MeshKinematics,
     edge is the first point to touch; negative: the flank surface inside the edge
     touches first (the surface contact is back on the flanks).
     """
+    member, _, name = mp.edge_contact.partition(" ")
+    own = pinion if member == "pinion" else gear
+    if is_kink(own, name):   # a ridge: the first to touch while both sides recede
+        uv = (mp.u1, mp.v1) if member == "pinion" else (mp.u2, mp.v2)
+        rot = (kin.pinion_pose(mp.phi1_rad) if member == "pinion"
+               else kin.gear_pose(mp.phi2_rad))[0]
+        n_other = mp.normal if member == "pinion" else -np.asarray(mp.normal)
+        return float(min((rot @ w) @ n_other for w in _kink_directions(own, name, *uv)[1]))
     _, inward, n_other = edge_directions(pinion, gear, kin, mp)
     return float(inward @ n_other)
+
+
+def _kink_directions(surface: Surface, name: str, u: float, v: float):
+    """Body-frame unit tangent of a kink line at ``(u, v)`` (``v`` increasing) and the
+    unit steps into the pieces below and above it (each piece's own derivatives,
+    perpendicular to the kink)."""
+    kink = _kink(surface, name)
+    dv = 1e-4 * (surface.v_range[1] - surface.v_range[0])
+    slope = float((kink.u(v + dv) - kink.u(v - dv)) / (2.0 * dv))
+    inward = []
+    for k, sign in ((kink.lower, -1.0), (kink.lower + 1, 1.0)):
+        sc = surface.v_scales[k]
+        sp = surface.pieces[k].point(u, sc * v)
+        t = sp.r_u * slope + sc * sp.r_v
+        t = t / np.linalg.norm(t)
+        w = sign * (sp.r_u - (sp.r_u @ t) * t)
+        inward.append(w / np.linalg.norm(w))
+    return t, inward
 
 
 def _guess_y(edge: FlankEdge, guess: ContactGuess) -> np.ndarray:
@@ -349,7 +410,7 @@ EDGES_REFINED = 2
 
 
 def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad: float,
-                       *, guess: ContactGuess, forward: bool, edges=FLANK_EDGES,
+                       *, guess: ContactGuess, forward: bool, edges=None,
                        samples: int = EDGE_SAMPLES, tol_mm: float = 1e-10,
                        max_iter: int = 15, memo: dict | None = None) -> MatingPoint | None:
     """The first edge-to-surface contact of one tooth pair at the pinion phase ``phi1``.
@@ -368,7 +429,7 @@ def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1
         The pinion pushes the gear towards +phi2 (:func:`pushes_forward`): the contact
         is the edge point of largest ``phi2``; else of smallest.
     edges : sequence of FlankEdge
-        Candidate edges (default all eight).
+        Candidate edges (default :func:`flank_edges`: all eight and the kink lines).
     samples : int
         Even points per edge before the 1-D refinement (>= 3); the
         :data:`EDGES_REFINED` edges whose samples touch first are refined.
@@ -386,6 +447,8 @@ def solve_edge_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1
     """
     if int(samples) < 3:
         raise ValueError(f"samples = {samples!r} must be >= 3")
+    if edges is None:
+        edges = flank_edges(pinion, gear)
     sampled = []
     for edge in edges:
         solver = _EdgeSolver(pinion, gear, kin, phi1_rad, edge, tol_mm=tol_mm,

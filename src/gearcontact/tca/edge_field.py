@@ -53,7 +53,7 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from ..validation import InputRangeError, check_positive
-from .edge_contact import edge_directions, edge_parameters, edge_span
+from .edge_contact import edge_directions, edge_parameters, edge_span, is_kink
 from .stencil import GapField, gap_at
 from .types import MatingPoint
 
@@ -83,9 +83,11 @@ def edge_frame(pinion: Surface, gear: Surface, kin: MeshKinematics,
 def _rows_behind(pinion, gear, kin, mp, axes, half_length: float, h_t: float,
                  side: int) -> int:
     """Rows behind ``t = 0``: one, and those covering the flank where the edge
-    curves back."""
+    curves back; half the grid at a kink line (a ridge: the flank on both sides)."""
     member, _, name = mp.edge_contact.partition(" ")
     own = pinion if member == "pinion" else gear
+    if is_kink(own, name):
+        return side // 2
     rot, c = kin.pinion_pose(mp.phi1_rad) if member == "pinion" else kin.gear_pose(mp.phi2_rad)
     lo, hi = edge_span(own, name)
     pts = np.array([rot @ own.point(*edge_parameters(own, name, s)).r + c
