@@ -122,6 +122,8 @@ def write_tca_outputs(res, flanks, pair, out, *, side: str | None = None,
         "mean_point_contact": mp.edge_contact or "surface",
         "stencil": {"frame": res.stencil.frame_name,
                     "samples_off_flank": int((~res.stencil.on_flank).sum()),
+                    # blade-relief kinks the samples straddle (no quadric across them)
+                    "kinks": list(res.stencil.kinks),
                     "off_flank_fill": "osculating quadric (1/2) q^T B q at P0",
                     # what stage C (fp64 reference) reads from this stencil
                     "stage_c_A_minus": stage_c.A_minus_per_mm,
