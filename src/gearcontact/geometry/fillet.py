@@ -322,11 +322,14 @@ def pair_fillets(pair, flanks, *, conjugate_pinion: bool = False) -> tuple[dict,
     for member in ("pinion", "gear"):
         for side in SIDES:
             flank, setup = flanks.flank(member, side), setups.get((member, side))
+            # a relieved blade's edge round is tangent to its tip segment, whose piece
+            # holds the root of a kinked flank (geometry.kinked)
+            tip = getattr(flank, "pieces", (flank,))[0]
             try:
-                if isinstance(flank, FormateFlank):
+                if isinstance(tip, FormateFlank):
                     r_e, at = ((setup.blade.edge_radius_mm, setup.blade.where) if setup
                                else (pair.cutter.edge_radius_mm, "cutter"))
-                    got[member, side] = formate_fillet(flank, edge_radius_mm=r_e, where=at)
+                    got[member, side] = formate_fillet(tip, edge_radius_mm=r_e, where=at)
                 elif setup is not None:
                     width = getattr(pair, f"{member}_face_width_mm")
                     got[member, side] = generated_fillet(setup, pair.blank,

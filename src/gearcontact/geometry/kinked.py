@@ -96,15 +96,18 @@ class KinkedFlank:
 
     @property
     def boundary(self):
-        return self.main.boundary
+        """The main piece's box in this flank's ``v`` (its own over its ``v_scale``)."""
+        b, s = self.main.boundary, self.v_scales[self.names.index("main")]
+        return b if s == 1.0 else dataclasses.replace(b, v_toe=b.v_toe / s,
+                                                      v_heel=b.v_heel / s)
 
     @property
     def u_range(self) -> tuple[float, float]:
-        return self.main.u_range
+        return (self.boundary.u_root, self.boundary.u_tip)
 
     @property
     def v_range(self) -> tuple[float, float]:
-        return self.main.v_range
+        return (self.boundary.v_toe, self.boundary.v_heel)
 
     @property
     def side(self) -> str:
@@ -179,9 +182,9 @@ def kinked_flank(pieces, names, *, v_scales=None, n_nodes: int = KINK_NODES) -> 
     (to rounding, 64 halvings). A kink with no sign change over the box lies outside it
     (``u_k = -inf``: the upper piece is the deeper everywhere; ``+inf``: the lower)."""
     v_scales = tuple(1.0 for _ in pieces) if v_scales is None else tuple(v_scales)
-    main = pieces[names.index("main")]
+    main, s_main = pieces[names.index("main")], v_scales[names.index("main")]
     (u_lo, u_hi), (v_lo, v_hi) = main.u_range, main.v_range
-    vs = np.linspace(v_lo, v_hi, n_nodes)
+    vs = np.linspace(v_lo, v_hi, n_nodes) / s_main
     kinks = []
     for i in range(len(pieces) - 1):
         args = (pieces[i], v_scales[i], pieces[i + 1], v_scales[i + 1])
@@ -216,11 +219,13 @@ def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: in
     if gear and setup.settings.formate:
         cones = [formate_gear_flank(s, blank, gear_face_width_mm=face_width_mm) for s in setups]
         main = cones[names.index("main")]
+        # v is the tip cone's (its fillet's, geometry.fillet); piece k is evaluated at
+        # v_scales[k] v: the same blade angle at the same v
         kv = [c.blade.placement.heel_sign / c.blade.radius_pitch_mm for c in cones]
-        k_main = kv[names.index("main")]
-        scales = [k_main / k for k in kv]     # the same blade angle at the same v
-        box = FlankBoundary(cones[0].boundary.u_root, main.boundary.u_tip, main.boundary.v_toe,
-                            main.boundary.v_heel)
+        scales = [kv[0] / k for k in kv]
+        s_main = scales[names.index("main")]
+        box = FlankBoundary(cones[0].boundary.u_root, main.boundary.u_tip,
+                            main.boundary.v_toe / s_main, main.boundary.v_heel / s_main)
         pieces = [dataclasses.replace(c, boundary=dataclasses.replace(
             box, v_toe=box.v_toe * s, v_heel=box.v_heel * s)) for c, s in zip(cones, scales)]
         return kinked_flank(pieces, names, v_scales=scales)
