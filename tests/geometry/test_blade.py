@@ -89,3 +89,22 @@ def test_toprem_angle_beyond_the_blade_angle_is_named():
     with pytest.raises(InputRangeError, match=r"toprem_angle_deg.*\[0, 5\.0000\]"):
         dataclasses.replace(_blade("inside"), blade_angle_deg=5.0, toprem_angle_deg=6.0,
                             toprem_depth_mm=2.0)
+
+
+def test_relief_keys_round_trip_through_the_pair_tables():
+    from gearcontact.geometry.machine import setup_from_tables, setup_to_tables
+
+    machine = {"radial_distance_mm": 90.0, "cradle_angle_deg": 60.0,
+               "machine_root_angle_deg": 20.0}
+    blade = {"kind": "outside", "blade_angle_deg": 20.0, "point_radius_mm": 100.0,
+             "edge_radius_mm": 0.4, "toprem_angle_deg": 2.0, "toprem_depth_mm": 2.0,
+             "flankrem_angle_deg": 1.5, "flankrem_depth_mm": 6.0}
+    setup = setup_from_tables("pinion", "drive", machine, blade)
+    assert setup.blade.relieved
+    back = setup_to_tables(setup)[1]
+    assert {k: back[k] for k in blade} == blade
+    plain = setup_to_tables(setup_from_tables("pinion", "drive", machine, {
+        k: v for k, v in blade.items() if "rem" not in k}))[1]
+    assert not any("rem" in k for k in plain)      # written only when non-zero
+    with pytest.raises(InputRangeError, match="blade.pinion.drive.toprem_depth_mm"):
+        setup_from_tables("pinion", "drive", machine, {**blade, "toprem_depth_mm": 0.0})
