@@ -182,3 +182,19 @@ def test_left_hand_pair_is_relieved_like_its_twin(pair):
             assert np.max(np.abs(off)) < (1e-6 if member == "gear" else 1e-5)
             ea, eb = a.evaluate(u_k - 0.3, v), b.evaluate(u_k - 0.3, v)
             assert np.all(np.einsum("ij,ij->i", eb.r - ea.r, ea.n) < -3e-3)
+
+
+def test_a_kink_beyond_the_flank_leaves_the_main_piece(pair):
+    # a Flankrem from 20 mm, above the gear's tip (u_tip = 7.2 mm): no kink on the flank,
+    # every point on the main piece (bit for bit), no kink edge for TCA
+    from gearcontact.tca.edge_contact import FLANK_EDGES, flank_edges
+
+    flank = machine_flank(_setup(pair, "gear", "coast", flankrem_angle_deg=2.0,
+                                 flankrem_depth_mm=20.0),
+                          pair.blank, face_width_mm=pair.gear_face_width_mm)
+    assert np.all(flank.kinks[0].u_nodes == np.inf)
+    u = np.linspace(*flank.u_range, 6)[:, None]
+    v = np.linspace(*flank.v_range, 7)[None, :]
+    assert np.all(flank.piece_index(u, v) == 0)
+    assert np.array_equal(flank.evaluate(u, v).r, flank.main.evaluate(u, v).r)
+    assert flank_edges(flank, flank) == FLANK_EDGES

@@ -85,3 +85,25 @@ def test_toprem_te0_at_the_kink_and_beyond():
     assert sten.kinks == ("pinion toprem",)
     assert hardware_stencil(fb.flank("pinion", side), fb.flank("gear", side),
                             base.kinematics(), mp, off_flank="continuation").kinks == ()
+
+
+def test_stencil_and_edges_see_the_kink_of_a_formate_gear():
+    # the formate gear's Toprem kink lies at u = 2 mm (its depth, tests/geometry/
+    # test_kinked.py): intersections on both sides are reported, on one side not; the
+    # kink is a candidate edge whose points lie on the kink line
+    from gearcontact.geometry.kinked import machine_flank
+    from gearcontact.tca.edge_contact import edge_parameters, edge_span, flank_edges, is_kink
+    from gearcontact.tca.stencil import _kinks_crossed
+
+    pair = load_pair(EXAMPLE)
+    setup = next(s for s in pair.machine if (s.member, s.side) == ("gear", "drive"))
+    setup = dataclasses.replace(setup, blade=dataclasses.replace(
+        setup.blade, toprem_angle_deg=2.0, toprem_depth_mm=2.0))
+    gear = machine_flank(setup, pair.blank, face_width_mm=pair.gear_face_width_mm)
+    v = 0.5 * sum(gear.v_range)
+    assert _kinks_crossed(gear, np.array([[1.9, v], [2.1, v], [np.nan, np.nan]])) == ["toprem"]
+    assert _kinks_crossed(gear, np.array([[2.1, v], [3.0, v]])) == []
+    labels = [e.label for e in flank_edges(gear, gear)]
+    assert labels[-2:] == ["pinion toprem", "gear toprem"] and is_kink(gear, "toprem")
+    assert edge_span(gear, "toprem") == gear.v_range
+    assert edge_parameters(gear, "toprem", v) == pytest.approx((2.0, v), abs=1e-12)

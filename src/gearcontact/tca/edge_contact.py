@@ -103,10 +103,11 @@ def is_kink(surface: Surface, name: str) -> bool:
 
 def flank_edges(pinion: Surface, gear: Surface) -> tuple[FlankEdge, ...]:
     """The candidate edges of a flank pair: the eight box edges and every kink line of a
-    relieved flank (a convex ridge: a curve of the flank that can touch the other flank
-    first, like an edge, with material on both sides)."""
+    relieved flank that crosses its box (a convex ridge: a curve of the flank that can
+    touch the other flank first, like an edge, with material on both sides)."""
     kinks = tuple(FlankEdge(member, kink.name) for member, surface in
-                  (("pinion", pinion), ("gear", gear)) for kink in getattr(surface, "kinks", ()))
+                  (("pinion", pinion), ("gear", gear)) for kink in getattr(surface, "kinks", ())
+                  if np.isfinite(kink.u_nodes).any())
     return FLANK_EDGES + kinks
 
 
