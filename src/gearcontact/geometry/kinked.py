@@ -16,6 +16,13 @@ circle.
 :class:`KinkedFlank` keeps each piece a :class:`~.surface.Surface` with its own
 closed-form (or C2 spline) derivatives and selects the piece by the kink lines
 ``u = u_k(v)`` (``u`` root -> tip): curvature is one-sided at a kink, never across it.
+The ridge itself is an edge for TCA (:mod:`gearcontact.tca.edge_contact`).
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 6.1
+(the envelope of a family of surfaces), ch. 20-21 (head-cutter blades).
+H. J. Stadtfeld, *Handbook of Bevel and Hypoid Gears*, 1993 (Toprem and Flankrem).
 """
 
 from __future__ import annotations
