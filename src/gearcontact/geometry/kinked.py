@@ -102,19 +102,24 @@ class KinkedFlank:
         return self.pieces[self.names.index("main")]
 
     @property
+    def _main_scale(self) -> float:
+        return self.v_scales[self.names.index("main")]
+
+    @property
     def boundary(self):
         """The main piece's box in this flank's ``v`` (its own over its ``v_scale``)."""
-        b, s = self.main.boundary, self.v_scales[self.names.index("main")]
+        b, s = self.main.boundary, self._main_scale
         return b if s == 1.0 else dataclasses.replace(b, v_toe=b.v_toe / s,
                                                       v_heel=b.v_heel / s)
 
     @property
     def u_range(self) -> tuple[float, float]:
-        return (self.boundary.u_root, self.boundary.u_tip)
+        return self.main.u_range       # u is every piece's own
 
     @property
     def v_range(self) -> tuple[float, float]:
-        return (self.boundary.v_toe, self.boundary.v_heel)
+        lo, hi = self.main.v_range
+        return (lo / self._main_scale, hi / self._main_scale)
 
     @property
     def side(self) -> str:
