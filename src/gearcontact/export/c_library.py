@@ -42,7 +42,8 @@ GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc
 #: fp64 sources.
 FP64_SOURCES = ("gc_gap_fp64.c", "gc_fit_fp64.c", "gc_hertz_fp64.c")
 #: Headers (the public one first; the others internal).
-HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h", "gc_hertz_hb.h")
+HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h", "gc_hertz_hb.h",
+           "gc_hertz_preview.h")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
 C_FILES = HEADERS + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
