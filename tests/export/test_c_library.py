@@ -334,6 +334,53 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
         (worst_c, worst_ab, worst_hz)
 
 
+
+def test_fp64_chain_does_the_same_work_for_every_stencil(built):
+    """gc_chain_fp64 runs stage D on every stencil (gc_hertz_preview.h: operands outside
+    the envelope replaced, the outputs masked by the flags), its terms from A-, det = A-
+    B- and A-^2 / det instead of A-, B-. On every chain vector and on stencils no
+    envelope admits (flat, NaN, 2^40 mm gaps, W and E' 0 or NaN): the flags are the
+    envelope's of the fit's A-, B- (gc_hertz_fp64 on them; NOT_ELLIPTIC where B- <= 0),
+    every output is +0.0 where a flag is set, errno stays 0 (libm's error path is never
+    taken), and where the stencil is accepted the outputs are within 1e-13 relative of
+    gc_hertz_fp64's on A-, B-: the two differ by the roundings of det against A- B- and
+    of A-^2 / det against A- / B- (a few ulp), which the terms' exponents (at most 1 in
+    magnitude) do not amplify (measured 1.1e-15, k; 6,688 accepted of 10,020)."""
+    lib, vec = built
+    so = _library(lib)
+    errno_so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"), use_errno=True)
+    errno_so.gc_chain_fp64.restype, errno_so.gc_chain_fp64.argtypes = \
+        so.gc_chain_fp64.restype, so.gc_chain_fp64.argtypes
+    ins = read_hex(vec / "chain_in.hex", "chain", "in")
+    gaps = np.ldexp(ins["wr_data"].astype(float), -STENCIL_GAP.frac)
+    loads, moduli = np.ldexp(ins["W"].astype(float), -8), ins["e_prime"].astype(float)
+    nan = float("nan")
+    cases = list(zip(gaps, loads, moduli)) + [
+        (np.zeros(49), 100.0, 2.3e5), (np.full(49, nan), 100.0, 2.3e5),
+        (np.full(49, 2.0 ** 40), 100.0, 2.3e5), (gaps[0], 0.0, 2.3e5),
+        (gaps[0], nan, 2.3e5), (gaps[0], 100.0, 0.0), (-gaps[0], 100.0, nan)]
+    names = [n for n, _ in _Fp64._fields_[:-1]]
+    worst, kinds = 0.0, {True: 0, False: 0}
+    ctypes.set_errno(0)
+    for g, w, e in cases:
+        c = errno_so.gc_chain_fp64((ctypes.c_double * 49)(*g), w, e, 0)
+        fit = c.fit
+        alone = so.gc_hertz_fp64(fit.A_minus_per_mm, fit.B_minus_per_mm, w, e)
+        want = alone.flags if fit.elliptic else 1       # GC_HERTZ_FLAG_NOT_ELLIPTIC
+        assert c.hertz.flags == want, (c.hertz.flags, want)
+        outs = [getattr(c.hertz, n) for n in names]
+        kinds[want == 0] += 1
+        if want:
+            assert all(x == 0.0 and math.copysign(1.0, x) == 1.0 for x in outs), outs
+            continue
+        for n, x in zip(names, outs):
+            ref = getattr(alone, n)
+            worst = max(worst, abs(x - ref) / abs(ref))
+    assert ctypes.get_errno() == 0
+    assert kinds[True] >= 5000 and kinds[False] >= 2000, kinds
+    assert worst <= 1e-13, worst
+
+
 class _Gap(ctypes.Structure):
     _fields_ = [("gap_mm", ctypes.c_double), ("idx", ctypes.c_int), ("valid", ctypes.c_int)]
 
