@@ -723,8 +723,10 @@ def test_fp64_fit_applies_every_weight_bit_for_bit(built):
 
 
 #: Harness of :func:`test_fp64_fit_same_bits_with_and_without_simd`: gc_fit_fp64 on
-#: xorshift stencils (gaps of either sign over six decades), every output as hexadecimal.
+#: xorshift stencils (gaps of either sign over six decades) and gc_chain_fp64 on them
+#: scaled down, every output as hexadecimal.
 _LANES_HARNESS = r"""
+#include <math.h>
 #include <stdio.h>
 #include <stdint.h>
 #include "gearcontact.h"
@@ -740,10 +742,17 @@ int main(void)
             x ^= x << 13; x ^= x >> 7; x ^= x << 17;
             g[i] = ((double)(x >> 11) / 9007199254740992.0 - 0.3) * (double)(1 << (n % 20));
         }
+        gc_chain_fp64_result c;
         r = gc_fit_fp64(g);
         for (i = 0; i < 6; ++i)
             printf("%a ", r.c[i]);
-        printf("%a %a %d\n", r.A_minus_per_mm, r.B_minus_per_mm, r.elliptic);
+        printf("%a %a %d ", r.A_minus_per_mm, r.B_minus_per_mm, r.elliptic);
+        /* the chain on a 2^-24 share of the stencil: some accepted, most refused */
+        for (i = 0; i < GC_FIT_TAPS; ++i)
+            g[i] = ldexp(g[i], -24);
+        c = gc_chain_fp64(g, 50.0 + n, 2.3e5, 0);
+        printf("%a %a %a %a %a %u\n", c.hertz.a_mm, c.hertz.b_mm, c.hertz.p_max_mpa,
+               c.hertz.approach_mm, c.hertz.alpha, c.hertz.flags);
     }
     return 0;
 }
@@ -753,10 +762,13 @@ int main(void)
 def test_fp64_fit_same_bits_with_and_without_simd(built, tmp_path):
     """The fit's lanes give the same bits as a GNU C vector (SSE2 on x86-64), as four
     doubles one by one (-DGC_SCALAR_LANES, the code other compilers get) and as one AVX
-    register (-mavx2, where the CPU has it): the same operations in the same order."""
+    register (-mavx2, where the CPU has it): the same operations in the same order. So
+    does the chain's stage D with its selections by SSE2 masks and by conditional
+    expressions (-DGC_PORTABLE_SELECT, other targets)."""
     lib, _ = built
     (tmp_path / "harness.c").write_text(_LANES_HARNESS)
-    flavours = {"vector": [], "scalar": ["-DGC_SCALAR_LANES"]}
+    flavours = {"vector": [], "scalar": ["-DGC_SCALAR_LANES"],
+                "portable": ["-DGC_SCALAR_LANES", "-DGC_PORTABLE_SELECT"]}
     cpuinfo = Path("/proc/cpuinfo")
     if cpuinfo.exists() and " avx2" in cpuinfo.read_text():
         flavours["avx2"] = ["-mavx2"]
