@@ -56,12 +56,15 @@ from pathlib import Path
 
 import numpy as np
 
+from gearcontact.contract.qformat import STENCIL_GAP
 from gearcontact.export.c_library import export_c_library
 from gearcontact.hw.vectors import vector_stimulus
 
 #: The operands of both drivers: ``n``, then the chain vectors' gap codes (49 per
-#: vector), W and E' codes as int32, read from the file ``path``, and the same in
-#: physical units (mm, N, MPa) for the fp64 functions.
+#: vector, STENCIL_GAP Q(32,21)), W and E' codes as int32, read from the file ``path``,
+#: and the same in physical units (mm, N, MPa) for the fp64 functions (the gaps scaled by
+#: 2^-STENCIL_GAP.frac; a stale 2^-16 made the fp64 stencils' curvatures 32 times those
+#: of the golden ones, and stage D refuse 68 % of them instead of 33 %).
 OPERANDS = r"""
 static long n;
 static int32_t *gaps, *w, *e;
@@ -86,13 +89,15 @@ static int read_operands(const char *path)
     fclose(fp);
     for (i = 0; i < n; ++i) {
         for (k = 0; k < 49; ++k)
-            gmm[49 * i + k] = gaps[49 * i + k] / 65536.0;
+            gmm[49 * i + k] = gaps[49 * i + k] / GAP_SCALE;
         wn[i] = w[i] / 256.0;
         em[i] = (double)e[i];
     }
     return 1;
 }
 """
+OPERANDS = (f"\n#define GAP_SCALE {float(1 << STENCIL_GAP.frac)!r}\n"  # STENCIL_GAP's 2^frac
+            + OPERANDS)
 
 #: the drivers' clock: headers, a monotonic ns clock, the sort order and the
 #: timer's own median cost (timer_floor), shared by DRIVER and STEP_DRIVER.

@@ -334,6 +334,53 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
         (worst_c, worst_ab, worst_hz)
 
 
+
+def test_fp64_chain_does_the_same_work_for_every_stencil(built):
+    """gc_chain_fp64 runs stage D on every stencil (gc_hertz_preview.h: operands outside
+    the envelope replaced, the outputs masked by the flags), its terms from A-, det = A-
+    B- and A-^2 / det instead of A-, B-. On every chain vector and on stencils no
+    envelope admits (flat, NaN, 2^40 mm gaps, W and E' 0 or NaN): the flags are the
+    envelope's of the fit's A-, B- (gc_hertz_fp64 on them; NOT_ELLIPTIC where B- <= 0),
+    every output is +0.0 where a flag is set, errno stays 0 (libm's error path is never
+    taken), and where the stencil is accepted the outputs are within 1e-13 relative of
+    gc_hertz_fp64's on A-, B-: the two differ by the roundings of det against A- B- and
+    of A-^2 / det against A- / B- (a few ulp), which the terms' exponents (at most 1 in
+    magnitude) do not amplify (measured 1.1e-15, k; 6,688 accepted of 10,020)."""
+    lib, vec = built
+    so = _library(lib)
+    errno_so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"), use_errno=True)
+    errno_so.gc_chain_fp64.restype, errno_so.gc_chain_fp64.argtypes = \
+        so.gc_chain_fp64.restype, so.gc_chain_fp64.argtypes
+    ins = read_hex(vec / "chain_in.hex", "chain", "in")
+    gaps = np.ldexp(ins["wr_data"].astype(float), -STENCIL_GAP.frac)
+    loads, moduli = np.ldexp(ins["W"].astype(float), -8), ins["e_prime"].astype(float)
+    nan = float("nan")
+    cases = list(zip(gaps, loads, moduli)) + [
+        (np.zeros(49), 100.0, 2.3e5), (np.full(49, nan), 100.0, 2.3e5),
+        (np.full(49, 2.0 ** 40), 100.0, 2.3e5), (gaps[0], 0.0, 2.3e5),
+        (gaps[0], nan, 2.3e5), (gaps[0], 100.0, 0.0), (-gaps[0], 100.0, nan)]
+    names = [n for n, _ in _Fp64._fields_[:-1]]
+    worst, kinds = 0.0, {True: 0, False: 0}
+    ctypes.set_errno(0)
+    for g, w, e in cases:
+        c = errno_so.gc_chain_fp64((ctypes.c_double * 49)(*g), w, e, 0)
+        fit = c.fit
+        alone = so.gc_hertz_fp64(fit.A_minus_per_mm, fit.B_minus_per_mm, w, e)
+        want = alone.flags if fit.elliptic else 1       # GC_HERTZ_FLAG_NOT_ELLIPTIC
+        assert c.hertz.flags == want, (c.hertz.flags, want)
+        outs = [getattr(c.hertz, n) for n in names]
+        kinds[want == 0] += 1
+        if want:
+            assert all(x == 0.0 and math.copysign(1.0, x) == 1.0 for x in outs), outs
+            continue
+        for n, x in zip(names, outs):
+            ref = getattr(alone, n)
+            worst = max(worst, abs(x - ref) / abs(ref))
+    assert ctypes.get_errno() == 0
+    assert kinds[True] >= 5000 and kinds[False] >= 2000, kinds
+    assert worst <= 1e-13, worst
+
+
 class _Gap(ctypes.Structure):
     _fields_ = [("gap_mm", ctypes.c_double), ("idx", ctypes.c_int), ("valid", ctypes.c_int)]
 
@@ -676,8 +723,10 @@ def test_fp64_fit_applies_every_weight_bit_for_bit(built):
 
 
 #: Harness of :func:`test_fp64_fit_same_bits_with_and_without_simd`: gc_fit_fp64 on
-#: xorshift stencils (gaps of either sign over six decades), every output as hexadecimal.
+#: xorshift stencils (gaps of either sign over six decades) and gc_chain_fp64 on them
+#: scaled down, every output as hexadecimal.
 _LANES_HARNESS = r"""
+#include <math.h>
 #include <stdio.h>
 #include <stdint.h>
 #include "gearcontact.h"
@@ -693,10 +742,17 @@ int main(void)
             x ^= x << 13; x ^= x >> 7; x ^= x << 17;
             g[i] = ((double)(x >> 11) / 9007199254740992.0 - 0.3) * (double)(1 << (n % 20));
         }
+        gc_chain_fp64_result c;
         r = gc_fit_fp64(g);
         for (i = 0; i < 6; ++i)
             printf("%a ", r.c[i]);
-        printf("%a %a %d\n", r.A_minus_per_mm, r.B_minus_per_mm, r.elliptic);
+        printf("%a %a %d ", r.A_minus_per_mm, r.B_minus_per_mm, r.elliptic);
+        /* the chain on a 2^-24 share of the stencil: some accepted, most refused */
+        for (i = 0; i < GC_FIT_TAPS; ++i)
+            g[i] = ldexp(g[i], -24);
+        c = gc_chain_fp64(g, 50.0 + n, 2.3e5, 0);
+        printf("%a %a %a %a %a %u\n", c.hertz.a_mm, c.hertz.b_mm, c.hertz.p_max_mpa,
+               c.hertz.approach_mm, c.hertz.alpha, c.hertz.flags);
     }
     return 0;
 }
@@ -706,10 +762,13 @@ int main(void)
 def test_fp64_fit_same_bits_with_and_without_simd(built, tmp_path):
     """The fit's lanes give the same bits as a GNU C vector (SSE2 on x86-64), as four
     doubles one by one (-DGC_SCALAR_LANES, the code other compilers get) and as one AVX
-    register (-mavx2, where the CPU has it): the same operations in the same order."""
+    register (-mavx2, where the CPU has it): the same operations in the same order. So
+    does the chain's stage D with its selections by SSE2 masks and by conditional
+    expressions (-DGC_PORTABLE_SELECT, other targets)."""
     lib, _ = built
     (tmp_path / "harness.c").write_text(_LANES_HARNESS)
-    flavours = {"vector": [], "scalar": ["-DGC_SCALAR_LANES"]}
+    flavours = {"vector": [], "scalar": ["-DGC_SCALAR_LANES"],
+                "portable": ["-DGC_SCALAR_LANES", "-DGC_PORTABLE_SELECT"]}
     cpuinfo = Path("/proc/cpuinfo")
     if cpuinfo.exists() and " avx2" in cpuinfo.read_text():
         flavours["avx2"] = ["-mavx2"]

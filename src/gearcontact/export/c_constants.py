@@ -366,11 +366,18 @@ def fit_lanes_fp64() -> dict:
     -------
     dict
         ``lanes`` (:data:`FIT_LANES`); ``groups``: per coefficient, per group, the
-        literals of its taps; ``tail``: per coefficient ``[(tap, literal), ...]``.
+        literals of its taps; ``tail``: per coefficient ``[(tap, literal), ...]``;
+        ``tree``: the lanes' sum of the groups' products as C, a pairwise tree (adjacent
+        groups first; ``@`` stands for the coefficient's row), ``depth`` its levels.
     """
     rows = [[float(w) for w in row] for row in baked_pinv().weights]
     whole = N_TAPS // FIT_LANES * FIT_LANES
-    return {"lanes": FIT_LANES,
+    terms, depth = [f"GC_MUL(FIT_M[@][{k}], x{k})" for k in range(whole // FIT_LANES)], 0
+    while len(terms) > 1:                          # pairwise, adjacent groups first
+        terms = [f"GC_ADD({a}, {b})" for a, b in zip(terms[::2], terms[1::2])] \
+            + terms[len(terms) // 2 * 2:]
+        depth += 1
+    return {"lanes": FIT_LANES, "tree": terms[0], "depth": depth,
             "groups": [[[w.hex() for w in row[k:k + FIT_LANES]]
                         for k in range(0, whole, FIT_LANES)] for row in rows],
             "tail": [[(i, row[i].hex()) for i in range(whole, N_TAPS)] for row in rows]}

@@ -5,7 +5,8 @@ package's own tables (:mod:`.c_constants`) and vector layouts (:mod:`.c_checker`
 one directory: the public header ``gearcontact.h``, the internal ``gc_tables.h`` /
 ``gc_tables.c`` (constants and ROM words), ``gc_arith.h`` (shift helpers),
 ``gc_cbrt.h`` (the fp64 cube root) and ``gc_hertz_hb.h`` (the Hamrock-Brewe terms), both
-shared inline with the FMUs' contact law, one
+shared inline with the FMUs' contact law, ``gc_hertz_preview.h`` (the preview's
+Hamrock-Brewe terms and envelope, the same work for every input), one
 source per stage and flavour, the
 checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 ``libgearcontact.a``, ``libgearcontact.so`` and ``gearcontact_check``). No file holds a
@@ -14,9 +15,10 @@ time stamp or a path: identical package versions write identical files.
 The golden sources use integer arithmetic only and constant loop counts; the fp64
 sources follow the fp64 reference formulas operation by operation, except the fit's dot
 products (four lanes of the pseudo-inverse's own words, the same bits with or without
-SIMD) and the preview's Hamrock-Brewe terms (the cube root, a seed polynomial and one
-Halley step, beside the logarithm and the exponential instead of after them), both
-within 1e-12 of the reference.
+SIMD, summed as a tree) and the preview's Hamrock-Brewe terms (the cube root, a seed
+polynomial and one Halley step, beside the logarithm and the exponential instead of
+after them; on clamped operands, masked by the flags), both within 1e-12 of the
+reference.
 How to build and use the library, and the determinism argument: docs/export.md.
 """
 
@@ -42,7 +44,8 @@ GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc
 #: fp64 sources.
 FP64_SOURCES = ("gc_gap_fp64.c", "gc_fit_fp64.c", "gc_hertz_fp64.c")
 #: Headers (the public one first; the others internal).
-HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h", "gc_hertz_hb.h")
+HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h", "gc_hertz_hb.h",
+           "gc_hertz_preview.h")
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
 C_FILES = HEADERS + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
