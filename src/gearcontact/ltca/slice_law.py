@@ -131,8 +131,10 @@ def loaded_line(h, o, n, length, we, b_max, e_prime, nb, wb):
     for q in range(1, n):
         h_min = min(h_min, h[o + q])
         h_max = max(h_max, h[o + q])
+    h_edge = math.inf       # the edge slices' least gap (none: nb = 0)
     for q in range(n, n + 2 * nb):
-        h_min = min(h_min, h[o + q])
+        h_edge = min(h_edge, h[o + q])
+    h_min = min(h_min, h_edge)
     lam_w = 4.0 * we / (math.pi * e_prime)
     # g(L_c) = ln(4 L_c / b) - 3/4 = 1.5 ln(L_c) + c0; far below 1 N a kink's loaded
     # length nears b (a point's regime): the log is kept >= 0.25 there
@@ -150,7 +152,7 @@ def loaded_line(h, o, n, length, we, b_max, e_prime, nb, wb):
         else:
             dg = 1.5 * dens / lc
         r = area - lam_w * g
-        if nb > 0 and r <= 0.0 and d == top:    # edge slices loaded at the top: widen
+        if r <= 0.0 and d == top and h_edge < d:    # edge slices loaded at the top: widen
             top += top - h_min
             hi = d = top
             continue

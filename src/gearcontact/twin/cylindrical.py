@@ -15,7 +15,14 @@ row is an ``edge`` row (``contact_mode`` 1, ``edge_label`` the edge) with the to
 own lever and opening, so it closes where the edge really touches; the law's inputs
 (stencil, curvatures, line length, ease-off, bending) are those of the same tooth
 pair's nearest line in the zone, as the bevel twin's edge rows take their nearest
-surface contact's (:mod:`.mesh`).
+surface contact's (:mod:`.mesh`). On a helical pair only where the pair has no line in
+the zone: its own tip edge beyond a line in the zone closes in the line's edge slices.
+
+Edge slices beyond a helical line (:func:`~gearcontact.ltca.cylindrical_edges.
+beyond_slices`, the table's ``beyond_gap_mm``): the tip edge past either end of the
+line, its gap at the line's lever over the line's least, on slices that the line law's
+slice law adds to the line's loaded length and interference (:mod:`.line_law`), the
+loaded TE's edge rows beyond a line (docs/cylindrical.md sec. 7, 10).
 
 Contact law, per backend (``--backend``, as the bevel twin's):
 
@@ -172,7 +179,9 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     if bending is not None:
         gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl, beyond), 0.0)
         n = sl.gap_mm.shape[-1]
-        cb = gram[..., :n, :n].sum(axis=(2, 3)) / n ** 2
+        # the line's block as a contiguous array: its sum's rounding the one without
+        # edge slices (the start of the loaded slices' fixed point, .line_law)
+        cb = np.ascontiguousarray(gram[..., :n, :n]).sum(axis=(2, 3)) / n ** 2
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2

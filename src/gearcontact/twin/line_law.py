@@ -48,7 +48,12 @@ of the peak line load (``a`` is reported as ``L_c / 2``). The law is the uniform
 line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law is
 ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) = lambda' W (...)``,
 ``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by ``h_bar``, exact at
-``W_e``. With tooth bending, ``c_b`` is the work-conjugate
+``W_e``. On a helical pair the tip edge beyond either end of the line (mesh table
+``beyond_gap_mm``, ``prm[P_NBEYOND]`` slices per end ``prm[P_BEYOND_W]`` mm wide) adds
+two runs of slices to ``I`` and ``L_c`` (:func:`gearcontact.ltca.slice_law.
+interference`): an edge point carries where the approach exceeds its gap, on the
+finite line's modulus, as the loaded TE's edge rows beyond a line join its block.
+With tooth bending, ``c_b`` is the work-conjugate
 compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
 at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
 contact's load shape.
