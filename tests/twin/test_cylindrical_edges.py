@@ -126,12 +126,14 @@ def test_edge_slices_are_the_tip_edge_beyond_the_line(unrelieved):
 def _check_against_the_lte(pair, monkeypatch, bending, lo, hi):
     """Per phase ``lo < twin / LCP - 1 < hi`` with and without the edges; the edges'
     effect, monotonicity and the torque balance (the tests' docstrings)."""
-    theta, theta0, want, want0, loads, lte = _against_the_lte(pair, monkeypatch, bending)
+    theta, theta0, want, want0, loads, model_levers = _against_the_lte(pair, monkeypatch,
+                                                                       bending)
     for t, w in ((theta, want), (theta0, want0)):
         assert np.all((lo < t / w - 1.0) & (t / w - 1.0 < hi)), t / w
     assert np.all(theta <= theta0 * (1.0 + 1e-12)) and np.any(theta < theta0 * (1 - 1e-3))
     assert 0.8 < (theta0 - theta).mean() / (want0 - want).mean() < 1.4
-    np.testing.assert_allclose(loads.sum(axis=1), lte.normal_load_n, rtol=1e-9)
+    np.testing.assert_allclose((loads * model_levers).sum(axis=1), 1e3 * TORQUE_NM,
+                               rtol=1e-9)
 
 
 def _against_the_lte(pair, monkeypatch, bending):
@@ -139,14 +141,15 @@ def _against_the_lte(pair, monkeypatch, bending):
     model = twin_cyl.cylindrical_model(pair, torque_nm=TORQUE_NM, phases=PHASES,
                                        bending=bending)
     theta, loads = _rotations(model)
-    want, lte = _lte_rotations(pair, cyc, model.mesh, bending)
+    want, _ = _lte_rotations(pair, cyc, model.mesh, bending)
     with monkeypatch.context() as mp:
         _without_twin_edges(mp)
         theta0, _ = _rotations(twin_cyl.cylindrical_model(pair, torque_nm=TORQUE_NM,
                                                           phases=PHASES, bending=bending))
         _without_lte_edges(mp)
         want0, _ = _lte_rotations(pair, cyc, model.mesh, bending)
-    return theta, theta0, want, want0, loads, lte
+    # each row's levers (the line's r_b2 cos beta_b; a tip edge row's its touch's)
+    return theta, theta0, want, want0, loads, model.mesh.lever_mm[:, :-1].T
 
 
 def test_static_rotation_against_the_loaded_te_with_and_without_edges(unrelieved,
@@ -164,8 +167,10 @@ def test_static_rotation_against_the_loaded_te_with_and_without_edges(unrelieved
     rows on the half-space with x >= 0 only; and the twin's slices are 0.61 mm wide
     against the LCP's 0.4 mm rows). Monotonicity: with the edges the gear turns less at
     every phase (more material in the slice law under the same torque; 1e-12). Torque
-    balance: the static pair loads, the edge slices' included, sum to F_n =
-    T2 / (r_b2 cos beta_b) (1e-9, the bisection's)."""
+    balance: the static pair loads, the edge slices' included (at the line's lever),
+    times their rows' levers sum to T2 (1e-9, the bisection's; a pair with no line in
+    the zone is a tip edge row with its touch's lever, so the loads do not sum to
+    F_n = T2 / (r_b2 cos beta_b) at every phase)."""
     _check_against_the_lte(unrelieved, monkeypatch, False, -0.06, 0.0)
 
 
