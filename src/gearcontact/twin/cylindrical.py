@@ -63,7 +63,7 @@ import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
-from ..ltca.cylindrical_edges import OFF_LINE_GAP_MM, BeyondSlices, beyond_slices
+from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
 from ..ltca.slice_law import line_easeoff_mm
 from ..ltca.tooth_bending import ToothBending
@@ -209,9 +209,10 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         line_length_mm=law(length), contact_mode=rows.astype(np.int8)[:, order],
         edge_label=np.where(rows, cycle.tip.labels(), "")[:, order], line_gap_mm=law(ease),
         line_bending_gram_mm_per_n=None if gram is None else law(gram),
-        # an edge row is itself a tip edge: no edge slices beyond its nearest line's
-        beyond_gap_mm=None if beyond is None else np.where(
-            rows[..., None, None], OFF_LINE_GAP_MM, beyond.gap_mm)[:, order],
+        # an edge row takes its nearest line's edge slices with the rest of its law (the
+        # kernel interpolates between rows: a line row's edge slices would open within
+        # the interval to an edge row without them, its edge load with them)
+        beyond_gap_mm=None if beyond is None else law(beyond.gap_mm),
         beyond_width_mm=None if beyond is None else beyond.width_mm)
 
 
