@@ -180,8 +180,8 @@ def test_static_rotation_with_bending_against_the_loaded_te(unrelieved, monkeypa
     slices, weighted by the loaded slices; the LCP with the same shells): bound -3 % <
     twin / LCP - 1 < 8 % at every phase (tests/twin/test_cylindrical.py: the bending
     load takes the contact's shape, a trial shape that overestimates the compliance;
-    measured -0.03 to +0.8 % with the edges, +0.05 to +1.2 % without, 13 phases), the
-    edges' effect twin / LCP within 0.8-1.4 (measured 1.10), monotonicity and the
+    measured -0.35 to +0.8 % with the edges, +0.05 to +1.2 % without, 13 phases), the
+    edges' effect twin / LCP within 0.8-1.4 (measured 1.13), monotonicity and the
     torque balance as there."""
     _check_against_the_lte(unrelieved, monkeypatch, True, -0.03, 0.08)
 
