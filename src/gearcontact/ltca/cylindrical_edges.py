@@ -29,17 +29,26 @@ phase is then solved again), so that the edges left out stand open (complementar
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+import math
+
 import numpy as np
 
-from ..tca.cylindrical_tip import TIP_EDGES, TipEdgeGaps
+from ..tca.cylindrical_tip import (REACH_BASE_PITCHES, TIP_EDGES, TipEdgeGaps,
+                                   beyond_line_edge_gaps)
+from ..tca.plane_of_action import PlaneOfAction
 from .cylindrical_bending import line_bending_factor
 from .mesh_lcp import PairBlock
 
-__all__ = ["OFF_LINE_GAP_MM", "BeyondLoads", "beyond_rows", "closing_turn_rad", "edge_block",
-           "join_beyond"]
+__all__ = ["OFF_LINE_GAP_MM", "BEYOND_SLICES", "BeyondLoads", "BeyondSlices", "beyond_rows",
+           "beyond_slices", "closing_turn_rad", "edge_block", "join_beyond"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
+#: Slices of the tip edge beyond either end of a helical line in the twin's slice law
+#: (:func:`beyond_slices`): over the tip solve's reach, 0.56 mm apart axially on the EV
+#: example (its loaded TE's 40 rows: 0.8 mm).
+BEYOND_SLICES = 8
 
 
 def closing_turn_rad(gap_mm: float, closing_gap_mm: float, rate_mm_per_rad: float) -> float:
@@ -122,3 +131,74 @@ class BeyondLoads:
         self.share[j, k, i] = share
         self.lever_mm[j, k, i] = lever_mm
         self.rows[j, k][rows] = i
+
+
+@dataclass(frozen=True)
+class BeyondSlices:
+    """The tip edge beyond either end of every helical line of a cycle, on ``nb`` slices
+    per end (:func:`beyond_slices`). Shapes (P, K, 2, nb): end 0 below the line's lower
+    axial end, end 1 above its upper one, slice 0 next to the end.
+
+    Attributes
+    ----------
+    gap_mm : ndarray
+        Normal gap of the edge point over the line's least gap, behind the mesh's
+        closing and scaled to the line's lever (:func:`join_beyond` at ``x = 0``, the
+        edge), mm; :data:`OFF_LINE_GAP_MM` where no edge point lies beyond (a line end
+        on the face end, beyond the tip solve's reach, no line).
+    z_mm : ndarray
+        Axial positions of the slices' centres, mm.
+    u1_mm, u2_mm : ndarray
+        Pinion and gear roll lengths of the edge's first touch (the bending's flank
+        points, as the loaded TE's rows), mm; NaN where no edge point.
+    width_mm : float
+        Width of a slice along the line (``dz / cos beta_b``, as the loaded TE's rows), mm.
+    """
+
+    gap_mm: np.ndarray
+    z_mm: np.ndarray
+    u1_mm: np.ndarray
+    u2_mm: np.ndarray
+    width_mm: float
+
+
+def beyond_slices(pair, cycle, valid, opening_mm, lever_mm: float, *,
+                  slices: int = BEYOND_SLICES) -> BeyondSlices | None:
+    """The tip edge beyond the ends of every line in the zone (``valid`` (P, K)) of a
+    helical pair's ``cycle``, on ``slices`` slices per end over the tip solve's reach
+    (:data:`~gearcontact.tca.cylindrical_tip.REACH_BASE_PITCHES` base pitches of roll
+    length, ``tan beta_b`` per mm axially) for the twin's slice law
+    (docs/cylindrical.md sec. 10): the edge points' gap
+    (:func:`~gearcontact.tca.cylindrical_tip.beyond_line_edge_gaps` at the slices'
+    own axial positions) as :func:`join_beyond` takes it into the loaded TE's line
+    block, over the line's least gap (``opening_mm`` (P, K) the line's opening behind
+    the mesh's closing, mm; ``lever_mm`` the line's). None on a spur pair (a line spans
+    the face in one transverse state: nothing beyond it)."""
+    g = pair.geometry
+    beta_b = math.radians(g.base_helix_angle_deg)
+    if beta_b == 0.0:
+        return None
+    reach = REACH_BASE_PITCHES * math.pi * g.base_diameter_pinion_mm / cycle.pinion_teeth
+    dz = reach / math.tan(beta_b) / slices
+    ends = cycle.line_ends_zu_mm[..., 0]
+    on = np.asarray(valid, bool) & np.isfinite(ends).all(axis=-1)
+    ends = np.where(on[..., None], ends, 0.0)
+    lo, hi = np.min(ends, axis=-1), np.max(ends, axis=-1)
+    t = dz * (np.arange(slices) + 0.5)
+    z = np.stack([lo[..., None] - t, hi[..., None] + t], axis=-2)
+    shape = z.shape
+    found = beyond_line_edge_gaps(PlaneOfAction(pair, cycle.facing), cycle,
+                                  z.reshape(shape[:2] + (-1,)))
+    g_env = np.asarray(cycle.closing_gap_mm, float)[None, :, None]
+    gap = np.full(shape, OFF_LINE_GAP_MM)
+    u1, u2 = np.full(shape, np.nan), np.full(shape, np.nan)
+    for bg in found:
+        hit = np.isfinite(bg.gap_mm).reshape(shape) & on[..., None, None]
+        with np.errstate(invalid="ignore"):
+            normal = (bg.normal_gap_per_gap[..., None] * (bg.gap_mm - g_env)
+                      * (lever_mm / bg.lever_mm[..., None])).reshape(shape)
+        gap = np.where(hit, normal - np.asarray(opening_mm)[..., None, None], gap)
+        u1 = np.where(hit, bg.u1_mm[..., None, None], u1)
+        u2 = np.where(hit, bg.u2_mm[..., None, None], u2)
+    return BeyondSlices(gap_mm=gap, z_mm=z, u1_mm=u1, u2_mm=u2,
+                        width_mm=dz / math.cos(beta_b))

@@ -50,19 +50,14 @@ __all__ = ["interference", "loaded_line", "loaded_length_mm", "line_easeoff_mm",
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def interference(h, o, n, width, d, shares):
-    """``(I, L_c, dL_c/dd)`` of the ease-off ``h[o:o + n]`` (mm, the slices' centres
-    ``width`` mm apart) at the approach ``d`` (mm): ``I = integral(max(d - h, 0) dy)``
-    (mm^2) and the loaded length ``L_c = |{h < d}|`` (mm), with ``h`` linear between the
-    centres and constant over the two end half-slices, so that ``I`` is convex with
-    ``dI/dd = L_c``. ``shares``: each slice's part of ``I`` (half of each segment's to
-    either end) into ``h[o + n:o + 2 n]``."""
+def _segment(h, o, n, width, d, shares, so):
+    """``(I, L_c, dL_c/dd)`` of one run of ``n`` slices ``h[o:o + n]`` (mm, centres
+    ``width`` mm apart) at the approach ``d`` (mm), linear between the centres and
+    constant over the two end half-slices; ``shares``: each slice's part of ``I`` added
+    into ``h[so:so + n]``."""
     area = 0.0
     lc = 0.0
     dens = 0.0
-    if shares:
-        for q in range(n):
-            h[o + n + q] = 0.0
     for q in range(n - 1):
         a = h[o + q]
         b = h[o + q + 1]
@@ -78,51 +73,89 @@ def interference(h, o, n, width, d, shares):
         area += part
         lc += width * t
         if shares:
-            h[o + n + q] += 0.5 * part
-            h[o + n + q + 1] += 0.5 * part
+            h[so + q] += 0.5 * part
+            h[so + q + 1] += 0.5 * part
     for q in (0, n - 1):
         hq = h[o + q]
         if hq < d:
             area += 0.5 * width * (d - hq)
             lc += 0.5 * width
             if shares:
-                h[o + n + q] += 0.5 * width * (d - hq)
+                h[so + q] += 0.5 * width * (d - hq)
     return area, lc, dens
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def loaded_line(h, o, n, length, we, b_max, e_prime):
+def interference(h, o, n, width, d, shares, nb, wb):
+    """``(I, L_c, dL_c/dd)`` of the ease-off ``h[o:o + n]`` (mm, the slices' centres
+    ``width`` mm apart) at the approach ``d`` (mm): ``I = integral(max(d - h, 0) dy)``
+    (mm^2) and the loaded length ``L_c = |{h < d}|`` (mm), with ``h`` linear between the
+    centres and constant over the two end half-slices, so that ``I`` is convex with
+    ``dI/dd = L_c``. ``nb`` > 0: the tip edge beyond either end of the line (a helical
+    pair's, :func:`beyond_easeoff_mm`), two more runs of ``nb`` slices ``wb`` mm wide
+    after the line's, ``h[o + n:o + n + nb]`` and ``h[o + n + nb:o + n + 2 nb]``, each
+    from the line's end outwards, added as runs of their own (``m = n + 2 nb`` slices in
+    all). ``shares``: each slice's part of ``I`` (half of each segment's to either end)
+    into ``h[o + m:o + 2 m]``."""
+    m = n + 2 * nb
+    if shares:
+        for q in range(m):
+            h[o + m + q] = 0.0
+    area, lc, dens = _segment(h, o, n, width, d, shares, o + m)
+    for r in range(2 if nb > 0 else 0):
+        ob = o + n + r * nb
+        a_b, l_b, d_b = _segment(h, ob, nb, wb, d, shares, ob + m)
+        area += a_b
+        lc += l_b
+        dens += d_b
+    return area, lc, dens
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def loaded_line(h, o, n, length, we, b_max, e_prime, nb, wb):
     """The slice law at the load ``we`` (N) on the ease-off ``h[o:o + n]`` (mm) of a
-    line of ``length`` mm (module docstring): ``(d_c, L_c, I)``, the contact approach
+    line of ``length`` mm (module docstring), with the tip edge beyond its ends on
+    ``nb`` slices of ``wb`` mm either side (:func:`interference`; ``nb = 0``: none):
+    ``(d_c, L_c, I)``, the contact approach
     (mm) at which ``F(d) = I(d) - lambda' we g(L_c(d)) = 0``, ``g = ln(4 L_c / b) - 3/4`` with ``lambda' = 4 / (pi
     E')`` and ``b = (4 we / (pi L_c E' b_max))^(1/2)`` the line contact's half-width of
-    ``we`` on ``L_c`` across ``b_max`` (1/mm), so ``g = 1.5 ln(L_c) + const``; the
+    ``we`` on ``L_c`` across ``b_max`` (1/mm), so ``g = 1.5 ln(L_c) + c0``; the
     loaded length ``L_c(d_c)`` and ``I(d_c)``. Newton on ``F`` (``F' = L_c - 1.5
     lambda' we L_c' / L_c``) kept inside a bracket by bisection: ``F < 0`` at the least
-    gap (nothing loaded), ``F >= 0`` at ``h_max + lambda' we g(L) / L`` (every slice
-    loaded by at least that)."""
+    gap (nothing loaded), ``F >= 0`` at ``h_max + lambda' we g(L) / L`` (every slice of
+    the line loaded by at least that; edge slices beyond it lengthen ``L_c``, and the
+    bracket is widened while ``F < 0`` there)."""
     width = length / n
     h_min = h[o]
     h_max = h_min
     for q in range(1, n):
         h_min = min(h_min, h[o + q])
         h_max = max(h_max, h[o + q])
+    h_edge = math.inf       # the edge slices' least gap (none: nb = 0)
+    for q in range(n, n + 2 * nb):
+        h_edge = min(h_edge, h[o + q])
+    h_min = min(h_min, h_edge)
     lam_w = 4.0 * we / (math.pi * e_prime)
     # g(L_c) = ln(4 L_c / b) - 3/4 = 1.5 ln(L_c) + c0; far below 1 N a kink's loaded
     # length nears b (a point's regime): the log is kept >= 0.25 there
     c0 = math.log(4.0) - 0.5 * math.log(4.0 * we / (math.pi * e_prime * b_max)) - 0.75
     lo = h_min
     hi = h_max + lam_w * (1.5 * math.log(length) + c0) / length
+    top = hi
     d = hi
     area, lc = 0.0, length
     for _ in range(100):
-        area, lc, dens = interference(h, o, n, width, d, False)
+        area, lc, dens = interference(h, o, n, width, d, False, nb, wb)
         g = 1.5 * math.log(lc) + c0 if lc > 0.0 else -math.inf
         if g < 0.25:
             g, dg = 0.25, 0.0
         else:
             dg = 1.5 * dens / lc
         r = area - lam_w * g
+        if r <= 0.0 and d == top and h_edge < d:    # edge slices loaded at the top: widen
+            top += top - h_min
+            hi = d = top
+            continue
         if r > 0.0:
             hi = d
         else:
@@ -135,7 +168,7 @@ def loaded_line(h, o, n, length, we, b_max, e_prime):
             d = d_new
             break
         d = d_new
-    area, lc, _ = interference(h, o, n, width, d, False)
+    area, lc, _ = interference(h, o, n, width, d, False, nb, wb)
     return d, lc, area
 
 
@@ -160,7 +193,7 @@ def loaded_length_mm(ease_mm, length_mm: float, load_n: float, b_max_per_mm: flo
     h = np.zeros(2 * len(ease_mm))
     h[:len(ease_mm)] = ease_mm
     d_c, l_c, area = loaded_line(h, 0, len(ease_mm), float(length_mm), float(load_n),
-                                 float(b_max_per_mm), float(e_prime_mpa))
+                                 float(b_max_per_mm), float(e_prime_mpa), 0, 0.0)
     return float(d_c), float(l_c), float(area)
 
 

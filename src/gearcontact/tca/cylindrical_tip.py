@@ -321,7 +321,7 @@ class TipEdgeGaps:
 
     Attributes
     ----------
-    z_mm : ndarray (N,)
+    z_mm : ndarray (N,) or (P, K, N)
         Axial positions along the edge, mm.
     gap_mm : ndarray (P, K, N)
         Equivalent gap ``-rate Δphi2`` of each edge point (module docstring), mm.
@@ -446,18 +446,23 @@ def beyond_line_edge_gaps(mesh, cycle, z_mm) -> tuple[TipEdgeGaps, TipEdgeGaps]:
 
     Parameters
     ----------
-    mesh, cycle, z_mm
+    mesh, cycle
         As :func:`tip_edge_gaps`.
+    z_mm : array_like (N,) or (P, K, N)
+        Axial positions (finite), mm, shared by every pair and phase or each row's own
+        (the twin's slices beyond each line's ends, :func:`gearcontact.ltca.
+        cylindrical_edges.beyond_slices`).
 
     Returns
     -------
     tuple of TipEdgeGaps
         Pinion tip, gear tip (the order of :data:`TIP_EDGES`).
     """
-    z = np.asarray(z_mm, float).ravel()
     lo, hi = cycle.line_ends_zu_mm[..., 0, 0], cycle.line_ends_zu_mm[..., 1, 0]
+    z = np.asarray(z_mm, float)
+    z = z if z.ndim == 3 else z.ravel()
     live = np.isfinite(lo)
-    shape = lo.shape + (len(z),)
+    shape = lo.shape + (z.shape[-1],)
     pitch = 2.0 * math.pi / cycle.pinion_teeth
     phi = cycle.phi1_rad[None, :] + pitch * np.asarray(cycle.pair_offsets, float)[:, None]
     phis = np.broadcast_to(phi[..., None], shape)

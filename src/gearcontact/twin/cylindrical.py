@@ -15,7 +15,14 @@ row is an ``edge`` row (``contact_mode`` 1, ``edge_label`` the edge) with the to
 own lever and opening, so it closes where the edge really touches; the law's inputs
 (stencil, curvatures, line length, ease-off, bending) are those of the same tooth
 pair's nearest line in the zone, as the bevel twin's edge rows take their nearest
-surface contact's (:mod:`.mesh`).
+surface contact's (:mod:`.mesh`). On a helical pair only where the pair has no line in
+the zone: its own tip edge beyond a line in the zone closes in the line's edge slices.
+
+Edge slices beyond a helical line (:func:`~gearcontact.ltca.cylindrical_edges.
+beyond_slices`, the table's ``beyond_gap_mm``): the tip edge past either end of the
+line, its gap at the line's lever over the line's least, on slices that the line law's
+slice law adds to the line's loaded length and interference (:mod:`.line_law`), the
+loaded TE's edge rows beyond a line (docs/cylindrical.md sec. 7, 10).
 
 Contact law, per backend (``--backend``, as the bevel twin's):
 
@@ -56,6 +63,7 @@ import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
+from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
 from ..ltca.slice_law import line_easeoff_mm
 from ..ltca.tooth_bending import ToothBending
@@ -92,21 +100,36 @@ def _order(m: int, n: int) -> np.ndarray:
     return np.arange(n) if m == 1 else np.arange(n)[::-1]
 
 
-def line_bending_gram(bending: ToothBending, slices: LineGaps) -> np.ndarray:
-    """Bending Gram matrices ``G = F F^T`` (P, K, n, n), mm/N, of the pinion and gear
+def line_bending_gram(bending: ToothBending, slices: LineGaps,
+                      beyond: BeyondSlices | None = None) -> np.ndarray:
+    """Bending Gram matrices ``G = F F^T`` (P, K, m, m), mm/N, of the pinion and gear
     shells at each pair's line slices (:func:`~gearcontact.tca.cylindrical_stencil.
     contact_line_slices`; the shells' factor rows of the loaded TE,
-    :func:`~gearcontact.ltca.cylindrical_bending.line_bending_factor`): the deflection
-    at slice a under a unit load at slice b; zeros where the pair has no line."""
+    :func:`~gearcontact.ltca.cylindrical_bending.line_bending_factor`), then at the
+    ``2 nb`` slices of the tip edge beyond its ends (``beyond``, at the edge touch's
+    roll lengths, as the loaded TE's rows beyond a line; ``m = n + 2 nb``): the
+    deflection at slice a under a unit load at slice b; zeros where the pair has no
+    line or no edge point."""
     n_p, n_k, n = slices.gap_mm.shape
-    out = np.zeros((n_p, n_k, n, n))
+    nb2 = 0 if beyond is None else beyond.gap_mm.shape[-2] * beyond.gap_mm.shape[-1]
+    out = np.zeros((n_p, n_k, n + nb2, n + nb2))
     for j in range(n_p):
         for k in range(n_k):
             on = np.isfinite(slices.pinion_roll_mm[j, k]) & np.isfinite(slices.gear_roll_mm[j, k])
             if on.all():
                 f = line_bending_factor(bending, slices.z_mm[j, k], slices.pinion_roll_mm[j, k],
                                         slices.gear_roll_mm[j, k], 1)[:, 0].astype(float)
-                out[j, k] = f @ f.T
+                out[j, k, :n, :n] = f @ f.T
+                if nb2 and np.isfinite(beyond.u1_mm[j, k]).any():
+                    # the edge's blocks on one factor of line and edge points (the
+                    # compressed factor's rank is the call's); the line's block as above
+                    fc = line_bending_factor(
+                        bending, np.concatenate([slices.z_mm[j, k], beyond.z_mm[j, k].ravel()]),
+                        np.concatenate([slices.pinion_roll_mm[j, k], beyond.u1_mm[j, k].ravel()]),
+                        np.concatenate([slices.gear_roll_mm[j, k], beyond.u2_mm[j, k].ravel()]),
+                        1)[:, 0].astype(float)
+                    out[j, k, n:] = fc[n:] @ fc.T
+                    out[j, k, :n, n:] = out[j, k, n:, :n].T
     return out
 
 
@@ -151,14 +174,20 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     m = motion_sign(pair, cycle)
     order = _order(m, len(cycle.phi1_rad))
     ease, sl = line_easeoff_mm(pair, cycle, st.valid, slices=slices)
+    beyond = beyond_slices(pair, cycle, st.valid, st.opening_mm, float(st.lever_mm))
     gram, cb = None, np.zeros(st.valid.shape)
     if bending is not None:
-        gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl), 0.0)
-        cb = gram.sum(axis=(2, 3)) / sl.gap_mm.shape[-1] ** 2
+        gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl, beyond), 0.0)
+        n = sl.gap_mm.shape[-1]
+        # the line's block as a contiguous array: its sum's rounding the one without
+        # edge slices (the start of the loaded slices' fixed point, .line_law)
+        cb = np.ascontiguousarray(gram[..., :n, :n]).sum(axis=(2, 3)) / n ** 2
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2
     rows, tip_open, tip_lever, near = tip_rows(pair, cycle, st.valid)
+    if beyond is not None:      # a helical line's own tip edge closes in its edge slices
+        rows &= ~st.valid
     nj, nk = near[..., 0], near[..., 1]
 
     def law(a):         # an edge row takes its pair's nearest line's law inputs
@@ -179,7 +208,12 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         bending_mm_per_n=law(cb), stencil_gaps_mm=law(st.gaps_mm),
         line_length_mm=law(length), contact_mode=rows.astype(np.int8)[:, order],
         edge_label=np.where(rows, cycle.tip.labels(), "")[:, order], line_gap_mm=law(ease),
-        line_bending_gram_mm_per_n=None if gram is None else law(gram))
+        line_bending_gram_mm_per_n=None if gram is None else law(gram),
+        # an edge row takes its nearest line's edge slices with the rest of its law (the
+        # kernel interpolates between rows: a line row's edge slices would open within
+        # the interval to an edge row without them, its edge load with them)
+        beyond_gap_mm=None if beyond is None else law(beyond.gap_mm),
+        beyond_width_mm=None if beyond is None else beyond.width_mm)
 
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,

@@ -61,10 +61,10 @@ from .layout import (  # noqa: F401
                      LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LINE_BENDING,
                      PV_LINE_OFFSET, PV_LOAD,
                      BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
-                     P_AHI, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI, P_DPSIR, P_ECODE,
-                     P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP, P_L0, P_MIRROR,
-                     P_NROW, P_NROWR, P_NSLICE, P_OMEGA, P_SLICE_CB, P_PITCH, P_PSIR,
-                     P_STAGEC, P_THB, P_TL,
+                     P_AHI, P_BEYOND_W, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI,
+                     P_DPSIR, P_ECODE, P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP,
+                     P_L0, P_MIRROR, P_NBEYOND, P_NROW, P_NROWR, P_NSLICE, P_OMEGA,
+                     P_SLICE_CB, P_PITCH, P_PSIR, P_STAGEC, P_THB, P_TL,
                      P_TM, P_U, RECORD_COLUMNS, R_A, R_B, R_D, R_KE, R_NPAIRS, R_P, R_PE,
                      R_PSI, R_T, R_THETA, R_TMESH, R_V, R_W, R_WG, R_WIN, R_WP)
 
@@ -327,7 +327,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     pairs1 = np.zeros((2, n_p))
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
-    pv = np.zeros(N_PREVIEW + 2 * int(prm[P_NSLICE]))     # layout.preview_scratch, compiled
+    # layout.preview_scratch, compiled
+    pv = np.zeros(N_PREVIEW + 2 * (int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND])))
     # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
     # (line), mode, the line law's beta, its approach offset h_bar and bending
     # compliance (-1: the table's c_b) (N_CACHE columns)

@@ -11,8 +11,9 @@ BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1, "soc": 1}
 # prm indices
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
  P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
- P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI, P_NSLICE, P_SLICE_CB) = range(33)
-N_PRM = 33
+ P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI, P_NSLICE, P_SLICE_CB, P_NBEYOND,
+ P_BEYOND_W) = range(35)
+N_PRM = 35
 #: Entries of the counters ``tcount``: trace rows written, step index of the trace rows,
 #: steps, previews outside the datapath's domain, steps with such a preview, previews
 #: without a contact law (:func:`~.kernel.run_steps`).
@@ -28,12 +29,14 @@ LINE_SOURCE = "line"
 LINE_SOURCE_CODE = 2
 #: The line chain's ease-off along the line (``prm[P_NSLICE]``, :mod:`.line_law`): ``cv``
 #: columns after L hold the pair's normal gap at the centres of P_NSLICE equal slices of
-#: its line, then (``prm[P_SLICE_CB]`` = 1, tooth bending) the slices' bending Gram
-#: matrix G (P_NSLICE^2, row-major, mm/N).
+#: its line, then the tip edge beyond either end of a helical line on ``prm[P_NBEYOND]``
+#: slices each (``prm[P_BEYOND_W]`` mm wide, from the line's end outwards; 0 on a spur
+#: pair), then the bending Gram matrix G of all ``m = P_NSLICE + 2 P_NBEYOND`` slices
+#: (m^2, row-major, mm/N; zeros for rigid teeth).
 #: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta,
 #: the load (N) at which a, b, p_max hold (:data:`PV_LOAD`), the line law's approach
 #: offset (mm, :data:`PV_LINE_OFFSET`) and bending compliance (mm/N; -1: the mesh
-#: table's, :data:`PV_LINE_BENDING`); then 2 P_NSLICE scratch entries
+#: table's, :data:`PV_LINE_BENDING`); then 2 m scratch entries
 #: (:func:`preview_scratch`).
 N_PREVIEW = 8
 #: Index in ``pv`` of the load of its a, b, p_max: the evaluation load ``W_e``, 1 N
@@ -65,4 +68,4 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
 def preview_scratch(prm) -> int:
     """Length of the kernel's ``pv``: :data:`N_PREVIEW` outputs and the line law's two
     slice vectors (:mod:`.line_law`)."""
-    return N_PREVIEW + 2 * int(prm[P_NSLICE])
+    return N_PREVIEW + 2 * (int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND]))

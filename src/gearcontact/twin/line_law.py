@@ -48,7 +48,12 @@ of the peak line load (``a`` is reported as ``L_c / 2``). The law is the uniform
 line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law is
 ``I`` linearised at ``d_c`` (``dI/dd = L_c``): ``L_c (d_c - h_bar) = lambda' W (...)``,
 ``h_bar = d_c - I(d_c) / L_c``, the uniform line's law shifted by ``h_bar``, exact at
-``W_e``. With tooth bending, ``c_b`` is the work-conjugate
+``W_e``. On a helical pair the tip edge beyond either end of the line (mesh table
+``beyond_gap_mm``, ``prm[P_NBEYOND]`` slices per end ``prm[P_BEYOND_W]`` mm wide) adds
+two runs of slices to ``I`` and ``L_c`` (:func:`gearcontact.ltca.slice_law.
+interference`): an edge point carries where the approach exceeds its gap, on the
+finite line's modulus, as the loaded TE's edge rows beyond a line join its block.
+With tooth bending, ``c_b`` is the work-conjugate
 compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
 at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
 contact's load shape.
@@ -94,8 +99,8 @@ from ..preview.hertz.line_vec import line_constants, line_element
 from ..preview.hertz.reference import (LINE_ENVELOPE, keeps_ellipse, lifted_keeps_ellipse,
                                        line_lift)
 from .contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _hb, _principal, _row, hertz_kappa
-from .layout import (N_PREVIEW, P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_NSLICE, P_SLICE_CB,
-                     PV_LINE_BENDING, PV_LINE_OFFSET, PV_LOAD)
+from .layout import (N_PREVIEW, P_AHI, P_BEYOND_W, P_CHI, P_CLO, P_ECODE, P_EP, P_NBEYOND,
+                     P_NSLICE, P_SLICE_CB, PV_LINE_BENDING, PV_LINE_OFFSET, PV_LOAD)
 
 __all__ = ["line_pair_load", "line_law_constants", "MODE_LINE"]
 
@@ -213,9 +218,10 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _slice_compliance(cv_t, s, j, i, f, c_g, n, pv):
-    """``q^T G q`` (mm/N) of the slices' shares ``q`` (in ``pv``, scaled to a unit sum)
-    on their bending Gram matrix ``G`` (columns from ``c_g``, linear between the rows):
-    the work-conjugate bending compliance of the loaded part of the line."""
+    """``q^T G q`` (mm/N) of the ``n`` slices' shares ``q`` (in ``pv``, scaled to a unit
+    sum; the line's and the edge's beyond it) on their bending Gram matrix ``G`` (columns
+    from ``c_g``, linear between the rows): the work-conjugate bending compliance of the
+    loaded part of the line."""
     o = N_PREVIEW + n
     tot = 0.0
     first, last = n, -1
@@ -242,13 +248,14 @@ def _slice_compliance(cv_t, s, j, i, f, c_g, n, pv):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _contact_load(pv, n, length, d_c, b_max, e_prime, w_start):
+def _contact_load(pv, n, nb, wb, length, d_c, b_max, e_prime, w_start):
     """``(W, L_c, I, dW/dd_c)`` the slice law carries at the contact approach ``d_c``
     (mm; module docstring): ``I(d_c) = lambda' W (beta_c - ln(W)/2)`` with ``beta_c =
     ln(4 L_c) - ln(4 / (pi L_c E' b_max)) / 2 - 3/4`` (the line contact's ``b`` of ``W``
     on ``L_c``), solved by :func:`line_pair_load` from ``w_start``; 0 where nothing is
-    loaded."""
-    area, lc, dens = interference(pv, N_PREVIEW, n, length / n, d_c, False)
+    loaded. ``nb`` edge slices of ``wb`` mm beyond either end (:func:`~gearcontact.ltca.
+    slice_law.interference`)."""
+    area, lc, dens = interference(pv, N_PREVIEW, n, length / n, d_c, False, nb, wb)
     if area <= 0.0 or lc <= 0.0:
         return 0.0, lc, area, 0.0
     lam = 4.0 / (math.pi * e_prime)
@@ -262,7 +269,7 @@ def _contact_load(pv, n, length, d_c, b_max, e_prime, w_start):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _line_state(pv, n, length, d, cb, b_max, e_prime, w_start):
+def _line_state(pv, n, nb, wb, length, d, cb, b_max, e_prime, w_start):
     """``(d_c, W, L_c, I)`` of the slice law in series with the bending compliance ``cb``
     (mm/N) at the approach ``d`` (mm): the root of ``d_c + cb W(d_c) = d`` on ``[h_min,
     d]`` (increasing in ``d_c``), Newton kept in the bracket by bisection, from the bent
@@ -270,17 +277,17 @@ def _line_state(pv, n, length, d, cb, b_max, e_prime, w_start):
     step, and the root is reached in 3-4 evaluations where the start from the rigid
     load at ``d`` took 5-7; measured on the EV example)."""
     lo, hi = pv[N_PREVIEW], d
-    for q in range(1, n):
+    for q in range(1, n + 2 * nb):
         lo = min(lo, pv[N_PREVIEW + q])
     if cb <= 0.0 or not lo < d:     # rigid, or nothing loaded at d
-        w, lc, area, dw = _contact_load(pv, n, length, d, b_max, e_prime, w_start)
+        w, lc, area, dw = _contact_load(pv, n, nb, wb, length, d, b_max, e_prime, w_start)
         return d, w, lc, area
     w = w_start
     d_c = d - cb * w
     for _ in range(60):
         if not lo < d_c < hi:
             d_c = 0.5 * (lo + hi)
-        w, lc, area, dw = _contact_load(pv, n, length, d_c, b_max, e_prime, w)
+        w, lc, area, dw = _contact_load(pv, n, nb, wb, length, d_c, b_max, e_prime, w)
         r = d_c + cb * w - d
         if abs(r) <= 1e-12 * d or hi - lo <= 1e-14 * d:
             break
@@ -314,7 +321,10 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
     (mm), the slices' ease-off (mm) and their bending Gram matrix
     (:data:`~.layout.P_NSLICE`)."""
     n = int(prm[P_NSLICE])
-    c0 = cv_t.shape[3] - (4 + n + n * n)
+    nb = int(prm[P_NBEYOND])
+    wb = prm[P_BEYOND_W]
+    m = n + 2 * nb
+    c0 = cv_t.shape[3] - (4 + m + m * m)
     length = _row(cv_t, s, j, i, f, c0 + 3)
     # stage C is linear in the samples: the interpolated rows' fits (contact_law._kappa)
     A, B, _ = _principal(_row(cv_t, s, j, i, f, c0), _row(cv_t, s, j, i, f, c0 + 1),
@@ -324,7 +334,7 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
     bent = prm[P_SLICE_CB] != 0.0
     ep = prm[P_EP]
     if hi > 0.0 and length > 0.0:
-        for q in range(n):
+        for q in range(m):
             pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
         cb = cb if bent else 0.0
         # the loaded slices' compliance: a fixed point from the uniform load's (cb < 0:
@@ -334,18 +344,18 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
         cb = abs(cb)
         w0 = we
         for _ in range(passes):
-            d_c, w0, l_c, area = _line_state(pv, n, length, d, cb, hi, ep, w0)
+            d_c, w0, l_c, area = _line_state(pv, n, nb, wb, length, d, cb, hi, ep, w0)
             if not bent or w0 <= 0.0:
                 break
-            interference(pv, N_PREVIEW, n, length / n, d_c, True)
-            c_new = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + n, n, pv)
+            interference(pv, N_PREVIEW, n, length / n, d_c, True, nb, wb)
+            c_new = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + m, m, pv)
             done = abs(c_new - cb) <= 1e-6 * c_new
             cb = c_new
             if done:
                 break
         if w0 < W_EVAL_MIN_N:       # barely closed: the law at the datapath's least load
             w0 = W_EVAL_MIN_N
-            d_c, l_c, area = loaded_line(pv, N_PREVIEW, n, length, w0, hi, ep)
+            d_c, l_c, area = loaded_line(pv, N_PREVIEW, n, length, w0, hi, ep, nb, wb)
     w0 = min(max(w0, W_EVAL_MIN_N), _W_EVAL_MAX_N)
     pv[PV_LOAD] = w0
     # the chain's L: the equivalent length of the slice law's peak line load

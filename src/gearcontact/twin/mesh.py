@@ -137,9 +137,19 @@ class MeshTable:
         The ease-off along each pair's line: its normal gap over the line's least one at
         the centres of ``n`` equal slices between the line's ends, mm (the line law's
         loaded length, :mod:`.line_law`); None for point contact.
-    line_bending_gram_mm_per_n : ndarray (P, K, n, n) or None
+    line_bending_gram_mm_per_n : ndarray (P, K, m, m) or None
         Tooth-bending Gram matrix ``G = F F^T`` of the pinion and gear shells at those
-        slices (unit loads on the slices), mm/N; None for rigid teeth.
+        slices and the ``2 nb`` beyond them (``m = n + 2 nb``; unit loads on the
+        slices), mm/N; None for rigid teeth.
+    beyond_gap_mm : ndarray (P, K, 2, nb) or None
+        The tip edge beyond either end of a helical pair's line (docs/cylindrical.md
+        sec. 10): the normal gap of its points over the line's least one, at the line's
+        lever, at ``nb`` axial positions ``beyond_width_mm`` apart (along the line) from
+        each end outwards, mm; :data:`~gearcontact.ltca.cylindrical_edges.OFF_LINE_GAP_MM`
+        where no edge point lies beyond that end; None: no such edge (a spur pair, point
+        contact).
+    beyond_width_mm : float or None
+        Width along the line of those slices, mm.
     edge_compliance_scale : ndarray (P, K) or None
         ``c`` of each edge row (:mod:`gearcontact.ltca.edge_law`; its curvatures and
         stencil carry ``c^3``), 1 elsewhere; None: no edge row calibrated.
@@ -179,6 +189,8 @@ class MeshTable:
     edge_label: np.ndarray | None = None
     line_gap_mm: np.ndarray | None = None
     line_bending_gram_mm_per_n: np.ndarray | None = None
+    beyond_gap_mm: np.ndarray | None = None
+    beyond_width_mm: float | None = None
     edge_compliance_scale: np.ndarray | None = None
     edge_exponent: np.ndarray | None = None
     out_of_reach: np.ndarray | None = None

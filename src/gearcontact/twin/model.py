@@ -188,8 +188,12 @@ def _curvature_rows(mesh: MeshTable, source: str, *, golden: bool) -> np.ndarray
     cols = [fitted_coefficients(mesh.stencil_gaps_mm)]
     if golden:      # the samples for the fit core, the fp64 fit for the fp64 fallback
         cols.insert(0, np.asarray(mesh.stencil_gaps_mm, float))
-    if source == LINE_SOURCE:      # L, the slices' ease-off and bending Gram (.line_law)
+    if source == LINE_SOURCE:      # L, the slices' ease-off (the line's, then the edge's
+        # beyond its ends) and their bending Gram (.line_law)
         gaps = np.asarray(mesh.line_gap_mm, float)
+        if mesh.beyond_gap_mm is not None:
+            gaps = np.concatenate([gaps, np.asarray(mesh.beyond_gap_mm, float).reshape(
+                gaps.shape[:2] + (-1,))], axis=-1)
         n = gaps.shape[-1]
         gram = (np.zeros(gaps.shape[:2] + (n * n,)) if mesh.line_bending_gram_mm_per_n is None
                 else np.asarray(mesh.line_bending_gram_mm_per_n, float).reshape(
@@ -230,6 +234,9 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     if model.curvature_source == LINE_SOURCE:
         prm[K.P_NSLICE] = m.line_gap_mm.shape[-1]
         prm[K.P_SLICE_CB] = float(m.line_bending_gram_mm_per_n is not None)
+        if m.beyond_gap_mm is not None:
+            prm[K.P_NBEYOND] = m.beyond_gap_mm.shape[-1]
+            prm[K.P_BEYOND_W] = m.beyond_width_mm
     return prm
 
 

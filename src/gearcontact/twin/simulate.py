@@ -16,6 +16,7 @@ import numpy as np
 from tqdm import tqdm
 
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
+from ..ltca.cylindrical_edges import OFF_LINE_GAP_MM
 from ..errors import CheckFailed, RtlMismatch
 from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import kernel as K
@@ -243,6 +244,7 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
         **_bending_summary(model), **_domain_summary(model, tcount), **_mode_summary(model),
+        **_beyond_summary(model),
         "reverse_flank": model.reverse_note, **_free_play_summary(model),
         **{k: v for k, v in rtl.items() if not k.endswith(("_seconds", "_per_s"))}}
     timings = {"real_time_factor": dur / wall,
@@ -300,6 +302,31 @@ def _mode_summary(model: TwinModel) -> dict:
     if m.out_of_reach is not None:     # no touch search, no edge law (.mesh "reach")
         out["mesh_rows_out_of_reach"] = int(np.sum(m.valid & m.out_of_reach))
     return out
+
+
+#: How a helical line's tip edge beyond its ends enters the twin, as ``twin.json`` states it.
+BEYOND_LINE_LAW = ("edge slices of the line's slice law (ltca.slice_law): the tip edge "
+                   "beyond the line's ends, its gap at the line's lever as the loaded TE's "
+                   "edge rows beyond a line (ltca.cylindrical_edges.beyond_slices), adds "
+                   "to the loaded length and interference, so to the line chain's W and "
+                   "L_eq on every backend (rtl and soc replay those codes)")
+
+
+def _beyond_summary(model: TwinModel) -> dict:
+    """The loaded side's edge slices beyond its helical lines (:mod:`.line_law`): slices
+    per end, their width, the valid rows with an edge point beyond a line end and the
+    least gap of one (um, over the line's least); nothing without them (a spur pair,
+    point contact)."""
+    m = model.mesh
+    if m.beyond_gap_mm is None:
+        return {}
+    g = np.where(m.valid[..., None, None], m.beyond_gap_mm, OFF_LINE_GAP_MM)
+    hit = g < OFF_LINE_GAP_MM
+    return {"beyond_line_edges": {
+        "slices_per_end": int(g.shape[-1]), "slice_width_mm": float(m.beyond_width_mm),
+        "rows": int(hit.any(axis=(2, 3)).sum()),
+        "least_gap_um": float(1e3 * g[hit].min()) if hit.any() else None,
+        "law": BEYOND_LINE_LAW}}
 
 
 def _bending_summary(model: TwinModel) -> dict:
