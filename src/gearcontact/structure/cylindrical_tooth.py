@@ -13,12 +13,16 @@ position over the member's face. At equal (u, z) the two flank points lie at the
 radius, so the mid-surface is the helicoid of the tooth's centre line and the thickness
 along its normal the normal chordal tooth thickness.
 
-Below the form circle the solid continues through the fillet and rim segment of
+Below the form circle the shell continues through the fillet and rim segment of
 :mod:`.rim`, with the fillet height the radial distance from the form circle to the root
 circle, ``(d_Ff - d_f) / 2`` (the trochoidal fillet's height; the segment widens to one
 pitch over it), and the rim depth the tooth height (as for bevel members). The
 shell's modulus of the fillet and rim is raised by :data:`CYLINDRICAL_RIM_STIFFENING`
-per member, calibrated against the 3D FE of the same tooth (:mod:`.fe`, same rim).
+per member, calibrated against the 3D FE of the same tooth on its real root
+(:func:`cylindrical_fillet_root`: the sides down the trochoidal fillets the basic
+rack's tip rounding generates, :mod:`gearcontact.geometry.cylindrical.fillet`, the
+slot bottoms on the root circle, the rim block below to the same depth;
+:mod:`.root_fillet`, :mod:`.fe`).
 
 References
 ----------
@@ -33,15 +37,19 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..geometry.cylindrical.fillet import root_fillet
 from ..geometry.cylindrical.flank import FACINGS, involute_flank
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..threads import one_blas_thread
 from ..validation import InputRangeError
+from .compliance import FeMesh, FlankCompliance, check_member_and_root, compare_on_root
 from .rim import RimSegment, rim_segment
+from .root_fillet import FilletRoot, fillet_root
 from .shell import ORDER, ORDER_FACE, ShellModel, build_shell
 from .tooth import ToothGeometry
 
 __all__ = ["CYLINDRICAL_RIM_STIFFENING", "cylindrical_tooth", "cylindrical_rim",
+           "cylindrical_fillet_root", "cylindrical_flank_compliance",
            "cylindrical_tooth_shell", "loaded_side"]
 
 #: Factor on the modulus of the shell's fillet and rim of a cylindrical tooth
@@ -99,3 +107,43 @@ def cylindrical_tooth_shell(pair: CylindricalPair, member: str, *, order: int = 
     rim = cylindrical_rim(pair, tooth, stiffening=stiffening)
     with one_blas_thread():       # threaded BLAS of these sizes spins on a busy machine
         return build_shell(tooth, order=order, order_face=order_face, rim=rim)
+
+
+def cylindrical_fillet_root(pair: CylindricalPair, tooth: ToothGeometry, *,
+                            depth_mm: float | None = None) -> FilletRoot:
+    """The real root of ``tooth`` (:func:`cylindrical_tooth`): its sides run from the form
+    circle down the trochoidal fillets of its two flanks
+    (:func:`~gearcontact.geometry.cylindrical.fillet.root_fillet`: "drive" the
+    counter-clockwise facing one, "coast" the clockwise) to the root circle, the slot
+    bottoms beside them on the root circle span one pitch, the rim block below reaches
+    ``depth_mm`` below the root line (default the tooth height, the shell's rim depth).
+    A modified flank (relief, crowning) stands micrometres off the unmodified fillet at
+    the form circle: :class:`~.root_fillet.FilletRoot` bridges the gap."""
+    return fillet_root(tooth, _rack_fillets(pair, tooth.member), depth_mm=depth_mm)
+
+
+def _rack_fillets(pair: CylindricalPair, member: str) -> dict:
+    """``side -> RootFillet`` of the tooth of ``member`` (the sides of
+    :func:`cylindrical_tooth`)."""
+    return {side: root_fillet(pair, member, facing)
+            for side, facing in (("drive", "ccw"), ("coast", "cw"))}
+
+
+def cylindrical_flank_compliance(pair: CylindricalPair, member: str, *, side: str = "drive",
+                                 xi=(-0.5, 0.0, 0.5), eta=(-1 / 3, 0.0, 1 / 3),
+                                 order: int = ORDER, order_face: int = ORDER_FACE,
+                                 stiffening: float | None = None, fe: bool = False,
+                                 fe_mesh: FeMesh = FeMesh(), fe_root: str = "cutter"
+                                 ) -> FlankCompliance:
+    """:func:`~.compliance.flank_compliance` of one cylindrical tooth of ``member``: the
+    shell of :func:`cylindrical_tooth_shell` (``stiffening`` as there) at the lattice
+    ``xi x eta`` of its flank ``side`` ("drive": the counter-clockwise facing one,
+    :func:`loaded_side`), with the 3D FE (``fe``) on the real root
+    (``fe_root="cutter"``, the default: :func:`cylindrical_fillet_root`) or on the
+    quarter-ellipse root of :mod:`.rim` (``"ellipse"``); the result's ``fe_root`` names
+    the root meshed (docs/bending.md sec. 9)."""
+    check_member_and_root(member, fe_root)
+    shell = cylindrical_tooth_shell(pair, member, order=order, order_face=order_face,
+                                    stiffening=stiffening)
+    return compare_on_root(shell, lambda: (_rack_fillets(pair, member), None), name=pair.name, side=side, xi=xi, eta=eta, fe=fe,
+                           fe_mesh=fe_mesh, fe_root=fe_root)
