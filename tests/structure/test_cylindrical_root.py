@@ -33,9 +33,8 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from gearcontact.geometry.pair import load_pair
-from gearcontact.structure.cylindrical_tooth import (cylindrical_fillet_root,
-                                                     cylindrical_flank_compliance,
-                                                     cylindrical_tooth)
+from gearcontact.structure.cylindrical_compliance import cylindrical_flank_compliance
+from gearcontact.structure.cylindrical_tooth import cylindrical_fillet_root, cylindrical_tooth
 from gearcontact.validation import InputRangeError
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

@@ -342,11 +342,12 @@ def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0
     return FlankCompliance(**kw)
 
 
-def write_compliance(result: FlankCompliance, out, *, pair, flanks: FlankSet,
+def write_compliance(result: FlankCompliance, out, *, pair, flanks: FlankSet | None,
                      figures: bool = True, order: int = ORDER,
                      order_face: int = ORDER_FACE
                      ) -> list[Path]:
-    """Write ``compliance.json`` and ``deflection.png`` into ``out`` (created)."""
+    """Write ``compliance.json`` and ``deflection.png`` into ``out`` (created);
+    ``flanks``: a bevel pair's flank set (None for a cylindrical pair)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "compliance.json"
