@@ -40,7 +40,8 @@ from .shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
 from .tooth import LoadPoints
 
 __all__ = ["FlankCompliance", "FeMesh", "EllipseRootWarning", "flank_compliance",
-           "check_member_and_root", "compare_on_root", "shell_compliance", "write_compliance", "concat_points", "SEGMENT_NODES"]
+           "check_member_and_root", "compare_on_root", "shell_compliance",
+           "write_compliance", "concat_points", "SEGMENT_NODES"]
 
 #: Node columns of a segment load.
 SEGMENT_NODES = 5
