@@ -7,13 +7,19 @@ Truths:
   times cos(beta) along the mid-surface normal of a helical tooth (exact for spur:
   1e-9 relative; helical 1e-3: the normal section of a helicoid is not a straight
   chord, measured 5e-4);
-- shell vs the 3D FE of the same tooth with the same rim (scikit-fem, P2), under
+- shell vs the 3D FE of the same tooth on its real root (the trochoids its generating
+  rack cuts, structure.cylindrical_tooth.cylindrical_fillet_root; scikit-fem, P2), under
   distributed loads (segment and line loads at a 3 x 3 flank lattice, deflection of the
-  back-flank points; as for bevel members, docs/bending.md sec. 3 and 9): within 15 %
-  on the default mesh 12 x 6 x 3 + 4 (measured with the calibrated rim factor 1.4:
-  spur 20/40 pinion 0.94..1.07, gear 0.98..1.08; helical 23/67 pinion 1.00..1.04, gear
-  0.97..1.04) and 25 % on the calibration mesh 20 x 8 x 4 + 6 (slow suite; measured
-  spur 0.93..1.16, helical 0.96..1.10), the tolerances of the bevel members;
+  back-flank points; as for bevel members, docs/bending.md sec. 3, 9 and 10), default
+  mesh 12 x 6 x 3 + 4 with 3 fillet layers and 2 slot cells, the calibrated rim factor
+  1.1: the spur 20/40 pinion within 15 % in the default suite (measured 0.86..0.95), all
+  six teeth of the three examples within 20 % (slow; measured 0.85..1.17: one factor
+  cannot fit the deep trochoids of the 16- and 20-tooth pinions, which alone would take
+  1.0, and the others, which would take 1.2-1.3; docs/bending.md sec. 9);
+- the FE tooth compliance converges under mesh refinement (slow): the line load at
+  mid-height on the spur pinion moves by < 3 % from the default mesh to 16 x 8 x 4 + 5
+  with 4 fillet layers and 3 slot cells (measured +0.9 %), as the bevel real-root
+  check (test_root_fillet.py: 10 %);
 - bad input names the field.
 """
 
@@ -24,13 +30,13 @@ import numpy as np
 import pytest
 
 from gearcontact.geometry.pair import load_pair
-from gearcontact.structure.compliance import FeMesh, shell_compliance
-from gearcontact.structure.cylindrical_tooth import (cylindrical_tooth, cylindrical_tooth_shell,
-                                                     loaded_side)
+from gearcontact.structure.compliance import FeMesh
+from gearcontact.structure.cylindrical_compliance import cylindrical_flank_compliance
+from gearcontact.structure.cylindrical_tooth import cylindrical_tooth, loaded_side
 from gearcontact.validation import InputRangeError
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-TOLERANCE, TOLERANCE_FINE = 0.15, 0.25
+TOLERANCE, TOLERANCE_ALL = 0.15, 0.20
 
 
 def _pair(name):
@@ -63,28 +69,28 @@ def test_loaded_side_and_bad_input():
         cylindrical_tooth(_pair("spur_20x40_m3"), "rack")
 
 
-def _ratios(name, member, mesh):
+def _ratios(name, member, mesh=FeMesh()):
     pytest.importorskip("skfem")
-    shell = cylindrical_tooth_shell(_pair(name), member)
-    return shell_compliance(shell, fe=True, fe_mesh=mesh).ratios()
+    return cylindrical_flank_compliance(_pair(name), member, fe=True, fe_mesh=mesh)
 
 
-@pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_shell_against_fe_spur(member):
-    r = _ratios("spur_20x40_m3", member, FeMesh())
+def test_shell_against_fe_on_the_real_root_spur_pinion():
+    res = _ratios("spur_20x40_m3", "pinion")
+    assert res.fe_root == "cutter" and res.fe_root_note is None
+    r = res.ratios()
     assert np.all(np.abs(r - 1.0) < TOLERANCE), r
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["spur_20x40_m3", "ev_reducer_helical_23x67"])
+@pytest.mark.parametrize("name", ["spur_20x40_m3", "ev_reducer_helical_23x67", "fzg_c_type"])
 @pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_shell_against_fe_calibration_mesh(name, member):
-    r = _ratios(name, member, FeMesh(20, 8, 4, 6))
-    assert np.all(np.abs(r - 1.0) < TOLERANCE_FINE), r
+def test_shell_against_fe_on_the_real_root(name, member):
+    r = _ratios(name, member).ratios()
+    assert np.all(np.abs(r - 1.0) < TOLERANCE_ALL), r
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("member", ["pinion", "gear"])
-def test_shell_against_fe_helical(member):
-    r = _ratios("ev_reducer_helical_23x67", member, FeMesh())
-    assert np.all(np.abs(r - 1.0) < TOLERANCE), r
+def test_fe_on_the_real_root_converges():
+    line = [float(_ratios("spur_20x40_m3", "pinion", mesh).line_fe_mm_per_n[1])
+            for mesh in (FeMesh(12, 6, 3, 4, 3, 2), FeMesh(16, 8, 4, 5, 4, 3))]
+    assert line[1] == pytest.approx(line[0], rel=0.03), line

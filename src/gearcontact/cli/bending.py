@@ -5,16 +5,24 @@ of points of the loaded flank (``--side``, default the pair's design side) in th
 member's body frame; ``shell_mm_per_n``: the shell
 Rayleigh-Ritz point-compliance matrix between them; the deflections under segment loads
 around the points and line loads over the face; with ``--fe`` also ``fe_mm_per_n``,
-the FE segment / line deflections, ``fe_nodes`` (nodes of the P2 mesh) and the
-shell-to-FE ratios) and ``deflection.png`` (deflection over the flank); the FE build
-time goes to ``run.json`` only (result files are byte-identical across runs).
+the FE segment / line deflections, ``fe_nodes`` (nodes of the P2 mesh), ``fe_root``
+(the root meshed: "cutter", the real one, or "ellipse") and the shell-to-FE ratios)
+and ``deflection.png`` (deflection over the flank); the FE build time goes to
+``run.json`` only (result files are byte-identical across runs). A cylindrical pair's
+tooth is loaded on the flank its ``--side`` mesh loads (drive: the clockwise facing
+flanks, the tooth's "coast" side; docs/bending.md sec. 9), its real root the
+trochoid its generating rack cuts.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..structure.compliance import SEGMENT_NODES, FeMesh, flank_compliance, write_compliance
+from ..structure.cylindrical_compliance import cylindrical_flank_compliance
+from ..structure.cylindrical_tooth import loaded_side
+from ..tca.cylindrical_cycle import FACING_OF_SIDE
 from ..structure.fe import fe_node_count
 from ..structure.shell import ORDER, ORDER_FACE
 from ..validation import InputRangeError
@@ -52,7 +60,8 @@ def register(sub) -> None:
     p.add_argument("--member", choices=("pinion", "gear"), default="pinion")
     p.add_argument("--side", choices=("drive", "coast"), default=None,
                    help="loaded flank (default: the pair's design side, the one its "
-                        "contact uses)")
+                        "contact uses; a cylindrical pair: the flank its drive / coast "
+                        "mesh loads, default drive)")
     p.add_argument("--order", type=int, default=ORDER,
                    help="Legendre order of the Ritz basis over the height of rim and "
                         f"tooth, 1..16 (default {ORDER})")
@@ -69,15 +78,16 @@ def register(sub) -> None:
                         "6,525 on the real root, 3,675 on the ellipse root)".format(
                             *(n for r in FE_MESH_RANGES.values() for n in r), MAX_FE_NODES))
     p.add_argument("--fe-root", choices=("cutter", "ellipse"), default="cutter",
-                   help="root of the FE tooth: the real root its cutter leaves (default; "
-                        "where it cannot be built, the ellipse root with a warning) or the "
-                        "quarter-ellipse root (docs/bending.md sec. 3, 10)")
+                   help="root of the FE tooth: the real root its cutter leaves (default; a "
+                        "cylindrical tooth's: the trochoid of its generating rack; where it "
+                        "cannot be built, the ellipse root with a warning) or the "
+                        "quarter-ellipse root (docs/bending.md sec. 3, 9, 10)")
     p.set_defaults(func=run, check=check)
 
 
 def check(args) -> None:
     """Options, the pair and the optional FE dependency before any work."""
-    check_pair_arguments(args)
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     for name, n in zip(("--points NXI", "--points NETA"), args.points):
         check_count(name, n, 1, 50)
     check_count("--order", args.order, 1, 16)
@@ -98,15 +108,20 @@ def check(args) -> None:
 
 
 def run(args) -> int:
-    pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
-    flanks = args.prepared_pair.flank_set()     # built once (the synthesis' if it ran)
     # lattice over the inner part of the flank (xi in +-0.5, eta in +-1/3)
     lattice = [s * (np.linspace(-1, 1, n) if n > 1 else np.zeros(1))
                for s, n in zip((0.5, 1 / 3), args.points)]
-    side = args.prepared_pair.side
-    res = flank_compliance(pair, args.member, side=side, flanks=flanks, xi=lattice[0],
-                           eta=lattice[1], order=args.order, order_face=args.order_face, fe=args.fe,
-                           fe_mesh=FeMesh(*args.fe_mesh), fe_root=args.fe_root)
+    opts = dict(xi=lattice[0], eta=lattice[1], order=args.order, order_face=args.order_face,
+                fe=args.fe, fe_mesh=FeMesh(*args.fe_mesh), fe_root=args.fe_root)
+    if args.gear_pair.kind == CYLINDRICAL:
+        pair, flanks = args.gear_pair, None
+        side = loaded_side(FACING_OF_SIDE[args.side])
+        res = cylindrical_flank_compliance(pair, args.member, side=side, **opts)
+    else:
+        pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
+        flanks = args.prepared_pair.flank_set()     # built once (the synthesis' if it ran)
+        side = args.prepared_pair.side
+        res = flank_compliance(pair, args.member, side=side, flanks=flanks, **opts)
     write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
                      order=args.order, order_face=args.order_face)
     seg = res.segment_shell_mm_per_n

@@ -409,7 +409,7 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
 BEVEL, CYLINDRICAL = GearPair.kind, CYLINDRICAL_KIND
 #: What each kind can be used for today (the message of a command that refuses one).
 _KIND_USE = {CYLINDRICAL: "only `gearcontact design`, `tca`, `lte`, `analyze`, `sweep`, "
-                          "`twin` and `export flanks` read cylindrical "
+                          "`bending`, `twin` and `export flanks` read cylindrical "
                           "pairs so far (docs/cylindrical.md)"}
 
 

@@ -40,7 +40,8 @@ from .shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
 from .tooth import LoadPoints
 
 __all__ = ["FlankCompliance", "FeMesh", "EllipseRootWarning", "flank_compliance",
-           "shell_compliance", "write_compliance", "concat_points", "SEGMENT_NODES"]
+           "check_member_and_root", "compare_on_root", "shell_compliance",
+           "write_compliance", "concat_points", "SEGMENT_NODES"]
 
 #: Node columns of a segment load.
 SEGMENT_NODES = 5
@@ -230,38 +231,67 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
         the root cone: the s0003 pinion's toe) the FE meshes the ellipse root, warns
         (:class:`EllipseRootWarning`) and says why in the result (``fe_root_note``).
     """
-    if member not in ("pinion", "gear"):
-        raise InputRangeError("member", member, "'pinion' or 'gear'")
-    if fe_root not in ("ellipse", "cutter"):
-        raise InputRangeError("fe_root", fe_root, "'ellipse' or 'cutter'")
+    check_member_and_root(member, fe_root)
     _check_lattice(side, xi, eta, fe_mesh)      # before the flanks and the shell
     flanks = build_flanks(pair) if flanks is None else flanks
     material = pair.pinion_material if member == "pinion" else pair.gear_material
     shell = tooth_shell(flanks, member, material=material, order=order,
                         order_face=order_face, rim=rim)
+    return compare_on_root(shell, lambda: _cutter_fillets(pair, flanks, member), name=pair.name,
+                           side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh,
+                           fe_root=fe_root)
+
+
+def check_member_and_root(member: str, fe_root: str) -> None:
+    """Raise InputRangeError unless ``member`` is "pinion" | "gear" and ``fe_root``
+    "cutter" | "ellipse" (:func:`flank_compliance`)."""
+    if member not in ("pinion", "gear"):
+        raise InputRangeError("member", member, "'pinion' or 'gear'")
+    if fe_root not in ("ellipse", "cutter"):
+        raise InputRangeError("fe_root", fe_root, "'ellipse' or 'cutter'")
+
+
+def _cutter_fillets(pair, flanks, member: str):
+    """``(fillets, None)`` of ``member``'s cutter (:func:`flank_compliance`), or ``(None,
+    why)`` where the pair names none."""
+    from ..geometry.fillet import pair_fillets
+
+    fillets, why = pair_fillets(pair, flanks, conjugate_pinion=True)
+    for key, reason in why.items():
+        if key[0] == member:
+            return None, f"no {key[1]} root fillet: {reason}"
+    return fillets, None
+
+
+def compare_on_root(shell: ShellModel, fillets, *, name: str, side: str, xi, eta, fe: bool,
+                    fe_mesh: FeMesh, fe_root: str) -> FlankCompliance:
+    """:func:`shell_compliance` of ``shell`` with the FE on the root ``fe_root`` names:
+    with "cutter" the real root of the fillets ``fillets()`` gives (``(fillets, None)``,
+    or ``(None, why)`` where there are none; called only when the FE runs), falling back
+    to the ellipse root with an :class:`EllipseRootWarning` where it cannot be built or
+    meshed (the result's ``fe_root_note`` says why). One path for bevel members
+    (:func:`flank_compliance`) and cylindrical teeth
+    (:func:`~.cylindrical_tooth.cylindrical_flank_compliance`)."""
     root, note = None, None
     if fe and fe_root == "cutter":
-        root, note = _real_root(pair, flanks, shell, fe_mesh)
+        root, note = _real_root(shell, fillets, fe_mesh)
         if note is not None:
-            warnings.warn(f"{pair.name} {member}: FE on the ellipse root, not the real "
-                          f"root ({note})", EllipseRootWarning, stacklevel=2)
+            warnings.warn(f"{name} {shell.body.member}: FE on the ellipse root, not the "
+                          f"real root ({note})", EllipseRootWarning, stacklevel=3)
     res = shell_compliance(shell, side=side, xi=xi, eta=eta, fe=fe, fe_mesh=fe_mesh,
                            fe_root=root)
     return res if note is None else replace(res, fe_root_note=note)
 
 
-def _real_root(pair, flanks, shell: ShellModel, fe_mesh: FeMesh):
+def _real_root(shell: ShellModel, fillets, fe_mesh: FeMesh):
     """``(FilletRoot, None)`` of the shell's tooth for the FE mesh ``fe_mesh``, or
-    ``(None, why)`` where it cannot be built (:func:`flank_compliance`)."""
-    from ..geometry.fillet import pair_fillets
+    ``(None, why)`` where it cannot be built (:func:`compare_on_root`)."""
     from .root_fillet import fillet_root
 
-    member = shell.body.member
-    fillets, why = pair_fillets(pair, flanks, conjugate_pinion=True)
-    for key, reason in why.items():
-        if key[0] == member:
-            return None, f"no {key[1]} root fillet: {reason}"
-    root = fillet_root(shell.body, fillets, depth_mm=shell.rim.depth_mm)
+    got, why = fillets()
+    if why is not None:
+        return None, why
+    root = fillet_root(shell.body, got, depth_mm=shell.rim.depth_mm)
     try:
         root.check_meshable(np.linspace(-1.0, 1.0, fe_mesh.n_xi + 1), fe_mesh.n_slot)
     except InputRangeError as exc:
@@ -313,11 +343,12 @@ def shell_compliance(shell: ShellModel, *, side: str = "drive", xi=(-0.5, 0.0, 0
     return FlankCompliance(**kw)
 
 
-def write_compliance(result: FlankCompliance, out, *, pair, flanks: FlankSet,
+def write_compliance(result: FlankCompliance, out, *, pair, flanks: FlankSet | None,
                      figures: bool = True, order: int = ORDER,
                      order_face: int = ORDER_FACE
                      ) -> list[Path]:
-    """Write ``compliance.json`` and ``deflection.png`` into ``out`` (created)."""
+    """Write ``compliance.json`` and ``deflection.png`` into ``out`` (created);
+    ``flanks``: a bevel pair's flank set (None for a cylindrical pair)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "compliance.json"

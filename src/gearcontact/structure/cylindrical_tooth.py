@@ -13,12 +13,16 @@ position over the member's face. At equal (u, z) the two flank points lie at the
 radius, so the mid-surface is the helicoid of the tooth's centre line and the thickness
 along its normal the normal chordal tooth thickness.
 
-Below the form circle the solid continues through the fillet and rim segment of
+Below the form circle the shell continues through the fillet and rim segment of
 :mod:`.rim`, with the fillet height the radial distance from the form circle to the root
 circle, ``(d_Ff - d_f) / 2`` (the trochoidal fillet's height; the segment widens to one
 pitch over it), and the rim depth the tooth height (as for bevel members). The
 shell's modulus of the fillet and rim is raised by :data:`CYLINDRICAL_RIM_STIFFENING`
-per member, calibrated against the 3D FE of the same tooth (:mod:`.fe`, same rim).
+per member, calibrated against the 3D FE of the same tooth on its real root
+(:func:`cylindrical_fillet_root`: the sides down the trochoidal fillets the basic
+rack's tip rounding generates, :mod:`gearcontact.geometry.cylindrical.fillet`, the
+slot bottoms on the root circle, the rim block below to the same depth;
+:mod:`.root_fillet`, :mod:`.fe`).
 
 References
 ----------
@@ -33,23 +37,28 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..geometry.cylindrical.fillet import root_fillet
 from ..geometry.cylindrical.flank import FACINGS, involute_flank
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import RimSegment, rim_segment
+from .root_fillet import FilletRoot, fillet_root
 from .shell import ORDER, ORDER_FACE, ShellModel, build_shell
 from .tooth import ToothGeometry
 
 __all__ = ["CYLINDRICAL_RIM_STIFFENING", "cylindrical_tooth", "cylindrical_rim",
-           "cylindrical_tooth_shell", "loaded_side"]
+           "cylindrical_fillet_root", "cylindrical_tooth_shell", "loaded_side",
+           "rack_fillets"]
 
 #: Factor on the modulus of the shell's fillet and rim of a cylindrical tooth
-#: (:func:`~.rim.rim_modulus_factor`), calibrated against the 3D FE of the same teeth
-#: with the same rim (P2; spur 20/40 m 3 and helical 23/67 m 2, both members; segment and
-#: line loads at three heights): shell / FE 0.94 .. 1.08 on the 12 x 6 x 3 + 4 mesh,
-#: 0.93 .. 1.16 on 20 x 8 x 4 + 6 (docs/bending.md sec. 9).
-CYLINDRICAL_RIM_STIFFENING = {"pinion": 1.4, "gear": 1.4}
+#: (:func:`~.rim.rim_modulus_factor`), calibrated against the 3D FE of the same teeth on
+#: their real roots (:func:`cylindrical_fillet_root`; P2, 12 x 6 x 3 + 4 cells, 3 fillet
+#: layers, 2 slot cells; spur 20/40 m 3, helical 23/67 m 2, FZG C 16/24, both members;
+#: segment and line loads at three heights): the one factor minimizing the largest
+#: |log(shell / FE)| over the six teeth, shell / FE 0.85 .. 1.17 (docs/bending.md sec. 9;
+#: 1.4 against the former ellipse-root FE).
+CYLINDRICAL_RIM_STIFFENING = {"pinion": 1.1, "gear": 1.1}
 
 
 def loaded_side(facing: str) -> str:
@@ -99,3 +108,23 @@ def cylindrical_tooth_shell(pair: CylindricalPair, member: str, *, order: int = 
     rim = cylindrical_rim(pair, tooth, stiffening=stiffening)
     with one_blas_thread():       # threaded BLAS of these sizes spins on a busy machine
         return build_shell(tooth, order=order, order_face=order_face, rim=rim)
+
+
+def cylindrical_fillet_root(pair: CylindricalPair, tooth: ToothGeometry, *,
+                            depth_mm: float | None = None) -> FilletRoot:
+    """The real root of ``tooth`` (:func:`cylindrical_tooth`): its sides run from the form
+    circle down the trochoidal fillets of its two flanks
+    (:func:`~gearcontact.geometry.cylindrical.fillet.root_fillet`: "drive" the
+    counter-clockwise facing one, "coast" the clockwise) to the root circle, the slot
+    bottoms beside them on the root circle span one pitch, the rim block below reaches
+    ``depth_mm`` below the root line (default the tooth height, the shell's rim depth).
+    A modified flank (relief, crowning) stands micrometres off the unmodified fillet at
+    the form circle: :class:`~.root_fillet.FilletRoot` bridges the gap."""
+    return fillet_root(tooth, rack_fillets(pair, tooth.member), depth_mm=depth_mm)
+
+
+def rack_fillets(pair: CylindricalPair, member: str) -> dict:
+    """``side -> RootFillet`` of the tooth of ``member`` (the sides of
+    :func:`cylindrical_tooth`)."""
+    return {side: root_fillet(pair, member, facing)
+            for side, facing in (("drive", "ccw"), ("coast", "cw"))}

@@ -10,6 +10,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
+from ..geometry.cylindrical.pair import CylindricalPair  # noqa: E402
+from .cylindrical_tooth import cylindrical_tooth_shell  # noqa: E402
 from .shell import ORDER, ORDER_FACE, tooth_shell  # noqa: E402
 
 __all__ = ["plot_deflection"]
@@ -22,9 +24,12 @@ def plot_deflection(result, path, *, pair, flanks, order: int = ORDER,
     right: deflection under the segment loads around the lattice points and the line
     loads, shell and (if solved) FE."""
     member = result.member
-    material = pair.pinion_material if member == "pinion" else pair.gear_material
-    shell = tooth_shell(flanks, member, material=material, order=order,
-                        order_face=order_face)
+    if isinstance(pair, CylindricalPair):       # its shell needs no flank set
+        shell = cylindrical_tooth_shell(pair, member, order=order, order_face=order_face)
+    else:
+        material = pair.pinion_material if member == "pinion" else pair.gear_material
+        shell = tooth_shell(flanks, member, material=material, order=order,
+                            order_face=order_face)
     tooth = shell.body
     k = int(np.argmin(result.xi ** 2 + result.eta ** 2))
     XI, ETA = np.meshgrid(np.linspace(-1, 1, 61), np.linspace(-1, 1, 25), indexing="ij")

@@ -14,7 +14,10 @@ surfaces the cutter made, not by the quarter-ellipse approximation of :mod:`.rim
   above it: that strip of the generated flank is bridged by the cubic Hermite curve of
   the two end points and tangents; on the formate gear the two coincide to 1e-14 mm
   and there is no bridge), and down the fillet ``RootFillet.evaluate(u, v)`` from its
-  top ``u = s_top`` to its bottom ``u = 0`` on the root cone;
+  top ``u = u_range[1]`` to its bottom ``u = u_range[0]`` on the root cone (a cutter's
+  round: ``(0, s_top)`` mm; the rack-generated trochoid of a cylindrical gear,
+  :mod:`gearcontact.geometry.cylindrical.fillet`: ``(-pi/2, -alpha_n)`` rad, its
+  bottom on the root cylinder);
 - the **slot bottoms**: from the two fillet bottoms ``B_c``, ``B_d`` along the root
   cone (turned about the member axis, which keeps them on the cone) to the slot
   middles, half a slot on each side, so that the root row spans one pitch;
@@ -54,8 +57,15 @@ __all__ = ["CriticalSection", "FilletRoot", "fillet_root", "ISO_TANGENT_DEG"]
 ISO_TANGENT_DEG = 30.0
 #: Samples per piece of a side curve for its arc-length table.
 _SAMPLES = 33
-#: Step of the fillet parameter of the tangent at the fillet's top row, mm.
+#: Step of the fillet parameter of the tangent at the fillet's top row (mm on a cutter's
+#: round, rad on a rack-generated trochoid: 1e-5 rad is ~1e-5 mm there).
 _DU_MM = 1e-5
+#: Bridges shorter than this are not searched for the 30 deg tangent, mm: a modified
+#: cylindrical flank (relief, crowning) stands micrometres off the unmodified fillet
+#: at its form point (2-7 um on the helical example), and the cubic bridging such a gap
+#: turns its tangent through any angle over its few micrometres; the ISO section is the
+#: fillet's. The bevel bridges are 0 (formate) or 0.15-0.71 mm (generated pinions).
+_BRIDGE_SEARCH_MM = 0.01
 
 
 @dataclass(frozen=True)
@@ -106,7 +116,8 @@ class FilletRoot:
         tooth, fil = self.tooth, self.fillets[side]
         flank = getattr(tooth, side)
         _, v = tooth.flank_parameters(side, xi, -np.ones_like(xi))
-        u_root, u_lo, s_top = tooth.u_span_mm[0], flank.u_range[0], fil.u_range[1]
+        u_root, u_lo = tooth.u_span_mm[0], flank.u_range[0]
+        s_bottom, s_top = fil.u_range
         out = np.empty(xi.shape + (3,))
         a = p <= 1.0
         if np.any(a):
@@ -114,7 +125,8 @@ class FilletRoot:
             out[a] = flank.evaluate(u, v[a], second=False).r
         c = p >= 2.0
         if np.any(c):
-            out[c] = fil.evaluate(s_top * (3.0 - np.clip(p[c], 2.0, 3.0)), v[c]).r
+            f = 3.0 - np.clip(p[c], 2.0, 3.0)        # 1 at the fillet's top, 0 at its bottom
+            out[c] = fil.evaluate(s_bottom + (s_top - s_bottom) * f, v[c]).r
         b = ~(a | c)
         if np.any(b):
             t = (p[b] - 1.0)[:, None]
@@ -291,8 +303,8 @@ class FilletRoot:
                             for e in (-h, h))
                     t = b - a
                     return math.atan2(abs(t @ across[i]), t @ down[i]) - target
-                # the first crossing down the curve (a bridge of zero length skipped)
-                bridged = self.bridge_mm(side, x)[0] > 1e-9
+                # the first crossing down the curve (a bridge of micrometres skipped)
+                bridged = self.bridge_mm(side, x)[0] > _BRIDGE_SEARCH_MM
                 grid = [p for p in np.linspace(1e-5, 3.0 - 1e-5, 61)
                         if bridged or not 1.0 < p < 2.0]
                 f = np.array([angle(p) for p in grid])
