@@ -177,23 +177,9 @@ def test_harris_map_of_a_spur_pair():
         assert pp[r, k] < 0.5 * pp[0, k]
 
 
-def test_mesh_stiffness_with_bending_against_iso_6336(spur):
-    """With the shell bending of both teeth (fillet and rim, calibrated against the 3D FE
-    on the teeth's real roots, docs/bending.md sec. 9) the 20/40 spur pair at T2 = 400
-    N·m (333 N/mm at d2, inside Method B's >= 100 N/mm): measured single-contact
-    stiffness 14.3 and mean 22.0 N/(mm·µm), i.e. 1.13 and 1.17 times c' = 12.7 and
-    c_gamma_alpha = 18.7, and 0.90 and 0.94 times the same without the measured
-    correction C_M = 0.8 (c'_th C_B = 15.9, c_gamma_alpha / C_M = 23.4). ISO 6336-1's
-    C_M is the mean ratio of measured to theoretical single stiffness of solid disc
-    gears; the model is a theory of the elastic teeth and body of the same kind as the
-    theoretical c'_th (no mounting, no shaft or housing compliance), so it is asserted
-    against the theoretical values within -12 % / +5 %: the q' polynomial's -8 % / +5 %
-    fit to its theory, widened on the soft side because the 3D FE the shell is
-    calibrated on finds this pair's teeth on their real roots softer than that theory
-    (the shell's rim factor fell from 1.4, fitted to the stiffer ellipse-root FE, to 1.1;
-    with 1.4 the pair gave 0.97 and 1.01; the FZG C pair, 1.1, gives 0.99 and 1.02:
-    docs/cylindrical.md sec. 7). Against c' within the 30 % the background allows an
-    empirical fit (tens of percent). The rigid teeth gave 2.5-2.7 times c'."""
+@pytest.fixture(scope="module")
+def spur_iso_stiffness(spur):
+    # (measured single-contact stiffness, ISO c'), (measured mean, ISO c_gamma_alpha)
     p, c = spur
     r = cylindrical_loaded_te(p, 400.0, cycle=c)
     assert r.bending and r.converged and not r.edge_touch
@@ -203,11 +189,36 @@ def test_mesh_stiffness_with_bending_against_iso_6336(spur):
                                      transverse_contact_ratio=g.transverse_contact_ratio)
     single = r.stiffness_n_per_mm_um[np.count_nonzero(r.load_share, axis=0) == 1]
     assert single.size > 0
-    for value, iso_value in ((single.mean(), iso.c_n_per_mm_um),
-                             (r.mean_stiffness_n_per_mm_um, iso.c_gamma_alpha_n_per_mm_um)):
-        theory = iso_value / 0.8
-        assert 0.88 < value / theory < 1.05
+    return ((single.mean(), iso.c_n_per_mm_um),
+            (r.mean_stiffness_n_per_mm_um, iso.c_gamma_alpha_n_per_mm_um))
+
+
+def test_mesh_stiffness_with_bending_against_iso_6336(spur_iso_stiffness):
+    """With the shell bending of both teeth (fillet and rim, calibrated against the 3D FE
+    on the teeth's real roots, docs/bending.md sec. 9) the 20/40 spur pair at T2 = 400
+    N·m (333 N/mm at d2, inside Method B's >= 100 N/mm): measured single-contact
+    stiffness 14.3 and mean 22.0 N/(mm·µm), i.e. 1.13 and 1.17 times c' = 12.7 and
+    c_gamma_alpha = 18.7 (ISO 6336-1 Method B with its measured correction C_M = 0.8).
+    Asserted against c' and c_gamma_alpha within the 30 % the background allows an
+    empirical fit (tens of percent). The rigid teeth gave 2.5-2.7 times c'."""
+    for value, iso_value in spur_iso_stiffness:
         assert 1.0 < value / iso_value < 1.3
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "differs: single-contact stiffness 0.90 x ISO 6336-1's theoretical c'_th C_B = 15.9 "
+    "N/(mm·µm) (mean 0.94 x c_gamma_alpha / C_M = 23.4), below the q' polynomial's -8 % "
+    "band; the 3D FE on the teeth's real trochoidal roots, which the shell's rim factor "
+    "is calibrated on (1.1), finds these teeth softer than the ellipse-root FE did (1.4 "
+    "gave 0.97 / 1.01); docs/cylindrical.md sec. 7, docs/bending.md sec. 9"))
+def test_mesh_stiffness_with_bending_against_iso_6336_theory(spur_iso_stiffness):
+    """ISO 6336-1's C_M = 0.8 is the mean ratio of measured to theoretical single
+    stiffness of solid disc gears; the model is a theory of the elastic teeth and body of
+    the same kind as the theoretical c'_th (no mounting, no shaft or housing compliance),
+    so it is compared with the theoretical values (c' / C_M, c_gamma_alpha / C_M) within
+    the -8 % / +5 % band the standard gives for the q' polynomial's fit to its theory."""
+    for value, iso_value in spur_iso_stiffness:
+        assert 0.92 < value / (iso_value / 0.8) < 1.05
 
 
 def test_bending_factor_is_the_shell_compliance(helical):
