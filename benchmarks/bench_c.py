@@ -22,12 +22,14 @@ RK4 step with its 4 mesh evaluations of both flanks, the record and the finitene
 check; median, p99, max) and over a sustained run (mean; real-time factor = 10 us /
 mean), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
-(>= 20x real time at 10 us). Last measured (docs/export.md, the eighth round: the
-step's bookkeeping, the Hamrock-Brewe terms inline, the golden quantization without its
-void range test): instructions per step fp64 4,306 -> 3,607, golden 9,135 -> 7,903;
-alternated before/after, 8 rounds at a load of ~9, median ns per step fp64 820 -> 720
-(ratio 0.87), golden 1,388 -> 1,277 (0.92); the library's chains unchanged (golden 842
-instructions, 170 ns median at a load of 9.5; fp64 750, 123 ns). The machine's state
+(>= 20x real time at 10 us). The steps are also given by the pairs loaded after the
+call (read outside the timed region): a call forms one preview per pair loaded at the
+next step's start, so these are its slow and fast steps. Last measured (docs/export.md,
+the ninth round: one preview per pair and step, a step's fp64 previews formed part by
+part over its pairs): instructions per step fp64 3,607 -> 3,379, golden 7,903 ->
+6,931; alternated before/after, 6 rounds at a load of 8-10, median ns per step fp64
+503 -> 429 (ratio 0.84), p99/p50 1.70-1.92 -> 1.32-1.60; golden 810 -> 829 (1.00),
+p99/p50 2.11-2.32 -> 1.37-1.71. The machine's state
 moves the absolute figures more than the code does: compare alternated runs and
 instructions.
 
@@ -223,10 +225,13 @@ int main(int argc, char **argv)
     long n = atol(argv[1]), i;
     fmi3Int64 backend = atol(argv[2]);
     fmi3Float64 step_us = 10.0, h = 1e-5, t = 0.0;
-    fmi3ValueReference vr_backend = VR_BACKEND, vr_step = VR_STEP_US;
+    fmi3ValueReference vr_backend = VR_BACKEND, vr_step = VR_STEP_US, vr_np = VR_PAIRS_LOADED;
     fmi3Boolean ev, term, early;
     fmi3Float64 last;
-    int64_t *dt = malloc(sizeof *dt * (size_t)n), t0, floor_ns, total;
+    fmi3Int32 pairs;
+    int64_t *dt = malloc(sizeof *dt * (size_t)n), *grp = malloc(sizeof *grp * (size_t)n), t0,
+        floor_ns, total;
+    int *np_ = malloc(sizeof *np_ * (size_t)n), c;
     fmi3Instance m = fmi3InstantiateCoSimulation("bench", NULL, NULL, fmi3False, fmi3False,
         fmi3False, fmi3False, NULL, 0, NULL, say, NULL);
     (void)argc;
@@ -243,12 +248,26 @@ int main(int argc, char **argv)
         if (fmi3DoStep(m, t, h, fmi3True, &ev, &term, &early, &last) != fmi3OK)
             return 3;
         dt[i] = now_ns() - t0 - floor_ns;
+        /* the pairs loaded at the next step's start: the previews this call formed */
+        fmi3GetInt32(m, &vr_np, 1, &pairs, 1);
+        np_[i] = (int)pairs;
     }
     t0 = now_ns();
     for (i = 0; i < n; ++i, t += h)
         if (fmi3DoStep(m, t, h, fmi3True, &ev, &term, &early, &last) != fmi3OK)
             return 3;
     total = now_ns() - t0;
+    for (c = 0; c <= 16; ++c) {         /* the steps by pairs loaded */
+        long g = 0;
+        for (i = 0; i < n; ++i)
+            if (np_[i] == c)
+                grp[g++] = dt[i];
+        if (g == 0)
+            continue;
+        qsort(grp, (size_t)g, sizeof grp[0], cmp);
+        printf("pairs %d %ld %lld %lld\n", c, g, (long long)grp[g / 2],
+               (long long)grp[(long)(0.99 * (double)(g - 1))]);
+    }
     qsort(dt, (size_t)n, sizeof dt[0], cmp);
     printf("%lld %lld %lld %.1f %lld\n", (long long)dt[n / 2],
            (long long)dt[(long)(0.99 * (double)(n - 1))], (long long)dt[n - 1],
@@ -310,6 +329,7 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
         exe = Path(tmp) / "bench_step"
         subprocess.run(["gcc", *FMU_CFLAGS,
                         f"-DVR_BACKEND={vr['backend']}", f"-DVR_STEP_US={vr['step_us']}",
+                        f"-DVR_PAIRS_LOADED={vr['pairs_loaded']}",
                         "-I", str(src), "-I", str(Path(fmpy_file).parent / "c-code"),
                         "-o", str(exe), *sorted(str(p) for p in src.glob("*.c")), "-lm"],
                        check=True)
@@ -318,12 +338,21 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
               f"64.5 N.m, 10 us; {steps} steps timed one by one, {steps} sustained)")
         print(f"{'backend':<8} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} "
               f"{'p99/p50':>8} {'mean ns':>8} {'RTF @10us':>10}")
+        groups = {}
         for name, code in (("fp64", 0), ("golden", 1)):
-            out = subprocess.run([str(exe), str(steps), str(code)], check=True,
-                                 capture_output=True, text=True).stdout.split()
+            lines = subprocess.run([str(exe), str(steps), str(code)], check=True,
+                                   capture_output=True, text=True).stdout.splitlines()
+            groups[name] = [x.split()[1:] for x in lines if x.startswith("pairs ")]
+            out = lines[-1].split()
             p50, p99, mx, mean = int(out[0]), int(out[1]), int(out[2]), float(out[3])
             print(f"{name:<8} {p50:>10} {p99:>8} {mx:>9} {p99 / max(p50, 1):>8.2f} "
                   f"{mean:>8.1f} {1e4 / mean:>9.1f}x   (timer {out[4]} ns subtracted)")
+        # which steps are slow: a call forms one preview per pair loaded at the next
+        # step's start (and one per pair a later stage closes)
+        print("by pairs loaded (the previews a step forms): " + "; ".join(
+            f"{name} " + ", ".join(f"{c} pairs {100 * int(g) / steps:.1f} % of steps "
+                                   f"p50 {p50} p99 {p99} ns" for c, g, p50, p99 in rows)
+            for name, rows in groups.items()))
         if instructions and shutil.which("valgrind") and shutil.which("callgrind_annotate"):
             print("instructions per step (callgrind, 6,000 steps, inclusive of libm; load "
                   "independent): " + ", ".join(f"{name} {_step_instructions(exe, code):,.0f}"

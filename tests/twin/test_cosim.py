@@ -31,8 +31,7 @@ def test_rtl_twin_is_the_golden_twin_bit_for_bit(s0003_twin, curvatures, core):
     gold = simulate(build_model(mesh, dt, TORQUE_NM, backend="golden",
                                 curvatures=curvatures), **kw)
     s = rtl.summary
-    # 100 steps x 3-4 loaded pairs, one preview each per step (more when a stage enters
-    # the next phase interval)
+    # 100 steps x 3-4 loaded pairs, one preview each per step
     assert s["rtl_mismatches"] == 0 and s["rtl_previews"] >= 300
     assert s["rtl_core"] == core and s["curvatures"] == curvatures
     for key, col in gold.columns.items():

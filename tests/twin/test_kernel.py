@@ -203,3 +203,54 @@ def test_stencil_not_elliptic_is_flagged_not_loaded():
     assert kap == -1.0 and trace[0, 4] != 0
     ch = chain_golden(encode_gaps(g[0]), 25600, e_prime_code=encode_e_prime(E_PRIME))
     assert trace[0, 4] == ch.flags and "fit_not_elliptic" in ch.flag_names
+
+
+def test_one_preview_per_loaded_pair_and_step(s0003_twin):
+    """The kernel previews a loaded pair once per step and holds it into the next row
+    interval (docs/twin.md, "One preview per pair and step"): 600 golden steps of 10 us
+    at 6000 rpm on s0003 (31 phases: a row interval every ~5 steps, so ~120 steps
+    whose later stages enter the next interval), the golden trace's previews per step
+    against the pairs loaded at the step's start (the record). Truth by counting: a
+    step forms exactly its loaded pairs' previews, more only where a pair first closes
+    in a later stage (the loaded pairs grow by the next step's start) or the pitch wraps
+    (the pairs relabelled: previewed again), never fewer. The rule before (a preview
+    again in the next interval) added every loaded pair's at each such step."""
+    from gearcontact.twin.params import default_drivetrain
+    from gearcontact.twin.simulate import (_fit_args, _prm, build_model,
+                                           speed_controller_gains, static_rotation)
+
+    pair, _, _, mesh = s0003_twin
+    m = build_model(mesh, default_drivetrain(pair), 64.5, backend="golden")
+    a, dt = m.arrays, m.drivetrain
+    prm = _prm(m, 0.0)
+    omega = 6000.0 * 2.0 * math.pi / 60.0
+    prm[K.P_OMEGA] = omega
+    prm[K.P_KP], prm[K.P_KI] = speed_controller_gains(m)
+    theta0, w0 = static_rotation(m)
+    y = np.zeros(K.N_STATE)
+    y[0] = m.torque_nm / mesh.ratio / dt.input_stiffness_nm_per_rad
+    y[2] = mesh.eps_rad[0] - theta0
+    y[3] = y[2] - m.torque_nm / dt.output_stiffness_nm_per_rad
+    y[4:8] = omega, omega, omega / mesh.ratio, omega / mesh.ratio
+    n, n_p = 600, a["lever"].shape[1]
+    w_eval = np.full((2, n_p), K.W_EVAL_MIN_N)
+    w_eval[0] = np.where(w0 > 0, w0, K.W_EVAL_MIN_N)
+    trace = np.zeros((n * (n_p + 2), K.N_TRACE), np.int64)
+    tcount = np.zeros(K.N_COUNT, np.int64)
+    rec = np.zeros((n, K.N_REC))
+    K.run_steps(y, 0.0, n, 1e-5, prm, a["eps"], a["lever"], a["opening"], a["cv"],
+                a["valid"], a["cb"], 1, w_eval, a["pow_lut"], a["cbrt_lut"], a["cst"], trace,
+                tcount, _fit_args(a, 0), a["tab_theta"], a["tab_t23"], a["tab_w23"], rec, 0, 1)
+    assert tcount[5] == 0       # every preview has a law: each loaded pair one preview
+    previews = np.bincount(trace[:tcount[0], 0], minlength=n)
+    pairs = rec[:, K.R_NPAIRS].astype(int)
+    x = np.mod(rec[:, K.R_PSI], prm[K.P_PITCH]) / prm[K.P_DPSI]
+    row = np.minimum(x.astype(int), int(prm[K.P_NROW]) - 2)
+    inside = np.diff(row) == 1          # a later stage of the step in the next interval
+    wrap = np.diff(row) < 0
+    grows = np.diff(pairs) > 0
+    extra = (previews - pairs)[:-1]
+    assert inside.sum() > 100 and wrap.sum() >= 3
+    assert np.all(extra >= 0)
+    assert np.all(extra[~(wrap | grows)] == 0)
+    assert np.all(extra[inside & ~grows] == 0)

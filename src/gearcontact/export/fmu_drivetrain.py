@@ -174,6 +174,22 @@ def _row_law(lever, opening, valid) -> list:
     return tables
 
 
+def _e_rec(eps, ratio: float, dpsi: tuple[float, float]) -> list:
+    """Per table and row interval ``(i, i + 1)``: ``eps[i]``, ``eps[i + 1] - eps[i]`` and
+    ``1 / u + (eps[i + 1] - eps[i]) / dpsi`` as C literals (the last row: ``eps``, 0,
+    ``1 / u``): :func:`gearcontact.twin.kernel._deriv`'s interpolation operands and
+    factor ``d theta / d psi_p``, formed in IEEE double as it forms them (the C loop's
+    ``E_REC``: the same doubles)."""
+    eps = np.asarray(eps, float)
+    inv_u = 1.0 / float(ratio)
+    tables = []
+    for s, row in enumerate(eps):
+        d = [float(row[i + 1]) - float(row[i]) for i in range(len(row) - 1)] + [0.0]
+        tables.append([[c_double(float(row[i])), c_double(d[i]),
+                        c_double(inv_u + d[i] / float(dpsi[s]))] for i in range(len(row))])
+    return tables
+
+
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                           torque_nm: float = 64.5, drivetrain=None,
                           curvatures: str = "stencil", bending: bool = False,
@@ -222,7 +238,8 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    from ..twin.model import CURVATURE_SOURCES, _stack
+    from ..twin import layout as L
+    from ..twin.model import CURVATURE_SOURCES, _prm, _stack
     from ..twin.simulate import _CHUNK
     from ..validation import InputRangeError
 
@@ -245,6 +262,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         return [c_double(v) for v in x] if x.ndim == 1 else [hexes(r) for r in x]
 
     consts = _constants(model)
+    prm = _prm(model, 0.0)
     baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
                                        (a["eps"], a["lever"], a["opening"], a["valid"],
                                         exact, cv, a["cb"] if bending else None)])).encode()
@@ -261,7 +279,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ctx.update({
         "pair_name": pair_name, "side": side, "constants": consts,
         "n_pairs": a["lever"].shape[1], "n_rows": a["lever"].shape[2],
-        "n_rows0": len(m.psi_rad), "eps": hexes(a["eps"]),
+        "n_rows0": len(m.psi_rad),
         "tables": [("LEVER", hexes(a["lever"])), ("OPENING", hexes(a["opening"])),
                    ("A_MINUS", hexes(exact[..., 0])), ("B_MINUS", hexes(exact[..., 1]))],
         "stencil": stencil, "curvatures": curvatures, "bending": bool(bending),
@@ -272,6 +290,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "cv_in_range": stencil and bool(np.all(np.abs(cv[..., :-3]) <= 256.0)),
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
         "row_pairs": _row_pairs(a["valid"]),
+        "e_rec": _e_rec(a["eps"], prm[L.P_U], (prm[L.P_DPSI], prm[L.P_DPSIR])),
         "row_law": _row_law(a["lever"], a["opening"], a["valid"]),
         "psi0": hexes(m.psi_rad), "eps0": hexes(m.eps_rad),
         "default_step": "1e-05", "default_stop": "0.05",

@@ -11,9 +11,12 @@ closed; the flanks cannot pull, so ``T = max(T_el + T_d, 0)``.
 ``kappa_j`` (mm / N^(2/3)) is the Hertzian approach coefficient ``delta = kappa W^(2/3)``
 (Johnson 1985 sec. 4.2: the approach of two elastic bodies in point contact grows as
 ``W^(2/3)``; Hamrock & Brewe 1983 for the elliptical closed form), taken from one preview
-per loaded pair and step -- at the phase of the step's start (again if a later RK4
-stage enters the next phase interval) and at the pair's load of the previous step --
-and held over the step's four stages: ``delta = 3 W F / (pi a E')`` with ``F = pi/2 +
+per loaded pair and step -- at the phase of the step's start (of the first RK4 stage
+that closes the pair, if a later one does) and at the pair's load of the previous step
+-- and held over the step's four stages, also where a later stage enters the next phase
+interval (the preview's count per step is the loaded pairs', a bounded step for a
+real-time target; its kappa is continuous across the rows, so held one step it errs as
+much as within a row): ``delta = 3 W F / (pi a E')`` with ``F = pi/2 +
 (pi/2 - 1) ln alpha`` and ``alpha = k^(pi/2)`` (Hamrock–Brewe's ``k = alpha^(2/pi)``
 inverted), i.e. from the preview's outputs ``a`` and ``k`` whatever backend computed
 them. The curvatures the preview takes (``prm[P_STAGEC]``, :data:`~.layout.CURVATURE_SOURCES`):

@@ -113,7 +113,11 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
         d = lv * theta - g
         if d <= 0.0:
             continue
-        if cache[sd, j, 0] != i:    # one preview per pair and step (and per new interval)
+        # one preview per pair and step, held into the next row interval (its kappa is
+        # continuous across the row); again on any other row (the pitch's wrap relabels
+        # the pairs; a row back)
+        r = cache[sd, j, 0]
+        if r < 0.0 or (i != r and i != r + 1.0):
             we = min(max(w_eval[sd, j], W_EVAL_MIN_N), _W_EVAL_MAX_N)
             pv[3] = 0.0
             pv[4] = 0.0
