@@ -4,7 +4,10 @@ Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its I
 Method 1 blank design as a table (after checking that the gear generates the pinion
 flanks: :func:`~gearcontact.geometry.generation.check_generation`); ``--json`` prints one
 JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
-``mean_cone_distances_mm``, each ``[pinion, gear]``). A cylindrical pair
+``mean_cone_distances_mm``, each ``[pinion, gear]``, and ``reverse_side_contact_ratio``).
+The contact ratio of the side that is not the design side is not refused: below 1 a
+one-line warning on stderr names it and what ``twin`` does with that flank
+(:func:`~gearcontact.geometry.contact_ratio.reverse_side_warning`). A cylindrical pair
 (``kind = "cylindrical"``) prints its ISO 21771 geometry (docs/cylindrical.md).
 """
 
@@ -12,12 +15,14 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import sys
 
 from ..errors import CheckFailed
 from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSEC
+from ..geometry.contact_ratio import reverse_side_warning
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import generation_of, generation_text
-from ..geometry.generation import check_generation
+from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair,
                              without_easeoff)
 from ..validation import InputRangeError, check_range
@@ -486,10 +491,18 @@ def run(args) -> int:
     if args.synthesize_easeoff:
         return _synthesize(args, pair)
     blank = pair.blank
-    generation = getattr(args, "gear_generation", None) or generation_of(
-        _check_generation(args, pair))
+    boxes = getattr(args, "generation_check", None) or _check_generation(args, pair)
+    generation = getattr(args, "gear_generation", None) or generation_of(boxes)
+    # design refuses on the design side only; the other side's gap is twin's reverse flank
+    reverse = reverse_side_contact_ratio(pair, boxes=boxes)
+    warning = reverse_side_warning(reverse)
+    if warning:
+        print(warning, file=sys.stderr)
     if args.json:
-        out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation}
+        out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation,
+               "reverse_side_contact_ratio": None if reverse is None else {
+                   "side": reverse.side, "eps_p": reverse.total, "ends": list(reverse.ends),
+                   "warning": warning}}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
