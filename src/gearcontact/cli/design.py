@@ -454,7 +454,11 @@ def _local_synthesis(args, pair) -> int:
     from ..report.design import local_synthesis_toml, write_machine_settings_toml
     from ..tca.setting_synthesis import synthesized_machine_pair
 
-    cut, done = synthesized_machine_pair(pair, targets=_checked_targets(args))
+    try:
+        cut, done = synthesized_machine_pair(pair, targets=_checked_targets(args))
+    except InputRangeError as exc:     # the reach model's certain refusal names the side
+        side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
+        raise _renamed(exc, _path_angle_option(args, side)) from None
     text = local_synthesis_toml(cut, done)
     print(text)
     if args.out is not None:
