@@ -618,6 +618,28 @@ def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, caps
            "side" in err
 
 
+def test_local_synthesis_certain_reach_refusal_names_the_option(generated_hypoid_file, capsys,
+                                                                monkeypatch, tmp_path):
+    # a path angle the reach model finds out of reach for certain (tca.setting_reach,
+    # raised by the synthesis after its seven local TCAs, before the search) is bad
+    # input: exit 2 naming the option that set it and the reason, no file written
+    import gearcontact.tca.setting_synthesis as setting_synthesis
+    from gearcontact.validation import InputRangeError
+
+    def refuse(pair, *, targets):
+        raise InputRangeError("path_angle_deg", -9.3, "a path angle the coast settings can "
+                              "reach: ... roll curvature beyond ... at 0% of the step")
+
+    monkeypatch.setattr(setting_synthesis, "synthesized_machine_pair", refuse)
+    assert main(["design", "--pair", str(generated_hypoid_file), "--machine-settings",
+                 "--local-synthesis", "--path-angle-coast-deg", "-9.3", "--out",
+                 str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "--path-angle-coast-deg = -9.3 is outside the allowed range: a path angle the " \
+           "coast settings can reach" in err
+    assert not (tmp_path / "x" / "machine_settings.toml").exists()
+
+
 @pytest.mark.parametrize("argv, angle, turns, levels", [
     ([], None, True, (3.0, 0.35)),     # analyze synthesizes at the default targets
     (["--synthesize-easeoff", "--path-angle-drive-deg", "12"], 12.0, True, (3.0, 0.35)),

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from gearcontact.tca.setting_reach import ReachModel, reach_model
+from gearcontact.tca.setting_reach import MAX_STEPS, ReachModel, reach_model
 from gearcontact.tca.setting_synthesis import _SCALE, synthesize_settings
 from gearcontact.tca.synthesis import SynthesisTargets
 from gearcontact.validation import InputRangeError
@@ -66,7 +66,9 @@ def test_quadratic_easeoff_gives_back_the_corrections_of_any_target():
         assert level == pytest.approx(3.0, rel=1e-9)
         assert length == pytest.approx(9.0, rel=1e-9)
         assert abs((path - angle + 90.0) % 180.0 - 90.0) < 1e-7
-        assert p.residual < 1e-6 and p.reachable and not p.limit
+        assert p.residual < 1e-6 and not p.limit
+        assert p.verdict == ("reachable" if p.step_scales <= MAX_STEPS
+                             else "beyond the model's range")
         assert p.predicted[2] == pytest.approx(angle, abs=1e-7)
 
 
@@ -107,12 +109,17 @@ def test_predicted_corrections_meet_a_coast_target(problem):
     model = reach_model(problem, "coast", scales=_SCALE)
     length = 0.35 * problem.pair.gear_face_width_mm
     p = model.predict(SynthesisTargets(path_angle_deg=-70.0), length_mm=length)
-    assert p.reachable and not p.certain and p.step_scales < 10
+    assert p.verdict == "reachable" and p.step_scales < 10
     level, got, off = _misses(problem, "coast", p.x, -70.0)
     assert abs(off) < 1.0 and got == pytest.approx(length, rel=0.02)
     assert level == pytest.approx(3.0, abs=1.0)
     assert np.abs(p.x - [0.00233, -0.00040, -2.839]).max() < 0.1
     assert abs(p.x[0] - 0.00233) < 1e-3 and abs(p.x[1] + 0.00040) < 1e-4
+    # along the contact line (the start's ellipse axis, -9.3 deg) the refusal is certain
+    line = model.predict(SynthesisTargets(path_angle_deg=round(model.line_angle_deg, 1)),
+                         length_mm=length)
+    assert abs(model.line_angle_deg + 9.3) < 0.5 and line.certain
+    assert line.verdict == "out of reach (certain)"
 
 
 @pytest.mark.slow

@@ -36,7 +36,9 @@ which a path along the contact line (``psi -> 0``: an infinite ``H_lm``) always 
 prediction is *certain* (``design`` refuses it before the fit) only where even half the
 predicted step crosses a hard limit: twice the largest error of the predicted step
 measured (docs/machine_settings.md). Elsewhere the prediction is reported beside the
-synthesis' result.
+synthesis' result, and the synthesis starts from the predicted corrections where they miss
+less than the standard crowning; a step longer than :data:`MAX_STEPS` (the range checked
+against the synthesis) is no prediction either way.
 
 References
 ----------
@@ -54,7 +56,7 @@ import numpy as np
 from ..validation import InputRangeError
 from .synthesis_targets import SynthesisTargets, angle_diff
 
-__all__ = ["CERTAIN_SHARE", "STEP", "ReachModel", "ReachPrediction", "reach_model",
+__all__ = ["CERTAIN_SHARE", "MAX_STEPS", "STEP", "ReachModel", "ReachPrediction", "reach_model",
            "target_misses"]
 
 #: Central-difference step of the model, in the synthesis' scale steps
@@ -64,6 +66,11 @@ STEP = 5.0
 #: Share of the predicted step that must already cross a hard limit for a certain
 #: refusal (the measured error of the predicted step is below half of it).
 CERTAIN_SHARE = 0.5
+#: Largest predicted step (scale steps) up to which the model was checked against the
+#: synthesis (13/26 hypoid, docs/machine_settings.md sec. 5: met at up to 140 steps,
+#: the predicted corrections within 15 % of the found ones); a longer step is
+#: "beyond the model's range": no prediction either way.
+MAX_STEPS = 150.0
 
 
 @dataclass(frozen=True)
@@ -104,19 +111,31 @@ class ReachPrediction:
 
     @property
     def reachable(self) -> bool:
-        """Predicted within the targets' tolerances (residual <= 1)."""
-        return self.residual <= 1.0
+        """Predicted within the targets' tolerances (residual <= 1) by a step within the
+        model's checked range (:data:`MAX_STEPS`)."""
+        return self.residual <= 1.0 and self.step_scales <= MAX_STEPS
 
     @property
     def certain(self) -> bool:
         """Out of reach even at :data:`CERTAIN_SHARE` of the predicted step."""
         return bool(self.limit) and self.share < CERTAIN_SHARE
 
+    @property
+    def verdict(self) -> str:
+        """``"reachable"``, ``"beyond the model's range"`` (no prediction), ``"out of
+        reach"`` (a hard limit within the step) or ``"out of reach (certain)"``."""
+        if self.certain:
+            return "out of reach (certain)"
+        if self.limit:
+            return "out of reach"
+        return "reachable" if self.reachable else "beyond the model's range"
+
     def text(self) -> str:
         """One line for the synthesis' report."""
         lvl, length, ang = self.predicted
         why = f"; {self.limit}" if self.limit else ""
-        return (f"{self.side} reach model: path {self.path_angle_deg:g} deg needs roll "
+        return (f"{self.side} reach model ({self.verdict}): path {self.path_angle_deg:g} deg "
+                f"needs roll "
                 f"curvature {self.x[0]:+.4f}, blade curvature {self.x[1]:+.5f} /mm, cutter "
                 f"radius {self.x[2]:+.3f} mm ({self.step_scales:.0f} scale steps); "
                 f"predicted TE level {lvl:.2f} arcsec, ellipse {length:.3f} mm, path "
