@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from gearcontact.tca.setting_reach import MAX_STEPS, ReachModel, reach_model
+from gearcontact.tca.setting_reach import MAX_STEPS, ReachModel, chord_step, reach_model
 from gearcontact.tca.setting_synthesis import _SCALE, synthesize_settings
 from gearcontact.tca.synthesis import SynthesisTargets
 from gearcontact.validation import InputRangeError
@@ -70,6 +70,19 @@ def test_quadratic_easeoff_gives_back_the_corrections_of_any_target():
         assert p.verdict == ("reachable" if p.step_scales <= MAX_STEPS
                              else "beyond the model's range")
         assert p.predicted[2] == pytest.approx(angle, abs=1e-7)
+
+
+def test_one_chord_step_lands_on_the_target_where_the_coordinates_are_linear():
+    # the chord step applies the model's Jacobian to the miss in y measured at x: with y
+    # exactly linear (the quadratic ease-off) one step from anywhere is the solution
+    # (1e-9 of the corrections: rounding of the 3 x 3 solve)
+    model = _quadratic_model()
+    t = SynthesisTargets(te0_pp_arcsec=3.0, path_angle_deg=-38.0)
+    p = model.predict(t, length_mm=9.0)
+    x = p.x + np.array([0.01, -0.001, 0.3])
+    level, length, path, _ = _quadratic_contact(x)
+    x1 = chord_step(model, p, x, (level, length, path), targets=t, length_mm=9.0)
+    assert np.abs((x1 - p.x) / model.scales).max() < 1e-6
 
 
 def test_a_path_along_the_contact_line_is_refused_for_certain():

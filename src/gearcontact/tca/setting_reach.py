@@ -56,8 +56,8 @@ import numpy as np
 from ..validation import InputRangeError
 from .synthesis_targets import SynthesisTargets, angle_diff
 
-__all__ = ["CERTAIN_SHARE", "MAX_STEPS", "STEP", "ReachModel", "ReachPrediction", "reach_model",
-           "target_misses"]
+__all__ = ["CERTAIN_SHARE", "MAX_STEPS", "STEP", "ReachModel", "ReachPrediction",
+           "chord_step", "reach_model", "target_misses"]
 
 #: Central-difference step of the model, in the synthesis' scale steps
 #: (``setting_synthesis._SCALE``): large enough that the level's second difference
@@ -260,6 +260,20 @@ class ReachModel:
         return ReachPrediction(self.side, float(targets.path_angle_deg), self.x0 + dx * share,
                                float(np.abs(z).max()), limit, float(share),
                                (level, length, angle), float(math.sqrt(r @ r)))
+
+
+def chord_step(model: ReachModel, prediction: ReachPrediction, x, contact, *,
+               targets: SynthesisTargets, length_mm: float) -> np.ndarray:
+    """Corrections one chord step from ``x``: the model's Jacobian applied to the miss
+    in ``y`` measured at ``x`` (``contact``: signed TE level arcsec, ellipse length mm,
+    path angle deg), clipped to the hard limits' share of the step as in
+    :meth:`ReachModel.predict` (no step where the prediction was clipped)."""
+    s, line = model.level_scale, model.line_angle_deg
+    y_t = _coordinates(targets.te0_pp_arcsec, length_mm, targets.path_angle_deg, line, s)
+    y_x = _coordinates(*contact, line, s)
+    if prediction.limit or not np.all(np.isfinite(y_x)):
+        return np.asarray(x, float)
+    return np.asarray(x, float) + np.linalg.solve(model.jacobian, y_t - y_x) * model.scales
 
 
 def reach_model(problem, side: str, *, scales, step: float = STEP) -> ReachModel:
