@@ -120,7 +120,9 @@ def register(sub) -> None:
                         "curvature, cutter radius and, with a path angle, blade curvature "
                         "for the targets --te0-arcsec, --pattern-length-ratio and "
                         "--path-angle-*; TCA in the loop, ~1 min; docs/machine_settings.md "
-                        "sec. 5) instead of the standard crowning")
+                        "sec. 5) instead of the standard crowning; a path angle is first "
+                        "checked by the reach model (refused, exit 2, only where it is out "
+                        "of reach for certain; its prediction is written beside the result)")
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "

@@ -34,8 +34,8 @@ only where its corrections are, by the hard limits of the settings (the roll of
 :func:`~.setting_synthesis.roll_about`, ``1 + 2 c psi_m > 0``; a positive cutter radius),
 which a path along the contact line (``psi -> 0``: an infinite ``H_lm``) always meets. A
 prediction is *certain* (``design`` refuses it before the fit) only where even half the
-predicted step crosses a hard limit: twice the largest error of the predicted step
-measured (docs/machine_settings.md). Elsewhere the prediction is reported beside the
+predicted step crosses a hard limit (the largest error of the predicted corrections
+measured is 31 % of the step, docs/machine_settings.md). Elsewhere the prediction is reported beside the
 synthesis' result, and the synthesis starts from the predicted corrections where they miss
 less than the standard crowning; a step longer than :data:`MAX_STEPS` (the range checked
 against the synthesis) is no prediction either way.
@@ -64,12 +64,13 @@ __all__ = ["CERTAIN_SHARE", "MAX_STEPS", "STEP", "ReachModel", "ReachPrediction"
 #: fixes ``s``, small enough that ``y`` stays linear (2 % measured over it).
 STEP = 5.0
 #: Share of the predicted step that must already cross a hard limit for a certain
-#: refusal (the measured error of the predicted step is below half of it).
+#: refusal: the error of the predicted corrections measured against the synthesis is at
+#: most 31 % of the step (per correction in scale steps; docs/machine_settings.md).
 CERTAIN_SHARE = 0.5
 #: Largest predicted step (scale steps) up to which the model was checked against the
-#: synthesis (13/26 hypoid, docs/machine_settings.md sec. 5: met at up to 140 steps,
-#: the predicted corrections within 15 % of the found ones); a longer step is
-#: "beyond the model's range": no prediction either way.
+#: synthesis (13/26 hypoid, docs/machine_settings.md sec. 5: 14 targets of 8-140 steps
+#: all met; 230-3860 steps all missed); a longer step is "beyond the model's range": no
+#: prediction either way.
 MAX_STEPS = 150.0
 
 
