@@ -22,6 +22,7 @@ def test_design_json_s0003(capsys):
     b1, b2 = out["spiral_angles_deg"]
     assert b1 - b2 == pytest.approx(out["offset_angle_pitch_plane_deg"], abs=1e-9)
     assert out["pair"] == "s0003"
+    _no_reverse_side_warning(out, capsys)
 
 
 def test_design_table_file(capsys):
@@ -30,6 +31,7 @@ def test_design_table_file(capsys):
     assert "pitch angle" in text and "limit pressure angle" in text
     # ISO 23509 F.3: R_m1 = 73.519 mm printed with 4 decimals (73.5213, see test_blank)
     assert "73.521" in text and "-2.2535" in text
+    assert "warning" not in capsys.readouterr().err
 
 
 def test_design_bad_input(capsys, tmp_path):
@@ -52,6 +54,50 @@ def test_design_json_spiral_bevel_is_strict_json(capsys):
     # ISO 23509 F.2: delta1 = 19.747 deg, beta1 = beta2 = 35 deg
     assert out["pitch_angles_deg"][0] == pytest.approx(19.747, abs=0.0005)
     assert out["spiral_angles_deg"] == [35.0, 35.0]
+    _no_reverse_side_warning(out, capsys)
+
+
+def _no_reverse_side_warning(out, capsys):
+    """The shipped pairs mesh on both sides: the side that is not the design side has
+    eps_p > 1 (docs/geometry.md sec. 7.7: s0003 drive 3.46, F.2 1.38, 11/41 2.13), so
+    ``design`` prints no warning and the JSON key carries no text."""
+    rev = out["reverse_side_contact_ratio"]
+    assert rev["eps_p"] > 1.0 and rev["warning"] is None
+    assert "warning" not in capsys.readouterr().err
+
+
+def test_design_hypoid_example_does_not_warn(capsys):
+    assert main(["design", "--pair", str(ROOT / "examples" / "hypoid_11x41_rear_axle.toml"),
+                 "--json"]) == 0
+    _no_reverse_side_warning(json.loads(capsys.readouterr().out), capsys)
+
+
+def test_design_warns_when_the_other_side_has_a_gap(capsys, tmp_path):
+    """The 9/9 spiral bevel of tests/twin/test_design_space.py (REVERSE_GAP_PAIR: 55 deg,
+    coast design, left hand): design accepts its coast side (eps_p >= 0.85) and the TCA
+    of its drive flanks has a gap (the twin test's ContactGap at phi1 = -11.54 deg, the
+    independent truth), so the drive side's eps_p is below 1: measured 0.669 (asserted
+    0.5-0.752: 0.752 is the largest eps_p measured with a TCA gap, docs/geometry.md sec.
+    7.7), and one warning line names it and the twin's mirrored reverse law; the JSON
+    carries the same."""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests"))
+    from design_space import design_space_candidate
+
+    from gearcontact.geometry.pair import pair_to_toml
+
+    path = tmp_path / "pair.toml"
+    path.write_text(pair_to_toml(design_space_candidate(
+        9, 1.0, 0.0, 55.0, 0.19328974711495756, "coast", "left")))
+    assert main(["design", "--pair", str(path), "--json"]) == 0
+    captured = capsys.readouterr()
+    rev = json.loads(captured.out)["reverse_side_contact_ratio"]
+    assert rev["side"] == "drive" and 0.5 < rev["eps_p"] < 0.752
+    lines = captured.err.splitlines()
+    assert lines == [rev["warning"]]
+    assert lines[0].startswith(f"warning: the drive side (not the design side) has a "
+                               f"contact ratio eps_p = {rev['eps_p']:.3f} < 1")
+    assert "loaded side's law mirrored about backlash_mm" in lines[0]
 
 
 def test_design_calibrate_needs_published_values_and_out(capsys, tmp_path):
@@ -570,6 +616,28 @@ def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, caps
     assert "# the toml" in out
     assert "setting synthesis of hypoid_13x26_generated: not all targets met on the coast " \
            "side" in err
+
+
+def test_local_synthesis_certain_reach_refusal_names_the_option(generated_hypoid_file, capsys,
+                                                                monkeypatch, tmp_path):
+    # a path angle the reach model finds out of reach for certain (tca.setting_reach,
+    # raised by the synthesis after its seven local TCAs, before the search) is bad
+    # input: exit 2 naming the option that set it and the reason, no file written
+    import gearcontact.tca.setting_synthesis as setting_synthesis
+    from gearcontact.validation import InputRangeError
+
+    def refuse(pair, *, targets):
+        raise InputRangeError("path_angle_deg", -9.3, "a path angle the coast settings can "
+                              "reach: ... roll curvature beyond ... at 0% of the step")
+
+    monkeypatch.setattr(setting_synthesis, "synthesized_machine_pair", refuse)
+    assert main(["design", "--pair", str(generated_hypoid_file), "--machine-settings",
+                 "--local-synthesis", "--path-angle-coast-deg", "-9.3", "--out",
+                 str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "--path-angle-coast-deg = -9.3 is outside the allowed range: a path angle the " \
+           "coast settings can reach" in err
+    assert not (tmp_path / "x" / "machine_settings.toml").exists()
 
 
 @pytest.mark.parametrize("argv, angle, turns, levels", [

@@ -58,3 +58,15 @@ def spur_tip_relief():
     return SimpleNamespace(pair=pair, cycle=cylindrical_mesh_cycle(pair, phases=121),
                            c_a=c_a, u_ca=u_ca, lo=lo, hi=hi, rolls=rolls, p_bt=p_bt,
                            rb1=rb1, rb2=rb2)
+
+
+@pytest.fixture(scope="session")
+def generated_hypoid_problem():
+    """The local synthesis' fixed part (tca.setting_synthesis.SynthesisProblem, 40 x 50
+    nodes) of the 13/26 hypoid whose gear is generated (tests/design_space.py), built
+    once per session for the synthesis' and its reach model's tests."""
+    from design_space import generated_hypoid
+
+    from gearcontact.tca.setting_synthesis import SynthesisProblem
+
+    return SynthesisProblem(generated_hypoid())

@@ -27,8 +27,8 @@ from gearcontact.validation import InputRangeError
 
 
 @pytest.fixture(scope="module")
-def problem():
-    return SynthesisProblem(generated_hypoid())
+def problem(generated_hypoid_problem):
+    return generated_hypoid_problem
 
 
 def test_roll_about_the_mean_roll():

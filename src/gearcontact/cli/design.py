@@ -4,7 +4,10 @@ Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its I
 Method 1 blank design as a table (after checking that the gear generates the pinion
 flanks: :func:`~gearcontact.geometry.generation.check_generation`); ``--json`` prints one
 JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
-``mean_cone_distances_mm``, each ``[pinion, gear]``). A cylindrical pair
+``mean_cone_distances_mm``, each ``[pinion, gear]``, and ``reverse_side_contact_ratio``).
+The contact ratio of the side that is not the design side is not refused: below 1 a
+one-line warning on stderr names it and what ``twin`` does with that flank
+(:func:`~gearcontact.geometry.contact_ratio.reverse_side_warning`). A cylindrical pair
 (``kind = "cylindrical"``) prints its ISO 21771 geometry (docs/cylindrical.md).
 """
 
@@ -12,12 +15,14 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import sys
 
 from ..errors import CheckFailed
 from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSEC
+from ..geometry.contact_ratio import reverse_side_warning
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import generation_of, generation_text
-from ..geometry.generation import check_generation
+from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair,
                              without_easeoff)
 from ..validation import InputRangeError, check_range
@@ -115,7 +120,9 @@ def register(sub) -> None:
                         "curvature, cutter radius and, with a path angle, blade curvature "
                         "for the targets --te0-arcsec, --pattern-length-ratio and "
                         "--path-angle-*; TCA in the loop, ~1 min; docs/machine_settings.md "
-                        "sec. 5) instead of the standard crowning")
+                        "sec. 5) instead of the standard crowning; a path angle is first "
+                        "checked by the reach model (refused, exit 2, only where it is out "
+                        "of reach for certain; its prediction is written beside the result)")
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "
@@ -449,7 +456,11 @@ def _local_synthesis(args, pair) -> int:
     from ..report.design import local_synthesis_toml, write_machine_settings_toml
     from ..tca.setting_synthesis import synthesized_machine_pair
 
-    cut, done = synthesized_machine_pair(pair, targets=_checked_targets(args))
+    try:
+        cut, done = synthesized_machine_pair(pair, targets=_checked_targets(args))
+    except InputRangeError as exc:     # the reach model's certain refusal names the side
+        side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
+        raise _renamed(exc, _path_angle_option(args, side)) from None
     text = local_synthesis_toml(cut, done)
     print(text)
     if args.out is not None:
@@ -486,10 +497,18 @@ def run(args) -> int:
     if args.synthesize_easeoff:
         return _synthesize(args, pair)
     blank = pair.blank
-    generation = getattr(args, "gear_generation", None) or generation_of(
-        _check_generation(args, pair))
+    boxes = getattr(args, "generation_check", None) or _check_generation(args, pair)
+    generation = getattr(args, "gear_generation", None) or generation_of(boxes)
+    # design refuses on the design side only; the other side's gap is twin's reverse flank
+    reverse = reverse_side_contact_ratio(pair, boxes=boxes)
+    warning = reverse_side_warning(reverse)
+    if warning:
+        print(warning, file=sys.stderr)
     if args.json:
-        out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation}
+        out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation,
+               "reverse_side_contact_ratio": None if reverse is None else {
+                   "side": reverse.side, "eps_p": reverse.total, "ends": list(reverse.ends),
+                   "warning": warning}}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "

@@ -58,8 +58,9 @@ from dataclasses import dataclass, replace
 from ..validation import InputRangeError
 from .contact_path import path_contact_ratio
 
-__all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "VirtualContactRatio",
-           "check_contact_ratio", "virtual_contact_ratio"]
+__all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO",
+           "VirtualContactRatio", "check_contact_ratio", "reverse_side_warning",
+           "virtual_contact_ratio"]
 
 
 @dataclass(frozen=True)
@@ -139,6 +140,13 @@ def virtual_contact_ratio(blank, *, gear_face_width_mm: float,
 #: follows (every pair measured with eps_p >= 0.64 ran; none with a gap above 0.752;
 #: docs/geometry.md sec. 7.7).
 MIN_CONTACT_RATIO = 0.85
+
+#: Path contact ratio of the side that is not the design side below which ``design``
+#: warns (:func:`reverse_side_warning`): below one pair per pitch the unloaded mesh of
+#: that side leaves part of each pitch to edge contact or to a gap, which ``twin``
+#: meets when the load reverses. A warning, not a refusal: the design side carries the
+#: load (docs/geometry.md sec. 7.7).
+REVERSE_GAP_RATIO = 1.0
 
 #: Refusal threshold on the closed form eps_vg where no contact path is known (a pair
 #: cut from machine settings: its flanks are not a conjugate pinion plus an ease-off).
@@ -334,3 +342,20 @@ def _spiral_angle_fix(pair, ratio, threshold) -> float | None:
         lo, hi = (lo, mid) if ok(mid) else (mid, hi)
     named = math.ceil(hi * 100.0) / 100.0       # the value named (2 decimals)
     return named if named <= MAX_FIX_SPIRAL_DEG and ok(named) else hi
+
+
+def reverse_side_warning(ratio) -> str | None:
+    """One line for ``design``'s stderr when ``ratio`` (the path contact ratio of the
+    side that is not the design side, :func:`~.generation.reverse_side_contact_ratio`)
+    is below :data:`REVERSE_GAP_RATIO`, else None. It names the side, eps_p, where the
+    path leaves the flanks and what ``twin`` does with that flank: where the side's
+    unloaded mesh has a gap, the reverse flank takes the loaded side's law mirrored
+    about the backlash (``twin.json`` ``reverse_flank``)."""
+    if ratio is None or ratio.total >= REVERSE_GAP_RATIO:
+        return None
+    return (f"warning: the {ratio.side} side (not the design side) has a contact ratio "
+            f"eps_p = {ratio.total:.3f} < {REVERSE_GAP_RATIO:g} (its path leaves through "
+            f"the {ratio.ends[0]} and the {ratio.ends[1]}; {ratio.bearing}): its unloaded "
+            f"mesh leaves {1.0 - ratio.total:.0%} of each pitch to edge contact or a gap; "
+            f"twin then gives its reverse flank the loaded side's law mirrored about "
+            f"backlash_mm (twin.json reverse_flank)")

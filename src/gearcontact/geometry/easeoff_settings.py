@@ -103,6 +103,12 @@ class EaseOffSettings:
         for n in names:
             rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
                 f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
+        rows += ["", "reach predicted before the fit (the target's part outside the span of "
+                 "the settings' sensitivities at the seed, linear) against the fit, on the "
+                 "fit grid, max / RMS: " + ", ".join(
+                     f"{side} {r.fit.predicted_max_um:.3f} / {r.fit.predicted_rms_um:.3f} um "
+                     f"predicted, {r.fit.fit_max_um:.3f} / {r.fit.fit_rms_um:.3f} um fitted"
+                     for side, r in self.sides.items())]
         if any(r.fit.objective == "minimax" for r in self.sides.values()):
             rows += ["", "fit objective minimax: largest deviation on the fit grid " + ", ".join(
                 f"{side} {r.fit.fit_max_um:.3f} um" + (

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError, pinion_active_box, section_guesses
+from .contact_path import path_contact_ratio
 from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
@@ -27,7 +28,7 @@ from .gear_generation import pair_generation
 from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
-           "gear_tip_top_lands", "pinion_tip_top_lands"]
+           "gear_tip_top_lands", "pinion_tip_top_lands", "reverse_side_contact_ratio"]
 
 
 def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> dict:
@@ -84,6 +85,23 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> di
         check_contact_ratio(pair, boxes=boxes, bearing_of=bearing_of,
                             boxes_of=lambda p: check_generation(p, contact_ratio=False))
     return boxes
+
+
+def reverse_side_contact_ratio(pair, *, boxes: dict):
+    """The path contact ratio (:func:`~.contact_path.path_contact_ratio`) of the side of
+    ``pair`` that is not its design side, which :func:`check_generation` does not check
+    (``boxes``: its result): its own table, or the synthesis' first-order bearing at its
+    default targets where it has none (``analyze`` and ``twin`` synthesize with those).
+    None for a pair cut from machine settings (its path is not known before the TCA).
+
+    Returns
+    -------
+    ~.contact_path.PathContactRatio or None
+    """
+    if pair.machine:
+        return None
+    other = "coast" if pair.design_side == "drive" else "drive"
+    return path_contact_ratio(_right_hand(pair), boxes=boxes, side=other)
 
 
 def _machine_boxes(pair) -> dict:

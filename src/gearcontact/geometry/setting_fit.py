@@ -288,7 +288,10 @@ class FitProblem:
             xk = np.array(x, dtype=float)
             xk[k] += _FD_STEP
             cols.append((self.deviation_um(xk) - f0) / _FD_STEP)
-        return np.column_stack(cols)
+        jac = np.column_stack(cols)
+        if getattr(self, "first", None) is None:     # at the seed: the reach prediction
+            self.first = (f0, jac)
+        return jac
 
 
 def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(PARAMETERS),
@@ -334,6 +337,12 @@ class SettingFit:
     rms_fit_max_um : float
         Largest |normal deviation| on the fit grid of the least-squares solution, um
         (equal to ``fit_max_um`` for ``"rms"``): what the minimax objective improved on.
+    predicted_rms_um, predicted_max_um : float
+        The reach predicted before the search: the part of the seed's deviation on the
+        fit grid outside the span of the parameters' sensitivities there (the linear
+        least-squares projection residual, from the search's first Jacobian, no extra
+        evaluation), RMS and largest, um; the fitted residual differs from it by the
+        fit's nonlinearity (docs/machine_settings.md sec. 6).
     """
 
     setup: MachineSetup
@@ -347,6 +356,8 @@ class SettingFit:
     status: int
     objective: str = "rms"
     rms_fit_max_um: float = math.nan
+    predicted_rms_um: float = math.nan
+    predicted_max_um: float = math.nan
 
 
 def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
@@ -427,13 +438,17 @@ def solve_fit(prob: FitProblem, *, tolerance_um: float, objective: str, started:
         x = minimize_max_abs(lambda y: prob.deviation_um(y, keep=True), prob.jacobian, x,
                              tol=tolerance_um).x
         dev = prob.deviation_um(x)
+    f0, j0 = prob.first
+    left = f0 - j0 @ np.linalg.lstsq(j0, f0, rcond=None)[0]
     return SettingFit(setup=prob.setup(x), seed=prob.seed,
                       corrections={n: float(v * sc) for n, v, sc in zip(names, x, prob.scale)},
                       fit_rms_um=float(np.sqrt(np.mean(dev ** 2))),
                       fit_max_um=float(np.abs(dev).max()), evaluations=prob.evaluations,
                       condition_number=float(s[0] / s[-1]) if s[-1] > 0 else math.inf,
                       seconds=time.perf_counter() - started, status=int(sol.status),
-                      objective=objective, rms_fit_max_um=rms_fit_max)
+                      objective=objective, rms_fit_max_um=rms_fit_max,
+                      predicted_rms_um=float(np.sqrt(np.mean(left ** 2))),
+                      predicted_max_um=float(np.abs(left).max()))
 
 
 def conjugate_seed(seed: MachineSetup, blank: BlankDesign, conjugate, *, n_u: int = 9,

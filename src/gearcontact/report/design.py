@@ -113,6 +113,8 @@ def local_synthesis_toml(cut, done: dict) -> str:
         lines.append(f"{side}: full TCA TE0 p-p {r.tca_te0_pp_arcsec:.2f} arcsec, vertex "
                      f"{r.vertex_offset_mm:.1e} mm from M, paint ellipse at a flank edge at "
                      f"{edges} of {len(r.edges)} phases")
+        if r.reach is not None:
+            lines.append(r.reach_text())
     return pair_to_toml(cut, comments={"": "\n".join(lines)})
 
 

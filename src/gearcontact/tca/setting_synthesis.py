@@ -33,7 +33,10 @@ meet the other two. The bearing centre is not a target: the corrected pinion kee
 its normal and so the nominal ratio there (the TE slope at M is 0), so the TE0 vertex
 stays at M. The result is checked by the full TCA over one pitch (edge contact, pairs
 -2..2): TE0 peak-to-peak, the vertex's distance from M and the phases whose paint
-ellipse reaches a flank edge (:class:`SettingSynthesis`). The base pinion and M:
+ellipse reaches a flank edge (:class:`SettingSynthesis`). With a path angle the reach
+model (:mod:`.setting_reach`) predicts the target's corrections first: a target out of
+reach for certain is refused before the search, and the search starts from the
+predicted corrections where they miss less than the standard crowning. The base pinion and M:
 :class:`SynthesisProblem` (a hypoid whose gear is generated, the crown gear's pinion).
 
 References
@@ -65,12 +68,13 @@ from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
 from ..geometry.machine import MachineSetup, mirror_setup
 from ..validation import InputRangeError
 from .design_point import DesignPoint, design_point_at
+from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
 from .analysis import pattern_on_flank
 from .edges import pattern_edges
 from .mesh import mesh_cycle
 from .mating import solve_mating_point
 from .solve import solve_tca
-from .synthesis_targets import SynthesisTargets, TargetRows, angle_diff, targets_rows
+from .synthesis_targets import SynthesisTargets, TargetRows, targets_rows
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["PARAMETER_NAMES", "MeanPointContact", "SettingSynthesis", "SynthesisProblem",
@@ -83,6 +87,10 @@ PARAMETER_NAMES = ("roll_curvature", "blade_curvature_per_mm", "radius_delta_mm"
 #: standard crowning's values on F.3-sized pairs.
 _SCALE = np.array([1e-3, 2e-4, 0.2])
 _REPORT_TORQUE_NM = 64.5
+#: Chord steps of the reach model (:func:`~.setting_reach.chord_step`, one local TCA
+#: each) before the search: measured on the 13/26 hypoid, four take the residual at
+#: the model's corrections from 106-337 to 0.3-4.7 (tolerance units).
+CHORD_STEPS = 4
 
 
 def roll_about(settings, *, psi_m: float, roll_curvature: float):
@@ -212,8 +220,20 @@ class SettingSynthesis(TargetRows):
     vertex_offset_mm : float
         Distance of the full TCA's TE0 vertex from M on the pinion flank (u, v), mm.
     evaluations : int
-        Local TCA runs of the search.
+        Local TCA runs of the search (the reach model's included).
     seconds : float
+    reach : ReachPrediction or None
+        With a path-angle target: the corrections the reach model predicted before the
+        search (:mod:`.setting_reach`), the synthesis' start where they did better than the
+        standard crowning.
+    reach_residual : float
+        The synthesis' normalized residual (root sum of squares of each target's miss
+        over its tolerance) measured at the reach model's corrections (nan without).
+    start_residual : float
+        The same where the search started: the better of the standard crowning and the
+        model's corrections after its chord steps (nan without a reach model).
+    residual : float
+        The same at the result (the achieved one).
     """
 
     side: str
@@ -226,6 +246,17 @@ class SettingSynthesis(TargetRows):
     vertex_offset_mm: float
     evaluations: int
     seconds: float
+    reach: ReachPrediction | None = None
+    reach_residual: float = float("nan")
+    start_residual: float = float("nan")
+    residual: float = float("nan")
+
+    def reach_text(self) -> str:
+        """The reach model's prediction beside the achieved residual ("" without one)."""
+        if self.reach is None:
+            return ""
+        return (f"{self.reach.text()}; at its corrections {self.reach_residual:.2f}, "
+                f"search started at {self.start_residual:.2f}, achieved {self.residual:.2f}")
 
     @property
     def table_prefix(self) -> str:
@@ -366,7 +397,9 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
     ------
     InputRangeError
         A left-hand pair, a pair that is not a hypoid with a generated gear or a bad
-        side, before any flank.
+        side, before any flank; a path angle the reach model finds out of reach for
+        certain (:mod:`.setting_reach`: a hard limit of the settings crossed within half
+        the predicted step), after its seven local TCAs, before the search.
     CheckFailed
         No contact at M at the starting settings.
     """
@@ -397,31 +430,80 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
         sign = math.copysign(1.0, first.te_curvature_arcsec_per_rad2)
         runs = {"n": 0, "best": (np.inf, x_start)}
 
-        def residual(z):
-            x = x_start.copy()
-            x[active] += z * _SCALE[active]
+        def misses(x):
+            """The normalized residual of the targets at the corrections ``x``."""
             runs["n"] += 1
+            runs["last"] = None
             try:
                 m = prob.contact(side, x)
             except (EdgeContact, ArithmeticError, ValueError):
                 return np.full(len(active), 1e3)
-            dp = m.point
             level = sign * math.copysign(m.te_level_arcsec, m.te_curvature_arcsec_per_rad2)
-            r = [(level / targets.te0_pp_arcsec - 1.0) / targets.tol_te0_rel,
-                 (dp.paint_length_mm / length - 1.0) / targets.tol_length_rel]
-            if angle is not None:
-                ang = dp.path_angle_deg if np.isfinite(dp.path_angle_deg) else angle + 90.0
-                r.append(angle_diff(ang, angle) / targets.tol_angle_deg)
-            r = np.asarray(r)
+            runs["last"] = (level, m.point.paint_length_mm, m.point.path_angle_deg)
+            r = target_misses(targets, length, level, m.point.paint_length_mm,
+                              None if angle is None else m.point.path_angle_deg)
             if r @ r < runs["best"][0]:
                 runs["best"] = (float(r @ r), x.copy())
             return r
 
+        reach, at_reach, at_first = None, math.nan, math.nan
+        if angle is not None:
+            model, reach = _reach_of(prob, side, targets, length, pair.name)
+            runs["n"] += 7
+            at_start = float(np.linalg.norm(misses(x_start)))
+            at_reach = float(np.linalg.norm(misses(reach.x)))
+            # the search starts from the better of the standard crowning and the model's
+            # corrections after up to CHORD_STEPS chord steps (the path angle is far from
+            # linear in the corrections: from the standard crowning the least squares
+            # can leave the target's basin); the chord stops where it stops gaining
+            x, miss = reach.x, at_reach
+            for _ in range(CHORD_STEPS):
+                if runs["last"] is None or miss <= 1.0:
+                    break
+                x_next = chord_step(model, reach, x, runs["last"], targets=targets,
+                                    length_mm=length)
+                miss_next = float(np.linalg.norm(misses(x_next)))
+                if not miss_next < miss:
+                    break
+                x, miss = x_next, miss_next
+            if miss < at_start:
+                x_start = x
+            at_first = min(miss, at_start)
+
+        def residual(z):
+            x = x_start.copy()
+            x[active] += z * _SCALE[active]
+            return misses(x)
+
         least_squares(residual, np.zeros(len(active)), method="trf", diff_step=1e-3,
                       max_nfev=int(max_evaluations))
-        out[side] = _checked(prob, side, runs["best"][1], targets, length, phases,
-                             runs["n"], t0)
+        out[side] = dataclasses.replace(
+            _checked(prob, side, runs["best"][1], targets, length, phases, runs["n"], t0),
+            reach=reach, reach_residual=at_reach, start_residual=at_first,
+            residual=math.sqrt(runs["best"][0]))
     return out
+
+
+def _reach_of(prob: SynthesisProblem, side: str, targets, length: float, name: str):
+    """The reach model of ``side`` and its prediction of ``targets``
+    (:mod:`.setting_reach`), refused where it is certain that the settings cannot reach
+    it."""
+    try:
+        model = reach_model(prob, side, scales=_SCALE)
+    except (EdgeContact, ArithmeticError, ValueError) as exc:
+        raise CheckFailed(f"setting synthesis of {name} {side}: no contact at the mean "
+                          f"point within the reach model's steps ({exc})") from exc
+    reach = model.predict(targets, length_mm=length)
+    if reach.certain:
+        raise InputRangeError(
+            "path_angle_deg", targets.path_angle_deg,
+            f"a path angle the {side} settings can reach: at {targets.path_angle_deg:g} deg "
+            f"(the contact line at {model.line_angle_deg:.1f} deg) the reach model "
+            f"(docs/machine_settings.md sec. 5) needs roll curvature {reach.x[0]:+.3g}, "
+            f"blade curvature {reach.x[1]:+.3g} /mm, cutter radius {reach.x[2]:+.3g} mm "
+            f"before the limit, {reach.limit}; predicted residual {reach.residual:.1f} "
+            f"(1 = the tolerances)")
+    return model, reach
 
 
 def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0):
