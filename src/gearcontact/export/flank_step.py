@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import dataclasses
 import os
 import re
 import sys
@@ -39,8 +40,8 @@ import numpy as np
 from ..errors import ToolUnavailable
 from ..validation import check_array_finite
 
-__all__ = ["FIT_TARGET_MM", "STEP_TIMESTAMP", "BSplineFlank", "fit_bspline", "write_step",
-           "gmsh_session"]
+__all__ = ["FIT_TARGET_MM", "STEP_TIMESTAMP", "BSplineFlank", "fit_bspline", "fit_bsplines",
+           "write_step", "gmsh_session"]
 
 #: Largest fit error accepted, mm (a tenth of the export's 0.5 um promise).
 FIT_TARGET_MM = 5e-5
@@ -113,21 +114,41 @@ def fit_bspline(name: str, points_of, u_range, v_range) -> BSplineFlank:
     ArithmeticError
         If :data:`FIT_NODES_MAX` nodes per direction do not reach the target.
     """
+    return fit_bsplines([name], [points_of], u_range, v_range)[0]
+
+
+def fit_bsplines(names, points_ofs, u_range, v_range) -> list[BSplineFlank]:
+    """:func:`fit_bspline` of the smooth pieces of a kinked flank, stacked along ``u``
+    (root -> tip), all on the same node grid (refined together until every piece is
+    within :data:`FIT_TARGET_MM`).
+
+    Piece ``k``'s edge ``u = u_range[1]`` and piece ``k + 1``'s edge ``u = u_range[0]``
+    are the kink between them: the upper piece's first row of poles is set to the lower
+    piece's last (a clamped interpolant's edge row of poles is the interpolant of its
+    edge points along ``v``, the same knots on both), so the two faces' edge curves are
+    one B-spline curve, bit for bit; the fit error is measured after that.
+    """
     n = FIT_NODES_START
     while True:
         u, v = np.linspace(*u_range, n), np.linspace(*v_range, n)
-        nodes = check_array_finite(f"{name} points",
-                                   points_of(*np.meshgrid(u, v, indexing="ij")))
-        tu, tv, control = _interpolate(u, v, nodes)
-        fit = BSplineFlank(name, tu, tv, control, (n, n), 0.0)
+        fits = []
+        for name, points_of in zip(names, points_ofs):
+            nodes = check_array_finite(f"{name} points",
+                                       points_of(*np.meshgrid(u, v, indexing="ij")))
+            tu, tv, control = _interpolate(u, v, nodes)
+            if fits:
+                control[0] = fits[-1].control_mm[-1]
+            fits.append(BSplineFlank(name, tu, tv, control, (n, n), 0.0))
         cu, cv = np.linspace(*u_range, 2 * n - 1), np.linspace(*v_range, 2 * n - 1)
-        truth = points_of(*np.meshgrid(cu, cv, indexing="ij"))
-        error = float(np.linalg.norm(fit.evaluate(cu, cv) - truth, axis=-1).max())
-        if error <= FIT_TARGET_MM:
-            return BSplineFlank(name, tu, tv, control, (n, n), error)
+        errors = [float(np.linalg.norm(fit.evaluate(cu, cv) - points_of(
+            *np.meshgrid(cu, cv, indexing="ij")), axis=-1).max())
+            for fit, points_of in zip(fits, points_ofs)]
+        if max(errors) <= FIT_TARGET_MM:
+            return [dataclasses.replace(f, fit_error_mm=e) for f, e in zip(fits, errors)]
         if 2 * n - 1 > FIT_NODES_MAX:
-            raise ArithmeticError(f"{name}: the B-spline fit with {n} x {n} nodes is "
-                                  f"{error * 1e3:.3g} um off the flank (target "
+            worst = int(np.argmax(errors))
+            raise ArithmeticError(f"{names[worst]}: the B-spline fit with {n} x {n} nodes "
+                                  f"is {errors[worst] * 1e3:.3g} um off the flank (target "
                                   f"{FIT_TARGET_MM * 1e3:g} um)")
         n = 2 * n - 1
 
