@@ -274,17 +274,17 @@ def step_faces(flank: ExportFlank) -> tuple[list, dict]:
                             surf.u_range, surf.v_range)
         return fits, {flank.name: surf.names[present[0]]}
 
-    def piece_points(i):
-        def points_of(T, V):
+    def piece(i, field):
+        def of(T, V):
             a, b = surf.piece_bounds(i, V)
             got = surf.evaluate_piece(i, a + T * (b - a), V, second=False)
-            return got.r @ flank.to_axis.T
-        return points_of
+            return getattr(got, field) @ flank.to_axis.T
+        return of
 
     names = [flank.name if surf.names[i] == "main" else f"{flank.name}_{surf.names[i]}"
              for i in present]
-    fits = fit_bsplines(names, [piece_points(i) for i in present], (0.0, 1.0),
-                        surf.v_range)
+    fits = fit_bsplines(names, [piece(i, "r") for i in present], (0.0, 1.0), surf.v_range,
+                        normals_ofs=[piece(i, "n") for i in present])
     return fits, {name: surf.names[i] for name, i in zip(names, present)}
 
 
