@@ -157,8 +157,8 @@ def _kink_lines(flank: ExportFlank, v) -> list[str]:
     for kink in surf.kinks:
         below, above = surf.names[kink.lower], surf.names[kink.lower + 1]
         u_k = ", ".join(repr(float(x)) for x in kink.u(v))
-        out.append(f"# kink {kink.name}: the blade's relief kink, u = u_k(v_j) for col 1.. "
-                   f"{len(v)}: {u_k} (a point with u <= u_k lies on the '{below}' piece, "
+        out.append(f"# kink {kink.name}: the blade's relief kink, u = u_k(v_j) at cols "
+                   f"1..{len(v)}: {u_k} (a point with u <= u_k lies on the '{below}' piece, "
                    f"u > u_k on the '{above}' piece; column piece names it, its normal is "
                    "that piece's)")
     return out
