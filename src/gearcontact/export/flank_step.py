@@ -10,6 +10,10 @@ node grid, evaluated through the Surface contract) is at most
 :data:`FIT_TARGET_MM`, a tenth of the 0.5 um the export promises (docs/export.md).
 The interpolation error of a cubic spline falls as h^4 (de Boor, *A Practical Guide
 to Splines*, 2001, ch. V), so one refinement divides it by about 16.
+:func:`fit_bsplines` fits the smooth pieces of a kinked flank on one node grid, the
+pieces' shared kink edges given the same poles, and refines until their normals too are
+within :data:`NORMAL_TARGET_RAD` of the pieces' (the tangent-plane jump at the kink is
+what distinguishes the faces).
 
 :func:`write_step` hands the control nets to ``gmsh.model.occ.addBSplineSurface``
 (one face each, its natural boundary) and writes the STEP file (AP214, mm) with

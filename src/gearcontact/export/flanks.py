@@ -29,6 +29,12 @@ the grids and the measured fit error of every STEP face. A bevel flank also gets
 (axial position L, radius R; :mod:`gearcontact.geometry.measuring_grid`), the nominal
 a measured deviation file refers to (``design --target-flank``). File layout and how
 to load them in CAD: docs/export.md.
+
+A flank cut by a relieved blade (:class:`~gearcontact.geometry.kinked.KinkedFlank`)
+leaves as one STEP face per smooth piece, split along the kink (:func:`step_faces`;
+the faces share the kink edge's poles), and its CSV grids name each point's piece
+(column ``piece``, ``#`` lines with the kink's ``u`` at every column); docs/export.md,
+"Kinked flanks".
 """
 
 from __future__ import annotations
