@@ -196,3 +196,18 @@ def test_unreachable_scheduler_is_bad_input_before_the_store(tmp_path, capsys):
     assert code == 2
     assert "--scheduler" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_design_keys_on_a_relieved_pair_exit_2_naming_the_blade(tmp_path, capsys):
+    # a pair cut from machine settings takes no [easeoff.*] / [cutter] key (its flanks
+    # are the settings'); with a Toprem the ease-off variant would be laid on the kinked
+    # pinion and smooth the kink: refused before any flank, the blade key named
+    # (tests/data/toprem: both pinion blades 2 deg from 2 mm)
+    out = tmp_path / "o"
+    toprem = Path(__file__).resolve().parents[1] / "data" / "toprem" / "iso23509_f2_toprem.toml"
+    assert main(["sweep", "--pair", str(toprem), "--vary",
+                 "easeoff.drive.lengthwise_crowning_um_per_mm2=0:0.1:2", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "--vary easeoff.drive.lengthwise_crowning_um_per_mm2" in err, err
+    assert "[blade.pinion.drive] toprem_angle_deg = 2" in err and "kink" in err, err
+    assert not out.exists()

@@ -198,3 +198,20 @@ def test_a_kink_beyond_the_flank_leaves_the_main_piece(pair):
     assert np.all(flank.piece_index(u, v) == 0)
     assert np.array_equal(flank.evaluate(u, v).r, flank.main.evaluate(u, v).r)
     assert flank_edges(flank, flank) == FLANK_EDGES
+
+
+def test_an_easeoff_on_a_kinked_flank_is_refused(pair):
+    # geometry.easeoff.apply_easeoff resamples the eased flank on one node grid: on a
+    # KinkedFlank that would round the kink off; refused before any work (the commands
+    # that would reach it refuse the relieved pair earlier, naming the blade key:
+    # tests/cli/test_design.py, tests/cli/test_sweep.py)
+    from gearcontact.geometry.easeoff import EaseOff, apply_easeoff
+    from gearcontact.geometry.pair import EaseOffCoefficients
+    from gearcontact.validation import InputRangeError
+
+    flank = machine_flank(_relieved(_setup(pair, "gear", "drive")), pair.blank,
+                          face_width_mm=pair.gear_face_width_mm)
+    eo = EaseOff.from_coefficients(EaseOffCoefficients(lengthwise_crowning_um_per_mm2=0.1),
+                                   u_mean_mm=4.0, v_mean_mm=0.0)
+    with pytest.raises(InputRangeError, match="relieved blade would smooth its kink"):
+        apply_easeoff(flank, eo, limit_um=100.0)

@@ -173,6 +173,7 @@ def check(args) -> None:
         args.writes_files = False
         return
     _check_options(args, pair)
+    _check_relieved_blades(args, pair)
     if args.machine_settings and pair.machine:
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings
@@ -214,6 +215,27 @@ def check(args) -> None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
     args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
                                                 and args.out))
+
+
+def _check_relieved_blades(args, pair) -> None:
+    """Refuse a pair whose blades carry a Toprem / Flankrem with the options that
+    would drop or smooth the kink, before any flank is built: ``--machine-settings``
+    (the standard settings and the ease-off fit, :mod:`~gearcontact.geometry.setting_fit`,
+    cut with unrelieved blades; the pair's own settings, reliefs included, are
+    replaced) and ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
+    :func:`~gearcontact.geometry.flank.with_easeoff`, is resampled across the kink)."""
+    from ..geometry.machine import relieved_blade_keys
+
+    option = ("--machine-settings" if args.machine_settings else
+              "--synthesize-easeoff" if args.synthesize_easeoff else None)
+    kinks = relieved_blade_keys(pair.machine)
+    if option is None or not kinks:
+        return
+    why = ("the settings it writes are fitted with unrelieved blades (the pair's own "
+           "settings, reliefs included, are replaced)" if args.machine_settings else
+           "an ease-off laid on the relieved pinion would smooth its kink")
+    raise InputRangeError(*kinks[0], f"0 with {option}: {why}; analyze, ltca, bending and export flanks "
+                          "take the relieved pair as it is")
 
 
 def _check_generation(args, pair) -> dict:

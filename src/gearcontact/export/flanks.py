@@ -29,6 +29,12 @@ the grids and the measured fit error of every STEP face. A bevel flank also gets
 (axial position L, radius R; :mod:`gearcontact.geometry.measuring_grid`), the nominal
 a measured deviation file refers to (``design --target-flank``). File layout and how
 to load them in CAD: docs/export.md.
+
+A flank cut by a relieved blade (:class:`~gearcontact.geometry.kinked.KinkedFlank`)
+leaves as one STEP face per smooth piece, split along the kink (:func:`step_faces`;
+the faces share the kink edge's poles), and its CSV grids name each point's piece
+(column ``piece``, ``#`` lines with the kink's ``u`` at every column); docs/export.md,
+"Kinked flanks".
 """
 
 from __future__ import annotations
@@ -39,13 +45,16 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import BadInput
+from ..geometry.kinked import KinkedFlank
 from ..geometry.measuring_grid import AXIS_FRAMES, NOMINAL_COLUMNS, measuring_grid
 from ..geometry.pair import CYLINDRICAL
 from ..validation import InputRangeError
-from .flank_step import FIT_TARGET_MM, fit_bspline, write_step
+from .flank_step import FIT_TARGET_MM, fit_bsplines, write_step
 
 __all__ = ["GRID_LIMITS", "ExportFlank", "FlankExport", "parse_grid", "pair_flanks",
-           "pair_surfaces", "flank_grid", "grid_csv", "measuring_csv", "export_flanks"]
+           "pair_surfaces", "flank_grid", "grid_csv", "measuring_csv", "step_faces",
+           "export_flanks"]
 
 #: Smallest and largest row / column count of ``--grid``.
 GRID_LIMITS = (2, 201)
@@ -93,6 +102,11 @@ class ExportFlank:
         """Points (mm) and unit normals (..., 3) at ``(u, v)`` in the axis frame."""
         s = self.surface.evaluate(u, v)
         return s.r @ self.to_axis.T, s.n @ self.to_axis.T
+
+    @property
+    def kinked(self) -> bool:
+        """Cut by a relieved blade (:class:`~gearcontact.geometry.kinked.KinkedFlank`)."""
+        return isinstance(self.surface, KinkedFlank)
 
 
 def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
@@ -142,10 +156,31 @@ def flank_grid(flank: ExportFlank, rows: int, cols: int):
     return u, v, r, n
 
 
+def _kink_lines(flank: ExportFlank, v) -> list[str]:
+    """``#`` lines of a kinked flank's CSV: each kink's ``u_k`` at the columns' ``v``."""
+    surf = flank.surface
+    out = []
+    for kink in surf.kinks:
+        below, above = surf.names[kink.lower], surf.names[kink.lower + 1]
+        u_k = ", ".join(repr(float(x)) for x in kink.u(v))
+        out.append(f"# kink {kink.name}: the blade's relief kink, u = u_k(v_j) at cols "
+                   f"1..{len(v)}: {u_k} (a point with u <= u_k lies on the '{below}' piece, "
+                   f"u > u_k on the '{above}' piece; column piece names it, its normal is "
+                   "that piece's)")
+    return out
+
+
 def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str:
     """The CSV text of ``flank``'s grid: ``#`` header lines (frame, grid, units), then
-    ``row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz`` (every number with all its digits)."""
+    ``row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz`` (every number with all its digits); a kinked
+    flank (relieved blade) adds the column ``piece`` (``toprem``, ``main``,
+    ``flankrem``: the smooth piece whose point and normal the line gives) and a ``#``
+    line per kink with its ``u_k`` at every column."""
     u, v, r, n = flank_grid(flank, rows, cols)
+    pieces = None
+    if flank.kinked:
+        U, V = np.meshgrid(u, v, indexing="ij")
+        pieces = np.asarray(flank.surface.names)[flank.surface.piece_index(U, V)]
     top = "the flank's start" if flank.flank.startswith("fillet") else "tip"
     head = [
         f"# gearcontact export flanks: {pair_name}, {flank.name} "
@@ -159,10 +194,12 @@ def grid_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -> str
         + (" (pinion body frame turned: X = y, Y = z, Z = x)"
            if flank.to_axis is PINION_TO_AXIS else ""),
         "# normal: unit, out of the tooth material into the tooth space",
-        "row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz",
+        *(_kink_lines(flank, v) if pieces is not None else []),
+        "row,col,u,v,x_mm,y_mm,z_mm,nx,ny,nz" + (",piece" if pieces is not None else ""),
     ]
     lines = [",".join([str(i + 1), str(j + 1), repr(float(u[i])), repr(float(v[j]))]
-                      + [repr(float(x)) for x in (*r[i, j], *n[i, j])])
+                      + [repr(float(x)) for x in (*r[i, j], *n[i, j])]
+                      + ([] if pieces is None else [str(pieces[i, j])]))
              for i in range(rows) for j in range(cols)]
     return "\n".join(head + lines) + "\n"
 
@@ -181,6 +218,8 @@ def measuring_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -
         "radius about the axis; x, y, z: the member's axis frame, mm (docs/export.md)",
         "# normal: unit, out of the tooth; a measured deviation_um is along it, "
         "+ = material added",
+        *(_kink_lines(flank, np.linspace(*flank.surface.v_range, cols))
+          if flank.kinked else []),
         ",".join(NOMINAL_COLUMNS),
     ]
     lines = [",".join([flank.member, flank.flank, str(int(g.row[k])), str(int(g.col[k]))]
@@ -188,6 +227,71 @@ def measuring_csv(flank: ExportFlank, rows: int, cols: int, *, pair_name: str) -
                                                    *g.normal[k])])
              for k in range(len(g.row))]
     return "\n".join(head + lines) + "\n"
+
+
+#: Lengthwise samples on which a kink line is checked to run over the whole face width.
+KINK_CHECK_SAMPLES = 201
+
+
+def step_faces(flank: ExportFlank) -> tuple[list, dict]:
+    """The B-spline faces of ``flank`` (:mod:`.flank_step`) and ``{face name: piece}``.
+
+    A smooth flank is one face over its own ``(u, v)`` box. A kinked flank (a relieved
+    blade, :class:`~gearcontact.geometry.kinked.KinkedFlank`) is one face per smooth
+    piece, named ``<member>_<flank>`` (the main piece) and ``<member>_<flank>_<piece>``
+    (``toprem``, ``flankrem``), root -> tip; face ``k`` at ``(t, v)``, ``t`` in [0, 1],
+    is piece ``k`` at ``u = u_a(v) + t (u_b(v) - u_a(v))`` (``u_a``, ``u_b``: the kink
+    lines below and above it, else the box's ends). Adjacent faces share their edge on
+    the kink: the kink points ``u_k(v)`` of the lower piece, the same poles
+    (:func:`~.flank_step.fit_bsplines`). A kink outside the box over the whole face
+    width leaves one piece: one face over the flank's ``(u, v)``.
+
+    Raises
+    ------
+    BadInput
+        A kink line that crosses the box's root or tip line within the face width (the
+        pieces are then not four-sided: a trimmed face, not written); the message names
+        the blade's relief keys.
+    """
+    surf = flank.surface
+    if not flank.kinked:
+        fits = fit_bsplines([flank.name], [lambda U, V: flank.points(U, V)[0]],
+                            surf.u_range, surf.v_range)
+        return fits, {flank.name: None}
+    v = np.linspace(*surf.v_range, KINK_CHECK_SAMPLES)
+    present = []
+    for i in range(len(surf.pieces)):
+        a, b = surf.piece_bounds(i, v)
+        if (b > a).all():
+            present.append(i)
+        elif (b > a).any():
+            keys = ", ".join(f"{n}_depth_mm" for n in surf.names if n != "main")
+            raise BadInput(
+                f"[blade.{flank.member}.{flank.flank}] {keys}: the '{surf.names[i]}' piece of "
+                f"{flank.name} reaches only part of the face width (a kink line crosses the "
+                "root or tip line of the active box): the STEP export splits a flank along "
+                "kinks that run over the whole face width; move the kink into the flank "
+                "or out of it")
+    if present != list(range(present[0], present[-1] + 1)):
+        raise BadInput(f"[blade.{flank.member}.{flank.flank}]: the kinks of {flank.name} "
+                       "cross each other on the flank (a piece between them vanishes)")
+    if len(present) == 1:
+        fits = fit_bsplines([flank.name], [lambda U, V: flank.points(U, V)[0]],
+                            surf.u_range, surf.v_range)
+        return fits, {flank.name: surf.names[present[0]]}
+
+    def piece(i, field):
+        def of(T, V):
+            a, b = surf.piece_bounds(i, V)
+            got = surf.evaluate_piece(i, a + T * (b - a), V, second=False)
+            return getattr(got, field) @ flank.to_axis.T
+        return of
+
+    names = [flank.name if surf.names[i] == "main" else f"{flank.name}_{surf.names[i]}"
+             for i in present]
+    fits = fit_bsplines(names, [piece(i, "r") for i in present], (0.0, 1.0), surf.v_range,
+                        normals_ofs=[piece(i, "n") for i in present])
+    return fits, {name: surf.names[i] for name, i in zip(names, present)}
 
 
 @dataclass(frozen=True)
@@ -199,6 +303,12 @@ class FlankExport:
     csv_paths: tuple[Path, ...]
     summary_path: Path
     fit_error_mm: float
+
+
+def _kink_range(surf, kink) -> tuple[float, float]:
+    """Smallest and largest ``u_k`` of ``kink`` over the face width (clipped to the box)."""
+    u = np.clip(kink.u(np.linspace(*surf.v_range, KINK_CHECK_SAMPLES)), *surf.u_range)
+    return float(u.min()), float(u.max())
 
 
 def _safe(text: str) -> str:
@@ -248,18 +358,26 @@ def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 
     for member in MEMBERS:
         fits = []
         for f in (f for f in items if f.member == member):
-            fit = fit_bspline(f.name, lambda U, V, f=f: f.points(U, V)[0],
-                              f.surface.u_range, f.surface.v_range)
-            fits.append(fit)
-            worst = max(worst, fit.fit_error_mm)
+            faces, pieces = step_faces(f)
+            fits += faces
+            error = max(fit.fit_error_mm for fit in faces)
+            worst = max(worst, error)
             summary["flanks"][f.name] = {
                 "surface": type(f.surface).__name__,
                 "u_range": [float(x) for x in f.surface.u_range],
                 "v_range": [float(x) for x in f.surface.v_range],
                 "to_axis_frame": f.to_axis.tolist(),
                 "step_file": f"{member}_flanks.step", "csv_file": f"{f.name}.csv",
-                "bspline_nodes": list(fit.nodes),
-                "fit_error_um": round(fit.fit_error_mm * 1e3, 6)}
+                "bspline_nodes": list(faces[0].nodes),
+                "fit_error_um": round(error * 1e3, 6)}
+            if f.kinked:
+                summary["flanks"][f.name]["step_faces"] = {
+                    fit.name: {"piece": pieces[fit.name],
+                               "fit_error_um": round(fit.fit_error_mm * 1e3, 6)}
+                    for fit in faces}
+                summary["flanks"][f.name]["kinks"] = {
+                    k.name: [float(x) for x in _kink_range(f.surface, k)]
+                    for k in f.surface.kinks}
         steps.append(write_step(out / f"{member}_flanks.step", fits,
                                 title=_safe(f"{pair_name} {member} flanks")))
     summary_path = out / "flanks.json"

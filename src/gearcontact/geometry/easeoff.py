@@ -266,7 +266,17 @@ def apply_easeoff(base: RadialSheet, easeoff: "EaseOff | GridEaseOff", *, limit_
         largest relief, where it occurs and the limit).
     ArithmeticError
         If the node mapping does not converge.
+    InputRangeError
+        If ``base`` is a flank of a relieved blade
+        (:class:`~gearcontact.geometry.kinked.KinkedFlank`), before any work.
     """
+    if hasattr(base, "kinks"):
+        # a KinkedFlank (relieved blade, geometry.kinked): the eased sheet is resampled
+        # on one node grid across the kink, which would round it off
+        raise InputRangeError(f"easeoff ({base.side}) base flank", f"{type(base).__name__} "
+                              f"(pieces {', '.join(base.names)})", "a smooth pinion flank "
+                              "(RadialSheet): an ease-off laid on a flank cut by a relieved "
+                              "blade would smooth its kink")
     b = base.boundary
     e_max, u_k, v_k = max_relief_um(easeoff, b)
     if e_max > limit_um:

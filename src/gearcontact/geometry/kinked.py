@@ -152,20 +152,38 @@ class KinkedFlank:
         reflection): the kinks' ``(u, v)`` stay."""
         return dataclasses.replace(self, pieces=tuple(fn(p) for p in self.pieces))
 
+    def piece_bounds(self, i: int, v) -> tuple[np.ndarray, np.ndarray]:
+        """``(u_a(v), u_b(v))``: the ``u`` interval of piece ``i`` at ``v`` (its kinks
+        below and above, else the box's ends; clipped to the box, so an empty interval
+        where the piece does not reach the flank)."""
+        v = np.asarray(v, dtype=float)
+        lo, hi = self.u_range
+        a = self.kinks[i - 1].u(v) if i > 0 else np.full(v.shape, lo)
+        b = self.kinks[i].u(v) if i < len(self.kinks) else np.full(v.shape, hi)
+        return np.clip(a, lo, hi), np.clip(b, lo, hi)
+
+    def evaluate_piece(self, i: int, u, v, *, second: bool = True) -> SurfaceArrays:
+        """Piece ``i`` (continued past its kinks) at ``(u, v)`` of this flank."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        s = self.v_scales[i]
+        got = self.pieces[i].evaluate(u, s * v, second=second)
+        names = ("r", "r_u", "r_v", "r_uu", "r_uv", "r_vv", "n")
+        return SurfaceArrays(u=u, v=v, **{f: scale * getattr(got, f) for f, scale in
+                                          zip(names, (1.0, 1.0, s, 1.0, s, s * s, 1.0))})
+
     def evaluate(self, u, v, *, second: bool = True) -> SurfaceArrays:
         """Vectorized evaluation, each point on its piece (one-sided at a kink)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         k = self.piece_index(u, v)
         names = ("r", "r_u", "r_v", "r_uu", "r_uv", "r_vv", "n")
         out = {f: np.empty(u.shape + (3,)) for f in names}
-        for i, piece in enumerate(self.pieces):
+        for i in range(len(self.pieces)):
             m = k == i
             if not m.any():
                 continue
-            s = self.v_scales[i]
-            got = piece.evaluate(u[m], s * v[m], second=second)
-            for f, scale in zip(names, (1.0, 1.0, s, 1.0, s, s * s, 1.0)):
-                out[f][m] = scale * getattr(got, f)
+            got = self.evaluate_piece(i, u[m], v[m], second=second)
+            for f in names:
+                out[f][m] = getattr(got, f)
         return SurfaceArrays(u=u, v=v, **out)
 
     def point(self, u: float, v: float) -> SurfacePoint:

@@ -82,7 +82,7 @@ from .blade import (BladeSettings, EdgeRound, blade_point, blade_profile, blade_
 __all__ = ["BLADE_KEYS", "BladeSettings", "EdgeRound", "HELICAL_KEYS", "MACHINE_KEYS", "MEMBERS",
            "MODIFIED_ROLL_KEYS", "MachineKinematics", "MachineSettings", "MachineSetup",
            "blade_point", "blade_profile", "blade_through_point", "edge_round", "mirror_setup",
-           "setup_from_tables", "setup_to_tables"]
+           "relieved_blade_keys", "setup_from_tables", "setup_to_tables"]
 
 #: Members of a pair, in the order used by the pair format.
 MEMBERS = ("gear", "pinion")
@@ -173,6 +173,17 @@ class MachineSetup:
     side: str
     settings: MachineSettings
     blade: BladeSettings
+
+
+def relieved_blade_keys(setups) -> list[tuple[str, float]]:
+    """``("[blade.<member>.<side>] toprem_angle_deg", 2.0)`` (and ``flankrem_angle_deg``)
+    of every relieved blade among ``setups`` (its flank is a
+    :class:`~.kinked.KinkedFlank`): what a consumer that cannot keep a kink names when it
+    refuses the pair."""
+    return [(f"[blade.{s.member}.{s.side}] {name}_angle_deg",
+             float(getattr(s.blade, f"{name}_angle_deg")))
+            for s in setups for name in ("toprem", "flankrem")
+            if getattr(s.blade, f"{name}_angle_deg") != 0.0]
 
 
 def mirror_setup(setup: MachineSetup) -> MachineSetup:

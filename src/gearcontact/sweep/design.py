@@ -76,7 +76,24 @@ def vary_design(pair, design: dict):
 
 def check_variants(pair, grid) -> None:
     """Every design variant of ``grid`` is a valid pair (cheap: the blank design, no
-    flanks), or :class:`InputRangeError` naming the ``--vary`` key and the value."""
+    flanks), or :class:`InputRangeError` naming the ``--vary`` key and the value.
+
+    A pair cut from machine settings takes no design key: its flanks are the settings'
+    (:func:`~gearcontact.geometry.flank.build_machine_flanks` reads neither
+    ``[easeoff.*]`` nor ``[cutter]``), and an ease-off variant would be laid on its
+    generated pinion (:func:`~gearcontact.geometry.flank.with_easeoff`), which smooths
+    the kink of a relieved blade's flank."""
+    design_keys = [v.key for v in grid.vary if v.design]
+    if design_keys and pair.kind != CYLINDRICAL and pair.machine:
+        from ..geometry.machine import relieved_blade_keys
+
+        kinks = relieved_blade_keys(pair.machine)
+        raise InputRangeError(
+            f"--vary {design_keys[0]}", f"pair {pair.name} (cut from [machine.*] / "
+            "[blade.*] settings" + ("; relieved blades: " + ", ".join(f"{k} = {v:g}" for k, v in kinks) if kinks else "")
+            + ")", "a pair without machine settings: the flanks cut from settings take no "
+            "[easeoff.*] / [cutter] key" + (" (an ease-off laid on the relieved pinion "
+                                             "would smooth its kink)" if kinks else ""))
     for design in grid.variants():
         try:
             vary_design(pair, dict(design))

@@ -1,0 +1,234 @@
+"""``gearcontact export flanks`` of a flank cut by a relieved (Toprem) blade.
+
+Truths:
+
+- a formate gear flank cut by a blade with a Toprem of ``delta`` from the depth ``z_T``
+  is two blade cones meeting on the circle at depth ``z_T``: the kink lies at
+  ``u = z_T`` over the whole face width and the normals jump by ``delta`` there
+  (tests/geometry/test_kinked.py (a): closed form, 1e-12 mm / 1e-9 deg);
+- the STEP file read back by the same kernel (gmsh's OpenCASCADE) reproduces each
+  piece within the issue's 0.5 um, (a) at the piece's parameters and (b) as the
+  distance to the face (as tests/export/test_flanks.py);
+- the two faces' edges on the kink are one curve (the same poles: the distance of the
+  read-back edges 0 to the kernel's evaluation rounding, asserted 1e-9 mm) on the
+  kink line (0.5 um);
+- the read-back faces' normals jump across the shared edge by the blade's relief
+  (the formate cone, 1e-4 deg) / the KinkedFlank's own jump (the generated pinion,
+  slow; each face's normals fitted within 1e-4 rad of its piece's: the jump within
+  2e-4 rad).
+ISO 23509 F.2 spiral bevel pair cut from machine settings (examples/machine_settings;
+the Toprem pair tests/data/toprem).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+gmsh = pytest.importorskip("gmsh", reason="the export extra (gmsh)")
+
+from gearcontact.cli import main  # noqa: E402
+from gearcontact.errors import BadInput  # noqa: E402
+from gearcontact.export.flank_step import NORMAL_TARGET_RAD, write_step  # noqa: E402
+from gearcontact.export.flanks import ExportFlank, grid_csv, step_faces  # noqa: E402
+from gearcontact.geometry.kinked import machine_flank  # noqa: E402
+from gearcontact.geometry.measuring_grid import AXIS_FRAMES  # noqa: E402
+from gearcontact.geometry.pair import load_pair  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml"
+TOPREM = ROOT / "tests" / "data" / "toprem" / "iso23509_f2_toprem.toml"
+TOL_MM = 0.5e-3          # issue 27: the STEP file reproduces the flank points within 0.5 um
+DELTA_DEG, DEPTH_MM = 2.0, 2.0
+
+
+def _relieved_gear(side, **blade):
+    """The F.2 formate gear flank ``side`` cut by its blade with a Toprem (a KinkedFlank of
+    two blade cones: milliseconds, no generation)."""
+    pair = load_pair(EXAMPLE)
+    s = next(s for s in pair.machine if (s.member, s.side) == ("gear", side))
+    blade = dict(dict(toprem_angle_deg=DELTA_DEG, toprem_depth_mm=DEPTH_MM), **blade)
+    s = dataclasses.replace(s, blade=dataclasses.replace(s.blade, **blade))
+    flank = machine_flank(s, pair.blank, face_width_mm=pair.gear_face_width_mm)
+    return ExportFlank("gear", side, flank, AXIS_FRAMES["gear"])
+
+
+def _angle_deg(a, b):
+    return np.degrees(np.arccos(np.clip(np.einsum("...i,...i->...", a, b), -1.0, 1.0)))
+
+
+def _read_back(path, flank: ExportFlank, names, n_fit):
+    """Per face (root -> tip piece): (um at its parameters, um to the face) against the
+    Surface contract, and the read-back edges on the kink (points and normals of the
+    lower face at t = 1 and the upper at t = 0) at ``n_edge`` lengthwise points."""
+    surf, to_axis = flank.surface, flank.to_axis
+    gmsh.initialize(argv=[], readConfigFiles=False, interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    try:
+        gmsh.model.add(path.stem)
+        ents = gmsh.model.occ.importShapes(str(path))
+        gmsh.model.occ.synchronize()
+        faces = {gmsh.model.getEntityName(*e).rsplit("/", 1)[-1]: e[1]
+                 for e in ents if e[0] == 2}
+        assert set(names) <= set(faces)
+        worst, edges = {}, []
+        for i, name in enumerate(names):
+            # (a) at the piece's parameters (t, v), 4x denser than the fitting grid; the
+            # truth is the flank's own evaluation at u = u_a + t (u_b - u_a) (interior
+            # points: each on its piece by the flank's own rule)
+            t = np.linspace(0.0, 1.0, 4 * (n_fit - 1) + 1)[1:-1]
+            v = np.linspace(*surf.v_range, 4 * (n_fit - 1) + 1)
+            T, V = np.meshgrid(t, v, indexing="ij")
+            a, b = surf.piece_bounds(i, V)
+            U = a + T * (b - a)
+            assert np.all(surf.piece_index(U, V) == i)
+            truth = (surf.evaluate(U, V).r @ to_axis.T).reshape(-1, 3)
+            par = np.stack([T.ravel(), V.ravel()], -1).ravel()
+            got = np.reshape(gmsh.model.getValue(2, faces[name], par), (-1, 3))
+            at_params = np.linalg.norm(got - truth, axis=-1).max()
+            # (b) distance to the face at the fitting grid's cell centres
+            tc = np.linspace(0.0, 1.0, 2 * n_fit - 1)[1::2]
+            vc = np.linspace(*surf.v_range, 2 * n_fit - 1)[1::2]
+            T, V = np.meshgrid(tc, vc, indexing="ij")
+            a, b = surf.piece_bounds(i, V)
+            pts = (surf.evaluate(a + T * (b - a), V).r @ to_axis.T).reshape(-1, 3)
+            near, _ = gmsh.model.getClosestPoint(2, faces[name], pts.ravel())
+            distance = np.linalg.norm(np.reshape(near, (-1, 3)) - pts, axis=-1).max()
+            worst[name] = (at_params * 1e3, distance * 1e3)
+            ve = np.linspace(*surf.v_range, 41)
+            edge = {}
+            for t_edge in (0.0, 1.0):
+                par = np.stack([np.full_like(ve, t_edge), ve], -1).ravel()
+                edge[t_edge] = (np.reshape(gmsh.model.getValue(2, faces[name], par), (-1, 3)),
+                                np.reshape(gmsh.model.getNormal(faces[name], par), (-1, 3)))
+            edges.append(edge)
+    finally:
+        gmsh.finalize()
+    return worst, edges, ve
+
+
+@pytest.mark.parametrize("side", ["drive", "coast"])
+def test_relieved_formate_flank_leaves_as_two_faces_on_the_kink(tmp_path, side):
+    flank = _relieved_gear(side)
+    fits, pieces = step_faces(flank)
+    names = [f.name for f in fits]
+    assert names == [f"gear_{side}_toprem", f"gear_{side}"]
+    assert pieces == {f"gear_{side}_toprem": "toprem", f"gear_{side}": "main"}
+    # the shared edge: the same poles, bit for bit (flank_step.fit_bsplines)
+    assert np.array_equal(fits[0].control_mm[-1], fits[1].control_mm[0])
+    assert np.array_equal(fits[0].knots_v, fits[1].knots_v)
+    path = write_step(tmp_path / "gear.step", fits, title="F.2 toprem gear flanks")
+    text = path.read_text()
+    assert f"PRODUCT('gear_{side}_toprem'" in text and f"PRODUCT('gear_{side}'" in text
+    worst, edges, ve = _read_back(path, flank, names, fits[0].nodes[0])
+    # measured: 0.0041 um at the parameters, 0.0038 um to the face (docs/export.md)
+    assert all(a <= TOL_MM * 1e3 and b <= TOL_MM * 1e3 for a, b in worst.values()), worst
+    (p_low, n_low), (p_up, n_up) = edges[0][1.0], edges[1][0.0]
+    # one curve: the same poles evaluated by the kernel (1e-9 mm: its rounding)
+    assert np.abs(p_low - p_up).max() <= 1e-9
+    # on the kink: the cones' common circle at u = z_T (closed form of the kink)
+    kink = flank.surface.evaluate(np.full_like(ve, DEPTH_MM), ve).r @ flank.to_axis.T
+    assert np.linalg.norm(p_low - kink, axis=-1).max() <= TOL_MM
+    # the normal jump across the shared edge is the relief delta; the faces' normals
+    # differ from the cones' by the fit's slope error (~ error / node spacing, 1e-6 rad
+    # here): 1e-4 deg asserted, measured below 1e-5 deg
+    jump = _angle_deg(n_low, n_up)
+    np.testing.assert_allclose(jump, DELTA_DEG, rtol=0, atol=1e-4)
+
+
+def test_relieved_formate_flank_grid_carries_each_piece(tmp_path):
+    # rows below the kink (u <= z_T) lie on the Toprem cone: its profile makes
+    # blade angle - delta with the cutter axis (the normal blade angle - delta from the
+    # plane normal to the axis); above it the blade angle (tests/geometry/test_kinked.py)
+    flank = _relieved_gear("drive")
+    text = grid_csv(flank, 9, 5, pair_name="F.2 toprem")
+    head = [line for line in text.splitlines() if line.startswith("#")]
+    assert sum(h.startswith("# kink toprem:") for h in head) == 1
+    lines = [line.split(",") for line in text.splitlines() if not line.startswith("#")]
+    cols = lines[0]
+    assert cols[-1] == "piece"
+    rows = [dict(zip(cols, r)) for r in lines[1:]]
+    u = np.array([float(r["u"]) for r in rows])
+    piece = np.array([r["piece"] for r in rows])
+    assert set(piece) == {"toprem", "main"}
+    assert np.array_equal(piece == "toprem", u <= DEPTH_MM)
+    n = np.array([[float(r[k]) for k in ("nx", "ny", "nz")] for r in rows])
+    axis = flank.surface.main.blade.placement.axis @ flank.to_axis.T
+    blade = 20.0            # both F.2 gear blades (examples/machine_settings)
+    tilt = 90.0 - _angle_deg(n, axis)          # normal's angle to the plane normal to z_t
+    want = np.where(piece == "toprem", blade - DELTA_DEG, blade)
+    np.testing.assert_allclose(np.abs(tilt), want, rtol=0, atol=1e-9)
+
+
+def test_kink_crossing_the_box_edge_is_refused_naming_the_blade_key():
+    # a Toprem depth below the flank's root line at one end only is not a four-sided
+    # piece: refused before any fit, naming the blade's keys (exit 2 from the CLI)
+    flank = _relieved_gear("drive")
+    lo, _ = flank.surface.u_range
+    surf = flank.surface
+    kink = surf.kinks[0]
+    tilted = dataclasses.replace(kink, u_nodes=np.linspace(lo - 0.5, lo + 0.5,
+                                                             len(kink.v_nodes)))
+    bad = dataclasses.replace(flank, surface=dataclasses.replace(surf, kinks=(tilted,)))
+    with pytest.raises(BadInput, match=r"\[blade\.gear\.drive\] toprem_depth_mm"):
+        step_faces(bad)
+
+
+@pytest.mark.slow
+def test_toprem_pair_through_the_cli(tmp_path, capsys):
+    """The Toprem pair (both pinion blades relieved, generated pinion) as a user exports
+    it: each pinion flank two faces within 0.5 um, one edge on the kink, the normal
+    jump the KinkedFlank's; the CSV's piece column the flank's own; the unrelieved gear
+    exactly as the F.2 pair's gear (same settings: same STEP bytes but the title)."""
+    from gearcontact.geometry.flank import build_flanks
+
+    out = tmp_path / "toprem"
+    assert main(["export", "flanks", "--pair", str(TOPREM), "--grid", "9x5",
+                 "--out", str(out)]) == 0, capsys.readouterr().err
+    summary = json.loads((out / "flanks.json").read_text())
+    pair = load_pair(TOPREM)
+    flanks = build_flanks(pair)
+    for side in ("drive", "coast"):
+        name = f"pinion_{side}"
+        entry = summary["flanks"][name]
+        assert list(entry["step_faces"]) == [f"{name}_toprem", name]
+        flank = ExportFlank("pinion", side, flanks.flank("pinion", side), AXIS_FRAMES["pinion"])
+        surf = flank.surface
+        worst, edges, ve = _read_back(out / "pinion_flanks.step", flank,
+                                      list(entry["step_faces"]), entry["bspline_nodes"][0])
+        assert all(a <= TOL_MM * 1e3 and b <= TOL_MM * 1e3 for a, b in worst.values()), worst
+        (p_low, n_low), (p_up, n_up) = edges[0][1.0], edges[1][0.0]
+        assert np.abs(p_low - p_up).max() <= 1e-9
+        u_k = surf.kinks[0].u(ve)
+        lower = surf.evaluate_piece(0, u_k, ve)
+        upper = surf.evaluate_piece(1, u_k, ve)
+        assert np.linalg.norm(p_low - lower.r @ flank.to_axis.T, axis=-1).max() <= TOL_MM
+        # the KinkedFlank's own jump (2.2 to 2.9 deg): each face's normals are fitted
+        # within NORMAL_TARGET_RAD of its piece's (flank_step), so the jump within twice
+        # that (0.0115 deg; measured in docs/export.md)
+        np.testing.assert_allclose(_angle_deg(n_low, n_up), _angle_deg(lower.n, upper.n),
+                                   rtol=0, atol=np.degrees(2 * NORMAL_TARGET_RAD))
+        # the CSV: the piece column is the flank's own piece choice, normal that piece's
+        text = (out / f"{name}.csv").read_text().splitlines()
+        lines = [line.split(",") for line in text if not line.startswith("#")]
+        rows = [dict(zip(lines[0], r)) for r in lines[1:]]
+        u, v = (np.array([float(r[k]) for r in rows]) for k in ("u", "v"))
+        k = surf.piece_index(u, v)
+        assert [r["piece"] for r in rows] == [surf.names[i] for i in k]
+        assert set(k) == {0, 1}
+        n = np.array([[float(r[c]) for c in ("nx", "ny", "nz")] for r in rows])
+        for i in (0, 1):
+            want = surf.evaluate_piece(i, u[k == i], v[k == i]).n @ flank.to_axis.T
+            np.testing.assert_allclose(n[k == i], want, rtol=0, atol=1e-12)
+    # the gear is not relieved: its STEP is the F.2 pair's (same settings), but the title
+    plain = tmp_path / "plain"
+    assert main(["export", "flanks", "--pair", str(EXAMPLE), "--grid", "9x5",
+                 "--out", str(plain)]) == 0
+    a = (out / "gear_flanks.step").read_text().replace(pair.name, "PAIR")
+    b = (plain / "gear_flanks.step").read_text().replace(load_pair(EXAMPLE).name, "PAIR")
+    assert a == b
+
