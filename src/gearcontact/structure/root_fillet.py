@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from ..errors import CheckFailed
 from ..validation import InputRangeError
 from .rim import root_line_section, tooth_height_mm
 from .tooth import ToothGeometry, axis_rotation
@@ -235,7 +236,8 @@ class FilletRoot:
         _, _, half, _ = self._bottoms_turn(xi)
         closed = half <= 0.0
         if np.any(closed):
-            end[closed] = 3.0 - self._crossing(side, xi[closed])[0] / self.fillets[side].u_range[1]
+            lo, hi = self.fillets[side].u_range
+            end[closed] = 3.0 - (self._crossing(side, xi[closed])[0] - lo) / (hi - lo)
         return end
 
     def crossing(self, side: str, xi) -> tuple[np.ndarray, np.ndarray]:
@@ -281,7 +283,7 @@ class FilletRoot:
         # the neighbour beside ``side``: one pitch on in the sense coast -> drive
         turn = (sense if side == "drive" else -sense) * 2.0 * math.pi / tooth.teeth
         v = tooth.flank_parameters(side, xi, -np.ones_like(xi))[1]
-        s_top = fil.u_range[1]
+        s_bottom, s_top = fil.u_range
 
         def point(s):
             r = fil.evaluate(s, v).r
@@ -315,7 +317,8 @@ class FilletRoot:
                                   f"xi = {xi[k]:.3f}: gap at the fillet's top (mm)",
                                   float(top[k]), "> 0 (a slot closing below its fillets' "
                                   "tops; here the flanks cross)")
-        s = _illinois(gap, np.zeros_like(xi), np.full_like(xi, s_top), tol=_CROSSING_TOL_MM)
+        s = _illinois(gap, np.full_like(xi, s_bottom), np.full_like(xi, s_top),
+                      tol=_CROSSING_TOL_MM)
         r = point(s)
         p_other = neighbour(radius(r))[1]
         if np.any(p_other < 2.0):
@@ -505,7 +508,8 @@ def _illinois(f, a, b, *, tol: float, steps: int = 100) -> np.ndarray:
         last = np.where(keep_b, 1, -1)
         active &= ~done
     if np.any(active):
-        raise ArithmeticError("regula falsi did not converge")   # pragma: no cover
+        raise CheckFailed(f"regula falsi did not converge in {steps} steps "   # pragma: no cover
+                          "(the fillets' crossing)")
     return out
 
 
