@@ -261,13 +261,11 @@ def _distance_to_fillet(fillet, turn, point):
     from scipy.optimize import least_squares
 
     local = point @ turn                       # back into the fillet's own frame
-    best = np.inf
-    for u0 in np.linspace(0.1, 0.9, 3) * fillet.u_range[1]:
-        fit = least_squares(lambda x: fillet.evaluate(x[:1], x[1:]).r[0] - local,
-                            [u0, local[0]], bounds=([0.0, -np.inf], [fillet.u_range[1], np.inf]),
-                            xtol=1e-15, ftol=1e-15, gtol=1e-15, diff_step=1e-7)
-        best = min(best, float(np.linalg.norm(fit.fun)))
-    return best
+    fit = least_squares(lambda x: fillet.evaluate(x[:1], x[1:]).r[0] - local,
+                        [0.5 * fillet.u_range[1], local[0]],
+                        bounds=([0.0, -np.inf], [fillet.u_range[1], np.inf]),
+                        xtol=1e-15, ftol=1e-15, gtol=1e-15, diff_step=1e-7)
+    return float(np.linalg.norm(fit.fun))
 
 
 def test_a_slot_closing_in_a_v_is_meshed_at_its_crossing(s0003_pinion_root):
