@@ -18,11 +18,13 @@ Truths:
   low on the flank: the factor is fitted on the default mesh, where a real-root tooth
   costs seconds instead of 18 minutes here, and the finer mesh spreads the ratios as
   it did for the ellipse-root calibration, 0.82..1.22 against 0.89..1.11). The
-  s0003 pinion's real root cannot be meshed (its slot's fillets cross above the root
-  cone at the toe): the FE falls back to the quarter-ellipse root with a warning and
-  says so in the result, and the shell, calibrated on real roots, is softer than
-  that stiffer root by about what the real root adds on the s0003-centred pinion
-  (ellipse -> real +32..+36 %): ratios within [1.0, 1.7] (measured 1.40..1.53).
+  s0003 pinion's slot closes in a V at the toe (its fillets cross above the root
+  cone, structure.root_fillet): its real root is meshed (no fallback, no warning),
+  and there the shell is 11..21 % softer than the FE (measured 1.11..1.21 over the
+  12 loads): outside the 15 % at 3 of them. The factor was fitted on the other teeth
+  before this root could be meshed; the misfit is reported (docs/bending.md sec. 10),
+  not tolerated: a strict xfail on the default mesh and on the finer one (measured
+  1.08..1.33 there, outside the 30 % at 3 loads).
   Point loads are not compared: neither model has a
   converged local value under a point load (Mindlin: log-singular, grows with the
   Ritz order; 3D: 1/r, grows with mesh refinement) and the local part is the
@@ -33,6 +35,8 @@ Truths:
 - bad input: mesh sizes, rim / fillet sizes -> InputRangeError (before meshing); a
   body with crossing faces -> InputRangeError "FE mesh" (inverted cells).
 """
+
+import warnings
 
 import numpy as np
 import pytest
@@ -90,46 +94,62 @@ def test_fe_reciprocity():
 TOLERANCE, TOLERANCE_FINE = 0.15, 0.30
 
 
-#: The s0003 pinion: shell (real-root calibration) / FE on the ellipse root (docstring).
-FALLBACK_RANGE = (1.0, 1.7)
+#: The teeth of both s0003 pairs; the s0003 pinion's misfit on its real root (a V slot
+#: at the toe) is a strict xfail of the calibration's band (module docstring).
+TEETH = [("s0003-centred", "pinion"), ("s0003-centred", "gear"), ("s0003", "gear"),
+         pytest.param("s0003", "pinion", marks=pytest.mark.xfail(
+             strict=True, raises=AssertionError,
+             reason="shell / FE 1.11..1.21 (default mesh), 1.08..1.33 (20 x 8 x 4 + 6) on "
+                    "the V-slot real root (docs/bending.md sec. 10)"))]
 
 
 def _shell_vs_fe(pair, flanks, name, member, **kw):
-    """flank_compliance with the FE, and the band its shell / FE ratios must lie in."""
-    if (name, member) != ("s0003", "pinion"):
+    """flank_compliance with the FE, which meshes the tooth's real root (no warning)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", EllipseRootWarning)
         res = flank_compliance(pair, member, flanks=flanks, fe=True, **kw)
-        assert res.fe_root == "cutter" and res.fe_root_note is None
-        return res, None
-    with pytest.warns(EllipseRootWarning, match="s0003 pinion: FE on the ellipse root"):
-        res = flank_compliance(pair, member, flanks=flanks, fe=True, **kw)
-    assert res.fe_root == "ellipse" and "must not cross" in res.fe_root_note
-    return res, FALLBACK_RANGE
+    assert res.fe_root == "cutter" and res.fe_root_note is None
+    return res
 
 
-@pytest.mark.parametrize("name", ["s0003-centred", "s0003"])
-@pytest.mark.parametrize("member", ["pinion", "gear"])
+@pytest.mark.parametrize("name, member", TEETH)
 def test_shell_vs_fe_coarse(pairs, name, member):
     pair, flanks = pairs[name]
-    res, band = _shell_vs_fe(pair, flanks, name, member, fe_mesh=FeMesh(12, 6, 3, 4))
-    ratio = res.ratios()
-    lo, hi = band or (1.0 - TOLERANCE, 1.0 + TOLERANCE)
-    assert np.all((ratio >= lo) & (ratio <= hi)), ratio
+    res = _shell_vs_fe(pair, flanks, name, member, fe_mesh=FeMesh(12, 6, 3, 4))
     # the FE point-load matrix is symmetric and its diagonal (with the local
     # indentation of a point load) exceeds the segment-load deflections
     assert np.allclose(res.fe_mm_per_n, res.fe_mm_per_n.T)
     assert np.all(np.diag(res.fe_mm_per_n) > res.segment_fe_mm_per_n)
+    ratio = res.ratios()
+    assert np.all((ratio >= 1.0 - TOLERANCE) & (ratio <= 1.0 + TOLERANCE)), ratio
+
+
+def test_a_root_that_cannot_be_built_falls_back_to_the_ellipse(s0003_centred):
+    # where the real root cannot be built (here: no fillet for the member) the FE meshes
+    # the ellipse root, warns and says why; the same numbers as the ellipse asked for
+    # (one FE model, built twice: equal to rounding, 1e-12 relative)
+    from gearcontact.structure.compliance import compare_on_root
+    from gearcontact.structure.shell import tooth_shell
+
+    pair, flanks = s0003_centred
+    shell = tooth_shell(flanks, "gear", material=pair.gear_material)
+    kw = dict(name="s0003-centred", side="drive", xi=(0.0,), eta=(0.0,), fe=True,
+              fe_mesh=FeMesh(6, 2, 1, 1, 1, 1))
+    with pytest.warns(EllipseRootWarning, match="s0003-centred gear: FE on the ellipse root"):
+        res = compare_on_root(shell, lambda: (None, "no cutter"), fe_root="cutter", **kw)
+    assert res.fe_root == "ellipse" and res.fe_root_note == "no cutter"
+    ref = compare_on_root(shell, None, fe_root="ellipse", **kw)
+    assert res.line_fe_mm_per_n == pytest.approx(ref.line_fe_mm_per_n, rel=1e-12)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["s0003-centred", "s0003"])
-@pytest.mark.parametrize("member", ["pinion", "gear"])
+@pytest.mark.parametrize("name, member", TEETH)
 def test_shell_vs_fe_fine(pairs, name, member):
     pair, flanks = pairs[name]
-    res, band = _shell_vs_fe(pair, flanks, name, member, xi=(-0.5, 0.0, 0.5),
-                             eta=(-0.5, 0.0, 0.5), fe_mesh=FeMesh(20, 8, 4, 6))
+    res = _shell_vs_fe(pair, flanks, name, member, xi=(-0.5, 0.0, 0.5),
+                       eta=(-0.5, 0.0, 0.5), fe_mesh=FeMesh(20, 8, 4, 6))
     ratio = res.ratios()
-    lo, hi = band or (1.0 - TOLERANCE_FINE, 1.0 + TOLERANCE_FINE)
-    assert np.all((ratio >= lo) & (ratio <= hi)), ratio
+    assert np.all((ratio >= 1.0 - TOLERANCE_FINE) & (ratio <= 1.0 + TOLERANCE_FINE)), ratio
 
 
 def test_bad_input(s0003_centred):

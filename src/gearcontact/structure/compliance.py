@@ -226,9 +226,11 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
         member's cutter leaves (:mod:`.root_fillet`; the conjugate pinion's from the
         generating tool that cuts it, :func:`~gearcontact.geometry.fillet.pair_fillets`;
         the shell's calibration, ``docs/bending.md`` sec. 10), or ``"ellipse"``, the
-        quarter-ellipse fillet and rim of :mod:`.rim` (sec. 3). Where the real root
-        cannot be built (no fillet for the member, or a slot whose fillets cross above
-        the root cone: the s0003 pinion's toe) the FE meshes the ellipse root, warns
+        quarter-ellipse fillet and rim of :mod:`.rim` (sec. 3); a slot whose fillets
+        cross above the root cone (the s0003 pinion's toe) closes in a V at their
+        crossing (:meth:`~.root_fillet.FilletRoot.crossing`). Where the real root
+        cannot be built (no fillet for the member, a slot closing above its fillets)
+        the FE meshes the ellipse root, warns
         (:class:`EllipseRootWarning`) and says why in the result (``fe_root_note``).
     """
     check_member_and_root(member, fe_root)

@@ -179,12 +179,14 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     xi_l = np.linspace(-1.0, 1.0, n_xi + 1)
     eta_l = np.linspace(-1.0, 1.0, n_eta + 1)
     zeta_l = np.linspace(0.0, 1.0, n_zeta + 1)
+    merged = np.empty((0,), int), np.empty((3, 0), int)
     if root is None:
         idx, pts, n_below, k0 = _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim,
                                           rim_depth_mm, fillet_mm)
     else:
         idx, pts, n_below, k0 = _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_rim,
                                              n_fillet, n_slot)
+        idx, pts, merged = _merge_coincident(skfem, idx, pts)
     I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
     mesh = skfem.MeshTet(pts, idx.t)
     # inverted cells: the map must keep (or flip) the orientation of every index cell
@@ -202,6 +204,7 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     lu = splu(A[free][:, free].tocsc())
     vertex = np.full((n_xi + 1, int(J.max()) + 1, int(K.max()) + 1), -1, dtype=int)
     vertex[I, J, K] = np.arange(idx.p.shape[1])
+    vertex[tuple(merged[1])] = merged[0]
     return FeTooth(body=body, xi_levels=xi_l, eta_levels=eta_l,
                    n_nodes=int(basis.N // 3), n_dofs=int(basis.N),
                    build_s=time.perf_counter() - t0, _vertex=vertex, _rim_levels=n_below,
@@ -238,6 +241,26 @@ def _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim, rim_depth_mm, fillet_mm):
     return idx, pts, n_rim, 0
 
 
+def _merge_coincident(skfem, idx, pts):
+    """Merge the vertices of the mapped mesh that coincide (the slot bottom's points of
+    a slot closing in a V, :meth:`.root_fillet.FilletRoot.root_row`) and drop the
+    tetrahedra that lose a vertex: ``(index mesh, points, (vertex, index points (3,
+    n)) of the merged index points)``; the mesh unchanged where no two vertices
+    coincide."""
+    uniq, first, inv = np.unique(pts.T, axis=0, return_index=True, return_inverse=True)
+    inv = inv.ravel()
+    if len(uniq) == pts.shape[1]:
+        return idx, pts, (np.empty((0,), int), np.empty((3, 0), int))
+    t = inv[idx.t]
+    # the tetrahedra that lose a vertex (the cells beside a closed section's slot
+    # bottom, between it and an open one, become wedges)
+    t = np.ascontiguousarray(t[:, np.all(np.diff(np.sort(t, axis=0), axis=0) > 0, axis=0)])
+    # the merged vertex keeps the index point of its first occurrence; the others alias it
+    alias = np.setdiff1d(np.arange(pts.shape[1]), first)
+    rep = np.rint(idx.p[:, alias]).astype(int)
+    return (skfem.MeshTet(idx.p[:, first], t), pts[:, first], (inv[alias], rep))
+
+
 def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_slot):
     """Index mesh and node positions of the tooth on its real root (:mod:`.root_fillet`):
     a tensor index grid across the slot bottoms, the tooth and the fillet zone, without
@@ -249,7 +272,14 @@ def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_sl
                                      np.arange(n_block + n_fillet + n_eta + 1.0),
                                      np.arange(n_k + 1.0))
     c = full.p[:, full.t].mean(axis=1)          # index centroids of the tetrahedra
-    keep = (c[1] < n_block) | ((c[2] > n_slot) & (c[2] < n_slot + n_zeta))
+    beside = (c[2] < n_slot) | (c[2] > n_slot + n_zeta)
+    keep = (c[1] < n_block) | ~beside
+    closed = root.closed(xi_l)
+    if np.any(closed):
+        # a slot bottom without width (a V, root_fillet.FilletRoot.root_row): the rim
+        # cells beside the tooth between two such sections collapse to faces
+        i = np.floor(c[0]).astype(int)
+        keep &= ~(beside & closed[i] & closed[i + 1])
     used, t = np.unique(full.t[:, keep], return_inverse=True)
     idx = skfem.MeshTet(full.p[:, used], t.reshape(4, -1))
     I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
