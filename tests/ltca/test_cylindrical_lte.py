@@ -272,7 +272,7 @@ def test_harris_map_minimum_moves_to_lower_loads_with_bending():
     the teeth bending the mesh stiffness about halves (49.8 -> 21.6 N/(mm·µm), above), so
     the load a relief matches falls. 20/40 spur pair, C_a = 20 um on both members from
     just above the highest point of single contact (as the rigid map above), 15 phases:
-    measured minimum at F_t / b = 100 N/mm with bending against 200 N/mm rigid (p-p 3.06
+    measured minimum at F_t / b = 100 N/mm with bending against 200 N/mm rigid (p-p 2.99
     against 2.67 arcsec); unrelieved, the loaded TE p-p is larger with bending at every
     load (the single / double contact stiffness step grows with the compliance)."""
     from gearcontact.ltca.cylindrical_lte import harris_torques_nm
