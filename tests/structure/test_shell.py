@@ -205,6 +205,8 @@ def test_bad_input():
         SectionProfile((0.0, 0.5), (1.0, 1.1), 0.0)
     with pytest.raises(InputRangeError, match="rim profile's last depth_mm"):
         RimSegment(2.0, 0.6, profile=SectionProfile((0.0, 0.5), (1.0, 1.1), 1.5))
+    with pytest.raises(InputRangeError, match="fillet_mm"):
+        rim_segment(plate, fillet_mm=0.5, profile=SectionProfile((0.0, 0.5), (1.0, 1.1), 1.5))
     with pytest.raises(InputRangeError, match="rim"):
         rim_segment(plate)                       # a plate has no member axis
     # a taper through zero thickness: rejected before any assembly

@@ -137,7 +137,8 @@ def section_profile(root: FilletRoot) -> SectionProfile:
              - np.interp(s, depth["coast"], lateral["coast"]))
     root_width = float(chord[0] @ across)
     row = root.root_row(xi, _ROW_SLOT)[0]
-    return SectionProfile(depth_mm=tuple(s.tolist()), widening=tuple((width / root_width).tolist()),
+    return SectionProfile(depth_mm=tuple(s.tolist()),
+                          widening=tuple((width / root_width).tolist()),
                           rim_widening=float((row[-1] - row[0]) @ across / root_width))
 
 

@@ -36,8 +36,8 @@ import numpy as np
 from ..validation import InputRangeError, check_positive
 from .tooth import MidSurfaceArrays
 
-__all__ = ["RimSegment", "SectionProfile", "rim_segment", "rim_points", "rim_mid_surface", "rim_modulus_factor",
-           "root_line_section", "tooth_height_mm"]
+__all__ = ["RimSegment", "SectionProfile", "rim_segment", "rim_points", "rim_mid_surface",
+           "rim_modulus_factor", "root_line_section", "tooth_height_mm"]
 
 #: Step in xi of the central differences of the section's direction along the face.
 _DXI = 1e-4
@@ -120,6 +120,9 @@ def rim_segment(body, *, depth_mm: float | None = None, fillet_mm: float | None 
                 ) -> RimSegment:
     """The rim segment of a tooth with the defaults of the module docstring (with a
     ``profile``, the fillet height is its last depth)."""
+    if profile is not None and fillet_mm is not None:
+        raise InputRangeError("fillet_mm", fillet_mm, "None with a profile (its last "
+                              "depth is the fillet height)")
     if not hasattr(body, "teeth"):
         raise InputRangeError("rim", type(body).__name__, "a tooth with a member axis")
     height = tooth_height_mm(body)
