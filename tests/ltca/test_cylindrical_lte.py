@@ -194,11 +194,12 @@ def spur_iso_stiffness(spur):
 
 
 def test_mesh_stiffness_with_bending_against_iso_6336(spur_iso_stiffness):
-    """With the shell bending of both teeth (fillet and rim, calibrated against the 3D FE
-    on the teeth's real roots, docs/bending.md sec. 9) the 20/40 spur pair at T2 = 400
-    N·m (333 N/mm at d2, inside Method B's >= 100 N/mm): measured single-contact
-    stiffness 14.3 and mean 22.0 N/(mm·µm), i.e. 1.13 and 1.17 times c' = 12.7 and
-    c_gamma_alpha = 18.7 (ISO 6336-1 Method B with its measured correction C_M = 0.8).
+    """With the shell bending of both teeth (the fillet following the real root, the rim
+    factor calibrated against the 3D FE on the teeth's real roots, docs/bending.md sec.
+    9) the 20/40 spur pair at T2 = 400 N·m (333 N/mm at d2, inside Method B's >= 100
+    N/mm): measured single-contact stiffness 14.15 and mean 21.57 N/(mm·µm), i.e. 1.11
+    and 1.15 times c' = 12.7 and c_gamma_alpha = 18.7 (ISO 6336-1 Method B with its
+    measured correction C_M = 0.8).
     Asserted against c' and c_gamma_alpha within the 30 % the background allows an
     empirical fit (tens of percent). The rigid teeth gave 2.5-2.7 times c'."""
     for value, iso_value in spur_iso_stiffness:
@@ -206,11 +207,13 @@ def test_mesh_stiffness_with_bending_against_iso_6336(spur_iso_stiffness):
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "differs: single-contact stiffness 0.90 x ISO 6336-1's theoretical c'_th C_B = 15.9 "
-    "N/(mm·µm) (mean 0.94 x c_gamma_alpha / C_M = 23.4), below the q' polynomial's -8 % "
-    "band; the 3D FE on the teeth's real trochoidal roots, which the shell's rim factor "
-    "is calibrated on (1.1), finds these teeth softer than the ellipse-root FE did (1.4 "
-    "gave 0.97 / 1.01); docs/cylindrical.md sec. 7, docs/bending.md sec. 9"))
+    "differs: single-contact stiffness 0.89 x ISO 6336-1's theoretical c'_th C_B = 15.9 "
+    "N/(mm·µm) (mean 0.92 x c_gamma_alpha / C_M = 23.4, at the band's edge), below the "
+    "q' polynomial's -8 % band; the 3D FE on the teeth's real trochoidal roots, which "
+    "the shell (its fillet following that root, rim factor 1.31) is calibrated on "
+    "within 0.94..1.04 (pinion) and 1.00..1.11 (gear), finds these teeth softer than "
+    "the theory (the ellipse-root FE's factor 1.4 gave 0.97 / 1.01); "
+    "docs/cylindrical.md sec. 7, docs/bending.md sec. 9"))
 def test_mesh_stiffness_with_bending_against_iso_6336_theory(spur_iso_stiffness):
     """ISO 6336-1's C_M = 0.8 is the mean ratio of measured to theoretical single
     stiffness of solid disc gears; the model is a theory of the elastic teeth and body of
@@ -266,10 +269,10 @@ def test_bending_softens_the_mesh_at_every_phase(helical):
 
 def test_harris_map_minimum_moves_to_lower_loads_with_bending():
     """A tip relief is matched by the static deflection at one load, delta = F / c: with
-    the teeth bending the mesh stiffness about halves (49.8 -> 23.3 N/(mm·µm), above), so
+    the teeth bending the mesh stiffness about halves (49.8 -> 21.6 N/(mm·µm), above), so
     the load a relief matches falls. 20/40 spur pair, C_a = 20 um on both members from
     just above the highest point of single contact (as the rigid map above), 15 phases:
-    measured minimum at F_t / b = 100 N/mm with bending against 200 N/mm rigid (p-p 3.06
+    measured minimum at F_t / b = 100 N/mm with bending against 200 N/mm rigid (p-p 2.99
     against 2.67 arcsec); unrelieved, the loaded TE p-p is larger with bending at every
     load (the single / double contact stiffness step grows with the compliance)."""
     from gearcontact.ltca.cylindrical_lte import harris_torques_nm

@@ -29,7 +29,7 @@ import pytest
 from scipy.integrate import quad
 
 from gearcontact.materials import Material
-from gearcontact.structure.rim import RimSegment, rim_modulus_factor, rim_segment
+from gearcontact.structure.rim import RimSegment, SectionProfile, rim_modulus_factor, rim_segment
 from gearcontact.structure.shell import RIM_STIFFENING, build_shell, tooth_shell
 from gearcontact.structure.tooth import RectangularPlate, tooth_geometry
 from gearcontact.validation import InputRangeError
@@ -197,6 +197,16 @@ def test_bad_input():
         RimSegment(2.0, 3.0)
     with pytest.raises(InputRangeError, match="rim depth_mm"):
         RimSegment(-2.0, 0.5)
+    with pytest.raises(InputRangeError, match="section profile depth_mm"):
+        SectionProfile((0.0, 0.5, 0.4), (1.0, 1.1, 1.2), 1.5)     # not ascending
+    with pytest.raises(InputRangeError, match="section profile widening"):
+        SectionProfile((0.0, 0.5), (1.0, -1.1), 1.5)
+    with pytest.raises(InputRangeError, match="section profile rim_widening"):
+        SectionProfile((0.0, 0.5), (1.0, 1.1), 0.0)
+    with pytest.raises(InputRangeError, match="rim profile's last depth_mm"):
+        RimSegment(2.0, 0.6, profile=SectionProfile((0.0, 0.5), (1.0, 1.1), 1.5))
+    with pytest.raises(InputRangeError, match="fillet_mm"):
+        rim_segment(plate, fillet_mm=0.5, profile=SectionProfile((0.0, 0.5), (1.0, 1.1), 1.5))
     with pytest.raises(InputRangeError, match="rim"):
         rim_segment(plate)                       # a plate has no member axis
     # a taper through zero thickness: rejected before any assembly

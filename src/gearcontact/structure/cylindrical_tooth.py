@@ -14,15 +14,16 @@ radius, so the mid-surface is the helicoid of the tooth's centre line and the th
 along its normal the normal chordal tooth thickness.
 
 Below the form circle the shell continues through the fillet and rim segment of
-:mod:`.rim`, with the fillet height the radial distance from the form circle to the root
-circle, ``(d_Ff - d_f) / 2`` (the trochoidal fillet's height; the segment widens to one
-pitch over it), and the rim depth the tooth height (as for bevel members). The
-shell's modulus of the fillet and rim is raised by :data:`CYLINDRICAL_RIM_STIFFENING`
-per member, calibrated against the 3D FE of the same tooth on its real root
-(:func:`cylindrical_fillet_root`: the sides down the trochoidal fillets the basic
-rack's tip rounding generates, :mod:`gearcontact.geometry.cylindrical.fillet`, the
-slot bottoms on the root circle, the rim block below to the same depth;
-:mod:`.root_fillet`, :mod:`.fe`).
+:mod:`.rim`, the rim depth the tooth height (as for bevel members). Its fillet follows
+the real root (:func:`cylindrical_fillet_root`: the sides down the trochoidal fillets
+the basic rack's tip rounding generates, :mod:`gearcontact.geometry.cylindrical.fillet`,
+the slot bottoms on the root circle, the rim block below to the same depth;
+:mod:`.root_fillet`), the same geometry the 3D FE meshes (:mod:`.fe`):
+:func:`section_profile` tabulates the section's width down the two side curves (along
+the thickness direction ``m``, at depths along the down direction ``d``) to the fillet
+bottoms, and the root row's width (one pitch of the root circle) below. The shell's
+modulus of the fillet and rim is raised by :data:`CYLINDRICAL_RIM_STIFFENING` per
+member, calibrated against the 3D FE of the same tooth on its real root.
 
 References
 ----------
@@ -42,23 +43,31 @@ from ..geometry.cylindrical.flank import FACINGS, involute_flank
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..threads import one_blas_thread
 from ..validation import InputRangeError
-from .rim import RimSegment, rim_segment
+from .rim import RimSegment, SectionProfile, rim_segment, root_line_section
 from .root_fillet import FilletRoot, fillet_root
 from .shell import ORDER, ORDER_FACE, ShellModel, build_shell
 from .tooth import ToothGeometry
 
 __all__ = ["CYLINDRICAL_RIM_STIFFENING", "cylindrical_tooth", "cylindrical_rim",
            "cylindrical_fillet_root", "cylindrical_tooth_shell", "loaded_side",
-           "rack_fillets"]
+           "rack_fillets", "section_profile"]
+
+#: Arc-length samples of each side curve of :func:`section_profile` (the table's rows:
+#: dense where the trochoid turns into the root circle and the width grows fastest).
+_PROFILE_SAMPLES = 129
+#: Cells across each slot bottom of the root row whose width :func:`section_profile`
+#: takes below the fillet (its end points alone matter: the slot middles).
+_ROW_SLOT = 2
 
 #: Factor on the modulus of the shell's fillet and rim of a cylindrical tooth
-#: (:func:`~.rim.rim_modulus_factor`), calibrated against the 3D FE of the same teeth on
-#: their real roots (:func:`cylindrical_fillet_root`; P2, 12 x 6 x 3 + 4 cells, 3 fillet
-#: layers, 2 slot cells; spur 20/40 m 3, helical 23/67 m 2, FZG C 16/24, both members;
-#: segment and line loads at three heights): the one factor minimizing the largest
-#: |log(shell / FE)| over the six teeth, shell / FE 0.85 .. 1.17 (docs/bending.md sec. 9;
-#: 1.4 against the former ellipse-root FE).
-CYLINDRICAL_RIM_STIFFENING = {"pinion": 1.1, "gear": 1.1}
+#: (:func:`~.rim.rim_modulus_factor`; the fillet following the real root,
+#: :func:`section_profile`), calibrated against the 3D FE of the same teeth on their real
+#: roots (:func:`cylindrical_fillet_root`; P2, 12 x 6 x 3 + 4 cells, 3 fillet layers, 2
+#: slot cells; spur 20/40 m 3, helical 23/67 m 2, FZG C 16/24, both members; segment
+#: and line loads at three heights): the one factor minimizing the largest
+#: |log(shell / FE)| over the six teeth, shell / FE 0.895 .. 1.112 (docs/bending.md
+#: sec. 9; 1.1 with the quarter-ellipse fillet, 0.85 .. 1.17).
+CYLINDRICAL_RIM_STIFFENING = {"pinion": 1.31, "gear": 1.31}
 
 
 def loaded_side(facing: str) -> str:
@@ -85,16 +94,52 @@ def cylindrical_tooth(pair: CylindricalPair, member: str) -> ToothGeometry:
 
 def cylindrical_rim(pair: CylindricalPair, tooth: ToothGeometry, *,
                     stiffening: float | None = None) -> RimSegment:
-    """The fillet and rim segment below the form circle (module docstring); ``stiffening``
-    defaults to the member's :data:`CYLINDRICAL_RIM_STIFFENING` (1: the FE's)."""
+    """The fillet and rim segment below the form circle (module docstring): the widening
+    of :func:`section_profile` on the real root, the fillet height its depth;
+    ``stiffening`` defaults to the member's :data:`CYLINDRICAL_RIM_STIFFENING` (1: the
+    FE's)."""
     g = pair.geometry
     m = tooth.member
-    fillet = 0.5 * (getattr(g, f"form_diameter_{m}_mm") - getattr(g, f"root_diameter_{m}_mm"))
-    if not fillet > 0.0:
+    if not getattr(g, f"form_diameter_{m}_mm") > getattr(g, f"root_diameter_{m}_mm"):
         raise InputRangeError(f"{m} form diameter (mm)", getattr(g, f"form_diameter_{m}_mm"),
                               "above the root diameter (a root fillet)")
     k = CYLINDRICAL_RIM_STIFFENING[m] if stiffening is None else stiffening
-    return rim_segment(tooth, fillet_mm=fillet, stiffening=k)
+    return rim_segment(tooth, stiffening=k,
+                       profile=section_profile(cylindrical_fillet_root(pair, tooth)))
+
+
+def section_profile(root: FilletRoot) -> SectionProfile:
+    """The shell's widening (:class:`~.rim.SectionProfile`) of the real root ``root``: at
+    the face centre, the width along the thickness direction ``m``
+    (:meth:`~.root_fillet.FilletRoot.section_plane`) between the two side curves at each
+    depth along ``d`` below the root line's centre, over the root line's width, down to
+    the fillet bottoms (:meth:`~.root_fillet.FilletRoot.cone_depth_mm`: the fillet
+    height), then the root row's width (slot middle to slot middle) below. A cylindrical
+    tooth's sections are one screw motion apart along the face, so one table serves
+    every face position."""
+    xi = np.zeros(1)
+    centre, _, chord, _ = root_line_section(root.tooth, xi)
+    across, down = (a[0] for a in root.section_plane(xi))
+    q = np.linspace(0.0, 1.0, _PROFILE_SAMPLES)
+    depth, lateral = {}, {}
+    for side in ("coast", "drive"):
+        rel = root.side_points(side, np.zeros_like(q), q) - centre[0]
+        depth[side], lateral[side] = rel @ down, rel @ across
+        if np.any(np.diff(depth[side]) <= 0.0):
+            raise InputRangeError(f"{root.tooth.member} {side} root side curve's depth",
+                                  "not increasing", "a side curve descending to the root "
+                                  "circle (no fillet rising again)")
+    bottom = float(root.cone_depth_mm(xi)[0])
+    s = np.unique(np.concatenate([depth["coast"], depth["drive"]]))
+    s = s[(s > 0.0) & (s < bottom)]
+    s = np.concatenate([[0.0], s, [bottom]])
+    width = (np.interp(s, depth["drive"], lateral["drive"])
+             - np.interp(s, depth["coast"], lateral["coast"]))
+    root_width = float(chord[0] @ across)
+    row = root.root_row(xi, _ROW_SLOT)[0]
+    return SectionProfile(depth_mm=tuple(s.tolist()),
+                          widening=tuple((width / root_width).tolist()),
+                          rim_widening=float((row[-1] - row[0]) @ across / root_width))
 
 
 @lru_cache(maxsize=8)

@@ -20,6 +20,11 @@ widening that makes the section span one pitch angle about the member axis.
 Defaults (both models): the depth is the tooth height (mid-surface length over eta at
 the face centre), the fillet height the larger of the flank's start above the root
 cone (``u_lo``) and 15 % of the tooth height.
+
+A segment may instead carry a tabulated widening (:class:`SectionProfile`): ``f(s)``
+over the fillet from a real root's section widths (a cylindrical tooth's trochoid,
+:func:`gearcontact.structure.cylindrical_tooth.cylindrical_rim`), then the root row's
+width below it (the shell's only; the FE meshes the real root itself).
 """
 
 from __future__ import annotations
@@ -31,11 +36,41 @@ import numpy as np
 from ..validation import InputRangeError, check_positive
 from .tooth import MidSurfaceArrays
 
-__all__ = ["RimSegment", "rim_segment", "rim_points", "rim_mid_surface", "rim_modulus_factor",
-           "root_line_section", "tooth_height_mm"]
+__all__ = ["RimSegment", "SectionProfile", "rim_segment", "rim_points", "rim_mid_surface",
+           "rim_modulus_factor", "root_line_section", "tooth_height_mm"]
 
 #: Step in xi of the central differences of the section's direction along the face.
 _DXI = 1e-4
+
+
+@dataclass(frozen=True)
+class SectionProfile:
+    """A tabulated widening of the fillet (module docstring), one for every face position.
+
+    Attributes
+    ----------
+    depth_mm : tuple of float
+        Depths below the root line, ascending from 0 to the segment's ``fillet_mm``, mm.
+    widening : tuple of float
+        ``f`` at those depths: the section's width over the root line's (1 at depth 0),
+        linear between them.
+    rim_widening : float
+        ``f`` from ``fillet_mm`` down (the rim block's width over the root line's).
+    """
+
+    depth_mm: tuple
+    widening: tuple
+    rim_widening: float
+
+    def __post_init__(self):
+        s, f = np.asarray(self.depth_mm, float), np.asarray(self.widening, float)
+        if s.ndim != 1 or s.shape != f.shape or len(s) < 2 or s[0] != 0.0 or np.any(
+                np.diff(s) <= 0.0):
+            raise InputRangeError("section profile depth_mm", f"{len(s)} values",
+                                  "ascending from 0, as many as the widening values (>= 2)")
+        if not (np.all(f > 0.0) and np.all(np.isfinite(f))):
+            raise InputRangeError("section profile widening", float(np.min(f)), "> 0")
+        check_positive("section profile rim_widening", self.rim_widening)
 
 
 @dataclass(frozen=True)
@@ -52,11 +87,15 @@ class RimSegment:
         Factor on the modulus of the rim block in the shell model, reached over the
         fillet (:func:`rim_modulus_factor`; the 3D FE uses the material as it is), > 0;
         see :data:`gearcontact.structure.shell.RIM_STIFFENING`.
+    profile : SectionProfile or None
+        The shell's tabulated widening (its last depth is ``fillet_mm``); None: the
+        quarter ellipse to one pitch (module docstring).
     """
 
     depth_mm: float
     fillet_mm: float
     stiffening: float = 1.0
+    profile: SectionProfile | None = None
 
     def __post_init__(self):
         check_positive("rim depth_mm", self.depth_mm)
@@ -65,6 +104,9 @@ class RimSegment:
         if self.fillet_mm > self.depth_mm:
             raise InputRangeError("rim fillet_mm", self.fillet_mm,
                                   f"<= depth_mm = {self.depth_mm:g}")
+        if self.profile is not None and self.profile.depth_mm[-1] != self.fillet_mm:
+            raise InputRangeError("rim profile's last depth_mm", self.profile.depth_mm[-1],
+                                  f"the fillet_mm {self.fillet_mm:g}")
 
 
 def tooth_height_mm(body) -> float:
@@ -74,16 +116,27 @@ def tooth_height_mm(body) -> float:
 
 
 def rim_segment(body, *, depth_mm: float | None = None, fillet_mm: float | None = None,
-                stiffening: float = 1.0) -> RimSegment:
-    """The rim segment of a tooth with the defaults of the module docstring."""
+                stiffening: float = 1.0, profile: SectionProfile | None = None
+                ) -> RimSegment:
+    """The rim segment of a tooth with the defaults of the module docstring (with a
+    ``profile``, the fillet height is its last depth)."""
+    if profile is not None and fillet_mm is not None:
+        raise InputRangeError("fillet_mm", fillet_mm, "None with a profile (its last "
+                              "depth is the fillet height)")
     if not hasattr(body, "teeth"):
         raise InputRangeError("rim", type(body).__name__, "a tooth with a member axis")
     height = tooth_height_mm(body)
     depth = height if depth_mm is None else check_positive("rim_depth_mm", depth_mm)
-    fil = (max(body.u_span_mm[0], 0.15 * height) if fillet_mm is None
-           else check_positive("fillet_mm", fillet_mm))
+    if profile is not None:
+        fil = profile.depth_mm[-1]
+        if fil > depth:
+            raise InputRangeError("rim profile's last depth_mm", fil,
+                                  f"<= the rim depth {depth:g} mm")
+    else:
+        fil = (max(body.u_span_mm[0], 0.15 * height) if fillet_mm is None
+               else check_positive("fillet_mm", fillet_mm))
     return RimSegment(depth_mm=float(depth), fillet_mm=float(min(fil, depth)),
-                      stiffening=float(stiffening))
+                      stiffening=float(stiffening), profile=profile)
 
 
 def root_line_section(body, xi):
@@ -101,10 +154,16 @@ def root_line_section(body, xi):
     return 0.5 * (pc0 + pd0), down, pd0 - pc0, widen
 
 
-def _fan(rim: RimSegment, s_mm):
-    """The fillet's quarter-ellipse profile: 0 at the root line, 1 from its end down."""
+def _widening(rim: RimSegment, s_mm, widen):
+    """``f`` at depth ``s_mm`` (module docstring): the tabulated profile, or the quarter
+    ellipse from 1 at the root line to the pitch widening ``widen`` at its end."""
+    if rim.profile is not None:
+        p = rim.profile
+        s = np.asarray(s_mm, float)
+        return np.where(s < rim.fillet_mm, np.interp(s, p.depth_mm, p.widening),
+                        p.rim_widening)
     q = np.clip(np.asarray(s_mm, float) / rim.fillet_mm, 0.0, 1.0)
-    return np.sqrt(1.0 - (1.0 - q) ** 2)
+    return 1.0 + (widen - 1.0) * np.sqrt(1.0 - (1.0 - q) ** 2)
 
 
 def rim_modulus_factor(rim: RimSegment, s_mm) -> np.ndarray:
@@ -121,7 +180,7 @@ def rim_points(body, rim: RimSegment, xi, s_mm, zeta) -> np.ndarray:
     below the root line and ``zeta`` in [0, 1] across (coast -> drive side), mm."""
     xi, s_mm, zeta = (np.asarray(a, float) for a in np.broadcast_arrays(xi, s_mm, zeta))
     centre, down, chord, widen = root_line_section(body, xi)
-    f = 1.0 + (widen - 1.0) * _fan(rim, s_mm)
+    f = _widening(rim, s_mm, widen)
     return centre + s_mm[:, None] * down + ((zeta - 0.5) * f)[:, None] * chord
 
 
@@ -144,7 +203,7 @@ def rim_mid_surface(body, rim: RimSegment, xi, s_mm) -> MidSurfaceArrays:
     normal = np.cross(x_xi, x_eta)
     normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
     normal *= np.sign(np.einsum("ni,ni->n", chord, normal))[:, None]  # coast -> drive
-    f = 1.0 + (widen - 1.0) * _fan(rim, s_mm)
+    f = _widening(rim, s_mm, widen)
     thickness = f * np.einsum("ni,ni->n", chord, normal)
     return MidSurfaceArrays(position_mm=centre + s_mm[:, None] * down, x_xi=x_xi,
                             x_eta=x_eta, normal=normal, thickness_mm=thickness)
