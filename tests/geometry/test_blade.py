@@ -91,6 +91,17 @@ def test_toprem_angle_beyond_the_blade_angle_is_named():
                             toprem_depth_mm=2.0)
 
 
+def test_toprem_depth_beyond_the_blade_is_named_by_its_own_key():
+    # straight 20 deg main blade, 3 deg Toprem: the segment's reference arc is
+    # depth / cos(17 deg), within the blade's 50 mm up to 50 cos(17 deg) = 47.8152 mm;
+    # the error names the key typed, not the derived profile_reference_mm
+    BladeSettings("outside", 20.0, 100.0, where="blade.pinion.drive",
+                  toprem_angle_deg=3.0, toprem_depth_mm=47.8)
+    with pytest.raises(InputRangeError, match=r"toprem_depth_mm = 47\.9.*\(0, 47\.8152\]"):
+        BladeSettings("outside", 20.0, 100.0, where="blade.pinion.drive",
+                      toprem_angle_deg=3.0, toprem_depth_mm=47.9)
+
+
 def test_relief_keys_round_trip_through_the_pair_tables():
     from gearcontact.geometry.machine import setup_from_tables, setup_to_tables
 

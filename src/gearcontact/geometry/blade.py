@@ -340,7 +340,16 @@ def _relief_blade(main: BladeSettings, depth_mm: float, relief_deg: float, name:
                               f"[0, {45.0 - a:.4f}) deg (the Flankrem segment's profile "
                               f"angle {a:.4f} + relief must stay < 45)")
     straight = BladeSettings(main.kind, angle, main.point_radius_mm, where=main.where)
-    return blade_through_point(straight, rho_mm=rho, z_mm=depth_mm)
+    try:
+        return blade_through_point(straight, rho_mm=rho, z_mm=depth_mm)
+    except InputRangeError:
+        # the segment's reference arc (its depth along the straight blade) left the
+        # blade's 50 mm: name the key the user typed, not the derived one
+        reach = 50.0 * math.cos(math.radians(angle))
+        raise InputRangeError(f"{main.where}.{name}_depth_mm", depth_mm,
+                              f"(0, {reach:.4f}] mm (the {name} segment's arc from the "
+                              f"tip plane, depth / cos({angle:.4f} deg), stays within "
+                              "the blade's 50 mm)") from None
 
 
 def blade_segments(blade: BladeSettings) -> tuple:
