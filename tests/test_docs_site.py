@@ -65,6 +65,12 @@ def _forget_modules_imported_since(before: dict) -> None:
     in this process must import them again against the real ones (``hw.litex.board``
     failed with ``~platform.request(...)`` on a mock when the docs test ran first)."""
     for name in set(sys.modules) - set(before):
+        module = sys.modules[name]
+        # real third-party modules stay: a C extension (numpy's, scipy's) cannot be
+        # loaded twice in one process, and a later lazy import would find it half gone
+        if not (name.split(".")[0] == "gearcontact" or module is None
+                or type(module).__name__ == "_MockModule"):
+            continue
         parent, _, child = name.rpartition(".")
         if parent in sys.modules and getattr(sys.modules[parent], child, None) is sys.modules[name]:
             delattr(sys.modules[parent], child)
