@@ -23,6 +23,8 @@ from gearcontact.tca.cylindrical_cycle import cylindrical_mesh_cycle
 from gearcontact.tca.cylindrical_tip import beyond_line_edge_gaps
 from gearcontact.tca.plane_of_action import PlaneOfAction
 
+from lte_edges_off import without_lte_edges
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 ARCSEC = 206264.80624709636
 GRID = dict(bending=False, cells_along=16, cells_across=12)
@@ -45,16 +47,6 @@ def unrelieved(ev):
     p = _unmodified(ev)
     c = cylindrical_mesh_cycle(p, phases=7)
     return p, c, lte_module.cylindrical_loaded_te(p, 400.0, cycle=c, **GRID)
-
-
-def _without_edges(monkeypatch):
-    """The loaded TE as before the edges beyond the lines: their gaps all NaN."""
-    real = lte_module.beyond_line_edge_gaps
-
-    def none(*args, **kwargs):
-        return tuple(replace(b, gap_mm=np.full_like(b.gap_mm, np.nan))
-                     for b in real(*args, **kwargs))
-    monkeypatch.setattr(lte_module, "beyond_line_edge_gaps", none)
 
 
 def _theta(r):
@@ -107,7 +99,7 @@ def test_edges_beyond_the_lines_of_an_unrelieved_helical_pair(unrelieved, monkey
     edge = r.beyond_rows >= 0
     assert np.all(((z < lo[..., None]) | (z > hi[..., None]))[edge])
     assert np.all(np.isfinite(c.tip.gap_mm)[carry.any(axis=-1)])
-    _without_edges(monkeypatch)
+    without_lte_edges(monkeypatch)
     r0 = lte_module.cylindrical_loaded_te(p, 400.0, cycle=c, **GRID)
     theta0 = _theta(r0)
     assert np.all(theta <= theta0 * (1.0 + 1e-9))
@@ -124,7 +116,7 @@ def test_relieved_helical_pair_at_light_load_is_unchanged(ev, monkeypatch):
     c = cylindrical_mesh_cycle(ev, phases=7)
     r = lte_module.cylindrical_loaded_te(ev, 20.0, cycle=c, **GRID)
     assert not r.beyond_load_share.any() and (r.beyond_rows[:, 1:] == -1).all()
-    _without_edges(monkeypatch)
+    without_lte_edges(monkeypatch)
     r0 = lte_module.cylindrical_loaded_te(ev, 20.0, cycle=c, **GRID)
     np.testing.assert_allclose(r.lte_arcsec, r0.lte_arcsec, rtol=1e-9)
     np.testing.assert_allclose(r.line_load_n_per_mm, r0.line_load_n_per_mm, rtol=1e-6,

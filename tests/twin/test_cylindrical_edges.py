@@ -29,6 +29,8 @@ from gearcontact.twin import cylindrical as twin_cyl
 from gearcontact.twin import statics
 from gearcontact.twin.simulate import simulate
 
+from lte_edges_off import without_lte_edges
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 TORQUE_NM = 400.0
 PHASES = 7
@@ -55,16 +57,6 @@ def _without_twin_edges(monkeypatch, *, none=False):
         b = real(*args, **kwargs)
         return None if none else replace(b, gap_mm=np.full_like(b.gap_mm, OFF_LINE_GAP_MM))
     monkeypatch.setattr(twin_cyl, "beyond_slices", off)
-
-
-def _without_lte_edges(monkeypatch):
-    """The loaded TE without its edge rows beyond the lines (their gaps NaN)."""
-    real = lte_module.beyond_line_edge_gaps
-
-    def none(*args, **kwargs):
-        return tuple(replace(b, gap_mm=np.full_like(b.gap_mm, np.nan))
-                     for b in real(*args, **kwargs))
-    monkeypatch.setattr(lte_module, "beyond_line_edge_gaps", none)
 
 
 def _rotations(model):
@@ -146,7 +138,7 @@ def _against_the_lte(pair, monkeypatch, bending):
         _without_twin_edges(mp)
         theta0, _ = _rotations(twin_cyl.cylindrical_model(pair, torque_nm=TORQUE_NM,
                                                           phases=PHASES, bending=bending))
-        _without_lte_edges(mp)
+        without_lte_edges(mp)
         want0, _ = _lte_rotations(pair, cyc, model.mesh, bending)
     # each row's levers (the line's r_b2 cos beta_b; a tip edge row's its touch's)
     return theta, theta0, want, want0, loads, model.mesh.lever_mm[:, :-1].T
