@@ -7,7 +7,9 @@ docs/machine_settings.md sec. 4); (2) the printed values of a published summary 
 (summary_sheets/README.md: provenance, transcription and the tolerances from the
 print's rounding). The print's spiral and pressure angles are the generating gear's
 (cradle plane), not the pitch cone's: both are measured, the pitch cone's comparison is a
-strict xfail with the measured cause (README).
+strict xfail with the measured cause (README); the generating gear's are
+geometry.flank_angles.measure_generating_angles, checked here against the sheet and
+against the blanks the standard settings are built from.
 """
 
 from __future__ import annotations
@@ -20,10 +22,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearcontact.geometry.basic_settings import formate_gear_setups, generated_gear_setups
+from gearcontact.geometry.basic_settings import (formate_gear_setups, generated_gear_setups,
+                                                 member_setups)
 from gearcontact.geometry.conjugate import UndercutError
-from gearcontact.geometry.flank_angles import measure_mean_point
-from gearcontact.geometry.machine import BladeSettings, MachineKinematics, setup_from_tables
+from gearcontact.geometry.flank_angles import measure_generating_angles, measure_mean_point
+from gearcontact.geometry.machine import BladeSettings, setup_from_tables
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 
@@ -76,6 +79,46 @@ def test_a_cone_the_flank_does_not_reach_is_refused_naming_it(f2):
         measure_mean_point(setup, pitch_angle_deg=95.0, cone_distance_mm=80.0)
 
 
+@pytest.mark.parametrize("name", ["iso23509_f2_spiral_bevel", "iso23509_f3",
+                                  "hypoid_11x41_rear_axle"])
+@pytest.mark.parametrize("generation", ["formate", "generated"])
+def test_generating_gear_of_the_standard_settings_is_the_blanks(name, generation):
+    # the gear settings `design --machine-settings` writes (basic_settings.member_setups,
+    # the gear of standard_setups unchanged), formate or generated, measured as a summary
+    # sheet prints them: the generating gear's spiral angle, pressure angles and mean
+    # cone distance are the ISO 23509 blank's (beta_m2, the effective pressure angles
+    # alpha_eD / alpha_eC of the blades, R_m2), with the blank's nominal cutter radius
+    # r_c0. Truth: the blank (geometry.blank); the settings are built from it through
+    # the cutter placement (geometry.cutter) and read back through the machine
+    # kinematics. Tolerance 1e-9 deg / 1e-9 mm: both are closed forms in double
+    # precision over lengths of ~100 mm (round-off ~1e-13), and at tilt 0 the flank's
+    # normal against the cradle plane is the blade's at any solution of the solve.
+    pair = load_pair(ROOT / "examples" / f"{name}.toml")
+    b = pair.blank
+    for side, setup in member_setups(pair, generation)[0].items():
+        got = measure_generating_angles(setup, pitch_angle_deg=b.pitch_angle_gear_deg,
+                                        cone_distance_mm=b.mean_cone_distance_gear_mm,
+                                        cutter_radius_mm=pair.cutter.radius_mm)
+        assert got.spiral_angle_deg == pytest.approx(b.spiral_angle_gear_deg, abs=1e-9)
+        assert got.pressure_angle_deg == pytest.approx(
+            getattr(b, f"pressure_angle_{side}_deg"), abs=1e-9), side
+        assert got.cone_distance_mm == pytest.approx(b.mean_cone_distance_gear_mm, abs=1e-9)
+        assert got.crossing_beyond_mean_mm == pytest.approx(0.0, abs=1e-9)
+
+
+def test_generating_angles_are_the_gears_and_need_a_circle_that_reaches_the_root_line(f2):
+    b = f2.blank
+    cone = dict(pitch_angle_deg=b.pitch_angle_gear_deg,
+                cone_distance_mm=b.mean_cone_distance_gear_mm)
+    pinion = member_setups(f2, "formate")[1]["drive"]
+    with pytest.raises(InputRangeError, match="pinion"):
+        measure_generating_angles(pinion, **cone, cutter_radius_mm=f2.cutter.radius_mm)
+    gear = formate_gear_setups(f2)["drive"]
+    # the cutter centre lies r_c0 cos(beta_m2) = 93.63 mm off the root line
+    with pytest.raises(InputRangeError, match="cutter_radius_mm.*93.6"):
+        measure_generating_angles(gear, **cone, cutter_radius_mm=90.0)
+
+
 # ---------------------------------------------------------------- the published sheet
 
 @pytest.fixture(scope="module")
@@ -96,34 +139,29 @@ def _pitch_apex_in(p):
 
 
 @pytest.fixture(scope="module")
-def measured(sheet):
-    """Both flanks of the sheet at the printed mean point (measured once)."""
+def generating(sheet):
+    """Both flanks of the sheet at the printed mean point, the generating gear in the
+    cradle plane with the printed cutter diameter (measured once)."""
     p, setups = sheet
-    return {side: _mean_point(p, s) for side, s in setups.items()}
+    return {side: measure_generating_angles(
+        s, pitch_angle_deg=p["gear_pitch_angle_deg"], cone_distance_mm=_mean_cone_mm(p),
+        cutter_radius_mm=IN * 0.5 * p["cutter_diameter_in"]) for side, s in setups.items()}
+
+
+@pytest.fixture(scope="module")
+def measured(generating):
+    """Both flanks of the sheet on the pitch cone at the printed mean point."""
+    return {side: g.pitch_cone for side, g in generating.items()}
+
+
+def _mean_cone_mm(p):
+    """The printed blank's mean cone distance (outer cone distance - F/2), mm."""
+    return IN * (p["cone_distance_in"] - 0.5 * p["face_width_in"])
 
 
 def _mean_point(p, setup):
     return measure_mean_point(setup, pitch_angle_deg=p["gear_pitch_angle_deg"],
-                              cone_distance_mm=IN * (p["cone_distance_in"]
-                                                     - 0.5 * p["face_width_in"]))
-
-
-def _generating_gear(p, setup):
-    """The print's generating gear in the cradle plane (tilt 0), machine frame: the spiral
-    angle (deg) of the nominal cutter circle (radius D/2 about the cutter centre) where
-    it crosses the root line (``y_m = E_m``, the plane of the work axis), and that
-    crossing's distance along the line (mm) beyond the foot of the blank's mean point
-    (at zero roll ``x_m = A_m cos(delta - gamma_m) + X_D cos(gamma_m)``)."""
-    st = setup.settings
-    c = MachineKinematics(st).cutter_to_machine(np.zeros(3))
-    r_c = IN * 0.5 * p["cutter_diameter_in"]
-    off = c[1] - st.blank_offset_mm                 # cutter centre from the root line
-    g = math.radians(st.machine_root_angle_deg)
-    d = math.radians(p["gear_pitch_angle_deg"])
-    a_m = IN * (p["cone_distance_in"] - 0.5 * p["face_width_in"])
-    x_foot = a_m * math.cos(d - g) + st.machine_centre_to_back_mm * math.cos(g)
-    return (math.degrees(math.acos(abs(off) / r_c)),
-            c[0] + math.sqrt(r_c ** 2 - off ** 2) - x_foot)
+                              cone_distance_mm=_mean_cone_mm(p))
 
 
 def test_sheet_typed_as_printed(sheet):
@@ -200,7 +238,7 @@ def test_sheet_flanks_reach_the_mean_point_with_the_printed_hand(sheet, measured
         assert setup.blade.edge_radius_mm < got.depth_mm < IN * p["whole_depth_in"]
 
 
-def test_sheet_spiral_angle_is_the_generating_gears(sheet):
+def test_sheet_spiral_angle_is_the_generating_gears(sheet, generating):
     # what the print's spiral angle is (README): the generating gear's, in the cradle
     # plane that holds the tilted root line: the angle between the nominal cutter circle
     # (radius D/2 = 4.500 in) and the root line, where the circle crosses it at the
@@ -214,14 +252,20 @@ def test_sheet_spiral_angle_is_the_generating_gears(sheet):
     # digit) 0.040 deg, + the printed angle's 0.5' (0.008 deg); the crossing at the
     # foot: the twelve printed values of the chain (radial, cradle angle, blank offset,
     # MD, crown to crossing point, cone distance, addendum, pitch and machine root
-    # angle, face width, cutter diameter) 0.119 mm. With UP (E_m = +5.715 mm) the angle
-    # would be 37.7 deg: the print's spiral angle confirms DN = -.
-    p, setups = sheet
-    beta, beyond_mm = _generating_gear(p, setups["drive"])
-    assert beta == pytest.approx(p["gear_spiral_angle_deg"], abs=0.048)
-    assert abs(beyond_mm) < 0.119
-    assert beta == pytest.approx(26.9433, abs=5e-4)           # measured (README)
-    assert beyond_mm == pytest.approx(0.0684, abs=5e-4)
+    # angle, face width, cutter diameter) 0.119 mm; the generating gear's mean cone
+    # distance (the pitch-cone point over that crossing) against the printed one
+    # (4.274 - 1.250 / 2 in): the same chain over cos(delta - gamma_m) = cos(5.7 deg),
+    # 0.1196 mm. With UP (E_m = +5.715 mm) the angle would be 37.7 deg: the print's
+    # spiral angle confirms DN = -. Both flanks are cut in one slot (spread blade):
+    # the same settings, the same generating gear.
+    p, _ = sheet
+    for side, got in generating.items():
+        assert got.spiral_angle_deg == pytest.approx(p["gear_spiral_angle_deg"], abs=0.048)
+        assert abs(got.crossing_beyond_mean_mm) < 0.119
+        assert got.cone_distance_mm == pytest.approx(_mean_cone_mm(p), abs=0.1196), side
+        assert got.spiral_angle_deg == pytest.approx(26.9433, abs=5e-4)  # measured (README)
+        assert got.crossing_beyond_mean_mm == pytest.approx(0.0684, abs=5e-4)
+        assert got.cone_distance_mm == pytest.approx(92.7535, abs=5e-4)
 
 
 @pytest.mark.xfail(strict=True, reason=(
@@ -242,7 +286,7 @@ def test_sheet_spiral_angle_is_the_printed_one(sheet, measured):
         assert got.spiral_angle_deg == pytest.approx(p["gear_spiral_angle_deg"], abs=tol), side
 
 
-def test_sheet_pressure_angles_are_the_generating_gears(sheet, measured):
+def test_sheet_pressure_angles_are_the_generating_gears(sheet, generating):
     # what the print's pressure angles are (README): the generating gear's, whose flanks
     # are the blades about the cradle axis (tilt 0), so they are the blade angles
     # printed beside them (OB 24D 30M / IB 18D 0M = "Gear PA Concave / Convex"; SpyGO's
@@ -253,12 +297,9 @@ def test_sheet_pressure_angles_are_the_generating_gears(sheet, measured):
     # 1e-9 mm residual.
     p, setups = sheet
     for side, flank in (("drive", "convex"), ("coast", "concave")):
-        got = measured[side]
         assert setups[side].settings.tilt_deg == 0.0
-        _, z_m, _ = MachineKinematics(setups[side].settings).to_work(
-            np.zeros(3), np.array([0.0, 0.0, 1.0]), got.roll_rad)
-        angle = math.degrees(math.asin(abs(got.normal @ z_m)))
-        assert angle == pytest.approx(p[f"gear_pressure_angle_{flank}_deg"], abs=1e-7), side
+        assert generating[side].pressure_angle_deg == pytest.approx(
+            p[f"gear_pressure_angle_{flank}_deg"], abs=1e-7), side
 
 
 def test_sheet_mean_normal_thickness_is_the_printed_one(sheet, measured):

@@ -1,5 +1,7 @@
 """Spiral angle, pressure angle and depth of a flank cut from machine settings, at a
-point of its pitch cone: the check of typed settings against the blank they should cut.
+point of its pitch cone (:func:`measure_mean_point`), and the angles a summary sheet
+prints, those of the generating gear in the cradle plane (:func:`measure_generating_angles`):
+the check of typed settings against the blank they should cut.
 
 A summary sheet prints the blank (pitch angle, cone distance, spiral angle, pressure
 angles) next to the settings; typed in (docs/machine_settings.md sec. 2), the settings
@@ -20,11 +22,41 @@ follows AGMA's definition (the outer half of the tooth inclined clockwise from t
 axial plane, seen looking at the face of the gear, is right hand; Litvin & Fuentes
 2004, ch. 21 for the generation).
 
+A summary sheet's spiral and pressure angles are not the pitch cone's: they are the
+**generating gear's**, in the cradle plane (``z_m = 0``, the plane of the blade tips,
+which holds the root line of a tilted-root gear, machine root angle = root angle). At
+zero roll the work's axial plane through the cradle axis is ``y_m = E_m``; it cuts the
+cradle plane in the root line. The spiral angle is the angle between the nominal
+cutter circle (radius ``r_c``, the cutter diameter printed / 2, about the cutter centre
+``C`` in the cradle plane) and the root line where the circle crosses it next to the
+foot of the mean point, ``x_m = A_m cos(delta - gamma_m) + X_D cos(gamma_m)``:
+
+    cos(beta) = |C_y - E_m| / r_c = |S_r sin(q) - E_m| / r_c
+
+and the pressure angle is the generating gear's profile angle: the angle of the flank's
+normal at the mean point to the cradle plane at the roll that generates that point,
+``sin(alpha) = |n . z_m|`` (there the flank's normal is the blade's, Litvin & Fuentes
+2004, sec. 6.1; at tilt 0 the blade angle). Gear machine settings are computed from
+these definitions in SpyGO (``AGMAcomputationHypoid``: ``S sin q = r_c0 cos(beta_m2)``,
+``S cos q = CM - r_c0 sin(beta_m2)`` with ``CM`` the mean point's foot on the root line,
+machine root = root angle, blade angle = pressure angle - tilt) and in the ZAKgear
+radial / cradle-angle calculator (inputs: cone distance to mid face, cutter diameter,
+spiral angle); a published gear summary sheet agrees with them
+(tests/geometry/summary_sheets/README.md, docs/machine_settings.md sec. 2). For a
+pinion no print definition was found (the sheet's pinion page is not at hand; its
+pinion is cut "Fixed", each flank by its own cutter): :func:`measure_generating_angles`
+takes gear set-ups only.
+
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 6.1,
 ch. 21 (envelopes; face-milled spiral bevel gears).
 ANSI/AGMA 2005-D03, *Design Manual for Bevel Gears* (hand of spiral).
+E. Grabovic et al., SpyGO (Python hypoid geometry and Gleason-type settings),
+https://github.com/eGrabovic/SpyGO, ``hypoid/main/utils.py``, ``AGMAcomputationHypoid``
+(read in the fork https://github.com/haomjc/SpyGO at commit 417ac9a).
+ZAKgear, spiral bevel radial / cradle angle calculator,
+http://www.zakgear.com/spiral_bevel_radial.html.
 """
 
 from __future__ import annotations
@@ -35,11 +67,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..validation import check_positive, check_range
+from ..validation import InputRangeError, check_positive, check_range
 from .conjugate import UndercutError
 from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
-__all__ = ["MeanPointAngles", "measure_mean_point"]
+__all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles",
+           "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
 #: the machine's axial plane is kept (:func:`_distance`; others belong to another turn
@@ -151,3 +184,186 @@ def measure_mean_point(setup: MachineSetup, *, pitch_angle_deg: float,
         depth_mm=float(blade_profile(blade, z[0])[1]), blade_length_mm=float(z[0]),
         roll_rad=float(z[2]) if generated else 0.0, azimuth_rad=float(phi),
         point_mm=x_w, normal=n_w)
+
+
+@dataclass(frozen=True)
+class GeneratingGearAngles:
+    """The generating gear of one flank at the blank's mean point: what a summary sheet
+    prints (module docstring), beside the cut flank's pitch-cone values.
+
+    Attributes
+    ----------
+    spiral_angle_deg : float
+        Angle between the nominal cutter circle and the root line where it crosses the
+        root line, in the cradle plane, degrees, in [0, 90].
+    pressure_angle_deg : float
+        Angle of the flank's normal at the mean point to the cradle plane at the roll
+        that generates the point, degrees, in [0, 90].
+    cone_distance_mm : float
+        Pitch cone distance of the point whose foot on the root line is that crossing:
+        the mean point of the generating gear, mm.
+    crossing_beyond_mean_mm : float
+        The crossing's distance along the root line beyond the foot of the mean point
+        given (towards the heel), mm.
+    pitch_cone : MeanPointAngles
+        The cut flank at the mean point on the pitch cone (:func:`measure_mean_point`).
+    """
+
+    spiral_angle_deg: float
+    pressure_angle_deg: float
+    cone_distance_mm: float
+    crossing_beyond_mean_mm: float
+    pitch_cone: MeanPointAngles
+
+
+def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
+                              cone_distance_mm: float,
+                              cutter_radius_mm: float) -> GeneratingGearAngles:
+    """The spiral angle, pressure angle and mean cone distance of the generating gear of
+    the gear flank ``setup`` cuts, as a summary sheet prints them (module docstring),
+    at the mean point of cone distance ``cone_distance_mm`` on the pitch cone of angle
+    ``pitch_angle_deg``.
+
+    Parameters
+    ----------
+    setup : MachineSetup
+        A gear flank (``setup.member == "gear"``), formate or generated.
+    pitch_angle_deg : float
+        The gear's pitch angle, degrees, in (0, 90].
+    cone_distance_mm : float
+        The blank's mean cone distance, mm, > 0: the point whose generating roll gives
+        the pressure angle, and whose foot on the root line picks the crossing (the
+        nearer of the circle's two).
+    cutter_radius_mm : float
+        Nominal cutter radius ``r_c``, mm, > 0: the printed cutter diameter / 2 (the
+        pair's ``[cutter] radius_mm``); the circle must reach the root line.
+
+    Returns
+    -------
+    GeneratingGearAngles
+
+    Raises
+    ------
+    InputRangeError
+        A pinion set-up (no print definition found, module docstring), a nominal cutter
+        circle that does not reach the root line, or the ranges of
+        :func:`measure_mean_point`.
+    UndercutError
+        No point of the flank at that cone distance on the pitch cone.
+
+    References
+    ----------
+    SpyGO ``AGMAcomputationHypoid`` and the ZAKgear radial / cradle-angle calculator
+    (module docstring; docs/machine_settings.md sec. 2).
+    """
+    if setup.member != "gear":
+        raise InputRangeError(f"{setup.member} {setup.side} set-up", setup.member,
+                              "'gear' (a summary sheet's generating-gear angles are "
+                              "defined for the gear member; no print definition of the "
+                              "pinion's was found, docs/machine_settings.md sec. 2)")
+    r_c = check_positive("cutter_radius_mm", cutter_radius_mm)
+    at = measure_mean_point(setup, pitch_angle_deg=pitch_angle_deg,
+                            cone_distance_mm=cone_distance_mm)
+    st = setup.settings
+    kin = MachineKinematics(st)
+    c = kin.cutter_to_machine(np.zeros(3))          # cutter centre, cradle plane
+    off = float(c[1]) - st.blank_offset_mm          # from the root line
+    if not abs(off) < r_c:
+        raise InputRangeError("cutter_radius_mm", cutter_radius_mm,
+                              f"> {abs(off):.4f} mm, the cutter centre's distance from the "
+                              f"root line of the {setup.side} settings (the nominal cutter "
+                              "circle must cross it)")
+    g = math.radians(st.machine_root_angle_deg)
+    along = math.cos(math.radians(pitch_angle_deg) - g)  # pitch generatrix -> root line
+    x_foot = cone_distance_mm * along + st.machine_centre_to_back_mm * math.cos(g)
+    half = math.sqrt(r_c ** 2 - off ** 2)
+    x_cross = min((float(c[0]) - half, float(c[0]) + half), key=lambda x: abs(x - x_foot))
+    # the cradle plane's normal in the work at the generating roll (a cutter-frame
+    # vector that to_work carries to z_m; the cradle roll leaves z_m)
+    t0 = kin._fixed[1]
+    _, z_m, _ = kin.to_work(np.zeros(3), t0.T @ np.array([0.0, 0.0, 1.0]), at.roll_rad)
+    return GeneratingGearAngles(
+        spiral_angle_deg=math.degrees(math.acos(abs(off) / r_c)),
+        pressure_angle_deg=math.degrees(math.asin(min(1.0, abs(float(at.normal @ z_m))))),
+        cone_distance_mm=cone_distance_mm + (x_cross - x_foot) / along,
+        crossing_beyond_mean_mm=x_cross - x_foot, pitch_cone=at)
+
+
+#: Why a pinion flank has no generating-gear angles (module docstring).
+PINION_UNDEFINED = ("the generating gear's angles are the gear's only: no summary-sheet "
+                    "definition of a pinion's was found (docs/machine_settings.md sec. 2)")
+
+
+@dataclass(frozen=True)
+class FlankMeanPoint:
+    """One flank of a pair cut from machine settings at its member's mean point.
+
+    Attributes
+    ----------
+    member, side : str
+        ``"gear"`` / ``"pinion"``, ``"drive"`` / ``"coast"``.
+    cone_distance_mm : float
+        The blank's mean cone distance of the member, mm (the pitch-cone point).
+    pitch_cone : MeanPointAngles or None
+        The flank there (:func:`measure_mean_point`); None where the flank does not
+        reach it.
+    generating_gear : GeneratingGearAngles or None
+        The gear's generating gear (:func:`measure_generating_angles`); None for a
+        pinion and where the flank does not reach the point.
+    missing : str
+        Why a value is None ("" when both are given).
+    """
+
+    member: str
+    side: str
+    cone_distance_mm: float
+    pitch_cone: MeanPointAngles | None
+    generating_gear: GeneratingGearAngles | None
+    missing: str
+
+
+def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
+    """All flanks of ``pair`` (a :class:`~.pair.GearPair` cut from machine settings) at
+    the mean points of its blank (ISO 23509: pitch angles, mean cone distances) and, for
+    the gear, the generating gear of a summary sheet with the nominal cutter radius
+    ``[cutter] radius_mm``. A flank that does not reach its mean point, or a nominal
+    cutter circle that does not cross a gear flank's root line, is reported
+    (``missing``), not refused: the typed settings do not cut that blank.
+
+    Raises
+    ------
+    InputRangeError
+        A pair without machine settings.
+    """
+    if not pair.machine:
+        raise InputRangeError("[machine.*]", None, "a pair cut from machine settings "
+                              "(the [machine.*] / [blade.*] tables)")
+    b = pair.blank
+    out = []
+    for setup in pair.machine:
+        gear = setup.member == "gear"
+        cone = dict(pitch_angle_deg=b.pitch_angle_gear_deg if gear else b.pitch_angle_pinion_deg,
+                    cone_distance_mm=b.mean_cone_distance_gear_mm if gear
+                    else b.mean_cone_distance_pinion_mm)
+        try:
+            if gear:
+                gen = measure_generating_angles(setup, **cone,
+                                                cutter_radius_mm=pair.cutter.radius_mm)
+                at, missing = gen.pitch_cone, ""
+            else:
+                gen, missing = None, PINION_UNDEFINED
+                at = measure_mean_point(setup, **cone)
+        except UndercutError:
+            at = gen = None
+            missing = (f"the {setup.member} {setup.side} flank does not reach the blank's mean "
+                       f"point (cone distance {cone['cone_distance_mm']:.4f} mm on the pitch "
+                       "cone): the settings do not cut this blank")
+        except InputRangeError as exc:
+            if exc.field != "cutter_radius_mm":
+                raise
+            at, gen = measure_mean_point(setup, **cone), None
+            missing = (f"[cutter] radius_mm = {pair.cutter.radius_mm:g}: its circle does not "
+                       f"cross the root line ({exc.allowed})")
+        out.append(FlankMeanPoint(setup.member, setup.side, cone["cone_distance_mm"], at, gen,
+                                  missing))
+    return tuple(out)
