@@ -54,6 +54,9 @@ def test_design_json_spiral_bevel_is_strict_json(capsys):
     # ISO 23509 F.2: delta1 = 19.747 deg, beta1 = beta2 = 35 deg
     assert out["pitch_angles_deg"][0] == pytest.approx(19.747, abs=0.0005)
     assert out["spiral_angles_deg"] == [35.0, 35.0]
+    # no machine settings: no flanks cut from them to measure at the mean point
+    # (tests/cli/test_design_mean_point.py)
+    assert out["mean_point_angles"] is None
     _no_reverse_side_warning(out, capsys)
 
 

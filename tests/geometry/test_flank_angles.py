@@ -25,7 +25,8 @@ import pytest
 from gearcontact.geometry.basic_settings import (formate_gear_setups, generated_gear_setups,
                                                  member_setups)
 from gearcontact.geometry.conjugate import UndercutError
-from gearcontact.geometry.flank_angles import measure_generating_angles, measure_mean_point
+from gearcontact.geometry.flank_angles import (PINION_UNDEFINED, measure_generating_angles,
+                                               measure_mean_point, measure_pair_mean_points)
 from gearcontact.geometry.machine import BladeSettings, setup_from_tables
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
@@ -117,6 +118,25 @@ def test_generating_angles_are_the_gears_and_need_a_circle_that_reaches_the_root
     # the cutter centre lies r_c0 cos(beta_m2) = 93.63 mm off the root line
     with pytest.raises(InputRangeError, match="cutter_radius_mm.*93.6"):
         measure_generating_angles(gear, **cone, cutter_radius_mm=90.0)
+
+
+def test_a_flank_that_misses_its_mean_point_is_reported_not_refused():
+    # the F.2 example cut from machine settings, its gear drive flank's radial distance
+    # 300 mm instead of 94.94: that flank does not reach the pitch cone's mean point,
+    # which is reported (the others are measured); the pinion has no generating gear
+    pair = load_pair(ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml")
+    far = dataclasses.replace(pair.machine[0], settings=dataclasses.replace(
+        pair.machine[0].settings, radial_distance_mm=300.0))
+    got = measure_pair_mean_points(dataclasses.replace(pair, machine=(far, *pair.machine[1:])))
+    assert [(p.member, p.side) for p in got] == [("gear", "drive"), ("gear", "coast"),
+                                                 ("pinion", "drive"), ("pinion", "coast")]
+    assert got[0].pitch_cone is None and got[0].generating_gear is None
+    assert "gear drive flank does not reach the blank's mean point" in got[0].missing
+    assert got[1].generating_gear is not None and got[1].missing == ""
+    assert got[2].pitch_cone is not None and got[2].generating_gear is None
+    assert got[2].missing == PINION_UNDEFINED
+    with pytest.raises(InputRangeError, match="machine"):
+        measure_pair_mean_points(load_pair(ROOT / "examples" / "iso23509_f2_spiral_bevel.toml"))
 
 
 # ---------------------------------------------------------------- the published sheet

@@ -4,7 +4,11 @@ Loads a pair (built-in preset such as ``s0003`` or a TOML file) and prints its I
 Method 1 blank design as a table (after checking that the gear generates the pinion
 flanks: :func:`~gearcontact.geometry.generation.check_generation`); ``--json`` prints one
 JSON object instead (with at least ``pitch_angles_deg``, ``spiral_angles_deg``,
-``mean_cone_distances_mm``, each ``[pinion, gear]``, and ``reverse_side_contact_ratio``).
+``mean_cone_distances_mm``, each ``[pinion, gear]``, ``reverse_side_contact_ratio`` and
+``mean_point_angles``). For a pair cut from machine settings both also give each flank at
+the blank's mean point: the generating gear's spiral angle, pressure angle and mean cone
+distance (what a summary sheet prints; the gear's) beside the pitch cone's
+(:mod:`~gearcontact.report.design_mean_point`, docs/machine_settings.md sec. 2).
 The contact ratio of the side that is not the design side is not refused: below 1 a
 one-line warning on stderr names it and what ``twin`` does with that flank
 (:func:`~gearcontact.geometry.contact_ratio.reverse_side_warning`). A cylindrical pair
@@ -20,11 +24,13 @@ import sys
 from ..errors import CheckFailed
 from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSEC
 from ..geometry.contact_ratio import reverse_side_warning
+from ..geometry.flank_angles import measure_pair_mean_points
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair,
                              without_easeoff)
+from ..report.design_mean_point import mean_point_json, mean_point_table
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
 
@@ -526,11 +532,15 @@ def run(args) -> int:
     warning = reverse_side_warning(reverse)
     if warning:
         print(warning, file=sys.stderr)
+    # a pair cut from machine settings: its flanks at the blank's mean points, the
+    # generating gear's angles (a summary sheet's) beside the pitch cone's
+    points = measure_pair_mean_points(pair) if pair.machine else None
     if args.json:
         out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation,
                "reverse_side_contact_ratio": None if reverse is None else {
                    "side": reverse.side, "eps_p": reverse.total, "ends": list(reverse.ends),
-                   "warning": warning}}
+                   "warning": warning},
+               "mean_point_angles": None if points is None else mean_point_json(points)}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
@@ -546,4 +556,6 @@ def run(args) -> int:
     P = ", ".join(f"{c:.4f}" for c in blank.pitch_point_mm)
     print(f"{'pitch point P (meshing frame) [mm]':<{width}} ({P})")
     print(f"gear flanks: {generation_text(generation, pair)}")
+    if points is not None:
+        print(mean_point_table(points))
     return 0
