@@ -27,7 +27,7 @@ from gearcontact.geometry.basic_settings import (formate_gear_setups, generated_
 from gearcontact.geometry.conjugate import UndercutError
 from gearcontact.geometry.flank_angles import (PINION_UNDEFINED, measure_generating_angles,
                                                measure_mean_point, measure_pair_mean_points)
-from gearcontact.geometry.machine import BladeSettings, setup_from_tables
+from gearcontact.geometry.machine import BladeSettings, mirror_setup, setup_from_tables
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 
@@ -94,17 +94,21 @@ def test_generating_gear_of_the_standard_settings_is_the_blanks(name, generation
     # kinematics. Tolerance 1e-9 deg / 1e-9 mm: both are closed forms in double
     # precision over lengths of ~100 mm (round-off ~1e-13), and at tilt 0 the flank's
     # normal against the cradle plane is the blade's at any solution of the solve.
+    # The left-hand twin (the settings mirrored, machine.mirror_setup) has the same.
     pair = load_pair(ROOT / "examples" / f"{name}.toml")
     b = pair.blank
     for side, setup in member_setups(pair, generation)[0].items():
-        got = measure_generating_angles(setup, pitch_angle_deg=b.pitch_angle_gear_deg,
-                                        cone_distance_mm=b.mean_cone_distance_gear_mm,
-                                        cutter_radius_mm=pair.cutter.radius_mm)
-        assert got.spiral_angle_deg == pytest.approx(b.spiral_angle_gear_deg, abs=1e-9)
-        assert got.pressure_angle_deg == pytest.approx(
-            getattr(b, f"pressure_angle_{side}_deg"), abs=1e-9), side
-        assert got.cone_distance_mm == pytest.approx(b.mean_cone_distance_gear_mm, abs=1e-9)
-        assert got.crossing_beyond_mean_mm == pytest.approx(0.0, abs=1e-9)
+        for cut, hand in ((setup, "left"), (mirror_setup(setup), "right")):
+            got = measure_generating_angles(cut, pitch_angle_deg=b.pitch_angle_gear_deg,
+                                            cone_distance_mm=b.mean_cone_distance_gear_mm,
+                                            cutter_radius_mm=pair.cutter.radius_mm)
+            assert got.spiral_angle_deg == pytest.approx(b.spiral_angle_gear_deg, abs=1e-9)
+            assert got.pressure_angle_deg == pytest.approx(
+                getattr(b, f"pressure_angle_{side}_deg"), abs=1e-9), side
+            assert got.cone_distance_mm == pytest.approx(b.mean_cone_distance_gear_mm,
+                                                         abs=1e-9)
+            assert got.crossing_beyond_mean_mm == pytest.approx(0.0, abs=1e-9)
+            assert got.pitch_cone.hand == hand
 
 
 def test_generating_angles_are_the_gears_and_need_a_circle_that_reaches_the_root_line(f2):
