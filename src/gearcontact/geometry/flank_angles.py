@@ -1,7 +1,7 @@
 """Spiral angle, pressure angle and depth of a flank cut from machine settings, at a
 point of its pitch cone (:func:`measure_mean_point`), and the angles a summary sheet
-prints, those of the generating gear in the cradle plane (:func:`measure_generating_angles`):
-the check of typed settings against the blank they should cut.
+prints, the generating gear's in the cradle plane (:func:`measure_generating_angles`,
+:func:`measure_pair_mean_points`): the check of typed settings against the blank.
 
 A summary sheet prints the blank (pitch angle, cone distance, spiral angle, pressure
 angles) next to the settings; typed in (docs/machine_settings.md sec. 2), the settings
@@ -52,7 +52,7 @@ References
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 6.1,
 ch. 21 (envelopes; face-milled spiral bevel gears).
 ANSI/AGMA 2005-D03, *Design Manual for Bevel Gears* (hand of spiral).
-E. Grabovic et al., SpyGO (Python hypoid geometry and Gleason-type settings),
+SpyGO (Python hypoid geometry, contact analysis and Gleason-type settings),
 https://github.com/eGrabovic/SpyGO, ``hypoid/main/utils.py``, ``AGMAcomputationHypoid``
 (read in the fork https://github.com/haomjc/SpyGO at commit 417ac9a).
 ZAKgear, spiral bevel radial / cradle angle calculator,
@@ -71,7 +71,7 @@ from ..validation import InputRangeError, check_positive, check_range
 from .conjugate import UndercutError
 from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
-__all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles",
+__all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles", "PINION_UNDEFINED",
            "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
@@ -227,7 +227,9 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
     Parameters
     ----------
     setup : MachineSetup
-        A gear flank (``setup.member == "gear"``), formate or generated.
+        A gear flank (``setup.member == "gear"``), formate or generated. A tilted
+        cutter's circle is taken about its centre in the cradle plane, as SpyGO builds a
+        tilted gear's settings (not checked against a print).
     pitch_angle_deg : float
         The gear's pitch angle, degrees, in (0, 90].
     cone_distance_mm : float
@@ -257,7 +259,7 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
     (module docstring; docs/machine_settings.md sec. 2).
     """
     if setup.member != "gear":
-        raise InputRangeError(f"{setup.member} {setup.side} set-up", setup.member,
+        raise InputRangeError(f"{setup.side} set-up member", setup.member,
                               "'gear' (a summary sheet's generating-gear angles are "
                               "defined for the gear member; no print definition of the "
                               "pinion's was found, docs/machine_settings.md sec. 2)")
