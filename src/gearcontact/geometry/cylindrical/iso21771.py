@@ -23,6 +23,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from ...validation import InputRangeError, UnusableInput
+from .trochoid import generated_form, undercut_limit_profile_shift
 
 __all__ = ["InvoluteGeometry", "inv", "inv_inverse", "involute_geometry", "roll_length_mm",
            "A_W_TOLERANCE_MODULES"]
@@ -89,6 +90,10 @@ class InvoluteGeometry:
     root_diameter_gear_mm: float
     form_diameter_pinion_mm: float          # d_Ff: lowest point of the generated involute
     form_diameter_gear_mm: float
+    undercut_pinion: bool                   # x < x_min: d_Ff is the trochoid's crossing
+    undercut_gear: bool
+    undercut_limit_shift_pinion: float      # x_min of ISO 21771 (trochoid.py)
+    undercut_limit_shift_gear: float
     active_start_diameter_pinion_mm: float  # d_Nf: start of the active profile
     active_start_diameter_gear_mm: float
     working_pitch_diameter_pinion_mm: float
@@ -136,22 +141,6 @@ class InvoluteGeometry:
                 for key, name in (("form", "form_diameter"),
                                   ("active_start", "active_start_diameter"),
                                   ("tip", "tip_diameter"))}
-
-
-def _form_diameter_mm(*, d, d_b, x, m_n, alpha_n, alpha_t, dedendum_factor,
-                      tip_radius_factor, field) -> float:
-    """d_Ff of rack generation: the rack flank's straight part ends ``h_fP - x m_n
-    - ρ_fP (1 - sin α_n)`` below the generating pitch line (radial: the same in the
-    normal and transverse sections) and touches the gear on the transverse line of action
-    at that height over sin α_t from the pitch point (Niemann/Winter ch. 21)."""
-    h = m_n * (dedendum_factor - x - tip_radius_factor * (1.0 - math.sin(alpha_n)))
-    along = 0.5 * d * math.sin(alpha_t) - h / math.sin(alpha_t)
-    if along < 0.0:
-        x_min = (dedendum_factor - tip_radius_factor * (1.0 - math.sin(alpha_n))
-                 - 0.5 * d * math.sin(alpha_t) ** 2 / m_n)
-        raise InputRangeError(field, x, f">= {x_min:.4f} (undercut: the rack's straight "
-                                        "flank cuts below the base circle)")
-    return 2.0 * math.hypot(0.5 * d_b, along)
 
 
 def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: float,
@@ -241,12 +230,24 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
         if df <= 0.0:
             raise InputRangeError(f"{field_prefix}profile_shift_{member}", x,
                                   f"a root diameter d_f > 0 (d_f = {df:.4f} mm)")
-    common = dict(m_n=m_n, alpha_n=alpha_n, alpha_t=alpha_t, dedendum_factor=dedendum_factor,
-                  tip_radius_factor=tip_radius_factor)
-    dff1 = _form_diameter_mm(d=d1, d_b=db1, x=x1, field=f"{field_prefix}profile_shift_pinion",
-                             **common)
-    dff2 = _form_diameter_mm(d=d2, d_b=db2, x=x2, field=f"{field_prefix}profile_shift_gear",
-                             **common)
+    forms = [generated_form(teeth=z, normal_module_mm=m_n, profile_shift=x,
+                            normal_pressure_angle_deg=normal_pressure_angle_deg,
+                            helix_angle_deg=helix_angle_deg, dedendum_factor=dedendum_factor,
+                            tip_radius_factor=tip_radius_factor) for z, x in ((z1, x1), (z2, x2))]
+    (dff1, cut1), (dff2, cut2) = ((f.form_diameter_mm, f.undercut) for f in forms)
+    x_min = [undercut_limit_profile_shift(
+        teeth=z, normal_pressure_angle_deg=normal_pressure_angle_deg,
+        helix_angle_deg=helix_angle_deg, dedendum_factor=dedendum_factor,
+        tip_radius_factor=tip_radius_factor) for z in (z1, z2)]
+    for member, z, x, d_a, d_ff, cut, lim in (("pinion", z1, x1, da1, dff1, cut1, x_min[0]),
+                                              ("gear", z2, x2, da2, dff2, cut2, x_min[1])):
+        if cut and not d_a > d_ff:
+            raise InputRangeError(f"{field_prefix}profile_shift_{member}", x,
+                                  f">= {lim:.4f}, the undercut limit x_min of z = {z} "
+                                  f"(undercut: the trochoid of the rack's tip cuts the "
+                                  f"whole involute, crossing it at d = {d_ff:.4f} mm >= "
+                                  f"d_a = {d_a:.4f} mm; a usable involute needs a larger "
+                                  "profile shift)")
     for member, d_a, d_ff in (("pinion", da1, dff1), ("gear", da2, dff2)):
         if not d_a > d_ff:
             raise InputRangeError(f"{field_prefix}tip_diameter_{member}_mm", d_a,
@@ -273,25 +274,36 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     # the path of contact on the transverse line of action (ISO 21771, ε_α)
     line = a_w * math.sin(alpha_wt)
     u_a1, u_a2 = roll_length_mm(da1, db1), roll_length_mm(da2, db2)
-    g_alpha = u_a1 + u_a2 - line
     p_bt = math.pi * m_t * math.cos(alpha_t)
-    u_nf1, u_nf2 = line - u_a2, line - u_a1         # roll lengths of the active start
+    u_nf = [line - u_a2, line - u_a1]               # roll lengths of the active start
     dnf = []
-    for member, u_nf, d_b, d_ff, other in (("pinion", u_nf1, db1, dff1, "gear"),
-                                           ("gear", u_nf2, db2, dff2, "pinion")):
+    for i, (member, d_b, d_ff, cut, other) in enumerate((("pinion", db1, dff1, cut1, "gear"),
+                                                         ("gear", db2, dff2, cut2, "pinion"))):
         u_ff = roll_length_mm(d_ff, d_b)
-        if u_nf < u_ff - 1e-9:
-            raise InputRangeError(f"{field_prefix}profile_shift_{member}",
-                                  x1 if member == "pinion" else x2,
-                                  f"a larger value (interference: the {other} tip meets the "
-                                  f"{member} {u_ff - u_nf:.4f} mm below its form circle "
-                                  f"d_Ff = {d_ff:.4f} mm on the line of action)")
-        dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf))
+        if u_nf[i] < u_ff - 1e-9:
+            if not cut:
+                raise InputRangeError(f"{field_prefix}profile_shift_{member}",
+                                      x1 if member == "pinion" else x2,
+                                      f"a larger value (interference: the {other} tip meets "
+                                      f"the {member} {u_ff - u_nf[i]:.4f} mm below its form "
+                                      f"circle d_Ff = {d_ff:.4f} mm on the line of action)")
+            # undercut: the mating tip passes through the space the rack's tip cut
+            # (the rack is the limiting mate), contact starts at the crossing d_Ff
+            u_nf[i] = u_ff
+        dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf[i]))
+    g_alpha = line - u_nf[0] - u_nf[1]
     eps_alpha = g_alpha / p_bt
     if eps_alpha < 1.0:
+        cut = "".join(f"; the {m} (z = {z}, x = {x:g}) is undercut below x_min = {lim:.4f}: "
+                      f"its involute starts at d_Ff = {d_ff:.4f} mm, above the mating tip's "
+                      f"reach, which shortens the path (raise its profile shift toward x_min)"
+                      for m, z, x, lim, d_ff, start, reach in (
+                          ("pinion", z1, x1, x_min[0], dff1, u_nf[0], line - u_a2),
+                          ("gear", z2, x2, x_min[1], dff2, u_nf[1], line - u_a1))
+                      if start > reach)
         raise UnusableInput(f"transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1 "
                             f"(length of contact {g_alpha:.4f} mm, base pitch {p_bt:.4f} mm): "
-                            "raise the addendum factor or lower the centre distance")
+                            f"raise the addendum factor or lower the centre distance{cut}")
     eps_beta = face_width_mm * math.sin(beta) / (math.pi * m_n)
     return InvoluteGeometry(
         pinion_teeth=z1, gear_teeth=z2, normal_module_mm=m_n, transverse_module_mm=m_t,
@@ -304,6 +316,8 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
         tip_diameter_pinion_mm=da1, tip_diameter_gear_mm=da2,
         root_diameter_pinion_mm=df1, root_diameter_gear_mm=df2,
         form_diameter_pinion_mm=dff1, form_diameter_gear_mm=dff2,
+        undercut_pinion=cut1, undercut_gear=cut2,
+        undercut_limit_shift_pinion=x_min[0], undercut_limit_shift_gear=x_min[1],
         active_start_diameter_pinion_mm=dnf[0], active_start_diameter_gear_mm=dnf[1],
         working_pitch_diameter_pinion_mm=2.0 * a_w * z1 / (z1 + z2),
         working_pitch_diameter_gear_mm=2.0 * a_w * z2 / (z1 + z2),
