@@ -276,6 +276,7 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     u_a1, u_a2 = roll_length_mm(da1, db1), roll_length_mm(da2, db2)
     p_bt = math.pi * m_t * math.cos(alpha_t)
     u_nf = [line - u_a2, line - u_a1]               # roll lengths of the active start
+    g_alpha = u_a1 + u_a2 - line
     dnf = []
     for i, (member, d_b, d_ff, cut, other) in enumerate((("pinion", db1, dff1, cut1, "gear"),
                                                          ("gear", db2, dff2, cut2, "pinion"))):
@@ -289,9 +290,9 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
                                       f"circle d_Ff = {d_ff:.4f} mm on the line of action)")
             # undercut: the mating tip passes through the space the rack's tip cut
             # (the rack is the limiting mate), contact starts at the crossing d_Ff
+            g_alpha -= u_ff - u_nf[i]
             u_nf[i] = u_ff
         dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf[i]))
-    g_alpha = line - u_nf[0] - u_nf[1]
     eps_alpha = g_alpha / p_bt
     if eps_alpha < 1.0:
         cut = "".join(f"; the {m} (z = {z}, x = {x:g}) is undercut below x_min = {lim:.4f}: "

@@ -50,7 +50,7 @@ from ...errors import CheckFailed
 
 __all__ = ["CUT_RESOLUTION_RAD", "GeneratedForm", "RackTip", "UndercutCrossing",
            "generated_form", "rack_tip", "tip_envelope",
-           "undercut_crossing", "undercut_limit_profile_shift", "straight_flank_height"]
+           "undercut_crossing", "undercut_limit_profile_shift"]
 
 #: Samples of the rounding's normal angle to bracket the crossing, over the arc of the
 #: trochoid outside the base circle (down to a few micrometres of arc near the limit).
@@ -61,12 +61,6 @@ _TAU_SAMPLES = 4001
 CUT_RESOLUTION_RAD = 1e-14
 
 
-def straight_flank_height(*, dedendum_factor: float, tip_radius_factor: float,
-                          normal_pressure_angle_rad: float) -> float:
-    """``h_FfP*``: depth of the rack's straight flank end below its datum line, in m_n."""
-    return dedendum_factor - tip_radius_factor * (1.0 - math.sin(normal_pressure_angle_rad))
-
-
 def undercut_limit_profile_shift(*, teeth: int, normal_pressure_angle_deg: float,
                                  helix_angle_deg: float, dedendum_factor: float,
                                  tip_radius_factor: float) -> float:
@@ -75,9 +69,7 @@ def undercut_limit_profile_shift(*, teeth: int, normal_pressure_angle_deg: float
     alpha_n = math.radians(normal_pressure_angle_deg)
     beta = math.radians(helix_angle_deg)
     alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
-    h = straight_flank_height(dedendum_factor=dedendum_factor,
-                              tip_radius_factor=tip_radius_factor,
-                              normal_pressure_angle_rad=alpha_n)
+    h = dedendum_factor - tip_radius_factor * (1.0 - math.sin(alpha_n))     # h_FfP*
     return h - teeth * math.sin(alpha_t) ** 2 / (2.0 * math.cos(beta))
 
 
@@ -102,7 +94,7 @@ def rack_tip(*, teeth: int, normal_module_mm: float, profile_shift: float,
     m_n = normal_module_mm
     alpha_n = math.radians(normal_pressure_angle_deg)
     beta = math.radians(helix_angle_deg)
-    r = 0.5 * teeth * m_n / math.cos(beta)
+    r = 0.5 * (teeth * (m_n / math.cos(beta)))     # d/2 = z m_t / 2 as ISO 21771
     rho = tip_radius_factor * m_n
     datum = r + profile_shift * m_n
     tip = datum - dedendum_factor * m_n
@@ -265,9 +257,7 @@ def generated_form(*, teeth: int, normal_module_mm: float, profile_shift: float,
                     tip_radius_factor=tip_radius_factor)
     r = rack.reference_radius_mm
     rb = r * math.cos(alpha_t)
-    h = m_n * (straight_flank_height(dedendum_factor=dedendum_factor,
-                                     tip_radius_factor=tip_radius_factor,
-                                     normal_pressure_angle_rad=alpha_n) - x)
+    h = m_n * (dedendum_factor - x - tip_radius_factor * (1.0 - math.sin(alpha_n)))
     along = r * math.sin(alpha_t) - h / math.sin(alpha_t)
     junction = 2.0 * math.hypot(rb, along)
     if along >= 0.0:
