@@ -6,7 +6,10 @@ of a larger centre distance, and the contact ratios ε_α, ε_β, ε_γ (docs/cy
 
 The tip diameter is ``d_a = d + 2 m_n (h_aP* + x)`` without tip shortening; the root
 diameter ``d_f = d - 2 m_n (h_fP* - x)`` (generation by the basic rack of ISO 53 with
-dedendum ``h_fP* m_n`` and tip radius ``ρ_fP* m_n``).
+dedendum ``h_fP* m_n`` and tip radius ``ρ_fP* m_n``). The form diameter d_Ff is the
+rack's (:func:`.trochoid.generated_form`): below the undercut limit x_min the trochoid's
+crossing with the involute, and the path of contact of an undercut member starts there
+where the mating tip would reach lower (the rack, the limiting mate, cut that space).
 
 References
 ----------
@@ -183,11 +186,12 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     Raises
     ------
     InputRangeError
-        A centre distance below the zero-backlash one (the teeth interfere), undercut,
-        pointed teeth, a tip touching the mating root, a mating tip reaching below the
-        form circle (interference), named by the field that decides it.
+        A centre distance below the zero-backlash one (the teeth interfere), an undercut
+        cutting the whole involute (its crossing at or above d_a), pointed teeth, a tip
+        touching the mating root, a mating tip reaching below the form circle of a
+        member that is not undercut (interference), named by the field that decides it.
     UnusableInput
-        A transverse contact ratio ε_α < 1.
+        A transverse contact ratio ε_α < 1 (naming an undercut that shortened the path).
     """
     z1, z2, m_n = pinion_teeth, gear_teeth, normal_module_mm
     x1, x2 = profile_shift_pinion, profile_shift_gear
