@@ -167,3 +167,10 @@ def test_careless_inputs_name_the_limit():
     with pytest.raises(UnusableInput, match=r"eps_alpha = 0\.91.*pinion \(z = 8, x = 0\) is "
                                             r"undercut below x_min = 0\.5321"):
         _pair(0.0, z1=8)
+    # no undercut (x_min(30) = -0.754), but a shift sum below -inv(alpha) (z1 + z2) /
+    # (2 tan alpha) = -1.2285: no working pressure angle, named before any other check
+    a = math.radians(20.0)
+    low = -(math.tan(a) - a) * 60 / (2.0 * math.tan(a))
+    with pytest.raises(InputRangeError, match=r"profile_shift_pinion \+ profile_shift_gear = "
+                                              rf"-1\.4.*>= {low:.4f}"):
+        _pair(-0.7, z1=30, z2=30, x2=-0.7)

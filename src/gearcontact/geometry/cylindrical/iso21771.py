@@ -203,27 +203,6 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     d1, d2 = z1 * m_t, z2 * m_t
     db1, db2 = d1 * math.cos(alpha_t), d2 * math.cos(alpha_t)
     a_ref = 0.5 * (d1 + d2)
-    # ISO 21771 eq. for the working pressure angle of zero backlash
-    alpha_wt0 = inv_inverse(inv(alpha_t) + 2.0 * math.tan(alpha_n) * (x1 + x2) / (z1 + z2))
-    a_w0 = a_ref * math.cos(alpha_t) / math.cos(alpha_wt0)
-    if centre_distance_mm is None:
-        a_w, alpha_wt, j_bn = a_w0, alpha_wt0, 0.0
-    else:
-        a_w = centre_distance_mm
-        # published shifts are rounded to 4 decimals: a_w may fall short of a_w0 by up
-        # to ~1e-4 m_n (FZG C: 0.08 um), a tight mesh reported as j_bn < 0
-        if a_w < a_w0 - A_W_TOLERANCE_MODULES * m_n:
-            raise InputRangeError(f"{field_prefix}centre_distance_mm", a_w,
-                                  f">= {a_w0 - A_W_TOLERANCE_MODULES * m_n:.6f} mm (the "
-                                  f"zero-backlash centre distance of x1 + x2 = {x1 + x2:g} "
-                                  f"is {a_w0:.6f} mm; closer, the teeth interfere)")
-        alpha_wt = math.acos(min(a_ref * math.cos(alpha_t) / a_w, 1.0))
-        # the profile-shift sum that would close the gap at a_w, and the base-circle arc
-        # (= length along the line of action) it stands for, in the normal section
-        x_sum_w = (inv(alpha_wt) - inv(alpha_t)) * (z1 + z2) / (2.0 * math.tan(alpha_n))
-        j_bt = 2.0 * (x_sum_w - x1 - x2) * m_n * math.tan(alpha_n) * math.cos(alpha_t) \
-            / math.cos(beta)
-        j_bn = j_bt * math.cos(beta_b)
     da1 = d1 + 2.0 * m_n * (addendum_factor + x1) if tip_diameter_pinion_mm is None \
         else tip_diameter_pinion_mm
     da2 = d2 + 2.0 * m_n * (addendum_factor + x2) if tip_diameter_gear_mm is None \
@@ -256,6 +235,33 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
         if not d_a > d_ff:
             raise InputRangeError(f"{field_prefix}tip_diameter_{member}_mm", d_a,
                                   f"> {d_ff:.4f} mm (the form diameter d_Ff)")
+    # ISO 21771 eq. for the working pressure angle of zero backlash
+    inv_wt0 = inv(alpha_t) + 2.0 * math.tan(alpha_n) * (x1 + x2) / (z1 + z2)
+    if inv_wt0 < 0.0:
+        low = -inv(alpha_t) * (z1 + z2) / (2.0 * math.tan(alpha_n))
+        raise InputRangeError(f"{field_prefix}profile_shift_pinion + profile_shift_gear",
+                              x1 + x2, f">= {low:.4f} (a zero-backlash working pressure "
+                              "angle alpha_wt >= 0)")
+    alpha_wt0 = inv_inverse(inv_wt0)
+    a_w0 = a_ref * math.cos(alpha_t) / math.cos(alpha_wt0)
+    if centre_distance_mm is None:
+        a_w, alpha_wt, j_bn = a_w0, alpha_wt0, 0.0
+    else:
+        a_w = centre_distance_mm
+        # published shifts are rounded to 4 decimals: a_w may fall short of a_w0 by up
+        # to ~1e-4 m_n (FZG C: 0.08 um), a tight mesh reported as j_bn < 0
+        if a_w < a_w0 - A_W_TOLERANCE_MODULES * m_n:
+            raise InputRangeError(f"{field_prefix}centre_distance_mm", a_w,
+                                  f">= {a_w0 - A_W_TOLERANCE_MODULES * m_n:.6f} mm (the "
+                                  f"zero-backlash centre distance of x1 + x2 = {x1 + x2:g} "
+                                  f"is {a_w0:.6f} mm; closer, the teeth interfere)")
+        alpha_wt = math.acos(min(a_ref * math.cos(alpha_t) / a_w, 1.0))
+        # the profile-shift sum that would close the gap at a_w, and the base-circle arc
+        # (= length along the line of action) it stands for, in the normal section
+        x_sum_w = (inv(alpha_wt) - inv(alpha_t)) * (z1 + z2) / (2.0 * math.tan(alpha_n))
+        j_bt = 2.0 * (x_sum_w - x1 - x2) * m_n * math.tan(alpha_n) * math.cos(alpha_t) \
+            / math.cos(beta)
+        j_bn = j_bt * math.cos(beta_b)
     # tip thickness: s_t = m_t (π/2 + 2 x tan α_n) on d, carried to d_a by the involute
     s_an = []
     for member, d, d_b, d_a, x in (("pinion", d1, db1, da1, x1), ("gear", d2, db2, da2, x2)):
