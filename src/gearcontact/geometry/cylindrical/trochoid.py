@@ -18,7 +18,7 @@ point T (the base circle's tangency point), ``h_FfP - x m_n <= r sin² α_t``, i
     x_min = h_fP* - ρ_fP* (1 - sin α_n) - z sin² α_t / (2 cos β)
 
 (ISO 21771:2007, the undercut limit, with the rack's h_FfP*; for the ISO 53 profile A
-rack, h_fP* = 1.25, ρ_fP* = 0.38, α_n = 20°: h_FfP* = 1.0000 = h_aP*, and the spur
+rack, h_fP* = 1.25, ρ_fP* = 0.38, α_n = 20°: h_FfP* = 1 - 3.2e-5 ≈ h_aP*, and the spur
 pinion's ``x_min = 1 - z sin² α / 2``, z_min = 2 / sin² 20° = 17.1: Niemann / Winter
 vol. II ch. 21). Below it the rounding's envelope runs into the tooth: it crosses the
 involute at a roll length u* > 0 above the base circle, goes on through the tooth space
@@ -30,7 +30,7 @@ the loop and the involute below the crossing are cut away.
 References
 ----------
 ISO 21771:2007, *Cylindrical involute gears and gear pairs — Concepts and geometry*,
-clause 5 (form circle, undercut).
+clauses 4-5 (the gear: form circle, undercut limit).
 ISO 53:1998, *Cylindrical gears — Standard basic rack tooth profile*.
 G. Niemann, H. Winter, *Maschinenelemente* Band II, 2nd ed., Springer, 1989, ch. 21
 (undercut limit, z_min = 2 h_aP* cos β / sin² α_t).
