@@ -1,8 +1,8 @@
 """Test helper: the generating rack's tip rounding as an independent truth of a
 cylindrical gear's generated boundary (ISO 53 basic rack), from the rolling of the
 generating pitch circle on the rack's pitch line alone (not from the fillet's closed
-form, which uses Willis' normal condition); shared by the real-root and the undercut
-tests."""
+form, which uses Willis' normal condition), and ISO 6336-3's critical section of the
+same rack's trochoid; shared by the real-root and the undercut tests."""
 
 import math
 
@@ -55,3 +55,38 @@ def envelope_gap_mm(rack, side, point):
     got = minimize_scalar(f, bounds=(grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]),
                           method="bounded", options={"xatol": 1e-12})
     return got.fun * rho / 2.0
+
+
+def iso_critical_section(pair, member):
+    """ISO 6336-3 sec. 6.2: (s_Fn, rho_F) in mm from the generating rack (no
+    protuberance, external gear), the theta iteration of the standard."""
+    g = pair.geometry
+    mn = g.normal_module_mm
+    an, b = math.radians(g.normal_pressure_angle_deg), math.radians(g.helix_angle_deg)
+    bb = math.asin(math.sin(b) * math.cos(an))
+    zn = getattr(pair, f"{member}_teeth") / (math.cos(bb) ** 2 * math.cos(b))
+    h_fp, rho_fp = pair.dedendum_factor, pair.rack_tip_radius_factor
+    e = math.pi / 4 - h_fp * math.tan(an) - (1 - math.sin(an)) * rho_fp / math.cos(an)
+    gg = rho_fp - h_fp + getattr(pair, f"profile_shift_{member}")
+    h = 2 / zn * (math.pi / 2 - e) - math.pi / 3
+    th = math.pi / 6
+    for _ in range(100):
+        th = 2 * gg / zn * math.tan(th) - h
+    s_fn = zn * math.sin(math.pi / 3 - th) + math.sqrt(3) * (gg / math.cos(th) - rho_fp)
+    rho_f = rho_fp + 2 * gg * gg / (math.cos(th) * (zn * math.cos(th) ** 2 - 2 * gg))
+    return s_fn * mn, rho_f * mn
+
+
+def radius_at(root, side, point, across, down, h_mm=0.02):
+    """Radius of the circle through three side-curve points ``h_mm`` apart around
+    ``point``, projected into the section plane (across, down), mm."""
+    q = np.linspace(0.0, 1.0, 20001)
+    pts = root.side_points(side, np.zeros_like(q), q)
+    i = int(np.argmin(np.linalg.norm(pts - point, axis=1)))
+    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    qs = np.interp(arc[i] + np.array([-h_mm, 0.0, h_mm]), arc, q)
+    a, b, c = (np.array([p @ across, p @ down])
+               for p in root.side_points(side, np.zeros(3), qs))
+    ab, bc, ca = np.linalg.norm(a - b), np.linalg.norm(b - c), np.linalg.norm(c - a)
+    area2 = abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
+    return ab * bc * ca / (2.0 * area2)

@@ -43,7 +43,7 @@ from gearcontact.structure.cylindrical_tooth import (cylindrical_fillet_root, cy
                                                      cylindrical_tooth, section_profile)
 from gearcontact.structure.rim import root_line_section
 from gearcontact.validation import InputRangeError
-from rack_envelope import envelope_gap_mm
+from rack_envelope import envelope_gap_mm, iso_critical_section, radius_at
 from rack_envelope import rack as rack_of
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -98,41 +98,6 @@ def test_modified_flank_is_bridged_to_the_fillet():
             assert abs(envelope_gap_mm(rack, "drive", p)) < 1e-9
 
 
-def _iso_section(pair, member):
-    """ISO 6336-3 sec. 6.2: (s_Fn, rho_F) in mm from the generating rack (no
-    protuberance, external gear), the theta iteration of the standard."""
-    g = pair.geometry
-    mn = g.normal_module_mm
-    an, b = math.radians(g.normal_pressure_angle_deg), math.radians(g.helix_angle_deg)
-    bb = math.asin(math.sin(b) * math.cos(an))
-    zn = getattr(pair, f"{member}_teeth") / (math.cos(bb) ** 2 * math.cos(b))
-    h_fp, rho_fp = pair.dedendum_factor, pair.rack_tip_radius_factor
-    e = math.pi / 4 - h_fp * math.tan(an) - (1 - math.sin(an)) * rho_fp / math.cos(an)
-    gg = rho_fp - h_fp + getattr(pair, f"profile_shift_{member}")
-    h = 2 / zn * (math.pi / 2 - e) - math.pi / 3
-    th = math.pi / 6
-    for _ in range(100):
-        th = 2 * gg / zn * math.tan(th) - h
-    s_fn = zn * math.sin(math.pi / 3 - th) + math.sqrt(3) * (gg / math.cos(th) - rho_fp)
-    rho_f = rho_fp + 2 * gg * gg / (math.cos(th) * (zn * math.cos(th) ** 2 - 2 * gg))
-    return s_fn * mn, rho_f * mn
-
-
-def _radius_at(root, side, point, across, down, h_mm=0.02):
-    """Radius of the circle through three side-curve points ``h_mm`` apart around
-    ``point``, projected into the section plane (across, down), mm."""
-    q = np.linspace(0.0, 1.0, 20001)
-    pts = root.side_points(side, np.zeros_like(q), q)
-    i = int(np.argmin(np.linalg.norm(pts - point, axis=1)))
-    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
-    qs = np.interp(arc[i] + np.array([-h_mm, 0.0, h_mm]), arc, q)
-    a, b, c = (np.array([p @ across, p @ down])
-               for p in root.side_points(side, np.zeros(3), qs))
-    ab, bc, ca = np.linalg.norm(a - b), np.linalg.norm(b - c), np.linalg.norm(c - a)
-    area2 = abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
-    return ab * bc * ca / (2.0 * area2)
-
-
 @pytest.mark.parametrize("name, member, tol_s, tol_rho", [
     ("spur_20x40_m3", "pinion", 1e-6, 2e-4), ("spur_20x40_m3", "gear", 1e-6, 2e-4),
     ("fzg_c_type", "pinion", 1e-6, 2e-4), ("fzg_c_type", "gear", 1e-6, 2e-4),
@@ -141,7 +106,7 @@ def _radius_at(root, side, point, across, down, h_mm=0.02):
 def test_iso_6336_3_critical_section(name, member, tol_s, tol_rho):
     pair = _pair(name)
     root = cylindrical_fillet_root(pair, cylindrical_tooth(pair, member))
-    s_fn, rho_f = _iso_section(pair, member)
+    s_fn, rho_f = iso_critical_section(pair, member)
     cs = root.critical_section(np.array([0.0]))
     across, down = (a[0] for a in root.section_plane(np.array([0.0])))
     if tol_s < 1e-3:        # spur: exact
@@ -149,7 +114,7 @@ def test_iso_6336_3_critical_section(name, member, tol_s, tol_rho):
     else:
         assert cs.thickness_mm[0] == pytest.approx(s_fn, rel=tol_s)
     for side in ("coast", "drive"):
-        rho = _radius_at(root, side, getattr(cs, f"{side}_mm")[0], across, down)
+        rho = radius_at(root, side, getattr(cs, f"{side}_mm")[0], across, down)
         assert rho == pytest.approx(rho_f, rel=tol_rho)
 
 
@@ -175,7 +140,7 @@ def test_iso_section_on_the_mesh_vertices(name, member):
         w = (ang[k - 1] - 30.0) / (ang[k - 1] - ang[k])
         ends.append(mid[k - 1] + w * (mid[k] - mid[k - 1]))
     s_fn = abs((ends[1] - ends[0]) @ across)
-    assert s_fn == pytest.approx(_iso_section(pair, member)[0], rel=2e-4)
+    assert s_fn == pytest.approx(iso_critical_section(pair, member)[0], rel=2e-4)
 
 
 @pytest.mark.parametrize("name, member", [("spur_20x40_m3", "pinion"), ("fzg_c_type", "gear")])
@@ -189,7 +154,7 @@ def test_shell_fillet_follows_the_real_root(name, member):
     width = float(root_line_section(tooth, xi)[2][0] @ across)
     depth = float(root.critical_section(xi).depth_mm[0])
     got = float(np.interp(depth, prof.depth_mm, prof.widening)) * width
-    assert got == pytest.approx(_iso_section(pair, member)[0], rel=5e-5)
+    assert got == pytest.approx(iso_critical_section(pair, member)[0], rel=5e-5)
     d_f, z = getattr(pair.geometry, f"root_diameter_{member}_mm"), getattr(pair, f"{member}_teeth")
     assert prof.rim_widening * width == pytest.approx(d_f * math.sin(math.pi / z), rel=1e-12)
     assert prof.widening[0] == 1.0

@@ -8,6 +8,11 @@ Truths:
   undercut fillet meets the flank at a corner); every fillet vertex lies on the rack's
   envelope (tests/rack_envelope.py, 1e-9 mm as the real-root test: outside every
   position of the tip rounding and touching one, so no vertex lies on the cut-away loop);
+- ISO 6336-3:2019 sec. 6.2 (Method B, generating rack without protuberance): its theta
+  iteration is the rack's trochoid, undercut or not; the 30 deg tangent section of the
+  undercut root (below the crossing) has s_Fn within 1e-6 mm and rho_F within 2e-4
+  relative, the tolerances of the real-root test (test_cylindrical_root.py; measured
+  7e-11 / 8e-11 mm and 3e-6 / 1.5e-5 on 12 and 10 teeth);
 - the shell's fillet follows the undercut: below the root line the section first
   narrows (widening < 1, the undercut) before it widens into the root row;
 - shell vs the 3D FE of the same undercut tooth (slow): within the 15 % the
@@ -24,14 +29,14 @@ from gearcontact.structure import fe as fe_module
 from gearcontact.structure.cylindrical_compliance import cylindrical_flank_compliance
 from gearcontact.structure.cylindrical_tooth import (cylindrical_fillet_root, cylindrical_tooth,
                                                      section_profile)
-from rack_envelope import envelope_gap_mm
+from rack_envelope import envelope_gap_mm, iso_critical_section, radius_at
 from rack_envelope import rack as rack_of
 
 TOLERANCE_ALL = 0.15
 
 
-def _pair(beta=0.0):
-    return CylindricalPair(name="undercut_12x40", pinion_teeth=12, gear_teeth=40,
+def _pair(beta=0.0, z1=12):
+    return CylindricalPair(name="undercut", pinion_teeth=z1, gear_teeth=40,
                            normal_module_mm=3.0, pinion_face_width_mm=20.0,
                            gear_face_width_mm=20.0, helix_angle_deg=beta,
                            pinion_hand="right" if beta else None)
@@ -62,6 +67,20 @@ def test_fe_mesh_on_the_undercut_root(beta, monkeypatch):
         verts = fe._vertex[:, n_block:n_block + n_fillet + 1, k].ravel()
         gaps = [envelope_gap_mm(rack, side, p) for p in fe.vertex_positions_mm(verts)]
         assert np.max(np.abs(gaps)) < 1e-9, gaps
+
+
+@pytest.mark.parametrize("z1", [12, 10])
+def test_iso_6336_3_critical_section_on_the_undercut_root(z1):
+    pair = _pair(z1=z1)
+    assert pair.geometry.undercut_pinion
+    root = cylindrical_fillet_root(pair, cylindrical_tooth(pair, "pinion"))
+    s_fn, rho_f = iso_critical_section(pair, "pinion")
+    cs = root.critical_section(np.array([0.0]))
+    across, down = (a[0] for a in root.section_plane(np.array([0.0])))
+    assert cs.thickness_mm[0] == pytest.approx(s_fn, abs=1e-6)
+    for side in ("coast", "drive"):
+        rho = radius_at(root, side, getattr(cs, f"{side}_mm")[0], across, down)
+        assert rho == pytest.approx(rho_f, rel=2e-4)
 
 
 def test_shell_fillet_narrows_under_the_undercut():
