@@ -32,7 +32,9 @@ Truths:
   clearances 3.5, 0.65 and 1.5 um: the rack, whose straight flank ends at the gear's
   addendum height, is the limiting mate), while on the 20/40 pair without undercut the
   tip touches the involute where the path starts (penetration within -1e-6..1e-9 mm:
-  the phase grid's resolution, measured -1.1e-9);
+  the phase grid's resolution, measured -1.1e-9); a gear addendum of 1.2 m instead
+  cuts 0.082 mm into the undercut root, and the geometry refuses the pair naming that
+  depth (geometry.cylindrical.undercut_mesh, within its printed 1e-4 mm);
 - careless input: an undercut cutting the whole involute names the profile shift, z
   and x_min; a path the undercut shortens below eps_alpha = 1 says so.
 """
@@ -159,9 +161,10 @@ def test_tca_of_the_undercut_pair(beta):
     assert cycle.mean_pairs_in_zone == pytest.approx(g.total_contact_ratio, abs=0.01)
 
 
-def _tip_penetration_mm(pair):
+def _tip_penetration_mm(pair, gear_tip_radius_mm=None):
     """Largest penetration (mm, > 0 inside) of the gear's tip arc into the pinion teeth
-    over five pinion pitches of the ideal mesh (module docstring), transverse section."""
+    over five pinion pitches of the ideal mesh (module docstring), transverse section;
+    ``gear_tip_radius_mm`` replaces the gear's r_a (the pinion and a_w stay)."""
     g = pair.geometry
     z1, z2 = pair.pinion_teeth, pair.gear_teeth
     at = math.radians(g.transverse_pressure_angle_deg)
@@ -182,6 +185,7 @@ def _tip_penetration_mm(pair):
         out[hi] = half - inv(np.arccos(rb1 / r[hi]))
         return out
     ra2, rb2 = 0.5 * g.tip_diameter_gear_mm, 0.5 * g.base_diameter_gear_mm
+    ra2 = ra2 if gear_tip_radius_mm is None else gear_tip_radius_mm
     s_t2 = 0.5 * math.pi * g.transverse_module_mm           # x2 = 0
     eta_a = s_t2 / g.reference_diameter_gear_mm + inv(at) - inv(math.acos(rb2 / ra2))
     phi = np.linspace(-5.0 * math.pi / z1, 5.0 * math.pi / z1, 20001)[:, None]
@@ -209,6 +213,27 @@ def test_the_mating_tip_clears_the_undercut(z1, beta, undercut):
         assert pen < 0.0, pen
     else:
         assert -1e-6 < pen <= 1e-9, pen
+
+
+def test_a_longer_mating_tip_cutting_the_undercut_is_interference():
+    # gear addendum 1.2 m (blank d_a given) on the undercut 12-tooth pinion: the brute
+    # force above finds its tip 0.082 mm inside the pinion's undercut root, the geometry
+    # refuses the pair naming that depth (printed to 1e-4 mm: the bound); 1.1 m clears
+    r_a = 60.0 + 3.0 * 1.2
+    pen = _tip_penetration_mm(_pair(0.0), gear_tip_radius_mm=r_a)
+    assert pen > 0.05
+    with pytest.raises(InputRangeError) as err:
+        CylindricalPair(name="undercut", pinion_teeth=12, gear_teeth=40, normal_module_mm=3.0,
+                        pinion_face_width_mm=20.0, gear_face_width_mm=20.0,
+                        tip_diameter_gear_mm=2.0 * r_a)
+    e = err.value
+    assert e.field == "cylindrical.profile_shift_pinion" and "interference" in e.allowed
+    got = float(e.allowed.split("cuts ")[1].split(" mm")[0])
+    assert got == pytest.approx(pen, abs=1e-4), (got, pen)
+    assert _tip_penetration_mm(_pair(0.0), gear_tip_radius_mm=60.0 + 3.0 * 1.1) < 0.0
+    CylindricalPair(name="undercut", pinion_teeth=12, gear_teeth=40, normal_module_mm=3.0,
+                    pinion_face_width_mm=20.0, gear_face_width_mm=20.0,
+                    tip_diameter_gear_mm=2.0 * (60.0 + 3.0 * 1.1))
 
 
 def test_design_reports_the_undercut():

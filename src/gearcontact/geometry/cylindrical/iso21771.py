@@ -27,6 +27,7 @@ from dataclasses import asdict, dataclass
 
 from ...validation import InputRangeError, UnusableInput
 from .trochoid import generated_form, undercut_limit_profile_shift
+from .undercut_mesh import mating_tip_penetration_mm
 
 __all__ = ["InvoluteGeometry", "inv", "inv_inverse", "involute_geometry", "roll_length_mm",
            "A_W_TOLERANCE_MODULES"]
@@ -146,6 +147,27 @@ class InvoluteGeometry:
                                   ("tip", "tip_diameter"))}
 
 
+def _check_mating_tip(forms, i, *, z, x, r_b, r_a, d, a_w, alpha_n, alpha_t, m_t, x_min,
+                      field) -> None:
+    """Raise InputRangeError if the mate's tip cuts into undercut member ``i``'s tooth
+    (:func:`.undercut_mesh.mating_tip_penetration_mm`; 1e-9 mm: a tip touching the
+    involute at the start of the path is ~1e-9 inside)."""
+    j = 1 - i
+    s_t = m_t * (0.5 * math.pi + 2.0 * x[j] * math.tan(alpha_n))
+    pen = mating_tip_penetration_mm(
+        forms[i], teeth=z[i], base_radius_mm=r_b[i], tip_radius_mm=r_a[i],
+        half_angle_rad=(0.5 * math.pi + 2.0 * x[i] * math.tan(alpha_n)) / z[i] + inv(alpha_t),
+        mate_teeth=z[j], mate_tip_radius_mm=r_a[j],
+        mate_tip_half_angle_rad=s_t / d[j] + inv(alpha_t) - inv(math.acos(r_b[j] / r_a[j])),
+        centre_distance_mm=a_w)
+    if pen > 1e-9:
+        member, mate = ("pinion", "gear")[i], ("pinion", "gear")[j]
+        raise InputRangeError(field, x[i], f"a larger value (interference: the {mate} tip "
+                                           f"cuts {pen:.4f} mm into the undercut {member} "
+                                           f"(z = {z[i]}, x_min = {x_min:.4f}) below its form "
+                                           f"circle d_Ff = {forms[i].form_diameter_mm:.4f} mm)")
+
+
 def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: float,
                       normal_pressure_angle_deg: float, helix_angle_deg: float,
                       profile_shift_pinion: float, profile_shift_gear: float,
@@ -189,7 +211,8 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
         A centre distance below the zero-backlash one (the teeth interfere), an undercut
         cutting the whole involute (its crossing at or above d_a), pointed teeth, a tip
         touching the mating root, a mating tip reaching below the form circle of a
-        member that is not undercut (interference), named by the field that decides it.
+        member that is not undercut or cutting into the root of one that is
+        (interference), named by the field that decides it.
     UnusableInput
         A transverse contact ratio ε_α < 1 (naming an undercut that shortened the path).
     """
@@ -298,8 +321,12 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
                                       f"a larger value (interference: the {other} tip meets "
                                       f"the {member} {u_ff - u_nf[i]:.4f} mm below its form "
                                       f"circle d_Ff = {d_ff:.4f} mm on the line of action)")
-            # undercut: the mating tip passes through the space the rack's tip cut
-            # (the rack is the limiting mate), contact starts at the crossing d_Ff
+            # undercut: contact starts at the crossing d_Ff if the mating tip passes
+            # through the space the rack's tip cut (the rack is the limiting mate)
+            _check_mating_tip(forms, i, z=(z1, z2), x=(x1, x2), r_b=(0.5 * db1, 0.5 * db2),
+                              r_a=(0.5 * da1, 0.5 * da2), d=(d1, d2), a_w=a_w,
+                              alpha_n=alpha_n, alpha_t=alpha_t, m_t=m_t, x_min=x_min[i],
+                              field=f"{field_prefix}profile_shift_{member}")
             g_alpha -= u_ff - u_nf[i]
             u_nf[i] = u_ff
         dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf[i]))
