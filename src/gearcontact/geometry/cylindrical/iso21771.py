@@ -314,6 +314,11 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     for i, (member, d_b, d_ff, cut, other) in enumerate((("pinion", db1, dff1, cut1, "gear"),
                                                          ("gear", db2, dff2, cut2, "pinion"))):
         u_ff = roll_length_mm(d_ff, d_b)
+        if cut:     # the mate's tip must pass through the space the rack's tip cut
+            _check_mating_tip(forms, i, z=(z1, z2), x=(x1, x2), r_b=(0.5 * db1, 0.5 * db2),
+                              r_a=(0.5 * da1, 0.5 * da2), d=(d1, d2), a_w=a_w,
+                              alpha_n=alpha_n, alpha_t=alpha_t, m_t=m_t, x_min=x_min[i],
+                              field=f"{field_prefix}profile_shift_{member}")
         if u_nf[i] < u_ff - 1e-9:
             if not cut:
                 raise InputRangeError(f"{field_prefix}profile_shift_{member}",
@@ -321,18 +326,13 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
                                       f"a larger value (interference: the {other} tip meets "
                                       f"the {member} {u_ff - u_nf[i]:.4f} mm below its form "
                                       f"circle d_Ff = {d_ff:.4f} mm on the line of action)")
-            # undercut: contact starts at the crossing d_Ff if the mating tip passes
-            # through the space the rack's tip cut (the rack is the limiting mate)
-            _check_mating_tip(forms, i, z=(z1, z2), x=(x1, x2), r_b=(0.5 * db1, 0.5 * db2),
-                              r_a=(0.5 * da1, 0.5 * da2), d=(d1, d2), a_w=a_w,
-                              alpha_n=alpha_n, alpha_t=alpha_t, m_t=m_t, x_min=x_min[i],
-                              field=f"{field_prefix}profile_shift_{member}")
+            # undercut: the mate's tip clears the cut root, contact starts at d_Ff
             g_alpha -= u_ff - u_nf[i]
             u_nf[i] = u_ff
         dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf[i]))
     eps_alpha = g_alpha / p_bt
     if eps_alpha < 1.0:
-        cut = "".join(f"; the {m} (z = {z}, x = {x:g}) is undercut below x_min = {lim:.4f}: "
+        why = "".join(f"; the {m} (z = {z}, x = {x:g}) is undercut below x_min = {lim:.4f}: "
                       f"its involute starts at d_Ff = {d_ff:.4f} mm, above the mating tip's "
                       f"reach, which shortens the path (raise its profile shift toward x_min)"
                       for m, z, x, lim, d_ff, start, reach in (
@@ -341,7 +341,7 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
                       if start > reach)
         raise UnusableInput(f"transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1 "
                             f"(length of contact {g_alpha:.4f} mm, base pitch {p_bt:.4f} mm): "
-                            f"raise the addendum factor or lower the centre distance{cut}")
+                            f"raise the addendum factor or lower the centre distance{why}")
     eps_beta = face_width_mm * math.sin(beta) / (math.pi * m_n)
     return InvoluteGeometry(
         pinion_teeth=z1, gear_teeth=z2, normal_module_mm=m_n, transverse_module_mm=m_t,
