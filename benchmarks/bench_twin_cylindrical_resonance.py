@@ -12,11 +12,11 @@ with the twin's own transverse mesh stiffness and with Method B's c_gamma_alpha.
 ``--csv FILE`` writes the table. Measured figures: docs/cylindrical.md sec. 10; the bound
 the tests hold a twin's mesh mode to is 5 % of n_E1 with its own c_t.
 
-Measured (session 14, defaults, with the line law's loaded length): preview twin peak
-K_v 1.242 at 26,000 rpm, mode 26,103 rpm = 0.957 n_E1 (27,270 rpm, c_t 37.60 N/(mm·µm)),
-1.400 x Method B's n_E1 (18,651 rpm); table twin peak 1.264 at 26,000 rpm, mode
-25,638 rpm = 0.957 n_E1 (26,779 rpm, c_t 36.25), 1.375 x Method B's. 23 s wall with
-the numba cache warm.
+Measured (session 19, defaults, f99ad27; docs/performance.md "Cylindrical pairs and
+the resonance benchmark"): preview twin peak K_v 1.245 at 26,000 rpm, mode 26,109 rpm =
+0.957 n_E1 (27,276 rpm, c_t 37.61 N/(mm·µm)), 1.400 x Method B's n_E1 (18,651 rpm);
+table twin peak 1.264 at 26,000 rpm, mode 25,638 rpm = 0.957 n_E1 (26,779 rpm, c_t
+36.25), 1.375 x Method B's. 11 s wall, 2.8 s CPU with the numba cache warm (load 9).
 
 Run: ``python benchmarks/bench_twin_cylindrical_resonance.py [--torque 300]
 [--speeds 17000:38000:1500] [--phases 21] [--backend reference] [--csv sweep.csv]``.

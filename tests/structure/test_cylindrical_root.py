@@ -36,7 +36,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.optimize import minimize_scalar
 
 from gearcontact.geometry.pair import load_pair
 from gearcontact.structure.cylindrical_compliance import cylindrical_flank_compliance
@@ -44,58 +43,14 @@ from gearcontact.structure.cylindrical_tooth import (cylindrical_fillet_root, cy
                                                      cylindrical_tooth, section_profile)
 from gearcontact.structure.rim import root_line_section
 from gearcontact.validation import InputRangeError
+from rack_envelope import envelope_gap_mm, iso_critical_section, radius_at
+from rack_envelope import rack as rack_of
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def _pair(name):
     return load_pair(EXAMPLES / f"{name}.toml", kinds=("cylindrical",))
-
-
-def _rack(pair, member):
-    """Transverse-section data of the generating rack (ISO 53, pair's factors)."""
-    g = pair.geometry
-    mn = g.normal_module_mm
-    z = getattr(pair, f"{member}_teeth")
-    x = getattr(pair, f"profile_shift_{member}")
-    an, b = math.radians(g.normal_pressure_angle_deg), math.radians(g.helix_angle_deg)
-    r = 0.5 * mn * z / math.cos(b)                  # generating pitch circle
-    rho = pair.rack_tip_radius_factor * mn
-    datum = r + x * mn                              # rack datum line (profile shift)
-    cy = datum - pair.dedendum_factor * mn + rho    # tip rounding centre, rack frame
-    # the rack tooth fills the space centred on X = 0; its flank x = pi m_n / 4 - (datum
-    # - y) tan(alpha_n) in the normal section, the rounding's centre rho inside it
-    cx = 0.25 * math.pi * mn - (datum - cy) * math.tan(an) - rho / math.cos(an)
-    lead = (-1.0 if pair.hand(member) == "left" else 1.0) * math.tan(b) / r
-    return dict(r=r, rho=rho, cx=cx / math.cos(b), cy=cy, cb=math.cos(b), z=z, lead=lead)
-
-
-def _envelope_gap_mm(rack, side, point):
-    """min over the rack shift s of the tip rounding's implicit function at ``point``
-    (body frame: tooth on +x), as a distance (F rho / 2, mm). The gear turns by s / r
-    while the rack moves by s (rolling of the pitch circle on the pitch line); "coast"
-    (clockwise facing) is the mirror image y -> -y of the other hand."""
-    x, y, z = point
-    k = rack["lead"]
-    if side == "coast":
-        y, k = -y, -k
-    a = -k * z                                      # back to the section z = 0
-    X, Y = math.cos(a) * x - math.sin(a) * y, math.sin(a) * x + math.cos(a) * y
-    r, rho, cb = rack["r"], rack["rho"], rack["cb"]
-    space = -(0.5 * math.pi - math.pi / rack["z"])  # the space centred on +y
-
-    def f(s):
-        t = -(s / r + space)
-        qx = math.cos(t) * X - math.sin(t) * Y - s
-        qy = math.sin(t) * X + math.cos(t) * Y
-        return ((qx - rack["cx"]) * cb / rho) ** 2 + ((qy - rack["cy"]) / rho) ** 2 - 1.0
-
-    grid = np.linspace(-2.0, 2.0, 801) * 2.0 * math.pi * r / rack["z"]
-    vals = np.array([f(s) for s in grid])
-    i = int(np.argmin(vals))
-    got = minimize_scalar(f, bounds=(grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]),
-                          method="bounded", options={"xatol": 1e-12})
-    return got.fun * rho / 2.0
 
 
 # FZG C pinion: spur with profile shift 0.1817; the helical stage's gear: beta 25 deg,
@@ -115,13 +70,13 @@ def test_fe_mesh_on_the_rack_generated_trochoid(name, member):
     pair = _pair(name)
     tooth = cylindrical_tooth(pair, member)
     root = cylindrical_fillet_root(pair, tooth)
-    rack = _rack(pair, member)
+    rack = rack_of(pair, member)
     n_block, n_fillet, n_slot, n_zeta = 1, 2, 1, 1
     fe = build_fe(tooth, n_xi=6, n_eta=2, n_zeta=n_zeta, n_rim=n_block, root=root,
                   n_fillet=n_fillet, n_slot=n_slot)
     for side, k in (("coast", n_slot), ("drive", n_slot + n_zeta)):
         verts = fe._vertex[:, n_block:n_block + n_fillet + 1, k].ravel()
-        gaps = [_envelope_gap_mm(rack, side, p) for p in fe.vertex_positions_mm(verts)]
+        gaps = [envelope_gap_mm(rack, side, p) for p in fe.vertex_positions_mm(verts)]
         assert np.max(np.abs(gaps)) < 1e-9, gaps
     r_f = 0.5 * getattr(pair.geometry, f"root_diameter_{member}_mm")
     for i in range(len(fe.xi_levels)):
@@ -135,47 +90,12 @@ def test_modified_flank_is_bridged_to_the_fillet():
     # bridge closes; every fillet point below stays on the envelope (1e-9 mm)
     pair = _pair("ev_reducer_helical_23x67")
     root = cylindrical_fillet_root(pair, cylindrical_tooth(pair, "pinion"))
-    rack = _rack(pair, "pinion")
+    rack = rack_of(pair, "pinion")
     xi = np.array([-1.0, 0.0, 1.0])
     assert root.bridge_mm("drive", xi) == pytest.approx([7.4e-3, 2.4e-3, 7.4e-3], abs=5e-5)
     for q in (0.2, 0.6, 1.0):
         for p in root.side_points("drive", xi, np.full(3, q)):
-            assert abs(_envelope_gap_mm(rack, "drive", p)) < 1e-9
-
-
-def _iso_section(pair, member):
-    """ISO 6336-3 sec. 6.2: (s_Fn, rho_F) in mm from the generating rack (no
-    protuberance, external gear), the theta iteration of the standard."""
-    g = pair.geometry
-    mn = g.normal_module_mm
-    an, b = math.radians(g.normal_pressure_angle_deg), math.radians(g.helix_angle_deg)
-    bb = math.asin(math.sin(b) * math.cos(an))
-    zn = getattr(pair, f"{member}_teeth") / (math.cos(bb) ** 2 * math.cos(b))
-    h_fp, rho_fp = pair.dedendum_factor, pair.rack_tip_radius_factor
-    e = math.pi / 4 - h_fp * math.tan(an) - (1 - math.sin(an)) * rho_fp / math.cos(an)
-    gg = rho_fp - h_fp + getattr(pair, f"profile_shift_{member}")
-    h = 2 / zn * (math.pi / 2 - e) - math.pi / 3
-    th = math.pi / 6
-    for _ in range(100):
-        th = 2 * gg / zn * math.tan(th) - h
-    s_fn = zn * math.sin(math.pi / 3 - th) + math.sqrt(3) * (gg / math.cos(th) - rho_fp)
-    rho_f = rho_fp + 2 * gg * gg / (math.cos(th) * (zn * math.cos(th) ** 2 - 2 * gg))
-    return s_fn * mn, rho_f * mn
-
-
-def _radius_at(root, side, point, across, down, h_mm=0.02):
-    """Radius of the circle through three side-curve points ``h_mm`` apart around
-    ``point``, projected into the section plane (across, down), mm."""
-    q = np.linspace(0.0, 1.0, 20001)
-    pts = root.side_points(side, np.zeros_like(q), q)
-    i = int(np.argmin(np.linalg.norm(pts - point, axis=1)))
-    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
-    qs = np.interp(arc[i] + np.array([-h_mm, 0.0, h_mm]), arc, q)
-    a, b, c = (np.array([p @ across, p @ down])
-               for p in root.side_points(side, np.zeros(3), qs))
-    ab, bc, ca = np.linalg.norm(a - b), np.linalg.norm(b - c), np.linalg.norm(c - a)
-    area2 = abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
-    return ab * bc * ca / (2.0 * area2)
+            assert abs(envelope_gap_mm(rack, "drive", p)) < 1e-9
 
 
 @pytest.mark.parametrize("name, member, tol_s, tol_rho", [
@@ -186,7 +106,7 @@ def _radius_at(root, side, point, across, down, h_mm=0.02):
 def test_iso_6336_3_critical_section(name, member, tol_s, tol_rho):
     pair = _pair(name)
     root = cylindrical_fillet_root(pair, cylindrical_tooth(pair, member))
-    s_fn, rho_f = _iso_section(pair, member)
+    s_fn, rho_f = iso_critical_section(pair, member)
     cs = root.critical_section(np.array([0.0]))
     across, down = (a[0] for a in root.section_plane(np.array([0.0])))
     if tol_s < 1e-3:        # spur: exact
@@ -194,7 +114,7 @@ def test_iso_6336_3_critical_section(name, member, tol_s, tol_rho):
     else:
         assert cs.thickness_mm[0] == pytest.approx(s_fn, rel=tol_s)
     for side in ("coast", "drive"):
-        rho = _radius_at(root, side, getattr(cs, f"{side}_mm")[0], across, down)
+        rho = radius_at(root, side, getattr(cs, f"{side}_mm")[0], across, down)
         assert rho == pytest.approx(rho_f, rel=tol_rho)
 
 
@@ -220,7 +140,7 @@ def test_iso_section_on_the_mesh_vertices(name, member):
         w = (ang[k - 1] - 30.0) / (ang[k - 1] - ang[k])
         ends.append(mid[k - 1] + w * (mid[k] - mid[k - 1]))
     s_fn = abs((ends[1] - ends[0]) @ across)
-    assert s_fn == pytest.approx(_iso_section(pair, member)[0], rel=2e-4)
+    assert s_fn == pytest.approx(iso_critical_section(pair, member)[0], rel=2e-4)
 
 
 @pytest.mark.parametrize("name, member", [("spur_20x40_m3", "pinion"), ("fzg_c_type", "gear")])
@@ -234,7 +154,7 @@ def test_shell_fillet_follows_the_real_root(name, member):
     width = float(root_line_section(tooth, xi)[2][0] @ across)
     depth = float(root.critical_section(xi).depth_mm[0])
     got = float(np.interp(depth, prof.depth_mm, prof.widening)) * width
-    assert got == pytest.approx(_iso_section(pair, member)[0], rel=5e-5)
+    assert got == pytest.approx(iso_critical_section(pair, member)[0], rel=5e-5)
     d_f, z = getattr(pair.geometry, f"root_diameter_{member}_mm"), getattr(pair, f"{member}_teeth")
     assert prof.rim_widening * width == pytest.approx(d_f * math.sin(math.pi / z), rel=1e-12)
     assert prof.widening[0] == 1.0

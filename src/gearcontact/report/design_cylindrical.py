@@ -3,7 +3,9 @@
 :func:`cylindrical_design_text` is the table (pinion | gear columns, then the pair's
 quantities) or, with ``as_json``, one JSON object of every
 :class:`~gearcontact.geometry.cylindrical.iso21771.InvoluteGeometry` field
-(docs/cylindrical.md).
+(docs/cylindrical.md). The per-member rows end with ISO 21771's undercut limit x_min and
+whether the member is undercut (x < x_min: its form circle d_Ff is where the rack tip's
+trochoid crosses the involute, :mod:`gearcontact.geometry.cylindrical.trochoid`).
 """
 
 from __future__ import annotations
@@ -61,7 +63,7 @@ def cylindrical_design_text(pair, *, as_json: bool = False) -> str:
              f"({'helical' if g.helix_angle_deg else 'spur'}{hand})"]
     rows = [(f"{label} [{unit}]" if unit else label) for label, _, unit in
             _MEMBER_ROWS + _PAIR_ROWS]
-    width = max(len(r) for r in rows + ["teeth z", "profile shift x"]) + 2
+    width = max(len(r) for r in rows + ["teeth z", "profile shift x", "undercut limit x_min"]) + 2
     lines.append(f"{'quantity':<{width}} {'pinion':>12} {'gear':>12}")
     lines.append(f"{'teeth z':<{width}} {g.pinion_teeth:>12} {g.gear_teeth:>12}")
     lines.append(f"{'profile shift x':<{width}} {_fmt(g.profile_shift_pinion):>12} "
@@ -69,6 +71,11 @@ def cylindrical_design_text(pair, *, as_json: bool = False) -> str:
     for (label, stem, unit), name in zip(_MEMBER_ROWS, rows):
         p, q = (getattr(g, f"{stem}_{m}_{unit}") for m in ("pinion", "gear"))
         lines.append(f"{name:<{width}} {_fmt(p):>12} {_fmt(q):>12}")
+    for label, stem, fmt in (("undercut limit x_min", "undercut_limit_shift", _fmt),
+                             ("undercut (x < x_min)", "undercut",
+                              lambda c: "yes" if c else "no")):
+        p, q = (fmt(getattr(g, f"{stem}_{m}")) for m in ("pinion", "gear"))
+        lines.append(f"{label:<{width}} {p:>12} {q:>12}")
     for (label, attr, unit), name in zip(_PAIR_ROWS, rows[len(_MEMBER_ROWS):]):
         lines.append(f"{name:<{width}} {_fmt(float(getattr(g, attr))):>12}")
     return "\n".join(lines)

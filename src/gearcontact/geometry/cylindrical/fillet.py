@@ -10,8 +10,10 @@ N is in contact when its normal passes through the pitch point I (Willis), so
 
 is the fillet in the gear's transverse section (τ the normal-section angle of the
 rounding, from -π/2 at the root, which lies on d_f, to -α_n where the rounding meets
-the straight rack flank, which generates the involute from the form circle d_Ff up).
-A helical gear's fillet is the same section turned by ``z tan β / r`` (its lead).
+the straight rack flank, which generates the involute from the form circle d_Ff up;
+the formulas: :func:`.trochoid.tip_envelope`). An undercut member's fillet
+(``x < x_min``) ends where its trochoid crosses the involute
+(:func:`.trochoid.generated_form`): the loop beyond is cut away. A helical gear's fillet is the same section turned by ``z tan β / r`` (its lead).
 Frame and facings as :mod:`.flank` (tooth centred on +x at z = 0).
 
 References
@@ -33,6 +35,7 @@ from ..sampling import SurfaceArrays, point_from_arrays
 from ..surface import SurfacePoint
 from .flank import FACINGS
 from .pair import CylindricalPair
+from .trochoid import RackTip, generated_form, tip_envelope
 
 __all__ = ["RootFillet", "root_fillet"]
 
@@ -43,17 +46,11 @@ class RootFillet:
     in (u = τ, v = z), and its transverse section z = 0 (mm).
 
     ``tau_range`` (= ``u_range``) runs from the root (-π/2, on d_f) to the form point
-    (-α_n, on d_Ff); ``v_range`` is the member's face width.
+    on d_Ff (-α_n, or the undercut crossing's angle); ``v_range`` is the member's face
+    width.
     """
 
-    reference_radius_mm: float          # r = d/2, the generating pitch circle
-    datum_mm: float                     # rack datum line radius r + x m_n
-    tip_line_mm: float                  # rack tip line r + x m_n - h_fP = d_f / 2
-    centre_x_mm: float                  # rounding centre, normal section
-    centre_y_mm: float
-    tip_radius_mm: float                # ρ_fP
-    cos_beta: float
-    space_angle_rad: float              # body-frame turn of the local frame
+    rack: RackTip                       # the rack's tip rounding (:mod:`.trochoid`)
     facing: str
     lead_rate_rad_per_mm: float         # section turn per mm of z (tan β / r, signed)
     tau_range: tuple[float, float]
@@ -62,39 +59,12 @@ class RootFillet:
 
     @property
     def u_range(self) -> tuple[float, float]:
-        """τ from the root (-π/2) to the form point (-α_n), rad."""
+        """τ from the root (-π/2) to the form point (-α_n, or the undercut crossing), rad."""
         return self.tau_range
 
     def _native(self, tau):
         """The ccw-facing section (before any mirror): G, dG/dτ, d2G/dτ2, each (..., 2)."""
-        tau = np.asarray(tau, dtype=float)
-        rho, cb, r = self.tip_radius_mm, self.cos_beta, self.reference_radius_mm
-        c, sn = np.cos(tau), np.sin(tau)
-        px, py = (self.centre_x_mm + rho * c) / cb, self.centre_y_mm + rho * sn
-        px1, py1 = -rho * sn / cb, rho * c
-        px2, py2 = -rho * c / cb, -rho * sn
-        cot, csc2 = c / sn, 1.0 / sn ** 2
-        # rack displacement of contact: the normal through the pitch point (Willis)
-        s = (py - r) * cb * cot - px
-        s1 = py1 * cb * cot - (py - r) * cb * csc2 - px1
-        s2 = py2 * cb * cot - 2.0 * py1 * cb * csc2 + 2.0 * (py - r) * cb * csc2 * cot - px2
-        q = np.stack([px + s, py], axis=-1)
-        q1 = np.stack([px1 + s1, py1], axis=-1)
-        q2 = np.stack([px2 + s2, py2], axis=-1)
-        phi = s / r + self.space_angle_rad
-        f1, f2 = (s1 / r)[..., None], (s2 / r)[..., None]
-
-        def turn(a):        # Rot(phi) a
-            return np.stack([np.cos(phi) * a[..., 0] - np.sin(phi) * a[..., 1],
-                             np.sin(phi) * a[..., 0] + np.cos(phi) * a[..., 1]], axis=-1)
-
-        def perp(a):        # J a = (-a_y, a_x)
-            return np.stack([-a[..., 1], a[..., 0]], axis=-1)
-
-        # G = Rot(phi) q; G' = Rot(q' + phi' J q); G'' = Rot(q'' + 2 phi' J q'
-        # + phi'' J q - phi'^2 q)
-        return (turn(q), turn(q1 + f1 * perp(q)),
-                turn(q2 + 2.0 * f1 * perp(q1) + f2 * perp(q) - f1 * f1 * q))
+        return tip_envelope(self.rack, tau)
 
     def transverse(self, tau):
         """Points (..., 2) and tangents d/dτ (..., 2) of the fillet at z = 0."""
@@ -156,26 +126,16 @@ def root_fillet(pair: CylindricalPair, member: str, facing: str) -> RootFillet:
     if facing not in FACINGS:
         raise InputRangeError("facing", facing, f"one of {FACINGS}")
     g = pair.geometry
-    m_n = g.normal_module_mm
-    z = getattr(pair, f"{member}_teeth")
-    x = getattr(pair, f"profile_shift_{member}")
-    alpha_n = math.radians(g.normal_pressure_angle_deg)
-    beta = math.radians(g.helix_angle_deg)
-    r = 0.5 * getattr(g, f"reference_diameter_{member}_mm")
-    rho = pair.rack_tip_radius_factor * m_n
-    datum = r + x * m_n
-    tip = datum - pair.dedendum_factor * m_n
-    cy = tip + rho
-    # rack tooth (filling the space) centred on X = 0: right flank x = π m_n/4 -
-    # (datum - y) tan α_n; the rounding's centre lies ρ inside it
-    cx = 0.25 * math.pi * m_n - (datum - cy) * math.tan(alpha_n) - rho / math.cos(alpha_n)
+    form = generated_form(teeth=getattr(pair, f"{member}_teeth"),
+                          normal_module_mm=g.normal_module_mm,
+                          profile_shift=getattr(pair, f"profile_shift_{member}"),
+                          normal_pressure_angle_deg=g.normal_pressure_angle_deg,
+                          helix_angle_deg=g.helix_angle_deg,
+                          dedendum_factor=pair.dedendum_factor,
+                          tip_radius_factor=pair.rack_tip_radius_factor)
+    r = form.rack.reference_radius_mm
     sign = -1.0 if pair.hand(member) == "left" else 1.0
-    lead = sign * math.tan(beta) / r
-    # local frame: the space centred on +Y, its right wall the ccw flank of the tooth at
-    # angle π/2 - π/z; turned so that tooth sits on +x
-    return RootFillet(reference_radius_mm=r, datum_mm=datum, tip_line_mm=tip,
-                      centre_x_mm=cx, centre_y_mm=cy, tip_radius_mm=rho,
-                      cos_beta=math.cos(beta), space_angle_rad=-(0.5 * math.pi - math.pi / z),
-                      facing=facing, lead_rate_rad_per_mm=lead,
-                      tau_range=(-0.5 * math.pi, -alpha_n),
+    lead = sign * math.tan(math.radians(g.helix_angle_deg)) / r
+    return RootFillet(rack=form.rack, facing=facing, lead_rate_rad_per_mm=lead,
+                      tau_range=(-0.5 * math.pi, form.fillet_end_rad),
                       v_range=(-0.5 * pair.face_width_mm(member), 0.5 * pair.face_width_mm(member)))

@@ -6,7 +6,10 @@ of a larger centre distance, and the contact ratios ε_α, ε_β, ε_γ (docs/cy
 
 The tip diameter is ``d_a = d + 2 m_n (h_aP* + x)`` without tip shortening; the root
 diameter ``d_f = d - 2 m_n (h_fP* - x)`` (generation by the basic rack of ISO 53 with
-dedendum ``h_fP* m_n`` and tip radius ``ρ_fP* m_n``).
+dedendum ``h_fP* m_n`` and tip radius ``ρ_fP* m_n``). The form diameter d_Ff is the
+rack's (:func:`.trochoid.generated_form`): below the undercut limit x_min the trochoid's
+crossing with the involute, and the path of contact of an undercut member starts there
+where the mating tip would reach lower (the rack, the limiting mate, cut that space).
 
 References
 ----------
@@ -23,6 +26,8 @@ import math
 from dataclasses import asdict, dataclass
 
 from ...validation import InputRangeError, UnusableInput
+from .trochoid import generated_form, undercut_limit_profile_shift
+from .undercut_mesh import mating_tip_penetration_mm
 
 __all__ = ["InvoluteGeometry", "inv", "inv_inverse", "involute_geometry", "roll_length_mm",
            "A_W_TOLERANCE_MODULES"]
@@ -89,6 +94,10 @@ class InvoluteGeometry:
     root_diameter_gear_mm: float
     form_diameter_pinion_mm: float          # d_Ff: lowest point of the generated involute
     form_diameter_gear_mm: float
+    undercut_pinion: bool                   # x < x_min: d_Ff is the trochoid's crossing
+    undercut_gear: bool
+    undercut_limit_shift_pinion: float      # x_min of ISO 21771 (trochoid.py)
+    undercut_limit_shift_gear: float
     active_start_diameter_pinion_mm: float  # d_Nf: start of the active profile
     active_start_diameter_gear_mm: float
     working_pitch_diameter_pinion_mm: float
@@ -138,20 +147,25 @@ class InvoluteGeometry:
                                   ("tip", "tip_diameter"))}
 
 
-def _form_diameter_mm(*, d, d_b, x, m_n, alpha_n, alpha_t, dedendum_factor,
-                      tip_radius_factor, field) -> float:
-    """d_Ff of rack generation: the rack flank's straight part ends ``h_fP - x m_n
-    - ρ_fP (1 - sin α_n)`` below the generating pitch line (radial: the same in the
-    normal and transverse sections) and touches the gear on the transverse line of action
-    at that height over sin α_t from the pitch point (Niemann/Winter ch. 21)."""
-    h = m_n * (dedendum_factor - x - tip_radius_factor * (1.0 - math.sin(alpha_n)))
-    along = 0.5 * d * math.sin(alpha_t) - h / math.sin(alpha_t)
-    if along < 0.0:
-        x_min = (dedendum_factor - tip_radius_factor * (1.0 - math.sin(alpha_n))
-                 - 0.5 * d * math.sin(alpha_t) ** 2 / m_n)
-        raise InputRangeError(field, x, f">= {x_min:.4f} (undercut: the rack's straight "
-                                        "flank cuts below the base circle)")
-    return 2.0 * math.hypot(0.5 * d_b, along)
+def _check_mating_tip(forms, i, *, z, x, r_b, r_a, d, a_w, alpha_n, alpha_t, m_t, x_min,
+                      field) -> None:
+    """Raise InputRangeError if the mate's tip cuts into undercut member ``i``'s tooth
+    (:func:`.undercut_mesh.mating_tip_penetration_mm`; 1e-9 mm: a tip touching the
+    involute at the start of the path is ~1e-9 inside)."""
+    j = 1 - i
+    s_t = m_t * (0.5 * math.pi + 2.0 * x[j] * math.tan(alpha_n))
+    pen = mating_tip_penetration_mm(
+        forms[i], teeth=z[i], base_radius_mm=r_b[i], tip_radius_mm=r_a[i],
+        half_angle_rad=(0.5 * math.pi + 2.0 * x[i] * math.tan(alpha_n)) / z[i] + inv(alpha_t),
+        mate_teeth=z[j], mate_tip_radius_mm=r_a[j],
+        mate_tip_half_angle_rad=s_t / d[j] + inv(alpha_t) - inv(math.acos(r_b[j] / r_a[j])),
+        centre_distance_mm=a_w)
+    if pen > 1e-9:
+        member, mate = ("pinion", "gear")[i], ("pinion", "gear")[j]
+        raise InputRangeError(field, x[i], f"a larger value (interference: the {mate} tip "
+                                           f"cuts {pen:.4f} mm into the undercut {member} "
+                                           f"(z = {z[i]}, x_min = {x_min:.4f}) below its form "
+                                           f"circle d_Ff = {forms[i].form_diameter_mm:.4f} mm)")
 
 
 def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: float,
@@ -194,11 +208,13 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     Raises
     ------
     InputRangeError
-        A centre distance below the zero-backlash one (the teeth interfere), undercut,
-        pointed teeth, a tip touching the mating root, a mating tip reaching below the
-        form circle (interference), named by the field that decides it.
+        A centre distance below the zero-backlash one (the teeth interfere), an undercut
+        cutting the whole involute (its crossing at or above d_a), pointed teeth, a tip
+        touching the mating root, a mating tip reaching below the form circle of a
+        member that is not undercut or cutting into the root of one that is
+        (interference), named by the field that decides it.
     UnusableInput
-        A transverse contact ratio ε_α < 1.
+        A transverse contact ratio ε_α < 1 (naming an undercut that shortened the path).
     """
     z1, z2, m_n = pinion_teeth, gear_teeth, normal_module_mm
     x1, x2 = profile_shift_pinion, profile_shift_gear
@@ -210,8 +226,46 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     d1, d2 = z1 * m_t, z2 * m_t
     db1, db2 = d1 * math.cos(alpha_t), d2 * math.cos(alpha_t)
     a_ref = 0.5 * (d1 + d2)
+    da1 = d1 + 2.0 * m_n * (addendum_factor + x1) if tip_diameter_pinion_mm is None \
+        else tip_diameter_pinion_mm
+    da2 = d2 + 2.0 * m_n * (addendum_factor + x2) if tip_diameter_gear_mm is None \
+        else tip_diameter_gear_mm
+    df1 = d1 - 2.0 * m_n * (dedendum_factor - x1)
+    df2 = d2 - 2.0 * m_n * (dedendum_factor - x2)
+    for member, df, x in (("pinion", df1, x1), ("gear", df2, x2)):
+        if df <= 0.0:
+            raise InputRangeError(f"{field_prefix}profile_shift_{member}", x,
+                                  f"a root diameter d_f > 0 (d_f = {df:.4f} mm)")
+    forms = [generated_form(teeth=z, normal_module_mm=m_n, profile_shift=x,
+                            normal_pressure_angle_deg=normal_pressure_angle_deg,
+                            helix_angle_deg=helix_angle_deg, dedendum_factor=dedendum_factor,
+                            tip_radius_factor=tip_radius_factor) for z, x in ((z1, x1), (z2, x2))]
+    (dff1, cut1), (dff2, cut2) = ((f.form_diameter_mm, f.undercut) for f in forms)
+    x_min = [undercut_limit_profile_shift(
+        teeth=z, normal_pressure_angle_deg=normal_pressure_angle_deg,
+        helix_angle_deg=helix_angle_deg, dedendum_factor=dedendum_factor,
+        tip_radius_factor=tip_radius_factor) for z in (z1, z2)]
+    for member, z, x, d_a, d_ff, cut, lim in (("pinion", z1, x1, da1, dff1, cut1, x_min[0]),
+                                              ("gear", z2, x2, da2, dff2, cut2, x_min[1])):
+        if cut and not d_a > d_ff:
+            raise InputRangeError(f"{field_prefix}profile_shift_{member}", x,
+                                  f">= {lim:.4f}, the undercut limit x_min of z = {z} "
+                                  f"(undercut: the trochoid of the rack's tip cuts the "
+                                  f"whole involute, crossing it at d = {d_ff:.4f} mm >= "
+                                  f"d_a = {d_a:.4f} mm; a usable involute needs a larger "
+                                  "profile shift)")
+    for member, d_a, d_ff in (("pinion", da1, dff1), ("gear", da2, dff2)):
+        if not d_a > d_ff:
+            raise InputRangeError(f"{field_prefix}tip_diameter_{member}_mm", d_a,
+                                  f"> {d_ff:.4f} mm (the form diameter d_Ff)")
     # ISO 21771 eq. for the working pressure angle of zero backlash
-    alpha_wt0 = inv_inverse(inv(alpha_t) + 2.0 * math.tan(alpha_n) * (x1 + x2) / (z1 + z2))
+    inv_wt0 = inv(alpha_t) + 2.0 * math.tan(alpha_n) * (x1 + x2) / (z1 + z2)
+    if inv_wt0 < 0.0:
+        low = -inv(alpha_t) * (z1 + z2) / (2.0 * math.tan(alpha_n))
+        raise InputRangeError(f"{field_prefix}profile_shift_pinion + profile_shift_gear",
+                              x1 + x2, f">= {low:.4f} (a zero-backlash working pressure "
+                              "angle alpha_wt >= 0)")
+    alpha_wt0 = inv_inverse(inv_wt0)
     a_w0 = a_ref * math.cos(alpha_t) / math.cos(alpha_wt0)
     if centre_distance_mm is None:
         a_w, alpha_wt, j_bn = a_w0, alpha_wt0, 0.0
@@ -231,26 +285,6 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
         j_bt = 2.0 * (x_sum_w - x1 - x2) * m_n * math.tan(alpha_n) * math.cos(alpha_t) \
             / math.cos(beta)
         j_bn = j_bt * math.cos(beta_b)
-    da1 = d1 + 2.0 * m_n * (addendum_factor + x1) if tip_diameter_pinion_mm is None \
-        else tip_diameter_pinion_mm
-    da2 = d2 + 2.0 * m_n * (addendum_factor + x2) if tip_diameter_gear_mm is None \
-        else tip_diameter_gear_mm
-    df1 = d1 - 2.0 * m_n * (dedendum_factor - x1)
-    df2 = d2 - 2.0 * m_n * (dedendum_factor - x2)
-    for member, df, x in (("pinion", df1, x1), ("gear", df2, x2)):
-        if df <= 0.0:
-            raise InputRangeError(f"{field_prefix}profile_shift_{member}", x,
-                                  f"a root diameter d_f > 0 (d_f = {df:.4f} mm)")
-    common = dict(m_n=m_n, alpha_n=alpha_n, alpha_t=alpha_t, dedendum_factor=dedendum_factor,
-                  tip_radius_factor=tip_radius_factor)
-    dff1 = _form_diameter_mm(d=d1, d_b=db1, x=x1, field=f"{field_prefix}profile_shift_pinion",
-                             **common)
-    dff2 = _form_diameter_mm(d=d2, d_b=db2, x=x2, field=f"{field_prefix}profile_shift_gear",
-                             **common)
-    for member, d_a, d_ff in (("pinion", da1, dff1), ("gear", da2, dff2)):
-        if not d_a > d_ff:
-            raise InputRangeError(f"{field_prefix}tip_diameter_{member}_mm", d_a,
-                                  f"> {d_ff:.4f} mm (the form diameter d_Ff)")
     # tip thickness: s_t = m_t (π/2 + 2 x tan α_n) on d, carried to d_a by the involute
     s_an = []
     for member, d, d_b, d_a, x in (("pinion", d1, db1, da1, x1), ("gear", d2, db2, da2, x2)):
@@ -273,25 +307,41 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
     # the path of contact on the transverse line of action (ISO 21771, ε_α)
     line = a_w * math.sin(alpha_wt)
     u_a1, u_a2 = roll_length_mm(da1, db1), roll_length_mm(da2, db2)
-    g_alpha = u_a1 + u_a2 - line
     p_bt = math.pi * m_t * math.cos(alpha_t)
-    u_nf1, u_nf2 = line - u_a2, line - u_a1         # roll lengths of the active start
+    u_nf = [line - u_a2, line - u_a1]               # roll lengths of the active start
+    g_alpha = u_a1 + u_a2 - line
     dnf = []
-    for member, u_nf, d_b, d_ff, other in (("pinion", u_nf1, db1, dff1, "gear"),
-                                           ("gear", u_nf2, db2, dff2, "pinion")):
+    for i, (member, d_b, d_ff, cut, other) in enumerate((("pinion", db1, dff1, cut1, "gear"),
+                                                         ("gear", db2, dff2, cut2, "pinion"))):
         u_ff = roll_length_mm(d_ff, d_b)
-        if u_nf < u_ff - 1e-9:
-            raise InputRangeError(f"{field_prefix}profile_shift_{member}",
-                                  x1 if member == "pinion" else x2,
-                                  f"a larger value (interference: the {other} tip meets the "
-                                  f"{member} {u_ff - u_nf:.4f} mm below its form circle "
-                                  f"d_Ff = {d_ff:.4f} mm on the line of action)")
-        dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf))
+        if cut:     # the mate's tip must pass through the space the rack's tip cut
+            _check_mating_tip(forms, i, z=(z1, z2), x=(x1, x2), r_b=(0.5 * db1, 0.5 * db2),
+                              r_a=(0.5 * da1, 0.5 * da2), d=(d1, d2), a_w=a_w,
+                              alpha_n=alpha_n, alpha_t=alpha_t, m_t=m_t, x_min=x_min[i],
+                              field=f"{field_prefix}profile_shift_{member}")
+        if u_nf[i] < u_ff - 1e-9:
+            if not cut:
+                raise InputRangeError(f"{field_prefix}profile_shift_{member}",
+                                      x1 if member == "pinion" else x2,
+                                      f"a larger value (interference: the {other} tip meets "
+                                      f"the {member} {u_ff - u_nf[i]:.4f} mm below its form "
+                                      f"circle d_Ff = {d_ff:.4f} mm on the line of action)")
+            # undercut: the mate's tip clears the cut root, contact starts at d_Ff
+            g_alpha -= u_ff - u_nf[i]
+            u_nf[i] = u_ff
+        dnf.append(2.0 * math.hypot(0.5 * d_b, u_nf[i]))
     eps_alpha = g_alpha / p_bt
     if eps_alpha < 1.0:
+        why = "".join(f"; the {m} (z = {z}, x = {x:g}) is undercut below x_min = {lim:.4f}: "
+                      f"its involute starts at d_Ff = {d_ff:.4f} mm, above the mating tip's "
+                      f"reach, which shortens the path (raise its profile shift toward x_min)"
+                      for m, z, x, lim, d_ff, start, reach in (
+                          ("pinion", z1, x1, x_min[0], dff1, u_nf[0], line - u_a2),
+                          ("gear", z2, x2, x_min[1], dff2, u_nf[1], line - u_a1))
+                      if start > reach)
         raise UnusableInput(f"transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1 "
                             f"(length of contact {g_alpha:.4f} mm, base pitch {p_bt:.4f} mm): "
-                            "raise the addendum factor or lower the centre distance")
+                            f"raise the addendum factor or lower the centre distance{why}")
     eps_beta = face_width_mm * math.sin(beta) / (math.pi * m_n)
     return InvoluteGeometry(
         pinion_teeth=z1, gear_teeth=z2, normal_module_mm=m_n, transverse_module_mm=m_t,
@@ -304,6 +354,8 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
         tip_diameter_pinion_mm=da1, tip_diameter_gear_mm=da2,
         root_diameter_pinion_mm=df1, root_diameter_gear_mm=df2,
         form_diameter_pinion_mm=dff1, form_diameter_gear_mm=dff2,
+        undercut_pinion=cut1, undercut_gear=cut2,
+        undercut_limit_shift_pinion=x_min[0], undercut_limit_shift_gear=x_min[1],
         active_start_diameter_pinion_mm=dnf[0], active_start_diameter_gear_mm=dnf[1],
         working_pitch_diameter_pinion_mm=2.0 * a_w * z1 / (z1 + z2),
         working_pitch_diameter_gear_mm=2.0 * a_w * z2 / (z1 + z2),

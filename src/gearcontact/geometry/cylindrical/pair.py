@@ -42,8 +42,9 @@ unknown tables or keys are errors. docs/cylindrical.md describes every key.
 
 Every field is checked on load: :class:`~gearcontact.validation.InputRangeError` names
 the dotted key, the value and the allowed range; the ISO 21771 geometry is computed on
-construction, so an impossible pair (undercut, pointed teeth, interference, a centre
-distance below the zero-backlash one) fails on load too.
+construction, so an impossible pair (an undercut cutting the whole involute, pointed
+teeth, interference, a centre distance below the zero-backlash one) fails on load too;
+an undercut member is generated (docs/cylindrical.md sec. 4).
 
 References
 ----------
