@@ -65,6 +65,8 @@ def test_unknown_kind(tmp_path):
     ("cylindrical", "dedendum_factor", 0.9, "(1, 2]"),
     ("cylindrical", "rack_tip_radius_factor", 0.6, "[0, 0.47"),
     ("cylindrical", "centre_distance_mm", 99.0, ">= 100.08"),
+    # beyond the tip circles' reach there is no mesh at all (was a negative eps_alpha)
+    ("cylindrical", "centre_distance_mm", 110.0, "where the tip circles"),
     ("cylindrical", "tip_diameter_pinion_mm", 45.0, "form diameter"),
     ("cylindrical", "colour", 1.0, "known key"),
     ("modifications.pinion", "tip_relief_um", 600.0, "[0, 500]"),

@@ -278,6 +278,13 @@ def involute_geometry(*, pinion_teeth: int, gear_teeth: int, normal_module_mm: f
                                   f">= {a_w0 - A_W_TOLERANCE_MODULES * m_n:.6f} mm (the "
                                   f"zero-backlash centre distance of x1 + x2 = {x1 + x2:g} "
                                   f"is {a_w0:.6f} mm; closer, the teeth interfere)")
+        # beyond half the tip diameters' sum the tip circles do not overlap: no mesh
+        if not a_w < 0.5 * (da1 + da2):
+            raise InputRangeError(f"{field_prefix}centre_distance_mm", a_w,
+                                  f"< {0.5 * (da1 + da2):.6f} mm, where the tip circles "
+                                  f"(d_a = {da1:.4f}, {da2:.4f} mm) meet (the zero-backlash "
+                                  f"centre distance of x1 + x2 = {x1 + x2:g} is "
+                                  f"{a_w0:.6f} mm)")
         alpha_wt = math.acos(min(a_ref * math.cos(alpha_t) / a_w, 1.0))
         # the profile-shift sum that would close the gap at a_w, and the base-circle arc
         # (= length along the line of action) it stands for, in the normal section
