@@ -113,6 +113,24 @@ def test_golden_c_equals_the_golden_model_on_the_rtl_vectors(built):
     assert lines == [f"{c}: {n[c]} vectors, 0 mismatches" for c in CORES]
 
 
+def test_golden_sources_alone_build_into_the_users_own_program(built, tmp_path):
+    """Issue 25's "compile the golden C library into their own code": the checker
+    (standing in for the user's program) and the four golden sources alone, compiled by
+    one gcc line of the user's own (no Makefile, none of its flags: -O3 -ffast-math
+    -pedantic, no -lm), link and give 0 mismatches on the same vectors: the golden code
+    needs neither libm nor a floating-point model (integer only)."""
+    lib, vec = built
+    exe = tmp_path / "own_check"
+    build = subprocess.run(["gcc", *STRICT, "-pedantic", "-O3", "-ffast-math", "-o", str(exe),
+                            str(lib / "gearcontact_check.c"),
+                            *(str(lib / n) for n in GOLDEN_SOURCES)],
+                           capture_output=True, text=True, timeout=300)
+    assert build.returncode == 0, build.stderr[-3000:]
+    run = subprocess.run([str(exe), str(vec)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.count(", 0 mismatches") == len(CORES)
+
+
 def test_golden_c_portable_build_equals_the_golden_model(built, tmp_path):
     """The code other compilers get (-DGC_PORTABLE_SCHEDULE: no asm barrier in the fit's
     MAC; -DGC_PORTABLE_BIT_LENGTH: the six-step bit length) computes the same integers:
