@@ -321,9 +321,10 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     m = baked_pinv().weights
     worst_c = worst_ab = worst_hz = 0.0
     valid = refused = 0
+    undecided = []
     code = FORMS[form][0]
     count = FP64_STENCILS if form == "hamrock-brewe" else FP64_STENCILS // 3
-    for g, w, e in zip(gaps[:count], loads, moduli):
+    for i, (g, w, e) in enumerate(zip(gaps[:count], loads, moduli)):
         arr = (ctypes.c_double * 49)(*g)
         fit, ref = so.gc_fit_fp64(arr), fit_curvatures(g)
         scale = np.abs(m * g).sum(axis=1)
@@ -334,7 +335,16 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
         for x, y in ((fit.A_minus_per_mm, ref.A_minus_per_mm),
                      (fit.B_minus_per_mm, ref.B_minus_per_mm)):
             worst_ab = max(worst_ab, abs(x - y) / quad if quad else abs(x - y))
-        assert bool(fit.elliptic) == ref.elliptic
+        # elliptic is B- > 0 on both sides: the same wherever the reference's B- lies
+        # beyond the bound B- is held to above (1e-12 quad); within it the sign is the
+        # rounding's, which the reference's own BLAS kernel decides (the cylinder among
+        # the corner cases, c3 = 0.1 and exactly c4 = c5 = 0: c5 = -4.9e-17 on the AMD
+        # EPYC's OpenBLAS, +1.8e-17 summed exactly from the rounded products, +3.5e-17
+        # in C; the products' scale 1.48), and B- must only be 0 within that bound
+        if abs(ref.B_minus_per_mm) > 1e-12 * quad:
+            assert bool(fit.elliptic) == ref.elliptic
+        else:
+            undecided.append(i)
         chain = so.gc_chain_fp64(arr, w, e, code)
         try:
             hz = chain_reference(g, w, e_prime_mpa=e, hertz_form=form).hertz
@@ -348,6 +358,9 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
             worst_hz = max(worst_hz, abs(getattr(chain.hertz, name) - want) / abs(want))
         valid += 1
     assert valid >= count // 2 and refused >= count // 10
+    # only among the corner cases (the flat and cylindrical stencils; they come first,
+    # len(W) - COUNT of them), never a random stencil
+    assert all(i < len(ins["W"]) - COUNT for i in undecided), undecided
     assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-11, \
         (worst_c, worst_ab, worst_hz)
 
