@@ -27,10 +27,11 @@ are ~10 ns, so each says something else about the tail):
   median left out (an interruption hits one sweep): the code's own spread over its
   inputs, the mean resolving below the counter's step (a call's start falls anywhere
   between two steps). With fixed operation counts this is the figure the code owns;
-  ``call`` and ``tsc`` add what the machine adds (interruptions, a shared core). Targets of issue 25: golden chain <= 200 ns median, fp64 <= 100 ns,
-p99/p50 <= 1.5. Pin one core on a quiet machine for the targets
-(``taskset -c 1 python benchmarks/bench_c.py``); on a shared machine the tail
-includes other load.
+  ``call`` and ``tsc`` add what the machine adds (interruptions, a shared core).
+
+Targets of issue 25: golden chain <= 200 ns median, fp64 <= 100 ns, p99/p50 <= 1.5.
+Pin one core on a quiet machine for the targets (``taskset -c 1 python
+benchmarks/bench_c.py``); on a shared machine the tail includes other load.
 
 The twin step: the drivetrain FMU of s0003 is exported, its ``sources/`` built with a
 timing driver into one program (gcc with the flags of the FMU's binary,
@@ -44,14 +45,9 @@ the others), per backend, beside the compiled Python twin's step (numba,
 ``gearcontact twin``'s ``step_time_p50_us``). Target of issue 25: <= 0.5 us per step
 (>= 20x real time at 10 us). The steps are also given by the pairs loaded after the
 call (read outside the timed region): a call forms one preview per pair loaded at the
-next step's start, so these are its slow and fast steps. Last measured (docs/export.md,
-the ninth round: one preview per pair and step, a step's fp64 previews formed part by
-part over its pairs): instructions per step fp64 3,607 -> 3,379, golden 7,903 ->
-6,931; alternated before/after, 6 rounds at a load of 8-10, median ns per step fp64
-503 -> 429 (ratio 0.84), p99/p50 1.70-1.92 -> 1.32-1.60; golden 810 -> 829 (1.00),
-p99/p50 2.11-2.32 -> 1.37-1.71. The machine's state
-moves the absolute figures more than the code does: compare alternated runs and
-instructions.
+next step's start, so these are its slow and fast steps. The figures measured, round
+by round and machine by machine: docs/export.md. The machine's state moves the
+absolute figures more than the code does: compare alternated runs and instructions.
 
 Instruction counts (``--instructions``, needs valgrind): the same calls once each
 under ``valgrind --tool=callgrind``, instructions per call of each function (inclusive
