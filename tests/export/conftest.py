@@ -1,7 +1,8 @@
 """Shared by the export tests.
 
 - FMPy in a Python process where gearcontact cannot be imported (the situation of a
-  twin developer who has only the FMU): :func:`simulate_isolated`.
+  twin developer who has only the FMU): :func:`simulate_isolated`, :func:`run_isolated`
+  (a docs snippet as written).
 - One run of the README's export lines per test run (both xdist workers: tests/run_once.py),
   shared by the export tests.
   
@@ -74,10 +75,9 @@ def readme_export(tmp_path_factory):
 
 #: Run in ``python -I`` (no PYTHONPATH, no user site): a meta-path finder refuses every
 #: ``gearcontact`` module before any other finder (the editable install would find it),
-#: the script checks that ``import gearcontact`` fails, then simulates the FMU with FMPy
-#: and writes the result columns as JSON (floats as hex: exact).
-_ISOLATED = r'''
-import importlib.abc, json, sys
+#: and the script checks that ``import gearcontact`` fails before it goes on.
+_BLOCKER = r'''
+import importlib.abc, sys
 
 class Blocker(importlib.abc.MetaPathFinder):
     def find_spec(self, name, path=None, target=None):
@@ -92,6 +92,12 @@ except ImportError:
     pass
 else:
     raise SystemExit("gearcontact was importable")
+'''
+
+#: ... then simulates the FMU with FMPy and writes the result columns as JSON (floats as
+#: hex: exact).
+_ISOLATED = _BLOCKER + r'''
+import json
 import fmpy
 args = json.loads(sys.argv[1])
 if "input_npy" in args:         # a structured input signal saved by numpy
@@ -113,3 +119,20 @@ def simulate_isolated(fmu: Path, **kwargs) -> dict:
     assert run.returncode == 0, run.stderr[-2000:]
     cols = json.loads(run.stdout.splitlines()[-1])
     return {n: np.array([float.fromhex(v) for v in vs]) for n, vs in cols.items()}
+
+
+def run_isolated(code: str, cwd: Path) -> str:
+    """Python ``code`` as written (a docs snippet) in a process without gearcontact, in
+    ``cwd``; its stdout."""
+    run = subprocess.run([sys.executable, "-I", "-c", _BLOCKER + code], cwd=cwd,
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return run.stdout
+
+
+def docs_snippet(chapter: str) -> str:
+    """The ``python`` block under "## Use from FMPy" of the chapter of docs/export.md
+    whose title starts with ``chapter``."""
+    text = (ROOT / "docs" / "export.md").read_text()
+    part = text.split("\n# " + chapter, 1)[1].split("\n# ", 1)[0]
+    return part.split("## Use from FMPy", 1)[1].split("```python\n", 1)[1].split("```")[0]

@@ -113,6 +113,24 @@ def test_golden_c_equals_the_golden_model_on_the_rtl_vectors(built):
     assert lines == [f"{c}: {n[c]} vectors, 0 mismatches" for c in CORES]
 
 
+def test_golden_sources_alone_build_into_the_users_own_program(built, tmp_path):
+    """Issue 25's "compile the golden C library into their own code": the checker
+    (standing in for the user's program) and the four golden sources alone, compiled by
+    one gcc line of the user's own (no Makefile, none of its flags: -O3 -ffast-math
+    -pedantic, no -lm), link and give 0 mismatches on the same vectors: the golden code
+    needs neither libm nor a floating-point model (integer only)."""
+    lib, vec = built
+    exe = tmp_path / "own_check"
+    build = subprocess.run(["gcc", *STRICT, "-pedantic", "-O3", "-ffast-math", "-o", str(exe),
+                            str(lib / "gearcontact_check.c"),
+                            *(str(lib / n) for n in GOLDEN_SOURCES)],
+                           capture_output=True, text=True, timeout=300)
+    assert build.returncode == 0, build.stderr[-3000:]
+    run = subprocess.run([str(exe), str(vec)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.count(", 0 mismatches") == len(CORES)
+
+
 def test_golden_c_portable_build_equals_the_golden_model(built, tmp_path):
     """The code other compilers get (-DGC_PORTABLE_SCHEDULE: no asm barrier in the fit's
     MAC; -DGC_PORTABLE_BIT_LENGTH: the six-step bit length) computes the same integers:
@@ -255,7 +273,8 @@ def _library(lib: Path):
 def test_fp64_hertz_within_1e12_of_the_python_reference(built, form):
     """The stage-D vectors' inputs, decoded. Hamrock-Brewe: the same quantities on two
     independent paths, the cube root within 5 ulp instead of libm's (measured 1.8e-15). Exact: Carlson's R_F, R_D and a bisection to
-    adjacent doubles against scipy's and Brent's to 4 eps (measured 1.8e-15)."""
+    adjacent doubles against scipy's and Brent's to 4 eps (measured 1.8e-15; 2.5e-15 on the
+    AMD EPYC machine of session 19)."""
     lib, vec = built
     so = _library(lib)
     code, function = FORMS[form]
@@ -303,9 +322,10 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
     m = baked_pinv().weights
     worst_c = worst_ab = worst_hz = 0.0
     valid = refused = 0
+    undecided = []
     code = FORMS[form][0]
     count = FP64_STENCILS if form == "hamrock-brewe" else FP64_STENCILS // 3
-    for g, w, e in zip(gaps[:count], loads, moduli):
+    for i, (g, w, e) in enumerate(zip(gaps[:count], loads, moduli)):
         arr = (ctypes.c_double * 49)(*g)
         fit, ref = so.gc_fit_fp64(arr), fit_curvatures(g)
         scale = np.abs(m * g).sum(axis=1)
@@ -316,7 +336,16 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
         for x, y in ((fit.A_minus_per_mm, ref.A_minus_per_mm),
                      (fit.B_minus_per_mm, ref.B_minus_per_mm)):
             worst_ab = max(worst_ab, abs(x - y) / quad if quad else abs(x - y))
-        assert bool(fit.elliptic) == ref.elliptic
+        # elliptic is B- > 0 on both sides: the same wherever the reference's B- lies
+        # beyond the bound B- is held to above (1e-12 quad); within it the sign is the
+        # rounding's, which the reference's own BLAS kernel decides (the cylinder among
+        # the corner cases, c3 = 0.1 and exactly c4 = c5 = 0: c5 = -4.9e-17 on the AMD
+        # EPYC's OpenBLAS, +1.8e-17 summed exactly from the rounded products, +3.5e-17
+        # in C; the products' scale 1.48), and B- must only be 0 within that bound
+        if abs(ref.B_minus_per_mm) > 1e-12 * quad:
+            assert bool(fit.elliptic) == ref.elliptic
+        else:
+            undecided.append(i)
         chain = so.gc_chain_fp64(arr, w, e, code)
         try:
             hz = chain_reference(g, w, e_prime_mpa=e, hertz_form=form).hertz
@@ -330,6 +359,9 @@ def test_fp64_fit_and_chain_within_1e12_of_the_python_reference(built, form):
             worst_hz = max(worst_hz, abs(getattr(chain.hertz, name) - want) / abs(want))
         valid += 1
     assert valid >= count // 2 and refused >= count // 10
+    # only among the corner cases (the flat and cylindrical stencils; they come first,
+    # len(W) - COUNT of them), never a random stencil
+    assert all(i < len(ins["W"]) - COUNT for i in undecided), undecided
     assert worst_c <= 1e-12 and worst_ab <= 1e-12 and worst_hz <= 1e-11, \
         (worst_c, worst_ab, worst_hz)
 

@@ -13,6 +13,7 @@ by a mesh rotation that sweeps from open flanks to a few times the rated load.
 from __future__ import annotations
 
 import math
+import re
 import zipfile
 from pathlib import Path
 
@@ -24,7 +25,8 @@ from fmpy.validation import validate_fmu  # noqa: E402
 
 from gearcontact.export.mesh_law import BACKENDS, MeshLawTable, mesh_outputs  # noqa: E402
 
-from .conftest import export_fmu_cli as _cli, simulate_isolated  # noqa: E402
+from .conftest import (docs_snippet, export_fmu_cli as _cli, run_isolated,  # noqa: E402
+                       simulate_isolated)
 
 ROOT = Path(__file__).resolve().parents[2]
 OUTPUTS = ("torque_pinion_nm", "torque_gear_nm", "mesh_force_n", "te_arcsec", "p_max_mpa",
@@ -166,16 +168,9 @@ def test_fmu_rejects_non_finite_inputs(exported):
     slave.freeInstance()
 
 
-def test_docs_snippet_runs(exported, capsys):
-    """The FMPy snippet of docs/export.md, on the exported FMU: it prints the mean gear
-    torque and the most pairs in contact, which equal the twin's law at its inputs."""
-    fmu, tab = exported
-    text = (ROOT / "docs" / "export.md").read_text()
-    snippet = text.split("## Use from FMPy", 1)[1].split("```python\n", 1)[1].split("```")[0]
-    assert "clib_fmu/gearcontact_mesh_s0003.fmu" in snippet
-    exec(compile(snippet.replace("clib_fmu/gearcontact_mesh_s0003.fmu", str(fmu)),
-                 "export.md", "exec"), {})
-    mean, pairs = capsys.readouterr().out.split()
+def _snippet_law(tab: MeshLawTable) -> tuple[float, int]:
+    """What the docs' snippet prints, from the twin's law on ``tab`` (golden): the mean
+    gear torque and the most pairs in contact over its 201 output points."""
     assert tab.ratio == 10.0        # the snippet's u
     t = np.linspace(0.0, 0.01, 201)
     w_p = 314.16
@@ -183,9 +178,46 @@ def test_docs_snippet_runs(exported, capsys):
     # loop), except the first row: the inputs at the recorded time minus one interval
     ref = [mesh_outputs(tab, w_p * s, w_p * s / 10.0 - 2e-4, w_p, w_p / 10.0,
                         backend="golden") for s in np.concatenate([[0.0], t[:-1]])]
-    assert float(mean) == pytest.approx(np.mean([r.torque_gear_nm for r in ref]),
-                                        rel=1e-12)
-    assert int(pairs) == max(r.active_pairs for r in ref)
+    return (float(np.mean([r.torque_gear_nm for r in ref])),
+            max(r.active_pairs for r in ref))
+
+
+def test_docs_snippet_runs(exported, capsys):
+    """The FMPy snippet of docs/export.md, on the exported FMU: it prints the mean gear
+    torque and the most pairs in contact, which equal the twin's law at its inputs
+    (1e-12 relative: the mean of 201 torques the FMU gives bit for bit, summed in
+    another order)."""
+    fmu, tab = exported
+    snippet = docs_snippet("The gear mesh as an FMI 3.0 FMU")
+    assert "clib_fmu/gearcontact_mesh_s0003.fmu" in snippet
+    exec(compile(snippet.replace("clib_fmu/gearcontact_mesh_s0003.fmu", str(fmu)),
+                 "export.md", "exec"), {})
+    mean, pairs = capsys.readouterr().out.split()
+    want_mean, want_pairs = _snippet_law(tab)
+    assert float(mean) == pytest.approx(want_mean, rel=1e-12)
+    assert int(pairs) == want_pairs
+
+
+def test_docs_snippet_as_written_without_gearcontact(readme_export):
+    """The snippet exactly as written (its relative path, no replacement) in a process
+    where gearcontact cannot be imported, in the README's directory, on the README's
+    FMU (``gearcontact export fmu --pair s0003 --kind mesh --out clib_fmu/``: default
+    options, 61 phases): it prints what the docs say it prints (the mean gear torque to
+    the docs' 0.1 N·m, the most pairs exactly), and that is the twin's law on the FMU's
+    table (1e-12 relative, as above)."""
+    base, lines, runs = readme_export
+    line = next(x for x in lines["export_fmu"] if "--kind mesh" in x)
+    assert runs[line].returncode == 0, runs[line].stderr
+    mean, pairs = run_isolated(docs_snippet("The gear mesh as an FMI 3.0 FMU"),
+                               base).splitlines()[-1].split()
+    text = (ROOT / "docs" / "export.md").read_text()
+    stated = re.search(r"this prints a mean gear torque of ([\d.]+) N·m with up to (\d+) "
+                       r"pairs", text)
+    assert stated and f"{float(mean):.1f}" == stated[1] and pairs == stated[2]
+    want_mean, want_pairs = _snippet_law(MeshLawTable.from_npz(
+        base / "clib_fmu" / "gearcontact_mesh_s0003_table.npz"))
+    assert float(mean) == pytest.approx(want_mean, rel=1e-12)
+    assert int(pairs) == want_pairs
 
 
 def test_fmu_of_a_pair_without_ease_off_table(tmp_path):
