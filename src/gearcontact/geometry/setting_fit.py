@@ -80,9 +80,9 @@ from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_p
 from .minimax_fit import minimize_max_abs
 
 __all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "RELIEF_KEYS", "SEED_PARAMETERS",
-           "SettingFit", "apply_corrections", "blade_relief", "checked_options",
+           "SettingFit", "apply_corrections", "blade_relief", "blade_reliefs", "checked_options",
            "conjugate_seed", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
-           "solve_fit", "with_relief"]
+           "relieved_setup", "solve_fit", "with_relief"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -239,8 +239,33 @@ def blade_relief(blade) -> dict:
 
 def with_relief(setup: MachineSetup, relief: dict) -> MachineSetup:
     """``setup`` with its blade's relief keys set to ``relief`` (:func:`blade_relief`;
-    the blade's checks run: a relief the new blade cannot carry names its key)."""
-    return dataclasses.replace(setup, blade=dataclasses.replace(setup.blade, **relief))
+    the blade's checks run: a relief the new blade cannot carry names its key,
+    ``blade.<member>.<side>.<key>``)."""
+    return dataclasses.replace(setup, blade=dataclasses.replace(
+        setup.blade, where=f"blade.{setup.member}.{setup.side}", **relief))
+
+
+def blade_reliefs(setups) -> dict:
+    """``{(member, side): relief}`` (:func:`blade_relief`) of the relieved blades among
+    the set-ups ``setups`` (a pair's ``machine`` tables)."""
+    return {(s.member, s.side): blade_relief(s.blade) for s in setups if s.blade.relieved}
+
+
+def relieved_setup(setup: MachineSetup, relief: dict, blank: BlankDesign) -> MachineSetup:
+    """``setup`` with ``relief`` kept on its blade (:func:`with_relief`), a pinion's
+    checked to leave the blade point that cuts its mean point on the main profile (the
+    pivot of the setting fit; refused naming the relief depth)."""
+    if not relief:
+        return setup
+    out = with_relief(setup, relief)
+    if setup.member == "pinion" and out.blade.relieved:
+        main = with_relief(out, dict.fromkeys(relief, 0.0))
+        cone, _ = nominal_pinion_box(blank, 1.0)
+        u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
+        solver = EnvelopeSolver(main, blank, cone)
+        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
+        _check_pivot_on_main(out.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
+    return out
 
 
 def _piece_setups(setup: MachineSetup) -> list:
@@ -432,7 +457,8 @@ class SettingFit:
 
 def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                      parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
-                     tolerance_um: float = 1e-6, objective: str = "rms") -> SettingFit:
+                     tolerance_um: float = 1e-6, objective: str = "rms", box=None
+                     ) -> SettingFit:
     """Fit the ``parameters`` of the pinion set-up ``seed`` so that its generated flank
     reproduces ``target`` on an n_u x n_v grid over the target's active box.
 
@@ -458,6 +484,10 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
         reflective); ``"minimax"``: then, from that solution, the largest |deviation| on
         the fit grid (sequential linear programming, :func:`~.minimax_fit.minimize_max_abs`,
         to ``tolerance_um``; docs/machine_settings.md sec. 6).
+    box : FlankBoundary, optional
+        The box the fit grid covers (default the target's): a relieved blade's flank
+        starts at the root line its tip segment traces (:mod:`.kinked`), its part of
+        the target's box.
 
     Returns
     -------
@@ -473,7 +503,8 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     """
     names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
     t0 = time.perf_counter()
-    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    prob = FitProblem(seed, blank, target, names,
+                      *_fit_grid(target.boundary if box is None else box, n_u, n_v))
     return solve_fit(prob, tolerance_um=tolerance_um, objective=objective, started=t0)
 
 
