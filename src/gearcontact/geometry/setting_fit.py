@@ -385,7 +385,8 @@ def _check_pivot_on_main(blade: BladeSettings, depth_mm: float) -> None:
                 f"{blade.where}.{key}_depth_mm", getattr(blade, f"{key}_depth_mm"),
                 f"{'<' if key == 'toprem' else '>'} {depth_mm:.4f} mm, the depth behind the "
                 "tip plane of the blade point that cuts the pinion's mean point (the "
-                "setting fit pivots the blade there, on its main profile; the relief is "
+                "settings are solved there on the blade's main profile: the standard "
+                "settings' pressure angle, the setting fit's blade pivot; the relief is "
                 "kept as given, not fitted)")
 
 
