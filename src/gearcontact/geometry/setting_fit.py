@@ -49,6 +49,15 @@ of 8 lower the linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, 
 tilt, swivel or the blade radius added to the seven leave 1.09-1.26 um at conditions
 of 2e4-4e4.
 
+A relieved blade (Toprem / Flankrem, :mod:`.blade`) keeps its relief as given
+(:data:`RELIEF_KEYS`: a fixed blade property, never fitted): the corrections act on its
+main profile, the pivot is the main profile's point that cuts the mean node (a relief
+reaching it is refused, naming its depth), and the generated flank at each node is the
+deepest of the blade's pieces, one envelope per blade segment (the smallest deviation,
+the least material: :mod:`.kinked`), so nodes on both sides of the kink enter the same
+least squares. Without a relief the code path is the smooth one, bit for bit
+(docs/machine_settings.md sec. 6, "Relieved blades").
+
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 6.1,
