@@ -83,6 +83,7 @@ class _KinkedPsi:
             out[k == i] = piece.psi(u[k == i], v[k == i])
         return out
 
+
 @dataclass(frozen=True)
 class SideResidual:
     """The fit of one pinion flank and its residual over the full flank.
