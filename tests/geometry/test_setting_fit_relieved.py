@@ -9,6 +9,8 @@ Truths:
   settings, gives back its settings from those perturbed settings (each within the
   first-order bound of the data's own error through the fit's Jacobian), its flank
   over both pieces within 0.01 um and its kink line;
+- the same with a Flankrem added (three pieces, two kinks) on the fit grid of the
+  kinked target flank itself;
 - refusals: a relief reaching the blade point that cuts the mean point (the pivot of
   the blade corrections), a relief as a fitted parameter.
 """
@@ -147,6 +149,46 @@ def test_relieved_pair_recovers_its_own_settings_from_a_measured_csv(tmp_path):
     k_cut, k_target = cut.kinks[0].u_nodes, target.kinks[0].u_nodes
     assert np.all(np.isfinite(k_target)) and 1.8 < k_target.min() < k_target.max() < 2.2
     assert np.abs(k_cut - k_target).max() < 2.5e-4
+
+
+@pytest.mark.slow       # ~8 s: the three-piece companion of the default test above
+def test_toprem_and_flankrem_three_pieces_recovered_on_the_fit_grid():
+    # the pair's drive pinion with a Flankrem added (1.5 deg from 5 mm: kink at u
+    # 5.38..5.84 mm, above the mean point) is the target flank itself (the kinked sheet,
+    # 80 x 100 nodes per piece) on the 9 x 11 fit grid, from the perturbed settings
+    # (~7 s). Truths as above: each setting within the first-order bound of the data's
+    # error at the grid nodes (the exact envelopes of the pair's settings against the
+    # kinked sheet), the flank on each of its three pieces within 0.01 um (measured
+    # 2.1e-4 / 5.9e-5 / 1.6e-5 um, toprem / main / flankrem), both kink lines within
+    # 2.5e-4 mm (measured 1.3e-7 / 1.6e-8 mm)
+    from gearcontact.geometry.setting_fit import FitProblem, _fit_grid, with_relief
+
+    pair = load_pair(TOPREM)
+    own = _pinion(pair, "drive")
+    own = with_relief(own, {**blade_relief(own.blade), "flankrem_angle_deg": 1.5,
+                            "flankrem_depth_mm": 5.0})
+    fw = pair.pinion_face_width_mm
+    seed = apply_corrections(own, _PERTURBATION, pivot_length_mm=0.0)
+    target = machine_flank(own, pair.blank, face_width_mm=fw, n_u=80, n_v=100)
+    assert target.names == ("toprem", "main", "flankrem")
+    fit = fit_pinion_setup(seed, pair.blank, target)
+    assert fit.status > 0 and blade_relief(fit.setup.blade) == blade_relief(own.blade)
+    names, grid = DEFAULT_PARAMETERS, _fit_grid(target.boundary, 9, 11)
+    prob = FitProblem(seed, pair.blank, target, names, *grid)
+    jac = prob.jacobian(np.array([fit.corrections[n] for n in names]) / prob.scale)
+    e = FitProblem(own, pair.blank, target, names, *grid).deviation_um(np.zeros(len(names)))
+    bound = prob.scale * np.linalg.norm(np.linalg.pinv(jac), axis=1) * np.linalg.norm(e)
+    for name, b in zip(names, bound):
+        want = -_PERTURBATION.get(name, 0.0)
+        assert abs(fit.corrections[name] - want) <= b, (name, fit.corrections[name], want, b)
+    cut = machine_flank(fit.setup, pair.blank, face_width_mm=fw, n_u=80, n_v=100)
+    u, v, res = flank_deviation_um(cut, target)
+    on = target.piece_index(u, v)
+    for piece in (0, 1, 2):
+        assert (on == piece).sum() > 100
+        assert np.abs(res[on == piece]).max() < 0.01, piece
+    for a, b in zip(cut.kinks, target.kinks):
+        assert np.abs(a.u_nodes - b.u_nodes).max() < 2.5e-4, a.name
 
 
 class _BoxOnly:
