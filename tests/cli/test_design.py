@@ -682,14 +682,16 @@ def test_the_generation_check_sees_the_synthesis_targets(argv, angle, turns, lev
     assert (targets.te0_pp_arcsec, targets.pattern_length_ratio) == levels
 
 
-@pytest.mark.parametrize("option", ["--machine-settings", "--synthesize-easeoff"])
-def test_relieved_blades_refused_where_the_kink_would_be_dropped(capsys, option):
-    # --machine-settings fits unrelieved blades (the pair's settings, Toprem included,
-    # are replaced); --synthesize-easeoff lays an ease-off on the kinked pinion: both
-    # exit 2 naming the relieved blade's key and its value, before any flank is built
-    # (tests/data/toprem: the pinion blades carry a 2 deg Toprem)
+@pytest.mark.parametrize("argv", [["--synthesize-easeoff"],
+                                  ["--machine-settings", "--local-synthesis"]])
+def test_relieved_blades_refused_where_the_kink_would_be_dropped(capsys, argv):
+    # --synthesize-easeoff lays an ease-off on the kinked pinion, --local-synthesis solves
+    # its settings for smooth blades: both exit 2 naming the relieved blade's key and its
+    # value, before any flank is built (tests/data/toprem: the pinion blades carry a
+    # 2 deg Toprem). --machine-settings alone keeps the relief
+    # (tests/cli/test_design_relieved.py)
     toprem = ROOT / "tests" / "data" / "toprem" / "iso23509_f2_toprem.toml"
-    assert main(["design", "--pair", str(toprem), option]) == 2
+    assert main(["design", "--pair", str(toprem), *argv]) == 2
     err = capsys.readouterr().err
     assert "[blade.pinion.drive] toprem_angle_deg = 2" in err, err
-    assert f"0 with {option}" in err, err
+    assert f"0 with {' '.join(argv)}" in err, err

@@ -117,7 +117,8 @@ def register(sub) -> None:
                         "fitted to cut that ease-off (the residual over each flank printed, "
                         "~15 s); else the standard settings from the blank (generated "
                         "pinion with lengthwise and profile crowning; a pair cut from machine "
-                        "settings gets those of its blank); prints the pair TOML "
+                        "settings gets those of its blank, its blades' Toprem / Flankrem "
+                        "kept as given); prints the pair TOML "
                         "with its [machine.*]/[blade.*] tables, written as "
                         "machine_settings.toml (and the residual map) with --out")
     p.add_argument("--local-synthesis", action="store_true",
@@ -224,24 +225,28 @@ def check(args) -> None:
 
 
 def _check_relieved_blades(args, pair) -> None:
-    """Refuse a pair whose blades carry a Toprem / Flankrem with the options that
-    would drop or smooth the kink, before any flank is built: ``--machine-settings``
-    (the standard settings and the ease-off fit, :mod:`~gearcontact.geometry.setting_fit`,
-    cut with unrelieved blades; the pair's own settings, reliefs included, are
-    replaced) and ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
+    """The Toprem / Flankrem of a pair's blades, before any flank is built: kept by
+    ``--machine-settings`` (``args.reliefs``: the standard settings and the settings
+    fit keep each relief as given on its blade,
+    :func:`~gearcontact.geometry.setting_fit.relieved_setup`),
+    refused where the kink would be dropped or smoothed: ``--machine-settings
+    --local-synthesis`` (the synthesized settings are solved for smooth blades) and
+    ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
     :func:`~gearcontact.geometry.flank.with_easeoff`, is resampled across the kink)."""
     from ..geometry.machine import relieved_blade_keys
+    from ..geometry.setting_fit import blade_reliefs
 
-    option = ("--machine-settings" if args.machine_settings else
+    args.reliefs = blade_reliefs(pair.machine)
+    option = ("--machine-settings --local-synthesis" if args.local_synthesis else
               "--synthesize-easeoff" if args.synthesize_easeoff else None)
     kinks = relieved_blade_keys(pair.machine)
     if option is None or not kinks:
         return
-    why = ("the settings it writes are fitted with unrelieved blades (the pair's own "
-           "settings, reliefs included, are replaced)" if args.machine_settings else
+    why = ("the synthesized settings are solved for smooth blades (--machine-settings "
+           "without it keeps the relief)" if args.local_synthesis else
            "an ease-off laid on the relieved pinion would smooth its kink")
-    raise InputRangeError(*kinks[0], f"0 with {option}: {why}; analyze, ltca, bending and export flanks "
-                          "take the relieved pair as it is")
+    raise InputRangeError(*kinks[0], f"0 with {option}: {why}; analyze, ltca, bending and "
+                          "export flanks take the relieved pair as it is")
 
 
 def _check_generation(args, pair) -> dict:
@@ -470,7 +475,8 @@ def _machine_settings(args, pair) -> int:
                 if v is not None}
     # the gear of the default flanks (check: generated where the formate gear undercuts)
     generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-    text = pair_to_toml(standard_machine_pair(pair, gear_generation=generation, **crowning),
+    text = pair_to_toml(standard_machine_pair(pair, gear_generation=generation,
+                                              reliefs=getattr(args, "reliefs", None), **crowning),
                         comments={"": f"{pair.name}: standard machine settings from the blank "
                                       "(gearcontact design --machine-settings;\nsigns: "
                                       f"docs/machine_settings.md); gear: {generation}"})
@@ -503,7 +509,8 @@ def _easeoff_settings(args, pair) -> int:
 
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
                                objective=args.fit or "rms",
-                               where=str(args.target_flank or "target flank"))
+                               where=str(args.target_flank or "target flank"),
+                               reliefs=getattr(args, "reliefs", None))
     print(easeoff_settings_toml(fit))
     print(fit.table())
     if args.out is not None:

@@ -46,6 +46,7 @@ from .formate import SIDES
 from .generated import EnvelopeSolver
 from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings, MachineSetup,
                       blade_profile, blade_through_point, mirror_setup)
+from .setting_fit import relieved_setup
 
 __all__ = ["complementary_pinion_setups", "crown_pinion_setups", "crown_profile",
            "crowning_corrections",
@@ -213,7 +214,7 @@ def crown_profile(blade: BladeSettings, *, radius_mm: float, at_length_mm: float
 
 def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
                     blade_profile_crowning_um: float = 10.0,
-                    gear_generation: str = "formate") -> dict:
+                    gear_generation: str = "formate", reliefs: dict | None = None) -> dict:
     """Standard settings of both members from the blank (module docstring).
 
     Parameters
@@ -237,6 +238,11 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
         (:func:`~.gear_generation.gear_generation`; the generated gear where the formate
         gear undercuts its pinion); the pinion is crowned from the settings conjugate
         to that gear (:func:`member_setups`).
+    reliefs : dict, optional
+        ``{(member, side): relief}`` (:func:`~.setting_fit.blade_reliefs`): the Toprem /
+        Flankrem kept on those blades as given, a pinion's checked to leave its mean
+        point on the main profile (:func:`~.setting_fit.relieved_setup`); the settings
+        are those of the smooth blades (the kink lies off the mean point).
 
     Returns
     -------
@@ -247,7 +253,7 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
         twin = standard_setups(dataclasses.replace(pair, pinion_hand="right", machine=()),
                                lengthwise_crowning_um=lengthwise_crowning_um,
                                blade_profile_crowning_um=blade_profile_crowning_um,
-                               gear_generation=gear_generation)
+                               gear_generation=gear_generation, reliefs=reliefs)
         return {k: mirror_setup(s) for k, s in twin.items()}
     c_l = check_range("lengthwise_crowning_um", lengthwise_crowning_um, 0.0, 200.0)
     c_p = check_range("blade_profile_crowning_um", blade_profile_crowning_um, 0.0, 200.0)
@@ -268,6 +274,8 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
             setup = dataclasses.replace(setup, blade=crown_profile(
                 setup.blade, radius_mm=1.0 / k_b, at_length_mm=l_m))
         out["pinion", side] = setup
+    if reliefs:
+        out = {k: relieved_setup(s, reliefs.get(k, {}), blank) for k, s in out.items()}
     return out
 
 
@@ -287,14 +295,15 @@ def crowning_corrections(pair, setup: MachineSetup, *, l_mm: float,
 
 def standard_machine_pair(pair, *, lengthwise_crowning_um: float = 25.0,
                           blade_profile_crowning_um: float = 10.0,
-                          gear_generation: str = "formate"):
+                          gear_generation: str = "formate", reliefs: dict | None = None):
     """``pair`` with the machine settings of :func:`standard_setups` for all four flanks
     (its ``[easeoff.*]`` then no longer applies; :func:`~.pair.pair_to_toml` writes the
     machine and blade tables instead): what ``gearcontact design --machine-settings``
-    writes, with the ``gear_generation`` of the pair's default flanks."""
+    writes, with the ``gear_generation`` of the pair's default flanks and the blades'
+    ``reliefs`` kept."""
     got = standard_setups(pair, lengthwise_crowning_um=lengthwise_crowning_um,
                           blade_profile_crowning_um=blade_profile_crowning_um,
-                          gear_generation=gear_generation)
+                          gear_generation=gear_generation, reliefs=reliefs)
     return dataclasses.replace(pair, machine=tuple(got[m, side] for m in MEMBERS
                                                    for side in SIDES),
                                easeoff_tables=("drive", "coast"))

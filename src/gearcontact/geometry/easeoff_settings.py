@@ -4,7 +4,12 @@
 The gear keeps the flanks of the pair's default; each pinion flank's settings are
 fitted to its target by :mod:`.setting_fit` (a target flank: the pair's ease-off, or a
 measured grid) or :mod:`.point_fit` (scattered measured points), and the residual is
-measured over the flank (or at the points). docs/machine_settings.md sec. 6.
+measured over the flank (or at the points). Blades with a Toprem / Flankrem keep their
+relief (a fixed blade property, :func:`~.setting_fit.relieved_setup`): the fitted
+pinion flank is then a :class:`~.kinked.KinkedFlank`, its residual measured over all
+its pieces, its kink lines reported (:class:`KinkPosition`), and a measured grid of
+such a flank is fitted at its points (no spline across the kink).
+docs/machine_settings.md sec. 6.
 """
 
 from __future__ import annotations
@@ -20,14 +25,64 @@ from .basic_settings import member_setups
 from .easeoff import apply_easeoff
 from .flank import build_flanks
 from .formate import SIDES
-from .generated import generated_pinion_flank
-from .machine import mirror_setup
+from .generated import generated_pinion_box
+from .kinked import KinkedFlank, machine_flank
+from .machine import MEMBERS, mirror_setup
 from .measuring_grid import MeasuredPoints, target_grids
 from .point_fit import check_point_count, point_deviation_um, point_problem
 from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
-                          fit_pinion_setup, flank_deviation_um, solve_fit)
+                          fit_pinion_setup, flank_deviation_um, relieved_setup, solve_fit)
 
-__all__ = ["EaseOffSettings", "SideResidual", "easeoff_machine_pair"]
+__all__ = ["EaseOffSettings", "KinkPosition", "SideResidual", "easeoff_machine_pair"]
+
+#: Slack of the relieved flank's box for measured points, mm (1 um, as the measured
+#: points' check against the blank, :mod:`.measuring_grid`).
+_ON_BOX_MM = 1e-3
+
+
+@dataclass(frozen=True)
+class KinkPosition:
+    """A kink line of a cut relieved pinion flank (:class:`~.kinked.KinkLine`).
+
+    Attributes
+    ----------
+    name : str
+        ``"toprem"`` or ``"flankrem"``.
+    v_mm, u_mm : ndarray
+        The kink ``u = u_k(v)`` at lengthwise nodes over the active box: axial position
+        and height over the root cone, mm (``-inf`` / ``+inf`` where the kink lies
+        below / above the active flank).
+    """
+
+    name: str
+    v_mm: np.ndarray
+    u_mm: np.ndarray
+
+    def text(self, box) -> str:
+        """Where the kink lies on the active flank ``box`` (a ``FlankBoundary``)."""
+        u = self.u_mm[np.isfinite(self.u_mm)]
+        where = (f"u {u.min():.3f}..{u.max():.3f} mm" if len(u) else
+                 "below the active flank" if self.u_mm[0] < 0 else "above the active flank")
+        part = "" if len(u) in (0, len(self.u_mm)) else (
+            f" (on the flank at {len(u)} of {len(self.u_mm)} lengthwise nodes)")
+        return (f"{self.name} kink at {where}{part}; active flank u {box.u_root:.3f}.."
+                f"{box.u_tip:.3f} mm")
+
+
+class _KinkedPsi:
+    """The angular coordinate ``psi(u, v)`` of a pinion :class:`~.kinked.KinkedFlank`,
+    each point on its piece (for :func:`~.point_fit.point_deviation_um`)."""
+
+    def __init__(self, flank: KinkedFlank):
+        self.flank = flank
+
+    def psi(self, u, v):
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        k, out = self.flank.piece_index(u, v), np.empty(u.shape)
+        for i, piece in enumerate(self.flank.pieces):    # generated: v_scales all 1
+            out[k == i] = piece.psi(u[k == i], v[k == i])
+        return out
+
 
 @dataclass(frozen=True)
 class SideResidual:
@@ -52,6 +107,11 @@ class SideResidual:
         points from the generated sheet, :func:`~.point_fit.point_deviation_um`) are
         at the points, ``u_mm``, ``v_mm``, ``residual_um`` arrays over them (file
         order).
+    kinks : tuple of KinkPosition
+        The kink lines of the cut flank (a relieved blade; empty for a smooth one);
+        the residual is measured over all its pieces.
+    box : FlankBoundary or None
+        The cut flank's active box.
     """
 
     side: str
@@ -63,6 +123,8 @@ class SideResidual:
     v_mm: np.ndarray
     residual_um: np.ndarray
     points: MeasuredPoints | None = None
+    kinks: tuple = ()
+    box: object = None
 
 
 @dataclass(frozen=True)
@@ -92,6 +154,10 @@ class EaseOffSettings:
         for side, r in self.sides.items():
             rows.append(f"| {side} | {r.easeoff_max_um:.2f} | {r.max_um:.3f} | "
                         f"{r.rms_um:.3f} | {r.fit.evaluations} | {r.fit.seconds:.1f} |")
+        for side, r in self.sides.items():
+            for k in r.kinks:
+                rows += ["", f"{side}: the relieved blade's {k.text(r.box)} (the relief "
+                         "kept as given; the residual is over both sides of the kink)"]
         for side, r in self.sides.items():
             if r.points is not None:
                 rows += ["", f"{side}: target {len(r.points.line)} scattered measured points "
@@ -137,33 +203,63 @@ class EaseOffSettings:
 
 
 def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, n_v,
-              objective) -> SideResidual:
-    """The fit of one pinion flank to its target flank (residual over the flank) or to
-    measured points (``problem``: residual at the points)."""
+              objective, box=None) -> SideResidual:
+    """The fit of one pinion flank to its target flank (residual over the flank; the
+    fit grid over ``box``, default the target's) or to measured points (``problem``:
+    residual at the points)."""
     if problem is not None:
         fit = solve_fit(problem, tolerance_um=1e-6, objective=objective,
                         started=time.perf_counter() - problem.setup_seconds)
     else:
         fit = fit_pinion_setup(seed, pair.blank, target, parameters=parameters, n_u=n_u,
-                               n_v=n_v, objective=objective)
-    cut, _ = generated_pinion_flank(fit.setup, pair.blank,
-                                    pinion_face_width_mm=pair.pinion_face_width_mm)
+                               n_v=n_v, objective=objective, box=box)
+    # a relieved blade's flank: its pieces and kink lines (kinked.machine_flank)
+    cut = machine_flank(fit.setup, pair.blank, face_width_mm=pair.pinion_face_width_mm)
+    kinked = isinstance(cut, KinkedFlank)
     if problem is not None:
-        u, v, res = target.u_mm, target.v_mm, point_deviation_um(cut, target)
+        u, v, res = (target.u_mm, target.v_mm,
+                     point_deviation_um(_KinkedPsi(cut) if kinked else cut, target))
         eased = point_deviation_um(conjugate, target)
     else:
         u, v, res = flank_deviation_um(cut, target)
         eased = flank_deviation_um(conjugate, target)[2]
+    kinks = tuple(KinkPosition(k.name, k.v_nodes, k.u_nodes) for k in cut.kinks) if kinked else ()
     return SideResidual(side=side, fit=fit, easeoff_max_um=float(np.abs(eased).max()),
                         max_um=float(np.abs(res).max()), rms_um=float(np.sqrt(np.mean(res ** 2))),
                         u_mm=u, v_mm=v, residual_um=res,
-                        points=target if problem is not None else None)
+                        points=target if problem is not None else None, kinks=kinks,
+                        box=cut.boundary)
+
+
+def _relieved_box(seed, pair, target, *, where: str):
+    """The fit box of the relieved pinion ``seed`` on ``target`` (a flank: its box from
+    the root line the blade's tip segment traces, :func:`~.generated.generated_pinion_box`
+    of the relieved set-up, as :func:`~.kinked.machine_flank` cuts it); measured points
+    (:class:`~.measuring_grid.MeasuredPoints`) outside that box are refused (they lie
+    on the fillet the relief's edge round cuts, not on the flank)."""
+    cut = generated_pinion_box(seed, pair.blank, pinion_face_width_mm=pair.pinion_face_width_mm)[1]
+    if isinstance(target, MeasuredPoints):
+        off = ((target.u_mm < cut.u_root - _ON_BOX_MM) | (target.u_mm > cut.u_tip + _ON_BOX_MM)
+               | (target.v_mm < cut.v_toe - _ON_BOX_MM) | (target.v_mm > cut.v_heel + _ON_BOX_MM))
+        if off.any():
+            k = int(np.argmax(off))
+            raise InputRangeError(
+                f"{where}: pinion {target.side} points", f"{int(off.sum())} of {len(off)} off "
+                f"the relieved flank (first: line {int(target.line[k])}, u = "
+                f"{float(target.u_mm[k]):.4f} mm, v = {float(target.v_mm[k]):.4f} mm)",
+                f"points on the flank the relieved blade cuts: u {cut.u_root:.4f}..{cut.u_tip:.4f}"
+                f" mm over the root cone, v {cut.v_toe:.4f}..{cut.v_heel:.4f} mm (below it the "
+                "edge round of the blade's tip segment cuts the fillet)")
+        return None
+    b = target.boundary
+    return dataclasses.replace(b, u_root=max(b.u_root, cut.u_root), u_tip=min(b.u_tip, cut.u_tip),
+                               v_toe=max(b.v_toe, cut.v_toe), v_heel=min(b.v_heel, cut.v_heel))
 
 
 def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
                          parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
-                         objective: str = "rms", where: str = "target flank"
-                         ) -> EaseOffSettings:
+                         objective: str = "rms", where: str = "target flank",
+                         reliefs: dict | None = None) -> EaseOffSettings:
     """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
 
     The gear keeps the flanks of the pair's default (formate, or generated where the
@@ -198,6 +294,13 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         ``"rms"`` or ``"minimax"`` (:func:`~.setting_fit.fit_pinion_setup`).
     where : str
         Names the measured file in messages.
+    reliefs : dict, optional
+        ``{(member, side): relief}`` (:func:`~.setting_fit.blade_reliefs` of the
+        set-ups the pair was cut with): the Toprem / Flankrem kept on those blades as
+        given (:func:`~.setting_fit.relieved_setup`; not fitted). A relieved pinion
+        flank is fitted as the deepest of its pieces (:mod:`.setting_fit`), a complete
+        measured grid of it at its points (:func:`~.measuring_grid.target_grids`), and
+        its residual and kink lines are reported over all its pieces.
 
     Returns
     -------
@@ -208,7 +311,9 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     InputRangeError
         A pair already cut from machine settings, an unknown side in ``easeoff_grid``,
         a grid short of its flank, measured points off the flank, fewer than the
-        settings or leaving them unobservable (:mod:`.point_fit`; all before any fit).
+        settings or leaving them unobservable (:mod:`.point_fit`), an unknown flank in
+        ``reliefs`` or a pinion relief whose kink reaches the blade point that cuts the
+        mean point (all before any fit).
     UndercutError
         A fitted flank the envelope does not generate over its box.
     """
@@ -221,14 +326,24 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     for side in grids:
         if side not in SIDES:
             raise InputRangeError("easeoff_grid", side, f"one of {SIDES}")
+    reliefs = dict(reliefs or {})
+    for key in reliefs:
+        if key not in [(m, s) for m in MEMBERS for s in SIDES]:
+            raise InputRangeError("reliefs", key, f"(member, side) of {MEMBERS} x {SIDES}")
     check_point_count(grids, parameters, where=where)
     flanks = build_flanks(twin)
     # measured files in machine coordinates onto the flanks (points off them refused
-    # here): a complete grid as a target relief, scattered points as points
-    grids = target_grids(grids, twin, flanks, where=where)
-    # the gear of the default flanks and the pinion conjugate to it
-    gear, seeds = member_setups(twin, flanks.gear_generation)
-    targets, problems = {}, {}
+    # here): a complete grid as a target relief, scattered points as points; a relieved
+    # flank's grid as points (a spline through it would smooth the kink)
+    grids = target_grids(grids, twin, flanks, where=where,
+                         as_points=tuple(s for m, s in reliefs if m == "pinion"))
+    # the gear of the default flanks and the pinion conjugate to it, the blades'
+    # reliefs kept (a pinion's checked against its mean point before any fit)
+    gear, seeds = (
+        {side: relieved_setup(s, reliefs.get((member, side), {}), twin.blank)
+         for side, s in setups.items()}
+        for member, setups in zip(MEMBERS, member_setups(twin, flanks.gear_generation)))
+    targets, problems, boxes = {}, {}, {}
     for side in SIDES:          # every target checked before any fit
         conj = flanks.pinion_conjugate.side(side)
         targets[side] = flanks.pinion.side(side)
@@ -239,9 +354,15 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
             targets[side] = apply_easeoff(conj, grids[side], limit_um=flanks.easeoff_limit_um)
     for side in SIDES:          # the seeds, and the points' rank checks before the fits
         if twin.offset_mm != 0.0 and flanks.gear_generation == "generated":
-            seeds[side] = conjugate_seed(seeds[side], twin.blank,
-                                         flanks.pinion_conjugate.side(side), n_u=n_u,
-                                         n_v=n_v).setup
+            # the crown pinion fitted to the conjugate with its smooth blade, then the
+            # relief put back (checked again at the fitted seed's mean point)
+            relief = reliefs.get(("pinion", side), {})
+            smooth = relieved_setup(seeds[side], dict.fromkeys(relief, 0.0), twin.blank)
+            seeds[side] = relieved_setup(conjugate_seed(
+                smooth, twin.blank, flanks.pinion_conjugate.side(side), n_u=n_u,
+                n_v=n_v).setup, relief, twin.blank)
+        if seeds[side].blade.relieved:      # the part of the target the cut flank holds
+            boxes[side] = _relieved_box(seeds[side], twin, targets[side], where=where)
         if isinstance(targets[side], MeasuredPoints):
             problems[side] = point_problem(seeds[side], twin.blank, targets[side],
                                            parameters=parameters, objective=objective,
@@ -250,7 +371,7 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     for side in SIDES:
         sides[side] = _side_fit(side, seeds[side], targets[side], problems.get(side), twin,
                                 flanks.pinion_conjugate.side(side), parameters=parameters,
-                                n_u=n_u, n_v=n_v, objective=objective)
+                                n_u=n_u, n_v=n_v, objective=objective, box=boxes.get(side))
     pinion = {side: r.fit.setup for side, r in sides.items()}
     setups = [gear[s] for s in SIDES] + [pinion[s] for s in SIDES]
     if pair.pinion_hand == "left":

@@ -447,12 +447,15 @@ def read_target_flank(path, *, pair=None) -> dict:
     return grids
 
 
-def target_grids(grids: dict, pair, flanks, *, where: str = "target flank") -> dict:
+def target_grids(grids: dict, pair, flanks, *, where: str = "target flank",
+                 as_points: tuple = ()) -> dict:
     """``grids`` (:func:`read_target_flank`) with every :class:`MeasuredFlank` mapped
     onto the pinion flank of ``flanks`` (built for ``pair``) it was measured against:
     points on a complete grid (:func:`is_complete_grid`) as a target relief
     (:func:`measured_easeoff_grid` with the pair's ease-off of that side), scattered
-    points as :class:`MeasuredPoints` (:func:`measured_points`)."""
+    points, and every point of the sides ``as_points`` (a flank cut with a relieved
+    blade: no spline across its kink), as :class:`MeasuredPoints`
+    (:func:`measured_points`)."""
     from .easeoff import EaseOff
 
     out = dict(grids)
@@ -462,7 +465,7 @@ def target_grids(grids: dict, pair, flanks, *, where: str = "target flank") -> d
         nominal, at = flanks.pinion.side(side), f"{where} {side}"
         uv = flank_parameters_at(nominal, member="pinion", L_mm=data.L_mm, R_mm=data.R_mm,
                                  where=at, lines=data.line)
-        if not is_complete_grid(*uv):
+        if side in as_points or not is_complete_grid(*uv):
             out[side] = measured_points(data, nominal, where=at, uv=uv)
             continue
         u_m, v_m = flanks.mean_contact[side]["pinion_uv"]

@@ -49,6 +49,15 @@ of 8 lower the linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, 
 tilt, swivel or the blade radius added to the seven leave 1.09-1.26 um at conditions
 of 2e4-4e4.
 
+A relieved blade (Toprem / Flankrem, :mod:`.blade`) keeps its relief as given
+(:data:`RELIEF_KEYS`: a fixed blade property, never fitted): the corrections act on its
+main profile, the pivot is the main profile's point that cuts the mean node (a relief
+reaching it is refused, naming its depth), and the generated flank at each node is the
+deepest of the blade's pieces, one envelope per blade segment (the smallest deviation,
+the least material: :mod:`.kinked`), so nodes on both sides of the kink enter the same
+least squares. Without a relief the code path is the smooth one, bit for bit
+(docs/machine_settings.md sec. 6, "Relieved blades").
+
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 6.1,
@@ -72,15 +81,17 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..validation import InputRangeError, check_range
+from .blade import blade_segments
 from .blank import BlankDesign
 from .conjugate import UndercutError, nominal_pinion_box
 from .generated import EnvelopeSolver, solve_node_grid
 from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
 from .minimax_fit import minimize_max_abs
 
-__all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
-           "apply_corrections", "checked_options", "conjugate_seed", "fit_pinion_setup",
-           "flank_deviation_um", "sensitivity", "solve_fit"]
+__all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "RELIEF_KEYS", "SEED_PARAMETERS",
+           "SettingFit", "apply_corrections", "blade_relief", "blade_reliefs", "checked_options",
+           "conjugate_seed", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
+           "relieved_setup", "solve_fit", "with_relief"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -119,6 +130,10 @@ _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
 _HELICAL = {"helical_motion_mm_per_rad": 0}
 _BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm",
           "blade_cubic_per_mm2", "blade_quartic_per_mm3")
+#: The blade's relief keys (:class:`~.blade.BladeSettings`): fixed blade properties,
+#: carried through every correction, never fitted (module docstring).
+RELIEF_KEYS = ("toprem_angle_deg", "toprem_depth_mm", "flankrem_angle_deg",
+               "flankrem_depth_mm")
 _FD_STEP = 1e-3          # forward-difference step of the scaled variables
 #: Deviation (um) returned at every node for a trial step whose envelope does not reach
 #: the grid: the trust-region step is then rejected and shortened (a seed far from the
@@ -180,7 +195,9 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
                       ) -> MachineSetup:
     """``setup`` with the corrections ``{parameter: delta}`` (:data:`PARAMETERS`, in their
     units) added; blade parameters pivot about the blade point at arc length
-    ``pivot_length_mm`` from the tip (module docstring).
+    ``pivot_length_mm`` from the tip (module docstring). A relieved blade's main profile
+    is corrected (``pivot_length_mm`` its own arc length) and its relief
+    (:data:`RELIEF_KEYS`) kept as given.
 
     Raises
     ------
@@ -191,6 +208,11 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     for name in corrections:
         if name not in PARAMETERS:
             raise InputRangeError("parameters", name, f"one of {tuple(PARAMETERS)}")
+    relief = blade_relief(setup.blade)
+    if relief:      # the main profile corrected, its relief kept (module docstring)
+        return with_relief(apply_corrections(with_relief(setup, dict.fromkeys(relief, 0.0)),
+                                             corrections, pivot_length_mm=pivot_length_mm),
+                           relief)
     st, blade = setup.settings, setup.blade
     fields = {n: getattr(st, n) + float(d) for n, d in corrections.items()
               if n not in _ROLL and n not in _HELICAL and n not in _BLADE}
@@ -218,6 +240,53 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 
+def blade_relief(blade) -> dict:
+    """``{key: value}`` of :data:`RELIEF_KEYS` of a relieved blade (Toprem / Flankrem),
+    ``{}`` for a smooth one (a relief angle of 0 is no relief)."""
+    return {k: getattr(blade, k) for k in RELIEF_KEYS} if blade.relieved else {}
+
+
+def with_relief(setup: MachineSetup, relief: dict) -> MachineSetup:
+    """``setup`` with its blade's relief keys set to ``relief`` (:func:`blade_relief`;
+    the blade's checks run: a relief the new blade cannot carry names its key,
+    ``blade.<member>.<side>.<key>``)."""
+    return dataclasses.replace(setup, blade=dataclasses.replace(
+        setup.blade, where=f"blade.{setup.member}.{setup.side}", **relief))
+
+
+def blade_reliefs(setups) -> dict:
+    """``{(member, side): relief}`` (:func:`blade_relief`) of the relieved blades among
+    the set-ups ``setups`` (a pair's ``machine`` tables)."""
+    return {(s.member, s.side): blade_relief(s.blade) for s in setups if s.blade.relieved}
+
+
+def relieved_setup(setup: MachineSetup, relief: dict, blank: BlankDesign) -> MachineSetup:
+    """``setup`` with ``relief`` kept on its blade (:func:`with_relief`), a pinion's
+    checked to leave the blade point that cuts its mean point on the main profile (the
+    pivot of the setting fit; refused naming the relief depth)."""
+    if not relief:
+        return setup
+    out = with_relief(setup, relief)
+    if setup.member == "pinion" and out.blade.relieved:
+        main = with_relief(out, dict.fromkeys(relief, 0.0))
+        cone, _ = nominal_pinion_box(blank, 1.0)
+        u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
+        solver = EnvelopeSolver(main, blank, cone)
+        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
+        _check_pivot_on_main(out.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
+    return out
+
+
+def _piece_setups(setup: MachineSetup) -> list:
+    """``[(name, set-up)]`` of the smooth pieces a (relieved) blade generates: one per
+    blade segment (:func:`~.blade.blade_segments`), ``[("main", setup)]`` for a smooth
+    blade (the set-up itself)."""
+    if not setup.blade.relieved:
+        return [("main", setup)]
+    return [(seg.name, dataclasses.replace(setup, blade=seg.blade))
+            for seg in blade_segments(setup.blade)]
+
+
 class FitProblem:
     """Residual and Jacobian of the fit on a coarse node grid (module docstring): the
     target's angle ``psi_t`` and lever ``R (e_psi . n_t)`` (um/rad) at nodes ``(U, V)``
@@ -235,15 +304,21 @@ class FitProblem:
         self.lever_um = 1e3 * rad * np.einsum("...i,...i->...", e_psi, t.n)
 
     def _start(self, seed: MachineSetup, blank: BlankDesign, names):
-        """Set the parameters and the pivot: the seed's solver and mean node."""
+        """Set the parameters and the pivot: the seed's solver and mean node (a relieved
+        blade's: its main profile's, checked to hold the mean node)."""
         self.seed, self.blank, self.names = seed, blank, tuple(names)
         self.scale = np.array([PARAMETERS[n][1] for n in self.names])
         self.cone, _ = nominal_pinion_box(blank, 1.0)
         self.evaluations = 0
-        solver = EnvelopeSolver(seed, blank, self.cone)
+        relief = blade_relief(seed.blade)
+        main = with_relief(seed, dict.fromkeys(relief, 0.0)) if relief else seed
+        solver = EnvelopeSolver(main, blank, self.cone)
         self.mean_uv = (float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0]))
         mean = self._mean(solver)
         self.pivot_length_mm = float(mean.l_mm)
+        if relief:
+            _check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
+        self._piece_q = {}      # the other pieces' node solutions (relieved blades)
         return solver, mean
 
     def _mean(self, solver: EnvelopeSolver):
@@ -261,25 +336,37 @@ class FitProblem:
 
     def deviation_um(self, x, *, keep: bool = False) -> np.ndarray:
         """Normal deviation (um) at the grid nodes of the flank the corrections ``x``
-        (scaled) generate; ``keep`` stores the node solutions as the next guesses."""
+        (scaled) generate; ``keep`` stores the node solutions as the next guesses. A
+        relieved blade's flank is, node by node, the deepest of its pieces (the
+        smallest deviation: the least material, :mod:`.kinked`)."""
         self.evaluations += 1
         try:
-            s, solver = self._nodes(x)
+            pieces = self._nodes(x)
         except (UndercutError, ValueError):   # no envelope (or no blade) at a trial step
             if not np.any(x):                # the seed itself: the caller's error
                 raise
             return np.full(self.U.size, _UNREACHED_UM)
-        if keep:
-            self.q = s.q
-        d = (solver.angle(s.x_mm) - self.psi_t + math.pi) % (2.0 * math.pi) - math.pi
-        return (d * self.lever_um).ravel()
+        dev = None
+        for name, s, solver in pieces:
+            if keep and name == "main":
+                self.q = s.q
+            elif keep:
+                self._piece_q[name] = s.q
+            d = (solver.angle(s.x_mm) - self.psi_t + math.pi) % (2.0 * math.pi) - math.pi
+            dev = d * self.lever_um if dev is None else np.minimum(dev, d * self.lever_um)
+        return dev.ravel()
 
     def _nodes(self, x):
-        solver = EnvelopeSolver(self.setup(x), self.blank, self.cone)
-        s = solver.solve(self.U, self.V, self.q, strict=False)
-        if not np.all(s.converged):      # a long step: start over from the mean node
-            s = self._restart(solver, self._mean(solver).q)
-        return s, solver
+        """``[(piece name, node solutions, solver)]`` of the flank ``x`` generates."""
+        out = []
+        for name, setup in _piece_setups(self.setup(x)):
+            solver = EnvelopeSolver(setup, self.blank, self.cone)
+            q = self.q if name == "main" else self._piece_q.get(name)
+            s = None if q is None else solver.solve(self.U, self.V, q, strict=False)
+            if s is None or not np.all(s.converged):   # a long step: from the mean node
+                s = self._restart(solver, self._mean(solver).q)
+            out.append((name, s, solver))
+        return out
 
     def jacobian(self, x) -> np.ndarray:
         f0 = self.deviation_um(x, keep=True)
@@ -292,6 +379,24 @@ class FitProblem:
         if getattr(self, "first", None) is None:     # at the seed: the reach prediction
             self.first = (f0, jac)
         return jac
+
+
+def _check_pivot_on_main(blade: BladeSettings, depth_mm: float) -> None:
+    """Refuse a relief whose kink lies beyond the depth ``depth_mm`` behind the tip plane
+    of the blade point that cuts the pinion's mean point: the blade corrections pivot
+    there, on the main profile (a Toprem reaching it would make the relief the
+    profile the blank's pressure angle is cut with)."""
+    for seg in blade_segments(blade):
+        lo, hi = seg.depth_mm
+        if seg.name == "main" and not lo < depth_mm < hi:
+            key = "toprem" if depth_mm <= lo else "flankrem"
+            raise InputRangeError(
+                f"{blade.where}.{key}_depth_mm", getattr(blade, f"{key}_depth_mm"),
+                f"{'<' if key == 'toprem' else '>'} {depth_mm:.4f} mm, the depth behind the "
+                "tip plane of the blade point that cuts the pinion's mean point (the "
+                "settings are solved there on the blade's main profile: the standard "
+                "settings' pressure angle, the setting fit's blade pivot; the relief is "
+                "kept as given, not fitted)")
 
 
 def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(PARAMETERS),
@@ -362,7 +467,8 @@ class SettingFit:
 
 def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                      parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
-                     tolerance_um: float = 1e-6, objective: str = "rms") -> SettingFit:
+                     tolerance_um: float = 1e-6, objective: str = "rms", box=None
+                     ) -> SettingFit:
     """Fit the ``parameters`` of the pinion set-up ``seed`` so that its generated flank
     reproduces ``target`` on an n_u x n_v grid over the target's active box.
 
@@ -388,6 +494,10 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
         reflective); ``"minimax"``: then, from that solution, the largest |deviation| on
         the fit grid (sequential linear programming, :func:`~.minimax_fit.minimize_max_abs`,
         to ``tolerance_um``; docs/machine_settings.md sec. 6).
+    box : FlankBoundary, optional
+        The box the fit grid covers (default the target's): a relieved blade's flank
+        starts at the root line its tip segment traces (:mod:`.kinked`), its part of
+        the target's box.
 
     Returns
     -------
@@ -403,7 +513,8 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     """
     names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
     t0 = time.perf_counter()
-    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    prob = FitProblem(seed, blank, target, names,
+                      *_fit_grid(target.boundary if box is None else box, n_u, n_v))
     return solve_fit(prob, tolerance_um=tolerance_um, objective=objective, started=t0)
 
 
