@@ -16,8 +16,13 @@ is the same formate tooth as the machine pair's: identical FE values, not repeat
 and with ``--with-s0003-pinion`` the s0003 pinion, whose slot closes in a V at the toe
 (session 18: the eighth tooth).
 
+With ``--fe-root ellipse`` the FE meshes the shell's own quarter-ellipse root instead:
+the plate's misfit with the same root geometry in both models. ``--mesh`` and ``--eta``
+give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5).
+
 Usage: python3 benchmarks/bench_rim_calibration.py [--factors 1.3 1.4 ...]
-       [--with-s0003-pinion] [--only NAME:MEMBER ...] [--json FILE]
+       [--with-s0003-pinion] [--only LABEL ...] [--fe-root cutter|ellipse]
+       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--json FILE]
 """
 
 from __future__ import annotations
@@ -51,13 +56,18 @@ EIGHTH = ("s0003 pinion", "s0003", "pinion")
 FACTORS = (1.3, 1.4, 1.45, 1.5, 1.55, 1.6, 1.7)
 
 
+#: Flank sets built so far, per pair (both members of a pair share one).
+_FLANKS: dict = {}
+
+
 def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
-            eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh(), flanks_cache={}):
-    """FE line / segment deflections of one tooth (once) and shell / FE at every factor."""
+            eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh()) -> dict:
+    """The FE deflections of one tooth under the distributed loads (computed once) and
+    shell / FE at every factor of ``factors`` (segment loads, then line loads)."""
     pair = load_pair(pair_name)
-    if pair_name not in flanks_cache:
-        flanks_cache[pair_name] = build_flanks(pair)
-    flanks = flanks_cache[pair_name]
+    if pair_name not in _FLANKS:
+        _FLANKS[pair_name] = build_flanks(pair)
+    flanks = _FLANKS[pair_name]
     material = pair.pinion_material if member == "pinion" else pair.gear_material
     tooth = tooth_geometry(flanks, member, material=material)
     kw = dict(side=pair.design_side, flanks=flanks, fe_mesh=fe_mesh, eta=tuple(eta))
