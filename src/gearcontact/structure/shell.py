@@ -74,13 +74,15 @@ SHEAR_FACTOR = 5.0 / 6.0
 #: Factor on the modulus of the fillet and rim block of each member's shell (module
 #: docstring), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
 #: 12 x 6 x 3 + 4 with 3 fillet layers and 2 cells across each slot bottom;
-#: :mod:`.root_fillet`) of the pinions of s0003-centred and of the ISO 23509 F.2 pair
-#: (machine-cut and conjugate) and the gears of s0003-centred, s0003 and F.2, on the
-#: deflection under distributed loads (segment and line loads along the face at three
-#: heights; orders 10 / 16): one factor for both members, shell / FE 0.85 .. 1.15
-#: (docs/bending.md sec. 10). Against the quarter-ellipse root of :mod:`.rim` the
-#: pinion needed 2.9: that root is stiffer than the real one.
-RIM_STIFFENING = {"pinion": 1.45, "gear": 1.45}
+#: :mod:`.root_fillet`) of the pinions of s0003-centred, s0003 (its slot closing in a V
+#: at the toe) and the ISO 23509 F.2 pair (machine-cut and conjugate) and the gears of
+#: s0003-centred, s0003 and F.2, on the deflection under distributed loads (segment and
+#: line loads along the face at three heights; orders 10 / 16): the one factor for both
+#: members minimizing the largest |log(shell / FE)| over the eight teeth, 0.172, shell /
+#: FE 0.842 .. 1.186 (docs/bending.md sec. 10; ``benchmarks/bench_rim_calibration.py``;
+#: 1.45 on the seven teeth without the s0003 pinion). Against the quarter-ellipse root of
+#: :mod:`.rim` the pinion needed 2.9: that root is stiffer than the real one.
+RIM_STIFFENING = {"pinion": 1.49, "gear": 1.49}
 #: Ritz orders of a tooth's shell (the calibration's): over the height of rim and tooth,
 #: and along the face.
 ORDER, ORDER_FACE = 10, 16
