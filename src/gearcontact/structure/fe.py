@@ -12,6 +12,10 @@ root line by the rim segment of :mod:`.rim` (the shell's too) of depth ``rim_dep
 - the rim block below it, whose bottom face is clamped (all displacements zero); its
   sides, the toe / heel ends, the flanks and the top land are free.
 
+On a kinked flank (Toprem / Flankrem, :class:`~gearcontact.geometry.kinked.KinkedFlank`)
+a node row lies on each kink line, so that no cell straddles the ridge
+(:func:`flank_rows`; docs/bending.md sec. 10, "Kinked flanks").
+
 With the tooth's real root (:mod:`.root_fillet`, where its cutter is known) the sides
 below the root line follow the cutter's fillets instead, the slot bottoms beside them
 lie on the root cone and the rim block below spans one pitch (``root``).
