@@ -12,6 +12,10 @@ root line by the rim segment of :mod:`.rim` (the shell's too) of depth ``rim_dep
 - the rim block below it, whose bottom face is clamped (all displacements zero); its
   sides, the toe / heel ends, the flanks and the top land are free.
 
+On a kinked flank (Toprem / Flankrem, :class:`~gearcontact.geometry.kinked.KinkedFlank`)
+a node row lies on each kink line, so that no cell straddles the ridge
+(:func:`flank_rows`; docs/bending.md sec. 10, "Kinked flanks").
+
 With the tooth's real root (:mod:`.root_fillet`, where its cutter is known) the sides
 below the root line follow the cutter's fillets instead, the slot bottoms beside them
 lie on the root cone and the rim block below spans one pitch (``root``).
@@ -43,11 +47,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..geometry.kinked import KinkedFlank, kinked_flank
 from ..validation import InputRangeError
 from .rim import rim_points, rim_segment
 from .tooth import LoadPoints
 
-__all__ = ["FeTooth", "build_fe", "fe_node_count"]
+__all__ = ["FeTooth", "build_fe", "fe_node_count", "flank_rows"]
+
+#: Smallest flank cell beside a kink row, in nominal rows (2 / n_eta in eta): a kink
+#: nearer the box's root or tip line is meshed this far inside it (:func:`flank_rows`).
+KINK_CELL = 0.25
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,7 +67,15 @@ class FeTooth:
     ----------
     body : ToothGeometry or RectangularPlate
     xi_levels, eta_levels : ndarray
-        Tooth coordinates of the flank node lines (eta only on the tooth, not the rim).
+        Tooth coordinates of the flank node lines (eta only on the tooth, not the rim);
+        ``eta_levels`` the nominal rows, which a kinked flank moves (``flank_eta``).
+    flank_eta : dict or None
+        ``side -> (n_xi + 1, n_eta + 1)``: eta of each flank node (column, row) where a
+        flank has kinks (:func:`flank_rows`); None: every row at ``eta_levels``.
+    kink_rows : dict
+        ``side -> tuple`` of the rows on that flank's kinks (empty without kinks).
+    tetrahedra : ndarray (4, n_tet)
+        Vertex indices of the tetrahedra (:meth:`vertex_positions_mm`).
     n_nodes, n_dofs : int
         Nodes (vertices + edge mid-nodes) and degrees of freedom of the P2 mesh.
     build_s : float
@@ -71,6 +88,9 @@ class FeTooth:
     n_nodes: int
     n_dofs: int
     build_s: float
+    flank_eta: dict | None
+    kink_rows: dict
+    tetrahedra: np.ndarray
     _vertex: object      # (i_xi, j_vertical, k_zeta) -> vertex index
     _rim_levels: int
     _n_zeta: int
@@ -81,13 +101,16 @@ class FeTooth:
     _points: np.ndarray
 
     def node_points(self, side: str, xi, eta) -> tuple[LoadPoints, np.ndarray]:
-        """Snap (xi, eta) to the nearest flank node of ``side``: the load points there
-        (inward flank normal) and the vertex indices."""
+        """Snap (xi, eta) to the nearest node line (``xi_levels``, ``eta_levels``) of
+        ``side``: the load points at its node (inward flank normal; on a kinked flank
+        the node of the moved row, ``flank_eta``, at a kink the normal of the piece
+        the flank evaluates there) and the vertex indices."""
         xi, eta = (np.atleast_1d(np.asarray(a, float)) for a in (xi, eta))
         i = np.abs(xi[:, None] - self.xi_levels[None, :]).argmin(axis=1)
         j = np.abs(eta[:, None] - self.eta_levels[None, :]).argmin(axis=1)
         k = self._k_coast + (self._n_zeta if side == "drive" else 0)
-        pts = self.body.points_at(side, self.xi_levels[i], self.eta_levels[j])
+        eta_n = self.eta_levels[j] if self.flank_eta is None else self.flank_eta[side][i, j]
+        pts = self.body.points_at(side, self.xi_levels[i], eta_n)
         return pts, self._vertex[i, j + self._rim_levels, k]
 
     def compliance(self, points: LoadPoints, vertices: np.ndarray) -> np.ndarray:
@@ -129,7 +152,7 @@ def _signed_volumes(mesh) -> np.ndarray:
 
 def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: int = 4,
              rim_depth_mm: float | None = None, fillet_mm: float | None = None,
-             root=None, n_fillet: int = 3, n_slot: int = 2) -> FeTooth:
+             root=None, n_fillet: int = 3, n_slot: int = 2, on_kinks: bool = True) -> FeTooth:
     """Mesh, assemble and factor the P2 elasticity model of a tooth (module docstring).
 
     Parameters
@@ -157,6 +180,9 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     n_fillet, n_slot : int
         Cell layers of the real fillet zone and cells across each slot bottom (>= 1;
         with ``root`` only).
+    on_kinks : bool
+        A node row on each kink of a kinked flank (:func:`flank_rows`); False: the
+        nominal rows, the kink cut across by cells (for comparison, docs/bending.md).
 
     Raises
     ------
@@ -180,12 +206,16 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     eta_l = np.linspace(-1.0, 1.0, n_eta + 1)
     zeta_l = np.linspace(0.0, 1.0, n_zeta + 1)
     merged = np.empty((0,), int), np.empty((3, 0), int)
+    rows, kink_rows = flank_rows(body, xi_l, n_eta)
+    if not on_kinks or not any(kink_rows.values()):
+        # the nominal rows (without a kink: the mesh as it always was)
+        rows, kink_rows = None, {side: () for side in kink_rows}
     if root is None:
         idx, pts, n_below, k0 = _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim,
-                                          rim_depth_mm, fillet_mm)
+                                          rim_depth_mm, fillet_mm, rows)
     else:
         idx, pts, n_below, k0 = _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_rim,
-                                             n_fillet, n_slot)
+                                             n_fillet, n_slot, rows)
         idx, pts, merged = _merge_coincident(skfem, idx, pts)
     I, J, K = (np.rint(idx.p[a]).astype(int) for a in range(3))
     mesh = skfem.MeshTet(pts, idx.t)
@@ -207,18 +237,127 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     vertex[tuple(merged[1])] = merged[0]
     return FeTooth(body=body, xi_levels=xi_l, eta_levels=eta_l,
                    n_nodes=int(basis.N // 3), n_dofs=int(basis.N),
-                   build_s=time.perf_counter() - t0, _vertex=vertex, _rim_levels=n_below,
+                   build_s=time.perf_counter() - t0, flank_eta=rows, kink_rows=kink_rows,
+                   tetrahedra=mesh.t,
+                   _vertex=vertex, _rim_levels=n_below,
                    _n_zeta=n_zeta, _k_coast=k0, _nodal_dofs=basis.nodal_dofs, _free=free,
                    _lu=lu, _points=mesh.p)
 
 
-def _tooth_points(body, xi_l, eta_l, zeta_l, I, j, K) -> np.ndarray:
-    """Positions (3, n) of the tooth's nodes at index (I, eta level j, zeta column K)."""
-    pc, pd = body.side_points(xi_l[I], eta_l[j])
+def flank_rows(body, xi_levels, n_eta: int) -> tuple[dict, dict]:
+    """The flank node rows of :func:`build_fe`, with a row on each kink of a
+    :class:`~gearcontact.geometry.kinked.KinkedFlank`: ``(side -> eta (n_xi + 1, n_eta
+    + 1), side -> tuple of kink rows)``.
+
+    Without a kink on the tooth's height box a flank's rows are the nominal ones,
+    ``eta_j = -1 + 2 j / n_eta`` in every column. A kink gets the nominal row nearest
+    its mean height (not the root or tip row): in each column that row lies on the kink
+    ``u_k(v)``, solved at the column (:func:`~gearcontact.geometry.kinked.kinked_flank`
+    on the columns, bisection to rounding; the flank's own kink line interpolates
+    between its nodes), and the rows of a window of ``m`` rows each side of it are
+    spread evenly between the kink and the window's ends (``m = 1``: only the kink's
+    row moves), ``m`` grown until every cell is at least ``KINK_CELL / 2`` nominal
+    rows. So the cells of each column lie each on one smooth piece (the flank between
+    two rows never straddles the kink), and the rows away from the kink stay nominal.
+    Where a kink leaves the box (or comes nearer its root or tip line than
+    ``KINK_CELL`` rows per cell between them) its row stays that far inside, on the
+    piece that holds it there.
+
+    Raises
+    ------
+    InputRangeError
+        ``n_eta`` too small for the kinks of a flank (a row each, between the root and
+        tip rows, and cells of ``KINK_CELL / 2`` rows between them).
+    """
+    nominal = np.linspace(-1.0, 1.0, n_eta + 1)
+    rows, kink_rows = {}, {}
+    for side in ("coast", "drive"):
+        eta_k = _kink_heights(body, side, xi_levels)
+        rows[side], kink_rows[side] = _rows_on_kinks(eta_k, nominal, len(xi_levels), side)
+    return rows, kink_rows
+
+
+def _kink_heights(body, side: str, xi_levels) -> list[np.ndarray]:
+    """eta of the kinks of the flank ``side`` of ``body`` at the columns ``xi_levels``
+    (+-inf where a kink is out of the tooth's height box), only the kinks that lie on
+    the box at a column."""
+    flank = getattr(body, side, None)
+    if not isinstance(flank, KinkedFlank):
+        return []
+    xi = np.asarray(xi_levels, float)
+    v = body.flank_parameters(side, xi, np.zeros_like(xi))[1]
+    # the kink at the columns themselves: kinked_flank's nodes span the flank's v box
+    # evenly, as the columns do (the flank's own 41-node line interpolates, 5e-8 mm)
+    solved = kinked_flank(flank.pieces, flank.names, v_scales=flank.v_scales,
+                          n_nodes=len(xi))
+    lo, hi = body.u_span_mm
+    out = []
+    for kink in solved.kinks:
+        if not np.allclose(kink.v_nodes, v, rtol=0.0, atol=1e-9 * (1.0 + np.abs(v).max())):
+            raise RuntimeError(f"{body.member} {side} kink nodes off the FE columns")
+        eta = 2.0 * (kink.u_nodes - lo) / (hi - lo) - 1.0
+        if np.any((eta > -1.0) & (eta < 1.0)):
+            out.append(eta)
+    return out
+
+
+def _rows_on_kinks(eta_k, nominal, n_col: int, side: str) -> tuple[np.ndarray, tuple]:
+    """Rows (n_col, n + 1) of one flank with a row on each kink height of ``eta_k``
+    (root -> tip; :func:`flank_rows`) and the kink rows."""
+    n = len(nominal) - 1
+    h = 2.0 / n
+    if not eta_k:
+        return np.broadcast_to(nominal, (n_col, n + 1)), ()
+    need = f">= {len(eta_k) + 1} (a row on each of the {side} flank's {len(eta_k)} kinks)"
+    kink_rows = []
+    for e in eta_k:
+        mean = np.clip(e, -1.0, 1.0).mean()
+        j = int(np.clip(np.rint((mean + 1.0) / h), 1, n - 1))
+        j = max(j, kink_rows[-1] + 1) if kink_rows else j
+        if j > n - 1:
+            raise InputRangeError("n_eta", n, need)
+        kink_rows.append(j)
+    # a kink row keeps KINK_CELL rows per cell from the root and tip rows
+    eta_k = [np.clip(e, -1.0 + j * KINK_CELL * h, 1.0 - (n - j) * KINK_CELL * h)
+             for e, j in zip(eta_k, kink_rows)]
+    half = [1] * len(kink_rows)
+    cols = np.arange(n + 1)
+    while True:
+        inside = np.zeros(n + 1, bool)
+        for j, m in zip(kink_rows, half):
+            inside[max(j - m + 1, 1):min(j + m, n)] = True     # root and tip rows stay
+        anchors = np.flatnonzero(~inside)             # nominal rows (a kink's own row
+        idx = np.concatenate([anchors, kink_rows])    # is inside its window)
+        order = np.argsort(idx)
+        val = np.concatenate([np.broadcast_to(nominal[anchors], (n_col, len(anchors))),
+                              np.stack(eta_k, axis=1)], axis=1)[:, order]
+        rows = np.stack([np.interp(cols, idx[order], val[c]) for c in range(n_col)])
+        short = np.flatnonzero(np.diff(rows, axis=1).min(axis=0) < 0.5 * KINK_CELL * h)
+        if not len(short):
+            return rows, tuple(kink_rows)
+        grown = False
+        for c in short:         # grow the window of the kink row nearest the short cell
+            k = int(np.argmin([abs(j - c - 0.5) for j in kink_rows]))
+            if kink_rows[k] - half[k] > 0 or kink_rows[k] + half[k] < n:
+                half[k] += 1
+                grown = True
+        if not grown:
+            raise InputRangeError("n_eta", n, need + f" with cells of {0.5 * KINK_CELL} "
+                                  "rows between them")
+
+
+def _tooth_points(body, xi_l, eta_l, zeta_l, I, j, K, rows=None) -> np.ndarray:
+    """Positions (3, n) of the tooth's nodes at index (I, eta level j, zeta column K)
+    (``rows``: each flank's rows, :func:`flank_rows`; None: at ``eta_l``)."""
+    if rows is None:
+        pc, pd = body.side_points(xi_l[I], eta_l[j])
+    else:
+        pc, pd = (body.flank_arrays(side, xi_l[I], rows[side][I, j])[0]
+                  for side in ("coast", "drive"))
     return (pc + zeta_l[K, None] * (pd - pc)).T
 
 
-def _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim, rim_depth_mm, fillet_mm):
+def _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim, rim_depth_mm, fillet_mm, rows=None):
     """Index mesh and node positions of the tooth on the quarter-ellipse fillet and rim
     of :mod:`.rim`: ``(index mesh, points (3, n), levels below the root line, coast
     column)``."""
@@ -229,7 +368,7 @@ def _rim_mesh(skfem, body, xi_l, eta_l, zeta_l, n_rim, rim_depth_mm, fillet_mm):
     pts = np.empty((3, idx.p.shape[1]))
     tooth = J >= n_rim
     pts[:, tooth] = _tooth_points(body, xi_l, eta_l, zeta_l, I[tooth], J[tooth] - n_rim,
-                                  K[tooth])
+                                  K[tooth], rows)
     if n_rim:
         if not hasattr(body, "teeth"):
             raise InputRangeError("n_rim", n_rim, "0 for a body without a member axis")
@@ -261,7 +400,8 @@ def _merge_coincident(skfem, idx, pts):
     return (skfem.MeshTet(idx.p[:, first], t), pts[:, first], (inv[alias], rep))
 
 
-def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_slot):
+def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_slot,
+                 rows=None):
     """Index mesh and node positions of the tooth on its real root (:mod:`.root_fillet`):
     a tensor index grid across the slot bottoms, the tooth and the fillet zone, without
     the cells beside the tooth above the root row (``root`` of :func:`build_fe`); as
@@ -287,7 +427,7 @@ def _fillet_mesh(skfem, body, root, xi_l, eta_l, zeta_l, n_block, n_fillet, n_sl
     j_root = n_block + n_fillet                 # the tooth's root line
     tooth = J >= j_root
     pts[:, tooth] = _tooth_points(body, xi_l, eta_l, zeta_l, I[tooth], J[tooth] - j_root,
-                                  K[tooth] - n_slot)
+                                  K[tooth] - n_slot, rows)
     # levels below the root line: the rim block graded towards the root row
     # (quadratic, as the ellipse rim), the fillet zone even in arc length
     s_frac = ((n_block - np.arange(n_block + 1)) / n_block) ** 2
