@@ -31,7 +31,8 @@ def test_compiled_evaluation_equals_flank_evaluate(s0003_centred, member):
     vec = np.empty((7, 3))
     for side in ("drive", "coast"):
         surf = s0003_flanks.flank(member, side)
-        kind, par, tx, ty, pc = kernel_surface(surf)
+        kind, par, tx, ty, pc = kernel_surface(surf)[:5]   # one piece, no kink
+        par, tx, ty, pc = par[0], tx[0], ty[0], pc[0]
         lo = np.array([surf.u_range[0], surf.v_range[0]])
         hi = np.array([surf.u_range[1], surf.v_range[1]])
         inner = lo + (hi - lo) * rng.random((300, 2))
@@ -144,10 +145,14 @@ def test_cone_lines_closed_form(s0003_centred):
     pts = [gear.point(u, v) for u, v in uv]
     for sp, (u, v) in zip(pts, uv):
         shift = 0.3 * sp.n                                 # start 0.3 mm off the flank
+        uv_out = np.empty((1, 2))
         lam, ins = cone_lines(par, rot, trans, (sp.r + shift)[None, :], sp.n,
-                              np.array([[u, v]]), lo, hi, True)
+                              np.array([[u, v]]), lo, hi, True, uv_out)
         assert ins[0] and abs(lam[0] + 0.3) < 1e-12
+        # the root's (u, v) is the flank point's (rounding of the inverse map)
+        assert np.abs(uv_out[0] - (u, v)).max() < 1e-9
     axis_line = par[0:3][None, :]
+    uv_out = np.zeros((1, 2))
     lam, ins = cone_lines(par, rot, trans, axis_line, par[3:6], np.zeros((1, 2)), lo, hi,
-                          False)
-    assert np.isnan(lam[0]) and not ins[0]
+                          False, uv_out)
+    assert np.isnan(lam[0]) and not ins[0] and np.isnan(uv_out).all()

@@ -65,14 +65,36 @@ class KinkLine:
         v = np.asarray(v, dtype=float)
         fit = self.__dict__.get("_fit")
         if fit is None:
-            finite = np.isfinite(self.u_nodes)
-            if finite.all():
+            if np.isfinite(self.u_nodes).all():
                 fit = CubicSpline(self.v_nodes, self.u_nodes)
             else:
-                big = np.where(finite, self.u_nodes, np.sign(self.u_nodes) * 1e300)
-                fit = lambda x: np.interp(x, self.v_nodes, big)  # noqa: E731
+                fit = lambda x: np.interp(x, self.v_nodes, self._big_nodes)  # noqa: E731
             object.__setattr__(self, "_fit", fit)
         return fit(v)
+
+    @property
+    def _big_nodes(self) -> np.ndarray:
+        """``u_nodes`` with -inf / +inf replaced by the huge values -1e300 / 1e300."""
+        finite = np.isfinite(self.u_nodes)
+        return np.where(finite, self.u_nodes, np.sign(self.u_nodes) * 1e300)
+
+    @property
+    def pp_table(self) -> tuple[np.ndarray, np.ndarray, bool]:
+        """``(breaks, coef, clamp)``: :meth:`u` as a piecewise cubic for compiled code
+        (:mod:`gearcontact.tca.gap_kernel`): on ``breaks[i] <= v < breaks[i+1]`` (the
+        first / last piece continued beyond the ends) ``u_k = sum_p coef[i, p] s^p``
+        with ``s = v - breaks[i]``, summed in ascending powers as scipy's ``PPoly``
+        does; ``clamp``: ``v`` is first clipped to the ends (``np.interp``'s constant
+        continuation of the linear form of a kink that leaves the box)."""
+        if np.isfinite(self.u_nodes).all():
+            fit = CubicSpline(self.v_nodes, self.u_nodes)
+            return (np.ascontiguousarray(fit.x, dtype=float),
+                    np.ascontiguousarray(fit.c[::-1].T, dtype=float), False)
+        x, y = np.asarray(self.v_nodes, dtype=float), self._big_nodes
+        coef = np.zeros((x.size - 1, 4))
+        coef[:, 0] = y[:-1]
+        coef[:, 1] = (y[1:] - y[:-1]) / (x[1:] - x[:-1])
+        return np.ascontiguousarray(x), coef, True
 
 
 @dataclass(frozen=True, eq=False)

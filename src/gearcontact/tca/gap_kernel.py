@@ -23,13 +23,26 @@ caller); beyond the knot box the Jacobian uses the derivative of FITPACK's const
 continuation (zero), so continuation points converge quadratically; with clamping, a
 line pinned to one edge of the box is given up early (:data:`PINNED_ITERATIONS`).
 
-Other surfaces (e.g. analytic test surfaces) have no compiled form
-(:func:`kernel_surface` returns None) and use the vectorized numpy path of
-:mod:`.stencil`. Results agree with that path to rounding (~1e-13 mm).
+* :class:`~gearcontact.geometry.kinked.KinkedFlank` of radial sheets (a pinion cut by
+  a relieved blade): the same Newton iteration, every iterate evaluated on the piece
+  that holds it, as :meth:`~gearcontact.geometry.kinked.KinkedFlank.evaluate` picks it
+  (the number of kink lines ``u = u_k(v)`` below ``(u, v)``; each kink line as the
+  piecewise cubic of :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`,
+  :func:`kink_u`). The step that ends Newton without a confirming evaluation is only
+  taken when it stays on the evaluated piece (across a kink the other piece's
+  continuation differs to first order in the step).
 
-A surface is passed to the kernel as ``(kind, par, tx, ty, pc)``: ``kind`` 0 (sheet) or
-1 (cone), a float parameter vector and the spline arrays (knots and piecewise-polynomial
-coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone).
+Other surfaces (analytic test surfaces, the generated gear's ``GearSheet``, a relieved
+formate gear's cones) have no compiled form (:func:`kernel_surface` returns None) and
+use the vectorized numpy path of :mod:`.stencil`. Results agree with that path to
+rounding (~1e-13 mm; tests/tca/test_gap_kernel.py asserts 1e-9 mm).
+
+A surface is passed to the kernel as ``(kind, par, tx, ty, pc, kink_x, kink_c,
+kink_clamp)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a smooth
+flank) a float parameter vector and the spline arrays (knots and piecewise-polynomial
+coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone); per kink
+line (first axis; none for a smooth flank) its breaks, cubic coefficients and clamp
+flag (:attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`).
 """
 
 from __future__ import annotations
@@ -40,10 +53,12 @@ import numpy as np
 from numba import njit
 
 from ..geometry.formate import FormateFlank
+from ..geometry.kinked import KinkedFlank
 from ..geometry.sheet import RadialSheet, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
-__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines", "cone_lines"]
+__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines", "cone_lines",
+           "kink_u", "kink_piece"]
 
 #: Surface kinds of the kernel.
 KIND_SHEET = 0
@@ -59,32 +74,105 @@ BASIN_MM = 1e-5
 #: evaluation: the error left is of order FINAL_STEP^2 |r''| / 2 (<= ~1e-12 mm for
 #: flank curvatures <= 1/mm), below the line tolerance (1e-11 mm by default).
 FINAL_STEP = 1e-6
-_EMPTY = np.zeros(0)
-_EMPTY4 = np.zeros((0, 0, 0, 0))
+_EMPTY2 = np.zeros((1, 0))
+_EMPTY5 = np.zeros((1, 0, 0, 0, 0))
+#: The kink tables of a smooth flank: no kink line.
+_NO_KINKS = (np.zeros((0, 2)), np.zeros((0, 1, 4)), np.zeros(0, dtype=np.bool_))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def kernel_surface(surface):
-    """The kernel form ``(kind, par, tx, ty, pc)`` of a flank, or None.
+    """The kernel form ``(kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp)`` of a
+    flank (module docstring), or None.
 
-    Sheet ``par``: ``(kx, ky, apex_x, tan_delta, root_offset)``; cone ``par``:
-    :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`.
+    Sheet ``par[k]``: ``(kx, ky, apex_x, tan_delta, root_offset)`` of piece ``k``; cone
+    ``par[0]``: :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`.
+    A :class:`~gearcontact.geometry.kinked.KinkedFlank` has a form when its pieces are
+    radial sheets on one knot grid (as :func:`~gearcontact.geometry.kinked.machine_flank`
+    builds them) with ``v_scales`` 1.
     """
     try:
         return _CACHE[surface]
     except (KeyError, TypeError):
         pass
     if type(surface) is RadialSheet:
-        tx, ty, pc, kx, ky = surface.pp_arrays
-        cone = surface.cone
-        par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
-        out = (KIND_SHEET, par, tx, ty, pc)
+        par, tx, ty, pc = _sheet_arrays(surface)
+        out = (KIND_SHEET, par[None], tx[None], ty[None], pc[None], *_NO_KINKS)
     elif type(surface) is FormateFlank:
-        out = (KIND_CONE, surface.kernel_parameters, _EMPTY, _EMPTY, _EMPTY4)
+        out = (KIND_CONE, surface.kernel_parameters[None], _EMPTY2, _EMPTY2, _EMPTY5,
+               *_NO_KINKS)
+    elif type(surface) is KinkedFlank:
+        out = _kinked_form(surface)
+        if out is None:
+            return None
     else:
         return None
     _CACHE[surface] = out
     return out
+
+
+def _sheet_arrays(sheet: RadialSheet) -> tuple:
+    """``(par, tx, ty, pc)`` of one radial sheet (:func:`kernel_surface`)."""
+    tx, ty, pc, kx, ky = sheet.pp_arrays
+    cone = sheet.cone
+    par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
+    return par, tx, ty, pc
+
+
+def _kinked_form(flank: KinkedFlank):
+    """The kernel form of a relieved flank of radial sheets on one knot grid, else
+    None (:func:`kernel_surface`)."""
+    if (any(type(p) is not RadialSheet for p in flank.pieces)
+            or any(s != 1.0 for s in flank.v_scales)):
+        return None
+    arrays = [_sheet_arrays(p) for p in flank.pieces]
+    tables = [kink.pp_table for kink in flank.kinks]
+    if (len({tuple(a.shape for a in got) for got in arrays}) != 1
+            or len({t[0].shape for t in tables}) > 1):
+        return None
+    if not tables:
+        kinks = _NO_KINKS
+    else:
+        kinks = (np.stack([t[0] for t in tables]), np.stack([t[1] for t in tables]),
+                 np.array([t[2] for t in tables], dtype=np.bool_))
+    return (KIND_SHEET, *(np.stack([got[j] for got in arrays]) for j in range(4)), *kinks)
+
+
+@njit(cache=True, inline="always")
+def kink_u(x, c, clamp, v):
+    """``u_k(v)`` of a kink line from its piecewise cubic (breaks ``x``, coefficients
+    ``c`` (n - 1, 4), ``clamp``: :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`):
+    the piece ``x[i] <= v < x[i+1]`` (the first / last continued), summed in ascending
+    powers of ``v - x[i]`` as scipy's ``PPoly`` does."""
+    n = x.shape[0]
+    if clamp:
+        v = min(max(v, x[0]), x[n - 1])
+    a = 0
+    b = n - 2
+    while a < b:
+        mid = (a + b + 1) // 2
+        if v >= x[mid]:
+            a = mid
+        else:
+            b = mid - 1
+    s = v - x[a]
+    res = 0.0
+    z = 1.0
+    for p in range(4):
+        res = res + c[a, p] * z
+        z *= s
+    return res
+
+
+@njit(cache=True, inline="always")
+def kink_piece(kink_x, kink_c, kink_clamp, u, v):
+    """Index of the piece that holds ``(u, v)``: the number of kink lines below
+    (:meth:`~gearcontact.geometry.kinked.KinkedFlank.piece_index`)."""
+    k = 0
+    for j in range(kink_x.shape[0]):
+        if u > kink_u(kink_x[j], kink_c[j], kink_clamp[j], v):
+            k += 1
+    return k
 
 
 @njit(cache=True, inline="always")
@@ -125,7 +213,7 @@ def _solve3(a, b, x):
 
 
 @njit(cache=True)
-def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
+def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp, uv_out):
     """Closed-form intersections of the lines ``q_i + lambda n`` with a posed blade
     cone (``par``: :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`).
 
@@ -136,11 +224,13 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
     (``rho_0 + k h > 0``) the one nearest ``lambda = 0`` (the tangent plane) is taken;
     ``u = dedendum - h``, ``v = theta / k_v`` with the polar angle ``theta`` of the
     point about the axis taken nearest ``k_v uv0[i, 1]``. Returns as
-    :func:`intersect_lines`.
+    :func:`intersect_lines` (``uv_out`` (N, 2): ``(u, v)`` of every line's root, NaN
+    where it has none).
     """
     m = q.shape[0]
     lam_out = np.full(m, np.nan)
     inside = np.zeros(m, dtype=np.bool_)
+    uv_out[:, :] = np.nan
     rho0, k, ded, kv = par[12], par[13], par[14], par[15]
     nb = np.empty(3)
     for a in range(3):
@@ -182,6 +272,8 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
         t0 = kv * uv0[i, 1]
         theta = t0 + (theta - t0 + np.pi) % (2.0 * np.pi) - np.pi
         v = theta / kv
+        uv_out[i, 0] = u
+        uv_out[i, 1] = v
         ins = lo[0] < u < hi[0] and lo[1] < v < hi[1]
         inside[i] = ins
         if ins or not clamp:
@@ -190,15 +282,15 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
 
 
 @njit(cache=True)
-def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
-                    tol_mm, max_iter, order, prev):
+def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp, rot, trans, q, n,
+                    uv0, lo, hi, clamp, tol_mm, max_iter, order, prev, uv_out):
     """Intersections of the lines ``q_i + lambda n`` with a posed surface: Newton on a
     sheet, :func:`cone_lines` (closed form) on a cone.
 
     Parameters
     ----------
-    kind, par, tx, ty, pc
-        Kernel form of the surface (:func:`kernel_surface`).
+    kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp
+        Kernel form of the surface (:func:`kernel_surface`): its pieces and kink lines.
     rot, trans : ndarray (3, 3), (3,)
         Pose ``x -> rot x + trans`` of the surface.
     q : ndarray (N, 3)
@@ -215,6 +307,8 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         Lines are solved in the sequence ``order``; line ``i`` starts instead from the
         tangent-plane prediction at the solution of line ``prev[i]`` (solved earlier)
         if that converged (inside the box, with ``clamp``); ``-1``: no predecessor.
+    uv_out : ndarray (N, 2)
+        Filled with the parameters of every converged intersection (NaN elsewhere).
 
     Returns
     -------
@@ -233,8 +327,10 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
     quadratically too.
     """
     if kind == KIND_CONE:
-        return cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp)
+        return cone_lines(par[0], rot, trans, q, n, uv0, lo, hi, clamp, uv_out)
     m = q.shape[0]
+    kinked = kink_x.shape[0] > 0
+    piece = 0
     lam_out = np.empty(m)
     inside = np.zeros(m, dtype=np.bool_)
     ok = np.zeros(m, dtype=np.bool_)
@@ -290,7 +386,9 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         last_side = 0
         side = 0
         for _ in range(max_iter):
-            sheet_point(par, tx, ty, pc, u, v, dpsi, vec)    # cones returned above
+            if kinked:
+                piece = kink_piece(kink_x, kink_c, kink_clamp, u, v)
+            sheet_point(par[piece], tx[piece], ty[piece], pc[piece], u, v, dpsi, vec)
             res_max = 0.0
             for a in range(3):
                 x[a] = 0.0
@@ -329,9 +427,11 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
                 break
             # quadratic basin: once the residual is below BASIN_MM a step below
             # FINAL_STEP leaves an error of order step^2 |r''| (<= ~1e-12 mm), so the
-            # confirming evaluation is skipped (one to two per line)
+            # confirming evaluation is skipped (one to two per line); not across a kink
             if (res_max < BASIN_MM and moved < FINAL_STEP and abs(step[2]) < FINAL_STEP
-                    and not (clamp and side != 0)):
+                    and not (clamp and side != 0)
+                    and not (kinked and kink_piece(kink_x, kink_c, kink_clamp, u, v)
+                             != piece)):
                 converged = True
                 break
         ins = converged and lo[0] < u < hi[0] and lo[1] < v < hi[1]
@@ -340,5 +440,7 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         sol[i, 0] = u
         sol[i, 1] = v
         sol[i, 2] = lam
+        uv_out[i, 0] = u if converged else np.nan
+        uv_out[i, 1] = v if converged else np.nan
         lam_out[i] = lam if ok[i] else np.nan
     return lam_out, inside
