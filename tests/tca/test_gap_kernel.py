@@ -6,7 +6,10 @@ s0003 the compiled gap fields equal the vectorized numpy path of :mod:`.stencil`
 (the pre-kernel implementation, still used for surfaces without a compiled form) to
 1e-9 mm, with identical on-flank masks; (3) on a sheet with a linear psi field
 (reproduced exactly by the quintic spline) each intersection matches an independent
-scalar root of the line against the closed-form surface.
+scalar root of the line against the closed-form surface; (4) on a relieved pinion
+(geometry.kinked) lines through flank points on both sides of the kink meet the flank
+at those points, on the compiled and the numpy path, and the compiled kink tables are
+the kink lines.
 """
 
 import numpy as np
@@ -156,3 +159,136 @@ def test_cone_lines_closed_form(s0003_centred):
     lam, ins = cone_lines(par, rot, trans, axis_line, par[3:6], np.zeros((1, 2)), lo, hi,
                           False, uv_out)
     assert np.isnan(lam[0]) and not ins[0] and np.isnan(uv_out).all()
+
+
+# --- relieved flanks (geometry.kinked): the compiled path on the piece of each iterate
+
+@pytest.fixture(scope="module")
+def kinked_pinion():
+    """The ISO 23509 F.2 pinion drive flank (examples/machine_settings) with a 2 deg
+    Toprem from 2 mm, on a coarse node grid (seconds): kink line inside the flank."""
+    import dataclasses
+
+    from gearcontact.geometry.kinked import machine_flank
+    from gearcontact.geometry.pair import load_pair
+
+    pair = load_pair("examples/machine_settings/iso23509_f2_machine.toml")
+    setup = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "drive"))
+    setup = dataclasses.replace(setup, blade=dataclasses.replace(
+        setup.blade, toprem_angle_deg=2.0, toprem_depth_mm=2.0))
+    return machine_flank(setup, pair.blank, face_width_mm=pair.pinion_face_width_mm,
+                         n_u=24, n_v=30)
+
+
+def test_kink_tables_equal_the_kink_lines(kinked_pinion):
+    from gearcontact.geometry.kinked import KinkLine
+    from gearcontact.geometry.kinked import kink_u
+
+    kink = kinked_pinion.kinks[0]
+    lo, hi = kinked_pinion.v_range
+    v = np.linspace(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo), 997)   # ends continued
+    x, c, clamp = kink.pp_table
+    got = np.array([kink_u(x, c, clamp, vi) for vi in v])
+    # the same piecewise cubic summed in the same order as scipy's PPoly: measured 0
+    # (bit for bit), 1e-12 mm asserted (rounding allowance, e.g. another interval pick)
+    assert not clamp and np.abs(got - kink.u(v)).max() < 1e-12
+    # a kink leaving the box (-inf / +inf nodes): np.interp's linear form towards the
+    # huge values, constant beyond the ends; equal where finite-sized, same side elsewhere
+    u_nodes = kink.u_nodes.copy()
+    u_nodes[:5], u_nodes[-3:] = -np.inf, np.inf
+    out = KinkLine("toprem", 0, kink.v_nodes, u_nodes)
+    x, c, clamp = out.pp_table
+    got = np.array([kink_u(x, c, clamp, vi) for vi in v])
+    want = out.u(v)
+    small = np.abs(want) < 1e3
+    assert clamp and small.sum() > 100 and (~small).sum() > 100
+    assert np.abs(got[small] - want[small]).max() < 1e-12
+    assert np.array_equal(np.sign(got[~small]), np.sign(want[~small]))
+    assert np.abs(got[~small] / want[~small] - 1.0).max() < 1e-12
+
+
+def test_compiled_kinked_intersections_are_the_flank_points(kinked_pinion, monkeypatch):
+    # lines through flank points on both sides of the kink line (within 1 um of it and
+    # up to 0.3 mm away), along one common direction (the mean of the two pieces'
+    # normals at the middle of the kink), 0.02 mm out: each meets the flank at its own
+    # point, lambda = -0.02 exactly (the ridge is convex: one crossing). Newton starts
+    # 0.15 mm of u and 0.4 mm of v away, so many iterations cross the kink.
+    flank = kinked_pinion
+    kink = flank.kinks[0]
+    vm = 0.5 * sum(flank.v_range)
+    um = float(kink.u(vm))
+    a, b = (flank.evaluate_piece(i, um, vm) for i in (0, 1))
+    n = a.n + b.n
+    n /= np.linalg.norm(n)
+    du = np.array([-0.3, -0.05, -1e-3, -1e-6, 1e-6, 1e-3, 0.05, 0.3])
+    vs = vm + np.linspace(-3.0, 3.0, 9)
+    V, D = np.meshgrid(vs, du)
+    U = kink.u(V) + D
+    uv = np.column_stack([U.ravel(), V.ravel()])
+    sp = flank.evaluate(uv[:, 0], uv[:, 1])
+    q = sp.r + 0.02 * n
+    uv0 = uv + np.array([0.15, -0.4])
+    pose = (np.eye(3), np.zeros(3))
+    runs = {}
+    for name in ("compiled", "numpy"):
+        if name == "numpy":
+            _numpy_path(monkeypatch)
+        uv_out = np.empty_like(uv)
+        lam, inside = stencil._intersect_many(flank, pose, q, n, uv0.copy(), clamp=True,
+                                              tol_mm=1e-11,
+                                              sweep=stencil._sweep(uv - uv.mean(0), U.shape),
+                                              uv_out=uv_out)
+        runs[name] = (lam, inside, uv_out)
+        assert inside.all()
+        # Newton to 1e-11 mm: measured 8e-15 mm (compiled) / 4e-15 mm (numpy); 1e-9 mm
+        # asserted (the smooth flanks' compiled / numpy agreement tolerance above), the
+        # parameters to 1e-8 mm (|r_u|, |r_v| ~ 1; measured 1.4e-14)
+        assert np.abs(lam + 0.02).max() < 1e-9, name
+        assert np.abs(uv_out - uv).max() < 1e-8, name
+        assert np.array_equal(flank.piece_index(uv_out[:, 0], uv_out[:, 1]),
+                              flank.piece_index(uv[:, 0], uv[:, 1]))
+    (lf, inf, uvf), (ls, ins, uvs) = runs["compiled"], runs["numpy"]
+    assert np.array_equal(inf, ins) and np.abs(lf - ls).max() < 1e-9
+    assert stencil._kinks_crossed(flank, uvf) == stencil._kinks_crossed(flank, uvs) == ["toprem"]
+
+
+def test_kernel_form_of_a_kinked_flank(kinked_pinion):
+    # two pieces on one knot grid, one kink table; pieces evaluated at scaled v (as a
+    # formate kinked flank's cones are) have no compiled form (numpy path)
+    import dataclasses
+
+    kind, par, tx, ty, pc, kx, kc, kclamp = kernel_surface(kinked_pinion)
+    assert kind == 0 and par.shape[0] == tx.shape[0] == pc.shape[0] == 2
+    assert kx.shape[0] == kc.shape[0] == kclamp.shape[0] == 1
+    scaled = dataclasses.replace(kinked_pinion, v_scales=(1.0, 0.5))
+    assert kernel_surface(scaled) is None
+
+
+@pytest.mark.slow
+def test_toprem_pair_analysis_compiled_equals_numpy_path(monkeypatch):
+    # ~15 s: the Toprem pair (tests/data/toprem) analyzed on the compiled and on the
+    # numpy path: the 80 x 80 field and the stencil at P0 (both straddle the kink) to
+    # the smooth flanks' 1e-9 mm with identical masks and kinks, the paint-ellipse check
+    # and the edges the same; TE0 (surface and ridge contacts, not gap fields) the
+    # README's 21.4 arcsec with 18 of 61 phases on the ridge on both
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair = load_pair("tests/data/toprem/iso23509_f2_toprem.toml")
+    flanks = build_flanks(pair)
+    assert kernel_surface(flanks.flank("pinion", pair.design_side)) is not None
+    fast = analyze_pair(pair, flanks=flanks)[0]
+    _numpy_path(monkeypatch)
+    slow = analyze_pair(pair, flanks=flanks)[0]
+    for f, s in ((fast.gap_field, slow.gap_field), (fast.stencil, slow.stencil)):
+        assert f.kinks == s.kinks == ("pinion toprem",)
+        assert np.array_equal(f.on_flank, s.on_flank)
+        assert np.array_equal(np.isfinite(f.gap_mm), np.isfinite(s.gap_mm))
+        ok = np.isfinite(s.gap_mm)
+        assert ok.any() and np.abs(f.gap_mm[ok] - s.gap_mm[ok]).max() < 1e-9
+    assert np.array_equal(fast.pattern_on_flank, slow.pattern_on_flank)
+    assert fast.edges == slow.edges
+    for run in (fast, slow):
+        assert round(run.cycle.te0_pp_arcsec, 1) == 21.4
+        assert run.edge_contact_counts == {"pinion toprem": 18}

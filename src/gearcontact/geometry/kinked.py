@@ -31,6 +31,7 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 from scipy.interpolate import CubicSpline
 
 from .blade import blade_segments
@@ -40,12 +41,59 @@ from .generated import (formate_gear_flank, gear_flank_of, generated_gear_box,
 from .sampling import SurfaceArrays, point_from_arrays
 from .surface import SurfacePoint
 
-__all__ = ["KINK_NODES", "KinkLine", "KinkedFlank", "kinked_flank", "machine_flank"]
+__all__ = ["KINK_NODES", "KinkLine", "KinkedFlank", "kinked_flank", "machine_flank",
+           "kink_u", "kink_piece", "kink_pieces"]
 
 #: Lengthwise nodes on which each kink line is solved (interpolated between them by a
 #: cubic spline; tests/geometry/test_kinked.py measures the interpolation error).
 KINK_NODES = 41
 _BISECTIONS = 64
+
+
+@njit(cache=True, inline="always")
+def kink_u(x, c, clamp, v):
+    """``u_k(v)`` of a kink line from its piecewise cubic (breaks ``x``, coefficients
+    ``c`` (n - 1, 4), ``clamp``: :attr:`KinkLine.pp_table`):
+    the piece ``x[i] <= v < x[i+1]`` (the first / last continued), summed in ascending
+    powers of ``v - x[i]`` as scipy's ``PPoly`` does."""
+    n = x.shape[0]
+    if clamp:
+        v = min(max(v, x[0]), x[n - 1])
+    a = 0
+    b = n - 2
+    while a < b:
+        mid = (a + b + 1) // 2
+        if v >= x[mid]:
+            a = mid
+        else:
+            b = mid - 1
+    s = v - x[a]
+    res = 0.0
+    z = 1.0
+    for p in range(4):
+        res = res + c[a, p] * z
+        z *= s
+    return res
+
+
+@njit(cache=True, inline="always")
+def kink_piece(kink_x, kink_c, kink_clamp, u, v):
+    """Index of the piece that holds ``(u, v)``: the number of kink lines below
+    (tables: :attr:`KinkedFlank.kink_tables`)."""
+    k = 0
+    for j in range(kink_x.shape[0]):
+        if u > kink_u(kink_x[j], kink_c[j], kink_clamp[j], v):
+            k += 1
+    return k
+
+
+@njit(cache=True)
+def kink_pieces(kink_x, kink_c, kink_clamp, u, v):
+    """:func:`kink_piece` at the points ``(u[i], v[i])`` (1-D arrays)."""
+    out = np.empty(u.shape[0], dtype=np.int64)
+    for i in range(u.shape[0]):
+        out[i] = kink_piece(kink_x, kink_c, kink_clamp, u[i], v[i])
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,13 +202,33 @@ class KinkedFlank:
             raise AttributeError(name)
         return getattr(self.main, name)
 
+    @property
+    def kink_tables(self):
+        """``(kink_x, kink_c, kink_clamp)``: the kinks' :attr:`KinkLine.pp_table` stacked
+        (K, n), (K, n - 1, 4), (K,) for :func:`kink_piece` (compiled code: this class,
+        :mod:`gearcontact.tca.gap_kernel`); None if the kinks have unequal node counts."""
+        got = self.__dict__.get("_kink_tables", False)
+        if got is False:
+            tables = [kink.pp_table for kink in self.kinks]
+            got = None
+            if len({t[0].shape for t in tables}) == 1:
+                got = (np.stack([t[0] for t in tables]), np.stack([t[1] for t in tables]),
+                       np.array([t[2] for t in tables], dtype=np.bool_))
+            object.__setattr__(self, "_kink_tables", got)
+        return got
+
     def piece_index(self, u, v) -> np.ndarray:
-        """Index of the piece that holds ``(u, v)`` (arrays): the number of kinks below."""
+        """Index of the piece that holds ``(u, v)`` (arrays): the number of kinks below
+        (:func:`kink_pieces` on :attr:`kink_tables`, the compiled TCA kernel's choice)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
-        k = np.zeros(u.shape, dtype=int)
-        for kink in self.kinks:
-            k += u > kink.u(v)
-        return k
+        tables = self.kink_tables
+        if tables is None:
+            k = np.zeros(u.shape, dtype=int)
+            for kink in self.kinks:
+                k += u > kink.u(v)
+            return k
+        return kink_pieces(*tables, np.ascontiguousarray(u.ravel()),
+                           np.ascontiguousarray(v.ravel())).reshape(u.shape)
 
     def kink_name(self, u0, u1, v) -> str | None:
         """The kink crossed between ``(u0, v)`` and ``(u1, v)``, or None."""
@@ -210,7 +278,9 @@ class KinkedFlank:
 
     def point(self, u: float, v: float) -> SurfacePoint:
         """:class:`~.surface.SurfacePoint` of the piece that holds ``(u, v)``."""
-        i = int(self.piece_index(u, v))
+        tables = self.kink_tables
+        i = (int(self.piece_index(u, v)) if tables is None
+             else kink_piece(*tables, float(u), float(v)))
         s = self.v_scales[i]
         p = self.pieces[i].point(u, s * v)
         if s == 1.0:

@@ -26,9 +26,9 @@ line pinned to one edge of the box is given up early (:data:`PINNED_ITERATIONS`)
 * :class:`~gearcontact.geometry.kinked.KinkedFlank` of radial sheets (a pinion cut by
   a relieved blade): the same Newton iteration, every iterate evaluated on the piece
   that holds it, as :meth:`~gearcontact.geometry.kinked.KinkedFlank.evaluate` picks it
-  (the number of kink lines ``u = u_k(v)`` below ``(u, v)``; each kink line as the
-  piecewise cubic of :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`,
-  :func:`kink_u`). The step that ends Newton without a confirming evaluation is only
+  (:func:`~gearcontact.geometry.kinked.kink_piece`, the same compiled function: the
+  number of kink lines ``u = u_k(v)`` below ``(u, v)``, each the piecewise cubic of
+  :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`). The step that ends Newton without a confirming evaluation is only
   taken when it stays on the evaluated piece (across a kink the other piece's
   continuation differs to first order in the step).
 
@@ -42,7 +42,7 @@ kink_clamp)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a 
 flank) a float parameter vector and the spline arrays (knots and piecewise-polynomial
 coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone); per kink
 line (first axis; none for a smooth flank) its breaks, cubic coefficients and clamp
-flag (:attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`).
+flag (:attr:`~gearcontact.geometry.kinked.KinkedFlank.kink_tables`).
 """
 
 from __future__ import annotations
@@ -53,12 +53,11 @@ import numpy as np
 from numba import njit
 
 from ..geometry.formate import FormateFlank
-from ..geometry.kinked import KinkedFlank
+from ..geometry.kinked import KinkedFlank, kink_piece
 from ..geometry.sheet import RadialSheet, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
-__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines", "cone_lines",
-           "kink_u", "kink_piece"]
+__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines", "cone_lines"]
 
 #: Surface kinds of the kernel.
 KIND_SHEET = 0
@@ -126,53 +125,10 @@ def _kinked_form(flank: KinkedFlank):
             or any(s != 1.0 for s in flank.v_scales)):
         return None
     arrays = [_sheet_arrays(p) for p in flank.pieces]
-    tables = [kink.pp_table for kink in flank.kinks]
-    if (len({tuple(a.shape for a in got) for got in arrays}) != 1
-            or len({t[0].shape for t in tables}) > 1):
+    kinks = flank.kink_tables
+    if len({tuple(a.shape for a in got) for got in arrays}) != 1 or kinks is None:
         return None
-    if not tables:
-        kinks = _NO_KINKS
-    else:
-        kinks = (np.stack([t[0] for t in tables]), np.stack([t[1] for t in tables]),
-                 np.array([t[2] for t in tables], dtype=np.bool_))
     return (KIND_SHEET, *(np.stack([got[j] for got in arrays]) for j in range(4)), *kinks)
-
-
-@njit(cache=True, inline="always")
-def kink_u(x, c, clamp, v):
-    """``u_k(v)`` of a kink line from its piecewise cubic (breaks ``x``, coefficients
-    ``c`` (n - 1, 4), ``clamp``: :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`):
-    the piece ``x[i] <= v < x[i+1]`` (the first / last continued), summed in ascending
-    powers of ``v - x[i]`` as scipy's ``PPoly`` does."""
-    n = x.shape[0]
-    if clamp:
-        v = min(max(v, x[0]), x[n - 1])
-    a = 0
-    b = n - 2
-    while a < b:
-        mid = (a + b + 1) // 2
-        if v >= x[mid]:
-            a = mid
-        else:
-            b = mid - 1
-    s = v - x[a]
-    res = 0.0
-    z = 1.0
-    for p in range(4):
-        res = res + c[a, p] * z
-        z *= s
-    return res
-
-
-@njit(cache=True, inline="always")
-def kink_piece(kink_x, kink_c, kink_clamp, u, v):
-    """Index of the piece that holds ``(u, v)``: the number of kink lines below
-    (:meth:`~gearcontact.geometry.kinked.KinkedFlank.piece_index`)."""
-    k = 0
-    for j in range(kink_x.shape[0]):
-        if u > kink_u(kink_x[j], kink_c[j], kink_clamp[j], v):
-            k += 1
-    return k
 
 
 @njit(cache=True, inline="always")
