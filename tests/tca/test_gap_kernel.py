@@ -181,30 +181,36 @@ def kinked_pinion():
 
 
 def test_kink_tables_equal_the_kink_lines(kinked_pinion):
-    from gearcontact.geometry.kinked import KinkLine
-    from gearcontact.geometry.kinked import kink_u
+    from scipy.interpolate import CubicSpline
+
+    from gearcontact.geometry.kinked import KinkLine, kink_u
 
     kink = kinked_pinion.kinks[0]
     lo, hi = kinked_pinion.v_range
     v = np.linspace(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo), 997)   # ends continued
-    x, c, clamp = kink.pp_table
-    got = np.array([kink_u(x, c, clamp, vi) for vi in v])
-    # the same piecewise cubic summed in the same order as scipy's PPoly: measured 0
-    # (bit for bit), 1e-12 mm asserted (rounding allowance, e.g. another interval pick)
-    assert not clamp and np.abs(got - kink.u(v)).max() < 1e-12
-    # a kink leaving the box (-inf / +inf nodes): np.interp's linear form towards the
-    # huge values, constant beyond the ends; equal where finite-sized, same side elsewhere
+    x, c = kink.pp_table
+    got = np.array([kink_u(x, c, x.size, vi) for vi in v])
+    # inside the box over the whole width: scipy's cubic spline through the nodes, the
+    # same piecewise cubic summed in the same order as scipy's PPoly: measured 0 (bit
+    # for bit), 1e-12 mm asserted (rounding allowance, e.g. another interval pick)
+    want = CubicSpline(kink.v_nodes, kink.u_nodes)(v)
+    assert np.abs(got - want).max() < 1e-12 and np.abs(kink.u(v) - want).max() < 1e-12
+    # a kink leaving the box (-inf below the root at the toe, +inf above the tip at the
+    # heel): the cubic spline of the finite run between, the huge value of each side
+    # beyond; padded tables (as KinkedFlank.kink_tables stacks kinks) read the same
     u_nodes = kink.u_nodes.copy()
     u_nodes[:5], u_nodes[-3:] = -np.inf, np.inf
     out = KinkLine("toprem", 0, kink.v_nodes, u_nodes)
-    x, c, clamp = out.pp_table
-    got = np.array([kink_u(x, c, clamp, vi) for vi in v])
-    want = out.u(v)
-    small = np.abs(want) < 1e3
-    assert clamp and small.sum() > 100 and (~small).sum() > 100
-    assert np.abs(got[small] - want[small]).max() < 1e-12
-    assert np.array_equal(np.sign(got[~small]), np.sign(want[~small]))
-    assert np.abs(got[~small] / want[~small] - 1.0).max() < 1e-12
+    x, c = out.pp_table
+    xp, cp = np.concatenate([x, [0.0, 0.0]]), np.concatenate([c, np.zeros((2, 4))])
+    got = np.array([kink_u(xp, cp, x.size, vi) for vi in v])
+    run = CubicSpline(kink.v_nodes[5:-3], kink.u_nodes[5:-3])
+    inner = (v >= kink.v_nodes[5]) & (v < kink.v_nodes[-4])
+    toe, heel = v < kink.v_nodes[4], v >= kink.v_nodes[-3]
+    assert inner.sum() > 100 and toe.sum() > 100 and heel.sum() > 100
+    assert np.abs(got[inner] - run(v[inner])).max() < 1e-12
+    assert np.all(got[toe] == -1e300) and np.all(got[heel] == 1e300)
+    assert np.array_equal(out.u(v), got)
 
 
 def test_compiled_kinked_intersections_are_the_flank_points(kinked_pinion, monkeypatch):
@@ -257,9 +263,9 @@ def test_kernel_form_of_a_kinked_flank(kinked_pinion):
     # formate kinked flank's cones are) have no compiled form (numpy path)
     import dataclasses
 
-    kind, par, tx, ty, pc, kx, kc, kclamp = kernel_surface(kinked_pinion)
+    kind, par, tx, ty, pc, kx, kc, kn = kernel_surface(kinked_pinion)
     assert kind == 0 and par.shape[0] == tx.shape[0] == pc.shape[0] == 2
-    assert kx.shape[0] == kc.shape[0] == kclamp.shape[0] == 1
+    assert kx.shape[0] == kc.shape[0] == kn.shape[0] == 1 and kn[0] == kx.shape[1]
     scaled = dataclasses.replace(kinked_pinion, v_scales=(1.0, 0.5))
     assert kernel_surface(scaled) is None
 

@@ -38,11 +38,11 @@ use the vectorized numpy path of :mod:`.stencil`. Results agree with that path t
 rounding (~1e-13 mm; tests/tca/test_gap_kernel.py asserts 1e-9 mm).
 
 A surface is passed to the kernel as ``(kind, par, tx, ty, pc, kink_x, kink_c,
-kink_clamp)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a smooth
+kink_n)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a smooth
 flank) a float parameter vector and the spline arrays (knots and piecewise-polynomial
 coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone); per kink
-line (first axis; none for a smooth flank) its breaks, cubic coefficients and clamp
-flag (:attr:`~gearcontact.geometry.kinked.KinkedFlank.kink_tables`).
+line (first axis; none for a smooth flank) its breaks, cubic coefficients and break
+count (:attr:`~gearcontact.geometry.kinked.KinkedFlank.kink_tables`).
 """
 
 from __future__ import annotations
@@ -76,12 +76,12 @@ FINAL_STEP = 1e-6
 _EMPTY2 = np.zeros((1, 0))
 _EMPTY5 = np.zeros((1, 0, 0, 0, 0))
 #: The kink tables of a smooth flank: no kink line.
-_NO_KINKS = (np.zeros((0, 2)), np.zeros((0, 1, 4)), np.zeros(0, dtype=np.bool_))
+_NO_KINKS = (np.zeros((0, 2)), np.zeros((0, 1, 4)), np.zeros(0, dtype=np.int64))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def kernel_surface(surface):
-    """The kernel form ``(kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp)`` of a
+    """The kernel form ``(kind, par, tx, ty, pc, kink_x, kink_c, kink_n)`` of a
     flank (module docstring), or None.
 
     Sheet ``par[k]``: ``(kx, ky, apex_x, tan_delta, root_offset)`` of piece ``k``; cone
@@ -125,10 +125,10 @@ def _kinked_form(flank: KinkedFlank):
             or any(s != 1.0 for s in flank.v_scales)):
         return None
     arrays = [_sheet_arrays(p) for p in flank.pieces]
-    kinks = flank.kink_tables
-    if len({tuple(a.shape for a in got) for got in arrays}) != 1 or kinks is None:
+    if len({tuple(a.shape for a in got) for got in arrays}) != 1:
         return None
-    return (KIND_SHEET, *(np.stack([got[j] for got in arrays]) for j in range(4)), *kinks)
+    return (KIND_SHEET, *(np.stack([got[j] for got in arrays]) for j in range(4)),
+            *flank.kink_tables)
 
 
 @njit(cache=True, inline="always")
@@ -238,14 +238,14 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp, uv_out):
 
 
 @njit(cache=True)
-def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp, rot, trans, q, n,
+def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_n, rot, trans, q, n,
                     uv0, lo, hi, clamp, tol_mm, max_iter, order, prev, uv_out):
     """Intersections of the lines ``q_i + lambda n`` with a posed surface: Newton on a
     sheet, :func:`cone_lines` (closed form) on a cone.
 
     Parameters
     ----------
-    kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp
+    kind, par, tx, ty, pc, kink_x, kink_c, kink_n
         Kernel form of the surface (:func:`kernel_surface`): its pieces and kink lines.
     rot, trans : ndarray (3, 3), (3,)
         Pose ``x -> rot x + trans`` of the surface.
@@ -343,7 +343,7 @@ def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp, rot, tran
         side = 0
         for _ in range(max_iter):
             if kinked:
-                piece = kink_piece(kink_x, kink_c, kink_clamp, u, v)
+                piece = kink_piece(kink_x, kink_c, kink_n, u, v)
             sheet_point(par[piece], tx[piece], ty[piece], pc[piece], u, v, dpsi, vec)
             res_max = 0.0
             for a in range(3):
@@ -386,7 +386,7 @@ def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_clamp, rot, tran
             # confirming evaluation is skipped (one to two per line); not across a kink
             if (res_max < BASIN_MM and moved < FINAL_STEP and abs(step[2]) < FINAL_STEP
                     and not (clamp and side != 0)
-                    and not (kinked and kink_piece(kink_x, kink_c, kink_clamp, u, v)
+                    and not (kinked and kink_piece(kink_x, kink_c, kink_n, u, v)
                              != piece)):
                 converged = True
                 break
