@@ -117,7 +117,8 @@ def test_relieved_formate_flank_leaves_as_two_faces_on_the_kink(tmp_path, side):
     fits, pieces = step_faces(flank)
     names = [f.name for f in fits]
     assert names == [f"gear_{side}_toprem", f"gear_{side}"]
-    assert pieces == {f"gear_{side}_toprem": "toprem", f"gear_{side}": "main"}
+    assert {k: p for k, (p, _) in pieces.items()} == {f"gear_{side}_toprem": "toprem",
+                                                      f"gear_{side}": "main"}
     # the shared edge: the same poles, bit for bit (flank_step.fit_bsplines)
     assert np.array_equal(fits[0].control_mm[-1], fits[1].control_mm[0])
     assert np.array_equal(fits[0].knots_v, fits[1].knots_v)
@@ -164,9 +165,133 @@ def test_relieved_formate_flank_grid_carries_each_piece(tmp_path):
     np.testing.assert_allclose(np.abs(tilt), want, rtol=0, atol=1e-9)
 
 
-def test_kink_crossing_the_box_edge_is_refused_naming_the_blade_key():
-    # a Toprem depth below the flank's root line at one end only is not a four-sided
-    # piece: refused before any fit, naming the blade's keys (exit 2 from the CLI)
+@pytest.fixture(scope="module")
+def crossing_pinion():
+    """The F.2 pinion drive flank with a 2 deg Toprem from 1.1 mm (coarse node grid:
+    seconds): the kink runs from u = 1.73 mm at the toe down to the root line
+    (u = 1.30 mm), which it crosses at v = 85.6 mm, 2.8 mm before the heel."""
+    pair = load_pair(EXAMPLE)
+    s = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "drive"))
+    s = dataclasses.replace(s, blade=dataclasses.replace(
+        s.blade, toprem_angle_deg=DELTA_DEG, toprem_depth_mm=1.1))
+    flank = machine_flank(s, pair.blank, face_width_mm=pair.pinion_face_width_mm,
+                          n_u=24, n_v=30)
+    return ExportFlank("pinion", "drive", flank, AXIS_FRAMES["pinion"])
+
+
+def test_kink_crossing_the_root_line_is_solved_as_a_node(crossing_pinion):
+    # kinked_flank adds the crossing: at (u_root, v*) the two pieces meet (their
+    # normal distance, bisected to rounding: 1e-9 mm asserted); the Toprem piece holds
+    # the flank's root toe-side of it, the main piece heel-side
+    surf = crossing_pinion.surface
+    kink = surf.kinks[0]
+    u0 = surf.u_range[0]
+    j = int(np.flatnonzero(kink.u_nodes == u0)[0])
+    v_star = kink.v_nodes[j]
+    assert surf.v_range[0] < v_star < surf.v_range[1] and np.isneginf(kink.u_nodes[j + 1])
+    a, b = (surf.evaluate_piece(i, u0, v_star) for i in (0, 1))
+    assert abs(float((a.r - b.r) @ b.n)) < 1e-9
+    assert surf.piece_index(u0 + 1e-6, v_star - 0.01) == 0
+    assert surf.piece_index(u0 + 1e-6, v_star + 0.01) == 1
+
+
+def test_kink_crossing_the_root_line_leaves_as_split_faces(tmp_path, crossing_pinion):
+    # the flank split at the crossing v*: toe-side the Toprem face (collapsing to the
+    # crossing point at v*) under the main face, heel-side a second main face; read
+    # back (gmsh) within the issue's 0.5 um at the faces' parameters and as distances;
+    # the kink edge one curve (the same poles), the split edge one curve, the crossing
+    # point the flank's
+    flank = crossing_pinion
+    surf, to_axis = flank.surface, flank.to_axis
+    fits, faces = step_faces(flank)
+    names = [f.name for f in fits]
+    assert names == ["pinion_drive_toprem", "pinion_drive_1", "pinion_drive_2"]
+    (v0, v1), u0 = surf.v_range, surf.u_range[0]
+    v_star = faces["pinion_drive_toprem"][1][1]
+    assert faces == {"pinion_drive_toprem": ("toprem", (v0, v_star)),
+                     "pinion_drive_1": ("main", (v0, v_star)),
+                     "pinion_drive_2": ("main", (v_star, v1))}
+    assert np.array_equal(fits[0].control_mm[-1], fits[1].control_mm[0])     # kink
+    assert np.array_equal(fits[1].control_mm[:, -1], fits[2].control_mm[:, 0])  # split
+    path = write_step(tmp_path / "pinion.step", fits, title="F.2 Toprem crossing the root")
+    n_fit = fits[0].nodes[0]
+    pieces = {"pinion_drive_toprem": 0, "pinion_drive_1": 1, "pinion_drive_2": 1}
+    gmsh.initialize(argv=[], readConfigFiles=False, interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    try:
+        gmsh.model.add("crossing")
+        ents = gmsh.model.occ.importShapes(str(path))
+        gmsh.model.occ.synchronize()
+        tags = {gmsh.model.getEntityName(*e).rsplit("/", 1)[-1]: e[1]
+                for e in ents if e[0] == 2}
+        assert set(tags) == set(names)
+
+        def value(name, t, v):
+            par = np.stack(np.broadcast_arrays(t, v), -1).ravel()
+            return np.reshape(gmsh.model.getValue(2, tags[name], par), (-1, 3))
+
+        def normal(name, t, v):
+            par = np.stack(np.broadcast_arrays(t, v), -1).ravel()
+            return np.reshape(gmsh.model.getNormal(tags[name], par), (-1, 3))
+
+        for name, (_, (va, vb)) in faces.items():
+            i = pieces[name]
+            t = np.linspace(0.0, 1.0, 4 * (n_fit - 1) + 1)[1:-1]
+            v = np.linspace(va, vb, 4 * (n_fit - 1) + 1)
+            if i == 0:      # the collapsed edge v* is the crossing point (checked below)
+                v = v[:-1]
+            T, V = np.meshgrid(t, v, indexing="ij")
+            a, b = surf.piece_bounds(i, V)
+            U = a + T * (b - a)
+            assert np.all(surf.piece_index(U, V) == i)       # each on its own piece
+            truth = (surf.evaluate(U, V).r @ to_axis.T).reshape(-1, 3)
+            at_params = np.linalg.norm(value(name, T.ravel(), V.ravel()) - truth, axis=-1)
+            # every fourth cell centre of the 65 x 65 fitting grid each way (256 points:
+            # OpenCASCADE's projection takes ~2.5 ms a point on these faces)
+            tc = np.linspace(0.0, 1.0, 2 * n_fit - 1)[1::8]
+            vc = np.linspace(va, vb, 2 * n_fit - 1)[1::8]
+            T, V = np.meshgrid(tc, vc, indexing="ij")
+            a, b = surf.piece_bounds(i, V)
+            pts = (surf.evaluate(a + T * (b - a), V).r @ to_axis.T).reshape(-1, 3)
+            near, _ = gmsh.model.getClosestPoint(2, tags[name], pts.ravel())
+            distance = np.linalg.norm(np.reshape(near, (-1, 3)) - pts, axis=-1)
+            # measured 0.0007 / 0.0006 um (main faces; distances on all 4096 centres),
+            # 3e-6 um (Toprem face); the
+            # issue's 0.5 um asserted
+            assert at_params.max() <= TOL_MM and distance.max() <= TOL_MM, name
+        # the kink edge: the Toprem face's t = 1 and the main face's t = 0, one curve
+        # (the kernel's rounding, 1e-9 mm; measured 0), on the kink line where the
+        # pieces meet (measured 1.5e-9 mm from either piece; 0.5 um asserted)
+        ve = np.linspace(v0, v_star, 41)
+        p_low, p_up = value(names[0], 1.0, ve), value(names[1], 0.0, ve)
+        assert np.abs(p_low - p_up).max() <= 1e-9
+        u_k = np.clip(surf.kinks[0].u(ve), *surf.u_range)
+        for i in (0, 1):
+            kink = surf.evaluate_piece(i, u_k, ve).r @ to_axis.T
+            assert np.linalg.norm(p_low - kink, axis=-1).max() <= TOL_MM
+        # the normal jump across it the flank's (2 x NORMAL_TARGET_RAD, as above;
+        # measured 3.6 to 4.3 deg, matched to 0.0024 deg); not at v* itself, where the
+        # Toprem face collapses to a point (no normal)
+        lower = surf.evaluate_piece(0, u_k[:-1], ve[:-1])
+        upper = surf.evaluate_piece(1, u_k[:-1], ve[:-1])
+        jump = _angle_deg(normal(names[0], 1.0, ve[:-1]), normal(names[1], 0.0, ve[:-1]))
+        np.testing.assert_allclose(jump, _angle_deg(lower.n, upper.n), rtol=0,
+                                   atol=np.degrees(2 * NORMAL_TARGET_RAD))
+        # the split edge at v*: the two main faces' edges one curve (measured 2e-14 mm)
+        t = np.linspace(0.0, 1.0, 21)
+        assert np.abs(value(names[1], t, v_star) - value(names[2], t, v_star)).max() <= 1e-9
+        # the Toprem face's collapsed edge: the crossing point on the root line
+        # (measured 1.3e-12 mm)
+        corner = surf.evaluate(np.array([u0]), np.array([v_star])).r @ to_axis.T
+        assert np.linalg.norm(value(names[0], t, v_star) - corner, axis=-1).max() <= TOL_MM
+    finally:
+        gmsh.finalize()
+
+
+def test_a_piece_vanishing_away_from_a_crossing_is_refused_naming_the_blade_key():
+    # a kink line below the root line over part of the width without a crossing node
+    # (not one kinked_flank solves: it adds the crossing) leaves a piece that vanishes
+    # inside an interval: refused before any fit, naming the blade's keys
     flank = _relieved_gear("drive")
     lo, _ = flank.surface.u_range
     surf = flank.surface
