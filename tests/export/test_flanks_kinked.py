@@ -256,8 +256,7 @@ def test_kink_crossing_the_root_line_leaves_as_split_faces(tmp_path, crossing_pi
             near, _ = gmsh.model.getClosestPoint(2, tags[name], pts.ravel())
             distance = np.linalg.norm(np.reshape(near, (-1, 3)) - pts, axis=-1)
             # measured 0.0007 / 0.0006 um (main faces; distances on all 4096 centres),
-            # 3e-6 um (Toprem face); the
-            # issue's 0.5 um asserted
+            # 3e-6 um (Toprem face); the 0.5 um asserted
             assert at_params.max() <= TOL_MM and distance.max() <= TOL_MM, name
         # the kink edge: the Toprem face's t = 1 and the main face's t = 0, one curve
         # (the kernel's rounding, 1e-9 mm; measured 0), on the kink line where the
