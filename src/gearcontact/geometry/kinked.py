@@ -56,14 +56,7 @@ def kink_u(x, c, n, v):
     coefficients ``c`` (n - 1, 4): :attr:`KinkLine.pp_table`): the piece
     ``x[i] <= v < x[i+1]`` (the first / last continued), summed in ascending powers of
     ``v - x[i]`` as scipy's ``PPoly`` does."""
-    a = 0
-    b = n - 2
-    while a < b:
-        mid = (a + b + 1) // 2
-        if v >= x[mid]:
-            a = mid
-        else:
-            b = mid - 1
+    a = min(max(np.searchsorted(x[:n], v, side="right") - 1, 0), n - 2)
     s = v - x[a]
     res = 0.0
     z = 1.0
