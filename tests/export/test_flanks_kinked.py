@@ -13,9 +13,11 @@ Truths:
   read-back edges 0 to the kernel's evaluation rounding, asserted 1e-9 mm) on the
   kink line (0.5 um);
 - the read-back faces' normals jump across the shared edge by the blade's relief
-  (the formate cone, 1e-4 deg) / the KinkedFlank's own jump (the generated pinion,
-  slow; each face's normals fitted within 1e-4 rad of its piece's: the jump within
-  2e-4 rad).
+  (the formate cone, 1e-4 deg) / the KinkedFlank's own jump (the generated pinion;
+  each face's normals fitted within 1e-4 rad of its piece's: the jump within 2e-4 rad);
+- a kink crossing the root line: the two pieces meet at the solved crossing point
+  (their normal distance 1e-9 mm), and the faces split there read back as above, the
+  split edge one curve, the collapsed edge the crossing point.
 ISO 23509 F.2 spiral bevel pair cut from machine settings (examples/machine_settings;
 the Toprem pair tests/data/toprem).
 """
