@@ -210,7 +210,7 @@ class KinkedFlank:
         got = self.__dict__.get("_kink_tables")
         if got is None:
             tables = [kink.pp_table for kink in self.kinks]
-            n = max(t[0].size for t in tables)
+            n = max((t[0].size for t in tables), default=2)
             kx, kc = np.zeros((len(tables), n)), np.zeros((len(tables), n - 1, 4))
             for j, (x, c) in enumerate(tables):
                 kx[j, :x.size], kc[j, :x.size - 1] = x, c
