@@ -190,19 +190,21 @@ def fit_bspline_groups(groups, u_range, *, joins=()) -> list[list[BSplineFlank]]
         u = np.linspace(*u_range, n)
         cu = np.linspace(*u_range, 2 * n - 1)
         fitted = []
-        for names, points_ofs, v_range, _ in groups:
+        for h, (names, points_ofs, v_range, _) in enumerate(groups):
             v = np.linspace(*v_range, n)
             fits = []
-            for name, points_of in zip(names, points_ofs):
+            for m, (name, points_of) in enumerate(zip(names, points_ofs)):
                 nodes = check_array_finite(f"{name} points",
                                            points_of(*np.meshgrid(u, v, indexing="ij")))
                 tu, tv, control = _interpolate(u, v, nodes)
+                # the split edge first, then the kink row (the face above reads this
+                # face's last row with its corners as joined)
+                for (g, k) in (before for before, after in joins if after == (h, m)):
+                    control[:, 0] = fitted[g][k].control_mm[:, -1]
                 if fits:
                     control[0] = fits[-1].control_mm[-1]
                 fits.append(BSplineFlank(name, tu, tv, control, (n, n), 0.0))
             fitted.append(fits)
-        for (g, k), (h, m) in joins:
-            fitted[h][m].control_mm[:, 0] = fitted[g][k].control_mm[:, -1]
         errors, turns = [], [0.0]
         for fits, (names, points_ofs, v_range, normals_ofs) in zip(fitted, groups):
             cv = np.linspace(*v_range, 2 * n - 1)
