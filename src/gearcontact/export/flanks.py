@@ -284,7 +284,7 @@ def step_faces(flank: ExportFlank) -> tuple[list, dict]:
         return fits, {flank.name: (surf.names[intervals[0][1][0]],
                                    tuple(map(float, surf.v_range)))}
 
-    def piece(i, field, v_range):
+    def piece(i, field):
         def of(T, V):
             a, b = surf.piece_bounds(i, V)
             got = getattr(surf.evaluate_piece(i, a + T * (b - a), V, second=False), field)
@@ -306,8 +306,8 @@ def step_faces(flank: ExportFlank) -> tuple[list, dict]:
             number = sum(i in p for _, p in intervals[:g + 1])
             names.append(base if count[i] == 1 else f"{base}_{number}")
             faces[names[-1]] = (surf.names[i], tuple(map(float, v_range)))
-        groups.append((names, [piece(i, "r", v_range) for i in present], v_range,
-                       [piece(i, "n", v_range) for i in present]))
+        groups.append((names, [piece(i, "r") for i in present], v_range,
+                       [piece(i, "n") for i in present]))
     fitted = fit_bspline_groups(groups, (0.0, 1.0), joins=joins)
     return [fit for group in fitted for fit in group], faces
 

@@ -28,9 +28,9 @@ line pinned to one edge of the box is given up early (:data:`PINNED_ITERATIONS`)
   that holds it, as :meth:`~gearcontact.geometry.kinked.KinkedFlank.evaluate` picks it
   (:func:`~gearcontact.geometry.kinked.kink_piece`, the same compiled function: the
   number of kink lines ``u = u_k(v)`` below ``(u, v)``, each the piecewise cubic of
-  :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`). The step that ends Newton without a confirming evaluation is only
-  taken when it stays on the evaluated piece (across a kink the other piece's
-  continuation differs to first order in the step).
+  :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`). The step that ends Newton
+  without a confirming evaluation is only taken when it stays on the evaluated piece
+  (across a kink the other piece's continuation differs to first order in the step).
 
 Other surfaces (analytic test surfaces, the generated gear's ``GearSheet``, a relieved
 formate gear's cones) have no compiled form (:func:`kernel_surface` returns None) and
