@@ -319,8 +319,8 @@ def _relief_keys(surf) -> str:
 
 def _kink_cuts(surf) -> list[float]:
     """The ``v`` inside the face width where a kink line crosses the box's root or tip
-    line (its finite nodes next to an infinite one, :func:`~gearcontact.geometry.kinked.
-    kinked_flank`'s crossing nodes), ascending."""
+    line (its finite nodes next to an infinite one: the crossing nodes of
+    :func:`~gearcontact.geometry.kinked.kinked_flank`), ascending."""
     v0, v1 = surf.v_range
     cuts = set()
     for kink in surf.kinks:
