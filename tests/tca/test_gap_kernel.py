@@ -6,7 +6,10 @@ s0003 the compiled gap fields equal the vectorized numpy path of :mod:`.stencil`
 (the pre-kernel implementation, still used for surfaces without a compiled form) to
 1e-9 mm, with identical on-flank masks; (3) on a sheet with a linear psi field
 (reproduced exactly by the quintic spline) each intersection matches an independent
-scalar root of the line against the closed-form surface.
+scalar root of the line against the closed-form surface; (4) on a relieved pinion
+(geometry.kinked) lines through flank points on both sides of the kink meet the flank
+at those points, on the compiled and the numpy path, and the compiled kink tables are
+the kink lines.
 """
 
 import numpy as np
@@ -31,7 +34,8 @@ def test_compiled_evaluation_equals_flank_evaluate(s0003_centred, member):
     vec = np.empty((7, 3))
     for side in ("drive", "coast"):
         surf = s0003_flanks.flank(member, side)
-        kind, par, tx, ty, pc = kernel_surface(surf)
+        kind, par, tx, ty, pc = kernel_surface(surf)[:5]   # one piece, no kink
+        par, tx, ty, pc = par[0], tx[0], ty[0], pc[0]
         lo = np.array([surf.u_range[0], surf.v_range[0]])
         hi = np.array([surf.u_range[1], surf.v_range[1]])
         inner = lo + (hi - lo) * rng.random((300, 2))
@@ -144,10 +148,153 @@ def test_cone_lines_closed_form(s0003_centred):
     pts = [gear.point(u, v) for u, v in uv]
     for sp, (u, v) in zip(pts, uv):
         shift = 0.3 * sp.n                                 # start 0.3 mm off the flank
+        uv_out = np.empty((1, 2))
         lam, ins = cone_lines(par, rot, trans, (sp.r + shift)[None, :], sp.n,
-                              np.array([[u, v]]), lo, hi, True)
+                              np.array([[u, v]]), lo, hi, True, uv_out)
         assert ins[0] and abs(lam[0] + 0.3) < 1e-12
+        # the root's (u, v) is the flank point's (rounding of the inverse map)
+        assert np.abs(uv_out[0] - (u, v)).max() < 1e-9
     axis_line = par[0:3][None, :]
+    uv_out = np.zeros((1, 2))
     lam, ins = cone_lines(par, rot, trans, axis_line, par[3:6], np.zeros((1, 2)), lo, hi,
-                          False)
-    assert np.isnan(lam[0]) and not ins[0]
+                          False, uv_out)
+    assert np.isnan(lam[0]) and not ins[0] and np.isnan(uv_out).all()
+
+
+# --- relieved flanks (geometry.kinked): the compiled path on the piece of each iterate
+
+@pytest.fixture(scope="module")
+def kinked_pinion():
+    """The ISO 23509 F.2 pinion drive flank (examples/machine_settings) with a 2 deg
+    Toprem from 2 mm, on a coarse node grid (seconds): kink line inside the flank."""
+    import dataclasses
+
+    from gearcontact.geometry.kinked import machine_flank
+    from gearcontact.geometry.pair import load_pair
+
+    pair = load_pair("examples/machine_settings/iso23509_f2_machine.toml")
+    setup = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "drive"))
+    setup = dataclasses.replace(setup, blade=dataclasses.replace(
+        setup.blade, toprem_angle_deg=2.0, toprem_depth_mm=2.0))
+    return machine_flank(setup, pair.blank, face_width_mm=pair.pinion_face_width_mm,
+                         n_u=24, n_v=30)
+
+
+def test_kink_tables_equal_the_kink_lines(kinked_pinion):
+    from scipy.interpolate import CubicSpline
+
+    from gearcontact.geometry.kinked import KinkLine, kink_u
+
+    kink = kinked_pinion.kinks[0]
+    lo, hi = kinked_pinion.v_range
+    v = np.linspace(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo), 997)   # ends continued
+    x, c = kink.pp_table
+    got = np.array([kink_u(x, c, x.size, vi) for vi in v])
+    # inside the box over the whole width: scipy's cubic spline through the nodes, the
+    # same piecewise cubic summed in the same order as scipy's PPoly: measured 0 (bit
+    # for bit), 1e-12 mm asserted (rounding allowance, e.g. another interval pick)
+    want = CubicSpline(kink.v_nodes, kink.u_nodes)(v)
+    assert np.abs(got - want).max() < 1e-12 and np.abs(kink.u(v) - want).max() < 1e-12
+    # a kink leaving the box (-inf below the root at the toe, +inf above the tip at the
+    # heel): the cubic spline of the finite run between, the huge value of each side
+    # beyond; padded tables (as KinkedFlank.kink_tables stacks kinks) read the same
+    u_nodes = kink.u_nodes.copy()
+    u_nodes[:5], u_nodes[-3:] = -np.inf, np.inf
+    out = KinkLine("toprem", 0, kink.v_nodes, u_nodes)
+    x, c = out.pp_table
+    xp, cp = np.concatenate([x, [0.0, 0.0]]), np.concatenate([c, np.zeros((2, 4))])
+    got = np.array([kink_u(xp, cp, x.size, vi) for vi in v])
+    run = CubicSpline(kink.v_nodes[5:-3], kink.u_nodes[5:-3])
+    inner = (v >= kink.v_nodes[5]) & (v < kink.v_nodes[-4])
+    toe, heel = v < kink.v_nodes[4], v >= kink.v_nodes[-3]
+    assert inner.sum() > 100 and toe.sum() > 100 and heel.sum() > 100
+    assert np.abs(got[inner] - run(v[inner])).max() < 1e-12
+    assert np.all(got[toe] == -1e300) and np.all(got[heel] == 1e300)
+    assert np.array_equal(out.u(v), got)
+
+
+def test_compiled_kinked_intersections_are_the_flank_points(kinked_pinion, monkeypatch):
+    # lines through flank points on both sides of the kink line (within 1 um of it and
+    # up to 0.3 mm away), along one common direction (the mean of the two pieces'
+    # normals at the middle of the kink), 0.02 mm out: each meets the flank at its own
+    # point, lambda = -0.02 exactly (the ridge is convex: one crossing). Newton starts
+    # 0.15 mm of u and 0.4 mm of v away, so many iterations cross the kink.
+    flank = kinked_pinion
+    kink = flank.kinks[0]
+    vm = 0.5 * sum(flank.v_range)
+    um = float(kink.u(vm))
+    a, b = (flank.evaluate_piece(i, um, vm) for i in (0, 1))
+    n = a.n + b.n
+    n /= np.linalg.norm(n)
+    du = np.array([-0.3, -0.05, -1e-3, -1e-6, 1e-6, 1e-3, 0.05, 0.3])
+    vs = vm + np.linspace(-3.0, 3.0, 9)
+    V, D = np.meshgrid(vs, du)
+    U = kink.u(V) + D
+    uv = np.column_stack([U.ravel(), V.ravel()])
+    sp = flank.evaluate(uv[:, 0], uv[:, 1])
+    q = sp.r + 0.02 * n
+    uv0 = uv + np.array([0.15, -0.4])
+    pose = (np.eye(3), np.zeros(3))
+    runs = {}
+    for name in ("compiled", "numpy"):
+        if name == "numpy":
+            _numpy_path(monkeypatch)
+        uv_out = np.empty_like(uv)
+        lam, inside = stencil._intersect_many(flank, pose, q, n, uv0.copy(), clamp=True,
+                                              tol_mm=1e-11,
+                                              sweep=stencil._sweep(uv - uv.mean(0), U.shape),
+                                              uv_out=uv_out)
+        runs[name] = (lam, inside, uv_out)
+        assert inside.all()
+        # Newton to 1e-11 mm: measured 8e-15 mm (compiled) / 4e-15 mm (numpy); 1e-9 mm
+        # asserted (the smooth flanks' compiled / numpy agreement tolerance above), the
+        # parameters to 1e-8 mm (|r_u|, |r_v| ~ 1; measured 1.4e-14)
+        assert np.abs(lam + 0.02).max() < 1e-9, name
+        assert np.abs(uv_out - uv).max() < 1e-8, name
+        assert np.array_equal(flank.piece_index(uv_out[:, 0], uv_out[:, 1]),
+                              flank.piece_index(uv[:, 0], uv[:, 1]))
+    (lf, inf, uvf), (ls, ins, uvs) = runs["compiled"], runs["numpy"]
+    assert np.array_equal(inf, ins) and np.abs(lf - ls).max() < 1e-9
+    assert stencil._kinks_crossed(flank, uvf) == stencil._kinks_crossed(flank, uvs) == ["toprem"]
+
+
+def test_kernel_form_of_a_kinked_flank(kinked_pinion):
+    # two pieces on one knot grid, one kink table; pieces evaluated at scaled v (as a
+    # formate kinked flank's cones are) have no compiled form (numpy path)
+    import dataclasses
+
+    kind, par, tx, ty, pc, kx, kc, kn = kernel_surface(kinked_pinion)
+    assert kind == 0 and par.shape[0] == tx.shape[0] == pc.shape[0] == 2
+    assert kx.shape[0] == kc.shape[0] == kn.shape[0] == 1 and kn[0] == kx.shape[1]
+    scaled = dataclasses.replace(kinked_pinion, v_scales=(1.0, 0.5))
+    assert kernel_surface(scaled) is None
+
+
+@pytest.mark.slow
+def test_toprem_pair_analysis_compiled_equals_numpy_path(monkeypatch):
+    # ~15 s: the Toprem pair (tests/data/toprem) analyzed on the compiled and on the
+    # numpy path: the 80 x 80 field and the stencil at P0 (both straddle the kink) to
+    # the smooth flanks' 1e-9 mm with identical masks and kinks, the paint-ellipse check
+    # and the edges the same; TE0 (surface and ridge contacts, not gap fields) the
+    # README's 21.4 arcsec with 18 of 61 phases on the ridge on both
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair = load_pair("tests/data/toprem/iso23509_f2_toprem.toml")
+    flanks = build_flanks(pair)
+    assert kernel_surface(flanks.flank("pinion", pair.design_side)) is not None
+    fast = analyze_pair(pair, flanks=flanks)[0]
+    _numpy_path(monkeypatch)
+    slow = analyze_pair(pair, flanks=flanks)[0]
+    for f, s in ((fast.gap_field, slow.gap_field), (fast.stencil, slow.stencil)):
+        assert f.kinks == s.kinks == ("pinion toprem",)
+        assert np.array_equal(f.on_flank, s.on_flank)
+        assert np.array_equal(np.isfinite(f.gap_mm), np.isfinite(s.gap_mm))
+        ok = np.isfinite(s.gap_mm)
+        assert ok.any() and np.abs(f.gap_mm[ok] - s.gap_mm[ok]).max() < 1e-9
+    assert np.array_equal(fast.pattern_on_flank, slow.pattern_on_flank)
+    assert fast.edges == slow.edges
+    for run in (fast, slow):
+        assert round(run.cycle.te0_pp_arcsec, 1) == 21.4
+        assert run.edge_contact_counts == {"pinion toprem": 18}

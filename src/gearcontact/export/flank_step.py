@@ -13,7 +13,9 @@ to Splines*, 2001, ch. V), so one refinement divides it by about 16.
 :func:`fit_bsplines` fits the smooth pieces of a kinked flank on one node grid, the
 pieces' shared kink edges given the same poles, and refines until their normals too are
 within :data:`NORMAL_TARGET_RAD` of the pieces' (the tangent-plane jump at the kink is
-what distinguishes the faces).
+what distinguishes the faces); :func:`fit_bspline_groups` does so for a flank split
+along ``v`` too (a kink crossing the root or tip line), faces meeting across the split
+given the same poles on it.
 
 :func:`write_step` hands the control nets to ``gmsh.model.occ.addBSplineSurface``
 (one face each, its natural boundary) and writes the STEP file (AP214, mm) with
@@ -44,8 +46,8 @@ import numpy as np
 from ..errors import ToolUnavailable
 from ..validation import check_array_finite
 
-__all__ = ["FIT_TARGET_MM", "NORMAL_TARGET_RAD", "STEP_TIMESTAMP", "BSplineFlank", "fit_bspline", "fit_bsplines",
-           "write_step", "gmsh_session"]
+__all__ = ["FIT_TARGET_MM", "NORMAL_TARGET_RAD", "STEP_TIMESTAMP", "BSplineFlank", "fit_bspline",
+           "fit_bsplines", "fit_bspline_groups", "write_step", "gmsh_session"]
 
 #: Largest fit error accepted, mm (a tenth of the export's 0.5 um promise).
 FIT_TARGET_MM = 5e-5
@@ -157,31 +159,74 @@ def fit_bsplines(names, points_ofs, u_range, v_range, *, normals_ofs=None
     edge points along ``v``, the same knots on both), so the two faces' edge curves are
     one B-spline curve, bit for bit; the fit error is measured after that.
     """
+    return fit_bspline_groups([(names, points_ofs, v_range, normals_ofs)], u_range)[0]
+
+
+def fit_bspline_groups(groups, u_range, *, joins=()) -> list[list[BSplineFlank]]:
+    """:func:`fit_bsplines` of several stacks of faces side by side along ``v`` (a
+    kinked flank split where a kink crosses the root or tip line), all on the same node
+    grid, refined together.
+
+    Parameters
+    ----------
+    groups : list of (names, points_ofs, v_range, normals_ofs)
+        Each a :func:`fit_bsplines` stack over its own ``v_range``. A normal that
+        ``normals_ofs`` gives as NaN is not checked (a face's collapsed edge, where its
+        own normal is undefined).
+    u_range : tuple of float
+    joins : sequence of ((g, k), (h, l))
+        Face ``k`` of group ``g`` and face ``l`` of group ``h`` (the next along ``v``)
+        meet on the edge ``v = g's v_range[1] = h's v_range[0]``: the later face's first
+        column of poles is set to the earlier's last (the same edge points along ``u``,
+        the same knots: one curve, bit for bit).
+
+    Returns
+    -------
+    list of list of BSplineFlank
+        Per group, its faces.
+    """
     n = FIT_NODES_START
     while True:
-        u, v = np.linspace(*u_range, n), np.linspace(*v_range, n)
-        fits = []
-        for name, points_of in zip(names, points_ofs):
-            nodes = check_array_finite(f"{name} points",
-                                       points_of(*np.meshgrid(u, v, indexing="ij")))
-            tu, tv, control = _interpolate(u, v, nodes)
-            if fits:
-                control[0] = fits[-1].control_mm[-1]
-            fits.append(BSplineFlank(name, tu, tv, control, (n, n), 0.0))
-        cu, cv = np.linspace(*u_range, 2 * n - 1), np.linspace(*v_range, 2 * n - 1)
-        errors = [float(np.linalg.norm(fit.evaluate(cu, cv) - points_of(
-            *np.meshgrid(cu, cv, indexing="ij")), axis=-1).max())
-            for fit, points_of in zip(fits, points_ofs)]
-        turns = [0.0] if normals_ofs is None else [
-            float(np.arccos(np.clip(np.abs(np.einsum("...i,...i->...", fit.normals(cu, cv),
-                normals_of(*np.meshgrid(cu, cv, indexing="ij")))), 0.0, 1.0)).max())
-            for fit, normals_of in zip(fits, normals_ofs)]
-        if max(errors) <= FIT_TARGET_MM and max(turns) <= NORMAL_TARGET_RAD:
-            return [dataclasses.replace(f, fit_error_mm=e) for f, e in zip(fits, errors)]
+        u = np.linspace(*u_range, n)
+        cu = np.linspace(*u_range, 2 * n - 1)
+        fitted = []
+        for h, (names, points_ofs, v_range, _) in enumerate(groups):
+            v = np.linspace(*v_range, n)
+            fits = []
+            for m, (name, points_of) in enumerate(zip(names, points_ofs)):
+                nodes = check_array_finite(f"{name} points",
+                                           points_of(*np.meshgrid(u, v, indexing="ij")))
+                tu, tv, control = _interpolate(u, v, nodes)
+                # the split edge first, then the kink row (the face above reads this
+                # face's last row with its corners as joined)
+                for (g, k) in (before for before, after in joins if after == (h, m)):
+                    control[:, 0] = fitted[g][k].control_mm[:, -1]
+                if fits:
+                    control[0] = fits[-1].control_mm[-1]
+                fits.append(BSplineFlank(name, tu, tv, control, (n, n), 0.0))
+            fitted.append(fits)
+        errors, turns = [], [0.0]
+        for fits, (names, points_ofs, v_range, normals_ofs) in zip(fitted, groups):
+            cv = np.linspace(*v_range, 2 * n - 1)
+            grid = np.meshgrid(cu, cv, indexing="ij")
+            errors.append([float(np.linalg.norm(fit.evaluate(cu, cv) - points_of(*grid),
+                                                axis=-1).max())
+                           for fit, points_of in zip(fits, points_ofs)])
+            for fit, normals_of in zip(fits, normals_ofs or ()):
+                truth = normals_of(*grid)
+                checked = np.isfinite(truth).all(axis=-1)
+                with np.errstate(invalid="ignore"):     # 0 / 0 on a collapsed edge
+                    cos = np.abs(np.einsum("...i,...i->...", fit.normals(cu, cv), truth))
+                turns.append(float(np.arccos(np.clip(cos[checked], 0.0, 1.0)).max()))
+        flat = [e for group in errors for e in group]
+        if max(flat) <= FIT_TARGET_MM and max(turns) <= NORMAL_TARGET_RAD:
+            return [[dataclasses.replace(f, fit_error_mm=e) for f, e in zip(fits, errs)]
+                    for fits, errs in zip(fitted, errors)]
         if 2 * n - 1 > FIT_NODES_MAX:
-            worst = int(np.argmax(errors))
+            names = [name for group in groups for name in group[0]]
+            worst = int(np.argmax(flat))
             raise ArithmeticError(f"{names[worst]}: the B-spline fit with {n} x {n} nodes "
-                                  f"is {errors[worst] * 1e3:.3g} um off the flank (target "
+                                  f"is {flat[worst] * 1e3:.3g} um off the flank (target "
                                   f"{FIT_TARGET_MM * 1e3:g} um), its normals "
                                   f"{max(turns):.3g} rad (target {NORMAL_TARGET_RAD:g})")
         n = 2 * n - 1

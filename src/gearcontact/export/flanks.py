@@ -50,7 +50,7 @@ from ..geometry.kinked import KinkedFlank
 from ..geometry.measuring_grid import AXIS_FRAMES, NOMINAL_COLUMNS, measuring_grid
 from ..geometry.pair import CYLINDRICAL
 from ..validation import InputRangeError
-from .flank_step import FIT_TARGET_MM, fit_bsplines, write_step
+from .flank_step import FIT_TARGET_MM, fit_bspline_groups, fit_bsplines, write_step
 
 __all__ = ["GRID_LIMITS", "ExportFlank", "FlankExport", "parse_grid", "pair_flanks",
            "pair_surfaces", "flank_grid", "grid_csv", "measuring_csv", "step_faces",
@@ -234,7 +234,8 @@ KINK_CHECK_SAMPLES = 201
 
 
 def step_faces(flank: ExportFlank) -> tuple[list, dict]:
-    """The B-spline faces of ``flank`` (:mod:`.flank_step`) and ``{face name: piece}``.
+    """The B-spline faces of ``flank`` (:mod:`.flank_step`) and ``{face name: (piece,
+    v_range)}`` (piece None for a smooth flank).
 
     A smooth flank is one face over its own ``(u, v)`` box. A kinked flank (a relieved
     blade, :class:`~gearcontact.geometry.kinked.KinkedFlank`) is one face per smooth
@@ -243,55 +244,92 @@ def step_faces(flank: ExportFlank) -> tuple[list, dict]:
     is piece ``k`` at ``u = u_a(v) + t (u_b(v) - u_a(v))`` (``u_a``, ``u_b``: the kink
     lines below and above it, else the box's ends). Adjacent faces share their edge on
     the kink: the kink points ``u_k(v)`` of the lower piece, the same poles
-    (:func:`~.flank_step.fit_bsplines`). A kink outside the box over the whole face
-    width leaves one piece: one face over the flank's ``(u, v)``.
+    (:func:`~.flank_step.fit_bspline_groups`). A kink outside the box over the whole
+    face width leaves one piece: one face over the flank's ``(u, v)``.
+
+    A kink that crosses the box's root or tip line within the face width splits the
+    flank along ``v`` at the crossings (:func:`_kink_cuts`): between two cuts each piece
+    that is there is one face as above over that ``v`` interval (a piece that ends at a
+    crossing collapses to the crossing point there: a three-sided face with one edge
+    of zero length), and a piece on both sides of a cut is two faces sharing the cut's
+    edge (the same poles); such faces are numbered toe -> heel, ``..._1``, ``..._2``.
 
     Raises
     ------
     BadInput
-        A kink line that crosses the box's root or tip line within the face width (the
-        pieces are then not four-sided: a trimmed face, not written); the message names
-        the blade's relief keys.
+        Kinks crossing each other on the flank (a piece between them vanishes inside an
+        interval between crossings), naming the blade's relief keys.
     """
     surf = flank.surface
     if not flank.kinked:
         fits = fit_bsplines([flank.name], [lambda U, V: flank.points(U, V)[0]],
                             surf.u_range, surf.v_range)
-        return fits, {flank.name: None}
-    v = np.linspace(*surf.v_range, KINK_CHECK_SAMPLES)
-    present = []
-    for i in range(len(surf.pieces)):
-        a, b = surf.piece_bounds(i, v)
-        if (b > a).all():
-            present.append(i)
-        elif (b > a).any():
-            keys = ", ".join(f"{n}_depth_mm" for n in surf.names if n != "main")
-            raise BadInput(
-                f"[blade.{flank.member}.{flank.flank}] {keys}: the '{surf.names[i]}' piece of "
-                f"{flank.name} reaches only part of the face width (a kink line crosses the "
-                "root or tip line of the active box): the STEP export splits a flank along "
-                "kinks that run over the whole face width; move the kink into the flank "
-                "or out of it")
-    if present != list(range(present[0], present[-1] + 1)):
-        raise BadInput(f"[blade.{flank.member}.{flank.flank}]: the kinks of {flank.name} "
-                       "cross each other on the flank (a piece between them vanishes)")
-    if len(present) == 1:
+        return fits, {flank.name: (None, tuple(map(float, surf.v_range)))}
+    cuts = [float(surf.v_range[0]), *_kink_cuts(surf), float(surf.v_range[1])]
+    intervals = []
+    for va, vb in zip(cuts[:-1], cuts[1:]):
+        v = np.linspace(va, vb, KINK_CHECK_SAMPLES)[1:-1]
+        widths = [np.subtract(*surf.piece_bounds(i, v)[::-1]) for i in range(len(surf.pieces))]
+        present = [i for i, w in enumerate(widths) if (w > 0.0).all()]
+        if (any((w > 0.0).any() and not (w > 0.0).all() for w in widths) or not present
+                or present != list(range(present[0], present[-1] + 1))):
+            raise BadInput(f"[blade.{flank.member}.{flank.flank}] {_relief_keys(surf)}: "
+                           f"a piece of {flank.name} vanishes inside a part of the face "
+                           "width away from a crossing of the root or tip line (kinks "
+                           "crossing each other on the flank): not written as STEP faces")
+        intervals.append(((va, vb), present))
+    if len(intervals) == 1 and len(intervals[0][1]) == 1:
         fits = fit_bsplines([flank.name], [lambda U, V: flank.points(U, V)[0]],
                             surf.u_range, surf.v_range)
-        return fits, {flank.name: surf.names[present[0]]}
+        return fits, {flank.name: (surf.names[intervals[0][1][0]],
+                                   tuple(map(float, surf.v_range)))}
 
     def piece(i, field):
         def of(T, V):
             a, b = surf.piece_bounds(i, V)
-            got = surf.evaluate_piece(i, a + T * (b - a), V, second=False)
-            return getattr(got, field) @ flank.to_axis.T
+            got = getattr(surf.evaluate_piece(i, a + T * (b - a), V, second=False), field)
+            if field == "n":     # a collapsed edge (a piece ending at a crossing) has none
+                got = np.where((b > a)[..., None], got, np.nan)
+            return got @ flank.to_axis.T
         return of
 
-    names = [flank.name if surf.names[i] == "main" else f"{flank.name}_{surf.names[i]}"
-             for i in present]
-    fits = fit_bsplines(names, [piece(i, "r") for i in present], (0.0, 1.0), surf.v_range,
-                        normals_ofs=[piece(i, "n") for i in present])
-    return fits, {name: surf.names[i] for name, i in zip(names, present)}
+    count = {i: sum(i in p for _, p in intervals) for i in range(len(surf.pieces))}
+    seen: dict = {}
+    groups, faces, joins = [], {}, []
+    for g, (v_range, present) in enumerate(intervals):
+        names = []
+        for k, i in enumerate(present):
+            base = flank.name if surf.names[i] == "main" else f"{flank.name}_{surf.names[i]}"
+            if i in seen and seen[i][0] == g - 1:
+                joins.append((seen[i], (g, k)))
+            seen[i] = (g, k)
+            number = sum(i in p for _, p in intervals[:g + 1])
+            names.append(base if count[i] == 1 else f"{base}_{number}")
+            faces[names[-1]] = (surf.names[i], tuple(map(float, v_range)))
+        groups.append((names, [piece(i, "r") for i in present], v_range,
+                       [piece(i, "n") for i in present]))
+    fitted = fit_bspline_groups(groups, (0.0, 1.0), joins=joins)
+    return [fit for group in fitted for fit in group], faces
+
+
+def _relief_keys(surf) -> str:
+    """The blade keys of a kinked flank's reliefs (``toprem_depth_mm, ...``)."""
+    return ", ".join(f"{n}_depth_mm" for n in surf.names if n != "main")
+
+
+def _kink_cuts(surf) -> list[float]:
+    """The ``v`` inside the face width where a kink line crosses the box's root or tip
+    line (its finite nodes next to an infinite one: the crossing nodes of
+    :func:`~gearcontact.geometry.kinked.kinked_flank`), ascending."""
+    v0, v1 = surf.v_range
+    cuts = set()
+    for kink in surf.kinks:
+        finite = np.isfinite(kink.u_nodes)
+        for j in np.flatnonzero(finite):
+            ends = [finite[k] for k in (j - 1, j + 1) if 0 <= k < finite.size]
+            if not all(ends) and v0 < kink.v_nodes[j] < v1:
+                cuts.add(float(kink.v_nodes[j]))
+    return sorted(cuts)
 
 
 @dataclass(frozen=True)
@@ -372,7 +410,8 @@ def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 
                 "fit_error_um": round(error * 1e3, 6)}
             if f.kinked:
                 summary["flanks"][f.name]["step_faces"] = {
-                    fit.name: {"piece": pieces[fit.name],
+                    fit.name: {"piece": pieces[fit.name][0],
+                               "v_range": list(pieces[fit.name][1]),
                                "fit_error_um": round(fit.fit_error_mm * 1e3, 6)}
                     for fit in faces}
                 summary["flanks"][f.name]["kinks"] = {

@@ -31,7 +31,8 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
+from numba import njit
+from scipy.interpolate import CubicSpline, PPoly
 
 from .blade import blade_segments
 from .formate import FlankBoundary
@@ -40,7 +41,8 @@ from .generated import (formate_gear_flank, gear_flank_of, generated_gear_box,
 from .sampling import SurfaceArrays, point_from_arrays
 from .surface import SurfacePoint
 
-__all__ = ["KINK_NODES", "KinkLine", "KinkedFlank", "kinked_flank", "machine_flank"]
+__all__ = ["KINK_NODES", "KinkLine", "KinkedFlank", "kinked_flank", "machine_flank",
+           "kink_u", "kink_piece", "kink_pieces"]
 
 #: Lengthwise nodes on which each kink line is solved (interpolated between them by a
 #: cubic spline; tests/geometry/test_kinked.py measures the interpolation error).
@@ -48,11 +50,48 @@ KINK_NODES = 41
 _BISECTIONS = 64
 
 
+@njit(cache=True, inline="always")
+def kink_u(x, c, n, v):
+    """``u_k(v)`` of a kink line from its piecewise cubic (the first ``n`` breaks ``x``,
+    coefficients ``c`` (n - 1, 4): :attr:`KinkLine.pp_table`): the piece
+    ``x[i] <= v < x[i+1]`` (the first / last continued), summed in ascending powers of
+    ``v - x[i]`` as scipy's ``PPoly`` does."""
+    a = min(max(np.searchsorted(x[:n], v, side="right") - 1, 0), n - 2)
+    s = v - x[a]
+    res = 0.0
+    z = 1.0
+    for p in range(4):
+        res = res + c[a, p] * z
+        z *= s
+    return res
+
+
+@njit(cache=True, inline="always")
+def kink_piece(kink_x, kink_c, kink_n, u, v):
+    """Index of the piece that holds ``(u, v)``: the number of kink lines below
+    (tables: :attr:`KinkedFlank.kink_tables`)."""
+    k = 0
+    for j in range(kink_x.shape[0]):
+        if u > kink_u(kink_x[j], kink_c[j], kink_n[j], v):
+            k += 1
+    return k
+
+
+@njit(cache=True)
+def kink_pieces(kink_x, kink_c, kink_n, u, v):
+    """:func:`kink_piece` at the points ``(u[i], v[i])`` (1-D arrays)."""
+    out = np.empty(u.shape[0], dtype=np.int64)
+    for i in range(u.shape[0]):
+        out[i] = kink_piece(kink_x, kink_c, kink_n, u[i], v[i])
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class KinkLine:
     """The kink between pieces ``lower`` and ``lower + 1`` of a :class:`KinkedFlank`:
     ``u = u_k(v)`` solved at ``v_nodes`` (``u_nodes``; -inf / +inf where the kink lies
-    below / above the flank's box)."""
+    below / above the flank's box; where it crosses the box's root or tip line between
+    two nodes, the crossing is a node of its own, :func:`kinked_flank`)."""
 
     name: str
     lower: int
@@ -60,19 +99,49 @@ class KinkLine:
     u_nodes: np.ndarray
 
     def u(self, v):
-        """``u_k(v)``, mm (cubic spline through the nodes; a kink leaving the box
-        between two nodes: linear towards the huge value standing for its side)."""
+        """``u_k(v)``, mm: the piecewise cubic :attr:`pp_table` (a cubic spline through
+        the nodes; where the kink lies outside the box, the huge value -1e300 / 1e300
+        standing for its side)."""
         v = np.asarray(v, dtype=float)
         fit = self.__dict__.get("_fit")
         if fit is None:
-            finite = np.isfinite(self.u_nodes)
-            if finite.all():
-                fit = CubicSpline(self.v_nodes, self.u_nodes)
-            else:
-                big = np.where(finite, self.u_nodes, np.sign(self.u_nodes) * 1e300)
-                fit = lambda x: np.interp(x, self.v_nodes, big)  # noqa: E731
+            x, c = self.pp_table
+            fit = PPoly(np.ascontiguousarray(c.T[::-1]), x)
             object.__setattr__(self, "_fit", fit)
         return fit(v)
+
+    @property
+    def pp_table(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(breaks, coef)``: :meth:`u` as a piecewise cubic, also for compiled code
+        (:func:`kink_u`): on ``breaks[i] <= v < breaks[i+1]`` (the first / last piece
+        continued beyond the ends) ``u_k = sum_p coef[i, p] s^p`` with
+        ``s = v - breaks[i]``, summed in ascending powers as scipy's ``PPoly`` does.
+        Each run of finite nodes is scipy's not-a-knot ``CubicSpline`` (all of them
+        for a kink inside the box over the whole face width); an interval with an
+        infinite end is the constant -1e300 / 1e300 of that end's sign (the kink
+        leaves the box at the finite end: a crossing node on the root or tip line)."""
+        got = self.__dict__.get("_pp")
+        if got is None:
+            x = np.ascontiguousarray(self.v_nodes, dtype=float)
+            y = np.asarray(self.u_nodes, dtype=float)
+            coef = np.zeros((x.size - 1, 4))
+            finite = np.isfinite(y)
+            i = 0
+            while i < x.size - 1:
+                if finite[i] and finite[i + 1]:
+                    j = i + 1
+                    while j + 1 < x.size and finite[j + 1]:
+                        j += 1
+                    fit = CubicSpline(x[i:j + 1], y[i:j + 1])
+                    coef[i:j] = fit.c[::-1].T
+                    i = j
+                else:
+                    end = y[i + 1] if not finite[i + 1] else y[i]
+                    coef[i, 0] = np.sign(end) * 1e300
+                    i += 1
+            got = (x, np.ascontiguousarray(coef))
+            object.__setattr__(self, "_pp", got)
+        return got
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,13 +201,29 @@ class KinkedFlank:
             raise AttributeError(name)
         return getattr(self.main, name)
 
+    @property
+    def kink_tables(self):
+        """``(kink_x, kink_c, kink_n)``: the kinks' :attr:`KinkLine.pp_table` stacked
+        (K, n), (K, n - 1, 4) (a kink with fewer breaks padded at the end) and their
+        break counts (K,), for :func:`kink_piece` (compiled code: this class,
+        :mod:`gearcontact.tca.gap_kernel`)."""
+        got = self.__dict__.get("_kink_tables")
+        if got is None:
+            tables = [kink.pp_table for kink in self.kinks]
+            n = max((t[0].size for t in tables), default=2)
+            kx, kc = np.zeros((len(tables), n)), np.zeros((len(tables), n - 1, 4))
+            for j, (x, c) in enumerate(tables):
+                kx[j, :x.size], kc[j, :x.size - 1] = x, c
+            got = (kx, kc, np.array([t[0].size for t in tables], dtype=np.int64))
+            object.__setattr__(self, "_kink_tables", got)
+        return got
+
     def piece_index(self, u, v) -> np.ndarray:
-        """Index of the piece that holds ``(u, v)`` (arrays): the number of kinks below."""
+        """Index of the piece that holds ``(u, v)`` (arrays): the number of kinks below
+        (:func:`kink_pieces` on :attr:`kink_tables`, the compiled TCA kernel's choice)."""
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
-        k = np.zeros(u.shape, dtype=int)
-        for kink in self.kinks:
-            k += u > kink.u(v)
-        return k
+        return kink_pieces(*self.kink_tables, np.ascontiguousarray(u.ravel()),
+                           np.ascontiguousarray(v.ravel())).reshape(u.shape)
 
     def kink_name(self, u0, u1, v) -> str | None:
         """The kink crossed between ``(u0, v)`` and ``(u1, v)``, or None."""
@@ -188,7 +273,7 @@ class KinkedFlank:
 
     def point(self, u: float, v: float) -> SurfacePoint:
         """:class:`~.surface.SurfacePoint` of the piece that holds ``(u, v)``."""
-        i = int(self.piece_index(u, v))
+        i = kink_piece(*self.kink_tables, float(u), float(v))
         s = self.v_scales[i]
         p = self.pieces[i].point(u, s * v)
         if s == 1.0:
@@ -206,11 +291,38 @@ def _depth_gap(lower, s_lower, upper, s_upper, u, v):
     return np.einsum("...i,...i->...", a.r - b.r, b.n)
 
 
+def _with_crossings(args, vs, u_k, u_box):
+    """The kink's nodes with, between two nodes on different sides of the box's root
+    (tip) line (``u_k`` finite on one, -inf (+inf) on the other), the point where the
+    kink crosses that line: ``v`` by bisection of :func:`_depth_gap` along it (to
+    rounding, 64 halvings), ``u`` the line's."""
+    v_out, u_out = [vs[:1]], [u_k[:1]]
+    for j in range(len(vs) - 1):
+        crossings = []
+        for u_line, out in zip(u_box, (-np.inf, np.inf)):
+            if (u_k[j] == out) != (u_k[j + 1] == out):
+                a, b = np.array([vs[j]]), np.array([vs[j + 1]])
+                g_a = _depth_gap(*args, np.array([u_line]), a)
+                for _ in range(_BISECTIONS):
+                    mid = 0.5 * (a + b)
+                    same = (_depth_gap(*args, np.array([u_line]), mid) < 0.0) == (g_a < 0.0)
+                    a, b = np.where(same, mid, a), np.where(same, b, mid)
+                crossings.append((float(0.5 * (a + b)[0]), u_line))
+        for v, u in sorted(crossings):
+            v_out.append(np.array([v]))
+            u_out.append(np.array([u]))
+        v_out.append(vs[j + 1:j + 2])
+        u_out.append(u_k[j + 1:j + 2])
+    return np.concatenate(v_out), np.concatenate(u_out)
+
+
 def kinked_flank(pieces, names, *, v_scales=None, n_nodes: int = KINK_NODES) -> KinkedFlank:
     """The :class:`KinkedFlank` of ``pieces`` (root -> tip, one box): each kink solved by
     bisection of :func:`_depth_gap` over the box's ``u`` at ``n_nodes`` lengthwise nodes
     (to rounding, 64 halvings). A kink with no sign change over the box lies outside it
-    (``u_k = -inf``: the upper piece is the deeper everywhere; ``+inf``: the lower)."""
+    (``u_k = -inf``: the upper piece is the deeper everywhere; ``+inf``: the lower);
+    where it crosses the root or tip line between two nodes the crossing is added as a
+    node (:func:`_with_crossings`)."""
     v_scales = tuple(1.0 for _ in pieces) if v_scales is None else tuple(v_scales)
     main, s_main = pieces[names.index("main")], v_scales[names.index("main")]
     (u_lo, u_hi), (v_lo, v_hi) = main.u_range, main.v_range
@@ -225,8 +337,9 @@ def kinked_flank(pieces, names, *, v_scales=None, n_nodes: int = KINK_NODES) -> 
             below = _depth_gap(*args, mid, vs) < 0.0
             lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
         u_k = np.where(g_lo >= 0.0, -np.inf, np.where(g_hi <= 0.0, np.inf, 0.5 * (lo + hi)))
+        v_k, u_k = _with_crossings(args, vs, u_k, (u_lo, u_hi))
         kinks.append(KinkLine(name=names[i + 1] if names[i] == "main" else names[i],
-                              lower=i, v_nodes=vs, u_nodes=u_k))
+                              lower=i, v_nodes=v_k, u_nodes=u_k))
     return KinkedFlank(pieces=tuple(pieces), names=tuple(names), kinks=tuple(kinks),
                        v_scales=v_scales)
 

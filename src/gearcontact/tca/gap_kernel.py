@@ -23,13 +23,26 @@ caller); beyond the knot box the Jacobian uses the derivative of FITPACK's const
 continuation (zero), so continuation points converge quadratically; with clamping, a
 line pinned to one edge of the box is given up early (:data:`PINNED_ITERATIONS`).
 
-Other surfaces (e.g. analytic test surfaces) have no compiled form
-(:func:`kernel_surface` returns None) and use the vectorized numpy path of
-:mod:`.stencil`. Results agree with that path to rounding (~1e-13 mm).
+* :class:`~gearcontact.geometry.kinked.KinkedFlank` of radial sheets (a pinion cut by
+  a relieved blade): the same Newton iteration, every iterate evaluated on the piece
+  that holds it, as :meth:`~gearcontact.geometry.kinked.KinkedFlank.evaluate` picks it
+  (:func:`~gearcontact.geometry.kinked.kink_piece`, the same compiled function: the
+  number of kink lines ``u = u_k(v)`` below ``(u, v)``, each the piecewise cubic of
+  :attr:`~gearcontact.geometry.kinked.KinkLine.pp_table`). The step that ends Newton
+  without a confirming evaluation is only taken when it stays on the evaluated piece
+  (across a kink the other piece's continuation differs to first order in the step).
 
-A surface is passed to the kernel as ``(kind, par, tx, ty, pc)``: ``kind`` 0 (sheet) or
-1 (cone), a float parameter vector and the spline arrays (knots and piecewise-polynomial
-coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone).
+Other surfaces (analytic test surfaces, the generated gear's ``GearSheet``, a relieved
+formate gear's cones) have no compiled form (:func:`kernel_surface` returns None) and
+use the vectorized numpy path of :mod:`.stencil`. Results agree with that path to
+rounding (~1e-13 mm; tests/tca/test_gap_kernel.py asserts 1e-9 mm).
+
+A surface is passed to the kernel as ``(kind, par, tx, ty, pc, kink_x, kink_c,
+kink_n)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a smooth
+flank) a float parameter vector and the spline arrays (knots and piecewise-polynomial
+coefficients of :mod:`gearcontact.geometry.spline_kernel`; empty for a cone); per kink
+line (first axis; none for a smooth flank) its breaks, cubic coefficients and break
+count (:attr:`~gearcontact.geometry.kinked.KinkedFlank.kink_tables`).
 """
 
 from __future__ import annotations
@@ -40,6 +53,7 @@ import numpy as np
 from numba import njit
 
 from ..geometry.formate import FormateFlank
+from ..geometry.kinked import KinkedFlank, kink_piece
 from ..geometry.sheet import RadialSheet, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
@@ -59,32 +73,62 @@ BASIN_MM = 1e-5
 #: evaluation: the error left is of order FINAL_STEP^2 |r''| / 2 (<= ~1e-12 mm for
 #: flank curvatures <= 1/mm), below the line tolerance (1e-11 mm by default).
 FINAL_STEP = 1e-6
-_EMPTY = np.zeros(0)
-_EMPTY4 = np.zeros((0, 0, 0, 0))
+_EMPTY2 = np.zeros((1, 0))
+_EMPTY5 = np.zeros((1, 0, 0, 0, 0))
+#: The kink tables of a smooth flank: no kink line.
+_NO_KINKS = (np.zeros((0, 2)), np.zeros((0, 1, 4)), np.zeros(0, dtype=np.int64))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def kernel_surface(surface):
-    """The kernel form ``(kind, par, tx, ty, pc)`` of a flank, or None.
+    """The kernel form ``(kind, par, tx, ty, pc, kink_x, kink_c, kink_n)`` of a
+    flank (module docstring), or None.
 
-    Sheet ``par``: ``(kx, ky, apex_x, tan_delta, root_offset)``; cone ``par``:
-    :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`.
+    Sheet ``par[k]``: ``(kx, ky, apex_x, tan_delta, root_offset)`` of piece ``k``; cone
+    ``par[0]``: :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`.
+    A :class:`~gearcontact.geometry.kinked.KinkedFlank` has a form when its pieces are
+    radial sheets on one knot grid (as :func:`~gearcontact.geometry.kinked.machine_flank`
+    builds them) with ``v_scales`` 1.
     """
     try:
         return _CACHE[surface]
     except (KeyError, TypeError):
         pass
     if type(surface) is RadialSheet:
-        tx, ty, pc, kx, ky = surface.pp_arrays
-        cone = surface.cone
-        par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
-        out = (KIND_SHEET, par, tx, ty, pc)
+        par, tx, ty, pc = _sheet_arrays(surface)
+        out = (KIND_SHEET, par[None], tx[None], ty[None], pc[None], *_NO_KINKS)
     elif type(surface) is FormateFlank:
-        out = (KIND_CONE, surface.kernel_parameters, _EMPTY, _EMPTY, _EMPTY4)
+        out = (KIND_CONE, surface.kernel_parameters[None], _EMPTY2, _EMPTY2, _EMPTY5,
+               *_NO_KINKS)
+    elif type(surface) is KinkedFlank:
+        out = _kinked_form(surface)
+        if out is None:
+            return None
     else:
         return None
     _CACHE[surface] = out
     return out
+
+
+def _sheet_arrays(sheet: RadialSheet) -> tuple:
+    """``(par, tx, ty, pc)`` of one radial sheet (:func:`kernel_surface`)."""
+    tx, ty, pc, kx, ky = sheet.pp_arrays
+    cone = sheet.cone
+    par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
+    return par, tx, ty, pc
+
+
+def _kinked_form(flank: KinkedFlank):
+    """The kernel form of a relieved flank of radial sheets on one knot grid, else
+    None (:func:`kernel_surface`)."""
+    if (any(type(p) is not RadialSheet for p in flank.pieces)
+            or any(s != 1.0 for s in flank.v_scales)):
+        return None
+    arrays = [_sheet_arrays(p) for p in flank.pieces]
+    if len({tuple(a.shape for a in got) for got in arrays}) != 1:
+        return None
+    return (KIND_SHEET, *(np.stack([got[j] for got in arrays]) for j in range(4)),
+            *flank.kink_tables)
 
 
 @njit(cache=True, inline="always")
@@ -125,7 +169,7 @@ def _solve3(a, b, x):
 
 
 @njit(cache=True)
-def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
+def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp, uv_out):
     """Closed-form intersections of the lines ``q_i + lambda n`` with a posed blade
     cone (``par``: :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters`).
 
@@ -136,11 +180,13 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
     (``rho_0 + k h > 0``) the one nearest ``lambda = 0`` (the tangent plane) is taken;
     ``u = dedendum - h``, ``v = theta / k_v`` with the polar angle ``theta`` of the
     point about the axis taken nearest ``k_v uv0[i, 1]``. Returns as
-    :func:`intersect_lines`.
+    :func:`intersect_lines` (``uv_out`` (N, 2): ``(u, v)`` of every line's root, NaN
+    where it has none).
     """
     m = q.shape[0]
     lam_out = np.full(m, np.nan)
     inside = np.zeros(m, dtype=np.bool_)
+    uv_out[:, :] = np.nan
     rho0, k, ded, kv = par[12], par[13], par[14], par[15]
     nb = np.empty(3)
     for a in range(3):
@@ -182,6 +228,8 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
         t0 = kv * uv0[i, 1]
         theta = t0 + (theta - t0 + np.pi) % (2.0 * np.pi) - np.pi
         v = theta / kv
+        uv_out[i, 0] = u
+        uv_out[i, 1] = v
         ins = lo[0] < u < hi[0] and lo[1] < v < hi[1]
         inside[i] = ins
         if ins or not clamp:
@@ -190,15 +238,15 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp):
 
 
 @njit(cache=True)
-def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
-                    tol_mm, max_iter, order, prev):
+def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_n, rot, trans, q, n,
+                    uv0, lo, hi, clamp, tol_mm, max_iter, order, prev, uv_out):
     """Intersections of the lines ``q_i + lambda n`` with a posed surface: Newton on a
     sheet, :func:`cone_lines` (closed form) on a cone.
 
     Parameters
     ----------
-    kind, par, tx, ty, pc
-        Kernel form of the surface (:func:`kernel_surface`).
+    kind, par, tx, ty, pc, kink_x, kink_c, kink_n
+        Kernel form of the surface (:func:`kernel_surface`): its pieces and kink lines.
     rot, trans : ndarray (3, 3), (3,)
         Pose ``x -> rot x + trans`` of the surface.
     q : ndarray (N, 3)
@@ -215,6 +263,8 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         Lines are solved in the sequence ``order``; line ``i`` starts instead from the
         tangent-plane prediction at the solution of line ``prev[i]`` (solved earlier)
         if that converged (inside the box, with ``clamp``); ``-1``: no predecessor.
+    uv_out : ndarray (N, 2)
+        Filled with the parameters of every converged intersection (NaN elsewhere).
 
     Returns
     -------
@@ -233,8 +283,10 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
     quadratically too.
     """
     if kind == KIND_CONE:
-        return cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp)
+        return cone_lines(par[0], rot, trans, q, n, uv0, lo, hi, clamp, uv_out)
     m = q.shape[0]
+    kinked = kink_x.shape[0] > 0
+    piece = 0
     lam_out = np.empty(m)
     inside = np.zeros(m, dtype=np.bool_)
     ok = np.zeros(m, dtype=np.bool_)
@@ -290,7 +342,9 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         last_side = 0
         side = 0
         for _ in range(max_iter):
-            sheet_point(par, tx, ty, pc, u, v, dpsi, vec)    # cones returned above
+            if kinked:
+                piece = kink_piece(kink_x, kink_c, kink_n, u, v)
+            sheet_point(par[piece], tx[piece], ty[piece], pc[piece], u, v, dpsi, vec)
             res_max = 0.0
             for a in range(3):
                 x[a] = 0.0
@@ -329,9 +383,11 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
                 break
             # quadratic basin: once the residual is below BASIN_MM a step below
             # FINAL_STEP leaves an error of order step^2 |r''| (<= ~1e-12 mm), so the
-            # confirming evaluation is skipped (one to two per line)
+            # confirming evaluation is skipped (one to two per line); not across a kink
             if (res_max < BASIN_MM and moved < FINAL_STEP and abs(step[2]) < FINAL_STEP
-                    and not (clamp and side != 0)):
+                    and not (clamp and side != 0)
+                    and not (kinked and kink_piece(kink_x, kink_c, kink_n, u, v)
+                             != piece)):
                 converged = True
                 break
         ins = converged and lo[0] < u < hi[0] and lo[1] < v < hi[1]
@@ -340,5 +396,7 @@ def intersect_lines(kind, par, tx, ty, pc, rot, trans, q, n, uv0, lo, hi, clamp,
         sol[i, 0] = u
         sol[i, 1] = v
         sol[i, 2] = lam
+        uv_out[i, 0] = u if converged else np.nan
+        uv_out[i, 1] = v if converged else np.nan
         lam_out[i] = lam if ok[i] else np.nan
     return lam_out, inside

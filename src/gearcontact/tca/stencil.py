@@ -187,8 +187,9 @@ def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
     or, with ``clamp``, where the intersection lies outside the parameter box. The
     flanks of :mod:`gearcontact.geometry` run the same iteration compiled
     (:mod:`.gap_kernel`), started along ``sweep`` (:func:`_sweep`; default: every
-    line from ``uv0``); other surfaces run it vectorized in numpy from ``uv0`` (and
-    leave the intersections' ``(u, v)`` in ``uv_out`` when given).
+    line from ``uv0``); other surfaces run it vectorized in numpy from ``uv0``. Both
+    leave the converged intersections' ``(u, v)`` in ``uv_out`` when given (NaN
+    elsewhere).
     """
     rot, c = pose
     lo = np.array([surface.u_range[0], surface.v_range[0]], float)
@@ -196,12 +197,16 @@ def _intersect_many(surface: Surface, pose, q: np.ndarray, n: np.ndarray,
     compiled = kernel_surface(surface)
     if compiled is not None:
         order, prev = sweep if sweep is not None else (np.arange(len(q)), np.full(len(q), -1))
-        return intersect_lines(*compiled, np.ascontiguousarray(rot, dtype=float),
-                               np.asarray(c, dtype=float), np.ascontiguousarray(q, dtype=float),
-                               np.ascontiguousarray(n, dtype=float),
-                               np.ascontiguousarray(uv0, dtype=float), lo, hi, bool(clamp),
-                               float(tol_mm), int(max_iter), order.astype(np.int64),
-                               prev.astype(np.int64))
+        uv = np.empty((len(q), 2))
+        got = intersect_lines(*compiled, np.ascontiguousarray(rot, dtype=float),
+                              np.asarray(c, dtype=float), np.ascontiguousarray(q, dtype=float),
+                              np.ascontiguousarray(n, dtype=float),
+                              np.ascontiguousarray(uv0, dtype=float), lo, hi, bool(clamp),
+                              float(tol_mm), int(max_iter), order.astype(np.int64),
+                              prev.astype(np.int64), uv)
+        if uv_out is not None:
+            uv_out[...] = uv
+        return got
     uv = uv0.copy()
     lam = np.zeros(len(q))
     active = np.ones(len(q), dtype=bool)
