@@ -37,7 +37,6 @@ docs/machine_settings.md sec. 2 (sign conventions; the published sheet), sec. 3.
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 from decimal import Decimal
 
