@@ -226,3 +226,16 @@ def test_sheet_ratio_of_roll_reciprocal_is_caught(sheet):
     setups, stated = sheet
     got = check_flanks(_flip(setups, "gear", "ratio_of_roll", lambda x: 1.0 / x), stated)
     assert not got.agrees
+
+
+def test_sheet_md_word_flipped_is_caught_but_not_named(sheet):
+    # "MD -0.240" read as +0.240: the typed X_D is MD plus the pitch apex's offset from
+    # the crossing point (0.2354 in, README), so the slip is X_D -> X_D + 2 x 0.240 in,
+    # not a sign change of the typed value: caught (the tooth moves 12.2 mm along the
+    # work axis), no known slip of the typed key explains it
+    setups, stated = sheet
+    got = check_flanks(_flip(setups, "gear", "machine_centre_to_back_mm",
+                             lambda x: x + 2.0 * 0.240 * IN), stated)
+    assert not any(f.agrees for f in got.flanks)
+    assert [f.slip for f in got.flanks] == ["", ""]
+    assert all("no known sign slip" in line for line in got.warnings())
