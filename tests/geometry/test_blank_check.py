@@ -239,3 +239,14 @@ def test_sheet_md_word_flipped_is_caught_but_not_named(sheet):
     assert not any(f.agrees for f in got.flanks)
     assert [f.slip for f in got.flanks] == ["", ""]
     assert all("no known sign slip" in line for line in got.warnings())
+
+
+def test_a_cutter_circle_off_the_root_line_is_reported(f2):
+    # the blank's nominal cutter radius 90 mm: the F.2 gear's cutter centre lies 93.6 mm
+    # off the root line, the circle does not cross it (flank_angles refuses the
+    # measurement); the check reports both gear flanks, the pinion's are checked
+    got = check_pair_blank(dataclasses.replace(
+        f2, cutter=dataclasses.replace(f2.cutter, radius_mm=90.0)))
+    assert [f.agrees for f in got.flanks] == [False, False, True, True]
+    assert "does not cross the root line" in got.flanks[0].missing
+    assert not got.gross

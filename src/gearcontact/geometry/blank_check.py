@@ -42,7 +42,7 @@ from decimal import Decimal
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError
-from .flank_angles import measure_generating_angles, measure_mean_point
+from .flank_angles import measure_generating_angles, measure_mean_point, require_machine
 from .machine import MachineSetup
 
 __all__ = ["GROSS_SPIRAL_DEG", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
@@ -302,14 +302,15 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
         if r_c > 0.0:
             moves.append(("cutter_radius_mm", r_c))
     for key, r in moves:
+        if key == "cutter_radius_mm":
+            moved = setup, dataclasses.replace(stated,
+                                               cutter_radius_mm=stated.cutter_radius_mm + r)
+        else:
+            moved = _moved(setup, key, lambda x, r=r: x + r), stated
         try:
-            if key == "cutter_radius_mm":
-                got, _ = _values(setup, dataclasses.replace(
-                    stated, cutter_radius_mm=stated.cutter_radius_mm + r), at)
-            else:
-                got, _ = _values(_moved(setup, key, lambda x, r=r: x + r), stated, at)
-        except (UndercutError, InputRangeError):
-            continue          # the rounding's step leaves the branch: no first-order term
+            got, _ = _values(*moved, at)
+        except UndercutError:       # the warm start lost the point: the full solve
+            got, _ = _values(*moved)
         for q in tol:
             tol[q] += abs(got[q] - values[q])
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
@@ -331,13 +332,25 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
 def _compare(setup, stated, tol=None, hand=None):
     """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
     reach its mean point: None."""
+    where = (f"the blank's mean point (cone distance "
+             f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
     try:
         values, at = _values(setup, stated)
     except UndercutError:
+        return FlankCheck(setup.member, setup.side, (),
+                          missing=f"the flank does not reach {where}"), tol
+    except InputRangeError as exc:
+        if exc.field != "cutter_radius_mm":
+            raise
         return FlankCheck(setup.member, setup.side, (), missing=(
-            f"the flank does not reach the blank's mean point (cone distance "
-            f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")), tol
-    tol = tol if tol is not None else _tolerances(setup, stated, values, at)
+            f"[cutter] radius_mm = {stated.cutter_radius_mm:g}: its circle does not cross "
+            f"the root line of the settings ({exc.allowed})")), tol
+    try:
+        tol = tol if tol is not None else _tolerances(setup, stated, values, at)
+    except UndercutError:
+        return FlankCheck(setup.member, setup.side, (), missing=(
+            f"the flank reaches {where} only at the edge: a setting moved by its typed "
+            "rounding loses it")), tol
     want = _stated_values(setup.member, setup.side, stated, hand)
     rows = tuple(Comparison(q, _UNITS[q], values[q], want[q], tol.get(q)) for q in values)
     return FlankCheck(setup.member, setup.side, rows), tol
@@ -387,7 +400,5 @@ def check_pair_blank(pair) -> BlankCheck:
     InputRangeError
         A pair without machine settings.
     """
-    if not pair.machine:
-        raise InputRangeError("[machine.*]", None, "a pair cut from machine settings "
-                              "(the [machine.*] / [blade.*] tables)")
+    require_machine(pair)
     return check_flanks(pair.machine, stated_blank(pair))

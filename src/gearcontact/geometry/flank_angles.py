@@ -72,7 +72,8 @@ from .conjugate import UndercutError
 from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
 __all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles", "PINION_UNDEFINED",
-           "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points"]
+           "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points",
+           "require_machine"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
 #: the machine's axial plane is kept (:func:`_distance`; others belong to another turn
@@ -340,6 +341,14 @@ class FlankMeanPoint:
     missing: str
 
 
+def require_machine(pair) -> None:
+    """Raise :class:`~gearcontact.validation.InputRangeError` for a pair without machine
+    settings (the ``[machine.*]`` / ``[blade.*]`` tables)."""
+    if not pair.machine:
+        raise InputRangeError("[machine.*]", None, "a pair cut from machine settings "
+                              "(the [machine.*] / [blade.*] tables)")
+
+
 def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
     """All flanks of ``pair`` (a :class:`~.pair.GearPair` cut from machine settings) at
     the mean points of its blank (ISO 23509: pitch angles, mean cone distances) and, for
@@ -353,9 +362,7 @@ def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
     InputRangeError
         A pair without machine settings.
     """
-    if not pair.machine:
-        raise InputRangeError("[machine.*]", None, "a pair cut from machine settings "
-                              "(the [machine.*] / [blade.*] tables)")
+    require_machine(pair)
     b = pair.blank
     out = []
     for setup in pair.machine:
