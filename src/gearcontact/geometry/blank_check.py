@@ -3,7 +3,7 @@ flank of a pair cut from machine settings measured at its blank's mean point
 (:mod:`.flank_angles`) and compared with what the pair's blank tables state, before any
 expensive work (docs/machine_settings.md sec. 2, "The check when a pair is loaded").
 
-A summary sheet typed into ``[machine.*]`` / ``[blade.*]`` (sec. 2-3) carries sign
+A summary sheet typed into ``[machine.*]`` / ``[blade.*]`` (docs sec. 2-3) carries sign
 words (UP / DN, WITH / AWAY, MD +-, the cradle angle's sign, the ratio of roll as work /
 cradle or cradle / work, the hand); one wrong word cuts a flank that is not the blank's
 tooth, and everything downstream is silently wrong. Compared per flank:
@@ -15,8 +15,8 @@ tooth, and everything downstream is silently wrong. Compared per flank:
 - every flank: the hand on its pitch cone against the blank's, and the **root datum**:
   the depth behind the cutter's tip plane of the blade point that cuts the mean point
   against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
-  a dedendum behind the tip plane; the spread of a slot and a tilted cutter move it by
-  hundredths of a millimetre, docs sec. 2), which sees the sliding base and the machine
+  a dedendum behind the tip plane, up to the spread of a slot and a tilted cutter),
+  which sees the sliding base and the machine
   centre to back;
 - a flank that does not reach its mean point is a reported result.
 
@@ -51,14 +51,12 @@ __all__ = ["GROSS_SPIRAL_DEG", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Co
 
 #: A gear flank whose generating spiral angle differs from the blank's by more than
 #: this (deg) is an input error (exit 2), as is a hand against the blank's: no
-#: correction moves a cradle angle this far (the settings fits of sec. 6 move it by
-#: tenths of a degree); the slips that do it (blank offset UP / DN on a hypoid gear:
-#: 10.7 deg on the published sheet) make another tooth (docs sec. 2).
+#: correction moves a spiral angle by degrees (the reasons and the measured slips:
+#: docs/machine_settings.md sec. 2).
 GROSS_SPIRAL_DEG = 3.0
-#: The root datum's model bound, a fraction of the blank's mean dedendum (docs sec. 2:
-#: measured within 0.03 mm, 1.3 %, on the standard settings of ISO 23509 F.2 / F.3 and
-#: the 11 x 41 rear axle and on the published sheet; a sliding base slip moves it by
-#: twice the sliding base, 47 % on the sheet).
+#: The root datum's model bound, a fraction of the blank's mean dedendum (what the
+#: spread of a slot, a tilted cutter and a fitted pinion leave, measured in
+#: docs/machine_settings.md sec. 2).
 ROOT_DATUM_FRACTION = 0.1
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
