@@ -87,6 +87,22 @@ def test_left_hand_twin_agrees(f2):
         == {"left", "right"}
 
 
+@pytest.mark.parametrize("name", ["iso23509_f3", "hypoid_11x41_rear_axle"])
+def test_standard_settings_agree_with_their_blank(name):
+    # the settings design --machine-settings writes from an ISO 23509 blank (full
+    # precision: the tolerances are the solve's 1e-7 and the root datum's bound) agree
+    # with that blank, and so do their left-hand twins (truth: the blank they are built
+    # from, tests/geometry/test_flank_angles.py to 1e-9)
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+
+    pair = standard_machine_pair(load_pair(ROOT / "examples" / f"{name}.toml"))
+    twin = dataclasses.replace(pair, pinion_hand="left",
+                               machine=tuple(mirror_setup(s) for s in pair.machine))
+    for cut in (pair, twin):
+        got = check_pair_blank(cut)
+        assert got.agrees, got.warnings()
+
+
 F2_SLIPS = [
     # (member, key, slip, gross: exit 2 from the CLI)
     ("gear", "cradle_angle_deg", lambda x: -x, True),        # hand (E_m = 0)
