@@ -14,6 +14,7 @@ from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
 from ..ltca.cylindrical_lte import STRIP_TOO_NARROW
 from ..report.analyze_cylindrical import end_loaded_note, run_cylindrical_analysis
+from ..report.design_mean_point import checked_blank
 from ..validation import InputRangeError, check_positive
 from .options import (
     MAX_PHASES,
@@ -57,6 +58,7 @@ def check(args) -> None:
     if args.gear_pair.kind == CYLINDRICAL:
         check_cylindrical(args)
         return
+    checked_blank(args.gear_pair)     # typed machine settings against the blank tables
     if not 1 <= len(args.torques) <= MAX_TORQUES:
         raise InputRangeError("--torques", args.torques, f"1 to {MAX_TORQUES} torques")
     for t in args.torques:

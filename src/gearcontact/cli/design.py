@@ -30,7 +30,8 @@ from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair,
                              without_easeoff)
-from ..report.design_mean_point import mean_point_json, mean_point_table
+from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
+                                        mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
 from .outdir import final_path
 
@@ -185,6 +186,7 @@ def check(args) -> None:
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings
         pair = args.gear_pair = dataclasses.replace(pair, machine=())
+    args.blank_check = checked_blank(pair)     # typed settings against the blank tables
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces
@@ -542,12 +544,14 @@ def run(args) -> int:
     # a pair cut from machine settings: its flanks at the blank's mean points, the
     # generating gear's angles (a summary sheet's) beside the pitch cone's
     points = measure_pair_mean_points(pair) if pair.machine else None
+    settings_check = getattr(args, "blank_check", None)
     if args.json:
         out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation,
                "reverse_side_contact_ratio": None if reverse is None else {
                    "side": reverse.side, "eps_p": reverse.total, "ends": list(reverse.ends),
                    "warning": warning},
-               "mean_point_angles": None if points is None else mean_point_json(points)}
+               "mean_point_angles": None if points is None else mean_point_json(points),
+               "blank_check": None if settings_check is None else blank_check_json(settings_check)}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
@@ -565,4 +569,6 @@ def run(args) -> int:
     print(f"gear flanks: {generation_text(generation, pair)}")
     if points is not None:
         print(mean_point_table(points))
+    if settings_check is not None:
+        print(blank_check_text(settings_check))
     return 0

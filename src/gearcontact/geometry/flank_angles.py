@@ -72,7 +72,8 @@ from .conjugate import UndercutError
 from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
 __all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles", "PINION_UNDEFINED",
-           "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points"]
+           "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points",
+           "require_machine"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
 #: the machine's axial plane is kept (:func:`_distance`; others belong to another turn
@@ -100,6 +101,8 @@ class MeanPointAngles:
         The solution ``l``, ``psi`` and ``phi``.
     point_mm, normal : ndarray (3,)
         The flank point and its unit normal (out of the cut tooth) in ``S_w``.
+    blade_position_rad : float
+        The solution ``theta`` (the blade's angular position about the cutter axis).
     """
 
     spiral_angle_deg: float
@@ -111,6 +114,7 @@ class MeanPointAngles:
     azimuth_rad: float
     point_mm: np.ndarray
     normal: np.ndarray
+    blade_position_rad: float = 0.0
 
 
 def _distance(z) -> float:
@@ -120,9 +124,14 @@ def _distance(z) -> float:
 
 
 def measure_mean_point(setup: MachineSetup, *, pitch_angle_deg: float,
-                       cone_distance_mm: float) -> MeanPointAngles:
+                       cone_distance_mm: float,
+                       start: MeanPointAngles | None = None) -> MeanPointAngles:
     """The flank ``setup`` cuts, at cone distance ``cone_distance_mm`` on the pitch cone
     of angle ``pitch_angle_deg`` (apex at the work frame's origin).
+
+    ``start``: the solution of a nearby set-up (a setting moved by its rounding,
+    :mod:`.blank_check`): the solve starts from it alone instead of the grid of starts,
+    and keeps that branch.
 
     Raises
     ------
@@ -155,16 +164,21 @@ def measure_mean_point(setup: MachineSetup, *, pitch_angle_deg: float,
     c0, t0, b, a0 = kin._fixed
     alpha = math.radians(blade.blade_angle_deg)
     best = None
-    for psi0 in _PSI0 if generated else (0.0,):
-        for phi0 in _PHI0:
-            x_c = t0.T @ (b @ cone(phi0) + a0 - c0)     # zero roll: nearest blade point
-            z0 = [max(-x_c[2], 0.1) / math.cos(alpha), math.atan2(x_c[1], x_c[0])]
-            z0 += [psi0, phi0] if generated else [phi0]
-            sol = least_squares(residual, z0, xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                                max_nfev=60)
-            ok = np.max(np.abs(sol.fun)) < _TOL and sol.x[0] > 0.0
-            if ok and (best is None or _distance(sol.x) < _distance(best.x)):
-                best = sol
+    if start is not None:
+        starts = [[start.blade_length_mm, start.blade_position_rad]
+                  + ([start.roll_rad, start.azimuth_rad] if generated else [start.azimuth_rad])]
+    else:
+        starts = []
+        for psi0 in _PSI0 if generated else (0.0,):
+            for phi0 in _PHI0:
+                x_c = t0.T @ (b @ cone(phi0) + a0 - c0)     # zero roll: nearest blade point
+                z0 = [max(-x_c[2], 0.1) / math.cos(alpha), math.atan2(x_c[1], x_c[0])]
+                starts.append(z0 + ([psi0, phi0] if generated else [phi0]))
+    for z0 in starts:
+        sol = least_squares(residual, z0, xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=60)
+        ok = np.max(np.abs(sol.fun)) < _TOL and sol.x[0] > 0.0
+        if ok and (best is None or _distance(sol.x) < _distance(best.x)):
+            best = sol
     if best is None:
         raise UndercutError(f"{setup.member} {setup.side} flank at cone distance "
                             f"{cone_distance_mm:.4f} mm", "no solution",
@@ -183,7 +197,7 @@ def measure_mean_point(setup: MachineSetup, *, pitch_angle_deg: float,
         pressure_angle_deg=math.degrees(math.asin(min(1.0, abs(n_w @ np.cross(g, e_phi))))),
         depth_mm=float(blade_profile(blade, z[0])[1]), blade_length_mm=float(z[0]),
         roll_rad=float(z[2]) if generated else 0.0, azimuth_rad=float(phi),
-        point_mm=x_w, normal=n_w)
+        point_mm=x_w, normal=n_w, blade_position_rad=float(z[1]))
 
 
 @dataclass(frozen=True)
@@ -218,7 +232,8 @@ class GeneratingGearAngles:
 
 def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
                               cone_distance_mm: float,
-                              cutter_radius_mm: float) -> GeneratingGearAngles:
+                              cutter_radius_mm: float,
+                              start: MeanPointAngles | None = None) -> GeneratingGearAngles:
     """The spiral angle, pressure angle and mean cone distance of the generating gear of
     the gear flank ``setup`` cuts, as a summary sheet prints them (module docstring),
     at the mean point of cone distance ``cone_distance_mm`` on the pitch cone of angle
@@ -239,6 +254,8 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
     cutter_radius_mm : float
         Nominal cutter radius ``r_c``, mm, > 0: the printed cutter diameter / 2 (the
         pair's ``[cutter] radius_mm``); the circle must reach the root line.
+    start : MeanPointAngles, optional
+        Passed to :func:`measure_mean_point`.
 
     Returns
     -------
@@ -265,7 +282,7 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
                               "pinion's was found, docs/machine_settings.md sec. 2)")
     r_c = check_positive("cutter_radius_mm", cutter_radius_mm)
     at = measure_mean_point(setup, pitch_angle_deg=pitch_angle_deg,
-                            cone_distance_mm=cone_distance_mm)
+                            cone_distance_mm=cone_distance_mm, start=start)
     st = setup.settings
     kin = MachineKinematics(st)
     c = kin.cutter_to_machine(np.zeros(3))          # cutter centre, cradle plane
@@ -324,6 +341,14 @@ class FlankMeanPoint:
     missing: str
 
 
+def require_machine(pair) -> None:
+    """Raise :class:`~gearcontact.validation.InputRangeError` for a pair without machine
+    settings (the ``[machine.*]`` / ``[blade.*]`` tables)."""
+    if not pair.machine:
+        raise InputRangeError("[machine.*]", None, "a pair cut from machine settings "
+                              "(the [machine.*] / [blade.*] tables)")
+
+
 def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
     """All flanks of ``pair`` (a :class:`~.pair.GearPair` cut from machine settings) at
     the mean points of its blank (ISO 23509: pitch angles, mean cone distances) and, for
@@ -337,9 +362,7 @@ def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
     InputRangeError
         A pair without machine settings.
     """
-    if not pair.machine:
-        raise InputRangeError("[machine.*]", None, "a pair cut from machine settings "
-                              "(the [machine.*] / [blade.*] tables)")
+    require_machine(pair)
     b = pair.blank
     out = []
     for setup in pair.machine:

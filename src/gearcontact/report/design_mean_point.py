@@ -5,13 +5,22 @@ cone, as a table (:func:`mean_point_table`) or as the ``mean_point_angles`` entr
 ``design --json`` (:func:`mean_point_json`). The values are
 :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points`'s; the definitions
 and their sources: docs/machine_settings.md sec. 2.
+
+The check of a pair's machine settings against its own blank tables, run by ``design``
+and ``analyze`` when the pair is loaded (:func:`checked_blank`,
+:mod:`~gearcontact.geometry.blank_check`): its line and its ``blank_check`` JSON entry
+(:func:`blank_check_text`, :func:`blank_check_json`).
 """
 
 from __future__ import annotations
 
+import sys
+
+from ..geometry.blank_check import BlankCheck, check_pair_blank
 from ..geometry.flank_angles import FlankMeanPoint
 
-__all__ = ["mean_point_json", "mean_point_table"]
+__all__ = ["blank_check_json", "blank_check_text", "checked_blank", "mean_point_json",
+           "mean_point_table"]
 
 #: The flank's shape of each (member, side) (docs/machine_settings.md sec. 2).
 _SHAPE = {("gear", "drive"): "convex", ("gear", "coast"): "concave",
@@ -70,3 +79,50 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
             notes.append(note)
     lines += [f"  - {n}" for n in notes]
     return "\n".join(line.rstrip() for line in lines)
+
+
+def checked_blank(pair) -> BlankCheck | None:
+    """The check of ``pair``'s machine settings against its blank tables, when it is
+    loaded (docs/machine_settings.md sec. 2): None for a pair without machine settings;
+    a gross mismatch (a hand against the blank's, a generating spiral angle off by more
+    than :data:`~gearcontact.geometry.blank_check.GROSS_SPIRAL_DEG`) raises
+    :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2);
+    any other flank outside its tolerance is a warning on stderr naming the flank, the
+    measured and stated values and the likely key."""
+    if not pair.machine:
+        return None
+    got = check_pair_blank(pair)
+    got.raise_if_gross()
+    for line in got.warnings():
+        print(line, file=sys.stderr)
+    return got
+
+
+def blank_check_text(check: BlankCheck) -> str:
+    """One line: every flank agrees (with the largest difference relative to its
+    tolerance), or how many do not (the warnings name them)."""
+    if not check.agrees:
+        bad = ", ".join(f"{f.member} {f.side}" for f in check.flanks if not f.agrees)
+        return (f"machine settings against the blank: {bad} do not agree (warnings above; "
+                "docs/machine_settings.md sec. 2)")
+    worst = max((abs(c.measured - c.stated) / c.tolerance, f"{f.member} {f.side} {c.quantity}")
+                for f in check.flanks for c in f.comparisons if c.tolerance)
+    return ("machine settings against the blank: every flank agrees within the typed "
+            "settings' rounding propagated (spiral angle, pressure angle, mean cone distance "
+            "of the gear's generating gear; hand and root depth of every flank; largest "
+            f"difference {worst[0]:.2f} of its tolerance, {worst[1]}; "
+            "docs/machine_settings.md sec. 2)")
+
+
+def blank_check_json(check: BlankCheck) -> dict:
+    """``{"agrees": bool, "flanks": {member: {side: {"agrees", "missing", "slip",
+    "comparisons": [{"quantity", "unit", "measured", "stated", "tolerance",
+    "within"}]}}}, "hand_slip": bool}``."""
+    flanks: dict = {}
+    for f in check.flanks:
+        flanks.setdefault(f.member, {})[f.side] = {
+            "agrees": f.agrees, "missing": f.missing, "slip": f.slip,
+            "comparisons": [{"quantity": c.quantity, "unit": c.unit, "measured": c.measured,
+                             "stated": c.stated, "tolerance": c.tolerance,
+                             "within": c.within} for c in f.comparisons]}
+    return {"agrees": check.agrees, "hand_slip": check.hand_slip, "flanks": flanks}

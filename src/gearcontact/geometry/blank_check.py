@@ -1,0 +1,402 @@
+"""The check of typed machine settings against the blank they are meant to cut: each
+flank of a pair cut from machine settings measured at its blank's mean point
+(:mod:`.flank_angles`) and compared with what the pair's blank tables state, before any
+expensive work (docs/machine_settings.md sec. 2, "The check when a pair is loaded").
+
+A summary sheet typed into ``[machine.*]`` / ``[blade.*]`` (docs sec. 2-3) carries sign
+words (UP / DN, WITH / AWAY, MD +-, the cradle angle's sign, the ratio of roll as work /
+cradle or cradle / work, the hand); one wrong word cuts a flank that is not the blank's
+tooth, and everything downstream is silently wrong. Compared per flank:
+
+- gear flanks (the generating gear in the cradle plane, what a sheet prints,
+  :func:`~.flank_angles.measure_generating_angles`): the spiral angle against the
+  blank's ``beta_m2``, the pressure angle against the side's, the mean cone distance
+  against ``R_m2``;
+- every flank: the hand on its pitch cone against the blank's, and the **root datum**:
+  the depth behind the cutter's tip plane of the blade point that cuts the mean point
+  against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
+  a dedendum behind the tip plane, up to the spread of a slot and a tilted cutter),
+  which sees the sliding base and the machine
+  centre to back;
+- a flank that does not reach its mean point is a reported result.
+
+Tolerances: the typed settings' rounding propagated (each non-zero setting moved by half
+a unit of its last typed decimal, the changes of the measured value summed: the worst
+case to first order, as tests/geometry/test_flank_angles.py propagates a print's
+rounding), plus the stated value's own rounding (0 for a pair's blank: its values are
+the design's definitions), plus the solve's 1e-7; the root datum adds
+:data:`ROOT_DATUM_FRACTION` of the dedendum (a model bound, not a rounding). A flank
+outside its tolerance is tried against the known sign slips (:data:`SLIPS`, and the
+blank's hand): the slip under which every value of the flank agrees is named.
+
+References
+----------
+docs/machine_settings.md sec. 2 (sign conventions; the published sheet), sec. 3.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from decimal import Decimal
+
+from ..validation import InputRangeError
+from .conjugate import UndercutError
+from .flank_angles import measure_generating_angles, measure_mean_point, require_machine
+from .machine import MachineSetup
+
+__all__ = ["GROSS_SPIRAL_DEG", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
+           "FlankCheck", "StatedBlank", "check_flanks", "check_pair_blank",
+           "stated_blank", "typed_resolution"]
+
+#: A gear flank whose generating spiral angle differs from the blank's by more than
+#: this (deg) is an input error (exit 2), as is a hand against the blank's: no
+#: correction moves a spiral angle by degrees (the reasons and the measured slips:
+#: docs/machine_settings.md sec. 2).
+GROSS_SPIRAL_DEG = 3.0
+#: The root datum's model bound, a fraction of the blank's mean dedendum (what the
+#: spread of a slot, a tilted cutter and a fitted pinion leave, measured in
+#: docs/machine_settings.md sec. 2).
+ROOT_DATUM_FRACTION = 0.1
+_FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
+_NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
+            "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
+            "ratio_of_roll", "tilt_deg", "swivel_deg")
+_BLADE = ("blade_angle_deg", "point_radius_mm")
+#: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
+#: the sheet word is), docs sec. 2's table.
+SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
+         ("sliding_base_mm", lambda x: -x, "sliding base WITH / AWAY"),
+         ("cradle_angle_deg", lambda x: -x, "cradle angle sign"),
+         ("machine_centre_to_back_mm", lambda x: -x, "machine centre to back MD +-"),
+         ("ratio_of_roll", lambda x: 1.0 / x, "ratio of roll, work / cradle against "
+                                              "cradle / work"))
+
+
+def typed_resolution(x: float) -> float:
+    """Half a unit of the last decimal of ``x`` as typed (its shortest repr: ``94.9385``
+    -> 5e-5, ``20.0`` -> 0.05); 0 for 0 (a zero is a set-up choice, no offset or no
+    tilt, not a rounded value)."""
+    if x == 0.0:
+        return 0.0
+    return 0.5 * 10.0 ** Decimal(repr(float(x))).as_tuple().exponent
+
+
+@dataclass(frozen=True)
+class StatedBlank:
+    """What a pair's blank tables (or a print) state for the flanks cut from settings.
+
+    Attributes
+    ----------
+    pitch_angle_deg, mean_cone_distance_mm, dedendum_mm : dict
+        Per member (``"gear"``, ``"pinion"``): pitch angle (deg), mean cone distance and
+        mean dedendum (mm); a member absent is not checked.
+    spiral_angle_gear_deg : float
+        The gear's mean spiral angle ``beta_m2``, deg.
+    pressure_angle_deg : dict
+        Per side: the generating gear's pressure angle, deg.
+    gear_hand : str
+        ``"right"`` / ``"left"``.
+    cutter_radius_mm : float
+        Nominal cutter radius ``r_c`` of the gear's generating gear, mm.
+    rounding : dict
+        Half a unit of each stated value's last digit (``"spiral_angle_deg"``,
+        ``"pressure_angle_deg"``, ``"cone_distance_mm"``, ``"cutter_radius_mm"``); 0 for
+        a pair's blank, whose values are the design's definitions.
+    setting_rounding : dict or None
+        ``{key: half unit}`` of the settings when known from their source (a print's
+        inches); None: each typed value's own (:func:`typed_resolution`).
+    hand_key, hand_value : str
+        The key and value that state the hand (``design.pinion_hand``).
+    """
+
+    pitch_angle_deg: dict
+    mean_cone_distance_mm: dict
+    dedendum_mm: dict
+    spiral_angle_gear_deg: float
+    pressure_angle_deg: dict
+    gear_hand: str
+    cutter_radius_mm: float
+    rounding: dict = dataclasses.field(default_factory=dict)
+    setting_rounding: dict | None = None
+    hand_key: str = "design.pinion_hand"
+    hand_value: str = ""
+
+
+def stated_blank(pair) -> StatedBlank:
+    """The :class:`StatedBlank` of ``pair``'s blank tables (ISO 23509 design,
+    ``[cutter] radius_mm``, ``[design] pinion_hand``)."""
+    b = pair.blank
+    other = {"right": "left", "left": "right"}
+    return StatedBlank(
+        pitch_angle_deg={"gear": b.pitch_angle_gear_deg, "pinion": b.pitch_angle_pinion_deg},
+        mean_cone_distance_mm={"gear": b.mean_cone_distance_gear_mm,
+                               "pinion": b.mean_cone_distance_pinion_mm},
+        dedendum_mm={"gear": b.dedendum_gear_mm, "pinion": b.dedendum_pinion_mm},
+        spiral_angle_gear_deg=b.spiral_angle_gear_deg,
+        pressure_angle_deg={"drive": b.pressure_angle_drive_deg,
+                            "coast": b.pressure_angle_coast_deg},
+        gear_hand=other[pair.pinion_hand], cutter_radius_mm=pair.cutter.radius_mm,
+        hand_value=pair.pinion_hand)
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """One measured value against the stated one: ``quantity``, ``unit``, ``measured``,
+    ``stated``, ``tolerance`` (None for the hand) and ``within``."""
+
+    quantity: str
+    unit: str
+    measured: float | str
+    stated: float | str
+    tolerance: float | None
+
+    @property
+    def within(self) -> bool:
+        if self.tolerance is None:
+            return self.measured == self.stated
+        return abs(self.measured - self.stated) <= self.tolerance
+
+
+@dataclass(frozen=True)
+class FlankCheck:
+    """One flank: its comparisons, ``missing`` (why there are none: the flank does not
+    reach its mean point, "" otherwise), ``slip`` (the key of the sign slip under which
+    it agrees, "" when none or when it agrees), ``slip_value`` and ``slip_word``."""
+
+    member: str
+    side: str
+    comparisons: tuple
+    missing: str = ""
+    slip: str = ""
+    slip_value: float | str | None = None
+    slip_word: str = ""
+
+    @property
+    def agrees(self) -> bool:
+        return not self.missing and all(c.within for c in self.comparisons)
+
+    @property
+    def gross(self) -> bool:
+        """The hand against the blank's, or a spiral angle off by more than
+        :data:`GROSS_SPIRAL_DEG`."""
+        return any(not c.within and (c.quantity == "hand" or (
+            c.quantity == "spiral angle" and abs(c.measured - c.stated) > GROSS_SPIRAL_DEG))
+            for c in self.comparisons)
+
+
+@dataclass(frozen=True)
+class BlankCheck:
+    """All flanks (:class:`FlankCheck`); ``hand_slip``: every flank agrees once the
+    stated hand is the other (the key then is ``stated.hand_key``)."""
+
+    flanks: tuple
+    stated: StatedBlank
+    hand_slip: bool = False
+
+    @property
+    def agrees(self) -> bool:
+        return all(f.agrees for f in self.flanks)
+
+    @property
+    def gross(self) -> bool:
+        return any(f.gross for f in self.flanks)
+
+    def raise_if_gross(self) -> None:
+        """:class:`~gearcontact.validation.InputRangeError` naming the likely key for a
+        gross mismatch (module docstring), else nothing."""
+        if not self.gross:
+            return
+        bad = [f for f in self.flanks if f.gross]
+        what = "; ".join(f"{f.member} {f.side}: {_describe(f)}" for f in bad)
+        if self.hand_slip:
+            raise InputRangeError(self.stated.hand_key, self.stated.hand_value,
+                                  f"the hand the machine settings cut ({what}; every flank "
+                                  "agrees with the other hand, docs/machine_settings.md "
+                                  "sec. 2)")
+        f = next((f for f in bad if f.slip), bad[0])
+        if f.slip:
+            also = [g.slip for g in bad if g.slip and g is not f]
+            raise InputRangeError(f.slip, f.slip_value,
+                                  f"the sign that cuts the blank's tooth ({what}; with the "
+                                  f"other sign ({f.slip_word}) the flank agrees with the "
+                                  "blank" + (f"; also {', '.join(also)}" if also else "")
+                                  + ", docs/machine_settings.md sec. 2)")
+        raise InputRangeError(f"[machine.{f.member}.{f.side}]", None,
+                              f"settings that cut the blank's tooth ({what}; no known sign "
+                              "slip explains it, docs/machine_settings.md sec. 2)")
+
+    def warnings(self) -> list[str]:
+        """One line per flank outside its tolerance, naming the likely key."""
+        out = []
+        for f in self.flanks:
+            if f.agrees:
+                continue
+            key = self.stated.hand_key if self.hand_slip else f.slip
+            word = "hand" if self.hand_slip else f.slip_word
+            hint = (f"; likely {key} (with the other {word} the flank agrees)" if key
+                    else "; no known sign slip explains it")
+            out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
+                       f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
+                       "(docs/machine_settings.md sec. 2)")
+        return out
+
+
+def _describe(f: FlankCheck) -> str:
+    if f.missing:
+        return f.missing
+    return ", ".join(
+        f"{c.quantity} {c.measured}, the blank's {c.stated}" if c.tolerance is None else
+        f"{c.quantity} {c.measured:.4f} {c.unit}, the blank's {c.stated:.4f} (tolerance "
+        f"{c.tolerance:.2g})" for c in f.comparisons if not c.within)
+
+
+def _values(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict, object]:
+    """``({quantity: value}, start)`` of one flank at its mean point; raises
+    UndercutError where it does not reach it."""
+    m = setup.member
+    cone = dict(pitch_angle_deg=stated.pitch_angle_deg[m],
+                cone_distance_mm=stated.mean_cone_distance_mm[m], start=start)
+    if m == "gear":
+        gen = measure_generating_angles(setup, **cone, cutter_radius_mm=stated.cutter_radius_mm)
+        at = gen.pitch_cone
+        values = {"spiral angle": gen.spiral_angle_deg,
+                  "pressure angle": gen.pressure_angle_deg,
+                  "mean cone distance": gen.cone_distance_mm}
+    else:
+        at = measure_mean_point(setup, **cone)
+        values = {}
+    values["root depth"] = at.depth_mm
+    values["hand"] = at.hand
+    return values, at
+
+
+_UNITS = {"spiral angle": "deg", "pressure angle": "deg", "mean cone distance": "mm",
+          "root depth": "mm", "hand": ""}
+_STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "pressure_angle_deg",
+                    "mean cone distance": "cone_distance_mm"}
+
+
+def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
+    if key in _BLADE:
+        return dataclasses.replace(setup, blade=dataclasses.replace(
+            setup.blade, **{key: fn(getattr(setup.blade, key))}))
+    return dataclasses.replace(setup, settings=dataclasses.replace(
+        setup.settings, **{key: fn(getattr(setup.settings, key))}))
+
+
+def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> dict:
+    """The typed settings' rounding propagated (module docstring), per quantity."""
+    tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
+           for q in values if q != "hand"}
+    res = stated.setting_rounding
+    keys = [(k, getattr(setup.settings, k)) for k in _NUMERIC] + \
+           [(k, getattr(setup.blade, k)) for k in _BLADE]
+    moves = [(k, (res.get(k, 0.0) if res is not None else typed_resolution(v)))
+             for k, v in keys]
+    moves = [(k, r) for k, r in moves if r > 0.0]
+    if setup.member == "gear":
+        r_c = stated.rounding.get("cutter_radius_mm", 0.0)
+        if r_c > 0.0:
+            moves.append(("cutter_radius_mm", r_c))
+    for key, r in moves:
+        if key == "cutter_radius_mm":
+            moved = setup, dataclasses.replace(stated,
+                                               cutter_radius_mm=stated.cutter_radius_mm + r)
+        else:
+            moved = _moved(setup, key, lambda x, r=r: x + r), stated
+        try:
+            got, _ = _values(*moved, at)
+        except UndercutError:       # the warm start lost the point: the full solve
+            got, _ = _values(*moved)
+        for q in tol:
+            tol[q] += abs(got[q] - values[q])
+    tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
+    return tol
+
+
+def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None = None) -> dict:
+    gear = member == "gear"
+    other = {"right": "left", "left": "right"}
+    hand = hand or stated.gear_hand
+    out = {"spiral angle": stated.spiral_angle_gear_deg,
+           "pressure angle": stated.pressure_angle_deg[side],
+           "mean cone distance": stated.mean_cone_distance_mm["gear"]} if gear else {}
+    out["root depth"] = stated.dedendum_mm[member]
+    out["hand"] = hand if gear else other[hand]
+    return out
+
+
+def _compare(setup, stated, tol=None, hand=None):
+    """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
+    reach its mean point: None."""
+    where = (f"the blank's mean point (cone distance "
+             f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
+    try:
+        values, at = _values(setup, stated)
+    except UndercutError:
+        return FlankCheck(setup.member, setup.side, (),
+                          missing=f"the flank does not reach {where}"), tol
+    except InputRangeError as exc:
+        if exc.field != "cutter_radius_mm":
+            raise
+        return FlankCheck(setup.member, setup.side, (), missing=(
+            f"[cutter] radius_mm = {stated.cutter_radius_mm:g}: its circle does not cross "
+            f"the root line of the settings ({exc.allowed})")), tol
+    try:
+        tol = tol if tol is not None else _tolerances(setup, stated, values, at)
+    except UndercutError:
+        return FlankCheck(setup.member, setup.side, (), missing=(
+            f"the flank reaches {where} only at the edge: a setting moved by its typed "
+            "rounding loses it")), tol
+    want = _stated_values(setup.member, setup.side, stated, hand)
+    rows = tuple(Comparison(q, _UNITS[q], values[q], want[q], tol.get(q)) for q in values)
+    return FlankCheck(setup.member, setup.side, rows), tol
+
+
+def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
+    """``(key, typed value, word)`` of the first slip of :data:`SLIPS` under which the
+    flank agrees with the blank, or ``("", None, "")``."""
+    for key, fn, word in SLIPS:
+        value = getattr(setup.settings, key)
+        if value == 0.0:
+            continue                       # no sign to slip (a ratio 0 is formate)
+        try:
+            fixed = _moved(setup, key, fn)
+        except InputRangeError:
+            continue
+        got, _ = _compare(fixed, stated, tol)
+        if got.agrees:
+            return f"machine.{setup.member}.{setup.side}.{key}", value, word
+    return "", None, ""
+
+
+def check_flanks(setups, stated: StatedBlank) -> BlankCheck:
+    """Each flank of ``setups`` (:class:`~.machine.MachineSetup`) at its mean point
+    against ``stated`` (module docstring): the comparisons, with the likely sign slip of
+    a flank that does not agree."""
+    first = [_compare(s, stated) for s in setups]
+    bad = [f for f, _ in first if not f.agrees]
+    flipped = {"right": "left", "left": "right"}[stated.gear_hand]
+    hand_slip = bool(bad) and len(bad) == len(first) and all(
+        _compare(s, stated, tol, flipped)[0].agrees for s, (_, tol) in zip(setups, first))
+    out = []
+    for s, (f, tol) in zip(setups, first):
+        if not f.agrees and not hand_slip:
+            key, value, word = _slip(s, stated, tol)
+            f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word)
+        out.append(f)
+    return BlankCheck(tuple(out), stated, hand_slip)
+
+
+def check_pair_blank(pair) -> BlankCheck:
+    """:func:`check_flanks` of a pair cut from machine settings against its own blank
+    tables (:func:`stated_blank`).
+
+    Raises
+    ------
+    InputRangeError
+        A pair without machine settings.
+    """
+    require_machine(pair)
+    return check_flanks(pair.machine, stated_blank(pair))
