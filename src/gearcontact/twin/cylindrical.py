@@ -63,7 +63,7 @@ import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
-from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices
+from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices, edge_row_slices
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
 from ..ltca.slice_law import line_easeoff_mm
 from ..ltca.tooth_bending import ToothBending
@@ -133,6 +133,21 @@ def line_bending_gram(bending: ToothBending, slices: LineGaps,
     return out
 
 
+def _edge_row_gram(bending: ToothBending, gram, rows, line_z_mm, beyond_z_mm, u1_mm,
+                   u2_mm) -> np.ndarray:
+    """``gram`` (P, K, m, m) with each edge row's (``rows``) own: the shells' Gram at
+    the row's slices (``line_z_mm`` (P, K, n), ``beyond_z_mm`` (P, K, 2, nb): its
+    nearest line's) with the roll lengths of its tip touch ``u1_mm``, ``u2_mm`` (P, K)
+    at every slice, as the loaded TE's edge block takes them."""
+    out = np.array(gram)
+    for j, k in zip(*np.nonzero(rows)):
+        z = np.concatenate([line_z_mm[j, k], beyond_z_mm[j, k].ravel()])
+        f = line_bending_factor(bending, z, np.full(z.shape, u1_mm[j, k]),
+                                np.full(z.shape, u2_mm[j, k]), 1)[:, 0].astype(float)
+        out[j, k] = f @ f.T
+    return out
+
+
 def tip_rows(pair: CylindricalPair, cycle: CylindricalMeshCycle, valid: np.ndarray):
     """The edge rows of a cylindrical mesh table (module docstring, "Tip-edge rows"):
     ``(rows, opening_mm, lever_mm, nearest)`` per pair and phase of ``cycle``: where the
@@ -175,9 +190,24 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     order = _order(m, len(cycle.phi1_rad))
     ease, sl = line_easeoff_mm(pair, cycle, st.valid, slices=slices)
     beyond = beyond_slices(pair, cycle, st.valid, st.opening_mm, float(st.lever_mm))
+    rows, tip_open, tip_lever, near = tip_rows(pair, cycle, st.valid)
+    nj, nk = near[..., 0], near[..., 1]
+    beyond_gap, own_rows = None, None
+    if beyond is not None:      # a helical line's own tip edge closes in its edge slices
+        rows &= ~st.valid
+        beyond_gap = beyond.gap_mm
+        if rows.any():          # an edge row: its own edge on its nearest line's slices
+            own_line, own_beyond, u1, u2 = edge_row_slices(pair, cycle, rows, near, sl.z_mm,
+                                                           beyond)
+            ease = np.where(rows[..., None], own_line, ease)
+            beyond_gap = np.where(rows[..., None, None], own_beyond, beyond_gap)
+            own_rows = (u1, u2)
     gram, cb = None, np.zeros(st.valid.shape)
     if bending is not None:
         gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl, beyond), 0.0)
+        if own_rows is not None:
+            gram = _edge_row_gram(bending, gram, rows, sl.z_mm[nj, nk], beyond.z_mm[nj, nk],
+                                  *own_rows)
         n = sl.gap_mm.shape[-1]
         # the line's block as a contiguous array: its sum's rounding the one without
         # edge slices (the start of the loaded slices' fixed point, .line_law)
@@ -185,12 +215,11 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2
-    rows, tip_open, tip_lever, near = tip_rows(pair, cycle, st.valid)
-    if beyond is not None:      # a helical line's own tip edge closes in its edge slices
-        rows &= ~st.valid
-    nj, nk = near[..., 0], near[..., 1]
 
-    def law(a):         # an edge row takes its pair's nearest line's law inputs
+    def law(a, own=False):
+        # an edge row takes its pair's nearest line's law inputs (``own``: its own)
+        if own:
+            return a[:, order]
         r = rows.reshape(rows.shape + (1,) * (a.ndim - 2))
         return np.where(r, a[nj, nk], a)[:, order]
 
@@ -205,14 +234,16 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
         e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
         phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
-        bending_mm_per_n=law(cb), stencil_gaps_mm=law(st.gaps_mm),
+        bending_mm_per_n=law(cb, own=own_rows is not None), stencil_gaps_mm=law(st.gaps_mm),
         line_length_mm=law(length), contact_mode=rows.astype(np.int8)[:, order],
-        edge_label=np.where(rows, cycle.tip.labels(), "")[:, order], line_gap_mm=law(ease),
-        line_bending_gram_mm_per_n=None if gram is None else law(gram),
+        edge_label=np.where(rows, cycle.tip.labels(), "")[:, order],
+        line_gap_mm=law(ease, own=beyond is not None),
+        line_bending_gram_mm_per_n=None if gram is None else law(gram,
+                                                                  own=own_rows is not None),
         # an edge row takes its nearest line's edge slices with the rest of its law (the
         # kernel interpolates between rows: a line row's edge slices would open within
         # the interval to an edge row without them, its edge load with them)
-        beyond_gap_mm=None if beyond is None else law(beyond.gap_mm),
+        beyond_gap_mm=None if beyond_gap is None else law(beyond_gap, own=True),
         beyond_width_mm=None if beyond is None else beyond.width_mm)
 
 
