@@ -153,6 +153,12 @@ class BeyondSlices:
         points, as the loaded TE's rows), mm; NaN where no edge point.
     width_mm : float
         Width of a slice along the line (``dz / cos beta_b``, as the loaded TE's rows), mm.
+    slope, inv_radius_per_mm : ndarray (P, K, 2) or None
+        Per pair, phase and edge of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`
+        (pinion tip, gear tip), at its first touch beyond the line: the sine of the angle
+        between the flanks and the relative curvature across the edge, 1/mm (NaN where
+        that edge has no point beyond; the edge section's parameters,
+        :mod:`.edge_section`).
     """
 
     gap_mm: np.ndarray
@@ -160,6 +166,8 @@ class BeyondSlices:
     u1_mm: np.ndarray
     u2_mm: np.ndarray
     width_mm: float
+    slope: np.ndarray | None = None
+    inv_radius_per_mm: np.ndarray | None = None
 
 
 def beyond_slices(pair, cycle, valid, opening_mm, lever_mm: float, *,
@@ -201,7 +209,10 @@ def beyond_slices(pair, cycle, valid, opening_mm, lever_mm: float, *,
         u1 = np.where(hit, bg.u1_mm[..., None, None], u1)
         u2 = np.where(hit, bg.u2_mm[..., None, None], u2)
     return BeyondSlices(gap_mm=gap, z_mm=z, u1_mm=u1, u2_mm=u2,
-                        width_mm=dz / math.cos(beta_b))
+                        width_mm=dz / math.cos(beta_b),
+                        slope=np.stack([bg.slope for bg in found], axis=-1),
+                        inv_radius_per_mm=np.stack([bg.inv_radius_per_mm for bg in found],
+                                                   axis=-1))
 
 
 def edge_row_slices(pair, cycle, rows, nearest, line_z_mm, beyond: BeyondSlices):

@@ -65,6 +65,7 @@ from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
 from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices, edge_row_slices
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
+from ..ltca.edge_section import edge_stiffness_factor
 from ..ltca.slice_law import line_easeoff_mm
 from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
@@ -81,7 +82,7 @@ from .mesh import MeshTable
 from .model import TwinModel, build_model
 from .params import DrivetrainParams, default_drivetrain
 
-__all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
+__all__ = ["CYLINDRICAL_BACKENDS", "beyond_stiffness", "cylindrical_mesh_table", "cylindrical_torque_table",
            "cylindrical_model", "cylindrical_sweep_models", "line_bending_gram",
            "motion_sign", "tip_rows"]
 
@@ -148,6 +149,29 @@ def _edge_row_gram(bending: ToothBending, gram, rows, line_z_mm, beyond_z_mm, u1
     return out
 
 
+def beyond_stiffness(beyond: BeyondSlices, stencils: CylindricalStencils, load_n: float,
+                      e_prime_mpa: float) -> tuple[float, float, float]:
+    """``(g / (g + Delta), Delta, chi)`` of the edge slices beyond the lines at the normal
+    load ``load_n`` (N; :func:`~gearcontact.ltca.edge_section.edge_stiffness_factor`,
+    docs/cylindrical.md sec. 10): the line's ``g`` at the mean load per length over the
+    lines in the zone (``load_n`` over their mean summed length), their mean length and
+    the median radius across them (``1 / (2 B)``, B the larger of the exact curvatures'
+    half sums); the edge's section at the median slope and radius across of the edges'
+    first touches beyond the lines. (1, 0, 0) where no edge touches beyond a line."""
+    slope = beyond.slope[np.isfinite(beyond.slope)]
+    inv_r = beyond.inv_radius_per_mm[np.isfinite(beyond.inv_radius_per_mm)]
+    valid = stencils.valid
+    if slope.size == 0 or not valid.any():
+        return 1.0, 0.0, 0.0
+    length = np.where(valid, stencils.line_length_mm, 0.0)
+    across = np.maximum(stencils.A_minus_per_mm, stencils.B_minus_per_mm)[valid]
+    return edge_stiffness_factor(
+        slope=float(np.median(slope)), edge_radius_mm=1.0 / float(np.median(inv_r)),
+        line_load_n_per_mm=load_n / float(length.sum(axis=0).mean()),
+        line_length_mm=float(stencils.line_length_mm[valid].mean()),
+        line_radius_mm=0.5 / float(np.median(across)), e_prime_mpa=e_prime_mpa)
+
+
 def tip_rows(pair: CylindricalPair, cycle: CylindricalMeshCycle, valid: np.ndarray):
     """The edge rows of a cylindrical mesh table (module docstring, "Tip-edge rows"):
     ``(rows, opening_mm, lever_mm, nearest)`` per pair and phase of ``cycle``: where the
@@ -176,7 +200,8 @@ def tip_rows(pair: CylindricalPair, cycle: CylindricalMeshCycle, valid: np.ndarr
 def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                            stencils: CylindricalStencils | None = None, *,
                            side: str = "drive", bending: ToothBending | None = None,
-                           slices: int = LINE_SLICES) -> MeshTable:
+                           slices: int = LINE_SLICES, torque_nm: float | None = None
+                           ) -> MeshTable:
     """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring):
     the ease-off along each pair's line at ``slices`` slices
     (:func:`~gearcontact.tca.cylindrical_stencil.contact_line_slices`, its normal gap
@@ -184,7 +209,8 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     (:func:`~gearcontact.ltca.cylindrical_bending.cylindrical_bending` on the cycle's
     facing), whose :func:`line_bending_gram` at the slices goes into
     ``line_bending_gram_mm_per_n`` and its uniform-load compliance ``sum(G) / n^2`` into
-    ``bending_mm_per_n`` (reported); None: rigid teeth."""
+    ``bending_mm_per_n`` (reported); None: rigid teeth. ``torque_nm`` (gear, N·m): the
+    edge slices' own law at that load (:func:`beyond_stiffness`); None: the line's."""
     st = stencils if stencils is not None else cylindrical_stencils(pair, cycle)
     m = motion_sign(pair, cycle)
     order = _order(m, len(cycle.phi1_rad))
@@ -224,6 +250,10 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         return np.where(r, a[nj, nk], a)[:, order]
 
     length = np.where(st.valid, st.line_length_mm, 0.0)
+    e_prime = float(effective_modulus_mpa(pair.pinion_material, pair.gear_material))
+    stiff = 1.0
+    if beyond is not None and torque_nm is not None:
+        stiff = beyond_stiffness(beyond, st, 1e3 * torque_nm / float(st.lever_mm), e_prime)[0]
     return MeshTable(
         psi_rad=m * (phi1 - phi1[0]), eps_rad=m * env / ARCSEC_PER_RAD,
         lever_mm=np.where(rows, tip_lever, np.where(st.valid, st.lever_mm, 0.0))[:, order],
@@ -232,8 +262,7 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         valid=(st.valid | rows)[:, order],
         motion_sign=m, ratio=float(pair.ratio), pinion_teeth=int(pair.pinion_teeth),
         reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
-        e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
-        phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
+        e_prime_mpa=e_prime, phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
         bending_mm_per_n=law(cb, own=own_rows is not None), stencil_gaps_mm=law(st.gaps_mm),
         line_length_mm=law(length), contact_mode=rows.astype(np.int8)[:, order],
         edge_label=np.where(rows, cycle.tip.labels(), "")[:, order],
@@ -244,7 +273,7 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         # kernel interpolates between rows: a line row's edge slices would open within
         # the interval to an edge row without them, its edge load with them)
         beyond_gap_mm=None if beyond_gap is None else law(beyond_gap, own=True),
-        beyond_width_mm=None if beyond is None else beyond.width_mm)
+        beyond_width_mm=None if beyond is None else beyond.width_mm, beyond_stiffness=stiff)
 
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
@@ -304,7 +333,7 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
         raise InputRangeError("side", side, "'drive' or 'coast'")
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
     teeth = cylindrical_bending(pair, facing=facing) if bending else None
-    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth)
+    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth, torque_nm=t)
     table = None
     if backend == "table":
         table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,
