@@ -52,7 +52,10 @@ line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law
 ``beyond_gap_mm``, ``prm[P_NBEYOND]`` slices per end ``prm[P_BEYOND_W]`` mm wide) adds
 two runs of slices to ``I`` and ``L_c`` (:func:`gearcontact.ltca.slice_law.
 interference`): an edge point carries where the approach exceeds its gap, on the
-finite line's modulus, as the loaded TE's edge rows beyond a line join its block.
+foundation of the edge's own section against the mating flank (``prm[P_BEYOND_W]`` is
+the slices' width times its stiffness relative to the line's,
+:func:`gearcontact.ltca.edge_section.edge_stiffness_factor`), as the loaded TE's edge
+rows beyond a line join its block.
 With tooth bending, ``c_b`` is the work-conjugate
 compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
 at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
