@@ -205,3 +205,39 @@ def test_preview_loads_where_a_tip_edge_alone_touches():
         assert not st.in_contact[:, k].any()
         least = st.opening_mm[st.valid[:, k], k].min()
         assert np.all(st.opening_mm[w[:, k] > 0, k] == least) and least > 0
+
+
+def test_an_edge_ends_at_its_own_face_end():
+    """The EV example (pinion face 32 mm, gear face 30 mm) without its tip reliefs,
+    7 phases: the gear's tip edge exists only over the gear's face, |z| <= 15 mm, so
+    its points beyond it meet nothing (NaN), where the helicoid's continuation would
+    touch the wider pinion's flank; inside it, the same edge touches (the loaded TE's
+    edge block carried rows at z = 15.4 and 15.8 mm before, 0.5 % of F_n with bending
+    at 400 N·m). Sampled both ways the loaded TE samples an edge: the first-touching
+    edge of a pair with no line in the zone (tip_edge_gaps) and the edges beyond the
+    lines (beyond_line_edge_gaps); the pinion's tip edge, over its own 32 mm face,
+    touches the gear flank only within the gear's face (the other flank's box)."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.tca.cylindrical_tip import beyond_line_edge_gaps, tip_edge_gaps
+
+    ev = load_pair(Path(__file__).resolve().parents[2] / "examples"
+                   / "ev_reducer_helical_23x67.toml", kinds=("cylindrical",))
+    pair = replace(ev, modifications_pinion=replace(ev.modifications_pinion, tip_relief_um=0.0),
+                   modifications_gear=replace(ev.modifications_gear, tip_relief_um=0.0))
+    cycle = cylindrical_mesh_cycle(pair, phases=7)
+    poa = PlaneOfAction(pair, cycle.facing)
+    half = 0.5 * pair.face_width_mm("gear")
+    z = np.linspace(-16.0, 16.0, 81)
+    outside = np.abs(z) > half + 1e-9
+    first = tip_edge_gaps(poa, cycle, z)
+    gear_tip = cycle.tip.labels() == "gear tip"
+    assert gear_tip.any()
+    got = first.gap_mm[gear_tip]
+    assert np.isnan(got[:, outside]).all() and np.isfinite(got[:, ~outside]).any()
+    beyond = beyond_line_edge_gaps(poa, cycle, z)
+    for edge in beyond:
+        assert np.isnan(edge.gap_mm[..., outside]).all()
+    assert np.isfinite(beyond[1].gap_mm[..., ~outside]).any()

@@ -116,6 +116,33 @@ def test_line_law_is_the_finite_line_approach():
             assert 1e3 * (v[1] - v[0]) / (dd[1] - dd[0]) == pytest.approx(w, rel=1e-6)
 
 
+def test_line_load_past_the_law_maximum_has_one_root():
+    """A loaded length shorter than its contact's width (a leaving helical pair's line
+    of 0.06 mm on the EV example, docs/cylindrical.md sec. 10): the line law lam W (beta
+    - ln(W)/2) peaks at g = beta - ln(W)/2 = 1/2 and has no root beyond; past it
+    line_pair_load follows the secant lam W / 2, whose root is the closed form d / (lam
+    / 2 + cb) (1e-12, from any start; before, Newton halved its way to a start-dependent
+    load: 1.6-37 N for one approach). Below the maximum it is the line law's root as
+    before (1e-12), and the load is continuous and increasing across it (the two
+    branches meet at the maximum: the flat law's square root of 1e-9 on either side)."""
+    lam, beta = 4.0 / (math.pi * 229_670.0 * 0.064), 0.8
+    w_max = math.exp(2.0 * beta - 1.0)
+    for cb in (0.0, 2e-6):
+        d_max = lam * w_max * 0.5 + cb * w_max
+        for f in (1.5, 4.0, 30.0):
+            want = f * d_max / (0.5 * lam + cb)
+            for start in (0.0, 1e-3, 1.0, 1e3):
+                assert line_pair_load(f * d_max, lam, beta, cb, start) == pytest.approx(
+                    want, rel=1e-12)
+        w = 0.3 * w_max
+        d = lam * w * (beta - 0.5 * math.log(w)) + cb * w
+        assert line_pair_load(d, lam, beta, cb, 1e3) == pytest.approx(w, rel=1e-12)
+        # the law is flat at its maximum (f'' = -lam / (2 W)): d 1e-9 below it is
+        # W* (2e-9)^(1/2) below W*, above it (on the secant) 2e-9 W* above
+        lo, hi = (line_pair_load(d_max * (1.0 + s), lam, beta, cb, 1.0) for s in (-1e-9, 1e-9))
+        assert lo < w_max < hi and hi - lo < 1.01 * w_max * math.sqrt(2e-9)
+
+
 def test_spur_pitch_point_rotation_against_the_lcp(spur):
     """Unmodified spur 20/40 (line contact along the whole face) at T2 = 200 N·m in
     single contact at the pitch point (the cycle's middle row): the rotation at which

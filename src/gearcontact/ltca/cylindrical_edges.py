@@ -35,13 +35,13 @@ import math
 import numpy as np
 
 from ..tca.cylindrical_tip import (REACH_BASE_PITCHES, TIP_EDGES, TipEdgeGaps,
-                                   beyond_line_edge_gaps)
+                                   beyond_line_edge_gaps, tip_edge_gaps)
 from ..tca.plane_of_action import PlaneOfAction
 from .cylindrical_bending import line_bending_factor
 from .mesh_lcp import PairBlock
 
 __all__ = ["OFF_LINE_GAP_MM", "BEYOND_SLICES", "BeyondLoads", "BeyondSlices", "beyond_rows",
-           "beyond_slices", "closing_turn_rad", "edge_block", "join_beyond"]
+           "beyond_slices", "closing_turn_rad", "edge_block", "edge_row_slices", "join_beyond"]
 
 #: Separation of cells off a pair's contact line, mm (far above any approach, ~10 um).
 OFF_LINE_GAP_MM = 1.0
@@ -153,6 +153,12 @@ class BeyondSlices:
         points, as the loaded TE's rows), mm; NaN where no edge point.
     width_mm : float
         Width of a slice along the line (``dz / cos beta_b``, as the loaded TE's rows), mm.
+    slope, inv_radius_per_mm : ndarray (P, K, 2) or None
+        Per pair, phase and edge of :data:`~gearcontact.tca.cylindrical_tip.TIP_EDGES`
+        (pinion tip, gear tip), at its first touch beyond the line: the sine of the angle
+        between the flanks and the relative curvature across the edge, 1/mm (NaN where
+        that edge has no point beyond; the edge section's parameters,
+        :mod:`.edge_section`).
     """
 
     gap_mm: np.ndarray
@@ -160,6 +166,8 @@ class BeyondSlices:
     u1_mm: np.ndarray
     u2_mm: np.ndarray
     width_mm: float
+    slope: np.ndarray | None = None
+    inv_radius_per_mm: np.ndarray | None = None
 
 
 def beyond_slices(pair, cycle, valid, opening_mm, lever_mm: float, *,
@@ -201,4 +209,47 @@ def beyond_slices(pair, cycle, valid, opening_mm, lever_mm: float, *,
         u1 = np.where(hit, bg.u1_mm[..., None, None], u1)
         u2 = np.where(hit, bg.u2_mm[..., None, None], u2)
     return BeyondSlices(gap_mm=gap, z_mm=z, u1_mm=u1, u2_mm=u2,
-                        width_mm=dz / math.cos(beta_b))
+                        width_mm=dz / math.cos(beta_b),
+                        slope=np.stack([bg.slope for bg in found], axis=-1),
+                        inv_radius_per_mm=np.stack([bg.inv_radius_per_mm for bg in found],
+                                                   axis=-1))
+
+
+def edge_row_slices(pair, cycle, rows, nearest, line_z_mm, beyond: BeyondSlices):
+    """The tip edge of every pair that touches at its tip with no line in the zone
+    (``rows`` (P, K), the twin's edge rows; ``nearest`` (P, K, 2) the row of the same
+    tooth pair's nearest line in the zone), sampled at that line's slices (``line_z_mm``
+    (P, K, n), axial positions, mm) and edge slices (``beyond``): the edge's own normal
+    gap over its first touch, ``(lever / |rate|) (g_e(z) - g_first)``, as the loaded TE's
+    block of that edge takes it (:func:`edge_block`), so that the row's slice law runs
+    on the edge that touches (a corner at a face end opens along the edge as the
+    separation beyond the path end grows) on the slice layout of the line it continues.
+    :data:`OFF_LINE_GAP_MM` where the edge point meets no mating flank.
+
+    Returns
+    -------
+    line_gap_mm : ndarray (P, K, n)
+    beyond_gap_mm : ndarray (P, K, 2, nb)
+    u1_mm, u2_mm : ndarray (P, K)
+        Pinion and gear roll lengths of the first touch (the bending's flank points);
+        NaN off ``rows``.
+    """
+    line_z = np.asarray(line_z_mm, float)
+    n, nb = line_z.shape[-1], beyond.gap_mm.shape[-1]
+    line_gap = np.zeros(line_z.shape)
+    edge_gap = np.full(beyond.gap_mm.shape, OFF_LINE_GAP_MM)
+    u1 = np.full(line_z.shape[:2], np.nan)
+    u2 = np.full_like(u1, np.nan)
+    poa = PlaneOfAction(pair, cycle.facing)
+    for j, k in zip(*np.nonzero(rows)):
+        jn, kn = nearest[j, k]
+        z = np.concatenate([line_z[jn, kn], beyond.z_mm[jn, kn].ravel()])
+        where = np.zeros(rows.shape, bool)
+        where[j, k] = True
+        tg = tip_edge_gaps(poa, cycle, z, where=where)
+        g = tg.normal_gap_per_gap[j, k] * (tg.gap_mm[j, k] - cycle.tip.gap_mm[j, k])
+        g = np.where(np.isfinite(g), g, OFF_LINE_GAP_MM)
+        line_gap[j, k] = g[:n]
+        edge_gap[j, k] = g[n:].reshape(2, nb)
+        u1[j, k], u2[j, k] = tg.u1_mm[j, k], tg.u2_mm[j, k]
+    return line_gap, edge_gap, u1, u2

@@ -27,7 +27,8 @@ neighbours; a sample at a face end is a corner contact.
 The result is expressed as the cycle's *gap* (``g = -rate Δphi2``, ``rate`` the gap's
 ``d g / d phi2`` at the touching point, :mod:`.cylindrical_cycle`), so that the pair
 closing first is the least gap over lines and tip edges alike. A touch beyond the other
-flank's box (below its form circle: the fillet) or one that does not converge is no
+flank's box (below its form circle: the fillet), an edge point beyond its own face
+(the narrower member's edge ends at its face end) or one that does not converge is no
 contact (NaN).
 """
 
@@ -156,9 +157,13 @@ def _touch(mesh, member: str, phi1, z, y0):
         y[todo] += step
         todo = todo[np.isfinite(y[todo]).all(axis=1)]
     (u0, u1), (v0, v1) = other.u_range, other.v_range
+    # the edge point on its own face too (a narrower member's edge ends at its face end:
+    # beyond it the helicoid's continuation is no material)
+    w0, w1 = own.v_range
     with np.errstate(invalid="ignore"):
         ok &= ((y[:, 0] >= u0 - _BOX_MM) & (y[:, 0] <= u1 + _BOX_MM) & (y[:, 1] >= v0 - _BOX_MM)
-               & (y[:, 1] <= v1 + _BOX_MM) & (np.abs(y[:, 2]) < _MAX_TURN_RAD))
+               & (y[:, 1] <= v1 + _BOX_MM) & (np.abs(y[:, 2]) < _MAX_TURN_RAD)
+               & (z >= w0 - _BOX_MM) & (z <= w1 + _BOX_MM))
     return y, ok
 
 

@@ -63,8 +63,9 @@ import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
-from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices
+from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices, edge_row_slices
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
+from ..ltca.edge_section import edge_stiffness_factor
 from ..ltca.slice_law import line_easeoff_mm
 from ..ltca.tooth_bending import ToothBending
 from ..materials import effective_modulus_mpa
@@ -81,7 +82,7 @@ from .mesh import MeshTable
 from .model import TwinModel, build_model
 from .params import DrivetrainParams, default_drivetrain
 
-__all__ = ["CYLINDRICAL_BACKENDS", "cylindrical_mesh_table", "cylindrical_torque_table",
+__all__ = ["CYLINDRICAL_BACKENDS", "beyond_stiffness", "cylindrical_mesh_table", "cylindrical_torque_table",
            "cylindrical_model", "cylindrical_sweep_models", "line_bending_gram",
            "motion_sign", "tip_rows"]
 
@@ -133,6 +134,44 @@ def line_bending_gram(bending: ToothBending, slices: LineGaps,
     return out
 
 
+def _edge_row_gram(bending: ToothBending, gram, rows, line_z_mm, beyond_z_mm, u1_mm,
+                   u2_mm) -> np.ndarray:
+    """``gram`` (P, K, m, m) with each edge row's (``rows``) own: the shells' Gram at
+    the row's slices (``line_z_mm`` (P, K, n), ``beyond_z_mm`` (P, K, 2, nb): its
+    nearest line's) with the roll lengths of its tip touch ``u1_mm``, ``u2_mm`` (P, K)
+    at every slice, as the loaded TE's edge block takes them."""
+    out = np.array(gram)
+    for j, k in zip(*np.nonzero(rows)):
+        z = np.concatenate([line_z_mm[j, k], beyond_z_mm[j, k].ravel()])
+        f = line_bending_factor(bending, z, np.full(z.shape, u1_mm[j, k]),
+                                np.full(z.shape, u2_mm[j, k]), 1)[:, 0].astype(float)
+        out[j, k] = f @ f.T
+    return out
+
+
+def beyond_stiffness(beyond: BeyondSlices, stencils: CylindricalStencils, load_n: float,
+                      e_prime_mpa: float) -> tuple[float, float, float]:
+    """``(g / (g + Delta), Delta, chi)`` of the edge slices beyond the lines at the normal
+    load ``load_n`` (N; :func:`~gearcontact.ltca.edge_section.edge_stiffness_factor`,
+    docs/cylindrical.md sec. 10): the line's ``g`` at the mean load per length over the
+    lines in the zone (``load_n`` over their mean summed length), their mean length and
+    the median radius across them (``1 / (2 B)``, B the larger of the exact curvatures'
+    half sums); the edge's section at the median slope and radius across of the edges'
+    first touches beyond the lines. (1, 0, 0) where no edge touches beyond a line."""
+    slope = beyond.slope[np.isfinite(beyond.slope)]
+    inv_r = beyond.inv_radius_per_mm[np.isfinite(beyond.inv_radius_per_mm)]
+    valid = stencils.valid
+    if slope.size == 0 or not valid.any():
+        return 1.0, 0.0, 0.0
+    length = np.where(valid, stencils.line_length_mm, 0.0)
+    across = np.maximum(stencils.A_minus_per_mm, stencils.B_minus_per_mm)[valid]
+    return edge_stiffness_factor(
+        slope=float(np.median(slope)), edge_radius_mm=1.0 / float(np.median(inv_r)),
+        line_load_n_per_mm=load_n / float(length.sum(axis=0).mean()),
+        line_length_mm=float(stencils.line_length_mm[valid].mean()),
+        line_radius_mm=0.5 / float(np.median(across)), e_prime_mpa=e_prime_mpa)
+
+
 def tip_rows(pair: CylindricalPair, cycle: CylindricalMeshCycle, valid: np.ndarray):
     """The edge rows of a cylindrical mesh table (module docstring, "Tip-edge rows"):
     ``(rows, opening_mm, lever_mm, nearest)`` per pair and phase of ``cycle``: where the
@@ -161,7 +200,8 @@ def tip_rows(pair: CylindricalPair, cycle: CylindricalMeshCycle, valid: np.ndarr
 def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                            stencils: CylindricalStencils | None = None, *,
                            side: str = "drive", bending: ToothBending | None = None,
-                           slices: int = LINE_SLICES) -> MeshTable:
+                           slices: int = LINE_SLICES, torque_nm: float | None = None
+                           ) -> MeshTable:
     """The twin's :class:`~.mesh.MeshTable` of a cylindrical pair (module docstring):
     the ease-off along each pair's line at ``slices`` slices
     (:func:`~gearcontact.tca.cylindrical_stencil.contact_line_slices`, its normal gap
@@ -169,15 +209,31 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     (:func:`~gearcontact.ltca.cylindrical_bending.cylindrical_bending` on the cycle's
     facing), whose :func:`line_bending_gram` at the slices goes into
     ``line_bending_gram_mm_per_n`` and its uniform-load compliance ``sum(G) / n^2`` into
-    ``bending_mm_per_n`` (reported); None: rigid teeth."""
+    ``bending_mm_per_n`` (reported); None: rigid teeth. ``torque_nm`` (gear, N·m): the
+    edge slices' own law at that load (:func:`beyond_stiffness`); None: the line's."""
     st = stencils if stencils is not None else cylindrical_stencils(pair, cycle)
     m = motion_sign(pair, cycle)
     order = _order(m, len(cycle.phi1_rad))
     ease, sl = line_easeoff_mm(pair, cycle, st.valid, slices=slices)
     beyond = beyond_slices(pair, cycle, st.valid, st.opening_mm, float(st.lever_mm))
+    rows, tip_open, tip_lever, near = tip_rows(pair, cycle, st.valid)
+    nj, nk = near[..., 0], near[..., 1]
+    beyond_gap, own_rows = None, None
+    if beyond is not None:      # a helical line's own tip edge closes in its edge slices
+        rows &= ~st.valid
+        beyond_gap = beyond.gap_mm
+        if rows.any():          # an edge row: its own edge on its nearest line's slices
+            own_line, own_beyond, u1, u2 = edge_row_slices(pair, cycle, rows, near, sl.z_mm,
+                                                           beyond)
+            ease = np.where(rows[..., None], own_line, ease)
+            beyond_gap = np.where(rows[..., None, None], own_beyond, beyond_gap)
+            own_rows = (u1, u2)
     gram, cb = None, np.zeros(st.valid.shape)
     if bending is not None:
         gram = np.where(st.valid[..., None, None], line_bending_gram(bending, sl, beyond), 0.0)
+        if own_rows is not None:
+            gram = _edge_row_gram(bending, gram, rows, sl.z_mm[nj, nk], beyond.z_mm[nj, nk],
+                                  *own_rows)
         n = sl.gap_mm.shape[-1]
         # the line's block as a contiguous array: its sum's rounding the one without
         # edge slices (the start of the loaded slices' fixed point, .line_law)
@@ -185,16 +241,19 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
     k0 = len(order) // 2
-    rows, tip_open, tip_lever, near = tip_rows(pair, cycle, st.valid)
-    if beyond is not None:      # a helical line's own tip edge closes in its edge slices
-        rows &= ~st.valid
-    nj, nk = near[..., 0], near[..., 1]
 
-    def law(a):         # an edge row takes its pair's nearest line's law inputs
+    def law(a, own=False):
+        # an edge row takes its pair's nearest line's law inputs (``own``: its own)
+        if own:
+            return a[:, order]
         r = rows.reshape(rows.shape + (1,) * (a.ndim - 2))
         return np.where(r, a[nj, nk], a)[:, order]
 
     length = np.where(st.valid, st.line_length_mm, 0.0)
+    e_prime = float(effective_modulus_mpa(pair.pinion_material, pair.gear_material))
+    stiff = 1.0
+    if beyond is not None and torque_nm is not None:
+        stiff = beyond_stiffness(beyond, st, 1e3 * torque_nm / float(st.lever_mm), e_prime)[0]
     return MeshTable(
         psi_rad=m * (phi1 - phi1[0]), eps_rad=m * env / ARCSEC_PER_RAD,
         lever_mm=np.where(rows, tip_lever, np.where(st.valid, st.lever_mm, 0.0))[:, order],
@@ -203,17 +262,18 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         valid=(st.valid | rows)[:, order],
         motion_sign=m, ratio=float(pair.ratio), pinion_teeth=int(pair.pinion_teeth),
         reference_lever_mm=float(st.lever_mm), reference_index=int(k0),
-        e_prime_mpa=float(effective_modulus_mpa(pair.pinion_material, pair.gear_material)),
-        phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
-        bending_mm_per_n=law(cb), stencil_gaps_mm=law(st.gaps_mm),
+        e_prime_mpa=e_prime, phi1_rad=phi1, te0_arcsec=env, gear_datum_rad=0.0, side=side,
+        bending_mm_per_n=law(cb, own=own_rows is not None), stencil_gaps_mm=law(st.gaps_mm),
         line_length_mm=law(length), contact_mode=rows.astype(np.int8)[:, order],
-        edge_label=np.where(rows, cycle.tip.labels(), "")[:, order], line_gap_mm=law(ease),
-        line_bending_gram_mm_per_n=None if gram is None else law(gram),
+        edge_label=np.where(rows, cycle.tip.labels(), "")[:, order],
+        line_gap_mm=law(ease, own=beyond is not None),
+        line_bending_gram_mm_per_n=None if gram is None else law(gram,
+                                                                  own=own_rows is not None),
         # an edge row takes its nearest line's edge slices with the rest of its law (the
         # kernel interpolates between rows: a line row's edge slices would open within
         # the interval to an edge row without them, its edge load with them)
-        beyond_gap_mm=None if beyond is None else law(beyond.gap_mm),
-        beyond_width_mm=None if beyond is None else beyond.width_mm)
+        beyond_gap_mm=None if beyond_gap is None else law(beyond_gap, own=True),
+        beyond_width_mm=None if beyond is None else beyond.width_mm, beyond_stiffness=stiff)
 
 
 def cylindrical_torque_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
@@ -273,7 +333,7 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
         raise InputRangeError("side", side, "'drive' or 'coast'")
     cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
     teeth = cylindrical_bending(pair, facing=facing) if bending else None
-    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth)
+    mesh = cylindrical_mesh_table(pair, cycle, side=side, bending=teeth, torque_nm=t)
     table = None
     if backend == "table":
         table = cylindrical_torque_table(pair, cycle, mesh, t, cells_along=table_cells,

@@ -30,8 +30,8 @@ LINE_SOURCE_CODE = 2
 #: The line chain's ease-off along the line (``prm[P_NSLICE]``, :mod:`.line_law`): ``cv``
 #: columns after L hold the pair's normal gap at the centres of P_NSLICE equal slices of
 #: its line, then the tip edge beyond either end of a helical line on ``prm[P_NBEYOND]``
-#: slices each (``prm[P_BEYOND_W]`` mm wide, from the line's end outwards; 0 on a spur
-#: pair), then the bending Gram matrix G of all ``m = P_NSLICE + 2 P_NBEYOND`` slices
+#: slices each (from the line's end outwards; ``prm[P_BEYOND_W]``: their width, mm, times
+#: the edge section's stiffness relative to the line's; 0 on a spur pair), then the bending Gram matrix G of all ``m = P_NSLICE + 2 P_NBEYOND`` slices
 #: (m^2, row-major, mm/N; zeros for rigid teeth).
 #: Preview outputs per pair evaluation (``pv``): a, b, p_max, mode, the line law's beta,
 #: the load (N) at which a, b, p_max hold (:data:`PV_LOAD`), the line law's approach

@@ -52,7 +52,10 @@ line contact's ``b ~ (W / L)^(1/2)`` (:func:`_line_coefficient`). The step's law
 ``beyond_gap_mm``, ``prm[P_NBEYOND]`` slices per end ``prm[P_BEYOND_W]`` mm wide) adds
 two runs of slices to ``I`` and ``L_c`` (:func:`gearcontact.ltca.slice_law.
 interference`): an edge point carries where the approach exceeds its gap, on the
-finite line's modulus, as the loaded TE's edge rows beyond a line join its block.
+foundation of the edge's own section against the mating flank (``prm[P_BEYOND_W]`` is
+the slices' width times its stiffness relative to the line's,
+:func:`gearcontact.ltca.edge_section.edge_stiffness_factor`), as the loaded TE's edge
+rows beyond a line join its block.
 With tooth bending, ``c_b`` is the work-conjugate
 compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
 at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
@@ -376,21 +379,27 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
 @njit(cache=True, inline="always", error_model="numpy")
 def line_pair_load(d, lam, beta, cb, w_prev):
     """Load W (N) of a pair in line mode at approach ``d`` (mm): the root of ``f(W) =
-    lam W (beta - ln(W)/2) + cb W - d``. ``f`` is concave (``f'' = -lam / (2 W)``) and
-    increasing while ``beta - 1/2 - ln(W)/2 > 0``, i.e. while the half-width stays below
-    ``4 L e^(-5/4) ~ 1.15 L`` (always, on a gear's contact line). So Newton from any
-    start there lands left of the root after at most one step (the tangent lies above
-    ``f``) and then rises monotonically to it; the start is the pair's previous load
-    ``w_prev`` (> 0), else the load of the law's secant at 1 N. Stops at a relative step of
-    1e-14."""
+    lam W max(beta - ln(W)/2, 1/2) + cb W - d``. The line law ``lam W (beta - ln(W)/2)``
+    is concave (``f'' = -lam / (2 W)``) and increasing while ``g = beta - ln(W)/2 >
+    1/2``, i.e. while the half-width stays below ``4 L e^(-5/4) ~ 1.15 L``; beyond, on a
+    loaded length shorter than its contact's width (a line just entering or leaving, its
+    loaded part a few hundredths of a mm), it has no root past its maximum ``lam W / 2``
+    at ``g = 1/2``, and ``f`` continues from it on that secant, ``lam W / 2`` (continuous
+    and increasing: one root; before, Newton halved its way to a start-dependent load
+    there, tests/twin/test_line_law.py). So Newton from any start lands left of the root
+    after at most two steps (on the secant exactly; from there, or on the concave part,
+    the tangent lies above ``f``) and then rises monotonically to it; the start is the pair's previous load ``w_prev`` (> 0), else the
+    load of the law's secant at 1 N. Stops at a relative step of 1e-14."""
     w = w_prev if w_prev > 0.0 else d / (lam * max(beta, 1.0) + cb)
     for _ in range(60):
         lw = math.log(w)
-        r = lam * w * (beta - 0.5 * lw) + cb * w - d
-        slope = lam * (beta - 0.5 - 0.5 * lw) + cb
-        if slope <= 0.0:            # beyond the law's range (never in a gear): halve
-            w *= 0.5
-            continue
+        g = beta - 0.5 * lw
+        if g > 0.5:
+            r = lam * w * g + cb * w - d
+            slope = lam * (g - 0.5) + cb
+        else:                       # past the line law's maximum: its secant there
+            r = 0.5 * lam * w + cb * w - d
+            slope = 0.5 * lam + cb
         dw = r / slope
         w_new = w - dw
         w = w_new if w_new > 0.0 else 0.5 * w

@@ -150,6 +150,11 @@ class MeshTable:
         contact).
     beyond_width_mm : float or None
         Width along the line of those slices, mm.
+    beyond_stiffness : float
+        Foundation stiffness of those slices relative to the line's (the tip edge's
+        section against the mating flank, :func:`gearcontact.ltca.edge_section.
+        edge_stiffness_factor`; 1: the line's own): the slice law carries them on
+        ``beyond_stiffness x beyond_width_mm``.
     edge_compliance_scale : ndarray (P, K) or None
         ``c`` of each edge row (:mod:`gearcontact.ltca.edge_law`; its curvatures and
         stencil carry ``c^3``), 1 elsewhere; None: no edge row calibrated.
@@ -191,6 +196,7 @@ class MeshTable:
     line_bending_gram_mm_per_n: np.ndarray | None = None
     beyond_gap_mm: np.ndarray | None = None
     beyond_width_mm: float | None = None
+    beyond_stiffness: float = 1.0
     edge_compliance_scale: np.ndarray | None = None
     edge_exponent: np.ndarray | None = None
     out_of_reach: np.ndarray | None = None

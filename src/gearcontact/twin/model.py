@@ -236,7 +236,8 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
         prm[K.P_SLICE_CB] = float(m.line_bending_gram_mm_per_n is not None)
         if m.beyond_gap_mm is not None:
             prm[K.P_NBEYOND] = m.beyond_gap_mm.shape[-1]
-            prm[K.P_BEYOND_W] = m.beyond_width_mm
+            # the edge section's softer foundation: the slices' width scaled
+            prm[K.P_BEYOND_W] = m.beyond_width_mm * m.beyond_stiffness
     return prm
 
 

@@ -308,7 +308,9 @@ def _mode_summary(model: TwinModel) -> dict:
 BEYOND_LINE_LAW = ("edge slices of the line's slice law (ltca.slice_law): the tip edge "
                    "beyond the line's ends, its gap at the line's lever as the loaded TE's "
                    "edge rows beyond a line (ltca.cylindrical_edges.beyond_slices), adds "
-                   "to the loaded length and interference, so to the line chain's W and "
+                   "to the loaded length and interference on the foundation of the edge's "
+                   "section against the mating flank (ltca.edge_section; "
+                   "stiffness_relative_to_line), so to the line chain's W and "
                    "L_eq on every backend (rtl and soc replay those codes)")
 
 
@@ -324,6 +326,7 @@ def _beyond_summary(model: TwinModel) -> dict:
     hit = g < OFF_LINE_GAP_MM
     return {"beyond_line_edges": {
         "slices_per_end": int(g.shape[-1]), "slice_width_mm": float(m.beyond_width_mm),
+        "stiffness_relative_to_line": float(m.beyond_stiffness),
         "rows": int(hit.any(axis=(2, 3)).sum()),
         "least_gap_um": float(1e3 * g[hit].min()) if hit.any() else None,
         "law": BEYOND_LINE_LAW}}
