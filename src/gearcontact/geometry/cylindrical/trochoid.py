@@ -44,7 +44,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ...errors import CheckFailed
 
@@ -185,6 +184,7 @@ def undercut_crossing(rack: RackTip, *, base_radius_mm: float, half_angle_rad: f
         return np.arctan2(g[..., 1], g[..., 0]) - (half_angle_rad - (np.tan(a) - a))
 
     def solve(fun, lo, hi):
+        from scipy.optimize import brentq   # lazy: reading a pair loads no solver
         return brentq(lambda t: float(fun(np.array([t]))[0]), lo, hi, xtol=1e-15,
                       rtol=4.0 * np.finfo(float).eps, maxiter=200)
 

@@ -32,7 +32,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from ...errors import CheckFailed
 from .trochoid import GeneratedForm, tip_envelope
@@ -110,6 +109,7 @@ def mating_tip_penetration_mm(form: GeneratedForm, *, teeth: int, base_radius_mm
     pen = penetration(phis)
     i = int(np.argmax(pen))
     lo, hi = phis[max(i - 1, 0)], phis[min(i + 1, len(phis) - 1)]
+    from scipy.optimize import minimize_scalar   # lazy: reading a pair loads no solver
     best = minimize_scalar(lambda p: -float(penetration(p)[0]), bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-12})
     return max(float(pen[i]), -float(best.fun))
