@@ -37,7 +37,7 @@ from ..contract.qformat import (CURVATURE, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
            "fit_mac_ops", "fit_mac_schedule", "orbit_members",
-           "fit_isqrt_seeds",
+           "fit_isqrt_seeds", "fit_linear_safe_code",
            "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants"]
 
 
@@ -442,6 +442,18 @@ def cbrt_seed() -> dict:
             "bound": bound}
 
 
+def fit_linear_safe_code() -> int:
+    """The largest STENCIL_GAP code G such that every stencil with all ``|g_i| <= G``
+    has c0, c1, c2 (the fit's linear part) within COEFF: ``|acc_j| <= G sum_i |W_ji|``
+    and its rounding shift stays <= COEFF_MAX (>= COEFF_MIN alike). Where a caller
+    guarantees it, ``gc_fit_golden_curvatures`` gives gc_fit_golden's outputs but c0..c2
+    (gearcontact.h); 352,955,419 (168.3 mm) for the baked ROM."""
+    s = ACC.frac - COEFF.frac
+    rom = fit_weight_codes()
+    top = ((COEFF.max_code + 1) << s) - (1 << (s - 1)) - 1
+    return min(top // sum(abs(w) for w in rom[j]) for j in range(3))   # c0, c1, c2
+
+
 def fit_constants() -> dict[str, int]:
     """Named integer constants of the stage-C fit core (macro name -> value)."""
     d_max = G.D_FMT.max_code
@@ -454,7 +466,8 @@ def fit_constants() -> dict[str, int]:
             "ISQRT_SEED_OFFSET": 1 << (ISQRT_SEED_BITS - 2),
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
             "STENCIL_GAP_FRAC": STENCIL_GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT,
-            "LINE_B_ZERO_CODES": LINE_B_ZERO_CODES, "LINE_CHAIN_FIT_FLAGS": LINE_CHAIN_FIT_FLAGS}
+            "LINE_B_ZERO_CODES": LINE_B_ZERO_CODES, "LINE_CHAIN_FIT_FLAGS": LINE_CHAIN_FIT_FLAGS,
+            "LINEAR_SAFE_CODE": fit_linear_safe_code()}
 
 
 def gap_constants() -> dict[str, int]:
