@@ -131,6 +131,51 @@ def test_golden_sources_alone_build_into_the_users_own_program(built, tmp_path):
     assert run.stdout.count(", 0 mismatches") == len(CORES)
 
 
+class _FitCodes(ctypes.Structure):
+    _fields_ = [("a_minus", ctypes.c_int32), ("b_minus", ctypes.c_int32),
+                ("flags", ctypes.c_uint32)] + [(f"c{j}", ctypes.c_int32) for j in range(6)]
+
+
+def test_golden_fit_of_the_curvatures_alone_equals_the_full_fit(built):
+    """gc_fit_golden_curvatures (the drivetrain FMU's golden fit, no c0..c2) against
+    gc_fit_golden and the golden model's expected outputs on the fit vectors: where
+    every |gap code| <= GC_FIT_LINEAR_SAFE_CODE (its contract), A-, B-, c3..c5 and the
+    flags equal, bit for bit, and c0..c2 are 0; beyond it, equal wherever the full fit
+    does not flag a coefficient overflow (only c0..c2's can then differ). The bound
+    itself: |c_j| <= (G sum_i |W_ji| + 2^20) >> 21 <= COEFF_MAX for j = 0..2, checked on
+    the ROM here, and that it is the largest code that keeps it."""
+    from gearcontact.export.c_constants import (fit_constants, fit_flags,
+                                                fit_linear_safe_code, fit_weight_codes)
+    lib, vec = built
+    so = ctypes.CDLL(str(lib / "build" / "libgearcontact.so"))
+    for name in ("gc_fit_golden", "gc_fit_golden_curvatures"):
+        getattr(so, name).restype = _FitCodes
+        getattr(so, name).argtypes = [ctypes.POINTER(ctypes.c_int32)]
+    safe, top = fit_linear_safe_code(), 2 ** 31 - 1
+    shift = fit_constants()["COEFF_SHIFT"]
+    l1 = [sum(abs(w) for w in row) for row in fit_weight_codes()[:3]]
+    assert all((safe * n + (1 << (shift - 1))) >> shift <= top for n in l1)
+    assert any(((safe + 1) * n + (1 << (shift - 1))) >> shift > top for n in l1)
+    ins = read_hex(vec / "fit_in.hex", "fit", "in")["wr_data"]
+    want = read_hex(vec / "fit_out.hex", "fit", "out")
+    overflow = 1 << [n for n, _ in fit_flags()].index("coefficient_overflow")
+    inside = beyond = 0
+    for k, g in enumerate(ins):
+        arr = (ctypes.c_int32 * 49)(*(int(x) for x in g))
+        full, alone = so.gc_fit_golden(arr), so.gc_fit_golden_curvatures(arr)
+        assert full.flags == want["flags"][k] and full.a_minus == want["a_minus"][k]
+        same = [(getattr(full, n), getattr(alone, n)) for n in
+                ("a_minus", "b_minus", "flags", "c3", "c4", "c5")]
+        if int(np.abs(g).max()) <= safe:
+            inside += 1
+            assert all(x == y for x, y in same), k
+            assert (alone.c0, alone.c1, alone.c2) == (0, 0, 0)
+        elif not full.flags & overflow:
+            beyond += 1
+            assert all(x == y for x, y in same), k
+    assert inside >= 5000 and beyond >= 100, (inside, beyond)
+
+
 def test_golden_c_portable_build_equals_the_golden_model(built, tmp_path):
     """The code other compilers get (-DGC_PORTABLE_SCHEDULE: no asm barrier in the fit's
     MAC; -DGC_PORTABLE_BIT_LENGTH: the six-step bit length) computes the same integers:
