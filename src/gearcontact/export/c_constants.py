@@ -20,6 +20,7 @@ from ..preview.chain import (FIT_FLAG_SHIFT, LINE_B_ZERO_CODES, LINE_CHAIN_FIT_F
                              chain_flag_names)
 from ..preview.fit import golden as G
 from ..preview.fit.pinv import ACC, COEFF, N_COEFFS, N_TAPS, baked_pinv
+from ..preview.fit.reference import HALF, QUADRATIC_LANES, pairwise_sum, quadratic_weights
 from ..contract.stencil import STENCIL_SIDE
 from ..preview.gap.cores import GAP_LANES
 from ..preview.gap.golden import DEFAULT_FORMAT, IDX_SENTINEL
@@ -36,7 +37,7 @@ from ..contract.qformat import (CURVATURE, LOAD, PMAX, SEMI_AXIS, STENCIL_GAP,
 __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_constants",
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
            "fit_mac_ops", "fit_mac_schedule", "orbit_members",
-           "fit_isqrt_seeds",
+           "fit_isqrt_seeds", "fit_linear_safe_code",
            "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants"]
 
 
@@ -352,35 +353,58 @@ def fit_isqrt_seeds() -> tuple[int, ...]:
 
 #: Lanes of the fp64 fit's dot products (gc_fit_fp64.c): lane ``l`` sums the taps
 #: ``FIT_LANES * k + l``; the taps past the last whole group of lanes are summed after.
-FIT_LANES = 4
+#: The fp64 reference's lanes (c3..c5 are summed in them).
+FIT_LANES = QUADRATIC_LANES
+
+
+def _lanes_tree(product: str, groups: int) -> tuple[str, int]:
+    """C text of the lanes' pairwise sum (:func:`pairwise_sum`) of ``groups`` products
+    (``product`` with ``{k}`` for the group) and the tree's depth."""
+    depth = math.ceil(math.log2(groups)) if groups > 1 else 0
+    return pairwise_sum([product.format(k=k) for k in range(groups)],
+                        lambda a, b: f"GC_ADD({a}, {b})"), depth
 
 
 def fit_lanes_fp64() -> dict:
-    """The fp64 fit's weights as gc_fit_fp64.c applies them, tap by tap.
+    """The fp64 fit's weights as gc_fit_fp64.c applies them.
 
-    Every weight ``M_ji`` of the fp64 pseudo-inverse as its exact C99 hexadecimal
-    literal, in groups of :data:`FIT_LANES` consecutive taps (one vector of weights per
-    group and coefficient) and the taps after the last whole group.
+    c0, c1, c2 tap by tap: every weight ``M_ji`` of the fp64 pseudo-inverse as its
+    exact C99 hexadecimal literal, in groups of :data:`FIT_LANES` consecutive taps (one
+    vector of weights per group and coefficient) and the taps after the last whole
+    group. c3, c4, c5 as the fp64 reference sums them
+    (:func:`gearcontact.preview.fit.reference.fitted_coefficients`): the
+    :class:`~gearcontact.preview.fit.reference.QuadraticWeights` ``pair`` and ``skew``
+    in groups of :data:`FIT_LANES` taps and ``total``, the same tree of additions.
 
     Returns
     -------
     dict
-        ``lanes`` (:data:`FIT_LANES`); ``groups``: per coefficient, per group, the
-        literals of its taps; ``tail``: per coefficient ``[(tap, literal), ...]``;
-        ``tree``: the lanes' sum of the groups' products as C, a pairwise tree (adjacent
-        groups first; ``@`` stands for the coefficient's row), ``depth`` its levels.
+        ``lanes`` (:data:`FIT_LANES`); ``groups``: per linear coefficient (c0, c1, c2),
+        per group, the literals of its taps; ``tail``: per linear coefficient
+        ``[(tap, literal), ...]``; ``tree``: the lanes' sum of the groups' products as
+        C, a pairwise tree (adjacent groups first; ``@`` stands for the coefficient's
+        row), ``depth`` its levels. ``pair``, ``skew``: per quadratic coefficient, per
+        group, the literals; ``total``: per quadratic coefficient, the literal;
+        ``half``: the taps before the centre (``HALF``); ``quad_tree``, ``quad_depth``:
+        the tree over the quadratic groups (``@`` the coefficient, 0 .. 2).
     """
-    rows = [[float(w) for w in row] for row in baked_pinv().weights]
+    rows = [[float(w) for w in row] for row in baked_pinv().weights[:3]]
     whole = N_TAPS // FIT_LANES * FIT_LANES
-    terms, depth = [f"GC_MUL(FIT_M[@][{k}], x{k})" for k in range(whole // FIT_LANES)], 0
-    while len(terms) > 1:                          # pairwise, adjacent groups first
-        terms = [f"GC_ADD({a}, {b})" for a, b in zip(terms[::2], terms[1::2])] \
-            + terms[len(terms) // 2 * 2:]
-        depth += 1
-    return {"lanes": FIT_LANES, "tree": terms[0], "depth": depth,
-            "groups": [[[w.hex() for w in row[k:k + FIT_LANES]]
-                        for k in range(0, whole, FIT_LANES)] for row in rows],
-            "tail": [[(i, row[i].hex()) for i in range(whole, N_TAPS)] for row in rows]}
+    tree, depth = _lanes_tree("GC_MUL(FIT_M[@][{k}], x{k})", whole // FIT_LANES)
+    quad = quadratic_weights()
+    quad_tree, quad_depth = _lanes_tree("p@_{k}", HALF // FIT_LANES)
+
+    def groups(row):
+        return [[float(w).hex() for w in row[k:k + FIT_LANES]]
+                for k in range(0, len(row) // FIT_LANES * FIT_LANES, FIT_LANES)]
+
+    return {"lanes": FIT_LANES, "tree": tree, "depth": depth,
+            "groups": [groups(row) for row in rows],
+            "tail": [[(i, row[i].hex()) for i in range(whole, N_TAPS)] for row in rows],
+            "half": HALF, "pair": [groups(row) for row in quad.pair],
+            "skew": [groups(row) for row in quad.skew],
+            "total": [float(t).hex() for t in quad.total],
+            "quad_tree": quad_tree, "quad_depth": quad_depth}
 
 
 def cbrt_seed() -> dict:
@@ -418,6 +442,18 @@ def cbrt_seed() -> dict:
             "bound": bound}
 
 
+def fit_linear_safe_code() -> int:
+    """The largest STENCIL_GAP code G such that every stencil with all ``|g_i| <= G``
+    has c0, c1, c2 (the fit's linear part) within COEFF: ``|acc_j| <= G sum_i |W_ji|``
+    and its rounding shift stays <= COEFF_MAX (>= COEFF_MIN alike). Where a caller
+    guarantees it, ``gc_fit_golden_curvatures`` gives gc_fit_golden's outputs but c0..c2
+    (gearcontact.h); 352,955,419 (168.3 mm) for the baked ROM."""
+    s = ACC.frac - COEFF.frac
+    rom = fit_weight_codes()
+    top = ((COEFF.max_code + 1) << s) - (1 << (s - 1)) - 1
+    return min(top // sum(abs(w) for w in rom[j]) for j in range(3))   # c0, c1, c2
+
+
 def fit_constants() -> dict[str, int]:
     """Named integer constants of the stage-C fit core (macro name -> value)."""
     d_max = G.D_FMT.max_code
@@ -430,7 +466,8 @@ def fit_constants() -> dict[str, int]:
             "ISQRT_SEED_OFFSET": 1 << (ISQRT_SEED_BITS - 2),
             "CURVATURE_MIN_CODE": CURVATURE.min_code, "CURVATURE_MAX_CODE": CURVATURE.max_code,
             "STENCIL_GAP_FRAC": STENCIL_GAP.frac, "FIT_FLAG_SHIFT": FIT_FLAG_SHIFT,
-            "LINE_B_ZERO_CODES": LINE_B_ZERO_CODES, "LINE_CHAIN_FIT_FLAGS": LINE_CHAIN_FIT_FLAGS}
+            "LINE_B_ZERO_CODES": LINE_B_ZERO_CODES, "LINE_CHAIN_FIT_FLAGS": LINE_CHAIN_FIT_FLAGS,
+            "LINEAR_SAFE_CODE": fit_linear_safe_code()}
 
 
 def gap_constants() -> dict[str, int]:

@@ -70,6 +70,15 @@ def _environment():
     return env
 
 
+def _fit_variant(plan: dict, needed) -> dict:
+    """The coefficients ``needed`` of a golden fit (gc_fit_golden.c) with the forms of
+    :func:`.c_constants.fit_mac_plan` they read and those forms' orbit-sum parities."""
+    forms = sorted({k for j in needed for _, k in plan["coeffs"][j]["parts"]})
+    parities = sorted({tuple(plan["forms"][k]["parity"]) for k in forms
+                       if plan["forms"][k]["parity"] is not None})
+    return {"needed": list(needed), "forms": forms, "parities": [list(p) for p in parities]}
+
+
 def _context() -> dict:
     from .. import __version__
     cores = checker_cores()
@@ -83,6 +92,9 @@ def _context() -> dict:
             "fit_isqrt_seeds": fit_isqrt_seeds(), "fit_mac_plan": plan, "stencil_side": STENCIL_SIDE,
             "fit_mac_orbits": any(f["parity"] for f in plan["forms"]),
             "fit_mac_ops": fit_mac_ops(plan), "fit_mac_schedule": fit_mac_schedule(plan),
+            # gc_fit_golden and gc_fit_golden_curvatures (c3, c4, c5 and A-, B- alone)
+            "fit_variants": {"full": _fit_variant(plan, range(len(plan["coeffs"]))),
+                             "curvatures": _fit_variant(plan, range(3, len(plan["coeffs"])))},
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
             "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
 

@@ -29,7 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..contract.qformat import STENCIL_GAP
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
+from .c_constants import fit_linear_safe_code
 from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, fmi3_header_dir, fmu_context,
                   model_token)
 
@@ -134,6 +136,15 @@ def _constants(model) -> list[tuple[str, str]]:
         ("SPEED_RPM_START", c(3000.0)), ("TORQUE_NM_START", c(model.torque_nm)),
         ("TORQUE_NM_MAX", c(model.torque_nm)),
         ("STEP_US_START", c(10.0))]
+
+
+def _cv_bound_mm() -> float:
+    """The largest |sample| (mm) of the stencil table for which gc_contact_law.c skips
+    the golden quantization's range test and the fit's c0..c2: 256 mm (the range
+    test's argument), or below it the samples whose interpolation at -1/2 <= f <= 3/2
+    (within twice the larger of its two rows' samples, plus one code in the rounding)
+    stays within :func:`.c_constants.fit_linear_safe_code`."""
+    return min(256.0, math.ldexp((fit_linear_safe_code() - 1) // 2, -STENCIL_GAP.frac))
 
 
 def _row_pairs(valid) -> list:
@@ -286,8 +297,12 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "cb": hexes(a["cb"]) if bending else [], "block_steps": _CHUNK,
         "cv": [[hexes(p) for p in sd] for sd in cv] if stencil else [],
         # the golden quantization's range test is void where every sample is finite and
-        # within +-256 mm (gc_contact_law.c's gap_codes, the bound's argument)
-        "cv_in_range": stencil and bool(np.all(np.abs(cv[..., :-3]) <= 256.0)),
+        # within +-256 mm (gc_contact_law.c's gap_codes, the bound's argument), and the
+        # fit's c0..c2 cannot overflow where every interpolated sample (at -1/2 <= f <=
+        # 3/2: within twice the larger of its rows', plus one code) stays within
+        # GC_FIT_LINEAR_SAFE_CODE (gc_fit_golden_curvatures)
+        "cv_in_range": stencil and bool(np.all(np.abs(cv[..., :-3]) <= _cv_bound_mm())),
+        "cv_bound_mm": repr(_cv_bound_mm()),
         "valid": [[[int(v) for v in r] for r in s] for s in a["valid"]],
         "row_pairs": _row_pairs(a["valid"]),
         "e_rec": _e_rec(a["eps"], prm[L.P_U], (prm[L.P_DPSI], prm[L.P_DPSIR])),

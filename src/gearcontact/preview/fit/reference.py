@@ -18,6 +18,14 @@ Fuentes [2]_ ch. 8 for the relative curvature of mating gear flanks).
 A point (elliptic) contact needs B- > 0; the reference reports ``elliptic`` and leaves
 raising to the caller (the preview engine refuses non-elliptic stencils).
 
+c3, c4, c5 are summed from the stencil's second differences about its centre
+(:func:`fitted_coefficients`), not tap by tap: a gear stencil is mostly its offset and
+slopes (a gap of ~0.1 mm, a curvature term of ~1e-3 mm), which the quadratic rows of the
+pseudo-inverse cancel; summed tap by tap, the rounding of the large products is ~1e-16 of
+``sum_i |M_ji g_i|``, up to ~1e-12 of a near-cylindrical stencil's B- (docs/export.md,
+"fp64 equivalence"). The sum is in a fixed order of IEEE operations (no BLAS), which the
+exported C (gearcontact.export) repeats bit for bit.
+
 References
 ----------
 .. [1] B. J. Hamrock and D. E. Brewe, "Simplified solution for stresses and
@@ -30,6 +38,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -37,12 +46,23 @@ from gearcontact.preview.fit.pinv import N_TAPS, baked_pinv, design_matrix, pseu
 from gearcontact.contract.stencil import STENCIL_SPACING_MM
 from gearcontact.validation import InputRangeError, check_array_finite, check_positive
 
-__all__ = ["CurvatureFit", "fit_curvatures", "fitted_coefficients", "principal_curvatures"]
+__all__ = ["CurvatureFit", "QuadraticWeights", "HALF", "QUADRATIC_LANES", "fit_curvatures",
+           "fitted_coefficients", "pairwise_sum", "principal_curvatures", "quadratic_weights"]
 
 #: The range of ``(c3 - c5)^2 + c4^2`` where :func:`principal_curvatures` takes its square
 #: root directly (no overflow, no significant underflow; ``hypot`` outside).
 _SQ_LO = 2.0 ** -900
 _SQ_HI = 2.0 ** 1000
+
+#: Taps before the stencil's centre tap (which is tap ``HALF``); the point reflection
+#: (s, t) -> (-s, -t) maps tap i to ``N_TAPS - 1 - i``.
+HALF = N_TAPS // 2
+#: Lanes of :func:`fitted_coefficients`'s sums: lane ``l`` sums the taps
+#: ``QUADRATIC_LANES * k + l`` (k = 0 .. HALF / QUADRATIC_LANES - 1), as the C code's
+#: vector of four doubles does.
+QUADRATIC_LANES = 4
+if HALF % QUADRATIC_LANES:
+    raise AssertionError("the half stencil must fill whole groups of lanes")
 
 
 @dataclass(frozen=True)
@@ -117,6 +137,59 @@ def principal_curvatures(c3: float, c4: float, c5: float) -> tuple[float, float,
     return a_minus, b_minus, angle
 
 
+@dataclass(frozen=True)
+class QuadraticWeights:
+    """The quadratic rows of the baked pseudo-inverse (c3, c4, c5) about the centre tap.
+
+    With ``i' = N_TAPS - 1 - i`` the point reflection of tap ``i < HALF`` and ``g0`` the
+    centre sample, ``c_j = sum_i M_ji g_i`` is exactly
+    ``sum_{i<HALF} pair_ji d_i + skew_ji e_i + total_j g0`` with the second differences
+    ``d_i = (g_i - g0) + (g_i' - g0)`` and ``e_i = g_i' - g0`` (real arithmetic).
+
+    Attributes
+    ----------
+    pair : numpy.ndarray, shape (3, HALF)
+        ``M_ji`` for the taps ``i < HALF``, 1/mm^2.
+    skew : numpy.ndarray, shape (3, HALF)
+        ``M_ji' - M_ji``, the rows' departure from point symmetry (the weights are
+        even under the reflection up to the pseudo-inverse's rounding, ~1e-14 of them),
+        1/mm^2; exact where the two are within a factor of 2 (Sterbenz), else within
+        half an ulp of the difference (~1e-30 of a weight).
+    total : numpy.ndarray, shape (3,)
+        ``sum_i M_ji`` over all taps, summed exactly and rounded once (``math.fsum``),
+        1/mm^2 (~1e-14: zero but for that rounding).
+    """
+
+    pair: np.ndarray
+    skew: np.ndarray
+    total: np.ndarray
+
+
+@lru_cache(maxsize=1)
+def quadratic_weights() -> QuadraticWeights:
+    """:class:`QuadraticWeights` of the baked pseudo-inverse (:func:`.pinv.baked_pinv`)."""
+    rows = baked_pinv().weights[3:6]
+    pair = rows[:, :HALF].copy()
+    skew = rows[:, :HALF:-1] - pair
+    total = np.array([math.fsum(row) for row in rows])
+    for a in (pair, skew, total):
+        a.setflags(write=False)
+    return QuadraticWeights(pair=pair, skew=skew, total=total)
+
+
+def pairwise_sum(terms: list, add):
+    """Sum ``terms`` as a pairwise tree, adjacent terms first (``[t0, t1, t2, t3, t4]``:
+    ``((t0 + t1) + (t2 + t3)) + t4``), with ``add(a, b)``: the order of the IEEE
+    additions of :func:`fitted_coefficients`, and the C text of the same tree
+    (gearcontact.export.c_constants)."""
+    if not terms:
+        raise ValueError("pairwise_sum of no terms")
+    while len(terms) > 1:
+        terms = [add(a, b) for a, b in zip(terms[::2], terms[1::2])] \
+            + terms[len(terms) // 2 * 2:]
+    return terms[0]
+
+
 def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> CurvatureFit:
     """Fit the 7 x 7 gap stencil in fp64 and return the principal curvatures.
 
@@ -143,8 +216,11 @@ def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> Curvat
         raise InputRangeError("gaps_mm.shape", g.shape,
                               f"exactly {N_TAPS} samples, shape ({N_TAPS},)")
     h = check_positive("spacing_mm", spacing_mm)
-    m = baked_pinv().weights if h == STENCIL_SPACING_MM else pseudo_inverse(h)
+    baked = h == STENCIL_SPACING_MM
+    m = baked_pinv().weights if baked else pseudo_inverse(h)
     c = m @ g
+    if baked:
+        c[3:6] = fitted_coefficients(g)
     a = design_matrix(h)
     resid = g - a @ np.linalg.lstsq(a, g, rcond=None)[0]    # of the whole degree-6 fit
     a_minus, b_minus, angle = principal_curvatures(float(c[3]), float(c[4]), float(c[5]))
@@ -157,6 +233,29 @@ def fit_curvatures(gaps_mm, *, spacing_mm: float = STENCIL_SPACING_MM) -> Curvat
 
 def fitted_coefficients(gaps_mm) -> np.ndarray:
     """fp64 stage-C coefficients c3, c4, c5 (1/mm) of stencils ``gaps_mm`` (..., 49; mm)
-    at once, shape (..., 3): :func:`fit_curvatures`'s (the baked ROM's weights), for
-    the preview's and the twin's tables row by row."""
-    return np.asarray(gaps_mm, float) @ baked_pinv().weights[3:6].T
+    at once, shape (..., 3): the baked ROM's weights, as :func:`fit_curvatures` applies
+    them (the preview's and the twin's tables row by row).
+
+    Notes
+    -----
+    ``c_j = sum_i M_ji g_i`` summed over the second differences about the centre
+    (:class:`QuadraticWeights`): ``p_i = pair_ji d_i + skew_ji e_i`` in
+    :data:`QUADRATIC_LANES` lanes, the groups of lanes summed by :func:`pairwise_sum`,
+    then the lanes, then ``+ total_j g0``. The offset and the slopes, which the rows
+    cancel, never enter a product: the rounding is ~1e-16 of
+    ``sum_i |M_ji| |d_i|`` (the stencil's curvature and higher terms) instead of
+    ``sum_i |M_ji g_i|`` (its offset and slopes; ~600x smaller for a near-cylindrical
+    gear stencil, docs/export.md), plus the rounding of ``g_i - g0`` where it is not
+    exact (it is for samples on a common grid, e.g. multiples of 2^-21 mm below 2^10 mm
+    as the stencil ROM's). Elementwise IEEE operations in a fixed order: the same bits
+    on every machine and in gc_fit_fp64.c (exported C).
+    """
+    g = np.asarray(gaps_mm, float)
+    w = quadratic_weights()
+    g0 = g[..., HALF:HALF + 1]
+    e = g[..., :HALF:-1] - g0                       # the mirror taps N_TAPS - 1 .. HALF + 1
+    d = (g[..., :HALF] - g0) + e
+    p = w.pair * d[..., None, :] + w.skew * e[..., None, :]          # (..., 3, HALF)
+    n = QUADRATIC_LANES
+    lanes = pairwise_sum([p[..., k:k + n] for k in range(0, HALF, n)], np.add)
+    return pairwise_sum([lanes[..., k] for k in range(n)], np.add) + w.total * g0
