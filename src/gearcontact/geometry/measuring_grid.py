@@ -51,8 +51,8 @@ from ..validation import InputRangeError, read_text_file
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
            "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
            "read_measured_grid", "is_measured_header", "is_complete_grid",
-           "measured_easeoff_grid", "measured_points", "check_on_blank", "read_target_flank",
-           "target_grids"]
+           "measured_easeoff_grid", "measured_points", "check_on_blank", "read_member_targets",
+           "read_target_flank", "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
 AXIS_FRAMES = {"pinion": np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]),
@@ -341,7 +341,7 @@ def is_complete_grid(u, v) -> bool:
 
 @dataclass(frozen=True)
 class MeasuredPoints:
-    """Measured points of one pinion flank on its sheet: the target of the point fit
+    """Measured points of one flank on its member's sheet: the target of the point fit
     (:mod:`.point_fit`). Arrays over the points, file order.
 
     Attributes
@@ -353,13 +353,17 @@ class MeasuredPoints:
         As read (:class:`MeasuredFlank`).
     u_mm, v_mm, psi_rad : ndarray
         Sheet parameters and angular coordinate of the measured point: the nominal point
-        at (L, R) moved by the deviation along its normal (pinion body frame,
-        :class:`~.sheet.PinionCone`).
+        at (L, R) moved by the deviation along its normal (body frame; pinion
+        :class:`~.sheet.PinionCone`, gear :class:`~.sheet.GearCone`).
     lever_um : ndarray
         ``1e3 R (e_psi . n)`` there with the nominal normal n, um per rad: a flank
         turned by ``dpsi`` about the axis moves ``lever_um * dpsi`` along n.
     box : FlankBoundary
-        The nominal flank's active box (the points lie on it, 1 um slack).
+        Pinion: the nominal flank's active box (the points lie on it, 1 um slack);
+        gear: the points' extent on the gear sheet (the node box of the fit's
+        continuation grid).
+    member : str
+        ``"pinion"`` or ``"gear"``.
     """
 
     side: str
@@ -372,19 +376,35 @@ class MeasuredPoints:
     psi_rad: np.ndarray
     lever_um: np.ndarray
     box: object
+    member: str = "pinion"
 
 
-def measured_points(measured: MeasuredFlank, nominal, *, where: str, uv=None
+def measured_points(measured: MeasuredFlank, nominal, *, where: str, uv=None, cone=None
                     ) -> MeasuredPoints:
-    """The measured points of a pinion flank as points in space: each nominal point at
-    its (L, R) (:func:`flank_parameters_at`; ``uv`` its parameters if known) moved by
-    the deviation along the nominal normal (the point the probe touched), located on
-    the pinion sheet of ``nominal`` (a :class:`~.sheet.RadialSheet`)."""
+    """The measured points of a flank as points in space: each nominal point at its
+    (L, R) (:func:`flank_parameters_at`; ``uv`` its parameters if known) moved by the
+    deviation along the nominal normal (the point the probe touched), located on the
+    pinion sheet of ``nominal`` (a :class:`~.sheet.RadialSheet`), or for a gear flank
+    (``measured.member``; ``nominal`` any gear flank, formate or generated) on the
+    gear sheet ``cone`` (:class:`~.sheet.GearCone`: ``(u, v)`` from the point's height
+    and radius, ``psi`` its angle about the gear axis)."""
     u, v = uv if uv is not None else flank_parameters_at(
-        nominal, member="pinion", L_mm=measured.L_mm, R_mm=measured.R_mm, where=where,
-        lines=measured.line)
+        nominal, member=measured.member, L_mm=measured.L_mm, R_mm=measured.R_mm,
+        where=where, lines=measured.line)
     s = nominal.evaluate(u, v, second=False)
     q = s.r + 1e-3 * measured.deviation_um[:, None] * s.n
+    if measured.member == "gear":
+        from .formate import FlankBoundary
+        from .member_envelope import angle_lever
+
+        uq, vq = cone.parameters(q[:, 2], np.hypot(q[:, 0], q[:, 1]))
+        psi, lever = angle_lever("gear", q, s.n)
+        return MeasuredPoints(side=measured.flank, line=measured.line, L_mm=measured.L_mm,
+                              R_mm=measured.R_mm, deviation_um=measured.deviation_um,
+                              u_mm=uq, v_mm=vq, psi_rad=psi, lever_um=lever,
+                              box=FlankBoundary(float(uq.min()), float(uq.max()),
+                                                float(vq.min()), float(vq.max())),
+                              member="gear")
     uq, vq, psi = nominal.locate(q)
     rad = np.hypot(q[:, 1], q[:, 2])
     lever = 1e3 * rad * (-np.sin(psi) * s.n[:, 1] + np.cos(psi) * s.n[:, 2])
@@ -445,6 +465,33 @@ def read_target_flank(path, *, pair=None) -> dict:
     if pair is not None:
         check_on_blank(grids, pair, where=str(path))
     return grids
+
+
+def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
+    """A ``--target-flank`` file whose rows may name either member: ``(pinion, gear)``.
+
+    ``pinion`` is :func:`read_target_flank`'s ``{side: grid}`` of the pinion rows (a
+    (u, v) ease-off grid is the pinion's), ``gear`` the ``{side: MeasuredFlank}`` of
+    the gear rows of a measured file (:func:`read_measured_grid` with both members:
+    the gear's setting correction, :mod:`.gear_correction`). With ``pair``, measured
+    pinion points are checked against its pinion blank (:func:`check_on_blank`).
+
+    Raises
+    ------
+    InputRangeError
+        As :func:`read_target_flank` (an unknown member is named with the two allowed).
+    """
+    from .easeoff import read_easeoff_grid
+
+    text = read_text_file(path, field="target flank", what="a CSV deviation grid")
+    if not is_measured_header(text):
+        return read_easeoff_grid(path), {}
+    found = read_measured_grid(path)
+    pinion = {side: m for (member, side), m in found.items() if member == "pinion"}
+    gear = {side: m for (member, side), m in found.items() if member == "gear"}
+    if pair is not None:
+        check_on_blank(pinion, pair, where=str(path))
+    return pinion, gear
 
 
 def target_grids(grids: dict, pair, flanks, *, where: str = "target flank",

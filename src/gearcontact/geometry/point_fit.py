@@ -80,14 +80,14 @@ class PointProblem(FitProblem):
 
 
 def check_point_count(grids: dict, parameters=DEFAULT_PARAMETERS, *,
-                      where: str = "target flank") -> None:
+                      where: str = "target flank", member: str = "pinion") -> None:
     """Refuse, before any flank is built, a measured flank (:class:`MeasuredFlank` or
-    :class:`MeasuredPoints` values of ``grids``) with fewer points than fitted
-    settings."""
+    :class:`MeasuredPoints` values of ``grids``, flanks of ``member``) with fewer
+    points than fitted settings."""
     names = tuple(parameters)
     for side, data in grids.items():
         if isinstance(data, (MeasuredFlank, MeasuredPoints)) and len(data.L_mm) < len(names):
-            raise InputRangeError(f"{where}: pinion {side} points", len(data.L_mm),
+            raise InputRangeError(f"{where}: {member} {side} points", len(data.L_mm),
                                   f"at least {len(names)}, one per fitted setting "
                                   f"({', '.join(names)})")
 
@@ -134,7 +134,7 @@ def point_problem(seed, blank, points: MeasuredPoints, *, parameters=DEFAULT_PAR
     started = time.perf_counter()
     prob = PointProblem(seed, blank, points, names)
     check_observable(prob.jacobian(np.zeros(len(names))), names,
-                     where=f"{where}: pinion {points.side}")
+                     where=f"{where}: {points.member} {points.side}")
     prob.setup_seconds = time.perf_counter() - started
     return prob
 

@@ -1,20 +1,25 @@
-"""Machine settings from a target flank: the pinion settings that cut a given ease-off.
+"""Machine settings from a target flank: the settings of either member that cut it.
 
 The inverse of :mod:`.generated` ("machine-setting correction", issue item 4): given a
-target pinion flank (today's conjugate pinion with its ease-off, :mod:`.easeoff`, or
-any pinion :class:`~.sheet.RadialSheet`), find the corrections ``x`` of a chosen subset
-of one flank's machine and blade settings, from a seed set-up, whose generated flank
-reproduces the target:
+target flank (today's conjugate pinion with its ease-off, :mod:`.easeoff`, any pinion
+:class:`~.sheet.RadialSheet`, a gear :class:`~.sheet.GearSheet`, or measured points of
+either member, :mod:`.point_fit`), find the corrections ``x`` of a chosen subset of one
+flank's machine and blade settings, from a seed set-up, whose cut flank reproduces
+the target:
 
     min_x  sum_k d_k(x)^2,   d_k = R_k (psi_gen(u_k, v_k; x) - psi_t(u_k, v_k)) (e_psi . n_t)
 
 the normal deviation (um, generated minus target along the target's outward normal n_t:
 positive = material left, the opposite sign of an ease-off, :mod:`.easeoff`) at the
 nodes ``(u_k, v_k)`` of a coarse grid over the target's active box. Both flanks live on
-the same pinion sheet (axial position ``v``, radius ``R_f(v) + u``, :mod:`.sheet`), so
-the generated node solution (:class:`~.generated.EnvelopeSolver`, warm-started from the
-previous iterate) differs from the target only in its angular coordinate; to first
-order in the deviation ``d_k`` is the normal distance of the two surfaces.
+the same sheet of the seed's member (pinion: axial position ``v``, radius ``R_f(v) +
+u``; gear: pitch-cone coordinates, :mod:`.sheet`), so the cut node solution
+(:func:`~.member_envelope.member_solver`: the generated envelope, or a formate gear's
+blade surface at zero roll; warm-started from the previous iterate) differs from the
+target only in its angle ``psi`` about the member's axis; to first order in the
+deviation ``d_k`` is the normal distance of the two surfaces. One code path serves
+both members: only the sheet, the node solver and the default subset
+(:func:`default_parameters`, by member and cutting method) differ.
 ``scipy.optimize.least_squares`` (trust-region reflective) solves it with a
 forward-difference Jacobian in scaled parameters (:data:`PARAMETERS`); the residual
 over the full flank is then measured on a dense grid of the final generated sheet
@@ -86,12 +91,14 @@ from .blank import BlankDesign
 from .conjugate import UndercutError, nominal_pinion_box
 from .generated import EnvelopeSolver, solve_node_grid
 from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
+from .member_envelope import angle_lever, mean_node_uv, member_cone, member_solver
 from .minimax_fit import minimize_max_abs
 
-__all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "RELIEF_KEYS", "SEED_PARAMETERS",
+__all__ = ["DEFAULT_PARAMETERS", "FORMATE_GEAR_PARAMETERS", "FitProblem",
+           "GENERATED_GEAR_PARAMETERS", "PARAMETERS", "RELIEF_KEYS", "SEED_PARAMETERS",
            "SettingFit", "apply_corrections", "blade_relief", "blade_reliefs", "checked_options",
-           "conjugate_seed", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
-           "relieved_setup", "solve_fit", "with_relief"]
+           "conjugate_seed", "default_parameters", "fit_member_setup", "fit_pinion_setup",
+           "flank_deviation_um", "sensitivity", "relieved_setup", "solve_fit", "with_relief"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -123,6 +130,22 @@ DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
 #: The seed of a hypoid with a generated gear (:func:`conjugate_seed`): the default
 #: subset and the crown pinion's bias directions, blank offset and helical motion.
 SEED_PARAMETERS = DEFAULT_PARAMETERS + ("blank_offset_mm", "helical_motion_mm_per_rad")
+#: The default subset of a formate gear (docs/machine_settings.md sec. 6, "Gear flanks"):
+#: the cutter radius at the blade pivot, the blade angle, the machine root angle, the
+#: machine centre to back and the blank offset.
+FORMATE_GEAR_PARAMETERS = ("blade_radius_mm", "blade_angle_deg", "machine_root_angle_deg",
+                           "machine_centre_to_back_mm", "blank_offset_mm")
+#: The default subset of a generated gear: the formate gear's, the cutter centre on the
+#: cradle (cradle angle, radial distance), the ratio of roll and the modified roll 2C.
+GENERATED_GEAR_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
+                             "modified_roll_2c_per_rad", "blade_angle_deg",
+                             "blade_radius_mm", "machine_root_angle_deg")
+#: Settings a formate gear's fit refuses: a roll or a helical motion would make it a
+#: generated gear, a curved blade profile is not modelled for a formate gear
+#: (:func:`~.generated.formate_gear_flank`).
+FORMATE_FIXED = ("ratio_of_roll", "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
+                 "modified_roll_24e_per_rad3", "helical_motion_mm_per_rad",
+                 "blade_curvature_per_mm", "blade_cubic_per_mm2", "blade_quartic_per_mm3")
 #: Objectives of the fit (:func:`fit_pinion_setup`).
 OBJECTIVES = ("rms", "minimax")
 _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
@@ -290,7 +313,7 @@ def _piece_setups(setup: MachineSetup) -> list:
 class FitProblem:
     """Residual and Jacobian of the fit on a coarse node grid (module docstring): the
     target's angle ``psi_t`` and lever ``R (e_psi . n_t)`` (um/rad) at nodes ``(U, V)``
-    of the pinion sheet (:mod:`.point_fit` places them at measured points)."""
+    of the seed member's sheet (:mod:`.point_fit` places them at measured points)."""
 
     def __init__(self, seed: MachineSetup, blank: BlankDesign, target, names, us, vs):
         solver, mean = self._start(seed, blank, names)
@@ -298,22 +321,19 @@ class FitProblem:
         self._grid = (us, vs)
         self.q = self._restart(solver, mean.q).q
         t = target.evaluate(self.U, self.V, second=False)
-        self.psi_t = np.arctan2(t.r[..., 2], t.r[..., 1])
-        rad = np.hypot(t.r[..., 1], t.r[..., 2])
-        e_psi = np.stack([np.zeros_like(rad), -np.sin(self.psi_t), np.cos(self.psi_t)], -1)
-        self.lever_um = 1e3 * rad * np.einsum("...i,...i->...", e_psi, t.n)
+        self.psi_t, self.lever_um = angle_lever(seed.member, t.r, t.n)
 
     def _start(self, seed: MachineSetup, blank: BlankDesign, names):
         """Set the parameters and the pivot: the seed's solver and mean node (a relieved
         blade's: its main profile's, checked to hold the mean node)."""
         self.seed, self.blank, self.names = seed, blank, tuple(names)
         self.scale = np.array([PARAMETERS[n][1] for n in self.names])
-        self.cone, _ = nominal_pinion_box(blank, 1.0)
+        self.cone = member_cone(seed.member, blank)
         self.evaluations = 0
         relief = blade_relief(seed.blade)
         main = with_relief(seed, dict.fromkeys(relief, 0.0)) if relief else seed
-        solver = EnvelopeSolver(main, blank, self.cone)
-        self.mean_uv = (float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0]))
+        solver = member_solver(main, blank, self.cone)
+        self.mean_uv = mean_node_uv(seed.member, blank, self.cone)
         mean = self._mean(solver)
         self.pivot_length_mm = float(mean.l_mm)
         if relief:
@@ -360,7 +380,7 @@ class FitProblem:
         """``[(piece name, node solutions, solver)]`` of the flank ``x`` generates."""
         out = []
         for name, setup in _piece_setups(self.setup(x)):
-            solver = EnvelopeSolver(setup, self.blank, self.cone)
+            solver = member_solver(setup, self.blank, self.cone)
             q = self.q if name == "main" else self._piece_q.get(name)
             s = None if q is None else solver.solve(self.U, self.V, q, strict=False)
             if s is None or not np.all(s.converged):   # a long step: from the mean node
@@ -465,25 +485,50 @@ class SettingFit:
     predicted_max_um: float = math.nan
 
 
+def default_parameters(seed: MachineSetup) -> tuple:
+    """The default fitted subset of ``seed``'s member and cutting method: pinion
+    :data:`DEFAULT_PARAMETERS`, formate gear :data:`FORMATE_GEAR_PARAMETERS`, generated
+    gear :data:`GENERATED_GEAR_PARAMETERS`."""
+    if seed.member == "pinion":
+        return DEFAULT_PARAMETERS
+    return FORMATE_GEAR_PARAMETERS if seed.settings.formate else GENERATED_GEAR_PARAMETERS
+
+
 def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                      parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
                      tolerance_um: float = 1e-6, objective: str = "rms", box=None
                      ) -> SettingFit:
-    """Fit the ``parameters`` of the pinion set-up ``seed`` so that its generated flank
-    reproduces ``target`` on an n_u x n_v grid over the target's active box.
+    """:func:`fit_member_setup` of a pinion set-up (``seed.member`` other than
+    ``"pinion"`` refused: ``InputRangeError`` naming ``seed.member``)."""
+    if seed.member != "pinion":
+        raise InputRangeError("seed.member", seed.member, "'pinion' (fit_member_setup "
+                              "fits either member)")
+    return fit_member_setup(seed, blank, target, parameters=parameters, n_u=n_u, n_v=n_v,
+                            tolerance_um=tolerance_um, objective=objective, box=box)
+
+
+def fit_member_setup(seed: MachineSetup, blank: BlankDesign, target, *,
+                     parameters=None, n_u: int = 9, n_v: int = 11,
+                     tolerance_um: float = 1e-6, objective: str = "rms", box=None
+                     ) -> SettingFit:
+    """Fit the ``parameters`` of the set-up ``seed`` (pinion or gear) so that its cut
+    flank reproduces ``target`` on an n_u x n_v grid over the target's active box.
 
     Parameters
     ----------
     seed : MachineSetup
-        A pinion flank set-up that generates the target's box (the complementary
+        A flank set-up that cuts the target's box: a pinion's (the complementary
         settings of :func:`~.basic_settings.complementary_pinion_setups` or the
-        standard ones of :func:`~.basic_settings.standard_setups`).
+        standard ones of :func:`~.basic_settings.standard_setups`) or a gear's
+        (formate or generated, a smooth blade).
     blank : BlankDesign
     target : RadialSheet
-        The target pinion flank (with ``evaluate`` and ``boundary``), same side as
-        ``seed``, right-hand body frame.
-    parameters : tuple of str
-        Names from :data:`PARAMETERS` (default :data:`DEFAULT_PARAMETERS`).
+        The target flank on the sheet of ``seed``'s member (with ``evaluate`` and
+        ``boundary``: a pinion :class:`~.sheet.RadialSheet`, a gear
+        :class:`~.sheet.GearSheet`), same side as ``seed``, right-hand body frame.
+    parameters : tuple of str, optional
+        Names from :data:`PARAMETERS` (default :func:`default_parameters` of the
+        seed; a formate gear refuses :data:`FORMATE_FIXED`).
     n_u, n_v : int
         Fit grid (profile x lengthwise), each >= 3.
     tolerance_um : float
@@ -506,8 +551,9 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     Raises
     ------
     InputRangeError
-        A member other than the pinion, an unknown or repeated parameter, or a fit
-        grid smaller than 3 x 3.
+        An unknown or repeated parameter, a roll, helical-motion or blade-curvature
+        parameter for a formate gear, a relieved gear blade, or a fit grid smaller
+        than 3 x 3.
     UndercutError
         The seed's envelope does not reach a node of the grid.
     """
@@ -520,13 +566,26 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
 
 def checked_options(seed: MachineSetup, parameters, *, tolerance_um: float,
                     objective: str) -> tuple:
-    """The fitted ``parameters`` as a tuple, after the checks of
-    :func:`fit_pinion_setup` (seed member, names, tolerance, objective)."""
-    if seed.member != "pinion":
-        raise InputRangeError("seed.member", seed.member, "'pinion'")
-    names = tuple(parameters)
+    """The fitted ``parameters`` (``None``: :func:`default_parameters`) as a tuple,
+    after the checks of :func:`fit_member_setup` (seed, names, tolerance,
+    objective)."""
+    if seed.member not in ("pinion", "gear"):
+        raise InputRangeError("seed.member", seed.member, "'pinion' or 'gear'")
+    names = tuple(default_parameters(seed) if parameters is None else parameters)
     if not names or len(set(names)) != len(names) or any(n not in PARAMETERS for n in names):
         raise InputRangeError("parameters", names, f"distinct names from {tuple(PARAMETERS)}")
+    if seed.member == "gear":
+        where = f"machine.gear.{seed.side}"
+        if seed.blade.relieved:
+            raise InputRangeError(f"blade.gear.{seed.side}", "a relieved blade (Toprem / "
+                                  "Flankrem)", "a smooth gear blade for the gear's setting "
+                                  "fit (docs/machine_settings.md sec. 7)")
+        bad = [n for n in names if n in FORMATE_FIXED] if seed.settings.formate else []
+        if bad:
+            raise InputRangeError(f"parameters ({where}: a formate gear)", ", ".join(bad),
+                                  f"settings of a formate gear, not {FORMATE_FIXED} (a roll "
+                                  "or helical motion would make it generated; curved "
+                                  "formate blades are not modelled)")
     check_range("tolerance_um", tolerance_um, 0.0, 1.0, lo_open=True)
     if objective not in OBJECTIVES:
         raise InputRangeError("objective", objective, f"one of {OBJECTIVES}")

@@ -1,0 +1,211 @@
+"""Gear machine-setting correction from a measured gear flank (issue 27 item 4, the gear
+rows of ``design --machine-settings --target-flank``).
+
+A measuring room measures the gear too: the deviations of its flank on the CMM grid
+(docs/export.md "The measuring grid"; rows ``member = gear``) against the nominal gear
+the pair's settings cut. Each measured gear flank is fitted at its points
+(:mod:`.point_fit`, the same least squares as the pinion's, :mod:`.setting_fit`; the
+cut flank solved at each point on the gear sheet, :mod:`.member_envelope`) from the
+settings of that nominal gear: the pair's ``[machine.gear.*]`` tables, or for a pair
+without them the gear of its default flanks (formate, or generated where the formate
+gear undercuts its pinion: :func:`~.basic_settings.member_setups`, the exact settings
+of that gear). The corrected set is chosen by the gear's cutting method
+(:func:`~.setting_fit.default_parameters`).
+
+Identifiability: a flank measurement cannot separate every setting. A formate gear
+with a straight blade and no tilt cuts a cone of revolution: of its settings the
+flank sees five independent combinations (docs/machine_settings.md sec. 6, "Gear
+flanks": the sliding base moves the cone along its axis exactly as the cutter radius
+does; the cradle angle, radial distance and blank offset translate it in the same
+three directions as the machine centre to back and the cutter radius). Before the fit
+the sensitivity at the points is checked (:func:`~.point_fit.check_observable`: the
+column-normalized Jacobian's smallest singular value relative to the largest at least
+:data:`~.point_fit.RANK_TOLERANCE`), so a degenerate subset is refused naming its
+settings, never fitted silently; the fit reports that singular value and the
+condition at the solution.
+
+The residual is reported at the measured points (the cut flank's normal distance from
+each measured point, exact envelope, no spline): a CMM grid covers the active flank.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import InputRangeError
+from .basic_settings import member_setups
+from .formate import SIDES
+from .generated import gear_cone, gear_flank_of
+from .measuring_grid import MeasuredFlank, MeasuredPoints, measured_points
+from .point_fit import PointProblem, check_observable, check_point_count
+from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
+
+__all__ = ["GearCorrection", "GearSideFit", "corrected_pair", "gear_correction", "gear_seeds"]
+
+
+@dataclass(frozen=True)
+class GearSideFit:
+    """The fit of one gear flank at its measured points.
+
+    Attributes
+    ----------
+    side : str
+    fit : SettingFit
+        ``fit_max_um`` / ``fit_rms_um``: the residual at the points, um.
+    points : MeasuredPoints
+    deviation_max_um : float
+        Largest |measured deviation| from the nominal gear, um (what was corrected).
+    residual_um : ndarray
+        The cut flank's normal distance from each measured point (file order), um,
+        positive = material left.
+    relative_singular_value : float
+        Smallest singular value of the column-normalized sensitivity at the seed,
+        relative to the largest (:func:`~.point_fit.check_observable`).
+    """
+
+    side: str
+    fit: SettingFit
+    points: MeasuredPoints
+    deviation_max_um: float
+    residual_um: np.ndarray
+    relative_singular_value: float
+
+
+@dataclass(frozen=True)
+class GearCorrection:
+    """Corrected gear settings (:func:`gear_correction`).
+
+    Attributes
+    ----------
+    setups : dict
+        ``{side: MachineSetup}`` of both gear flanks: the fitted ones, the seed where
+        the side was not measured.
+    sides : dict
+        ``{side: GearSideFit}`` of the measured sides.
+    """
+
+    setups: dict
+    sides: dict
+
+    def comment_lines(self) -> list[str]:
+        """One line per measured side for a TOML head comment."""
+        return [f"gear {side} ({len(r.points.line)} measured points, --target-flank): "
+                f"deviation max {r.deviation_max_um:.2f} um, residual max "
+                f"{r.fit.fit_max_um:.4f} um, RMS {r.fit.fit_rms_um:.4f} um at the points"
+                for side, r in self.sides.items()]
+
+    def table(self) -> str:
+        """Residual, identifiability and corrections per measured side (Markdown)."""
+        rows = ["| gear side | points | deviation max (um) | residual max (um) | residual "
+                "RMS (um) | smallest rel. singular value | condition | fit evaluations |",
+                "|---|---:|---:|---:|---:|---:|---:|---:|"]
+        for side, r in self.sides.items():
+            rows.append(f"| {side} | {len(r.points.line)} | {r.deviation_max_um:.2f} | "
+                        f"{r.fit.fit_max_um:.4f} | {r.fit.fit_rms_um:.4f} | "
+                        f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
+                        f"{r.fit.evaluations} |")
+        rows += ["", "| gear correction | unit | " + " | ".join(self.sides) + " |",
+                 "|---|---|" + "---:|" * len(self.sides)]
+        names = list(dict.fromkeys(n for r in self.sides.values() for n in r.fit.corrections))
+        for n in names:
+            rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
+                f"{r.fit.corrections[n]:+.6g}" if n in r.fit.corrections else "-"
+                for r in self.sides.values()) + " |")
+        return "\n".join(rows)
+
+    def points_csv(self) -> str:
+        """The residual at each measured gear point as CSV (the columns of
+        :meth:`~.easeoff_settings.EaseOffSettings.points_csv`)."""
+        rows = ["member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"]
+        for side, r in self.sides.items():
+            p = r.points
+            rows += [f"gear,{side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
+                     f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
+                     zip(p.line, p.L_mm, p.R_mm, p.deviation_um, p.u_mm, p.v_mm,
+                         r.residual_um)]
+        return "\n".join(rows) + "\n"
+
+
+def gear_seeds(pair, gear_generation: str) -> dict:
+    """``{side: MachineSetup}`` of the nominal gear of ``pair``: its ``[machine.gear.*]``
+    tables, else the gear of its default flanks (``gear_generation`` ``"formate"`` or
+    ``"generated"``, :func:`~.basic_settings.member_setups`)."""
+    own = {s.side: s for s in pair.machine if s.member == "gear"}
+    return own or member_setups(pair, gear_generation)[0]
+
+
+def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
+                    objective: str = "rms", where: str = "target flank") -> GearCorrection:
+    """Correct the gear settings ``seeds`` to the measured gear flanks ``measured``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A right-hand bevel pair (its blank and gear face width).
+    measured : dict
+        ``{side: MeasuredFlank}`` of gear rows (:func:`~.measuring_grid.read_member_targets`):
+        deviations against the gear ``seeds`` cut.
+    seeds : dict
+        ``{side: MachineSetup}`` of the nominal gear (:func:`gear_seeds`).
+    parameters : tuple of str, optional
+        The fitted subset (default by the gear's cutting method,
+        :func:`~.setting_fit.default_parameters`).
+    objective : str
+        ``"rms"`` or ``"minimax"``.
+    where : str
+        Names the measured file in messages.
+
+    Returns
+    -------
+    GearCorrection
+
+    Raises
+    ------
+    InputRangeError
+        A left-hand pair, an unknown side, a measured point off the nominal gear flank,
+        fewer points than settings, settings the points cannot separate (named), a
+        formate gear asked for a roll or blade-curvature correction, a relieved gear
+        blade: all before any fit.
+    """
+    if pair.pinion_hand != "right":
+        raise InputRangeError("design.pinion_hand", pair.pinion_hand, "'right' for measured "
+                              "gear rows (a left-hand pair's gear correction is not "
+                              "supported yet, docs/machine_settings.md sec. 7)")
+    for side, data in measured.items():
+        if side not in SIDES or not isinstance(data, MeasuredFlank) or data.member != "gear":
+            raise InputRangeError(f"{where}: gear rows", side, f"measured gear flanks of {SIDES}")
+    cone = gear_cone(pair.blank)
+    problems = {}
+    for side, data in measured.items():        # every side checked before any fit
+        seed = seeds[side]
+        names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
+        at = f"{where}: gear {side}"
+        check_point_count({side: data}, names, where=where, member="gear")
+        nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+        points = measured_points(data, nominal, where=at, cone=cone)
+        started = time.perf_counter()
+        prob = PointProblem(seed, pair.blank, points, names)
+        rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
+        problems[side] = (prob, points, rel, time.perf_counter() - started)
+    sides, setups = {}, dict(seeds)
+    for side, (prob, points, rel, took) in problems.items():
+        fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
+                        started=time.perf_counter() - took)
+        x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
+        res = prob.deviation_um(x)
+        sides[side] = GearSideFit(side=side, fit=fit, points=points,
+                                  deviation_max_um=float(np.abs(points.deviation_um).max()),
+                                  residual_um=res, relative_singular_value=rel)
+        setups[side] = fit.setup
+    return GearCorrection(setups=setups, sides=sides)
+
+
+def corrected_pair(pair, correction: GearCorrection):
+    """``pair`` (with machine tables) with its gear set-ups replaced by the corrected."""
+    return dataclasses.replace(pair, machine=tuple(
+        correction.setups[s.side] if s.member == "gear" else s for s in pair.machine))
+
