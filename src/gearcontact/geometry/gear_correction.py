@@ -95,7 +95,7 @@ class GearCorrection:
         """One line per measured side for a TOML head comment."""
         return [f"gear {side} ({len(r.points.line)} measured points, --target-flank): "
                 f"deviation max {r.deviation_max_um:.2f} um, residual max "
-                f"{r.fit.fit_max_um:.4f} um, RMS {r.fit.fit_rms_um:.4f} um at the points"
+                f"{r.fit.fit_max_um:.3g} um, RMS {r.fit.fit_rms_um:.3g} um at the points"
                 for side, r in self.sides.items()]
 
     def table(self) -> str:
@@ -105,7 +105,7 @@ class GearCorrection:
                 "|---|---:|---:|---:|---:|---:|---:|---:|"]
         for side, r in self.sides.items():
             rows.append(f"| {side} | {len(r.points.line)} | {r.deviation_max_um:.2f} | "
-                        f"{r.fit.fit_max_um:.4f} | {r.fit.fit_rms_um:.4f} | "
+                        f"{r.fit.fit_max_um:.3g} | {r.fit.fit_rms_um:.3g} | "
                         f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
                         f"{r.fit.evaluations} |")
         rows += ["", "| gear correction | unit | " + " | ".join(self.sides) + " |",
