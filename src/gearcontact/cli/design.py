@@ -230,13 +230,13 @@ def _check_relieved_blades(args, pair) -> None:
     """The Toprem / Flankrem of a pair's blades, before any flank is built: kept by
     ``--machine-settings`` (``args.reliefs``: the standard settings and the settings
     fit keep each relief as given on its blade,
-    :func:`~gearcontact.geometry.setting_fit.relieved_setup`),
+    :func:`~gearcontact.geometry.relief_setup.relieved_setup`),
     refused where the kink would be dropped or smoothed: ``--machine-settings
     --local-synthesis`` (the synthesized settings are solved for smooth blades) and
     ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
     :func:`~gearcontact.geometry.flank.with_easeoff`, is resampled across the kink)."""
     from ..geometry.machine import relieved_blade_keys
-    from ..geometry.setting_fit import blade_reliefs
+    from ..geometry.relief_setup import blade_reliefs
 
     args.reliefs = blade_reliefs(pair.machine)
     option = ("--machine-settings --local-synthesis" if args.local_synthesis else

@@ -5,7 +5,7 @@ The gear keeps the flanks of the pair's default; each pinion flank's settings ar
 fitted to its target by :mod:`.setting_fit` (a target flank: the pair's ease-off, or a
 measured grid) or :mod:`.point_fit` (scattered measured points), and the residual is
 measured over the flank (or at the points). Blades with a Toprem / Flankrem keep their
-relief (a fixed blade property, :func:`~.setting_fit.relieved_setup`): the fitted
+relief (a fixed blade property, :func:`~.relief_setup.relieved_setup`): the fitted
 pinion flank is then a :class:`~.kinked.KinkedFlank`, its residual measured over all
 its pieces, its kink lines reported (:class:`KinkPosition`), and a measured grid of
 such a flank is fitted at its points (no spline across the kink).
@@ -30,8 +30,9 @@ from .kinked import KinkedFlank, machine_flank
 from .machine import MEMBERS, mirror_setup
 from .measuring_grid import MeasuredPoints, target_grids
 from .point_fit import check_point_count, point_deviation_um, point_problem
+from .relief_setup import relieved_setup
 from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
-                          fit_pinion_setup, flank_deviation_um, relieved_setup, solve_fit)
+                          fit_pinion_setup, flank_deviation_um, solve_fit)
 
 __all__ = ["EaseOffSettings", "KinkPosition", "SideResidual", "easeoff_machine_pair"]
 
@@ -295,9 +296,9 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     where : str
         Names the measured file in messages.
     reliefs : dict, optional
-        ``{(member, side): relief}`` (:func:`~.setting_fit.blade_reliefs` of the
+        ``{(member, side): relief}`` (:func:`~.relief_setup.blade_reliefs` of the
         set-ups the pair was cut with): the Toprem / Flankrem kept on those blades as
-        given (:func:`~.setting_fit.relieved_setup`; not fitted). A relieved pinion
+        given (:func:`~.relief_setup.relieved_setup`; not fitted). A relieved pinion
         flank is fitted as the deepest of its pieces (:mod:`.setting_fit`), a complete
         measured grid of it at its points (:func:`~.measuring_grid.target_grids`), and
         its residual and kink lines are reported over all its pieces.

@@ -41,7 +41,7 @@ from .basic_settings import member_setups
 from .formate import SIDES
 from .generated import gear_cone, gear_flank_of
 from .measuring_grid import MeasuredFlank, MeasuredPoints, measured_points
-from .point_fit import PointProblem, check_observable, check_point_count
+from .point_fit import RANK_TOLERANCE, PointProblem, check_observable, check_point_count
 from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
 
 __all__ = ["GearCorrection", "GearSideFit", "corrected_pair", "gear_correction", "gear_seeds"]
@@ -189,7 +189,15 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
         points = measured_points(data, nominal, where=at, cone=cone)
         started = time.perf_counter()
         prob = PointProblem(seed, pair.blank, points, names)
-        rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
+        try:
+            rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
+        except InputRangeError as exc:     # on a CMM grid: the settings, not the points
+            raise InputRangeError(f"{at}: settings", exc.value, "settings a flank "
+                                  f"measurement separates (relative singular value >= "
+                                  f"{RANK_TOLERANCE:g}): drop one of those named (a formate "
+                                  "gear's sliding base is its cutter radius; "
+                                  "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
+                                  "points spread over the flank") from None
         problems[side] = (prob, points, rel, time.perf_counter() - started)
     sides, setups = {}, dict(seeds)
     for side, (prob, points, rel, took) in problems.items():

@@ -38,24 +38,18 @@ which for a linear roll is a rigid turn of the generated flank about the work ax
 (``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's
 angular position (tooth thickness) and belongs in every subset.
 
-The default subset :data:`DEFAULT_PARAMETERS` (docs/machine_settings.md sec. 6 has the
-sensitivity study): cradle angle, radial distance, ratio of roll, modified roll 2C and
-6D, blade angle, blade curvature and the blade's cubic profile term. To first order a
-generated flank moves in six well-separated shapes (a rigid turn and five
-ease-off-like terms: the column-normalized sensitivity matrix of 14 candidates without
-the higher-order blade terms has 6 singular values above 0.18, the 7th at 7.6e-3 on
-s0003); the first seven span them at a condition of ~10^3, the settings a summary sheet
-corrects first. They leave a fourth-order profile form that no machine setting cuts;
-the blade's cubic term (a curvature varying along the blade) does: on s0003 coast
-1.23 -> 0.56 um max at a condition of 741 -> 809 (the quartic term: 0.69 um at 2.0e3;
-both: 0.52 um at 2.0e3). Tilt, swivel, machine root, MCTB, sliding base, blank offset
-and the blade radius duplicate the first seven's directions: on s0003 the best subsets
-of 8 lower the linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, and
-tilt, swivel or the blade radius added to the seven leave 1.09-1.26 um at conditions
-of 2e4-4e4.
+The default subsets (:func:`default_parameters`; the sensitivity studies that chose
+them are docs/machine_settings.md sec. 6): pinion :data:`DEFAULT_PARAMETERS` (cradle
+angle, radial distance, ratio of roll, modified roll 2C and 6D, blade angle, blade
+curvature and the blade's cubic profile term); formate gear
+:data:`FORMATE_GEAR_PARAMETERS` (the flank of a straight blade without tilt is a cone
+of revolution: five separable combinations of its settings); generated gear
+:data:`GENERATED_GEAR_PARAMETERS`. Settings that duplicate a subset's directions (on a
+formate gear the sliding base is the cutter radius exactly) are left out; a subset a
+flank measurement cannot separate is refused by :func:`~.point_fit.check_observable`.
 
 A relieved blade (Toprem / Flankrem, :mod:`.blade`) keeps its relief as given
-(:data:`RELIEF_KEYS`: a fixed blade property, never fitted): the corrections act on its
+(:data:`~.relief_setup.RELIEF_KEYS`: a fixed blade property, never fitted): the corrections act on its
 main profile, the pivot is the main profile's point that cuts the mean node (a relief
 reaching it is refused, naming its depth), and the generated flank at each node is the
 deepest of the blade's pieces, one envelope per blade segment (the smallest deviation,
@@ -86,19 +80,19 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..validation import InputRangeError, check_range
-from .blade import blade_segments
 from .blank import BlankDesign
-from .conjugate import UndercutError, nominal_pinion_box
+from .conjugate import UndercutError
 from .generated import EnvelopeSolver, solve_node_grid
 from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
 from .member_envelope import angle_lever, mean_node_uv, member_cone, member_solver
+from .relief_setup import blade_relief, check_pivot_on_main, piece_setups, with_relief
 from .minimax_fit import minimize_max_abs
 
 __all__ = ["DEFAULT_PARAMETERS", "FORMATE_GEAR_PARAMETERS", "FitProblem",
-           "GENERATED_GEAR_PARAMETERS", "PARAMETERS", "RELIEF_KEYS", "SEED_PARAMETERS",
-           "SettingFit", "apply_corrections", "blade_relief", "blade_reliefs", "checked_options",
-           "conjugate_seed", "default_parameters", "fit_member_setup", "fit_pinion_setup",
-           "flank_deviation_um", "sensitivity", "relieved_setup", "solve_fit", "with_relief"]
+           "GENERATED_GEAR_PARAMETERS", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
+           "apply_corrections", "checked_options", "conjugate_seed", "default_parameters",
+           "fit_member_setup", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
+           "solve_fit"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -135,8 +129,10 @@ SEED_PARAMETERS = DEFAULT_PARAMETERS + ("blank_offset_mm", "helical_motion_mm_pe
 #: machine centre to back and the blank offset.
 FORMATE_GEAR_PARAMETERS = ("blade_radius_mm", "blade_angle_deg", "machine_root_angle_deg",
                            "machine_centre_to_back_mm", "blank_offset_mm")
-#: The default subset of a generated gear: the formate gear's, the cutter centre on the
-#: cradle (cradle angle, radial distance), the ratio of roll and the modified roll 2C.
+#: The default subset of a generated gear: the cutter centre on the cradle (cradle
+#: angle, radial distance), the ratio of roll, the modified roll 2C, the blade angle,
+#: the cutter radius and the machine root angle (the formate subset's machine centre
+#: to back and blank offset added: not separable, docs/machine_settings.md sec. 6).
 GENERATED_GEAR_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
                              "modified_roll_2c_per_rad", "blade_angle_deg",
                              "blade_radius_mm", "machine_root_angle_deg")
@@ -153,10 +149,6 @@ _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
 _HELICAL = {"helical_motion_mm_per_rad": 0}
 _BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm",
           "blade_cubic_per_mm2", "blade_quartic_per_mm3")
-#: The blade's relief keys (:class:`~.blade.BladeSettings`): fixed blade properties,
-#: carried through every correction, never fitted (module docstring).
-RELIEF_KEYS = ("toprem_angle_deg", "toprem_depth_mm", "flankrem_angle_deg",
-               "flankrem_depth_mm")
 _FD_STEP = 1e-3          # forward-difference step of the scaled variables
 #: Deviation (um) returned at every node for a trial step whose envelope does not reach
 #: the grid: the trust-region step is then rejected and shortened (a seed far from the
@@ -220,7 +212,7 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     units) added; blade parameters pivot about the blade point at arc length
     ``pivot_length_mm`` from the tip (module docstring). A relieved blade's main profile
     is corrected (``pivot_length_mm`` its own arc length) and its relief
-    (:data:`RELIEF_KEYS`) kept as given.
+    (:data:`~.relief_setup.RELIEF_KEYS`) kept as given.
 
     Raises
     ------
@@ -263,53 +255,6 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 
-def blade_relief(blade) -> dict:
-    """``{key: value}`` of :data:`RELIEF_KEYS` of a relieved blade (Toprem / Flankrem),
-    ``{}`` for a smooth one (a relief angle of 0 is no relief)."""
-    return {k: getattr(blade, k) for k in RELIEF_KEYS} if blade.relieved else {}
-
-
-def with_relief(setup: MachineSetup, relief: dict) -> MachineSetup:
-    """``setup`` with its blade's relief keys set to ``relief`` (:func:`blade_relief`;
-    the blade's checks run: a relief the new blade cannot carry names its key,
-    ``blade.<member>.<side>.<key>``)."""
-    return dataclasses.replace(setup, blade=dataclasses.replace(
-        setup.blade, where=f"blade.{setup.member}.{setup.side}", **relief))
-
-
-def blade_reliefs(setups) -> dict:
-    """``{(member, side): relief}`` (:func:`blade_relief`) of the relieved blades among
-    the set-ups ``setups`` (a pair's ``machine`` tables)."""
-    return {(s.member, s.side): blade_relief(s.blade) for s in setups if s.blade.relieved}
-
-
-def relieved_setup(setup: MachineSetup, relief: dict, blank: BlankDesign) -> MachineSetup:
-    """``setup`` with ``relief`` kept on its blade (:func:`with_relief`), a pinion's
-    checked to leave the blade point that cuts its mean point on the main profile (the
-    pivot of the setting fit; refused naming the relief depth)."""
-    if not relief:
-        return setup
-    out = with_relief(setup, relief)
-    if setup.member == "pinion" and out.blade.relieved:
-        main = with_relief(out, dict.fromkeys(relief, 0.0))
-        cone, _ = nominal_pinion_box(blank, 1.0)
-        u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
-        solver = EnvelopeSolver(main, blank, cone)
-        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
-        _check_pivot_on_main(out.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
-    return out
-
-
-def _piece_setups(setup: MachineSetup) -> list:
-    """``[(name, set-up)]`` of the smooth pieces a (relieved) blade generates: one per
-    blade segment (:func:`~.blade.blade_segments`), ``[("main", setup)]`` for a smooth
-    blade (the set-up itself)."""
-    if not setup.blade.relieved:
-        return [("main", setup)]
-    return [(seg.name, dataclasses.replace(setup, blade=seg.blade))
-            for seg in blade_segments(setup.blade)]
-
-
 class FitProblem:
     """Residual and Jacobian of the fit on a coarse node grid (module docstring): the
     target's angle ``psi_t`` and lever ``R (e_psi . n_t)`` (um/rad) at nodes ``(U, V)``
@@ -337,7 +282,7 @@ class FitProblem:
         mean = self._mean(solver)
         self.pivot_length_mm = float(mean.l_mm)
         if relief:
-            _check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
+            check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
         self._piece_q = {}      # the other pieces' node solutions (relieved blades)
         return solver, mean
 
@@ -379,7 +324,7 @@ class FitProblem:
     def _nodes(self, x):
         """``[(piece name, node solutions, solver)]`` of the flank ``x`` generates."""
         out = []
-        for name, setup in _piece_setups(self.setup(x)):
+        for name, setup in piece_setups(self.setup(x)):
             solver = member_solver(setup, self.blank, self.cone)
             q = self.q if name == "main" else self._piece_q.get(name)
             s = None if q is None else solver.solve(self.U, self.V, q, strict=False)
@@ -399,24 +344,6 @@ class FitProblem:
         if getattr(self, "first", None) is None:     # at the seed: the reach prediction
             self.first = (f0, jac)
         return jac
-
-
-def _check_pivot_on_main(blade: BladeSettings, depth_mm: float) -> None:
-    """Refuse a relief whose kink lies beyond the depth ``depth_mm`` behind the tip plane
-    of the blade point that cuts the pinion's mean point: the blade corrections pivot
-    there, on the main profile (a Toprem reaching it would make the relief the
-    profile the blank's pressure angle is cut with)."""
-    for seg in blade_segments(blade):
-        lo, hi = seg.depth_mm
-        if seg.name == "main" and not lo < depth_mm < hi:
-            key = "toprem" if depth_mm <= lo else "flankrem"
-            raise InputRangeError(
-                f"{blade.where}.{key}_depth_mm", getattr(blade, f"{key}_depth_mm"),
-                f"{'<' if key == 'toprem' else '>'} {depth_mm:.4f} mm, the depth behind the "
-                "tip plane of the blade point that cuts the pinion's mean point (the "
-                "settings are solved there on the blade's main profile: the standard "
-                "settings' pressure angle, the setting fit's blade pivot; the relief is "
-                "kept as given, not fitted)")
 
 
 def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(PARAMETERS),
