@@ -28,7 +28,7 @@ from .formate import SIDES
 from .generated import generated_pinion_box
 from .kinked import KinkedFlank, machine_flank
 from .machine import MEMBERS, mirror_setup
-from .measuring_grid import MeasuredPoints, target_grids
+from .measuring_grid import RESIDUAL_COLUMNS, MeasuredPoints, residual_rows, target_grids
 from .point_fit import check_point_count, point_deviation_um, point_problem
 from .relief_setup import relieved_setup
 from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
@@ -193,13 +193,9 @@ class EaseOffSettings:
         sides = [r for r in self.sides.values() if r.points is not None]
         if not sides:
             return None
-        rows = ["member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"]
+        rows = [RESIDUAL_COLUMNS]
         for r in sides:
-            p = r.points
-            rows += [f"pinion,{r.side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
-                     f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
-                     zip(p.line, p.L_mm, p.R_mm, p.deviation_um, r.u_mm, r.v_mm,
-                         r.residual_um)]
+            rows += residual_rows(r.points, r.residual_um)
         return "\n".join(rows) + "\n"
 
 

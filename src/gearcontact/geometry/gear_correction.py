@@ -40,7 +40,8 @@ from ..validation import InputRangeError
 from .basic_settings import member_setups
 from .formate import SIDES
 from .generated import gear_cone, gear_flank_of
-from .measuring_grid import MeasuredFlank, MeasuredPoints, measured_points
+from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
+                             measured_points, residual_rows)
 from .point_fit import RANK_TOLERANCE, PointProblem, check_observable, check_point_count
 from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
 
@@ -120,13 +121,9 @@ class GearCorrection:
     def points_csv(self) -> str:
         """The residual at each measured gear point as CSV (the columns of
         :meth:`~.easeoff_settings.EaseOffSettings.points_csv`)."""
-        rows = ["member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"]
-        for side, r in self.sides.items():
-            p = r.points
-            rows += [f"gear,{side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
-                     f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
-                     zip(p.line, p.L_mm, p.R_mm, p.deviation_um, p.u_mm, p.v_mm,
-                         r.residual_um)]
+        rows = [RESIDUAL_COLUMNS]
+        for r in self.sides.values():
+            rows += residual_rows(r.points, r.residual_um)
         return "\n".join(rows) + "\n"
 
 

@@ -52,7 +52,7 @@ __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid"
            "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
            "read_measured_grid", "is_measured_header", "is_complete_grid",
            "measured_easeoff_grid", "measured_points", "check_on_blank", "read_member_targets",
-           "read_target_flank", "target_grids"]
+           "read_target_flank", "residual_rows", "RESIDUAL_COLUMNS", "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
 AXIS_FRAMES = {"pinion": np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]),
@@ -377,6 +377,21 @@ class MeasuredPoints:
     lever_um: np.ndarray
     box: object
     member: str = "pinion"
+
+
+#: Columns of the residual at measured points (:func:`residual_rows`).
+RESIDUAL_COLUMNS = "member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"
+
+
+def residual_rows(points: MeasuredPoints, residual_um) -> list[str]:
+    """CSV rows (:data:`RESIDUAL_COLUMNS`) of the residual at each measured point: the
+    file's member, flank, line, L, R and deviation, the point's sheet parameters and
+    ``residual_um`` (the cut flank minus the measured point along the nominal normal:
+    positive = material left), floats by ``repr``."""
+    p = points
+    return [f"{p.member},{p.side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
+            f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
+            zip(p.line, p.L_mm, p.R_mm, p.deviation_um, p.u_mm, p.v_mm, residual_um)]
 
 
 def measured_points(measured: MeasuredFlank, nominal, *, where: str, uv=None, cone=None
