@@ -25,12 +25,17 @@ settings, never fitted silently; the fit reports that singular value and the
 condition at the solution.
 
 The residual is reported at the measured points (the cut flank's normal distance from
-each measured point, exact envelope, no spline): a CMM grid covers the active flank.
+each measured point, exact envelope, no spline) and, for a complete grid (the CMM grid
+of ``export flanks``, :func:`~.measuring_grid.is_complete_grid`), over the flank as the
+pinion's is: the measured flank the bicubic spline through the grid's deviations over
+the nominal flank's (u, v) (:class:`~.easeoff.GridEaseOff`) on 60 x 75 points of the
+grid's box, the cut flank solved at each.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from dataclasses import dataclass
 
@@ -40,7 +45,9 @@ from ..validation import InputRangeError
 from .basic_settings import member_setups
 from .formate import SIDES
 from .generated import gear_cone, gear_flank_of
+from .easeoff import GridEaseOff
 from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
+                             flank_parameters_at, grid_values, is_complete_grid,
                              measured_points, residual_rows)
 from .point_fit import RANK_TOLERANCE, PointProblem, check_observable, check_point_count
 from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
@@ -66,6 +73,9 @@ class GearSideFit:
     relative_singular_value : float
         Smallest singular value of the column-normalized sensitivity at the seed,
         relative to the largest (:func:`~.point_fit.check_observable`).
+    flank_max_um, flank_rms_um : float
+        Largest |residual| and RMS over the flank (a complete grid, module docstring;
+        NaN for scattered points), um.
     """
 
     side: str
@@ -74,6 +84,8 @@ class GearSideFit:
     deviation_max_um: float
     residual_um: np.ndarray
     relative_singular_value: float
+    flank_max_um: float = math.nan
+    flank_rms_um: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -97,16 +109,20 @@ class GearCorrection:
         return [f"gear {side} ({len(r.points.line)} measured points, --target-flank): "
                 f"deviation max {r.deviation_max_um:.2f} um, residual max "
                 f"{r.fit.fit_max_um:.3g} um, RMS {r.fit.fit_rms_um:.3g} um at the points"
+                + ("" if math.isnan(r.flank_max_um) else f", max {r.flank_max_um:.3g} um, "
+                   f"RMS {r.flank_rms_um:.3g} um over the flank")
                 for side, r in self.sides.items()]
 
     def table(self) -> str:
         """Residual, identifiability and corrections per measured side (Markdown)."""
-        rows = ["| gear side | points | deviation max (um) | residual max (um) | residual "
-                "RMS (um) | smallest rel. singular value | condition | fit evaluations |",
-                "|---|---:|---:|---:|---:|---:|---:|---:|"]
+        rows = ["| gear side | points | deviation max (um) | residual max / RMS at the "
+                "points (um) | over the flank (um) | smallest rel. singular value | "
+                "condition | fit evaluations |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
         for side, r in self.sides.items():
+            flank = ("-" if math.isnan(r.flank_max_um) else
+                     f"{r.flank_max_um:.3g} / {r.flank_rms_um:.3g}")
             rows.append(f"| {side} | {len(r.points.line)} | {r.deviation_max_um:.2f} | "
-                        f"{r.fit.fit_max_um:.3g} | {r.fit.fit_rms_um:.3g} | "
+                        f"{r.fit.fit_max_um:.3g} / {r.fit.fit_rms_um:.3g} | {flank} | "
                         f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
                         f"{r.fit.evaluations} |")
         rows += ["", "| gear correction | unit | " + " | ".join(self.sides) + " |",
@@ -183,7 +199,9 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
         at = f"{where}: gear {side}"
         check_point_count({side: data}, names, where=where, member="gear")
         nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
-        points = measured_points(data, nominal, where=at, cone=cone)
+        uv = flank_parameters_at(nominal, member="gear", L_mm=data.L_mm, R_mm=data.R_mm,
+                                 where=at, lines=data.line)
+        points = measured_points(data, nominal, where=at, uv=uv, cone=cone)
         started = time.perf_counter()
         prob = PointProblem(seed, pair.blank, points, names)
         try:
@@ -195,18 +213,38 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
                                   "gear's sliding base is its cutter radius; "
                                   "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
                                   "points spread over the flank") from None
-        problems[side] = (prob, points, rel, time.perf_counter() - started)
+        problems[side] = (prob, points, rel, time.perf_counter() - started, nominal, uv)
     sides, setups = {}, dict(seeds)
-    for side, (prob, points, rel, took) in problems.items():
+    for side, (prob, points, rel, took, nominal, uv) in problems.items():
         fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
                         started=time.perf_counter() - took)
         x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
         res = prob.deviation_um(x)
+        over = (_flank_residual_um(fit.setup, pair.blank, measured[side], nominal, uv, cone)
+                if is_complete_grid(*uv) else np.array([math.nan]))
         sides[side] = GearSideFit(side=side, fit=fit, points=points,
                                   deviation_max_um=float(np.abs(points.deviation_um).max()),
-                                  residual_um=res, relative_singular_value=rel)
+                                  residual_um=res, relative_singular_value=rel,
+                                  flank_max_um=float(np.abs(over).max()),
+                                  flank_rms_um=float(np.sqrt(np.mean(over ** 2))))
         setups[side] = fit.setup
     return GearCorrection(setups=setups, sides=sides)
+
+
+def _flank_residual_um(setup, blank, data: MeasuredFlank, nominal, uv, cone, *,
+                       n_u: int = 60, n_v: int = 75) -> np.ndarray:
+    """The flank ``setup`` cuts against the measured flank over the grid's box (module
+    docstring): the deviations' bicubic over the nominal (u, v) on n_u x n_v points,
+    each moved off the nominal by it, the cut flank's normal distance there, um."""
+    u, v, table = grid_values(*uv, data.deviation_um)
+    dev = GridEaseOff(u_mm=u, v_mm=v, relief_um=table)
+    U, V = (a.ravel() for a in np.meshgrid(np.linspace(u[0], u[-1], n_u),
+                                           np.linspace(v[0], v[-1], n_v), indexing="ij"))
+    dense = dataclasses.replace(data, L_mm=np.zeros(len(U)), R_mm=np.zeros(len(U)),
+                                deviation_um=1e3 * dev.relief_mm(U, V),
+                                line=np.zeros(len(U), dtype=int))
+    points = measured_points(dense, nominal, where="", uv=(U, V), cone=cone)
+    return PointProblem(setup, blank, points, ("blade_angle_deg",)).deviation_um(np.zeros(1))
 
 
 def corrected_pair(pair, correction: GearCorrection):

@@ -51,8 +51,9 @@ from ..validation import InputRangeError, read_text_file
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
            "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
            "read_measured_grid", "is_measured_header", "is_complete_grid",
-           "measured_easeoff_grid", "measured_points", "check_on_blank", "read_member_targets",
-           "read_target_flank", "residual_rows", "RESIDUAL_COLUMNS", "target_grids"]
+           "measured_easeoff_grid", "measured_points", "check_on_blank", "grid_values",
+           "read_member_targets", "read_target_flank", "residual_rows", "RESIDUAL_COLUMNS",
+           "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
 AXIS_FRAMES = {"pinion": np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]),
@@ -310,17 +311,13 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     u, v = uv if uv is not None else flank_parameters_at(
         nominal, member="pinion", L_mm=measured.L_mm, R_mm=measured.R_mm, where=where,
         lines=measured.line)
-    iu, iv = _grid_lines(u), _grid_lines(v)
-    nu, nv = iu.max() + 1, iv.max() + 1
     if not is_complete_grid(u, v):
+        nu, nv = _grid_lines(u).max() + 1, _grid_lines(v).max() + 1
         raise InputRangeError(f"{where}: pinion {measured.flank} points",
                               f"{len(u)} points on {nu} lines of constant u x {nv} of v",
                               "a complete grid of at least 4 x 4 (rows at constant height "
                               "over the root cone: the nominal grid of export flanks)")
-    dev = np.empty((nu, nv))
-    dev[iu, iv] = measured.deviation_um
-    um = np.array([u[iu == i].mean() for i in range(nu)])
-    vm = np.array([v[iv == j].mean() for j in range(nv)])
+    um, vm, dev = grid_values(u, v, measured.deviation_um)
     U, V = np.meshgrid(um, vm, indexing="ij")
     s = conjugate.evaluate(U, V)
     e_mm = easeoff.relief_mm(U, V)
@@ -328,6 +325,19 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     # the deviation field over the nominal (u, v): the bicubic of GridEaseOff
     d_um = 1e3 * GridEaseOff(u_mm=um, v_mm=vm, relief_um=dev).relief_mm(u_img, v_img)
     return GridEaseOff(u_mm=um, v_mm=vm, relief_um=1e3 * e_mm - d_um)
+
+
+def grid_values(u, v, values) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(u_lines, v_lines, table)`` of values at the nodes ``(u, v)`` of a complete
+    grid (:func:`is_complete_grid`): the increasing grid lines (each the mean of its
+    nodes' parameter) and the values on them, shape (n_u, n_v)."""
+    u, v = np.asarray(u), np.asarray(v)
+    iu, iv = _grid_lines(u), _grid_lines(v)
+    nu, nv = iu.max() + 1, iv.max() + 1
+    table = np.empty((nu, nv))
+    table[iu, iv] = values
+    return (np.array([u[iu == i].mean() for i in range(nu)]),
+            np.array([v[iv == j].mean() for j in range(nv)]), table)
 
 
 def is_complete_grid(u, v) -> bool:
