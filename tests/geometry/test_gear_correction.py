@@ -29,7 +29,8 @@ from easeoff_grid import member_pivot_length_mm, write_gear_measured_csv
 from gearcontact.geometry.basic_settings import formate_gear_setups, generated_gear_setups
 from gearcontact.geometry.conjugate import nominal_pinion_box
 from gearcontact.geometry.gear_correction import gear_correction, gear_seeds
-from gearcontact.geometry.generated import EnvelopeSolver, gear_cone, gear_flank_of
+from gearcontact.geometry.generated import (EnvelopeSolver, gear_cone, gear_flank_of,
+                                            generated_gear_flank)
 from gearcontact.geometry.measuring_grid import (MeasuredFlank, measured_points,
                                                  measuring_grid, read_member_targets)
 from gearcontact.geometry.member_envelope import (FormateSolver, angle_lever, member_cone,
@@ -37,7 +38,8 @@ from gearcontact.geometry.member_envelope import (FormateSolver, angle_lever, me
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.point_fit import PointProblem
 from gearcontact.geometry.setting_fit import (FORMATE_GEAR_PARAMETERS,
-                                              GENERATED_GEAR_PARAMETERS, apply_corrections,
+                                              GENERATED_GEAR_PARAMETERS, FitProblem,
+                                              _fit_grid, apply_corrections,
                                               default_parameters, fit_member_setup)
 from gearcontact.validation import InputRangeError
 
@@ -113,6 +115,34 @@ def _zero_points(pair, seed, side):
                       deviation_um=np.zeros(len(g.L_mm)), line=np.arange(2, 2 + len(g.L_mm)))
     return m, measured_points(m, nominal, where="x", uv=(g.u_mm, g.v_mm),
                               cone=gear_cone(pair.blank))
+
+
+def test_generated_gear_sheet_target_on_the_fit_grid():
+    # fit_member_setup's grid path for a gear: the target a 60 x 75 generated gear sheet
+    # cut with known perturbations (the hypoid's generated gear, drive), the default
+    # seven from the nominal; settings within the first-order bound of the target's
+    # own error on the 9 x 11 fit grid (the sheet against the exact envelope there), as
+    # above; ~3 s. A formate gear's FormateFlank (its own (u, v)) is refused as target.
+    pair, seed, pert = _case("hypoid generated", "drive")
+    names = default_parameters(seed)
+    true = apply_corrections(seed, pert, pivot_length_mm=member_pivot_length_mm(seed, pair.blank))
+    target, _ = generated_gear_flank(true, pair.blank, n_u=60, n_v=75,
+                                     gear_face_width_mm=pair.gear_face_width_mm)
+    fit = fit_member_setup(seed, pair.blank, target)
+    assert fit.status > 0 and fit.fit_max_um < 0.01
+    grid = _fit_grid(target.boundary, 9, 11)
+    prob = FitProblem(seed, pair.blank, target, names, *grid)
+    x = np.array([fit.corrections[n] for n in names]) / prob.scale
+    jac = prob.jacobian(x)
+    e = FitProblem(true, pair.blank, target, names, *grid).deviation_um(np.zeros(len(names)))
+    bound = prob.scale * np.linalg.norm(np.linalg.pinv(jac), axis=1) * np.linalg.norm(e)
+    for name, b in zip(names, bound):
+        assert abs(fit.corrections[name] - pert[name]) <= b, (name, fit.corrections[name], b)
+    formate = load_pair(F2)
+    gear = gear_seeds(formate, "formate")["drive"]
+    cone = gear_flank_of(gear, formate.blank, gear_face_width_mm=formate.gear_face_width_mm)
+    with pytest.raises(InputRangeError, match="target = 'FormateFlank'.*gear sheet"):
+        fit_member_setup(gear, formate.blank, cone)
 
 
 def test_formate_sliding_base_and_cutter_radius_are_one_direction_and_refused():

@@ -1,10 +1,11 @@
-"""Machine settings fitted at scattered measured points of a pinion flank.
+"""Machine settings fitted at scattered measured points of a flank (pinion or gear).
 
 A measuring room's output is a set of points, not a grid: missing points, irregular
 positions, a few hundred of them (docs/export.md "The measuring grid"). Each measured
 point is the nominal point at its (L, R) moved by its deviation along the nominal
-normal (:func:`~.measuring_grid.measured_points`), located on the pinion sheet at
-``(u_k, v_k)`` with angular coordinate ``psi_k``. The settings are fitted at those
+normal (:func:`~.measuring_grid.measured_points`), located on its member's sheet at
+``(u_k, v_k)`` with angular coordinate ``psi_k`` (a gear's points:
+:mod:`.gear_correction`). The settings are fitted at those
 points, not at an interpolated flank:
 
     min_x  sum_k d_k(x)^2,   d_k = lever_k (psi_gen(u_k, v_k; x) - psi_k)

@@ -479,12 +479,17 @@ def fit_member_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     ------
     InputRangeError
         An unknown or repeated parameter, a roll, helical-motion or blade-curvature
-        parameter for a formate gear, a relieved gear blade, or a fit grid smaller
-        than 3 x 3.
+        parameter for a formate gear, a relieved gear blade, a gear target that is not
+        a sheet on the blank's gear cone, or a fit grid smaller than 3 x 3.
     UndercutError
         The seed's envelope does not reach a node of the grid.
     """
     names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
+    if seed.member == "gear" and getattr(target, "cone", None) != member_cone("gear", blank):
+        raise InputRangeError("target", type(target).__name__, "a gear sheet on the blank's "
+                              "gear cone (GearSheet: its (u, v) are the fit's nodes; a "
+                              "formate FormateFlank is measured at points, "
+                              "geometry.gear_correction)")
     t0 = time.perf_counter()
     prob = FitProblem(seed, blank, target, names,
                       *_fit_grid(target.boundary if box is None else box, n_u, n_v))
