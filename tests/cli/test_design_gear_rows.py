@@ -95,6 +95,55 @@ def test_gear_rows_of_a_blank_pair_with_its_pinion_fitted(tmp_path):
     assert "| correction | unit | drive | coast |" in stdout       # the pinion table too
 
 
+@pytest.mark.slow
+def test_export_flanks_measuring_grid_of_the_gear_back_through_design(tmp_path):
+    # ~20 s (export flanks writes both members' STEP files): the user's loop. The
+    # gear's nominal measuring grids (5 x 9, the default Gleason grid) of `export
+    # flanks`, each point's deviation from the gear cut with the perturbation along the
+    # grid's own normal (the exact cones, tests/easeoff_grid.py), typed into the
+    # measured file and given to design: the written gear is the cut one.
+    import numpy as np
+    from easeoff_grid import line_deviations_mm
+
+    from gearcontact.geometry.generated import gear_flank_of
+    from gearcontact.geometry.measuring_grid import flank_parameters_at
+
+    exported = tmp_path / "export"
+    code, _, err = run_console("export", "flanks", "--pair", F2_MACHINE, "--out", exported)
+    assert code == 0, err
+    pair = load_pair(F2_MACHINE)
+    rows, truth = ["member,flank,row,col,L_mm,R_mm,deviation_um"], {}
+    for side in ("drive", "coast"):
+        seed = gear_seeds(pair, "formate")[side]
+        truth[side] = apply_corrections(seed, _PERTURBATION,
+                                        pivot_length_mm=member_pivot_length_mm(seed, pair.blank))
+        lines = [r.split(",") for r in (exported / f"gear_{side}_measuring.csv").read_text()
+                 .splitlines() if not r.startswith("#")]
+        head, data = lines[0], lines[1:]
+        col = {h: i for i, h in enumerate(head)}
+        num = np.array([[float(r[col[c]]) for c in ("L_mm", "R_mm", "x_mm", "y_mm", "z_mm",
+                                                    "nx", "ny", "nz")] for r in data])
+        nominal, cut = (gear_flank_of(s, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+                        for s in (seed, truth[side]))
+        u, v = flank_parameters_at(nominal, member="gear", L_mm=num[:, 0], R_mm=num[:, 1],
+                                   where="export")
+        p = nominal.evaluate(u, v, second=False)
+        # the exported grid is this nominal gear: points to 1e-9 mm, normals to 1e-12
+        assert np.abs(p.r - num[:, 2:5]).max() < 1e-9
+        assert np.abs(p.n - num[:, 5:8]).max() < 1e-12
+        dev = 1e3 * line_deviations_mm(nominal, cut, u, v)
+        rows += [f"gear,{side},{r[col['row']]},{r[col['col']]},{r[col['L_mm']]},"
+                 f"{r[col['R_mm']]},{float(d)!r}" for r, d in zip(data, dev)]
+    path = tmp_path / "measured.csv"
+    path.write_text("\n".join(rows) + "\n")
+    out = tmp_path / "out"
+    code, stdout, err = run_console("design", "--pair", F2_MACHINE, "--machine-settings",
+                                    "--target-flank", path, "--out", out)
+    assert code == 0, err
+    assert "| drive | 45 |" in stdout and "| coast | 45 |" in stdout
+    _check_gear(load_pair(out / "machine_settings.toml"), truth)
+
+
 def _bad(tmp_path, rows):
     path = tmp_path / "bad.csv"
     path.write_text("member,flank,L_mm,R_mm,deviation_um\n" + "".join(rows))
