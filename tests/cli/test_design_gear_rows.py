@@ -169,16 +169,3 @@ def test_careless_gear_rows_exit_2(tmp_path, pair_file, rows, words):
                                "--target-flank", _bad(tmp_path, rows))
     assert code == 2
     assert words in err, err
-
-
-def test_gear_rows_of_a_left_hand_pair_exit_2(tmp_path):
-    left = tmp_path / "left.toml"
-    text = open(F2_BLANK).read()
-    assert 'pinion_hand = "right"' in text
-    left.write_text(text.replace('pinion_hand = "right"', 'pinion_hand = "left"'))
-    code, _, err = run_console("design", "--pair", left, "--machine-settings",
-                               "--target-flank",
-                               _bad(tmp_path, ["gear,drive,30.0,70.0,1.0\n"] * 1))
-    assert code == 2
-    assert "gear rows with design.pinion_hand = 'left' is outside the allowed range: " \
-        "'right'" in err, err

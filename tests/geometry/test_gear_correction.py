@@ -31,6 +31,7 @@ from gearcontact.geometry.conjugate import nominal_pinion_box
 from gearcontact.geometry.gear_correction import gear_correction, gear_seeds
 from gearcontact.geometry.generated import (EnvelopeSolver, gear_cone, gear_flank_of,
                                             generated_gear_flank)
+from gearcontact.geometry.machine import mirror_setup
 from gearcontact.geometry.measuring_grid import (MeasuredFlank, measured_points,
                                                  measuring_grid, read_member_targets)
 from gearcontact.geometry.member_envelope import (FormateSolver, angle_lever, member_cone,
@@ -106,6 +107,36 @@ def test_gear_cut_from_perturbed_settings_is_recovered_from_its_csv(tmp_path, wh
                                                                  pert[name], b)
     assert done.setups[side] == r.fit.setup
     assert done.setups[side].settings.formate == seed.settings.formate
+
+
+def test_left_hand_pair_is_its_twin_mirrored(tmp_path):
+    # A left-hand F.2 pair (the blank's formate gear): its gear measured on a CMM reads
+    # the same L, R and normal deviations as its right-hand twin's (the mirror image
+    # y -> -y, docs/export.md). The twin's gear cut with the perturbation, measured,
+    # fitted on the left-hand pair: the settings are the mirror image of the twin's cut
+    # settings (machine.mirror_setup: cradle angle and blank offset change sign), each
+    # within the first-order bound of the twin's fit (< 2e-11 here, test above), taken
+    # as 1e-9 (mm, deg); ~1 s.
+    text = open("examples/iso23509_f2_spiral_bevel.toml").read()
+    left_file = tmp_path / "left.toml"
+    left_file.write_text(text.replace('pinion_hand = "right"', 'pinion_hand = "left"'))
+    left, right = load_pair(left_file), load_pair("examples/iso23509_f2_spiral_bevel.toml")
+    assert left.pinion_hand == "left"
+    seed = gear_seeds(right, "formate")["drive"]
+    assert gear_seeds(left, "formate")["drive"] == mirror_setup(seed)
+    true = apply_corrections(seed, _FORMATE,
+                             pivot_length_mm=member_pivot_length_mm(seed, right.blank))
+    path = tmp_path / "gear.csv"
+    write_gear_measured_csv(path, right, seed, true, "drive")
+    _, rows = read_member_targets(path)
+    got = gear_correction(left, rows, seeds=gear_seeds(left, "formate")).setups["drive"]
+    want = mirror_setup(true)
+    assert want.settings.cradle_angle_deg == -true.settings.cradle_angle_deg
+    for f in ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
+              "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm"):
+        assert abs(getattr(got.settings, f) - getattr(want.settings, f)) < 1e-9, f
+    for f in ("blade_angle_deg", "point_radius_mm"):
+        assert abs(getattr(got.blade, f) - getattr(want.blade, f)) < 1e-9, f
 
 
 def _zero_points(pair, seed, side):

@@ -299,10 +299,6 @@ def _check_options(args, pair) -> None:
                 raise
             raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
         check_point_count(args.easeoff_grid, where=str(args.target_flank))
-        if args.gear_targets and pair.pinion_hand != "right":
-            raise InputRangeError(f"{args.target_flank}: gear rows with design.pinion_hand",
-                                  pair.pinion_hand, "'right' (a left-hand pair's gear "
-                                  "correction is not supported yet)")
         # the gear's points against its fewest settings before any flank is built (a
         # formate gear's subset; a pair's own gear tables tell its method exactly)
         from ..geometry.setting_fit import FORMATE_GEAR_PARAMETERS, default_parameters

@@ -45,6 +45,7 @@ from ..validation import InputRangeError
 from .basic_settings import member_setups
 from .formate import SIDES
 from .generated import gear_cone, gear_flank_of
+from .machine import mirror_setup
 from .easeoff import GridEaseOff
 from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
                              flank_parameters_at, grid_values, is_complete_grid,
@@ -99,10 +100,14 @@ class GearCorrection:
         the side was not measured.
     sides : dict
         ``{side: GearSideFit}`` of the measured sides.
+    mirrored : bool
+        A left-hand pair: fitted on its right-hand twin (the corrections are the
+        twin's), ``setups`` mirrored back.
     """
 
     setups: dict
     sides: dict
+    mirrored: bool = False
 
     def comment_lines(self) -> list[str]:
         """One line per measured side for a TOML head comment."""
@@ -132,6 +137,10 @@ class GearCorrection:
             rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
                 f"{r.fit.corrections[n]:+.6g}" if n in r.fit.corrections else "-"
                 for r in self.sides.values()) + " |")
+        if self.mirrored:
+            rows += ["", "left-hand pair: the corrections of its right-hand twin; the "
+                     "written settings mirrored (cradle angle, swivel, blank offset, 2C, "
+                     "V_1 change sign)"]
         return "\n".join(rows)
 
     def points_csv(self) -> str:
@@ -146,9 +155,15 @@ class GearCorrection:
 def gear_seeds(pair, gear_generation: str) -> dict:
     """``{side: MachineSetup}`` of the nominal gear of ``pair``: its ``[machine.gear.*]``
     tables, else the gear of its default flanks (``gear_generation`` ``"formate"`` or
-    ``"generated"``, :func:`~.basic_settings.member_setups`)."""
+    ``"generated"``, :func:`~.basic_settings.member_setups`; a left-hand pair's: its
+    twin's mirrored, :func:`~.machine.mirror_setup`)."""
     own = {s.side: s for s in pair.machine if s.member == "gear"}
-    return own or member_setups(pair, gear_generation)[0]
+    if own:
+        return own
+    default = member_setups(pair, gear_generation)[0]     # the right-hand twin's
+    if pair.pinion_hand == "left":
+        return {side: mirror_setup(s) for side, s in default.items()}
+    return default
 
 
 def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
@@ -158,12 +173,16 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
     Parameters
     ----------
     pair : GearPair
-        A right-hand bevel pair (its blank and gear face width).
+        A bevel pair (its blank and gear face width); a left-hand pair is fitted on its
+        right-hand twin (the measured L, R and normal deviations of a mirror image are
+        the same, docs/export.md) and its settings mirrored back; the reported
+        corrections are the twin's.
     measured : dict
         ``{side: MeasuredFlank}`` of gear rows (:func:`~.measuring_grid.read_member_targets`):
         deviations against the gear ``seeds`` cut.
     seeds : dict
-        ``{side: MachineSetup}`` of the nominal gear (:func:`gear_seeds`).
+        ``{side: MachineSetup}`` of the nominal gear (:func:`gear_seeds`), in the
+        pair's own hand.
     parameters : tuple of str, optional
         The fitted subset (default by the gear's cutting method,
         :func:`~.setting_fit.default_parameters`).
@@ -175,19 +194,20 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
     Returns
     -------
     GearCorrection
+        Its ``setups`` in the pair's own hand.
 
     Raises
     ------
     InputRangeError
-        A left-hand pair, an unknown side, a measured point off the nominal gear flank,
+        An unknown side, a measured point off the nominal gear flank,
         fewer points than settings, settings the points cannot separate (named), a
         formate gear asked for a roll or blade-curvature correction, a relieved gear
         blade: all before any fit.
     """
-    if pair.pinion_hand != "right":
-        raise InputRangeError("design.pinion_hand", pair.pinion_hand, "'right' for measured "
-                              "gear rows (a left-hand pair's gear correction is not "
-                              "supported yet, docs/machine_settings.md sec. 7)")
+    left = pair.pinion_hand == "left"
+    if left:        # fitted on the right-hand twin (L, R and deviations are the same)
+        pair = dataclasses.replace(pair, pinion_hand="right")
+        seeds = {side: mirror_setup(s) for side, s in seeds.items()}
     for side, data in measured.items():
         if side not in SIDES or not isinstance(data, MeasuredFlank) or data.member != "gear":
             raise InputRangeError(f"{where}: gear rows", side, f"measured gear flanks of {SIDES}")
@@ -228,7 +248,9 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
                                   flank_max_um=float(np.abs(over).max()),
                                   flank_rms_um=float(np.sqrt(np.mean(over ** 2))))
         setups[side] = fit.setup
-    return GearCorrection(setups=setups, sides=sides)
+    if left:
+        setups = {side: mirror_setup(s) for side, s in setups.items()}
+    return GearCorrection(setups=setups, sides=sides, mirrored=left)
 
 
 def _flank_residual_um(setup, blank, data: MeasuredFlank, nominal, uv, cone, *,
