@@ -62,15 +62,21 @@ def _check_gear(written, truth):
                                 abs_tol=1e-9), (side, f)
 
 
+def _design(pair_file, path, out):
+    """``design --machine-settings --target-flank`` through the console script, default
+    options, exit 0; its stdout and the written pair."""
+    code, stdout, err = run_console("design", "--pair", pair_file, "--machine-settings",
+                                    "--target-flank", path, "--out", out)
+    assert code == 0, err
+    return stdout, load_pair(out / "machine_settings.toml")
+
+
 def test_gear_rows_of_a_machine_pair_correct_its_gear_and_keep_its_pinion(tmp_path):
     # ~5 s: two formate gear fits at 99 points each, no pinion work
     path, truth = _measured(tmp_path, F2_MACHINE)
     out = tmp_path / "out"
-    code, stdout, err = run_console("design", "--pair", F2_MACHINE, "--machine-settings",
-                                    "--target-flank", path, "--out", out)
-    assert code == 0, err
+    stdout, written = _design(F2_MACHINE, path, out)
     assert "| gear side | points |" in stdout and "| drive | 99 |" in stdout
-    written = load_pair(out / "machine_settings.toml")
     _check_gear(written, truth)
     own = load_pair(F2_MACHINE)
     assert [s for s in written.machine if s.member == "pinion"] == \
@@ -87,11 +93,8 @@ def test_gear_rows_of_a_blank_pair_with_its_pinion_fitted(tmp_path):
     # (both sides: the conjugate seed, residual 0) and the gear corrected from the
     # blank's formate gear
     path, truth = _measured(tmp_path, F2_BLANK)
-    out = tmp_path / "out"
-    code, stdout, err = run_console("design", "--pair", F2_BLANK, "--machine-settings",
-                                    "--target-flank", path, "--out", out)
-    assert code == 0, err
-    _check_gear(load_pair(out / "machine_settings.toml"), truth)
+    stdout, written = _design(F2_BLANK, path, tmp_path / "out")
+    _check_gear(written, truth)
     assert "| correction | unit | drive | coast |" in stdout       # the pinion table too
 
 
@@ -136,12 +139,9 @@ def test_export_flanks_measuring_grid_of_the_gear_back_through_design(tmp_path):
                  f"{r[col['R_mm']]},{float(d)!r}" for r, d in zip(data, dev)]
     path = tmp_path / "measured.csv"
     path.write_text("\n".join(rows) + "\n")
-    out = tmp_path / "out"
-    code, stdout, err = run_console("design", "--pair", F2_MACHINE, "--machine-settings",
-                                    "--target-flank", path, "--out", out)
-    assert code == 0, err
+    stdout, written = _design(F2_MACHINE, path, tmp_path / "out")
     assert "| drive | 45 |" in stdout and "| coast | 45 |" in stdout
-    _check_gear(load_pair(out / "machine_settings.toml"), truth)
+    _check_gear(written, truth)
 
 
 def _bad(tmp_path, rows):
