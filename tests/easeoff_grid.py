@@ -119,3 +119,54 @@ def cut_from_known(pair, side="coast"):
     truth, _ = generated_pinion_flank(true, pair.blank, n_u=30, n_v=40,
                                       pinion_face_width_mm=pair.pinion_face_width_mm)
     return seed, true, truth
+
+
+def member_pivot_length_mm(seed, blank):
+    """The blade arc length of ``seed``'s mean node on its member's sheet (pinion or
+    gear: the pivot of blade corrections, geometry.setting_fit.apply_corrections)."""
+    from gearcontact.geometry.member_envelope import mean_node_uv, member_cone, member_solver
+
+    cone = member_cone(seed.member, blank)
+    s = member_solver(seed, blank, cone)
+    u, v = mean_node_uv(seed.member, blank, cone)
+    return float(s.solve(u, v, s.initial_guess(u, v)).l_mm)
+
+
+def line_deviations_mm(nominal, truth, u, v):
+    """Distance (mm) along the normal of the flank ``nominal`` at its points ``(u, v)``
+    to the flank ``truth`` (same parameterization: two formate flanks, or two gear
+    sheets): Newton on ``truth(u', v') = p + t n`` in ``(u', v', t)`` from ``(u, v,
+    0)``, to steps below 1e-14."""
+    p = nominal.evaluate(u, v, second=False)
+    uu, vv, t = np.array(u, dtype=float), np.array(v, dtype=float), np.zeros(len(u))
+    for _ in range(20):
+        s = truth.evaluate(uu, vv, second=False)
+        jac = np.stack([s.r_u, s.r_v, -p.n], axis=-1)
+        d = np.linalg.solve(jac, (p.r + t[:, None] * p.n - s.r)[..., None])[..., 0]
+        uu, vv, t = uu + d[:, 0], vv + d[:, 1], t + d[:, 2]
+        if np.abs(d).max() < 1e-14:
+            break
+    return t
+
+
+def write_gear_measured_csv(path, pair, seed, true, side, *, rows=9, cols=11, n_u=60,
+                            n_v=75):
+    """The gear flank ``true`` cuts, measured on the nominal ``rows x cols`` CMM grid of
+    the flank ``seed`` cuts (docs/export.md "The measuring grid", ``member = gear``):
+    each deviation the distance along the nominal normal to the cut flank
+    (:func:`line_deviations_mm`; a formate gear: both exact cones of
+    geometry.generated.formate_gear_flank; a generated gear: both n_u x n_v sheets).
+    Returns ``(grid, deviation_um)``."""
+    from gearcontact.geometry.generated import gear_flank_of
+    from gearcontact.geometry.measuring_grid import measuring_grid
+
+    fw = pair.gear_face_width_mm
+    nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=fw, n_u=n_u, n_v=n_v)
+    truth = gear_flank_of(true, pair.blank, gear_face_width_mm=fw, n_u=n_u, n_v=n_v)
+    g = measuring_grid(nominal, member="gear", flank=side, rows=rows, cols=cols)
+    dev = 1e3 * line_deviations_mm(nominal, truth, g.u_mm, g.v_mm)
+    path.write_text("# a gear measured on its nominal grid\nmember,flank,row,col,L_mm,R_mm,"
+                    "deviation_um\n" + "".join(
+                        f"gear,{side},{i},{j},{float(L)!r},{float(R)!r},{float(d)!r}\n"
+                        for i, j, L, R, d in zip(g.row, g.col, g.L_mm, g.R_mm, dev)))
+    return g, dev

@@ -411,7 +411,10 @@ def test_design_machine_settings_cuts_a_measured_grid(capsys, tmp_path):
 
 @pytest.mark.parametrize("body, word", [
     ("member,flank,L_mm,R_mm,deviation_um\npinion,coast,30,5,nan\n", "finite"),
-    ("member,flank,L_mm,R_mm,deviation_um\ngear,coast,5,30,1\n", "member"),
+    ("member,flank,L_mm,R_mm,deviation_um\nwheel,coast,5,30,1\n", "member"),
+    # gear rows are the gear's correction (tests/cli/test_design_gear_rows.py): one
+    # point for five settings
+    ("member,flank,L_mm,R_mm,deviation_um\ngear,coast,5,30,1\n", "gear coast points = 1"),
     ("member,flank,L_mm,R_mm,deviation_um,temp_c\npinion,coast,30,5,1,20\n", "temp_c"),
     ("member,flank,L_mm,R_mm,deviation_um\npinion,coast,30,5,1\npinion,coast,30,5,2\n",
      "each (L, R) once"),

@@ -17,7 +17,7 @@ from easeoff_grid import write_points_csv
 
 from gearcontact.cli import main
 from gearcontact.geometry.pair import load_pair
-from gearcontact.geometry.setting_fit import blade_relief, with_relief
+from gearcontact.geometry.relief_setup import blade_relief, with_relief
 
 ROOT = Path(__file__).resolve().parents[2]
 TOPREM = ROOT / "tests" / "data" / "toprem" / "iso23509_f2_toprem.toml"

@@ -29,9 +29,9 @@ from gearcontact.geometry.kinked import machine_flank
 from gearcontact.geometry.measuring_grid import measured_points, measuring_grid, read_target_flank
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.point_fit import PointProblem, fit_points
+from gearcontact.geometry.relief_setup import blade_relief, relieved_setup
 from gearcontact.geometry.setting_fit import (DEFAULT_PARAMETERS, apply_corrections,
-                                              blade_relief, fit_pinion_setup,
-                                              flank_deviation_um, relieved_setup)
+                                              fit_pinion_setup, flank_deviation_um)
 from gearcontact.validation import InputRangeError
 
 TOPREM = Path(__file__).resolve().parents[1] / "data" / "toprem" / "iso23509_f2_toprem.toml"
@@ -157,7 +157,8 @@ def test_toprem_and_flankrem_three_pieces_recovered_on_the_fit_grid():
     # kinked sheet), the flank on each of its three pieces within 0.01 um (measured
     # 2.1e-4 / 5.9e-5 / 1.6e-5 um, toprem / main / flankrem), both kink lines within
     # 2.5e-4 mm (measured 1.3e-7 / 1.6e-8 mm)
-    from gearcontact.geometry.setting_fit import FitProblem, _fit_grid, with_relief
+    from gearcontact.geometry.relief_setup import with_relief
+    from gearcontact.geometry.setting_fit import FitProblem, _fit_grid
 
     pair = load_pair(TOPREM)
     own = _pinion(pair, "drive")

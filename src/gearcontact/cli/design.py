@@ -184,7 +184,9 @@ def check(args) -> None:
     _check_relieved_blades(args, pair)
     if args.machine_settings and pair.machine:
         # the settings are those of the blank (the pair's own tables are replaced): its
-        # default gear, formate or generated, decides the gear's settings
+        # default gear, formate or generated, decides the gear's settings; measured
+        # gear rows are corrected from the pair's own gear (the gear they measure)
+        args.machine_pair = pair
         pair = args.gear_pair = dataclasses.replace(pair, machine=())
     args.blank_check = checked_blank(pair)     # typed settings against the blank tables
     if args.synthesize_easeoff and pair.easeoff_tables:
@@ -230,13 +232,13 @@ def _check_relieved_blades(args, pair) -> None:
     """The Toprem / Flankrem of a pair's blades, before any flank is built: kept by
     ``--machine-settings`` (``args.reliefs``: the standard settings and the settings
     fit keep each relief as given on its blade,
-    :func:`~gearcontact.geometry.setting_fit.relieved_setup`),
+    :func:`~gearcontact.geometry.relief_setup.relieved_setup`),
     refused where the kink would be dropped or smoothed: ``--machine-settings
     --local-synthesis`` (the synthesized settings are solved for smooth blades) and
     ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
     :func:`~gearcontact.geometry.flank.with_easeoff`, is resampled across the kink)."""
     from ..geometry.machine import relieved_blade_keys
-    from ..geometry.setting_fit import blade_reliefs
+    from ..geometry.relief_setup import blade_reliefs
 
     args.reliefs = blade_reliefs(pair.machine)
     option = ("--machine-settings --local-synthesis" if args.local_synthesis else
@@ -288,16 +290,24 @@ def _check_options(args, pair) -> None:
         if not args.machine_settings:
             raise InputRangeError("--target-flank", args.target_flank, "given only with "
                                   "--machine-settings (without it the option has no effect)")
-        from ..geometry.measuring_grid import read_target_flank
+        from ..geometry.measuring_grid import read_member_targets
         from ..geometry.point_fit import check_point_count
 
         try:
-            args.easeoff_grid = read_target_flank(args.target_flank, pair=pair)
+            args.easeoff_grid, args.gear_targets = read_member_targets(args.target_flank,
+                                                                       pair=pair)
         except InputRangeError as exc:
             if exc.field != "target flank":     # a field inside the file: named as it is
                 raise
             raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
         check_point_count(args.easeoff_grid, where=str(args.target_flank))
+        # the gear's points against its fewest settings before any flank is built (a
+        # formate gear's subset; a pair's own gear tables tell its method exactly)
+        from ..geometry.setting_fit import FORMATE_GEAR_PARAMETERS, default_parameters
+
+        own = [s for s in pair.machine if s.member == "gear"]
+        check_point_count(args.gear_targets, default_parameters(own[0]) if own else
+                          FORMATE_GEAR_PARAMETERS, where=str(args.target_flank), member="gear")
     fitted = has_easeoff(pair) or args.target_flank is not None
     if args.fit is not None and not (args.machine_settings and fitted):
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
@@ -507,16 +517,38 @@ def _local_synthesis(args, pair) -> int:
 
 def _easeoff_settings(args, pair) -> int:
     from ..geometry.easeoff_settings import easeoff_machine_pair
-    from ..report.design import easeoff_settings_toml, write_easeoff_settings
+    from ..geometry.gear_correction import corrected_pair, gear_correction, gear_seeds
+    from ..report.design import (easeoff_settings_toml, gear_correction_toml,
+                                 write_easeoff_settings, write_gear_points,
+                                 write_machine_settings_toml)
 
+    where = str(args.target_flank or "target flank")
+    gear = None
+    own = getattr(args, "machine_pair", None)     # the pair as read, with its tables
+    if getattr(args, "gear_targets", None):       # measured gear rows: the gear corrected
+        generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+        gear = gear_correction(pair, args.gear_targets, objective=args.fit or "rms",
+                               seeds=gear_seeds(own or pair, generation), where=where)
+        if own is not None and not args.easeoff_grid:
+            # a pair cut from machine settings, gear rows only: its pinion kept
+            text = gear_correction_toml(corrected_pair(own, gear), gear)
+            print(text)
+            print(gear.table())
+            if args.out is not None:
+                write_gear_points(gear, args.out)
+                print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+            return 0
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
-                               objective=args.fit or "rms",
-                               where=str(args.target_flank or "target flank"),
+                               objective=args.fit or "rms", where=where,
                                reliefs=getattr(args, "reliefs", None))
-    print(easeoff_settings_toml(fit))
+    if gear is not None:
+        fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
+    print(easeoff_settings_toml(fit, gear=gear))
     print(fit.table())
+    if gear is not None:
+        print(gear.table())
     if args.out is not None:
-        print(f"-> {final_path(args, write_easeoff_settings(fit, args.out))}")
+        print(f"-> {final_path(args, write_easeoff_settings(fit, args.out, gear=gear))}")
     return 0
 
 

@@ -46,7 +46,7 @@ from .formate import SIDES
 from .generated import EnvelopeSolver
 from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings, MachineSetup,
                       blade_profile, blade_through_point, mirror_setup)
-from .setting_fit import relieved_setup
+from .relief_setup import relieved_setup
 
 __all__ = ["complementary_pinion_setups", "crown_pinion_setups", "crown_profile",
            "crowning_corrections",
@@ -239,9 +239,9 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
         gear undercuts its pinion); the pinion is crowned from the settings conjugate
         to that gear (:func:`member_setups`).
     reliefs : dict, optional
-        ``{(member, side): relief}`` (:func:`~.setting_fit.blade_reliefs`): the Toprem /
+        ``{(member, side): relief}`` (:func:`~.relief_setup.blade_reliefs`): the Toprem /
         Flankrem kept on those blades as given, a pinion's checked to leave its mean
-        point on the main profile (:func:`~.setting_fit.relieved_setup`); the settings
+        point on the main profile (:func:`~.relief_setup.relieved_setup`); the settings
         are those of the smooth blades (the kink lies off the mean point).
 
     Returns

@@ -5,7 +5,7 @@ The gear keeps the flanks of the pair's default; each pinion flank's settings ar
 fitted to its target by :mod:`.setting_fit` (a target flank: the pair's ease-off, or a
 measured grid) or :mod:`.point_fit` (scattered measured points), and the residual is
 measured over the flank (or at the points). Blades with a Toprem / Flankrem keep their
-relief (a fixed blade property, :func:`~.setting_fit.relieved_setup`): the fitted
+relief (a fixed blade property, :func:`~.relief_setup.relieved_setup`): the fitted
 pinion flank is then a :class:`~.kinked.KinkedFlank`, its residual measured over all
 its pieces, its kink lines reported (:class:`KinkPosition`), and a measured grid of
 such a flank is fitted at its points (no spline across the kink).
@@ -28,10 +28,11 @@ from .formate import SIDES
 from .generated import generated_pinion_box
 from .kinked import KinkedFlank, machine_flank
 from .machine import MEMBERS, mirror_setup
-from .measuring_grid import MeasuredPoints, target_grids
+from .measuring_grid import RESIDUAL_COLUMNS, MeasuredPoints, residual_rows, target_grids
 from .point_fit import check_point_count, point_deviation_um, point_problem
+from .relief_setup import relieved_setup
 from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
-                          fit_pinion_setup, flank_deviation_um, relieved_setup, solve_fit)
+                          fit_pinion_setup, flank_deviation_um, solve_fit)
 
 __all__ = ["EaseOffSettings", "KinkPosition", "SideResidual", "easeoff_machine_pair"]
 
@@ -192,13 +193,9 @@ class EaseOffSettings:
         sides = [r for r in self.sides.values() if r.points is not None]
         if not sides:
             return None
-        rows = ["member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"]
+        rows = [RESIDUAL_COLUMNS]
         for r in sides:
-            p = r.points
-            rows += [f"pinion,{r.side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
-                     f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
-                     zip(p.line, p.L_mm, p.R_mm, p.deviation_um, r.u_mm, r.v_mm,
-                         r.residual_um)]
+            rows += residual_rows(r.points, r.residual_um)
         return "\n".join(rows) + "\n"
 
 
@@ -295,9 +292,9 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     where : str
         Names the measured file in messages.
     reliefs : dict, optional
-        ``{(member, side): relief}`` (:func:`~.setting_fit.blade_reliefs` of the
+        ``{(member, side): relief}`` (:func:`~.relief_setup.blade_reliefs` of the
         set-ups the pair was cut with): the Toprem / Flankrem kept on those blades as
-        given (:func:`~.setting_fit.relieved_setup`; not fitted). A relieved pinion
+        given (:func:`~.relief_setup.relieved_setup`; not fitted). A relieved pinion
         flank is fitted as the deepest of its pieces (:mod:`.setting_fit`), a complete
         measured grid of it at its points (:func:`~.measuring_grid.target_grids`), and
         its residual and kink lines are reported over all its pieces.

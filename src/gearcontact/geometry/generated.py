@@ -50,9 +50,9 @@ from .machine import MachineKinematics, MachineSetup, blade_point, edge_round
 from .sheet import GearCone, GearSheet, RadialSheet
 
 __all__ = ["EnvelopeSolution", "EnvelopeSolver", "central_system", "damped_newton",
-           "formate_gear_flank", "gear_flank_of", "generated_gear_box", "generated_gear_flank",
-           "generated_pinion_box", "generated_pinion_flank", "mean_contact_guess",
-           "solve_node_grid", "tip_setup", "work_to_body"]
+           "formate_gear_flank", "gear_cone", "gear_flank_of", "generated_gear_box",
+           "generated_gear_flank", "generated_pinion_box", "generated_pinion_flank",
+           "mean_contact_guess", "solve_node_grid", "tip_setup", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
 _MAX_ITER = 40
@@ -384,7 +384,7 @@ def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_w
                                                gear_face_width_mm=gear_face_width_mm)
     else:
         _check_kind(setup, "inside" if setup.side == "drive" else "outside")
-        solver, mean = _solver_at_mean(setup, blank, _gear_cone(blank))
+        solver, mean = _solver_at_mean(setup, blank, gear_cone(blank))
     if callable(node_box):
         node_box = node_box(solver, box, mean)
     return _sheet_of(solver, box, mean, setup, n_u, n_v, GearSheet, node_box)
@@ -396,7 +396,7 @@ def generated_gear_box(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
     :func:`generated_pinion_box`)."""
     _check_kind(setup, "inside" if setup.side == "drive" else "outside")
     setup = tip_setup(setup)
-    cone = _gear_cone(blank)
+    cone = gear_cone(blank)
     half = 0.5 * gear_face_width_mm
     nominal = FlankBoundary(u_root=0.0, u_tip=blank.dedendum_gear_mm + blank.addendum_gear_mm,
                             v_toe=-half, v_heel=half)
@@ -405,7 +405,9 @@ def generated_gear_box(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
     return solver, _active_box(solver, nominal, u_m, v_m, mean, _edge_length_mm(setup)), mean
 
 
-def _gear_cone(blank: BlankDesign) -> GearCone:
+def gear_cone(blank: BlankDesign) -> GearCone:
+    """The :class:`~.sheet.GearCone` of the blank's gear flanks (pitch cone, mean
+    section, the mean point's azimuth)."""
     d2 = math.radians(blank.pitch_angle_gear_deg)
     p = blank.pitch_point_mm
     return GearCone(apex_z_mm=blank.gear_apex_z_mm, sin_delta=math.sin(d2),

@@ -51,7 +51,8 @@ from ..validation import InputRangeError, read_text_file
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
            "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
            "read_measured_grid", "is_measured_header", "is_complete_grid",
-           "measured_easeoff_grid", "measured_points", "check_on_blank", "read_target_flank",
+           "measured_easeoff_grid", "measured_points", "check_on_blank", "grid_values",
+           "read_member_targets", "read_target_flank", "residual_rows", "RESIDUAL_COLUMNS",
            "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
@@ -310,17 +311,13 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     u, v = uv if uv is not None else flank_parameters_at(
         nominal, member="pinion", L_mm=measured.L_mm, R_mm=measured.R_mm, where=where,
         lines=measured.line)
-    iu, iv = _grid_lines(u), _grid_lines(v)
-    nu, nv = iu.max() + 1, iv.max() + 1
     if not is_complete_grid(u, v):
+        nu, nv = _grid_lines(u).max() + 1, _grid_lines(v).max() + 1
         raise InputRangeError(f"{where}: pinion {measured.flank} points",
                               f"{len(u)} points on {nu} lines of constant u x {nv} of v",
                               "a complete grid of at least 4 x 4 (rows at constant height "
                               "over the root cone: the nominal grid of export flanks)")
-    dev = np.empty((nu, nv))
-    dev[iu, iv] = measured.deviation_um
-    um = np.array([u[iu == i].mean() for i in range(nu)])
-    vm = np.array([v[iv == j].mean() for j in range(nv)])
+    um, vm, dev = grid_values(u, v, measured.deviation_um)
     U, V = np.meshgrid(um, vm, indexing="ij")
     s = conjugate.evaluate(U, V)
     e_mm = easeoff.relief_mm(U, V)
@@ -328,6 +325,19 @@ def measured_easeoff_grid(measured: MeasuredFlank, nominal, conjugate, easeoff, 
     # the deviation field over the nominal (u, v): the bicubic of GridEaseOff
     d_um = 1e3 * GridEaseOff(u_mm=um, v_mm=vm, relief_um=dev).relief_mm(u_img, v_img)
     return GridEaseOff(u_mm=um, v_mm=vm, relief_um=1e3 * e_mm - d_um)
+
+
+def grid_values(u, v, values) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(u_lines, v_lines, table)`` of values at the nodes ``(u, v)`` of a complete
+    grid (:func:`is_complete_grid`): the increasing grid lines (each the mean of its
+    nodes' parameter) and the values on them, shape (n_u, n_v)."""
+    u, v = np.asarray(u), np.asarray(v)
+    iu, iv = _grid_lines(u), _grid_lines(v)
+    nu, nv = iu.max() + 1, iv.max() + 1
+    table = np.empty((nu, nv))
+    table[iu, iv] = values
+    return (np.array([u[iu == i].mean() for i in range(nu)]),
+            np.array([v[iv == j].mean() for j in range(nv)]), table)
 
 
 def is_complete_grid(u, v) -> bool:
@@ -341,7 +351,7 @@ def is_complete_grid(u, v) -> bool:
 
 @dataclass(frozen=True)
 class MeasuredPoints:
-    """Measured points of one pinion flank on its sheet: the target of the point fit
+    """Measured points of one flank on its member's sheet: the target of the point fit
     (:mod:`.point_fit`). Arrays over the points, file order.
 
     Attributes
@@ -353,13 +363,17 @@ class MeasuredPoints:
         As read (:class:`MeasuredFlank`).
     u_mm, v_mm, psi_rad : ndarray
         Sheet parameters and angular coordinate of the measured point: the nominal point
-        at (L, R) moved by the deviation along its normal (pinion body frame,
-        :class:`~.sheet.PinionCone`).
+        at (L, R) moved by the deviation along its normal (body frame; pinion
+        :class:`~.sheet.PinionCone`, gear :class:`~.sheet.GearCone`).
     lever_um : ndarray
         ``1e3 R (e_psi . n)`` there with the nominal normal n, um per rad: a flank
         turned by ``dpsi`` about the axis moves ``lever_um * dpsi`` along n.
     box : FlankBoundary
-        The nominal flank's active box (the points lie on it, 1 um slack).
+        Pinion: the nominal flank's active box (the points lie on it, 1 um slack);
+        gear: the points' extent on the gear sheet (the node box of the fit's
+        continuation grid).
+    member : str
+        ``"pinion"`` or ``"gear"``.
     """
 
     side: str
@@ -372,19 +386,50 @@ class MeasuredPoints:
     psi_rad: np.ndarray
     lever_um: np.ndarray
     box: object
+    member: str = "pinion"
 
 
-def measured_points(measured: MeasuredFlank, nominal, *, where: str, uv=None
+#: Columns of the residual at measured points (:func:`residual_rows`).
+RESIDUAL_COLUMNS = "member,flank,line,L_mm,R_mm,deviation_um,u_mm,v_mm,residual_um"
+
+
+def residual_rows(points: MeasuredPoints, residual_um) -> list[str]:
+    """CSV rows (:data:`RESIDUAL_COLUMNS`) of the residual at each measured point: the
+    file's member, flank, line, L, R and deviation, the point's sheet parameters and
+    ``residual_um`` (the cut flank minus the measured point along the nominal normal:
+    positive = material left), floats by ``repr``."""
+    p = points
+    return [f"{p.member},{p.side},{int(k)},{float(L)!r},{float(R)!r},{float(d)!r},"
+            f"{float(u)!r},{float(v)!r},{float(e)!r}" for k, L, R, d, u, v, e in
+            zip(p.line, p.L_mm, p.R_mm, p.deviation_um, p.u_mm, p.v_mm, residual_um)]
+
+
+def measured_points(measured: MeasuredFlank, nominal, *, where: str, uv=None, cone=None
                     ) -> MeasuredPoints:
-    """The measured points of a pinion flank as points in space: each nominal point at
-    its (L, R) (:func:`flank_parameters_at`; ``uv`` its parameters if known) moved by
-    the deviation along the nominal normal (the point the probe touched), located on
-    the pinion sheet of ``nominal`` (a :class:`~.sheet.RadialSheet`)."""
+    """The measured points of a flank as points in space: each nominal point at its
+    (L, R) (:func:`flank_parameters_at`; ``uv`` its parameters if known) moved by the
+    deviation along the nominal normal (the point the probe touched), located on the
+    pinion sheet of ``nominal`` (a :class:`~.sheet.RadialSheet`), or for a gear flank
+    (``measured.member``; ``nominal`` any gear flank, formate or generated) on the
+    gear sheet ``cone`` (:class:`~.sheet.GearCone`: ``(u, v)`` from the point's height
+    and radius, ``psi`` its angle about the gear axis)."""
     u, v = uv if uv is not None else flank_parameters_at(
-        nominal, member="pinion", L_mm=measured.L_mm, R_mm=measured.R_mm, where=where,
-        lines=measured.line)
+        nominal, member=measured.member, L_mm=measured.L_mm, R_mm=measured.R_mm,
+        where=where, lines=measured.line)
     s = nominal.evaluate(u, v, second=False)
     q = s.r + 1e-3 * measured.deviation_um[:, None] * s.n
+    if measured.member == "gear":
+        from .formate import FlankBoundary
+        from .member_envelope import angle_lever
+
+        uq, vq = cone.parameters(q[:, 2], np.hypot(q[:, 0], q[:, 1]))
+        psi, lever = angle_lever("gear", q, s.n)
+        return MeasuredPoints(side=measured.flank, line=measured.line, L_mm=measured.L_mm,
+                              R_mm=measured.R_mm, deviation_um=measured.deviation_um,
+                              u_mm=uq, v_mm=vq, psi_rad=psi, lever_um=lever,
+                              box=FlankBoundary(float(uq.min()), float(uq.max()),
+                                                float(vq.min()), float(vq.max())),
+                              member="gear")
     uq, vq, psi = nominal.locate(q)
     rad = np.hypot(q[:, 1], q[:, 2])
     lever = 1e3 * rad * (-np.sin(psi) * s.n[:, 1] + np.cos(psi) * s.n[:, 2])
@@ -445,6 +490,33 @@ def read_target_flank(path, *, pair=None) -> dict:
     if pair is not None:
         check_on_blank(grids, pair, where=str(path))
     return grids
+
+
+def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
+    """A ``--target-flank`` file whose rows may name either member: ``(pinion, gear)``.
+
+    ``pinion`` is :func:`read_target_flank`'s ``{side: grid}`` of the pinion rows (a
+    (u, v) ease-off grid is the pinion's), ``gear`` the ``{side: MeasuredFlank}`` of
+    the gear rows of a measured file (:func:`read_measured_grid` with both members:
+    the gear's setting correction, :mod:`.gear_correction`). With ``pair``, measured
+    pinion points are checked against its pinion blank (:func:`check_on_blank`).
+
+    Raises
+    ------
+    InputRangeError
+        As :func:`read_target_flank` (an unknown member is named with the two allowed).
+    """
+    from .easeoff import read_easeoff_grid
+
+    text = read_text_file(path, field="target flank", what="a CSV deviation grid")
+    if not is_measured_header(text):
+        return read_easeoff_grid(path), {}
+    found = read_measured_grid(path)
+    pinion = {side: m for (member, side), m in found.items() if member == "pinion"}
+    gear = {side: m for (member, side), m in found.items() if member == "gear"}
+    if pair is not None:
+        check_on_blank(pinion, pair, where=str(path))
+    return pinion, gear
 
 
 def target_grids(grids: dict, pair, flanks, *, where: str = "target flank",

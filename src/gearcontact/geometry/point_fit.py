@@ -1,10 +1,11 @@
-"""Machine settings fitted at scattered measured points of a pinion flank.
+"""Machine settings fitted at scattered measured points of a flank (pinion or gear).
 
 A measuring room's output is a set of points, not a grid: missing points, irregular
 positions, a few hundred of them (docs/export.md "The measuring grid"). Each measured
 point is the nominal point at its (L, R) moved by its deviation along the nominal
-normal (:func:`~.measuring_grid.measured_points`), located on the pinion sheet at
-``(u_k, v_k)`` with angular coordinate ``psi_k``. The settings are fitted at those
+normal (:func:`~.measuring_grid.measured_points`), located on its member's sheet at
+``(u_k, v_k)`` with angular coordinate ``psi_k`` (a gear's points:
+:mod:`.gear_correction`). The settings are fitted at those
 points, not at an interpolated flank:
 
     min_x  sum_k d_k(x)^2,   d_k = lever_k (psi_gen(u_k, v_k; x) - psi_k)
@@ -80,14 +81,14 @@ class PointProblem(FitProblem):
 
 
 def check_point_count(grids: dict, parameters=DEFAULT_PARAMETERS, *,
-                      where: str = "target flank") -> None:
+                      where: str = "target flank", member: str = "pinion") -> None:
     """Refuse, before any flank is built, a measured flank (:class:`MeasuredFlank` or
-    :class:`MeasuredPoints` values of ``grids``) with fewer points than fitted
-    settings."""
+    :class:`MeasuredPoints` values of ``grids``, flanks of ``member``) with fewer
+    points than fitted settings."""
     names = tuple(parameters)
     for side, data in grids.items():
         if isinstance(data, (MeasuredFlank, MeasuredPoints)) and len(data.L_mm) < len(names):
-            raise InputRangeError(f"{where}: pinion {side} points", len(data.L_mm),
+            raise InputRangeError(f"{where}: {member} {side} points", len(data.L_mm),
                                   f"at least {len(names)}, one per fitted setting "
                                   f"({', '.join(names)})")
 
@@ -134,7 +135,7 @@ def point_problem(seed, blank, points: MeasuredPoints, *, parameters=DEFAULT_PAR
     started = time.perf_counter()
     prob = PointProblem(seed, blank, points, names)
     check_observable(prob.jacobian(np.zeros(len(names))), names,
-                     where=f"{where}: pinion {points.side}")
+                     where=f"{where}: {points.member} {points.side}")
     prob.setup_seconds = time.perf_counter() - started
     return prob
 

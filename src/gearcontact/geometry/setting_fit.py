@@ -1,20 +1,25 @@
-"""Machine settings from a target flank: the pinion settings that cut a given ease-off.
+"""Machine settings from a target flank: the settings of either member that cut it.
 
 The inverse of :mod:`.generated` ("machine-setting correction", issue item 4): given a
-target pinion flank (today's conjugate pinion with its ease-off, :mod:`.easeoff`, or
-any pinion :class:`~.sheet.RadialSheet`), find the corrections ``x`` of a chosen subset
-of one flank's machine and blade settings, from a seed set-up, whose generated flank
-reproduces the target:
+target flank (today's conjugate pinion with its ease-off, :mod:`.easeoff`, any pinion
+:class:`~.sheet.RadialSheet`, a gear :class:`~.sheet.GearSheet`, or measured points of
+either member, :mod:`.point_fit`), find the corrections ``x`` of a chosen subset of one
+flank's machine and blade settings, from a seed set-up, whose cut flank reproduces
+the target:
 
     min_x  sum_k d_k(x)^2,   d_k = R_k (psi_gen(u_k, v_k; x) - psi_t(u_k, v_k)) (e_psi . n_t)
 
 the normal deviation (um, generated minus target along the target's outward normal n_t:
 positive = material left, the opposite sign of an ease-off, :mod:`.easeoff`) at the
 nodes ``(u_k, v_k)`` of a coarse grid over the target's active box. Both flanks live on
-the same pinion sheet (axial position ``v``, radius ``R_f(v) + u``, :mod:`.sheet`), so
-the generated node solution (:class:`~.generated.EnvelopeSolver`, warm-started from the
-previous iterate) differs from the target only in its angular coordinate; to first
-order in the deviation ``d_k`` is the normal distance of the two surfaces.
+the same sheet of the seed's member (pinion: axial position ``v``, radius ``R_f(v) +
+u``; gear: pitch-cone coordinates, :mod:`.sheet`), so the cut node solution
+(:func:`~.member_envelope.member_solver`: the generated envelope, or a formate gear's
+blade surface at zero roll; warm-started from the previous iterate) differs from the
+target only in its angle ``psi`` about the member's axis; to first order in the
+deviation ``d_k`` is the normal distance of the two surfaces. One code path serves
+both members: only the sheet, the node solver and the default subset
+(:func:`default_parameters`, by member and cutting method) differ.
 ``scipy.optimize.least_squares`` (trust-region reflective) solves it with a
 forward-difference Jacobian in scaled parameters (:data:`PARAMETERS`); the residual
 over the full flank is then measured on a dense grid of the final generated sheet
@@ -33,24 +38,18 @@ which for a linear roll is a rigid turn of the generated flank about the work ax
 (``q -> q + d`` at roll ``psi + d`` gives ``phi -> phi + R_a d``): it sets the flank's
 angular position (tooth thickness) and belongs in every subset.
 
-The default subset :data:`DEFAULT_PARAMETERS` (docs/machine_settings.md sec. 6 has the
-sensitivity study): cradle angle, radial distance, ratio of roll, modified roll 2C and
-6D, blade angle, blade curvature and the blade's cubic profile term. To first order a
-generated flank moves in six well-separated shapes (a rigid turn and five
-ease-off-like terms: the column-normalized sensitivity matrix of 14 candidates without
-the higher-order blade terms has 6 singular values above 0.18, the 7th at 7.6e-3 on
-s0003); the first seven span them at a condition of ~10^3, the settings a summary sheet
-corrects first. They leave a fourth-order profile form that no machine setting cuts;
-the blade's cubic term (a curvature varying along the blade) does: on s0003 coast
-1.23 -> 0.56 um max at a condition of 741 -> 809 (the quartic term: 0.69 um at 2.0e3;
-both: 0.52 um at 2.0e3). Tilt, swivel, machine root, MCTB, sliding base, blank offset
-and the blade radius duplicate the first seven's directions: on s0003 the best subsets
-of 8 lower the linearized residual from 1.2 to 0.7 um at conditions of 6e3-6e4, and
-tilt, swivel or the blade radius added to the seven leave 1.09-1.26 um at conditions
-of 2e4-4e4.
+The default subsets (:func:`default_parameters`; the sensitivity studies that chose
+them are docs/machine_settings.md sec. 6): pinion :data:`DEFAULT_PARAMETERS` (cradle
+angle, radial distance, ratio of roll, modified roll 2C and 6D, blade angle, blade
+curvature and the blade's cubic profile term); formate gear
+:data:`FORMATE_GEAR_PARAMETERS` (the flank of a straight blade without tilt is a cone
+of revolution: five separable combinations of its settings); generated gear
+:data:`GENERATED_GEAR_PARAMETERS`. Settings that duplicate a subset's directions (on a
+formate gear the sliding base is the cutter radius exactly) are left out; a subset a
+flank measurement cannot separate is refused by :func:`~.point_fit.check_observable`.
 
 A relieved blade (Toprem / Flankrem, :mod:`.blade`) keeps its relief as given
-(:data:`RELIEF_KEYS`: a fixed blade property, never fitted): the corrections act on its
+(:data:`~.relief_setup.RELIEF_KEYS`: a fixed blade property, never fitted): the corrections act on its
 main profile, the pivot is the main profile's point that cuts the mean node (a relief
 reaching it is refused, naming its depth), and the generated flank at each node is the
 deepest of the blade's pieces, one envelope per blade segment (the smallest deviation,
@@ -81,17 +80,19 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..validation import InputRangeError, check_range
-from .blade import blade_segments
 from .blank import BlankDesign
-from .conjugate import UndercutError, nominal_pinion_box
+from .conjugate import UndercutError
 from .generated import EnvelopeSolver, solve_node_grid
 from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
+from .member_envelope import angle_lever, mean_node_uv, member_cone, member_solver
+from .relief_setup import blade_relief, check_pivot_on_main, piece_setups, with_relief
 from .minimax_fit import minimize_max_abs
 
-__all__ = ["DEFAULT_PARAMETERS", "FitProblem", "PARAMETERS", "RELIEF_KEYS", "SEED_PARAMETERS",
-           "SettingFit", "apply_corrections", "blade_relief", "blade_reliefs", "checked_options",
-           "conjugate_seed", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
-           "relieved_setup", "solve_fit", "with_relief"]
+__all__ = ["DEFAULT_PARAMETERS", "FORMATE_GEAR_PARAMETERS", "FitProblem",
+           "GENERATED_GEAR_PARAMETERS", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
+           "apply_corrections", "checked_options", "conjugate_seed", "default_parameters",
+           "fit_member_setup", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
+           "solve_fit"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
 #: setting, chosen so that it moves a 7/70 hypoid or a 14/39 spiral bevel pinion flank
@@ -123,6 +124,24 @@ DEFAULT_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
 #: The seed of a hypoid with a generated gear (:func:`conjugate_seed`): the default
 #: subset and the crown pinion's bias directions, blank offset and helical motion.
 SEED_PARAMETERS = DEFAULT_PARAMETERS + ("blank_offset_mm", "helical_motion_mm_per_rad")
+#: The default subset of a formate gear (docs/machine_settings.md sec. 6, "Gear flanks"):
+#: the cutter radius at the blade pivot, the blade angle, the machine root angle, the
+#: machine centre to back and the blank offset.
+FORMATE_GEAR_PARAMETERS = ("blade_radius_mm", "blade_angle_deg", "machine_root_angle_deg",
+                           "machine_centre_to_back_mm", "blank_offset_mm")
+#: The default subset of a generated gear: the cutter centre on the cradle (cradle
+#: angle, radial distance), the ratio of roll, the modified roll 2C, the blade angle,
+#: the cutter radius and the machine root angle (the formate subset's machine centre
+#: to back and blank offset added: not separable, docs/machine_settings.md sec. 6).
+GENERATED_GEAR_PARAMETERS = ("cradle_angle_deg", "radial_distance_mm", "ratio_of_roll",
+                             "modified_roll_2c_per_rad", "blade_angle_deg",
+                             "blade_radius_mm", "machine_root_angle_deg")
+#: Settings a formate gear's fit refuses: a roll or a helical motion would make it a
+#: generated gear, a curved blade profile is not modelled for a formate gear
+#: (:func:`~.generated.formate_gear_flank`).
+FORMATE_FIXED = ("ratio_of_roll", "modified_roll_2c_per_rad", "modified_roll_6d_per_rad2",
+                 "modified_roll_24e_per_rad3", "helical_motion_mm_per_rad",
+                 "blade_curvature_per_mm", "blade_cubic_per_mm2", "blade_quartic_per_mm3")
 #: Objectives of the fit (:func:`fit_pinion_setup`).
 OBJECTIVES = ("rms", "minimax")
 _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
@@ -130,10 +149,6 @@ _ROLL = {"modified_roll_2c_per_rad": 0, "modified_roll_6d_per_rad2": 1,
 _HELICAL = {"helical_motion_mm_per_rad": 0}
 _BLADE = ("blade_angle_deg", "blade_curvature_per_mm", "blade_radius_mm",
           "blade_cubic_per_mm2", "blade_quartic_per_mm3")
-#: The blade's relief keys (:class:`~.blade.BladeSettings`): fixed blade properties,
-#: carried through every correction, never fitted (module docstring).
-RELIEF_KEYS = ("toprem_angle_deg", "toprem_depth_mm", "flankrem_angle_deg",
-               "flankrem_depth_mm")
 _FD_STEP = 1e-3          # forward-difference step of the scaled variables
 #: Deviation (um) returned at every node for a trial step whose envelope does not reach
 #: the grid: the trust-region step is then rejected and shortened (a seed far from the
@@ -197,7 +212,7 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     units) added; blade parameters pivot about the blade point at arc length
     ``pivot_length_mm`` from the tip (module docstring). A relieved blade's main profile
     is corrected (``pivot_length_mm`` its own arc length) and its relief
-    (:data:`RELIEF_KEYS`) kept as given.
+    (:data:`~.relief_setup.RELIEF_KEYS`) kept as given.
 
     Raises
     ------
@@ -240,57 +255,10 @@ def apply_corrections(setup: MachineSetup, corrections: dict, *, pivot_length_mm
     return dataclasses.replace(setup, settings=st, blade=blade)
 
 
-def blade_relief(blade) -> dict:
-    """``{key: value}`` of :data:`RELIEF_KEYS` of a relieved blade (Toprem / Flankrem),
-    ``{}`` for a smooth one (a relief angle of 0 is no relief)."""
-    return {k: getattr(blade, k) for k in RELIEF_KEYS} if blade.relieved else {}
-
-
-def with_relief(setup: MachineSetup, relief: dict) -> MachineSetup:
-    """``setup`` with its blade's relief keys set to ``relief`` (:func:`blade_relief`;
-    the blade's checks run: a relief the new blade cannot carry names its key,
-    ``blade.<member>.<side>.<key>``)."""
-    return dataclasses.replace(setup, blade=dataclasses.replace(
-        setup.blade, where=f"blade.{setup.member}.{setup.side}", **relief))
-
-
-def blade_reliefs(setups) -> dict:
-    """``{(member, side): relief}`` (:func:`blade_relief`) of the relieved blades among
-    the set-ups ``setups`` (a pair's ``machine`` tables)."""
-    return {(s.member, s.side): blade_relief(s.blade) for s in setups if s.blade.relieved}
-
-
-def relieved_setup(setup: MachineSetup, relief: dict, blank: BlankDesign) -> MachineSetup:
-    """``setup`` with ``relief`` kept on its blade (:func:`with_relief`), a pinion's
-    checked to leave the blade point that cuts its mean point on the main profile (the
-    pivot of the setting fit; refused naming the relief depth)."""
-    if not relief:
-        return setup
-    out = with_relief(setup, relief)
-    if setup.member == "pinion" and out.blade.relieved:
-        main = with_relief(out, dict.fromkeys(relief, 0.0))
-        cone, _ = nominal_pinion_box(blank, 1.0)
-        u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
-        solver = EnvelopeSolver(main, blank, cone)
-        mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
-        _check_pivot_on_main(out.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
-    return out
-
-
-def _piece_setups(setup: MachineSetup) -> list:
-    """``[(name, set-up)]`` of the smooth pieces a (relieved) blade generates: one per
-    blade segment (:func:`~.blade.blade_segments`), ``[("main", setup)]`` for a smooth
-    blade (the set-up itself)."""
-    if not setup.blade.relieved:
-        return [("main", setup)]
-    return [(seg.name, dataclasses.replace(setup, blade=seg.blade))
-            for seg in blade_segments(setup.blade)]
-
-
 class FitProblem:
     """Residual and Jacobian of the fit on a coarse node grid (module docstring): the
     target's angle ``psi_t`` and lever ``R (e_psi . n_t)`` (um/rad) at nodes ``(U, V)``
-    of the pinion sheet (:mod:`.point_fit` places them at measured points)."""
+    of the seed member's sheet (:mod:`.point_fit` places them at measured points)."""
 
     def __init__(self, seed: MachineSetup, blank: BlankDesign, target, names, us, vs):
         solver, mean = self._start(seed, blank, names)
@@ -298,26 +266,23 @@ class FitProblem:
         self._grid = (us, vs)
         self.q = self._restart(solver, mean.q).q
         t = target.evaluate(self.U, self.V, second=False)
-        self.psi_t = np.arctan2(t.r[..., 2], t.r[..., 1])
-        rad = np.hypot(t.r[..., 1], t.r[..., 2])
-        e_psi = np.stack([np.zeros_like(rad), -np.sin(self.psi_t), np.cos(self.psi_t)], -1)
-        self.lever_um = 1e3 * rad * np.einsum("...i,...i->...", e_psi, t.n)
+        self.psi_t, self.lever_um = angle_lever(seed.member, t.r, t.n)
 
     def _start(self, seed: MachineSetup, blank: BlankDesign, names):
         """Set the parameters and the pivot: the seed's solver and mean node (a relieved
         blade's: its main profile's, checked to hold the mean node)."""
         self.seed, self.blank, self.names = seed, blank, tuple(names)
         self.scale = np.array([PARAMETERS[n][1] for n in self.names])
-        self.cone, _ = nominal_pinion_box(blank, 1.0)
+        self.cone = member_cone(seed.member, blank)
         self.evaluations = 0
         relief = blade_relief(seed.blade)
         main = with_relief(seed, dict.fromkeys(relief, 0.0)) if relief else seed
-        solver = EnvelopeSolver(main, blank, self.cone)
-        self.mean_uv = (float(self.cone.root_offset_mm), float(blank.pitch_point_mm[0]))
+        solver = member_solver(main, blank, self.cone)
+        self.mean_uv = mean_node_uv(seed.member, blank, self.cone)
         mean = self._mean(solver)
         self.pivot_length_mm = float(mean.l_mm)
         if relief:
-            _check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
+            check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
         self._piece_q = {}      # the other pieces' node solutions (relieved blades)
         return solver, mean
 
@@ -359,8 +324,8 @@ class FitProblem:
     def _nodes(self, x):
         """``[(piece name, node solutions, solver)]`` of the flank ``x`` generates."""
         out = []
-        for name, setup in _piece_setups(self.setup(x)):
-            solver = EnvelopeSolver(setup, self.blank, self.cone)
+        for name, setup in piece_setups(self.setup(x)):
+            solver = member_solver(setup, self.blank, self.cone)
             q = self.q if name == "main" else self._piece_q.get(name)
             s = None if q is None else solver.solve(self.U, self.V, q, strict=False)
             if s is None or not np.all(s.converged):   # a long step: from the mean node
@@ -379,24 +344,6 @@ class FitProblem:
         if getattr(self, "first", None) is None:     # at the seed: the reach prediction
             self.first = (f0, jac)
         return jac
-
-
-def _check_pivot_on_main(blade: BladeSettings, depth_mm: float) -> None:
-    """Refuse a relief whose kink lies beyond the depth ``depth_mm`` behind the tip plane
-    of the blade point that cuts the pinion's mean point: the blade corrections pivot
-    there, on the main profile (a Toprem reaching it would make the relief the
-    profile the blank's pressure angle is cut with)."""
-    for seg in blade_segments(blade):
-        lo, hi = seg.depth_mm
-        if seg.name == "main" and not lo < depth_mm < hi:
-            key = "toprem" if depth_mm <= lo else "flankrem"
-            raise InputRangeError(
-                f"{blade.where}.{key}_depth_mm", getattr(blade, f"{key}_depth_mm"),
-                f"{'<' if key == 'toprem' else '>'} {depth_mm:.4f} mm, the depth behind the "
-                "tip plane of the blade point that cuts the pinion's mean point (the "
-                "settings are solved there on the blade's main profile: the standard "
-                "settings' pressure angle, the setting fit's blade pivot; the relief is "
-                "kept as given, not fitted)")
 
 
 def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(PARAMETERS),
@@ -465,25 +412,50 @@ class SettingFit:
     predicted_max_um: float = math.nan
 
 
+def default_parameters(seed: MachineSetup) -> tuple:
+    """The default fitted subset of ``seed``'s member and cutting method: pinion
+    :data:`DEFAULT_PARAMETERS`, formate gear :data:`FORMATE_GEAR_PARAMETERS`, generated
+    gear :data:`GENERATED_GEAR_PARAMETERS`."""
+    if seed.member == "pinion":
+        return DEFAULT_PARAMETERS
+    return FORMATE_GEAR_PARAMETERS if seed.settings.formate else GENERATED_GEAR_PARAMETERS
+
+
 def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                      parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
                      tolerance_um: float = 1e-6, objective: str = "rms", box=None
                      ) -> SettingFit:
-    """Fit the ``parameters`` of the pinion set-up ``seed`` so that its generated flank
-    reproduces ``target`` on an n_u x n_v grid over the target's active box.
+    """:func:`fit_member_setup` of a pinion set-up (``seed.member`` other than
+    ``"pinion"`` refused: ``InputRangeError`` naming ``seed.member``)."""
+    if seed.member != "pinion":
+        raise InputRangeError("seed.member", seed.member, "'pinion' (fit_member_setup "
+                              "fits either member)")
+    return fit_member_setup(seed, blank, target, parameters=parameters, n_u=n_u, n_v=n_v,
+                            tolerance_um=tolerance_um, objective=objective, box=box)
+
+
+def fit_member_setup(seed: MachineSetup, blank: BlankDesign, target, *,
+                     parameters=None, n_u: int = 9, n_v: int = 11,
+                     tolerance_um: float = 1e-6, objective: str = "rms", box=None
+                     ) -> SettingFit:
+    """Fit the ``parameters`` of the set-up ``seed`` (pinion or gear) so that its cut
+    flank reproduces ``target`` on an n_u x n_v grid over the target's active box.
 
     Parameters
     ----------
     seed : MachineSetup
-        A pinion flank set-up that generates the target's box (the complementary
+        A flank set-up that cuts the target's box: a pinion's (the complementary
         settings of :func:`~.basic_settings.complementary_pinion_setups` or the
-        standard ones of :func:`~.basic_settings.standard_setups`).
+        standard ones of :func:`~.basic_settings.standard_setups`) or a gear's
+        (formate or generated, a smooth blade).
     blank : BlankDesign
     target : RadialSheet
-        The target pinion flank (with ``evaluate`` and ``boundary``), same side as
-        ``seed``, right-hand body frame.
-    parameters : tuple of str
-        Names from :data:`PARAMETERS` (default :data:`DEFAULT_PARAMETERS`).
+        The target flank on the sheet of ``seed``'s member (with ``evaluate`` and
+        ``boundary``: a pinion :class:`~.sheet.RadialSheet`, a gear
+        :class:`~.sheet.GearSheet`), same side as ``seed``, right-hand body frame.
+    parameters : tuple of str, optional
+        Names from :data:`PARAMETERS` (default :func:`default_parameters` of the
+        seed; a formate gear refuses :data:`FORMATE_FIXED`).
     n_u, n_v : int
         Fit grid (profile x lengthwise), each >= 3.
     tolerance_um : float
@@ -506,12 +478,18 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     Raises
     ------
     InputRangeError
-        A member other than the pinion, an unknown or repeated parameter, or a fit
-        grid smaller than 3 x 3.
+        An unknown or repeated parameter, a roll, helical-motion or blade-curvature
+        parameter for a formate gear, a relieved gear blade, a gear target that is not
+        a sheet on the blank's gear cone, or a fit grid smaller than 3 x 3.
     UndercutError
         The seed's envelope does not reach a node of the grid.
     """
     names = checked_options(seed, parameters, tolerance_um=tolerance_um, objective=objective)
+    if seed.member == "gear" and getattr(target, "cone", None) != member_cone("gear", blank):
+        raise InputRangeError("target", type(target).__name__, "a gear sheet on the blank's "
+                              "gear cone (GearSheet: its (u, v) are the fit's nodes; a "
+                              "formate FormateFlank is measured at points, "
+                              "geometry.gear_correction)")
     t0 = time.perf_counter()
     prob = FitProblem(seed, blank, target, names,
                       *_fit_grid(target.boundary if box is None else box, n_u, n_v))
@@ -520,13 +498,26 @@ def fit_pinion_setup(seed: MachineSetup, blank: BlankDesign, target, *,
 
 def checked_options(seed: MachineSetup, parameters, *, tolerance_um: float,
                     objective: str) -> tuple:
-    """The fitted ``parameters`` as a tuple, after the checks of
-    :func:`fit_pinion_setup` (seed member, names, tolerance, objective)."""
-    if seed.member != "pinion":
-        raise InputRangeError("seed.member", seed.member, "'pinion'")
-    names = tuple(parameters)
+    """The fitted ``parameters`` (``None``: :func:`default_parameters`) as a tuple,
+    after the checks of :func:`fit_member_setup` (seed, names, tolerance,
+    objective)."""
+    if seed.member not in ("pinion", "gear"):
+        raise InputRangeError("seed.member", seed.member, "'pinion' or 'gear'")
+    names = tuple(default_parameters(seed) if parameters is None else parameters)
     if not names or len(set(names)) != len(names) or any(n not in PARAMETERS for n in names):
         raise InputRangeError("parameters", names, f"distinct names from {tuple(PARAMETERS)}")
+    if seed.member == "gear":
+        where = f"machine.gear.{seed.side}"
+        if seed.blade.relieved:
+            raise InputRangeError(f"blade.gear.{seed.side}", "a relieved blade (Toprem / "
+                                  "Flankrem)", "a smooth gear blade for the gear's setting "
+                                  "fit (docs/machine_settings.md sec. 7)")
+        bad = [n for n in names if n in FORMATE_FIXED] if seed.settings.formate else []
+        if bad:
+            raise InputRangeError(f"parameters ({where}: a formate gear)", ", ".join(bad),
+                                  f"settings of a formate gear, not {FORMATE_FIXED} (a roll "
+                                  "or helical motion would make it generated; curved "
+                                  "formate blades are not modelled)")
     check_range("tolerance_um", tolerance_um, 0.0, 1.0, lo_open=True)
     if objective not in OBJECTIVES:
         raise InputRangeError("objective", objective, f"one of {OBJECTIVES}")

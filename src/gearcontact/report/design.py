@@ -118,10 +118,11 @@ def local_synthesis_toml(cut, done: dict) -> str:
     return pair_to_toml(cut, comments={"": "\n".join(lines)})
 
 
-def easeoff_settings_toml(fit) -> str:
+def easeoff_settings_toml(fit, *, gear=None) -> str:
     """The pair TOML of the settings fitted to a pair's ease-off
     (:class:`~gearcontact.geometry.easeoff_settings.EaseOffSettings`), its head comment the
-    residual per side."""
+    residual per side (and per corrected gear side, ``gear`` a
+    :class:`~gearcontact.geometry.gear_correction.GearCorrection`)."""
     pair = fit.pair
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
              "--machine-settings;", "signs: docs/machine_settings.md). Gear: the default "
@@ -139,16 +140,43 @@ def easeoff_settings_toml(fit) -> str:
             where = "at the points"
         lines.append(f"pinion {side} ({source}): ease-off max {r.easeoff_max_um:.2f} um, "
                      f"residual max {r.max_um:.3f} um, RMS {r.rms_um:.3f} um {where}")
+    if gear is not None:
+        lines += ["Gear sides measured (--target-flank): corrected from the nominal gear's "
+                  "settings."] + gear.comment_lines()
     return pair_to_toml(pair, comments={"": "\n".join(lines)})
 
 
-def write_easeoff_settings(fit, out) -> Path:
+def gear_correction_toml(pair, gear) -> str:
+    """The pair TOML of a pair cut from machine settings whose gear was corrected to a
+    measured gear flank (:class:`~gearcontact.geometry.gear_correction.GearCorrection`),
+    its pinion kept; the head comment the residual per corrected gear side."""
+    from ..geometry.pair import pair_to_toml
+
+    lines = [f"{pair.name}: its machine settings with the gear corrected to the measured "
+             "gear flank (gearcontact design", "--machine-settings --target-flank; signs: "
+             "docs/machine_settings.md); pinion: the pair's own."] + gear.comment_lines()
+    return pair_to_toml(pair, comments={"": "\n".join(lines)})
+
+
+def write_gear_points(gear, out) -> Path:
+    """Write the residual at each measured gear point,
+    ``machine_settings_gear_points.csv``
+    (:meth:`~gearcontact.geometry.gear_correction.GearCorrection.points_csv`), into
+    the directory ``out``; returns its path."""
+    path = Path(out) / "machine_settings_gear_points.csv"
+    path.write_text(gear.points_csv())
+    return path
+
+
+def write_easeoff_settings(fit, out, *, gear=None) -> Path:
     """Write ``machine_settings.toml`` (:func:`easeoff_settings_toml`), the residual
     map ``machine_settings_residual.png`` / ``.svg`` and, for a target of scattered
     measured points, the residual at each point ``machine_settings_points.csv``
     (:meth:`~gearcontact.geometry.easeoff_settings.EaseOffSettings.points_csv`) into
     the directory ``out`` (created if missing); returns the TOML's path."""
-    path = write_machine_settings_toml(easeoff_settings_toml(fit), out)
+    path = write_machine_settings_toml(easeoff_settings_toml(fit, gear=gear), out)
+    if gear is not None:
+        write_gear_points(gear, out)
     save_figure(plot_setting_residual(fit), Path(out) / "machine_settings_residual.png")
     points = fit.points_csv()
     if points is not None:

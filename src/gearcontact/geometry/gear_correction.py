@@ -1,0 +1,276 @@
+"""Gear machine-setting correction from a measured gear flank (issue 27 item 4, the gear
+rows of ``design --machine-settings --target-flank``).
+
+A measuring room measures the gear too: the deviations of its flank on the CMM grid
+(docs/export.md "The measuring grid"; rows ``member = gear``) against the nominal gear
+the pair's settings cut. Each measured gear flank is fitted at its points
+(:mod:`.point_fit`, the same least squares as the pinion's, :mod:`.setting_fit`; the
+cut flank solved at each point on the gear sheet, :mod:`.member_envelope`) from the
+settings of that nominal gear: the pair's ``[machine.gear.*]`` tables, or for a pair
+without them the gear of its default flanks (formate, or generated where the formate
+gear undercuts its pinion: :func:`~.basic_settings.member_setups`, the exact settings
+of that gear). The corrected set is chosen by the gear's cutting method
+(:func:`~.setting_fit.default_parameters`).
+
+Identifiability: a flank measurement cannot separate every setting. A formate gear
+with a straight blade and no tilt cuts a cone of revolution: of its settings the
+flank sees five independent combinations (docs/machine_settings.md sec. 6, "Gear
+flanks": the sliding base moves the cone along its axis exactly as the cutter radius
+does; the cradle angle, radial distance and blank offset translate it in the same
+three directions as the machine centre to back and the cutter radius). Before the fit
+the sensitivity at the points is checked (:func:`~.point_fit.check_observable`: the
+column-normalized Jacobian's smallest singular value relative to the largest at least
+:data:`~.point_fit.RANK_TOLERANCE`), so a degenerate subset is refused naming its
+settings, never fitted silently; the fit reports that singular value and the
+condition at the solution.
+
+The residual is reported at the measured points (the cut flank's normal distance from
+each measured point, exact envelope, no spline) and, for a complete grid (the CMM grid
+of ``export flanks``, :func:`~.measuring_grid.is_complete_grid`), over the flank as the
+pinion's is: the measured flank the bicubic spline through the grid's deviations over
+the nominal flank's (u, v) (:class:`~.easeoff.GridEaseOff`) on 60 x 75 points of the
+grid's box, the cut flank solved at each.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..validation import InputRangeError
+from .basic_settings import member_setups
+from .formate import SIDES
+from .generated import gear_cone, gear_flank_of
+from .machine import mirror_setup
+from .easeoff import GridEaseOff
+from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
+                             flank_parameters_at, grid_values, is_complete_grid,
+                             measured_points, residual_rows)
+from .point_fit import RANK_TOLERANCE, PointProblem, check_observable, check_point_count
+from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
+
+__all__ = ["GearCorrection", "GearSideFit", "corrected_pair", "gear_correction", "gear_seeds"]
+
+
+@dataclass(frozen=True)
+class GearSideFit:
+    """The fit of one gear flank at its measured points.
+
+    Attributes
+    ----------
+    side : str
+    fit : SettingFit
+        ``fit_max_um`` / ``fit_rms_um``: the residual at the points, um.
+    points : MeasuredPoints
+    deviation_max_um : float
+        Largest |measured deviation| from the nominal gear, um (what was corrected).
+    residual_um : ndarray
+        The cut flank's normal distance from each measured point (file order), um,
+        positive = material left.
+    relative_singular_value : float
+        Smallest singular value of the column-normalized sensitivity at the seed,
+        relative to the largest (:func:`~.point_fit.check_observable`).
+    flank_max_um, flank_rms_um : float
+        Largest |residual| and RMS over the flank (a complete grid, module docstring;
+        NaN for scattered points), um.
+    """
+
+    side: str
+    fit: SettingFit
+    points: MeasuredPoints
+    deviation_max_um: float
+    residual_um: np.ndarray
+    relative_singular_value: float
+    flank_max_um: float = math.nan
+    flank_rms_um: float = math.nan
+
+
+@dataclass(frozen=True)
+class GearCorrection:
+    """Corrected gear settings (:func:`gear_correction`).
+
+    Attributes
+    ----------
+    setups : dict
+        ``{side: MachineSetup}`` of both gear flanks: the fitted ones, the seed where
+        the side was not measured.
+    sides : dict
+        ``{side: GearSideFit}`` of the measured sides.
+    mirrored : bool
+        A left-hand pair: fitted on its right-hand twin (the corrections are the
+        twin's), ``setups`` mirrored back.
+    """
+
+    setups: dict
+    sides: dict
+    mirrored: bool = False
+
+    def comment_lines(self) -> list[str]:
+        """One line per measured side for a TOML head comment."""
+        return [f"gear {side} ({len(r.points.line)} measured points, --target-flank): "
+                f"deviation max {r.deviation_max_um:.2f} um, residual max "
+                f"{r.fit.fit_max_um:.3g} um, RMS {r.fit.fit_rms_um:.3g} um at the points"
+                + ("" if math.isnan(r.flank_max_um) else f", max {r.flank_max_um:.3g} um, "
+                   f"RMS {r.flank_rms_um:.3g} um over the flank")
+                for side, r in self.sides.items()]
+
+    def table(self) -> str:
+        """Residual, identifiability and corrections per measured side (Markdown)."""
+        rows = ["| gear side | points | deviation max (um) | residual max / RMS at the "
+                "points (um) | over the flank (um) | smallest rel. singular value | "
+                "condition | fit evaluations |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
+        for side, r in self.sides.items():
+            flank = ("-" if math.isnan(r.flank_max_um) else
+                     f"{r.flank_max_um:.3g} / {r.flank_rms_um:.3g}")
+            rows.append(f"| {side} | {len(r.points.line)} | {r.deviation_max_um:.2f} | "
+                        f"{r.fit.fit_max_um:.3g} / {r.fit.fit_rms_um:.3g} | {flank} | "
+                        f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
+                        f"{r.fit.evaluations} |")
+        rows += ["", "| gear correction | unit | " + " | ".join(self.sides) + " |",
+                 "|---|---|" + "---:|" * len(self.sides)]
+        names = list(dict.fromkeys(n for r in self.sides.values() for n in r.fit.corrections))
+        for n in names:
+            rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
+                f"{r.fit.corrections[n]:+.6g}" if n in r.fit.corrections else "-"
+                for r in self.sides.values()) + " |")
+        if self.mirrored:
+            rows += ["", "left-hand pair: the corrections of its right-hand twin; the "
+                     "written settings mirrored (cradle angle, swivel, blank offset, 2C, "
+                     "V_1 change sign)"]
+        return "\n".join(rows)
+
+    def points_csv(self) -> str:
+        """The residual at each measured gear point as CSV (the columns of
+        :meth:`~.easeoff_settings.EaseOffSettings.points_csv`)."""
+        rows = [RESIDUAL_COLUMNS]
+        for r in self.sides.values():
+            rows += residual_rows(r.points, r.residual_um)
+        return "\n".join(rows) + "\n"
+
+
+def gear_seeds(pair, gear_generation: str) -> dict:
+    """``{side: MachineSetup}`` of the nominal gear of ``pair``: its ``[machine.gear.*]``
+    tables, else the gear of its default flanks (``gear_generation`` ``"formate"`` or
+    ``"generated"``, :func:`~.basic_settings.member_setups`; a left-hand pair's: its
+    twin's mirrored, :func:`~.machine.mirror_setup`)."""
+    own = {s.side: s for s in pair.machine if s.member == "gear"}
+    if own:
+        return own
+    default = member_setups(pair, gear_generation)[0]     # the right-hand twin's
+    if pair.pinion_hand == "left":
+        return {side: mirror_setup(s) for side, s in default.items()}
+    return default
+
+
+def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
+                    objective: str = "rms", where: str = "target flank") -> GearCorrection:
+    """Correct the gear settings ``seeds`` to the measured gear flanks ``measured``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A bevel pair (its blank and gear face width); a left-hand pair is fitted on its
+        right-hand twin (the measured L, R and normal deviations of a mirror image are
+        the same, docs/export.md) and its settings mirrored back; the reported
+        corrections are the twin's.
+    measured : dict
+        ``{side: MeasuredFlank}`` of gear rows (:func:`~.measuring_grid.read_member_targets`):
+        deviations against the gear ``seeds`` cut.
+    seeds : dict
+        ``{side: MachineSetup}`` of the nominal gear (:func:`gear_seeds`), in the
+        pair's own hand.
+    parameters : tuple of str, optional
+        The fitted subset (default by the gear's cutting method,
+        :func:`~.setting_fit.default_parameters`).
+    objective : str
+        ``"rms"`` or ``"minimax"``.
+    where : str
+        Names the measured file in messages.
+
+    Returns
+    -------
+    GearCorrection
+        Its ``setups`` in the pair's own hand.
+
+    Raises
+    ------
+    InputRangeError
+        An unknown side, a measured point off the nominal gear flank,
+        fewer points than settings, settings the points cannot separate (named), a
+        formate gear asked for a roll or blade-curvature correction, a relieved gear
+        blade: all before any fit.
+    """
+    left = pair.pinion_hand == "left"
+    if left:        # fitted on the right-hand twin (L, R and deviations are the same)
+        pair = dataclasses.replace(pair, pinion_hand="right")
+        seeds = {side: mirror_setup(s) for side, s in seeds.items()}
+    for side, data in measured.items():
+        if side not in SIDES or not isinstance(data, MeasuredFlank) or data.member != "gear":
+            raise InputRangeError(f"{where}: gear rows", side, f"measured gear flanks of {SIDES}")
+    cone = gear_cone(pair.blank)
+    problems = {}
+    for side, data in measured.items():        # every side checked before any fit
+        seed = seeds[side]
+        names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
+        at = f"{where}: gear {side}"
+        check_point_count({side: data}, names, where=where, member="gear")
+        nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+        uv = flank_parameters_at(nominal, member="gear", L_mm=data.L_mm, R_mm=data.R_mm,
+                                 where=at, lines=data.line)
+        points = measured_points(data, nominal, where=at, uv=uv, cone=cone)
+        started = time.perf_counter()
+        prob = PointProblem(seed, pair.blank, points, names)
+        try:
+            rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
+        except InputRangeError as exc:     # on a CMM grid: the settings, not the points
+            raise InputRangeError(f"{at}: settings", exc.value, "settings a flank "
+                                  f"measurement separates (relative singular value >= "
+                                  f"{RANK_TOLERANCE:g}): drop one of those named (a formate "
+                                  "gear's sliding base is its cutter radius; "
+                                  "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
+                                  "points spread over the flank") from None
+        problems[side] = (prob, points, rel, time.perf_counter() - started, nominal, uv)
+    sides, setups = {}, dict(seeds)
+    for side, (prob, points, rel, took, nominal, uv) in problems.items():
+        fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
+                        started=time.perf_counter() - took)
+        x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
+        res = prob.deviation_um(x)
+        over = (_flank_residual_um(fit.setup, pair.blank, measured[side], nominal, uv, cone)
+                if is_complete_grid(*uv) else np.array([math.nan]))
+        sides[side] = GearSideFit(side=side, fit=fit, points=points,
+                                  deviation_max_um=float(np.abs(points.deviation_um).max()),
+                                  residual_um=res, relative_singular_value=rel,
+                                  flank_max_um=float(np.abs(over).max()),
+                                  flank_rms_um=float(np.sqrt(np.mean(over ** 2))))
+        setups[side] = fit.setup
+    if left:
+        setups = {side: mirror_setup(s) for side, s in setups.items()}
+    return GearCorrection(setups=setups, sides=sides, mirrored=left)
+
+
+def _flank_residual_um(setup, blank, data: MeasuredFlank, nominal, uv, cone, *,
+                       n_u: int = 60, n_v: int = 75) -> np.ndarray:
+    """The flank ``setup`` cuts against the measured flank over the grid's box (module
+    docstring): the deviations' bicubic over the nominal (u, v) on n_u x n_v points,
+    each moved off the nominal by it, the cut flank's normal distance there, um."""
+    u, v, table = grid_values(*uv, data.deviation_um)
+    dev = GridEaseOff(u_mm=u, v_mm=v, relief_um=table)
+    U, V = (a.ravel() for a in np.meshgrid(np.linspace(u[0], u[-1], n_u),
+                                           np.linspace(v[0], v[-1], n_v), indexing="ij"))
+    dense = dataclasses.replace(data, L_mm=np.zeros(len(U)), R_mm=np.zeros(len(U)),
+                                deviation_um=1e3 * dev.relief_mm(U, V),
+                                line=np.zeros(len(U), dtype=int))
+    points = measured_points(dense, nominal, where="", uv=(U, V), cone=cone)
+    return PointProblem(setup, blank, points, ("blade_angle_deg",)).deviation_um(np.zeros(1))
+
+
+def corrected_pair(pair, correction: GearCorrection):
+    """``pair`` (with machine tables) with its gear set-ups replaced by the corrected."""
+    return dataclasses.replace(pair, machine=tuple(
+        correction.setups[s.side] if s.member == "gear" else s for s in pair.machine))
+
