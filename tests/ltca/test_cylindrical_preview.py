@@ -386,6 +386,39 @@ def test_coupled_slice_law_in_the_preview(ev_lte, ev_preview):
 
 
 @pytest.mark.xfail(strict=True, reason=(
+    "differs, measured: the coupled law at the least gap is 0.993-1.0025 of the LCP's "
+    "line load at 300 N·m (0.990-1.015 at 64.5 N·m, 61 phases), above the declared "
+    "0.937-1.002 (the rigid foundation bias 0.952-0.987 +- 0.015): with bending the "
+    "foundation's own bias is not kept, the coupled law lands on the LCP within "
+    "+-1.5 %; docs/cylindrical.md sec. 8"))
+def test_coupled_line_load_at_the_least_gap_against_the_lcp(ev_lte, ev_preview):
+    """Where the preview's peak line load is defined -- the line's least gap -- the
+    coupled law's w_peak against the LCP with bending's line load at the same point
+    (interpolated between its rows; per unit face width times cos(beta_b)), on the
+    heaviest line of each phase. Tolerance declared from the cause before this
+    comparison: the slice law's own foundation bias there on rigid teeth (uncoupled law
+    / rigid LCP at the least gap, EV example: 0.973-0.987 at 300 N·m, 0.952-0.973 at
+    64.5 N·m), with 0.015 either side for the shells' G at the 16 slices' points:
+    0.937-1.002. The uncoupled law against the same LCP stays > 1.10 (measured
+    1.188-1.251 at 64.5 N·m: bending's spreading, which it lacks). (The LCP's largest
+    line load sits elsewhere at some phases, at the tip relief's start, an ease-off
+    kink the Winkler foundation does not sharpen: test below.)"""
+    from gearcontact.ltca.slice_law import line_easeoff_mm
+
+    p, cyc, lte = ev_lte
+    half = ev_preview[2]
+    pv, _ = _coupled_rows(ev_lte, ev_preview)
+    ease, slices = line_easeoff_mm(p, cyc, pv.stencils.valid)
+    cb = math.cos(math.radians(p.geometry.base_helix_angle_deg))
+    for k in range(pv.load_n.shape[1]):
+        j = int(np.argmax(pv.load_n[:, k]))
+        z0 = slices.z_mm[j, k][int(np.argmin(ease[j, k]))]
+        lcp = float(np.interp(z0, lte.z_mm, lte.line_load_n_per_mm[j, k])) * cb
+        assert half.face_load.peak_line_load_n_per_mm[j, k] / lcp > 1.10
+        assert 0.937 <= pv.face_load.peak_line_load_n_per_mm[j, k] / lcp <= 1.002
+
+
+@pytest.mark.xfail(strict=True, reason=(
     "differs, measured: at 300 N·m the coupled law loads the whole line (L_c 21.1-22.7 mm) "
     "where the LCP with bending leaves 19.6-20.2 mm loaded (the uncoupled law 18.9-19.4), "
     "and at the two-pair phase (0 = 4) its peak line load is 0.863 of the LCP's, the "
