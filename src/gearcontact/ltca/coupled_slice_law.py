@@ -107,23 +107,29 @@ def line_bending_compliance(teeth: ToothBending, slices: LineGaps, j: int, k: in
     return f @ f.T
 
 
-def _forces(x, n, length, we, b_max, e_prime):
-    """``(d_c, L_c, I, f)`` of the slice law on the ease-off ``x`` (n,), its slice forces
-    ``f = W shares / I`` (N)."""
-    h = np.zeros(2 * n)
-    h[:n] = x
-    d_c, l_c, area = loaded_line(h, 0, n, length, we, b_max, e_prime, 0, 0.0)
-    interference(h, 0, n, length / n, d_c, True, 0, 0.0)
-    return d_c, l_c, area, we * h[n:] / area
+def _forces(x, n, length, we, b_max, e_prime, nb, wb):
+    """``(d_c, L_c, I, f)`` of the slice law on the ease-off ``x`` (m = n + 2 nb: the
+    line's slices, then the edge's beyond its ends), its slice forces ``f = W shares /
+    I`` (N, m)."""
+    m = x.size
+    h = np.zeros(2 * m)
+    h[:m] = x
+    d_c, l_c, area = loaded_line(h, 0, n, length, we, b_max, e_prime, nb, wb)
+    interference(h, 0, n, length / n, d_c, True, nb, wb)
+    return d_c, l_c, area, we * h[m:] / area
 
 
 def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
-                 e_prime_mpa: float, compliance_mm_per_n=None) -> CoupledLine:
+                 e_prime_mpa: float, compliance_mm_per_n=None, *, edge_slices: int = 0,
+                 edge_width_mm: float = 0.0) -> CoupledLine:
     """The coupled slice law (module docstring) of one line: the ease-off ``ease_mm``
-    (n slices, mm) of a line of ``length_mm``, loaded by ``load_n`` (N) across the
-    curvature ``b_max_per_mm`` (1/mm) with the modulus ``e_prime_mpa``, its teeth's
-    bending compliance ``compliance_mm_per_n`` ((n, n) mm/N, symmetric; None or all 0:
-    the uncoupled slice law, bit for bit).
+    (m = n + 2 ``edge_slices`` slices, mm: the line's n, then the tip edge's beyond
+    either end, as :func:`.slice_law.interference` takes them on ``edge_width_mm``,
+    the edge slices' width times their foundation's relative stiffness) of a line of
+    ``length_mm``, loaded by ``load_n`` (N) across the curvature ``b_max_per_mm``
+    (1/mm) with the modulus ``e_prime_mpa``, its teeth's bending compliance
+    ``compliance_mm_per_n`` ((m, m) mm/N, symmetric; None or all 0: the uncoupled slice
+    law, bit for bit).
 
     Raises
     ------
@@ -133,23 +139,27 @@ def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
         Newton did not reach the tolerance in ``MAX_STEPS`` steps.
     """
     h = np.asarray(ease_mm, np.float64)
-    n = h.size
+    nb, wb = int(edge_slices), float(edge_width_mm)
+    n = h.size - 2 * nb
+    if n < 2 or nb < 0:
+        raise InputRangeError("edge_slices", edge_slices,
+                              f"0 .. {(h.size - 2) // 2} (ease_mm has {h.size} slices)")
     length, we = float(length_mm), float(load_n)
     b_max, e_prime = float(b_max_per_mm), float(e_prime_mpa)
     g = None if compliance_mm_per_n is None else np.asarray(compliance_mm_per_n, np.float64)
     if g is not None:
-        if g.shape != (n, n) or not np.isfinite(g).all() \
+        if g.shape != (h.size, h.size) or not np.isfinite(g).all() \
                 or np.abs(g - g.T).max() > 1e-9 * max(np.abs(g).max(), 1e-300):
             raise InputRangeError("compliance_mm_per_n", f"shape {g.shape}",
-                                  f"a finite symmetric ({n}, {n}) matrix, mm/N")
+                                  f"a finite symmetric ({h.size}, {h.size}) matrix, mm/N")
         if not g.any():
             g = None
-    d_c, l_c, area, f = _forces(h, n, length, we, b_max, e_prime)
+    d_c, l_c, area, f = _forces(h, n, length, we, b_max, e_prime, nb, wb)
     if g is None or we <= 0.0:
         return CoupledLine(d_c, l_c, area, h.copy(), f, 0)
 
     def residual(x):
-        d_c, l_c, area, f = _forces(x, n, length, we, b_max, e_prime)
+        d_c, l_c, area, f = _forces(x, n, length, we, b_max, e_prime, nb, wb)
         c = g @ f
         r = x - h - c
         return r - r.min(), (d_c, l_c, area, f), c
@@ -160,11 +170,11 @@ def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
         tol = TOL_REL * np.abs(c).max() + TOL_ABS
         if np.abs(r).max() <= tol:
             return CoupledLine(*sol[:3], x - x.min(), sol[3], step - 1)
-        jac = np.eye(n)
-        for i in range(n):
+        jac = np.eye(h.size)
+        for i in range(h.size):
             xp = x.copy()
             xp[i] += FD_STEP_MM
-            jac[:, i] -= g @ ((_forces(xp, n, length, we, b_max, e_prime)[3] - sol[3])
+            jac[:, i] -= g @ ((_forces(xp, n, length, we, b_max, e_prime, nb, wb)[3] - sol[3])
                               / FD_STEP_MM)
         delta = np.linalg.solve(jac, -r)
         t, best = 1.0, np.abs(r).max()
