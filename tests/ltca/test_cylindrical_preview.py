@@ -450,6 +450,8 @@ def test_torque_mismatch_refused():
     lte = cylindrical_loaded_te(p, 100.0, cycle=cyc, cells_along=8, cells_across=8)
     with pytest.raises(InputRangeError, match="loaded_te.torque_nm"):
         cylindrical_preview(p, 200.0, cycle=cyc, loaded_te=lte)
+    with pytest.raises(InputRangeError, match="bending"):
+        cylindrical_preview(p, 100.0, cycle=cyc, loaded_te=lte, bending="yes")
 
 
 def test_rtl_equals_golden_on_cylindrical_stencils(spur_pitch):

@@ -18,13 +18,15 @@ ease-off* ``x = h + G f(x)`` (over its least), with ``f(x)`` the slice law's for
 ``x`` (each slice's part of the interference, :func:`.slice_law.interference`'s
 shares, times ``W / I``: they sum to ``W``). The fixed point is solved by Newton on
 ``R(x) = x - h - G f(x)`` with the Jacobian ``1 - G df/dx`` (``df/dx`` by forward
-differences, ``n + 1`` slice-law solves per step; ``G`` symmetric positive
-semi-definite and ``-df/dx`` positive semi-definite make ``1 - G df/dx`` regular) and a
-halving line search on ``max |R|``. ``w >= 0`` holds by the foundation's ``(.)^+``: the
+differences, ``n + 1`` slice-law solves per step; ``-df/dx`` has ones in its null
+space, so ``(1 - G df/dx) 1 = 1``, and with ``G`` positive semi-definite the step was
+regular in every case met, 2-4 steps on the examples) and a halving line search on
+``max |R|``. The tip edge's slices beyond the line's ends (``edge_slices``, as the
+twin's law takes them) join the same fixed point with their rows and columns of ``G``. ``w >= 0`` holds by the foundation's ``(.)^+``: the
 active set is the slice law's own loaded length. The peak line load, the loaded and the
 equivalent length are then the slice law's on ``x`` (``w_peak = W d_c / I``,
 ``L_eq = I / d_c``). ``G = 0`` returns the uncoupled slice law itself (the same call, bit
-for bit).
+for bit), and so does ``G = c 1 1^T`` (bending in series: every slice deflects alike).
 
 References
 ----------

@@ -15,7 +15,9 @@ evaluates the same stencils (``reference``: fp64; ``golden``: the bit-exact fixe
 simulation).
 
 The line's load (``face_load``, :class:`LineFaceLoad`) is the twin's
-(:mod:`gearcontact.twin.line_law`): the slice law (:func:`.slice_law.loaded_line`) at
+(:mod:`gearcontact.twin.line_law`) on rigid teeth, and with the loaded TE's tooth
+bending the coupled slice law (:mod:`.coupled_slice_law`: the same law on the ease-off
+plus the shells' deflection under the slice loads, G at the line's slices): the slice law (:func:`.slice_law.loaded_line`) at
 ``W`` on the ease-off along the line (crowning, relief, misalignment, helix slope:
 :func:`.slice_law.line_easeoff_mm`, the gap at the line's 16 slices) across the fitted
 curvature ``B_max`` (the fp64 stage C of the stencil) gives the loaded length ``L_c``
@@ -280,6 +282,8 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
     loads, source = pair_loads_n(stencils, load, loaded_te)
     loaded = stencils.valid & (loads >= min_share * load) & (loads > 0.0)
     n_p, n_k = loaded.shape
+    if bending is not None and not isinstance(bending, bool):
+        raise InputRangeError("bending", bending, "True, False or None")
     if bending is None:
         bending = loaded_te is not None and loaded_te.bending
     teeth = cylindrical_bending(pair, facing=cycle.facing) if bending else None
