@@ -235,13 +235,21 @@ def test_crowned_misaligned_spur_against_the_lcp(incl_um):
 
 
 @pytest.fixture(scope="module")
-def ev_preview():
-    """EV helical pair (tip relief, crowning), 5 phases, 300 N·m: its cycle and the
-    preview on its loaded TE's shares."""
+def ev_lte():
+    """EV helical pair (tip relief, crowning), 5 phases, 300 N·m: its cycle and loaded
+    TE with tooth bending."""
     p = load_pair(EXAMPLES / "ev_reducer_helical_23x67.toml", kinds=("cylindrical",))
     cyc = cylindrical_mesh_cycle(p, phases=5)
-    lte = cylindrical_loaded_te(p, 300.0, cycle=cyc)
-    return p, cyc, cylindrical_preview(p, 300.0, cycle=cyc, loaded_te=lte, min_share=0.0)
+    return p, cyc, cylindrical_loaded_te(p, 300.0, cycle=cyc)
+
+
+@pytest.fixture(scope="module")
+def ev_preview(ev_lte):
+    """The preview on the loaded TE's shares with the slice law on the half-space
+    foundation alone (``bending=False``: the twin's law)."""
+    p, cyc, lte = ev_lte
+    return p, cyc, cylindrical_preview(p, 300.0, cycle=cyc, loaded_te=lte, min_share=0.0,
+                                       bending=False)
 
 
 def test_helical_preview_with_ltca_shares(ev_preview):
@@ -315,12 +323,135 @@ def test_helical_preview_on_the_loaded_length(ev_preview):
     assert long_pairs >= 5
 
 
+def _coupled_rows(ev_lte, ev_preview):
+    """Per phase, the heaviest line's ``(j, k, coupled / LCP, uncoupled / LCP peak line
+    load, coupled L_c, uncoupled L_c, the LCP's L_c)`` and the coupled preview."""
+    p, cyc, lte = ev_lte
+    half = ev_preview[2]
+    pv = cylindrical_preview(p, 300.0, cycle=cyc, loaded_te=lte, min_share=0.0,
+                             backends=("reference",))
+    cb = math.cos(math.radians(p.geometry.base_helix_angle_deg))
+    rows = []
+    for k in range(pv.load_n.shape[1]):
+        j = int(np.argmax(pv.load_n[:, k]))
+        lcp_peak = float(lte.line_load_n_per_mm[j, k].max()) * cb
+        rows.append((j, k, float(pv.face_load.peak_line_load_n_per_mm[j, k]) / lcp_peak,
+                     float(half.face_load.peak_line_load_n_per_mm[j, k]) / lcp_peak,
+                     float(pv.face_load.loaded_length_mm[j, k]),
+                     float(half.face_load.loaded_length_mm[j, k]),
+                     float(lte.loaded_length_mm[j, k])))
+    return pv, rows
+
+
+def test_coupled_slice_law_in_the_preview(ev_lte, ev_preview):
+    """With the loaded TE's tooth bending (the default of ``analyze``), the preview runs
+    the coupled slice law (ltca.coupled_slice_law: the half-space foundation plus the
+    shells' compliance G at the line's slices, the loaded TE's shells). On every loaded
+    pair: the coupled law's slice forces sum to the pair's LCP load (1e-12, rounding of
+    the shares; one lever per line, so the torque balance is the same sum) and are >= 0;
+    its L_eq is at least the uncoupled law's (G positive semi-definite: bending spreads,
+    never concentrates, on these convex ease-offs; 1e-12 for the rounding where a line's
+    G f is nearly uniform); the line chain's p_max is Johnson eq. 4.45 on the coupled
+    L_eq (1e-9, the rounding)."""
+    from gearcontact.ltca.coupled_slice_law import coupled_line, line_bending_compliance
+    from gearcontact.ltca.cylindrical_bending import cylindrical_bending
+    from gearcontact.ltca.slice_law import line_easeoff_mm
+    from gearcontact.materials import effective_modulus_mpa
+    from gearcontact.preview.fit.reference import fitted_coefficients, principal_curvatures
+
+    p, cyc, lte = ev_lte
+    half = ev_preview[2]
+    pv, _ = _coupled_rows(ev_lte, ev_preview)
+    assert lte.bending
+    e_star = resolve_e_star((p.pinion_material, p.gear_material))
+    ease, slices = line_easeoff_mm(p, cyc, pv.stencils.valid)
+    teeth = cylindrical_bending(p, facing=cyc.facing)
+    coeff = fitted_coefficients(pv.stencils.gaps_mm)
+    for j, k in zip(*np.nonzero(pv.loaded)):
+        w, length = float(pv.load_n[j, k]), float(pv.stencils.line_length_mm[j, k])
+        b_max = max(principal_curvatures(*map(float, coeff[j, k]))[:2])
+        line = coupled_line(ease[j, k], length, w, b_max,
+                            effective_modulus_mpa(p.pinion_material, p.gear_material),
+                            line_bending_compliance(teeth, slices, j, k))
+        assert line.slice_load_n.sum() == pytest.approx(w, rel=1e-12)
+        assert (line.slice_load_n >= 0.0).all()
+        assert line.loaded_length_mm == pv.face_load.loaded_length_mm[j, k]
+        l_eq = float(pv.face_load.equivalent_length_mm[j, k])
+        assert l_eq >= float(half.face_load.equivalent_length_mm[j, k]) * (1.0 - 1e-12)
+        r = pv.results["reference"][j][k]
+        if r is not None:
+            assert r.p_max_mpa == pytest.approx(math.sqrt(
+                w * e_star * 2.0 * max(r.A_minus_per_mm, r.B_minus_per_mm)
+                / (math.pi * l_eq)), rel=1e-9)
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "differs, measured: the coupled law at the least gap is 0.993-1.0025 of the LCP's "
+    "line load at 300 N·m (0.990-1.015 at 64.5 N·m, 61 phases), above the declared "
+    "0.937-1.002 (the rigid foundation bias 0.952-0.987 +- 0.015): with bending the "
+    "foundation's own bias is not kept, the coupled law lands on the LCP within "
+    "+-1.5 %; docs/cylindrical.md sec. 8"))
+def test_coupled_line_load_at_the_least_gap_against_the_lcp(ev_lte, ev_preview):
+    """Where the preview's peak line load is defined -- the line's least gap -- the
+    coupled law's w_peak against the LCP with bending's line load at the same point
+    (interpolated between its rows; per unit face width times cos(beta_b)), on the
+    heaviest line of each phase. Tolerance declared from the cause before this
+    comparison: the slice law's own foundation bias there on rigid teeth (uncoupled law
+    / rigid LCP at the least gap, EV example: 0.973-0.987 at 300 N·m, 0.952-0.973 at
+    64.5 N·m), with 0.015 either side for the shells' G at the 16 slices' points:
+    0.937-1.002. The uncoupled law against the same LCP stays > 1.10 (measured
+    1.188-1.251 at 64.5 N·m: bending's spreading, which it lacks). (The LCP's largest
+    line load sits elsewhere at some phases, at the tip relief's start, an ease-off
+    kink the Winkler foundation does not sharpen: test below.)"""
+    from gearcontact.ltca.slice_law import line_easeoff_mm
+
+    p, cyc, lte = ev_lte
+    half = ev_preview[2]
+    pv, _ = _coupled_rows(ev_lte, ev_preview)
+    ease, slices = line_easeoff_mm(p, cyc, pv.stencils.valid)
+    cb = math.cos(math.radians(p.geometry.base_helix_angle_deg))
+    for k in range(pv.load_n.shape[1]):
+        j = int(np.argmax(pv.load_n[:, k]))
+        z0 = slices.z_mm[j, k][int(np.argmin(ease[j, k]))]
+        lcp = float(np.interp(z0, lte.z_mm, lte.line_load_n_per_mm[j, k])) * cb
+        assert half.face_load.peak_line_load_n_per_mm[j, k] / lcp > 1.10
+        assert 0.937 <= pv.face_load.peak_line_load_n_per_mm[j, k] / lcp <= 1.002
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "differs, measured: at 300 N·m the coupled law loads the whole line (L_c 21.1-22.7 mm) "
+    "where the LCP with bending leaves 19.6-20.2 mm loaded (the uncoupled law 18.9-19.4), "
+    "and at the two-pair phase (0 = 4) its peak line load is 0.863 of the LCP's, the "
+    "uncoupled law's 1.003 (phases 1-3: 0.958-1.002 against 1.108-1.159); "
+    "docs/cylindrical.md sec. 8"))
+def test_coupled_slice_law_against_the_lcp_with_bending(ev_lte, ev_preview):
+    """The truth of the coupled law is the loaded TE's LCP with the same shells. On the
+    heaviest line of each phase (the one that sets the phase's peak; lines entering or
+    leaving at a tip carry a sharp end the 16 slices do not resolve), declared before
+    this comparison from the 64.5 N·m, 61-phase measurement (docs/cylindrical.md sec.
+    8): the uncoupled law overshoots the LCP's peak line load by > 5 % (measured
+    1.098-1.215 there); the coupled law's peak line load lies in 0.88-1.02 of the LCP's
+    (measured 0.899-0.994 there, against the slice law's own foundation bias of
+    0.951-0.965 on rigid teeth, with 0.02 either side); it is nearer the LCP than the
+    uncoupled law's in the peak line load and in the loaded length (the LCP's loaded
+    rows along the line). The LCP's line load is per unit face width: times
+    cos(beta_b) per unit length of the line."""
+    _, rows = _coupled_rows(ev_lte, ev_preview)
+    for j, k, coupled, uncoupled, l_c, l_u, l_lcp in rows:
+        assert uncoupled > 1.05
+        assert 0.88 <= coupled <= 1.02
+        assert abs(coupled - 1.0) < abs(uncoupled - 1.0)
+        assert abs(l_c - l_lcp) < abs(l_u - l_lcp)
+
+
 def test_torque_mismatch_refused():
     p = _spur(0.0)
     cyc = cylindrical_mesh_cycle(p, phases=3)
     lte = cylindrical_loaded_te(p, 100.0, cycle=cyc, cells_along=8, cells_across=8)
     with pytest.raises(InputRangeError, match="loaded_te.torque_nm"):
         cylindrical_preview(p, 200.0, cycle=cyc, loaded_te=lte)
+    with pytest.raises(InputRangeError, match="bending"):
+        cylindrical_preview(p, 100.0, cycle=cyc, loaded_te=lte, bending="yes")
 
 
 def test_rtl_equals_golden_on_cylindrical_stencils(spur_pitch):

@@ -15,7 +15,9 @@ evaluates the same stencils (``reference``: fp64; ``golden``: the bit-exact fixe
 simulation).
 
 The line's load (``face_load``, :class:`LineFaceLoad`) is the twin's
-(:mod:`gearcontact.twin.line_law`): the slice law (:func:`.slice_law.loaded_line`) at
+(:mod:`gearcontact.twin.line_law`) on rigid teeth, and with the loaded TE's tooth
+bending the coupled slice law (:mod:`.coupled_slice_law`: the same law on the ease-off
+plus the shells' deflection under the slice loads, G at the line's slices): the slice law (:func:`.slice_law.loaded_line`) at
 ``W`` on the ease-off along the line (crowning, relief, misalignment, helix slope:
 :func:`.slice_law.line_easeoff_mm`, the gap at the line's 16 slices) across the fitted
 curvature ``B_max`` (the fp64 stage C of the stencil) gives the loaded length ``L_c``
@@ -62,8 +64,11 @@ from ..tca.cylindrical_stencil import CylindricalStencils, cylindrical_stencils
 from ..errors import BadInput
 from ..validation import InputRangeError
 from ..analytic.hertz import line_contact_terms
+from .coupled_slice_law import coupled_line, line_bending_compliance
+from .cylindrical_bending import cylindrical_bending
 from .cylindrical_lte import CylindricalLoadedTE, normal_load_n
 from .slice_law import equivalent_length, line_easeoff_mm, loaded_length_mm
+from .tooth_bending import ToothBending
 
 __all__ = ["CylindricalPreview", "LineFaceLoad", "cylindrical_preview", "line_face_loads",
            "pair_loads_n"]
@@ -104,13 +109,17 @@ class LineFaceLoad:
 
 def line_face_loads(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                     stencils: CylindricalStencils, loads_n: np.ndarray,
-                    loaded: np.ndarray) -> LineFaceLoad:
+                    loaded: np.ndarray, *, teeth: ToothBending | None = None
+                    ) -> LineFaceLoad:
     """:class:`LineFaceLoad` of every ``loaded`` pair at its load (``loads_n``, N, (P,
     K)): the slice law (:func:`.slice_law.loaded_line`) on the line's ease-off
     (:func:`.slice_law.line_easeoff_mm`) across the fp64 stage C's larger curvature of
     the stencil (the twin's inputs, row for row: :func:`gearcontact.twin.model.
-    build_model`). A saddle fit (``B_max <= 0``) keeps the whole line, uniform."""
-    ease, _ = line_easeoff_mm(pair, cycle, stencils.valid)
+    build_model`). A saddle fit (``B_max <= 0``) keeps the whole line, uniform.
+    ``teeth``: the coupled slice law with the teeth's bending compliance at the line's
+    slices (:mod:`.coupled_slice_law`; None: the half-space foundation alone, the
+    twin's law)."""
+    ease, slices = line_easeoff_mm(pair, cycle, stencils.valid)
     coeff = fitted_coefficients(stencils.gaps_mm)
     e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
     out = {f: np.full(loaded.shape, np.nan) for f in LineFaceLoad.__dataclass_fields__}
@@ -121,7 +130,14 @@ def line_face_loads(pair: CylindricalPair, cycle: CylindricalMeshCycle,
         l_c = l_eq = length
         if b_max > 0.0:
             h = ease[j, k]
-            d_c, l_c, area = loaded_length_mm(h, length, w, b_max, e_prime)
+            if teeth is None:
+                d_c, l_c, area = loaded_length_mm(h, length, w, b_max, e_prime)
+            else:
+                line = coupled_line(h, length, w, b_max, e_prime,
+                                    line_bending_compliance(teeth, slices, j, k))
+                d_c, l_c, area = line.approach_mm, line.loaded_length_mm, \
+                    line.interference_mm2
+                h = line.effective_ease_mm
             l_eq = equivalent_length(d_c, area, length)
             out["end_loaded"][j, k] = l_c < length and int(np.argmin(h)) in (0, h.size - 1)
             out["hertz_pressure_mpa"][j, k] = line_contact_terms(b_max, w / l_eq, 1.0,
@@ -225,7 +241,8 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
                         stencils: CylindricalStencils | None = None,
                         loaded_te: CylindricalLoadedTE | None = None,
                         backends=("reference", "golden"), phases: int = 61,
-                        min_share: float = 1e-3) -> CylindricalPreview:
+                        min_share: float = 1e-3, bending: bool | None = None
+                        ) -> CylindricalPreview:
     """The line-chain preview of every loaded pair at every phase (module docstring).
 
     Parameters
@@ -244,6 +261,11 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
         Preview backends (:func:`gearcontact.preview.engine.get_engine` names).
     min_share : float
         A pair is previewed when it carries at least this share of ``F_n``.
+    bending : bool, optional
+        The slice law with the teeth's bending (:mod:`.coupled_slice_law`, the shells of
+        :func:`.cylindrical_bending.cylindrical_bending` on the cycle's facing) or on the
+        half-space foundation alone; None: as ``loaded_te`` (its ``bending``; without
+        it, the foundation alone).
     """
     load = normal_load_n(pair, torque_nm)
     engines = {name: get_engine(name, material=pair.pinion_material,
@@ -260,7 +282,12 @@ def cylindrical_preview(pair: CylindricalPair, torque_nm: float, *,
     loads, source = pair_loads_n(stencils, load, loaded_te)
     loaded = stencils.valid & (loads >= min_share * load) & (loads > 0.0)
     n_p, n_k = loaded.shape
-    face = line_face_loads(pair, cycle, stencils, loads, loaded)
+    if bending is not None and not isinstance(bending, bool):
+        raise InputRangeError("bending", bending, "True, False or None")
+    if bending is None:
+        bending = loaded_te is not None and loaded_te.bending
+    teeth = cylindrical_bending(pair, facing=cycle.facing) if bending else None
+    face = line_face_loads(pair, cycle, stencils, loads, loaded, teeth=teeth)
     results: dict[str, list[list[PreviewResult | None]]] = {}
     errors: dict[tuple[str, int, int], str] = {}
     for name, engine in engines.items():

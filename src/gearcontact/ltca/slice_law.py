@@ -4,7 +4,8 @@
 preview (:mod:`.cylindrical_preview`, per pair and phase) evaluate (compiled with
 numba), and the ease-off it runs on (:func:`line_easeoff_mm`): both callers feed it the
 same inputs, so at a table row and load the twin and ``analyze`` find the same loaded
-length bit for bit.
+length bit for bit (with tooth bending the preview runs the coupled law of
+:mod:`.coupled_slice_law`, this law on the ease-off plus the shells' deflection).
 
 The ease-off along a pair's contact line ``h`` (mm; the normal gap over the line's
 least at the centres of ``n`` equal slices of the line's length ``L``, linear between

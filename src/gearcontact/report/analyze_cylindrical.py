@@ -14,7 +14,9 @@ readable summary (docs/cylindrical.md sec. 9).
 ``lte.png``, ``harris_map.png``            beside ISO 6336-1 Method B, and the Harris map
                                            (``report.cylindrical_lte``)
 ``preview.csv``                            per phase and loaded pair: load, line length,
-                                           loaded length ``L_c`` (the twin's slice law),
+                                           loaded length ``L_c`` (the slice law, coupled
+                                           with the teeth's bending under a loaded TE with
+                                           bending: ``ltca.coupled_slice_law``),
                                            exact and fitted curvatures, the fp64 and golden
                                            line chain (mode, p_max, b, flags) beside the
                                            LCP's peak pressure on that line, its loaded
@@ -259,8 +261,8 @@ def _summary_md(pair, side, facing, h, harris) -> str:
     lines += [
         "", "The preview is the datapath's line chain (stage C fit -> line core of stage D) "
         "on each loaded pair's 7 x 7 stencil with its LCP load share and the loaded "
-        "length L_c of its contact line (the twin's slice law on the ease-off along the "
-        "line); the LCP peak includes the finite line's end effects, which the preview's "
+        "length L_c of its contact line (the slice law on the ease-off along the line, "
+        "with the teeth's bending where the loaded TE has it); the LCP peak includes the finite line's end effects, which the preview's "
         "uniform line does not (docs/cylindrical.md sec. 8).", "",
         "## Harris map: loaded TE p-p (arcsec)", "",
         "| C_a µm | TE0 p-p | " + " | ".join(f"{t:g} N·m" for t in harris.torques_nm) + " |",

@@ -62,6 +62,7 @@ import math
 import numpy as np
 
 from ..geometry.cylindrical.pair import CylindricalPair
+from ..ltca.coupled_slice_law import line_bending_compliance
 from ..ltca.cylindrical_bending import cylindrical_bending, line_bending_factor
 from ..ltca.cylindrical_edges import BeyondSlices, beyond_slices, edge_row_slices
 from ..ltca.cylindrical_lte import check_cells, cylindrical_loaded_te
@@ -118,9 +119,7 @@ def line_bending_gram(bending: ToothBending, slices: LineGaps,
         for k in range(n_k):
             on = np.isfinite(slices.pinion_roll_mm[j, k]) & np.isfinite(slices.gear_roll_mm[j, k])
             if on.all():
-                f = line_bending_factor(bending, slices.z_mm[j, k], slices.pinion_roll_mm[j, k],
-                                        slices.gear_roll_mm[j, k], 1)[:, 0].astype(float)
-                out[j, k, :n, :n] = f @ f.T
+                out[j, k, :n, :n] = line_bending_compliance(bending, slices, j, k)
                 if nb2 and np.isfinite(beyond.u1_mm[j, k]).any():
                     # the edge's blocks on one factor of line and edge points (the
                     # compressed factor's rank is the call's); the line's block as above
