@@ -141,6 +141,8 @@ def test_rerun_into_the_same_directory(tmp_path, capsys):
     ("modifications.pinion.lead_crowning_um=10:0:3", ["'10:0:3'", "STOP >= START"]),
     ("modifications.pinion.lead_crowning_um=0:10:0", ["STEPS = 0", "[1, 101]"]),
     ("modifications.pinion.lead_crowning_um=0:10", ["'0:10'", "three fields"]),
+    # one value computed three times
+    ("modifications.pinion.lead_crowning_um=5:5:3", ["'5:5:3'", "STEPS = 1 when STOP == START"]),
     ("modifications.pinion.lead_crowning_um=0:nan:3", ["STOP = nan", "finite"]),
     ("modifications.pinion.lead_crowning_um=0:300:3",
      ["modifications.pinion.lead_crowning_um = 300.0", "[0, 200]"]),
