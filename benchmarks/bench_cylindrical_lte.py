@@ -2,6 +2,13 @@
 phases) with the shell bending of both teeth (issue 26's budget: <= 1 s CPU) and with
 rigid teeth.
 
+Beside it, the time ``ross-rotordynamics`` takes for its mesh stiffness of the same
+pair over the same number of phases (issue 26: the budget printed beside the independent
+code's stiffness computation; ROSS's energy method is a spur tooth's, so on this helical,
+shifted, modified pair its stiffness is printed as a time reference, not a comparison:
+that is benchmarks/bench_mesh_stiffness_ross.py on the spur pair). Skipped with a note
+where ROSS is not installed (a benchmark-only peer).
+
 The unloaded mesh cycle (:func:`gearcontact.tca.cylindrical_cycle.cylindrical_mesh_cycle`)
 runs once and is timed on its own; so is the one-off build of the tooth models (shells of
 both teeth, their flank maps and row splines: :func:`gearcontact.ltca.cylindrical_bending.
@@ -24,6 +31,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from bench_mesh_stiffness_ross import ross_stiffness
 
 from gearcontact.geometry.pair import CYLINDRICAL, load_pair
 from gearcontact.ltca.cylindrical_bending import cylindrical_bending
@@ -70,6 +78,14 @@ def main() -> int:
         print(f"  LTE p-p {res.lte_pp_arcsec:.3f} arcsec, mean stiffness "
               f"{res.mean_stiffness_n_per_mm_um:.2f} N/(mm·µm), LCP iterations max "
               f"{res.iterations.max()}; load average {os.getloadavg()[0]:.2f}")
+    try:
+        k, t_ross, _ = ross_stiffness(pair, args.phases - 1)
+    except SystemExit as exc:                      # ROSS not installed: say so
+        print(f"ROSS stiffness: not run ({exc})")
+    else:
+        print(f"ROSS stiffness (energy method, spur tooth of the same m_n, z, b), "
+              f"{args.phases - 1} phases: {t_ross:.3f} s CPU; mean {k.mean():.2f} "
+              f"N/(mm·µm) (a time reference: no helix, shift or micro-geometry)")
     return 0
 
 

@@ -39,7 +39,10 @@ PAIR = Path(__file__).resolve().parents[1] / "examples" / "spur_20x40_m3.toml"
 
 def ross_stiffness(pair, points: int):
     """ROSS's mesh stiffness over one period, N/(mm·µm) per unit face (points,), and the
-    CPU seconds it took."""
+    CPU seconds it took. From the pair's normal module, pressure angle, teeth and common
+    face width only: ROSS's energy method (``GearElementTVMS``, version 2.3) is that of a
+    spur tooth without profile shift, tip shortening or micro-geometry (its helix angle
+    is stored on the mesh, not used in the stiffness)."""
     try:
         from ross.gear_element import GearElementTVMS, Mesh
         from ross.materials import steel

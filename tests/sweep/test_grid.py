@@ -59,7 +59,8 @@ def test_unknown_toml_key_lists_the_allowed_keys():
     ("Q=0:1:2", "one of the assembly errors E, P, G, alpha"), ("E0:1:2", "KEY=START"),
     ("E=0:1", "three fields"), ("E=a:1:2", "integer STEPS"), ("E=0:1:2.5", "integer STEPS"),
     ("E=0.1:-0.1:3", "reversed range"), ("E=0:0.1:0", "STEPS = 0"),
-    ("E=0:0.1:1", "STEPS >= 2"), ("P=0:1.5:3", "--vary P (mm) = 1.5"),
+    ("E=0:0.1:1", "STEPS >= 2"), ("E=0.1:0.1:3", "STEPS = 1 when STOP == START"),
+    ("P=0:1.5:3", "--vary P (mm) = 1.5"),
     ("alpha=-1:0:3", "[-0.5, 0.5] deg"), ("G=0:0.1:102", "[1, 101]"),
     # issue 28 probe: a NaN bound was called "a reversed range"
     ("E=nan:0.1:3", "--vary E START = nan is outside the allowed range: a finite real"),

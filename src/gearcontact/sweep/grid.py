@@ -71,7 +71,7 @@ def parse_vary(text: str, *, kind: str = BEVEL) -> VarySpec:
     InputRangeError
         Naming ``--vary`` and the spec: unknown key (the message lists the allowed
         ones), not ``START:STOP:STEPS``, bad number, STEPS outside [1, MAX_STEPS] (1
-        needs START == STOP), STOP < START, an assembly error beyond
+        needs START == STOP, and START == STOP needs 1), STOP < START, an assembly error beyond
         :data:`~gearcontact.geometry.kinematics.ASSEMBLY_LIMITS` (the range of a design
         key is the pair's: :func:`.design.check_variants`).
     """
@@ -104,6 +104,8 @@ def parse_vary(text: str, *, kind: str = BEVEL) -> VarySpec:
         raise InputRangeError(f"--vary {key}", rng, "STOP >= START (a reversed range)")
     if steps == 1 and stop != start:
         raise InputRangeError(f"--vary {key}", rng, "STEPS >= 2 when STOP != START")
+    if steps > 1 and stop == start:         # the same point computed STEPS times
+        raise InputRangeError(f"--vary {key}", rng, "STEPS = 1 when STOP == START")
     if key in CYLINDRICAL_KEYS:
         return VarySpec(key, key.replace(".", "_"), start, stop, steps, design_unit(key))
     if key not in ASSEMBLY_KEYS:
