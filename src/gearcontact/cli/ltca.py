@@ -17,6 +17,14 @@ reported on stderr; ``ltca.json`` names the flank edges the loaded patch reaches
 (``edge_contact_edges``, its cells and ``edge_pressure_ratio_p90``: the largest pressure
 there over p90, :func:`~gearcontact.tca.edges.loaded_patch_edges`) and whether the
 unloaded contact at P0 is itself an edge contact (``tca_edge_contact``, the edge's name).
+
+A cylindrical pair (``kind = "cylindrical"``) gets the loaded contact at the pitch-point
+phase of its loaded TE (the same solve as ``gearcontact lte``, with the shell bending of
+both teeth; ``--rigid``: rigid teeth), every pair in contact, ``--cells`` cells along the
+face (default 40, as ``lte``): ``ltca.json``, ``line_load.csv``, ``pressure_map.csv``,
+``pressure_map.png`` (:mod:`gearcontact.report.cylindrical_ltca`; docs/cylindrical.md
+sec. 12). ``--multi-tooth`` (all pairs are in already), ``--multi-tooth-cells``,
+``--solver``, ``--export-problem`` and ``--misalignment`` are refused for it.
 """
 
 from __future__ import annotations
@@ -26,6 +34,7 @@ import time
 import warnings
 from pathlib import Path
 
+from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..halfspace.lcp import SOLVERS, LcpConvergenceError, warm_up
 from ..halfspace.patch import ContactAtEdgeWarning
 from ..ltca.pair_ltca import single_pair_ltca
@@ -52,8 +61,16 @@ def register(sub) -> None:
     p = sub.add_parser("ltca", help="loaded contact of one tooth pair at P0: pressure map, "
                                     "statistics, approach, preview beside it",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
-    add_pair_arguments(p, torque=True, cells=80, misalignment=True)
-    p.add_argument("--solver", default="pk_cg", choices=SOLVERS, help="LCP solver (default pk_cg)")
+    add_pair_arguments(p, torque=True, misalignment=True)
+    p.add_argument("--cells", type=int, default=None,
+                   help=f"cells per side of the tangent-plane gap field, 16 to {MAX_CELLS} "
+                        f"(default {CELLS}; a cylindrical pair: cells along the face, default "
+                        f"{CYLINDRICAL_CELLS} as gearcontact lte)")
+    p.add_argument("--rigid", action="store_true",
+                   help="a cylindrical pair: rigid teeth, the Love half-space alone (default: "
+                        "with the shell bending of both teeth, as gearcontact lte)")
+    p.add_argument("--solver", default=None, choices=SOLVERS,
+                   help="LCP solver (default pk_cg; not for a cylindrical pair)")
     p.add_argument("--export-problem", action="store_true",
                    help="also write the solved LCP (gap, on-flank mask, grid, load, E*, "
                         "solution) as ltca_problem.npz with ltca_problem.README.md")
@@ -75,10 +92,41 @@ MAX_DENSE_CELLS = 80
 
 #: Default ``--multi-tooth-cells``.
 MULTI_TOOTH_CELLS = 40
+#: Default ``--cells`` of a bevel pair (per side of the gap field) and of a cylindrical
+#: pair (along the face, as ``gearcontact lte``).
+CELLS, CYLINDRICAL_CELLS = 80, 40
+
+#: Options a cylindrical pair refuses -> why (``args`` attribute, option, reason).
+NOT_CYLINDRICAL = (
+    ("multi_tooth", "--multi-tooth", "every pair in contact is in the cylindrical loaded "
+                                     "contact already"),
+    ("multi_tooth_cells", "--multi-tooth-cells", "no multi-tooth solve of a cylindrical pair;"
+                                                 " --cells sets its cells along the face"),
+    ("solver", "--solver", "the cylindrical loaded contact is the mesh LCP of the loaded TE, "
+                           "its one solver"),
+    ("export_problem", "--export-problem", "the export is of the single-pair LCP of a "
+                                           "bevel pair"),
+)
 
 
 def _check(args) -> None:
-    check_pair_arguments(args)
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
+    if args.gear_pair.kind == CYLINDRICAL:
+        for attr, option, why in NOT_CYLINDRICAL:
+            given = getattr(args, attr)
+            if given not in (None, False):
+                raise InputRangeError(option, given, f"not given for a cylindrical pair ({why})")
+        if args.cells is None:
+            args.cells = CYLINDRICAL_CELLS
+        return
+    if args.rigid:
+        raise InputRangeError("--rigid", True, "given only for a cylindrical pair (a bevel "
+                                               "pair's single-pair contact is of rigid teeth; "
+                                               "--multi-tooth adds tooth bending)")
+    if args.cells is None:
+        args.cells = CELLS
+    if args.solver is None:
+        args.solver = "pk_cg"
     if args.multi_tooth_cells is not None and not args.multi_tooth:
         raise InputRangeError("--multi-tooth-cells", args.multi_tooth_cells,
                               "given only with --multi-tooth (without it the option has "
@@ -91,9 +139,43 @@ def _check(args) -> None:
                     note=f" per side with the dense --solver {args.solver}")
 
 
+def run_cylindrical(args) -> int:
+    """The loaded contact of a cylindrical pair at the pitch-point phase."""
+    from ..ltca.cylindrical_lte import STRIP_TOO_NARROW
+    from ..ltca.cylindrical_ltca import cylindrical_ltca
+    from ..report.cylindrical_ltca import write_cylindrical_ltca_outputs
+    from ..tca.cylindrical_cycle import FACING_OF_SIDE
+
+    pair = args.gear_pair
+    t0 = time.process_time()
+    c = cylindrical_ltca(pair, args.torque, facing=FACING_OF_SIDE[args.side],
+                         phases=args.phases, cells_along=args.cells, bending=not args.rigid)
+    run_timings(args, ltca_cpu_s=time.process_time() - t0, lcp_cpu_s=c.lte.solve_time_s)
+    doc = write_cylindrical_ltca_outputs(c, pair, args.out, side=args.side,
+                                         figures=not args.no_figures)
+    shares = " / ".join(f"{p['load_share']:.3f}" for p in doc["pairs"])
+    print(f"{pair.name} {args.side} {args.torque:g} N·m at the pitch point ({doc['teeth']}): "
+          f"F_n = {doc['normal_load_n']:.0f} N on {doc['pairs_loaded']} pairs (shares "
+          f"{shares}), p_max {doc['p_max_mpa']:.0f} MPa"
+          f"{' on an edge' if doc['p_max_on_edge'] else ''}, rotation "
+          f"{doc['rotation_arcsec']:.2f} arcsec, approach {1e3 * doc['approach_mm']:.2f} µm "
+          f"-> {final_path(args, args.out)}")
+    if doc["p_max_on_edge"]:
+        warn("ltca", f"p_max {doc['p_max_mpa']:.0f} MPa lies on a sharp edge (a loaded line "
+                     "end or a tip edge): the half-space's singular pressure there, which grows"
+                     " with --cells (docs/cylindrical.md sec. 7)")
+    if c.lte.edge_touch:
+        warn("ltca", STRIP_TOO_NARROW)
+    if not c.lte.converged:
+        raise CheckFailed("LCP not converged")   # the files stay
+    return 0
+
+
 def run(args) -> int:
     if getattr(args, "gear_pair", None) is None:
         _check(args)
+    if args.gear_pair.kind == CYLINDRICAL:
+        return run_cylindrical(args)
     pair = load_pair_for(args)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

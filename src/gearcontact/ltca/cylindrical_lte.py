@@ -219,6 +219,15 @@ class CylindricalLoadedTE:
     beyond_rows : ndarray (P, K, N) of int8
         The edge (index into ``TIP_EDGES``) of each face cell's row beyond the line
         that was in the LCP, else -1.
+    rotation_rad : ndarray (K,)
+        Gear rotation the load adds to the unloaded rest (the mesh LCP's multiplier
+        ``theta``), rad; the normal approach is ``r_b2 cos(beta_b) theta``.
+    fields_phase : int or None
+        The phase whose cell pressures ``phase_pressure_mpa`` holds (``fields_at``).
+    phase_pressure_mpa : ndarray (P, N, M) or None
+        Cell pressures of every pair at ``fields_phase``, MPa (0 for a pair without a
+        block): rows at ``z_mm``, ``M`` columns across the line of width ``grid_dx_mm``
+        centred on it (the grid of every block of the phase).
     """
 
     phi1_rad: np.ndarray
@@ -249,6 +258,9 @@ class CylindricalLoadedTE:
     beyond_load_share: np.ndarray | None = None
     beyond_lever_mm: np.ndarray | None = None
     beyond_rows: np.ndarray | None = None
+    rotation_rad: np.ndarray | None = None
+    fields_phase: int | None = None
+    phase_pressure_mpa: np.ndarray | None = None
 
     @property
     def lte_pp_arcsec(self) -> float:
@@ -283,7 +295,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
                           cycle: CylindricalMeshCycle | None = None, facing: str = "cw",
                           phases: int = 61, cells_across: int = 24, cells_along: int = 64,
                           extent_factor: float = 2.0, tol: float = 1e-8,
-                          bending: bool = True) -> CylindricalLoadedTE:
+                          bending: bool = True,
+                          fields_at: int | None = None) -> CylindricalLoadedTE:
     """Loaded TE, load sharing, pressure and mesh stiffness over one pinion pitch.
 
     Parameters
@@ -305,6 +318,9 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     bending : bool
         Add the shell bending compliance of both teeth (module docstring; default);
         False: rigid teeth.
+    fields_at : int, optional
+        Keep the cell pressures of every pair at this phase index (0 to K - 1) in
+        ``phase_pressure_mpa`` (observed from the same solve: no effect on the rest).
     """
     load = normal_load_n(pair, torque_nm)
     for key, n in (("cells_across", cells_across), ("cells_along", cells_along)):
@@ -312,6 +328,10 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
     check_positive("extent_factor", extent_factor)
     if cycle is None:
         cycle = cylindrical_mesh_cycle(pair, facing=facing, phases=phases)
+    if fields_at is not None and not (isinstance(fields_at, int | np.integer)
+                                      and 0 <= fields_at < len(cycle.phi1_rad)):
+        raise InputRangeError("fields_at", fields_at,
+                              f"a phase index in [0, {len(cycle.phi1_rad) - 1}]")
     teeth = cylindrical_bending(pair, facing=cycle.facing) if bending else None
     g = pair.geometry
     cb = math.cos(math.radians(g.base_helix_angle_deg))
@@ -337,6 +357,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         line_p = np.zeros_like(line_load)
         lte, pmax = np.zeros(n_phase), np.zeros(n_phase)
         stiff, iters = np.zeros(n_phase), np.zeros(n_phase, dtype=int)
+        turned = np.zeros(n_phase)
+        fields = None
         ok, edge = True, False
         warm: dict[int, np.ndarray] = {}
         tip_rows = np.zeros((n_pairs, n_phase), bool)
@@ -403,6 +425,11 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
             iters[k] = res.iterations
             press = res.pressures_mpa(blocks)
             warm = dict(zip(keys, press))
+            turned[k] = res.rotation_rad
+            if k == fields_at:
+                fields = np.zeros((n_pairs, cells_along, nx))
+                for i, j in enumerate(keys):
+                    fields[j] = press[i]
             for i, j in enumerate(keys):
                 w = res.loads_n[i]
                 edge |= bool(res.contact_masks[i][:, [0, -1]].any())
@@ -446,7 +473,8 @@ def cylindrical_loaded_te(pair: CylindricalPair, torque_nm: float, *,
         solve_time_s=time.process_time() - t0, bending=teeth is not None,
         edge_label=np.where(tip_rows, cycle.tip.labels(), ""), lever_mm=levers,
         loaded_length_mm=loaded_len, line_end_loaded=end_loaded, peak_at_edge=end_peak,
-        beyond_load_share=tally.share, beyond_lever_mm=tally.lever_mm, beyond_rows=tally.rows)
+        beyond_load_share=tally.share, beyond_lever_mm=tally.lever_mm, beyond_rows=tally.rows,
+        rotation_rad=turned, fields_phase=fields_at, phase_pressure_mpa=fields)
 
 
 def cylindrical_loaded_te_models(pair: CylindricalPair, torque_nm: float, *,

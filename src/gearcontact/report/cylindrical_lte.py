@@ -30,8 +30,8 @@ from ..ltca.cylindrical_lte import CylindricalLoadedTE, HarrisMap  # noqa: E402
 from ..tca.cylindrical_tip import TIP_EDGES  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
-__all__ = ["cylindrical_lte_summary", "plot_cylindrical_lte", "plot_harris_map",
-           "write_cylindrical_lte_outputs"]
+__all__ = ["LINE_LOAD_COLUMNS", "cylindrical_lte_summary", "line_load_rows",
+           "plot_cylindrical_lte", "plot_harris_map", "write_cylindrical_lte_outputs"]
 
 
 def _iso(pair, lte: CylindricalLoadedTE, rigid: CylindricalLoadedTE | None) -> dict:
@@ -175,6 +175,36 @@ def plot_harris_map(harris: HarrisMap, path, *, title: str = "") -> Path:
     return save_figure(fig, path, tight=True)
 
 
+#: Columns of ``line_load.csv`` (:func:`line_load_rows`).
+LINE_LOAD_COLUMNS = ["phi1_deg", "pair", "contact", "lever_mm", "pinion_z_mm", "load_n_per_mm",
+                     "peak_pressure_mpa"]
+
+
+def line_load_rows(lte: CylindricalLoadedTE, phases) -> list[list]:
+    """Rows of ``line_load.csv`` (:data:`LINE_LOAD_COLUMNS`) at the phase indices
+    ``phases``: per loaded pair and face cell its contact (line, a tip edge, a tip edge
+    beyond the line), lever, load per unit face width and peak pressure across."""
+    phi = np.degrees(lte.phi1_rad)
+    rows = []
+    beyond = lte.beyond_rows if lte.beyond_rows is not None else \
+        np.full(lte.line_load_n_per_mm.shape, -1)
+    for k in phases:
+        for p, j in enumerate(lte.pair_offsets):
+            kind = (lte.edge_label[p, k] if lte.edge_label is not None else "") or "line"
+            # the line's (or tip edge's) cells, then those of a tip edge beyond the line
+            for e, label, share, lever in [(-1, kind, lte.load_share[p, k], lte.lever_mm[p, k])] \
+                    + [(e, f"{edge.label} beyond line", lte.beyond_load_share[p, k, e],
+                        lte.beyond_lever_mm[p, k, e]) for e, edge in enumerate(TIP_EDGES)
+                       if lte.beyond_load_share is not None]:
+                if share <= 0.0:
+                    continue
+                rows += [[float(phi[k]), j, label, float(lever), float(z), float(w), float(pm)]
+                         for z, w, pm, b in zip(lte.z_mm, lte.line_load_n_per_mm[p, k],
+                                                lte.line_pressure_mpa[p, k], beyond[p, k])
+                         if b == e]
+    return rows
+
+
 def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | None, pair,
                                   out, *, side: str, figures: bool = True,
                                   rigid: CylindricalLoadedTE | None = None) -> dict:
@@ -195,25 +225,8 @@ def write_cylindrical_lte_outputs(lte: CylindricalLoadedTE, harris: HarrisMap | 
                + ([float(rigid.lte_arcsec[k]), float(rigid.stiffness_n_per_mm_um[k])]
                   if rigid is not None else [])
                for k in range(len(phi))])
-    rows = []
-    beyond = lte.beyond_rows if lte.beyond_rows is not None else \
-        np.full(lte.line_load_n_per_mm.shape, -1)
-    for k in range(len(phi)):
-        for p, j in enumerate(lte.pair_offsets):
-            kind = (lte.edge_label[p, k] if lte.edge_label is not None else "") or "line"
-            # the line's (or tip edge's) cells, then those of a tip edge beyond the line
-            for e, label, share, lever in [(-1, kind, lte.load_share[p, k], lte.lever_mm[p, k])] \
-                    + [(e, f"{edge.label} beyond line", lte.beyond_load_share[p, k, e],
-                        lte.beyond_lever_mm[p, k, e]) for e, edge in enumerate(TIP_EDGES)
-                       if lte.beyond_load_share is not None]:
-                if share <= 0.0:
-                    continue
-                rows += [[float(phi[k]), j, label, float(lever), float(z), float(w), float(pm)]
-                         for z, w, pm, b in zip(lte.z_mm, lte.line_load_n_per_mm[p, k],
-                                                lte.line_pressure_mpa[p, k], beyond[p, k])
-                         if b == e]
-    write_csv(out / "line_load.csv", ["phi1_deg", "pair", "contact", "lever_mm", "pinion_z_mm",
-                                      "load_n_per_mm", "peak_pressure_mpa"], rows)
+    write_csv(out / "line_load.csv", LINE_LOAD_COLUMNS,
+              line_load_rows(lte, range(len(phi))))
     if harris is not None:
         write_csv(out / "harris_map.csv",
                   ["tip_relief_um", "te0_pp_arcsec"]
