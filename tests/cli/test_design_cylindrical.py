@@ -39,9 +39,9 @@ def test_design_json_helical(capsys):
         out["transverse_contact_ratio"] + out["overlap_ratio"], rel=1e-12)
 
 
-# (`bending` reads cylindrical pairs since session 18: tests/cli/test_bending.py)
-@pytest.mark.parametrize("argv", [["ltca", "--pair", EV, "--out", "OUT"],
-                                  ["design", "--pair", FZG, "--synthesize-easeoff"]])
+# (`bending` reads cylindrical pairs since session 18: tests/cli/test_bending.py; `ltca`
+# since session 19: tests/cli/test_ltca_cylindrical.py)
+@pytest.mark.parametrize("argv", [["design", "--pair", FZG, "--synthesize-easeoff"]])
 def test_other_commands_refuse_cylindrical(argv, capsys, tmp_path):
     argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]
     assert main(argv) == 2

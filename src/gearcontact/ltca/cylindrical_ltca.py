@@ -59,8 +59,9 @@ class CylindricalPhaseContact:
 
     @property
     def phi1_rad(self) -> float:
-        """Pinion phase of the cycle, rad (0 at the pitch point of pair 0 up to the
-        cycle's datum: :class:`~gearcontact.tca.cylindrical_cycle.CylindricalMeshCycle`)."""
+        """Pinion phase, rad, as the loaded TE's ``phi1_rad`` (the pinion's turn from its
+        tooth centred on the line of centres: :func:`~gearcontact.tca.parallel_axes.
+        pitch_point_guess`)."""
         return float(self.lte.phi1_rad[self.phase])
 
     @property
