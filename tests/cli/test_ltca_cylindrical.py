@@ -1,6 +1,6 @@
 """``gearcontact ltca`` on a cylindrical pair, run as a user runs it (default options:
 64.5 N·m, 61 phases, 40 cells along the face, tooth bending) through
-`gearcontact.cli.main`, a rerun into the same directory, and the options it refuses.
+`gearcontact.cli.main` (the helical example's as the README's line), a rerun into the same directory, and the options it refuses.
 
 Truths: the files are the loaded TE's own result at its pitch-point phase (the same
 library call ``gearcontact lte`` makes, 1e-12; and the ``lte`` command's own files at
@@ -13,10 +13,12 @@ single pair, whose mid-face pressure is Johnson 1985 eq. 4.45 for its own line l
 
 import json
 import math
+import shlex
 from pathlib import Path
 
 import numpy as np
 import pytest
+from readme_lines import readme_commands
 
 from gearcontact.cli import main
 from gearcontact.geometry.pair import CYLINDRICAL, load_pair
@@ -43,6 +45,12 @@ def spur_out(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def ev_out(tmp_path_factory):
+    """The README's line for the helical example (default options), --out redirected."""
+    line = [c for c in readme_commands() if c.startswith("gearcontact ltca --pair examples/ev_")]
+    assert len(line) == 1, "README has one ltca line for the helical example"
+    argv = shlex.split(line[0])[1:]
+    assert argv == ["ltca", "--pair", "examples/ev_reducer_helical_23x67.toml", "--out",
+                    argv[-1]]
     return _run(tmp_path_factory, EV, "ltca_ev")
 
 
