@@ -25,6 +25,7 @@ from gearcontact.geometry.pair import CYLINDRICAL, load_pair
 from gearcontact.halfspace.lcp import resolve_e_star
 from gearcontact.ltca.cylindrical_lte import cylindrical_loaded_te
 from gearcontact.tca.cylindrical_cycle import cylindrical_mesh_cycle
+from gearcontact.validation import InputRangeError
 
 ROOT = Path(__file__).resolve().parents[2]
 EV = str(ROOT / "examples" / "ev_reducer_helical_23x67.toml")
@@ -207,3 +208,24 @@ def test_rigid_refused_for_a_bevel_pair(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--rigid" in err and "Traceback" not in err
     assert not d.exists()
+
+
+def test_rigid_teeth_turn_less(tmp_path):
+    """--rigid: the contact's compliance alone; the shells' bending is in series with it,
+    so the same load turns the gear further with bending (3 phases, 16 cells: cheap)."""
+    turn = {}
+    for teeth, extra in (("rigid", ["--rigid"]), ("bending", [])):
+        d = tmp_path / teeth
+        assert main(["ltca", "--pair", SPUR, "--phases", "3", "--cells", "16", "--no-figures",
+                     "--out", str(d), *extra]) == 0
+        doc = json.loads((d / "ltca.json").read_text())
+        assert doc["teeth"] == teeth and doc["phase_index"] == 1 and doc["pairs_loaded"] == 1
+        turn[teeth] = doc["rotation_rad"]
+    assert 0.0 < turn["rigid"] < turn["bending"]
+
+
+def test_fields_at_outside_the_cycle_refused():
+    pair = load_pair(SPUR, kinds=(CYLINDRICAL,))
+    cycle = cylindrical_mesh_cycle(pair, phases=3)
+    with pytest.raises(InputRangeError, match="fields_at"):
+        cylindrical_loaded_te(pair, 64.5, cycle=cycle, fields_at=3)
