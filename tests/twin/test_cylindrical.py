@@ -11,10 +11,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearcontact.analytic.iso6336 import (cylindrical_pair_stiffness, reduced_mass_kg_per_mm,
-                                          resonance_speed_rpm)
+from gearcontact.analytic.iso6336 import resonance_speed_rpm
 from gearcontact.geometry.pair import load_pair
 from gearcontact.ltca.cylindrical_lte import cylindrical_loaded_te
+from gearcontact.report.cylindrical_lte import iso_method_b, iso_reduced_mass_kg_per_mm
 from gearcontact.tca.cylindrical_cycle import cylindrical_mesh_cycle
 from gearcontact.tca.types import ARCSEC_PER_RAD
 from gearcontact.twin.cylindrical import cylindrical_mesh_table, cylindrical_model
@@ -97,19 +97,11 @@ def test_first_mesh_resonance_against_iso_n_e1(pair, model, backend):
     _, _, k_th = linear_matrices(model)
     n_twin = 60.0 * modes[-1] / pair.pinion_teeth
     c_t = k_th / (0.5e-3 * g.base_diameter_gear_mm) ** 2 * 1e-6 / g.face_width_mm
-    d_m1 = 0.5 * (g.tip_diameter_pinion_mm + g.root_diameter_pinion_mm)
-    m_red = reduced_mass_kg_per_mm(mean_diameter_pinion_mm=d_m1,
-                                   base_diameter_pinion_mm=g.base_diameter_pinion_mm,
-                                   ratio=pair.ratio)
+    m_red = iso_reduced_mass_kg_per_mm(pair)
     n_own = resonance_speed_rpm(pinion_teeth=pair.pinion_teeth, c_gamma_n_per_mm_um=c_t,
                                 reduced_mass_kg_per_mm=m_red)
     assert n_twin == pytest.approx(n_own, rel=5e-2)
-    iso = cylindrical_pair_stiffness(
-        pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
-        helix_angle_deg=g.helix_angle_deg, base_helix_angle_deg=g.base_helix_angle_deg,
-        transverse_contact_ratio=g.transverse_contact_ratio,
-        profile_shift_pinion=g.profile_shift_pinion, profile_shift_gear=g.profile_shift_gear,
-        dedendum_per_module=pair.dedendum_factor)
+    iso = iso_method_b(pair)
     c_ga = iso.c_gamma_alpha_n_per_mm_um
     n_e1 = resonance_speed_rpm(pinion_teeth=pair.pinion_teeth, c_gamma_n_per_mm_um=c_ga,
                                reduced_mass_kg_per_mm=m_red)

@@ -17,9 +17,9 @@ the table backend on 7 phases (the twin's linearised chain; measured session 19:
 
 from pathlib import Path
 
-from gearcontact.analytic.iso6336 import (cylindrical_pair_stiffness, reduced_mass_kg_per_mm,
-                                          resonance_speed_rpm)
+from gearcontact.analytic.iso6336 import resonance_speed_rpm
 from gearcontact.geometry.pair import load_pair
+from gearcontact.report.cylindrical_lte import iso_method_b, iso_reduced_mass_kg_per_mm
 from gearcontact.twin.cylindrical import cylindrical_model
 from gearcontact.twin.statics import linearized_modes
 
@@ -29,17 +29,8 @@ TORQUE_NM = 300.0
 
 def test_bent_twin_mesh_mode_in_the_iso_resonance_range():
     pair = load_pair(EV, kinds=("cylindrical",))
-    g = pair.geometry
-    iso = cylindrical_pair_stiffness(
-        pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
-        helix_angle_deg=g.helix_angle_deg, base_helix_angle_deg=g.base_helix_angle_deg,
-        transverse_contact_ratio=g.transverse_contact_ratio,
-        profile_shift_pinion=g.profile_shift_pinion, profile_shift_gear=g.profile_shift_gear,
-        dedendum_per_module=pair.dedendum_factor)
-    d_m1 = 0.5 * (g.tip_diameter_pinion_mm + g.root_diameter_pinion_mm)
-    m_red = reduced_mass_kg_per_mm(mean_diameter_pinion_mm=d_m1,
-                                   base_diameter_pinion_mm=g.base_diameter_pinion_mm,
-                                   ratio=pair.ratio)
+    iso = iso_method_b(pair)
+    m_red = iso_reduced_mass_kg_per_mm(pair)
     n_e1 = resonance_speed_rpm(pinion_teeth=pair.pinion_teeth,
                                c_gamma_n_per_mm_um=iso.c_gamma_alpha_n_per_mm_um,
                                reduced_mass_kg_per_mm=m_red)

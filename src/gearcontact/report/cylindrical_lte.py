@@ -24,14 +24,41 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
 import numpy as np  # noqa: E402
 
-from ..analytic.iso6336 import cylindrical_pair_stiffness  # noqa: E402
+from ..analytic.iso6336 import (cylindrical_pair_stiffness,  # noqa: E402
+                                reduced_mass_kg_per_mm)
 from ..figure_files import save_figure  # noqa: E402
 from ..ltca.cylindrical_lte import CylindricalLoadedTE, HarrisMap  # noqa: E402
 from ..tca.cylindrical_tip import TIP_EDGES  # noqa: E402
 from ..tca.export import write_csv  # noqa: E402
 
-__all__ = ["LINE_LOAD_COLUMNS", "cylindrical_lte_summary", "line_load_rows",
-           "plot_cylindrical_lte", "plot_harris_map", "write_cylindrical_lte_outputs"]
+__all__ = ["LINE_LOAD_COLUMNS", "cylindrical_lte_summary", "iso_method_b",
+           "iso_reduced_mass_kg_per_mm", "line_load_rows", "plot_cylindrical_lte",
+           "plot_harris_map", "write_cylindrical_lte_outputs"]
+
+
+def iso_method_b(pair):
+    """ISO 6336-1 Method B single and mesh stiffness
+    (:func:`~gearcontact.analytic.iso6336.cylindrical_pair_stiffness`) of a cylindrical
+    pair from its ISO 21771 geometry: teeth, helix angles, transverse contact ratio,
+    profile shifts, dedendum factor and the rack's pressure angle."""
+    g = pair.geometry
+    return cylindrical_pair_stiffness(
+        pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
+        helix_angle_deg=g.helix_angle_deg, base_helix_angle_deg=g.base_helix_angle_deg,
+        transverse_contact_ratio=g.transverse_contact_ratio,
+        profile_shift_pinion=g.profile_shift_pinion, profile_shift_gear=g.profile_shift_gear,
+        dedendum_per_module=pair.dedendum_factor,
+        rack_pressure_angle_deg=g.normal_pressure_angle_deg)
+
+
+def iso_reduced_mass_kg_per_mm(pair) -> float:
+    """ISO 6336-1's reduced mass per face width of a cylindrical pair, kg/mm
+    (:func:`~gearcontact.analytic.iso6336.reduced_mass_kg_per_mm`: solid discs, the
+    pinion's mean diameter (d_a1 + d_f1) / 2)."""
+    g = pair.geometry
+    return reduced_mass_kg_per_mm(
+        mean_diameter_pinion_mm=0.5 * (g.tip_diameter_pinion_mm + g.root_diameter_pinion_mm),
+        base_diameter_pinion_mm=g.base_diameter_pinion_mm, ratio=pair.ratio)
 
 
 def _iso(pair, lte: CylindricalLoadedTE, rigid: CylindricalLoadedTE | None) -> dict:
@@ -39,13 +66,7 @@ def _iso(pair, lte: CylindricalLoadedTE, rigid: CylindricalLoadedTE | None) -> d
     rigid-tooth one), with the tangential line load F_t / b at the gear's reference
     circle (the standard holds from 100 N/mm; docs/cylindrical.md sec. 7)."""
     g = pair.geometry
-    iso = cylindrical_pair_stiffness(
-        pinion_teeth=pair.pinion_teeth, gear_teeth=pair.gear_teeth,
-        helix_angle_deg=g.helix_angle_deg, base_helix_angle_deg=g.base_helix_angle_deg,
-        transverse_contact_ratio=g.transverse_contact_ratio,
-        profile_shift_pinion=g.profile_shift_pinion, profile_shift_gear=g.profile_shift_gear,
-        dedendum_per_module=pair.dedendum_factor,
-        rack_pressure_angle_deg=g.normal_pressure_angle_deg)
+    iso = iso_method_b(pair)
     c_ga = iso.c_gamma_alpha_n_per_mm_um
     ft_b = 2e3 * lte.torque_nm / (g.reference_diameter_gear_mm * g.face_width_mm)
     out = {"line_load_ft_per_b_n_per_mm": ft_b, "within_validity": ft_b >= 100.0,
