@@ -60,7 +60,8 @@ from .constrained_cg import constrained_cg
 from .influence import dense_influence_matrix
 from .result import ContactResult, SolveStatus
 
-__all__ = ["LcpConvergenceError", "solve_lcp", "SOLVERS", "resolve_e_star", "warm_up"]
+__all__ = ["LcpConvergenceError", "bordered_active_set", "solve_lcp", "SOLVERS",
+           "resolve_e_star", "warm_up"]
 
 #: Deprecated for one release: the LCP's result is the family's :class:`.result.ContactResult`.
 __getattr__ = moved_names(__name__, {"LcpResult": "gearcontact.halfspace.result:ContactResult"})
@@ -160,10 +161,13 @@ def _nnls_reference(c: np.ndarray, h: np.ndarray, load_n: float, max_iter: int,
     return w, delta, max_iter, False, "nnls root find hit max_iter"
 
 
-def _active_set(c: np.ndarray, h: np.ndarray, load_n: float, active0: np.ndarray,
-                tol: float, max_iter: int, symmetric: bool
-                ) -> tuple[np.ndarray, float, int, bool, str]:
-    """Block active-set (principal pivoting) with the bordered load constraint."""
+def bordered_active_set(c: np.ndarray, h: np.ndarray, load_n: float, active0: np.ndarray,
+                        tol: float, max_iter: int, symmetric: bool
+                        ) -> tuple[np.ndarray, float, int, bool, str]:
+    """Block active-set (principal pivoting) with the bordered load constraint: ``w >= 0``,
+    ``C w + h - delta >= 0`` with equality where ``w > 0``, ``sum(w) = load_n``; returns
+    ``(w, delta, iterations, converged, message)`` (also the plane sections of
+    :mod:`gearcontact.ltca.edge_section`)."""
     active = active0.copy()
     if not active.any():
         active[np.argmin(h)] = True
@@ -347,9 +351,8 @@ def solve_lcp(gap_mm, grid: TangentGrid, load_n: float, *, materials=None,
                                                              hmin + guess)
                     max_iter_hit = not ok
                 else:
-                    ws, delta, it, ok, msg = _active_set(c, hs, load,
-                                                         w0.ravel()[sel] > 0.0, tol,
-                                                         n_iter, sub.is_uniform)
+                    ws, delta, it, ok, msg = bordered_active_set(
+                        c, hs, load, w0.ravel()[sel] > 0.0, tol, n_iter, sub.is_uniform)
                     max_iter_hit = not ok
             except linalg.LinAlgError as exc:  # a non-SPD / singular active block
                 ws, delta, it, ok = np.zeros_like(hs), np.nan, 0, False

@@ -44,6 +44,7 @@ import math
 import numpy as np
 
 from ..errors import CheckFailed
+from ..halfspace.lcp import bordered_active_set
 from ..validation import check_range
 
 __all__ = ["SECTION_CELLS", "edge_section_excess", "edge_stiffness_factor",
@@ -78,29 +79,15 @@ def section_approach(chi: float, *, one_sided: bool, cells: int = SECTION_CELLS)
     x = np.linspace(0.0 if one_sided else -_DOMAIN, _DOMAIN, int(cells) + 1)
     xc, dx = 0.5 * (x[1:] + x[:-1]), x[1] - x[0]
     h = (chi * xc if one_sided else 0.0) + 0.5 * xc * xc
-    k = _log_kernel(xc, dx)
-    # start from the contact of chi = 0 (the Hertz half-width 2^(1/2); the cut section's
-    # 1.63), which the slope narrows: a few passes instead of one per cell
+    # forces w = p dx on the cells: K/dx w + h - d >= 0, sum(w) = 1 (the half-space
+    # LCP's bordered active set); start from the contact of chi = 0 (the Hertz
+    # half-width 2^(1/2); the cut section's 1.63), which the slope narrows
     on = np.abs(xc) <= (1.7 if one_sided else 1.45)
-    for _ in range(_ACTIVE_SET_PASSES):
-        n = int(on.sum())
-        a = np.zeros((n + 1, n + 1))
-        a[:n, :n] = k[np.ix_(on, on)]
-        a[:n, n] = -1.0
-        a[n, :n] = dx
-        sol = np.linalg.solve(a, np.concatenate([-h[on], [1.0]]))
-        p = np.zeros(xc.size)
-        p[on] = sol[:n]
-        d = sol[n]
-        gap = k @ p + h - d
-        bad_p, bad_gap = p < 0.0, ~on & (gap < -1e-12 * abs(d))
-        if not (bad_p.any() or bad_gap.any()):
-            break
-        on = (on & ~bad_p) | bad_gap
-    else:
-        raise CheckFailed(f"plane section (chi {chi:g}): no active set in "
-                          f"{_ACTIVE_SET_PASSES} passes")
-    if p[-1] > 0.0:
+    w, d, _, ok, msg = bordered_active_set(_log_kernel(xc, dx) / dx, h, 1.0, on, 1e-12,
+                                           _ACTIVE_SET_PASSES, False)
+    if not ok:
+        raise CheckFailed(f"plane section (chi {chi:g}): {msg}")
+    if w[-1] > 0.0:
         raise CheckFailed(f"plane section (chi {chi:g}): the contact reaches the domain's end")
     return float(d)
 
