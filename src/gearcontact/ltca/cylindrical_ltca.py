@@ -23,7 +23,6 @@ LCP's constraint, to its tolerance).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,13 +48,16 @@ class CylindricalPhaseContact:
         The loaded TE over the cycle (``phase_pressure_mpa`` kept at ``phase``).
     phase : int
         The phase index (:func:`pitch_point_phase`).
-    gear_lever_mm : float
-        ``r_b2 cos(beta_b)``, mm: a line's lever about the gear axis.
     """
 
     lte: CylindricalLoadedTE
     phase: int
-    gear_lever_mm: float
+
+    @property
+    def gear_lever_mm(self) -> float:
+        """``r_b2 cos(beta_b)``, mm: a line's lever about the gear axis (the loaded TE's
+        torque over its normal load, :func:`~.cylindrical_lte.normal_load_n`)."""
+        return 1e3 * self.lte.torque_nm / self.lte.normal_load_n
 
     @property
     def phi1_rad(self) -> float:
@@ -129,6 +131,4 @@ def cylindrical_ltca(pair: CylindricalPair, torque_nm: float, *, facing: str = "
     k = pitch_point_phase(phases)
     lte = cylindrical_loaded_te(pair, torque_nm, facing=facing, phases=phases,
                                 cells_along=cells_along, bending=bending, fields_at=k)
-    g = pair.geometry
-    lever = 0.5 * g.base_diameter_gear_mm * math.cos(math.radians(g.base_helix_angle_deg))
-    return CylindricalPhaseContact(lte=lte, phase=k, gear_lever_mm=lever)
+    return CylindricalPhaseContact(lte=lte, phase=k)
