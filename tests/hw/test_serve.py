@@ -8,6 +8,7 @@ incrementing and fixed bursts against single reads; a second server on a used po
 a bad port are named errors (exit 2).
 """
 
+import socket
 import subprocess
 import sys
 
@@ -72,3 +73,34 @@ def test_comm_bursts_are_single_reads():
         comm.close()
     with pytest.raises(InputRangeError, match="kind"):
         SimComm("quad_core")
+
+
+
+def test_a_cylindrical_pair_bakes_its_own_e_prime(tmp_path):
+    """`rtl serve --pair` takes a cylindrical pair as a bevel one: only the members'
+    E' goes into the SoC (the line_core a cylindrical twin's ``--board`` drives). Truth:
+    Hamrock-Brewe E' = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2), written out here, rounded
+    to the integer-MPa register code (half up) -- for a steel pinion on a bronze gear.
+    The real command, its first line read, then stopped."""
+    text = open("examples/ev_reducer_helical_23x67.toml", encoding="utf-8").read()
+    head, sep, _ = text.partition("[material.pinion]")
+    assert sep
+    path = tmp_path / "bronze_gear.toml"
+    path.write_text(head + "[material.pinion]\nyoungs_modulus_gpa = 210.0\n"
+                    "poisson_ratio = 0.3\n\n[material.gear]\nyoungs_modulus_gpa = 110.0\n"
+                    "poisson_ratio = 0.34\n", encoding="utf-8")
+    e_prime = 2.0 / ((1 - 0.3**2) / 210e3 + (1 - 0.34**2) / 110e3)
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "rtl", "serve", "--kind",
+                             "line_core", "--port", str(port), "--pair", str(path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        first = proc.stdout.readline()
+    finally:
+        proc.kill()
+        proc.communicate(timeout=60)
+    assert first.startswith("gearcontact rtl serve: simulated line_core (E' code "), first
+    code = int(first.split("E' code ")[1].split(")")[0])
+    assert code == int(e_prime + 0.5)

@@ -107,8 +107,10 @@ def check_serve(args) -> None:
         raise InputRangeError("--port", args.port, "a TCP port in [1, 65535]")
     _check_lanes(args)
     if args.pair is not None:
-        from ..geometry.pair import load_pair
-        args.pair_obj = load_pair(args.pair)     # a bad file: named error, exit 2
+        from ..geometry.pair import BEVEL, CYLINDRICAL, load_pair
+        # either kind: only the members' materials (E') go into the SoC; a bad file is a
+        # named error, exit 2
+        args.pair_obj = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
 
 
 def run_serve(args) -> int:
