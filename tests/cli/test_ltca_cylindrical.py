@@ -202,6 +202,18 @@ def test_options_refused_for_a_cylindrical_pair(extra, tmp_path, capsys):
     assert not d.exists()                                  # before any work
 
 
+@pytest.mark.parametrize("command", ["ltca", "lte"])
+def test_cells_named_along_the_face(command, tmp_path, capsys):
+    """A cylindrical pair's --cells count cells along the face (its grid is not square):
+    the refusal says so, a bevel pair's says per side of its square field."""
+    for pair, where in ((EV, "along the face"), ("s0003", "per side")):
+        d = tmp_path / pair.replace("/", "_")
+        assert main([command, "--pair", pair, "--out", str(d), "--cells", "5"]) == 2
+        err = capsys.readouterr().err
+        assert f"--cells = 5 is outside the allowed range: an integer in [16, " in err
+        assert err.rstrip().endswith(where) and not d.exists()
+
+
 def test_rigid_refused_for_a_bevel_pair(tmp_path, capsys):
     d = tmp_path / "out"
     assert main(["ltca", "--pair", "s0003", "--out", str(d), "--rigid"]) == 2

@@ -102,8 +102,9 @@ def add_pair_arguments(p, *, torque: bool = False, cells: int | None = None,
                             f"{MAX_PHASES} (default 61)")
     if cells is not None:
         p.add_argument("--cells", type=int, default=cells,
-                       help=f"cells per side of the tangent-plane gap field, 16 to "
-                            f"{MAX_CELLS} (default {cells})")
+                       help=f"cells per side of the tangent-plane gap field (a "
+                            f"cylindrical pair: cells along the face), 16 to {MAX_CELLS} "
+                            f"(default {cells})")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
 
 
@@ -114,9 +115,10 @@ def check_pair_arguments(args, *, kinds: tuple[str, ...] = (BEVEL,)) -> None:
     pair without a design side (cylindrical) defaults ``--side`` to drive."""
     if getattr(args, "phases", None) is not None:
         check_count("--phases", args.phases, 3, MAX_PHASES)
-    if getattr(args, "cells", None) is not None:
-        check_count("--cells", args.cells, 16, MAX_CELLS, note=" per side")
     args.gear_pair = load_pair(args.pair, kinds=kinds)
+    if getattr(args, "cells", None) is not None:    # a bevel field is square; a line's is not
+        check_count("--cells", args.cells, 16, MAX_CELLS,
+                    note=" per side" if args.gear_pair.kind == BEVEL else " along the face")
     given = getattr(args, "misalignment", None)
     if given is not None and args.gear_pair.kind != BEVEL:
         raise InputRangeError("--misalignment", given, "not given for a cylindrical pair (E, "
