@@ -266,3 +266,23 @@ def test_a_cutter_circle_off_the_root_line_is_reported(f2):
     assert [f.agrees for f in got.flanks] == [False, False, True, True]
     assert "does not cross the root line" in got.flanks[0].missing
     assert not got.gross
+
+
+@pytest.mark.parametrize("case", ["as typed", "gear sliding base", "cutter radius 90"])
+def test_the_printed_measurements_give_the_same_check(f2, case):
+    # design measures each flank once (flank_angles.measure_pair_mean_points, the table
+    # it prints) and the check takes those measurements: the same check, value for
+    # value, as the check's own measurement (truth: the check measuring itself; exact,
+    # the same solves from the same starts), for agreeing flanks, flanks missing their
+    # mean point, and a nominal cutter circle off the root line
+    from gearcontact.geometry.flank_angles import measure_pair_mean_points
+
+    pair = {"as typed": f2,
+            "gear sliding base": dataclasses.replace(f2, machine=_flip(
+                f2.machine, "gear", "sliding_base_mm", lambda x: -x)),
+            "cutter radius 90": dataclasses.replace(
+                f2, cutter=dataclasses.replace(f2.cutter, radius_mm=90.0))}[case]
+    assert check_pair_blank(pair, measured=measure_pair_mean_points(pair)) \
+        == check_pair_blank(pair)
+    with pytest.raises(InputRangeError, match="one measured flank per set-up"):
+        check_pair_blank(pair, measured=measure_pair_mean_points(pair)[:2])

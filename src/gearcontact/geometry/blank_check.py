@@ -42,7 +42,8 @@ from decimal import Decimal
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError
-from .flank_angles import measure_generating_angles, measure_mean_point, require_machine
+from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
+                           measure_mean_point, require_machine)
 from .machine import MachineSetup
 
 __all__ = ["GROSS_SPIRAL_DEG", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
@@ -258,14 +259,22 @@ def _values(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict,
     cone = dict(pitch_angle_deg=stated.pitch_angle_deg[m],
                 cone_distance_mm=stated.mean_cone_distance_mm[m], start=start)
     if m == "gear":
-        gen = measure_generating_angles(setup, **cone, cutter_radius_mm=stated.cutter_radius_mm)
-        at = gen.pitch_cone
-        values = {"spiral angle": gen.spiral_angle_deg,
-                  "pressure angle": gen.pressure_angle_deg,
-                  "mean cone distance": gen.cone_distance_mm}
+        return _quantities(measure_generating_angles(
+            setup, **cone, cutter_radius_mm=stated.cutter_radius_mm))
+    return _quantities(measure_mean_point(setup, **cone))
+
+
+def _quantities(measured) -> tuple[dict, object]:
+    """``({quantity: value}, pitch-cone solution)`` of a gear flank's
+    :class:`~.flank_angles.GeneratingGearAngles` or a pinion flank's
+    :class:`~.flank_angles.MeanPointAngles`."""
+    if isinstance(measured, GeneratingGearAngles):
+        at = measured.pitch_cone
+        values = {"spiral angle": measured.spiral_angle_deg,
+                  "pressure angle": measured.pressure_angle_deg,
+                  "mean cone distance": measured.cone_distance_mm}
     else:
-        at = measure_mean_point(setup, **cone)
-        values = {}
+        at, values = measured, {}
     values["root depth"] = at.depth_mm
     values["hand"] = at.hand
     return values, at
@@ -327,22 +336,35 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     return out
 
 
-def _compare(setup, stated, tol=None, hand=None):
+def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None):
     """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
-    reach its mean point: None."""
+    reach its mean point: None. ``measured``: the flank already measured at the same
+    mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured."""
     where = (f"the blank's mean point (cone distance "
              f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
-    try:
-        values, at = _values(setup, stated)
-    except UndercutError:
+    reached, circle = True, None
+    if measured is None:
+        try:
+            values, at = _values(setup, stated)
+        except UndercutError:
+            reached = False
+        except InputRangeError as exc:
+            if exc.field != "cutter_radius_mm":
+                raise
+            circle = exc.allowed
+    elif measured.pitch_cone is None:
+        reached = False
+    elif setup.member == "gear" and measured.generating_gear is None:
+        circle = measured.cutter_circle
+    else:
+        values, at = _quantities(measured.generating_gear or measured.pitch_cone)
+    if not reached:
         return FlankCheck(setup.member, setup.side, (),
                           missing=f"the flank does not reach {where}"), tol
-    except InputRangeError as exc:
-        if exc.field != "cutter_radius_mm":
-            raise
+    if circle is not None:
         return FlankCheck(setup.member, setup.side, (), missing=(
             f"[cutter] radius_mm = {stated.cutter_radius_mm:g}: its circle does not cross "
-            f"the root line of the settings ({exc.allowed})")), tol
+            f"the root line of the settings ({circle})")), tol
     try:
         tol = tol if tol is not None else _tolerances(setup, stated, values, at)
     except UndercutError:
@@ -371,11 +393,18 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
     return "", None, ""
 
 
-def check_flanks(setups, stated: StatedBlank) -> BlankCheck:
+def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
     """Each flank of ``setups`` (:class:`~.machine.MachineSetup`) at its mean point
     against ``stated`` (module docstring): the comparisons, with the likely sign slip of
-    a flank that does not agree."""
-    first = [_compare(s, stated) for s in setups]
+    a flank that does not agree. ``measured``: the flanks already measured at the
+    stated mean points, one :class:`~.flank_angles.FlankMeanPoint` per set-up
+    (:func:`~.flank_angles.measure_pair_mean_points`, what ``design`` prints), else
+    each is measured here."""
+    measured = measured if measured is not None else (None,) * len(setups)
+    if len(measured) != len(setups):
+        raise InputRangeError("measured", len(measured),
+                              f"one measured flank per set-up ({len(setups)})")
+    first = [_compare(s, stated, measured=m) for s, m in zip(setups, measured)]
     bad = [f for f, _ in first if not f.agrees]
     flipped = {"right": "left", "left": "right"}[stated.gear_hand]
     hand_slip = bool(bad) and len(bad) == len(first) and all(
@@ -389,9 +418,10 @@ def check_flanks(setups, stated: StatedBlank) -> BlankCheck:
     return BlankCheck(tuple(out), stated, hand_slip)
 
 
-def check_pair_blank(pair) -> BlankCheck:
+def check_pair_blank(pair, *, measured=None) -> BlankCheck:
     """:func:`check_flanks` of a pair cut from machine settings against its own blank
-    tables (:func:`stated_blank`).
+    tables (:func:`stated_blank`); ``measured``: the pair's
+    :func:`~.flank_angles.measure_pair_mean_points`, when already measured.
 
     Raises
     ------
@@ -399,4 +429,4 @@ def check_pair_blank(pair) -> BlankCheck:
         A pair without machine settings.
     """
     require_machine(pair)
-    return check_flanks(pair.machine, stated_blank(pair))
+    return check_flanks(pair.machine, stated_blank(pair), measured=measured)

@@ -331,6 +331,9 @@ class FlankMeanPoint:
         pinion and where the flank does not reach the point.
     missing : str
         Why a value is None ("" when both are given).
+    cutter_circle : str
+        Where the nominal cutter circle does not cross a gear flank's root line: the
+        allowed range of its radius (``generating_gear`` None), "" otherwise.
     """
 
     member: str
@@ -339,6 +342,7 @@ class FlankMeanPoint:
     pitch_cone: MeanPointAngles | None
     generating_gear: GeneratingGearAngles | None
     missing: str
+    cutter_circle: str = ""
 
 
 def require_machine(pair) -> None:
@@ -366,6 +370,7 @@ def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
     b = pair.blank
     out = []
     for setup in pair.machine:
+        circle = ""
         gear = setup.member == "gear"
         cone = dict(pitch_angle_deg=b.pitch_angle_gear_deg if gear else b.pitch_angle_pinion_deg,
                     cone_distance_mm=b.mean_cone_distance_gear_mm if gear
@@ -386,9 +391,9 @@ def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
         except InputRangeError as exc:
             if exc.field != "cutter_radius_mm":
                 raise
-            at, gen = measure_mean_point(setup, **cone), None
+            at, gen, circle = measure_mean_point(setup, **cone), None, exc.allowed
             missing = (f"[cutter] radius_mm = {pair.cutter.radius_mm:g}: its circle does not "
                        f"cross the root line ({exc.allowed})")
         out.append(FlankMeanPoint(setup.member, setup.side, cone["cone_distance_mm"], at, gen,
-                                  missing))
+                                  missing, circle))
     return tuple(out)

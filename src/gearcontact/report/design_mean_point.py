@@ -81,17 +81,19 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def checked_blank(pair) -> BlankCheck | None:
+def checked_blank(pair, *, measured=None) -> BlankCheck | None:
     """The check of ``pair``'s machine settings against its blank tables, when it is
     loaded (docs/machine_settings.md sec. 2): None for a pair without machine settings;
     a gross mismatch (a hand against the blank's, a generating spiral angle off by more
     than :data:`~gearcontact.geometry.blank_check.GROSS_SPIRAL_DEG`) raises
     :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2);
     any other flank outside its tolerance is a warning on stderr naming the flank, the
-    measured and stated values and the likely key."""
+    measured and stated values and the likely key. ``measured``: the pair's
+    :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points` when already
+    measured (``design`` prints them): the check then measures no flank again."""
     if not pair.machine:
         return None
-    got = check_pair_blank(pair)
+    got = check_pair_blank(pair, measured=measured)
     got.raise_if_gross()
     for line in got.warnings():
         print(line, file=sys.stderr)
