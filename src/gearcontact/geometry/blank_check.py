@@ -46,7 +46,7 @@ from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generat
                            measure_mean_point, require_machine)
 from .machine import MachineSetup
 
-__all__ = ["GROSS_SPIRAL_DEG", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
+__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
            "FlankCheck", "StatedBlank", "check_flanks", "check_pair_blank",
            "stated_blank", "typed_resolution"]
 
@@ -59,6 +59,12 @@ GROSS_SPIRAL_DEG = 3.0
 #: spread of a slot, a tilted cutter and a fitted pinion leave, measured in
 #: docs/machine_settings.md sec. 2).
 ROOT_DATUM_FRACTION = 0.1
+#: The generated gear's pitch point of generation (:func:`~.flank_angles.pitch_offset`,
+#: 0 where the roll is the blank's): its model bound, a fraction of the blank's mean
+#: dedendum (a hypoid gear's generating gear with a blank offset, and one ratio of roll
+#: for both flanks of a spread slot, leave it off the mean point; measured in
+#: docs/machine_settings.md sec. 2).
+PITCH_POINT_FRACTION = 0.1
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
             "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
@@ -273,6 +279,8 @@ def _quantities(measured) -> tuple[dict, object]:
         values = {"spiral angle": measured.spiral_angle_deg,
                   "pressure angle": measured.pressure_angle_deg,
                   "mean cone distance": measured.cone_distance_mm}
+        if measured.pitch_offset_mm is not None:
+            values["pitch point"] = measured.pitch_offset_mm
     else:
         at, values = measured, {}
     values["root depth"] = at.depth_mm
@@ -281,7 +289,7 @@ def _quantities(measured) -> tuple[dict, object]:
 
 
 _UNITS = {"spiral angle": "deg", "pressure angle": "deg", "mean cone distance": "mm",
-          "root depth": "mm", "hand": ""}
+          "pitch point": "mm", "root depth": "mm", "hand": ""}
 _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "pressure_angle_deg",
                     "mean cone distance": "cone_distance_mm"}
 
@@ -321,6 +329,8 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
         for q in tol:
             tol[q] += abs(got[q] - values[q])
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
+    if "pitch point" in tol:
+        tol["pitch point"] += PITCH_POINT_FRACTION * stated.dedendum_mm[setup.member]
     return tol
 
 
@@ -330,7 +340,8 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     hand = hand or stated.gear_hand
     out = {"spiral angle": stated.spiral_angle_gear_deg,
            "pressure angle": stated.pressure_angle_deg[side],
-           "mean cone distance": stated.mean_cone_distance_mm["gear"]} if gear else {}
+           "mean cone distance": stated.mean_cone_distance_mm["gear"],
+           "pitch point": 0.0} if gear else {}
     out["root depth"] = stated.dedendum_mm[member]
     out["hand"] = hand if gear else other[hand]
     return out

@@ -109,9 +109,12 @@ def blank_check_text(check: BlankCheck) -> str:
                 "docs/machine_settings.md sec. 2)")
     worst = max((abs(c.measured - c.stated) / c.tolerance, f"{f.member} {f.side} {c.quantity}")
                 for f in check.flanks for c in f.comparisons if c.tolerance)
+    pitch = any(c.quantity == "pitch point" for f in check.flanks for c in f.comparisons)
     return ("machine settings against the blank: every flank agrees within the typed "
             "settings' rounding propagated (spiral angle, pressure angle, mean cone distance "
-            "of the gear's generating gear; hand and root depth of every flank; largest "
+            "of the gear's generating gear" + (", the pitch point of its generating roll"
+                                               if pitch else "")
+            + "; hand and root depth of every flank; largest "
             f"difference {worst[0]:.2f} of its tolerance, {worst[1]}; "
             "docs/machine_settings.md sec. 2)")
 
