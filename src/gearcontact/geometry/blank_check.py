@@ -44,11 +44,11 @@ from ..validation import InputRangeError
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
                            measure_mean_point, require_machine)
-from .machine import MachineSetup
+from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
 
-__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
-           "FlankCheck", "StatedBlank", "check_flanks", "check_pair_blank",
-           "stated_blank", "typed_resolution"]
+__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
+           "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
+           "check_pair_blank", "stated_blank", "typed_resolution"]
 
 #: A gear flank whose generating spiral angle differs from the blank's by more than
 #: this (deg) is an input error (exit 2), as is a hand against the blank's: no
@@ -70,14 +70,20 @@ _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
             "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
             "ratio_of_roll", "tilt_deg", "swivel_deg")
 _BLADE = ("blade_angle_deg", "point_radius_mm")
+#: The printed series, key -> (MachineSettings field, index).
+_SERIES = {**{k: ("modified_roll", i) for i, k in enumerate(MODIFIED_ROLL_KEYS)},
+           **{k: ("helical_motion", i) for i, k in enumerate(HELICAL_KEYS)}}
 #: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
-#: the sheet word is), docs sec. 2's table.
+#: the sheet word is), docs sec. 2's table; the MD word read from the crossing point
+#: (:attr:`StatedBlank.mctb_datum_mm`) is tried after them.
 SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
          ("sliding_base_mm", lambda x: -x, "sliding base WITH / AWAY"),
          ("cradle_angle_deg", lambda x: -x, "cradle angle sign"),
          ("machine_centre_to_back_mm", lambda x: -x, "machine centre to back MD +-"),
          ("ratio_of_roll", lambda x: 1.0 / x, "ratio of roll, work / cradle against "
-                                              "cradle / work"))
+                                              "cradle / work"),
+         *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
+           for k in MODIFIED_ROLL_KEYS))
 
 
 def typed_resolution(x: float) -> float:
@@ -115,6 +121,11 @@ class StatedBlank:
         inches); None: each typed value's own (:func:`typed_resolution`).
     hand_key, hand_value : str
         The key and value that state the hand (``design.pinion_hand``).
+    mctb_datum_mm : dict
+        Per member, the pitch apex's offset from the crossing point along the work axis
+        towards the member's back, mm: a sheet's MD measured from the crossing point is
+        typed as ``X_D = MD + datum`` (docs sec. 2), so its sign slip is ``X_D -> 2 datum
+        - X_D``; tried where non-zero.
     """
 
     pitch_angle_deg: dict
@@ -128,6 +139,7 @@ class StatedBlank:
     setting_rounding: dict | None = None
     hand_key: str = "design.pinion_hand"
     hand_value: str = ""
+    mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
 
 
 def stated_blank(pair) -> StatedBlank:
@@ -144,7 +156,10 @@ def stated_blank(pair) -> StatedBlank:
         pressure_angle_deg={"drive": b.pressure_angle_drive_deg,
                             "coast": b.pressure_angle_coast_deg},
         gear_hand=other[pair.pinion_hand], cutter_radius_mm=pair.cutter.radius_mm,
-        hand_value=pair.pinion_hand)
+        hand_value=pair.pinion_hand,
+        # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
+        # each body on the + side (geometry.blank)
+        mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})
 
 
 @dataclass(frozen=True)
@@ -169,7 +184,8 @@ class Comparison:
 class FlankCheck:
     """One flank: its comparisons, ``missing`` (why there are none: the flank does not
     reach its mean point, "" otherwise), ``slip`` (the key of the sign slip under which
-    it agrees, "" when none or when it agrees), ``slip_value`` and ``slip_word``."""
+    it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
+    ``slip_also`` (the keys of the other slips under which it agrees, best first)."""
 
     member: str
     side: str
@@ -178,6 +194,7 @@ class FlankCheck:
     slip: str = ""
     slip_value: float | str | None = None
     slip_word: str = ""
+    slip_also: tuple = ()
 
     @property
     def agrees(self) -> bool:
@@ -227,7 +244,9 @@ class BlankCheck:
             raise InputRangeError(f.slip, f.slip_value,
                                   f"the sign that cuts the blank's tooth ({what}; with the "
                                   f"other sign ({f.slip_word}) the flank agrees with the "
-                                  "blank" + (f"; also {', '.join(also)}" if also else "")
+                                  "blank" + (f"; it agrees as well with the other sign of "
+                                             f"{', '.join(f.slip_also)}" if f.slip_also else "")
+                                  + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         raise InputRangeError(f"[machine.{f.member}.{f.side}]", None,
                               f"settings that cut the blank's tooth ({what}; no known sign "
@@ -243,6 +262,8 @@ class BlankCheck:
             word = "hand" if self.hand_slip else f.slip_word
             hint = (f"; likely {key} (with the other {word} the flank agrees)" if key
                     else "; no known sign slip explains it")
+            if key and f.slip_also and not self.hand_slip:
+                hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
                        f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
@@ -294,10 +315,28 @@ _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "press
                     "mean cone distance": "cone_distance_mm"}
 
 
+def _setting(setup: MachineSetup, key: str) -> float:
+    """The typed value of ``key`` (a machine, printed-series or blade key); 0 for a
+    series term not typed."""
+    if key in _BLADE:
+        return getattr(setup.blade, key)
+    if key in _SERIES:
+        name, i = _SERIES[key]
+        vals = getattr(setup.settings, name)
+        return vals[i] if i < len(vals) else 0.0
+    return getattr(setup.settings, key)
+
+
 def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
     if key in _BLADE:
         return dataclasses.replace(setup, blade=dataclasses.replace(
             setup.blade, **{key: fn(getattr(setup.blade, key))}))
+    if key in _SERIES:                  # a typed term (_setting != 0) of the series
+        name, i = _SERIES[key]
+        vals = list(getattr(setup.settings, name))
+        vals[i] = fn(vals[i])
+        return dataclasses.replace(setup, settings=dataclasses.replace(
+            setup.settings, **{name: tuple(vals)}))
     return dataclasses.replace(setup, settings=dataclasses.replace(
         setup.settings, **{key: fn(getattr(setup.settings, key))}))
 
@@ -307,8 +346,7 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
     res = stated.setting_rounding
-    keys = [(k, getattr(setup.settings, k)) for k in _NUMERIC] + \
-           [(k, getattr(setup.blade, k)) for k in _BLADE]
+    keys = [(k, _setting(setup, k)) for k in (*_NUMERIC, *_SERIES, *_BLADE)]
     moves = [(k, (res.get(k, 0.0) if res is not None else typed_resolution(v)))
              for k, v in keys]
     moves = [(k, r) for k, r in moves if r > 0.0]
@@ -388,11 +426,21 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
 
 
 def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
-    """``(key, typed value, word)`` of the first slip of :data:`SLIPS` under which the
-    flank agrees with the blank, or ``("", None, "")``."""
-    for key, fn, word in SLIPS:
-        value = getattr(setup.settings, key)
-        if value == 0.0:
+    """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` (and the MD
+    word read from the crossing point, :attr:`StatedBlank.mctb_datum_mm`) under which
+    the flank agrees with the blank best (the smallest largest difference relative to its
+    tolerance), with the keys of the other slips under which it agrees (a small
+    setting's sign may bring a flank just outside back inside), or
+    ``("", None, "", ())``."""
+    datum = stated.mctb_datum_mm.get(setup.member, 0.0)
+    md = ("machine_centre_to_back_mm", lambda x: 2.0 * datum - x,
+          f"MD sign, MD read from the crossing point (X_D = MD {datum:+.4f} mm, the pitch "
+          "apex's offset)")
+    found = []
+    for slip in SLIPS + ((md,) if datum != 0.0 else ()):
+        key, fn, word = slip
+        value = _setting(setup, key)
+        if value == 0.0 and slip is not md:
             continue                       # no sign to slip (a ratio 0 is formate)
         try:
             fixed = _moved(setup, key, fn)
@@ -400,8 +448,13 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
             continue
         got, _ = _compare(fixed, stated, tol)
         if got.agrees:
-            return f"machine.{setup.member}.{setup.side}.{key}", value, word
-    return "", None, ""
+            score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
+                         if c.tolerance), default=0.0)
+            found.append((score, f"machine.{setup.member}.{setup.side}.{key}", value, word))
+    if not found:
+        return "", None, "", ()
+    found.sort(key=lambda x: x[0])
+    return (*found[0][1:], tuple(f[1] for f in found[1:]))
 
 
 def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
@@ -423,8 +476,9 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
     out = []
     for s, (f, tol) in zip(setups, first):
         if not f.agrees and not hand_slip:
-            key, value, word = _slip(s, stated, tol)
-            f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word)
+            key, value, word, also = _slip(s, stated, tol)
+            f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
+                                    slip_also=also)
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 

@@ -121,12 +121,13 @@ def blank_check_text(check: BlankCheck) -> str:
 
 def blank_check_json(check: BlankCheck) -> dict:
     """``{"agrees": bool, "flanks": {member: {side: {"agrees", "missing", "slip",
-    "comparisons": [{"quantity", "unit", "measured", "stated", "tolerance",
+    "slip_also", "comparisons": [{"quantity", "unit", "measured", "stated", "tolerance",
     "within"}]}}}, "hand_slip": bool}``."""
     flanks: dict = {}
     for f in check.flanks:
         flanks.setdefault(f.member, {})[f.side] = {
             "agrees": f.agrees, "missing": f.missing, "slip": f.slip,
+            "slip_also": list(f.slip_also),
             "comparisons": [{"quantity": c.quantity, "unit": c.unit, "measured": c.measured,
                              "stated": c.stated, "tolerance": c.tolerance,
                              "within": c.within} for c in f.comparisons]}
