@@ -11,7 +11,10 @@ tooth, and everything downstream is silently wrong. Compared per flank:
 - gear flanks (the generating gear in the cradle plane, what a sheet prints,
   :func:`~.flank_angles.measure_generating_angles`): the spiral angle against the
   blank's ``beta_m2``, the pressure angle against the side's, the mean cone distance
-  against ``R_m2``;
+  against ``R_m2``; a generated gear's **pitch point** of the generating roll
+  (:func:`~.flank_angles.pitch_offset`, what the ratio of roll and the modified roll
+  set) against the mean point, within :data:`PITCH_POINT_FRACTION` of the dedendum (a
+  model bound);
 - every flank: the hand on its pitch cone against the blank's, and the **root datum**:
   the depth behind the cutter's tip plane of the blade point that cuts the mean point
   against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
@@ -26,8 +29,9 @@ case to first order, as tests/geometry/test_flank_angles.py propagates a print's
 rounding), plus the stated value's own rounding (0 for a pair's blank: its values are
 the design's definitions), plus the solve's 1e-7; the root datum adds
 :data:`ROOT_DATUM_FRACTION` of the dedendum (a model bound, not a rounding). A flank
-outside its tolerance is tried against the known sign slips (:data:`SLIPS`, and the
-blank's hand): the slip under which every value of the flank agrees is named.
+outside its tolerance is tried against the known slips (:data:`SLIPS`, the MD word
+read from the crossing point, and the blank's hand): of the slips under which every
+value of the flank agrees the best fit is named, the others listed.
 
 References
 ----------
@@ -66,6 +70,7 @@ ROOT_DATUM_FRACTION = 0.1
 #: docs/machine_settings.md sec. 2).
 PITCH_POINT_FRACTION = 0.1
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
+_SAME = 1e-9                      # a slip that moves a value less than this is no slip
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
             "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
             "ratio_of_roll", "tilt_deg", "swivel_deg")
@@ -440,8 +445,8 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
     for slip in SLIPS + ((md,) if datum != 0.0 else ()):
         key, fn, word = slip
         value = _setting(setup, key)
-        if value == 0.0 and slip is not md:
-            continue                       # no sign to slip (a ratio 0 is formate)
+        if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
+            continue       # no sign to slip (a ratio 0 is formate), or the slip is no change
         try:
             fixed = _moved(setup, key, fn)
         except InputRangeError:
