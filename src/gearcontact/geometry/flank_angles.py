@@ -224,8 +224,8 @@ class GeneratingGearAngles:
     pitch_offset_mm : float or None
         The generating roll's pitch point against the mean point, mm: the distance along
         the flank's normal ``n`` from the mean point to where the generating gear rolls
-        on the work without profile sliding (:func:`pitch_offset`); None for a formate
-        gear (no roll).
+        on the work without profile sliding (:func:`pitch_offset`); None where the work
+        does not roll (ratio of roll 0: formate, or helical motion alone).
     """
 
     spiral_angle_deg: float
@@ -312,7 +312,7 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
         pressure_angle_deg=math.degrees(math.asin(min(1.0, abs(float(at.normal @ z_m))))),
         cone_distance_mm=cone_distance_mm + (x_cross - x_foot) / along,
         crossing_beyond_mean_mm=x_cross - x_foot, pitch_cone=at,
-        pitch_offset_mm=None if st.formate else pitch_offset(
+        pitch_offset_mm=None if st.ratio_of_roll == 0.0 else pitch_offset(
             setup, at, pitch_angle_deg=pitch_angle_deg))
 
 
@@ -341,7 +341,7 @@ def pitch_offset(setup: MachineSetup, at: MeanPointAngles, *, pitch_angle_deg: f
     Parameters
     ----------
     setup : MachineSetup
-        A generated flank (ratio of roll or helical motion).
+        A generated flank whose work rolls (ratio of roll != 0).
     at : MeanPointAngles
         Its point on the pitch cone (:func:`measure_mean_point`).
     pitch_angle_deg : float
@@ -355,7 +355,7 @@ def pitch_offset(setup: MachineSetup, at: MeanPointAngles, *, pitch_angle_deg: f
     Raises
     ------
     InputRangeError
-        A formate set-up (no generating roll).
+        A ratio of roll 0 (the work does not roll: no pitch point).
 
     References
     ----------
@@ -363,9 +363,9 @@ def pitch_offset(setup: MachineSetup, at: MeanPointAngles, *, pitch_angle_deg: f
     (relative velocity), sec. 6.1 (equation of meshing). ISO 23509:2016 (the pitch point
     of a hypoid pair: the relative velocity there along the tooth trace).
     """
-    if setup.settings.formate:
+    if setup.settings.ratio_of_roll == 0.0:
         raise InputRangeError(f"{setup.member} {setup.side} set-up ratio_of_roll", 0.0,
-                              "a generated flank (a formate cut has no generating roll)")
+                              "a rolled flank, != 0 (the work does not roll: no pitch point)")
     kin = MachineKinematics(setup.settings)
     x_t, n_t = blade_point(setup.blade, at.blade_length_mm, at.blade_position_rad)
     _, n, v = kin.to_work(x_t, n_t, at.roll_rad)
