@@ -81,3 +81,57 @@ def test_analyze_refuses_a_wrong_hand_before_any_work(tmp_path):
     assert code == 2, err
     assert "machine.gear.drive.cradle_angle_deg = 80.4732" in err
     assert not (tmp_path / "a").exists()
+
+
+@pytest.fixture(scope="module")
+def hypoid_generated(tmp_path_factory):
+    """The 11 x 41 hypoid's standard settings with the gear generated (what design
+    --machine-settings writes, full precision) as a pair file, and its blank's pitch
+    apexes from the crossing point (the MD datum)."""
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.geometry.blank_check import stated_blank
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+
+    pair = standard_machine_pair(load_pair(ROOT / "examples" / "hypoid_11x41_rear_axle.toml"),
+                                 gear_generation="generated")
+    path = tmp_path_factory.mktemp("hypoid") / "hypoid_generated.toml"
+    path.write_text(pair_to_toml(pair), encoding="utf-8")
+    return path, stated_blank(pair).mctb_datum_mm
+
+
+HYPOID_SLIPS = [
+    # (key flipped on both gear flanks, exit code, what stderr says): the ratio of roll
+    # typed as its reciprocal (1.0637 -> 0.9401): the gear flanks miss their mean point,
+    # the key named, then the gear's generation refuses its flank (exit 2); the MD word
+    # read from the crossing point with the other sign (X_D 0 -> 0.573 mm): the pitch
+    # point of generation 2.4 / 1.2 mm off (tolerance 0.63), a warning naming the key
+    ("ratio_of_roll", lambda x, a: 1.0 / x, 2,
+     ("likely machine.gear.drive.ratio_of_roll", "a node the generated envelope reaches")),
+    ("machine_centre_to_back_mm", lambda x, a: 2.0 * a - x, 0,
+     ("likely machine.gear.drive.machine_centre_to_back_mm (with the other MD sign, MD "
+      "read from the crossing point", "pitch point 2.3")),
+]
+
+
+def test_design_says_the_generated_hypoid_agrees(hypoid_generated):
+    code, out, err = run_console("design", "--pair", hypoid_generated[0])
+    assert code == 0, err
+    assert "warning" not in err
+    assert "the pitch point of its generating roll" in out
+
+
+@pytest.mark.parametrize("key,flip,code,said", HYPOID_SLIPS, ids=[k for k, *_ in HYPOID_SLIPS])
+def test_design_names_a_gear_roll_slip(tmp_path, hypoid_generated, key, flip, code, said):
+    src, datum = hypoid_generated
+    out_lines, cur = [], None
+    for line in src.read_text(encoding="utf-8").splitlines():
+        m = re.match(r"\[(.*)\]", line)
+        cur = m.group(1) if m else cur
+        if cur and cur.startswith("machine.gear") and line.startswith(f"{key} ="):
+            line = f"{key} = {flip(float(line.split('=')[1]), datum['gear'])!r}"
+        out_lines.append(line)
+    path = tmp_path / f"gear_{key}.toml"
+    path.write_text("\n".join(out_lines) + "\n", encoding="utf-8")
+    got, out, err = run_console("design", "--pair", path)
+    assert got == code, err
+    assert all(s in err for s in said), err

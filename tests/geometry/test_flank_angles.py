@@ -26,8 +26,10 @@ from gearcontact.geometry.basic_settings import (formate_gear_setups, generated_
                                                  member_setups)
 from gearcontact.geometry.conjugate import UndercutError
 from gearcontact.geometry.flank_angles import (PINION_UNDEFINED, measure_generating_angles,
-                                               measure_mean_point, measure_pair_mean_points)
-from gearcontact.geometry.machine import BladeSettings, mirror_setup, setup_from_tables
+                                               measure_mean_point, measure_pair_mean_points,
+                                               pitch_offset)
+from gearcontact.geometry.machine import (BladeSettings, MachineKinematics, blade_point,
+                                          mirror_setup, setup_from_tables)
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 
@@ -109,6 +111,14 @@ def test_generating_gear_of_the_standard_settings_is_the_blanks(name, generation
                                                          abs=1e-9)
             assert got.crossing_beyond_mean_mm == pytest.approx(0.0, abs=1e-9)
             assert got.pitch_cone.hand == hand
+            # the generated gear rolls on the crown gear of its pitch plane (R_a =
+            # 1/sin(delta2)): the generating roll's pitch point is the mean point (the
+            # relative rotation is about the pitch line through it; 1e-9 mm as above,
+            # measured <= 4e-13); a formate gear has no roll
+            if generation == "generated":
+                assert got.pitch_offset_mm == pytest.approx(0.0, abs=1e-9)
+            else:
+                assert got.pitch_offset_mm is None
 
 
 def test_generating_angles_are_the_gears_and_need_a_circle_that_reaches_the_root_line(f2):
@@ -391,3 +401,59 @@ def test_sheet_measured_values_are_stable(sheet, measured):
                             point_radius_mm=IN * 0.5 * p["cutter_diameter_in"])
     slot = _mean_point(p, dataclasses.replace(setups["drive"], blade=nominal))
     assert slot.spiral_angle_deg == pytest.approx(26.8123, abs=5e-4)
+
+
+@pytest.mark.parametrize("name", ["iso23509_f2_spiral_bevel", "iso23509_f3"])
+def test_pitch_offset_of_a_pinion_rolled_as_in_mesh_is_zero(name):
+    # the complementary pinion of the formate gear rolls with the gear's generating
+    # gear as in the pair's mesh (R_a = z2/z1, the cradle axis the gear axis): at the
+    # mean point of a spiral bevel pinion (F.2, offset 0) the relative motion is a
+    # rotation about the pitch line, the pitch offset is 0 (1e-9 mm, the solve's
+    # residual; measured ~1e-14). A hypoid pinion (F.3) rolled so is not at its mean
+    # point: ISO 23509 puts the hypoid pair's pitch point where the relative velocity of
+    # pinion and gear lies along the tooth trace, the gear's generating gear is not the
+    # gear (measured 0.28 / 0.15 mm on F.3, docs/machine_settings.md sec. 2)
+    pair = load_pair(ROOT / "examples" / f"{name}.toml")
+    b = pair.blank
+    for setup in member_setups(pair, "formate")[1].values():
+        at = measure_mean_point(setup, pitch_angle_deg=b.pitch_angle_pinion_deg,
+                                cone_distance_mm=b.mean_cone_distance_pinion_mm)
+        got = pitch_offset(setup, at, pitch_angle_deg=b.pitch_angle_pinion_deg)
+        if name == "iso23509_f3":
+            assert abs(got) > 0.1
+        else:
+            assert got == pytest.approx(0.0, abs=1e-9)
+
+
+def test_pitch_offset_is_where_the_profile_sliding_vanishes(sheet):
+    # independent of the closed form s = (v . p) / (Omega . t): the cradle-fixed point
+    # at P + s n (cutter frame x_t + s n_t, the machine map is rigid at a fixed roll)
+    # moves against the work, by machine.to_work's own velocity dX_w/dpsi, along the
+    # flank's tangent plane and across the profile direction p = n x t only: its
+    # component along p is 0 to round-off (1e-9 of |v|: the field is affine in the
+    # point, exact in double precision), on the sheet's hypoid gear (a screw motion, blank
+    # offset -5.715 mm) and with its ratio of roll typed as the reciprocal; the formate
+    # set-up is refused, naming the key
+    p, setups = sheet
+    d, r_m = math.radians(p["gear_pitch_angle_deg"]), _mean_cone_mm(p)
+    for ratio in (1.0, -1.0):
+        for setup in setups.values():
+            cut = dataclasses.replace(setup, settings=dataclasses.replace(
+                setup.settings, ratio_of_roll=setup.settings.ratio_of_roll ** ratio))
+            at = measure_mean_point(cut, pitch_angle_deg=math.degrees(d), cone_distance_mm=r_m)
+            s = pitch_offset(cut, at, pitch_angle_deg=math.degrees(d))
+            x_t, n_t = blade_point(cut.blade, at.blade_length_mm, at.blade_position_rad)
+            kin = MachineKinematics(cut.settings)
+            _, n, v_p = kin.to_work(x_t, n_t, at.roll_rad)
+            x_q, _, v_q = kin.to_work(x_t + s * n_t, n_t, at.roll_rad)
+            assert x_q == pytest.approx(at.point_mm + s * n, abs=1e-9)
+            phi = at.azimuth_rad
+            g = np.array([math.sin(d) * math.cos(phi), math.sin(d) * math.sin(phi), math.cos(d)])
+            t = np.cross(n, np.cross(g, [-math.sin(phi), math.cos(phi), 0.0]))
+            prof = np.cross(n, t / np.linalg.norm(t))
+            assert abs(v_q @ prof) <= 1e-9 * np.linalg.norm(v_p)
+            assert abs(v_p @ prof) > 0.01 * np.linalg.norm(v_p)   # P itself slides
+    formate = dataclasses.replace(setups["drive"], settings=dataclasses.replace(
+        setups["drive"].settings, ratio_of_roll=0.0))
+    with pytest.raises(InputRangeError, match="ratio_of_roll"):
+        pitch_offset(formate, at, pitch_angle_deg=math.degrees(d))

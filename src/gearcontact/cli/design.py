@@ -188,7 +188,10 @@ def check(args) -> None:
         # gear rows are corrected from the pair's own gear (the gear they measure)
         args.machine_pair = pair
         pair = args.gear_pair = dataclasses.replace(pair, machine=())
-    args.blank_check = checked_blank(pair)     # typed settings against the blank tables
+    # typed settings against the blank tables, on the flanks measured at the blank's mean
+    # points once (the table below the blank prints the same measurements)
+    args.mean_points = measure_pair_mean_points(pair) if pair.machine else None
+    args.blank_check = checked_blank(pair, measured=args.mean_points)
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces
@@ -575,7 +578,9 @@ def run(args) -> int:
         print(warning, file=sys.stderr)
     # a pair cut from machine settings: its flanks at the blank's mean points, the
     # generating gear's angles (a summary sheet's) beside the pitch cone's
-    points = measure_pair_mean_points(pair) if pair.machine else None
+    points = getattr(args, "mean_points", None)
+    if pair.machine and points is None:
+        points = measure_pair_mean_points(pair)
     settings_check = getattr(args, "blank_check", None)
     if args.json:
         out = {"pair": pair.name, **blank.as_dict(), "gear_generation": generation,

@@ -11,7 +11,10 @@ tooth, and everything downstream is silently wrong. Compared per flank:
 - gear flanks (the generating gear in the cradle plane, what a sheet prints,
   :func:`~.flank_angles.measure_generating_angles`): the spiral angle against the
   blank's ``beta_m2``, the pressure angle against the side's, the mean cone distance
-  against ``R_m2``;
+  against ``R_m2``; a generated gear's **pitch point** of the generating roll
+  (:func:`~.flank_angles.pitch_offset`, what the ratio of roll and the modified roll
+  set) against the mean point, within :data:`PITCH_POINT_FRACTION` of the dedendum (a
+  model bound);
 - every flank: the hand on its pitch cone against the blank's, and the **root datum**:
   the depth behind the cutter's tip plane of the blade point that cuts the mean point
   against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
@@ -26,8 +29,9 @@ case to first order, as tests/geometry/test_flank_angles.py propagates a print's
 rounding), plus the stated value's own rounding (0 for a pair's blank: its values are
 the design's definitions), plus the solve's 1e-7; the root datum adds
 :data:`ROOT_DATUM_FRACTION` of the dedendum (a model bound, not a rounding). A flank
-outside its tolerance is tried against the known sign slips (:data:`SLIPS`, and the
-blank's hand): the slip under which every value of the flank agrees is named.
+outside its tolerance is tried against the known slips (:data:`SLIPS`, the MD word
+read from the crossing point, and the blank's hand): of the slips under which every
+value of the flank agrees the best fit is named, the others listed.
 
 References
 ----------
@@ -42,12 +46,13 @@ from decimal import Decimal
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError
-from .flank_angles import measure_generating_angles, measure_mean_point, require_machine
-from .machine import MachineSetup
+from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
+                           measure_mean_point, require_machine)
+from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
 
-__all__ = ["GROSS_SPIRAL_DEG", "ROOT_DATUM_FRACTION", "SLIPS", "BlankCheck", "Comparison",
-           "FlankCheck", "StatedBlank", "check_flanks", "check_pair_blank",
-           "stated_blank", "typed_resolution"]
+__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
+           "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
+           "check_pair_blank", "stated_blank", "typed_resolution"]
 
 #: A gear flank whose generating spiral angle differs from the blank's by more than
 #: this (deg) is an input error (exit 2), as is a hand against the blank's: no
@@ -58,19 +63,32 @@ GROSS_SPIRAL_DEG = 3.0
 #: spread of a slot, a tilted cutter and a fitted pinion leave, measured in
 #: docs/machine_settings.md sec. 2).
 ROOT_DATUM_FRACTION = 0.1
+#: The generated gear's pitch point of generation (:func:`~.flank_angles.pitch_offset`,
+#: 0 where the roll is the blank's): its model bound, a fraction of the blank's mean
+#: dedendum (a hypoid gear's generating gear with a blank offset, and one ratio of roll
+#: for both flanks of a spread slot, leave it off the mean point; measured in
+#: docs/machine_settings.md sec. 2).
+PITCH_POINT_FRACTION = 0.1
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
+_SAME = 1e-9                      # a slip that moves a value less than this is no slip
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
             "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
             "ratio_of_roll", "tilt_deg", "swivel_deg")
 _BLADE = ("blade_angle_deg", "point_radius_mm")
+#: The printed series, key -> (MachineSettings field, index).
+_SERIES = {**{k: ("modified_roll", i) for i, k in enumerate(MODIFIED_ROLL_KEYS)},
+           **{k: ("helical_motion", i) for i, k in enumerate(HELICAL_KEYS)}}
 #: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
-#: the sheet word is), docs sec. 2's table.
+#: the sheet word is), docs sec. 2's table; the MD word read from the crossing point
+#: (:attr:`StatedBlank.mctb_datum_mm`) is tried after them.
 SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
          ("sliding_base_mm", lambda x: -x, "sliding base WITH / AWAY"),
          ("cradle_angle_deg", lambda x: -x, "cradle angle sign"),
          ("machine_centre_to_back_mm", lambda x: -x, "machine centre to back MD +-"),
          ("ratio_of_roll", lambda x: 1.0 / x, "ratio of roll, work / cradle against "
-                                              "cradle / work"))
+                                              "cradle / work"),
+         *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
+           for k in MODIFIED_ROLL_KEYS))
 
 
 def typed_resolution(x: float) -> float:
@@ -108,6 +126,11 @@ class StatedBlank:
         inches); None: each typed value's own (:func:`typed_resolution`).
     hand_key, hand_value : str
         The key and value that state the hand (``design.pinion_hand``).
+    mctb_datum_mm : dict
+        Per member, the pitch apex's offset from the crossing point along the work axis
+        towards the member's back, mm: a sheet's MD measured from the crossing point is
+        typed as ``X_D = MD + datum`` (docs sec. 2), so its sign slip is ``X_D -> 2 datum
+        - X_D``; tried where non-zero.
     """
 
     pitch_angle_deg: dict
@@ -121,6 +144,7 @@ class StatedBlank:
     setting_rounding: dict | None = None
     hand_key: str = "design.pinion_hand"
     hand_value: str = ""
+    mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
 
 
 def stated_blank(pair) -> StatedBlank:
@@ -137,7 +161,10 @@ def stated_blank(pair) -> StatedBlank:
         pressure_angle_deg={"drive": b.pressure_angle_drive_deg,
                             "coast": b.pressure_angle_coast_deg},
         gear_hand=other[pair.pinion_hand], cutter_radius_mm=pair.cutter.radius_mm,
-        hand_value=pair.pinion_hand)
+        hand_value=pair.pinion_hand,
+        # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
+        # each body on the + side (geometry.blank)
+        mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})
 
 
 @dataclass(frozen=True)
@@ -162,7 +189,8 @@ class Comparison:
 class FlankCheck:
     """One flank: its comparisons, ``missing`` (why there are none: the flank does not
     reach its mean point, "" otherwise), ``slip`` (the key of the sign slip under which
-    it agrees, "" when none or when it agrees), ``slip_value`` and ``slip_word``."""
+    it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
+    ``slip_also`` (the keys of the other slips under which it agrees, best first)."""
 
     member: str
     side: str
@@ -171,6 +199,7 @@ class FlankCheck:
     slip: str = ""
     slip_value: float | str | None = None
     slip_word: str = ""
+    slip_also: tuple = ()
 
     @property
     def agrees(self) -> bool:
@@ -220,7 +249,9 @@ class BlankCheck:
             raise InputRangeError(f.slip, f.slip_value,
                                   f"the sign that cuts the blank's tooth ({what}; with the "
                                   f"other sign ({f.slip_word}) the flank agrees with the "
-                                  "blank" + (f"; also {', '.join(also)}" if also else "")
+                                  "blank" + (f"; it agrees as well with the other sign of "
+                                             f"{', '.join(f.slip_also)}" if f.slip_also else "")
+                                  + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         raise InputRangeError(f"[machine.{f.member}.{f.side}]", None,
                               f"settings that cut the blank's tooth ({what}; no known sign "
@@ -236,6 +267,8 @@ class BlankCheck:
             word = "hand" if self.hand_slip else f.slip_word
             hint = (f"; likely {key} (with the other {word} the flank agrees)" if key
                     else "; no known sign slip explains it")
+            if key and f.slip_also and not self.hand_slip:
+                hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
                        f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
@@ -258,29 +291,57 @@ def _values(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict,
     cone = dict(pitch_angle_deg=stated.pitch_angle_deg[m],
                 cone_distance_mm=stated.mean_cone_distance_mm[m], start=start)
     if m == "gear":
-        gen = measure_generating_angles(setup, **cone, cutter_radius_mm=stated.cutter_radius_mm)
-        at = gen.pitch_cone
-        values = {"spiral angle": gen.spiral_angle_deg,
-                  "pressure angle": gen.pressure_angle_deg,
-                  "mean cone distance": gen.cone_distance_mm}
+        return _quantities(measure_generating_angles(
+            setup, **cone, cutter_radius_mm=stated.cutter_radius_mm))
+    return _quantities(measure_mean_point(setup, **cone))
+
+
+def _quantities(measured) -> tuple[dict, object]:
+    """``({quantity: value}, pitch-cone solution)`` of a gear flank's
+    :class:`~.flank_angles.GeneratingGearAngles` or a pinion flank's
+    :class:`~.flank_angles.MeanPointAngles`."""
+    if isinstance(measured, GeneratingGearAngles):
+        at = measured.pitch_cone
+        values = {"spiral angle": measured.spiral_angle_deg,
+                  "pressure angle": measured.pressure_angle_deg,
+                  "mean cone distance": measured.cone_distance_mm}
+        if measured.pitch_offset_mm is not None:
+            values["pitch point"] = measured.pitch_offset_mm
     else:
-        at = measure_mean_point(setup, **cone)
-        values = {}
+        at, values = measured, {}
     values["root depth"] = at.depth_mm
     values["hand"] = at.hand
     return values, at
 
 
 _UNITS = {"spiral angle": "deg", "pressure angle": "deg", "mean cone distance": "mm",
-          "root depth": "mm", "hand": ""}
+          "pitch point": "mm", "root depth": "mm", "hand": ""}
 _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "pressure_angle_deg",
                     "mean cone distance": "cone_distance_mm"}
+
+
+def _setting(setup: MachineSetup, key: str) -> float:
+    """The typed value of ``key`` (a machine, printed-series or blade key); 0 for a
+    series term not typed."""
+    if key in _BLADE:
+        return getattr(setup.blade, key)
+    if key in _SERIES:
+        name, i = _SERIES[key]
+        vals = getattr(setup.settings, name)
+        return vals[i] if i < len(vals) else 0.0
+    return getattr(setup.settings, key)
 
 
 def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
     if key in _BLADE:
         return dataclasses.replace(setup, blade=dataclasses.replace(
             setup.blade, **{key: fn(getattr(setup.blade, key))}))
+    if key in _SERIES:                  # a typed term (_setting != 0) of the series
+        name, i = _SERIES[key]
+        vals = list(getattr(setup.settings, name))
+        vals[i] = fn(vals[i])
+        return dataclasses.replace(setup, settings=dataclasses.replace(
+            setup.settings, **{name: tuple(vals)}))
     return dataclasses.replace(setup, settings=dataclasses.replace(
         setup.settings, **{key: fn(getattr(setup.settings, key))}))
 
@@ -290,8 +351,7 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
     res = stated.setting_rounding
-    keys = [(k, getattr(setup.settings, k)) for k in _NUMERIC] + \
-           [(k, getattr(setup.blade, k)) for k in _BLADE]
+    keys = [(k, _setting(setup, k)) for k in (*_NUMERIC, *_SERIES, *_BLADE)]
     moves = [(k, (res.get(k, 0.0) if res is not None else typed_resolution(v)))
              for k, v in keys]
     moves = [(k, r) for k, r in moves if r > 0.0]
@@ -312,6 +372,8 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
         for q in tol:
             tol[q] += abs(got[q] - values[q])
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
+    if "pitch point" in tol:
+        tol["pitch point"] += PITCH_POINT_FRACTION * stated.dedendum_mm[setup.member]
     return tol
 
 
@@ -321,28 +383,42 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     hand = hand or stated.gear_hand
     out = {"spiral angle": stated.spiral_angle_gear_deg,
            "pressure angle": stated.pressure_angle_deg[side],
-           "mean cone distance": stated.mean_cone_distance_mm["gear"]} if gear else {}
+           "mean cone distance": stated.mean_cone_distance_mm["gear"],
+           "pitch point": 0.0} if gear else {}
     out["root depth"] = stated.dedendum_mm[member]
     out["hand"] = hand if gear else other[hand]
     return out
 
 
-def _compare(setup, stated, tol=None, hand=None):
+def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None):
     """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
-    reach its mean point: None."""
+    reach its mean point: None. ``measured``: the flank already measured at the same
+    mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured."""
     where = (f"the blank's mean point (cone distance "
              f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
-    try:
-        values, at = _values(setup, stated)
-    except UndercutError:
+    reached, circle = True, None
+    if measured is None:
+        try:
+            values, at = _values(setup, stated)
+        except UndercutError:
+            reached = False
+        except InputRangeError as exc:
+            if exc.field != "cutter_radius_mm":
+                raise
+            circle = exc.allowed
+    elif measured.pitch_cone is None:
+        reached = False
+    elif setup.member == "gear" and measured.generating_gear is None:
+        circle = measured.cutter_circle
+    else:
+        values, at = _quantities(measured.generating_gear or measured.pitch_cone)
+    if not reached:
         return FlankCheck(setup.member, setup.side, (),
                           missing=f"the flank does not reach {where}"), tol
-    except InputRangeError as exc:
-        if exc.field != "cutter_radius_mm":
-            raise
+    if circle is not None:
         return FlankCheck(setup.member, setup.side, (), missing=(
             f"[cutter] radius_mm = {stated.cutter_radius_mm:g}: its circle does not cross "
-            f"the root line of the settings ({exc.allowed})")), tol
+            f"the root line of the settings ({circle})")), tol
     try:
         tol = tol if tol is not None else _tolerances(setup, stated, values, at)
     except UndercutError:
@@ -355,27 +431,49 @@ def _compare(setup, stated, tol=None, hand=None):
 
 
 def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
-    """``(key, typed value, word)`` of the first slip of :data:`SLIPS` under which the
-    flank agrees with the blank, or ``("", None, "")``."""
-    for key, fn, word in SLIPS:
-        value = getattr(setup.settings, key)
-        if value == 0.0:
-            continue                       # no sign to slip (a ratio 0 is formate)
+    """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` (and the MD
+    word read from the crossing point, :attr:`StatedBlank.mctb_datum_mm`) under which
+    the flank agrees with the blank best (the smallest largest difference relative to its
+    tolerance), with the keys of the other slips under which it agrees (a small
+    setting's sign may bring a flank just outside back inside), or
+    ``("", None, "", ())``."""
+    datum = stated.mctb_datum_mm.get(setup.member, 0.0)
+    md = ("machine_centre_to_back_mm", lambda x: 2.0 * datum - x,
+          f"MD sign, MD read from the crossing point (X_D = MD {datum:+.4f} mm, the pitch "
+          "apex's offset)")
+    found = []
+    for slip in SLIPS + ((md,) if datum != 0.0 else ()):
+        key, fn, word = slip
+        value = _setting(setup, key)
+        if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
+            continue       # no sign to slip (a ratio 0 is formate), or the slip is no change
         try:
             fixed = _moved(setup, key, fn)
         except InputRangeError:
             continue
         got, _ = _compare(fixed, stated, tol)
         if got.agrees:
-            return f"machine.{setup.member}.{setup.side}.{key}", value, word
-    return "", None, ""
+            score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
+                         if c.tolerance), default=0.0)
+            found.append((score, f"machine.{setup.member}.{setup.side}.{key}", value, word))
+    if not found:
+        return "", None, "", ()
+    found.sort(key=lambda x: x[0])
+    return (*found[0][1:], tuple(f[1] for f in found[1:]))
 
 
-def check_flanks(setups, stated: StatedBlank) -> BlankCheck:
+def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
     """Each flank of ``setups`` (:class:`~.machine.MachineSetup`) at its mean point
     against ``stated`` (module docstring): the comparisons, with the likely sign slip of
-    a flank that does not agree."""
-    first = [_compare(s, stated) for s in setups]
+    a flank that does not agree. ``measured``: the flanks already measured at the
+    stated mean points, one :class:`~.flank_angles.FlankMeanPoint` per set-up
+    (:func:`~.flank_angles.measure_pair_mean_points`, what ``design`` prints), else
+    each is measured here."""
+    measured = measured if measured is not None else (None,) * len(setups)
+    if len(measured) != len(setups):
+        raise InputRangeError("measured", len(measured),
+                              f"one measured flank per set-up ({len(setups)})")
+    first = [_compare(s, stated, measured=m) for s, m in zip(setups, measured)]
     bad = [f for f, _ in first if not f.agrees]
     flipped = {"right": "left", "left": "right"}[stated.gear_hand]
     hand_slip = bool(bad) and len(bad) == len(first) and all(
@@ -383,15 +481,17 @@ def check_flanks(setups, stated: StatedBlank) -> BlankCheck:
     out = []
     for s, (f, tol) in zip(setups, first):
         if not f.agrees and not hand_slip:
-            key, value, word = _slip(s, stated, tol)
-            f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word)
+            key, value, word, also = _slip(s, stated, tol)
+            f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
+                                    slip_also=also)
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 
 
-def check_pair_blank(pair) -> BlankCheck:
+def check_pair_blank(pair, *, measured=None) -> BlankCheck:
     """:func:`check_flanks` of a pair cut from machine settings against its own blank
-    tables (:func:`stated_blank`).
+    tables (:func:`stated_blank`); ``measured``: the pair's
+    :func:`~.flank_angles.measure_pair_mean_points`, when already measured.
 
     Raises
     ------
@@ -399,4 +499,4 @@ def check_pair_blank(pair) -> BlankCheck:
         A pair without machine settings.
     """
     require_machine(pair)
-    return check_flanks(pair.machine, stated_blank(pair))
+    return check_flanks(pair.machine, stated_blank(pair), measured=measured)

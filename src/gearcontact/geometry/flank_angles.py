@@ -73,7 +73,7 @@ from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
 __all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles", "PINION_UNDEFINED",
            "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points",
-           "require_machine"]
+           "pitch_offset", "require_machine"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
 #: the machine's axial plane is kept (:func:`_distance`; others belong to another turn
@@ -221,6 +221,11 @@ class GeneratingGearAngles:
         given (towards the heel), mm.
     pitch_cone : MeanPointAngles
         The cut flank at the mean point on the pitch cone (:func:`measure_mean_point`).
+    pitch_offset_mm : float or None
+        The generating roll's pitch point against the mean point, mm: the distance along
+        the flank's normal ``n`` from the mean point to where the generating gear rolls
+        on the work without profile sliding (:func:`pitch_offset`); None where the work
+        does not roll (ratio of roll 0: formate, or helical motion alone).
     """
 
     spiral_angle_deg: float
@@ -228,6 +233,7 @@ class GeneratingGearAngles:
     cone_distance_mm: float
     crossing_beyond_mean_mm: float
     pitch_cone: MeanPointAngles
+    pitch_offset_mm: float | None = None
 
 
 def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
@@ -305,7 +311,72 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
         spiral_angle_deg=math.degrees(math.acos(abs(off) / r_c)),
         pressure_angle_deg=math.degrees(math.asin(min(1.0, abs(float(at.normal @ z_m))))),
         cone_distance_mm=cone_distance_mm + (x_cross - x_foot) / along,
-        crossing_beyond_mean_mm=x_cross - x_foot, pitch_cone=at)
+        crossing_beyond_mean_mm=x_cross - x_foot, pitch_cone=at,
+        pitch_offset_mm=None if st.ratio_of_roll == 0.0 else pitch_offset(
+            setup, at, pitch_angle_deg=pitch_angle_deg))
+
+
+def pitch_offset(setup: MachineSetup, at: MeanPointAngles, *, pitch_angle_deg: float) -> float:
+    """The pitch point of the generating roll against the point ``at`` of a generated
+    flank on its pitch cone, mm.
+
+    At the roll ``psi`` that generates the point ``P`` the generating gear (the cradle
+    and the cutter) moves against the work with the relative velocity field
+    ``v(X) = v_P + Omega x (X - P)`` per radian of cradle roll (``Omega = z_m -
+    phi'(psi) z_w`` in the work frame, ``phi'`` the work's roll rate with the modified
+    roll). Its component across the tooth trace, along the profile direction ``p = n x
+    t`` (``t`` the tooth trace on the pitch cone, ``n`` the flank's normal), is the
+    profile sliding; ``n . v = 0`` (the equation of meshing). Where it vanishes the
+    generating gear rolls on the work: its pitch point, which the ratio of roll places
+    (ISO 23509's pitch-point condition, the relative velocity at the pitch point along
+    the tooth trace). Moved by ``s`` along ``n`` the profile sliding is ``v_P . p + s
+    (Omega x n) . p = v_P . p - s Omega . t``, so the pitch point lies at
+
+        s = (v_P . p) / (Omega . t)
+
+    from ``P`` along ``n`` (mm, signed): 0 where the roll is the blank's (a pinion
+    rolled with its mate's generating gear, a gear on the crown gear of its pitch plane;
+    docs/machine_settings.md sec. 2 has the measured values).
+
+    Parameters
+    ----------
+    setup : MachineSetup
+        A generated flank whose work rolls (ratio of roll != 0).
+    at : MeanPointAngles
+        Its point on the pitch cone (:func:`measure_mean_point`).
+    pitch_angle_deg : float
+        The pitch angle of that cone, degrees.
+
+    Returns
+    -------
+    float
+        ``s``, mm.
+
+    Raises
+    ------
+    InputRangeError
+        A ratio of roll 0 (the work does not roll: no pitch point).
+
+    References
+    ----------
+    F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 2
+    (relative velocity), sec. 6.1 (equation of meshing). ISO 23509:2016 (the pitch point
+    of a hypoid pair: the relative velocity there along the tooth trace).
+    """
+    if setup.settings.ratio_of_roll == 0.0:
+        raise InputRangeError(f"{setup.member} {setup.side} set-up ratio_of_roll", 0.0,
+                              "a rolled flank, != 0 (the work does not roll: no pitch point)")
+    kin = MachineKinematics(setup.settings)
+    x_t, n_t = blade_point(setup.blade, at.blade_length_mm, at.blade_position_rad)
+    _, n, v = kin.to_work(x_t, n_t, at.roll_rad)
+    _, z_m, _ = kin.to_work(np.zeros(3), kin._fixed[1].T @ np.array([0.0, 0.0, 1.0]),
+                            at.roll_rad)
+    omega = z_m - float(kin.work_rotation(at.roll_rad)[1]) * np.array([0.0, 0.0, 1.0])
+    d, phi = math.radians(pitch_angle_deg), at.azimuth_rad
+    g = np.array([math.sin(d) * math.cos(phi), math.sin(d) * math.sin(phi), math.cos(d)])
+    t = np.cross(n, np.cross(g, np.array([-math.sin(phi), math.cos(phi), 0.0])))
+    t /= np.linalg.norm(t)
+    return float(v @ np.cross(n, t)) / float(omega @ t)
 
 
 #: Why a pinion flank has no generating-gear angles (module docstring).
@@ -331,6 +402,9 @@ class FlankMeanPoint:
         pinion and where the flank does not reach the point.
     missing : str
         Why a value is None ("" when both are given).
+    cutter_circle : str
+        Where the nominal cutter circle does not cross a gear flank's root line: the
+        allowed range of its radius (``generating_gear`` None), "" otherwise.
     """
 
     member: str
@@ -339,6 +413,7 @@ class FlankMeanPoint:
     pitch_cone: MeanPointAngles | None
     generating_gear: GeneratingGearAngles | None
     missing: str
+    cutter_circle: str = ""
 
 
 def require_machine(pair) -> None:
@@ -366,6 +441,7 @@ def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
     b = pair.blank
     out = []
     for setup in pair.machine:
+        circle = ""
         gear = setup.member == "gear"
         cone = dict(pitch_angle_deg=b.pitch_angle_gear_deg if gear else b.pitch_angle_pinion_deg,
                     cone_distance_mm=b.mean_cone_distance_gear_mm if gear
@@ -386,9 +462,9 @@ def measure_pair_mean_points(pair) -> tuple[FlankMeanPoint, ...]:
         except InputRangeError as exc:
             if exc.field != "cutter_radius_mm":
                 raise
-            at, gen = measure_mean_point(setup, **cone), None
+            at, gen, circle = measure_mean_point(setup, **cone), None, exc.allowed
             missing = (f"[cutter] radius_mm = {pair.cutter.radius_mm:g}: its circle does not "
                        f"cross the root line ({exc.allowed})")
         out.append(FlankMeanPoint(setup.member, setup.side, cone["cone_distance_mm"], at, gen,
-                                  missing))
+                                  missing, circle))
     return tuple(out)

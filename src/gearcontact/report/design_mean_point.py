@@ -81,17 +81,19 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def checked_blank(pair) -> BlankCheck | None:
+def checked_blank(pair, *, measured=None) -> BlankCheck | None:
     """The check of ``pair``'s machine settings against its blank tables, when it is
     loaded (docs/machine_settings.md sec. 2): None for a pair without machine settings;
     a gross mismatch (a hand against the blank's, a generating spiral angle off by more
     than :data:`~gearcontact.geometry.blank_check.GROSS_SPIRAL_DEG`) raises
     :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2);
     any other flank outside its tolerance is a warning on stderr naming the flank, the
-    measured and stated values and the likely key."""
+    measured and stated values and the likely key. ``measured``: the pair's
+    :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points` when already
+    measured (``design`` prints them): the check then measures no flank again."""
     if not pair.machine:
         return None
-    got = check_pair_blank(pair)
+    got = check_pair_blank(pair, measured=measured)
     got.raise_if_gross()
     for line in got.warnings():
         print(line, file=sys.stderr)
@@ -107,21 +109,25 @@ def blank_check_text(check: BlankCheck) -> str:
                 "docs/machine_settings.md sec. 2)")
     worst = max((abs(c.measured - c.stated) / c.tolerance, f"{f.member} {f.side} {c.quantity}")
                 for f in check.flanks for c in f.comparisons if c.tolerance)
+    pitch = any(c.quantity == "pitch point" for f in check.flanks for c in f.comparisons)
     return ("machine settings against the blank: every flank agrees within the typed "
             "settings' rounding propagated (spiral angle, pressure angle, mean cone distance "
-            "of the gear's generating gear; hand and root depth of every flank; largest "
+            "of the gear's generating gear" + (", the pitch point of its generating roll"
+                                               if pitch else "")
+            + "; hand and root depth of every flank; largest "
             f"difference {worst[0]:.2f} of its tolerance, {worst[1]}; "
             "docs/machine_settings.md sec. 2)")
 
 
 def blank_check_json(check: BlankCheck) -> dict:
     """``{"agrees": bool, "flanks": {member: {side: {"agrees", "missing", "slip",
-    "comparisons": [{"quantity", "unit", "measured", "stated", "tolerance",
+    "slip_also", "comparisons": [{"quantity", "unit", "measured", "stated", "tolerance",
     "within"}]}}}, "hand_slip": bool}``."""
     flanks: dict = {}
     for f in check.flanks:
         flanks.setdefault(f.member, {})[f.side] = {
             "agrees": f.agrees, "missing": f.missing, "slip": f.slip,
+            "slip_also": list(f.slip_also),
             "comparisons": [{"quantity": c.quantity, "unit": c.unit, "measured": c.measured,
                              "stated": c.stated, "tolerance": c.tolerance,
                              "within": c.within} for c in f.comparisons]}
