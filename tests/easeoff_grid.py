@@ -155,14 +155,15 @@ def write_gear_measured_csv(path, pair, seed, true, side, *, rows=9, cols=11, n_
     the flank ``seed`` cuts (docs/export.md "The measuring grid", ``member = gear``):
     each deviation the distance along the nominal normal to the cut flank
     (:func:`line_deviations_mm`; a formate gear: both exact cones of
-    geometry.generated.formate_gear_flank; a generated gear: both n_u x n_v sheets).
-    Returns ``(grid, deviation_um)``."""
-    from gearcontact.geometry.generated import gear_flank_of
+    geometry.generated.formate_gear_flank; a generated gear: both n_u x n_v sheets;
+    a relieved blade: geometry.kinked.machine_flank's pieces, each point on its own,
+    for a smooth blade the same flanks as before). Returns ``(grid, deviation_um)``."""
+    from gearcontact.geometry.kinked import machine_flank
     from gearcontact.geometry.measuring_grid import measuring_grid
 
     fw = pair.gear_face_width_mm
-    nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=fw, n_u=n_u, n_v=n_v)
-    truth = gear_flank_of(true, pair.blank, gear_face_width_mm=fw, n_u=n_u, n_v=n_v)
+    nominal = machine_flank(seed, pair.blank, face_width_mm=fw, n_u=n_u, n_v=n_v)
+    truth = machine_flank(true, pair.blank, face_width_mm=fw, n_u=n_u, n_v=n_v)
     g = measuring_grid(nominal, member="gear", flank=side, rows=rows, cols=cols)
     dev = 1e3 * line_deviations_mm(nominal, truth, g.u_mm, g.v_mm)
     path.write_text("# a gear measured on its nominal grid\nmember,flank,row,col,L_mm,R_mm,"

@@ -44,7 +44,8 @@ import numpy as np
 from ..validation import InputRangeError
 from .basic_settings import member_setups
 from .formate import SIDES
-from .generated import gear_cone, gear_flank_of
+from .generated import gear_cone
+from .kinked import machine_flank
 from .machine import mirror_setup
 from .easeoff import GridEaseOff
 from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
@@ -201,8 +202,9 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
     InputRangeError
         An unknown side, a measured point off the nominal gear flank,
         fewer points than settings, settings the points cannot separate (named), a
-        formate gear asked for a roll or blade-curvature correction, a relieved gear
-        blade: all before any fit.
+        formate gear asked for a roll or blade-curvature correction, a relief whose
+        kink reaches the blade point that cuts the gear's mean point: all before any
+        fit.
     """
     left = pair.pinion_hand == "left"
     if left:        # fitted on the right-hand twin (L, R and deviations are the same)
@@ -218,7 +220,7 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
         names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
         at = f"{where}: gear {side}"
         check_point_count({side: data}, names, where=where, member="gear")
-        nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
+        nominal = machine_flank(seed, pair.blank, face_width_mm=pair.gear_face_width_mm)
         uv = flank_parameters_at(nominal, member="gear", L_mm=data.L_mm, R_mm=data.R_mm,
                                  where=at, lines=data.line)
         points = measured_points(data, nominal, where=at, uv=uv, cone=cone)
@@ -241,7 +243,8 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
         x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
         res = prob.deviation_um(x)
         over = (_flank_residual_um(fit.setup, pair.blank, measured[side], nominal, uv, cone)
-                if is_complete_grid(*uv) else np.array([math.nan]))
+                if is_complete_grid(*uv) and not seeds[side].blade.relieved
+                else np.array([math.nan]))
         sides[side] = GearSideFit(side=side, fit=fit, points=points,
                                   deviation_max_um=float(np.abs(points.deviation_um).max()),
                                   residual_um=res, relative_singular_value=rel,
