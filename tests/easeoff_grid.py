@@ -121,6 +121,17 @@ def cut_from_known(pair, side="coast"):
     return seed, true, truth
 
 
+#: Known perturbations of a formate gear's default subset and of a generated gear's
+#: (~10 um on the flank: a measured gear's size; tests/geometry/test_gear_correction.py).
+GEAR_FORMATE_PERTURBATION = {"blade_radius_mm": 0.02, "blade_angle_deg": -0.05,
+                             "machine_root_angle_deg": 0.01,
+                             "machine_centre_to_back_mm": -0.02, "blank_offset_mm": 0.02}
+GEAR_GENERATED_PERTURBATION = {"cradle_angle_deg": -0.002, "radial_distance_mm": 0.004,
+                               "ratio_of_roll": -0.0004, "modified_roll_2c_per_rad": 0.0002,
+                               "blade_angle_deg": -0.01, "blade_radius_mm": 0.004,
+                               "machine_root_angle_deg": 0.002}
+
+
 def member_pivot_length_mm(seed, blank):
     """The blade arc length of ``seed``'s mean node on its member's sheet (pinion or
     gear: the pivot of blade corrections, geometry.setting_fit.apply_corrections)."""

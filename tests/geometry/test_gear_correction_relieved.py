@@ -23,7 +23,8 @@ measured: formate 6.1e-11 / 5.4e-11 um (drive Toprem / coast Flankrem), generate
 
 import numpy as np
 import pytest
-from easeoff_grid import line_deviations_mm, member_pivot_length_mm, write_gear_measured_csv
+from easeoff_grid import (GEAR_FORMATE_PERTURBATION, GEAR_GENERATED_PERTURBATION,
+                         line_deviations_mm, member_pivot_length_mm, write_gear_measured_csv)
 
 from gearcontact.geometry.basic_settings import generated_gear_setups
 from gearcontact.geometry.gear_correction import gear_correction, gear_seeds
@@ -44,13 +45,7 @@ HYPOID = "examples/hypoid_11x41_rear_axle.toml"
 _RELIEF = {"drive": {"toprem_angle_deg": 2.0, "toprem_depth_mm": 3.0},
            "coast": {"flankrem_angle_deg": 2.0, "flankrem_depth_mm": 6.6}}
 #: Known perturbations (those of tests/geometry/test_gear_correction.py: ~10 um).
-_FORMATE = {"blade_radius_mm": 0.02, "blade_angle_deg": -0.05,
-            "machine_root_angle_deg": 0.01, "machine_centre_to_back_mm": -0.02,
-            "blank_offset_mm": 0.02}
-_GENERATED = {"cradle_angle_deg": -0.002, "radial_distance_mm": 0.004,
-              "ratio_of_roll": -0.0004, "modified_roll_2c_per_rad": 0.0002,
-              "blade_angle_deg": -0.01, "blade_radius_mm": 0.004,
-              "machine_root_angle_deg": 0.002}
+_FORMATE, _GENERATED = GEAR_FORMATE_PERTURBATION, GEAR_GENERATED_PERTURBATION
 
 
 def _recover(tmp_path, pair, smooth, relief, pert, *, n_u=60, n_v=75):

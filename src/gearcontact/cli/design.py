@@ -134,12 +134,13 @@ def register(sub) -> None:
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "
-                        "measured pinion deviations in machine coordinates (columns "
+                        "measured deviations in machine coordinates (columns "
                         "member,flank,L_mm,R_mm,deviation_um; docs/export.md: a complete "
                         "grid, or scattered points fitted at the points, their residual "
-                        "per point in machine_settings_points.csv) that "
-                        "replaces the pair's ease-off of the sides it lists; the settings "
-                        "that cut it are fitted")
+                        "per point in machine_settings_points.csv) from the nominal flank "
+                        "(a pair with [machine.*] tables: the flanks its settings cut, "
+                        "each measured member corrected from them); the settings that "
+                        "cut it are fitted")
     p.add_argument("--fit", choices=("rms", "minimax"), default=None,
                    help="with --machine-settings on a pair with an ease-off: the objective of "
                         "the settings fit, the RMS deviation (default) or the largest one "
@@ -517,7 +518,9 @@ def _local_synthesis(args, pair) -> int:
 
 def _easeoff_settings(args, pair) -> int:
     from ..geometry.easeoff_settings import easeoff_machine_pair
-    from ..geometry.gear_correction import corrected_pair, gear_correction, gear_seeds
+    from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
+                                            machine_seeds, measured_correction)
+    from ..geometry.measuring_grid import MeasuredFlank
     from ..report.design import (easeoff_settings_toml, gear_correction_toml,
                                  write_easeoff_settings, write_gear_points,
                                  write_machine_settings_toml)
@@ -529,15 +532,28 @@ def _easeoff_settings(args, pair) -> int:
         generation = "formate" if args.gear_generation == "machine" else args.gear_generation
         gear = gear_correction(pair, args.gear_targets, objective=args.fit or "rms",
                                seeds=gear_seeds(own or pair, generation), where=where)
-        if own is not None and not args.easeoff_grid:
-            # a pair cut from machine settings, gear rows only: its pinion kept
-            text = gear_correction_toml(corrected_pair(own, gear), gear)
-            print(text)
-            print(gear.table())
-            if args.out is not None:
-                write_gear_points(gear, args.out)
-                print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
-            return 0
+    rows = getattr(args, "easeoff_grid", None) or {}
+    if own is not None and (gear is not None or rows) and \
+            all(isinstance(m, MeasuredFlank) for m in rows.values()):
+        # a pair cut from machine settings, measured rows: each measured member
+        # corrected from its own tables (the flank the user measured), the other kept
+        done = [gear] if gear is not None else []
+        if rows:
+            done.append(measured_correction(pair, rows, member="pinion",
+                                            seeds=machine_seeds(own, "pinion"),
+                                            objective=args.fit or "rms", where=where))
+        cut = own
+        for c in done:
+            cut = corrected_pair(cut, c)
+        text = gear_correction_toml(cut, *done)
+        print(text)
+        for c in done:
+            print(c.table())
+        if args.out is not None:
+            for c in done:
+                write_gear_points(c, args.out)
+            print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+        return 0
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
                                objective=args.fit or "rms", where=where,
                                reliefs=getattr(args, "reliefs", None))
