@@ -181,9 +181,13 @@ def _data_lines(text: str) -> list[tuple[int, list[str]]]:
 
 
 def is_measured_header(text: str) -> bool:
-    """True if the first data line of ``text`` names the L/R columns of a measured file."""
+    """True if the first data line of ``text`` names a column only a measured file has
+    (``member``, ``L_mm``, ``R_mm`` or ``deviation_um``: a measured file missing one of
+    the others is then refused naming it, :func:`read_measured_grid`, not read as a
+    (u, v) ease-off grid)."""
     lines = _data_lines(text)
-    return bool(lines) and {"L_mm", "R_mm"} <= set(lines[0][1])
+    return bool(lines) and bool({"member", "L_mm", "R_mm", "deviation_um"}
+                                & {h.strip() for h in lines[0][1]})
 
 
 def read_measured_grid(path, *, members=("pinion", "gear"),
@@ -225,14 +229,17 @@ def read_measured_grid(path, *, members=("pinion", "gear"),
         if member not in members or flank not in flanks:
             raise InputRangeError(f"{path}: line {k} member, flank", f"{member}, {flank}",
                                   f"member one of {members}, flank one of {flanks}")
-        try:
-            L, R, d = (float(row[col[c]]) for c in MEASURED_COLUMNS[2:])
-        except ValueError:
-            raise InputRangeError(f"{path}: line {k}", ",".join(row), "numbers for "
-                                  "L_mm, R_mm, deviation_um") from None
-        if not all(math.isfinite(x) for x in (L, R, d)):
-            raise InputRangeError(f"{path}: line {k}", ",".join(row), "finite numbers for "
-                                  "L_mm, R_mm, deviation_um")
+        values = []
+        for c in MEASURED_COLUMNS[2:]:      # each number named by its column
+            try:
+                x = float(row[col[c]])
+            except ValueError:
+                x = None
+            if x is None or not math.isfinite(x):
+                raise InputRangeError(f"{path}: line {k} {c}", row[col[c]],
+                                      "a finite number (mm; deviation_um in um)")
+            values.append(x)
+        L, R, d = values
         found.setdefault((member, flank), []).append((L, R, d, k))
     if not found:
         raise InputRangeError(f"{path}", "no points", "at least one measured point")
