@@ -119,6 +119,11 @@ _HEAD = "member,flank,L_mm,R_mm,deviation_um\n"
      "bad.csv: line 2 R_mm = 'nan' is outside the allowed range: a finite number"),
     (_HEAD + "gear,coast,30.0,70.0,\n",
      "bad.csv: line 2 deviation_um = '' is outside the allowed range: a finite number"),
+    # a deviation of more than half the tooth (pi m_mn / 4 = 2524 um on F.2; here a
+    # length in nm, or the wrong nominal)
+    (_HEAD + "gear,drive,30.0,70.0,1e5\n",
+     "bad.csv: line 2 (gear drive) deviation_um = 100000.0 is outside the allowed range: "
+     "|deviation| < 2524 um, pi m_mn / 4"),
     # a row with a cell too few
     (_HEAD + "pinion,drive,76.0,25.9\n",
      "bad.csv: line 2 = 'pinion,drive,76.0,25.9' is outside the allowed range: 5 values"),

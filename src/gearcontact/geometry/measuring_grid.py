@@ -51,9 +51,9 @@ from ..validation import InputRangeError, read_text_file
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
            "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
            "read_measured_grid", "is_measured_header", "is_complete_grid",
-           "measured_easeoff_grid", "measured_points", "check_on_blank", "grid_values",
-           "read_member_targets", "read_target_flank", "residual_rows", "RESIDUAL_COLUMNS",
-           "target_grids"]
+           "measured_easeoff_grid", "measured_points", "check_on_blank",
+           "check_deviation_size", "grid_values", "read_member_targets", "read_target_flank",
+           "residual_rows", "RESIDUAL_COLUMNS", "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
 AXIS_FRAMES = {"pinion": np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]),
@@ -472,6 +472,26 @@ def check_on_blank(grids: dict, pair, *, where: str) -> None:
                 f"R {r0:.4f}..{r1:.4f} mm at that L (clearance line to tip)")
 
 
+def check_deviation_size(grids: dict, pair, *, where: str) -> None:
+    """Refuse, before any flank is built, a measured deviation (:class:`MeasuredFlank`
+    values of ``grids``, either member) of at least a quarter of the blank's mean normal
+    circular pitch, ``pi m_mn / 4`` (half a tooth's thickness: the probed point lies
+    on the next tooth or in the slot, not on the measured flank; a wrong nominal or a
+    unit slip), naming the file line and the value."""
+    limit_um = 1e3 * math.pi * pair.blank.mean_normal_module_mm / 4.0
+    for side, data in grids.items():
+        if not isinstance(data, MeasuredFlank):
+            continue
+        big = np.abs(data.deviation_um) >= limit_um
+        if big.any():
+            k = int(np.argmax(big))
+            raise InputRangeError(f"{where}: line {int(data.line[k])} ({data.member} "
+                                  f"{data.flank}) deviation_um", float(data.deviation_um[k]),
+                                  f"|deviation| < {limit_um:.0f} um, pi m_mn / 4 (half the "
+                                  "tooth: a larger one lies on the next tooth or in the "
+                                  "slot; um, not mm)")
+
+
 def read_target_flank(path, *, pair=None) -> dict:
     """A ``--target-flank`` file, its format told by its header: ``{side: grid}``.
 
@@ -481,7 +501,8 @@ def read_target_flank(path, *, pair=None) -> dict:
     :func:`target_grids` once they are built); any other is a deviation grid in the
     flank's (u, v) (:func:`~.easeoff.read_easeoff_grid`), its values
     :class:`~.easeoff.GridEaseOff`. With ``pair``, measured points are checked
-    against its pinion blank (:func:`check_on_blank`).
+    against its pinion blank (:func:`check_on_blank`), every deviation against the
+    blank's tooth (:func:`check_deviation_size`).
 
     Raises
     ------
@@ -495,6 +516,7 @@ def read_target_flank(path, *, pair=None) -> dict:
         return read_easeoff_grid(path)
     grids = {side: m for (_, side), m in read_measured_grid(path, members=("pinion",)).items()}
     if pair is not None:
+        check_deviation_size(grids, pair, where=str(path))
         check_on_blank(grids, pair, where=str(path))
     return grids
 
@@ -506,7 +528,8 @@ def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
     (u, v) ease-off grid is the pinion's), ``gear`` the ``{side: MeasuredFlank}`` of
     the gear rows of a measured file (:func:`read_measured_grid` with both members:
     the gear's setting correction, :mod:`.gear_correction`). With ``pair``, measured
-    pinion points are checked against its pinion blank (:func:`check_on_blank`).
+    pinion points are checked against its pinion blank (:func:`check_on_blank`), every deviation against the
+    blank's tooth (:func:`check_deviation_size`).
 
     Raises
     ------
@@ -522,6 +545,7 @@ def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
     pinion = {side: m for (member, side), m in found.items() if member == "pinion"}
     gear = {side: m for (member, side), m in found.items() if member == "gear"}
     if pair is not None:
+        check_deviation_size(found, pair, where=str(path))
         check_on_blank(pinion, pair, where=str(path))
     return pinion, gear
 
