@@ -56,6 +56,7 @@ from .formate import SIDES
 from .kinked import machine_flank
 from .machine import mirror_setup
 from .easeoff import GridEaseOff
+from .easeoff_settings import KinkPosition
 from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
                              flank_parameters_at, grid_values, is_complete_grid,
                              measured_points, residual_rows)
@@ -87,7 +88,12 @@ class GearSideFit:
         relative to the largest (:func:`~.point_fit.check_observable`).
     flank_max_um, flank_rms_um : float
         Largest |residual| and RMS over the flank (a complete grid, module docstring;
-        NaN for scattered points), um.
+        NaN for scattered points and a relieved blade), um.
+    kinks : tuple of KinkPosition
+        A relieved blade's kink lines on the cut flank (:class:`~.easeoff_settings.
+        KinkPosition`; empty for a smooth blade).
+    box : FlankBoundary or None
+        The cut flank's active box (a relieved blade's; None for a smooth one).
     """
 
     side: str
@@ -98,6 +104,8 @@ class GearSideFit:
     relative_singular_value: float
     flank_max_um: float = math.nan
     flank_rms_um: float = math.nan
+    kinks: tuple = ()
+    box: object = None
 
 
 @dataclass(frozen=True)
@@ -145,6 +153,9 @@ class GearCorrection:
                         f"{r.fit.fit_max_um:.3g} / {r.fit.fit_rms_um:.3g} | {flank} | "
                         f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
                         f"{r.fit.evaluations} |")
+        for side, r in self.sides.items():
+            rows += [f"{side}: the relieved blade's {k.text(r.box)} (the relief kept as "
+                     "given; the residual at the points on both sides of it)" for k in r.kinks]
         rows += ["", f"| {self.member} correction | unit | " + " | ".join(self.sides) + " |",
                  "|---|---|" + "---:|" * len(self.sides)]
         names = list(dict.fromkeys(n for r in self.sides.values() for n in r.fit.corrections))
@@ -282,11 +293,17 @@ def measured_correction(pair, measured: dict, *, member: str, seeds: dict, param
         over = (_flank_residual_um(fit.setup, pair.blank, measured[side], nominal, uv, cone)
                 if is_complete_grid(*uv) and not seeds[side].blade.relieved
                 else np.array([math.nan]))
+        kinks, box = (), None
+        if seeds[side].blade.relieved:     # the kink lines of the cut flank
+            cut = machine_flank(fit.setup, pair.blank, face_width_mm=face_width_mm)
+            kinks = tuple(KinkPosition(k.name, k.v_nodes, k.u_nodes) for k in cut.kinks)
+            box = cut.boundary
         sides[side] = GearSideFit(side=side, fit=fit, points=points,
                                   deviation_max_um=float(np.abs(points.deviation_um).max()),
                                   residual_um=res, relative_singular_value=rel,
                                   flank_max_um=float(np.abs(over).max()),
-                                  flank_rms_um=float(np.sqrt(np.mean(over ** 2))))
+                                  flank_rms_um=float(np.sqrt(np.mean(over ** 2))),
+                                  kinks=kinks, box=box)
         setups[side] = fit.setup
     if left:
         setups = {side: mirror_setup(s) for side, s in setups.items()}
