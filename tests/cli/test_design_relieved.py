@@ -111,6 +111,7 @@ def test_target_flank_of_a_relieved_pair_is_fitted_with_its_relief(capsys, tmp_p
                  str(csv), "--out", str(tmp_path / "o")]) == 0
     out = capsys.readouterr().out
     assert "| drive | 63 | 0.00 |" in out, out
+    assert "drive: the relieved blade's toprem kink at u " in out, out
     got, typed = _setups(tmp_path / "o" / "machine_settings.toml"), _setups(TOPREM)
     assert got["pinion", "drive"].blade.toprem_depth_mm == 2.0
     assert blade_relief(got["pinion", "drive"].blade) == blade_relief(typed["pinion", "drive"].blade)

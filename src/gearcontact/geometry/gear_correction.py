@@ -154,8 +154,9 @@ class GearCorrection:
                         f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
                         f"{r.fit.evaluations} |")
         for side, r in self.sides.items():
-            rows += [f"{side}: the relieved blade's {k.text(r.box)} (the relief kept as "
-                     "given; the residual at the points on both sides of it)" for k in r.kinks]
+            for k in r.kinks:
+                rows += ["", f"{side}: the relieved blade's {k.text(r.box)} (the relief kept "
+                         "as given; the residual at the points on both sides of it)"]
         rows += ["", f"| {self.member} correction | unit | " + " | ".join(self.sides) + " |",
                  "|---|---|" + "---:|" * len(self.sides)]
         names = list(dict.fromkeys(n for r in self.sides.values() for n in r.fit.corrections))
