@@ -137,17 +137,26 @@ def test_careless_csv_exits_2_naming_the_column_or_line(capsys, tmp_path, text, 
     assert words in err, err
 
 
-def test_pinion_rows_off_the_machine_cut_flank_exit_2(capsys, tmp_path):
-    # ~3 s (the machine-cut pinion is built to read the rows against): a row on the
-    # pinion blank (clearance line u 0.854 mm over the root cone) but below the root
-    # line of the flank the pair's drive settings cut (u 1.075 mm; R 25.81 mm at L =
-    # 76 mm): exit 2 naming the file line, L, R and the flank's range, before any fit
-    # (eight more rows: the pinion's eight settings need eight points, checked first)
+def test_pinion_rows_off_the_machine_cut_flank_exit_2(capsys, tmp_path, monkeypatch):
+    # ~4 s (the machine-cut flanks are built to read the rows against): valid gear rows
+    # (the gear's own, deviation 0) and a pinion row on the pinion blank (clearance line
+    # u 0.854 mm over the root cone) but below the root line of the flank the pair's
+    # drive settings cut (u 1.075 mm; R 25.81 mm at L = 76 mm): exit 2 naming the file
+    # line, L, R and the flank's range, before any fit of either member (the fit
+    # raising proves it; eight more pinion rows: eight settings need eight points)
+    import gearcontact.geometry.gear_correction as correction
+
+    monkeypatch.setattr(correction, "solve_fit", lambda *a, **k: pytest.fail("fitted"))
+    pair = load_pair(F2_MACHINE)
+    gear = gear_seeds(pair, "formate")["drive"]
+    write_gear_measured_csv(tmp_path / "gear.csv", pair, gear, gear, "drive")
+    cells = [r.split(",") for r in (tmp_path / "gear.csv").read_text().splitlines()[2:]]
+    gear_rows = "".join(",".join(c[:2] + c[4:]) + "\n" for c in cells)     # no row, col
     rows = "".join(f"pinion,drive,{70.0 + k!r},27.0,0.0\n" for k in range(8))
     path = tmp_path / "off.csv"
-    path.write_text(_HEAD + "pinion,drive,76.0,25.65,0.0\n" + rows)
+    path.write_text(_HEAD + gear_rows + "pinion,drive,76.0,25.65,0.0\n" + rows)
     assert main(["design", "--pair", str(F2_MACHINE), "--machine-settings",
                  "--target-flank", str(path)]) == 2
     err = capsys.readouterr().err
-    assert ("off.csv: pinion drive: line 2 (L = 76.0 mm, R = 25.65 mm) = 'off the flank' "
+    assert ("off.csv: pinion drive: line 101 (L = 76.0 mm, R = 25.65 mm) = 'off the flank' "
             "is outside the allowed range: a point on the pinion flank's active box") in err, err

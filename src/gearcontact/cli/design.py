@@ -519,7 +519,7 @@ def _local_synthesis(args, pair) -> int:
 def _easeoff_settings(args, pair) -> int:
     from ..geometry.easeoff_settings import easeoff_machine_pair
     from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
-                                            machine_seeds, measured_correction)
+                                            machine_seeds, measured_corrections)
     from ..geometry.measuring_grid import MeasuredFlank
     from ..report.design import (easeoff_settings_toml, gear_correction_toml,
                                  write_easeoff_settings, write_gear_points,
@@ -528,20 +528,16 @@ def _easeoff_settings(args, pair) -> int:
     where = str(args.target_flank or "target flank")
     gear = None
     own = getattr(args, "machine_pair", None)     # the pair as read, with its tables
-    if getattr(args, "gear_targets", None):       # measured gear rows: the gear corrected
-        generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-        gear = gear_correction(pair, args.gear_targets, objective=args.fit or "rms",
-                               seeds=gear_seeds(own or pair, generation), where=where)
-    rows = getattr(args, "easeoff_grid", None) or {}
-    if own is not None and (gear is not None or rows) and \
-            all(isinstance(m, MeasuredFlank) for m in rows.values()):
+    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+    measured = {m: r for m, r in (("gear", getattr(args, "gear_targets", None)),
+                                  ("pinion", getattr(args, "easeoff_grid", None))) if r}
+    if own is not None and measured and \
+            all(isinstance(m, MeasuredFlank) for m in measured.get("pinion", {}).values()):
         # a pair cut from machine settings, measured rows: each measured member
         # corrected from its own tables (the flank the user measured), the other kept
-        done = [gear] if gear is not None else []
-        if rows:
-            done.append(measured_correction(pair, rows, member="pinion",
-                                            seeds=machine_seeds(own, "pinion"),
-                                            objective=args.fit or "rms", where=where))
+        done = list(measured_corrections(pair, measured, seeds={
+            "gear": gear_seeds(own, generation), "pinion": machine_seeds(own, "pinion")},
+            objective=args.fit or "rms", where=where).values())
         cut = own
         for c in done:
             cut = corrected_pair(cut, c)
@@ -554,6 +550,9 @@ def _easeoff_settings(args, pair) -> int:
                 write_gear_points(c, args.out)
             print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
         return 0
+    if "gear" in measured:       # measured gear rows: the gear corrected
+        gear = gear_correction(pair, measured["gear"], objective=args.fit or "rms",
+                               seeds=gear_seeds(own or pair, generation), where=where)
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
                                objective=args.fit or "rms", where=where,
                                reliefs=getattr(args, "reliefs", None))

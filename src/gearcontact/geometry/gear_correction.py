@@ -65,7 +65,7 @@ from .point_fit import RANK_TOLERANCE, PointProblem, check_observable, check_poi
 from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
 
 __all__ = ["GearCorrection", "GearSideFit", "corrected_pair", "gear_correction", "gear_seeds",
-           "machine_seeds", "measured_correction"]
+           "machine_seeds", "measured_correction", "measured_corrections"]
 
 
 @dataclass(frozen=True)
@@ -209,7 +209,18 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
 def measured_correction(pair, measured: dict, *, member: str, seeds: dict, parameters=None,
                         objective: str = "rms", where: str = "target flank"
                         ) -> GearCorrection:
-    """Correct ``member``'s settings ``seeds`` to its measured flanks ``measured``.
+    """:func:`measured_corrections` of one member: ``{member: measured}`` from
+    ``{member: seeds}``."""
+    return measured_corrections(pair, {member: measured}, seeds={member: seeds},
+                                parameters=parameters, objective=objective,
+                                where=where)[member]
+
+
+def measured_corrections(pair, measured: dict, *, seeds: dict, parameters=None,
+                         objective: str = "rms", where: str = "target flank") -> dict:
+    """Correct each member's settings ``seeds[member]`` to its measured flanks
+    ``measured[member]``; every measured flank of every member is checked before any
+    fit.
 
     Parameters
     ----------
@@ -219,15 +230,13 @@ def measured_correction(pair, measured: dict, *, member: str, seeds: dict, param
         the same, docs/export.md) and its settings mirrored back; the reported
         corrections are the twin's.
     measured : dict
-        ``{side: MeasuredFlank}`` of ``member``'s rows
-        (:func:`~.measuring_grid.read_member_targets`): deviations against the flank
-        ``seeds`` cut.
-    member : str
-        ``"gear"`` or ``"pinion"``.
+        ``{member: {side: MeasuredFlank}}`` (member ``"gear"`` or ``"pinion"``; its rows
+        of :func:`~.measuring_grid.read_member_targets`): deviations against the flank
+        ``seeds[member][side]`` cuts.
     seeds : dict
-        ``{side: MachineSetup}`` of the nominal member (the gear's: :func:`gear_seeds`;
-        a pair's own tables: :func:`machine_seeds`), in the pair's own hand; a relieved
-        blade keeps its relief (module docstring).
+        ``{member: {side: MachineSetup}}`` of the nominal members (the gear's:
+        :func:`gear_seeds`; a pair's own tables: :func:`machine_seeds`), in the pair's
+        own hand; a relieved blade keeps its relief (module docstring).
     parameters : tuple of str, optional
         The fitted subset (default by member and cutting method,
         :func:`~.setting_fit.default_parameters`).
@@ -238,8 +247,8 @@ def measured_correction(pair, measured: dict, *, member: str, seeds: dict, param
 
     Returns
     -------
-    GearCorrection
-        Its ``setups`` in the pair's own hand.
+    dict
+        ``{member: GearCorrection}``, its ``setups`` in the pair's own hand.
 
     Raises
     ------
@@ -254,61 +263,85 @@ def measured_correction(pair, measured: dict, *, member: str, seeds: dict, param
     left = pair.pinion_hand == "left"
     if left:        # fitted on the right-hand twin (L, R and deviations are the same)
         pair = dataclasses.replace(pair, pinion_hand="right")
-        seeds = {side: mirror_setup(s) for side, s in seeds.items()}
-    if member not in ("pinion", "gear"):
-        raise InputRangeError("member", member, "'pinion' or 'gear'")
-    for side, data in measured.items():
-        if side not in SIDES or not isinstance(data, MeasuredFlank) or data.member != member:
-            raise InputRangeError(f"{where}: {member} rows", side,
-                                  f"measured {member} flanks of {SIDES}")
-    cone = member_cone(member, pair.blank)
-    face_width_mm = getattr(pair, f"{member}_face_width_mm")
+        seeds = {m: {side: mirror_setup(s) for side, s in own.items()}
+                 for m, own in seeds.items()}
+    for member, rows in measured.items():
+        if member not in ("pinion", "gear"):
+            raise InputRangeError("member", member, "'pinion' or 'gear'")
+        for side, data in rows.items():
+            if side not in SIDES or not isinstance(data, MeasuredFlank) or \
+                    (data.member, data.flank) != (member, side):
+                raise InputRangeError(f"{where}: {member} rows", side,
+                                      f"measured {member} flanks of {SIDES}")
     problems = {}
-    for side, data in measured.items():        # every side checked before any fit
-        seed = seeds[side]
-        names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
-        at = f"{where}: {member} {side}"
-        check_point_count({side: data}, names, where=where, member=member)
-        nominal = machine_flank(seed, pair.blank, face_width_mm=face_width_mm)
-        uv = flank_parameters_at(nominal, member=member, L_mm=data.L_mm, R_mm=data.R_mm,
-                                 where=at, lines=data.line)
-        points = measured_points(data, nominal, where=at, uv=uv, cone=cone)
-        started = time.perf_counter()
-        prob = PointProblem(seed, pair.blank, points, names)
-        try:
-            rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
-        except InputRangeError as exc:     # on a CMM grid: the settings, not the points
-            raise InputRangeError(f"{at}: settings", exc.value, "settings a flank "
-                                  f"measurement separates (relative singular value >= "
-                                  f"{RANK_TOLERANCE:g}): drop one of those named (a formate "
-                                  "gear's sliding base is its cutter radius; "
-                                  "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
-                                  "points spread over the flank") from None
-        problems[side] = (prob, points, rel, time.perf_counter() - started, nominal, uv)
-    sides, setups = {}, dict(seeds)
-    for side, (prob, points, rel, took, nominal, uv) in problems.items():
-        fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
-                        started=time.perf_counter() - took)
-        x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
-        res = prob.deviation_um(x)
-        over = (_flank_residual_um(fit.setup, pair.blank, measured[side], nominal, uv, cone)
-                if is_complete_grid(*uv) and not seeds[side].blade.relieved
-                else np.array([math.nan]))
-        kinks, box = (), None
-        if seeds[side].blade.relieved:     # the kink lines of the cut flank
-            cut = machine_flank(fit.setup, pair.blank, face_width_mm=face_width_mm)
-            kinks = tuple(KinkPosition(k.name, k.v_nodes, k.u_nodes) for k in cut.kinks)
-            box = cut.boundary
-        sides[side] = GearSideFit(side=side, fit=fit, points=points,
-                                  deviation_max_um=float(np.abs(points.deviation_um).max()),
-                                  residual_um=res, relative_singular_value=rel,
-                                  flank_max_um=float(np.abs(over).max()),
-                                  flank_rms_um=float(np.sqrt(np.mean(over ** 2))),
-                                  kinks=kinks, box=box)
-        setups[side] = fit.setup
-    if left:
-        setups = {side: mirror_setup(s) for side, s in setups.items()}
-    return GearCorrection(setups=setups, sides=sides, mirrored=left, member=member)
+    for member, rows in measured.items():      # every flank checked before any fit
+        for side, data in rows.items():
+            problems[member, side] = _problem(pair, member, seeds[member][side], data,
+                                              parameters=parameters, objective=objective,
+                                              where=where)
+    out = {}
+    for member, rows in measured.items():
+        sides, setups = {}, dict(seeds[member])
+        for side in rows:
+            sides[side] = _side_fit(pair, member, seeds[member][side], rows[side],
+                                    *problems[member, side], objective=objective)
+            setups[side] = sides[side].fit.setup
+        if left:
+            setups = {side: mirror_setup(s) for side, s in setups.items()}
+        out[member] = GearCorrection(setups=setups, sides=sides, mirrored=left, member=member)
+    return out
+
+
+def _problem(pair, member: str, seed, data: MeasuredFlank, *, parameters, objective: str,
+             where: str):
+    """The checked point problem of one measured flank (:func:`measured_corrections`):
+    ``(problem, points, relative singular value, seconds, nominal flank, (u, v))``."""
+    names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
+    at = f"{where}: {member} {data.flank}"
+    check_point_count({data.flank: data}, names, where=where, member=member)
+    nominal = machine_flank(seed, pair.blank, face_width_mm=_face_width_mm(pair, member))
+    uv = flank_parameters_at(nominal, member=member, L_mm=data.L_mm, R_mm=data.R_mm,
+                             where=at, lines=data.line)
+    points = measured_points(data, nominal, where=at, uv=uv,
+                             cone=member_cone(member, pair.blank))
+    started = time.perf_counter()
+    prob = PointProblem(seed, pair.blank, points, names)
+    try:
+        rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
+    except InputRangeError as exc:     # on a CMM grid: the settings, not the points
+        raise InputRangeError(f"{at}: settings", exc.value, "settings a flank "
+                              f"measurement separates (relative singular value >= "
+                              f"{RANK_TOLERANCE:g}): drop one of those named (a formate "
+                              "gear's sliding base is its cutter radius; "
+                              "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
+                              "points spread over the flank") from None
+    return prob, points, rel, time.perf_counter() - started, nominal, uv
+
+
+def _face_width_mm(pair, member: str) -> float:
+    return getattr(pair, f"{member}_face_width_mm")
+
+
+def _side_fit(pair, member: str, seed, data: MeasuredFlank, prob, points, rel, took,
+              nominal, uv, *, objective: str) -> GearSideFit:
+    """The fit of one checked flank (:func:`_problem`) and its residuals and kinks."""
+    fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
+                    started=time.perf_counter() - took)
+    x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
+    res = prob.deviation_um(x)
+    over = (_flank_residual_um(fit.setup, pair.blank, data, nominal, uv,
+                               member_cone(member, pair.blank))
+            if is_complete_grid(*uv) and not seed.blade.relieved else np.array([math.nan]))
+    kinks, box = (), None
+    if seed.blade.relieved:     # the kink lines of the cut flank
+        cut = machine_flank(fit.setup, pair.blank, face_width_mm=_face_width_mm(pair, member))
+        kinks = tuple(KinkPosition(k.name, k.v_nodes, k.u_nodes) for k in cut.kinks)
+        box = cut.boundary
+    return GearSideFit(side=data.flank, fit=fit, points=points,
+                       deviation_max_um=float(np.abs(points.deviation_um).max()),
+                       residual_um=res, relative_singular_value=rel,
+                       flank_max_um=float(np.abs(over).max()),
+                       flank_rms_um=float(np.sqrt(np.mean(over ** 2))), kinks=kinks, box=box)
 
 
 def _flank_residual_um(setup, blank, data: MeasuredFlank, nominal, uv, cone, *,
