@@ -88,8 +88,8 @@ def test_relieved_gear_rows_keep_the_relief(capsys, tmp_path):
     assert seed.blade.toprem_angle_deg == 2.0
     smooth = next(s for s in load_pair(F2_MACHINE).machine
                   if (s.member, s.side) == ("gear", "drive"))
-    true = apply_corrections(seed, GEAR_FORMATE_PERTURBATION, pivot_length_mm=member_pivot_length_mm(smooth,
-                                                                              pair.blank))
+    true = apply_corrections(seed, GEAR_FORMATE_PERTURBATION,
+                             pivot_length_mm=member_pivot_length_mm(smooth, pair.blank))
     csv = tmp_path / "gear.csv"
     write_gear_measured_csv(csv, pair, seed, true, "drive")
     out = tmp_path / "o"

@@ -114,7 +114,8 @@ def test_target_flank_of_a_relieved_pair_is_fitted_with_its_relief(capsys, tmp_p
     assert "drive: the relieved blade's toprem kink at u " in out, out
     got, typed = _setups(tmp_path / "o" / "machine_settings.toml"), _setups(TOPREM)
     assert got["pinion", "drive"].blade.toprem_depth_mm == 2.0
-    assert blade_relief(got["pinion", "drive"].blade) == blade_relief(typed["pinion", "drive"].blade)
+    assert blade_relief(got["pinion", "drive"].blade) == \
+        blade_relief(typed["pinion", "drive"].blade)
     for key in (("pinion", "coast"), ("gear", "drive"), ("gear", "coast")):
         assert got[key] == typed[key], key
     a, b = got["pinion", "drive"], typed["pinion", "drive"]

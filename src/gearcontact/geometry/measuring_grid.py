@@ -528,8 +528,8 @@ def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
     (u, v) ease-off grid is the pinion's), ``gear`` the ``{side: MeasuredFlank}`` of
     the gear rows of a measured file (:func:`read_measured_grid` with both members:
     the gear's setting correction, :mod:`.gear_correction`). With ``pair``, measured
-    pinion points are checked against its pinion blank (:func:`check_on_blank`), every deviation against the
-    blank's tooth (:func:`check_deviation_size`).
+    pinion points are checked against its pinion blank (:func:`check_on_blank`), every
+    deviation against the blank's tooth (:func:`check_deviation_size`).
 
     Raises
     ------

@@ -5,8 +5,9 @@ setting fit (:mod:`.setting_fit`): the relief keys (:data:`RELIEF_KEYS`) are a f
 blade property, never fitted; the corrections act on the blade's main profile, whose
 point that cuts the member's mean node is the blade pivot (a relief reaching it is
 refused, :func:`check_pivot_on_main`; a pinion's already by :func:`relieved_setup`, a
-gear's by the gear's fit: a gear kept as given may carry any relief), and the flank is cut piece by piece, one smooth
-set-up per blade segment (:func:`piece_setups`, :mod:`.kinked`).
+gear's by the gear's fit: a gear kept as given may carry any relief), and the flank is
+cut piece by piece, one smooth set-up per blade segment (:func:`piece_setups`,
+:mod:`.kinked`).
 docs/machine_settings.md sec. 6, "Relieved blades".
 """
 
