@@ -121,6 +121,17 @@ def cut_from_known(pair, side="coast"):
     return seed, true, truth
 
 
+#: Known perturbations of a formate gear's default subset and of a generated gear's
+#: (~10 um on the flank: a measured gear's size; tests/geometry/test_gear_correction.py).
+GEAR_FORMATE_PERTURBATION = {"blade_radius_mm": 0.02, "blade_angle_deg": -0.05,
+                             "machine_root_angle_deg": 0.01,
+                             "machine_centre_to_back_mm": -0.02, "blank_offset_mm": 0.02}
+GEAR_GENERATED_PERTURBATION = {"cradle_angle_deg": -0.002, "radial_distance_mm": 0.004,
+                               "ratio_of_roll": -0.0004, "modified_roll_2c_per_rad": 0.0002,
+                               "blade_angle_deg": -0.01, "blade_radius_mm": 0.004,
+                               "machine_root_angle_deg": 0.002}
+
+
 def member_pivot_length_mm(seed, blank):
     """The blade arc length of ``seed``'s mean node on its member's sheet (pinion or
     gear: the pivot of blade corrections, geometry.setting_fit.apply_corrections)."""
@@ -155,14 +166,15 @@ def write_gear_measured_csv(path, pair, seed, true, side, *, rows=9, cols=11, n_
     the flank ``seed`` cuts (docs/export.md "The measuring grid", ``member = gear``):
     each deviation the distance along the nominal normal to the cut flank
     (:func:`line_deviations_mm`; a formate gear: both exact cones of
-    geometry.generated.formate_gear_flank; a generated gear: both n_u x n_v sheets).
-    Returns ``(grid, deviation_um)``."""
-    from gearcontact.geometry.generated import gear_flank_of
+    geometry.generated.formate_gear_flank; a generated gear: both n_u x n_v sheets;
+    a relieved blade: geometry.kinked.machine_flank's pieces, each point on its own,
+    for a smooth blade the same flanks as before). Returns ``(grid, deviation_um)``."""
+    from gearcontact.geometry.kinked import machine_flank
     from gearcontact.geometry.measuring_grid import measuring_grid
 
     fw = pair.gear_face_width_mm
-    nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=fw, n_u=n_u, n_v=n_v)
-    truth = gear_flank_of(true, pair.blank, gear_face_width_mm=fw, n_u=n_u, n_v=n_v)
+    nominal = machine_flank(seed, pair.blank, face_width_mm=fw, n_u=n_u, n_v=n_v)
+    truth = machine_flank(true, pair.blank, face_width_mm=fw, n_u=n_u, n_v=n_v)
     g = measuring_grid(nominal, member="gear", flank=side, rows=rows, cols=cols)
     dev = 1e3 * line_deviations_mm(nominal, truth, g.u_mm, g.v_mm)
     path.write_text("# a gear measured on its nominal grid\nmember,flank,row,col,L_mm,R_mm,"

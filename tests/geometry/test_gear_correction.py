@@ -24,7 +24,8 @@ import math
 
 import numpy as np
 import pytest
-from easeoff_grid import member_pivot_length_mm, write_gear_measured_csv
+from easeoff_grid import (GEAR_FORMATE_PERTURBATION, GEAR_GENERATED_PERTURBATION,
+                         member_pivot_length_mm, write_gear_measured_csv)
 
 from gearcontact.geometry.basic_settings import formate_gear_setups, generated_gear_setups
 from gearcontact.geometry.conjugate import nominal_pinion_box
@@ -48,13 +49,7 @@ F2 = "examples/machine_settings/iso23509_f2_machine.toml"
 HYPOID = "examples/hypoid_11x41_rear_axle.toml"
 
 #: Known perturbations, each moving the flank by ~1-10 um (a measured gear's size).
-_FORMATE = {"blade_radius_mm": 0.02, "blade_angle_deg": -0.05,
-            "machine_root_angle_deg": 0.01, "machine_centre_to_back_mm": -0.02,
-            "blank_offset_mm": 0.02}
-_GENERATED = {"cradle_angle_deg": -0.002, "radial_distance_mm": 0.004,
-              "ratio_of_roll": -0.0004, "modified_roll_2c_per_rad": 0.0002,
-              "blade_angle_deg": -0.01, "blade_radius_mm": 0.004,
-              "machine_root_angle_deg": 0.002}
+_FORMATE, _GENERATED = GEAR_FORMATE_PERTURBATION, GEAR_GENERATED_PERTURBATION
 
 
 def _case(which, side):

@@ -134,12 +134,13 @@ def register(sub) -> None:
     p.add_argument("--target-flank", default=None, metavar="CSV",
                    help="with --machine-settings: a measured ease-off grid (columns "
                         "side,v_mm,u_mm,easeoff_um; docs/machine_settings.md sec. 6) or "
-                        "measured pinion deviations in machine coordinates (columns "
+                        "measured deviations in machine coordinates (columns "
                         "member,flank,L_mm,R_mm,deviation_um; docs/export.md: a complete "
                         "grid, or scattered points fitted at the points, their residual "
-                        "per point in machine_settings_points.csv) that "
-                        "replaces the pair's ease-off of the sides it lists; the settings "
-                        "that cut it are fitted")
+                        "per point in machine_settings_points.csv) from the nominal flank "
+                        "(a pair with [machine.*] tables: the flanks its settings cut, "
+                        "each measured member corrected from them); the settings that "
+                        "cut it are fitted")
     p.add_argument("--fit", choices=("rms", "minimax"), default=None,
                    help="with --machine-settings on a pair with an ease-off: the objective of "
                         "the settings fit, the RMS deviation (default) or the largest one "
@@ -520,7 +521,9 @@ def _local_synthesis(args, pair) -> int:
 
 def _easeoff_settings(args, pair) -> int:
     from ..geometry.easeoff_settings import easeoff_machine_pair
-    from ..geometry.gear_correction import corrected_pair, gear_correction, gear_seeds
+    from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
+                                            machine_seeds, measured_corrections)
+    from ..geometry.measuring_grid import MeasuredFlank
     from ..report.design import (easeoff_settings_toml, gear_correction_toml,
                                  write_easeoff_settings, write_gear_points,
                                  write_machine_settings_toml)
@@ -528,19 +531,31 @@ def _easeoff_settings(args, pair) -> int:
     where = str(args.target_flank or "target flank")
     gear = None
     own = getattr(args, "machine_pair", None)     # the pair as read, with its tables
-    if getattr(args, "gear_targets", None):       # measured gear rows: the gear corrected
-        generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-        gear = gear_correction(pair, args.gear_targets, objective=args.fit or "rms",
+    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+    measured = {m: r for m, r in (("gear", getattr(args, "gear_targets", None)),
+                                  ("pinion", getattr(args, "easeoff_grid", None))) if r}
+    if own is not None and measured and \
+            all(isinstance(m, MeasuredFlank) for m in measured.get("pinion", {}).values()):
+        # a pair cut from machine settings, measured rows: each measured member
+        # corrected from its own tables (the flank the user measured), the other kept
+        done = list(measured_corrections(pair, measured, seeds={
+            "gear": gear_seeds(own, generation), "pinion": machine_seeds(own, "pinion")},
+            objective=args.fit or "rms", where=where).values())
+        cut = own
+        for c in done:
+            cut = corrected_pair(cut, c)
+        text = gear_correction_toml(cut, *done)
+        print(text)
+        for c in done:
+            print(c.table())
+        if args.out is not None:
+            for c in done:
+                write_gear_points(c, args.out)
+            print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+        return 0
+    if "gear" in measured:       # measured gear rows: the gear corrected
+        gear = gear_correction(pair, measured["gear"], objective=args.fit or "rms",
                                seeds=gear_seeds(own or pair, generation), where=where)
-        if own is not None and not args.easeoff_grid:
-            # a pair cut from machine settings, gear rows only: its pinion kept
-            text = gear_correction_toml(corrected_pair(own, gear), gear)
-            print(text)
-            print(gear.table())
-            if args.out is not None:
-                write_gear_points(gear, args.out)
-                print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
-            return 0
     fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
                                objective=args.fit or "rms", where=where,
                                reliefs=getattr(args, "reliefs", None))

@@ -43,16 +43,18 @@ _ON_BOX_MM = 1e-3
 
 @dataclass(frozen=True)
 class KinkPosition:
-    """A kink line of a cut relieved pinion flank (:class:`~.kinked.KinkLine`).
+    """A kink line of a cut relieved flank (:class:`~.kinked.KinkLine`; a pinion's, or a
+    gear's of :mod:`.gear_correction`).
 
     Attributes
     ----------
     name : str
         ``"toprem"`` or ``"flankrem"``.
     v_mm, u_mm : ndarray
-        The kink ``u = u_k(v)`` at lengthwise nodes over the active box: axial position
-        and height over the root cone, mm (``-inf`` / ``+inf`` where the kink lies
-        below / above the active flank).
+        The kink ``u = u_k(v)`` at lengthwise nodes over the active box, mm: a pinion's
+        axial position and height over the root cone, a gear's flank parameters
+        (:func:`~.kinked.machine_flank`; ``-inf`` / ``+inf`` where the kink lies below /
+        above the active flank).
     """
 
     name: str

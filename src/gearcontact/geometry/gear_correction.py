@@ -1,5 +1,6 @@
-"""Gear machine-setting correction from a measured gear flank (issue 27 item 4, the gear
-rows of ``design --machine-settings --target-flank``).
+"""Machine-setting correction of a cut member from its measured flank (issue 27 item 4:
+the gear rows of ``design --machine-settings --target-flank``, and the pinion rows of a
+pair cut from machine settings).
 
 A measuring room measures the gear too: the deviations of its flank on the CMM grid
 (docs/export.md "The measuring grid"; rows ``member = gear``) against the nominal gear
@@ -10,7 +11,14 @@ settings of that nominal gear: the pair's ``[machine.gear.*]`` tables, or for a 
 without them the gear of its default flanks (formate, or generated where the formate
 gear undercuts its pinion: :func:`~.basic_settings.member_setups`, the exact settings
 of that gear). The corrected set is chosen by the gear's cutting method
-(:func:`~.setting_fit.default_parameters`).
+(:func:`~.setting_fit.default_parameters`). The pinion rows of a pair cut from
+machine settings are deviations from the pinion its ``[machine.pinion.*]`` tables cut
+(the flank the user measured), fitted the same way from those tables
+(:func:`measured_correction` with ``member="pinion"``; the pinion rows of a pair
+without tables are read against its conjugate pinion, :mod:`.easeoff_settings`).
+A relieved blade (Toprem / Flankrem) keeps its relief (:mod:`.relief_setup`): the
+nominal and the cut flanks are :func:`~.kinked.machine_flank`'s pieces, each point on
+its own.
 
 Identifiability: a flank measurement cannot separate every setting. A formate gear
 with a straight blade and no tilt cuts a cone of revolution: of its settings the
@@ -26,10 +34,11 @@ condition at the solution.
 
 The residual is reported at the measured points (the cut flank's normal distance from
 each measured point, exact envelope, no spline) and, for a complete grid (the CMM grid
-of ``export flanks``, :func:`~.measuring_grid.is_complete_grid`), over the flank as the
-pinion's is: the measured flank the bicubic spline through the grid's deviations over
-the nominal flank's (u, v) (:class:`~.easeoff.GridEaseOff`) on 60 x 75 points of the
-grid's box, the cut flank solved at each.
+of ``export flanks``, :func:`~.measuring_grid.is_complete_grid`) of a smooth blade's
+flank, over the flank as the pinion's ease-off fit's is: the measured flank the bicubic
+spline through the grid's deviations over the nominal flank's (u, v)
+(:class:`~.easeoff.GridEaseOff`) on 60 x 75 points of the grid's box, the cut flank
+solved at each (not for a relieved blade: the spline would smooth its kink).
 """
 
 from __future__ import annotations
@@ -44,21 +53,24 @@ import numpy as np
 from ..validation import InputRangeError
 from .basic_settings import member_setups
 from .formate import SIDES
-from .generated import gear_cone, gear_flank_of
+from .kinked import machine_flank
 from .machine import mirror_setup
 from .easeoff import GridEaseOff
+from .easeoff_settings import KinkPosition
 from .measuring_grid import (RESIDUAL_COLUMNS, MeasuredFlank, MeasuredPoints,
                              flank_parameters_at, grid_values, is_complete_grid,
                              measured_points, residual_rows)
+from .member_envelope import member_cone
 from .point_fit import RANK_TOLERANCE, PointProblem, check_observable, check_point_count
 from .setting_fit import PARAMETERS, SettingFit, checked_options, solve_fit
 
-__all__ = ["GearCorrection", "GearSideFit", "corrected_pair", "gear_correction", "gear_seeds"]
+__all__ = ["GearCorrection", "GearSideFit", "corrected_pair", "gear_correction", "gear_seeds",
+           "machine_seeds", "measured_correction", "measured_corrections"]
 
 
 @dataclass(frozen=True)
 class GearSideFit:
-    """The fit of one gear flank at its measured points.
+    """The fit of one measured flank (gear or pinion) at its points.
 
     Attributes
     ----------
@@ -76,7 +88,12 @@ class GearSideFit:
         relative to the largest (:func:`~.point_fit.check_observable`).
     flank_max_um, flank_rms_um : float
         Largest |residual| and RMS over the flank (a complete grid, module docstring;
-        NaN for scattered points), um.
+        NaN for scattered points and a relieved blade), um.
+    kinks : tuple of KinkPosition
+        A relieved blade's kink lines on the cut flank (:class:`~.easeoff_settings.
+        KinkPosition`; empty for a smooth blade).
+    box : FlankBoundary or None
+        The cut flank's active box (a relieved blade's; None for a smooth one).
     """
 
     side: str
@@ -87,31 +104,37 @@ class GearSideFit:
     relative_singular_value: float
     flank_max_um: float = math.nan
     flank_rms_um: float = math.nan
+    kinks: tuple = ()
+    box: object = None
 
 
 @dataclass(frozen=True)
 class GearCorrection:
-    """Corrected gear settings (:func:`gear_correction`).
+    """Corrected settings of one member (:func:`measured_correction`; the gear's:
+    :func:`gear_correction`).
 
     Attributes
     ----------
     setups : dict
-        ``{side: MachineSetup}`` of both gear flanks: the fitted ones, the seed where
-        the side was not measured.
+        ``{side: MachineSetup}`` of both flanks of ``member``: the fitted ones, the
+        seed where the side was not measured.
     sides : dict
         ``{side: GearSideFit}`` of the measured sides.
     mirrored : bool
         A left-hand pair: fitted on its right-hand twin (the corrections are the
         twin's), ``setups`` mirrored back.
+    member : str
+        ``"gear"`` or ``"pinion"``.
     """
 
     setups: dict
     sides: dict
     mirrored: bool = False
+    member: str = "gear"
 
     def comment_lines(self) -> list[str]:
         """One line per measured side for a TOML head comment."""
-        return [f"gear {side} ({len(r.points.line)} measured points, --target-flank): "
+        return [f"{self.member} {side} ({len(r.points.line)} measured points, --target-flank): "
                 f"deviation max {r.deviation_max_um:.2f} um, residual max "
                 f"{r.fit.fit_max_um:.3g} um, RMS {r.fit.fit_rms_um:.3g} um at the points"
                 + ("" if math.isnan(r.flank_max_um) else f", max {r.flank_max_um:.3g} um, "
@@ -120,7 +143,7 @@ class GearCorrection:
 
     def table(self) -> str:
         """Residual, identifiability and corrections per measured side (Markdown)."""
-        rows = ["| gear side | points | deviation max (um) | residual max / RMS at the "
+        rows = [f"| {self.member} side | points | deviation max (um) | residual max / RMS at the "
                 "points (um) | over the flank (um) | smallest rel. singular value | "
                 "condition | fit evaluations |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
         for side, r in self.sides.items():
@@ -130,7 +153,11 @@ class GearCorrection:
                         f"{r.fit.fit_max_um:.3g} / {r.fit.fit_rms_um:.3g} | {flank} | "
                         f"{r.relative_singular_value:.1e} | {r.fit.condition_number:.3g} | "
                         f"{r.fit.evaluations} |")
-        rows += ["", "| gear correction | unit | " + " | ".join(self.sides) + " |",
+        for side, r in self.sides.items():
+            for k in r.kinks:
+                rows += ["", f"{side}: the relieved blade's {k.text(r.box)} (the relief kept "
+                         "as given; the residual at the points on both sides of it)"]
+        rows += ["", f"| {self.member} correction | unit | " + " | ".join(self.sides) + " |",
                  "|---|---|" + "---:|" * len(self.sides)]
         names = list(dict.fromkeys(n for r in self.sides.values() for n in r.fit.corrections))
         for n in names:
@@ -144,7 +171,7 @@ class GearCorrection:
         return "\n".join(rows)
 
     def points_csv(self) -> str:
-        """The residual at each measured gear point as CSV (the columns of
+        """The residual at each measured point as CSV (the columns of
         :meth:`~.easeoff_settings.EaseOffSettings.points_csv`)."""
         rows = [RESIDUAL_COLUMNS]
         for r in self.sides.values():
@@ -152,12 +179,18 @@ class GearCorrection:
         return "\n".join(rows) + "\n"
 
 
+def machine_seeds(pair, member: str) -> dict:
+    """``{side: MachineSetup}`` of ``pair``'s ``[machine.<member>.*]`` tables (``{}``
+    without them)."""
+    return {s.side: s for s in pair.machine if s.member == member}
+
+
 def gear_seeds(pair, gear_generation: str) -> dict:
     """``{side: MachineSetup}`` of the nominal gear of ``pair``: its ``[machine.gear.*]``
     tables, else the gear of its default flanks (``gear_generation`` ``"formate"`` or
     ``"generated"``, :func:`~.basic_settings.member_setups`; a left-hand pair's: its
     twin's mirrored, :func:`~.machine.mirror_setup`)."""
-    own = {s.side: s for s in pair.machine if s.member == "gear"}
+    own = machine_seeds(pair, "gear")
     if own:
         return own
     default = member_setups(pair, gear_generation)[0]     # the right-hand twin's
@@ -168,23 +201,44 @@ def gear_seeds(pair, gear_generation: str) -> dict:
 
 def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
                     objective: str = "rms", where: str = "target flank") -> GearCorrection:
-    """Correct the gear settings ``seeds`` to the measured gear flanks ``measured``.
+    """:func:`measured_correction` of the gear (``member="gear"``)."""
+    return measured_correction(pair, measured, member="gear", seeds=seeds,
+                               parameters=parameters, objective=objective, where=where)
+
+
+def measured_correction(pair, measured: dict, *, member: str, seeds: dict, parameters=None,
+                        objective: str = "rms", where: str = "target flank"
+                        ) -> GearCorrection:
+    """:func:`measured_corrections` of one member: ``{member: measured}`` from
+    ``{member: seeds}``."""
+    return measured_corrections(pair, {member: measured}, seeds={member: seeds},
+                                parameters=parameters, objective=objective,
+                                where=where)[member]
+
+
+def measured_corrections(pair, measured: dict, *, seeds: dict, parameters=None,
+                         objective: str = "rms", where: str = "target flank") -> dict:
+    """Correct each member's settings ``seeds[member]`` to its measured flanks
+    ``measured[member]``; every measured flank of every member is checked before any
+    fit.
 
     Parameters
     ----------
     pair : GearPair
-        A bevel pair (its blank and gear face width); a left-hand pair is fitted on its
+        A bevel pair (its blank and face widths); a left-hand pair is fitted on its
         right-hand twin (the measured L, R and normal deviations of a mirror image are
         the same, docs/export.md) and its settings mirrored back; the reported
         corrections are the twin's.
     measured : dict
-        ``{side: MeasuredFlank}`` of gear rows (:func:`~.measuring_grid.read_member_targets`):
-        deviations against the gear ``seeds`` cut.
+        ``{member: {side: MeasuredFlank}}`` (member ``"gear"`` or ``"pinion"``; its rows
+        of :func:`~.measuring_grid.read_member_targets`): deviations against the flank
+        ``seeds[member][side]`` cuts.
     seeds : dict
-        ``{side: MachineSetup}`` of the nominal gear (:func:`gear_seeds`), in the
-        pair's own hand.
+        ``{member: {side: MachineSetup}}`` of the nominal members (the gear's:
+        :func:`gear_seeds`; a pair's own tables: :func:`machine_seeds`), in the pair's
+        own hand; a relieved blade keeps its relief (module docstring).
     parameters : tuple of str, optional
-        The fitted subset (default by the gear's cutting method,
+        The fitted subset (default by member and cutting method,
         :func:`~.setting_fit.default_parameters`).
     objective : str
         ``"rms"`` or ``"minimax"``.
@@ -193,64 +247,101 @@ def gear_correction(pair, measured: dict, *, seeds: dict, parameters=None,
 
     Returns
     -------
-    GearCorrection
-        Its ``setups`` in the pair's own hand.
+    dict
+        ``{member: GearCorrection}``, its ``setups`` in the pair's own hand.
 
     Raises
     ------
     InputRangeError
-        An unknown side, a measured point off the nominal gear flank,
+        An unknown side or member, a measured point off the nominal flank (a relieved
+        blade's: off the flank it cuts),
         fewer points than settings, settings the points cannot separate (named), a
-        formate gear asked for a roll or blade-curvature correction, a relieved gear
-        blade: all before any fit.
+        formate gear asked for a roll or blade-curvature correction, a relief whose
+        kink reaches the blade point that cuts the member's mean point: all before any
+        fit.
     """
     left = pair.pinion_hand == "left"
     if left:        # fitted on the right-hand twin (L, R and deviations are the same)
         pair = dataclasses.replace(pair, pinion_hand="right")
-        seeds = {side: mirror_setup(s) for side, s in seeds.items()}
-    for side, data in measured.items():
-        if side not in SIDES or not isinstance(data, MeasuredFlank) or data.member != "gear":
-            raise InputRangeError(f"{where}: gear rows", side, f"measured gear flanks of {SIDES}")
-    cone = gear_cone(pair.blank)
+        seeds = {m: {side: mirror_setup(s) for side, s in own.items()}
+                 for m, own in seeds.items()}
+    for member, rows in measured.items():
+        if member not in ("pinion", "gear"):
+            raise InputRangeError("member", member, "'pinion' or 'gear'")
+        for side, data in rows.items():
+            if side not in SIDES or not isinstance(data, MeasuredFlank) or \
+                    (data.member, data.flank) != (member, side):
+                raise InputRangeError(f"{where}: {member} rows", side,
+                                      f"measured {member} flanks of {SIDES}")
     problems = {}
-    for side, data in measured.items():        # every side checked before any fit
-        seed = seeds[side]
-        names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
-        at = f"{where}: gear {side}"
-        check_point_count({side: data}, names, where=where, member="gear")
-        nominal = gear_flank_of(seed, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
-        uv = flank_parameters_at(nominal, member="gear", L_mm=data.L_mm, R_mm=data.R_mm,
-                                 where=at, lines=data.line)
-        points = measured_points(data, nominal, where=at, uv=uv, cone=cone)
-        started = time.perf_counter()
-        prob = PointProblem(seed, pair.blank, points, names)
-        try:
-            rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
-        except InputRangeError as exc:     # on a CMM grid: the settings, not the points
-            raise InputRangeError(f"{at}: settings", exc.value, "settings a flank "
-                                  f"measurement separates (relative singular value >= "
-                                  f"{RANK_TOLERANCE:g}): drop one of those named (a formate "
-                                  "gear's sliding base is its cutter radius; "
-                                  "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
-                                  "points spread over the flank") from None
-        problems[side] = (prob, points, rel, time.perf_counter() - started, nominal, uv)
-    sides, setups = {}, dict(seeds)
-    for side, (prob, points, rel, took, nominal, uv) in problems.items():
-        fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
-                        started=time.perf_counter() - took)
-        x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
-        res = prob.deviation_um(x)
-        over = (_flank_residual_um(fit.setup, pair.blank, measured[side], nominal, uv, cone)
-                if is_complete_grid(*uv) else np.array([math.nan]))
-        sides[side] = GearSideFit(side=side, fit=fit, points=points,
-                                  deviation_max_um=float(np.abs(points.deviation_um).max()),
-                                  residual_um=res, relative_singular_value=rel,
-                                  flank_max_um=float(np.abs(over).max()),
-                                  flank_rms_um=float(np.sqrt(np.mean(over ** 2))))
-        setups[side] = fit.setup
-    if left:
-        setups = {side: mirror_setup(s) for side, s in setups.items()}
-    return GearCorrection(setups=setups, sides=sides, mirrored=left)
+    for member, rows in measured.items():      # every flank checked before any fit
+        for side, data in rows.items():
+            problems[member, side] = _problem(pair, member, seeds[member][side], data,
+                                              parameters=parameters, objective=objective,
+                                              where=where)
+    out = {}
+    for member, rows in measured.items():
+        sides, setups = {}, dict(seeds[member])
+        for side in rows:
+            sides[side] = _side_fit(pair, member, seeds[member][side], rows[side],
+                                    *problems[member, side], objective=objective)
+            setups[side] = sides[side].fit.setup
+        if left:
+            setups = {side: mirror_setup(s) for side, s in setups.items()}
+        out[member] = GearCorrection(setups=setups, sides=sides, mirrored=left, member=member)
+    return out
+
+
+def _problem(pair, member: str, seed, data: MeasuredFlank, *, parameters, objective: str,
+             where: str):
+    """The checked point problem of one measured flank (:func:`measured_corrections`):
+    ``(problem, points, relative singular value, seconds, nominal flank, (u, v))``."""
+    names = checked_options(seed, parameters, tolerance_um=1e-6, objective=objective)
+    at = f"{where}: {member} {data.flank}"
+    check_point_count({data.flank: data}, names, where=where, member=member)
+    nominal = machine_flank(seed, pair.blank, face_width_mm=_face_width_mm(pair, member))
+    uv = flank_parameters_at(nominal, member=member, L_mm=data.L_mm, R_mm=data.R_mm,
+                             where=at, lines=data.line)
+    points = measured_points(data, nominal, where=at, uv=uv,
+                             cone=member_cone(member, pair.blank))
+    started = time.perf_counter()
+    prob = PointProblem(seed, pair.blank, points, names)
+    try:
+        rel = check_observable(prob.jacobian(np.zeros(len(names))), names, where=at)
+    except InputRangeError as exc:     # on a CMM grid: the settings, not the points
+        raise InputRangeError(f"{at}: settings", exc.value, "settings a flank "
+                              f"measurement separates (relative singular value >= "
+                              f"{RANK_TOLERANCE:g}): drop one of those named (a formate "
+                              "gear's sliding base is its cutter radius; "
+                              "docs/machine_settings.md sec. 6, \"Gear flanks\"), or "
+                              "points spread over the flank") from None
+    return prob, points, rel, time.perf_counter() - started, nominal, uv
+
+
+def _face_width_mm(pair, member: str) -> float:
+    return getattr(pair, f"{member}_face_width_mm")
+
+
+def _side_fit(pair, member: str, seed, data: MeasuredFlank, prob, points, rel, took,
+              nominal, uv, *, objective: str) -> GearSideFit:
+    """The fit of one checked flank (:func:`_problem`) and its residuals and kinks."""
+    fit = solve_fit(prob, tolerance_um=1e-6, objective=objective,
+                    started=time.perf_counter() - took)
+    x = np.array([fit.corrections[n] for n in prob.names]) / prob.scale
+    res = prob.deviation_um(x)
+    over = (_flank_residual_um(fit.setup, pair.blank, data, nominal, uv,
+                               member_cone(member, pair.blank))
+            if is_complete_grid(*uv) and not seed.blade.relieved else np.array([math.nan]))
+    kinks, box = (), None
+    if seed.blade.relieved:     # the kink lines of the cut flank
+        cut = machine_flank(fit.setup, pair.blank, face_width_mm=_face_width_mm(pair, member))
+        kinks = tuple(KinkPosition(k.name, k.v_nodes, k.u_nodes) for k in cut.kinks)
+        box = cut.boundary
+    return GearSideFit(side=data.flank, fit=fit, points=points,
+                       deviation_max_um=float(np.abs(points.deviation_um).max()),
+                       residual_um=res, relative_singular_value=rel,
+                       flank_max_um=float(np.abs(over).max()),
+                       flank_rms_um=float(np.sqrt(np.mean(over ** 2))), kinks=kinks, box=box)
 
 
 def _flank_residual_um(setup, blank, data: MeasuredFlank, nominal, uv, cone, *,
@@ -270,7 +361,9 @@ def _flank_residual_um(setup, blank, data: MeasuredFlank, nominal, uv, cone, *,
 
 
 def corrected_pair(pair, correction: GearCorrection):
-    """``pair`` (with machine tables) with its gear set-ups replaced by the corrected."""
+    """``pair`` (with machine tables) with its set-ups of ``correction.member`` replaced
+    by the corrected."""
     return dataclasses.replace(pair, machine=tuple(
-        correction.setups[s.side] if s.member == "gear" else s for s in pair.machine))
+        correction.setups[s.side] if s.member == correction.member else s
+        for s in pair.machine))
 

@@ -51,9 +51,9 @@ from ..validation import InputRangeError, read_text_file
 __all__ = ["AXIS_FRAMES", "MEASURED_COLUMNS", "NOMINAL_COLUMNS", "MeasuringGrid",
            "MeasuredFlank", "MeasuredPoints", "measuring_grid", "flank_parameters_at",
            "read_measured_grid", "is_measured_header", "is_complete_grid",
-           "measured_easeoff_grid", "measured_points", "check_on_blank", "grid_values",
-           "read_member_targets", "read_target_flank", "residual_rows", "RESIDUAL_COLUMNS",
-           "target_grids"]
+           "measured_easeoff_grid", "measured_points", "check_on_blank",
+           "check_deviation_size", "grid_values", "read_member_targets", "read_target_flank",
+           "residual_rows", "RESIDUAL_COLUMNS", "target_grids"]
 
 #: Body frame -> member axis frame (axis +Z): gear unchanged, pinion (X, Y, Z) = (y, z, x).
 AXIS_FRAMES = {"pinion": np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]),
@@ -181,9 +181,13 @@ def _data_lines(text: str) -> list[tuple[int, list[str]]]:
 
 
 def is_measured_header(text: str) -> bool:
-    """True if the first data line of ``text`` names the L/R columns of a measured file."""
+    """True if the first data line of ``text`` names a column only a measured file has
+    (``member``, ``L_mm``, ``R_mm`` or ``deviation_um``: a measured file missing one of
+    the others is then refused naming it, :func:`read_measured_grid`, not read as a
+    (u, v) ease-off grid)."""
     lines = _data_lines(text)
-    return bool(lines) and {"L_mm", "R_mm"} <= set(lines[0][1])
+    return bool(lines) and bool({"member", "L_mm", "R_mm", "deviation_um"}
+                                & {h.strip() for h in lines[0][1]})
 
 
 def read_measured_grid(path, *, members=("pinion", "gear"),
@@ -225,14 +229,17 @@ def read_measured_grid(path, *, members=("pinion", "gear"),
         if member not in members or flank not in flanks:
             raise InputRangeError(f"{path}: line {k} member, flank", f"{member}, {flank}",
                                   f"member one of {members}, flank one of {flanks}")
-        try:
-            L, R, d = (float(row[col[c]]) for c in MEASURED_COLUMNS[2:])
-        except ValueError:
-            raise InputRangeError(f"{path}: line {k}", ",".join(row), "numbers for "
-                                  "L_mm, R_mm, deviation_um") from None
-        if not all(math.isfinite(x) for x in (L, R, d)):
-            raise InputRangeError(f"{path}: line {k}", ",".join(row), "finite numbers for "
-                                  "L_mm, R_mm, deviation_um")
+        values = []
+        for c in MEASURED_COLUMNS[2:]:      # each number named by its column
+            try:
+                x = float(row[col[c]])
+            except ValueError:
+                x = None
+            if x is None or not math.isfinite(x):
+                raise InputRangeError(f"{path}: line {k} {c}", row[col[c]],
+                                      "a finite number (mm; deviation_um in um)")
+            values.append(x)
+        L, R, d = values
         found.setdefault((member, flank), []).append((L, R, d, k))
     if not found:
         raise InputRangeError(f"{path}", "no points", "at least one measured point")
@@ -465,6 +472,26 @@ def check_on_blank(grids: dict, pair, *, where: str) -> None:
                 f"R {r0:.4f}..{r1:.4f} mm at that L (clearance line to tip)")
 
 
+def check_deviation_size(grids: dict, pair, *, where: str) -> None:
+    """Refuse, before any flank is built, a measured deviation (:class:`MeasuredFlank`
+    values of ``grids``, either member) of at least a quarter of the blank's mean normal
+    circular pitch, ``pi m_mn / 4`` (half a tooth's thickness: the probed point lies
+    on the next tooth or in the slot, not on the measured flank; a wrong nominal or a
+    unit slip), naming the file line and the value."""
+    limit_um = 1e3 * math.pi * pair.blank.mean_normal_module_mm / 4.0
+    for side, data in grids.items():
+        if not isinstance(data, MeasuredFlank):
+            continue
+        big = np.abs(data.deviation_um) >= limit_um
+        if big.any():
+            k = int(np.argmax(big))
+            raise InputRangeError(f"{where}: line {int(data.line[k])} ({data.member} "
+                                  f"{data.flank}) deviation_um", float(data.deviation_um[k]),
+                                  f"|deviation| < {limit_um:.0f} um, pi m_mn / 4 (half the "
+                                  "tooth: a larger one lies on the next tooth or in the "
+                                  "slot; um, not mm)")
+
+
 def read_target_flank(path, *, pair=None) -> dict:
     """A ``--target-flank`` file, its format told by its header: ``{side: grid}``.
 
@@ -474,7 +501,8 @@ def read_target_flank(path, *, pair=None) -> dict:
     :func:`target_grids` once they are built); any other is a deviation grid in the
     flank's (u, v) (:func:`~.easeoff.read_easeoff_grid`), its values
     :class:`~.easeoff.GridEaseOff`. With ``pair``, measured points are checked
-    against its pinion blank (:func:`check_on_blank`).
+    against its pinion blank (:func:`check_on_blank`), every deviation against the
+    blank's tooth (:func:`check_deviation_size`).
 
     Raises
     ------
@@ -488,6 +516,7 @@ def read_target_flank(path, *, pair=None) -> dict:
         return read_easeoff_grid(path)
     grids = {side: m for (_, side), m in read_measured_grid(path, members=("pinion",)).items()}
     if pair is not None:
+        check_deviation_size(grids, pair, where=str(path))
         check_on_blank(grids, pair, where=str(path))
     return grids
 
@@ -499,7 +528,8 @@ def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
     (u, v) ease-off grid is the pinion's), ``gear`` the ``{side: MeasuredFlank}`` of
     the gear rows of a measured file (:func:`read_measured_grid` with both members:
     the gear's setting correction, :mod:`.gear_correction`). With ``pair``, measured
-    pinion points are checked against its pinion blank (:func:`check_on_blank`).
+    pinion points are checked against its pinion blank (:func:`check_on_blank`), every
+    deviation against the blank's tooth (:func:`check_deviation_size`).
 
     Raises
     ------
@@ -515,6 +545,7 @@ def read_member_targets(path, *, pair=None) -> tuple[dict, dict]:
     pinion = {side: m for (member, side), m in found.items() if member == "pinion"}
     gear = {side: m for (member, side), m in found.items() if member == "gear"}
     if pair is not None:
+        check_deviation_size(found, pair, where=str(path))
         check_on_blank(pinion, pair, where=str(path))
     return pinion, gear
 

@@ -3,9 +3,11 @@
 A relieved blade (:mod:`.blade`) keeps its relief through every correction of the
 setting fit (:mod:`.setting_fit`): the relief keys (:data:`RELIEF_KEYS`) are a fixed
 blade property, never fitted; the corrections act on the blade's main profile, whose
-point that cuts the pinion's mean node is the blade pivot (a relief reaching it is
-refused, :func:`check_pivot_on_main`), and the flank is cut piece by piece, one smooth
-set-up per blade segment (:func:`piece_setups`, :mod:`.kinked`).
+point that cuts the member's mean node is the blade pivot (a relief reaching it is
+refused, :func:`check_pivot_on_main`; a pinion's already by :func:`relieved_setup`, a
+gear's by the gear's fit: a gear kept as given may carry any relief), and the flank is
+cut piece by piece, one smooth set-up per blade segment (:func:`piece_setups`,
+:mod:`.kinked`).
 docs/machine_settings.md sec. 6, "Relieved blades".
 """
 
@@ -76,9 +78,10 @@ def piece_setups(setup: MachineSetup) -> list:
             for seg in blade_segments(setup.blade)]
 
 
-def check_pivot_on_main(blade: BladeSettings, depth_mm: float) -> None:
+def check_pivot_on_main(blade: BladeSettings, depth_mm: float, *,
+                        member: str = "pinion") -> None:
     """Refuse a relief whose kink lies beyond the depth ``depth_mm`` behind the tip plane
-    of the blade point that cuts the pinion's mean point: the blade corrections pivot
+    of the blade point that cuts ``member``'s mean point: the blade corrections pivot
     there, on the main profile (a Toprem reaching it would make the relief the
     profile the blank's pressure angle is cut with)."""
     for seg in blade_segments(blade):
@@ -88,7 +91,7 @@ def check_pivot_on_main(blade: BladeSettings, depth_mm: float) -> None:
             raise InputRangeError(
                 f"{blade.where}.{key}_depth_mm", getattr(blade, f"{key}_depth_mm"),
                 f"{'<' if key == 'toprem' else '>'} {depth_mm:.4f} mm, the depth behind the "
-                "tip plane of the blade point that cuts the pinion's mean point (the "
+                f"tip plane of the blade point that cuts the {member}'s mean point (the "
                 "settings are solved there on the blade's main profile: the standard "
                 "settings' pressure angle, the setting fit's blade pivot; the relief is "
                 "kept as given, not fitted)")

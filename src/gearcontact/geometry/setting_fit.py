@@ -282,7 +282,8 @@ class FitProblem:
         mean = self._mean(solver)
         self.pivot_length_mm = float(mean.l_mm)
         if relief:
-            check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]))
+            check_pivot_on_main(seed.blade, float(blade_profile(main.blade, mean.l_mm)[1]),
+                                member=seed.member)
         self._piece_q = {}      # the other pieces' node solutions (relieved blades)
         return solver, mean
 
@@ -447,7 +448,7 @@ def fit_member_setup(seed: MachineSetup, blank: BlankDesign, target, *,
         A flank set-up that cuts the target's box: a pinion's (the complementary
         settings of :func:`~.basic_settings.complementary_pinion_setups` or the
         standard ones of :func:`~.basic_settings.standard_setups`) or a gear's
-        (formate or generated, a smooth blade).
+        (formate or generated; a relieved blade keeps its relief, module docstring).
     blank : BlankDesign
     target : RadialSheet
         The target flank on the sheet of ``seed``'s member (with ``evaluate`` and
@@ -479,8 +480,10 @@ def fit_member_setup(seed: MachineSetup, blank: BlankDesign, target, *,
     ------
     InputRangeError
         An unknown or repeated parameter, a roll, helical-motion or blade-curvature
-        parameter for a formate gear, a relieved gear blade, a gear target that is not
-        a sheet on the blank's gear cone, or a fit grid smaller than 3 x 3.
+        parameter for a formate gear, a relief whose kink reaches the blade point that
+        cuts the mean node (either member, :func:`~.relief_setup.check_pivot_on_main`),
+        a gear target that is not a sheet on the blank's gear cone, or a fit grid
+        smaller than 3 x 3.
     UndercutError
         The seed's envelope does not reach a node of the grid.
     """
@@ -508,10 +511,6 @@ def checked_options(seed: MachineSetup, parameters, *, tolerance_um: float,
         raise InputRangeError("parameters", names, f"distinct names from {tuple(PARAMETERS)}")
     if seed.member == "gear":
         where = f"machine.gear.{seed.side}"
-        if seed.blade.relieved:
-            raise InputRangeError(f"blade.gear.{seed.side}", "a relieved blade (Toprem / "
-                                  "Flankrem)", "a smooth gear blade for the gear's setting "
-                                  "fit (docs/machine_settings.md sec. 7)")
         bad = [n for n in names if n in FORMATE_FIXED] if seed.settings.formate else []
         if bad:
             raise InputRangeError(f"parameters ({where}: a formate gear)", ", ".join(bad),

@@ -146,25 +146,33 @@ def easeoff_settings_toml(fit, *, gear=None) -> str:
     return pair_to_toml(pair, comments={"": "\n".join(lines)})
 
 
-def gear_correction_toml(pair, gear) -> str:
-    """The pair TOML of a pair cut from machine settings whose gear was corrected to a
-    measured gear flank (:class:`~gearcontact.geometry.gear_correction.GearCorrection`),
-    its pinion kept; the head comment the residual per corrected gear side."""
+def gear_correction_toml(pair, *corrections) -> str:
+    """The pair TOML of a pair cut from machine settings whose measured members were
+    corrected to their measured flanks (``corrections``, one
+    :class:`~gearcontact.geometry.gear_correction.GearCorrection` per member), the
+    other member kept; the head comment the residual per corrected side."""
     from ..geometry.pair import pair_to_toml
 
-    lines = [f"{pair.name}: its machine settings with the gear corrected to the measured "
-             "gear flank (gearcontact design", "--machine-settings --target-flank; signs: "
-             "docs/machine_settings.md); pinion: the pair's own."] + gear.comment_lines()
+    done = [c.member for c in corrections]
+    kept = [m for m in ("pinion", "gear") if m not in done]
+    lines = [f"{pair.name}: its machine settings with the {' and '.join(done)} corrected to "
+             "the measured flank (gearcontact design", "--machine-settings --target-flank; "
+             "signs: docs/machine_settings.md)" + "".join(f"; {m}: the pair's own"
+                                                          for m in kept) + "."]
+    for c in corrections:
+        lines += c.comment_lines()
     return pair_to_toml(pair, comments={"": "\n".join(lines)})
 
 
-def write_gear_points(gear, out) -> Path:
-    """Write the residual at each measured gear point,
-    ``machine_settings_gear_points.csv``
-    (:meth:`~gearcontact.geometry.gear_correction.GearCorrection.points_csv`), into
-    the directory ``out``; returns its path."""
-    path = Path(out) / "machine_settings_gear_points.csv"
-    path.write_text(gear.points_csv())
+def write_gear_points(correction, out) -> Path:
+    """Write the residual at each measured point of a corrected member
+    (:meth:`~gearcontact.geometry.gear_correction.GearCorrection.points_csv`) into the
+    directory ``out``: the gear's ``machine_settings_gear_points.csv``, the pinion's
+    ``machine_settings_points.csv`` (the name of the pinion fit's points); returns its
+    path."""
+    name = "gear_points" if correction.member == "gear" else "points"
+    path = Path(out) / f"machine_settings_{name}.csv"
+    path.write_text(correction.points_csv())
     return path
 
 
