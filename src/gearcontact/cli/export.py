@@ -80,8 +80,10 @@ def run_c(args) -> int:
 
 def check_fmu(args) -> None:
     """Cheap checks before the TCA: the kind, the phase count, the torque, the
-    drivetrain file, the pair."""
+    drivetrain file, the pair (bevel/hypoid or cylindrical: rigid teeth)."""
     from ..export.fmu import check_fmu_kind
+    from ..export.fmu_cylindrical import check_cylindrical_fmu
+    from ..geometry.pair import BEVEL, CYLINDRICAL
     from ..tca.line_contact import check_loadable
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
@@ -94,11 +96,17 @@ def check_fmu(args) -> None:
             raise InputRangeError("--drivetrain", args.drivetrain, "only with --kind "
                                   "drivetrain")
         check_drivetrain_file(args.drivetrain)
-    check_pair_arguments(args)
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
+    if args.gear_pair.kind == CYLINDRICAL:
+        check_cylindrical_fmu(bending=args.bending, curvatures=args.curvatures)
+        return
     check_loadable(args.gear_pair, args.side)
 
 
 def run_fmu(args) -> int:
+    from ..geometry.pair import CYLINDRICAL
+    if args.gear_pair.kind == CYLINDRICAL:
+        return _run_cylindrical_fmu(args)
     pair = load_pair_for(args)
     if args.kind == "drivetrain":
         from ..export.fmu_drivetrain import export_drivetrain_fmu
@@ -116,6 +124,24 @@ def run_fmu(args) -> int:
     fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
                           phases=args.phases, torque_nm=args.torque, bending=args.bending,
                           flanks=args.prepared_pair.flank_set())
+    for path in (fmu.fmu_path, fmu.table_path):
+        print(final_path(args, path))
+    return 0
+
+
+def _run_cylindrical_fmu(args) -> int:
+    from ..twin.params import load_drivetrain
+    pair = args.gear_pair
+    if args.kind == "drivetrain":
+        from ..export.fmu_drivetrain import export_drivetrain_fmu
+        fmu = export_drivetrain_fmu(pair, args.out, pair_name=pair.name, side=args.side,
+                                    phases=args.phases, torque_nm=args.torque,
+                                    drivetrain=load_drivetrain(args.drivetrain, pair))
+        print(final_path(args, fmu.fmu_path))
+        return 0
+    from ..export.fmu_cylindrical import export_cylindrical_mesh_fmu
+    fmu = export_cylindrical_mesh_fmu(pair, args.out, pair_name=pair.name, side=args.side,
+                                      phases=args.phases, torque_nm=args.torque)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

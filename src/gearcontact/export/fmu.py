@@ -34,7 +34,7 @@ from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
 __all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
            "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
-           "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES"]
+           "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES", "LINE_LAW_FILES"]
 
 #: ``--kind`` values (``drivetrain``: :mod:`.fmu_drivetrain`).
 FMU_KINDS = ("mesh", "drivetrain")
@@ -92,6 +92,8 @@ UNITS = {
     "N.s/mm": 'kg="1" s="-1" factor="1000"'}
 #: The shared contact-law sources inside every FMU (``data/templates/fmu``).
 LAW_FILES = ("gc_contact_law.h", "gc_contact_law.c")
+#: The line law's sources beside them in a cylindrical pair's FMUs (:mod:`.fmu_cylindrical`).
+LINE_LAW_FILES = ("gc_line_law.h", "gc_line_law.c")
 #: The compiler flags of an FMU's binary built at export (with ``-fPIC -shared``): C99,
 #: strict warnings, ``-O2`` and no FMA contraction (the twin's roundings). (``-O3`` gives
 #: the same bits and ~7 % fewer instructions per drivetrain step, but measured no faster.)
@@ -183,7 +185,7 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "pi": c_double(math.pi), "hb_e": c_double(_HB_E), "s_gap": c_double(_S_GAP),
         "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
-        "output_dependencies": None, "initial_dependencies": ""}
+        "output_dependencies": None, "initial_dependencies": "", "line_law": False}
 
 
 def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
@@ -253,7 +255,8 @@ def build_fmu(fmu_path: Path, ctx: dict, header_dir: Path) -> None:
         src.mkdir()
         for name in lib:
             (src / name).write_text(c_files[name])
-        for name in LAW_FILES + (model_source, "buildDescription.xml"):
+        law = LAW_FILES + (LINE_LAW_FILES if ctx["line_law"] else ())
+        for name in law + (model_source, "buildDescription.xml"):
             (src / name).write_text(_render(env, name, ctx))
         so = Path(tmp) / f"{ident}.so"
         _compile(src, ctx["c_sources"], header_dir, so)

@@ -187,21 +187,10 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
         law = _LAWS[id(tab)] = (tab, _Law(tab))
     law = law[1]
     code = BACKENDS[backend]
-    u = tab.ratio
-    k_rows = tab.eps_rad.shape[0]
-    x = phi_pinion_rad - tab.pitch_rad * math.floor(phi_pinion_rad / tab.pitch_rad)
-    q = x / tab.step_rad
-    i = min(int(q), k_rows - 2)
-    f = q - i
-    eps = tab.eps_rad
-    e = eps[i] + f * (eps[i + 1] - eps[i])
-    de = (eps[i + 1] - eps[i]) / tab.step_rad
-    theta = phi_pinion_rad / u + e - phi_gear_rad
-    theta_dot = omega_pinion_rad_s * (1.0 / u + de) - omega_gear_rad_s
-    te = tab.motion_sign * (e - theta) * ARCSEC_PER_RAD
-    zero = MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
+    i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,
+                                                 omega_pinion_rad_s, omega_gear_rad_s)
     if theta < 0.0:
-        return zero
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
     out3 = np.zeros(L.N_PREVIEW)
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
@@ -232,8 +221,33 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
             # Hertz similarity a, b, p ~ W^(1/3) from the load they hold at
             scale = (w / out3[L.PV_LOAD]) ** (1.0 / 3.0)
             abp = (out3[0] * scale, out3[1] * scale, out3[2] * scale)
+    return _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te,
+                    mesh_damping_n_s_per_mm)
+
+
+def _kinematics(tab, phi_pinion_rad, phi_gear_rad, omega_pinion_rad_s, omega_gear_rad_s):
+    """``(i, f, eps', theta, theta', TE arcsec)`` of the inputs on the table's rows
+    (module docstring)."""
+    u = tab.ratio
+    k_rows = tab.eps_rad.shape[0]
+    x = phi_pinion_rad - tab.pitch_rad * math.floor(phi_pinion_rad / tab.pitch_rad)
+    q = x / tab.step_rad
+    i = min(int(q), k_rows - 2)
+    f = q - i
+    eps = tab.eps_rad
+    e = eps[i] + f * (eps[i + 1] - eps[i])
+    de = (eps[i + 1] - eps[i]) / tab.step_rad
+    theta = phi_pinion_rad / u + e - phi_gear_rad
+    theta_dot = omega_pinion_rad_s * (1.0 / u + de) - omega_gear_rad_s
+    te = tab.motion_sign * (e - theta) * ARCSEC_PER_RAD
+    return i, f, de, theta, theta_dot, te
+
+
+def _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te, damping) -> MeshOutputs:
+    """The outputs of the pairs' elastic torque ``t_el`` (N·m) with the mesh damping."""
     if t_el <= 0.0:
-        return zero
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
     l0 = tab.reference_lever_mm
-    t = max(t_el + 1e-3 * mesh_damping_n_s_per_mm * l0 * l0 * theta_dot, 0.0)
-    return MeshOutputs(-t * (1.0 / u + de), t, w_tot, te, abp[2], abp[0], abp[1], pairs)
+    t = max(t_el + 1e-3 * damping * l0 * l0 * theta_dot, 0.0)
+    return MeshOutputs(-t * (1.0 / tab.ratio + de), t, w_tot, te, abp[2], abp[0], abp[1],
+                       pairs)
