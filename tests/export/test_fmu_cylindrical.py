@@ -26,14 +26,14 @@ from gearcontact.export.line_mesh_law import LineMeshTable, line_mesh_outputs  #
 from gearcontact.export.mesh_law import BACKENDS  # noqa: E402
 
 from .conftest import export_fmu_cli as _cli  # noqa: E402
+from .test_fmu import INPUTS, OUTPUTS  # noqa: E402  (the mesh FMU's variables)
+# FMU output -> twin column (the twin's te_arcsec is the DTE)
+from .test_fmu_drivetrain import PAIRS as TWIN_COLUMNS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 EV = ROOT / "examples" / "ev_reducer_helical_23x67.toml"
 NAME = "ev_reducer_helical_23x67"
 TORQUE_NM = 200.0
-OUTPUTS = ("torque_pinion_nm", "torque_gear_nm", "mesh_force_n", "te_arcsec", "p_max_mpa",
-           "a_mm", "b_mm", "active_pairs")
-INPUTS = ("phi_pinion_rad", "phi_gear_rad", "omega_pinion_rad_s", "omega_gear_rad_s")
 
 
 @pytest.fixture(scope="module")
@@ -107,13 +107,14 @@ def test_mesh_law_runs_the_line_and_the_edge_slices(mesh_fmu):
     the crowned and relieved flanks) and the table carries the edge slices beyond the
     helical lines' ends with a positive effective width: the port is exercised where
     the cylindrical law differs from the bevel one."""
-    from gearcontact.export.line_mesh_law import _LAWS
+    from gearcontact.export.line_mesh_law import _LineLaw
+    from gearcontact.export.mesh_law import law_of
 
     _, tab = mesh_fmu
     assert tab.slices == 16 and tab.beyond > 0 and tab.beyond_width_mm > 0.0
     line_mesh_outputs(tab, 0.3 * tab.pitch_rad, 0.3 * tab.pitch_rad / tab.ratio - 1e-4,
                       0.0, 0.0, backend="fp64")
-    law = _LAWS[id(tab)][1]
+    law = law_of(tab, _LineLaw)
     i = int(0.3 * tab.pitch_rad / tab.step_rad)
     j = int(np.flatnonzero(tab.valid[:, i] & tab.valid[:, i + 1])[0])
     lam, pv = law.law(j, i, 0.0, 5e-3, 0)
@@ -134,12 +135,18 @@ def test_cylindrical_fmu_refuses_bending(tmp_path):
 SPEED_RPM = 12000.0
 STEP_US = 10.0
 DURATION_S = 3e-3       # 300 steps of 10 us: past the twin's 256-step block (its cache)
-#: FMU output -> twin column (the twin's te_arcsec is the DTE)
-TWIN_COLUMNS = {"pinion_speed_rad_s": "pinion_speed_rad_s",
-                "gear_speed_rad_s": "gear_speed_rad_s", "dte_arcsec": "te_arcsec",
-                "mesh_force_n": "mesh_load_n", "mesh_torque_nm": "mesh_torque_nm",
-                "mesh_rotation_rad": "theta_rad", "p_max_mpa": "p_max_mpa", "a_mm": "a_mm",
-                "b_mm": "b_mm", "pairs_loaded": "pairs_loaded"}
+
+
+def _assert_twin_columns(res, twin, n: int, backend: str) -> None:
+    """Every FMU output at the first ``n`` communication points equals the twin's record
+    (the state at the start of each step): golden identical, fp64 within 1e-9 relative
+    (reasons at the tests)."""
+    for name, col in TWIN_COLUMNS.items():
+        got, want = np.asarray(res[name][:n], float), twin.columns[col]
+        if backend == "golden":
+            np.testing.assert_array_equal(got, want, err_msg=name)
+        else:
+            np.testing.assert_allclose(got, want, rtol=1e-9, atol=0.0, err_msg=name)
 
 
 @pytest.fixture(scope="module")
@@ -184,12 +191,7 @@ def test_drivetrain_fmu_reproduces_gearcontact_twin(drivetrain_fmu, backend, twi
                                           "speed_rpm": SPEED_RPM, "step_us": STEP_US})
     n = twin.summary["steps"]
     assert n == 300 and len(res) == n + 1
-    for name, col in TWIN_COLUMNS.items():
-        got, want = np.asarray(res[name][:n], float), twin.columns[col]
-        if backend == "golden":
-            np.testing.assert_array_equal(got, want, err_msg=name)
-        else:
-            np.testing.assert_allclose(got, want, rtol=1e-9, atol=0.0, err_msg=name)
+    _assert_twin_columns(res, twin, n, backend)
     # loaded and dynamic: the mesh carries the torque on average, the DTE moves, several
     # pairs share the load (a helical stage, eps_gamma ~ 3.5)
     assert 0.9 * TORQUE_NM < np.mean(res["mesh_torque_nm"]) < 1.1 * TORQUE_NM
@@ -248,12 +250,7 @@ def test_spur_drivetrain_fmu_reproduces_the_twin_through_rattle(
                                           "speed_rpm": 15000.0, "step_us": 10.0})
     n = twin.summary["steps"]
     assert n == 600 and len(res) == n + 1
-    for name, col in TWIN_COLUMNS.items():
-        got, want = np.asarray(res[name][:n], float), twin.columns[col]
-        if backend == "golden":
-            np.testing.assert_array_equal(got, want, err_msg=name)
-        else:
-            np.testing.assert_allclose(got, want, rtol=1e-9, atol=0.0, err_msg=name)
+    _assert_twin_columns(res, twin, n, backend)
     # the run loses contact (measured 5 % of the steps), strikes the reverse flank
     # (measured 57 steps of negative mesh torque) and comes back loaded
     assert 0.02 < twin.summary["contact_loss"] < 0.5

@@ -32,7 +32,8 @@ from ..validation import InputRangeError
 from .c_library import FP64_SOURCES, GOLDEN_SOURCES, HEADERS, _environment, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
-__all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
+__all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "write_mesh_fmu",
+           "check_fmu_kind",
            "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
            "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES", "LINE_LAW_FILES"]
 
@@ -323,6 +324,15 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     # the twin's own mesh table (edge-contact TCA, docs/twin.md)
     tab = mesh_law_table(pair_mesh_table(pair, side=side, torque_nm=torque_nm, phases=phases,
                                          flanks=flanks, bending=bending)[2])
+    return write_mesh_fmu(tab, out_dir, pair_name=pair_name, side=side,
+                          header_dir=header_dir)
+
+
+def write_mesh_fmu(tab, out_dir, *, pair_name: str, side: str, header_dir: Path,
+                   adapt=None) -> MeshFmu:
+    """Write the mesh FMU of the baked table ``tab`` (and the table as ``.npz``) into
+    ``out_dir``: the template context of :func:`_mesh_context`, changed in place by
+    ``adapt(ctx)`` if given (a cylindrical pair's line law, :mod:`.fmu_cylindrical`)."""
     ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -330,6 +340,8 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     tab.to_npz(table_path)
     ctx = _mesh_context(tab, pair_name=pair_name, side=side, ident=ident,
                         token=model_token(table_path.read_bytes()), header_dir=header_dir)
+    if adapt is not None:
+        adapt(ctx)
     fmu_path = out / f"{ident}.fmu"
     build_fmu(fmu_path, ctx, header_dir)
     return MeshFmu(fmu_path, table_path, ident)

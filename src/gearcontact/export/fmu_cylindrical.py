@@ -25,13 +25,10 @@ ported: refused by :func:`check_cylindrical_fmu` before any work.
 
 from __future__ import annotations
 
-import re
-from pathlib import Path
-
 import numpy as np
 
 from ..validation import InputRangeError
-from .fmu import MeshFmu, _mesh_context, build_fmu, c_double, fmi3_header_dir, model_token
+from .fmu import MeshFmu, c_double, fmi3_header_dir, write_mesh_fmu
 
 __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_context",
            "line_drivetrain_context"]
@@ -103,26 +100,20 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
     _environment()      # Jinja2 before the TCA
     mesh = cylindrical_model(pair, torque_nm=torque_nm, side=side, phases=phases).mesh
     tab = line_mesh_table(mesh)
-    ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    table_path = out / f"{ident}_table.npz"
-    tab.to_npz(table_path)
-    ctx = _mesh_context(tab, pair_name=pair_name, side=side, ident=ident,
-                        token=model_token(table_path.read_bytes()), header_dir=header_dir)
-    ctx.update(line_law_context(mesh))
-    ctx["c_sources"] = _with_line_sources(ctx)
-    ctx["tables"] = [t for t in ctx["tables"] if t[0] in ("LEVER_MM", "OPENING_MM")]
-    ctx["line_rows"] = [[[c_double(v) for v in row] for row in p] for p in tab.line_rows]
-    n_rows, n_pairs = tab.eps_rad.shape[0], tab.lever_mm.shape[0]
-    ctx["description"] = (f"Gear mesh element of the cylindrical pair {pair_name} ({side} "
-                          "flank): the gearcontact twin's line law (the preview's line chain "
-                          "on the 7 x 7 gap stencil, the slice law on the ease-off along "
-                          f"the line; rigid teeth), table of {n_rows} phases x {n_pairs} "
-                          "pairs baked in")
-    fmu_path = out / f"{ident}.fmu"
-    build_fmu(fmu_path, ctx, header_dir)
-    return MeshFmu(fmu_path, table_path, ident)
+
+    def adapt(ctx):
+        ctx.update(line_law_context(mesh))
+        ctx["c_sources"] = _with_line_sources(ctx)
+        ctx["tables"] = [t for t in ctx["tables"] if t[0] in ("LEVER_MM", "OPENING_MM")]
+        ctx["line_rows"] = [[[c_double(v) for v in row] for row in p] for p in tab.line_rows]
+        ctx["description"] = (
+            f"Gear mesh element of the cylindrical pair {pair_name} ({side} flank): the "
+            "gearcontact twin's line law (the preview's line chain on the 7 x 7 gap "
+            "stencil, the slice law on the ease-off along the line; rigid teeth), table of "
+            f"{tab.eps_rad.shape[0]} phases x {tab.lever_mm.shape[0]} pairs baked in")
+
+    return write_mesh_fmu(tab, out_dir, pair_name=pair_name, side=side,
+                          header_dir=header_dir, adapt=adapt)
 
 
 def line_drivetrain_context(model) -> dict:

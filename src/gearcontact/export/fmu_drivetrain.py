@@ -205,12 +205,14 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
                           torque_nm: float = 64.5, drivetrain=None,
                           curvatures: str = "stencil", bending: bool = False,
                           flanks=None) -> DrivetrainFmu:
-    """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring).
+    """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring; a
+    cylindrical pair: its twin's model :func:`~gearcontact.twin.cylindrical.
+    cylindrical_model` with the line law, :mod:`.fmu_cylindrical`, rigid teeth).
 
     Parameters
     ----------
-    pair : gearcontact.geometry.pair.GearPair
-        The pair, prepared (an ease-off table on ``side``).
+    pair : gearcontact.geometry.pair.GearPair or CylindricalPair
+        The pair, prepared (an ease-off table on ``side``; a cylindrical pair as loaded).
     out_dir : str or Path
         Output directory (created if missing).
     pair_name : str
@@ -244,6 +246,9 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ------
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
+    InputRangeError
+        A curvature source other than ``stencil`` or exact, or ``bending``, on a
+        cylindrical pair (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
     """
     from .c_library import _environment
 

@@ -27,15 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..preview.fit.golden import element_constants
-from ..preview.fit.pinv import N_COEFFS, N_TAPS
-from ..preview.hertz.golden import encode_e_prime
-from ..preview.hertz.golden_vec import golden_constants
-from ..preview.hertz.reference import ENVELOPE
 from ..twin import layout as L
 from ..twin.contact_law import W_EVAL_MIN_N, _pair_load
 from ..twin.line_law import MODE_LINE, _line_law, line_law_constants, line_pair_load
-from .mesh_law import BACKENDS, MeshLawTable, MeshOutputs, _kinematics, _outputs
+from .mesh_law import (BACKENDS, MeshLawTable, MeshOutputs, _kinematics, _Law, _outputs,
+                       closed_pairs, law_of, mesh_law_table)
 
 __all__ = ["LineMeshTable", "line_mesh_table", "line_mesh_outputs", "line_rows"]
 
@@ -91,32 +87,22 @@ def _slice_count(mesh) -> int:
 
 def line_mesh_table(mesh) -> LineMeshTable:
     """The FMU's table of a cylindrical pair's :class:`~gearcontact.twin.mesh.MeshTable`
-    (rigid teeth)."""
+    (rigid teeth): :func:`~.mesh_law.mesh_law_table`'s rows and the line chain's."""
     beyond = 0 if mesh.beyond_gap_mm is None else int(mesh.beyond_gap_mm.shape[-1])
     return LineMeshTable(
-        eps_rad=np.asarray(mesh.eps_rad, float), lever_mm=np.asarray(mesh.lever_mm, float),
-        opening_mm=np.asarray(mesh.opening_mm, float),
-        A_minus_per_mm=np.asarray(mesh.A_minus_per_mm, float),
-        B_minus_per_mm=np.asarray(mesh.B_minus_per_mm, float),
-        valid=np.asarray(mesh.valid, bool), step_rad=float(mesh.step_rad),
-        pitch_rad=float(mesh.pitch_rad), ratio=float(mesh.ratio),
-        reference_lever_mm=float(mesh.reference_lever_mm),
-        e_prime_mpa=float(mesh.e_prime_mpa), motion_sign=int(mesh.motion_sign),
-        line_rows=line_rows(mesh), slices=int(mesh.line_gap_mm.shape[-1]), beyond=beyond,
+        **mesh_law_table(mesh).__dict__, line_rows=line_rows(mesh),
+        slices=int(mesh.line_gap_mm.shape[-1]), beyond=beyond,
         beyond_width_mm=0.0 if beyond == 0 else float(mesh.beyond_width_mm
                                                       * mesh.beyond_stiffness))
 
 
-class _LineLaw:
-    """The twin's line-law arguments for one table (twin.model's layout)."""
+class _LineLaw(_Law):
+    """The twin's line-law arguments for one table (:class:`~.mesh_law._Law`'s, the
+    curvature source the line chain's, twin.model's layout)."""
 
     def __init__(self, tab: LineMeshTable):
-        self.prm = np.zeros(L.N_PRM)
-        self.prm[L.P_EP] = tab.e_prime_mpa
-        self.prm[L.P_ECODE] = encode_e_prime(tab.e_prime_mpa)
+        super().__init__(tab)
         self.prm[L.P_STAGEC] = L.LINE_SOURCE_CODE
-        self.prm[L.P_CLO], self.prm[L.P_CHI] = ENVELOPE["curvature_per_mm"]
-        self.prm[L.P_AHI] = ENVELOPE["alpha"][1]
         self.prm[L.P_NSLICE] = tab.slices
         self.prm[L.P_NBEYOND] = tab.beyond
         self.prm[L.P_BEYOND_W] = tab.beyond_width_mm
@@ -124,13 +110,7 @@ class _LineLaw:
         rows = tab.line_rows
         # the rigid teeth's bending Gram (zeros) after the rows, as the twin stacks them
         self.cv = np.concatenate([rows, np.zeros(rows.shape[:2] + (m * m,))], axis=-1)[None]
-        self.pow_lut, self.cbrt_lut, self.cst = golden_constants()
-        fit_w, fit_cst = element_constants()
-        self.fit = (fit_w, fit_cst, np.zeros((1, N_TAPS), np.int64),
-                    np.zeros((1, N_COEFFS), np.int64), np.zeros((0, N_TAPS), np.int64),
-                    line_law_constants())
-        self.trace = np.zeros((0, L.N_TRACE), np.int64)
-        self.tcount = np.zeros(L.N_COUNT, np.int64)
+        self.fit = self.fit + (line_law_constants(),)
         self.pv = np.zeros(L.preview_scratch(self.prm))
 
     def law(self, j, i, f, d, backend):
@@ -146,18 +126,13 @@ class _LineLaw:
         return lam, pv
 
 
-_LAWS: dict = {}
-
 
 def line_mesh_outputs(tab: LineMeshTable, phi_pinion_rad: float, phi_gear_rad: float,
                       omega_pinion_rad_s: float, omega_gear_rad_s: float, *, backend: str,
                       mesh_damping_n_s_per_mm: float = 0.0) -> MeshOutputs:
     """Outputs of a cylindrical pair's mesh FMU at one instant (module docstring;
     parameters as :func:`~.mesh_law.mesh_outputs`)."""
-    law = _LAWS.get(id(tab))
-    if law is None or law[0] is not tab:
-        law = _LAWS[id(tab)] = (tab, _LineLaw(tab))
-    law = law[1]
+    law = law_of(tab, _LineLaw)
     code = BACKENDS[backend]
     i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,
                                                  omega_pinion_rad_s, omega_gear_rad_s)
@@ -166,14 +141,7 @@ def line_mesh_outputs(tab: LineMeshTable, phi_pinion_rad: float, phi_gear_rad: f
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
-    for j in range(tab.lever_mm.shape[0]):
-        if not (tab.valid[j, i] and tab.valid[j, i + 1]):
-            continue
-        lv = tab.lever_mm[j, i] + f * (tab.lever_mm[j, i + 1] - tab.lever_mm[j, i])
-        g = tab.opening_mm[j, i] + f * (tab.opening_mm[j, i + 1] - tab.opening_mm[j, i])
-        d = lv * theta - g
-        if d <= 0.0:
-            continue
+    for j, lv, d in closed_pairs(tab, i, f, theta):
         lam, pv = law.law(j, i, f, d, code)
         if lam <= 0.0:      # no contact law (a saddle): the pair carries nothing
             continue

@@ -45,7 +45,8 @@ from ..preview.hertz.reference import ENVELOPE
 from ..twin import layout as L
 from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _pair_load
 
-__all__ = ["MeshLawTable", "MeshOutputs", "mesh_law_table", "mesh_outputs", "BACKENDS"]
+__all__ = ["MeshLawTable", "MeshOutputs", "mesh_law_table", "mesh_outputs", "BACKENDS", "law_of",
+           "closed_pairs"]
 
 #: The FMU's ``backend`` parameter: name -> enumeration value (the twin's backend).
 BACKENDS = {"fp64": 0, "golden": 1}
@@ -182,10 +183,7 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     mesh_damping_n_s_per_mm : float
         Mesh damping ``c_m`` on the line of action, N·s/mm.
     """
-    law = _LAWS.get(id(tab))
-    if law is None or law[0] is not tab:
-        law = _LAWS[id(tab)] = (tab, _Law(tab))
-    law = law[1]
+    law = law_of(tab, _Law)
     code = BACKENDS[backend]
     i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,
                                                  omega_pinion_rad_s, omega_gear_rad_s)
@@ -196,14 +194,7 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     abp = (0.0, 0.0, 0.0)
     pairs = 0
     cbs = tab.bending_mm_per_n
-    for j in range(tab.lever_mm.shape[0]):
-        if not (tab.valid[j, i] and tab.valid[j, i + 1]):
-            continue
-        lv = tab.lever_mm[j, i] + f * (tab.lever_mm[j, i + 1] - tab.lever_mm[j, i])
-        g = tab.opening_mm[j, i] + f * (tab.opening_mm[j, i + 1] - tab.opening_mm[j, i])
-        d = lv * theta - g
-        if d <= 0.0:
-            continue
+    for j, lv, d in closed_pairs(tab, i, f, theta):
         kap = law.kappa(j, i, f, W_EVAL_MIN_N, code, out3)
         if kap <= 0.0:      # no contact law (a saddle): the pair carries nothing
             continue
@@ -223,6 +214,27 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
             abp = (out3[0] * scale, out3[1] * scale, out3[2] * scale)
     return _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te,
                     mesh_damping_n_s_per_mm)
+
+
+def law_of(tab, factory):
+    """The compiled law's arguments of ``tab`` (``factory(tab)``), built once per table."""
+    law = _LAWS.get(id(tab))
+    if law is None or law[0] is not tab:
+        law = _LAWS[id(tab)] = (tab, factory(tab))
+    return law[1]
+
+
+def closed_pairs(tab, i, f, theta):
+    """``(j, lever mm, approach d mm)`` of every pair valid at both rows (i, i + 1) whose
+    approach ``d = l theta - g`` at the fraction f is positive (kernel._elastic's test)."""
+    for j in range(tab.lever_mm.shape[0]):
+        if not (tab.valid[j, i] and tab.valid[j, i + 1]):
+            continue
+        lv = tab.lever_mm[j, i] + f * (tab.lever_mm[j, i + 1] - tab.lever_mm[j, i])
+        g = tab.opening_mm[j, i] + f * (tab.opening_mm[j, i + 1] - tab.opening_mm[j, i])
+        d = lv * theta - g
+        if d > 0.0:
+            yield j, lv, d
 
 
 def _kinematics(tab, phi_pinion_rad, phi_gear_rad, omega_pinion_rad_s, omega_gear_rad_s):
