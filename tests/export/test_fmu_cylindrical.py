@@ -102,6 +102,30 @@ def test_mesh_fmu_equals_the_twin_line_law(mesh_fmu, backend, fmi_type):
     assert res["torque_gear_nm"].max() > TORQUE_NM
 
 
+def test_mesh_fmu_golden_equals_the_law_where_the_chain_flags(mesh_fmu):
+    """The golden backend where its line chain flags (the fp64 line chain answers, as
+    the twin's): the gear held 1.75e-4 rad behind the pinion over two pitches, where
+    the reference counts previews outside the datapath (measured 26 of 401 instants'
+    previews); every output identical to the Python law there too (golden: bit for bit,
+    integer chain then the same fp64 operations)."""
+    from gearcontact.export.line_mesh_law import _LineLaw
+    from gearcontact.export.mesh_law import law_of
+
+    fmu, tab = mesh_fmu
+    sig = _signal(tab)
+    sig["phi_gear_rad"] = sig["phi_pinion_rad"] / tab.ratio - 1.75e-4
+    sig["omega_gear_rad_s"] = sig["omega_pinion_rad_s"] / tab.ratio
+    res = fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=0.02, output_interval=5e-5,
+                            input=sig, output=list(INPUTS + OUTPUTS),
+                            start_values={"backend": BACKENDS["golden"]})
+    law = law_of(tab, _LineLaw)
+    before = int(law.tcount[3])
+    for row in res:
+        ref = line_mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend="golden")
+        assert [float(row[n]) for n in OUTPUTS] == [float(getattr(ref, n)) for n in OUTPUTS]
+    assert law.tcount[3] - before >= 10      # the fallback ran (measured 26)
+
+
 def test_mesh_law_runs_the_line_and_the_edge_slices(mesh_fmu):
     """The sweep's law is the line law (line mode, a loaded length below the line's on
     the crowned and relieved flanks) and the table carries the edge slices beyond the
