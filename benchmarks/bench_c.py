@@ -58,9 +58,10 @@ The process pins itself to one core (``os.sched_setaffinity``, inherited by the
 drivers; ``--cpu``) and prints the load average: figures taken under load say so.
 
 Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curvatures
-stencil|exact] [--pair CYLINDRICAL.toml] [--twin-only | --previews-only] [--instructions]
-[--cflags FLAGS]`` (``--pair``: the twin step of a cylindrical pair's drivetrain FMU, its
-line law, instead of s0003's).
+stencil|exact] [--pair CYLINDRICAL.toml] [--bending] [--twin-only | --previews-only]
+[--instructions] [--cflags FLAGS]`` (``--pair``: the twin step of a cylindrical pair's
+drivetrain FMU, its line law, instead of s0003's; ``--bending``: with the teeth's
+bending).
 """
 
 from __future__ import annotations
@@ -444,11 +445,13 @@ def _step_instructions(exe: Path, code: int, steps: int = 2000) -> float:
 
 
 def bench_twin_step(steps: int, phases: int, curvatures: str,
-                    instructions: bool = False, pair_file: str | None = None) -> None:
+                    instructions: bool = False, pair_file: str | None = None,
+                    bending: bool = False) -> None:
     """ns per twin step of the drivetrain FMU's C (module docstring); with
     ``instructions`` also the instructions per step under callgrind. ``pair_file``: a
     cylindrical pair's TOML instead of s0003 (its twin's line law, rigid teeth; the
-    curvature source is the line chain's)."""
+    curvature source is the line chain's). ``bending``: the teeth's bending in series
+    (``--bending`` of the export and the twin)."""
     from fmpy import __file__ as fmpy_file
 
     from gearcontact.export.fmu import FMU_CFLAGS
@@ -469,7 +472,8 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
     vr = {v[0]: v[1] for v in DRIVETRAIN_VARIABLES}
     with tempfile.TemporaryDirectory() as tmp:
         fmu = export_drivetrain_fmu(pair, tmp, pair_name=label, side=side, phases=phases,
-                                    curvatures=None if pair_file else curvatures)
+                                    curvatures=None if pair_file else curvatures,
+                                    bending=bending)
         src = Path(tmp) / "src"
         with zipfile.ZipFile(fmu.fmu_path) as z:
             for name in z.namelist():
@@ -484,7 +488,8 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
                         "-I", str(src), "-I", str(Path(fmpy_file).parent / "c-code"),
                         "-o", str(exe), *sorted(str(p) for p in src.glob("*.c")), "-lm"],
                        check=True)
-        print(f"\ntwin step of the drivetrain FMU ({label}, curvatures {curvatures}, "
+        print(f"\ntwin step of the drivetrain FMU ({label}, curvatures {curvatures}"
+              f"{', bending' if bending else ''}, "
               f"{phases} phases, 3000 rpm, "
               f"64.5 N.m, 10 us; {steps} steps timed one by one, {steps} sustained)")
         print(f"{'backend':<8} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} "
@@ -513,9 +518,9 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
                                                for name, code in (("fp64", 0), ("golden", 1))))
     if pair_file is None:
         model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=64.5,
-                                     curvatures=curvatures)
+                                     curvatures=curvatures, bending=bending)
     else:
-        model = cylindrical_model(pair, torque_nm=64.5, phases=phases)
+        model = cylindrical_model(pair, torque_nm=64.5, phases=phases, bending=bending)
     res = simulate(model, speed_rpm=3000.0, duration_s=1e-5 * steps, step_s=1e-5)
     print(f"numba twin (gearcontact twin, reference, curvatures {curvatures}): step "
           f"{1e3 * res.timings['step_time_p50_us']:.0f} ns p50 of 256-step blocks, "
@@ -618,6 +623,8 @@ def main(argv=None) -> None:
     ap.add_argument("--pair", default=None,
                     help="twin step: a cylindrical pair's TOML instead of s0003 (the line "
                          "law's drivetrain FMU, e.g. examples/ev_reducer_helical_23x67.toml)")
+    ap.add_argument("--bending", action="store_true",
+                    help="twin step: the teeth's bending in series (the export's --bending)")
     ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
     ap.add_argument("--previews-only", action="store_true", help="skip the twin step")
     ap.add_argument("--cflags", default="-O2",
@@ -631,7 +638,7 @@ def main(argv=None) -> None:
         bench_previews(args.vectors, args.instructions, args.cflags)
     if not args.previews_only:
         bench_twin_step(args.steps, args.phases, args.curvatures, args.instructions,
-                        args.pair)
+                        args.pair, args.bending)
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
 
 

@@ -80,7 +80,7 @@ def run_c(args) -> int:
 
 def check_fmu(args) -> None:
     """Cheap checks before the TCA: the kind, the phase count, the torque, the
-    drivetrain file, the pair (bevel/hypoid or cylindrical: rigid teeth)."""
+    drivetrain file, the pair (bevel/hypoid or cylindrical)."""
     from ..export.fmu import check_fmu_kind
     from ..export.fmu_cylindrical import check_cylindrical_fmu
     from ..geometry.pair import BEVEL, CYLINDRICAL
@@ -98,7 +98,7 @@ def check_fmu(args) -> None:
         check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     if args.gear_pair.kind == CYLINDRICAL:
-        check_cylindrical_fmu(bending=args.bending, curvatures=args.curvatures)
+        check_cylindrical_fmu(curvatures=args.curvatures)
         return
     check_loadable(args.gear_pair, args.side)
 
@@ -136,12 +136,14 @@ def _run_cylindrical_fmu(args) -> int:
         from ..export.fmu_drivetrain import export_drivetrain_fmu
         fmu = export_drivetrain_fmu(pair, args.out, pair_name=pair.name, side=args.side,
                                     phases=args.phases, torque_nm=args.torque,
-                                    drivetrain=load_drivetrain(args.drivetrain, pair))
+                                    drivetrain=load_drivetrain(args.drivetrain, pair),
+                                    bending=args.bending)
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu_cylindrical import export_cylindrical_mesh_fmu
     fmu = export_cylindrical_mesh_fmu(pair, args.out, pair_name=pair.name, side=args.side,
-                                      phases=args.phases, torque_nm=args.torque)
+                                      phases=args.phases, torque_nm=args.torque,
+                                      bending=args.bending)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

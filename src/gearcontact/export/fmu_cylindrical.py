@@ -6,7 +6,7 @@ The twin of a cylindrical pair runs the preview's *line chain* per loaded pair a
 (:mod:`gearcontact.twin.line_law`: stage C on the 7 x 7 stencil into the line core, the
 slice law's loaded length on the ease-off along the line and the edge slices beyond a
 helical line's ends, the finite line's approach on the half-spaces). Its C port is
-``data/templates/fmu/gc_line_law.c.j2`` (rigid teeth), beside the preview's C library
+``data/templates/fmu/gc_line_law.c.j2``, beside the preview's C library
 (the golden line chain ``gc_chain_line_golden``) and the bevel FMUs' shared law
 (``gc_contact_law.c``: the principal curvatures, the Hertz load); the mesh table's rows
 and the slice law's constants are the twin's own (:func:`gearcontact.twin.cylindrical.
@@ -19,8 +19,10 @@ cylindrical_model`), baked at export:
   law, ``gc_line_elastic.c.j2``; the reverse flank the loaded law mirrored about the
   backlash, as the twin's).
 
-Tooth bending (``--bending``, the twin's series law along the loaded slices) is not
-ported: refused by :func:`check_cylindrical_fmu` before any work.
+Tooth bending (``--bending``, as ``gearcontact twin --bending``): the twin's series law
+along the loaded slices (the shells' Gram at the slices baked per row, the loaded
+slices' compliance a fixed point from the uniform load's) is ported with the rest.
+:func:`check_cylindrical_fmu` refuses a curvature source other than the line chain's.
 """
 
 from __future__ import annotations
@@ -34,19 +36,14 @@ __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_con
            "line_drivetrain_context"]
 
 
-def check_cylindrical_fmu(*, bending: bool, curvatures: str | None) -> None:
+def check_cylindrical_fmu(*, curvatures: str | None) -> None:
     """Refuse what a cylindrical pair's FMUs do not build (before any work).
 
     Raises
     ------
     InputRangeError
-        ``--bending`` (the twin's series bending along the line is not ported to C), a
-        curvature source other than the line chain's stencil.
+        A curvature source other than the line chain's stencil.
     """
-    if bending:
-        raise InputRangeError("--bending", True, "not given for a cylindrical pair's FMU "
-                                                 "(rigid teeth: the line law's tooth bending "
-                                                 "is not ported to C yet, docs/export.md)")
     if curvatures not in (None, "stencil"):
         raise InputRangeError("--curvatures", curvatures, "stencil for a cylindrical pair "
                                                           "(the line chain: stage C on the "
@@ -55,9 +52,9 @@ def check_cylindrical_fmu(*, bending: bool, curvatures: str | None) -> None:
 
 def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     """The template context of ``gc_line_law.{h,c}`` for a cylindrical pair's
-    :class:`~gearcontact.twin.mesh.MeshTable` (rigid teeth): the slice counts, the edge
-    slices' effective width (``prm[P_BEYOND_W]``), E' and its code, the datapath's
-    alpha_max and the fit's B- resolution."""
+    :class:`~gearcontact.twin.mesh.MeshTable`: the slice counts, the edge slices'
+    effective width (``prm[P_BEYOND_W]``), whether the teeth bend (the table's slice
+    Gram), E' and its code, the datapath's alpha_max and the fit's B- resolution."""
     from ..preview.chain import LINE_B_ZERO_CODES
     from ..contract.qformat import CURVATURE
     from ..preview.hertz.golden import encode_e_prime
@@ -67,6 +64,7 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     width = 0.0 if beyond == 0 else mesh.beyond_width_mm * mesh.beyond_stiffness
     return {"line_law": True, "line": {
         "slices": int(mesh.line_gap_mm.shape[-1]), "beyond": beyond,
+        "bent": mesh.line_bending_gram_mm_per_n is not None,
         "beyond_w": c_double(width), "e_prime": c_double(mesh.e_prime_mpa),
         "e_code": int(encode_e_prime(mesh.e_prime_mpa)),
         "alpha_hi": c_double(ENVELOPE["alpha"][1]),
@@ -80,12 +78,15 @@ def _with_line_sources(ctx: dict) -> list:
 
 
 def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
-                                phases: int = 61, torque_nm: float = 64.5) -> MeshFmu:
-    """Write the mesh FMU of the cylindrical ``pair`` into ``out_dir`` (module docstring;
-    rigid teeth): the twin's mesh table (:func:`~gearcontact.twin.cylindrical.
+                                phases: int = 61, torque_nm: float = 64.5,
+                                bending: bool = False) -> MeshFmu:
+    """Write the mesh FMU of the cylindrical ``pair`` into ``out_dir`` (module docstring):
+    the twin's mesh table (:func:`~gearcontact.twin.cylindrical.
     cylindrical_model` at ``phases`` per pitch, its edge slices' stiffness at
-    ``torque_nm``, N·m of the gear) as :class:`.line_mesh_law.LineMeshTable` (``.npz``
-    beside the FMU), the law of :func:`.line_mesh_law.line_mesh_outputs` in C.
+    ``torque_nm``, N·m of the gear; rigid teeth, or with ``bending`` the teeth's
+    shells at the line slices, as ``gearcontact twin --bending``) as
+    :class:`.line_mesh_law.LineMeshTable` (``.npz`` beside the FMU), the law of
+    :func:`.line_mesh_law.line_mesh_outputs` in C.
 
     Raises
     ------
@@ -98,7 +99,8 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    mesh = cylindrical_model(pair, torque_nm=torque_nm, side=side, phases=phases).mesh
+    mesh = cylindrical_model(pair, torque_nm=torque_nm, side=side, phases=phases,
+                             bending=bending).mesh
     tab = line_mesh_table(mesh)
 
     def adapt(ctx):
@@ -109,7 +111,8 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
         ctx["description"] = (
             f"Gear mesh element of the cylindrical pair {pair_name} ({side} flank): the "
             "gearcontact twin's line law (the preview's line chain on the 7 x 7 gap "
-            "stencil, the slice law on the ease-off along the line; rigid teeth), table of "
+            "stencil, the slice law on the ease-off along the line; "
+            f"{'tooth bending in series' if bending else 'rigid teeth'}), table of "
             f"{tab.eps_rad.shape[0]} phases x {tab.lever_mm.shape[0]} pairs baked in")
 
     return write_mesh_fmu(tab, out_dir, pair_name=pair_name, side=side,
@@ -117,8 +120,8 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
 
 
 def line_drivetrain_context(model) -> dict:
-    """What the drivetrain FMU of a cylindrical pair's twin ``model`` (reference backend,
-    rigid teeth) adds to its template context: the line law's constants, the golden line
+    """What the drivetrain FMU of a cylindrical pair's twin ``model`` (reference backend)
+    adds to its template context: the line law's constants, the golden line
     rows of the loaded flank (the only table: the reverse flank is its law mirrored), and
     the static bracket's inputs per pair at the first row (``B_max``, the line's length:
     :func:`gearcontact.twin.statics.static_rotation`)."""

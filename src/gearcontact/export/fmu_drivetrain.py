@@ -207,7 +207,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
                           flanks=None) -> DrivetrainFmu:
     """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring; a
     cylindrical pair: its twin's model :func:`~gearcontact.twin.cylindrical.
-    cylindrical_model` with the line law, :mod:`.fmu_cylindrical`, rigid teeth).
+    cylindrical_model` with the line law, :mod:`.fmu_cylindrical`).
 
     Parameters
     ----------
@@ -247,8 +247,8 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
     InputRangeError
-        A curvature source other than ``stencil`` or exact, or ``bending``, on a
-        cylindrical pair (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
+        A curvature source other than ``stencil`` on a cylindrical pair
+        (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
     """
     from .c_library import _environment
 
@@ -264,9 +264,9 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     line = getattr(pair, "kind", None) == CYLINDRICAL
     if line:        # the twin's line chain (.fmu_cylindrical), before the TCA
-        check_cylindrical_fmu(bending=bending, curvatures=curvatures)
+        check_cylindrical_fmu(curvatures=curvatures)
         model = cylindrical_model(pair, torque_nm=torque_nm, drivetrain=drivetrain,
-                                  side=side, phases=phases)
+                                  side=side, phases=phases, bending=bending)
         curvatures = L.LINE_SOURCE
     else:
         if curvatures not in CURVATURE_SOURCES:     # before the TCA
@@ -339,7 +339,8 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
             f"Drivetrain twin of the cylindrical pair {pair_name} ({side} flank loaded): "
             "motor, input shaft, pinion, mesh (the gearcontact twin's line law: the "
             "preview's line chain on the 7 x 7 gap stencil, the slice law on the ease-off "
-            "along the line; rigid teeth; the reverse flank its law mirrored about the "
+            f"along the line; {'tooth bending in series' if bending else 'rigid teeth'}; "
+            "the reverse flank its law mirrored about the "
             "backlash), gear, output shaft, load; RK4 at step_us, PI speed control per "
             "[drivetrain]")
     out = Path(out_dir)

@@ -408,9 +408,9 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
 #: ``kind`` values of the pair files; absent is a bevel/hypoid pair (:class:`GearPair`).
 BEVEL, CYLINDRICAL = GearPair.kind, CYLINDRICAL_KIND
 #: What each kind can be used for today (the message of a command that refuses one).
-_KIND_USE = {CYLINDRICAL: "only `gearcontact design`, `tca`, `lte`, `analyze`, `sweep`, "
-                          "`bending`, `twin` and `export flanks` read cylindrical "
-                          "pairs so far (docs/cylindrical.md)"}
+_KIND_USE = {CYLINDRICAL: "only `gearcontact design`, `tca`, `ltca`, `lte`, `analyze`, "
+                          "`sweep`, `bending`, `twin`, `rtl serve`, `export flanks` and "
+                          "`export fmu` read cylindrical pairs so far (docs/cylindrical.md)"}
 
 
 def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
