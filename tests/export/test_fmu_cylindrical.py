@@ -36,14 +36,39 @@ NAME = "ev_reducer_helical_23x67"
 TORQUE_NM = 200.0
 
 
+def _export(out: Path, kind: str, *options, pair: Path = EV, name: str = NAME) -> Path:
+    """``gearcontact export fmu --pair PAIR --kind KIND --phases 7 OPTIONS --out out`` in a
+    subprocess (the user's way; ``--torque`` the tests' unless given): the FMU's path."""
+    if "--torque" not in options:
+        options = ("--torque", str(TORQUE_NM), *options)
+    run = _cli("--pair", str(pair), "--kind", kind, "--phases", "7", *options, "--out",
+               str(out), cwd=out.parent)
+    assert run.returncode == 0, run.stderr
+    return out / f"gearcontact_{kind}_{name}.fmu"
+
+
+def _assert_law(res, tab, backend: str) -> list:
+    """Every output of the mesh FMU run ``res`` at every recorded instant equals
+    :func:`line_mesh_outputs` at the inputs the FMU held then: golden identical, fp64
+    within 1e-9 relative (reasons at :func:`test_mesh_fmu_equals_the_twin_line_law`).
+    Returns the Python law's outputs, row by row."""
+    refs = []
+    for row in res:
+        ref = line_mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
+        for name in OUTPUTS:
+            got, want = float(row[name]), float(getattr(ref, name))
+            if backend == "golden":
+                assert got == want, (name, float(row["time"]))
+            else:
+                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
+        refs.append(ref)
+    return refs
+
+
 @pytest.fixture(scope="module")
 def mesh_fmu(tmp_path_factory):
-    out = tmp_path_factory.mktemp("cyl_fmu") / "mesh"
-    run = _cli("--pair", str(EV), "--kind", "mesh", "--phases", "7", "--torque",
-               str(TORQUE_NM), "--out", str(out), cwd=out.parent)
-    assert run.returncode == 0, run.stderr
-    return (out / f"gearcontact_mesh_{NAME}.fmu",
-            LineMeshTable.from_npz(out / f"gearcontact_mesh_{NAME}_table.npz"))
+    fmu = _export(tmp_path_factory.mktemp("cyl_fmu") / "mesh", "mesh")
+    return fmu, LineMeshTable.from_npz(fmu.parent / f"gearcontact_mesh_{NAME}_table.npz")
 
 
 def _signal(tab):
@@ -86,16 +111,7 @@ def test_mesh_fmu_equals_the_twin_line_law(mesh_fmu, backend, fmi_type):
                             output=list(INPUTS + OUTPUTS),
                             start_values={"backend": BACKENDS[backend]})
     assert len(res) == 401
-    loaded = 0
-    for row in res:
-        ref = line_mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
-        for name in OUTPUTS:
-            got, want = float(row[name]), float(getattr(ref, name))
-            if backend == "golden":
-                assert got == want, (name, float(row["time"]))
-            else:
-                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
-        loaded += ref.torque_gear_nm > 0.0
+    loaded = sum(ref.torque_gear_nm > 0.0 for ref in _assert_law(res, tab, backend))
     # the sweep covers open flanks, several pairs and beyond the export torque
     assert res["torque_gear_nm"][0] == 0.0 and res["active_pairs"][0] == 0
     assert 0 < loaded < len(res) and res["active_pairs"].max() >= 3
@@ -120,9 +136,7 @@ def test_mesh_fmu_golden_equals_the_law_where_the_chain_flags(mesh_fmu):
                             start_values={"backend": BACKENDS["golden"]})
     law = law_of(tab, _LineLaw)
     before = int(law.tcount[3])
-    for row in res:
-        ref = line_mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend="golden")
-        assert [float(row[n]) for n in OUTPUTS] == [float(getattr(ref, n)) for n in OUTPUTS]
+    _assert_law(res, tab, "golden")
     assert law.tcount[3] - before >= 10      # the fallback ran (measured 26)
 
 
@@ -160,13 +174,7 @@ def test_cylindrical_fmu_refuses_another_curvature_source(tmp_path):
 def bending_fmus(tmp_path_factory):
     """The EV pair's mesh and drivetrain FMUs with --bending (7 phases, 200 N·m)."""
     base = tmp_path_factory.mktemp("cyl_fmu_bending")
-    out = {}
-    for kind in ("mesh", "drivetrain"):
-        run = _cli("--pair", str(EV), "--kind", kind, "--bending", "--phases", "7",
-                   "--torque", str(TORQUE_NM), "--out", str(base / kind), cwd=base)
-        assert run.returncode == 0, run.stderr
-        out[kind] = base / kind / f"gearcontact_{kind}_{NAME}.fmu"
-    return out
+    return {kind: _export(base / kind, kind, "--bending") for kind in ("mesh", "drivetrain")}
 
 
 @pytest.mark.parametrize("backend", ["fp64", "golden"])
@@ -183,17 +191,7 @@ def test_mesh_fmu_with_bending_equals_the_twin_line_law(bending_fmus, backend):
     res = fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=0.02, output_interval=5e-5,
                             input=_signal(tab), output=list(INPUTS + OUTPUTS),
                             start_values={"backend": BACKENDS[backend]})
-    forces = []
-    for row in res:
-        inputs = [float(row[n]) for n in INPUTS]
-        ref = line_mesh_outputs(tab, *inputs, backend=backend)
-        for name in OUTPUTS:
-            got, want = float(row[name]), float(getattr(ref, name))
-            if backend == "golden":
-                assert got == want, (name, float(row["time"]))
-            else:
-                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
-        forces.append(ref.mesh_force_n)
+    forces = [ref.mesh_force_n for ref in _assert_law(res, tab, backend)]
     assert res["active_pairs"].max() >= 3
     rigid = LineMeshTable(**{**tab.__dict__, "bending_mm_per_n": None,
                              "line_rows": tab.line_rows[..., :-(tab.slices + 2 * tab.beyond)
@@ -250,11 +248,7 @@ def _assert_twin_columns(res, twin, n: int, backend: str) -> None:
 
 @pytest.fixture(scope="module")
 def drivetrain_fmu(tmp_path_factory):
-    out = tmp_path_factory.mktemp("cyl_fmu") / "drivetrain"
-    run = _cli("--pair", str(EV), "--kind", "drivetrain", "--phases", "7", "--torque",
-               str(TORQUE_NM), "--out", str(out), cwd=out.parent)
-    assert run.returncode == 0, run.stderr
-    return out / f"gearcontact_drivetrain_{NAME}.fmu"
+    return _export(tmp_path_factory.mktemp("cyl_fmu") / "drivetrain", "drivetrain")
 
 
 def test_drivetrain_fmu_validates_against_the_fmi3_schema(drivetrain_fmu):
@@ -315,11 +309,8 @@ NO_BACKLASH = "[drivetrain]\nbacklash_mm = 0.0\n"
 def spur_drivetrain_fmu(tmp_path_factory):
     base = tmp_path_factory.mktemp("cyl_fmu")
     (base / "dt.toml").write_text(NO_BACKLASH)
-    out = base / "spur"
-    run = _cli("--pair", str(SPUR), "--kind", "drivetrain", "--phases", "7", "--torque",
-               "10", "--drivetrain", str(base / "dt.toml"), "--out", str(out), cwd=base)
-    assert run.returncode == 0, run.stderr
-    return out / "gearcontact_drivetrain_spur_20x40_m3.fmu", base / "dt.toml"
+    return _export(base / "spur", "drivetrain", "--torque", "10", "--drivetrain",
+                   str(base / "dt.toml"), pair=SPUR, name="spur_20x40_m3"), base / "dt.toml"
 
 
 @pytest.mark.parametrize("backend, twin_backend", [("fp64", "reference"),
