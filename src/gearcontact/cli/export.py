@@ -10,7 +10,9 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 ``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
 ``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
-:mod:`gearcontact.export.fmu_drivetrain`).
+:mod:`gearcontact.export.fmu_drivetrain`). A cylindrical pair (``kind =
+"cylindrical"``) gets both kinds with its twin's line law (rigid teeth or ``--bending``;
+:mod:`gearcontact.export.fmu_cylindrical`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
 (and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
 as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
@@ -37,7 +39,8 @@ def register(sub) -> None:
     f = cmds.add_parser("fmu", help="FMI 3.0 FMU in C of one gear mesh (co-simulation and "
                                     "model exchange) or of the drivetrain twin "
                                     "(co-simulation)")
-    f.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
+    f.add_argument("--pair", default="s0003", help="preset name or TOML file, bevel/hypoid or "
+                                                   "cylindrical (default s0003)")
     f.add_argument("--kind", default="mesh",
                    help="what the FMU models: mesh (default) or drivetrain (the twin)")
     add_out_argument(f)
@@ -51,10 +54,12 @@ def register(sub) -> None:
                         "drivetrain: also the start value of its torque_nm")
     f.add_argument("--curvatures", default=None, choices=("stencil", "exact"),
                    help="drivetrain: the preview's curvature source, as gearcontact twin "
-                        "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
+                        "(default stencil); the mesh FMU runs exact (the TCA's curvatures); "
+                        "a cylindrical pair: stencil only (its line chain)")
     f.add_argument("--bending", action="store_true",
-                   help="tooth bending of both members in series with the Hertzian law, "
-                        "as gearcontact twin --bending (default rigid teeth)")
+                   help="tooth bending of both members in series with the contact law "
+                        "(Hertzian, or a cylindrical pair's line law), as gearcontact twin "
+                        "--bending (default rigid teeth)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
