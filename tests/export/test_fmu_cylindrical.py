@@ -186,6 +186,7 @@ def test_mesh_fmu_with_bending_equals_the_twin_line_law(bending_fmus, backend):
     bending). Measured: identical in both backends; the teeth's bending softens the
     mesh (the largest force of the sweep below the rigid teeth's)."""
     fmu = bending_fmus["mesh"]
+    assert [validate_fmu(str(f)) for f in bending_fmus.values()] == [[], []]
     tab = LineMeshTable.from_npz(fmu.parent / f"gearcontact_mesh_{NAME}_table.npz")
     assert tab.bending_mm_per_n is not None
     res = fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=0.02, output_interval=5e-5,
