@@ -58,7 +58,10 @@ The process pins itself to one core (``os.sched_setaffinity``, inherited by the
 drivers; ``--cpu``) and prints the load average: figures taken under load say so.
 
 Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curvatures
-stencil|exact] [--twin-only | --previews-only] [--instructions] [--cflags FLAGS]``.
+stencil|exact] [--pair CYLINDRICAL.toml] [--bending] [--twin-only | --previews-only]
+[--instructions] [--cflags FLAGS]`` (``--pair``: the twin step of a cylindrical pair's
+drivetrain FMU, its line law, instead of s0003's; ``--bending``: with the teeth's
+bending).
 """
 
 from __future__ import annotations
@@ -442,24 +445,35 @@ def _step_instructions(exe: Path, code: int, steps: int = 2000) -> float:
 
 
 def bench_twin_step(steps: int, phases: int, curvatures: str,
-                    instructions: bool = False) -> None:
+                    instructions: bool = False, pair_file: str | None = None,
+                    bending: bool = False) -> None:
     """ns per twin step of the drivetrain FMU's C (module docstring); with
-    ``instructions`` also the instructions per step under callgrind."""
+    ``instructions`` also the instructions per step under callgrind. ``pair_file``: a
+    cylindrical pair's TOML instead of s0003 (its twin's line law, rigid teeth; the
+    curvature source is the line chain's). ``bending``: the teeth's bending in series
+    (``--bending`` of the export and the twin)."""
     from fmpy import __file__ as fmpy_file
 
     from gearcontact.export.fmu import FMU_CFLAGS
     from gearcontact.export.fmu_drivetrain import (DRIVETRAIN_VARIABLES,
                                                    drivetrain_fmu_model,
                                                    export_drivetrain_fmu)
+    from gearcontact.geometry.pair import CYLINDRICAL, load_pair
     from gearcontact.tca.synthesis import prepare_pair
+    from gearcontact.twin.cylindrical import cylindrical_model
     from gearcontact.twin.simulate import simulate
 
-    prepared = prepare_pair("s0003")
+    if pair_file is None:
+        prepared = prepare_pair("s0003")
+        pair, side, label = prepared.pair, prepared.side, "s0003"
+    else:
+        pair = load_pair(pair_file, kinds=(CYLINDRICAL,))
+        side, label, curvatures = "drive", pair.name, "line"
     vr = {v[0]: v[1] for v in DRIVETRAIN_VARIABLES}
     with tempfile.TemporaryDirectory() as tmp:
-        fmu = export_drivetrain_fmu(prepared.pair, tmp, pair_name="s0003",
-                                    side=prepared.side, phases=phases,
-                                    curvatures=curvatures)
+        fmu = export_drivetrain_fmu(pair, tmp, pair_name=label, side=side, phases=phases,
+                                    curvatures=None if pair_file else curvatures,
+                                    bending=bending)
         src = Path(tmp) / "src"
         with zipfile.ZipFile(fmu.fmu_path) as z:
             for name in z.namelist():
@@ -474,7 +488,8 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
                         "-I", str(src), "-I", str(Path(fmpy_file).parent / "c-code"),
                         "-o", str(exe), *sorted(str(p) for p in src.glob("*.c")), "-lm"],
                        check=True)
-        print(f"\ntwin step of the drivetrain FMU (s0003, curvatures {curvatures}, "
+        print(f"\ntwin step of the drivetrain FMU ({label}, curvatures {curvatures}"
+              f"{', bending' if bending else ''}, "
               f"{phases} phases, 3000 rpm, "
               f"64.5 N.m, 10 us; {steps} steps timed one by one, {steps} sustained)")
         print(f"{'backend':<8} {'median ns':>10} {'p99 ns':>8} {'max ns':>9} "
@@ -501,8 +516,11 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
             print("instructions per step (callgrind, 6,000 steps, inclusive of libm; load "
                   "independent): " + ", ".join(f"{name} {_step_instructions(exe, code):,.0f}"
                                                for name, code in (("fp64", 0), ("golden", 1))))
-    model = drivetrain_fmu_model(prepared.pair, side=prepared.side, phases=phases,
-                                 torque_nm=64.5, curvatures=curvatures)
+    if pair_file is None:
+        model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=64.5,
+                                     curvatures=curvatures, bending=bending)
+    else:
+        model = cylindrical_model(pair, torque_nm=64.5, phases=phases, bending=bending)
     res = simulate(model, speed_rpm=3000.0, duration_s=1e-5 * steps, step_s=1e-5)
     print(f"numba twin (gearcontact twin, reference, curvatures {curvatures}): step "
           f"{1e3 * res.timings['step_time_p50_us']:.0f} ns p50 of 256-step blocks, "
@@ -602,6 +620,11 @@ def main(argv=None) -> None:
     ap.add_argument("--cpu", type=int, default=None, help="core to pin (default: the last)")
     ap.add_argument("--curvatures", default="stencil", choices=("stencil", "exact"),
                     help="the twin's curvature source (default stencil, the twin's)")
+    ap.add_argument("--pair", default=None,
+                    help="twin step: a cylindrical pair's TOML instead of s0003 (the line "
+                         "law's drivetrain FMU, e.g. examples/ev_reducer_helical_23x67.toml)")
+    ap.add_argument("--bending", action="store_true",
+                    help="twin step: the teeth's bending in series (the export's --bending)")
     ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
     ap.add_argument("--previews-only", action="store_true", help="skip the twin step")
     ap.add_argument("--cflags", default="-O2",
@@ -614,7 +637,8 @@ def main(argv=None) -> None:
     if not args.twin_only:
         bench_previews(args.vectors, args.instructions, args.cflags)
     if not args.previews_only:
-        bench_twin_step(args.steps, args.phases, args.curvatures, args.instructions)
+        bench_twin_step(args.steps, args.phases, args.curvatures, args.instructions,
+                        args.pair, args.bending)
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
 
 

@@ -10,7 +10,9 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 ``--kind drivetrain`` the co-simulation FMU of the whole drivetrain twin, the model of
 ``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
-:mod:`gearcontact.export.fmu_drivetrain`).
+:mod:`gearcontact.export.fmu_drivetrain`). A cylindrical pair (``kind =
+"cylindrical"``) gets both kinds with its twin's line law (rigid teeth or ``--bending``;
+:mod:`gearcontact.export.fmu_cylindrical`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
 (and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
 as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
@@ -37,7 +39,8 @@ def register(sub) -> None:
     f = cmds.add_parser("fmu", help="FMI 3.0 FMU in C of one gear mesh (co-simulation and "
                                     "model exchange) or of the drivetrain twin "
                                     "(co-simulation)")
-    f.add_argument("--pair", default="s0003", help="preset name or TOML file (default s0003)")
+    f.add_argument("--pair", default="s0003", help="preset name or TOML file, bevel/hypoid or "
+                                                   "cylindrical (default s0003)")
     f.add_argument("--kind", default="mesh",
                    help="what the FMU models: mesh (default) or drivetrain (the twin)")
     add_out_argument(f)
@@ -51,10 +54,12 @@ def register(sub) -> None:
                         "drivetrain: also the start value of its torque_nm")
     f.add_argument("--curvatures", default=None, choices=("stencil", "exact"),
                    help="drivetrain: the preview's curvature source, as gearcontact twin "
-                        "(default stencil); the mesh FMU runs exact (the TCA's curvatures)")
+                        "(default stencil); the mesh FMU runs exact (the TCA's curvatures); "
+                        "a cylindrical pair: stencil only (its line chain)")
     f.add_argument("--bending", action="store_true",
-                   help="tooth bending of both members in series with the Hertzian law, "
-                        "as gearcontact twin --bending (default rigid teeth)")
+                   help="tooth bending of both members in series with the contact law "
+                        "(Hertzian, or a cylindrical pair's line law), as gearcontact twin "
+                        "--bending (default rigid teeth)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -80,8 +85,10 @@ def run_c(args) -> int:
 
 def check_fmu(args) -> None:
     """Cheap checks before the TCA: the kind, the phase count, the torque, the
-    drivetrain file, the pair."""
+    drivetrain file, the pair (bevel/hypoid or cylindrical)."""
     from ..export.fmu import check_fmu_kind
+    from ..export.fmu_cylindrical import check_cylindrical_fmu
+    from ..geometry.pair import BEVEL, CYLINDRICAL
     from ..tca.line_contact import check_loadable
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
@@ -94,11 +101,17 @@ def check_fmu(args) -> None:
             raise InputRangeError("--drivetrain", args.drivetrain, "only with --kind "
                                   "drivetrain")
         check_drivetrain_file(args.drivetrain)
-    check_pair_arguments(args)
+    check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
+    if args.gear_pair.kind == CYLINDRICAL:
+        check_cylindrical_fmu(curvatures=args.curvatures)
+        return
     check_loadable(args.gear_pair, args.side)
 
 
 def run_fmu(args) -> int:
+    from ..geometry.pair import CYLINDRICAL
+    if args.gear_pair.kind == CYLINDRICAL:
+        return _run_cylindrical_fmu(args)
     pair = load_pair_for(args)
     if args.kind == "drivetrain":
         from ..export.fmu_drivetrain import export_drivetrain_fmu
@@ -116,6 +129,26 @@ def run_fmu(args) -> int:
     fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
                           phases=args.phases, torque_nm=args.torque, bending=args.bending,
                           flanks=args.prepared_pair.flank_set())
+    for path in (fmu.fmu_path, fmu.table_path):
+        print(final_path(args, path))
+    return 0
+
+
+def _run_cylindrical_fmu(args) -> int:
+    from ..twin.params import load_drivetrain
+    pair = args.gear_pair
+    if args.kind == "drivetrain":
+        from ..export.fmu_drivetrain import export_drivetrain_fmu
+        fmu = export_drivetrain_fmu(pair, args.out, pair_name=pair.name, side=args.side,
+                                    phases=args.phases, torque_nm=args.torque,
+                                    drivetrain=load_drivetrain(args.drivetrain, pair),
+                                    bending=args.bending)
+        print(final_path(args, fmu.fmu_path))
+        return 0
+    from ..export.fmu_cylindrical import export_cylindrical_mesh_fmu
+    fmu = export_cylindrical_mesh_fmu(pair, args.out, pair_name=pair.name, side=args.side,
+                                      phases=args.phases, torque_nm=args.torque,
+                                      bending=args.bending)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

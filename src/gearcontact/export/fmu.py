@@ -32,9 +32,10 @@ from ..validation import InputRangeError
 from .c_library import FP64_SOURCES, GOLDEN_SOURCES, HEADERS, _environment, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
-__all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "check_fmu_kind",
+__all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "write_mesh_fmu",
+           "check_fmu_kind",
            "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
-           "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES"]
+           "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES", "LINE_LAW_FILES"]
 
 #: ``--kind`` values (``drivetrain``: :mod:`.fmu_drivetrain`).
 FMU_KINDS = ("mesh", "drivetrain")
@@ -92,6 +93,8 @@ UNITS = {
     "N.s/mm": 'kg="1" s="-1" factor="1000"'}
 #: The shared contact-law sources inside every FMU (``data/templates/fmu``).
 LAW_FILES = ("gc_contact_law.h", "gc_contact_law.c")
+#: The line law's sources beside them in a cylindrical pair's FMUs (:mod:`.fmu_cylindrical`).
+LINE_LAW_FILES = ("gc_line_law.h", "gc_line_law.c")
 #: The compiler flags of an FMU's binary built at export (with ``-fPIC -shared``): C99,
 #: strict warnings, ``-O2`` and no FMA contraction (the twin's roundings). (``-O3`` gives
 #: the same bits and ~7 % fewer instructions per drivetrain step, but measured no faster.)
@@ -183,7 +186,7 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "pi": c_double(math.pi), "hb_e": c_double(_HB_E), "s_gap": c_double(_S_GAP),
         "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
-        "output_dependencies": None, "initial_dependencies": ""}
+        "output_dependencies": None, "initial_dependencies": "", "line_law": False}
 
 
 def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
@@ -253,7 +256,8 @@ def build_fmu(fmu_path: Path, ctx: dict, header_dir: Path) -> None:
         src.mkdir()
         for name in lib:
             (src / name).write_text(c_files[name])
-        for name in LAW_FILES + (model_source, "buildDescription.xml"):
+        law = LAW_FILES + (LINE_LAW_FILES if ctx["line_law"] else ())
+        for name in law + (model_source, "buildDescription.xml"):
             (src / name).write_text(_render(env, name, ctx))
         so = Path(tmp) / f"{ident}.so"
         _compile(src, ctx["c_sources"], header_dir, so)
@@ -320,6 +324,15 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     # the twin's own mesh table (edge-contact TCA, docs/twin.md)
     tab = mesh_law_table(pair_mesh_table(pair, side=side, torque_nm=torque_nm, phases=phases,
                                          flanks=flanks, bending=bending)[2])
+    return write_mesh_fmu(tab, out_dir, pair_name=pair_name, side=side,
+                          header_dir=header_dir)
+
+
+def write_mesh_fmu(tab, out_dir, *, pair_name: str, side: str, header_dir: Path,
+                   adapt=None) -> MeshFmu:
+    """Write the mesh FMU of the baked table ``tab`` (and the table as ``.npz``) into
+    ``out_dir``: the template context of :func:`_mesh_context`, changed in place by
+    ``adapt(ctx)`` if given (a cylindrical pair's line law, :mod:`.fmu_cylindrical`)."""
     ident = "gearcontact_mesh_" + re.sub(r"\W", "_", pair_name)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -327,6 +340,8 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     tab.to_npz(table_path)
     ctx = _mesh_context(tab, pair_name=pair_name, side=side, ident=ident,
                         token=model_token(table_path.read_bytes()), header_dir=header_dir)
+    if adapt is not None:
+        adapt(ctx)
     fmu_path = out / f"{ident}.fmu"
     build_fmu(fmu_path, ctx, header_dir)
     return MeshFmu(fmu_path, table_path, ident)

@@ -205,12 +205,14 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
                           torque_nm: float = 64.5, drivetrain=None,
                           curvatures: str = "stencil", bending: bool = False,
                           flanks=None) -> DrivetrainFmu:
-    """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring).
+    """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring; a
+    cylindrical pair: its twin's model :func:`~gearcontact.twin.cylindrical.
+    cylindrical_model` with the line law, :mod:`.fmu_cylindrical`).
 
     Parameters
     ----------
-    pair : gearcontact.geometry.pair.GearPair
-        The pair, prepared (an ease-off table on ``side``).
+    pair : gearcontact.geometry.pair.GearPair or CylindricalPair
+        The pair, prepared (an ease-off table on ``side``; a cylindrical pair as loaded).
     out_dir : str or Path
         Output directory (created if missing).
     pair_name : str
@@ -244,21 +246,35 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ------
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
+    InputRangeError
+        A curvature source other than ``stencil`` on a cylindrical pair
+        (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
     """
     from .c_library import _environment
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
+    from ..geometry.pair import CYLINDRICAL
     from ..twin import layout as L
+    from ..twin.cylindrical import cylindrical_model
     from ..twin.model import CURVATURE_SOURCES, _prm, _stack
+    from .fmu_cylindrical import check_cylindrical_fmu, line_drivetrain_context
     from ..twin.simulate import _CHUNK
     from ..validation import InputRangeError
 
-    if curvatures not in CURVATURE_SOURCES:     # before the TCA
-        raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
-    model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
-                                 drivetrain=drivetrain, curvatures=curvatures,
-                                 bending=bending, flanks=flanks)
+    line = getattr(pair, "kind", None) == CYLINDRICAL
+    if line:        # the twin's line chain (.fmu_cylindrical), before the TCA
+        check_cylindrical_fmu(curvatures=curvatures)
+        model = cylindrical_model(pair, torque_nm=torque_nm, drivetrain=drivetrain,
+                                  side=side, phases=phases, bending=bending)
+        curvatures = L.LINE_SOURCE
+    else:
+        if curvatures not in CURVATURE_SOURCES:     # before the TCA
+            raise InputRangeError("curvatures", curvatures,
+                                  f"one of {list(CURVATURE_SOURCES)}")
+        model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
+                                     drivetrain=drivetrain, curvatures=curvatures,
+                                     bending=bending, flanks=flanks)
     a, m = model.arrays, model.mesh
     stencil = curvatures == "stencil"
     # exact A-, B- always (the static start's bracket); the stencil source as the golden
@@ -274,9 +290,11 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     consts = _constants(model)
     prm = _prm(model, 0.0)
+    line_ctx = line_drivetrain_context(model) if line else {}
     baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
                                        (a["eps"], a["lever"], a["opening"], a["valid"],
-                                        exact, cv, a["cb"] if bending else None)])).encode()
+                                        exact, cv, a["cb"] if bending else None)])
+                 + ((line_ctx["line_token"],) if line else ())).encode()
     ctx = fmu_context(
         model_identifier=ident, token=model_token(baked), header_dir=header_dir,
         variables=DRIVETRAIN_VARIABLES, implemented=_IMPLEMENTED, trivial=_TRIVIAL,
@@ -312,7 +330,19 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "starts": {"speed_rpm": "3000", "torque_nm": repr(float(model.torque_nm)),
                    "step_us": "10"},
         "maxima": {"torque_nm": repr(float(model.torque_nm))},
-        "initial_dependencies": "12 13 14 15"})
+        "initial_dependencies": "12 13 14 15", "n_cache": 7})
+    if line:
+        ctx.update(line_ctx, n_cache=L.N_CACHE)
+        ctx["c_sources"] = ctx["c_sources"][:2] + ["gc_line_law.c"] + ctx["c_sources"][2:]
+        ctx["tables"] = ctx["tables"][:2]       # LEVER, OPENING: the law is the line rows'
+        ctx["description"] = (
+            f"Drivetrain twin of the cylindrical pair {pair_name} ({side} flank loaded): "
+            "motor, input shaft, pinion, mesh (the gearcontact twin's line law: the "
+            "preview's line chain on the 7 x 7 gap stencil, the slice law on the ease-off "
+            f"along the line; {'tooth bending in series' if bending else 'rigid teeth'}; "
+            "the reverse flank its law mirrored about the "
+            "backlash), gear, output shaft, load; RK4 at step_us, PI speed control per "
+            "[drivetrain]")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     fmu_path = out / f"{ident}.fmu"

@@ -45,7 +45,8 @@ from ..preview.hertz.reference import ENVELOPE
 from ..twin import layout as L
 from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _pair_load
 
-__all__ = ["MeshLawTable", "MeshOutputs", "mesh_law_table", "mesh_outputs", "BACKENDS"]
+__all__ = ["MeshLawTable", "MeshOutputs", "mesh_law_table", "mesh_outputs", "BACKENDS", "law_of",
+           "closed_pairs"]
 
 #: The FMU's ``backend`` parameter: name -> enumeration value (the twin's backend).
 BACKENDS = {"fp64": 0, "golden": 1}
@@ -182,39 +183,18 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     mesh_damping_n_s_per_mm : float
         Mesh damping ``c_m`` on the line of action, N·s/mm.
     """
-    law = _LAWS.get(id(tab))
-    if law is None or law[0] is not tab:
-        law = _LAWS[id(tab)] = (tab, _Law(tab))
-    law = law[1]
+    law = law_of(tab, _Law)
     code = BACKENDS[backend]
-    u = tab.ratio
-    k_rows = tab.eps_rad.shape[0]
-    x = phi_pinion_rad - tab.pitch_rad * math.floor(phi_pinion_rad / tab.pitch_rad)
-    q = x / tab.step_rad
-    i = min(int(q), k_rows - 2)
-    f = q - i
-    eps = tab.eps_rad
-    e = eps[i] + f * (eps[i + 1] - eps[i])
-    de = (eps[i + 1] - eps[i]) / tab.step_rad
-    theta = phi_pinion_rad / u + e - phi_gear_rad
-    theta_dot = omega_pinion_rad_s * (1.0 / u + de) - omega_gear_rad_s
-    te = tab.motion_sign * (e - theta) * ARCSEC_PER_RAD
-    zero = MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
+    i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,
+                                                 omega_pinion_rad_s, omega_gear_rad_s)
     if theta < 0.0:
-        return zero
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
     out3 = np.zeros(L.N_PREVIEW)
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
     cbs = tab.bending_mm_per_n
-    for j in range(tab.lever_mm.shape[0]):
-        if not (tab.valid[j, i] and tab.valid[j, i + 1]):
-            continue
-        lv = tab.lever_mm[j, i] + f * (tab.lever_mm[j, i + 1] - tab.lever_mm[j, i])
-        g = tab.opening_mm[j, i] + f * (tab.opening_mm[j, i + 1] - tab.opening_mm[j, i])
-        d = lv * theta - g
-        if d <= 0.0:
-            continue
+    for j, lv, d in closed_pairs(tab, i, f, theta):
         kap = law.kappa(j, i, f, W_EVAL_MIN_N, code, out3)
         if kap <= 0.0:      # no contact law (a saddle): the pair carries nothing
             continue
@@ -232,8 +212,54 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
             # Hertz similarity a, b, p ~ W^(1/3) from the load they hold at
             scale = (w / out3[L.PV_LOAD]) ** (1.0 / 3.0)
             abp = (out3[0] * scale, out3[1] * scale, out3[2] * scale)
+    return _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te,
+                    mesh_damping_n_s_per_mm)
+
+
+def law_of(tab, factory):
+    """The compiled law's arguments of ``tab`` (``factory(tab)``), built once per table."""
+    law = _LAWS.get(id(tab))
+    if law is None or law[0] is not tab:
+        law = _LAWS[id(tab)] = (tab, factory(tab))
+    return law[1]
+
+
+def closed_pairs(tab, i, f, theta):
+    """``(j, lever mm, approach d mm)`` of every pair valid at both rows (i, i + 1) whose
+    approach ``d = l theta - g`` at the fraction f is positive (kernel._elastic's test)."""
+    for j in range(tab.lever_mm.shape[0]):
+        if not (tab.valid[j, i] and tab.valid[j, i + 1]):
+            continue
+        lv = tab.lever_mm[j, i] + f * (tab.lever_mm[j, i + 1] - tab.lever_mm[j, i])
+        g = tab.opening_mm[j, i] + f * (tab.opening_mm[j, i + 1] - tab.opening_mm[j, i])
+        d = lv * theta - g
+        if d > 0.0:
+            yield j, lv, d
+
+
+def _kinematics(tab, phi_pinion_rad, phi_gear_rad, omega_pinion_rad_s, omega_gear_rad_s):
+    """``(i, f, eps', theta, theta', TE arcsec)`` of the inputs on the table's rows
+    (module docstring)."""
+    u = tab.ratio
+    k_rows = tab.eps_rad.shape[0]
+    x = phi_pinion_rad - tab.pitch_rad * math.floor(phi_pinion_rad / tab.pitch_rad)
+    q = x / tab.step_rad
+    i = min(int(q), k_rows - 2)
+    f = q - i
+    eps = tab.eps_rad
+    e = eps[i] + f * (eps[i + 1] - eps[i])
+    de = (eps[i + 1] - eps[i]) / tab.step_rad
+    theta = phi_pinion_rad / u + e - phi_gear_rad
+    theta_dot = omega_pinion_rad_s * (1.0 / u + de) - omega_gear_rad_s
+    te = tab.motion_sign * (e - theta) * ARCSEC_PER_RAD
+    return i, f, de, theta, theta_dot, te
+
+
+def _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te, damping) -> MeshOutputs:
+    """The outputs of the pairs' elastic torque ``t_el`` (N·m) with the mesh damping."""
     if t_el <= 0.0:
-        return zero
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
     l0 = tab.reference_lever_mm
-    t = max(t_el + 1e-3 * mesh_damping_n_s_per_mm * l0 * l0 * theta_dot, 0.0)
-    return MeshOutputs(-t * (1.0 / u + de), t, w_tot, te, abp[2], abp[0], abp[1], pairs)
+    t = max(t_el + 1e-3 * damping * l0 * l0 * theta_dot, 0.0)
+    return MeshOutputs(-t * (1.0 / tab.ratio + de), t, w_tot, te, abp[2], abp[0], abp[1],
+                       pairs)

@@ -409,8 +409,8 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
 BEVEL, CYLINDRICAL = GearPair.kind, CYLINDRICAL_KIND
 #: What each kind can be used for today (the message of a command that refuses one).
 _KIND_USE = {CYLINDRICAL: "only `gearcontact design`, `tca`, `ltca`, `lte`, `analyze`, "
-                          "`sweep`, `bending`, `twin`, `rtl serve` and `export flanks` "
-                          "read cylindrical pairs so far (docs/cylindrical.md)"}
+                          "`sweep`, `bending`, `twin`, `rtl serve`, `export flanks` and "
+                          "`export fmu` read cylindrical pairs so far (docs/cylindrical.md)"}
 
 
 def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
