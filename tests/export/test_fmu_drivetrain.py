@@ -459,7 +459,9 @@ def _run_harness(fmu, tmp_path, harness: str, name: str, flags=()) -> str:
 #: each vector printed as f, the rows and the result in hexadecimal floats and integers;
 #: every fourth vector within +-256 mm (+-256 itself now and then, fractions a few ulp
 #: beyond [0, 1] too) also through the unchecked lanes (checked 0, the drivetrain FMU's
-#: CV_IN_RANGE), printed after "U".
+#: CV_IN_RANGE), printed after "U". The rows as gc_law_kappa_stencil's (the samples, then
+#: c3..c5, here xorshift values with an infinity or a NaN now and then: the unchecked
+#: lanes read the first of them beside the last sample and discard it).
 _GAP_HARNESS = r"""
 #include <stdio.h>
 #include "gc_contact_law.c"
@@ -485,11 +487,15 @@ static double sample_in_range(void)
 
 int main(void)
 {
-    double r0[GC_FIT_TAPS], r1[GC_FIT_TAPS], f;
-    int32_t codes[GC_FIT_TAPS];
+    double r0[GC_FIT_TAPS + 3], r1[GC_FIT_TAPS + 3], f;
+    int32_t codes[GC_FIT_TAPS + 1];
     int v, q, ok, in_range;
     for (v = 0; v < 3000; ++v) {
         in_range = v % 4 == 2;
+        for (q = GC_FIT_TAPS; q < GC_FIT_TAPS + 3; ++q) {   /* the row's c3..c5 */
+            r0[q] = sample();
+            r1[q] = sample();
+        }
         for (q = 0; q < GC_FIT_TAPS; ++q) {
             r0[q] = in_range ? sample_in_range() : sample();
             r1[q] = v % 3 == 0 ? r0[q] + ldexp(unit() - 0.5, -12)
