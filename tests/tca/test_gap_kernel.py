@@ -7,9 +7,10 @@ s0003 the compiled gap fields equal the vectorized numpy path of :mod:`.stencil`
 1e-9 mm, with identical on-flank masks; (3) on a sheet with a linear psi field
 (reproduced exactly by the quintic spline) each intersection matches an independent
 scalar root of the line against the closed-form surface; (4) on a relieved pinion
-(geometry.kinked) lines through flank points on both sides of the kink meet the flank
-at those points, on the compiled and the numpy path, and the compiled kink tables are
-the kink lines.
+(geometry.kinked) and on a relieved formate gear (blade cones at scaled v) lines through
+flank points on both sides of the kink meet the flank at those points, on the compiled
+and the numpy path, the compiled kink tables are the kink lines and the compiled point
+evaluation is the flank's own.
 """
 
 import numpy as np
@@ -213,13 +214,29 @@ def test_kink_tables_equal_the_kink_lines(kinked_pinion):
     assert np.array_equal(out.u(v), got)
 
 
-def test_compiled_kinked_intersections_are_the_flank_points(kinked_pinion, monkeypatch):
+@pytest.fixture(scope="module")
+def kinked_gear():
+    """The ISO 23509 F.2 formate gear drive flank (examples/machine_settings) with the
+    2 deg Flankrem from 5.5 mm of tests/data/toprem/iso23509_f2_gear_flankrem.toml: two
+    blade cones, the upper at a scaled v, kink line inside the flank."""
+    from gearcontact.geometry.kinked import machine_flank
+    from gearcontact.geometry.pair import load_pair
+
+    pair = load_pair("tests/data/toprem/iso23509_f2_gear_flankrem.toml")
+    setup = next(s for s in pair.machine if (s.member, s.side) == ("gear", "drive"))
+    return machine_flank(setup, pair.blank, face_width_mm=pair.gear_face_width_mm)
+
+
+@pytest.mark.parametrize("member", ["pinion", "gear"])
+def test_compiled_kinked_intersections_are_the_flank_points(request, member, monkeypatch):
     # lines through flank points on both sides of the kink line (within 1 um of it and
     # up to 0.3 mm away), along one common direction (the mean of the two pieces'
     # normals at the middle of the kink), 0.02 mm out: each meets the flank at its own
     # point, lambda = -0.02 exactly (the ridge is convex: one crossing). Newton starts
-    # 0.15 mm of u and 0.4 mm of v away, so many iterations cross the kink.
-    flank = kinked_pinion
+    # 0.15 mm of u and 0.4 mm of v away, so many iterations cross the kink. The pinion:
+    # Newton on two radial sheets; the relieved formate gear: every cone in closed form,
+    # the root its own piece holds (numpy path: Newton on the cones at scaled v).
+    flank = request.getfixturevalue(f"kinked_{member}")
     kink = flank.kinks[0]
     vm = 0.5 * sum(flank.v_range)
     um = float(kink.u(vm))
@@ -246,21 +263,47 @@ def test_compiled_kinked_intersections_are_the_flank_points(kinked_pinion, monke
                                               uv_out=uv_out)
         runs[name] = (lam, inside, uv_out)
         assert inside.all()
-        # Newton to 1e-11 mm: measured 8e-15 mm (compiled) / 4e-15 mm (numpy); 1e-9 mm
+        # Newton to 1e-11 mm: measured 8e-15 mm (compiled) / 4e-15 mm (numpy) on the
+        # pinion, 2.5e-14 / 2.8e-14 mm on the gear (closed form / Newton); 1e-9 mm
         # asserted (the smooth flanks' compiled / numpy agreement tolerance above), the
-        # parameters to 1e-8 mm (|r_u|, |r_v| ~ 1; measured 1.4e-14)
+        # parameters to 1e-8 mm (|r_u|, |r_v| ~ 1; measured 1.4e-14 / 4.2e-14)
         assert np.abs(lam + 0.02).max() < 1e-9, name
         assert np.abs(uv_out - uv).max() < 1e-8, name
         assert np.array_equal(flank.piece_index(uv_out[:, 0], uv_out[:, 1]),
                               flank.piece_index(uv[:, 0], uv[:, 1]))
     (lf, inf, uvf), (ls, ins, uvs) = runs["compiled"], runs["numpy"]
     assert np.array_equal(inf, ins) and np.abs(lf - ls).max() < 1e-9
-    assert stencil._kinks_crossed(flank, uvf) == stencil._kinks_crossed(flank, uvs) == ["toprem"]
+    assert (stencil._kinks_crossed(flank, uvf) == stencil._kinks_crossed(flank, uvs)
+            == [flank.kinks[0].name])
 
 
-def test_kernel_form_of_a_kinked_flank(kinked_pinion):
-    # two pieces on one knot grid, one kink table; pieces evaluated at scaled v (as a
-    # formate kinked flank's cones are) have no compiled form (numpy path)
+@pytest.mark.parametrize("member", ["pinion", "gear"])
+def test_compiled_point_of_a_kinked_flank_is_its_point(request, member):
+    # flank_vector (the compiled edge search's evaluation) against KinkedFlank.point at
+    # points on both sides of the kink and beyond the box: the same piece, the same
+    # r, r_u, r_v (the same compiled arithmetic, cone at scale v with r_v scaled;
+    # measured bit for bit, 1e-12 mm asserted as a rounding allowance)
+    from gearcontact.tca.gap_kernel import flank_vector
+
+    flank = request.getfixturevalue(f"kinked_{member}")
+    form = kernel_surface(flank)
+    (u0, u1), (v0, v1) = flank.u_range, flank.v_range
+    rng = np.random.default_rng(11)
+    uv = np.column_stack([u0 - 0.2 + (u1 - u0 + 0.4) * rng.random(400),
+                          v0 - 1.0 + (v1 - v0 + 2.0) * rng.random(400)])
+    k = flank.piece_index(uv[:, 0], uv[:, 1])
+    assert set(k) == {0, 1}
+    d, vec = np.zeros(6), np.empty((7, 3))
+    for u, v in uv:
+        flank_vector(*form, u, v, d, vec)
+        sp = flank.point(u, v)
+        assert np.abs(vec[:3] - np.array([sp.r, sp.r_u, sp.r_v])).max() < 1e-12
+
+
+def test_kernel_form_of_a_kinked_flank(kinked_pinion, kinked_gear):
+    # two pieces on one knot grid, one kink table; sheets evaluated at scaled v have no
+    # compiled form (numpy path); a relieved formate gear's cones do, each with its
+    # kernel parameters and its v scale (one at 1, the other not)
     import dataclasses
 
     kind, par, tx, ty, pc, kx, kc, kn = kernel_surface(kinked_pinion)
@@ -268,6 +311,11 @@ def test_kernel_form_of_a_kinked_flank(kinked_pinion):
     assert kx.shape[0] == kc.shape[0] == kn.shape[0] == 1 and kn[0] == kx.shape[1]
     scaled = dataclasses.replace(kinked_pinion, v_scales=(1.0, 0.5))
     assert kernel_surface(scaled) is None
+    kind, par, *_, kx, kc, kn = kernel_surface(kinked_gear)
+    assert kind == 1 and par.shape == (2, 19) and kx.shape[0] == 1
+    assert tuple(par[:, 18]) == kinked_gear.v_scales and kinked_gear.v_scales[1] != 1.0
+    for row, piece in zip(par, kinked_gear.pieces):
+        assert np.array_equal(row[:18], piece.kernel_parameters)
 
 
 @pytest.mark.slow
@@ -298,3 +346,33 @@ def test_toprem_pair_analysis_compiled_equals_numpy_path(monkeypatch):
     for run in (fast, slow):
         assert round(run.cycle.te0_pp_arcsec, 1) == 21.4
         assert run.edge_contact_counts == {"pinion toprem": 18}
+
+
+@pytest.mark.slow
+def test_flankrem_gear_pair_analysis_compiled_equals_numpy_path(monkeypatch):
+    # ~15 s: the relieved-gear pair (tests/data/toprem/iso23509_f2_gear_flankrem.toml)
+    # analyzed with the gap fields on the compiled and on the numpy path (the edge
+    # search the same on both, so both have the same P0): the 80 x 80 field and the
+    # stencil at P0 (both straddle the gear's kink) to the smooth flanks' 1e-9 mm with
+    # identical masks and kinks, the paint-ellipse check and the edges the same, TE0
+    # and the ridge phases equal
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair = load_pair("tests/data/toprem/iso23509_f2_gear_flankrem.toml")
+    flanks = build_flanks(pair)
+    assert kernel_surface(flanks.flank("gear", pair.design_side)) is not None
+    fast = analyze_pair(pair, flanks=flanks)[0]
+    _numpy_path(monkeypatch)
+    slow = analyze_pair(pair, flanks=flanks)[0]
+    for f, s in ((fast.gap_field, slow.gap_field), (fast.stencil, slow.stencil)):
+        assert f.kinks == s.kinks == ("gear flankrem",)
+        assert np.array_equal(f.on_flank, s.on_flank)
+        assert np.array_equal(np.isfinite(f.gap_mm), np.isfinite(s.gap_mm))
+        ok = np.isfinite(s.gap_mm)
+        assert ok.any() and np.abs(f.gap_mm[ok] - s.gap_mm[ok]).max() < 1e-9
+    assert np.array_equal(fast.pattern_on_flank, slow.pattern_on_flank)
+    assert fast.edges == slow.edges
+    assert fast.cycle.te0_pp_arcsec == slow.cycle.te0_pp_arcsec
+    assert fast.edge_contact_counts == slow.edge_contact_counts == {"gear flankrem": 23}
