@@ -78,6 +78,24 @@ def test_compiled_edge_solves_equal_the_python_iteration(gear_flankrem):
     assert solved > 20 and failed > 20      # both outcomes exercised (42 / 183)
 
 
+def test_warm_up_compiles_the_searchs_signature(gear_flankrem):
+    # `gearcontact warm-up` (s0003: no relieved flank) compiles edge_newton through
+    # edge_kernel.warm_up; a real solve afterwards adds no signature (no compilation)
+    from gearcontact.tca.edge_kernel import edge_newton, warm_up
+
+    pair, flanks, res = gear_flankrem
+    warm_up()
+    assert len(edge_newton.signatures) == 1
+    pinion, gear = (flanks.flank(m, pair.design_side) for m in ("pinion", "gear"))
+    mp = res.cycle.path.points[len(res.cycle.path.points) // 2]
+    for edge in edge_contact.flank_edges(pinion, gear):
+        solver = edge_contact._EdgeSolver(pinion, gear, pair.kinematics(), mp.phi1_rad,
+                                          edge, tol_mm=1e-10, max_iter=15)
+        solver._newton(edge_contact._guess_s(solver.own, edge, mp),
+                       edge_contact._guess_y(edge, mp))
+    assert len(edge_newton.signatures) == 1
+
+
 def test_smooth_pairs_keep_the_python_iteration(s0003_centred):
     # no relieved flank: the edge search is the Python iteration (bit for bit as before)
     flanks = s0003_centred[1]
