@@ -1,4 +1,4 @@
-"""Compiled edge-contact Newton of a pair with a relieved flank (:mod:`gearcontact.tca.edge_kernel`).
+"""Compiled edge-contact Newton of a relieved pair (:mod:`gearcontact.tca.edge_kernel`).
 
 Truth: the Python iteration of :meth:`gearcontact.tca.edge_contact._EdgeSolver._newton`
 (the implementation before, still used for smooth pairs and flanks without a compiled

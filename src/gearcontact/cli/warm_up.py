@@ -11,8 +11,8 @@ small ``gearcontact analyze`` and a short ``gearcontact twin`` of the default pa
 (few phases, two torques, 1 ms of simulated time, no figures) in a temporary
 directory, which call every kernel signature a default run of either calls, and
 deletes the directory; then the compiled edge search of a pair with a relieved flank
-(:func:`gearcontact.tca.edge_kernel.warm_up`). The commands that compile print one line on stderr when they
-find the cache cold (:func:`note_cold_cache`).
+(:func:`gearcontact.tca.edge_kernel.warm_up`). The commands that compile print one line
+on stderr when they find the cache cold (:func:`note_cold_cache`).
 """
 
 from __future__ import annotations

@@ -198,7 +198,8 @@ class _EdgeSolver:
         if self._compiled is not None:
             head, tail = self._compiled
             y = np.empty(3)
-            return y if edge_newton(*head, float(s), np.ascontiguousarray(y0), *tail, y) else None
+            got = edge_newton(*head, float(s), np.ascontiguousarray(y0), *tail, y)
+            return y if got else None
         kin, w2 = self.kin, self.kin.gear_axis
         ue, ve = edge_parameters(self.own, self.edge.name, s)
         y = np.array(y0, float)

@@ -49,7 +49,8 @@ kink_n)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a smoo
 flank) a float parameter vector (a cone's with its ``v`` scale last) and the spline
 arrays (knots and piecewise-polynomial coefficients of
 :mod:`gearcontact.geometry.spline_kernel`; empty for a cone); per kink line (first
-axis; none for a smooth flank) its breaks, cubic coefficients and break count (:attr:`~gearcontact.geometry.kinked.KinkedFlank.kink_tables`).
+axis; none for a smooth flank) its breaks, cubic coefficients and break count
+(:attr:`~gearcontact.geometry.kinked.KinkedFlank.kink_tables`).
 """
 
 from __future__ import annotations
@@ -273,8 +274,8 @@ def cone_lines(par, rot, trans, q, n, uv0, lo, hi, clamp, uv_out):
     pieces[0, :18] = par[:18]
     pieces[0, 18] = 1.0
     return cone_piece_lines(pieces, np.zeros((0, 2)), np.zeros((0, 1, 4)),
-                            np.zeros(0, dtype=np.int64), rot, trans, q, n, uv0, lo, hi, clamp,
-                            uv_out)
+                            np.zeros(0, dtype=np.int64), rot, trans, q, n, uv0, lo, hi,
+                            clamp, uv_out)
 
 
 @njit(cache=True)
