@@ -12,6 +12,10 @@ compiled code, with the surfaces evaluated as their ``evaluate`` methods do:
   :func:`gearcontact.geometry.spline_kernel.pp_point`; arguments clamped to the knot
   box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
   ``r_u``, ``r_v`` (:func:`~gearcontact.geometry.sheet.sheet_vector`);
+* :class:`~gearcontact.geometry.sheet.GearSheet` (generated gear): the same spline,
+  then ``r = (R cos psi, R sin psi, z)`` and its derivatives
+  (:func:`~gearcontact.geometry.sheet.gear_sheet_vector`; ``cos psi``, ``sin psi``
+  compiled where ``evaluate`` takes numpy's);
 * :class:`~gearcontact.geometry.formate.FormateFlank` (gear): the blade cone, a circular
   cone, which a line meets where a quadratic vanishes (:func:`cone_lines`: no Newton;
   the root nearest the tangent plane; (u, v) back from the point by the inverse of
@@ -24,7 +28,8 @@ continuation (zero), so continuation points converge quadratically; with clampin
 line pinned to one edge of the box is given up early (:data:`PINNED_ITERATIONS`).
 
 * :class:`~gearcontact.geometry.kinked.KinkedFlank` of radial sheets (a pinion cut by
-  a relieved blade): the same Newton iteration, every iterate evaluated on the piece
+  a relieved blade) or of generated gear sheets (a generated gear cut by one): the same
+  Newton iteration, every iterate evaluated on the piece
   that holds it, as :meth:`~gearcontact.geometry.kinked.KinkedFlank.evaluate` picks it
   (:func:`~gearcontact.geometry.kinked.kink_piece`, the same compiled function: the
   number of kink lines ``u = u_k(v)`` below ``(u, v)``, each the piecewise cubic of
@@ -37,15 +42,15 @@ line pinned to one edge of the box is given up early (:data:`PINNED_ITERATIONS`)
   closed form, the root kept whose ``(u, v)`` its own piece holds
   (:func:`cone_piece_lines`).
 
-Other surfaces (analytic test surfaces, the generated gear's ``GearSheet``) have no
-compiled form (:func:`kernel_surface` returns None) and use the vectorized numpy path
+Other surfaces (analytic test surfaces, subclasses of these types, sheet pieces at
+scaled ``v``) have no compiled form (:func:`kernel_surface` returns None) and use the vectorized numpy path
 of :mod:`.stencil`. Results agree with that path to rounding (~1e-13 mm;
 tests/tca/test_gap_kernel.py asserts 1e-9 mm). :func:`flank_vector` evaluates a kernel
 form at one point as the flank's ``point`` does (the compiled ridge search of
 :mod:`.edge_kernel`).
 
 A surface is passed to the kernel as ``(kind, par, tx, ty, pc, kink_x, kink_c,
-kink_n)``: ``kind`` 0 (sheet) or 1 (cone); per piece (first axis; one for a smooth
+kink_n)``: ``kind`` 0 (radial sheet), 1 (cone) or 2 (generated gear sheet); per piece (first axis; one for a smooth
 flank) a float parameter vector (a cone's with its ``v`` scale last) and the spline
 arrays (knots and piecewise-polynomial coefficients of
 :mod:`gearcontact.geometry.spline_kernel`; empty for a cone); per kink line (first
@@ -62,15 +67,16 @@ from numba import njit
 
 from ..geometry.formate import FormateFlank, cone_vector
 from ..geometry.kinked import KinkedFlank, kink_piece
-from ..geometry.sheet import RadialSheet, sheet_vector
+from ..geometry.sheet import GearSheet, RadialSheet, gear_sheet_vector, sheet_vector
 from ..geometry.spline_kernel import pp_point
 
-__all__ = ["KIND_SHEET", "KIND_CONE", "kernel_surface", "intersect_lines", "cone_lines",
+__all__ = ["KIND_SHEET", "KIND_CONE", "KIND_GEAR_SHEET", "kernel_surface", "intersect_lines", "cone_lines",
            "cone_piece_lines", "flank_vector", "solve3"]
 
 #: Surface kinds of the kernel.
 KIND_SHEET = 0
 KIND_CONE = 1
+KIND_GEAR_SHEET = 2
 #: With clamping, a line whose Newton target leaves the box across the same edge in
 #: this many successive iterations after the first (every iterate clipped onto that
 #: edge) is given up as off the flank - where the full iteration ends anyway.
@@ -87,27 +93,31 @@ _EMPTY5 = np.zeros((1, 0, 0, 0, 0))
 #: The kink tables of a smooth flank: no kink line.
 _NO_KINKS = (np.zeros((0, 2)), np.zeros((0, 1, 4)), np.zeros(0, dtype=np.int64))
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+#: Kernel kinds of the spline sheets.
+_SHEET_KINDS = {RadialSheet: KIND_SHEET, GearSheet: KIND_GEAR_SHEET}
 
 
 def kernel_surface(surface):
     """The kernel form ``(kind, par, tx, ty, pc, kink_x, kink_c, kink_n)`` of a
     flank (module docstring), or None.
 
-    Sheet ``par[k]``: ``(kx, ky, apex_x, tan_delta, root_offset)`` of piece ``k``; cone
+    Sheet ``par[k]``: ``(kx, ky, apex_x, tan_delta, root_offset)`` of piece ``k``;
+    generated gear sheet: ``(kx, ky, cos_delta, sin_delta, R2, h_f, z_A)``; cone
     ``par[k]``: :attr:`~gearcontact.geometry.formate.FormateFlank.kernel_parameters` of
     piece ``k`` and its ``v`` scale (19 entries; 1 for a smooth flank). A
     :class:`~gearcontact.geometry.kinked.KinkedFlank` has a form when its pieces are
-    radial sheets on one knot grid (as :func:`~gearcontact.geometry.kinked.machine_flank`
-    builds them) with ``v_scales`` 1, or blade cones (a relieved formate gear) with any
-    ``v_scales``.
+    radial sheets or generated gear sheets on one knot grid (as
+    :func:`~gearcontact.geometry.kinked.machine_flank` builds them) with ``v_scales`` 1,
+    or blade cones (a relieved formate gear) with any ``v_scales``.
     """
     try:
         return _CACHE[surface]
     except (KeyError, TypeError):
         pass
-    if type(surface) is RadialSheet:
+    if type(surface) in _SHEET_KINDS:
         par, tx, ty, pc = _sheet_arrays(surface)
-        out = (KIND_SHEET, par[None], tx[None], ty[None], pc[None], *_NO_KINKS)
+        out = (_SHEET_KINDS[type(surface)], par[None], tx[None], ty[None], pc[None],
+               *_NO_KINKS)
     elif type(surface) is FormateFlank:
         out = (KIND_CONE, _cone_arrays(surface, 1.0)[None], _EMPTY2, _EMPTY2, _EMPTY5,
                *_NO_KINKS)
@@ -122,10 +132,14 @@ def kernel_surface(surface):
 
 
 def _sheet_arrays(sheet: RadialSheet) -> tuple:
-    """``(par, tx, ty, pc)`` of one radial sheet (:func:`kernel_surface`)."""
+    """``(par, tx, ty, pc)`` of one radial or generated gear sheet (:func:`kernel_surface`)."""
     tx, ty, pc, kx, ky = sheet.pp_arrays
     cone = sheet.cone
-    par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
+    if type(sheet) is GearSheet:
+        par = np.array([kx, ky, cone.cos_delta, cone.sin_delta, cone.mean_cone_distance_mm,
+                        cone.dedendum_mm, cone.apex_z_mm], float)
+    else:
+        par = np.array([kx, ky, cone.apex_x_mm, cone.tan_delta, cone.root_offset_mm], float)
     return par, tx, ty, pc
 
 
@@ -135,19 +149,20 @@ def _cone_arrays(cone: FormateFlank, scale: float) -> np.ndarray:
 
 
 def _kinked_form(flank: KinkedFlank):
-    """The kernel form of a relieved flank of blade cones, or of radial sheets on one
-    knot grid, else None (:func:`kernel_surface`)."""
+    """The kernel form of a relieved flank of blade cones, or of radial (generated gear)
+    sheets on one knot grid, else None (:func:`kernel_surface`)."""
     if all(type(p) is FormateFlank for p in flank.pieces):
         par = np.stack([_cone_arrays(p, sc) for p, sc in zip(flank.pieces, flank.v_scales)])
         return (KIND_CONE, par, _EMPTY2, _EMPTY2, _EMPTY5, *flank.kink_tables)
-    if (any(type(p) is not RadialSheet for p in flank.pieces)
+    kinds = {type(p) for p in flank.pieces}
+    if (len(kinds) != 1 or next(iter(kinds)) not in _SHEET_KINDS
             or any(s != 1.0 for s in flank.v_scales)):
         return None
     arrays = [_sheet_arrays(p) for p in flank.pieces]
     if len({tuple(a.shape for a in got) for got in arrays}) != 1:
         return None
-    return (KIND_SHEET, *(np.stack([got[j] for got in arrays]) for j in range(4)),
-            *flank.kink_tables)
+    return (_SHEET_KINDS[kinds.pop()], *(np.stack([got[j] for got in arrays])
+                                          for j in range(4)), *flank.kink_tables)
 
 
 @njit(cache=True, inline="always")
@@ -158,6 +173,15 @@ def sheet_point(par, tx, ty, pc, u, v, d, vec):
     sheet_vector(u, v, d, par[2], par[3], par[4], 1.0, False, vec)
 
 
+@njit(cache=True, inline="always")
+def gear_sheet_point(par, tx, ty, pc, u, v, nder, zero_outside, d, vec):
+    """r, r_u, r_v of a generated gear sheet into ``vec[0:3]`` (psi to the order
+    ``nder``, ``zero_outside`` as :func:`~gearcontact.geometry.spline_kernel.pp_point`)."""
+    pp_point(tx, ty, pc, int(par[0]), int(par[1]), u, v, nder, zero_outside, d)
+    gear_sheet_vector(u, v, d, np.cos(d[0]), np.sin(d[0]), par[2], par[3], par[4], par[5],
+                      par[6], 1.0, False, vec)
+
+
 @njit(cache=True)
 def flank_vector(kind, par, tx, ty, pc, kink_x, kink_c, kink_n, u, v, d, vec):
     """r, r_u, r_v of a flank in kernel form (:func:`kernel_surface`) at ``(u, v)``
@@ -166,7 +190,9 @@ def flank_vector(kind, par, tx, ty, pc, kink_x, kink_c, kink_n, u, v, d, vec):
     cone at ``(u, scale v)`` with ``r_v`` times the scale
     (:meth:`~gearcontact.geometry.kinked.KinkedFlank.point`), a sheet's psi and its
     first derivatives from the spline's second-order evaluation without the zero
-    continuation derivatives (:meth:`~gearcontact.geometry.sheet.RadialSheet.point`).
+    continuation derivatives (:meth:`~gearcontact.geometry.sheet.RadialSheet.point`;
+    a generated gear sheet's ``cos psi``, ``sin psi`` compiled where its ``point`` takes
+    numpy's).
     """
     k = kink_piece(kink_x, kink_c, kink_n, u, v) if kink_x.shape[0] > 0 else 0
     if kind == KIND_CONE:
@@ -174,6 +200,8 @@ def flank_vector(kind, par, tx, ty, pc, kink_x, kink_c, kink_n, u, v, d, vec):
         cone_vector(par[k], u, scale * v, False, vec)
         for a in range(3):
             vec[2, a] = scale * vec[2, a]
+    elif kind == KIND_GEAR_SHEET:
+        gear_sheet_point(par[k], tx[k], ty[k], pc[k], u, v, 2, False, d, vec)
     else:
         pp_point(tx[k], ty[k], pc[k], int(par[k, 0]), int(par[k, 1]), u, v, 2, False, d)
         sheet_vector(u, v, d, par[k, 2], par[k, 3], par[k, 4], 1.0, False, vec)
@@ -437,7 +465,11 @@ def intersect_lines(kind, par, tx, ty, pc, kink_x, kink_c, kink_n, rot, trans, q
         for _ in range(max_iter):
             if kinked:
                 piece = kink_piece(kink_x, kink_c, kink_n, u, v)
-            sheet_point(par[piece], tx[piece], ty[piece], pc[piece], u, v, dpsi, vec)
+            if kind == KIND_GEAR_SHEET:
+                gear_sheet_point(par[piece], tx[piece], ty[piece], pc[piece], u, v, 1, True,
+                                 dpsi, vec)
+            else:
+                sheet_point(par[piece], tx[piece], ty[piece], pc[piece], u, v, dpsi, vec)
             res_max = 0.0
             for a in range(3):
                 x[a] = 0.0
