@@ -12,8 +12,9 @@ compiled code, with the surfaces evaluated as their ``evaluate`` methods do:
   :func:`gearcontact.geometry.spline_kernel.pp_point`; arguments clamped to the knot
   box as FITPACK does), then ``r = (v, R cos psi, R sin psi)``,
   ``r_u``, ``r_v`` (:func:`~gearcontact.geometry.sheet.sheet_vector`);
-* :class:`~gearcontact.geometry.sheet.GearSheet` (generated gear): the same spline,
-  then ``r = (R cos psi, R sin psi, z)`` and its derivatives
+* :class:`~gearcontact.geometry.sheet.GearSheet` (a piece of a relieved generated
+  gear, below; a smooth one keeps the numpy path, :func:`kernel_surface`): the same
+  spline, then ``r = (R cos psi, R sin psi, z)`` and its derivatives
   (:func:`~gearcontact.geometry.sheet.gear_sheet_vector`; ``cos psi``, ``sin psi``
   compiled where ``evaluate`` takes numpy's);
 * :class:`~gearcontact.geometry.formate.FormateFlank` (gear): the blade cone, a circular
@@ -108,16 +109,18 @@ def kernel_surface(surface):
     :class:`~gearcontact.geometry.kinked.KinkedFlank` has a form when its pieces are
     radial sheets or generated gear sheets on one knot grid (as
     :func:`~gearcontact.geometry.kinked.machine_flank` builds them) with ``v_scales`` 1,
-    or blade cones (a relieved formate gear) with any ``v_scales``.
+    or blade cones (a relieved formate gear) with any ``v_scales``. A smooth generated
+    gear sheet has none: a pair without machine settings whose formate gear would
+    undercut its pinion runs on one (:mod:`gearcontact.geometry.gear_generation`), and
+    its results stay those of the numpy path bit for bit.
     """
     try:
         return _CACHE[surface]
     except (KeyError, TypeError):
         pass
-    if type(surface) in _SHEET_KINDS:
+    if type(surface) is RadialSheet:
         par, tx, ty, pc = _sheet_arrays(surface)
-        out = (_SHEET_KINDS[type(surface)], par[None], tx[None], ty[None], pc[None],
-               *_NO_KINKS)
+        out = (KIND_SHEET, par[None], tx[None], ty[None], pc[None], *_NO_KINKS)
     elif type(surface) is FormateFlank:
         out = (KIND_CONE, _cone_arrays(surface, 1.0)[None], _EMPTY2, _EMPTY2, _EMPTY5,
                *_NO_KINKS)
