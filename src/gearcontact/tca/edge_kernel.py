@@ -10,7 +10,7 @@ there the search samples every edge (the box's eight and the ridge) and refines 
 best by Brent's method, thousands of such solves per path. :func:`edge_newton` runs
 the same iteration in compiled code, step for step, when both flanks have a compiled
 form (:func:`~gearcontact.tca.gap_kernel.kernel_surface`: a radial sheet, a blade
-cone, or a relieved flank of either):
+cone, or a relieved flank of radial sheets, cones or generated gear sheets):
 
 * the edge point: ``(s, v_toe)``, ``(s, v_heel)``, ``(u_root, s)``, ``(u_tip, s)`` or
   on a ridge ``(u_k(s), s)`` from the kink line's piecewise cubic
