@@ -10,8 +10,9 @@ user's choosing (an image build, a CI step, right after ``pip install``): it run
 small ``gearcontact analyze`` and a short ``gearcontact twin`` of the default pair
 (few phases, two torques, 1 ms of simulated time, no figures) in a temporary
 directory, which call every kernel signature a default run of either calls, and
-deletes the directory. The commands that compile print one line on stderr when they
-find the cache cold (:func:`note_cold_cache`).
+deletes the directory; then the compiled edge search of a pair with a relieved flank
+(:func:`gearcontact.tca.edge_kernel.warm_up`). The commands that compile print one line
+on stderr when they find the cache cold (:func:`note_cold_cache`).
 """
 
 from __future__ import annotations
@@ -95,6 +96,10 @@ def run(args) -> int:
             code = main([*WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "run")])
             if code == 0:
                 code = main([*TWIN_WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "twin")])
+    if code == 0:
+        # the edge search of a relieved pair (s0003 has none)
+        from ..tca.edge_kernel import warm_up as warm_up_edge_search
+        warm_up_edge_search()
     if code != 0:
         print(captured.getvalue().rstrip(), file=sys.stderr)
         # the fixed s0003 run cannot meet bad input: a bug (exit 1, cli.EXIT_CODES)

@@ -46,7 +46,7 @@ from .spline_kernel import pp_coefficients, pp_derivatives
 from .surface import SurfacePoint
 
 __all__ = ["GearCone", "GearSheet", "PinionCone", "RadialSheet", "sheet_vectors", "sheet_vector",
-           "gear_sheet_vectors"]
+           "gear_sheet_vectors", "gear_sheet_vector"]
 
 
 @njit(cache=True, inline="always")
@@ -87,39 +87,48 @@ def sheet_vectors(u, v, d, apex_x, tan, root_offset, sign, full):
     return out
 
 
+@njit(cache=True, inline="always")
+def gear_sheet_vector(u, v, d, c, s, ru, rv, mcd, ded, apex_z, sign, full, o):
+    """One :class:`GearSheet` point into ``o`` (7, 3): r, r_u, r_v, r_uu, r_uv, r_vv, n
+    (only the first three rows unless ``full``) from psi's derivatives ``d`` (6,),
+    ``c = cos psi``, ``s = sin psi`` and the cone ``(cos delta, sin delta, R2, h_f,
+    z_A)``. Every component is the operation sequence of the array form (``R e_R + z
+    k``, ``R_u e_R + R psi_u e_psi + z_u k``, ...: :class:`GearSheet`) written out,
+    terms with a zero factor included, so the values are the same bits."""
+    zu, zv = -rv, ru
+    p_u, p_v = d[1], d[2]
+    rad = (mcd + v) * rv + (u - ded) * ru
+    h = apex_z + (mcd + v) * ru - (u - ded) * rv
+    o[0, 0], o[0, 1], o[0, 2] = rad * c + h * 0.0, rad * s + h * 0.0, rad * 0.0 + h * 1.0
+    for row, rz, zz, a in ((1, ru, zu, rad * p_u), (2, rv, zv, rad * p_v)):
+        o[row, 0] = (rz * c + a * -s) + zz * 0.0
+        o[row, 1] = (rz * s + a * c) + zz * 0.0
+        o[row, 2] = (rz * 0.0 + a * 0.0) + zz * 1.0
+    if not full:
+        return
+    for row, ep, er in ((3, 2.0 * ru * p_u + rad * d[3], rad * p_u * p_u),
+                        (4, ru * p_v + rv * p_u + rad * d[4], rad * p_u * p_v),
+                        (5, 2.0 * rv * p_v + rad * d[5], rad * p_v * p_v)):
+        o[row, 0] = ep * -s - er * c
+        o[row, 1] = ep * c - er * s
+        o[row, 2] = ep * 0.0 - er * 0.0
+    nx = o[1, 1] * o[2, 2] - o[1, 2] * o[2, 1]
+    ny = o[1, 2] * o[2, 0] - o[1, 0] * o[2, 2]
+    nz = o[1, 0] * o[2, 1] - o[1, 1] * o[2, 0]
+    norm = np.sqrt(nx * nx + ny * ny + nz * nz)
+    o[6, 0], o[6, 1], o[6, 2] = sign * nx / norm, sign * ny / norm, sign * nz / norm
+
+
 @njit(cache=True)
 def gear_sheet_vectors(u, v, d, cos_p, sin_p, cone, sign):
-    """(N, 7, 3) of :class:`GearSheet` points from psi's derivatives ``d`` (N, 6) and
-    ``cos psi``, ``sin psi`` (numpy's: the trigonometry stays numpy's); ``cone`` =
-    ``(cos delta, sin delta, R2, h_f, z_A)``. Every component is the operation sequence
-    of the array form (``R e_R + z k``, ``R_u e_R + R psi_u e_psi + z_u k``, ...:
-    :class:`GearSheet`) written out per point, terms with a zero factor included, so the
-    values are the same bits."""
+    """(N, 7, 3) of :class:`GearSheet` points (:func:`gear_sheet_vector`) from psi's
+    derivatives ``d`` (N, 6) and ``cos psi``, ``sin psi`` (numpy's: the trigonometry
+    stays numpy's); ``cone`` = ``(cos delta, sin delta, R2, h_f, z_A)``."""
     ru, rv, mcd, ded, apex_z = cone
-    zu, zv = -rv, ru
     out = np.empty((u.shape[0], 7, 3))
     for i in range(u.shape[0]):
-        c, s = cos_p[i], sin_p[i]
-        p_u, p_v = d[i, 1], d[i, 2]
-        rad = (mcd + v[i]) * rv + (u[i] - ded) * ru
-        h = apex_z + (mcd + v[i]) * ru - (u[i] - ded) * rv
-        o = out[i]
-        o[0, 0], o[0, 1], o[0, 2] = rad * c + h * 0.0, rad * s + h * 0.0, rad * 0.0 + h * 1.0
-        for row, rz, zz, a in ((1, ru, zu, rad * p_u), (2, rv, zv, rad * p_v)):
-            o[row, 0] = (rz * c + a * -s) + zz * 0.0
-            o[row, 1] = (rz * s + a * c) + zz * 0.0
-            o[row, 2] = (rz * 0.0 + a * 0.0) + zz * 1.0
-        for row, ep, er in ((3, 2.0 * ru * p_u + rad * d[i, 3], rad * p_u * p_u),
-                            (4, ru * p_v + rv * p_u + rad * d[i, 4], rad * p_u * p_v),
-                            (5, 2.0 * rv * p_v + rad * d[i, 5], rad * p_v * p_v)):
-            o[row, 0] = ep * -s - er * c
-            o[row, 1] = ep * c - er * s
-            o[row, 2] = ep * 0.0 - er * 0.0
-        nx = o[1, 1] * o[2, 2] - o[1, 2] * o[2, 1]
-        ny = o[1, 2] * o[2, 0] - o[1, 0] * o[2, 2]
-        nz = o[1, 0] * o[2, 1] - o[1, 1] * o[2, 0]
-        norm = np.sqrt(nx * nx + ny * ny + nz * nz)
-        o[6, 0], o[6, 1], o[6, 2] = sign * nx / norm, sign * ny / norm, sign * nz / norm
+        gear_sheet_vector(u[i], v[i], d[i], cos_p[i], sin_p[i], ru, rv, mcd, ded, apex_z,
+                          sign, True, out[i])
     return out
 
 

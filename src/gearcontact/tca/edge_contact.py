@@ -46,6 +46,8 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
+from .edge_kernel import EDGE_CODES, EDGE_KINK, edge_newton
+from .gap_kernel import kernel_surface
 from .mating import _cross, posed_point, solve_mating_point
 from .types import ContactGuess, EdgeContact, MatingPoint, TcaConvergenceError
 
@@ -161,6 +163,28 @@ class _EdgeSolver:
         # bracket ends, the boundary crossing's ends and root); a repeated Newton solve
         # returns the same bits, so it is looked up
         self._solved: dict = {}
+        self._compiled = self._compiled_arguments()
+
+    def _compiled_arguments(self) -> tuple | None:
+        """The fixed arguments of the compiled Newton (:func:`.edge_kernel.edge_newton`)
+        when a flank of the pair is relieved (its ridge search, module docstring of
+        :mod:`.edge_kernel`) and both have a kernel form, else None (the Python
+        iteration of :meth:`_newton`; a smooth pair's results stay bit for bit)."""
+        if not (getattr(self.pinion, "kinks", ()) or getattr(self.gear, "kinks", ())):
+            return None
+        own, other = kernel_surface(self.own), kernel_surface(self.other)
+        if own is None or other is None:
+            return None
+        name = self.edge.name
+        if is_kink(self.own, name):
+            code, kink = EDGE_KINK, [k.name for k in self.own.kinks].index(name)
+        else:
+            code, kink = EDGE_CODES[name], -1
+        box = np.array([*self.own.u_range, *self.own.v_range], float)
+        rot1, t1 = (np.ascontiguousarray(a, dtype=float) for a in self.pose1)
+        return (*own, *other, code, kink, box), (
+            self.edge.member == "pinion", rot1, t1, float(self.kin.gear_axis[2]),
+            float(self.kin.gear_pose(0.0)[1][2]), float(self.tol), int(self.max_iter))
 
     def solve(self, s: float, y0: np.ndarray) -> np.ndarray | None:
         """``(a, b, phi2)`` with edge point ``s`` on the other surface, or None."""
@@ -171,6 +195,11 @@ class _EdgeSolver:
         return self._solved[key]
 
     def _newton(self, s: float, y0: np.ndarray) -> np.ndarray | None:
+        if self._compiled is not None:
+            head, tail = self._compiled
+            y = np.empty(3)
+            got = edge_newton(*head, float(s), np.ascontiguousarray(y0), *tail, y)
+            return y if got else None
         kin, w2 = self.kin, self.kin.gear_axis
         ue, ve = edge_parameters(self.own, self.edge.name, s)
         y = np.array(y0, float)
