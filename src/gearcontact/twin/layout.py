@@ -66,6 +66,9 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
 
 
 def preview_scratch(prm) -> int:
-    """Length of the kernel's ``pv``: :data:`N_PREVIEW` outputs and the line law's two
-    slice vectors (:mod:`.line_law`)."""
-    return N_PREVIEW + 2 * (int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND]))
+    """Length of the kernel's ``pv``: :data:`N_PREVIEW` outputs, the line law's two
+    slice vectors and the coupled slice law's scratch (:mod:`.line_law`; :func:`~gearcontact.
+    ltca.coupled_slice_law.core_scratch`)."""
+    from ..ltca.coupled_slice_law import core_scratch
+    m = int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND])
+    return N_PREVIEW + 2 * m + int(core_scratch(m))
