@@ -149,7 +149,7 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             abp[sd, 3] = 1.0
             continue
         we = cache[sd, j, 5]
-        cb = cache[sd, j, 10]       # the loaded slices' (line chain with bending)
+        cb = cache[sd, j, 10]       # the coupled law's secant (line chain with bending)
         if cb < 0.0:
             cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
         in_line = cache[sd, j, 7] == MODE_LINE

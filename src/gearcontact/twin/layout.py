@@ -45,7 +45,7 @@ N_PREVIEW = 8
 PV_LOAD = 5
 #: Index in ``pv`` of the line law's approach offset ``h_bar`` (mm).
 PV_LINE_OFFSET = 6
-#: Index in ``pv`` of the loaded slices' bending compliance (mm/N; -1: the table's).
+#: Index in ``pv`` of the line law's bending compliance in series (mm/N; -1: the table's).
 PV_LINE_BENDING = 7
 #: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
 N_CACHE = 11

@@ -56,10 +56,16 @@ foundation of the edge's own section against the mating flank (``prm[P_BEYOND_W]
 the slices' width times its stiffness relative to the line's,
 :func:`gearcontact.ltca.edge_section.edge_stiffness_factor`), as the loaded TE's edge
 rows beyond a line join its block.
-With tooth bending, ``c_b`` is the work-conjugate
-compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
-at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
-contact's load shape.
+With tooth bending the preview solves the coupled slice law at the step's approach
+(:func:`gearcontact.ltca.coupled_slice_law.coupled_solve`, the law ``analyze``'s
+cylindrical preview runs at a load: ``w = K (d - h - G f)``, ``G`` the shells' Gram
+matrix at the slices, mesh table ``line_bending_gram_mm_per_n``): the teeth's
+deflection under the slice forces joins the ease-off, ``x = h + G f``, and the state
+above is the slice law's on ``x`` (``d_c`` over its least). The step's law holds the
+bending's secant compliance ``c_b = (d - d_c) / W_e`` in series, ``d = d_c(W) + c_b W``
+(exact at the preview's ``W_e``, as the contact part; ``G = c 1 1^T``: ``c_b = c``, the
+series law). The coupled law starts from the series state with the pair's last
+``c_b`` (a fresh preview: the mesh table's uniform-load compliance).
 
 Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
 
@@ -317,14 +323,14 @@ def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area
 def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
               tcount, fit, pv):
     """The law of pair j of table s at row interval (i, f) and the approach ``d`` (mm)
-    of the step's start (module docstring): the slice law's state there, ``cb`` the
-    pair's last bending compliance (mm/N; one pass of the loaded slices' from it), or
-    minus the uniform load's (a fresh preview: iterated to 1e-6), ``we`` (N) the
-    Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
+    of the step's start (module docstring): the slice law's state there (with bending
+    the coupled law's, started from the series state with ``|cb|``: the pair's last
+    secant compliance, mm/N, or minus the uniform load's on a fresh preview), ``we``
+    (N) the Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
     ``lambda`` (line, ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a
     law; ``pv[0:3]`` the preview's a, b (mm), p_max (MPa) at the load ``pv[PV_LOAD]``
     (N) it was sampled at, ``pv[PV_LINE_OFFSET]`` the line law's approach offset
-    ``h_bar`` (mm), ``pv[PV_LINE_BENDING]`` the loaded slices' bending compliance
+    ``h_bar`` (mm), ``pv[PV_LINE_BENDING]`` the bending's secant compliance ``c_b``
     (mm/N; -1: rigid teeth, the mesh table's).
     ``cv_t`` columns: (golden) the 49 gap samples, then stage C's fp64 c3, c4, c5, ``L``
     (mm), the slices' ease-off (mm) and their bending Gram matrix
