@@ -62,11 +62,12 @@ MAX_STEPS = 60
 MIN_STEP = 2.0 ** -20
 
 # the core's scratch (:func:`core_scratch`): the ease-off h (m), G (m^2, row-major),
-# then vectors of m (offsets in units of m, :func:`_at`): the iterate x and its shares, the derivatives of
-# slice_law.interference_derivatives (5 m), R, the step, the last accepted x, f, G s,
-# G ds/dd, v, u; then the Jacobian (m^2)
-_X, _DER, _R, _DEL, _XO, _F, _GS, _GSD, _V, _U, _JAC = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14,
-                                                      15)
+# then vectors of m (offsets in units of m, :func:`_at`): the iterate x and its shares,
+# the derivatives of slice_law.interference_derivatives (5 m), R, the step, the last
+# accepted x, f, G s, v, u, the active slices, G^T v, G^T u, the reduced right-hand
+# side; then the reduced Jacobian (up to m^2)
+(_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS,
+ _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18)
 
 
 @njit(cache=True, inline="always")
@@ -143,7 +144,7 @@ def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
     ``f = W s / I`` into ``_F``, the residual ``R = x - h - G f`` into ``_R`` (over its
     least at a given load: ``f`` does not see a shift of ``x``), the derivatives of
     ``f`` as ``D = c_s S + c_a ds/dd v^T + s u^T`` (``S = ds/dx`` tridiagonal; ``v``, ``u``
-    into ``_V``, ``_U``) and ``G s``, ``G ds/dd`` into ``_GS``, ``_GSD``. At a load
+    into ``_V``, ``_U``) and ``G s`` into ``_GS``. At a load
     (``value`` = W, N): ``d_c`` from :func:`.slice_law.loaded_line`, ``v = dd_c/dx``
     from its equation ``F = I - lambda' W g(L_c) = 0`` (``g`` kept >= 1/4 as there),
     ``u = -(W / I^2) (dI/dx + L_c v)``. At an approach (``value`` = d, mm): ``W`` from
@@ -206,12 +207,11 @@ def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
     r_max, gf_max, r_min = 0.0, 0.0, math.inf
     og = ob + m
     for i in range(m):
-        gs, gsd = 0.0, 0.0
+        gs = 0.0
         for k in range(m):
-            gs += buf[og + i * m + k] * buf[ox + m + k]
-            gsd += buf[og + i * m + k] * buf[od + k]
+            if buf[ox + m + k] != 0.0:      # the loaded slices
+                gs += buf[og + i * m + k] * buf[ox + m + k]
         buf[_at(ob, m, _GS) + i] = gs
-        buf[_at(ob, m, _GSD) + i] = gsd
         gf = c_s * gs
         gf_max = max(gf_max, abs(gf))
         r = buf[ox + i] - buf[ob + i] - gf
@@ -228,46 +228,81 @@ def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
 @njit(cache=True, inline="always", error_model="numpy")
 def _newton_step(buf, ob, m, c_s, c_a):
     """The Newton step ``J delta = -R``, ``J = 1 - G D`` (:func:`_evaluate`'s ``D``),
-    into ``_DEL``: Gaussian elimination with partial pivoting on the scratch's
-    Jacobian (rows swapped in place)."""
-    og, od, oj = ob + m, _at(ob, m, _DER), _at(ob, m, _JAC)
+    into ``_DEL``. ``D``'s rows vanish outside the active slices ``A`` (``s`` or
+    ``ds/dd`` nonzero: under the approach or on a segment crossing it), so ``J = 1 -
+    G_A D_A`` and (Woodbury) ``delta = -R - G_A z`` with ``(1 - D_A G_A) z = D_A R``, an
+    ``|A| x |A|`` system: Gaussian elimination with partial pivoting (rows swapped in
+    place)."""
+    og, od = ob + m, _at(ob, m, _DER)
+    ox, oi, oj = _at(ob, m, _X), _at(ob, m, _IDX), _at(ob, m, _JAC)
+    ov, ou, ovg, oug = _at(ob, m, _V), _at(ob, m, _U), _at(ob, m, _VG), _at(ob, m, _UG)
+    orr, orhs, odl = _at(ob, m, _R), _at(ob, m, _RHS), _at(ob, m, _DEL)
+    na = 0
     for i in range(m):
-        for j in range(m):
-            gsx = buf[og + i * m + j] * buf[od + 2 * m + j]
-            if j > 0:
-                gsx += buf[og + i * m + j - 1] * buf[od + 3 * m + j - 1]
-            if j < m - 1:
-                gsx += buf[og + i * m + j + 1] * buf[od + m + j + 1]
-            buf[oj + i * m + j] = ((1.0 if i == j else 0.0) - c_s * gsx
-                                   - c_a * buf[_at(ob, m, _GSD) + i] * buf[_at(ob, m, _V) + j]
-                                   - buf[_at(ob, m, _GS) + i] * buf[_at(ob, m, _U) + j])
-        buf[_at(ob, m, _DEL) + i] = -buf[_at(ob, m, _R) + i]
-    ov = _at(ob, m, _DEL)
-    for c in range(m):
+        if buf[ox + m + i] != 0.0 or buf[od + i] != 0.0:
+            buf[oi + na] = i
+            na += 1
+    vr, ur = 0.0, 0.0
+    for k in range(m):
+        vr += buf[ov + k] * buf[orr + k]
+        ur += buf[ou + k] * buf[orr + k]
+    for q in range(na):
+        c = int(buf[oi + q])
+        vg, ug = 0.0, 0.0
+        for k in range(m):
+            vg += buf[ov + k] * buf[og + k * m + c]
+            ug += buf[ou + k] * buf[og + k * m + c]
+        buf[ovg + q] = vg
+        buf[oug + q] = ug
+    for p in range(na):
+        i = int(buf[oi + p])
+        sub, dia, sup = buf[od + m + i], buf[od + 2 * m + i], buf[od + 3 * m + i]
+        sd_i, s_i = c_a * buf[od + i], buf[ox + m + i]
+        for q in range(na):
+            c = int(buf[oi + q])
+            sg = dia * buf[og + i * m + c]
+            if i > 0:
+                sg += sub * buf[og + (i - 1) * m + c]
+            if i < m - 1:
+                sg += sup * buf[og + (i + 1) * m + c]
+            buf[oj + p * na + q] = ((1.0 if p == q else 0.0) - c_s * sg - sd_i * buf[ovg + q]
+                                    - s_i * buf[oug + q])
+        sr = dia * buf[orr + i]
+        if i > 0:
+            sr += sub * buf[orr + i - 1]
+        if i < m - 1:
+            sr += sup * buf[orr + i + 1]
+        buf[orhs + p] = c_s * sr + sd_i * vr + s_i * ur
+    for c in range(na):
         p = c
-        for i in range(c + 1, m):
-            if abs(buf[oj + i * m + c]) > abs(buf[oj + p * m + c]):
+        for i in range(c + 1, na):
+            if abs(buf[oj + i * na + c]) > abs(buf[oj + p * na + c]):
                 p = i
         if p != c:
-            for j in range(c, m):
-                t = buf[oj + c * m + j]
-                buf[oj + c * m + j] = buf[oj + p * m + j]
-                buf[oj + p * m + j] = t
-            t = buf[ov + c]
-            buf[ov + c] = buf[ov + p]
-            buf[ov + p] = t
-        piv = buf[oj + c * m + c]
-        for i in range(c + 1, m):
-            e = buf[oj + i * m + c] / piv
+            for j in range(c, na):
+                t = buf[oj + c * na + j]
+                buf[oj + c * na + j] = buf[oj + p * na + j]
+                buf[oj + p * na + j] = t
+            t = buf[orhs + c]
+            buf[orhs + c] = buf[orhs + p]
+            buf[orhs + p] = t
+        piv = buf[oj + c * na + c]
+        for i in range(c + 1, na):
+            e = buf[oj + i * na + c] / piv
             if e != 0.0:
-                for j in range(c + 1, m):
-                    buf[oj + i * m + j] -= e * buf[oj + c * m + j]
-                buf[ov + i] -= e * buf[ov + c]
-    for c in range(m - 1, -1, -1):
-        t = buf[ov + c]
-        for j in range(c + 1, m):
-            t -= buf[oj + c * m + j] * buf[ov + j]
-        buf[ov + c] = t / buf[oj + c * m + c]
+                for j in range(c + 1, na):
+                    buf[oj + i * na + j] -= e * buf[oj + c * na + j]
+                buf[orhs + i] -= e * buf[orhs + c]
+    for c in range(na - 1, -1, -1):
+        t = buf[orhs + c]
+        for j in range(c + 1, na):
+            t -= buf[oj + c * na + j] * buf[orhs + j]
+        buf[orhs + c] = t / buf[oj + c * na + c]
+    for i in range(m):
+        t = -buf[orr + i]
+        for q in range(na):
+            t -= buf[og + i * m + int(buf[oi + q])] * buf[orhs + q]
+        buf[odl + i] = t
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)

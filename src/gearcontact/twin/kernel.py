@@ -129,8 +129,8 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
                 cb0 = cache[sd, j, 10]      # the pair's last, else minus the uniform's
                 if not cb0 > 0.0:
                     cb0 = -(cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i]))
-                kap = _line_law(s, j, i, f, d, cb0, we, prm, cv_t, backend, pow_lut,
-                                cbrt_lut, cst, trace, tcount, fit, pv)
+                kap = _line_law(s, sd * n_p + j, j, i, f, d, cb0, we, prm, cv_t, backend,
+                                pow_lut, cbrt_lut, cst, trace, tcount, fit, pv)
             else:
                 kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                              trace, tcount, fit, pv)
@@ -334,7 +334,7 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     abp1 = np.zeros((2, 4))
     # layout.preview_scratch, compiled
     m = int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND])
-    pv = np.zeros(N_PREVIEW + 2 * m + core_scratch(m))
+    pv = np.zeros(N_PREVIEW + 2 * m + core_scratch(m) + 2 * n_p * (m + 1))
     # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
     # (line), mode, the line law's beta, its approach offset h_bar and bending
     # compliance (-1: the table's c_b) (N_CACHE columns)

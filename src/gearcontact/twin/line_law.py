@@ -100,7 +100,7 @@ from numba import njit
 
 from ..analytic.hertz import line_contact_terms
 from ..contract.qformat import CURVATURE, STENCIL_GAP
-from ..ltca.coupled_slice_law import coupled_solve, start_offset
+from ..ltca.coupled_slice_law import core_scratch, coupled_solve, start_offset
 from ..ltca.slice_law import (equivalent_length, interference, interference_load,
                               line_pair_load, loaded_line)
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
@@ -281,7 +281,7 @@ def _line_state(pv, n, nb, wb, length, d, cb, b_max, e_prime, w_start):
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area, b_max,
-                   e_prime):
+                   e_prime, ow):
     """``(d_c, W, L_c, I, c_b)`` of the coupled slice law (:func:`gearcontact.ltca.
     coupled_slice_law.coupled_solve`) at the approach ``d`` (mm) from the series law's
     state ``(d_c, w, area)``: the ease-off (``pv``) and the Gram matrix ``G`` (columns
@@ -297,18 +297,22 @@ def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area
     """
     m = n + 2 * nb
     ob = N_PREVIEW + 2 * m
-    interference(pv, N_PREVIEW, n, length / n, d_c, True, nb, wb)
     for q in range(m):
         pv[ob + q] = pv[N_PREVIEW + q]
     for q in range(m * m):
         pv[ob + m + q] = _row(cv_t, s, j, i, f, c_g + q)
     ox = start_offset(ob, m)
-    c = w / area
-    for a in range(m):
-        acc = 0.0
-        for b in range(m):
-            acc += pv[ob + m + a * m + b] * pv[N_PREVIEW + m + b]
-        pv[ox + a] = pv[ob + a] + c * acc
+    if ow >= 0:
+        for q in range(m):
+            pv[ox + q] = pv[ow + q]
+    else:
+        interference(pv, N_PREVIEW, n, length / n, d_c, True, nb, wb)
+        c = w / area
+        for a in range(m):
+            acc = 0.0
+            for b in range(m):
+                acc += pv[ob + m + a * m + b] * pv[N_PREVIEW + m + b]
+            pv[ox + a] = pv[ob + a] + c * acc
     d_c, l_c, area, w, steps = coupled_solve(pv, ob, m, n, length, b_max, e_prime, nb, wb, d,
                                              True, w)
     if steps < 0:
@@ -320,8 +324,8 @@ def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area
 # compiled once, not inlined: one call per loaded pair and step (its array arguments'
 # reference counting is off, as the kernel's)
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
-              tcount, fit, pv):
+def _line_law(s, slot, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
+              trace, tcount, fit, pv):
     """The law of pair j of table s at row interval (i, f) and the approach ``d`` (mm)
     of the step's start (module docstring): the slice law's state there (with bending
     the coupled law's, started from the series state with ``|cb|``: the pair's last
@@ -353,12 +357,24 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
             pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
         # rigid: the slice law at d; bent: its state in series with the pair's last
         # secant compliance (a fresh preview: the uniform load's) starts the coupled law
+        # (a run: the pair's last effective ease-off starts the coupled law if it was
+        # found in this row interval or the one before; ``slot``: the pair and flank)
+        ow = N_PREVIEW + 2 * m + core_scratch(m) + slot * (m + 1)
+        warm = bent and cb > 0.0 and (pv[ow + m] == i or pv[ow + m] == i - 1)
         cb = abs(cb) if bent else 0.0
-        d_c, w0, l_c, area = _line_state(pv, n, nb, wb, length, d, cb, hi, ep, we)
+        w0 = we
+        if not warm:
+            d_c, w0, l_c, area = _line_state(pv, n, nb, wb, length, d, cb, hi, ep, we)
         if bent and w0 > 0.0:
             d_c, w0, l_c, area, cb = _coupled_state(cv_t, s, j, i, f, c0 + 4 + m, pv, n,
                                                     nb, wb, length, d, d_c, w0, area, hi,
-                                                    ep)
+                                                    ep, ow if warm else -1)
+            ox = start_offset(N_PREVIEW + 2 * m, m)
+            for q in range(m):
+                pv[ow + q] = pv[ox + q]
+            pv[ow + m] = i
+        elif bent:
+            pv[ow + m] = -2.0
         if w0 < W_EVAL_MIN_N:       # barely closed: the law at the datapath's least load
             w0 = W_EVAL_MIN_N
             d_c, l_c, area = loaded_line(pv, N_PREVIEW, n, length, w0, hi, ep, nb, wb)
