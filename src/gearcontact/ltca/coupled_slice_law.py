@@ -17,11 +17,16 @@ normal deflection at each slice's centre. It is the slice law on the *effective
 ease-off* ``x = h + G f(x)`` (over its least), with ``f(x)`` the slice law's forces on
 ``x`` (each slice's part of the interference, :func:`.slice_law.interference`'s
 shares, times ``W / I``: they sum to ``W``). The fixed point is solved by Newton on
-``R(x) = x - h - G f(x)`` with the Jacobian ``1 - G df/dx`` (``df/dx`` by forward
-differences, ``n + 1`` slice-law solves per step; ``-df/dx`` has ones in its null
-space, so ``(1 - G df/dx) 1 = 1``, and with ``G`` positive semi-definite the step was
-regular in every case met, 2-4 steps on the examples) and a halving line search on
-``max |R|``. The tip edge's slices beyond the line's ends (``edge_slices``, as the
+``R(x) = x - h - G f(x)`` with the exact Jacobian ``1 - G df/dx`` (the shares'
+and the loaded length's derivatives, :func:`.slice_law.interference_derivatives`, and
+the law's equation differentiated implicitly for ``d_c``: one slice-law solve per step;
+``-df/dx`` has ones in its null space, so ``(1 - G df/dx) 1 = 1``, and with ``G``
+positive semi-definite the step was regular in every case met, 2-4 steps on the
+examples), solved on the active slices only (the rows of ``df/dx`` vanish elsewhere:
+an ``|A| x |A|`` system by Woodbury's identity), and a halving line search on ``max
+|R|`` (:func:`coupled_solve`, compiled and allocation-free). The twin solves the same
+fixed point at an approach instead of a load (``W`` implicit,
+:func:`.slice_law.interference_load`). The tip edge's slices beyond the line's ends (``edge_slices``, as the
 twin's law takes them) join the same fixed point with their rows and columns of ``G``. ``w >= 0`` holds by the foundation's ``(.)^+``: the
 active set is the slice law's own loaded length. The peak line load, the loaded and the
 equivalent length are then the slice law's on ``x`` (``w_peak = W d_c / I``,
