@@ -286,8 +286,9 @@ def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area
     coupled_slice_law.coupled_solve`) at the approach ``d`` (mm) from the series law's
     state ``(d_c, w, area)``: the ease-off (``pv``) and the Gram matrix ``G`` (columns
     from ``c_g``, linear between the rows) into the core's scratch after the slice
-    vectors, its start ``x = h + G f`` with the series state's slice forces ``f``;
-    ``d_c`` over the least of ``x``, ``c_b = (d - d_c) / W`` (mm/N) the bending's secant
+    vectors, its start ``x = h + G f`` with the series state's slice forces ``f``
+    (``ow < 0``) or the pair's last ``x`` at ``pv[ow:]`` (a run, the series state
+    unused); ``d_c`` over the least of ``x``, ``c_b = (d - d_c) / W`` (mm/N) the bending's secant
     compliance at the least gap.
 
     Raises
@@ -355,10 +356,11 @@ def _line_law(s, slot, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut
     if hi > 0.0 and length > 0.0:
         for q in range(m):
             pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
-        # rigid: the slice law at d; bent: its state in series with the pair's last
-        # secant compliance (a fresh preview: the uniform load's) starts the coupled law
-        # (a run: the pair's last effective ease-off starts the coupled law if it was
-        # found in this row interval or the one before; ``slot``: the pair and flank)
+        # rigid: the slice law at d. Bent: the coupled law, started in a run from the
+        # pair's last effective ease-off (``slot``: pair and flank) if it was found in
+        # this row interval or the one before, else from the slice law's state in
+        # series with the pair's last secant compliance (a fresh preview: the uniform
+        # load's)
         ow = N_PREVIEW + 2 * m + core_scratch(m) + slot * (m + 1)
         warm = bent and cb > 0.0 and (pv[ow + m] == i or pv[ow + m] == i - 1)
         cb = abs(cb) if bent else 0.0
