@@ -181,3 +181,53 @@ def test_edge_share_against_the_loaded_te_with_bending():
         want = lte.beyond_load_share[:, k].sum()
         assert want > 0.0
         assert abs(share[True] - want) < abs(share[False] - want)
+
+
+@pytest.mark.parametrize("at_approach", [False, True])
+def test_exact_jacobian_against_central_differences(at_approach):
+    """The Newton's Jacobian (slice_law.interference_derivatives and the law's equation
+    differentiated implicitly, coupled_slice_law._evaluate) against central differences
+    of the slice forces f(x) (step 1e-9 mm), at a load (d_c implicit) and at an approach
+    (W implicit), on a crowned line (20 um) with edge slices, partly loaded (kinks of L_c away
+    from the step). Bound 1e-7 of max |df/dx|: the slice law's solve to 1e-14 of d_c
+    and the forces' rounding (~1e-14 of 30 N) over the 2e-9 mm difference give ~1e-8
+    (measured 1.6e-8 at a load, 1.6e-9 at an approach; L_c 9.6 of 20 mm)."""
+    from gearcontact.ltca import coupled_slice_law as core
+
+    nb, wb = 4, 0.4
+    edge = 1e-3 + 2e-3 * np.arange(1, nb + 1) ** 2 / nb ** 2
+    h = np.concatenate([2e-2 * (Y / (0.5 * LENGTH)) ** 2, edge, edge])
+    y_edge = 0.5 * LENGTH + wb * (np.arange(nb) + 0.5)
+    y_all = np.concatenate([Y, -y_edge, y_edge])
+    g = 2e-5 * np.exp(-np.abs(y_all[:, None] - y_all[None, :]) / 5.0)
+    m = h.size
+    ox, of = core._at(0, m, core._X), core._at(0, m, core._F)
+
+    def forces(x, value, at):
+        buf = np.zeros(core.core_scratch(m))
+        buf[:m], buf[m:m + m * m], buf[ox:ox + m] = h, g.ravel(), x
+        res = core._evaluate(buf, 0, m, N, LENGTH, B_ACROSS, E_PRIME, nb, wb, value, at,
+                             300.0)
+        return buf[of:of + m].copy(), buf, res
+
+    x = h + g @ np.r_[np.full(N, 500.0 / N), np.zeros(2 * nb)] \
+        + 1e-5 * np.random.default_rng(1).standard_normal(m)
+    value = 500.0
+    if at_approach:     # the approach at which x carries 500 N
+        value = forces(x - x.min(), 500.0, False)[2][0] + x.min()
+    _, buf, res = forces(x, value, at_approach)
+    assert 0.0 < res[1] < LENGTH - 2.0 and res[3] == pytest.approx(500.0, rel=1e-9)
+    od = core._at(0, m, core._DER)
+    sd, sub, diag, sup = (buf[od + k * m:od + (k + 1) * m] for k in range(4))
+    v = buf[core._at(0, m, core._V):][:m]
+    u = buf[core._at(0, m, core._U):][:m]
+    s = buf[ox + m:ox + 2 * m]
+    jac = res[6] * (np.diag(diag) + np.diag(sup[:-1], 1) + np.diag(sub[1:], -1)) \
+        + res[7] * np.outer(sd, v) + np.outer(s, u)
+    fd = np.zeros((m, m))
+    for j in range(m):
+        step = np.zeros(m)
+        step[j] = 1e-9
+        fd[:, j] = (forces(x + step, value, at_approach)[0]
+                    - forces(x - step, value, at_approach)[0]) / 2e-9
+    assert np.abs(jac - fd).max() < 1e-7 * np.abs(jac).max()

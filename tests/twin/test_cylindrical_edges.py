@@ -251,7 +251,8 @@ def test_static_rotation_with_bending_against_the_loaded_te(unrelieved, monkeypa
     slices, weighted by the loaded slices; the LCP with the same shells): bound -3 % <
     twin / LCP - 1 < 8 % at every phase (tests/twin/test_cylindrical.py: the bending
     load takes the contact's shape, a trial shape that overestimates the compliance;
-    measured +0.96 to +1.31 % with the edges, +0.32 to +1.43 % without, 13 phases;
+    measured +0.96 to +1.31 % with the edges, +0.32 to +1.43 % without, 13 phases, with
+    bending in series; session 20, the coupled slice law: -1.56 to -1.39 % with the edges;
     +0.72 to +1.01 % with the edges on the line's foundation; session 18, when an edge
     row ran on its nearest line's ease-off, -0.35 to +0.8 %), the edges' effect twin /
     LCP within 0.8-1.4 (measured 0.95; 1.09 on the line's foundation), monotonicity and the
@@ -341,7 +342,8 @@ def test_quasi_static_run_is_the_loaded_te(unrelieved, bending):
     pair's edge rows between them): DTE p-p within 0.35 arcsec of the loaded TE's p-p
     (the line law's phase-dependent 0.3-0.8 % of theta, 0.1-0.3 arcsec at theta 20-38
     arcsec, test_static_rotation_*; measured 0.552 against 0.532 rigid, 0.613 against
-    0.419 bent, the static twin's 0.546 and 0.466). Before the edge slices the bent run
+    0.419 bent in series, the static twin's 0.546 and 0.466; session 20, bent with the
+    coupled slice law: 0.570 against 0.419, dynamic factor 1.005). Before the edge slices the bent run
     hammered: the 13 rows of lines whose own tip edge closes first were edge rows whose
     law the kernel interpolated against the neighbouring line rows' (DTE p-p 42.2
     arcsec, dynamic factor 1.92 at 300 rpm); with the edge rows on their own tip edge

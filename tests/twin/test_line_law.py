@@ -14,8 +14,9 @@ independent truths:
   helical pair, whose loaded length L_c lies below the line's length L; the same
   through the host driver on the simulated line_core SoC (the soc backend), lines
   below 1 mm on the host's lift included (slow);
-* with tooth bending (the line law in series with each pair's bending compliance,
-  twin.cylindrical.line_bending_compliance): the static rotation against the loaded TE
+* with tooth bending (the coupled slice law, ltca.coupled_slice_law, on the shells'
+  Gram matrix at the line's slices, twin.cylindrical.line_bending_gram; its identity
+  with the preview's law: tests/twin/test_coupled_law.py): the static rotation against the loaded TE
   with bending (the LCP with the same shells), the single-pair stiffness against ISO
   6336-1's c', golden within the resolution of fp64, RTL == golden bit for bit.
 """
@@ -247,17 +248,19 @@ def test_soc_twin_is_the_golden_twin_bit_for_bit(spur, monkeypatch):
 
 
 def test_spur_pitch_point_with_bending_against_the_lcp(spur, spur_bent):
-    """Tooth bending in series with the line law, against the loaded TE with bending
+    """Tooth bending (the coupled slice law), against the loaded TE with bending
     (``gearcontact lte --bending``: the LCP with the same shells of both teeth), the
     unmodified spur 20/40 at the pitch point, 200 N·m. The pair's compliance c_b is the
     work-conjugate one of a uniform load along its line; the LCP's line load is not
     uniform (+40 % in the end rows), but weighted by it the compliance moves by 0.07 %
     (measured), so the bending part -- the rise of the rotation from rigid to bent teeth
     -- is compared within 3 % (the flank-rows spline's 2e-3 of the largest compliance
-    and the LCP's grid; measured twin 1.0145e-4, LCP 1.0156e-4 rad: +0.11 %; the twin's
-    shells at the line's 16 slices). The total carries the rigid margin of
+    and the LCP's grid; measured twin 1.0145e-4, LCP 1.0156e-4 rad: +0.11 % in series
+    before the real-root calibration; session 20, the coupled law: twin 1.2008e-4, LCP
+    1.2019e-4 rad, +0.09 %; the twin's shells at the line's 16 slices). The total carries the rigid margin of
     :func:`test_spur_pitch_point_rotation_against_the_lcp`, halved by the bending in
-    series: bound -2 % < LCP / twin - 1 < 6 % (measured +1.85 %). c_b is positive exactly where the pair has a line and symmetric about the pitch
+    series: bound -2 % < LCP / twin - 1 < 6 % (measured +1.85 % in series, +1.69 % with
+    the coupled law). c_b is positive exactly where the pair has a line and symmetric about the pitch
     point's row (the pitch point mid-cycle: the first and last rows' lone pairs are the
     same line ends seen from both pairs, equal to 1e-12)."""
     pair, cycle, rigid = spur
@@ -283,7 +286,8 @@ def test_spur_single_pair_stiffness_against_iso_6336(spur, spur_bent):
     (C_M = 0.8, the measured correction of solid disc gears; the model is a theory of the
     same kind) within the -8 % / +5 % of the q' polynomial's fit, and c' within +30 % (an
     empirical fit). Measured 14.63 at the real-root calibration (session 19: 0.922 x
-    theory, inside by 0.2 %; 1.15 x c'); the LCP at the same point 14.39 (0.907 x
+    theory, inside by 0.2 %; 1.15 x c'; the coupled law of session 20: 14.635, 0.922 x
+    theory, unchanged to 1e-3); the LCP at the same point 14.39 (0.907 x
     theory: outside, the loaded TE's strict xfail "differs", the twin's bending in series
     along the line is 1.7 % stiffer than the LCP's shells; 16.03 / 15.73 before the
     real-root FE recalibrated the rim factor, docs/cylindrical.md sec. 7)."""

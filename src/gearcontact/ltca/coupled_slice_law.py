@@ -17,11 +17,16 @@ normal deflection at each slice's centre. It is the slice law on the *effective
 ease-off* ``x = h + G f(x)`` (over its least), with ``f(x)`` the slice law's forces on
 ``x`` (each slice's part of the interference, :func:`.slice_law.interference`'s
 shares, times ``W / I``: they sum to ``W``). The fixed point is solved by Newton on
-``R(x) = x - h - G f(x)`` with the Jacobian ``1 - G df/dx`` (``df/dx`` by forward
-differences, ``n + 1`` slice-law solves per step; ``-df/dx`` has ones in its null
-space, so ``(1 - G df/dx) 1 = 1``, and with ``G`` positive semi-definite the step was
-regular in every case met, 2-4 steps on the examples) and a halving line search on
-``max |R|``. The tip edge's slices beyond the line's ends (``edge_slices``, as the
+``R(x) = x - h - G f(x)`` with the exact Jacobian ``1 - G df/dx`` (the shares'
+and the loaded length's derivatives, :func:`.slice_law.interference_derivatives`, and
+the law's equation differentiated implicitly for ``d_c``: one slice-law solve per step;
+``-df/dx`` has ones in its null space, so ``(1 - G df/dx) 1 = 1``, and with ``G``
+positive semi-definite the step was regular in every case met, 2-4 steps on the
+examples), solved on the active slices only (the rows of ``df/dx`` vanish elsewhere:
+an ``|A| x |A|`` system by Woodbury's identity), and a halving line search on ``max
+|R|`` (:func:`coupled_solve`, compiled and allocation-free). The twin solves the same
+fixed point at an approach instead of a load (``W`` implicit,
+:func:`.slice_law.interference_load`). The tip edge's slices beyond the line's ends (``edge_slices``, as the
 twin's law takes them) join the same fixed point with their rows and columns of ``G``. ``w >= 0`` holds by the foundation's ``(.)^+``: the
 active set is the slice law's own loaded length. The peak line load, the loaded and the
 equivalent length are then the slice law's on ``x`` (``w_peak = W d_c / I``,
@@ -36,28 +41,57 @@ K. L. Johnson, *Contact Mechanics*, 1985, sec. 4.3 (the line's foundation).
 from __future__ import annotations
 
 from dataclasses import dataclass
+import math
 
 import numpy as np
+from numba import njit
 
 from ..errors import CheckFailed
 from ..tca.cylindrical_cycle import LineGaps
 from ..validation import InputRangeError
 from .cylindrical_bending import line_bending_factor
-from .slice_law import interference, loaded_line
+from .slice_law import (interference, interference_derivatives, interference_load,
+                         loaded_line)
 from .tooth_bending import ToothBending
 
-__all__ = ["CoupledLine", "coupled_line", "line_bending_compliance"]
+__all__ = ["CoupledLine", "core_scratch", "coupled_line", "coupled_solve",
+           "line_bending_compliance", "start_offset"]
 
 #: Convergence of the effective ease-off: ``max |R| <= TOL_REL * max |G f| + TOL_ABS``
 #: (mm): 1e-10 of the bending deflection is far below the slice law's own resolution
-#: (its Newton stops at 1e-14 of ``d``; the forward differences err by ~1e-7 relative,
-#: which slows Newton but does not move the fixed point).
+#: (its Newton stops at 1e-14 of ``d``).
 TOL_REL = 1e-10
 TOL_ABS = 1e-15
-#: Forward-difference step of ``df/dx``, mm (the ease-offs are 1e-4-1e-1 mm; the slice
-#: law's approach is solved to ~1e-17 mm, so the quotient errs by ~1e-8 relative).
-FD_STEP_MM = 1e-9
 MAX_STEPS = 60
+#: The halving line search's least step.
+MIN_STEP = 2.0 ** -20
+
+# the core's scratch (:func:`core_scratch`): the ease-off h (m), G (m^2, row-major),
+# then vectors of m (offsets in units of m, :func:`_at`): the iterate x and its shares,
+# the derivatives of slice_law.interference_derivatives (5 m), R, the step, the last
+# accepted x, f, G s, v, u, the active slices, G^T v, G^T u, the reduced right-hand
+# side; then the reduced Jacobian (up to m^2)
+(_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS,
+ _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18)
+
+
+@njit(cache=True, inline="always")
+def _at(ob, m, k):
+    """Offset of the scratch's vector ``k`` (after ``h`` and ``G``)."""
+    return ob + m * (m + 1) + k * m
+
+
+@njit(cache=True)
+def core_scratch(m):
+    """Length of :func:`coupled_solve`'s scratch for ``m`` slices (line and edge)."""
+    return _at(0, m, _JAC) + m * m
+
+
+@njit(cache=True, inline="always")
+def start_offset(ob, m):
+    """Where :func:`coupled_solve` takes its start ``x`` (and leaves the solution) in
+    a scratch at ``ob`` of ``m`` slices (``h`` at ``ob``, ``G`` at ``ob + m``)."""
+    return _at(ob, m, _X)
 
 
 @dataclass(frozen=True)
@@ -109,16 +143,218 @@ def line_bending_compliance(teeth: ToothBending, slices: LineGaps, j: int, k: in
     return f @ f.T
 
 
-def _forces(x, n, length, we, b_max, e_prime, nb, wb):
-    """``(d_c, L_c, I, f)`` of the slice law on the ease-off ``x`` (m = n + 2 nb: the
-    line's slices, then the edge's beyond its ends), its slice forces ``f = W shares /
-    I`` (N, m)."""
-    m = x.size
-    h = np.zeros(2 * m)
-    h[:m] = x
-    d_c, l_c, area = loaded_line(h, 0, n, length, we, b_max, e_prime, nb, wb)
-    interference(h, 0, n, length / n, d_c, True, nb, wb)
-    return d_c, l_c, area, we * h[m:] / area
+@njit(cache=True, inline="always", error_model="numpy")
+def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach, w_start):
+    """The slice law on the iterate ``x`` (``buf``, :func:`coupled_solve`): its forces
+    ``f = W s / I`` into ``_F``, the residual ``R = x - h - G f`` into ``_R`` (over its
+    least at a given load: ``f`` does not see a shift of ``x``), the derivatives of
+    ``f`` as ``D = c_s S + c_a ds/dd v^T + s u^T`` (``S = ds/dx`` tridiagonal; ``v``, ``u``
+    into ``_V``, ``_U``) and ``G s`` into ``_GS``. At a load
+    (``value`` = W, N): ``d_c`` from :func:`.slice_law.loaded_line`, ``v = dd_c/dx``
+    from its equation ``F = I - lambda' W g(L_c) = 0`` (``g`` kept >= 1/4 as there),
+    ``u = -(W / I^2) (dI/dx + L_c v)``. At an approach (``value`` = d, mm): ``W`` from
+    :func:`.slice_law.interference_load` (from ``w_start``), ``v = dW/dx`` from ``dI =
+    lambda' ((g - 1/2) dW + 1.5 W dL_c / L_c)`` (past the law's maximum its secant
+    ``dI = lambda' dW / 2``), ``u = v / I - (W / I^2) dI/dx``. Returns ``(d_c, L_c, I, W,
+    max |R|, max |G f|, c_s, c_a)``, ``d_c`` over the least of ``x`` (at a load: in
+    ``x``'s datum, which a step keeps at least 0)."""
+    ox, od = _at(ob, m, _X), _at(ob, m, _DER)
+    width = length / n
+    x_min = buf[ox]
+    for q in range(1, m):
+        x_min = min(x_min, buf[ox + q])
+    if at_approach:
+        d = value
+        area, lc, dens = interference(buf, ox, n, width, d, True, nb, wb)
+        w, lam, beta = 0.0, 0.0, 0.0
+        if area > 0.0 and lc > 0.0:
+            w, lam, beta = interference_load(area, lc, b_max, e_prime, w_start)
+    else:
+        w = value
+        d, lc, area = loaded_line(buf, ox, n, length, w, b_max, e_prime, nb, wb)
+        area, lc, dens = interference(buf, ox, n, width, d, True, nb, wb)
+    interference_derivatives(buf, ox, n, width, d, nb, wb, buf, od)
+    loaded = area > 0.0 and lc > 0.0 and w > 0.0
+    c_s = w / area if loaded else 0.0
+    c_a = 0.0
+    for q in range(m):
+        buf[_at(ob, m, _F) + q] = c_s * buf[ox + m + q]
+    # v and u (dI/dx: the column sums of the tridiagonal S, into _U first)
+    for q in range(m):
+        ix = buf[od + 2 * m + q]
+        if q > 0:
+            ix += buf[od + 3 * m + q - 1]
+        if q < m - 1:
+            ix += buf[od + m + q + 1]
+        buf[_at(ob, m, _U) + q] = ix
+        buf[_at(ob, m, _V) + q] = 0.0
+    if loaded:
+        if at_approach:
+            g = beta - 0.5 * math.log(w)
+            for q in range(m):
+                ix = buf[_at(ob, m, _U) + q]
+                v = (ix - 1.5 * lam * w * buf[od + 4 * m + q] / lc) / (lam * (g - 0.5)) \
+                    if g > 0.5 else ix / (0.5 * lam)
+                buf[_at(ob, m, _V) + q] = v
+                buf[_at(ob, m, _U) + q] = v / area - c_s * ix / area
+        else:
+            lam_w = 4.0 * w / (math.pi * e_prime)
+            c0 = math.log(4.0) - 0.5 * math.log(4.0 * w / (math.pi * e_prime * b_max)) - 0.75
+            floored = 1.5 * math.log(lc) + c0 < 0.25
+            f_d = lc if floored else lc - 1.5 * lam_w * dens / lc
+            c_a = c_s
+            for q in range(m):
+                ix = buf[_at(ob, m, _U) + q]
+                f_x = ix if floored else ix - 1.5 * lam_w * buf[od + 4 * m + q] / lc
+                v = -f_x / f_d
+                buf[_at(ob, m, _V) + q] = v
+                buf[_at(ob, m, _U) + q] = -c_s * (ix + lc * v) / area
+    r_max, gf_max, r_min = 0.0, 0.0, math.inf
+    og = ob + m
+    for i in range(m):
+        gs = 0.0
+        for k in range(m):
+            if buf[ox + m + k] != 0.0:      # the loaded slices
+                gs += buf[og + i * m + k] * buf[ox + m + k]
+        buf[_at(ob, m, _GS) + i] = gs
+        gf = c_s * gs
+        gf_max = max(gf_max, abs(gf))
+        r = buf[ox + i] - buf[ob + i] - gf
+        buf[_at(ob, m, _R) + i] = r
+        r_min = min(r_min, r)
+    for i in range(m):
+        if not at_approach:
+            buf[_at(ob, m, _R) + i] -= r_min
+        r_max = max(r_max, abs(buf[_at(ob, m, _R) + i]))
+    # at a load, x is kept at least 0 after a step (and h, the start, is over its least)
+    return (d - x_min) if at_approach else d, lc, area, w, r_max, gf_max, c_s, c_a
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _newton_step(buf, ob, m, c_s, c_a):
+    """The Newton step ``J delta = -R``, ``J = 1 - G D`` (:func:`_evaluate`'s ``D``),
+    into ``_DEL``. ``D``'s rows vanish outside the active slices ``A`` (``s`` or
+    ``ds/dd`` nonzero: under the approach or on a segment crossing it), so ``J = 1 -
+    G_A D_A`` and (Woodbury) ``delta = -R - G_A z`` with ``(1 - D_A G_A) z = D_A R``, an
+    ``|A| x |A|`` system: Gaussian elimination with partial pivoting (rows swapped in
+    place)."""
+    og, od = ob + m, _at(ob, m, _DER)
+    ox, oi, oj = _at(ob, m, _X), _at(ob, m, _IDX), _at(ob, m, _JAC)
+    ov, ou, ovg, oug = _at(ob, m, _V), _at(ob, m, _U), _at(ob, m, _VG), _at(ob, m, _UG)
+    orr, orhs, odl = _at(ob, m, _R), _at(ob, m, _RHS), _at(ob, m, _DEL)
+    na = 0
+    for i in range(m):
+        if buf[ox + m + i] != 0.0 or buf[od + i] != 0.0:
+            buf[oi + na] = i
+            na += 1
+    vr, ur = 0.0, 0.0
+    for k in range(m):
+        vr += buf[ov + k] * buf[orr + k]
+        ur += buf[ou + k] * buf[orr + k]
+    for q in range(na):
+        c = int(buf[oi + q])
+        vg, ug = 0.0, 0.0
+        for k in range(m):
+            vg += buf[ov + k] * buf[og + k * m + c]
+            ug += buf[ou + k] * buf[og + k * m + c]
+        buf[ovg + q] = vg
+        buf[oug + q] = ug
+    for p in range(na):
+        i = int(buf[oi + p])
+        sub, dia, sup = buf[od + m + i], buf[od + 2 * m + i], buf[od + 3 * m + i]
+        sd_i, s_i = c_a * buf[od + i], buf[ox + m + i]
+        for q in range(na):
+            c = int(buf[oi + q])
+            sg = dia * buf[og + i * m + c]
+            if i > 0:
+                sg += sub * buf[og + (i - 1) * m + c]
+            if i < m - 1:
+                sg += sup * buf[og + (i + 1) * m + c]
+            buf[oj + p * na + q] = ((1.0 if p == q else 0.0) - c_s * sg - sd_i * buf[ovg + q]
+                                    - s_i * buf[oug + q])
+        sr = dia * buf[orr + i]
+        if i > 0:
+            sr += sub * buf[orr + i - 1]
+        if i < m - 1:
+            sr += sup * buf[orr + i + 1]
+        buf[orhs + p] = c_s * sr + sd_i * vr + s_i * ur
+    for c in range(na):
+        p = c
+        for i in range(c + 1, na):
+            if abs(buf[oj + i * na + c]) > abs(buf[oj + p * na + c]):
+                p = i
+        if p != c:
+            for j in range(c, na):
+                t = buf[oj + c * na + j]
+                buf[oj + c * na + j] = buf[oj + p * na + j]
+                buf[oj + p * na + j] = t
+            t = buf[orhs + c]
+            buf[orhs + c] = buf[orhs + p]
+            buf[orhs + p] = t
+        piv = buf[oj + c * na + c]
+        for i in range(c + 1, na):
+            e = buf[oj + i * na + c] / piv
+            if e != 0.0:
+                for j in range(c + 1, na):
+                    buf[oj + i * na + j] -= e * buf[oj + c * na + j]
+                buf[orhs + i] -= e * buf[orhs + c]
+    for c in range(na - 1, -1, -1):
+        t = buf[orhs + c]
+        for j in range(c + 1, na):
+            t -= buf[oj + c * na + j] * buf[orhs + j]
+        buf[orhs + c] = t / buf[oj + c * na + c]
+    for i in range(m):
+        t = -buf[orr + i]
+        for q in range(na):
+            t -= buf[og + i * m + int(buf[oi + q])] * buf[orhs + q]
+        buf[odl + i] = t
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def coupled_solve(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
+                  w_start):
+    """The coupled slice law (module docstring) on the scratch ``buf[ob:ob +``
+    :func:`core_scratch` ``(m)]`` (no allocation: the twin's step loop calls it), which
+    holds the ease-off ``h`` (m slices: the line's ``n``, then ``nb`` edge slices of
+    ``wb`` mm beyond either end), ``G`` (m x m, row-major, mm/N) and the start ``x``
+    (at 0, m and :func:`_at` ``(0, m, _X)``): Newton on ``R(x) = x - h - G f(x)``
+    with the exact Jacobian ``1 - G df/dx`` (:func:`.slice_law.interference_derivatives`
+    and the implicit derivative of the law's equation, :func:`_evaluate`) and a halving
+    line search on ``max |R|``, to ``max |R| <= TOL_REL max |G f| + TOL_ABS``. At a
+    load (``at_approach`` False, ``value`` = W, N; ``x`` kept at least 0, as
+    :func:`coupled_line`) or at an approach (``value`` = d, mm, from the line's least
+    gap: the twin, ``x = h + G f`` absolute; ``w_start`` the load's Newton start).
+    Returns ``(d_c, L_c, I, W, steps)``: the approach over the least of ``x``, the
+    loaded length, the interference, the load, the Newton steps (-1: no convergence in
+    :data:`MAX_STEPS`); ``f`` and ``x`` in the scratch at :func:`_at` ``(ob, m, _F)``, ``(ob, m, _X)``."""
+    ox, oo, od = _at(ob, m, _X), _at(ob, m, _XO), _at(ob, m, _DEL)
+    res = _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
+                    w_start)
+    if not value > 0.0:
+        return res[0], res[1], res[2], res[3], 0
+    for step in range(1, MAX_STEPS + 1):
+        d_c, lc, area, w, r_max, gf_max, c_s, c_a = res
+        if r_max <= TOL_REL * gf_max + TOL_ABS:
+            return d_c, lc, area, w, step - 1
+        _newton_step(buf, ob, m, c_s, c_a)
+        for q in range(m):
+            buf[oo + q] = buf[ox + q]
+        t = 1.0
+        while True:
+            x_min = math.inf
+            for q in range(m):
+                buf[ox + q] = buf[oo + q] + t * buf[od + q]
+                x_min = min(x_min, buf[ox + q])
+            if not at_approach:
+                for q in range(m):
+                    buf[ox + q] -= x_min
+            res = _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value,
+                            at_approach, w if w > 0.0 else w_start)
+            if res[4] < r_max or t < MIN_STEP:
+                break
+            t *= 0.5
+    ok = res[4] <= TOL_REL * res[5] + TOL_ABS
+    return res[0], res[1], res[2], res[3], MAX_STEPS if ok else -1
 
 
 def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
@@ -131,7 +367,7 @@ def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
     ``length_mm``, loaded by ``load_n`` (N) across the curvature ``b_max_per_mm``
     (1/mm) with the modulus ``e_prime_mpa``, its teeth's bending compliance
     ``compliance_mm_per_n`` ((m, m) mm/N, symmetric; None or all 0: the uncoupled slice
-    law, bit for bit).
+    law, bit for bit). :func:`coupled_solve` at the load, from ``x = h``.
 
     Raises
     ------
@@ -142,51 +378,29 @@ def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
     """
     h = np.asarray(ease_mm, np.float64)
     nb, wb = int(edge_slices), float(edge_width_mm)
-    n = h.size - 2 * nb
+    m = h.size
+    n = m - 2 * nb
     if n < 2 or nb < 0:
         raise InputRangeError("edge_slices", edge_slices,
                               f"0 .. {(h.size - 2) // 2} (ease_mm has {h.size} slices)")
-    length, we = float(length_mm), float(load_n)
-    b_max, e_prime = float(b_max_per_mm), float(e_prime_mpa)
     g = None if compliance_mm_per_n is None else np.asarray(compliance_mm_per_n, np.float64)
     if g is not None:
-        if g.shape != (h.size, h.size) or not np.isfinite(g).all() \
+        if g.shape != (m, m) or not np.isfinite(g).all() \
                 or np.abs(g - g.T).max() > 1e-9 * max(np.abs(g).max(), 1e-300):
             raise InputRangeError("compliance_mm_per_n", f"shape {g.shape}",
-                                  f"a finite symmetric ({h.size}, {h.size}) matrix, mm/N")
-        if not g.any():
-            g = None
-    d_c, l_c, area, f = _forces(h, n, length, we, b_max, e_prime, nb, wb)
-    if g is None or we <= 0.0:
-        return CoupledLine(d_c, l_c, area, h.copy(), f, 0)
-
-    def residual(x):
-        d_c, l_c, area, f = _forces(x, n, length, we, b_max, e_prime, nb, wb)
-        c = g @ f
-        r = x - h - c
-        return r - r.min(), (d_c, l_c, area, f), c
-
-    x = h.copy()
-    r, sol, c = residual(x)
-    for step in range(1, MAX_STEPS + 1):
-        tol = TOL_REL * np.abs(c).max() + TOL_ABS
-        if np.abs(r).max() <= tol:
-            return CoupledLine(*sol[:3], x - x.min(), sol[3], step - 1)
-        jac = np.eye(h.size)
-        for i in range(h.size):
-            xp = x.copy()
-            xp[i] += FD_STEP_MM
-            jac[:, i] -= g @ ((_forces(xp, n, length, we, b_max, e_prime, nb, wb)[3] - sol[3])
-                              / FD_STEP_MM)
-        delta = np.linalg.solve(jac, -r)
-        t, best = 1.0, np.abs(r).max()
-        while True:
-            xt = x + t * delta
-            xt -= xt.min()
-            rt, solt, ct = residual(xt)
-            if np.abs(rt).max() < best or t < 2.0 ** -20:
-                break
-            t *= 0.5
-        x, r, sol, c = xt, rt, solt, ct
-    raise CheckFailed(f"coupled slice law: no convergence in {MAX_STEPS} Newton steps "
-                      f"(max |R| {np.abs(r).max():.3e} mm; docs/cylindrical.md sec. 8)")
+                                  f"a finite symmetric ({m}, {m}) matrix, mm/N")
+    buf = np.zeros(core_scratch(m))
+    buf[:m] = h
+    if g is not None:
+        buf[m:m + m * m] = g.ravel()
+    x = buf[_at(0, m, _X):_at(0, m, _X) + m]
+    x[:] = h
+    d_c, l_c, area, _, steps = coupled_solve(buf, 0, m, n, float(length_mm), float(b_max_per_mm),
+                                             float(e_prime_mpa), nb, wb, float(load_n),
+                                             False, 0.0)
+    if steps < 0:
+        r = buf[_at(0, m, _R):_at(0, m, _R) + m]
+        raise CheckFailed(f"coupled slice law: no convergence in {MAX_STEPS} Newton steps "
+                          f"(max |R| {np.abs(r).max():.3e} mm; docs/cylindrical.md sec. 8)")
+    return CoupledLine(float(d_c), float(l_c), float(area), x - x.min(),
+                       buf[_at(0, m, _F):_at(0, m, _F) + m].copy(), int(steps))

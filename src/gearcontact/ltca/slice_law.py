@@ -46,8 +46,8 @@ from ..errors import CheckFailed
 from ..tca.cylindrical_cycle import LineGaps
 from ..tca.cylindrical_stencil import LINE_SLICES, contact_line_slices
 
-__all__ = ["interference", "loaded_line", "loaded_length_mm", "line_easeoff_mm",
-           "equivalent_length"]
+__all__ = ["interference", "interference_derivatives", "interference_load", "line_pair_load",
+           "loaded_line", "loaded_length_mm", "line_easeoff_mm", "equivalent_length"]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -171,6 +171,112 @@ def loaded_line(h, o, n, length, we, b_max, e_prime, nb, wb):
         d = d_new
     area, lc, _ = interference(h, o, n, width, d, False, nb, wb)
     return d, lc, area
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def line_pair_load(d, lam, beta, cb, w_prev):
+    """Load W (N) of a pair in line mode at approach ``d`` (mm): the root of ``f(W) =
+    lam W max(beta - ln(W)/2, 1/2) + cb W - d``. The line law ``lam W (beta - ln(W)/2)``
+    is concave (``f'' = -lam / (2 W)``) and increasing while ``g = beta - ln(W)/2 >
+    1/2``, i.e. while the half-width stays below ``4 L e^(-5/4) ~ 1.15 L``; beyond, on a
+    loaded length shorter than its contact's width (a line just entering or leaving, its
+    loaded part a few hundredths of a mm), it has no root past its maximum ``lam W / 2``
+    at ``g = 1/2``, and ``f`` continues from it on that secant, ``lam W / 2`` (continuous
+    and increasing: one root; before, Newton halved its way to a start-dependent load
+    there, tests/twin/test_line_law.py). So Newton from any start lands left of the root
+    after at most two steps (on the secant exactly; from there, or on the concave part,
+    the tangent lies above ``f``) and then rises monotonically to it; the start is the pair's previous load ``w_prev`` (> 0), else the
+    load of the law's secant at 1 N. Stops at a relative step of 1e-14."""
+    w = w_prev if w_prev > 0.0 else d / (lam * max(beta, 1.0) + cb)
+    for _ in range(60):
+        lw = math.log(w)
+        g = beta - 0.5 * lw
+        if g > 0.5:
+            r = lam * w * g + cb * w - d
+            slope = lam * (g - 0.5) + cb
+        else:                       # past the line law's maximum: its secant there
+            r = 0.5 * lam * w + cb * w - d
+            slope = 0.5 * lam + cb
+        dw = r / slope
+        w_new = w - dw
+        w = w_new if w_new > 0.0 else 0.5 * w
+        if abs(dw) <= 1e-14 * w:
+            break
+    return w
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def interference_load(area, lc, b_max, e_prime, w_start):
+    """``(W, lambda', beta)``: the load (N) the slice law carries with the interference
+    ``area`` (mm^2) on the loaded length ``lc`` (mm) across ``b_max`` (1/mm), the root of
+    ``I = lambda' W (beta - ln(W)/2)`` (:func:`line_pair_load` from ``w_start``, N) with
+    ``lambda' = 4 / (pi E')`` and ``beta = ln(4 L_c) - ln(4 / (pi L_c E' b_max)) / 2 -
+    3/4`` (the line contact's ``b`` of ``W`` on ``L_c``: :func:`loaded_line`'s equation
+    solved for ``W`` instead of ``d_c``)."""
+    lam = 4.0 / (math.pi * e_prime)
+    beta = (math.log(4.0 * lc) - 0.5 * math.log(4.0 / (math.pi * lc * e_prime * b_max))
+            - 0.75)
+    return line_pair_load(area, lam, beta, 0.0, w_start), lam, beta
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _segment_derivatives(h, o, start, cnt, width, d, buf, ob, m):
+    """:func:`_segment`'s derivatives (:func:`interference_derivatives`) of the run of
+    ``cnt`` slices from slice ``start``, added into ``buf[ob:ob + 5 m]``."""
+    for q in range(cnt - 1):
+        g = start + q
+        a = h[o + g]
+        b = h[o + g + 1]
+        lo, hi = min(a, b), max(a, b)
+        if hi <= d:             # part = width (d - (a + b)/2), half to either end
+            c = 0.25 * width
+            buf[ob + g] += 0.5 * width
+            buf[ob + g + 1] += 0.5 * width
+            buf[ob + 2 * m + g] -= c
+            buf[ob + 3 * m + g] -= c
+            buf[ob + m + g + 1] -= c
+            buf[ob + 2 * m + g + 1] -= c
+        elif lo < d:            # part = width (d - lo)^2 / (2 (hi - lo)), L_c += width t
+            span = hi - lo
+            t = (d - lo) / span
+            p_lo, p_hi = width * (0.5 * t * t - t), -0.5 * width * t * t
+            l_lo, l_hi = width * (t - 1.0) / span, -width * t / span
+            if a < b:
+                pa, pb, la, lb = p_lo, p_hi, l_lo, l_hi
+            else:
+                pa, pb, la, lb = p_hi, p_lo, l_hi, l_lo
+            buf[ob + g] += 0.5 * width * t
+            buf[ob + g + 1] += 0.5 * width * t
+            buf[ob + 2 * m + g] += 0.5 * pa
+            buf[ob + 3 * m + g] += 0.5 * pb
+            buf[ob + m + g + 1] += 0.5 * pa
+            buf[ob + 2 * m + g + 1] += 0.5 * pb
+            buf[ob + 4 * m + g] += la
+            buf[ob + 4 * m + g + 1] += lb
+    for q in (0, cnt - 1):      # the end half-slices, constant
+        g = start + q
+        if h[o + g] < d:
+            buf[ob + g] += 0.5 * width
+            buf[ob + 2 * m + g] -= 0.5 * width
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def interference_derivatives(h, o, n, width, d, nb, wb, buf, ob):
+    """The exact derivatives of :func:`interference` (its shares ``s``, ``L_c``) at the
+    approach ``d`` (mm) on ``h[o:o + m]`` (``m = n + 2 nb``), into ``buf[ob:ob + 5 m]``:
+    ``ds/dd`` (m; sums to ``L_c = dI/dd``), the tridiagonal ``ds/dh`` as its sub-,
+    main and super-diagonal (3 m: ``ds_i/dh_(i-1)``, ``ds_i/dh_i``, ``ds_i/dh_(i+1)``;
+    0 across the runs' ends) and ``dL_c/dh`` (m). Each segment's part ``width (d - (a +
+    b)/2)`` (under the approach) or ``width (d - lo)^2 / (2 (hi - lo))`` (crossing it)
+    and each end half-slice's ``width (d - h) / 2`` differentiated; piecewise smooth,
+    the one-sided derivative of the segment's case at a tie. The coupled slice law's
+    Newton Jacobian (:mod:`.coupled_slice_law`)."""
+    m = n + 2 * nb
+    for q in range(5 * m):
+        buf[ob + q] = 0.0
+    _segment_derivatives(h, o, 0, n, width, d, buf, ob, m)
+    for r in range(2 if nb > 0 else 0):
+        _segment_derivatives(h, o, n + r * nb, nb, wb, d, buf, ob, m)
 
 
 @njit(cache=True, inline="always", error_model="numpy")

@@ -46,13 +46,13 @@ crowned, relieved or misaligned line carries load only where its gap lies below 
 approach.
 
 Tooth bending (``bending``): the ``table`` backend's loaded TE carries it in its LCP;
-the preview backends put each pair's bending compliance ``c_b`` in series with the line
-chain's law, ``d = d_c(W) + c_b W`` (Newton per pair and stage in :mod:`.kernel`, as the
-bevel twin's). ``c_b`` is the work-conjugate compliance ``q^T G q`` of the pinion and
-gear tooth shells at the line's slices (:func:`line_bending_gram`, the loaded TE's
-factor rows, :func:`gearcontact.ltca.cylindrical_bending.line_bending_factor`) under
-the load shape ``q`` of the line law's loaded slices, once per preview; the mesh
-table's ``bending_mm_per_n`` reports the uniform-load one.
+the preview backends run the coupled slice law (:mod:`gearcontact.ltca.
+coupled_slice_law`, ``w = K (d - h - G f)``, the preview's law with bending) with the
+Gram matrix ``G`` of the pinion and gear tooth shells at the line's slices
+(:func:`line_bending_gram`, the loaded TE's factor rows, :func:`gearcontact.ltca.
+cylindrical_bending.line_bending_factor`), once per pair and step at its approach, and
+hold its secant ``d = d_c(W) + c_b W`` over the step (:mod:`.line_law`); the mesh
+table's ``bending_mm_per_n`` reports the uniform-load compliance.
 """
 
 from __future__ import annotations
@@ -235,7 +235,7 @@ def cylindrical_mesh_table(pair: CylindricalPair, cycle: CylindricalMeshCycle,
                                   *own_rows)
         n = sl.gap_mm.shape[-1]
         # the line's block as a contiguous array: its sum's rounding the one without
-        # edge slices (the start of the loaded slices' fixed point, .line_law)
+        # edge slices (the coupled law's start on a fresh preview, .line_law)
         cb = np.ascontiguousarray(gram[..., :n, :n]).sum(axis=(2, 3)) / n ** 2
     phi1 = np.asarray(cycle.phi1_rad, float)[order]
     env = np.asarray(cycle.envelope_arcsec, float)[order]
@@ -311,8 +311,8 @@ def cylindrical_model(pair: CylindricalPair, *, torque_nm: float, backend: str =
     both teeth (rigid teeth by default, as the bevel twin's ``bending``): in the
     loaded-TE table's LCP (``table``, ``table_cells`` rows along the face) and, for
     every backend, each pair's :func:`line_bending_gram` at its line's slices in the
-    mesh table (the preview backends' law in series, weighted by the loaded slices; the
-    table backend only reports the uniform-load compliance).
+    mesh table (the preview backends' coupled slice law; the table backend only reports
+    the uniform-load compliance).
 
     Raises
     ------

@@ -56,6 +56,7 @@ from numba import njit
 # the contact law's entry points and the layout, re-exported as the kernel's interface
 from .contact_law import (W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _kappa_reference,  # noqa: F401
                           _pair_load, _table_torque)
+from ..ltca.coupled_slice_law import core_scratch
 from .line_law import MODE_LINE, _line_law, line_pair_load, line_potential_j
 from .layout import (  # noqa: F401
                      LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LINE_BENDING,
@@ -128,8 +129,8 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
                 cb0 = cache[sd, j, 10]      # the pair's last, else minus the uniform's
                 if not cb0 > 0.0:
                     cb0 = -(cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i]))
-                kap = _line_law(s, j, i, f, d, cb0, we, prm, cv_t, backend, pow_lut,
-                                cbrt_lut, cst, trace, tcount, fit, pv)
+                kap = _line_law(s, sd * n_p + j, j, i, f, d, cb0, we, prm, cv_t, backend,
+                                pow_lut, cbrt_lut, cst, trace, tcount, fit, pv)
             else:
                 kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                              trace, tcount, fit, pv)
@@ -148,7 +149,7 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
             abp[sd, 3] = 1.0
             continue
         we = cache[sd, j, 5]
-        cb = cache[sd, j, 10]       # the loaded slices' (line chain with bending)
+        cb = cache[sd, j, 10]       # the coupled law's secant (line chain with bending)
         if cb < 0.0:
             cb = cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i])
         in_line = cache[sd, j, 7] == MODE_LINE
@@ -332,7 +333,8 @@ def run_steps(y, t0, n_steps, h, prm, eps, lever, opening, cv_t, valid, cb_t, ba
     abp0 = np.zeros((2, 4))
     abp1 = np.zeros((2, 4))
     # layout.preview_scratch, compiled
-    pv = np.zeros(N_PREVIEW + 2 * (int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND])))
+    m = int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND])
+    pv = np.zeros(N_PREVIEW + 2 * m + core_scratch(m) + 2 * n_p * (m + 1))
     # preview per pair: interval, law, a, b, p, their load, the last W^(1/3) (Hertz) or W
     # (line), mode, the line law's beta, its approach offset h_bar and bending
     # compliance (-1: the table's c_b) (N_CACHE columns)

@@ -45,7 +45,7 @@ N_PREVIEW = 8
 PV_LOAD = 5
 #: Index in ``pv`` of the line law's approach offset ``h_bar`` (mm).
 PV_LINE_OFFSET = 6
-#: Index in ``pv`` of the loaded slices' bending compliance (mm/N; -1: the table's).
+#: Index in ``pv`` of the line law's bending compliance in series (mm/N; -1: the table's).
 PV_LINE_BENDING = 7
 #: Columns of the kernel's per-pair preview cache (:func:`~.kernel.run_steps`).
 N_CACHE = 11
@@ -65,7 +65,11 @@ RECORD_COLUMNS = ("t_s", "theta_rad", "psi_p_rad", "mesh_torque_nm", "mesh_load_
                   "pinion_speed_rad_s", "gear_speed_rad_s")
 
 
-def preview_scratch(prm) -> int:
-    """Length of the kernel's ``pv``: :data:`N_PREVIEW` outputs and the line law's two
-    slice vectors (:mod:`.line_law`)."""
-    return N_PREVIEW + 2 * (int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND]))
+def preview_scratch(prm, n_pairs: int) -> int:
+    """Length of the kernel's ``pv`` for ``n_pairs`` pairs per flank: :data:`N_PREVIEW`
+    outputs, the line law's two slice vectors, the coupled slice law's scratch
+    (:func:`~gearcontact.ltca.coupled_slice_law.core_scratch`) and each pair's and
+    flank's last effective ease-off with its row (the next step's start; :mod:`.line_law`)."""
+    from ..ltca.coupled_slice_law import core_scratch
+    m = int(prm[P_NSLICE]) + 2 * int(prm[P_NBEYOND])
+    return N_PREVIEW + 2 * m + int(core_scratch(m)) + 2 * int(n_pairs) * (m + 1)

@@ -56,10 +56,16 @@ foundation of the edge's own section against the mating flank (``prm[P_BEYOND_W]
 the slices' width times its stiffness relative to the line's,
 :func:`gearcontact.ltca.edge_section.edge_stiffness_factor`), as the loaded TE's edge
 rows beyond a line join its block.
-With tooth bending, ``c_b`` is the work-conjugate
-compliance ``q^T G q`` of the slices' shares ``q`` of ``I`` on the shells' Gram matrix
-at the slices (mesh table ``line_bending_gram_mm_per_n``): the bending takes the
-contact's load shape.
+With tooth bending the preview solves the coupled slice law at the step's approach
+(:func:`gearcontact.ltca.coupled_slice_law.coupled_solve`, the law ``analyze``'s
+cylindrical preview runs at a load: ``w = K (d - h - G f)``, ``G`` the shells' Gram
+matrix at the slices, mesh table ``line_bending_gram_mm_per_n``): the teeth's
+deflection under the slice forces joins the ease-off, ``x = h + G f``, and the state
+above is the slice law's on ``x`` (``d_c`` over its least). The step's law holds the
+bending's secant compliance ``c_b = (d - d_c) / W_e`` in series, ``d = d_c(W) + c_b W``
+(exact at the preview's ``W_e``, as the contact part; ``G = c 1 1^T``: ``c_b = c``, the
+series law). The coupled law starts from the series state with the pair's last
+``c_b`` (a fresh preview: the mesh table's uniform-load compliance).
 
 Per backend (the codes of :data:`~.layout.BACKEND_CODES`):
 
@@ -94,7 +100,9 @@ from numba import njit
 
 from ..analytic.hertz import line_contact_terms
 from ..contract.qformat import CURVATURE, STENCIL_GAP
-from ..ltca.slice_law import equivalent_length, interference, loaded_line
+from ..ltca.coupled_slice_law import core_scratch, coupled_solve, start_offset
+from ..ltca.slice_law import (equivalent_length, interference, interference_load,
+                              line_pair_load, loaded_line)
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
 from ..preview.fit.golden_vec import fit_element
 from ..preview.hertz.line import length_lift, unlift_line
@@ -220,37 +228,6 @@ def _line_golden(s, j, i, f, we, prm, cv_t, trace, tcount, fit, pow_lut, cbrt_lu
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _slice_compliance(cv_t, s, j, i, f, c_g, n, pv):
-    """``q^T G q`` (mm/N) of the ``n`` slices' shares ``q`` (in ``pv``, scaled to a unit
-    sum; the line's and the edge's beyond it) on their bending Gram matrix ``G`` (columns
-    from ``c_g``, linear between the rows): the work-conjugate bending compliance of the
-    loaded part of the line."""
-    o = N_PREVIEW + n
-    tot = 0.0
-    first, last = n, -1
-    for q in range(n):
-        tot += pv[o + q]
-        if pv[o + q] != 0.0:
-            first = min(first, q)
-            last = q
-    if tot <= 0.0:
-        return 0.0
-    # the loaded slices lie in first..last; a zero share inside adds an exact 0 (G is
-    # finite), so the sum is the one over the nonzero shares bit for bit
-    c = 0.0
-    for a in range(first, last + 1):
-        qa = pv[o + a]
-        if qa == 0.0:
-            continue
-        row = 0.0
-        base = c_g + a * n
-        for b in range(first, last + 1):
-            row += pv[o + b] * _row(cv_t, s, j, i, f, base + b)
-        c += qa * row
-    return c / (tot * tot)
-
-
-@njit(cache=True, inline="always", error_model="numpy")
 def _contact_load(pv, n, nb, wb, length, d_c, b_max, e_prime, w_start):
     """``(W, L_c, I, dW/dd_c)`` the slice law carries at the contact approach ``d_c``
     (mm; module docstring): ``I(d_c) = lambda' W (beta_c - ln(W)/2)`` with ``beta_c =
@@ -261,10 +238,7 @@ def _contact_load(pv, n, nb, wb, length, d_c, b_max, e_prime, w_start):
     area, lc, dens = interference(pv, N_PREVIEW, n, length / n, d_c, False, nb, wb)
     if area <= 0.0 or lc <= 0.0:
         return 0.0, lc, area, 0.0
-    lam = 4.0 / (math.pi * e_prime)
-    beta = (math.log(4.0 * lc) - 0.5 * math.log(4.0 / (math.pi * lc * e_prime * b_max))
-            - 0.75)
-    w = line_pair_load(area, lam, beta, 0.0, w_start)
+    w, lam, beta = interference_load(area, lc, b_max, e_prime, w_start)
     # dI = L_c dd = lam [(beta - 1/2 - ln(W)/2) dW + W 1.5 (dL_c/dd) / L_c dd]
     slope = lam * (beta - 0.5 - 0.5 * math.log(w))
     dw = (lc - 1.5 * lam * w * dens / lc) / slope if slope > 0.0 else 0.0
@@ -305,20 +279,63 @@ def _line_state(pv, n, nb, wb, length, d, cb, b_max, e_prime, w_start):
     return d_c, w, lc, area
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area, b_max,
+                   e_prime, ow):
+    """``(d_c, W, L_c, I, c_b)`` of the coupled slice law (:func:`gearcontact.ltca.
+    coupled_slice_law.coupled_solve`) at the approach ``d`` (mm) from the series law's
+    state ``(d_c, w, area)``: the ease-off (``pv``) and the Gram matrix ``G`` (columns
+    from ``c_g``, linear between the rows) into the core's scratch after the slice
+    vectors, its start ``x = h + G f`` with the series state's slice forces ``f``
+    (``ow < 0``) or the pair's last ``x`` at ``pv[ow:]`` (a run, the series state
+    unused); ``d_c`` over the least of ``x``, ``c_b = (d - d_c) / W`` (mm/N) the bending's secant
+    compliance at the least gap.
+
+    Raises
+    ------
+    ArithmeticError
+        The core's Newton did not converge (not met on the examples).
+    """
+    m = n + 2 * nb
+    ob = N_PREVIEW + 2 * m
+    for q in range(m):
+        pv[ob + q] = pv[N_PREVIEW + q]
+    for q in range(m * m):
+        pv[ob + m + q] = _row(cv_t, s, j, i, f, c_g + q)
+    ox = start_offset(ob, m)
+    if ow >= 0:
+        for q in range(m):
+            pv[ox + q] = pv[ow + q]
+    else:
+        interference(pv, N_PREVIEW, n, length / n, d_c, True, nb, wb)
+        c = w / area
+        for a in range(m):
+            acc = 0.0
+            for b in range(m):
+                acc += pv[ob + m + a * m + b] * pv[N_PREVIEW + m + b]
+            pv[ox + a] = pv[ob + a] + c * acc
+    d_c, l_c, area, w, steps = coupled_solve(pv, ob, m, n, length, b_max, e_prime, nb, wb, d,
+                                             True, w)
+    if steps < 0:
+        raise ArithmeticError("coupled slice law: no convergence (docs/cylindrical.md "
+                              "sec. 10)")
+    return d_c, w, l_c, area, (d - d_c) / w if w > 0.0 else 0.0
+
+
 # compiled once, not inlined: one call per loaded pair and step (its array arguments'
 # reference counting is off, as the kernel's)
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace,
-              tcount, fit, pv):
+def _line_law(s, slot, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
+              trace, tcount, fit, pv):
     """The law of pair j of table s at row interval (i, f) and the approach ``d`` (mm)
-    of the step's start (module docstring): the slice law's state there, ``cb`` the
-    pair's last bending compliance (mm/N; one pass of the loaded slices' from it), or
-    minus the uniform load's (a fresh preview: iterated to 1e-6), ``we`` (N) the
-    Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
+    of the step's start (module docstring): the slice law's state there (with bending
+    the coupled law's, started from the series state with ``|cb|``: the pair's last
+    secant compliance, mm/N, or minus the uniform load's on a fresh preview), ``we``
+    (N) the Newton start. Returns ``kappa`` (elliptic, ``pv[3] = 0``) or
     ``lambda`` (line, ``pv[3] =`` :data:`MODE_LINE`, ``pv[4] = beta``), -1 without a
     law; ``pv[0:3]`` the preview's a, b (mm), p_max (MPa) at the load ``pv[PV_LOAD]``
     (N) it was sampled at, ``pv[PV_LINE_OFFSET]`` the line law's approach offset
-    ``h_bar`` (mm), ``pv[PV_LINE_BENDING]`` the loaded slices' bending compliance
+    ``h_bar`` (mm), ``pv[PV_LINE_BENDING]`` the bending's secant compliance ``c_b``
     (mm/N; -1: rigid teeth, the mesh table's).
     ``cv_t`` columns: (golden) the 49 gap samples, then stage C's fp64 c3, c4, c5, ``L``
     (mm), the slices' ease-off (mm) and their bending Gram matrix
@@ -339,23 +356,27 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
     if hi > 0.0 and length > 0.0:
         for q in range(m):
             pv[N_PREVIEW + q] = _row(cv_t, s, j, i, f, c0 + 4 + q)
-        cb = cb if bent else 0.0
-        # the loaded slices' compliance: a fixed point from the uniform load's (cb < 0:
-        # a fresh preview, statics) to 1e-6, or one pass from the pair's last (a run:
-        # the shape moves little in a step; the law then lags it by one preview)
-        passes = 1 if cb > 0.0 else 12
-        cb = abs(cb)
+        # rigid: the slice law at d. Bent: the coupled law, started in a run from the
+        # pair's last effective ease-off (``slot``: pair and flank) if it was found in
+        # this row interval or the one before, else from the slice law's state in
+        # series with the pair's last secant compliance (a fresh preview: the uniform
+        # load's)
+        ow = N_PREVIEW + 2 * m + core_scratch(m) + slot * (m + 1)
+        warm = bent and cb > 0.0 and (pv[ow + m] == i or pv[ow + m] == i - 1)
+        cb = abs(cb) if bent else 0.0
         w0 = we
-        for _ in range(passes):
-            d_c, w0, l_c, area = _line_state(pv, n, nb, wb, length, d, cb, hi, ep, w0)
-            if not bent or w0 <= 0.0:
-                break
-            interference(pv, N_PREVIEW, n, length / n, d_c, True, nb, wb)
-            c_new = _slice_compliance(cv_t, s, j, i, f, c0 + 4 + m, m, pv)
-            done = abs(c_new - cb) <= 1e-6 * c_new
-            cb = c_new
-            if done:
-                break
+        if not warm:
+            d_c, w0, l_c, area = _line_state(pv, n, nb, wb, length, d, cb, hi, ep, we)
+        if bent and w0 > 0.0:
+            d_c, w0, l_c, area, cb = _coupled_state(cv_t, s, j, i, f, c0 + 4 + m, pv, n,
+                                                    nb, wb, length, d, d_c, w0, area, hi,
+                                                    ep, ow if warm else -1)
+            ox = start_offset(N_PREVIEW + 2 * m, m)
+            for q in range(m):
+                pv[ow + q] = pv[ox + q]
+            pv[ow + m] = i
+        elif bent:
+            pv[ow + m] = -2.0
         if w0 < W_EVAL_MIN_N:       # barely closed: the law at the datapath's least load
             w0 = W_EVAL_MIN_N
             d_c, l_c, area = loaded_line(pv, N_PREVIEW, n, length, w0, hi, ep, nb, wb)
@@ -374,38 +395,6 @@ def _line_law(s, j, i, f, d, cb, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
     pv[PV_LINE_OFFSET] = d_c - area / l_c if (pv[3] == MODE_LINE and l_c > 0.0) else 0.0
     pv[PV_LINE_BENDING] = cb if bent and hi > 0.0 and length > 0.0 else -1.0
     return lam
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def line_pair_load(d, lam, beta, cb, w_prev):
-    """Load W (N) of a pair in line mode at approach ``d`` (mm): the root of ``f(W) =
-    lam W max(beta - ln(W)/2, 1/2) + cb W - d``. The line law ``lam W (beta - ln(W)/2)``
-    is concave (``f'' = -lam / (2 W)``) and increasing while ``g = beta - ln(W)/2 >
-    1/2``, i.e. while the half-width stays below ``4 L e^(-5/4) ~ 1.15 L``; beyond, on a
-    loaded length shorter than its contact's width (a line just entering or leaving, its
-    loaded part a few hundredths of a mm), it has no root past its maximum ``lam W / 2``
-    at ``g = 1/2``, and ``f`` continues from it on that secant, ``lam W / 2`` (continuous
-    and increasing: one root; before, Newton halved its way to a start-dependent load
-    there, tests/twin/test_line_law.py). So Newton from any start lands left of the root
-    after at most two steps (on the secant exactly; from there, or on the concave part,
-    the tangent lies above ``f``) and then rises monotonically to it; the start is the pair's previous load ``w_prev`` (> 0), else the
-    load of the law's secant at 1 N. Stops at a relative step of 1e-14."""
-    w = w_prev if w_prev > 0.0 else d / (lam * max(beta, 1.0) + cb)
-    for _ in range(60):
-        lw = math.log(w)
-        g = beta - 0.5 * lw
-        if g > 0.5:
-            r = lam * w * g + cb * w - d
-            slope = lam * (g - 0.5) + cb
-        else:                       # past the line law's maximum: its secant there
-            r = 0.5 * lam * w + cb * w - d
-            slope = 0.5 * lam + cb
-        dw = r / slope
-        w_new = w - dw
-        w = w_new if w_new > 0.0 else 0.5 * w
-        if abs(dw) <= 1e-14 * w:
-            break
-    return w
 
 
 @njit(cache=True, inline="always", error_model="numpy")

@@ -82,7 +82,7 @@ def _elastic(model: TwinModel, prm, theta: float, psi: float = 0.0,
                       a["cst"], np.zeros((0, K.N_TRACE), np.int64),
                       np.zeros(K.N_COUNT, np.int64), _fit_args(a, 0), a["tab_theta"],
                       a["tab_t23"], a["tab_w23"], w, np.zeros((2, 4)),
-                      np.zeros(preview_scratch(prm)))
+                      np.zeros(preview_scratch(prm, n_p)))
     return t, w[0]
 
 
