@@ -120,7 +120,9 @@ class _LineLaw(_Law):
         self.cv = (rows if self.bent else np.concatenate(
             [rows, np.zeros(rows.shape[:2] + (m * m,))], axis=-1))[None]
         self.fit = self.fit + (line_law_constants(),)
-        self.pv = np.zeros(L.preview_scratch(self.prm))
+        # one slot of the coupled law's warm start (unused: the FMU has no previous
+        # step, so every preview is fresh, ``cb0 <= 0``)
+        self.pv = np.zeros(L.preview_scratch(self.prm, 1))
 
     def law(self, j, i, f, d, backend, cb0=-0.0):
         """``(law, pv)`` of pair j at (i, f) and the approach d (kernel._elastic's
@@ -130,7 +132,7 @@ class _LineLaw(_Law):
         pv[3] = pv[4] = pv[L.PV_LINE_OFFSET] = 0.0
         pv[L.PV_LOAD] = W_EVAL_MIN_N
         pv[L.PV_LINE_BENDING] = -1.0
-        lam = _line_law(0, j, i, f, d, cb0, W_EVAL_MIN_N, self.prm, self.cv, backend,
+        lam = _line_law(0, 0, j, i, f, d, cb0, W_EVAL_MIN_N, self.prm, self.cv, backend,
                         self.pow_lut, self.cbrt_lut, self.cst, self.trace, self.tcount,
                         self.fit, pv)
         return lam, pv
