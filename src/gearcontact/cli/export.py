@@ -11,7 +11,8 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 ``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
 :mod:`gearcontact.export.fmu_drivetrain`). A cylindrical pair (``kind =
-"cylindrical"``) gets both kinds with its twin's line law (rigid teeth or ``--bending``;
+"cylindrical"``) gets both kinds with its twin's line law (rigid teeth: ``--bending``
+is refused, the twin's coupled slice law is not in the C law yet;
 :mod:`gearcontact.export.fmu_cylindrical`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
 (and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
@@ -57,9 +58,10 @@ def register(sub) -> None:
                         "(default stencil); the mesh FMU runs exact (the TCA's curvatures); "
                         "a cylindrical pair: stencil only (its line chain)")
     f.add_argument("--bending", action="store_true",
-                   help="tooth bending of both members in series with the contact law "
-                        "(Hertzian, or a cylindrical pair's line law), as gearcontact twin "
-                        "--bending (default rigid teeth)")
+                   help="tooth bending of both members in series with the Hertzian "
+                        "law, as gearcontact twin --bending (default rigid teeth); not for "
+                        "a cylindrical pair (its twin's coupled slice law is not in the C "
+                        "FMU yet)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -103,7 +105,8 @@ def check_fmu(args) -> None:
         check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     if args.gear_pair.kind == CYLINDRICAL:
-        check_cylindrical_fmu(curvatures=args.curvatures)
+        check_cylindrical_fmu(kind=args.kind, curvatures=args.curvatures,
+                              bending=args.bending)
         return
     check_loadable(args.gear_pair, args.side)
 
@@ -141,14 +144,12 @@ def _run_cylindrical_fmu(args) -> int:
         from ..export.fmu_drivetrain import export_drivetrain_fmu
         fmu = export_drivetrain_fmu(pair, args.out, pair_name=pair.name, side=args.side,
                                     phases=args.phases, torque_nm=args.torque,
-                                    drivetrain=load_drivetrain(args.drivetrain, pair),
-                                    bending=args.bending)
+                                    drivetrain=load_drivetrain(args.drivetrain, pair))
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu_cylindrical import export_cylindrical_mesh_fmu
     fmu = export_cylindrical_mesh_fmu(pair, args.out, pair_name=pair.name, side=args.side,
-                                      phases=args.phases, torque_nm=args.torque,
-                                      bending=args.bending)
+                                      phases=args.phases, torque_nm=args.torque)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

@@ -233,7 +233,8 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     bending : bool
         Tooth bending of both members in series with the Hertzian law (the mesh table's
         pair bending compliances, as ``gearcontact twin --bending``); rigid teeth by
-        default.
+        default. Refused on a cylindrical pair (rigid teeth only, :func:`.fmu_cylindrical.
+        check_cylindrical_fmu`).
     flanks : FlankSet or None
         ``build_flanks(pair)`` if already built (a prepared pair's,
         :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); None: built here.
@@ -247,7 +248,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
     InputRangeError
-        A curvature source other than ``stencil`` on a cylindrical pair
+        A curvature source other than ``stencil``, or ``bending``, on a cylindrical pair
         (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
     """
     from .c_library import _environment
@@ -264,7 +265,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     line = getattr(pair, "kind", None) == CYLINDRICAL
     if line:        # the twin's line chain (.fmu_cylindrical), before the TCA
-        check_cylindrical_fmu(curvatures=curvatures)
+        check_cylindrical_fmu(kind="drivetrain", curvatures=curvatures, bending=bending)
         model = cylindrical_model(pair, torque_nm=torque_nm, drivetrain=drivetrain,
                                   side=side, phases=phases, bending=bending)
         curvatures = L.LINE_SOURCE
@@ -339,7 +340,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
             f"Drivetrain twin of the cylindrical pair {pair_name} ({side} flank loaded): "
             "motor, input shaft, pinion, mesh (the gearcontact twin's line law: the "
             "preview's line chain on the 7 x 7 gap stencil, the slice law on the ease-off "
-            f"along the line; {'tooth bending in series' if bending else 'rigid teeth'}; "
+            "along the line; rigid teeth; "
             "the reverse flank its law mirrored about the "
             "backlash), gear, output shaft, load; RK4 at step_us, PI speed control per "
             "[drivetrain]")
