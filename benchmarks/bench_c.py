@@ -61,7 +61,7 @@ Run: ``python benchmarks/bench_c.py [--vectors N] [--steps N] [--cpu K] [--curva
 stencil|exact] [--pair CYLINDRICAL.toml] [--bending] [--twin-only | --previews-only]
 [--instructions] [--cflags FLAGS]`` (``--pair``: the twin step of a cylindrical pair's
 drivetrain FMU, its line law, instead of s0003's; ``--bending``: with the teeth's
-bending, s0003 only: a cylindrical pair's FMUs have rigid teeth, docs/export.md).
+bending).
 """
 
 from __future__ import annotations
@@ -451,8 +451,7 @@ def bench_twin_step(steps: int, phases: int, curvatures: str,
     ``instructions`` also the instructions per step under callgrind. ``pair_file``: a
     cylindrical pair's TOML instead of s0003 (its twin's line law, rigid teeth; the
     curvature source is the line chain's). ``bending``: the teeth's bending in series
-    (``--bending`` of the export and the twin; refused by the export on a cylindrical
-    pair)."""
+    (``--bending`` of the export and the twin)."""
     from fmpy import __file__ as fmpy_file
 
     from gearcontact.export.fmu import FMU_CFLAGS
@@ -625,8 +624,7 @@ def main(argv=None) -> None:
                     help="twin step: a cylindrical pair's TOML instead of s0003 (the line "
                          "law's drivetrain FMU, e.g. examples/ev_reducer_helical_23x67.toml)")
     ap.add_argument("--bending", action="store_true",
-                    help="twin step: the teeth's bending in series (the export's --bending; "
-                         "not with --pair: a cylindrical pair's FMUs have rigid teeth)")
+                    help="twin step: the teeth's bending in series (the export's --bending)")
     ap.add_argument("--twin-only", action="store_true", help="skip the preview timings")
     ap.add_argument("--previews-only", action="store_true", help="skip the twin step")
     ap.add_argument("--cflags", default="-O2",

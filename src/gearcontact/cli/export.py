@@ -11,8 +11,7 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 ``gearcontact twin`` (rigid teeth, or with ``--bending`` the teeth's bending in series
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
 :mod:`gearcontact.export.fmu_drivetrain`). A cylindrical pair (``kind =
-"cylindrical"``) gets both kinds with its twin's line law (rigid teeth: ``--bending``
-is refused, the twin's coupled slice law is not in the C law yet;
+"cylindrical"``) gets both kinds with its twin's line law (rigid teeth or ``--bending``;
 :mod:`gearcontact.export.fmu_cylindrical`).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
 (and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
@@ -58,10 +57,9 @@ def register(sub) -> None:
                         "(default stencil); the mesh FMU runs exact (the TCA's curvatures); "
                         "a cylindrical pair: stencil only (its line chain)")
     f.add_argument("--bending", action="store_true",
-                   help="tooth bending of both members in series with the Hertzian "
-                        "law, as gearcontact twin --bending (default rigid teeth); not for "
-                        "a cylindrical pair (its twin's coupled slice law is not in the C "
-                        "FMU yet)")
+                   help="tooth bending of both members in series with the contact law "
+                        "(Hertzian, or a cylindrical pair's line law), as gearcontact twin "
+                        "--bending (default rigid teeth)")
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
@@ -105,8 +103,7 @@ def check_fmu(args) -> None:
         check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     if args.gear_pair.kind == CYLINDRICAL:
-        check_cylindrical_fmu(kind=args.kind, curvatures=args.curvatures,
-                              bending=args.bending)
+        check_cylindrical_fmu(curvatures=args.curvatures)
         return
     check_loadable(args.gear_pair, args.side)
 
@@ -144,12 +141,14 @@ def _run_cylindrical_fmu(args) -> int:
         from ..export.fmu_drivetrain import export_drivetrain_fmu
         fmu = export_drivetrain_fmu(pair, args.out, pair_name=pair.name, side=args.side,
                                     phases=args.phases, torque_nm=args.torque,
-                                    drivetrain=load_drivetrain(args.drivetrain, pair))
+                                    drivetrain=load_drivetrain(args.drivetrain, pair),
+                                    bending=args.bending)
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu_cylindrical import export_cylindrical_mesh_fmu
     fmu = export_cylindrical_mesh_fmu(pair, args.out, pair_name=pair.name, side=args.side,
-                                      phases=args.phases, torque_nm=args.torque)
+                                      phases=args.phases, torque_nm=args.torque,
+                                      bending=args.bending)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

@@ -19,11 +19,13 @@ cylindrical_model`), baked at export:
   law, ``gc_line_elastic.c.j2``; the reverse flank the loaded law mirrored about the
   backlash, as the twin's).
 
-Rigid teeth only: ``gearcontact twin --bending`` runs the coupled slice law on the
-loaded slices (Newton with the exact Jacobian at each step's start, its secant held over
-the step; docs/cylindrical.md sec. 8, 10), which is not in the C law yet, so
-:func:`check_cylindrical_fmu` refuses ``--bending`` (and a curvature source other than
-the line chain's) before any work.
+Tooth bending (``--bending``, as ``gearcontact twin --bending``): the twin's coupled
+slice law (:func:`gearcontact.ltca.coupled_slice_law.coupled_solve` at the pair's
+approach, Newton with the exact Jacobian on the loaded slices, the shells' Gram at the
+slices baked per row; its secant compliance held in series over the step, the pair's
+last effective ease-off its next start; docs/cylindrical.md sec. 8, 10) is ported with
+the rest (``gc_coupled_slice_law.c.j2``, included by ``gc_line_law.c.j2``).
+:func:`check_cylindrical_fmu` refuses a curvature source other than the line chain's.
 """
 
 from __future__ import annotations
@@ -37,21 +39,14 @@ __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_con
            "line_drivetrain_context"]
 
 
-def check_cylindrical_fmu(*, kind: str, curvatures: str | None, bending: bool) -> None:
-    """Refuse what a cylindrical pair's FMUs (``kind`` mesh or drivetrain) do not build
-    (before any work).
+def check_cylindrical_fmu(*, curvatures: str | None) -> None:
+    """Refuse what a cylindrical pair's FMUs do not build (before any work).
 
     Raises
     ------
     InputRangeError
-        A curvature source other than the line chain's stencil; tooth bending (the
-        twin's coupled slice law is not in the C law: rigid teeth only).
+        A curvature source other than the line chain's stencil.
     """
-    if bending:
-        raise InputRangeError("--bending", True, f"rigid teeth only for a cylindrical "
-                              f"pair's {kind} FMU: gearcontact twin --bending runs the "
-                              "coupled slice law on the loaded slices, which is not yet in "
-                              "the FMU's C law (docs/cylindrical.md sec. 10, docs/export.md)")
     if curvatures not in (None, "stencil"):
         raise InputRangeError("--curvatures", curvatures, "stencil for a cylindrical pair "
                                                           "(the line chain: stage C on the "
@@ -61,7 +56,8 @@ def check_cylindrical_fmu(*, kind: str, curvatures: str | None, bending: bool) -
 def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     """The template context of ``gc_line_law.{h,c}`` for a cylindrical pair's
     :class:`~gearcontact.twin.mesh.MeshTable`: the slice counts, the edge slices'
-    effective width (``prm[P_BEYOND_W]``), E' and its code, the datapath's alpha_max and the fit's B- resolution."""
+    effective width (``prm[P_BEYOND_W]``), whether the teeth bend (the table's slice
+    Gram), E' and its code, the datapath's alpha_max and the fit's B- resolution."""
     from ..preview.chain import LINE_B_ZERO_CODES
     from ..contract.qformat import CURVATURE
     from ..preview.hertz.golden import encode_e_prime
@@ -71,6 +67,7 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     width = 0.0 if beyond == 0 else mesh.beyond_width_mm * mesh.beyond_stiffness
     return {"line_law": True, "line": {
         "slices": int(mesh.line_gap_mm.shape[-1]), "beyond": beyond,
+        "bent": mesh.line_bending_gram_mm_per_n is not None,
         "beyond_w": c_double(width), "e_prime": c_double(mesh.e_prime_mpa),
         "e_code": int(encode_e_prime(mesh.e_prime_mpa)),
         "alpha_hi": c_double(ENVELOPE["alpha"][1]),
@@ -84,11 +81,13 @@ def _with_line_sources(ctx: dict) -> list:
 
 
 def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
-                                phases: int = 61, torque_nm: float = 64.5) -> MeshFmu:
+                                phases: int = 61, torque_nm: float = 64.5,
+                                bending: bool = False) -> MeshFmu:
     """Write the mesh FMU of the cylindrical ``pair`` into ``out_dir`` (module docstring):
     the twin's mesh table (:func:`~gearcontact.twin.cylindrical.
     cylindrical_model` at ``phases`` per pitch, its edge slices' stiffness at
-    ``torque_nm``, N·m of the gear; rigid teeth) as
+    ``torque_nm``, N·m of the gear; rigid teeth, or with ``bending`` the teeth's
+    shells at the line slices, as ``gearcontact twin --bending``) as
     :class:`.line_mesh_law.LineMeshTable` (``.npz`` beside the FMU), the law of
     :func:`.line_mesh_law.line_mesh_outputs` in C.
 
@@ -103,7 +102,8 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
 
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    mesh = cylindrical_model(pair, torque_nm=torque_nm, side=side, phases=phases).mesh
+    mesh = cylindrical_model(pair, torque_nm=torque_nm, side=side, phases=phases,
+                             bending=bending).mesh
     tab = line_mesh_table(mesh)
 
     def adapt(ctx):
@@ -115,7 +115,8 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
             f"Gear mesh element of the cylindrical pair {pair_name} ({side} flank): the "
             "gearcontact twin's line law (the preview's line chain on the 7 x 7 gap "
             "stencil, the slice law on the ease-off along the line; "
-            "rigid teeth), table of "
+            f"{'tooth bending: the coupled slice law' if bending else 'rigid teeth'}), "
+            "table of "
             f"{tab.eps_rad.shape[0]} phases x {tab.lever_mm.shape[0]} pairs baked in")
 
     return write_mesh_fmu(tab, out_dir, pair_name=pair_name, side=side,

@@ -233,8 +233,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     bending : bool
         Tooth bending of both members in series with the Hertzian law (the mesh table's
         pair bending compliances, as ``gearcontact twin --bending``); rigid teeth by
-        default. Refused on a cylindrical pair (rigid teeth only, :func:`.fmu_cylindrical.
-        check_cylindrical_fmu`).
+        default.
     flanks : FlankSet or None
         ``build_flanks(pair)`` if already built (a prepared pair's,
         :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); None: built here.
@@ -248,7 +247,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
     InputRangeError
-        A curvature source other than ``stencil``, or ``bending``, on a cylindrical pair
+        A curvature source other than ``stencil`` on a cylindrical pair
         (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
     """
     from .c_library import _environment
@@ -265,7 +264,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     line = getattr(pair, "kind", None) == CYLINDRICAL
     if line:        # the twin's line chain (.fmu_cylindrical), before the TCA
-        check_cylindrical_fmu(kind="drivetrain", curvatures=curvatures, bending=bending)
+        check_cylindrical_fmu(curvatures=curvatures)
         model = cylindrical_model(pair, torque_nm=torque_nm, drivetrain=drivetrain,
                                   side=side, phases=phases, bending=bending)
         curvatures = L.LINE_SOURCE
@@ -333,14 +332,17 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         "maxima": {"torque_nm": repr(float(model.torque_nm))},
         "initial_dependencies": "12 13 14 15", "n_cache": 7})
     if line:
-        ctx.update(line_ctx, n_cache=L.N_CACHE)
+        # with bending the coupled law's warm start per pair and flank after the
+        # kernel's columns: the last effective ease-off (m slices) and its row
+        m_sl = int(m.line_gap_mm.shape[-1]) + 2 * int(line_ctx["line"]["beyond"])
+        ctx.update(line_ctx, n_cache=L.N_CACHE + (m_sl + 1 if bending else 0))
         ctx["c_sources"] = ctx["c_sources"][:2] + ["gc_line_law.c"] + ctx["c_sources"][2:]
         ctx["tables"] = ctx["tables"][:2]       # LEVER, OPENING: the law is the line rows'
         ctx["description"] = (
             f"Drivetrain twin of the cylindrical pair {pair_name} ({side} flank loaded): "
             "motor, input shaft, pinion, mesh (the gearcontact twin's line law: the "
             "preview's line chain on the 7 x 7 gap stencil, the slice law on the ease-off "
-            "along the line; rigid teeth; "
+            f"along the line; {'tooth bending in series' if bending else 'rigid teeth'}; "
             "the reverse flank its law mirrored about the "
             "backlash), gear, output shaft, load; RK4 at step_us, PI speed control per "
             "[drivetrain]")

@@ -5,8 +5,7 @@ instant, no state (docs/export.md, "Cylindrical pairs"; docs/cylindrical.md sec.
 FMU of a cylindrical pair: the loaded flank's :class:`~gearcontact.twin.mesh.MeshTable`
 rows (levers, openings, the unloaded TE) and per pair and row the line chain's inputs
 (:func:`line_rows`: the 7 x 7 gap stencil, stage C's fp64 fit, the contact line's
-length and the ease-off at its slices, the edge slices beyond a helical line's ends;
-rigid teeth);
+length and the ease-off at its slices, the edge slices beyond a helical line's ends);
 :func:`line_mesh_outputs` evaluates the FMU's outputs at given inputs with the twin's
 own compiled law (:func:`gearcontact.twin.line_law._line_law`), the reference the C
 code is tested against.
@@ -20,9 +19,11 @@ ellipse, the line law ``d - h_bar = lambda W (beta - ln(W)/2)`` by
 :func:`~gearcontact.twin.line_law.line_pair_load` from the load the preview was sampled
 at. ``a``, ``b``, ``p_max`` of the most loaded pair scale from that load as the twin's
 record does (Hertz ``W^(1/3)``; line ``b``, ``p_max ~ W^(1/2)``, ``a = L_c / 2``).
-Rigid teeth only: the twin's law with tooth bending (the coupled slice law,
-docs/cylindrical.md sec. 10) is not in the FMU's C law, and ``gearcontact export fmu
---bending`` refuses a cylindrical pair (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
+With tooth bending (the table's ``bending_mm_per_n`` and the slices' Gram in its rows,
+``gearcontact export fmu --bending``) the preview solves the twin's coupled slice law at
+the approach from the series state with the uniform load's compliance (a fresh preview,
+as the twin's static point), and the pair's load solves the law with its secant
+compliance ``c_b = (d - d_c) / W`` in series.
 """
 
 from __future__ import annotations
@@ -44,15 +45,15 @@ __all__ = ["LineMeshTable", "line_mesh_table", "line_mesh_outputs", "line_rows"]
 @dataclass(frozen=True, eq=False)
 class LineMeshTable(MeshLawTable):
     """The loaded flank's mesh rows and line-chain inputs baked into the FMU of a
-    cylindrical pair with rigid teeth (module docstring; :class:`~.mesh_law.
-    MeshLawTable`'s attributes, ``bending_mm_per_n`` None).
+    cylindrical pair (module docstring; :class:`~.mesh_law.MeshLawTable`'s attributes,
+    ``bending_mm_per_n`` the uniform-load bending compliance, None for rigid teeth).
 
     Attributes
     ----------
-    line_rows : ndarray (P, K, 49 + 4 + m)
+    line_rows : ndarray (P, K, 49 + 4 + m [+ m^2])
         Per pair and row: the 49 gap samples (mm), stage C's c3, c4, c5 (1/mm), the
         contact line's length (mm), the ease-off at its ``m = slices + 2 beyond``
-        slices (mm; :func:`line_rows`).
+        slices (mm), with bending their Gram matrix (mm/N; :func:`line_rows`).
     slices, beyond : int
         Slices along the line, edge slices beyond either end (0: none).
     beyond_width_mm : float
@@ -75,21 +76,14 @@ class LineMeshTable(MeshLawTable):
 
 
 def line_rows(mesh) -> np.ndarray:
-    """(P, K, 49 + 4 + m) line-chain inputs of a cylindrical pair's mesh table with
-    rigid teeth (the golden twin's rows, :func:`gearcontact.twin.model._curvature_rows`
-    with the line source, without the slices' bending Gram, zeros for rigid teeth).
-
-    Raises
-    ------
-    ValueError
-        A mesh table with tooth bending (the FMUs' C law is the rigid one).
-    """
+    """(P, K, 49 + 4 + m [+ m^2]) line-chain inputs of a cylindrical pair's mesh table
+    (the golden twin's rows, :func:`gearcontact.twin.model._curvature_rows` with the
+    line source; the slices' bending Gram with tooth bending, none for rigid teeth)."""
     from ..twin.model import _curvature_rows
 
-    if mesh.line_bending_gram_mm_per_n is not None:
-        raise ValueError("line_rows: a mesh table with tooth bending (the cylindrical "
-                         "FMUs' law has rigid teeth, docs/export.md)")
     rows = _curvature_rows(mesh, L.LINE_SOURCE, golden=True)
+    if mesh.line_bending_gram_mm_per_n is not None:
+        return np.ascontiguousarray(rows)
     m = _slice_count(mesh)
     return np.ascontiguousarray(rows[..., :rows.shape[-1] - m * m])
 
@@ -122,22 +116,26 @@ class _LineLaw(_Law):
         self.prm[L.P_BEYOND_W] = tab.beyond_width_mm
         m = tab.slices + 2 * tab.beyond
         rows = tab.line_rows
-        self.prm[L.P_SLICE_CB] = 0.0        # rigid teeth
-        # their bending Gram (zeros) after the rows, as the twin stacks them
-        self.cv = np.concatenate([rows, np.zeros(rows.shape[:2] + (m * m,))], axis=-1)[None]
+        self.bent = tab.bending_mm_per_n is not None
+        self.prm[L.P_SLICE_CB] = float(self.bent)
+        # rigid teeth: their bending Gram (zeros) after the rows, as the twin stacks them
+        self.cv = (rows if self.bent else np.concatenate(
+            [rows, np.zeros(rows.shape[:2] + (m * m,))], axis=-1))[None]
         self.fit = self.fit + (line_law_constants(),)
-        # one slot of the coupled law's warm start (unused: rigid teeth, and the FMU
-        # has no previous step)
+        # one slot of the coupled law's warm start (unused: the FMU has no previous
+        # step, so every preview is fresh, ``cb0 <= 0``)
         self.pv = np.zeros(L.preview_scratch(self.prm, 1))
 
-    def law(self, j, i, f, d, backend):
+    def law(self, j, i, f, d, backend, cb0=-0.0):
         """``(law, pv)`` of pair j at (i, f) and the approach d (kernel._elastic's
-        preview: pv preset, the Newton start 1 N)."""
+        preview: pv preset, the Newton start 1 N; ``cb0`` minus the uniform load's
+        bending compliance, mm/N: a fresh preview, the coupled law from the series
+        state)."""
         pv = self.pv
         pv[3] = pv[4] = pv[L.PV_LINE_OFFSET] = 0.0
         pv[L.PV_LOAD] = W_EVAL_MIN_N
         pv[L.PV_LINE_BENDING] = -1.0
-        lam = _line_law(0, 0, j, i, f, d, -0.0, W_EVAL_MIN_N, self.prm, self.cv, backend,
+        lam = _line_law(0, 0, j, i, f, d, cb0, W_EVAL_MIN_N, self.prm, self.cv, backend,
                         self.pow_lut, self.cbrt_lut, self.cst, self.trace, self.tcount,
                         self.fit, pv)
         return lam, pv
@@ -158,12 +156,15 @@ def line_mesh_outputs(tab: LineMeshTable, phi_pinion_rad: float, phi_gear_rad: f
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
-    cb = 0.0        # rigid teeth: no bending compliance in series
+    cbs = tab.bending_mm_per_n
     for j, lv, d in closed_pairs(tab, i, f, theta):
-        lam, pv = law.law(j, i, f, d, code)
+        cb0 = -0.0 if cbs is None else -(cbs[j, i] + f * (cbs[j, i + 1] - cbs[j, i]))
+        lam, pv = law.law(j, i, f, d, code, cb0)
         if lam <= 0.0:      # no contact law (a saddle): the pair carries nothing
             continue
         we = pv[L.PV_LOAD]
+        # the coupled law's secant bending compliance in series (0: rigid teeth)
+        cb = pv[L.PV_LINE_BENDING] if pv[L.PV_LINE_BENDING] > 0.0 else 0.0
         line = pv[3] == MODE_LINE
         if line:
             d -= pv[L.PV_LINE_OFFSET]
