@@ -291,9 +291,12 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     consts = _constants(model)
     prm = _prm(model, 0.0)
     line_ctx = line_drivetrain_context(model) if line else {}
-    baked = repr((consts, curvatures, [np.asarray(x).tobytes().hex() for x in
-                                       (a["eps"], a["lever"], a["opening"], a["valid"],
-                                        exact, cv, a["cb"] if bending else None)])
+    # an absent array digests as "" (np.asarray(None).tobytes() would be the address of
+    # None: another token on every run)
+    baked = repr((consts, curvatures, ["" if x is None else np.asarray(x).tobytes().hex()
+                                       for x in (a["eps"], a["lever"], a["opening"],
+                                                 a["valid"], exact, cv,
+                                                 a["cb"] if bending else None)])
                  + ((line_ctx["line_token"],) if line else ())).encode()
     ctx = fmu_context(
         model_identifier=ident, token=model_token(baked), header_dir=header_dir,
