@@ -14,6 +14,7 @@ from .outdir import add_out_argument, final_path
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
+           "check_cylindrical_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm", "torque_floor_nm",
            "rename_load_error", "load_pair_for", "parse_misalignment",
            "MISALIGNMENT_HELP"]
@@ -133,8 +134,8 @@ def check_pair_arguments(args, *, kinds: tuple[str, ...] = (BEVEL,)) -> None:
     if getattr(args, "torque", None) is not None:
         if args.gear_pair.kind == BEVEL:
             check_torque("--torque (N·m)", args.torque, args.gear_pair)
-        else:       # no preview envelope on a cylindrical pair's load (yet)
-            check_positive("--torque (N·m)", args.torque)
+        else:
+            check_cylindrical_torque("--torque (N·m)", args.torque, args.gear_pair)
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:
@@ -171,6 +172,24 @@ def check_torque(field: str, value, pair) -> float:
                                             f"[{ENVELOPE['load_n'][0]:g}, "
                                             f"{ENVELOPE['load_n'][1]:g}] N, the preview "
                                             "envelope)")
+    return t
+
+
+def check_cylindrical_torque(field: str, value, pair) -> float:
+    """A gear torque in (0, T_max] N·m for a cylindrical ``pair``: its whole normal load
+    W = T2 / (r_b2 cos(beta_b)) (one pair carries it at a single-contact phase) within the
+    preview envelope's largest load, as a bevel pair's (:func:`check_torque`)."""
+    from ..ltca.cylindrical_lte import normal_load_n
+    from ..preview.hertz.reference import ENVELOPE
+
+    t = check_positive(field, value)
+    w_max = ENVELOPE["load_n"][1]
+    w = normal_load_n(pair, t)
+    if w > w_max:
+        raise InputRangeError(field, value, f"(0, {t * w_max / w:.6g}] for pair {pair.name} "
+                                            f"(its normal load T2 / (r_b2 cos beta_b) = "
+                                            f"{w:.6g} N must stay <= {w_max:g} N, the "
+                                            "preview envelope)")
     return t
 
 

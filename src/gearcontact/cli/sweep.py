@@ -23,11 +23,12 @@ from ..sweep.design import check_variants
 from ..sweep.grid import SweepGrid, parse_vary
 from ..sweep.run import sweep_settings
 from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
-from ..validation import InputRangeError, check_positive
+from ..validation import InputRangeError
 from .options import (
     MAX_CELLS,
     add_pair_arguments,
     check_count,
+    check_cylindrical_torque,
     check_pair_arguments,
     check_torque,
     load_pair_for,
@@ -108,8 +109,8 @@ def check(args) -> None:
     for t in args.torques:
         if kind == BEVEL:
             check_torque("--torques (N·m)", t, args.gear_pair)
-        else:       # no preview envelope on a cylindrical pair's load
-            check_positive("--torques (N·m)", t)
+        else:
+            check_cylindrical_torque("--torques (N·m)", t, args.gear_pair)
     if args.workers is not None:
         check_count("--workers", args.workers, 0, MAX_WORKERS)
     if args.scheduler is not None and not _ADDRESS.match(args.scheduler):
