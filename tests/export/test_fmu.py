@@ -58,14 +58,15 @@ def _signal(tab: MeshLawTable):
     return sig
 
 
-def _assert_law(res, tab: MeshLawTable, backend: str) -> list:
-    """Every output of the FMU run ``res`` at every recorded instant equals
-    :func:`mesh_outputs` at the inputs the FMU held then: golden identical, fp64 within
-    1e-9 relative (reasons at :func:`test_fmu_equals_the_twin_contact_law`). Returns
-    the Python law's outputs, row by row."""
+def _assert_law(res, tab: MeshLawTable, backend: str, *, law=mesh_outputs) -> list:
+    """Every output of the FMU run ``res`` at every recorded instant equals ``law``
+    (:func:`mesh_outputs`; a cylindrical pair's ``line_mesh_outputs``) at the inputs the
+    FMU held then: golden identical, fp64 within 1e-9 relative (reasons at
+    :func:`test_fmu_equals_the_twin_contact_law`). Returns the Python law's outputs,
+    row by row."""
     refs = []
     for row in res:
-        ref = mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
+        ref = law(tab, *(float(row[n]) for n in INPUTS), backend=backend)
         for name in OUTPUTS:
             got, want = float(row[name]), float(getattr(ref, name))
             if backend == "golden":

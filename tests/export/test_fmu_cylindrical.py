@@ -26,9 +26,9 @@ from gearcontact.export.line_mesh_law import LineMeshTable, line_mesh_outputs  #
 from gearcontact.export.mesh_law import BACKENDS  # noqa: E402
 
 from .conftest import export_fmu_cli as _cli  # noqa: E402
-from .test_fmu import INPUTS, OUTPUTS  # noqa: E402  (the mesh FMU's variables)
+from .test_fmu import INPUTS, OUTPUTS, _assert_law as assert_mesh_law  # noqa: E402
 # FMU output -> twin column (the twin's te_arcsec is the DTE)
-from .test_fmu_drivetrain import PAIRS as TWIN_COLUMNS  # noqa: E402
+from .test_fmu_drivetrain import PAIRS as TWIN_COLUMNS, assert_twin_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 EV = ROOT / "examples" / "ev_reducer_helical_23x67.toml"
@@ -48,21 +48,10 @@ def _export(out: Path, kind: str, *options, pair: Path = EV, name: str = NAME) -
 
 
 def _assert_law(res, tab, backend: str) -> list:
-    """Every output of the mesh FMU run ``res`` at every recorded instant equals
-    :func:`line_mesh_outputs` at the inputs the FMU held then: golden identical, fp64
-    within 1e-9 relative (reasons at :func:`test_mesh_fmu_equals_the_twin_line_law`).
-    Returns the Python law's outputs, row by row."""
-    refs = []
-    for row in res:
-        ref = line_mesh_outputs(tab, *(float(row[n]) for n in INPUTS), backend=backend)
-        for name in OUTPUTS:
-            got, want = float(row[name]), float(getattr(ref, name))
-            if backend == "golden":
-                assert got == want, (name, float(row["time"]))
-            else:
-                assert got == pytest.approx(want, rel=1e-9, abs=0.0), name
-        refs.append(ref)
-    return refs
+    """The mesh FMU run ``res`` against :func:`line_mesh_outputs` (test_fmu's check:
+    golden identical, fp64 within 1e-9 relative, reasons at
+    :func:`test_mesh_fmu_equals_the_twin_line_law`)."""
+    return assert_mesh_law(res, tab, backend, law=line_mesh_outputs)
 
 
 @pytest.fixture(scope="module")
@@ -389,12 +378,4 @@ def test_done_when_the_default_export_reproduces_the_twin_cli(tmp_path):
                                 output=list(TWIN_COLUMNS),
                                 start_values={"backend": BACKENDS[backend]})
         assert len(res["time"]) == 501
-        for out, col in TWIN_COLUMNS.items():
-            text = [row[col] for row in rows]
-            if backend == "golden" or out == "pairs_loaded":
-                fmt = [str(int(v)) if out == "pairs_loaded" else f"{v:.12g}"
-                       for v in res[out]]
-                assert fmt == text, out
-            else:
-                np.testing.assert_allclose(res[out], np.array(text, float), rtol=1e-9,
-                                           atol=0.0, err_msg=out)
+        assert_twin_csv(res, rows, TWIN_COLUMNS, backend)

@@ -291,6 +291,21 @@ def test_docs_snippet_reproduces_the_twin(exported, twin_models, capsys):
     assert p_max == pytest.approx(c["p_max_mpa"].max(), rel=1e-9, abs=0.0)
 
 
+def assert_twin_csv(res, rows, columns, backend: str) -> None:
+    """The FMU's outputs ``res`` against a twin.csv's ``rows`` (FMU output -> CSV column
+    in ``columns``): golden and the pair count printed as the file prints them (12
+    significant digits, ``tca.export.write_csv``) and equal to its text, fp64 within
+    1e-9 relative (the issue's bound)."""
+    for out, col in columns.items():
+        text = [row[col] for row in rows]
+        if backend == "golden" or out == "pairs_loaded":
+            fmt = [str(int(v)) if out == "pairs_loaded" else f"{v:.12g}" for v in res[out]]
+            assert fmt == text, out
+        else:
+            np.testing.assert_allclose(res[out], np.array(text, float), rtol=1e-9,
+                                       atol=0.0, err_msg=out)
+
+
 @pytest.mark.slow
 def test_done_when_the_readme_fmu_reproduces_the_twin_cli(readme_export, tmp_path):
     """Issue 25's "Done when" as a twin developer runs it: the README's FMU
@@ -325,15 +340,7 @@ def test_done_when_the_readme_fmu_reproduces_the_twin_cli(readme_export, tmp_pat
                                 output=list(PAIRS),
                                 start_values={"backend": BACKENDS[backend]})
         assert len(res["time"]) == 501
-        for out, col in PAIRS.items():
-            text = [row[col] for row in twin[backend]]
-            if backend == "golden" or out == "pairs_loaded":
-                fmt = [str(int(v)) if out == "pairs_loaded" else f"{v:.12g}"
-                       for v in res[out]]
-                assert fmt == text, out
-            else:
-                np.testing.assert_allclose(res[out], np.array(text, float), rtol=1e-9,
-                                           atol=0.0, err_msg=out)
+        assert_twin_csv(res, twin[backend], PAIRS, backend)
     dte_pp, force_max, p_max = (float(v) for v in run_isolated(
         docs_snippet("The drivetrain twin as an FMI 3.0 FMU"), base).splitlines()[-1].split())
     c = {k: np.array([float(r[k]) for r in twin["fp64"]])
