@@ -346,31 +346,40 @@ def test_kernel_form_of_a_kinked_flank(kinked_pinion, kinked_gear, kinked_genera
     assert all(kernel_surface(piece) is None for piece in kinked_generated_gear.pieces)
 
 
-@pytest.mark.slow
-def test_toprem_pair_analysis_compiled_equals_numpy_path(monkeypatch):
-    # ~15 s: the Toprem pair (tests/data/toprem) analyzed on the compiled and on the
-    # numpy path: the 80 x 80 field and the stencil at P0 (both straddle the kink) to
-    # the smooth flanks' 1e-9 mm with identical masks and kinks, the paint-ellipse check
-    # and the edges the same; TE0 (surface and ridge contacts, not gap fields) the
-    # README's 21.4 arcsec with 18 of 61 phases on the ridge on both
+def _compiled_and_numpy_runs(monkeypatch, path, member, kink):
+    """``(fast, slow)``: the relieved pair at ``path`` analyzed with its gap fields on
+    the compiled and on the numpy path, after checking what both must share: the 80 x 80
+    field and the stencil at P0 (both straddle the ``member``'s kink ``kink``) to the
+    smooth flanks' 1e-9 mm with identical masks and kinks, the paint-ellipse check and
+    the edges the same."""
     from gearcontact.geometry.flank import build_flanks
     from gearcontact.geometry.pair import load_pair
     from gearcontact.tca.analysis import analyze_pair
 
-    pair = load_pair("tests/data/toprem/iso23509_f2_toprem.toml")
+    pair = load_pair(path)
     flanks = build_flanks(pair)
-    assert kernel_surface(flanks.flank("pinion", pair.design_side)) is not None
+    assert kernel_surface(flanks.flank(member, pair.design_side)) is not None
     fast = analyze_pair(pair, flanks=flanks)[0]
     _numpy_path(monkeypatch)
     slow = analyze_pair(pair, flanks=flanks)[0]
     for f, s in ((fast.gap_field, slow.gap_field), (fast.stencil, slow.stencil)):
-        assert f.kinks == s.kinks == ("pinion toprem",)
+        assert f.kinks == s.kinks == (kink,)
         assert np.array_equal(f.on_flank, s.on_flank)
         assert np.array_equal(np.isfinite(f.gap_mm), np.isfinite(s.gap_mm))
         ok = np.isfinite(s.gap_mm)
         assert ok.any() and np.abs(f.gap_mm[ok] - s.gap_mm[ok]).max() < 1e-9
     assert np.array_equal(fast.pattern_on_flank, slow.pattern_on_flank)
     assert fast.edges == slow.edges
+    return fast, slow
+
+
+@pytest.mark.slow
+def test_toprem_pair_analysis_compiled_equals_numpy_path(monkeypatch):
+    # ~15 s: the Toprem pair (tests/data/toprem) on both paths (_compiled_and_numpy_runs);
+    # TE0 (surface and ridge contacts, not gap fields) the README's 21.4 arcsec with 18
+    # of 61 phases on the ridge on both
+    fast, slow = _compiled_and_numpy_runs(monkeypatch, "tests/data/toprem/iso23509_f2_toprem"
+                                          ".toml", "pinion", "pinion toprem")
     for run in (fast, slow):
         assert round(run.cycle.te0_pp_arcsec, 1) == 21.4
         assert run.edge_contact_counts == {"pinion toprem": 18}
@@ -379,29 +388,11 @@ def test_toprem_pair_analysis_compiled_equals_numpy_path(monkeypatch):
 @pytest.mark.slow
 def test_flankrem_gear_pair_analysis_compiled_equals_numpy_path(monkeypatch):
     # ~15 s: the relieved-gear pair (tests/data/toprem/iso23509_f2_gear_flankrem.toml)
-    # analyzed with the gap fields on the compiled and on the numpy path (the edge
-    # search the same on both, so both have the same P0): the 80 x 80 field and the
-    # stencil at P0 (both straddle the gear's kink) to the smooth flanks' 1e-9 mm with
-    # identical masks and kinks, the paint-ellipse check and the edges the same, TE0
+    # on both paths (the edge search the same on both, so both have the same P0), TE0
     # and the ridge phases equal
-    from gearcontact.geometry.flank import build_flanks
-    from gearcontact.geometry.pair import load_pair
-    from gearcontact.tca.analysis import analyze_pair
-
-    pair = load_pair("tests/data/toprem/iso23509_f2_gear_flankrem.toml")
-    flanks = build_flanks(pair)
-    assert kernel_surface(flanks.flank("gear", pair.design_side)) is not None
-    fast = analyze_pair(pair, flanks=flanks)[0]
-    _numpy_path(monkeypatch)
-    slow = analyze_pair(pair, flanks=flanks)[0]
-    for f, s in ((fast.gap_field, slow.gap_field), (fast.stencil, slow.stencil)):
-        assert f.kinks == s.kinks == ("gear flankrem",)
-        assert np.array_equal(f.on_flank, s.on_flank)
-        assert np.array_equal(np.isfinite(f.gap_mm), np.isfinite(s.gap_mm))
-        ok = np.isfinite(s.gap_mm)
-        assert ok.any() and np.abs(f.gap_mm[ok] - s.gap_mm[ok]).max() < 1e-9
-    assert np.array_equal(fast.pattern_on_flank, slow.pattern_on_flank)
-    assert fast.edges == slow.edges
+    fast, slow = _compiled_and_numpy_runs(
+        monkeypatch, "tests/data/toprem/iso23509_f2_gear_flankrem.toml", "gear",
+        "gear flankrem")
     assert fast.cycle.te0_pp_arcsec == slow.cycle.te0_pp_arcsec
     assert fast.edge_contact_counts == slow.edge_contact_counts == {"gear flankrem": 23}
 
