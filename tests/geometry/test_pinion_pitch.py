@@ -56,3 +56,38 @@ def test_standard_settings_give_their_own_expected_pitch_point(name, gen):
                 assert got[0] == pytest.approx(0.0, abs=1e-9)
             else:   # a hypoid pinion's lies off its mean point (docs: up to 0.96 mm)
                 assert abs(got[0]) > 0.1
+
+
+#: The model bound declared for the comparison before any pinion margin was measured
+#: (commit ee30518, geometry.blank_check's PINION_PITCH_POINT_FRACTION then): a tenth of
+#: the pinion's mean dedendum, the gear's fraction.
+DECLARED_FRACTION = 0.1
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "differs: the pinion design --machine-settings fits to s0003's coast ease-off rolls "
+    "at 10.0635 with 2C 0.0095, 6D -0.0118; its pitch point lies -0.091 mm from the "
+    "standard roll's, beyond the declared model bound (0.1 x 0.704 mm dedendum = 0.070 "
+    "mm) and beyond blank_check's whole tolerance at ee30518 (that bound plus the typed "
+    "rounding propagated: 0.085 mm, 1.07 of it): the comparison is not shipped "
+    "(docs/machine_settings.md sec. 2, \"The pinion's pitch point\")"))
+def test_the_fitted_s0003_pinion_rolls_within_the_declared_bound():
+    # would a pinion whose settings design itself writes pass the comparison? (truth:
+    # a file design writes must not be warned about)
+    from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
+
+    pair = easeoff_machine_pair(load_pair("s0003")).pair
+    b = pair.blank
+    delta = b.pitch_angle_pinion_deg
+    roll = standard_roll(pair, gear_generated=False)       # s0003's gear is formate
+    for setup in pair.machine:
+        if setup.member != "pinion":
+            continue
+        at = measure_mean_point(setup, pitch_angle_deg=delta,
+                                cone_distance_mm=b.mean_cone_distance_pinion_mm)
+        got = (pitch_offset(setup, at, pitch_angle_deg=delta)
+               - expected_pitch_offset(roll, at, pitch_angle_deg=delta))
+        # the model bound alone (the typed rounding's share, 0.015 mm at ee30518, is
+        # left out: the fitted value is beyond the whole tolerance as well, reason)
+        assert abs(got) <= DECLARED_FRACTION * b.dedendum_pinion_mm, setup.side

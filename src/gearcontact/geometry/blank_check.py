@@ -15,10 +15,6 @@ tooth, and everything downstream is silently wrong. Compared per flank:
   (:func:`~.flank_angles.pitch_offset`, what the ratio of roll and the modified roll
   set) against the mean point, within :data:`PITCH_POINT_FRACTION` of the dedendum (a
   model bound);
-- a generated pinion flank (when the blank's standard roll is known, :func:`stated_blank`):
-  its pitch point of the generating roll against the one the blank's standard settings'
-  roll gives at the same point and normal (:mod:`.pinion_pitch`), within
-  :data:`PINION_PITCH_POINT_FRACTION` of the pinion's dedendum (a model bound);
 - every flank: the hand on its pitch cone against the blank's, and the **root datum**:
   the depth behind the cutter's tip plane of the blade point that cuts the mean point
   against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
@@ -51,12 +47,10 @@ from decimal import Decimal
 from ..validation import InputRangeError
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
-                           measure_mean_point, pitch_offset, require_machine)
+                           measure_mean_point, require_machine)
 from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
-from .pinion_pitch import StandardRoll, expected_pitch_offset, standard_roll
 
-__all__ = ["GROSS_SPIRAL_DEG", "PINION_PITCH", "PINION_PITCH_POINT_FRACTION",
-           "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
+__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
            "check_pair_blank", "stated_blank", "typed_resolution"]
 
@@ -75,15 +69,6 @@ ROOT_DATUM_FRACTION = 0.1
 #: for both flanks of a spread slot, leave it off the mean point; measured in
 #: docs/machine_settings.md sec. 2).
 PITCH_POINT_FRACTION = 0.1
-#: A generated pinion's pitch point of generation against the standard roll's at the
-#: same point (:mod:`.pinion_pitch`; 0 on the blank's standard settings, localized or
-#: not): its model bound, a fraction of the pinion's mean dedendum. Declared before any
-#: pinion slip was measured: the gear's fraction, for the same reason (a sheet's roll
-#: need not be the standard one: another cradle placement, a roll chosen for the
-#: bearing); no published pinion sheet was at hand to set it.
-PINION_PITCH_POINT_FRACTION = 0.1
-#: The quantity of that comparison.
-PINION_PITCH = "pitch point against the standard roll"
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 _SAME = 1e-9                      # a slip that moves a value less than this is no slip
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
@@ -141,10 +126,6 @@ class StatedBlank:
         inches); None: each typed value's own (:func:`typed_resolution`).
     hand_key, hand_value : str
         The key and value that state the hand (``design.pinion_hand``).
-    pinion_roll : StandardRoll or None
-        The relative motion of the pinion and its standard generating gear
-        (:func:`~.pinion_pitch.standard_roll`): a generated pinion flank's pitch point
-        of generation is compared with the one it gives; None: not compared.
     mctb_datum_mm : dict
         Per member, the pitch apex's offset from the crossing point along the work axis
         towards the member's back, mm: a sheet's MD measured from the crossing point is
@@ -164,14 +145,11 @@ class StatedBlank:
     hand_key: str = "design.pinion_hand"
     hand_value: str = ""
     mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
-    pinion_roll: StandardRoll | None = None
 
 
 def stated_blank(pair) -> StatedBlank:
     """The :class:`StatedBlank` of ``pair``'s blank tables (ISO 23509 design,
-    ``[cutter] radius_mm``, ``[design] pinion_hand``), with the standard roll of its
-    pinion: the crown gear's where the typed gear is rolled (a ratio of roll on either
-    gear flank), the gear's otherwise (:func:`~.pinion_pitch.standard_roll`)."""
+    ``[cutter] radius_mm``, ``[design] pinion_hand``)."""
     b = pair.blank
     other = {"right": "left", "left": "right"}
     return StatedBlank(
@@ -186,9 +164,7 @@ def stated_blank(pair) -> StatedBlank:
         hand_value=pair.pinion_hand,
         # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
         # each body on the + side (geometry.blank)
-        mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm},
-        pinion_roll=standard_roll(pair, gear_generated=any(
-            s.member == "gear" and s.settings.ratio_of_roll != 0.0 for s in pair.machine)))
+        mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})
 
 
 @dataclass(frozen=True)
@@ -316,16 +292,14 @@ def _values(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict,
                 cone_distance_mm=stated.mean_cone_distance_mm[m], start=start)
     if m == "gear":
         return _quantities(measure_generating_angles(
-            setup, **cone, cutter_radius_mm=stated.cutter_radius_mm), setup, stated)
-    return _quantities(measure_mean_point(setup, **cone), setup, stated)
+            setup, **cone, cutter_radius_mm=stated.cutter_radius_mm))
+    return _quantities(measure_mean_point(setup, **cone))
 
 
-def _quantities(measured, setup: MachineSetup, stated: StatedBlank) -> tuple[dict, object]:
+def _quantities(measured) -> tuple[dict, object]:
     """``({quantity: value}, pitch-cone solution)`` of a gear flank's
     :class:`~.flank_angles.GeneratingGearAngles` or a pinion flank's
-    :class:`~.flank_angles.MeanPointAngles` (a rolled pinion's with its pitch point
-    against the standard roll's, :data:`PINION_PITCH`, where ``stated`` has that roll
-    and a phase of it generates the point)."""
+    :class:`~.flank_angles.MeanPointAngles`."""
     if isinstance(measured, GeneratingGearAngles):
         at = measured.pitch_cone
         values = {"spiral angle": measured.spiral_angle_deg,
@@ -335,21 +309,13 @@ def _quantities(measured, setup: MachineSetup, stated: StatedBlank) -> tuple[dic
             values["pitch point"] = measured.pitch_offset_mm
     else:
         at, values = measured, {}
-        roll = stated.pinion_roll
-        if roll is not None and setup.settings.ratio_of_roll != 0.0:
-            delta = stated.pitch_angle_deg[setup.member]
-            try:
-                values[PINION_PITCH] = (pitch_offset(setup, at, pitch_angle_deg=delta)
-                                        - expected_pitch_offset(roll, at, pitch_angle_deg=delta))
-            except ValueError:      # no phase of the standard roll generates the point
-                pass
     values["root depth"] = at.depth_mm
     values["hand"] = at.hand
     return values, at
 
 
 _UNITS = {"spiral angle": "deg", "pressure angle": "deg", "mean cone distance": "mm",
-          "pitch point": "mm", PINION_PITCH: "mm", "root depth": "mm", "hand": ""}
+          "pitch point": "mm", "root depth": "mm", "hand": ""}
 _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "pressure_angle_deg",
                     "mean cone distance": "cone_distance_mm"}
 
@@ -408,8 +374,6 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
     if "pitch point" in tol:
         tol["pitch point"] += PITCH_POINT_FRACTION * stated.dedendum_mm[setup.member]
-    if PINION_PITCH in tol:
-        tol[PINION_PITCH] += PINION_PITCH_POINT_FRACTION * stated.dedendum_mm[setup.member]
     return tol
 
 
@@ -420,7 +384,7 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     out = {"spiral angle": stated.spiral_angle_gear_deg,
            "pressure angle": stated.pressure_angle_deg[side],
            "mean cone distance": stated.mean_cone_distance_mm["gear"],
-           "pitch point": 0.0} if gear else {PINION_PITCH: 0.0}
+           "pitch point": 0.0} if gear else {}
     out["root depth"] = stated.dedendum_mm[member]
     out["hand"] = hand if gear else other[hand]
     return out
@@ -447,8 +411,7 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
     elif setup.member == "gear" and measured.generating_gear is None:
         circle = measured.cutter_circle
     else:
-        values, at = _quantities(measured.generating_gear or measured.pitch_cone, setup,
-                                 stated)
+        values, at = _quantities(measured.generating_gear or measured.pitch_cone)
     if not reached:
         return FlankCheck(setup.member, setup.side, (),
                           missing=f"the flank does not reach {where}"), tol

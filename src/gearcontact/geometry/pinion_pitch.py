@@ -1,7 +1,9 @@
 """The pitch point of a pinion's generating roll that its blank's standard settings give
 (docs/machine_settings.md sec. 2, "The pinion's pitch point"): what a typed pinion
-sheet's pitch point (:func:`~.flank_angles.pitch_offset`) is compared with in
-:mod:`.blank_check`.
+sheet's pitch point (:func:`~.flank_angles.pitch_offset`) would be compared with.
+:mod:`.blank_check` does not compare it: with a model bound of a tenth of the dedendum
+the comparison warned on the pinion that ``design --machine-settings`` fits to s0003's
+ease-off and caught no slip that the mean point and root depth do not (docs).
 
 A gear's generating gear rolls on the gear's pitch cone, so its pitch point of
 generation is the mean point (0). A hypoid pinion's is not: the standard settings

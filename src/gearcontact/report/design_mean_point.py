@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import sys
 
-from ..geometry.blank_check import PINION_PITCH, BlankCheck, check_pair_blank
+from ..geometry.blank_check import BlankCheck, check_pair_blank
 from ..geometry.flank_angles import FlankMeanPoint
 
 __all__ = ["blank_check_json", "blank_check_text", "checked_blank", "mean_point_json",
@@ -110,13 +110,10 @@ def blank_check_text(check: BlankCheck) -> str:
     worst = max((abs(c.measured - c.stated) / c.tolerance, f"{f.member} {f.side} {c.quantity}")
                 for f in check.flanks for c in f.comparisons if c.tolerance)
     pitch = any(c.quantity == "pitch point" for f in check.flanks for c in f.comparisons)
-    pinion = any(c.quantity == PINION_PITCH for f in check.flanks for c in f.comparisons)
     return ("machine settings against the blank: every flank agrees within the typed "
             "settings' rounding propagated (spiral angle, pressure angle, mean cone distance "
             "of the gear's generating gear" + (", the pitch point of its generating roll"
                                                if pitch else "")
-            + ("; the pinion's pitch point of its generating roll against the standard "
-               "roll's" if pinion else "")
             + "; hand and root depth of every flank; largest "
             f"difference {worst[0]:.2f} of its tolerance, {worst[1]}; "
             "docs/machine_settings.md sec. 2)")
