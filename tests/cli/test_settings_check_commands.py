@@ -94,16 +94,15 @@ COMMANDS = [("lte",), ("ltca",), ("twin",), ("sweep",), ("bending",), ("export",
 @pytest.mark.parametrize("command", COMMANDS, ids=[" ".join(c) for c in COMMANDS])
 def test_every_command_checks_the_settings(tmp_path, capsys, command):
     # the check runs in every command's argument check, so a gross slip is refused
-    # there, exit 2 before any work (a refused run leaves no directory): the pinion's
-    # cradle angle sign (the hand the settings cut against the blank's; design exits 2
-    # on it too, tests/cli/test_design_blank_check.py). In process (the console script's
-    # start-up is what the tests above pay)
-    path = _flipped(tmp_path, "machine.pinion", "cradle_angle_deg", lambda x: -x)
+    # there, exit 2 before any work (a refused run leaves no directory): the blank's
+    # hand word misread (every flank cuts the other hand; design exits 2 on it too,
+    # tests/cli/test_design_blank_check.py; the cheapest gross slip: no slip search per
+    # flank). In process (the console script's start-up is what the tests above pay)
+    path = _flipped(tmp_path, "design", "pinion_hand", lambda line: 'pinion_hand = "left"')
     code = main([*command, "--pair", str(path), "--out", str(tmp_path / "o")])
     err = capsys.readouterr().err
     assert code == 2, err
-    assert "machine.pinion.drive.cradle_angle_deg = -82.0712 is outside the allowed " \
-           "range" in err
+    assert "design.pinion_hand = 'left' is outside the allowed range" in err
     assert not (tmp_path / "o").exists()
 
 
