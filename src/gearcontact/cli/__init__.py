@@ -192,6 +192,8 @@ def _run_command(args, argv: list[str], name: str) -> int:
                       staged=getattr(args, "staged_output", True),
                       resume=getattr(args, "resume_entries", ()), command=name) as run:
         args.run, args.out = run, run.work
+        run.input_checks.update(getattr(args, "input_checks", {}))
+        run.timings_s.update(getattr(args, "input_timings_s", {}))
         run.exit_code = int(args.func(args) or 0)
         latch.check()           # a swallowed Ctrl-C still discards the run
         if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):

@@ -14,7 +14,6 @@ from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
 from ..ltca.cylindrical_lte import STRIP_TOO_NARROW
 from ..report.analyze_cylindrical import end_loaded_note, run_cylindrical_analysis
-from ..report.design_mean_point import checked_blank
 from ..validation import InputRangeError, check_positive
 from .options import (
     MAX_PHASES,
@@ -58,7 +57,6 @@ def check(args) -> None:
     if args.gear_pair.kind == CYLINDRICAL:
         check_cylindrical(args)
         return
-    checked_blank(args.gear_pair)     # typed machine settings against the blank tables
     if not 1 <= len(args.torques) <= MAX_TORQUES:
         raise InputRangeError("--torques", args.torques, f"1 to {MAX_TORQUES} torques")
     for t in args.torques:
@@ -118,7 +116,8 @@ def run(args) -> int:
                        phases=args.phases, side=args.side, figures=not args.no_figures,
                        progress=not args.quiet,
                        lte_torque_nm=args.lte_torque if args.lte_phases else None,
-                       lte_phases=max(args.lte_phases, 3), lte_bending=not args.rigid)
+                       lte_phases=max(args.lte_phases, 3), lte_bending=not args.rigid,
+                       settings_warnings=getattr(args, "settings_warnings", ()))
     run_timings(args, **res.timings_s)
     if res.easeoff_note:
         print(res.easeoff_note.partition("\n")[0].rstrip(":") + " (the TOML block is in summary.md)")

@@ -21,7 +21,7 @@ as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
 from __future__ import annotations
 
 from ..validation import InputRangeError, check_positive
-from .options import MAX_PHASES, check_pair_arguments, load_pair_for
+from .options import MAX_PHASES, check_machine_settings, check_pair_arguments, load_pair_for
 from .outdir import add_out_argument, final_path
 
 
@@ -165,6 +165,7 @@ def check_flanks(args) -> None:
         if exc.field != "pair":     # a field inside the file: named as it is
             raise
         raise InputRangeError("--pair", exc.value, exc.allowed) from None
+    check_machine_settings(args)      # typed machine settings against the blank tables
 
 
 def run_flanks(args) -> int:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+import time
 
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
 from ..geometry.pair import BEVEL, load_pair
@@ -13,6 +14,7 @@ from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument, final_path
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
+           "check_machine_settings",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
            "check_cylindrical_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm", "torque_floor_nm",
@@ -136,6 +138,31 @@ def check_pair_arguments(args, *, kinds: tuple[str, ...] = (BEVEL,)) -> None:
             check_torque("--torque (N·m)", args.torque, args.gear_pair)
         else:
             check_cylindrical_torque("--torque (N·m)", args.torque, args.gear_pair)
+    check_machine_settings(args)
+
+
+def check_machine_settings(args) -> None:
+    """The typed machine settings of ``args.gear_pair`` against its own blank tables,
+    after the cheap option checks and before any work: the check ``design`` runs
+    (:func:`~gearcontact.report.design_mean_point.checked_blank`, docs/machine_settings.md
+    sec. 2). A gross mismatch (a hand, a generating spiral angle) raises naming the key
+    (exit 2); any other flank outside its tolerance is a warning on stderr naming the
+    likely key, and the run goes on. The check's findings, with those warning lines, go
+    into run.json as ``blank_check`` (``args.input_checks``, its time into the run's
+    timings as ``blank_check_s``) and the lines stay in ``args.settings_warnings``
+    (``analyze`` writes them into summary.md). Nothing for a pair without machine
+    settings or a cylindrical pair."""
+    pair = args.gear_pair
+    if pair.kind != BEVEL or not pair.machine:
+        return
+    from ..report.design_mean_point import blank_check_json, checked_blank
+
+    t0 = time.perf_counter()
+    got = checked_blank(pair)
+    args.settings_warnings = tuple(got.warnings())
+    args.input_checks = {"blank_check": {**blank_check_json(got),
+                                         "warnings": list(args.settings_warnings)}}
+    args.input_timings_s = {"blank_check_s": time.perf_counter() - t0}
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:

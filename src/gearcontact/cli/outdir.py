@@ -209,6 +209,10 @@ class RunDirectory:
         Where the command writes: the staging directory, or ``path`` when not staged.
     timings_s : dict
         Stage timings (s) the command reports; written only into run.json.
+    input_checks : dict
+        Findings of the input checks run before the work (``{"blank_check": {...}}``),
+        written into run.json as top-level entries; empty: nothing written (the
+        manifest of a run without such a check keeps its fields).
     exit_code : int
         Recorded in run.json (set by the caller before leaving the context).
     """
@@ -222,6 +226,7 @@ class RunDirectory:
         self.force = force
         self.staged = staged
         self.timings_s: dict = {}
+        self.input_checks: dict = {}
         self.exit_code = 0
         self.path = self._check_path(out)
         self.work = self.path
@@ -381,7 +386,7 @@ class RunDirectory:
                 "exit_code": self.exit_code, "versions": _versions(),
                 "started_utc": self._started_utc,
                 "wall_s": round(time.perf_counter() - self._started, 3),
-                "timings_s": self.timings_s, "files": entries}
+                "timings_s": self.timings_s, **self.input_checks, "files": entries}
 
     def discard(self) -> None:
         """Keep nothing of this run (the command reported bad input or a failure

@@ -73,7 +73,7 @@ from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
 __all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles", "PINION_UNDEFINED",
            "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points",
-           "pitch_offset", "require_machine"]
+           "pitch_offset", "profile_pitch_offset", "require_machine"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
 #: the machine's axial plane is kept (:func:`_distance`; others belong to another turn
@@ -372,11 +372,23 @@ def pitch_offset(setup: MachineSetup, at: MeanPointAngles, *, pitch_angle_deg: f
     _, z_m, _ = kin.to_work(np.zeros(3), kin._fixed[1].T @ np.array([0.0, 0.0, 1.0]),
                             at.roll_rad)
     omega = z_m - float(kin.work_rotation(at.roll_rad)[1]) * np.array([0.0, 0.0, 1.0])
-    d, phi = math.radians(pitch_angle_deg), at.azimuth_rad
+    return profile_pitch_offset(v, omega, n, pitch_angle_deg=pitch_angle_deg,
+                                azimuth_rad=at.azimuth_rad)
+
+
+def profile_pitch_offset(velocity: np.ndarray, omega: np.ndarray, normal: np.ndarray, *,
+                         pitch_angle_deg: float, azimuth_rad: float) -> float:
+    """``s = (v . p) / (Omega . t)`` (:func:`pitch_offset`), mm: where the profile sliding
+    of the rigid relative motion ``v(X) = velocity + omega x (X - P)`` (work frame, any
+    common scale and sign) vanishes on the normal line of the flank point ``P`` of unit
+    normal ``normal`` at azimuth ``azimuth_rad`` on the pitch cone of ``pitch_angle_deg``
+    (``t`` the tooth trace there, ``p = n x t``)."""
+    d, phi = math.radians(pitch_angle_deg), azimuth_rad
     g = np.array([math.sin(d) * math.cos(phi), math.sin(d) * math.sin(phi), math.cos(d)])
+    n = np.asarray(normal, dtype=float)
     t = np.cross(n, np.cross(g, np.array([-math.sin(phi), math.cos(phi), 0.0])))
     t /= np.linalg.norm(t)
-    return float(v @ np.cross(n, t)) / float(omega @ t)
+    return float(np.asarray(velocity) @ np.cross(n, t)) / float(np.asarray(omega) @ t)
 
 
 #: Why a pinion flank has no generating-gear angles (module docstring).

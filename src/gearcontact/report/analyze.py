@@ -121,6 +121,10 @@ class Analysis:
         fp64 preview of the line core's rule at each case (ellipse, or the Hertz line
         contact where the flank truncates it; ``mode`` says which), the golden line
         core's counterpart.
+    settings_warnings : tuple of str
+        The warnings of the check of the pair's typed machine settings against its blank
+        (:meth:`~gearcontact.geometry.blank_check.BlankCheck.warnings`; empty when every
+        flank agrees or the pair has none): summary.md repeats them.
     """
 
     pair: object
@@ -140,6 +144,7 @@ class Analysis:
     golden_status: tuple = ()
     chain_status: tuple = ()
     reference: tuple = ()
+    settings_warnings: tuple = ()
 
 
 class PreviewDomainWarning(UserWarning):
@@ -255,7 +260,8 @@ def _multi_tooth(tca, flanks, pair, torque_nm: float, side: str, out: Path, figu
 def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases: int = 61,
                  side: str | None = None, solver: str = "pk_cg", figures: bool = True,
                  progress: bool = True, lte_torque_nm: float | None = 64.5,
-                 lte_phases: int = 61, lte_bending: bool = True) -> Analysis:
+                 lte_phases: int = 61, lte_bending: bool = True,
+                 settings_warnings: tuple = ()) -> Analysis:
     """Run the main job on ``pair`` (preset name, TOML path or GearPair) into ``out_dir``.
 
     Parameters
@@ -281,6 +287,10 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         At most about this many LTE phases over the pitch: every
         ``ceil((phases - 1) / (lte_phases - 1))``-th TCA phase (the LTE costs one gap
         field per pair and phase; all 61 phases of s0003 take about 1 s).
+    settings_warnings : tuple of str
+        The warnings of the typed machine settings' check against the blank, run when
+        the pair was loaded (``gearcontact.cli.options.check_machine_settings``):
+        repeated in summary.md (nothing is written when empty).
     """
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
@@ -398,6 +408,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                       tuple(ch for ch, _ in chain), timings, out, lte, precision, latency,
                       side, flanks, easeoff_note, multitooth,
                       golden_status=tuple(st for _, st in gold),
-                      chain_status=tuple(st for _, st in chain), reference=tuple(reference))
+                      chain_status=tuple(st for _, st in chain), reference=tuple(reference),
+                      settings_warnings=tuple(settings_warnings))
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

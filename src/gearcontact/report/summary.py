@@ -195,6 +195,13 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     if getattr(result, "easeoff_note", ""):
         head, _, toml = result.easeoff_note.partition("\n")
         out += ["**Ease-off synthesized.** " + head, "", "```toml", toml.strip(), "```", ""]
+    if getattr(result, "settings_warnings", ()):
+        # the typed machine settings do not cut the blank's tooth: said before any result
+        out += ["**Machine settings against the blank: warning.** The flanks cut from the "
+                "pair's [machine.*] tables do not all agree with its blank "
+                "(docs/machine_settings.md sec. 2):", ""]
+        out += [f"- {line.removeprefix('warning: ')}" for line in result.settings_warnings]
+        out += [""]
     out += ["## Blank (ISO 23509 Method 1)", ""]
     out.append(md_table(["quantity", "ours", "published"], [
         ["pinion pitch angle (deg)", blank["pitch_angles_deg"][0], pub.get("pitch_angle_pinion_deg")],

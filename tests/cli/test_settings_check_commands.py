@@ -1,0 +1,124 @@
+"""Every command that analyses a pair checks its typed machine settings against its own
+blank tables when it loads the pair, as ``design`` does (cli.options.check_machine_settings,
+geometry.blank_check; docs/machine_settings.md sec. 2, "The check when a pair is
+loaded"): the warning on stderr naming the key, and in the run's files (run.json
+``blank_check``, analyze's summary.md). The installed console script, small options.
+
+Truths: the ISO 23509 F.2 example (examples/machine_settings/iso23509_f2_machine.toml,
+the standard settings of its blank typed to 4 decimals) agrees with its blank (no
+warning, ``agrees`` true); the same file with one sheet word misread in both pinion
+tables (written here) is caught and the misread key named: the flip is the truth
+(tests/geometry/test_blank_check.py measures the same slips: the sliding base WITH /
+AWAY puts the pinion's root 6.73 / 9.67 mm behind the tip plane against the blank's
+2.39 mm; the ratio of roll typed as its reciprocal, 39/14 -> 14/39, cuts pinion flanks
+that do not reach the mean point, and the pinion's generation then refuses them, as in
+``design``). Tolerances: geometry.blank_check's, tested there.
+"""
+
+import json
+
+import pytest
+from console_script import run_console
+
+from gearcontact.cli import main
+
+from .test_design_blank_check import F2_MACHINE, _flipped
+
+#: Small runs: the check runs before any work, whatever the phases.
+TCA = ("--phases", "3", "--no-figures", "--quiet")
+
+
+@pytest.fixture(scope="module")
+def sliding_base_slip(tmp_path_factory):
+    return _flipped(tmp_path_factory.mktemp("slip"), "machine.pinion", "sliding_base_mm",
+                    lambda x: -x)
+
+
+def _named(err: str, key: str) -> None:
+    for side in ("drive", "coast"):
+        assert f"likely machine.pinion.{side}.{key}" in err, err
+
+
+def _run_json_says(out, key: str) -> dict:
+    got = json.loads((out / "run.json").read_text())["blank_check"]
+    assert got["agrees"] is False
+    for side in ("drive", "coast"):
+        assert got["flanks"]["pinion"][side]["slip"] == f"machine.pinion.{side}.{key}"
+        assert got["flanks"]["gear"][side]["agrees"] is True
+    assert len(got["warnings"]) == 2
+    assert all("likely machine.pinion." in w and key in w for w in got["warnings"])
+    return got
+
+
+def test_tca_warns_and_records_a_sliding_base_slip(tmp_path, sliding_base_slip):
+    # a warning, not an error: the run goes on (exit 0) and its run.json says it
+    code, out, err = run_console("tca", "--pair", sliding_base_slip, "--out",
+                                 tmp_path / "t", *TCA)
+    assert code == 0, err
+    _named(err, "sliding_base_mm")
+    _run_json_says(tmp_path / "t", "sliding_base_mm")
+
+
+def test_analyze_warns_and_records_a_sliding_base_slip(tmp_path, sliding_base_slip):
+    code, out, err = run_console("analyze", "--pair", sliding_base_slip, "--out",
+                                 tmp_path / "a", *TCA, "--torques", "64.5",
+                                 "--lte-phases", "0")
+    assert code == 0, err
+    _named(err, "sliding_base_mm")
+    got = _run_json_says(tmp_path / "a", "sliding_base_mm")
+    summary = (tmp_path / "a" / "summary.md").read_text()
+    assert "**Machine settings against the blank: warning.**" in summary
+    for line in got["warnings"]:           # the console's lines, in the report
+        assert line.removeprefix("warning: ") in summary
+
+
+@pytest.mark.parametrize("command", ["tca", pytest.param("analyze", marks=pytest.mark.slow)])
+def test_a_ratio_of_roll_reciprocal_is_named_before_the_generation_refuses(tmp_path,
+                                                                           command):
+    # the pinion's ratio of roll typed as cradle / work: the check names it on stderr
+    # (a warning), then the pinion's generation refuses the flanks it cuts (exit 2, as
+    # design does; a refused run leaves no directory)
+    path = _flipped(tmp_path, "machine.pinion", "ratio_of_roll", lambda x: 1.0 / x)
+    code, out, err = run_console(command, "--pair", path, "--out", tmp_path / "o", *TCA)
+    assert code == 2, err
+    _named(err, "ratio_of_roll")
+    assert err.index("likely machine.pinion.drive.ratio_of_roll") \
+        < err.index("gearcontact " + command + ":")
+    assert not (tmp_path / "o").exists()
+
+
+COMMANDS = [("lte",), ("ltca",), ("twin",), ("sweep",), ("bending",), ("export", "fmu"),
+            ("export", "flanks")]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=[" ".join(c) for c in COMMANDS])
+def test_every_command_checks_the_settings(tmp_path, capsys, command):
+    # the check runs in every command's argument check, so a gross slip is refused
+    # there, exit 2 before any work (a refused run leaves no directory): the blank's
+    # hand word misread (every flank cuts the other hand; design exits 2 on it too,
+    # tests/cli/test_design_blank_check.py; the cheapest gross slip: no slip search per
+    # flank). In process (the console script's start-up is what the tests above pay)
+    path = _flipped(tmp_path, "design", "pinion_hand", lambda line: 'pinion_hand = "left"')
+    code = main([*command, "--pair", str(path), "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "design.pinion_hand = 'left' is outside the allowed range" in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_clean_sheet_gets_no_warning(tmp_path):
+    code, out, err = run_console("tca", "--pair", F2_MACHINE, "--out", tmp_path / "t", *TCA)
+    assert code == 0, err
+    assert "warning" not in err
+    got = json.loads((tmp_path / "t" / "run.json").read_text())
+    assert got["blank_check"]["agrees"] is True and got["blank_check"]["warnings"] == []
+    assert got["timings_s"]["blank_check_s"] > 0.0
+
+
+def test_a_pair_without_settings_has_no_entry(tmp_path):
+    # pairs without [machine.*] tables: run.json keeps its fields
+    code, out, err = run_console("tca", "--pair", "s0003-centred", "--out", tmp_path / "t",
+                                 *TCA)
+    assert code == 0, err
+    got = json.loads((tmp_path / "t" / "run.json").read_text())
+    assert "blank_check" not in got and "blank_check_s" not in got["timings_s"]
