@@ -210,7 +210,7 @@ def test_cells_named_along_the_face(command, tmp_path, capsys):
         d = tmp_path / pair.replace("/", "_")
         assert main([command, "--pair", pair, "--out", str(d), "--cells", "5"]) == 2
         err = capsys.readouterr().err
-        assert f"--cells = 5 is outside the allowed range: an integer in [16, " in err
+        assert "--cells = 5 is outside the allowed range: an integer in [16, " in err
         assert err.rstrip().endswith(where) and not d.exists()
 
 
