@@ -136,7 +136,9 @@ def test_bending_cylindrical_fe_on_the_real_root(tmp_path, capsys):
         assert main(["bending", "--pair", pair_file, "--member", "gear", "--out", str(out),
                      "--no-figures", "--fe", "--fe-mesh", "6", "2", "1", "1", *extra]) == 0
         data[root] = json.loads((out / "compliance.json").read_text())
-        assert f"FE ({root or 'cutter'} root" in capsys.readouterr().out
+        printed = capsys.readouterr().out
+        assert f"FE ({root or 'cutter'} root" in printed
+        assert "points on the flank the drive mesh loads (the tooth's coast side)" in printed
     assert data[None]["fe_root"] == "cutter" and data["ellipse"]["fe_root"] == "ellipse"
     assert data[None]["line_fe_mm_per_n"] != data["ellipse"]["line_fe_mm_per_n"]
     d = data[None]

@@ -1,5 +1,6 @@
 """A careless user's tries on cylindrical pairs, through every command that reads one
-(issue 26's acceptance: design, tca, lte, analyze, twin, bending, sweep, export flanks).
+(issue 26's acceptance: design, tca, lte, ltca, analyze, twin, bending, sweep, export
+flanks, export fmu).
 
 Truth (the house rule on bad input, docs/cylindrical.md sec. 1): each bad file or option
 is exit code 2 with a message naming the field, the value and the allowed range, before
@@ -31,6 +32,8 @@ COMMANDS = {
     "bending": ["bending"],
     "sweep": ["sweep", "--vary", "modifications.pinion.lead_crowning_um=0:10:2"],
     "export flanks": ["export", "flanks"],
+    "ltca": ["ltca", "--no-figures", "--phases", "3"],
+    "export fmu": ["export", "fmu", "--kind", "mesh", "--phases", "3"],
 }
 
 

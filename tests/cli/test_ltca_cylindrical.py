@@ -210,25 +210,26 @@ def test_cells_named_along_the_face(command, tmp_path, capsys):
         d = tmp_path / pair.replace("/", "_")
         assert main([command, "--pair", pair, "--out", str(d), "--cells", "5"]) == 2
         err = capsys.readouterr().err
-        assert f"--cells = 5 is outside the allowed range: an integer in [16, " in err
+        assert "--cells = 5 is outside the allowed range: an integer in [16, " in err
         assert err.rstrip().endswith(where) and not d.exists()
 
 
 @pytest.mark.parametrize("command", [["ltca"], ["lte"], ["twin"], ["export", "fmu"],
-                                     ["sweep"]])
+                                     ["sweep"], ["analyze"]])
 def test_torque_beyond_the_preview_envelope_refused(command, tmp_path, capsys):
     """A cylindrical pair's torque is held to the preview envelope as a bevel pair's:
     its whole normal load W = T2 / (r_b2 cos beta_b) <= 131072 N (one pair carries it at
     a single-contact phase). Truth: the EV pair's lever from the ISO 21771 closed forms
-    written out here (m_n 2, alpha_n 20 deg, beta 15 deg, z2 67: r_b2 = z2 m_n
+    written out here (m_n 2, alpha_n 20 deg, beta 25 deg, z2 67: r_b2 = z2 m_n
     cos(alpha_t) / (2 cos(beta)), whatever the profile shift and centre distance); the
-    limit printed to 6 digits. Before this check 1e9 N·m ran the twin for minutes."""
-    beta, alpha_n = math.radians(15.0), math.radians(20.0)
+    limit printed to 6 digits. Before this check 1e9 N·m ran the twin for minutes, and
+    (session 21) analyze's --lte-torque 1e6 N·m ran on for minutes too."""
+    beta, alpha_n = math.radians(25.0), math.radians(20.0)
     alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
     r_b2 = 67 * 2.0 * math.cos(alpha_t) / (2 * math.cos(beta))
     beta_b = math.asin(math.sin(beta) * math.cos(alpha_n))
     limit = 131072.0 * r_b2 * math.cos(beta_b) / 1e3
-    opt = "--torques" if command == ["sweep"] else "--torque"
+    opt = {"sweep": "--torques", "analyze": "--lte-torque"}.get(command[0], "--torque")
     d = tmp_path / "out"
     assert main([*command, "--pair", EV, "--out", str(d), opt, "1e9"]) == 2
     err = capsys.readouterr().err

@@ -79,7 +79,8 @@ def test_identical_runs_identical_files(tmp_path, capsys):
 
 
 def test_readme_ev_sweep(tmp_path, capsys):
-    """The README line as written (22 s warm, 38 s with the numba compile, two cores):
+    """The README line as written (22 s warm with rigid teeth; with bending, the default
+    since, 98 s on a machine at load 16-18):
     exit 0, the 5 x 3 x 2 grid done; the cell at the file's own values equals the direct
     cycle and loaded TE of the example (==: the same pair and options)."""
     from gearcontact.geometry.pair import load_pair

@@ -51,6 +51,33 @@ def test_first_run_note_once(tmp_path):
     assert "note: first run" not in other
 
 
+EV = str(Path(SRC).parent / "examples" / "ev_reducer_helical_23x67.toml")
+
+
+def test_cylindrical_tca_compiles_nothing_and_says_nothing(tmp_path):
+    """A cylindrical pair's TCA (closed form, numpy) compiles no kernel on an empty cache
+    (numba's compile events: 0), so it prints no note; before, the note's sentinel was
+    the bevel TCA's kernel, which no cylindrical command compiles, and every cylindrical
+    run printed it."""
+    err = _cli(["tca", "--pair", EV, "--phases", "3", "--quiet", "--no-figures",
+                "--out", str(tmp_path / "a")], tmp_path / "numba", count=True)
+    assert err.strip().splitlines()[-1] == "compiled 0"
+    assert "note: first run" not in err
+
+
+@pytest.mark.slow
+def test_cylindrical_note_once(tmp_path):
+    """A compiling command on a cylindrical pair (``ltca``, rigid teeth: the half-space
+    LCP's kernels) prints the note on an empty cache and not once its kernels are in."""
+    cache = tmp_path / "numba"
+    argv = ["ltca", "--pair", EV, "--phases", "3", "--cells", "16", "--rigid",
+            "--no-figures"]
+    first = _cli(argv + ["--out", str(tmp_path / "a")], cache)
+    assert sum("note: first run" in line for line in first.splitlines()) == 1
+    again = _cli(argv + ["--out", str(tmp_path / "b")], cache, count=True)
+    assert "note: first run" not in again
+
+
 @pytest.mark.slow
 def test_warm_up_compiles_everything_a_default_analyze_calls(tmp_path):
     """After ``gearcontact warm-up`` into an empty cache, a default ``analyze`` and a

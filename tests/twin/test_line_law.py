@@ -247,6 +247,35 @@ def test_soc_twin_is_the_golden_twin_bit_for_bit(spur, monkeypatch):
     assert rtl["rtl_core"] == "chain_line" and rtl["rtl_mismatches"] == 0
 
 
+def test_soc_twin_with_bending_is_the_golden_twin_bit_for_bit(spur, spur_bent, monkeypatch):
+    """``--backend soc --bending`` on a cylindrical pair: as the rigid test above, with
+    the coupled slice law of the teeth's bending (its L_eq and W are the line chain's
+    inputs, so the golden trace carries them and the SoC must answer those codes). 30 us
+    at 10 us of the spur pair with its shells' Gram matrix: every preview replayed
+    through the host driver on the simulated line_core SoC is bit-identical, the
+    trajectory the golden one exactly (no tolerance: RTL == golden bit for bit), and the
+    same trace on the ChainLineCore agrees. The bent law must have moved the run: the
+    golden trajectory differs from the rigid one (else this would be the rigid test
+    again)."""
+    from gearcontact.twin.cosim import replay_on_rtl
+
+    _, bent = spur_bent
+    soc, gold, trace, stencils, e_code = _traced_rtl_run(
+        monkeypatch, _model(spur, "soc", bent), _model(spur, "golden", bent), 30e-6,
+        replay="replay_on_soc")
+    s = soc.summary
+    assert s["bending"] and s["soc_kind"] == "line_core"
+    assert s["soc_transport"] == "simulation"
+    assert s["soc_mismatches"] == 0 and s["soc_previews"] == trace.shape[0] >= 5
+    for key, col in gold.columns.items():
+        np.testing.assert_array_equal(soc.columns[key], col, err_msg=key)
+    rtl = replay_on_rtl(trace, e_code, stencils=stencils, line=True)
+    assert rtl["rtl_core"] == "chain_line" and rtl["rtl_mismatches"] == 0
+    rigid = simulate(_model(spur, "golden"), speed_rpm=3000.0, duration_s=30e-6,
+                     step_s=10e-6)
+    assert not np.array_equal(rigid.columns["theta_rad"], gold.columns["theta_rad"])
+
+
 def test_spur_pitch_point_with_bending_against_the_lcp(spur, spur_bent):
     """Tooth bending (the coupled slice law), against the loaded TE with bending
     (``gearcontact lte --bending``: the LCP with the same shells of both teeth), the

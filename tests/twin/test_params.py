@@ -49,6 +49,10 @@ def test_toml_table_overrides_and_errors(tmp_path):
     f.write_text("[drivetrain]\nmotor_inertia_kgm2 = -1.0\n")
     with pytest.raises(InputRangeError, match="drivetrain.motor_inertia_kgm2"):
         load_drivetrain(f, pair)
+    # a pair file given as --drivetrain (a careless user's try): the file named, and why
+    f.write_text('name = "x"\n[teeth]\npinion = 20\ngear = 40\n')
+    with pytest.raises(InputRangeError, match=r"--drivetrain.*d\.toml.*has none.*--pair"):
+        load_drivetrain(f, pair)
 
 
 def test_damping_ratio_range():

@@ -180,7 +180,7 @@ def _run_command(args, argv: list[str], name: str) -> int:
     if check is not None:
         check(args)                 # cheap validation before any work or output
     from .warm_up import note_cold_cache
-    note_cold_cache(args.command)
+    note_cold_cache(args.command, getattr(getattr(args, "gear_pair", None), "kind", None))
     latch.check()
     if not getattr(args, "writes_files", False):
         code = int(args.func(args) or 0)

@@ -14,12 +14,13 @@ from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..report.analyze import DEFAULT_TORQUES_NM, run_analysis
 from ..ltca.cylindrical_lte import STRIP_TOO_NARROW
 from ..report.analyze_cylindrical import end_loaded_note, run_cylindrical_analysis
-from ..validation import InputRangeError, check_positive
+from ..validation import InputRangeError
 from .options import (
     MAX_PHASES,
     add_pair_arguments,
     case_warnings,
     check_count,
+    check_cylindrical_torque,
     check_pair_arguments,
     check_torque,
     lte_warnings,
@@ -79,7 +80,9 @@ def check_cylindrical(args) -> None:
                                                          "loaded TE and the preview run at "
                                                          "--lte-torque, the Harris map at the ISO "
                                                          "line loads 50-400 N/mm)")
-    check_positive("--lte-torque (N·m)", args.lte_torque)
+    # held to the preview envelope as every other command's torque (an unchecked 1e6
+    # N·m ran for minutes)
+    check_cylindrical_torque("--lte-torque (N·m)", args.lte_torque, args.gear_pair)
     if args.lte_phases is None:
         args.lte_phases = args.phases
     check_count("--lte-phases", args.lte_phases, 3, MAX_PHASES,

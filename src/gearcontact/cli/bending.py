@@ -125,7 +125,9 @@ def run(args) -> int:
     write_compliance(res, args.out, pair=pair, flanks=flanks, figures=not args.no_figures,
                      order=args.order, order_face=args.order_face)
     seg = res.segment_shell_mm_per_n
-    line = (f"{pair.name} {args.member}: {len(res.xi)} {side}-flank points, shell segment-load "
+    where = (f"points on the flank the {args.side} mesh loads (the tooth's {side} side)"
+             if pair.kind == CYLINDRICAL else f"{side}-flank points")
+    line = (f"{pair.name} {args.member}: {len(res.xi)} {where}, shell segment-load "
             f"deflection {seg.min():.3g}..{seg.max():.3g} mm/N")
     if res.fe_mm_per_n is not None:
         r = res.ratios()

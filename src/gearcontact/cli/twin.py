@@ -17,8 +17,9 @@ A cylindrical pair (``kind = "cylindrical"``) runs the preview's line chain as t
 contact law (``--backend reference``, the default, ``golden``, ``rtl``: the ChainLineCore
 replay, or ``soc``: the replay through the host driver on the line_core SoC) or its
 loaded-TE table (``--backend table``: the loaded TE of its mesh cycle over
-a torque ladder), rigid teeth or with ``--bending`` (the preview backends: each pair's
-tooth-bending compliance along its contact line in series with the line law), and
+a torque ladder), rigid teeth or with ``--bending`` (the preview backends: the coupled
+slice law, the line law on the ease-off the teeth's bending along the contact line
+leaves, :mod:`gearcontact.ltca.coupled_slice_law`), and
 ``--speed-sweep`` beside the table twin (:mod:`gearcontact.twin.cylindrical`,
 docs/cylindrical.md sec. 10); ``--curvatures exact`` and ``--table-source preview``
 are refused for it.
@@ -75,9 +76,10 @@ def register(sub) -> None:
     p.add_argument("--table-source", default="lcp", choices=("lcp", "preview"),
                    help="table backend: LTCA (lcp, default) or Hertz preview loaded TE")
     p.add_argument("--bending", action="store_true",
-                   help="tooth bending of both members (shell model) in series with the "
-                        "contact law, Hertzian or a cylindrical pair's line law (default "
-                        "rigid teeth)")
+                   help="tooth bending of both members (shell model): in series with a "
+                        "bevel pair's Hertzian law; coupled with a cylindrical pair's line "
+                        "law along the line (docs/cylindrical.md sec. 10) (default rigid "
+                        "teeth)")
     p.add_argument("--curvatures", default="stencil", choices=CURVATURE_SOURCES,
                    help="where the preview's curvatures come from: stencil (default: stage "
                         "C per step, the curvature fit of the 7 x 7 gap stencil, then "

@@ -51,8 +51,18 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _sentinel():
-    """A kernel every compiling command calls (the TCA line intersection)."""
+#: Commands that compile nothing on a cylindrical pair (its TCA is closed form and
+#: numpy; its tooth bending is the shell's linear algebra).
+CYLINDRICAL_UNCOMPILED = frozenset({"tca", "bending"})
+
+
+def _sentinel(kind: str | None = None):
+    """A kernel every compiling command on a pair of ``kind`` calls: the TCA line
+    intersection (a bevel pair), the half-space LCP's step (a cylindrical pair, whose
+    TCA never calls the former, so that the note came back on every run)."""
+    if kind == "cylindrical":
+        from ..halfspace.constrained_cg import _step
+        return _step
     from ..tca.gap_kernel import intersect_lines
     return intersect_lines
 
@@ -66,19 +76,23 @@ def cache_directory() -> Path | None:
         return None
 
 
-def cache_is_cold() -> bool:
+def cache_is_cold(kind: str | None = None) -> bool:
     """Whether numba's cache holds no compiled code of the current sources for the
-    sentinel kernel (a fresh install, or sources changed since the last run)."""
+    sentinel kernel of a pair of ``kind`` (a fresh install, or sources changed since the
+    last run)."""
     try:
         from numba.core.caching import FunctionCache
-        return not FunctionCache(_sentinel().py_func)._cache_file._load_index()
+        return not FunctionCache(_sentinel(kind).py_func)._cache_file._load_index()
     except Exception:  # noqa: BLE001  (numba internals: assume warm, print nothing)
         return False
 
 
-def note_cold_cache(command: str) -> None:
-    """One line on stderr when ``command`` is about to compile on a cold cache."""
-    if command in COMPILING_COMMANDS and cache_is_cold():
+def note_cold_cache(command: str, kind: str | None = None) -> None:
+    """One line on stderr when ``command`` on a pair of ``kind`` (None: a bevel pair or
+    none) is about to compile on a cold cache."""
+    if kind == "cylindrical" and command in CYLINDRICAL_UNCOMPILED:
+        return
+    if command in COMPILING_COMMANDS and cache_is_cold(kind):
         print(f"gearcontact {command}: note: first run after install (or a source change): "
               "numba compiles its kernels into its cache now (once: about 25 s of CPU, "
               "3 min more for the twin's); "

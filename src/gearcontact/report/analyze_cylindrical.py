@@ -260,10 +260,13 @@ def _summary_md(pair, side, facing, h, harris) -> str:
                   "loaded length and the approach converge (docs/cylindrical.md sec. 7)."]
     lines += [
         "", "The preview is the datapath's line chain (stage C fit -> line core of stage D) "
-        "on each loaded pair's 7 x 7 stencil with its LCP load share and the loaded "
-        "length L_c of its contact line (the slice law on the ease-off along the line, "
-        "with the teeth's bending where the loaded TE has it); the LCP peak includes the finite line's end effects, which the preview's "
-        "uniform line does not (docs/cylindrical.md sec. 8).", "",
+        "on each loaded pair's 7 x 7 stencil with its LCP load share, run on the "
+        "equivalent length L_eq = W / w_peak of the slice law's peak line load (the "
+        "ease-off along the line, with the teeth's bending where the loaded TE has it): "
+        "its p_max is the Hertz line pressure of that peak. The LCP peak also holds the "
+        "half-space's end effects of a finite line (the pressure rising towards a loaded "
+        "line's ends), which the slice law's foundation does not (docs/cylindrical.md "
+        "sec. 8).", "",
         "## Harris map: loaded TE p-p (arcsec)", "",
         "| C_a µm | TE0 p-p | " + " | ".join(f"{t:g} N·m" for t in harris.torques_nm) + " |",
         "|---" * (2 + len(harris.torques_nm)) + "|"]

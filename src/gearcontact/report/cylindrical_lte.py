@@ -172,11 +172,13 @@ def plot_cylindrical_lte(lte: CylindricalLoadedTE, path, *, title: str = "",
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8, loc="upper left")
     right = ax2.twinx()
-    right.plot(phi, lte.stiffness_n_per_mm_um, "k--", lw=1.0)
+    right.plot(phi, lte.stiffness_n_per_mm_um, "k--", lw=1.0,
+               label=f"stiffness, {_teeth(lte.bending)}")
     if rigid is not None:
-        right.plot(phi, rigid.stiffness_n_per_mm_um, "k:", lw=1.0)
-    right.set_ylabel("mesh stiffness (N/(mm·µm), dashed"
-                     + ("; rigid dotted)" if rigid is not None else ")"))
+        right.plot(phi, rigid.stiffness_n_per_mm_um, "k:", lw=1.0,
+                   label="stiffness, rigid teeth")
+    right.set_ylabel("mesh stiffness (N/(mm·µm))")
+    right.legend(fontsize=8, loc="upper right")
     if title:
         ax.set_title(title)
     return save_figure(fig, path, tight=True)

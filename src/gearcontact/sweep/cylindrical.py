@@ -40,7 +40,8 @@ CYLINDRICAL_TCA_VARIABLES = {
                                   "pitch"),
     "pairs_in_contact_mean": ("1", "tooth pairs touching unloaded, mean over the pitch"),
 }
-#: Per cell with ``ltca`` (rigid teeth unless the loaded-TE options say otherwise).
+#: Per cell with ``ltca`` (with the shell bending of both teeth, the loaded TE's default,
+#: unless the loaded-TE options say otherwise).
 CYLINDRICAL_LTCA_VARIABLES = {
     "lte_pp_arcsec": ("arcsec", "loaded transmission error, peak to peak"),
     "p_max_mpa": ("MPa", "peak contact pressure over the pitch"),

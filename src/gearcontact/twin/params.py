@@ -204,7 +204,9 @@ def load_drivetrain(source, pair) -> DrivetrainParams:
     doc = check_drivetrain_file(source)
     table = doc.get("drivetrain")
     if not isinstance(table, dict):
-        raise InputRangeError("[drivetrain]", None, f"a table in {path.name}")
+        raise InputRangeError("--drivetrain", path.name,
+                              "a TOML file with a [drivetrain] table (this one has none; "
+                              "a pair file goes to --pair)")
     known = {f.name for f in fields(DrivetrainParams)}
     for key, value in table.items():
         if key not in known:
