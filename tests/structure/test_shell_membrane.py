@@ -1,0 +1,109 @@
+"""The shallow-shell membrane-curvature coupling of the bevel shell
+(``build_shell(..., membrane=True)``; docs/bending.md sec. 12) against closed forms.
+
+- ``second_form``: the second fundamental form of a circular cylinder and of a
+  hyperbolic paraboloid, both given in an oblique parametrization (so that the map to
+  the local Cartesian frame, J^-T H J^-1, is exercised), against their textbook values
+  (principal curvature -1/R along the circle, 0 along the axis; the hypar z = c x y has
+  b_xy = c and b_xx = b_yy = 0 at its saddle point);
+- on a flat plate (b = 0) the term vanishes: the cantilever plate is the Timoshenko
+  beam exactly, as without it;
+- its membrane part: the same plate under an in-plane load along its length at the free
+  edge is the bar, P L / (E W t), exactly for nu = 0 (the Ritz space holds the linear
+  axial displacement).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gearcontact.materials import Material
+from gearcontact.structure.shell import build_shell, second_form
+from gearcontact.structure.tooth import LoadPoints, MidSurfaceArrays, RectangularPlate
+
+from .test_shell import E_MPA, edge_line_load_deflection, timoshenko
+
+
+def _surface(position):
+    """A MidSurfaceArrays maker from a position function X(xi, eta) (n, 3): tangents by
+    complex-step-free central differences of step 1e-6 (independent of second_form's
+    1e-3), the normal X_xi x X_eta."""
+    def mid(xi, eta):
+        xi, eta = np.atleast_1d(xi).astype(float), np.atleast_1d(eta).astype(float)
+        h = 1e-6
+        x_xi = (position(xi + h, eta) - position(xi - h, eta)) / (2 * h)
+        x_eta = (position(xi, eta + h) - position(xi, eta - h)) / (2 * h)
+        n = np.cross(x_xi, x_eta)
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        return MidSurfaceArrays(position_mm=position(xi, eta), x_xi=x_xi, x_eta=x_eta,
+                                normal=n, thickness_mm=np.ones_like(xi))
+    return mid
+
+
+def test_second_form_of_a_cylinder_obliquely_parametrized():
+    R, a, k, c = 25.0, 0.3, 0.2, 2.0       # angle a xi + k eta, axial c eta: oblique
+
+    def position(xi, eta):
+        phi = a * xi + k * eta
+        return np.stack([R * np.sin(phi), c * eta, R * np.cos(phi)], axis=1)
+
+    xi, eta = np.array([-0.7, 0.0, 0.4]), np.array([0.3, -0.5, 0.9])
+    mid = _surface(position)(xi, eta)
+    b = second_form(_surface(position), xi, eta)
+    # e1 is along the circle; the normal's sign follows X_xi x X_eta
+    sign = np.sign(np.einsum("ni,ni->n", mid.normal, mid.position_mm * [1, 0, 1]))
+    # tolerance: the central differences of step 1e-3 over the 1e-6 tangents: truncation
+    # (a h)^2 / 6 relative ~ 2e-8, rounding ~ 1e-16 R / (1e-6 1e-3) ~ 3e-6 / mm: 1e-5 / mm
+    np.testing.assert_allclose(b[0], -sign / R, atol=1e-5)
+    np.testing.assert_allclose(b[1:], 0.0, atol=1e-5)
+
+
+def test_second_form_of_a_hyperbolic_paraboloid_obliquely_parametrized():
+    c, s = 0.15, 0.6                       # z = c x y, x = xi + s eta, y = eta
+
+    def position(xi, eta):
+        x, y = xi + s * eta, eta
+        return np.stack([x, y, c * x * y], axis=1)
+
+    b = second_form(_surface(position), np.zeros(1), np.zeros(1))
+    # at the saddle point the normal is +z and e1 = x, e2 = y: b = [[0, c], [c, 0]]
+    # (tolerance as above)
+    np.testing.assert_allclose(b[:, 0], [0.0, 0.0, c], atol=1e-5)
+
+
+@pytest.mark.parametrize("order", [2, 6])
+def test_flat_plate_with_the_membrane_term_is_the_timoshenko_beam(order):
+    plate = RectangularPlate(10.0, 4.0, 2.0, Material(E_MPA, 0.0))
+    shell = build_shell(plate, order=order, membrane=True)
+    assert shell.n_functions == 5 * (order + 1) ** 2
+    # flat: b = 0 and normal loads do no in-plane work, so the plate of sec. 2 exactly
+    # (the Ritz space holds the Timoshenko solution for order >= 2; rounding only)
+    assert edge_line_load_deflection(shell, plate) == pytest.approx(
+        timoshenko(10.0, 4.0, 2.0, 0.0), rel=1e-9)
+
+
+def test_in_plane_edge_load_is_the_bar():
+    L, W, t = 10.0, 4.0, 2.0
+    plate = RectangularPlate(L, W, t, Material(E_MPA, 0.0))
+    shell = build_shell(plate, order=3, membrane=True)
+    g, w = np.polynomial.legendre.leggauss(8)
+    mid = plate.mid_surface(g, np.ones_like(g))
+    along = mid.x_eta / np.linalg.norm(mid.x_eta, axis=1, keepdims=True)
+    pts = LoadPoints(xi=g, eta=np.ones_like(g), direction=along, offset_mm=np.zeros_like(g),
+                     position_mm=mid.position_mm)
+    G = shell.compliance(pts).matrix()
+    # a uniform unit load on the free edge of a clamped strip, nu = 0: u = P x / (E W t)
+    # exactly (linear in the height, in the Ritz space); rounding only
+    assert (w / 2) @ G @ (w / 2) == pytest.approx(L / (E_MPA * W * t), rel=1e-9)
+    # without the term the plate has no in-plane field: a load on the mid-surface along
+    # it does no work
+    assert np.allclose(build_shell(plate, order=3).compliance(pts).matrix(), 0.0)
+
+
+def test_membrane_flag_is_checked():
+    from gearcontact.validation import InputRangeError
+
+    plate = RectangularPlate(10.0, 4.0, 2.0, Material(E_MPA, 0.0))
+    with pytest.raises(InputRangeError, match="membrane"):
+        build_shell(plate, order=2, membrane=1)
