@@ -18,13 +18,14 @@ and with ``--with-s0003-pinion`` the s0003 pinion, whose slot closes in a V at t
 
 With ``--fe-root ellipse`` the FE meshes the shell's own quarter-ellipse root instead:
 the plate's misfit with the same root geometry in both models. ``--mesh`` and ``--eta``
-give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5). With ``--membrane`` the
-shell couples membrane and bending through the mid-surface's curvature (a shallow shell,
-``build_shell(..., membrane=True)``; docs/bending.md sec. 12), the FE unchanged.
+give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5). With ``--membrane naghdi``
+the shell couples membrane and bending through the mid-surface's curvature (a shallow
+shell, ``build_shell(..., membrane=True)``; docs/bending.md sec. 12), with ``--membrane
+dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged.
 
 Usage: python3 benchmarks/bench_rim_calibration.py [--factors 1.3 1.4 ...]
        [--with-s0003-pinion] [--only LABEL ...] [--fe-root cutter|ellipse]
-       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--membrane] [--json FILE]
+       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--membrane dmv|naghdi] [--json FILE]
 """
 
 from __future__ import annotations
@@ -65,7 +66,7 @@ _FLANKS: dict = {}
 
 def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
             eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh(),
-            membrane: bool = False) -> dict:
+            membrane: str | None = None) -> dict:
     """The FE deflections of one tooth under the distributed loads (computed once) and
     shell / FE at every factor of ``factors`` (segment loads, then line loads)."""
     pair = load_pair(pair_name)
@@ -86,7 +87,7 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
         rim = rim_segment(tooth, stiffening=float(k))
         if membrane:        # the shallow shell of the same tooth and rim (sec. 12)
             shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
-                                membrane=True)
+                                membrane=True, membrane_shear=membrane == "naghdi")
             res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
         else:
             res = flank_compliance(pair, member, rim=rim, **kw)
@@ -112,7 +113,7 @@ def main() -> None:
                     help="FE cells (default 12 6 3 4, the calibration's)")
     ap.add_argument("--eta", type=float, nargs="+", default=(-1 / 3, 0.0, 1 / 3),
                     help="lattice heights (default -1/3 0 1/3)")
-    ap.add_argument("--membrane", action="store_true",
+    ap.add_argument("--membrane", choices=("dmv", "naghdi"), default=None,
                     help="the shell with the membrane-curvature coupling (sec. 12)")
     ap.add_argument("--json", default=None, help="write the measurements to this file")
     args = ap.parse_args()

@@ -11,7 +11,12 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   ``D_s = kappa_s G t I`` (kappa_s = 5/6); derivatives with respect to the local
   Cartesian coordinates of the tangent plane, ``dA`` the true area element (the metric
   of the real mid-surface; the coupling of membrane and bending through the
-  mid-surface curvature is neglected, a shallow-shell / plate approximation);
+  mid-surface curvature is neglected, a shallow-shell / plate approximation; with
+  ``membrane=True`` it is kept as a shallow shell: in-plane fields u_1, u_2, membrane
+  strain ``eps_ab = (u_a,b + u_b,a)/2 - b_ab w`` with the mid-surface's second
+  fundamental form ``b_ab = m . X,ab`` (:func:`second_form`), membrane energy
+  ``1/2 int eps^T A eps dA``, ``A = E t / (1 - nu^2) [...]``, and, with
+  ``membrane_shear``, ``gamma_a = w,a + beta_a + b_ab u_b``; docs/bending.md sec. 12);
 - Ritz basis: ``w, beta_1, beta_2 = sum_ij a_ij P_i(xi) P_j(eta') r(eta')`` with Legendre
   polynomials of degree <= ``order_face`` along the face (xi) and <= ``order`` over the
   height (a tooth is 5-10 times longer than high); ``r = (1 + eta')/2`` clamps all three
@@ -39,6 +44,10 @@ References
 ----------
 M. Kolivand, A. Kahraman, "A load distribution model for hypoid gears using ease-off
 topography and shell theory", *Mechanism and Machine Theory* 44(10), 2009, 1848-1865.
+K. Marguerre, "Zur Theorie der gekrümmt[en] Platte grosser Formänderung", *Proc. 5th
+Int. Congr. Appl. Mech.*, 1938, 93-101 (the shallow shell).
+P. M. Naghdi, "The theory of shells and plates", in *Handbuch der Physik* VIa/2,
+Springer, 1972, 425-640 (the shear-deformable shell's transverse shear with b_ab u_b).
 R. D. Mindlin, "Influence of rotatory inertia and shear on flexural motions of
 isotropic, elastic plates", *J. Appl. Mech.* 18, 1951, 31-38.
 K. M. Liew, Y. Xiang, S. Kitipornchai, "Research on thick plate vibration: a literature
@@ -166,6 +175,7 @@ class ShellModel:
     n_functions: int
     rim: RimSegment | None = None
     membrane: bool = False
+    membrane_shear: bool = True
 
     @property
     def n_fields(self) -> int:
@@ -253,7 +263,7 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     xi, eta, wq = XI.ravel(), ETA.ravel(), np.outer(wx, wg).ravel()
     curv = (second_form(body.mid_surface, xi, eta) if model.membrane else None)
     K = _plate_energy(body.mid_surface(xi, eta), *model.shape_functions(xi, eta), wq,
-                      body.material, curvature=curv)
+                      body.material, curvature=curv, shear_coupling=model.membrane_shear)
     rim = model.rim
     if rim is not None:
         # depth s below the root line; the Ritz coordinate rises by (split + 1) / D per
@@ -269,7 +279,8 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
                     if model.membrane else None)
             K += _plate_energy(rim_mid_surface(body, rim, xi, S), n, n_xi, n_eta * rate,
                                wq * 0.5 * (s1 - s0), body.material,
-                               modulus_factor=rim_modulus_factor(rim, S), curvature=curv)
+                               modulus_factor=rim_modulus_factor(rim, S), curvature=curv,
+                               shear_coupling=model.membrane_shear)
     return 0.5 * (K + K.T)
 
 
@@ -304,14 +315,16 @@ def second_form(surface, xi, eta, *, step: float = _CURVATURE_STEP) -> np.ndarra
 
 
 def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0,
-                  curvature=None) -> np.ndarray:
+                  curvature=None, shear_coupling=True) -> np.ndarray:
     """Stiffness (m x m), N/mm, of the plate energy at quadrature points of weights
     ``wq`` (per unit of the coordinates ``mid.x_xi``, ``mid.x_eta`` refer to, in which
     ``Nxi``, ``Neta`` are the derivatives); ``modulus_factor`` (scalar or per point)
     scales E (and G). With ``curvature`` (:func:`second_form` at the points) the
     fields are (w, beta_1, beta_2, u_1, u_2) and the shallow-shell membrane energy
     ``1/2 int eps^T A eps dA``, ``eps_ab = (u_a,b + u_b,a)/2 - b_ab w``, joins the
-    plate's (module docstring; docs/bending.md sec. 12)."""
+    plate's (module docstring; docs/bending.md sec. 12); with ``shear_coupling`` the
+    transverse shear is ``gamma_a = w,a + beta_a + b_ab u_b`` (Naghdi), else the
+    Donnell-Mushtari-Vlasov ``w,a + beta_a``."""
     e1, e2, _ = local_frame(mid)
     # J maps (d xi, d eta) -> local (dx1, dx2); gradient = J^-T (d/dxi, d/deta)
     j11 = np.einsum("ni,ni->n", e1, mid.x_xi)
@@ -327,12 +340,17 @@ def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0,
     nb, nq = N.shape[1], N.shape[2]
     zero = np.zeros((nb, nq))
     extra = [] if curvature is None else [zero, zero]                 # u_1, u_2 columns
+    shear_u = [[], []]
+    if curvature is not None:
+        b11, b22, b12 = curvature
+        shear_u = ([b11 * N[3], b12 * N[4]] if shear_coupling else extra,
+                   [b12 * N[3], b22 * N[4]] if shear_coupling else extra)
     # rows: kappa_11, kappa_22, kappa_12 (engineering), gamma_1, gamma_2; columns: w, b1, b2
     Bb = np.stack([np.concatenate([zero, dx1[1], zero] + extra),
                    np.concatenate([zero, zero, dx2[2]] + extra),
                    np.concatenate([zero, dx2[1], dx1[2]] + extra)])    # (3, m, nq)
-    Bs = np.stack([np.concatenate([dx1[0], N[1], zero] + extra),
-                   np.concatenate([dx2[0], zero, N[2]] + extra)])      # (2, m, nq)
+    Bs = np.stack([np.concatenate([dx1[0], N[1], zero] + shear_u[0]),
+                   np.concatenate([dx2[0], zero, N[2]] + shear_u[1])])  # (2, m, nq)
     E, nu = modulus_factor * material.youngs_modulus_mpa, material.poisson_ratio
     t = mid.thickness_mm
     dA = wq * det
@@ -342,7 +360,6 @@ def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0,
     K = np.einsum("amq,ab,bnq,q->mn", Bb, Db, Bb, D, optimize=True)
     K += np.einsum("amq,anq,q->mn", Bs, Bs, Gs, optimize=True)
     if curvature is not None:
-        b11, b22, b12 = curvature
         w = N[0]
         # rows: eps_11, eps_22, 2 eps_12; columns: w, b1, b2, u1, u2
         Bm = np.stack([np.concatenate([-b11 * w, zero, zero, dx1[3], zero]),
@@ -354,7 +371,8 @@ def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0,
 
 
 def build_shell(body, *, order: int = 6, order_face: int | None = None,
-                rim: RimSegment | None = None, membrane: bool = False) -> ShellModel:
+                rim: RimSegment | None = None, membrane: bool = False,
+                membrane_shear: bool = True) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -374,6 +392,10 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         Couple membrane and bending through the mid-surface's curvature (a shallow
         shell: the in-plane displacements u_1, u_2 join the fields, docs/bending.md
         sec. 12); False: the plate of sec. 2.
+    membrane_shear : bool
+        With ``membrane``: the curvature also in the transverse shear,
+        ``gamma_a = w,a + beta_a + b_ab u_b`` (Naghdi); False: only in the membrane
+        strain (Donnell-Mushtari-Vlasov).
 
     Raises
     ------
@@ -389,14 +411,15 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
-    if not isinstance(membrane, bool):
-        raise InputRangeError("membrane", membrane, "True or False")
+    for name, flag in (("membrane", membrane), ("membrane_shear", membrane_shear)):
+        if not isinstance(flag, bool):
+            raise InputRangeError(name, flag, "True or False")
     n = (5 if membrane else 3) * (int(order) + 1) * (int(order_face) + 1)
     if rim is not None and not isinstance(rim, RimSegment):
         raise InputRangeError("rim", rim, "a RimSegment or None")
     model = ShellModel(body=body, order=int(order), order_face=int(order_face),
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
-                       membrane=membrane)
+                       membrane=membrane, membrane_shear=membrane_shear)
     K = _stiffness(body, model)
     try:
         L, _ = cho_factor(K, lower=True)
