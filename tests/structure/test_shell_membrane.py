@@ -157,3 +157,35 @@ def test_rigid_translation_of_a_cylinder_is_strain_free_with_the_shear_coupling(
     # 1e-3 on exact tangents: ~1e-7 relative), squared in the energy: below 1e-8 of DMV's
     assert energy[False] > 0.0
     assert abs(energy[True]) < 1e-8 * energy[False]
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "docs/bending.md sec. 12: declared before measuring, the shallow-shell term should "
+    "take the 7-tooth pinion's surplus against its gear down by >= 0.10 in log on one "
+    "geometry; measured 0.432 -> 0.396 (-0.036): no better, not shipped"))
+def test_membrane_term_brings_the_seven_tooth_pinion_to_its_gear(pairs):
+    """The declared criterion 2 of docs/bending.md sec. 12 on the calibrated s0003 pair:
+    with the FE on the shell's own ellipse root (one geometry in both models) and the
+    shell at the calibrated factor of each model (the plate 1.49, the Naghdi shell 1.30,
+    sec. 12's grids), ln(max shell/FE of the pinion / max of the gear) must fall by at
+    least 0.10 (the declared 'improved'). Truth: the 3D FE (P2, default mesh)."""
+    from gearcontact.structure.compliance import shell_compliance
+    from gearcontact.structure.rim import rim_segment
+    from gearcontact.structure.shell import ORDER, ORDER_FACE
+    from gearcontact.structure.tooth import tooth_geometry
+
+    pair, flanks = pairs["s0003"]
+    largest = {}
+    for member in ("pinion", "gear"):
+        tooth = tooth_geometry(flanks, member, material=getattr(pair, f"{member}_material"))
+        out = {}
+        for membrane, factor in ((False, 1.49), (True, 1.30)):
+            shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE,
+                                rim=rim_segment(tooth, stiffening=factor), membrane=membrane)
+            res = shell_compliance(shell, side=pair.design_side, fe=True)
+            out[membrane] = max(np.max(res.segment_shell_mm_per_n / res.segment_fe_mm_per_n),
+                                np.max(res.line_shell_mm_per_n / res.line_fe_mm_per_n))
+        largest[member] = out
+    gap = {m: np.log(largest["pinion"][m] / largest["gear"][m]) for m in (False, True)}
+    assert gap[False] - gap[True] >= 0.10, gap
