@@ -18,11 +18,14 @@ and with ``--with-s0003-pinion`` the s0003 pinion, whose slot closes in a V at t
 
 With ``--fe-root ellipse`` the FE meshes the shell's own quarter-ellipse root instead:
 the plate's misfit with the same root geometry in both models. ``--mesh`` and ``--eta``
-give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5).
+give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5). With ``--membrane naghdi``
+the shell couples membrane and bending through the mid-surface's curvature (a shallow
+shell, ``build_shell(..., membrane=True)``; docs/bending.md sec. 12), with ``--membrane
+dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged.
 
 Usage: python3 benchmarks/bench_rim_calibration.py [--factors 1.3 1.4 ...]
        [--with-s0003-pinion] [--only LABEL ...] [--fe-root cutter|ellipse]
-       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--json FILE]
+       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--membrane dmv|naghdi] [--json FILE]
 """
 
 from __future__ import annotations
@@ -37,9 +40,10 @@ import numpy as np
 
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.pair import load_pair
-from gearcontact.structure.compliance import EllipseRootWarning, FeMesh, flank_compliance
+from gearcontact.structure.compliance import (EllipseRootWarning, FeMesh, flank_compliance,
+                                              shell_compliance)
 from gearcontact.structure.rim import rim_segment
-from gearcontact.structure.shell import RIM_STIFFENING
+from gearcontact.structure.shell import ORDER, ORDER_FACE, RIM_STIFFENING, build_shell
 from gearcontact.structure.tooth import tooth_geometry
 
 F2_MACHINE = "examples/machine_settings/iso23509_f2_machine.toml"
@@ -61,7 +65,8 @@ _FLANKS: dict = {}
 
 
 def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
-            eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh()) -> dict:
+            eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh(),
+            membrane: str | None = None) -> dict:
     """The FE deflections of one tooth under the distributed loads (computed once) and
     shell / FE at every factor of ``factors`` (segment loads, then line loads)."""
     pair = load_pair(pair_name)
@@ -80,7 +85,12 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
     ratios = {}
     for k in factors:
         rim = rim_segment(tooth, stiffening=float(k))
-        res = flank_compliance(pair, member, rim=rim, **kw)
+        if membrane:        # the shallow shell of the same tooth and rim (sec. 12)
+            shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
+                                membrane=True, membrane_shear=membrane == "naghdi")
+            res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
+        else:
+            res = flank_compliance(pair, member, rim=rim, **kw)
         ratios[float(k)] = np.concatenate([res.segment_shell_mm_per_n,
                                            res.line_shell_mm_per_n]) / fe
     return {"side": pair.design_side, "fe_nodes": ref.fe_nodes, "fe_cpu_s": fe_s,
@@ -103,6 +113,8 @@ def main() -> None:
                     help="FE cells (default 12 6 3 4, the calibration's)")
     ap.add_argument("--eta", type=float, nargs="+", default=(-1 / 3, 0.0, 1 / 3),
                     help="lattice heights (default -1/3 0 1/3)")
+    ap.add_argument("--membrane", choices=("dmv", "naghdi"), default=None,
+                    help="the shell with the membrane-curvature coupling (sec. 12)")
     ap.add_argument("--json", default=None, help="write the measurements to this file")
     args = ap.parse_args()
     teeth = TEETH + ([EIGHTH] if args.with_s0003_pinion else [])
@@ -112,7 +124,8 @@ def main() -> None:
     out = {}
     for label, name, member in teeth:
         out[label] = measure(name, member, factors, fe_root=args.fe_root, eta=args.eta,
-                             fe_mesh=FeMesh() if args.mesh is None else FeMesh(*args.mesh))
+                             fe_mesh=FeMesh() if args.mesh is None else FeMesh(*args.mesh),
+                             membrane=args.membrane)
         print(f"{label}: FE {out[label]['fe_nodes']} nodes, {out[label]['fe_cpu_s']:.1f} s "
               f"CPU; line FE (um/kN) "
               + ", ".join(f"{x:.3f}" for x in out[label]["line_fe_um_per_kn"]), flush=True)

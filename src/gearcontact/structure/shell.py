@@ -11,7 +11,12 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   ``D_s = kappa_s G t I`` (kappa_s = 5/6); derivatives with respect to the local
   Cartesian coordinates of the tangent plane, ``dA`` the true area element (the metric
   of the real mid-surface; the coupling of membrane and bending through the
-  mid-surface curvature is neglected, a shallow-shell / plate approximation);
+  mid-surface curvature is neglected, a shallow-shell / plate approximation; with
+  ``membrane=True`` it is kept as a shallow shell: in-plane fields u_1, u_2, membrane
+  strain ``eps_ab = (u_a,b + u_b,a)/2 - b_ab w`` with the mid-surface's second
+  fundamental form ``b_ab = m . X,ab`` (:func:`second_form`), membrane energy
+  ``1/2 int eps^T A eps dA``, ``A = E t / (1 - nu^2) [...]``, and, with
+  ``membrane_shear``, ``gamma_a = w,a + beta_a + b_ab u_b``; docs/bending.md sec. 12);
 - Ritz basis: ``w, beta_1, beta_2 = sum_ij a_ij P_i(xi) P_j(eta') r(eta')`` with Legendre
   polynomials of degree <= ``order_face`` along the face (xi) and <= ``order`` over the
   height (a tooth is 5-10 times longer than high); ``r = (1 + eta')/2`` clamps all three
@@ -39,6 +44,10 @@ References
 ----------
 M. Kolivand, A. Kahraman, "A load distribution model for hypoid gears using ease-off
 topography and shell theory", *Mechanism and Machine Theory* 44(10), 2009, 1848-1865.
+K. Marguerre, "Zur Theorie der gekrümmt[en] Platte grosser Formänderung", *Proc. 5th
+Int. Congr. Appl. Mech.*, 1938, 93-101 (the shallow shell).
+P. M. Naghdi, "The theory of shells and plates", in *Handbuch der Physik* VIa/2,
+Springer, 1972, 425-640 (the shear-deformable shell's transverse shear with b_ab u_b).
 R. D. Mindlin, "Influence of rotatory inertia and shear on flexural motions of
 isotropic, elastic plates", *J. Appl. Mech.* 18, 1951, 31-38.
 K. M. Liew, Y. Xiang, S. Kitipornchai, "Research on thick plate vibration: a literature
@@ -86,6 +95,13 @@ RIM_STIFFENING = {"pinion": 1.49, "gear": 1.49}
 #: Ritz orders of a tooth's shell (the calibration's): over the height of rim and tooth,
 #: and along the face.
 ORDER, ORDER_FACE = 10, 16
+
+#: Whether a bevel tooth's shell (:func:`tooth_shell`) couples membrane and bending
+#: through its mid-surface's curvature (docs/bending.md sec. 12).
+MEMBRANE = False
+#: Step of the central differences of the mid-surface's tangents in :func:`second_form`
+#: (in the surface's coordinates: xi, eta in [-1, 1]; mm of height in the rim).
+_CURVATURE_STEP = 1e-3
 
 #: Gauss-Legendre points per direction of the stiffness quadrature (fixed, so that the
 #: trial spaces of different orders are compared on the same integration rule); along
@@ -158,6 +174,14 @@ class ShellModel:
     cholesky: np.ndarray
     n_functions: int
     rim: RimSegment | None = None
+    membrane: bool = False
+    membrane_shear: bool = True
+
+    @property
+    def n_fields(self) -> int:
+        """Displacement fields of the Ritz basis: (w, beta_1, beta_2), and with the
+        membrane coupling (u_1, u_2) as well."""
+        return 5 if self.membrane else 3
 
     @cached_property
     def rim_split(self) -> float:
@@ -179,8 +203,8 @@ class ShellModel:
 
     def _functions(self, xi, eta_r) -> tuple[np.ndarray, ...]:
         """:meth:`shape_functions` in the Ritz coordinate ``eta'`` (-1 at the clamped
-        bottom of the plate: the root line, or the rim's bottom). The three fields
-        share one scalar basis."""
+        bottom of the plate: the root line, or the rim's bottom). The fields
+        (:attr:`n_fields`) share one scalar basis."""
         xi, eta = np.atleast_1d(np.asarray(xi, float)), np.atleast_1d(np.asarray(eta_r, float))
         px, dpx = _legendre_table(xi, self.order_face)
         pe, dpe = _legendre_table(eta, self.order)
@@ -190,8 +214,9 @@ class ShellModel:
         vals = (px[:, None, :] * qe[None, :, :]).reshape(-1, n)
         dxi = (dpx[:, None, :] * qe[None, :, :]).reshape(-1, n)
         deta = (px[:, None, :] * dqe[None, :, :]).reshape(-1, n)
-        return (np.broadcast_to(vals, (3,) + vals.shape), np.broadcast_to(dxi, (3,) + dxi.shape),
-                np.broadcast_to(deta, (3,) + deta.shape))
+        k = self.n_fields
+        return (np.broadcast_to(vals, (k,) + vals.shape), np.broadcast_to(dxi, (k,) + dxi.shape),
+                np.broadcast_to(deta, (k,) + deta.shape))
 
     def load_vectors(self, points: LoadPoints) -> np.ndarray:
         """Phi (n, m): deflection of each point along its direction per Ritz coordinate."""
@@ -199,9 +224,11 @@ class ShellModel:
         e1, e2, m = local_frame(mid)
         N, _, _ = self.shape_functions(points.xi, points.eta)
         d, z = points.direction, points.offset_mm
-        coef = np.stack([np.einsum("ni,ni->n", d, m), z * np.einsum("ni,ni->n", d, e1),
-                         z * np.einsum("ni,ni->n", d, e2)])          # (3, n)
-        return np.concatenate([(N[f] * coef[f]).T for f in range(3)], axis=1)
+        d1, d2 = np.einsum("ni,ni->n", d, e1), np.einsum("ni,ni->n", d, e2)
+        coef = [np.einsum("ni,ni->n", d, m), z * d1, z * d2]
+        if self.membrane:
+            coef += [d1, d2]                 # the in-plane displacements' work
+        return np.concatenate([(N[f] * coef[f]).T for f in range(self.n_fields)], axis=1)
 
     @cached_property
     def inverse_cholesky_t(self) -> np.ndarray:
@@ -234,8 +261,9 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     gx, wx = legendre.leggauss(max(_QUADRATURE, model.order_face + 6))
     XI, ETA = np.meshgrid(gx, g, indexing="ij")
     xi, eta, wq = XI.ravel(), ETA.ravel(), np.outer(wx, wg).ravel()
+    curv = (second_form(body.mid_surface, xi, eta) if model.membrane else None)
     K = _plate_energy(body.mid_surface(xi, eta), *model.shape_functions(xi, eta), wq,
-                      body.material)
+                      body.material, curvature=curv, shear_coupling=model.membrane_shear)
     rim = model.rim
     if rim is not None:
         # depth s below the root line; the Ritz coordinate rises by (split + 1) / D per
@@ -246,17 +274,57 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
                 continue
             S = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * ETA.ravel()
             n, n_xi, n_eta = model._functions(xi, model.rim_split - rate * S)
+            # the rim's coordinates: (xi, height above the root line = -S)
+            curv = (second_form(lambda x, up: rim_mid_surface(body, rim, x, -up), xi, -S)
+                    if model.membrane else None)
             K += _plate_energy(rim_mid_surface(body, rim, xi, S), n, n_xi, n_eta * rate,
                                wq * 0.5 * (s1 - s0), body.material,
-                               modulus_factor=rim_modulus_factor(rim, S))
+                               modulus_factor=rim_modulus_factor(rim, S), curvature=curv,
+                               shear_coupling=model.membrane_shear)
     return 0.5 * (K + K.T)
 
 
-def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0) -> np.ndarray:
+def second_form(surface, xi, eta, *, step: float = _CURVATURE_STEP) -> np.ndarray:
+    """The mid-surface's second fundamental form in the local Cartesian coordinates of
+    :func:`~.tooth.local_frame`: ``(b_11, b_22, b_12)`` (3, n), 1/mm, ``b = m . X,ab``.
+
+    ``surface(xi, eta)`` gives :class:`~.tooth.MidSurfaceArrays` (``x_xi``, ``x_eta``
+    per unit of its coordinates); the parametric form ``H = m . X,(xi eta)`` by central
+    differences of the tangents (step ``step``), then ``b = J^-T H J^-1`` with the
+    frame's ``J = [[e1 . x_xi, e1 . x_eta], [0, e2 . x_eta]]`` (the tangential parts of
+    the derivatives of J drop out against the normal m).
+    """
+    xi, eta = np.asarray(xi, float), np.asarray(eta, float)
+    mid = surface(xi, eta)
+    e1, e2, m = local_frame(mid)
+    xp, xm = surface(xi + step, eta), surface(xi - step, eta)
+    ep, em = surface(xi, eta + step), surface(xi, eta - step)
+    dot = lambda a, b: np.einsum("ni,ni->n", a, b) / (2.0 * step)   # noqa: E731
+    h11 = dot(m, xp.x_xi - xm.x_xi)
+    h22 = dot(m, ep.x_eta - em.x_eta)
+    h12 = 0.5 * (dot(m, ep.x_xi - em.x_xi) + dot(m, xp.x_eta - xm.x_eta))
+    j11 = np.einsum("ni,ni->n", e1, mid.x_xi)
+    j12 = np.einsum("ni,ni->n", e1, mid.x_eta)
+    j22 = np.einsum("ni,ni->n", e2, mid.x_eta)
+    # J^-1 = [[1/j11, -j12/(j11 j22)], [0, 1/j22]]
+    a11, a12, a22 = 1.0 / j11, -j12 / (j11 * j22), 1.0 / j22
+    b11 = a11 * a11 * h11
+    b12 = a11 * (a12 * h11 + a22 * h12)
+    b22 = a12 * a12 * h11 + 2.0 * a12 * a22 * h12 + a22 * a22 * h22
+    return np.stack([b11, b22, b12])
+
+
+def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0,
+                  curvature=None, shear_coupling=True) -> np.ndarray:
     """Stiffness (m x m), N/mm, of the plate energy at quadrature points of weights
     ``wq`` (per unit of the coordinates ``mid.x_xi``, ``mid.x_eta`` refer to, in which
     ``Nxi``, ``Neta`` are the derivatives); ``modulus_factor`` (scalar or per point)
-    scales E (and G)."""
+    scales E (and G). With ``curvature`` (:func:`second_form` at the points) the
+    fields are (w, beta_1, beta_2, u_1, u_2) and the shallow-shell membrane energy
+    ``1/2 int eps^T A eps dA``, ``eps_ab = (u_a,b + u_b,a)/2 - b_ab w``, joins the
+    plate's (module docstring; docs/bending.md sec. 12); with ``shear_coupling`` the
+    transverse shear is ``gamma_a = w,a + beta_a + b_ab u_b`` (Naghdi), else the
+    Donnell-Mushtari-Vlasov ``w,a + beta_a``."""
     e1, e2, _ = local_frame(mid)
     # J maps (d xi, d eta) -> local (dx1, dx2); gradient = J^-T (d/dxi, d/deta)
     j11 = np.einsum("ni,ni->n", e1, mid.x_xi)
@@ -271,12 +339,18 @@ def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0) -> np.
     dx2 = (Neta - (j12 / j11) * Nxi) / j22
     nb, nq = N.shape[1], N.shape[2]
     zero = np.zeros((nb, nq))
+    extra = [] if curvature is None else [zero, zero]                 # u_1, u_2 columns
+    shear_u = [[], []]
+    if curvature is not None:
+        b11, b22, b12 = curvature
+        shear_u = ([b11 * N[3], b12 * N[4]] if shear_coupling else extra,
+                   [b12 * N[3], b22 * N[4]] if shear_coupling else extra)
     # rows: kappa_11, kappa_22, kappa_12 (engineering), gamma_1, gamma_2; columns: w, b1, b2
-    Bb = np.stack([np.concatenate([zero, dx1[1], zero]),
-                   np.concatenate([zero, zero, dx2[2]]),
-                   np.concatenate([zero, dx2[1], dx1[2]])])            # (3, m, nq)
-    Bs = np.stack([np.concatenate([dx1[0], N[1], zero]),
-                   np.concatenate([dx2[0], zero, N[2]])])              # (2, m, nq)
+    Bb = np.stack([np.concatenate([zero, dx1[1], zero] + extra),
+                   np.concatenate([zero, zero, dx2[2]] + extra),
+                   np.concatenate([zero, dx2[1], dx1[2]] + extra)])    # (3, m, nq)
+    Bs = np.stack([np.concatenate([dx1[0], N[1], zero] + shear_u[0]),
+                   np.concatenate([dx2[0], zero, N[2]] + shear_u[1])])  # (2, m, nq)
     E, nu = modulus_factor * material.youngs_modulus_mpa, material.poisson_ratio
     t = mid.thickness_mm
     dA = wq * det
@@ -285,11 +359,20 @@ def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0) -> np.
     Db = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1.0 - nu)]])
     K = np.einsum("amq,ab,bnq,q->mn", Bb, Db, Bb, D, optimize=True)
     K += np.einsum("amq,anq,q->mn", Bs, Bs, Gs, optimize=True)
+    if curvature is not None:
+        w = N[0]
+        # rows: eps_11, eps_22, 2 eps_12; columns: w, b1, b2, u1, u2
+        Bm = np.stack([np.concatenate([-b11 * w, zero, zero, dx1[3], zero]),
+                       np.concatenate([-b22 * w, zero, zero, zero, dx2[4]]),
+                       np.concatenate([-2.0 * b12 * w, zero, zero, dx2[3], dx1[4]])])
+        A = E * t / (1.0 - nu * nu) * dA
+        K += np.einsum("amq,ab,bnq,q->mn", Bm, Db, Bm, A, optimize=True)
     return K
 
 
 def build_shell(body, *, order: int = 6, order_face: int | None = None,
-                rim: RimSegment | None = None) -> ShellModel:
+                rim: RimSegment | None = None, membrane: bool = False,
+                membrane_shear: bool = True) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -305,6 +388,14 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         Continue the plate below the root line through the fillet and the rim block
         (:mod:`.rim`), clamped at the rim's bottom; None: the plate is clamped at the
         root line.
+    membrane : bool
+        Couple membrane and bending through the mid-surface's curvature (a shallow
+        shell: the in-plane displacements u_1, u_2 join the fields, docs/bending.md
+        sec. 12); False: the plate of sec. 2.
+    membrane_shear : bool
+        With ``membrane``: the curvature also in the transverse shear,
+        ``gamma_a = w,a + beta_a + b_ab u_b`` (Naghdi); False: only in the membrane
+        strain (Donnell-Mushtari-Vlasov).
 
     Raises
     ------
@@ -320,11 +411,15 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
-    n = 3 * (int(order) + 1) * (int(order_face) + 1)
+    for name, flag in (("membrane", membrane), ("membrane_shear", membrane_shear)):
+        if not isinstance(flag, bool):
+            raise InputRangeError(name, flag, "True or False")
+    n = (5 if membrane else 3) * (int(order) + 1) * (int(order_face) + 1)
     if rim is not None and not isinstance(rim, RimSegment):
         raise InputRangeError("rim", rim, "a RimSegment or None")
     model = ShellModel(body=body, order=int(order), order_face=int(order_face),
-                       cholesky=np.empty((0, 0)), n_functions=n, rim=rim)
+                       cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
+                       membrane=membrane, membrane_shear=membrane_shear)
     K = _stiffness(body, model)
     try:
         L, _ = cho_factor(K, lower=True)
@@ -337,7 +432,8 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
 
 @lru_cache(maxsize=8)
 def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
-                order_face: int = ORDER_FACE, rim: RimSegment | None = None) -> ShellModel:
+                order_face: int = ORDER_FACE, rim: RimSegment | None = None,
+                membrane: bool = MEMBRANE) -> ShellModel:
     """The shell model of one tooth of ``member``, cached per flank set and member.
 
     ``rim`` defaults to the member's fillet and rim segment (:func:`.rim.rim_segment`)
@@ -350,4 +446,4 @@ def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
     tooth: ToothGeometry = tooth_geometry(flanks, member, material=material)
     if rim is None:
         rim = rim_segment(tooth, stiffening=RIM_STIFFENING[member])
-    return build_shell(tooth, order=order, order_face=order_face, rim=rim)
+    return build_shell(tooth, order=order, order_face=order_face, rim=rim, membrane=membrane)
