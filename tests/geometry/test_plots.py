@@ -13,8 +13,24 @@ def test_flanks_in_mesh_png(s0003_centred, tmp_path):
     assert out.stat().st_size > 10_000  # a real 1050 x 825 px raster
     ax = fig.axes[0]
     assert len(ax.collections) >= 3  # two sheets + the P0 marker
+    # s0003: 7/70, offset 19 mm, a hypoid; a pair without offset is a spiral bevel
+    # (the F.2 pair's figure was titled "hypoid")
+    assert ax.get_title().startswith("7/70 hypoid, drive flanks in mesh")
     with pytest.raises(InputRangeError):
         plot_flanks_in_mesh(flanks, side="sideways")
+
+
+def test_flanks_in_mesh_names_a_spiral_bevel(tmp_path):
+    from pathlib import Path
+
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+
+    root = Path(__file__).resolve().parents[2]
+    pair = load_pair(root / "examples" / "iso23509_f2_spiral_bevel.toml")
+    assert pair.blank.offset_mm == 0.0
+    fig = plot_flanks_in_mesh(build_flanks(pair), side="drive")
+    assert fig.axes[0].get_title().startswith("14/39 spiral bevel, drive flanks in mesh")
 
 
 def test_setting_residual_map_is_labelled_and_its_svg_small(tmp_path):
