@@ -151,17 +151,9 @@ def formate_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
     alpha = math.radians(b.blade_angle_deg)
     cone = BladeCone(placement, b.point_radius_mm - b.sigma * d * math.tan(alpha),
                      b.blade_angle_deg, b.kind == "inside")
-    try:
-        return gear_flank(blank, cone, side=setup.side, gear_face_width_mm=gear_face_width_mm,
-                          edge_radius_mm=b.edge_radius_mm)
-    except InputRangeError:     # the typed cutter, not the blank's face width: name it
-        r2 = blank.mean_cone_distance_gear_mm
-        raise InputRangeError(
-            f"blade.gear.{setup.side}.point_radius_mm", b.point_radius_mm,
-            f"a cutter circle that reaches both face ends (gear cone distances "
-            f"{r2 - 0.5 * gear_face_width_mm:.3f} to {r2 + 0.5 * gear_face_width_mm:.3f} mm) "
-            f"with [machine.gear.{setup.side}] as typed (radial distance "
-            f"{setup.settings.radial_distance_mm:g} mm; mm, not inches)") from None
+    return gear_flank(blank, cone, side=setup.side, gear_face_width_mm=gear_face_width_mm,
+                      edge_radius_mm=b.edge_radius_mm,
+                      blade_key=(f"blade.gear.{setup.side}.point_radius_mm", b.point_radius_mm))
 
 
 @dataclass(frozen=True)
