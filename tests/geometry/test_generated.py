@@ -187,6 +187,14 @@ def test_wrong_blade_kind_and_generated_gear_are_refused(pair):
     with pytest.raises(InputRangeError, match=r"blade\.pinion\.coast\.kind.*'inside'"):
         generated_pinion_flank(dataclasses.replace(p, blade=dataclasses.replace(p.blade, kind="outside")),
                                pair.blank, pinion_face_width_mm=pair.pinion_face_width_mm)
+    # a point radius typed in inches (mm / 25.4): the cutter circle, some 4 mm about the
+    # cutter centre, reaches neither face end. Named as the blade's point radius (was
+    # design.gear_face_width_mm, a value the user had not touched)
+    inch = dataclasses.replace(s, blade=dataclasses.replace(
+        s.blade, point_radius_mm=s.blade.point_radius_mm / 25.4))
+    with pytest.raises(InputRangeError, match=r"blade\.gear\.drive\.point_radius_mm.*"
+                                              r"reaches both face ends"):
+        formate_gear_flank(inch, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
 
 
 @pytest.mark.slow

@@ -182,6 +182,39 @@ def test_s0003_fitted_pair_tca_matches_todays(s0003_fit, tmp_path):
     assert abs(np.mean(in1) - np.mean(in0)) < 0.03
 
 
+@pytest.mark.slow
+def test_s0003_fitted_pair_loaded_te_within_the_residual(s0003_fit, tmp_path):
+    # issue 27: the cut pair's LTCA "equals today's within the residual". Truth: the
+    # gear is the same and the cut pinion's coast flank lies within eps = the fit's
+    # largest residual of today's eased pinion, so every initial gap moves by at most
+    # eps; the unloaded contact and the loaded balance at each gear rotation (a
+    # positive elastic operator: a larger gap never takes more load) each move by at
+    # most eps / lever, the loaded rotation theta = their difference by 2 eps / lever,
+    # and so its mean and the loaded TE's peak-to-peak over a pitch (bound set before
+    # the run; the smaller of the two reference levers). Same grid rule (cells per
+    # field) on both, so its ~1 % discretization (ltca.lte) is common to both.
+    # Rigid teeth, 64.5 N m, the TCA's 61 phases (coast, the design side). Measured
+    # (session 21): mean rotation 54.585 -> 54.647 arcsec, TE_LCP p-p 10.42 -> 10.66
+    # arcsec, bound 6.55 arcsec (eps 0.566 um, lever 35.63 mm); ~2 min.
+    from gearcontact.geometry.pair import pair_to_toml
+    from gearcontact.ltca.lte import loaded_te
+    from gearcontact.tca.analysis import analyze_pair
+
+    path = tmp_path / "cut.toml"
+    path.write_text(pair_to_toml(s0003_fit.pair))
+    runs = []
+    for pair in (load_pair("s0003"), load_pair(path)):
+        tca, flanks = analyze_pair(pair, side="coast", phases=61)
+        runs.append(loaded_te(tca, flanks, pair, 64.5, side="coast"))
+    today, cut = runs
+    assert today.converged and cut.converged
+    eps_mm = 1e-3 * s0003_fit.sides["coast"].max_um
+    lever_mm = min(today.reference_lever_mm, cut.reference_lever_mm)
+    bound = math.degrees(2.0 * eps_mm / lever_mm) * 3600.0
+    assert abs(cut.rotation_lcp_arcsec.mean() - today.rotation_lcp_arcsec.mean()) < bound
+    assert abs(cut.te_lcp_pp_arcsec - today.te_lcp_pp_arcsec) < bound
+
+
 def test_measured_grid_reproduces_the_polynomial_target(tmp_path):
     # a bicubic spline through samples of the (quadratic) ease-off is the ease-off
     # itself: the eased flank from the CSV equals build_flanks' to rounding (1e-15 rad

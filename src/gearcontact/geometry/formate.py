@@ -182,8 +182,12 @@ def cone_vector(par, u, v, full, out):
 
 
 def gear_flank(blank: BlankDesign, blade: BladeCone, *, side: str, gear_face_width_mm: float,
-               edge_radius_mm: float) -> FormateFlank:
-    """Build the gear flank of one blade with its boundary (see module docstring)."""
+               edge_radius_mm: float, blade_key: tuple[str, float] | None = None
+               ) -> FormateFlank:
+    """Build the gear flank of one blade with its boundary (see module docstring).
+
+    A cutter circle that misses a face end is refused naming ``blade_key`` (the key and
+    value of a typed blade, e.g. its point radius), else ``design.gear_face_width_mm``."""
     pl = blade.placement
     apex = np.array([0.0, 0.0, blank.gear_apex_z_mm])
     R2 = blank.mean_cone_distance_gear_mm
@@ -200,8 +204,13 @@ def gear_flank(blank: BlankDesign, blade: BladeCone, *, side: str, gear_face_wid
         try:
             ends.append(brentq(cone_distance, -span, span, args=(target,), xtol=1e-13))
         except ValueError:
-            raise InputRangeError("design.gear_face_width_mm", gear_face_width_mm,
-                                  "a face width whose ends the cutter circle reaches") from None
+            if blade_key is None:
+                raise InputRangeError("design.gear_face_width_mm", gear_face_width_mm,
+                                      "a face width whose ends the cutter circle reaches") from None
+            raise InputRangeError(*blade_key, f"a cutter circle that reaches both face ends (cone "
+                                  f"distances {R2 - 0.5 * gear_face_width_mm:.3f} to "
+                                  f"{R2 + 0.5 * gear_face_width_mm:.3f} mm; mm, not inches)"
+                                  ) from None
     alpha = np.radians(blade.pressure_angle_deg)
     u_root = edge_radius_mm * (1.0 - np.sin(alpha))
     u_tip = blank.dedendum_gear_mm + blank.addendum_gear_mm

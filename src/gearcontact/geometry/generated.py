@@ -152,7 +152,8 @@ def formate_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
     cone = BladeCone(placement, b.point_radius_mm - b.sigma * d * math.tan(alpha),
                      b.blade_angle_deg, b.kind == "inside")
     return gear_flank(blank, cone, side=setup.side, gear_face_width_mm=gear_face_width_mm,
-                      edge_radius_mm=b.edge_radius_mm)
+                      edge_radius_mm=b.edge_radius_mm,
+                      blade_key=(f"blade.gear.{setup.side}.point_radius_mm", b.point_radius_mm))
 
 
 @dataclass(frozen=True)
@@ -275,8 +276,9 @@ class EnvelopeSolver:
             i = tuple(int(k) for k in np.argwhere(~ok)[0])
             raise UndercutError(f"{self.setup.member} {self.setup.side} flank at (u, v) = "
                                 f"({u[i]:.4f}, {v[i]:.4f}) mm", f"residual {res[i]:.3e}",
-                                "a node the generated envelope reaches (check the machine "
-                                "settings of this flank)")
+                                "a node the generated envelope reaches (check "
+                                f"[machine.{self.setup.member}.{self.setup.side}] and "
+                                f"[blade.{self.setup.member}.{self.setup.side}])")
         x, n, _ = self.points(q)
         return EnvelopeSolution(l_mm=q[..., 0], theta_rad=q[..., 1], psi_rad=q[..., 2],
                                 x_mm=x, n=n, df_dpsi=J[..., 2, 2],

@@ -72,7 +72,8 @@ def plot_flanks_in_mesh(flanks: FlankSet, *, side: str = "drive", phi2_rad: floa
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_zlabel("z [mm]")
-    ax.set_title(f"{flanks.blank.pinion_teeth}/{flanks.blank.gear_teeth} hypoid, {side} "
+    kind = "hypoid" if flanks.blank.offset_mm > 0.0 else "spiral bevel"
+    ax.set_title(f"{flanks.blank.pinion_teeth}/{flanks.blank.gear_teeth} {kind}, {side} "
                  f"flanks in mesh (phi2 = {np.degrees(phi2):.3f} deg)")
     ax.legend(loc="upper left")
     ax.set_box_aspect((np.ptp(ax.get_xlim3d()), np.ptp(ax.get_ylim3d()), np.ptp(ax.get_zlim3d())))
@@ -95,6 +96,8 @@ def plot_setting_residual(fit) -> Figure:
         if r.points is None:
             m = ax.pcolormesh(r.v_mm, r.u_mm, r.residual_um, cmap="RdBu_r", vmin=-lim,
                               vmax=lim, shading="gouraud")
+            m.set_rasterized(True)  # an image inside the SVG (gouraud triangles as
+            # vectors: 57 MB for s0003's map)
         else:       # scattered measured points: the residual at each
             m = ax.scatter(r.v_mm, r.u_mm, c=r.residual_um, cmap="RdBu_r", vmin=-lim,
                            vmax=lim, s=18, edgecolors="k", linewidths=0.3)
