@@ -20,7 +20,9 @@ pair sees the same load): ``analyze_pair`` (what ``analyze``'s TCA stage runs: m
 cycle with edge contact, 80 x 80 gap field, stencil, pattern check), its stage split
 (``TcaAnalysis.timings_s``) and, with ``--lte``, the loaded TE at 64.5 N m over the 61
 phases with tooth bending (``analyze``'s default LTE stage, which builds one gap field
-per pair and phase). Wall and process CPU seconds (CPU is the fairer figure on a shared
+per pair and phase); the start-point search (``reference_start``, part of
+``analyze_pair``: on the Flankrem pair, whose mean point lies on the gear's ridge, the
+candidates that fail after the full Newton iteration) is timed on its own too. Wall and process CPU seconds (CPU is the fairer figure on a shared
 machine); the load average before and after. The numba cache should be warm
 (``gearcontact warm-up``); a first call per kernel is made before the timing.
 
@@ -38,7 +40,7 @@ from pathlib import Path
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca import stencil
-from gearcontact.tca.analysis import analyze_pair
+from gearcontact.tca.analysis import analyze_pair, reference_start
 
 ROOT = Path(__file__).resolve().parents[1]
 TOPREM = str(ROOT / "tests/data/toprem/iso23509_f2_toprem.toml")
@@ -111,7 +113,9 @@ def main(argv=None) -> int:
     for _ in range(args.repeat):
         for label, (pair, flanks, numpy_path, tca) in jobs.items():
             res, w, c = _timed(tca)
-            stages = {"analyze_pair (TCA)": (w, c), **{
+            _, ws, cs = _timed(lambda pair=pair, flanks=flanks: reference_start(
+                pair, flanks, pair.design_side))
+            stages = {"analyze_pair (TCA)": (w, c), "  reference_start": (ws, cs), **{
                 f"  {k}": (v, float("nan")) for k, v in res.timings_s.items()}}
             if args.lte:
                 def lte(pair=pair, flanks=flanks, res=res, numpy_path=numpy_path,

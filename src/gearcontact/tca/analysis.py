@@ -284,7 +284,15 @@ def reference_start(pair, flanks, side: str, *,
     grid.sort(key=lambda uv: ((uv[0] - U[k]) / du) ** 2 + ((uv[1] - V[k]) / dv) ** 2)
     exits = [error.where if isinstance(error, EdgeContact) else "no convergence"]
     tried = [first]
+    # a candidate clipped onto one already tried (the near points at the flank's border)
+    # fails as it did: its exit is counted again, not solved again
+    failed: dict = {}
     for u1, v1 in near + grid:
+        if (u1, v1) in failed:
+            guess, where = failed[(u1, v1)]
+            tried.append(guess)
+            exits.append(where)
+            continue
         guess = _contact_of(conj, gear, pair, u1, v1, mean)
         tried.append(guess)
         try:
@@ -294,9 +302,11 @@ def reference_start(pair, flanks, side: str, *,
             exits.append(exc.where)
         except TcaConvergenceError:
             exits.append("no convergence")
+        failed[(u1, v1)] = (guess, exits[-1])
     # no surface contact anywhere: an edge of one flank touching the other (the bearing
-    # lies beyond the edge at every phase, e.g. a large offset error)
-    for guess in tried[:1 + len(near)] if edge_contact else ():
+    # lies beyond the edge at every phase, e.g. a large offset error); a repeated
+    # candidate finds no edge either
+    for guess in dict.fromkeys(tried[:1 + len(near)]) if edge_contact else ():
         mp = solve_edge_contact(pinion, gear, kin, guess.phi1_rad, guess=guess,
                                 forward=pushes_forward(gear, kin, guess))
         if mp is not None:

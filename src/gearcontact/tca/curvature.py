@@ -30,6 +30,26 @@ to ``l``, root -> tip). The ellipse angle is the angle from ``l`` to the major a
 positive towards ``p`` (i.e. towards the gear tip when going heelwards), folded into
 (-90, 90] deg. ``(l, p, n2)`` is right-handed on one flank side and left-handed on the
 other.
+
+The principal directions are lines; their signs (which the eigen-solver leaves
+arbitrary, and which flip with rounding where the tensor is diagonal in ``(l, p)``)
+are fixed so that every consumer of a direction (the ``"principal"`` frame of the gap
+fields, :func:`gearcontact.tca.stencil.tangent_frame`, hence the LTCA grids) sees the
+same one:
+
+* ``dir_min`` (the major axis) points towards the toe, ``dir_min . l < 0``; a major
+  axis within :data:`ORIENTATION_TOL` of the profile direction
+  (``|dir_min . l| <= ORIENTATION_TOL``: the ellipse at +-90 deg, e.g. at a contact on
+  a gear kink ridge or root / tip edge, whose tensor is diagonal in ``(l, p)`` by
+  construction) points towards the root, ``dir_min . p < 0``, and its angle is reported
+  as 90 deg exactly;
+* ``dir_max`` (the minor axis) is ``dir_min`` turned by -90 deg in the ``(l, p)``
+  plane (components ``(d_p, -d_l)`` of ``dir_min = (d_l, d_p)``): towards the tip for
+  a major axis near ``-l``.
+
+These are the signs the eigen-solver returned for every principal frame of s0003's,
+the ISO 23509 F.2 pairs' and the Toprem pair's ``analyze`` runs (measured; so their
+results stay bit for bit), now a rule instead of a rounding accident.
 """
 
 from __future__ import annotations
@@ -43,11 +63,17 @@ from ..geometry.surface import Surface, SurfacePoint
 from ..validation import check_positive
 from .types import MatingPoint
 
-__all__ = ["PAINT_THICKNESS_MM", "RelativeCurvature", "ContactEllipse",
+__all__ = ["PAINT_THICKNESS_MM", "ORIENTATION_TOL", "RelativeCurvature", "ContactEllipse",
            "curvature_tensor", "relative_curvature", "contact_ellipse", "flank_frame"]
 
 #: Thickness of the marking compound that defines the unloaded contact pattern, mm.
 PAINT_THICKNESS_MM = 6.35e-3
+#: A unit major axis whose lengthwise component is at most this (the cosine of its
+#: angle from ``l``; 1e-9 rad = 5.7e-8 deg from +-90 deg) is taken as at 90 deg (module
+#: docstring). Rounding moves a principal direction by ~1e-16 to 1e-13 (a ridge
+#: contact's tensor is diagonal to ~1e-19 of its 4e-3 1/mm), far inside; an ellipse
+#: within 5.7e-8 deg of 90 deg is reported at 90 deg.
+ORIENTATION_TOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -166,11 +192,27 @@ def relative_curvature(pinion: Surface, gear: Surface, kin: MeshKinematics,
         tensor = -(curvature_tensor(sp1, rot1, basis) + curvature_tensor(sp2, rot2, basis))
     tensor = 0.5 * (tensor + tensor.T)
     evals, evecs = np.linalg.eigh(tensor)
-    d_min = basis @ evecs[:, 0]
-    d_max = basis @ evecs[:, 1]
+    d_min, d_max = _oriented(basis, frame[:, 0], evecs)
     return RelativeCurvature(float(evals[1]), float(evals[0]), d_max, d_min,
                              0.5 * float(evals[1]), 0.5 * float(evals[0]), tensor,
                              frame[:, 0], frame[:, 1], frame[:, 2])
+
+
+def _oriented(basis: np.ndarray, lengthwise: np.ndarray,
+              evecs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The principal directions ``(dir_min, dir_max)`` (meshing frame) of the eigenvector
+    columns ``evecs`` (in ``basis``, whose first column is ``lengthwise``) with the
+    signs of the module docstring's convention: only signs change (exact negations)."""
+    e_min, e_max = evecs[:, 0], evecs[:, 1]
+    d_min = basis @ e_min
+    c_l = float(d_min @ lengthwise)
+    # towards the toe; within the tolerance of +-90 deg towards the root
+    if c_l > ORIENTATION_TOL or (abs(c_l) <= ORIENTATION_TOL and e_min[1] > 0.0):
+        e_min, d_min = -e_min, -d_min
+    # dir_max = dir_min turned by -90 deg in (l, p): components (e_p, -e_l)
+    if e_max[0] * e_min[1] - e_max[1] * e_min[0] < 0.0:
+        e_max = -e_max
+    return d_min, basis @ e_max
 
 
 def _edge_tensor(sp1: SurfacePoint, rot1: np.ndarray, sp2: SurfacePoint, rot2: np.ndarray,
@@ -219,9 +261,12 @@ def contact_ellipse(rc: RelativeCurvature, *,
     major = (float(np.sqrt(2.0 * paint_mm / rc.kappa_min_per_mm))
              if rc.kappa_min_per_mm > 0.0 else float("inf"))
     axis = rc.dir_min
-    angle = np.degrees(np.arctan2(axis @ rc.profile, axis @ rc.lengthwise))
-    if angle > 90.0:
-        angle -= 180.0
-    elif angle <= -90.0:
-        angle += 180.0
+    if abs(axis @ rc.lengthwise) <= ORIENTATION_TOL:
+        angle = 90.0            # at +-90 deg within the tolerance (module docstring)
+    else:
+        angle = np.degrees(np.arctan2(axis @ rc.profile, axis @ rc.lengthwise))
+        if angle > 90.0:
+            angle -= 180.0
+        elif angle <= -90.0:
+            angle += 180.0
     return ContactEllipse(major, minor, axis, float(angle), float(paint_mm))

@@ -79,9 +79,13 @@ def _tangent_basis(n: np.ndarray) -> np.ndarray:
     return np.column_stack([ta, _cross(n, ta)])
 
 
-def _clamp(x: np.ndarray, boxes: np.ndarray) -> tuple[np.ndarray, list[str]]:
-    """Clamp the flank parameters of the state ``x`` into their boxes."""
-    names = ("pinion u", "pinion v", "gear u", "gear v")
+_BOX_NAMES = ("pinion u", "pinion v", "gear u", "gear v")
+
+
+def _clamp(x: np.ndarray, boxes) -> tuple[np.ndarray, list[str]]:
+    """Clamp the flank parameters of the state ``x`` into their boxes (4 ``(lo, hi)``
+    pairs, :func:`_boxes`)."""
+    names = _BOX_NAMES
     hit = []
     y = x.copy()
     for i in range(4):
@@ -95,9 +99,9 @@ def _clamp(x: np.ndarray, boxes: np.ndarray) -> tuple[np.ndarray, list[str]]:
     return y, hit
 
 
-def _residual_and_jacobian(pinion: Surface, gear: Surface, kin: MeshKinematics,
-                           x: np.ndarray, *, jacobian: bool = True):
-    """Residual F (5,) and Jacobian dF/dx (5, 6) of the contact equations at state x."""
+def _residual(pinion: Surface, gear: Surface, kin: MeshKinematics, x: np.ndarray):
+    """Residual F (5,) of the contact equations at state x and what its Jacobian
+    (:func:`_jacobian`) takes: ``(res, state)``."""
     u1, v1, u2, v2, phi1, phi2 = x
     pose1 = kin.pinion_pose(phi1)
     pose2 = kin.gear_pose(phi2)
@@ -105,8 +109,12 @@ def _residual_and_jacobian(pinion: Surface, gear: Surface, kin: MeshKinematics,
     sp2, x2, n2 = posed_point(gear, pose2, u2, v2)
     basis = _tangent_basis(n2)
     res = np.concatenate([x1 - x2, basis.T @ (n1 + n2)])
-    if not jacobian:
-        return res, (x2, n2), None
+    return res, (pose1, pose2, sp1, sp2, x1, x2, n1, n2, basis)
+
+
+def _jacobian(kin: MeshKinematics, state) -> np.ndarray:
+    """Jacobian dF/dx (5, 6) of the contact equations from :func:`_residual`'s state."""
+    pose1, pose2, sp1, sp2, x1, x2, n1, n2, basis = state
     r1, r2 = pose1[0], pose2[0]
     w1 = -kin.pinion_axis            # the pinion turns about -x (tilted by alpha)
     w2 = kin.gear_axis
@@ -122,11 +130,21 @@ def _residual_and_jacobian(pinion: Surface, gear: Surface, kin: MeshKinematics,
     dn = np.column_stack([r1 @ n1u, r1 @ n1v, r2 @ n2u, r2 @ n2v,
                           _cross(w1, n1), _cross(w2, n2)])
     jac[3:, :] = basis.T @ dn
-    return res, (x2, n2), jac
+    return jac
 
 
-def _boxes(pinion: Surface, gear: Surface) -> np.ndarray:
-    return np.array([pinion.u_range, pinion.v_range, gear.u_range, gear.v_range], float)
+def _residual_and_jacobian(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                           x: np.ndarray, *, jacobian: bool = True):
+    """Residual F (5,) and Jacobian dF/dx (5, 6) of the contact equations at state x."""
+    res, state = _residual(pinion, gear, kin, x)
+    return res, (state[5], state[7]), (_jacobian(kin, state) if jacobian else None)
+
+
+def _boxes(pinion: Surface, gear: Surface) -> tuple:
+    """The four parameter boxes ``(lo, hi)`` as Python floats (the float64 values
+    themselves; scalar comparisons without numpy's per-element overhead)."""
+    return tuple(map(tuple, np.array([pinion.u_range, pinion.v_range, gear.u_range,
+                                      gear.v_range], float).tolist()))
 
 
 def solve_mating_point(pinion: Surface, gear: Surface, kin: MeshKinematics,
@@ -190,16 +208,20 @@ def solve_mating_point(pinion: Surface, gear: Surface, kin: MeshKinematics,
             trial = x.copy()
             trial[free] += lam * step
             trial, hit = _clamp(trial, boxes)
-            res_t, geo_t, jac_t = _residual_and_jacobian(pinion, gear, kin, trial)
+            # the Jacobian only at the trial taken (a refused trial's is never used)
+            res_t, state_t = _residual(pinion, gear, kin, trial)
             norm_t = np.linalg.norm(res_t)
             if norm_t < norm or lam < 1e-3:
                 break
             lam *= 0.5
-        x, res, (x2, n2), jac, norm = trial, res_t, geo_t, jac_t, norm_t
+        x, res, norm = trial, res_t, norm_t
+        x2, n2 = state_t[5], state_t[7]
         clamped_iters = clamped_iters + 1 if hit else 0
         if np.all(np.abs(res[:3]) < tol_mm) and np.all(np.abs(res[3:]) < tol_mm) and not hit:
             return MatingPoint(x[4], x[5], x[0], x[1], x[2], x[3], x2, n2,
                                residual=float(norm), iterations=it)
         if clamped_iters >= 3:
             raise EdgeContact(x[4], hit[0])
+        if it < max_iter:       # the last iterate's Jacobian would not be used
+            jac = _jacobian(kin, state_t)
     raise TcaConvergenceError(x[4], norm, max_iter)
