@@ -54,8 +54,7 @@ def _err(capsys, argv):
 ])
 def test_bad_options_rejected_before_any_work(tmp_path, capsys, no_work, argv, needles):
     out = tmp_path / "out"
-    quiet = ["--quiet"] if argv[0] != "ltca" else []       # ltca has no progress bar
-    code, err = _err(capsys, argv[:1] + ["--out", str(out)] + quiet + argv[1:])
+    code, err = _err(capsys, argv[:1] + ["--out", str(out), "--quiet"] + argv[1:])
     assert code == EXIT_BAD_INPUT, err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
     for needle in needles:

@@ -76,6 +76,22 @@ def test_comm_bursts_are_single_reads():
 
 
 
+def _first_line_of_serve(options) -> str:
+    """The first stdout line of ``gearcontact rtl serve`` with ``options`` on a free
+    port; the server is then stopped."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "rtl", "serve", "--port",
+                             str(port), *options],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        return proc.stdout.readline()
+    finally:
+        proc.kill()
+        proc.communicate(timeout=60)
+
+
 def test_a_cylindrical_pair_bakes_its_own_e_prime(tmp_path):
     """`rtl serve --pair` takes a cylindrical pair as a bevel one: only the members'
     E' goes into the SoC (the line_core a cylindrical twin's ``--board`` drives). Truth:
@@ -90,17 +106,25 @@ def test_a_cylindrical_pair_bakes_its_own_e_prime(tmp_path):
                     "poisson_ratio = 0.3\n\n[material.gear]\nyoungs_modulus_gpa = 110.0\n"
                     "poisson_ratio = 0.34\n", encoding="utf-8")
     e_prime = 2.0 / ((1 - 0.3**2) / 210e3 + (1 - 0.34**2) / 110e3)
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    proc = subprocess.Popen([sys.executable, "-m", "gearcontact", "rtl", "serve", "--kind",
-                             "line_core", "--port", str(port), "--pair", str(path)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        first = proc.stdout.readline()
-    finally:
-        proc.kill()
-        proc.communicate(timeout=60)
+    first = _first_line_of_serve(["--kind", "line_core", "--pair", str(path)])
     assert first.startswith("gearcontact rtl serve: simulated line_core (E' code "), first
     code = int(first.split("E' code ")[1].split(")")[0])
     assert code == int(e_prime + 0.5)
+
+
+def test_a_cylindrical_pair_refuses_a_soc_its_twin_cannot_drive(tmp_path):
+    """`rtl serve --kind tri_core --pair <cylindrical>` once served a SoC that the
+    cylindrical twin's ``--board`` then refused by its identifier: now exit 2 before
+    building, naming --kind, the value and the kind that serves a cylindrical pair
+    (line_core, the line chain: twin.cosim). Without --kind a cylindrical pair gets
+    line_core (the real command, its first line read, then stopped)."""
+    example = "examples/ev_reducer_helical_23x67.toml"
+    proc = subprocess.run([sys.executable, "-m", "gearcontact", "rtl", "serve", "--kind",
+                           "tri_core", "--pair", example], capture_output=True, text=True,
+                          timeout=120, check=False)
+    assert proc.returncode == 2, proc.stderr
+    assert "--kind" in proc.stderr and "tri_core" in proc.stderr
+    assert "line_core" in proc.stderr and "cylindrical" in proc.stderr
+    assert "simulated" not in proc.stdout          # nothing served
+    first = _first_line_of_serve(["--pair", example])
+    assert first.startswith("gearcontact rtl serve: simulated line_core "), first

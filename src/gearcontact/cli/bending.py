@@ -82,6 +82,11 @@ def register(sub) -> None:
                         "cylindrical tooth's: the trochoid of its generating rack; where it "
                         "cannot be built, the ellipse root with a warning) or the "
                         "quarter-ellipse root (docs/bending.md sec. 3, 9, 10)")
+    # as every computing command (analyze, reproduce, tca, lte, sweep, twin): a script
+    # passes --quiet to any of them
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress bars (this command shows none; its result line, "
+                        "notes and warnings are printed as without it)")
     p.set_defaults(func=run, check=check)
 
 

@@ -81,6 +81,11 @@ def register(sub) -> None:
                    help=f"with --multi-tooth: cells per side of each pair's field in the "
                         f"multi-tooth solve, 16 to {MAX_CELLS} (default "
                         f"{MULTI_TOOTH_CELLS}, as gearcontact lte)")
+    # as every computing command (analyze, reproduce, tca, lte, sweep, twin): a script
+    # passes --quiet to any of them
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress bars (this command shows none; its result line, "
+                        "notes and warnings are printed as without it)")
     p.set_defaults(func=run, check=_check)
 
 

@@ -41,8 +41,9 @@ def register_rtl_subcommands(cmds) -> None:
     v = cmds.add_parser("serve", help="serve a simulated SoC behind LiteX's litex_server "
                                       "protocol (RemoteClient, litex_cli, gearcontact twin "
                                       "--board): host code without a board")
-    v.add_argument("--kind", choices=SOC_KINDS, default="tri_core",
-                   help="SoC top (default tri_core)")
+    v.add_argument("--kind", choices=SOC_KINDS, default=None,
+                   help="SoC top (default tri_core; line_core for a cylindrical --pair, "
+                        "the only kind its twin drives)")
     v.add_argument("--host", default="127.0.0.1", help="bind address (default 127.0.0.1)")
     v.add_argument("--port", type=int, default=1234, help="TCP port (default 1234, "
                                                           "litex_server's)")
@@ -111,6 +112,18 @@ def check_serve(args) -> None:
         # either kind: only the members' materials (E') go into the SoC; a bad file is a
         # named error, exit 2
         args.pair_obj = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+        if args.pair_obj.kind == CYLINDRICAL:
+            # a cylindrical twin drives the line chain only: refuse another SoC now,
+            # rather than serve one that the twin then refuses by its identifier
+            from ..hw.regmap import CYLINDRICAL_SOC_KINDS
+            if args.kind is None:
+                args.kind = CYLINDRICAL_SOC_KINDS[0]
+            elif args.kind not in CYLINDRICAL_SOC_KINDS:
+                raise InputRangeError("--kind", args.kind,
+                                      f"one of {list(CYLINDRICAL_SOC_KINDS)} for a "
+                                      f"cylindrical --pair (the line chain its twin drives)")
+    if args.kind is None:
+        args.kind = "tri_core"
 
 
 def run_serve(args) -> int:

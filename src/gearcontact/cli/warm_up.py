@@ -9,10 +9,13 @@ gives the times). ``gearcontact warm-up`` does that compilation at a moment of t
 user's choosing (an image build, a CI step, right after ``pip install``): it runs a
 small ``gearcontact analyze`` and a short ``gearcontact twin`` of the default pair
 (few phases, two torques, 1 ms of simulated time, no figures) in a temporary
-directory, which call every kernel signature a default run of either calls, and
-deletes the directory; then the compiled edge search of a pair with a relieved flank
-(:func:`gearcontact.tca.edge_kernel.warm_up`). The commands that compile print one line
-on stderr when they find the cache cold (:func:`note_cold_cache`).
+directory, which call every kernel signature a default run of either calls; then the
+same on a cylindrical pair (the helical example, shipped in the package): a small
+``analyze`` (line-contact LCP with tooth bending, the preview's line chain; again
+rigid) and a short ``twin`` with rigid teeth (the line law) and with ``--bending`` (the
+coupled slice law); the directory is deleted; then the compiled edge search of a pair
+with a relieved flank (:func:`gearcontact.tca.edge_kernel.warm_up`). The commands that
+compile print one line on stderr when they find the cache cold (:func:`note_cold_cache`).
 """
 
 from __future__ import annotations
@@ -26,7 +29,8 @@ import time
 from pathlib import Path
 
 __all__ = ["register", "run", "cache_is_cold", "cache_directory", "note_cold_cache",
-           "WARM_UP_ARGUMENTS", "TWIN_WARM_UP_ARGUMENTS", "COMPILING_COMMANDS"]
+           "WARM_UP_ARGUMENTS", "TWIN_WARM_UP_ARGUMENTS", "CYLINDRICAL_WARM_UP_RUNS",
+           "cylindrical_warm_up_pair", "COMPILING_COMMANDS"]
 
 #: The run that compiles the kernels: every stage of ``analyze`` (design, TCA, LTCA,
 #: multi-tooth mesh, loaded TE, fixed-point preview) at the smallest useful size.
@@ -37,6 +41,24 @@ WARM_UP_ARGUMENTS = ("analyze", "--pair", "s0003", "--phases", "9", "--torques",
 #: the default backend and curvature source at the smallest useful size.
 TWIN_WARM_UP_ARGUMENTS = ("twin", "--pair", "s0003", "--phases", "9", "--duration-ms", "1",
                           "--no-figures", "--quiet")
+
+#: The runs that compile a cylindrical pair's kernels (none of which a bevel run calls:
+#: on a cold cache the first ``analyze`` of the helical example took 5 min 19 s and the
+#: first ``twin`` 16 min at load 15, issue 26 audit, docs/cylindrical.md sec. 13), each
+#: given ``--pair`` (:func:`cylindrical_warm_up_pair`) and ``--out``: every stage of
+#: ``analyze`` (TE0, loaded TE with bending, Harris map, preview line chain; again with
+#: rigid teeth) and the twin rigid (line law) and with ``--bending`` (coupled slice law),
+#: at the smallest useful size. The other backends (golden, table, rtl, soc) step the
+#: same compiled kernels; ``ltca``, ``lte`` and ``sweep`` call a subset (measured with
+#: numba's compile events, docs/performance.md).
+CYLINDRICAL_WARM_UP_RUNS = (
+    ("analyze", "--phases", "3", "--lte-phases", "3", "--no-figures", "--quiet"),
+    # rigid teeth: the preview's rigid line law (``ltca.slice_law.loaded_line``)
+    ("analyze", "--phases", "3", "--lte-phases", "3", "--rigid", "--no-figures", "--quiet"),
+    ("twin", "--phases", "3", "--duration-ms", "0.1", "--no-figures", "--quiet"),
+    ("twin", "--phases", "3", "--duration-ms", "0.1", "--bending", "--no-figures",
+     "--quiet"),
+)
 
 #: Commands that call numba kernels whose compilation takes seconds on a cold cache.
 COMPILING_COMMANDS = frozenset({"analyze", "reproduce", "tca", "ltca", "lte", "bending",
@@ -87,6 +109,13 @@ def cache_is_cold(kind: str | None = None) -> bool:
         return False
 
 
+#: The compilation's CPU time the note quotes, by pair kind (docs/performance.md: a
+#: bevel pair, issue 28 audit; a cylindrical pair, session 21 on the helical example).
+_COMPILE_CPU = {None: "about 25 s of CPU, 3 min more for the twin's",
+                "bevel": "about 25 s of CPU, 3 min more for the twin's",
+                "cylindrical": "about 40 s of CPU, 3 min more for the twin's"}
+
+
 def note_cold_cache(command: str, kind: str | None = None) -> None:
     """One line on stderr when ``command`` on a pair of ``kind`` (None: a bevel pair or
     none) is about to compile on a cold cache."""
@@ -94,9 +123,18 @@ def note_cold_cache(command: str, kind: str | None = None) -> None:
         return
     if command in COMPILING_COMMANDS and cache_is_cold(kind):
         print(f"gearcontact {command}: note: first run after install (or a source change): "
-              "numba compiles its kernels into its cache now (once: about 25 s of CPU, "
-              "3 min more for the twin's); "
+              "numba compiles its kernels into its cache now "
+              f"(once: {_COMPILE_CPU.get(kind, _COMPILE_CPU[None])}); "
               "`gearcontact warm-up` does this ahead of time", file=sys.stderr)
+
+
+def cylindrical_warm_up_pair() -> Path:
+    """The pair file of the cylindrical warm-up runs:
+    ``examples/ev_reducer_helical_23x67.toml`` as shipped in the package data
+    (``data/warm_up/``)."""
+    from importlib import resources
+    return Path(str(resources.files("gearcontact").joinpath(
+        "data/warm_up/ev_reducer_helical_23x67.toml")))
 
 
 def run(args) -> int:
@@ -105,18 +143,25 @@ def run(args) -> int:
     start = time.perf_counter()
     where = cache_directory()
     with tempfile.TemporaryDirectory(prefix="gearcontact-warm-up-") as tmp:
+        runs = [[*WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "run")],
+                [*TWIN_WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "twin")]]
+        runs += [[*argv, "--pair", str(cylindrical_warm_up_pair()),
+                  "--out", os.path.join(tmp, f"cylindrical{k}")]
+                 for k, argv in enumerate(CYLINDRICAL_WARM_UP_RUNS)]
         captured = io.StringIO()
+        code = 0
         with contextlib.redirect_stdout(captured), contextlib.redirect_stderr(captured):
-            code = main([*WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "run")])
-            if code == 0:
-                code = main([*TWIN_WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "twin")])
+            for argv in runs:
+                code = main(argv)
+                if code != 0:
+                    break
     if code == 0:
         # the edge search of a relieved pair (s0003 has none)
         from ..tca.edge_kernel import warm_up as warm_up_edge_search
         warm_up_edge_search()
     if code != 0:
         print(captured.getvalue().rstrip(), file=sys.stderr)
-        # the fixed s0003 run cannot meet bad input: a bug (exit 1, cli.EXIT_CODES)
+        # the fixed runs cannot meet bad input: a bug (exit 1, cli.EXIT_CODES)
         raise RuntimeError(f"the warm-up run ended with exit code {code}")
     if not args.quiet:
         print(f"numba kernels compiled or loaded in {time.perf_counter() - start:.1f} s; "

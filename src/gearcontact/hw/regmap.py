@@ -60,6 +60,7 @@ __all__ = [
     "IDENTS",
     "MAGIC",
     "SOC_KINDS",
+    "CYLINDRICAL_SOC_KINDS",
     "SOC_MAPS",
     "SRAM_BASE",
     "SRAM_SIZE",
@@ -331,6 +332,9 @@ SOC_MAPS = {
     "line_core": SocMap("line_core", IDENTS["line_core"], (CTRL, IDENTIFIER, LINE, TIMER0)),
 }
 SOC_KINDS = tuple(SOC_MAPS)
+#: The SoCs that serve a cylindrical pair: the ones carrying the line chain (the
+#: cylindrical twin's ``--backend soc`` replays on ``line_core``, twin.cosim).
+CYLINDRICAL_SOC_KINDS = ("line_core",)
 
 
 def get_map(kind: str) -> SocMap:
