@@ -50,7 +50,8 @@ from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generat
                            measure_mean_point, require_machine)
 from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
 
-__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
+__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
+           "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
            "check_pair_blank", "stated_blank", "typed_resolution"]
 
@@ -69,6 +70,22 @@ ROOT_DATUM_FRACTION = 0.1
 #: for both flanks of a spread slot, leave it off the mean point; measured in
 #: docs/machine_settings.md sec. 2).
 PITCH_POINT_FRACTION = 0.1
+#: A pinion flank's pressure angle at its mean point (on its pitch cone) against the
+#: blank's of its side: the model bound (deg) added to the typed rounding propagated.
+#: The settings cut the mismatch, not the blank's tooth: a standard hypoid pinion's
+#: angles at the mean point differ from its mate's by up to about 1 deg, and a pinion
+#: fitted to a target (docs/machine_settings.md sec. 6) moves its blade by degrees; a
+#: blade angle typed in radians (20 deg -> 0.349) moves it by about 20 deg. Declared
+#: before the margins were measured (docs sec. 2).
+PINION_PRESSURE_DEG = 5.0
+#: A pressure angle (either member) off the blank's by more than this (deg) is an input
+#: error (exit 2), as a spiral angle past :data:`GROSS_SPIRAL_DEG`: no correction or
+#: mismatch moves a pressure angle by 10 deg, a unit slip (radians) does. Declared with
+#: :data:`PINION_PRESSURE_DEG`.
+GROSS_PRESSURE_DEG = 10.0
+#: The unit slips tried on a flank outside its tolerance (with :data:`SLIPS`): a length
+#: typed in inches (x 25.4) or converted twice (/ 25.4), an angle typed in radians.
+INCH_MM = 25.4
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 _SAME = 1e-9                      # a slip that moves a value less than this is no slip
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
