@@ -69,6 +69,11 @@ def test_analyze_warns_and_records_a_sliding_base_slip(tmp_path, sliding_base_sl
     got = _run_json_says(tmp_path / "a", "sliding_base_mm")
     summary = (tmp_path / "a" / "summary.md").read_text()
     assert "**Machine settings against the blank: warning.**" in summary
+    # the line under the blank: the file's tables (gear ratio of roll 0: formate)
+    assert ("Flanks cut from machine settings (the pair's [machine.*] / [blade.*] tables): "
+            "gear drive and coast formate, pinion drive and coast generated. The "
+            "typed-settings check: 2 of 4 flanks do not agree with the blank (the warning "
+            "above)") in summary
     for line in got["warnings"]:           # the console's lines, in the report
         assert line.removeprefix("warning: ") in summary
 

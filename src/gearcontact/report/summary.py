@@ -197,7 +197,7 @@ def _machine_lines(result) -> list[str]:
         found = (f"{len(warned)} of {len(setups)} flanks do not agree with the blank (the "
                  "warning above)")
     elif getattr(result, "settings_checked", False):
-        found = "every flank agrees with the blank within the typed rounding"
+        found = "every flank agrees with the blank within its tolerance"
     else:
         found = "not run"
     return ["", f"Flanks cut from machine settings (the pair's [machine.*] / [blade.*] "
