@@ -6,7 +6,8 @@ by pixel: no paint-coloured pixel outside the boundary (the boundary polygon wid
 3 px for its own 1 pt line and anti-aliasing), while the same figure with the clip
 removed has some there (the ISO 23509 F.2 example cut from machine settings,
 examples/machine_settings/: its edge-phase ellipses reach past the flank, the audit
-measured one ~37 mm across its 25 mm face), so the pixel test sees what it tests. Identical runs write identical files (byte for byte).
+measured one ~37 mm across its 25 mm face), so the pixel test sees what it tests.
+Identical runs write identical files (PNG and SVG, byte for byte).
 """
 
 from __future__ import annotations
@@ -51,8 +52,10 @@ def _paint(ax):
 
 def _paint_pixels_off_flank(fig, outlines) -> int:
     """Pixels inside an axes, outside its flank outline widened by MARGIN_PX, with the
-    paint's colour cast (red or orange over white: R - B > 8/255; the grid, the
-    boundary and the text are grey or black, R = B)."""
+    paint's colour cast: one layer of paint over white has R - B = 0.12 (R - B of the
+    colour) = 21/255 (tab:red) or 29/255 (tab:orange), so 8/255 is below any painted
+    pixel; the grid, the boundary and the markers are grey or black (R = B), the
+    contact path (red) runs inside the flank."""
     fig.canvas.draw()
     img = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
     h = img.shape[0]
@@ -105,3 +108,5 @@ def test_contact_pattern_png_is_byte_identical_between_runs(f2, tmp_path):
     b = plot_contact_pattern(pinion, gear, kin, res.cycle, tmp_path / "b.png",
                              edges=res.edges)
     assert Path(a).read_bytes() == Path(b).read_bytes()
+    # and its SVG (figure_files: a fixed hash salt, the clip paths' ids included)
+    assert Path(a).with_suffix(".svg").read_bytes() == Path(b).with_suffix(".svg").read_bytes()
