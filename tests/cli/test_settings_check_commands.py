@@ -16,6 +16,7 @@ that do not reach the mean point, and the pinion's generation then refuses them,
 """
 
 import json
+import math
 
 import pytest
 from console_script import run_console
@@ -68,6 +69,11 @@ def test_analyze_warns_and_records_a_sliding_base_slip(tmp_path, sliding_base_sl
     got = _run_json_says(tmp_path / "a", "sliding_base_mm")
     summary = (tmp_path / "a" / "summary.md").read_text()
     assert "**Machine settings against the blank: warning.**" in summary
+    # the line under the blank: the file's tables (gear ratio of roll 0: formate)
+    assert ("Flanks cut from machine settings (the pair's [machine.*] / [blade.*] tables): "
+            "gear drive and coast formate, pinion drive and coast generated. The "
+            "typed-settings check: 2 of 4 flanks do not agree with the blank (the warning "
+            "above)") in summary
     for line in got["warnings"]:           # the console's lines, in the report
         assert line.removeprefix("warning: ") in summary
 
@@ -122,3 +128,17 @@ def test_a_pair_without_settings_has_no_entry(tmp_path):
     assert code == 0, err
     got = json.loads((tmp_path / "t" / "run.json").read_text())
     assert "blank_check" not in got and "blank_check_s" not in got["timings_s"]
+
+
+def test_a_pinion_blade_angle_in_radians_is_refused_naming_its_key(tmp_path):
+    # 20 deg typed as 0.349 in both pinion blade tables: the pinion's pressure angle at
+    # its mean point ~0.5 deg against the blank's 20 (geometry.blank_check,
+    # GROSS_PRESSURE_DEG): exit 2 in the argument check, the blade key named, before the
+    # envelope refused a node (the audit's run) and before any directory is written
+    path = _flipped(tmp_path, "blade.pinion", "blade_angle_deg",
+                    lambda x: round(math.radians(x), 3))
+    code, out, err = run_console("tca", "--pair", path, "--out", tmp_path / "t", *TCA)
+    assert code == 2, err
+    assert "blade.pinion.drive.blade_angle_deg = 0.349 is outside the allowed range" in err
+    assert "typed in radians" in err and "envelope" not in err
+    assert not (tmp_path / "t").exists()

@@ -75,8 +75,8 @@ def test_f2_example_agrees_within_its_typing(f2):
     assert gear["spiral angle"].tolerance == pytest.approx(5.51e-5, rel=0.1)
     assert gear["mean cone distance"].tolerance == pytest.approx(1.63e-4, rel=0.1)
     assert gear["hand"].measured == "left"
-    for f in got.flanks[2:]:
-        assert {c.quantity for c in f.comparisons} == {"root depth", "hand"}
+    for f in got.flanks[2:]:     # the pinion: its pressure angle within the model bound
+        assert {c.quantity for c in f.comparisons} == {"pressure angle", "root depth", "hand"}
 
 
 def test_left_hand_twin_agrees(f2):

@@ -121,6 +121,12 @@ def test_readme_typed_machine_settings_example(tmp_path):
     assert "ease-off synthesized" not in proc.stdout
     pair = load_pair(ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml")
     assert len(pair.machine) == 4
+    # summary.md says so under the blank (the file: gear ratio of roll 0, formate; the
+    # typed sheet agrees with its blank, tests/geometry/test_blank_check.py)
+    assert ("Flanks cut from machine settings (the pair's [machine.*] / [blade.*] tables): "
+            "gear drive and coast formate, pinion drive and coast generated. The "
+            "typed-settings check: every flank agrees with the blank within its tolerance"
+            ) in (out / "summary.md").read_text()
     mt = json.loads((out / "multitooth.json").read_text())
     assert sum(mt["load_share_pct"]) == pytest.approx(100.0, abs=1e-9)
     lte = json.loads((out / "lte.json").read_text())

@@ -15,6 +15,10 @@ tooth, and everything downstream is silently wrong. Compared per flank:
   (:func:`~.flank_angles.pitch_offset`, what the ratio of roll and the modified roll
   set) against the mean point, within :data:`PITCH_POINT_FRACTION` of the dedendum (a
   model bound);
+- pinion flanks: the pressure angle on the pitch cone at the mean point
+  (:func:`~.flank_angles.measure_mean_point`) against the blank's of the side, within
+  the typed rounding plus :data:`PINION_PRESSURE_DEG` (a model bound: the settings cut
+  the mismatch, not the blank's tooth);
 - every flank: the hand on its pitch cone against the blank's, and the **root datum**:
   the depth behind the cutter's tip plane of the blade point that cuts the mean point
   against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
@@ -29,9 +33,10 @@ case to first order, as tests/geometry/test_flank_angles.py propagates a print's
 rounding), plus the stated value's own rounding (0 for a pair's blank: its values are
 the design's definitions), plus the solve's 1e-7; the root datum adds
 :data:`ROOT_DATUM_FRACTION` of the dedendum (a model bound, not a rounding). A flank
-outside its tolerance is tried against the known slips (:data:`SLIPS`, the MD word
-read from the crossing point, and the blank's hand): of the slips under which every
-value of the flank agrees the best fit is named, the others listed.
+outside its tolerance is tried against the known slips (:data:`SLIPS`, the unit slips
+:data:`UNIT_SLIPS` with the typed rounding in the other unit, the MD word read from the
+crossing point, and the blank's hand): of the slips under which every value of the
+flank agrees the best fit is named, the others listed.
 
 References
 ----------
@@ -41,6 +46,7 @@ docs/machine_settings.md sec. 2 (sign conventions; the published sheet), sec. 3.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from decimal import Decimal
 
@@ -50,7 +56,8 @@ from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generat
                            measure_mean_point, require_machine)
 from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
 
-__all__ = ["GROSS_SPIRAL_DEG", "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SLIPS",
+__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
+           "PITCH_POINT_FRACTION", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
            "check_pair_blank", "stated_blank", "typed_resolution"]
 
@@ -69,6 +76,23 @@ ROOT_DATUM_FRACTION = 0.1
 #: for both flanks of a spread slot, leave it off the mean point; measured in
 #: docs/machine_settings.md sec. 2).
 PITCH_POINT_FRACTION = 0.1
+#: A pinion flank's pressure angle at its mean point (on its pitch cone) against the
+#: blank's of its side: the model bound (deg) added to the typed rounding propagated.
+#: The settings cut the mismatch, not the blank's tooth: a standard hypoid pinion's
+#: angles at the mean point differ from its mate's by up to about 1 deg, and a pinion
+#: fitted to a target (docs/machine_settings.md sec. 6) moves its blade by degrees; a
+#: blade angle typed in radians (20 deg -> 0.349) moves it by about 20 deg. Declared
+#: before the margins were measured (docs sec. 2).
+PINION_PRESSURE_DEG = 5.0
+#: A pressure angle (either member) off the blank's by more than this (deg) is an input
+#: error (exit 2), as a spiral angle past :data:`GROSS_SPIRAL_DEG`: no correction or
+#: mismatch moves a pressure angle by 10 deg, a unit slip (radians) does. Declared with
+#: :data:`PINION_PRESSURE_DEG`.
+GROSS_PRESSURE_DEG = 10.0
+#: The unit slips tried on a flank outside its tolerance (with :data:`SLIPS`): a length
+#: typed in inches (x 25.4) or converted twice (/ 25.4), an angle typed in radians.
+INCH_MM = 25.4
+_GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 _SAME = 1e-9                      # a slip that moves a value less than this is no slip
 _NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
@@ -89,6 +113,17 @@ SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
                                               "cradle / work"),
          *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
            for k in MODIFIED_ROLL_KEYS))
+#: The unit slips (:data:`INCH_MM`), tried with :data:`SLIPS`: (key, the slip, what
+#: the slip is). The words read "with the unit corrected (...)".
+UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 25.4 mm)")
+                for k in ("radial_distance_mm", "machine_centre_to_back_mm",
+                          "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
+              *((k, lambda x: x / INCH_MM, "unit corrected (converted to mm twice: / 25.4)")
+                for k in ("radial_distance_mm", "machine_centre_to_back_mm",
+                          "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
+              *((k, math.degrees, "unit corrected (typed in radians: to degrees)")
+                for k in ("blade_angle_deg", "cradle_angle_deg", "machine_root_angle_deg",
+                          "tilt_deg", "swivel_deg")))
 
 
 def typed_resolution(x: float) -> float:
@@ -207,11 +242,11 @@ class FlankCheck:
 
     @property
     def gross(self) -> bool:
-        """The hand against the blank's, or a spiral angle off by more than
-        :data:`GROSS_SPIRAL_DEG`."""
-        return any(not c.within and (c.quantity == "hand" or (
-            c.quantity == "spiral angle" and abs(c.measured - c.stated) > GROSS_SPIRAL_DEG))
-            for c in self.comparisons)
+        """The hand against the blank's, a spiral angle off by more than
+        :data:`GROSS_SPIRAL_DEG` or a pressure angle by more than
+        :data:`GROSS_PRESSURE_DEG`."""
+        return any(not c.within and (c.quantity == "hand" or abs(c.measured - c.stated) > _GROSS.get(
+            c.quantity, math.inf)) for c in self.comparisons)
 
 
 @dataclass(frozen=True)
@@ -247,15 +282,14 @@ class BlankCheck:
         if f.slip:
             also = [g.slip for g in bad if g.slip and g is not f]
             raise InputRangeError(f.slip, f.slip_value,
-                                  f"the sign that cuts the blank's tooth ({what}; with the "
-                                  f"other sign ({f.slip_word}) the flank agrees with the "
-                                  "blank" + (f"; it agrees as well with the other sign of "
+                                  f"the {_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
+                                  f"{_with(f.slip_word)} the flank agrees with the blank" + (f"; it agrees as well with the other sign of "
                                              f"{', '.join(f.slip_also)}" if f.slip_also else "")
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         raise InputRangeError(f"[machine.{f.member}.{f.side}]", None,
                               f"settings that cut the blank's tooth ({what}; no known sign "
-                              "slip explains it, docs/machine_settings.md sec. 2)")
+                              "or unit slip explains it, docs/machine_settings.md sec. 2)")
 
     def warnings(self) -> list[str]:
         """One line per flank outside its tolerance, naming the likely key."""
@@ -265,14 +299,24 @@ class BlankCheck:
                 continue
             key = self.stated.hand_key if self.hand_slip else f.slip
             word = "hand" if self.hand_slip else f.slip_word
-            hint = (f"; likely {key} (with the other {word} the flank agrees)" if key
-                    else "; no known sign slip explains it")
+            hint = (f"; likely {key} ({_with(word)} the flank agrees)" if key
+                    else "; no known sign or unit slip explains it")
             if key and f.slip_also and not self.hand_slip:
                 hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
                        f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
         return out
+
+
+def _fix(word: str) -> str:
+    """What a slip's word changes: ``"unit"`` (:data:`UNIT_SLIPS`) or ``"sign"``."""
+    return "unit" if word.startswith("unit") else "sign"
+
+
+def _with(word: str) -> str:
+    """``"with the other <sign word>"`` or ``"with the unit corrected (...)"``."""
+    return f"with the {word}" if _fix(word) == "unit" else f"with the other {word}"
 
 
 def _describe(f: FlankCheck) -> str:
@@ -308,7 +352,7 @@ def _quantities(measured) -> tuple[dict, object]:
         if measured.pitch_offset_mm is not None:
             values["pitch point"] = measured.pitch_offset_mm
     else:
-        at, values = measured, {}
+        at, values = measured, {"pressure angle": measured.pressure_angle_deg}
     values["root depth"] = at.depth_mm
     values["hand"] = at.hand
     return values, at
@@ -346,15 +390,19 @@ def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
         setup.settings, **{key: fn(getattr(setup.settings, key))}))
 
 
+def _resolutions(setup: MachineSetup, stated: StatedBlank) -> dict:
+    """``{key: half unit}`` of every setting of ``setup``: the source's
+    (:attr:`StatedBlank.setting_rounding`) or each typed value's own."""
+    res = stated.setting_rounding
+    return {k: (res.get(k, 0.0) if res is not None else typed_resolution(_setting(setup, k)))
+            for k in (*_NUMERIC, *_SERIES, *_BLADE)}
+
+
 def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> dict:
     """The typed settings' rounding propagated (module docstring), per quantity."""
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
-    res = stated.setting_rounding
-    keys = [(k, _setting(setup, k)) for k in (*_NUMERIC, *_SERIES, *_BLADE)]
-    moves = [(k, (res.get(k, 0.0) if res is not None else typed_resolution(v)))
-             for k, v in keys]
-    moves = [(k, r) for k, r in moves if r > 0.0]
+    moves = [(k, r) for k, r in _resolutions(setup, stated).items() if r > 0.0]
     if setup.member == "gear":
         r_c = stated.rounding.get("cutter_radius_mm", 0.0)
         if r_c > 0.0:
@@ -372,6 +420,8 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
         for q in tol:
             tol[q] += abs(got[q] - values[q])
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
+    if setup.member == "pinion":
+        tol["pressure angle"] += PINION_PRESSURE_DEG
     if "pitch point" in tol:
         tol["pitch point"] += PITCH_POINT_FRACTION * stated.dedendum_mm[setup.member]
     return tol
@@ -384,7 +434,7 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     out = {"spiral angle": stated.spiral_angle_gear_deg,
            "pressure angle": stated.pressure_angle_deg[side],
            "mean cone distance": stated.mean_cone_distance_mm["gear"],
-           "pitch point": 0.0} if gear else {}
+           "pitch point": 0.0} if gear else {"pressure angle": stated.pressure_angle_deg[side]}
     out["root depth"] = stated.dedendum_mm[member]
     out["hand"] = hand if gear else other[hand]
     return out
@@ -431,8 +481,10 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
 
 
 def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
-    """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` (and the MD
-    word read from the crossing point, :attr:`StatedBlank.mctb_datum_mm`) under which
+    """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` and the MD
+    word read from the crossing point (:attr:`StatedBlank.mctb_datum_mm`), or where none
+    explains the flank of :data:`UNIT_SLIPS` (the tolerances re-propagated with the
+    typed rounding in the other unit), under which
     the flank agrees with the blank best (the smallest largest difference relative to its
     tolerance), with the keys of the other slips under which it agrees (a small
     setting's sign may bring a flank just outside back inside), or
@@ -442,7 +494,11 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
           f"MD sign, MD read from the crossing point (X_D = MD {datum:+.4f} mm, the pitch "
           "apex's offset)")
     found = []
-    for slip in SLIPS + ((md,) if datum != 0.0 else ()):
+    # the unit slips only where no sign word explains the flank (each costs a solve
+    # from the grid of starts where the flank misses: 3x the check's time, docs sec. 2)
+    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *UNIT_SLIPS):
+        if slip in UNIT_SLIPS and found:
+            break
         key, fn, word = slip
         value = _setting(setup, key)
         if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
@@ -452,10 +508,17 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
         except InputRangeError:
             continue
         got, _ = _compare(fixed, stated, tol)
+        if slip in UNIT_SLIPS and not got.agrees and not got.missing:
+            # the typed digits were the other unit's, so is their rounding: re-propagated
+            # (only for a corrected flank that reaches its mean point: the costly part)
+            rounding = _resolutions(setup, stated)
+            rounding[key] = abs(fn(value + rounding[key]) - fn(value))
+            got, _ = _compare(fixed, dataclasses.replace(stated, setting_rounding=rounding))
         if got.agrees:
             score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
                          if c.tolerance), default=0.0)
-            found.append((score, f"machine.{setup.member}.{setup.side}.{key}", value, word))
+            table = "blade" if key in _BLADE else "machine"
+            found.append((score, f"{table}.{setup.member}.{setup.side}.{key}", value, word))
     if not found:
         return "", None, "", ()
     found.sort(key=lambda x: x[0])

@@ -125,6 +125,9 @@ class Analysis:
         The warnings of the check of the pair's typed machine settings against its blank
         (:meth:`~gearcontact.geometry.blank_check.BlankCheck.warnings`; empty when every
         flank agrees or the pair has none): summary.md repeats them.
+    settings_checked : bool
+        The check ran (a pair cut from machine settings loaded by the CLI): summary.md
+        says what it found.
     """
 
     pair: object
@@ -145,6 +148,7 @@ class Analysis:
     chain_status: tuple = ()
     reference: tuple = ()
     settings_warnings: tuple = ()
+    settings_checked: bool = False
 
 
 class PreviewDomainWarning(UserWarning):
@@ -261,7 +265,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                  side: str | None = None, solver: str = "pk_cg", figures: bool = True,
                  progress: bool = True, lte_torque_nm: float | None = 64.5,
                  lte_phases: int = 61, lte_bending: bool = True,
-                 settings_warnings: tuple = ()) -> Analysis:
+                 settings_warnings: tuple = (), settings_checked: bool = False) -> Analysis:
     """Run the main job on ``pair`` (preset name, TOML path or GearPair) into ``out_dir``.
 
     Parameters
@@ -291,6 +295,9 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         The warnings of the typed machine settings' check against the blank, run when
         the pair was loaded (``gearcontact.cli.options.check_machine_settings``):
         repeated in summary.md (nothing is written when empty).
+    settings_checked : bool
+        That check ran: summary.md says what it found under the blank of a pair cut from
+        machine settings ("not run" when False).
     """
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
@@ -409,6 +416,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                       side, flanks, easeoff_note, multitooth,
                       golden_status=tuple(st for _, st in gold),
                       chain_status=tuple(st for _, st in chain), reference=tuple(reference),
-                      settings_warnings=tuple(settings_warnings))
+                      settings_warnings=tuple(settings_warnings),
+                      settings_checked=settings_checked)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

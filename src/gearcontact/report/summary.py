@@ -180,6 +180,31 @@ def cpu_latency_rows(lat) -> list[list]:
             ["jitter p99/p50 - 1 (%)", 100.0 * lat.jitter, 100.0 * PAPER_JITTER]]
 
 
+def _machine_lines(result) -> list[str]:
+    """The line under the blank's table of a pair whose flanks are cut from machine
+    settings: which flanks, formate or generated, and what the typed-settings check
+    found (docs/machine_settings.md sec. 2); nothing for a pair without settings."""
+    setups = getattr(result.pair, "machine", None) or ()
+    if not setups:
+        return []
+    cuts: dict = {}
+    for s in setups:
+        cuts.setdefault((s.member, "formate" if s.settings.formate else "generated"),
+                        []).append(s.side)
+    what = ", ".join(f"{m} {' and '.join(sides)} {how}" for (m, how), sides in cuts.items())
+    warned = getattr(result, "settings_warnings", ())
+    if warned:
+        found = (f"{len(warned)} of {len(setups)} flanks do not agree with the blank (the "
+                 "warning above)")
+    elif getattr(result, "settings_checked", False):
+        found = "every flank agrees with the blank within its tolerance"
+    else:
+        found = "not run"
+    return ["", f"Flanks cut from machine settings (the pair's [machine.*] / [blade.*] "
+            f"tables): {what}. The typed-settings check: {found} "
+            "(docs/machine_settings.md sec. 2)."]
+
+
 def write_summary(result, path, *, published: dict | None = None) -> Path:
     """Write the summary of an :class:`~.analyze.Analysis` as Markdown at ``path``."""
     from .. import __version__
@@ -210,6 +235,7 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
          f"{blank['spiral_angles_deg'][0]:.3f} / {blank['spiral_angles_deg'][1]:.3f}", None],
         ["gear mean cone distance (mm)", blank["mean_cone_distances_mm"][1],
          pub.get("mean_cone_distance_gear_mm")]]))
+    out += _machine_lines(result)
     out += ["", "## Unloaded TCA", ""]
     out.append(md_table(["quantity", "ours", "published"], [
         ["TE0 peak-to-peak (arcsec)", cyc.te0_pp_arcsec, pub.get("te0_pp_arcsec")],

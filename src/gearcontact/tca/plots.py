@@ -15,13 +15,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.patches import Polygon  # noqa: E402
 
 from ..figure_files import save_figure  # noqa: E402
 from ..geometry.kinematics import MeshKinematics  # noqa: E402
 from ..geometry.surface import Surface  # noqa: E402
 from .mesh import MeshCycle  # noqa: E402
 
-__all__ = ["axial_projection", "plot_contact_pattern", "plot_te0"]
+__all__ = ["axial_projection", "contact_pattern_figure", "plot_contact_pattern", "plot_te0"]
 
 
 def axial_projection(points_body: np.ndarray, member: str) -> np.ndarray:
@@ -53,7 +55,16 @@ def _to_body(kin: MeshKinematics, member: str, mp, x_f: np.ndarray) -> np.ndarra
 def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
                          cycle: MeshCycle, path, *, title: str = "",
                          edges=()) -> Path:
-    """Contact pattern and path on both flanks; PNG at ``path``.
+    """:func:`contact_pattern_figure` as a PNG at ``path``."""
+    fig = contact_pattern_figure(pinion, gear, kin, cycle, title=title, edges=edges)
+    out = save_figure(fig, path, dpi=130)
+    plt.close(fig)
+    return out
+
+
+def contact_pattern_figure(pinion: Surface, gear: Surface, kin: MeshKinematics,
+                           cycle: MeshCycle, *, title: str = "", edges=()) -> Figure:
+    """Contact pattern and path on both flanks (gear above, pinion below).
 
     The pattern is the union of the paint ellipses of the transmitting contact over
     one pinion pitch (every tooth carries the same pattern); the thin line is the whole
@@ -61,7 +72,10 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
     ``edges`` (per phase, ``""`` or the edge reached; :mod:`gearcontact.tca.edges`)
     draws the ellipses of edge phases in red and names the edges in the legend;
     transmitting contacts that are an edge touching the other flank
-    (:mod:`gearcontact.tca.edge_contact`) are marked with crosses.
+    (:mod:`gearcontact.tca.edge_contact`) are marked with crosses. The paint is clipped
+    to the flank boundary (its outline in the projection, the clip path of every
+    ellipse): an ellipse of an edge phase reaches past the edge it runs on, and paint
+    cannot lie off the flank.
     """
     fig, axes = plt.subplots(2, 1, figsize=(9, 7.5))
     theta = np.linspace(0.0, 2 * np.pi, 49)
@@ -70,8 +84,9 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
     labels = {"gear": ("distance from gear axis (mm)", "gear axial coordinate (mm)"),
               "pinion": ("pinion axial coordinate (mm)", "distance from pinion axis (mm)")}
     for ax, member, surf in ((axes[0], "gear", gear), (axes[1], "pinion", pinion)):
-        ax.plot(*axial_projection(_boundary(surf), member).T, color="0.3", lw=1.0,
-                label="flank boundary")
+        outline = axial_projection(_boundary(surf), member)
+        ax.plot(*outline.T, color="0.3", lw=1.0, label="flank boundary")
+        clip = Polygon(outline, closed=True, transform=ax.transData)
         marks = tuple(edges) or ("",) * len(cycle.contact)
         named = sorted({e for e in marks if e})
         for mp, rc, ell, edge in zip(cycle.contact, cycle.curvature, cycle.ellipse, marks):
@@ -80,8 +95,9 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
             ring = (mp.point_mm + np.outer(ell.semi_major_mm * np.cos(theta), rc.dir_min)
                     + np.outer(ell.semi_minor_mm * np.sin(theta), rc.dir_max))
             xy = axial_projection(_to_body(kin, member, mp, ring), member)
-            ax.fill(xy[:, 0], xy[:, 1], color="tab:red" if edge else "tab:orange",
-                    alpha=0.12, lw=0)
+            for patch in ax.fill(xy[:, 0], xy[:, 1], color="tab:red" if edge else "tab:orange",
+                                 alpha=0.12, lw=0):
+                patch.set_clip_path(clip)
         if named:
             ax.fill([], [], color="tab:red", alpha=0.3,
                     label=f"edge contact ({', '.join(named)}: "
@@ -114,9 +130,7 @@ def plot_contact_pattern(pinion: Surface, gear: Surface, kin: MeshKinematics,
     if title:
         fig.suptitle(title)
     fig.tight_layout(rect=(0.0, 0.08, 1.0, 1.0))
-    out = save_figure(fig, path, dpi=130)
-    plt.close(fig)
-    return out
+    return fig
 
 
 def plot_te0(cycle: MeshCycle, path, *, title: str = "") -> Path:
