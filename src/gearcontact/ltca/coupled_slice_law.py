@@ -26,7 +26,11 @@ examples), solved on the active slices only (the rows of ``df/dx`` vanish elsewh
 an ``|A| x |A|`` system by Woodbury's identity), and a halving line search on ``max
 |R|`` (:func:`coupled_solve`, compiled and allocation-free). The twin solves the same
 fixed point at an approach instead of a load (``W`` implicit,
-:func:`.slice_law.interference_load`). The tip edge's slices beyond the line's ends (``edge_slices``, as the
+:func:`.slice_law.interference_load`), once per loaded pair and step from the pair's last
+``x``: there the Newton steps from a small residual (:data:`CHORD_FROM`) are followed by
+chord steps on their LU factors (the same tolerance; a step that does not shrink ``max
+|R|`` to :data:`CHORD_RATE` brings the next Newton step). The tip edge's slices beyond
+the line's ends (``edge_slices``, as the
 twin's law takes them) join the same fixed point with their rows and columns of ``G``. ``w >= 0`` holds by the foundation's ``(.)^+``: the
 active set is the slice law's own loaded length. The peak line load, the loaded and the
 equivalent length are then the slice law's on ``x`` (``w_peak = W d_c / I``,
@@ -76,10 +80,13 @@ MIN_STEP = 2.0 ** -20
 (_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS, _PIV, _LDX, _DR, _VO,
  _UO, _CS, _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 25, 26,
                     27, 28)
-#: The chord iteration (:func:`coupled_solve` at an approach): a step on the last
-#: factorised Jacobian is kept while it shrinks ``max |R|`` to at most this fraction;
-#: a step that shrinks it less is kept and the next step refactorises; one that does
-#: not shrink it is undone and replaced by a Newton step.
+#: The chord iteration (:func:`coupled_solve` at an approach): after a Newton step from
+#: a residual ``max |R| <= CHORD_FROM max |G f|`` (a small step: its Jacobian is the
+#: solution's to about that fraction) the next steps reuse its factors, while each
+#: shrinks ``max |R|`` to at most ``CHORD_RATE`` of the last; a step that shrinks it
+#: less is kept and the next is Newton's; one that does not shrink it is undone and
+#: replaced by Newton's.
+CHORD_FROM = 1e-3
 CHORD_RATE = 0.25
 
 
@@ -386,11 +393,12 @@ def coupled_solve(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_appro
     load (``at_approach`` False, ``value`` = W, N; ``x`` kept at least 0, as
     :func:`coupled_line`) or at an approach (``value`` = d, mm, from the line's least
     gap: the twin, ``x = h + G f`` absolute; ``w_start`` the load's Newton start). At
-    an approach the iteration is Newton's, then chord steps on its factorised Jacobian
-    while each shrinks ``max |R|`` to :data:`CHORD_RATE` of the last (a step that
-    shrinks it less is kept, and the next is Newton's; one that does not is undone and
-    replaced by Newton's step with its line search): the same tolerance, fewer
-    factorisations (docs/twin.md, "Speed of the bent cylindrical twin"). Returns ``(d_c,
+    an approach, after a Newton step from a residual within :data:`CHORD_FROM` of ``max
+    |G f|``, chord steps on its factors while each shrinks ``max |R|`` to
+    :data:`CHORD_RATE` of the last (a step that shrinks it less is kept, and the next is
+    Newton's; one that does not is undone and replaced by Newton's with its line
+    search): the same tolerance, fewer factorisations (docs/twin.md, "Speed of the bent
+    cylindrical twin"). Returns ``(d_c,
     L_c, I, W, steps)``: the approach over the least of ``x``, the loaded length, the
     interference, the load, the iterations (Newton and chord; -1: no convergence in
     ``max_steps``, :data:`MAX_STEPS` but for a test of that path); ``f`` and ``x`` in
@@ -410,7 +418,7 @@ def coupled_solve(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_appro
             _chord_step(buf, ob, m)
         else:
             _newton_step(buf, ob, m, c_s, c_a)
-        fresh = not at_approach
+        fresh = not at_approach or not (chord or r_max <= CHORD_FROM * gf_max)
         for q in range(m):
             buf[oo + q] = buf[ox + q]
         t = 1.0
