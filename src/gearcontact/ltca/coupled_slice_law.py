@@ -74,12 +74,11 @@ MIN_STEP = 2.0 ** -20
 # then vectors of m (offsets in units of m, :func:`_at`): the iterate x and its shares,
 # the derivatives of slice_law.interference_derivatives (5 m), R, the step, the last
 # accepted x, f, G s, v, u, the active slices, G^T v, G^T u, the reduced right-hand
-# side, the factorisation's row pivots, the loaded slices, the factorised iterate's
+# side, the factorisation's row pivots, the factorised iterate's
 # D rows on the active slices (sub-, main, super-diagonal of S, c_a ds/dd, s: 5 m),
 # its v and u, its (c_s, |A|); then the reduced Jacobian's LU factors (up to m^2)
-(_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS, _PIV, _LDX, _DR, _VO,
- _UO, _CS, _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 25, 26,
-                    27, 28)
+(_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS, _PIV, _DR, _VO, _UO,
+ _CS, _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 24, 25, 26, 27)
 #: The chord iteration (:func:`coupled_solve` at an approach): after a Newton step from
 #: a residual ``max |R| <= CHORD_FROM max |G f|`` (a small step: its Jacobian is the
 #: solution's to about that fraction) the next steps reuse its factors, while each
@@ -225,17 +224,12 @@ def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
                 buf[_at(ob, m, _V) + q] = v
                 buf[_at(ob, m, _U) + q] = -c_s * (ix + lc * v) / area
     r_max, gf_max, r_min = 0.0, 0.0, math.inf
-    og, ol = ob + m, _at(ob, m, _LDX)
-    nl = 0
-    for k in range(m):      # the loaded slices (the sum skips the others' zero terms)
-        if buf[ox + m + k] != 0.0:
-            buf[ol + nl] = k
-            nl += 1
+    og = ob + m
     for i in range(m):
         gs = 0.0
-        for q in range(nl):
-            k = int(buf[ol + q])
-            gs += buf[og + i * m + k] * buf[ox + m + k]
+        for k in range(m):
+            if buf[ox + m + k] != 0.0:      # the loaded slices (the C: over their list)
+                gs += buf[og + i * m + k] * buf[ox + m + k]
         buf[_at(ob, m, _GS) + i] = gs
         gf = c_s * gs
         gf_max = max(gf_max, abs(gf))
@@ -317,19 +311,14 @@ def _newton_step(buf, ob, m, c_s, c_a):
         if buf[ox + m + i] != 0.0 or buf[od + i] != 0.0:
             buf[oi + na] = i
             na += 1
-    nz = 0      # the slices where v or u is nonzero (_VO's tail as their index list)
     for k in range(m):
         buf[ovo + k] = buf[ov + k]
         buf[ouo + k] = buf[ou + k]
-        if buf[ov + k] != 0.0 or buf[ou + k] != 0.0:
-            buf[_at(ob, m, _LDX) + nz] = k
-            nz += 1
     buf[ocs], buf[ocs + 1] = c_s, na
     for q in range(na):
         c = int(buf[oi + q])
         vg, ug = 0.0, 0.0
-        for r in range(nz):     # the sums skip the zero terms
-            k = int(buf[_at(ob, m, _LDX) + r])
+        for k in range(m):      # the C sums the nonzero terms only: the same sums
             vg += buf[ov + k] * buf[og + k * m + c]
             ug += buf[ou + k] * buf[og + k * m + c]
         buf[ovg + q] = vg
