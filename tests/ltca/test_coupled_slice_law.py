@@ -261,8 +261,9 @@ def _solve_at_approach(h, g, nb, wb, d, x0, w_start, max_steps=None):
 
 @pytest.mark.parametrize("load_n", [150.0, 500.0, 3000.0])
 def test_chord_iteration_solves_the_fixed_point_at_an_approach(load_n):
-    """At an approach coupled_solve takes one Newton step, then chord steps on its
-    factorised Jacobian (docs/twin.md, "Speed of the bent cylindrical twin"). Truths:
+    """At an approach coupled_solve follows a Newton step from a small residual with
+    chord steps on its factors (docs/twin.md, "Speed of the bent cylindrical twin").
+    Truths:
     the fixed point's residual R = x - h - G f recomputed here in numpy (f from the
     returned forces) within the stated tolerance (TOL_REL max |G f| + TOL_ABS), the
     forces summing to the returned W, and the same line solved at that load
