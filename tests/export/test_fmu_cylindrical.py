@@ -221,6 +221,45 @@ def test_drivetrain_fmu_with_bending_reproduces_gearcontact_twin(bending_fmus, b
     if backend == "golden":     # the fp64 fallback ran (measured 12 previews)
         assert twin.summary["previews_outside_datapath"] > 0
 
+def test_mesh_fmu_reports_the_coupled_law_not_converging(tmp_path, monkeypatch):
+    """The FMU's failure path of the coupled slice law (cs_solve returning -1: the mesh
+    FMU's getters answer fmi3Error naming it, as the twin raises in
+    line_law._coupled_state), reached through the iteration cap rendered into the C
+    (``line.max_steps`` of fmu_cylindrical.line_law_context, coupled_slice_law.MAX_STEPS
+    for every user; 0 here, in process, so that no solve may take a step). Truth: the
+    error and its message at the first instant with a loaded pair, where the same FMU
+    rendered with the default cap runs the same sweep (test_mesh_fmu_with_bending_equals_
+    the_twin_line_law)."""
+    from gearcontact.export import fmu_cylindrical
+    from gearcontact.geometry.pair import load_pair
+
+    law_context = fmu_cylindrical.line_law_context
+
+    def capped(mesh, **kw):
+        ctx = law_context(mesh, **kw)
+        ctx["line"]["max_steps"] = 0
+        return ctx
+
+    monkeypatch.setattr(fmu_cylindrical, "line_law_context", capped)
+    fmu = fmu_cylindrical.export_cylindrical_mesh_fmu(
+        load_pair(EV, kinds=("cylindrical",)), tmp_path, pair_name=NAME, side="drive",
+        phases=7, torque_nm=TORQUE_NM, bending=True)
+    tab = LineMeshTable.from_npz(tmp_path / f"gearcontact_mesh_{NAME}_table.npz")
+    messages = []
+
+    def logger(*args):
+        messages.append(" ".join(a.decode() if isinstance(a, bytes) else str(a)
+                                 for a in args))
+
+    with pytest.raises(Exception) as err:
+        fmpy.simulate_fmu(str(fmu.fmu_path), start_time=0.0, stop_time=0.02,
+                          output_interval=5e-5, input=_signal(tab),
+                          output=list(INPUTS + OUTPUTS), logger=logger,
+                          start_values={"backend": BACKENDS["fp64"]})
+    assert "fmi3Error" in str(err.value) or "fmi3GetFloat64" in str(err.value)
+    assert any("coupled slice law: no convergence" in msg for msg in messages), messages
+
+
 SPEED_RPM = 12000.0
 STEP_US = 10.0
 DURATION_S = 3e-3       # 300 steps of 10 us: past the twin's 256-step block (its cache)

@@ -231,3 +231,80 @@ def test_exact_jacobian_against_central_differences(at_approach):
         fd[:, j] = (forces(x + step, value, at_approach)[0]
                     - forces(x - step, value, at_approach)[0]) / 2e-9
     assert np.abs(jac - fd).max() < 1e-7 * np.abs(jac).max()
+
+
+def _edge_problem():
+    """A crowned line (20 um) with 4 edge slices beyond either end and a smooth kernel
+    over all of them (test_exact_jacobian_against_central_differences's problem)."""
+    nb, wb = 4, 0.4
+    edge = 1e-3 + 2e-3 * np.arange(1, nb + 1) ** 2 / nb ** 2
+    h = np.concatenate([2e-2 * (Y / (0.5 * LENGTH)) ** 2, edge, edge])
+    y_edge = 0.5 * LENGTH + wb * (np.arange(nb) + 0.5)
+    y_all = np.concatenate([Y, -y_edge, y_edge])
+    return h, 2e-5 * np.exp(-np.abs(y_all[:, None] - y_all[None, :]) / 5.0), nb, wb
+
+
+def _solve_at_approach(h, g, nb, wb, d, x0, w_start, max_steps=None):
+    """coupled_solve at the approach d (mm) from x0: (d_c, L_c, I, W, steps), x, f."""
+    from gearcontact.ltca import coupled_slice_law as core
+
+    m = h.size
+    buf = np.zeros(core.core_scratch(m))
+    ox = core.start_offset(0, m)
+    buf[:m], buf[m:m + m * m], buf[ox:ox + m] = h, g.ravel(), x0
+    args = (buf, 0, m, m - 2 * nb, LENGTH, B_ACROSS, E_PRIME, nb, wb, d, True, w_start)
+    res = core.coupled_solve(*args) if max_steps is None else \
+        core.coupled_solve(*args, max_steps)
+    of = core._at(0, m, core._F)
+    return res, buf[ox:ox + m].copy(), buf[of:of + m].copy()
+
+
+@pytest.mark.parametrize("load_n", [150.0, 500.0, 3000.0])
+def test_chord_iteration_solves_the_fixed_point_at_an_approach(load_n):
+    """At an approach coupled_solve follows a Newton step from a small residual with
+    chord steps on its factors (docs/twin.md, "Speed of the bent cylindrical twin").
+    Truths:
+    the fixed point's residual R = x - h - G f recomputed here in numpy (f from the
+    returned forces) within the stated tolerance (TOL_REL max |G f| + TOL_ABS), the
+    forces summing to the returned W, and the same line solved at that load
+    (coupled_line: Newton alone, from h) giving the same effective ease-off and forces.
+    Started from a twin-like warm start (the solution at a 2 % lower load: the load moves
+    ~1 % a step) and from the series state's cold one (x = h + G f with the uncoupled
+    slice law's forces). Bound on the two solutions: 1e-8 of max |G f| on x, 1e-8 of W
+    on f (each is solved to 1e-10 of max |G f| in its own datum, and the load's own
+    Newton to 1e-14: 1e-8 leaves the conditioning of the line's ends a factor 100)."""
+    from gearcontact.ltca import coupled_slice_law as core
+
+    h, g, nb, wb = _edge_problem()
+    ref = coupled_line(h, LENGTH, load_n, B_ACROSS, E_PRIME, g, edge_slices=nb,
+                       edge_width_mm=wb)
+    x_ref = ref.effective_ease_mm
+    d = ref.approach_mm + (h + g @ ref.slice_load_n).min()     # x absolute: h + G f
+    near = coupled_line(h, LENGTH, 0.98 * load_n, B_ACROSS, E_PRIME, g, edge_slices=nb,
+                        edge_width_mm=wb)
+    cold = coupled_line(h, LENGTH, load_n, B_ACROSS, E_PRIME, None, edge_slices=nb,
+                        edge_width_mm=wb)
+    for x0 in (h + g @ near.slice_load_n, h + g @ cold.slice_load_n):
+        (d_c, l_c, area, w, steps), x, f = _solve_at_approach(h, g, nb, wb, d, x0, load_n)
+        assert steps >= 1
+        gf = g @ f
+        r = x - h - gf
+        assert np.abs(r).max() <= core.TOL_REL * np.abs(gf).max() + core.TOL_ABS
+        assert f.sum() == pytest.approx(w, rel=1e-12)
+        assert w == pytest.approx(load_n, rel=1e-8)
+        assert np.abs((x - x.min()) - x_ref).max() <= 1e-8 * np.abs(gf).max()
+        assert np.abs(f - ref.slice_load_n).max() <= 1e-8 * load_n
+
+
+def test_iteration_cap_reports_no_convergence():
+    """The solve's failure path (steps -1), reached through the iteration cap that only
+    tests lower (the FMU's render-time cap: tests/export/test_fmu_cylindrical.py): with
+    no step allowed the cold start is not converged; with the default cap the same call
+    converges."""
+    h, g, nb, wb = _edge_problem()
+    cold = coupled_line(h, LENGTH, 500.0, B_ACROSS, E_PRIME, None, edge_slices=nb,
+                        edge_width_mm=wb)
+    x0 = h + g @ cold.slice_load_n
+    d = 0.05
+    assert _solve_at_approach(h, g, nb, wb, d, x0, 500.0, max_steps=0)[0][4] == -1
+    assert _solve_at_approach(h, g, nb, wb, d, x0, 500.0)[0][4] >= 1

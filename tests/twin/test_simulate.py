@@ -424,3 +424,29 @@ def test_two_inertia_mesh_mode_closed_form(s0003_twin):
                    initial_velocity=[0.0, 0.05, 0.0, 0.0])
     found = _peaks(res.columns["theta_rad"], 2e-6, [f_closed])[0]
     assert found == pytest.approx(f_closed, rel=2e-3)
+
+
+def test_compiled_law_failure_is_a_check_failed_naming_it(s0003_twin, monkeypatch):
+    """A failure the compiled step loop raises (line_law._coupled_state's ArithmeticError:
+    the coupled slice law's Newton did not converge) reaches the caller as CheckFailed
+    (the CLI's exit 4, "a Newton iteration failed inside a run"), its message kept and
+    the steps named. The kernel is replaced by one that raises it in its first block
+    (the compile call of one step runs the real kernel); the FMU's own report of the
+    same failure: tests/export/test_fmu_cylindrical.py."""
+    from gearcontact.errors import CheckFailed
+    from gearcontact.twin import kernel as K
+
+    pair, _, _, mesh = s0003_twin
+    model = build_model(mesh, default_drivetrain(pair), torque_nm=64.5)
+    real = K.run_steps
+
+    def failing(y, t0, n_steps, *args):
+        if n_steps > 1:
+            raise ArithmeticError("coupled slice law: no convergence (docs/cylindrical.md "
+                                  "sec. 10)")
+        return real(y, t0, n_steps, *args)
+
+    monkeypatch.setattr(K, "run_steps", failing)
+    with pytest.raises(CheckFailed, match=r"steps 0\.\.\d+ .*coupled slice law: no "
+                                          r"convergence"):
+        simulate(model, speed_rpm=3000.0, duration_s=5e-3, step_s=1e-5)

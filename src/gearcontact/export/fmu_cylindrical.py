@@ -57,7 +57,10 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     """The template context of ``gc_line_law.{h,c}`` for a cylindrical pair's
     :class:`~gearcontact.twin.mesh.MeshTable`: the slice counts, the edge slices'
     effective width (``prm[P_BEYOND_W]``), whether the teeth bend (the table's slice
-    Gram), E' and its code, the datapath's alpha_max and the fit's B- resolution."""
+    Gram), E' and its code, the datapath's alpha_max, the fit's B- resolution and the
+    coupled slice law's iteration cap (:data:`~gearcontact.ltca.coupled_slice_law.
+    MAX_STEPS`; a test of the FMU's non-convergence path renders a lower one)."""
+    from ..ltca.coupled_slice_law import MAX_STEPS
     from ..preview.chain import LINE_B_ZERO_CODES
     from ..contract.qformat import CURVATURE
     from ..preview.hertz.golden import encode_e_prime
@@ -71,7 +74,8 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
         "beyond_w": c_double(width), "e_prime": c_double(mesh.e_prime_mpa),
         "e_code": int(encode_e_prime(mesh.e_prime_mpa)),
         "alpha_hi": c_double(ENVELOPE["alpha"][1]),
-        "b_zero": c_double(LINE_B_ZERO_CODES * CURVATURE.lsb)}}
+        "b_zero": c_double(LINE_B_ZERO_CODES * CURVATURE.lsb),
+        "max_steps": MAX_STEPS}}
 
 
 def _with_line_sources(ctx: dict) -> list:

@@ -26,7 +26,11 @@ examples), solved on the active slices only (the rows of ``df/dx`` vanish elsewh
 an ``|A| x |A|`` system by Woodbury's identity), and a halving line search on ``max
 |R|`` (:func:`coupled_solve`, compiled and allocation-free). The twin solves the same
 fixed point at an approach instead of a load (``W`` implicit,
-:func:`.slice_law.interference_load`). The tip edge's slices beyond the line's ends (``edge_slices``, as the
+:func:`.slice_law.interference_load`), once per loaded pair and step from the pair's last
+``x``: there the Newton steps from a small residual (:data:`CHORD_FROM`) are followed by
+chord steps on their LU factors (the same tolerance; a step that does not shrink ``max
+|R|`` to :data:`CHORD_RATE` brings the next Newton step). The tip edge's slices beyond
+the line's ends (``edge_slices``, as the
 twin's law takes them) join the same fixed point with their rows and columns of ``G``. ``w >= 0`` holds by the foundation's ``(.)^+``: the
 active set is the slice law's own loaded length. The peak line load, the loaded and the
 equivalent length are then the slice law's on ``x`` (``w_peak = W d_c / I``,
@@ -70,9 +74,19 @@ MIN_STEP = 2.0 ** -20
 # then vectors of m (offsets in units of m, :func:`_at`): the iterate x and its shares,
 # the derivatives of slice_law.interference_derivatives (5 m), R, the step, the last
 # accepted x, f, G s, v, u, the active slices, G^T v, G^T u, the reduced right-hand
-# side; then the reduced Jacobian (up to m^2)
-(_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS,
- _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18)
+# side, the factorisation's row pivots, the factorised iterate's
+# D rows on the active slices (sub-, main, super-diagonal of S, c_a ds/dd, s: 5 m),
+# its v and u, its (c_s, |A|); then the reduced Jacobian's LU factors (up to m^2)
+(_X, _DER, _R, _DEL, _XO, _F, _GS, _V, _U, _IDX, _VG, _UG, _RHS, _PIV, _DR, _VO, _UO,
+ _CS, _JAC) = (0, 2, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 24, 25, 26, 27)
+#: The chord iteration (:func:`coupled_solve` at an approach): after a Newton step from
+#: a residual ``max |R| <= CHORD_FROM max |G f|`` (a small step: its Jacobian is the
+#: solution's to about that fraction) the next steps reuse its factors, while each
+#: shrinks ``max |R|`` to at most ``CHORD_RATE`` of the last; a step that shrinks it
+#: less is kept and the next is Newton's; one that does not shrink it is undone and
+#: replaced by Newton's.
+CHORD_FROM = 1e-3
+CHORD_RATE = 0.25
 
 
 @njit(cache=True, inline="always")
@@ -214,7 +228,7 @@ def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
     for i in range(m):
         gs = 0.0
         for k in range(m):
-            if buf[ox + m + k] != 0.0:      # the loaded slices
+            if buf[ox + m + k] != 0.0:      # the loaded slices (the C: over their list)
                 gs += buf[og + i * m + k] * buf[ox + m + k]
         buf[_at(ob, m, _GS) + i] = gs
         gf = c_s * gs
@@ -231,72 +245,40 @@ def _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _newton_step(buf, ob, m, c_s, c_a):
-    """The Newton step ``J delta = -R``, ``J = 1 - G D`` (:func:`_evaluate`'s ``D``),
-    into ``_DEL``. ``D``'s rows vanish outside the active slices ``A`` (``s`` or
-    ``ds/dd`` nonzero: under the approach or on a segment crossing it), so ``J = 1 -
-    G_A D_A`` and (Woodbury) ``delta = -R - G_A z`` with ``(1 - D_A G_A) z = D_A R``, an
-    ``|A| x |A|`` system: Gaussian elimination with partial pivoting (rows swapped in
-    place)."""
-    og, od = ob + m, _at(ob, m, _DER)
-    ox, oi, oj = _at(ob, m, _X), _at(ob, m, _IDX), _at(ob, m, _JAC)
-    ov, ou, ovg, oug = _at(ob, m, _V), _at(ob, m, _U), _at(ob, m, _VG), _at(ob, m, _UG)
+def _reduced_solve(buf, ob, m, na, c_s, ov, ou, odr):
+    """``delta = -R - G_A z`` (into ``_DEL``) with ``(1 - D_A G_A) z = D_A R`` on the
+    factorised reduced Jacobian (``_JAC``: its LU factors, the row pivots ``_PIV``) of
+    :func:`_newton_step`: ``D_A R`` from ``D``'s rows on the active slices (``odr``: the
+    5 vectors of ``_DR``), its ``v``, ``u`` (``ov``, ``ou``) and ``c_s``, the
+    pivots' interchanges and the two triangular solves (each entry's operations those of
+    the elimination interleaved with the factorisation, in the same order)."""
+    og = ob + m
+    oi, oj, op = _at(ob, m, _IDX), _at(ob, m, _JAC), _at(ob, m, _PIV)
     orr, orhs, odl = _at(ob, m, _R), _at(ob, m, _RHS), _at(ob, m, _DEL)
-    na = 0
-    for i in range(m):
-        if buf[ox + m + i] != 0.0 or buf[od + i] != 0.0:
-            buf[oi + na] = i
-            na += 1
     vr, ur = 0.0, 0.0
     for k in range(m):
         vr += buf[ov + k] * buf[orr + k]
         ur += buf[ou + k] * buf[orr + k]
-    for q in range(na):
-        c = int(buf[oi + q])
-        vg, ug = 0.0, 0.0
-        for k in range(m):
-            vg += buf[ov + k] * buf[og + k * m + c]
-            ug += buf[ou + k] * buf[og + k * m + c]
-        buf[ovg + q] = vg
-        buf[oug + q] = ug
     for p in range(na):
         i = int(buf[oi + p])
-        sub, dia, sup = buf[od + m + i], buf[od + 2 * m + i], buf[od + 3 * m + i]
-        sd_i, s_i = c_a * buf[od + i], buf[ox + m + i]
-        for q in range(na):
-            c = int(buf[oi + q])
-            sg = dia * buf[og + i * m + c]
-            if i > 0:
-                sg += sub * buf[og + (i - 1) * m + c]
-            if i < m - 1:
-                sg += sup * buf[og + (i + 1) * m + c]
-            buf[oj + p * na + q] = ((1.0 if p == q else 0.0) - c_s * sg - sd_i * buf[ovg + q]
-                                    - s_i * buf[oug + q])
+        sub, dia, sup = buf[odr + p], buf[odr + m + p], buf[odr + 2 * m + p]
+        sd_i, s_i = buf[odr + 3 * m + p], buf[odr + 4 * m + p]
         sr = dia * buf[orr + i]
         if i > 0:
             sr += sub * buf[orr + i - 1]
         if i < m - 1:
             sr += sup * buf[orr + i + 1]
         buf[orhs + p] = c_s * sr + sd_i * vr + s_i * ur
-    for c in range(na):
-        p = c
-        for i in range(c + 1, na):
-            if abs(buf[oj + i * na + c]) > abs(buf[oj + p * na + c]):
-                p = i
+    for c in range(na):     # the row interchanges, then L's forward substitution
+        p = int(buf[op + c])
         if p != c:
-            for j in range(c, na):
-                t = buf[oj + c * na + j]
-                buf[oj + c * na + j] = buf[oj + p * na + j]
-                buf[oj + p * na + j] = t
             t = buf[orhs + c]
             buf[orhs + c] = buf[orhs + p]
             buf[orhs + p] = t
-        piv = buf[oj + c * na + c]
+    for c in range(na):
         for i in range(c + 1, na):
-            e = buf[oj + i * na + c] / piv
+            e = buf[oj + i * na + c]
             if e != 0.0:
-                for j in range(c + 1, na):
-                    buf[oj + i * na + j] -= e * buf[oj + c * na + j]
                 buf[orhs + i] -= e * buf[orhs + c]
     for c in range(na - 1, -1, -1):
         t = buf[orhs + c]
@@ -310,9 +292,85 @@ def _newton_step(buf, ob, m, c_s, c_a):
         buf[odl + i] = t
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _newton_step(buf, ob, m, c_s, c_a):
+    """The Newton step ``J delta = -R``, ``J = 1 - G D`` (:func:`_evaluate`'s ``D``),
+    into ``_DEL``. ``D``'s rows vanish outside the active slices ``A`` (``s`` or
+    ``ds/dd`` nonzero: under the approach or on a segment crossing it), so ``J = 1 -
+    G_A D_A`` and (Woodbury) ``delta = -R - G_A z`` with ``(1 - D_A G_A) z = D_A R``, an
+    ``|A| x |A|`` system: LU with partial pivoting (whole rows swapped, the multipliers
+    kept below the diagonal), then :func:`_reduced_solve`. Keeps the factors, ``D``'s
+    rows, ``v``, ``u``, ``c_s`` and ``|A|`` for :func:`_chord_step`."""
+    og, od = ob + m, _at(ob, m, _DER)
+    ox, oi, oj = _at(ob, m, _X), _at(ob, m, _IDX), _at(ob, m, _JAC)
+    ov, ou, ovg, oug = _at(ob, m, _V), _at(ob, m, _U), _at(ob, m, _VG), _at(ob, m, _UG)
+    op, odr, ocs = _at(ob, m, _PIV), _at(ob, m, _DR), _at(ob, m, _CS)
+    ovo, ouo = _at(ob, m, _VO), _at(ob, m, _UO)
+    na = 0
+    for i in range(m):
+        if buf[ox + m + i] != 0.0 or buf[od + i] != 0.0:
+            buf[oi + na] = i
+            na += 1
+    for k in range(m):
+        buf[ovo + k] = buf[ov + k]
+        buf[ouo + k] = buf[ou + k]
+    buf[ocs], buf[ocs + 1] = c_s, na
+    for q in range(na):
+        c = int(buf[oi + q])
+        vg, ug = 0.0, 0.0
+        for k in range(m):      # the C sums the nonzero terms only: the same sums
+            vg += buf[ov + k] * buf[og + k * m + c]
+            ug += buf[ou + k] * buf[og + k * m + c]
+        buf[ovg + q] = vg
+        buf[oug + q] = ug
+    for p in range(na):
+        i = int(buf[oi + p])
+        sub, dia, sup = buf[od + m + i], buf[od + 2 * m + i], buf[od + 3 * m + i]
+        sd_i, s_i = c_a * buf[od + i], buf[ox + m + i]
+        buf[odr + p], buf[odr + m + p], buf[odr + 2 * m + p] = sub, dia, sup
+        buf[odr + 3 * m + p], buf[odr + 4 * m + p] = sd_i, s_i
+        for q in range(na):
+            c = int(buf[oi + q])
+            sg = dia * buf[og + i * m + c]
+            if i > 0:
+                sg += sub * buf[og + (i - 1) * m + c]
+            if i < m - 1:
+                sg += sup * buf[og + (i + 1) * m + c]
+            buf[oj + p * na + q] = ((1.0 if p == q else 0.0) - c_s * sg - sd_i * buf[ovg + q]
+                                    - s_i * buf[oug + q])
+    for c in range(na):
+        p = c
+        for i in range(c + 1, na):
+            if abs(buf[oj + i * na + c]) > abs(buf[oj + p * na + c]):
+                p = i
+        buf[op + c] = p
+        if p != c:
+            for j in range(na):
+                t = buf[oj + c * na + j]
+                buf[oj + c * na + j] = buf[oj + p * na + j]
+                buf[oj + p * na + j] = t
+        piv = buf[oj + c * na + c]
+        for i in range(c + 1, na):
+            e = buf[oj + i * na + c] / piv
+            buf[oj + i * na + c] = e
+            if e != 0.0:
+                for j in range(c + 1, na):
+                    buf[oj + i * na + j] -= e * buf[oj + c * na + j]
+    _reduced_solve(buf, ob, m, na, c_s, ov, ou, odr)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _chord_step(buf, ob, m):
+    """The chord step: :func:`_reduced_solve` on the last :func:`_newton_step`'s
+    factorised Jacobian with the current residual ``R`` (into ``_DEL``)."""
+    ocs = _at(ob, m, _CS)
+    _reduced_solve(buf, ob, m, int(buf[ocs + 1]), buf[ocs], _at(ob, m, _VO), _at(ob, m, _UO),
+                   _at(ob, m, _DR))
+
+
 @njit(cache=True, error_model="numpy", _nrt=False)
 def coupled_solve(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
-                  w_start):
+                  w_start, max_steps=MAX_STEPS):
     """The coupled slice law (module docstring) on the scratch ``buf[ob:ob +``
     :func:`core_scratch` ``(m)]`` (no allocation: the twin's step loop calls it), which
     holds the ease-off ``h`` (m slices: the line's ``n``, then ``nb`` edge slices of
@@ -323,20 +381,33 @@ def coupled_solve(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_appro
     line search on ``max |R|``, to ``max |R| <= TOL_REL max |G f| + TOL_ABS``. At a
     load (``at_approach`` False, ``value`` = W, N; ``x`` kept at least 0, as
     :func:`coupled_line`) or at an approach (``value`` = d, mm, from the line's least
-    gap: the twin, ``x = h + G f`` absolute; ``w_start`` the load's Newton start).
-    Returns ``(d_c, L_c, I, W, steps)``: the approach over the least of ``x``, the
-    loaded length, the interference, the load, the Newton steps (-1: no convergence in
-    :data:`MAX_STEPS`); ``f`` and ``x`` in the scratch at :func:`_at` ``(ob, m, _F)``, ``(ob, m, _X)``."""
+    gap: the twin, ``x = h + G f`` absolute; ``w_start`` the load's Newton start). At
+    an approach, after a Newton step from a residual within :data:`CHORD_FROM` of ``max
+    |G f|``, chord steps on its factors while each shrinks ``max |R|`` to
+    :data:`CHORD_RATE` of the last (a step that shrinks it less is kept, and the next is
+    Newton's; one that does not is undone and replaced by Newton's with its line
+    search): the same tolerance, fewer factorisations (docs/twin.md, "Speed of the bent
+    cylindrical twin"). Returns ``(d_c,
+    L_c, I, W, steps)``: the approach over the least of ``x``, the loaded length, the
+    interference, the load, the iterations (Newton and chord; -1: no convergence in
+    ``max_steps``, :data:`MAX_STEPS` but for a test of that path); ``f`` and ``x`` in
+    the scratch at :func:`_at` ``(ob, m, _F)``, ``(ob, m, _X)``."""
     ox, oo, od = _at(ob, m, _X), _at(ob, m, _XO), _at(ob, m, _DEL)
     res = _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_approach,
                     w_start)
     if not value > 0.0:
         return res[0], res[1], res[2], res[3], 0
-    for step in range(1, MAX_STEPS + 1):
+    fresh = True        # the next step refactorises
+    for step in range(1, max_steps + 1):
         d_c, lc, area, w, r_max, gf_max, c_s, c_a = res
         if r_max <= TOL_REL * gf_max + TOL_ABS:
             return d_c, lc, area, w, step - 1
-        _newton_step(buf, ob, m, c_s, c_a)
+        chord = at_approach and not fresh
+        if chord:
+            _chord_step(buf, ob, m)
+        else:
+            _newton_step(buf, ob, m, c_s, c_a)
+        fresh = not at_approach or not (chord or r_max <= CHORD_FROM * gf_max)
         for q in range(m):
             buf[oo + q] = buf[ox + q]
         t = 1.0
@@ -350,11 +421,22 @@ def coupled_solve(buf, ob, m, n, length, b_max, e_prime, nb, wb, value, at_appro
                     buf[ox + q] -= x_min
             res = _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value,
                             at_approach, w if w > 0.0 else w_start)
+            if chord:
+                if res[4] > CHORD_RATE * r_max:
+                    fresh = True
+                if res[4] < r_max:
+                    break
+                # no decrease: back to the step's start, whose Newton step is next
+                for q in range(m):
+                    buf[ox + q] = buf[oo + q]
+                res = _evaluate(buf, ob, m, n, length, b_max, e_prime, nb, wb, value,
+                                at_approach, w if w > 0.0 else w_start)
+                break
             if res[4] < r_max or t < MIN_STEP:
                 break
             t *= 0.5
     ok = res[4] <= TOL_REL * res[5] + TOL_ABS
-    return res[0], res[1], res[2], res[3], MAX_STEPS if ok else -1
+    return res[0], res[1], res[2], res[3], max_steps if ok else -1
 
 
 def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,

@@ -125,7 +125,9 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         Bad speed, duration, step (range and stability), record_every, settle_fraction,
         initial_velocity; a lockstep run longer than :data:`LOCKSTEP_MAX_STEPS`.
     ArithmeticError
-        Non-finite state or a lockstep mismatch.
+        Non-finite state or a lockstep mismatch; :class:`~gearcontact.errors.CheckFailed`
+        (exit 4) naming the steps where the compiled law's own check failed (the
+        coupled slice law's Newton not converging, :mod:`.line_law`).
     """
     speed = check_range("speed_rpm", speed_rpm, 0.0, MAX_SPEED_RPM)
     dur = check_positive("duration_s", duration_s)
@@ -195,7 +197,12 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
     while done < n_steps:
         n = min(chunk, n_steps - done)
         t0 = time.perf_counter()
-        rows += K.run_steps(y, done * h, n, h, *args, w_eval, *tail, rec, rows, record_every)
+        try:
+            rows += K.run_steps(y, done * h, n, h, *args, w_eval, *tail, rec, rows,
+                                record_every)
+        except ArithmeticError as exc:      # the compiled law's own check failed
+            raise CheckFailed(f"twin, steps {done}..{done + n - 1} (t from {done * h:.6g} "
+                              f"s): {exc}") from exc
         times.append((time.perf_counter() - t0) / n)
         done += n
         bar.update(n)
