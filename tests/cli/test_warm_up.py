@@ -124,3 +124,25 @@ def test_warm_up_compiles_everything_a_cylindrical_pair_calls(tmp_path):
         err = _cli(["analyze", "--pair", EV, "--lte-phases", "5", "--quiet", "--no-figures",
                     *extra, "--out", str(tmp_path / f"a{k}")], cache, count=True)
         assert err.strip().splitlines()[-1] == "compiled 0", extra
+
+
+def test_warm_up_kind_selects_one_pair_kind(tmp_path):
+    """``--kind bevel`` runs only the s0003 analyze and twin, ``--kind cylindrical`` only
+    the helical example's four runs, ``all`` (the default) both, in that order; an
+    unknown kind is refused naming the option (exit 2) before anything compiles."""
+    from gearcontact.cli.warm_up import (CYLINDRICAL_WARM_UP_RUNS, WARM_UP_ARGUMENTS,
+                                         TWIN_WARM_UP_ARGUMENTS, warm_up_runs)
+
+    def pairs(kind):
+        return [Path(argv[argv.index("--pair") + 1]).stem
+                for argv in warm_up_runs(kind, str(tmp_path))]
+
+    assert pairs("bevel") == ["s0003", "s0003"]
+    assert pairs("cylindrical") == ["ev_reducer_helical_23x67"] * len(CYLINDRICAL_WARM_UP_RUNS)
+    assert pairs("all") == pairs("bevel") + pairs("cylindrical")
+    assert warm_up_runs("bevel", str(tmp_path))[0][:len(WARM_UP_ARGUMENTS)] == list(WARM_UP_ARGUMENTS)
+    assert warm_up_runs("bevel", str(tmp_path))[1][:len(TWIN_WARM_UP_ARGUMENTS)] == list(
+        TWIN_WARM_UP_ARGUMENTS)
+    proc = subprocess.run([sys.executable, "-m", "gearcontact", "warm-up", "--kind", "spur"],
+                          capture_output=True, text=True, timeout=120, check=False)
+    assert proc.returncode == 2 and "--kind" in proc.stderr and "spur" in proc.stderr

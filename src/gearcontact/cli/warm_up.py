@@ -14,7 +14,8 @@ same on a cylindrical pair (the helical example, shipped in the package): a smal
 ``analyze`` (line-contact LCP with tooth bending, the preview's line chain; again
 rigid) and a short ``twin`` with rigid teeth (the line law) and with ``--bending`` (the
 coupled slice law); the directory is deleted; then the compiled edge search of a pair
-with a relieved flank (:func:`gearcontact.tca.edge_kernel.warm_up`). The commands that
+with a relieved flank (:func:`gearcontact.tca.edge_kernel.warm_up`). ``--kind bevel`` or
+``--kind cylindrical`` compiles one pair kind's kernels only. The commands that
 compile print one line on stderr when they find the cache cold (:func:`note_cold_cache`).
 """
 
@@ -30,7 +31,8 @@ from pathlib import Path
 
 __all__ = ["register", "run", "cache_is_cold", "cache_directory", "note_cold_cache",
            "WARM_UP_ARGUMENTS", "TWIN_WARM_UP_ARGUMENTS", "CYLINDRICAL_WARM_UP_RUNS",
-           "cylindrical_warm_up_pair", "COMPILING_COMMANDS"]
+           "cylindrical_warm_up_pair", "COMPILING_COMMANDS", "WARM_UP_KINDS",
+           "warm_up_runs"]
 
 #: The run that compiles the kernels: every stage of ``analyze`` (design, TCA, LTCA,
 #: multi-tooth mesh, loaded TE, fixed-point preview) at the smallest useful size.
@@ -60,6 +62,9 @@ CYLINDRICAL_WARM_UP_RUNS = (
      "--quiet"),
 )
 
+#: The values of ``warm-up --kind``.
+WARM_UP_KINDS = ("all", "bevel", "cylindrical")
+
 #: Commands that call numba kernels whose compilation takes seconds on a cold cache.
 COMPILING_COMMANDS = frozenset({"analyze", "reproduce", "tca", "ltca", "lte", "bending",
                                 "sweep", "twin"})
@@ -69,7 +74,12 @@ def register(sub) -> None:
     p = sub.add_parser("warm-up", help="compile the numba kernels into their on-disk cache "
                                        "now (once after an install; later runs load them)",
                        description=__doc__.split("\n\n")[1])
-    p.add_argument("--quiet", action="store_true", help="print nothing on success")
+    p.add_argument("--kind", choices=WARM_UP_KINDS, default="all",
+                   help="which pair kind's kernels to compile: bevel (the s0003 analyze and "
+                        "twin, the relieved edge search), cylindrical (the helical "
+                        "example's analyze and twin) or all (default)")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress bar, nothing printed on success")
     p.set_defaults(func=run)
 
 
@@ -137,25 +147,42 @@ def cylindrical_warm_up_pair() -> Path:
         "data/warm_up/ev_reducer_helical_23x67.toml")))
 
 
+def warm_up_runs(kind: str, directory: str) -> list[list[str]]:
+    """The command lines ``warm-up --kind kind`` runs, each writing under ``directory``."""
+    runs = []
+    if kind in ("all", "bevel"):
+        runs += [[*WARM_UP_ARGUMENTS, "--out", os.path.join(directory, "run")],
+                 [*TWIN_WARM_UP_ARGUMENTS, "--out", os.path.join(directory, "twin")]]
+    if kind in ("all", "cylindrical"):
+        runs += [[*argv, "--pair", str(cylindrical_warm_up_pair()),
+                  "--out", os.path.join(directory, f"cylindrical{k}")]
+                 for k, argv in enumerate(CYLINDRICAL_WARM_UP_RUNS)]
+    return runs
+
+
 def run(args) -> int:
+    from tqdm import tqdm
+
     from . import main
 
     start = time.perf_counter()
     where = cache_directory()
+    # the bar writes to the terminal's stderr: the runs' own output is captured
+    bar_file = sys.stderr
     with tempfile.TemporaryDirectory(prefix="gearcontact-warm-up-") as tmp:
-        runs = [[*WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "run")],
-                [*TWIN_WARM_UP_ARGUMENTS, "--out", os.path.join(tmp, "twin")]]
-        runs += [[*argv, "--pair", str(cylindrical_warm_up_pair()),
-                  "--out", os.path.join(tmp, f"cylindrical{k}")]
-                 for k, argv in enumerate(CYLINDRICAL_WARM_UP_RUNS)]
+        runs = warm_up_runs(args.kind, tmp)
         captured = io.StringIO()
         code = 0
-        with contextlib.redirect_stdout(captured), contextlib.redirect_stderr(captured):
+        with tqdm(total=len(runs), desc="warm-up", unit="run", file=bar_file,
+                  disable=args.quiet) as bar, \
+                contextlib.redirect_stdout(captured), contextlib.redirect_stderr(captured):
             for argv in runs:
+                bar.set_postfix_str(f"{argv[0]} {Path(argv[argv.index('--pair') + 1]).stem}")
                 code = main(argv)
                 if code != 0:
                     break
-    if code == 0:
+                bar.update()
+    if code == 0 and args.kind in ("all", "bevel"):
         # the edge search of a relieved pair (s0003 has none)
         from ..tca.edge_kernel import warm_up as warm_up_edge_search
         warm_up_edge_search()
