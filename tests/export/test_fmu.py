@@ -44,18 +44,29 @@ def exported(tmp_path_factory):
     return fmu, MeshLawTable.from_npz(out / "gearcontact_mesh_s0003_table.npz")
 
 
-def _signal(tab: MeshLawTable):
+def _signal(tab: MeshLawTable, *, lag_rad: float = 4.2e-4):
     """Constant pinion speed over two pinion pitches; the gear lags by theta(t) from
-    -2e-5 rad (flanks open) to 4e-4 rad, its speed the derivative of its angle."""
+    -2e-5 rad (flanks open) by ``lag_rad`` more, its speed the derivative of its angle."""
     t = np.linspace(0.0, 0.02, 401)
     wp = 2.0 * tab.pitch_rad / 0.02
-    theta = -2e-5 + 4.2e-4 * t / 0.02
+    theta = -2e-5 + lag_rad * t / 0.02
     phi_g = wp * t / tab.ratio - theta
-    wg = np.full_like(t, wp / tab.ratio - 4.2e-4 / 0.02)
+    wg = np.full_like(t, wp / tab.ratio - lag_rad / 0.02)
     sig = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in INPUTS])
     sig["time"], sig["phi_pinion_rad"], sig["phi_gear_rad"] = t, wp * t, phi_g
     sig["omega_pinion_rad_s"], sig["omega_gear_rad_s"] = wp, wg
     return sig
+
+
+def _sweep(fmu, tab, backend: str, fmi_type: str, *, lag_rad: float = 4.2e-4):
+    """The mesh FMU under FMPy over :func:`_signal` (401 instants, every input and
+    output recorded) in ``backend`` and ``fmi_type``."""
+    res = fmpy.simulate_fmu(str(fmu), fmi_type=fmi_type, start_time=0.0, stop_time=0.02,
+                            output_interval=5e-5, input=_signal(tab, lag_rad=lag_rad),
+                            output=list(INPUTS + OUTPUTS),
+                            start_values={"backend": BACKENDS[backend]})
+    assert len(res) == 401
+    return res
 
 
 def _assert_law(res, tab: MeshLawTable, backend: str, *, law=mesh_outputs) -> list:
@@ -101,11 +112,7 @@ def test_fmu_equals_the_twin_contact_law(exported, backend, fmi_type):
     ~1e5 at these angles: <= 1e-10), golden identical (integer stage D, then the same
     fp64 operations). Measured: identical in both backends and both interfaces."""
     fmu, tab = exported
-    res = fmpy.simulate_fmu(str(fmu), fmi_type=fmi_type, start_time=0.0, stop_time=0.02,
-                            output_interval=5e-5, input=_signal(tab),
-                            output=list(INPUTS + OUTPUTS),
-                            start_values={"backend": BACKENDS[backend]})
-    assert len(res) == 401
+    res = _sweep(fmu, tab, backend, fmi_type)
     loaded = sum(ref.torque_gear_nm > 0.0 for ref in _assert_law(res, tab, backend))
     # the sweep covers open flanks, one and several pairs, and the rated torque
     assert res["torque_gear_nm"][0] == 0.0 and res["active_pairs"][0] == 0

@@ -26,9 +26,11 @@ from gearcontact.export.line_mesh_law import LineMeshTable, line_mesh_outputs  #
 from gearcontact.export.mesh_law import BACKENDS  # noqa: E402
 
 from .conftest import export_fmu_cli as _cli  # noqa: E402
-from .test_fmu import INPUTS, OUTPUTS, _assert_law as assert_mesh_law  # noqa: E402
+from .test_fmu import (INPUTS, OUTPUTS, _assert_law as assert_mesh_law,  # noqa: E402
+                       _signal as signal, _sweep as sweep)
 # FMU output -> twin column (the twin's te_arcsec is the DTE)
-from .test_fmu_drivetrain import PAIRS as TWIN_COLUMNS, assert_twin_csv  # noqa: E402
+from .test_fmu_drivetrain import (PAIRS as TWIN_COLUMNS, _assert_reproduces,  # noqa: E402
+                                  assert_twin_csv)
 
 ROOT = Path(__file__).resolve().parents[2]
 EV = ROOT / "examples" / "ev_reducer_helical_23x67.toml"
@@ -60,18 +62,13 @@ def mesh_fmu(tmp_path_factory):
     return fmu, LineMeshTable.from_npz(fmu.parent / f"gearcontact_mesh_{NAME}_table.npz")
 
 
+#: The mesh FMU's sweep: the gear's lag grows by 3e-4 rad (~4x the export torque's
+#: rotation) from open flanks (test_fmu._signal)
+LAG_RAD = 3e-4
+
+
 def _signal(tab):
-    """Constant pinion speed over two pinion pitches; the gear lags by theta(t) from
-    -2e-5 rad (flanks open) to 2.8e-4 rad (~4x the export torque's rotation), its speed
-    the derivative of its angle."""
-    t = np.linspace(0.0, 0.02, 401)
-    wp = 2.0 * tab.pitch_rad / 0.02
-    theta = -2e-5 + 3e-4 * t / 0.02
-    sig = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in INPUTS])
-    sig["time"], sig["phi_pinion_rad"] = t, wp * t
-    sig["phi_gear_rad"] = wp * t / tab.ratio - theta
-    sig["omega_pinion_rad_s"], sig["omega_gear_rad_s"] = wp, wp / tab.ratio - 3e-4 / 0.02
-    return sig
+    return signal(tab, lag_rad=LAG_RAD)
 
 
 def test_mesh_fmu_validates_against_the_fmi3_schema(mesh_fmu):
@@ -95,11 +92,7 @@ def test_mesh_fmu_equals_the_twin_line_law(mesh_fmu, backend, fmi_type):
     at these angles: <= 1e-10), golden identical (integer line chain, then the same fp64
     operations). Measured: identical in both backends and both interfaces."""
     fmu, tab = mesh_fmu
-    res = fmpy.simulate_fmu(str(fmu), fmi_type=fmi_type, start_time=0.0, stop_time=0.02,
-                            output_interval=5e-5, input=_signal(tab),
-                            output=list(INPUTS + OUTPUTS),
-                            start_values={"backend": BACKENDS[backend]})
-    assert len(res) == 401
+    res = sweep(fmu, tab, backend, fmi_type, lag_rad=LAG_RAD)
     loaded = sum(ref.torque_gear_nm > 0.0 for ref in _assert_law(res, tab, backend))
     # the sweep covers open flanks, several pairs and beyond the export torque
     assert res["torque_gear_nm"][0] == 0.0 and res["active_pairs"][0] == 0
@@ -205,18 +198,12 @@ def test_drivetrain_fmu_with_bending_reproduces_gearcontact_twin(bending_fmus, b
     bending). Measured: identical in both backends, every column."""
     from gearcontact.geometry.pair import load_pair
     from gearcontact.twin.cylindrical import cylindrical_model
-    from gearcontact.twin.simulate import simulate
 
     model = cylindrical_model(load_pair(EV, kinds=("cylindrical",)), torque_nm=TORQUE_NM,
                               backend=twin_backend, phases=7, bending=True)
-    twin = simulate(model, speed_rpm=SPEED_RPM, duration_s=6e-3, step_s=1e-6 * STEP_US)
-    res = fmpy.simulate_fmu(str(bending_fmus["drivetrain"]), start_time=0.0, stop_time=6e-3,
-                            output_interval=1e-6 * STEP_US, output=list(TWIN_COLUMNS),
-                            start_values={"backend": BACKENDS[backend],
-                                          "speed_rpm": SPEED_RPM, "step_us": STEP_US})
-    n = twin.summary["steps"]
-    assert n == 600 and len(res) == n + 1
-    _assert_twin_columns(res, twin, n, backend)
+    twin, _ = _assert_twin_reproduced(bending_fmus["drivetrain"], model, backend,
+                                      speed_rpm=SPEED_RPM, duration_s=6e-3,
+                                      step_us=STEP_US, steps=600)
     assert twin.summary["bending"]
     if backend == "golden":     # the fp64 fallback ran (measured 12 previews)
         assert twin.summary["previews_outside_datapath"] > 0
@@ -265,16 +252,24 @@ STEP_US = 10.0
 DURATION_S = 3e-3       # 300 steps of 10 us: past the twin's 256-step block (its cache)
 
 
-def _assert_twin_columns(res, twin, n: int, backend: str) -> None:
-    """Every FMU output at the first ``n`` communication points equals the twin's record
-    (the state at the start of each step): golden identical, fp64 within 1e-9 relative
-    (reasons at the tests)."""
-    for name, col in TWIN_COLUMNS.items():
-        got, want = np.asarray(res[name][:n], float), twin.columns[col]
-        if backend == "golden":
-            np.testing.assert_array_equal(got, want, err_msg=name)
-        else:
-            np.testing.assert_allclose(got, want, rtol=1e-9, atol=0.0, err_msg=name)
+def _assert_twin_reproduced(fmu, model, backend: str, *, speed_rpm: float,
+                            duration_s: float, step_us: float, steps: int):
+    """Simulate ``model`` (the twin) and the drivetrain ``fmu`` under FMPy at the same
+    speed, step and duration; assert ``steps`` recorded steps and that every FMU output
+    at the first ``steps`` communication points equals the twin's record (golden
+    identical, fp64 within 1e-9 relative: reasons at the tests). Returns (twin, res)."""
+    from gearcontact.twin.simulate import simulate
+
+    twin = simulate(model, speed_rpm=speed_rpm, duration_s=duration_s,
+                    step_s=1e-6 * step_us)
+    res = fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=duration_s,
+                            output_interval=1e-6 * step_us, output=list(TWIN_COLUMNS),
+                            start_values={"backend": BACKENDS[backend],
+                                          "speed_rpm": speed_rpm, "step_us": step_us})
+    n = twin.summary["steps"]
+    assert n == steps and len(res) == n + 1
+    _assert_reproduces(res, twin, n, backend)
+    return twin, res
 
 
 @pytest.fixture(scope="module")
@@ -303,19 +298,11 @@ def test_drivetrain_fmu_reproduces_gearcontact_twin(drivetrain_fmu, backend, twi
     backends, every column."""
     from gearcontact.geometry.pair import load_pair
     from gearcontact.twin.cylindrical import cylindrical_model
-    from gearcontact.twin.simulate import simulate
 
     model = cylindrical_model(load_pair(EV, kinds=("cylindrical",)), torque_nm=TORQUE_NM,
                               backend=twin_backend, phases=7)
-    twin = simulate(model, speed_rpm=SPEED_RPM, duration_s=DURATION_S,
-                    step_s=1e-6 * STEP_US)
-    res = fmpy.simulate_fmu(str(drivetrain_fmu), start_time=0.0, stop_time=DURATION_S,
-                            output_interval=1e-6 * STEP_US, output=list(TWIN_COLUMNS),
-                            start_values={"backend": BACKENDS[backend],
-                                          "speed_rpm": SPEED_RPM, "step_us": STEP_US})
-    n = twin.summary["steps"]
-    assert n == 300 and len(res) == n + 1
-    _assert_twin_columns(res, twin, n, backend)
+    _, res = _assert_twin_reproduced(drivetrain_fmu, model, backend, speed_rpm=SPEED_RPM,
+                                     duration_s=DURATION_S, step_us=STEP_US, steps=300)
     # loaded and dynamic: the mesh carries the torque on average, the DTE moves, several
     # pairs share the load (a helical stage, eps_gamma ~ 3.5)
     assert 0.9 * TORQUE_NM < np.mean(res["mesh_torque_nm"]) < 1.1 * TORQUE_NM
@@ -358,20 +345,13 @@ def test_spur_drivetrain_fmu_reproduces_the_twin_through_rattle(
     from gearcontact.geometry.pair import load_pair
     from gearcontact.twin.cylindrical import cylindrical_model
     from gearcontact.twin.params import load_drivetrain
-    from gearcontact.twin.simulate import simulate
 
     fmu, dt_file = spur_drivetrain_fmu
     pair = load_pair(SPUR, kinds=("cylindrical",))
     model = cylindrical_model(pair, torque_nm=10.0, backend=twin_backend, phases=7,
                               drivetrain=load_drivetrain(dt_file, pair))
-    twin = simulate(model, speed_rpm=15000.0, duration_s=6e-3, step_s=1e-5)
-    res = fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=6e-3,
-                            output_interval=1e-5, output=list(TWIN_COLUMNS),
-                            start_values={"backend": BACKENDS[backend],
-                                          "speed_rpm": 15000.0, "step_us": 10.0})
-    n = twin.summary["steps"]
-    assert n == 600 and len(res) == n + 1
-    _assert_twin_columns(res, twin, n, backend)
+    twin, res = _assert_twin_reproduced(fmu, model, backend, speed_rpm=15000.0,
+                                        duration_s=6e-3, step_us=10.0, steps=600)
     # the run loses contact (measured 5 % of the steps), strikes the reverse flank
     # (measured 57 steps of negative mesh torque) and comes back loaded
     assert 0.02 < twin.summary["contact_loss"] < 0.5
