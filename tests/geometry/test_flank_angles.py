@@ -31,6 +31,7 @@ from gearcontact.geometry.flank_angles import (PINION_UNDEFINED, measure_generat
 from gearcontact.geometry.machine import (BladeSettings, MachineKinematics, blade_point,
                                           mirror_setup, setup_from_tables)
 from gearcontact.geometry.pair import load_pair
+from gearcontact.geometry.print_words import pitch_apex_from_crossing_point_in
 from gearcontact.validation import InputRangeError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -165,11 +166,12 @@ def sheet():
 
 
 def _pitch_apex_in(p):
-    """Pitch apex from the crossing point, towards the gear (+, "between"), inches: the
-    crown lies a sin(delta) nearer the apex than the outer pitch circle (README)."""
-    d = math.radians(p["gear_pitch_angle_deg"])
-    return p["gear_crown_to_crossing_point_in"] - (
-        p["cone_distance_in"] * math.cos(d) - p["gear_addendum_in"] * math.sin(d))
+    """Pitch apex from the crossing point, towards the gear (+, "between"), inches
+    (geometry.print_words: the MD datum; README)."""
+    return pitch_apex_from_crossing_point_in(
+        crown_to_crossing_point_in=p["gear_crown_to_crossing_point_in"],
+        outer_cone_distance_in=p["cone_distance_in"], pitch_angle_deg=p["gear_pitch_angle_deg"],
+        addendum_in=p["gear_addendum_in"])
 
 
 @pytest.fixture(scope="module")
@@ -199,28 +201,29 @@ def _mean_point(p, setup):
 
 
 def test_sheet_typed_as_printed(sheet):
-    # transcription: the typed tables are the printed settings in mm and decimal
-    # degrees, to the 4 decimals typed (5e-5), the MCTB with the pitch apex offset
+    # transcription: the typed tables are the print's numbers (quoted here from the
+    # print, README) in mm and decimal degrees, to the 4 decimals typed (5e-5), with
+    # the print's words signed as README's table decided (WITH +, DN -, MD from the
+    # crossing point); test_print_words.py: the tables are gear_tables_from_print's
     p, setups = sheet
-    ratio = p["ratio_nc_75"] * 75.0 / p["gear_teeth"]
-    for side, kind, angle, width in (("drive", "inside", "convex", -1.0),
-                                     ("coast", "outside", "concave", 1.0)):
+    ratio = 0.545665 * 75.0 / 41
+    for side, kind, angle, width in (("drive", "inside", 18.0, -0.0900),
+                                     ("coast", "outside", 24.5, 0.0900)):
         st, bl = setups[side].settings, setups[side].blade
-        assert st.radial_distance_mm == pytest.approx(IN * p["radial_in"], abs=5e-5)
-        assert st.cradle_angle_deg == pytest.approx(p["cradle_angle_deg"], abs=5e-5)
-        assert st.machine_root_angle_deg == pytest.approx(p["machine_root_angle_deg"], abs=5e-5)
+        assert st.radial_distance_mm == pytest.approx(IN * 4.108, abs=5e-5)
+        assert st.cradle_angle_deg == pytest.approx(67 + 11 / 60, abs=5e-5)
+        assert st.machine_root_angle_deg == pytest.approx(69 + 7 / 60, abs=5e-5)
         assert st.machine_centre_to_back_mm == pytest.approx(
-            IN * (p["machine_centre_to_back_in"] + _pitch_apex_in(p)), abs=5e-5)
-        assert st.sliding_base_mm == pytest.approx(IN * p["sliding_base_in"], abs=5e-5)
-        assert st.blank_offset_mm == pytest.approx(-IN * p["blank_offset_in"], abs=5e-5)
+            IN * (-0.240 + _pitch_apex_in(p)), abs=5e-5)
+        assert st.sliding_base_mm == pytest.approx(IN * 0.070, abs=5e-5)
+        assert st.blank_offset_mm == pytest.approx(-IN * 0.225, abs=5e-5)
         assert st.ratio_of_roll == pytest.approx(ratio, abs=5e-7)
         assert bl.kind == kind
-        assert bl.blade_angle_deg == p[f"gear_pressure_angle_{angle}_deg"]
-        assert bl.point_radius_mm == pytest.approx(
-            IN * 0.5 * (p["cutter_diameter_in"] + width * p["point_width_finish_in"]), abs=5e-5)
-    # the test roll printed beside the ratio: work / cradle to its minute (0.5')
-    assert ratio * p["cradle_test_roll_deg"] == pytest.approx(p["work_test_roll_deg"],
-                                                              abs=0.5 / 60)
+        assert bl.blade_angle_deg == angle
+        assert bl.point_radius_mm == pytest.approx(IN * 0.5 * (9.000 + width), abs=5e-5)
+    # the test roll printed beside the ratio (cradle 30 deg, work 29D 57M): work /
+    # cradle to its minute (0.5')
+    assert ratio * 30.0 == pytest.approx(29 + 57 / 60, abs=0.5 / 60)
 
 
 def test_sheet_blank_is_consistent(sheet):
@@ -241,6 +244,19 @@ def test_sheet_blank_is_consistent(sheet):
     assert -(_pitch_apex_in(p) + axial) == pytest.approx(p["gear_root_apex_in"], abs=5e-3)
 
 
+def _root_apex_z_mm(p, machine):
+    """Height of the gear's root apex over the cutter tip plane ``z_m = 0`` (mm) for a
+    ``[machine.gear.*]`` table: the root line lies in the cradle plane (machine root =
+    root angle), the root apex at ``X_D + axial`` along the work axis."""
+    g = math.radians(machine["machine_root_angle_deg"])
+    d = math.radians(p["gear_pitch_angle_deg"])
+    b_o = p["whole_depth_in"] - p["gear_addendum_in"]
+    r_o = 0.5 * p["gear_teeth"] / p["outer_diametral_pitch_per_in"]
+    axial = IN * (p["cone_distance_in"] * math.cos(d) + b_o * math.sin(d)
+                  - (r_o - b_o * math.cos(d)) / math.tan(math.radians(p["gear_root_angle_deg"])))
+    return (machine["machine_centre_to_back_mm"] + axial) * math.sin(g) + machine["sliding_base_mm"]
+
+
 def test_sheet_root_line_lies_in_the_cutter_tip_plane(sheet):
     # the sign mapping of this print (README): with MD the crossing point's increment
     # and WITH = +, the gear's root line (the cone tangent to the cradle plane, tilt 0)
@@ -250,13 +266,9 @@ def test_sheet_root_line_lies_in_the_cutter_tip_plane(sheet):
     # (0.013 mm each): 0.15 mm. WITH = - would put it 3.62 mm behind the tip plane.
     p, setups = sheet
     st = setups["drive"].settings
-    g = math.radians(st.machine_root_angle_deg)
-    d = math.radians(p["gear_pitch_angle_deg"])
-    b_o = p["whole_depth_in"] - p["gear_addendum_in"]
-    r_o = 0.5 * p["gear_teeth"] / p["outer_diametral_pitch_per_in"]
-    axial = IN * (p["cone_distance_in"] * math.cos(d) + b_o * math.sin(d)
-                  - (r_o - b_o * math.cos(d)) / math.tan(math.radians(p["gear_root_angle_deg"])))
-    z_root_apex = (st.machine_centre_to_back_mm + axial) * math.sin(g) + st.sliding_base_mm
+    z_root_apex = _root_apex_z_mm(p, {"machine_root_angle_deg": st.machine_root_angle_deg,
+                                      "machine_centre_to_back_mm": st.machine_centre_to_back_mm,
+                                      "sliding_base_mm": st.sliding_base_mm})
     assert abs(z_root_apex) < 0.15
     assert z_root_apex == pytest.approx(-0.065, abs=1e-3)     # the measured value
 
