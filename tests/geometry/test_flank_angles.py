@@ -348,6 +348,17 @@ def test_sheet_pressure_angles_are_the_generating_gears(sheet, generating):
             p[f"gear_pressure_angle_{flank}_deg"], abs=1e-7), side
 
 
+def _normal_thickness_in(p, measured):
+    """The mean normal circular thickness (in) of the sheet's gear tooth between the
+    convex (drive) and the next slot's concave (coast) flank measured on the pitch cone
+    at the mean point (``measure_mean_point`` of each): transverse arc x cos(beta_m)."""
+    d = math.radians(p["gear_pitch_angle_deg"])
+    r_m = IN * (p["cone_distance_in"] - 0.5 * p["face_width_in"]) * math.sin(d)
+    tooth = 2.0 * math.pi / p["gear_teeth"] - (measured["drive"].azimuth_rad
+                                               - measured["coast"].azimuth_rad)
+    return tooth * r_m * math.cos(math.radians(p["gear_spiral_angle_deg"])) / IN
+
+
 def test_sheet_mean_normal_thickness_is_the_printed_one(sheet, measured):
     # the printed blank's tooth at mid face ("Norm Chord Thick" 0.1589 in, finish,
     # at the chordal addendum 0.0511 in, the pitch line): the tooth between the convex
@@ -359,11 +370,7 @@ def test_sheet_mean_normal_thickness_is_the_printed_one(sheet, measured):
     # printed values; the depth chain, machine root, MD, sliding base, crown to crossing
     # point, addendum, 0.0004 in each, dominates): 0.0023 in, + 0.00005 printed.
     p, _ = sheet
-    d = math.radians(p["gear_pitch_angle_deg"])
-    r_m = IN * (p["cone_distance_in"] - 0.5 * p["face_width_in"]) * math.sin(d)
-    tooth = 2.0 * math.pi / p["gear_teeth"] - (measured["drive"].azimuth_rad
-                                               - measured["coast"].azimuth_rad)
-    normal_in = tooth * r_m * math.cos(math.radians(p["gear_spiral_angle_deg"])) / IN
+    normal_in = _normal_thickness_in(p, measured)
     assert normal_in == pytest.approx(p["mean_normal_chordal_thickness_finish_in"],
                                       abs=0.00235)
     assert normal_in == pytest.approx(0.15857, abs=5e-6)       # measured (README)

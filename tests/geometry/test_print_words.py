@@ -23,7 +23,10 @@ from gearcontact.geometry.print_words import (BLANK_OFFSET_WORDS, SLIDING_BASE_W
                                               ratio_of_roll_from_nc75, word_value)
 from gearcontact.validation import InputRangeError
 
-from .test_flank_angles import _root_apex_z_mm
+from gearcontact.geometry.flank_angles import measure_mean_point
+from gearcontact.geometry.machine import setup_from_tables
+
+from .test_flank_angles import IN, _normal_thickness_in, _root_apex_z_mm
 
 SHEET = Path(__file__).with_name("summary_sheets") / "hypoid_10x41_no16_gear.toml"
 
@@ -71,6 +74,28 @@ def test_words_as_the_print_decided_them(sheet):
     assert blade["coast"]["blade_angle_deg"] == p["gear_pressure_angle_concave_deg"]
     assert blade["drive"]["kind"] == "inside"
     assert blade["drive"]["blade_angle_deg"] == p["gear_pressure_angle_convex_deg"]
+
+
+def test_rough_point_width_cuts_the_printed_rough_thickness(sheet):
+    # the point width's mapping (point radii (D -+ W) / 2) against the print's other
+    # column: the page prints the gear tooth's normal chordal thickness at mid face for
+    # the rough cut (point width 0.0600 in) as 0.1889 in beside the finish 0.1589 in
+    # (0.0900 in). The same settings with the rough width typed through the mapping cut
+    # a tooth of 0.18867 in (measured), the finish 0.15857 in. Tolerance as the finish
+    # thickness's in test_flank_angles.py (the print's rounding propagated, 0.0023 in,
+    # + the printed 0.00005): 0.00235 in; the thickness moves one to one with W
+    # (0.0301 in for 0.0300 in), so a misread width is caught many times over.
+    p = sheet["printed"]
+    tables = gear_tables_from_print({**p, "point_width_finish_in": p["point_width_rough_in"]})
+    measured = {side: measure_mean_point(
+        setup_from_tables("gear", side, tables["machine"]["gear"][side],
+                          tables["blade"]["gear"][side]),
+        pitch_angle_deg=p["gear_pitch_angle_deg"],
+        cone_distance_mm=IN * (p["cone_distance_in"] - 0.5 * p["face_width_in"]))
+        for side in ("drive", "coast")}
+    rough_in = _normal_thickness_in(p, measured)
+    assert rough_in == pytest.approx(p["mean_normal_chordal_thickness_rough_in"], abs=0.00235)
+    assert rough_in == pytest.approx(0.18867, abs=5e-6)       # measured
 
 
 def test_printed_forms_against_hand_arithmetic():
