@@ -82,6 +82,7 @@ def test_sweep_points_are_the_tca_of_the_typed_error(tmp_path):
     assert face[0.05] - face[0.0] < -0.1 and face[-0.05] - face[0.0] > 0.1
 
 
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason=(
     "differs (measured): F.2's symmetrised face shift per 10 um of E is -0.147 mm "
     "against the first order's -0.278 (P: 0.439 against 0.191; s0003 within 10 %). Not "
@@ -89,7 +90,8 @@ def test_sweep_points_are_the_tca_of_the_typed_error(tmp_path):
     "by the crossings of neighbouring TE parabolas, while F.2's entering pair closes at "
     "an edge of its posed field (tests/twin/test_machine_pair.py)"))
 def test_offset_error_moves_the_pattern_by_the_first_order():
-    # tests/sweep/test_cell.py's check (10 um, 61 phases, symmetrised, 10 %) on F.2
+    # tests/sweep/test_cell.py's check (10 um, 61 phases, symmetrised, 10 %) on F.2;
+    # about 8 s
     pair = load_pair(F2)
     flanks = build_flanks(pair)
     res, _ = analyze_pair(pair, side="drive", phases=61, flanks=flanks)
