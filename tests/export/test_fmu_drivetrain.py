@@ -648,3 +648,46 @@ def test_golden_kappa_is_the_twin_bit_for_bit(exported, tmp_path):
             assert [float.fromhex(s) for s in w[5:]] == [out[0], out[1], out[2], out[load]], line
             valid += 1
     assert len(lines) == 125_000 and valid >= 100_000, valid
+
+
+@pytest.mark.slow
+def test_fmu_of_a_machine_settings_pair_reproduces_the_twin(tmp_path):
+    """``gearcontact export fmu --kind drivetrain`` on the pair whose flanks are cut
+    from machine settings (examples/machine_settings/iso23509_f2_machine.toml; issue 27
+    item 1) against ``gearcontact twin`` on it (the library call, the pair prepared as
+    the CLI prepares it), 9 phases, the default torque, speed, step and curvature source
+    (stencil), 300 steps: every output at every communication point, fp64 within 1e-9
+    relative and golden identical (the bounds above). Every preview of F.2 lies outside
+    the fixed-point domain (its lengthwise curvature below the least code,
+    tests/twin/test_machine_pair.py): the FMU's golden backend runs them on the fp64
+    law as the twin does, so both backends reproduce the twin's fp64 trajectory.
+    ~15 s (the TCA of both sides, the C compiled at export)."""
+    from gearcontact.tca.synthesis import prepare_pair
+    from gearcontact.twin.model import model_for_pair
+    from gearcontact.twin.simulate import simulate
+
+    src = ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml"
+    run = _cli("--pair", str(src), "--kind", "drivetrain", "--phases", "9", "--out",
+               str(tmp_path), cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    fmu = tmp_path / "gearcontact_drivetrain_iso23509_f2_machine.fmu"
+    prepared = prepare_pair(str(src))
+    assert not prepared.synthesized and len(prepared.pair.machine) == 4
+    twins = {}
+    for backend, twin_backend in (("fp64", "reference"), ("golden", "golden")):
+        model = model_for_pair(prepared.pair, torque_nm=64.5, backend=twin_backend,
+                               side=prepared.side, phases=9, curvatures="stencil")
+        twin = simulate(model, speed_rpm=3000.0, duration_s=3e-3, step_s=1e-5)
+        n = twin.summary["steps"]
+        res = fmpy.simulate_fmu(str(fmu), stop_time=3e-3, output_interval=1e-5,
+                                output=list(PAIRS),
+                                start_values={"backend": BACKENDS[backend]})
+        assert n == 300 and len(res) == n + 1
+        _assert_reproduces(res, twin, n, backend)
+        assert twin.summary["steps_outside_datapath"] == n
+        twins[backend] = twin
+    for name in ("theta_rad", "mesh_load_n"):
+        np.testing.assert_array_equal(twins["golden"].columns[name],
+                                      twins["fp64"].columns[name])
+    # a loaded run: the mesh carries the torque on average
+    assert 0.5 * 64.5 < np.mean(twins["fp64"].columns["mesh_torque_nm"]) < 1.5 * 64.5

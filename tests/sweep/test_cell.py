@@ -29,11 +29,11 @@ import pytest
 
 from gearcontact.sweep.cell import compute_point
 from gearcontact.tca.analysis import analyze_pair
-from gearcontact.tca.curvature import curvature_tensor, flank_frame
+
+from .conftest import predicted_face_shift_mm
 
 PHASES = 61      # the vertex and the segment ends are read on the sampled phases
 STEP_MM = 0.01
-Z = np.array([0.0, 0.0, 1.0])
 
 
 @pytest.fixture(scope="module")
@@ -44,37 +44,6 @@ def nominal(s0003_centred):
                               phases=PHASES)
 
 
-def _predicted_face_shift_mm(res, pair, flanks, d) -> float:
-    path = res.cycle.path
-    pts = [p for p in path.points if not p.edge]
-    phi = np.array([p.phi1_rad for p in pts]) - path.phi1_ref_rad
-    pitch = np.abs(phi) < np.pi / pair.pinion_teeth           # one pitch about P0
-    r = np.array([p.point_mm for p in pts])
-    n = np.array([p.normal for p in pts])
-    theta = (n @ d) / np.einsum("ij,ij->i", n, np.cross(Z, r))       # rad
-    te0 = np.array([p.te0_arcsec for p in pts]) / 206264.806           # rad
-    te0_curv = 2.0 * np.polyfit(phi[pitch], te0[pitch], 2)[0]         # TE0'', rad/rad^2
-    s = np.polyfit(phi[pitch], theta[pitch], 1)[0]
-    v2 = np.array([p.v2 for p in pts])
-    dv2 = np.polyfit(phi[pitch], v2[pitch], 1)[0]
-    along_path = dv2 * (-s / te0_curv)
-    # local shift at P0's pinion phase
-    mp, kin = res.mean_point, pair.kinematics()
-    pin, gear = flanks.flank("pinion", "drive"), flanks.flank("gear", "drive")
-    rot1, rot2 = kin.pinion_pose(mp.phi1_rad)[0], kin.gear_pose(mp.phi2_rad)[0]
-    sp1, sp2 = pin.point(mp.u1, mp.v1), gear.point(mp.u2, mp.v2)
-    frame = flank_frame(sp2, rot2)
-    basis, n0, r0 = frame[:, :2], frame[:, 2], np.asarray(mp.point_mm)
-    h1 = -curvature_tensor(sp1, rot1, basis)        # pinion normal is -n0
-    h2 = curvature_tensor(sp2, rot2, basis)
-    th0 = (n0 @ d) / (n0 @ np.cross(Z, r0))
-    q = np.linalg.solve(h1 - h2, h1 @ (basis.T @ d) - th0 * h2 @ (basis.T @ np.cross(Z, r0))
-                        + th0 * (basis.T @ np.cross(n0, Z)))
-    jac = basis.T @ (rot2 @ np.column_stack([sp2.r_u, sp2.r_v]))
-    local = np.linalg.solve(jac, q)[1]               # (du2, dv2) -> dv2
-    return along_path + local
-
-
 @pytest.mark.parametrize("key,direction", [("E_mm", (0.0, -1.0, 0.0)),
                                            ("P_mm", (1.0, 0.0, 0.0))])
 def test_pure_e_or_p_moves_the_pattern_as_the_kinematics_predict(s0003_centred, nominal,
@@ -82,7 +51,7 @@ def test_pure_e_or_p_moves_the_pattern_as_the_kinematics_predict(s0003_centred, 
     pair, flanks = s0003_centred
     res, base = nominal
     d = STEP_MM * np.array(direction)
-    want = _predicted_face_shift_mm(res, pair, flanks, d)
+    want = predicted_face_shift_mm(res, pair, flanks, d)
     got = {}
     for sign in (1, -1):
         c = compute_point(pair, flanks, {key: sign * STEP_MM}, [64.5], side="drive",

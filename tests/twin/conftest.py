@@ -6,10 +6,16 @@ truth is the loaded TE's preview ``TE_pre`` (the same Hertzian pairs), and the r
 whose patch a flank boundary cuts (pairs +-1 near their path ends) would otherwise carry
 the LCP's compliance (ltca.edge_law, tested on s0003_coast_twin in test_edge_law.py)."""
 
+from pathlib import Path
+
 import pytest
 
 PHASES = 31
 TORQUE_NM = 64.5
+#: The ISO 23509 F.2 spiral bevel pair with all four flanks cut from typed machine
+#: settings (issue 27: the twin on a pair from the Surface contract's other source).
+F2_MACHINE = Path(__file__).resolve().parents[2] / "examples" / "machine_settings" / \
+    "iso23509_f2_machine.toml"
 
 
 @pytest.fixture(scope="session")
@@ -20,6 +26,23 @@ def s0003_twin(s0003_centred):
     pair, flanks = s0003_centred
     tca, flanks = analyze_pair(pair, side="drive", phases=PHASES, edge_contact=False,
                                flanks=flanks)
+    return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM,
+                                         edge_law=False)
+
+
+@pytest.fixture(scope="session")
+def f2_machine_twin():
+    """``(pair, tca, flanks, mesh)`` of the F.2 machine-settings pair as
+    :func:`s0003_twin` builds s0003's (PHASES per pitch, surface TCA, untruncated
+    Hertzian law; about 3 s)."""
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.geometry.pair import load_pair
+    from gearcontact.tca.analysis import analyze_pair
+    from gearcontact.twin.mesh import mesh_table
+
+    pair = load_pair(F2_MACHINE)
+    tca, flanks = analyze_pair(pair, side="drive", phases=PHASES, edge_contact=False,
+                               flanks=build_flanks(pair))
     return pair, tca, flanks, mesh_table(tca, flanks, pair, torque_nm=TORQUE_NM,
                                          edge_law=False)
 
@@ -97,3 +120,58 @@ def static_rotation_at(model, psi_rad: float) -> tuple:
         else:
             hi = mid
     return hi, statics._elastic(model, prm, hi, psi_rad)[1]
+
+
+def energy_residual(c):
+    """Stored + dissipated energy minus the end torques' work (J) of a twin record ``c``,
+    relative to the stored energy at the start: 0 by conservation."""
+    stored = c["kinetic_j"] + c["shaft_energy_j"] + c["mesh_energy_j"]
+    return stored + c["dissipated_j"] - c["input_work_j"] - stored[0]
+
+
+def frozen_mesh(mesh):
+    """The mesh of the first phase at every phase: no explicit phase dependence, so the
+    undamped chain is conservative (the real mesh exchanges energy with the rotation
+    through its phase-varying levers, openings and curvatures)."""
+    import numpy as np
+    from dataclasses import replace
+
+    def first(a):
+        return np.repeat(a[..., :1], a.shape[-1], axis=-1)
+    return replace(mesh, eps_rad=first(mesh.eps_rad), lever_mm=first(mesh.lever_mm),
+                   opening_mm=first(mesh.opening_mm), A_minus_per_mm=first(mesh.A_minus_per_mm),
+                   stencil_gaps_mm=np.repeat(mesh.stencil_gaps_mm[:, :1],
+                                             mesh.stencil_gaps_mm.shape[1], axis=1),
+                   B_minus_per_mm=first(mesh.B_minus_per_mm), valid=first(mesh.valid))
+
+
+def quasi_static_run(pair, mesh, lte, *, backend: str = "reference"):
+    """The twin at 60 rpm over two pitches on the loaded TE's preview law (the TCA's
+    curvatures), shafts well damped (0.3) so the start transient dies within the first
+    pitch, the mesh damper small (0.02: its torque shifts the balance), against the
+    static loaded TE ``lte`` (:func:`gearcontact.ltca.lte.loaded_te` on the same TCA).
+
+    Returns ``(res, te_ref, second, rows, row_index)``: the run, ``TE_pre`` interpolated
+    at each step's phase, the steps of the second pitch, the steps within 1 % of a TCA
+    row, and that row's index in the LTE's phase order."""
+    import math
+    from dataclasses import replace
+
+    import numpy as np
+
+    from gearcontact.twin.params import default_drivetrain
+    from gearcontact.twin.simulate import build_model, simulate
+
+    dt = replace(default_drivetrain(pair), input_damping_ratio=0.3, output_damping_ratio=0.3,
+                 mesh_damping_ratio=0.02)
+    pitch = mesh.pitch_rad
+    res = simulate(build_model(mesh, dt, TORQUE_NM, backend=backend, curvatures="exact"),
+                   speed_rpm=60.0, duration_s=2 * pitch / (2 * math.pi), step_s=10e-6)
+    c = res.columns
+    order = np.arange(len(mesh.psi_rad))[::mesh.motion_sign]     # TCA rows -> motion
+    psi = np.mod(c["psi_p_rad"], pitch)
+    ref = np.interp(psi, mesh.psi_rad, lte.te_pre_arcsec[order])
+    second = c["t_s"] >= 0.5 * res.summary["duration_s"]
+    near = np.round(psi / mesh.step_rad)
+    rows = np.abs(psi / mesh.step_rad - near) < 0.01
+    return res, ref, second, rows, order[near.astype(int)]

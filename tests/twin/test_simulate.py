@@ -29,7 +29,8 @@ from gearcontact.twin.simulate import (build_model, linearized_modes, simulate,
                                        static_rotation)
 from gearcontact.validation import InputRangeError
 
-from .conftest import TORQUE_NM, quasi_static_bound_arcsec
+from .conftest import (TORQUE_NM, energy_residual, frozen_mesh, quasi_static_bound_arcsec,
+                       quasi_static_run)
 
 #: Cells of the edge pairs' posed fields in the quasi-static comparison (the opening of
 #: an edge pair is the minimum of that field, so both sides must use the same grid).
@@ -54,20 +55,8 @@ def test_quasi_static_limit_is_the_loaded_te(s0003_twin):
     # the untruncated law on both sides (loaded_te's default takes the edge law, as the
     # twin's default mesh does: tests/ltca/test_edge_rows.py, tests/twin/test_edge_law.py)
     lte = loaded_te(tca, flanks, pair, TORQUE_NM, cells=CELLS, edge_law=False)
-    # shafts well damped so that the start transient dies within the first pitch; the
-    # mesh damper kept small (its torque c_m l^2 eps' omega shifts the balance)
-    dt = replace(default_drivetrain(pair), input_damping_ratio=0.3, output_damping_ratio=0.3,
-                 mesh_damping_ratio=0.02)
-    pitch = mesh.pitch_rad
-    # the loaded TE's preview law: the TCA's shape-operator curvatures
-    res = simulate(build_model(mesh, dt, TORQUE_NM, curvatures="exact"), speed_rpm=60.0,
-                   duration_s=2 * pitch / (2 * math.pi), step_s=10e-6)
+    res, ref, second, rows, _ = quasi_static_run(pair, mesh, lte)
     c = res.columns
-    order = np.arange(len(mesh.psi_rad))[::mesh.motion_sign]     # TCA rows -> motion
-    psi = np.mod(c["psi_p_rad"], pitch)
-    ref = np.interp(psi, mesh.psi_rad, lte.te_pre_arcsec[order])
-    second = c["t_s"] >= 0.5 * res.summary["duration_s"]          # the second pitch
-    rows = np.abs(psi / mesh.step_rad - np.round(psi / mesh.step_rad)) < 0.01
     err = np.abs(c["te_arcsec"] - ref)
     # At the TCA rows both solve the same balance up to the twin's torque departure u
     # eps' (conftest.quasi_static_bound_arcsec, ~0.02 arcsec). Between rows the twin
@@ -84,27 +73,9 @@ def test_quasi_static_limit_is_the_loaded_te(s0003_twin):
     assert not np.any(c["mesh_torque_nm"][second] == 0.0)
 
 
-def _energy_residual(c):
-    stored = c["kinetic_j"] + c["shaft_energy_j"] + c["mesh_energy_j"]
-    return stored + c["dissipated_j"] - c["input_work_j"] - stored[0]
-
-
-def _frozen_mesh(mesh):
-    """The mesh of the first phase at every phase: no explicit phase dependence, so the
-    undamped chain is conservative (the real mesh exchanges energy with the rotation
-    through its phase-varying levers, openings and curvatures)."""
-    def first(a):
-        return np.repeat(a[..., :1], a.shape[-1], axis=-1)
-    return replace(mesh, eps_rad=first(mesh.eps_rad), lever_mm=first(mesh.lever_mm),
-                   opening_mm=first(mesh.opening_mm), A_minus_per_mm=first(mesh.A_minus_per_mm),
-                   stencil_gaps_mm=np.repeat(mesh.stencil_gaps_mm[:, :1],
-                                             mesh.stencil_gaps_mm.shape[1], axis=1),
-                   B_minus_per_mm=first(mesh.B_minus_per_mm), valid=first(mesh.valid))
-
-
 def test_energy_balance_without_damping(s0003_twin):
     pair, _, _, mesh = s0003_twin
-    m = build_model(_frozen_mesh(mesh), _undamped(pair), TORQUE_NM)
+    m = build_model(frozen_mesh(mesh), _undamped(pair), TORQUE_NM)
     kick = np.array([0.0, 0.5, 0.0, 0.0])        # rad/s on the pinion
     vib = 0.5 * m.drivetrain.pinion_inertia_kgm2 * 0.5 ** 2   # energy put in, J
     err = {}
@@ -112,7 +83,7 @@ def test_energy_balance_without_damping(s0003_twin):
         c = simulate(m, speed_rpm=0.0, duration_s=0.02, step_s=h,
                      initial_velocity=kick).columns
         assert np.all(c["dissipated_j"] == 0.0)
-        err[h] = np.abs(_energy_residual(c)).max()
+        err[h] = np.abs(energy_residual(c)).max()
     # RK4 is 4th order: halving h divides the energy error by >= 2^4 (measured 2^5: the
     # energy error of an oscillator is one order higher); at 2 us (h omega_max = 0.09)
     # it is 6e-5 of the kick energy (the preload, 5e4 times the kick energy, takes part
@@ -123,14 +94,14 @@ def test_energy_balance_without_damping(s0003_twin):
 
 def test_energy_balance_with_damping_at_speed(s0003_twin):
     pair, _, _, mesh = s0003_twin
-    m = build_model(_frozen_mesh(mesh), default_drivetrain(pair), TORQUE_NM)
+    m = build_model(frozen_mesh(mesh), default_drivetrain(pair), TORQUE_NM)
     res = simulate(m, speed_rpm=3000.0, duration_s=0.01, step_s=5e-6,
                    initial_velocity=[0.0, 2.0, 0.0, 0.0])
     c = res.columns
     # input work = stored + dissipated (dampers and the no-pull clamp of the mesh);
     # measured 4e-10 J against 1.9e-5 J dissipated: bound 1e-4 of it
     assert c["dissipated_j"][-1] > 0.0
-    assert np.abs(_energy_residual(c)).max() < 1e-4 * c["dissipated_j"][-1]
+    assert np.abs(energy_residual(c)).max() < 1e-4 * c["dissipated_j"][-1]
 
 
 def test_real_mesh_exchanges_bounded_energy_with_the_rotation(model):
@@ -141,7 +112,7 @@ def test_real_mesh_exchanges_bounded_energy_with_the_rotation(model):
                  mesh_damping_ratio=0.0)
     m = build_model(model.mesh, dt, TORQUE_NM)
     c = simulate(m, speed_rpm=3000.0, duration_s=0.02, step_s=4e-6).columns
-    r = _energy_residual(c)
+    r = energy_residual(c)
     assert np.abs(r).max() < 1.5 * np.ptp(c["mesh_energy_j"])
     pitch_steps = int(round(2 * math.pi / 7 / (3000 * 2 * math.pi / 60) / 4e-6))
     # one pitch later the residual returns to within 10 % of that bound
