@@ -90,6 +90,12 @@ the sign table): with them all four flanks are cut from cutter and machine setti
     toprem_depth_mm = 0.0               # its kink's depth behind the tip plane (also
                                         #   flankrem_angle_deg / flankrem_depth_mm at the top)
 
+A summary sheet's gear page may stand for the gear's four tables: ``[print.gear]``, its
+words and numbers typed verbatim (``sliding_base = "WITH 0.070"``; the keys, the
+conversion and its checks: :mod:`.print_table`, docs/machine_settings.md sec. 2-3),
+beside the pinion's tables; given with ``[machine.gear.*]`` / ``[blade.gear.*]`` it is
+refused.
+
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`
 naming the dotted key, the value and the expected type/range; impossible designs
