@@ -244,6 +244,14 @@ CARELESS = [
     ({"gear_crown_to_crossing_point_in": 32.8422},
      r"print\.gear\.gear_crown_to_crossing_point_in = 32\.8422.*whole depth.*typed in mm\?"),
     ({"cone_distance_in": 108.5596}, r"print\.gear\.cone_distance_in = 108\.5596.*typed in mm\?"),
+    # the words' numbers in mm: the root off the tip plane by more than the whole depth,
+    # the print's spiral angle off the blank's by more than 3 deg, put right by / 25.4
+    ({"sliding_base": "WITH 1.778"}, r"print\.gear\.sliding_base = 'WITH 1\.778'.*root.*"
+                                     r"typed in mm\?"),
+    ({"machine_centre_to_back": "MD -6.096"}, r"print\.gear\.machine_centre_to_back = "
+                                              r"'MD -6\.096'.*root.*typed in mm\?"),
+    ({"blank_offset": "DN 5.715"}, r"print\.gear\.blank_offset = 'DN 5\.715'.*spiral angle.*"
+                                   r"typed in mm\?"),
     # the ratio typed as cradle / work: the printed test roll disagrees
     ({"ratio_nc_75": round(41 / 75 / (0.545665 * 75 / 41), 6)},
      r"print\.gear\.work_test_roll = '29D 57M'"),
@@ -255,6 +263,17 @@ CARELESS = [
 def test_a_careless_print_is_refused_naming_the_key(doc, change, named):
     with pytest.raises(InputRangeError, match=named):
         _load(_with(doc, **change))
+
+
+@pytest.mark.parametrize("key, word", [("sliding_base", "AWAY 0.070"),
+                                       ("machine_centre_to_back", "MD 0.240"),
+                                       ("blank_offset", "UP 0.225")])
+def test_a_sign_word_read_wrong_is_not_taken_for_millimetres(doc, key, word):
+    # a sign slip moves the root (3.6 / 11.4 mm) or the spiral angle (10.9 deg) too, but
+    # no / 25.4 puts it right: it loads, and the typed-settings check takes it up
+    # (test_a_word_read_wrong_through_the_print_is_caught_by_the_blank_check)
+    got = _load(_with(doc, **{key: word}))
+    assert dict(got.print_gear)[key] == word
 
 
 def test_print_and_typed_gear_tables_are_not_both_given(doc, sheet):

@@ -49,13 +49,17 @@ settings ``gearcontact design --pair FILE --machine-settings`` writes from the b
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 
+import numpy as np
+
 from ..validation import InputRangeError, format_number
-from .machine import setup_from_tables
+from .blank_check import GROSS_SPIRAL_DEG, ROOT_DATUM_FRACTION
+from .machine import MachineKinematics, setup_from_tables
 from .toml_tables import PRINTED, check_tables
-from .print_words import INCH_MM, degrees_minutes, gear_tables_from_print, \
+from .print_words import INCH_MM, degrees_minutes, gear_tables_from_print, md_value, \
     pitch_apex_from_crossing_point_in
 
 __all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintDatumWarning", "TABLE", "check_print_blank",
@@ -200,6 +204,71 @@ def _check_cutter(pair, printed: dict) -> None:
                 "machine_settings.md sec. 3)")
 
 
+def _root_height_mm(settings, blank) -> float:
+    """Height over the cutter's tip plane (tilt 0: the cradle plane ``z_m = 0``) of the
+    gear's root below its mean point, on the generatrix nearest the plane, at zero roll:
+    about 0 when the blade tips cut the root there (the root datum of
+    :mod:`.blank_check`, here in closed form)."""
+    _, _, b, a0 = MachineKinematics(settings)._fixed
+    d, r, h = (math.radians(blank.pitch_angle_gear_deg), blank.mean_cone_distance_gear_mm,
+               blank.dedendum_gear_mm)
+    root = np.array([r * math.sin(d) - h * math.cos(d), 0.0, r * math.cos(d) + h * math.sin(d)])
+    return float((a0 + b @ root)[2])
+
+
+def _generating_spiral_deg(settings, radius_mm: float) -> float | None:
+    """The print's spiral angle of the settings, ``cos(beta) = |S_r sin q - E_m| / r_c``
+    (docs/machine_settings.md sec. 2); None where the nominal cutter circle does not
+    cross the root line."""
+    c = MachineKinematics(settings).cutter_to_machine(np.zeros(3))
+    off = abs(float(c[1]) - settings.blank_offset_mm)
+    return math.degrees(math.acos(off / radius_mm)) if off < radius_mm else None
+
+
+def _check_lengths(pair, printed: dict) -> None:
+    """A print's length typed in mm (25.4 times its inches), where the settings are grossly
+    off and the key's value / 25.4 puts them right: an input error naming the key.
+
+    Grossly off: the gear's root at its mean point more than its whole depth off the
+    cutter's tip plane (the sliding base, the MD), or the print's spiral angle
+    (:func:`_generating_spiral_deg`) not within
+    :data:`~.blank_check.GROSS_SPIRAL_DEG` of the blank's (the radial, the blank offset).
+    Put right: the root within the typed-settings check's root datum bound
+    (:data:`~.blank_check.ROOT_DATUM_FRACTION` of the dedendum) plus the print's rounding
+    of the two, the spiral angle within the gross bound. Anything else is left to the
+    typed-settings check (a sign word, the MD read +)."""
+    blank, gear = pair.blank, pair.machine[0].settings
+    depth = blank.addendum_gear_mm + blank.dedendum_gear_mm
+    datum = (ROOT_DATUM_FRACTION * blank.dedendum_gear_mm
+             + 2.0 * INCH_MM * PRINT_ROUNDING["length_in"])
+    md_mm = INCH_MM * md_value(f"{TABLE}.machine_centre_to_back",
+                               printed["machine_centre_to_back"])
+    shrink = {"sliding_base": {"sliding_base_mm": gear.sliding_base_mm / INCH_MM},
+              "machine_centre_to_back": {"machine_centre_to_back_mm": (
+                  gear.machine_centre_to_back_mm - md_mm * (1.0 - 1.0 / INCH_MM))},
+              "radial_in": {"radial_distance_mm": gear.radial_distance_mm / INCH_MM},
+              "blank_offset": {"blank_offset_mm": gear.blank_offset_mm / INCH_MM}}
+
+    def spiral_off(st) -> float:
+        beta = _generating_spiral_deg(st, pair.cutter.radius_mm)
+        return math.inf if beta is None else abs(beta - blank.spiral_angle_gear_deg)
+
+    tests = ((lambda st: abs(_root_height_mm(st, blank)), depth, datum,
+              ("sliding_base", "machine_centre_to_back"),
+              "the gear's root at its mean point on the cutter's tip plane"),
+             (spiral_off, GROSS_SPIRAL_DEG, GROSS_SPIRAL_DEG, ("radial_in", "blank_offset"),
+              "the print's spiral angle, the nominal cutter circle against the root line, "
+              "the blank's"))
+    for off, gross, right, keys, what in tests:
+        if off(gear) <= gross:
+            continue
+        for key in keys:
+            if off(dataclasses.replace(gear, **shrink[key])) <= right:
+                raise InputRangeError(f"{TABLE}.{key}", printed[key],
+                                      f"a length in inches ({what}: with its number / 25.4 "
+                                      "it is; typed in mm? the print's lengths are inches)")
+
+
 def check_print_blank(pair, printed: dict) -> float:
     """The print's blank numbers a ``[print.gear]`` table uses against ``pair``'s blank.
 
@@ -252,6 +321,7 @@ def check_print_blank(pair, printed: dict) -> float:
             f"pair's pitch angle is {blank.pitch_angle_gear_deg:.4f} deg, printed "
             f"{printed['gear_pitch_angle_deg']} (the gear is cut about the print's apex; "
             "docs/machine_settings.md sec. 3)", PrintDatumWarning, stacklevel=3)
+    _check_lengths(pair, printed)
     return diff_mm
 
 
