@@ -58,9 +58,9 @@ import numpy as np
 from ..validation import InputRangeError, format_number
 from .blank_check import GROSS_SPIRAL_DEG, ROOT_DATUM_FRACTION
 from .machine import MachineKinematics, setup_from_tables
-from .toml_tables import PRINTED, check_tables
 from .print_words import INCH_MM, degrees_minutes, gear_tables_from_print, md_value, \
     pitch_apex_from_crossing_point_in
+from .toml_tables import PRINTED, check_tables
 
 __all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintDatumWarning", "TABLE", "check_print_blank",
            "print_gear_setups", "print_gear_tables", "printed_key_error", "printed_toml_lines",
