@@ -56,7 +56,6 @@ import warnings
 import numpy as np
 
 from ..validation import InputRangeError, format_number
-from .blank_check import GROSS_SPIRAL_DEG, ROOT_DATUM_FRACTION
 from .machine import MachineKinematics, setup_from_tables
 from .print_words import INCH_MM, degrees_minutes, gear_tables_from_print, md_value, \
     pitch_apex_from_crossing_point_in
@@ -237,6 +236,10 @@ def _check_lengths(pair, printed: dict) -> None:
     (:data:`~.blank_check.ROOT_DATUM_FRACTION` of the dedendum) plus the print's rounding
     of the two, the spiral angle within the gross bound. Anything else is left to the
     typed-settings check (a sign word, the MD read +)."""
+    # here: blank_check imports the flank solvers (scipy.optimize), which reading a pair
+    # without a print must not (tests/test_package.py)
+    from .blank_check import GROSS_SPIRAL_DEG, ROOT_DATUM_FRACTION
+
     blank, gear = pair.blank, pair.machine[0].settings
     depth = blank.addendum_gear_mm + blank.dedendum_gear_mm
     datum = (ROOT_DATUM_FRACTION * blank.dedendum_gear_mm
