@@ -285,7 +285,8 @@ def check_print_blank(pair, printed: dict) -> float:
     :class:`PrintDatumWarning` names the chain and the pair's pitch angle beside the
     printed one (the gear is still cut about the print's apex: the print states it);
     beyond the gear's mean whole depth it is an input error naming the datum key (and a
-    length typed in mm where the mm value fits).
+    length typed in mm where the mm value fits). Then the settings' lengths typed in mm
+    (:func:`_check_lengths`). ``pair`` holds the gear the print cuts (its first set-up).
 
     Returns
     -------
