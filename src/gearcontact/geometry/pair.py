@@ -90,6 +90,12 @@ the sign table): with them all four flanks are cut from cutter and machine setti
     toprem_depth_mm = 0.0               # its kink's depth behind the tip plane (also
                                         #   flankrem_angle_deg / flankrem_depth_mm at the top)
 
+A summary sheet's gear page may stand for the gear's four tables: ``[print.gear]``, its
+words and numbers typed verbatim (``sliding_base = "WITH 0.070"``; the keys, the
+conversion and its checks: :mod:`.print_table`, docs/machine_settings.md sec. 2-3),
+beside the pinion's tables; given with ``[machine.gear.*]`` / ``[blade.gear.*]`` it is
+refused.
+
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`
 naming the dotted key, the value and the expected type/range; impossible designs
@@ -120,6 +126,8 @@ from .cylindrical.pair import CylindricalPair, parse_cylindrical_pair
 from .kinematics import AssemblyErrors, MeshKinematics
 from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_ROLL_KEYS,
                       setup_from_tables, setup_to_tables)
+from .print_table import (check_print_blank, print_gear_setups, print_gear_tables,
+                          printed_key_error, printed_toml_lines, split_print)
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
 __all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
@@ -234,6 +242,11 @@ class GearPair:
         Empty, or the machine settings and blades of all four flanks
         (:mod:`.machine`): the flanks are then cut from them (:mod:`.generated`) instead
         of today's formate gear + conjugate pinion + ease-off.
+    print_gear : tuple
+        The ``[print.gear]`` table as typed, ``(key, value)`` items (lists as tuples),
+        when the gear's settings were typed as a print (:mod:`.print_table`); empty
+        otherwise. :func:`pair_to_toml` writes it back instead of the gear's tables while
+        ``machine`` holds the gear it cuts.
     """
 
     name: str
@@ -259,6 +272,7 @@ class GearPair:
     design_side: str = "drive"
     easeoff_tables: tuple = ("drive", "coast")
     machine: tuple = ()
+    print_gear: tuple = ()
 
     #: the pair-file kind (a file without ``kind``; cylindrical pairs: ``"cylindrical"``)
     kind = "bevel"
@@ -368,7 +382,15 @@ _REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
 
 
 def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
-    """Build a :class:`GearPair` from a parsed TOML document (see module docstring)."""
+    """Build a :class:`GearPair` from a parsed TOML document (see module docstring); a
+    ``[print.gear]`` table is converted into the gear's tables first (:mod:`.print_table`)
+    and they are checked as typed ones."""
+    doc, printed = split_print(doc)
+    if printed is not None:
+        teeth = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)["teeth"]["gear"]
+        converted = print_gear_tables(printed, gear_teeth=teeth)
+        doc = {**doc, **{kind: {**doc.get(kind, {}), **tables}
+                         for kind, tables in converted.items()}}
     s = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)
     design = dict(s["design"])
     if ("gear_mean_cone_distance_mm" in design) == ("gear_mean_pitch_radius_mm" in design):
@@ -386,11 +408,19 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
                    for side in ("drive", "coast") if f"{kind}.{m}.{side}" not in s]
         if missing:
             raise InputRangeError(", ".join(missing), None, "required with any [machine.*] / "
-                                  "[blade.*] table (all four flanks are cut from settings)")
-        machine = tuple(setup_from_tables(m, side, s[f"machine.{m}.{side}"],
-                                          s[f"blade.{m}.{side}"])
-                        for m in MEMBERS for side in ("drive", "coast"))
-    return GearPair(
+                                  "[blade.*] table (all four flanks are cut from settings)"
+                                  if printed is None else "required with [print.gear]: the "
+                                  "print cuts the gear, the pinion its own settings (a "
+                                  "pinion page typed by docs/machine_settings.md sec. 2, or "
+                                  "the standard ones `gearcontact design --machine-settings` "
+                                  "writes, sec. 3)")
+        try:
+            machine = tuple(setup_from_tables(m, side, s[f"machine.{m}.{side}"],
+                                              s[f"blade.{m}.{side}"])
+                            for m in MEMBERS for side in ("drive", "coast"))
+        except InputRangeError as exc:
+            raise exc if printed is None else printed_key_error(exc, printed) from None
+    pair = GearPair(
         name=s[""].get("name", name), machine=machine,
         pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
         offset_mm=s["axes"]["offset_mm"],
@@ -402,7 +432,12 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         pinion_material=materials["pinion"], gear_material=materials["gear"],
         easeoff_tables=(("drive", "coast") if machine else
                         tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s)),
+        print_gear=() if printed is None else tuple(
+            (k, tuple(v) if isinstance(v, list) else v) for k, v in printed.items()),
         **design)
+    if printed is not None:
+        check_print_blank(pair, printed)
+    return pair
 
 
 #: ``kind`` values of the pair files; absent is a bevel/hypoid pair (:class:`GearPair`).
@@ -530,7 +565,15 @@ def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> s
         if side not in pair.easeoff_tables and not any(dataclasses.astuple(c)):
             continue            # no table given and none set: it stays "to be synthesized"
         out += block(f"easeoff.{side}", {k: float(v) for k, v in dataclasses.asdict(c).items()})
+    # a gear typed as a print is written as typed while the pair cuts the print's gear
+    printed = bool(pair.print_gear) and print_gear_setups(
+        dict(pair.print_gear), gear_teeth=pair.gear_teeth) == tuple(
+        s for s in pair.machine if s.member == "gear")
+    if printed:
+        out += block("print.gear", {})[:-2] + printed_toml_lines(pair.print_gear) + [""]
     for setup in pair.machine:
+        if printed and setup.member == "gear":
+            continue
         machine, blade = setup_to_tables(setup)
         out += block(f"machine.{setup.member}.{setup.side}", machine)
         out += block(f"blade.{setup.member}.{setup.side}", blade)

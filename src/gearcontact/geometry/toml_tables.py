@@ -12,9 +12,13 @@ from __future__ import annotations
 from ..materials import STEEL, Material
 from ..validation import InputRangeError
 
-__all__ = ["FLOAT", "INT", "MATERIAL_SCHEMA", "STR", "check_tables", "materials_of", "typed_value"]
+__all__ = ["FLOAT", "INT", "MATERIAL_SCHEMA", "PRINTED", "STR", "check_tables", "materials_of",
+           "typed_value"]
 
 FLOAT, INT, STR = "a number (float)", "an integer", "a string"
+#: A value as a summary sheet prints it (``[print.gear]``): a text (``"WITH 0.070"``), a
+#: number, or a list of texts; kept as typed, its words read by ``geometry.print_words``.
+PRINTED = "as printed: a text ('WITH 0.070'), a number or a list of texts"
 
 #: The ``[material.pinion]`` / ``[material.gear]`` tables of every pair format.
 MATERIAL_SCHEMA = {f"material.{m}": {"youngs_modulus_gpa": (FLOAT, True),
@@ -32,6 +36,12 @@ def typed_value(key: str, value, kind: str):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise InputRangeError(key, value, kind)
         return float(value)
+    if kind == PRINTED:
+        if isinstance(value, list) and all(isinstance(v, str) for v in value):
+            return list(value)
+        if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+            raise InputRangeError(key, value, kind)
+        return value
     if not isinstance(value, str):
         raise InputRangeError(key, value, kind)
     return value
