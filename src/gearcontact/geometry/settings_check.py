@@ -81,7 +81,8 @@ def check_settings(pair, *, measured=None) -> SettingsCheck | None:
     Raises
     ------
     InputRangeError
-        A gross mismatch, naming the likely key (:meth:`~.blank_check.BlankCheck.raise_if_gross`).
+        A gross mismatch, naming the likely key
+        (:meth:`~.blank_check.BlankCheck.raise_if_gross`).
     """
     if not getattr(pair, "machine", None):
         return None
