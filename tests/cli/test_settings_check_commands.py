@@ -160,7 +160,8 @@ def test_every_command_runs_the_check_once(tmp_path, monkeypatch, command):
     # the argument check runs it and hands its result to the library
     # (tca.synthesis.prepare_pair, report.analyze.run_analysis), which runs it when
     # given none: one comparison with the blank per run (the count is the truth). The
-    # command is stopped where its analysis starts (after the preparation)
+    # command is stopped where its analysis starts (after the preparation); that call
+    # is handed the prepared flanks (a library call given none checks the pair again)
     calls, seen = [], []
 
     def counted(*args, _real=settings_check.check_pair_blank, **kwargs):
@@ -174,6 +175,7 @@ def test_every_command_runs_the_check_once(tmp_path, monkeypatch, command):
     main([*command, "--pair", str(F2_MACHINE), *extra, "--out", str(tmp_path / "o")])
     assert len(seen) == 1, command      # the analysis was reached
     assert len(calls) == 1
+    assert seen[0][1] is not None
 
 
 def test_rtl_serve_refuses_a_hand_slip_before_serving(tmp_path, capsys, monkeypatch):

@@ -57,3 +57,62 @@ def test_a_sliding_base_slip_is_handed_back_and_warned_on_request(f2_machine_pai
         got.warn()
     assert [str(w.message) for w in caught] == [line.removeprefix("warning: ")
                                                 for line in got.warnings]
+
+
+def _analyze_pair(pair, out):
+    from gearcontact.tca.analysis import analyze_pair
+    return analyze_pair(pair, phases=3)
+
+
+def _flank_compliance(pair, out):
+    from gearcontact.structure.compliance import flank_compliance
+    return flank_compliance(pair, "pinion", side="drive")
+
+
+def _run_sweep(pair, out):
+    from gearcontact.sweep.grid import SweepGrid, parse_vary
+    from gearcontact.sweep.run import run_sweep
+    return run_sweep(pair, SweepGrid((parse_vary("E=0:0:1"),), (64.5,)), out=out,
+                     side="drive", phases=3, workers=0, progress=False)
+
+
+def _export_flanks(pair, out):
+    from gearcontact.export.flanks import export_flanks
+    return export_flanks(pair, out, pair_name=pair.name)
+
+
+#: The library calls that build a raw pair's flanks themselves when given none (the
+#: command line hands them a prepared pair's: tca.synthesis.prepare_pair checked it).
+BUILDERS = [_analyze_pair, _flank_compliance, _run_sweep, _export_flanks]
+
+
+@pytest.mark.parametrize("call", BUILDERS, ids=lambda f: f.__name__.strip("_"))
+def test_library_calls_given_no_flanks_refuse_a_hand_slip_first(f2_machine_pair, tmp_path,
+                                                                 monkeypatch, call):
+    # before any flank is built and before anything is written
+    import gearcontact.geometry.flank as flank
+
+    def no_flanks(*args, **kwargs):
+        raise AssertionError("flanks built before the settings check")
+
+    monkeypatch.setattr(flank, "build_flanks", no_flanks)
+    monkeypatch.setattr("gearcontact.structure.compliance.build_flanks", no_flanks)
+    out = tmp_path / "o"
+    out.mkdir()
+    with pytest.raises(InputRangeError, match=r"design\.pinion_hand = 'left' is outside"):
+        call(dataclasses.replace(f2_machine_pair, pinion_hand="left"), out)
+    assert list(out.iterdir()) == []
+
+
+def test_analyze_pair_warns_a_sliding_base_slip(f2_machine_pair):
+    from gearcontact.tca.analysis import analyze_pair
+
+    f2 = f2_machine_pair
+    slip = dataclasses.replace(f2, machine=_flip(f2.machine, "pinion", "sliding_base_mm",
+                                                 lambda x: -x))
+    with pytest.warns(SettingsWarning) as caught:
+        analyze_pair(slip, phases=3)
+    lines = [str(w.message) for w in caught if w.category is SettingsWarning]
+    assert len(lines) == 2 and all("sliding_base_mm" in line for line in lines)
+    first = next(w for w in caught if w.category is SettingsWarning)
+    assert first.filename == __file__            # attributed to the caller

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 from .blank_check import BlankCheck, check_pair_blank
 
-__all__ = ["SettingsCheck", "SettingsWarning", "check_settings"]
+__all__ = ["SettingsCheck", "SettingsWarning", "check_settings", "checked_settings"]
 
 
 class SettingsWarning(UserWarning):
@@ -90,3 +90,25 @@ def check_settings(pair, *, measured=None) -> SettingsCheck | None:
     got = check_pair_blank(pair, measured=measured)
     got.raise_if_gross()
     return SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0)
+
+
+def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
+    """:func:`check_settings` of ``pair`` with its warnings emitted as
+    :class:`SettingsWarning` (``stacklevel`` counted from the caller of this function):
+    what a library call runs where it takes a pair and builds its flanks itself
+    (:func:`~gearcontact.tca.synthesis.prepare_pair`, and
+    :func:`~gearcontact.tca.analysis.analyze_pair`,
+    :func:`~gearcontact.structure.compliance.flank_compliance`,
+    :func:`~gearcontact.sweep.run.run_sweep`,
+    :func:`~gearcontact.export.flanks.export_flanks` when given no flanks: flanks handed
+    in were built by the caller, a prepared pair's after this check).
+
+    Raises
+    ------
+    InputRangeError
+        A gross mismatch, naming the likely key.
+    """
+    got = check_settings(pair)
+    if got is not None:
+        got.warn(stacklevel=stacklevel + 1)
+    return got

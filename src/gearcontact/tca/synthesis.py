@@ -65,7 +65,7 @@ from ..geometry.formate import SIDES
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.generation import check_generation
 from ..geometry.pair import BEVEL, EaseOffCoefficients, GearPair, load_pair
-from ..geometry.settings_check import SettingsCheck, check_settings
+from ..geometry.settings_check import SettingsCheck, checked_settings
 from ..validation import InputRangeError
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point)
@@ -545,10 +545,8 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None,
     side = pair.design_side if side is None else side
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
-    if settings_check is None:
-        settings_check = check_settings(pair)       # None for a pair without settings
-        if settings_check is not None:
-            settings_check.warn(stacklevel=2)
+    if settings_check is None:      # None for a pair without settings
+        settings_check = checked_settings(pair, stacklevel=2)
     if checked is None and pair.kind == BEVEL:
         # the contact path of the bearing the synthesis below will make (default targets)
         checked = check_generation(pair, bearing_of=BearingPredictor())
