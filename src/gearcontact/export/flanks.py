@@ -135,8 +135,8 @@ def pair_surfaces(pair, *, flanks=None) -> tuple[list[ExportFlank], dict]:
         return out, {}
     from ..geometry.fillet import pair_fillets
     from ..geometry.flank import build_flanks
-    from ..geometry.settings_check import checked_settings
     from ..geometry.formate import SIDES
+    from ..geometry.settings_check import checked_settings
 
     if flanks is None:      # built here: the pair's typed settings checked first
         checked_settings(pair, stacklevel=3)

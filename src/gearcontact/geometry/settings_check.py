@@ -3,9 +3,10 @@ settings (``[machine.*]`` / ``[blade.*]`` tables) against its own blank tables
 (:func:`~.blank_check.check_pair_blank`), run once before any flank work by the library
 entry point that takes the pair (:func:`gearcontact.tca.synthesis.prepare_pair`, the
 one pair preparation of every pair command and of
-:func:`gearcontact.report.analyze.run_analysis`), or by the caller who hands its result
-in (the command line runs it in its argument check; docs/machine_settings.md sec. 2,
-"The check when a pair is loaded").
+:func:`gearcontact.report.analyze.run_analysis`; the library calls that build a raw
+pair's flanks when given none, :func:`checked_settings`), or by the caller who hands
+its result in (the command line runs it in its argument check;
+docs/machine_settings.md sec. 2, "The check when a pair is loaded").
 
 A gross mismatch (a hand, a generating spiral angle or pressure angle far off: the
 flanks are not the blank's tooth) raises :class:`~gearcontact.validation.InputRangeError`
