@@ -73,6 +73,20 @@ def s0003_centred():
 
 
 @pytest.fixture(scope="session")
+def f2_machine_pair():
+    """The ISO 23509 F.2 example cut from its blank's standard settings typed to 4
+    decimals (examples/machine_settings/iso23509_f2_machine.toml): the clean typed sheet
+    of the settings-check tests, which make their slips from it with
+    ``dataclasses.replace``."""
+    from pathlib import Path
+
+    from gearcontact.geometry.pair import load_pair
+
+    return load_pair(Path(__file__).resolve().parents[1] / "examples" / "machine_settings"
+                     / "iso23509_f2_machine.toml")
+
+
+@pytest.fixture(scope="session")
 def s0003_calibrated():
     """``(pair, flanks)`` of the calibrated s0003 preset (design side coast, tip-edge
     bearing) and its production flank set, built once per session for the structure,

@@ -15,15 +15,19 @@ that do not reach the mean point, and the pinion's generation then refuses them,
 ``design``). Tolerances: geometry.blank_check's, tested there.
 """
 
+import importlib
 import json
 import math
 
 import pytest
 from console_script import run_console
 
+import gearcontact.geometry.settings_check as settings_check
 from gearcontact.cli import main
 
 from .test_design_blank_check import F2_MACHINE, _flipped
+from .test_pair_preparation import COMMANDS as PREPARED
+from .test_pair_preparation import _capture
 
 #: Small runs: the check runs before any work, whatever the phases.
 TCA = ("--phases", "3", "--no-figures", "--quiet")
@@ -142,3 +146,65 @@ def test_a_pinion_blade_angle_in_radians_is_refused_naming_its_key(tmp_path):
     assert "blade.pinion.drive.blade_angle_deg = 0.349 is outside the allowed range" in err
     assert "typed in radians" in err and "envelope" not in err
     assert not (tmp_path / "t").exists()
+
+
+#: Where each command's analysis starts (tests/cli/test_pair_preparation.py's table) and
+#: the export commands' library calls.
+ANALYSED = {**{(c,): entry for c, entry in PREPARED.items()},
+            ("export", "flanks"): ([], "gearcontact.export.flanks", "export_flanks"),
+            ("export", "fmu"): ([], "gearcontact.export.fmu", "export_mesh_fmu")}
+
+
+@pytest.mark.parametrize("command", sorted(ANALYSED), ids=" ".join)
+def test_every_command_runs_the_check_once(tmp_path, monkeypatch, command):
+    # the argument check runs it and hands its result to the library
+    # (tca.synthesis.prepare_pair, report.analyze.run_analysis), which runs it when
+    # given none: one comparison with the blank per run (the count is the truth). The
+    # command is stopped where its analysis starts (after the preparation); that call
+    # is handed the prepared flanks (a library call given none checks the pair again)
+    calls, seen = [], []
+
+    def counted(*args, _real=settings_check.check_pair_blank, **kwargs):
+        calls.append(args)
+        return _real(*args, **kwargs)
+
+    monkeypatch.setattr(settings_check, "check_pair_blank", counted)
+    extra, module, name = ANALYSED[command]
+    importlib.import_module(module)     # modules that commands import when they run
+    _capture(monkeypatch, module, name, seen)
+    main([*command, "--pair", str(F2_MACHINE), *extra, "--out", str(tmp_path / "o")])
+    assert len(seen) == 1, command      # the analysis was reached
+    assert len(calls) == 1
+    assert seen[0][1] is not None
+
+
+def test_rtl_serve_refuses_a_hand_slip_before_serving(tmp_path, capsys, monkeypatch):
+    # rtl serve --pair bakes the pair's E' into a simulated SoC: the pair is checked as
+    # every pair command checks it, in the argument check, before anything is built
+    # (the hand slip: exit 2 naming the key; the server never started)
+    import gearcontact.hw.serve as hw_serve
+
+    def serve(*args, **kwargs):
+        raise AssertionError("served")
+
+    monkeypatch.setattr(hw_serve, "serve", serve)
+    path = _flipped(tmp_path, "design", "pinion_hand", lambda line: 'pinion_hand = "left"')
+    code = main(["rtl", "serve", "--pair", str(path)])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "design.pinion_hand = 'left' is outside the allowed range" in err
+
+
+def test_rtl_serve_warns_a_sliding_base_slip_and_serves(sliding_base_slip, capsys,
+                                                       monkeypatch):
+    # a warning-level slip: the warning lines on stderr naming the key, then the SoC
+    # is served (here a stand-in that returns at once)
+    import gearcontact.hw.serve as hw_serve
+
+    served = []
+    monkeypatch.setattr(hw_serve, "serve", lambda kind, **kwargs: served.append(kind))
+    code = main(["rtl", "serve", "--pair", str(sliding_base_slip)])
+    err = capsys.readouterr().err
+    assert code == 0, err
+    _named(err, "sliding_base_mm")
+    assert served == ["tri_core"]

@@ -120,8 +120,7 @@ def run(args) -> int:
                        progress=not args.quiet,
                        lte_torque_nm=args.lte_torque if args.lte_phases else None,
                        lte_phases=max(args.lte_phases, 3), lte_bending=not args.rigid,
-                       settings_warnings=getattr(args, "settings_warnings", ()),
-                       settings_checked="blank_check" in getattr(args, "input_checks", {}))
+                       settings_check=args.settings_check)
     run_timings(args, **res.timings_s)
     if res.easeoff_note:
         print(res.easeoff_note.partition("\n")[0].rstrip(":") + " (the TOML block is in summary.md)")

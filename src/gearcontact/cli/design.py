@@ -603,7 +603,8 @@ def run(args) -> int:
                    "side": reverse.side, "eps_p": reverse.total, "ends": list(reverse.ends),
                    "warning": warning},
                "mean_point_angles": None if points is None else mean_point_json(points),
-               "blank_check": None if settings_check is None else blank_check_json(settings_check)}
+               "blank_check": None if settings_check is None
+               else blank_check_json(settings_check.blank)}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
@@ -622,5 +623,5 @@ def run(args) -> int:
     if points is not None:
         print(mean_point_table(points))
     if settings_check is not None:
-        print(blank_check_text(settings_check))
+        print(blank_check_text(settings_check.blank))
     return 0

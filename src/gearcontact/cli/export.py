@@ -171,8 +171,10 @@ def check_flanks(args) -> None:
 def run_flanks(args) -> int:
     from ..export.flanks import export_flanks
     from ..geometry.pair import CYLINDRICAL
-    pair = args.gear_pair if args.gear_pair.kind == CYLINDRICAL else load_pair_for(args)
-    done = export_flanks(pair, args.out, pair_name=args.gear_pair.name, grid=args.grid_size)
+    cylindrical = args.gear_pair.kind == CYLINDRICAL
+    pair = args.gear_pair if cylindrical else load_pair_for(args)
+    done = export_flanks(pair, args.out, pair_name=args.gear_pair.name, grid=args.grid_size,
+                         flanks=None if cylindrical else args.prepared_pair.flank_set())
     for path in (*done.step_paths, *done.csv_paths, done.summary_path):
         print(final_path(args, path))
     print(f"STEP faces within {done.fit_error_mm * 1e3:.3g} um of the flanks (check grid)")

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-import time
 
 from ..geometry.kinematics import ASSEMBLY_KEYS, ASSEMBLY_LIMITS
 from ..geometry.pair import BEVEL, load_pair
@@ -143,26 +142,25 @@ def check_pair_arguments(args, *, kinds: tuple[str, ...] = (BEVEL,)) -> None:
 
 def check_machine_settings(args) -> None:
     """The typed machine settings of ``args.gear_pair`` against its own blank tables,
-    after the cheap option checks and before any work: the check ``design`` runs
-    (:func:`~gearcontact.report.design_mean_point.checked_blank`, docs/machine_settings.md
-    sec. 2). A gross mismatch (a hand, a generating spiral angle) raises naming the key
-    (exit 2); any other flank outside its tolerance is a warning on stderr naming the
-    likely key, and the run goes on. The check's findings, with those warning lines, go
-    into run.json as ``blank_check`` (``args.input_checks``, its time into the run's
-    timings as ``blank_check_s``) and the lines stay in ``args.settings_warnings``
-    (``analyze`` writes them into summary.md). Nothing for a pair without machine
-    settings or a cylindrical pair."""
-    pair = args.gear_pair
-    if pair.kind != BEVEL or not pair.machine:
-        return
+    after the cheap option checks and before any work: the check the library runs when
+    it takes a pair (:func:`~gearcontact.geometry.settings_check.check_settings`,
+    docs/machine_settings.md sec. 2), run here once with its warnings on stderr
+    (:func:`~gearcontact.report.design_mean_point.checked_blank`) and its result handed
+    to the library as ``args.settings_check`` (:func:`load_pair_for`, ``analyze``), so
+    that the library does not run it again. A gross mismatch (a hand, a generating
+    spiral angle) raises naming the key (exit 2); any other flank outside its tolerance
+    is a warning naming the likely key, and the run goes on. Its findings, with those
+    warning lines, go into run.json as ``blank_check`` (``args.input_checks``, its time
+    into the run's timings as ``blank_check_s``). Nothing for a pair without machine
+    settings or a cylindrical pair (``args.settings_check`` None)."""
     from ..report.design_mean_point import blank_check_json, checked_blank
 
-    t0 = time.perf_counter()
-    got = checked_blank(pair)
-    args.settings_warnings = tuple(got.warnings())
-    args.input_checks = {"blank_check": {**blank_check_json(got),
-                                         "warnings": list(args.settings_warnings)}}
-    args.input_timings_s = {"blank_check_s": time.perf_counter() - t0}
+    got = args.settings_check = checked_blank(args.gear_pair)
+    if got is None:
+        return
+    args.input_checks = {"blank_check": {**blank_check_json(got.blank),
+                                         "warnings": list(got.warnings)}}
+    args.input_timings_s = {"blank_check_s": got.seconds}
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:
@@ -296,14 +294,16 @@ def load_pair_for(args):
     (default the design side), the synthesized one (the note printed, the synthesis
     time into run.json; its TOML block into ``easeoff.toml`` in ``--out``, named by the
     note's line on stdout, as ``analyze`` names summary.md). A pair ``design`` refuses is
-    refused there, before any flank work. The
+    refused there, before any flank work; the typed-settings check run by
+    :func:`check_machine_settings` is not run again. The
     :class:`~gearcontact.tca.synthesis.PreparedPair` is kept as ``args.prepared_pair``."""
     from ..tca.synthesis import prepare_pair
 
     if getattr(args, "gear_pair", None) is None:
         check_pair_arguments(args)
-    prepared = args.prepared_pair = prepare_pair(args.gear_pair,
-                                                 side=getattr(args, "side", None))
+    prepared = args.prepared_pair = prepare_pair(
+        args.gear_pair, side=getattr(args, "side", None),
+        settings_check=getattr(args, "settings_check", None))
     if prepared.note:
         from ..report.design import write_easeoff_toml
 

@@ -109,10 +109,13 @@ def check_serve(args) -> None:
     _check_lanes(args)
     if args.pair is not None:
         from ..geometry.pair import BEVEL, CYLINDRICAL, load_pair
+        from .options import check_machine_settings
         # either kind: only the members' materials (E') go into the SoC; a bad file is a
-        # named error, exit 2
-        args.pair_obj = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
-        if args.pair_obj.kind == CYLINDRICAL:
+        # named error, exit 2, and so are typed machine settings that do not cut the
+        # blank's tooth (the check every pair command runs; warnings on stderr)
+        args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+        check_machine_settings(args)
+        if args.gear_pair.kind == CYLINDRICAL:
             # a cylindrical twin drives the line chain only: refuse another SoC now,
             # rather than serve one that the twin then refuses by its identifier
             from ..hw.regmap import CYLINDRICAL_SOC_KINDS
@@ -134,7 +137,7 @@ def run_serve(args) -> int:
 
     e_code = None
     if args.pair is not None:
-        p = args.pair_obj
+        p = args.gear_pair
         e_code = encode_e_prime(effective_modulus_mpa(p.pinion_material, p.gear_material))
     print(f"gearcontact rtl serve: simulated {args.kind} (E' code {e_code or 'steel'}) on "
           f"{args.host}:{args.port}; Ctrl-C stops", flush=True)

@@ -114,7 +114,8 @@ def pair_flanks(pair, *, flanks=None) -> list[ExportFlank]:
     first.
 
     ``flanks`` : a :class:`~gearcontact.geometry.flank.FlankSet` already built for a
-    bevel ``pair`` (default: built here).
+    bevel ``pair`` (default: built here, after the pair's typed machine settings are
+    checked, :func:`~gearcontact.geometry.settings_check.checked_settings`).
     """
     return pair_surfaces(pair, flanks=flanks)[0]
 
@@ -135,8 +136,11 @@ def pair_surfaces(pair, *, flanks=None) -> tuple[list[ExportFlank], dict]:
     from ..geometry.fillet import pair_fillets
     from ..geometry.flank import build_flanks
     from ..geometry.formate import SIDES
+    from ..geometry.settings_check import checked_settings
 
-    flanks = build_flanks(pair) if flanks is None else flanks
+    if flanks is None:      # built here: the pair's typed settings checked first
+        checked_settings(pair, stacklevel=3)
+        flanks = build_flanks(pair)
     fillets, missing = pair_fillets(pair, flanks)
     out = []
     for member in MEMBERS:
@@ -370,12 +374,15 @@ def export_flanks(pair, out_dir, *, pair_name: str, grid: tuple[int, int] = (5, 
         CSV rows (lines along the face width, root -> tip) x columns (points on each
         line), each in :data:`GRID_LIMITS`.
     flanks : FlankSet, optional
-        Already built flanks of a bevel ``pair``.
+        Already built flanks of a bevel ``pair`` (a prepared pair's,
+        :class:`~gearcontact.tca.synthesis.PreparedPair`); built here otherwise, after
+        the pair's typed machine settings are checked against its blank
+        (:func:`~gearcontact.geometry.settings_check.checked_settings`).
 
     Raises
     ------
     InputRangeError
-        A bad grid (before any work).
+        A bad grid, or typed machine settings with a gross slip (before any work).
     """
     rows, cols = parse_grid(f"{grid[0]}x{grid[1]}", field="grid")
     out = Path(out_dir)

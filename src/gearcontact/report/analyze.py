@@ -53,6 +53,7 @@ from ..halfspace.line_peak import contact_line_length_mm
 from ..ltca.pair_ltca import PairLoadCase, single_pair_ltca
 from ..halfspace.patch import ContactAtEdgeWarning
 from ..geometry.pair import load_pair
+from ..geometry.settings_check import SettingsCheck
 from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
 from ..contract.qformat import FixedPointOverflow
 from ..tca.analysis import TcaAnalysis, analyze_pair
@@ -121,13 +122,11 @@ class Analysis:
         fp64 preview of the line core's rule at each case (ellipse, or the Hertz line
         contact where the flank truncates it; ``mode`` says which), the golden line
         core's counterpart.
-    settings_warnings : tuple of str
-        The warnings of the check of the pair's typed machine settings against its blank
-        (:meth:`~gearcontact.geometry.blank_check.BlankCheck.warnings`; empty when every
-        flank agrees or the pair has none): summary.md repeats them.
-    settings_checked : bool
-        The check ran (a pair cut from machine settings loaded by the CLI): summary.md
-        says what it found.
+    settings_check : SettingsCheck or None
+        The check of the pair's typed machine settings against its blank
+        (:func:`~gearcontact.geometry.settings_check.check_settings`; None for a pair
+        without machine settings): summary.md says what it found and repeats its
+        warnings.
     """
 
     pair: object
@@ -147,8 +146,7 @@ class Analysis:
     golden_status: tuple = ()
     chain_status: tuple = ()
     reference: tuple = ()
-    settings_warnings: tuple = ()
-    settings_checked: bool = False
+    settings_check: SettingsCheck | None = None
 
 
 class PreviewDomainWarning(UserWarning):
@@ -265,7 +263,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                  side: str | None = None, solver: str = "pk_cg", figures: bool = True,
                  progress: bool = True, lte_torque_nm: float | None = 64.5,
                  lte_phases: int = 61, lte_bending: bool = True,
-                 settings_warnings: tuple = (), settings_checked: bool = False) -> Analysis:
+                 settings_check: SettingsCheck | None = None) -> Analysis:
     """Run the main job on ``pair`` (preset name, TOML path or GearPair) into ``out_dir``.
 
     Parameters
@@ -291,13 +289,15 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
         At most about this many LTE phases over the pitch: every
         ``ceil((phases - 1) / (lte_phases - 1))``-th TCA phase (the LTE costs one gap
         field per pair and phase; all 61 phases of s0003 take about 1 s).
-    settings_warnings : tuple of str
-        The warnings of the typed machine settings' check against the blank, run when
-        the pair was loaded (``gearcontact.cli.options.check_machine_settings``):
-        repeated in summary.md (nothing is written when empty).
-    settings_checked : bool
-        That check ran: summary.md says what it found under the blank of a pair cut from
-        machine settings ("not run" when False).
+    settings_check : SettingsCheck, optional
+        The result of the typed machine settings' check against the blank
+        (:func:`~gearcontact.geometry.settings_check.check_settings`) if the caller ran it
+        on ``pair`` (the command line does, in its argument check); by default it is run
+        here before any work (:func:`~gearcontact.tca.synthesis.prepare_pair`): a gross
+        mismatch raises :class:`~gearcontact.validation.InputRangeError` naming the key
+        before anything is written, any other disagreement is a
+        :class:`~gearcontact.geometry.settings_check.SettingsWarning`. summary.md says
+        what it found and repeats its warnings.
     """
     if isinstance(pair, (str, Path)):
         pair = load_pair(pair)
@@ -307,7 +307,7 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     if not torques:
         raise InputRangeError("torques_nm", torques_nm, "at least one torque")
     # design's checks first, before any flank work (named refusals; its gear flanks reused)
-    prepared = prepare_pair(pair, side=side)
+    prepared = prepare_pair(pair, side=side, settings_check=settings_check)
     pair, easeoff_note = prepared.pair, prepared.note
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -416,7 +416,6 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
                       side, flanks, easeoff_note, multitooth,
                       golden_status=tuple(st for _, st in gold),
                       chain_status=tuple(st for _, st in chain), reference=tuple(reference),
-                      settings_warnings=tuple(settings_warnings),
-                      settings_checked=settings_checked)
+                      settings_check=prepared.settings_check)
     write_summary(result, out / "summary.md", published=published_values(pair.name))
     return result

@@ -6,17 +6,18 @@ cone, as a table (:func:`mean_point_table`) or as the ``mean_point_angles`` entr
 :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points`'s; the definitions
 and their sources: docs/machine_settings.md sec. 2.
 
-The check of a pair's machine settings against its own blank tables, run by ``design``
-and ``analyze`` when the pair is loaded (:func:`checked_blank`,
-:mod:`~gearcontact.geometry.blank_check`): its line and its ``blank_check`` JSON entry
-(:func:`blank_check_text`, :func:`blank_check_json`).
+The check of a pair's machine settings against its own blank tables
+(:mod:`~gearcontact.geometry.settings_check`) as the command line runs it when the pair
+is loaded, its warnings printed (:func:`checked_blank`): its line and its ``blank_check``
+JSON entry (:func:`blank_check_text`, :func:`blank_check_json`).
 """
 
 from __future__ import annotations
 
 import sys
 
-from ..geometry.blank_check import BlankCheck, check_pair_blank
+from ..geometry.blank_check import BlankCheck
+from ..geometry.settings_check import SettingsCheck, check_settings
 from ..geometry.flank_angles import FlankMeanPoint
 
 __all__ = ["blank_check_json", "blank_check_text", "checked_blank", "mean_point_json",
@@ -81,21 +82,16 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def checked_blank(pair, *, measured=None) -> BlankCheck | None:
-    """The check of ``pair``'s machine settings against its blank tables, when it is
-    loaded (docs/machine_settings.md sec. 2): None for a pair without machine settings;
-    a gross mismatch (a hand against the blank's, a generating spiral angle off by more
-    than :data:`~gearcontact.geometry.blank_check.GROSS_SPIRAL_DEG`) raises
-    :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2);
-    any other flank outside its tolerance is a warning on stderr naming the flank, the
-    measured and stated values and the likely key. ``measured``: the pair's
+def checked_blank(pair, *, measured=None) -> SettingsCheck | None:
+    """:func:`~gearcontact.geometry.settings_check.check_settings` of ``pair`` with its
+    warnings printed on stderr, one line each, as the command line shows them
+    (docs/machine_settings.md sec. 2): None for a pair without machine settings; a gross
+    mismatch raises :class:`~gearcontact.validation.InputRangeError` naming the likely
+    key (exit 2). ``measured``: the pair's
     :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points` when already
     measured (``design`` prints them): the check then measures no flank again."""
-    if not pair.machine:
-        return None
-    got = check_pair_blank(pair, measured=measured)
-    got.raise_if_gross()
-    for line in got.warnings():
+    got = check_settings(pair, measured=measured)
+    for line in () if got is None else got.warnings:
         print(line, file=sys.stderr)
     return got
 

@@ -192,11 +192,11 @@ def _machine_lines(result) -> list[str]:
         cuts.setdefault((s.member, "formate" if s.settings.formate else "generated"),
                         []).append(s.side)
     what = ", ".join(f"{m} {' and '.join(sides)} {how}" for (m, how), sides in cuts.items())
-    warned = getattr(result, "settings_warnings", ())
-    if warned:
-        found = (f"{len(warned)} of {len(setups)} flanks do not agree with the blank (the "
-                 "warning above)")
-    elif getattr(result, "settings_checked", False):
+    check = getattr(result, "settings_check", None)
+    if check is not None and check.warnings:
+        found = (f"{len(check.warnings)} of {len(setups)} flanks do not agree with the "
+                 "blank (the warning above)")
+    elif check is not None:
         found = "every flank agrees with the blank within its tolerance"
     else:
         found = "not run"
@@ -220,12 +220,13 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     if getattr(result, "easeoff_note", ""):
         head, _, toml = result.easeoff_note.partition("\n")
         out += ["**Ease-off synthesized.** " + head, "", "```toml", toml.strip(), "```", ""]
-    if getattr(result, "settings_warnings", ()):
+    warned = getattr(getattr(result, "settings_check", None), "warnings", ())
+    if warned:
         # the typed machine settings do not cut the blank's tooth: said before any result
         out += ["**Machine settings against the blank: warning.** The flanks cut from the "
                 "pair's [machine.*] tables do not all agree with its blank "
                 "(docs/machine_settings.md sec. 2):", ""]
-        out += [f"- {line.removeprefix('warning: ')}" for line in result.settings_warnings]
+        out += [f"- {line.removeprefix('warning: ')}" for line in warned]
         out += [""]
     out += ["## Blank (ISO 23509 Method 1)", ""]
     out.append(md_table(["quantity", "ours", "published"], [

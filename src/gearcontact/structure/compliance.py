@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from ..geometry.flank import FlankSet, build_flanks
+from ..geometry.settings_check import checked_settings
 from ..validation import InputRangeError
 from .rim import RimSegment
 from .shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
@@ -209,7 +210,10 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
         The loaded flank, "drive" or "coast" (a pair's ``design_side`` is the one its
         contact uses).
     flanks : FlankSet or None
-        The pair's flanks (built when None).
+        The pair's flanks (a prepared pair's,
+        :class:`~gearcontact.tca.synthesis.PreparedPair`); when None built here, after the pair's typed machine settings are checked
+        against its blank (:func:`~gearcontact.geometry.settings_check.checked_settings`:
+        a gross slip raises naming its key).
     xi, eta : sequence of float
         Tooth coordinates in [-1, 1] (face toe -> heel, height root -> tip).
     order, order_face : int
@@ -235,7 +239,9 @@ def flank_compliance(pair, member: str, *, side: str = "drive",
     """
     check_member_and_root(member, fe_root)
     _check_lattice(side, xi, eta, fe_mesh)      # before the flanks and the shell
-    flanks = build_flanks(pair) if flanks is None else flanks
+    if flanks is None:      # built here: the pair's typed settings checked first
+        checked_settings(pair, stacklevel=2)
+        flanks = build_flanks(pair)
     material = pair.pinion_material if member == "pinion" else pair.gear_material
     shell = tooth_shell(flanks, member, material=material, order=order,
                         order_face=order_face, rim=rim)

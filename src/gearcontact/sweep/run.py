@@ -101,7 +101,10 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         A client to use (then neither ``scheduler`` nor ``workers`` apply).
     flanks : FlankSet, optional
         ``build_flanks(pair)`` if already built (a prepared pair's,
-        :class:`~gearcontact.tca.synthesis.PreparedPair`).
+        :class:`~gearcontact.tca.synthesis.PreparedPair`); without them the pair's
+        typed machine settings are checked against its blank first
+        (:func:`~gearcontact.geometry.settings_check.checked_settings`: a gross slip
+        raises naming its key, before the store is touched).
     progress : bool
         Progress bar of cells done / total.
     options : dict, optional
@@ -110,7 +113,10 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         settings a resumed sweep must share).
     """
     from ..geometry.flank import build_flanks
+    from ..geometry.settings_check import checked_settings
 
+    if flanks is None:      # a raw pair: its typed settings checked before the store
+        checked_settings(pair, stacklevel=2)
     t0 = time.perf_counter()
     store = Path(out) / STORE_NAME
     settings = sweep_settings(pair, side=side, compute=compute, phases=phases, cells=cells,

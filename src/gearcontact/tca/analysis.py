@@ -177,6 +177,11 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     mean contact reported by :func:`~gearcontact.geometry.flank.build_flanks`.
     ``edge_contact`` (default True) continues the paths through edge-to-surface
     contact (:mod:`gearcontact.tca.edge_contact`); False: surface contact only.
+    ``flanks``: the pair's flanks if already built (a prepared pair's,
+    :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); without them they are
+    built here, after the pair's typed machine settings are checked against its blank
+    (:func:`~gearcontact.geometry.settings_check.checked_settings`: a gross slip raises
+    naming its key, any other disagreement is a ``SettingsWarning``).
 
     Returns
     -------
@@ -184,6 +189,9 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
 
     Raises
     ------
+    InputRangeError
+        Typed machine settings that do not cut the blank's tooth (a gross slip; flanks
+        not given).
     LineContact
         Zero ease-off and no assembly errors: the flanks are conjugate (line contact,
         TE0 = 0); the exception carries the :class:`~.line_contact.LineContactResult`.
@@ -192,12 +200,14 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     """
     from ..geometry.flank import build_flanks
     from ..geometry.formate import SIDES
+    from ..geometry.settings_check import checked_settings
 
     if side is None:
         side = pair.design_side
     if side not in SIDES:
         raise ValueError(f"side = {side!r} is not one of {SIDES}")
-    if flanks is None:
+    if flanks is None:      # built here: the pair's typed settings checked first
+        checked_settings(pair, stacklevel=2)
         flanks = build_flanks(pair)
     kin = pair.kinematics()
     if is_conjugate(pair, side):

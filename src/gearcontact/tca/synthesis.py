@@ -65,6 +65,7 @@ from ..geometry.formate import SIDES
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.generation import check_generation
 from ..geometry.pair import BEVEL, EaseOffCoefficients, GearPair, load_pair
+from ..geometry.settings_check import SettingsCheck, checked_settings
 from ..validation import InputRangeError
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point)
@@ -457,6 +458,10 @@ class PreparedPair:
     checked : dict or None
         :func:`~gearcontact.geometry.generation.check_generation`'s result for the pair,
         if the command ran it (its gear flanks are reused by :meth:`flank_set`).
+    settings_check : SettingsCheck or None
+        The typed-settings check of the pair as loaded
+        (:func:`~gearcontact.geometry.settings_check.check_settings`); None for a pair
+        without machine settings.
     """
 
     pair: GearPair
@@ -464,6 +469,8 @@ class PreparedPair:
     synthesis: Synthesis | None = None
     flanks: FlankSet | None = None
     checked: dict | None = dataclasses.field(default=None, compare=False, repr=False)
+    settings_check: SettingsCheck | None = dataclasses.field(default=None, compare=False,
+                                                             repr=False)
 
     def flank_set(self) -> FlankSet:
         """The flanks of :attr:`pair`: those the synthesis built (its ease-off applied),
@@ -501,20 +508,26 @@ class PreparedPair:
         return {} if self.synthesis is None else {"easeoff_synthesis_s": self.synthesis.seconds}
 
 
-def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
-                 ) -> PreparedPair:
+def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None,
+                 settings_check: SettingsCheck | None = None) -> PreparedPair:
     """The one pair preparation of every command that takes a pair: ``pair`` (a
     :class:`GearPair`, preset name or TOML path) with, if it has no ease-off table of
     ``side`` (default its design side), the ease-off of that side synthesized with the
     default :class:`SynthesisTargets` (deterministic: the same pair gives the same
     coefficients in every command). The other side is left as given.
 
-    Before any flank work a bevel pair passes ``design``'s checks
-    (:func:`~gearcontact.geometry.generation.check_generation`: undercut, pointed
-    teeth, contact ratio), so that every command refuses a pair that cannot be made
-    first, with the same named condition and fix as ``design`` (the contact path of the
-    bearing the synthesis will make, :class:`~.predicted_bearing.BearingPredictor`, where
-    the pair has no table). ``checked``: that
+    Before any flank work a bevel pair passes ``design``'s checks: first a pair cut from
+    machine settings its typed-settings check against its blank
+    (:func:`~gearcontact.geometry.settings_check.check_settings`: a gross mismatch
+    refused naming the likely key, any other flank outside its tolerance a
+    :class:`~gearcontact.geometry.settings_check.SettingsWarning`; docs/machine_settings.md
+    sec. 2), then :func:`~gearcontact.geometry.generation.check_generation` (undercut,
+    pointed teeth, contact ratio), so that every command refuses a pair that cannot be
+    made first, with the same named condition and fix as ``design`` (the contact path
+    of the bearing the synthesis will make, :class:`~.predicted_bearing.BearingPredictor`,
+    where the pair has no table). ``settings_check``: the typed-settings check's result
+    for ``pair``, if the caller already ran it (the command line, in its argument
+    check; nothing is warned again), else run here. ``checked``: the generation
     check's result for ``pair``, if the command already ran it (else run here); the
     flanks reuse its gear flanks (:meth:`PreparedPair.flank_set`; a generated gear's
     sheets are built once, :func:`~gearcontact.geometry.flank.build_flanks`).
@@ -522,7 +535,8 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
     Raises
     ------
     InputRangeError
-        A bad pair file or side, or a pair ``design`` refuses (before any flank work).
+        A bad pair file or side, typed machine settings that do not cut the blank's
+        tooth (a gross mismatch), or a pair ``design`` refuses (before any flank work).
     ArithmeticError
         If the synthesis finds no interior contact (:func:`synthesize_easeoff`).
     """
@@ -531,14 +545,17 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None
     side = pair.design_side if side is None else side
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
+    if settings_check is None:      # None for a pair without settings
+        settings_check = checked_settings(pair, stacklevel=2)
     if checked is None and pair.kind == BEVEL:
         # the contact path of the bearing the synthesis below will make (default targets)
         checked = check_generation(pair, bearing_of=BearingPredictor())
     if side in pair.easeoff_tables:
-        return PreparedPair(pair, side, checked=checked)
+        return PreparedPair(pair, side, checked=checked, settings_check=settings_check)
     base = build_flanks(pair, checked=checked)
     new, done = synthesize_pair(pair, sides=(side,), flanks=base)
     new = dataclasses.replace(new, easeoff_tables=tuple(pair.easeoff_tables) + (side,))
     # the conjugate flanks do not depend on the ease-off: only the ease-off is applied
     # again (geometry.flank.with_easeoff, the last step of build_flanks)
-    return PreparedPair(new, side, done[side], with_easeoff(base, new), checked=checked)
+    return PreparedPair(new, side, done[side], with_easeoff(base, new), checked=checked,
+                        settings_check=settings_check)

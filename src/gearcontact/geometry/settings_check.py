@@ -1,0 +1,115 @@
+"""The typed-settings check of a pair as it is loaded: a bevel pair cut from machine
+settings (``[machine.*]`` / ``[blade.*]`` tables) against its own blank tables
+(:func:`~.blank_check.check_pair_blank`), run once before any flank work by the library
+entry point that takes the pair (:func:`gearcontact.tca.synthesis.prepare_pair`, the
+one pair preparation of every pair command and of
+:func:`gearcontact.report.analyze.run_analysis`; the library calls that build a raw
+pair's flanks when given none, :func:`checked_settings`), or by the caller who hands
+its result in (the command line runs it in its argument check;
+docs/machine_settings.md sec. 2, "The check when a pair is loaded").
+
+A gross mismatch (a hand, a generating spiral angle or pressure angle far off: the
+flanks are not the blank's tooth) raises :class:`~gearcontact.validation.InputRangeError`
+naming the likely key; any other flank outside its tolerance is a warning naming the
+flank, the measured and stated values and the likely key
+(:attr:`SettingsCheck.warnings`), and the work goes on. Where the warnings go is the
+caller's: the library emits them as :class:`SettingsWarning` (:meth:`SettingsCheck.warn`),
+the command line prints them on stderr, ``analyze`` repeats them in summary.md.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass, field
+
+from .blank_check import BlankCheck, check_pair_blank
+
+__all__ = ["SettingsCheck", "SettingsWarning", "check_settings", "checked_settings"]
+
+
+class SettingsWarning(UserWarning):
+    """A flank cut from a pair's typed machine settings does not agree with its blank
+    (not gross: the work goes on on the flanks the settings cut)."""
+
+
+@dataclass(frozen=True)
+class SettingsCheck:
+    """The result of :func:`check_settings` on a pair cut from machine settings.
+
+    Attributes
+    ----------
+    blank : BlankCheck
+        Every flank's comparison with the blank (:func:`~.blank_check.check_pair_blank`).
+    warnings : tuple of str
+        One line per flank outside its tolerance, naming the likely key
+        (:meth:`~.blank_check.BlankCheck.warnings`, each ``"warning: ..."``); empty when
+        every flank agrees.
+    seconds : float
+        Wall time of the check, s (a timing: run.json only; not compared).
+    """
+
+    blank: BlankCheck
+    warnings: tuple[str, ...]
+    seconds: float = field(default=0.0, compare=False)
+
+    @property
+    def agrees(self) -> bool:
+        """Every flank agrees with the blank within its tolerance."""
+        return self.blank.agrees
+
+    def warn(self, *, stacklevel: int = 2) -> None:
+        """Emit each of :attr:`warnings` as a :class:`SettingsWarning` (without its
+        ``"warning: "`` prefix); ``stacklevel`` as :func:`warnings.warn`'s, counted
+        from the caller of this method."""
+        for line in self.warnings:
+            warnings.warn(line.removeprefix("warning: "), SettingsWarning,
+                          stacklevel=stacklevel + 1)
+
+
+def check_settings(pair, *, measured=None) -> SettingsCheck | None:
+    """The typed-settings check of ``pair`` (module docstring): None for a pair without
+    machine settings (a cylindrical pair has none), else its :class:`SettingsCheck`.
+    Nothing is printed or warned here (:meth:`SettingsCheck.warn`).
+
+    Parameters
+    ----------
+    pair : GearPair
+    measured : tuple of FlankMeanPoint, optional
+        The pair's :func:`~.flank_angles.measure_pair_mean_points`, when already
+        measured (``design`` prints them): no flank is measured again.
+
+    Raises
+    ------
+    InputRangeError
+        A gross mismatch, naming the likely key
+        (:meth:`~.blank_check.BlankCheck.raise_if_gross`).
+    """
+    if not getattr(pair, "machine", None):
+        return None
+    t0 = time.perf_counter()
+    got = check_pair_blank(pair, measured=measured)
+    got.raise_if_gross()
+    return SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0)
+
+
+def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
+    """:func:`check_settings` of ``pair`` with its warnings emitted as
+    :class:`SettingsWarning` (``stacklevel`` counted from the caller of this function):
+    what a library call runs where it takes a pair and builds its flanks itself
+    (:func:`~gearcontact.tca.synthesis.prepare_pair`, and
+    :func:`~gearcontact.tca.analysis.analyze_pair`,
+    :func:`~gearcontact.structure.compliance.flank_compliance`,
+    :func:`~gearcontact.sweep.run.run_sweep`,
+    :func:`~gearcontact.export.flanks.export_flanks` when given no flanks: flanks handed
+    in were built by the caller, a prepared pair's after this check).
+
+    Raises
+    ------
+    InputRangeError
+        A gross mismatch, naming the likely key.
+    """
+    got = check_settings(pair)
+    if got is not None:
+        got.warn(stacklevel=stacklevel + 1)
+    return got
