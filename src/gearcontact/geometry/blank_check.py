@@ -55,6 +55,7 @@ from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
                            measure_mean_point, require_machine)
 from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
+from .slip_attribution import describe, explaining_values
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
@@ -225,7 +226,9 @@ class FlankCheck:
     """One flank: its comparisons, ``missing`` (why there are none: the flank does not
     reach its mean point, "" otherwise), ``slip`` (the key of the sign slip under which
     it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
-    ``slip_also`` (the keys of the other slips under which it agrees, best first)."""
+    ``slip_also`` (the keys of the other slips under which it agrees, best first);
+    ``single_keys``: where no known slip explains it, the keys that alone do, with the
+    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked)."""
 
     member: str
     side: str
@@ -235,6 +238,7 @@ class FlankCheck:
     slip_value: float | str | None = None
     slip_word: str = ""
     slip_also: tuple = ()
+    single_keys: tuple = ()
 
     @property
     def agrees(self) -> bool:
@@ -287,9 +291,14 @@ class BlankCheck:
                                              f"{', '.join(f.slip_also)}" if f.slip_also else "")
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
-        raise InputRangeError(f"[machine.{f.member}.{f.side}]", None,
+        one = f.single_keys[0] if len(f.single_keys) == 1 else None
+        raise InputRangeError(one.key if one else f"[machine.{f.member}.{f.side}]",
+                              one.typed if one else None,
                               f"settings that cut the blank's tooth ({what}; no known sign "
-                              "or unit slip explains it, docs/machine_settings.md sec. 2)")
+                              "or unit slip explains it" + "".join(
+                                  f"; {g.member} {g.side}: {describe(g.single_keys)}"
+                                  for g in bad if g.single_keys)
+                              + ", docs/machine_settings.md sec. 2)")
 
     def warnings(self) -> list[str]:
         """One line per flank outside its tolerance, naming the likely key."""
@@ -300,7 +309,8 @@ class BlankCheck:
             key = self.stated.hand_key if self.hand_slip else f.slip
             word = "hand" if self.hand_slip else f.slip_word
             hint = (f"; likely {key} ({_with(word)} the flank agrees)" if key
-                    else "; no known sign or unit slip explains it")
+                    else "; no known sign or unit slip explains it" + (
+                        f"; {describe(f.single_keys)}" if f.single_keys else ""))
             if key and f.slip_also and not self.hand_slip:
                 hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
@@ -390,6 +400,11 @@ def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
         setup.settings, **{key: fn(getattr(setup.settings, key))}))
 
 
+def _full_key(setup: MachineSetup, key: str) -> str:
+    """``machine.<member>.<flank>.<key>`` or ``blade.<member>.<flank>.<key>``."""
+    return f"{'blade' if key in _BLADE else 'machine'}.{setup.member}.{setup.side}.{key}"
+
+
 def _resolutions(setup: MachineSetup, stated: StatedBlank) -> dict:
     """``{key: half unit}`` of every setting of ``setup``: the source's
     (:attr:`StatedBlank.setting_rounding`) or each typed value's own."""
@@ -440,16 +455,18 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     return out
 
 
-def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None):
+def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None,
+             start=None):
     """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
     reach its mean point: None. ``measured``: the flank already measured at the same
-    mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured."""
+    mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured
+    (from ``start``, a nearby flank's solution, when given)."""
     where = (f"the blank's mean point (cone distance "
              f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
     reached, circle = True, None
     if measured is None:
         try:
-            values, at = _values(setup, stated)
+            values, at = _values(setup, stated, start)
         except UndercutError:
             reached = False
         except InputRangeError as exc:
@@ -517,12 +534,37 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
         if got.agrees:
             score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
                          if c.tolerance), default=0.0)
-            table = "blade" if key in _BLADE else "machine"
-            found.append((score, f"{table}.{setup.member}.{setup.side}.{key}", value, word))
+            found.append((score, _full_key(setup, key), value, word))
     if not found:
         return "", None, "", ()
     found.sort(key=lambda x: x[0])
     return (*found[0][1:], tuple(f[1] for f in found[1:]))
+
+
+def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankCheck) -> tuple:
+    """The keys of ``setup``'s tables that alone explain ``flank``, which disagrees
+    (:func:`~.slip_attribution.explaining_values`; the typed tolerances ``tol``);
+    ``()`` for a flank that does not reach its mean point."""
+    if flank.missing:
+        return ()
+    _, at = _values(setup, stated)              # the warm start of every move
+    half = _resolutions(setup, stated)
+    typed = [k for k in (*_NUMERIC, *_BLADE) if k != "ratio_of_roll" or not setup.settings.formate]
+    typed += [k for k, (name, i) in _SERIES.items() if i < len(getattr(setup.settings, name))]
+
+    def compare(name: str, value: float):
+        key = name.rsplit(".", 1)[1]
+        try:
+            moved = _moved(setup, key, lambda _: value)
+            got, _ = _compare(moved, stated, tol, start=at)
+            if got.missing:         # the warm start lost the point: the grid of starts
+                got, _ = _compare(moved, stated, tol)
+        except InputRangeError:
+            return None
+        return None if got.missing else got.comparisons
+
+    return explaining_values([(_full_key(setup, k), _setting(setup, k), half[k])
+                              for k in typed], flank.comparisons, compare)
 
 
 def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
@@ -547,6 +589,8 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
             key, value, word, also = _slip(s, stated, tol)
             f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                     slip_also=also)
+            if not key:
+                f = dataclasses.replace(f, single_keys=_single_keys(s, stated, tol, f))
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 
