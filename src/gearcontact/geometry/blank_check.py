@@ -48,19 +48,22 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from decimal import Decimal
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
                            measure_mean_point, require_machine)
-from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
+from ..deprecation import moved_names
+from .machine import MODIFIED_ROLL_KEYS, MachineSetup
 from .slip_attribution import describe, explaining_values
+from .typed_settings import full_key, moved, roundings, setting, typed_keys
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
-           "check_pair_blank", "stated_blank", "typed_resolution"]
+           "check_pair_blank", "stated_blank"]
+__getattr__ = moved_names(__name__, {
+    "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution"})
 
 #: A gear flank whose generating spiral angle differs from the blank's by more than
 #: this (deg) is an input error (exit 2), as is a hand against the blank's: no
@@ -96,13 +99,6 @@ INCH_MM = 25.4
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 _SAME = 1e-9                      # a slip that moves a value less than this is no slip
-_NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
-            "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
-            "ratio_of_roll", "tilt_deg", "swivel_deg")
-_BLADE = ("blade_angle_deg", "point_radius_mm")
-#: The printed series, key -> (MachineSettings field, index).
-_SERIES = {**{k: ("modified_roll", i) for i, k in enumerate(MODIFIED_ROLL_KEYS)},
-           **{k: ("helical_motion", i) for i, k in enumerate(HELICAL_KEYS)}}
 #: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
 #: the sheet word is), docs sec. 2's table; the MD word read from the crossing point
 #: (:attr:`StatedBlank.mctb_datum_mm`) is tried after them.
@@ -125,15 +121,6 @@ UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 2
               *((k, math.degrees, "unit corrected (typed in radians: to degrees)")
                 for k in ("blade_angle_deg", "cradle_angle_deg", "machine_root_angle_deg",
                           "tilt_deg", "swivel_deg")))
-
-
-def typed_resolution(x: float) -> float:
-    """Half a unit of the last decimal of ``x`` as typed (its shortest repr: ``94.9385``
-    -> 5e-5, ``20.0`` -> 0.05); 0 for 0 (a zero is a set-up choice, no offset or no
-    tilt, not a rounded value)."""
-    if x == 0.0:
-        return 0.0
-    return 0.5 * 10.0 ** Decimal(repr(float(x))).as_tuple().exponent
 
 
 @dataclass(frozen=True)
@@ -159,7 +146,7 @@ class StatedBlank:
         a pair's blank, whose values are the design's definitions.
     setting_rounding : dict or None
         ``{key: half unit}`` of the settings when known from their source (a print's
-        inches); None: each typed value's own (:func:`typed_resolution`).
+        inches); None: each typed value's own (:func:`.typed_settings.typed_resolution`).
     hand_key, hand_value : str
         The key and value that state the hand (``design.pinion_hand``).
     mctb_datum_mm : dict
@@ -374,64 +361,25 @@ _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "press
                     "mean cone distance": "cone_distance_mm"}
 
 
-def _setting(setup: MachineSetup, key: str) -> float:
-    """The typed value of ``key`` (a machine, printed-series or blade key); 0 for a
-    series term not typed."""
-    if key in _BLADE:
-        return getattr(setup.blade, key)
-    if key in _SERIES:
-        name, i = _SERIES[key]
-        vals = getattr(setup.settings, name)
-        return vals[i] if i < len(vals) else 0.0
-    return getattr(setup.settings, key)
-
-
-def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
-    if key in _BLADE:
-        return dataclasses.replace(setup, blade=dataclasses.replace(
-            setup.blade, **{key: fn(getattr(setup.blade, key))}))
-    if key in _SERIES:                  # a typed term (_setting != 0) of the series
-        name, i = _SERIES[key]
-        vals = list(getattr(setup.settings, name))
-        vals[i] = fn(vals[i])
-        return dataclasses.replace(setup, settings=dataclasses.replace(
-            setup.settings, **{name: tuple(vals)}))
-    return dataclasses.replace(setup, settings=dataclasses.replace(
-        setup.settings, **{key: fn(getattr(setup.settings, key))}))
-
-
-def _full_key(setup: MachineSetup, key: str) -> str:
-    """``machine.<member>.<flank>.<key>`` or ``blade.<member>.<flank>.<key>``."""
-    return f"{'blade' if key in _BLADE else 'machine'}.{setup.member}.{setup.side}.{key}"
-
-
-def _resolutions(setup: MachineSetup, stated: StatedBlank) -> dict:
-    """``{key: half unit}`` of every setting of ``setup``: the source's
-    (:attr:`StatedBlank.setting_rounding`) or each typed value's own."""
-    res = stated.setting_rounding
-    return {k: (res.get(k, 0.0) if res is not None else typed_resolution(_setting(setup, k)))
-            for k in (*_NUMERIC, *_SERIES, *_BLADE)}
-
-
 def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> dict:
     """The typed settings' rounding propagated (module docstring), per quantity."""
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
-    moves = [(k, r) for k, r in _resolutions(setup, stated).items() if r > 0.0]
+    moves = [(k, r) for k, r in roundings(setup, stated.setting_rounding).items() if r > 0.0]
     if setup.member == "gear":
         r_c = stated.rounding.get("cutter_radius_mm", 0.0)
         if r_c > 0.0:
             moves.append(("cutter_radius_mm", r_c))
     for key, r in moves:
         if key == "cutter_radius_mm":
-            moved = setup, dataclasses.replace(stated,
-                                               cutter_radius_mm=stated.cutter_radius_mm + r)
+            shifted = setup, dataclasses.replace(stated,
+                                                 cutter_radius_mm=stated.cutter_radius_mm + r)
         else:
-            moved = _moved(setup, key, lambda x, r=r: x + r), stated
+            shifted = moved(setup, key, lambda x, r=r: x + r), stated
         try:
-            got, _ = _values(*moved, at)
+            got, _ = _values(*shifted, at)
         except UndercutError:       # the warm start lost the point: the full solve
-            got, _ = _values(*moved)
+            got, _ = _values(*shifted)
         for q in tol:
             tol[q] += abs(got[q] - values[q])
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
@@ -517,24 +465,24 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
         if slip in UNIT_SLIPS and found:
             break
         key, fn, word = slip
-        value = _setting(setup, key)
+        value = setting(setup, key)
         if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
             continue       # no sign to slip (a ratio 0 is formate), or the slip is no change
         try:
-            fixed = _moved(setup, key, fn)
+            fixed = moved(setup, key, fn)
         except InputRangeError:
             continue
         got, _ = _compare(fixed, stated, tol)
         if slip in UNIT_SLIPS and not got.agrees and not got.missing:
             # the typed digits were the other unit's, so is their rounding: re-propagated
             # (only for a corrected flank that reaches its mean point: the costly part)
-            rounding = _resolutions(setup, stated)
+            rounding = roundings(setup, stated.setting_rounding)
             rounding[key] = abs(fn(value + rounding[key]) - fn(value))
             got, _ = _compare(fixed, dataclasses.replace(stated, setting_rounding=rounding))
         if got.agrees:
             score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
                          if c.tolerance), default=0.0)
-            found.append((score, _full_key(setup, key), value, word))
+            found.append((score, full_key(setup, key), value, word))
     if not found:
         return "", None, "", ()
     found.sort(key=lambda x: x[0])
@@ -548,23 +496,21 @@ def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankChec
     if flank.missing:
         return ()
     _, at = _values(setup, stated)              # the warm start of every move
-    half = _resolutions(setup, stated)
-    typed = [k for k in (*_NUMERIC, *_BLADE) if k != "ratio_of_roll" or not setup.settings.formate]
-    typed += [k for k, (name, i) in _SERIES.items() if i < len(getattr(setup.settings, name))]
+    half = roundings(setup, stated.setting_rounding)
 
     def compare(name: str, value: float):
         key = name.rsplit(".", 1)[1]
         try:
-            moved = _moved(setup, key, lambda _: value)
-            got, _ = _compare(moved, stated, tol, start=at)
+            other = moved(setup, key, lambda _: value)
+            got, _ = _compare(other, stated, tol, start=at)
             if got.missing:         # the warm start lost the point: the grid of starts
-                got, _ = _compare(moved, stated, tol)
+                got, _ = _compare(other, stated, tol)
         except InputRangeError:
             return None
         return None if got.missing else got.comparisons
 
-    return explaining_values([(_full_key(setup, k), _setting(setup, k), half[k])
-                              for k in typed], flank.comparisons, compare)
+    return explaining_values([(full_key(setup, k), setting(setup, k), half[k])
+                              for k in typed_keys(setup)], flank.comparisons, compare)
 
 
 def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:

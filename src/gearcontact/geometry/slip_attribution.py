@@ -31,7 +31,7 @@ reported (a key whose derivative is small can reach agreement only far away, whi
 nothing about a slip). Several keys can each explain one flank (a formate gear's mean
 cone distance moves with the MCTB and the machine root angle alike): all are reported,
 ranked by the change in units of the key's typed rounding (half a unit of its last
-typed decimal, :func:`.blank_check.typed_resolution`), keys typed 0 (a set-up choice,
+typed decimal, :func:`.typed_settings.typed_resolution`), keys typed 0 (a set-up choice,
 exact) after the others by the change relative to their agreeing half-width. The rank
 is no probability: the report says "any one of", not which.
 
