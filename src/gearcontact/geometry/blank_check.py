@@ -59,7 +59,7 @@ from .slip_attribution import describe, explaining_values
 from .typed_settings import full_key, moved, roundings, setting, typed_keys
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
-           "PITCH_POINT_FRACTION", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
+           "PITCH_POINT_FRACTION", "UNIT_SIGN_SLIPS", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
            "check_pair_blank", "stated_blank"]
 __getattr__ = moved_names(__name__, {
@@ -121,6 +121,14 @@ UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 2
               *((k, math.degrees, "unit corrected (typed in radians: to degrees)")
                 for k in ("blade_angle_deg", "cradle_angle_deg", "machine_root_angle_deg",
                           "tilt_deg", "swivel_deg")))
+#: A unit slip and the sign word of the same key at once (a length typed in inches
+#: from a print whose UP / DN, WITH / AWAY or MD word was misread as well), tried with
+#: :data:`UNIT_SLIPS`.
+UNIT_SIGN_SLIPS = tuple((k, lambda x, fn=fn: -fn(x), f"{word} and the other sign")
+                        for k, fn, word in UNIT_SLIPS
+                        if k in ("blank_offset_mm", "sliding_base_mm", "cradle_angle_deg",
+                                 "machine_centre_to_back_mm"))
+_UNIT = (*UNIT_SLIPS, *UNIT_SIGN_SLIPS)
 
 
 @dataclass(frozen=True)
@@ -284,7 +292,7 @@ class BlankCheck:
                               f"settings that cut the blank's tooth ({what}; no known sign "
                               "or unit slip explains it" + "".join(
                                   f"; {g.member} {g.side}: {describe(g.single_keys)}"
-                                  for g in bad if g.single_keys)
+                                  for g in bad if not g.missing)
                               + ", docs/machine_settings.md sec. 2)")
 
     def warnings(self) -> list[str]:
@@ -297,7 +305,7 @@ class BlankCheck:
             word = "hand" if self.hand_slip else f.slip_word
             hint = (f"; likely {key} ({_with(word)} the flank agrees)" if key
                     else "; no known sign or unit slip explains it" + (
-                        f"; {describe(f.single_keys)}" if f.single_keys else ""))
+                        "" if f.missing else f"; {describe(f.single_keys)}"))
             if key and f.slip_also and not self.hand_slip:
                 hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
@@ -448,7 +456,7 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
 def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
     """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` and the MD
     word read from the crossing point (:attr:`StatedBlank.mctb_datum_mm`), or where none
-    explains the flank of :data:`UNIT_SLIPS` (the tolerances re-propagated with the
+    explains the flank of :data:`UNIT_SLIPS` and :data:`UNIT_SIGN_SLIPS` (the tolerances re-propagated with the
     typed rounding in the other unit), under which
     the flank agrees with the blank best (the smallest largest difference relative to its
     tolerance), with the keys of the other slips under which it agrees (a small
@@ -461,8 +469,8 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
     found = []
     # the unit slips only where no sign word explains the flank (each costs a solve
     # from the grid of starts where the flank misses: 3x the check's time, docs sec. 2)
-    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *UNIT_SLIPS):
-        if slip in UNIT_SLIPS and found:
+    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *_UNIT):
+        if slip in _UNIT and found:
             break
         key, fn, word = slip
         value = setting(setup, key)
@@ -473,7 +481,7 @@ def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
         except InputRangeError:
             continue
         got, _ = _compare(fixed, stated, tol)
-        if slip in UNIT_SLIPS and not got.agrees and not got.missing:
+        if slip in _UNIT and not got.agrees and not got.missing:
             # the typed digits were the other unit's, so is their rounding: re-propagated
             # (only for a corrected flank that reaches its mean point: the costly part)
             rounding = roundings(setup, stated.setting_rounding)

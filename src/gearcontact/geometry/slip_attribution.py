@@ -25,15 +25,17 @@ is not the blank's or the value is outside the key's range. ``phi(x0) > 0``. Per
    typed value and the agreeing one, and beyond it (the bracket doubled at most
    :data:`_EXPANSIONS` times; an end not bracketed is reported open).
 
-A value is **near** the typed one when ``|v - x0| <= 2 |x0| + key_scale(k)`` (a sign
-flipped or a zero typed for a value of the key's scale); farther values are not
-reported (a key whose derivative is small can reach agreement only far away, which says
-nothing about a slip). Several keys can each explain one flank (a formate gear's mean
+A value is **near** the typed one when ``|v - x0| <= NEAR_FACTOR |x0| + key_scale(k)``
+(:data:`NEAR_FACTOR`: a sign flipped, a leading digit or the decimal point one place
+wrong, or a zero typed for a value of the key's scale); farther values are not searched
+(a key whose derivative is small can reach agreement only far away, which says nothing
+about a slip). Several keys can each explain one flank (a formate gear's mean
 cone distance moves with the MCTB and the machine root angle alike): all are reported,
 ranked by the change in units of the key's typed rounding (half a unit of its last
 typed decimal, :func:`.typed_settings.typed_resolution`), keys typed 0 (a set-up choice,
 exact) after the others by the change relative to their agreeing half-width. The rank
-is no probability: the report says "any one of", not which.
+is no probability: the words say "any one of ... alone makes it agree", not which key
+slipped; and none where no single key does (two or more keys may be wrong).
 
 References
 ----------
@@ -49,11 +51,14 @@ from dataclasses import dataclass
 
 from scipy.optimize import brentq, minimize_scalar
 
-__all__ = ["NONLINEAR", "STEP_FRACTION", "KeyValue", "explaining_values", "key_scale", "describe"]
+__all__ = ["NEAR_FACTOR", "NONLINEAR", "STEP_FRACTION", "KeyValue", "explaining_values", "key_scale", "describe"]
 
 #: The forward-difference step of the linearization, a fraction of the key's scale
 #: (:func:`key_scale`): 1e-3 mm / deg, 1e-4 of a ratio of roll or a series term.
 STEP_FRACTION = 1e-3
+#: How far from the typed value ``x0`` a key's agreeing value is searched: ``|v - x0| <=
+#: NEAR_FACTOR |x0| + key_scale`` (module docstring).
+NEAR_FACTOR = 10.0
 #: The linearized bands are widened by this fraction of each one's distance from the
 #: typed value before they are intersected (step 2): a second-order allowance, so that a
 #: key that must move far (a digit slip, 4 mm of radial distance) is not rejected by
@@ -153,7 +158,7 @@ def _one_key(key: str, typed: float, half_unit: float, rows0,
              compare: Callable[[float], Sequence | None]) -> KeyValue | None:
     """:class:`KeyValue` of ``key`` or None (module docstring, steps 1-4)."""
     scale = key_scale(key)
-    near = 2.0 * abs(typed) + scale
+    near = NEAR_FACTOR * abs(typed) + scale
     step = STEP_FRACTION * scale
     rows1 = compare(typed + step)
     if rows1 is None:
@@ -250,11 +255,13 @@ def _needs(k: KeyValue) -> str:
 
 
 def describe(found: Sequence[KeyValue]) -> str:
-    """The words for the keys that alone explain a flank: one key, or any one of
-    several ranked (module docstring); "" for none."""
+    """The words for the keys that alone make a flank agree: one key, any one of several
+    ranked, or none (module docstring)."""
     if not found:
-        return ""
+        return ("no single typed key alone makes it agree (two or more may be wrong, "
+                "or a key not typed)")
     if len(found) == 1:
-        return f"one key alone explains it: {_needs(found[0])}"
-    return (f"any one of {len(found)} keys alone explains it (ranked by the change in "
-            "units of its typed last digit): " + "; ".join(_needs(k) for k in found))
+        return f"of its typed keys one alone makes it agree: {_needs(found[0])}"
+    return (f"any one of {len(found)} of its typed keys alone makes it agree (which one "
+            "slipped is not known; ranked by the change in units of its typed last "
+            "digit): " + "; ".join(_needs(k) for k in found))
