@@ -34,7 +34,8 @@ MOVED = {
     "gearcontact.hw.driver": {"SocEngine": "gearcontact.hw.soc_engine"},
     # the typed keys of a flank's tables beside the check and the slip attribution
     "gearcontact.geometry.blank_check": {
-        "typed_resolution": "gearcontact.geometry.typed_settings"},
+        "typed_resolution": "gearcontact.geometry.typed_settings",
+        **{n: "gearcontact.geometry.known_slips" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}},
 }
 #: Names the old module still imports for its own use: importable there without a
 #: warning (an ordinary import), but no longer exported and used by nobody else.

@@ -200,3 +200,21 @@ def test_two_slipped_keys_are_not_taken_for_one(f2):
     assert not f.agrees and f.slip == "" and f.single_keys == ()
     assert "no single typed key alone makes it agree (two or more may be wrong" \
         in got.warnings()[0]
+
+
+def test_a_sign_and_a_unit_slip_on_two_keys_are_named_together(f2):
+    # the gear drive blade angle typed in radians (0.349) and its sliding base's WITH /
+    # AWAY word misread: the flank misses its mean point, no single slip and no single
+    # key explains it; the two slips together do (known_slips.pair_slip; truth: both
+    # made here from the right values), the sliding base named first (sign words
+    # before unit slips), the blade angle in the words
+    stated = stated_blank(f2)
+    two = _typed(_typed(f2, "gear", "blade_angle_deg", lambda x: round(math.radians(x), 3),
+                        side="drive", blade=True), "gear", "sliding_base_mm", lambda x: -x,
+                 side="drive")
+    got = check_flanks(two.machine[:1], stated)
+    f, = got.flanks
+    assert f.missing and f.slip == "machine.gear.drive.sliding_base_mm"
+    assert ("likely machine.gear.drive.sliding_base_mm (with the other sliding base WITH / "
+            "AWAY, and blade.gear.drive.blade_angle_deg with the unit corrected (typed in "
+            "radians: to degrees) the flank agrees)") in got.warnings()[0]

@@ -33,10 +33,12 @@ case to first order, as tests/geometry/test_flank_angles.py propagates a print's
 rounding), plus the stated value's own rounding (0 for a pair's blank: its values are
 the design's definitions), plus the solve's 1e-7; the root datum adds
 :data:`ROOT_DATUM_FRACTION` of the dedendum (a model bound, not a rounding). A flank
-outside its tolerance is tried against the known slips (:data:`SLIPS`, the unit slips
-:data:`UNIT_SLIPS` with the typed rounding in the other unit, the MD word read from the
-crossing point, and the blank's hand): of the slips under which every value of the
-flank agrees the best fit is named, the others listed.
+outside its tolerance is tried against the known slips (:mod:`.known_slips`: the sign
+words, the unit slips with the typed rounding in the other unit, both on one key, the
+MD word read from the crossing point; and the blank's hand): of the slips under which
+every value of the flank agrees the best fit is named, the others listed. Where none
+does, the keys that alone make it agree are named with the values the blank needs
+(:mod:`.slip_attribution`); where none does either, two slips on two keys are tried.
 
 References
 ----------
@@ -54,16 +56,18 @@ from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
                            measure_mean_point, require_machine)
 from ..deprecation import moved_names
-from .machine import MODIFIED_ROLL_KEYS, MachineSetup
+from .known_slips import pair_slip, single_slip, slip_fix, with_slip
+from .machine import MachineSetup
 from .slip_attribution import describe, explaining_values
 from .typed_settings import full_key, moved, roundings, setting, typed_keys
 
-__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
-           "PITCH_POINT_FRACTION", "UNIT_SIGN_SLIPS", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
+__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
+           "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
            "check_pair_blank", "stated_blank"]
 __getattr__ = moved_names(__name__, {
-    "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution"})
+    "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution",
+    **{n: f"gearcontact.geometry.known_slips:{n}" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}})
 
 #: A gear flank whose generating spiral angle differs from the blank's by more than
 #: this (deg) is an input error (exit 2), as is a hand against the blank's: no
@@ -93,42 +97,8 @@ PINION_PRESSURE_DEG = 5.0
 #: mismatch moves a pressure angle by 10 deg, a unit slip (radians) does. Declared with
 #: :data:`PINION_PRESSURE_DEG`.
 GROSS_PRESSURE_DEG = 10.0
-#: The unit slips tried on a flank outside its tolerance (with :data:`SLIPS`): a length
-#: typed in inches (x 25.4) or converted twice (/ 25.4), an angle typed in radians.
-INCH_MM = 25.4
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
-_SAME = 1e-9                      # a slip that moves a value less than this is no slip
-#: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
-#: the sheet word is), docs sec. 2's table; the MD word read from the crossing point
-#: (:attr:`StatedBlank.mctb_datum_mm`) is tried after them.
-SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
-         ("sliding_base_mm", lambda x: -x, "sliding base WITH / AWAY"),
-         ("cradle_angle_deg", lambda x: -x, "cradle angle sign"),
-         ("machine_centre_to_back_mm", lambda x: -x, "machine centre to back MD +-"),
-         ("ratio_of_roll", lambda x: 1.0 / x, "ratio of roll, work / cradle against "
-                                              "cradle / work"),
-         *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
-           for k in MODIFIED_ROLL_KEYS))
-#: The unit slips (:data:`INCH_MM`), tried with :data:`SLIPS`: (key, the slip, what
-#: the slip is). The words read "with the unit corrected (...)".
-UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 25.4 mm)")
-                for k in ("radial_distance_mm", "machine_centre_to_back_mm",
-                          "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
-              *((k, lambda x: x / INCH_MM, "unit corrected (converted to mm twice: / 25.4)")
-                for k in ("radial_distance_mm", "machine_centre_to_back_mm",
-                          "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
-              *((k, math.degrees, "unit corrected (typed in radians: to degrees)")
-                for k in ("blade_angle_deg", "cradle_angle_deg", "machine_root_angle_deg",
-                          "tilt_deg", "swivel_deg")))
-#: A unit slip and the sign word of the same key at once (a length typed in inches
-#: from a print whose UP / DN, WITH / AWAY or MD word was misread as well), tried with
-#: :data:`UNIT_SLIPS`.
-UNIT_SIGN_SLIPS = tuple((k, lambda x, fn=fn: -fn(x), f"{word} and the other sign")
-                        for k, fn, word in UNIT_SLIPS
-                        if k in ("blank_offset_mm", "sliding_base_mm", "cradle_angle_deg",
-                                 "machine_centre_to_back_mm"))
-_UNIT = (*UNIT_SLIPS, *UNIT_SIGN_SLIPS)
 
 
 @dataclass(frozen=True)
@@ -281,9 +251,8 @@ class BlankCheck:
         if f.slip:
             also = [g.slip for g in bad if g.slip and g is not f]
             raise InputRangeError(f.slip, f.slip_value,
-                                  f"the {_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
-                                  f"{_with(f.slip_word)} the flank agrees with the blank" + (f"; it agrees as well with the other sign of "
-                                             f"{', '.join(f.slip_also)}" if f.slip_also else "")
+                                  f"the {slip_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
+                                  f"{with_slip(f.slip_word)} the flank agrees with the blank" + _also(f)
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         one = f.single_keys[0] if len(f.single_keys) == 1 else None
@@ -303,25 +272,24 @@ class BlankCheck:
                 continue
             key = self.stated.hand_key if self.hand_slip else f.slip
             word = "hand" if self.hand_slip else f.slip_word
-            hint = (f"; likely {key} ({_with(word)} the flank agrees)" if key
+            hint = (f"; likely {key} ({with_slip(word)} the flank agrees)" if key
                     else "; no known sign or unit slip explains it" + (
                         "" if f.missing else f"; {describe(f.single_keys)}"))
-            if key and f.slip_also and not self.hand_slip:
-                hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
+            if key and not self.hand_slip:
+                hint += _also(f)
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
                        f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
         return out
 
 
-def _fix(word: str) -> str:
-    """What a slip's word changes: ``"unit"`` (:data:`UNIT_SLIPS`) or ``"sign"``."""
-    return "unit" if word.startswith("unit") else "sign"
-
-
-def _with(word: str) -> str:
-    """``"with the other <sign word>"`` or ``"with the unit corrected (...)"``."""
-    return f"with the {word}" if _fix(word) == "unit" else f"with the other {word}"
+def _also(f: FlankCheck) -> str:
+    """``"; it agrees as well with the other sign of <keys>"`` (the slips of two keys:
+    ``"with the slips of <key> and <key>, ..."``), or ""."""
+    if not f.slip_also:
+        return ""
+    what = "slips of" if f.slip_word.startswith("with ") else "other sign of"
+    return f"; it agrees as well with the {what} {', '.join(f.slip_also)}"
 
 
 def _describe(f: FlankCheck) -> str:
@@ -453,48 +421,19 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
     return FlankCheck(setup.member, setup.side, rows), tol
 
 
-def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
-    """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` and the MD
-    word read from the crossing point (:attr:`StatedBlank.mctb_datum_mm`), or where none
-    explains the flank of :data:`UNIT_SLIPS` and :data:`UNIT_SIGN_SLIPS` (the tolerances re-propagated with the
-    typed rounding in the other unit), under which
-    the flank agrees with the blank best (the smallest largest difference relative to its
-    tolerance), with the keys of the other slips under which it agrees (a small
-    setting's sign may bring a flank just outside back inside), or
-    ``("", None, "", ())``."""
-    datum = stated.mctb_datum_mm.get(setup.member, 0.0)
-    md = ("machine_centre_to_back_mm", lambda x: 2.0 * datum - x,
-          f"MD sign, MD read from the crossing point (X_D = MD {datum:+.4f} mm, the pitch "
-          "apex's offset)")
-    found = []
-    # the unit slips only where no sign word explains the flank (each costs a solve
-    # from the grid of starts where the flank misses: 3x the check's time, docs sec. 2)
-    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *_UNIT):
-        if slip in _UNIT and found:
-            break
-        key, fn, word = slip
-        value = setting(setup, key)
-        if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
-            continue       # no sign to slip (a ratio 0 is formate), or the slip is no change
-        try:
-            fixed = moved(setup, key, fn)
-        except InputRangeError:
-            continue
-        got, _ = _compare(fixed, stated, tol)
-        if slip in _UNIT and not got.agrees and not got.missing:
-            # the typed digits were the other unit's, so is their rounding: re-propagated
-            # (only for a corrected flank that reaches its mean point: the costly part)
-            rounding = roundings(setup, stated.setting_rounding)
-            rounding[key] = abs(fn(value + rounding[key]) - fn(value))
-            got, _ = _compare(fixed, dataclasses.replace(stated, setting_rounding=rounding))
-        if got.agrees:
-            score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
-                         if c.tolerance), default=0.0)
-            found.append((score, full_key(setup, key), value, word))
-    if not found:
-        return "", None, "", ()
-    found.sort(key=lambda x: x[0])
-    return (*found[0][1:], tuple(f[1] for f in found[1:]))
+class _Compare:
+    """The check's comparison of one flank (:class:`~.known_slips.Compare`)."""
+
+    def __init__(self, stated: StatedBlank, tol):
+        self.stated, self.tol = stated, tol
+
+    def __call__(self, setup: MachineSetup, rounding: dict | None) -> FlankCheck:
+        if rounding is None:
+            return _compare(setup, self.stated, self.tol)[0]
+        return _compare(setup, dataclasses.replace(self.stated, setting_rounding=rounding))[0]
+
+    def roundings(self, setup: MachineSetup) -> dict:
+        return roundings(setup, self.stated.setting_rounding)
 
 
 def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankCheck) -> tuple:
@@ -540,11 +479,16 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
     out = []
     for s, (f, tol) in zip(setups, first):
         if not f.agrees and not hand_slip:
-            key, value, word, also = _slip(s, stated, tol)
+            datum, compare = stated.mctb_datum_mm.get(s.member, 0.0), _Compare(stated, tol)
+            key, value, word, also = single_slip(s, datum, compare)
             f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                     slip_also=also)
             if not key:
                 f = dataclasses.replace(f, single_keys=_single_keys(s, stated, tol, f))
+            if not key and not f.single_keys:
+                key, value, word, also = pair_slip(s, datum, compare)
+                f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
+                                        slip_also=also)
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 
