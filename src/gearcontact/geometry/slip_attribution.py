@@ -10,27 +10,32 @@ against the blank's ``s_q`` give the excess
     phi(v) = max_q |m_q(v) - s_q| / tol_q - 1        (<= 0: the flank agrees)
 
 with the tolerances ``tol_q`` of the typed flank (its rounding propagated: what the check
-compared), and ``phi = +inf`` where the flank does not reach its mean point, its hand
-is not the blank's or the value is outside the key's range. ``phi(x0) > 0``. Per key:
+compared), and ``phi`` a large number (``_OUT``) where the flank does not reach its mean
+point, its hand is not the blank's or the value is outside the key's range.
+``phi(x0) > 0``. Per key:
 
 1. the derivatives ``dm_q/dv`` by one forward difference (step :data:`STEP_FRACTION` of
    the key's scale, :func:`key_scale`);
-2. the agreeing interval of the linearized quantities (each ``|h_q + J_q d| <= tol_q``,
-   intersected); empty: the key cannot explain the flank (to first order), no more
+2. each quantity's linearized band (``|h_q + J_q d| <= tol_q``), widened by
+   :data:`NONLINEAR` of its distance from the typed value and intersected; empty (or a
+   quantity the key does not move outside): the key cannot explain the flank, no more
    solves;
-3. its centre measured; outside: the minimum of ``phi`` on the linear interval widened
-   by its width each side (scipy's bounded Brent, :func:`scipy.optimize.minimize_scalar`);
-   no agreeing value there: not explained;
-4. the interval's ends, roots of ``phi`` (:func:`scipy.optimize.brentq`) between the
-   typed value and the agreeing one, and beyond it (the bracket doubled at most
-   :data:`_EXPANSIONS` times; an end not bracketed is reported open).
+3. the centre of the unwidened intersection measured; where it is empty or outside,
+   the minimum of ``phi`` on the widened one (scipy's bounded Brent,
+   :func:`scipy.optimize.minimize_scalar`, to a quarter of the narrowest band); no
+   agreeing value: not explained;
+4. the agreeing interval's ends, roots of ``phi`` (:func:`scipy.optimize.brentq`, to
+   1e-3 of the narrowest band) between the typed value and the agreeing one, and
+   beyond it (the bracket doubled at most ``_EXPANSIONS`` times; an end not bracketed
+   is reported open). Where ``phi`` has more than one agreeing interval (a root depth
+   with a maximum near the typed point radius) the one found is reported.
 
 A value is **near** the typed one when ``|v - x0| <= NEAR_FACTOR |x0| + key_scale(k)``
 (:data:`NEAR_FACTOR`: a sign flipped, a leading digit or the decimal point one place
 wrong, or a zero typed for a value of the key's scale); farther values are not searched
 (a key whose derivative is small can reach agreement only far away, which says nothing
-about a slip). Several keys can each explain one flank (a formate gear's mean
-cone distance moves with the MCTB and the machine root angle alike): all are reported,
+about a slip). Several keys can each explain one flank (the root depth moves with the
+sliding base, the MCTB, the machine root and the tilt alike): all are reported,
 ranked by the change in units of the key's typed rounding (half a unit of its last
 typed decimal, :func:`.typed_settings.typed_resolution`), keys typed 0 (a set-up choice,
 exact) after the others by the change relative to their agreeing half-width. The rank
@@ -51,7 +56,8 @@ from dataclasses import dataclass
 
 from scipy.optimize import brentq, minimize_scalar
 
-__all__ = ["NEAR_FACTOR", "NONLINEAR", "STEP_FRACTION", "KeyValue", "explaining_values", "key_scale", "describe"]
+__all__ = ["NEAR_FACTOR", "NONLINEAR", "STEP_FRACTION", "KeyValue", "describe",
+           "explaining_values", "key_scale"]
 
 #: The forward-difference step of the linearization, a fraction of the key's scale
 #: (:func:`key_scale`): 1e-3 mm / deg, 1e-4 of a ratio of roll or a series term.
