@@ -32,6 +32,10 @@ MOVED = {
         "DSP_STUDY_VERILOG", "DSP_STUDY_COUNTS", "parse_stat_modules", "dsp_study")},
     # the rtl-soc backend beside the drivers it runs (tri_core, bhseq_core, line_core)
     "gearcontact.hw.driver": {"SocEngine": "gearcontact.hw.soc_engine"},
+    # the typed keys of a flank's tables beside the check and the slip attribution
+    "gearcontact.geometry.blank_check": {
+        "typed_resolution": "gearcontact.geometry.typed_settings",
+        **{n: "gearcontact.geometry.known_slips" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}},
 }
 #: Names the old module still imports for its own use: importable there without a
 #: warning (an ordinary import), but no longer exported and used by nobody else.

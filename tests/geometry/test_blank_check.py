@@ -23,10 +23,10 @@ from pathlib import Path
 import pytest
 
 from gearcontact.geometry.blank_check import (GROSS_SPIRAL_DEG, StatedBlank, check_flanks,
-                                              check_pair_blank, stated_blank,
-                                              typed_resolution)
+                                              check_pair_blank, stated_blank)
 from gearcontact.geometry.machine import mirror_setup, setup_from_tables
 from gearcontact.geometry.pair import load_pair
+from gearcontact.geometry.typed_settings import typed_resolution
 from gearcontact.validation import InputRangeError
 
 from .test_flank_angles import _pitch_apex_in

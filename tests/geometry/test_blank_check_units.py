@@ -20,8 +20,9 @@ import math
 import pytest
 
 from gearcontact.geometry.basic_settings import standard_machine_pair
-from gearcontact.geometry.blank_check import (GROSS_PRESSURE_DEG, INCH_MM,
-                                              PINION_PRESSURE_DEG, check_pair_blank)
+from gearcontact.geometry.blank_check import (GROSS_PRESSURE_DEG, PINION_PRESSURE_DEG,
+                                              check_pair_blank)
+from gearcontact.geometry.known_slips import INCH_MM
 from gearcontact.geometry.pair import load_pair
 from gearcontact.validation import InputRangeError
 

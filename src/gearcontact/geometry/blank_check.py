@@ -33,10 +33,12 @@ case to first order, as tests/geometry/test_flank_angles.py propagates a print's
 rounding), plus the stated value's own rounding (0 for a pair's blank: its values are
 the design's definitions), plus the solve's 1e-7; the root datum adds
 :data:`ROOT_DATUM_FRACTION` of the dedendum (a model bound, not a rounding). A flank
-outside its tolerance is tried against the known slips (:data:`SLIPS`, the unit slips
-:data:`UNIT_SLIPS` with the typed rounding in the other unit, the MD word read from the
-crossing point, and the blank's hand): of the slips under which every value of the
-flank agrees the best fit is named, the others listed.
+outside its tolerance is tried against the known slips (:mod:`.known_slips`: the sign
+words, the unit slips with the typed rounding in the other unit, both on one key, the
+MD word read from the crossing point; and the blank's hand): of the slips under which
+every value of the flank agrees the best fit is named, the others listed. Where none
+does, the keys that alone make it agree are named with the values the blank needs
+(:mod:`.slip_attribution`); where none does either, two slips on two keys are tried.
 
 References
 ----------
@@ -48,18 +50,24 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from decimal import Decimal
 
 from ..validation import InputRangeError
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
                            measure_mean_point, require_machine)
-from .machine import HELICAL_KEYS, MODIFIED_ROLL_KEYS, MachineSetup
+from ..deprecation import moved_names
+from .known_slips import pair_slip, single_slip, slip_fix, with_slip
+from .machine import MachineSetup
+from .slip_attribution import describe, explaining_values
+from .typed_settings import full_key, moved, roundings, setting, typed_keys
 
-__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "INCH_MM", "PINION_PRESSURE_DEG",
-           "PITCH_POINT_FRACTION", "UNIT_SLIPS", "ROOT_DATUM_FRACTION", "SLIPS",
+__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
+           "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
-           "check_pair_blank", "stated_blank", "typed_resolution"]
+           "check_pair_blank", "stated_blank"]
+__getattr__ = moved_names(__name__, {
+    "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution",
+    **{n: f"gearcontact.geometry.known_slips:{n}" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}})
 
 #: A gear flank whose generating spiral angle differs from the blank's by more than
 #: this (deg) is an input error (exit 2), as is a hand against the blank's: no
@@ -89,50 +97,8 @@ PINION_PRESSURE_DEG = 5.0
 #: mismatch moves a pressure angle by 10 deg, a unit slip (radians) does. Declared with
 #: :data:`PINION_PRESSURE_DEG`.
 GROSS_PRESSURE_DEG = 10.0
-#: The unit slips tried on a flank outside its tolerance (with :data:`SLIPS`): a length
-#: typed in inches (x 25.4) or converted twice (/ 25.4), an angle typed in radians.
-INCH_MM = 25.4
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
-_SAME = 1e-9                      # a slip that moves a value less than this is no slip
-_NUMERIC = ("radial_distance_mm", "cradle_angle_deg", "machine_root_angle_deg",
-            "machine_centre_to_back_mm", "sliding_base_mm", "blank_offset_mm",
-            "ratio_of_roll", "tilt_deg", "swivel_deg")
-_BLADE = ("blade_angle_deg", "point_radius_mm")
-#: The printed series, key -> (MachineSettings field, index).
-_SERIES = {**{k: ("modified_roll", i) for i, k in enumerate(MODIFIED_ROLL_KEYS)},
-           **{k: ("helical_motion", i) for i, k in enumerate(HELICAL_KEYS)}}
-#: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
-#: the sheet word is), docs sec. 2's table; the MD word read from the crossing point
-#: (:attr:`StatedBlank.mctb_datum_mm`) is tried after them.
-SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
-         ("sliding_base_mm", lambda x: -x, "sliding base WITH / AWAY"),
-         ("cradle_angle_deg", lambda x: -x, "cradle angle sign"),
-         ("machine_centre_to_back_mm", lambda x: -x, "machine centre to back MD +-"),
-         ("ratio_of_roll", lambda x: 1.0 / x, "ratio of roll, work / cradle against "
-                                              "cradle / work"),
-         *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
-           for k in MODIFIED_ROLL_KEYS))
-#: The unit slips (:data:`INCH_MM`), tried with :data:`SLIPS`: (key, the slip, what
-#: the slip is). The words read "with the unit corrected (...)".
-UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 25.4 mm)")
-                for k in ("radial_distance_mm", "machine_centre_to_back_mm",
-                          "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
-              *((k, lambda x: x / INCH_MM, "unit corrected (converted to mm twice: / 25.4)")
-                for k in ("radial_distance_mm", "machine_centre_to_back_mm",
-                          "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
-              *((k, math.degrees, "unit corrected (typed in radians: to degrees)")
-                for k in ("blade_angle_deg", "cradle_angle_deg", "machine_root_angle_deg",
-                          "tilt_deg", "swivel_deg")))
-
-
-def typed_resolution(x: float) -> float:
-    """Half a unit of the last decimal of ``x`` as typed (its shortest repr: ``94.9385``
-    -> 5e-5, ``20.0`` -> 0.05); 0 for 0 (a zero is a set-up choice, no offset or no
-    tilt, not a rounded value)."""
-    if x == 0.0:
-        return 0.0
-    return 0.5 * 10.0 ** Decimal(repr(float(x))).as_tuple().exponent
 
 
 @dataclass(frozen=True)
@@ -158,7 +124,7 @@ class StatedBlank:
         a pair's blank, whose values are the design's definitions.
     setting_rounding : dict or None
         ``{key: half unit}`` of the settings when known from their source (a print's
-        inches); None: each typed value's own (:func:`typed_resolution`).
+        inches); None: each typed value's own (:func:`.typed_settings.typed_resolution`).
     hand_key, hand_value : str
         The key and value that state the hand (``design.pinion_hand``).
     mctb_datum_mm : dict
@@ -225,7 +191,9 @@ class FlankCheck:
     """One flank: its comparisons, ``missing`` (why there are none: the flank does not
     reach its mean point, "" otherwise), ``slip`` (the key of the sign slip under which
     it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
-    ``slip_also`` (the keys of the other slips under which it agrees, best first)."""
+    ``slip_also`` (the keys of the other slips under which it agrees, best first);
+    ``single_keys``: where no known slip explains it, the keys that alone do, with the
+    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked)."""
 
     member: str
     side: str
@@ -235,6 +203,7 @@ class FlankCheck:
     slip_value: float | str | None = None
     slip_word: str = ""
     slip_also: tuple = ()
+    single_keys: tuple = ()
 
     @property
     def agrees(self) -> bool:
@@ -282,14 +251,18 @@ class BlankCheck:
         if f.slip:
             also = [g.slip for g in bad if g.slip and g is not f]
             raise InputRangeError(f.slip, f.slip_value,
-                                  f"the {_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
-                                  f"{_with(f.slip_word)} the flank agrees with the blank" + (f"; it agrees as well with the other sign of "
-                                             f"{', '.join(f.slip_also)}" if f.slip_also else "")
+                                  f"the {slip_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
+                                  f"{with_slip(f.slip_word)} the flank agrees with the blank" + _also(f)
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
-        raise InputRangeError(f"[machine.{f.member}.{f.side}]", None,
+        one = f.single_keys[0] if len(f.single_keys) == 1 else None
+        raise InputRangeError(one.key if one else f"[machine.{f.member}.{f.side}]",
+                              one.typed if one else None,
                               f"settings that cut the blank's tooth ({what}; no known sign "
-                              "or unit slip explains it, docs/machine_settings.md sec. 2)")
+                              "or unit slip explains it" + "".join(
+                                  f"; {g.member} {g.side}: {describe(g.single_keys)}"
+                                  for g in bad if not g.missing)
+                              + ", docs/machine_settings.md sec. 2)")
 
     def warnings(self) -> list[str]:
         """One line per flank outside its tolerance, naming the likely key."""
@@ -299,24 +272,24 @@ class BlankCheck:
                 continue
             key = self.stated.hand_key if self.hand_slip else f.slip
             word = "hand" if self.hand_slip else f.slip_word
-            hint = (f"; likely {key} ({_with(word)} the flank agrees)" if key
-                    else "; no known sign or unit slip explains it")
-            if key and f.slip_also and not self.hand_slip:
-                hint += f"; it agrees as well with the other sign of {', '.join(f.slip_also)}"
+            hint = (f"; likely {key} ({with_slip(word)} the flank agrees)" if key
+                    else "; no known sign or unit slip explains it" + (
+                        "" if f.missing else f"; {describe(f.single_keys)}"))
+            if key and not self.hand_slip:
+                hint += _also(f)
             out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
                        f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
         return out
 
 
-def _fix(word: str) -> str:
-    """What a slip's word changes: ``"unit"`` (:data:`UNIT_SLIPS`) or ``"sign"``."""
-    return "unit" if word.startswith("unit") else "sign"
-
-
-def _with(word: str) -> str:
-    """``"with the other <sign word>"`` or ``"with the unit corrected (...)"``."""
-    return f"with the {word}" if _fix(word) == "unit" else f"with the other {word}"
+def _also(f: FlankCheck) -> str:
+    """``"; it agrees as well with the other sign of <keys>"`` (the slips of two keys:
+    ``"with the slips of <key> and <key>, ..."``), or ""."""
+    if not f.slip_also:
+        return ""
+    what = "slips of" if f.slip_word.startswith("with ") else "other sign of"
+    return f"; it agrees as well with the {what} {', '.join(f.slip_also)}"
 
 
 def _describe(f: FlankCheck) -> str:
@@ -364,59 +337,25 @@ _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "press
                     "mean cone distance": "cone_distance_mm"}
 
 
-def _setting(setup: MachineSetup, key: str) -> float:
-    """The typed value of ``key`` (a machine, printed-series or blade key); 0 for a
-    series term not typed."""
-    if key in _BLADE:
-        return getattr(setup.blade, key)
-    if key in _SERIES:
-        name, i = _SERIES[key]
-        vals = getattr(setup.settings, name)
-        return vals[i] if i < len(vals) else 0.0
-    return getattr(setup.settings, key)
-
-
-def _moved(setup: MachineSetup, key: str, fn) -> MachineSetup:
-    if key in _BLADE:
-        return dataclasses.replace(setup, blade=dataclasses.replace(
-            setup.blade, **{key: fn(getattr(setup.blade, key))}))
-    if key in _SERIES:                  # a typed term (_setting != 0) of the series
-        name, i = _SERIES[key]
-        vals = list(getattr(setup.settings, name))
-        vals[i] = fn(vals[i])
-        return dataclasses.replace(setup, settings=dataclasses.replace(
-            setup.settings, **{name: tuple(vals)}))
-    return dataclasses.replace(setup, settings=dataclasses.replace(
-        setup.settings, **{key: fn(getattr(setup.settings, key))}))
-
-
-def _resolutions(setup: MachineSetup, stated: StatedBlank) -> dict:
-    """``{key: half unit}`` of every setting of ``setup``: the source's
-    (:attr:`StatedBlank.setting_rounding`) or each typed value's own."""
-    res = stated.setting_rounding
-    return {k: (res.get(k, 0.0) if res is not None else typed_resolution(_setting(setup, k)))
-            for k in (*_NUMERIC, *_SERIES, *_BLADE)}
-
-
 def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> dict:
     """The typed settings' rounding propagated (module docstring), per quantity."""
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
-    moves = [(k, r) for k, r in _resolutions(setup, stated).items() if r > 0.0]
+    moves = [(k, r) for k, r in roundings(setup, stated.setting_rounding).items() if r > 0.0]
     if setup.member == "gear":
         r_c = stated.rounding.get("cutter_radius_mm", 0.0)
         if r_c > 0.0:
             moves.append(("cutter_radius_mm", r_c))
     for key, r in moves:
         if key == "cutter_radius_mm":
-            moved = setup, dataclasses.replace(stated,
-                                               cutter_radius_mm=stated.cutter_radius_mm + r)
+            shifted = setup, dataclasses.replace(stated,
+                                                 cutter_radius_mm=stated.cutter_radius_mm + r)
         else:
-            moved = _moved(setup, key, lambda x, r=r: x + r), stated
+            shifted = moved(setup, key, lambda x, r=r: x + r), stated
         try:
-            got, _ = _values(*moved, at)
+            got, _ = _values(*shifted, at)
         except UndercutError:       # the warm start lost the point: the full solve
-            got, _ = _values(*moved)
+            got, _ = _values(*shifted)
         for q in tol:
             tol[q] += abs(got[q] - values[q])
     tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
@@ -440,16 +379,18 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     return out
 
 
-def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None):
+def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None,
+             start=None):
     """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
     reach its mean point: None. ``measured``: the flank already measured at the same
-    mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured."""
+    mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured
+    (from ``start``, a nearby flank's solution, when given)."""
     where = (f"the blank's mean point (cone distance "
              f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
     reached, circle = True, None
     if measured is None:
         try:
-            values, at = _values(setup, stated)
+            values, at = _values(setup, stated, start)
         except UndercutError:
             reached = False
         except InputRangeError as exc:
@@ -480,49 +421,43 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
     return FlankCheck(setup.member, setup.side, rows), tol
 
 
-def _slip(setup: MachineSetup, stated: StatedBlank, tol) -> tuple:
-    """``(key, typed value, word, other keys)`` of the slip of :data:`SLIPS` and the MD
-    word read from the crossing point (:attr:`StatedBlank.mctb_datum_mm`), or where none
-    explains the flank of :data:`UNIT_SLIPS` (the tolerances re-propagated with the
-    typed rounding in the other unit), under which
-    the flank agrees with the blank best (the smallest largest difference relative to its
-    tolerance), with the keys of the other slips under which it agrees (a small
-    setting's sign may bring a flank just outside back inside), or
-    ``("", None, "", ())``."""
-    datum = stated.mctb_datum_mm.get(setup.member, 0.0)
-    md = ("machine_centre_to_back_mm", lambda x: 2.0 * datum - x,
-          f"MD sign, MD read from the crossing point (X_D = MD {datum:+.4f} mm, the pitch "
-          "apex's offset)")
-    found = []
-    # the unit slips only where no sign word explains the flank (each costs a solve
-    # from the grid of starts where the flank misses: 3x the check's time, docs sec. 2)
-    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *UNIT_SLIPS):
-        if slip in UNIT_SLIPS and found:
-            break
-        key, fn, word = slip
-        value = _setting(setup, key)
-        if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
-            continue       # no sign to slip (a ratio 0 is formate), or the slip is no change
+class _Compare:
+    """The check's comparison of one flank (:class:`~.known_slips.Compare`)."""
+
+    def __init__(self, stated: StatedBlank, tol):
+        self.stated, self.tol = stated, tol
+
+    def __call__(self, setup: MachineSetup, rounding: dict | None) -> FlankCheck:
+        if rounding is None:
+            return _compare(setup, self.stated, self.tol)[0]
+        return _compare(setup, dataclasses.replace(self.stated, setting_rounding=rounding))[0]
+
+    def roundings(self, setup: MachineSetup) -> dict:
+        return roundings(setup, self.stated.setting_rounding)
+
+
+def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankCheck) -> tuple:
+    """The keys of ``setup``'s tables that alone explain ``flank``, which disagrees
+    (:func:`~.slip_attribution.explaining_values`; the typed tolerances ``tol``);
+    ``()`` for a flank that does not reach its mean point."""
+    if flank.missing:
+        return ()
+    _, at = _values(setup, stated)              # the warm start of every move
+    half = roundings(setup, stated.setting_rounding)
+
+    def compare(name: str, value: float):
+        key = name.rsplit(".", 1)[1]
         try:
-            fixed = _moved(setup, key, fn)
+            other = moved(setup, key, lambda _: value)
+            got, _ = _compare(other, stated, tol, start=at)
+            if got.missing:         # the warm start lost the point: the grid of starts
+                got, _ = _compare(other, stated, tol)
         except InputRangeError:
-            continue
-        got, _ = _compare(fixed, stated, tol)
-        if slip in UNIT_SLIPS and not got.agrees and not got.missing:
-            # the typed digits were the other unit's, so is their rounding: re-propagated
-            # (only for a corrected flank that reaches its mean point: the costly part)
-            rounding = _resolutions(setup, stated)
-            rounding[key] = abs(fn(value + rounding[key]) - fn(value))
-            got, _ = _compare(fixed, dataclasses.replace(stated, setting_rounding=rounding))
-        if got.agrees:
-            score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
-                         if c.tolerance), default=0.0)
-            table = "blade" if key in _BLADE else "machine"
-            found.append((score, f"{table}.{setup.member}.{setup.side}.{key}", value, word))
-    if not found:
-        return "", None, "", ()
-    found.sort(key=lambda x: x[0])
-    return (*found[0][1:], tuple(f[1] for f in found[1:]))
+            return None
+        return None if got.missing else got.comparisons
+
+    return explaining_values([(full_key(setup, k), setting(setup, k), half[k])
+                              for k in typed_keys(setup)], flank.comparisons, compare)
 
 
 def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
@@ -544,9 +479,16 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
     out = []
     for s, (f, tol) in zip(setups, first):
         if not f.agrees and not hand_slip:
-            key, value, word, also = _slip(s, stated, tol)
+            datum, compare = stated.mctb_datum_mm.get(s.member, 0.0), _Compare(stated, tol)
+            key, value, word, also = single_slip(s, datum, compare)
             f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                     slip_also=also)
+            if not key:
+                f = dataclasses.replace(f, single_keys=_single_keys(s, stated, tol, f))
+            if not key and not f.single_keys:
+                key, value, word, also = pair_slip(s, datum, compare)
+                f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
+                                        slip_also=also)
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 
