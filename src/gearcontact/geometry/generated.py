@@ -521,10 +521,15 @@ def _check_regular(nodes: EnvelopeSolution, mean: EnvelopeSolution, setup: Machi
 def mean_contact_guess(pinion, gear, kinematics: MeshKinematics, *, pinion_uv, gear_uv
                        ) -> dict:
     """The contact of the pinion point ``pinion_uv`` with the gear flank, a starting guess
-    for TCA: ``{"pinion_uv", "gear_uv", "phi2_rad"}``.
+    for TCA: ``{"pinion_uv", "gear_uv", "phi1_rad", "phi2_rad", "gap_mm",
+    "normal_angle_deg"}``.
 
     Least squares over (u2, v2, phi1, phi2) of the coincidence of the posed points and
     opposite normals (6 equations; exact for conjugate flanks, the nearest touch otherwise).
+    ``gap_mm`` and ``normal_angle_deg`` are what is left at the nearest touch: the
+    distance of the posed points and the angle between the pinion normal and the
+    reversed gear normal (0 where the flanks touch there with a common normal, as mates
+    do at the pinion's mean node).
     """
     u1, v1 = (float(x) for x in pinion_uv)
     p1 = pinion.point(u1, v1)
@@ -541,5 +546,9 @@ def mean_contact_guess(pinion, gear, kinematics: MeshKinematics, *, pinion_uv, g
     sol = least_squares(residual, np.array([*gear_uv, 0.0, 0.0]), xtol=1e-15, ftol=1e-15,
                         gtol=1e-15)
     u2, v2, phi1, phi2 = (float(x) for x in sol.x)
+    left = residual(sol.x)              # (x1 - x2, n1 + n2) at the nearest touch
+    n1 = kinematics.pinion_pose(phi1)[0] @ p1.n
+    cos = float(np.clip(n1 @ (n1 - left[3:]), -1.0, 1.0))     # n1 . (-n2)
     return {"pinion_uv": (u1, v1), "gear_uv": (u2, v2), "phi2_rad": phi2,
-            "phi1_rad": phi1}
+            "phi1_rad": phi1, "gap_mm": float(np.linalg.norm(left[:3])),
+            "normal_angle_deg": math.degrees(math.acos(cos))}
