@@ -343,7 +343,14 @@ def _sheet_of(solver, box, mean, setup, n_u, n_v, kind, node_box=None):
                                    box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1])
     us = np.linspace(nb.u_root, nb.u_tip, int(n_u))
     vs = np.linspace(nb.v_toe, nb.v_heel, int(n_v))
-    nodes = solve_node_grid(solver, us, vs, u_m, v_m, mean.q)
+    try:
+        nodes = solve_node_grid(solver, us, vs, u_m, v_m, mean.q)
+    except UndercutError as exc:      # say where the node lies against the active flank
+        raise UndercutError(exc.field, exc.value, (
+            f"{exc.allowed}; the active flank is u = [{box.u_root:.4f}, {box.u_tip:.4f}] mm, "
+            f"v = [{box.v_toe:.4f}, {box.v_heel:.4f}] mm, its node grid u = [{nb.u_root:.4f}, "
+            f"{nb.u_tip:.4f}], v = [{nb.v_toe:.4f}, {nb.v_heel:.4f}] mm (the envelope folds "
+            "or ends before that node: docs/machine_settings.md sec. 5)")) from None
     _check_regular(nodes, mean, setup, us, vs, box)
     psi = np.unwrap(np.unwrap(solver.angle(nodes.x_mm), axis=0), axis=1)
     flank = kind(side=setup.side, cone=cone, u_nodes=us, v_nodes=vs, psi_nodes=psi,
