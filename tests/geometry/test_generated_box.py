@@ -82,3 +82,30 @@ def test_standard_pinion_of_the_print_blank_is_cut_inside_its_envelope(blank_pai
         assert np.abs(mean.x_mm - m0.x_mm).max() < 1e-9
         assert np.abs(mean.n - m0.n).max() < 1e-12
         assert np.all(nodes.converged)
+
+
+@pytest.mark.slow
+def test_tca_of_the_print_blanks_standard_settings_has_its_vertex_at_the_mean_point(blank_pair):
+    # what `design --machine-settings` writes for the print's blank (left hand, as typed)
+    # and `tca` then runs (it was refused at the coast toe-root node). The crowning keeps
+    # the conjugate pinion's mean node and normal and relieves the pinion everywhere
+    # else, so the mean node is the contact at the reference phase (P0, a surface
+    # contact: mating-point solve to 1e-10; 1e-6 mm asserted) and the TE0 over the pitch
+    # has its vertex there: every other phase's TE0 on one side of 0 (measured: drive
+    # 0 to 11.42 arcsec, coast -7.29 to 0, 31 phases, the vertex at the middle phase;
+    # 1e-6 arcsec asserted, the TE0 solves' rounding)
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair = dataclasses.replace(blank_pair, pinion_hand="left")
+    cut = standard_machine_pair(pair)
+    for side, sign in (("drive", 1.0), ("coast", -1.0)):
+        res, flanks = analyze_pair(cut, side=side, phases=31)
+        p0, mean = res.mean_point, flanks.mean_contact[side]
+        assert abs(p0.u1 - mean["pinion_uv"][0]) < 1e-6
+        assert abs(p0.v1 - mean["pinion_uv"][1]) < 1e-6
+        assert not p0.edge_contact
+        env = sign * np.asarray(res.cycle.envelope_arcsec)
+        k = int(np.argmin(np.abs(res.cycle.phi1_rad - p0.phi1_rad)))
+        assert abs(env[k]) < 1e-6 and env.min() > -1e-6
+        assert res.cycle.te0_pp_arcsec > 1.0          # crowned: not the line contact
