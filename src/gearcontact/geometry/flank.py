@@ -289,11 +289,12 @@ def _warn_if_not_mates(touch: dict, side: str) -> None:
             f"[machine.gear.{side}] are not mates: at the pinion's mean point the nearest "
             f"touch leaves their normals {angle:.2f} deg apart (gap "
             f"{touch['gap_mm']:.4f} mm; mates touch there with a common normal, within "
-            f"{MATE_NORMAL_TOL_DEG:g} deg for an eased-off pinion): a {side} TCA of this pair "
-            "measures the mismatch (edge contact, a large TE0), not a bearing. The "
-            "pinion's settings were made for another gear: `gearcontact design --pair FILE --machine-settings` gives the standard "
-            "settings of the blank's gear and its pinion (a pinion for typed gear "
-            "settings: not yet, docs/machine_settings.md sec. 5 and 7)",
+            f"{MATE_NORMAL_TOL_DEG:g} deg for an eased-off pinion): a {side} TCA of this "
+            "pair measures the mismatch (edge contact, a large TE0), not a bearing. The "
+            "pinion's settings were made for another gear: `gearcontact design --pair "
+            "FILE --machine-settings` gives the standard settings of the blank's gear and "
+            "its pinion (a pinion for typed gear settings: not yet, "
+            "docs/machine_settings.md sec. 5 and 7)",
             MateWarning, stacklevel=3)
 
 

@@ -377,10 +377,11 @@ def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_w
     n_u x n_v exact node grid: a :class:`~.sheet.GearSheet` over the gear's pitch-cone
     coordinates (``u`` above the root along the pitch-cone normal, ``v`` cone distance
     from the mean section), box from the blade edge line
-    (:func:`~.generated_box.active_box`) to the tip and over the gear face width; the nodes cover ``node_box`` (a
-    :class:`~.formate.FlankBoundary` holding the box; default: the box with the node
-    margin; a gear that generates a conjugate pinion needs more, a function of ``box``
-    and the solver: :mod:`.gear_generation`); ``box`` as :func:`generated_pinion_flank`'s.
+    (:func:`~.generated_box.active_box`) to the tip and over the gear face width; the
+    nodes cover ``node_box`` (a :class:`~.formate.FlankBoundary` holding the box;
+    default: the box with the node margin; a gear that generates a conjugate pinion needs
+    more, a function of ``box`` and the solver: :mod:`.gear_generation`); ``box`` as
+    :func:`generated_pinion_flank`'s.
 
     Raises
     ------
