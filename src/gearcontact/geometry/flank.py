@@ -34,6 +34,7 @@ ISO 23509:2016 (blank data).
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from dataclasses import dataclass
 
 from ..deprecation import moved_names
@@ -52,8 +53,8 @@ from .machine import mirror_setup
 from .mirror import mirror_gear_flank, mirror_placement, mirror_sheet
 from .sampling import FlankGrid, sample_grid
 
-__all__ = ["MemberFlanks", "FlankSet", "build_flanks", "build_machine_flanks", "each_piece",
-           "right_hand_twin",
+__all__ = ["MATE_NORMAL_TOL_DEG", "MateWarning", "MemberFlanks", "FlankSet", "build_flanks",
+           "build_machine_flanks", "each_piece", "right_hand_twin",
            "mirror_flank_set",
            "with_easeoff"]
 
@@ -61,6 +62,24 @@ __all__ = ["MemberFlanks", "FlankSet", "build_flanks", "build_machine_flanks", "
 __getattr__ = moved_names(__name__, {
     name: f"gearcontact.geometry.formate:{name}"
     for name in ("FlankBoundary", "FormateFlank", "cone_vector", "gear_flank")})
+
+
+#: Members cut from machine settings are mates where they touch at the pinion's mean
+#: node with a common normal: exactly for standard settings (the crowning keeps the
+#: conjugate pinion's mean node and normal, :mod:`.basic_settings`), within a designed
+#: ease-off's slope there otherwise (a localized bearing's ease-off is flat at its
+#: mean point; 0.1 mm of relief over 6 mm from it would be 1 deg). Beyond this angle
+#: between the normals of the nearest touch, deg: :class:`MateWarning`. Not checked on
+#: a side with a relieved flank (a Toprem / Flankrem ridge through the mean point has
+#: no single normal: 0.46 / 0.51 deg measured on the F.2 pair with a 2 deg gear
+#: Flankrem, tests/data/toprem).
+MATE_NORMAL_TOL_DEG = 1.0
+
+
+class MateWarning(UserWarning):
+    """The pinion and gear cut from a pair's machine settings do not touch with a
+    common normal at the pinion's mean node: the pinion was not made for this gear (its
+    TCA runs on edges with a large TE0; docs/machine_settings.md sec. 5)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -244,6 +263,8 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
     mean = {}
     for side in SIDES:
         got = contact(side)
+        if not any(isinstance(f[side], KinkedFlank) for f in (pinion, gear)):
+            _warn_if_not_mates(got, side)     # a relief's ridge has no single normal
         # TCA starts at phi1 = u phi2: keep the pinion phase, its solve finds phi2
         mean[side] = {"pinion_uv": got["pinion_uv"], "gear_uv": got["gear_uv"],
                       "phi2_rad": got["phi1_rad"] / pair.ratio}
@@ -255,6 +276,26 @@ def build_machine_flanks(pair, *, n_u: int = 120, n_v: int = 150) -> FlankSet:
                     gear=MemberFlanks(**gear), pinion=MemberFlanks(**pinion),
                     pinion_conjugate=MemberFlanks(**pinion), mean_contact=mean,
                     pinion_normal_thickness_mm=thickness, gear_generation="machine")
+
+
+def _warn_if_not_mates(touch: dict, side: str) -> None:
+    """:class:`MateWarning` where the nearest touch at the pinion's mean node
+    (:func:`~.generated.mean_contact_guess`) leaves the normals more than
+    :data:`MATE_NORMAL_TOL_DEG` apart."""
+    angle = touch["normal_angle_deg"]
+    if angle > MATE_NORMAL_TOL_DEG:
+        warnings.warn(
+            f"the pinion cut from [machine.pinion.{side}] and the gear cut from "
+            f"[machine.gear.{side}] are not mates: at the pinion's mean point the nearest "
+            f"touch leaves their normals {angle:.2f} deg apart (gap "
+            f"{touch['gap_mm']:.4f} mm; mates touch there with a common normal, within "
+            f"{MATE_NORMAL_TOL_DEG:g} deg for an eased-off pinion): a {side} TCA of this "
+            "pair measures the mismatch (edge contact, a large TE0), not a bearing. The "
+            "pinion's settings were made for another gear: `gearcontact design --pair "
+            "FILE --machine-settings` gives the standard settings of the blank's gear and "
+            "its pinion (a pinion for typed gear settings: not yet, "
+            "docs/machine_settings.md sec. 5 and 7)",
+            MateWarning, stacklevel=3)
 
 
 def right_hand_twin(pair):
