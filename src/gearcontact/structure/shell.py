@@ -253,10 +253,11 @@ class ShellModel:
         return self.compliance(at).factor @ self.compliance(loads).factor.T
 
 
-def _stiffness(body, model: ShellModel) -> np.ndarray:
+def _stiffness(body, model: ShellModel, *, rim_block: bool = True) -> np.ndarray:
     """Ritz stiffness K (m x m), N/mm: Gauss-Legendre quadrature of the plate energy
     over the tooth and, with a rim segment, over its fillet and rim block (a rule per
-    piece: the thickness has a kink where the fillet ends)."""
+    piece: the thickness has a kink where the fillet ends); ``rim_block=False`` leaves
+    the block below the fillet out (:mod:`.rim_block` gives it a solid's energy)."""
     g, wg = legendre.leggauss(_QUADRATURE)
     gx, wx = legendre.leggauss(max(_QUADRATURE, model.order_face + 6))
     XI, ETA = np.meshgrid(gx, g, indexing="ij")
@@ -269,7 +270,8 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
         # depth s below the root line; the Ritz coordinate rises by (split + 1) / D per
         # mm upwards, the direction of the rim mid-surface's x_eta
         rate = (model.rim_split + 1.0) / rim.depth_mm
-        for s0, s1 in ((0.0, rim.fillet_mm), (rim.fillet_mm, rim.depth_mm)):
+        pieces = ((0.0, rim.fillet_mm), (rim.fillet_mm, rim.depth_mm))
+        for s0, s1 in pieces if rim_block else pieces[:1]:
             if s1 <= s0:
                 continue
             S = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * ETA.ravel()
@@ -403,11 +405,7 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         For an order outside 1..16, a non-positive thickness, or a stiffness that is
         not positive definite.
     """
-    if isinstance(order, bool) or int(order) != order or not 1 <= order <= 16:
-        raise InputRangeError("order", order, "an integer in [1, 16]")
-    order_face = order if order_face is None else order_face
-    if isinstance(order_face, bool) or int(order_face) != order_face or not 1 <= order_face <= 24:
-        raise InputRangeError("order_face", order_face, "an integer in [1, 24]")
+    order, order_face = check_orders(order, order_face)
     t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
@@ -420,11 +418,27 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     model = ShellModel(body=body, order=int(order), order_face=int(order_face),
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
                        membrane=membrane, membrane_shear=membrane_shear)
-    K = _stiffness(body, model)
+    return factored(model, _stiffness(body, model), name="shell stiffness")
+
+
+def check_orders(order, order_face) -> tuple[int, int]:
+    """The plate's Ritz orders checked (:func:`build_shell`): ``order`` in 1..16,
+    ``order_face`` in 1..24 (None: ``order``)."""
+    if isinstance(order, bool) or int(order) != order or not 1 <= order <= 16:
+        raise InputRangeError("order", order, "an integer in [1, 16]")
+    order_face = order if order_face is None else order_face
+    if isinstance(order_face, bool) or int(order_face) != order_face or not 1 <= order_face <= 24:
+        raise InputRangeError("order_face", order_face, "an integer in [1, 24]")
+    return int(order), int(order_face)
+
+
+def factored(model: ShellModel, K: np.ndarray, *, name: str) -> ShellModel:
+    """``model`` with the lower Cholesky factor of its stiffness K set; a K that is not
+    positive definite is refused naming ``name``."""
     try:
         L, _ = cho_factor(K, lower=True)
     except np.linalg.LinAlgError:
-        raise InputRangeError("shell stiffness", "not positive definite",
+        raise InputRangeError(name, "not positive definite",
                               "a regular plate (check thickness and order)") from None
     object.__setattr__(model, "cholesky", np.tril(L))
     return model
