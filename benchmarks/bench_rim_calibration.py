@@ -22,7 +22,8 @@ give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5). With ``--membrane n
 the shell couples membrane and bending through the mid-surface's curvature (a shallow
 shell, ``build_shell(..., membrane=True)``; docs/bending.md sec. 12), with ``--membrane
 dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged. With
-``--rim-block`` the block below the fillet is the Ritz solid of ``structure.rim_block``
+``--rim-block`` the block below the fillet is the Ritz solid of ``structure.rim_block`` (``build_shell(...,
+rim_block=True)``)
 (docs/bending.md sec. 13; ``--block-orders`` its enrichment's degrees, ``none`` for the
 plate's fields alone in the solid).
 
@@ -47,7 +48,7 @@ from gearcontact.geometry.pair import load_pair
 from gearcontact.structure.compliance import (EllipseRootWarning, FeMesh, flank_compliance,
                                               shell_compliance)
 from gearcontact.structure.rim import rim_segment
-from gearcontact.structure.rim_block import BLOCK_ORDERS, build_block_shell
+from gearcontact.structure.rim_block import BLOCK_ORDERS
 from gearcontact.structure.shell import ORDER, ORDER_FACE, RIM_STIFFENING, build_shell
 from gearcontact.structure.tooth import tooth_geometry
 
@@ -96,7 +97,8 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
                                 membrane=True, membrane_shear=membrane == "naghdi")
             res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
         elif rim_block:     # the Ritz solid below the fillet (sec. 13)
-            shell = build_block_shell(tooth, rim=rim, block_orders=block_orders)
+            shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
+                                rim_block=True, block_orders=block_orders)
             res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
         else:
             res = flank_compliance(pair, member, rim=rim, **kw)

@@ -22,12 +22,11 @@ The energy is ``1/2 int eps^T C eps dV`` with the isotropic 3D Hooke matrix, the
 modulus raised by the rim factor as the plate's rim was (:func:`.rim.rim_modulus_factor`,
 flat at ``stiffening`` below the fillet). The enrichment only adds Ritz functions, so
 the compliance never falls as its orders rise (nested spaces, one quadrature). Loads
-act on the tooth's flanks, where only the plate's fields live.
+act on the tooth's flanks, where only the plate's fields live. The shell takes the
+block with ``build_shell(..., rim_block=True)`` (:mod:`.shell`).
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,34 +34,22 @@ from ..validation import InputRangeError
 from .rim import RimSegment, rim_mid_surface, rim_modulus_factor, rim_points
 from .ritz_solid import (cartesian_gradients, energy_matrix, gauss_box, legendre_products,
                          map_jacobian, regular_determinant, voigt_strains)
-from .shell import ORDER, ORDER_FACE, ShellModel, _stiffness, check_orders, factored
-from .tooth import LoadPoints, local_frame
+from .tooth import local_frame
 
-__all__ = ["BlockShellModel", "build_block_shell", "BLOCK_ORDERS"]
+__all__ = ["block_stiffness", "check_block", "enrichment_count", "BLOCK_ORDERS",
+           "BLOCK_RIM_STIFFENING"]
 
 #: Legendre degrees of the block's enrichment (along the face, over the block's depth,
 #: across the section; docs/bending.md sec. 13).
 BLOCK_ORDERS = (8, 3, 3)
+#: The rim factor of the shell with the block (:func:`~.shell.tooth_shell` with
+#: ``rim_block``), calibrated as :data:`~.shell.RIM_STIFFENING` is (docs/bending.md
+#: sec. 10's procedure on the eight teeth's real roots, the grid 1.0 .. 1.49): the
+#: smallest worst |log(shell / FE)|, 0.136, shell / FE 0.880 .. 1.145 (sec. 13).
+BLOCK_RIM_STIFFENING = 1.175
 #: Step of the central differences of the rim frame and thickness: in xi, and in mm of
 #: depth.
 _FRAME_STEP = 1e-3
-
-
-@dataclass(frozen=True, eq=False)
-class BlockShellModel(ShellModel):
-    """A tooth's plate over tooth and fillet with the Ritz solid of its rim block (module
-    docstring). The first ``n_plate`` Ritz coordinates are the plate's
-    (:class:`~.shell.ShellModel`), the rest the block's enrichment; build with
-    :func:`build_block_shell`."""
-
-    n_plate: int = 0
-    block_orders: tuple | None = None
-
-    def load_vectors(self, points: LoadPoints) -> np.ndarray:
-        """Phi (n, m): the plate's (loads on the flanks), zero on the enrichment."""
-        phi = super().load_vectors(points)
-        return np.concatenate([phi, np.zeros((len(phi), self.n_functions - self.n_plate))],
-                              axis=1)
 
 
 def _frame_fields(body, rim: RimSegment, xi, s):
@@ -84,7 +71,7 @@ def _frame_fields(body, rim: RimSegment, xi, s):
     return f, f_xi, f_s, t, t_xi, t_s
 
 
-def _plate_gradients(model: ShellModel, xi2, s2, n_zeta: int, zeta):
+def _plate_gradients(model, xi2, s2, n_zeta: int, zeta):
     """d u / d(xi, s, zeta) (m_plate, n, 3 components, 3 parameters) of the plate's Ritz
     functions carried into the block (module docstring) at the points of the (xi, s)
     grid ``xi2, s2`` (n2,) repeated over ``zeta`` (n_zeta values in [0, 1])."""
@@ -113,12 +100,14 @@ def _plate_gradients(model: ShellModel, xi2, s2, n_zeta: int, zeta):
     return out.reshape(3 * nb, n, 3, 3)
 
 
-def block_stiffness(model: BlockShellModel, *, points=None) -> np.ndarray:
+def block_stiffness(model) -> np.ndarray:
     """Ritz stiffness (m, m), N/mm, of the solid rim block below the fillet over all the
-    model's functions (plate's carried in, then the enrichment's); ``points`` the Gauss
-    nodes along (xi, depth, across) (default ``(max(20, order_face + 6), 12, 6)``)."""
+    functions of ``model`` (a :class:`~.shell.ShellModel` with ``rim_block``: the plate's
+    carried in, then the enrichment's of ``model.block_orders``); the Gauss nodes along
+    (xi, depth, across) ``model.block_points`` (default ``(max(20, order_face + 6),
+    12, 6)``)."""
     body, rim = model.body, model.rim
-    pts = (max(20, model.order_face + 6), 12, 6) if points is None else points
+    pts = model.block_points or (max(20, model.order_face + 6), 12, 6)
     q, w = gauss_box(pts)
     top, depth = rim.fillet_mm, rim.depth_mm
     half = 0.5 * (depth - top)
@@ -148,48 +137,22 @@ def block_stiffness(model: BlockShellModel, *, points=None) -> np.ndarray:
                          body.material.poisson_ratio)
 
 
-def build_block_shell(body, *, rim: RimSegment, order: int = ORDER,
-                      order_face: int = ORDER_FACE,
-                      block_orders: tuple | None = BLOCK_ORDERS,
-                      block_points=None) -> BlockShellModel:
-    """Assemble and factor the plate of tooth and fillet with the Ritz solid of its rim
-    block (module docstring).
-
-    Parameters
-    ----------
-    body : ToothGeometry
-        The tooth (with its member axis: :mod:`.rim`).
-    rim : RimSegment
-        Its fillet and rim (the block lies between ``fillet_mm`` and ``depth_mm``, which
-        must differ).
-    order, order_face : int
-        The plate's Legendre degrees (:func:`~.shell.build_shell`).
-    block_orders : tuple of 3 int or None
-        Legendre degrees (0..16) of the enrichment along the face, over the block's
-        depth and across it; None: the plate's fields alone in the solid.
-    block_points : tuple of 3 int or None
-        Gauss nodes of the block's quadrature (:func:`block_stiffness`).
-
-    Raises
-    ------
-    InputRangeError
-        For a rim without a block below its fillet, degrees out of range, or a
-        stiffness that is not positive definite.
-    """
+def check_block(rim, block_orders) -> tuple | None:
+    """The block's options checked (:func:`~.shell.build_shell` with ``rim_block``): a
+    rim with a block below its fillet, ``block_orders`` three degrees in 0..16 or None
+    (the plate's fields alone in the solid); returns the degrees as ints."""
     if not isinstance(rim, RimSegment) or not rim.depth_mm > rim.fillet_mm:
-        raise InputRangeError("rim", rim, "a RimSegment with depth_mm > fillet_mm")
-    if block_orders is not None:
-        if len(block_orders) != 3 or any(isinstance(p, bool) or int(p) != p or not 0 <= p <= 16
-                                         for p in block_orders):
-            raise InputRangeError("block_orders", block_orders,
-                                  "three integers in [0, 16] or None")
-        block_orders = tuple(int(p) for p in block_orders)
-    order, order_face = check_orders(order, order_face)
-    plate = 3 * (order + 1) * (order_face + 1)
-    extra = 0 if block_orders is None else 3 * int(np.prod([p + 1 for p in block_orders]))
-    model = BlockShellModel(body=body, order=order, order_face=order_face,
-                            cholesky=np.empty((0, 0)), n_functions=plate + extra, rim=rim,
-                            n_plate=plate, block_orders=block_orders)
-    K = block_stiffness(model, points=block_points)
-    K[:plate, :plate] += _stiffness(body, model, rim_block=False)
-    return factored(model, 0.5 * (K + K.T), name="block shell stiffness")
+        raise InputRangeError("rim", rim, "a RimSegment with depth_mm > fillet_mm "
+                              "(a block below the fillet)")
+    if block_orders is None:
+        return None
+    if (not isinstance(block_orders, (tuple, list)) or len(block_orders) != 3
+            or any(isinstance(p, bool) or int(p) != p or not 0 <= p <= 16
+                   for p in block_orders)):
+        raise InputRangeError("block_orders", block_orders, "three integers in [0, 16] or None")
+    return tuple(int(p) for p in block_orders)
+
+
+def enrichment_count(block_orders) -> int:
+    """Ritz functions of the enrichment: 3 prod(degree + 1), 0 for None."""
+    return 0 if block_orders is None else 3 * int(np.prod([p + 1 for p in block_orders]))

@@ -32,9 +32,8 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from ..validation import InputRangeError, check_positive
-from .shell import _legendre_table
 
-__all__ = ["MappedBlock", "gauss_box", "map_jacobian", "legendre_products",
+__all__ = ["legendre_table", "MappedBlock", "gauss_box", "map_jacobian", "legendre_products",
            "cartesian_gradients", "voigt_strains", "hooke_matrix", "energy_matrix",
            "regular_determinant",
            "solid_stiffness", "face_load_vector"]
@@ -46,6 +45,22 @@ _CLAMPS = {None: (lambda q: np.ones_like(q), lambda q: np.zeros_like(q)),
            "both": (lambda q: 1.0 - q * q, lambda q: -2.0 * q)}
 #: Step (in q) of the central differences of the map's Jacobian.
 _JACOBIAN_STEP = 1e-5
+
+
+def legendre_table(x: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
+    """Values and first derivatives of P_0..P_order at x: two (order+1, n) arrays."""
+    # Bonnet's recurrence (n+1) P_{n+1} = (2n+1) x P_n - n P_{n-1} and
+    # P'_{n+1} = P'_{n-1} + (2n+1) P_n (Abramowitz & Stegun 22.7.10, 22.8.5): the same
+    # values as numpy's legval to rounding, without its per-order call overhead
+    x = np.asarray(x, float)
+    val, der = np.zeros((order + 1,) + x.shape), np.zeros((order + 1,) + x.shape)
+    val[0] = 1.0
+    if order >= 1:
+        val[1], der[1] = x, 1.0
+    for n in range(1, order):
+        val[n + 1] = ((2 * n + 1) * x * val[n] - n * val[n - 1]) / (n + 1)
+        der[n + 1] = der[n - 1] + (2 * n + 1) * val[n]
+    return val, der
 
 
 @dataclass(frozen=True)
@@ -94,7 +109,7 @@ def legendre_products(q: np.ndarray, degrees, *, clamp=(None, None, None)
     for a in range(3):
         if clamp[a] not in _CLAMPS:
             raise InputRangeError(f"clamp[{a}]", clamp[a], "None, 'low', 'high' or 'both'")
-        p, dp = _legendre_table(q[:, a], int(degrees[a]))
+        p, dp = legendre_table(q[:, a], int(degrees[a]))
         r, dr = (f(q[:, a]) for f in _CLAMPS[clamp[a]])
         tables.append((p * r, dp * r + p * dr))
     (v1, d1), (v2, d2), (v3, d3) = tables
