@@ -21,11 +21,16 @@ the plate's misfit with the same root geometry in both models. ``--mesh`` and ``
 give the finer mesh of the slow test (20 8 4 6, -0.5 0 0.5). With ``--membrane naghdi``
 the shell couples membrane and bending through the mid-surface's curvature (a shallow
 shell, ``build_shell(..., membrane=True)``; docs/bending.md sec. 12), with ``--membrane
-dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged.
+dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged. With
+``--rim-block`` the block below the fillet is the Ritz solid of ``structure.rim_block`` (``build_shell(...,
+rim_block=True)``)
+(docs/bending.md sec. 13; ``--block-orders`` its enrichment's degrees, ``none`` for the
+plate's fields alone in the solid).
 
 Usage: python3 benchmarks/bench_rim_calibration.py [--factors 1.3 1.4 ...]
        [--with-s0003-pinion] [--only LABEL ...] [--fe-root cutter|ellipse]
-       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--membrane dmv|naghdi] [--json FILE]
+       [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--membrane dmv|naghdi]
+       [--rim-block [--block-orders P_XI P_S P_ZETA | none]] [--json FILE]
 """
 
 from __future__ import annotations
@@ -43,6 +48,7 @@ from gearcontact.geometry.pair import load_pair
 from gearcontact.structure.compliance import (EllipseRootWarning, FeMesh, flank_compliance,
                                               shell_compliance)
 from gearcontact.structure.rim import rim_segment
+from gearcontact.structure.rim_block import BLOCK_ORDERS
 from gearcontact.structure.shell import ORDER, ORDER_FACE, RIM_STIFFENING, build_shell
 from gearcontact.structure.tooth import tooth_geometry
 
@@ -66,7 +72,8 @@ _FLANKS: dict = {}
 
 def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
             eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh(),
-            membrane: str | None = None) -> dict:
+            membrane: str | None = None, rim_block: bool = False,
+            block_orders=BLOCK_ORDERS) -> dict:
     """The FE deflections of one tooth under the distributed loads (computed once) and
     shell / FE at every factor of ``factors`` (segment loads, then line loads)."""
     pair = load_pair(pair_name)
@@ -88,6 +95,10 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
         if membrane:        # the shallow shell of the same tooth and rim (sec. 12)
             shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
                                 membrane=True, membrane_shear=membrane == "naghdi")
+            res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
+        elif rim_block:     # the Ritz solid below the fillet (sec. 13)
+            shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
+                                rim_block=True, block_orders=block_orders)
             res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
         else:
             res = flank_compliance(pair, member, rim=rim, **kw)
@@ -115,38 +126,56 @@ def main() -> None:
                     help="lattice heights (default -1/3 0 1/3)")
     ap.add_argument("--membrane", choices=("dmv", "naghdi"), default=None,
                     help="the shell with the membrane-curvature coupling (sec. 12)")
+    ap.add_argument("--rim-block", action="store_true",
+                    help="the rim block below the fillet as a Ritz solid (sec. 13)")
+    ap.add_argument("--block-orders", nargs="+", default=None,
+                    help="the block enrichment's degrees P_XI P_S P_ZETA, or none "
+                         f"(default {' '.join(map(str, BLOCK_ORDERS))})")
     ap.add_argument("--json", default=None, help="write the measurements to this file")
     args = ap.parse_args()
     teeth = TEETH + ([EIGHTH] if args.with_s0003_pinion else [])
     if args.only:
         teeth = [t for t in teeth if t[0] in args.only]
     factors = sorted(set(args.factors))
+    if args.block_orders is None:
+        block_orders = BLOCK_ORDERS
+    elif args.block_orders == ["none"]:
+        block_orders = None
+    else:
+        block_orders = tuple(int(p) for p in args.block_orders)
     out = {}
     for label, name, member in teeth:
         out[label] = measure(name, member, factors, fe_root=args.fe_root, eta=args.eta,
                              fe_mesh=FeMesh() if args.mesh is None else FeMesh(*args.mesh),
-                             membrane=args.membrane)
+                             membrane=args.membrane, rim_block=args.rim_block,
+                             block_orders=block_orders)
         print(f"{label}: FE {out[label]['fe_nodes']} nodes, {out[label]['fe_cpu_s']:.1f} s "
               f"CPU; line FE (um/kN) "
               + ", ".join(f"{x:.3f}" for x in out[label]["line_fe_um_per_kn"]), flush=True)
     print(f"\nshell / FE (min .. max over the 12 loads), current RIM_STIFFENING "
           f"{RIM_STIFFENING}")
-    print(f"{'factor':>6s} " + " ".join(f"{t[0]:>22s}" for t in teeth) + "  max|log|")
-    worst = {}
+    print(f"{'factor':>6s} " + " ".join(f"{t[0]:>22s}" for t in teeth)
+          + "  max|log|  log span")
+    worst, span = {}, {}
     for k in factors:
         cells, w = [], 0.0
+        every = np.concatenate([out[label]["ratios"][k] for label, _, _ in teeth])
         for label, _, _ in teeth:
             r = np.asarray(out[label]["ratios"][k])
             cells.append(f"{r.min():.3f} .. {r.max():.3f}")
             w = max(w, float(np.max(np.abs(np.log(r)))))
         worst[k] = w
-        print(f"{k:6.3f} " + " ".join(f"{c:>22s}" for c in cells) + f"  {w:.3f}")
+        # the spread of shell / FE over all teeth and loads (docs/bending.md sec. 12)
+        span[k] = float(np.log(every.max() / every.min()))
+        print(f"{k:6.3f} " + " ".join(f"{c:>22s}" for c in cells)
+              + f"  {w:.3f}     {span[k]:.3f}")
     best = min(worst, key=worst.get)
     print(f"\nsmallest worst misfit: factor {best:g}, max |log(shell / FE)| {worst[best]:.3f}")
     print(f"load average: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     if args.json:
         with open(args.json, "w") as fh:
-            json.dump({"factors": factors, "worst_abs_log": worst, "teeth": out}, fh,
+            json.dump({"factors": factors, "worst_abs_log": worst, "log_span": span,
+                       "teeth": out}, fh,
                       indent=1)
 
 

@@ -27,7 +27,8 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   the tooth to the tip (1). The plate model of the fillet and the rim block (wide,
   shallow, with a twisted mid-surface) is too soft against the 3D solid: their modulus
   is raised by a factor calibrated per member against the FE (:data:`RIM_STIFFENING`).
-  Without a rim segment the plate is clamped at the root line (the closed-form
+  With ``rim_block`` the block below the fillet is a Ritz solid instead, coupled to the
+  plate (:mod:`.rim_block`, docs/bending.md sec. 13). Without a rim segment the plate is clamped at the root line (the closed-form
   cantilever);
 - a unit load along the unit direction d at a flank point (offset z from the
   mid-surface) does work on ``delta = (d.m) w + z ((d.e_1) beta_1 + (d.e_2) beta_2)``,
@@ -70,6 +71,9 @@ from ..geometry.flank import FlankSet
 from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import RimSegment, rim_mid_surface, rim_modulus_factor, rim_segment, tooth_height_mm
+from .rim_block import (BLOCK_ORDERS, BLOCK_RIM_STIFFENING, block_stiffness, check_block,
+                        enrichment_count)
+from .ritz_solid import legendre_table
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
 __all__ = ["ShellModel", "ComplianceOperator", "build_shell", "tooth_shell",
@@ -99,6 +103,10 @@ ORDER, ORDER_FACE = 10, 16
 #: Whether a bevel tooth's shell (:func:`tooth_shell`) couples membrane and bending
 #: through its mid-surface's curvature (docs/bending.md sec. 12).
 MEMBRANE = False
+#: Whether a bevel tooth's shell (:func:`tooth_shell`) takes its rim block below the
+#: fillet as a Ritz solid (:mod:`.rim_block`, its own calibrated factor
+#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; docs/bending.md sec. 13).
+RIM_BLOCK = False
 #: Step of the central differences of the mid-surface's tangents in :func:`second_form`
 #: (in the surface's coordinates: xi, eta in [-1, 1]; mm of height in the rim).
 _CURVATURE_STEP = 1e-3
@@ -107,22 +115,6 @@ _CURVATURE_STEP = 1e-3
 #: trial spaces of different orders are compared on the same integration rule); along
 #: the face at least ``order_face + 6`` points.
 _QUADRATURE = 20
-
-
-def _legendre_table(x: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
-    """Values and first derivatives of P_0..P_order at x: two (order+1, n) arrays."""
-    # Bonnet's recurrence (n+1) P_{n+1} = (2n+1) x P_n - n P_{n-1} and
-    # P'_{n+1} = P'_{n-1} + (2n+1) P_n (Abramowitz & Stegun 22.7.10, 22.8.5): the same
-    # values as numpy's legval to rounding, without its per-order call overhead
-    x = np.asarray(x, float)
-    val, der = np.zeros((order + 1,) + x.shape), np.zeros((order + 1,) + x.shape)
-    val[0] = 1.0
-    if order >= 1:
-        val[1], der[1] = x, 1.0
-    for n in range(1, order):
-        val[n + 1] = ((2 * n + 1) * x * val[n] - n * val[n - 1]) / (n + 1)
-        der[n + 1] = der[n - 1] + (2 * n + 1) * val[n]
-    return val, der
 
 
 @dataclass(frozen=True)
@@ -176,6 +168,15 @@ class ShellModel:
     rim: RimSegment | None = None
     membrane: bool = False
     membrane_shear: bool = True
+    rim_block: bool = False
+    block_orders: tuple | None = None
+    block_points: tuple | None = None
+
+    @property
+    def n_plate(self) -> int:
+        """The plate's Ritz functions (the first coordinates); with ``rim_block`` the
+        block's enrichment follows them (:mod:`.rim_block`)."""
+        return self.n_fields * (self.order + 1) * (self.order_face + 1)
 
     @property
     def n_fields(self) -> int:
@@ -206,8 +207,8 @@ class ShellModel:
         bottom of the plate: the root line, or the rim's bottom). The fields
         (:attr:`n_fields`) share one scalar basis."""
         xi, eta = np.atleast_1d(np.asarray(xi, float)), np.atleast_1d(np.asarray(eta_r, float))
-        px, dpx = _legendre_table(xi, self.order_face)
-        pe, dpe = _legendre_table(eta, self.order)
+        px, dpx = legendre_table(xi, self.order_face)
+        pe, dpe = legendre_table(eta, self.order)
         qe = 0.5 * (1.0 + eta) * pe
         dqe = 0.5 * (1.0 + eta) * dpe + 0.5 * pe
         n = len(xi)
@@ -228,7 +229,9 @@ class ShellModel:
         coef = [np.einsum("ni,ni->n", d, m), z * d1, z * d2]
         if self.membrane:
             coef += [d1, d2]                 # the in-plane displacements' work
-        return np.concatenate([(N[f] * coef[f]).T for f in range(self.n_fields)], axis=1)
+        # loads act on the flanks: no work on the rim block's enrichment
+        return np.concatenate([(N[f] * coef[f]).T for f in range(self.n_fields)]
+                              + [np.zeros((len(d), self.n_functions - self.n_plate))], axis=1)
 
     @cached_property
     def inverse_cholesky_t(self) -> np.ndarray:
@@ -256,20 +259,25 @@ class ShellModel:
 def _stiffness(body, model: ShellModel) -> np.ndarray:
     """Ritz stiffness K (m x m), N/mm: Gauss-Legendre quadrature of the plate energy
     over the tooth and, with a rim segment, over its fillet and rim block (a rule per
-    piece: the thickness has a kink where the fillet ends)."""
+    piece: the thickness has a kink where the fillet ends); with ``model.rim_block``
+    the block below the fillet is the Ritz solid of :mod:`.rim_block` instead."""
     g, wg = legendre.leggauss(_QUADRATURE)
     gx, wx = legendre.leggauss(max(_QUADRATURE, model.order_face + 6))
     XI, ETA = np.meshgrid(gx, g, indexing="ij")
     xi, eta, wq = XI.ravel(), ETA.ravel(), np.outer(wx, wg).ravel()
     curv = (second_form(body.mid_surface, xi, eta) if model.membrane else None)
-    K = _plate_energy(body.mid_surface(xi, eta), *model.shape_functions(xi, eta), wq,
-                      body.material, curvature=curv, shear_coupling=model.membrane_shear)
+    K = np.zeros((model.n_functions, model.n_functions))
+    p = model.n_plate
+    K[:p, :p] = _plate_energy(body.mid_surface(xi, eta), *model.shape_functions(xi, eta), wq,
+                              body.material, curvature=curv,
+                              shear_coupling=model.membrane_shear)
     rim = model.rim
     if rim is not None:
         # depth s below the root line; the Ritz coordinate rises by (split + 1) / D per
         # mm upwards, the direction of the rim mid-surface's x_eta
         rate = (model.rim_split + 1.0) / rim.depth_mm
-        for s0, s1 in ((0.0, rim.fillet_mm), (rim.fillet_mm, rim.depth_mm)):
+        pieces = ((0.0, rim.fillet_mm), (rim.fillet_mm, rim.depth_mm))
+        for s0, s1 in pieces[:1] if model.rim_block else pieces:
             if s1 <= s0:
                 continue
             S = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * ETA.ravel()
@@ -277,10 +285,13 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
             # the rim's coordinates: (xi, height above the root line = -S)
             curv = (second_form(lambda x, up: rim_mid_surface(body, rim, x, -up), xi, -S)
                     if model.membrane else None)
-            K += _plate_energy(rim_mid_surface(body, rim, xi, S), n, n_xi, n_eta * rate,
-                               wq * 0.5 * (s1 - s0), body.material,
-                               modulus_factor=rim_modulus_factor(rim, S), curvature=curv,
-                               shear_coupling=model.membrane_shear)
+            K[:p, :p] += _plate_energy(
+                rim_mid_surface(body, rim, xi, S), n, n_xi, n_eta * rate,
+                wq * 0.5 * (s1 - s0), body.material,
+                modulus_factor=rim_modulus_factor(rim, S), curvature=curv,
+                shear_coupling=model.membrane_shear)
+        if model.rim_block:
+            K += block_stiffness(model)
     return 0.5 * (K + K.T)
 
 
@@ -372,7 +383,9 @@ def _plate_energy(mid, N, Nxi, Neta, wq, material, *, modulus_factor=1.0,
 
 def build_shell(body, *, order: int = 6, order_face: int | None = None,
                 rim: RimSegment | None = None, membrane: bool = False,
-                membrane_shear: bool = True) -> ShellModel:
+                membrane_shear: bool = True, rim_block: bool = False,
+                block_orders: tuple | None = BLOCK_ORDERS,
+                block_points: tuple | None = None) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -396,6 +409,16 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         With ``membrane``: the curvature also in the transverse shear,
         ``gamma_a = w,a + beta_a + b_ab u_b`` (Naghdi); False: only in the membrane
         strain (Donnell-Mushtari-Vlasov).
+    rim_block : bool
+        The rim block below the fillet as a Ritz solid coupled to the plate
+        (:mod:`.rim_block`, docs/bending.md sec. 13; needs ``rim``, not with
+        ``membrane``); False: the plate continues through it.
+    block_orders : tuple of 3 int or None
+        With ``rim_block``: Legendre degrees (0..16) of the block's enrichment along the
+        face, over its depth and across it; None: the plate's fields alone in the solid.
+    block_points : tuple of 3 int or None
+        With ``rim_block``: Gauss nodes of the block's quadrature
+        (:func:`~.rim_block.block_stiffness`).
 
     Raises
     ------
@@ -403,28 +426,48 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         For an order outside 1..16, a non-positive thickness, or a stiffness that is
         not positive definite.
     """
+    order, order_face = check_orders(order, order_face)
+    t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
+    if not np.all(t > 0.0):
+        raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
+    for name, flag in (("membrane", membrane), ("membrane_shear", membrane_shear),
+                       ("rim_block", rim_block)):
+        if not isinstance(flag, bool):
+            raise InputRangeError(name, flag, "True or False")
+    n = (5 if membrane else 3) * (order + 1) * (order_face + 1)
+    if rim is not None and not isinstance(rim, RimSegment):
+        raise InputRangeError("rim", rim, "a RimSegment or None")
+    if rim_block:
+        if membrane:
+            raise InputRangeError("rim_block", rim_block, "False with membrane=True")
+        block_orders = check_block(rim, block_orders)
+        n += enrichment_count(block_orders)
+    model = ShellModel(body=body, order=order, order_face=order_face,
+                       cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
+                       membrane=membrane, membrane_shear=membrane_shear, rim_block=rim_block,
+                       block_orders=block_orders if rim_block else None,
+                       block_points=block_points if rim_block else None)
+    return factored(model, _stiffness(body, model), name="shell stiffness")
+
+
+def check_orders(order, order_face) -> tuple[int, int]:
+    """The plate's Ritz orders checked (:func:`build_shell`): ``order`` in 1..16,
+    ``order_face`` in 1..24 (None: ``order``)."""
     if isinstance(order, bool) or int(order) != order or not 1 <= order <= 16:
         raise InputRangeError("order", order, "an integer in [1, 16]")
     order_face = order if order_face is None else order_face
     if isinstance(order_face, bool) or int(order_face) != order_face or not 1 <= order_face <= 24:
         raise InputRangeError("order_face", order_face, "an integer in [1, 24]")
-    t = body.mid_surface(*np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9))).thickness_mm
-    if not np.all(t > 0.0):
-        raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
-    for name, flag in (("membrane", membrane), ("membrane_shear", membrane_shear)):
-        if not isinstance(flag, bool):
-            raise InputRangeError(name, flag, "True or False")
-    n = (5 if membrane else 3) * (int(order) + 1) * (int(order_face) + 1)
-    if rim is not None and not isinstance(rim, RimSegment):
-        raise InputRangeError("rim", rim, "a RimSegment or None")
-    model = ShellModel(body=body, order=int(order), order_face=int(order_face),
-                       cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
-                       membrane=membrane, membrane_shear=membrane_shear)
-    K = _stiffness(body, model)
+    return int(order), int(order_face)
+
+
+def factored(model: ShellModel, K: np.ndarray, *, name: str) -> ShellModel:
+    """``model`` with the lower Cholesky factor of its stiffness K set; a K that is not
+    positive definite is refused naming ``name``."""
     try:
         L, _ = cho_factor(K, lower=True)
     except np.linalg.LinAlgError:
-        raise InputRangeError("shell stiffness", "not positive definite",
+        raise InputRangeError(name, "not positive definite",
                               "a regular plate (check thickness and order)") from None
     object.__setattr__(model, "cholesky", np.tril(L))
     return model
@@ -433,11 +476,12 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
 @lru_cache(maxsize=8)
 def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
                 order_face: int = ORDER_FACE, rim: RimSegment | None = None,
-                membrane: bool = MEMBRANE) -> ShellModel:
+                membrane: bool = MEMBRANE, rim_block: bool = RIM_BLOCK) -> ShellModel:
     """The shell model of one tooth of ``member``, cached per flank set and member.
 
     ``rim`` defaults to the member's fillet and rim segment (:func:`.rim.rim_segment`)
-    with its calibrated :data:`RIM_STIFFENING`; the default orders (10 over the height
+    with its calibrated :data:`RIM_STIFFENING` (with ``rim_block``,
+    :data:`~.rim_block.BLOCK_RIM_STIFFENING`); the default orders (10 over the height
     of tooth and rim, 16 along the face) are those of the calibration (a tooth is 5-10
     times longer than high). Both flanks (drive and coast) of the tooth use the same
     model (one cache entry per pair, member and options; the flank set is hashed by
@@ -445,5 +489,7 @@ def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
     """
     tooth: ToothGeometry = tooth_geometry(flanks, member, material=material)
     if rim is None:
-        rim = rim_segment(tooth, stiffening=RIM_STIFFENING[member])
-    return build_shell(tooth, order=order, order_face=order_face, rim=rim, membrane=membrane)
+        rim = rim_segment(tooth, stiffening=BLOCK_RIM_STIFFENING if rim_block
+                          else RIM_STIFFENING[member])
+    return build_shell(tooth, order=order, order_face=order_face, rim=rim, membrane=membrane,
+                       rim_block=rim_block)
