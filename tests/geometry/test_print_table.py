@@ -277,6 +277,22 @@ def test_a_word_read_wrong_through_the_print_is_named(doc, key, word, gross):
         assert rows["spiral angle"].measured == pytest.approx(37.68, abs=0.01)
 
 
+def test_a_blade_angle_typed_wrong_is_named_by_its_print_key(doc):
+    # "IB 18D 0M" typed "IB 19D 0M": no sign or unit slip explains the drive flank's
+    # generating pressure angle 19 deg against the printed 18D 0M (its blade's identity,
+    # 1e-7 deg); the single-key search names the inside blade as typed in the print,
+    # print.gear.blades[1], with the value it needs in the converted key (deg): the
+    # truth, 18, inside it; the coast flank (OB) agrees
+    got = check_pair_blank(_load(_with(doc, blades=["OB 24D 30M", "IB 19D 0M"])))
+    drive, coast = got.flanks[:2]
+    assert coast.agrees and not drive.agrees and not got.gross
+    (key,) = drive.single_keys
+    assert key.key == "print.gear.blades[1] (converted: blade.gear.drive.blade_angle_deg)"
+    assert key.low <= 18.0 <= key.high
+    assert "print.gear.blades[1] (converted: blade.gear.drive.blade_angle_deg) typed 19" \
+        in got.warnings()[0]
+
+
 def test_round_trip_keeps_the_print_as_typed(pair):
     # the writer keeps the user's print: [print.gear] with the values as typed (TOML
     # numbers as parsed), no [machine.gear.*]; read back it is the same pair, and the

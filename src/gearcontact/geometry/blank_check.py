@@ -225,7 +225,9 @@ class FlankCheck:
     it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
     ``slip_also`` (the keys of the other slips under which it agrees, best first);
     ``single_keys``: where no known slip explains it, the keys that alone do, with the
-    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked)."""
+    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked); ``printed``:
+    the flank's settings were converted from ``[print.gear]`` and compared with the
+    page's printed blank (:func:`printed_stated_blank`), its keys the print's."""
 
     member: str
     side: str
@@ -236,6 +238,7 @@ class FlankCheck:
     slip_word: str = ""
     slip_also: tuple = ()
     single_keys: tuple = ()
+    printed: bool = False
 
     @property
     def agrees(self) -> bool:
@@ -283,15 +286,15 @@ class BlankCheck:
         if f.slip:
             also = [g.slip for g in bad if g.slip and g is not f]
             raise InputRangeError(f.slip, f.slip_value,
-                                  f"the {slip_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
-                                  f"{with_slip(f.slip_word)} the flank agrees with the blank" + _also(f)
+                                  f"the {slip_fix(f.slip_word)} that cuts {_blank(f)}'s tooth ({what}; "
+                                  f"{with_slip(f.slip_word)} the flank agrees with {_blank(f)}" + _also(f)
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         one = f.single_keys[0] if len(f.single_keys) == 1 else None
         raise InputRangeError(one.key.split(" (converted: ")[0] if one
                               else f"[machine.{f.member}.{f.side}]",
                               one.typed if one else None,
-                              f"settings that cut the blank's tooth ({what}; no known sign "
+                              f"settings that cut {_blank(f)}'s tooth ({what}; no known sign "
                               "or unit slip explains it" + "".join(
                                   f"; {g.member} {g.side}: {describe(g.single_keys)}"
                                   for g in bad if not g.missing)
@@ -310,8 +313,9 @@ class BlankCheck:
                         "" if f.missing else f"; {describe(f.single_keys)}"))
             if key and not self.hand_slip:
                 hint += _also(f)
-            out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
-                       f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
+            table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
+            out.append(f"warning: the {f.member} {f.side} flank cut from [{table}] does not "
+                       f"agree with {_blank(f)}: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
         return out
 
@@ -325,12 +329,18 @@ def _also(f: FlankCheck) -> str:
     return f"; it agrees as well with the {what} {', '.join(f.slip_also)}"
 
 
+def _blank(f: FlankCheck) -> str:
+    """What ``f`` was compared with: ``"the blank"`` or (a gear typed as a print) ``"the
+    printed blank"``."""
+    return "the printed blank" if f.printed else "the blank"
+
+
 def _describe(f: FlankCheck) -> str:
     if f.missing:
         return f.missing
     return ", ".join(
-        f"{c.quantity} {c.measured}, the blank's {c.stated}" if c.tolerance is None else
-        f"{c.quantity} {c.measured:.4f} {c.unit}, the blank's {c.stated:.4f} (tolerance "
+        f"{c.quantity} {c.measured}, {_blank(f)}'s {c.stated}" if c.tolerance is None else
+        f"{c.quantity} {c.measured:.4f} {c.unit}, {_blank(f)}'s {c.stated:.4f} (tolerance "
         f"{c.tolerance:.2g})" for c in f.comparisons if not c.within)
 
 
@@ -508,7 +518,7 @@ def _print_named(f: FlankCheck, printed: tuple) -> FlankCheck:
 
     got = print_key(f.slip, table) if f.slip else None
     return dataclasses.replace(
-        f, slip=got[0] if got else f.slip, slip_value=got[1] if got else f.slip_value,
+        f, printed=True, slip=got[0] if got else f.slip, slip_value=got[1] if got else f.slip_value,
         slip_word=name(f.slip_word), slip_also=tuple(name(k) for k in f.slip_also),
         single_keys=tuple(dataclasses.replace(k, key=f"{name(k.key)} (converted: {k.key})")
                           if print_key(k.key, table) else k for k in f.single_keys))
@@ -551,8 +561,8 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
                 key, value, word, also = pair_slip(s, datum, compare)
                 f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                         slip_also=also)
-            if st.printed:
-                f = _print_named(f, st.printed)
+        if st.printed:
+            f = _print_named(f, st.printed)
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 
