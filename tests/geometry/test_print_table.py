@@ -8,8 +8,11 @@ gear tables the sheet's test data typed by hand (hypoid_10x41_no16_gear.toml); t
 console script's ``design`` prints the generating gear's spiral and pressure angles the
 print prints, within the print's rounding as test_flank_angles.py derives it (its
 constants, not copies). The MD datum's comparison against the pair's blank: the print's
-chain by hand arithmetic (test_print_words.py) against the blank's apex. Every refusal
-names the key as typed (the value typed wrong is the truth).
+chain by hand arithmetic (test_print_words.py) against the blank's apex. The
+typed-settings check of the gear states what the page prints with the print's rounding,
+as test_blank_check.py states the sheet by hand (the same numbers); the page typed
+correctly agrees, and a word misread is named by its print key (the flip is the truth).
+Every refusal names the key as typed (the value typed wrong is the truth).
 """
 
 from __future__ import annotations

@@ -286,8 +286,9 @@ class BlankCheck:
         if f.slip:
             also = [g.slip for g in bad if g.slip and g is not f]
             raise InputRangeError(f.slip, f.slip_value,
-                                  f"the {slip_fix(f.slip_word)} that cuts {_blank(f)}'s tooth ({what}; "
-                                  f"{with_slip(f.slip_word)} the flank agrees with {_blank(f)}" + _also(f)
+                                  f"the {slip_fix(f.slip_word)} that cuts {_blank(f)}'s "
+                                  f"tooth ({what}; {with_slip(f.slip_word)} the flank agrees "
+                                  f"with {_blank(f)}" + _also(f)
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         one = f.single_keys[0] if len(f.single_keys) == 1 else None

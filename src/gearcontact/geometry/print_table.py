@@ -70,8 +70,8 @@ from .print_blank import (DATUM_LENGTHS, PRINT_BLANK_KEYS, PRINT_ROUNDING, SOURC
 from .print_words import INCH_MM, gear_tables_from_print, md_value
 from .toml_tables import PRINTED, check_tables
 
-__all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintBlankNote", "PrintDatumWarning", "TABLE", "check_print_blank",
-           "print_gear_setups", "print_gear_tables", "printed_key_error", "printed_toml_lines",
+__all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintBlankNote", "PrintDatumWarning", "TABLE",
+           "check_print_blank", "print_gear_setups", "print_gear_tables", "printed_key_error", "printed_toml_lines",
            "split_print"]
 
 #: The table's name in a pair file (and in every error).
