@@ -320,6 +320,8 @@ def test_a_changed_gear_is_written_as_tables(pair):
     text = pair_to_toml(changed)
     assert "[print.gear]" not in text and "[machine.gear.drive]" in text
     assert parse_pair(tomllib.loads(text)).machine == changed.machine
+    # and it is checked as typed tables against the pair's blank, not against the page
+    assert printed_stated_blank(pair) is not None and printed_stated_blank(changed) is None
 
 
 CARELESS = [

@@ -59,7 +59,7 @@ from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generat
 from ..deprecation import moved_names
 from .known_slips import pair_slip, single_slip, slip_fix, with_slip
 from .machine import MachineSetup
-from .print_blank import print_key, printed_blank
+from .print_blank import cuts_the_printed_gear, print_key, printed_blank
 from .slip_attribution import describe, explaining_values
 from .typed_settings import full_key, moved, roundings, setting, typed_keys
 
@@ -183,10 +183,12 @@ def printed_stated_blank(pair) -> StatedBlank | None:
     angles, hand and cutter, the MD's datum by the print's chain, the stated values'
     and the settings' rounding the print's (its digits, propagated by the check as for
     typed digits); the dedendum (root datum, a model bound) the pair's blank's. None for
-    a pair whose gear is not typed as a print."""
-    printed = dict(getattr(pair, "print_gear", ()) or ())
-    if not printed:
+    a pair without ``[print.gear]``, or whose gear is not the one it cuts
+    (:func:`~.print_blank.cuts_the_printed_gear`: a gear changed since, by a correction
+    or standard settings, is checked as typed tables against the pair's blank)."""
+    if not cuts_the_printed_gear(pair):
         return None
+    printed = dict(pair.print_gear)
     base, p = stated_blank(pair), printed_blank(printed, gear_teeth=pair.gear_teeth)
     return dataclasses.replace(
         base, pitch_angle_deg={"gear": p.pitch_angle_deg},

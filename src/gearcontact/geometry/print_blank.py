@@ -26,11 +26,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..validation import InputRangeError, check_finite
-from .print_words import (BLADE_WORDS, INCH_MM, degrees_minutes,
+from .machine import setup_from_tables
+from .print_words import (BLADE_WORDS, INCH_MM, degrees_minutes, gear_tables_from_print,
                           pitch_apex_from_crossing_point_in)
 
 __all__ = ["HAND_WORDS", "PRINT_BLANK_KEYS", "PRINT_ROUNDING", "SOURCE_KEYS", "PrintedBlank",
-           "apex_in", "apex_rounding_in", "blank_differences", "print_key", "printed_blank",
+           "apex_in", "apex_rounding_in", "blank_differences", "cuts_the_printed_gear",
+           "print_gear_tables", "print_key", "printed_blank", "printed_gear_setups",
            "printed_hand"]
 
 #: Half a unit of the print's last digit (the one print read prints lengths to 0.001 in,
@@ -169,6 +171,31 @@ def printed_blank(printed: Mapping, *, gear_teeth: int) -> PrintedBlank:
                           "sliding_base_mm": t, "blank_offset_mm": t,
                           "ratio_of_roll": 75.0 * PRINT_ROUNDING["ratio"] / gear_teeth,
                           "blade_angle_deg": a, "point_radius_mm": point})
+
+
+def print_gear_tables(printed: Mapping, *, gear_teeth: int) -> dict:
+    """``{"machine": {"gear": {side: ...}}, "blade": {"gear": {side: ...}}}``: the gear's
+    tables of a checked ``[print.gear]`` table
+    (:func:`~.print_words.gear_tables_from_print`); errors name ``print.gear.<key>``."""
+    return gear_tables_from_print({**printed, "gear_teeth": gear_teeth}, where=_TABLE)
+
+
+def printed_gear_setups(printed: Mapping, *, gear_teeth: int) -> tuple:
+    """The gear's two :class:`~.machine.MachineSetup` (drive, coast) a ``[print.gear]``
+    table cuts (an error on a converted value names the converted key:
+    :func:`~.print_table.print_gear_setups` renames it to the print's)."""
+    tables = print_gear_tables(printed, gear_teeth=gear_teeth)
+    return tuple(setup_from_tables("gear", side, tables["machine"]["gear"][side],
+                                   tables["blade"]["gear"][side]) for side in _BLADE_OF_SIDE)
+
+
+def cuts_the_printed_gear(pair) -> bool:
+    """``pair`` has a ``[print.gear]`` table and its gear set-ups are the ones the print
+    cuts (a pair whose gear was changed since, a correction or standard settings, keeps
+    the table but not the print's gear)."""
+    printed = dict(getattr(pair, "print_gear", ()) or ())
+    return bool(printed) and printed_gear_setups(printed, gear_teeth=pair.gear_teeth) == tuple(
+        s for s in pair.machine if s.member == "gear")
 
 
 def print_key(full_key: str, printed: Mapping) -> tuple[str, object] | None:

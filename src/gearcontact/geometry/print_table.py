@@ -63,11 +63,11 @@ import warnings
 import numpy as np
 
 from ..validation import InputRangeError, format_number
-from .machine import MachineKinematics, setup_from_tables
+from .machine import MachineKinematics
 from .print_blank import (DATUM_LENGTHS, PRINT_BLANK_KEYS, PRINT_ROUNDING, SOURCE_KEYS,
-                          apex_in, apex_rounding_in, blank_differences, printed_blank,
-                          printed_hand)
-from .print_words import INCH_MM, gear_tables_from_print, md_value
+                          apex_in, apex_rounding_in, blank_differences, print_gear_tables,
+                          printed_blank, printed_gear_setups, printed_hand)
+from .print_words import INCH_MM, md_value
 from .toml_tables import PRINTED, check_tables
 
 __all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintBlankNote", "PrintDatumWarning", "TABLE",
@@ -136,20 +136,12 @@ def split_print(doc: dict) -> tuple[dict, dict | None]:
     return rest, printed
 
 
-def print_gear_tables(printed: dict, *, gear_teeth: int) -> dict:
-    """``{"machine": {"gear": {side: ...}}, "blade": {"gear": {side: ...}}}``: the gear's
-    tables of a checked ``[print.gear]`` table (:func:`split_print`); errors name
-    ``print.gear.<key>``."""
-    return gear_tables_from_print({**printed, "gear_teeth": gear_teeth}, where=TABLE)
-
-
 def print_gear_setups(printed: dict, *, gear_teeth: int) -> tuple:
     """The gear's two :class:`~.machine.MachineSetup` (drive, coast) a ``[print.gear]``
-    table cuts (errors renamed to the print's key)."""
-    tables = print_gear_tables(printed, gear_teeth=gear_teeth)
+    table cuts (:func:`~.print_blank.printed_gear_setups`, errors renamed to the print's
+    key)."""
     try:
-        return tuple(setup_from_tables("gear", side, tables["machine"]["gear"][side],
-                                       tables["blade"]["gear"][side]) for side in _SIDES)
+        return printed_gear_setups(printed, gear_teeth=gear_teeth)
     except InputRangeError as exc:
         raise printed_key_error(exc, printed) from None
 
