@@ -49,6 +49,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from dataclasses import dataclass
 
 from ..validation import InputRangeError
@@ -58,13 +59,14 @@ from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generat
 from ..deprecation import moved_names
 from .known_slips import pair_slip, single_slip, slip_fix, with_slip
 from .machine import MachineSetup
+from .print_blank import cuts_the_printed_gear, print_key, printed_blank
 from .slip_attribution import describe, explaining_values
 from .typed_settings import full_key, moved, roundings, setting, typed_keys
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION",
            "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
-           "check_pair_blank", "stated_blank"]
+           "check_pair_blank", "printed_stated_blank", "stated_blank"]
 __getattr__ = moved_names(__name__, {
     "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution",
     **{n: f"gearcontact.geometry.known_slips:{n}" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}})
@@ -132,6 +134,11 @@ class StatedBlank:
         towards the member's back, mm: a sheet's MD measured from the crossing point is
         typed as ``X_D = MD + datum`` (docs sec. 2), so its sign slip is ``X_D -> 2 datum
         - X_D``; tried where non-zero.
+    printed : tuple
+        The ``[print.gear]`` items ``(key, value as typed)`` when the settings checked
+        against this statement were converted from a print (:func:`printed_stated_blank`):
+        a slip or key found is then named by the print's key
+        (:func:`~.print_blank.print_key`); empty otherwise.
     """
 
     pitch_angle_deg: dict
@@ -146,6 +153,7 @@ class StatedBlank:
     hand_key: str = "design.pinion_hand"
     hand_value: str = ""
     mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
+    printed: tuple = ()
 
 
 def stated_blank(pair) -> StatedBlank:
@@ -166,6 +174,32 @@ def stated_blank(pair) -> StatedBlank:
         # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
         # each body on the + side (geometry.blank)
         mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})
+
+
+def printed_stated_blank(pair) -> StatedBlank | None:
+    """What the gear page of ``pair``'s ``[print.gear]`` prints, as the statement its gear
+    flanks are checked against (:func:`~.print_blank.printed_blank`): the printed mean
+    point (pitch angle, outer cone distance - face width / 2), spiral angle, pressure
+    angles, hand and cutter, the MD's datum by the print's chain, the stated values'
+    and the settings' rounding the print's (its digits, propagated by the check as for
+    typed digits); the dedendum (root datum, a model bound) the pair's blank's. None for
+    a pair without ``[print.gear]``, or whose gear is not the one it cuts
+    (:func:`~.print_blank.cuts_the_printed_gear`: a gear changed since, by a correction
+    or standard settings, is checked as typed tables against the pair's blank)."""
+    if not cuts_the_printed_gear(pair):
+        return None
+    printed = dict(pair.print_gear)
+    base, p = stated_blank(pair), printed_blank(printed, gear_teeth=pair.gear_teeth)
+    return dataclasses.replace(
+        base, pitch_angle_deg={"gear": p.pitch_angle_deg},
+        mean_cone_distance_mm={"gear": p.mean_cone_distance_mm},
+        dedendum_mm={"gear": base.dedendum_mm["gear"]},
+        spiral_angle_gear_deg=p.spiral_angle_deg, pressure_angle_deg=p.pressure_angle_deg,
+        gear_hand=p.gear_hand, cutter_radius_mm=p.cutter_radius_mm,
+        rounding=p.rounding,
+        setting_rounding=p.setting_rounding, hand_key="print.gear.gear_hand",
+        hand_value=printed["gear_hand"], mctb_datum_mm={"gear": p.apex_mm},
+        printed=pair.print_gear)
 
 
 @dataclass(frozen=True)
@@ -193,7 +227,9 @@ class FlankCheck:
     it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
     ``slip_also`` (the keys of the other slips under which it agrees, best first);
     ``single_keys``: where no known slip explains it, the keys that alone do, with the
-    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked)."""
+    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked); ``printed``:
+    the flank's settings were converted from ``[print.gear]`` and compared with the
+    page's printed blank (:func:`printed_stated_blank`), its keys the print's."""
 
     member: str
     side: str
@@ -204,6 +240,7 @@ class FlankCheck:
     slip_word: str = ""
     slip_also: tuple = ()
     single_keys: tuple = ()
+    printed: bool = False
 
     @property
     def agrees(self) -> bool:
@@ -251,14 +288,16 @@ class BlankCheck:
         if f.slip:
             also = [g.slip for g in bad if g.slip and g is not f]
             raise InputRangeError(f.slip, f.slip_value,
-                                  f"the {slip_fix(f.slip_word)} that cuts the blank's tooth ({what}; "
-                                  f"{with_slip(f.slip_word)} the flank agrees with the blank" + _also(f)
+                                  f"the {slip_fix(f.slip_word)} that cuts {_blank(f)}'s "
+                                  f"tooth ({what}; {with_slip(f.slip_word)} the flank agrees "
+                                  f"with {_blank(f)}" + _also(f)
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
         one = f.single_keys[0] if len(f.single_keys) == 1 else None
-        raise InputRangeError(one.key if one else f"[machine.{f.member}.{f.side}]",
+        raise InputRangeError(one.key.split(" (converted: ")[0] if one
+                              else f"[machine.{f.member}.{f.side}]",
                               one.typed if one else None,
-                              f"settings that cut the blank's tooth ({what}; no known sign "
+                              f"settings that cut {_blank(f)}'s tooth ({what}; no known sign "
                               "or unit slip explains it" + "".join(
                                   f"; {g.member} {g.side}: {describe(g.single_keys)}"
                                   for g in bad if not g.missing)
@@ -277,8 +316,9 @@ class BlankCheck:
                         "" if f.missing else f"; {describe(f.single_keys)}"))
             if key and not self.hand_slip:
                 hint += _also(f)
-            out.append(f"warning: the {f.member} {f.side} flank cut from [machine.{f.member}."
-                       f"{f.side}] does not agree with the blank: {_describe(f)}{hint} "
+            table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
+            out.append(f"warning: the {f.member} {f.side} flank cut from [{table}] does not "
+                       f"agree with {_blank(f)}: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
         return out
 
@@ -292,12 +332,18 @@ def _also(f: FlankCheck) -> str:
     return f"; it agrees as well with the {what} {', '.join(f.slip_also)}"
 
 
+def _blank(f: FlankCheck) -> str:
+    """What ``f`` was compared with: ``"the blank"`` or (a gear typed as a print) ``"the
+    printed blank"``."""
+    return "the printed blank" if f.printed else "the blank"
+
+
 def _describe(f: FlankCheck) -> str:
     if f.missing:
         return f.missing
     return ", ".join(
-        f"{c.quantity} {c.measured}, the blank's {c.stated}" if c.tolerance is None else
-        f"{c.quantity} {c.measured:.4f} {c.unit}, the blank's {c.stated:.4f} (tolerance "
+        f"{c.quantity} {c.measured}, {_blank(f)}'s {c.stated}" if c.tolerance is None else
+        f"{c.quantity} {c.measured:.4f} {c.unit}, {_blank(f)}'s {c.stated:.4f} (tolerance "
         f"{c.tolerance:.2g})" for c in f.comparisons if not c.within)
 
 
@@ -460,43 +506,76 @@ def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankChec
                               for k in typed_keys(setup)], flank.comparisons, compare)
 
 
-def check_flanks(setups, stated: StatedBlank, *, measured=None) -> BlankCheck:
+_CONVERTED = re.compile(r"\b(?:machine|blade)\.gear\.(?:drive|coast)\.\w+")
+
+
+def _print_named(f: FlankCheck, printed: tuple) -> FlankCheck:
+    """``f`` with the keys its slips and single keys name renamed to the print's keys as
+    typed (:func:`~.print_blank.print_key`: ``machine.gear.coast.blank_offset_mm`` ->
+    ``print.gear.blank_offset``, the value the print's text); a single key keeps its
+    converted name beside (its values are the converted unit's)."""
+    table = dict(printed)
+
+    def name(text: str) -> str:
+        return _CONVERTED.sub(lambda m: (print_key(m.group(0), table) or (m.group(0),))[0], text)
+
+    got = print_key(f.slip, table) if f.slip else None
+    return dataclasses.replace(
+        f, printed=True, slip=got[0] if got else f.slip, slip_value=got[1] if got else f.slip_value,
+        slip_word=name(f.slip_word), slip_also=tuple(name(k) for k in f.slip_also),
+        single_keys=tuple(dataclasses.replace(k, key=f"{name(k.key)} (converted: {k.key})")
+                          if print_key(k.key, table) else k for k in f.single_keys))
+
+
+def check_flanks(setups, stated: StatedBlank, *, measured=None,
+                 member_stated: dict | None = None) -> BlankCheck:
     """Each flank of ``setups`` (:class:`~.machine.MachineSetup`) at its mean point
     against ``stated`` (module docstring): the comparisons, with the likely sign slip of
     a flank that does not agree. ``measured``: the flanks already measured at the
     stated mean points, one :class:`~.flank_angles.FlankMeanPoint` per set-up
     (:func:`~.flank_angles.measure_pair_mean_points`, what ``design`` prints), else
-    each is measured here."""
+    each is measured here. ``member_stated``: ``{member: StatedBlank}``, a member's
+    flanks against a statement of their own (a gear typed as a print:
+    :func:`printed_stated_blank`; measured here at its mean point, its slips named by
+    the print's keys); ``stated`` is the others', and its hand key names a hand slip."""
     measured = measured if measured is not None else (None,) * len(setups)
     if len(measured) != len(setups):
         raise InputRangeError("measured", len(measured),
                               f"one measured flank per set-up ({len(setups)})")
-    first = [_compare(s, stated, measured=m) for s, m in zip(setups, measured)]
+    own = member_stated or {}
+    states = [own.get(s.member, stated) for s in setups]
+    first = [_compare(s, st, measured=None if s.member in own else m)
+             for s, st, m in zip(setups, states, measured)]
     bad = [f for f, _ in first if not f.agrees]
-    flipped = {"right": "left", "left": "right"}[stated.gear_hand]
+    flipped = {"right": "left", "left": "right"}
     hand_slip = bool(bad) and len(bad) == len(first) and all(
-        _compare(s, stated, tol, flipped)[0].agrees for s, (_, tol) in zip(setups, first))
+        _compare(s, st, tol, flipped[st.gear_hand])[0].agrees
+        for s, st, (_, tol) in zip(setups, states, first))
     out = []
-    for s, (f, tol) in zip(setups, first):
+    for s, st, (f, tol) in zip(setups, states, first):
         if not f.agrees and not hand_slip:
-            datum, compare = stated.mctb_datum_mm.get(s.member, 0.0), _Compare(stated, tol)
+            datum, compare = st.mctb_datum_mm.get(s.member, 0.0), _Compare(st, tol)
             key, value, word, also = single_slip(s, datum, compare)
             f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                     slip_also=also)
             if not key:
-                f = dataclasses.replace(f, single_keys=_single_keys(s, stated, tol, f))
+                f = dataclasses.replace(f, single_keys=_single_keys(s, st, tol, f))
             if not key and not f.single_keys:
                 key, value, word, also = pair_slip(s, datum, compare)
                 f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                         slip_also=also)
+        if st.printed:
+            f = _print_named(f, st.printed)
         out.append(f)
     return BlankCheck(tuple(out), stated, hand_slip)
 
 
 def check_pair_blank(pair, *, measured=None) -> BlankCheck:
     """:func:`check_flanks` of a pair cut from machine settings against its own blank
-    tables (:func:`stated_blank`); ``measured``: the pair's
-    :func:`~.flank_angles.measure_pair_mean_points`, when already measured.
+    tables (:func:`stated_blank`), a gear typed as a print (``[print.gear]``) against
+    what its page prints (:func:`printed_stated_blank`); ``measured``: the pair's
+    :func:`~.flank_angles.measure_pair_mean_points`, when already measured (a printed
+    gear's flanks are measured again, at the print's mean point).
 
     Raises
     ------
@@ -504,4 +583,6 @@ def check_pair_blank(pair, *, measured=None) -> BlankCheck:
         A pair without machine settings.
     """
     require_machine(pair)
-    return check_flanks(pair.machine, stated_blank(pair), measured=measured)
+    printed = printed_stated_blank(pair)
+    return check_flanks(pair.machine, stated_blank(pair), measured=measured,
+                        member_stated=None if printed is None else {"gear": printed})

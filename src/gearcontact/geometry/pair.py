@@ -126,8 +126,9 @@ from .cylindrical.pair import CylindricalPair, parse_cylindrical_pair
 from .kinematics import AssemblyErrors, MeshKinematics
 from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_ROLL_KEYS,
                       setup_from_tables, setup_to_tables)
-from .print_table import (check_print_blank, print_gear_setups, print_gear_tables,
-                          printed_key_error, printed_toml_lines, split_print)
+from .print_blank import cuts_the_printed_gear
+from .print_table import (check_print_blank, print_gear_tables, printed_key_error,
+                          printed_toml_lines, split_print)
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
 __all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
@@ -566,9 +567,7 @@ def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> s
             continue            # no table given and none set: it stays "to be synthesized"
         out += block(f"easeoff.{side}", {k: float(v) for k, v in dataclasses.asdict(c).items()})
     # a gear typed as a print is written as typed while the pair cuts the print's gear
-    printed = bool(pair.print_gear) and print_gear_setups(
-        dict(pair.print_gear), gear_teeth=pair.gear_teeth) == tuple(
-        s for s in pair.machine if s.member == "gear")
+    printed = cuts_the_printed_gear(pair)
     if printed:
         out += block("print.gear", {})[:-2] + printed_toml_lines(pair.print_gear) + [""]
     for setup in pair.machine:

@@ -24,20 +24,27 @@ its words and numbers as printed, converted on load into the gear's
     cone_distance_in = 4.274                  # outer
     gear_pitch_angle_deg = "74D 49M"
     gear_addendum_in = 0.064                  # outer
+    gear_spiral_angle_deg = "26D 57M"         # what the check states for the gear
+    gear_pressure_angle_convex_deg = "18D 0M"
+    gear_pressure_angle_concave_deg = "24D 30M"
+    face_width_in = 1.250                     # the mean point: cone_distance_in - F / 2
+    gear_hand = "RIGHT"
 
 The words are mapped by :func:`~.print_words.gear_tables_from_print` (the gear's tooth
 number from ``[teeth]``); the tables it gives go through the same type check,
 range check (:func:`~.machine.setup_from_tables`) and, when a command loads the pair,
-the same typed-settings check (:mod:`.blank_check`) as hand-typed ones. An error a
-converted value raises names the print's key as typed (``print.gear.radial_in``), with
-the converted key and value.
+the typed-settings check (:mod:`.blank_check`), which states for the gear the page's
+printed blank and the print's rounding (:mod:`.print_blank`), and names a slip by the
+print's key. An error a converted value raises names the print's key as typed
+(``print.gear.radial_in``), with the converted key and value.
 
 The MD's datum (the pitch apex from the crossing point) comes from the print's own blank
 numbers, not from the pair's ISO 23509 blank: the print's MD is measured from the print
 program's crossing point and apex, so the gear is cut as the print says whatever blank
 design the pair's ``[design]`` gives (a hand-typed sheet and this table then agree
-exactly). That datum is compared with the pair's own (:func:`check_print_blank`): beyond
-the print's rounding a :class:`PrintDatumWarning` names the fields, beyond the gear's
+exactly). That datum is compared with the pair's own (:func:`check_print_blank`), and so
+are the printed angles and mean cone distance: beyond the print's rounding one
+:class:`PrintBlankNote` lists them, a datum beyond the gear's
 whole depth (a datum number typed in mm, a digit lost) an input error. The pair's
 ``[cutter]`` must be the print's cutter (its nominal radius is the generating gear's
 circle the check measures the spiral angle on).
@@ -56,13 +63,15 @@ import warnings
 import numpy as np
 
 from ..validation import InputRangeError, format_number
-from .machine import MachineKinematics, setup_from_tables
-from .print_words import INCH_MM, degrees_minutes, gear_tables_from_print, md_value, \
-    pitch_apex_from_crossing_point_in
+from .machine import MachineKinematics
+from .print_blank import (DATUM_LENGTHS, PRINT_BLANK_KEYS, PRINT_ROUNDING, SOURCE_KEYS,
+                          apex_in, apex_rounding_in, blank_differences, print_gear_tables,
+                          printed_blank, printed_gear_setups, printed_hand)
+from .print_words import INCH_MM, md_value
 from .toml_tables import PRINTED, check_tables
 
-__all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintDatumWarning", "TABLE", "check_print_blank",
-           "print_gear_setups", "print_gear_tables", "printed_key_error", "printed_toml_lines",
+__all__ = ["PRINT_KEYS", "PRINT_ROUNDING", "PrintBlankNote", "PrintDatumWarning", "TABLE",
+           "check_print_blank", "print_gear_setups", "print_gear_tables", "printed_key_error", "printed_toml_lines",
            "split_print"]
 
 #: The table's name in a pair file (and in every error).
@@ -75,27 +84,21 @@ PRINT_KEYS = {"machine_root_angle": True, "machine_centre_to_back": True,
               "cutter_diameter_in": True, "point_width_finish_in": True,
               "edge_radius_in": True, "blades": True,
               "gear_crown_to_crossing_point_in": True, "cone_distance_in": True,
-              "gear_pitch_angle_deg": True, "gear_addendum_in": True}
-#: Half a unit of the print's last digit (the one print read prints lengths to 0.001 in,
-#: the point width to 0.0001 in, angles to the minute): lengths in inches, angles in deg.
-PRINT_ROUNDING = {"length_in": 0.0005, "point_width_in": 0.00005, "angle_deg": 0.5 / 60.0}
-#: Which print key a converted key comes from (the name an error gives).
-_SOURCE = {"radial_distance_mm": "radial_in", "cradle_angle_deg": "cradle_angle",
-           "machine_root_angle_deg": "machine_root_angle",
-           "machine_centre_to_back_mm": "machine_centre_to_back",
-           "sliding_base_mm": "sliding_base", "blank_offset_mm": "blank_offset",
-           "ratio_of_roll": "ratio_nc_75", "tilt_deg": "tilt_angle", "kind": "blades",
-           "blade_angle_deg": "blades", "point_radius_mm": "cutter_diameter_in",
-           "edge_radius_mm": "edge_radius_in"}
-#: The print's blank numbers that place the MD's datum.
-_DATUM_LENGTHS = ("gear_crown_to_crossing_point_in", "cone_distance_in", "gear_addendum_in")
+              "gear_pitch_angle_deg": True, "gear_addendum_in": True,
+              **{k: True for k in PRINT_BLANK_KEYS}}
 _SIDES = ("drive", "coast")
 _SCHEMA = {"": {}, TABLE: {k: (PRINTED, required) for k, required in PRINT_KEYS.items()}}
 
 
-class PrintDatumWarning(UserWarning):
-    """The print's MD datum (its pitch apex from the crossing point) differs from the
-    pair's blank's by more than the print's rounding (:func:`check_print_blank`)."""
+class PrintBlankNote(UserWarning):
+    """The pair's blank (its ISO 23509 design) is not the page's printed blank beyond the
+    print's rounding: spiral, pitch or pressure angles, mean cone distance, the MD's
+    datum (:func:`check_print_blank`; one note per load, not a slip: the gear is cut and
+    checked as the page prints)."""
+
+
+#: The earlier name of :class:`PrintBlankNote` (it named the MD's datum only).
+PrintDatumWarning = PrintBlankNote
 
 
 def split_print(doc: dict) -> tuple[dict, dict | None]:
@@ -133,20 +136,12 @@ def split_print(doc: dict) -> tuple[dict, dict | None]:
     return rest, printed
 
 
-def print_gear_tables(printed: dict, *, gear_teeth: int) -> dict:
-    """``{"machine": {"gear": {side: ...}}, "blade": {"gear": {side: ...}}}``: the gear's
-    tables of a checked ``[print.gear]`` table (:func:`split_print`); errors name
-    ``print.gear.<key>``."""
-    return gear_tables_from_print({**printed, "gear_teeth": gear_teeth}, where=TABLE)
-
-
 def print_gear_setups(printed: dict, *, gear_teeth: int) -> tuple:
     """The gear's two :class:`~.machine.MachineSetup` (drive, coast) a ``[print.gear]``
-    table cuts (errors renamed to the print's key)."""
-    tables = print_gear_tables(printed, gear_teeth=gear_teeth)
+    table cuts (:func:`~.print_blank.printed_gear_setups`, errors renamed to the print's
+    key)."""
     try:
-        return tuple(setup_from_tables("gear", side, tables["machine"]["gear"][side],
-                                       tables["blade"]["gear"][side]) for side in _SIDES)
+        return printed_gear_setups(printed, gear_teeth=gear_teeth)
     except InputRangeError as exc:
         raise printed_key_error(exc, printed) from None
 
@@ -157,27 +152,15 @@ def printed_key_error(exc: InputRangeError, printed: dict) -> InputRangeError:
     another error unchanged."""
     parts = exc.field.split(".")
     if len(parts) != 4 or parts[:2] not in (["machine", "gear"], ["blade", "gear"]) \
-            or parts[3] not in _SOURCE:
+            or parts[3] not in SOURCE_KEYS:
         return exc
-    key = _SOURCE[parts[3]]
+    key = SOURCE_KEYS[parts[3]]
     value = exc.value if not isinstance(exc.value, float) else format_number(exc.value)
     return InputRangeError(f"{TABLE}.{key}", printed.get(key),
                            f"a value whose conversion ({exc.field} = {value}) lies in "
                            f"{exc.allowed}" + (" (the print's lengths are inches, x 25.4 "
                                                "mm: typed in mm?)" if key.endswith("_in")
                                                else ""))
-
-
-def _apex_in(printed: dict, **lengths) -> float:
-    """The print's pitch apex from the crossing point, inches (``lengths``: a datum
-    number replaced, the unit slips tried)."""
-    n = {k: lengths.get(k, printed[k]) for k in _DATUM_LENGTHS}
-    return pitch_apex_from_crossing_point_in(
-        crown_to_crossing_point_in=n["gear_crown_to_crossing_point_in"],
-        outer_cone_distance_in=n["cone_distance_in"],
-        pitch_angle_deg=degrees_minutes(f"{TABLE}.gear_pitch_angle_deg",
-                                        printed["gear_pitch_angle_deg"]),
-        addendum_in=n["gear_addendum_in"])
 
 
 def _check_cutter(pair, printed: dict) -> None:
@@ -231,7 +214,8 @@ def _check_lengths(pair, printed: dict) -> None:
     Grossly off: the gear's root at its mean point more than its whole depth off the
     cutter's tip plane (the sliding base, the MD), or the print's spiral angle
     (:func:`_generating_spiral_deg`) not within
-    :data:`~.blank_check.GROSS_SPIRAL_DEG` of the blank's (the radial, the blank offset).
+    :data:`~.blank_check.GROSS_SPIRAL_DEG` of the printed one (the radial, the blank
+    offset).
     Put right: the root within the typed-settings check's root datum bound
     (:data:`~.blank_check.ROOT_DATUM_FRACTION` of the dedendum) plus the print's rounding
     of the two, the spiral angle within the gross bound. Anything else is left to the
@@ -252,16 +236,18 @@ def _check_lengths(pair, printed: dict) -> None:
               "radial_in": {"radial_distance_mm": gear.radial_distance_mm / INCH_MM},
               "blank_offset": {"blank_offset_mm": gear.blank_offset_mm / INCH_MM}}
 
+    stated = printed_blank(printed, gear_teeth=pair.gear_teeth).spiral_angle_deg
+
     def spiral_off(st) -> float:
         beta = _generating_spiral_deg(st, pair.cutter.radius_mm)
-        return math.inf if beta is None else abs(beta - blank.spiral_angle_gear_deg)
+        return math.inf if beta is None else abs(beta - stated)
 
     tests = ((lambda st: abs(_root_height_mm(st, blank)), depth, datum,
               ("sliding_base", "machine_centre_to_back"),
               "the gear's root at its mean point on the cutter's tip plane"),
              (spiral_off, GROSS_SPIRAL_DEG, GROSS_SPIRAL_DEG, ("radial_in", "blank_offset"),
               "the print's spiral angle, the nominal cutter circle against the root line, "
-              "the blank's"))
+              "the printed one"))
     for off, gross, right, keys, what in tests:
         if off(gear) <= gross:
             continue
@@ -275,56 +261,65 @@ def _check_lengths(pair, printed: dict) -> None:
 def check_print_blank(pair, printed: dict) -> float:
     """The print's blank numbers a ``[print.gear]`` table uses against ``pair``'s blank.
 
-    The ``[cutter]`` must be the print's cutter (an input error naming the print's key
-    otherwise). The MD's datum, the pitch apex from the crossing point by the print's
-    chain (crown to crossing point, outer cone distance, pitch angle, outer addendum:
-    :func:`~.print_words.pitch_apex_from_crossing_point_in`), is compared with the
-    pair's blank's (``gear_apex_z_mm``) within the print's rounding propagated (worst
-    case, first order: ``t (1 + |cos d| + |sin d|) + (A_o sin d + a_o cos d) m``, ``t``
-    half a printed thousandth of an inch, ``m`` half a minute): outside it a
-    :class:`PrintDatumWarning` names the chain and the pair's pitch angle beside the
-    printed one (the gear is still cut about the print's apex: the print states it);
-    beyond the gear's mean whole depth it is an input error naming the datum key (and a
-    length typed in mm where the mm value fits). Then the settings' lengths typed in mm
-    (:func:`_check_lengths`). ``pair`` holds the gear the print cuts (its first set-up).
+    The ``[cutter]`` must be the print's cutter, and the printed hand of spiral
+    (``gear_hand``) the pair's (``[design] pinion_hand`` the other): input errors naming
+    the print's key otherwise. The MD's datum, the pitch apex from the crossing point by
+    the print's chain (crown to crossing point, outer cone distance, pitch angle, outer
+    addendum: :func:`~.print_blank.apex_in`), is compared with the pair's blank's
+    (``gear_apex_z_mm``) within the print's rounding propagated
+    (:func:`~.print_blank.apex_rounding_in`); beyond the gear's mean whole depth it is
+    an input error naming the datum key (and a length typed in mm where the mm value
+    fits). The pair's blank against the printed one (the datum, the spiral, pitch and
+    pressure angles, the mean cone distance: :func:`~.print_blank.blank_differences`):
+    where any differs beyond the print's rounding, one :class:`PrintBlankNote` lists
+    them, the pair's values beside the printed ones (the gear is still cut about the
+    print's apex and checked against the page, :mod:`.blank_check`). Then the settings'
+    lengths typed in mm (:func:`_check_lengths`). ``pair`` holds the gear the print
+    cuts (its first set-up).
 
     Returns
     -------
     float
-        The difference, print's datum - pair's, mm.
+        The datum's difference, print's - pair's, mm.
     """
     _check_cutter(pair, printed)
+    other = {"right": "left", "left": "right"}
+    if printed_hand(printed) != other[pair.pinion_hand]:
+        raise InputRangeError(f"{TABLE}.gear_hand", printed["gear_hand"],
+                              f"the gear's hand of the pair's blank, {other[pair.pinion_hand]} "
+                              f"(design.pinion_hand = '{pair.pinion_hand}'): the two tables "
+                              "state the hand both, and contradict each other")
     blank = pair.blank
-    a_print = _apex_in(printed)
+    a_print = apex_in(printed)
     a_pair = blank.gear_apex_z_mm / INCH_MM
     diff_mm = INCH_MM * (a_print - a_pair)
-    d = math.radians(degrees_minutes(f"{TABLE}.gear_pitch_angle_deg",
-                                     printed["gear_pitch_angle_deg"]))
-    t, m = PRINT_ROUNDING["length_in"], math.radians(PRINT_ROUNDING["angle_deg"])
-    tol_mm = INCH_MM * (t * (1.0 + abs(math.cos(d)) + abs(math.sin(d)))
-                        + abs(printed["cone_distance_in"] * math.sin(d)
-                              + printed["gear_addendum_in"] * math.cos(d)) * m)
+    tol_mm = INCH_MM * apex_rounding_in(printed)
     depth = blank.addendum_gear_mm + blank.dedendum_gear_mm
-    chain = ", ".join(f"{TABLE}.{k}" for k in (*_DATUM_LENGTHS, "gear_pitch_angle_deg"))
+    chain = ", ".join(f"{TABLE}.{k}" for k in (*DATUM_LENGTHS, "gear_pitch_angle_deg"))
     if abs(diff_mm) > depth:
         # a datum length typed in mm: the one whose value / 25.4 brings the apex back
-        slipped = [k for k in _DATUM_LENGTHS if abs(INCH_MM * (_apex_in(
+        slipped = [k for k in DATUM_LENGTHS if abs(INCH_MM * (apex_in(
             printed, **{k: printed[k] / INCH_MM}) - a_pair)) <= depth]
-        key = slipped[0] if slipped else _DATUM_LENGTHS[0]
+        key = slipped[0] if slipped else DATUM_LENGTHS[0]
         hint = " (typed in mm? the print's lengths are inches)" if slipped else ""
         raise InputRangeError(
             f"{TABLE}.{key}", printed[key],
             f"a datum that puts the gear's pitch apex within its whole depth "
             f"({depth:.3f} mm) of the pair's blank's, {a_pair:.4f} in from the crossing "
             f"point: the print's chain ({chain}) gives {a_print:.4f} in{hint}")
+    found = blank_differences(printed, blank, gear_teeth=pair.gear_teeth)
     if abs(diff_mm) > tol_mm:
+        found.append(f"the MD's datum, the pitch apex from the crossing point, "
+                     f"{a_pair:.4f} in, printed {a_print:.4f} in by the print's chain "
+                     f"({chain}): {diff_mm:+.3f} mm, rounding {tol_mm:.3f} mm")
+    if found:
         warnings.warn(
-            f"{TABLE}: the MD's datum by the print's blank ({chain}), the pitch apex "
-            f"{a_print:.4f} in from the crossing point, is {a_pair:.4f} in by the pair's "
-            f"blank: {diff_mm:+.3f} mm, beyond the print's rounding ({tol_mm:.3f} mm); the "
-            f"pair's pitch angle is {blank.pitch_angle_gear_deg:.4f} deg, printed "
-            f"{printed['gear_pitch_angle_deg']} (the gear is cut about the print's apex; "
-            "docs/machine_settings.md sec. 3)", PrintDatumWarning, stacklevel=3)
+            f"{TABLE}: the pair's design blank is not the print's (what [design] and "
+            "[cutter] give by ISO 23509 against what the page prints, beyond the print's "
+            "rounding): " + "; ".join(found) + ". The gear is cut about the print's apex "
+            "and its settings are checked against the page; the pair's blank places the "
+            "flanks for the contact (docs/machine_settings.md sec. 3)", PrintBlankNote,
+            stacklevel=3)
     _check_lengths(pair, printed)
     return diff_mm
 
