@@ -6,7 +6,8 @@ touch was searched and of rows out of reach, and the load average (the machine i
 shared). The TCA is built once per pair, outside the timing.
 
 Run: ``python benchmarks/bench_mesh_reach.py [--phases 61] [--repeat 3] [--pairs
-s0003,f2,miter]``. Runs against whichever ``gearcontact`` is imported (PYTHONPATH), so
+s0003,f2,miter] [--surface]`` (``--surface``: the surface TCA, as tests/twin's F.2
+fixture). Runs against whichever ``gearcontact`` is imported (PYTHONPATH), so
 that two trees compare on the same machine in the same session.
 """
 
@@ -23,7 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 F2 = ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml"
 
 
-def _setup(name: str, phases: int):
+def _setup(name: str, phases: int, edge_contact: bool):
     from gearcontact.geometry.flank import build_flanks
     from gearcontact.geometry.pair import load_pair, pair_to_toml
     from gearcontact.tca.analysis import analyze_pair
@@ -42,7 +43,7 @@ def _setup(name: str, phases: int):
         path.write_text(pair_to_toml(design_space_pair(*MITER_PAIR)))
         prepared = prepare_pair(path)
         pair, side, flanks = prepared.pair, "drive", prepared.flank_set()
-    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=True,
+    tca, flanks = analyze_pair(pair, side=side, phases=phases, edge_contact=edge_contact,
                                flanks=flanks)
     return pair, tca, flanks, side
 
@@ -52,6 +53,9 @@ def main() -> None:
     ap.add_argument("--phases", type=int, default=61)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--pairs", default="s0003,f2,miter")
+    ap.add_argument("--surface", action="store_true",
+                    help="the surface TCA (tests/twin's F.2 fixture) instead of the "
+                         "edge-contact one")
     args = ap.parse_args()
     import gearcontact
     import gearcontact.ltca.lte_pairs as lte_pairs
@@ -68,7 +72,7 @@ def main() -> None:
     setattr(lte_pairs, name, counted)
     print(f"gearcontact from {Path(gearcontact.__file__).parent}")
     for pair_name in args.pairs.split(","):
-        pair, tca, flanks, side = _setup(pair_name, args.phases)
+        pair, tca, flanks, side = _setup(pair_name, args.phases, not args.surface)
         best = float("inf")
         for _ in range(args.repeat):
             count[0] = 0
@@ -77,7 +81,8 @@ def main() -> None:
             best = min(best, time.process_time() - c)
         rows = int(mesh.valid.sum())
         far = int((mesh.valid & mesh.out_of_reach).sum())
-        print(f"{pair_name:6s} {side:5s} {args.phases} phases: mesh_table {best:6.2f} s CPU "
+        tca_name = "surface" if args.surface else "edge"
+        print(f"{pair_name:6s} {side:5s} {tca_name} TCA {args.phases} phases: mesh_table {best:6.2f} s CPU "
               f"(best of {args.repeat}); {rows} rows, {count[0]} touch searches, {far} out "
               f"of reach; load average {os.getloadavg()[0]:.2f}")
 
