@@ -33,7 +33,7 @@ from ..tca.stencil import gap_field, tangent_parameters
 from ..tca.types import MatingPoint
 from .mesh_lcp import PairBlock
 from .pair_ltca import ARCSEC_PER_RAD, OFF_FLANK_GAP_MM
-from .patch_field import touch_bounds_mm, touch_gap_mm
+from .patch_field import touch_bounds_mm, touch_search
 
 __all__ = ["PairContact", "PairFields", "phase_contacts", "curvature_point"]
 
@@ -112,6 +112,7 @@ class PairFields:
         #: the posed mating point each field was evaluated around (:mod:`.patch_field`)
         self.points: dict[int, MatingPoint] = {}
         self._touch: dict[int, float] = {}   # refined openings of edge pairs
+        self._settled: dict[int, bool] = {}  # ... whose search settled (a lower bound)
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
@@ -201,14 +202,15 @@ class PairFields:
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its
-        posed field refined around its least node, :func:`.patch_field.touch_gap_mm`:
-        the field's least node sits up to a cell's slope above the touch; arcsec of
-        rotation) and the lever of its field's centre; other pairs unchanged."""
+        posed field searched from its least node, :func:`.patch_field.touch_search`:
+        the field's least node sits up to a cell's slope above a touch between nodes,
+        and far above one beyond the field; arcsec of rotation) and the lever of its
+        field's centre; other pairs unchanged."""
         if not pc.edge:
             return pc
         lever = self.get(pc)[3]
         if pc.path_index not in self._touch:
-            self._touch[pc.path_index] = touch_gap_mm(self, pc)
+            self._touch[pc.path_index], self._settled[pc.path_index] = touch_search(self, pc)
         opening = self._touch[pc.path_index] / lever * ARCSEC_PER_RAD
         return replace(pc, opening_arcsec=opening, lever_mm=lever)
 
@@ -216,16 +218,21 @@ class PairFields:
         """``(pair, lower_mm)``: an edge pair with the upper bound of its opening (its
         field's least gap on the flank, :func:`.patch_field.touch_bounds_mm`) and its
         field's lever, and the lower bound of the opening (mm), without the touch search
-        of :meth:`resolve`; other pairs unchanged with their opening (mm)."""
+        of :meth:`resolve` where the field encloses the touch; else the pair resolved
+        (:meth:`resolve`) with its touch as the lower bound, ``-inf`` if the search did
+        not settle (:func:`.patch_field.touch_search`: no bound). Other pairs unchanged
+        with their opening (mm)."""
         if not pc.edge:
             return pc, pc.offset_mm
         lever = self.get(pc)[3]
-        if pc.path_index in self._touch:
-            touch = self._touch[pc.path_index]
-            return replace(pc, opening_arcsec=touch / lever * ARCSEC_PER_RAD,
-                           lever_mm=lever), touch
-        lower, upper = touch_bounds_mm(self, pc)
-        return replace(pc, opening_arcsec=upper / lever * ARCSEC_PER_RAD, lever_mm=lever), lower
+        if pc.path_index not in self._touch:
+            lower, upper = touch_bounds_mm(self, pc)
+            if lower > -np.inf:
+                return replace(pc, opening_arcsec=upper / lever * ARCSEC_PER_RAD,
+                               lever_mm=lever), lower
+        pc = self.resolve(pc)
+        settled = self._settled[pc.path_index]
+        return pc, (self._touch[pc.path_index] if settled else -np.inf)
 
 
 def curvature_point(path, center: int):

@@ -32,9 +32,9 @@ flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
   field's border) and shrunk 4 times :data:`TOUCH_LEVELS` times: a posed field's opening
   to a small fraction of a cell's slope.
 * :func:`touch_bounds_mm`: bounds of that touch from the field alone (its least gap on
-  the flank, less the largest rise between neighbouring flank cells): the twin's table
-  searches the touch only of rows whose lower bound is within the mesh's reach
-  (:mod:`gearcontact.twin.mesh`).
+  the flank, less twice the largest rise between neighbouring flank cells, only where
+  the field encloses the touch): the twin's table searches the touch only of rows whose
+  lower bound is within the mesh's reach (:mod:`gearcontact.twin.mesh`).
 
 References
 ----------
@@ -51,7 +51,7 @@ from ..tca.stencil import gap_at
 from .pair_ltca import OFF_FLANK_GAP_MM
 
 __all__ = ["PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE", "patch_approach",
-           "patch_grid", "touch_bounds_mm", "touch_gap_mm"]
+           "patch_grid", "touch_bounds_mm", "touch_gap_mm", "touch_search"]
 
 #: Relative widening of a patch's bounding box into the field fitted to it (beyond one
 #: cell of the field the patch was found on, each side).
@@ -65,6 +65,9 @@ PATCH_GROWTHS = 3
 TOUCH_LEVELS, TOUCH_SIDE, TOUCH_SPAN = 5, 9, 4.0
 #: Moves of the window along the flanks before it shrinks, over all levels.
 TOUCH_MOVES = 32
+#: Doublings of the window's span after TOUCH_MOVES moves still ended on its border
+#: (:func:`touch_search`): 2^20 cells, beyond any flank.
+FAR_DOUBLINGS = 20
 
 
 def patch_grid(box, cells: int) -> tuple[np.ndarray, np.ndarray, TangentGrid]:
@@ -167,10 +170,19 @@ def touch_gap_mm(fields, pc) -> float:
     windows spanning :data:`TOUCH_SPAN` cells either way, moved while the least point is
     on the window's border (the touch may lie beyond the field; at most
     :data:`TOUCH_MOVES` moves) and then shrunk 4 times, :data:`TOUCH_LEVELS` times;
-    ``inf`` if no cell is on the flank."""
+    ``inf`` if no cell is on the flank. :func:`touch_search` also says whether the
+    search settled."""
+    return touch_search(fields, pc)[0]
+
+
+def touch_search(fields, pc) -> tuple[float, bool]:
+    """``(touch_mm, settled)``: :func:`touch_gap_mm` and whether its search settled --
+    every move ended inside its window before the :data:`TOUCH_MOVES` cap. An unsettled
+    search stopped while the gap still fell beyond its window: its touch is then only an
+    upper bound of the flanks' least gap (docs/twin.md, "Reach of the mesh table")."""
     gap, grid, off, _ = fields.get(pc)
     if off.all():
-        return np.inf
+        return np.inf, True
     j, i = np.unravel_index(np.argmin(np.where(off, np.inf, gap)), gap.shape)
     best = float(gap[j, i])
     s0, t0 = float(grid.x_mm[i]), float(grid.y_mm[j])
@@ -191,16 +203,85 @@ def touch_gap_mm(fields, pc) -> float:
             if inner or moves > TOUCH_MOVES:
                 break
         hs, ht = hs / 4.0, ht / 4.0
-    return best
+    if moves <= TOUCH_MOVES:
+        return best, True
+    return _far_touch(fields, pc, best, s0, t0, TOUCH_SPAN * float(grid.dx_mm[0]),
+                      TOUCH_SPAN * float(grid.dy_mm[0]))
+
+
+def _window(fields, pc, s0, t0, hs, ht):
+    """``(least, s, t, inner)`` of a :data:`TOUCH_SIDE`-point window of half-spans
+    ``(hs, ht)`` (mm) centred on ``(s0, t0)``: its least flank gap (``inf`` if none on
+    the flank), where, and whether that point is inside the window."""
+    u = np.linspace(-1.0, 1.0, TOUCH_SIDE)
+    s_ax, t_ax = s0 + hs * u, t0 + ht * u
+    g, o = _field(fields, pc, s_ax, t_ax)
+    g = np.where(o, np.inf, g)
+    jj, ii = np.unravel_index(np.argmin(g), g.shape)
+    inner = 0 < jj < TOUCH_SIDE - 1 and 0 < ii < TOUCH_SIDE - 1
+    return float(g[jj, ii]), float(s_ax[ii]), float(t_ax[jj]), inner
+
+
+def _far_touch(fields, pc, best, s0, t0, hs, ht) -> tuple[float, bool]:
+    """The search of :func:`touch_search` continued past its move cap: from its last
+    point, square windows (the first level's larger half-span both ways: a field fitted
+    to a thin Hertzian ellipse moves its windows by hundredths of a millimetre across
+    it) of doubling span, at most :data:`FAR_DOUBLINGS` times, until one holds its least
+    point inside, then shrunk 4 times per level (moved while on the border,
+    :data:`TOUCH_MOVES` moves per level) until each half-span is at most the first
+    search's last one; settled when every level ends inside."""
+    fine_s, fine_t = hs / 4.0 ** (TOUCH_LEVELS - 1), ht / 4.0 ** (TOUCH_LEVELS - 1)
+    hs = ht = max(hs, ht)
+    for _ in range(FAR_DOUBLINGS):
+        least, s, t, inner = _window(fields, pc, s0, t0, hs, ht)
+        if least < best:
+            best, s0, t0 = least, s, t
+        if inner:
+            break
+        hs, ht = 2.0 * hs, 2.0 * ht
+    else:
+        return best, False
+    settled = True
+    while True:
+        for _ in range(TOUCH_MOVES):
+            least, s, t, inner = _window(fields, pc, s0, t0, hs, ht)
+            if not least < best:
+                inner = True
+                break
+            best, s0, t0 = least, s, t
+            if inner:
+                break
+        settled &= inner
+        if hs <= fine_s * (1.0 + 1e-9) and ht <= fine_t * (1.0 + 1e-9):
+            return best, settled
+        hs, ht = hs / 4.0, ht / 4.0
 
 
 def touch_bounds_mm(fields, pc) -> tuple[float, float]:
-    """``(lower, upper)`` bounds (mm) of :func:`touch_gap_mm` from the row's field alone:
-    the upper its least gap on the flank (where the search starts), the lower that less
-    twice the largest rise between neighbouring flank cells (the touch between nodes
-    lies within a cell's rise of the least node; twice: the search may move beyond the
-    field's border, tested on MITER_PAIR and s0003, tests/twin/test_mesh_reach.py);
-    ``(inf, inf)`` if no cell is on the flank."""
+    """``(lower, upper)`` bounds (mm) of the least gap of the row's posed flanks from its
+    field alone: the upper its least gap on the flank (where :func:`touch_gap_mm`
+    starts), the lower that less twice the largest rise ``r`` between neighbouring flank
+    cells where the field encloses the touch, else ``-inf`` (no bound: search it).
+
+    The field *encloses* the touch when its least flank node ``p`` has all 8 neighbours
+    on the flank and every flank node on the border of the field's flank nodes (a node
+    on the field's border, or one with an off-flank neighbour) lies more than ``r``
+    above ``p``. Assumed: the gap ``g`` is convex over the flank near the touch, and the
+    flank (its projection on the field's plane) is convex there -- one minimum ``x*``,
+    at most on the flank's boundary. Then, (a) were ``x*`` outside the region of cells
+    whose corners are flank nodes, the segment from ``p`` to it would leave that region
+    between two border nodes ``a``, ``b`` at a point ``y`` with ``g(y) <= g(p)``, and
+    convexity along the border (the one-sided difference bounds the slope) gives ``g(y)
+    >= g(a) - r``: some border node within ``r`` of ``p``, excluded; (b) inside a cell,
+    the tangent plane at a corner ``q`` whose neighbours opposite ``x*`` are flank nodes
+    bounds ``g(x*) >= g(q) - r_s - r_t >= g(p) - 2 r`` (the one-sided differences bound
+    the slopes of a convex function). At an edge pair the touch usually lies on a flank
+    boundary (next to an off-flank node, where the gap between nodes is bounded by no
+    node) or beyond the field's border: the field bounds nothing and the row is searched
+    (docs/twin.md, "Reach of the mesh table": no field of the 120 edge rows of MITER_PAIR,
+    s0003 coast and the F.2 machine pair encloses its touch). ``(inf, inf)`` if no cell
+    is on the flank.
+    """
     gap, _, off, _ = fields.get(pc)
     if off.all():
         return np.inf, np.inf
@@ -208,4 +289,21 @@ def touch_bounds_mm(fields, pc) -> tuple[float, float]:
     rise = [np.abs(np.diff(on, axis=a)) for a in (0, 1)]
     step = max(float(np.nanmax(r)) if np.isfinite(r).any() else 0.0 for r in rise)
     least = float(np.nanmin(on))
-    return least - 2.0 * step, least
+    return (least - 2.0 * step if _encloses(on, step) else -np.inf), least
+
+
+def _encloses(on: np.ndarray, rise: float) -> bool:
+    """The least node of ``on`` (gap, NaN off the flank) has 8 flank neighbours and every
+    border flank node lies more than ``rise`` above it (:func:`touch_bounds_mm`)."""
+    j, i = np.unravel_index(np.nanargmin(on), on.shape)
+    if not (0 < j < on.shape[0] - 1 and 0 < i < on.shape[1] - 1):
+        return False
+    if np.isnan(on[j - 1:j + 2, i - 1:i + 2]).any():
+        return False
+    flank = np.pad(~np.isnan(on), 1, constant_values=False)
+    inner = np.ones(on.shape, bool)
+    for dj in (0, 1, 2):
+        for di in (0, 1, 2):
+            inner &= flank[dj:dj + on.shape[0], di:di + on.shape[1]]
+    border = ~np.isnan(on) & ~inner
+    return not border.any() or float(np.min(on[border])) > float(on[j, i]) + rise

@@ -166,8 +166,9 @@ class MeshTable:
     out_of_reach : ndarray (P, K) of bool or None
         Rows the mesh cannot close under :data:`REACH_TORQUE_FACTOR` times the table's
         torque (:func:`mesh_table`, "reach"): open by at least the lower bound of their
-        opening, which exceeds that reach; their opening is the upper bound (an edge
-        pair's field's least gap, no touch search), their law uncalibrated (Hertz).
+        opening, which exceeds that reach; their opening is the field's least gap where
+        the field bounds the touch (no touch search), else the searched touch; their law
+        uncalibrated (Hertz).
     """
 
     psi_rad: np.ndarray
@@ -254,12 +255,12 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     *Reach.* Pairs far past their path's end (a pitch's worth of edge pairs on a miter
     pair, open by up to 2 mm) need neither the touch search of their posed field nor an
     edge law: the mesh never closes them. A row is *out of reach* when the lower bound
-    of its opening (:meth:`~gearcontact.ltca.lte_pairs.PairFields.bound`) over its lever
-    exceeds the phase's rotation bound under :data:`REACH_TORQUE_FACTOR` times the
-    torque (:func:`_reach_rad`); it keeps the upper bound as its opening and the Hertzian
-    law (``out_of_reach``). Rows within reach are the unlimited table's bit for bit
-    (tests/twin/test_mesh_reach.py; MITER_PAIR's build at 61 phases 21.8 -> 3.1 s CPU,
-    docs/twin.md "Reach of the mesh table").
+    of its opening (:meth:`~gearcontact.ltca.lte_pairs.PairFields.bound`: the field's
+    where the field encloses the touch, else the searched touch) over its lever exceeds
+    the phase's rotation bound under :data:`REACH_TORQUE_FACTOR` times the torque
+    (:func:`_reach_rad`); it keeps its opening's upper bound (or its touch) and the
+    Hertzian law (``out_of_reach``). Rows within reach are the unlimited table's bit for
+    bit (tests/twin/test_mesh_reach.py; docs/twin.md "Reach of the mesh table").
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
