@@ -30,10 +30,11 @@ import numpy as np
 import pytest
 
 from design_space import CHATTER_PAIR, design_space_pair
+from table_fields import table_fields
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.geometry.pair import pair_to_toml
 from gearcontact.ltca.lte import loaded_te
-from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
+from gearcontact.ltca.lte_pairs import phase_contacts
 from gearcontact.ltca.pair_ltca import ARCSEC_PER_RAD
 from gearcontact.materials import effective_modulus_mpa
 from gearcontact.tca.analysis import analyze_pair
@@ -64,12 +65,9 @@ def _edge_rows(tca):
 @pytest.mark.slow
 def test_edge_field_holds_the_touch(chatter):
     pair, flanks, tca, _ = chatter
-    cycle, kin = tca.cycle, pair.kinematics()
-    pinion, gear = flanks.flank("pinion", SIDE), flanks.flank("gear", SIDE)
-    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
-    fields = PairFields(pinion, gear, kin, cycle, torque_nmm=1e3 * TORQUE_NM,
-                        e_prime=e_prime, cells=40, extent=(1.6, 2.0))
-    base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    t = table_fields(pair, tca, flanks, SIDE, TORQUE_NM)
+    cycle, kin, pinion, gear, e_prime, fields, base = (t.cycle, t.kin, t.pinion, t.gear,
+                                                       t.e_prime, t.fields, t.base)
     rows = np.flatnonzero(_edge_rows(tca))
     assert rows.size >= 12
     for k in rows:

@@ -139,16 +139,13 @@ def _edge_rows(pair, tca, flanks, side):
     lower bound the table decides on (``PairFields.bound``), the field's own bound
     (``touch_bounds_mm``), the searched touch and whether it settled, the scanned touch;
     ``reach`` per phase (``_reach_rad``, rad)."""
-    from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
+    from gearcontact.ltca.lte_pairs import phase_contacts
     from gearcontact.ltca.patch_field import touch_bounds_mm, touch_search
-    from gearcontact.materials import effective_modulus_mpa
+    from table_fields import table_fields
 
-    cycle, kin = tca.cycle, pair.kinematics()
-    pinion, gear = flanks.flank("pinion", side), flanks.flank("gear", side)
-    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
-    fields = PairFields(pinion, gear, kin, cycle, torque_nmm=1e3 * TORQUE_NM,
-                        e_prime=e_prime, cells=40, extent=(1.6, 2.0))
-    base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    t = table_fields(pair, tca, flanks, side, TORQUE_NM)
+    cycle, kin, pinion, gear, e_prime, fields, base = (t.cycle, t.kin, t.pinion, t.gear,
+                                                       t.e_prime, t.fields, t.base)
     steps, curv, table, out = round(0.5 * cycle.step_index), {}, {}, {}
     for k in range(len(cycle.phi1_rad)):
         for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
