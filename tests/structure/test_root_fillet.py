@@ -436,10 +436,8 @@ def test_root_share_against_the_closed_form(machine_pair, member):
     - the FE on the ellipse root is stiffer than on the real root (0.60-0.72 of the
       formula): the finding that made the real root the FE's default;
     - the shell (its calibrated factor) puts less into the root than the formula
-      (0.45-0.65 of it, measured 0.55-0.64 with the default rim block at its factor
-      1.175 (docs/bending.md sec. 13; gear 0.577-0.640, pinion 0.551-0.614), 0.49-0.57
-      with the plate's rim factor 1.49, 0.50-0.58 with 1.45): its plate clamped at the
-      root line is
+      (0.45-0.65 of it, measured 0.49-0.57 with the rim factor 1.49, 0.50-0.58 with
+      1.45): its plate clamped at the root line is
       1.4-2.1 x the FE's clamped tooth (a thick plate without the 3-D clamp), and its
       calibration on the whole deflection moved that into the tooth: the shell is
       right on the sum (sec. 10), not on the split.

@@ -27,9 +27,8 @@ over its mid-surface (the derivation is in ``docs/bending.md``):
   the tooth to the tip (1). The plate model of the fillet and the rim block (wide,
   shallow, with a twisted mid-surface) is too soft against the 3D solid: their modulus
   is raised by a factor calibrated per member against the FE (:data:`RIM_STIFFENING`).
-  With ``rim_block`` (the default of :func:`tooth_shell`, :data:`RIM_BLOCK`) the block
-  below the fillet is a Ritz solid instead, coupled to the plate (:mod:`.rim_block`, its
-  own calibrated factor; docs/bending.md sec. 13). Without a rim segment the plate is clamped at the root line (the closed-form
+  With ``rim_block`` the block below the fillet is a Ritz solid instead, coupled to the
+  plate (:mod:`.rim_block`, docs/bending.md sec. 13). Without a rim segment the plate is clamped at the root line (the closed-form
   cantilever);
 - a unit load along the unit direction d at a flank point (offset z from the
   mid-surface) does work on ``delta = (d.m) w + z ((d.e_1) beta_1 + (d.e_2) beta_2)``,
@@ -85,9 +84,8 @@ SHEAR_FACTOR = 5.0 / 6.0
 
 
 
-#: Factor on the modulus of the fillet and rim block of each member's plate shell
-#: (module docstring; with :data:`RIM_BLOCK` False, the shell with the block takes
-#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
+#: Factor on the modulus of the fillet and rim block of each member's shell (module
+#: docstring), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
 #: 12 x 6 x 3 + 4 with 3 fillet layers and 2 cells across each slot bottom;
 #: :mod:`.root_fillet`) of the pinions of s0003-centred, s0003 (its slot closing in a V
 #: at the toe) and the ISO 23509 F.2 pair (machine-cut and conjugate) and the gears of
@@ -107,9 +105,8 @@ ORDER, ORDER_FACE = 10, 16
 MEMBRANE = False
 #: Whether a bevel tooth's shell (:func:`tooth_shell`) takes its rim block below the
 #: fillet as a Ritz solid (:mod:`.rim_block`, its own calibrated factor
-#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; docs/bending.md sec. 13). On by default
-#: since session 22 (sec. 13's declared rule, measured there).
-RIM_BLOCK = True
+#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; docs/bending.md sec. 13).
+RIM_BLOCK = False
 #: Step of the central differences of the mid-surface's tangents in :func:`second_form`
 #: (in the surface's coordinates: xi, eta in [-1, 1]; mm of height in the rim).
 _CURVATURE_STEP = 1e-3
