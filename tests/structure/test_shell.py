@@ -30,7 +30,8 @@ from scipy.integrate import quad
 
 from gearcontact.materials import Material
 from gearcontact.structure.rim import RimSegment, SectionProfile, rim_modulus_factor, rim_segment
-from gearcontact.structure.shell import RIM_STIFFENING, build_shell, tooth_shell
+from gearcontact.structure.rim_block import BLOCK_RIM_STIFFENING
+from gearcontact.structure.shell import RIM_BLOCK, RIM_STIFFENING, build_shell, tooth_shell
 from gearcontact.structure.tooth import RectangularPlate, tooth_geometry
 from gearcontact.validation import InputRangeError
 
@@ -117,12 +118,16 @@ def test_tooth_shell_is_cached_and_rim_softens(s0003_centred):
     pair, flanks = s0003_centred
     a = tooth_shell(flanks, "gear", material=pair.gear_material, order=5)
     assert tooth_shell(flanks, "gear", material=pair.gear_material, order=5) is a
-    assert a.rim.stiffening == RIM_STIFFENING["gear"]
+    # the cached shell is the active model (shell.RIM_BLOCK) with that model's own
+    # calibrated rim factor (a definition: exact)
+    assert a.rim_block is RIM_BLOCK
+    assert a.rim.stiffening == (BLOCK_RIM_STIFFENING if RIM_BLOCK else RIM_STIFFENING["gear"])
     pts = a.body.points_at("drive", [0.0], [0.0])
     soft = a.compliance(pts).matrix()[0, 0]
     hard = build_shell(a.body, order=5, order_face=16).compliance(pts).matrix()[0, 0]
     stiffer_rim = build_shell(a.body, order=5, order_face=16, rim=RimSegment(
-        a.rim.depth_mm, a.rim.fillet_mm, 2.0 * a.rim.stiffening)).compliance(pts).matrix()[0, 0]
+        a.rim.depth_mm, a.rim.fillet_mm, 2.0 * a.rim.stiffening),
+        rim_block=a.rim_block).compliance(pts).matrix()[0, 0]
     assert soft > stiffer_rim > hard
 
 
