@@ -17,6 +17,7 @@ from typing import Protocol
 
 from ..validation import InputRangeError
 from .machine import MODIFIED_ROLL_KEYS, MachineSetup
+from .print_words import INCH_MM  # the one inch (a print's unit)
 from .typed_settings import full_key, moved, setting
 
 __all__ = ["INCH_MM", "SLIPS", "UNIT_SIGN_SLIPS", "UNIT_SLIPS", "Compare", "applicable",
@@ -35,9 +36,6 @@ class Compare(Protocol):
     def roundings(self, setup: MachineSetup) -> dict: ...
 
 
-#: The unit slips tried on a flank outside its tolerance (with :data:`SLIPS`): a length
-#: typed in inches (x 25.4) or converted twice (/ 25.4), an angle typed in radians.
-INCH_MM = 25.4
 _SAME = 1e-9                      # a slip that moves a value less than this is no slip
 #: The sign slips tried on a flank outside its tolerance: (machine key, the slip, what
 #: the sheet word is), docs sec. 2's table; the MD word read from the crossing point
@@ -51,7 +49,8 @@ SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
          *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
            for k in MODIFIED_ROLL_KEYS))
 #: The unit slips (:data:`INCH_MM`), tried with :data:`SLIPS`: (key, the slip, what
-#: the slip is). The words read "with the unit corrected (...)".
+#: the slip is): a length typed in inches (x 25.4) or converted twice (/ 25.4), an angle
+#: typed in radians. The words read "with the unit corrected (...)".
 UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 25.4 mm)")
                 for k in ("radial_distance_mm", "machine_centre_to_back_mm",
                           "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
