@@ -196,7 +196,7 @@ def test_synthesize_easeoff_checks_the_bearing_it_makes(tmp_path, capsys, monkey
     assert main(["design", "--pair", str(crowned)]) == 2
     assert "pointed pinion teeth" in capsys.readouterr().err
     seen = []
-    monkeypatch.setattr(design, "_synthesize", lambda args, pair: seen.append(pair) or 0)
+    monkeypatch.setattr(design, "synthesize", lambda args, pair: seen.append(pair) or 0)
     assert main(["design", "--pair", str(crowned), "--synthesize-easeoff"]) == 0
     assert seen[0].easeoff_tables == ()
     assert not any(dataclasses.astuple(seen[0].easeoff_drive))

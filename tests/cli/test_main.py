@@ -311,7 +311,8 @@ def test_a_command_imports_only_its_own_module():
                            check=True, timeout=300)
     loaded = child.stdout.split()
     # warm_up: its first-run note (``note_cold_cache``, no numpy), before every command
-    assert loaded == ["gearcontact.cli.design", "gearcontact.cli.outdir",
+    assert loaded == ["gearcontact.cli.design", "gearcontact.cli.design_modes",
+                      "gearcontact.cli.design_options", "gearcontact.cli.outdir",
                       "gearcontact.cli.warm_up"], loaded
     usage = subprocess.run([sys.executable, "-m", "gearcontact", "--help"], capture_output=True,
                            text=True, check=True, timeout=300).stdout

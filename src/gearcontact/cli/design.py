@@ -21,19 +21,21 @@ import dataclasses
 import json
 import sys
 
-from ..errors import CheckFailed
 from ..geometry.contact_path import SYNTHESIS_PATTERN_RATIO, SYNTHESIS_TE0_ARCSEC
 from ..geometry.contact_ratio import reverse_side_warning
 from ..geometry.flank_angles import measure_pair_mean_points
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation, reverse_side_contact_ratio
-from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, has_easeoff, load_pair,
+from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, load_pair,
                              without_easeoff)
 from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
                                         mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
-from .outdir import final_path
+from .design_modes import calibrate, machine_settings, synthesize
+from .design_options import (TARGET_OPTIONS, check_options, check_relieved_blades,
+                             checked_flanks, path_angle_option, path_angle_options,
+                             renamed, synthesis_targets)
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
 _PAIRED = (
@@ -169,7 +171,7 @@ def check(args) -> None:
                               ("--out", args.out), ("--tip-margin", args.tip_margin),
                               ("--te0-arcsec", args.te0_arcsec),
                               ("--pattern-length-ratio", args.pattern_length_ratio),
-                              *_path_angle_options(args).items(),
+                              *path_angle_options(args).items(),
                               ("--machine-settings", args.machine_settings),
                               ("--local-synthesis", args.local_synthesis),
                               ("--target-flank", args.target_flank),
@@ -181,8 +183,8 @@ def check(args) -> None:
                                       "(kind = 'cylindrical': design prints its geometry)")
         args.writes_files = False
         return
-    _check_options(args, pair)
-    _check_relieved_blades(args, pair)
+    check_options(args, pair)
+    check_relieved_blades(args, pair)
     if args.machine_settings and pair.machine:
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings; measured
@@ -202,7 +204,7 @@ def check(args) -> None:
             else args.te0_arcsec
         args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
             if args.pattern_length_ratio is None else args.pattern_length_ratio
-        args.targets = _synthesis_targets(args)     # their ranges, before any TCA
+        args.targets = synthesis_targets(args)     # their ranges, before any TCA
     # a pair whose pinion the gear cannot generate (limit line) is refused here; its
     # contact ratio is that of the bearing the synthesis will make (its gear flanks
     # are reused)
@@ -217,7 +219,7 @@ def check(args) -> None:
     if args.synthesize_easeoff:
         # the closed-form reach is the ease-off synthesis' (tca.path_reach); the settings
         # synthesis reports a target it misses in its table (exit 4)
-        args.flanks = _check_targets(pair, args, args.targets)
+        args.flanks = checked_flanks(pair, args, args.targets)
     if args.calibrate:
         from ..report.analyze import published_values
 
@@ -230,31 +232,6 @@ def check(args) -> None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
     args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
                                                 and args.out))
-
-
-def _check_relieved_blades(args, pair) -> None:
-    """The Toprem / Flankrem of a pair's blades, before any flank is built: kept by
-    ``--machine-settings`` (``args.reliefs``: the standard settings and the settings
-    fit keep each relief as given on its blade,
-    :func:`~gearcontact.geometry.relief_setup.relieved_setup`),
-    refused where the kink would be dropped or smoothed: ``--machine-settings
-    --local-synthesis`` (the synthesized settings are solved for smooth blades) and
-    ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
-    :func:`~gearcontact.geometry.flank.with_easeoff`, is resampled across the kink)."""
-    from ..geometry.machine import relieved_blade_keys
-    from ..geometry.relief_setup import blade_reliefs
-
-    args.reliefs = blade_reliefs(pair.machine)
-    option = ("--machine-settings --local-synthesis" if args.local_synthesis else
-              "--synthesize-easeoff" if args.synthesize_easeoff else None)
-    kinks = relieved_blade_keys(pair.machine)
-    if option is None or not kinks:
-        return
-    why = ("the synthesized settings are solved for smooth blades (--machine-settings "
-           "without it keeps the relief)" if args.local_synthesis else
-           "an ease-off laid on the relieved pinion would smooth its kink")
-    raise InputRangeError(*kinks[0], f"0 with {option}: {why}; analyze, ltca, bending and "
-                          "export flanks take the relieved pair as it is")
 
 
 def _check_generation(args, pair) -> dict:
@@ -274,300 +251,13 @@ def _check_generation(args, pair) -> dict:
     try:
         return check_generation(pair, bearing_of=predictor)
     except InputRangeError as exc:
-        if exc.field != "path_angle_deg" and exc.field not in _TARGET_OPTIONS:
+        if exc.field != "path_angle_deg" and exc.field not in TARGET_OPTIONS:
             raise
-        raise _renamed(exc, _path_angle_option(args, pair.design_side)) from None
-
-
-def _check_options(args, pair) -> None:
-    """The options of a bevel pair against each other and the pair's kind (ease-off or
-    not), without its flanks; reads ``--target-flank``."""
-    modes = [m for m, on in (("--calibrate", args.calibrate),
-                             ("--synthesize-easeoff", args.synthesize_easeoff),
-                             ("--machine-settings", args.machine_settings)) if on]
-    if len(modes) > 1:
-        raise InputRangeError(" / ".join(modes), "all given", "one of them")
-    if args.json and modes:
-        raise InputRangeError("--json", True, f"not given with {modes[0]} (it prints TOML "
-                                              "and tables; --json prints the blank design)")
-    if args.target_flank is not None:
-        if not args.machine_settings:
-            raise InputRangeError("--target-flank", args.target_flank, "given only with "
-                                  "--machine-settings (without it the option has no effect)")
-        from ..geometry.measuring_grid import read_member_targets
-        from ..geometry.point_fit import check_point_count
-
-        try:
-            args.easeoff_grid, args.gear_targets = read_member_targets(args.target_flank,
-                                                                       pair=pair)
-        except InputRangeError as exc:
-            if exc.field != "target flank":     # a field inside the file: named as it is
-                raise
-            raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
-        check_point_count(args.easeoff_grid, where=str(args.target_flank))
-        # the gear's points against its fewest settings before any flank is built (a
-        # formate gear's subset; a pair's own gear tables tell its method exactly)
-        from ..geometry.setting_fit import FORMATE_GEAR_PARAMETERS, default_parameters
-
-        own = [s for s in pair.machine if s.member == "gear"]
-        check_point_count(args.gear_targets, default_parameters(own[0]) if own else
-                          FORMATE_GEAR_PARAMETERS, where=str(args.target_flank), member="gear")
-    fitted = has_easeoff(pair) or args.target_flank is not None
-    if args.fit is not None and not (args.machine_settings and fitted):
-        raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
-                              "with an ease-off or --target-flank (the settings fit; without "
-                              "it the option has no effect)")
-    if args.local_synthesis and not args.machine_settings:
-        raise InputRangeError("--local-synthesis", True, "given only with --machine-settings "
-                              "(without it the option has no effect)")
-    if args.local_synthesis and fitted:
-        raise InputRangeError("--local-synthesis", True, "not given for a pair with an "
-                              "ease-off or with --target-flank (--machine-settings fits the "
-                              "settings that cut it; remove the [easeoff.*] tables for "
-                              "synthesized settings)")
-    for option, value in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
-                          ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
-        if value is not None and args.local_synthesis:
-            raise InputRangeError(option, value, "not given with --local-synthesis (the "
-                                  "synthesis sets the crowning)")
-        if value is not None and not args.machine_settings:
-            raise InputRangeError(option, value, "given only with --machine-settings "
-                                                 "(without it the option has no effect)")
-        if value is not None and fitted:
-            raise InputRangeError(option, value, "not given for a pair with an ease-off or "
-                                  "with --target-flank (--machine-settings fits the settings "
-                                  "that cut it; remove the [easeoff.*] tables for standard "
-                                  "settings)")
-        if value is not None:
-            check_range(f"{option} (um)", value, 0.0, 200.0)
-    # an option of a mode that is not asked for would be ignored without a word
-    synthesis = args.synthesize_easeoff or args.local_synthesis
-    for option, value, mode in (("--tip-margin", args.tip_margin, args.calibrate),
-                                ("--te0-arcsec", args.te0_arcsec, synthesis),
-                                ("--pattern-length-ratio", args.pattern_length_ratio,
-                                 synthesis),
-                                *((o, v, synthesis)
-                                  for o, v in _path_angle_options(args).items()),
-                                ("--out", args.out, args.calibrate or args.synthesize_easeoff
-                                 or args.machine_settings)):
-        if value is not None and not mode:
-            needs = ("--calibrate" if option == "--tip-margin" else
-                     "--synthesize-easeoff or --machine-settings --local-synthesis"
-                     if option != "--out" else
-                     "--calibrate, --synthesize-easeoff or --machine-settings")
-            raise InputRangeError(option, value, f"given only with {needs} (without it "
-                                                 "the option has no effect)")
-
-
-#: Option of each :class:`~gearcontact.tca.synthesis.SynthesisTargets` field it sets
-#: (the path angle's: :func:`_path_angle_option`).
-_TARGET_OPTIONS = {"te0_pp_arcsec": "--te0-arcsec",
-                   "pattern_length_ratio": "--pattern-length-ratio"}
-
-
-def _path_angle_options(args) -> dict:
-    """The path-angle options, option -> value (None if not given)."""
-    return {"--path-angle-deg": args.path_angle_deg,
-            **{f"--path-angle-{side}-deg": getattr(args, f"path_angle_{side}_deg")
-               for side in SIDES}}
-
-
-def _path_angle_option(args, side: str) -> str:
-    """The option that sets the path angle of ``side``."""
-    return "--path-angle-deg" if args.path_angle_deg is not None else f"--path-angle-{side}-deg"
-
-
-def _renamed(exc: InputRangeError, option: str | None = None) -> InputRangeError:
-    """``exc`` naming the option of its field (``option`` for the path angle's)."""
-    field = option if exc.field == "path_angle_deg" and option else exc.field
-    return InputRangeError(_TARGET_OPTIONS.get(field, field), exc.value, exc.allowed)
-
-
-def _synthesis_targets(args) -> dict:
-    """The synthesis targets of each side (side -> SynthesisTargets) of the options; a
-    target out of range names its option. ``--path-angle-deg`` sets both sides, a
-    ``--path-angle-<side>-deg`` one side (the other is free); the two kinds together
-    are refused (which would win is not obvious)."""
-    from ..tca.synthesis import SynthesisTargets
-
-    per_side = {side: getattr(args, f"path_angle_{side}_deg") for side in SIDES}
-    if args.path_angle_deg is not None:
-        given = [f"--path-angle-{s}-deg" for s, v in per_side.items() if v is not None]
-        if given:
-            raise InputRangeError("--path-angle-deg", args.path_angle_deg,
-                                  f"not given with {' / '.join(given)} (it sets both "
-                                  "sides; give one option per side instead)")
-        per_side = dict.fromkeys(SIDES, args.path_angle_deg)
-    out = {}
-    for side, angle in per_side.items():
-        try:
-            out[side] = SynthesisTargets(te0_pp_arcsec=args.te0_arcsec,
-                                         pattern_length_ratio=args.pattern_length_ratio,
-                                         path_angle_deg=angle)
-        except InputRangeError as exc:
-            raise _renamed(exc, _path_angle_option(args, side)) from None
-    return out
-
-
-def _checked_targets(args) -> dict:
-    """The targets :func:`check` made, or made of the options (a run without it)."""
-    return getattr(args, "targets", None) or _synthesis_targets(args)
-
-
-def _check_targets(pair, args, targets: dict):
-    """The pair's flanks, after refusing a TE0 level, pattern length or path angle the
-    synthesis cannot reach on its side (:func:`gearcontact.tca.path_reach.check_targets`:
-    closed form, no TCA), the error naming the option that set it."""
-    from ..geometry.flank import build_flanks
-    from ..tca.path_reach import check_targets
-
-    flanks = build_flanks(pair, checked=args.generation_check)
-    for side, t in targets.items():
-        try:
-            check_targets(pair, targets=t, flanks=flanks, sides=(side,))
-        except InputRangeError as exc:
-            raise _renamed(exc, _path_angle_option(args, side)) from None
-    return flanks
+        raise renamed(exc, path_angle_option(args, pair.design_side)) from None
 
 
 def _fmt(x) -> str:
     return str(x) if isinstance(x, int) else f"{x:.4f}"
-
-
-def _calibrate(args, pair) -> int:
-    from ..report.design import calibrate_to_published, write_calibration
-
-    cal = calibrate_to_published(pair, tip_margin_mm=args.tip_margin, progress=True)
-    path = write_calibration(cal, args.out)
-    print(cal.table())
-    print(f"design side {cal.side}; working depth factor {cal.pair.working_depth_factor:g}; "
-          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> {final_path(args, path)}")
-    return 0
-
-
-def _synthesize(args, pair) -> int:
-    from ..geometry.flank import build_flanks
-    from ..report.design import write_easeoff_toml
-    from ..tca.synthesis import easeoff_toml, synthesize_pair
-
-    targets = _checked_targets(args)
-    flanks = getattr(args, "flanks", None) or build_flanks(
-        pair, checked=getattr(args, "generation_check", None))
-    _, done = synthesize_pair(pair, targets=targets, flanks=flanks)
-    for side, s in done.items():
-        print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
-    text = easeoff_toml(done, pair_name=pair.name)
-    print(text)
-    if args.out is not None:
-        print(f"-> {final_path(args, write_easeoff_toml(text, args.out))}")
-    _refuse_missed("ease-off synthesis", pair, done)
-    return 0
-
-
-def _refuse_missed(what: str, pair, done: dict) -> None:
-    """CheckFailed (exit 4) naming the sides of ``done`` whose targets were missed; the
-    table says which, the TOML written stays."""
-    missed = [side for side, s in done.items() if not s.met]
-    if missed:
-        why = "".join(f"; not reachable: {done[side].unreachable}" for side in missed
-                      if getattr(done[side], "unreachable", None))
-        raise CheckFailed(f"{what} of {pair.name}: not all targets met on the "
-                          f"{' and '.join(missed)} side{'s' if len(missed) > 1 else ''} "
-                          f"(see the table){why}")
-
-
-def _machine_settings(args, pair) -> int:
-    from ..geometry.basic_settings import standard_machine_pair
-    from ..geometry.pair import pair_to_toml
-    from ..report.design import write_machine_settings_toml
-
-    if has_easeoff(pair) or args.target_flank is not None:
-        return _easeoff_settings(args, pair)
-
-    if args.local_synthesis:
-        return _local_synthesis(args, pair)
-    crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
-                                  ("blade_profile_crowning_um", args.blade_profile_crowning_um))
-                if v is not None}
-    # the gear of the default flanks (check: generated where the formate gear undercuts)
-    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-    text = pair_to_toml(standard_machine_pair(pair, gear_generation=generation,
-                                              reliefs=getattr(args, "reliefs", None), **crowning),
-                        comments={"": f"{pair.name}: standard machine settings from the blank "
-                                      "(gearcontact design --machine-settings;\nsigns: "
-                                      f"docs/machine_settings.md); gear: {generation}"})
-    print(text)
-    if args.out is not None:
-        print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
-    return 0
-
-
-def _local_synthesis(args, pair) -> int:
-    from ..report.design import local_synthesis_toml, write_machine_settings_toml
-    from ..tca.setting_synthesis import synthesized_machine_pair
-
-    try:
-        cut, done = synthesized_machine_pair(pair, targets=_checked_targets(args))
-    except InputRangeError as exc:     # the reach model's certain refusal names the side
-        side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
-        raise _renamed(exc, _path_angle_option(args, side)) from None
-    text = local_synthesis_toml(cut, done)
-    print(text)
-    if args.out is not None:
-        print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
-    _refuse_missed("setting synthesis", pair, done)
-    return 0
-
-
-def _easeoff_settings(args, pair) -> int:
-    from ..geometry.easeoff_settings import easeoff_machine_pair
-    from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
-                                            machine_seeds, measured_corrections)
-    from ..geometry.measuring_grid import MeasuredFlank
-    from ..report.design import (easeoff_settings_toml, gear_correction_toml,
-                                 write_easeoff_settings, write_gear_points,
-                                 write_machine_settings_toml)
-
-    where = str(args.target_flank or "target flank")
-    gear = None
-    own = getattr(args, "machine_pair", None)     # the pair as read, with its tables
-    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-    measured = {m: r for m, r in (("gear", getattr(args, "gear_targets", None)),
-                                  ("pinion", getattr(args, "easeoff_grid", None))) if r}
-    if own is not None and measured and \
-            all(isinstance(m, MeasuredFlank) for m in measured.get("pinion", {}).values()):
-        # a pair cut from machine settings, measured rows: each measured member
-        # corrected from its own tables (the flank the user measured), the other kept
-        done = list(measured_corrections(pair, measured, seeds={
-            "gear": gear_seeds(own, generation), "pinion": machine_seeds(own, "pinion")},
-            objective=args.fit or "rms", where=where).values())
-        cut = own
-        for c in done:
-            cut = corrected_pair(cut, c)
-        text = gear_correction_toml(cut, *done)
-        print(text)
-        for c in done:
-            print(c.table())
-        if args.out is not None:
-            for c in done:
-                write_gear_points(c, args.out)
-            print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
-        return 0
-    if "gear" in measured:       # measured gear rows: the gear corrected
-        gear = gear_correction(pair, measured["gear"], objective=args.fit or "rms",
-                               seeds=gear_seeds(own or pair, generation), where=where)
-    fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
-                               objective=args.fit or "rms", where=where,
-                               reliefs=getattr(args, "reliefs", None))
-    if gear is not None:
-        fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
-    print(easeoff_settings_toml(fit, gear=gear))
-    print(fit.table())
-    if gear is not None:
-        print(gear.table())
-    if args.out is not None:
-        print(f"-> {final_path(args, write_easeoff_settings(fit, args.out, gear=gear))}")
-    return 0
 
 
 def run(args) -> int:
@@ -578,11 +268,11 @@ def run(args) -> int:
         print(cylindrical_design_text(pair, as_json=args.json))
         return 0
     if args.machine_settings:
-        return _machine_settings(args, pair)
+        return machine_settings(args, pair)
     if args.calibrate:
-        return _calibrate(args, pair)
+        return calibrate(args, pair)
     if args.synthesize_easeoff:
-        return _synthesize(args, pair)
+        return synthesize(args, pair)
     blank = pair.blank
     boxes = getattr(args, "generation_check", None) or _check_generation(args, pair)
     generation = getattr(args, "gear_generation", None) or generation_of(boxes)

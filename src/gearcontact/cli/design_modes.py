@@ -1,0 +1,151 @@
+"""The modes of ``gearcontact design`` that write files: ``--calibrate``,
+``--synthesize-easeoff`` and ``--machine-settings`` (standard settings, local synthesis,
+or the settings fit of an ease-off / measured flank). Each is one library call and one
+library writer; the options were checked by :mod:`.design_options`."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from ..errors import CheckFailed
+from ..geometry.formate import SIDES
+from ..geometry.pair import has_easeoff
+from ..validation import InputRangeError
+from .design_options import checked_targets, path_angle_option, renamed
+from .outdir import final_path
+
+
+def calibrate(args, pair) -> int:
+    from ..report.design import calibrate_to_published, write_calibration
+
+    cal = calibrate_to_published(pair, tip_margin_mm=args.tip_margin, progress=True)
+    path = write_calibration(cal, args.out)
+    print(cal.table())
+    print(f"design side {cal.side}; working depth factor {cal.pair.working_depth_factor:g}; "
+          f"{cal.evaluations} TCA runs in {cal.seconds:.0f} s -> {final_path(args, path)}")
+    return 0
+
+
+def synthesize(args, pair) -> int:
+    from ..geometry.flank import build_flanks
+    from ..report.design import write_easeoff_toml
+    from ..tca.synthesis import easeoff_toml, synthesize_pair
+
+    targets = checked_targets(args)
+    flanks = getattr(args, "flanks", None) or build_flanks(
+        pair, checked=getattr(args, "generation_check", None))
+    _, done = synthesize_pair(pair, targets=targets, flanks=flanks)
+    for side, s in done.items():
+        print(f"# {side}: {s.evaluations} TCA runs, {s.seconds:.0f} s\n" + s.table())
+    text = easeoff_toml(done, pair_name=pair.name)
+    print(text)
+    if args.out is not None:
+        print(f"-> {final_path(args, write_easeoff_toml(text, args.out))}")
+    refuse_missed("ease-off synthesis", pair, done)
+    return 0
+
+
+def refuse_missed(what: str, pair, done: dict) -> None:
+    """CheckFailed (exit 4) naming the sides of ``done`` whose targets were missed; the
+    table says which, the TOML written stays."""
+    missed = [side for side, s in done.items() if not s.met]
+    if missed:
+        why = "".join(f"; not reachable: {done[side].unreachable}" for side in missed
+                      if getattr(done[side], "unreachable", None))
+        raise CheckFailed(f"{what} of {pair.name}: not all targets met on the "
+                          f"{' and '.join(missed)} side{'s' if len(missed) > 1 else ''} "
+                          f"(see the table){why}")
+
+
+def machine_settings(args, pair) -> int:
+    from ..geometry.basic_settings import standard_machine_pair
+    from ..geometry.pair import pair_to_toml
+    from ..report.design import write_machine_settings_toml
+
+    if has_easeoff(pair) or args.target_flank is not None:
+        return easeoff_settings(args, pair)
+
+    if args.local_synthesis:
+        return local_synthesis(args, pair)
+    crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
+                                  ("blade_profile_crowning_um", args.blade_profile_crowning_um))
+                if v is not None}
+    # the gear of the default flanks (check: generated where the formate gear undercuts)
+    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+    text = pair_to_toml(standard_machine_pair(pair, gear_generation=generation,
+                                              reliefs=getattr(args, "reliefs", None), **crowning),
+                        comments={"": f"{pair.name}: standard machine settings from the blank "
+                                      "(gearcontact design --machine-settings;\nsigns: "
+                                      f"docs/machine_settings.md); gear: {generation}"})
+    print(text)
+    if args.out is not None:
+        print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+    return 0
+
+
+def local_synthesis(args, pair) -> int:
+    from ..report.design import local_synthesis_toml, write_machine_settings_toml
+    from ..tca.setting_synthesis import synthesized_machine_pair
+
+    try:
+        cut, done = synthesized_machine_pair(pair, targets=checked_targets(args))
+    except InputRangeError as exc:     # the reach model's certain refusal names the side
+        side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
+        raise renamed(exc, path_angle_option(args, side)) from None
+    text = local_synthesis_toml(cut, done)
+    print(text)
+    if args.out is not None:
+        print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+    refuse_missed("setting synthesis", pair, done)
+    return 0
+
+
+def easeoff_settings(args, pair) -> int:
+    from ..geometry.easeoff_settings import easeoff_machine_pair
+    from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
+                                            machine_seeds, measured_corrections)
+    from ..geometry.measuring_grid import MeasuredFlank
+    from ..report.design import (easeoff_settings_toml, gear_correction_toml,
+                                 write_easeoff_settings, write_gear_points,
+                                 write_machine_settings_toml)
+
+    where = str(args.target_flank or "target flank")
+    gear = None
+    own = getattr(args, "machine_pair", None)     # the pair as read, with its tables
+    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+    measured = {m: r for m, r in (("gear", getattr(args, "gear_targets", None)),
+                                  ("pinion", getattr(args, "easeoff_grid", None))) if r}
+    if own is not None and measured and \
+            all(isinstance(m, MeasuredFlank) for m in measured.get("pinion", {}).values()):
+        # a pair cut from machine settings, measured rows: each measured member
+        # corrected from its own tables (the flank the user measured), the other kept
+        done = list(measured_corrections(pair, measured, seeds={
+            "gear": gear_seeds(own, generation), "pinion": machine_seeds(own, "pinion")},
+            objective=args.fit or "rms", where=where).values())
+        cut = own
+        for c in done:
+            cut = corrected_pair(cut, c)
+        text = gear_correction_toml(cut, *done)
+        print(text)
+        for c in done:
+            print(c.table())
+        if args.out is not None:
+            for c in done:
+                write_gear_points(c, args.out)
+            print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
+        return 0
+    if "gear" in measured:       # measured gear rows: the gear corrected
+        gear = gear_correction(pair, measured["gear"], objective=args.fit or "rms",
+                               seeds=gear_seeds(own or pair, generation), where=where)
+    fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
+                               objective=args.fit or "rms", where=where,
+                               reliefs=getattr(args, "reliefs", None))
+    if gear is not None:
+        fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
+    print(easeoff_settings_toml(fit, gear=gear))
+    print(fit.table())
+    if gear is not None:
+        print(gear.table())
+    if args.out is not None:
+        print(f"-> {final_path(args, write_easeoff_settings(fit, args.out, gear=gear))}")
+    return 0
