@@ -48,7 +48,8 @@ from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings
                       blade_profile, blade_through_point, mirror_setup)
 from .relief_setup import relieved_setup
 
-__all__ = ["complementary_pinion_setups", "crown_pinion_setups", "crown_profile",
+__all__ = ["checked_crowning", "complementary_pinion_setups", "cradle_pinion_setups",
+           "crown_pinion_setups", "crown_profile", "crowned_pinion_setups",
            "crowning_corrections",
            "formate_gear_setups", "generated_gear_setups", "member_setups", "mismatch_radius",
            "standard_machine_pair", "standard_setups"]
@@ -146,23 +147,49 @@ def _pinion_setups(pair, *, axis_point: np.ndarray, z_m: np.ndarray,
                    ratio_of_roll: float) -> dict:
     """Pinion settings whose cradle turns about the line through ``axis_point`` along
     ``z_m`` (meshing frame) carrying the gear's blade cones, tips on the pinion root."""
-    blank = pair.blank
     pl, cones = _gear_cones(pair)
-    a = pl.axis
-    h_f1 = blank.dedendum_pinion_mm
-    tip = pl.centre_mm - h_f1 * a                  # pinion cutter tip-plane centre
+    h_f1 = pair.blank.dedendum_pinion_mm
+    blades = {}
+    for side, cone in cones.items():
+        alpha = math.radians(cone.pressure_angle_deg)
+        # the same cone, its tip at h = -h_f1; the blade kind flips with the side of the
+        # material (rho(h) = rho_0 + sigma_gear h tan(alpha))
+        rho_tip = cone.radius_pitch_mm - cone.sigma * h_f1 * math.tan(alpha)
+        blades[side] = BladeSettings(kind="outside" if cone.inside else "inside",
+                                     blade_angle_deg=cone.pressure_angle_deg,
+                                     point_radius_mm=rho_tip,
+                                     edge_radius_mm=pair.cutter.edge_radius_mm)
+    return cradle_pinion_setups(pair, tip_mm=pl.centre_mm - h_f1 * pl.axis, axis=pl.axis,
+                                blades=blades, axis_point=axis_point, z_m=z_m,
+                                ratio_of_roll=ratio_of_roll)
+
+
+def cradle_pinion_setups(pair, *, tip_mm: np.ndarray, axis: np.ndarray, blades: dict,
+                         axis_point: np.ndarray, z_m: np.ndarray,
+                         ratio_of_roll: float) -> dict:
+    """``{side: MachineSetup}`` of the pinion of a right-hand ``pair`` cut by ``blades``
+    (``{side: BladeSettings}``, the pinion's) on a cutter whose tip-plane centre is
+    ``tip_mm`` and whose axis is ``-axis`` (``axis``: the gear cutter's, towards the
+    gear; the pinion's faces the pinion), mounted on a cradle that turns about the line
+    through ``axis_point`` along ``z_m`` (meshing frame, mm; towards the pinion) at
+    ``1 / ratio_of_roll`` of the pinion's rate: the settings that place the pinion in
+    its mounting position (axis ``x``, apex at ``(x_apex, -E, 0)``) relative to that
+    cradle (sec. 1 of docs/machine_settings.md)."""
+    blank = pair.blank
+    a = np.asarray(axis, dtype=float)
+    tip = np.asarray(tip_mm, dtype=float)
     w = np.array([1.0, 0.0, 0.0])                  # pinion axis
     x_m = w - (w @ z_m) * z_m
     x_m /= np.linalg.norm(x_m)
     y_m = np.cross(z_m, x_m)
     centre = axis_point + ((tip - axis_point) @ z_m) * z_m   # machine centre
     r = tip - centre
-    axis = -a                                      # towards the pinion
+    towards = -a                                   # towards the pinion
     # atan2, not acos: exact near 0 (acos of a rounded 1 gives 1e-6 deg)
-    tilt = math.degrees(math.atan2(float(np.linalg.norm(np.cross(axis, z_m))),
-                                   float(axis @ z_m)))
+    tilt = math.degrees(math.atan2(float(np.linalg.norm(np.cross(towards, z_m))),
+                                   float(towards @ z_m)))
     q = math.degrees(math.atan2(r @ y_m, r @ x_m))
-    toward = math.degrees(math.atan2(axis @ y_m, axis @ x_m))
+    toward = math.degrees(math.atan2(towards @ y_m, towards @ x_m))
     swivel = (toward - q + 180.0) % 360.0 - 180.0
     apex = np.array([blank.pinion_apex_x_mm, -blank.offset_mm, 0.0]) - centre
     x_d, x_b, e_m = np.linalg.solve(np.column_stack([w, z_m, y_m]), apex)
@@ -172,17 +199,7 @@ def _pinion_setups(pair, *, axis_point: np.ndarray, z_m: np.ndarray,
         machine_centre_to_back_mm=float(x_d), sliding_base_mm=float(x_b),
         blank_offset_mm=float(e_m), ratio_of_roll=float(ratio_of_roll), tilt_deg=tilt,
         swivel_deg=swivel)
-    out = {}
-    for side, cone in cones.items():
-        alpha = math.radians(cone.pressure_angle_deg)
-        # the same cone, its tip at h = -h_f1; the blade kind flips with the side of the
-        # material (rho(h) = rho_0 + sigma_gear h tan(alpha))
-        rho_tip = cone.radius_pitch_mm - cone.sigma * h_f1 * math.tan(alpha)
-        blade = BladeSettings(kind="outside" if cone.inside else "inside",
-                              blade_angle_deg=cone.pressure_angle_deg, point_radius_mm=rho_tip,
-                              edge_radius_mm=pair.cutter.edge_radius_mm)
-        out[side] = MachineSetup("pinion", side, settings, blade)
-    return out
+    return {side: MachineSetup("pinion", side, settings, blade) for side, blade in blades.items()}
 
 
 def mismatch_radius(setup: MachineSetup, *, delta_mm: float, theta_rad: float) -> MachineSetup:
@@ -255,27 +272,49 @@ def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
                                blade_profile_crowning_um=blade_profile_crowning_um,
                                gear_generation=gear_generation, reliefs=reliefs)
         return {k: mirror_setup(s) for k, s in twin.items()}
-    c_l = check_range("lengthwise_crowning_um", lengthwise_crowning_um, 0.0, 200.0)
-    c_p = check_range("blade_profile_crowning_um", blade_profile_crowning_um, 0.0, 200.0)
-    blank = pair.blank
+    crowning = checked_crowning(lengthwise_crowning_um, blade_profile_crowning_um)
     gear, pinion = member_setups(pair, gear_generation)
     out = {("gear", side): s for side, s in gear.items()}
+    out.update({("pinion", side): s
+                for side, s in crowned_pinion_setups(pair, pinion, **crowning).items()})
+    if reliefs:
+        out = {k: relieved_setup(s, reliefs.get(k, {}), pair.blank) for k, s in out.items()}
+    return out
+
+
+def checked_crowning(lengthwise_crowning_um: float, blade_profile_crowning_um: float) -> dict:
+    """The two standard crowning options, each range-checked to [0, 200] um (an input
+    error naming it), as keyword arguments of :func:`crowned_pinion_setups`."""
+    return {"lengthwise_crowning_um": check_range("lengthwise_crowning_um",
+                                                  lengthwise_crowning_um, 0.0, 200.0),
+            "blade_profile_crowning_um": check_range("blade_profile_crowning_um",
+                                                     blade_profile_crowning_um, 0.0, 200.0)}
+
+
+def crowned_pinion_setups(pair, pinion: dict, *, lengthwise_crowning_um: float,
+                          blade_profile_crowning_um: float) -> dict:
+    """``{side: MachineSetup}``: the pinion ``pinion`` (``{side: MachineSetup}``, straight
+    blades, a right-hand pair) localized by the standard crowning of
+    :func:`standard_setups` (cutter radius mismatch and circular blade, both pivoting on
+    the blade point that generates the pinion's mean node, so that the node and its
+    normal stay)."""
+    blank = pair.blank
     cone, _ = nominal_pinion_box(blank, pair.pinion_face_width_mm)
     u_m, v_m = float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
+    out = {}
     for side, setup in pinion.items():
         solver = EnvelopeSolver(setup, blank, cone)
         mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
         l_m, th_m = float(mean.l_mm), float(mean.theta_rad)
-        delta, k_b = crowning_corrections(pair, setup, l_mm=l_m, lengthwise_crowning_um=c_l,
-                                          blade_profile_crowning_um=c_p)
+        delta, k_b = crowning_corrections(
+            pair, setup, l_mm=l_m, lengthwise_crowning_um=lengthwise_crowning_um,
+            blade_profile_crowning_um=blade_profile_crowning_um)
         if delta:
             setup = mismatch_radius(setup, delta_mm=delta, theta_rad=th_m)
         if k_b:
             setup = dataclasses.replace(setup, blade=crown_profile(
                 setup.blade, radius_mm=1.0 / k_b, at_length_mm=l_m))
-        out["pinion", side] = setup
-    if reliefs:
-        out = {k: relieved_setup(s, reliefs.get(k, {}), blank) for k, s in out.items()}
+        out[side] = setup
     return out
 
 
