@@ -32,7 +32,7 @@ from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, load_pair,
 from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
                                         mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
-from .design_modes import calibrate, machine_settings, synthesize
+from .design_modes import calibrate, kept_gear, machine_settings, synthesize
 from .design_options import (TARGET_OPTIONS, check_options, check_relieved_blades,
                              checked_flanks, path_angle_option, path_angle_options,
                              renamed, synthesis_targets)
@@ -119,11 +119,18 @@ def register(sub) -> None:
                         "gear undercuts); for a pair with an ease-off, the pinion settings "
                         "fitted to cut that ease-off (the residual over each flank printed, "
                         "~15 s); else the standard settings from the blank (generated "
-                        "pinion with lengthwise and profile crowning; a pair cut from machine "
-                        "settings gets those of its blank, its blades' Toprem / Flankrem "
-                        "kept as given); prints the pair TOML "
+                        "pinion with lengthwise and profile crowning; a pair file typing the "
+                        "gear alone, [machine.gear.*] / [blade.gear.*] or [print.gear]: that "
+                        "gear kept as typed and its standard pinion; a pair cut from machine "
+                        "settings gets those of its blank unless --keep-gear, its blades' "
+                        "Toprem / Flankrem kept as given); prints the pair TOML "
                         "with its [machine.*]/[blade.*] tables, written as "
                         "machine_settings.toml (and the residual map) with --out")
+    p.add_argument("--keep-gear", action="store_true",
+                   help="with --machine-settings on a pair file typing both members: keep "
+                        "its gear exactly as typed and derive the standard pinion of that "
+                        "gear (as for a gear typed alone; docs/machine_settings.md sec. 5), "
+                        "instead of the blank's standard settings of both members")
     p.add_argument("--local-synthesis", action="store_true",
                    help="with --machine-settings on a hypoid whose gear is generated: the "
                         "pinion settings from local synthesis at the mean point (roll "
@@ -161,7 +168,8 @@ def check(args) -> None:
     --calibrate or --synthesize-easeoff --out (under the output-directory policy,
     :mod:`.outdir`). The options are checked against each other before the pair's
     generation (seconds for a generated gear): a contradiction costs nothing."""
-    pair = args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL))
+    pair = args.gear_pair = load_pair(args.pair, kinds=(BEVEL, CYLINDRICAL),
+                                      gear_alone=bool(args.machine_settings))
     if args.force and args.out is None:
         raise InputRangeError("--force", True, "given only with --out (without it the "
                                                "option has no effect)")
@@ -174,6 +182,7 @@ def check(args) -> None:
                               *path_angle_options(args).items(),
                               ("--machine-settings", args.machine_settings),
                               ("--local-synthesis", args.local_synthesis),
+                              ("--keep-gear", args.keep_gear),
                               ("--target-flank", args.target_flank),
                               ("--fit", args.fit),
                               ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
@@ -185,12 +194,14 @@ def check(args) -> None:
         return
     check_options(args, pair)
     check_relieved_blades(args, pair)
-    if args.machine_settings and pair.machine:
+    # a typed gear kept (typed alone, or --keep-gear): its standard pinion is derived
+    args.typed_gear = kept_gear(args, pair)
+    if args.machine_settings and (pair.machine or pair.typed_gear):
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings; measured
         # gear rows are corrected from the pair's own gear (the gear they measure)
         args.machine_pair = pair
-        pair = args.gear_pair = dataclasses.replace(pair, machine=())
+        pair = args.gear_pair = dataclasses.replace(pair, machine=(), typed_gear=())
     # typed settings against the blank tables, on the flanks measured at the blank's mean
     # points once (the table below the blank prints the same measurements)
     args.mean_points = measure_pair_mean_points(pair) if pair.machine else None

@@ -57,9 +57,39 @@ def refuse_missed(what: str, pair, done: dict) -> None:
                           f"(see the table){why}")
 
 
+def kept_gear(args, pair) -> dict | None:
+    """``{side: MachineSetup}`` of the typed gear ``design --machine-settings`` keeps (a
+    pair file typing the gear alone, or both members with ``--keep-gear``), else None;
+    an input error (exit 2) for ``--keep-gear`` without ``--machine-settings`` or without
+    a typed gear, and for a kept gear with ``--local-synthesis`` or ``--target-flank``
+    (modes that make both members' settings from the blank's gear or fit the pair's own)."""
+    keep = getattr(args, "keep_gear", False)
+    if keep and not args.machine_settings:
+        raise InputRangeError("--keep-gear", True, "given only with --machine-settings "
+                              "(without it the option has no effect)")
+    if keep and not (pair.machine or pair.typed_gear):
+        raise InputRangeError("--keep-gear", True, f"a pair file that types the gear's "
+                              f"settings ([machine.gear.*] / [blade.gear.*] or [print.gear]); "
+                              f"{args.pair} types none (its standard settings: without "
+                              "--keep-gear)")
+    setups = pair.typed_gear or (tuple(s for s in pair.machine if s.member == "gear")
+                                 if keep else ())
+    if not setups:
+        return None
+    for option, value in (("--local-synthesis", args.local_synthesis),
+                          ("--target-flank", args.target_flank)):
+        if value not in (None, False):
+            raise InputRangeError(option, value, "not given when the pair's typed gear is kept "
+                                  "(a gear typed alone, or --keep-gear): its standard pinion "
+                                  "is derived; the option works on the blank's own gear or "
+                                  "on a pair typing both members without --keep-gear")
+    return {s.side: s for s in setups}
+
+
 def machine_settings(args, pair) -> int:
     from ..geometry.basic_settings import standard_machine_pair
     from ..geometry.pair import pair_to_toml
+    from ..geometry.typed_pinion import typed_gear_machine_pair
     from ..report.design import write_machine_settings_toml
 
     if has_easeoff(pair) or args.target_flank is not None:
@@ -70,13 +100,25 @@ def machine_settings(args, pair) -> int:
     crowning = {k: v for k, v in (("lengthwise_crowning_um", args.lengthwise_crowning_um),
                                   ("blade_profile_crowning_um", args.blade_profile_crowning_um))
                 if v is not None}
-    # the gear of the default flanks (check: generated where the formate gear undercuts)
-    generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-    text = pair_to_toml(standard_machine_pair(pair, gear_generation=generation,
-                                              reliefs=getattr(args, "reliefs", None), **crowning),
-                        comments={"": f"{pair.name}: standard machine settings from the blank "
-                                      "(gearcontact design --machine-settings;\nsigns: "
-                                      f"docs/machine_settings.md); gear: {generation}"})
+    reliefs = getattr(args, "reliefs", None)
+    gear = getattr(args, "typed_gear", None)
+    if gear:    # the typed gear as typed, the standard pinion of that gear
+        source = "[print.gear]" if pair.print_gear else "[machine.gear.*] / [blade.gear.*]"
+        cut = typed_gear_machine_pair(pair, gear, reliefs=reliefs, **crowning)
+        head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
+                "pinion (gearcontact design --machine-settings;\nsigns: "
+                "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "
+                + "/".join(sorted({"formate" if g.settings.formate else "generated"
+                                   for g in gear.values()})))
+    else:
+        # the gear of the default flanks (check: generated where the formate gear undercuts)
+        generation = "formate" if args.gear_generation == "machine" else args.gear_generation
+        cut = standard_machine_pair(pair, gear_generation=generation, reliefs=reliefs,
+                                    **crowning)
+        head = (f"{pair.name}: standard machine settings from the blank (gearcontact design "
+                "--machine-settings;\nsigns: docs/machine_settings.md); gear: "
+                f"{generation}")
+    text = pair_to_toml(cut, comments={"": head})
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")

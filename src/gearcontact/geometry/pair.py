@@ -94,7 +94,8 @@ A summary sheet's gear page may stand for the gear's four tables: ``[print.gear]
 words and numbers typed verbatim (``sliding_base = "WITH 0.070"``; the keys, the
 conversion and its checks: :mod:`.print_table`, docs/machine_settings.md sec. 2-3),
 beside the pinion's tables; given with ``[machine.gear.*]`` / ``[blade.gear.*]`` it is
-refused.
+refused. The gear's tables without the pinion's are read only by ``gearcontact design
+--machine-settings`` (``gear_alone``: :mod:`.typed_pinion` derives the pinion).
 
 Every value is validated on load: a missing key, a value of the wrong TOML type or a
 value outside its range raises :class:`~gearcontact.validation.InputRangeError`
@@ -248,6 +249,9 @@ class GearPair:
         when the gear's settings were typed as a print (:mod:`.print_table`); empty
         otherwise. :func:`pair_to_toml` writes it back instead of the gear's tables while
         ``machine`` holds the gear it cuts.
+    typed_gear : tuple of MachineSetup
+        The gear's two set-ups of a file typing the gear alone (read with ``gear_alone``;
+        ``machine`` empty: :func:`~.typed_pinion.typed_gear_machine_pair` cuts the pair).
     """
 
     name: str
@@ -274,6 +278,7 @@ class GearPair:
     easeoff_tables: tuple = ("drive", "coast")
     machine: tuple = ()
     print_gear: tuple = ()
+    typed_gear: tuple = ()
 
     #: the pair-file kind (a file without ``kind``; cylindrical pairs: ``"cylindrical"``)
     kind = "bevel"
@@ -285,6 +290,9 @@ class GearPair:
             if got != want:
                 raise InputRangeError("[machine] / [blade]", [f"{m}.{side}" for m, side in got],
                                       "all four flanks: " + ", ".join(f"{m}.{side}" for m, side in want))
+        if self.typed_gear and (self.machine or sorted(s.side for s in self.typed_gear if
+                                                       s.member == "gear") != ["coast", "drive"]):
+            raise InputRangeError("typed_gear", self.typed_gear, "the gear's two set-ups alone")
         if self.design_side not in ("drive", "coast"):
             raise InputRangeError("design.design_side", self.design_side, "'drive' or 'coast'")
         if self.pinion_hand not in ("right", "left"):
@@ -382,10 +390,11 @@ for _m in MEMBERS:
 _REQUIRED_SECTIONS = ("teeth", "axes", "design", "cutter")
 
 
-def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
+def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> GearPair:
     """Build a :class:`GearPair` from a parsed TOML document (see module docstring); a
     ``[print.gear]`` table is converted into the gear's tables first (:mod:`.print_table`)
-    and they are checked as typed ones."""
+    and they are checked as typed ones. ``gear_alone``: the gear's tables without the
+    pinion's are read into ``typed_gear`` (else refused, naming the pinion's tables)."""
     doc, printed = split_print(doc)
     if printed is not None:
         teeth = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)["teeth"]["gear"]
@@ -399,7 +408,7 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
                               None, "exactly one of the two keys")
     materials = materials_of(s)
     named = [n for n in s if n.startswith(("machine.", "blade."))]
-    machine = ()
+    machine, alone = (), False
     if named:
         if any(n.startswith("easeoff.") for n in s):
             raise InputRangeError("[easeoff.*]", "given with [machine.*] / [blade.*]",
@@ -407,22 +416,28 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
                                   "an ease-off on today's conjugate pinion, not both")
         missing = [f"[{kind}.{m}.{side}]" for kind in ("machine", "blade") for m in MEMBERS
                    for side in ("drive", "coast") if f"{kind}.{m}.{side}" not in s]
-        if missing:
-            raise InputRangeError(", ".join(missing), None, "required with any [machine.*] / "
-                                  "[blade.*] table (all four flanks are cut from settings)"
-                                  if printed is None else "required with [print.gear]: the "
-                                  "print cuts the gear, the pinion its own settings (a "
-                                  "pinion page typed by docs/machine_settings.md sec. 2, or "
-                                  "the standard ones `gearcontact design --machine-settings` "
-                                  "writes, sec. 3)")
+        pinion_only = len(missing) == 4 and all(".pinion." in m for m in missing)
+        alone = gear_alone and pinion_only
+        if missing and not alone:
+            raise InputRangeError(", ".join(missing), None, (
+                "required with any [machine.*] / [blade.*] table (all four flanks are cut "
+                "from settings)" if printed is None else "required with [print.gear]: the "
+                "print cuts the gear, the pinion its own settings (a pinion page typed by "
+                "docs/machine_settings.md sec. 2)") + (
+                "; a gear typed alone: `gearcontact design --pair FILE --machine-settings` "
+                "derives its standard pinion (docs/machine_settings.md sec. 5)"
+                if pinion_only else ""))
         try:
             machine = tuple(setup_from_tables(m, side, s[f"machine.{m}.{side}"],
                                               s[f"blade.{m}.{side}"])
-                            for m in MEMBERS for side in ("drive", "coast"))
+                            for m in (("gear",) if alone else MEMBERS)
+                            for side in ("drive", "coast"))
         except InputRangeError as exc:
             raise exc if printed is None else printed_key_error(exc, printed) from None
+    typed_gear = machine if alone else ()
+    machine = () if alone else machine
     pair = GearPair(
-        name=s[""].get("name", name), machine=machine,
+        name=s[""].get("name", name), machine=machine, typed_gear=typed_gear,
         pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
         offset_mm=s["axes"]["offset_mm"],
         shaft_angle_deg=s["axes"].get("shaft_angle_deg", 90.0),
@@ -431,7 +446,7 @@ def parse_pair(doc: dict, *, name: str = "pair") -> GearPair:
         easeoff_coast=EaseOffCoefficients(**s.get("easeoff.coast", {})),
         assembly=AssemblyErrors(**s.get("assembly", {})),
         pinion_material=materials["pinion"], gear_material=materials["gear"],
-        easeoff_tables=(("drive", "coast") if machine else
+        easeoff_tables=(("drive", "coast") if machine or typed_gear else
                         tuple(side for side in ("drive", "coast") if f"easeoff.{side}" in s)),
         print_gear=() if printed is None else tuple(
             (k, tuple(v) if isinstance(v, list) else v) for k, v in printed.items()),
@@ -449,8 +464,8 @@ _KIND_USE = {CYLINDRICAL: "only `gearcontact design`, `tca`, `ltca`, `lte`, `ana
                           "`export fmu` read cylindrical pairs so far (docs/cylindrical.md)"}
 
 
-def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
-              ) -> GearPair | CylindricalPair:
+def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,),
+              gear_alone: bool = False) -> GearPair | CylindricalPair:
     """Load a pair from a preset name (``"s0003"``) or a ``.toml`` file path.
 
     The file's top-level ``kind`` selects the format: absent, a bevel/hypoid
@@ -463,6 +478,8 @@ def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
     kinds : tuple of str
         The kinds the caller can use (``"bevel"``, ``"cylindrical"``); a file of
         another kind is refused before it is validated.
+    gear_alone : bool
+        Read a gear typed without its pinion (:attr:`GearPair.typed_gear`), not refuse it.
 
     Raises
     ------
@@ -503,7 +520,7 @@ def load_pair(source: str | Path, *, kinds: tuple[str, ...] = (BEVEL,)
                                                 f"command: {_KIND_USE[kind]}")
         if kind == CYLINDRICAL:
             return parse_cylindrical_pair(doc, name=label)
-        return parse_pair(doc, name=label)
+        return parse_pair(doc, name=label, gear_alone=gear_alone)
     except InputRangeError as exc:
         if not where:
             raise
@@ -570,7 +587,7 @@ def pair_to_toml(pair: GearPair, *, comments: dict[str, str] | None = None) -> s
     printed = cuts_the_printed_gear(pair)
     if printed:
         out += block("print.gear", {})[:-2] + printed_toml_lines(pair.print_gear) + [""]
-    for setup in pair.machine:
+    for setup in pair.machine or pair.typed_gear:
         if printed and setup.member == "gear":
             continue
         machine, blade = setup_to_tables(setup)

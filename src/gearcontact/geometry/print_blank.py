@@ -195,7 +195,7 @@ def cuts_the_printed_gear(pair) -> bool:
     the table but not the print's gear)."""
     printed = dict(getattr(pair, "print_gear", ()) or ())
     return bool(printed) and printed_gear_setups(printed, gear_teeth=pair.gear_teeth) == tuple(
-        s for s in pair.machine if s.member == "gear")
+        s for s in pair.machine or getattr(pair, "typed_gear", ()) if s.member == "gear")
 
 
 def print_key(full_key: str, printed: Mapping) -> tuple[str, object] | None:

@@ -224,7 +224,7 @@ def _check_lengths(pair, printed: dict) -> None:
     # without a print must not (tests/test_package.py)
     from .blank_check import GROSS_SPIRAL_DEG, ROOT_DATUM_FRACTION
 
-    blank, gear = pair.blank, pair.machine[0].settings
+    blank, gear = pair.blank, (pair.machine or pair.typed_gear)[0].settings
     depth = blank.addendum_gear_mm + blank.dedendum_gear_mm
     datum = (ROOT_DATUM_FRACTION * blank.dedendum_gear_mm
              + 2.0 * INCH_MM * PRINT_ROUNDING["length_in"])
