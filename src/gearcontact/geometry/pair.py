@@ -424,7 +424,7 @@ def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> Ge
                 "from settings)" if printed is None else "required with [print.gear]: the "
                 "print cuts the gear, the pinion its own settings (a pinion page typed by "
                 "docs/machine_settings.md sec. 2)") + (
-                "; a gear typed alone: `gearcontact design --pair FILE --machine-settings` "
+                "; a gear typed alone: `gearcontact design --machine-settings` on this file "
                 "derives its standard pinion (docs/machine_settings.md sec. 5)"
                 if pinion_only else ""))
         try:
