@@ -293,8 +293,8 @@ def _warn_if_not_mates(touch: dict, side: str) -> None:
             "pair measures the mismatch (edge contact, a large TE0), not a bearing. The "
             "pinion's settings were made for another gear: `gearcontact design --pair "
             "FILE --machine-settings` gives the standard settings of the blank's gear and "
-            "its pinion (a pinion for typed gear settings: not yet, "
-            "docs/machine_settings.md sec. 5 and 7)",
+            "its pinion, with --keep-gear the typed gear kept and its standard pinion "
+            "(docs/machine_settings.md sec. 5)",
             MateWarning, stacklevel=3)
 
 
