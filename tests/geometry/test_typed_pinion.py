@@ -191,3 +191,43 @@ def test_crowning_out_of_range_is_refused_before_any_work(print_pair):
         typed_gear_machine_pair(print_pair, _gear(print_pair), lengthwise_crowning_um=-1.0)
     with pytest.raises(InputRangeError, match="blade_profile_crowning_um"):
         typed_gear_machine_pair(print_pair, _gear(print_pair), blade_profile_crowning_um=201.0)
+
+
+def test_a_typed_formate_gear_gets_its_line_contact_conjugate():
+    # (c) for the formate branch on a gear that is not the blank's: F.2's formate gear
+    # with the drive blade 0.5 deg steeper and the cutter 0.5 mm further out (radial
+    # distance), typed alone. Its own cutter generates the uncrowned pinion, so the
+    # pinion is its line-contact conjugate (Litvin & Fuentes 2004, sec. 21.2): TE0 = 0
+    # within 1e-4 arcsec (tca.line_contact, as tests/geometry/test_generated.py for the
+    # blank's gear; 40 x 50 nodes) on at least 10 of 21 phases (measured 3.4e-5 arcsec on
+    # 12). Not vacuous: the
+    # pinion follows the gear (blade angle 20.5 deg, and its cutter moved with it)
+    from gearcontact.geometry.basic_settings import complementary_pinion_setups
+    from gearcontact.geometry.generated import formate_gear_flank
+    from gearcontact.geometry.typed_pinion import typed_gear_pinion_setups
+    from gearcontact.tca.line_contact import line_contact
+    from gearcontact.tca.types import ContactGuess
+
+    pair = load_pair(F2)
+    std = standard_setups(pair)
+    g = std["gear", "drive"]
+    gear = {"coast": std["gear", "coast"], "drive": dataclasses.replace(
+        g, settings=dataclasses.replace(g.settings, radial_distance_mm=g.settings.radial_distance_mm
+                                        + 0.5),
+        blade=dataclasses.replace(g.blade, blade_angle_deg=g.blade.blade_angle_deg + 0.5))}
+    setup = typed_gear_pinion_setups(pair, gear)["drive"]
+    blank_pinion = complementary_pinion_setups(pair)["drive"]
+    assert setup.blade.blade_angle_deg == blank_pinion.blade.blade_angle_deg + 0.5
+    assert abs(setup.settings.radial_distance_mm - blank_pinion.settings.radial_distance_mm) > 0.1
+    kin = pair.kinematics(with_errors=False)
+    flank = formate_gear_flank(gear["drive"], pair.blank,
+                               gear_face_width_mm=pair.gear_face_width_mm)
+    pinion, _ = generated_pinion_flank(setup, pair.blank, n_u=40, n_v=50,
+                                       pinion_face_width_mm=pair.pinion_face_width_mm)
+    u_m, v_m = float(pinion.cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
+    mc = mean_contact_guess(pinion, flank, kin, pinion_uv=(u_m, v_m),
+                            gear_uv=(pair.blank.dedendum_gear_mm, 0.0))
+    start = ContactGuess(*mc["pinion_uv"], *mc["gear_uv"], mc["phi1_rad"], mc["phi2_rad"])
+    r = line_contact(pinion, flank, kin, start, pinion_teeth=pair.pinion_teeth, phases=21)
+    assert np.isfinite(r.te0_arcsec).sum() >= 10
+    assert r.te0_max_abs_arcsec < 1e-4
