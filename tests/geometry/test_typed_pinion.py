@@ -113,6 +113,25 @@ def test_the_typed_gear_is_kept_and_written_as_typed(print_pair):
         s for s in print_pair.machine if s.member == "pinion"]
 
 
+def test_a_gear_typed_alone_is_read_only_where_asked(tmp_path, print_pair):
+    # the page without the pinion tables: refused by default, naming the pinion's tables
+    # and the command that derives them; read with gear_alone, its gear the shipped
+    # file's (==) and the derived pair the same as from the shipped file's gear (==)
+    text = open(PRINT).read()
+    path = tmp_path / "page.toml"
+    path.write_text(text[:text.index("[machine.pinion.drive]")])
+    with pytest.raises(InputRangeError, match=r"\[machine\.pinion\.drive\].*design "
+                                              r"--machine-settings"):
+        _quiet_load(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        alone = load_pair(path, gear_alone=True)
+    assert not alone.machine
+    assert {s.side: s for s in alone.typed_gear} == _gear(print_pair)
+    assert typed_gear_machine_pair(alone).machine == typed_gear_machine_pair(
+        print_pair).machine
+
+
 def _nearest_touch_deg(cut) -> dict:
     twin = right_hand_twin(cut)
     flanks = build_flanks(twin, n_u=20, n_v=24)

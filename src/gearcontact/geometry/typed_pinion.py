@@ -132,17 +132,21 @@ def typed_gear_pinion_setups(pair, gear: dict) -> dict:
     return out
 
 
-def typed_gear_machine_pair(pair, gear: dict, *, lengthwise_crowning_um: float = 25.0,
+def typed_gear_machine_pair(pair, gear: dict | None = None, *,
+                            lengthwise_crowning_um: float = 25.0,
                             blade_profile_crowning_um: float = 10.0,
                             reliefs: dict | None = None):
-    """``pair`` cut from the typed gear ``gear`` (``{side: MachineSetup}``, kept exactly as
-    given, and ``pair.print_gear`` with it: :func:`~.pair.pair_to_toml` writes the print
-    back as typed) and the standard pinion of that gear: :func:`typed_gear_pinion_setups`
+    """``pair`` cut from the typed gear ``gear`` (``{side: MachineSetup}``; default the
+    pair's own: ``pair.typed_gear``, else the gear of ``pair.machine``), kept exactly as
+    given, and ``pair.print_gear`` with it (:func:`~.pair.pair_to_toml` writes the print
+    back as typed), and the standard pinion of that gear: :func:`typed_gear_pinion_setups`
     localized by the standard crowning (:func:`~.basic_settings.standard_setups`'
     options and ranges) and the pinion blades' ``reliefs`` (``{("pinion", side):
     relief}``) kept. What ``gearcontact design --machine-settings`` writes for a pair file
     that types its gear (docs/machine_settings.md sec. 5)."""
     crowning = checked_crowning(lengthwise_crowning_um, blade_profile_crowning_um)
+    if gear is None:
+        gear = {s.side: s for s in pair.typed_gear or pair.machine if s.member == "gear"}
     _check_gear(gear)
     left = pair.pinion_hand == "left"     # the right-hand twin's pinion, mirrored
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
@@ -156,5 +160,5 @@ def typed_gear_machine_pair(pair, gear: dict, *, lengthwise_crowning_um: float =
         pinion = {s: mirror_setup(p) for s, p in pinion.items()}
     members = {"gear": gear, "pinion": pinion}
     return dataclasses.replace(pair, machine=tuple(members[m][s] for m in MEMBERS for s in SIDES),
-                               easeoff_tables=("drive", "coast"))
+                               typed_gear=(), easeoff_tables=("drive", "coast"))
 
