@@ -218,11 +218,10 @@ def test_a_typed_formate_gear_gets_its_line_contact_conjugate():
     # distance), typed alone. Its own cutter generates the uncrowned pinion, so the
     # pinion is its line-contact conjugate (Litvin & Fuentes 2004, sec. 21.2): TE0 = 0
     # within 1e-4 arcsec (tca.line_contact, as tests/geometry/test_generated.py for the
-    # blank's gear; 40 x 50 nodes) on at least 10 of 21 phases (measured 3.4e-5 arcsec on
-    # 12). Not vacuous: the
+    # blank's gear; the pair's flanks, 40 x 50 nodes) on at least 10 of 21 phases
+    # (measured 3.4e-5 arcsec on 12). Not vacuous: the
     # pinion follows the gear (blade angle 20.5 deg, and its cutter moved with it)
     from gearcontact.geometry.basic_settings import complementary_pinion_setups
-    from gearcontact.geometry.generated import formate_gear_flank
     from gearcontact.geometry.typed_pinion import typed_gear_pinion_setups
     from gearcontact.tca.line_contact import line_contact
     from gearcontact.tca.types import ContactGuess
@@ -238,15 +237,12 @@ def test_a_typed_formate_gear_gets_its_line_contact_conjugate():
     blank_pinion = complementary_pinion_setups(pair)["drive"]
     assert setup.blade.blade_angle_deg == blank_pinion.blade.blade_angle_deg + 0.5
     assert abs(setup.settings.radial_distance_mm - blank_pinion.settings.radial_distance_mm) > 0.1
-    kin = pair.kinematics(with_errors=False)
-    flank = formate_gear_flank(gear["drive"], pair.blank,
-                               gear_face_width_mm=pair.gear_face_width_mm)
-    pinion, _ = generated_pinion_flank(setup, pair.blank, n_u=40, n_v=50,
-                                       pinion_face_width_mm=pair.pinion_face_width_mm)
-    u_m, v_m = float(pinion.cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
-    mc = mean_contact_guess(pinion, flank, kin, pinion_uv=(u_m, v_m),
-                            gear_uv=(pair.blank.dedendum_gear_mm, 0.0))
-    start = ContactGuess(*mc["pinion_uv"], *mc["gear_uv"], mc["phi1_rad"], mc["phi2_rad"])
-    r = line_contact(pinion, flank, kin, start, pinion_teeth=pair.pinion_teeth, phases=21)
+    cut = typed_gear_machine_pair(pair, gear, lengthwise_crowning_um=0.0,
+                                  blade_profile_crowning_um=0.0)
+    flanks = build_flanks(cut, n_u=40, n_v=50)
+    m = flanks.mean_contact["drive"]
+    r = line_contact(flanks.pinion.drive, flanks.gear.drive, pair.kinematics(with_errors=False),
+                     ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
+                                  m["phi2_rad"]), pinion_teeth=pair.pinion_teeth, phases=21)
     assert np.isfinite(r.te0_arcsec).sum() >= 10
     assert r.te0_max_abs_arcsec < 1e-4
