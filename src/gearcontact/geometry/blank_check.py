@@ -384,7 +384,9 @@ _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "press
 
 
 def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> dict:
-    """The typed settings' rounding propagated (module docstring), per quantity."""
+    """The typed settings' rounding propagated (module docstring), per quantity: each
+    typed key moved by its half unit, up, or down where up leaves the key's range (a
+    value typed at its limit: the range error would name a value nobody typed)."""
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
     moves = [(k, r) for k, r in roundings(setup, stated.setting_rounding).items() if r > 0.0]
@@ -397,7 +399,10 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
             shifted = setup, dataclasses.replace(stated,
                                                  cutter_radius_mm=stated.cutter_radius_mm + r)
         else:
-            shifted = moved(setup, key, lambda x, r=r: x + r), stated
+            try:
+                shifted = moved(setup, key, lambda x, r=r: x + r), stated
+            except InputRangeError:     # typed at the top of its range: round the other way
+                shifted = moved(setup, key, lambda x, r=r: x - r), stated
         try:
             got, _ = _values(*shifted, at)
         except UndercutError:       # the warm start lost the point: the full solve

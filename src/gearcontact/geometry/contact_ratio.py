@@ -38,8 +38,9 @@ follows the TCA's interior contact to the TCA's own resolution (-0.033 .. +0.002
 nine pairs). :func:`check_contact_ratio` refuses ``eps_p < MIN_CONTACT_RATIO`` (0.85:
 the largest eps_p measured with a gap in the TCA is 0.752, a 13 % margin); a pair cut
 from machine settings, whose path is not known here, keeps the closed form's
-``eps_vg < MIN_VIRTUAL_CONTACT_RATIO`` (1.55). docs/geometry.md sec. 7.7 has the
-measurements.
+``eps_vg < MIN_VIRTUAL_CONTACT_RATIO`` (1.55) unless the path of its blank (the pair
+without its settings) passes, as ``design --machine-settings`` checked it before
+writing them. docs/geometry.md sec. 7.7 has the measurements.
 
 References
 ----------
@@ -202,7 +203,10 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     width that gives ``eps_vg = threshold`` if within the standard limit, else the
     pinion spiral angle (bisection below :data:`MAX_FIX_SPIRAL_DEG`), else the tooth
     numbers; with ``boxes_of`` a value named is one the other checks accept (else the
-    next fix).
+    next fix). A pair cut from machine settings that the closed form refuses is accepted
+    where the contact path of its blank reaches :data:`MIN_CONTACT_RATIO` (with
+    ``boxes_of``: :func:`_blank_path_or_refuse`), the check ``design
+    --machine-settings`` made before writing the settings.
 
     Returns
     -------
@@ -214,8 +218,13 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
         The ratio is below ``threshold``.
     """
     if boxes is None or pair.machine:
-        return _check_virtual(pair, MIN_VIRTUAL_CONTACT_RATIO if threshold is None
-                              else threshold, boxes_of=boxes_of)
+        try:
+            return _check_virtual(pair, MIN_VIRTUAL_CONTACT_RATIO if threshold is None
+                                  else threshold, boxes_of=boxes_of)
+        except InputRangeError as closed:
+            if not pair.machine or boxes_of is None:
+                raise
+            return _blank_path_or_refuse(pair, closed, boxes_of=boxes_of)
     threshold = MIN_CONTACT_RATIO if threshold is None else threshold
 
     def path_of(p, p_boxes):
@@ -259,6 +268,30 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
                                   f"{ratio:.3f}; eps_p is not monotonic in the spiral angle)")
     raise InputRangeError("pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
                           f"more teeth ({why}; no face width or spiral angle tried fixes it)")
+
+
+def _blank_path_or_refuse(pair, closed: InputRangeError, *, boxes_of):
+    """A pair cut from machine settings that the closed form refuses (``closed``): the
+    contact path of its blank (the pair without its settings: conjugate pinion, the
+    synthesis' first-order bearing at its default targets, :func:`path_contact_ratio`
+    without a bearing), as ``design --machine-settings`` checks the blank before it
+    writes the settings; accepted at :data:`MIN_CONTACT_RATIO`, so that every command
+    reads the settings ``design`` wrote. Else ``closed`` is raised, the blank's path
+    ratio added (a blank its own generation check refuses: ``closed`` as it is). A gap
+    the settings' TCA meets all the same is named there
+    (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5,
+    "Ordinary pairs, measured"."""
+    blank = replace(pair, machine=(), print_gear=(), easeoff_tables=())
+    try:
+        got = path_contact_ratio(blank, boxes=boxes_of(blank))
+    except InputRangeError:     # the blank's own generation check refuses it
+        raise closed from None
+    if got.total >= MIN_CONTACT_RATIO:
+        return got
+    raise InputRangeError(closed.field, closed.value,
+                          f"{closed.allowed}; the blank's contact path (its conjugate pinion, "
+                          f"{got.bearing}) covers eps_p = {got.total:.3f} pitches, below "
+                          f"{MIN_CONTACT_RATIO:g}") from None
 
 
 def _with_face(pair, face_mm: float):

@@ -522,8 +522,31 @@ def _check_regular(nodes: EnvelopeSolution, mean: EnvelopeSolution, setup: Machi
         raise UndercutError(f"{where} at (u, v) = ({us[i]:.4f}, {vs[j]:.4f}) mm",
                             f"blade arc length {nodes.l_mm[i, j]:.4f} mm",
                             f">= {l_edge:.4f} mm (above the blade edge round: the active "
-                            "flank would be cut by the edge; lower the sliding base or the "
-                            "blade point)")
+                            f"flank would be cut by the edge; {_edge_fix(setup, nodes.l_mm[i, j])}"
+                            "lower the sliding base or the blade point)")
+
+
+def _edge_fix(setup: MachineSetup, l_node_mm: float) -> str:
+    """The edge radius whose round ends at the blade arc length ``l_node_mm`` (bisection
+    to 1e-4 mm on :func:`edge_length_mm`, which grows with the radius), named as a fix
+    of :func:`_check_regular`'s message: ``"<key> = r mm: at most r_max mm ..., or "``
+    (a value 25.4 times too large named so), or ``""`` for a sharp blade."""
+    blade = setup.blade
+    if blade.edge_radius_mm <= 0.0 or l_node_mm <= 0.0:
+        return ""
+
+    def top(r_mm: float) -> float:
+        return edge_length_mm(dataclasses.replace(
+            setup, blade=dataclasses.replace(blade, edge_radius_mm=r_mm)))
+
+    lo, hi = 0.0, blade.edge_radius_mm
+    while hi - lo > 1e-4:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if top(mid) < l_node_mm else (lo, mid)
+    unit = (f" (25.4 times too large? {blade.edge_radius_mm / 25.4:.4g} mm keeps it)"
+            if blade.edge_radius_mm / 25.4 <= lo else "")
+    return (f"{blade.where}.edge_radius_mm = {blade.edge_radius_mm:g} mm: at most "
+            f"{lo:.4f} mm keeps its round below this node{unit}, or ")
 
 
 def mean_contact_guess(pinion, gear, kinematics: MeshKinematics, *, pinion_uv, gear_uv

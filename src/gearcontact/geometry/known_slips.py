@@ -43,6 +43,7 @@ _SAME = 1e-9                      # a slip that moves a value less than this is 
 SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
          ("sliding_base_mm", lambda x: -x, "sliding base WITH / AWAY"),
          ("cradle_angle_deg", lambda x: -x, "cradle angle sign"),
+         ("swivel_deg", lambda x: -x, "swivel sign"),
          ("machine_centre_to_back_mm", lambda x: -x, "machine centre to back MD +-"),
          ("ratio_of_roll", lambda x: 1.0 / x, "ratio of roll, work / cradle against "
                                               "cradle / work"),

@@ -343,12 +343,23 @@ def _series_from(table: dict, keys: tuple) -> tuple:
 def setup_from_tables(member: str, side: str, machine: dict, blade: dict) -> MachineSetup:
     """The :class:`MachineSetup` of typed (already type-checked) TOML tables
     ``[machine.<member>.<side>]`` and ``[blade.<member>.<side>]``; every value is
-    range-checked here, naming the dotted key."""
+    range-checked here, naming the dotted key. The ratio of roll turns work and cradle
+    in the same sense (docs/machine_settings.md sec. 2, both hands): a typed one is
+    >= 0, and > 0 for the pinion, which is generated (a formate cut, 0, is the gear's
+    only, sec. 4)."""
     where = f"machine.{member}.{side}"
     settings = MachineSettings(
         **{field_: machine[key] for key, (field_, _) in MACHINE_KEYS.items() if key in machine},
         modified_roll=_series_from(machine, MODIFIED_ROLL_KEYS),
         helical_motion=_series_from(machine, HELICAL_KEYS), where=where)
+    if settings.ratio_of_roll < 0.0 or (member == "pinion" and settings.ratio_of_roll == 0.0):
+        raise InputRangeError(
+            f"{where}.ratio_of_roll", settings.ratio_of_roll,
+            ("> 0: the pinion is generated (work / cradle rotation, the same sense for both "
+             "hands; 0 would be a formate pinion, which is not cut), docs/machine_settings.md "
+             "sec. 2 and 4" if member == "pinion" else
+             ">= 0: work / cradle rotation, the same sense for both hands (0: a formate "
+             "gear), docs/machine_settings.md sec. 2"))
     return MachineSetup(member, side, settings,
                         BladeSettings(**blade, where=f"blade.{member}.{side}"))
 

@@ -202,6 +202,22 @@ class EaseOffCoefficients:
         return all(getattr(self, n) == 0.0 for n in self.__dataclass_fields__)
 
 
+def _check_pinion_face(pinion_mm: float, gear_mm: float) -> None:
+    """The pinion face width within [F2, 3 F2], the range named with the gear face width
+    it comes from (and a gear face typed in inches named so: the pinion's then fits
+    25.4 times it)."""
+    try:
+        check_range("design.pinion_face_width_mm", pinion_mm, gear_mm, 3.0 * gear_mm)
+    except InputRangeError as exc:
+        if not np.isfinite(pinion_mm):
+            raise
+        inch = (f"; design.gear_face_width_mm typed in inches? x 25.4 = {25.4 * gear_mm:.4g} mm "
+                "fits" if 25.4 * gear_mm <= pinion_mm <= 76.2 * gear_mm else "")
+        raise InputRangeError(exc.field, exc.value,
+                              f"{exc.allowed} mm (from design.gear_face_width_mm = {gear_mm:g} "
+                              f"to 3 times it{inch})") from None
+
+
 @dataclass(frozen=True)
 class GearPair:
     """A hypoid (or spiral bevel, offset 0) pair with its cutter, ease-off and mounting.
@@ -298,8 +314,7 @@ class GearPair:
         if self.pinion_hand not in ("right", "left"):
             raise InputRangeError("design.pinion_hand", self.pinion_hand, "'right' or 'left'")
         check_positive("design.gear_face_width_mm", self.gear_face_width_mm)
-        check_range("design.pinion_face_width_mm", self.pinion_face_width_mm,
-                    self.gear_face_width_mm, 3.0 * self.gear_face_width_mm)
+        _check_pinion_face(self.pinion_face_width_mm, self.gear_face_width_mm)
         # the design itself is validated eagerly so that a bad pair fails on load
         blank = self.blank
         if self.gear_face_width_mm >= blank.mean_cone_distance_gear_mm:

@@ -251,12 +251,15 @@ def gear_tables_from_print(printed: Mapping, *, where: str = "printed",
                                   f"roll for {where}.cradle_test_roll_deg = {cradle:g} at "
                                   f"work / cradle = 75 x {where}.ratio_nc_75 / "
                                   f"{where}.gear_teeth = {ratio:.6f}")
+    pitch = degrees_minutes(key("gear_pitch_angle_deg"),
+                            _get(printed, "gear_pitch_angle_deg", where))
+    if not 0.0 < pitch < 90.0:     # a cone's half angle (the datum chain's cos and sin)
+        raise InputRangeError(key("gear_pitch_angle_deg"), printed["gear_pitch_angle_deg"],
+                              f"(0, 90) deg, the gear's pitch cone angle (read {pitch:.4f} deg)")
     datum = pitch_apex_from_crossing_point_in(
         crown_to_crossing_point_in=number("gear_crown_to_crossing_point_in"),
         outer_cone_distance_in=number("cone_distance_in"),
-        pitch_angle_deg=degrees_minutes(key("gear_pitch_angle_deg"),
-                                        _get(printed, "gear_pitch_angle_deg", where)),
-        addendum_in=number("gear_addendum_in"))
+        pitch_angle_deg=pitch, addendum_in=number("gear_addendum_in"))
     md = md_value(key("machine_centre_to_back"), _get(printed, "machine_centre_to_back", where))
 
     def length(x_in):

@@ -16,8 +16,10 @@ __all__ = ["DESIGN_POINT_HEADER", "TORQUE_HEADER", "cpu_latency_rows", "design_p
 def lte_rows(lte, pub: dict) -> list[list]:
     """Rows (quantity, ours, published) of the loaded-TE comparison
     (:class:`~gearcontact.ltca.lte.LoadedTE`; also the ``lte`` item of the
-    reproduction report)."""
+    reproduction report). The published column holds only what ``pub`` (the pair's
+    published values, ``data/published/<pair>.json``) gives: None for a pair without."""
     pp, comp = pub.get("lte_pp_arcsec", {}), pub.get("compliance_mm_per_n", {})
+    shares = pub.get("multi_tooth_load_share_pct")     # the published pairs with bending
     k0 = lte.reference_index
     share = lte.pair_loads_lcp_n[:, k0] / lte.pair_loads_lcp_n[:, k0].sum()
     return [
@@ -35,10 +37,10 @@ def lte_rows(lte, pub: dict) -> list[list]:
         ["mean loaded rotation LCP / preview (arcsec)",
          f"{lte.rotation_lcp_arcsec.mean():.4g} / {lte.rotation_pre_arcsec.mean():.4g}", None],
         ["active pairs (LCP)", f"{lte.active_lcp.min()}-{lte.active_lcp.max()}",
-         "3 engaged"],
+         f"{len(shares)} engaged" if shares else None],
         ["load shares at P0 (LCP, %)", ", ".join(
             f"{o:+d}: {100 * x:.1f}" for o, x in zip(lte.pair_offsets, share) if x > 0),
-         "74.6 / 22.6 / 2.8 (with bending)"],
+         " / ".join(f"{x:g}" for x in shares) + " (with bending)" if shares else None],
         ["phases with edge contact / all LCPs converged",
          f"{int(lte.edge_contact.sum())} / {lte.converged}", None],
         ["largest load dropped beyond the edge window (N)",
