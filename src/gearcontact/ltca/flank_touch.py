@@ -8,9 +8,8 @@ line meets both flanks inside their parameter boxes) lies either at an interior 
 minimum of ``g`` or on the border of ``D``, which is made of the images of the eight
 edges of the two members' parameter boxes (and their corners). A pattern search from
 the field's least node (:func:`.patch_field.touch_search`) finds the minimum of its own
-basin, and stalls on a border that cuts its windows obliquely (its points cannot follow
-the border: 0.5-101 um above an exhaustive scan of the flank on the ISO 23509 F.2
-machine pair and MITER_PAIR, docs/twin.md "Reach of the mesh table"). Here:
+basin, and may stall on a border that cuts its windows obliquely (its points cannot
+follow the border; docs/twin.md "The touch made global"). Here:
 
 * :func:`edge_touch_mm`: each edge, its parameter nudged :data:`EDGE_NUDGE` inside its
   box, sampled at :data:`EDGE_SAMPLES` points posed and projected on the row's plane
@@ -22,8 +21,7 @@ machine pair and MITER_PAIR, docs/twin.md "Reach of the mesh table"). Here:
   the edge, moved while the least is at a window's end and shrunk 4 times until a
   window's step is at most ``fine_mm``. A corner between a pinion and a gear edge is
   approached from both edges (the infeasible side is ``inf``). All edges' windows
-  share one gap evaluation per step (the gap evaluation's cost is per call on a
-  generated flank).
+  share one gap evaluation per step (its cost is mostly per call).
 * :func:`interior_seeds`: a :data:`SCAN_SIDE` x :data:`SCAN_SIDE` scan of the pinion
   flank's projection on the row's plane (the projected edge samples' bounding box);
   its local minima with all 8 neighbours on the flank (a minimum next to the border
@@ -38,8 +36,10 @@ least points on F.2, MITER_PAIR and s0003 coast: docs/twin.md.
 
 References
 ----------
-J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed., 2006, sec. 9.3 (pattern
-search stalls where a constraint's border is not along its directions).
+T. G. Kolda, R. M. Lewis, V. Torczon, "Optimization by direct search: new perspectives
+on some classical and modern methods", *SIAM Review* 45 (2003) 385-482 (near a
+constraint a pattern's directions must conform to its border, else the search can
+stall short of the constrained minimum).
 """
 
 from __future__ import annotations

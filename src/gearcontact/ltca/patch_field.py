@@ -30,7 +30,10 @@ flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
   the field's least node by windows of ``TOUCH_SIDE`` x ``TOUCH_SIDE`` points
   :data:`TOUCH_SPAN` cells either way, moved downhill (the touch may lie beyond the
   field's border) and shrunk 4 times :data:`TOUCH_LEVELS` times: a posed field's opening
-  to a small fraction of a cell's slope.
+  to a small fraction of a cell's slope; then over the whole flank
+  (:mod:`.flank_touch`: the flank region's edges and interior minima), whose touch
+  replaces the descent's where lower by more than :data:`GLOBAL_MARGIN_MM` (the descent
+  stalls where the flank's border cuts its windows obliquely).
 * :func:`touch_bounds_mm`: bounds of that touch from the field alone (its least gap on
   the flank, less twice the largest rise between neighbouring flank cells, only where
   the field encloses the touch): the twin's table searches the touch only of rows whose
@@ -51,8 +54,8 @@ from ..tca.stencil import gap_at
 from .flank_touch import edge_samples, edge_touch_mm, interior_seeds
 from .pair_ltca import OFF_FLANK_GAP_MM
 
-__all__ = ["GLOBAL_MARGIN_MM", "PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE", "patch_approach",
-           "patch_grid", "touch_bounds_mm", "touch_gap_mm", "touch_search"]
+__all__ = ["GLOBAL_MARGIN_MM", "PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE",
+           "patch_approach", "patch_grid", "touch_bounds_mm", "touch_gap_mm", "touch_search"]
 
 #: Relative widening of a patch's bounding box into the field fitted to it (beyond one
 #: cell of the field the patch was found on, each side).
