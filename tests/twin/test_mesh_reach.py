@@ -212,8 +212,8 @@ def test_touch_bound_on_the_f2_machine_pair(f2_rows):
 
 def test_rows_out_of_reach_touch_beyond_it_on_f2(f2_rows):
     """Every row the table puts out of reach has its scanned touch beyond the reach (the
-    search's own touch decides; it is a local descent, so this holds by the search's
-    accuracy, see test_search_finds_the_scanned_touch_on_f2)."""
+    search's own touch decides, so this holds by the search's accuracy, see
+    test_search_finds_the_scanned_touch_on_f2)."""
     assert _check_bounds(None, None, None, None, rows=f2_rows)["within"] == []
 
 
