@@ -30,7 +30,10 @@ flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
   the field's least node by windows of ``TOUCH_SIDE`` x ``TOUCH_SIDE`` points
   :data:`TOUCH_SPAN` cells either way, moved downhill (the touch may lie beyond the
   field's border) and shrunk 4 times :data:`TOUCH_LEVELS` times: a posed field's opening
-  to a small fraction of a cell's slope.
+  to a small fraction of a cell's slope; then over the whole flank
+  (:mod:`.flank_touch`: the flank region's edges and interior minima), whose touch
+  replaces the descent's where lower by more than :data:`GLOBAL_MARGIN_MM` (the descent
+  stalls where the flank's border cuts its windows obliquely).
 * :func:`touch_bounds_mm`: bounds of that touch from the field alone (its least gap on
   the flank, less twice the largest rise between neighbouring flank cells, only where
   the field encloses the touch): the twin's table searches the touch only of rows whose
@@ -48,10 +51,11 @@ import numpy as np
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import solve_lcp
 from ..tca.stencil import gap_at
+from .flank_touch import edge_samples, edge_touch_mm, interior_seeds
 from .pair_ltca import OFF_FLANK_GAP_MM
 
-__all__ = ["PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE", "patch_approach",
-           "patch_grid", "touch_bounds_mm", "touch_gap_mm", "touch_search"]
+__all__ = ["GLOBAL_MARGIN_MM", "PATCH_MARGIN", "PATCH_PASSES", "TOUCH_LEVELS", "TOUCH_SIDE",
+           "patch_approach", "patch_grid", "touch_bounds_mm", "touch_gap_mm", "touch_search"]
 
 #: Relative widening of a patch's bounding box into the field fitted to it (beyond one
 #: cell of the field the patch was found on, each side).
@@ -68,6 +72,13 @@ TOUCH_MOVES = 32
 #: Doublings of the window's span after TOUCH_MOVES moves still ended on its border
 #: (:func:`touch_search`): 2^20 cells, beyond any flank.
 FAR_DOUBLINGS = 20
+#: The global search's touch (:mod:`.flank_touch`) replaces the descent's where it is
+#: lower by more than this (mm): half the 0.1 um the touch is tested to against an
+#: exhaustive scan (tests/twin/test_mesh_reach.py), the other half left to the global
+#: search's own resolution (within 0.01 um of the scan on F.2, MITER_PAIR and s0003
+#: coast). A row whose descent came within it keeps its touch bit for bit (s0003
+#: coast's descents lie 0.011-0.029 um above the global search at 6 of its 20 rows).
+GLOBAL_MARGIN_MM = 5e-5
 
 
 def patch_grid(box, cells: int) -> tuple[np.ndarray, np.ndarray, TangentGrid]:
@@ -176,13 +187,38 @@ def touch_gap_mm(fields, pc) -> float:
 
 
 def touch_search(fields, pc) -> tuple[float, bool]:
-    """``(touch_mm, settled)``: :func:`touch_gap_mm` and whether its search settled --
-    every move ended inside its window before the :data:`TOUCH_MOVES` cap. An unsettled
-    search stopped while the gap still fell beyond its window: its touch is then only an
-    upper bound of the flanks' least gap (docs/twin.md, "Reach of the mesh table")."""
+    """``(touch_mm, settled)``: :func:`touch_gap_mm` and whether its search settled.
+
+    The least gap of the row's flanks over the whole flank: the descent from the
+    field's least node (:func:`_descent`: settled when every move ended inside its
+    window before the :data:`TOUCH_MOVES` cap, else continued by :func:`_far_touch`),
+    then the global search of :mod:`.flank_touch` (the flank region's edges, and its
+    interior minima refined as the descent's windows, both to the descent's last
+    resolution); its touch replaces the descent's where it lies more than
+    :data:`GLOBAL_MARGIN_MM` below (then settled: the whole flank was searched). An
+    unsettled search's touch is only an upper bound of the flanks' least gap
+    (docs/twin.md, "Reach of the mesh table"). ``(inf, True)`` where the row's field
+    is wholly off the flank (the pair counts as never closing)."""
     gap, grid, off, _ = fields.get(pc)
     if off.all():
         return np.inf, True
+    best, settled = _descent(fields, pc, gap, grid, off)
+    fine_s, fine_t = (TOUCH_SPAN * float(grid.dx_mm[0]) / 4.0 ** (TOUCH_LEVELS - 1),
+                      TOUCH_SPAN * float(grid.dy_mm[0]) / 4.0 ** (TOUCH_LEVELS - 1))
+    samples = edge_samples(fields, pc)
+    other = edge_touch_mm(fields, pc, samples, best_mm=best - GLOBAL_MARGIN_MM,
+                          fine_mm=0.25 * min(fine_s, fine_t))
+    for least, s0, t0, hs, ht in interior_seeds(fields, pc, samples,
+                                                best_mm=min(best, other) - GLOBAL_MARGIN_MM):
+        other = min(other, _shrink(fields, pc, least, s0, t0, hs, ht, fine_s, fine_t)[0])
+    if other < best - GLOBAL_MARGIN_MM:
+        return other, True
+    return best, settled
+
+
+def _descent(fields, pc, gap, grid, off) -> tuple[float, bool]:
+    """The pattern search of :func:`touch_gap_mm` from the field's least flank node:
+    ``(touch_mm, settled)``."""
     j, i = np.unravel_index(np.argmin(np.where(off, np.inf, gap)), gap.shape)
     best = float(gap[j, i])
     s0, t0 = float(grid.x_mm[i]), float(grid.y_mm[j])
@@ -241,6 +277,15 @@ def _far_touch(fields, pc, best, s0, t0, hs, ht) -> tuple[float, bool]:
         hs, ht = 2.0 * hs, 2.0 * ht
     else:
         return best, False
+    best, _, _, settled = _shrink(fields, pc, best, s0, t0, hs, ht, fine_s, fine_t)
+    return best, settled
+
+
+def _shrink(fields, pc, best, s0, t0, hs, ht, fine_s, fine_t):
+    """``(least, s, t, settled)``: windows of half-spans ``(hs, ht)`` (mm) from ``(s0,
+    t0)`` where the gap is ``best``, moved while their least point is lower and on their
+    border (:data:`TOUCH_MOVES` moves per level), shrunk 4 times per level until each
+    half-span is at most ``(fine_s, fine_t)``; settled when every level ended inside."""
     settled = True
     while True:
         for _ in range(TOUCH_MOVES):
@@ -253,7 +298,7 @@ def _far_touch(fields, pc, best, s0, t0, hs, ht) -> tuple[float, bool]:
                 break
         settled &= inner
         if hs <= fine_s * (1.0 + 1e-9) and ht <= fine_t * (1.0 + 1e-9):
-            return best, settled
+            return best, s0, t0, settled
         hs, ht = hs / 4.0, ht / 4.0
 
 
