@@ -92,7 +92,7 @@ def test_documented_rows():
 
 def test_ratio_limit_is_where_the_law_leaves_its_tolerance():
     """HB_RATIO_LIMIT is the solved limit rounded down: the worst output (the stiffness)
-    is within 5 % there and beyond it just after; over the fitted range 1..100 the law
+    is within 5 % there and beyond it just after; over ratios 1..100 (sec. 3) the law
     stays within 4.28 % (the tolerance's reason: the status never fires inside it)."""
     limit = hamrock_brewe_ratio_limit()
     assert HB_RATIO_LIMIT <= limit < HB_RATIO_LIMIT + 0.01

@@ -3,9 +3,9 @@ over axis ratios 1..1000 and the curvature-ratio range within a declared toleran
 
 The preview's published stage D, its fp64 reference, the twin's contact law, the C
 library and the FMUs evaluate the simplified forms of Hamrock & Brewe (1983)
-(:func:`.hertz.hamrock_brewe_terms`), fitted over radius ratios to about 100 (axis
-ratios to about 10-18). Beyond that they are an extrapolation whose error grows without
-bound (the HB axis ratio ``alpha^(2/pi)`` against the exact ``~sqrt(alpha ln alpha)``).
+(:func:`.hertz.hamrock_brewe_terms`), fitted for ellipticities to about 10 and tabled
+by this package over curvature ratios 1..100 (docs/hertz.md sec. 3). Beyond that they
+are an extrapolation whose error grows without bound (the HB axis ratio ``alpha^(2/pi)`` against the exact ``~sqrt(alpha ln alpha)``).
 This module measures that error against :func:`.hertz.exact_elliptic_hertz` and states
 the range in which every output stays within :data:`HB_TOLERANCE`; a preview outside it
 is a reported result (``preview.hertz.reference.law_status``; docs/hertz.md sec. 7).
@@ -27,8 +27,8 @@ __all__ = ["HB_TOLERANCE", "HB_RATIO_LIMIT", "HB_AXIS_RATIOS", "HB_ERROR_KEYS",
 
 #: Declared tolerance of the Hamrock–Brewe law against exact Hertz (relative, on each of
 #: k, a, b, p_max, the approach and the contact stiffness): the smallest round figure
-#: the forms meet over the whole range their authors fitted (ratio 1..100, worst 4.28 %,
-#: the stiffness at ratio 100), so that the status never fires inside it.
+#: the forms meet over curvature ratios 1..100, the range the package documented them
+#: for (worst 4.28 %, the stiffness at ratio 100), so that the status never fires there.
 HB_TOLERANCE = 0.05
 
 #: Largest curvature ratio ``B_max/A_min`` at which every Hamrock–Brewe output is
