@@ -285,7 +285,8 @@ def _domain_summary(model: TwinModel, tcount: np.ndarray) -> dict:
 
 def _law_summary(model: TwinModel) -> dict:
     """Whether the Hertzian law holds on the loaded flank's rows (pairs x phases of the
-    mesh table with an ellipse, A-, B- > 0): ``hertz_law_status`` ``beyond_hamrock_brewe_range``
+    mesh table with an ellipse: its A-, B- > 0, the TCA's curvatures, which the stencil
+    source fits closely): ``hertz_law_status`` ``beyond_hamrock_brewe_range``
     if a row's curvature ratio lies beyond where Hamrock–Brewe, the law of every preview
     backend (fp64, and the datapath's published form), is within 5 % of exact Hertz
     (:func:`gearcontact.preview.hertz.reference.law_status`, docs/hertz.md sec. 7), the
