@@ -198,3 +198,16 @@ def test_multitooth_in_main_job(analysis):
     assert "## Multi-tooth loaded contact at P0" in text
     for published in ("74.6 / 22.6 / 2.8", "| 2714 |", "| 12 |", "| 124.4 |"):
         assert published in text, published
+
+
+def test_law_status_columns(analysis):
+    """s0003's curvature ratios (those the previews took, checked here) lie inside the
+    range where Hamrock–Brewe is within 5 % of exact Hertz (ratio <= 122, docs/hertz.md
+    sec. 7): every law status column is ok."""
+    lines = (analysis.out_dir / "preview.csv").read_text().splitlines()
+    rows = [dict(zip(PREVIEW_COLUMNS, ln.split(","))) for ln in lines[1:]]
+    for row, ref in zip(rows, analysis.reference):
+        assert max(ref.A_minus_per_mm, ref.B_minus_per_mm) < 122.0 * min(
+            ref.A_minus_per_mm, ref.B_minus_per_mm)
+        assert row["ref_law_status"] == row["golden_law_status"] == \
+            row["chain_law_status"] == "ok"

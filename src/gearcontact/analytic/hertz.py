@@ -29,7 +29,8 @@ from scipy.special import elliprd, elliprf
 from ..validation import InputRangeError, check_array_finite, check_positive
 
 __all__ = ["HertzContact", "LineContactHertz", "line_contact_hertz", "line_contact_terms",
-           "line_contact_approach_mm", "exact_elliptic_hertz", "exact_ellipticity", "hamrock_brewe_hertz",
+           "line_contact_approach_mm", "exact_elliptic_hertz", "exact_ellipticity",
+           "exact_curvature_ratio", "hamrock_brewe_hertz",
            "hamrock_brewe_hertz_array", "hamrock_brewe_terms", "circular_hertz",
            "hamrock_brewe_error_table", "HB_ERROR_RATIOS"]
 
@@ -322,6 +323,32 @@ def exact_ellipticity(alpha: float) -> tuple[float, float]:
     return 1.0 / math.sqrt(p), rf - (1.0 - p) * rd / 3.0
 
 
+def exact_curvature_ratio(axis_ratio: float) -> float:
+    """Curvature ratio ``alpha = B_max/A_min`` whose exact Hertz ellipse has the axis
+    ratio ``k = a/b`` (the inverse of :func:`exact_ellipticity`, explicit: Johnson 1985,
+    eq. 4.40 evaluated at ``p = 1/k^2``; no equation to solve).
+
+    Parameters
+    ----------
+    axis_ratio : float
+        Ellipticity ``k = a/b >= 1``, dimensionless.
+
+    Returns
+    -------
+    float
+        ``alpha >= 1`` (1 at ``k = 1``), dimensionless.
+
+    Raises
+    ------
+    InputRangeError
+        ``axis_ratio`` not finite or below 1.
+    """
+    k = float(axis_ratio)
+    if not (math.isfinite(k) and k >= 1.0):
+        raise InputRangeError("axis_ratio", axis_ratio, "a finite number >= 1")
+    return 1.0 if k == 1.0 else _ratio_of_p(1.0 / (k * k))
+
+
 def exact_elliptic_hertz(A_per_mm: float, B_per_mm: float, load_n: float, *,
                          e_prime_mpa: float) -> HertzContact:
     """Exact Hertz solution of an elliptical point contact (complete elliptic integrals).
@@ -505,7 +532,9 @@ def hamrock_brewe_error_table(ratios=HB_ERROR_RATIOS, *, load_n: float = 1000.0,
     """Relative deviation of the simplified Hamrock–Brewe forms from exact Hertz.
 
     For each curvature ratio ``alpha = B_max/A_min`` the signed relative errors
-    ``(HB - exact)/exact`` of k, a, b, p_max and the approach are returned. The
+    ``(HB - exact)/exact`` of k, a, b, p_max and the approach, and of the contact
+    stiffness ``dW/d(delta) = 3 W/(2 delta)`` at the same load (``delta_exact/delta_HB
+    - 1``), are returned. The
     errors are independent of load, modulus and size (both solutions scale
     identically), so the defaults only fix a representative point.
 
@@ -531,7 +560,8 @@ def hamrock_brewe_error_table(ratios=HB_ERROR_RATIOS, *, load_n: float = 1000.0,
     Returns
     -------
     list of dict
-        Rows ``{"ratio", "err_k", "err_a", "err_b", "err_p_max", "err_approach"}``.
+        Rows ``{"ratio", "err_k", "err_a", "err_b", "err_p_max", "err_approach",
+        "err_stiffness"}``. Beyond ratio 100 see :mod:`.hertz_range`.
     """
     rows = []
     for lam in ratios:
@@ -547,5 +577,6 @@ def hamrock_brewe_error_table(ratios=HB_ERROR_RATIOS, *, load_n: float = 1000.0,
                      "err_a": hb.a_mm / ex.a_mm - 1.0,
                      "err_b": hb.b_mm / ex.b_mm - 1.0,
                      "err_p_max": hb.p_max_mpa / ex.p_max_mpa - 1.0,
-                     "err_approach": hb.approach_mm / ex.approach_mm - 1.0})
+                     "err_approach": hb.approach_mm / ex.approach_mm - 1.0,
+                     "err_stiffness": ex.approach_mm / hb.approach_mm - 1.0})
     return rows

@@ -106,6 +106,7 @@ def run(args) -> int:
         length = "" if args.line_length_mm is None else \
             f"   (contact line L = {args.line_length_mm:.6g} mm)"
         print(f"mode           {res.mode}{length}")
+        print(f"law            {res.law_status}")
         if res.angle_deg is not None:
             print(f"A- axis        {res.angle_deg:.4g} deg from the stencil s axis")
         if res.codes is not None:

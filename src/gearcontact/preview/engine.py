@@ -59,7 +59,7 @@ from .hertz.line import (LINE_CYCLES, decode_line_codes, encode_length, length_l
                          line_golden, unlift_line_codes)
 from .hertz.line_vec import lift_lengths, line_golden_array, unlift_line_array
 from .hertz.reference import (ENVELOPE, check_envelope, hertz_preview, hertz_preview_array,
-                              truncated_preview)
+                              law_status, truncated_preview)
 from .hertz.schedule import HERTZ_CYCLES
 
 #: Preset materials :func:`get_engine` accepts by name.
@@ -131,6 +131,14 @@ class PreviewResult:
         """True when no datapath flag is raised."""
         return not self.flags
 
+    @property
+    def law_status(self) -> str:
+        """``"ok"`` or ``"beyond_hamrock_brewe_range"``: a Hamrock–Brewe ellipse beyond
+        the ratio where its law is within 5 % of exact Hertz (a reported result;
+        :func:`.hertz.reference.law_status`, docs/hertz.md sec. 7)."""
+        return law_status(self.A_minus_per_mm, self.B_minus_per_mm,
+                          hertz_form=self.hertz_form, mode=self.mode)
+
     def as_dict(self) -> dict:
         """JSON-ready dict (keys a_mm, b_mm, k, p_max_mpa, backend, ...)."""
         return {"backend": self.backend, "load_n": self.load_n,
@@ -138,7 +146,8 @@ class PreviewResult:
                 "a_mm": self.a_mm, "b_mm": self.b_mm, "k": self.k,
                 "p_max_mpa": self.p_max_mpa, "angle_deg": self.angle_deg,
                 "codes": self.codes, "flags": list(self.flags), "cycles": self.cycles,
-                "hertz_form": self.hertz_form, "mode": self.mode}
+                "hertz_form": self.hertz_form, "mode": self.mode,
+                "law_status": self.law_status}
 
 
 @dataclass(frozen=True)

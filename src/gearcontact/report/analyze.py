@@ -15,7 +15,11 @@ TCA files                     see :mod:`gearcontact.tca.export` (``tca.json``, `
                               (line chain, hardware stencil, same L) with codes, the stage-D
                               mode (elliptic | line) and a status each (``ok``, or why the
                               result is missing: then one :class:`PreviewDomainWarning`
-                              line names the count)
+                              line names the count), and whether each preview's Hertz
+                              law holds there (``*_law_status``: ``ok`` or
+                              ``beyond_hamrock_brewe_range``, then one
+                              :class:`~gearcontact.preview.hertz.reference.HertzLawRangeWarning`
+                              line; docs/hertz.md sec. 7)
 ``pressure_<T>Nm.csv``        pressure map at each torque (s_mm, t_mm, pressure_mpa)
 ``pressure_maps.png``         LCP pressure maps with the preview ellipse overlaid
 ``pressure_vs_load.png``      log-log preview p_max and LCP mean / p90 / peak vs W, W^(1/3)
@@ -55,6 +59,7 @@ from ..halfspace.patch import ContactAtEdgeWarning
 from ..geometry.pair import load_pair
 from ..geometry.settings_check import SettingsCheck
 from ..preview.engine import PreviewResult, ReferenceEngine, get_engine
+from ..preview.hertz.reference import LAW_OK, HertzLawRangeWarning
 from ..contract.qformat import FixedPointOverflow
 from ..tca.analysis import TcaAnalysis, analyze_pair
 from ..tca.export import without_timings, write_csv, write_tca_outputs
@@ -62,6 +67,7 @@ from ..tca.synthesis import prepare_pair
 from ..validation import InputRangeError, check_positive
 from .figures import plot_pressure_maps, plot_pressure_vs_load
 from .latency import core_cycles, scalar_latency
+from .law_range import law_range_warning
 from .lte_plot import write_lte_outputs
 from .ltca import write_pressure_csv
 from .precision import write_precision_outputs
@@ -210,8 +216,15 @@ def _preview_rows(cases, reference, golden, chain) -> list[list]:
                     + [_mode(g), g_status]
                     + _values(ch, ("A_minus_per_mm", "B_minus_per_mm", "a_mm", "b_mm",
                                    "p_max_mpa", "p_max_code"))
-                    + [_mode(ch), ch_status, "" if ch is None else ch.cycles])
+                    + [_mode(ch), ch_status, "" if ch is None else ch.cycles]
+                    + [_law(r) for r in (ref, g, ch)])
     return rows
+
+
+def _law(res: PreviewResult | None) -> str:
+    """A preview's law status (:func:`~gearcontact.preview.hertz.reference.law_status`);
+    ``ok`` for a missing one (its status column says why)."""
+    return LAW_OK if res is None else res.law_status
 
 
 #: Columns of ``preview.csv`` (:func:`_preview_rows`).
@@ -220,7 +233,8 @@ PREVIEW_COLUMNS = [
     "ref_p_max_mpa", "golden_a_mm", "golden_b_mm", "golden_k", "golden_p_max_mpa",
     "golden_p_max_code_q32_8", "golden_mode", "golden_status", "chain_A_minus_per_mm",
     "chain_B_minus_per_mm", "chain_a_mm", "chain_b_mm", "chain_p_max_mpa",
-    "chain_p_max_code_q32_8", "chain_mode", "chain_status", "chain_cycles"]
+    "chain_p_max_code_q32_8", "chain_mode", "chain_status", "chain_cycles",
+    "ref_law_status", "golden_law_status", "chain_law_status"]
 
 
 def _missing_warning(golden, chain) -> str | None:
@@ -236,6 +250,7 @@ def _missing_warning(golden, chain) -> str | None:
         return None
     return ("fixed-point preview outside the datapath's domain: " + "; ".join(parts)
             + " (preview.csv status columns; the fp64 preview and the LCP are complete)")
+
 
 
 def _multi_tooth(tca, flanks, pair, torque_nm: float, side: str, out: Path, figures: bool,
@@ -411,6 +426,9 @@ def run_analysis(pair="s0003", *, out_dir, torques_nm=DEFAULT_TORQUES_NM, phases
     missing = _missing_warning(gold, chain)
     if missing is not None:      # after the progress bar: one clean line on stderr
         warnings.warn(missing, PreviewDomainWarning, stacklevel=2)
+    beyond = law_range_warning(reference, [g for g, _ in gold], [ch for ch, _ in chain])
+    if beyond is not None:
+        warnings.warn(beyond, HertzLawRangeWarning, stacklevel=2)
     result = Analysis(pair, tca, tuple(cases), tuple(g for g, _ in gold),
                       tuple(ch for ch, _ in chain), timings, out, lte, precision, latency,
                       side, flanks, easeoff_note, multitooth,

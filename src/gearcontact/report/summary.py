@@ -6,6 +6,7 @@ import re
 from pathlib import Path
 
 from ..contract.stencil import STENCIL_SPACING_MM
+from .law_range import law_range_warning
 from .markdown import md_table, pct_diff
 from .multitooth import multitooth_section
 
@@ -290,6 +291,9 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
                        "golden D vs fp64 (%)", "golden D mode",
                        "golden C->D p_max (stencil)", "C->D vs fp64 ellipse (%)",
                        "C->D flags", "C->D mode", "C->D cycles"], rows))
+    beyond = law_range_warning(result.reference, result.golden, result.golden_chain)
+    if beyond is not None:
+        out += ["", f"**{beyond}.**"]
     out += ["", "Stage D here is the line core: the Hertz ellipse, or the Hertz line contact "
             "of the flank's contact line where the flank truncates a longer ellipse (mode "
             "`line`). The C->D chain is the line chain (the fit core into the line core, "

@@ -18,6 +18,8 @@ from tqdm import tqdm
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..ltca.cylindrical_edges import OFF_LINE_GAP_MM
 from ..errors import CheckFailed, RtlMismatch
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
+from ..preview.hertz.reference import LAW_BEYOND_RANGE, LAW_OK, law_status
 from ..validation import InputRangeError, check_array_finite, check_positive, check_range
 from . import kernel as K
 from .layout import LINE_SOURCE
@@ -112,7 +114,10 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         previews_without_contact_law`` (previews whose curvatures lie outside the
         fixed-point datapath's domain, :data:`~gearcontact.preview.hertz.reference.
         ENVELOPE`, evaluated by the fp64 law instead; saddles, whose pair carries
-        nothing). Statistics over the recorded steps after ``settle_fraction``.
+        nothing) and ``hertz_law_status, hertz_law_rows, hertz_law_rows_beyond_range,
+        hertz_law_ratio_max`` (mesh rows beyond the Hamrock–Brewe law's 5 % range,
+        :func:`_law_summary`; not for a cylindrical pair's line chain). Statistics over
+        the recorded steps after ``settle_fraction``.
         ``rtl`` / ``soc`` add the replay's ``<backend>_previews, _mismatches``.
         ``timings`` keys: ``real_time_factor, step_time_p50_us, step_time_p99_us,
         wall_s`` (and ``<backend>_seconds, _previews_per_s`` of a replay);
@@ -250,7 +255,8 @@ def simulate(model: TwinModel, *, speed_rpm: float, duration_s: float, step_s: f
         "dte_pp_arcsec": float(np.ptp(cols["te_arcsec"][sel])),
         "natural_frequencies_hz": [float(f) for f in freqs], "h_omega_max": h_omega,
         "mesh_damping_n_s_per_mm": c_m,
-        **_bending_summary(model), **_domain_summary(model, tcount), **_mode_summary(model),
+        **_bending_summary(model), **_domain_summary(model, tcount), **_law_summary(model),
+        **_mode_summary(model),
         **_beyond_summary(model),
         "reverse_flank": model.reverse_note, **_free_play_summary(model),
         **{k: v for k, v in rtl.items() if not k.endswith(("_seconds", "_per_s"))}}
@@ -275,6 +281,26 @@ def _domain_summary(model: TwinModel, tcount: np.ndarray) -> dict:
             "steps_outside_datapath": int(tcount[4]),
             "outside_datapath_evaluated_by": f"{law} on {fit}",
             "previews_without_contact_law": int(tcount[5])}
+
+
+def _law_summary(model: TwinModel) -> dict:
+    """Whether the Hertzian law holds on the loaded flank's rows (pairs x phases of the
+    mesh table with an ellipse: its A-, B- > 0, the TCA's curvatures, which the stencil
+    source fits closely): ``hertz_law_status`` ``beyond_hamrock_brewe_range``
+    if a row's curvature ratio lies beyond where Hamrock–Brewe, the law of every preview
+    backend (fp64, and the datapath's published form), is within 5 % of exact Hertz
+    (:func:`gearcontact.preview.hertz.reference.law_status`, docs/hertz.md sec. 7), the
+    count of such rows and the largest ratio; a reported result. Nothing for the table
+    backend (no Hertzian law) or the line chain (cylindrical pairs: docs/cylindrical.md)."""
+    if model.backend == "table" or model.curvature_source == LINE_SOURCE:
+        return {}
+    m = model.mesh
+    ab = [(a, b) for a, b in zip(m.A_minus_per_mm[m.valid], m.B_minus_per_mm[m.valid])
+          if min(a, b) > 0.0]
+    beyond = sum(law_status(a, b, hertz_form=DEFAULT_HERTZ_FORM) != LAW_OK for a, b in ab)
+    return {"hertz_law_status": LAW_BEYOND_RANGE if beyond else LAW_OK,
+            "hertz_law_rows": len(ab), "hertz_law_rows_beyond_range": int(beyond),
+            "hertz_law_ratio_max": max((max(a, b) / min(a, b) for a, b in ab), default=1.0)}
 
 
 #: The contact law of an edge row (:mod:`.mesh`), as ``twin.json`` states it.

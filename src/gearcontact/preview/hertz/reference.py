@@ -37,6 +37,7 @@ import numpy as np
 
 from ...analytic.hertz import (exact_elliptic_hertz, hamrock_brewe_hertz_array,
                                hamrock_brewe_terms, line_contact_hertz)
+from ...analytic.hertz_range import within_hamrock_brewe_range
 from ...validation import (InputRangeError, check_array_finite, check_positive, check_range,
                            format_number, format_range)
 from ...contract.qformat import CURVATURE, LOAD
@@ -47,7 +48,8 @@ from .golden_vec import njit
 __all__ = ["HertzPreview", "hertz_preview", "hertz_preview_array", "ENVELOPE",
            "check_envelope", "LINE_ENVELOPE", "LINE_LENGTH_RANGE_MM", "LINE_LENGTH_RANGE",
            "TruncatedPreview", "truncated_preview",
-           "keeps_ellipse", "line_lift", "lifted_keeps_ellipse"]
+           "keeps_ellipse", "line_lift", "lifted_keeps_ellipse", "law_status", "LAW_OK",
+           "LAW_BEYOND_RANGE", "HertzLawRangeWarning"]
 
 #: Operating envelope in physical units: (field, lower, upper) — shared with the golden.
 ENVELOPE = {
@@ -141,6 +143,51 @@ def check_envelope(A_minus, B_minus, load_n, *, e_prime_mpa) -> tuple[float, flo
             and hi <= _ALPHA_HI * lo):
         _raise_input_error(A_minus, B_minus, load_n, e_prime_mpa, True)
     return a, b, w
+
+
+#: :func:`law_status` of a preview whose law is within its declared tolerance of exact
+#: Hertz, or that no elliptic law answered (a line-mode or flagged preview).
+LAW_OK = "ok"
+#: :func:`law_status` of a Hamrock–Brewe ellipse beyond the ratio where the law is within
+#: :data:`gearcontact.analytic.hertz_range.HB_TOLERANCE` of exact Hertz.
+LAW_BEYOND_RANGE = "beyond_hamrock_brewe_range"
+
+
+class HertzLawRangeWarning(UserWarning):
+    """Previews whose Hamrock–Brewe law lies beyond the ratio where it is within its
+    declared tolerance of exact Hertz (:func:`law_status`): a reported result, the run
+    goes on (the command line prints it as one stderr line)."""
+
+
+def law_status(A_minus: float, B_minus: float, *, hertz_form: str,
+               mode: str = "elliptic") -> str:
+    """Whether a preview's Hertz law holds at its curvatures: :data:`LAW_BEYOND_RANGE`
+    for a Hamrock–Brewe ellipse (``hertz_form="hamrock-brewe"``, ``mode="elliptic"``)
+    whose ratio ``B_max/A_min`` lies beyond
+    :data:`gearcontact.analytic.hertz_range.HB_RATIO_LIMIT` (122: there the forms leave
+    5 % of exact Hertz, growing to +51 % in stiffness at axis ratio 1000; docs/hertz.md
+    sec. 7), else :data:`LAW_OK` (the exact form, the line contact, a flagged result).
+    A reported result, never an error; every backend and the twin state it alike.
+
+    Parameters
+    ----------
+    A_minus, B_minus : float
+        Half relative principal curvatures that entered stage D, 1/mm, any order.
+    hertz_form : str
+        Stage-D form of the result (:data:`.formats.HERTZ_FORMS`).
+    mode : str
+        What evaluated stage D (``"elliptic"``, ``"line"``, ``"flagged"``).
+
+    Returns
+    -------
+    str
+    """
+    if mode != "elliptic" or hertz_form != F.DEFAULT_HERTZ_FORM:
+        return LAW_OK
+    lo, hi = (A_minus, B_minus) if A_minus <= B_minus else (B_minus, A_minus)
+    if not lo > 0.0:        # no ellipse (zero curvature: the line core's case)
+        return LAW_OK
+    return LAW_OK if within_hamrock_brewe_range(hi / lo) else LAW_BEYOND_RANGE
 
 
 def hertz_preview(A_minus: float, B_minus: float, load_n: float, *, e_prime_mpa: float,
