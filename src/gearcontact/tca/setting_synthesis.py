@@ -36,8 +36,14 @@ stays at M. The result is checked by the full TCA over one pitch (edge contact, 
 ellipse reaches a flank edge (:class:`SettingSynthesis`). With a path angle the reach
 model (:mod:`.setting_reach`) predicts the target's corrections first: a target out of
 reach for certain is refused before the search, and the search starts from the
-predicted corrections where they miss less than the standard crowning. The base pinion and M:
-:class:`SynthesisProblem` (a hypoid whose gear is generated, the crown gear's pinion).
+predicted corrections where they miss less than the standard crowning. The base pinion and M
+(:class:`SynthesisProblem`): the pinion conjugate to the pair's gear
+(:func:`~gearcontact.geometry.basic_settings.member_setups`). For a hypoid whose gear is
+generated it is the crown gear's pinion, point contact with TE0 = 0 along a path, and M
+the point of that path on the pinion's mean section. For a formate gear (hypoid or
+spiral bevel: the complementary pinion) and a generated spiral bevel gear (the crown
+gear's pinion) it is line-contact conjugate: every flank point lies on a contact line,
+and M is the blank's mean point on the pinion (the point the standard crowning keeps).
 
 References
 ----------
@@ -64,6 +70,7 @@ from ..geometry.basic_settings import (crown_profile, crowning_corrections, memb
                                        mismatch_radius)
 from ..geometry.flank import build_machine_flanks
 from ..geometry.formate import SIDES
+from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
 from ..geometry.machine import MachineSetup, mirror_setup
 from ..validation import InputRangeError
@@ -287,18 +294,24 @@ def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
 
 class SynthesisProblem:
     """The fixed part of the synthesis of one pair: the gear flanks, the base pinion
-    (:func:`~gearcontact.geometry.basic_settings.member_setups`: for a generated gear the
-    crown gear's pinion), the mean point M of each side, its generation and its exact
-    contact, and the pinion's mounting turn, so that :meth:`flank` gives the mounted
-    pinion flank of any corrections.
+    (:func:`~gearcontact.geometry.basic_settings.member_setups` of ``gear_generation``:
+    the complementary pinion of a formate gear, the crown gear's pinion of a generated
+    one), the mean point M of each side, its generation and its exact contact, and the
+    pinion's mounting turn, so that :meth:`flank` gives the mounted pinion flank of any
+    corrections.
 
-    M is the point of the base pinion's contact path on the pinion's mean section
-    (``v`` of the blank's mean point, :func:`_path_point_at`):
-    the crown gear's pinion of a hypoid has point contact with TE0 = 0 along a path,
-    which passes near, not through, the pinion's mean
-    node (13/26 hypoid: 0.68 / 2.30 mm above it, drive / coast). The corrections pivot on the
-    generation of M, so the corrected pinion keeps M, its normal and the nominal ratio
-    there: tangency at M.
+    Point contact (:attr:`point_contact`: a hypoid, offset != 0, whose gear is
+    generated): M is the point of the base pinion's contact path on the pinion's mean
+    section (``v`` of the blank's mean point, :func:`_path_point_at`): the crown gear's
+    pinion of a hypoid has point contact with TE0 = 0 along a path, which passes near,
+    not through, the pinion's mean node (13/26 hypoid: 0.68 / 2.30 mm above it, drive /
+    coast). Line contact (a formate gear, or a generated gear with offset 0): the base
+    pinion touches the gear along a line through every flank point, so M is the
+    blank's mean point on the pinion, the node ``(root offset, pitch point x)`` that
+    :func:`~gearcontact.geometry.flank.build_machine_flanks` starts the TCA from and
+    whose generation the standard crowning keeps in place; its exact contact is that
+    flank set's mean contact. The corrections pivot on the generation of M, so the
+    corrected pinion keeps M, its normal and the nominal ratio there: tangency at M.
 
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
@@ -310,12 +323,9 @@ class SynthesisProblem:
         if pair.pinion_hand != "right":
             raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
                                   "right-hand twin and mirror its settings)")
-        if gear_generation != "generated" or pair.offset_mm == 0.0:
-            raise InputRangeError(
-                "axes.offset_mm / gear generation", (pair.offset_mm, gear_generation),
-                "a hypoid (offset != 0) whose gear is generated: local synthesis pivots on "
-                "a point of the crown gear pinion's contact path (point contact); a "
-                "line-contact base pinion has no such point")
+        #: the base pinion has point contact (the crown gear's pinion of a hypoid), not
+        #: line contact (module docstring)
+        self.point_contact = gear_generation == "generated" and pair.offset_mm != 0.0
         self.pair, self.n_u, self.n_v = pair, int(n_u), int(n_v)
         blank = pair.blank
         self.gear_setups, self.base = member_setups(pair, gear_generation)
@@ -335,10 +345,14 @@ class SynthesisProblem:
             m = fs.mean_contact[side]
             guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
                                  m["phi2_rad"])
-            mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
-                                v1_mm=float(blank.pitch_point_mm[0]))
-            self.start[side] = mp.as_guess()
-            self.mean_uv[side] = (float(mp.u1), float(mp.v1))
+            if self.point_contact:
+                mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
+                                    v1_mm=float(blank.pitch_point_mm[0]))
+                self.start[side] = mp.as_guess()
+                self.mean_uv[side] = (float(mp.u1), float(mp.v1))
+            else:       # line contact: the pinion's mean node lies on a contact line
+                self.start[side] = guess
+                self.mean_uv[side] = tuple(float(t) for t in m["pinion_uv"])
             self.means[side] = _generation_at(self.base[side], blank, self.cone,
                                               self.mean_uv[side])
         # the standard crowning (25 / 10 um, standard_setups): the search's start
@@ -370,7 +384,9 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
                         sides=SIDES, phases: int = 31, max_evaluations: int = 40,
                         problem: SynthesisProblem | None = None) -> dict:
     """Pinion settings of ``sides`` from local synthesis at the mean point (module
-    docstring), against the generated gear of a hypoid (:class:`SynthesisProblem`).
+    docstring), against the pair's gear (:class:`SynthesisProblem`: a hypoid's generated
+    gear, point contact; a formate gear or a spiral bevel's generated one, line
+    contact).
 
     Parameters
     ----------
@@ -396,8 +412,7 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
     Raises
     ------
     InputRangeError
-        A left-hand pair, a pair that is not a hypoid with a generated gear or a bad
-        side, before any flank; a path angle the reach model finds out of reach for
+        A left-hand pair or a bad side, before any flank; a path angle the reach model finds out of reach for
         certain (:mod:`.setting_reach`: a hard limit of the settings crossed within half
         the predicted step), after its seven local TCAs, before the search.
     CheckFailed
@@ -475,13 +490,45 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
             x[active] += z * _SCALE[active]
             return misses(x)
 
-        least_squares(residual, np.zeros(len(active)), method="trf", diff_step=1e-3,
+        # the Jacobian of a line-contact base pinion by forward steps of _JAC_STEP scale
+        # steps (scipy's relative diff_step is sqrt(eps) at z = 0: 1e-8 scale steps, in
+        # the local TCA's noise there); the point-contact path as before
+        fun, jac = (residual, "2-point") if prob.point_contact else _forward_jacobian(residual)
+        least_squares(fun, np.zeros(len(active)), jac=jac, method="trf", diff_step=1e-3,
                       max_nfev=int(max_evaluations))
         out[side] = dataclasses.replace(
             _checked(prob, side, runs["best"][1], targets, length, phases, runs["n"], t0),
             reach=reach, reach_residual=at_reach, start_residual=at_first,
             residual=math.sqrt(runs["best"][0]))
     return out
+
+
+#: Forward-difference step of the line-contact search's Jacobian, in scale steps
+#: (:data:`_SCALE`): the TE level moves ~1e-3 arcsec per such step on F.2, its noise
+#: (node solves, interpolation) is ~1e-8 arcsec.
+_JAC_STEP = 1e-3
+
+
+def _forward_jacobian(fun, *, step: float = _JAC_STEP):
+    """``(fun, jac)`` for ``least_squares``: ``fun`` remembering its last value, ``jac``
+    the forward differences of absolute ``step`` from it (one call of ``fun`` per
+    column)."""
+    last = {}
+
+    def value(z):
+        last["z"], last["r"] = np.array(z, dtype=float), fun(z)
+        return last["r"]
+
+    def jac(z):
+        r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else value(z)
+        cols = []
+        for i in range(len(z)):
+            zi = np.array(z, dtype=float)
+            zi[i] += step
+            cols.append((fun(zi) - r0) / step)
+        return np.column_stack(cols)
+
+    return value, jac
 
 
 def _reach_of(prob: SynthesisProblem, side: str, targets, length: float, name: str):
@@ -526,10 +573,13 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
-                             **options):
-    """``pair`` with the generated gear's settings and the pinion settings of
+                             gear_generation: str | None = None, **options):
+    """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
-    sides, and the per-side results. A left-hand pair is the mirror image of its
+    sides, and the per-side results. ``gear_generation``: ``"formate"`` or
+    ``"generated"`` (:class:`SynthesisProblem`), by default the gear of the pair's
+    default flanks (:func:`~gearcontact.geometry.gear_generation.gear_generation`, as
+    ``design --machine-settings`` writes it). A left-hand pair is the mirror image of its
     right-hand twin (:mod:`~gearcontact.geometry.mirror`): the twin is synthesized and
     its settings mirrored (:func:`~gearcontact.geometry.machine.mirror_setup`; signs:
     docs/machine_settings.md), so the left-hand pair's TCA is the twin's mirrored (same
@@ -538,10 +588,13 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     if pair.pinion_hand == "left":
         twin, done = synthesized_machine_pair(
             dataclasses.replace(pair, pinion_hand="right", machine=()), targets=targets,
-            **options)
+            gear_generation=gear_generation, **options)
         return dataclasses.replace(pair, machine=tuple(mirror_setup(s) for s in twin.machine),
                                    easeoff_tables=twin.easeoff_tables), done
-    prob = SynthesisProblem(pair, n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
+    if gear_generation is None:
+        gear_generation = default_gear_generation(pair)[0]
+    prob = SynthesisProblem(pair, gear_generation=gear_generation,
+                            n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
     done = synthesize_settings(pair, targets=targets, problem=prob, **options)
     machine = tuple(prob.gear_setups[s] for s in SIDES) + tuple(done[s].setup for s in SIDES)
     return dataclasses.replace(pair, machine=machine, easeoff_tables=("drive", "coast")), done
