@@ -38,13 +38,9 @@ ellipse reaches a flank edge (:class:`SettingSynthesis`). With a path angle the 
 model (:mod:`.setting_reach`) predicts the target's corrections first: a target out of
 reach for certain is refused before the search, and the search starts from the
 predicted corrections where they miss less than the standard crowning. The base pinion and M
-(:class:`~.setting_problem.SynthesisProblem`): the pinion conjugate to the pair's gear
-(:func:`~gearcontact.geometry.basic_settings.member_setups`). For a hypoid whose gear is
-generated it is the crown gear's pinion, point contact with TE0 = 0 along a path, and M
-the point of that path on the pinion's mean section. For a formate gear (hypoid or
-spiral bevel: the complementary pinion) and a generated spiral bevel gear (the crown
-gear's pinion) it is line-contact conjugate: every flank point lies on a contact line,
-and M is the blank's mean point on the pinion (the point the standard crowning keeps).
+(:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
+on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
+(M the blank's mean point on the pinion).
 
 References
 ----------
@@ -274,11 +270,11 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
             x[active] += z * _SCALE[active]
             return misses(x)
 
-        # the Jacobian of a line-contact base pinion by forward steps of _JAC_STEP scale
-        # steps (scipy's relative diff_step is sqrt(eps) at z = 0: 1e-8 scale steps, in
-        # the local TCA's noise there); the point-contact path as before
-        fun, jac = (residual, "2-point") if prob.point_contact else _forward_jacobian(residual)
-        least_squares(fun, np.zeros(len(active)), jac=jac, method="trf", diff_step=1e-3,
+        # the Jacobian by forward steps of _JAC_STEP scale steps: scipy's relative
+        # diff_step (1e-3 of z) is sqrt(eps) at the start z = 0 (scipy 1.17), 1.5e-8
+        # scale steps, in the local TCA's noise there
+        fun, jac = _forward_jacobian(residual)
+        least_squares(fun, np.zeros(len(active)), jac=jac, method="trf",
                       max_nfev=int(max_evaluations))
         out[side] = dataclasses.replace(
             _checked(prob, side, runs["best"][1], targets, length, phases, runs["n"], t0),
@@ -287,7 +283,7 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
     return out
 
 
-#: Forward-difference step of the line-contact search's Jacobian, in scale steps
+#: Forward-difference step of the search's Jacobian, in scale steps
 #: (:data:`_SCALE`): the TE level moves ~1e-3 arcsec per such step on F.2, its noise
 #: (node solves, interpolation) is ~1e-8 arcsec.
 _JAC_STEP = 1e-3
