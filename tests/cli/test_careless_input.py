@@ -72,13 +72,6 @@ def test_design_local_synthesis_on_a_cylindrical_pair():
              "cylindrical")
 
 
-def test_design_local_synthesis_on_a_formate_hypoid_names_the_pair():
-    # F.3 (E 15 mm) has a formate gear: the value names the pair, its offset and its
-    # gear (before: the tuple (15.0, 'formate'))
-    _refused(["design", "--pair", F3, "--machine-settings", "--local-synthesis"],
-             "--local-synthesis", "iso23509_f3", "axes.offset_mm = 15", "formate")
-
-
 def test_twin_refuses_a_drivetrain_file_as_the_pair(tmp_path):
     # before: "drivetrain = 'table' ... one of the tables [...]" (an unknown table)
     _refused(["twin", "--pair", ROOT / "examples" / "drivetrain_s0003.toml", "--out",

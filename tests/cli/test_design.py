@@ -505,12 +505,12 @@ def test_design_machine_settings_minimax_fit_of_s0003(capsys, tmp_path):
 def test_design_local_synthesis_refusals(capsys):
     # --local-synthesis (the run itself: tests/tca/test_setting_synthesis.py, slow) is
     # refused before any flank: without --machine-settings, on a pair with an ease-off
-    # (the fit decides), on a formate-gear pair (F.2: its complementary pinion has line
-    # contact, no point to pivot on) and with a crowning option (the contradiction named
-    # first, before the pair's generation): exit 2, the option named
+    # (the fit decides) and with a crowning option (the contradiction named first,
+    # before the pair's generation): exit 2, the option named. A formate-gear pair (F.2)
+    # is no longer refused (line-contact base pinion, pivot on the mean point:
+    # tests/cli/test_design_local_synthesis.py)
     f2 = "examples/iso23509_f2_spiral_bevel.toml"
     for argv, word in ((["--local-synthesis"], "--machine-settings"),
-                       (["--machine-settings", "--local-synthesis"], "generated"),
                        (["--machine-settings", "--local-synthesis",
                          "--lengthwise-crowning-um", "30"], "sets the crowning")):
         assert main(["design", "--pair", f2, *argv]) == 2

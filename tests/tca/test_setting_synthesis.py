@@ -83,14 +83,16 @@ def test_crown_pinion_has_no_te_curvature_and_the_crowning_has(problem):
         assert problem.contact(side, problem.standard[side]).te_level_arcsec > 10.0
 
 
-def test_only_a_generated_hypoid():
+def test_refused_before_any_flank():
+    # a left-hand pair (its right-hand twin is synthesized and mirrored) and an unknown
+    # gear generation are refused naming the field, before any flank. A spiral bevel
+    # (offset 0) or a formate gear is no longer refused: its base pinion is line-contact
+    # conjugate and M the blank's mean point (tests/tca/test_setting_synthesis_line_contact.py)
     from dataclasses import replace
 
     pair = generated_hypoid()
-    with pytest.raises(InputRangeError, match="offset_mm"):
-        SynthesisProblem(replace(pair, offset_mm=0.0))
-    with pytest.raises(InputRangeError, match="offset_mm"):
-        SynthesisProblem(pair, gear_generation="formate")
+    with pytest.raises(InputRangeError, match="gear_generation"):
+        SynthesisProblem(pair, gear_generation="hobbed")
     with pytest.raises(InputRangeError, match="pinion_hand"):
         SynthesisProblem(replace(pair, pinion_hand="left"))
 

@@ -221,12 +221,9 @@ def check(args) -> None:
     # are reused)
     args.generation_check = _check_generation(args, pair)
     args.gear_generation = generation_of(args.generation_check)
-    if args.local_synthesis and (args.gear_generation != "generated"
-                                 or pair.offset_mm == 0.0):
-        raise InputRangeError("--local-synthesis", f"pair {pair.name} (axes.offset_mm = "
-                              f"{pair.offset_mm:g}, default gear {args.gear_generation})",
-                              "a hypoid (axes.offset_mm != 0) whose default gear is "
-                              "generated (its pinion cut by the crown gear: point contact)")
+    # --local-synthesis takes either default gear: a hypoid's generated gear (the crown
+    # gear's pinion, point contact) or a formate gear / a spiral bevel's generated gear
+    # (line contact, pivot on the blank's mean point; tca.setting_synthesis)
     if args.synthesize_easeoff:
         # the closed-form reach is the ease-off synthesis' (tca.path_reach); the settings
         # synthesis reports a target it misses in its table (exit 4)

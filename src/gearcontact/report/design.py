@@ -104,9 +104,11 @@ def local_synthesis_toml(cut, done: dict) -> str:
     side."""
     from ..geometry.pair import pair_to_toml
 
+    gear = ("formate" if all(s.settings.formate for s in cut.machine if s.member == "gear")
+            else "generated")
     lines = [f"{cut.name}: machine settings from local synthesis at the mean point "
              "(gearcontact design --machine-settings --local-synthesis;",
-             "signs: docs/machine_settings.md); gear: generated"]
+             f"signs: docs/machine_settings.md); gear: {gear}"]
     for side, r in done.items():
         lines += r.table().splitlines()
         edges = sum(1 for e in r.edges if e)

@@ -31,7 +31,7 @@ met agree with the ones it found (the table there).
 The span: ``J`` is 3 x 3 and of full rank (condition ~7), so every ``y`` is in the span of
 the corrections' sensitivities (the projection residual is 0). A target is out of reach
 only where its corrections are, by the hard limits of the settings (the roll of
-:func:`~.setting_synthesis.roll_about`, ``1 + 2 c psi_m > 0``; a positive cutter radius),
+:func:`~.setting_problem.roll_about`, ``1 + 2 c psi_m > 0``; a positive cutter radius),
 which a path along the contact line (``psi -> 0``: an infinite ``H_lm``) always meets. A
 prediction is *certain* (``design`` refuses it before the fit) only where even half the
 predicted step crosses a hard limit (the largest error of the predicted corrections
@@ -279,8 +279,8 @@ def chord_step(model: ReachModel, prediction: ReachPrediction, x, contact, *,
 
 def reach_model(problem, side: str, *, scales, step: float = STEP) -> ReachModel:
     """:class:`ReachModel` of ``side`` of ``problem``
-    (:class:`~.setting_synthesis.SynthesisProblem`) at the synthesis' start, the standard
-    crowning: seven local TCAs at M (:meth:`~.setting_synthesis.SynthesisProblem.contact`);
+    (:class:`~.setting_problem.SynthesisProblem`) at the synthesis' start, the standard
+    crowning: seven local TCAs at M (:meth:`~.setting_problem.SynthesisProblem.contact`);
     ``scales`` the synthesis' scale step of each correction."""
     x0, scales = problem.standard[side], np.asarray(scales, float)
 

@@ -13,7 +13,7 @@ corrections, each of which keeps M (a pinion node) and its normal exactly:
   ``psi_m`` that generates M, as ``-phi''(psi_m) / R_a0`` (the 2C of a roll
   about ``psi_m``). Written as cradle angle, ratio of roll and 2C whose roll keeps its
   value and slope at ``psi_m`` (the envelope at the mean node depends on ``phi`` and
-  ``phi'`` there only: the equation of meshing; :func:`roll_about`);
+  ``phi'`` there only: the equation of meshing; :func:`~.setting_problem.roll_about`);
 * ``blade_curvature_per_mm``: a circular pinion blade tangent to the straight one at the
   blade point that generates M
   (:func:`~gearcontact.geometry.basic_settings.crown_profile`);
@@ -21,7 +21,8 @@ corrections, each of which keeps M (a pinion node) and its normal exactly:
   along the blade's radial line through that point
   (:func:`~gearcontact.geometry.basic_settings.mismatch_radius`).
 
-The conditions are measured at M by a local TCA (:func:`mean_point_contact`: five
+The conditions are measured at M by a local TCA
+(:func:`~.setting_problem.mean_point_contact`: five
 phases about M, the TE curvature there and its parabolic level over one pitch, the paint
 ellipse and the path direction at M) and met by least squares on the corrections from
 the standard settings' crowning (``scipy.optimize.least_squares``, a solver in the loop,
@@ -36,8 +37,10 @@ stays at M. The result is checked by the full TCA over one pitch (edge contact, 
 ellipse reaches a flank edge (:class:`SettingSynthesis`). With a path angle the reach
 model (:mod:`.setting_reach`) predicts the target's corrections first: a target out of
 reach for certain is refused before the search, and the search starts from the
-predicted corrections where they miss less than the standard crowning. The base pinion and M:
-:class:`SynthesisProblem` (a hypoid whose gear is generated, the crown gear's pinion).
+predicted corrections where they miss less than the standard crowning. The base pinion and M
+(:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
+on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
+(M the blank's mean point on the pinion).
 
 References
 ----------
@@ -60,22 +63,19 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
-from ..geometry.basic_settings import (crown_profile, crowning_corrections, member_setups,
-                                       mismatch_radius)
-from ..geometry.flank import build_machine_flanks
 from ..geometry.formate import SIDES
-from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
+from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.machine import MachineSetup, mirror_setup
 from ..validation import InputRangeError
-from .design_point import DesignPoint, design_point_at
-from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
 from .analysis import pattern_on_flank
+from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .mating import solve_mating_point
-from .solve import solve_tca
+from .setting_problem import (MeanPointContact, SynthesisProblem, corrected_setup,
+                              mean_point_contact, roll_about)
+from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
 from .synthesis_targets import SynthesisTargets, TargetRows, targets_rows
-from .types import ContactGuess, EdgeContact
+from .types import EdgeContact
 
 __all__ = ["PARAMETER_NAMES", "MeanPointContact", "SettingSynthesis", "SynthesisProblem",
            "mean_point_contact", "roll_about", "corrected_setup",
@@ -86,114 +86,10 @@ PARAMETER_NAMES = ("roll_curvature", "blade_curvature_per_mm", "radius_delta_mm"
 #: Least-squares scale steps of the corrections (1, 1/mm, mm): about a tenth of the
 #: standard crowning's values on F.3-sized pairs.
 _SCALE = np.array([1e-3, 2e-4, 0.2])
-_REPORT_TORQUE_NM = 64.5
 #: Chord steps of the reach model (:func:`~.setting_reach.chord_step`, one local TCA
 #: each) before the search: measured on the 13/26 hypoid, four take the residual at
 #: the model's corrections from 106-337 to 0.3-4.7 (tolerance units).
 CHORD_STEPS = 4
-
-
-def roll_about(settings, *, psi_m: float, roll_curvature: float):
-    """``settings`` with cradle angle, ratio of roll and 2C such that the work roll as a
-    function of the cradle's position keeps its value and slope at the roll ``psi_m`` of
-    ``settings`` and gets the second derivative ``-R_a0 roll_curvature`` there (``R_a0``:
-    the linear roll of ``settings``, which must have no modified roll).
-
-    The cradle angle changed by ``d`` with the swivel kept is the cradle rolled by ``d``
-    (the cutter turns rigidly about the cradle axis), so the new roll, in the base's
-    cradle position ``psi``, is ``W(psi) = R_a (s - C s^2/2)``, ``s = psi - d``. The three
-    conditions at ``psi_m`` give ``R_a C = R_a0 c``, ``R_a = R_a0 (1 + c s_m)`` and
-    ``s_m + c s_m^2/2 = psi_m`` (``c = roll_curvature``, ``s_m = psi_m - d``): closed form,
-    ``d = O(c psi_m^2)``. A 2C about ``psi = 0`` alone would move the mean node (its roll
-    ``psi_m`` is not 0); a cubic about 0 keeping it needs a 6D of order ``3 c / psi_m``."""
-    if any(settings.modified_roll) or any(settings.helical_motion):
-        raise InputRangeError("modified_roll", settings.modified_roll,
-                              "a linear roll (no modified roll, no helical motion) as base")
-    r0, p, c = settings.ratio_of_roll, float(psi_m), float(roll_curvature)
-    if 1.0 + 2.0 * c * p <= 0.0:
-        raise InputRangeError("roll_curvature", c, f"1 + 2 c psi_m > 0 (psi_m = {p:.6g} rad)")
-    s_m = 2.0 * p / (1.0 + math.sqrt(1.0 + 2.0 * c * p))     # root of s + c s^2/2 = psi_m
-    r_a = r0 * (1.0 + c * s_m)
-    q = settings.cradle_angle_deg + math.degrees(p - s_m)
-    q = (q + 180.0) % 360.0 - 180.0 if (q + 180.0) % 360.0 != 0.0 else 180.0
-    return dataclasses.replace(settings, cradle_angle_deg=q, ratio_of_roll=float(r_a),
-                               modified_roll=(float(r0 * c / r_a),) if c else ())
-
-
-def _generation_at(setup: MachineSetup, blank, cone, uv) -> tuple[float, float, float]:
-    """(l, theta, psi) of the blade point and roll that generate the pinion node ``uv``."""
-    solver = EnvelopeSolver(setup, blank, cone)
-    m = solver.solve(uv[0], uv[1], solver.initial_guess(*uv))
-    return float(m.l_mm), float(m.theta_rad), float(m.psi_rad)
-
-
-def corrected_setup(base: MachineSetup, x, *, mean) -> MachineSetup:
-    """The pinion ``base`` (straight blade, linear roll) with the corrections ``x``
-    (:data:`PARAMETER_NAMES`), all pivoting on the generation ``mean = (l, theta, psi)``
-    of the mean point (:class:`SynthesisProblem`)."""
-    l_m, th_m, psi_m = mean
-    c_roll, k_blade, delta = (float(v) for v in x)
-    setup = mismatch_radius(base, delta_mm=delta, theta_rad=th_m) if delta else base
-    if k_blade:
-        setup = dataclasses.replace(setup, blade=crown_profile(
-            setup.blade, radius_mm=1.0 / k_blade, at_length_mm=l_m))
-    return dataclasses.replace(setup, settings=roll_about(setup.settings, psi_m=psi_m,
-                                                          roll_curvature=c_roll))
-
-
-#: Phase step of the local TCA at M, in pinion pitches (five phases, -2..2 steps: the TE
-#: curvature by the five-point difference, the path tangent by the central one).
-_LOCAL_STEP_PITCH = 1.0 / 30.0
-_ARCSEC = math.pi / (180.0 * 3600.0)
-
-
-@dataclass(frozen=True)
-class MeanPointContact:
-    """Litvin's quantities at the mean point M (:func:`mean_point_contact`).
-
-    Attributes
-    ----------
-    point : DesignPoint
-        At M: paint and Hertz ellipses and the path angle on the gear flank; its
-        ``te0_pp_arcsec`` is the parabolic level ``te_level_arcsec``.
-    te_curvature_arcsec_per_rad2 : float
-        ``d^2 TE0 / d phi1^2`` at M (TE0 in arcsec of gear rotation, phi1 in rad).
-    te_slope_arcsec_per_rad : float
-        ``d TE0 / d phi1`` at M (0 for tangency with the nominal ratio at M).
-    te_level_arcsec : float
-        Peak-to-peak over one pinion pitch of the parabola of that curvature,
-        ``|TE''| (pi / z1)^2 / 2`` (pairs changing at half a pitch either side of M).
-    """
-
-    point: DesignPoint
-    te_curvature_arcsec_per_rad2: float
-    te_slope_arcsec_per_rad: float
-    te_level_arcsec: float
-
-
-def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
-                       torque_nm: float = _REPORT_TORQUE_NM) -> MeanPointContact:
-    """Contact of ``pinion`` and ``gear`` at the mean point: a local TCA over five phases
-    (``start``, the exact contact at M, and two steps of :data:`_LOCAL_STEP_PITCH` either
-    side), from which the TE curvature, the parabolic TE level and the path direction at M
-    follow (Litvin & Fuentes 2004, sec. 21.8: the second-order conditions of local
-    synthesis are posed at M, not at the TE vertex of a whole pitch)."""
-    kin = pair.kinematics()
-    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
-    path = solve_tca(pinion, gear, kin, start.phi1_rad + h * np.arange(-2, 3), start=start,
-                     start_fixed="phi1", edges=False)
-    te = np.asarray(path.te0_arcsec, dtype=float)
-    if not np.all(np.isfinite(te)):
-        raise ArithmeticError("the contact leaves a flank within two local steps of M")
-    curv = float((-te[0] + 16.0 * te[1] - 30.0 * te[2] + 16.0 * te[3] - te[4]) / (12.0 * h * h))
-    slope = float((te[0] - 8.0 * te[1] + 8.0 * te[3] - te[4]) / (12.0 * h))
-    level = 0.5 * abs(curv) * (math.pi / pair.pinion_teeth) ** 2
-    a, mp, b = path.points[1], path.points[2], path.points[3]
-    tangent = kin.gear_pose(mp.phi2_rad)[0] @ (gear.point(b.u2, b.v2).r
-                                               - gear.point(a.u2, a.v2).r)
-    dp = design_point_at(pair, pinion, gear, mp, te0_pp_arcsec=level, torque_nm=torque_nm,
-                         path_tangent=tangent)
-    return MeanPointContact(dp, curv, slope, level)
 
 
 @dataclass(frozen=True)
@@ -264,113 +160,13 @@ class SettingSynthesis(TargetRows):
         return f"{self.side} "
 
 
-def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
-    """The mating point of the path through ``guess`` whose pinion ``v1`` is ``v1_mm``
-    within 1e-6 mm: secant on the phase, started from a local TCA over +-2 steps of
-    :data:`_LOCAL_STEP_PITCH` (the system with ``v1`` held is singular where TE0 is
-    constant along the path, as on the crown gear's pinion)."""
-    kin = pair.kinematics()
-    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
-    path = solve_tca(pinion, gear, kin, guess.phi1_rad + h * np.arange(-2, 3), start=guess,
-                     start_fixed="phi1", edges=False)
-    k = int(np.argmin([abs(p.v1 - v1_mm) for p in path.points]))
-    prev, mp = path.points[k - 1 if k else 1], path.points[k]
-    for _ in range(20):
-        if abs(mp.v1 - v1_mm) < 1e-6:
-            return mp
-        slope = (mp.v1 - prev.v1) / (mp.phi1_rad - prev.phi1_rad)
-        prev, mp = mp, solve_mating_point(pinion, gear, kin, dataclasses.replace(
-            mp.as_guess(), phi1_rad=mp.phi1_rad - (mp.v1 - v1_mm) / slope))
-    raise ArithmeticError(f"no point of the contact path at v1 = {v1_mm:.4f} mm (secant "
-                          f"stopped at {mp.v1:.4f} mm)")
-
-
-class SynthesisProblem:
-    """The fixed part of the synthesis of one pair: the gear flanks, the base pinion
-    (:func:`~gearcontact.geometry.basic_settings.member_setups`: for a generated gear the
-    crown gear's pinion), the mean point M of each side, its generation and its exact
-    contact, and the pinion's mounting turn, so that :meth:`flank` gives the mounted
-    pinion flank of any corrections.
-
-    M is the point of the base pinion's contact path on the pinion's mean section
-    (``v`` of the blank's mean point, :func:`_path_point_at`):
-    the crown gear's pinion of a hypoid has point contact with TE0 = 0 along a path,
-    which passes near, not through, the pinion's mean
-    node (13/26 hypoid: 0.68 / 2.30 mm above it, drive / coast). The corrections pivot on the
-    generation of M, so the corrected pinion keeps M, its normal and the nominal ratio
-    there: tangency at M.
-
-    The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
-    gives the base pinion (the corrections keep M, so the same turn mounts every
-    corrected pinion).
-    """
-
-    def __init__(self, pair, *, gear_generation: str = "generated", n_u: int = 40,
-                 n_v: int = 50):
-        if pair.pinion_hand != "right":
-            raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
-                                  "right-hand twin and mirror its settings)")
-        if gear_generation != "generated" or pair.offset_mm == 0.0:
-            raise InputRangeError(
-                "axes.offset_mm / gear generation", (pair.offset_mm, gear_generation),
-                "a hypoid (offset != 0) whose gear is generated: local synthesis pivots on "
-                "a point of the crown gear pinion's contact path (point contact); a "
-                "line-contact base pinion has no such point")
-        self.pair, self.n_u, self.n_v = pair, int(n_u), int(n_v)
-        blank = pair.blank
-        self.gear_setups, self.base = member_setups(pair, gear_generation)
-        fs = build_machine_flanks(dataclasses.replace(
-            pair, machine=tuple(self.gear_setups[s] for s in SIDES)
-            + tuple(self.base[s] for s in SIDES), easeoff_tables=("drive", "coast")),
-            n_u=n_u, n_v=n_v)
-        d = pair.design_side
-        self.turn = 0.0
-        self.turn = float(fs.pinion.side(d).psi_nodes[0, 0]
-                          - self._generated(self.base[d]).psi_nodes[0, 0])
-        self.gear = {side: fs.gear.side(side) for side in SIDES}
-        #: the pinion sheet's cone (both sides), mm
-        self.cone = fs.pinion.side(d).cone
-        self.start, self.mean_uv, self.means = {}, {}, {}
-        for side in SIDES:
-            m = fs.mean_contact[side]
-            guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
-                                 m["phi2_rad"])
-            mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
-                                v1_mm=float(blank.pitch_point_mm[0]))
-            self.start[side] = mp.as_guess()
-            self.mean_uv[side] = (float(mp.u1), float(mp.v1))
-            self.means[side] = _generation_at(self.base[side], blank, self.cone,
-                                              self.mean_uv[side])
-        # the standard crowning (25 / 10 um, standard_setups): the search's start
-        self.standard = {side: np.array([0.0, *crowning_corrections(
-            pair, self.base[side], l_mm=self.means[side][0], lengthwise_crowning_um=25.0,
-            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES}
-
-    def setup(self, side: str, x) -> MachineSetup:
-        """The pinion settings of ``side`` with the corrections ``x``."""
-        return corrected_setup(self.base[side], x, mean=self.means[side])
-
-    def _generated(self, setup):
-        f = generated_pinion_flank(setup, self.pair.blank,
-                                   pinion_face_width_mm=self.pair.pinion_face_width_mm,
-                                   n_u=self.n_u, n_v=self.n_v)[0]
-        return dataclasses.replace(f, psi_nodes=f.psi_nodes + self.turn)
-
-    def flank(self, side: str, x):
-        """The mounted pinion flank of ``side`` with the corrections ``x``."""
-        return self._generated(self.setup(side, x))
-
-    def contact(self, side: str, x) -> MeanPointContact:
-        """:func:`mean_point_contact` of the corrections ``x``."""
-        return mean_point_contact(self.flank(side, x), self.gear[side], self.pair,
-                                  self.start[side])
-
-
 def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                         sides=SIDES, phases: int = 31, max_evaluations: int = 40,
                         problem: SynthesisProblem | None = None) -> dict:
     """Pinion settings of ``sides`` from local synthesis at the mean point (module
-    docstring), against the generated gear of a hypoid (:class:`SynthesisProblem`).
+    docstring), against the pair's gear (:class:`SynthesisProblem`: a hypoid's generated
+    gear, point contact; a formate gear or a spiral bevel's generated one, line
+    contact).
 
     Parameters
     ----------
@@ -396,8 +192,7 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
     Raises
     ------
     InputRangeError
-        A left-hand pair, a pair that is not a hypoid with a generated gear or a bad
-        side, before any flank; a path angle the reach model finds out of reach for
+        A left-hand pair or a bad side, before any flank; a path angle the reach model finds out of reach for
         certain (:mod:`.setting_reach`: a hard limit of the settings crossed within half
         the predicted step), after its seven local TCAs, before the search.
     CheckFailed
@@ -475,13 +270,45 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
             x[active] += z * _SCALE[active]
             return misses(x)
 
-        least_squares(residual, np.zeros(len(active)), method="trf", diff_step=1e-3,
+        # the Jacobian by forward steps of _JAC_STEP scale steps: scipy's relative
+        # diff_step (1e-3 of z) is sqrt(eps) at the start z = 0 (scipy 1.17), 1.5e-8
+        # scale steps, in the local TCA's noise there
+        fun, jac = _forward_jacobian(residual)
+        least_squares(fun, np.zeros(len(active)), jac=jac, method="trf",
                       max_nfev=int(max_evaluations))
         out[side] = dataclasses.replace(
             _checked(prob, side, runs["best"][1], targets, length, phases, runs["n"], t0),
             reach=reach, reach_residual=at_reach, start_residual=at_first,
             residual=math.sqrt(runs["best"][0]))
     return out
+
+
+#: Forward-difference step of the search's Jacobian, in scale steps
+#: (:data:`_SCALE`): the TE level moves ~1e-3 arcsec per such step on F.2, its noise
+#: (node solves, interpolation) is ~1e-8 arcsec.
+_JAC_STEP = 1e-3
+
+
+def _forward_jacobian(fun, *, step: float = _JAC_STEP):
+    """``(fun, jac)`` for ``least_squares``: ``fun`` remembering its last value, ``jac``
+    the forward differences of absolute ``step`` from it (one call of ``fun`` per
+    column)."""
+    last = {}
+
+    def value(z):
+        last["z"], last["r"] = np.array(z, dtype=float), fun(z)
+        return last["r"]
+
+    def jac(z):
+        r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else value(z)
+        cols = []
+        for i in range(len(z)):
+            zi = np.array(z, dtype=float)
+            zi[i] += step
+            cols.append((fun(zi) - r0) / step)
+        return np.column_stack(cols)
+
+    return value, jac
 
 
 def _reach_of(prob: SynthesisProblem, side: str, targets, length: float, name: str):
@@ -526,10 +353,13 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
-                             **options):
-    """``pair`` with the generated gear's settings and the pinion settings of
+                             gear_generation: str | None = None, **options):
+    """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
-    sides, and the per-side results. A left-hand pair is the mirror image of its
+    sides, and the per-side results. ``gear_generation``: ``"formate"`` or
+    ``"generated"`` (:class:`SynthesisProblem`), by default the gear of the pair's
+    default flanks (:func:`~gearcontact.geometry.gear_generation.gear_generation`, as
+    ``design --machine-settings`` writes it). A left-hand pair is the mirror image of its
     right-hand twin (:mod:`~gearcontact.geometry.mirror`): the twin is synthesized and
     its settings mirrored (:func:`~gearcontact.geometry.machine.mirror_setup`; signs:
     docs/machine_settings.md), so the left-hand pair's TCA is the twin's mirrored (same
@@ -538,10 +368,13 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     if pair.pinion_hand == "left":
         twin, done = synthesized_machine_pair(
             dataclasses.replace(pair, pinion_hand="right", machine=()), targets=targets,
-            **options)
+            gear_generation=gear_generation, **options)
         return dataclasses.replace(pair, machine=tuple(mirror_setup(s) for s in twin.machine),
                                    easeoff_tables=twin.easeoff_tables), done
-    prob = SynthesisProblem(pair, n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
+    if gear_generation is None:
+        gear_generation = default_gear_generation(pair)[0]
+    prob = SynthesisProblem(pair, gear_generation=gear_generation,
+                            n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
     done = synthesize_settings(pair, targets=targets, problem=prob, **options)
     machine = tuple(prob.gear_setups[s] for s in SIDES) + tuple(done[s].setup for s in SIDES)
     return dataclasses.replace(pair, machine=machine, easeoff_tables=("drive", "coast")), done

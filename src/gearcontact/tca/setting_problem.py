@@ -1,0 +1,256 @@
+"""The fixed part of the local synthesis of the pinion settings
+(:mod:`.setting_synthesis`): the base pinion, the mean point M and its generation, the
+three corrections pivoting on it, and Litvin's quantities at M by a local TCA.
+
+The base pinion is the one conjugate to the pair's gear
+(:func:`~gearcontact.geometry.basic_settings.member_setups`). For a hypoid whose gear is
+generated it is the crown gear's pinion, point contact with TE0 = 0 along a path, and M
+the point of that path on the pinion's mean section. For a formate gear (hypoid or
+spiral bevel: the complementary pinion) and a generated spiral bevel gear (the crown
+gear's pinion) it is line-contact conjugate: every flank point lies on a contact line,
+and M is the blank's mean point on the pinion (the point the standard crowning keeps).
+Each correction (:func:`corrected_setup`: roll curvature about M's roll
+:func:`roll_about`, blade curvature, cutter radius) keeps M, its normal and the nominal
+ratio there.
+
+References
+----------
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 20-21.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.basic_settings import (crown_profile, crowning_corrections, member_setups,
+                                       mismatch_radius)
+from ..geometry.flank import build_machine_flanks
+from ..geometry.formate import SIDES
+from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
+from ..geometry.machine import MachineSetup
+from ..validation import InputRangeError
+from .design_point import DesignPoint, design_point_at
+from .mating import solve_mating_point
+from .solve import solve_tca
+from .types import ContactGuess
+
+__all__ = ["MeanPointContact", "SynthesisProblem", "corrected_setup", "mean_point_contact",
+           "roll_about"]
+
+_REPORT_TORQUE_NM = 64.5
+
+
+def roll_about(settings, *, psi_m: float, roll_curvature: float):
+    """``settings`` with cradle angle, ratio of roll and 2C such that the work roll as a
+    function of the cradle's position keeps its value and slope at the roll ``psi_m`` of
+    ``settings`` and gets the second derivative ``-R_a0 roll_curvature`` there (``R_a0``:
+    the linear roll of ``settings``, which must have no modified roll).
+
+    The cradle angle changed by ``d`` with the swivel kept is the cradle rolled by ``d``
+    (the cutter turns rigidly about the cradle axis), so the new roll, in the base's
+    cradle position ``psi``, is ``W(psi) = R_a (s - C s^2/2)``, ``s = psi - d``. The three
+    conditions at ``psi_m`` give ``R_a C = R_a0 c``, ``R_a = R_a0 (1 + c s_m)`` and
+    ``s_m + c s_m^2/2 = psi_m`` (``c = roll_curvature``, ``s_m = psi_m - d``): closed form,
+    ``d = O(c psi_m^2)``. A 2C about ``psi = 0`` alone would move the mean node (its roll
+    ``psi_m`` is not 0); a cubic about 0 keeping it needs a 6D of order ``3 c / psi_m``."""
+    if any(settings.modified_roll) or any(settings.helical_motion):
+        raise InputRangeError("modified_roll", settings.modified_roll,
+                              "a linear roll (no modified roll, no helical motion) as base")
+    r0, p, c = settings.ratio_of_roll, float(psi_m), float(roll_curvature)
+    if 1.0 + 2.0 * c * p <= 0.0:
+        raise InputRangeError("roll_curvature", c, f"1 + 2 c psi_m > 0 (psi_m = {p:.6g} rad)")
+    s_m = 2.0 * p / (1.0 + math.sqrt(1.0 + 2.0 * c * p))     # root of s + c s^2/2 = psi_m
+    r_a = r0 * (1.0 + c * s_m)
+    q = settings.cradle_angle_deg + math.degrees(p - s_m)
+    q = (q + 180.0) % 360.0 - 180.0 if (q + 180.0) % 360.0 != 0.0 else 180.0
+    return dataclasses.replace(settings, cradle_angle_deg=q, ratio_of_roll=float(r_a),
+                               modified_roll=(float(r0 * c / r_a),) if c else ())
+
+
+def _generation_at(setup: MachineSetup, blank, cone, uv) -> tuple[float, float, float]:
+    """(l, theta, psi) of the blade point and roll that generate the pinion node ``uv``."""
+    solver = EnvelopeSolver(setup, blank, cone)
+    m = solver.solve(uv[0], uv[1], solver.initial_guess(*uv))
+    return float(m.l_mm), float(m.theta_rad), float(m.psi_rad)
+
+
+def corrected_setup(base: MachineSetup, x, *, mean) -> MachineSetup:
+    """The pinion ``base`` (straight blade, linear roll) with the corrections ``x``
+    (:data:`~.setting_synthesis.PARAMETER_NAMES`), all pivoting on the generation ``mean = (l, theta, psi)``
+    of the mean point (:class:`SynthesisProblem`)."""
+    l_m, th_m, psi_m = mean
+    c_roll, k_blade, delta = (float(v) for v in x)
+    setup = mismatch_radius(base, delta_mm=delta, theta_rad=th_m) if delta else base
+    if k_blade:
+        setup = dataclasses.replace(setup, blade=crown_profile(
+            setup.blade, radius_mm=1.0 / k_blade, at_length_mm=l_m))
+    return dataclasses.replace(setup, settings=roll_about(setup.settings, psi_m=psi_m,
+                                                          roll_curvature=c_roll))
+
+
+#: Phase step of the local TCA at M, in pinion pitches (five phases, -2..2 steps: the TE
+#: curvature by the five-point difference, the path tangent by the central one).
+_LOCAL_STEP_PITCH = 1.0 / 30.0
+_ARCSEC = math.pi / (180.0 * 3600.0)
+
+
+@dataclass(frozen=True)
+class MeanPointContact:
+    """Litvin's quantities at the mean point M (:func:`mean_point_contact`).
+
+    Attributes
+    ----------
+    point : DesignPoint
+        At M: paint and Hertz ellipses and the path angle on the gear flank; its
+        ``te0_pp_arcsec`` is the parabolic level ``te_level_arcsec``.
+    te_curvature_arcsec_per_rad2 : float
+        ``d^2 TE0 / d phi1^2`` at M (TE0 in arcsec of gear rotation, phi1 in rad).
+    te_slope_arcsec_per_rad : float
+        ``d TE0 / d phi1`` at M (0 for tangency with the nominal ratio at M).
+    te_level_arcsec : float
+        Peak-to-peak over one pinion pitch of the parabola of that curvature,
+        ``|TE''| (pi / z1)^2 / 2`` (pairs changing at half a pitch either side of M).
+    """
+
+    point: DesignPoint
+    te_curvature_arcsec_per_rad2: float
+    te_slope_arcsec_per_rad: float
+    te_level_arcsec: float
+
+
+def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
+                       torque_nm: float = _REPORT_TORQUE_NM) -> MeanPointContact:
+    """Contact of ``pinion`` and ``gear`` at the mean point: a local TCA over five phases
+    (``start``, the exact contact at M, and two steps of :data:`_LOCAL_STEP_PITCH` either
+    side), from which the TE curvature, the parabolic TE level and the path direction at M
+    follow (Litvin & Fuentes 2004, sec. 21.8: the second-order conditions of local
+    synthesis are posed at M, not at the TE vertex of a whole pitch)."""
+    kin = pair.kinematics()
+    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
+    path = solve_tca(pinion, gear, kin, start.phi1_rad + h * np.arange(-2, 3), start=start,
+                     start_fixed="phi1", edges=False)
+    te = np.asarray(path.te0_arcsec, dtype=float)
+    if not np.all(np.isfinite(te)):
+        raise ArithmeticError("the contact leaves a flank within two local steps of M")
+    curv = float((-te[0] + 16.0 * te[1] - 30.0 * te[2] + 16.0 * te[3] - te[4]) / (12.0 * h * h))
+    slope = float((te[0] - 8.0 * te[1] + 8.0 * te[3] - te[4]) / (12.0 * h))
+    level = 0.5 * abs(curv) * (math.pi / pair.pinion_teeth) ** 2
+    a, mp, b = path.points[1], path.points[2], path.points[3]
+    tangent = kin.gear_pose(mp.phi2_rad)[0] @ (gear.point(b.u2, b.v2).r
+                                               - gear.point(a.u2, a.v2).r)
+    dp = design_point_at(pair, pinion, gear, mp, te0_pp_arcsec=level, torque_nm=torque_nm,
+                         path_tangent=tangent)
+    return MeanPointContact(dp, curv, slope, level)
+
+
+def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
+    """The mating point of the path through ``guess`` whose pinion ``v1`` is ``v1_mm``
+    within 1e-6 mm: secant on the phase, started from a local TCA over +-2 steps of
+    :data:`_LOCAL_STEP_PITCH` (the system with ``v1`` held is singular where TE0 is
+    constant along the path, as on the crown gear's pinion)."""
+    kin = pair.kinematics()
+    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
+    path = solve_tca(pinion, gear, kin, guess.phi1_rad + h * np.arange(-2, 3), start=guess,
+                     start_fixed="phi1", edges=False)
+    k = int(np.argmin([abs(p.v1 - v1_mm) for p in path.points]))
+    prev, mp = path.points[k - 1 if k else 1], path.points[k]
+    for _ in range(20):
+        if abs(mp.v1 - v1_mm) < 1e-6:
+            return mp
+        slope = (mp.v1 - prev.v1) / (mp.phi1_rad - prev.phi1_rad)
+        prev, mp = mp, solve_mating_point(pinion, gear, kin, dataclasses.replace(
+            mp.as_guess(), phi1_rad=mp.phi1_rad - (mp.v1 - v1_mm) / slope))
+    raise ArithmeticError(f"no point of the contact path at v1 = {v1_mm:.4f} mm (secant "
+                          f"stopped at {mp.v1:.4f} mm)")
+
+
+class SynthesisProblem:
+    """The fixed part of the synthesis of one pair: the gear flanks, the base pinion
+    (:func:`~gearcontact.geometry.basic_settings.member_setups` of ``gear_generation``:
+    the complementary pinion of a formate gear, the crown gear's pinion of a generated
+    one), the mean point M of each side, its generation and its exact contact, and the
+    pinion's mounting turn, so that :meth:`flank` gives the mounted pinion flank of any
+    corrections.
+
+    Point contact (:attr:`point_contact`: a hypoid, offset != 0, whose gear is
+    generated): M is the point of the base pinion's contact path on the pinion's mean
+    section (``v`` of the blank's mean point, :func:`_path_point_at`): the crown gear's
+    pinion of a hypoid has point contact with TE0 = 0 along a path, which passes near,
+    not through, the pinion's mean node (13/26 hypoid: 0.68 / 2.30 mm above it, drive /
+    coast). Line contact (a formate gear, or a generated gear with offset 0): the base
+    pinion touches the gear along a line through every flank point, so M is the
+    blank's mean point on the pinion, the node ``(root offset, pitch point x)`` that
+    :func:`~gearcontact.geometry.flank.build_machine_flanks` starts the TCA from and
+    whose generation the standard crowning keeps in place; its exact contact is that
+    flank set's mean contact. The corrections pivot on the generation of M, so the
+    corrected pinion keeps M, its normal and the nominal ratio there: tangency at M.
+
+    The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
+    gives the base pinion (the corrections keep M, so the same turn mounts every
+    corrected pinion).
+    """
+
+    def __init__(self, pair, *, gear_generation: str = "generated", n_u: int = 40,
+                 n_v: int = 50):
+        if pair.pinion_hand != "right":
+            raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
+                                  "right-hand twin and mirror its settings)")
+        #: the base pinion has point contact (the crown gear's pinion of a hypoid), not
+        #: line contact (module docstring)
+        self.point_contact = gear_generation == "generated" and pair.offset_mm != 0.0
+        self.pair, self.n_u, self.n_v = pair, int(n_u), int(n_v)
+        blank = pair.blank
+        self.gear_setups, self.base = member_setups(pair, gear_generation)
+        fs = build_machine_flanks(dataclasses.replace(
+            pair, machine=tuple(self.gear_setups[s] for s in SIDES)
+            + tuple(self.base[s] for s in SIDES), easeoff_tables=("drive", "coast")),
+            n_u=n_u, n_v=n_v)
+        d = pair.design_side
+        self.turn = 0.0
+        self.turn = float(fs.pinion.side(d).psi_nodes[0, 0]
+                          - self._generated(self.base[d]).psi_nodes[0, 0])
+        self.gear = {side: fs.gear.side(side) for side in SIDES}
+        #: the pinion sheet's cone (both sides), mm
+        self.cone = fs.pinion.side(d).cone
+        self.start, self.mean_uv, self.means = {}, {}, {}
+        for side in SIDES:
+            m = fs.mean_contact[side]
+            guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
+                                 m["phi2_rad"])
+            if self.point_contact:
+                mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
+                                    v1_mm=float(blank.pitch_point_mm[0]))
+                self.start[side] = mp.as_guess()
+                self.mean_uv[side] = (float(mp.u1), float(mp.v1))
+            else:       # line contact: the pinion's mean node lies on a contact line
+                self.start[side] = guess
+                self.mean_uv[side] = tuple(float(t) for t in m["pinion_uv"])
+            self.means[side] = _generation_at(self.base[side], blank, self.cone,
+                                              self.mean_uv[side])
+        # the standard crowning (25 / 10 um, standard_setups): the search's start
+        self.standard = {side: np.array([0.0, *crowning_corrections(
+            pair, self.base[side], l_mm=self.means[side][0], lengthwise_crowning_um=25.0,
+            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES}
+
+    def setup(self, side: str, x) -> MachineSetup:
+        """The pinion settings of ``side`` with the corrections ``x``."""
+        return corrected_setup(self.base[side], x, mean=self.means[side])
+
+    def _generated(self, setup):
+        f = generated_pinion_flank(setup, self.pair.blank,
+                                   pinion_face_width_mm=self.pair.pinion_face_width_mm,
+                                   n_u=self.n_u, n_v=self.n_v)[0]
+        return dataclasses.replace(f, psi_nodes=f.psi_nodes + self.turn)
+
+    def flank(self, side: str, x):
+        """The mounted pinion flank of ``side`` with the corrections ``x``."""
+        return self._generated(self.setup(side, x))
+
+    def contact(self, side: str, x) -> MeanPointContact:
+        """:func:`mean_point_contact` of the corrections ``x``."""
+        return mean_point_contact(self.flank(side, x), self.gear[side], self.pair,
+                                  self.start[side])
