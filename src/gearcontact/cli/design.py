@@ -132,7 +132,8 @@ def register(sub) -> None:
                         "gear (as for a gear typed alone; docs/machine_settings.md sec. 5), "
                         "instead of the blank's standard settings of both members")
     p.add_argument("--local-synthesis", action="store_true",
-                   help="with --machine-settings on a hypoid whose gear is generated: the "
+                   help="with --machine-settings (a right- or left-hand spiral bevel or "
+                        "hypoid, formate or generated gear): the "
                         "pinion settings from local synthesis at the mean point (roll "
                         "curvature, cutter radius and, with a path angle, blade curvature "
                         "for the targets --te0-arcsec, --pattern-length-ratio and "
