@@ -132,3 +132,42 @@ def test_readme_typed_machine_settings_example(tmp_path):
     lte = json.loads((out / "lte.json").read_text())
     for rec in (lte if isinstance(lte, list) else [lte]):
         assert rec["converged"], rec.get("unconverged_phases")
+
+
+def test_readme_print_gear_example(tmp_path):
+    """The shipped print's gear page alone (examples/machine_settings/
+    hypoid_10x41_print_gear.toml) in its README line, as written: ``design
+    --machine-settings`` keeps the gear as printed and writes its standard pinion.
+    Truths: the written ``[print.gear]`` is the example's, verbatim (the gear is kept as
+    typed); its pinion is the library's ``typed_gear_machine_pair`` of the example's gear
+    with the default crowning, floats at full precision (==: the CLI adds nothing); and
+    the written pair's members are mates: loading it and building its flanks raises no
+    ``MateWarning`` (normals at the pinion's mean point within 1 deg, the warning's bound;
+    the blank's own standard pinion with this gear is 2.6 / 3.0 deg apart,
+    docs/machine_settings.md sec. 5). About 10 s CPU."""
+    import tomllib
+    import warnings
+
+    from gearcontact.geometry.flank import MateWarning, build_flanks
+    from gearcontact.geometry.typed_pinion import typed_gear_machine_pair
+
+    lines = [c for c in readme_commands()
+             if c.startswith("gearcontact design --pair examples/machine_settings/")]
+    assert len(lines) == 1, lines
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    proc = _run(lines[0], tmp_path)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    out = tmp_path / shlex.split(lines[0])[shlex.split(lines[0]).index("--out") + 1]
+    example = ROOT / "examples" / "machine_settings" / "hypoid_10x41_print_gear.toml"
+    written = out / "machine_settings.toml"
+    with open(example, "rb") as f, open(written, "rb") as g:
+        assert tomllib.load(g)["print"]["gear"] == tomllib.load(f)["print"]["gear"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")          # the typed-settings check's notes
+        typed = load_pair(example, gear_alone=True)
+    want = typed_gear_machine_pair(typed)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", MateWarning)
+        pair = load_pair(written)
+        build_flanks(pair)
+    assert pair.machine == want.machine
