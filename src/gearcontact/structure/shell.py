@@ -72,7 +72,7 @@ from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import RimSegment, rim_mid_surface, rim_modulus_factor, rim_segment, tooth_height_mm
 from .rim_block import (BLOCK_ORDERS, BLOCK_RIM_STIFFENING, block_stiffness, check_block,
-                        enrichment_count)
+                        enrichment_count, has_block)
 from .ritz_solid import legendre_table
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
@@ -412,7 +412,10 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     rim_block : bool
         The rim block below the fillet as a Ritz solid coupled to the plate
         (:mod:`.rim_block`, docs/bending.md sec. 13; needs ``rim``, not with
-        ``membrane``); False: the plate continues through it.
+        ``membrane``); False: the plate continues through it. A block thinner than
+        :data:`~.rim_block.BLOCK_MIN_DEPTH` of the rim's depth (none at all included)
+        is no solid: the plate continues through it (:func:`~.rim_block.has_block`;
+        the model's ``rim_block`` is then False).
     block_orders : tuple of 3 int or None
         With ``rim_block``: Legendre degrees (0..16) of the block's enrichment along the
         face, over its depth and across it; None: the plate's fields alone in the solid.
@@ -441,7 +444,11 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         if membrane:
             raise InputRangeError("rim_block", rim_block, "False with membrane=True")
         block_orders = check_block(rim, block_orders)
-        n += enrichment_count(block_orders)
+        # a block thinner than rim_block.BLOCK_MIN_DEPTH (none included) is no solid:
+        # the plate continues through it, the limit of the solid as its depth -> 0
+        rim_block = has_block(rim)
+        if rim_block:
+            n += enrichment_count(block_orders)
     model = ShellModel(body=body, order=order, order_face=order_face,
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
                        membrane=membrane, membrane_shear=membrane_shear, rim_block=rim_block,
@@ -481,7 +488,8 @@ def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
 
     ``rim`` defaults to the member's fillet and rim segment (:func:`.rim.rim_segment`)
     with its calibrated :data:`RIM_STIFFENING` (with ``rim_block``,
-    :data:`~.rim_block.BLOCK_RIM_STIFFENING`); the default orders (10 over the height
+    :data:`~.rim_block.BLOCK_RIM_STIFFENING`, also on a tooth whose fillet leaves no
+    block for the solid: the plate continues there, :func:`build_shell`); the default orders (10 over the height
     of tooth and rim, 16 along the face) are those of the calibration (a tooth is 5-10
     times longer than high). Both flanks (drive and coast) of the tooth use the same
     model (one cache entry per pair, member and options; the flank set is hashed by
