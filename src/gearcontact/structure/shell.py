@@ -105,8 +105,11 @@ ORDER, ORDER_FACE = 10, 16
 MEMBRANE = False
 #: Whether a bevel tooth's shell (:func:`tooth_shell`) takes its rim block below the
 #: fillet as a Ritz solid (:mod:`.rim_block`, its own calibrated factor
-#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; docs/bending.md sec. 13).
-RIM_BLOCK = False
+#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; a tooth whose fillet leaves no block keeps
+#: the plate at that factor, :data:`~.rim_block.BLOCK_MIN_DEPTH`): the default since
+#: session 23 (docs/bending.md sec. 13, "Teeth without a block"); False: the plate
+#: through the block at :data:`RIM_STIFFENING`.
+RIM_BLOCK = True
 #: Step of the central differences of the mid-surface's tangents in :func:`second_form`
 #: (in the surface's coordinates: xi, eta in [-1, 1]; mm of height in the rim).
 _CURVATURE_STEP = 1e-3
