@@ -84,8 +84,9 @@ SHEAR_FACTOR = 5.0 / 6.0
 
 
 
-#: Factor on the modulus of the fillet and rim block of each member's shell (module
-#: docstring), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
+#: Factor on the modulus of the fillet and rim block of each member's plate shell
+#: (module docstring; with :data:`RIM_BLOCK` the shell takes
+#: :data:`~.rim_block.BLOCK_RIM_STIFFENING` instead), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
 #: 12 x 6 x 3 + 4 with 3 fillet layers and 2 cells across each slot bottom;
 #: :mod:`.root_fillet`) of the pinions of s0003-centred, s0003 (its slot closing in a V
 #: at the toe) and the ISO 23509 F.2 pair (machine-cut and conjugate) and the gears of
