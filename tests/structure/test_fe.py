@@ -31,7 +31,10 @@ Truths:
   for the ellipse-root calibration, 0.82..1.22 against 0.89..1.11; with 1.49: that
   pinion 0.996..1.265, its gear 0.898..1.084, the s0003 gear 0.854..0.994); the s0003
   pinion spreads further there, 1.057..1.302, outside the 30 % at its highest load: a
-  strict xfail, reported (docs/bending.md sec. 10), not tolerated.
+  strict xfail with the plate's rim, reported (docs/bending.md sec. 10), not tolerated;
+  with the rim block as a Ritz solid (structure.shell.RIM_BLOCK, the default since
+  docs/bending.md sec. 13) the shell's default rim factor is 1.175 and that pinion is
+  inside the 30 % (0.944..1.208): asserted.
   Point loads are not compared: neither model has a
   converged local value under a point load (Mindlin: log-singular, grows with the
   Ritz order; 3D: 1/r, grows with mesh refinement) and the local part is the
@@ -52,7 +55,7 @@ from gearcontact.materials import Material
 from gearcontact.structure.compliance import (EllipseRootWarning, FeMesh, concat_points,
                                               flank_compliance)
 from gearcontact.structure.fe import build_fe
-from gearcontact.structure.shell import build_shell
+from gearcontact.structure.shell import RIM_BLOCK, build_shell
 from gearcontact.structure.tooth import RectangularPlate
 from gearcontact.validation import InputRangeError
 
@@ -107,11 +110,15 @@ TOLERANCE_FINE = 0.30
 #: The teeth of both s0003 pairs.
 TEETH = [("s0003-centred", "pinion"), ("s0003-centred", "gear"), ("s0003", "gear"),
          ("s0003", "pinion")]
-#: On the finer mesh the s0003 pinion (V-slot root) leaves the 30 %: a strict xfail.
+#: On the finer mesh the s0003 pinion (V-slot root) leaves the 30 % with the plate's rim
+#: (1.057..1.302): a strict xfail there; with the block model (structure.shell.RIM_BLOCK,
+#: docs/bending.md sec. 13) it is inside (0.944..1.208): the rim stiffness growing with
+#: the 7-tooth pinion's wrap that the plate's rim lacked, its gear's ratios rising the
+#: while (not a uniform factor shift), so the test asserts the unchanged 30 % there.
 TEETH_FINE = TEETH[:3] + [pytest.param("s0003", "pinion", marks=pytest.mark.xfail(
-    strict=True, raises=AssertionError,
-    reason="shell / FE 1.057..1.302 on 20 x 8 x 4 + 6 on the V-slot real root "
-           "(docs/bending.md sec. 10)"))]
+    not RIM_BLOCK, strict=True, raises=AssertionError,
+    reason="the plate's rim: shell / FE 1.057..1.302 on 20 x 8 x 4 + 6 on the V-slot "
+           "real root (docs/bending.md sec. 10)"))]
 
 
 def _shell_vs_fe(pair, flanks, name, member, **kw):

@@ -95,9 +95,6 @@ def test_loads_reach_only_the_plate(pinion):
 def test_bad_input_is_named(pinion):
     tooth, rim = pinion
     with pytest.raises(InputRangeError, match="rim"):
-        build_shell(tooth, rim=RimSegment(depth_mm=1.0, fillet_mm=1.0), rim_block=True,
-                    **ORDERS)
-    with pytest.raises(InputRangeError, match="rim"):
         build_shell(tooth, rim=None, rim_block=True, **ORDERS)
     with pytest.raises(InputRangeError, match="block_orders"):
         build_shell(tooth, rim=rim, rim_block=True, block_orders=(1, 2), **ORDERS)
@@ -107,6 +104,51 @@ def test_bad_input_is_named(pinion):
         build_shell(tooth, rim=rim, rim_block=True, membrane=True, **ORDERS)
     with pytest.raises(InputRangeError, match="rim_block"):
         build_shell(tooth, rim=rim, rim_block=1, **ORDERS)
+
+
+#: Orders of the continuity test's block (enrichment, Gauss nodes): small, seconds.
+THIN = dict(block_orders=(2, 1, 1), block_points=(12, 8, 4))
+
+
+def test_block_of_vanishing_depth_tends_to_the_plate(pinion):
+    """docs/bending.md sec. 13, "Teeth without a block" (declared before measuring): the
+    fillet F fixed, the rim's bottom at D = F + h, the block model at the calibrated
+    factor; truth: the plate alone at h = 0 (the same fillet and factor), the self
+    compliances at 7 points of the drive flank at mid-height and the whole-face sum.
+
+    1. h = 0: the block model is the plate alone (no enrichment; 1e-12: one code path);
+    2. h = BLOCK_MIN_DEPTH D (the solid): within 1e-2 (the O(h) bound with a constant
+       up to 10, a full block being tens of % of the compliance);
+    3. O(h): the difference at h = 1e-2 D at least 5 times that at 1e-3 D (10 for an
+       exact first order; 5 leaves room for the O(h^2) term);
+    4. h = BLOCK_MIN_DEPTH D / 2 (no solid: the plate through the sliver): within 1e-2."""
+    from gearcontact.structure.rim_block import BLOCK_MIN_DEPTH, BLOCK_RIM_STIFFENING
+
+    tooth, rim = pinion
+    fil = rim.fillet_mm
+    pts = tooth.points_at("drive", np.linspace(-0.9, 0.9, 7), np.zeros(7))
+
+    def values(h, **opts):
+        d = fil / (1.0 - h)                       # h as a fraction of D = F + h D
+        seg = RimSegment(depth_mm=d, fillet_mm=fil if h else d,
+                         stiffening=BLOCK_RIM_STIFFENING)
+        model = build_shell(tooth, rim=seg, **ORDERS, **opts)
+        G = model.compliance(pts).matrix()
+        return model, np.append(np.diag(G), np.sum(G))
+
+    plate, want = values(0.0)
+    same, got = values(0.0, rim_block=True, **THIN)
+    assert not same.rim_block and same.n_functions == plate.n_functions
+    assert np.max(np.abs(got / want - 1.0)) < 1e-12
+    err = {}
+    for h in (1e-2, BLOCK_MIN_DEPTH, 0.5 * BLOCK_MIN_DEPTH):
+        model, got = values(h, rim_block=True, **THIN)
+        assert model.rim_block is (h >= BLOCK_MIN_DEPTH), h
+        err[h] = float(np.max(np.abs(got / want - 1.0)))
+    print("relative difference from the plate alone by h / D:", err)
+    assert err[BLOCK_MIN_DEPTH] < 1e-2, err
+    assert err[1e-2] >= 5.0 * err[BLOCK_MIN_DEPTH], err
+    assert err[0.5 * BLOCK_MIN_DEPTH] < 1e-2, err
 
 
 def _ratios(pair, flanks, member, shell, fe_root):

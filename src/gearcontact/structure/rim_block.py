@@ -23,7 +23,10 @@ modulus raised by the rim factor as the plate's rim was (:func:`.rim.rim_modulus
 flat at ``stiffening`` below the fillet). The enrichment only adds Ritz functions, so
 the compliance never falls as its orders rise (nested spaces, one quadrature). Loads
 act on the tooth's flanks, where only the plate's fields live. The shell takes the
-block with ``build_shell(..., rim_block=True)`` (:mod:`.shell`).
+block with ``build_shell(..., rim_block=True)`` (:mod:`.shell`). A block thinner than
+:data:`BLOCK_MIN_DEPTH` of the rim's depth (a fillet reaching the rim's bottom
+included) is no solid: the plate continues through it, the solid's own limit as the
+block's depth goes to 0 (its stiffness is O(that depth)).
 """
 
 from __future__ import annotations
@@ -36,8 +39,8 @@ from .ritz_solid import (cartesian_gradients, energy_matrix, gauss_box, legendre
                          map_jacobian, regular_determinant, voigt_strains)
 from .tooth import local_frame
 
-__all__ = ["block_stiffness", "check_block", "enrichment_count", "BLOCK_ORDERS",
-           "BLOCK_RIM_STIFFENING"]
+__all__ = ["block_stiffness", "check_block", "enrichment_count", "has_block", "BLOCK_ORDERS",
+           "BLOCK_RIM_STIFFENING", "BLOCK_MIN_DEPTH"]
 
 #: Legendre degrees of the block's enrichment (along the face, over the block's depth,
 #: across the section; docs/bending.md sec. 13).
@@ -47,6 +50,14 @@ BLOCK_ORDERS = (8, 3, 3)
 #: sec. 10's procedure on the eight teeth's real roots, the grid 1.0 .. 1.49): the
 #: smallest worst |log(shell / FE)|, 0.136, shell / FE 0.880 .. 1.145 (sec. 13).
 BLOCK_RIM_STIFFENING = 1.175
+#: The thinnest block taken as a solid, as a fraction of the rim's depth: a block of
+#: depth ``depth_mm - fillet_mm`` below ``BLOCK_MIN_DEPTH * depth_mm`` (none at all
+#: included) is no solid, the plate continues through it (:func:`has_block`). The
+#: block's stiffness is O(its depth), so the compliance is continuous as the depth goes
+#: to 0 and the jump at this limit is O(the limit); the limit keeps the enrichment's
+#: stiffness (~ 1 / depth) within 1e3 of a full block's (docs/bending.md sec. 13,
+#: "Teeth without a block").
+BLOCK_MIN_DEPTH = 1e-3
 #: Step of the central differences of the rim frame and thickness: in xi, and in mm of
 #: depth.
 _FRAME_STEP = 1e-3
@@ -137,13 +148,20 @@ def block_stiffness(model) -> np.ndarray:
                          body.material.poisson_ratio)
 
 
+def has_block(rim: RimSegment) -> bool:
+    """Whether the rim has a block below its fillet deep enough for the solid: depth
+    ``depth_mm - fillet_mm >= BLOCK_MIN_DEPTH * depth_mm`` (:data:`BLOCK_MIN_DEPTH`;
+    thinner, the plate continues through it)."""
+    return rim.depth_mm - rim.fillet_mm >= BLOCK_MIN_DEPTH * rim.depth_mm
+
+
 def check_block(rim, block_orders) -> tuple | None:
     """The block's options checked (:func:`~.shell.build_shell` with ``rim_block``): a
-    rim with a block below its fillet, ``block_orders`` three degrees in 0..16 or None
-    (the plate's fields alone in the solid); returns the degrees as ints."""
-    if not isinstance(rim, RimSegment) or not rim.depth_mm > rim.fillet_mm:
-        raise InputRangeError("rim", rim, "a RimSegment with depth_mm > fillet_mm "
-                              "(a block below the fillet)")
+    rim segment (with or without a block below its fillet: :func:`has_block`),
+    ``block_orders`` three degrees in 0..16 or None (the plate's fields alone in the
+    solid); returns the degrees as ints."""
+    if not isinstance(rim, RimSegment):
+        raise InputRangeError("rim", rim, "a RimSegment (the block lies below its fillet)")
     if block_orders is None:
         return None
     if (not isinstance(block_orders, (tuple, list)) or len(block_orders) != 3

@@ -72,7 +72,7 @@ from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import RimSegment, rim_mid_surface, rim_modulus_factor, rim_segment, tooth_height_mm
 from .rim_block import (BLOCK_ORDERS, BLOCK_RIM_STIFFENING, block_stiffness, check_block,
-                        enrichment_count)
+                        enrichment_count, has_block)
 from .ritz_solid import legendre_table
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
@@ -84,8 +84,9 @@ SHEAR_FACTOR = 5.0 / 6.0
 
 
 
-#: Factor on the modulus of the fillet and rim block of each member's shell (module
-#: docstring), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
+#: Factor on the modulus of the fillet and rim block of each member's plate shell
+#: (module docstring; with :data:`RIM_BLOCK` the shell takes
+#: :data:`~.rim_block.BLOCK_RIM_STIFFENING` instead), calibrated against the 3D FE on the teeth's real roots (P2, default mesh
 #: 12 x 6 x 3 + 4 with 3 fillet layers and 2 cells across each slot bottom;
 #: :mod:`.root_fillet`) of the pinions of s0003-centred, s0003 (its slot closing in a V
 #: at the toe) and the ISO 23509 F.2 pair (machine-cut and conjugate) and the gears of
@@ -105,8 +106,11 @@ ORDER, ORDER_FACE = 10, 16
 MEMBRANE = False
 #: Whether a bevel tooth's shell (:func:`tooth_shell`) takes its rim block below the
 #: fillet as a Ritz solid (:mod:`.rim_block`, its own calibrated factor
-#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; docs/bending.md sec. 13).
-RIM_BLOCK = False
+#: :data:`~.rim_block.BLOCK_RIM_STIFFENING`; a tooth whose fillet leaves no block keeps
+#: the plate at that factor, :data:`~.rim_block.BLOCK_MIN_DEPTH`): the default since
+#: session 23 (docs/bending.md sec. 13, "Teeth without a block"); False: the plate
+#: through the block at :data:`RIM_STIFFENING`.
+RIM_BLOCK = True
 #: Step of the central differences of the mid-surface's tangents in :func:`second_form`
 #: (in the surface's coordinates: xi, eta in [-1, 1]; mm of height in the rim).
 _CURVATURE_STEP = 1e-3
@@ -412,7 +416,10 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     rim_block : bool
         The rim block below the fillet as a Ritz solid coupled to the plate
         (:mod:`.rim_block`, docs/bending.md sec. 13; needs ``rim``, not with
-        ``membrane``); False: the plate continues through it.
+        ``membrane``); False: the plate continues through it. A block thinner than
+        :data:`~.rim_block.BLOCK_MIN_DEPTH` of the rim's depth (none at all included)
+        is no solid: the plate continues through it (:func:`~.rim_block.has_block`;
+        the model's ``rim_block`` is then False).
     block_orders : tuple of 3 int or None
         With ``rim_block``: Legendre degrees (0..16) of the block's enrichment along the
         face, over its depth and across it; None: the plate's fields alone in the solid.
@@ -441,7 +448,11 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         if membrane:
             raise InputRangeError("rim_block", rim_block, "False with membrane=True")
         block_orders = check_block(rim, block_orders)
-        n += enrichment_count(block_orders)
+        # a block thinner than rim_block.BLOCK_MIN_DEPTH (none included) is no solid:
+        # the plate continues through it, the limit of the solid as its depth -> 0
+        rim_block = has_block(rim)
+        if rim_block:
+            n += enrichment_count(block_orders)
     model = ShellModel(body=body, order=order, order_face=order_face,
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
                        membrane=membrane, membrane_shear=membrane_shear, rim_block=rim_block,
@@ -481,7 +492,8 @@ def tooth_shell(flanks: FlankSet, member: str, *, material, order: int = ORDER,
 
     ``rim`` defaults to the member's fillet and rim segment (:func:`.rim.rim_segment`)
     with its calibrated :data:`RIM_STIFFENING` (with ``rim_block``,
-    :data:`~.rim_block.BLOCK_RIM_STIFFENING`); the default orders (10 over the height
+    :data:`~.rim_block.BLOCK_RIM_STIFFENING`, also on a tooth whose fillet leaves no
+    block for the solid: the plate continues there, :func:`build_shell`); the default orders (10 over the height
     of tooth and rim, 16 along the face) are those of the calibration (a tooth is 5-10
     times longer than high). Both flanks (drive and coast) of the tooth use the same
     model (one cache entry per pair, member and options; the flank set is hashed by
