@@ -133,3 +133,39 @@ def test_cli_refuses_exact_form_off_the_reference_backend(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--hertz-form" in err and "--backend reference" in err
     assert not out.exists()
+
+
+def test_edge_rows_keep_their_lcp_approach(s0003_coast_twin):
+    """The exact form on a mesh with LCP-calibrated edge rows (s0003 coast, its tip-edge
+    bearing; tests/twin/test_edge_law.py checks those rows' approach against a fresh
+    LCP): an edge row's scale is the LCP's approach over Hamrock-Brewe's, so its kappa
+    under the exact form is the default form's (the same LCP approach) within
+    REL_BOUND; every other row's kappa changes by exact Hertz over Hamrock-Brewe at its
+    curvatures (analytic.hertz, scipy's integrals), within REL_BOUND."""
+    from gearcontact.analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz
+    from gearcontact.twin.model import _prm
+    from gearcontact.twin.params import default_drivetrain
+    from gearcontact.twin.simulate import build_model
+
+    pair, _, _, mesh = s0003_coast_twin
+    dt = default_drivetrain(pair)
+    hb = build_model(mesh, dt, 64.5, curvatures="exact")
+    ex = build_model(mesh, dt, 64.5, curvatures="exact", hertz_form="exact")
+    p_hb, p_ex = _prm(hb, 0.0), _prm(ex, 0.0)
+    out = np.zeros(K.N_PREVIEW)
+    calibrated = (mesh.contact_mode != 0) & (mesh.edge_exponent != 0.0)
+    n_edge = 0
+    for i, k in zip(*np.nonzero(mesh.valid)):
+        a, b = mesh.A_minus_per_mm[i, k], mesh.B_minus_per_mm[i, k]
+        k_hb = K._kappa_reference(a, b, p_hb, out)
+        k_ex = K._kappa_reference(ex.mesh.A_minus_per_mm[i, k], ex.mesh.B_minus_per_mm[i, k],
+                                  p_ex, out)
+        if calibrated[i, k]:
+            want = 1.0
+            n_edge += 1
+        else:
+            assert ex.mesh.A_minus_per_mm[i, k] == a and ex.mesh.B_minus_per_mm[i, k] == b
+            want = (exact_elliptic_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa).approach_mm
+                    / hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa).approach_mm)
+        assert k_ex / k_hb == pytest.approx(want, rel=REL_BOUND), (i, k)
+    assert n_edge >= 2

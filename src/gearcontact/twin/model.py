@@ -15,10 +15,11 @@ pair and step in the kernel; without it the teeth are rigid.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..analytic.hertz import hamrock_brewe_terms
 from ..preview.fit.golden import element_constants
 from ..preview.fit.pinv import N_COEFFS, N_TAPS
 from ..preview.fit.reference import fitted_coefficients
@@ -28,7 +29,7 @@ from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, check_hertz_form
 from ..preview.hertz.reference import ENVELOPE
 from ..validation import InputRangeError, check_positive
 from . import kernel as K
-from .exact_hertz import RATIO_MAX, exact_hertz_table
+from .exact_hertz import RATIO_MAX, exact_hertz_table, exact_hertz_terms
 from .layout import LINE_SOURCE
 from .line_law import line_law_constants
 from .mesh import MeshTable
@@ -129,6 +130,8 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                                                         "along them (a cylindrical pair's) "
                                                         "for the line chain")
     _check_hertz_form(hertz_form, backend, curvatures, (mesh, reverse))
+    if hertz_form != DEFAULT_HERTZ_FORM:
+        mesh, reverse = _exact_equivalent(mesh), _exact_equivalent(reverse)
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
@@ -163,6 +166,36 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
               "fit_w": fit_w, "fit_cst": fit_cst, "line_cst": line_law_constants()}
     return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note,
                      curvatures, hertz_form)
+
+
+def _exact_equivalent(mesh: MeshTable | None) -> MeshTable | None:
+    """``mesh`` with its LCP-calibrated edge rows re-based on exact Hertz.
+
+    An edge row's compliance scale ``c`` is the LCP's approach over Hamrock-Brewe's
+    (:func:`gearcontact.ltca.edge_law.edge_compliance`), baked in as curvatures (and
+    stencil) times ``c^3`` (:mod:`.mesh`). At a fixed curvature ratio the approach of
+    either law scales as the cube root of the curvatures, and the ratio of the two laws
+    depends on the curvature ratio only, so the same LCP approach under exact Hertz is
+    the row times ``(delta_HB / delta_exact)^3`` at its own ratio. Surface rows (their
+    scale an LCP-over-LCP ratio, :func:`~gearcontact.ltca.edge_law.trim_compliance`,
+    law-free) and uncalibrated rows (``edge_exponent`` 0: Hertz) are unchanged; so is
+    the operating load the scale was read at (the table's Hamrock-Brewe balance)."""
+    if mesh is None or mesh.edge_compliance_scale is None or mesh.contact_mode is None:
+        return mesh
+    a, b = mesh.A_minus_per_mm, mesh.B_minus_per_mm
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    rows = (mesh.valid & (mesh.contact_mode != 0) & (mesh.edge_exponent != 0.0)
+            & np.isfinite(mesh.edge_exponent) & (lo > 0.0))
+    if not rows.any():
+        return mesh
+    tab, ep = exact_hertz_table(), mesh.e_prime_mpa
+    factor = np.ones(a.shape)
+    for i, k in zip(*np.nonzero(rows)):
+        hb = hamrock_brewe_terms(lo[i, k], hi[i, k], 1.0, ep)[4]
+        factor[i, k] = (hb / exact_hertz_terms(lo[i, k], hi[i, k], 1.0, ep, tab, 0)[3]) ** 3
+    sten = mesh.stencil_gaps_mm
+    return replace(mesh, A_minus_per_mm=a * factor, B_minus_per_mm=b * factor,
+                   stencil_gaps_mm=None if sten is None else sten * factor[..., None])
 
 
 def _check_hertz_form(hertz_form: str, backend: str, curvatures: str, meshes) -> None:
