@@ -169,3 +169,27 @@ def test_edge_rows_keep_their_lcp_approach(s0003_coast_twin):
                     / hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa).approach_mm)
         assert k_ex / k_hb == pytest.approx(want, rel=REL_BOUND), (i, k)
     assert n_edge >= 2
+
+
+@pytest.mark.slow       # ~25 s (the pair's edge-contact TCA of both sides, 11 phases)
+def test_cli_exact_form_on_the_f2_machine_pair(tmp_path, capsys):
+    """``gearcontact twin --hertz-form exact`` on the ISO 23509 F.2 machine pair (whose
+    rows reach curvature ratio ~640, beyond Hamrock-Brewe's range on 129 of 191 rows,
+    docs/hertz.md sec. 7): the option reaches the law (twin.json names the form, the
+    previews outside the datapath are evaluated by exact Hertz) and the law status is
+    ok on every row, none without a contact law."""
+    import json
+
+    from gearcontact.cli import main
+
+    from .conftest import F2_MACHINE
+
+    out = tmp_path / "o"
+    assert main(["twin", "--pair", str(F2_MACHINE), "--out", str(out), "--duration-ms", "2",
+                 "--phases", "11", "--hertz-form", "exact", "--no-figures", "--quiet"]) == 0
+    s = json.loads((out / "twin.json").read_text())
+    assert s["hertz_form"] == "exact" and s["hertz_law_status"] == "ok"
+    assert s["hertz_law_rows_beyond_range"] == 0 and s["hertz_law_ratio_max"] > 122.0
+    assert s["outside_datapath_evaluated_by"].startswith("fp64 exact Hertz")
+    assert s["previews_without_contact_law"] == 0
+    assert "fp64 Hertz law: exact" in capsys.readouterr().out

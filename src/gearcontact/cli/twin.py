@@ -241,6 +241,10 @@ def _simulate(args, pair, model, drivetrain, extra: dict) -> int:
         print(f"  {s['previews_outside_datapath']} previews in {s['steps_outside_datapath']} "
               f"steps lie outside the fixed-point datapath's domain ({why}): "
               f"evaluated by {s['outside_datapath_evaluated_by']}")
+    if s.get("hertz_form"):     # only a non-default form is stated (default output kept)
+        print(f"  fp64 Hertz law: {s['hertz_form']} on {s['hertz_law_rows']} mesh rows "
+              f"(curvature ratio up to {s['hertz_law_ratio_max']:.4g}; "
+              f"{s['hertz_law_status']})")
     if s.get("hertz_law_rows_beyond_range"):    # likewise (docs/hertz.md sec. 7)
         print(f"  {s['hertz_law_rows_beyond_range']} of {s['hertz_law_rows']} mesh rows "
               f"(curvature ratio up to {s['hertz_law_ratio_max']:.4g}) lie beyond the range "
