@@ -145,7 +145,8 @@ def frozen_mesh(mesh):
                    B_minus_per_mm=first(mesh.B_minus_per_mm), valid=first(mesh.valid))
 
 
-def quasi_static_run(pair, mesh, lte, *, backend: str = "reference"):
+def quasi_static_run(pair, mesh, lte, *, backend: str = "reference",
+                     hertz_form: str = "hamrock-brewe"):
     """The twin at 60 rpm over two pitches on the loaded TE's preview law (the TCA's
     curvatures), shafts well damped (0.3) so the start transient dies within the first
     pitch, the mesh damper small (0.02: its torque shifts the balance), against the
@@ -153,7 +154,8 @@ def quasi_static_run(pair, mesh, lte, *, backend: str = "reference"):
 
     Returns ``(res, te_ref, second, rows, row_index)``: the run, ``TE_pre`` interpolated
     at each step's phase, the steps of the second pitch, the steps within 1 % of a TCA
-    row, and that row's index in the LTE's phase order."""
+    row, and that row's index in the LTE's phase order. ``hertz_form``: the twin's fp64
+    law (:class:`gearcontact.twin.model.TwinModel`)."""
     import math
     from dataclasses import replace
 
@@ -165,7 +167,8 @@ def quasi_static_run(pair, mesh, lte, *, backend: str = "reference"):
     dt = replace(default_drivetrain(pair), input_damping_ratio=0.3, output_damping_ratio=0.3,
                  mesh_damping_ratio=0.02)
     pitch = mesh.pitch_rad
-    res = simulate(build_model(mesh, dt, TORQUE_NM, backend=backend, curvatures="exact"),
+    res = simulate(build_model(mesh, dt, TORQUE_NM, backend=backend, curvatures="exact",
+                               hertz_form=hertz_form),
                    speed_rpm=60.0, duration_s=2 * pitch / (2 * math.pi), step_s=10e-6)
     c = res.columns
     order = np.arange(len(mesh.psi_rad))[::mesh.motion_sign]     # TCA rows -> motion

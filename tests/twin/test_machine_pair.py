@@ -64,6 +64,34 @@ def _steady_rows(lte) -> np.ndarray:
     return (n == prev) & (n == nxt)
 
 
+def _single_pair_ratios(mesh, lte, run) -> np.ndarray:
+    """``(LCP rotation / twin rotation, exact Hertz approach / Hamrock-Brewe's)`` per
+    LTE row where one pair carries the load in both and its patch stays inside the
+    flanks (no LCP cell on a flank boundary), on steady rows of the run's second pitch;
+    the Hertz ratio at that pair's curvatures and the twin's mean load there."""
+    from gearcontact.analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz
+
+    res, _, second, rows, k = run
+    c = res.columns
+    alone = (((lte.pair_loads_lcp_n > 0).sum(axis=0) == 1)
+             & ((lte.pair_loads_pre_n > 0).sum(axis=0) == 1) & ~lte.edge_contact)
+    inv = np.argsort(np.arange(len(mesh.psi_rad))[::mesh.motion_sign])  # LTE -> mesh row
+    checked = []
+    for kk in np.flatnonzero(alone & _steady_rows(lte)):
+        sel = second & rows & (k == kk)
+        if not sel.any():
+            continue
+        r = inv[kk]
+        j = int(np.flatnonzero(mesh.valid[:, r] & (mesh.opening_mm[:, r] == 0.0))[0])
+        a, b = sorted((mesh.A_minus_per_mm[j, r], mesh.B_minus_per_mm[j, r]))
+        w = float(c["mesh_load_n"][sel].mean())
+        hertz = (exact_elliptic_hertz(a, b, w, e_prime_mpa=mesh.e_prime_mpa).approach_mm
+                 / hamrock_brewe_hertz(a, b, w, e_prime_mpa=mesh.e_prime_mpa).approach_mm)
+        twin = float(c["theta_rad"][sel].mean()) * ARCSEC_PER_RAD
+        checked.append((lte.rotation_lcp_arcsec[kk] / twin, hertz))
+    return np.array(checked)
+
+
 def test_quasi_static_limit_is_the_loaded_te(quasi_static):
     mesh, lte, (res, ref, second, rows, k) = quasi_static
     c, s = res.columns, res.summary
@@ -111,30 +139,33 @@ def test_quasi_static_rotation_against_the_lcp(quasi_static):
     approach is there 6-11 % below the exact one: the twin on this pair is that much
     stiffer than the LCP, a property of the preview's law, not of the machine-cut
     flanks."""
-    from gearcontact.analytic.hertz import exact_elliptic_hertz, hamrock_brewe_hertz
-
-    mesh, lte, (res, _, second, rows, k) = quasi_static
-    c = res.columns
-    alone = (((lte.pair_loads_lcp_n > 0).sum(axis=0) == 1)
-             & ((lte.pair_loads_pre_n > 0).sum(axis=0) == 1) & ~lte.edge_contact)
-    inv = np.argsort(np.arange(len(mesh.psi_rad))[::mesh.motion_sign])  # LTE -> mesh row
-    checked = []
-    for kk in np.flatnonzero(alone & _steady_rows(lte)):
-        sel = second & rows & (k == kk)
-        if not sel.any():
-            continue
-        r = inv[kk]
-        j = int(np.flatnonzero(mesh.valid[:, r] & (mesh.opening_mm[:, r] == 0.0))[0])
-        a, b = sorted((mesh.A_minus_per_mm[j, r], mesh.B_minus_per_mm[j, r]))
-        w = float(c["mesh_load_n"][sel].mean())
-        hertz = (exact_elliptic_hertz(a, b, w, e_prime_mpa=mesh.e_prime_mpa).approach_mm
-                 / hamrock_brewe_hertz(a, b, w, e_prime_mpa=mesh.e_prime_mpa).approach_mm)
-        twin = float(c["theta_rad"][sel].mean()) * ARCSEC_PER_RAD
-        checked.append((lte.rotation_lcp_arcsec[kk] / twin, hertz))
-    got = np.array(checked)
+    mesh, lte, run = quasi_static
+    got = _single_pair_ratios(mesh, lte, run)
     assert len(got) >= 10                           # most of the single-pair stretch
     assert np.all(got[:, 1] > 1.05)                 # the preview is stiffer by > 5 %
     np.testing.assert_allclose(got[:, 0], got[:, 1], rtol=0.01)
+
+
+def test_exact_hertz_twin_against_the_lcp(f2_machine_twin, quasi_static):
+    """The previous test with the twin's exact Hertz form (``hertz_form="exact"``,
+    :mod:`gearcontact.twin.exact_hertz`): at the same single-pair rows the LCP's rotation
+    over the twin's is 1 within the same 1 % (the LCP's resolution at CELLS; the
+    exact table is within 1e-8 of exact Hertz), and the run's law status is ``ok`` on
+    the rows where Hamrock-Brewe's is beyond its range (129 of 191, docs/hertz.md
+    sec. 7)."""
+    pair = f2_machine_twin[0]
+    mesh, lte, run_hb = quasi_static
+    run = quasi_static_run(pair, mesh, lte, hertz_form="exact")
+    got = _single_pair_ratios(mesh, lte, run)
+    assert len(got) >= 10                           # most of the single-pair stretch
+    np.testing.assert_allclose(got[:, 0], 1.0, rtol=0.01)
+    s, s_hb = run[0].summary, run_hb[0].summary
+    assert s_hb["hertz_law_rows_beyond_range"] > 0
+    assert s["hertz_law_status"] == "ok" and s["hertz_law_rows_beyond_range"] == 0
+    assert s["hertz_law_rows"] == s_hb["hertz_law_rows"]
+    assert s["hertz_form"] == "exact" and "hertz_form" not in s_hb
+    assert s["outside_datapath_evaluated_by"] == "fp64 exact Hertz on the TCA's curvatures"
+    assert s["previews_without_contact_law"] == 0
 
 
 @pytest.mark.parametrize("curvatures", ["stencil", "exact"])

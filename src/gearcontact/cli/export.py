@@ -12,7 +12,9 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
 :mod:`gearcontact.export.fmu_drivetrain`). A cylindrical pair (``kind =
 "cylindrical"``) gets both kinds with its twin's line law (rigid teeth or ``--bending``;
-:mod:`gearcontact.export.fmu_cylindrical`).
+:mod:`gearcontact.export.fmu_cylindrical`). ``--hertz-form exact`` is refused: the
+FMUs' C law evaluates Hamrock-Brewe's forms only (the twin's exact form,
+:mod:`gearcontact.twin.exact_hertz`, is not exported yet).
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
 (and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
 as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
@@ -20,6 +22,7 @@ as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
 
 from __future__ import annotations
 
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
 from ..validation import InputRangeError, check_positive
 from .options import MAX_PHASES, check_machine_settings, check_pair_arguments, load_pair_for
 from .outdir import add_out_argument, final_path
@@ -63,6 +66,10 @@ def register(sub) -> None:
     f.add_argument("--drivetrain", default=None,
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
+    f.add_argument("--hertz-form", default=DEFAULT_HERTZ_FORM, choices=HERTZ_FORMS,
+                   help="the contact law's fp64 Hertz form: hamrock-brewe (default, the "
+                        "only one the FMUs' C law has; exact is refused: gearcontact twin "
+                        "--hertz-form exact runs it in Python)")
     f.set_defaults(func=run_fmu, check=check_fmu)
     g = cmds.add_parser("flanks", help="the flanks (and fillets) of both members as STEP "
                                        "B-spline surfaces and CMM point grids with normals")
@@ -92,6 +99,11 @@ def check_fmu(args) -> None:
     from ..tca.line_contact import check_loadable
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
+    if args.hertz_form != DEFAULT_HERTZ_FORM:
+        raise InputRangeError("--hertz-form", args.hertz_form,
+                              f"{DEFAULT_HERTZ_FORM}: the FMUs' C contact law "
+                              "(gc_hertz_hb.h) has no exact Hertz form yet (gearcontact "
+                              "twin --hertz-form exact has it)")
     check_positive("--torque", args.torque)
     if args.kind == "mesh" and args.curvatures not in (None, "exact"):
         raise InputRangeError("--curvatures", args.curvatures, "exact with --kind mesh "

@@ -21,8 +21,12 @@ a torque ladder), rigid teeth or with ``--bending`` (the preview backends: the c
 slice law, the line law on the ease-off the teeth's bending along the contact line
 leaves, :mod:`gearcontact.ltca.coupled_slice_law`), and
 ``--speed-sweep`` beside the table twin (:mod:`gearcontact.twin.cylindrical`,
-docs/cylindrical.md sec. 10); ``--curvatures exact`` and ``--table-source preview``
-are refused for it.
+docs/cylindrical.md sec. 10); ``--curvatures exact``, ``--table-source preview`` and
+``--hertz-form exact`` are refused for it.
+
+``--hertz-form exact`` (reference backend, bevel and hypoid pairs) evaluates the
+preview's fp64 law as exact elliptic Hertz instead of Hamrock-Brewe's closed forms
+(:mod:`gearcontact.twin.exact_hertz`; docs/twin.md, docs/hertz.md sec. 7).
 """
 
 from __future__ import annotations
@@ -31,6 +35,7 @@ import math
 import os
 
 from ..geometry.pair import BEVEL, CYLINDRICAL
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, HERTZ_FORMS
 from ..tca.line_contact import check_loadable
 from ..twin.cylindrical import (CYLINDRICAL_BACKENDS, cylindrical_model,
                                 cylindrical_sweep_models)
@@ -85,6 +90,11 @@ def register(sub) -> None:
                         "C per step, the curvature fit of the 7 x 7 gap stencil, then "
                         "stage D: the whole C -> D preview) or exact (the TCA's "
                         "shape-operator curvatures, the law of the loaded TE's preview)")
+    p.add_argument("--hertz-form", default=DEFAULT_HERTZ_FORM, choices=HERTZ_FORMS,
+                   help="the preview's fp64 Hertz law: hamrock-brewe (default: the closed "
+                        "forms, within 5 %% of exact Hertz up to curvature ratio 122) or "
+                        "exact (exact elliptic Hertz, tabled over the curvature ratio; "
+                        "--backend reference only)")
     p.add_argument("--board", default=None, metavar="HOST:PORT",
                    help="soc backend: replay the previews through the litex_server at "
                         "HOST:PORT (a board built with this pair's E', or `gearcontact rtl "
@@ -106,6 +116,10 @@ def check(args) -> None:
     check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     if args.backend not in BACKENDS:
         raise InputRangeError("--backend", args.backend, f"one of {list(BACKENDS)}")
+    if args.hertz_form != DEFAULT_HERTZ_FORM and args.backend != "reference":
+        raise InputRangeError("--hertz-form", args.hertz_form,
+                              f"{DEFAULT_HERTZ_FORM} with --backend {args.backend} (the "
+                              "exact form is the fp64 law of --backend reference)")
     if args.gear_pair.kind == CYLINDRICAL:
         check_cylindrical(args)
     else:
@@ -166,6 +180,10 @@ def check_cylindrical(args) -> None:
         raise InputRangeError("--curvatures", args.curvatures, "stencil for a cylindrical pair "
                                                                "(the line chain: stage C on "
                                                                "the stencil per step)")
+    if args.hertz_form != DEFAULT_HERTZ_FORM:
+        raise InputRangeError("--hertz-form", args.hertz_form,
+                              f"{DEFAULT_HERTZ_FORM} for a cylindrical pair (the line "
+                              "chain's law)")
 
 
 def run(args) -> int:
@@ -192,7 +210,7 @@ def run(args) -> int:
                            drivetrain=drivetrain, side=args.side, phases=args.phases,
                            table_source=args.table_source, bending=args.bending,
                            curvatures=args.curvatures, flanks=args.prepared_pair.flank_set(),
-                           progress=not args.quiet)
+                           progress=not args.quiet, hertz_form=args.hertz_form)
     return _simulate(args, pair, model, drivetrain,
                      {"easeoff_synthesized": args.prepared_pair.synthesized})
 
@@ -223,6 +241,10 @@ def _simulate(args, pair, model, drivetrain, extra: dict) -> int:
         print(f"  {s['previews_outside_datapath']} previews in {s['steps_outside_datapath']} "
               f"steps lie outside the fixed-point datapath's domain ({why}): "
               f"evaluated by {s['outside_datapath_evaluated_by']}")
+    if s.get("hertz_form"):     # only a non-default form is stated (default output kept)
+        print(f"  fp64 Hertz law: {s['hertz_form']} on {s['hertz_law_rows']} mesh rows "
+              f"(curvature ratio up to {s['hertz_law_ratio_max']:.4g}; "
+              f"{s['hertz_law_status']})")
     if s.get("hertz_law_rows_beyond_range"):    # likewise (docs/hertz.md sec. 7)
         print(f"  {s['hertz_law_rows_beyond_range']} of {s['hertz_law_rows']} mesh rows "
               f"(curvature ratio up to {s['hertz_law_ratio_max']:.4g}) lie beyond the range "
@@ -238,7 +260,7 @@ def _bevel_sweep_models(args, pair, drivetrain) -> dict:
                                  flanks=args.prepared_pair.flank_set(), progress=not args.quiet)
     preview = build_model(table_model.mesh, drivetrain, args.torque, backend=args.backend,
                           reverse=table_model.reverse, reverse_note=table_model.reverse_note,
-                          curvatures=args.curvatures)
+                          curvatures=args.curvatures, hertz_form=args.hertz_form)
     return {args.backend: preview, "table": table_model}
 
 

@@ -35,7 +35,10 @@ them. The curvatures the preview takes (``prm[P_STAGEC]``, :data:`~.layout.CURVA
 Per backend:
 
 * ``reference`` (0): the fp64 Hamrock–Brewe forms, the package's one implementation
-  (:func:`gearcontact.analytic.hertz.hamrock_brewe_terms`) compiled here;
+  (:func:`gearcontact.analytic.hertz.hamrock_brewe_terms`) compiled here; or, with the
+  model's ``hertz_form="exact"`` (``prm[P_HFORM]``, reference backend only), exact
+  elliptic Hertz interpolated in a table over the log curvature ratio
+  (:mod:`.exact_hertz`, within 1e-8 of the exact solution);
 * ``golden`` (1): the bit-exact fixed-point stage D (:func:`gearcontact.preview.hertz.
   golden_vec.hertz_element`) on the fit core's codes (stencil) or the round-half-up
   codes of A-, B- (exact), and W's;
@@ -73,7 +76,8 @@ from ..contract.qformat import STENCIL_GAP
 from ..preview.fit.golden_vec import fit_element
 from ..preview.fit.reference import principal_curvatures
 from ..preview.hertz.golden_vec import hertz_element
-from .layout import P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_STAGEC, PV_LOAD
+from .exact_hertz import RATIO_MAX, exact_hertz_terms
+from .layout import N_PRM, P_AHI, P_CHI, P_CLO, P_ECODE, P_EP, P_HFORM, P_STAGEC, PV_LOAD
 
 @overload(math.cbrt)
 def _cbrt_overload(x):
@@ -171,12 +175,13 @@ def _fp64_law(A, B, prm, tcount, out3, flagged):
     ``tcount[3]`` if it lies outside the datapath's domain (``flagged``: the golden chain
     said so; else ``prm[P_CLO..P_AHI]``, the curvature range and alpha_max of
     :data:`gearcontact.preview.hertz.reference.ENVELOPE`), and returns -1, counted in
-    ``tcount[5]``, without a contact law (a saddle, B- <= 0)."""
+    ``tcount[5]``, without a contact law (a saddle, B- <= 0; with the exact form, a
+    curvature ratio beyond :data:`~.exact_hertz.RATIO_MAX`)."""
     lo, hi = min(A, B), max(A, B)
     if flagged or not (lo >= prm[P_CLO] and hi <= prm[P_CHI] and hi <= prm[P_AHI] * lo):
         tcount[3] += 1
-    if lo <= 0.0:
-        tcount[5] += 1
+    if lo <= 0.0 or (prm[P_HFORM] != 0.0 and hi > RATIO_MAX * lo):
+        tcount[5] += 1      # a saddle, or (exact form) beyond the exact table's ratios
         return -1.0
     return _kappa_reference(A, B, prm, out3)
 
@@ -225,10 +230,16 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _kappa_reference(A, B, prm, out3):
-    """kappa (mm/N^(2/3)) of the fp64 Hamrock-Brewe law on A-, B- > 0 (1/mm): the
-    approach at W = 1 N (``delta = kappa W^(2/3)`` in the closed form: no power of the
-    load); out3 <- (a, b, p_max) at 1 N, ``out3[PV_LOAD]`` <- 1."""
-    a, b, k, p, delta, alpha, e_e, f, r = _hb(min(A, B), max(A, B), 1.0, prm[P_EP])
+    """kappa (mm/N^(2/3)) of the fp64 law on A-, B- > 0 (1/mm): the approach at W = 1 N
+    (``delta = kappa W^(2/3)`` in the closed form: no power of the load); out3 <- (a, b,
+    p_max) at 1 N, ``out3[PV_LOAD]`` <- 1. The law: Hamrock-Brewe's forms, or with
+    ``prm[P_HFORM]`` = 1 exact Hertz from the table that follows ``prm[N_PRM]``
+    (:func:`~.exact_hertz.exact_hertz_terms`; the caller keeps the ratio within
+    :data:`~.exact_hertz.RATIO_MAX`)."""
+    if prm[P_HFORM] != 0.0:
+        a, b, p, delta = exact_hertz_terms(min(A, B), max(A, B), 1.0, prm[P_EP], prm, N_PRM)
+    else:
+        a, b, k, p, delta, alpha, e_e, f, r = _hb(min(A, B), max(A, B), 1.0, prm[P_EP])
     out3[0] = a
     out3[1] = b
     out3[2] = p

@@ -61,9 +61,10 @@ from .line_law import MODE_LINE, _line_law, line_pair_load, line_potential_j
 from .layout import (  # noqa: F401
                      LINE_SOURCE_CODE, N_CACHE, N_PREVIEW, N_TRACE, PV_LINE_BENDING,
                      PV_LINE_OFFSET, PV_LOAD,
-                     BACKEND_CODES, CURVATURE_SOURCES, N_COUNT, N_PRM, N_REC, N_STATE,
-                     P_AHI, P_BEYOND_W, P_C1, P_C2, P_CHI, P_CLO, P_CM, P_CR, P_DPSI,
-                     P_DPSIR, P_ECODE, P_EP, P_JG, P_JL, P_JM, P_JP, P_K1, P_K2, P_KI, P_KP,
+                     BACKEND_CODES, CURVATURE_SOURCES, HERTZ_FORM_CODES, N_COUNT, N_PRM,
+                     N_REC, N_STATE, P_AHI, P_BEYOND_W, P_C1, P_C2, P_CHI, P_CLO, P_CM,
+                     P_CR, P_DPSI, P_DPSIR, P_ECODE, P_EP, P_HFORM, P_JG, P_JL, P_JM, P_JP,
+                     P_K1, P_K2, P_KI, P_KP,
                      P_L0, P_MIRROR, P_NBEYOND, P_NROW, P_NROWR, P_NSLICE, P_OMEGA,
                      P_SLICE_CB, P_PITCH, P_PSIR, P_STAGEC, P_THB, P_TL,
                      P_TM, P_U, RECORD_COLUMNS, R_A, R_B, R_D, R_KE, R_NPAIRS, R_P, R_PE,

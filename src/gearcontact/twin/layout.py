@@ -12,8 +12,13 @@ BACKEND_CODES = {"reference": 0, "golden": 1, "table": 2, "rtl": 1, "soc": 1}
 (P_JM, P_JP, P_JG, P_JL, P_K1, P_K2, P_C1, P_C2, P_CM, P_THB, P_U, P_TM, P_TL, P_L0,
  P_EP, P_DPSI, P_PITCH, P_ECODE, P_NROW, P_KP, P_KI, P_OMEGA, P_DPSIR, P_NROWR, P_PSIR,
  P_CR, P_MIRROR, P_STAGEC, P_CLO, P_CHI, P_AHI, P_NSLICE, P_SLICE_CB, P_NBEYOND,
- P_BEYOND_W) = range(35)
-N_PRM = 35
+ P_BEYOND_W, P_HFORM) = range(36)
+#: Length of ``prm``; with the exact Hertz form (``prm[P_HFORM]`` = 1, :data:`HERTZ_FORM_CODES`)
+#: the table of :func:`~.exact_hertz.exact_hertz_table` follows from index N_PRM.
+N_PRM = 36
+#: The fp64 Hertz law's form (``prm[P_HFORM]``; :data:`gearcontact.preview.hertz.formats.
+#: HERTZ_FORMS`): Hamrock-Brewe's closed forms, or exact Hertz (:mod:`.exact_hertz`).
+HERTZ_FORM_CODES = {"hamrock-brewe": 0, "exact": 1}
 #: Entries of the counters ``tcount``: trace rows written, step index of the trace rows,
 #: steps, previews outside the datapath's domain, steps with such a preview, previews
 #: without a contact law (:func:`~.kernel.run_steps`).

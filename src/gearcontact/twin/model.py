@@ -15,18 +15,21 @@ pair and step in the kernel; without it the teeth are rigid.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..analytic.hertz import hamrock_brewe_terms
 from ..preview.fit.golden import element_constants
 from ..preview.fit.pinv import N_COEFFS, N_TAPS
 from ..preview.fit.reference import fitted_coefficients
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, check_hertz_form
 from ..preview.hertz.reference import ENVELOPE
 from ..validation import InputRangeError, check_positive
 from . import kernel as K
+from .exact_hertz import RATIO_MAX, exact_hertz_table, exact_hertz_terms
 from .layout import LINE_SOURCE
 from .line_law import line_law_constants
 from .mesh import MeshTable
@@ -64,6 +67,10 @@ class TwinModel:
         ``"stencil"``, stage C per step on the 7 x 7 gap stencil (the whole C -> D
         preview); ``"exact"``, the TCA's shape-operator curvatures (the law of the
         loaded TE's preview).
+    hertz_form : str
+        The fp64 Hertz law (:data:`~gearcontact.preview.hertz.formats.HERTZ_FORMS`):
+        ``"hamrock-brewe"`` (default) or ``"exact"`` (:mod:`.exact_hertz`; reference
+        backend, point-contact curvature sources).
     """
 
     mesh: MeshTable
@@ -75,6 +82,7 @@ class TwinModel:
     reverse: MeshTable | None = None
     reverse_note: str = ""
     curvatures: str = "stencil"
+    hertz_form: str = DEFAULT_HERTZ_FORM
 
     @property
     def curvature_source(self) -> str:
@@ -90,20 +98,25 @@ def _curvature_source(backend: str, curvatures: str) -> str:
 
 def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float, *,
                 backend: str = "reference", table=None, reverse: MeshTable | None = None,
-                reverse_note: str = "", curvatures: str = "stencil") -> TwinModel:
+                reverse_note: str = "", curvatures: str = "stencil",
+                hertz_form: str = DEFAULT_HERTZ_FORM) -> TwinModel:
     """Check the inputs and pack the compiled loop's arrays.
 
     Tooth bending comes with the mesh tables (their ``bending_mm_per_n``).
 
     Curvatures outside the fixed-point datapath's domain are not refused: the run
     counts and reports the previews that leave it (:func:`~.simulate.simulate`).
+    ``hertz_form="exact"`` evaluates the fp64 law as exact Hertz (:mod:`.exact_hertz`).
 
     Raises
     ------
     InputRangeError
         Unknown backend or curvature source, ``table`` backend without a table, torque
         <= 0, a designed backlash that does not clear an interference of the generated
-        flanks.
+        flanks; ``hertz_form`` not one of ``HERTZ_FORMS``, ``"exact"`` with another
+        backend than ``reference`` (the datapath's golden form evaluates its own law) or
+        with the line chain, or with a mesh row whose curvature ratio exceeds
+        :data:`~.exact_hertz.RATIO_MAX`.
     """
     if backend not in BACKENDS:
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
@@ -116,6 +129,9 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
                                                         "contact-line lengths and ease-off "
                                                         "along them (a cylindrical pair's) "
                                                         "for the line chain")
+    _check_hertz_form(hertz_form, backend, curvatures, (mesh, reverse))
+    if hertz_form != DEFAULT_HERTZ_FORM:
+        mesh, reverse = _exact_equivalent(mesh), _exact_equivalent(reverse)
     t = check_positive("torque_nm (N·m)", torque_nm)
     if backend == "table" and table is None:
         raise InputRangeError("table", None, "a loaded-TE table for the table backend")
@@ -149,7 +165,62 @@ def build_model(mesh: MeshTable, drivetrain: DrivetrainParams, torque_nm: float,
               "tab_theta": tab[0], "tab_t23": tab[1], "tab_w23": tab[2],
               "fit_w": fit_w, "fit_cst": fit_cst, "line_cst": line_law_constants()}
     return TwinModel(mesh, drivetrain, backend, t, table, arrays, reverse, reverse_note,
-                     curvatures)
+                     curvatures, hertz_form)
+
+
+def _exact_equivalent(mesh: MeshTable | None) -> MeshTable | None:
+    """``mesh`` with its LCP-calibrated edge rows re-based on exact Hertz.
+
+    An edge row's compliance scale ``c`` is the LCP's approach over Hamrock-Brewe's
+    (:func:`gearcontact.ltca.edge_law.edge_compliance`), baked in as curvatures (and
+    stencil) times ``c^3`` (:mod:`.mesh`). At a fixed curvature ratio the approach of
+    either law scales as the cube root of the curvatures, and the ratio of the two laws
+    depends on the curvature ratio only, so the same LCP approach under exact Hertz is
+    the row times ``(delta_HB / delta_exact)^3`` at its own ratio. Surface rows (their
+    scale an LCP-over-LCP ratio, :func:`~gearcontact.ltca.edge_law.trim_compliance`,
+    law-free) and uncalibrated rows (``edge_exponent`` 0: Hertz) are unchanged; so is
+    the operating load the scale was read at (the table's Hamrock-Brewe balance)."""
+    if mesh is None or mesh.edge_compliance_scale is None or mesh.contact_mode is None:
+        return mesh
+    a, b = mesh.A_minus_per_mm, mesh.B_minus_per_mm
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    rows = (mesh.valid & (mesh.contact_mode != 0) & (mesh.edge_exponent != 0.0)
+            & np.isfinite(mesh.edge_exponent) & (lo > 0.0))
+    if not rows.any():
+        return mesh
+    tab, ep = exact_hertz_table(), mesh.e_prime_mpa
+    factor = np.ones(a.shape)
+    for i, k in zip(*np.nonzero(rows)):
+        hb = hamrock_brewe_terms(lo[i, k], hi[i, k], 1.0, ep)[4]
+        factor[i, k] = (hb / exact_hertz_terms(lo[i, k], hi[i, k], 1.0, ep, tab, 0)[3]) ** 3
+    sten = mesh.stencil_gaps_mm
+    return replace(mesh, A_minus_per_mm=a * factor, B_minus_per_mm=b * factor,
+                   stencil_gaps_mm=None if sten is None else sten * factor[..., None])
+
+
+def _check_hertz_form(hertz_form: str, backend: str, curvatures: str, meshes) -> None:
+    """Refuse a ``hertz_form`` the twin cannot run (:func:`build_model`'s Raises)."""
+    check_hertz_form(hertz_form)
+    if hertz_form == DEFAULT_HERTZ_FORM:
+        return
+    if backend != "reference":
+        raise InputRangeError("hertz_form", hertz_form,
+                              f"hamrock-brewe with the {backend} backend (the exact form "
+                              "is the fp64 law of the reference backend)")
+    if curvatures == LINE_SOURCE:
+        raise InputRangeError("hertz_form", hertz_form,
+                              "hamrock-brewe with the line chain (cylindrical pairs)")
+    for m in meshes:
+        if m is None:
+            continue
+        lo = np.minimum(m.A_minus_per_mm, m.B_minus_per_mm)[m.valid]
+        hi = np.maximum(m.A_minus_per_mm, m.B_minus_per_mm)[m.valid]
+        bad = (lo > 0.0) & (hi > RATIO_MAX * lo)
+        if bad.any():
+            raise InputRangeError("hertz_form", hertz_form,
+                                  f"hamrock-brewe for mesh rows of curvature ratio beyond "
+                                  f"{RATIO_MAX:g} (the exact table's end; largest "
+                                  f"{float((hi[bad] / lo[bad]).max()):.4g})")
 
 
 def _stack(mesh: MeshTable, rev: MeshTable, source: str, *, golden: bool) -> dict:
@@ -231,6 +302,9 @@ def _prm(model: TwinModel, c_mesh_n_s_per_mm: float) -> np.ndarray:
     prm[K.P_STAGEC] = K.CURVATURE_SOURCES.get(model.curvature_source, K.LINE_SOURCE_CODE)
     prm[K.P_CLO], prm[K.P_CHI] = ENVELOPE["curvature_per_mm"]
     prm[K.P_AHI] = ENVELOPE["alpha"][1]
+    if model.hertz_form != DEFAULT_HERTZ_FORM:
+        prm[K.P_HFORM] = K.HERTZ_FORM_CODES[model.hertz_form]
+        prm = np.concatenate([prm, exact_hertz_table()])
     if model.curvature_source == LINE_SOURCE:
         prm[K.P_NSLICE] = m.line_gap_mm.shape[-1]
         prm[K.P_SLICE_CB] = float(m.line_bending_gram_mm_per_n is not None)
@@ -254,7 +328,8 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                    drivetrain: DrivetrainParams | None = None, side: str = "drive",
                    phases: int = 61, table_source: str = "lcp", table_cells: int = 32,
                    bending: bool = False, curvatures: str = "stencil",
-                   flanks=None, progress: bool = False) -> TwinModel:
+                   flanks=None, progress: bool = False,
+                   hertz_form: str = DEFAULT_HERTZ_FORM) -> TwinModel:
     """TCA of ``pair``, its mesh table and (``table`` backend) the loaded-TE table, then
     :func:`build_model`. ``drivetrain`` None uses :func:`~.params.default_drivetrain`.
     The TCA is the edge-contact one ``analyze`` runs (a pair's path continues through
@@ -265,7 +340,7 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
     line contact, or if its unloaded mesh has a gap: ``design`` checks the contact ratio
     of the design side only; ``reverse_note`` says which). ``bending``: tooth bending of both members in series with the
     Hertzian law of both sides (:func:`~gearcontact.ltca.tooth_bending.pair_bending_compliance`). ``curvatures``:
-    the preview's curvature source (:class:`TwinModel`). ``flanks``: ``build_flanks(pair)``
+    the preview's curvature source, ``hertz_form`` its fp64 law (:class:`TwinModel`). ``flanks``: ``build_flanks(pair)``
     if already built (a prepared pair's, :class:`~gearcontact.tca.synthesis.PreparedPair`)."""
     from ..tca.edges import ContactGap
     from ..tca.line_contact import LineContact
@@ -278,6 +353,7 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
         raise InputRangeError("backend", backend, f"one of {list(BACKENDS)}")
     if curvatures not in CURVATURE_SOURCES:
         raise InputRangeError("curvatures", curvatures, f"one of {list(CURVATURE_SOURCES)}")
+    _check_hertz_form(hertz_form, backend, curvatures, ())
     from ..ltca.tooth_bending import tooth_bending
 
     # The edge-contact TCA (analyze's, .mesh.pair_mesh_table): an approaching pair that
@@ -309,4 +385,4 @@ def model_for_pair(pair, *, torque_nm: float, backend: str = "reference",
                              progress=progress)
     return build_model(mesh, drivetrain or default_drivetrain(pair), t, backend=backend,
                        table=table, reverse=reverse, reverse_note=note,
-                       curvatures=curvatures)
+                       curvatures=curvatures, hertz_form=hertz_form)

@@ -276,7 +276,8 @@ def _domain_summary(model: TwinModel, tcount: np.ndarray) -> dict:
     src = model.curvature_source
     fit = "the TCA's curvatures" if src == "exact" else "stage C's fp64 fit of the stencil"
     law = "the fp64 line chain (line contact or Hamrock-Brewe)" if src == LINE_SOURCE \
-        else "fp64 Hamrock-Brewe"
+        else "fp64 Hamrock-Brewe" if model.hertz_form == DEFAULT_HERTZ_FORM \
+        else "fp64 exact Hertz"
     return {"previews_outside_datapath": int(tcount[3]),
             "steps_outside_datapath": int(tcount[4]),
             "outside_datapath_evaluated_by": f"{law} on {fit}",
@@ -291,14 +292,18 @@ def _law_summary(model: TwinModel) -> dict:
     backend (fp64, and the datapath's published form), is within 5 % of exact Hertz
     (:func:`gearcontact.preview.hertz.reference.law_status`, docs/hertz.md sec. 7), the
     count of such rows and the largest ratio; a reported result. Nothing for the table
-    backend (no Hertzian law) or the line chain (cylindrical pairs: docs/cylindrical.md)."""
+    backend (no Hertzian law) or the line chain (cylindrical pairs: docs/cylindrical.md).
+    With ``hertz_form="exact"`` the law is exact Hertz (:mod:`.exact_hertz`): status
+    ``ok``, no row beyond, and the key ``hertz_form`` (absent for the default form, so
+    that its ``twin.json`` is unchanged)."""
     if model.backend == "table" or model.curvature_source == LINE_SOURCE:
         return {}
     m = model.mesh
     ab = [(a, b) for a, b in zip(m.A_minus_per_mm[m.valid], m.B_minus_per_mm[m.valid])
           if min(a, b) > 0.0]
-    beyond = sum(law_status(a, b, hertz_form=DEFAULT_HERTZ_FORM) != LAW_OK for a, b in ab)
-    return {"hertz_law_status": LAW_BEYOND_RANGE if beyond else LAW_OK,
+    beyond = sum(law_status(a, b, hertz_form=model.hertz_form) != LAW_OK for a, b in ab)
+    form = {} if model.hertz_form == DEFAULT_HERTZ_FORM else {"hertz_form": model.hertz_form}
+    return {**form, "hertz_law_status": LAW_BEYOND_RANGE if beyond else LAW_OK,
             "hertz_law_rows": len(ab), "hertz_law_rows_beyond_range": int(beyond),
             "hertz_law_ratio_max": max((max(a, b) / min(a, b) for a, b in ab), default=1.0)}
 
