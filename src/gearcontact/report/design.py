@@ -97,15 +97,19 @@ def write_machine_settings_toml(text: str, out) -> Path:
     return path
 
 
-def local_synthesis_toml(cut, done: dict) -> str:
+def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
     """The pair TOML of the settings from local synthesis
     (:func:`~gearcontact.tca.setting_synthesis.synthesized_machine_pair`), its head
     comment the target / achieved table at the mean point and the full TCA's check per
-    side."""
+    side. ``typed``: the gear is the pair file's, kept as typed (``[print.gear]`` verbatim
+    where the pair has one), the pinion synthesized against it."""
     from ..geometry.pair import pair_to_toml
 
     gear = ("formate" if all(s.settings.formate for s in cut.machine if s.member == "gear")
             else "generated")
+    if typed:
+        gear = ("typed ([print.gear], kept as typed), " if cut.print_gear else
+                "typed ([machine.gear.*] / [blade.gear.*], kept as typed), ") + gear
     lines = [f"{cut.name}: machine settings from local synthesis at the mean point "
              "(gearcontact design --machine-settings --local-synthesis;",
              f"signs: docs/machine_settings.md); gear: {gear}"]

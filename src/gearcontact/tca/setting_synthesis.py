@@ -353,7 +353,8 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
-                             gear_generation: str | None = None, **options):
+                             gear_generation: str | None = None, gear: dict | None = None,
+                             **options):
     """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
     sides, and the per-side results. ``gear_generation``: ``"formate"`` or
@@ -364,17 +365,29 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     its settings mirrored (:func:`~gearcontact.geometry.machine.mirror_setup`; signs:
     docs/machine_settings.md), so the left-hand pair's TCA is the twin's mirrored (same
     TE0, the pattern reflected) and the per-side results are the twin's (the path angle
-    is measured so that it means the same bearing for both hands)."""
+    is measured so that it means the same bearing for both hands).
+
+    A typed gear ``gear`` (``{side: MachineSetup}``, as the user typed it: the pair file's
+    ``[machine.gear.*]`` / ``[print.gear]``) replaces the blank's gear
+    (:class:`SynthesisProblem`: its uncrowned pinion is the base) and is kept exactly as
+    given in the result, ``pair.print_gear`` with it (written back as typed); a
+    left-hand pair's twin gets it mirrored."""
     if pair.pinion_hand == "left":
         twin, done = synthesized_machine_pair(
-            dataclasses.replace(pair, pinion_hand="right", machine=()), targets=targets,
-            gear_generation=gear_generation, **options)
-        return dataclasses.replace(pair, machine=tuple(mirror_setup(s) for s in twin.machine),
+            dataclasses.replace(pair, pinion_hand="right", machine=(), typed_gear=(),
+                                print_gear=()), targets=targets,
+            gear_generation=gear_generation, **options,
+            gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()})
+        machine = tuple(mirror_setup(s) for s in twin.machine)
+        if gear is not None:      # the gear as typed, not its twin's mirror image
+            machine = tuple(gear[s] for s in SIDES) + machine[len(SIDES):]
+        return dataclasses.replace(pair, machine=machine, typed_gear=(),
                                    easeoff_tables=twin.easeoff_tables), done
-    if gear_generation is None:
+    if gear_generation is None and gear is None:
         gear_generation = default_gear_generation(pair)[0]
-    prob = SynthesisProblem(pair, gear_generation=gear_generation,
+    prob = SynthesisProblem(pair, gear_generation=gear_generation or "generated", gear=gear,
                             n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
     done = synthesize_settings(pair, targets=targets, problem=prob, **options)
     machine = tuple(prob.gear_setups[s] for s in SIDES) + tuple(done[s].setup for s in SIDES)
-    return dataclasses.replace(pair, machine=machine, easeoff_tables=("drive", "coast")), done
+    return dataclasses.replace(pair, machine=machine, typed_gear=(),
+                               easeoff_tables=("drive", "coast")), done
