@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from design_space import generated_hypoid
 
 from gearcontact.geometry.basic_settings import member_setups
 from gearcontact.geometry.formate import SIDES
@@ -129,3 +128,30 @@ def test_a_typed_gear_is_kept_in_the_written_pair(monkeypatch):
     cut, _ = ss.synthesized_machine_pair(pair, gear=gear, n_u=12, n_v=14)
     assert seen["gear"] == gear
     assert tuple(s for s in cut.machine if s.member == "gear") == tuple(gear[s] for s in SIDES)
+
+
+def test_a_left_hand_pair_keeps_its_typed_gear(monkeypatch):
+    # the left-hand twin's problem gets the typed gear mirrored (mirror_setup, the
+    # standard pinion's rule, geometry.typed_pinion), the result the gear as typed (==)
+    # and the twin's pinion mirrored (==)
+    from gearcontact.geometry.machine import mirror_setup
+    from gearcontact.tca import setting_synthesis as ss
+
+    right = load_pair(F2)
+    right_gear, _ = member_setups(right, "formate")
+    pair = dataclasses.replace(right, pinion_hand="left")
+    gear = {s: mirror_setup(g) for s, g in right_gear.items()}     # a left-hand gear
+    seen = {}
+
+    def base_only(pair, *, targets, problem, **options):
+        seen["problem"] = problem
+        return {s: SimpleNamespace(setup=problem.base[s]) for s in SIDES}
+
+    monkeypatch.setattr(ss, "synthesize_settings", base_only)
+    cut, _ = ss.synthesized_machine_pair(pair, gear=gear, n_u=12, n_v=14)
+    prob = seen["problem"]
+    assert prob.pair.pinion_hand == "right"
+    assert prob.gear_setups == {s: mirror_setup(gear[s]) for s in SIDES}
+    assert tuple(s for s in cut.machine if s.member == "gear") == tuple(gear[s] for s in SIDES)
+    assert tuple(s for s in cut.machine if s.member == "pinion") == tuple(
+        mirror_setup(prob.base[s]) for s in SIDES)
