@@ -24,9 +24,13 @@ from gearcontact.geometry.basic_settings import member_setups
 from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.pair import load_pair, pair_to_toml
 
+from . import test_design_typed_pinion as typed_pinion
+
+PRINT = typed_pinion.PRINT
+#: the print's gear page alone (the fixture of tests/cli/test_design_typed_pinion.py)
+page_alone = typed_pinion.page_alone
+
 F2 = Path(__file__).resolve().parents[2] / "examples" / "iso23509_f2_spiral_bevel.toml"
-PRINT = (Path(__file__).resolve().parents[1] / "geometry" / "summary_sheets"
-         / "hypoid_10x41_no16_pair.toml")
 
 
 def _gear_alone_file(tmp_path) -> Path:
@@ -72,15 +76,6 @@ def test_the_blank_gear_typed_alone_synthesizes_the_untyped_pinion(tmp_path):
                     assert got[key] == pytest.approx(value, rel=1e-6, abs=1e-9), (side, key)
                 else:
                     assert got[key] == value, (side, key)
-
-
-@pytest.fixture()
-def page_alone(tmp_path):
-    """The published 10 x 41 print's gear page alone (tests/cli/test_design_typed_pinion.py)."""
-    text = PRINT.read_text()
-    path = tmp_path / "print_page.toml"
-    path.write_text(text[:text.index("[machine.pinion.drive]")])
-    return path
 
 
 @pytest.mark.xfail(strict=True, raises=AssertionError, reason="measured: the drive base pinion's TE0 = 0 path "
