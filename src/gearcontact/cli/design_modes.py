@@ -128,8 +128,10 @@ def local_synthesis(args, pair) -> int:
     from ..tca.setting_synthesis import synthesized_machine_pair
 
     try:
+        # a side without a pivot on the flank gets its standard pinion, written, exit 4
         cut, done = synthesized_machine_pair(pair, targets=checked_targets(args),
-                                             gear=getattr(args, "typed_gear", None))
+                                             gear=getattr(args, "typed_gear", None),
+                                             standard_off_flank=True)
     except InputRangeError as exc:     # the reach model's certain refusal names the side
         side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
         raise renamed(exc, path_angle_option(args, side)) from None
@@ -138,6 +140,12 @@ def local_synthesis(args, pair) -> int:
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
     refuse_missed("setting synthesis", pair, done)
+    off = [side for side in SIDES if side not in done]
+    if off:
+        raise CheckFailed(f"setting synthesis of {pair.name}: no pivot on the flank on the "
+                          f"{' and '.join(off)} side{'s' if len(off) > 1 else ''} (the base "
+                          "pinion's contact path misses the pinion mean section on the "
+                          "flank; its standard pinion is written, see the head comment)")
     return 0
 
 

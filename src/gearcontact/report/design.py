@@ -20,6 +20,7 @@ import json
 from pathlib import Path
 
 from ..figure_files import save_figure
+from ..geometry.formate import SIDES
 from ..geometry.pair import GearPair, pair_to_toml
 from ..geometry.plots import plot_setting_residual
 from ..tca.calibration import (Calibration, CalibrationTargets, calibrate_pair,
@@ -102,7 +103,8 @@ def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
     (:func:`~gearcontact.tca.setting_synthesis.synthesized_machine_pair`), its head
     comment the target / achieved table at the mean point and the full TCA's check per
     side. ``typed``: the gear is the pair file's, kept as typed (``[print.gear]`` verbatim
-    where the pair has one), the pinion synthesized against it."""
+    where the pair has one), the pinion synthesized against it. A side missing from
+    ``done`` (no pivot on the flank) is named: its pinion is the standard one."""
     from ..geometry.pair import pair_to_toml
 
     gear = ("formate" if all(s.settings.formate for s in cut.machine if s.member == "gear")
@@ -113,6 +115,11 @@ def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
     lines = [f"{cut.name}: machine settings from local synthesis at the mean point "
              "(gearcontact design --machine-settings --local-synthesis;",
              f"signs: docs/machine_settings.md); gear: {gear}"]
+    for side in (s for s in SIDES if s not in done):
+        lines.append(f"{side}: not synthesized: the base pinion's contact path misses the "
+                     "pinion mean section on the flank (no pivot M); the standard pinion "
+                     "(crowning 25 / 10 um about the mean node), docs/machine_settings.md "
+                     "sec. 5")
     for side, r in done.items():
         lines += r.table().splitlines()
         edges = sum(1 for e in r.edges if e)

@@ -26,7 +26,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import CheckFailed
 from ..geometry.basic_settings import (crown_profile, crowning_corrections, member_setups,
                                        mismatch_radius)
 from ..geometry.flank import build_machine_flanks
@@ -235,6 +234,9 @@ class SynthesisProblem:
         #: the pinion sheet's cone (both sides), mm
         self.cone = fs.pinion.side(d).cone
         self.start, self.mean_uv, self.means = {}, {}, {}
+        #: side -> why it has no M (point contact whose path misses the pinion mean
+        #: section on the flank); such a side has no start, M or standard corrections
+        self.off_flank = {}
         for side in SIDES:
             m = fs.mean_contact[side]
             guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
@@ -244,11 +246,11 @@ class SynthesisProblem:
                     mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
                                         v1_mm=float(blank.pitch_point_mm[0]))
                 except EdgeContact as exc:
-                    raise CheckFailed(
-                        f"setting synthesis of {pair.name} {side}: the base pinion's contact "
-                        "path does not reach the pinion's mean section on the flank (from the "
-                        f"mean node's phase: {exc}); M, the pivot, is not a point of the "
-                        "flank (docs/machine_settings.md sec. 5)") from exc
+                    self.off_flank[side] = (
+                        "the base pinion's contact path does not reach the pinion's mean "
+                        f"section on the flank (from the mean node's phase: {exc}); M, the "
+                        "pivot, is not a point of the flank (docs/machine_settings.md sec. 5)")
+                    continue
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
             else:       # line contact: the pinion's mean node lies on a contact line
@@ -259,7 +261,8 @@ class SynthesisProblem:
         # the standard crowning (25 / 10 um, standard_setups): the search's start
         self.standard = {side: np.array([0.0, *crowning_corrections(
             pair, self.base[side], l_mm=self.means[side][0], lengthwise_crowning_um=25.0,
-            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES}
+            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES
+            if side not in self.off_flank}
 
     def setup(self, side: str, x) -> MachineSetup:
         """The pinion settings of ``side`` with the corrections ``x``."""
