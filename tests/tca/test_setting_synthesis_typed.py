@@ -84,19 +84,23 @@ def test_the_blank_generated_hypoid_gear_typed_is_the_blank_problem(typed_hypoid
         assert abs(got.mean_uv[side][1] - float(got.pair.blank.pitch_point_mm[0])) < 1e-6
 
 
+def _corrections_keep_the_mean_point(prob, side):
+    """Each correction's envelope node at M equals the base's (1e-9 mm, normal 1e-12)."""
+    base = prob.base[side]
+    solver = EnvelopeSolver(base, prob.pair.blank, prob.cone)
+    u, v = prob.mean_uv[side]
+    m0 = solver.solve(u, v, solver.initial_guess(u, v))
+    for x in ([0.02, 0.0, 0.0], [0.0, 1e-3, 0.0], [-0.015, 8e-4, -2.0]):
+        s = corrected_setup(base, x, mean=prob.means[side])
+        m1 = EnvelopeSolver(s, prob.pair.blank, prob.cone).solve(u, v, m0.q)
+        assert np.abs(m1.x_mm - m0.x_mm).max() < 1e-9
+        assert np.abs(m1.n - m0.n).max() < 1e-12
+        assert s != base
+
+
 def test_corrections_keep_the_mean_point_of_the_typed_base(typed_hypoid):
-    prob = typed_hypoid[0]
     for side in SIDES:
-        base = prob.base[side]
-        solver = EnvelopeSolver(base, prob.pair.blank, prob.cone)
-        u, v = prob.mean_uv[side]
-        m0 = solver.solve(u, v, solver.initial_guess(u, v))
-        for x in ([0.02, 0.0, 0.0], [0.0, 1e-3, 0.0], [-0.015, 8e-4, -2.0]):
-            s = corrected_setup(base, x, mean=prob.means[side])
-            m1 = EnvelopeSolver(s, prob.pair.blank, prob.cone).solve(u, v, m0.q)
-            assert np.abs(m1.x_mm - m0.x_mm).max() < 1e-9
-            assert np.abs(m1.n - m0.n).max() < 1e-12
-            assert s != base
+        _corrections_keep_the_mean_point(typed_hypoid[0], side)
 
 
 @pytest.mark.slow
@@ -192,16 +196,8 @@ def test_the_print_gear_coast_synthesis(print_problem):
     prob = print_problem
     side = "coast"
     assert side not in prob.off_flank
-    u, v = prob.mean_uv[side]
-    assert abs(v - float(prob.pair.blank.pitch_point_mm[0])) < 1e-6
-    base = prob.base[side]
-    solver = EnvelopeSolver(base, prob.pair.blank, prob.cone)
-    m0 = solver.solve(u, v, solver.initial_guess(u, v))
-    for x in ([0.02, 0.0, 0.0], [0.0, 1e-3, 0.0], [-0.015, 8e-4, -2.0]):
-        s = corrected_setup(base, x, mean=prob.means[side])
-        m1 = EnvelopeSolver(s, prob.pair.blank, prob.cone).solve(u, v, m0.q)
-        assert np.abs(m1.x_mm - m0.x_mm).max() < 1e-9
-        assert np.abs(m1.n - m0.n).max() < 1e-12
+    assert abs(prob.mean_uv[side][1] - float(prob.pair.blank.pitch_point_mm[0])) < 1e-6
+    _corrections_keep_the_mean_point(prob, side)
     r = synthesize_settings(prob.pair, problem=prob, sides=(side,))[side]
     assert r.met, r.table()
     assert r.vertex_offset_mm < 1e-6
