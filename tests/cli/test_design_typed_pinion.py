@@ -96,9 +96,7 @@ def test_both_members_typed_the_rule(tmp_path, page_alone):
 
 @pytest.mark.parametrize("argv, field", [
     (["--pair", str(PRINT), "--keep-gear"], "--keep-gear"),
-    (["--pair", "s0003", "--machine-settings", "--keep-gear"], "--keep-gear"),
-    (["--pair", str(PRINT), "--machine-settings", "--keep-gear", "--local-synthesis"],
-     "--local-synthesis")])
+    (["--pair", "s0003", "--machine-settings", "--keep-gear"], "--keep-gear")])
 def test_contradictions_are_refused_naming_the_option(argv, field, capsys):
     assert main(["design", *argv]) == 2
     err = capsys.readouterr().err

@@ -61,8 +61,8 @@ def kept_gear(args, pair) -> dict | None:
     """``{side: MachineSetup}`` of the typed gear ``design --machine-settings`` keeps (a
     pair file typing the gear alone, or both members with ``--keep-gear``), else None;
     an input error (exit 2) for ``--keep-gear`` without ``--machine-settings`` or without
-    a typed gear, and for a kept gear with ``--local-synthesis`` or ``--target-flank``
-    (modes that make both members' settings from the blank's gear or fit the pair's own)."""
+    a typed gear, and for a kept gear with ``--target-flank`` (a mode that fits the
+    pair's own settings). ``--local-synthesis`` synthesizes the pinion of the kept gear."""
     keep = getattr(args, "keep_gear", False)
     if keep and not args.machine_settings:
         raise InputRangeError("--keep-gear", True, "given only with --machine-settings "
@@ -76,13 +76,11 @@ def kept_gear(args, pair) -> dict | None:
                                  if keep else ())
     if not setups:
         return None
-    for option, value in (("--local-synthesis", args.local_synthesis),
-                          ("--target-flank", args.target_flank)):
-        if value not in (None, False):
-            raise InputRangeError(option, value, "not given when the pair's typed gear is kept "
-                                  "(a gear typed alone, or --keep-gear): its standard pinion "
-                                  "is derived; the option works on the blank's own gear or "
-                                  "on a pair typing both members without --keep-gear")
+    if args.target_flank is not None:
+        raise InputRangeError("--target-flank", args.target_flank, "not given when the pair's "
+                              "typed gear is kept (a gear typed alone, or --keep-gear): its "
+                              "pinion is derived; the option works on the blank's own gear "
+                              "or on a pair typing both members without --keep-gear")
     return {s.side: s for s in setups}
 
 
@@ -130,15 +128,24 @@ def local_synthesis(args, pair) -> int:
     from ..tca.setting_synthesis import synthesized_machine_pair
 
     try:
-        cut, done = synthesized_machine_pair(pair, targets=checked_targets(args))
+        # a side without a pivot on the flank gets its standard pinion, written, exit 4
+        cut, done = synthesized_machine_pair(pair, targets=checked_targets(args),
+                                             gear=getattr(args, "typed_gear", None),
+                                             standard_off_flank=True)
     except InputRangeError as exc:     # the reach model's certain refusal names the side
         side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
         raise renamed(exc, path_angle_option(args, side)) from None
-    text = local_synthesis_toml(cut, done)
+    text = local_synthesis_toml(cut, done, typed=bool(getattr(args, "typed_gear", None)))
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
     refuse_missed("setting synthesis", pair, done)
+    off = [side for side in SIDES if side not in done]
+    if off:
+        raise CheckFailed(f"setting synthesis of {pair.name}: no pivot on the flank on the "
+                          f"{' and '.join(off)} side{'s' if len(off) > 1 else ''} (the base "
+                          "pinion's contact path misses the pinion mean section on the "
+                          "flank; its standard pinion is written, see the head comment)")
     return 0
 
 

@@ -20,6 +20,7 @@ import json
 from pathlib import Path
 
 from ..figure_files import save_figure
+from ..geometry.formate import SIDES
 from ..geometry.pair import GearPair, pair_to_toml
 from ..geometry.plots import plot_setting_residual
 from ..tca.calibration import (Calibration, CalibrationTargets, calibrate_pair,
@@ -97,18 +98,28 @@ def write_machine_settings_toml(text: str, out) -> Path:
     return path
 
 
-def local_synthesis_toml(cut, done: dict) -> str:
+def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
     """The pair TOML of the settings from local synthesis
     (:func:`~gearcontact.tca.setting_synthesis.synthesized_machine_pair`), its head
     comment the target / achieved table at the mean point and the full TCA's check per
-    side."""
+    side. ``typed``: the gear is the pair file's, kept as typed (``[print.gear]`` verbatim
+    where the pair has one), the pinion synthesized against it. A side missing from
+    ``done`` (no pivot on the flank) is named: its pinion is the standard one."""
     from ..geometry.pair import pair_to_toml
 
     gear = ("formate" if all(s.settings.formate for s in cut.machine if s.member == "gear")
             else "generated")
+    if typed:
+        gear = ("typed ([print.gear], kept as typed), " if cut.print_gear else
+                "typed ([machine.gear.*] / [blade.gear.*], kept as typed), ") + gear
     lines = [f"{cut.name}: machine settings from local synthesis at the mean point "
              "(gearcontact design --machine-settings --local-synthesis;",
              f"signs: docs/machine_settings.md); gear: {gear}"]
+    for side in (s for s in SIDES if s not in done):
+        lines.append(f"{side}: not synthesized: the base pinion's contact path misses the "
+                     "pinion mean section on the flank (no pivot M); the standard pinion "
+                     "(crowning 25 / 10 um about the mean node), docs/machine_settings.md "
+                     "sec. 5")
     for side, r in done.items():
         lines += r.table().splitlines()
         edges = sum(1 for e in r.edges if e)

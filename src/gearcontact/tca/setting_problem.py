@@ -32,11 +32,12 @@ from ..geometry.flank import build_machine_flanks
 from ..geometry.formate import SIDES
 from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
 from ..geometry.machine import MachineSetup
+from ..geometry.typed_pinion import typed_gear_pinion_setups
 from ..validation import InputRangeError
 from .design_point import DesignPoint, design_point_at
 from .mating import solve_mating_point
 from .solve import solve_tca
-from .types import ContactGuess
+from .types import ContactGuess, EdgeContact
 
 __all__ = ["MeanPointContact", "SynthesisProblem", "corrected_setup", "mean_point_contact",
            "roll_about"]
@@ -189,22 +190,38 @@ class SynthesisProblem:
     flank set's mean contact. The corrections pivot on the generation of M, so the
     corrected pinion keeps M, its normal and the nominal ratio there: tangency at M.
 
+    A typed gear (``gear``: ``{side: MachineSetup}`` of the gear as the user typed it,
+    right-hand; ``gear_generation`` is then its own: formate if both sides are) replaces
+    the blank's: the base pinion is its uncrowned pinion
+    (:func:`~gearcontact.geometry.typed_pinion.typed_gear_pinion_setups`: point contact
+    with TE0 = 0 along a path for a generated hypoid gear, M on that path as above; the
+    complementary pinion of a formate gear, M the mean node). A typed generated gear
+    with offset 0 pivots on the mean node, as the blank's own (line contact only where
+    its cradle is the blank's: docs/machine_settings.md sec. 7). The blank's own gear
+    typed gives the base of ``gear_generation`` to rounding.
+
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
     corrected pinion).
     """
 
-    def __init__(self, pair, *, gear_generation: str = "generated", n_u: int = 40,
-                 n_v: int = 50):
+    def __init__(self, pair, *, gear_generation: str = "generated", gear: dict | None = None,
+                 n_u: int = 40, n_v: int = 50):
         if pair.pinion_hand != "right":
             raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
                                   "right-hand twin and mirror its settings)")
-        #: the base pinion has point contact (the crown gear's pinion of a hypoid), not
-        #: line contact (module docstring)
+        if gear is None:
+            self.gear_setups, self.base = member_setups(pair, gear_generation)
+        else:       # a typed gear and its uncrowned pinion (typed_pinion)
+            gear_generation = ("formate" if all(g.settings.formate for g in gear.values())
+                               else "generated")
+            self.gear_setups = {side: gear[side] for side in SIDES}
+            self.base = typed_gear_pinion_setups(pair, gear)
+        #: the base pinion has point contact (the crown gear's pinion of a hypoid, or of
+        #: a typed generated hypoid gear), not line contact (module docstring)
         self.point_contact = gear_generation == "generated" and pair.offset_mm != 0.0
         self.pair, self.n_u, self.n_v = pair, int(n_u), int(n_v)
         blank = pair.blank
-        self.gear_setups, self.base = member_setups(pair, gear_generation)
         fs = build_machine_flanks(dataclasses.replace(
             pair, machine=tuple(self.gear_setups[s] for s in SIDES)
             + tuple(self.base[s] for s in SIDES), easeoff_tables=("drive", "coast")),
@@ -217,13 +234,23 @@ class SynthesisProblem:
         #: the pinion sheet's cone (both sides), mm
         self.cone = fs.pinion.side(d).cone
         self.start, self.mean_uv, self.means = {}, {}, {}
+        #: side -> why it has no M (point contact whose path misses the pinion mean
+        #: section on the flank); such a side has no start, M or standard corrections
+        self.off_flank = {}
         for side in SIDES:
             m = fs.mean_contact[side]
             guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
                                  m["phi2_rad"])
             if self.point_contact:
-                mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
-                                    v1_mm=float(blank.pitch_point_mm[0]))
+                try:
+                    mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
+                                        v1_mm=float(blank.pitch_point_mm[0]))
+                except EdgeContact as exc:
+                    self.off_flank[side] = (
+                        "the base pinion's contact path does not reach the pinion's mean "
+                        f"section on the flank (from the mean node's phase: {exc}); M, the "
+                        "pivot, is not a point of the flank (docs/machine_settings.md sec. 5)")
+                    continue
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
             else:       # line contact: the pinion's mean node lies on a contact line
@@ -234,7 +261,8 @@ class SynthesisProblem:
         # the standard crowning (25 / 10 um, standard_setups): the search's start
         self.standard = {side: np.array([0.0, *crowning_corrections(
             pair, self.base[side], l_mm=self.means[side][0], lengthwise_crowning_um=25.0,
-            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES}
+            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES
+            if side not in self.off_flank}
 
     def setup(self, side: str, x) -> MachineSetup:
         """The pinion settings of ``side`` with the corrections ``x``."""

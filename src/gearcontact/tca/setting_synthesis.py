@@ -63,6 +63,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
+from ..geometry.basic_settings import crowned_pinion_setups
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.machine import MachineSetup, mirror_setup
@@ -196,7 +197,8 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
         certain (:mod:`.setting_reach`: a hard limit of the settings crossed within half
         the predicted step), after its seven local TCAs, before the search.
     CheckFailed
-        No contact at M at the starting settings.
+        No contact at M at the starting settings, or a side without M
+        (:attr:`SynthesisProblem.off_flank`), before any search.
     """
     for side in sides:
         if side not in SIDES:
@@ -206,6 +208,10 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
     if missing:
         raise InputRangeError("targets", sorted(per_side), f"targets of the sides {sides}")
     prob = problem or SynthesisProblem(pair)
+    for side in sides:
+        if side in prob.off_flank:
+            raise CheckFailed(f"setting synthesis of {pair.name} {side}: "
+                              f"{prob.off_flank[side]}")
     out = {}
     for side in sides:
         t0 = time.perf_counter()
@@ -353,7 +359,8 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
-                             gear_generation: str | None = None, **options):
+                             gear_generation: str | None = None, gear: dict | None = None,
+                             standard_off_flank: bool = False, **options):
     """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
     sides, and the per-side results. ``gear_generation``: ``"formate"`` or
@@ -364,17 +371,44 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     its settings mirrored (:func:`~gearcontact.geometry.machine.mirror_setup`; signs:
     docs/machine_settings.md), so the left-hand pair's TCA is the twin's mirrored (same
     TE0, the pattern reflected) and the per-side results are the twin's (the path angle
-    is measured so that it means the same bearing for both hands)."""
+    is measured so that it means the same bearing for both hands).
+
+    A typed gear ``gear`` (``{side: MachineSetup}``, as the user typed it: the pair file's
+    ``[machine.gear.*]`` / ``[print.gear]``) replaces the blank's gear
+    (:class:`SynthesisProblem`: its uncrowned pinion is the base) and is kept exactly as
+    given in the result, ``pair.print_gear`` with it (written back as typed); a
+    left-hand pair's twin gets it mirrored.
+
+    A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
+    the pinion mean section on the flank) raises CheckFailed, or with
+    ``standard_off_flank`` gets the base localized by the standard crowning
+    (:func:`~gearcontact.geometry.basic_settings.crowned_pinion_setups`, 25 / 10 um: the
+    standard pinion, :func:`~gearcontact.geometry.typed_pinion.typed_gear_machine_pair`'s
+    for a typed gear) and no entry in the per-side results."""
     if pair.pinion_hand == "left":
         twin, done = synthesized_machine_pair(
-            dataclasses.replace(pair, pinion_hand="right", machine=()), targets=targets,
-            gear_generation=gear_generation, **options)
-        return dataclasses.replace(pair, machine=tuple(mirror_setup(s) for s in twin.machine),
+            dataclasses.replace(pair, pinion_hand="right", machine=(), typed_gear=(),
+                                print_gear=()), targets=targets,
+            gear_generation=gear_generation, standard_off_flank=standard_off_flank,
+            gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
+            **options)
+        machine = tuple(mirror_setup(s) for s in twin.machine)
+        if gear is not None:      # the gear as typed, not its twin's mirror image
+            machine = tuple(gear[s] for s in SIDES) + machine[len(SIDES):]
+        return dataclasses.replace(pair, machine=machine, typed_gear=(),
                                    easeoff_tables=twin.easeoff_tables), done
-    if gear_generation is None:
+    if gear_generation is None and gear is None:
         gear_generation = default_gear_generation(pair)[0]
-    prob = SynthesisProblem(pair, gear_generation=gear_generation,
+    prob = SynthesisProblem(pair, gear_generation=gear_generation or "generated", gear=gear,
                             n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
-    done = synthesize_settings(pair, targets=targets, problem=prob, **options)
-    machine = tuple(prob.gear_setups[s] for s in SIDES) + tuple(done[s].setup for s in SIDES)
-    return dataclasses.replace(pair, machine=machine, easeoff_tables=("drive", "coast")), done
+    sides = tuple(s for s in SIDES if not (standard_off_flank and s in prob.off_flank))
+    done = synthesize_settings(pair, targets=targets, problem=prob, sides=sides,
+                               **options) if sides else {}
+    pinion = {s: r.setup for s, r in done.items()}
+    pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
+                                               if s not in done},
+                                        lengthwise_crowning_um=25.0,
+                                        blade_profile_crowning_um=10.0))
+    machine = tuple(prob.gear_setups[s] for s in SIDES) + tuple(pinion[s] for s in SIDES)
+    return dataclasses.replace(pair, machine=machine, typed_gear=(),
+                               easeoff_tables=("drive", "coast")), done
