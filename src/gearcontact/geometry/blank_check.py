@@ -60,8 +60,8 @@ from ..deprecation import moved_names
 from .known_slips import pair_slip, single_slip, slip_fix, with_slip
 from .machine import MachineSetup
 from .print_blank import cuts_the_printed_gear, print_key, printed_blank
-from .slip_attribution import describe, explaining_values
-from .typed_settings import full_key, moved, roundings, setting, typed_keys
+from .slip_attribution import describe, explaining_values, interval
+from .typed_settings import attributed_keys, full_key, moved, roundings, setting
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION",
@@ -229,7 +229,9 @@ class FlankCheck:
     ``single_keys``: where no known slip explains it, the keys that alone do, with the
     values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked); ``printed``:
     the flank's settings were converted from ``[print.gear]`` and compared with the
-    page's printed blank (:func:`printed_stated_blank`), its keys the print's."""
+    page's printed blank (:func:`printed_stated_blank`), its keys the print's;
+    ``typed``: where neither a slip nor a single key explains it, its typed keys and
+    values ``((full key, value), ...)``, what a refusal names."""
 
     member: str
     side: str
@@ -241,6 +243,7 @@ class FlankCheck:
     slip_also: tuple = ()
     single_keys: tuple = ()
     printed: bool = False
+    typed: tuple = ()
 
     @property
     def agrees(self) -> bool:
@@ -293,11 +296,12 @@ class BlankCheck:
                                   f"with {_blank(f)}" + _also(f)
                                   + (f"; also {', '.join(also)}" if also else "")
                                   + ", docs/machine_settings.md sec. 2)")
-        one = f.single_keys[0] if len(f.single_keys) == 1 else None
-        raise InputRangeError(one.key.split(" (converted: ")[0] if one
-                              else f"[machine.{f.member}.{f.side}]",
-                              one.typed if one else None,
-                              f"settings that cut {_blank(f)}'s tooth ({what}; no known sign "
+        one = f.single_keys[0] if f.single_keys else None
+        table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
+        raise InputRangeError(one.key if one else f"[{table}]",
+                              one.typed if one else dict(f.typed),
+                              (f"{interval(one)} (this key alone moved), or " if one else "")
+                              + f"settings that cut {_blank(f)}'s tooth ({what}; no known sign "
                               "or unit slip explains it" + "".join(
                                   f"; {g.member} {g.side}: {describe(g.single_keys)}"
                                   for g in bad if not g.missing)
@@ -494,7 +498,8 @@ def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankChec
     if flank.missing:
         return ()
     _, at = _values(setup, stated)              # the warm start of every move
-    half = roundings(setup, stated.setting_rounding)
+    keys = attributed_keys(setup)
+    half = roundings(setup, stated.setting_rounding, keys)
 
     def compare(name: str, value: float):
         key = name.rsplit(".", 1)[1]
@@ -508,7 +513,7 @@ def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankChec
         return None if got.missing else got.comparisons
 
     return explaining_values([(full_key(setup, k), setting(setup, k), half[k])
-                              for k in typed_keys(setup)], flank.comparisons, compare)
+                              for k in keys], flank.comparisons, compare)
 
 
 _CONVERTED = re.compile(r"\b(?:machine|blade)\.gear\.(?:drive|coast)\.\w+")
@@ -529,7 +534,8 @@ def _print_named(f: FlankCheck, printed: tuple) -> FlankCheck:
         f, printed=True, slip=got[0] if got else f.slip, slip_value=got[1] if got else f.slip_value,
         slip_word=name(f.slip_word), slip_also=tuple(name(k) for k in f.slip_also),
         single_keys=tuple(dataclasses.replace(k, key=f"{name(k.key)} (converted: {k.key})")
-                          if print_key(k.key, table) else k for k in f.single_keys))
+                          if print_key(k.key, table) else k for k in f.single_keys),
+        typed=tuple(dict(print_key(k, table) or (k, v) for k, v in f.typed).items()))
 
 
 def check_flanks(setups, stated: StatedBlank, *, measured=None,
@@ -568,7 +574,8 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
             if not key and not f.single_keys:
                 key, value, word, also = pair_slip(s, datum, compare)
                 f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
-                                        slip_also=also)
+                                        slip_also=also, typed=() if key else tuple(
+                                            (full_key(s, k), setting(s, k)) for k in attributed_keys(s)))
         if st.printed:
             f = _print_named(f, st.printed)
         out.append(f)

@@ -46,7 +46,7 @@ from .conjugate import NODE_MARGIN_MM, UndercutError, nominal_pinion_box
 from .cutter import BladeCone, CutterPlacement
 from .formate import FlankBoundary, FormateFlank, gear_flank
 from .kinematics import MeshKinematics
-from .generated_box import active_box, edge_length_mm
+from .generated_box import active_box, edge_length_mm, edge_radius_bound_mm, inch_hint
 from .machine import MachineKinematics, MachineSetup, blade_point
 from .sheet import GearCone, GearSheet, RadialSheet
 
@@ -527,26 +527,16 @@ def _check_regular(nodes: EnvelopeSolution, mean: EnvelopeSolution, setup: Machi
 
 
 def _edge_fix(setup: MachineSetup, l_node_mm: float) -> str:
-    """The edge radius whose round ends at the blade arc length ``l_node_mm`` (bisection
-    to 1e-4 mm on :func:`edge_length_mm`, which grows with the radius), named as a fix
-    of :func:`_check_regular`'s message: ``"<key> = r mm: at most r_max mm ..., or "``
-    (a value 25.4 times too large named so), or ``""`` for a sharp blade."""
+    """The edge radius whose round ends at the blade arc length ``l_node_mm``
+    (:func:`~.generated_box.edge_radius_bound_mm`), named as a fix of
+    :func:`_check_regular`'s message: ``"<key> = r mm: at most r_max mm ..., or "`` (a
+    value 25.4 times too large named so), or ``""`` for a sharp blade."""
     blade = setup.blade
     if blade.edge_radius_mm <= 0.0 or l_node_mm <= 0.0:
         return ""
-
-    def top(r_mm: float) -> float:
-        return edge_length_mm(dataclasses.replace(
-            setup, blade=dataclasses.replace(blade, edge_radius_mm=r_mm)))
-
-    lo, hi = 0.0, blade.edge_radius_mm
-    while hi - lo > 1e-4:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if top(mid) < l_node_mm else (lo, mid)
-    unit = (f" (25.4 times too large? {blade.edge_radius_mm / 25.4:.4g} mm keeps it)"
-            if blade.edge_radius_mm / 25.4 <= lo else "")
+    lo = edge_radius_bound_mm(setup, l_node_mm)
     return (f"{blade.where}.edge_radius_mm = {blade.edge_radius_mm:g} mm: at most "
-            f"{lo:.4f} mm keeps its round below this node{unit}, or ")
+            f"{lo:.4f} mm keeps its round below this node{inch_hint(blade, lo)}, or ")
 
 
 def mean_contact_guess(pinion, gear, kinematics: MeshKinematics, *, pinion_uv, gear_uv

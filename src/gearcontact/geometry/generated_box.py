@@ -23,13 +23,16 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from .conjugate import NODE_MARGIN_MM, UndercutError
 from .formate import FlankBoundary
 from .machine import MachineSetup, edge_round
+from .print_words import INCH_MM
 
-__all__ = ["active_box", "edge_length_mm", "margin_root"]
+__all__ = ["active_box", "edge_length_mm", "edge_radius_bound_mm", "inch_hint", "margin_root"]
 
 #: Lengthwise sections and profile steps that trace the line the blade's edge top
 #: generates (the lower end of the active flank).
@@ -48,6 +51,33 @@ def edge_length_mm(setup: MachineSetup) -> float:
     if setup.blade.edge_radius_mm == 0.0:
         return 0.0
     return edge_round(setup.blade).top_length_mm
+
+
+def edge_radius_bound_mm(setup: MachineSetup, l_node_mm: float) -> float:
+    """The largest edge radius of ``setup``'s blade whose round ends below the blade arc
+    length ``l_node_mm`` (:func:`edge_length_mm` grows with the radius): bisection on
+    ``[0, the typed radius]`` to 1e-4 mm, the lower end returned (a radius that clears
+    the node), mm; 0 for ``l_node_mm <= 0``."""
+    if l_node_mm <= 0.0:
+        return 0.0
+
+    def top(r_mm: float) -> float:
+        return edge_length_mm(dataclasses.replace(
+            setup, blade=dataclasses.replace(setup.blade, edge_radius_mm=r_mm)))
+
+    lo, hi = 0.0, setup.blade.edge_radius_mm
+    while hi - lo > 1e-4:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if top(mid) < l_node_mm else (lo, mid)
+    return lo
+
+
+def inch_hint(blade, bound_mm: float) -> str:
+    """``" (25.4 times too large? r/25.4 mm keeps it)"`` where the blade's edge radius
+    read as inches converted twice (:data:`~.print_words.INCH_MM`) is within
+    ``bound_mm``, else ``""``."""
+    r = blade.edge_radius_mm / INCH_MM
+    return f" (25.4 times too large? {r:.4g} mm keeps it)" if r <= bound_mm else ""
 
 
 def _section_q(solver, vs: np.ndarray, u_m: float, v_m: float, q_mean: np.ndarray) -> np.ndarray:

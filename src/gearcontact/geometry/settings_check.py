@@ -24,6 +24,8 @@ import warnings
 from dataclasses import dataclass, field
 
 from .blank_check import BlankCheck, check_pair_blank
+from .edge_check import check_edge_rounds
+from .flank_angles import measure_pair_mean_points
 
 __all__ = ["SettingsCheck", "SettingsWarning", "check_settings", "checked_settings"]
 
@@ -83,13 +85,16 @@ def check_settings(pair, *, measured=None) -> SettingsCheck | None:
     ------
     InputRangeError
         A gross mismatch, naming the likely key
-        (:meth:`~.blank_check.BlankCheck.raise_if_gross`).
+        (:meth:`~.blank_check.BlankCheck.raise_if_gross`); a blade edge round that ends
+        above its flank's mean point (:func:`~.edge_check.check_edge_rounds`).
     """
     if not getattr(pair, "machine", None):
         return None
     t0 = time.perf_counter()
+    measured = measured if measured is not None else measure_pair_mean_points(pair)
     got = check_pair_blank(pair, measured=measured)
     got.raise_if_gross()
+    check_edge_rounds(pair.machine, measured)
     return SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0)
 
 

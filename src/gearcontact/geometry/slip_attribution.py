@@ -57,7 +57,7 @@ from dataclasses import dataclass
 from scipy.optimize import brentq, minimize_scalar
 
 __all__ = ["NEAR_FACTOR", "NONLINEAR", "STEP_FRACTION", "KeyValue", "describe",
-           "explaining_values", "key_scale"]
+           "explaining_values", "interval", "key_scale"]
 
 #: The forward-difference step of the linearization, a fraction of the key's scale
 #: (:func:`key_scale`): 1e-3 mm / deg, 1e-4 of a ratio of roll or a series term.
@@ -258,6 +258,16 @@ def _needs(k: KeyValue) -> str:
         end = "<=" if k.low is None else ">="
         return name + f"{end} {k.needed:.{d}f}"
     return name + f"{k.needed:.{d}f} +- {k.half_width:.2g}"
+
+
+def interval(k: KeyValue) -> str:
+    """The values of ``k``'s key at which the flank agrees: ``"[low, high]"`` (or ``">=
+    low"`` / ``"<= high"`` for an interval open at one end within the search), in the
+    digits :func:`describe` prints."""
+    d = _decimals(k)
+    if k.low is None or k.high is None:
+        return f"<= {k.high:.{d}f}" if k.low is None else f">= {k.low:.{d}f}"
+    return f"[{k.low:.{d}f}, {k.high:.{d}f}]"
 
 
 def describe(found: Sequence[KeyValue]) -> str:
