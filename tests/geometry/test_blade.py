@@ -105,8 +105,9 @@ def test_toprem_depth_beyond_the_blade_is_named_by_its_own_key():
 def test_relief_keys_round_trip_through_the_pair_tables():
     from gearcontact.geometry.machine import setup_from_tables, setup_to_tables
 
+    # a pinion is generated: its ratio of roll > 0 (a formate pinion is refused on load)
     machine = {"radial_distance_mm": 90.0, "cradle_angle_deg": 60.0,
-               "machine_root_angle_deg": 20.0}
+               "machine_root_angle_deg": 20.0, "ratio_of_roll": 4.0}
     blade = {"kind": "outside", "blade_angle_deg": 20.0, "point_radius_mm": 100.0,
              "edge_radius_mm": 0.4, "toprem_angle_deg": 2.0, "toprem_depth_mm": 2.0,
              "flankrem_angle_deg": 1.5, "flankrem_depth_mm": 6.0}
