@@ -51,6 +51,18 @@ def _run(line: str, cwd: Path) -> subprocess.CompletedProcess:
                           check=False)
 
 
+def _run_example_line(prefix: str, tmp_path: Path) -> tuple[subprocess.CompletedProcess, Path]:
+    """The one README line starting with ``prefix``, run as written from ``tmp_path``
+    (holding a link to ``examples/``); it exits 0. Its process and ``--out`` directory."""
+    lines = [c for c in readme_commands() if c.startswith(prefix)]
+    assert len(lines) == 1, lines
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    proc = _run(lines[0], tmp_path)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    words = shlex.split(lines[0])
+    return proc, tmp_path / words[words.index("--out") + 1]
+
+
 def test_readme_machine_settings_lines(tmp_path):
     (tmp_path / "examples").symlink_to(ROOT / "examples")
     design, analyze = _readme_lines()
@@ -111,13 +123,7 @@ def test_readme_typed_machine_settings_example(tmp_path):
     for the `mach/` line above: the flanks are cut from the file's settings (no ease-off
     synthesized), the multi-tooth shares conserve the load (1e-9 %), the loaded TE's
     LCPs converged. About 30 s CPU (issue 28 audit: exit 0, 27 s CPU)."""
-    lines = [c for c in readme_commands()
-             if c.startswith("gearcontact analyze --pair examples/machine_settings/")]
-    assert len(lines) == 1, lines
-    (tmp_path / "examples").symlink_to(ROOT / "examples")
-    proc = _run(lines[0], tmp_path)
-    assert proc.returncode == 0, proc.stderr[-3000:]
-    out = tmp_path / shlex.split(lines[0])[shlex.split(lines[0]).index("--out") + 1]
+    proc, out = _run_example_line("gearcontact analyze --pair examples/machine_settings/", tmp_path)
     assert "ease-off synthesized" not in proc.stdout
     pair = load_pair(ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml")
     assert len(pair.machine) == 4
@@ -151,13 +157,7 @@ def test_readme_print_gear_example(tmp_path):
     from gearcontact.geometry.flank import MateWarning, build_flanks
     from gearcontact.geometry.typed_pinion import typed_gear_machine_pair
 
-    lines = [c for c in readme_commands()
-             if c.startswith("gearcontact design --pair examples/machine_settings/")]
-    assert len(lines) == 1, lines
-    (tmp_path / "examples").symlink_to(ROOT / "examples")
-    proc = _run(lines[0], tmp_path)
-    assert proc.returncode == 0, proc.stderr[-3000:]
-    out = tmp_path / shlex.split(lines[0])[shlex.split(lines[0]).index("--out") + 1]
+    proc, out = _run_example_line("gearcontact design --pair examples/machine_settings/", tmp_path)
     example = ROOT / "examples" / "machine_settings" / "hypoid_10x41_print_gear.toml"
     written = out / "machine_settings.toml"
     with open(example, "rb") as f, open(written, "rb") as g:
