@@ -607,12 +607,12 @@ def test_local_synthesis_passes_the_targets_per_side(generated_hypoid_file, caps
 
     seen = {}
 
-    def fake(pair, *, targets):
+    def fake(pair, *, targets, **_):     # gear, standard_off_flank: the CLI's
         seen.update(targets)
         return pair, {side: SimpleNamespace(met=side == "drive") for side in targets}
 
     monkeypatch.setattr(setting_synthesis, "synthesized_machine_pair", fake)
-    monkeypatch.setattr(report, "local_synthesis_toml", lambda cut, done: "# the toml")
+    monkeypatch.setattr(report, "local_synthesis_toml", lambda cut, done, **_: "# the toml")
     assert main(["design", "--pair", str(generated_hypoid_file), "--machine-settings",
                  "--local-synthesis", *argv]) == 4
     got = {side: (t.te0_pp_arcsec, t.pattern_length_ratio, t.path_angle_deg)
@@ -632,7 +632,7 @@ def test_local_synthesis_certain_reach_refusal_names_the_option(generated_hypoid
     import gearcontact.tca.setting_synthesis as setting_synthesis
     from gearcontact.validation import InputRangeError
 
-    def refuse(pair, *, targets):
+    def refuse(pair, *, targets, **_):
         raise InputRangeError("path_angle_deg", -9.3, "a path angle the coast settings can "
                               "reach: ... roll curvature beyond ... at 0% of the step")
 
