@@ -108,7 +108,7 @@ def test_a_kept_gear_with_a_target_flank_is_refused(page_alone):
     # measured file is not needed to reach this refusal)
     from argparse import Namespace
 
-    from gearcontact.cli.design_modes import kept_gear
+    from gearcontact.cli.design_options import kept_gear
     from gearcontact.validation import InputRangeError
 
     with warnings.catch_warnings():

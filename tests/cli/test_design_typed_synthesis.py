@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from gearcontact.cli import main
-from gearcontact.cli.design_modes import kept_gear
+from gearcontact.cli.design_options import kept_gear
 from gearcontact.geometry.basic_settings import member_setups
 from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.pair import load_pair, pair_to_toml

@@ -32,10 +32,10 @@ from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, load_pair,
 from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
                                         mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
-from .design_modes import calibrate, kept_gear, machine_settings, synthesize
+from .design_modes import calibrate, machine_settings, synthesize
 from .design_options import (TARGET_OPTIONS, check_options, check_relieved_blades,
-                             checked_flanks, path_angle_option, path_angle_options,
-                             renamed, synthesis_targets)
+                             checked_flanks, kept_gear, path_angle_option,
+                             path_angle_options, renamed, synthesis_targets)
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
 _PAIRED = (

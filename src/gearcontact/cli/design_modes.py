@@ -57,33 +57,6 @@ def refuse_missed(what: str, pair, done: dict) -> None:
                           f"(see the table){why}")
 
 
-def kept_gear(args, pair) -> dict | None:
-    """``{side: MachineSetup}`` of the typed gear ``design --machine-settings`` keeps (a
-    pair file typing the gear alone, or both members with ``--keep-gear``), else None;
-    an input error (exit 2) for ``--keep-gear`` without ``--machine-settings`` or without
-    a typed gear, and for a kept gear with ``--target-flank`` (a mode that fits the
-    pair's own settings). ``--local-synthesis`` synthesizes the pinion of the kept gear."""
-    keep = getattr(args, "keep_gear", False)
-    if keep and not args.machine_settings:
-        raise InputRangeError("--keep-gear", True, "given only with --machine-settings "
-                              "(without it the option has no effect)")
-    if keep and not (pair.machine or pair.typed_gear):
-        raise InputRangeError("--keep-gear", True, f"a pair file that types the gear's "
-                              f"settings ([machine.gear.*] / [blade.gear.*] or [print.gear]); "
-                              f"{args.pair} types none (its standard settings: without "
-                              "--keep-gear)")
-    setups = pair.typed_gear or (tuple(s for s in pair.machine if s.member == "gear")
-                                 if keep else ())
-    if not setups:
-        return None
-    if args.target_flank is not None:
-        raise InputRangeError("--target-flank", args.target_flank, "not given when the pair's "
-                              "typed gear is kept (a gear typed alone, or --keep-gear): its "
-                              "pinion is derived; the option works on the blank's own gear "
-                              "or on a pair typing both members without --keep-gear")
-    return {s.side: s for s in setups}
-
-
 def machine_settings(args, pair) -> int:
     from ..geometry.basic_settings import standard_machine_pair
     from ..geometry.pair import pair_to_toml

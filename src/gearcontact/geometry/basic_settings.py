@@ -229,8 +229,16 @@ def crown_profile(blade: BladeSettings, *, radius_mm: float, at_length_mm: float
                                rho_mm=float(rho_s), z_mm=float(z_s))
 
 
-def standard_setups(pair, *, lengthwise_crowning_um: float = 25.0,
-                    blade_profile_crowning_um: float = 10.0,
+#: The standard crowning's defaults, um: the pinion cutter circle's departure at the face
+#: ends and the circular blade's at +-h_mw/2 (:func:`standard_setups`;
+#: docs/machine_settings.md sec. 5), as keyword arguments of :func:`crowned_pinion_setups`.
+STANDARD_CROWNING = {"lengthwise_crowning_um": 25.0, "blade_profile_crowning_um": 10.0}
+
+
+def standard_setups(pair, *, lengthwise_crowning_um: float =
+                    STANDARD_CROWNING["lengthwise_crowning_um"],
+                    blade_profile_crowning_um: float =
+                    STANDARD_CROWNING["blade_profile_crowning_um"],
                     gear_generation: str = "formate", reliefs: dict | None = None) -> dict:
     """Standard settings of both members from the blank (module docstring).
 
@@ -332,8 +340,10 @@ def crowning_corrections(pair, setup: MachineSetup, *, l_mm: float,
     return float(delta), float(k_b)
 
 
-def standard_machine_pair(pair, *, lengthwise_crowning_um: float = 25.0,
-                          blade_profile_crowning_um: float = 10.0,
+def standard_machine_pair(pair, *, lengthwise_crowning_um: float =
+                          STANDARD_CROWNING["lengthwise_crowning_um"],
+                          blade_profile_crowning_um: float =
+                          STANDARD_CROWNING["blade_profile_crowning_um"],
                           gear_generation: str = "formate", reliefs: dict | None = None):
     """``pair`` with the machine settings of :func:`standard_setups` for all four flanks
     (its ``[easeoff.*]`` then no longer applies; :func:`~.pair.pair_to_toml` writes the

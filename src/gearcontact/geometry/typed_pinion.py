@@ -41,7 +41,8 @@ import math
 import numpy as np
 
 from ..validation import InputRangeError
-from .basic_settings import checked_crowning, cradle_pinion_setups, crowned_pinion_setups
+from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_setups,
+                             crowned_pinion_setups)
 from .formate import SIDES
 from .generated import work_to_body
 from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, BladeSettings,
@@ -133,8 +134,10 @@ def typed_gear_pinion_setups(pair, gear: dict) -> dict:
 
 
 def typed_gear_machine_pair(pair, gear: dict | None = None, *,
-                            lengthwise_crowning_um: float = 25.0,
-                            blade_profile_crowning_um: float = 10.0,
+                            lengthwise_crowning_um: float =
+                            STANDARD_CROWNING["lengthwise_crowning_um"],
+                            blade_profile_crowning_um: float =
+                            STANDARD_CROWNING["blade_profile_crowning_um"],
                             reliefs: dict | None = None):
     """``pair`` cut from the typed gear ``gear`` (``{side: MachineSetup}``; default the
     pair's own: ``pair.typed_gear``, else the gear of ``pair.machine``), kept exactly as

@@ -26,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.basic_settings import (crown_profile, crowning_corrections, member_setups,
-                                       mismatch_radius)
+from ..geometry.basic_settings import (STANDARD_CROWNING, crown_profile, crowning_corrections,
+                                       member_setups, mismatch_radius)
 from ..geometry.flank import build_machine_flanks
 from ..geometry.formate import SIDES
 from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
@@ -123,6 +123,16 @@ class MeanPointContact:
     te_level_arcsec: float
 
 
+def _local_tca(pinion, gear, pair, start: ContactGuess):
+    """``(kinematics, h, path)``: the TCA over five phases about ``start`` (-2..2 steps
+    of ``h``, :data:`_LOCAL_STEP_PITCH` of a pinion pitch, rad), edges off."""
+    kin = pair.kinematics()
+    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
+    path = solve_tca(pinion, gear, kin, start.phi1_rad + h * np.arange(-2, 3), start=start,
+                     start_fixed="phi1", edges=False)
+    return kin, h, path
+
+
 def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
                        torque_nm: float = _REPORT_TORQUE_NM) -> MeanPointContact:
     """Contact of ``pinion`` and ``gear`` at the mean point: a local TCA over five phases
@@ -130,10 +140,7 @@ def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
     side), from which the TE curvature, the parabolic TE level and the path direction at M
     follow (Litvin & Fuentes 2004, sec. 21.8: the second-order conditions of local
     synthesis are posed at M, not at the TE vertex of a whole pitch)."""
-    kin = pair.kinematics()
-    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
-    path = solve_tca(pinion, gear, kin, start.phi1_rad + h * np.arange(-2, 3), start=start,
-                     start_fixed="phi1", edges=False)
+    kin, h, path = _local_tca(pinion, gear, pair, start)
     te = np.asarray(path.te0_arcsec, dtype=float)
     if not np.all(np.isfinite(te)):
         raise ArithmeticError("the contact leaves a flank within two local steps of M")
@@ -153,10 +160,7 @@ def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
     within 1e-6 mm: secant on the phase, started from a local TCA over +-2 steps of
     :data:`_LOCAL_STEP_PITCH` (the system with ``v1`` held is singular where TE0 is
     constant along the path, as on the crown gear's pinion)."""
-    kin = pair.kinematics()
-    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
-    path = solve_tca(pinion, gear, kin, guess.phi1_rad + h * np.arange(-2, 3), start=guess,
-                     start_fixed="phi1", edges=False)
+    kin, _, path = _local_tca(pinion, gear, pair, guess)
     k = int(np.argmin([abs(p.v1 - v1_mm) for p in path.points]))
     prev, mp = path.points[k - 1 if k else 1], path.points[k]
     for _ in range(20):
@@ -260,9 +264,8 @@ class SynthesisProblem:
                                               self.mean_uv[side])
         # the standard crowning (25 / 10 um, standard_setups): the search's start
         self.standard = {side: np.array([0.0, *crowning_corrections(
-            pair, self.base[side], l_mm=self.means[side][0], lengthwise_crowning_um=25.0,
-            blade_profile_crowning_um=10.0)])[[0, 2, 1]] for side in SIDES
-            if side not in self.off_flank}
+            pair, self.base[side], l_mm=self.means[side][0], **STANDARD_CROWNING)])[[0, 2, 1]]
+            for side in SIDES if side not in self.off_flank}
 
     def setup(self, side: str, x) -> MachineSetup:
         """The pinion settings of ``side`` with the corrections ``x``."""

@@ -63,7 +63,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..errors import CheckFailed
-from ..geometry.basic_settings import crowned_pinion_setups
+from ..geometry.basic_settings import STANDARD_CROWNING, crowned_pinion_setups
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.machine import MachineSetup, mirror_setup
@@ -407,8 +407,7 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
                                                if s not in done},
-                                        lengthwise_crowning_um=25.0,
-                                        blade_profile_crowning_um=10.0))
+                                        **STANDARD_CROWNING))
     machine = tuple(prob.gear_setups[s] for s in SIDES) + tuple(pinion[s] for s in SIDES)
     return dataclasses.replace(pair, machine=machine, typed_gear=(),
                                easeoff_tables=("drive", "coast")), done
