@@ -25,12 +25,16 @@ dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged. 
 ``--rim-block`` the block below the fillet is the Ritz solid of ``structure.rim_block`` (``build_shell(...,
 rim_block=True)``)
 (docs/bending.md sec. 13; ``--block-orders`` its enrichment's degrees, ``none`` for the
-plate's fields alone in the solid).
+plate's fields alone in the solid). With ``--rim-depth fillet`` both models clamp the
+rim's bottom at the shell's own fillet height instead of the tooth height: the shell's
+block has depth 0 and the rule of sec. 13 ("Teeth without a block") takes the plate at
+the block model's factor; the teeth without a block of sec. 13's session-24 paragraph.
 
 Usage: python3 benchmarks/bench_rim_calibration.py [--factors 1.3 1.4 ...]
        [--with-s0003-pinion] [--only LABEL ...] [--fe-root cutter|ellipse]
        [--mesh N_XI N_ETA N_ZETA N_RIM] [--eta ...] [--membrane dmv|naghdi]
-       [--rim-block [--block-orders P_XI P_S P_ZETA | none]] [--json FILE]
+       [--rim-block [--block-orders P_XI P_S P_ZETA | none]] [--rim-depth height|fillet]
+       [--json FILE]
 """
 
 from __future__ import annotations
@@ -73,7 +77,7 @@ _FLANKS: dict = {}
 def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
             eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh(),
             membrane: str | None = None, rim_block: bool = False,
-            block_orders=BLOCK_ORDERS) -> dict:
+            block_orders=BLOCK_ORDERS, rim_depth: str = "height") -> dict:
     """The FE deflections of one tooth under the distributed loads (computed once) and
     shell / FE at every factor of ``factors`` (segment loads, then line loads)."""
     pair = load_pair(pair_name)
@@ -83,15 +87,18 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
     material = pair.pinion_material if member == "pinion" else pair.gear_material
     tooth = tooth_geometry(flanks, member, material=material)
     kw = dict(side=pair.design_side, flanks=flanks, fe_mesh=fe_mesh, eta=tuple(eta))
+    # the rim's clamped bottom: the tooth height (default) or the shell's fillet height
+    depth = None if rim_depth == "height" else rim_segment(tooth).fillet_mm
     with warnings.catch_warnings():
         warnings.simplefilter("error", EllipseRootWarning)   # the real root or nothing
         t0 = time.process_time()
-        ref = flank_compliance(pair, member, fe=True, fe_root=fe_root, **kw)
+        ref = flank_compliance(pair, member, fe=True, fe_root=fe_root,
+                               rim=rim_segment(tooth, depth_mm=depth), **kw)
         fe_s = time.process_time() - t0
     fe = np.concatenate([ref.segment_fe_mm_per_n, ref.line_fe_mm_per_n])
     ratios = {}
     for k in factors:
-        rim = rim_segment(tooth, stiffening=float(k))
+        rim = rim_segment(tooth, depth_mm=depth, stiffening=float(k))
         if membrane:        # the shallow shell of the same tooth and rim (sec. 12)
             shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
                                 membrane=True, membrane_shear=membrane == "naghdi")
@@ -105,6 +112,7 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
         ratios[float(k)] = np.concatenate([res.segment_shell_mm_per_n,
                                            res.line_shell_mm_per_n]) / fe
     return {"side": pair.design_side, "fe_nodes": ref.fe_nodes, "fe_cpu_s": fe_s,
+            "rim_depth_mm": rim.depth_mm, "fillet_mm": rim.fillet_mm,
             "fe_mm_per_n": fe.tolist(), "line_fe_um_per_kn": (1e6 * ref.line_fe_mm_per_n).tolist(),
             "ratios": {k: v.tolist() for k, v in ratios.items()}}
 
@@ -119,9 +127,9 @@ def main() -> None:
     ap.add_argument("--fe-root", choices=("cutter", "ellipse"), default="cutter",
                     help="the FE's root: the real one (default, the calibration) or the "
                          "shell's own quarter ellipse (the plate's misfit on one geometry)")
-    ap.add_argument("--mesh", type=int, nargs=4, default=None,
-                    metavar=("N_XI", "N_ETA", "N_ZETA", "N_RIM"),
-                    help="FE cells (default 12 6 3 4, the calibration's)")
+    ap.add_argument("--mesh", type=int, nargs="+", default=None,
+                    help="FE cells N_XI N_ETA N_ZETA N_RIM [N_FILLET N_SLOT] (default "
+                         "12 6 3 4 3 2, the calibration's)")
     ap.add_argument("--eta", type=float, nargs="+", default=(-1 / 3, 0.0, 1 / 3),
                     help="lattice heights (default -1/3 0 1/3)")
     ap.add_argument("--membrane", choices=("dmv", "naghdi"), default=None,
@@ -131,6 +139,9 @@ def main() -> None:
     ap.add_argument("--block-orders", nargs="+", default=None,
                     help="the block enrichment's degrees P_XI P_S P_ZETA, or none "
                          f"(default {' '.join(map(str, BLOCK_ORDERS))})")
+    ap.add_argument("--rim-depth", choices=("height", "fillet"), default="height",
+                    help="the clamped bottom of both models: the tooth height (default) "
+                         "or the shell's fillet height (no block below the fillet)")
     ap.add_argument("--json", default=None, help="write the measurements to this file")
     args = ap.parse_args()
     teeth = TEETH + ([EIGHTH] if args.with_s0003_pinion else [])
@@ -148,8 +159,9 @@ def main() -> None:
         out[label] = measure(name, member, factors, fe_root=args.fe_root, eta=args.eta,
                              fe_mesh=FeMesh() if args.mesh is None else FeMesh(*args.mesh),
                              membrane=args.membrane, rim_block=args.rim_block,
-                             block_orders=block_orders)
-        print(f"{label}: FE {out[label]['fe_nodes']} nodes, {out[label]['fe_cpu_s']:.1f} s "
+                             block_orders=block_orders, rim_depth=args.rim_depth)
+        print(f"{label}: rim depth {out[label]['rim_depth_mm']:.3f} mm, fillet "
+              f"{out[label]['fillet_mm']:.3f} mm; FE {out[label]['fe_nodes']} nodes, {out[label]['fe_cpu_s']:.1f} s "
               f"CPU; line FE (um/kN) "
               + ", ".join(f"{x:.3f}" for x in out[label]["line_fe_um_per_kn"]), flush=True)
     print(f"\nshell / FE (min .. max over the 12 loads), current RIM_STIFFENING "

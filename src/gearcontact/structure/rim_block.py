@@ -56,7 +56,9 @@ BLOCK_RIM_STIFFENING = 1.175
 #: block's stiffness is O(its depth), so the compliance is continuous as the depth goes
 #: to 0 and the jump at this limit is O(the limit); the limit keeps the enrichment's
 #: stiffness (~ 1 / depth) within 1e3 of a full block's (docs/bending.md sec. 13,
-#: "Teeth without a block").
+#: "Teeth without a block"). The factor is not calibrated on such a tooth: against
+#: the 3D FE, the shell without a block is softer than the calibration's band, and
+#: no factor brings it inside (docs/bending.md sec. 13, session 24).
 BLOCK_MIN_DEPTH = 1e-3
 #: Step of the central differences of the rim frame and thickness: in xi, and in mm of
 #: depth.

@@ -1,0 +1,112 @@
+"""Teeth without a rim block below the fillet against the 3D FE (docs/bending.md sec. 13,
+"The factor on a tooth without a block, against the FE", session 24).
+
+Sec. 13's rule gives a tooth whose rim leaves no block below the fillet the plate through
+the fillet at the block model's factor (``rim_block.BLOCK_RIM_STIFFENING``, 1.175),
+carried over by continuity from the eight block teeth of the calibration. Here it is
+measured.
+
+Truth: the P2 FE (``structure.fe``) of the tooth on its real root (the calibration's
+truth, docs/bending.md sec. 10). Both models clamp the rim's bottom at the same depth D
+below the root line, D being the shell's own fillet height: the shell's block has depth
+0 exactly, and the FE keeps the thin rim D - cone depth below its slot bottoms
+(0.28 mm on the s0003-centred gear). The three gears of the calibration pairs are the
+teeth whose real root ends above their fillet height. Loads are the calibration's 12
+distributed loads.
+
+Declared before measuring: "calibrated" if every shell / FE ratio lies in the band the
+block teeth are held to on the default mesh, 0.84 .. 1.19 (``test_fe.BAND``; the eight
+block teeth give 0.880 .. 1.145 there).
+
+Measured: it differs. The shell is 1.22 .. 2.04 times the FE, and no factor fits: even
+1000, an almost rigid fillet, leaves 1.00 .. 1.44. The slow test is therefore a strict
+xfail with those ratios. The default-suite test asserts the measured side on a coarse
+mesh instead: the shell stays softer than the band by more than the coarse mesh's
+measured error (docs/bending.md).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from gearcontact.structure.compliance import (EllipseRootWarning, FeMesh, _cutter_fillets,
+                                              compare_on_root)
+from gearcontact.structure.rim import rim_segment
+from gearcontact.structure.rim_block import BLOCK_RIM_STIFFENING, has_block
+from gearcontact.structure.shell import tooth_shell
+from gearcontact.structure.tooth import tooth_geometry
+
+pytest.importorskip("skfem")
+
+#: The band the block teeth are held to on the default FE mesh (test_fe.BAND: the
+#: calibration's own band, the eight-tooth fit rounded outward).
+BAND = (0.84, 1.19)
+#: The coarse mesh of the default-suite test: n_eta 6 keeps the lattice heights
+#: -1/3, 0, 1/3 on node lines.
+COARSE = FeMesh(8, 6, 2, 2, 2, 1)
+#: Mesh error of COARSE: the largest |log(ratio_coarse / ratio_default)| over the 12
+#: loads of the three gears (measured 0.092, at the F.2 gear's segment loads, whose 5
+#: node columns are longer on 8 columns than on 12), rounded up to 0.01
+#: (docs/bending.md).
+COARSE_LOG_ERROR = 0.10
+#: Shell / FE of the three gears on the default mesh at 1.175 (docs/bending.md): the
+#: strict xfail's reason.
+MEASURED = {"s0003-centred gear": (1.350, 2.037), "s0003 gear": (1.223, 1.799),
+            "F.2 gear": (1.293, 2.015)}
+
+
+def no_block_ratios(pair, flanks, member: str, fe_mesh: FeMesh) -> np.ndarray:
+    """Shell / FE of ``member`` under the 12 distributed loads, both models clamped at the
+    shell's fillet height (no block below the fillet). The shell is the default model
+    (``tooth_shell``, the block model at its factor); the FE is on the real root."""
+    material = getattr(pair, f"{member}_material")
+    tooth = tooth_geometry(flanks, member, material=material)
+    rim = rim_segment(tooth, depth_mm=rim_segment(tooth).fillet_mm,
+                      stiffening=BLOCK_RIM_STIFFENING)
+    assert not has_block(rim) and rim.depth_mm == rim.fillet_mm
+    shell = tooth_shell(flanks, member, material=material, rim=rim)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", EllipseRootWarning)      # the real root or nothing
+        res = compare_on_root(shell, lambda: _cutter_fillets(pair, flanks, member),
+                              name=pair.name, side=pair.design_side, xi=(-0.5, 0.0, 0.5),
+                              eta=(-1 / 3, 0.0, 1 / 3), fe=True, fe_mesh=fe_mesh,
+                              fe_root="cutter")
+    assert res.fe_root == "cutter"
+    return res.ratios()
+
+
+@pytest.fixture(scope="module")
+def gears(pairs, f2_machine_pair):
+    """``label -> (pair, flanks)`` of the three gears whose real root ends above their
+    fillet height: both s0003 pairs' and the F.2 machine pair's."""
+    from gearcontact.geometry.flank import build_flanks
+
+    return {"s0003-centred gear": pairs["s0003-centred"], "s0003 gear": pairs["s0003"],
+            "F.2 gear": (f2_machine_pair, build_flanks(f2_machine_pair))}
+
+
+def test_no_block_shell_is_softer_than_the_band_on_a_coarse_mesh(s0003_centred):
+    """The s0003-centred gear on COARSE (seconds). Shell / FE at every load is above
+    the band's top by more than the coarse mesh's measured error: it is at least
+    BAND[1] * exp(COARSE_LOG_ERROR) = 1.315 (measured 1.362 .. 1.919). The shell is
+    softer than the FE, and the declared "calibrated" does not hold."""
+    pair, flanks = s0003_centred
+    r = no_block_ratios(pair, flanks, "gear", COARSE)
+    assert np.all(r >= BAND[1] * np.exp(COARSE_LOG_ERROR)), r
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("label", [pytest.param(k, marks=pytest.mark.xfail(
+    strict=True, raises=AssertionError,
+    reason=f"the no-block shell at 1.175 is {lo}..{hi} x the FE on the default mesh "
+           "(docs/bending.md sec. 13, session 24): not calibrated"))
+    for k, (lo, hi) in MEASURED.items()])
+def test_no_block_teeth_within_the_calibration_band(gears, label):
+    """The declared criterion: on the default mesh (the calibration's), every shell / FE
+    ratio of the no-block tooth lies in BAND (the block teeth's band)."""
+    pair, flanks = gears[label]
+    r = no_block_ratios(pair, flanks, "gear", FeMesh())
+    assert np.all((r >= BAND[0]) & (r <= BAND[1])), r
