@@ -11,6 +11,8 @@ enrichment grows); the enrichment's energy is the solid's of ``structure.ritz_so
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -122,7 +124,8 @@ def test_block_of_vanishing_depth_tends_to_the_plate(pinion):
     3. O(h): the difference at h = 1e-2 D at least 5 times that at 1e-3 D (10 for an
        exact first order; 5 leaves room for the O(h^2) term);
     4. h = BLOCK_MIN_DEPTH D / 2 (no solid: the plate through the sliver): within 1e-2."""
-    from gearcontact.structure.rim_block import BLOCK_MIN_DEPTH, BLOCK_RIM_STIFFENING
+    from gearcontact.structure.rim_block import (BLOCK_MIN_DEPTH, BLOCK_RIM_STIFFENING,
+                                                 NoBlockWarning)
 
     tooth, rim = pinion
     fil = rim.fillet_mm
@@ -137,12 +140,17 @@ def test_block_of_vanishing_depth_tends_to_the_plate(pinion):
         return model, np.append(np.diag(G), np.sum(G))
 
     plate, want = values(0.0)
-    same, got = values(0.0, rim_block=True, **THIN)
+    with pytest.warns(NoBlockWarning, match=r"no block below the fillet .* not calibrated"):
+        same, got = values(0.0, rim_block=True, **THIN)
     assert not same.rim_block and same.n_functions == plate.n_functions
     assert np.max(np.abs(got / want - 1.0)) < 1e-12
     err = {}
     for h in (1e-2, BLOCK_MIN_DEPTH, 0.5 * BLOCK_MIN_DEPTH):
-        model, got = values(h, rim_block=True, **THIN)
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always", NoBlockWarning)
+            model, got = values(h, rim_block=True, **THIN)
+        # the warning exactly where the plate continues (no block for the solid)
+        assert bool(seen) is (h < BLOCK_MIN_DEPTH), (h, seen)
         assert model.rim_block is (h >= BLOCK_MIN_DEPTH), h
         err[h] = float(np.max(np.abs(got / want - 1.0)))
     print("relative difference from the plate alone by h / D:", err)

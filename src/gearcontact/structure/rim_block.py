@@ -40,7 +40,13 @@ from .ritz_solid import (cartesian_gradients, energy_matrix, gauss_box, legendre
 from .tooth import local_frame
 
 __all__ = ["block_stiffness", "check_block", "enrichment_count", "has_block", "BLOCK_ORDERS",
-           "BLOCK_RIM_STIFFENING", "BLOCK_MIN_DEPTH"]
+           "BLOCK_RIM_STIFFENING", "BLOCK_MIN_DEPTH", "NoBlockWarning"]
+
+
+class NoBlockWarning(UserWarning):
+    """A shell asked for its rim block has none (:func:`has_block` false): the plate
+    continues through the rim at :data:`BLOCK_RIM_STIFFENING`, a factor not calibrated
+    on such a tooth (docs/bending.md sec. 13, "Teeth without a block")."""
 
 #: Legendre degrees of the block's enrichment (along the face, over the block's depth,
 #: across the section; docs/bending.md sec. 13).

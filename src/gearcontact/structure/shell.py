@@ -60,6 +60,7 @@ body's share of the tooth deflection).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
@@ -72,7 +73,7 @@ from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import RimSegment, rim_mid_surface, rim_modulus_factor, rim_segment, tooth_height_mm
 from .rim_block import (BLOCK_ORDERS, BLOCK_RIM_STIFFENING, block_stiffness, check_block,
-                        enrichment_count, has_block)
+                        enrichment_count, has_block, NoBlockWarning)
 from .ritz_solid import legendre_table
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
 
@@ -453,6 +454,13 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         rim_block = has_block(rim)
         if rim_block:
             n += enrichment_count(block_orders)
+        else:
+            warnings.warn(
+                f"rim: no block below the fillet (depth {rim.depth_mm:g} mm, fillet "
+                f"{rim.fillet_mm:g} mm); the plate continues through the rim at the "
+                f"block model's factor {BLOCK_RIM_STIFFENING}, not calibrated without a "
+                "block: against the 3D FE such a tooth's shell is 1.2-2.2 times too "
+                "compliant (docs/bending.md sec. 13)", NoBlockWarning, stacklevel=2)
     model = ShellModel(body=body, order=order, order_face=order_face,
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
                        membrane=membrane, membrane_shear=membrane_shear, rim_block=rim_block,
