@@ -36,6 +36,10 @@ def register(sub) -> None:
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
                                   "fp64) with a Makefile and the vector checker")
     add_out_argument(c)
+    c.add_argument("--hertz-form", default=DEFAULT_HERTZ_FORM, choices=HERTZ_FORMS,
+                   help="hamrock-brewe (default: the library as ever) or exact: the "
+                        "library adds the twin's exact Hertz law (gearcontact twin "
+                        "--hertz-form exact), gc_hertz_exact_table_fp64")
     # make's build/ beside the export is the user's, kept from run to run (never
     # foreign, never removed): a new export into a built directory replaces the sources
     c.set_defaults(func=run_c, resume_entries=("build",))
@@ -85,7 +89,7 @@ def register(sub) -> None:
 
 def run_c(args) -> int:
     from ..export.c_library import export_c_library
-    for path in export_c_library(args.out):
+    for path in export_c_library(args.out, hertz_form=args.hertz_form):
         print(final_path(args, path))
     return 0
 
