@@ -14,7 +14,9 @@ tests/export/test_fmu_drivetrain.py), ~15 s each.
 
 from __future__ import annotations
 
+import ctypes
 import shutil
+import subprocess
 import zipfile
 
 import numpy as np
@@ -31,10 +33,11 @@ from gearcontact.twin.exact_hertz import REL_BOUND  # noqa: E402
 from gearcontact.validation import InputRangeError  # noqa: E402
 
 from .conftest import export_fmu_cli as _cli  # noqa: E402
+from .test_c_exact_hertz import E_PRIME  # noqa: E402
 from .test_fmu import INPUTS, _assert_law, _sweep  # noqa: E402
 from .test_fmu_cylindrical import EV  # noqa: E402
-from .test_fmu_drivetrain import (DRIVETRAIN, DURATION_S, SPEED_RPM, STEP_US,  # noqa: E402
-                                  TORQUE_NM, _assert_reproduces, _fmu_run)
+from .test_fmu_drivetrain import (DURATION_S, SPEED_RPM, STEP_US, TORQUE_NM,  # noqa: E402
+                                  _assert_reproduces, _fmu_run, export_s0003)
 
 
 @pytest.fixture(scope="module")
@@ -48,14 +51,7 @@ def mesh_exact(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def drivetrain_exact(tmp_path_factory):
-    base = tmp_path_factory.mktemp("fmu_dt_exact")
-    (base / "dt.toml").write_text(DRIVETRAIN)
-    out = base / "s0003"
-    run = _cli("--pair", "s0003", "--kind", "drivetrain", "--phases", "9", "--torque",
-               str(TORQUE_NM), "--drivetrain", str(base / "dt.toml"), "--hertz-form",
-               "exact", "--out", str(out), cwd=base)
-    assert run.returncode == 0, run.stderr
-    return out / "gearcontact_drivetrain_s0003.fmu", base / "dt.toml"
+    return export_s0003(tmp_path_factory.mktemp("fmu_dt_exact"), "--hertz-form", "exact")
 
 
 def test_exact_fmus_validate_and_carry_the_exact_law(mesh_exact, drivetrain_exact):
@@ -186,3 +182,59 @@ def test_exact_mesh_export_rerun_writes_the_same_files(mesh_exact, tmp_path):
     assert run.returncode == 0, run.stderr
     for name in ("gearcontact_mesh_s0003.fmu", "gearcontact_mesh_s0003_table.npz"):
         assert (again / name).read_bytes() == (mesh_dir / name).read_bytes(), name
+
+
+def test_fmu_law_is_the_twin_law_and_has_none_beyond_the_table(mesh_exact, tmp_path):
+    """The exact FMU's own contact law (``gc_law_fp64`` of its ``sources/``, compiled
+    with the FMU's flags) against the twin's ``contact_law._fp64_law`` with the exact
+    form: kappa and (a, b, p_max) at 1 N within TWIN_REL = 1e-14 (the C law's bound
+    against the twin's, tests/export/test_c_exact_hertz.py) at random curvatures over
+    ratios 1 .. 1e8; beyond the table (and for a saddle) both answer -1, no contact law
+    (the twin counts it in previews_without_contact_law), never a clipped value."""
+    from gearcontact.export.fmu import FMU_CFLAGS
+    from gearcontact.twin import kernel as K
+    from gearcontact.twin.contact_law import _fp64_law
+    from gearcontact.twin.exact_hertz import RATIO_MAX, exact_hertz_table
+
+    from .test_c_exact_hertz import TWIN_REL
+
+    src = tmp_path / "sources"
+    with zipfile.ZipFile(mesh_exact[0] / "gearcontact_mesh_s0003.fmu") as z:
+        for name in z.namelist():
+            if name.startswith("sources/"):
+                z.extract(name, tmp_path)
+    (tmp_path / "law.c").write_text(
+        '#include "gc_contact_law.h"\n'
+        "double law(double lo, double hi, double e, double out[4])\n"
+        "{\n    return gc_law_fp64(lo, hi, e, out);\n}\n")
+    so = tmp_path / "law.so"
+    build = subprocess.run(["gcc", *FMU_CFLAGS, "-fPIC", "-shared", "-I", str(src), "-o",
+                            str(so), str(tmp_path / "law.c"),
+                            str(src / "gc_hertz_exact_table.c"), "-lm"],
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stderr
+    law = ctypes.CDLL(str(so)).law
+    law.argtypes = [ctypes.c_double] * 3 + [ctypes.POINTER(ctypes.c_double)]
+    law.restype = ctypes.c_double
+    prm = np.concatenate([np.zeros(K.N_PRM), exact_hertz_table()])
+    prm[K.P_HFORM] = K.HERTZ_FORM_CODES["exact"]
+    prm[K.P_EP] = E_PRIME
+    tcount = np.zeros(K.N_COUNT, np.int64)
+    out3 = np.zeros(K.N_PREVIEW)
+    out = (ctypes.c_double * 4)()
+    rng = np.random.default_rng(17)
+    worst = 0.0
+    for _ in range(500):
+        lo = 10.0 ** rng.uniform(-4.0, -1.0)
+        hi = lo * np.exp(rng.uniform(0.0, np.log(RATIO_MAX)))
+        kap = law(lo, hi, E_PRIME, out)
+        want = _fp64_law(lo, hi, prm, tcount, out3, False)
+        assert out[3] == out3[K.PV_LOAD] == 1.0
+        worst = max(worst, abs(kap / want - 1.0),
+                    *(abs(out[q] / out3[q] - 1.0) for q in range(3)))
+    assert worst <= TWIN_REL, worst
+    assert tcount[5] == 0
+    for lo, hi in ((1e-6, 1e-6 * RATIO_MAX * 1.01), (0.0, 0.1), (-1e-3, 0.1)):
+        assert law(lo, hi, E_PRIME, out) == -1.0
+        assert _fp64_law(lo, hi, prm, tcount, out3, False) == -1.0
+    assert tcount[5] == 3
