@@ -94,6 +94,11 @@ def test_fmu_validates_against_the_fmi3_schema(exported):
     names = set(zipfile.ZipFile(fmu).namelist())
     assert {"modelDescription.xml", "sources/buildDescription.xml", "sources/gc_mesh_fmu.c",
             "binaries/x86_64-linux/gearcontact_mesh_s0003.so"} <= names
+    # the default form (Hamrock-Brewe) carries nothing of the exact one (--hertz-form
+    # exact, tests/export/test_fmu_exact_hertz.py): its files and table as before it
+    assert not any("exact" in n for n in names)
+    with np.load(fmu.parent / "gearcontact_mesh_s0003_table.npz") as z:
+        assert "hertz_form" not in z.files
     md = fmpy.read_model_description(str(fmu))
     assert md.fmiVersion == "3.0" and md.coSimulation and md.modelExchange
     causal = {v.name: (v.causality, v.unit) for v in md.modelVariables}

@@ -51,16 +51,22 @@ PAIRS = {"pinion_speed_rad_s": "pinion_speed_rad_s", "gear_speed_rad_s": "gear_s
          "pairs_loaded": "pairs_loaded"}
 
 
-@pytest.fixture(scope="module")
-def exported(tmp_path_factory):
-    base = tmp_path_factory.mktemp("fmu_drivetrain")
+def export_s0003(base: Path, *options: str) -> tuple[Path, Path]:
+    """``(FMU, drivetrain file)``: the module's export (s0003, 9 phases, TORQUE_NM,
+    DRIVETRAIN) into ``base`` with ``options`` added (tests/export/test_fmu_exact_hertz.py:
+    ``--hertz-form exact``)."""
     (base / "dt.toml").write_text(DRIVETRAIN)
     out = base / "s0003"
     run = _cli("--pair", "s0003", "--kind", "drivetrain", "--phases", "9", "--torque",
-               str(TORQUE_NM), "--drivetrain", str(base / "dt.toml"), "--out", str(out),
-               cwd=base)
+               str(TORQUE_NM), "--drivetrain", str(base / "dt.toml"), *options, "--out",
+               str(out), cwd=base)
     assert run.returncode == 0, run.stderr
     return out / "gearcontact_drivetrain_s0003.fmu", base / "dt.toml"
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    return export_s0003(tmp_path_factory.mktemp("fmu_drivetrain"))
 
 
 def _assert_reproduces(res, twin, n: int, backend: str) -> None:

@@ -12,9 +12,11 @@ one gear mesh with the pair's mesh table baked in (:mod:`gearcontact.export.fmu`
 with the Hertzian law, as ``gearcontact twin --bending``, in either kind;
 :mod:`gearcontact.export.fmu_drivetrain`). A cylindrical pair (``kind =
 "cylindrical"``) gets both kinds with its twin's line law (rigid teeth or ``--bending``;
-:mod:`gearcontact.export.fmu_cylindrical`). ``--hertz-form exact`` is refused: the
-FMUs' C law evaluates Hamrock-Brewe's forms only (the twin's exact form,
-:mod:`gearcontact.twin.exact_hertz`, is not exported yet).
+:mod:`gearcontact.export.fmu_cylindrical`). ``--hertz-form exact`` (bevel and hypoid
+pairs) gives either kind the twin's exact Hertz form as its fp64 law
+(:mod:`gearcontact.twin.exact_hertz`, its table and cubic in C; the FMU's backend fp64
+only), as ``gearcontact twin --hertz-form exact``; ``export c --hertz-form exact`` adds
+that law to the C library.
 ``gearcontact export flanks --pair PAIR --out DIR`` writes the flanks of both members
 (and the root fillets of members whose cutter is known) as STEP (B-spline surfaces) and
 as CMM point grids with normals (:mod:`gearcontact.export.flanks`).
@@ -36,6 +38,10 @@ def register(sub) -> None:
     c = cmds.add_parser("c", help="C99 library of the datapath (golden fixed point and "
                                   "fp64) with a Makefile and the vector checker")
     add_out_argument(c)
+    c.add_argument("--hertz-form", default=DEFAULT_HERTZ_FORM, choices=HERTZ_FORMS,
+                   help="hamrock-brewe (default: the library as ever) or exact: the "
+                        "library adds the twin's exact Hertz law (gearcontact twin "
+                        "--hertz-form exact), gc_hertz_exact_table_fp64")
     # make's build/ beside the export is the user's, kept from run to run (never
     # foreign, never removed): a new export into a built directory replaces the sources
     c.set_defaults(func=run_c, resume_entries=("build",))
@@ -67,9 +73,9 @@ def register(sub) -> None:
                    help="drivetrain: TOML file with a [drivetrain] table, as gearcontact "
                         "twin (default: the pair's estimates)")
     f.add_argument("--hertz-form", default=DEFAULT_HERTZ_FORM, choices=HERTZ_FORMS,
-                   help="the contact law's fp64 Hertz form: hamrock-brewe (default, the "
-                        "only one the FMUs' C law has; exact is refused: gearcontact twin "
-                        "--hertz-form exact runs it in Python)")
+                   help="the contact law's fp64 Hertz form, as gearcontact twin: "
+                        "hamrock-brewe (default) or exact (the twin's exact Hertz table; "
+                        "the FMU's backend fp64 only; bevel and hypoid pairs)")
     f.set_defaults(func=run_fmu, check=check_fmu)
     g = cmds.add_parser("flanks", help="the flanks (and fillets) of both members as STEP "
                                        "B-spline surfaces and CMM point grids with normals")
@@ -85,7 +91,7 @@ def register(sub) -> None:
 
 def run_c(args) -> int:
     from ..export.c_library import export_c_library
-    for path in export_c_library(args.out):
+    for path in export_c_library(args.out, hertz_form=args.hertz_form):
         print(final_path(args, path))
     return 0
 
@@ -99,11 +105,6 @@ def check_fmu(args) -> None:
     from ..tca.line_contact import check_loadable
     from ..twin.params import check_drivetrain_file
     check_fmu_kind(args.kind)
-    if args.hertz_form != DEFAULT_HERTZ_FORM:
-        raise InputRangeError("--hertz-form", args.hertz_form,
-                              f"{DEFAULT_HERTZ_FORM}: the FMUs' C contact law "
-                              "(gc_hertz_hb.h) has no exact Hertz form yet (gearcontact "
-                              "twin --hertz-form exact has it)")
     check_positive("--torque", args.torque)
     if args.kind == "mesh" and args.curvatures not in (None, "exact"):
         raise InputRangeError("--curvatures", args.curvatures, "exact with --kind mesh "
@@ -115,7 +116,7 @@ def check_fmu(args) -> None:
         check_drivetrain_file(args.drivetrain)
     check_pair_arguments(args, kinds=(BEVEL, CYLINDRICAL))
     if args.gear_pair.kind == CYLINDRICAL:
-        check_cylindrical_fmu(curvatures=args.curvatures)
+        check_cylindrical_fmu(curvatures=args.curvatures, hertz_form=args.hertz_form)
         return
     check_loadable(args.gear_pair, args.side)
 
@@ -134,13 +135,14 @@ def run_fmu(args) -> int:
                                     drivetrain=load_drivetrain(args.drivetrain, pair),
                                     curvatures=args.curvatures or "stencil",
                                     bending=args.bending,
-                                    flanks=args.prepared_pair.flank_set())
+                                    flanks=args.prepared_pair.flank_set(),
+                                    hertz_form=args.hertz_form)
         print(final_path(args, fmu.fmu_path))
         return 0
     from ..export.fmu import export_mesh_fmu
     fmu = export_mesh_fmu(pair, args.out, pair_name=args.gear_pair.name, side=args.side,
                           phases=args.phases, torque_nm=args.torque, bending=args.bending,
-                          flanks=args.prepared_pair.flank_set())
+                          flanks=args.prepared_pair.flank_set(), hertz_form=args.hertz_form)
     for path in (fmu.fmu_path, fmu.table_path):
         print(final_path(args, path))
     return 0

@@ -38,7 +38,8 @@ __all__ = ["hertz_constants", "hertz_roms", "hertz_flags", "lut_geometry", "fit_
            "fit_flags", "fit_weight_codes", "fit_mac_plan", "expand_fit_mac_plan",
            "fit_mac_ops", "fit_mac_schedule", "orbit_members",
            "fit_isqrt_seeds", "fit_linear_safe_code",
-           "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants"]
+           "FIT_LANES", "fit_lanes_fp64", "cbrt_seed", "gap_constants", "line_constants",
+           "exact_hertz_table_constants"]
 
 
 def lut_geometry(spec: LutSpec) -> dict:
@@ -495,3 +496,28 @@ def line_constants() -> dict[str, int]:
             "FLAG_LENGTH_RANGE": LN.FLAG_LENGTH_RANGE, "MODE_ELLIPTIC": LN.MODE_ELLIPTIC,
             "MODE_LINE": LN.MODE_LINE, "LENGTH_FRAC": LN.LINE_LENGTH.frac,
             "LIFT_MAX_SHIFT": LN.LIFT_MAX_SHIFT}
+
+
+def exact_hertz_table_constants() -> dict:
+    """The twin's exact elliptic Hertz table and its grid as C99 literals
+    (gc_hertz_exact_table.h; exports with ``hertz_form="exact"``).
+
+    The table is :func:`gearcontact.twin.exact_hertz.exact_hertz_table` itself (``ROWS``
+    rows of ``ln c_a``, ``ln sqrt(p)``, ``ln K`` on the grid ``u = i STEP`` of ``ln
+    alpha``), each double as its exact hexadecimal literal, and the constants of
+    :func:`~gearcontact.twin.exact_hertz.exact_hertz_terms` formed by the same
+    expressions: the C law reads the same doubles as the twin's compiled law.
+
+    Returns
+    -------
+    dict
+        ``rows``, ``columns`` (int); ``inv_step`` (1/STEP), ``ratio_max`` (the largest
+        curvature ratio, dimensionless), ``three_over_pi``, ``three_over_2pi``: C99
+        literals; ``table``: the ``rows * columns`` literals, row-major.
+    """
+    from ..twin import exact_hertz as X
+
+    return {"rows": X.ROWS, "columns": X.COLUMNS, "inv_step": (1.0 / X.STEP).hex(),
+            "ratio_max": float(X.RATIO_MAX).hex(), "three_over_pi": (3.0 / math.pi).hex(),
+            "three_over_2pi": (1.5 / math.pi).hex(),
+            "table": [float(v).hex() for v in X.exact_hertz_table()]}

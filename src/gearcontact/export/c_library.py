@@ -12,6 +12,13 @@ checker ``gearcontact_check.c`` and a ``Makefile`` (``make`` builds
 ``libgearcontact.a``, ``libgearcontact.so`` and ``gearcontact_check``). No file holds a
 time stamp or a path: identical package versions write identical files.
 
+``hertz_form="exact"`` (``gearcontact export c --hertz-form exact``) adds the twin's
+exact Hertz law (:mod:`gearcontact.twin.exact_hertz`: its table, :func:`.c_constants.
+exact_hertz_table_constants`, and its cubic interpolation) as
+``gc_hertz_exact_table.h`` / ``gc_hertz_exact_table.c`` and the public
+``gc_hertz_exact_table_fp64``; the default export (Hamrock-Brewe) is unchanged, byte
+for byte (:data:`EXACT_FILES`).
+
 The golden sources use integer arithmetic only and constant loop counts; the fp64
 sources follow the fp64 reference formulas operation by operation, except the fit's dot
 products (four lanes of the pseudo-inverse's own words, the same bits with or without
@@ -29,15 +36,16 @@ from pathlib import Path
 
 from ..errors import ToolUnavailable
 from ..contract.stencil import STENCIL_SIDE
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, check_hertz_form
 from .c_checker import checker_cores, other_cores
 from .c_constants import (fit_constants, fit_flags, fit_isqrt_seeds, fit_mac_plan,
                           fit_mac_ops, fit_mac_schedule, fit_lanes_fp64, cbrt_seed,
-                          fit_weight_codes,
+                          fit_weight_codes, exact_hertz_table_constants,
                           gap_constants, hertz_constants, hertz_flags,
                           hertz_roms, line_constants)
 
-__all__ = ["C_FILES", "HEADERS", "GOLDEN_SOURCES", "FP64_SOURCES", "render_c_library",
-           "export_c_library"]
+__all__ = ["C_FILES", "HEADERS", "GOLDEN_SOURCES", "FP64_SOURCES", "EXACT_FILES",
+           "library_files", "render_c_library", "export_c_library"]
 
 #: Golden fixed-point sources (integer arithmetic only).
 GOLDEN_SOURCES = ("gc_gap_golden.c", "gc_fit_golden.c", "gc_hertz_golden.c", "gc_tables.c")
@@ -49,6 +57,25 @@ HEADERS = ("gearcontact.h", "gc_tables.h", "gc_arith.h", "gc_cbrt.h", "gc_hertz_
 #: Every file of an export, in write order (each rendered from ``<name>.j2``).
 C_FILES = HEADERS + GOLDEN_SOURCES + FP64_SOURCES \
     + ("gearcontact_check.c", "Makefile")
+#: The files ``hertz_form="exact"`` adds: (header, fp64 source).
+EXACT_FILES = ("gc_hertz_exact_table.h", "gc_hertz_exact_table.c")
+
+
+def library_files(hertz_form: str = DEFAULT_HERTZ_FORM) -> tuple[tuple, tuple, tuple]:
+    """``(headers, golden sources, fp64 sources)`` of the library of ``hertz_form``
+    (:data:`HEADERS`, :data:`GOLDEN_SOURCES`, :data:`FP64_SOURCES`, with the exact form
+    :data:`EXACT_FILES` after them)."""
+    if check_hertz_form(hertz_form) == DEFAULT_HERTZ_FORM:
+        return HEADERS, GOLDEN_SOURCES, FP64_SOURCES
+    return HEADERS + EXACT_FILES[:1], GOLDEN_SOURCES, FP64_SOURCES + EXACT_FILES[1:]
+
+
+def _c_files(hertz_form: str) -> tuple:
+    """Every file of an export of ``hertz_form``, in write order."""
+    headers, golden, fp64 = library_files(hertz_form)
+    return headers + golden + fp64 + C_FILES[-2:]
+
+
 #: Stages in this export (the header lists them).
 STAGES = ("stage A/B gap kernel (golden: published and lean datapaths; fp64)",
           "stage C curvature fit (golden, fp64)",
@@ -79,7 +106,13 @@ def _fit_variant(plan: dict, needed) -> dict:
     return {"needed": list(needed), "forms": forms, "parities": [list(p) for p in parities]}
 
 
-def _context() -> dict:
+def _exact_table_context() -> dict:
+    """The exact form's table and constants (:func:`.c_constants.
+    exact_hertz_table_constants`) and its flag: the bit after stage D's."""
+    return {**exact_hertz_table_constants(), "flag": 2 * max(b for _, b in hertz_flags())}
+
+
+def _context(hertz_form: str = DEFAULT_HERTZ_FORM) -> dict:
     from .. import __version__
     cores = checker_cores()
     digits = [sum(f.digits * f.count for f in fs) for c in cores for fs in (c["ins"], c["outs"])]
@@ -96,43 +129,55 @@ def _context() -> dict:
             "fit_variants": {"full": _fit_variant(plan, range(len(plan["coeffs"]))),
                              "curvatures": _fit_variant(plan, range(3, len(plan["coeffs"])))},
             "cores": cores, "other_cores": other_cores(), "max_digits": max(digits),
-            "max_values": max(values), "sources": GOLDEN_SOURCES + FP64_SOURCES}
+            "max_values": max(values), "sources": sum(library_files(hertz_form)[1:], ()),
+            "exact_table": (_exact_table_context() if hertz_form != DEFAULT_HERTZ_FORM
+                            else None)}
 
 
-def render_c_library() -> dict[str, str]:
-    """Every file of the C library: {file name: text} in :data:`C_FILES` order.
+def render_c_library(*, hertz_form: str = DEFAULT_HERTZ_FORM) -> dict[str, str]:
+    """Every file of the C library: {file name: text} in :data:`C_FILES` order (with
+    ``hertz_form="exact"`` :data:`EXACT_FILES` too, module docstring).
 
     Raises
     ------
     ToolUnavailable
         Jinja2 is not installed.
+    InputRangeError
+        ``hertz_form`` not one of :data:`~gearcontact.preview.hertz.formats.HERTZ_FORMS`.
     """
+    names = _c_files(hertz_form)
     env = _environment()
-    ctx = _context()
+    ctx = _context(hertz_form)
     folder = resources.files("gearcontact").joinpath("data/templates/c")
     return {name: env.from_string(folder.joinpath(f"{name}.j2").read_text()).render(ctx)
-            for name in C_FILES}
+            for name in names}
 
 
-def export_c_library(out_dir) -> list[Path]:
+def export_c_library(out_dir, *, hertz_form: str = DEFAULT_HERTZ_FORM) -> list[Path]:
     """Write the C library into ``out_dir`` (created if missing).
 
     Parameters
     ----------
     out_dir : str or Path
         Output directory.
+    hertz_form : str
+        ``"hamrock-brewe"`` (default) or ``"exact"``: the library adds the twin's exact
+        Hertz law (module docstring).
 
     Returns
     -------
     list of Path
-        The files written, :data:`C_FILES` order.
+        The files written, :data:`C_FILES` order (the exact form's files after the
+        headers and the fp64 sources).
 
     Raises
     ------
     ToolUnavailable
         Jinja2 is not installed.
+    InputRangeError
+        ``hertz_form`` not one of :data:`~gearcontact.preview.hertz.formats.HERTZ_FORMS`.
     """
-    texts = render_c_library()
+    texts = render_c_library(hertz_form=hertz_form)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = []

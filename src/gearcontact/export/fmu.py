@@ -9,6 +9,10 @@ system C compiler (``-std=c99 -Wall -Wextra -Werror``) against the FMI 3.0 heade
 FMPy ships, and zips ``modelDescription.xml``, ``sources/`` (with
 ``buildDescription.xml``) and ``binaries/x86_64-linux/<model>.so``. No Python inside
 the FMU; its law is :mod:`.mesh_law` (the twin's contact law at one instant).
+``hertz_form="exact"`` (``--hertz-form exact``): the fp64 law is the twin's exact Hertz
+form (:mod:`gearcontact.twin.exact_hertz`, its table and cubic in C:
+:data:`.c_library.EXACT_FILES`), the backend fp64 only (the golden backend's stage D is
+Hamrock-Brewe's; the FMU refuses it), as ``gearcontact twin --hertz-form exact``.
 Importer facts (variables, units, causality, step sizes): docs/export.md.
 """
 
@@ -26,10 +30,11 @@ from importlib import resources
 from pathlib import Path
 
 from ..errors import ToolUnavailable
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM, check_hertz_form
 from ..tca.types import ARCSEC_PER_RAD
 from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N
 from ..validation import InputRangeError
-from .c_library import FP64_SOURCES, GOLDEN_SOURCES, HEADERS, _environment, render_c_library
+from .c_library import _environment, library_files, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
 __all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "write_mesh_fmu",
@@ -168,10 +173,12 @@ def c_double(x) -> str:
 
 
 def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variables,
-                implemented, trivial, description: str, model_source: str) -> dict:
+                implemented, trivial, description: str, model_source: str,
+                hertz_form: str = DEFAULT_HERTZ_FORM) -> dict:
     """The template context every FMU shares: identity, the variable table (``(name,
     value reference, type, causality, variability, unit, description)``), the units it
-    uses, the FMI functions to stub, the C sources and the contact law's constants."""
+    uses, the FMI functions to stub, the C sources and the contact law's constants
+    (``hertz_form``: its fp64 Hertz form, module docstring)."""
     from .. import __version__
     from ..twin.contact_law import _HB_E, _S_GAP
 
@@ -182,7 +189,9 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "variables": [{"name": v[0], "vr": v[1]} for v in variables],
         "units": [(u, UNITS[u]) for u in units], "backends": BACKENDS,
         "unsupported": _unsupported(header_dir, implemented), "trivial": tuple(trivial),
-        "c_sources": [model_source, "gc_contact_law.c", *GOLDEN_SOURCES, *FP64_SOURCES],
+        "c_sources": [model_source, "gc_contact_law.c",
+                      *sum(library_files(hertz_form)[1:], ())],
+        "hertz_form": hertz_form, "exact_hertz": hertz_form != DEFAULT_HERTZ_FORM,
         "pi": c_double(math.pi), "hb_e": c_double(_HB_E), "s_gap": c_double(_S_GAP),
         "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
@@ -201,9 +210,10 @@ def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,
     ctx = fmu_context(
         model_identifier=ident, token=token, header_dir=header_dir,
         variables=MESH_VARIABLES, implemented=_MESH_IMPLEMENTED, trivial=_MESH_TRIVIAL,
-        model_source="gc_mesh_fmu.c",
+        model_source="gc_mesh_fmu.c", hertz_form=tab.hertz_form,
         description=f"Gear mesh element of {pair_name} ({side} flank): the gearcontact "
                     "twin's contact law (preview stage D on the TCA's curvatures, "
+                    f"{'exact Hertz, fp64 only, ' if tab.hertz_form != DEFAULT_HERTZ_FORM else ''}"
                     f"{'tooth bending in series' if bending else 'rigid teeth'}), table of "
                     f"{n_rows} phases x {n_pairs} pairs baked in")
     ctx.update({
@@ -248,8 +258,8 @@ def build_fmu(fmu_path: Path, ctx: dict, header_dir: Path) -> None:
     the preview's C library, compile the shared library and zip the FMU at
     ``fmu_path`` (``modelDescription.xml``, ``sources/``, ``binaries/x86_64-linux/``)."""
     env = _environment_fmu()
-    c_files = render_c_library()
-    lib = HEADERS + GOLDEN_SOURCES + FP64_SOURCES
+    c_files = render_c_library(hertz_form=ctx["hertz_form"])
+    lib = sum(library_files(ctx["hertz_form"]), ())
     ident, model_source = ctx["model_identifier"], ctx["c_sources"][0]
     with tempfile.TemporaryDirectory() as tmp:
         src = Path(tmp) / "sources"
@@ -282,7 +292,7 @@ def _compile(src_dir: Path, sources: list[str], header_dir: Path, so_path: Path)
 
 def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                     torque_nm: float = 64.5, bending: bool = False,
-                    flanks=None) -> MeshFmu:
+                    flanks=None, hertz_form: str = DEFAULT_HERTZ_FORM) -> MeshFmu:
     """Write the mesh FMU of ``pair`` into ``out_dir`` (module docstring).
 
     Parameters
@@ -307,6 +317,9 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     flanks : FlankSet or None
         ``build_flanks(pair)`` if already built (a prepared pair's,
         :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); None: built here.
+    hertz_form : str
+        The fp64 law's Hertz form, ``"hamrock-brewe"`` (default) or ``"exact"`` (module
+        docstring).
 
     Returns
     -------
@@ -316,14 +329,21 @@ def export_mesh_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 6
     ------
     ToolUnavailable
         Jinja2, FMPy's headers or a C compiler missing.
+    InputRangeError
+        ``hertz_form`` not one of the forms; with ``"exact"``, a mesh row whose
+        curvature ratio lies beyond the exact table (as the twin's build_model).
     """
     from ..twin.mesh import pair_mesh_table
+    from ..twin.model import exact_form_mesh
 
+    check_hertz_form(hertz_form)
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
-    # the twin's own mesh table (edge-contact TCA, docs/twin.md)
-    tab = mesh_law_table(pair_mesh_table(pair, side=side, torque_nm=torque_nm, phases=phases,
-                                         flanks=flanks, bending=bending)[2])
+    # the twin's own mesh table (edge-contact TCA, docs/twin.md); with the exact form
+    # its edge rows re-based on exact Hertz, as the twin's model
+    mesh = pair_mesh_table(pair, side=side, torque_nm=torque_nm, phases=phases,
+                           flanks=flanks, bending=bending)[2]
+    tab = mesh_law_table(exact_form_mesh(mesh, hertz_form), hertz_form=hertz_form)
     return write_mesh_fmu(tab, out_dir, pair_name=pair_name, side=side,
                           header_dir=header_dir)
 

@@ -33,24 +33,31 @@ from __future__ import annotations
 import numpy as np
 
 from ..validation import InputRangeError
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
 from .fmu import MeshFmu, c_double, fmi3_header_dir, write_mesh_fmu
 
 __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_context",
            "line_drivetrain_context"]
 
 
-def check_cylindrical_fmu(*, curvatures: str | None) -> None:
+def check_cylindrical_fmu(*, curvatures: str | None,
+                          hertz_form: str = DEFAULT_HERTZ_FORM) -> None:
     """Refuse what a cylindrical pair's FMUs do not build (before any work).
 
     Raises
     ------
     InputRangeError
-        A curvature source other than the line chain's stencil.
+        A curvature source other than the line chain's stencil; a Hertz form other
+        than Hamrock-Brewe (the line chain's law, as ``gearcontact twin`` has it).
     """
     if curvatures not in (None, "stencil"):
         raise InputRangeError("--curvatures", curvatures, "stencil for a cylindrical pair "
                                                           "(the line chain: stage C on the "
                                                           "stencil per step)")
+    if hertz_form != DEFAULT_HERTZ_FORM:
+        raise InputRangeError("--hertz-form", hertz_form,
+                              f"{DEFAULT_HERTZ_FORM} for a cylindrical pair (the line "
+                              "chain's law; gearcontact twin refuses it too)")
 
 
 def line_law_context(mesh, *, line_sources: bool = True) -> dict:

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..contract.qformat import STENCIL_GAP
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
 from .c_constants import fit_linear_safe_code
 from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, fmi3_header_dir, fmu_context,
                   model_token)
@@ -96,17 +97,19 @@ class DrivetrainFmu:
 
 def drivetrain_fmu_model(pair, *, side: str, phases: int, torque_nm: float,
                          drivetrain=None, curvatures: str = "stencil", bending: bool = False,
-                         flanks=None):
+                         flanks=None, hertz_form: str = DEFAULT_HERTZ_FORM):
     """The twin's model the drivetrain FMU bakes: :func:`~gearcontact.twin.model.
     model_for_pair` with rigid teeth (or tooth bending, ``bending``) and the preview's
     curvature source ``curvatures``
     (the reference backend's arrays; the golden backend's stencil samples are added by
-    :func:`export_drivetrain_fmu`); ``flanks``: the pair's, if already built."""
+    :func:`export_drivetrain_fmu`); ``flanks``: the pair's, if already built;
+    ``hertz_form``: the fp64 law's Hertz form, as ``gearcontact twin --hertz-form``."""
     from ..twin.model import model_for_pair
 
     return model_for_pair(pair, torque_nm=torque_nm, backend="reference",
                           drivetrain=drivetrain, side=side, phases=phases,
-                          curvatures=curvatures, bending=bending, flanks=flanks)
+                          curvatures=curvatures, bending=bending, flanks=flanks,
+                          hertz_form=hertz_form)
 
 
 def _constants(model) -> list[tuple[str, str]]:
@@ -204,7 +207,7 @@ def _e_rec(eps, ratio: float, dpsi: tuple[float, float]) -> list:
 def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: int = 61,
                           torque_nm: float = 64.5, drivetrain=None,
                           curvatures: str = "stencil", bending: bool = False,
-                          flanks=None) -> DrivetrainFmu:
+                          flanks=None, hertz_form: str = DEFAULT_HERTZ_FORM) -> DrivetrainFmu:
     """Write the drivetrain FMU of ``pair`` into ``out_dir`` (module docstring; a
     cylindrical pair: its twin's model :func:`~gearcontact.twin.cylindrical.
     cylindrical_model` with the line law, :mod:`.fmu_cylindrical`).
@@ -237,6 +240,10 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     flanks : FlankSet or None
         ``build_flanks(pair)`` if already built (a prepared pair's,
         :meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`); None: built here.
+    hertz_form : str
+        The fp64 law's Hertz form, as ``gearcontact twin --hertz-form``:
+        ``"hamrock-brewe"`` (default) or ``"exact"`` (the twin's exact Hertz, its table
+        and cubic in C; the FMU's backend fp64 only; bevel and hypoid pairs).
 
     Returns
     -------
@@ -248,7 +255,9 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         Jinja2, FMPy's headers or a C compiler missing.
     InputRangeError
         A curvature source other than ``stencil`` on a cylindrical pair
-        (:func:`.fmu_cylindrical.check_cylindrical_fmu`).
+        (:func:`.fmu_cylindrical.check_cylindrical_fmu`); a Hertz form the twin refuses
+        (the exact form on a cylindrical pair, a mesh row beyond the exact table:
+        :func:`gearcontact.twin.model.build_model`).
     """
     from .c_library import _environment
 
@@ -264,7 +273,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
 
     line = getattr(pair, "kind", None) == CYLINDRICAL
     if line:        # the twin's line chain (.fmu_cylindrical), before the TCA
-        check_cylindrical_fmu(curvatures=curvatures)
+        check_cylindrical_fmu(curvatures=curvatures, hertz_form=hertz_form)
         model = cylindrical_model(pair, torque_nm=torque_nm, drivetrain=drivetrain,
                                   side=side, phases=phases, bending=bending)
         curvatures = L.LINE_SOURCE
@@ -274,7 +283,8 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
                                   f"one of {list(CURVATURE_SOURCES)}")
         model = drivetrain_fmu_model(pair, side=side, phases=phases, torque_nm=torque_nm,
                                      drivetrain=drivetrain, curvatures=curvatures,
-                                     bending=bending, flanks=flanks)
+                                     bending=bending, flanks=flanks,
+                                     hertz_form=hertz_form)
     a, m = model.arrays, model.mesh
     stencil = curvatures == "stencil"
     # exact A-, B- always (the static start's bracket); the stencil source as the golden
@@ -301,10 +311,11 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     ctx = fmu_context(
         model_identifier=ident, token=model_token(baked), header_dir=header_dir,
         variables=DRIVETRAIN_VARIABLES, implemented=_IMPLEMENTED, trivial=_TRIVIAL,
-        model_source="gc_drivetrain_fmu.c",
+        model_source="gc_drivetrain_fmu.c", hertz_form=hertz_form,
         description=f"Drivetrain twin of {pair_name} ({side} flank loaded): motor, input "
                     "shaft, pinion, mesh (the gearcontact preview's contact law on the "
                     f"{'7 x 7 gap stencil' if stencil else 'TCA'}'s curvatures, both flanks"
+                    f"{'; exact Hertz, fp64 only' if hertz_form != DEFAULT_HERTZ_FORM else ''}"
                     f"{'; tooth bending in series' if bending else ''}), "
                     "gear, output shaft, load; RK4 at step_us, PI speed control per "
                     "[drivetrain]")

@@ -37,12 +37,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..tca.types import ARCSEC_PER_RAD
+from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
 from ..preview.fit.golden import element_constants
 from ..preview.fit.pinv import N_COEFFS, N_TAPS
 from ..preview.hertz.golden import encode_e_prime
 from ..preview.hertz.golden_vec import golden_constants
 from ..preview.hertz.reference import ENVELOPE
 from ..twin import layout as L
+from ..validation import InputRangeError
+from ..twin.exact_hertz import exact_hertz_table
 from ..twin.contact_law import W_EVAL_MIN_N, _W_EVAL_MAX_N, _kappa, _pair_load
 
 __all__ = ["MeshLawTable", "MeshOutputs", "mesh_law_table", "mesh_outputs", "BACKENDS", "law_of",
@@ -75,6 +78,10 @@ class MeshLawTable:
         ``m`` of the TCA (+1 / -1).
     bending_mm_per_n : ndarray (P, K) or None
         Tooth-bending compliance of each pair, mm/N (None: rigid teeth).
+    hertz_form : str
+        The fp64 law's Hertz form (``"exact"``: the twin's exact Hertz,
+        :mod:`gearcontact.twin.exact_hertz`; the table's rows are then the twin's exact
+        form's, :func:`gearcontact.twin.model.exact_form_mesh`).
     """
 
     eps_rad: np.ndarray
@@ -90,12 +97,14 @@ class MeshLawTable:
     e_prime_mpa: float
     motion_sign: int
     bending_mm_per_n: np.ndarray | None = None
+    hertz_form: str = DEFAULT_HERTZ_FORM
 
     def to_npz(self, path) -> None:
         """Write the table as ``.npz`` (every attribute under its name; no
-        ``bending_mm_per_n`` for rigid teeth)."""
+        ``bending_mm_per_n`` for rigid teeth, no ``hertz_form`` for the default form)."""
         np.savez(path, **{k: np.asarray(v) for k, v in self.__dict__.items()
-                          if v is not None})
+                          if v is not None
+                          and not (k == "hertz_form" and v == DEFAULT_HERTZ_FORM)})
 
     @classmethod
     def from_npz(cls, path) -> "MeshLawTable":
@@ -105,12 +114,16 @@ class MeshLawTable:
         for k in ("step_rad", "pitch_rad", "ratio", "reference_lever_mm", "e_prime_mpa"):
             kw[k] = float(kw[k])
         kw["motion_sign"] = int(kw["motion_sign"])
+        if "hertz_form" in kw:
+            kw["hertz_form"] = str(kw["hertz_form"])
         return cls(**kw)
 
 
-def mesh_law_table(mesh) -> MeshLawTable:
+def mesh_law_table(mesh, *, hertz_form: str = DEFAULT_HERTZ_FORM) -> MeshLawTable:
     """The FMU's table of a :class:`~gearcontact.twin.mesh.MeshTable` (loaded flank);
-    its bending compliance if any pair has one (else rigid teeth)."""
+    its bending compliance if any pair has one (else rigid teeth); ``hertz_form`` the
+    fp64 law's (``mesh`` already the form's, :func:`gearcontact.twin.model.
+    exact_form_mesh`)."""
     cb = mesh.bending_mm_per_n
     return MeshLawTable(
         eps_rad=np.asarray(mesh.eps_rad, float), lever_mm=np.asarray(mesh.lever_mm, float),
@@ -122,7 +135,7 @@ def mesh_law_table(mesh) -> MeshLawTable:
         reference_lever_mm=float(mesh.reference_lever_mm),
         e_prime_mpa=float(mesh.e_prime_mpa), motion_sign=int(mesh.motion_sign),
         bending_mm_per_n=None if cb is None or not np.any(np.asarray(cb) > 0.0)
-        else np.asarray(cb, float))
+        else np.asarray(cb, float), hertz_form=hertz_form)
 
 
 @dataclass(frozen=True)
@@ -149,6 +162,9 @@ class _Law:
         self.prm[L.P_STAGEC] = L.CURVATURE_SOURCES["exact"]
         self.prm[L.P_CLO], self.prm[L.P_CHI] = ENVELOPE["curvature_per_mm"]
         self.prm[L.P_AHI] = ENVELOPE["alpha"][1]
+        if tab.hertz_form != DEFAULT_HERTZ_FORM:    # the twin's exact form (model._prm)
+            self.prm[L.P_HFORM] = L.HERTZ_FORM_CODES[tab.hertz_form]
+            self.prm = np.concatenate([self.prm, exact_hertz_table()])
         self.cv = np.stack([tab.A_minus_per_mm, tab.B_minus_per_mm], axis=-1)[None].copy()
         self.pow_lut, self.cbrt_lut, self.cst = golden_constants()
         fit_w, fit_cst = element_constants()
@@ -183,6 +199,10 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     mesh_damping_n_s_per_mm : float
         Mesh damping ``c_m`` on the line of action, N·s/mm.
     """
+    if tab.hertz_form != DEFAULT_HERTZ_FORM and backend != "fp64":
+        raise InputRangeError("backend", backend, f"fp64 with the {tab.hertz_form} Hertz "
+                                                  "form (the golden stage D is "
+                                                  "Hamrock-Brewe's)")
     law = law_of(tab, _Law)
     code = BACKENDS[backend]
     i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,

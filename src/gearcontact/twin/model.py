@@ -35,7 +35,8 @@ from .line_law import line_law_constants
 from .mesh import MeshTable
 from .params import DrivetrainParams
 
-__all__ = ["TwinModel", "build_model", "model_for_pair", "BACKENDS", "CURVATURE_SOURCES"]
+__all__ = ["TwinModel", "build_model", "model_for_pair", "exact_form_mesh", "BACKENDS",
+           "CURVATURE_SOURCES"]
 
 BACKENDS = tuple(K.BACKEND_CODES)
 #: Curvature sources of the preview (:class:`TwinModel` ``curvatures``).
@@ -196,6 +197,16 @@ def _exact_equivalent(mesh: MeshTable | None) -> MeshTable | None:
     sten = mesh.stencil_gaps_mm
     return replace(mesh, A_minus_per_mm=a * factor, B_minus_per_mm=b * factor,
                    stencil_gaps_mm=None if sten is None else sten * factor[..., None])
+
+
+def exact_form_mesh(mesh: MeshTable, hertz_form: str) -> MeshTable:
+    """The mesh table the fp64 law of ``hertz_form`` runs on, as :func:`build_model`
+    makes it (the reference backend, the TCA's curvatures): ``mesh`` itself for the
+    default form; for ``"exact"`` its LCP-calibrated edge rows re-based on exact Hertz
+    (:func:`_exact_equivalent`), after :func:`build_model`'s refusals (a row beyond the
+    exact table's curvature ratio: InputRangeError)."""
+    _check_hertz_form(hertz_form, "reference", "exact", (mesh,))
+    return mesh if hertz_form == DEFAULT_HERTZ_FORM else _exact_equivalent(mesh)
 
 
 def _check_hertz_form(hertz_form: str, backend: str, curvatures: str, meshes) -> None:
