@@ -15,6 +15,13 @@ flank, the measured and stated values and the likely key
 (:attr:`SettingsCheck.warnings`), and the work goes on. Where the warnings go is the
 caller's: the library emits them as :class:`SettingsWarning` (:meth:`SettingsCheck.warn`),
 the command line prints them on stderr, ``analyze`` repeats them in summary.md.
+
+After the comparison with the blank the check measures each pinion flank's ease-off
+against the typed gear's conjugate pinion (:func:`~.easeoff_shape.check_easeoff_shape`,
+a different check: not against the blank); a flank hollow beyond its bound adds a
+warning line (edge contact expected), emitted as
+:class:`~.easeoff_shape.HollowEaseOffWarning` (docs/machine_settings.md sec. 2, "The
+hollow ease-off warning").
 """
 
 from __future__ import annotations
@@ -24,6 +31,7 @@ import warnings
 from dataclasses import dataclass, field
 
 from .blank_check import BlankCheck, check_pair_blank
+from .easeoff_shape import EaseOffShapeCheck, HollowEaseOffWarning, check_easeoff_shape
 from .edge_check import check_edge_rounds
 from .flank_angles import measure_pair_mean_points
 
@@ -45,15 +53,20 @@ class SettingsCheck:
         Every flank's comparison with the blank (:func:`~.blank_check.check_pair_blank`).
     warnings : tuple of str
         One line per flank outside its tolerance, naming the likely key
-        (:meth:`~.blank_check.BlankCheck.warnings`, each ``"warning: ..."``); empty when
-        every flank agrees.
+        (:meth:`~.blank_check.BlankCheck.warnings`, each ``"warning: ..."``), then one
+        per hollow pinion flank (:meth:`~.easeoff_shape.EaseOffShapeCheck.warnings`);
+        empty when every flank agrees and none is hollow.
     seconds : float
         Wall time of the check, s (a timing: run.json only; not compared).
+    easeoff : EaseOffShapeCheck or None
+        The pinion flanks' ease-off shapes against the typed gear's conjugate
+        (:func:`~.easeoff_shape.check_easeoff_shape`; None without pinion settings).
     """
 
     blank: BlankCheck
     warnings: tuple[str, ...]
     seconds: float = field(default=0.0, compare=False)
+    easeoff: EaseOffShapeCheck | None = None
 
     @property
     def agrees(self) -> bool:
@@ -61,11 +74,14 @@ class SettingsCheck:
         return self.blank.agrees
 
     def warn(self, *, stacklevel: int = 2) -> None:
-        """Emit each of :attr:`warnings` as a :class:`SettingsWarning` (without its
-        ``"warning: "`` prefix); ``stacklevel`` as :func:`warnings.warn`'s, counted
-        from the caller of this method."""
+        """Emit each of :attr:`warnings` as a :class:`SettingsWarning` (a hollow pinion
+        flank's as a :class:`~.easeoff_shape.HollowEaseOffWarning`), without its
+        ``"warning: "`` prefix; ``stacklevel`` as :func:`warnings.warn`'s, counted from
+        the caller of this method."""
+        hollow = () if self.easeoff is None else self.easeoff.warnings()
         for line in self.warnings:
-            warnings.warn(line.removeprefix("warning: "), SettingsWarning,
+            warnings.warn(line.removeprefix("warning: "),
+                          HollowEaseOffWarning if line in hollow else SettingsWarning,
                           stacklevel=stacklevel + 1)
 
 
@@ -86,7 +102,9 @@ def check_settings(pair, *, measured=None) -> SettingsCheck | None:
     InputRangeError
         A gross mismatch, naming the likely key
         (:meth:`~.blank_check.BlankCheck.raise_if_gross`); a blade edge round that ends
-        above its flank's mean point (:func:`~.edge_check.check_edge_rounds`).
+        above its flank's mean point (:func:`~.edge_check.check_edge_rounds`). The
+        ease-off shape is measured after both (a flank it cannot measure is named in
+        its ``missing``, never raised).
     """
     if not getattr(pair, "machine", None):
         return None
@@ -95,7 +113,10 @@ def check_settings(pair, *, measured=None) -> SettingsCheck | None:
     got = check_pair_blank(pair, measured=measured)
     got.raise_if_gross()
     check_edge_rounds(pair.machine, measured)
-    return SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0)
+    shape = check_easeoff_shape(pair)
+    hollow = () if shape is None else shape.warnings()
+    return SettingsCheck(got, (*got.warnings(), *hollow), time.perf_counter() - t0,
+                         easeoff=shape)
 
 
 def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
