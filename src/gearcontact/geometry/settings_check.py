@@ -18,9 +18,9 @@ the command line prints them on stderr, ``analyze`` repeats them in summary.md.
 
 After the comparison with the blank the check measures each pinion flank's ease-off
 against the typed gear's conjugate pinion (:func:`~.easeoff_shape.check_easeoff_shape`,
-a different check: not against the blank); a flank hollow beyond its bound adds a
-warning line (edge contact expected), emitted as
-:class:`~.easeoff_shape.HollowEaseOffWarning` (docs/machine_settings.md sec. 2, "The
+a different check: not against the blank); a flank hollow beyond its bound is a warning
+line of its own (:attr:`SettingsCheck.hollow_warnings`: edge contact expected), emitted
+as :class:`~.easeoff_shape.HollowEaseOffWarning` (docs/machine_settings.md sec. 2, "The
 hollow ease-off warning").
 """
 
@@ -31,7 +31,7 @@ import warnings
 from dataclasses import dataclass, field
 
 from .blank_check import BlankCheck, check_pair_blank
-from .easeoff_shape import EaseOffShapeCheck, HollowEaseOffWarning, check_easeoff_shape
+from .easeoff_shape import EaseOffShapeCheck, check_easeoff_shape
 from .edge_check import check_edge_rounds
 from .flank_angles import measure_pair_mean_points
 
@@ -53,9 +53,9 @@ class SettingsCheck:
         Every flank's comparison with the blank (:func:`~.blank_check.check_pair_blank`).
     warnings : tuple of str
         One line per flank outside its tolerance, naming the likely key
-        (:meth:`~.blank_check.BlankCheck.warnings`, each ``"warning: ..."``), then one
-        per hollow pinion flank (:meth:`~.easeoff_shape.EaseOffShapeCheck.warnings`);
-        empty when every flank agrees and none is hollow.
+        (:meth:`~.blank_check.BlankCheck.warnings`, each ``"warning: ..."``); empty when
+        every flank agrees (a hollow pinion flank's lines are
+        :attr:`hollow_warnings`).
     seconds : float
         Wall time of the check, s (a timing: run.json only; not compared).
     easeoff : EaseOffShapeCheck or None
@@ -73,16 +73,22 @@ class SettingsCheck:
         """Every flank agrees with the blank within its tolerance."""
         return self.blank.agrees
 
+    @property
+    def hollow_warnings(self) -> tuple[str, ...]:
+        """One line per pinion flank hollow beyond its bound
+        (:meth:`~.easeoff_shape.EaseOffShapeCheck.warnings`, each ``"warning: ..."``)."""
+        return () if self.easeoff is None else self.easeoff.warnings()
+
     def warn(self, *, stacklevel: int = 2) -> None:
-        """Emit each of :attr:`warnings` as a :class:`SettingsWarning` (a hollow pinion
-        flank's as a :class:`~.easeoff_shape.HollowEaseOffWarning`), without its
-        ``"warning: "`` prefix; ``stacklevel`` as :func:`warnings.warn`'s, counted from
-        the caller of this method."""
-        hollow = () if self.easeoff is None else self.easeoff.warnings()
+        """Emit each of :attr:`warnings` as a :class:`SettingsWarning`, then each of
+        :attr:`hollow_warnings` as a :class:`~.easeoff_shape.HollowEaseOffWarning`
+        (without the ``"warning: "`` prefix); ``stacklevel`` as :func:`warnings.warn`'s,
+        counted from the caller of this method."""
         for line in self.warnings:
-            warnings.warn(line.removeprefix("warning: "),
-                          HollowEaseOffWarning if line in hollow else SettingsWarning,
+            warnings.warn(line.removeprefix("warning: "), SettingsWarning,
                           stacklevel=stacklevel + 1)
+        if self.easeoff is not None:
+            self.easeoff.warn(stacklevel=stacklevel + 1)
 
 
 def check_settings(pair, *, measured=None) -> SettingsCheck | None:
@@ -114,9 +120,7 @@ def check_settings(pair, *, measured=None) -> SettingsCheck | None:
     got.raise_if_gross()
     check_edge_rounds(pair.machine, measured)
     shape = check_easeoff_shape(pair)
-    hollow = () if shape is None else shape.warnings()
-    return SettingsCheck(got, (*got.warnings(), *hollow), time.perf_counter() - t0,
-                         easeoff=shape)
+    return SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0, easeoff=shape)
 
 
 def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:

@@ -87,14 +87,14 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
 
 def checked_blank(pair, *, measured=None) -> SettingsCheck | None:
     """:func:`~gearcontact.geometry.settings_check.check_settings` of ``pair`` with its
-    warnings printed on stderr, one line each, as the command line shows them
-    (docs/machine_settings.md sec. 2): None for a pair without machine settings; a gross
-    mismatch raises :class:`~gearcontact.validation.InputRangeError` naming the likely
+    warnings printed on stderr, one line each, as the command line shows them, a hollow
+    pinion flank's after them (docs/machine_settings.md sec. 2): None for a pair without
+    machine settings; a gross mismatch raises :class:`~gearcontact.validation.InputRangeError` naming the likely
     key (exit 2). ``measured``: the pair's
     :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points` when already
     measured (``design`` prints them): the check then measures no flank again."""
     got = check_settings(pair, measured=measured)
-    for line in () if got is None else got.warnings:
+    for line in () if got is None else (*got.warnings, *got.hollow_warnings):
         print(line, file=sys.stderr)
     return got
 
@@ -152,9 +152,9 @@ def easeoff_shape_text(check: EaseOffShapeCheck) -> str:
 
 def easeoff_shape_json(check: EaseOffShapeCheck) -> dict:
     """``{"flanks": {side: {"C_p_um", "C_l_um", "bias_um", "fit_rms_um", "bound_um",
-    "hollowness", "flagged"}}, "missing": {side: reason}}``."""
+    "hollowness", "flagged"}}, "missing": {side: reason}, "warnings": [line]}``."""
     return {"flanks": {s.side: {"C_p_um": s.C_p_um, "C_l_um": s.C_l_um, "bias_um": s.bias_um,
                                 "fit_rms_um": s.fit_rms_um, "bound_um": s.bound_um,
                                 "hollowness": s.hollowness, "flagged": s.flagged}
                        for s in check.flanks},
-            "missing": dict(check.missing)}
+            "missing": dict(check.missing), "warnings": list(check.warnings())}

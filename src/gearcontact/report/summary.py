@@ -231,6 +231,14 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
                 "(docs/machine_settings.md sec. 2):", ""]
         out += [f"- {line.removeprefix('warning: ')}" for line in warned]
         out += [""]
+    hollow = getattr(getattr(result, "settings_check", None), "hollow_warnings", ())
+    if hollow:
+        # a different check: the pinion's ease-off against the typed gear's conjugate
+        out += ["**Pinion ease-off: hollow.** A pinion flank cut from the pair's "
+                "[machine.*] tables is hollow against the typed gear's conjugate pinion "
+                "(docs/machine_settings.md sec. 2, \"The hollow ease-off warning\"):", ""]
+        out += [f"- {line.removeprefix('warning: ')}" for line in hollow]
+        out += [""]
     out += ["## Blank (ISO 23509 Method 1)", ""]
     out.append(md_table(["quantity", "ours", "published"], [
         ["pinion pitch angle (deg)", blank["pitch_angles_deg"][0], pub.get("pitch_angle_pinion_deg")],
