@@ -121,21 +121,25 @@ def test_the_f2_example_is_crowned_and_not_warned(f2_machine_pair):
         assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and s.hollowness == 0.0 and not s.flagged
 
 
-@pytest.mark.parametrize("name", ["iso23509_f3", "hypoid_11x41_rear_axle"])
-def test_standard_settings_are_crowned_and_not_warned(name):
-    shape = _no_hollow_warning(standard_machine_pair(load_pair(ROOT / "examples"
-                                                               / f"{name}.toml")))
+@pytest.mark.parametrize("name, gen", [("iso23509_f3", "formate"),
+                                       ("hypoid_11x41_rear_axle", "formate"),
+                                       ("iso23509_f3", "generated")])
+def test_standard_settings_are_crowned_and_not_warned(name, gen):
+    # a generated gear generates its conjugate as a sheet continued beyond the face
+    shape = _no_hollow_warning(standard_machine_pair(
+        load_pair(ROOT / "examples" / f"{name}.toml"), gear_generation=gen))
+    assert len(shape.flanks) == 2
     for s in shape.flanks:
         assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and not s.flagged
 
 
-def test_a_generated_gear_is_named_not_checked():
-    pair = standard_machine_pair(load_pair(ROOT / "examples" / "iso23509_f3.toml"),
-                                 gear_generation="generated")
-    got = check_easeoff_shape(pair)
+def test_a_relieved_gear_is_named_not_checked():
+    got = check_easeoff_shape(load_pair(ROOT / "tests" / "data" / "toprem"
+                                        / "iso23509_f2_gear_flankrem.toml"))
     assert got.flanks == () and got.warnings() == ()
     assert set(got.missing) == {"drive", "coast"}
-    assert all("not checked: the gear flank is generated" in w for w in got.missing.values())
+    assert all("not checked: the gear flank is cut by a relieved blade" in w
+               for w in got.missing.values())
 
 
 def _with_coast_2c(pair, two_c):
