@@ -207,7 +207,7 @@ def check(args) -> None:
     # typed settings against the blank tables, on the flanks measured at the blank's mean
     # points once (the table below the blank prints the same measurements)
     args.mean_points = measure_pair_mean_points(pair) if pair.machine else None
-    args.blank_check = checked_blank(pair, measured=args.mean_points)
+    args.blank_check = checked_blank(pair, measured=args.mean_points, easeoff_generated=True)
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces

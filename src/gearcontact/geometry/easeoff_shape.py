@@ -12,8 +12,9 @@ conjugate's active box, with the pinion turned about its axis so that it touches
 conjugate at the box centre (its angular position is a mounting choice, as in
 :func:`~.flank.build_machine_flanks`: a turn ``dpsi`` moves the flank by
 ``lever dpsi`` along its normal, :func:`~.member_envelope.angle_lever`, which is not
-flat and would otherwise read as crowning, up to 0.4 um per mrad). A least-squares quadratic in the sheet's ``u`` (height) and
-``v`` (axial) coordinates about the box centre,
+flat and would otherwise read as crowning, up to 0.4 um per mrad). A least-squares
+quadratic in the sheet's ``u`` (height) and ``v`` (axial) coordinates about the box
+centre,
 
     d(x, y) = c0 + c1 x + c2 y + k_uu x^2 / 2 + k_uv x y + k_vv y^2 / 2,
 
@@ -24,16 +25,17 @@ positive (:class:`EaseOffShape`):
     bias = -k_uv (h/2) (L/2)  (twist: the relief at the heel-tip corner),
 
 ``h``, ``L`` the box's extents. A real pinion is crowned (its ease-off grows towards the
-edges, Litvin & Fuentes 2004, sec. 9.3); a flank hollow by more than
-``HOLLOW_BOUND_UM`` in profile or lengthwise touches the gear at the edges of its active
-box first (edge contact), whatever setting made it so: :class:`HollowEaseOffWarning`.
+edges: the pinion is mismatched to localize the bearing, Litvin & Fuentes 2004, ch. 21);
+a flank hollow by more than ``HOLLOW_BOUND_UM`` in profile or lengthwise touches the
+gear at the edges of its active box first (edge contact), whatever setting made it so:
+:class:`HollowEaseOffWarning`.
 This is not a check of the modified roll's sign (a 2C of either sign may leave a
 standard pinion crowned; docs, "The pinion's modified roll").
 
 References
 ----------
-F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 9
-(localized bearing contact: a mismatched, crowned pinion), ch. 21.
+F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch. 21
+(formate hypoid gears: the mismatched pinion, local synthesis).
 """
 
 from __future__ import annotations
@@ -231,7 +233,7 @@ def easeoff_shape(pinion, conjugate, blank, *, side: str,
                            bound_um=bound_um)
 
 
-def check_easeoff_shape(pair) -> EaseOffShapeCheck | None:
+def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | None:
     """Each pinion flank of ``pair`` cut from machine settings against the conjugate of
     the typed gear flank of its side (module docstring): None for a pair without both
     members' settings. A left-hand pair is measured on its right-hand twin (the
@@ -241,7 +243,10 @@ def check_easeoff_shape(pair) -> EaseOffShapeCheck | None:
     by a relieved blade (its conjugate would be one per blade segment), or where the
     conjugate or the pinion's envelope does not reach the box. A generated gear flank
     generates its conjugate as a sheet continued beyond the face
-    (:func:`~.gear_generation.generating_sheet` on :data:`GENERATOR_GRID`).
+    (:func:`~.gear_generation.generating_sheet` on :data:`GENERATOR_GRID`); with
+    ``generated=False`` it is named not checked instead (that sheet costs about three
+    times a formate gear's whole check: not run when a pair is loaded,
+    :func:`~.settings_check.check_settings`).
     """
     setups = {(s.member, s.side): s for s in getattr(pair, "machine", ()) or ()}
     if not all((m, s) in setups for m in ("gear", "pinion") for s in SIDES):
@@ -256,6 +261,11 @@ def check_easeoff_shape(pair) -> EaseOffShapeCheck | None:
         if len(blade_segments(gear.blade)) > 1:
             missing[side] = ("not checked: the gear flank is cut by a relieved blade (its "
                              "conjugate pinion would be one per blade segment)")
+            continue
+        if not (generated or gear.settings.formate):
+            missing[side] = ("not checked when the pair is loaded: the gear flank is "
+                             "generated (its conjugate needs the gear's generating sheet; "
+                             "`gearcontact design --pair FILE` measures it)")
             continue
         try:
             conj, _ = conjugate_pinion_flank(

@@ -85,15 +85,19 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def checked_blank(pair, *, measured=None) -> SettingsCheck | None:
+def checked_blank(pair, *, measured=None, easeoff_generated: bool = False
+                  ) -> SettingsCheck | None:
     """:func:`~gearcontact.geometry.settings_check.check_settings` of ``pair`` with its
     warnings printed on stderr, one line each, as the command line shows them, a hollow
     pinion flank's after them (docs/machine_settings.md sec. 2): None for a pair without
-    machine settings; a gross mismatch raises :class:`~gearcontact.validation.InputRangeError` naming the likely
-    key (exit 2). ``measured``: the pair's
+    machine settings; a gross mismatch raises
+    :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2).
+    ``measured``: the pair's
     :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points` when already
-    measured (``design`` prints them): the check then measures no flank again."""
-    got = check_settings(pair, measured=measured)
+    measured (``design`` prints them): the check then measures no flank again.
+    ``easeoff_generated``: as :func:`~gearcontact.geometry.settings_check.check_settings`'s
+    (``design`` measures a generated gear's pinion ease-off too)."""
+    got = check_settings(pair, measured=measured, easeoff_generated=easeoff_generated)
     for line in () if got is None else (*got.warnings, *got.hollow_warnings):
         print(line, file=sys.stderr)
     return got
