@@ -52,6 +52,7 @@ from .flank import right_hand_twin
 from .formate import SIDES
 from .gear_generation import SheetGenerator, generating_sheet
 from .kinked import machine_flank
+from .machine import MachineSetup
 from .member_envelope import angle_lever
 from .setting_fit import FitProblem, flank_deviation_um
 
@@ -172,7 +173,8 @@ def _message(s: EaseOffShape) -> str:
             f"against the conjugate of the typed gear's {s.side} flank: crowning "
             f"{s.C_p_um:+.1f} um in profile, {s.C_l_um:+.1f} um lengthwise at the edges of "
             f"its active box (relief positive; {' and '.join(hollow)} below -"
-            f"{s.bound_um:g} um): its TCA will touch at the flank's edges (edge contact). "
+            f"{s.bound_um:g} um): edge contact expected, the pinion touching the gear first "
+            "at the edges of its flank. "
             f"Crown it: {'; '.join(change[h] for h in hollow)} "
             "(docs/machine_settings.md sec. 2, \"The hollow ease-off warning\")")
 
@@ -219,7 +221,7 @@ def easeoff_shape(pinion, conjugate, blank, *, side: str,
         The set-up's envelope does not reach a node of the grid.
     """
     box = conjugate.boundary
-    if hasattr(pinion, "settings"):
+    if isinstance(pinion, MachineSetup):
         us = np.linspace(box.u_root, box.u_tip, FIT_GRID[0])
         vs = np.linspace(box.v_toe, box.v_heel, FIT_GRID[1])
         prob = FitProblem(pinion, blank, conjugate, (), us, vs)
