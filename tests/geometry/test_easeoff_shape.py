@@ -135,6 +135,22 @@ def test_standard_settings_are_crowned_and_not_warned(name, gen):
         assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and not s.flagged
 
 
+def test_the_published_print_pinion_is_crowned():
+    # the 10 x 41 print's own pinion tables against its generated gear (a pinion made
+    # for another gear, tests/geometry/summary_sheets: not mates, yet a production
+    # pinion, crowned): measured +26.5 / +60.0 um (drive) and, over the part of the box
+    # its coast envelope reaches (not the conjugate's root corner), +85.9 / +72.0 um
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")          # the print's own MateWarning et al.
+        pair = load_pair(ROOT / "tests" / "geometry" / "summary_sheets"
+                         / "hypoid_10x41_no16_pair.toml")
+    got = {s.side: s for s in check_easeoff_shape(pair).flanks}
+    assert set(got) == {"drive", "coast"}
+    assert not got["drive"].trimmed and got["coast"].trimmed
+    for s in got.values():
+        assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and not s.flagged
+
+
 def test_a_generated_gear_is_named_not_checked_when_a_pair_is_loaded():
     pair = standard_machine_pair(load_pair(ROOT / "examples" / "iso23509_f3.toml"),
                                  gear_generation="generated")

@@ -40,6 +40,7 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -51,6 +52,7 @@ from .conjugate import MeshingError, UndercutError, conjugate_pinion_flank
 from .flank import right_hand_twin
 from .formate import SIDES
 from .gear_generation import SheetGenerator, generating_sheet
+from .generated import generated_pinion_box
 from .kinked import machine_flank
 from .machine import MachineSetup
 from .member_envelope import angle_lever
@@ -106,6 +108,9 @@ class EaseOffShape:
         The box's extents ``h`` (profile, sheet ``u``) and ``L`` (axial, sheet ``v``), mm.
     bound_um : float
         The bound B the flank is compared with, um.
+    trimmed : bool
+        The box is the part of the conjugate's active box that the pinion's own active
+        box covers (its envelope does not reach the whole of the conjugate's).
     """
 
     side: str
@@ -116,6 +121,7 @@ class EaseOffShape:
     height_mm: float
     length_mm: float
     bound_um: float = HOLLOW_BOUND_UM
+    trimmed: bool = False
 
     @property
     def hollowness(self) -> float:
@@ -198,10 +204,11 @@ def quadratic_shape(u_mm: np.ndarray, v_mm: np.ndarray, deviation_um: np.ndarray
 
 
 def easeoff_shape(pinion, conjugate, blank, *, side: str,
-                  bound_um: float = HOLLOW_BOUND_UM) -> EaseOffShape:
+                  bound_um: float = HOLLOW_BOUND_UM, box=None) -> EaseOffShape:
     """The :class:`EaseOffShape` of ``pinion`` against ``conjugate`` (right-hand frame)
-    on a :data:`FIT_GRID` grid over ``conjugate``'s box, turned about the pinion axis
-    to touch it at the box centre (module docstring).
+    on a :data:`FIT_GRID` grid over ``conjugate``'s box (or ``box``, a
+    :class:`~.formate.FlankBoundary` inside it: then ``trimmed``), turned about the
+    pinion axis to touch it at the box centre (module docstring).
 
     Parameters
     ----------
@@ -220,7 +227,8 @@ def easeoff_shape(pinion, conjugate, blank, *, side: str,
     UndercutError
         The set-up's envelope does not reach a node of the grid.
     """
-    box = conjugate.boundary
+    trimmed = box is not None
+    box = conjugate.boundary if box is None else box
     if isinstance(pinion, MachineSetup):
         us = np.linspace(box.u_root, box.u_tip, FIT_GRID[0])
         vs = np.linspace(box.v_toe, box.v_heel, FIT_GRID[1])
@@ -231,8 +239,9 @@ def easeoff_shape(pinion, conjugate, blank, *, side: str,
     t = conjugate.evaluate(u, v, second=False)
     lever = angle_lever("pinion", t.r, t.n)[1]
     i, j = FIT_GRID[0] // 2, FIT_GRID[1] // 2          # the box centre: both counts odd
-    return quadratic_shape(u, v, d - d[i, j] / lever[i, j] * lever, side=side,
-                           bound_um=bound_um)
+    return dataclasses.replace(
+        quadratic_shape(u, v, d - d[i, j] / lever[i, j] * lever, side=side,
+                        bound_um=bound_um), trimmed=trimmed)
 
 
 def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | None:
@@ -241,10 +250,12 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
     members' settings. A left-hand pair is measured on its right-hand twin (the
     crowning is the same). Nothing is warned here (:meth:`EaseOffShapeCheck.warn`).
 
-    A flank is not checked, with the reason in ``missing``, where the gear flank is cut
-    by a relieved blade (its conjugate would be one per blade segment), or where the
-    conjugate or the pinion's envelope does not reach the box. A generated gear flank
-    generates its conjugate as a sheet continued beyond the face
+    Where the pinion's envelope does not reach the whole of the conjugate's active box,
+    the part its own active box covers (:func:`~.generated.generated_pinion_box`) is
+    measured (``trimmed``). A flank is not checked, with the reason in ``missing``, where
+    the gear flank is cut by a relieved blade (its conjugate would be one per blade
+    segment), or where the conjugate or the pinion's envelope does not reach even that.
+    A generated gear flank generates its conjugate as a sheet continued beyond the face
     (:func:`~.gear_generation.generating_sheet` on :data:`GENERATOR_GRID`); with
     ``generated=False`` it is named not checked instead (that sheet costs about three
     times a formate gear's whole check: not run when a pair is loaded,
@@ -274,11 +285,25 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
                 _generator(gear, twin), blank=twin.blank, kinematics=kin,
                 pinion_face_width_mm=twin.pinion_face_width_mm,
                 n_u=CONJUGATE_GRID[0], n_v=CONJUGATE_GRID[1])
-            shapes.append(easeoff_shape(setups["pinion", side], conj, twin.blank, side=side))
+            shapes.append(_measured(setups["pinion", side], conj, twin))
         except (UndercutError, MeshingError) as err:
             missing[side] = ("not checked: the conjugate pinion or the pinion's envelope "
                              f"does not reach the conjugate's box ({err})")
     return EaseOffShapeCheck(tuple(shapes), missing, time.perf_counter() - t0)
+
+
+def _measured(setup, conj, pair) -> EaseOffShape:
+    """:func:`easeoff_shape` of the pinion ``setup`` over ``conj``'s box, or over the part
+    the pinion's own active box covers where its envelope does not reach the whole."""
+    try:
+        return easeoff_shape(setup, conj, pair.blank, side=setup.side)
+    except UndercutError:
+        own = generated_pinion_box(setup, pair.blank,
+                                   pinion_face_width_mm=pair.pinion_face_width_mm)[1]
+    b = conj.boundary
+    box = dataclasses.replace(b, u_root=max(own.u_root, b.u_root), u_tip=min(own.u_tip, b.u_tip),
+                              v_toe=max(own.v_toe, b.v_toe), v_heel=min(own.v_heel, b.v_heel))
+    return easeoff_shape(setup, conj, pair.blank, side=setup.side, box=box)
 
 
 def _generator(setup, pair):
