@@ -131,7 +131,9 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False
 
 def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
     """:func:`check_settings` of ``pair`` with its warnings emitted as
-    :class:`SettingsWarning` (``stacklevel`` counted from the caller of this function):
+    :class:`SettingsWarning` (a hollow pinion flank's as
+    :class:`~.easeoff_shape.HollowEaseOffWarning`; ``stacklevel`` counted from the caller
+    of this function):
     what a library call runs where it takes a pair and builds its flanks itself
     (:func:`~gearcontact.tca.synthesis.prepare_pair`, and
     :func:`~gearcontact.tca.analysis.analyze_pair`,
