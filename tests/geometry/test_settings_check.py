@@ -16,6 +16,7 @@ import warnings
 import pytest
 
 from gearcontact.geometry.blank_check import check_pair_blank
+from gearcontact.geometry.easeoff_shape import HollowEaseOffWarning
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.settings_check import SettingsWarning, check_settings
 from gearcontact.validation import InputRangeError
@@ -55,8 +56,12 @@ def test_a_sliding_base_slip_is_handed_back_and_warned_on_request(f2_machine_pai
             for line in got.warnings for side in ("drive", "coast")].count(True) == 2
     with pytest.warns(SettingsWarning) as caught:
         got.warn()
-    assert [str(w.message) for w in caught] == [line.removeprefix("warning: ")
-                                                for line in got.warnings]
+    assert [str(w.message) for w in caught if w.category is SettingsWarning] \
+        == [line.removeprefix("warning: ") for line in got.warnings]
+    # the slip also leaves the coast pinion hollow in profile (geometry.easeoff_shape,
+    # measured -7.8 um): a different check, its own warning class, after the blank's
+    assert [str(w.message) for w in caught if w.category is HollowEaseOffWarning] \
+        == [line.removeprefix("warning: ") for line in got.hollow_warnings]
 
 
 def _analyze_pair(pair, out):

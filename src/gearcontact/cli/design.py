@@ -30,6 +30,7 @@ from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, load_pair,
                              without_easeoff)
 from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
+                                        easeoff_shape_json, easeoff_shape_text,
                                         mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
 from .design_modes import calibrate, machine_settings, synthesize
@@ -206,7 +207,7 @@ def check(args) -> None:
     # typed settings against the blank tables, on the flanks measured at the blank's mean
     # points once (the table below the blank prints the same measurements)
     args.mean_points = measure_pair_mean_points(pair) if pair.machine else None
-    args.blank_check = checked_blank(pair, measured=args.mean_points)
+    args.blank_check = checked_blank(pair, measured=args.mean_points, easeoff_generated=True)
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces
@@ -303,7 +304,9 @@ def run(args) -> int:
                    "warning": warning},
                "mean_point_angles": None if points is None else mean_point_json(points),
                "blank_check": None if settings_check is None
-               else blank_check_json(settings_check.blank)}
+               else blank_check_json(settings_check.blank),
+               "easeoff_shape": None if getattr(settings_check, "easeoff", None) is None
+               else easeoff_shape_json(settings_check.easeoff)}
         print(json.dumps(out, indent=2))
         return 0
     print(f"pair {pair.name}: ISO 23509 Method 1 blank design "
@@ -323,4 +326,6 @@ def run(args) -> int:
         print(mean_point_table(points))
     if settings_check is not None:
         print(blank_check_text(settings_check.blank))
+        if settings_check.easeoff is not None:
+            print(easeoff_shape_text(settings_check.easeoff))
     return 0

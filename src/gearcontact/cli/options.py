@@ -151,9 +151,10 @@ def check_machine_settings(args) -> None:
     spiral angle) raises naming the key (exit 2); any other flank outside its tolerance
     is a warning naming the likely key, and the run goes on. Its findings, with those
     warning lines, go into run.json as ``blank_check`` (``args.input_checks``, its time
-    into the run's timings as ``blank_check_s``). Nothing for a pair without machine
+    into the run's timings as ``blank_check_s``), the pinion ease-off shapes as
+    ``easeoff_shape`` (``easeoff_shape_s``, inside ``blank_check_s``). Nothing for a pair without machine
     settings or a cylindrical pair (``args.settings_check`` None)."""
-    from ..report.design_mean_point import blank_check_json, checked_blank
+    from ..report.design_mean_point import blank_check_json, checked_blank, easeoff_shape_json
 
     got = args.settings_check = checked_blank(args.gear_pair)
     if got is None:
@@ -161,6 +162,9 @@ def check_machine_settings(args) -> None:
     args.input_checks = {"blank_check": {**blank_check_json(got.blank),
                                          "warnings": list(got.warnings)}}
     args.input_timings_s = {"blank_check_s": got.seconds}
+    if got.easeoff is not None:
+        args.input_checks["easeoff_shape"] = easeoff_shape_json(got.easeoff)
+        args.input_timings_s["easeoff_shape_s"] = got.easeoff.seconds
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:

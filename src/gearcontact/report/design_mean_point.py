@@ -9,7 +9,9 @@ and their sources: docs/machine_settings.md sec. 2.
 The check of a pair's machine settings against its own blank tables
 (:mod:`~gearcontact.geometry.settings_check`) as the command line runs it when the pair
 is loaded, its warnings printed (:func:`checked_blank`): its line and its ``blank_check``
-JSON entry (:func:`blank_check_text`, :func:`blank_check_json`).
+JSON entry (:func:`blank_check_text`, :func:`blank_check_json`), and the line and JSON
+entry of its pinion ease-off shapes (:mod:`~gearcontact.geometry.easeoff_shape`,
+:func:`easeoff_shape_text`, :func:`easeoff_shape_json`).
 """
 
 from __future__ import annotations
@@ -17,11 +19,12 @@ from __future__ import annotations
 import sys
 
 from ..geometry.blank_check import BlankCheck
+from ..geometry.easeoff_shape import EaseOffShapeCheck
 from ..geometry.settings_check import SettingsCheck, check_settings
 from ..geometry.flank_angles import FlankMeanPoint
 
-__all__ = ["blank_check_json", "blank_check_text", "checked_blank", "mean_point_json",
-           "mean_point_table"]
+__all__ = ["blank_check_json", "blank_check_text", "checked_blank", "easeoff_shape_json",
+           "easeoff_shape_text", "mean_point_json", "mean_point_table"]
 
 #: The flank's shape of each (member, side) (docs/machine_settings.md sec. 2).
 _SHAPE = {("gear", "drive"): "convex", ("gear", "coast"): "concave",
@@ -82,16 +85,20 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def checked_blank(pair, *, measured=None) -> SettingsCheck | None:
+def checked_blank(pair, *, measured=None, easeoff_generated: bool = False
+                  ) -> SettingsCheck | None:
     """:func:`~gearcontact.geometry.settings_check.check_settings` of ``pair`` with its
-    warnings printed on stderr, one line each, as the command line shows them
-    (docs/machine_settings.md sec. 2): None for a pair without machine settings; a gross
-    mismatch raises :class:`~gearcontact.validation.InputRangeError` naming the likely
-    key (exit 2). ``measured``: the pair's
+    warnings printed on stderr, one line each, as the command line shows them, a hollow
+    pinion flank's after them (docs/machine_settings.md sec. 2): None for a pair without
+    machine settings; a gross mismatch raises
+    :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2).
+    ``measured``: the pair's
     :func:`~gearcontact.geometry.flank_angles.measure_pair_mean_points` when already
-    measured (``design`` prints them): the check then measures no flank again."""
-    got = check_settings(pair, measured=measured)
-    for line in () if got is None else got.warnings:
+    measured (``design`` prints them): the check then measures no flank again.
+    ``easeoff_generated``: as :func:`~gearcontact.geometry.settings_check.check_settings`'s
+    (``design`` measures a generated gear's pinion ease-off too)."""
+    got = check_settings(pair, measured=measured, easeoff_generated=easeoff_generated)
+    for line in () if got is None else (*got.warnings, *got.hollow_warnings):
         print(line, file=sys.stderr)
     return got
 
@@ -128,3 +135,33 @@ def blank_check_json(check: BlankCheck) -> dict:
                              "stated": c.stated, "tolerance": c.tolerance,
                              "within": c.within} for c in f.comparisons]}
     return {"agrees": check.agrees, "hand_slip": check.hand_slip, "flanks": flanks}
+
+
+def easeoff_shape_text(check: EaseOffShapeCheck) -> str:
+    """One line: each pinion flank's crowning against the typed gear's conjugate pinion
+    (profile / lengthwise, um, relief positive) and whether one is hollow beyond the
+    bound (the warnings name it), or why a flank was not checked."""
+    parts = [f"{s.side} {s.C_p_um:+.1f} / {s.C_l_um:+.1f} um"
+             + (" (over the part of the box its envelope reaches)" if s.trimmed else "")
+             + (" HOLLOW" if s.flagged else "") for s in check.flanks]
+    parts += [f"{side} {why}" for side, why in check.missing.items()]
+    bound = check.flanks[0].bound_um if check.flanks else None
+    verdict = ("" if bound is None else
+               "; hollow beyond the bound: edge contact (warnings above)"
+               if any(s.flagged for s in check.flanks) else
+               f"; none hollow beyond {bound:g} um")
+    return ("pinion ease-off against the typed gear's conjugate pinion, crowning in profile "
+            "/ lengthwise at the active box's edges (relief positive): " + ", ".join(parts)
+            + verdict + " (docs/machine_settings.md sec. 2, \"The hollow ease-off warning\")")
+
+
+def easeoff_shape_json(check: EaseOffShapeCheck) -> dict:
+    """``{"flanks": {side: {"C_p_um", "C_l_um", "bias_um", "fit_rms_um", "bound_um",
+    "hollowness", "flagged", "trimmed"}}, "missing": {side: reason}, "warnings":
+    [line]}``."""
+    return {"flanks": {s.side: {"C_p_um": s.C_p_um, "C_l_um": s.C_l_um, "bias_um": s.bias_um,
+                                "fit_rms_um": s.fit_rms_um, "bound_um": s.bound_um,
+                                "hollowness": s.hollowness, "flagged": s.flagged,
+                                "trimmed": s.trimmed}
+                       for s in check.flanks},
+            "missing": dict(check.missing), "warnings": list(check.warnings())}

@@ -208,6 +208,13 @@ def _machine_lines(result) -> list[str]:
             "(docs/machine_settings.md sec. 2)."]
 
 
+def _warned(head: str, lines) -> list[str]:
+    """``head`` and the warning ``lines`` as a list below it (nothing without lines)."""
+    if not lines:
+        return []
+    return [head, "", *(f"- {line.removeprefix('warning: ')}" for line in lines), ""]
+
+
 def write_summary(result, path, *, published: dict | None = None) -> Path:
     """Write the summary of an :class:`~.analyze.Analysis` as Markdown at ``path``."""
     from .. import __version__
@@ -223,14 +230,16 @@ def write_summary(result, path, *, published: dict | None = None) -> Path:
     if getattr(result, "easeoff_note", ""):
         head, _, toml = result.easeoff_note.partition("\n")
         out += ["**Ease-off synthesized.** " + head, "", "```toml", toml.strip(), "```", ""]
-    warned = getattr(getattr(result, "settings_check", None), "warnings", ())
-    if warned:
-        # the typed machine settings do not cut the blank's tooth: said before any result
-        out += ["**Machine settings against the blank: warning.** The flanks cut from the "
-                "pair's [machine.*] tables do not all agree with its blank "
-                "(docs/machine_settings.md sec. 2):", ""]
-        out += [f"- {line.removeprefix('warning: ')}" for line in warned]
-        out += [""]
+    check = getattr(result, "settings_check", None)
+    # the typed machine settings do not cut the blank's tooth: said before any result
+    out += _warned("**Machine settings against the blank: warning.** The flanks cut from "
+                   "the pair's [machine.*] tables do not all agree with its blank "
+                   "(docs/machine_settings.md sec. 2):", getattr(check, "warnings", ()))
+    # a different check: the pinion's ease-off against the typed gear's conjugate
+    out += _warned("**Pinion ease-off: hollow.** A pinion flank cut from the pair's "
+                   "[machine.*] tables is hollow against the typed gear's conjugate pinion "
+                   "(docs/machine_settings.md sec. 2, \"The hollow ease-off warning\"):",
+                   getattr(check, "hollow_warnings", ()))
     out += ["## Blank (ISO 23509 Method 1)", ""]
     out.append(md_table(["quantity", "ours", "published"], [
         ["pinion pitch angle (deg)", blank["pitch_angles_deg"][0], pub.get("pitch_angle_pinion_deg")],

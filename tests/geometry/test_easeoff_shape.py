@@ -1,0 +1,207 @@
+"""The hollow ease-off warning (geometry.easeoff_shape; docs/machine_settings.md sec. 2,
+"The hollow ease-off warning"): a pinion flank's ease-off against the typed gear's
+conjugate pinion, its quadratic crowning at the active box's edges, flagged hollow
+beyond B = 2 um.
+
+Truths:
+- an ease-off imposed analytically on the conjugate pinion (geometry.easeoff's five-term
+  relief r - E N, centred on the box) is measured as imposed: C_p = c_PC (h/2)^2,
+  C_l = c_LC (L/2)^2, bias = c_TW (h/2)(L/2), and the linear terms leave no crowning;
+- the pinion of the complementary settings is exactly conjugate to its formate gear
+  (geometry.basic_settings; 3e-14 mm, docs/machine_settings.md sec. 4): no crowning;
+- the legitimate pinions (the F.2 example typed to 4 decimals, the standard settings of
+  F.3 and of the 11 x 41: crowned by design, the cutter-radius mismatch and the
+  circular blade) raise no warning;
+- s0003 cut by `design --machine-settings` (geometry.easeoff_settings) with its coast
+  pinion's fitted 2C typed with the wrong sign (made here: the flip is the truth) warns,
+  and the flip moves the lengthwise crowning by twice what the fitted 2C gives (first
+  order in 2C).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcontact.geometry.basic_settings import (complementary_pinion_setups,
+                                                 formate_gear_setups, standard_machine_pair)
+from gearcontact.geometry.conjugate import conjugate_pinion_flank
+from gearcontact.geometry.easeoff import EaseOff, apply_easeoff
+from gearcontact.geometry.easeoff_shape import (CONJUGATE_GRID, HOLLOW_BOUND_UM,
+                                                HollowEaseOffWarning, check_easeoff_shape,
+                                                easeoff_shape)
+from gearcontact.geometry.kinked import machine_flank
+from gearcontact.geometry.pair import load_pair
+from gearcontact.geometry.settings_check import check_settings
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _conjugate(pair, gear_setup):
+    """The pinion flank conjugate to the gear flank ``gear_setup`` cuts, on the check's
+    node grid (what check_easeoff_shape builds)."""
+    gear = machine_flank(gear_setup, pair.blank, face_width_mm=pair.gear_face_width_mm,
+                         n_u=CONJUGATE_GRID[0], n_v=CONJUGATE_GRID[1])
+    return conjugate_pinion_flank(gear, blank=pair.blank,
+                                  kinematics=pair.kinematics(with_errors=False),
+                                  pinion_face_width_mm=pair.pinion_face_width_mm,
+                                  n_u=CONJUGATE_GRID[0], n_v=CONJUGATE_GRID[1])[0]
+
+
+@pytest.mark.parametrize("side, c_p, c_l, bias", [("drive", -3.0, -5.0, 4.0),
+                                                  ("coast", 6.0, -2.5, -3.0)])
+def test_an_imposed_easeoff_is_measured_as_imposed(f2_machine_pair, side, c_p, c_l, bias):
+    pair = f2_machine_pair
+    setups = {(s.member, s.side): s for s in pair.machine}
+    conj = _conjugate(pair, setups["gear", side])
+    b = conj.boundary
+    h, length = b.u_tip - b.u_root, b.v_heel - b.v_toe
+    # the five-term relief centred on the box (E = 0 there: no turn about the axis to
+    # remove), with linear terms that must leave no crowning
+    easeoff = EaseOff(profile_angle_um_per_mm=0.5, spiral_angle_um_per_mm=-0.2,
+                      profile_crowning_um_per_mm2=c_p / (h / 2) ** 2,
+                      lengthwise_crowning_um_per_mm2=c_l / (length / 2) ** 2,
+                      bias_um_per_mm2=bias / ((h / 2) * (length / 2)),
+                      u_mean_mm=0.5 * (b.u_root + b.u_tip), v_mean_mm=0.5 * (b.v_toe + b.v_heel))
+    eased = apply_easeoff(conj, easeoff, limit_um=100.0)
+    got = easeoff_shape(eased, conj, pair.blank, side=side)
+    # Tolerance, from the imposed relief before any measurement: the eased sheet moves
+    # the base point whose image lies at the node by E along the normal (geometry.easeoff),
+    # so the deviation read at a node is E at a point within |E| of it: it differs from
+    # E at the node by at most max|E| max|grad E| (um x um/mm x 1e-3 mm/um), plus 0.005
+    # um for the two sheets' splines on the same node grid
+    U, V = np.meshgrid(np.linspace(b.u_root, b.u_tip, 41), np.linspace(b.v_toe, b.v_heel, 41))
+    e_um = 1e3 * easeoff.relief_mm(U, V)
+    slope = max(np.abs(np.gradient(e_um, U[0, 1] - U[0, 0], axis=1)).max(),
+                np.abs(np.gradient(e_um, V[1, 0] - V[0, 0], axis=0)).max())
+    tol = 1e-3 * np.abs(e_um).max() * slope + 0.005
+    assert tol <= 0.05 * HOLLOW_BOUND_UM  # within the check's resolution, B / 20
+    assert got.C_p_um == pytest.approx(c_p, abs=tol)
+    assert got.C_l_um == pytest.approx(c_l, abs=tol)
+    assert got.bias_um == pytest.approx(bias, abs=tol)
+    assert got.fit_rms_um < tol           # a quadratic relief: nothing beyond the fit
+    assert got.flagged == (min(c_p, c_l) < -HOLLOW_BOUND_UM)
+    assert got.hollowness == pytest.approx(max(0.0, -min(c_p, c_l)) / HOLLOW_BOUND_UM,
+                                           abs=tol / HOLLOW_BOUND_UM)
+
+
+@pytest.mark.parametrize("name", ["iso23509_f2_spiral_bevel", "iso23509_f3",
+                                  "hypoid_11x41_rear_axle"])
+def test_the_complementary_pinion_has_no_crowning(name):
+    pair = load_pair(ROOT / "examples" / f"{name}.toml")
+    gear, pinion = formate_gear_setups(pair), complementary_pinion_setups(pair)
+    for side in ("drive", "coast"):
+        got = easeoff_shape(pinion[side], _conjugate(pair, gear[side]), pair.blank,
+                            side=side)
+        # 0.1 um = B / 20, the check's resolution (required, not measured): the
+        # 12 x 15 conjugate's quintic spline is the error (measured up to 0.07 um; from
+        # a 60 x 75 conjugate 1e-4 um)
+        for value in (got.C_p_um, got.C_l_um, got.bias_um):
+            assert abs(value) <= 0.05 * HOLLOW_BOUND_UM, (side, got)
+
+
+def _no_hollow_warning(pair, *, generated: bool = False):
+    got = check_settings(pair, easeoff_generated=generated)
+    assert got.hollow_warnings == () and got.easeoff.missing == {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", HollowEaseOffWarning)
+        got.warn()
+    return got.easeoff
+
+
+def test_the_f2_example_is_crowned_and_not_warned(f2_machine_pair):
+    shape = _no_hollow_warning(f2_machine_pair)
+    # measured +6.6 / +33.1 (drive), +6.6 / +38.7 um (coast): crowned, well inside the
+    # declared legitimacy condition (hollowness <= 0.5)
+    for s in shape.flanks:
+        assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and s.hollowness == 0.0 and not s.flagged
+
+
+@pytest.mark.parametrize("name, gen", [("iso23509_f3", "formate"),
+                                       ("hypoid_11x41_rear_axle", "formate"),
+                                       ("iso23509_f3", "generated")])
+def test_standard_settings_are_crowned_and_not_warned(name, gen):
+    # a generated gear generates its conjugate as a sheet continued beyond the face
+    # (measured by design, easeoff_generated; not when a pair is loaded, below)
+    shape = _no_hollow_warning(standard_machine_pair(
+        load_pair(ROOT / "examples" / f"{name}.toml"), gear_generation=gen),
+        generated=gen == "generated")
+    assert len(shape.flanks) == 2
+    for s in shape.flanks:
+        assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and not s.flagged
+
+
+def test_the_published_print_pinion_is_crowned():
+    # the 10 x 41 print's own pinion tables against its generated gear (a pinion made
+    # for another gear, tests/geometry/summary_sheets: not mates, yet a production
+    # pinion, crowned): measured +26.5 / +60.0 um (drive) and, over the part of the box
+    # its coast envelope reaches (not the conjugate's root corner), +85.9 / +72.0 um
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")          # the print's own MateWarning et al.
+        pair = load_pair(ROOT / "tests" / "geometry" / "summary_sheets"
+                         / "hypoid_10x41_no16_pair.toml")
+    got = {s.side: s for s in check_easeoff_shape(pair).flanks}
+    assert set(got) == {"drive", "coast"}
+    assert not got["drive"].trimmed and got["coast"].trimmed
+    for s in got.values():
+        assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and not s.flagged
+
+
+def test_a_generated_gear_is_named_not_checked_when_a_pair_is_loaded():
+    pair = standard_machine_pair(load_pair(ROOT / "examples" / "iso23509_f3.toml"),
+                                 gear_generation="generated")
+    got = check_easeoff_shape(pair, generated=False)
+    assert got.flanks == () and set(got.missing) == {"drive", "coast"}
+    assert all("not checked when the pair is loaded: the gear flank is generated" in w
+               for w in got.missing.values())
+
+
+def test_a_relieved_gear_is_named_not_checked():
+    got = check_easeoff_shape(load_pair(ROOT / "tests" / "data" / "toprem"
+                                        / "iso23509_f2_gear_flankrem.toml"))
+    assert got.flanks == () and got.warnings() == ()
+    assert set(got.missing) == {"drive", "coast"}
+    assert all("not checked: the gear flank is cut by a relieved blade" in w
+               for w in got.missing.values())
+
+
+def _with_coast_2c(pair, two_c):
+    return dataclasses.replace(pair, machine=tuple(
+        dataclasses.replace(s, settings=dataclasses.replace(
+            s.settings, modified_roll=(two_c, *s.settings.modified_roll[1:])))
+        if (s.member, s.side) == ("pinion", "coast") else s for s in pair.machine))
+
+
+@pytest.fixture(scope="module")
+def s0003_cut():
+    from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
+
+    return easeoff_machine_pair(load_pair("s0003")).pair     # ~5 s
+
+
+def test_s0003_cut_by_design_with_its_coast_2c_flipped_warns(s0003_cut):
+    fitted = {(s.member, s.side): s for s in s0003_cut.machine}["pinion", "coast"]
+    two_c = fitted.settings.modified_roll[0]
+    assert two_c == pytest.approx(0.00954, abs=5e-5)     # the file design writes
+    _no_hollow_warning(s0003_cut)                          # as written: no warning
+    flipped = check_settings(_with_coast_2c(s0003_cut, -two_c))
+    assert len(flipped.hollow_warnings) == 1
+    line = flipped.hollow_warnings[0]
+    for word in ("[machine.pinion.coast]", "lengthwise below -2 um", "modified roll 2C"):
+        assert word in line
+    with pytest.warns(HollowEaseOffWarning) as caught:
+        flipped.warn()
+    assert [str(w.message) for w in caught] == [line.removeprefix("warning: ")]
+    coast = {s.side: s for s in flipped.easeoff.flanks}["coast"]
+    assert coast.flagged and coast.C_l_um < -HOLLOW_BOUND_UM      # measured -4.3 um
+    # first order in 2C: the flip moves the crowning by twice what the fitted 2C gives
+    # against 2C = 0; 0.1 um (B / 20, the check's resolution) for the second order
+    typed = {s.side: s for s in check_easeoff_shape(s0003_cut).flanks}["coast"]
+    zero = {s.side: s for s in check_easeoff_shape(_with_coast_2c(s0003_cut, 0.0)).flanks
+            }["coast"]
+    assert coast.C_l_um == pytest.approx(2 * zero.C_l_um - typed.C_l_um, abs=0.1)
+    assert coast.C_p_um == pytest.approx(2 * zero.C_p_um - typed.C_p_um, abs=0.1)
