@@ -54,14 +54,25 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, replace
 
 from ..validation import InputRangeError
 from .contact_path import path_contact_ratio
 
 __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO",
-           "VirtualContactRatio", "check_contact_ratio", "reverse_side_warning",
-           "virtual_contact_ratio"]
+           "SETTINGS_NO_GAP_RATIO", "ContactRatioWarning", "VirtualContactRatio", "check_contact_ratio",
+           "reverse_side_warning", "settings_warning", "virtual_contact_ratio"]
+
+
+class ContactRatioWarning(UserWarning):
+    """The predicted contact ratio of machine settings (standard settings about to be
+    written, or a pair cut from settings) is below the threshold of the conjugate pinion
+    with its synthesized ease-off: a warning, not a refusal, because the prediction is
+    not the settings' own bearing and no gap was measured in the TCA of the standard
+    settings down to :data:`SETTINGS_NO_GAP_RATIO` (docs/machine_settings.md sec. 5,
+    "The contact-ratio check of machine settings"). The settings' TCA decides: ``tca``
+    names a gap where its mesh has one (:class:`~gearcontact.tca.edges.ContactGap`)."""
 
 
 @dataclass(frozen=True)
@@ -174,8 +185,18 @@ MAX_FIX_SPIRAL_DEG = 60.0
 _FIX_REACH = 0.75
 
 
+#: The smallest predicted eps_p (the blank's path with the synthesis' first-order
+#: bearing, :func:`path_contact_ratio`) of a pair whose standard settings' TCA was
+#: measured without a gap (10/10 spiral bevel, R_m 55 mm, face 5 mm, beta 35 deg;
+#: docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"):
+#: where the prediction for settings is below :data:`MIN_CONTACT_RATIO` the check
+#: warns (:class:`ContactRatioWarning`), saying whether it is inside that measured range.
+SETTINGS_NO_GAP_RATIO = 0.487
+
+
 def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
-                        threshold: float | None = None, bearing_of=None):
+                        threshold: float | None = None, bearing_of=None,
+                        settings: bool = False):
     """Refuse ``pair`` if its contact ratio on the design side is below ``threshold``,
     before any flank work (docs/geometry.md sec. 7.7).
 
@@ -205,8 +226,17 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     numbers; with ``boxes_of`` a value named is one the other checks accept (else the
     next fix). A pair cut from machine settings that the closed form refuses is accepted
     where the contact path of its blank reaches :data:`MIN_CONTACT_RATIO` (with
-    ``boxes_of``: :func:`_blank_path_or_refuse`), the check ``design
+    ``boxes_of``: :func:`_blank_path_or_warn`), the check ``design
     --machine-settings`` made before writing the settings.
+
+    Machine settings are warned, not refused (:class:`ContactRatioWarning`, naming the
+    face width, the spiral angle and the predicted ratios; docs/machine_settings.md sec.
+    5): ``settings=True`` (the pair gets its blank's standard settings, ``design
+    --machine-settings``: its path is that of the conjugate pinion with the synthesis'
+    first-order bearing, not the standard crowning's) where the path ratio is below the
+    threshold, and a pair cut from settings where both the closed form and its blank's
+    path are below theirs. The TCA of the settings decides; no standard settings measured
+    had a gap (``tca`` refuses a mesh with one, :class:`~gearcontact.tca.edges.ContactGap`).
 
     Returns
     -------
@@ -215,16 +245,17 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     Raises
     ------
     InputRangeError
-        The ratio is below ``threshold``.
+        The ratio is below ``threshold`` (a pair whose flanks are not cut from settings).
     """
     if boxes is None or pair.machine:
         try:
+            # a pair cut from settings is warned, not refused: no fix is verified
             return _check_virtual(pair, MIN_VIRTUAL_CONTACT_RATIO if threshold is None
-                                  else threshold, boxes_of=boxes_of)
-        except InputRangeError as closed:
+                                  else threshold, boxes_of=None if pair.machine else boxes_of)
+        except InputRangeError:
             if not pair.machine or boxes_of is None:
                 raise
-            return _blank_path_or_refuse(pair, closed, boxes_of=boxes_of)
+            return _blank_path_or_warn(pair, boxes_of=boxes_of)
     threshold = MIN_CONTACT_RATIO if threshold is None else threshold
 
     def path_of(p, p_boxes):
@@ -233,6 +264,9 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
 
     got = path_of(pair, boxes)
     if got.total >= threshold:
+        return got
+    if settings:
+        settings_warning(pair, got, threshold=threshold)
         return got
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=got.side)
@@ -270,28 +304,54 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
                           f"more teeth ({why}; no face width or spiral angle tried fixes it)")
 
 
-def _blank_path_or_refuse(pair, closed: InputRangeError, *, boxes_of):
-    """A pair cut from machine settings that the closed form refuses (``closed``): the
-    contact path of its blank (the pair without its settings: conjugate pinion, the
-    synthesis' first-order bearing at its default targets, :func:`path_contact_ratio`
-    without a bearing), as ``design --machine-settings`` checks the blank before it
-    writes the settings; accepted at :data:`MIN_CONTACT_RATIO`, so that every command
-    reads the settings ``design`` wrote. Else ``closed`` is raised, the blank's path
-    ratio added (a blank its own generation check refuses: ``closed`` as it is). A gap
-    the settings' TCA meets all the same is named there
-    (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5,
-    "Ordinary pairs, measured"."""
+def _blank_path_or_warn(pair, *, boxes_of):
+    """A pair cut from machine settings that the closed form refuses: the contact path of
+    its blank (the pair without its settings: conjugate pinion, the synthesis'
+    first-order bearing at its default targets, :func:`path_contact_ratio` without a
+    bearing), as ``design --machine-settings`` checks the blank before it writes the
+    settings; accepted at :data:`MIN_CONTACT_RATIO`, else accepted with a
+    :class:`ContactRatioWarning` naming both predictions (the closed form's alone where
+    the blank's own generation check refuses it; the closed form's ratios are then
+    returned). A gap the settings' TCA meets is named there
+    (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5, "The
+    contact-ratio check of machine settings"."""
     blank = replace(pair, machine=(), print_gear=(), easeoff_tables=())
     try:
         got = path_contact_ratio(blank, boxes=boxes_of(blank))
     except InputRangeError:     # the blank's own generation check refuses it
-        raise closed from None
-    if got.total >= MIN_CONTACT_RATIO:
+        got = None
+    if got is not None and got.total >= MIN_CONTACT_RATIO:
         return got
-    raise InputRangeError(closed.field, closed.value,
-                          f"{closed.allowed}; the blank's contact path (its conjugate pinion, "
-                          f"{got.bearing}) covers eps_p = {got.total:.3f} pitches, below "
-                          f"{MIN_CONTACT_RATIO:g}") from None
+    settings_warning(pair, got, threshold=MIN_CONTACT_RATIO)
+    return got if got is not None else virtual_contact_ratio(
+        pair.blank, gear_face_width_mm=pair.gear_face_width_mm, side=pair.design_side)
+
+
+def settings_warning(pair, path, *, threshold: float) -> None:
+    """Emit the :class:`ContactRatioWarning` of machine settings whose predicted contact
+    ratio is below ``threshold``: the face width and spiral angle typed, ``path`` (the
+    blank's :class:`~.contact_path.PathContactRatio`, None where it is not known), the
+    closed form of :func:`virtual_contact_ratio`, and whether the prediction lies inside
+    the range measured without a gap (:data:`SETTINGS_NO_GAP_RATIO`)."""
+    v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
+                              side=pair.design_side)
+    if path is None:
+        what = "the blank's contact path is not known (its own generation check refuses it)"
+        inside = "outside"
+    else:
+        what = (f"the blank's contact path with the synthesis' first-order bearing covers "
+                f"eps_p = {path.total:.3f} pitches (leaving through the {path.ends[0]} and "
+                f"the {path.ends[1]})")
+        inside = "inside" if path.total >= SETTINGS_NO_GAP_RATIO else "outside"
+    warnings.warn(ContactRatioWarning(
+        f"design.gear_face_width_mm = {pair.gear_face_width_mm:g} mm, "
+        f"design.pinion_spiral_angle_deg = {pair.pinion_spiral_angle_deg:g} deg: the "
+        f"predicted contact ratio of the machine settings is below {threshold:g} ({what}; "
+        f"ISO 10300-1 eps_vg {v.total:.3f}, eps_va {v.transverse:.3f}, eps_vb "
+        f"{v.face:.3f}); a prediction, not the settings' bearing, {inside} the range where "
+        f"the TCA of standard settings was measured without a gap (eps_p >= "
+        f"{SETTINGS_NO_GAP_RATIO:g}, docs/machine_settings.md sec. 5): `tca` on the "
+        "settings refuses their mesh if it has a gap"), stacklevel=3)
 
 
 def _with_face(pair, face_mm: float):
