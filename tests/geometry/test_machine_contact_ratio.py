@@ -24,8 +24,12 @@ from gearcontact.geometry.contact_path import path_contact_ratio
 from gearcontact.geometry.contact_ratio import (MIN_CONTACT_RATIO, MIN_VIRTUAL_CONTACT_RATIO,
                                                 SETTINGS_NO_GAP_RATIO, ContactRatioWarning,
                                                 virtual_contact_ratio)
+from gearcontact.geometry.gear_generation import generation_of
 from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import load_pair
+from gearcontact.tca.analysis import analyze_pair
+from gearcontact.tca.edges import ContactGap
+from gearcontact.tca.synthesis import prepare_pair
 from gearcontact.validation import InputRangeError
 
 #: An ordinary miter spiral bevel pair: 16/16, E 0, beta 35 deg, R_m 55 mm, face 20 mm
@@ -111,27 +115,41 @@ def test_standard_settings_the_old_check_refused_are_warned(tmp_path):
     with pytest.warns(ContactRatioWarning) as got:
         check_generation(blank, settings=True)
     _names_fields_and_ratios(str(got[0].message), blank, path)
-    assert "inside the range" in str(got[0].message)
+    assert path.total >= SETTINGS_NO_GAP_RATIO and "inside the range" in str(got[0].message)
     settings = standard_machine_pair(blank, gear_generation="generated")
     with pytest.warns(ContactRatioWarning) as got:
         check_generation(settings)
     _names_fields_and_ratios(str(got[0].message), blank, path)
 
 
-def test_a_prediction_below_the_measured_range_is_warned_not_refused(tmp_path):
-    """A blank predicted below every ratio measured without a gap (16/16, face 4 mm, beta
-    50 deg: eps_p about 0.34 < SETTINGS_NO_GAP_RATIO) is not refused either (no gapped
-    pair was found to set a refusal on, sec. 5): the warning says the prediction lies
-    outside the measured range and names the fields and ratios."""
-    path_file = tmp_path / "narrow.toml"
-    path_file.write_text(MITER.format(face=4.0).replace("= 35.0", "= 50.0"))
+def test_a_pair_whose_settings_gap_is_refused(tmp_path, capsys):
+    """An 8/8 miter at face 6 mm, beta 45 deg: the TCA of its standard settings has a gap
+    (the truth, measured here: ContactGap with the check bypassed, the edge tails
+    followed as ``tca`` does); its blank's predicted eps_p (computed here by the path)
+    is below SETTINGS_NO_GAP_RATIO, so ``design --machine-settings`` refuses it (exit 2,
+    before any settings are written), naming both fields with their values and the
+    predicted ratio, and a pair cut from those settings is refused the same way."""
+    path_file = tmp_path / "gapped.toml"
+    path_file.write_text(MITER.format(face=6.0).replace("= 16\n", "= 8\n")
+                         .replace("= 35.0", "= 45.0"))
     blank = load_pair(path_file)
-    path = path_contact_ratio(blank, boxes=check_generation(blank, contact_ratio=False))
+    assert (blank.pinion_teeth, blank.gear_teeth, blank.pinion_spiral_angle_deg) == (8, 8, 45.0)
+    boxes = check_generation(blank, contact_ratio=False)
+    path = path_contact_ratio(blank, boxes=boxes)
     assert path.total < SETTINGS_NO_GAP_RATIO
-    with pytest.warns(ContactRatioWarning) as got:
-        check_generation(blank, settings=True)
-    _names_fields_and_ratios(str(got[0].message), blank, path)
-    assert "outside the range" in str(got[0].message)
+    settings = standard_machine_pair(blank, gear_generation=generation_of(boxes))
+    prepared = prepare_pair(settings, checked=check_generation(settings, contact_ratio=False))
+    with pytest.raises(ContactGap):
+        analyze_pair(settings, phases=61, pairs=3, flanks=prepared.flank_set())
+    assert main(["design", "--pair", str(path_file), "--machine-settings",
+                 "--out", str(tmp_path / "mach")]) == 2
+    err = capsys.readouterr().err
+    assert "design.gear_face_width_mm / design.pinion_spiral_angle_deg = (6.0, 45.0)" in err
+    _names_fields_and_ratios(err, blank, path)
+    assert not (tmp_path / "mach" / "machine_settings.toml").exists()
+    with pytest.raises(InputRangeError) as refused:
+        check_generation(settings)
+    _names_fields_and_ratios(str(refused.value), blank, path)
 
 
 def test_the_cli_tca_of_the_warned_settings_has_no_gap(tmp_path, capsys):

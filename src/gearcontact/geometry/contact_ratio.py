@@ -61,18 +61,20 @@ from ..validation import InputRangeError
 from .contact_path import path_contact_ratio
 
 __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO",
-           "SETTINGS_NO_GAP_RATIO", "ContactRatioWarning", "VirtualContactRatio", "check_contact_ratio",
-           "reverse_side_warning", "settings_warning", "virtual_contact_ratio"]
+           "SETTINGS_NO_GAP_RATIO", "ContactRatioWarning", "VirtualContactRatio",
+           "check_contact_ratio", "check_settings_ratio", "reverse_side_warning",
+           "virtual_contact_ratio"]
 
 
 class ContactRatioWarning(UserWarning):
     """The predicted contact ratio of machine settings (standard settings about to be
     written, or a pair cut from settings) is below the threshold of the conjugate pinion
-    with its synthesized ease-off: a warning, not a refusal, because the prediction is
-    not the settings' own bearing and no gap was measured in the TCA of the standard
-    settings down to :data:`SETTINGS_NO_GAP_RATIO` (docs/machine_settings.md sec. 5,
-    "The contact-ratio check of machine settings"). The settings' TCA decides: ``tca``
-    names a gap where its mesh has one (:class:`~gearcontact.tca.edges.ContactGap`)."""
+    with its synthesized ease-off, but inside the range where the TCA of standard
+    settings was measured without a gap (:data:`SETTINGS_NO_GAP_RATIO` and up;
+    docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"): a
+    warning, not a refusal, the prediction not being the settings' own bearing. The
+    settings' TCA decides: ``tca`` refuses a mesh with a gap
+    (:class:`~gearcontact.tca.edges.ContactGap`)."""
 
 
 @dataclass(frozen=True)
@@ -187,11 +189,13 @@ _FIX_REACH = 0.75
 
 #: The smallest predicted eps_p (the blank's path with the synthesis' first-order
 #: bearing, :func:`path_contact_ratio`) of a pair whose standard settings' TCA was
-#: measured without a gap (10/10 spiral bevel, R_m 55 mm, face 5 mm, beta 35 deg;
-#: docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"):
-#: where the prediction for settings is below :data:`MIN_CONTACT_RATIO` the check
-#: warns (:class:`ContactRatioWarning`), saying whether it is inside that measured range.
-SETTINGS_NO_GAP_RATIO = 0.487
+#: measured without a gap (16/16 spiral bevel, R_m 55 mm, face 5 mm, beta 50 deg), on
+#: the family of docs/machine_settings.md sec. 5, "The contact-ratio check of machine
+#: settings": machine settings predicted below it are refused (pairs of the family
+#: below it gapped: 8/8 and 9/9 at face 6 mm, beta 45 deg, eps_p 0.376 / 0.421), those
+#: between it and :data:`MIN_CONTACT_RATIO` warned (:class:`ContactRatioWarning`).
+#: Not a fit: the rule declared before the measurement (docs sec. 5).
+SETTINGS_NO_GAP_RATIO = 0.441
 
 
 def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
@@ -229,14 +233,12 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     ``boxes_of``: :func:`_blank_path_or_warn`), the check ``design
     --machine-settings`` made before writing the settings.
 
-    Machine settings are warned, not refused (:class:`ContactRatioWarning`, naming the
-    face width, the spiral angle and the predicted ratios; docs/machine_settings.md sec.
-    5): ``settings=True`` (the pair gets its blank's standard settings, ``design
-    --machine-settings``: its path is that of the conjugate pinion with the synthesis'
-    first-order bearing, not the standard crowning's) where the path ratio is below the
-    threshold, and a pair cut from settings where both the closed form and its blank's
-    path are below theirs. The TCA of the settings decides; no standard settings measured
-    had a gap (``tca`` refuses a mesh with one, :class:`~gearcontact.tca.edges.ContactGap`).
+    Machine settings, ``settings=True`` (the pair gets its blank's standard settings,
+    ``design --machine-settings``: its path is that of the conjugate pinion with the
+    synthesis' first-order bearing, not the standard crowning's) where the path ratio is
+    below the threshold, and a pair cut from settings where both the closed form and its
+    blank's path are below theirs, go to :func:`check_settings_ratio`: refused only
+    below :data:`SETTINGS_NO_GAP_RATIO`, else warned (docs/machine_settings.md sec. 5).
 
     Returns
     -------
@@ -266,7 +268,7 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     if got.total >= threshold:
         return got
     if settings:
-        settings_warning(pair, got, threshold=threshold)
+        check_settings_ratio(pair, got, threshold=threshold)
         return got
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=got.side)
@@ -309,10 +311,9 @@ def _blank_path_or_warn(pair, *, boxes_of):
     its blank (the pair without its settings: conjugate pinion, the synthesis'
     first-order bearing at its default targets, :func:`path_contact_ratio` without a
     bearing), as ``design --machine-settings`` checks the blank before it writes the
-    settings; accepted at :data:`MIN_CONTACT_RATIO`, else accepted with a
-    :class:`ContactRatioWarning` naming both predictions (the closed form's alone where
-    the blank's own generation check refuses it; the closed form's ratios are then
-    returned). A gap the settings' TCA meets is named there
+    settings; accepted at :data:`MIN_CONTACT_RATIO`, else :func:`check_settings_ratio`
+    (the closed form's prediction alone where the blank's own generation check refuses
+    it; the closed form's ratios are then returned). A gap the settings' TCA meets is named there
     (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5, "The
     contact-ratio check of machine settings"."""
     blank = replace(pair, machine=(), print_gear=(), easeoff_tables=())
@@ -322,34 +323,48 @@ def _blank_path_or_warn(pair, *, boxes_of):
         got = None
     if got is not None and got.total >= MIN_CONTACT_RATIO:
         return got
-    settings_warning(pair, got, threshold=MIN_CONTACT_RATIO)
+    check_settings_ratio(pair, got, threshold=MIN_CONTACT_RATIO)
     return got if got is not None else virtual_contact_ratio(
         pair.blank, gear_face_width_mm=pair.gear_face_width_mm, side=pair.design_side)
 
 
-def settings_warning(pair, path, *, threshold: float) -> None:
-    """Emit the :class:`ContactRatioWarning` of machine settings whose predicted contact
-    ratio is below ``threshold``: the face width and spiral angle typed, ``path`` (the
-    blank's :class:`~.contact_path.PathContactRatio`, None where it is not known), the
-    closed form of :func:`virtual_contact_ratio`, and whether the prediction lies inside
-    the range measured without a gap (:data:`SETTINGS_NO_GAP_RATIO`)."""
+def check_settings_ratio(pair, path, *, threshold: float) -> None:
+    """Machine settings whose predicted contact ratio is below ``threshold``
+    (docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"):
+    refused where ``path`` (the blank's :class:`~.contact_path.PathContactRatio`) is
+    below :data:`SETTINGS_NO_GAP_RATIO`, else a :class:`ContactRatioWarning`; both name
+    the face width and spiral angle typed, the predicted eps_p and the closed form of
+    :func:`virtual_contact_ratio`. ``path`` None (not known: the blank's own generation
+    check refuses it): the warning, the closed form alone.
+
+    Raises
+    ------
+    InputRangeError
+        ``path.total < SETTINGS_NO_GAP_RATIO``.
+    """
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=pair.design_side)
-    if path is None:
-        what = "the blank's contact path is not known (its own generation check refuses it)"
-        inside = "outside"
-    else:
-        what = (f"the blank's contact path with the synthesis' first-order bearing covers "
-                f"eps_p = {path.total:.3f} pitches (leaving through the {path.ends[0]} and "
-                f"the {path.ends[1]})")
-        inside = "inside" if path.total >= SETTINGS_NO_GAP_RATIO else "outside"
+    what = (f"{pair.design_side} side: the blank's contact path with the synthesis' "
+            f"first-order bearing covers eps_p = {path.total:.3f} pitches (leaving through "
+            f"the {path.ends[0]} and the {path.ends[1]})" if path is not None else
+            "the blank's contact path is not known (its own generation check refuses it)")
+    what += (f"; ISO 10300-1 eps_vg {v.total:.3f}, eps_va {v.transverse:.3f}, eps_vb "
+             f"{v.face:.3f}")
+    fields = (f"design.gear_face_width_mm = {pair.gear_face_width_mm:g} mm, "
+              f"design.pinion_spiral_angle_deg = {pair.pinion_spiral_angle_deg:g} deg")
+    if path is not None and path.total < SETTINGS_NO_GAP_RATIO:
+        raise InputRangeError(
+            "design.gear_face_width_mm / design.pinion_spiral_angle_deg",
+            (pair.gear_face_width_mm, pair.pinion_spiral_angle_deg),
+            f"a blank whose predicted contact ratio eps_p >= {SETTINGS_NO_GAP_RATIO:g} for "
+            f"machine settings ({fields}; {what}): below it the TCA of standard settings "
+            "was measured with a gap (no tooth pair in contact over part of each pitch; "
+            "docs/machine_settings.md sec. 5); a wider face, another spiral angle or more "
+            "teeth")
     warnings.warn(ContactRatioWarning(
-        f"design.gear_face_width_mm = {pair.gear_face_width_mm:g} mm, "
-        f"design.pinion_spiral_angle_deg = {pair.pinion_spiral_angle_deg:g} deg: the "
-        f"predicted contact ratio of the machine settings is below {threshold:g} ({what}; "
-        f"ISO 10300-1 eps_vg {v.total:.3f}, eps_va {v.transverse:.3f}, eps_vb "
-        f"{v.face:.3f}); a prediction, not the settings' bearing, {inside} the range where "
-        f"the TCA of standard settings was measured without a gap (eps_p >= "
+        f"{fields}: the predicted contact ratio of the machine settings is below "
+        f"{threshold:g} ({what}); a prediction, not the settings' bearing, inside the "
+        f"range where the TCA of standard settings was measured without a gap (eps_p >= "
         f"{SETTINGS_NO_GAP_RATIO:g}, docs/machine_settings.md sec. 5): `tca` on the "
         "settings refuses their mesh if it has a gap"), stacklevel=3)
 
