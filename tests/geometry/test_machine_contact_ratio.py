@@ -22,7 +22,8 @@ from gearcontact.cli import main
 from gearcontact.geometry.basic_settings import standard_machine_pair
 from gearcontact.geometry.contact_path import path_contact_ratio
 from gearcontact.geometry.contact_ratio import (MIN_CONTACT_RATIO, MIN_VIRTUAL_CONTACT_RATIO,
-                                                SETTINGS_NO_GAP_RATIO, ContactRatioWarning,
+                                                SETTINGS_GAP_RATIO, SETTINGS_NO_GAP_RATIO,
+                                                ContactRatioWarning,
                                                 virtual_contact_ratio)
 from gearcontact.geometry.gear_generation import generation_of
 from gearcontact.geometry.generation import check_generation
@@ -115,41 +116,68 @@ def test_standard_settings_the_old_check_refused_are_warned(tmp_path):
     with pytest.warns(ContactRatioWarning) as got:
         check_generation(blank, settings=True)
     _names_fields_and_ratios(str(got[0].message), blank, path)
-    assert path.total >= SETTINGS_NO_GAP_RATIO and "inside the range" in str(got[0].message)
+    # 0.703 > SETTINGS_GAP_RATIO: no pair measured that high had a gap
+    assert path.total > SETTINGS_GAP_RATIO and "without a gap above" in str(got[0].message)
     settings = standard_machine_pair(blank, gear_generation="generated")
     with pytest.warns(ContactRatioWarning) as got:
         check_generation(settings)
     _names_fields_and_ratios(str(got[0].message), blank, path)
 
 
-def test_a_pair_whose_settings_gap_is_refused(tmp_path, capsys):
-    """An 8/8 miter at face 6 mm, beta 45 deg: the TCA of its standard settings has a gap
-    (the truth, measured here: ContactGap with the check bypassed, the edge tails
-    followed as ``tca`` does); its blank's predicted eps_p (computed here by the path)
-    is below SETTINGS_NO_GAP_RATIO, so ``design --machine-settings`` refuses it (exit 2,
-    before any settings are written), naming both fields with their values and the
-    predicted ratio, and a pair cut from those settings is refused the same way."""
-    path_file = tmp_path / "gapped.toml"
-    path_file.write_text(MITER.format(face=6.0).replace("= 16\n", "= 8\n")
-                         .replace("= 35.0", "= 45.0"))
+def _gapped(tmp_path, teeth: int, face: float, beta: float, depth: float):
+    """A miter blank of ``teeth`` teeth (working depth factor ``depth``), its boxes, its
+    predicted path and its standard settings; their TCA (the check bypassed, the edge
+    tails followed as ``tca`` does, 61 phases, 3 neighbour pairs) raises ContactGap:
+    the truth, measured here."""
+    path_file = tmp_path / f"gapped_{teeth}.toml"
+    path_file.write_text(MITER.format(face=face).replace("= 16\n", f"= {teeth}\n")
+                         .replace("= 35.0", f"= {beta}")
+                         .replace("gear_addendum_factor", f"working_depth_factor = {depth}\n"
+                                  "gear_addendum_factor"))
     blank = load_pair(path_file)
-    assert (blank.pinion_teeth, blank.gear_teeth, blank.pinion_spiral_angle_deg) == (8, 8, 45.0)
+    assert (blank.pinion_teeth, blank.pinion_spiral_angle_deg) == (teeth, beta)
     boxes = check_generation(blank, contact_ratio=False)
     path = path_contact_ratio(blank, boxes=boxes)
-    assert path.total < SETTINGS_NO_GAP_RATIO
     settings = standard_machine_pair(blank, gear_generation=generation_of(boxes))
     prepared = prepare_pair(settings, checked=check_generation(settings, contact_ratio=False))
     with pytest.raises(ContactGap):
         analyze_pair(settings, phases=61, pairs=3, flanks=prepared.flank_set())
+    return path_file, blank, path, settings
+
+
+def test_a_pair_whose_settings_gap_is_refused(tmp_path, capsys):
+    """A 12/12 miter at face 5 mm, beta 50 deg, working depth factor 1.3: the TCA of its
+    standard settings has a gap (:func:`_gapped`); its blank's predicted eps_p (computed
+    here by the path) is below SETTINGS_NO_GAP_RATIO, so ``design --machine-settings``
+    refuses it (exit 2, before any settings are written), naming both fields with their
+    values and the predicted ratio, and a pair cut from those settings is refused the
+    same way."""
+    path_file, blank, path, settings = _gapped(tmp_path, 12, 5.0, 50.0, 1.3)
+    assert path.total < SETTINGS_NO_GAP_RATIO
     assert main(["design", "--pair", str(path_file), "--machine-settings",
                  "--out", str(tmp_path / "mach")]) == 2
     err = capsys.readouterr().err
-    assert "design.gear_face_width_mm / design.pinion_spiral_angle_deg = (6.0, 45.0)" in err
+    assert "design.gear_face_width_mm / design.pinion_spiral_angle_deg = (5.0, 50.0)" in err
     _names_fields_and_ratios(err, blank, path)
     assert not (tmp_path / "mach" / "machine_settings.toml").exists()
     with pytest.raises(InputRangeError) as refused:
         check_generation(settings)
     _names_fields_and_ratios(str(refused.value), blank, path)
+
+
+@pytest.mark.slow
+def test_a_gapped_pair_inside_the_uncertain_band_is_warned(tmp_path):
+    """An 8/8 miter at face 6 mm, beta 45 deg: its standard settings' TCA has a gap
+    (:func:`_gapped`), but its predicted eps_p lies where gap-free pairs were measured
+    too (SETTINGS_NO_GAP_RATIO <= eps_p <= SETTINGS_GAP_RATIO): warned, the warning
+    naming the fields, the ratios and that both were measured there; ``tca`` then
+    refuses the mesh itself (ContactGap)."""
+    _, blank, path, _ = _gapped(tmp_path, 8, 6.0, 45.0, 2.0)
+    assert SETTINGS_NO_GAP_RATIO <= path.total <= SETTINGS_GAP_RATIO
+    with pytest.warns(ContactRatioWarning) as got:
+        check_generation(blank, settings=True)
+    _names_fields_and_ratios(str(got[0].message), blank, path)
+    assert "both with and without a gap" in str(got[0].message)
 
 
 def test_the_cli_tca_of_the_warned_settings_has_no_gap(tmp_path, capsys):

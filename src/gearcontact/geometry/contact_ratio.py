@@ -61,7 +61,7 @@ from ..validation import InputRangeError
 from .contact_path import path_contact_ratio
 
 __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO",
-           "SETTINGS_NO_GAP_RATIO", "ContactRatioWarning", "VirtualContactRatio",
+           "SETTINGS_GAP_RATIO", "SETTINGS_NO_GAP_RATIO", "ContactRatioWarning", "VirtualContactRatio",
            "check_contact_ratio", "check_settings_ratio", "reverse_side_warning",
            "virtual_contact_ratio"]
 
@@ -69,7 +69,7 @@ __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO"
 class ContactRatioWarning(UserWarning):
     """The predicted contact ratio of machine settings (standard settings about to be
     written, or a pair cut from settings) is below the threshold of the conjugate pinion
-    with its synthesized ease-off, but inside the range where the TCA of standard
+    with its synthesized ease-off, but not below the range where the TCA of standard
     settings was measured without a gap (:data:`SETTINGS_NO_GAP_RATIO` and up;
     docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"): a
     warning, not a refusal, the prediction not being the settings' own bearing. The
@@ -189,13 +189,18 @@ _FIX_REACH = 0.75
 
 #: The smallest predicted eps_p (the blank's path with the synthesis' first-order
 #: bearing, :func:`path_contact_ratio`) of a pair whose standard settings' TCA was
-#: measured without a gap (16/16 spiral bevel, R_m 55 mm, face 5 mm, beta 50 deg), on
-#: the family of docs/machine_settings.md sec. 5, "The contact-ratio check of machine
-#: settings": machine settings predicted below it are refused (pairs of the family
-#: below it gapped: 8/8 and 9/9 at face 6 mm, beta 45 deg, eps_p 0.376 / 0.421), those
-#: between it and :data:`MIN_CONTACT_RATIO` warned (:class:`ContactRatioWarning`).
-#: Not a fit: the rule declared before the measurement (docs sec. 5).
-SETTINGS_NO_GAP_RATIO = 0.441
+#: measured without a gap (16/16 spiral bevel, R_m 55 mm, face 5 mm, beta 50 deg,
+#: working depth factor 1.3), on the family of docs/machine_settings.md sec. 5, "The
+#: contact-ratio check of machine settings": machine settings predicted below it are
+#: refused (the pairs of the family below it gapped: eps_p 0.272 and 0.338), those
+#: between it and :data:`MIN_CONTACT_RATIO` warned (:class:`ContactRatioWarning`). Not a
+#: fit: the rule declared before the measurement (docs sec. 5).
+SETTINGS_NO_GAP_RATIO = 0.356
+#: The largest predicted eps_p of a pair of that family whose standard settings' TCA
+#: had a gap (9/9, face 6 mm, beta 35 deg): between :data:`SETTINGS_NO_GAP_RATIO` and it
+#: both were measured, above it (to :data:`MIN_CONTACT_RATIO`) no gap; the warning says
+#: which.
+SETTINGS_GAP_RATIO = 0.551
 
 
 def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
@@ -361,12 +366,16 @@ def check_settings_ratio(pair, path, *, threshold: float) -> None:
             "was measured with a gap (no tooth pair in contact over part of each pitch; "
             "docs/machine_settings.md sec. 5); a wider face, another spiral angle or more "
             "teeth")
+    measured = ("the TCA of standard settings was measured both with and without a gap "
+                f"between eps_p {SETTINGS_NO_GAP_RATIO:g} and {SETTINGS_GAP_RATIO:g}"
+                if path is None or path.total <= SETTINGS_GAP_RATIO else
+                "the TCA of standard settings was measured without a gap above eps_p "
+                f"{SETTINGS_GAP_RATIO:g}")
     warnings.warn(ContactRatioWarning(
         f"{fields}: the predicted contact ratio of the machine settings is below "
-        f"{threshold:g} ({what}); a prediction, not the settings' bearing, inside the "
-        f"range where the TCA of standard settings was measured without a gap (eps_p >= "
-        f"{SETTINGS_NO_GAP_RATIO:g}, docs/machine_settings.md sec. 5): `tca` on the "
-        "settings refuses their mesh if it has a gap"), stacklevel=3)
+        f"{threshold:g} ({what}); a prediction, not the settings' bearing: {measured} "
+        "(docs/machine_settings.md sec. 5); `tca` on the settings refuses their mesh if "
+        "it has a gap"), stacklevel=3)
 
 
 def _with_face(pair, face_mm: float):
