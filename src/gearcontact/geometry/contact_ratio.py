@@ -40,7 +40,11 @@ the largest eps_p measured with a gap in the TCA is 0.752, a 13 % margin); a pai
 from machine settings, whose path is not known here, keeps the closed form's
 ``eps_vg < MIN_VIRTUAL_CONTACT_RATIO`` (1.55) unless the path of its blank (the pair
 without its settings) passes, as ``design --machine-settings`` checked it before
-writing them. docs/geometry.md sec. 7.7 has the measurements.
+writing them. docs/geometry.md sec. 7.7 has the measurements. Machine settings whose
+prediction is short (standard settings about to be written, a pair cut from settings)
+are refused only below :data:`SETTINGS_NO_GAP_RATIO`, else warned
+(:func:`check_settings_ratio`; the TCA of standard settings measured on a family of
+pairs, docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings").
 
 References
 ----------
