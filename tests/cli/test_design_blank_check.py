@@ -89,7 +89,7 @@ def hypoid_generated(tmp_path_factory):
     --machine-settings writes, full precision) as a pair file, and its blank's pitch
     apexes from the crossing point (the MD datum)."""
     from gearcontact.geometry.basic_settings import standard_machine_pair
-    from gearcontact.geometry.blank_check import stated_blank
+    from gearcontact.geometry.blank_statement import stated_blank
     from gearcontact.geometry.pair import load_pair, pair_to_toml
 
     pair = standard_machine_pair(load_pair(ROOT / "examples" / "hypoid_11x41_rear_axle.toml"),

@@ -22,8 +22,8 @@ from pathlib import Path
 
 import pytest
 
-from gearcontact.geometry.blank_check import (GROSS_SPIRAL_DEG, StatedBlank, check_flanks,
-                                              check_pair_blank, stated_blank)
+from gearcontact.geometry.blank_check import GROSS_SPIRAL_DEG, check_flanks, check_pair_blank
+from gearcontact.geometry.blank_statement import StatedBlank, stated_blank
 from gearcontact.geometry.machine import mirror_setup, setup_from_tables
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.typed_settings import typed_resolution

@@ -28,7 +28,8 @@ from pathlib import Path
 import pytest
 from console_script import run_console
 
-from gearcontact.geometry.blank_check import check_pair_blank, printed_stated_blank
+from gearcontact.geometry.blank_check import check_pair_blank
+from gearcontact.geometry.blank_statement import printed_stated_blank
 from gearcontact.geometry.machine import setup_from_tables
 from gearcontact.geometry.pair import pair_to_toml, parse_pair
 from gearcontact.geometry.print_table import PrintBlankNote

@@ -255,7 +255,7 @@ def _check_generation(args, pair) -> dict:
     from ..tca.synthesis_targets import SynthesisTargets
 
     if args.machine_settings and not args.local_synthesis:   # standard settings
-        return check_generation(pair)
+        return check_generation(pair, settings=True)
     predictor = BearingPredictor(getattr(args, "targets", None) or SynthesisTargets(),
                                  turns_short_paths=not args.local_synthesis)
     try:

@@ -53,20 +53,20 @@ import re
 from dataclasses import dataclass
 
 from ..validation import InputRangeError
+from .blank_statement import StatedBlank, printed_stated_blank, stated_blank
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
                            measure_mean_point, require_machine)
 from ..deprecation import moved_names
 from .known_slips import pair_slip, single_slip, slip_fix, with_slip
 from .machine import MachineSetup
-from .print_blank import cuts_the_printed_gear, print_key, printed_blank
+from .print_blank import print_key
 from .slip_attribution import describe, explaining_values, interval
 from .typed_settings import attributed_keys, full_key, moved, roundings, setting
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION",
-           "BlankCheck", "Comparison", "FlankCheck", "StatedBlank", "check_flanks",
-           "check_pair_blank", "printed_stated_blank", "stated_blank"]
+           "BlankCheck", "Comparison", "FlankCheck", "check_flanks", "check_pair_blank"]
 __getattr__ = moved_names(__name__, {
     "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution",
     **{n: f"gearcontact.geometry.known_slips:{n}" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}})
@@ -104,105 +104,6 @@ _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angl
 
 
 @dataclass(frozen=True)
-class StatedBlank:
-    """What a pair's blank tables (or a print) state for the flanks cut from settings.
-
-    Attributes
-    ----------
-    pitch_angle_deg, mean_cone_distance_mm, dedendum_mm : dict
-        Per member (``"gear"``, ``"pinion"``): pitch angle (deg), mean cone distance and
-        mean dedendum (mm); a member absent is not checked.
-    spiral_angle_gear_deg : float
-        The gear's mean spiral angle ``beta_m2``, deg.
-    pressure_angle_deg : dict
-        Per side: the generating gear's pressure angle, deg.
-    gear_hand : str
-        ``"right"`` / ``"left"``.
-    cutter_radius_mm : float
-        Nominal cutter radius ``r_c`` of the gear's generating gear, mm.
-    rounding : dict
-        Half a unit of each stated value's last digit (``"spiral_angle_deg"``,
-        ``"pressure_angle_deg"``, ``"cone_distance_mm"``, ``"cutter_radius_mm"``); 0 for
-        a pair's blank, whose values are the design's definitions.
-    setting_rounding : dict or None
-        ``{key: half unit}`` of the settings when known from their source (a print's
-        inches); None: each typed value's own (:func:`.typed_settings.typed_resolution`).
-    hand_key, hand_value : str
-        The key and value that state the hand (``design.pinion_hand``).
-    mctb_datum_mm : dict
-        Per member, the pitch apex's offset from the crossing point along the work axis
-        towards the member's back, mm: a sheet's MD measured from the crossing point is
-        typed as ``X_D = MD + datum`` (docs sec. 2), so its sign slip is ``X_D -> 2 datum
-        - X_D``; tried where non-zero.
-    printed : tuple
-        The ``[print.gear]`` items ``(key, value as typed)`` when the settings checked
-        against this statement were converted from a print (:func:`printed_stated_blank`):
-        a slip or key found is then named by the print's key
-        (:func:`~.print_blank.print_key`); empty otherwise.
-    """
-
-    pitch_angle_deg: dict
-    mean_cone_distance_mm: dict
-    dedendum_mm: dict
-    spiral_angle_gear_deg: float
-    pressure_angle_deg: dict
-    gear_hand: str
-    cutter_radius_mm: float
-    rounding: dict = dataclasses.field(default_factory=dict)
-    setting_rounding: dict | None = None
-    hand_key: str = "design.pinion_hand"
-    hand_value: str = ""
-    mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
-    printed: tuple = ()
-
-
-def stated_blank(pair) -> StatedBlank:
-    """The :class:`StatedBlank` of ``pair``'s blank tables (ISO 23509 design,
-    ``[cutter] radius_mm``, ``[design] pinion_hand``)."""
-    b = pair.blank
-    other = {"right": "left", "left": "right"}
-    return StatedBlank(
-        pitch_angle_deg={"gear": b.pitch_angle_gear_deg, "pinion": b.pitch_angle_pinion_deg},
-        mean_cone_distance_mm={"gear": b.mean_cone_distance_gear_mm,
-                               "pinion": b.mean_cone_distance_pinion_mm},
-        dedendum_mm={"gear": b.dedendum_gear_mm, "pinion": b.dedendum_pinion_mm},
-        spiral_angle_gear_deg=b.spiral_angle_gear_deg,
-        pressure_angle_deg={"drive": b.pressure_angle_drive_deg,
-                            "coast": b.pressure_angle_coast_deg},
-        gear_hand=other[pair.pinion_hand], cutter_radius_mm=pair.cutter.radius_mm,
-        hand_value=pair.pinion_hand,
-        # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
-        # each body on the + side (geometry.blank)
-        mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})
-
-
-def printed_stated_blank(pair) -> StatedBlank | None:
-    """What the gear page of ``pair``'s ``[print.gear]`` prints, as the statement its gear
-    flanks are checked against (:func:`~.print_blank.printed_blank`): the printed mean
-    point (pitch angle, outer cone distance - face width / 2), spiral angle, pressure
-    angles, hand and cutter, the MD's datum by the print's chain, the stated values'
-    and the settings' rounding the print's (its digits, propagated by the check as for
-    typed digits); the dedendum (root datum, a model bound) the pair's blank's. None for
-    a pair without ``[print.gear]``, or whose gear is not the one it cuts
-    (:func:`~.print_blank.cuts_the_printed_gear`: a gear changed since, by a correction
-    or standard settings, is checked as typed tables against the pair's blank)."""
-    if not cuts_the_printed_gear(pair):
-        return None
-    printed = dict(pair.print_gear)
-    base, p = stated_blank(pair), printed_blank(printed, gear_teeth=pair.gear_teeth)
-    return dataclasses.replace(
-        base, pitch_angle_deg={"gear": p.pitch_angle_deg},
-        mean_cone_distance_mm={"gear": p.mean_cone_distance_mm},
-        dedendum_mm={"gear": base.dedendum_mm["gear"]},
-        spiral_angle_gear_deg=p.spiral_angle_deg, pressure_angle_deg=p.pressure_angle_deg,
-        gear_hand=p.gear_hand, cutter_radius_mm=p.cutter_radius_mm,
-        rounding=p.rounding,
-        setting_rounding=p.setting_rounding, hand_key="print.gear.gear_hand",
-        hand_value=printed["gear_hand"], mctb_datum_mm={"gear": p.apex_mm},
-        printed=pair.print_gear)
-
-
-@dataclass(frozen=True)
 class Comparison:
     """One measured value against the stated one: ``quantity``, ``unit``, ``measured``,
     ``stated``, ``tolerance`` (None for the hand) and ``within``."""
@@ -229,8 +130,8 @@ class FlankCheck:
     ``single_keys``: where no known slip explains it, the keys that alone do, with the
     values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked); ``printed``:
     the flank's settings were converted from ``[print.gear]`` and compared with the
-    page's printed blank (:func:`printed_stated_blank`), its keys the print's;
-    ``typed``: where neither a slip nor a single key explains it, its typed keys and
+    page's printed blank (:func:`~.blank_statement.printed_stated_blank`), its keys the
+    print's; ``typed``: where neither a slip nor a single key explains it, its typed keys and
     values ``((full key, value), ...)``, what a refusal names."""
 
     member: str
@@ -545,10 +446,11 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
     a flank that does not agree. ``measured``: the flanks already measured at the
     stated mean points, one :class:`~.flank_angles.FlankMeanPoint` per set-up
     (:func:`~.flank_angles.measure_pair_mean_points`, what ``design`` prints), else
-    each is measured here. ``member_stated``: ``{member: StatedBlank}``, a member's
-    flanks against a statement of their own (a gear typed as a print:
-    :func:`printed_stated_blank`; measured here at its mean point, its slips named by
-    the print's keys); ``stated`` is the others', and its hand key names a hand slip."""
+    each is measured here. ``member_stated``: ``{member: StatedBlank}``
+    (:mod:`.blank_statement`), a member's flanks against a statement of their own (a
+    gear typed as a print: :func:`~.blank_statement.printed_stated_blank`; measured here
+    at its mean point, its slips named by the print's keys); ``stated`` is the others',
+    and its hand key names a hand slip."""
     measured = measured if measured is not None else (None,) * len(setups)
     if len(measured) != len(setups):
         raise InputRangeError("measured", len(measured),
@@ -584,8 +486,9 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
 
 def check_pair_blank(pair, *, measured=None) -> BlankCheck:
     """:func:`check_flanks` of a pair cut from machine settings against its own blank
-    tables (:func:`stated_blank`), a gear typed as a print (``[print.gear]``) against
-    what its page prints (:func:`printed_stated_blank`); ``measured``: the pair's
+    tables (:func:`~.blank_statement.stated_blank`), a gear typed as a print
+    (``[print.gear]``) against what its page prints
+    (:func:`~.blank_statement.printed_stated_blank`); ``measured``: the pair's
     :func:`~.flank_angles.measure_pair_mean_points`, when already measured (a printed
     gear's flanks are measured again, at the print's mean point).
 
