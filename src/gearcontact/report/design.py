@@ -128,6 +128,8 @@ def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
                      f"{edges} of {len(r.edges)} phases")
         if r.reach is not None:
             lines.append(r.reach_text())
+        if getattr(r, "pivot", ""):
+            lines.append(r.pivot_text())
     return pair_to_toml(cut, comments={"": "\n".join(lines)})
 
 

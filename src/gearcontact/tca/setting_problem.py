@@ -30,10 +30,10 @@ from ..geometry.basic_settings import (STANDARD_CROWNING, crown_profile, crownin
                                        member_setups, mismatch_radius)
 from ..geometry.flank import build_machine_flanks
 from ..geometry.formate import SIDES
-from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
+from ..geometry.generated import EnvelopeSolver, generated_pinion_flank, mean_contact_guess
 from ..geometry.machine import MachineSetup
 from ..geometry.typed_pinion import typed_gear_pinion_setups
-from ..validation import InputRangeError
+from ..validation import InputRangeError, check_range
 from .design_point import DesignPoint, design_point_at
 from .mating import solve_mating_point
 from .solve import solve_tca
@@ -173,6 +173,22 @@ def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
                           f"stopped at {mp.v1:.4f} mm)")
 
 
+def _depth_pivot(pinion, gear, pair, mean: ContactGuess, *, fraction: float) -> ContactGuess:
+    """The contact of the pinion flank point at ``fraction`` of its working depth (the
+    flank box from the active root, 0, to the tip, 1) on the section of ``mean`` (the
+    mean node's contact), found from ``mean`` by
+    :func:`~gearcontact.geometry.generated.mean_contact_guess` (exact for a line-contact
+    pinion: every flank point lies on a contact line); the gear phase is the pinion's
+    over the ratio, as :func:`~gearcontact.geometry.flank.build_machine_flanks` starts it."""
+    check_range("pivot_depth", fraction, 0.02, 0.98)
+    (u_root, u_tip), v_m = pinion.u_range, mean.v1
+    u_c = float(u_root + fraction * (u_tip - u_root))
+    touch = mean_contact_guess(pinion, gear, pair.kinematics(with_errors=False),
+                               pinion_uv=(u_c, v_m), gear_uv=(mean.u2, mean.v2))
+    return ContactGuess(u_c, float(v_m), *touch["gear_uv"], touch["phi1_rad"],
+                        touch["phi1_rad"] / pair.ratio)
+
+
 class SynthesisProblem:
     """The fixed part of the synthesis of one pair: the gear flanks, the base pinion
     (:func:`~gearcontact.geometry.basic_settings.member_setups` of ``gear_generation``:
@@ -204,13 +220,21 @@ class SynthesisProblem:
     its cradle is the blank's: docs/machine_settings.md sec. 7). The blank's own gear
     typed gives the base of ``gear_generation`` to rounding.
 
+    ``pivot_depth`` (a fraction of the pinion flank's working depth, from its active
+    root, 0, to its tip, 1, in [0.02, 0.98], or ``{side: fraction}``) moves the pivot of
+    a line-contact base along the mean section to that depth (:func:`_depth_pivot`:
+    any flank point of a line-contact pinion lies on a contact line, so the pivot may
+    be any; docs/machine_settings.md sec. 5, "The pivot's depth"); None keeps the mean
+    node, the standard crowning's pivot. A point-contact base ignores it (its pivot must
+    lie on its contact path). :attr:`pivot` names where M is, per side.
+
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
     corrected pinion).
     """
 
     def __init__(self, pair, *, gear_generation: str = "generated", gear: dict | None = None,
-                 n_u: int = 40, n_v: int = 50):
+                 n_u: int = 40, n_v: int = 50, pivot_depth: float | dict | None = None):
         if pair.pinion_hand != "right":
             raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
                                   "right-hand twin and mirror its settings)")
@@ -238,6 +262,10 @@ class SynthesisProblem:
         #: the pinion sheet's cone (both sides), mm
         self.cone = fs.pinion.side(d).cone
         self.start, self.mean_uv, self.means = {}, {}, {}
+        #: side -> where M lies, in words (the head comment's)
+        self.pivot = {}
+        depth = pivot_depth if isinstance(pivot_depth, dict) else dict.fromkeys(SIDES,
+                                                                              pivot_depth)
         #: side -> why it has no M (point contact whose path misses the pinion mean
         #: section on the flank); such a side has no start, M or standard corrections
         self.off_flank = {}
@@ -257,9 +285,17 @@ class SynthesisProblem:
                     continue
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
-            else:       # line contact: the pinion's mean node lies on a contact line
+                self.pivot[side] = "the base's contact path on the pinion mean section"
+            elif depth.get(side) is None:     # line contact: the mean node is on a line
                 self.start[side] = guess
                 self.mean_uv[side] = tuple(float(t) for t in m["pinion_uv"])
+                self.pivot[side] = "the blank's mean node"
+            else:       # line contact: any flank point is; the pivot at the given depth
+                self.start[side] = _depth_pivot(fs.pinion.side(side), self.gear[side], pair,
+                                                guess, fraction=float(depth[side]))
+                self.mean_uv[side] = (self.start[side].u1, self.start[side].v1)
+                self.pivot[side] = (f"{float(depth[side]):.2f} of the pinion's working "
+                                    "depth on the mean section")
             self.means[side] = _generation_at(self.base[side], blank, self.cone,
                                               self.mean_uv[side])
         # the standard crowning (25 / 10 um, standard_setups): the search's start
