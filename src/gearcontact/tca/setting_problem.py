@@ -173,6 +173,44 @@ def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
                           f"stopped at {mp.v1:.4f} mm)")
 
 
+#: Margin of a pivot off the mean section (:func:`_path_point_inside`): inside the pinion
+#: flank box by this fraction of its working depth (root, tip) and of its face (toe,
+#: heel), so that the paint ellipse of M has room on the flank.
+PIVOT_MARGIN = 0.1
+#: Phase range searched for the base's contact path on the flank, pinion pitches either
+#: side of the mean node's phase (in steps of :data:`_LOCAL_STEP_PITCH`).
+_PATH_SEARCH_PITCHES = 2
+
+
+def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
+                       margin: float = PIVOT_MARGIN):
+    """The point of the contact path through ``guess``'s phase region nearest the
+    section ``v1_mm`` among those inside the pinion flank box by ``margin`` of its depth
+    and face, or None: the first phase within :data:`_PATH_SEARCH_PITCHES` of
+    ``guess`` (steps of :data:`_LOCAL_STEP_PITCH`, the nearer first) whose mating point
+    is on the flank starts a TCA (surface contact, edges off) over as many pitches either
+    side, sampled at the same step."""
+    kin = pair.kinematics()
+    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
+    steps = int(round(_PATH_SEARCH_PITCHES / _LOCAL_STEP_PITCH))
+    for k in sorted(range(-steps, steps + 1), key=lambda j: (abs(j), j)):
+        try:
+            mp = solve_mating_point(pinion, gear, kin, dataclasses.replace(
+                guess, phi1_rad=guess.phi1_rad + k * h))
+            break
+        except (EdgeContact, ArithmeticError):
+            continue
+    else:
+        return None
+    path = solve_tca(pinion, gear, kin, mp.phi1_rad + h * np.arange(-steps, steps + 1),
+                     start=mp.as_guess(), start_fixed="phi1", edges=False)
+    (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
+    du, dv = margin * (u1 - u0), margin * (v1 - v0)
+    inside = [p for p in path.points if not p.edge and u0 + du <= p.u1 <= u1 - du
+              and v0 + dv <= p.v1 <= v1 - dv]
+    return min(inside, key=lambda p: abs(p.v1 - v1_mm)) if inside else None
+
+
 def _depth_pivot(pinion, gear, pair, mean: ContactGuess, *, fraction: float) -> ContactGuess:
     """The contact of the pinion flank point at ``fraction`` of its working depth (the
     flank box from the active root, 0, to the tip, 1) on the section of ``mean`` (the
@@ -209,6 +247,12 @@ class SynthesisProblem:
     whose generation the standard crowning keeps in place; its exact contact is that
     flank set's mean contact. The corrections pivot on the generation of M, so the
     corrected pinion keeps M, its normal and the nominal ratio there: tangency at M.
+
+    Where a point-contact base's path does not reach the mean section on the flank (the
+    10 x 41 print's gear, drive: it leaves at the root 1.9 mm before it), M is the path's
+    point nearest the mean section among those inside the flank box by
+    :data:`PIVOT_MARGIN` of its depth and face (:func:`_path_point_inside`); a side
+    whose path has no such point has no M (:attr:`off_flank`).
 
     A typed gear (``gear``: ``{side: MachineSetup}`` of the gear as the user typed it,
     right-hand; ``gear_generation`` is then its own: formate if both sides are) replaces
@@ -266,26 +310,39 @@ class SynthesisProblem:
         self.pivot = {}
         depth = pivot_depth if isinstance(pivot_depth, dict) else dict.fromkeys(SIDES,
                                                                               pivot_depth)
-        #: side -> why it has no M (point contact whose path misses the pinion mean
-        #: section on the flank); such a side has no start, M or standard corrections
+        #: side -> why it has no M (point contact whose path has no point inside the
+        #: pinion flank by PIVOT_MARGIN); such a side has no start, M or standard
+        #: corrections
         self.off_flank = {}
         for side in SIDES:
             m = fs.mean_contact[side]
             guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
                                  m["phi2_rad"])
             if self.point_contact:
+                v_m = float(blank.pitch_point_mm[0])
                 try:
                     mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
-                                        v1_mm=float(blank.pitch_point_mm[0]))
+                                        v1_mm=v_m)
+                    self.pivot[side] = "the base's contact path on the pinion mean section"
                 except EdgeContact as exc:
-                    self.off_flank[side] = (
-                        "the base pinion's contact path does not reach the pinion's mean "
-                        f"section on the flank (from the mean node's phase: {exc}); M, the "
-                        "pivot, is not a point of the flank (docs/machine_settings.md sec. 5)")
-                    continue
+                    # the path's point nearest the mean section inside the flank
+                    mp = _path_point_inside(fs.pinion.side(side), self.gear[side], pair,
+                                            guess, v1_mm=v_m)
+                    if mp is None:
+                        self.off_flank[side] = (
+                            "the base pinion's contact path does not reach the pinion's "
+                            f"mean section on the flank (from the mean node's phase: {exc})"
+                            f" and no point of it lies inside the flank by {PIVOT_MARGIN:g}"
+                            " of its depth and face; M, the pivot, is not a point of the "
+                            "flank (docs/machine_settings.md sec. 5)")
+                        continue
+                    self.pivot[side] = (
+                        f"the base's contact path {mp.v1 - v_m:+.2f} mm off the pinion "
+                        "mean section (the path does not reach it on the flank): its point "
+                        f"nearest it inside the flank by {PIVOT_MARGIN:g} of the depth and "
+                        "face")
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
-                self.pivot[side] = "the base's contact path on the pinion mean section"
             elif depth.get(side) is None:     # line contact: the mean node is on a line
                 self.start[side] = guess
                 self.mean_uv[side] = tuple(float(t) for t in m["pinion_uv"])
