@@ -133,7 +133,8 @@ def test_a_typed_gear_is_kept_in_the_written_pair(monkeypatch):
         return {s: SimpleNamespace(setup=problem.base[s]) for s in SIDES}
 
     monkeypatch.setattr(ss, "synthesize_settings", base_only)
-    cut, _ = ss.synthesized_machine_pair(pair, gear=gear, n_u=12, n_v=14)
+    # centre_pivot off: one problem (the pivot's choice: tests/tca/test_setting_pivot_depth.py)
+    cut, _ = ss.synthesized_machine_pair(pair, gear=gear, n_u=12, n_v=14, centre_pivot=False)
     assert seen["gear"] == gear
     assert tuple(s for s in cut.machine if s.member == "gear") == tuple(gear[s] for s in SIDES)
 
@@ -156,7 +157,7 @@ def test_a_left_hand_pair_keeps_its_typed_gear(monkeypatch):
         return {s: SimpleNamespace(setup=problem.base[s]) for s in SIDES}
 
     monkeypatch.setattr(ss, "synthesize_settings", base_only)
-    cut, _ = ss.synthesized_machine_pair(pair, gear=gear, n_u=12, n_v=14)
+    cut, _ = ss.synthesized_machine_pair(pair, gear=gear, n_u=12, n_v=14, centre_pivot=False)
     prob = seen["problem"]
     assert prob.pair.pinion_hand == "right"
     assert prob.gear_setups == {s: mirror_setup(gear[s]) for s in SIDES}
