@@ -40,7 +40,9 @@ reach for certain is refused before the search, and the search starts from the
 predicted corrections where they miss less than the standard crowning. The base pinion and M
 (:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
 on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
-(M the blank's mean point on the pinion).
+(M the blank's mean point on the pinion or, in :func:`synthesized_machine_pair`, the
+middle of the pinion's working depth where that keeps the pattern off the flank edges at
+more phases).
 
 References
 ----------
