@@ -383,8 +383,10 @@ def _better_pivot(a: SettingSynthesis, b: SettingSynthesis) -> SettingSynthesis:
     phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p; a result
     missing a target loses to one meeting them), the other's check named in its
     ``other_pivot``."""
-    key = {id(r): (not r.met, r.edge_phases, r.tca_te0_pp_arcsec) for r in (a, b)}
-    keep, drop = (a, b) if key[id(a)] <= key[id(b)] else (b, a)
+    def rank(r):
+        return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
+
+    keep, drop = (a, b) if rank(a) <= rank(b) else (b, a)
     return dataclasses.replace(keep, other_pivot=(
         f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
         f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
