@@ -34,7 +34,8 @@ from gearcontact.tca.edges import pattern_edges
 from gearcontact.tca.mating import solve_mating_point
 from gearcontact.tca.mesh import mesh_cycle
 from gearcontact.tca.setting_problem import SynthesisProblem, corrected_setup
-from gearcontact.tca.setting_synthesis import _better_pivot, synthesize_settings
+from gearcontact.tca.setting_synthesis import (SettingSynthesis, _better_pivot,
+                                               synthesize_settings)
 from gearcontact.tca.stencil import gap_at
 
 SIDE = "drive"
@@ -148,3 +149,23 @@ def test_synthesis_about_the_centre_keeps_the_bearing_off_the_edges(problems):
     # synthesized_machine_pair keeps it, naming the other pivot's check
     kept = _better_pivot(at_node, got)
     assert kept.x is got.x and "mean node" in kept.other_pivot
+
+
+def _result(pivot, edges, te0, met=True):
+    """A SettingSynthesis with only what the pivot's choice reads."""
+    row = ("TE0 peak-to-peak", "arcsec", 3.0, 3.0, 0.15, met)
+    return SettingSynthesis("drive", None, np.zeros(3), None, (row,), te0,
+                            ("pinion root",) * edges + ("",) * (31 - edges), 0.0, 0, 0.0,
+                            pivot=pivot)
+
+
+def test_the_pivot_kept_is_the_one_with_fewer_edge_phases():
+    # the rule (docs sec. 5): fewer edge phases; a tie: the lower TE0 p-p; a missed
+    # target loses; the dropped pivot's check is named
+    node, centre = "the blank's mean node", "0.50 of the pinion's working depth"
+    kept = _better_pivot(_result(node, 31, 2.9), _result(centre, 17, 3.0))
+    assert kept.pivot == centre and "mean node: paint ellipse at a flank edge at 31 of 31" \
+        in kept.other_pivot
+    assert _better_pivot(_result(node, 31, 2.78), _result(centre, 31, 35.7)).pivot == node
+    assert _better_pivot(_result(node, 12, 2.9), _result(centre, 3, 2.9, met=False)).pivot \
+        == node
