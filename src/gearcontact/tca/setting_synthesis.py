@@ -195,7 +195,8 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
         A right-hand pair (a left-hand pair is refused: mirror its twin's settings).
     targets : SynthesisTargets or dict
         TE0 level, paint-ellipse length and optional path angle (the bearing centre is
-        the mean point; ``centre_*`` only place the first-order path angle), for every
+        the problem's M; ``centre_profile`` places the centred pivot of
+        :func:`synthesized_machine_pair`), for every
         side or per side (``{side: SynthesisTargets}``: the sides reach different path
         angles).
     phases : int
