@@ -81,9 +81,10 @@ def test_the_blank_gear_typed_alone_synthesizes_the_untyped_pinion(tmp_path):
 @pytest.mark.slow
 def test_the_print_page_keeps_its_gear_and_writes_a_pinion(page_alone, tmp_path):
     # ~40 s. The file written keeps [print.gear] verbatim and types the pinion alone; a
-    # side the synthesis cannot pivot (its M off the flank, exit 4: measured on the
-    # drive side, tests/tca/test_setting_synthesis_typed.py) gets the standard pinion,
-    # the tables of `design --machine-settings` on the same page (==, the same code)
+    # side the synthesis cannot pivot (no point of its path inside the flank, exit 4;
+    # the drive side, whose path misses the mean section, now pivots off it:
+    # tests/tca/test_setting_synthesis_typed.py) gets the standard pinion, the tables of
+    # `design --machine-settings` on the same page (==, the same code)
     out, std = tmp_path / "out", tmp_path / "std"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")       # the print's blank note

@@ -117,8 +117,9 @@ def local_synthesis(args, pair) -> int:
     if off:
         raise CheckFailed(f"setting synthesis of {pair.name}: no pivot on the flank on the "
                           f"{' and '.join(off)} side{'s' if len(off) > 1 else ''} (the base "
-                          "pinion's contact path misses the pinion mean section on the "
-                          "flank; its standard pinion is written, see the head comment)")
+                          "pinion's contact path has no point inside the flank by the "
+                          "pivot's margin; its standard pinion is written, see the head "
+                          "comment)")
     return 0
 
 

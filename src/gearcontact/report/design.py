@@ -116,10 +116,10 @@ def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
              "(gearcontact design --machine-settings --local-synthesis;",
              f"signs: docs/machine_settings.md); gear: {gear}"]
     for side in (s for s in SIDES if s not in done):
-        lines.append(f"{side}: not synthesized: the base pinion's contact path misses the "
-                     "pinion mean section on the flank (no pivot M); the standard pinion "
-                     "(crowning 25 / 10 um about the mean node), docs/machine_settings.md "
-                     "sec. 5")
+        lines.append(f"{side}: not synthesized: the base pinion's contact path has no "
+                     "point inside the flank by the pivot's margin (no pivot M); the standard "
+                     "pinion (crowning 25 / 10 um about the mean node), "
+                     "docs/machine_settings.md sec. 5")
     for side, r in done.items():
         lines += r.table().splitlines()
         edges = sum(1 for e in r.edges if e)
@@ -128,6 +128,8 @@ def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
                      f"{edges} of {len(r.edges)} phases")
         if r.reach is not None:
             lines.append(r.reach_text())
+        if getattr(r, "pivot", ""):
+            lines.append(r.pivot_text())
     return pair_to_toml(cut, comments={"": "\n".join(lines)})
 
 

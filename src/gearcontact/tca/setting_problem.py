@@ -30,10 +30,10 @@ from ..geometry.basic_settings import (STANDARD_CROWNING, crown_profile, crownin
                                        member_setups, mismatch_radius)
 from ..geometry.flank import build_machine_flanks
 from ..geometry.formate import SIDES
-from ..geometry.generated import EnvelopeSolver, generated_pinion_flank
+from ..geometry.generated import EnvelopeSolver, generated_pinion_flank, mean_contact_guess
 from ..geometry.machine import MachineSetup
 from ..geometry.typed_pinion import typed_gear_pinion_setups
-from ..validation import InputRangeError
+from ..validation import InputRangeError, check_range
 from .design_point import DesignPoint, design_point_at
 from .mating import solve_mating_point
 from .solve import solve_tca
@@ -173,6 +173,60 @@ def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
                           f"stopped at {mp.v1:.4f} mm)")
 
 
+#: Margin of a pivot off the mean section (:func:`_path_point_inside`): inside the pinion
+#: flank box by this fraction of its working depth (root, tip) and of its face (toe,
+#: heel), so that the paint ellipse of M has room on the flank.
+PIVOT_MARGIN = 0.1
+#: Phase range searched for the base's contact path on the flank, pinion pitches either
+#: side of the mean node's phase (in steps of :data:`_LOCAL_STEP_PITCH`).
+_PATH_SEARCH_PITCHES = 2
+
+
+def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
+                       margin: float = PIVOT_MARGIN):
+    """The point of the contact path through ``guess``'s phase region nearest the
+    section ``v1_mm`` among those inside the pinion flank box by ``margin`` of its depth
+    and face, or None: the first phase within :data:`_PATH_SEARCH_PITCHES` of
+    ``guess`` (steps of :data:`_LOCAL_STEP_PITCH`, the nearer first) whose mating point
+    is on the flank starts a TCA (surface contact, edges off) over as many pitches either
+    side, sampled at the same step."""
+    kin = pair.kinematics()
+    h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
+    steps = int(round(_PATH_SEARCH_PITCHES / _LOCAL_STEP_PITCH))
+    for k in sorted(range(-steps, steps + 1), key=lambda j: (abs(j), j)):
+        try:
+            mp = solve_mating_point(pinion, gear, kin, dataclasses.replace(
+                guess, phi1_rad=guess.phi1_rad + k * h))
+            break
+        except (EdgeContact, ArithmeticError):
+            continue
+    else:
+        return None
+    path = solve_tca(pinion, gear, kin, mp.phi1_rad + h * np.arange(-steps, steps + 1),
+                     start=mp.as_guess(), start_fixed="phi1", edges=False)
+    (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
+    du, dv = margin * (u1 - u0), margin * (v1 - v0)
+    inside = [p for p in path.points if not p.edge and u0 + du <= p.u1 <= u1 - du
+              and v0 + dv <= p.v1 <= v1 - dv]
+    return min(inside, key=lambda p: abs(p.v1 - v1_mm)) if inside else None
+
+
+def _depth_pivot(pinion, gear, pair, mean: ContactGuess, *, fraction: float) -> ContactGuess:
+    """The contact of the pinion flank point at ``fraction`` of its working depth (the
+    flank box from the active root, 0, to the tip, 1) on the section of ``mean`` (the
+    mean node's contact), found from ``mean`` by
+    :func:`~gearcontact.geometry.generated.mean_contact_guess` (exact for a line-contact
+    pinion: every flank point lies on a contact line); the gear phase is the pinion's
+    over the ratio, as :func:`~gearcontact.geometry.flank.build_machine_flanks` starts it."""
+    check_range("pivot_depth", fraction, 0.02, 0.98)
+    (u_root, u_tip), v_m = pinion.u_range, mean.v1
+    u_c = float(u_root + fraction * (u_tip - u_root))
+    touch = mean_contact_guess(pinion, gear, pair.kinematics(with_errors=False),
+                               pinion_uv=(u_c, v_m), gear_uv=(mean.u2, mean.v2))
+    return ContactGuess(u_c, float(v_m), *touch["gear_uv"], touch["phi1_rad"],
+                        touch["phi1_rad"] / pair.ratio)
+
+
 class SynthesisProblem:
     """The fixed part of the synthesis of one pair: the gear flanks, the base pinion
     (:func:`~gearcontact.geometry.basic_settings.member_setups` of ``gear_generation``:
@@ -194,6 +248,12 @@ class SynthesisProblem:
     flank set's mean contact. The corrections pivot on the generation of M, so the
     corrected pinion keeps M, its normal and the nominal ratio there: tangency at M.
 
+    Where a point-contact base's path does not reach the mean section on the flank (the
+    10 x 41 print's gear, drive: it leaves at the root 1.9 mm before it), M is the path's
+    point nearest the mean section among those inside the flank box by
+    :data:`PIVOT_MARGIN` of its depth and face (:func:`_path_point_inside`); a side
+    whose path has no such point has no M (:attr:`off_flank`).
+
     A typed gear (``gear``: ``{side: MachineSetup}`` of the gear as the user typed it,
     right-hand; ``gear_generation`` is then its own: formate if both sides are) replaces
     the blank's: the base pinion is its uncrowned pinion
@@ -204,13 +264,21 @@ class SynthesisProblem:
     its cradle is the blank's: docs/machine_settings.md sec. 7). The blank's own gear
     typed gives the base of ``gear_generation`` to rounding.
 
+    ``pivot_depth`` (a fraction of the pinion flank's working depth, from its active
+    root, 0, to its tip, 1, in [0.02, 0.98], or ``{side: fraction}``) moves the pivot of
+    a line-contact base along the mean section to that depth (:func:`_depth_pivot`:
+    any flank point of a line-contact pinion lies on a contact line, so the pivot may
+    be any; docs/machine_settings.md sec. 5, "The pivot's depth"); None keeps the mean
+    node, the standard crowning's pivot. A point-contact base ignores it (its pivot must
+    lie on its contact path). :attr:`pivot` names where M is, per side.
+
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
     corrected pinion).
     """
 
     def __init__(self, pair, *, gear_generation: str = "generated", gear: dict | None = None,
-                 n_u: int = 40, n_v: int = 50):
+                 n_u: int = 40, n_v: int = 50, pivot_depth: float | dict | None = None):
         if pair.pinion_hand != "right":
             raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
                                   "right-hand twin and mirror its settings)")
@@ -238,28 +306,53 @@ class SynthesisProblem:
         #: the pinion sheet's cone (both sides), mm
         self.cone = fs.pinion.side(d).cone
         self.start, self.mean_uv, self.means = {}, {}, {}
-        #: side -> why it has no M (point contact whose path misses the pinion mean
-        #: section on the flank); such a side has no start, M or standard corrections
+        #: side -> where M lies, in words (the head comment's)
+        self.pivot = {}
+        depth = pivot_depth if isinstance(pivot_depth, dict) else dict.fromkeys(SIDES,
+                                                                              pivot_depth)
+        #: side -> why it has no M (point contact whose path has no point inside the
+        #: pinion flank by PIVOT_MARGIN); such a side has no start, M or standard
+        #: corrections
         self.off_flank = {}
         for side in SIDES:
             m = fs.mean_contact[side]
             guess = ContactGuess(*m["pinion_uv"], *m["gear_uv"], pair.ratio * m["phi2_rad"],
                                  m["phi2_rad"])
             if self.point_contact:
+                v_m = float(blank.pitch_point_mm[0])
                 try:
                     mp = _path_point_at(fs.pinion.side(side), self.gear[side], pair, guess,
-                                        v1_mm=float(blank.pitch_point_mm[0]))
+                                        v1_mm=v_m)
+                    self.pivot[side] = "the base's contact path on the pinion mean section"
                 except EdgeContact as exc:
-                    self.off_flank[side] = (
-                        "the base pinion's contact path does not reach the pinion's mean "
-                        f"section on the flank (from the mean node's phase: {exc}); M, the "
-                        "pivot, is not a point of the flank (docs/machine_settings.md sec. 5)")
-                    continue
+                    # the path's point nearest the mean section inside the flank
+                    mp = _path_point_inside(fs.pinion.side(side), self.gear[side], pair,
+                                            guess, v1_mm=v_m)
+                    if mp is None:
+                        self.off_flank[side] = (
+                            "the base pinion's contact path does not reach the pinion's "
+                            f"mean section on the flank (from the mean node's phase: {exc})"
+                            f" and no point of it lies inside the flank by {PIVOT_MARGIN:g}"
+                            " of its depth and face; M, the pivot, is not a point of the "
+                            "flank (docs/machine_settings.md sec. 5)")
+                        continue
+                    self.pivot[side] = (
+                        f"the base's contact path {mp.v1 - v_m:+.2f} mm off the pinion "
+                        "mean section (the path does not reach it on the flank): its point "
+                        f"nearest it inside the flank by {PIVOT_MARGIN:g} of the depth and "
+                        "face")
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
-            else:       # line contact: the pinion's mean node lies on a contact line
+            elif depth.get(side) is None:     # line contact: the mean node is on a line
                 self.start[side] = guess
                 self.mean_uv[side] = tuple(float(t) for t in m["pinion_uv"])
+                self.pivot[side] = "the blank's mean node"
+            else:       # line contact: any flank point is; the pivot at the given depth
+                self.start[side] = _depth_pivot(fs.pinion.side(side), self.gear[side], pair,
+                                                guess, fraction=float(depth[side]))
+                self.mean_uv[side] = (self.start[side].u1, self.start[side].v1)
+                self.pivot[side] = (f"{float(depth[side]):.2f} of the pinion's working "
+                                    "depth on the mean section")
             self.means[side] = _generation_at(self.base[side], blank, self.cone,
                                               self.mean_uv[side])
         # the standard crowning (25 / 10 um, standard_setups): the search's start

@@ -40,7 +40,9 @@ reach for certain is refused before the search, and the search starts from the
 predicted corrections where they miss less than the standard crowning. The base pinion and M
 (:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
 on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
-(M the blank's mean point on the pinion).
+(M the blank's mean point on the pinion or, in :func:`synthesized_machine_pair`, the
+middle of the pinion's working depth where that keeps the pattern off the flank edges at
+more phases).
 
 References
 ----------
@@ -131,6 +133,11 @@ class SettingSynthesis(TargetRows):
         model's corrections after its chord steps (nan without a reach model).
     residual : float
         The same at the result (the achieved one).
+    pivot : str
+        Where M, the pivot, lies (:attr:`~.setting_problem.SynthesisProblem.pivot`).
+    other_pivot : str
+        Where both pivots of :func:`synthesized_machine_pair` were tried: the other one
+        and its full TCA's check ("" otherwise).
     """
 
     side: str
@@ -147,6 +154,19 @@ class SettingSynthesis(TargetRows):
     reach_residual: float = float("nan")
     start_residual: float = float("nan")
     residual: float = float("nan")
+    pivot: str = ""
+    other_pivot: str = ""
+
+    @property
+    def edge_phases(self) -> int:
+        """Phases of the full TCA whose paint ellipse reaches a flank edge."""
+        return sum(1 for e in self.edges if e)
+
+    def pivot_text(self) -> str:
+        """Where M lies and, if tried, the other pivot's check."""
+        text = f"{self.side}: pivot M at {self.pivot}, pinion (u, v) = " + \
+            ", ".join(f"{t:.3f}" for t in self.point.pinion_uv) + " mm"
+        return text + (f"; kept against {self.other_pivot}" if self.other_pivot else "")
 
     def reach_text(self) -> str:
         """The reach model's prediction beside the achieved residual ("" without one)."""
@@ -175,7 +195,8 @@ def synthesize_settings(pair, *, targets: SynthesisTargets | dict = SynthesisTar
         A right-hand pair (a left-hand pair is refused: mirror its twin's settings).
     targets : SynthesisTargets or dict
         TE0 level, paint-ellipse length and optional path angle (the bearing centre is
-        the mean point; ``centre_*`` only place the first-order path angle), for every
+        the problem's M; ``centre_profile`` places the centred pivot of
+        :func:`synthesized_machine_pair`), for every
         side or per side (``{side: SynthesisTargets}``: the sides reach different path
         angles).
     phases : int
@@ -355,12 +376,28 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
                             targets_rows(local.point, targets, None, length),
                             float(cyc.te0_pp_arcsec), tuple(edges),
                             float(np.hypot(vertex.u1 - u_m, vertex.v1 - v_m)), runs,
-                            time.perf_counter() - t0)
+                            time.perf_counter() - t0, pivot=prob.pivot[side])
+
+
+def _better_pivot(a: SettingSynthesis, b: SettingSynthesis) -> SettingSynthesis:
+    """Of two syntheses of one side at two pivots, the one whose full TCA has fewer
+    phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p; a result
+    missing a target loses to one meeting them), the other's check named in its
+    ``other_pivot``."""
+    def rank(r):
+        return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
+
+    keep, drop = (a, b) if rank(a) <= rank(b) else (b, a)
+    return dataclasses.replace(keep, other_pivot=(
+        f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
+        f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
+        + ("" if drop.met else ", targets missed")))
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                              gear_generation: str | None = None, gear: dict | None = None,
-                             standard_off_flank: bool = False, **options):
+                             standard_off_flank: bool = False, centre_pivot: bool = True,
+                             **options):
     """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
     sides, and the per-side results. ``gear_generation``: ``"formate"`` or
@@ -379,6 +416,16 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     given in the result, ``pair.print_gear`` with it (written back as typed); a
     left-hand pair's twin gets it mirrored.
 
+    The pivot (docs/machine_settings.md sec. 5, "The pivot's depth"): a line-contact
+    base (a formate gear, or a generated gear at offset 0) is synthesized twice per side
+    with ``centre_pivot``: M at the blank's mean node (the standard crowning's pivot) and
+    M at the bearing centre's depth (``targets.centre_profile`` of the pinion's working
+    depth on the mean section, :class:`SynthesisProblem` ``pivot_depth``: the middle by
+    default, where the paint ellipse along the contact line has the most room), and
+    the one whose full TCA puts the paint ellipse at a flank edge at fewer phases is
+    kept (a tie: the lower TE0 p-p; :func:`_better_pivot`), the other's check in its
+    ``other_pivot``. A point-contact base pivots on its contact path (once).
+
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
     ``standard_off_flank`` gets the base localized by the standard crowning
@@ -390,7 +437,7 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
             dataclasses.replace(pair, pinion_hand="right", machine=(), typed_gear=(),
                                 print_gear=()), targets=targets,
             gear_generation=gear_generation, standard_off_flank=standard_off_flank,
-            gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
+            centre_pivot=centre_pivot, gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
             **options)
         machine = tuple(mirror_setup(s) for s in twin.machine)
         if gear is not None:      # the gear as typed, not its twin's mirror image
@@ -399,11 +446,25 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
                                    easeoff_tables=twin.easeoff_tables), done
     if gear_generation is None and gear is None:
         gear_generation = default_gear_generation(pair)[0]
+    grid = {"n_u": options.pop("n_u", 40), "n_v": options.pop("n_v", 50)}
     prob = SynthesisProblem(pair, gear_generation=gear_generation or "generated", gear=gear,
-                            n_u=options.pop("n_u", 40), n_v=options.pop("n_v", 50))
+                            **grid)
     sides = tuple(s for s in SIDES if not (standard_off_flank and s in prob.off_flank))
     done = synthesize_settings(pair, targets=targets, problem=prob, sides=sides,
                                **options) if sides else {}
+    if centre_pivot and sides and not prob.point_contact:
+        per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
+        centred = SynthesisProblem(pair, gear_generation=gear_generation or "generated",
+                                   gear=gear, pivot_depth={
+                                       s: per_side[s].centre_profile for s in sides}, **grid)
+        try:
+            other = synthesize_settings(pair, targets=targets, problem=centred, sides=sides,
+                                        **options)
+        except CheckFailed as exc:      # no contact at the centred M: the mean node's
+            other, why = {}, f"the working depth's centre: not synthesized ({exc})"
+            done = {s: dataclasses.replace(r, other_pivot=why) for s, r in done.items()}
+        done = {s: _better_pivot(done[s], other[s]) if s in other else done[s]
+                for s in sides}
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
                                                if s not in done},
