@@ -36,7 +36,6 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 
@@ -45,41 +44,37 @@ from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_
                              crowned_pinion_setups)
 from .formate import SIDES
 from .generated import work_to_body
-from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, BladeSettings,
-                      MachineKinematics, MachineSetup, mirror_setup)
+from .blade_mate import mate_blade
+from .machine import HELICAL_KEYS, MEMBERS, MachineKinematics, MachineSetup, mirror_setup
 from .relief_setup import relieved_setup
 
 __all__ = ["typed_gear_machine_pair", "typed_gear_pinion_setups"]
 
-#: Blade keys of the gear that the derived pinion cannot carry over (the pinion's
-#: cutter is the gear's straight blade cone moved along its axis; a curved profile
-#: would need its profile continued beyond the gear blade's tip).
-_CURVED_KEYS = ("profile_radius_mm", "profile_cubic_per_mm2", "profile_quartic_per_mm3")
-
-
 def _check_gear(gear: dict) -> None:
     """An input error naming the first key of the typed gear's tables the derivation
-    does not take (a modified roll, a helical motion, a curved blade), or a missing
-    side."""
+    does not take: a missing side, or a helical motion without roll (the pinion would
+    be cut by the same screw motion without turning: not a generated pinion)."""
     if sorted(gear) != sorted(SIDES):
         raise InputRangeError("[machine.gear.*]", sorted(gear), f"both flanks {SIDES}")
     for side in SIDES:
-        st, b = gear[side].settings, gear[side].blade
-        where = f"machine.gear.{side}"
-        for name, keys, vals in (("modified roll", MODIFIED_ROLL_KEYS, st.modified_roll),
-                                 ("helical motion", HELICAL_KEYS, st.helical_motion)):
-            for key, x in zip(keys, vals):
-                if x != 0.0:
-                    raise InputRangeError(
-                        f"{where}.{key}", x, f"0 for the pinion derived from the typed gear "
-                        f"(a gear cut with {name}: its pinion not yet derived, "
-                        "docs/machine_settings.md sec. 7)")
-        for key in _CURVED_KEYS:
-            if getattr(b, key) != 0.0:
-                raise InputRangeError(
-                    f"blade.gear.{side}.{key}", getattr(b, key), "0 for the pinion derived "
-                    "from the typed gear (a straight gear blade: the pinion's cutter is its "
-                    "cone; curved gear blades not yet, docs/machine_settings.md sec. 7)")
+        st = gear[side].settings
+        if st.ratio_of_roll == 0.0 and any(st.helical_motion):
+            raise InputRangeError(
+                f"machine.gear.{side}.ratio_of_roll", st.ratio_of_roll,
+                f"> 0 with helical motion ({HELICAL_KEYS[0]} ...) for the pinion derived from "
+                "the typed gear: a gear cut by a screw motion without roll leaves a pinion "
+                "that does not roll either (docs/machine_settings.md sec. 5)")
+
+
+def _pinion_motion(setup: MachineSetup) -> dict:
+    """The pinion machine's modified roll and helical motion for the gear's generating
+    motion ``setup`` reversed (module docstring): the pinion's cradle turns the other
+    way about the reversed axis (``psi' = -psi``, the work as the mirror image's:
+    2C and 24E change sign, :func:`~.machine.mirror_setup`) and the cradle's slide along
+    that axis is seen reversed (``V'(psi') = -V(-psi')``: V_1 stays, V_2 changes sign)."""
+    m = mirror_setup(setup).settings
+    return {"modified_roll": m.modified_roll,
+            "helical_motion": tuple(-x for x in m.helical_motion)}
 
 
 def _gear_cradle(setup: MachineSetup, blank):
@@ -116,20 +111,20 @@ def typed_gear_pinion_setups(pair, gear: dict) -> dict:
     out = {}
     for side in SIDES:
         setup = gear[side]
-        st, b = setup.settings, setup.blade
+        st = setup.settings
         tip, axis, point, z_dir = _gear_cradle(setup, blank)
-        alpha = math.radians(b.blade_angle_deg)
-        blade = BladeSettings(kind="outside" if b.kind == "inside" else "inside",
-                              blade_angle_deg=b.blade_angle_deg,
-                              point_radius_mm=b.point_radius_mm - b.sigma * shift * math.tan(alpha),
-                              edge_radius_mm=b.edge_radius_mm)
+        blade = mate_blade(setup.blade, shift_mm=shift, where=f"blade.gear.{side}")
         if st.formate:      # the gear's own cutter generates: the cradle is the gear axis
             point, z_m, ratio = np.zeros(3), np.array([0.0, 0.0, -1.0]), u
         else:               # the gear's cradle, fixed in the housing, faces the pinion
             z_m, ratio = -z_dir, u * st.ratio_of_roll
-        out.update(cradle_pinion_setups(pair, tip_mm=tip - shift * axis, axis=axis,
-                                        blades={side: blade}, axis_point=point, z_m=z_m,
-                                        ratio_of_roll=ratio))
+        pinion = cradle_pinion_setups(pair, tip_mm=tip - shift * axis, axis=axis,
+                                      blades={side: blade}, axis_point=point, z_m=z_m,
+                                      ratio_of_roll=ratio)[side]
+        if not st.formate and (st.modified_roll or st.helical_motion):
+            pinion = dataclasses.replace(pinion, settings=dataclasses.replace(
+                pinion.settings, **_pinion_motion(setup)))
+        out[side] = pinion
     return out
 
 
