@@ -75,7 +75,7 @@ def mate_blade(blade: BladeSettings, *, shift_mm: float, where: str = "blade") -
                              edge_radius_mm=blade.edge_radius_mm,
                              profile_radius_mm=0.0 if k == 0.0 else -1.0 / k,
                              profile_cubic_per_mm2=about.profile_cubic_per_mm2,
-                             profile_quartic_per_mm3=-about.profile_quartic_per_mm3)
+                             profile_quartic_per_mm3=0.0 - about.profile_quartic_per_mm3)
         return blade_through_point(mate, rho_mm=float(rho_c), z_mm=shift_mm - float(z_c))
     except InputRangeError as exc:
         raise InputRangeError(f"{where}.{exc.field.rsplit('.', 1)[-1]}", exc.value,

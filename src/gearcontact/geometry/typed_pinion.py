@@ -36,16 +36,18 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 
 from ..validation import InputRangeError
 from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_setups,
                              crowned_pinion_setups)
-from .formate import SIDES
-from .generated import work_to_body
 from .blade_mate import mate_blade
-from .machine import HELICAL_KEYS, MEMBERS, MachineKinematics, MachineSetup, mirror_setup
+from .formate import SIDES
+from .generated import EnvelopeSolver, work_to_body
+from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinematics,
+                      MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
 
 __all__ = ["typed_gear_machine_pair", "typed_gear_pinion_setups"]
@@ -77,6 +79,66 @@ def _pinion_motion(setup: MachineSetup) -> dict:
             "helical_motion": tuple(-x for x in m.helical_motion)}
 
 
+def _pinion_rolls(pair, setup: MachineSetup) -> tuple[float, float]:
+    """``(psi_min, psi_max)``, rad: the cradle rolls that generate the pinion ``setup``'s
+    nominal box with its roll law made linear (modified roll and helical motion
+    dropped): its mean node, then each corner by continuation in 6 steps (a node whose
+    solve fails is left out)."""
+    from .conjugate import nominal_pinion_box
+
+    linear = dataclasses.replace(setup, settings=dataclasses.replace(
+        setup.settings, modified_roll=(), helical_motion=()))
+    cone, box = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
+    solver = EnvelopeSolver(linear, pair.blank, cone)
+    u_m, v_m = float(cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
+    q = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q
+    corners = np.array([(box.u_root, box.v_toe), (box.u_root, box.v_heel),
+                        (box.u_tip, box.v_toe), (box.u_tip, box.v_heel)])
+    guess, rolls, ok = np.broadcast_to(q, (4, 3)), [float(q[2])], np.ones(4, bool)
+    for t in np.linspace(0.0, 1.0, 7)[1:]:
+        got = solver.solve(u_m + t * (corners[:, 0] - u_m), v_m + t * (corners[:, 1] - v_m),
+                           guess, strict=False)
+        ok &= got.converged
+        guess = np.where(ok[:, None], got.q, guess)
+    rolls += [float(x) for x in guess[ok, 2]]
+    return min(rolls), max(rolls)
+
+
+def _check_roll_law(pair, gear: MachineSetup, pinion: MachineSetup, *, mirrored: bool) -> None:
+    """An input error naming the typed gear's modified-roll key when the roll law cannot
+    turn the work through the angles its pinion's flank needs: the pinion's work angle
+    ``phi = R_a f(psi)``, ``f = psi - 2C psi^2/2 - ...`` (the gear's law reversed), must
+    grow monotonically from 0 to ``f = psi_max`` and fall to ``psi_min`` (the rolls of
+    the linear law, :func:`_pinion_rolls`) before ``f'`` changes sign; past that reversal
+    the envelope folds back and no regular flank is cut. ``mirrored``: ``gear`` is the
+    typed left-hand gear's right-hand twin (the message names the typed values)."""
+    coeffs = pinion.settings.modified_roll
+    if not any(coeffs):
+        return
+    lo, hi = _pinion_rolls(pair, pinion)
+    f = np.polynomial.Polynomial([0.0, 1.0] + [-c / math.factorial(k + 2)
+                                               for k, c in enumerate(coeffs)])
+    stops = [float(r.real) for r in f.deriv().roots() if abs(r.imag) < 1e-12]
+    for need, ahead in ((hi, [r for r in stops if r > 0.0]), (lo, [r for r in stops if r < 0.0])):
+        if not ahead:
+            continue
+        at = min(ahead, key=abs)
+        if abs(f(at)) >= abs(need):
+            continue
+        terms = [abs(c * at ** (k + 1) / math.factorial(k + 1)) for k, c in enumerate(coeffs)]
+        k = int(np.argmax(terms))
+        sign = -1.0 if mirrored and k % 2 == 0 else 1.0     # mirror_setup: 2C, 24E flip
+        turn = math.degrees(pinion.settings.ratio_of_roll / pair.ratio)
+        raise InputRangeError(
+            f"machine.gear.{gear.side}.{MODIFIED_ROLL_KEYS[k]}", sign * gear.settings.modified_roll[k],
+            f"a modified roll that turns the gear through the roll its pinion's flank "
+            f"needs: the typed series reverses the roll at {abs(at):.4f} rad of the cradle, "
+            f"the gear having turned {abs(f(at)) * turn:.3f} deg, short of the "
+            f"{abs(need) * turn:.3f} deg the flank needs at the standard roll (the same "
+            "roll law, reversed, cuts the pinion; past the reversal no regular flank is "
+            "cut; docs/machine_settings.md sec. 5)")
+
+
 def _gear_cradle(setup: MachineSetup, blank):
     """``(tip, axis, axis_point, z_dir)`` in the meshing frame (= the gear's body frame
     at zero roll), mm: the tip-plane centre of the gear's cutter and its axis (towards
@@ -88,17 +150,21 @@ def _gear_cradle(setup: MachineSetup, blank):
     return (q @ tip_w + t, q @ axis_w, q @ (b.T @ -a0) + t, q @ (b.T @ np.array([0, 0, 1.0])))
 
 
-def typed_gear_pinion_setups(pair, gear: dict) -> dict:
-    """``{side: MachineSetup}`` of the pinion generated by the generating surface
-    complementary to the typed gear ``gear`` (``{side: MachineSetup}``, member
-    ``"gear"``) of the right-hand ``pair``, uncrowned (module docstring): conjugate to the
+def typed_gear_pinion_setups(pair, gear: dict, *, mirrored: bool = False) -> dict:
+    """``{side: MachineSetup}`` of the pinion generated by the typed gear ``gear``'s
+    generating surface (``{side: MachineSetup}``, member ``"gear"``) of the right-hand
+    ``pair`` in the same motion reversed, uncrowned (module docstring): conjugate to the
     gear where the generating surface's contact lines cross, TE0 = 0 there.
+    ``mirrored``: ``gear`` is a typed left-hand gear's right-hand twin (input errors
+    then name the typed values).
 
     Raises
     ------
     InputRangeError
-        A gear with modified roll or helical motion, or a curved gear blade (named by
-        its key: not derived yet), or a left-hand pair (derive its right-hand twin's).
+        A left-hand pair (derive its right-hand twin's); a helical motion without roll;
+        a modified roll that reverses the roll within the rolls the pinion's flank needs
+        (named by its key); a mate blade out of the blade ranges (named by the gear
+        blade's key).
     """
     if pair.pinion_hand != "right":
         raise InputRangeError("design.pinion_hand", pair.pinion_hand,
@@ -124,6 +190,7 @@ def typed_gear_pinion_setups(pair, gear: dict) -> dict:
         if not st.formate and (st.modified_roll or st.helical_motion):
             pinion = dataclasses.replace(pinion, settings=dataclasses.replace(
                 pinion.settings, **_pinion_motion(setup)))
+        _check_roll_law(pair, setup, pinion, mirrored=mirrored)
         out[side] = pinion
     return out
 
@@ -150,7 +217,8 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
     pinion = crowned_pinion_setups(twin, typed_gear_pinion_setups(
-        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear), **crowning)
+        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear, mirrored=left),
+        **crowning)
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
