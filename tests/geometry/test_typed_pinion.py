@@ -189,22 +189,6 @@ def test_the_uncrowned_pinion_is_conjugate_to_the_prints_gear(side, print_pair):
     assert np.abs(te[on_flank]).max() < 1e-4
 
 
-@pytest.mark.parametrize("key, value, field", [
-    ("modified_roll", (0.1,), "machine.gear.drive.modified_roll_2c_per_rad"),
-    ("helical_motion", (0.0, 2.0), "machine.gear.drive.helical_motion_mm_per_rad2"),
-    ("profile_radius_mm", 500.0, "blade.gear.drive.profile_radius_mm")])
-def test_a_gear_the_derivation_does_not_take_is_named(key, value, field, print_pair):
-    gear = _gear(print_pair)
-    g = gear["drive"]
-    g = dataclasses.replace(g, blade=dataclasses.replace(g.blade, **{key: value})) \
-        if key.startswith("profile") else \
-        dataclasses.replace(g, settings=dataclasses.replace(g.settings, **{key: value}))
-    with pytest.raises(InputRangeError) as got:
-        typed_gear_machine_pair(print_pair, {**gear, "drive": g})
-    assert got.value.field == field
-    assert "docs/machine_settings.md sec. 7" in got.value.allowed
-
-
 def test_crowning_out_of_range_is_refused_before_any_work(print_pair):
     with pytest.raises(InputRangeError, match="lengthwise_crowning_um"):
         typed_gear_machine_pair(print_pair, _gear(print_pair), lengthwise_crowning_um=-1.0)
