@@ -42,13 +42,15 @@ PRINT = "tests/geometry/summary_sheets/hypoid_10x41_no16_pair.toml"
 
 #: The print's gear (left hand, generated) with every new kind of term on it: (settings,
 #: blade) changes per side. Drive: 2C, 6D, V_1, V_2 and a circular blade; coast: the
-#: four modified-roll terms, V_1, and a blade with cubic and quartic terms.
+#: four modified-roll terms, V_1, and a blade with cubic and quartic terms; the blade
+#: angles hold at the gear's mean depth (h_f2 / cos(alpha), 7.92 / 8.28 mm), so that the
+#: typed-settings check on load keeps the blank's pressure angles.
 MODIFIED = {
     "drive": (dict(modified_roll=(0.05, 0.2), helical_motion=(1.0, 2.0)),
-              dict(profile_radius_mm=400.0, profile_reference_mm=4.0)),
+              dict(profile_radius_mm=400.0, profile_reference_mm=7.92)),
     "coast": (dict(modified_roll=(0.03, -0.1, 0.5, 1.0), helical_motion=(-0.5,)),
-              dict(profile_radius_mm=-600.0, profile_cubic_per_mm2=0.002,
-                   profile_quartic_per_mm3=0.0005, profile_reference_mm=3.0))}
+              dict(profile_radius_mm=-600.0, profile_cubic_per_mm2=0.0005,
+                   profile_quartic_per_mm3=0.0001, profile_reference_mm=8.28))}
 
 
 def _quiet_load(path):
