@@ -21,6 +21,22 @@ standard crowning (docs/machine_settings.md sec. 5, "The pinion of a typed gear"
   contact lines with each cross, with TE0 = 0 (Litvin & Fuentes 2004, sec. 20.2): line
   contact where the cradle axis is the instantaneous axis of the gear-pinion motion
   (the blank's own generated spiral bevel gear), point contact otherwise.
+- The gear's motion law, reversed (three-surface tangency: the generating surface, the
+  gear and the pinion keep one mesh at every roll). The pinion's cradle turns about the
+  reversed axis, ``psi' = -psi``, and the pinion by ``phi1 = -u phi2(psi)`` about its
+  axis: ratio of roll ``u R_a2`` and the modified roll ``(-2C, 6D, -24E, 120F)`` (the
+  mirror image's, :func:`~.machine.mirror_setup`); the cradle's slide along its axis is
+  seen along the reversed axis, ``V'(psi') = -V(-psi')``: ``(V_1, -V_2)``. The pinion
+  machine carries every term, so the mapping is exact. Contact: TE0 = 0 where the
+  contact lines cross; a modified roll or a helical motion moves the instantaneous axis
+  of the gear's relative motion off the pitch line during the roll, so a spiral bevel
+  gear's contact lines no longer coincide (point contact). A modified roll that reverses
+  the roll before the gear has turned through the angle its pinion's flank needs is an
+  input error naming its key (:func:`_check_roll_law`).
+- The blade: the mate of the gear blade's main profile (:func:`~.blade_mate.mate_blade`:
+  the same surface of revolution, the kind flipped; a curved profile's radius and
+  quartic term change sign, its angle and cubic term stay), localized by the standard
+  crowning added to its own curvature (:func:`~.basic_settings.crown_profile`).
 
 For a gear typed with exactly the blank's own standard settings the pinion is the
 blank's standard pinion (:func:`~.basic_settings.standard_setups`), to rounding. A
@@ -30,7 +46,8 @@ the gear is kept as typed, always.
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 20.2
-(generation of both members by one generating surface), 21.2-21.3.
+(generation of both members by one generating surface), 21.2-21.3, 20.3 / 21.4 (modified
+roll, helical motion).
 """
 
 from __future__ import annotations
@@ -161,7 +178,8 @@ def typed_gear_pinion_setups(pair, gear: dict, *, mirrored: bool = False) -> dic
     Raises
     ------
     InputRangeError
-        A left-hand pair (derive its right-hand twin's); a helical motion without roll;
+        A left-hand pair (derive its right-hand twin's); a helical motion without roll
+        (the pinion would not roll either);
         a modified roll that reverses the roll within the rolls the pinion's flank needs
         (named by its key); a mate blade out of the blade ranges (named by the gear
         blade's key).
