@@ -23,10 +23,10 @@ Truths, declared before measuring:
 """
 
 import dataclasses
-import warnings
 
 import numpy as np
 import pytest
+from geometry.test_typed_pinion import F2, PRINT, _quiet_load, uncrowned_te0_on_flank
 
 from gearcontact.geometry.basic_settings import crown_profile, generated_gear_setups
 from gearcontact.geometry.blade import BladeSettings, blade_point, blade_profile
@@ -36,9 +36,6 @@ from gearcontact.geometry.formate import SIDES
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.typed_pinion import typed_gear_machine_pair, typed_gear_pinion_setups
 from gearcontact.validation import InputRangeError
-
-F2 = "examples/iso23509_f2_spiral_bevel.toml"
-PRINT = "tests/geometry/summary_sheets/hypoid_10x41_no16_pair.toml"
 
 #: The print's gear (left hand, generated) with every new kind of term on it: (settings,
 #: blade) changes per side. Drive: 2C, 6D, V_1, V_2 and a circular blade; coast: the
@@ -51,12 +48,6 @@ MODIFIED = {
     "coast": (dict(modified_roll=(0.03, -0.1, 0.5, 1.0), helical_motion=(-0.5,)),
               dict(profile_radius_mm=-600.0, profile_cubic_per_mm2=0.0005,
                    profile_quartic_per_mm3=0.0001, profile_reference_mm=8.28))}
-
-
-def _quiet_load(path):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")       # the print's blank note
-        return load_pair(path)
 
 
 @pytest.fixture(scope="module")
@@ -103,18 +94,11 @@ def test_the_uncrowned_pinion_of_a_modified_gear_is_conjugate(side, print_pair):
     # 40 x 50 nodes): TE0 = 0 to 1e-4 arcsec at every flank-on-flank phase, at least 8
     # (measured 3.3e-8 / 2.0e-7 arcsec, all 31 on the flank). Not vacuous: the same gear
     # with the pinion's 2C of the other sign gives 58.6 arcsec (drive, 2C = 0.05 alone),
-    # the pinion without the helical motion 122 arcsec (drive, V = (1, 2)), and the
-    # straight-cone pinion of a curved gear blade is no mate (measured in the session)
-    from gearcontact.tca.analysis import analyze_pair
-
-    cut = typed_gear_machine_pair(print_pair, modified_gear(print_pair),
-                                  lengthwise_crowning_um=0.0, blade_profile_crowning_um=0.0)
-    flanks = build_flanks(cut, n_u=40, n_v=50)
-    result, _ = analyze_pair(cut, side=side, phases=31, flanks=flanks)
-    te = np.asarray(result.cycle.envelope_arcsec, dtype=float)
-    on_flank = np.array([not mp.edge_contact for mp in result.cycle.contact])
-    assert on_flank.sum() >= 8
-    assert np.abs(te[on_flank]).max() < 1e-4
+    # the pinion without the helical motion 122 arcsec (drive, V = (1, 2)), measured
+    # while deriving the signs (docs sec. 5)
+    te = uncrowned_te0_on_flank(print_pair, modified_gear(print_pair), side)
+    assert te.size >= 8
+    assert np.abs(te).max() < 1e-4
 
 
 def test_a_curved_blade_on_the_blanks_generated_spiral_bevel_keeps_line_contact():
