@@ -223,3 +223,17 @@ def test_helical_motion_without_roll_is_named(print_pair):
         typed_gear_machine_pair(print_pair, gear)
     assert got.value.field == "machine.gear.coast.ratio_of_roll"
 
+
+
+def test_the_motion_keys_a_linear_base_consumer_names(print_pair):
+    # every non-zero term of MODIFIED, named by its typed key and value (the local
+    # synthesis takes a linear-roll base only: tca.setting_problem.roll_about)
+    from gearcontact.geometry.typed_pinion import gear_motion_keys
+
+    got = gear_motion_keys(modified_gear(print_pair))
+    assert got[:4] == [("machine.gear.drive.modified_roll_2c_per_rad", 0.05),
+                       ("machine.gear.drive.modified_roll_6d_per_rad2", 0.2),
+                       ("machine.gear.drive.helical_motion_mm_per_rad", 1.0),
+                       ("machine.gear.drive.helical_motion_mm_per_rad2", 2.0)]
+    assert len(got) == 4 + 5
+    assert gear_motion_keys({s.side: s for s in print_pair.machine if s.member == "gear"}) == []

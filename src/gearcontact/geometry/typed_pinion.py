@@ -67,7 +67,20 @@ from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinemati
                       MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
 
-__all__ = ["typed_gear_machine_pair", "typed_gear_pinion_setups"]
+__all__ = ["gear_motion_keys", "typed_gear_machine_pair", "typed_gear_pinion_setups"]
+
+def gear_motion_keys(gear: dict) -> list[tuple[str, float]]:
+    """``("machine.gear.<side>.<key>", value)`` of every non-zero modified-roll and
+    helical-motion term of the typed ``gear`` (``{side: MachineSetup}``) that reaches
+    its derived pinion (a generated gear's; a formate gear's modified roll moves
+    nothing): what a consumer that takes a linear-roll base pinion only (the local
+    synthesis' roll correction) names when it refuses the gear."""
+    return [(f"machine.gear.{side}.{key}", float(x))
+            for side in SIDES if not gear[side].settings.formate
+            for keys, vals in ((MODIFIED_ROLL_KEYS, gear[side].settings.modified_roll),
+                               (HELICAL_KEYS, gear[side].settings.helical_motion))
+            for key, x in zip(keys, vals) if x != 0.0]
+
 
 def _check_gear(gear: dict) -> None:
     """An input error naming the first key of the typed gear's tables the derivation
