@@ -216,6 +216,18 @@ def test_a_roll_that_reverses_short_of_the_flank_is_named(series, key, typed, pr
     assert "reverses the roll" in got.value.allowed
 
 
+def test_a_helical_motion_that_leaves_no_mean_node_is_named(print_pair):
+    # V_2 = 500 mm/rad^2 (the cradle slides 10 mm over 0.2 rad): the pinion generated in
+    # the same motion reversed has no envelope at its mean node; the input error names
+    # the gear's term typed, not the pinion's tables the user did not type (0.05 s)
+    gear = modified_gear(print_pair, {"drive": (dict(helical_motion=(0.0, 500.0)), {})})
+    with pytest.raises(InputRangeError) as got:
+        typed_gear_machine_pair(print_pair, gear)
+    assert got.value.field == "machine.gear.drive.helical_motion_mm_per_rad2"
+    assert got.value.value == 500.0
+    assert "mean node" in got.value.allowed
+
+
 def test_helical_motion_without_roll_is_named(print_pair):
     gear = modified_gear(print_pair, {"coast": (dict(ratio_of_roll=0.0,
                                                      helical_motion=(1.0,)), {})})

@@ -61,6 +61,7 @@ from ..validation import InputRangeError
 from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_setups,
                              crowned_pinion_setups)
 from .blade_mate import mate_blade
+from .conjugate import UndercutError, nominal_pinion_box
 from .formate import SIDES
 from .generated import EnvelopeSolver, work_to_body
 from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinematics,
@@ -114,8 +115,6 @@ def _pinion_rolls(pair, setup: MachineSetup) -> tuple[float, float]:
     nominal box with its roll law made linear (modified roll and helical motion
     dropped): its mean node, then each corner by continuation in 6 steps (a node whose
     solve fails is left out)."""
-    from .conjugate import nominal_pinion_box
-
     linear = dataclasses.replace(setup, settings=dataclasses.replace(
         setup.settings, modified_roll=(), helical_motion=()))
     cone, box = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
@@ -247,9 +246,20 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     left = pair.pinion_hand == "left"     # the right-hand twin's pinion, mirrored
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
-    pinion = crowned_pinion_setups(twin, typed_gear_pinion_setups(
-        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear, mirrored=left),
-        **crowning)
+    uncrowned = typed_gear_pinion_setups(
+        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear, mirrored=left)
+    try:
+        pinion = crowned_pinion_setups(twin, uncrowned, **crowning)
+    except UndercutError as exc:       # no mean node: name the gear's motion, if any
+        side = next((s for s in SIDES if f" {s} flank" in exc.field), None)
+        keys = [k for k in gear_motion_keys(gear) if f".{side}." in k[0]]
+        if not keys:
+            raise
+        raise InputRangeError(
+            keys[0][0], keys[0][1], f"a motion under which the gear's generating surface, in "
+            f"the same motion reversed, reaches its pinion's mean node ({exc}; the "
+            f"{side} terms typed: {', '.join(f'{k} = {v!r}' for k, v in keys)}; "
+            "docs/machine_settings.md sec. 5)") from exc
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
