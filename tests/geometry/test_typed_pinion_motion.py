@@ -161,7 +161,8 @@ def test_the_mate_blade_is_the_same_surface(blade):
     assert mate.kind != blade.kind
     for l in np.linspace(0.0, 1.2 * shift, 9):
         rho, z, alpha, _ = (float(x) for x in blade_profile(blade, l))
-        l_m = brentq(lambda s: float(blade_profile(mate, s)[1]) - (shift - z), -2.0 * shift, 2.0 * shift,
+        l_m = brentq(lambda s: float(blade_profile(mate, s)[1]) - (shift - z),
+                     -2.0 * shift, 2.0 * shift,
                      xtol=1e-15)
         rho_m, _, alpha_m, _ = (float(x) for x in blade_profile(mate, l_m))
         assert abs(rho_m - rho) < 1e-10

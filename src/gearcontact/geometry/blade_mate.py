@@ -28,11 +28,12 @@ __all__ = ["mate_blade", "recentred_blade"]
 def recentred_blade(blade: BladeSettings, l_mm: float, *, add_curvature_per_mm: float = 0.0
                     ) -> BladeSettings:
     """``blade`` (smooth: no relief) with its profile terms taken about the arc length
-    ``l_mm`` from its tip (``alpha``, its first three derivatives there: the polynomial
-    re-expanded, exact), the point radius unchanged (the same profile to rounding); with
-    ``add_curvature_per_mm`` (1/mm) added to the curvature about that point, the profile
-    slid so that it keeps its point and normal there (:func:`~.blade.blade_through_point`). A term out of the blade's ranges is an
-    input error naming it (``blade.*``)."""
+    ``l_mm`` from its tip (``alpha`` and its first three derivatives there: the
+    polynomial re-expanded, exact), the point radius unchanged (the same profile to
+    rounding); with ``add_curvature_per_mm`` (1/mm) added to the curvature about that
+    point, the profile slid so that it keeps its point and normal there
+    (:func:`~.blade.blade_through_point`). A term out of the blade's ranges is an input
+    error naming it (``blade.*``)."""
     s = l_mm - blade.profile_reference_mm
     k = 0.0 if blade.profile_radius_mm == 0.0 else 1.0 / blade.profile_radius_mm
     c3, c4 = blade.profile_cubic_per_mm2, blade.profile_quartic_per_mm3

@@ -70,6 +70,7 @@ from .relief_setup import relieved_setup
 
 __all__ = ["gear_motion_keys", "typed_gear_machine_pair", "typed_gear_pinion_setups"]
 
+
 def gear_motion_keys(gear: dict) -> list[tuple[str, float]]:
     """``("machine.gear.<side>.<key>", value)`` of every non-zero modified-roll and
     helical-motion term of the typed ``gear`` (``{side: MachineSetup}``) that reaches
@@ -159,7 +160,8 @@ def _check_roll_law(pair, gear: MachineSetup, pinion: MachineSetup, *, mirrored:
         sign = -1.0 if mirrored and k % 2 == 0 else 1.0     # mirror_setup: 2C, 24E flip
         turn = math.degrees(pinion.settings.ratio_of_roll / pair.ratio)
         raise InputRangeError(
-            f"machine.gear.{gear.side}.{MODIFIED_ROLL_KEYS[k]}", sign * gear.settings.modified_roll[k],
+            f"machine.gear.{gear.side}.{MODIFIED_ROLL_KEYS[k]}",
+            sign * gear.settings.modified_roll[k],
             f"a modified roll that turns the gear through the roll its pinion's flank "
             f"needs: the typed series reverses the roll at {abs(at):.4f} rad of the cradle, "
             f"the gear having turned {abs(f(at)) * turn:.3f} deg, short of the "
@@ -191,10 +193,9 @@ def typed_gear_pinion_setups(pair, gear: dict, *, mirrored: bool = False) -> dic
     ------
     InputRangeError
         A left-hand pair (derive its right-hand twin's); a helical motion without roll
-        (the pinion would not roll either);
-        a modified roll that reverses the roll within the rolls the pinion's flank needs
-        (named by its key); a mate blade out of the blade ranges (named by the gear
-        blade's key).
+        (the pinion would not roll either); a modified roll that reverses the roll within
+        the rolls the pinion's flank needs (named by its key); a mate blade out of the
+        blade ranges (named by the gear blade's key).
     """
     if pair.pinion_hand != "right":
         raise InputRangeError("design.pinion_hand", pair.pinion_hand,
