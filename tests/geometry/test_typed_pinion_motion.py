@@ -110,7 +110,7 @@ def test_a_curved_blade_on_the_blanks_generated_spiral_bevel_keeps_line_contact(
     # of LINE_TOLERANCE_MM (1e-7 mm), which moves the gear by at most that over the lever
     # |(k2 x X) . n| >= R_m2 cos(beta) cos(alpha) > R_m2 / 2 here (35 deg, <= 25 deg):
     # 1e-7 / (R_m2 / 2) rad = 5.8e-4 arcsec (measured 3.4e-5 / 1.1e-4 arcsec; the blank's
-    # own generated pair, straight blades, measures 1.2e-4 / 4e-6 in the same call, the
+    # own generated pair, straight blades, measures 1.2e-4 / 4e-6 the same way, the
     # same solve-tolerance level, above the 1e-4 of the formate test)
     from gearcontact.tca.line_contact import LINE_TOLERANCE_MM, line_contact
     from gearcontact.tca.types import ARCSEC_PER_RAD, ContactGuess
