@@ -28,9 +28,12 @@ standard crowning (docs/machine_settings.md sec. 5, "The pinion of a typed gear"
   mirror image's, :func:`~.machine.mirror_setup`); the cradle's slide along its axis is
   seen along the reversed axis, ``V'(psi') = -V(-psi')``: ``(V_1, -V_2)``. The pinion
   machine carries every term, so the mapping is exact. Contact: TE0 = 0 where the
-  contact lines cross; a modified roll or a helical motion moves the instantaneous axis
-  of the gear's relative motion off the pitch line during the roll, so a spiral bevel
-  gear's contact lines no longer coincide (point contact). A modified roll that reverses
+  contact lines cross on the flank; a modified roll or a helical motion moves the
+  instantaneous axis of the gear's relative motion off the pitch line during the roll.
+  A hypoid's lines then cross on the flank (point contact, TE0 = 0); a spiral bevel's
+  (intersecting axes) cross only where the generating surface's normal lies in the
+  plane of the axes, in general off the face: TE0 = 0 at the mean roll only
+  (docs/machine_settings.md sec. 5, measured). A modified roll that reverses
   the roll before the gear has turned through the angle its pinion's flank needs is an
   input error naming its key (:func:`_check_roll_law`).
 - The blade: the mate of the gear blade's main profile (:func:`~.blade_mate.mate_blade`:
