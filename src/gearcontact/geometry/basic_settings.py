@@ -40,6 +40,7 @@ import math
 import numpy as np
 
 from ..validation import InputRangeError, check_range
+from .blade_mate import recentred_blade
 from .conjugate import nominal_pinion_box
 from .cutter import place_cutter
 from .formate import SIDES
@@ -223,8 +224,13 @@ def mismatch_radius(setup: MachineSetup, *, delta_mm: float, theta_rad: float) -
 
 def crown_profile(blade: BladeSettings, *, radius_mm: float, at_length_mm: float) -> BladeSettings:
     """A circular blade profile of ``radius_mm`` tangent to the straight ``blade`` at its
-    arc length ``at_length_mm`` from the tip (same point, same normal there)."""
+    arc length ``at_length_mm`` from the tip (same point, same normal there); a curved
+    ``blade`` (the mate of a typed gear's curved blade, :mod:`.typed_pinion`) gets the
+    curvature ``1 / radius_mm`` added to its own about that point
+    (:func:`~.blade_mate.recentred_blade`)."""
     rho_s, z_s, _, _ = blade_profile(blade, at_length_mm)
+    if blade.profile_radius_mm != 0.0 or blade.higher_order:
+        return recentred_blade(blade, at_length_mm, add_curvature_per_mm=1.0 / radius_mm)
     return blade_through_point(dataclasses.replace(blade, profile_radius_mm=radius_mm),
                                rho_mm=float(rho_s), z_mm=float(z_s))
 

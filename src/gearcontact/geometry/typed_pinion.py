@@ -21,6 +21,25 @@ standard crowning (docs/machine_settings.md sec. 5, "The pinion of a typed gear"
   contact lines with each cross, with TE0 = 0 (Litvin & Fuentes 2004, sec. 20.2): line
   contact where the cradle axis is the instantaneous axis of the gear-pinion motion
   (the blank's own generated spiral bevel gear), point contact otherwise.
+- The gear's motion law, reversed (three-surface tangency: the generating surface, the
+  gear and the pinion keep one mesh at every roll). The pinion's cradle turns about the
+  reversed axis, ``psi' = -psi``, and the pinion by ``phi1 = -u phi2(psi)`` about its
+  axis: ratio of roll ``u R_a2`` and the modified roll ``(-2C, 6D, -24E, 120F)`` (the
+  mirror image's, :func:`~.machine.mirror_setup`); the cradle's slide along its axis is
+  seen along the reversed axis, ``V'(psi') = -V(-psi')``: ``(V_1, -V_2)``. The pinion
+  machine carries every term, so the mapping is exact. Contact: TE0 = 0 where the
+  contact lines cross on the flank; a modified roll or a helical motion moves the
+  instantaneous axis of the gear's relative motion off the pitch line during the roll.
+  A hypoid's lines then cross on the flank (point contact, TE0 = 0); a spiral bevel's
+  (intersecting axes) cross only where the generating surface's normal lies in the
+  plane of the axes, in general off the face: TE0 = 0 at the mean roll only
+  (docs/machine_settings.md sec. 5, measured). A modified roll that reverses
+  the roll before the gear has turned through the angle its pinion's flank needs is an
+  input error naming its key (:func:`_check_roll_law`).
+- The blade: the mate of the gear blade's main profile (:func:`~.blade_mate.mate_blade`:
+  the same surface of revolution, the kind flipped; a curved profile's radius and
+  quartic term change sign, its angle and cubic term stay), localized by the standard
+  crowning added to its own curvature (:func:`~.basic_settings.crown_profile`).
 
 For a gear typed with exactly the blank's own standard settings the pinion is the
 blank's standard pinion (:func:`~.basic_settings.standard_setups`), to rounding. A
@@ -30,7 +49,8 @@ the gear is kept as typed, always.
 References
 ----------
 F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec. 20.2
-(generation of both members by one generating surface), 21.2-21.3.
+(generation of both members by one generating surface), 21.2-21.3, 20.3 / 21.4 (modified
+roll, helical motion).
 """
 
 from __future__ import annotations
@@ -43,43 +63,114 @@ import numpy as np
 from ..validation import InputRangeError
 from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_setups,
                              crowned_pinion_setups)
+from .blade_mate import mate_blade
+from .conjugate import UndercutError, nominal_pinion_box
 from .formate import SIDES
-from .generated import work_to_body
-from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, BladeSettings,
-                      MachineKinematics, MachineSetup, mirror_setup)
+from .generated import EnvelopeSolver, work_to_body
+from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinematics,
+                      MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
 
-__all__ = ["typed_gear_machine_pair", "typed_gear_pinion_setups"]
+__all__ = ["gear_motion_keys", "typed_gear_machine_pair", "typed_gear_pinion_setups"]
 
-#: Blade keys of the gear that the derived pinion cannot carry over (the pinion's
-#: cutter is the gear's straight blade cone moved along its axis; a curved profile
-#: would need its profile continued beyond the gear blade's tip).
-_CURVED_KEYS = ("profile_radius_mm", "profile_cubic_per_mm2", "profile_quartic_per_mm3")
+
+def gear_motion_keys(gear: dict) -> list[tuple[str, float]]:
+    """``("machine.gear.<side>.<key>", value)`` of every non-zero modified-roll and
+    helical-motion term of the typed ``gear`` (``{side: MachineSetup}``) that reaches
+    its derived pinion (a generated gear's; a formate gear's modified roll moves
+    nothing): what a consumer that takes a linear-roll base pinion only (the local
+    synthesis' roll correction) names when it refuses the gear."""
+    return [(f"machine.gear.{side}.{key}", float(x))
+            for side in SIDES if not gear[side].settings.formate
+            for keys, vals in ((MODIFIED_ROLL_KEYS, gear[side].settings.modified_roll),
+                               (HELICAL_KEYS, gear[side].settings.helical_motion))
+            for key, x in zip(keys, vals) if x != 0.0]
 
 
 def _check_gear(gear: dict) -> None:
     """An input error naming the first key of the typed gear's tables the derivation
-    does not take (a modified roll, a helical motion, a curved blade), or a missing
-    side."""
+    does not take: a missing side, or a helical motion without roll (the pinion would
+    be cut by the same screw motion without turning: not a generated pinion)."""
     if sorted(gear) != sorted(SIDES):
         raise InputRangeError("[machine.gear.*]", sorted(gear), f"both flanks {SIDES}")
     for side in SIDES:
-        st, b = gear[side].settings, gear[side].blade
-        where = f"machine.gear.{side}"
-        for name, keys, vals in (("modified roll", MODIFIED_ROLL_KEYS, st.modified_roll),
-                                 ("helical motion", HELICAL_KEYS, st.helical_motion)):
-            for key, x in zip(keys, vals):
-                if x != 0.0:
-                    raise InputRangeError(
-                        f"{where}.{key}", x, f"0 for the pinion derived from the typed gear "
-                        f"(a gear cut with {name}: its pinion not yet derived, "
-                        "docs/machine_settings.md sec. 7)")
-        for key in _CURVED_KEYS:
-            if getattr(b, key) != 0.0:
-                raise InputRangeError(
-                    f"blade.gear.{side}.{key}", getattr(b, key), "0 for the pinion derived "
-                    "from the typed gear (a straight gear blade: the pinion's cutter is its "
-                    "cone; curved gear blades not yet, docs/machine_settings.md sec. 7)")
+        st = gear[side].settings
+        if st.ratio_of_roll == 0.0 and any(st.helical_motion):
+            raise InputRangeError(
+                f"machine.gear.{side}.ratio_of_roll", st.ratio_of_roll,
+                f"> 0 with helical motion ({HELICAL_KEYS[0]} ...) for the pinion derived from "
+                "the typed gear: a gear cut by a screw motion without roll leaves a pinion "
+                "that does not roll either (docs/machine_settings.md sec. 5)")
+
+
+def _pinion_motion(setup: MachineSetup) -> dict:
+    """The pinion machine's modified roll and helical motion for the gear's generating
+    motion ``setup`` reversed (module docstring): the pinion's cradle turns the other
+    way about the reversed axis (``psi' = -psi``, the work as the mirror image's:
+    2C and 24E change sign, :func:`~.machine.mirror_setup`) and the cradle's slide along
+    that axis is seen reversed (``V'(psi') = -V(-psi')``: V_1 stays, V_2 changes sign)."""
+    m = mirror_setup(setup).settings
+    return {"modified_roll": m.modified_roll,
+            "helical_motion": tuple(-x for x in m.helical_motion)}
+
+
+def _pinion_rolls(pair, setup: MachineSetup) -> tuple[float, float]:
+    """``(psi_min, psi_max)``, rad: the cradle rolls that generate the pinion ``setup``'s
+    nominal box with its roll law made linear (modified roll and helical motion
+    dropped): its mean node, then each corner by continuation in 6 steps (a node whose
+    solve fails is left out)."""
+    linear = dataclasses.replace(setup, settings=dataclasses.replace(
+        setup.settings, modified_roll=(), helical_motion=()))
+    cone, box = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
+    solver = EnvelopeSolver(linear, pair.blank, cone)
+    u_m, v_m = float(cone.root_offset_mm), float(pair.blank.pitch_point_mm[0])
+    q = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m)).q
+    corners = np.array([(box.u_root, box.v_toe), (box.u_root, box.v_heel),
+                        (box.u_tip, box.v_toe), (box.u_tip, box.v_heel)])
+    guess, rolls, ok = np.broadcast_to(q, (4, 3)), [float(q[2])], np.ones(4, bool)
+    for t in np.linspace(0.0, 1.0, 7)[1:]:
+        got = solver.solve(u_m + t * (corners[:, 0] - u_m), v_m + t * (corners[:, 1] - v_m),
+                           guess, strict=False)
+        ok &= got.converged
+        guess = np.where(ok[:, None], got.q, guess)
+    rolls += [float(x) for x in guess[ok, 2]]
+    return min(rolls), max(rolls)
+
+
+def _check_roll_law(pair, gear: MachineSetup, pinion: MachineSetup, *, mirrored: bool) -> None:
+    """An input error naming the typed gear's modified-roll key when the roll law cannot
+    turn the work through the angles its pinion's flank needs: the pinion's work angle
+    ``phi = R_a f(psi)``, ``f = psi - 2C psi^2/2 - ...`` (the gear's law reversed), must
+    grow monotonically from 0 to ``f = psi_max`` and fall to ``psi_min`` (the rolls of
+    the linear law, :func:`_pinion_rolls`) before ``f'`` changes sign; past that reversal
+    the envelope folds back and no regular flank is cut. ``mirrored``: ``gear`` is the
+    typed left-hand gear's right-hand twin (the message names the typed values)."""
+    coeffs = pinion.settings.modified_roll
+    if not any(coeffs):
+        return
+    lo, hi = _pinion_rolls(pair, pinion)
+    f = np.polynomial.Polynomial([0.0, 1.0] + [-c / math.factorial(k + 2)
+                                               for k, c in enumerate(coeffs)])
+    stops = [float(r.real) for r in f.deriv().roots() if abs(r.imag) < 1e-12]
+    for need, ahead in ((hi, [r for r in stops if r > 0.0]), (lo, [r for r in stops if r < 0.0])):
+        if not ahead:
+            continue
+        at = min(ahead, key=abs)
+        if abs(f(at)) >= abs(need):
+            continue
+        terms = [abs(c * at ** (k + 1) / math.factorial(k + 1)) for k, c in enumerate(coeffs)]
+        k = int(np.argmax(terms))
+        sign = -1.0 if mirrored and k % 2 == 0 else 1.0     # mirror_setup: 2C, 24E flip
+        turn = math.degrees(pinion.settings.ratio_of_roll / pair.ratio)
+        raise InputRangeError(
+            f"machine.gear.{gear.side}.{MODIFIED_ROLL_KEYS[k]}",
+            sign * gear.settings.modified_roll[k],
+            f"a modified roll that turns the gear through the roll its pinion's flank "
+            f"needs: the typed series reverses the roll at {abs(at):.4f} rad of the cradle, "
+            f"the gear having turned {abs(f(at)) * turn:.3f} deg, short of the "
+            f"{abs(need) * turn:.3f} deg the flank needs at the standard roll (the same "
+            "roll law, reversed, cuts the pinion; past the reversal no regular flank is "
+            "cut; docs/machine_settings.md sec. 5)")
 
 
 def _gear_cradle(setup: MachineSetup, blank):
@@ -93,17 +184,21 @@ def _gear_cradle(setup: MachineSetup, blank):
     return (q @ tip_w + t, q @ axis_w, q @ (b.T @ -a0) + t, q @ (b.T @ np.array([0, 0, 1.0])))
 
 
-def typed_gear_pinion_setups(pair, gear: dict) -> dict:
-    """``{side: MachineSetup}`` of the pinion generated by the generating surface
-    complementary to the typed gear ``gear`` (``{side: MachineSetup}``, member
-    ``"gear"``) of the right-hand ``pair``, uncrowned (module docstring): conjugate to the
+def typed_gear_pinion_setups(pair, gear: dict, *, mirrored: bool = False) -> dict:
+    """``{side: MachineSetup}`` of the pinion generated by the typed gear ``gear``'s
+    generating surface (``{side: MachineSetup}``, member ``"gear"``) of the right-hand
+    ``pair`` in the same motion reversed, uncrowned (module docstring): conjugate to the
     gear where the generating surface's contact lines cross, TE0 = 0 there.
+    ``mirrored``: ``gear`` is a typed left-hand gear's right-hand twin (input errors
+    then name the typed values).
 
     Raises
     ------
     InputRangeError
-        A gear with modified roll or helical motion, or a curved gear blade (named by
-        its key: not derived yet), or a left-hand pair (derive its right-hand twin's).
+        A left-hand pair (derive its right-hand twin's); a helical motion without roll
+        (the pinion would not roll either); a modified roll that reverses the roll within
+        the rolls the pinion's flank needs (named by its key); a mate blade out of the
+        blade ranges (named by the gear blade's key).
     """
     if pair.pinion_hand != "right":
         raise InputRangeError("design.pinion_hand", pair.pinion_hand,
@@ -116,20 +211,21 @@ def typed_gear_pinion_setups(pair, gear: dict) -> dict:
     out = {}
     for side in SIDES:
         setup = gear[side]
-        st, b = setup.settings, setup.blade
+        st = setup.settings
         tip, axis, point, z_dir = _gear_cradle(setup, blank)
-        alpha = math.radians(b.blade_angle_deg)
-        blade = BladeSettings(kind="outside" if b.kind == "inside" else "inside",
-                              blade_angle_deg=b.blade_angle_deg,
-                              point_radius_mm=b.point_radius_mm - b.sigma * shift * math.tan(alpha),
-                              edge_radius_mm=b.edge_radius_mm)
+        blade = mate_blade(setup.blade, shift_mm=shift, where=f"blade.gear.{side}")
         if st.formate:      # the gear's own cutter generates: the cradle is the gear axis
             point, z_m, ratio = np.zeros(3), np.array([0.0, 0.0, -1.0]), u
         else:               # the gear's cradle, fixed in the housing, faces the pinion
             z_m, ratio = -z_dir, u * st.ratio_of_roll
-        out.update(cradle_pinion_setups(pair, tip_mm=tip - shift * axis, axis=axis,
-                                        blades={side: blade}, axis_point=point, z_m=z_m,
-                                        ratio_of_roll=ratio))
+        pinion = cradle_pinion_setups(pair, tip_mm=tip - shift * axis, axis=axis,
+                                      blades={side: blade}, axis_point=point, z_m=z_m,
+                                      ratio_of_roll=ratio)[side]
+        if not st.formate and (st.modified_roll or st.helical_motion):
+            pinion = dataclasses.replace(pinion, settings=dataclasses.replace(
+                pinion.settings, **_pinion_motion(setup)))
+        _check_roll_law(pair, setup, pinion, mirrored=mirrored)
+        out[side] = pinion
     return out
 
 
@@ -154,8 +250,20 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     left = pair.pinion_hand == "left"     # the right-hand twin's pinion, mirrored
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
-    pinion = crowned_pinion_setups(twin, typed_gear_pinion_setups(
-        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear), **crowning)
+    uncrowned = typed_gear_pinion_setups(
+        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear, mirrored=left)
+    try:
+        pinion = crowned_pinion_setups(twin, uncrowned, **crowning)
+    except UndercutError as exc:       # no mean node: name the gear's motion, if any
+        side = next((s for s in SIDES if f" {s} flank" in exc.field), None)
+        keys = [k for k in gear_motion_keys(gear) if f".{side}." in k[0]]
+        if not keys:
+            raise
+        raise InputRangeError(
+            keys[0][0], keys[0][1], f"a motion under which the gear's generating surface, in "
+            f"the same motion reversed, reaches its pinion's mean node ({exc}; the "
+            f"{side} terms typed: {', '.join(f'{k} = {v!r}' for k, v in keys)}; "
+            "docs/machine_settings.md sec. 5)") from exc
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
