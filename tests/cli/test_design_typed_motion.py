@@ -116,6 +116,21 @@ def test_a_careless_2c_is_named_by_design(tmp_path, capsys):
     assert not (out / "machine_settings.toml").exists()
 
 
+def test_local_synthesis_on_a_modified_gear_is_refused_naming_the_term(tmp_path, capsys):
+    # the synthesis' roll correction takes a linear-roll base pinion: a typed generated
+    # gear with 2C is refused before any flank (exit 2) naming the gear's key and its
+    # value; before, the synthesis ran and exited 4 with "no contact at the mean point"
+    typed = tmp_path / "gear.toml"
+    _gear_file(typed, {"drive": (dict(modified_roll=(0.05,)), {})})
+    out = tmp_path / "out"
+    assert main(["design", "--pair", str(typed), "--machine-settings", "--local-synthesis",
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "machine.gear.drive.modified_roll_2c_per_rad = 0.05" in err
+    assert "--local-synthesis" in err
+    assert not (out / "machine_settings.toml").exists()
+
+
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason=(
     "differs (measured): on a spiral bevel (F.2's generated gear, 2C = +-0.05 on both "

@@ -209,4 +209,15 @@ def kept_gear(args, pair) -> dict | None:
                               "typed gear is kept (a gear typed alone, or --keep-gear): its "
                               "pinion is derived; the option works on the blank's own gear "
                               "or on a pair typing both members without --keep-gear")
-    return {s.side: s for s in setups}
+    gear = {s.side: s for s in setups}
+    if args.local_synthesis:
+        from ..geometry.typed_pinion import gear_motion_keys
+
+        moved = gear_motion_keys(gear) if len(gear) == len(SIDES) else []
+        if moved:       # the roll correction takes a linear-roll base pinion only
+            raise InputRangeError(*moved[0], "0 with --machine-settings --local-synthesis "
+                                  "(the synthesis corrects a linear roll; the derived pinion "
+                                  "of a gear cut with modified roll or helical motion is "
+                                  "not one); --machine-settings without it writes that "
+                                  "gear's standard pinion")
+    return gear
