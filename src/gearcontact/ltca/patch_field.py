@@ -146,11 +146,15 @@ def patch_approach(fields, pc, load_n: float, materials, *, datum_mm, warm=None)
 
     Returns
     -------
-    (approach_mm, result) : (float, ContactResult)
-        ``delta_LCP - datum`` on the last fitted field (NaN if an LCP failed) and the
-        row's own field's result (the next load's warm start).
+    (approach_mm, result) : (float, ContactResult or None)
+        ``delta_LCP - datum`` on the last fitted field (NaN if an LCP failed, or if the
+        row's field has no flank cell: its touch lies beyond it and the LCP would press
+        the lifted off-flank cells, ``result`` then None) and the row's own field's
+        result (the next load's warm start).
     """
     gap, grid, off, _ = fields.get(pc)
+    if off.all():
+        return np.nan, None
     res = solve_lcp(gap, grid, float(load_n), materials=materials, warm_start=warm,
                     warn_coarse=False)
     if not res.converged and warm is not None:
@@ -200,9 +204,8 @@ def touch_search(fields, pc) -> tuple[float, bool]:
     (docs/twin.md, "Reach of the mesh table"). ``(inf, True)`` where the row's field
     is wholly off the flank (the pair counts as never closing)."""
     gap, grid, off, _ = fields.get(pc)
-    if off.all():
-        return np.inf, True
-    best, settled = _descent(fields, pc, gap, grid, off)
+    # no flank node to descend from: the global search alone (the whole flank)
+    best, settled = (np.inf, True) if off.all() else _descent(fields, pc, gap, grid, off)
     fine_s, fine_t = (TOUCH_SPAN * float(grid.dx_mm[0]) / 4.0 ** (TOUCH_LEVELS - 1),
                       TOUCH_SPAN * float(grid.dy_mm[0]) / 4.0 ** (TOUCH_LEVELS - 1))
     samples = edge_samples(fields, pc)
@@ -329,7 +332,7 @@ def touch_bounds_mm(fields, pc) -> tuple[float, float]:
     """
     gap, _, off, _ = fields.get(pc)
     if off.all():
-        return np.inf, np.inf
+        return -np.inf, np.inf
     on = np.where(off, np.nan, gap)
     rise = [np.abs(np.diff(on, axis=a)) for a in (0, 1)]
     step = max(float(np.nanmax(r)) if np.isfinite(r).any() else 0.0 for r in rise)

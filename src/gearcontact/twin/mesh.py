@@ -297,6 +297,9 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                        cache=laws if edge_law else None, bending=bending is not None)
     for (i, k), (pc, lower) in rows.items():
         far[i, k] = lower / pc.lever_mm > reach[k]
+        if far[i, k] and pc.edge and fields.get(pc)[2].all():
+            far[i, k] = False       # no flank cell in its field: left out (Notes, "reach")
+            continue
         if not far[i, k]:
             pc = fields.resolve(pc)
         valid[i, k] = True
