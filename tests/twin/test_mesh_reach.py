@@ -20,7 +20,12 @@ searched and law calibrated, the code before the limit):
    least gap). The bound's enclosure criterion is also tested on analytic paraboloids.
 4. *The search is global*: every edge row's searched touch (``touch_search``: the
    descent from the field's least node and the global search over the flank's edges
-   and interior, ltca.flank_touch) lies within SEARCH_TOL_MM above the exhaustive scan.
+   and interior, ltca.flank_touch) lies within SEARCH_TOL_MM above the exhaustive scan;
+   so does a row's whose field lies wholly off the flank (the global search alone), or
+   both find no point on both flanks (no overlap, touch ``inf``).
+5. *Rows decided before are unchanged*: against the code path before those rows were
+   searched (their touch ``inf``, never closing), every row valid then is identical in
+   every array; the rows added are wholly-off rows whose touch lies within the reach.
 
 On s0003 coast (31 phases, the session fixture; slow), MITER_PAIR (drive, 61 phases as
 the twin runs it; slow) and the ISO 23509 F.2 machine-settings pair (31 phases; truth 3
