@@ -2,8 +2,10 @@
 :func:`gearcontact.twin.mesh.mesh_table` (best of ``--repeat``, the twin's own set-up:
 edge-contact TCA, edge law, 64.5 N·m, rigid) on s0003 coast, the ISO 23509 F.2
 machine-settings pair (drive) and MITER_PAIR (drive), with the number of edge rows whose
-touch was searched and of rows out of reach, and the load average (the machine is
-shared). The TCA is built once per pair, outside the timing.
+touch was searched and of rows out of reach, the calls and points of the touch search's
+and edge law's gap evaluations (``gap_at`` as ``ltca.patch_field`` and
+``ltca.flank_touch`` call it: deterministic, unlike the time) and the load average (the
+machine is shared). The TCA is built once per pair, outside the timing.
 
 Run: ``python benchmarks/bench_mesh_reach.py [--phases 61] [--repeat 3] [--pairs
 s0003,f2,miter] [--surface]`` (``--surface``: the surface TCA, as tests/twin's F.2
@@ -14,11 +16,14 @@ that two trees compare on the same machine in the same session.
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 F2 = ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml"
@@ -70,12 +75,25 @@ def main() -> None:
         return search(*a, **k)
 
     setattr(lte_pairs, name, counted)
+    gaps = [0, 0]           # calls, points of gap_at in the touch search and edge law
+    for module in ("gearcontact.ltca.patch_field", "gearcontact.ltca.flank_touch"):
+        try:
+            mod = importlib.import_module(module)
+        except ImportError:     # a tree before the global search
+            continue
+
+        def gap_counted(*a, _gap_at=mod.gap_at, **k):
+            gaps[0] += 1
+            gaps[1] += np.size(a[4])
+            return _gap_at(*a, **k)
+
+        mod.gap_at = gap_counted
     print(f"gearcontact from {Path(gearcontact.__file__).parent}")
     for pair_name in args.pairs.split(","):
         pair, tca, flanks, side = _setup(pair_name, args.phases, not args.surface)
         best = float("inf")
         for _ in range(args.repeat):
-            count[0] = 0
+            count[0] = gaps[0] = gaps[1] = 0
             c = time.process_time()
             mesh = mesh_table(tca, flanks, pair, side=side, torque_nm=64.5)
             best = min(best, time.process_time() - c)
@@ -84,7 +102,8 @@ def main() -> None:
         tca_name = "surface" if args.surface else "edge"
         print(f"{pair_name:6s} {side:5s} {tca_name} TCA {args.phases} phases: mesh_table {best:6.2f} s CPU "
               f"(best of {args.repeat}); {rows} rows, {count[0]} touch searches, {far} out "
-              f"of reach; load average {os.getloadavg()[0]:.2f}")
+              f"of reach; gap_at {gaps[0]} calls, {gaps[1]} points; load average "
+              f"{os.getloadavg()[0]:.2f}")
 
 
 if __name__ == "__main__":

@@ -20,7 +20,12 @@ searched and law calibrated, the code before the limit):
    least gap). The bound's enclosure criterion is also tested on analytic paraboloids.
 4. *The search is global*: every edge row's searched touch (``touch_search``: the
    descent from the field's least node and the global search over the flank's edges
-   and interior, ltca.flank_touch) lies within SEARCH_TOL_MM above the exhaustive scan.
+   and interior, ltca.flank_touch) lies within SEARCH_TOL_MM above the exhaustive scan;
+   so does a row's whose field lies wholly off the flank (the global search alone), or
+   both find no point on both flanks (no overlap, touch ``inf``).
+5. *Rows decided before are unchanged*: against the code path before those rows were
+   searched (their touch ``inf``, never closing), every row valid then is identical in
+   every array; the rows added are wholly-off rows whose touch lies within the reach.
 
 On s0003 coast (31 phases, the session fixture; slow), MITER_PAIR (drive, 61 phases as
 the twin runs it; slow) and the ISO 23509 F.2 machine-settings pair (31 phases; truth 3
@@ -39,13 +44,19 @@ FIELDS = ("opening_mm", "lever_mm", "A_minus_per_mm", "B_minus_per_mm", "contact
 
 
 def _check_reach(pair, tca, flanks, side, monkeypatch) -> int:
-    """Truths 1 and 2; returns the number of rows out of reach."""
+    """Truths 1 and 2; returns the number of rows out of reach. Rows whose field lies
+    wholly off the flank and whose touch lies beyond the reach are left out of the
+    limited table (not valid): the unlimited one holds them, open beyond the reach."""
     limited = mesh_module.mesh_table(tca, flanks, pair, side=side, torque_nm=TORQUE_NM)
     with monkeypatch.context() as mp:
         mp.setattr(mesh_module, "REACH_TORQUE_FACTOR", np.inf)
         full = mesh_module.mesh_table(tca, flanks, pair, side=side, torque_nm=TORQUE_NM)
     assert not full.out_of_reach.any()
-    assert np.array_equal(full.valid, limited.valid)
+    assert not (limited.valid & ~full.valid).any()
+    left = full.valid & ~limited.valid
+    assert (full.contact_mode[left] == 2).all()
+    reach_left = np.broadcast_to(limited.reach_rad, left.shape)[left]
+    assert (full.opening_mm[left] / full.lever_mm[left] > reach_left).all()
     near = limited.valid & ~limited.out_of_reach
     for name in FIELDS:
         assert np.array_equal(getattr(full, name)[near], getattr(limited, name)[near],
@@ -79,6 +90,9 @@ def test_reach_on_the_miter_pair(tmp_path, monkeypatch):
     tca, flanks = analyze_pair(prepared.pair, side="drive", phases=61, edge_contact=True,
                                flanks=prepared.flank_set())
     assert _check_reach(prepared.pair, tca, flanks, "drive", monkeypatch) >= 40
+    # its 25 rows whose field lies wholly off the flank touch beyond the reach: the
+    # table is the previous code path's in every array
+    assert _against_previous(prepared.pair, tca, flanks, "drive", monkeypatch) == 0
 
 
 @pytest.mark.slow
@@ -138,11 +152,13 @@ def _scanned_touch_mm(fields, pc, *, n=241, keep=4, levels=4, side=25) -> float:
 
 
 def _edge_rows(pair, tca, flanks, side):
-    """``(rows, reach)``: per edge row ``(k, offset)`` of the table's fields
+    """``(rows, reach, fields)``: per edge row ``(k, offset)`` of the table's fields
     (``mesh_table``'s PairFields and contacts, rigid, Hertzian law) its contact, the
     lower bound the table decides on (``PairFields.bound``), the field's own bound
-    (``touch_bounds_mm``), the searched touch and whether it settled, the scanned touch;
-    ``reach`` per phase (``_reach_rad``, rad)."""
+    (``touch_bounds_mm``), the searched touch and whether it settled, the scanned touch
+    and whether the row's field lies wholly off the flank (searched by the global search
+    alone; its touch ``inf`` where the members' flanks do not overlap on the row's
+    plane); ``reach`` per phase (``_reach_rad``, rad); the PairFields."""
     from gearcontact.ltca.lte_pairs import phase_contacts
     from gearcontact.ltca.patch_field import touch_bounds_mm, touch_search
     from table_fields import table_fields
@@ -157,14 +173,15 @@ def _edge_rows(pair, tca, flanks, side):
             pc, lower = fields.bound(pc)
             if np.isfinite(pc.opening_arcsec):
                 table[pc.offset, k] = (pc, lower)
-                if pc.edge:         # with fields wholly off the flank (bound inf)
-                    touch, settled = touch_search(fields, pc)
-                    out[k, pc.offset] = (pc, lower, field_lower, touch, settled,
-                                         _scanned_touch_mm(fields, pc))
+            if pc.edge:         # with fields wholly off the flank (no field bound)
+                touch, settled = touch_search(fields, pc)
+                out[k, pc.offset] = (pc, lower, field_lower, touch, settled,
+                                     _scanned_touch_mm(fields, pc),
+                                     bool(fields.get(pc)[2].all()))
     reach = mesh_module._reach_rad(fields, table, len(cycle.phi1_rad),
                                    torque_nmm=1e3 * TORQUE_NM, materials=None, cache=None,
                                    bending=False)
-    return out, reach
+    return out, reach, fields
 
 
 @pytest.fixture(scope="module")
@@ -179,28 +196,30 @@ def _check_bounds(pair, tca, flanks, side, rows=None) -> dict:
     scanned and the searched touch: both are gaps at points), and no row the table puts
     out of reach has an unsettled search. Returns the counts and the rows out of reach
     whose touch lies within the reach (``within``: ``(k, offset, touch_mm, reach_mm)``)."""
-    rows, reach = _edge_rows(pair, tca, flanks, side) if rows is None else rows
-    far = searched = unsettled = 0
+    rows, reach, _ = _edge_rows(pair, tca, flanks, side) if rows is None else rows
+    far = searched = unsettled = off = 0
     within = []
-    for (k, _), (pc, lower, field_lower, touch, settled, scan) in rows.items():
+    for (k, _), (pc, lower, field_lower, touch, settled, scan, wholly_off) in rows.items():
         truth = min(touch, scan)
         assert field_lower <= truth, (k, pc.offset, field_lower, truth)
         searched += not np.isfinite(field_lower)
         unsettled += not settled
+        off += wholly_off
         if lower / pc.lever_mm > reach[k]:          # out of reach in the table
             far += 1
             assert settled or np.isfinite(field_lower)
             if not truth / pc.lever_mm > reach[k]:
                 within.append((k, pc.offset, truth, reach[k] * pc.lever_mm))
     return {"rows": len(rows), "searched": searched, "unsettled": unsettled, "far": far,
-            "within": within, "miss": _misses(rows)}
+            "within": within, "miss": _misses(rows), "wholly_off": off}
 
 
 def _misses(rows) -> dict:
     """Rows whose searched touch lies more than SEARCH_TOL_MM above the exhaustive scan
-    (um, by row ``(k, offset)``)."""
-    return {key: round(1e3 * (touch - scan), 3) for key, (*_, touch, _, scan) in rows.items()
-            if touch - scan > SEARCH_TOL_MM}
+    (um, by row ``(k, offset)``; ``inf``: the search reports no overlap of the flanks
+    where the scan finds a gap)."""
+    return {key: round(1e3 * (touch - scan), 3) for key, (*_, touch, _, scan, _) in rows.items()
+            if touch - scan > SEARCH_TOL_MM or (touch == np.inf and scan < np.inf)}
 
 
 def test_touch_bound_on_the_f2_machine_pair(f2_rows):
@@ -224,6 +243,7 @@ def test_touch_bound_on_s0003(s0003_coast_twin):
     pair, tca, flanks, mesh = s0003_coast_twin
     counts = _check_bounds(pair, tca, flanks, mesh.side)
     assert counts["within"] == [] and counts["miss"] == {}, counts
+    assert counts["wholly_off"] == 11, counts       # pair +1 at phases 2-12
 
 
 @pytest.mark.slow
@@ -243,14 +263,111 @@ def test_touch_bound_on_the_miter_pair(tmp_path):
                                flanks=prepared.flank_set())
     counts = _check_bounds(prepared.pair, tca, flanks, "drive")
     assert counts["within"] == [] and counts["miss"] == {}, counts
+    assert counts["wholly_off"] == 25, counts       # pair -1 at phases 16-40
 
 
 def test_search_finds_the_scanned_touch_on_f2(f2_rows):
     """Every edge row's searched touch (the descent and the global search of
     ltca.flank_touch) within SEARCH_TOL_MM of the exhaustive scan (before the global
     search the descent settled 0.54-5.33 um above it at 4 of the 32 rows)."""
-    rows, _ = f2_rows
+    rows, *_ = f2_rows
     assert _misses(rows) == {}
+
+
+class _OffField:
+    """A row's PairFields as the search sees it with its field wholly off the flank (the
+    global search alone), its gear turned on by ``turn_rad`` from its pose."""
+
+    def __init__(self, fields, pc, turn_rad=0.0):
+        from dataclasses import replace
+
+        gap, grid, off, lever = fields.get(pc)
+        self.hit = (gap, grid, np.ones_like(off), lever)
+        self.args, self.frames = fields.args, fields.frames
+        mp = fields.points[pc.path_index]
+        self.points = {pc.path_index: replace(mp, phi2_rad=mp.phi2_rad + turn_rad)}
+
+    def get(self, pc):
+        return self.hit
+
+
+def test_global_search_alone_finds_the_scanned_touch_on_f2(f2_rows):
+    """The search of a row whose field lies wholly off the flank (no descent: the global
+    search of ltca.flank_touch alone) on every F.2 edge row, its field declared off:
+    within SEARCH_TOL_MM above the exhaustive scan (truth 4)."""
+    from gearcontact.ltca.patch_field import touch_search
+
+    rows, _, fields = f2_rows
+    misses = {}
+    for key, (pc, *_, scan, _) in rows.items():
+        touch, settled = touch_search(_OffField(fields, pc), pc)
+        assert settled
+        if not touch - scan <= SEARCH_TOL_MM:
+            misses[key] = 1e3 * (touch - scan)
+    assert misses == {}
+
+
+def test_no_overlap_reported_where_the_scan_finds_none(f2_rows):
+    """A row whose members do not overlap on its plane (F.2's first edge row, the gear
+    turned on by 20 deg: the flanks' normal lines over the pinion flank miss the gear's
+    box): the search reports no gap (``inf``, settled) and so does the scan."""
+    from gearcontact.ltca.patch_field import touch_search
+
+    rows, _, fields = f2_rows
+    pc = next(iter(rows.values()))[0]
+    fields = _OffField(fields, pc, turn_rad=np.radians(20.0))
+    assert touch_search(fields, pc) == (np.inf, True)
+    assert _scanned_touch_mm(fields, pc) == np.inf
+
+
+def _previous_touch(monkeypatch):
+    """The code path before rows whose field lies wholly off the flank were searched:
+    their touch ``inf`` (never closing) and no field bound searched for."""
+    import gearcontact.ltca.lte_pairs as lte_pairs
+    from gearcontact.ltca.patch_field import touch_bounds_mm, touch_search
+
+    monkeypatch.setattr(lte_pairs, "touch_search", lambda f, pc: (
+        (np.inf, True) if f.get(pc)[2].all() else touch_search(f, pc)))
+    monkeypatch.setattr(lte_pairs, "touch_bounds_mm", lambda f, pc: (
+        (np.inf, np.inf) if f.get(pc)[2].all() else touch_bounds_mm(f, pc)))
+
+
+def _against_previous(pair, tca, flanks, side, monkeypatch, mesh=None) -> int:
+    """The table (``mesh``, else built) against the previous code path's in-process:
+    every per-phase array identical, every row that was valid identical in every array,
+    and every row added one whose field lies wholly off the flank (posed field) whose
+    touch lies within the reach, its law Hertz (calibration refused: exponent 0, scale
+    1). Returns the number of rows added."""
+    mesh = mesh or mesh_module.mesh_table(tca, flanks, pair, side=side, torque_nm=TORQUE_NM)
+    with monkeypatch.context() as mp:
+        _previous_touch(mp)
+        before = mesh_module.mesh_table(tca, flanks, pair, side=side, torque_nm=TORQUE_NM)
+    for name in ("psi_rad", "eps_rad", "reach_rad", "phi1_rad", "te0_arcsec"):
+        assert np.array_equal(getattr(mesh, name), getattr(before, name)), name
+    for name in ("motion_sign", "ratio", "reference_lever_mm", "reference_index",
+                 "gear_datum_rad"):
+        assert getattr(mesh, name) == getattr(before, name), name
+    old = before.valid
+    assert (mesh.valid[old]).all()
+    for name in FIELDS + ("out_of_reach", "edge_label"):
+        assert np.array_equal(getattr(mesh, name)[old], getattr(before, name)[old],
+                              equal_nan=getattr(mesh, name).dtype.kind == "f"), name
+    new = mesh.valid & ~old
+    assert (mesh.contact_mode[new] == 2).all() and not mesh.out_of_reach[new].any()
+    assert (mesh.edge_exponent[new] == 0.0).all()
+    assert (mesh.edge_compliance_scale[new] == 1.0).all()
+    reach = np.broadcast_to(mesh.reach_rad, new.shape)[new]
+    assert (mesh.opening_mm[new] / mesh.lever_mm[new] <= reach).all()
+    return int(new.sum())
+
+
+def test_s0003_table_against_the_previous_code_path(s0003_coast_twin, monkeypatch):
+    """s0003 coast (the twin's fixture, 31 phases): the rows decided before bit for bit;
+    added, pair +1 at the 3 phases whose field lies wholly off the flank and whose
+    touch (30.6-61.4 um, its lever 36.6 mm) lies within the reach (63.6-63.9 um of
+    approach); before, they counted as never closing. About 3 s."""
+    pair, tca, flanks, mesh = s0003_coast_twin
+    assert _against_previous(pair, tca, flanks, mesh.side, monkeypatch, mesh) == 3
 
 
 class _Field:

@@ -9,7 +9,9 @@ minimum of ``g`` or on the border of ``D``, which is made of the images of the e
 edges of the two members' parameter boxes (and their corners). A pattern search from
 the field's least node (:func:`.patch_field.touch_search`) finds the minimum of its own
 basin, and may stall on a border that cuts its windows obliquely (its points cannot
-follow the border; docs/twin.md "The touch made global"). Here:
+follow the border; docs/twin.md "The touch made global"); where the row's field lies
+wholly off the flank there is no field node to descend from and the search is this
+module's alone. Here:
 
 * :func:`edge_touch_mm`: each edge, its parameter nudged :data:`EDGE_NUDGE` inside its
   box, sampled at :data:`EDGE_SAMPLES` points posed and projected on the row's plane

@@ -33,7 +33,8 @@ flanks posed the same way, :func:`gearcontact.tca.stencil.gap_at`):
   to a small fraction of a cell's slope; then over the whole flank
   (:mod:`.flank_touch`: the flank region's edges and interior minima), whose touch
   replaces the descent's where lower by more than :data:`GLOBAL_MARGIN_MM` (the descent
-  stalls where the flank's border cuts its windows obliquely).
+  stalls where the flank's border cuts its windows obliquely); alone where the field
+  lies wholly off the flank.
 * :func:`touch_bounds_mm`: bounds of that touch from the field alone (its least gap on
   the flank, less twice the largest rise between neighbouring flank cells, only where
   the field encloses the touch): the twin's table searches the touch only of rows whose
@@ -146,11 +147,15 @@ def patch_approach(fields, pc, load_n: float, materials, *, datum_mm, warm=None)
 
     Returns
     -------
-    (approach_mm, result) : (float, ContactResult)
-        ``delta_LCP - datum`` on the last fitted field (NaN if an LCP failed) and the
-        row's own field's result (the next load's warm start).
+    (approach_mm, result) : (float, ContactResult or None)
+        ``delta_LCP - datum`` on the last fitted field (NaN if an LCP failed, or if the
+        row's field has no flank cell: its touch lies beyond it and the LCP would press
+        the lifted off-flank cells, ``result`` then None) and the row's own field's
+        result (the next load's warm start).
     """
     gap, grid, off, _ = fields.get(pc)
+    if off.all():
+        return np.nan, None
     res = solve_lcp(gap, grid, float(load_n), materials=materials, warm_start=warm,
                     warn_coarse=False)
     if not res.converged and warm is not None:
@@ -181,8 +186,8 @@ def touch_gap_mm(fields, pc) -> float:
     windows spanning :data:`TOUCH_SPAN` cells either way, moved while the least point is
     on the window's border (the touch may lie beyond the field; at most
     :data:`TOUCH_MOVES` moves) and then shrunk 4 times, :data:`TOUCH_LEVELS` times;
-    ``inf`` if no cell is on the flank. :func:`touch_search` also says whether the
-    search settled."""
+    then over the whole flank (:func:`touch_search`, which also says whether the search
+    settled); ``inf`` if the members' flanks do not overlap on the row's plane."""
     return touch_search(fields, pc)[0]
 
 
@@ -197,12 +202,13 @@ def touch_search(fields, pc) -> tuple[float, bool]:
     resolution); its touch replaces the descent's where it lies more than
     :data:`GLOBAL_MARGIN_MM` below (then settled: the whole flank was searched). An
     unsettled search's touch is only an upper bound of the flanks' least gap
-    (docs/twin.md, "Reach of the mesh table"). ``(inf, True)`` where the row's field
-    is wholly off the flank (the pair counts as never closing)."""
+    (docs/twin.md, "Reach of the mesh table"). Where the row's field lies wholly off
+    the flank (a pair far past its path's end: no node to descend from) the global
+    search alone, settled; ``(inf, True)`` where it finds no point on both flanks (the
+    members do not overlap on the row's plane: no gap exists)."""
     gap, grid, off, _ = fields.get(pc)
-    if off.all():
-        return np.inf, True
-    best, settled = _descent(fields, pc, gap, grid, off)
+    # no flank node to descend from: the global search alone (the whole flank)
+    best, settled = (np.inf, True) if off.all() else _descent(fields, pc, gap, grid, off)
     fine_s, fine_t = (TOUCH_SPAN * float(grid.dx_mm[0]) / 4.0 ** (TOUCH_LEVELS - 1),
                       TOUCH_SPAN * float(grid.dy_mm[0]) / 4.0 ** (TOUCH_LEVELS - 1))
     samples = edge_samples(fields, pc)
@@ -324,12 +330,12 @@ def touch_bounds_mm(fields, pc) -> tuple[float, float]:
     boundary (next to an off-flank node, where the gap between nodes is bounded by no
     node) or beyond the field's border: the field bounds nothing and the row is searched
     (docs/twin.md, "Reach of the mesh table": no field of the 120 edge rows of MITER_PAIR,
-    s0003 coast and the F.2 machine pair encloses its touch). ``(inf, inf)`` if no cell
-    is on the flank.
+    s0003 coast and the F.2 machine pair encloses its touch). ``(-inf, inf)`` if no cell
+    is on the flank (the touch lies beyond the field: searched).
     """
     gap, _, off, _ = fields.get(pc)
     if off.all():
-        return np.inf, np.inf
+        return -np.inf, np.inf
     on = np.where(off, np.nan, gap)
     rise = [np.abs(np.diff(on, axis=a)) for a in (0, 1)]
     step = max(float(np.nanmax(r)) if np.isfinite(r).any() else 0.0 for r in rise)

@@ -168,7 +168,8 @@ class MeshTable:
         torque (:func:`mesh_table`, "reach"): open by at least the lower bound of their
         opening, which exceeds that reach; their opening is the field's least gap where
         the field bounds the touch (no touch search), else the searched touch; their law
-        uncalibrated (Hertz).
+        uncalibrated (Hertz). Such rows whose field lies wholly off the flank are left
+        out (not ``valid``).
     """
 
     psi_rad: np.ndarray
@@ -260,7 +261,13 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     the phase's rotation bound under :data:`REACH_TORQUE_FACTOR` times the torque
     (:func:`_reach_rad`); it keeps its opening's upper bound (or its touch) and the
     Hertzian law (``out_of_reach``). Rows within reach are the unlimited table's bit for
-    bit (tests/twin/test_mesh_reach.py; docs/twin.md "Reach of the mesh table").
+    bit (tests/twin/test_mesh_reach.py; docs/twin.md "Reach of the mesh table"). A row
+    whose field lies wholly off the flank (no flank cell: no field bound, no patch for
+    an edge law) has its touch searched over the whole flank
+    (:func:`~gearcontact.ltca.patch_field.touch_search`); beyond the reach it is left
+    out of the table (not ``valid``, as a pair whose flanks do not overlap), within it
+    kept with its touch as its opening and the Hertzian law (its calibration refused:
+    ``edge_exponent`` 0).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
@@ -297,6 +304,9 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                        cache=laws if edge_law else None, bending=bending is not None)
     for (i, k), (pc, lower) in rows.items():
         far[i, k] = lower / pc.lever_mm > reach[k]
+        if far[i, k] and pc.edge and fields.get(pc)[2].all():
+            far[i, k] = False       # no flank cell in its field: left out (Notes, Reach)
+            continue
         if not far[i, k]:
             pc = fields.resolve(pc)
         valid[i, k] = True
