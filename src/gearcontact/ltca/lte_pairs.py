@@ -202,9 +202,10 @@ class PairFields:
 
     def resolve(self, pc: PairContact) -> PairContact:
         """An edge pair with its opening (smallest separation over the flank of its
-        posed field searched from its least node, :func:`.patch_field.touch_search`:
-        the field's least node sits up to a cell's slope above a touch between nodes,
-        and far above one beyond the field; arcsec of rotation) and the lever of its
+        posed field searched, :func:`.patch_field.touch_search`: from its least flank
+        node, then globally, or globally alone where no node of the field is on the
+        flank; the field's least node sits up to a cell's slope above a touch between
+        nodes, and far above one beyond the field; arcsec of rotation) and the lever of its
         field's centre; other pairs unchanged."""
         if not pc.edge:
             return pc
