@@ -1,0 +1,96 @@
+"""``design --machine-settings`` and ``tca`` agree on a blank whose standard settings cut a
+pinion flank that folds above its tip (geometry.generated_box.check_tip_margin;
+docs/machine_settings.md sec. 5, "A fold at the tip").
+
+The truth is the workflow's own contract, not a number of this code: every command
+reads what ``design`` writes. Before, on the 16/16 spiral bevel at face 4 mm and beta 35
+deg, ``design --machine-settings`` warned (contact ratio) and wrote settings on which
+``tca`` exited 2 at a node of the pinion's coast flank (the node grid's corner above
+the tip at the heel, where the envelope folds). Now ``design`` refuses before writing,
+with the message ``tca`` gives on those settings, word for word; with less lengthwise
+crowning (the pinion coast cutter radius 16.8 -> 43.8 mm) both run.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+
+from gearcontact.cli import main
+from gearcontact.geometry import basic_settings
+from gearcontact.geometry.gear_generation import generation_of
+from gearcontact.geometry.generation import check_generation
+from gearcontact.geometry.pair import load_pair, pair_to_toml
+
+#: 16/16 spiral bevel, E 0, R_m 55 mm, face 4 mm (0.07 R_e), beta 35 deg, cutter 57.15 mm
+#: (helper crcheck's family, docs/machine_settings.md sec. 5).
+NARROW = """name = "narrow_16x16"
+[teeth]
+pinion = 16
+gear = 16
+[axes]
+shaft_angle_deg = 90.0
+offset_mm = 0.0
+[design]
+pinion_hand = "right"
+gear_mean_cone_distance_mm = 55.0
+pinion_spiral_angle_deg = 35.0
+gear_face_width_mm = 4.0
+pinion_face_width_mm = 4.0
+gear_addendum_factor = 0.5
+[cutter]
+radius_mm = 57.15
+point_width_mm = 2.0
+edge_radius_mm = 0.4
+"""
+
+
+def _error_line(err: str, command: str) -> str:
+    """The error of ``gearcontact <command>`` on stderr, without its prefix."""
+    prefix = f"gearcontact {command}: error: "
+    lines = [line for line in err.splitlines() if line.startswith(prefix)]
+    assert len(lines) == 1, err
+    return lines[0][len(prefix):]
+
+
+def test_design_refuses_what_tca_refuses(tmp_path, capsys, monkeypatch):
+    blank_file = tmp_path / "narrow.toml"
+    blank_file.write_text(NARROW)
+    out = tmp_path / "mach"
+    assert main(["design", "--pair", str(blank_file), "--machine-settings",
+                 "--out", str(out)]) == 2
+    design_error = _error_line(capsys.readouterr().err, "design")
+    assert not (out / "machine_settings.toml").exists()
+    # the cause, named: the flank's settings, where it folds, the design fields that fix it
+    for word in ("[machine.pinion.coast] / [blade.pinion.coast]", "(heel: the box is",
+                 "design.gear_face_width_mm", "design.pinion_spiral_angle_deg",
+                 "--lengthwise-crowning-um", '"A fold at the tip"'):
+        assert word in design_error
+
+    # the settings design wrote before (the check skipped; it changes no setting)
+    blank = load_pair(blank_file)
+    monkeypatch.setattr(basic_settings, "generated_pinion_box", lambda *a, **k: None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        generation = generation_of(check_generation(blank, contact_ratio=False))
+    cut = basic_settings.standard_machine_pair(blank, gear_generation=generation)
+    monkeypatch.undo()
+    written = tmp_path / "machine_settings.toml"
+    written.write_text(pair_to_toml(cut))
+    assert main(["tca", "--pair", str(written), "--out", str(tmp_path / "tca")]) == 2
+    assert _error_line(capsys.readouterr().err, "tca") == design_error
+
+
+@pytest.mark.slow
+def test_less_crowning_runs_in_both(tmp_path, capsys):
+    """The fix the refusal names, measured: 10 um of lengthwise crowning (pinion coast
+    cutter radius 43.8 mm instead of 16.8 mm): design exit 0, and tca on its file exit 0."""
+    blank_file = tmp_path / "narrow.toml"
+    blank_file.write_text(NARROW)
+    out = tmp_path / "mach"
+    assert main(["design", "--pair", str(blank_file), "--machine-settings",
+                 "--lengthwise-crowning-um", "10", "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["tca", "--pair", str(out / "machine_settings.toml"),
+                 "--out", str(tmp_path / "tca")]) == 0
