@@ -23,28 +23,11 @@ from gearcontact.geometry.gear_generation import generation_of
 from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import load_pair, pair_to_toml
 
-#: 16/16 spiral bevel, E 0, R_m 55 mm, face 4 mm (0.07 R_e), beta 35 deg, cutter 57.15 mm
-#: (helper crcheck's family, docs/machine_settings.md sec. 5).
-NARROW = """name = "narrow_16x16"
-[teeth]
-pinion = 16
-gear = 16
-[axes]
-shaft_angle_deg = 90.0
-offset_mm = 0.0
-[design]
-pinion_hand = "right"
-gear_mean_cone_distance_mm = 55.0
-pinion_spiral_angle_deg = 35.0
-gear_face_width_mm = 4.0
-pinion_face_width_mm = 4.0
-gear_addendum_factor = 0.5
-[cutter]
-radius_mm = 57.15
-point_width_mm = 2.0
-edge_radius_mm = 0.4
-"""
+# 16/16 spiral bevel, E 0, R_m 55 mm, beta 35 deg, cutter 57.15 mm (helper crcheck's family,
+# docs/machine_settings.md sec. 5), here at face 4 mm (0.07 R_e)
+from .test_machine_contact_ratio import _blank
 
+FACE_MM = 4.0
 
 def _error_line(err: str, command: str) -> str:
     """The error of ``gearcontact <command>`` on stderr, without its prefix."""
@@ -55,8 +38,7 @@ def _error_line(err: str, command: str) -> str:
 
 
 def test_design_refuses_what_tca_refuses(tmp_path, capsys, monkeypatch):
-    blank_file = tmp_path / "narrow.toml"
-    blank_file.write_text(NARROW)
+    blank_file = _blank(tmp_path, FACE_MM)
     out = tmp_path / "mach"
     assert main(["design", "--pair", str(blank_file), "--machine-settings",
                  "--out", str(out)]) == 2
@@ -86,8 +68,7 @@ def test_design_refuses_what_tca_refuses(tmp_path, capsys, monkeypatch):
 def test_less_crowning_runs_in_both(tmp_path, capsys):
     """The fix the refusal names, measured: 10 um of lengthwise crowning (pinion coast
     cutter radius 43.8 mm instead of 16.8 mm): design exit 0, and tca on its file exit 0."""
-    blank_file = tmp_path / "narrow.toml"
-    blank_file.write_text(NARROW)
+    blank_file = _blank(tmp_path, FACE_MM)
     out = tmp_path / "mach"
     assert main(["design", "--pair", str(blank_file), "--machine-settings",
                  "--lengthwise-crowning-um", "10", "--out", str(out)]) == 0
