@@ -214,13 +214,21 @@ def check_tip_margin(solver, box: FlankBoundary, *, u_m: float, v_m: float, mean
         f"(tip {fold[k] - box.u_tip:+.4f} mm), v = {vs[k]:.4f} mm ({where}: the box is "
         f"v = [{box.v_toe:.4f}, {box.v_heel:.4f}] mm)",
         f"an envelope regular to the node grid's top row u = {u_top:.4f} mm (tip + "
-        f"{NODE_MARGIN_MM[0]:g} mm) over v = [{vs[0]:.4f}, {vs[-1]:.4f}] mm (there the flank's "
-        "normal turns into the axial plane: the flank turns over towards the tip). Standard "
-        "settings (`design --machine-settings`) of a narrow face get such a pinion cutter "
-        "radius from the standard lengthwise crowning: a wider face "
-        "(design.gear_face_width_mm), a smaller spiral angle (design.pinion_spiral_angle_deg) "
-        "or less crowning (--lengthwise-crowning-um); docs/machine_settings.md sec. 5, "
-        "\"A fold at the tip\"")
+        f"{NODE_MARGIN_MM[0]:g} mm) over v = [{vs[0]:.4f}, {vs[-1]:.4f}] mm (the node equations "
+        "turn singular where the flank's normal turns into the axial plane: the flank turns "
+        "over towards the tip)"
+        + (_STANDARD_HINT if setup.member == "pinion" else "")
+        + '; docs/machine_settings.md sec. 5, "A fold at the tip"')
+
+
+#: What removes a tip fold of a pinion cut with standard settings (measured,
+#: docs/machine_settings.md sec. 5, "A fold at the tip").
+_STANDARD_HINT = (
+    ". Standard settings (`design --machine-settings`) of a narrow face "
+    "(design.gear_face_width_mm) get such a pinion cutter radius from the standard "
+    "lengthwise crowning, and the fold moves into the flank as the spiral angle "
+    "(design.pinion_spiral_angle_deg) grows: a wider face or less crowning "
+    "(--lengthwise-crowning-um) removes it")
 
 
 def _margin_sections(box: FlankBoundary) -> np.ndarray:
