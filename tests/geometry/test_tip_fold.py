@@ -18,8 +18,10 @@ import warnings
 import pytest
 
 from gearcontact.cli import main
-from gearcontact.geometry import basic_settings
+from gearcontact.geometry import basic_settings, generated_box
+from gearcontact.geometry.conjugate import UndercutError
 from gearcontact.geometry.gear_generation import generation_of
+from gearcontact.geometry.generated import generated_pinion_box, generated_pinion_flank
 from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import load_pair, pair_to_toml
 
@@ -37,7 +39,18 @@ def _error_line(err: str, command: str) -> str:
     return lines[0][len(prefix):]
 
 
-def test_design_refuses_what_tca_refuses(tmp_path, capsys, monkeypatch):
+def _old_settings(blank_file):
+    """The standard settings design wrote before for ``blank_file`` (the pinion box
+    check skipped; it changes no setting)."""
+    blank = load_pair(blank_file)
+    with pytest.MonkeyPatch.context() as patch, warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        patch.setattr(basic_settings, "generated_pinion_box", lambda *a, **k: None)
+        generation = generation_of(check_generation(blank, contact_ratio=False))
+        return basic_settings.standard_machine_pair(blank, gear_generation=generation)
+
+
+def test_design_refuses_what_tca_refuses(tmp_path, capsys):
     blank_file = _blank(tmp_path, FACE_MM)
     out = tmp_path / "mach"
     assert main(["design", "--pair", str(blank_file), "--machine-settings",
@@ -49,19 +62,30 @@ def test_design_refuses_what_tca_refuses(tmp_path, capsys, monkeypatch):
                  "design.gear_face_width_mm", "design.pinion_spiral_angle_deg",
                  "--lengthwise-crowning-um", '"A fold at the tip"'):
         assert word in design_error
-
-    # the settings design wrote before (the check skipped; it changes no setting)
-    blank = load_pair(blank_file)
-    monkeypatch.setattr(basic_settings, "generated_pinion_box", lambda *a, **k: None)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        generation = generation_of(check_generation(blank, contact_ratio=False))
-    cut = basic_settings.standard_machine_pair(blank, gear_generation=generation)
-    monkeypatch.undo()
     written = tmp_path / "machine_settings.toml"
-    written.write_text(pair_to_toml(cut))
+    written.write_text(pair_to_toml(_old_settings(blank_file)))
     assert main(["tca", "--pair", str(written), "--out", str(tmp_path / "tca")]) == 2
     assert _error_line(capsys.readouterr().err, "tca") == design_error
+
+
+def test_the_tip_check_refuses_what_the_node_grid_cannot_solve(tmp_path, monkeypatch):
+    """The truth of the early refusal is the node grid itself (the exact node solves
+    behind the flank): the coast flank the check refuses has a grid node without a
+    solution once the check is skipped; the drive flank it passes builds. A 12 x 15 grid
+    holds the corners of the full one (linspace ends), where the fold is."""
+    cut = _old_settings(_blank(tmp_path, FACE_MM))
+    setups = {s.side: s for s in cut.machine if s.member == "pinion"}
+    face = cut.pinion_face_width_mm
+    with pytest.raises(UndercutError, match="fold of the generated pinion coast flank"):
+        generated_pinion_box(setups["coast"], cut.blank, pinion_face_width_mm=face)
+    monkeypatch.setattr(generated_box, "check_tip_margin", lambda *a, **k: None)
+    box = generated_pinion_box(setups["coast"], cut.blank, pinion_face_width_mm=face)[1]
+    with pytest.raises(UndercutError, match="a node the generated envelope reaches"):
+        generated_pinion_flank(setups["coast"], cut.blank, pinion_face_width_mm=face,
+                               n_u=12, n_v=15, box=box)
+    monkeypatch.undo()
+    generated_pinion_flank(setups["drive"], cut.blank, pinion_face_width_mm=face,
+                           n_u=12, n_v=15)
 
 
 @pytest.mark.slow
