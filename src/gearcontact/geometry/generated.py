@@ -46,7 +46,8 @@ from .conjugate import NODE_MARGIN_MM, UndercutError, nominal_pinion_box
 from .cutter import BladeCone, CutterPlacement
 from .formate import FlankBoundary, FormateFlank, gear_flank
 from .kinematics import MeshKinematics
-from .generated_box import active_box, edge_length_mm, edge_radius_bound_mm, inch_hint
+from .generated_box import (LIMIT_FRACTION, active_box, edge_length_mm, edge_radius_bound_mm,
+                            inch_hint)
 from .machine import MachineKinematics, MachineSetup, blade_point
 from .sheet import GearCone, GearSheet, RadialSheet
 
@@ -60,7 +61,7 @@ _MAX_ITER = 40
 _MAX_STEP = np.array([0.5, 0.05, 0.05])   # damping: |dl| mm, |dtheta|, |dpsi| rad
 _FD = 1e-6            # central-difference step of the Jacobian (mm, rad)
 #: |df/dpsi| or |det J| below this fraction of the mean node's: limit line / undercut.
-_LIMIT_FRACTION = 1e-3
+_LIMIT_FRACTION = LIMIT_FRACTION
 _PINION_Q = np.column_stack([[0.0, 0.0, 1.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]])
 
 
