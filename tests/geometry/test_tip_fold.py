@@ -99,3 +99,21 @@ def test_less_crowning_runs_in_both(tmp_path, capsys):
     capsys.readouterr()
     assert main(["tca", "--pair", str(out / "machine_settings.toml"),
                  "--out", str(tmp_path / "tca")]) == 0
+
+
+def test_keep_gear_refuses_the_folding_pinion_before_writing(tmp_path, capsys):
+    """``design --machine-settings --keep-gear`` on those settings keeps the (blank's own)
+    gear and derives its standard pinion (geometry.typed_pinion; the same pinion as the
+    standard settings' to round-off): the same fold, refused before any file is written,
+    naming the pinion flank's settings and the fold."""
+    blank_file = _blank(tmp_path, FACE_MM)
+    written = tmp_path / "machine_settings.toml"
+    written.write_text(pair_to_toml(_old_settings(blank_file)))
+    out = tmp_path / "kept"
+    assert main(["design", "--pair", str(written), "--machine-settings", "--keep-gear",
+                 "--out", str(out)]) == 2
+    error = _error_line(capsys.readouterr().err, "design")
+    assert not (out / "machine_settings.toml").exists()
+    for word in ("[machine.pinion.coast] / [blade.pinion.coast]", "(heel: the box is",
+                 '"A fold at the tip"'):
+        assert word in error

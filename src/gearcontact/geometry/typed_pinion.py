@@ -66,7 +66,7 @@ from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_
 from .blade_mate import mate_blade
 from .conjugate import UndercutError, nominal_pinion_box
 from .formate import SIDES
-from .generated import EnvelopeSolver, work_to_body
+from .generated import EnvelopeSolver, generated_pinion_box, work_to_body
 from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinematics,
                       MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
@@ -267,6 +267,11 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
+    for side in SIDES:   # the pinion's active box, as every reader of the settings checks
+        # it first (basic_settings.standard_setups alike): a flank that folds within its
+        # node grid is refused before the settings are written
+        generated_pinion_box(pinion[side], twin.blank,
+                             pinion_face_width_mm=twin.pinion_face_width_mm)
     if left:
         pinion = {s: mirror_setup(p) for s, p in pinion.items()}
     members = {"gear": gear, "pinion": pinion}
