@@ -39,6 +39,9 @@ MD word read from the crossing point; and the blank's hand): of the slips under 
 every value of the flank agrees the best fit is named, the others listed. Where none
 does, the keys that alone make it agree are named with the values the blank needs
 (:mod:`.slip_attribution`); where none does either, two slips on two keys are tried.
+A slip's candidate on a gear flank whose closed-form generating spiral angle or mean
+cone distance is outside its tolerance is not solved (:meth:`_Compare.outside`: it
+cannot agree; docs sec. 2, "The cost of the slip search").
 
 References
 ----------

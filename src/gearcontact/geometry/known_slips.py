@@ -6,7 +6,9 @@ two keys (:func:`pair_slip`). Of the slips under which every value of the flank 
 the best fit is named, the others listed.
 
 The flank is compared by the caller's ``compare`` (:class:`Compare`: the check's own
-comparison), so this module holds the slips and the search only.
+comparison), so this module holds the slips and the search only; a candidate
+``compare.outside`` shows cannot agree is not compared (docs/machine_settings.md sec. 2,
+"The cost of the slip search").
 """
 
 from __future__ import annotations
