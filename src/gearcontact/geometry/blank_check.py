@@ -39,6 +39,9 @@ MD word read from the crossing point; and the blank's hand): of the slips under 
 every value of the flank agrees the best fit is named, the others listed. Where none
 does, the keys that alone make it agree are named with the values the blank needs
 (:mod:`.slip_attribution`); where none does either, two slips on two keys are tried.
+A slip's candidate on a gear flank whose closed-form generating spiral angle or mean
+cone distance is outside its tolerance is not solved (:meth:`_Compare.outside`: it
+cannot agree; docs sec. 2, "The cost of the slip search").
 
 References
 ----------
@@ -55,8 +58,8 @@ from dataclasses import dataclass
 from ..validation import InputRangeError
 from .blank_statement import StatedBlank, printed_stated_blank, stated_blank
 from .conjugate import UndercutError
-from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, measure_generating_angles,
-                           measure_mean_point, require_machine)
+from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, generating_circle,
+                           measure_generating_angles, measure_mean_point, require_machine)
 from ..deprecation import moved_names
 from .known_slips import pair_slip, single_slip, slip_fix, with_slip
 from .machine import MachineSetup
@@ -65,7 +68,7 @@ from .slip_attribution import describe, explaining_values, interval
 from .typed_settings import attributed_keys, full_key, moved, roundings, setting
 
 __all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
-           "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION",
+           "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SCREEN_MARGIN",
            "BlankCheck", "Comparison", "FlankCheck", "check_flanks", "check_pair_blank"]
 __getattr__ = moved_names(__name__, {
     "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution",
@@ -99,6 +102,12 @@ PINION_PRESSURE_DEG = 5.0
 #: mismatch moves a pressure angle by 10 deg, a unit slip (radians) does. Declared with
 #: :data:`PINION_PRESSURE_DEG`.
 GROSS_PRESSURE_DEG = 10.0
+#: A slip's candidate on a gear flank is screened out without a solve where its closed-
+#: form spiral angle or mean cone distance is outside its tolerance by more than this
+#: fraction of it (:meth:`_Compare.outside`; the same floats as the solved comparison,
+#: so the margin only keeps a tie on the solved side; docs/machine_settings.md sec. 2,
+#: "The cost of the slip search").
+SCREEN_MARGIN = 1e-9
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 
@@ -288,10 +297,14 @@ _STATED_ROUNDING = {"spiral angle": "spiral_angle_deg", "pressure angle": "press
                     "mean cone distance": "cone_distance_mm"}
 
 
-def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> dict:
-    """The typed settings' rounding propagated (module docstring), per quantity: each
-    typed key moved by its half unit, up, or down where up leaves the key's range (a
-    value typed at its limit: the range error would name a value nobody typed)."""
+def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at,
+                measure=None) -> dict:
+    """The typed settings' rounding propagated (module docstring), per quantity of
+    ``values``: each typed key moved by its half unit, up, or down where up leaves the
+    key's range (a value typed at its limit: the range error would name a value nobody
+    typed); each move measured by ``measure(setup, stated, at)`` (``({quantity: value},
+    solution)``; :func:`_values` by default)."""
+    measure = measure or _values
     tol = {q: _FLOOR + stated.rounding.get(_STATED_ROUNDING.get(q, ""), 0.0)
            for q in values if q != "hand"}
     moves = [(k, r) for k, r in roundings(setup, stated.setting_rounding).items() if r > 0.0]
@@ -309,13 +322,14 @@ def _tolerances(setup: MachineSetup, stated: StatedBlank, values: dict, at) -> d
             except InputRangeError:     # typed at the top of its range: round the other way
                 shifted = moved(setup, key, lambda x, r=r: x - r), stated
         try:
-            got, _ = _values(*shifted, at)
+            got, _ = measure(*shifted, at)
         except UndercutError:       # the warm start lost the point: the full solve
-            got, _ = _values(*shifted)
+            got, _ = measure(*shifted)
         for q in tol:
             tol[q] += abs(got[q] - values[q])
-    tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
-    if setup.member == "pinion":
+    if "root depth" in tol:
+        tol["root depth"] += ROOT_DATUM_FRACTION * stated.dedendum_mm[setup.member]
+    if setup.member == "pinion" and "pressure angle" in tol:
         tol["pressure angle"] += PINION_PRESSURE_DEG
     if "pitch point" in tol:
         tol["pitch point"] += PITCH_POINT_FRACTION * stated.dedendum_mm[setup.member]
@@ -335,18 +349,39 @@ def _stated_values(member: str, side: str, stated: StatedBlank, hand: str | None
     return out
 
 
+def _remembered(setup: MachineSetup, stated: StatedBlank, memo: dict | None):
+    """:func:`_values` of ``setup`` (from the grid of starts), kept in ``memo`` (what it
+    raised as well) for a second comparison of the same set-up object against a
+    statement that differs in its rounding only (a unit slip's re-propagated tolerance,
+    :class:`_Compare`: the rounding does not enter the measurement)."""
+    if memo is not None and memo.get("setup") is setup:
+        got = memo["got"]
+    else:
+        try:
+            got = _values(setup, stated)
+        except (UndercutError, InputRangeError) as exc:
+            got = exc
+        if memo is not None:
+            memo.update(setup=setup, got=got)
+    if isinstance(got, Exception):
+        raise got
+    return got
+
+
 def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None = None,
-             start=None):
+             start=None, memo: dict | None = None):
     """``(FlankCheck without slip, tolerances)``; tolerances of a flank that does not
     reach its mean point: None. ``measured``: the flank already measured at the same
     mean point (:func:`~.flank_angles.measure_pair_mean_points`), else it is measured
-    (from ``start``, a nearby flank's solution, when given)."""
+    (from ``start``, a nearby flank's solution, when given; else kept in ``memo``,
+    :func:`_remembered`)."""
     where = (f"the blank's mean point (cone distance "
              f"{stated.mean_cone_distance_mm[setup.member]:.4f} mm on the pitch cone)")
     reached, circle = True, None
     if measured is None:
         try:
-            values, at = _values(setup, stated, start)
+            values, at = (_values(setup, stated, start) if start is not None or memo is None
+                          else _remembered(setup, stated, memo))
         except UndercutError:
             reached = False
         except InputRangeError as exc:
@@ -377,19 +412,59 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
     return FlankCheck(setup.member, setup.side, rows), tol
 
 
-class _Compare:
-    """The check's comparison of one flank (:class:`~.known_slips.Compare`)."""
+def _circle(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict, None]:
+    """``({quantity: value}, None)``: a gear flank's generating spiral angle and mean cone
+    distance, closed form in the settings (:func:`~.flank_angles.generating_circle`, the
+    values :func:`_values` measures; ``start`` unused: no solve)."""
+    spiral, cone, _ = generating_circle(setup, pitch_angle_deg=stated.pitch_angle_deg["gear"],
+                                        cone_distance_mm=stated.mean_cone_distance_mm["gear"],
+                                        cutter_radius_mm=stated.cutter_radius_mm)
+    return {"spiral angle": spiral, "mean cone distance": cone}, None
 
-    def __init__(self, stated: StatedBlank, tol):
-        self.stated, self.tol = stated, tol
+
+class _Compare:
+    """The check's comparison of one flank (:class:`~.known_slips.Compare`);
+    ``screened``: :meth:`outside` screens gear candidates without a solve (False: it
+    screens nothing, and a unit slip's second comparison measures again: the unpruned
+    search, the reference of tests/geometry/test_slip_screen.py)."""
+
+    def __init__(self, stated: StatedBlank, tol, *, screened: bool = True):
+        self.stated, self.tol, self.screened = stated, tol, screened
+        self._memo = {} if screened else None
 
     def __call__(self, setup: MachineSetup, rounding: dict | None) -> FlankCheck:
         if rounding is None:
-            return _compare(setup, self.stated, self.tol)[0]
-        return _compare(setup, dataclasses.replace(self.stated, setting_rounding=rounding))[0]
+            return _compare(setup, self.stated, self.tol, memo=self._memo)[0]
+        return _compare(setup, dataclasses.replace(self.stated, setting_rounding=rounding),
+                        memo=self._memo)[0]
 
     def roundings(self, setup: MachineSetup) -> dict:
         return roundings(setup, self.stated.setting_rounding)
+
+    def outside(self, setup: MachineSetup, rounding: dict | None) -> bool:
+        """True where ``self(setup, rounding)`` cannot agree, known without a solve: a
+        gear flank's generating spiral angle or mean cone distance (closed form,
+        :func:`_circle`) outside the tolerance the comparison would use (the typed
+        flank's, else re-propagated in closed form as :func:`_tolerances` does from the
+        solved values), by more than :data:`SCREEN_MARGIN` of it, or its cutter circle
+        not crossing the root line (the comparison's ``missing``). False for a pinion
+        flank and whenever unsure (a move of the re-propagation out of the circle)."""
+        if not self.screened or setup.member != "gear":
+            return False
+        try:
+            values, _ = _circle(setup, self.stated)
+        except InputRangeError:
+            return True            # the circle misses: the comparison's `missing`
+        stated = (self.stated if rounding is None
+                  else dataclasses.replace(self.stated, setting_rounding=rounding))
+        tol = self.tol if rounding is None else None
+        if tol is None:
+            try:
+                tol = _tolerances(setup, stated, values, None, measure=_circle)
+            except InputRangeError:
+                return False
+        want = _stated_values("gear", setup.side, stated)
+        return any(abs(values[q] - want[q]) > tol[q] * (1.0 + SCREEN_MARGIN) for q in values)
 
 
 def _single_keys(setup: MachineSetup, stated: StatedBlank, tol, flank: FlankCheck) -> tuple:
@@ -440,7 +515,7 @@ def _print_named(f: FlankCheck, printed: tuple) -> FlankCheck:
 
 
 def check_flanks(setups, stated: StatedBlank, *, measured=None,
-                 member_stated: dict | None = None) -> BlankCheck:
+                 member_stated: dict | None = None, screened: bool = True) -> BlankCheck:
     """Each flank of ``setups`` (:class:`~.machine.MachineSetup`) at its mean point
     against ``stated`` (module docstring): the comparisons, with the likely sign slip of
     a flank that does not agree. ``measured``: the flanks already measured at the
@@ -450,7 +525,10 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
     (:mod:`.blank_statement`), a member's flanks against a statement of their own (a
     gear typed as a print: :func:`~.blank_statement.printed_stated_blank`; measured here
     at its mean point, its slips named by the print's keys); ``stated`` is the others',
-    and its hand key names a hand slip."""
+    and its hand key names a hand slip. ``screened``: the slips' candidates on a gear
+    flank screened without a solve (:meth:`_Compare.outside`; False: every candidate
+    solved, the same result at a higher cost, docs sec. 2, "The cost of the slip
+    search")."""
     measured = measured if measured is not None else (None,) * len(setups)
     if len(measured) != len(setups):
         raise InputRangeError("measured", len(measured),
@@ -467,7 +545,8 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
     out = []
     for s, st, (f, tol) in zip(setups, states, first):
         if not f.agrees and not hand_slip:
-            datum, compare = st.mctb_datum_mm.get(s.member, 0.0), _Compare(st, tol)
+            datum = st.mctb_datum_mm.get(s.member, 0.0)
+            compare = _Compare(st, tol, screened=screened)
             key, value, word, also = single_slip(s, datum, compare)
             f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                     slip_also=also)

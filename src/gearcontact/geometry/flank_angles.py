@@ -72,8 +72,8 @@ from .conjugate import UndercutError
 from .machine import MachineKinematics, MachineSetup, blade_point, blade_profile
 
 __all__ = ["FlankMeanPoint", "GeneratingGearAngles", "MeanPointAngles", "PINION_UNDEFINED",
-           "measure_generating_angles", "measure_mean_point", "measure_pair_mean_points",
-           "pitch_offset", "profile_pitch_offset", "require_machine"]
+           "generating_circle", "measure_generating_angles", "measure_mean_point",
+           "measure_pair_mean_points", "pitch_offset", "profile_pitch_offset", "require_machine"]
 
 #: Starts of the solve, roll (rad) x azimuth (rad): the solution nearest zero roll and
 #: the machine's axial plane is kept (:func:`_distance`; others belong to another turn
@@ -286,12 +286,42 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
                               "'gear' (a summary sheet's generating-gear angles are "
                               "defined for the gear member; no print definition of the "
                               "pinion's was found, docs/machine_settings.md sec. 2)")
-    r_c = check_positive("cutter_radius_mm", cutter_radius_mm)
+    check_positive("cutter_radius_mm", cutter_radius_mm)
     at = measure_mean_point(setup, pitch_angle_deg=pitch_angle_deg,
                             cone_distance_mm=cone_distance_mm, start=start)
+    spiral, cone, beyond = generating_circle(setup, pitch_angle_deg=pitch_angle_deg,
+                                             cone_distance_mm=cone_distance_mm,
+                                             cutter_radius_mm=cutter_radius_mm)
     st = setup.settings
     kin = MachineKinematics(st)
-    c = kin.cutter_to_machine(np.zeros(3))          # cutter centre, cradle plane
+    # the cradle plane's normal in the work at the generating roll (a cutter-frame
+    # vector that to_work carries to z_m; the cradle roll leaves z_m)
+    t0 = kin._fixed[1]
+    _, z_m, _ = kin.to_work(np.zeros(3), t0.T @ np.array([0.0, 0.0, 1.0]), at.roll_rad)
+    return GeneratingGearAngles(
+        spiral_angle_deg=spiral,
+        pressure_angle_deg=math.degrees(math.asin(min(1.0, abs(float(at.normal @ z_m))))),
+        cone_distance_mm=cone, crossing_beyond_mean_mm=beyond, pitch_cone=at,
+        pitch_offset_mm=None if st.ratio_of_roll == 0.0 else pitch_offset(
+            setup, at, pitch_angle_deg=pitch_angle_deg))
+
+
+def generating_circle(setup: MachineSetup, *, pitch_angle_deg: float,
+                      cone_distance_mm: float, cutter_radius_mm: float
+                      ) -> tuple[float, float, float]:
+    """``(spiral angle deg, mean cone distance mm, crossing beyond the mean point mm)`` of
+    :func:`measure_generating_angles`: the nominal cutter circle against the root line in
+    the cradle plane (module docstring), closed form in the settings, no solve (what
+    :mod:`.blank_check` screens a slip's candidate with before solving).
+
+    Raises
+    ------
+    InputRangeError
+        A nominal cutter circle that does not reach the root line.
+    """
+    r_c = check_positive("cutter_radius_mm", cutter_radius_mm)
+    st = setup.settings
+    c = MachineKinematics(st).cutter_to_machine(np.zeros(3))  # cutter centre, cradle plane
     off = float(c[1]) - st.blank_offset_mm          # from the root line
     if not abs(off) < r_c:
         raise InputRangeError("cutter_radius_mm", cutter_radius_mm,
@@ -303,17 +333,8 @@ def measure_generating_angles(setup: MachineSetup, *, pitch_angle_deg: float,
     x_foot = cone_distance_mm * along + st.machine_centre_to_back_mm * math.cos(g)
     half = math.sqrt(r_c ** 2 - off ** 2)
     x_cross = min((float(c[0]) - half, float(c[0]) + half), key=lambda x: abs(x - x_foot))
-    # the cradle plane's normal in the work at the generating roll (a cutter-frame
-    # vector that to_work carries to z_m; the cradle roll leaves z_m)
-    t0 = kin._fixed[1]
-    _, z_m, _ = kin.to_work(np.zeros(3), t0.T @ np.array([0.0, 0.0, 1.0]), at.roll_rad)
-    return GeneratingGearAngles(
-        spiral_angle_deg=math.degrees(math.acos(abs(off) / r_c)),
-        pressure_angle_deg=math.degrees(math.asin(min(1.0, abs(float(at.normal @ z_m))))),
-        cone_distance_mm=cone_distance_mm + (x_cross - x_foot) / along,
-        crossing_beyond_mean_mm=x_cross - x_foot, pitch_cone=at,
-        pitch_offset_mm=None if st.ratio_of_roll == 0.0 else pitch_offset(
-            setup, at, pitch_angle_deg=pitch_angle_deg))
+    return (math.degrees(math.acos(abs(off) / r_c)),
+            cone_distance_mm + (x_cross - x_foot) / along, x_cross - x_foot)
 
 
 def pitch_offset(setup: MachineSetup, at: MeanPointAngles, *, pitch_angle_deg: float) -> float:

@@ -6,7 +6,9 @@ two keys (:func:`pair_slip`). Of the slips under which every value of the flank 
 the best fit is named, the others listed.
 
 The flank is compared by the caller's ``compare`` (:class:`Compare`: the check's own
-comparison), so this module holds the slips and the search only.
+comparison), so this module holds the slips and the search only; a candidate
+``compare.outside`` shows cannot agree is not compared (docs/machine_settings.md sec. 2,
+"The cost of the slip search").
 """
 
 from __future__ import annotations
@@ -29,11 +31,15 @@ class Compare(Protocol):
     with the blank, a FlankCheck (``agrees``, ``missing``, ``comparisons``): with the
     typed flank's tolerances for ``rounding`` None, else with the tolerances
     re-propagated from the settings' rounding ``{key: half unit}``;
-    ``compare.roundings(setup)`` the typed rounding of ``setup``'s keys."""
+    ``compare.roundings(setup)`` the typed rounding of ``setup``'s keys;
+    ``compare.outside(setup, rounding)`` True only where ``compare(setup, rounding)``
+    cannot agree, known without its solve (a screen; False when unsure)."""
 
     def __call__(self, setup: MachineSetup, rounding: dict | None): ...
 
     def roundings(self, setup: MachineSetup) -> dict: ...
+
+    def outside(self, setup: MachineSetup, rounding: dict | None) -> bool: ...
 
 
 _SAME = 1e-9                      # a slip that moves a value less than this is no slip
@@ -111,17 +117,22 @@ def _undone(setup: MachineSetup, compare: Compare, slips):
     """The flank (a FlankCheck) with ``slips`` (of distinct keys) undone; a unit slip's
     typed digits were the other unit's, so is their rounding: where the flank reaches
     its mean point but is outside, compared again with it re-propagated (the costly
-    part)."""
+    part). None where ``compare.outside`` shows it cannot agree under either rounding
+    (no solve)."""
     fixed = setup
     for key, fn, _ in slips:
         fixed = moved(fixed, key, fn)
-    got = compare(fixed, None)
     units = [s for s in slips if s in _UNIT]
-    if units and not got.agrees and not got.missing:
+    rounding = None
+    if units:
         rounding = compare.roundings(setup)
         for key, fn, _ in units:
             value = setting(setup, key)
             rounding[key] = abs(fn(value + rounding[key]) - fn(value))
+    if compare.outside(fixed, None) and (not units or compare.outside(fixed, rounding)):
+        return None
+    got = compare(fixed, None)
+    if units and not got.agrees and not got.missing:
         got = compare(fixed, rounding)
     return got
 
@@ -136,7 +147,7 @@ def _best(setup: MachineSetup, compare: Compare, fixes) -> tuple:
     found = []
     for fix in fixes:
         got = _undone(setup, compare, fix)
-        if got.agrees:
+        if got is not None and got.agrees:
             score = max((abs(c.measured - c.stated) / c.tolerance for c in got.comparisons
                          if c.tolerance), default=0.0)
             names = [full_key(setup, k) for k, _, _ in fix]
