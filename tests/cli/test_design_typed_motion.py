@@ -5,7 +5,8 @@ the generated 13/26 hypoid's standard gear (design_space.generated_hypoid) with 
 terms of HYPOID_TERMS typed into its `[machine.gear.*]` / `[blade.gear.*]` tables: a
 gear whose other settings agree with its blank, so that the typed-settings check on
 load warns only about the added terms (the print's 10 x 41 gear typed as tables trips
-the check's slip search, 60 to 80 CPU s per load, docs sec. 5)."""
+the check's slip search, 60 to 80 CPU s per load before the slip screen, 0.5 s since;
+the 13/26 file's 6 CPU s; docs sec. 2, "The cost of the slip search")."""
 
 import dataclasses
 import json
@@ -74,7 +75,7 @@ def test_design_derives_the_pinion_of_a_modified_gear_and_tca_runs(side, tmp_pat
     # uncrowned, `gearcontact tca` (31 phases, 120 x 150 nodes) finds TE0 p-p within
     # 1e-4 arcsec (the conjugacy tolerance of test_design_typed_pinion.py) with no edge
     # phase (measured 2.9e-8 arcsec drive). One side by default: each `tca` load runs
-    # the typed-settings check's slip search on the two gear flanks (~10 CPU s)
+    # the typed-settings check's slip search on the two gear flanks (~6 CPU s)
     typed = tmp_path / "gear.toml"
     tables = _gear_file(typed, HYPOID_TERMS)
     out = tmp_path / "out"
