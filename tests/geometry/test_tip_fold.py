@@ -45,7 +45,7 @@ def _old_settings(blank_file):
     blank = load_pair(blank_file)
     with pytest.MonkeyPatch.context() as patch, warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        patch.setattr(basic_settings, "generated_pinion_box", lambda *a, **k: None)
+        patch.setattr(basic_settings, "check_settings_top_land", lambda *a, **k: None)
         generation = generation_of(check_generation(blank, contact_ratio=False))
         return basic_settings.standard_machine_pair(blank, gear_generation=generation)
 

@@ -46,7 +46,8 @@ def settings_tip_top_lands(pair, *, boxes: dict | None = None
     Parameters
     ----------
     pair : GearPair
-        A right-hand pair with ``pair.machine`` (:func:`~.flank.right_hand_twin`).
+        A right-hand pair with ``pair.machine`` (a left-hand pair's right-hand twin,
+        :func:`~.flank.right_hand_twin`, its mirror image: the callers hold it).
     boxes : dict, optional
         ``{side: {"active_box": FlankBoundary, "solver": EnvelopeSolver, "mean_node":
         EnvelopeSolution}}`` of the pinion flanks (``generation._machine_boxes``);
@@ -59,6 +60,9 @@ def settings_tip_top_lands(pair, *, boxes: dict | None = None
     land_mm : ndarray (TIP_STATIONS,)
         Top land, mm (negative where the flanks cross below the tip).
     """
+    if pair.pinion_hand != "right":
+        raise ValueError("settings_tip_top_lands measures a right-hand pair (pass "
+                         "flank.right_hand_twin(pair))")
     setups = _pinion_setups(pair)
     boxes = _pinion_boxes(pair) if boxes is None else boxes
     frac = np.linspace(0.0, 1.0, TIP_STATIONS)
@@ -99,6 +103,7 @@ def check_settings_top_land(pair, *, boxes: dict | None = None) -> float:
     """Smallest normal top land of the pinion tooth cut from ``pair``'s machine settings,
     mm (:func:`settings_tip_top_lands`); refuses a tooth pointed anywhere along the face
     (a top land <= 0, the bound of :func:`~.generation.check_pinion_top_land`).
+    ``pair``, ``boxes``: as :func:`settings_tip_top_lands`' (a right-hand pair).
 
     Raises
     ------

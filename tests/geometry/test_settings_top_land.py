@@ -1,0 +1,168 @@
+"""The top land of a pinion cut from machine settings along its tip line
+(geometry.settings_top_land; docs/machine_settings.md sec. 5, "A pointed tooth from
+settings").
+
+Truths:
+- an exactly conjugate pinion cut from settings (the complementary pinion of the formate
+  gear, Litvin & Fuentes 2004 sec. 21.2: the generating surfaces of pinion and gear
+  coincide) has the conjugate pinion's top land, measured by the other solver
+  (generation.pinion_tip_top_lands: the gear's meshing equation, not the cutter's
+  envelope); on issue 28's 9/32 blank without its ease-off both find it pointed at the toe;
+- on the 16/16 at face 4 mm, beta 25 deg, the land is the one of the pinion flanks the
+  node grid builds (spline sheets of exact node solves, evaluated on the tip line);
+- the workflow contract: ``design --machine-settings`` refuses that pointed pinion
+  before writing, and ``tca`` on the settings it wrote before refuses it with the same
+  error line, character for character.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcontact.cli import main
+from gearcontact.geometry import basic_settings
+from gearcontact.geometry.basic_settings import complementary_pinion_setups, member_setups
+from gearcontact.geometry.flank import right_hand_twin
+from gearcontact.geometry.gear_generation import generation_of
+from gearcontact.geometry.generated import generated_pinion_flank
+from gearcontact.geometry.generation import (_generation_boxes, check_generation,
+                                             pinion_tip_top_lands)
+from gearcontact.geometry.pair import load_pair, pair_to_toml
+from gearcontact.geometry.pair_tables import EaseOffCoefficients
+from gearcontact.geometry.settings_top_land import (_pinion_boxes, check_settings_top_land,
+                                                    settings_tip_top_lands)
+from gearcontact.geometry.typed_pinion import typed_gear_machine_pair
+from gearcontact.validation import InputRangeError
+
+from .test_generation import _POINTED_PINIONS, _unchecked_pair
+from .test_machine_contact_ratio import MITER
+from .test_tip_fold import _error_line
+
+_EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def _complementary(pair):
+    """``pair`` cut from its formate gear's settings and the complementary pinion's (no
+    crowning: exactly conjugate), without ease-off (the conjugate check's relief is 0)."""
+    zero = EaseOffCoefficients()
+    pair = dataclasses.replace(pair, easeoff_drive=zero, easeoff_coast=zero)
+    gear, _ = member_setups(pair, "formate")
+    pinion = complementary_pinion_setups(pair)
+    return pair, dataclasses.replace(pair, machine=(gear["drive"], gear["coast"],
+                                                    pinion["drive"], pinion["coast"]))
+
+
+def test_complementary_pinion_has_the_conjugate_top_land():
+    blank, cut = _complementary(_unchecked_pair(_POINTED_PINIONS["9/32"]))
+    _, conj = pinion_tip_top_lands(blank, boxes=_generation_boxes(blank))
+    boxes = _pinion_boxes(cut)
+    # same stations: the two boxes share the blank's tip and lengthwise range
+    conj_boxes = _generation_boxes(blank)
+    for side in ("drive", "coast"):
+        a, b = boxes[side]["active_box"], conj_boxes[side]["active_box"]
+        assert (a.u_tip, a.v_toe, a.v_heel) == (b.u_tip, b.v_toe, b.v_heel)
+    _, land = settings_tip_top_lands(cut, boxes=boxes)
+    # both exact node solves (residual 1e-10 mm): 1e-8 mm leaves room for their
+    # conditioning; measured 4.3e-14 mm. Not vacuous: the land spans -0.005 .. 0.44 mm
+    assert land == pytest.approx(conj, abs=1e-8)
+    assert land[0] < 0.0 < land[-1]
+    with pytest.raises(InputRangeError) as err:
+        check_settings_top_land(cut, boxes=boxes)
+    assert "a pointed pinion tooth at the toe" in str(err.value)
+    assert f"{land[0]:.4g} mm at 0.000 of the face" in str(err.value)
+
+
+def _blank(tmp_path, beta_deg: float) -> Path:
+    """crcheck's 16/16 miter (tests/geometry/test_machine_contact_ratio.py) at face 4 mm
+    and spiral angle ``beta_deg``."""
+    path = tmp_path / f"miter_4_{beta_deg:g}.toml"
+    text = MITER.format(face=4.0).replace("pinion_spiral_angle_deg = 35.0",
+                                          f"pinion_spiral_angle_deg = {beta_deg:g}")
+    assert f"pinion_spiral_angle_deg = {beta_deg:g}" in text
+    path.write_text(text)
+    return path
+
+
+def _old_settings(blank_file):
+    """The standard settings design wrote before for ``blank_file`` (the top-land check
+    skipped; it changes no setting)."""
+    blank = load_pair(blank_file)
+    with pytest.MonkeyPatch.context() as patch, warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        patch.setattr(basic_settings, "check_settings_top_land", lambda *a, **k: None)
+        generation = generation_of(check_generation(blank, contact_ratio=False))
+        return basic_settings.standard_machine_pair(blank, gear_generation=generation)
+
+
+def test_pointed_standard_pinion_is_the_node_grids(tmp_path):
+    """The land of the 16/16 at face 4 mm, beta 25 deg, against the flanks the node grid
+    builds (RadialSheet splines of a 24 x 41 grid of exact node solves, a margin beyond
+    the box): the tip line evaluated on them, the coast point's depth behind the drive
+    flank's tangent plane, the coast flank turned by the same pitch."""
+    cut = _old_settings(_blank(tmp_path, 25.0))
+    boxes = _pinion_boxes(cut)
+    frac, land = settings_tip_top_lands(cut, boxes=boxes)
+    setups = {s.side: s for s in cut.machine if s.member == "pinion"}
+    tip = {}
+    for side in ("drive", "coast"):
+        box = boxes[side]["active_box"]
+        flank, _ = generated_pinion_flank(setups[side], cut.blank, n_u=24, n_v=41,
+                                          pinion_face_width_mm=cut.pinion_face_width_mm)
+        vs = box.v_toe + frac * (box.v_heel - box.v_toe)
+        s = flank.evaluate(np.full_like(vs, box.u_tip), vs, second=False)
+        tip[side] = s.r, s.n
+    # the pitch turn the check chose (0 or +-1 pitch about x), found from the drive
+    # and coast mean points of the grid flanks' tip lines: the one turn with the coast
+    # tip line within a pitch's half of the drive's
+    (rd, nd), rc = tip["drive"], tip["coast"][0]
+    ang = np.arctan2(rc[:, 2], rc[:, 1]) - np.arctan2(rd[:, 2], rd[:, 1])
+    k = int(np.round(np.mean(ang) / (2.0 * np.pi / cut.pinion_teeth)))
+    a = -2.0 * np.pi * k / cut.pinion_teeth
+    rot = np.array([[1.0, 0.0, 0.0], [0.0, np.cos(a), -np.sin(a)], [0.0, np.sin(a), np.cos(a)]])
+    grid_land = -np.einsum("ni,ni->n", rc @ rot.T - rd, nd)
+    # 2 um: the grid's bicubic spline between nodes ~0.08 mm apart lengthwise and
+    # ~0.45 mm up the profile (its interpolation error of the flank point; measured
+    # 3.4e-5 mm)
+    assert land == pytest.approx(grid_land, abs=2e-3)
+    assert land[-1] < -0.5 and land[0] > 1.0      # pointed at the heel, not at the toe
+
+
+def test_design_refuses_what_tca_refuses(tmp_path, capsys):
+    blank_file = _blank(tmp_path, 25.0)
+    out = tmp_path / "mach"
+    assert main(["design", "--pair", str(blank_file), "--machine-settings",
+                 "--out", str(out)]) == 2
+    design_error = _error_line(capsys.readouterr().err, "design")
+    assert not (out / "machine_settings.toml").exists()
+    # the cause, named: both flanks' settings, the heel and where, the land, the fixes
+    for word in ("[machine.pinion.drive] / [machine.pinion.coast] (blade point radii",
+                 "a pointed pinion tooth at the heel", "at 1.000 of the face, v = ",
+                 "design.gear_face_width_mm", "--lengthwise-crowning-um",
+                 '"A pointed tooth from settings"'):
+        assert word in design_error
+    written = tmp_path / "machine_settings.toml"
+    written.write_text(pair_to_toml(_old_settings(blank_file)))
+    assert main(["tca", "--pair", str(written), "--out", str(tmp_path / "tca")]) == 2
+    assert _error_line(capsys.readouterr().err, "tca") == design_error
+
+
+def test_shipped_settings_keep_a_top_land():
+    """The shipped settings pass (nothing refused that ran before): the F.2 example's
+    settings and the standard pinion `design --machine-settings` derives for the typed
+    gear of the 10 x 41 print (both files of examples/machine_settings/); measured
+    smallest lands 1.037 and 1.143 mm, both at the toe. s0003's standard settings:
+    test_basic_settings (0.092 mm at the toe)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        f2 = load_pair(_EXAMPLES / "machine_settings" / "iso23509_f2_machine.toml")
+        typed = load_pair(_EXAMPLES / "machine_settings" / "hypoid_10x41_print_gear.toml",
+                          gear_alone=True)
+    check_generation(f2, contact_ratio=False)
+    assert check_settings_top_land(f2) > 0.5
+    derived = typed_gear_machine_pair(typed)      # runs the check before it returns
+    assert check_settings_top_land(right_hand_twin(derived)) > 0.5
