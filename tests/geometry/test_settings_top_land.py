@@ -25,10 +25,8 @@ import numpy as np
 import pytest
 
 from gearcontact.cli import main
-from gearcontact.geometry import basic_settings
 from gearcontact.geometry.basic_settings import complementary_pinion_setups, member_setups
 from gearcontact.geometry.flank import right_hand_twin
-from gearcontact.geometry.gear_generation import generation_of
 from gearcontact.geometry.generated import generated_pinion_flank
 from gearcontact.geometry.generation import (_generation_boxes, check_generation,
                                              pinion_tip_top_lands)
@@ -41,7 +39,7 @@ from gearcontact.validation import InputRangeError
 
 from .test_generation import _POINTED_PINIONS, _unchecked_pair
 from .test_machine_contact_ratio import MITER
-from .test_tip_fold import _error_line
+from .test_tip_fold import _error_line, _old_settings
 
 _EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
@@ -86,17 +84,6 @@ def _blank(tmp_path, beta_deg: float) -> Path:
     assert f"pinion_spiral_angle_deg = {beta_deg:g}" in text
     path.write_text(text)
     return path
-
-
-def _old_settings(blank_file):
-    """The standard settings design wrote before for ``blank_file`` (the top-land check
-    skipped; it changes no setting)."""
-    blank = load_pair(blank_file)
-    with pytest.MonkeyPatch.context() as patch, warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        patch.setattr(basic_settings, "check_settings_top_land", lambda *a, **k: None)
-        generation = generation_of(check_generation(blank, contact_ratio=False))
-        return basic_settings.standard_machine_pair(blank, gear_generation=generation)
 
 
 def test_pointed_standard_pinion_is_the_node_grids(tmp_path):
