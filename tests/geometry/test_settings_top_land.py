@@ -27,12 +27,12 @@ import pytest
 from gearcontact.cli import main
 from gearcontact.geometry.basic_settings import complementary_pinion_setups, member_setups
 from gearcontact.geometry.flank import right_hand_twin
-from gearcontact.geometry.generated import generated_pinion_flank
+from gearcontact.geometry.generated import generated_gear_flank, generated_pinion_flank
 from gearcontact.geometry.generation import (_generation_boxes, check_generation,
-                                             pinion_tip_top_lands)
+                                             gear_tip_top_lands, pinion_tip_top_lands)
 from gearcontact.geometry.pair import load_pair, pair_to_toml
 from gearcontact.geometry.pair_tables import EaseOffCoefficients
-from gearcontact.geometry.settings_top_land import (_pinion_boxes, check_settings_top_land,
+from gearcontact.geometry.settings_top_land import (check_settings_top_land, member_boxes,
                                                     settings_tip_top_lands)
 from gearcontact.geometry.typed_pinion import typed_gear_machine_pair
 from gearcontact.validation import InputRangeError
@@ -58,7 +58,7 @@ def _complementary(pair):
 def test_complementary_pinion_has_the_conjugate_top_land():
     blank, cut = _complementary(_unchecked_pair(_POINTED_PINIONS["9/32"]))
     _, conj = pinion_tip_top_lands(blank, boxes=_generation_boxes(blank))
-    boxes = _pinion_boxes(cut)
+    boxes = member_boxes(cut, "pinion")
     # same stations: the two boxes share the blank's tip and lengthwise range
     conj_boxes = _generation_boxes(blank)
     for side in ("drive", "coast"):
@@ -92,7 +92,7 @@ def test_pointed_standard_pinion_is_the_node_grids(tmp_path):
     the box): the tip line evaluated on them, the coast point's depth behind the drive
     flank's tangent plane, the coast flank turned by the same pitch."""
     cut = _old_settings(_blank(tmp_path, 25.0))
-    boxes = _pinion_boxes(cut)
+    boxes = member_boxes(cut, "pinion")
     frac, land = settings_tip_top_lands(cut, boxes=boxes)
     setups = {s.side: s for s in cut.machine if s.member == "pinion"}
     tip = {}
@@ -153,3 +153,69 @@ def test_shipped_settings_keep_a_top_land():
     assert check_settings_top_land(f2) > 0.5
     derived = typed_gear_machine_pair(typed)      # runs the check before it returns
     assert check_settings_top_land(right_hand_twin(derived)) > 0.5
+
+
+# ----------------------------------------------------------------------- gear top land
+def test_formate_gear_from_settings_has_the_blanks_gear_top_land():
+    """The formate gear cut from the blank's standard gear settings is the blank's formate
+    gear (the settings' blade cones, :func:`~.generated.formate_gear_flank`, against the
+    blank's cutter placement, generation.gear_tip_top_lands): with a cutter point width
+    1.5 mm wider than F.2's its toe is pointed, and the settings check refuses it there
+    with the same land."""
+    blank = load_pair(_EXAMPLES / "iso23509_f2_spiral_bevel.toml")
+    wide = dataclasses.replace(blank, cutter=dataclasses.replace(
+        blank.cutter, point_width_mm=blank.cutter.point_width_mm + 1.5))
+    _, conj = gear_tip_top_lands(wide)
+    gear, _ = member_setups(wide, "formate")
+    pinion = complementary_pinion_setups(wide)     # a pair holds all four (not measured)
+    cut = dataclasses.replace(wide, machine=(gear["drive"], gear["coast"],
+                                             pinion["drive"], pinion["coast"]))
+    _, land = settings_tip_top_lands(cut, member="gear")
+    # the same cones by two constructions: 1e-8 mm (measured 3.3e-14 on F.2 itself)
+    assert land == pytest.approx(conj, abs=1e-8)
+    assert land[0] < 0.0 < land[-1]          # pointed at the toe: not vacuous
+    with pytest.raises(InputRangeError) as err:
+        check_settings_top_land(cut, member="gear")
+    assert "[machine.gear.drive] / [machine.gear.coast]" in err.value.field
+    assert "a pointed gear tooth at the toe" in str(err.value)
+
+
+def test_generated_gear_top_land_is_the_node_grids():
+    """The generated gear of the 10 x 41 print (its ratio of roll 0.998: not formate),
+    against the flanks its node grid builds (GearSheet splines of 24 x 41 exact nodes)
+    evaluated on the tip line, as the pinion's above."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        typed = load_pair(_EXAMPLES / "machine_settings" / "hypoid_10x41_print_gear.toml",
+                          gear_alone=True)
+    cut = right_hand_twin(typed_gear_machine_pair(typed))
+    boxes = member_boxes(cut, "gear")
+    assert "solver" in boxes["drive"]          # the envelope path, not the formate one
+    frac, land = settings_tip_top_lands(cut, member="gear", boxes=boxes)
+    setups = {s.side: s for s in cut.machine if s.member == "gear"}
+    tip, mid = {}, {}
+    for side in ("drive", "coast"):
+        box = boxes[side]["active_box"]
+        flank, _ = generated_gear_flank(setups[side], cut.blank, n_u=24, n_v=41,
+                                        gear_face_width_mm=cut.gear_face_width_mm)
+        vs = box.v_toe + frac * (box.v_heel - box.v_toe)
+        s = flank.evaluate(np.full_like(vs, box.u_tip), vs, second=False)
+        tip[side] = s.r, s.n
+        mid[side] = flank.evaluate(np.array([0.5 * sum(flank.u_range)]),
+                                   np.array([0.5 * sum(flank.v_range)]), second=False)
+    # the turn about the gear axis (z) that puts one tooth between the grid's flanks
+    (rd, nd), rc = tip["drive"], tip["coast"][0]
+    best = None
+    for k in (0, 1, -1):
+        a = 2.0 * np.pi * k / cut.gear_teeth
+        rot = np.array([[np.cos(a), -np.sin(a), 0.0], [np.sin(a), np.cos(a), 0.0], [0.0, 0.0, 1.0]])
+        md, mc = mid["drive"], mid["coast"]
+        rc_k, nc_k = mc.r[0] @ rot.T, mc.n[0] @ rot.T
+        if md.n[0] @ (rc_k - md.r[0]) < 0.0 and nc_k @ (md.r[0] - rc_k) < 0.0:
+            gap = np.linalg.norm(md.r[0] - rc_k)
+            if best is None or gap < best[0]:
+                best = (gap, rot)
+    grid_land = -np.einsum("ni,ni->n", rc @ best[1].T - rd, nd)
+    # 2 um as the pinion's (spline interpolation; measured 2.2e-10 mm)
+    assert land == pytest.approx(grid_land, abs=2e-3)
+    assert land.min() > 2.0                   # measured 2.28 mm at the toe

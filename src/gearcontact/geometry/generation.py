@@ -25,9 +25,9 @@ from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
 from .gear_generation import pair_generation
-from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
-from .settings_top_land import check_settings_top_land
-from .tip_land import TIP_MARCH, TIP_STATIONS, X_AXIS, Z_AXIS, one_tooth_turn, tip_land_mm
+from .settings_top_land import check_settings_top_land, member_box
+from .tip_land import (TIP_MARCH, TIP_STATIONS, X_AXIS, Z_AXIS, flank_mid, flank_tip_line,
+                       one_tooth_turn, tip_land_mm)
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands", "reverse_side_contact_ratio"]
@@ -115,21 +115,17 @@ def _machine_boxes(pair) -> dict:
     """The checks of a pair cut from machine settings (:mod:`.generated`): each gear
     flank's settings and blade (formate, blade kind), each pinion flank's active box
     (blade kind, the envelope reaching the mean node, the edge / limit line, a fold at
-    the tip), then the pinion's top land along its tip line
+    the tip), then the pinion's and the gear's top land along their tip lines
     (:func:`~.settings_top_land.check_settings_top_land`)."""
     setups = {(s.member, s.side): s for s in pair.machine}
-    out = {}
+    out, gear = {}, {}
     for side in ("drive", "coast"):
-        gear = setups["gear", side]
-        if gear.settings.formate:
-            formate_gear_flank(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
-        else:
-            generated_gear_box(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
-        solver, box, mean = generated_pinion_box(setups["pinion", side], pair.blank,
-                                                 pinion_face_width_mm=pair.pinion_face_width_mm)
-        out[side] = {"active_box": box, "gear_tip_undercut_mm": 0.0, "solver": solver,
-                     "mean_node": mean}
+        gear[side] = member_box(pair, setups["gear", side])
+        got = member_box(pair, setups["pinion", side])
+        out[side] = {"active_box": got["active_box"], "gear_tip_undercut_mm": 0.0,
+                     "solver": got["solver"], "mean_node": got["mean_node"]}
     check_settings_top_land(pair, boxes=out)
+    check_settings_top_land(pair, member="gear", boxes=gear)
     return out
 
 
@@ -231,25 +227,15 @@ def gear_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray, 
     drive, coast = boxes["drive"]["gear_flank"], boxes["coast"]["gear_flank"]
     frac = np.linspace(0.0, 1.0, TIP_STATIONS)
 
-    def tip_line(flank, u):
-        v0, v1 = flank.v_range
-        s = flank.evaluate(np.full_like(frac, u), v0 + frac * (v1 - v0), second=False)
-        return s.r, s.n
-
-    def mid(flank):
-        (u0, u1), (v0, v1) = flank.u_range, flank.v_range
-        s = flank.evaluate(np.array([0.5 * (u0 + u1)]), np.array([0.5 * (v0 + v1)]),
-                           second=False)
-        return s.r[0], s.n[0]
-
-    turn = one_tooth_turn(*mid(drive), *mid(coast), axis=Z_AXIS, teeth=pair.gear_teeth)
+    turn = one_tooth_turn(*flank_mid(drive), *flank_mid(coast), axis=Z_AXIS,
+                          teeth=pair.gear_teeth)
     if turn is None:
         raise InputRangeError("cutter.point_width_mm", pair.cutter.point_width_mm,
                               "a gear slot narrower than the pitch (no tooth between the "
                               "drive and coast flanks at mid-face)")
     u_tip = min(drive.u_range[1], coast.u_range[1])
-    rd, nd = tip_line(drive, u_tip)
-    return frac, tip_land_mm(rd, nd, tip_line(coast, u_tip)[0], turn)
+    return frac, tip_land_mm(*flank_tip_line(drive, frac, u_tip),
+                             flank_tip_line(coast, frac, u_tip)[0], turn)
 
 
 #: Cutter point widths / working depth factors tried by :func:`check_pinion_top_land`

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["TIP_MARCH", "TIP_STATIONS", "X_AXIS", "Z_AXIS", "one_tooth_turn",
-           "tip_land_mm"]
+__all__ = ["TIP_MARCH", "TIP_STATIONS", "X_AXIS", "Z_AXIS", "flank_mid", "flank_tip_line",
+           "one_tooth_turn", "tip_land_mm"]
 
 #: Lengthwise stations of a tip line checked (toe 0 .. heel 1, F/40 apart).
 TIP_STATIONS = 41
@@ -46,6 +46,22 @@ def tip_land_mm(rd, nd, rc, turn: np.ndarray) -> np.ndarray:
     ``nd`` (n, 3), coast points ``rc`` (n, 3) before the turn ``turn``
     (:func:`one_tooth_turn`); negative where the flanks cross below the tip."""
     return -np.einsum("ni,ni->n", rc @ turn.T - rd, nd)
+
+
+def flank_tip_line(flank, frac: np.ndarray, u_tip: float):
+    """Points and unit normals (n, 3) of a flank sheet (``evaluate``, ``u_range``,
+    ``v_range``: a formate or spline flank) at height ``u_tip`` and the fractions
+    ``frac`` of its lengthwise range."""
+    v0, v1 = flank.v_range
+    s = flank.evaluate(np.full_like(frac, u_tip), v0 + frac * (v1 - v0), second=False)
+    return s.r, s.n
+
+
+def flank_mid(flank):
+    """Point and unit normal (3,) of a flank sheet at the middle of its ranges."""
+    (u0, u1), (v0, v1) = flank.u_range, flank.v_range
+    s = flank.evaluate(np.array([0.5 * (u0 + u1)]), np.array([0.5 * (v0 + v1)]), second=False)
+    return s.r[0], s.n[0]
 
 
 def _turn(axis: np.ndarray, angle_rad: float) -> np.ndarray:

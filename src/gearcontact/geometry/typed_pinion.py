@@ -268,12 +268,15 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
-    # the pinion's active boxes and top land, as every reader of the settings checks them
-    # (basic_settings.standard_setups alike): a flank that folds within its node grid, or
-    # a pointed tooth, is refused before the settings are written
-    check_settings_top_land(dataclasses.replace(
-        twin, machine=tuple({"gear": twin_gear, "pinion": pinion}[m][s] for m in MEMBERS
-                            for s in SIDES), typed_gear=(), print_gear=()))
+    # the pinion's active boxes and both members' top lands, as every reader of the
+    # settings checks them (generation._machine_boxes; basic_settings.standard_setups
+    # alike): a flank that folds within its node grid, or a pointed tooth, is refused
+    # before the settings are written
+    cut = dataclasses.replace(twin, machine=tuple(
+        {"gear": twin_gear, "pinion": pinion}[m][s] for m in MEMBERS for s in SIDES),
+        typed_gear=(), print_gear=())
+    check_settings_top_land(cut)
+    check_settings_top_land(cut, member="gear")
     if left:
         pinion = {s: mirror_setup(p) for s, p in pinion.items()}
     members = {"gear": gear, "pinion": pinion}
