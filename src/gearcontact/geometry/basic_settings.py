@@ -280,6 +280,15 @@ def standard_setups(pair, *, lengthwise_crowning_um: float =
     -------
     dict
         ``{(member, side): MachineSetup}`` of all four flanks.
+
+    Raises
+    ------
+    UndercutError
+        A pinion flank whose envelope folds within its node grid
+        (:func:`~.generated_box.check_tip_margin`).
+    InputRangeError
+        A pointed pinion tooth (:func:`~.settings_top_land.check_settings_top_land`):
+        both before any settings are written, as every reader of them refuses.
     """
     if pair.pinion_hand == "left":   # the mirror image of the right-hand twin's
         twin = standard_setups(dataclasses.replace(pair, pinion_hand="right", machine=()),
