@@ -1,4 +1,4 @@
-"""The top land of a pinion cut from machine settings along its tip line
+"""The top land of a member cut from machine settings along its tip line
 (geometry.settings_top_land; docs/machine_settings.md sec. 5, "A pointed tooth from
 settings").
 
@@ -10,6 +10,8 @@ Truths:
   envelope); on issue 28's 9/32 blank without its ease-off both find it pointed at the toe;
 - on the 16/16 at face 4 mm, beta 25 deg, the land is the one of the pinion flanks the
   node grid builds (spline sheets of exact node solves, evaluated on the tip line);
+- the gear cut from settings: a formate gear from the blank's settings has the blank's
+  gear land (generation.gear_tip_top_lands), a generated gear its node grid's;
 - the workflow contract: ``design --machine-settings`` refuses that pointed pinion
   before writing, and ``tca`` on the settings it wrote before refuses it with the same
   error line, character for character.
@@ -92,26 +94,7 @@ def test_pointed_standard_pinion_is_the_node_grids(tmp_path):
     the box): the tip line evaluated on them, the coast point's depth behind the drive
     flank's tangent plane, the coast flank turned by the same pitch."""
     cut = _old_settings(_blank(tmp_path, 25.0))
-    boxes = member_boxes(cut, "pinion")
-    frac, land = settings_tip_top_lands(cut, boxes=boxes)
-    setups = {s.side: s for s in cut.machine if s.member == "pinion"}
-    tip = {}
-    for side in ("drive", "coast"):
-        box = boxes[side]["active_box"]
-        flank, _ = generated_pinion_flank(setups[side], cut.blank, n_u=24, n_v=41,
-                                          pinion_face_width_mm=cut.pinion_face_width_mm)
-        vs = box.v_toe + frac * (box.v_heel - box.v_toe)
-        s = flank.evaluate(np.full_like(vs, box.u_tip), vs, second=False)
-        tip[side] = s.r, s.n
-    # the pitch turn the check chose (0 or +-1 pitch about x), found from the drive
-    # and coast mean points of the grid flanks' tip lines: the one turn with the coast
-    # tip line within a pitch's half of the drive's
-    (rd, nd), rc = tip["drive"], tip["coast"][0]
-    ang = np.arctan2(rc[:, 2], rc[:, 1]) - np.arctan2(rd[:, 2], rd[:, 1])
-    k = int(np.round(np.mean(ang) / (2.0 * np.pi / cut.pinion_teeth)))
-    a = -2.0 * np.pi * k / cut.pinion_teeth
-    rot = np.array([[1.0, 0.0, 0.0], [0.0, np.cos(a), -np.sin(a)], [0.0, np.sin(a), np.cos(a)]])
-    grid_land = -np.einsum("ni,ni->n", rc @ rot.T - rd, nd)
+    land, grid_land = _check_and_grid_lands(cut, "pinion")
     # 2 um: the grid's bicubic spline between nodes ~0.08 mm apart lengthwise and
     # ~0.45 mm up the profile (its interpolation error of the flank point; measured
     # 3.4e-5 mm)
@@ -189,33 +172,51 @@ def test_generated_gear_top_land_is_the_node_grids():
         typed = load_pair(_EXAMPLES / "machine_settings" / "hypoid_10x41_print_gear.toml",
                           gear_alone=True)
     cut = right_hand_twin(typed_gear_machine_pair(typed))
-    boxes = member_boxes(cut, "gear")
-    assert "solver" in boxes["drive"]          # the envelope path, not the formate one
-    frac, land = settings_tip_top_lands(cut, member="gear", boxes=boxes)
-    setups = {s.side: s for s in cut.machine if s.member == "gear"}
-    tip, mid = {}, {}
-    for side in ("drive", "coast"):
-        box = boxes[side]["active_box"]
-        flank, _ = generated_gear_flank(setups[side], cut.blank, n_u=24, n_v=41,
-                                        gear_face_width_mm=cut.gear_face_width_mm)
-        vs = box.v_toe + frac * (box.v_heel - box.v_toe)
-        s = flank.evaluate(np.full_like(vs, box.u_tip), vs, second=False)
-        tip[side] = s.r, s.n
-        mid[side] = flank.evaluate(np.array([0.5 * sum(flank.u_range)]),
-                                   np.array([0.5 * sum(flank.v_range)]), second=False)
-    # the turn about the gear axis (z) that puts one tooth between the grid's flanks
-    (rd, nd), rc = tip["drive"], tip["coast"][0]
-    best = None
-    for k in (0, 1, -1):
-        a = 2.0 * np.pi * k / cut.gear_teeth
-        rot = np.array([[np.cos(a), -np.sin(a), 0.0], [np.sin(a), np.cos(a), 0.0], [0.0, 0.0, 1.0]])
-        md, mc = mid["drive"], mid["coast"]
-        rc_k, nc_k = mc.r[0] @ rot.T, mc.n[0] @ rot.T
-        if md.n[0] @ (rc_k - md.r[0]) < 0.0 and nc_k @ (md.r[0] - rc_k) < 0.0:
-            gap = np.linalg.norm(md.r[0] - rc_k)
-            if best is None or gap < best[0]:
-                best = (gap, rot)
-    grid_land = -np.einsum("ni,ni->n", rc @ best[1].T - rd, nd)
+    assert "solver" in member_boxes(cut, "gear")["drive"]   # the envelope, not formate
+    land, grid_land = _check_and_grid_lands(cut, "gear")
     # 2 um as the pinion's (spline interpolation; measured 2.2e-10 mm)
     assert land == pytest.approx(grid_land, abs=2e-3)
     assert land.min() > 2.0                   # measured 2.28 mm at the toe
+
+
+def _check_and_grid_lands(cut, member: str) -> tuple[np.ndarray, np.ndarray]:
+    """The check's land of ``member`` along its tip line, and the normal top land at the
+    same stations (the same fractions of each box's lengthwise range, the box's tip) on
+    the spline flanks built on a 24 x 41 exact node grid: the coast point's depth behind
+    the drive flank's tangent plane, the coast flank turned about the member axis (x:
+    pinion, z: gear) by the multiple of the pitch, 0 or +-1, that puts their middles
+    behind each other's normal with the smallest gap (one tooth, not a slot)."""
+    boxes = member_boxes(cut, member)
+    frac, land = settings_tip_top_lands(cut, member=member, boxes=boxes)
+    setups = {s.side: s for s in cut.machine if s.member == member}
+    if member == "pinion":
+        axis, teeth = 0, cut.pinion_teeth
+        build = lambda setup: generated_pinion_flank(   # noqa: E731
+            setup, cut.blank, n_u=24, n_v=41, pinion_face_width_mm=cut.pinion_face_width_mm)
+    else:
+        axis, teeth = 2, cut.gear_teeth
+        build = lambda setup: generated_gear_flank(     # noqa: E731
+            setup, cut.blank, n_u=24, n_v=41, gear_face_width_mm=cut.gear_face_width_mm)
+    tip, mid = {}, {}
+    for side in ("drive", "coast"):
+        box, flank = boxes[side]["active_box"], build(setups[side])[0]
+        vs = box.v_toe + frac * (box.v_heel - box.v_toe)
+        s = flank.evaluate(np.full_like(vs, box.u_tip), vs, second=False)
+        tip[side] = s.r, s.n
+        m = flank.evaluate(np.array([0.5 * sum(flank.u_range)]),
+                           np.array([0.5 * sum(flank.v_range)]), second=False)
+        mid[side] = m.r[0], m.n[0]
+    (md, mnd), (mc, mnc) = mid["drive"], mid["coast"]
+    b, c = [i for i in range(3) if i != axis]
+    best = None
+    for k in (0, 1, -1):
+        a = 2.0 * np.pi * k / teeth
+        rot = np.eye(3)
+        rot[b, b], rot[b, c], rot[c, b], rot[c, c] = np.cos(a), -np.sin(a), np.sin(a), np.cos(a)
+        rc_k, nc_k = mc @ rot.T, mnc @ rot.T
+        if mnd @ (rc_k - md) < 0.0 and nc_k @ (md - rc_k) < 0.0:
+            gap = np.linalg.norm(md - rc_k)
+            if best is None or gap < best[0]:
+                best = (gap, rot)
+    (rd, nd), rc = tip["drive"], tip["coast"][0]
+    return land, -np.einsum("ni,ni->n", rc @ best[1].T - rd, nd)
