@@ -41,11 +41,12 @@ def _error_line(err: str, command: str) -> str:
 
 def _old_settings(blank_file):
     """The standard settings design wrote before for ``blank_file`` (the pinion box
-    check skipped; it changes no setting)."""
+    and top-land checks skipped: ``check_settings_top_land`` makes the boxes; they change
+    no setting)."""
     blank = load_pair(blank_file)
     with pytest.MonkeyPatch.context() as patch, warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        patch.setattr(basic_settings, "generated_pinion_box", lambda *a, **k: None)
+        patch.setattr(basic_settings, "check_settings_top_land", lambda *a, **k: None)
         generation = generation_of(check_generation(blank, contact_ratio=False))
         return basic_settings.standard_machine_pair(blank, gear_generation=generation)
 

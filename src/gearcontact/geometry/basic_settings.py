@@ -44,10 +44,11 @@ from .blade_mate import recentred_blade
 from .conjugate import nominal_pinion_box
 from .cutter import place_cutter
 from .formate import SIDES
-from .generated import EnvelopeSolver, generated_pinion_box
+from .generated import EnvelopeSolver
 from .machine import (MEMBERS, BladeSettings, MachineKinematics, MachineSettings, MachineSetup,
                       blade_profile, blade_through_point, mirror_setup)
 from .relief_setup import relieved_setup
+from .settings_top_land import check_settings_top_land
 
 __all__ = ["checked_crowning", "complementary_pinion_setups", "cradle_pinion_setups",
            "crown_pinion_setups", "crown_profile", "crowned_pinion_setups",
@@ -279,6 +280,15 @@ def standard_setups(pair, *, lengthwise_crowning_um: float =
     -------
     dict
         ``{(member, side): MachineSetup}`` of all four flanks.
+
+    Raises
+    ------
+    UndercutError
+        A pinion flank whose envelope folds within its node grid
+        (:func:`~.generated_box.check_tip_margin`).
+    InputRangeError
+        A pointed pinion tooth (:func:`~.settings_top_land.check_settings_top_land`):
+        both before any settings are written, as every reader of them refuses.
     """
     if pair.pinion_hand == "left":   # the mirror image of the right-hand twin's
         twin = standard_setups(dataclasses.replace(pair, pinion_hand="right", machine=()),
@@ -293,11 +303,11 @@ def standard_setups(pair, *, lengthwise_crowning_um: float =
                 for side, s in crowned_pinion_setups(pair, pinion, **crowning).items()})
     if reliefs:
         out = {k: relieved_setup(s, reliefs.get(k, {}), pair.blank) for k, s in out.items()}
-    for side in SIDES:   # the pinion's active box, as every reader of the settings checks it
-        # first (generation._machine_boxes): a flank that folds within its node grid is
-        # refused before the settings are written (docs/machine_settings.md sec. 5)
-        generated_pinion_box(out["pinion", side], pair.blank,
-                             pinion_face_width_mm=pair.pinion_face_width_mm)
+    # the pinion's active boxes and top land, as every reader of the settings checks them
+    # (generation._machine_boxes): a flank that folds within its node grid, or a pointed
+    # tooth, is refused before the settings are written (docs/machine_settings.md sec. 5)
+    check_settings_top_land(dataclasses.replace(
+        pair, machine=tuple(out[m, s] for m in MEMBERS for s in SIDES)))
     return out
 
 

@@ -54,7 +54,7 @@ from .sheet import GearCone, GearSheet, RadialSheet
 __all__ = ["EnvelopeSolution", "EnvelopeSolver", "central_system", "damped_newton",
            "formate_gear_flank", "gear_cone", "gear_flank_of", "generated_gear_box",
            "generated_gear_flank", "generated_pinion_box", "generated_pinion_flank",
-           "mean_contact_guess", "solve_node_grid", "tip_setup", "work_to_body"]
+           "mean_contact_guess", "mean_uv", "solve_node_grid", "tip_setup", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
 _MAX_ITER = 40
@@ -329,7 +329,7 @@ def generated_pinion_flank(setup: MachineSetup, blank: BlankDesign, *,
 def _solver_at_mean(setup: MachineSetup, blank: BlankDesign, cone):
     """The :class:`EnvelopeSolver` of ``setup`` on ``cone`` and its mean-node solution."""
     solver = EnvelopeSolver(setup, blank, cone)
-    u_m, v_m = _mean_uv(setup, blank, cone)
+    u_m, v_m = mean_uv(setup, blank, cone)
     return solver, solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
 
 
@@ -339,7 +339,7 @@ def _sheet_of(solver, box, mean, setup, n_u, n_v, kind, node_box=None):
     if int(n_u) != n_u or n_u < 6 or int(n_v) != n_v or n_v < 6:
         raise InputRangeError("n_u, n_v", (n_u, n_v), "integers >= 6 (quintic spline)")
     cone = solver.cone
-    u_m, v_m = _mean_uv(setup, solver.blank, cone)
+    u_m, v_m = mean_uv(setup, solver.blank, cone)
     nb = node_box or FlankBoundary(box.u_root - NODE_MARGIN_MM[0], box.u_tip + NODE_MARGIN_MM[0],
                                    box.v_toe - NODE_MARGIN_MM[1], box.v_heel + NODE_MARGIN_MM[1])
     us = np.linspace(nb.u_root, nb.u_tip, int(n_u))
@@ -363,7 +363,7 @@ def _sheet_of(solver, box, mean, setup, n_u, n_v, kind, node_box=None):
     return flank, nodes
 
 
-def _mean_uv(setup: MachineSetup, blank: BlankDesign, cone) -> tuple[float, float]:
+def mean_uv(setup: MachineSetup, blank: BlankDesign, cone) -> tuple[float, float]:
     """Sheet parameters of the mean node (pitch cone, mean section)."""
     if setup.member == "pinion":
         return float(cone.root_offset_mm), float(blank.pitch_point_mm[0])
@@ -413,7 +413,7 @@ def generated_gear_box(setup: MachineSetup, blank: BlankDesign, *, gear_face_wid
     nominal = FlankBoundary(u_root=0.0, u_tip=blank.dedendum_gear_mm + blank.addendum_gear_mm,
                             v_toe=-half, v_heel=half)
     solver, mean = _solver_at_mean(setup, blank, cone)
-    u_m, v_m = _mean_uv(setup, blank, cone)
+    u_m, v_m = mean_uv(setup, blank, cone)
     return solver, active_box(solver, nominal, u_m, v_m, mean, edge_length_mm(setup)), mean
 
 
@@ -473,7 +473,7 @@ def generated_pinion_box(setup: MachineSetup, blank: BlankDesign, *,
     setup = tip_setup(setup)
     cone, nominal = nominal_pinion_box(blank, pinion_face_width_mm)
     solver, mean = _solver_at_mean(setup, blank, cone)
-    u_m, v_m = _mean_uv(setup, blank, cone)
+    u_m, v_m = mean_uv(setup, blank, cone)
     return solver, active_box(solver, nominal, u_m, v_m, mean, edge_length_mm(setup)), mean
 
 

@@ -25,7 +25,9 @@ from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
 from .gear_generation import pair_generation
-from .generated import formate_gear_flank, generated_gear_box, generated_pinion_box
+from .settings_top_land import check_settings_top_land, member_box
+from .tip_land import (TIP_MARCH, TIP_STATIONS, X_AXIS, Z_AXIS, flank_mid, flank_tip_line,
+                       one_tooth_turn, tip_land_mm)
 
 __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands", "reverse_side_contact_ratio"]
@@ -64,7 +66,8 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None,
         ``{side: {"active_box": FlankBoundary, "gear_tip_undercut_mm": float,
         "solver": MeshingSolver, "gear_flank": FormateFlank | GearSheet,
         "gear_generation": "formate" | "generated", "pair_generation":
-        PairGeneration}}`` (a machine-settings pair: the first three). Pass it to
+        PairGeneration}}`` (a machine-settings pair: the first three and ``"mean_node"``,
+        the pinion flank's :class:`~.generated.EnvelopeSolution` at its mean node). Pass it to
         :func:`~.flank.build_flanks` (``checked=``) to reuse its gear flanks.
 
     Raises
@@ -111,18 +114,18 @@ def reverse_side_contact_ratio(pair, *, boxes: dict):
 def _machine_boxes(pair) -> dict:
     """The checks of a pair cut from machine settings (:mod:`.generated`): each gear
     flank's settings and blade (formate, blade kind), each pinion flank's active box
-    (blade kind, the envelope reaching the mean node, the edge / limit line)."""
+    (blade kind, the envelope reaching the mean node, the edge / limit line, a fold at
+    the tip), then the pinion's and the gear's top land along their tip lines
+    (:func:`~.settings_top_land.check_settings_top_land`)."""
     setups = {(s.member, s.side): s for s in pair.machine}
-    out = {}
+    out, gear = {}, {}
     for side in ("drive", "coast"):
-        gear = setups["gear", side]
-        if gear.settings.formate:
-            formate_gear_flank(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
-        else:
-            generated_gear_box(gear, pair.blank, gear_face_width_mm=pair.gear_face_width_mm)
-        solver, box, _ = generated_pinion_box(setups["pinion", side], pair.blank,
-                                              pinion_face_width_mm=pair.pinion_face_width_mm)
-        out[side] = {"active_box": box, "gear_tip_undercut_mm": 0.0, "solver": solver}
+        gear[side] = member_box(pair, setups["gear", side])
+        got = member_box(pair, setups["pinion", side])
+        out[side] = {"active_box": got["active_box"], "gear_tip_undercut_mm": 0.0,
+                     "solver": got["solver"], "mean_node": got["mean_node"]}
+    check_settings_top_land(pair, boxes=out)
+    check_settings_top_land(pair, member="gear", boxes=gear)
     return out
 
 
@@ -174,10 +177,6 @@ def _generation_boxes(pair) -> dict:
             for side, (solver, box, undercut) in made.active.items()}
 
 
-#: Lengthwise stations of the gear tip line checked by :func:`check_gear_top_land`.
-_TIP_STATIONS = 41
-
-
 def check_gear_top_land(pair, *, boxes: dict | None = None) -> float:
     """Smallest normal top land of the gear tooth along its tip line, mm
     (:func:`gear_tip_top_lands`); refuses pointed teeth.
@@ -211,7 +210,7 @@ def gear_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray, 
     One gear tooth lies between the drive flank and the coast flank turned by 0 or +-1
     pitch about the gear axis (the turn that puts each flank behind the other's outward
     normal at mid-face, as ``structure.tooth.tooth_geometry`` chooses it).
-    At ``_TIP_STATIONS`` lengthwise stations of the tip line (both flanks at the same
+    At ``TIP_STATIONS`` lengthwise stations of the tip line (both flanks at the same
     fraction of their lengthwise range, as the tooth shell pairs them) the top land is
     the coast point's depth behind the drive flank's tangent plane. The mean-section
     check of ISO 23509 (:func:`~.blank.gear_top_land_mm`) can pass while the toe, whose
@@ -219,63 +218,26 @@ def gear_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray, 
 
     Returns
     -------
-    frac : ndarray (_TIP_STATIONS,)
+    frac : ndarray (TIP_STATIONS,)
         Fraction of the lengthwise range, 0 (toe) .. 1 (heel).
-    land_mm : ndarray (_TIP_STATIONS,)
+    land_mm : ndarray (TIP_STATIONS,)
         Top land, mm (negative: the flanks cross below the tip).
     """
     boxes = _generation_boxes(_right_hand(pair)) if boxes is None else boxes
     drive, coast = boxes["drive"]["gear_flank"], boxes["coast"]["gear_flank"]
-    frac = np.linspace(0.0, 1.0, _TIP_STATIONS)
+    frac = np.linspace(0.0, 1.0, TIP_STATIONS)
 
-    def tip_line(flank, u):
-        v0, v1 = flank.v_range
-        s = flank.evaluate(np.full_like(frac, u), v0 + frac * (v1 - v0), second=False)
-        return s.r, s.n
-
-    def mid(flank):
-        (u0, u1), (v0, v1) = flank.u_range, flank.v_range
-        s = flank.evaluate(np.array([0.5 * (u0 + u1)]), np.array([0.5 * (v0 + v1)]),
-                           second=False)
-        return s.r[0], s.n[0]
-
-    turn = _one_tooth_turn(*mid(drive), *mid(coast), axis=_Z, teeth=pair.gear_teeth)
+    turn = one_tooth_turn(*flank_mid(drive), *flank_mid(coast), axis=Z_AXIS,
+                          teeth=pair.gear_teeth)
     if turn is None:
         raise InputRangeError("cutter.point_width_mm", pair.cutter.point_width_mm,
                               "a gear slot narrower than the pitch (no tooth between the "
                               "drive and coast flanks at mid-face)")
     u_tip = min(drive.u_range[1], coast.u_range[1])
-    rd, nd = tip_line(drive, u_tip)
-    rc = tip_line(coast, u_tip)[0] @ turn.T
-    return frac, -np.einsum("ni,ni->n", rc - rd, nd)
+    return frac, tip_land_mm(*flank_tip_line(drive, frac, u_tip),
+                             flank_tip_line(coast, frac, u_tip)[0], turn)
 
 
-_X, _Z = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
-
-
-def _one_tooth_turn(rd, nd, rc, nc, *, axis: np.ndarray, teeth: int):
-    """Rotation (3, 3) about the member ``axis`` by 0 or +-1 pitch that puts the coast
-    point ``rc`` (normal ``nc``) and the drive point ``rd`` (``nd``) behind each other's
-    outward normal with the smallest gap (one tooth, not a slot), or None."""
-    best = None
-    for k in (0, 1, -1):
-        turn = _turn(axis, 2.0 * np.pi * k / teeth)
-        rc_k, nc_k = rc @ turn.T, nc @ turn.T
-        gap = float(np.linalg.norm(rd - rc_k))
-        if nd @ (rc_k - rd) < 0.0 and nc_k @ (rd - rc_k) < 0.0 and (best is None or gap < best[0]):
-            best = (gap, turn)
-    return None if best is None else best[1]
-
-
-def _turn(axis: np.ndarray, angle_rad: float) -> np.ndarray:
-    """Rotation matrix about the unit ``axis`` by ``angle_rad`` (Rodrigues)."""
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + np.sin(angle_rad) * k + (1.0 - np.cos(angle_rad)) * (k @ k)
-
-
-#: Profile steps marching the conjugate pinion's node solutions from the mean radius
-#: to its tip line (continuation; each step well inside Newton's convergence radius).
-_TIP_MARCH = 12
 #: Cutter point widths / working depth factors tried by :func:`check_pinion_top_land`
 #: to verify its fix (each trial adds the remaining first-order deficit).
 _LAND_TRIALS = 3
@@ -289,7 +251,7 @@ def pinion_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray
 
     The pinion flanks exist only as envelopes of the gear flanks, so the tip line is
     traced with exact node solves (:class:`~.conjugate.MeshingSolver`, no node grid):
-    at ``_TIP_STATIONS`` lengthwise stations of each flank's active box (both flanks at
+    at ``TIP_STATIONS`` lengthwise stations of each flank's active box (both flanks at
     the same fraction, as the tooth shell ``structure.tooth`` pairs them) the solutions
     are continued along the face at the mean radius (:func:`~.conjugate.section_guesses`),
     then along the profile to the common tip ``u = min(u_tip drive, u_tip coast)``, the
@@ -309,13 +271,13 @@ def pinion_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray
 
     Returns
     -------
-    frac, land_mm : ndarray (_TIP_STATIONS,)
+    frac, land_mm : ndarray (TIP_STATIONS,)
         As :func:`gear_tip_top_lands` (toe 0 .. heel 1; top land, mm, negative where the
         flanks cross below the tip).
     """
     pair = _right_hand(pair)
     boxes = _generation_boxes(pair) if boxes is None else boxes
-    frac = np.linspace(0.0, 1.0, _TIP_STATIONS)
+    frac = np.linspace(0.0, 1.0, TIP_STATIONS)
     u_tip = min(got["active_box"].u_tip for got in boxes.values())
     mid, tip = {}, {}
     for side in ("drive", "coast"):
@@ -326,10 +288,10 @@ def pinion_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray
         relief = EaseOff.from_coefficients(coeffs, u_mean_mm=u_m, v_mean_mm=v_m
                                            ).relief_mm(u_tip, vs)
         q, _ = section_guesses(solver, vs, u_m, v_m, substeps=1)  # stations F/40 apart
-        c = _TIP_STATIONS // 2
+        c = TIP_STATIONS // 2
         s = solver.solve(u_m, vs[c], q[c])
         mid[side] = (s.x1_mm, s.n1)
-        for u in np.linspace(u_m, u_tip, _TIP_MARCH + 1)[1:]:
+        for u in np.linspace(u_m, u_tip, TIP_MARCH + 1)[1:]:
             s = solver.solve(np.full_like(vs, u), vs, q)
             q = np.stack([s.h_mm, s.theta_rad, s.phi2_rad], axis=-1)
         # the eased sheet keeps (u, v), i.e. radius and axial position: its point is
@@ -338,13 +300,12 @@ def pinion_tip_top_lands(pair, *, boxes: dict | None = None) -> tuple[np.ndarray
         e_psi /= np.linalg.norm(e_psi, axis=-1, keepdims=True)
         shift = relief / np.einsum("ni,ni->n", s.n1, e_psi)
         tip[side] = (s.x1_mm - shift[:, None] * e_psi, s.n1)
-    turn = _one_tooth_turn(*mid["drive"], *mid["coast"], axis=_X, teeth=pair.pinion_teeth)
+    turn = one_tooth_turn(*mid["drive"], *mid["coast"], axis=X_AXIS, teeth=pair.pinion_teeth)
     if turn is None:
         raise InputRangeError("cutter.point_width_mm", pair.cutter.point_width_mm,
                               "a pinion tooth between the drive and coast flanks at mid-face "
                               "(the gear slot is wider than the pitch)")
-    (rd, nd), rc = tip["drive"], tip["coast"][0] @ turn.T
-    return frac, -np.einsum("ni,ni->n", rc - rd, nd)
+    return frac, tip_land_mm(*tip["drive"], tip["coast"][0], turn)
 
 
 def check_pinion_top_land(pair, *, boxes: dict | None = None) -> float:

@@ -66,10 +66,11 @@ from .basic_settings import (STANDARD_CROWNING, checked_crowning, cradle_pinion_
 from .blade_mate import mate_blade
 from .conjugate import UndercutError, nominal_pinion_box
 from .formate import SIDES
-from .generated import EnvelopeSolver, generated_pinion_box, work_to_body
+from .generated import EnvelopeSolver, work_to_body
 from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinematics,
                       MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
+from .settings_top_land import check_settings_top_land
 
 __all__ = ["gear_motion_keys", "typed_gear_machine_pair", "typed_gear_pinion_setups"]
 
@@ -250,8 +251,8 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     left = pair.pinion_hand == "left"     # the right-hand twin's pinion, mirrored
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
-    uncrowned = typed_gear_pinion_setups(
-        twin, {s: mirror_setup(g) for s, g in gear.items()} if left else gear, mirrored=left)
+    twin_gear = {s: mirror_setup(g) for s, g in gear.items()} if left else gear
+    uncrowned = typed_gear_pinion_setups(twin, twin_gear, mirrored=left)
     try:
         pinion = crowned_pinion_setups(twin, uncrowned, **crowning)
     except UndercutError as exc:       # no mean node: name the gear's motion, if any
@@ -267,11 +268,15 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
-    for side in SIDES:   # the pinion's active box, as every reader of the settings checks
-        # it first (basic_settings.standard_setups alike): a flank that folds within its
-        # node grid is refused before the settings are written
-        generated_pinion_box(pinion[side], twin.blank,
-                             pinion_face_width_mm=twin.pinion_face_width_mm)
+    # the pinion's active boxes and both members' top lands, as every reader of the
+    # settings checks them (generation._machine_boxes; basic_settings.standard_setups
+    # alike): a flank that folds within its node grid, or a pointed tooth, is refused
+    # before the settings are written
+    cut = dataclasses.replace(twin, machine=tuple(
+        {"gear": twin_gear, "pinion": pinion}[m][s] for m in MEMBERS for s in SIDES),
+        typed_gear=(), print_gear=())
+    check_settings_top_land(cut)
+    check_settings_top_land(cut, member="gear")
     if left:
         pinion = {s: mirror_setup(p) for s, p in pinion.items()}
     members = {"gear": gear, "pinion": pinion}
