@@ -19,7 +19,7 @@ import dataclasses
 import numpy as np
 
 from ..validation import InputRangeError
-from .conjugate import UndercutError, pinion_active_box, section_guesses
+from .conjugate import UndercutError, section_guesses
 from .contact_path import path_contact_ratio
 from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
