@@ -56,7 +56,8 @@ SLIPS = [
     # (table, key, flip, exit code, the key named)
     ("machine.gear", "cradle_angle_deg", lambda x: -x, 2,
      "machine.gear.drive.cradle_angle_deg = 80.4732 is outside the allowed range"),
-    ("machine.pinion", "sliding_base_mm", lambda x: -x, 0,
+    # warned as a slip, then refused: the settings cut a pointed pinion (settings_top_land)
+    ("machine.pinion", "sliding_base_mm", lambda x: -x, 2,
      "likely machine.pinion.drive.sliding_base_mm"),
     ("design", "pinion_hand", lambda line: 'pinion_hand = "left"', 2,
      "design.pinion_hand = 'left' is outside the allowed range"),

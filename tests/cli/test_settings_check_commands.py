@@ -44,42 +44,42 @@ def _named(err: str, key: str) -> None:
         assert f"likely machine.pinion.{side}.{key}" in err, err
 
 
-def _run_json_says(out, key: str) -> dict:
-    got = json.loads((out / "run.json").read_text())["blank_check"]
-    assert got["agrees"] is False
+def test_tca_records_a_settings_warning_in_run_json(tmp_path):
+    # the pinion's machine root 1 deg off (no known slip; the flanks stay regular): a
+    # warning, not an error: the run goes on (exit 0) and its run.json says it
+    path = _flipped(tmp_path, "machine.pinion", "machine_root_angle_deg", lambda x: x + 1.0)
+    code, out, err = run_console("tca", "--pair", path, "--out", tmp_path / "t", *TCA)
+    assert code == 0, err
+    got = json.loads((tmp_path / "t" / "run.json").read_text())["blank_check"]
+    assert got["agrees"] is False and len(got["warnings"]) == 2
     for side in ("drive", "coast"):
-        assert got["flanks"]["pinion"][side]["slip"] == f"machine.pinion.{side}.{key}"
         assert got["flanks"]["gear"][side]["agrees"] is True
-    assert len(got["warnings"]) == 2
-    assert all("likely machine.pinion." in w and key in w for w in got["warnings"])
-    return got
+        assert got["flanks"]["pinion"][side]["agrees"] is False
+        assert f"[machine.pinion.{side}]" in err
 
 
-def test_tca_warns_and_records_a_sliding_base_slip(tmp_path, sliding_base_slip):
-    # a warning, not an error: the run goes on (exit 0) and its run.json says it
+def test_tca_warns_a_sliding_base_slip_then_refuses_the_pointed_tooth(tmp_path,
+                                                                     sliding_base_slip):
+    # the slip's warnings name the key; the settings then cut a pointed pinion (its
+    # sliding base AWAY for WITH cuts 6.7 / 9.7 mm deep against the blank's 2.39:
+    # geometry.settings_top_land), refused before any work: exit 2, nothing written
     code, out, err = run_console("tca", "--pair", sliding_base_slip, "--out",
                                  tmp_path / "t", *TCA)
-    assert code == 0, err
+    assert code == 2, err
     _named(err, "sliding_base_mm")
-    _run_json_says(tmp_path / "t", "sliding_base_mm")
+    assert "a pointed pinion tooth" in err and "likely slip" in err
+    assert not (tmp_path / "t").exists()
 
 
-def test_analyze_warns_and_records_a_sliding_base_slip(tmp_path, sliding_base_slip):
+def test_analyze_warns_a_sliding_base_slip_then_refuses_the_pointed_tooth(tmp_path,
+                                                                         sliding_base_slip):
     code, out, err = run_console("analyze", "--pair", sliding_base_slip, "--out",
                                  tmp_path / "a", *TCA, "--torques", "64.5",
                                  "--lte-phases", "0")
-    assert code == 0, err
+    assert code == 2, err
     _named(err, "sliding_base_mm")
-    got = _run_json_says(tmp_path / "a", "sliding_base_mm")
-    summary = (tmp_path / "a" / "summary.md").read_text()
-    assert "**Machine settings against the blank: warning.**" in summary
-    # the line under the blank: the file's tables (gear ratio of roll 0: formate)
-    assert ("Flanks cut from machine settings (the pair's [machine.*] / [blade.*] tables): "
-            "gear drive and coast formate, pinion drive and coast generated. The "
-            "typed-settings check: 2 of 4 flanks do not agree with the blank (the warning "
-            "above)") in summary
-    for line in got["warnings"]:           # the console's lines, in the report
-        assert line.removeprefix("warning: ") in summary
+    assert "a pointed pinion tooth" in err
+    assert not (tmp_path / "a").exists()
 
 
 @pytest.mark.parametrize("command", ["tca", pytest.param("analyze", marks=pytest.mark.slow)])

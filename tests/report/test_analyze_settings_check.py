@@ -43,10 +43,29 @@ def test_a_hand_slip_is_refused_before_anything_is_written(f2_machine_pair, tmp_
     assert not out.exists()
 
 
-def test_a_sliding_base_slip_is_warned_and_lands_in_the_summary(f2_machine_pair, tmp_path):
+def test_a_sliding_base_slip_is_warned_then_refused_as_a_pointed_tooth(f2_machine_pair,
+                                                                      tmp_path):
+    # the pinion's sliding base typed AWAY for WITH cuts 6.7 / 9.7 mm deep against the
+    # blank's 2.39: the flanks cross below the tip (geometry.settings_top_land), an input
+    # error after the slip's warnings, before any work or file
     f2 = f2_machine_pair
     slip = dataclasses.replace(f2, machine=_flip(f2.machine, "pinion", "sliding_base_mm",
                                                  lambda x: -x))
+    with pytest.warns(SettingsWarning) as caught, \
+            pytest.raises(InputRangeError, match="a pointed pinion tooth.*likely slip"):
+        run_analysis(slip, out_dir=tmp_path, **SMALL)
+    named = [str(w.message) for w in caught if w.category is SettingsWarning]
+    for side in ("drive", "coast"):
+        assert any(f"likely machine.pinion.{side}.sliding_base_mm" in m for m in named)
+    assert not (tmp_path / "summary.md").exists()
+
+
+def test_a_settings_warning_lands_in_the_summary(f2_machine_pair, tmp_path):
+    # the pinion's machine root 1 deg off (no known slip: the flanks stay regular and
+    # run): each warning line in summary.md under the blank's heading
+    f2 = f2_machine_pair
+    slip = dataclasses.replace(f2, machine=_flip(f2.machine, "pinion", "machine_root_angle_deg",
+                                                 lambda x: x + 1.0))
     with pytest.warns(SettingsWarning) as caught:
         res = run_analysis(slip, out_dir=tmp_path, **SMALL)
     lines = res.settings_check.warnings
@@ -55,8 +74,6 @@ def test_a_sliding_base_slip_is_warned_and_lands_in_the_summary(f2_machine_pair,
         == [line.removeprefix("warning: ") for line in lines]
     summary = (tmp_path / "summary.md").read_text()
     assert "**Machine settings against the blank: warning.**" in summary
-    for side in ("drive", "coast"):
-        assert f"likely machine.pinion.{side}.sliding_base_mm" in summary
     for line in lines:
         assert f"- {line.removeprefix('warning: ')}" in summary
     assert ("The typed-settings check: 2 of 4 flanks do not agree with the blank (the "

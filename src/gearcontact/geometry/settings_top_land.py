@@ -151,7 +151,9 @@ def check_settings_top_land(pair, *, member: str = "pinion", boxes: dict | None 
 #: docs/machine_settings.md sec. 5, "A pointed tooth from settings"); a gear's slot.
 _HINT = {
     "pinion": (
-        ". Standard settings (`design --machine-settings`) of a narrow face "
+        ". Typed settings that do not agree with the blank cut one too (a warning "
+        "above then names the flank and a likely slip, e.g. a sliding base's WITH / AWAY). "
+        "Standard settings (`design --machine-settings`) of a narrow face "
         "(design.gear_face_width_mm) get such a pinion from the standard lengthwise crowning "
         "(a pinion cutter radius far from the gear's): less crowning (--lengthwise-crowning-um) "
         "or a wider face removes it; "
