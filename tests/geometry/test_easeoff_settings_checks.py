@@ -21,7 +21,8 @@ from __future__ import annotations
 import numpy as np
 
 from gearcontact.cli import main
-from gearcontact.geometry import easeoff_settings, generated, kinked, settings_top_land
+from gearcontact.geometry import (easeoff_settings, generated, generated_box, kinked,
+                                  settings_top_land)
 from gearcontact.geometry.easeoff import EaseOff
 from gearcontact.geometry.flank import build_flanks
 from gearcontact.geometry.measuring_grid import read_target_flank
@@ -80,11 +81,19 @@ def test_design_refuses_the_pointed_fitted_pinion_that_tca_refuses(tmp_path, cap
 
     for module in (generated, kinked, settings_top_land):
         monkeypatch.setattr(module, "generated_pinion_box", counted)
+    folds, fold_check = [], generated_box.check_tip_margin
+
+    def fold_counted(solver, *a, **k):
+        folds.append((solver.setup.member, solver.setup.side))
+        return fold_check(solver, *a, **k)
+
+    monkeypatch.setattr(generated_box, "check_tip_margin", fold_counted)
     pair = load_pair("s0003")
     fit = easeoff_settings.easeoff_machine_pair(
         pair, easeoff_grid=read_target_flank(grid, pair=pair), where=str(grid))
     monkeypatch.undo()
     assert calls == ["drive", "coast"]
+    assert folds == [("pinion", "drive"), ("pinion", "coast")]   # the fold check in each
     # not vacuous: the fit reached its target (the pointed tooth is the target's, not a
     # failed fit's); 2 um: the shipped s0003 fit's 0.57 um max with the tip relief's
     # larger blade-angle change (measured 1.11 / 0.99 um)
