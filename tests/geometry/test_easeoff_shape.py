@@ -12,6 +12,9 @@ Truths:
 - the legitimate pinions (the F.2 example typed to 4 decimals, the standard settings of
   F.3 and of the 11 x 41: crowned by design, the cutter-radius mismatch and the
   circular blade) raise no warning;
+- a gear cut by a relieved blade (F.2 with a gear Flankrem) is measured against its main
+  segment, the example's own gear blade: the example's crowning; a sliding-base slip
+  leaves it hollow there too;
 - s0003 cut by `design --machine-settings` (geometry.easeoff_settings) with its coast
   pinion's fitted 2C typed with the wrong sign (made here: the flip is the truth) warns,
   and the flip moves the lengthwise crowning by twice what the fitted 2C gives (first
@@ -37,6 +40,8 @@ from gearcontact.geometry.easeoff_shape import (CONJUGATE_GRID, HOLLOW_BOUND_UM,
 from gearcontact.geometry.kinked import machine_flank
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.settings_check import check_settings
+
+from .test_blank_check import _flip
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -160,13 +165,34 @@ def test_a_generated_gear_is_named_not_checked_when_a_pair_is_loaded():
                for w in got.missing.values())
 
 
-def test_a_relieved_gear_is_named_not_checked():
-    got = check_easeoff_shape(load_pair(ROOT / "tests" / "data" / "toprem"
-                                        / "iso23509_f2_gear_flankrem.toml"))
-    assert got.flanks == () and got.warnings() == ()
-    assert set(got.missing) == {"drive", "coast"}
-    assert all("not checked: the gear flank is cut by a relieved blade" in w
-               for w in got.missing.values())
+def test_a_relieved_gear_is_measured_against_its_main_segment(f2_machine_pair):
+    # F.2 with a Flankrem on both gear blades (tests/data/toprem): the file is the F.2
+    # example with the two flankrem keys added, so its main segment's blade
+    # (geometry.blade.blade_segments: the blade's own profile continued past the kink) is
+    # the example's gear blade and its pinion the example's: the example's crowning,
+    # measured against the same conjugate (1e-9 um: the same floats but for round-off in
+    # the segment's blade arithmetic; measured equal to the bit)
+    relieved = load_pair(ROOT / "tests" / "data" / "toprem" / "iso23509_f2_gear_flankrem.toml")
+    got = check_easeoff_shape(relieved)
+    assert got.missing == {} and got.warnings() == ()
+    assert [s.side for s in got.flanks] == ["drive", "coast"]
+    assert all(s.relieved_gear for s in got.flanks)
+    own = check_easeoff_shape(f2_machine_pair).flanks
+    assert not any(s.relieved_gear for s in own)
+    for a, b in zip(got.flanks, own):
+        for name in ("C_p_um", "C_l_um", "bias_um", "fit_rms_um"):
+            assert getattr(a, name) == pytest.approx(getattr(b, name), abs=1e-9)
+    # not vacuous: the pinion sliding base typed WITH / AWAY the other way (the slip of
+    # tests/geometry/test_settings_check.py) leaves the coast pinion hollow in profile
+    # against the relieved gear's main segment as against the example's gear (F.2's
+    # slip: -7.8 um)
+    slip = dataclasses.replace(relieved, machine=_flip(relieved.machine, "pinion",
+                                                       "sliding_base_mm", lambda x: -x))
+    flagged = check_easeoff_shape(slip)
+    assert [s.side for s in flagged.flanks if s.flagged] == ["coast"]
+    assert len(flagged.warnings()) == 1 and "[machine.pinion.coast]" in flagged.warnings()[0]
+    coast = {s.side: s for s in flagged.flanks}["coast"]
+    assert coast.C_p_um < -HOLLOW_BOUND_UM
 
 
 def _with_coast_2c(pair, two_c):

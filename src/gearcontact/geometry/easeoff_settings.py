@@ -33,6 +33,7 @@ from .point_fit import check_point_count, point_deviation_um, point_problem
 from .relief_setup import relieved_setup
 from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
                           fit_pinion_setup, flank_deviation_um, solve_fit)
+from .settings_top_land import check_settings_top_land, member_box
 
 __all__ = ["EaseOffSettings", "KinkPosition", "SideResidual", "easeoff_machine_pair"]
 
@@ -202,18 +203,23 @@ class EaseOffSettings:
 
 
 def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, n_v,
-              objective, box=None) -> SideResidual:
+              objective, box=None) -> tuple[SideResidual, dict]:
     """The fit of one pinion flank to its target flank (residual over the flank; the
     fit grid over ``box``, default the target's) or to measured points (``problem``:
-    residual at the points)."""
+    residual at the points), and the cut flank's :func:`~.settings_top_land.member_box`
+    (its active box, as every reader of the settings traces it: a fold at the tip
+    refused, :func:`~.generated_box.check_tip_margin`; the cut flank is built on it)."""
     if problem is not None:
         fit = solve_fit(problem, tolerance_um=1e-6, objective=objective,
                         started=time.perf_counter() - problem.setup_seconds)
     else:
         fit = fit_pinion_setup(seed, pair.blank, target, parameters=parameters, n_u=n_u,
                                n_v=n_v, objective=objective, box=box)
-    # a relieved blade's flank: its pieces and kink lines (kinked.machine_flank)
-    cut = machine_flank(fit.setup, pair.blank, face_width_mm=pair.pinion_face_width_mm)
+    # the active box as the readers trace it (a fold at the tip refused), then the cut
+    # flank on it; a relieved blade's: its pieces and kink lines (kinked.machine_flank)
+    got = member_box(pair, fit.setup)
+    cut = machine_flank(fit.setup, pair.blank, face_width_mm=pair.pinion_face_width_mm,
+                        pinion_box=got["active_box"])
     kinked = isinstance(cut, KinkedFlank)
     if problem is not None:
         u, v, res = (target.u_mm, target.v_mm,
@@ -227,7 +233,7 @@ def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, 
                         max_um=float(np.abs(res).max()), rms_um=float(np.sqrt(np.mean(res ** 2))),
                         u_mm=u, v_mm=v, residual_um=res,
                         points=target if problem is not None else None, kinks=kinks,
-                        box=cut.boundary)
+                        box=cut.boundary), got
 
 
 def _relieved_box(seed, pair, target, *, where: str):
@@ -312,9 +318,16 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         a grid short of its flank, measured points off the flank, fewer than the
         settings or leaving them unobservable (:mod:`.point_fit`), an unknown flank in
         ``reliefs`` or a pinion relief whose kink reaches the blade point that cuts the
-        mean point (all before any fit).
+        mean point (all before any fit); a fitted pinion whose tooth is pointed
+        anywhere along its tip line (:func:`~.settings_top_land.check_settings_top_land`,
+        after both fits).
     UndercutError
-        A fitted flank the envelope does not generate over its box.
+        A fitted flank the envelope does not generate over its box, or folds within
+        its node grid above the tip (:func:`~.generated_box.check_tip_margin`).
+
+    Both refusals are the readers' of the written settings
+    (:func:`~.generation.check_generation`), word for word: nothing that a reader
+    refuses is written.
     """
     if pair.machine:
         raise InputRangeError("pair", f"{pair.name} with [machine.*] tables",
@@ -366,13 +379,20 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
             problems[side] = point_problem(seeds[side], twin.blank, targets[side],
                                            parameters=parameters, objective=objective,
                                            where=where)
-    sides = {}
+    sides, cut_boxes = {}, {}
     for side in SIDES:
-        sides[side] = _side_fit(side, seeds[side], targets[side], problems.get(side), twin,
-                                flanks.pinion_conjugate.side(side), parameters=parameters,
-                                n_u=n_u, n_v=n_v, objective=objective, box=boxes.get(side))
+        sides[side], cut_boxes[side] = _side_fit(
+            side, seeds[side], targets[side], problems.get(side), twin,
+            flanks.pinion_conjugate.side(side), parameters=parameters, n_u=n_u, n_v=n_v,
+            objective=objective, box=boxes.get(side))
     pinion = {side: r.fit.setup for side, r in sides.items()}
     setups = [gear[s] for s in SIDES] + [pinion[s] for s in SIDES]
+    # the fitted pinion's top land along its tip line on the boxes traced above, as every
+    # reader of the settings checks it (generation._machine_boxes): a pointed tooth is
+    # refused before the settings are written (docs/machine_settings.md sec. 6, "The
+    # readers' checks before writing"); the gear is the default's, as the standard
+    # settings' (basic_settings.standard_setups)
+    check_settings_top_land(dataclasses.replace(twin, machine=tuple(setups)), boxes=cut_boxes)
     if pair.pinion_hand == "left":
         setups = [mirror_setup(s) for s in setups]
     return EaseOffSettings(pair=dataclasses.replace(pair, machine=tuple(setups),

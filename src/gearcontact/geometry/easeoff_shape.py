@@ -111,6 +111,9 @@ class EaseOffShape:
     trimmed : bool
         The box is the part of the conjugate's active box that the pinion's own active
         box covers (its envelope does not reach the whole of the conjugate's).
+    relieved_gear : bool
+        The gear flank is cut by a relieved blade: measured against the conjugate of its
+        main segment's flank, the relief not counted (:func:`check_easeoff_shape`).
     """
 
     side: str
@@ -122,6 +125,7 @@ class EaseOffShape:
     length_mm: float
     bound_um: float = HOLLOW_BOUND_UM
     trimmed: bool = False
+    relieved_gear: bool = False
 
     @property
     def hollowness(self) -> float:
@@ -144,8 +148,8 @@ class EaseOffShapeCheck:
     flanks : tuple of EaseOffShape
         The measured pinion flanks.
     missing : dict
-        ``{side: reason}`` of the flanks not checked (a relieved or generated gear
-        flank, an envelope that does not reach the grid), as sentences.
+        ``{side: reason}`` of the flanks not checked (a generated gear flank when a pair
+        is loaded, an envelope that does not reach the grid), as sentences.
     seconds : float
         Wall time, s (a timing: run.json only; not compared).
     """
@@ -176,9 +180,10 @@ def _message(s: EaseOffShape) -> str:
               "profile": "the profile crowning comes from the pinion blade's profile "
                          "curvature and its modified roll"}
     return (f"the pinion {s.side} flank cut from [machine.pinion.{s.side}] is hollow "
-            f"against the conjugate of the typed gear's {s.side} flank: crowning "
-            f"{s.C_p_um:+.1f} um in profile, {s.C_l_um:+.1f} um lengthwise at the edges of "
-            f"its active box (relief positive; {' and '.join(hollow)} below -"
+            f"against the conjugate of the typed gear's {s.side} flank"
+            + (" (its main blade segment: the relief not counted)" if s.relieved_gear else "")
+            + f": crowning {s.C_p_um:+.1f} um in profile, {s.C_l_um:+.1f} um lengthwise at "
+            f"the edges of its active box (relief positive; {' and '.join(hollow)} below -"
             f"{s.bound_um:g} um): edge contact expected, the pinion touching the gear first "
             "at the edges of its flank. "
             f"Crown it: {'; '.join(change[h] for h in hollow)} "
@@ -252,9 +257,13 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
 
     Where the pinion's envelope does not reach the whole of the conjugate's active box,
     the part its own active box covers (:func:`~.generated.generated_pinion_box`) is
-    measured (``trimmed``). A flank is not checked, with the reason in ``missing``, where
-    the gear flank is cut by a relieved blade (its conjugate would be one per blade
-    segment), or where the conjugate or the pinion's envelope does not reach even that.
+    measured (``trimmed``). A gear flank cut by a relieved blade (Toprem / Flankrem) is
+    taken as the flank of its main segment's blade (:func:`~.blade.blade_segments`,
+    continued past its kinks; ``relieved_gear``): a relief only removes gear material, so
+    it adds relief to the pinion's ease-off where the gear's relieved piece meshes and
+    the verdict errs towards a warning (docs, "The hollow ease-off warning"). A flank is
+    not checked, with the reason in ``missing``, where the conjugate or the pinion's
+    envelope does not reach even the pinion's own box.
     A generated gear flank generates its conjugate as a sheet continued beyond the face
     (:func:`~.gear_generation.generating_sheet` on :data:`GENERATOR_GRID`); with
     ``generated=False`` it is named not checked instead (that sheet costs about three
@@ -270,11 +279,7 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
     kin = twin.kinematics(with_errors=False)
     shapes, missing = [], {}
     for side in SIDES:
-        gear = setups["gear", side]
-        if len(blade_segments(gear.blade)) > 1:
-            missing[side] = ("not checked: the gear flank is cut by a relieved blade (its "
-                             "conjugate pinion would be one per blade segment)")
-            continue
+        gear, relieved = _main_segment(setups["gear", side])
         if not (generated or gear.settings.formate):
             missing[side] = ("not checked when the pair is loaded: the gear flank is "
                              "generated (its conjugate needs the gear's generating sheet; "
@@ -285,7 +290,8 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
                 _generator(gear, twin), blank=twin.blank, kinematics=kin,
                 pinion_face_width_mm=twin.pinion_face_width_mm,
                 n_u=CONJUGATE_GRID[0], n_v=CONJUGATE_GRID[1])
-            shapes.append(_measured(setups["pinion", side], conj, twin))
+            shapes.append(dataclasses.replace(_measured(setups["pinion", side], conj, twin),
+                                              relieved_gear=relieved))
         except (UndercutError, MeshingError) as err:
             missing[side] = ("not checked: the conjugate pinion or the pinion's envelope "
                              f"does not reach the conjugate's box ({err})")
@@ -304,6 +310,17 @@ def _measured(setup, conj, pair) -> EaseOffShape:
     box = dataclasses.replace(b, u_root=max(own.u_root, b.u_root), u_tip=min(own.u_tip, b.u_tip),
                               v_toe=max(own.v_toe, b.v_toe), v_heel=min(own.v_heel, b.v_heel))
     return easeoff_shape(setup, conj, pair.blank, side=setup.side, box=box)
+
+
+def _main_segment(setup) -> tuple[MachineSetup, bool]:
+    """``setup`` with a relieved blade replaced by its main segment's smooth blade (the
+    blade's own profile continued past its kinks, :func:`~.blade.blade_segments`), and
+    whether it was relieved; ``setup`` itself otherwise."""
+    segments = blade_segments(setup.blade)
+    if len(segments) == 1:
+        return setup, False
+    main = next(seg.blade for seg in segments if seg.name == "main")
+    return dataclasses.replace(setup, blade=main), True
 
 
 def _generator(setup, pair):

@@ -344,19 +344,22 @@ def kinked_flank(pieces, names, *, v_scales=None, n_nodes: int = KINK_NODES) -> 
                        v_scales=v_scales)
 
 
-def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: int = 150):
+def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: int = 150,
+                  pinion_box: FlankBoundary | None = None):
     """The flank ``setup`` cuts on its member: :func:`~.generated.gear_flank_of` /
     :func:`~.generated.generated_pinion_flank` for a smooth blade (unchanged), a
     :class:`KinkedFlank` for a relieved one (module docstring): one piece per blade
     segment, all on the active box the tip segment traces (formate gear: the blade
-    cones, the kink at the relief depth)."""
+    cones, the kink at the relief depth). ``pinion_box``: a pinion flank's active box
+    when the caller holds it (:func:`~.generated.generated_pinion_box` of ``setup``,
+    which checks it), not traced again; the same flank, bit for bit."""
     segs = blade_segments(setup.blade)
     gear = setup.member == "gear"
     if len(segs) == 1:
         if gear:
             return gear_flank_of(setup, blank, gear_face_width_mm=face_width_mm, n_u=n_u, n_v=n_v)
         return generated_pinion_flank(setup, blank, pinion_face_width_mm=face_width_mm,
-                                      n_u=n_u, n_v=n_v)[0]
+                                      n_u=n_u, n_v=n_v, box=pinion_box)[0]
     setups = [dataclasses.replace(setup, blade=seg.blade) for seg in segs]
     names = [seg.name for seg in segs]
     if gear and setup.settings.formate:
@@ -377,7 +380,8 @@ def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: in
         pieces = [generated_gear_flank(s, blank, gear_face_width_mm=face_width_mm, n_u=n_u,
                                        n_v=n_v, box=box)[0] for s in setups]
     else:
-        box = generated_pinion_box(setup, blank, pinion_face_width_mm=face_width_mm)[1]
+        box = pinion_box or generated_pinion_box(setup, blank,
+                                                 pinion_face_width_mm=face_width_mm)[1]
         pieces = [generated_pinion_flank(s, blank, pinion_face_width_mm=face_width_mm, n_u=n_u,
                                          n_v=n_v, box=box)[0] for s in setups]
     return kinked_flank(pieces, names)

@@ -143,6 +143,7 @@ def easeoff_shape_text(check: EaseOffShapeCheck) -> str:
     bound (the warnings name it), or why a flank was not checked."""
     parts = [f"{s.side} {s.C_p_um:+.1f} / {s.C_l_um:+.1f} um"
              + (" (over the part of the box its envelope reaches)" if s.trimmed else "")
+             + (" (against the gear's main blade segment)" if s.relieved_gear else "")
              + (" HOLLOW" if s.flagged else "") for s in check.flanks]
     parts += [f"{side} {why}" for side, why in check.missing.items()]
     bound = check.flanks[0].bound_um if check.flanks else None
@@ -157,11 +158,12 @@ def easeoff_shape_text(check: EaseOffShapeCheck) -> str:
 
 def easeoff_shape_json(check: EaseOffShapeCheck) -> dict:
     """``{"flanks": {side: {"C_p_um", "C_l_um", "bias_um", "fit_rms_um", "bound_um",
-    "hollowness", "flagged", "trimmed"}}, "missing": {side: reason}, "warnings":
-    [line]}``."""
+    "hollowness", "flagged", "trimmed"[, "relieved_gear"]}}, "missing": {side: reason},
+    "warnings": [line]}`` (``relieved_gear`` only where true)."""
     return {"flanks": {s.side: {"C_p_um": s.C_p_um, "C_l_um": s.C_l_um, "bias_um": s.bias_um,
                                 "fit_rms_um": s.fit_rms_um, "bound_um": s.bound_um,
                                 "hollowness": s.hollowness, "flagged": s.flagged,
-                                "trimmed": s.trimmed}
+                                "trimmed": s.trimmed,
+                                **({"relieved_gear": True} if s.relieved_gear else {})}
                        for s in check.flanks},
             "missing": dict(check.missing), "warnings": list(check.warnings())}
