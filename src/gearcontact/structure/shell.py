@@ -483,8 +483,8 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
                 f"{rim.fillet_mm:g} mm); the plate continues through the rim at the "
                 f"block model's factor {BLOCK_RIM_STIFFENING}, not calibrated without a "
                 "block: against the 3D FE such a tooth's shell is 1.2-2.2 times too "
-                "compliant, the plate tooth's own transverse shear within a thickness of "
-                "the clamp (docs/bending.md sec. 13)", NoBlockWarning, stacklevel=2)
+                "compliant: the plate's kinematics within a thickness of the rigid clamp "
+                "(docs/bending.md sec. 13)", NoBlockWarning, stacklevel=2)
     model = ShellModel(body=body, order=order, order_face=order_face,
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
                        membrane=membrane, membrane_shear=membrane_shear, rim_block=rim_block,
