@@ -202,9 +202,10 @@ def _flat_plate_line_ratios(thickness_mm: float) -> np.ndarray:
 
 def test_thick_plate_near_a_clamp_is_softer_than_the_solid():
     """The diagnosis' generic fact (docs/bending.md sec. 13, session 25), on a flat plate
-    with closed-form faces: a Mindlin plate as thick as it is long (t = L = 2.4 mm) is
-    softer than 3D elasticity for loads within a thickness of its rigid clamp, the more
-    the nearer (measured 1.606, 1.335, 1.227 at a / t = 1/3, 1/2, 2/3 on this mesh; 1.539,
+    with closed-form faces: for a plate as thick as it is long (t = L = 2.4 mm) the
+    Mindlin plate's deflection is larger than the 3D solid's back-face deflection under a
+    face load within a thickness of its rigid clamp, the more the nearer (docs: mostly
+    because there the section's mean deflection exceeds the back face's) (measured 1.606, 1.335, 1.227 at a / t = 1/3, 1/2, 2/3 on this mesh; 1.539,
     1.286, 1.190 on 12 x 12 x 4 with orders 12 / 12); a thin one (t = L / 4) agrees with
     the FE. Tolerances: the thick plate's ratio at a / t = 1/3 at least 1.4, 0.09 in log
     below the fine mesh's 1.539, twice the mesh error 0.043 (so the test asserts the
