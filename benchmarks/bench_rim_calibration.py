@@ -25,7 +25,8 @@ dmv`` in the membrane strain only (``membrane_shear=False``); the FE unchanged. 
 ``--rim-block`` the block below the fillet is the Ritz solid of ``structure.rim_block`` (``build_shell(...,
 rim_block=True)``)
 (docs/bending.md sec. 13; ``--block-orders`` its enrichment's degrees, ``none`` for the
-plate's fields alone in the solid). With ``--rim-depth fillet`` both models clamp the
+plate's fields alone in the solid; ``--solid-tooth`` a tooth without a block as the Ritz
+solid of ``structure.tooth_solid``, session 25). With ``--rim-depth fillet`` both models clamp the
 rim's bottom at the shell's own fillet height instead of the tooth height: the shell's
 block has depth 0 and the rule of sec. 13 ("Teeth without a block") takes the plate at
 the block model's factor; the teeth without a block of sec. 13's session-24 paragraph.
@@ -77,7 +78,8 @@ _FLANKS: dict = {}
 def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
             eta=(-1 / 3, 0.0, 1 / 3), fe_mesh: FeMesh = FeMesh(),
             membrane: str | None = None, rim_block: bool = False,
-            block_orders=BLOCK_ORDERS, rim_depth: str = "height") -> dict:
+            block_orders=BLOCK_ORDERS, rim_depth: str = "height",
+            solid_tooth: bool = False) -> dict:
     """The FE deflections of one tooth under the distributed loads (computed once) and
     shell / FE at every factor of ``factors`` (segment loads, then line loads)."""
     pair = load_pair(pair_name)
@@ -105,7 +107,8 @@ def measure(pair_name: str, member: str, factors, *, fe_root: str = "cutter",
             res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
         elif rim_block:     # the Ritz solid below the fillet (sec. 13)
             shell = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim,
-                                rim_block=True, block_orders=block_orders)
+                                rim_block=True, block_orders=block_orders,
+                                solid_tooth=solid_tooth)
             res = shell_compliance(shell, side=kw["side"], eta=kw["eta"], fe_mesh=fe_mesh)
         else:
             res = flank_compliance(pair, member, rim=rim, **kw)
@@ -142,6 +145,9 @@ def main() -> None:
     ap.add_argument("--rim-depth", choices=("height", "fillet"), default="height",
                     help="the clamped bottom of both models: the tooth height (default) "
                          "or the shell's fillet height (no block below the fillet)")
+    ap.add_argument("--solid-tooth", action="store_true",
+                    help="with --rim-block: a tooth without a block as the Ritz solid of "
+                         "structure.tooth_solid (sec. 13, session 25)")
     ap.add_argument("--json", default=None, help="write the measurements to this file")
     args = ap.parse_args()
     teeth = TEETH + ([EIGHTH] if args.with_s0003_pinion else [])
@@ -159,7 +165,8 @@ def main() -> None:
         out[label] = measure(name, member, factors, fe_root=args.fe_root, eta=args.eta,
                              fe_mesh=FeMesh() if args.mesh is None else FeMesh(*args.mesh),
                              membrane=args.membrane, rim_block=args.rim_block,
-                             block_orders=block_orders, rim_depth=args.rim_depth)
+                             block_orders=block_orders, rim_depth=args.rim_depth,
+                             solid_tooth=args.solid_tooth)
         print(f"{label}: rim depth {out[label]['rim_depth_mm']:.3f} mm, fillet "
               f"{out[label]['fillet_mm']:.3f} mm; FE {out[label]['fe_nodes']} nodes, {out[label]['fe_cpu_s']:.1f} s "
               f"CPU; line FE (um/kN) "

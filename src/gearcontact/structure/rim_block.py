@@ -64,7 +64,10 @@ BLOCK_RIM_STIFFENING = 1.175
 #: stiffness (~ 1 / depth) within 1e3 of a full block's (docs/bending.md sec. 13,
 #: "Teeth without a block"). The factor is not calibrated on such a tooth: against
 #: the 3D FE, the shell without a block is softer than the calibration's band, and
-#: no factor brings it inside (docs/bending.md sec. 13, session 24).
+#: no factor brings it inside (docs/bending.md sec. 13, session 24): the surplus is the
+#: plate's kinematics within a thickness of the rigid clamp, which no shear correction
+#: of a first-order plate (kappa_s <= 1) removes; the Ritz solid of :mod:`.tooth_solid`
+#: does, in the FE's convention, but not in the LTCA's (session 25).
 BLOCK_MIN_DEPTH = 1e-3
 #: Step of the central differences of the rim frame and thickness: in xi, and in mm of
 #: depth.

@@ -76,6 +76,7 @@ from .rim_block import (BLOCK_ORDERS, BLOCK_RIM_STIFFENING, block_stiffness, che
                         enrichment_count, has_block, NoBlockWarning)
 from .ritz_solid import legendre_table
 from .tooth import LoadPoints, ToothGeometry, local_frame, tooth_geometry
+from .tooth_solid import SOLID_DEGREES, solid_count, solid_load_vectors, solid_stiffness
 
 __all__ = ["ShellModel", "ComplianceOperator", "build_shell", "tooth_shell",
            "RIM_STIFFENING", "SHEAR_FACTOR", "ORDER", "ORDER_FACE"]
@@ -176,11 +177,16 @@ class ShellModel:
     rim_block: bool = False
     block_orders: tuple | None = None
     block_points: tuple | None = None
+    solid_degrees: tuple | None = None
+    solid_points: tuple | None = None
 
     @property
     def n_plate(self) -> int:
         """The plate's Ritz functions (the first coordinates); with ``rim_block`` the
-        block's enrichment follows them (:mod:`.rim_block`)."""
+        block's enrichment follows them (:mod:`.rim_block`); 0 for a solid tooth
+        (``solid_degrees``, :mod:`.tooth_solid`)."""
+        if self.solid_degrees is not None:
+            return 0
         return self.n_fields * (self.order + 1) * (self.order_face + 1)
 
     @property
@@ -226,6 +232,8 @@ class ShellModel:
 
     def load_vectors(self, points: LoadPoints) -> np.ndarray:
         """Phi (n, m): deflection of each point along its direction per Ritz coordinate."""
+        if self.solid_degrees is not None:
+            return solid_load_vectors(self, points)
         mid = self.body.mid_surface(points.xi, points.eta)
         e1, e2, m = local_frame(mid)
         N, _, _ = self.shape_functions(points.xi, points.eta)
@@ -266,6 +274,8 @@ def _stiffness(body, model: ShellModel) -> np.ndarray:
     over the tooth and, with a rim segment, over its fillet and rim block (a rule per
     piece: the thickness has a kink where the fillet ends); with ``model.rim_block``
     the block below the fillet is the Ritz solid of :mod:`.rim_block` instead."""
+    if model.solid_degrees is not None:
+        return solid_stiffness(model)
     g, wg = legendre.leggauss(_QUADRATURE)
     gx, wx = legendre.leggauss(max(_QUADRATURE, model.order_face + 6))
     XI, ETA = np.meshgrid(gx, g, indexing="ij")
@@ -390,7 +400,9 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
                 rim: RimSegment | None = None, membrane: bool = False,
                 membrane_shear: bool = True, rim_block: bool = False,
                 block_orders: tuple | None = BLOCK_ORDERS,
-                block_points: tuple | None = None) -> ShellModel:
+                block_points: tuple | None = None, solid_tooth: bool = False,
+                solid_degrees: tuple = SOLID_DEGREES,
+                solid_points: tuple | None = None) -> ShellModel:
     """Assemble and factor the Ritz stiffness of a plate body.
 
     Parameters
@@ -427,6 +439,13 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     block_points : tuple of 3 int or None
         With ``rim_block``: Gauss nodes of the block's quadrature
         (:func:`~.rim_block.block_stiffness`).
+    solid_tooth : bool
+        With ``rim_block`` on a tooth without a block: the tooth and its fillet as the
+        Ritz solid of :mod:`.tooth_solid` instead of the plate (docs/bending.md sec. 13,
+        session 25); no effect on a tooth with a block.
+    solid_degrees, solid_points : tuple of 3 int
+        The solid tooth's Legendre degrees (0..16) and Gauss points (None: its
+        defaults), along the face, the height and across.
 
     Raises
     ------
@@ -439,10 +458,11 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
     if not np.all(t > 0.0):
         raise InputRangeError("thickness_mm", float(np.min(t)), "> 0 everywhere")
     for name, flag in (("membrane", membrane), ("membrane_shear", membrane_shear),
-                       ("rim_block", rim_block)):
+                       ("rim_block", rim_block), ("solid_tooth", solid_tooth)):
         if not isinstance(flag, bool):
             raise InputRangeError(name, flag, "True or False")
     n = (5 if membrane else 3) * (order + 1) * (order_face + 1)
+    solid = False
     if rim is not None and not isinstance(rim, RimSegment):
         raise InputRangeError("rim", rim, "a RimSegment or None")
     if rim_block:
@@ -454,18 +474,24 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
         rim_block = has_block(rim)
         if rim_block:
             n += enrichment_count(block_orders)
+        elif solid_tooth:
+            solid_degrees, solid = check_block(rim, solid_degrees), True
+            n = solid_count(solid_degrees)
         else:
             warnings.warn(
                 f"rim: no block below the fillet (depth {rim.depth_mm:g} mm, fillet "
                 f"{rim.fillet_mm:g} mm); the plate continues through the rim at the "
                 f"block model's factor {BLOCK_RIM_STIFFENING}, not calibrated without a "
                 "block: against the 3D FE such a tooth's shell is 1.2-2.2 times too "
-                "compliant (docs/bending.md sec. 13)", NoBlockWarning, stacklevel=2)
+                "compliant: the plate's kinematics within a thickness of the rigid clamp "
+                "(docs/bending.md sec. 13)", NoBlockWarning, stacklevel=2)
     model = ShellModel(body=body, order=order, order_face=order_face,
                        cholesky=np.empty((0, 0)), n_functions=n, rim=rim,
                        membrane=membrane, membrane_shear=membrane_shear, rim_block=rim_block,
                        block_orders=block_orders if rim_block else None,
-                       block_points=block_points if rim_block else None)
+                       block_points=block_points if rim_block else None,
+                       solid_degrees=solid_degrees if solid else None,
+                       solid_points=solid_points if solid else None)
     return factored(model, _stiffness(body, model), name="shell stiffness")
 
 
