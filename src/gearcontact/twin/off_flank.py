@@ -43,7 +43,7 @@ import numpy as np
 
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.lcp import solve_lcp
-from ..ltca.edge_law import EdgeCompliance, edge_compliance
+from ..ltca.edge_law import EDGE_LOAD_FRACTIONS, EdgeCompliance, edge_compliance
 from ..ltca.flank_touch import edge_samples, flank_gaps_mm
 from ..ltca.pair_ltca import OFF_FLANK_GAP_MM
 from ..ltca.patch_field import patch_grid
@@ -151,14 +151,18 @@ def touch_law(fields, pc, *, materials, torque_nmm: float) -> EdgeCompliance | N
 def touch_bending_compliance(fields, pc, *, materials, torque_nmm: float) -> float:
     """Bending compliance (mm/N) of a wholly-off row's teeth: the work-conjugate
     compliance of the LCP's pressure of the pair carrying ``torque_nmm`` alone on its
-    :class:`TouchField` (module docstring); 0 where that LCP does not converge (no
-    founded pressure shape; the row is then uncalibrated as well)."""
+    :class:`TouchField` (module docstring); where that LCP does not converge, the
+    pressure of the largest calibration load (:data:`~gearcontact.ltca.edge_law.
+    EDGE_LOAD_FRACTIONS`) whose LCP does; 0 where none does (no founded pressure shape;
+    the row is then uncalibrated as well)."""
     try:
         tf = TouchField(fields, pc, torque_nmm=torque_nmm)
     except ArithmeticError:
         return 0.0
     gap, grid, _, lever = tf.field
-    res = solve_lcp(gap, grid, torque_nmm / lever, materials=materials, warn_coarse=False)
-    if not res.converged:
-        return 0.0
-    return conjugate_compliance(tf.factor(pc), res.loads_n)
+    for fraction in sorted(EDGE_LOAD_FRACTIONS, reverse=True):
+        res = solve_lcp(gap, grid, fraction * torque_nmm / lever, materials=materials,
+                        warn_coarse=False)
+        if res.converged:
+            return conjugate_compliance(tf.factor(pc), res.loads_n)
+    return 0.0
