@@ -65,6 +65,7 @@ from ..validation import InputRangeError, check_positive
 from ..ltca.edge_law import operating_scales
 from ..ltca.edge_rows import is_cut, row_law
 from ..ltca.tooth_bending import conjugate_compliance, pair_bending_compliance
+from .off_flank import is_wholly_off, touch_bending_compliance, touch_law
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES",
@@ -169,7 +170,7 @@ class MeshTable:
         opening, which exceeds that reach; their opening is the field's least gap where
         the field bounds the touch (no touch search), else the searched touch; their law
         uncalibrated (Hertz). Such rows whose field lies wholly off the flank are left
-        out (not ``valid``).
+        out (not ``valid``); within reach, those take the law of :mod:`.off_flank`.
     """
 
     psi_rad: np.ndarray
@@ -266,8 +267,10 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     an edge law) has its touch searched over the whole flank
     (:func:`~gearcontact.ltca.patch_field.touch_search`); beyond the reach it is left
     out of the table (not ``valid``, as a pair whose flanks do not overlap), within it
-    kept with its touch as its opening and the Hertzian law (its calibration refused:
-    ``edge_exponent`` 0).
+    kept with its touch as its opening and the edge law of a field placed at its touch
+    (:mod:`.off_flank`: the LCP calibration of the TCA's edge rows; where it fails, the
+    Hertzian law, ``edge_exponent`` 0), with ``bending`` the bending compliance of that
+    field's LCP pressure (:func:`.off_flank.touch_bending_compliance`).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle
@@ -295,6 +298,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     materials = (pair.pinion_material, pair.gear_material)
     laws: dict = {}
     rows = {}       # (pair row, phase) -> (contact, lower bound of its opening in mm)
+    touch_rows = {}     # (pair row, phase) -> wholly-off contact within reach
     for k in range(n_k):
         for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
             pc, lower = fields.bound(pc)
@@ -304,7 +308,8 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                        cache=laws if edge_law else None, bending=bending is not None)
     for (i, k), (pc, lower) in rows.items():
         far[i, k] = lower / pc.lever_mm > reach[k]
-        if far[i, k] and pc.edge and fields.get(pc)[2].all():
+        wholly = pc.edge and is_wholly_off(fields, pc)
+        if far[i, k] and wholly:
             far[i, k] = False       # no flank cell in its field: left out (Notes, Reach)
             continue
         if not far[i, k]:
@@ -323,10 +328,17 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
                                                      off_flank="quadric").gap_mm
         stencils[i, k] = sten[pc.center_index]
         if bending is not None:
-            arrays["cb"][i, k] = pair_bending_compliance(fields, pc, 1e3 * t)
-        if edge_law and not far[i, k] and is_cut(fields, pc, torque_nmm=1e3 * t):
+            arrays["cb"][i, k] = (touch_bending_compliance(fields, pc, materials=materials,
+                                                           torque_nmm=1e3 * t) if wholly
+                                  else pair_bending_compliance(fields, pc, 1e3 * t))
+        if edge_law and wholly:
+            touch_rows[i, k] = pc
+        elif edge_law and not far[i, k] and is_cut(fields, pc, torque_nmm=1e3 * t):
             edges[i, k] = pc
     laws, expo = _calibrate_edges(fields, edges, materials, 1e3 * t, laws)
+    for (i, k), pc in touch_rows.items():   # the edge law at the touch (Notes, Reach)
+        laws[i, k] = touch_law(fields, pc, materials=materials, torque_nmm=1e3 * t)
+        expo[i, k] = 0.0 if laws[i, k] is None else laws[i, k].exponent
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)
     env = np.asarray(cycle.envelope_arcsec, float)

@@ -1,0 +1,198 @@
+"""The law of mesh-table rows whose field lies wholly off the flank (:mod:`gearcontact.
+twin.off_flank`; docs/twin.md "Rows wholly off the flank: the edge law at the touch").
+
+On s0003 coast (the twin's fixture, 31 phases, rigid) pair +1 comes within the reach at
+3 phases with its field wholly off the flank; its touch is a corner of the gear's face
+end and the pinion's tip on a sliver of overlapping flank.
+
+Truths:
+
+1. (default) those rows carry the LCP's law (scale > 1, exponent the LCP's) as
+   equivalent curvatures and keep their opening and lever; the touch point the law's
+   field is centred on lies on the flank region's border within a sample's rise of the
+   searched touch.
+2. (slow) the loaded TE's model -- the torque-constrained half-space LCP of every pair of
+   the phase (:func:`gearcontact.ltca.mesh_lcp.solve_mesh_lcp`, rigid), pair +1 on a
+   field covering the flank region near its touch at N = 80 and 160 cells per side --
+   at 645 and 1290 N·m: at every phase where the LCP loads pair +1, the law's approach
+   ``c(W) kappa W^(2/3)`` at the LCP's load equals the LCP's ``l theta - g`` within the
+   tolerance declared in docs/twin.md before measuring.
+"""
+
+import numpy as np
+import pytest
+
+from gearcontact.analytic.hertz import hamrock_brewe_hertz
+from gearcontact.ltca.flank_touch import flank_gaps_mm
+from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
+from gearcontact.ltca.lte_phase import preview_balance
+from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
+from gearcontact.ltca.pair_ltca import OFF_FLANK_GAP_MM
+from gearcontact.ltca.patch_field import patch_grid
+from gearcontact.materials import effective_modulus_mpa
+from gearcontact.twin.off_flank import TouchField, is_wholly_off, touch_law, touch_point
+
+from .conftest import TORQUE_NM
+
+#: Interpolation of the law between its calibration loads (as tests/ltca/test_edge_rows.py:
+#: within 1.4 % of the LCP at T/8 on s0003's edge rows, 2 % allowed).
+INTERPOLATION = 0.02
+
+
+def _fields(pair, tca, flanks, torque_nmm: float) -> PairFields:
+    """The mesh table's fields (:func:`gearcontact.twin.mesh.mesh_table`'s arguments)."""
+    kin = pair.kinematics()
+    e_prime = effective_modulus_mpa(pair.pinion_material, pair.gear_material)
+    return PairFields(flanks.flank("pinion", "coast"), flanks.flank("gear", "coast"), kin,
+                      tca.cycle, torque_nmm=torque_nmm, e_prime=e_prime, cells=40,
+                      extent=(1.6, 2.0))
+
+
+def _contacts(fields, tca, k: int) -> list:
+    """The potential contacts of TCA phase ``k`` (as the table makes them), resolved."""
+    cycle = tca.cycle
+    base = int(np.argmin(np.abs(cycle.path.phi1_rad - cycle.phi1_rad[0])))
+    pinion, gear, kin = fields.args
+    out = phase_contacts(pinion, gear, kin, cycle, k, base, fields.e_prime, {},
+                         round(0.5 * cycle.step_index))
+    return [fields.resolve(pc) for pc in out]
+
+
+def _wholly_off_rows(mesh, tca, fields):
+    """``((table row, table column, TCA phase), contact)`` of the rows the law of this
+    module gives: posed-field rows whose field has no flank cell."""
+    cycle = tca.cycle
+    out = []
+    for i, kk in zip(*np.nonzero(mesh.valid & (mesh.contact_mode == 2))):
+        k = int(np.argmin(np.abs(cycle.phi1_rad - mesh.phi1_rad[kk])))
+        pc = next(p for p in _contacts(fields, tca, k) if p.offset == cycle.pair_offsets[i])
+        if is_wholly_off(fields, pc):
+            out.append(((int(i), int(kk), k), pc))
+    return out
+
+
+def test_s0003_wholly_off_rows_take_the_edge_law_at_their_touch(s0003_coast_twin):
+    """Truth 1 (module docstring; the rows valid before are the previous table's in every
+    array: tests/twin/test_mesh_reach.py ``_against_previous``). About 2 s."""
+    pair, tca, flanks, mesh = s0003_coast_twin
+    fields = _fields(pair, tca, flanks, 1e3 * TORQUE_NM)
+    rows = _wholly_off_rows(mesh, tca, fields)
+    assert len(rows) == 3               # pair +1 at 3 phases (session 24)
+    for (i, kk, _), pc in rows:
+        c = mesh.edge_compliance_scale[i, kk]
+        # the edge contact is 6-17 times softer than the Hertz law of the nearest surface
+        # contact (docs/twin.md); 1 would be that law, an exponent 0 a failed calibration
+        assert c > 2.0 and 0.3 < mesh.edge_exponent[i, kk] < 1.0
+        # the row keeps its opening (the searched touch) and lever, and carries the law as
+        # equivalent curvatures: A-, B- times c^3 (gearcontact.ltca.edge_law)
+        assert mesh.opening_mm[i, kk] == pc.offset_mm and mesh.lever_mm[i, kk] == pc.lever_mm
+        np.testing.assert_allclose([mesh.A_minus_per_mm[i, kk], mesh.B_minus_per_mm[i, kk]],
+                                   [c ** 3 * pc.A_minus_per_mm, c ** 3 * pc.B_minus_per_mm],
+                                   rtol=1e-12)   # one product's rounding
+        # the touch field's centre: a border sample, above the searched touch (the least
+        # gap over the flank) by at most the border's rise between two samples
+        _, _, g = touch_point(fields, pc)
+        assert pc.offset_mm <= g <= pc.offset_mm + 20e-3   # um: 3.5-8.9 measured
+
+
+def _truth_block(fields, pc, cells: int) -> PairBlock:
+    """Pair +1's block of the truth LCP: the flank region near its touch (the touch field's
+    flank cells widened by a cell) at ``cells`` cells per side, in the row's frame."""
+    tf = TouchField(fields, pc, torque_nmm=fields.torque)
+    _, grid, off, lever = tf.field
+    hs, ht = float(grid.dx_mm[0]), float(grid.dy_mm[0])
+    box = (tf.s_mm[~off].min() - hs, tf.s_mm[~off].max() + hs,
+           tf.t_mm[~off].min() - ht, tf.t_mm[~off].max() + ht)
+    s_axis, t_axis, grid = patch_grid(box, cells)
+    s, t = np.meshgrid(s_axis, t_axis)
+    gap = flank_gaps_mm(fields, pc, s, t)
+    return PairBlock(np.where(np.isfinite(gap), gap, OFF_FLANK_GAP_MM), grid, lever, 0.0)
+
+
+def _truth(pair, tca, flanks, mesh, fields64, row, torque_nm, cells):
+    """The coupled LCP at the row's phase: ``(theta, load of pair +1, lever, touch)`` and
+    the twin's quasi-static load of pair +1 (the table's law, rigid)."""
+    i, kk, k = row
+    mats = (pair.pinion_material, pair.gear_material)
+    fields = _fields(pair, tca, flanks, 1e3 * torque_nm)
+    offsets = [tca.cycle.pair_offsets[j] for j in np.flatnonzero(mesh.valid[:, kk])]
+    blocks, target = [], None
+    for pc in _contacts(fields, tca, k):
+        if pc.offset not in offsets:
+            continue
+        if pc.offset == tca.cycle.pair_offsets[i]:
+            target = (len(blocks), pc)
+            blocks.append(_truth_block(fields64, pc, cells))
+        else:
+            blocks.append(fields.block(pc, rigid=True)[0])
+    res = solve_mesh_lcp(blocks, 1e3 * torque_nm, materials=mats)
+    assert res.converged
+    j, pc = target
+    return res.rotation_rad, float(res.pair_loads_n[j]), blocks[j].lever_mm, pc
+
+
+#: The case the declared tolerance does not hold (docs/twin.md, measured): row (4, 3) at
+#: 1290 N·m, the LCP loading pair +1 with 168 N, below the law's least converged
+#: calibration load (440.7 N: its T/16 LCP failed on its first solve), so the law keeps
+#: the scale of 440.7 N where the LCP's local exponent is 0.535: -15.2 % against a bound
+#: of 13.0 %.
+DIFFERS = {(1, 1290.0)}
+
+
+@pytest.fixture(scope="module")
+def s0003_off_rows(s0003_coast_twin):
+    pair, tca, flanks, mesh = s0003_coast_twin
+    fields64 = _fields(pair, tca, flanks, 1e3 * TORQUE_NM)
+    return fields64, _wholly_off_rows(mesh, tca, fields64)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("torque", [645.0, 1290.0])
+@pytest.mark.parametrize("index", [0, 1, 2])
+def test_s0003_pair_plus_one_against_the_coupled_lcp(s0003_coast_twin, s0003_off_rows,
+                                                      index, torque, request):
+    """Truth 2 (module docstring), per wholly-off row and torque; where the LCP leaves
+    the pair open, the twin's quasi-static balance does too. About 10 s each."""
+    if (index, torque) in DIFFERS:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=(
+            "differs: the law's scale held below its least converged calibration load "
+            "(440.7 N) where the LCP's local exponent is 0.535 (docs/twin.md)")))
+    pair, tca, flanks, mesh = s0003_coast_twin
+    fields64, rows = s0003_off_rows
+    assert len(rows) == 3
+    row, pc = rows[index]
+    i, kk, k = row
+    mats = (pair.pinion_material, pair.gear_material)
+    law = touch_law(fields64, pc, materials=mats, torque_nmm=1e3 * TORQUE_NM)
+    on = mesh.valid[:, kk]
+    j = list(np.flatnonzero(on)).index(i)
+    kappa = np.array([hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa)
+                      .approach_mm for a, b in zip(mesh.A_minus_per_mm[on, kk],
+                                                   mesh.B_minus_per_mm[on, kk])])
+    out = {}
+    for cells in (80, 160):
+        theta, w, lever, _ = _truth(pair, tca, flanks, mesh, fields64, row, torque, cells)
+        out[cells] = (theta, w, lever * theta - mesh.opening_mm[i, kk])
+    theta, w, approach = out[160]
+    theta_twin, w_twin = preview_balance(mesh.lever_mm[on, kk], mesh.opening_mm[on, kk],
+                                         kappa, 1e3 * torque)
+    print(f"\nrow ({i},{kk}) {torque} N·m: LCP W {w:.1f} N (80 cells {out[80][1]:.1f}), "
+          f"approach {1e3 * approach:.3f} um, rotation {theta:.6e} rad; twin quasi-static "
+          f"W {w_twin[j]:.1f} N, rotation {theta_twin:.6e} rad")
+    if w <= 0.0:
+        assert w_twin[j] == 0.0
+        return
+    # the LCP's mesh error as declared (its approach at 80 against 160 cells)
+    mesh_error = abs(out[80][2] - approach) / approach
+    lo = law.loads_n[0]
+    bound = (abs(law.exponent - 2 / 3) * max(np.log(lo / w), 0.0) + INTERPOLATION
+             + mesh_error)
+    kap0 = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, 1.0,
+                               e_prime_mpa=fields64.e_prime).approach_mm
+    twin = float(law.scale_at(max(w, lo))) * kap0 * w ** (2 / 3)
+    hertz = kap0 * w ** (2 / 3)
+    print(f"   twin law {1e3 * twin:.3f} um (table's fixed c: "
+          f"{1e3 * kappa[j] * w ** (2 / 3):.3f}), Hertz {1e3 * hertz:.3f} um; "
+          f"rel {twin / approach - 1:+.4f}, bound {bound:.4f} (mesh error {mesh_error:.4f})")
+    assert abs(twin - approach) < abs(hertz - approach)
+    assert abs(twin / approach - 1.0) <= bound
