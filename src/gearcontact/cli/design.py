@@ -254,8 +254,10 @@ def _check_generation(args, pair) -> dict:
     from ..tca.predicted_bearing import BearingPredictor
     from ..tca.synthesis_targets import SynthesisTargets
 
-    if args.machine_settings and not args.local_synthesis:   # standard settings
-        return check_generation(pair, settings=True)
+    if args.machine_settings and not args.local_synthesis:
+        # standard settings: their own TCA decides the contact ratio where the blank's
+        # prediction is short, before they are written (design_modes.machine_settings)
+        return check_generation(pair, contact_ratio=False)
     predictor = BearingPredictor(getattr(args, "targets", None) or SynthesisTargets(),
                                  turns_short_paths=not args.local_synthesis)
     try:
