@@ -12,9 +12,9 @@ every command builds them (:func:`~.synthesis.prepare_pair`), then
 :func:`~.analysis.analyze_pair` with ``tca``'s defaults (:data:`GAP_CHECK_PHASES`
 phases per pitch, :data:`GAP_CHECK_PAIRS` neighbour pairs, edge contact followed) -- and
 refuses settings whose mesh has a gap (:class:`~.edges.ContactGap`), before they are
-written. The check is then ``tca``'s own verdict, not a prediction: the coarse count
-was measured and not taken (docs sec. 5: the flank build is 80-90 % of the check's
-cost, and the narrowest gap measured covers 4 of 120 phases of a pitch).
+written. The check is then ``tca``'s own verdict, not a prediction; a coarser count was
+measured and not taken (docs sec. 5: the flank build is 73-91 % of the check's cost,
+and the narrowest gap measured covers 4 of 120 phase steps of a pitch).
 
 A pair whose prediction reaches the threshold pays nothing: no TCA is run.
 """
@@ -41,11 +41,11 @@ __all__ = ["GAP_CHECK_PAIRS", "GAP_CHECK_PHASES", "MeshGap", "SettingsGapCheck",
 
 #: Phases per pitch of the check: ``tca``'s default (61, both ends), so that the check
 #: is the verdict ``tca`` gives on the written file. Not a coarser count: the phases cost
-#: 0.2-0.6 s CPU of the check's 3-5 s (the flank build is the rest), the continuation
-#: takes 30 substeps per pitch below 31 phases anyway
-#: (:data:`~.mesh.CONTINUATION_STEPS_PER_PITCH`), and the narrowest gap measured on the
-#: family (9/9, face 6 mm, beta 35 deg) covers 4 of 120 phase steps, 2 of 60, 1 of 30:
-#: 15 steps miss it (docs/machine_settings.md sec. 5).
+#: 0.23-0.87 s CPU of the check's 2-4 s (the flank build is the rest; 31 phases would
+#: save 2-13 %), the continuation takes 30 substeps per pitch below 31 phases anyway
+#: (:data:`~.mesh.CONTINUATION_STEPS_PER_PITCH`), and the narrowest gaps measured on the
+#: family cover 4 of 120 phase steps, 2 of 60, 1 of 30: 15 steps miss three of the 14
+#: gaps (docs/machine_settings.md sec. 5, "The settings' own TCA in `design`").
 GAP_CHECK_PHASES = 61
 #: Neighbour tooth pairs on each side: ``tca``'s default.
 GAP_CHECK_PAIRS = 3
