@@ -1,15 +1,17 @@
 """The contact-ratio check of a pair cut from machine settings agrees with its blank's
-(geometry.contact_ratio; docs/machine_settings.md sec. 5, "Ordinary pairs, measured").
+(geometry.contact_ratio; docs/machine_settings.md sec. 5, "Ordinary pairs, measured"),
+and ``design --machine-settings`` refuses exactly the settings whose mesh has a gap
+(tca.settings_gap; sec. 5, "The settings' own TCA in `design`").
 
 The truth is the workflow's own contract, not a number of this code: the settings that
 ``design --machine-settings`` writes for a blank that ``design`` accepts are accepted by
 every command that reads them (before: the 16/16 miter below, eps_vg 1.528 < 1.55, was
 refused by ``tca`` and ``analyze`` though its blank passed, and the TCA of its settings
 with the check bypassed ran without a gap: 1.39 pairs in contact, 24 of 61 phases two).
-Where the blank's predicted path is short (the 16 mm face) the settings are warned,
-not refused: the TCA of standard settings measured no gap on a family of pairs
-(docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"), and
-the console ``tca`` of the warned settings confirms it here.
+Where the blank's predicted path is short ``design`` runs the settings' TCA: the
+settings it writes are those on which the console ``tca`` (default options) finds no
+gap, and those it refuses are those on which the TCA with ``tca``'s options, run here
+apart, raises ContactGap.
 """
 
 from __future__ import annotations
@@ -22,13 +24,14 @@ from gearcontact.cli import main
 from gearcontact.geometry.basic_settings import standard_machine_pair
 from gearcontact.geometry.contact_path import path_contact_ratio
 from gearcontact.geometry.contact_ratio import (MIN_CONTACT_RATIO, MIN_VIRTUAL_CONTACT_RATIO,
-                                                SETTINGS_GAP_RATIO, SETTINGS_NO_GAP_RATIO,
-                                                ContactRatioWarning,
+                                                SETTINGS_GAP_RATIO, ContactRatioWarning,
                                                 virtual_contact_ratio)
 from gearcontact.geometry.gear_generation import generation_of
 from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.analysis import analyze_pair
+from gearcontact.geometry.pair import pair_to_toml
+from gearcontact.tca import settings_gap
 from gearcontact.tca.edges import ContactGap
 from gearcontact.tca.synthesis import prepare_pair
 from gearcontact.validation import InputRangeError
@@ -62,13 +65,25 @@ def _blank(tmp_path, face: float):
     return path
 
 
-def test_written_settings_of_an_accepted_blank_are_accepted(tmp_path, capsys):
+def test_written_settings_of_an_accepted_blank_are_accepted(tmp_path, capsys, monkeypatch):
     """design accepts the blank and writes its settings (exit 0); the closed form alone
     would refuse them (precondition, ISO 10300-1 by hand in test_contact_ratio.py); the
-    commands' check of the written file passes now, with the blank's path ratio."""
+    commands' check of the written file passes now, with the blank's path ratio. The
+    blank's predicted eps_p reaches MIN_CONTACT_RATIO (computed here by the path), so
+    ``design`` runs no TCA of the settings: an ordinary pair pays nothing (a TCA run
+    here fails the test)."""
     path = _blank(tmp_path, 20.0)
+    blank = load_pair(path)
+    predicted = path_contact_ratio(blank, boxes=check_generation(blank, contact_ratio=False))
+    assert predicted.total >= MIN_CONTACT_RATIO
+
+    def no_tca(*args, **kwargs):
+        raise AssertionError("the settings' TCA ran")
+
+    monkeypatch.setattr(settings_gap, "settings_mesh_gap", no_tca)
     out = tmp_path / "mach"
     assert main(["design", "--pair", str(path), "--machine-settings", "--out", str(out)]) == 0
+    assert "the TCA of the settings" not in capsys.readouterr().err
     written = load_pair(out / "machine_settings.toml")
     assert written.machine
     v = virtual_contact_ratio(written.blank, gear_face_width_mm=written.gear_face_width_mm,
@@ -97,38 +112,40 @@ def test_a_blank_without_settings_is_still_refused(tmp_path):
 
 
 def _names_fields_and_ratios(text: str, blank, path) -> None:
-    """The warning names both fields with their values, the predicted eps_p (the blank's
+    """The message names both fields with their values, the predicted eps_p (the blank's
     path, computed independently by the caller) and the closed form's eps_vg."""
     v = virtual_contact_ratio(blank.blank, gear_face_width_mm=blank.gear_face_width_mm,
                               side="drive")
-    assert f"design.gear_face_width_mm = {blank.gear_face_width_mm:g} mm" in text
-    assert f"design.pinion_spiral_angle_deg = {blank.pinion_spiral_angle_deg:g} deg" in text
+    assert (f"design.gear_face_width_mm = {blank.gear_face_width_mm:g} mm" in text
+            or "design.gear_face_width_mm / design.pinion_spiral_angle_deg = "
+            f"({blank.gear_face_width_mm}, {blank.pinion_spiral_angle_deg})" in text)
     assert f"eps_p = {path.total:.3f}" in text and f"eps_vg {v.total:.3f}" in text
 
 
-def test_standard_settings_the_old_check_refused_are_warned(tmp_path):
-    """docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings":
-    the standard settings of the 16 mm blank (refused before by both checks: eps_p 0.703
-    < 0.85, eps_vg 1.426 < 1.55) are accepted with a ContactRatioWarning, as they are
-    about to be written (``settings=True``) and as read back (the pair cut from them);
-    the prediction lies inside the range measured without a gap."""
+def test_settings_read_with_a_short_prediction_are_warned(tmp_path):
+    """docs/machine_settings.md sec. 5: a pair cut from the 16 mm blank's standard
+    settings (eps_p 0.703 < 0.85, eps_vg 1.426 < 1.55; refused before by both checks) is
+    read with a ContactRatioWarning naming both fields and the ratios; the prediction
+    lies above every gap measured on the family."""
     blank, path = _face_16(tmp_path)
-    with pytest.warns(ContactRatioWarning) as got:
-        check_generation(blank, settings=True)
-    _names_fields_and_ratios(str(got[0].message), blank, path)
-    # 0.703 > SETTINGS_GAP_RATIO: no pair measured that high had a gap
-    assert path.total > SETTINGS_GAP_RATIO and "without a gap above" in str(got[0].message)
     settings = standard_machine_pair(blank, gear_generation="generated")
     with pytest.warns(ContactRatioWarning) as got:
         check_generation(settings)
-    _names_fields_and_ratios(str(got[0].message), blank, path)
+    text = str(got[0].message)
+    _names_fields_and_ratios(text, blank, path)
+    assert f"design.pinion_spiral_angle_deg = {blank.pinion_spiral_angle_deg:g} deg" in text
+    # 0.703 > SETTINGS_GAP_RATIO: no pair measured that high had a gap
+    assert path.total > SETTINGS_GAP_RATIO and "without a gap above" in str(got[0].message)
 
 
 def _gapped(tmp_path, teeth: int, face: float, beta: float, depth: float):
     """A miter blank of ``teeth`` teeth (working depth factor ``depth``), its boxes, its
-    predicted path and its standard settings; their TCA (the check bypassed, the edge
-    tails followed as ``tca`` does, 61 phases, 3 neighbour pairs) raises ContactGap:
-    the truth, measured here."""
+    predicted path, its standard settings and the ContactGap their TCA raises with
+    ``tca``'s options (the check bypassed, the edge tails followed, 61 phases, 3
+    neighbour pairs): the truth, measured here apart from ``design``. The gap's width
+    is counted again at 121 phases on the same flanks: the two counts measure one
+    interval of the pitch, each to within one phase step either side, so their shares of
+    the pitch differ by less than the sum of the steps (1/60 + 1/120)."""
     path_file = tmp_path / f"gapped_{teeth}.toml"
     path_file.write_text(MITER.format(face=face).replace("= 16\n", f"= {teeth}\n")
                          .replace("= 35.0", f"= {beta}")
@@ -140,57 +157,85 @@ def _gapped(tmp_path, teeth: int, face: float, beta: float, depth: float):
     path = path_contact_ratio(blank, boxes=boxes)
     settings = standard_machine_pair(blank, gear_generation=generation_of(boxes))
     prepared = prepare_pair(settings, checked=check_generation(settings, contact_ratio=False))
-    with pytest.raises(ContactGap):
-        analyze_pair(settings, phases=61, pairs=3, flanks=prepared.flank_set())
-    return path_file, blank, path, settings
+    flanks = prepared.flank_set()
+    gaps = {}
+    for phases in (61, 121):
+        with pytest.raises(ContactGap) as gap:
+            analyze_pair(settings, phases=phases, pairs=3, flanks=flanks)
+        gaps[phases] = gap.value
+    assert gaps[61].phases_per_pitch == 60 and gaps[121].phases_per_pitch == 120
+    assert gaps[61].gap_phases > 0
+    assert abs(gaps[61].gap_phases / 60 - gaps[121].gap_phases / 120) < 1 / 60 + 1 / 120
+    return path_file, blank, path, settings, gaps[61]
+
+
+def _refused_by_design(tmp_path, capsys, path_file, blank, path, gap, *extra) -> None:
+    """``design --machine-settings`` refuses the blank (exit 2, nothing written), naming
+    both fields with their values, the predicted ratios and the gap the separate TCA
+    measured (its phase steps of the pitch)."""
+    out = tmp_path / "mach"
+    assert main(["design", "--pair", str(path_file), "--machine-settings", *extra,
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert ("design.gear_face_width_mm / design.pinion_spiral_angle_deg = "
+            f"({blank.gear_face_width_mm}, {blank.pinion_spiral_angle_deg})") in err
+    _names_fields_and_ratios(err, blank, path)
+    assert f"on {gap.gap_phases} of 60 phase steps" in err
+    assert f"({gap.gap_phases / 60:.1%} of a pitch" in err
+    assert not (out / "machine_settings.toml").exists()
 
 
 def test_a_pair_whose_settings_gap_is_refused(tmp_path, capsys):
     """A 12/12 miter at face 5 mm, beta 50 deg, working depth factor 1.3: the TCA of its
-    standard settings has a gap (:func:`_gapped`); its blank's predicted eps_p (computed
-    here by the path) is below SETTINGS_NO_GAP_RATIO, so ``design --machine-settings``
-    refuses it (exit 2, before any settings are written), naming both fields with their
-    values and the predicted ratio, and a pair cut from those settings is refused the
-    same way."""
-    path_file, blank, path, settings = _gapped(tmp_path, 12, 5.0, 50.0, 1.3)
-    assert path.total < SETTINGS_NO_GAP_RATIO
-    assert main(["design", "--pair", str(path_file), "--machine-settings",
-                 "--out", str(tmp_path / "mach")]) == 2
-    err = capsys.readouterr().err
-    assert "design.gear_face_width_mm / design.pinion_spiral_angle_deg = (5.0, 50.0)" in err
-    _names_fields_and_ratios(err, blank, path)
-    assert not (tmp_path / "mach" / "machine_settings.toml").exists()
-    with pytest.raises(InputRangeError) as refused:
+    standard settings has a gap (:func:`_gapped`), and ``design --machine-settings``
+    refuses it before writing, naming the gap; a pair cut from those settings is read
+    with a warning (its own TCA refuses the gap, as above)."""
+    path_file, blank, path, settings, gap = _gapped(tmp_path, 12, 5.0, 50.0, 1.3)
+    assert path.total < MIN_CONTACT_RATIO
+    _refused_by_design(tmp_path, capsys, path_file, blank, path, gap)
+    with pytest.warns(ContactRatioWarning) as got:
         check_generation(settings)
-    _names_fields_and_ratios(str(refused.value), blank, path)
+    _names_fields_and_ratios(str(got[0].message), blank, path)
 
 
 @pytest.mark.slow
-def test_a_gapped_pair_inside_the_uncertain_band_is_warned(tmp_path):
-    """An 8/8 miter at face 6 mm, beta 45 deg: its standard settings' TCA has a gap
-    (:func:`_gapped`), but its predicted eps_p lies where gap-free pairs were measured
-    too (SETTINGS_NO_GAP_RATIO <= eps_p <= SETTINGS_GAP_RATIO): warned, the warning
-    naming the fields, the ratios and that both were measured there; ``tca`` then
-    refuses the mesh itself (ContactGap)."""
-    _, blank, path, _ = _gapped(tmp_path, 8, 6.0, 45.0, 2.0)
-    assert SETTINGS_NO_GAP_RATIO <= path.total <= SETTINGS_GAP_RATIO
-    with pytest.warns(ContactRatioWarning) as got:
-        check_generation(blank, settings=True)
-    _names_fields_and_ratios(str(got[0].message), blank, path)
-    assert "both with and without a gap" in str(got[0].message)
+def test_a_gapped_pair_the_old_bound_warned_is_refused(tmp_path, capsys):
+    """An 8/8 miter at face 6 mm, beta 45 deg (eps_p 0.376, above the old bound 0.303:
+    warned and written before): its standard settings' TCA has a gap (:func:`_gapped`),
+    and ``design --machine-settings`` now refuses it."""
+    path_file, blank, path, _, gap = _gapped(tmp_path, 8, 6.0, 45.0, 2.0)
+    assert 0.303 <= path.total < MIN_CONTACT_RATIO
+    _refused_by_design(tmp_path, capsys, path_file, blank, path, gap)
 
 
-def test_the_cli_tca_of_the_warned_settings_has_no_gap(tmp_path, capsys):
-    """The truth of the change, through the console commands: ``design
-    --machine-settings`` on the 16 mm blank exits 0 (2 before) with the warning line,
-    and ``tca`` (default options: 61 phases, edge contact followed, 3 neighbour pairs)
-    on the written settings exits 0: its mesh has no gap (a ContactGap exits 2, "no
-    tooth pair in contact"), at every phase at least one pair in contact."""
-    path = _blank(tmp_path, 16.0)
+@pytest.mark.slow
+def test_a_kept_gear_whose_pinion_gaps_is_refused(tmp_path, capsys):
+    """The typed-gear path: the 12/12's standard settings typed into a pair file and
+    ``design --machine-settings --keep-gear`` on it (the typed gear kept, its standard
+    pinion: the same settings, the TCA of :func:`_gapped` has a gap) is refused alike."""
+    _, blank, path, settings, gap = _gapped(tmp_path, 12, 5.0, 50.0, 1.3)
+    typed = tmp_path / "typed_12x12.toml"
+    typed.write_text(pair_to_toml(settings))
+    _refused_by_design(tmp_path, capsys, typed, blank, path, gap, "--keep-gear")
+
+
+def test_the_cli_tca_of_the_written_settings_has_no_gap(tmp_path, capsys):
+    """The truth of the check where it passes, through the console commands: ``design
+    --machine-settings`` on the 16 mm blank (predicted eps_p 0.703 < 0.85: its settings'
+    TCA runs) exits 0, its line saying the settings' TCA has no gap and no
+    ContactRatioWarning; ``tca`` (default options: 61 phases, edge contact followed, 3
+    neighbour pairs) on the written settings exits 0: its mesh has no gap (a ContactGap
+    exits 2, "no tooth pair in contact"), at every phase at least one pair in
+    contact."""
+    _, predicted = _face_16(tmp_path)       # the blank's eps_p, by the path itself
+    path = tmp_path / "miter_16.toml"
     out = tmp_path / "mach"
     assert main(["design", "--pair", str(path), "--machine-settings", "--out", str(out)]) == 0
     err = capsys.readouterr().err
-    assert "ContactRatioWarning" in err and "design.gear_face_width_mm = 16 mm" in err
+    assert "ContactRatioWarning" not in err
+    assert (f"eps_p = {predicted.total:.3f} < {MIN_CONTACT_RATIO:g}: the TCA of the settings "
+            "(61 phases") in err
+    assert "has no gap" in err
     tca = tmp_path / "tca"
     assert main(["tca", "--pair", str(out / "machine_settings.toml"), "--out", str(tca),
                  "--quiet", "--no-figures"]) == 0

@@ -6,6 +6,7 @@ library writer; the options were checked by :mod:`.design_options`."""
 from __future__ import annotations
 
 import dataclasses
+import sys
 
 from ..errors import CheckFailed
 from ..geometry.formate import SIDES
@@ -62,6 +63,7 @@ def machine_settings(args, pair) -> int:
     from ..geometry.pair import pair_to_toml
     from ..geometry.typed_pinion import typed_gear_machine_pair
     from ..report.design import write_machine_settings_toml
+    from ..tca.settings_gap import check_settings_gap
 
     if has_easeoff(pair) or args.target_flank is not None:
         return easeoff_settings(args, pair)
@@ -89,6 +91,11 @@ def machine_settings(args, pair) -> int:
         head = (f"{pair.name}: standard machine settings from the blank (gearcontact design "
                 "--machine-settings;\nsigns: docs/machine_settings.md); gear: "
                 f"{generation}")
+    # the settings' own TCA where the blank's predicted contact ratio is short: a gap
+    # is refused before anything is written (docs/machine_settings.md sec. 5)
+    line = check_settings_gap(pair, cut, boxes=args.generation_check, progress=True).line()
+    if line:
+        print(f"gearcontact design: {line}", file=sys.stderr)
     text = pair_to_toml(cut, comments={"": head})
     print(text)
     if args.out is not None:

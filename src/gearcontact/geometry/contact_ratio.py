@@ -40,11 +40,13 @@ the largest eps_p measured with a gap in the TCA is 0.752, a 13 % margin); a pai
 from machine settings, whose path is not known here, keeps the closed form's
 ``eps_vg < MIN_VIRTUAL_CONTACT_RATIO`` (1.55) unless the path of its blank (the pair
 without its settings) passes, as ``design --machine-settings`` checked it before
-writing them. docs/geometry.md sec. 7.7 has the measurements. Machine settings whose
-prediction is short (standard settings about to be written, a pair cut from settings)
-are refused only below :data:`SETTINGS_NO_GAP_RATIO`, else warned
-(:func:`check_settings_ratio`; the TCA of standard settings measured on a family of
-pairs, docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings").
+writing them. docs/geometry.md sec. 7.7 has the measurements. A pair cut from settings
+whose prediction is short is warned, not refused (:func:`check_settings_ratio`): the
+prediction is not the settings' bearing (the TCA of standard settings measured on a
+family of pairs, docs/machine_settings.md sec. 5, "The contact-ratio check of machine
+settings"); its TCA decides. ``design --machine-settings`` runs that TCA before it
+writes settings whose blank's prediction is short (``tca.settings_gap``, above this
+layer).
 
 References
 ----------
@@ -71,14 +73,14 @@ __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO"
 
 
 class ContactRatioWarning(UserWarning):
-    """The predicted contact ratio of machine settings (standard settings about to be
-    written, or a pair cut from settings) is below the threshold of the conjugate pinion
-    with its synthesized ease-off, but not below the range where the TCA of standard
-    settings was measured without a gap (:data:`SETTINGS_NO_GAP_RATIO` and up;
-    docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"): a
-    warning, not a refusal, the prediction not being the settings' own bearing. The
+    """The predicted contact ratio of a pair cut from machine settings is below the
+    threshold of the conjugate pinion with its synthesized ease-off
+    (docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"): a
+    warning, not a refusal, the prediction not being the settings' own bearing (gapped
+    and gap-free standard settings were measured from eps_p 0.303 to 0.551). The
     settings' TCA decides: ``tca`` refuses a mesh with a gap
-    (:class:`~gearcontact.tca.edges.ContactGap`)."""
+    (:class:`~gearcontact.tca.edges.ContactGap`), and ``design --machine-settings`` runs
+    it before writing (``tca.settings_gap``)."""
 
 
 @dataclass(frozen=True)
@@ -195,11 +197,10 @@ _FIX_REACH = 0.75
 #: bearing, :func:`path_contact_ratio`) of a pair whose standard settings' TCA was
 #: measured without a gap (14/14 spiral bevel, R_m 55 mm, face 5 mm, beta 50 deg,
 #: working depth factor 1.3), of the 52 pairs run (docs/machine_settings.md sec. 5,
-#: "The contact-ratio check of machine settings"): machine settings predicted below it
-#: are refused (the one pair of the family below it gapped: 12/12, eps_p 0.272), those
-#: between it and :data:`MIN_CONTACT_RATIO` warned (:class:`ContactRatioWarning`). Not a
-#: fit: the rule declared before the measurement (docs sec. 5); a weak bound (it fell
-#: from 0.487 to 0.303 as pairs were added, docs sec. 5).
+#: "The contact-ratio check of machine settings"); the one pair of the family below it
+#: gapped (12/12, eps_p 0.272). Named by :class:`ContactRatioWarning`, no longer a
+#: refusal: a weak bound (it fell from 0.487 to 0.303 as pairs were added), replaced by
+#: the settings' TCA in ``design --machine-settings`` (``tca.settings_gap``, docs sec. 5).
 SETTINGS_NO_GAP_RATIO = 0.303
 #: The largest predicted eps_p of a pair of that family whose standard settings' TCA
 #: had a gap (9/9, face 6 mm, beta 35 deg): between :data:`SETTINGS_NO_GAP_RATIO` and it
@@ -209,8 +210,7 @@ SETTINGS_GAP_RATIO = 0.551
 
 
 def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
-                        threshold: float | None = None, bearing_of=None,
-                        settings: bool = False):
+                        threshold: float | None = None, bearing_of=None):
     """Refuse ``pair`` if its contact ratio on the design side is below ``threshold``,
     before any flank work (docs/geometry.md sec. 7.7).
 
@@ -243,12 +243,11 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     ``boxes_of``: :func:`_blank_path_or_warn`), the check ``design
     --machine-settings`` made before writing the settings.
 
-    Machine settings, ``settings=True`` (the pair gets its blank's standard settings,
-    ``design --machine-settings``: its path is that of the conjugate pinion with the
-    synthesis' first-order bearing, not the standard crowning's) where the path ratio is
-    below the threshold, and a pair cut from settings where both the closed form and its
-    blank's path are below theirs, go to :func:`check_settings_ratio`: refused only
-    below :data:`SETTINGS_NO_GAP_RATIO`, else warned (docs/machine_settings.md sec. 5).
+    A pair cut from settings where both the closed form and its blank's path are below
+    theirs goes to :func:`check_settings_ratio`: warned, not refused; its TCA decides
+    (docs/machine_settings.md sec. 5). The blank of ``design --machine-settings`` is not
+    checked here (``check_generation(contact_ratio=False)``): the TCA of the settings
+    about to be written decides there (``tca.settings_gap``).
 
     Returns
     -------
@@ -276,9 +275,6 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
 
     got = path_of(pair, boxes)
     if got.total >= threshold:
-        return got
-    if settings:
-        check_settings_ratio(pair, got, threshold=threshold)
         return got
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=got.side)
@@ -321,10 +317,10 @@ def _blank_path_or_warn(pair, *, boxes_of):
     its blank (the pair without its settings: conjugate pinion, the synthesis'
     first-order bearing at its default targets, :func:`path_contact_ratio` without a
     bearing), as ``design --machine-settings`` checks the blank before it writes the
-    settings; accepted at :data:`MIN_CONTACT_RATIO`, else :func:`check_settings_ratio`
-    (the closed form's prediction alone where the blank's own generation check refuses
-    it; the closed form's ratios are then returned). A gap the settings' TCA meets is
-    named there (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5, "The
+    settings; accepted at :data:`MIN_CONTACT_RATIO`, else warned by
+    :func:`check_settings_ratio` (the closed form's prediction alone where the blank's
+    own generation check refuses it; the closed form's ratios are then returned). A gap
+    the settings' TCA meets is named there (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5, "The
     contact-ratio check of machine settings"."""
     blank = replace(pair, machine=(), print_gear=(), easeoff_tables=())
     try:
@@ -339,19 +335,15 @@ def _blank_path_or_warn(pair, *, boxes_of):
 
 
 def check_settings_ratio(pair, path, *, threshold: float) -> None:
-    """Machine settings whose predicted contact ratio is below ``threshold``
-    (docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"):
-    refused where ``path`` (the blank's :class:`~.contact_path.PathContactRatio`) is
-    below :data:`SETTINGS_NO_GAP_RATIO`, else a :class:`ContactRatioWarning`; both name
-    the face width and spiral angle typed, the predicted eps_p and the closed form of
-    :func:`virtual_contact_ratio`. ``path`` None (not known: the blank's own generation
-    check refuses it): the warning, the closed form alone.
-
-    Raises
-    ------
-    InputRangeError
-        ``path.total < SETTINGS_NO_GAP_RATIO``.
-    """
+    """A :class:`ContactRatioWarning` for a pair cut from machine settings whose predicted
+    contact ratio is below ``threshold`` (docs/machine_settings.md sec. 5, "The
+    contact-ratio check of machine settings"), naming the face width and spiral angle
+    typed, the predicted eps_p (``path``, the blank's
+    :class:`~.contact_path.PathContactRatio`; None where the blank's own generation check
+    refuses it) and the closed form of :func:`virtual_contact_ratio`. Never a refusal:
+    the prediction does not separate gapped settings from gap-free ones (both measured
+    from eps_p :data:`SETTINGS_NO_GAP_RATIO` to :data:`SETTINGS_GAP_RATIO`); the
+    settings' TCA refuses a mesh with a gap."""
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=pair.design_side)
     what = (f"{pair.design_side} side: the blank's contact path with the synthesis' "
@@ -362,15 +354,6 @@ def check_settings_ratio(pair, path, *, threshold: float) -> None:
              f"{v.face:.3f}")
     fields = (f"design.gear_face_width_mm = {pair.gear_face_width_mm:g} mm, "
               f"design.pinion_spiral_angle_deg = {pair.pinion_spiral_angle_deg:g} deg")
-    if path is not None and path.total < SETTINGS_NO_GAP_RATIO:
-        raise InputRangeError(
-            "design.gear_face_width_mm / design.pinion_spiral_angle_deg",
-            (pair.gear_face_width_mm, pair.pinion_spiral_angle_deg),
-            f"a blank whose predicted contact ratio eps_p >= {SETTINGS_NO_GAP_RATIO:g} for "
-            f"machine settings ({fields}; {what}): below it the TCA of standard settings "
-            "was measured with a gap (no tooth pair in contact over part of each pitch; "
-            "docs/machine_settings.md sec. 5); a wider face, a smaller spiral angle or more "
-            "teeth raise eps_p on the family measured (no fix verified here)")
     measured = ("the TCA of standard settings was measured both with and without a gap "
                 f"between eps_p {SETTINGS_NO_GAP_RATIO:g} and {SETTINGS_GAP_RATIO:g}"
                 if path is None or path.total <= SETTINGS_GAP_RATIO else

@@ -33,8 +33,7 @@ __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands", "reverse_side_contact_ratio"]
 
 
-def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None,
-                     settings: bool = False) -> dict:
+def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> dict:
     """Check that the pinion flanks of ``pair`` can be generated, before any flank work.
 
     A pair cut from machine settings (``pair.machine``) is checked by
@@ -55,10 +54,10 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None,
     table does not say it (:class:`~.contact_path.Bearing` or None; the commands pass the
     synthesis' predicted bearing, ``tca.predicted_bearing``, geometry being below tca);
     without it a pair without a table is checked with the synthesis' first-order bearing
-    at its default targets (:func:`~.contact_path.path_contact_ratio`). ``settings``:
-    the pair gets its blank's standard machine settings (``design --machine-settings``):
-    a contact ratio below the threshold is warned, not refused, as for a pair cut from
-    settings (:func:`~.contact_ratio.check_contact_ratio`).
+    at its default targets (:func:`~.contact_path.path_contact_ratio`). The blank whose
+    machine settings ``design --machine-settings`` writes is checked with
+    ``contact_ratio=False``: the settings' own TCA decides there
+    (``tca.settings_gap``, docs/machine_settings.md sec. 5).
 
     Returns
     -------
@@ -89,7 +88,7 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None,
         # last, so that a pair failing a check above is named by that (a fix of its
         # own, verified with contact_ratio=False); the contact path over the active
         # boxes, no flank work; its named fix verified on the trial pair's boxes
-        check_contact_ratio(pair, boxes=boxes, bearing_of=bearing_of, settings=settings,
+        check_contact_ratio(pair, boxes=boxes, bearing_of=bearing_of,
                             boxes_of=lambda p: check_generation(p, contact_ratio=False))
     return boxes
 

@@ -87,10 +87,18 @@ class ContactGap(UnusableInput):
     ----------
     phi1_rad : float
         First phase without a contact, rad.
+    gap_phases : int or None
+        Phases of the pitch without a contact, of ``phases_per_pitch`` (None: not
+        counted).
+    phases_per_pitch : int or None
+        Phase steps per pitch of the run that found the gap.
     """
 
-    def __init__(self, phi1_rad: float):
+    def __init__(self, phi1_rad: float, *, gap_phases: int | None = None,
+                 phases_per_pitch: int | None = None):
         self.phi1_rad = float(phi1_rad)
+        self.gap_phases = None if gap_phases is None else int(gap_phases)
+        self.phases_per_pitch = None if phases_per_pitch is None else int(phases_per_pitch)
         super().__init__(f"no tooth pair in contact at phi1 = {np.degrees(phi1_rad):.4f} deg: "
                          "the contact path is shorter than one pinion pitch (contact ratio "
                          "< 1); the unloaded mesh has a gap there")

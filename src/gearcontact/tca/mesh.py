@@ -234,8 +234,11 @@ def mesh_cycle(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_te
             if edge_contact and limit < 16.0 * EDGE_TE_LIMIT_ARCSEC:
                 limit *= 4.0            # a gap the cut edge tails may bridge
                 continue
-            k = int(np.argmin(valid.any(axis=0)))
-            raise ContactGap(grid[base + k])
+            touched = valid.any(axis=0)
+            k = int(np.argmin(touched))
+            # columns 0 and n are one phase a pitch apart: the pitch's phases are 0..n-1
+            raise ContactGap(grid[base + k], gap_phases=int(np.sum(~touched[:n])),
+                             phases_per_pitch=n)
         filled = np.where(valid, te_pairs, -np.inf if envelope_is_max else np.inf)
         winner = np.argmax(filled, axis=0) if envelope_is_max else np.argmin(filled, axis=0)
         cols = np.arange(n + 1)
