@@ -271,12 +271,18 @@ def test_ctrl_c_swallowed_by_an_import_still_interrupts(tmp_path, monkeypatch, c
         return real_build(argv)
 
     monkeypatch.setattr(cli, "build_parser", swallowing_build)
-    out = tmp_path / "out"
-    assert cli.main(["tca", "--pair", "s0003", "--out", str(out)]) == 130
-    assert capsys.readouterr().err.strip().endswith("interrupted")
-    assert not out.exists()
-    # the latch is gone after main: Python's own handler is back
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    # Python's own handler, whatever an earlier test in this worker left installed (a
+    # SIG_IGN left by another library was seen under a loaded xdist run)
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        out = tmp_path / "out"
+        assert cli.main(["tca", "--pair", "s0003", "--out", str(out)]) == 130
+        assert capsys.readouterr().err.strip().endswith("interrupted")
+        assert not out.exists()
+        # the latch is gone after main: Python's own handler is back
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    finally:
+        signal.signal(signal.SIGINT, before)
 
 
 def test_package_import_is_light():
