@@ -130,9 +130,13 @@ def test_fmu_equals_the_twin_contact_law(exported, backend, fmi_type):
     fmu, tab = exported
     res = _sweep(fmu, tab, backend, fmi_type)
     loaded = sum(ref.torque_gear_nm > 0.0 for ref in _assert_law(res, tab, backend))
-    # the sweep covers open flanks, one and several pairs, and the rated torque; s0003's
-    # previews lie in the datapath's domain, each with a law (the twin's counts 0)
-    assert not any(res[n].any() for n in COUNTS)
+    # the sweep covers open flanks, one and several pairs, and the rated torque. The
+    # domain counts (equal to the twin's above): s0003's table has no saddle (least
+    # min(A-, B-) 1.0e-3 1/mm), but its cut-patch edge rows reach B- = 48 1/mm, beyond
+    # the datapath's 16: measured one pair outside at the 2 last of 401 instants (the
+    # largest lag, ~3.7 kN), in both backends
+    assert res["pairs_without_contact_law"].max() == 0
+    assert 0 < np.count_nonzero(res["pairs_outside_datapath"]) < len(res)
     assert res["torque_gear_nm"][0] == 0.0 and res["active_pairs"][0] == 0
     assert 0 < loaded < len(res) and res["active_pairs"].max() >= 2
     assert res["torque_gear_nm"].max() > 64.5
