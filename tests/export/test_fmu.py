@@ -142,20 +142,25 @@ def test_fmu_equals_the_twin_contact_law(exported, backend, fmi_type):
     assert res["torque_gear_nm"].max() > 64.5
 
 
-def edited_curvatures(a, b, valid, *, alpha_max: float):
-    """Copies of the curvature rows ``a``, ``b`` (pairs x rows) with two edits: the
-    pair with the most valid rows a saddle (its A- negated) at its middle valid row, the
-    next such pair (or the same one, four rows on) with a curvature ratio 4 alpha_max
-    at its middle valid row (outside the fixed-point datapath's domain, a law still:
-    Hamrock-Brewe holds at any ratio). A test's table with previews that the twin
-    counts in both counters (s0003's own has none)."""
-    a, b = np.array(a, float), np.array(b, float)
-    order = np.argsort(-np.asarray(valid).sum(axis=1), kind="stable")
-    rows = [np.flatnonzero(valid[j]) for j in order[:2]]
-    j0, k0 = int(order[0]), int(rows[0][len(rows[0]) // 2])
-    j1, k1 = (int(order[1]), int(rows[1][len(rows[1]) // 2])) if len(order) > 1 \
-        else (j0, min(k0 + 4, int(rows[0][-1])))
-    a[j0, k0] = -abs(a[j0, k0])
+def edited_curvatures(a, b, valid, opening, *, alpha_max: float):
+    """Copies of the curvature rows ``a``, ``b`` (pairs x rows) with two edits at the
+    valid entries of least opening (the pairs that carry the load; ties to the row
+    nearest the table's middle): at the first a saddle (its smaller curvature made
+    minus half itself: no law over a third of each adjacent row interval), at the
+    next one at least 3 rows away a curvature ratio 4 alpha_max (outside the
+    fixed-point datapath's domain, a law still: Hamrock-Brewe holds at any ratio). A
+    test's table with previews that the twin counts in both counters."""
+    a, b, valid = np.array(a, float), np.array(b, float), np.asarray(valid, bool)
+    mid = valid.shape[1] // 2
+    entries = sorted(zip(*np.nonzero(valid)),
+                     key=lambda e: (float(opening[e]), abs(int(e[1]) - mid), int(e[0])))
+    (j0, k0) = entries[0]
+    (j1, k1) = next(e for e in entries if abs(int(e[1]) - int(k0)) >= 3)
+    lo = min(a[j0, k0], b[j0, k0])
+    if a[j0, k0] <= b[j0, k0]:
+        a[j0, k0] = -0.5 * lo
+    else:
+        b[j0, k0] = -0.5 * lo
     lo = min(a[j1, k1], b[j1, k1])
     a[j1, k1], b[j1, k1] = lo, 4.0 * alpha_max * lo
     return a, b
@@ -172,7 +177,7 @@ def edited(exported, tmp_path_factory):
 
     _, tab = exported
     a, b = edited_curvatures(tab.A_minus_per_mm, tab.B_minus_per_mm, tab.valid,
-                             alpha_max=ENVELOPE["alpha"][1])
+                             tab.opening_mm, alpha_max=ENVELOPE["alpha"][1])
     tab = dataclasses.replace(tab, A_minus_per_mm=a, B_minus_per_mm=b)
     out = tmp_path_factory.mktemp("fmu_edited")
     fmu = write_mesh_fmu(tab, out, pair_name="s0003_edited", side="coast",

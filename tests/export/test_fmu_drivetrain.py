@@ -211,7 +211,8 @@ def test_fmu_counts_previews_as_the_twin(twin_models, tmp_path, backend, twin_ba
 
     base = twin_models["fp64"]
     a, b = edited_curvatures(base.mesh.A_minus_per_mm, base.mesh.B_minus_per_mm,
-                             base.mesh.valid, alpha_max=ENVELOPE["alpha"][1])
+                             base.mesh.valid, base.mesh.opening_mm,
+                             alpha_max=ENVELOPE["alpha"][1])
     mesh = dataclasses.replace(base.mesh, A_minus_per_mm=a, B_minus_per_mm=b)
 
     def model(be):
