@@ -19,6 +19,7 @@ mirrored: s0003's drive side is in line contact). A second export (s0003-centred
 from __future__ import annotations
 
 import csv
+import json
 import math
 import re
 import zipfile
@@ -392,7 +393,8 @@ def test_done_when_the_readme_fmu_reproduces_the_twin_cli(readme_export, tmp_pat
     rounding, <= 5e-13 relative, is inside it); the snippet's three figures within
     1e-9 of the same from the CSV (a peak-to-peak of ~9 arcsec from values ~60: the
     CSV's rounding ~1e-11 of it) and the figures the docs state (their 3 or 4
-    digits). Measured: every value of both backends equal at the CSV's 12 digits.
+    digits); the domain counts after the 501 steps equal twin.json's (exact).
+    Measured: every value of both backends equal at the CSV's 12 digits.
     ~1-2 min: two twin runs, each with its 61-phase TCA of both sides."""
     base, lines, runs = readme_export
     line = next(x for x in lines["export_fmu"] if "--kind drivetrain" in x)
@@ -412,6 +414,14 @@ def test_done_when_the_readme_fmu_reproduces_the_twin_cli(readme_export, tmp_pat
                                 start_values={"backend": BACKENDS[backend]})
         assert len(res["time"]) == 501
         assert_twin_csv(res, twin[backend], PAIRS, backend)
+        # issue 27: the FMU's domain counts after the twin's 501 steps are its twin.json's
+        # (exact: integers counting the same previews; measured 5, 5, 0 in both)
+        counts = simulate_isolated(fmu, start_time=0.0, stop_time=5.01e-3,
+                                   output_interval=1e-5, output=list(COUNTS),
+                                   start_values={"backend": BACKENDS[backend]})
+        summary = json.loads((tmp_path / f"tw_{name}" / "twin.json").read_text())
+        assert len(counts["time"]) == 502
+        assert {n: int(counts[n][-1]) for n in COUNTS} == {n: summary[n] for n in COUNTS}
     dte_pp, force_max, p_max = (float(v) for v in run_isolated(
         docs_snippet("The drivetrain twin as an FMI 3.0 FMU"), base).splitlines()[-1].split())
     c = {k: np.array([float(r[k]) for r in twin["fp64"]])
