@@ -32,6 +32,8 @@ ROOT = Path(__file__).resolve().parents[2]
 OUTPUTS = ("torque_pinion_nm", "torque_gear_nm", "mesh_force_n", "te_arcsec", "p_max_mpa",
            "a_mm", "b_mm", "active_pairs")
 INPUTS = ("phi_pinion_rad", "phi_gear_rad", "omega_pinion_rad_s", "omega_gear_rad_s")
+#: the domain counts of the point-contact law's mesh FMU (not a cylindrical pair's)
+COUNTS = ("pairs_outside_datapath", "pairs_without_contact_law")
 
 
 @pytest.fixture(scope="module")
@@ -58,12 +60,14 @@ def _signal(tab: MeshLawTable, *, lag_rad: float = 4.2e-4):
     return sig
 
 
-def _sweep(fmu, tab, backend: str, fmi_type: str, *, lag_rad: float = 4.2e-4):
+def _sweep(fmu, tab, backend: str, fmi_type: str, *, lag_rad: float = 4.2e-4,
+           counts: bool = True):
     """The mesh FMU under FMPy over :func:`_signal` (401 instants, every input and
-    output recorded) in ``backend`` and ``fmi_type``."""
+    output recorded, the domain counts unless ``counts`` is false) in ``backend`` and
+    ``fmi_type``."""
     res = fmpy.simulate_fmu(str(fmu), fmi_type=fmi_type, start_time=0.0, stop_time=0.02,
                             output_interval=5e-5, input=_signal(tab, lag_rad=lag_rad),
-                            output=list(INPUTS + OUTPUTS),
+                            output=list(INPUTS + OUTPUTS + (COUNTS if counts else ())),
                             start_values={"backend": BACKENDS[backend]})
     assert len(res) == 401
     return res
@@ -73,11 +77,15 @@ def _assert_law(res, tab: MeshLawTable, backend: str, *, law=mesh_outputs) -> li
     """Every output of the FMU run ``res`` at every recorded instant equals ``law``
     (:func:`mesh_outputs`; a cylindrical pair's ``line_mesh_outputs``) at the inputs the
     FMU held then: golden identical, fp64 within 1e-9 relative (reasons at
-    :func:`test_fmu_equals_the_twin_contact_law`). Returns the Python law's outputs,
-    row by row."""
+    :func:`test_fmu_equals_the_twin_contact_law`); the domain counts, where ``res``
+    has them, identical (integers: the twin's counts of the same previews). Returns
+    the Python law's outputs, row by row."""
     refs = []
+    counts = tuple(n for n in COUNTS if n in res.dtype.names)
     for row in res:
         ref = law(tab, *(float(row[n]) for n in INPUTS), backend=backend)
+        for name in counts:
+            assert int(row[name]) == getattr(ref, name), (name, float(row["time"]))
         for name in OUTPUTS:
             got, want = float(row[name]), float(getattr(ref, name))
             if backend == "golden":
@@ -103,7 +111,10 @@ def test_fmu_validates_against_the_fmi3_schema(exported):
     assert md.fmiVersion == "3.0" and md.coSimulation and md.modelExchange
     causal = {v.name: (v.causality, v.unit) for v in md.modelVariables}
     assert {n: causal[n][0] for n in INPUTS} == dict.fromkeys(INPUTS, "input")
-    assert {n: causal[n][0] for n in OUTPUTS} == dict.fromkeys(OUTPUTS, "output")
+    assert {n: causal[n][0] for n in OUTPUTS + COUNTS} == dict.fromkeys(OUTPUTS + COUNTS,
+                                                                       "output")
+    assert {v.name: v.type for v in md.modelVariables if v.name in COUNTS} == \
+        dict.fromkeys(COUNTS, "Int32")
     assert causal["backend"][0] == "parameter" and causal["torque_gear_nm"][1] == "N.m"
 
 
@@ -119,10 +130,76 @@ def test_fmu_equals_the_twin_contact_law(exported, backend, fmi_type):
     fmu, tab = exported
     res = _sweep(fmu, tab, backend, fmi_type)
     loaded = sum(ref.torque_gear_nm > 0.0 for ref in _assert_law(res, tab, backend))
-    # the sweep covers open flanks, one and several pairs, and the rated torque
+    # the sweep covers open flanks, one and several pairs, and the rated torque. The
+    # domain counts (equal to the twin's above): s0003's table has no saddle (least
+    # min(A-, B-) 1.0e-3 1/mm), but its cut-patch edge rows reach B- = 48 1/mm, beyond
+    # the datapath's 16: measured one pair outside at the 2 last of 401 instants (the
+    # largest lag, ~3.7 kN), in both backends
+    assert res["pairs_without_contact_law"].max() == 0
+    assert 0 < np.count_nonzero(res["pairs_outside_datapath"]) < len(res)
     assert res["torque_gear_nm"][0] == 0.0 and res["active_pairs"][0] == 0
     assert 0 < loaded < len(res) and res["active_pairs"].max() >= 2
     assert res["torque_gear_nm"].max() > 64.5
+
+
+def edited_curvatures(a, b, valid, opening, *, alpha_max: float):
+    """Copies of the curvature rows ``a``, ``b`` (pairs x rows) with two edits at the
+    valid entries of least opening (the pairs that carry the load; ties to the row
+    nearest the table's middle): at the first a saddle (its smaller curvature made
+    minus half itself: no law over a third of each adjacent row interval), at the
+    next one at least 3 rows away a curvature ratio 4 alpha_max (outside the
+    fixed-point datapath's domain, a law still: Hamrock-Brewe holds at any ratio). A
+    test's table with previews that the twin counts in both counters."""
+    a, b, valid = np.array(a, float), np.array(b, float), np.asarray(valid, bool)
+    mid = valid.shape[1] // 2
+    entries = sorted(zip(*np.nonzero(valid)),
+                     key=lambda e: (float(opening[e]), abs(int(e[1]) - mid), int(e[0])))
+    (j0, k0) = entries[0]
+    (j1, k1) = next(e for e in entries if abs(int(e[1]) - int(k0)) >= 3)
+    lo = min(a[j0, k0], b[j0, k0])
+    if a[j0, k0] <= b[j0, k0]:
+        a[j0, k0] = -0.5 * lo
+    else:
+        b[j0, k0] = -0.5 * lo
+    lo = min(a[j1, k1], b[j1, k1])
+    a[j1, k1], b[j1, k1] = lo, 4.0 * alpha_max * lo
+    return a, b
+
+
+@pytest.fixture(scope="module")
+def edited(exported, tmp_path_factory):
+    """The module's table with :func:`edited_curvatures` baked into a mesh FMU by the
+    export's own writer (:func:`gearcontact.export.fmu.write_mesh_fmu`)."""
+    import dataclasses
+
+    from gearcontact.export.fmu import fmi3_header_dir, write_mesh_fmu
+    from gearcontact.preview.hertz.reference import ENVELOPE
+
+    _, tab = exported
+    a, b = edited_curvatures(tab.A_minus_per_mm, tab.B_minus_per_mm, tab.valid,
+                             tab.opening_mm, alpha_max=ENVELOPE["alpha"][1])
+    tab = dataclasses.replace(tab, A_minus_per_mm=a, B_minus_per_mm=b)
+    out = tmp_path_factory.mktemp("fmu_edited")
+    fmu = write_mesh_fmu(tab, out, pair_name="s0003_edited", side="coast",
+                         header_dir=fmi3_header_dir()).fmu_path
+    return fmu, tab
+
+
+@pytest.mark.parametrize("backend, fmi_type", [("fp64", "ModelExchange"),
+                                               ("golden", "CoSimulation")])
+def test_fmu_counts_previews_as_the_twin(edited, backend, fmi_type):
+    """The domain counts at each instant: the pairs whose preview lies outside the
+    datapath's domain and the pairs without a contact law equal the twin's counters
+    (``contact_law._fp64_law``'s tcount[3], tcount[5]) over the same previews of the
+    twin's compiled law (:func:`mesh_outputs`) at the inputs the FMU held, on a table
+    with a saddle and a ratio beyond alpha_max (:func:`edited_curvatures`); every other
+    output as in :func:`test_fmu_equals_the_twin_contact_law` (same tolerances). Both
+    counts are reached: the edited rows are swept through."""
+    fmu, tab = edited
+    res = _sweep(fmu, tab, backend, fmi_type)
+    _assert_law(res, tab, backend)
+    assert res["pairs_outside_datapath"].max() >= 1
+    assert res["pairs_without_contact_law"].max() >= 1
 
 
 def test_fmu_law_closes_the_static_balance(exported):

@@ -19,6 +19,7 @@ mirrored: s0003's drive side is in line contact). A second export (s0003-centred
 from __future__ import annotations
 
 import csv
+import json
 import math
 import re
 import zipfile
@@ -49,6 +50,9 @@ PAIRS = {"pinion_speed_rad_s": "pinion_speed_rad_s", "gear_speed_rad_s": "gear_s
          "mesh_torque_nm": "mesh_torque_nm", "mesh_rotation_rad": "theta_rad",
          "p_max_mpa": "p_max_mpa", "a_mm": "a_mm", "b_mm": "b_mm",
          "pairs_loaded": "pairs_loaded"}
+#: the domain counts since initialization, named as the twin's summary keys
+COUNTS = ("previews_outside_datapath", "steps_outside_datapath",
+          "previews_without_contact_law")
 
 
 def export_s0003(base: Path, *options: str) -> tuple[Path, Path]:
@@ -81,10 +85,21 @@ def _assert_reproduces(res, twin, n: int, backend: str) -> None:
             np.testing.assert_allclose(got, want, rtol=1e-9, atol=0.0, err_msg=name)
 
 
+def _assert_counts(res, twin, n: int) -> None:
+    """The FMU's domain counts after ``n`` steps equal the twin's run of ``n`` steps
+    (its summary: kernel.run_steps' tcount[3..5]), exactly (integers counting the same
+    previews); 0 at initialization, never decreasing."""
+    for name in COUNTS:
+        got = np.asarray(res[name])
+        assert got.dtype == np.int64 and got[0] == 0, name
+        assert np.all(np.diff(got) >= 0), name
+        assert int(got[n]) == twin.summary[name], (name, int(got[n]), twin.summary[name])
+
+
 def _fmu_run(fmu, backend, **kw):
     return fmpy.simulate_fmu(str(fmu), start_time=0.0, stop_time=DURATION_S,
                              output_interval=1e-6 * STEP_US, output=list(PAIRS) + [
-                                 "pinion_speed_rpm"],
+                                 "pinion_speed_rpm", *COUNTS],
                              start_values={"backend": BACKENDS[backend],
                                            "speed_rpm": SPEED_RPM, "step_us": STEP_US}, **kw)
 
@@ -137,6 +152,8 @@ def test_fmu_validates_against_the_fmi3_schema(exported):
         "step_us": ("parameter", "us", "10")}
     assert var["backend"].causality == "parameter"
     assert md.defaultExperiment.stepSize == "1e-05"
+    assert {n: (var[n].type, var[n].causality, var[n].variability) for n in COUNTS} == \
+        dict.fromkeys(COUNTS, ("Int64", "output", "discrete"))
 
 
 @pytest.mark.parametrize("backend", ["fp64", "golden"])
@@ -153,6 +170,9 @@ def test_fmu_reproduces_gearcontact_twin(exported, twin_runs, backend):
     assert n == 800 and len(res) == n + 1
     assert res["time"][n] == pytest.approx(DURATION_S, rel=1e-12)
     _assert_reproduces(res, twin, n, backend)
+    # s0003's previews lie in the datapath's domain, each with a law: the twin counts 0
+    _assert_counts(res, twin, n)
+    assert twin.summary["previews_outside_datapath"] == 0
     np.testing.assert_array_equal(res["pinion_speed_rpm"],
                                   res["pinion_speed_rad_s"] * 30.0 / math.pi)
     # the run is loaded and dynamic: the mesh carries the torque on average and the DTE
@@ -166,6 +186,52 @@ def test_fmu_reproduces_gearcontact_twin(exported, twin_runs, backend):
     assert 0.5 * TORQUE_NM < np.mean(res["mesh_torque_nm"]) < 1.5 * TORQUE_NM
     assert np.ptp(res["dte_arcsec"]) > 0.1
     assert np.mean(np.asarray(res["mesh_torque_nm"]) > 0.0) >= 0.98
+
+
+@pytest.mark.parametrize("backend, twin_backend", [("fp64", "reference"),
+                                                   ("golden", "golden")])
+def test_fmu_counts_previews_as_the_twin(twin_models, tmp_path, backend, twin_backend):
+    """The domain counts where they are not zero: the module's twin model (s0003, 9
+    phases, TORQUE_NM, DRIVETRAIN) with the TCA's curvatures (``curvatures="exact"``)
+    edited by :func:`tests.export.test_fmu.edited_curvatures` (a saddle on one pair's
+    row, a ratio 4 alpha_max on another's), built by the twin's
+    :func:`~gearcontact.twin.model.build_model` and written by the export's own
+    :func:`~gearcontact.export.fmu_drivetrain.write_drivetrain_fmu`: after the module's
+    800 steps at 20000 rpm the FMU's three counts equal the twin's run of the same
+    model (:func:`_assert_counts`: exact), and every output reproduces it
+    (:func:`_assert_reproduces`' tolerances). Each count is reached."""
+    import dataclasses
+
+    from gearcontact.export.fmu import fmi3_header_dir
+    from gearcontact.export.fmu_drivetrain import write_drivetrain_fmu
+    from gearcontact.preview.hertz.reference import ENVELOPE
+    from gearcontact.twin.model import build_model
+    from gearcontact.twin.simulate import simulate
+
+    from .test_fmu import edited_curvatures
+
+    base = twin_models["fp64"]
+    a, b = edited_curvatures(base.mesh.A_minus_per_mm, base.mesh.B_minus_per_mm,
+                             base.mesh.valid, base.mesh.opening_mm,
+                             alpha_max=ENVELOPE["alpha"][1])
+    mesh = dataclasses.replace(base.mesh, A_minus_per_mm=a, B_minus_per_mm=b)
+
+    def model(be):
+        return build_model(mesh, base.drivetrain, TORQUE_NM, backend=be,
+                           reverse=base.reverse, reverse_note=base.reverse_note,
+                           curvatures="exact")
+
+    fmu = write_drivetrain_fmu(model("reference"), tmp_path, pair_name="s0003_edited",
+                               side=base.mesh.side, bending=False,
+                               header_dir=fmi3_header_dir()).fmu_path
+    twin = simulate(model(twin_backend), speed_rpm=SPEED_RPM, duration_s=DURATION_S,
+                    step_s=1e-6 * STEP_US)
+    res = _fmu_run(fmu, backend)
+    n = twin.summary["steps"]
+    assert n == 800 and len(res) == n + 1
+    _assert_reproduces(res, twin, n, backend)
+    _assert_counts(res, twin, n)
+    assert all(twin.summary[name] > 0 for name in COUNTS), twin.summary
 
 
 def test_fmu_static_start_is_the_balance(exported):
@@ -327,7 +393,8 @@ def test_done_when_the_readme_fmu_reproduces_the_twin_cli(readme_export, tmp_pat
     rounding, <= 5e-13 relative, is inside it); the snippet's three figures within
     1e-9 of the same from the CSV (a peak-to-peak of ~9 arcsec from values ~60: the
     CSV's rounding ~1e-11 of it) and the figures the docs state (their 3 or 4
-    digits). Measured: every value of both backends equal at the CSV's 12 digits.
+    digits); the domain counts after the 501 steps equal twin.json's (exact).
+    Measured: every value of both backends equal at the CSV's 12 digits.
     ~1-2 min: two twin runs, each with its 61-phase TCA of both sides."""
     base, lines, runs = readme_export
     line = next(x for x in lines["export_fmu"] if "--kind drivetrain" in x)
@@ -347,6 +414,14 @@ def test_done_when_the_readme_fmu_reproduces_the_twin_cli(readme_export, tmp_pat
                                 start_values={"backend": BACKENDS[backend]})
         assert len(res["time"]) == 501
         assert_twin_csv(res, twin[backend], PAIRS, backend)
+        # issue 27: the FMU's domain counts after the twin's 501 steps are its twin.json's
+        # (exact: integers counting the same previews; measured 5, 5, 0 in both)
+        counts = simulate_isolated(fmu, start_time=0.0, stop_time=5.01e-3,
+                                   output_interval=1e-5, output=list(COUNTS),
+                                   start_values={"backend": BACKENDS[backend]})
+        summary = json.loads((tmp_path / f"tw_{name}" / "twin.json").read_text())
+        assert len(counts["time"]) == 502
+        assert {n: int(counts[n][-1]) for n in COUNTS} == {n: summary[n] for n in COUNTS}
     dte_pp, force_max, p_max = (float(v) for v in run_isolated(
         docs_snippet("The drivetrain twin as an FMI 3.0 FMU"), base).splitlines()[-1].split())
     c = {k: np.array([float(r[k]) for r in twin["fp64"]])
@@ -388,7 +463,7 @@ def test_fmu_reproduces_the_twin_through_rattle(rattle_fmu, backend):
 
     fmu, dt_file = rattle_fmu
     res = fmpy.simulate_fmu(str(fmu), stop_time=1e-2, output_interval=5e-6,
-                            output=list(PAIRS), start_values={
+                            output=[*PAIRS, *COUNTS], start_values={
                                 "backend": BACKENDS[backend], "speed_rpm": 14000.0,
                                 "step_us": 5.0})
     prepared = prepare_pair("s0003-centred", side="drive")
@@ -401,6 +476,7 @@ def test_fmu_reproduces_the_twin_through_rattle(rattle_fmu, backend):
     n = twin.summary["steps"]
     assert n == 2000 and len(res) == n + 1
     _assert_reproduces(res, twin, n, backend)
+    _assert_counts(res, twin, n)
     torque = np.asarray(res["mesh_torque_nm"])
     assert (torque < 0.0).sum() > 50 and (torque == 0.0).sum() > 100
 
@@ -428,7 +504,7 @@ def test_fmu_reproduces_the_twin_with_tooth_bending(tmp_path_factory, backend):
                "--out", str(base), cwd=base)
     assert run.returncode == 0, run.stderr
     res = fmpy.simulate_fmu(str(base / "gearcontact_drivetrain_s0003.fmu"), stop_time=6e-3,
-                            output_interval=1e-5, output=list(PAIRS),
+                            output_interval=1e-5, output=[*PAIRS, *COUNTS],
                             start_values={"backend": BACKENDS[backend]})
     prepared = prepare_pair("s0003")
     model = model_for_pair(prepared.pair, torque_nm=64.5, side=prepared.side, phases=9,
@@ -438,6 +514,7 @@ def test_fmu_reproduces_the_twin_with_tooth_bending(tmp_path_factory, backend):
     n = twin.summary["steps"]
     assert n == 600 and len(res) == n + 1 and twin.summary["bending"]
     _assert_reproduces(res, twin, n, backend)
+    _assert_counts(res, twin, n)
     def rigid(mesh):
         return None if mesh is None else dataclasses.replace(
             mesh, bending_mm_per_n=np.zeros_like(mesh.bending_mm_per_n))
@@ -686,11 +763,14 @@ def test_fmu_of_a_machine_settings_pair_reproduces_the_twin(tmp_path):
         twin = simulate(model, speed_rpm=3000.0, duration_s=3e-3, step_s=1e-5)
         n = twin.summary["steps"]
         res = fmpy.simulate_fmu(str(fmu), stop_time=3e-3, output_interval=1e-5,
-                                output=list(PAIRS),
+                                output=[*PAIRS, *COUNTS],
                                 start_values={"backend": BACKENDS[backend]})
         assert n == 300 and len(res) == n + 1
         _assert_reproduces(res, twin, n, backend)
         assert twin.summary["steps_outside_datapath"] == n
+        # issue 27: the FMU says so too, counting as the twin (every step; its previews)
+        _assert_counts(res, twin, n)
+        assert twin.summary["previews_outside_datapath"] >= n
         twins[backend] = twin
     for name in ("theta_rad", "mesh_load_n"):
         np.testing.assert_array_equal(twins["golden"].columns[name],

@@ -37,7 +37,8 @@ from .test_c_exact_hertz import E_PRIME  # noqa: E402
 from .test_fmu import INPUTS, _assert_law, _sweep  # noqa: E402
 from .test_fmu_cylindrical import EV  # noqa: E402
 from .test_fmu_drivetrain import (DURATION_S, SPEED_RPM, STEP_US, TORQUE_NM,  # noqa: E402
-                                  _assert_reproduces, _fmu_run, export_s0003)
+                                  _assert_counts, _assert_reproduces, _fmu_run,
+                                  export_s0003)
 
 
 @pytest.fixture(scope="module")
@@ -154,6 +155,7 @@ def test_drivetrain_fmu_reproduces_the_exact_twin(drivetrain_exact, twin_exact):
     res = _fmu_run(drivetrain_exact[0], "fp64")
     assert n == 800 and len(res) == n + 1
     _assert_reproduces(res, twin, n, "fp64")
+    _assert_counts(res, twin, n)      # 0 in both (s0003's previews in the domain)
     hb = twin_exact["hamrock-brewe"].columns["mesh_load_n"]
     ex = twin.columns["mesh_load_n"]
     assert np.max(np.abs(ex - hb) / np.maximum(np.abs(hb), 1.0)) > 1e-3

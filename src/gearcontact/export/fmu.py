@@ -37,7 +37,7 @@ from ..validation import InputRangeError
 from .c_library import _environment, library_files, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
-__all__ = ["FMU_KINDS", "MESH_VARIABLES", "MeshFmu", "export_mesh_fmu", "write_mesh_fmu",
+__all__ = ["FMU_KINDS", "MESH_VARIABLES", "DOMAIN_COUNTS", "drop_domain_counts", "MeshFmu", "export_mesh_fmu", "write_mesh_fmu",
            "check_fmu_kind",
            "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
            "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES", "LINE_LAW_FILES"]
@@ -69,7 +69,19 @@ MESH_VARIABLES = (
      "contact law: fp64 or golden (fixed-point stage D)"),
     ("mesh_damping_n_s_per_mm", 14, "Float64", "parameter", "fixed", "N.s/mm",
      "mesh damping on the line of action"),
+    ("pairs_outside_datapath", 15, "Int32", "output", "discrete", "",
+     "closed pairs whose preview lies outside the fixed-point datapath's domain (the "
+     "fp64 law evaluates it)"),
+    ("pairs_without_contact_law", 16, "Int32", "output", "discrete", "",
+     "closed pairs without a contact law (a saddle, or a curvature ratio beyond the "
+     "exact Hertz table): they carry no load"),
 )
+#: The outputs that count previews outside the datapath's domain and without a contact
+#: law, as the twin does (``gearcontact.twin.contact_law._fp64_law``): the point-contact
+#: law's FMUs only (:func:`drop_domain_counts`).
+DOMAIN_COUNTS = ("pairs_outside_datapath", "pairs_without_contact_law",
+                 "previews_outside_datapath", "steps_outside_datapath",
+                 "previews_without_contact_law")
 #: FMI functions of the shared interface (``data/templates/fmu/fmi3_common.c.j2``).
 COMMON_IMPLEMENTED = frozenset({
     "fmi3GetVersion", "fmi3SetDebugLogging", "fmi3InstantiateCoSimulation",
@@ -180,6 +192,7 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
     uses, the FMI functions to stub, the C sources and the contact law's constants
     (``hertz_form``: its fp64 Hertz form, module docstring)."""
     from .. import __version__
+    from ..preview.hertz.reference import ENVELOPE
     from ..twin.contact_law import _HB_E, _S_GAP
 
     units = sorted({v[5] for v in variables if v[5]})
@@ -194,8 +207,25 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "hertz_form": hertz_form, "exact_hertz": hertz_form != DEFAULT_HERTZ_FORM,
         "pi": c_double(math.pi), "hb_e": c_double(_HB_E), "s_gap": c_double(_S_GAP),
         "w_eval_min": c_double(W_EVAL_MIN_N), "w_eval_max": c_double(_W_EVAL_MAX_N),
+        # the datapath's domain the twin counts previews outside of (model._prm's P_CLO,
+        # P_CHI, P_AHI)
+        "curv_lo": c_double(ENVELOPE["curvature_per_mm"][0]),
+        "curv_hi": c_double(ENVELOPE["curvature_per_mm"][1]),
+        "alpha_max": c_double(ENVELOPE["alpha"][1]),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
-        "output_dependencies": None, "initial_dependencies": "", "line_law": False}
+        "output_dependencies": None, "initial_dependencies": "", "line_law": False,
+        "domain_counts": True}
+
+
+def drop_domain_counts(ctx: dict) -> None:
+    """Remove the :data:`DOMAIN_COUNTS` outputs from the FMU context ``ctx`` (in place):
+    a cylindrical pair's FMUs, whose line law (``gc_line_law.c``) does not port the twin's
+    line-core domain test (:func:`gearcontact.twin.line_law._line_fp64`'s lift;
+    docs/export.md, "Cylindrical pairs")."""
+    ctx["domain_counts"] = False
+    ctx["model_variables"] = tuple(v for v in ctx["model_variables"]
+                                   if v[0] not in DOMAIN_COUNTS)
+    ctx["variables"] = [v for v in ctx["variables"] if v["name"] not in DOMAIN_COUNTS]
 
 
 def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,

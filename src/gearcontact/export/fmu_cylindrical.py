@@ -34,7 +34,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
-from .fmu import MeshFmu, c_double, fmi3_header_dir, write_mesh_fmu
+from .fmu import MeshFmu, c_double, drop_domain_counts, fmi3_header_dir, write_mesh_fmu
 
 __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_context",
            "line_drivetrain_context"]
@@ -119,6 +119,7 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
 
     def adapt(ctx):
         ctx.update(line_law_context(mesh))
+        drop_domain_counts(ctx)
         ctx["c_sources"] = _with_line_sources(ctx)
         ctx["tables"] = [t for t in ctx["tables"] if t[0] in ("LEVER_MM", "OPENING_MM")]
         ctx["line_rows"] = [[[c_double(v) for v in row] for row in p] for p in tab.line_rows]

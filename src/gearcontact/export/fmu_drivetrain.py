@@ -33,11 +33,11 @@ from ..contract.qformat import STENCIL_GAP
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
 from .c_constants import fit_linear_safe_code
-from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, fmi3_header_dir, fmu_context,
-                  model_token)
+from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, drop_domain_counts,
+                  fmi3_header_dir, fmu_context, model_token)
 
 __all__ = ["DRIVETRAIN_VARIABLES", "DrivetrainFmu", "export_drivetrain_fmu",
-           "drivetrain_fmu_model"]
+           "write_drivetrain_fmu", "drivetrain_fmu_model"]
 
 #: (name, value reference, type, causality, variability, unit, description).
 DRIVETRAIN_VARIABLES = (
@@ -66,6 +66,16 @@ DRIVETRAIN_VARIABLES = (
      "load torque on the gear, > 0 and at most the export torque (the mesh table's size)"),
     ("step_us", 15, "Float64", "parameter", "fixed", "us",
      "fixed RK4 step, 1 to 50 us and h omega_max <= 2"),
+    # Int64: a step forms up to ~10 previews; at 1e5 steps/s (10 us) ~1e6 previews/s
+    # would pass Int32's 2^31 - 1 after ~36 min of (hardware-in-the-loop: real) time
+    ("previews_outside_datapath", 16, "Int64", "output", "discrete", "",
+     "previews since initialization outside the fixed-point datapath's domain, "
+     "evaluated by the fp64 law (the twin's summary key)"),
+    ("steps_outside_datapath", 17, "Int64", "output", "discrete", "",
+     "steps since initialization with at least one such preview (the twin's)"),
+    ("previews_without_contact_law", 18, "Int64", "output", "discrete", "",
+     "previews since initialization without a contact law (a saddle, or a curvature "
+     "ratio beyond the exact Hertz table): the pair carries no load (the twin's)"),
 )
 #: FMI functions the drivetrain model implements beside the shared ones.
 _TRIVIAL = ("fmi3Terminate", "fmi3EnterStepMode", "fmi3EnterConfigurationMode",
@@ -264,19 +274,16 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
     header_dir = fmi3_header_dir()
     _environment()      # Jinja2 before the TCA
     from ..geometry.pair import CYLINDRICAL
-    from ..twin import layout as L
     from ..twin.cylindrical import cylindrical_model
-    from ..twin.model import CURVATURE_SOURCES, _prm, _stack
-    from .fmu_cylindrical import check_cylindrical_fmu, line_drivetrain_context
-    from ..twin.simulate import _CHUNK
+    from ..twin.model import CURVATURE_SOURCES
+    from .fmu_cylindrical import check_cylindrical_fmu
     from ..validation import InputRangeError
 
-    line = getattr(pair, "kind", None) == CYLINDRICAL
-    if line:        # the twin's line chain (.fmu_cylindrical), before the TCA
+    if getattr(pair, "kind", None) == CYLINDRICAL:
+        # the twin's line chain (.fmu_cylindrical), before the TCA
         check_cylindrical_fmu(curvatures=curvatures, hertz_form=hertz_form)
         model = cylindrical_model(pair, torque_nm=torque_nm, drivetrain=drivetrain,
                                   side=side, phases=phases, bending=bending)
-        curvatures = L.LINE_SOURCE
     else:
         if curvatures not in CURVATURE_SOURCES:     # before the TCA
             raise InputRangeError("curvatures", curvatures,
@@ -285,6 +292,24 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
                                      drivetrain=drivetrain, curvatures=curvatures,
                                      bending=bending, flanks=flanks,
                                      hertz_form=hertz_form)
+    return write_drivetrain_fmu(model, out_dir, pair_name=pair_name, side=side,
+                                bending=bending, header_dir=header_dir)
+
+
+def write_drivetrain_fmu(model, out_dir, *, pair_name: str, side: str, bending: bool,
+                         header_dir: Path) -> DrivetrainFmu:
+    """Write the drivetrain FMU of the twin's ``model`` (reference backend; its curvature
+    source and Hertz form are the FMU's; ``bending``: the model's tables carry the
+    pairs' bending compliance) into ``out_dir``: :func:`export_drivetrain_fmu`'s
+    second half, for a model built by the caller (a test's edited mesh table)."""
+    from ..twin import layout as L
+    from ..twin.model import _prm, _stack
+    from ..twin.simulate import _CHUNK
+    from .fmu_cylindrical import line_drivetrain_context
+
+    line = model.curvature_source == L.LINE_SOURCE
+    curvatures = L.LINE_SOURCE if line else model.curvatures
+    hertz_form = model.hertz_form
     a, m = model.arrays, model.mesh
     stencil = curvatures == "stencil"
     # exact A-, B- always (the static start's bracket); the stencil source as the golden
@@ -350,6 +375,7 @@ def export_drivetrain_fmu(pair, out_dir, *, pair_name: str, side: str, phases: i
         # kernel's columns: the last effective ease-off (m slices) and its row
         m_sl = int(m.line_gap_mm.shape[-1]) + 2 * int(line_ctx["line"]["beyond"])
         ctx.update(line_ctx, n_cache=L.N_CACHE + (m_sl + 1 if bending else 0))
+        drop_domain_counts(ctx)
         ctx["c_sources"] = ctx["c_sources"][:2] + ["gc_line_law.c"] + ctx["c_sources"][2:]
         ctx["tables"] = ctx["tables"][:2]       # LEVER, OPENING: the law is the line rows'
         ctx["description"] = (

@@ -22,6 +22,10 @@ twin's coordinates, :mod:`gearcontact.twin.mesh`) and their speeds:
   clamped to the datapath envelope (1 .. 2^17 N). fp64: kappa is the approach at 1 N
   in both passes (the twin's law, :func:`~gearcontact.twin.contact_law._kappa_reference`),
   a, b, p_max scaled from there; golden: the fixed point's rounding at the actual load;
+* the domain counts: per closed pair its last preview (the one at 1 N where it has no
+  law, else the one at its load) counted as the twin's ``_fp64_law`` counts previews
+  (``tcount[3]``: outside the datapath's domain, the fp64 law evaluating it;
+  ``tcount[5]``: without a contact law, the pair then carries nothing);
 * ``T = max(sum_j 1e-3 W_j l_j + 1e-3 c_m l_0^2 theta', 0)`` (gear torque along the
   motion, N·m) while ``T_el > 0``; the pinion's torque is ``-T (1/u + eps')`` (the
   twin's equation of motion); TE in the TCA's sign ``m (eps - theta)`` arcsec.
@@ -150,6 +154,11 @@ class MeshOutputs:
     a_mm: float
     b_mm: float
     active_pairs: int
+    #: closed pairs whose preview lies outside the datapath's domain, and closed pairs
+    #: without a contact law, as the twin counts previews (module docstring); None
+    #: where the law does not count them (a cylindrical pair's line law)
+    pairs_outside_datapath: int | None = None
+    pairs_without_contact_law: int | None = None
 
 
 class _Law:
@@ -208,19 +217,25 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
     i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,
                                                  omega_pinion_rad_s, omega_gear_rad_s)
     if theta < 0.0:
-        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0, 0, 0)
     out3 = np.zeros(L.N_PREVIEW)
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
     cbs = tab.bending_mm_per_n
+    tc = law.tcount
+    counts = np.zeros(2, np.int64)      # the pairs' last previews' tcount[3], tcount[5]
     for j, lv, d in closed_pairs(tab, i, f, theta):
+        before = tc[3], tc[5]
         kap = law.kappa(j, i, f, W_EVAL_MIN_N, code, out3)
         if kap <= 0.0:      # no contact law (a saddle): the pair carries nothing
+            counts += (tc[3] - before[0], tc[5] - before[1])
             continue
         cb = 0.0 if cbs is None else cbs[j, i] + f * (cbs[j, i + 1] - cbs[j, i])
         we = min(max(_pair_load(d, kap, cb, 0.0)[0], W_EVAL_MIN_N), _W_EVAL_MAX_N)
+        before = tc[3], tc[5]
         kap = law.kappa(j, i, f, we, code, out3)
+        counts += (tc[3] - before[0], tc[5] - before[1])
         if kap <= 0.0:
             continue
         w = _pair_load(d, kap, cb, 0.0)[0]
@@ -233,7 +248,7 @@ def mesh_outputs(tab: MeshLawTable, phi_pinion_rad: float, phi_gear_rad: float,
             scale = (w / out3[L.PV_LOAD]) ** (1.0 / 3.0)
             abp = (out3[0] * scale, out3[1] * scale, out3[2] * scale)
     return _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te,
-                    mesh_damping_n_s_per_mm)
+                    mesh_damping_n_s_per_mm, counts=(int(counts[0]), int(counts[1])))
 
 
 def law_of(tab, factory):
@@ -275,11 +290,13 @@ def _kinematics(tab, phi_pinion_rad, phi_gear_rad, omega_pinion_rad_s, omega_gea
     return i, f, de, theta, theta_dot, te
 
 
-def _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te, damping) -> MeshOutputs:
-    """The outputs of the pairs' elastic torque ``t_el`` (N·m) with the mesh damping."""
+def _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te, damping, *,
+             counts=(None, None)) -> MeshOutputs:
+    """The outputs of the pairs' elastic torque ``t_el`` (N·m) with the mesh damping;
+    ``counts``: the domain counts (:class:`MeshOutputs`), whatever the torque."""
     if t_el <= 0.0:
-        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0, *counts)
     l0 = tab.reference_lever_mm
     t = max(t_el + 1e-3 * damping * l0 * l0 * theta_dot, 0.0)
     return MeshOutputs(-t * (1.0 / tab.ratio + de), t, w_tot, te, abp[2], abp[0], abp[1],
-                       pairs)
+                       pairs, *counts)
