@@ -74,8 +74,8 @@ from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_problem import (MeanPointContact, SynthesisProblem, corrected_setup,
-                              mean_point_contact, roll_about)
+from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
+                              corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
 from .synthesis_targets import SynthesisTargets, TargetRows, targets_rows
 from .types import EdgeContact
@@ -136,8 +136,12 @@ class SettingSynthesis(TargetRows):
     pivot : str
         Where M, the pivot, lies (:attr:`~.setting_problem.SynthesisProblem.pivot`).
     other_pivot : str
-        Where both pivots of :func:`synthesized_machine_pair` were tried: the other one
-        and its full TCA's check ("" otherwise).
+        Where several pivots of :func:`synthesized_machine_pair` were tried: the others
+        and their full TCAs' checks ("" otherwise).
+    run : PatternRun or None
+        The run of the transmitting tooth pair's path (the full TCA's, pairs -2..2
+        pitches) around M's phase whose paint ellipse lies on both flanks
+        (:func:`~.setting_problem.pattern_run`); None where it has none.
     """
 
     side: str
@@ -156,6 +160,7 @@ class SettingSynthesis(TargetRows):
     residual: float = float("nan")
     pivot: str = ""
     other_pivot: str = ""
+    run: PatternRun | None = None
 
     @property
     def edge_phases(self) -> int:
@@ -372,32 +377,112 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
     edges = pattern_edges(flank, gear, kin, cyc, pattern_on_flank(flank, gear, kin, cyc))
     u_m, v_m = prob.mean_uv[side]
     vertex = cyc.contact[len(cyc.contact) // 2]
+    run = pattern_run(flank, gear, kin, cyc.path, phi1_rad=start.phi1_rad,
+                      pinion_teeth=pair.pinion_teeth)
     return SettingSynthesis(side, prob.setup(side, x), x, local.point,
                             targets_rows(local.point, targets, None, length),
                             float(cyc.te0_pp_arcsec), tuple(edges),
                             float(np.hypot(vertex.u1 - u_m, vertex.v1 - v_m)), runs,
-                            time.perf_counter() - t0, pivot=prob.pivot[side])
+                            time.perf_counter() - t0, pivot=prob.pivot[side], run=run)
 
 
-def _better_pivot(a: SettingSynthesis, b: SettingSynthesis) -> SettingSynthesis:
-    """Of two syntheses of one side at two pivots, the one whose full TCA has fewer
-    phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p; a result
-    missing a target loses to one meeting them), the other's check named in its
-    ``other_pivot``."""
+def _better_pivot(*results: SettingSynthesis) -> SettingSynthesis:
+    """Of syntheses of one side at several pivots, the one whose full TCA has the fewest
+    phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p, then the
+    first given; a result missing a target loses to one meeting them), the others'
+    checks named in its ``other_pivot``."""
     def rank(r):
         return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
 
-    keep, drop = (a, b) if rank(a) <= rank(b) else (b, a)
-    return dataclasses.replace(keep, other_pivot=(
+    keep = min(results, key=rank)
+    return dataclasses.replace(keep, other_pivot="; ".join(
         f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
         f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
-        + ("" if drop.met else ", targets missed")))
+        + ("" if drop.met else ", targets missed") for drop in results if drop is not keep))
+
+
+#: Shortest paint-ellipse target of the bearing's room (the
+#: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
+_ROOM_RATIO_MIN = 0.1
+
+
+def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, problem):
+    """``done`` (the mean node's syntheses of ``sides``) against the other pivots' of a
+    line-contact base (docs/machine_settings.md sec. 5, "The pivot's depth" and "The
+    bearing's room"), each side's best by :func:`_better_pivot`: the working depth's
+    centre; with ``bearing_room``, the centre with the ellipse target shortened to the
+    contact line's room there where the target exceeds it, and the pivot moved to the
+    middle of the best one's pattern run (:class:`~.setting_problem.PatternRun`) where
+    that has edge phases and the run's middle is off M's phase by more than a
+    phase step. ``problem``: the :class:`SynthesisProblem` options."""
+    per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
+    cands = {s: [(done[s], per_side[s])] for s in sides}
+
+    centred, other = None, {}
+    try:
+        centred = SynthesisProblem(pair, **problem, pivot_depth={
+            s: per_side[s].centre_profile for s in sides})
+        other = synthesize_settings(pair, targets=targets, problem=centred, sides=sides,
+                                    **options)
+    except CheckFailed as exc:      # no contact at the centred M: the mean node's
+        why = f"the working depth's centre: not synthesized ({exc})"
+        cands = {s: [(dataclasses.replace(done[s], other_pivot=why), per_side[s])]
+                 for s in sides}
+    for s, r in other.items():
+        cands[s].append((r, per_side[s]))
+    if bearing_room and centred is not None:
+        # the bearing's room: the paint ellipse no longer than the contact line's room
+        # at the centred M (its half chord across the flank)
+        face = pair.gear_face_width_mm
+        short = {}
+        for s in other:
+            room = centred.line_room_mm(s, centred.standard[s])
+            if room < per_side[s].pattern_length_ratio * face and \
+                    room >= _ROOM_RATIO_MIN * face:
+                short[s] = dataclasses.replace(per_side[s], pattern_length_ratio=room / face)
+        for s in short:
+            try:
+                r = synthesize_settings(pair, targets={s: short[s]}, problem=centred,
+                                        sides=(s,), **options)[s]
+            except CheckFailed:
+                continue
+            asked = per_side[s].pattern_length_ratio * face
+            cands[s].append((dataclasses.replace(r, pivot=(
+                f"{r.pivot}, the paint ellipse's target shortened to the contact line's "
+                f"room there, {short[s].pattern_length_ratio * face:.2f} mm (asked "
+                f"{asked:.2f} mm)")), short[s]))
+        # the pitch centred on the best pivot's pattern run
+        moved = {}
+        for s in sides:
+            best = _better_pivot(*(c for c, _ in cands[s]))
+            tg = next(t for c, t in cands[s] if c.x is best.x)
+            if best.edge_phases and best.run is not None and \
+                    abs(best.run.middle_offset_pitch) > _RUN_STEP_PITCH:
+                moved[s] = (best.run.middle_uv, tg, best.pivot)
+        if moved:
+            try:
+                prob = SynthesisProblem(pair, **problem, pivot_uv={
+                    s: uv for s, (uv, _, _) in moved.items()})
+                res = synthesize_settings(pair, targets={s: t for s, (_, t, _) in moved.items()},
+                                          problem=prob, sides=tuple(moved), **options)
+            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
+                res = {}
+            for s, r in res.items():
+                cands[s].append((dataclasses.replace(r, pivot=(
+                    f"{r.pivot}, the middle of the pattern run of the pivot at "
+                    f"{moved[s][2]}")), moved[s][1]))
+    return {s: _better_pivot(*(c for c, _ in cands[s])) for s in sides}
+
+
+#: A pattern run's middle this close to M's phase (pinion pitches, one step of the
+#: 31-phase check) moves no pivot.
+_RUN_STEP_PITCH = 1.0 / 30.0
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                              gear_generation: str | None = None, gear: dict | None = None,
                              standard_off_flank: bool = False, centre_pivot: bool = True,
-                             **options):
+                             bearing_room: bool = True, **options):
     """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
     sides, and the per-side results. ``gear_generation``: ``"formate"`` or
@@ -437,7 +522,7 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
             dataclasses.replace(pair, pinion_hand="right", machine=(), typed_gear=(),
                                 print_gear=()), targets=targets,
             gear_generation=gear_generation, standard_off_flank=standard_off_flank,
-            centre_pivot=centre_pivot, gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
+            centre_pivot=centre_pivot, bearing_room=bearing_room, gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
             **options)
         machine = tuple(mirror_setup(s) for s in twin.machine)
         if gear is not None:      # the gear as typed, not its twin's mirror image
@@ -453,18 +538,9 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     done = synthesize_settings(pair, targets=targets, problem=prob, sides=sides,
                                **options) if sides else {}
     if centre_pivot and sides and not prob.point_contact:
-        per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
-        centred = SynthesisProblem(pair, gear_generation=gear_generation or "generated",
-                                   gear=gear, pivot_depth={
-                                       s: per_side[s].centre_profile for s in sides}, **grid)
-        try:
-            other = synthesize_settings(pair, targets=targets, problem=centred, sides=sides,
-                                        **options)
-        except CheckFailed as exc:      # no contact at the centred M: the mean node's
-            other, why = {}, f"the working depth's centre: not synthesized ({exc})"
-            done = {s: dataclasses.replace(r, other_pivot=why) for s, r in done.items()}
-        done = {s: _better_pivot(done[s], other[s]) if s in other else done[s]
-                for s in sides}
+        done = _pivot_candidates(pair, done, targets, sides, options, bearing_room,
+                                 problem=dict(gear_generation=gear_generation or "generated",
+                                              gear=gear, **grid))
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
                                                if s not in done},
