@@ -41,8 +41,9 @@ predicted corrections where they miss less than the standard crowning. The base 
 (:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
 on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
 (M the blank's mean point on the pinion or, in :func:`synthesized_machine_pair`, the
-middle of the pinion's working depth where that keeps the pattern off the flank edges at
-more phases).
+middle of the pinion's working depth, that with the paint ellipse no longer than the
+contact line's room there, or the middle of the best one's pattern run, whichever keeps
+the pattern off the flank edges at more phases).
 
 References
 ----------
@@ -406,6 +407,29 @@ def _better_pivot(*results: SettingSynthesis) -> SettingSynthesis:
 _ROOM_RATIO_MIN = 0.1
 
 
+def room_targets(targets: SynthesisTargets, *, room_mm: float, face_mm: float):
+    """``targets`` with the paint ellipse's length set to the contact line's room
+    ``room_mm`` (:func:`~.setting_problem.line_room_mm` at the centred pivot) where the
+    target, ``pattern_length_ratio`` of the gear face ``face_mm``, exceeds it; None where
+    it does not, or where the room is below the shortest target
+    (:data:`_ROOM_RATIO_MIN` of the face: the candidate is not tried)."""
+    if not room_mm < targets.pattern_length_ratio * face_mm or room_mm < _ROOM_RATIO_MIN * face_mm:
+        return None
+    return dataclasses.replace(targets, pattern_length_ratio=room_mm / face_mm)
+
+
+def run_pivot(result: SettingSynthesis):
+    """The pinion flank point (u, v), mm, of the middle of ``result``'s pattern run
+    (:class:`~.setting_problem.PatternRun`), where ``result`` has edge phases and the
+    run's middle is off M's phase by more than :data:`_RUN_STEP_PITCH`; None
+    otherwise."""
+    run = result.run
+    if not result.edge_phases or run is None or \
+            not abs(run.middle_offset_pitch) > _RUN_STEP_PITCH:
+        return None
+    return run.middle_uv
+
+
 def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, problem):
     """``done`` (the mean node's syntheses of ``sides``) against the other pivots' of a
     line-contact base (docs/machine_settings.md sec. 5, "The pivot's depth" and "The
@@ -436,10 +460,10 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, prob
         face = pair.gear_face_width_mm
         short = {}
         for s in other:
-            room = centred.line_room_mm(s, centred.standard[s])
-            if room < per_side[s].pattern_length_ratio * face and \
-                    room >= _ROOM_RATIO_MIN * face:
-                short[s] = dataclasses.replace(per_side[s], pattern_length_ratio=room / face)
+            t = room_targets(per_side[s], room_mm=centred.line_room_mm(s, centred.standard[s]),
+                             face_mm=face)
+            if t is not None:
+                short[s] = t
         for s in short:
             try:
                 r = synthesize_settings(pair, targets={s: short[s]}, problem=centred,
@@ -456,9 +480,8 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, prob
         for s in sides:
             best = _better_pivot(*(c for c, _ in cands[s]))
             tg = next(t for c, t in cands[s] if c.x is best.x)
-            if best.edge_phases and best.run is not None and \
-                    abs(best.run.middle_offset_pitch) > _RUN_STEP_PITCH:
-                moved[s] = (best.run.middle_uv, tg, best.pivot)
+            if run_pivot(best) is not None:
+                moved[s] = (run_pivot(best), tg, best.pivot)
         if moved:
             try:
                 prob = SynthesisProblem(pair, **problem, pivot_uv={
@@ -509,7 +532,13 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     default, where the paint ellipse along the contact line has the most room), and
     the one whose full TCA puts the paint ellipse at a flank edge at fewer phases is
     kept (a tie: the lower TE0 p-p; :func:`_better_pivot`), the other's check in its
-    ``other_pivot``. A point-contact base pivots on its contact path (once).
+    ``other_pivot``. With ``bearing_room`` (docs/machine_settings.md sec. 5, "The
+    bearing's room") up to two more candidates per side join the choice: the centre with
+    the paint ellipse's target shortened to the contact line's room there
+    (:func:`room_targets`, where the target exceeds it; the result's rows and ``pivot``
+    name the shortened target), and the pivot moved to the middle of the best
+    candidate's pattern run (:func:`run_pivot`). A point-contact base pivots on its
+    contact path (once).
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
