@@ -1,9 +1,10 @@
 """The further pivot candidates of the local synthesis (tca.setting_synthesis
 ``_pivot_candidates``; docs/machine_settings.md sec. 5, "The bearing's room"): the paint
 ellipse's target shortened to the contact line's room at the centred pivot
-(``room_targets``, ``setting_problem.line_room_mm``), and the pivot moved to the middle
+(``room_targets``, ``setting_problem.line_room_mm``), the pivot moved to the middle
 of the best candidate's pattern run (``run_pivot``, ``setting_problem.pattern_run``),
-each kept by ``_better_pivot`` (fewest edge phases, then the lowest TE0 p-p, then the
+and the ellipse shortened for a pattern run of one pitch (``length_targets``), each kept
+by ``_better_pivot`` (tca.setting_pivot) (fewest edge phases, then the lowest TE0 p-p, then the
 first given; a missed target loses).
 
 The choice logic is tested against results written by hand (the rule's truth computed
@@ -25,8 +26,8 @@ from gearcontact.tca.curvature import contact_ellipse, relative_curvature
 from gearcontact.tca.mating import solve_mating_point
 from gearcontact.tca.mesh import mesh_cycle
 from gearcontact.tca.setting_problem import PatternRun, SynthesisProblem, pattern_run
-from gearcontact.tca.setting_synthesis import (SettingSynthesis, _better_pivot,
-                                               room_targets, run_pivot)
+from gearcontact.tca.setting_pivot import length_targets, room_targets, run_pivot
+from gearcontact.tca.setting_synthesis import SettingSynthesis, _better_pivot
 from gearcontact.tca.stencil import gap_at
 from gearcontact.tca.synthesis_targets import SynthesisTargets
 from gearcontact.tca.types import EdgeContact
@@ -73,6 +74,23 @@ def test_the_room_target_is_the_room_where_the_ellipse_exceeds_it():
     assert room_targets(t, room_mm=2.9, face_mm=face) is None
     assert room_targets(t, room_mm=3.0, face_mm=face).pattern_length_ratio == \
         pytest.approx(0.1, abs=1e-15)
+
+
+def test_the_length_target_makes_the_run_a_pitch_to_first_order():
+    # the 13/26 drive at the mean node (docs sec. 5): path on the flank 1.30 pitches,
+    # pattern run 0.77, 2a 8.33 mm of a 23.8 mm face; truth by hand:
+    # 2a' = 2a (P - 1) / (P - R)
+    t = SynthesisTargets(pattern_length_ratio=8.33 / 23.8)
+    run = PatternRun(0.77, -0.15, (5.98, 70.34), 1.30)
+    got = length_targets(t, _result("node", 6, 6.31, run=run), face_mm=23.8)
+    assert got.pattern_length_ratio * 23.8 == pytest.approx(8.33 * 0.30 / 0.53, rel=1e-12)
+    # a run of a pitch, a path not longer than one, no edges, or below 0.1 x face: None
+    for r in (PatternRun(1.0, 0.0, (0, 0), 1.3), PatternRun(0.5, 0.0, (0, 0), 1.0)):
+        assert length_targets(t, _result("node", 6, 6.31, run=r), face_mm=23.8) is None
+    assert length_targets(t, _result("node", 0, 6.31, run=run), face_mm=23.8) is None
+    assert length_targets(t, _result("node", 6, 6.31), face_mm=23.8) is None
+    assert length_targets(t, _result("node", 6, 6.31, run=PatternRun(
+        0.1, 0.0, (0, 0), 1.05)), face_mm=23.8) is None     # 8.33 x 0.05 / 0.95 < 2.38
 
 
 def test_the_run_pivot_moves_only_an_edged_result_off_its_run():
@@ -149,7 +167,7 @@ def test_pattern_run_ends_where_the_ellipse_leaves_a_flank(problems):
                       pinion_teeth=pair.pinion_teeth)
     pitch = 2.0 * math.pi / pair.pinion_teeth
     step = pitch / 30.0
-    assert run is not None and run.pitches > 0.0
+    assert run is not None and 0.0 < run.pitches <= run.path_pitches
     mid = start.phi1_rad + run.middle_offset_pitch * pitch
     lo, hi = mid - 0.5 * run.pitches * pitch, mid + 0.5 * run.pitches * pitch
     # the phases inside the run's ends and beyond them, by fresh solves from the path's

@@ -290,11 +290,15 @@ class PatternRun:
     middle_uv : (float, float)
         The pinion flank point (u, v) of the path at its middle phase (the path point
         nearest it), mm.
+    path_pitches : float
+        The length, pinion pitches, of the run of surface contacts (on both flanks, the
+        ellipse anywhere) that contains it.
     """
 
     pitches: float
     middle_offset_pitch: float
     middle_uv: tuple
+    path_pitches: float = float("nan")
 
 
 def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
@@ -313,16 +317,23 @@ def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
         return None
     step = float(np.median(np.diff(phase))) if len(pts) > 1 else 0.0
     k = int(np.argmin(np.where(ok, np.abs(phase - phi1_rad), np.inf)))
-    lo = hi = k      # grow while the neighbour is on the flanks one phase step away
-    while lo > 0 and ok[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
-        lo -= 1
-    while hi < len(pts) - 1 and ok[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
-        hi += 1
+    def grow(k, good):
+        """The ends of the run of ``good`` points through ``k``, one phase step apart."""
+        lo = hi = k
+        while lo > 0 and good[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
+            lo -= 1
+        while hi < len(pts) - 1 and good[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
+            hi += 1
+        return lo, hi
+
+    lo, hi = grow(k, ok)
+    p_lo, p_hi = grow(k, np.ones(len(pts), dtype=bool))
     pitch = 2.0 * math.pi / pinion_teeth
     middle = 0.5 * (phase[lo] + phase[hi])
     m = lo + int(np.argmin(np.abs(phase[lo:hi + 1] - middle)))
     return PatternRun(float((phase[hi] - phase[lo]) / pitch),
-                      float((middle - phi1_rad) / pitch), (float(pts[m].u1), float(pts[m].v1)))
+                      float((middle - phi1_rad) / pitch), (float(pts[m].u1), float(pts[m].v1)),
+                      float((phase[p_hi] - phase[p_lo]) / pitch))
 
 
 @dataclass(frozen=True)

@@ -75,6 +75,8 @@ from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
+from .setting_pivot import better_pivot as _better_pivot
+from .setting_pivot import length_targets, room_targets, run_pivot
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -387,119 +389,74 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
                             time.perf_counter() - t0, pivot=prob.pivot[side], run=run)
 
 
-def _better_pivot(*results: SettingSynthesis) -> SettingSynthesis:
-    """Of syntheses of one side at several pivots, the one whose full TCA has the fewest
-    phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p, then the
-    first given; a result missing a target loses to one meeting them), the others'
-    checks named in its ``other_pivot``."""
-    def rank(r):
-        return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
-
-    keep = min(results, key=rank)
-    return dataclasses.replace(keep, other_pivot="; ".join(
-        f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
-        f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
-        + ("" if drop.met else ", targets missed") for drop in results if drop is not keep))
-
-
-#: Shortest paint-ellipse target of the bearing's room (the
-#: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
-_ROOM_RATIO_MIN = 0.1
-
-
-def room_targets(targets: SynthesisTargets, *, room_mm: float, face_mm: float):
-    """``targets`` with the paint ellipse's length set to the contact line's room
-    ``room_mm`` (:func:`~.setting_problem.line_room_mm` at the centred pivot) where the
-    target, ``pattern_length_ratio`` of the gear face ``face_mm``, exceeds it; None where
-    it does not, or where the room is below the shortest target
-    (:data:`_ROOM_RATIO_MIN` of the face: the candidate is not tried)."""
-    if not room_mm < targets.pattern_length_ratio * face_mm or room_mm < _ROOM_RATIO_MIN * face_mm:
-        return None
-    return dataclasses.replace(targets, pattern_length_ratio=room_mm / face_mm)
-
-
-def run_pivot(result: SettingSynthesis):
-    """The pinion flank point (u, v), mm, of the middle of ``result``'s pattern run
-    (:class:`~.setting_problem.PatternRun`), where ``result`` has edge phases and the
-    run's middle is off M's phase by more than :data:`_RUN_STEP_PITCH`; None
-    otherwise."""
-    run = result.run
-    if not result.edge_phases or run is None or \
-            not abs(run.middle_offset_pitch) > _RUN_STEP_PITCH:
-        return None
-    return run.middle_uv
-
-
-def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, problem):
-    """``done`` (the mean node's syntheses of ``sides``) against the other pivots' of a
-    line-contact base (docs/machine_settings.md sec. 5, "The pivot's depth" and "The
-    bearing's room"), each side's best by :func:`_better_pivot`: the working depth's
-    centre; with ``bearing_room``, the centre with the ellipse target shortened to the
-    contact line's room there where the target exceeds it, and the pivot moved to the
-    middle of the best one's pattern run (:class:`~.setting_problem.PatternRun`) where
-    that has edge phases and the run's middle is off M's phase by more than a
-    phase step. ``problem``: the :class:`SynthesisProblem` options."""
+def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node, problem):
+    """``done`` (the syntheses of ``sides`` about the mean node, the problem ``node``)
+    against the other pivots of a line-contact base (:mod:`.setting_pivot`;
+    docs/machine_settings.md sec. 5, "The pivot's depth" and "The bearing's room"),
+    each side's best by :func:`~.setting_pivot.better_pivot`: the working depth's
+    centre; with ``bearing_room``, in turn, the centre with the ellipse no longer than
+    the contact line's room there (:func:`~.setting_pivot.room_targets`), the pivot
+    moved to the middle of the best one's pattern run
+    (:func:`~.setting_pivot.run_pivot`), and the best one's pivot with the ellipse
+    shortened for a run of one pitch (:func:`~.setting_pivot.length_targets`), each
+    where it applies. ``problem``: the :class:`SynthesisProblem` options."""
     per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
-    cands = {s: [(done[s], per_side[s])] for s in sides}
+    # side -> [(result, its targets, its problem)]
+    cands = {s: [(done[s], per_side[s], node)] for s in sides}
+    failed = {s: [] for s in sides}     # the candidates without contact at their M
 
-    centred, other = None, {}
-    try:
-        centred = SynthesisProblem(pair, **problem, pivot_depth={
-            s: per_side[s].centre_profile for s in sides})
-        other = synthesize_settings(pair, targets=targets, problem=centred, sides=sides,
-                                    **options)
-    except CheckFailed as exc:      # no contact at the centred M: the mean node's
-        why = f"the working depth's centre: not synthesized ({exc})"
-        cands = {s: [(dataclasses.replace(done[s], other_pivot=why), per_side[s])]
-                 for s in sides}
-    for s, r in other.items():
-        cands[s].append((r, per_side[s]))
-    if bearing_room and centred is not None:
-        # the bearing's room: the paint ellipse no longer than the contact line's room
-        # at the centred M (its half chord across the flank)
-        face = pair.gear_face_width_mm
-        short = {}
-        for s in other:
-            t = room_targets(per_side[s], room_mm=centred.line_room_mm(s, centred.standard[s]),
-                             face_mm=face)
-            if t is not None:
-                short[s] = t
-        for s in short:
+    def add(prob, tg, note=""):
+        """Synthesize the sides of ``tg`` ({side: targets}) on ``prob``; a side without
+        contact at its M is left out (its candidate not tried)."""
+        for s, t in tg.items():
             try:
-                r = synthesize_settings(pair, targets={s: short[s]}, problem=centred,
-                                        sides=(s,), **options)[s]
-            except CheckFailed:
+                r = synthesize_settings(pair, targets={s: t}, problem=prob, sides=(s,),
+                                        **options)[s]
+            except CheckFailed as exc:
+                failed[s].append(f"{prob.pivot[s]}{note}: not synthesized ({exc})".format(
+                    length=t.pattern_length_ratio * pair.gear_face_width_mm))
                 continue
-            asked = per_side[s].pattern_length_ratio * face
-            cands[s].append((dataclasses.replace(r, pivot=(
-                f"{r.pivot}, the paint ellipse's target shortened to the contact line's "
-                f"room there, {short[s].pattern_length_ratio * face:.2f} mm (asked "
-                f"{asked:.2f} mm)")), short[s]))
-        # the pitch centred on the best pivot's pattern run
-        moved = {}
-        for s in sides:
-            best = _better_pivot(*(c for c, _ in cands[s]))
-            tg = next(t for c, t in cands[s] if c.x is best.x)
-            if run_pivot(best) is not None:
-                moved[s] = (run_pivot(best), tg, best.pivot)
+            cands[s].append((dataclasses.replace(r, pivot=r.pivot + note.format(
+                side=s, length=t.pattern_length_ratio * pair.gear_face_width_mm)), t, prob))
+
+    def best(s):
+        return min(cands[s], key=lambda c: (not c[0].met, c[0].edge_phases,
+                                            c[0].tca_te0_pp_arcsec))
+
+    centred = SynthesisProblem(pair, **problem, pivot_depth={
+        s: per_side[s].centre_profile for s in sides})
+    add(centred, per_side)
+    if bearing_room:
+        face = pair.gear_face_width_mm
+        # the bearing's room: the ellipse no longer than the contact line's room there
+        short = {s: room_targets(per_side[s], room_mm=centred.line_room_mm(
+            s, centred.standard[s]), face_mm=face) for s in sides}
+        add(centred, {s: t for s, t in short.items() if t is not None},
+            ", the paint ellipse's target shortened to the contact line's room there, "
+            "{length:.2f} mm")
+        # the pitch centred on the best one's pattern run
+        moved = {s: (run_pivot(best(s)[0]), best(s)) for s in sides}
+        moved = {s: m for s, m in moved.items() if m[0] is not None}
         if moved:
             try:
                 prob = SynthesisProblem(pair, **problem, pivot_uv={
-                    s: uv for s, (uv, _, _) in moved.items()})
-                res = synthesize_settings(pair, targets={s: t for s, (_, t, _) in moved.items()},
-                                          problem=prob, sides=tuple(moved), **options)
+                    s: uv for s, (uv, _) in moved.items()})
             except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
-                res = {}
-            for s, r in res.items():
-                cands[s].append((dataclasses.replace(r, pivot=(
-                    f"{r.pivot}, the middle of the pattern run of the pivot at "
-                    f"{moved[s][2]}")), moved[s][1]))
-    return {s: _better_pivot(*(c for c, _ in cands[s])) for s in sides}
-
-
-#: A pattern run's middle this close to M's phase (pinion pitches, one step of the
-#: 31-phase check) moves no pivot.
-_RUN_STEP_PITCH = 1.0 / 30.0
+                prob = None
+            for s, (uv, (r, t, _)) in moved.items():
+                if prob is not None:
+                    add(prob, {s: t}, f", the middle of the pattern run of the pivot at "
+                        f"{r.pivot}")
+        # the bearing's length from the path: the best one's run made a pitch long
+        for s in sides:
+            r, t, prob = best(s)
+            t_len = length_targets(t, r, face_mm=face)
+            if t_len is not None:
+                add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
+                    "pattern run of one pitch, {length:.2f} mm")
+    out = {s: _better_pivot(*(c[0] for c in cands[s])) for s in sides}
+    return {s: dataclasses.replace(r, other_pivot="; ".join(
+        t for t in (r.other_pivot, *failed[s]) if t)) for s, r in out.items()}
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
@@ -568,7 +525,7 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
                                **options) if sides else {}
     if centre_pivot and sides and not prob.point_contact:
         done = _pivot_candidates(pair, done, targets, sides, options, bearing_room,
-                                 problem=dict(gear_generation=gear_generation or "generated",
+                                 node=prob, problem=dict(gear_generation=gear_generation or "generated",
                                               gear=gear, **grid))
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
