@@ -73,14 +73,15 @@ def room_targets(targets, *, room_mm: float, face_mm: float):
 
 def run_pivot(result):
     """The pinion flank point (u, v), mm, of the middle of ``result``'s pattern run
-    (:class:`~.setting_problem.PatternRun`), where ``result`` has edge phases and the
-    run's middle is off M's phase by more than :data:`_RUN_STEP_PITCH`; None
-    otherwise."""
+    (:class:`~.setting_problem.PatternRun`), rounded to 1e-6 mm (the head comment
+    names it to that digit, so that the pivot can be rebuilt from it), where ``result``
+    has edge phases and the run's middle is off M's phase by more than
+    :data:`_RUN_STEP_PITCH`; None otherwise."""
     run = result.run
     if not result.edge_phases or run is None or \
             not abs(run.middle_offset_pitch) > _RUN_STEP_PITCH:
         return None
-    return run.middle_uv
+    return tuple(round(float(t), 6) for t in run.middle_uv)
 
 
 def length_targets(targets, result, *, face_mm: float):

@@ -469,7 +469,7 @@ class SynthesisProblem:
                 self.start[side] = _flank_pivot(fs.pinion.side(side), self.gear[side], pair,
                                                 guess, uv=at_uv[side])
                 self.mean_uv[side] = (self.start[side].u1, self.start[side].v1)
-                self.pivot[side] = ("the pinion flank point (u, v) = ({:.3f}, {:.3f}) mm"
+                self.pivot[side] = ("the pinion flank point (u, v) = ({:.6f}, {:.6f}) mm"
                                     .format(*self.mean_uv[side]))
             elif depth.get(side) is None:     # line contact: the mean node is on a line
                 self.start[side] = guess
