@@ -8,29 +8,20 @@ by ``_better_pivot`` (tca.setting_pivot) (fewest edge phases, then the lowest TE
 first given; a missed target loses).
 
 The choice logic is tested against results written by hand (the rule's truth computed
-in the test); ``line_room_mm`` and ``pattern_run`` on the s0003-centred blank (formate
-gear, 40 x 50 nodes, the standard crowning about the mean node and the centre) against
-independent evaluations: fresh mating-point solves at the run's neighbour phases and
-the paint ellipse's outline (``gap_at``) projected on the flanks.
+in the test); ``line_room_mm`` and ``pattern_run`` on the s0003-centred blank in
+test_setting_pivot_depth.py (its problems, built once).
 """
 
-import dataclasses
-import math
 
 import numpy as np
 import pytest
 
-from gearcontact.geometry.pair import load_pair, without_easeoff
-from gearcontact.tca.analysis import pattern_on_flank
-from gearcontact.tca.curvature import contact_ellipse, relative_curvature
-from gearcontact.tca.mating import solve_mating_point
+from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.mesh import mesh_cycle
-from gearcontact.tca.setting_problem import PatternRun, SynthesisProblem, pattern_run
+from gearcontact.tca.setting_problem import PatternRun, SynthesisProblem
 from gearcontact.tca.setting_pivot import length_targets, room_targets, run_pivot
 from gearcontact.tca.setting_synthesis import SettingSynthesis, _better_pivot
-from gearcontact.tca.stencil import gap_at
 from gearcontact.tca.synthesis_targets import SynthesisTargets
-from gearcontact.tca.types import EdgeContact
 
 SIDE = "drive"
 
@@ -104,101 +95,6 @@ def test_the_run_pivot_moves_only_an_edged_result_off_its_run():
     assert run_pivot(_result("node", 6, 6.3, run=PatternRun(1.1, -0.034, (1.0, 2.0)))) == \
         (1.0, 2.0)
     assert run_pivot(_result("node", 6, 6.3, run=PatternRun(1.1, 0.03, (5.5, 70.0)))) is None
-
-
-@pytest.fixture(scope="module")
-def problems():
-    # ~8 s: the s0003-centred blank's formate gear and complementary pinion, 40 x 50
-    # nodes, pivoting on the mean node and on the working depth's centre
-    pair = without_easeoff(load_pair("s0003-centred"))
-    return {d: SynthesisProblem(pair, gear_generation="formate", pivot_depth=d)
-            for d in (None, 0.5)}
-
-
-def _ellipse_at_m(prob, side):
-    pair = prob.pair
-    kin = pair.kinematics()
-    flank, gear = prob.flank(side, prob.standard[side]), prob.gear[side]
-    mp = solve_mating_point(flank, gear, kin, prob.start[side])
-    return flank, gear, kin, mp, contact_ellipse(relative_curvature(flank, gear, kin, mp))
-
-
-def test_line_room_bounds_the_ellipse_at_m(problems):
-    # ~2 s. The room's contract by direct projections (gap_at along the major axis):
-    # +-room inside both flanks, room + 2 x 0.01 mm (the bisection's stop) outside on
-    # one side. Against the paint ellipse's outline (16 points, the pattern's own
-    # test): the ellipse at the centre lies on the flanks (test_setting_pivot_depth), so
-    # its semi-major axis is within the room; at the mean node it is not, its
-    # semi-major axis beyond the room (the depth argument, docs sec. 5)
-    for side in ("drive", "coast"):
-        rooms = {}
-        for depth, prob in problems.items():
-            flank, gear, kin, mp, ell = _ellipse_at_m(prob, side)
-            room = prob.line_room_mm(side, prob.standard[side])
-            on = gap_at(flank, gear, kin, mp, np.array([room, -room]), np.zeros(2)).on_flank
-            assert on.all()
-            off = gap_at(flank, gear, kin, mp, np.array([room + 0.02, -room - 0.02]),
-                         np.zeros(2)).on_flank
-            assert not off.all()
-            theta = 2.0 * np.pi * np.arange(16) / 16
-            outline = gap_at(flank, gear, kin, mp, ell.semi_major_mm * np.cos(theta),
-                             ell.semi_minor_mm * np.sin(theta)).on_flank.all()
-            if outline:
-                assert ell.semi_major_mm <= room
-            else:
-                # the outline off a flank: the major axis' ends off too, or the minor
-                assert ell.semi_major_mm > room or not gap_at(
-                    flank, gear, kin, mp, np.zeros(2),
-                    ell.semi_minor_mm * np.array([1.0, -1.0])).on_flank.all()
-            rooms[depth] = (room, ell.semi_major_mm)
-        assert rooms[None][0] < rooms[None][1] <= rooms[0.5][0]
-
-
-def test_pattern_run_ends_where_the_ellipse_leaves_a_flank(problems):
-    # ~5 s: the standard crowning about the centre, the full TCA (31 phases, pairs
-    # -2..2); the run of pair 0's path around M's phase. Independent check at the
-    # run's ends and one phase step beyond: a fresh mating-point solve at that phase
-    # and the paint ellipse's outline there (pattern_on_flank on those contacts)
-    prob = problems[0.5]
-    pair = prob.pair
-    kin = pair.kinematics()
-    flank, gear, start = prob.flank(SIDE, prob.standard[SIDE]), prob.gear[SIDE], prob.start[SIDE]
-    cyc = mesh_cycle(flank, gear, kin, pinion_teeth=pair.pinion_teeth, start=start,
-                     start_fixed="phi1", phases=31, pairs=2)
-    run = pattern_run(flank, gear, kin, cyc.path, phi1_rad=start.phi1_rad,
-                      pinion_teeth=pair.pinion_teeth)
-    pitch = 2.0 * math.pi / pair.pinion_teeth
-    step = pitch / 30.0
-    assert run is not None and 0.0 < run.pitches <= run.path_pitches
-    mid = start.phi1_rad + run.middle_offset_pitch * pitch
-    lo, hi = mid - 0.5 * run.pitches * pitch, mid + 0.5 * run.pitches * pitch
-    # the phases inside the run's ends and beyond them, by fresh solves from the path's
-    # nearest point (1e-9 rad: a phase of the path's own grid)
-    phases = {"end lo": lo, "end hi": hi, "beyond lo": lo - step, "beyond hi": hi + step}
-    points = {}
-    for name, phi in phases.items():
-        near = min(cyc.path.points, key=lambda p: abs(p.phi1_rad - phi))
-        assert abs(near.phi1_rad - phi) < 1e-9 or name.startswith("beyond")
-        try:
-            points[name] = solve_mating_point(flank, gear, kin, dataclasses.replace(
-                near.as_guess(), phi1_rad=phi))
-        except (EdgeContact, ArithmeticError):   # the contact itself off a flank
-            assert name.startswith("beyond")
-    names = list(points)
-    ells = [contact_ellipse(relative_curvature(flank, gear, kin, points[n])) for n in names]
-
-    class _Cycle:
-        contact, ellipse = [points[n] for n in names], ells
-
-    on = dict(zip(names, pattern_on_flank(flank, gear, kin, _Cycle)))
-    assert on["end lo"] and on["end hi"]
-    assert not on.get("beyond lo", False) or lo - step < cyc.path.points[0].phi1_rad
-    assert not on.get("beyond hi", False) or hi + step > cyc.path.points[-1].phi1_rad
-    # the middle's flank point: a path point within half a phase step of the middle
-    # (the nearer of two at a half step)
-    near = [(p.u1, p.v1) for p in cyc.path.points
-            if abs(p.phi1_rad - mid) <= 0.5 * step + 1e-12]
-    assert run.middle_uv in near
 
 
 @pytest.mark.slow
