@@ -488,14 +488,15 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     depth on the mean section, :class:`SynthesisProblem` ``pivot_depth``: the middle by
     default, where the paint ellipse along the contact line has the most room), and
     the one whose full TCA puts the paint ellipse at a flank edge at fewer phases is
-    kept (a tie: the lower TE0 p-p; :func:`_better_pivot`), the other's check in its
-    ``other_pivot``. With ``bearing_room`` (docs/machine_settings.md sec. 5, "The
-    bearing's room") up to two more candidates per side join the choice: the centre with
-    the paint ellipse's target shortened to the contact line's room there
-    (:func:`room_targets`, where the target exceeds it; the result's rows and ``pivot``
-    name the shortened target), and the pivot moved to the middle of the best
-    candidate's pattern run (:func:`run_pivot`). A point-contact base pivots on its
-    contact path (once).
+    kept (a tie: the lower TE0 p-p; :func:`~.setting_pivot.better_pivot`), the other's
+    check in its ``other_pivot``. With ``bearing_room`` (docs/machine_settings.md sec. 5,
+    "The bearing's room") up to three more candidates per side join the choice: the
+    centre with the paint ellipse's target shortened to the contact line's room there
+    (:func:`~.setting_pivot.room_targets`, where the target exceeds it), the pivot moved
+    to the middle of the best candidate's pattern run (:func:`~.setting_pivot.run_pivot`)
+    and the best one's pivot with the ellipse shortened for a pattern run of one pitch
+    (:func:`~.setting_pivot.length_targets`); the result's rows and ``pivot`` name a
+    shortened target. A point-contact base pivots on its contact path (once).
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
@@ -508,7 +509,8 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
             dataclasses.replace(pair, pinion_hand="right", machine=(), typed_gear=(),
                                 print_gear=()), targets=targets,
             gear_generation=gear_generation, standard_off_flank=standard_off_flank,
-            centre_pivot=centre_pivot, bearing_room=bearing_room, gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
+            centre_pivot=centre_pivot, bearing_room=bearing_room,
+            gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
             **options)
         machine = tuple(mirror_setup(s) for s in twin.machine)
         if gear is not None:      # the gear as typed, not its twin's mirror image
@@ -525,8 +527,9 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
                                **options) if sides else {}
     if centre_pivot and sides and not prob.point_contact:
         done = _pivot_candidates(pair, done, targets, sides, options, bearing_room,
-                                 node=prob, problem=dict(gear_generation=gear_generation or "generated",
-                                              gear=gear, **grid))
+                                 node=prob, problem=dict(
+                                     gear_generation=gear_generation or "generated",
+                                     gear=gear, **grid))
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
                                                if s not in done},
