@@ -409,15 +409,14 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
         """Synthesize the sides of ``tg`` ({side: targets}) on ``prob``; a side without
         contact at its M is left out (its candidate not tried)."""
         for s, t in tg.items():
+            said = note.format(length=t.pattern_length_ratio * pair.gear_face_width_mm)
             try:
                 r = synthesize_settings(pair, targets={s: t}, problem=prob, sides=(s,),
                                         **options)[s]
             except CheckFailed as exc:
-                failed[s].append(f"{prob.pivot[s]}{note}: not synthesized ({exc})".format(
-                    length=t.pattern_length_ratio * pair.gear_face_width_mm))
+                failed[s].append(f"{prob.pivot[s]}{said}: not synthesized ({exc})")
                 continue
-            cands[s].append((dataclasses.replace(r, pivot=r.pivot + note.format(
-                side=s, length=t.pattern_length_ratio * pair.gear_face_width_mm)), t, prob))
+            cands[s].append((dataclasses.replace(r, pivot=r.pivot + said), t, prob))
 
     def best(s):
         return min(cands[s], key=lambda c: (not c[0].met, c[0].edge_phases,
@@ -445,8 +444,8 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
                 prob = None
             for s, (uv, (r, t, _)) in moved.items():
                 if prob is not None:
-                    add(prob, {s: t}, f", the middle of the pattern run of the pivot at "
-                        f"{r.pivot}")
+                    add(prob, {s: t}, ", the middle of the pattern run of the pivot at "
+                        + r.pivot.replace("{", "{{").replace("}", "}}"))
         # the bearing's length from the path: the best one's run made a pitch long
         for s in sides:
             r, t, prob = best(s)
