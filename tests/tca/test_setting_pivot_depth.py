@@ -35,7 +35,8 @@ from gearcontact.tca.edges import pattern_edges
 from gearcontact.tca.mating import solve_mating_point
 from gearcontact.tca.mesh import mesh_cycle
 from gearcontact.tca.setting_problem import SynthesisProblem, corrected_setup, pattern_run
-from gearcontact.tca.setting_synthesis import (SettingSynthesis, _better_pivot,
+from gearcontact.tca.setting_pivot import better_pivot as _better_pivot
+from gearcontact.tca.setting_synthesis import (SettingSynthesis,
                                                synthesize_settings)
 from gearcontact.tca.stencil import gap_at
 from gearcontact.tca.types import EdgeContact

@@ -19,8 +19,10 @@ import pytest
 from gearcontact.geometry.pair import load_pair
 from gearcontact.tca.mesh import mesh_cycle
 from gearcontact.tca.setting_problem import PatternRun, SynthesisProblem
-from gearcontact.tca.setting_pivot import length_targets, room_targets, run_pivot
-from gearcontact.tca.setting_synthesis import SettingSynthesis, _better_pivot
+from gearcontact.tca.setting_pivot import better_pivot as _better_pivot
+from gearcontact.tca.setting_pivot import (cuttable_choice, length_targets, room_targets,
+                                           run_pivot)
+from gearcontact.tca.setting_synthesis import SettingSynthesis
 from gearcontact.tca.synthesis_targets import SynthesisTargets
 
 SIDE = "drive"
@@ -49,6 +51,39 @@ def test_the_kept_pivot_of_several_is_the_ranked_first():
         "TE0 p-p 3.10 arcsec")
     assert _better_pivot(node, _result("short", 0, 1.0, met=False)).pivot == "node"
     assert _better_pivot(node, centre).pivot == "node"
+
+
+def test_a_pointed_tooth_passes_the_kept_pair_over():
+    # the sides' best ones together cut a pointed tooth (a stand-in for the readers'
+    # top-land check): the combinations in the order of the summed rank, by hand:
+    # (a, c) 3 edge phases pointed -> (a, d) 5 -> kept; (b, c) would be 6
+    a, b = _result("a", 2, 3.0), _result("b", 5, 2.0)
+    c, d = _result("c", 1, 3.0), _result("d", 3, 3.0)
+    c = SettingSynthesis("coast", *[getattr(c, f) for f in (
+        "setup", "x", "point", "rows", "tca_te0_pp_arcsec", "edges", "vertex_offset_mm",
+        "evaluations", "seconds")], pivot="c")
+    d = SettingSynthesis("coast", *[getattr(d, f) for f in (
+        "setup", "x", "point", "rows", "tca_te0_pp_arcsec", "edges", "vertex_offset_mm",
+        "evaluations", "seconds")], pivot="d")
+    tried = []
+
+    def pointed(pick):
+        tried.append((pick["drive"].pivot, pick["coast"].pivot))
+        return "a pointed pinion tooth" if tried[-1] == ("a", "c") else ""
+
+    got = cuttable_choice({"drive": [a, b], "coast": [c, d]}, pointed=pointed)
+    assert tried == [("a", "c"), ("a", "d")]
+    assert got["drive"].pivot == "a" and got["coast"].pivot == "d"
+    assert "passed over" not in got["drive"].other_pivot        # its best was kept
+    assert got["coast"].other_pivot.startswith("c: paint ellipse at a flank edge at 1 of")
+    assert "the better ones passed over" in got["coast"].other_pivot and \
+        "(a pointed pinion tooth)" in got["coast"].other_pivot
+    # cuttable at once: better_pivot's choice; none cuttable: the same (readers refuse)
+    for answer in ("", "pointed"):
+        got = cuttable_choice({"drive": [a, b], "coast": [c, d]},
+                              pointed=lambda pick, t=answer: t)
+        assert (got["drive"].pivot, got["coast"].pivot) == ("a", "c")
+        assert got["coast"].other_pivot == _better_pivot(c, d).other_pivot
 
 
 def test_the_room_target_is_the_room_where_the_ellipse_exceeds_it():

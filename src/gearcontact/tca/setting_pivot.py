@@ -25,8 +25,9 @@ module does not import it, so that the synthesis imports the choice.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
-__all__ = ["better_pivot", "length_targets", "room_targets", "run_pivot"]
+__all__ = ["better_pivot", "cuttable_choice", "length_targets", "room_targets", "run_pivot"]
 
 #: Shortest paint-ellipse target of the further candidates (the
 #: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
@@ -36,15 +37,56 @@ _RATIO_MIN = 0.1
 _RUN_STEP_PITCH = 1.0 / 30.0
 
 
+def _rank(r):
+    """The order of the choice: targets met first, then fewer edge phases, then the
+    lower TE0 p-p."""
+    return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
+
+
+def cuttable_choice(candidates: dict, *, pointed) -> dict:
+    """Per side, the candidate of ``candidates`` (``{side: [results]}``) kept by
+    :func:`better_pivot`, unless the pinion tooth that the kept ones of both sides cut
+    together is pointed or folds: ``pointed({side: result})`` gives the refusal's text,
+    "" for a cuttable tooth (:func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`,
+    the readers' own check). Then the combinations are tried in the order of the summed
+    rank (missed targets, edge phases, TE0 p-p over the sides; the first given on a
+    tie) and the first cuttable one is kept, each side's result naming the others and
+    why its better ones were passed over; where none is cuttable, the best, as
+    :func:`better_pivot` (the readers then refuse the written file, naming the tooth)."""
+    sides = tuple(candidates)
+    combos = sorted(itertools.product(*(range(len(candidates[s])) for s in sides)),
+                    key=lambda ix: tuple(sum(v) for v in zip(*(
+                        _rank(candidates[s][i]) for s, i in zip(sides, ix)))))
+    why = ""
+    for ix in combos:
+        pick = {s: candidates[s][i] for s, i in zip(sides, ix)}
+        said = pointed(pick)
+        if not said:
+            break
+        why = why or said
+    else:
+        return {s: better_pivot(*candidates[s]) for s in sides}
+    out = {}
+    for s in sides:
+        kept = pick[s]
+        rest = [c for c in candidates[s] if c is not kept]
+        note = "; ".join(
+            f"{c.pivot}: paint ellipse at a flank edge at {c.edge_phases} of {len(c.edges)} "
+            f"phases, full TCA TE0 p-p {c.tca_te0_pp_arcsec:.2f} arcsec"
+            + ("" if c.met else ", targets missed") for c in rest)
+        if any(_rank(c) < _rank(kept) for c in rest):
+            note += (f"; the better ones passed over: with the other side's they cut a "
+                     f"pinion tooth the readers refuse ({why})")
+        out[s] = dataclasses.replace(kept, other_pivot=note)
+    return out
+
+
 def better_pivot(*results):
     """Of syntheses of one side at several pivots, the one whose full TCA has the fewest
     phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p, then the
     first given; a result missing a target loses to one meeting them), the others'
     checks named in its ``other_pivot``, in the order given."""
-    def rank(r):
-        return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
-
-    keep = min(results, key=rank)
+    keep = min(results, key=_rank)
     return dataclasses.replace(keep, other_pivot="; ".join(
         f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
         f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"

@@ -70,13 +70,13 @@ from ..geometry.basic_settings import STANDARD_CROWNING, crowned_pinion_setups
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.machine import MachineSetup, mirror_setup
+from ..geometry.settings_top_land import check_settings_top_land
 from ..validation import InputRangeError
 from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_pivot import better_pivot as _better_pivot
-from .setting_pivot import length_targets, room_targets, run_pivot
+from .setting_pivot import cuttable_choice, length_targets, room_targets, run_pivot
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -453,7 +453,21 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
             if t_len is not None:
                 add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
                     "pattern run of one pitch, {length:.2f} mm")
-    out = {s: _better_pivot(*(c[0] for c in cands[s])) for s in sides}
+    gear = {s: node.gear_setups[s] for s in SIDES}
+
+    def pointed(pick):
+        """The readers' refusal of the pinion tooth ``pick`` cuts ("" if none)."""
+        pinion = {s: r.setup for s, r in pick.items()}
+        if set(pinion) != set(SIDES):   # one side synthesized: its tooth not checked here
+            return ""
+        try:
+            check_settings_top_land(dataclasses.replace(pair, machine=tuple(
+                gear[s] for s in SIDES) + tuple(pinion[s] for s in SIDES)))
+        except InputRangeError as exc:
+            return str(exc)
+        return ""
+
+    out = cuttable_choice({s: [c[0] for c in cands[s]] for s in sides}, pointed=pointed)
     return {s: dataclasses.replace(r, other_pivot="; ".join(
         t for t in (r.other_pivot, *failed[s]) if t)) for s, r in out.items()}
 
