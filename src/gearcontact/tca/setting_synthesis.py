@@ -464,7 +464,7 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
             check_settings_top_land(dataclasses.replace(pair, machine=tuple(
                 gear[s] for s in SIDES) + tuple(pinion[s] for s in SIDES)))
         except InputRangeError as exc:
-            return str(exc)
+            return str(exc.value)
         return ""
 
     out = cuttable_choice({s: [c[0] for c in cands[s]] for s in sides}, pointed=pointed)
