@@ -509,7 +509,11 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     to the middle of the best candidate's pattern run (:func:`~.setting_pivot.run_pivot`)
     and the best one's pivot with the ellipse shortened for a pattern run of one pitch
     (:func:`~.setting_pivot.length_targets`); the result's rows and ``pivot`` name a
-    shortened target. A point-contact base pivots on its contact path (once).
+    shortened target. The kept ones of both sides must cut a pinion tooth that the
+    readers accept (:func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`:
+    no pointed tooth, no folding flank); where they do not, the next combination of the
+    sides' candidates is kept (:func:`~.setting_pivot.cuttable_choice`). A point-contact
+    base pivots on its contact path (once).
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
