@@ -10,7 +10,8 @@ test was written):
   envelope node at M equal to 1e-9 mm, normal to 1e-12 (read back from the TOML, whose
   17 digits keep them). M is the pivot the head comment names per side (session 24:
   the blank's mean node, or the middle of the pinion's working depth on the mean
-  section, whichever puts the pattern at a flank edge at fewer phases;
+  section, whichever puts the pattern at a flank edge at fewer phases; since session
+  25 also a flank point named by its (u, v), the middle of a pattern run;
   docs/machine_settings.md sec. 5, "The pivot's depth"), its (u, v) computed here by
   SynthesisProblem with that pivot;
 - `tca` (31 phases) on the written file runs on both sides; on a side pivoting on the
@@ -25,6 +26,7 @@ asserted.
 """
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -60,10 +62,16 @@ def test_formate_hypoid_local_synthesis_then_tca(tmp_path, capsys):
     v_m = float(pair.blank.pitch_point_mm[0])
     centred = {side for side in SIDES if f"{side}: pivot M at 0.50 of the pinion's "
                "working depth" in text}
-    assert centred or all(f"{side}: pivot M at the blank's mean node" in text
-                          for side in SIDES)
-    pivots = SynthesisProblem(pair, gear_generation="formate",
+    # session 25: a pivot moved to the middle of a pattern run is named by its (u, v),
+    # to 1e-6 mm, as it was built (setting_pivot.run_pivot)
+    at_uv = {side: tuple(float(t) for t in m.groups()) for side in SIDES for m in [
+        re.search(rf"{side}: pivot M at the pinion flank point \(u, v\) = "
+                  r"\(([-\d.]+), ([-\d.]+)\) mm", text)] if m}
+    assert all(f"{side}: pivot M at the blank's mean node" in text
+               for side in SIDES if side not in centred and side not in at_uv)
+    pivots = SynthesisProblem(pair, gear_generation="formate", pivot_uv=at_uv,
                               pivot_depth={s: 0.5 if s in centred else None for s in SIDES})
+    centred |= set(at_uv)       # M off the mean node
     for side in SIDES:
         assert setups["gear", side] == gear[side]
         assert setups["pinion", side] != base[side]

@@ -20,6 +20,7 @@ fewer phases with the paint ellipse at a flank edge, TE0 p-p not above the stand
 settings', the targets met at M to the synthesis' tolerances.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -33,10 +34,12 @@ from gearcontact.tca.curvature import contact_ellipse, relative_curvature
 from gearcontact.tca.edges import pattern_edges
 from gearcontact.tca.mating import solve_mating_point
 from gearcontact.tca.mesh import mesh_cycle
-from gearcontact.tca.setting_problem import SynthesisProblem, corrected_setup
-from gearcontact.tca.setting_synthesis import (SettingSynthesis, _better_pivot,
+from gearcontact.tca.setting_problem import SynthesisProblem, corrected_setup, pattern_run
+from gearcontact.tca.setting_pivot import better_pivot as _better_pivot
+from gearcontact.tca.setting_synthesis import (SettingSynthesis,
                                                synthesize_settings)
 from gearcontact.tca.stencil import gap_at
+from gearcontact.tca.types import EdgeContact
 
 SIDE = "drive"
 
@@ -169,3 +172,93 @@ def test_the_pivot_kept_is_the_one_with_fewer_edge_phases():
     assert _better_pivot(_result(node, 31, 2.78), _result(centre, 31, 35.7)).pivot == node
     assert _better_pivot(_result(node, 12, 2.9), _result(centre, 3, 2.9, met=False)).pivot \
         == node
+
+
+# session 25, the bearing's room (test_setting_pivot_room.py): line_room_mm and
+# pattern_run against independent evaluations, fresh mating-point solves at the run's
+# neighbour phases and the paint ellipse's outline (gap_at) projected on the flanks
+
+def _ellipse_at_m(prob, side):
+    pair = prob.pair
+    kin = pair.kinematics()
+    flank, gear = prob.flank(side, prob.standard[side]), prob.gear[side]
+    mp = solve_mating_point(flank, gear, kin, prob.start[side])
+    return flank, gear, kin, mp, contact_ellipse(relative_curvature(flank, gear, kin, mp))
+
+
+def test_line_room_bounds_the_ellipse_at_m(problems):
+    # ~2 s. The room's contract by direct projections (gap_at along the major axis):
+    # +-room inside both flanks, room + 2 x 0.01 mm (the bisection's stop) outside on
+    # one side. Against the paint ellipse's outline (16 points, the pattern's own
+    # test): the ellipse at the centre lies on the flanks (test_setting_pivot_depth), so
+    # its semi-major axis is within the room; at the mean node it is not, its
+    # semi-major axis beyond the room (the depth argument, docs sec. 5)
+    for side in ("drive", "coast"):
+        rooms = {}
+        for depth, prob in problems.items():
+            flank, gear, kin, mp, ell = _ellipse_at_m(prob, side)
+            room = prob.line_room_mm(side, prob.standard[side])
+            on = gap_at(flank, gear, kin, mp, np.array([room, -room]), np.zeros(2)).on_flank
+            assert on.all()
+            off = gap_at(flank, gear, kin, mp, np.array([room + 0.02, -room - 0.02]),
+                         np.zeros(2)).on_flank
+            assert not off.all()
+            theta = 2.0 * np.pi * np.arange(16) / 16
+            outline = gap_at(flank, gear, kin, mp, ell.semi_major_mm * np.cos(theta),
+                             ell.semi_minor_mm * np.sin(theta)).on_flank.all()
+            if outline:
+                assert ell.semi_major_mm <= room
+            else:
+                # the outline off a flank: the major axis' ends off too, or the minor
+                assert ell.semi_major_mm > room or not gap_at(
+                    flank, gear, kin, mp, np.zeros(2),
+                    ell.semi_minor_mm * np.array([1.0, -1.0])).on_flank.all()
+            rooms[depth] = (room, ell.semi_major_mm)
+        assert rooms[None][0] < rooms[None][1] <= rooms[0.5][0]
+
+
+def test_pattern_run_ends_where_the_ellipse_leaves_a_flank(problems):
+    # ~5 s: the standard crowning about the centre, the full TCA (31 phases, pairs
+    # -2..2); the run of pair 0's path around M's phase. Independent check at the
+    # run's ends and one phase step beyond: a fresh mating-point solve at that phase
+    # and the paint ellipse's outline there (pattern_on_flank on those contacts)
+    prob = problems[0.5]
+    pair = prob.pair
+    kin = pair.kinematics()
+    flank, gear, start = prob.flank(SIDE, prob.standard[SIDE]), prob.gear[SIDE], prob.start[SIDE]
+    cyc = mesh_cycle(flank, gear, kin, pinion_teeth=pair.pinion_teeth, start=start,
+                     start_fixed="phi1", phases=31, pairs=2)
+    run = pattern_run(flank, gear, kin, cyc.path, phi1_rad=start.phi1_rad,
+                      pinion_teeth=pair.pinion_teeth)
+    pitch = 2.0 * math.pi / pair.pinion_teeth
+    step = pitch / 30.0
+    assert run is not None and 0.0 < run.pitches <= run.path_pitches
+    mid = start.phi1_rad + run.middle_offset_pitch * pitch
+    lo, hi = mid - 0.5 * run.pitches * pitch, mid + 0.5 * run.pitches * pitch
+    # the phases inside the run's ends and beyond them, by fresh solves from the path's
+    # nearest point (1e-9 rad: a phase of the path's own grid)
+    phases = {"end lo": lo, "end hi": hi, "beyond lo": lo - step, "beyond hi": hi + step}
+    points = {}
+    for name, phi in phases.items():
+        near = min(cyc.path.points, key=lambda p: abs(p.phi1_rad - phi))
+        assert abs(near.phi1_rad - phi) < 1e-9 or name.startswith("beyond")
+        try:
+            points[name] = solve_mating_point(flank, gear, kin, dataclasses.replace(
+                near.as_guess(), phi1_rad=phi))
+        except (EdgeContact, ArithmeticError):   # the contact itself off a flank
+            assert name.startswith("beyond")
+    names = list(points)
+    ells = [contact_ellipse(relative_curvature(flank, gear, kin, points[n])) for n in names]
+
+    class _Cycle:
+        contact, ellipse = [points[n] for n in names], ells
+
+    on = dict(zip(names, pattern_on_flank(flank, gear, kin, _Cycle)))
+    assert on["end lo"] and on["end hi"]
+    assert not on.get("beyond lo", False) or lo - step < cyc.path.points[0].phi1_rad
+    assert not on.get("beyond hi", False) or hi + step > cyc.path.points[-1].phi1_rad
+    # the middle's flank point: a path point within half a phase step of the middle
+    # (the nearer of two at a half step)
+    near = [(p.u1, p.v1) for p in cyc.path.points
+            if abs(p.phi1_rad - mid) <= 0.5 * step + 1e-12]
+    assert run.middle_uv in near

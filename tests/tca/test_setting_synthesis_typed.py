@@ -235,7 +235,9 @@ def test_the_print_gear_drive_synthesis_meets_the_targets_at_m(print_drive):
                    "TE0 vertex lies 18.8 mm from M (TE0 p-p 15.7 arcsec, the paint ellipse "
                    "at a flank edge at 31 of 31 phases; a pivot at the path's mid-depth "
                    "point gave 20.8 mm, 32.6 arcsec): M near the pinion root does not carry "
-                   "the mesh (docs/machine_settings.md sec. 5)")
+                   "the mesh; the vertex is the gear heel edge contact at the end of pair "
+                   "0's own lengthwise path, whose TE falls 15 arcsec from M to the heel, "
+                   "no handover (docs/machine_settings.md sec. 5)")
 def test_the_print_gear_drive_vertex_is_m(print_drive):
     # declared before measuring, as the coast side's: the full TCA's TE0 vertex is M
     # within 1e-6 mm

@@ -34,13 +34,16 @@ from ..geometry.generated import EnvelopeSolver, generated_pinion_flank, mean_co
 from ..geometry.machine import MachineSetup
 from ..geometry.typed_pinion import typed_gear_pinion_setups
 from ..validation import InputRangeError, check_range
+from .analysis import pattern_on_flank
+from .curvature import contact_ellipse, relative_curvature
 from .design_point import DesignPoint, design_point_at
 from .mating import solve_mating_point
 from .solve import solve_tca
+from .stencil import gap_at
 from .types import ContactGuess, EdgeContact
 
-__all__ = ["MeanPointContact", "SynthesisProblem", "corrected_setup", "mean_point_contact",
-           "roll_about"]
+__all__ = ["MeanPointContact", "PatternRun", "SynthesisProblem", "corrected_setup",
+           "line_room_mm", "mean_point_contact", "pattern_run", "roll_about"]
 
 _REPORT_TORQUE_NM = 64.5
 
@@ -214,17 +217,132 @@ def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
 def _depth_pivot(pinion, gear, pair, mean: ContactGuess, *, fraction: float) -> ContactGuess:
     """The contact of the pinion flank point at ``fraction`` of its working depth (the
     flank box from the active root, 0, to the tip, 1) on the section of ``mean`` (the
-    mean node's contact), found from ``mean`` by
-    :func:`~gearcontact.geometry.generated.mean_contact_guess` (exact for a line-contact
-    pinion: every flank point lies on a contact line); the gear phase is the pinion's
-    over the ratio, as :func:`~gearcontact.geometry.flank.build_machine_flanks` starts it."""
+    mean node's contact): :func:`_flank_pivot` there."""
     check_range("pivot_depth", fraction, 0.02, 0.98)
     (u_root, u_tip), v_m = pinion.u_range, mean.v1
-    u_c = float(u_root + fraction * (u_tip - u_root))
+    return _flank_pivot(pinion, gear, pair, mean,
+                        uv=(float(u_root + fraction * (u_tip - u_root)), float(v_m)))
+
+
+def _flank_pivot(pinion, gear, pair, mean: ContactGuess, *, uv) -> ContactGuess:
+    """The contact of the pinion flank point ``uv`` (mm), found from ``mean`` (the mean
+    node's contact) by :func:`~gearcontact.geometry.generated.mean_contact_guess` (exact
+    for a line-contact pinion: every flank point lies on a contact line); the gear phase
+    is the pinion's over the ratio, as
+    :func:`~gearcontact.geometry.flank.build_machine_flanks` starts it."""
+    (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
+    u_c, v_c = (float(t) for t in uv)
+    if not (u0 < u_c < u1 and v0 < v_c < v1):
+        raise InputRangeError("pivot_uv", (u_c, v_c), f"inside the pinion flank box u in "
+                              f"({u0:.4g}, {u1:.4g}), v in ({v0:.4g}, {v1:.4g}) mm")
     touch = mean_contact_guess(pinion, gear, pair.kinematics(with_errors=False),
-                               pinion_uv=(u_c, v_m), gear_uv=(mean.u2, mean.v2))
-    return ContactGuess(u_c, float(v_m), *touch["gear_uv"], touch["phi1_rad"],
+                               pinion_uv=(u_c, v_c), gear_uv=(mean.u2, mean.v2))
+    return ContactGuess(u_c, v_c, *touch["gear_uv"], touch["phi1_rad"],
                         touch["phi1_rad"] / pair.ratio)
+
+
+#: Resolution of :func:`line_room_mm`, mm (its bisection's stop).
+_ROOM_TOL_MM = 0.01
+
+
+def line_room_mm(pinion, gear, kin, mp) -> float:
+    """The room of the contact line at the interior mating point ``mp``: the largest
+    ``t`` (mm, to :data:`_ROOM_TOL_MM`) such that the tangent-plane points ``+-t`` along
+    the paint ellipse's major axis (the ``"principal"`` frame of :func:`~.stencil.gap_at`;
+    the contact line of a line-contact base) project along the common normal into both flank
+    boxes (:func:`~.stencil.gap_at`, as :func:`~.analysis.pattern_on_flank` tests the
+    ellipse outline); 0 if ``mp`` itself is on an edge. A coarse scan over the flank's
+    diagonal in 64 steps, then bisection on each side."""
+    (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
+    reach = float(np.hypot(u1 - u0, v1 - v0))
+
+    def inside(t):
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        return gap_at(pinion, gear, kin, mp, t, np.zeros_like(t), frame="principal").on_flank
+
+    room = []
+    for sign in (1.0, -1.0):
+        steps = sign * reach * np.arange(1, 65) / 64.0
+        ok = inside(steps)
+        if ok.all():
+            room.append(reach)
+            continue
+        k = int(np.argmin(ok))          # the first sample off a flank
+        lo, hi = (0.0 if k == 0 else abs(steps[k - 1])), abs(steps[k])
+        while hi - lo > _ROOM_TOL_MM:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if inside(sign * mid)[0] else (lo, mid)
+        room.append(lo)
+    return float(min(room))
+
+
+@dataclass(frozen=True)
+class PatternRun:
+    """The run of one tooth pair's contact path whose paint ellipse lies on both flanks
+    (:func:`pattern_run`).
+
+    Attributes
+    ----------
+    pitches : float
+        Its length in pinion pitches (phase span over the pitch angle ``2 pi / z1``).
+    middle_offset_pitch : float
+        Its middle phase minus the reference phase, pinion pitches.
+    middle_uv : (float, float)
+        The pinion flank point (u, v) of the path at its middle phase (the path point
+        nearest it), mm.
+    path_pitches : float
+        The length, pinion pitches, of the run of surface contacts (on both flanks, the
+        ellipse anywhere) that contains it.
+    """
+
+    pitches: float
+    middle_offset_pitch: float
+    middle_uv: tuple
+    path_pitches: float = float("nan")
+
+
+def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
+    """The run of ``path`` (one tooth pair's :class:`~.types.TcaPath`) around the phase
+    ``phi1_rad`` whose points are surface contacts with the paint ellipse on both flanks
+    (:func:`~.analysis.pattern_on_flank` on each point): the run containing the such
+    point nearest ``phi1_rad`` in phase, or None if the path has none."""
+    pts = [p for p in path.points if not p.edge and not p.edge_contact]
+    if not pts:
+        return None
+    pts.sort(key=lambda p: p.phi1_rad)
+    ells = [contact_ellipse(relative_curvature(pinion, gear, kin, p)) for p in pts]
+    ok = pattern_on_flank(pinion, gear, kin, _Points(pts, ells))
+    phase = np.array([p.phi1_rad for p in pts])
+    if not ok.any():
+        return None
+    step = float(np.median(np.diff(phase))) if len(pts) > 1 else 0.0
+    k = int(np.argmin(np.where(ok, np.abs(phase - phi1_rad), np.inf)))
+    def grow(k, good):
+        """The ends of the run of ``good`` points through ``k``, one phase step apart."""
+        lo = hi = k
+        while lo > 0 and good[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
+            lo -= 1
+        while hi < len(pts) - 1 and good[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
+            hi += 1
+        return lo, hi
+
+    lo, hi = grow(k, ok)
+    p_lo, p_hi = grow(k, np.ones(len(pts), dtype=bool))
+    pitch = 2.0 * math.pi / pinion_teeth
+    middle = 0.5 * (phase[lo] + phase[hi])
+    m = lo + int(np.argmin(np.abs(phase[lo:hi + 1] - middle)))
+    return PatternRun(float((phase[hi] - phase[lo]) / pitch),
+                      float((middle - phi1_rad) / pitch), (float(pts[m].u1), float(pts[m].v1)),
+                      float((phase[p_hi] - phase[p_lo]) / pitch))
+
+
+@dataclass(frozen=True)
+class _Points:
+    """Contacts and their ellipses, as :func:`~.analysis.pattern_on_flank` reads a
+    cycle."""
+
+    contact: list
+    ellipse: list
 
 
 class SynthesisProblem:
@@ -270,7 +388,9 @@ class SynthesisProblem:
     any flank point of a line-contact pinion lies on a contact line, so the pivot may
     be any; docs/machine_settings.md sec. 5, "The pivot's depth"); None keeps the mean
     node, the standard crowning's pivot. A point-contact base ignores it (its pivot must
-    lie on its contact path). :attr:`pivot` names where M is, per side.
+    lie on its contact path). ``pivot_uv`` (``{side: (u, v)}``, mm, inside the pinion
+    flank box) puts the pivot of a line-contact base at that flank point (before
+    ``pivot_depth``; :func:`_flank_pivot`). :attr:`pivot` names where M is, per side.
 
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
@@ -278,7 +398,8 @@ class SynthesisProblem:
     """
 
     def __init__(self, pair, *, gear_generation: str = "generated", gear: dict | None = None,
-                 n_u: int = 40, n_v: int = 50, pivot_depth: float | dict | None = None):
+                 n_u: int = 40, n_v: int = 50, pivot_depth: float | dict | None = None,
+                 pivot_uv: dict | None = None):
         if pair.pinion_hand != "right":
             raise InputRangeError("pinion_hand", pair.pinion_hand, "'right' (synthesize the "
                                   "right-hand twin and mirror its settings)")
@@ -310,6 +431,7 @@ class SynthesisProblem:
         self.pivot = {}
         depth = pivot_depth if isinstance(pivot_depth, dict) else dict.fromkeys(SIDES,
                                                                               pivot_depth)
+        at_uv = dict(pivot_uv or {})
         #: side -> why it has no M (point contact whose path has no point inside the
         #: pinion flank by PIVOT_MARGIN); such a side has no start, M or standard
         #: corrections
@@ -343,6 +465,12 @@ class SynthesisProblem:
                         "face")
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
+            elif at_uv.get(side) is not None:     # line contact: a given flank point
+                self.start[side] = _flank_pivot(fs.pinion.side(side), self.gear[side], pair,
+                                                guess, uv=at_uv[side])
+                self.mean_uv[side] = (self.start[side].u1, self.start[side].v1)
+                self.pivot[side] = ("the pinion flank point (u, v) = ({:.6f}, {:.6f}) mm"
+                                    .format(*self.mean_uv[side]))
             elif depth.get(side) is None:     # line contact: the mean node is on a line
                 self.start[side] = guess
                 self.mean_uv[side] = tuple(float(t) for t in m["pinion_uv"])
@@ -373,6 +501,14 @@ class SynthesisProblem:
     def flank(self, side: str, x):
         """The mounted pinion flank of ``side`` with the corrections ``x``."""
         return self._generated(self.setup(side, x))
+
+    def line_room_mm(self, side: str, x) -> float:
+        """:func:`line_room_mm` at M of the corrections ``x`` (their contact at M's
+        phase)."""
+        kin = self.pair.kinematics()
+        flank, gear = self.flank(side, x), self.gear[side]
+        return line_room_mm(flank, gear, kin, solve_mating_point(flank, gear, kin,
+                                                                 self.start[side]))
 
     def contact(self, side: str, x) -> MeanPointContact:
         """:func:`mean_point_contact` of the corrections ``x``."""

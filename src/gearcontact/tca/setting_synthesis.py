@@ -41,8 +41,9 @@ predicted corrections where they miss less than the standard crowning. The base 
 (:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
 on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
 (M the blank's mean point on the pinion or, in :func:`synthesized_machine_pair`, the
-middle of the pinion's working depth where that keeps the pattern off the flank edges at
-more phases).
+middle of the pinion's working depth, that with the paint ellipse no longer than the
+contact line's room there, or the middle of the best one's pattern run, whichever keeps
+the pattern off the flank edges at more phases).
 
 References
 ----------
@@ -69,13 +70,15 @@ from ..geometry.basic_settings import STANDARD_CROWNING, crowned_pinion_setups
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.machine import MachineSetup, mirror_setup
+from ..geometry.settings_top_land import check_settings_top_land
 from ..validation import InputRangeError
 from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_problem import (MeanPointContact, SynthesisProblem, corrected_setup,
-                              mean_point_contact, roll_about)
+from .setting_pivot import cuttable_choice, length_targets, room_targets, run_pivot
+from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
+                              corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
 from .synthesis_targets import SynthesisTargets, TargetRows, targets_rows
 from .types import EdgeContact
@@ -136,8 +139,12 @@ class SettingSynthesis(TargetRows):
     pivot : str
         Where M, the pivot, lies (:attr:`~.setting_problem.SynthesisProblem.pivot`).
     other_pivot : str
-        Where both pivots of :func:`synthesized_machine_pair` were tried: the other one
-        and its full TCA's check ("" otherwise).
+        Where several pivots of :func:`synthesized_machine_pair` were tried: the others
+        and their full TCAs' checks ("" otherwise).
+    run : PatternRun or None
+        The run of the transmitting tooth pair's path (the full TCA's, pairs -2..2
+        pitches) around M's phase whose paint ellipse lies on both flanks
+        (:func:`~.setting_problem.pattern_run`); None where it has none.
     """
 
     side: str
@@ -156,6 +163,7 @@ class SettingSynthesis(TargetRows):
     residual: float = float("nan")
     pivot: str = ""
     other_pivot: str = ""
+    run: PatternRun | None = None
 
     @property
     def edge_phases(self) -> int:
@@ -372,32 +380,102 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
     edges = pattern_edges(flank, gear, kin, cyc, pattern_on_flank(flank, gear, kin, cyc))
     u_m, v_m = prob.mean_uv[side]
     vertex = cyc.contact[len(cyc.contact) // 2]
+    run = pattern_run(flank, gear, kin, cyc.path, phi1_rad=start.phi1_rad,
+                      pinion_teeth=pair.pinion_teeth)
     return SettingSynthesis(side, prob.setup(side, x), x, local.point,
                             targets_rows(local.point, targets, None, length),
                             float(cyc.te0_pp_arcsec), tuple(edges),
                             float(np.hypot(vertex.u1 - u_m, vertex.v1 - v_m)), runs,
-                            time.perf_counter() - t0, pivot=prob.pivot[side])
+                            time.perf_counter() - t0, pivot=prob.pivot[side], run=run)
 
 
-def _better_pivot(a: SettingSynthesis, b: SettingSynthesis) -> SettingSynthesis:
-    """Of two syntheses of one side at two pivots, the one whose full TCA has fewer
-    phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p; a result
-    missing a target loses to one meeting them), the other's check named in its
-    ``other_pivot``."""
-    def rank(r):
-        return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
+def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node, problem):
+    """``done`` (the syntheses of ``sides`` about the mean node, the problem ``node``)
+    against the other pivots of a line-contact base (:mod:`.setting_pivot`;
+    docs/machine_settings.md sec. 5, "The pivot's depth" and "The bearing's room"),
+    each side's best by :func:`~.setting_pivot.better_pivot`: the working depth's
+    centre; with ``bearing_room``, in turn, the centre with the ellipse no longer than
+    the contact line's room there (:func:`~.setting_pivot.room_targets`), the pivot
+    moved to the middle of the best one's pattern run
+    (:func:`~.setting_pivot.run_pivot`), and the best one's pivot with the ellipse
+    shortened for a run of one pitch (:func:`~.setting_pivot.length_targets`), each
+    where it applies. ``problem``: the :class:`SynthesisProblem` options."""
+    per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
+    # side -> [(result, its targets, its problem)]
+    cands = {s: [(done[s], per_side[s], node)] for s in sides}
+    failed = {s: [] for s in sides}     # the candidates without contact at their M
 
-    keep, drop = (a, b) if rank(a) <= rank(b) else (b, a)
-    return dataclasses.replace(keep, other_pivot=(
-        f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
-        f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
-        + ("" if drop.met else ", targets missed")))
+    def add(prob, tg, note=""):
+        """Synthesize the sides of ``tg`` ({side: targets}) on ``prob``; a side without
+        contact at its M is left out (its candidate not tried)."""
+        for s, t in tg.items():
+            said = note.format(length=t.pattern_length_ratio * pair.gear_face_width_mm)
+            try:
+                r = synthesize_settings(pair, targets={s: t}, problem=prob, sides=(s,),
+                                        **options)[s]
+            except CheckFailed as exc:
+                failed[s].append(f"{prob.pivot[s]}{said}: not synthesized ({exc})")
+                continue
+            cands[s].append((dataclasses.replace(r, pivot=r.pivot + said), t, prob))
+
+    def best(s):
+        return min(cands[s], key=lambda c: (not c[0].met, c[0].edge_phases,
+                                            c[0].tca_te0_pp_arcsec))
+
+    centred = SynthesisProblem(pair, **problem, pivot_depth={
+        s: per_side[s].centre_profile for s in sides})
+    add(centred, per_side)
+    if bearing_room:
+        face = pair.gear_face_width_mm
+        # the bearing's room: the ellipse no longer than the contact line's room there
+        short = {s: room_targets(per_side[s], room_mm=centred.line_room_mm(
+            s, centred.standard[s]), face_mm=face) for s in sides}
+        add(centred, {s: t for s, t in short.items() if t is not None},
+            ", the paint ellipse's target shortened to the contact line's room there, "
+            "{length:.2f} mm")
+        # the pitch centred on the best one's pattern run
+        moved = {s: (run_pivot(best(s)[0]), best(s)) for s in sides}
+        moved = {s: m for s, m in moved.items() if m[0] is not None}
+        if moved:
+            try:
+                prob = SynthesisProblem(pair, **problem, pivot_uv={
+                    s: uv for s, (uv, _) in moved.items()})
+            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
+                prob = None
+            for s, (uv, (r, t, _)) in moved.items():
+                if prob is not None:
+                    add(prob, {s: t}, ", the middle of the pattern run of the pivot at "
+                        + r.pivot.replace("{", "{{").replace("}", "}}"))
+        # the bearing's length from the path: the best one's run made a pitch long
+        for s in sides:
+            r, t, prob = best(s)
+            t_len = length_targets(t, r, face_mm=face)
+            if t_len is not None:
+                add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
+                    "pattern run of one pitch, {length:.2f} mm")
+    gear = {s: node.gear_setups[s] for s in SIDES}
+
+    def pointed(pick):
+        """The readers' refusal of the pinion tooth ``pick`` cuts ("" if none)."""
+        pinion = {s: r.setup for s, r in pick.items()}
+        if set(pinion) != set(SIDES):   # one side synthesized: its tooth not checked here
+            return ""
+        try:
+            check_settings_top_land(dataclasses.replace(pair, machine=tuple(
+                gear[s] for s in SIDES) + tuple(pinion[s] for s in SIDES)))
+        except InputRangeError as exc:
+            return str(exc.value)
+        return ""
+
+    out = cuttable_choice({s: [c[0] for c in cands[s]] for s in sides}, pointed=pointed)
+    return {s: dataclasses.replace(r, other_pivot="; ".join(
+        t for t in (r.other_pivot, *failed[s]) if t)) for s, r in out.items()}
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                              gear_generation: str | None = None, gear: dict | None = None,
                              standard_off_flank: bool = False, centre_pivot: bool = True,
-                             **options):
+                             bearing_room: bool = True, **options):
     """``pair`` with its gear's settings and the pinion settings of
     :func:`synthesize_settings` (``targets``: for both sides or per side) for both
     sides, and the per-side results. ``gear_generation``: ``"formate"`` or
@@ -423,8 +501,19 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     depth on the mean section, :class:`SynthesisProblem` ``pivot_depth``: the middle by
     default, where the paint ellipse along the contact line has the most room), and
     the one whose full TCA puts the paint ellipse at a flank edge at fewer phases is
-    kept (a tie: the lower TE0 p-p; :func:`_better_pivot`), the other's check in its
-    ``other_pivot``. A point-contact base pivots on its contact path (once).
+    kept (a tie: the lower TE0 p-p; :func:`~.setting_pivot.better_pivot`), the other's
+    check in its ``other_pivot``. With ``bearing_room`` (docs/machine_settings.md sec. 5,
+    "The bearing's room") up to three more candidates per side join the choice: the
+    centre with the paint ellipse's target shortened to the contact line's room there
+    (:func:`~.setting_pivot.room_targets`, where the target exceeds it), the pivot moved
+    to the middle of the best candidate's pattern run (:func:`~.setting_pivot.run_pivot`)
+    and the best one's pivot with the ellipse shortened for a pattern run of one pitch
+    (:func:`~.setting_pivot.length_targets`); the result's rows and ``pivot`` name a
+    shortened target. The kept ones of both sides must cut a pinion tooth that the
+    readers accept (:func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`:
+    no pointed tooth, no folding flank); where they do not, the next combination of the
+    sides' candidates is kept (:func:`~.setting_pivot.cuttable_choice`). A point-contact
+    base pivots on its contact path (once).
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
@@ -437,7 +526,8 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
             dataclasses.replace(pair, pinion_hand="right", machine=(), typed_gear=(),
                                 print_gear=()), targets=targets,
             gear_generation=gear_generation, standard_off_flank=standard_off_flank,
-            centre_pivot=centre_pivot, gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
+            centre_pivot=centre_pivot, bearing_room=bearing_room,
+            gear=None if gear is None else {s: mirror_setup(g) for s, g in gear.items()},
             **options)
         machine = tuple(mirror_setup(s) for s in twin.machine)
         if gear is not None:      # the gear as typed, not its twin's mirror image
@@ -453,18 +543,10 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     done = synthesize_settings(pair, targets=targets, problem=prob, sides=sides,
                                **options) if sides else {}
     if centre_pivot and sides and not prob.point_contact:
-        per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
-        centred = SynthesisProblem(pair, gear_generation=gear_generation or "generated",
-                                   gear=gear, pivot_depth={
-                                       s: per_side[s].centre_profile for s in sides}, **grid)
-        try:
-            other = synthesize_settings(pair, targets=targets, problem=centred, sides=sides,
-                                        **options)
-        except CheckFailed as exc:      # no contact at the centred M: the mean node's
-            other, why = {}, f"the working depth's centre: not synthesized ({exc})"
-            done = {s: dataclasses.replace(r, other_pivot=why) for s, r in done.items()}
-        done = {s: _better_pivot(done[s], other[s]) if s in other else done[s]
-                for s in sides}
+        done = _pivot_candidates(pair, done, targets, sides, options, bearing_room,
+                                 node=prob, problem=dict(
+                                     gear_generation=gear_generation or "generated",
+                                     gear=gear, **grid))
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
                                                if s not in done},

@@ -1,0 +1,143 @@
+"""The choice of the pivot M of the local synthesis of the pinion settings
+(:func:`~.setting_synthesis.synthesized_machine_pair`; docs/machine_settings.md sec. 5,
+"The pivot's depth" and "The bearing's room"): which of several syntheses of one side to
+keep, and the further candidates' targets and pivots read from a synthesis' full TCA.
+
+A line-contact base pinion may pivot on any flank point (every one lies on a contact
+line), so the synthesis is tried about a few and the one whose full TCA puts the paint
+ellipse at a flank edge at the fewest phases is kept (:func:`better_pivot`). The
+candidates beyond the mean node and the working depth's centre:
+
+* the bearing's room (:func:`room_targets`): the paint ellipse no longer than the
+  contact line's room at the centred pivot (its half chord across the flank);
+* the pitch centred on the pattern run (:func:`run_pivot`): the pivot moved to the
+  middle of the run of the path whose paint ellipse lies on both flanks
+  (:class:`~.setting_problem.PatternRun`);
+* the bearing's length from the path (:func:`length_targets`): where that run is
+  shorter than a pitch, the ellipse shortened so that the run, to first order, reaches
+  one pitch.
+
+The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
+``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
+module does not import it, so that the synthesis imports the choice.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+
+__all__ = ["better_pivot", "cuttable_choice", "length_targets", "room_targets", "run_pivot"]
+
+#: Shortest paint-ellipse target of the further candidates (the
+#: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
+_RATIO_MIN = 0.1
+#: A pattern run's middle this close to M's phase (pinion pitches, one step of the
+#: 31-phase check) moves no pivot.
+_RUN_STEP_PITCH = 1.0 / 30.0
+
+
+def _rank(r):
+    """The order of the choice: targets met first, then fewer edge phases, then the
+    lower TE0 p-p."""
+    return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
+
+
+def cuttable_choice(candidates: dict, *, pointed) -> dict:
+    """Per side, the candidate of ``candidates`` (``{side: [results]}``) kept by
+    :func:`better_pivot`, unless the pinion tooth that the kept ones of both sides cut
+    together is pointed or folds: ``pointed({side: result})`` gives the refusal's text,
+    "" for a cuttable tooth (the readers' own check,
+    :func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`). Then the combinations are tried in the order of the summed
+    rank (missed targets, edge phases, TE0 p-p over the sides; the first given on a
+    tie) and the first cuttable one is kept, each side's result naming the others and
+    why its better ones were passed over; where none is cuttable, the best, as
+    :func:`better_pivot` (the readers then refuse the written file, naming the tooth)."""
+    sides = tuple(candidates)
+    combos = sorted(itertools.product(*(range(len(candidates[s])) for s in sides)),
+                    key=lambda ix: tuple(sum(v) for v in zip(*(
+                        _rank(candidates[s][i]) for s, i in zip(sides, ix)))))
+    why = ""
+    for ix in combos:
+        pick = {s: candidates[s][i] for s, i in zip(sides, ix)}
+        said = pointed(pick)
+        if not said:
+            break
+        why = why or said
+    else:
+        return {s: better_pivot(*candidates[s]) for s in sides}
+    out = {}
+    for s in sides:
+        kept = pick[s]
+        rest = [c for c in candidates[s] if c is not kept]
+        note = "; ".join(
+            f"{c.pivot}: paint ellipse at a flank edge at {c.edge_phases} of {len(c.edges)} "
+            f"phases, full TCA TE0 p-p {c.tca_te0_pp_arcsec:.2f} arcsec"
+            + ("" if c.met else ", targets missed") for c in rest)
+        if any(_rank(c) < _rank(kept) for c in rest):
+            note += (f"; the better ones passed over: with the other side's they cut a "
+                     f"pinion tooth the readers refuse ({why})")
+        out[s] = dataclasses.replace(kept, other_pivot=note)
+    return out
+
+
+def better_pivot(*results):
+    """Of syntheses of one side at several pivots, the one whose full TCA has the fewest
+    phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p, then the
+    first given; a result missing a target loses to one meeting them), the others'
+    checks named in its ``other_pivot``, in the order given."""
+    keep = min(results, key=_rank)
+    return dataclasses.replace(keep, other_pivot="; ".join(
+        f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
+        f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
+        + ("" if drop.met else ", targets missed") for drop in results if drop is not keep))
+
+
+def _shortened(targets, length_mm: float, face_mm: float):
+    """``targets`` with the paint ellipse 2a = ``length_mm`` where that is shorter than
+    its own and not below :data:`_RATIO_MIN` of the face; None otherwise (never
+    clipped)."""
+    if not length_mm < targets.pattern_length_ratio * face_mm or \
+            length_mm < _RATIO_MIN * face_mm:
+        return None
+    return dataclasses.replace(targets, pattern_length_ratio=length_mm / face_mm)
+
+
+def room_targets(targets, *, room_mm: float, face_mm: float):
+    """``targets`` (:class:`~.synthesis_targets.SynthesisTargets`) with the paint
+    ellipse's length set to the contact line's room ``room_mm``
+    (:func:`~.setting_problem.line_room_mm` at the centred pivot) where the target,
+    ``pattern_length_ratio`` of the gear face ``face_mm``, exceeds it; None where it
+    does not, or where the room is below the shortest target (:data:`_RATIO_MIN` of the
+    face: the candidate is not tried)."""
+    return _shortened(targets, room_mm, face_mm)
+
+
+def run_pivot(result):
+    """The pinion flank point (u, v), mm, of the middle of ``result``'s pattern run
+    (:class:`~.setting_problem.PatternRun`), rounded to 1e-6 mm (the head comment
+    names it to that digit, so that the pivot can be rebuilt from it), where ``result``
+    has edge phases and the run's middle is off M's phase by more than
+    :data:`_RUN_STEP_PITCH`; None otherwise."""
+    run = result.run
+    if not result.edge_phases or run is None or \
+            not abs(run.middle_offset_pitch) > _RUN_STEP_PITCH:
+        return None
+    return tuple(round(float(t), 6) for t in run.middle_uv)
+
+
+def length_targets(targets, result, *, face_mm: float):
+    """``targets`` (those ``result`` was synthesized to) with the paint ellipse
+    shortened so that ``result``'s pattern run would reach one pitch, where ``result``
+    has edge phases and its run is shorter than a pitch within a path on the flank
+    longer than one: the ellipse takes ``P - R`` pitches of the path of ``P`` (the
+    surface contact's run, :attr:`~.setting_problem.PatternRun.path_pitches`) to leave
+    a run of ``R``; to first order in the length that share scales with it, so
+    ``2a' = 2a (P - 1) / (P - R)``. None otherwise, or below :data:`_RATIO_MIN` of the
+    face."""
+    run = result.run
+    if not result.edge_phases or run is None or not run.pitches < 1.0 < run.path_pitches:
+        return None
+    length = targets.pattern_length_ratio * face_mm
+    return _shortened(targets, length * (run.path_pitches - 1.0)
+                      / (run.path_pitches - run.pitches), face_mm)
