@@ -89,3 +89,28 @@ def test_formate_hypoid_local_synthesis_then_tca(tmp_path, capsys):
         if side not in centred:
             assert got["mating_point_mm"][0] == pytest.approx(v_m, abs=1e-6)
         assert got["te0_pp_arcsec"] < STANDARD_TE0_PP[side]
+
+
+@pytest.mark.parametrize("typed", [None, "0.35"])
+def test_a_typed_pattern_length_is_kept(monkeypatch, typed):
+    """`--pattern-length-ratio` typed by the user is the synthesis' target as given: no
+    candidate with the ellipse shortened to the bearing's room (docs/machine_settings.md
+    sec. 5, "The bearing's room"); left to its default, the shortened candidates join the
+    choice. The truth is the option's documented contract, read from the call the command
+    makes (the synthesis itself is the slow test above)."""
+    from gearcontact.tca import setting_synthesis
+
+    seen = {}
+
+    class Stop(Exception):
+        pass
+
+    def capture(pair, **kwargs):
+        seen.update(kwargs)
+        raise Stop
+
+    monkeypatch.setattr(setting_synthesis, "synthesized_machine_pair", capture)
+    argv = ["design", "--pair", str(F3), "--machine-settings", "--local-synthesis"]
+    main(argv + (["--pattern-length-ratio", typed] if typed else []))   # stopped there
+    assert seen["bearing_room"] is (typed is None)
+    assert {t.pattern_length_ratio for t in seen["targets"].values()} == {0.35}

@@ -101,7 +101,9 @@ def register(sub) -> None:
                         "peak-to-peak, arcsec (default 3)")
     p.add_argument("--pattern-length-ratio", type=float, default=None,
                    help="with --synthesize-easeoff or --local-synthesis: paint-ellipse "
-                        "length over the gear face width (default 0.35; practice 1/3 to 1/2)")
+                        "length over the gear face width (default 0.35; practice 1/3 to 1/2; "
+                        "--local-synthesis may shorten the default to keep the bearing off "
+                        "the flank edges, never a typed value)")
     p.add_argument("--path-angle-deg", type=float, default=None,
                    help="with --synthesize-easeoff or --local-synthesis: angle of the "
                         "contact path on the gear flank from the lengthwise direction on "
@@ -217,6 +219,9 @@ def check(args) -> None:
     if args.synthesize_easeoff or args.local_synthesis:   # the same targets and checks
         args.te0_arcsec = SYNTHESIS_DEFAULTS["te0_arcsec"] if args.te0_arcsec is None \
             else args.te0_arcsec
+        # a typed length is the user's: the local synthesis keeps it (no shortened
+        # candidates, docs/machine_settings.md sec. 5, "The bearing's room")
+        args.pattern_length_typed = args.pattern_length_ratio is not None
         args.pattern_length_ratio = SYNTHESIS_DEFAULTS["pattern_length_ratio"] \
             if args.pattern_length_ratio is None else args.pattern_length_ratio
         args.targets = synthesis_targets(args)     # their ranges, before any TCA

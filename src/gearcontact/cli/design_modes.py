@@ -111,7 +111,9 @@ def local_synthesis(args, pair) -> int:
         # a side without a pivot on the flank gets its standard pinion, written, exit 4
         cut, done = synthesized_machine_pair(pair, targets=checked_targets(args),
                                              gear=getattr(args, "typed_gear", None),
-                                             standard_off_flank=True)
+                                             standard_off_flank=True,
+                                             bearing_room=not getattr(
+                                                 args, "pattern_length_typed", False))
     except InputRangeError as exc:     # the reach model's certain refusal names the side
         side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
         raise renamed(exc, path_angle_option(args, side)) from None
