@@ -58,12 +58,24 @@ def refuse_missed(what: str, pair, done: dict) -> None:
                           f"(see the table){why}")
 
 
+def refuse_gap(args, pair, cut) -> None:
+    """The settings' own TCA where the blank's predicted contact ratio is short
+    (:func:`~gearcontact.tca.settings_gap.check_settings_gap`): a gap is refused (exit 2)
+    before anything is written, no gap says so on stderr; every writer of machine
+    settings calls it (docs/machine_settings.md sec. 5, "The settings' own TCA in
+    `design`")."""
+    from ..tca.settings_gap import check_settings_gap
+
+    line = check_settings_gap(pair, cut, boxes=args.generation_check, progress=True).line()
+    if line:
+        print(f"gearcontact design: {line}", file=sys.stderr)
+
+
 def machine_settings(args, pair) -> int:
     from ..geometry.basic_settings import standard_machine_pair
     from ..geometry.pair import pair_to_toml
     from ..geometry.typed_pinion import typed_gear_machine_pair
     from ..report.design import write_machine_settings_toml
-    from ..tca.settings_gap import check_settings_gap
 
     if has_easeoff(pair) or args.target_flank is not None:
         return easeoff_settings(args, pair)
@@ -91,11 +103,7 @@ def machine_settings(args, pair) -> int:
         head = (f"{pair.name}: standard machine settings from the blank (gearcontact design "
                 "--machine-settings;\nsigns: docs/machine_settings.md); gear: "
                 f"{generation}")
-    # the settings' own TCA where the blank's predicted contact ratio is short: a gap
-    # is refused before anything is written (docs/machine_settings.md sec. 5)
-    line = check_settings_gap(pair, cut, boxes=args.generation_check, progress=True).line()
-    if line:
-        print(f"gearcontact design: {line}", file=sys.stderr)
+    refuse_gap(args, pair, cut)
     text = pair_to_toml(cut, comments={"": head})
     print(text)
     if args.out is not None:
@@ -117,6 +125,7 @@ def local_synthesis(args, pair) -> int:
     except InputRangeError as exc:     # the reach model's certain refusal names the side
         side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
         raise renamed(exc, path_angle_option(args, side)) from None
+    refuse_gap(args, pair, cut)
     text = local_synthesis_toml(cut, done, typed=bool(getattr(args, "typed_gear", None)))
     print(text)
     if args.out is not None:
@@ -157,6 +166,7 @@ def easeoff_settings(args, pair) -> int:
         cut = own
         for c in done:
             cut = corrected_pair(cut, c)
+        refuse_gap(args, pair, cut)
         text = gear_correction_toml(cut, *done)
         print(text)
         for c in done:
@@ -174,6 +184,7 @@ def easeoff_settings(args, pair) -> int:
                                reliefs=getattr(args, "reliefs", None))
     if gear is not None:
         fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
+    refuse_gap(args, pair, fit.pair)
     print(easeoff_settings_toml(fit, gear=gear))
     print(fit.table())
     if gear is not None:
