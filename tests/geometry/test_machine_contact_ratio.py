@@ -17,6 +17,7 @@ apart, raises ContactGap.
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -138,6 +139,18 @@ def test_settings_read_with_a_short_prediction_are_warned(tmp_path):
     assert path.total > SETTINGS_GAP_RATIO and "without a gap above" in str(got[0].message)
 
 
+def _gapped_blank(tmp_path, teeth: int, face: float, beta: float, depth: float,
+                  easeoff: str = ""):
+    """The file of a miter blank of ``teeth`` teeth (working depth factor ``depth``),
+    ``easeoff`` (TOML tables) appended."""
+    path_file = tmp_path / f"gapped_{teeth}.toml"
+    path_file.write_text(MITER.format(face=face).replace("= 16\n", f"= {teeth}\n")
+                         .replace("= 35.0", f"= {beta}")
+                         .replace("gear_addendum_factor", f"working_depth_factor = {depth}\n"
+                                  "gear_addendum_factor") + easeoff)
+    return path_file
+
+
 def _gapped(tmp_path, teeth: int, face: float, beta: float, depth: float):
     """A miter blank of ``teeth`` teeth (working depth factor ``depth``), its boxes, its
     predicted path, its standard settings and the ContactGap their TCA raises with
@@ -146,11 +159,7 @@ def _gapped(tmp_path, teeth: int, face: float, beta: float, depth: float):
     is counted again at 121 phases on the same flanks: the two counts measure one
     interval of the pitch, each to within one phase step either side, so their shares of
     the pitch differ by less than the sum of the steps (1/60 + 1/120)."""
-    path_file = tmp_path / f"gapped_{teeth}.toml"
-    path_file.write_text(MITER.format(face=face).replace("= 16\n", f"= {teeth}\n")
-                         .replace("= 35.0", f"= {beta}")
-                         .replace("gear_addendum_factor", f"working_depth_factor = {depth}\n"
-                                  "gear_addendum_factor"))
+    path_file = _gapped_blank(tmp_path, teeth, face, beta, depth)
     blank = load_pair(path_file)
     assert (blank.pinion_teeth, blank.pinion_spiral_angle_deg) == (teeth, beta)
     boxes = check_generation(blank, contact_ratio=False)
@@ -169,10 +178,10 @@ def _gapped(tmp_path, teeth: int, face: float, beta: float, depth: float):
     return path_file, blank, path, settings, gaps[61]
 
 
-def _refused_by_design(tmp_path, capsys, path_file, blank, path, gap, *extra) -> None:
+def _refused_by_design(tmp_path, capsys, path_file, blank, path, gap, *extra) -> str:
     """``design --machine-settings`` refuses the blank (exit 2, nothing written), naming
     both fields with their values, the predicted ratios and the gap the separate TCA
-    measured (its phase steps of the pitch)."""
+    measured (its phase steps of the pitch); returns its stderr."""
     out = tmp_path / "mach"
     assert main(["design", "--pair", str(path_file), "--machine-settings", *extra,
                  "--out", str(out)]) == 2
@@ -183,6 +192,7 @@ def _refused_by_design(tmp_path, capsys, path_file, blank, path, gap, *extra) ->
     assert f"on {gap.gap_phases} of 60 phase steps" in err
     assert f"({gap.gap_phases / 60:.1%} of a pitch" in err
     assert not (out / "machine_settings.toml").exists()
+    return err
 
 
 def test_a_pair_whose_settings_gap_is_refused(tmp_path, capsys):
@@ -243,3 +253,80 @@ def test_the_cli_tca_of_the_written_settings_has_no_gap(tmp_path, capsys):
     assert summary["phases_per_pitch"] == 61
     # one transmitting contact per phase, flank on flank ("surface") or an edge touching
     assert len(summary["phase_contact"]) == 61
+
+
+#: A crowned drive-side ease-off typed on the 12/12 (profile 4 um/mm^2, lengthwise 0.5
+#: um/mm^2, vertex at the box centre): ``design --machine-settings`` takes the ease-off
+#: fit path (geometry.easeoff_settings) for it.
+CROWNED_DRIVE = """
+[easeoff.drive]
+profile_angle_um_per_mm = 0.0
+spiral_angle_um_per_mm = 0.0
+profile_crowning_um_per_mm2 = 4.0
+lengthwise_crowning_um_per_mm2 = 0.5
+bias_um_per_mm2 = 0.0
+"""
+
+
+@pytest.mark.slow
+def test_an_easeoff_whose_settings_gap_is_refused(tmp_path, capsys):
+    """The ease-off fit path (docs/machine_settings.md sec. 6): the 12/12 miter of
+    :func:`test_a_pair_whose_settings_gap_is_refused` with a crowned drive ease-off
+    (its predicted eps_p, computed here by the path with that ease-off, below 0.85). The
+    truth, run apart: the settings that cut the ease-off
+    (:func:`~gearcontact.geometry.easeoff_settings.easeoff_machine_pair`, ``design``'s
+    own fit) and their TCA with ``tca``'s options raise ContactGap. ``design
+    --machine-settings`` refuses the blank as the standard path does (exit 2, nothing
+    written), naming the gap's phase steps and its first phase, to the message's four
+    decimals (the same flanks and phases: the same numbers). Before, it wrote the
+    settings and ``tca`` refused them with that gap."""
+    from gearcontact.geometry.easeoff_settings import easeoff_machine_pair
+
+    path_file = _gapped_blank(tmp_path, 12, 5.0, 50.0, 1.3, CROWNED_DRIVE)
+    blank = load_pair(path_file)
+    assert blank.easeoff_tables and blank.design_side == "drive"
+    boxes = check_generation(blank, contact_ratio=False)
+    path = path_contact_ratio(blank, boxes=boxes)
+    assert path.total < MIN_CONTACT_RATIO
+    settings = easeoff_machine_pair(blank).pair
+    prepared = prepare_pair(settings, checked=check_generation(settings, contact_ratio=False))
+    with pytest.raises(ContactGap) as gap:
+        analyze_pair(settings, phases=61, pairs=3, flanks=prepared.flank_set())
+    assert gap.value.gap_phases > 0
+    err = _refused_by_design(tmp_path, capsys, path_file, blank, path, gap.value)
+    assert f"from phi1 = {math.degrees(gap.value.phi1_rad):.4f} deg" in err
+
+
+def test_local_synthesis_of_the_gapped_blank_is_refused_first(tmp_path, capsys):
+    """``design --machine-settings --local-synthesis`` on the 12/12 miter: the blank's
+    own contact-ratio check (the synthesis' first-order bearing at its default targets,
+    geometry.generation) refuses it before any synthesis or settings TCA (exit 2, no
+    file written), naming the teeth and the eps_p the path gives here apart."""
+    path_file = _gapped_blank(tmp_path, 12, 5.0, 50.0, 1.3)
+    blank = load_pair(path_file)
+    path = path_contact_ratio(blank, boxes=check_generation(blank, contact_ratio=False))
+    assert path.total < MIN_CONTACT_RATIO
+    out = tmp_path / "local"
+    assert main(["design", "--pair", str(path_file), "--machine-settings",
+                 "--local-synthesis", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "pinion_teeth / gear_teeth = (12, 12)" in err
+    assert f"eps_p = {path.total:.3f}" in err and "the TCA of the settings" not in err
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_an_ordinary_easeoff_fit_runs_no_tca(tmp_path, capsys, monkeypatch):
+    """s0003's ease-off fit (its coast ease-off, eps_p computed here by the path, above
+    0.85) runs no settings TCA (a TCA run here fails the test) and writes its settings."""
+    blank = load_pair("s0003")
+    path = path_contact_ratio(blank, boxes=check_generation(blank, contact_ratio=False))
+    assert path.total >= MIN_CONTACT_RATIO
+
+    def no_tca(*args, **kwargs):
+        raise AssertionError("the settings' TCA ran")
+
+    monkeypatch.setattr(settings_gap, "settings_mesh_gap", no_tca)
+    out = tmp_path / "s0003"
+    assert main(["design", "--pair", "s0003", "--machine-settings", "--out", str(out)]) == 0
+    assert "the TCA of the settings" not in capsys.readouterr().err
+    assert load_pair(out / "machine_settings.toml").machine
