@@ -153,10 +153,13 @@ def check_settings_gap(blank, cut, *, boxes: dict, progress: bool = False) -> Se
     Parameters
     ----------
     blank : GearPair
-        The pair without machine settings (its design fields are named).
+        The pair without machine settings (its design fields are named); its ease-off
+        table, where it has one, is the predicted bearing
+        (:func:`~gearcontact.geometry.contact_path.path_contact_ratio`).
     cut : GearPair
-        ``blank`` cut from the settings about to be written (standard, or a typed gear
-        with its standard pinion).
+        ``blank`` cut from the settings about to be written (standard, a typed gear with
+        its standard pinion, the local synthesis', or the fit of ``blank``'s ease-off:
+        ``cli.design_modes.refuse_gap``).
     boxes : dict, keyword-only
         ``check_generation(blank, contact_ratio=False)``.
     progress : bool, keyword-only
