@@ -66,15 +66,11 @@ def _blank(tmp_path, face: float):
     return path
 
 
-def test_written_settings_of_an_accepted_blank_are_accepted(tmp_path, capsys, monkeypatch):
-    """design accepts the blank and writes its settings (exit 0); the closed form alone
-    would refuse them (precondition, ISO 10300-1 by hand in test_contact_ratio.py); the
-    commands' check of the written file passes now, with the blank's path ratio. The
-    blank's predicted eps_p reaches MIN_CONTACT_RATIO (computed here by the path), so
-    ``design`` runs no TCA of the settings: an ordinary pair pays nothing (a TCA run
-    here fails the test)."""
-    path = _blank(tmp_path, 20.0)
-    blank = load_pair(path)
+def _written_without_tca(tmp_path, capsys, monkeypatch, pair: str):
+    """``design --machine-settings`` on ``pair``, whose predicted eps_p (computed here by
+    the path) reaches MIN_CONTACT_RATIO, writes its settings (exit 0) without running the
+    settings' TCA (a TCA run here fails the test); returns the pair written."""
+    blank = load_pair(pair)
     predicted = path_contact_ratio(blank, boxes=check_generation(blank, contact_ratio=False))
     assert predicted.total >= MIN_CONTACT_RATIO
 
@@ -83,10 +79,22 @@ def test_written_settings_of_an_accepted_blank_are_accepted(tmp_path, capsys, mo
 
     monkeypatch.setattr(settings_gap, "settings_mesh_gap", no_tca)
     out = tmp_path / "mach"
-    assert main(["design", "--pair", str(path), "--machine-settings", "--out", str(out)]) == 0
+    assert main(["design", "--pair", pair, "--machine-settings", "--out", str(out)]) == 0
     assert "the TCA of the settings" not in capsys.readouterr().err
     written = load_pair(out / "machine_settings.toml")
     assert written.machine
+    return written
+
+
+def test_written_settings_of_an_accepted_blank_are_accepted(tmp_path, capsys, monkeypatch):
+    """design accepts the blank and writes its settings (exit 0); the closed form alone
+    would refuse them (precondition, ISO 10300-1 by hand in test_contact_ratio.py); the
+    commands' check of the written file passes now, with the blank's path ratio. The
+    blank's predicted eps_p reaches MIN_CONTACT_RATIO (computed here by the path), so
+    ``design`` runs no TCA of the settings: an ordinary pair pays nothing (a TCA run
+    here fails the test)."""
+    path = _blank(tmp_path, 20.0)
+    written = _written_without_tca(tmp_path, capsys, monkeypatch, str(path))
     v = virtual_contact_ratio(written.blank, gear_face_width_mm=written.gear_face_width_mm,
                               side="drive")
     assert v.total < MIN_VIRTUAL_CONTACT_RATIO           # 1.528: refused before
@@ -318,15 +326,4 @@ def test_local_synthesis_of_the_gapped_blank_is_refused_first(tmp_path, capsys):
 def test_an_ordinary_easeoff_fit_runs_no_tca(tmp_path, capsys, monkeypatch):
     """s0003's ease-off fit (its coast ease-off, eps_p computed here by the path, above
     0.85) runs no settings TCA (a TCA run here fails the test) and writes its settings."""
-    blank = load_pair("s0003")
-    path = path_contact_ratio(blank, boxes=check_generation(blank, contact_ratio=False))
-    assert path.total >= MIN_CONTACT_RATIO
-
-    def no_tca(*args, **kwargs):
-        raise AssertionError("the settings' TCA ran")
-
-    monkeypatch.setattr(settings_gap, "settings_mesh_gap", no_tca)
-    out = tmp_path / "s0003"
-    assert main(["design", "--pair", "s0003", "--machine-settings", "--out", str(out)]) == 0
-    assert "the TCA of the settings" not in capsys.readouterr().err
-    assert load_pair(out / "machine_settings.toml").machine
+    _written_without_tca(tmp_path, capsys, monkeypatch, "s0003")
