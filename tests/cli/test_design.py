@@ -556,13 +556,17 @@ def _generated_hypoid_toml(tmp_path_factory):
 
 @pytest.fixture
 def generated_hypoid_file(_generated_hypoid_toml, monkeypatch):
-    """That file, with the generation check (~10 s; its own tests: tests/geometry)
-    replaced by its verdict, so that the option checks of --local-synthesis run in
-    milliseconds."""
+    """That file, with the generation check (~10 s; its own tests: tests/geometry) and
+    the settings' contact-ratio check (the blank's predicted eps_p 0.858 >= 0.85: no
+    TCA; tests/geometry/test_machine_contact_ratio.py) replaced by their verdicts, so
+    that the option checks of --local-synthesis run in milliseconds."""
     import gearcontact.cli.design as design
+    import gearcontact.tca.settings_gap as settings_gap
 
     monkeypatch.setattr(design, "check_generation", lambda pair, **_: None)
     monkeypatch.setattr(design, "generation_of", lambda checked: "generated")
+    monkeypatch.setattr(settings_gap, "check_settings_gap",
+                        lambda blank, cut, **_: settings_gap.SettingsGapCheck(None, None))
     return _generated_hypoid_toml
 
 
