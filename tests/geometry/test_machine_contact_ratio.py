@@ -327,3 +327,13 @@ def test_an_ordinary_easeoff_fit_runs_no_tca(tmp_path, capsys, monkeypatch):
     """s0003's ease-off fit (its coast ease-off, eps_p computed here by the path, above
     0.85) runs no settings TCA (a TCA run here fails the test) and writes its settings."""
     _written_without_tca(tmp_path, capsys, monkeypatch, "s0003")
+
+
+def test_synthesized_easeoff_refusal_says_no_angle_is_reachable(tmp_path, capsys):
+    """``design --synthesize-easeoff`` on the 12/12 miter: no path angle is reachable
+    (``overlap_path_angle``'s NaN), and the refusal says so in words; no NaN is printed
+    (found by a careless-user run, session 25)."""
+    path_file = _gapped_blank(tmp_path, 12, 5.0, 50.0, 1.3)
+    assert main(["design", "--pair", str(path_file), "--synthesize-easeoff"]) == 2
+    err = capsys.readouterr().err
+    assert "no path angle reachable" in err and "nan" not in err.lower()

@@ -20,6 +20,7 @@ hands it to :func:`~gearcontact.geometry.generation.check_generation` (``bearing
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -165,8 +166,10 @@ def predict_bearing(pair, *, boxes: dict, targets=SynthesisTargets(),
     if not overlaps:
         return dataclasses.replace(
             zero_bias, source=f"{zero_bias.source} (TE0 unreachable: its start's path "
-            f"covers {first.total:.2f} pitch, the longest reachable overlap {ratio:.2f}, "
-            "docs/synthesis.md)")
+            f"covers {first.total:.2f} pitch, "
+            + (f"the longest reachable overlap {ratio:.2f}" if math.isfinite(ratio) else
+               "no path angle reachable")      # overlap_path_angle's NaN: no angle
+            + ", docs/synthesis.md)")
     turned = synthesis_start(pair, side=side, flanks=flanks,
                              targets=dataclasses.replace(t, path_angle_deg=angle))
     return Bearing(turned.coefficients(), "the synthesis' first-order bearing along the "
