@@ -324,10 +324,9 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
     UndercutError
         A fitted flank the envelope does not generate over its box, or folds within
         its node grid above the tip (:func:`~.generated_box.check_tip_margin`).
-
-    Both refusals are the readers' of the written settings
-    (:func:`~.generation.check_generation`), word for word: nothing that a reader
-    refuses is written.
+        Both refusals are the readers' of the written settings
+        (:func:`~.generation.check_generation`), word for word: nothing that a reader
+        refuses is written.
     """
     if pair.machine:
         raise InputRangeError("pair", f"{pair.name} with [machine.*] tables",
