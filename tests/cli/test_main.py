@@ -236,7 +236,11 @@ def test_ctrl_c_early_in_a_real_process(tmp_path, delay_s):
     import sys
     import time
 
-    child = ("import sys; from gearcontact.cli import console_main; "
+    # Python's own handler, as a command started from a terminal has it: a process
+    # started in the background by a non-interactive shell (`cmd &`, as a test run may
+    # be) inherits SIGINT ignored, and Python then installs no handler of its own
+    child = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
+             "from gearcontact.cli import console_main; "
              f"sys.argv = ['gearcontact', 'tca', '--pair', 's0003', '--out', {str(tmp_path / 'out')!r}]; "
              "print('ready', file=sys.stderr, flush=True); console_main()")
     proc = subprocess.Popen([sys.executable, "-c", child],
@@ -271,8 +275,8 @@ def test_ctrl_c_swallowed_by_an_import_still_interrupts(tmp_path, monkeypatch, c
         return real_build(argv)
 
     monkeypatch.setattr(cli, "build_parser", swallowing_build)
-    # Python's own handler, whatever an earlier test in this worker left installed (a
-    # SIG_IGN left by another library was seen under a loaded xdist run)
+    # Python's own handler, as a command started from a terminal has it (a test run
+    # started in the background by a non-interactive shell inherits SIGINT ignored)
     before = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         out = tmp_path / "out"
