@@ -65,7 +65,7 @@ from ..validation import InputRangeError, check_positive
 from ..ltca.edge_law import operating_scales
 from ..ltca.edge_rows import is_cut, row_law
 from ..ltca.tooth_bending import conjugate_compliance, pair_bending_compliance
-from .off_flank import is_wholly_off, touch_bending_compliance, touch_law
+from .off_flank import is_wholly_off, touch_bending_compliance, touch_field, touch_law
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES",
@@ -298,7 +298,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     materials = (pair.pinion_material, pair.gear_material)
     laws: dict = {}
     rows = {}       # (pair row, phase) -> (contact, lower bound of its opening in mm)
-    touch_rows = {}     # (pair row, phase) -> wholly-off contact within reach
+    touch_rows = {}     # (pair row, phase) -> (wholly-off contact within reach, its field)
     for k in range(n_k):
         for pc in phase_contacts(pinion, gear, kin, cycle, k, base, e_prime, curv, steps):
             pc, lower = fields.bound(pc)
@@ -327,17 +327,21 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
             sten[pc.center_index] = hardware_stencil(pinion, gear, kin, mp,
                                                      off_flank="quadric").gap_mm
         stencils[i, k] = sten[pc.center_index]
+        # a wholly-off row's field at its touch, built once for its bending and its law
+        touch = touch_field(fields, pc, torque_nmm=1e3 * t) if wholly and (
+            bending is not None or edge_law) else None
         if bending is not None:
             arrays["cb"][i, k] = (touch_bending_compliance(fields, pc, materials=materials,
-                                                           torque_nmm=1e3 * t) if wholly
-                                  else pair_bending_compliance(fields, pc, 1e3 * t))
+                                                           torque_nmm=1e3 * t, touch=touch)
+                                  if wholly else pair_bending_compliance(fields, pc, 1e3 * t))
         if edge_law and wholly:
-            touch_rows[i, k] = pc
+            touch_rows[i, k] = pc, touch
         elif edge_law and not far[i, k] and is_cut(fields, pc, torque_nmm=1e3 * t):
             edges[i, k] = pc
     laws, expo = _calibrate_edges(fields, edges, materials, 1e3 * t, laws)
-    for (i, k), pc in touch_rows.items():   # the edge law at the touch (Notes, Reach)
-        laws[i, k] = touch_law(fields, pc, materials=materials, torque_nmm=1e3 * t)
+    for (i, k), (pc, touch) in touch_rows.items():   # the edge law at the touch (Notes, Reach)
+        laws[i, k] = touch_law(fields, pc, materials=materials, torque_nmm=1e3 * t,
+                               touch=touch)
         expo[i, k] = 0.0 if laws[i, k] is None else laws[i, k].exponent
     m = 1 if cycle.envelope_is_max else -1
     phi1 = np.asarray(cycle.phi1_rad, float)

@@ -50,7 +50,7 @@ from ..ltca.patch_field import patch_grid
 from ..ltca.tooth_bending import conjugate_compliance
 
 __all__ = ["TOUCH_FIELD_HALF", "TouchField", "is_wholly_off", "touch_point",
-           "touch_law", "touch_bending_compliance"]
+           "touch_field", "touch_law", "touch_bending_compliance"]
 
 #: Half-side of a touch field in multiples of the larger Hertzian semi-axis of the row's
 #: curvatures under the whole torque (the extent of the loaded TE's fields is 1.6-2 of
@@ -136,28 +136,44 @@ class TouchField:
         return self._fields._bending_factor(f, self.points[pc.path_index])
 
 
-def touch_law(fields, pc, *, materials, torque_nmm: float) -> EdgeCompliance | None:
-    """:func:`~gearcontact.ltca.edge_law.edge_compliance` of a wholly-off row on its
-    :class:`TouchField` (module docstring); None where it fails (no border sample on
-    both flanks, an LCP not converged at two loads, a field that does not close): the
-    row keeps the Hertzian law, counted uncalibrated as before."""
+def touch_field(fields, pc, *, torque_nmm: float) -> TouchField | None:
+    """The row's :class:`TouchField`, or None where it has none (no border sample on
+    both flanks, no flank cell in the square)."""
     try:
-        return edge_compliance(TouchField(fields, pc, torque_nmm=torque_nmm), pc,
-                               materials=materials, torque_nmm=torque_nmm)
+        return TouchField(fields, pc, torque_nmm=torque_nmm)
     except ArithmeticError:
         return None
 
 
-def touch_bending_compliance(fields, pc, *, materials, torque_nmm: float) -> float:
+_UNSET = object()
+
+
+def touch_law(fields, pc, *, materials, torque_nmm: float,
+              touch=_UNSET) -> EdgeCompliance | None:
+    """:func:`~gearcontact.ltca.edge_law.edge_compliance` of a wholly-off row on its
+    :class:`TouchField` (module docstring; ``touch``: :func:`touch_field`'s, when the
+    caller holds it); None where it fails (no touch field, an LCP not converged at two
+    loads, a field that does not close): the row keeps the Hertzian law, counted
+    uncalibrated as before."""
+    tf = touch_field(fields, pc, torque_nmm=torque_nmm) if touch is _UNSET else touch
+    if tf is None:
+        return None
+    try:
+        return edge_compliance(tf, pc, materials=materials, torque_nmm=torque_nmm)
+    except ArithmeticError:
+        return None
+
+
+def touch_bending_compliance(fields, pc, *, materials, torque_nmm: float,
+                             touch=_UNSET) -> float:
     """Bending compliance (mm/N) of a wholly-off row's teeth: the work-conjugate
     compliance of the LCP's pressure of the pair carrying ``torque_nmm`` alone on its
-    :class:`TouchField` (module docstring); where that LCP does not converge, the
-    pressure of the largest calibration load (:data:`~gearcontact.ltca.edge_law.
-    EDGE_LOAD_FRACTIONS`) whose LCP does; 0 where none does (no founded pressure shape;
-    the row is then uncalibrated as well)."""
-    try:
-        tf = TouchField(fields, pc, torque_nmm=torque_nmm)
-    except ArithmeticError:
+    :class:`TouchField` (module docstring; ``touch`` as in :func:`touch_law`); where
+    that LCP does not converge, the pressure of the largest calibration load
+    (:data:`~gearcontact.ltca.edge_law.EDGE_LOAD_FRACTIONS`) whose LCP does; 0 where
+    none does (no founded pressure shape; the row is then uncalibrated as well)."""
+    tf = touch_field(fields, pc, torque_nmm=torque_nmm) if touch is _UNSET else touch
+    if tf is None:
         return 0.0
     gap, grid, _, lever = tf.field
     for fraction in sorted(EDGE_LOAD_FRACTIONS, reverse=True):
