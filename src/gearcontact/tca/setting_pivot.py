@@ -27,7 +27,8 @@ from __future__ import annotations
 import dataclasses
 import itertools
 
-__all__ = ["better_pivot", "cuttable_choice", "length_targets", "room_targets", "run_pivot"]
+__all__ = ["better_pivot", "cuttable_choice", "length_targets", "pivot_rank", "room_targets",
+           "run_pivot"]
 
 #: Shortest paint-ellipse target of the further candidates (the
 #: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
@@ -37,10 +38,17 @@ _RATIO_MIN = 0.1
 _RUN_STEP_PITCH = 1.0 / 30.0
 
 
-def _rank(r):
+def pivot_rank(r):
     """The order of the choice: targets met first, then fewer edge phases, then the
     lower TE0 p-p."""
     return (not r.met, r.edge_phases, r.tca_te0_pp_arcsec)
+
+
+def _check_text(r) -> str:
+    """A candidate's full-TCA check as its kept rival's ``other_pivot`` names it."""
+    return (f"{r.pivot}: paint ellipse at a flank edge at {r.edge_phases} of "
+            f"{len(r.edges)} phases, full TCA TE0 p-p {r.tca_te0_pp_arcsec:.2f} arcsec"
+            + ("" if r.met else ", targets missed"))
 
 
 def cuttable_choice(candidates: dict, *, pointed) -> dict:
@@ -48,15 +56,15 @@ def cuttable_choice(candidates: dict, *, pointed) -> dict:
     :func:`better_pivot`, unless the pinion tooth that the kept ones of both sides cut
     together is pointed or folds: ``pointed({side: result})`` gives the refusal's text,
     "" for a cuttable tooth (the readers' own check,
-    :func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`). Then the combinations are tried in the order of the summed
-    rank (missed targets, edge phases, TE0 p-p over the sides; the first given on a
+    :func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`). Then the
+    combinations are tried in the order of the summed rank (:func:`pivot_rank`: missed targets, edge phases, TE0 p-p over the sides; the first given on a
     tie) and the first cuttable one is kept, each side's result naming the others and
     why its better ones were passed over; where none is cuttable, the best, as
     :func:`better_pivot` (the readers then refuse the written file, naming the tooth)."""
     sides = tuple(candidates)
     combos = sorted(itertools.product(*(range(len(candidates[s])) for s in sides)),
                     key=lambda ix: tuple(sum(v) for v in zip(*(
-                        _rank(candidates[s][i]) for s, i in zip(sides, ix)))))
+                        pivot_rank(candidates[s][i]) for s, i in zip(sides, ix)))))
     why = ""
     for ix in combos:
         pick = {s: candidates[s][i] for s, i in zip(sides, ix)}
@@ -70,11 +78,8 @@ def cuttable_choice(candidates: dict, *, pointed) -> dict:
     for s in sides:
         kept = pick[s]
         rest = [c for c in candidates[s] if c is not kept]
-        note = "; ".join(
-            f"{c.pivot}: paint ellipse at a flank edge at {c.edge_phases} of {len(c.edges)} "
-            f"phases, full TCA TE0 p-p {c.tca_te0_pp_arcsec:.2f} arcsec"
-            + ("" if c.met else ", targets missed") for c in rest)
-        if any(_rank(c) < _rank(kept) for c in rest):
+        note = "; ".join(_check_text(c) for c in rest)
+        if any(pivot_rank(c) < pivot_rank(kept) for c in rest):
             note += (f"; the better ones passed over: with the other side's they cut a "
                      f"pinion tooth the readers refuse ({why})")
         out[s] = dataclasses.replace(kept, other_pivot=note)
@@ -86,11 +91,9 @@ def better_pivot(*results):
     phases with the paint ellipse at a flank edge (a tie: the lower TE0 p-p, then the
     first given; a result missing a target loses to one meeting them), the others'
     checks named in its ``other_pivot``, in the order given."""
-    keep = min(results, key=_rank)
+    keep = min(results, key=pivot_rank)
     return dataclasses.replace(keep, other_pivot="; ".join(
-        f"{drop.pivot}: paint ellipse at a flank edge at {drop.edge_phases} of "
-        f"{len(drop.edges)} phases, full TCA TE0 p-p {drop.tca_te0_pp_arcsec:.2f} arcsec"
-        + ("" if drop.met else ", targets missed") for drop in results if drop is not keep))
+        _check_text(drop) for drop in results if drop is not keep))
 
 
 def _shortened(targets, length_mm: float, face_mm: float):

@@ -76,7 +76,8 @@ from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_pivot import cuttable_choice, length_targets, room_targets, run_pivot
+from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_targets,
+                            run_pivot)
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -419,8 +420,7 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
             cands[s].append((dataclasses.replace(r, pivot=r.pivot + said), t, prob))
 
     def best(s):
-        return min(cands[s], key=lambda c: (not c[0].met, c[0].edge_phases,
-                                            c[0].tca_te0_pp_arcsec))
+        return min(cands[s], key=lambda c: pivot_rank(c[0]))
 
     centred = SynthesisProblem(pair, **problem, pivot_depth={
         s: per_side[s].centre_profile for s in sides})
