@@ -58,7 +58,8 @@ def cuttable_choice(candidates: dict, *, pointed) -> dict:
     "" for a cuttable tooth (the readers' own check,
     :func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`). Then the
     combinations are tried in the order of the summed rank (:func:`pivot_rank`: missed
-    targets, edge phases, TE0 p-p over the sides; the first given on a tie) and the first cuttable one is kept, each side's result naming the others and
+    targets, edge phases, TE0 p-p over the sides; the first given on a tie) and the
+    first cuttable one is kept, each side's result naming the others and
     why its better ones were passed over; where none is cuttable, the best, as
     :func:`better_pivot` (the readers then refuse the written file, naming the tooth)."""
     sides = tuple(candidates)
