@@ -37,8 +37,8 @@ from ..validation import InputRangeError
 from .c_library import _environment, library_files, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
-__all__ = ["FMU_KINDS", "MESH_VARIABLES", "DOMAIN_COUNTS", "drop_domain_counts", "MeshFmu", "export_mesh_fmu", "write_mesh_fmu",
-           "check_fmu_kind",
+__all__ = ["FMU_KINDS", "MESH_VARIABLES", "DOMAIN_COUNTS", "drop_domain_counts", "MeshFmu",
+           "export_mesh_fmu", "write_mesh_fmu", "check_fmu_kind",
            "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
            "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES", "LINE_LAW_FILES"]
 

@@ -320,8 +320,8 @@ def _blank_path_or_warn(pair, *, boxes_of):
     settings; accepted at :data:`MIN_CONTACT_RATIO`, else warned by
     :func:`check_settings_ratio` (the closed form's prediction alone where the blank's
     own generation check refuses it; the closed form's ratios are then returned). A gap
-    the settings' TCA meets is named there (:class:`~gearcontact.tca.edges.ContactGap`). docs/machine_settings.md sec. 5, "The
-    contact-ratio check of machine settings"."""
+    the settings' TCA meets is named there (:class:`~gearcontact.tca.edges.ContactGap`).
+    docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"."""
     blank = replace(pair, machine=(), print_gear=(), easeoff_tables=())
     try:
         got = path_contact_ratio(blank, boxes=boxes_of(blank))

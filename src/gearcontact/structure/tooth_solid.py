@@ -10,8 +10,9 @@ elastic solid under a Ritz basis:
   to the rim's clamped bottom ``depth_mm``), above it ``P_c + zeta (P_d - P_c)`` of the
   tooth's facing flank points (:meth:`~.tooth.ToothGeometry.side_points`), ``zeta`` in
   [0, 1] from the coast to the drive flank;
-- the coordinates ``(xi, eta', zeta~)``: ``eta'`` the plate's own (:attr:`.shell.ShellModel.rim_split`:
-  -1 at the clamp, the split at the root line, 1 at the tip), ``zeta~ = 2 zeta - 1``;
+- the coordinates ``(xi, eta', zeta~)``: ``eta'`` the plate's own
+  (:attr:`.shell.ShellModel.rim_split`: -1 at the clamp, the split at the root line, 1 at
+  the tip), ``zeta~ = 2 zeta - 1``;
 - the displacement ``u = sum c_ijkl P_i(xi) P_j(eta') P_k(zeta~) (1 + eta')/2 e_l`` in
   Cartesian components (Legendre degrees ``degrees``), clamped at the rim's bottom;
 - the energy ``1/2 int eps^T C eps dV`` (:mod:`.ritz_solid`), the modulus that of the
