@@ -6,6 +6,14 @@ same depth, Vijayakar's split) against the FE's (its loaded-flank patch complian
 the consistent pressure load minus the half-space's surface near field of the same
 patch), on set A's three gears without a block, 9 segment and 3 line patches each:
 every ratio in 0.84 .. 1.19.
+
+Measured: it differs, because the truth's far field changes sign (the tooth clamped
+within millimetres below a low patch indents less than a half-space), so the ratio is
+undefined (slow strict xfail). A second criterion, declared after the first gear and
+before the two others ran: the combined loaded-flank compliance the LTCA's contact
+sees, HS_s + far_solid, against the FE's, in the same band on the two held-out gears.
+Met (1.026 .. 1.162; the seen gear 1.039 .. 1.088), where today's plate operator gives
+1.45 .. 2.60 (slow test; a coarse-mesh default test).
 """
 
 from __future__ import annotations
@@ -28,28 +36,41 @@ from gearcontact.structure.tooth import RectangularPlate, tooth_geometry
 
 #: Set A's band (test_no_block_fe.BAND), declared for the far-field ratios.
 BAND = (0.84, 1.19)
+#: The default-suite test's FE mesh: the default mesh's node lines along the face and the
+#: height (the patches' bounds), fewer cells across, in the rim and the slots.
+COARSE = FeMesh(12, 6, 2, 2, 2, 1)
+#: Its measured error on the combined ratio: the largest |log(coarse / default)| over the
+#: s0003-centred gear's 12 patches, 0.027, rounded up to 0.01 (docs/bending.md).
+COARSE_LOG_ERROR = 0.03
+#: The declared ratio criterion's measured failure (the strict xfail's reason).
+FAR_RATIOS = {"s0003-centred gear": (-1.54, 5.01), "s0003 gear": (-8.45, 3.47),
+              "F.2 gear": (-4.85, 2.41)}
 #: The default FE mesh's node-line steps: xi 1/6 (12 cells), eta 1/3 (6 cells).
 _DXI, _DETA = 2.0 / 12, 2.0 / 6
 
 
-def set_a_patches(side: str) -> list[FlankPatch]:
+def set_a_patches(side: str, half_height: float = _DETA) -> list[FlankPatch]:
     """The 12 patches of set A (docs/bending.md, session 26): the 9 segment patches at
     xi = -1/2, 0, 1/2 x eta = -1/3, 0, 1/3 (the segment's 5 node columns, clipped inside
-    the face as its loads are; one row either side), then the 3 line patches."""
+    the face as its loads are; ``half_height`` in eta either side, by default one row of
+    the default mesh), then the 3 line patches."""
     out = []
     for xc in (-0.5, 0.0, 0.5):
         c = int(np.clip(round((xc + 1.0) / _DXI), 3, 9))
         for ec in (-1 / 3, 0.0, 1 / 3):
             out.append(FlankPatch(side, (-1.0 + (c - 2) * _DXI, -1.0 + (c + 2) * _DXI),
-                                  (ec - _DETA, ec + _DETA)))
+                                  (ec - half_height, ec + half_height)))
     for ec in (-1 / 3, 0.0, 1 / 3):
-        out.append(FlankPatch(side, (-1.0 + _DXI, 1.0 - _DXI), (ec - _DETA, ec + _DETA)))
+        out.append(FlankPatch(side, (-1.0 + _DXI, 1.0 - _DXI),
+                              (ec - half_height, ec + half_height)))
     return out
 
 
-def far_field_table(pair, flanks, member: str, fe_mesh: FeMesh = FeMesh()) -> dict:
+def far_field_table(pair, flanks, member: str, fe_mesh: FeMesh = FeMesh(), *,
+                    half_height: float = _DETA, solid_degrees=None) -> dict:
     """Every quantity of the declared comparison on one tooth without a block (set A's
-    set-up, test_no_block_fe.no_block_ratios): arrays over the 12 patches, mm/N."""
+    set-up, test_no_block_fe.no_block_ratios): arrays over the 12 patches, mm/N
+    (``half_height`` and ``solid_degrees`` for the diagnostics of docs/bending.md)."""
     from gearcontact.structure.fe import build_fe
 
     material = getattr(pair, f"{member}_material")
@@ -61,14 +82,15 @@ def far_field_table(pair, flanks, member: str, fe_mesh: FeMesh = FeMesh()) -> di
         warnings.simplefilter("ignore", NoBlockWarning)
         plate = tooth_shell(flanks, member, material=material, rim=rim)
     solid = build_shell(tooth, order=ORDER, order_face=ORDER_FACE, rim=rim, rim_block=True,
-                        solid_tooth=True)
+                        solid_tooth=True, **({} if solid_degrees is None
+                                             else {"solid_degrees": solid_degrees}))
     root, why = _real_root(plate, lambda: _cutter_fillets(pair, flanks, member), fe_mesh)
     assert why is None, why
     fe = build_fe(tooth, n_xi=fe_mesh.n_xi, n_eta=fe_mesh.n_eta, n_zeta=fe_mesh.n_zeta,
                   n_rim=fe_mesh.n_rim, root=root, n_fillet=fe_mesh.n_fillet,
                   n_slot=fe_mesh.n_slot)
     rows = []
-    for patch in set_a_patches(pair.design_side):
+    for patch in set_a_patches(pair.design_side, half_height):
         s = solid_far_field(solid, patch)
         s["fe_flank"] = fe_patch_compliance(fe, patch)
         s["plate"] = solid_patch_compliance(plate, patch, at="flank")
@@ -123,3 +145,84 @@ def test_patch_area_and_rectangle_on_a_flat_plate():
     _, area = patch_points(plate, patch)
     assert area.sum() == pytest.approx(10.0 * 1.8, rel=1e-9)
     assert patch_rectangle(plate, patch) == pytest.approx((10.0, 1.8), rel=1e-9)
+
+
+# ---------------------------------------------------------------- the gears
+
+
+@pytest.fixture(scope="module")
+def coarse_centred_table(s0003_centred):
+    """far_field_table of the s0003-centred gear on COARSE (about 10-20 s)."""
+    pytest.importorskip("skfem")
+    pair, flanks = s0003_centred
+    return far_field_table(pair, flanks, "gear", COARSE)
+
+
+def _combined(t) -> np.ndarray:
+    return (t["halfspace_surface"] + t["far"]) / t["fe_flank"]
+
+
+def test_split_meets_the_fe_on_a_coarse_mesh(coarse_centred_table):
+    """The s0003-centred gear on COARSE against its FE (truth: the P2 FE's loaded-flank
+    patch compliance under the consistent pressure load). The combined loaded-flank
+    compliance of the split, HS_s + far_solid, within set A's band widened on each side
+    by the coarse mesh's measured error, [0.84 exp(-0.03), 1.19 exp(0.03)] =
+    [0.815, 1.226] (measured 1.053 .. 1.119; default mesh 1.039 .. 1.088). Today's
+    operator, HS_s + the plate, lies above that band at every patch (measured
+    1.497 .. 2.254): the test tells the split from the plate."""
+    t = coarse_centred_table
+    lo, hi = BAND[0] * np.exp(-COARSE_LOG_ERROR), BAND[1] * np.exp(COARSE_LOG_ERROR)
+    r = _combined(t)
+    assert np.all((r >= lo) & (r <= hi)), r
+    plate = (t["halfspace_surface"] + t["plate"]) / t["fe_flank"]
+    assert np.all(plate > hi), plate
+
+
+def test_far_field_is_negative_under_the_low_patches(coarse_centred_table):
+    """The measured reason the declared ratio is undefined and the split is not a
+    compliance: under the four patches at eta = -1/3 the FE's loaded flank gives less
+    than the half-space's surface near field alone (far_FE < 0; measured -0.54 ..
+    -0.36 x 1e-6 mm/N on COARSE, -0.50 .. -0.34 on the default mesh), and so does the
+    split (far_solid -0.38 .. -0.28 x 1e-6). Both signs are asserted, not their sizes."""
+    t = coarse_centred_table
+    low = [0, 3, 6, 9]
+    assert np.all(t["fe_far"][low] < 0.0), t["fe_far"][low]
+    assert np.all(t["far"][low] < 0.0), t["far"][low]
+
+
+@pytest.fixture(scope="module")
+def gear_tables(gears):
+    """far_field_table of set A's three gears on the default mesh (about 2 min)."""
+    pytest.importorskip("skfem")
+    return {name: far_field_table(pair, flanks, "gear") for name, (pair, flanks)
+            in gears.items()}
+
+
+@pytest.fixture(scope="module")
+def gears(pairs, f2_machine_pair):
+    """``label -> (pair, flanks)`` of set A's three gears (test_no_block_fe.gears)."""
+    from gearcontact.geometry.flank import build_flanks
+
+    return {"s0003-centred gear": pairs["s0003-centred"], "s0003 gear": pairs["s0003"],
+            "F.2 gear": (f2_machine_pair, build_flanks(f2_machine_pair))}
+
+
+@pytest.mark.slow
+def test_split_meets_the_fe_on_set_a(gear_tables):
+    """The second criterion (declared before the s0003 and F.2 gears ran): HS_s +
+    far_solid over the FE's loaded-flank patch compliance in 0.84 .. 1.19 at all 36
+    patches (measured 1.026 .. 1.162)."""
+    for name, t in gear_tables.items():
+        r = _combined(t)
+        assert np.all((r >= BAND[0]) & (r <= BAND[1])), (name, r)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="differs: the truth's far field changes sign under "
+                   f"the low patches, far_solid / far_FE spans {FAR_RATIOS} "
+                   "(docs/bending.md sec. 13, session 26)")
+def test_declared_far_field_ratio_on_set_a(gear_tables):
+    """The declared criterion: far_solid / far_FE in 0.84 .. 1.19 at all 36 patches."""
+    for name, t in gear_tables.items():
+        r = t["far"] / t["fe_far"]
+        assert np.all((r >= BAND[0]) & (r <= BAND[1])), (name, r)

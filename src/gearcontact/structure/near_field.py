@@ -43,6 +43,7 @@ from numpy.polynomial import legendre
 from ..halfspace.influence import love_rectangle_displacement
 from ..validation import InputRangeError
 from .tooth import LoadPoints
+from .tooth_solid import solid_load_vectors
 
 __all__ = ["FlankPatch", "patch_points", "patch_rectangle", "halfspace_surface",
            "halfspace_below", "solid_patch_compliance", "solid_far_field",
@@ -155,9 +156,8 @@ def halfspace_below(length_mm: float, width_mm: float, at_mm: np.ndarray,
 
 
 def _patch_vectors(model, patch: FlankPatch, *, points=None):
-    """(load vector f, mid-surface measure g, plate-side weights, points, area weights)."""
-    from .tooth_solid import solid_load_vectors
-
+    """The patch's load vector f (m,), its mid-surface measure g (m,; None on a plate),
+    its Gauss points and their weights (summing to 1)."""
     pts, area = patch_points(model.body, patch, points=points)
     w = area / area.sum()
     f = w @ model.load_vectors(pts)
@@ -175,20 +175,23 @@ def solid_patch_compliance(model, patch: FlankPatch, *, at: str = "mid",
     (``at="mid"``, the matching surface of :func:`solid_far_field`)."""
     if at not in ("flank", "mid"):
         raise InputRangeError("at", at, "'flank' or 'mid'")
+    if at == "mid" and model.solid_degrees is None:
+        raise InputRangeError("at", at, "'flank' (the model is no solid tooth)")
     f, g, _, _ = _patch_vectors(model, patch, points=points)
-    if at == "mid":
-        if g is None:
-            raise InputRangeError("at", at, "'flank' (the model is no solid tooth)")
-    else:
-        g = f
+    return _work(model, f, g if at == "mid" else f)
+
+
+def _work(model, f: np.ndarray, g: np.ndarray) -> float:
+    """``g^T K^-1 f`` (mm/N) through the model's ``L^-T``."""
     L = model.inverse_cholesky_t
     return float((g @ L) @ (f @ L))
 
 
-def _match_offsets(body, patch: FlankPatch, pts: LoadPoints, *, points=None) -> np.ndarray:
+def _match_offsets(body, patch: FlankPatch, pts: LoadPoints, length: float,
+                   width: float) -> np.ndarray:
     """(s, h, depth) (n, 3), mm, of the mid-surface point below each patch point in the
-    patch's flat frame (:func:`patch_rectangle`; s along the face, h over the height)."""
-    length, width = patch_rectangle(body, patch, points=points)
+    patch's flat frame (its rectangle ``length`` x ``width``, :func:`patch_rectangle`; s
+    along the face, h over the height)."""
     xc, ec = np.mean(patch.xi), np.mean(patch.eta)
     _, r_xi, r_eta, _ = patch_flank(body, patch.side, np.array([xc]), np.array([ec]))
     e_s = r_xi[0] / np.linalg.norm(r_xi[0])
@@ -211,12 +214,14 @@ def solid_far_field(model, patch: FlankPatch, *, points=None) -> dict:
     mat = body.material
     E, nu = mat.youngs_modulus_mpa, mat.poisson_ratio
     length, width = patch_rectangle(body, patch, points=points)
-    _, _, pts, w = _patch_vectors(model, patch, points=points)
-    below = halfspace_below(length, width, _match_offsets(body, patch, pts, points=points), w,
+    if model.solid_degrees is None:
+        raise InputRangeError("model", "a plate", "a solid tooth (build_shell solid_tooth)")
+    f, g, pts, w = _patch_vectors(model, patch, points=points)
+    below = halfspace_below(length, width, _match_offsets(body, patch, pts, length, width), w,
                             youngs_modulus_mpa=E, poisson_ratio=nu)
-    mid = solid_patch_compliance(model, patch, at="mid", points=points)
+    mid = _work(model, f, g)
     return {"far": mid - below, "solid_mid": mid, "halfspace_mid": below,
-            "solid_flank": solid_patch_compliance(model, patch, at="flank", points=points),
+            "solid_flank": _work(model, f, f),
             "halfspace_surface": halfspace_surface(length, width, youngs_modulus_mpa=E,
                                                    poisson_ratio=nu),
             "length_mm": length, "width_mm": width}
