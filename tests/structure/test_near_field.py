@@ -198,15 +198,6 @@ def gear_tables(gears):
             in gears.items()}
 
 
-@pytest.fixture(scope="module")
-def gears(pairs, f2_machine_pair):
-    """``label -> (pair, flanks)`` of set A's three gears (test_no_block_fe.gears)."""
-    from gearcontact.geometry.flank import build_flanks
-
-    return {"s0003-centred gear": pairs["s0003-centred"], "s0003 gear": pairs["s0003"],
-            "F.2 gear": (f2_machine_pair, build_flanks(f2_machine_pair))}
-
-
 @pytest.mark.slow
 def test_split_meets_the_fe_on_set_a(gear_tables):
     """The second criterion (declared before the s0003 and F.2 gears ran): HS_s +
