@@ -21,6 +21,9 @@ inward flank normal over the patch, mm/N):
   the displacement at a surface point is the solid's at a matching point below it plus the
   half-space's surface-to-matching-point difference, so the far field is the solid's
   mid-surface value minus the half-space's at the same depth (:func:`solid_far_field`);
+- the same split as a point operator between flank points (:func:`solid_far_field_matrix`),
+  what an LTCA would add to its half-space (not used by it: the far field is negative
+  near the root, docs/bending.md);
 - the FE's patch compliance under the consistent load of the pressure
   (:func:`fe_patch_compliance`), the truth of the far field after the surface near field
   is taken off.
@@ -47,7 +50,7 @@ from .tooth_solid import solid_load_vectors
 
 __all__ = ["FlankPatch", "patch_points", "patch_rectangle", "halfspace_surface",
            "halfspace_below", "solid_patch_compliance", "solid_far_field",
-           "fe_patch_compliance", "PATCH_POINTS"]
+           "solid_far_field_matrix", "fe_patch_compliance", "PATCH_POINTS"]
 
 #: Gauss points (along the face, over the height) of a patch's quadrature: per unit of
 #: the patch's (xi, eta) extent along the face, and over its height.
@@ -225,6 +228,36 @@ def solid_far_field(model, patch: FlankPatch, *, points=None) -> dict:
             "halfspace_surface": halfspace_surface(length, width, youngs_modulus_mpa=E,
                                                    poisson_ratio=nu),
             "length_mm": length, "width_mm": width}
+
+
+def solid_far_field_matrix(model, points: LoadPoints) -> np.ndarray:
+    """The solid tooth's far field between flank points (n, n), mm/N: Vijayakar's split
+    of :func:`solid_far_field` for unit point loads, symmetrized,
+    ``G = (A + A^T) / 2 - (B + B^T) / 2`` with ``A_ij`` the solid's displacement along
+    ``d_i`` at the mid-surface point below point i under a unit load along ``d_j`` at
+    point j, and ``B_ij`` Boussinesq's under the same load on the half-space tangent at
+    point i, at that mid-surface point's depth ``z_i`` and its distance in the tangent
+    plane from point j (Johnson 1985, eq. 3.20; the tooth's material). Not positive
+    semi-definite in general: near the root the far field is negative."""
+    if model.solid_degrees is None:
+        raise InputRangeError("model", "a plate", "a solid tooth (build_shell solid_tooth)")
+    L = model.inverse_cholesky_t
+    flank = model.load_vectors(points) @ L
+    match = solid_load_vectors(model, points, across=np.zeros(len(points))) @ L
+    A = match @ flank.T
+    mat = model.body.material
+    nu = mat.poisson_ratio
+    g = mat.youngs_modulus_mpa / (2.0 * (1.0 + nu))
+    d = np.asarray(points.direction, float)
+    mid = model.body.mid_surface(points.xi, points.eta).position_mm
+    z = np.einsum("ij,ij->i", mid - points.position_mm, d)
+    if np.any(z <= 0.0):
+        raise InputRangeError("mid-surface depth below a point (mm)", float(z.min()), "> 0")
+    rel = mid[:, None, :] - points.position_mm[None, :, :]          # (i, j, 3)
+    lateral = rel - np.einsum("ijk,ik->ij", rel, d)[:, :, None] * d[:, None, :]
+    rho = np.sqrt(np.einsum("ijk,ijk->ij", lateral, lateral) + (z * z)[:, None])
+    B = (2.0 * (1.0 - nu) / rho + (z * z)[:, None] / rho ** 3) / (4.0 * np.pi * g)
+    return 0.5 * (A + A.T) - 0.5 * (B + B.T)
 
 
 def fe_patch_compliance(fe, patch: FlankPatch) -> float:
