@@ -117,16 +117,6 @@ def no_block_result(pair, flanks, member, fe_mesh, rim, shell):
 
 
 @pytest.fixture(scope="module")
-def gears(pairs, f2_machine_pair):
-    """``label -> (pair, flanks)`` of the three gears whose real root ends above their
-    fillet height: both s0003 pairs' and the F.2 machine pair's."""
-    from gearcontact.geometry.flank import build_flanks
-
-    return {"s0003-centred gear": pairs["s0003-centred"], "s0003 gear": pairs["s0003"],
-            "F.2 gear": (f2_machine_pair, build_flanks(f2_machine_pair))}
-
-
-@pytest.fixture(scope="module")
 def coarse_centred(s0003_centred):
     """(plate, solid) shell / FE of the s0003-centred gear without a block on COARSE, one FE
     for both (seconds)."""

@@ -88,14 +88,16 @@ def solid_stiffness(model) -> np.ndarray:
     return K
 
 
-def solid_load_vectors(model, points) -> np.ndarray:
+def solid_load_vectors(model, points, *, across=None) -> np.ndarray:
     """Phi (n, m): the displacement along each point's direction per Ritz coordinate of
     the solid tooth, at flank points (:class:`~.tooth.LoadPoints` on the drive flank,
     zeta~ = 1, or the coast flank, zeta~ = -1: the side of the point's offset from the
-    mid-surface)."""
+    mid-surface) or, with ``across`` (n,), at zeta~ = ``across`` below them (0: the
+    mid-surface, :mod:`.near_field`)."""
     split = model.rim_split
     eta_r = split + 0.5 * (1.0 - split) * (np.asarray(points.eta, float) + 1.0)
-    across = np.sign(np.asarray(points.offset_mm, float))
+    if across is None:
+        across = np.sign(np.asarray(points.offset_mm, float))
     q = np.stack([np.asarray(points.xi, float), eta_r, across], axis=1)
     vals, _ = legendre_products(q, model.solid_degrees, clamp=_CLAMP)
     d = np.asarray(points.direction, float)
