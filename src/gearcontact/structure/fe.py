@@ -119,10 +119,25 @@ class FeTooth:
         F = np.zeros((self.n_dofs, len(vertices)))
         for col, (v, d) in enumerate(zip(vertices, points.direction)):
             F[self._nodal_dofs[:, v], col] = d
-        U = np.zeros_like(F)
-        U[self._free] = self._lu.solve(np.ascontiguousarray(F[self._free]))
-        G = F.T @ U
+        G = F.T @ self.displacement_mm(F)
         return 0.5 * (G + G.T)
+
+    def displacement_mm(self, load_n: np.ndarray) -> np.ndarray:
+        """Displacements (n_dofs, ...) , mm, of nodal loads ``load_n`` (n_dofs, ...), N,
+        on this model's degrees of freedom (the clamped ones stay 0)."""
+        u = np.zeros_like(load_n, dtype=float)
+        u[self._free] = self._lu.solve(np.ascontiguousarray(load_n[self._free]))
+        return u
+
+    @property
+    def nodal_dofs(self) -> np.ndarray:
+        """Degrees of freedom (3, n_vertices) of each vertex's x, y, z (P2 numbering)."""
+        return self._nodal_dofs
+
+    def vertices_mm(self) -> np.ndarray:
+        """Body-frame positions of every mesh vertex (3, n_vertices), mm: with
+        ``tetrahedra`` the mesh a P2 basis numbering this model's dofs is built on."""
+        return self._points
 
     def vertex_positions_mm(self, vertices: np.ndarray) -> np.ndarray:
         """Body-frame positions of mesh vertices (n, 3), mm."""

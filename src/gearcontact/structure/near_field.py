@@ -279,9 +279,9 @@ def fe_patch_compliance(fe, patch: FlankPatch) -> float:
                        & (fe.eta_levels <= patch.eta[1] + 1e-9)]
     X, E = (a.ravel() for a in np.meshgrid(xs, es, indexing="ij"))
     _, verts = fe.node_points(patch.side, X, E)
-    mesh = skfem.MeshTet(fe._points, fe.tetrahedra)
+    mesh = skfem.MeshTet(fe.vertices_mm(), fe.tetrahedra)
     basis = skfem.Basis(mesh, skfem.ElementVector(skfem.ElementTetP2()), intorder=2)
-    if basis.N != fe.n_dofs or not np.array_equal(basis.nodal_dofs, fe._nodal_dofs):
+    if basis.N != fe.n_dofs or not np.array_equal(basis.nodal_dofs, fe.nodal_dofs):
         raise RuntimeError("the rebuilt P2 basis does not number the FE's dofs alike")
     bf = mesh.boundary_facets()
     inside = np.all(np.isin(mesh.facets[:, bf], verts), axis=0)
@@ -293,6 +293,4 @@ def fe_patch_compliance(fe, patch: FlankPatch) -> float:
         return -(v[0] * w.n[0] + v[1] * w.n[1] + v[2] * w.n[2]) / area
 
     f = pressure.assemble(fb)
-    u = np.zeros_like(f)
-    u[fe._free] = fe._lu.solve(np.ascontiguousarray(f[fe._free]))
-    return float(f @ u)
+    return float(f @ fe.displacement_mm(f))
