@@ -71,8 +71,10 @@ from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinemati
                       MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
 from .settings_top_land import check_settings_top_land
+from .typed_pinion_fit import conjugate_fitted_setups
 
-__all__ = ["gear_motion_keys", "typed_gear_machine_pair", "typed_gear_pinion_setups"]
+__all__ = ["gear_motion_keys", "typed_gear_cut", "typed_gear_machine_pair",
+           "typed_gear_pinion_setups"]
 
 
 def gear_motion_keys(gear: dict) -> list[tuple[str, float]]:
@@ -236,14 +238,36 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
                             blade_profile_crowning_um: float =
                             STANDARD_CROWNING["blade_profile_crowning_um"],
                             reliefs: dict | None = None):
-    """``pair`` cut from the typed gear ``gear`` (``{side: MachineSetup}``; default the
-    pair's own: ``pair.typed_gear``, else the gear of ``pair.machine``), kept exactly as
+    """:func:`typed_gear_cut`'s pair (its arguments)."""
+    return typed_gear_cut(pair, gear, lengthwise_crowning_um=lengthwise_crowning_um,
+                          blade_profile_crowning_um=blade_profile_crowning_um,
+                          reliefs=reliefs)[0]
+
+
+def typed_gear_cut(pair, gear: dict | None = None, *,
+                   lengthwise_crowning_um: float = STANDARD_CROWNING["lengthwise_crowning_um"],
+                   blade_profile_crowning_um: float =
+                   STANDARD_CROWNING["blade_profile_crowning_um"],
+                   reliefs: dict | None = None) -> tuple:
+    """``(pair, fits)``: ``pair`` cut from the typed gear ``gear`` (``{side:
+    MachineSetup}``; default the pair's own: ``pair.typed_gear``, else the gear of
+    ``pair.machine``), kept exactly as
     given, and ``pair.print_gear`` with it (:func:`~.pair.pair_to_toml` writes the print
     back as typed), and the standard pinion of that gear: :func:`typed_gear_pinion_setups`
     localized by the standard crowning (:func:`~.basic_settings.standard_setups`'
     options and ranges) and the pinion blades' ``reliefs`` (``{("pinion", side):
     relief}``) kept. What ``gearcontact design --machine-settings`` writes for a pair file
-    that types its gear (docs/machine_settings.md sec. 5)."""
+    that types its gear (docs/machine_settings.md sec. 5). A flank of a spiral bevel gear
+    (offset 0) generated with a modified roll or helical motion gets, before the
+    crowning, the pinion fitted to the gear's conjugate pinion
+    (:func:`~.typed_pinion_fit.conjugate_fitted_setups`; its ``{side: ConjugateFit}`` is
+    ``fits``, of the right-hand twin; empty for every other gear, whose derived pinion
+    is conjugate).
+
+    Raises
+    ------
+    CheckFailed
+        Such a fit's residual exceeds :data:`~.typed_pinion_fit.RESIDUAL_BOUND_UM`."""
     crowning = checked_crowning(lengthwise_crowning_um, blade_profile_crowning_um)
     if gear is None:
         gear = {s.side: s for s in pair.typed_gear or pair.machine if s.member == "gear"}
@@ -252,7 +276,8 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
     twin_gear = {s: mirror_setup(g) for s, g in gear.items()} if left else gear
-    uncrowned = typed_gear_pinion_setups(twin, twin_gear, mirrored=left)
+    uncrowned, fits = conjugate_fitted_setups(
+        twin, twin_gear, typed_gear_pinion_setups(twin, twin_gear, mirrored=left))
     try:
         pinion = crowned_pinion_setups(twin, uncrowned, **crowning)
     except UndercutError as exc:       # no mean node: name the gear's motion, if any
@@ -281,5 +306,5 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
         pinion = {s: mirror_setup(p) for s, p in pinion.items()}
     members = {"gear": gear, "pinion": pinion}
     return dataclasses.replace(pair, machine=tuple(members[m][s] for m in MEMBERS for s in SIDES),
-                               typed_gear=(), easeoff_tables=("drive", "coast"))
+                               typed_gear=(), easeoff_tables=("drive", "coast")), fits
 
