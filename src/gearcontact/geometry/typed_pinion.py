@@ -33,7 +33,9 @@ standard crowning (docs/machine_settings.md sec. 5, "The pinion of a typed gear"
   A hypoid's lines then cross on the flank (point contact, TE0 = 0); a spiral bevel's
   (intersecting axes) cross only where the generating surface's normal lies in the
   plane of the axes, in general off the face: TE0 = 0 at the mean roll only
-  (docs/machine_settings.md sec. 5, measured). A modified roll that reverses
+  (docs/machine_settings.md sec. 5, measured), so such a flank's pinion is fitted to the
+  gear's conjugate pinion (:mod:`.typed_pinion_fit`, in :func:`typed_gear_cut`). A
+  modified roll that reverses
   the roll before the gear has turned through the angle its pinion's flank needs is an
   input error naming its key (:func:`_check_roll_law`).
 - The blade: the mate of the gear blade's main profile (:func:`~.blade_mate.mate_blade`:

@@ -49,7 +49,8 @@ from .setting_fit import (DEFAULT_PARAMETERS, FitProblem, SettingFit, fit_pinion
                           flank_deviation_um)
 
 __all__ = ["CONJUGATE_GRID", "RESIDUAL_BOUND_UM", "ConjugateFit", "conjugate_fitted_setups",
-           "conjugate_target", "fit_to_conjugate", "needs_conjugate_fit", "residual_angles"]
+           "conjugate_target", "fit_to_conjugate", "needs_conjugate_fit", "residual_angles",
+           "spline_error_rad"]
 
 #: Exact meshing nodes of the conjugate target (profile x lengthwise), a quintic sheet
 #: between them (its error against exact nodes at the cell centres is part of each fit's
@@ -141,8 +142,9 @@ def residual_angles(flank, target) -> tuple[np.ndarray, ...]:
     return u, v, d, d / angle_lever("pinion", t.r, t.n)[1]
 
 
-def _spline_error_rad(target: ConjugateFlank) -> float:
-    """Largest |psi| of the sheet against exact meshing nodes at its cell centres."""
+def spline_error_rad(target: ConjugateFlank) -> float:
+    """Largest |psi_sheet - psi_exact|, rad, of ``target``'s quintic sheet against exact
+    meshing nodes at the centres of its node grid's cells."""
     uc, vc = (0.5 * (a[1:] + a[:-1]) for a in (target.u_nodes, target.v_nodes))
     U, V = np.meshgrid(uc, vc, indexing="ij")
     d = target.exact(U, V).psi_rad - target.psi(U, V)
@@ -156,7 +158,7 @@ def fit_to_conjugate(pair, gear: MachineSetup, seed: MachineSetup) -> ConjugateF
     fit = fit_pinion_setup(seed, pair.blank, target, parameters=DEFAULT_PARAMETERS)
     cut = machine_flank(fit.setup, pair.blank, face_width_mm=pair.pinion_face_width_mm)
     _, _, d, dpsi = residual_angles(cut, target)
-    spline = _spline_error_rad(target)
+    spline = spline_error_rad(target)
     b = target.boundary
     seed_dev = FitProblem(seed, pair.blank, target, (), np.linspace(b.u_root, b.u_tip, 9),
                           np.linspace(b.v_toe, b.v_heel, 11)).deviation_um(np.zeros(0))
@@ -181,15 +183,13 @@ def conjugate_fitted_setups(pair, gear: dict, pinion: dict) -> tuple[dict, dict]
         A fitted flank whose residual exceeds :data:`RESIDUAL_BOUND_UM` (named with its
         residual and bound): no cuttable pinion conjugate to the gear within the bound.
     """
-    out, fits = dict(pinion), {}
-    for side in SIDES:
-        if needs_conjugate_fit(pair, gear[side]):
-            fits[side] = fit_to_conjugate(pair, gear[side], pinion[side])
-            out[side] = fits[side].fit.setup
+    fits = {side: fit_to_conjugate(pair, gear[side], pinion[side]) for side in SIDES
+            if needs_conjugate_fit(pair, gear[side])}
     bad = [f for f in fits.values() if not f.within_bound]
     if bad:
         raise CheckFailed(
             "pinion of the typed gear: no cuttable pinion conjugate to the gear within "
             f"{RESIDUAL_BOUND_UM:g} um: " + "; ".join(f.line() for f in bad)
             + " (docs/machine_settings.md sec. 5)")
-    return out, fits
+    return {side: fits[side].fit.setup if side in fits else p
+            for side, p in pinion.items()}, fits
