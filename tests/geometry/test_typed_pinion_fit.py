@@ -129,3 +129,28 @@ def test_the_fitted_pinion_of_f2s_gear_with_2c_is_conjugate_within_its_bound(f2_
     assert fit.max_um <= typed_pinion_fit.RESIDUAL_BOUND_UM
     result, _ = analyze_pair(cut, side="drive", phases=31, flanks=build_flanks(cut, n_u=40, n_v=50))
     assert result.cycle.te0_pp_arcsec <= fit.te_bound_arcsec + 1e-4
+
+
+@pytest.mark.slow
+def test_a_left_hand_pair_gets_its_twins_fitted_pinion_mirrored():
+    # a left-hand F.2 with 2C = 0.05 typed on its generated drive gear: the fit runs on
+    # the right-hand twin (the gear mirrored: 2C -0.05), and the pinion written is the
+    # twin's fitted pinion mirrored, exactly (mirror_setup; == as floats), the coast
+    # (linear roll) not fitted. Measured: residual 0.471 um, ~20 s
+    from gearcontact.geometry.machine import mirror_setup
+
+    blank = load_pair(F2)
+    left = standard_machine_pair(dataclasses.replace(blank, pinion_hand="left"),
+                                 gear_generation="generated")
+    gear = modified_gear(left, {"drive": (dict(modified_roll=(0.05,)), {})})
+    cut, fits = typed_gear_cut(left, gear, lengthwise_crowning_um=0.0,
+                               blade_profile_crowning_um=0.0)
+    twin_cut, twin_fits = typed_gear_cut(
+        standard_machine_pair(blank, gear_generation="generated"),
+        {s: mirror_setup(g) for s, g in gear.items()}, lengthwise_crowning_um=0.0,
+        blade_profile_crowning_um=0.0)
+    assert sorted(fits) == sorted(twin_fits) == ["drive"]
+    assert fits["drive"].max_um == twin_fits["drive"].max_um
+    assert {s.side: s for s in cut.machine if s.member == "pinion"} == {
+        s.side: mirror_setup(s) for s in twin_cut.machine if s.member == "pinion"}
+    assert {s.side: s for s in cut.machine if s.member == "gear"} == gear   # as typed
