@@ -234,6 +234,19 @@ def typed_gear_pinion_setups(pair, gear: dict, *, mirrored: bool = False) -> dic
     return out
 
 
+def _motion_error(gear: dict, exc: UndercutError, what: str) -> Exception:
+    """The input error naming the typed ``gear``'s first motion term of the flank named in
+    ``exc`` (a pinion node the envelope does not reach) as ``a motion {what}``; ``exc``
+    itself when that flank has no motion term."""
+    side = next((s for s in SIDES if f" {s} flank" in exc.field), None)
+    keys = [k for k in gear_motion_keys(gear) if f".{side}." in k[0]]
+    if not keys:
+        return exc
+    return InputRangeError(
+        keys[0][0], keys[0][1], f"a motion {what} ({exc}; the {side} terms typed: "
+        f"{', '.join(f'{k} = {v!r}' for k, v in keys)}; docs/machine_settings.md sec. 5)")
+
+
 def typed_gear_machine_pair(pair, gear: dict | None = None, *,
                             lengthwise_crowning_um: float =
                             STANDARD_CROWNING["lengthwise_crowning_um"],
@@ -278,20 +291,23 @@ def typed_gear_cut(pair, gear: dict | None = None, *,
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
     twin_gear = {s: mirror_setup(g) for s, g in gear.items()} if left else gear
-    uncrowned, fits = conjugate_fitted_setups(
-        twin, twin_gear, typed_gear_pinion_setups(twin, twin_gear, mirrored=left))
+    derived = typed_gear_pinion_setups(twin, twin_gear, mirrored=left)
+    try:
+        uncrowned, fits = conjugate_fitted_setups(twin, twin_gear, derived)
+    except UndercutError as exc:       # no fitted flank over the conjugate's box
+        err = _motion_error(gear, exc, "whose pinion, fitted to the gear's conjugate pinion "
+                            "from the same motion reversed, covers the conjugate's flank")
+        if err is exc:
+            raise
+        raise err from exc
     try:
         pinion = crowned_pinion_setups(twin, uncrowned, **crowning)
     except UndercutError as exc:       # no mean node: name the gear's motion, if any
-        side = next((s for s in SIDES if f" {s} flank" in exc.field), None)
-        keys = [k for k in gear_motion_keys(gear) if f".{side}." in k[0]]
-        if not keys:
+        err = _motion_error(gear, exc, "under which the gear's generating surface, in the "
+                            "same motion reversed, reaches its pinion's mean node")
+        if err is exc:
             raise
-        raise InputRangeError(
-            keys[0][0], keys[0][1], f"a motion under which the gear's generating surface, in "
-            f"the same motion reversed, reaches its pinion's mean node ({exc}; the "
-            f"{side} terms typed: {', '.join(f'{k} = {v!r}' for k, v in keys)}; "
-            "docs/machine_settings.md sec. 5)") from exc
+        raise err from exc
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}

@@ -32,16 +32,18 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, sec
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import CheckFailed
-from .conjugate import ConjugateFlank, conjugate_pinion_flank
+from .conjugate import ConjugateFlank, UndercutError, conjugate_pinion_flank
 from .easeoff_shape import HOLLOW_BOUND_UM
 from .formate import SIDES
 from .gear_generation import SheetGenerator, generating_sheet
+from .generated import generated_pinion_box
 from .kinked import machine_flank
 from .machine import MachineSetup
 from .member_envelope import angle_lever
@@ -84,7 +86,12 @@ class ConjugateFit:
         ``(z1/z2) (dpsi_max - dpsi_min + 2 spline_error)`` (gear arcsec): the first-order
         bound of the uncrowned pair's TE0 p-p (module docstring).
     seed_max_um : float
-        The derived (reversed-motion) pinion's largest |normal deviation| on the fit grid, um.
+        The derived (reversed-motion) pinion's largest |normal deviation| on the fit grid,
+        um (over the part of the conjugate's box it covers, if ``seed_trimmed``).
+    seed_trimmed : bool
+        The derived pinion's envelope does not reach the whole of the conjugate's box: the
+        fit started over the part it covers (:func:`fit_to_conjugate`); ``fit`` is the
+        second stage, from that fit's set-up.
     """
 
     side: str
@@ -96,6 +103,7 @@ class ConjugateFit:
     spline_error_rad: float
     te_bound_arcsec: float
     seed_max_um: float
+    seed_trimmed: bool = False
 
     @property
     def within_bound(self) -> bool:
@@ -108,7 +116,8 @@ class ConjugateFit:
                 f"max {self.max_um:.3f} um, RMS {self.rms_um:.3f} um over the flank (bound "
                 f"{RESIDUAL_BOUND_UM:g} um); TE0 p-p bound {self.te_bound_arcsec:.3f} arcsec "
                 f"(uncrowned, first order); the reversed-motion pinion was "
-                f"{self.seed_max_um:.2f} um off")
+                f"{self.seed_max_um:.2f} um off"
+                + (" where it reached the conjugate's flank" if self.seed_trimmed else ""))
 
 
 def needs_conjugate_fit(pair, setup: MachineSetup) -> bool:
@@ -151,24 +160,51 @@ def spline_error_rad(target: ConjugateFlank) -> float:
     return float(np.abs((d + math.pi) % (2.0 * math.pi) - math.pi).max())
 
 
+def _grid_deviation_um(setup: MachineSetup, pair, target, box) -> np.ndarray:
+    """Normal deviation (um) of the flank ``setup`` cuts from ``target`` on the fit's 9 x 11
+    grid over ``box`` (:class:`~.setting_fit.FitProblem` with no parameter)."""
+    return FitProblem(setup, pair.blank, target, (), np.linspace(box.u_root, box.u_tip, 9),
+                      np.linspace(box.v_toe, box.v_heel, 11)).deviation_um(np.zeros(0))
+
+
 def fit_to_conjugate(pair, gear: MachineSetup, seed: MachineSetup) -> ConjugateFit:
     """The pinion flank ``seed`` (the derived pinion of the typed gear flank ``gear``,
-    right-hand ``pair``) fitted to the gear's conjugate pinion (module docstring)."""
+    right-hand ``pair``) fitted to the gear's conjugate pinion (module docstring). Where
+    the seed's envelope does not reach the whole of the conjugate's box (a large modified
+    roll), it is first fitted over the part its own active box covers
+    (:func:`~.generated.generated_pinion_box`), then from there over the whole box
+    (``seed_trimmed``).
+
+    Raises
+    ------
+    UndercutError
+        The seed's envelope or the fitted one does not reach the fit grid.
+    """
     target = conjugate_target(pair, gear)
-    fit = fit_pinion_setup(seed, pair.blank, target, parameters=DEFAULT_PARAMETERS)
+    box, start = target.boundary, seed
+    try:
+        seed_dev = _grid_deviation_um(seed, pair, target, box)
+    except UndercutError:       # the derived pinion short of the conjugate's box
+        own = generated_pinion_box(seed, pair.blank,
+                                   pinion_face_width_mm=pair.pinion_face_width_mm)[1]
+        box = dataclasses.replace(box, u_root=max(box.u_root, own.u_root),
+                                  u_tip=min(box.u_tip, own.u_tip),
+                                  v_toe=max(box.v_toe, own.v_toe),
+                                  v_heel=min(box.v_heel, own.v_heel))
+        seed_dev = _grid_deviation_um(seed, pair, target, box)
+        start = fit_pinion_setup(seed, pair.blank, target, parameters=DEFAULT_PARAMETERS,
+                                 box=box).setup
+    fit = fit_pinion_setup(start, pair.blank, target, parameters=DEFAULT_PARAMETERS)
     cut = machine_flank(fit.setup, pair.blank, face_width_mm=pair.pinion_face_width_mm)
     _, _, d, dpsi = residual_angles(cut, target)
     spline = spline_error_rad(target)
-    b = target.boundary
-    seed_dev = FitProblem(seed, pair.blank, target, (), np.linspace(b.u_root, b.u_tip, 9),
-                          np.linspace(b.v_toe, b.v_heel, 11)).deviation_um(np.zeros(0))
     ratio = pair.pinion_teeth / pair.gear_teeth
     return ConjugateFit(
         side=gear.side, fit=fit, max_um=float(np.abs(d).max()),
         rms_um=float(np.sqrt(np.mean(d ** 2))), dpsi_min_rad=float(dpsi.min()),
         dpsi_max_rad=float(dpsi.max()), spline_error_rad=spline,
         te_bound_arcsec=ratio * (float(dpsi.max() - dpsi.min()) + 2.0 * spline) * _ARCSEC,
-        seed_max_um=float(np.abs(seed_dev).max()))
+        seed_max_um=float(np.abs(seed_dev).max()), seed_trimmed=start is not seed)
 
 
 def conjugate_fitted_setups(pair, gear: dict, pinion: dict) -> tuple[dict, dict]:
