@@ -6,8 +6,8 @@ The pinion :mod:`.typed_pinion` derives (the gear's generating surface in the ge
 motion reversed) is conjugate to the gear where the surface's contact lines with the
 two cross. With intersecting axes (offset 0) and a generated gear whose roll is not
 linear (a modified roll or a helical motion), they cross only where the surface's normal
-lies in the plane of the axes, off the face: that pinion is not conjugate (measured:
-TE0 p-p 8.24 arcsec on F.2's generated gear with 2C = +-0.05). For such a flank the
+lies in the plane of the axes, off the face: that pinion is not conjugate
+(docs/machine_settings.md sec. 5, measured). For such a flank the
 pinion settings are fitted (:func:`~.setting_fit.fit_pinion_setup`, the default subset)
 from the derived pinion to the gear's numerically conjugate pinion
 (:func:`~.conjugate.conjugate_pinion_flank` of the gear flank's generating sheet,
