@@ -15,8 +15,9 @@ Truths, declared before measuring:
     relative motions, whatever the blade); a modified roll or helical motion moves that
     axis off the pitch line during the roll: on a hypoid the contact lines cross on the
     flank (point contact with TE0 = 0, (a)); on a spiral bevel they cross off the face
-    (TE0 = 0 at the mean roll only: strict xfail in tests/cli/test_design_typed_motion.py,
-    docs sec. 5);
+    (TE0 = 0 at the mean roll only, docs sec. 5: such a pinion is fitted to the gear's
+    conjugate since session 26, tests/geometry/test_typed_pinion_fit.py and
+    tests/cli/test_design_typed_motion.py);
 (c) the mate blade is the same surface of revolution: each point and normal of the
     gear blade lies on the pinion blade (normal reversed), to the quadrature's 1e-12 mm;
 (d) a modified roll that reverses the roll before the gear has turned through the

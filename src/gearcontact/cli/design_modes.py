@@ -74,7 +74,7 @@ def refuse_gap(args, pair, cut) -> None:
 def machine_settings(args, pair) -> int:
     from ..geometry.basic_settings import standard_machine_pair
     from ..geometry.pair import pair_to_toml
-    from ..geometry.typed_pinion import typed_gear_machine_pair
+    from ..geometry.typed_pinion import typed_gear_cut
     from ..report.design import write_machine_settings_toml
 
     if has_easeoff(pair) or args.target_flank is not None:
@@ -89,12 +89,13 @@ def machine_settings(args, pair) -> int:
     gear = getattr(args, "typed_gear", None)
     if gear:    # the typed gear as typed, the standard pinion of that gear
         source = "[print.gear]" if pair.print_gear else "[machine.gear.*] / [blade.gear.*]"
-        cut = typed_gear_machine_pair(pair, gear, reliefs=reliefs, **crowning)
+        cut, fits = typed_gear_cut(pair, gear, reliefs=reliefs, **crowning)
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
                 "pinion (gearcontact design --machine-settings;\nsigns: "
                 "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "
                 + "/".join(sorted({"formate" if g.settings.formate else "generated"
-                                   for g in gear.values()})))
+                                   for g in gear.values()}))
+                + "".join(f"\n{f.line()}" for f in fits.values()))
     else:
         # the gear of the default flanks (check: generated where the formate gear undercuts)
         generation = "formate" if args.gear_generation == "machine" else args.gear_generation

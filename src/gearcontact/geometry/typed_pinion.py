@@ -33,7 +33,9 @@ standard crowning (docs/machine_settings.md sec. 5, "The pinion of a typed gear"
   A hypoid's lines then cross on the flank (point contact, TE0 = 0); a spiral bevel's
   (intersecting axes) cross only where the generating surface's normal lies in the
   plane of the axes, in general off the face: TE0 = 0 at the mean roll only
-  (docs/machine_settings.md sec. 5, measured). A modified roll that reverses
+  (docs/machine_settings.md sec. 5, measured), so such a flank's pinion is fitted to the
+  gear's conjugate pinion (:mod:`.typed_pinion_fit`, in :func:`typed_gear_cut`). A
+  modified roll that reverses
   the roll before the gear has turned through the angle its pinion's flank needs is an
   input error naming its key (:func:`_check_roll_law`).
 - The blade: the mate of the gear blade's main profile (:func:`~.blade_mate.mate_blade`:
@@ -71,8 +73,10 @@ from .machine import (HELICAL_KEYS, MEMBERS, MODIFIED_ROLL_KEYS, MachineKinemati
                       MachineSetup, mirror_setup)
 from .relief_setup import relieved_setup
 from .settings_top_land import check_settings_top_land
+from .typed_pinion_fit import conjugate_fitted_setups
 
-__all__ = ["gear_motion_keys", "typed_gear_machine_pair", "typed_gear_pinion_setups"]
+__all__ = ["gear_motion_keys", "typed_gear_cut", "typed_gear_machine_pair",
+           "typed_gear_pinion_setups"]
 
 
 def gear_motion_keys(gear: dict) -> list[tuple[str, float]]:
@@ -230,20 +234,55 @@ def typed_gear_pinion_setups(pair, gear: dict, *, mirrored: bool = False) -> dic
     return out
 
 
+def _motion_error(gear: dict, exc: UndercutError, what: str) -> Exception:
+    """The input error naming the typed ``gear``'s first motion term of the flank named in
+    ``exc`` (a pinion node the envelope does not reach) as ``a motion {what}``; ``exc``
+    itself when that flank has no motion term."""
+    side = next((s for s in SIDES if f" {s} flank" in exc.field), None)
+    keys = [k for k in gear_motion_keys(gear) if f".{side}." in k[0]]
+    if not keys:
+        return exc
+    return InputRangeError(
+        keys[0][0], keys[0][1], f"a motion {what} ({exc}; the {side} terms typed: "
+        f"{', '.join(f'{k} = {v!r}' for k, v in keys)}; docs/machine_settings.md sec. 5)")
+
+
 def typed_gear_machine_pair(pair, gear: dict | None = None, *,
                             lengthwise_crowning_um: float =
                             STANDARD_CROWNING["lengthwise_crowning_um"],
                             blade_profile_crowning_um: float =
                             STANDARD_CROWNING["blade_profile_crowning_um"],
                             reliefs: dict | None = None):
-    """``pair`` cut from the typed gear ``gear`` (``{side: MachineSetup}``; default the
-    pair's own: ``pair.typed_gear``, else the gear of ``pair.machine``), kept exactly as
+    """:func:`typed_gear_cut`'s pair (its arguments)."""
+    return typed_gear_cut(pair, gear, lengthwise_crowning_um=lengthwise_crowning_um,
+                          blade_profile_crowning_um=blade_profile_crowning_um,
+                          reliefs=reliefs)[0]
+
+
+def typed_gear_cut(pair, gear: dict | None = None, *,
+                   lengthwise_crowning_um: float = STANDARD_CROWNING["lengthwise_crowning_um"],
+                   blade_profile_crowning_um: float =
+                   STANDARD_CROWNING["blade_profile_crowning_um"],
+                   reliefs: dict | None = None) -> tuple:
+    """``(pair, fits)``: ``pair`` cut from the typed gear ``gear`` (``{side:
+    MachineSetup}``; default the pair's own: ``pair.typed_gear``, else the gear of
+    ``pair.machine``), kept exactly as
     given, and ``pair.print_gear`` with it (:func:`~.pair.pair_to_toml` writes the print
     back as typed), and the standard pinion of that gear: :func:`typed_gear_pinion_setups`
     localized by the standard crowning (:func:`~.basic_settings.standard_setups`'
     options and ranges) and the pinion blades' ``reliefs`` (``{("pinion", side):
     relief}``) kept. What ``gearcontact design --machine-settings`` writes for a pair file
-    that types its gear (docs/machine_settings.md sec. 5)."""
+    that types its gear (docs/machine_settings.md sec. 5). A flank of a spiral bevel gear
+    (offset 0) generated with a modified roll or helical motion gets, before the
+    crowning, the pinion fitted to the gear's conjugate pinion
+    (:func:`~.typed_pinion_fit.conjugate_fitted_setups`; its ``{side: ConjugateFit}`` is
+    ``fits``, of the right-hand twin; empty for every other gear, whose derived pinion
+    is conjugate).
+
+    Raises
+    ------
+    CheckFailed
+        Such a fit's residual exceeds :data:`~.typed_pinion_fit.RESIDUAL_BOUND_UM`."""
     crowning = checked_crowning(lengthwise_crowning_um, blade_profile_crowning_um)
     if gear is None:
         gear = {s.side: s for s in pair.typed_gear or pair.machine if s.member == "gear"}
@@ -252,19 +291,23 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
     twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()) \
         if left else pair
     twin_gear = {s: mirror_setup(g) for s, g in gear.items()} if left else gear
-    uncrowned = typed_gear_pinion_setups(twin, twin_gear, mirrored=left)
+    derived = typed_gear_pinion_setups(twin, twin_gear, mirrored=left)
+    try:
+        uncrowned, fits = conjugate_fitted_setups(twin, twin_gear, derived)
+    except UndercutError as exc:       # no fitted flank over the conjugate's box
+        err = _motion_error(gear, exc, "whose pinion, fitted to the gear's conjugate pinion "
+                            "from the same motion reversed, covers the conjugate's flank")
+        if err is exc:
+            raise
+        raise err from exc
     try:
         pinion = crowned_pinion_setups(twin, uncrowned, **crowning)
     except UndercutError as exc:       # no mean node: name the gear's motion, if any
-        side = next((s for s in SIDES if f" {s} flank" in exc.field), None)
-        keys = [k for k in gear_motion_keys(gear) if f".{side}." in k[0]]
-        if not keys:
+        err = _motion_error(gear, exc, "under which the gear's generating surface, in the "
+                            "same motion reversed, reaches its pinion's mean node")
+        if err is exc:
             raise
-        raise InputRangeError(
-            keys[0][0], keys[0][1], f"a motion under which the gear's generating surface, in "
-            f"the same motion reversed, reaches its pinion's mean node ({exc}; the "
-            f"{side} terms typed: {', '.join(f'{k} = {v!r}' for k, v in keys)}; "
-            "docs/machine_settings.md sec. 5)") from exc
+        raise err from exc
     if reliefs:
         pinion = {s: relieved_setup(p, reliefs.get(("pinion", s), {}), twin.blank)
                   for s, p in pinion.items()}
@@ -281,5 +324,5 @@ def typed_gear_machine_pair(pair, gear: dict | None = None, *,
         pinion = {s: mirror_setup(p) for s, p in pinion.items()}
     members = {"gear": gear, "pinion": pinion}
     return dataclasses.replace(pair, machine=tuple(members[m][s] for m in MEMBERS for s in SIDES),
-                               typed_gear=(), easeoff_tables=("drive", "coast"))
+                               typed_gear=(), easeoff_tables=("drive", "coast")), fits
 
