@@ -11,8 +11,8 @@ in one process (numba caches loaded by a first call not counted); ``tca`` throug
 command line in this process (61 phases, figures off), best of two warm runs, the load
 check included in it, and as a user runs it: ``python -m gearcontact tca`` in a fresh
 process (its CPU seconds from ``resource.getrusage(RUSAGE_CHILDREN)``: interpreter
-start, imports and the numba cache loads included). The verdicts are compared exactly (``EaseOffShape`` equality: the
-same floats).
+start, imports and the numba cache loads included). The verdicts are compared exactly
+(``EaseOffShape`` equality: the same floats).
 
 Usage::
 

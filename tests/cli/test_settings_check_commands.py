@@ -261,3 +261,34 @@ def test_the_prediction_is_warned_only_where_no_tca_follows(short_prediction, tm
         assert "`gearcontact tca --pair FILE` measures the mesh" in err
     else:
         assert warned == 0, err
+
+
+def test_a_generated_gears_hollow_pinion_is_warned_on_load(tmp_path, capsys):
+    # F.3's standard settings with a generated gear and a drive pinion 2C of 0.05 typed
+    # (tests/geometry/test_easeoff_shape.py: hollow lengthwise, -10.5 um): `tca` reads it
+    # with the hollow line on stderr, measured after the generation check on its gear
+    # boxes, and run.json's easeoff_shape holds the completed check: design's own
+    # measurement of the same pair (check_settings(easeoff_generated=True), in this
+    # process), float for float (JSON keeps a float's repr: exact)
+    from geometry.test_easeoff_shape import ROOT, _with_drive_2c
+
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+    from gearcontact.geometry.settings_check import check_settings
+
+    pair = _with_drive_2c(standard_machine_pair(
+        load_pair(ROOT / "examples" / "iso23509_f3.toml"), gear_generation="generated"), 0.05)
+    path = tmp_path / "f3_generated_2c.toml"
+    path.write_text(pair_to_toml(pair))
+    design = check_settings(load_pair(path), easeoff_generated=True).easeoff
+    assert [s.side for s in design.flanks if s.flagged] == ["drive"]
+    assert main(["tca", "--pair", str(path), "--out", str(tmp_path / "t"), *TCA]) == 0
+    err = capsys.readouterr().err
+    assert err.count("(HollowEaseOffWarning)") == 1
+    assert "the pinion drive flank cut from [machine.pinion.drive] is hollow" in err
+    got = json.loads((tmp_path / "t" / "run.json").read_text())["easeoff_shape"]
+    assert got["missing"] == {} and len(got["warnings"]) == 1
+    for s in design.flanks:
+        for key in ("C_p_um", "C_l_um", "bias_um", "fit_rms_um"):
+            assert got["flanks"][s.side][key] == getattr(s, key), (s.side, key)
+        assert got["flanks"][s.side]["flagged"] is s.flagged
