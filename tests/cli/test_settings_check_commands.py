@@ -208,3 +208,87 @@ def test_rtl_serve_warns_a_sliding_base_slip_and_serves(sliding_base_slip, capsy
     assert code == 0, err
     _named(err, "sliding_base_mm")
     assert served == ["tri_core"]
+
+
+#: The commands that run no TCA of the pair (cli.options.load_pair_for(mesh_follows=False)).
+WITHOUT_TCA = {("bending",), ("export", "flanks")}
+#: Run by default (one of each kind); the others are slow.
+QUICK = {("tca",), ("bending",)}
+
+
+@pytest.fixture(scope="module")
+def short_prediction(tmp_path_factory):
+    """The standard settings of the 16 mm miter blank of
+    tests/geometry/test_machine_contact_ratio.py (predicted eps_p 0.703 < 0.85, eps_vg
+    1.426 < 1.55; their TCA has no gap, the console ``tca`` exits 0 on them there) typed
+    into a pair file."""
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.geometry.gear_generation import generation_of
+    from gearcontact.geometry.generation import check_generation
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+
+    from geometry.test_machine_contact_ratio import _blank
+
+    directory = tmp_path_factory.mktemp("short")
+    blank = load_pair(_blank(directory, 16.0))
+    cut = standard_machine_pair(blank, gear_generation=generation_of(
+        check_generation(blank, contact_ratio=False)))
+    path = directory / "miter_16_settings.toml"
+    path.write_text(pair_to_toml(cut))
+    return path
+
+
+@pytest.mark.parametrize("command", [c if c in QUICK else pytest.param(
+    c, marks=pytest.mark.slow) for c in sorted(ANALYSED)], ids=" ".join)
+def test_the_prediction_is_warned_only_where_no_tca_follows(short_prediction, tmp_path,
+                                                            monkeypatch, capsys, command):
+    # docs/machine_settings.md sec. 5, "The readers' verdict on a short prediction": a
+    # command whose TCA follows says nothing of the prediction (its TCA refuses a gap:
+    # tests/geometry/test_machine_contact_ratio.py, the 12/12's settings through `tca`);
+    # bending and export flanks warn once, naming the TCA that decides. Stopped where
+    # the analysis starts: the warning is printed when the pair is read, before it
+    extra, module, name = ANALYSED[command]
+    importlib.import_module(module)
+    seen = []
+    _capture(monkeypatch, module, name, seen)
+    main([*command, "--pair", str(short_prediction), *extra, "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert len(seen) == 1, err          # the analysis was reached
+    warned = err.count("(ContactRatioWarning)")
+    if command in WITHOUT_TCA:
+        assert warned == 1, err
+        assert "eps_p = 0.703" in err and "runs no TCA of the pair" in err
+        assert "`gearcontact tca --pair FILE` measures the mesh" in err
+    else:
+        assert warned == 0, err
+
+
+def test_a_generated_gears_hollow_pinion_is_warned_on_load(tmp_path, capsys):
+    # F.3's standard settings with a generated gear and a drive pinion 2C of 0.05 typed
+    # (tests/geometry/test_easeoff_shape.py: hollow lengthwise, -10.5 um): `tca` reads it
+    # with the hollow line on stderr, measured after the generation check on its gear
+    # boxes, and run.json's easeoff_shape holds the completed check: design's own
+    # measurement of the same pair (check_settings(easeoff_generated=True), in this
+    # process), float for float (JSON keeps a float's repr: exact)
+    from geometry.test_easeoff_shape import ROOT, _with_drive_2c
+
+    from gearcontact.geometry.basic_settings import standard_machine_pair
+    from gearcontact.geometry.pair import load_pair, pair_to_toml
+    from gearcontact.geometry.settings_check import check_settings
+
+    pair = _with_drive_2c(standard_machine_pair(
+        load_pair(ROOT / "examples" / "iso23509_f3.toml"), gear_generation="generated"), 0.05)
+    path = tmp_path / "f3_generated_2c.toml"
+    path.write_text(pair_to_toml(pair))
+    design = check_settings(load_pair(path), easeoff_generated=True).easeoff
+    assert [s.side for s in design.flanks if s.flagged] == ["drive"]
+    assert main(["tca", "--pair", str(path), "--out", str(tmp_path / "t"), *TCA]) == 0
+    err = capsys.readouterr().err
+    assert err.count("(HollowEaseOffWarning)") == 1
+    assert "the pinion drive flank cut from [machine.pinion.drive] is hollow" in err
+    got = json.loads((tmp_path / "t" / "run.json").read_text())["easeoff_shape"]
+    assert got["missing"] == {} and len(got["warnings"]) == 1
+    for s in design.flanks:
+        for key in ("C_p_um", "C_l_um", "bias_um", "fit_rms_um"):
+            assert got["flanks"][s.side][key] == getattr(s, key), (s.side, key)
+        assert got["flanks"][s.side]["flagged"] is s.flagged

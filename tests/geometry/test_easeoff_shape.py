@@ -38,8 +38,9 @@ from gearcontact.geometry.easeoff_shape import (CONJUGATE_GRID, HOLLOW_BOUND_UM,
                                                 HollowEaseOffWarning, check_easeoff_shape,
                                                 easeoff_shape)
 from gearcontact.geometry.kinked import machine_flank
+from gearcontact.geometry.generation import check_generation
 from gearcontact.geometry.pair import load_pair
-from gearcontact.geometry.settings_check import check_settings
+from gearcontact.geometry.settings_check import check_settings, completed_settings
 
 from .test_blank_check import _flip
 
@@ -127,11 +128,9 @@ def test_the_f2_example_is_crowned_and_not_warned(f2_machine_pair):
 
 
 @pytest.mark.parametrize("name, gen", [("iso23509_f3", "formate"),
-                                       ("hypoid_11x41_rear_axle", "formate"),
-                                       ("iso23509_f3", "generated")])
+                                       ("hypoid_11x41_rear_axle", "formate")])
 def test_standard_settings_are_crowned_and_not_warned(name, gen):
-    # a generated gear generates its conjugate as a sheet continued beyond the face
-    # (measured by design, easeoff_generated; not when a pair is loaded, below)
+    # F.3 with a generated gear: test_a_generated_gear_is_checked_on_load_as_design_checks_it
     shape = _no_hollow_warning(standard_machine_pair(
         load_pair(ROOT / "examples" / f"{name}.toml"), gear_generation=gen),
         generated=gen == "generated")
@@ -156,13 +155,66 @@ def test_the_published_print_pinion_is_crowned():
         assert s.C_p_um > 0.0 and s.C_l_um > 0.0 and not s.flagged
 
 
-def test_a_generated_gear_is_named_not_checked_when_a_pair_is_loaded():
+def test_a_generated_gear_is_deferred_by_the_settings_check_alone():
     pair = standard_machine_pair(load_pair(ROOT / "examples" / "iso23509_f3.toml"),
                                  gear_generation="generated")
     got = check_easeoff_shape(pair, generated=False)
     assert got.flanks == () and set(got.missing) == {"drive", "coast"}
-    assert all("not checked when the pair is loaded: the gear flank is generated" in w
+    assert got.deferred == ("drive", "coast")
+    assert all("not checked by the settings check alone: the gear flank is generated" in w
                for w in got.missing.values())
+
+
+def _with_drive_2c(pair, two_c):
+    return dataclasses.replace(pair, machine=tuple(
+        dataclasses.replace(s, settings=dataclasses.replace(s.settings, modified_roll=(two_c,)))
+        if (s.member, s.side) == ("pinion", "drive") else s for s in pair.machine))
+
+
+@pytest.fixture(scope="module")
+def f3_generated():
+    return standard_machine_pair(load_pair(ROOT / "examples" / "iso23509_f3.toml"),
+                                 gear_generation="generated")
+
+
+@pytest.mark.parametrize("case", ["sound", "hollow"])
+def test_a_generated_gear_is_checked_on_load_as_design_checks_it(f3_generated, case):
+    """The reader's check of a generated gear's pinions (settings_check.completed_settings:
+    after its generation check, on the gear boxes it traced) gives ``design``'s
+    measurement exactly (check_settings(easeoff_generated=True): the boxes traced
+    afresh). Exact: the same box from the same function and inputs, the same floats after
+    it (any difference would be a different computation). Cases: F.3's standard settings
+    with a generated gear (crowned: measured +11.1 / +50.3 um drive, +7.5 / +55.7 um
+    coast) and the same with a drive pinion 2C of 0.05 typed (none cut: lengthwise hollow,
+    measured -10.5 um), warned on load as design flags it."""
+    pair = f3_generated if case == "sound" else _with_drive_2c(f3_generated, 0.05)
+    design = check_settings(pair, easeoff_generated=True).easeoff
+    loaded = check_settings(pair)
+    assert loaded.easeoff.deferred == ("drive", "coast") and loaded.hollow_warnings == ()
+    boxes = check_generation(pair)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        done = completed_settings(pair, loaded, boxes)
+    assert done.easeoff.flanks == design.flanks and done.easeoff.missing == design.missing == {}
+    assert done.easeoff.deferred == () and done.hollow_warnings == design.warnings()
+    hollow = [str(w.message) for w in caught if w.category is HollowEaseOffWarning]
+    assert hollow == [line.removeprefix("warning: ") for line in design.warnings()]
+    flagged = [s.side for s in design.flanks if s.flagged]
+    assert flagged == ([] if case == "sound" else ["drive"])
+    if case == "sound":     # the legitimate pinion: crowned (the declared condition)
+        assert all(s.C_p_um > 0.0 and s.C_l_um > 0.0 for s in design.flanks)
+    else:                   # hollow lengthwise beyond the bound (measured -10.5 um)
+        assert design.flanks[0].C_l_um < -HOLLOW_BOUND_UM
+    # the box reused is the reader's, not traced again: a second trace fails the test
+    with pytest.MonkeyPatch.context() as mp:
+        from gearcontact.geometry import generated
+
+        def no_trace(*args, **kwargs):
+            raise AssertionError("the gear box was traced again")
+
+        mp.setattr(generated, "generated_gear_box", no_trace)
+        again = completed_settings(pair, loaded, boxes, warn=False)
+    assert again.easeoff.flanks == design.flanks
 
 
 def test_a_relieved_gear_is_measured_against_its_main_segment(f2_machine_pair):

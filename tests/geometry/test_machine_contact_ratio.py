@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 
 import pytest
 
@@ -139,12 +140,21 @@ def test_settings_read_with_a_short_prediction_are_warned(tmp_path):
     blank, path = _face_16(tmp_path)
     settings = standard_machine_pair(blank, gear_generation="generated")
     with pytest.warns(ContactRatioWarning) as got:
-        check_generation(settings)
+        boxes = check_generation(settings)
     text = str(got[0].message)
     _names_fields_and_ratios(text, blank, path)
     assert f"design.pinion_spiral_angle_deg = {blank.pinion_spiral_angle_deg:g} deg" in text
     # 0.703 > SETTINGS_GAP_RATIO: no pair measured that high had a gap
     assert path.total > SETTINGS_GAP_RATIO and "without a gap above" in str(got[0].message)
+    # what is predicted and how to check: the TCA that decides
+    assert "runs no TCA of the pair; `gearcontact tca --pair FILE`" in text
+    # a reader whose TCA follows (prepare_pair: every command with a mesh) is not warned
+    # (its TCA refuses a gap: test_a_pair_whose_settings_gap_is_refused), the same boxes
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ContactRatioWarning)
+        quiet = check_generation(settings, mesh_follows=True)
+    assert ({side: got["active_box"] for side, got in quiet.items()}
+            == {side: got["active_box"] for side, got in boxes.items()})
 
 
 def _gapped_blank(tmp_path, teeth: int, face: float, beta: float, depth: float,
@@ -214,6 +224,15 @@ def test_a_pair_whose_settings_gap_is_refused(tmp_path, capsys):
     with pytest.warns(ContactRatioWarning) as got:
         check_generation(settings)
     _names_fields_and_ratios(str(got[0].message), blank, path)
+    # the settings typed into a file: `tca` refuses them with the gap the TCA above
+    # measured (exit 2, the same first phase), with no prediction warning before it
+    typed = tmp_path / "typed_12x12.toml"
+    typed.write_text(pair_to_toml(settings))
+    assert main(["tca", "--pair", str(typed), "--out", str(tmp_path / "t"), "--quiet",
+                 "--no-figures"]) == 2
+    err = capsys.readouterr().err
+    assert f"no tooth pair in contact at phi1 = {math.degrees(gap.phi1_rad):.4f} deg" in err
+    assert "ContactRatioWarning" not in err
 
 
 @pytest.mark.slow
@@ -257,6 +276,8 @@ def test_the_cli_tca_of_the_written_settings_has_no_gap(tmp_path, capsys):
     tca = tmp_path / "tca"
     assert main(["tca", "--pair", str(out / "machine_settings.toml"), "--out", str(tca),
                  "--quiet", "--no-figures"]) == 0
+    # read without the prediction's warning: tca's own TCA decided (no gap)
+    assert "ContactRatioWarning" not in capsys.readouterr().err
     summary = json.loads((tca / "tca.json").read_text())
     assert summary["phases_per_pitch"] == 61
     # one transmitting contact per phase, flank on flank ("surface") or an edge touching

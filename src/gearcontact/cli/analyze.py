@@ -24,6 +24,7 @@ from .options import (
     check_pair_arguments,
     check_torque,
     lte_warnings,
+    record_completed_settings,
     run_timings,
     warn,
 )
@@ -121,6 +122,7 @@ def run(args) -> int:
                        lte_torque_nm=args.lte_torque if args.lte_phases else None,
                        lte_phases=max(args.lte_phases, 3), lte_bending=not args.rigid,
                        settings_check=args.settings_check)
+    record_completed_settings(args, res.settings_check)     # a generated gear's pinions
     run_timings(args, **res.timings_s)
     if res.easeoff_note:
         print(res.easeoff_note.partition("\n")[0].rstrip(":") + " (the TOML block is in summary.md)")

@@ -123,7 +123,8 @@ def run(args) -> int:
         side = loaded_side(FACING_OF_SIDE[args.side])
         res = cylindrical_flank_compliance(pair, args.member, side=side, **opts)
     else:
-        pair = load_pair_for(args)      # a pair file without an ease-off table: synthesized
+        # a pair file without an ease-off table: synthesized; no TCA of the pair here
+        pair = load_pair_for(args, mesh_follows=False)
         flanks = args.prepared_pair.flank_set()     # built once (the synthesis' if it ran)
         side = args.prepared_pair.side
         res = flank_compliance(pair, args.member, side=side, flanks=flanks, **opts)

@@ -186,7 +186,7 @@ def run_flanks(args) -> int:
     from ..export.flanks import export_flanks
     from ..geometry.pair import CYLINDRICAL
     cylindrical = args.gear_pair.kind == CYLINDRICAL
-    pair = args.gear_pair if cylindrical else load_pair_for(args)
+    pair = args.gear_pair if cylindrical else load_pair_for(args, mesh_follows=False)
     done = export_flanks(pair, args.out, pair_name=args.gear_pair.name, grid=args.grid_size,
                          flanks=None if cylindrical else args.prepared_pair.flank_set())
     for path in (*done.step_paths, *done.csv_paths, done.summary_path):

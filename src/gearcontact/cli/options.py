@@ -17,7 +17,8 @@ __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
            "check_cylindrical_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm", "torque_floor_nm",
-           "rename_load_error", "load_pair_for", "parse_misalignment",
+           "rename_load_error", "load_pair_for", "record_completed_settings",
+           "parse_misalignment",
            "MISALIGNMENT_HELP"]
 
 #: Upper limit of ``--phases`` (61 is the report value; at 1001, measured on the project
@@ -279,6 +280,25 @@ def lte_warnings(lte) -> list[str]:
             f"({', '.join(runs)})"]
 
 
+def record_completed_settings(args, checked) -> None:
+    """run.json's ``easeoff_shape`` (and its timings) from the settings check ``checked``
+    as ``prepare_pair`` completed it (a generated gear's pinions measured on the
+    generation check's gear boxes,
+    :func:`~gearcontact.geometry.settings_check.completed_settings`); nothing where it is
+    the argument check's own (``args.settings_check``) or None."""
+    from ..report.design_mean_point import easeoff_shape_json
+
+    if checked is None or checked is getattr(args, "settings_check", None):
+        return
+    args.settings_check = checked
+    run = getattr(args, "run", None)
+    if run is None or checked.easeoff is None:
+        return
+    run.input_checks["easeoff_shape"] = easeoff_shape_json(checked.easeoff)
+    run.timings_s.update(blank_check_s=checked.seconds,
+                         easeoff_shape_s=checked.easeoff.seconds)
+
+
 def run_timings(args, **timings) -> None:
     """Record stage timings of this run for run.json (ignored outside a run)."""
     run = getattr(args, "run", None)
@@ -291,7 +311,7 @@ def warn(command: str, message: str) -> None:
     print(f"gearcontact {command}: warning: {message}", file=sys.stderr)
 
 
-def load_pair_for(args):
+def load_pair_for(args, *, mesh_follows: bool = True):
     """The pair of ``--pair`` (loaded by :func:`check_pair_arguments`) prepared by
     :func:`gearcontact.tca.synthesis.prepare_pair`, the one preparation of every command
     that takes ``--pair``: if the pair file has no ease-off table for ``args.side``
@@ -299,7 +319,10 @@ def load_pair_for(args):
     time into run.json; its TOML block into ``easeoff.toml`` in ``--out``, named by the
     note's line on stdout, as ``analyze`` names summary.md). A pair ``design`` refuses is
     refused there, before any flank work; the typed-settings check run by
-    :func:`check_machine_settings` is not run again. The
+    :func:`check_machine_settings` is not run again; a generated gear's pinion ease-off,
+    measured there on the generation check's gear boxes, replaces run.json's
+    ``easeoff_shape``. ``mesh_follows``: as ``prepare_pair``'s (False for a command that
+    runs no TCA of the pair). The
     :class:`~gearcontact.tca.synthesis.PreparedPair` is kept as ``args.prepared_pair``."""
     from ..tca.synthesis import prepare_pair
 
@@ -307,7 +330,8 @@ def load_pair_for(args):
         check_pair_arguments(args)
     prepared = args.prepared_pair = prepare_pair(
         args.gear_pair, side=getattr(args, "side", None),
-        settings_check=getattr(args, "settings_check", None))
+        settings_check=getattr(args, "settings_check", None), mesh_follows=mesh_follows)
+    record_completed_settings(args, prepared.settings_check)
     if prepared.note:
         from ..report.design import write_easeoff_toml
 

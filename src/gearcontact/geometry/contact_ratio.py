@@ -41,12 +41,16 @@ from machine settings, whose path is not known here, keeps the closed form's
 ``eps_vg < MIN_VIRTUAL_CONTACT_RATIO`` (1.55) unless the path of its blank (the pair
 without its settings) passes, as ``design --machine-settings`` checked it before
 writing them. docs/geometry.md sec. 7.7 has the measurements. A pair cut from settings
-whose prediction is short is warned, not refused (:func:`check_settings_ratio`): the
-prediction is not the settings' bearing (the TCA of standard settings measured on a
-family of pairs, docs/machine_settings.md sec. 5, "The contact-ratio check of machine
-settings"); its TCA decides. ``design --machine-settings`` runs that TCA before it
-writes settings whose blank's prediction is short (``tca.settings_gap``, above this
-layer).
+whose prediction is short is not refused: the prediction is not the settings' bearing
+(the TCA of standard settings measured on a family of pairs, docs/machine_settings.md
+sec. 5, "The contact-ratio check of machine settings"); its TCA decides. A reader that
+runs the pair's TCA next (``tca.synthesis.prepare_pair`` for every command with a mesh:
+the TCA refuses a gap, ``tca.edges.ContactGap``) says nothing more (``mesh_follows``);
+a reader that does not (``bending``, ``export flanks``, ``design`` reading a settings
+file, the library's :func:`~.generation.check_generation`) warns, naming the prediction
+and the TCA that decides (:func:`check_settings_ratio`). ``design --machine-settings``
+runs that TCA before it writes settings whose blank's prediction is short
+(``tca.settings_gap``, above this layer).
 
 References
 ----------
@@ -74,13 +78,14 @@ __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO"
 
 class ContactRatioWarning(UserWarning):
     """The predicted contact ratio of a pair cut from machine settings is below the
-    threshold of the conjugate pinion with its synthesized ease-off
-    (docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"): a
-    warning, not a refusal, the prediction not being the settings' own bearing (gapped
-    and gap-free standard settings were measured from eps_p 0.303 to 0.551). The
-    settings' TCA decides: ``tca`` refuses a mesh with a gap
+    threshold of the conjugate pinion with its synthesized ease-off, and the reader runs
+    no TCA of the pair (docs/machine_settings.md sec. 5, "The contact-ratio check of
+    machine settings"): a warning, not a refusal, the prediction not being the settings'
+    own bearing (gapped and gap-free standard settings were measured from eps_p 0.303 to
+    0.551). The settings' TCA decides: ``tca`` refuses a mesh with a gap
     (:class:`~gearcontact.tca.edges.ContactGap`), and ``design --machine-settings`` runs
-    it before writing (``tca.settings_gap``)."""
+    it before writing (``tca.settings_gap``). A reader whose own TCA follows does not
+    warn (``mesh_follows``)."""
 
 
 @dataclass(frozen=True)
@@ -210,7 +215,8 @@ SETTINGS_GAP_RATIO = 0.551
 
 
 def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
-                        threshold: float | None = None, bearing_of=None):
+                        threshold: float | None = None, bearing_of=None,
+                        mesh_follows: bool = False):
     """Refuse ``pair`` if its contact ratio on the design side is below ``threshold``,
     before any flank work (docs/geometry.md sec. 7.7).
 
@@ -244,8 +250,10 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     --machine-settings`` made before writing the settings.
 
     A pair cut from settings where both the closed form and its blank's path are below
-    theirs goes to :func:`check_settings_ratio`: warned, not refused; its TCA decides
-    (docs/machine_settings.md sec. 5). The blank of ``design --machine-settings`` is not
+    theirs is not refused: its TCA decides (docs/machine_settings.md sec. 5). With
+    ``mesh_follows`` (the caller runs the pair's TCA next, which refuses a mesh with a
+    gap: :class:`~gearcontact.tca.edges.ContactGap`) nothing is said; else
+    :func:`check_settings_ratio` warns. The blank of ``design --machine-settings`` is not
     checked here (``check_generation(contact_ratio=False)``): the TCA of the settings
     about to be written decides there (``tca.settings_gap``).
 
@@ -266,7 +274,7 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
         except InputRangeError:
             if not pair.machine or boxes_of is None:
                 raise
-            return _blank_path_or_warn(pair, boxes_of=boxes_of)
+            return _blank_path_or_warn(pair, boxes_of=boxes_of, warn=not mesh_follows)
     threshold = MIN_CONTACT_RATIO if threshold is None else threshold
 
     def path_of(p, p_boxes):
@@ -312,12 +320,12 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
                           f"more teeth ({why}; no face width or spiral angle tried fixes it)")
 
 
-def _blank_path_or_warn(pair, *, boxes_of):
+def _blank_path_or_warn(pair, *, boxes_of, warn: bool = True):
     """A pair cut from machine settings that the closed form refuses: the contact path of
     its blank (the pair without its settings: conjugate pinion, the synthesis'
     first-order bearing at its default targets, :func:`path_contact_ratio` without a
     bearing), as ``design --machine-settings`` checks the blank before it writes the
-    settings; accepted at :data:`MIN_CONTACT_RATIO`, else warned by
+    settings; accepted at :data:`MIN_CONTACT_RATIO`, else (``warn``) warned by
     :func:`check_settings_ratio` (the closed form's prediction alone where the blank's
     own generation check refuses it; the closed form's ratios are then returned). A gap
     the settings' TCA meets is named there (:class:`~gearcontact.tca.edges.ContactGap`).
@@ -329,21 +337,24 @@ def _blank_path_or_warn(pair, *, boxes_of):
         got = None
     if got is not None and got.total >= MIN_CONTACT_RATIO:
         return got
-    check_settings_ratio(pair, got, threshold=MIN_CONTACT_RATIO)
+    if warn:
+        check_settings_ratio(pair, got, threshold=MIN_CONTACT_RATIO)
     return got if got is not None else virtual_contact_ratio(
         pair.blank, gear_face_width_mm=pair.gear_face_width_mm, side=pair.design_side)
 
 
 def check_settings_ratio(pair, path, *, threshold: float) -> None:
     """A :class:`ContactRatioWarning` for a pair cut from machine settings whose predicted
-    contact ratio is below ``threshold`` (docs/machine_settings.md sec. 5, "The
-    contact-ratio check of machine settings"), naming the face width and spiral angle
-    typed, the predicted eps_p (``path``, the blank's
-    :class:`~.contact_path.PathContactRatio`; None where the blank's own generation check
-    refuses it) and the closed form of :func:`virtual_contact_ratio`. Never a refusal:
-    the prediction does not separate gapped settings from gap-free ones (both measured
-    from eps_p :data:`SETTINGS_NO_GAP_RATIO` to :data:`SETTINGS_GAP_RATIO`); the
-    settings' TCA refuses a mesh with a gap."""
+    contact ratio is below ``threshold``, read by a caller that runs no TCA of it
+    (docs/machine_settings.md sec. 5, "The contact-ratio check of machine settings"),
+    naming the face width and spiral angle typed, the predicted eps_p (``path``, the
+    blank's :class:`~.contact_path.PathContactRatio`; None where the blank's own
+    generation check refuses it), the closed form of :func:`virtual_contact_ratio`, and
+    the TCA that decides (``gearcontact tca --pair FILE``, which ``design
+    --machine-settings`` runs before it writes such settings). Never a refusal: the
+    prediction does not separate gapped settings from gap-free ones (both measured from
+    eps_p :data:`SETTINGS_NO_GAP_RATIO` to :data:`SETTINGS_GAP_RATIO`); the settings'
+    TCA refuses a mesh with a gap."""
     v = virtual_contact_ratio(pair.blank, gear_face_width_mm=pair.gear_face_width_mm,
                               side=pair.design_side)
     what = (f"{pair.design_side} side: the blank's contact path with the synthesis' "
@@ -361,9 +372,11 @@ def check_settings_ratio(pair, path, *, threshold: float) -> None:
                 f"{SETTINGS_GAP_RATIO:g}")
     warnings.warn(ContactRatioWarning(
         f"{fields}: the predicted contact ratio of the machine settings is below "
-        f"{threshold:g} ({what}); a prediction, not the settings' bearing: {measured} "
-        "(docs/machine_settings.md sec. 5); `tca` on the settings refuses their mesh if "
-        "it has a gap"), stacklevel=3)
+        f"{threshold:g} ({what}); a prediction, not the settings' own mesh: {measured} "
+        "(docs/machine_settings.md sec. 5). This reading runs no TCA of the pair; "
+        "`gearcontact tca --pair FILE` measures the mesh and refuses it if it has a gap "
+        "(every command with a TCA does; `design --machine-settings` ran it before "
+        "writing settings predicted this short)"), stacklevel=3)
 
 
 def _with_face(pair, face_mm: float):

@@ -148,15 +148,31 @@ class EaseOffShapeCheck:
     flanks : tuple of EaseOffShape
         The measured pinion flanks.
     missing : dict
-        ``{side: reason}`` of the flanks not checked (a generated gear flank when a pair
-        is loaded, an envelope that does not reach the grid), as sentences.
+        ``{side: reason}`` of the flanks not checked (a generated gear flank left to the
+        reader's generation check, an envelope that does not reach the grid), as
+        sentences.
     seconds : float
         Wall time, s (a timing: run.json only; not compared).
+    deferred : tuple of str
+        The sides of :attr:`missing` whose gear flank is generated and was left for a
+        check on the reader's gear boxes (``generated=False``;
+        :func:`~.settings_check.completed_settings`).
     """
 
     flanks: tuple[EaseOffShape, ...]
     missing: dict = field(default_factory=dict)
     seconds: float = field(default=0.0, compare=False)
+    deferred: tuple[str, ...] = ()
+
+    def completed(self, other: "EaseOffShapeCheck") -> "EaseOffShapeCheck":
+        """This check with its :attr:`deferred` sides replaced by ``other``'s result for
+        them (flanks in the order drive, coast; seconds added)."""
+        flanks = {s.side: s for s in (*self.flanks, *other.flanks)}
+        missing = {side: why for side, why in self.missing.items() if side not in self.deferred}
+        missing.update(other.missing)
+        return EaseOffShapeCheck(tuple(flanks[side] for side in SIDES if side in flanks),
+                                 {side: missing[side] for side in SIDES if side in missing},
+                                 self.seconds + other.seconds, other.deferred)
 
     def warnings(self) -> tuple[str, ...]:
         """One ``"warning: ..."`` line per flagged flank (member, flank, C_p and C_l in
@@ -249,7 +265,8 @@ def easeoff_shape(pinion, conjugate, blank, *, side: str,
                         bound_um=bound_um), trimmed=trimmed)
 
 
-def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | None:
+def check_easeoff_shape(pair, *, generated: bool = True, gear_boxes: dict | None = None,
+                        sides: tuple[str, ...] = SIDES) -> EaseOffShapeCheck | None:
     """Each pinion flank of ``pair`` cut from machine settings against the conjugate of
     the typed gear flank of its side (module docstring): None for a pair without both
     members' settings. A left-hand pair is measured on its right-hand twin (the
@@ -265,10 +282,16 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
     not checked, with the reason in ``missing``, where the conjugate or the pinion's
     envelope does not reach even the pinion's own box.
     A generated gear flank generates its conjugate as a sheet continued beyond the face
-    (:func:`~.gear_generation.generating_sheet` on :data:`GENERATOR_GRID`); with
-    ``generated=False`` it is named not checked instead (that sheet costs about three
-    times a formate gear's whole check: not run when a pair is loaded,
-    :func:`~.settings_check.check_settings`).
+    (:func:`~.gear_generation.generating_sheet` on :data:`GENERATOR_GRID`), over its
+    active box: ``gear_boxes[side]`` where given (the reader's
+    :func:`~.settings_top_land.member_box` of the right-hand twin's gear flank,
+    ``generation.check_generation``'s ``"gear_box"``: the same box bit for bit, not
+    traced again; a relieved gear blade's box is its tip segment's, so its main segment's
+    is traced here), else traced here. With ``generated=False`` it is named not checked
+    instead and listed in ``deferred`` (that sheet costs about three times a formate
+    gear's whole check: the settings check runs it after the reader's generation check,
+    on its gear boxes, :func:`~.settings_check.completed_settings`). ``sides``: the sides
+    measured (the others are left out).
     """
     setups = {(s.member, s.side): s for s in getattr(pair, "machine", ()) or ()}
     if not all((m, s) in setups for m in ("gear", "pinion") for s in SIDES):
@@ -277,17 +300,22 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
     twin = right_hand_twin(pair) if pair.pinion_hand == "left" else pair
     setups = {(s.member, s.side): s for s in twin.machine}
     kin = twin.kinematics(with_errors=False)
-    shapes, missing = [], {}
-    for side in SIDES:
+    shapes, missing, deferred = [], {}, []
+    for side in sides:
         gear, relieved = _main_segment(setups["gear", side])
         if not (generated or gear.settings.formate):
-            missing[side] = ("not checked when the pair is loaded: the gear flank is "
-                             "generated (its conjugate needs the gear's generating sheet; "
-                             "`gearcontact design --pair FILE` measures it)")
+            missing[side] = ("not checked by the settings check alone: the gear flank is "
+                             "generated (its conjugate needs the gear's generating sheet, "
+                             "measured on the gear box the pair's generation check traces: "
+                             "every pair command does; `gearcontact design --pair FILE` "
+                             "measures it)")
+            deferred.append(side)
             continue
+        box = (gear_boxes[side]["active_box"] if gear_boxes is not None and not relieved
+               and not gear.settings.formate else None)
         try:
             conj, _ = conjugate_pinion_flank(
-                _generator(gear, twin), blank=twin.blank, kinematics=kin,
+                _generator(gear, twin, box=box), blank=twin.blank, kinematics=kin,
                 pinion_face_width_mm=twin.pinion_face_width_mm,
                 n_u=CONJUGATE_GRID[0], n_v=CONJUGATE_GRID[1])
             shapes.append(dataclasses.replace(_measured(setups["pinion", side], conj, twin),
@@ -295,7 +323,7 @@ def check_easeoff_shape(pair, *, generated: bool = True) -> EaseOffShapeCheck | 
         except (UndercutError, MeshingError) as err:
             missing[side] = ("not checked: the conjugate pinion or the pinion's envelope "
                              f"does not reach the conjugate's box ({err})")
-    return EaseOffShapeCheck(tuple(shapes), missing, time.perf_counter() - t0)
+    return EaseOffShapeCheck(tuple(shapes), missing, time.perf_counter() - t0, tuple(deferred))
 
 
 def _measured(setup, conj, pair) -> EaseOffShape:
@@ -323,11 +351,13 @@ def _main_segment(setup) -> tuple[MachineSetup, bool]:
     return dataclasses.replace(setup, blade=main), True
 
 
-def _generator(setup, pair):
+def _generator(setup, pair, *, box=None):
     """The gear flank ``setup`` cuts as the generator of its conjugate pinion: a formate
-    flank itself, a generated one's sheet continued beyond the face."""
+    flank itself, a generated one's sheet continued beyond the face (over ``box``, its
+    active box, where already traced)."""
     if setup.settings.formate:
         return machine_flank(setup, pair.blank, face_width_mm=pair.gear_face_width_mm)
     return SheetGenerator(generating_sheet(setup, pair.blank,
                                            gear_face_width_mm=pair.gear_face_width_mm,
-                                           n_u=GENERATOR_GRID[0], n_v=GENERATOR_GRID[1]))
+                                           n_u=GENERATOR_GRID[0], n_v=GENERATOR_GRID[1],
+                                           box=box))

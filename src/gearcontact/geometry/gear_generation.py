@@ -214,7 +214,8 @@ def generated_gear_sheets(pair) -> dict:
 
 
 def generating_sheet(setup, blank, *, gear_face_width_mm: float,
-                     n_u: int = GENERATOR_GRID[0], n_v: int = GENERATOR_GRID[1]) -> GearSheet:
+                     n_u: int = GENERATOR_GRID[0], n_v: int = GENERATOR_GRID[1],
+                     box: FlankBoundary | None = None) -> GearSheet:
     """The generated gear flank ``setup`` cuts as a generator of the conjugate pinion
     (wrap it in a :class:`SheetGenerator`), on an n_u x n_v envelope node grid.
 
@@ -226,7 +227,9 @@ def generating_sheet(setup, blank, *, gear_face_width_mm: float,
     of ``GENERATOR_EXTENSION`` (its limit line near the blade tip, at the toe), the node
     rows continue by their Taylor polynomial (:func:`_extended`). That continuation lies
     beyond the gear face, where the gear has no flank in contact: its boundary stays the
-    active box.
+    active box. ``box``: the flank's active box if already traced
+    (:func:`~.generated.generated_gear_box` of ``setup``, a smooth blade's: the same
+    sheet bit for bit), else traced here.
 
     Raises
     ------
@@ -238,7 +241,8 @@ def generating_sheet(setup, blank, *, gear_face_width_mm: float,
         try:
             sheet = generated_gear_flank(
                 setup, blank, gear_face_width_mm=gear_face_width_mm, n_u=n_u, n_v=n_v,
-                node_box=lambda *a, share=share: generator_node_box(*a, share=share))[0]
+                node_box=lambda *a, share=share: generator_node_box(*a, share=share),
+                box=box)[0]
             break
         except UndercutError:
             if share == _EXTENSION_TRIALS[-1]:

@@ -33,7 +33,8 @@ __all__ = ["check_gear_top_land", "check_generation", "check_pinion_top_land",
            "gear_tip_top_lands", "pinion_tip_top_lands", "reverse_side_contact_ratio"]
 
 
-def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> dict:
+def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None,
+                     mesh_follows: bool = False) -> dict:
     """Check that the pinion flanks of ``pair`` can be generated, before any flank work.
 
     A pair cut from machine settings (``pair.machine``) is checked by
@@ -57,7 +58,10 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> di
     at its default targets (:func:`~.contact_path.path_contact_ratio`). The blank whose
     machine settings ``design --machine-settings`` writes is checked with
     ``contact_ratio=False``: the settings' own TCA decides there
-    (``tca.settings_gap``, docs/machine_settings.md sec. 5).
+    (``tca.settings_gap``, docs/machine_settings.md sec. 5). ``mesh_follows``: the caller
+    runs the pair's TCA next (``tca.synthesis.prepare_pair``), which refuses a mesh with
+    a gap, so a pair cut from settings whose predicted contact ratio is short is not
+    warned (:func:`~.contact_ratio.check_contact_ratio`).
 
     Returns
     -------
@@ -65,8 +69,9 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> di
         ``{side: {"active_box": FlankBoundary, "gear_tip_undercut_mm": float,
         "solver": MeshingSolver, "gear_flank": FormateFlank | GearSheet,
         "gear_generation": "formate" | "generated", "pair_generation":
-        PairGeneration}}`` (a machine-settings pair: the first three and ``"mean_node"``,
-        the pinion flank's :class:`~.generated.EnvelopeSolution` at its mean node). Pass it to
+        PairGeneration}}`` (a machine-settings pair: the first three, ``"mean_node"``,
+        the pinion flank's :class:`~.generated.EnvelopeSolution` at its mean node, and
+        ``"gear_box"``, the gear flank's :func:`~.settings_top_land.member_box`). Pass it to
         :func:`~.flank.build_flanks` (``checked=``) to reuse its gear flanks.
 
     Raises
@@ -89,7 +94,8 @@ def check_generation(pair, *, contact_ratio: bool = True, bearing_of=None) -> di
         # own, verified with contact_ratio=False); the contact path over the active
         # boxes, no flank work; its named fix verified on the trial pair's boxes
         check_contact_ratio(pair, boxes=boxes, bearing_of=bearing_of,
-                            boxes_of=lambda p: check_generation(p, contact_ratio=False))
+                            boxes_of=lambda p: check_generation(p, contact_ratio=False),
+                            mesh_follows=mesh_follows)
     return boxes
 
 
@@ -115,14 +121,17 @@ def _machine_boxes(pair) -> dict:
     flank's settings and blade (formate, blade kind), each pinion flank's active box
     (blade kind, the envelope reaching the mean node, the edge / limit line, a fold at
     the tip), then the pinion's and the gear's top land along their tip lines
-    (:func:`~.settings_top_land.check_settings_top_land`)."""
+    (:func:`~.settings_top_land.check_settings_top_land`). Each side's gear box is kept
+    (``"gear_box"``: the generated gear's hollow ease-off check reuses it,
+    :func:`~.settings_check.completed_settings`)."""
     setups = {(s.member, s.side): s for s in pair.machine}
     out, gear = {}, {}
     for side in ("drive", "coast"):
         gear[side] = member_box(pair, setups["gear", side])
         got = member_box(pair, setups["pinion", side])
         out[side] = {"active_box": got["active_box"], "gear_tip_undercut_mm": 0.0,
-                     "solver": got["solver"], "mean_node": got["mean_node"]}
+                     "solver": got["solver"], "mean_node": got["mean_node"],
+                     "gear_box": gear[side]}
     check_settings_top_land(pair, boxes=out)
     check_settings_top_land(pair, member="gear", boxes=gear)
     return out

@@ -21,11 +21,15 @@ against the typed gear's conjugate pinion (:func:`~.easeoff_shape.check_easeoff_
 a different check: not against the blank); a flank hollow beyond its bound is a warning
 line of its own (:attr:`SettingsCheck.hollow_warnings`: edge contact expected), emitted
 as :class:`~.easeoff_shape.HollowEaseOffWarning` (docs/machine_settings.md sec. 2, "The
-hollow ease-off warning").
+hollow ease-off warning"). A generated gear's pinions are measured after the reader's
+generation check (:func:`~.generation.check_generation`), on the gear boxes it traces
+(:func:`completed_settings`, run by :func:`~gearcontact.tca.synthesis.prepare_pair`):
+the same verdict as ``design``'s, which traces them itself.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -35,7 +39,8 @@ from .easeoff_shape import EaseOffShapeCheck, check_easeoff_shape
 from .edge_check import check_edge_rounds
 from .flank_angles import measure_pair_mean_points
 
-__all__ = ["SettingsCheck", "SettingsWarning", "check_settings", "checked_settings"]
+__all__ = ["SettingsCheck", "SettingsWarning", "check_settings", "checked_settings",
+           "completed_settings"]
 
 
 class SettingsWarning(UserWarning):
@@ -106,8 +111,9 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False
     easeoff_generated : bool
         Measure the ease-off of pinions whose gear is generated too
         (:func:`~.easeoff_shape.check_easeoff_shape` with ``generated=True``: about 0.55 s
-        CPU a pair, against 0.18 s for a formate gear's); by default they are named not
-        checked, so that loading a pair stays cheap (``design`` measures them).
+        CPU a pair, against 0.18 s for a formate gear's; ``design`` measures them so). By
+        default they are left to :func:`completed_settings` (``deferred``), which measures
+        them on the gear boxes the reader's generation check traces anyway.
 
     Raises
     ------
@@ -151,3 +157,30 @@ def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
     if got is not None:
         got.warn(stacklevel=stacklevel + 1)
     return got
+
+
+def completed_settings(pair, check: SettingsCheck | None, boxes: dict, *,
+                       warn: bool = True, stacklevel: int = 2) -> SettingsCheck | None:
+    """``check`` (:func:`check_settings` of ``pair``) with the pinion ease-off of its
+    generated gear flanks measured (its ``easeoff.deferred`` sides,
+    :func:`~.easeoff_shape.check_easeoff_shape`) on the gear boxes of ``boxes``, the
+    reader's :func:`~.generation.check_generation` result for ``pair`` (its
+    ``"gear_box"``: the box ``design``'s own measurement traces, the same bit for bit, so
+    the verdict is ``design``'s; docs/machine_settings.md sec. 2, "The hollow ease-off
+    warning"). Their hollow lines are emitted as
+    :class:`~.easeoff_shape.HollowEaseOffWarning` (``warn``; ``stacklevel`` counted from
+    the caller of this function). ``check`` itself where nothing was deferred (no
+    settings, a formate gear, or measured already).
+    """
+    shape = None if check is None else check.easeoff
+    if shape is None or not shape.deferred:
+        return check
+    t0 = time.perf_counter()
+    gear_boxes = {side: boxes[side]["gear_box"] for side in shape.deferred
+                  if "gear_box" in boxes.get(side, {})}
+    more = check_easeoff_shape(pair, gear_boxes=gear_boxes if len(gear_boxes) == len(
+        shape.deferred) else None, sides=shape.deferred)
+    if warn:
+        more.warn(stacklevel=stacklevel + 1)
+    return dataclasses.replace(check, easeoff=shape.completed(more),
+                               seconds=check.seconds + time.perf_counter() - t0)

@@ -65,7 +65,7 @@ from ..geometry.formate import SIDES
 from ..geometry.kinematics import AssemblyErrors
 from ..geometry.generation import check_generation
 from ..geometry.pair import BEVEL, EaseOffCoefficients, GearPair, load_pair
-from ..geometry.settings_check import SettingsCheck, checked_settings
+from ..geometry.settings_check import SettingsCheck, checked_settings, completed_settings
 from ..validation import InputRangeError
 from .design_point import (DesignPoint, centred_coefficients, conjugate_contact,
                            eased_design_point)
@@ -509,7 +509,8 @@ class PreparedPair:
 
 
 def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None,
-                 settings_check: SettingsCheck | None = None) -> PreparedPair:
+                 settings_check: SettingsCheck | None = None,
+                 mesh_follows: bool = True) -> PreparedPair:
     """The one pair preparation of every command that takes a pair: ``pair`` (a
     :class:`GearPair`, preset name or TOML path) with, if it has no ease-off table of
     ``side`` (default its design side), the ease-off of that side synthesized with the
@@ -530,7 +531,16 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None,
     check; nothing is warned again), else run here. ``checked``: the generation
     check's result for ``pair``, if the command already ran it (else run here); the
     flanks reuse its gear flanks (:meth:`PreparedPair.flank_set`; a generated gear's
-    sheets are built once, :func:`~gearcontact.geometry.flank.build_flanks`).
+    sheets are built once, :func:`~gearcontact.geometry.flank.build_flanks`). A pair
+    cut from settings with a generated gear then has its pinion ease-off measured on the
+    gear boxes that check traced
+    (:func:`~gearcontact.geometry.settings_check.completed_settings`: a hollow flank is a
+    :class:`~gearcontact.geometry.easeoff_shape.HollowEaseOffWarning`).
+    ``mesh_follows``: the caller runs the pair's TCA, which refuses a mesh with a gap
+    (:class:`~.edges.ContactGap`), so a pair cut from settings whose predicted contact
+    ratio is short is not warned; False (a command without a TCA: ``bending``,
+    ``export flanks``): a :class:`~gearcontact.geometry.contact_ratio.ContactRatioWarning`
+    names the prediction and the TCA that decides (docs/machine_settings.md sec. 5).
 
     Raises
     ------
@@ -549,7 +559,10 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None,
         settings_check = checked_settings(pair, stacklevel=2)
     if checked is None and pair.kind == BEVEL:
         # the contact path of the bearing the synthesis below will make (default targets)
-        checked = check_generation(pair, bearing_of=BearingPredictor())
+        checked = check_generation(pair, bearing_of=BearingPredictor(),
+                                   mesh_follows=mesh_follows)
+    if checked is not None:     # a generated gear's pinions, on the boxes just traced
+        settings_check = completed_settings(pair, settings_check, checked, stacklevel=2)
     if side in pair.easeoff_tables:
         return PreparedPair(pair, side, checked=checked, settings_check=settings_check)
     base = build_flanks(pair, checked=checked)
