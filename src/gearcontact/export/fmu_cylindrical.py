@@ -34,7 +34,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
-from .fmu import MeshFmu, c_double, drop_domain_counts, fmi3_header_dir, write_mesh_fmu
+from .fmu import MeshFmu, c_double, fmi3_header_dir, write_mesh_fmu
 
 __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_context",
            "line_drivetrain_context"]
@@ -71,7 +71,7 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     from ..preview.chain import LINE_B_ZERO_CODES
     from ..contract.qformat import CURVATURE
     from ..preview.hertz.golden import encode_e_prime
-    from ..preview.hertz.reference import ENVELOPE
+    from ..preview.hertz.reference import ENVELOPE, LINE_ENVELOPE
 
     beyond = 0 if mesh.beyond_gap_mm is None else int(mesh.beyond_gap_mm.shape[-1])
     width = 0.0 if beyond == 0 else mesh.beyond_width_mm * mesh.beyond_stiffness
@@ -81,6 +81,7 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
         "beyond_w": c_double(width), "e_prime": c_double(mesh.e_prime_mpa),
         "e_code": int(encode_e_prime(mesh.e_prime_mpa)),
         "alpha_hi": c_double(ENVELOPE["alpha"][1]),
+        "l_hi": c_double(LINE_ENVELOPE["line_length_mm"][1]),
         "b_zero": c_double(LINE_B_ZERO_CODES * CURVATURE.lsb),
         "max_steps": MAX_STEPS}}
 
@@ -119,7 +120,6 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
 
     def adapt(ctx):
         ctx.update(line_law_context(mesh))
-        drop_domain_counts(ctx)
         ctx["c_sources"] = _with_line_sources(ctx)
         ctx["tables"] = [t for t in ctx["tables"] if t[0] in ("LEVER_MM", "OPENING_MM")]
         ctx["line_rows"] = [[[c_double(v) for v in row] for row in p] for p in tab.line_rows]
