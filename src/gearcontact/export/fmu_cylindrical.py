@@ -26,6 +26,12 @@ slices baked per row; its secant compliance held in series over the step, the pa
 last effective ease-off its next start; docs/cylindrical.md sec. 8, 10) is ported with
 the rest (``gc_coupled_slice_law.c.j2``, included by ``gc_line_law.c.j2``).
 :func:`check_cylindrical_fmu` refuses a curvature source other than the line chain's.
+
+Both FMUs output the bevel FMUs' domain counts (:data:`.fmu.DOMAIN_COUNTS`), counted as
+the twin's line law counts previews (:func:`gearcontact.twin.line_law._line_fp64`):
+``gc_line_law.c.j2``'s domain test on the C library's lift (``gc_line_lift_fp64``,
+``gc_line_lifted_keeps_ellipse``: :func:`gearcontact.preview.hertz.reference.
+line_lift`, ``lifted_keeps_ellipse``).
 """
 
 from __future__ import annotations
@@ -64,8 +70,8 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     """The template context of ``gc_line_law.{h,c}`` for a cylindrical pair's
     :class:`~gearcontact.twin.mesh.MeshTable`: the slice counts, the edge slices'
     effective width (``prm[P_BEYOND_W]``), whether the teeth bend (the table's slice
-    Gram), E' and its code, the datapath's alpha_max, the fit's B- resolution and the
-    coupled slice law's iteration cap (:data:`~gearcontact.ltca.coupled_slice_law.
+    Gram), E' and its code, the datapath's alpha_max, the line core's longest line, the
+    fit's B- resolution and the coupled slice law's iteration cap (:data:`~gearcontact.ltca.coupled_slice_law.
     MAX_STEPS`; a test of the FMU's non-convergence path renders a lower one)."""
     from ..ltca.coupled_slice_law import MAX_STEPS
     from ..preview.chain import LINE_B_ZERO_CODES
