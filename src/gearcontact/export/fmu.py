@@ -37,7 +37,7 @@ from ..validation import InputRangeError
 from .c_library import _environment, library_files, render_c_library
 from .mesh_law import BACKENDS, MeshLawTable, mesh_law_table
 
-__all__ = ["FMU_KINDS", "MESH_VARIABLES", "DOMAIN_COUNTS", "drop_domain_counts", "MeshFmu",
+__all__ = ["FMU_KINDS", "MESH_VARIABLES", "DOMAIN_COUNTS", "MeshFmu",
            "export_mesh_fmu", "write_mesh_fmu", "check_fmu_kind",
            "fmi3_header_dir", "build_fmu", "fmu_context", "model_token", "c_double",
            "COMMON_IMPLEMENTED", "UNITS", "LAW_FILES", "LINE_LAW_FILES"]
@@ -77,8 +77,8 @@ MESH_VARIABLES = (
      "exact Hertz table): they carry no load"),
 )
 #: The outputs that count previews outside the datapath's domain and without a contact
-#: law, as the twin does (``gearcontact.twin.contact_law._fp64_law``): the point-contact
-#: law's FMUs only (:func:`drop_domain_counts`).
+#: law, as the twin does (``gearcontact.twin.contact_law._fp64_law``; a cylindrical
+#: pair's ``gearcontact.twin.line_law._line_fp64``).
 DOMAIN_COUNTS = ("pairs_outside_datapath", "pairs_without_contact_law",
                  "previews_outside_datapath", "steps_outside_datapath",
                  "previews_without_contact_law")
@@ -213,19 +213,7 @@ def fmu_context(*, model_identifier: str, token: str, header_dir: Path, variable
         "curv_hi": c_double(ENVELOPE["curvature_per_mm"][1]),
         "alpha_max": c_double(ENVELOPE["alpha"][1]),
         "model_exchange": False, "fixed_step": None, "default_step": None, "starts": {},
-        "output_dependencies": None, "initial_dependencies": "", "line_law": False,
-        "domain_counts": True}
-
-
-def drop_domain_counts(ctx: dict) -> None:
-    """Remove the :data:`DOMAIN_COUNTS` outputs from the FMU context ``ctx`` (in place):
-    a cylindrical pair's FMUs, whose line law (``gc_line_law.c``) does not port the twin's
-    line-core domain test (:func:`gearcontact.twin.line_law._line_fp64`'s lift;
-    docs/export.md, "Cylindrical pairs")."""
-    ctx["domain_counts"] = False
-    ctx["model_variables"] = tuple(v for v in ctx["model_variables"]
-                                   if v[0] not in DOMAIN_COUNTS)
-    ctx["variables"] = [v for v in ctx["variables"] if v["name"] not in DOMAIN_COUNTS]
+        "output_dependencies": None, "initial_dependencies": "", "line_law": False}
 
 
 def _mesh_context(tab: MeshLawTable, *, pair_name: str, side: str, token: str,

@@ -26,6 +26,12 @@ slices baked per row; its secant compliance held in series over the step, the pa
 last effective ease-off its next start; docs/cylindrical.md sec. 8, 10) is ported with
 the rest (``gc_coupled_slice_law.c.j2``, included by ``gc_line_law.c.j2``).
 :func:`check_cylindrical_fmu` refuses a curvature source other than the line chain's.
+
+Both FMUs output the bevel FMUs' domain counts (:data:`.fmu.DOMAIN_COUNTS`), counted as
+the twin's line law counts previews (:func:`gearcontact.twin.line_law._line_fp64`):
+``gc_line_law.c.j2``'s domain test on the C library's lift (``gc_line_lift_fp64``,
+``gc_line_lifted_keeps_ellipse``: :func:`gearcontact.preview.hertz.reference.
+line_lift`, ``lifted_keeps_ellipse``).
 """
 
 from __future__ import annotations
@@ -34,7 +40,7 @@ import numpy as np
 
 from ..validation import InputRangeError
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
-from .fmu import MeshFmu, c_double, drop_domain_counts, fmi3_header_dir, write_mesh_fmu
+from .fmu import MeshFmu, c_double, fmi3_header_dir, write_mesh_fmu
 
 __all__ = ["check_cylindrical_fmu", "export_cylindrical_mesh_fmu", "line_law_context",
            "line_drivetrain_context"]
@@ -64,14 +70,14 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
     """The template context of ``gc_line_law.{h,c}`` for a cylindrical pair's
     :class:`~gearcontact.twin.mesh.MeshTable`: the slice counts, the edge slices'
     effective width (``prm[P_BEYOND_W]``), whether the teeth bend (the table's slice
-    Gram), E' and its code, the datapath's alpha_max, the fit's B- resolution and the
-    coupled slice law's iteration cap (:data:`~gearcontact.ltca.coupled_slice_law.
+    Gram), E' and its code, the datapath's alpha_max, the line core's longest line, the
+    fit's B- resolution and the coupled slice law's iteration cap (:data:`~gearcontact.ltca.coupled_slice_law.
     MAX_STEPS`; a test of the FMU's non-convergence path renders a lower one)."""
     from ..ltca.coupled_slice_law import MAX_STEPS
     from ..preview.chain import LINE_B_ZERO_CODES
     from ..contract.qformat import CURVATURE
     from ..preview.hertz.golden import encode_e_prime
-    from ..preview.hertz.reference import ENVELOPE
+    from ..preview.hertz.reference import ENVELOPE, LINE_ENVELOPE
 
     beyond = 0 if mesh.beyond_gap_mm is None else int(mesh.beyond_gap_mm.shape[-1])
     width = 0.0 if beyond == 0 else mesh.beyond_width_mm * mesh.beyond_stiffness
@@ -81,6 +87,7 @@ def line_law_context(mesh, *, line_sources: bool = True) -> dict:
         "beyond_w": c_double(width), "e_prime": c_double(mesh.e_prime_mpa),
         "e_code": int(encode_e_prime(mesh.e_prime_mpa)),
         "alpha_hi": c_double(ENVELOPE["alpha"][1]),
+        "l_hi": c_double(LINE_ENVELOPE["line_length_mm"][1]),
         "b_zero": c_double(LINE_B_ZERO_CODES * CURVATURE.lsb),
         "max_steps": MAX_STEPS}}
 
@@ -119,7 +126,6 @@ def export_cylindrical_mesh_fmu(pair, out_dir, *, pair_name: str, side: str,
 
     def adapt(ctx):
         ctx.update(line_law_context(mesh))
-        drop_domain_counts(ctx)
         ctx["c_sources"] = _with_line_sources(ctx)
         ctx["tables"] = [t for t in ctx["tables"] if t[0] in ("LEVER_MM", "OPENING_MM")]
         ctx["line_rows"] = [[[c_double(v) for v in row] for row in p] for p in tab.line_rows]

@@ -33,8 +33,8 @@ from ..contract.qformat import STENCIL_GAP
 from ..ltca.pair_ltca import ARCSEC_PER_RAD
 from ..preview.hertz.formats import DEFAULT_HERTZ_FORM
 from .c_constants import fit_linear_safe_code
-from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, drop_domain_counts,
-                  fmi3_header_dir, fmu_context, model_token)
+from .fmu import (COMMON_IMPLEMENTED, build_fmu, c_double, fmi3_header_dir, fmu_context,
+                  model_token)
 
 __all__ = ["DRIVETRAIN_VARIABLES", "DrivetrainFmu", "export_drivetrain_fmu",
            "write_drivetrain_fmu", "drivetrain_fmu_model"]
@@ -375,7 +375,6 @@ def write_drivetrain_fmu(model, out_dir, *, pair_name: str, side: str, bending: 
         # kernel's columns: the last effective ease-off (m slices) and its row
         m_sl = int(m.line_gap_mm.shape[-1]) + 2 * int(line_ctx["line"]["beyond"])
         ctx.update(line_ctx, n_cache=L.N_CACHE + (m_sl + 1 if bending else 0))
-        drop_domain_counts(ctx)
         ctx["c_sources"] = ctx["c_sources"][:2] + ["gc_line_law.c"] + ctx["c_sources"][2:]
         ctx["tables"] = ctx["tables"][:2]       # LEVER, OPENING: the law is the line rows'
         ctx["description"] = (

@@ -19,6 +19,12 @@ ellipse, the line law ``d - h_bar = lambda W (beta - ln(W)/2)`` by
 :func:`~gearcontact.twin.line_law.line_pair_load` from the load the preview was sampled
 at. ``a``, ``b``, ``p_max`` of the most loaded pair scale from that load as the twin's
 record does (Hertz ``W^(1/3)``; line ``b``, ``p_max ~ W^(1/2)``, ``a = L_c / 2``).
+The domain counts: every closed pair's preview counted as the twin's line law counts
+previews (:func:`gearcontact.twin.line_law._line_fp64`: ``tcount[3]``, outside the
+datapath's domain -- the golden chain flagged, or in fp64 ``B_max`` outside the line
+core's envelope, ``L_eq`` without the host's lift, a lifted line that keeps its ellipse
+--, the fp64 line chain evaluating it; ``tcount[5]``, without a contact law, a saddle:
+the pair then carries nothing).
 With tooth bending (the table's ``bending_mm_per_n`` and the slices' Gram in its rows,
 ``gearcontact export fmu --bending``) the preview solves the twin's coupled slice law at
 the approach from the series state with the uniform load's compliance (a fresh preview,
@@ -152,11 +158,13 @@ def line_mesh_outputs(tab: LineMeshTable, phi_pinion_rad: float, phi_gear_rad: f
     i, f, de, theta, theta_dot, te = _kinematics(tab, phi_pinion_rad, phi_gear_rad,
                                                  omega_pinion_rad_s, omega_gear_rad_s)
     if theta < 0.0:
-        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0)
+        return MeshOutputs(0.0, 0.0, 0.0, te, 0.0, 0.0, 0.0, 0, 0, 0)
     t_el = w_tot = w_max = 0.0
     abp = (0.0, 0.0, 0.0)
     pairs = 0
     cbs = tab.bending_mm_per_n
+    tc = law.tcount
+    before = int(tc[3]), int(tc[5])     # every closed pair's preview counted, as the twin
     for j, lv, d in closed_pairs(tab, i, f, theta):
         cb0 = -0.0 if cbs is None else -(cbs[j, i] + f * (cbs[j, i + 1] - cbs[j, i]))
         lam, pv = law.law(j, i, f, d, code, cb0)
@@ -182,4 +190,5 @@ def line_mesh_outputs(tab: LineMeshTable, phi_pinion_rad: float, phi_gear_rad: f
             scale = (w / we) ** (0.5 if line else 1.0 / 3.0)
             abp = (pv[0] * (1.0 if line else scale), pv[1] * scale, pv[2] * scale)
     return _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te,
-                    mesh_damping_n_s_per_mm)
+                    mesh_damping_n_s_per_mm,
+                    counts=(int(tc[3]) - before[0], int(tc[5]) - before[1]))

@@ -155,10 +155,10 @@ class MeshOutputs:
     b_mm: float
     active_pairs: int
     #: closed pairs whose preview lies outside the datapath's domain, and closed pairs
-    #: without a contact law, as the twin counts previews (module docstring); None
-    #: where the law does not count them (a cylindrical pair's line law)
-    pairs_outside_datapath: int | None = None
-    pairs_without_contact_law: int | None = None
+    #: without a contact law, as the twin counts previews (module docstring; a
+    #: cylindrical pair's: :mod:`.line_mesh_law`)
+    pairs_outside_datapath: int
+    pairs_without_contact_law: int
 
 
 class _Law:
@@ -291,7 +291,7 @@ def _kinematics(tab, phi_pinion_rad, phi_gear_rad, omega_pinion_rad_s, omega_gea
 
 
 def _outputs(tab, t_el, w_tot, abp, pairs, de, theta_dot, te, damping, *,
-             counts=(None, None)) -> MeshOutputs:
+             counts) -> MeshOutputs:
     """The outputs of the pairs' elastic torque ``t_el`` (N·m) with the mesh damping;
     ``counts``: the domain counts (:class:`MeshOutputs`), whatever the torque."""
     if t_el <= 0.0:
