@@ -17,6 +17,12 @@ candidates beyond the mean node and the working depth's centre:
   shorter than a pitch, the ellipse shortened so that the run, to first order, reaches
   one pitch.
 
+A point-contact base pinion (a hypoid's generated gear) pivots on its contact path only,
+so it has no working depth's centre; the room is measured at its M, and the run's pivot
+is the base path's point on the pinion section of the run's middle
+(docs/machine_settings.md sec. 5, "The candidate choice for a point-contact base"); the
+rank and the choice are the same.
+
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
 module does not import it, so that the synthesis imports the choice.

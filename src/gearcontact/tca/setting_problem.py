@@ -214,6 +214,31 @@ def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
     return min(inside, key=lambda p: abs(p.v1 - v1_mm)) if inside else None
 
 
+def _path_point_on_section(pinion, gear, pair, guess: ContactGuess, *, uv,
+                           margin: float = PIVOT_MARGIN):
+    """The point of the contact path through ``guess`` (a point-contact base's M) on the
+    pinion section ``v`` of ``uv`` (mm; ``u`` is not read: the path fixes it), where it
+    lies inside the pinion flank box by ``margin`` of its depth and face
+    (:func:`_path_point_at`); otherwise the reason, in words (that pivot is no flank
+    point of the path)."""
+    (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
+    du, dv = margin * (u1 - u0), margin * (v1 - v0)
+    v_c = float(uv[1])
+    if not v0 + dv <= v_c <= v1 - dv:
+        return (f"the pinion section v = {v_c:.4f} mm lies outside the flank's face "
+                f"({v0:.4f}, {v1:.4f}) mm by {margin:g} of it")
+    try:
+        mp = _path_point_at(pinion, gear, pair, guess, v1_mm=v_c)
+    except (EdgeContact, ArithmeticError) as exc:
+        return (f"the base's contact path does not reach the pinion section v = {v_c:.4f} "
+                f"mm on the flank ({exc})")
+    if mp.edge or not u0 + du <= mp.u1 <= u1 - du:
+        return (f"the base's contact path crosses the pinion section v = {v_c:.4f} mm at "
+                f"u = {mp.u1:.4f} mm, outside the working depth ({u0:.4f}, {u1:.4f}) mm by "
+                f"{margin:g} of it")
+    return mp
+
+
 def _depth_pivot(pinion, gear, pair, mean: ContactGuess, *, fraction: float) -> ContactGuess:
     """The contact of the pinion flank point at ``fraction`` of its working depth (the
     flank box from the active root, 0, to the tip, 1) on the section of ``mean`` (the
@@ -390,7 +415,10 @@ class SynthesisProblem:
     node, the standard crowning's pivot. A point-contact base ignores it (its pivot must
     lie on its contact path). ``pivot_uv`` (``{side: (u, v)}``, mm, inside the pinion
     flank box) puts the pivot of a line-contact base at that flank point (before
-    ``pivot_depth``; :func:`_flank_pivot`). :attr:`pivot` names where M is, per side.
+    ``pivot_depth``; :func:`_flank_pivot`), and that of a point-contact base at its
+    contact path's point on the pinion section ``v`` (:func:`_path_point_on_section`:
+    inside the flank box by :data:`PIVOT_MARGIN`, else the side is :attr:`off_flank`,
+    the reason named). :attr:`pivot` names where M is, per side.
 
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
@@ -463,6 +491,16 @@ class SynthesisProblem:
                         "mean section (the path does not reach it on the flank): its point "
                         f"nearest it inside the flank by {PIVOT_MARGIN:g} of the depth and "
                         "face")
+                if at_uv.get(side) is not None:     # the path's point on a given section
+                    mp = _path_point_on_section(fs.pinion.side(side), self.gear[side], pair,
+                                                mp.as_guess(), uv=at_uv[side])
+                    if isinstance(mp, str):     # no pivot there: the side has no M
+                        self.off_flank[side] = mp
+                        self.pivot.pop(side)
+                        continue
+                    self.pivot[side] = (
+                        "the base's contact path on the pinion section v = {1:.6f} mm "
+                        "(given (u, v) = ({0:.6f}, {1:.6f}) mm)".format(*at_uv[side]))
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
             elif at_uv.get(side) is not None:     # line contact: a given flank point
