@@ -157,3 +157,22 @@ def test_a_pivot_moved_along_the_base_path_is_a_path_point(print_twin):
     assert np.hypot(again.mean_uv["drive"][0] - u_d, again.mean_uv["drive"][1] - v_d) < 1e-6
     assert "coast" in again.off_flank and \
         f"v = {v_c + 4.0:.4f} mm" in again.off_flank["coast"]
+
+
+def test_a_run_of_length_0_shortens_the_ellipse_and_moves_no_pivot():
+    # lever 4 (declared before measuring it): a path whose ellipse is at an edge at
+    # every phase is a run of R = 0 in its path on the flank of P pitches; truth by
+    # hand, 2a' = 2a (P - 1) / P (the print's drive, P = 2.2 in session 25: 11.11 x 1.2
+    # / 2.2 mm; 1e-12 relative: arithmetic); no middle, so no run pivot
+    from gearcontact.tca.setting_pivot import length_targets, run_pivot
+
+    face = 31.75
+    t = SynthesisTargets(pattern_length_ratio=11.11 / face)
+    zero = PatternRun(0.0, float("nan"), (float("nan"), float("nan")), 2.2)
+    r = _result("drive", "node", 31, 15.7, run=zero)
+    got = length_targets(t, r, face_mm=face)
+    assert got.pattern_length_ratio * face == pytest.approx(11.11 * 1.2 / 2.2, rel=1e-12)
+    assert run_pivot(r) is None
+    # a path on the flank not longer than a pitch: nothing to shorten for
+    assert length_targets(t, _result("drive", "node", 31, 15.7, run=dataclasses.replace(
+        zero, path_pitches=1.0)), face_mm=face) is None

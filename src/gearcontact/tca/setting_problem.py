@@ -309,12 +309,14 @@ class PatternRun:
     Attributes
     ----------
     pitches : float
-        Its length in pinion pitches (phase span over the pitch angle ``2 pi / z1``).
+        Its length in pinion pitches (phase span over the pitch angle ``2 pi / z1``); 0
+        where no surface contact of the path has the ellipse on both flanks.
     middle_offset_pitch : float
-        Its middle phase minus the reference phase, pinion pitches.
+        Its middle phase minus the reference phase, pinion pitches (NaN for a run of
+        length 0).
     middle_uv : (float, float)
         The pinion flank point (u, v) of the path at its middle phase (the path point
-        nearest it), mm.
+        nearest it), mm (NaN for a run of length 0).
     path_pitches : float
         The length, pinion pitches, of the run of surface contacts (on both flanks, the
         ellipse anywhere) that contains it.
@@ -330,7 +332,10 @@ def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
     """The run of ``path`` (one tooth pair's :class:`~.types.TcaPath`) around the phase
     ``phi1_rad`` whose points are surface contacts with the paint ellipse on both flanks
     (:func:`~.analysis.pattern_on_flank` on each point): the run containing the such
-    point nearest ``phi1_rad`` in phase, or None if the path has none."""
+    point nearest ``phi1_rad`` in phase; where no surface contact has the ellipse on both
+    flanks, a run of length 0 (no middle: NaN) in the surface contacts' run through the
+    one nearest ``phi1_rad`` (docs/machine_settings.md sec. 5, lever 4 of "The candidate
+    choice for a point-contact base"); None if the path has no surface contact."""
     pts = [p for p in path.points if not p.edge and not p.edge_contact]
     if not pts:
         return None
@@ -338,27 +343,31 @@ def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
     ells = [contact_ellipse(relative_curvature(pinion, gear, kin, p)) for p in pts]
     ok = pattern_on_flank(pinion, gear, kin, _Points(pts, ells))
     phase = np.array([p.phi1_rad for p in pts])
-    if not ok.any():
-        return None
     step = float(np.median(np.diff(phase))) if len(pts) > 1 else 0.0
-    k = int(np.argmin(np.where(ok, np.abs(phase - phi1_rad), np.inf)))
-    def grow(k, good):
-        """The ends of the run of ``good`` points through ``k``, one phase step apart."""
-        lo = hi = k
-        while lo > 0 and good[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
-            lo -= 1
-        while hi < len(pts) - 1 and good[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
-            hi += 1
-        return lo, hi
-
-    lo, hi = grow(k, ok)
-    p_lo, p_hi = grow(k, np.ones(len(pts), dtype=bool))
     pitch = 2.0 * math.pi / pinion_teeth
+    if not ok.any():        # a run of length 0 in the path through the nearest contact
+        p_lo, p_hi = _run_through(int(np.argmin(np.abs(phase - phi1_rad))),
+                                  np.ones(len(pts), dtype=bool), phase, step)
+        return PatternRun(0.0, math.nan, (math.nan, math.nan),
+                          float((phase[p_hi] - phase[p_lo]) / pitch))
+    k = int(np.argmin(np.where(ok, np.abs(phase - phi1_rad), np.inf)))
+    lo, hi = _run_through(k, ok, phase, step)
+    p_lo, p_hi = _run_through(k, np.ones(len(pts), dtype=bool), phase, step)
     middle = 0.5 * (phase[lo] + phase[hi])
     m = lo + int(np.argmin(np.abs(phase[lo:hi + 1] - middle)))
     return PatternRun(float((phase[hi] - phase[lo]) / pitch),
                       float((middle - phi1_rad) / pitch), (float(pts[m].u1), float(pts[m].v1)),
                       float((phase[p_hi] - phase[p_lo]) / pitch))
+
+
+def _run_through(k, good, phase, step):
+    """The ends of the run of ``good`` points through ``k``, one phase ``step`` apart."""
+    lo = hi = k
+    while lo > 0 and good[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
+        lo -= 1
+    while hi < len(phase) - 1 and good[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
+        hi += 1
+    return lo, hi
 
 
 @dataclass(frozen=True)
