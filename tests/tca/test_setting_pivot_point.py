@@ -21,23 +21,19 @@ Truths, declared before measuring:
 """
 
 import dataclasses
-import warnings
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-from gearcontact.geometry.pair import load_pair
 from gearcontact.tca import setting_synthesis as ss
 from gearcontact.tca.setting_problem import PIVOT_MARGIN, PatternRun, SynthesisProblem
 from gearcontact.tca.synthesis_targets import SynthesisTargets
 
-PRINT = (Path(__file__).resolve().parents[1] / "geometry" / "summary_sheets"
-         / "hypoid_10x41_no16_pair.toml")
+from . import test_setting_synthesis_typed as typed
 
 
-def _result(side, pivot, edges, te0, run=None, length=11.0):
+def _result(side, pivot, edges, te0, run=None):
     """A SettingSynthesis with only what the choice reads."""
     row = ("TE0 peak-to-peak", "arcsec", 3.0, 3.0, 0.15, True)
     return ss.SettingSynthesis(side, f"setup {pivot}", np.zeros(3), None, (row,), te0,
@@ -113,16 +109,8 @@ def test_a_point_contact_base_gets_the_declared_candidates(monkeypatch):
 
 @pytest.fixture(scope="module")
 def print_twin():
-    # ~1 s: the published 10 x 41 print's gear (left hand: the right-hand twin with the
-    # gear mirrored, as synthesized_machine_pair does)
-    from gearcontact.geometry.machine import mirror_setup
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")       # the print's blank note
-        pair = load_pair(PRINT)
-    gear = {s.side: mirror_setup(s) for s in pair.machine if s.member == "gear"}
-    twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=())
-    return twin, gear
+    # ~1 s: the published 10 x 41 print (its right-hand twin, the gear mirrored)
+    return typed.print_twin()
 
 
 def test_a_pivot_moved_along_the_base_path_is_a_path_point(print_twin):

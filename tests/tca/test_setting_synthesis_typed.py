@@ -166,10 +166,9 @@ def test_a_left_hand_pair_keeps_its_typed_gear(monkeypatch):
         mirror_setup(prob.base[s]) for s in SIDES)
 
 
-@pytest.fixture(scope="module")
-def print_problem():
-    # ~3 s: the published 10 x 41 print's gear (left hand: its right-hand twin, the gear
-    # mirrored as synthesized_machine_pair does)
+def print_twin():
+    """The published 10 x 41 print's pair (left hand) as its right-hand twin and the
+    print's gear mirrored, as synthesized_machine_pair synthesizes it."""
     import warnings
 
     from gearcontact.geometry.machine import mirror_setup
@@ -178,7 +177,13 @@ def print_problem():
         warnings.simplefilter("ignore")       # the print's blank note
         pair = load_pair(PRINT)
     gear = {s.side: mirror_setup(s) for s in pair.machine if s.member == "gear"}
-    twin = dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=())
+    return dataclasses.replace(pair, pinion_hand="right", machine=(), print_gear=()), gear
+
+
+@pytest.fixture(scope="module")
+def print_problem():
+    # ~3 s: the print's gear, 40 x 50 nodes
+    twin, gear = print_twin()
     return SynthesisProblem(twin, gear=gear)
 
 
