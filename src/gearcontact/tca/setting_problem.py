@@ -5,7 +5,8 @@ three corrections pivoting on it, and Litvin's quantities at M by a local TCA.
 The base pinion is the one conjugate to the pair's gear
 (:func:`~gearcontact.geometry.basic_settings.member_setups`). For a hypoid whose gear is
 generated it is the crown gear's pinion, point contact with TE0 = 0 along a path, and M
-the point of that path on the pinion's mean section. For a formate gear (hypoid or
+the point of that path on the pinion's mean section (or on another section,
+``SynthesisProblem(pivot_uv=...)``). For a formate gear (hypoid or
 spiral bevel: the complementary pinion) and a generated spiral bevel gear (the crown
 gear's pinion) it is line-contact conjugate: every flank point lies on a contact line,
 and M is the blank's mean point on the pinion (the point the standard crowning keeps).
