@@ -17,6 +17,12 @@ candidates beyond the mean node and the working depth's centre:
   shorter than a pitch, the ellipse shortened so that the run, to first order, reaches
   one pitch.
 
+A point-contact base pinion (a hypoid's generated gear) pivots on its contact path only,
+so it has no working depth's centre; the room is measured at its M, and the run's pivot
+is the base path's point on the pinion section of the run's middle
+(docs/machine_settings.md sec. 5, "The candidate choice for a point-contact base"); the
+rank and the choice are the same.
+
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
 module does not import it, so that the synthesis imports the choice.
@@ -122,7 +128,7 @@ def run_pivot(result):
     (:class:`~.setting_problem.PatternRun`), rounded to 1e-6 mm (the head comment
     names it to that digit, so that the pivot can be rebuilt from it), where ``result``
     has edge phases and the run's middle is off M's phase by more than
-    :data:`_RUN_STEP_PITCH`; None otherwise."""
+    :data:`_RUN_STEP_PITCH`; None otherwise (a run of length 0 has no middle)."""
     run = result.run
     if not result.edge_phases or run is None or \
             not abs(run.middle_offset_pitch) > _RUN_STEP_PITCH:
@@ -137,8 +143,10 @@ def length_targets(targets, result, *, face_mm: float):
     longer than one: the ellipse takes ``P - R`` pitches of the path of ``P`` (the
     surface contact's run, :attr:`~.setting_problem.PatternRun.path_pitches`) to leave
     a run of ``R``; to first order in the length that share scales with it, so
-    ``2a' = 2a (P - 1) / (P - R)``. None otherwise, or below :data:`_RATIO_MIN` of the
-    face."""
+    ``2a' = 2a (P - 1) / (P - R)``; a path whose ellipse is at an edge at every phase is
+    a run of ``R = 0`` (docs/machine_settings.md sec. 5, lever 4 of "The candidate
+    choice for a point-contact base"). None otherwise, or below :data:`_RATIO_MIN` of
+    the face."""
     run = result.run
     if not result.edge_phases or run is None or not run.pitches < 1.0 < run.path_pitches:
         return None

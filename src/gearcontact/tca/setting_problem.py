@@ -5,7 +5,8 @@ three corrections pivoting on it, and Litvin's quantities at M by a local TCA.
 The base pinion is the one conjugate to the pair's gear
 (:func:`~gearcontact.geometry.basic_settings.member_setups`). For a hypoid whose gear is
 generated it is the crown gear's pinion, point contact with TE0 = 0 along a path, and M
-the point of that path on the pinion's mean section. For a formate gear (hypoid or
+the point of that path on the pinion's mean section (or on another section,
+``SynthesisProblem(pivot_uv=...)``). For a formate gear (hypoid or
 spiral bevel: the complementary pinion) and a generated spiral bevel gear (the crown
 gear's pinion) it is line-contact conjugate: every flank point lies on a contact line,
 and M is the blank's mean point on the pinion (the point the standard crowning keeps).
@@ -214,6 +215,31 @@ def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
     return min(inside, key=lambda p: abs(p.v1 - v1_mm)) if inside else None
 
 
+def _path_point_on_section(pinion, gear, pair, guess: ContactGuess, *, uv,
+                           margin: float = PIVOT_MARGIN):
+    """The point of the contact path through ``guess`` (a point-contact base's M) on the
+    pinion section ``v`` of ``uv`` (mm; ``u`` is not read: the path fixes it), where it
+    lies inside the pinion flank box by ``margin`` of its depth and face
+    (:func:`_path_point_at`); otherwise the reason, in words (that pivot is no flank
+    point of the path)."""
+    (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
+    du, dv = margin * (u1 - u0), margin * (v1 - v0)
+    v_c = float(uv[1])
+    if not v0 + dv <= v_c <= v1 - dv:
+        return (f"the pinion section v = {v_c:.4f} mm lies outside the flank's face "
+                f"({v0:.4f}, {v1:.4f}) mm by {margin:g} of it")
+    try:
+        mp = _path_point_at(pinion, gear, pair, guess, v1_mm=v_c)
+    except (EdgeContact, ArithmeticError) as exc:
+        return (f"the base's contact path does not reach the pinion section v = {v_c:.4f} "
+                f"mm on the flank ({exc})")
+    if mp.edge or not u0 + du <= mp.u1 <= u1 - du:
+        return (f"the base's contact path crosses the pinion section v = {v_c:.4f} mm at "
+                f"u = {mp.u1:.4f} mm, outside the working depth ({u0:.4f}, {u1:.4f}) mm by "
+                f"{margin:g} of it")
+    return mp
+
+
 def _depth_pivot(pinion, gear, pair, mean: ContactGuess, *, fraction: float) -> ContactGuess:
     """The contact of the pinion flank point at ``fraction`` of its working depth (the
     flank box from the active root, 0, to the tip, 1) on the section of ``mean`` (the
@@ -284,12 +310,14 @@ class PatternRun:
     Attributes
     ----------
     pitches : float
-        Its length in pinion pitches (phase span over the pitch angle ``2 pi / z1``).
+        Its length in pinion pitches (phase span over the pitch angle ``2 pi / z1``); 0
+        where no surface contact of the path has the ellipse on both flanks.
     middle_offset_pitch : float
-        Its middle phase minus the reference phase, pinion pitches.
+        Its middle phase minus the reference phase, pinion pitches (NaN for a run of
+        length 0).
     middle_uv : (float, float)
         The pinion flank point (u, v) of the path at its middle phase (the path point
-        nearest it), mm.
+        nearest it), mm (NaN for a run of length 0).
     path_pitches : float
         The length, pinion pitches, of the run of surface contacts (on both flanks, the
         ellipse anywhere) that contains it.
@@ -305,7 +333,10 @@ def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
     """The run of ``path`` (one tooth pair's :class:`~.types.TcaPath`) around the phase
     ``phi1_rad`` whose points are surface contacts with the paint ellipse on both flanks
     (:func:`~.analysis.pattern_on_flank` on each point): the run containing the such
-    point nearest ``phi1_rad`` in phase, or None if the path has none."""
+    point nearest ``phi1_rad`` in phase; where no surface contact has the ellipse on both
+    flanks, a run of length 0 (no middle: NaN) in the surface contacts' run through the
+    one nearest ``phi1_rad`` (docs/machine_settings.md sec. 5, lever 4 of "The candidate
+    choice for a point-contact base"); None if the path has no surface contact."""
     pts = [p for p in path.points if not p.edge and not p.edge_contact]
     if not pts:
         return None
@@ -313,27 +344,31 @@ def pattern_run(pinion, gear, kin, path, *, phi1_rad: float, pinion_teeth: int):
     ells = [contact_ellipse(relative_curvature(pinion, gear, kin, p)) for p in pts]
     ok = pattern_on_flank(pinion, gear, kin, _Points(pts, ells))
     phase = np.array([p.phi1_rad for p in pts])
-    if not ok.any():
-        return None
     step = float(np.median(np.diff(phase))) if len(pts) > 1 else 0.0
-    k = int(np.argmin(np.where(ok, np.abs(phase - phi1_rad), np.inf)))
-    def grow(k, good):
-        """The ends of the run of ``good`` points through ``k``, one phase step apart."""
-        lo = hi = k
-        while lo > 0 and good[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
-            lo -= 1
-        while hi < len(pts) - 1 and good[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
-            hi += 1
-        return lo, hi
-
-    lo, hi = grow(k, ok)
-    p_lo, p_hi = grow(k, np.ones(len(pts), dtype=bool))
     pitch = 2.0 * math.pi / pinion_teeth
+    if not ok.any():        # a run of length 0 in the path through the nearest contact
+        p_lo, p_hi = _run_through(int(np.argmin(np.abs(phase - phi1_rad))),
+                                  np.ones(len(pts), dtype=bool), phase, step)
+        return PatternRun(0.0, math.nan, (math.nan, math.nan),
+                          float((phase[p_hi] - phase[p_lo]) / pitch))
+    k = int(np.argmin(np.where(ok, np.abs(phase - phi1_rad), np.inf)))
+    lo, hi = _run_through(k, ok, phase, step)
+    p_lo, p_hi = _run_through(k, np.ones(len(pts), dtype=bool), phase, step)
     middle = 0.5 * (phase[lo] + phase[hi])
     m = lo + int(np.argmin(np.abs(phase[lo:hi + 1] - middle)))
     return PatternRun(float((phase[hi] - phase[lo]) / pitch),
                       float((middle - phi1_rad) / pitch), (float(pts[m].u1), float(pts[m].v1)),
                       float((phase[p_hi] - phase[p_lo]) / pitch))
+
+
+def _run_through(k, good, phase, step):
+    """The ends of the run of ``good`` points through ``k``, one phase ``step`` apart."""
+    lo = hi = k
+    while lo > 0 and good[lo - 1] and phase[lo] - phase[lo - 1] < 1.5 * step:
+        lo -= 1
+    while hi < len(phase) - 1 and good[hi + 1] and phase[hi + 1] - phase[hi] < 1.5 * step:
+        hi += 1
+    return lo, hi
 
 
 @dataclass(frozen=True)
@@ -390,7 +425,10 @@ class SynthesisProblem:
     node, the standard crowning's pivot. A point-contact base ignores it (its pivot must
     lie on its contact path). ``pivot_uv`` (``{side: (u, v)}``, mm, inside the pinion
     flank box) puts the pivot of a line-contact base at that flank point (before
-    ``pivot_depth``; :func:`_flank_pivot`). :attr:`pivot` names where M is, per side.
+    ``pivot_depth``; :func:`_flank_pivot`), and that of a point-contact base at its
+    contact path's point on the pinion section ``v`` (:func:`_path_point_on_section`:
+    inside the flank box by :data:`PIVOT_MARGIN`, else the side is :attr:`off_flank`,
+    the reason named). :attr:`pivot` names where M is, per side.
 
     The mounting turn is the one :func:`~gearcontact.geometry.flank.build_machine_flanks`
     gives the base pinion (the corrections keep M, so the same turn mounts every
@@ -463,6 +501,16 @@ class SynthesisProblem:
                         "mean section (the path does not reach it on the flank): its point "
                         f"nearest it inside the flank by {PIVOT_MARGIN:g} of the depth and "
                         "face")
+                if at_uv.get(side) is not None:     # the path's point on a given section
+                    mp = _path_point_on_section(fs.pinion.side(side), self.gear[side], pair,
+                                                mp.as_guess(), uv=at_uv[side])
+                    if isinstance(mp, str):     # no pivot there: the side has no M
+                        self.off_flank[side] = mp
+                        self.pivot.pop(side)
+                        continue
+                    self.pivot[side] = (
+                        "the base's contact path on the pinion section v = {1:.6f} mm "
+                        "(given (u, v) = ({0:.6f}, {1:.6f}) mm)".format(*at_uv[side]))
                 self.start[side] = mp.as_guess()
                 self.mean_uv[side] = (float(mp.u1), float(mp.v1))
             elif at_uv.get(side) is not None:     # line contact: a given flank point

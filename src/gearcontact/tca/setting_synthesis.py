@@ -39,7 +39,8 @@ model (:mod:`.setting_reach`) predicts the target's corrections first: a target 
 reach for certain is refused before the search, and the search starts from the
 predicted corrections where they miss less than the standard crowning. The base pinion and M
 (:mod:`.setting_problem`): a generated hypoid gear's crown-gear pinion (point contact, M
-on its contact path) or the line-contact conjugate of a formate gear or a spiral bevel
+on its contact path; in :func:`synthesized_machine_pair` also with the ellipse shortened
+and M moved along the path, as below) or the line-contact conjugate of a formate gear or a spiral bevel
 (M the blank's mean point on the pinion or, in :func:`synthesized_machine_pair`, the
 middle of the pinion's working depth, that with the paint ellipse no longer than the
 contact line's room there, or the middle of the best one's pattern run, whichever keeps
@@ -393,7 +394,9 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
 def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node, problem):
     """``done`` (the syntheses of ``sides`` about the mean node, the problem ``node``)
     against the other pivots of a line-contact base (:mod:`.setting_pivot`;
-    docs/machine_settings.md sec. 5, "The pivot's depth" and "The bearing's room"),
+    docs/machine_settings.md sec. 5, "The pivot's depth" and "The bearing's room"; a
+    point-contact base, "The candidate choice for a point-contact base": no centre, the
+    room at its M on its path, the run's pivot on its path),
     each side's best by :func:`~.setting_pivot.better_pivot`: the working depth's
     centre; with ``bearing_room``, in turn, the centre with the ellipse no longer than
     the contact line's room there (:func:`~.setting_pivot.room_targets`), the pivot
@@ -415,24 +418,30 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
                 r = synthesize_settings(pair, targets={s: t}, problem=prob, sides=(s,),
                                         **options)[s]
             except CheckFailed as exc:
-                failed[s].append(f"{prob.pivot[s]}{said}: not synthesized ({exc})")
+                failed[s].append(f"{prob.pivot.get(s, 'a pivot off the flank')}{said}: "
+                                 f"not synthesized ({exc})")
                 continue
             cands[s].append((dataclasses.replace(r, pivot=r.pivot + said), t, prob))
 
     def best(s):
         return min(cands[s], key=lambda c: pivot_rank(c[0]))
 
-    centred = SynthesisProblem(pair, **problem, pivot_depth={
-        s: per_side[s].centre_profile for s in sides})
-    add(centred, per_side)
+    if node.point_contact:      # the pivot stays on the base's path: no centred one
+        centred = node
+        room_words = "its room along its major axis at M"
+    else:
+        centred = SynthesisProblem(pair, **problem, pivot_depth={
+            s: per_side[s].centre_profile for s in sides})
+        add(centred, per_side)
+        room_words = "the contact line's room there"
     if bearing_room:
         face = pair.gear_face_width_mm
         # the bearing's room: the ellipse no longer than the contact line's room there
+        # (a point contact's: along the ellipse's major axis at M)
         short = {s: room_targets(per_side[s], room_mm=centred.line_room_mm(
             s, centred.standard[s]), face_mm=face) for s in sides}
         add(centred, {s: t for s, t in short.items() if t is not None},
-            ", the paint ellipse's target shortened to the contact line's room there, "
-            "{length:.2f} mm")
+            f", the paint ellipse's target shortened to {room_words}, {{length:.2f}} mm")
         # the pitch centred on the best one's pattern run
         moved = {s: (run_pivot(best(s)[0]), best(s)) for s in sides}
         moved = {s: m for s, m in moved.items() if m[0] is not None}
@@ -513,7 +522,14 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     readers accept (:func:`~gearcontact.geometry.settings_top_land.check_settings_top_land`:
     no pointed tooth, no folding flank); where they do not, the next combination of the
     sides' candidates is kept (:func:`~.setting_pivot.cuttable_choice`). A point-contact
-    base pivots on its contact path (once).
+    base pivots on its contact path: its candidates (with ``centre_pivot`` and
+    ``bearing_room``; docs/machine_settings.md sec. 5, "The candidate choice for a
+    point-contact base") are M with the asked targets, M with the paint ellipse no
+    longer than its room along its major axis there, the pivot moved along the base's
+    path to the pinion section of the best one's pattern run's middle
+    (:class:`SynthesisProblem` ``pivot_uv``) and the best one's pivot with the ellipse
+    shortened for a run of one pitch, chosen by the same rule (no working depth's centre:
+    it is no point of the path).
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
@@ -542,7 +558,7 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     sides = tuple(s for s in SIDES if not (standard_off_flank and s in prob.off_flank))
     done = synthesize_settings(pair, targets=targets, problem=prob, sides=sides,
                                **options) if sides else {}
-    if centre_pivot and sides and not prob.point_contact:
+    if centre_pivot and sides and (bearing_room or not prob.point_contact):
         done = _pivot_candidates(pair, done, targets, sides, options, bearing_room,
                                  node=prob, problem=dict(
                                      gear_generation=gear_generation or "generated",
