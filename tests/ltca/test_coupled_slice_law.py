@@ -246,8 +246,9 @@ def _edge_problem():
 
 def _solve_at_approach(h, g, nb, wb, d, x0, w_start, max_steps=None):
     """coupled_solve at the approach d (mm) from x0: (d_c, L_c, I, W, steps), x, f.
-    ``max_steps`` None is the default cap, passed as an argument like coupled_line
-    passes it: one compiled specialization for both (~70 CPU s each, cold cache)."""
+    ``max_steps`` None is the default cap, passed as an argument as coupled_line
+    passes it: one compiled specialization for both (docs/performance.md, "Session
+    26")."""
     from gearcontact.ltca import coupled_slice_law as core
 
     m = h.size
