@@ -125,15 +125,14 @@ MULTI_KEYS = ("load_share_pct", "n_engaged", "mesh_rotation_rigid_arcsec",
               "mesh_rotation_arcsec", "cp_max_mpa", "p_peak_cell_mpa", "preview_p_max_mpa")
 
 
-def test_multi_tooth(tmp_path):
+def test_multi_tooth(multi_tooth_runs):
     """``--multi-tooth`` on the calibrated (tip-edge) s0003: the keys the issue lists,
     timings only in run.json, shares = pair loads / total, bending rotates more, the
     CSV rows belong to the engaged pairs, and the cell peak is the trimmed edge spike
-    (above CP_max)."""
-    d = tmp_path / "mt"
-    assert main(["ltca", "--pair", "s0003", "--torque", "64.5", "--out", str(d),
-                 "--phases", "11", "--cells", "24", "--multi-tooth",
-                 "--multi-tooth-cells", "24"]) == 0
+    (above CP_max). The run: tests/cli/conftest.py MULTI_TOOTH_ARGV (``ltca --pair
+    s0003 --torque 64.5 --phases 11 --cells 24 --multi-tooth --multi-tooth-cells 24``),
+    shared with test_reproducible.py."""
+    d = multi_tooth_runs[0]
     for name in ("multitooth.json", "multitooth.csv", "multitooth.png", "ltca.json"):
         assert (d / name).stat().st_size > 0, name
     data = json.loads((d / "multitooth.json").read_text())

@@ -245,7 +245,10 @@ def _edge_problem():
 
 
 def _solve_at_approach(h, g, nb, wb, d, x0, w_start, max_steps=None):
-    """coupled_solve at the approach d (mm) from x0: (d_c, L_c, I, W, steps), x, f."""
+    """coupled_solve at the approach d (mm) from x0: (d_c, L_c, I, W, steps), x, f.
+    ``max_steps`` None is the default cap, passed as an argument as coupled_line
+    passes it: one compiled specialization for both (docs/performance.md, "Session
+    26")."""
     from gearcontact.ltca import coupled_slice_law as core
 
     m = h.size
@@ -253,8 +256,7 @@ def _solve_at_approach(h, g, nb, wb, d, x0, w_start, max_steps=None):
     ox = core.start_offset(0, m)
     buf[:m], buf[m:m + m * m], buf[ox:ox + m] = h, g.ravel(), x0
     args = (buf, 0, m, m - 2 * nb, LENGTH, B_ACROSS, E_PRIME, nb, wb, d, True, w_start)
-    res = core.coupled_solve(*args) if max_steps is None else \
-        core.coupled_solve(*args, max_steps)
+    res = core.coupled_solve(*args, core.MAX_STEPS if max_steps is None else max_steps)
     of = core._at(0, m, core._F)
     return res, buf[ox:ox + m].copy(), buf[of:of + m].copy()
 

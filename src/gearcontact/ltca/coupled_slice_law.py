@@ -477,9 +477,11 @@ def coupled_line(ease_mm, length_mm: float, load_n: float, b_max_per_mm: float,
         buf[m:m + m * m] = g.ravel()
     x = buf[_at(0, m, _X):_at(0, m, _X) + m]
     x[:] = h
+    # max_steps given, not omitted: one compiled specialization with the tests of the cap
+    # (tests/ltca/test_coupled_slice_law.py; docs/performance.md, "Session 26")
     d_c, l_c, area, _, steps = coupled_solve(buf, 0, m, n, float(length_mm), float(b_max_per_mm),
                                              float(e_prime_mpa), nb, wb, float(load_n),
-                                             False, 0.0)
+                                             False, 0.0, MAX_STEPS)
     if steps < 0:
         r = buf[_at(0, m, _R):_at(0, m, _R) + m]
         raise CheckFailed(f"coupled slice law: no convergence in {MAX_STEPS} Newton steps "
