@@ -35,7 +35,8 @@ from ..report.design_mean_point import (blank_check_json, blank_check_text, chec
 from ..validation import InputRangeError, check_range
 from .design_modes import calibrate, machine_settings, synthesize
 from .design_options import (TARGET_OPTIONS, check_options, check_relieved_blades,
-                             checked_flanks, kept_gear, path_angle_option,
+                             checked_flanks, checked_typed_gear, kept_gear,
+                             path_angle_option,
                              path_angle_options, renamed, synthesis_targets)
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
@@ -202,6 +203,10 @@ def check(args) -> None:
     check_relieved_blades(args, pair)
     # a typed gear kept (typed alone, or --keep-gear): its standard pinion is derived
     args.typed_gear = kept_gear(args, pair)
+    # checked here, before its pinion is derived: the pair's own check below runs on
+    # the blank's tables, not on it
+    args.typed_gear_check = checked_typed_gear(pair, args.typed_gear) \
+        if args.typed_gear else None
     if args.machine_settings and (pair.machine or pair.typed_gear):
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings; measured

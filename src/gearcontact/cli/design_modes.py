@@ -12,7 +12,7 @@ from ..errors import CheckFailed
 from ..geometry.formate import SIDES
 from ..geometry.pair import has_easeoff
 from ..validation import InputRangeError
-from .design_options import checked_targets, path_angle_option, renamed
+from .design_options import checked_targets, path_angle_option, renamed, underived_pinion
 from .outdir import final_path
 
 
@@ -89,7 +89,10 @@ def machine_settings(args, pair) -> int:
     gear = getattr(args, "typed_gear", None)
     if gear:    # the typed gear as typed, the standard pinion of that gear
         source = "[print.gear]" if pair.print_gear else "[machine.gear.*] / [blade.gear.*]"
-        cut = typed_gear_machine_pair(pair, gear, reliefs=reliefs, **crowning)
+        try:
+            cut = typed_gear_machine_pair(pair, gear, reliefs=reliefs, **crowning)
+        except InputRangeError as exc:      # a gear off its blank: named by its slip
+            raise underived_pinion(exc, getattr(args, "typed_gear_check", None)) from None
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
                 "pinion (gearcontact design --machine-settings;\nsigns: "
                 "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "

@@ -185,6 +185,12 @@ def blade_through_point(blade: BladeSettings, *, rho_mm: float, z_mm: float) -> 
     radius puts ``rho(l_ref) = rho_mm``."""
     from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
 
+    if not z_mm > 0.0:      # a point at or above the tip plane: no blade profile holds it
+        raise InputRangeError(f"{blade.where} reference point depth (mm)", z_mm,
+                              "> 0: behind the cutter's tip plane, where the blade cuts "
+                              "(the flank point it is placed through lies above the blade "
+                              "tips: settings that do not cut their blank's tooth)")
+
     def depth(l_ref):
         placed = dataclasses.replace(blade, profile_reference_mm=l_ref)
         return float(blade_profile(placed, l_ref)[1]) - z_mm
