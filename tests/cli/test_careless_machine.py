@@ -58,3 +58,42 @@ def test_a_misread_word_of_a_typed_gear_is_named(tmp_path, old, new, key):
     assert f"{key} = '{new.split(' = ')[1][1:-1]}'" in line, line
     assert "docs/machine_settings.md" in line
 
+
+F2_MACHINE = ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml"
+
+
+def _typed(tmp_path, old: str, new: str) -> Path:
+    """The F.2 pair typed as a summary sheet prints it, its first ``old`` typed ``new``."""
+    text = F2_MACHINE.read_text()
+    assert old in text, old
+    path = tmp_path / "typed.toml"
+    path.write_text(text.replace(old, new, 1))
+    return path
+
+
+def test_a_point_radius_typed_in_metres_is_named_with_the_edge_radius(tmp_path):
+    """The gear's inside blade point radius typed in m: before, the error named
+    ``edge_radius_mm = 0.4`` with the range ``[0, 0.05665]`` and not why (the range's
+    end is half the point radius); now the edge radius's range names the point radius
+    it comes from, as typed."""
+    code, _, err = run_console("design", "--pair", _typed(
+        tmp_path, "point_radius_mm = 113.3", "point_radius_mm = 0.1133"))
+    line = _error_line(err)
+    assert code == 2
+    assert "blade.gear.drive.edge_radius_mm = 0.4 " in line
+    assert "[0, 0.05665]" in line
+    assert "blade.gear.drive.point_radius_mm = 0.1133" in line
+
+
+def test_a_huge_point_radius_is_refused_by_its_range(tmp_path):
+    """A point radius of 1e300 mm (a wrong exponent): before, three numpy
+    RuntimeWarnings (overflow in square, dot; invalid value in divide) on stderr ahead
+    of the cutter-circle refusal; now the key's range, read from the file, nothing
+    computed: (0, 1000] mm, the radial distance's bound."""
+    code, _, err = run_console("design", "--pair", _typed(
+        tmp_path, "point_radius_mm = 113.3", "point_radius_mm = 1e300"))
+    line = _error_line(err)
+    assert code == 2
+    assert "RuntimeWarning" not in err, err
+    assert "blade.gear.drive.point_radius_mm = 1e+300" in line
+    assert "(0, 1000]" in line
