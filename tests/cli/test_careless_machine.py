@@ -97,3 +97,25 @@ def test_a_huge_point_radius_is_refused_by_its_range(tmp_path):
     assert "RuntimeWarning" not in err, err
     assert "blade.gear.drive.point_radius_mm = 1e+300" in line
     assert "(0, 1000]" in line
+
+
+def test_a_grid_in_nanometres_names_the_csv_column(tmp_path):
+    """A measured ease-off grid (`--target-flank`) whose `easeoff_um` column holds nm
+    (20000 where 20 um is meant) over s0003's active coast flank (u 0.423..2.897, v
+    27.705..43.913 mm, the range the grid check names): before, the error named the
+    library's fitted polynomial, "easeoff (coast) relief at the toe/root corner ...
+    reduce the crowning or move the relief centre" (advice for typed [easeoff] tables, no
+    word of the file); now the file and its column, the limit kept (5 % of the pinion
+    mean normal tooth thickness, 125.7 um on s0003)."""
+    rows = ["side,v_mm,u_mm,easeoff_um"]
+    for i, u in enumerate((0.423, 1.248, 2.072, 2.897)):
+        rows += [f"coast,{v},{u},{20000.0 * (i > 0)}" for v in (27.705, 33.108, 38.51, 43.913)]
+    grid = tmp_path / "grid_nm.csv"
+    grid.write_text("\n".join(rows) + "\n")
+    code, _, err = run_console("design", "--pair", "s0003", "--machine-settings",
+                               "--target-flank", grid)
+    line = _error_line(err)
+    assert code == 2
+    assert f"{grid}: coast easeoff_um" in line, line
+    assert "<= 125.7 um" in line and "um, not nm or mm" in line
+    assert "reduce the crowning" not in line
