@@ -119,3 +119,31 @@ def test_a_grid_in_nanometres_names_the_csv_column(tmp_path):
     assert f"{grid}: coast easeoff_um" in line, line
     assert "<= 125.7 um" in line and "um, not nm or mm" in line
     assert "reduce the crowning" not in line
+
+
+def test_a_file_saved_with_a_byte_order_mark_reads_as_without(tmp_path):
+    """A pair file saved by an editor that writes the UTF-8 byte order mark (Windows
+    Notepad, Excel's "CSV UTF-8"): before, "(TOML syntax) = 'Invalid statement (at line
+    1, column 1)'" for the pair and "header = '\\ufeffside,v_mm,u_mm,easeoff_um'" for a
+    grid CSV, though the text is the same; now the mark is read as the encoding's, not
+    the text's: the same design printed byte for byte as from the file without it."""
+    plain = tmp_path / "plain.toml"
+    plain.write_text(F2_MACHINE.read_text(), encoding="utf-8")
+    marked = tmp_path / "marked.toml"
+    marked.write_text(F2_MACHINE.read_text(), encoding="utf-8-sig")
+    assert marked.read_bytes().startswith(b"\xef\xbb\xbf")
+    code, out, err = run_console("design", "--pair", marked)
+    assert code == 0, err
+    assert out == run_console("design", "--pair", plain)[1].replace("plain", "marked")
+
+
+def test_a_bad_byte_after_a_byte_order_mark_is_named_at_its_offset(tmp_path):
+    """The mark dropped, a bad byte is still named at its offset in the file (5 here:
+    the 3 bytes of the mark, then "ab"), as an editor shows it."""
+    grid = tmp_path / "bad.csv"
+    grid.write_bytes(b"\xef\xbb\xbfab\xffcd")
+    code, _, err = run_console("design", "--pair", "s0003", "--machine-settings",
+                               "--target-flank", grid)
+    line = _error_line(err)
+    assert code == 2
+    assert f"{grid} (byte 5) = b'\\xffcd'" in line and "UTF-8 text" in line
