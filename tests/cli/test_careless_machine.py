@@ -147,3 +147,25 @@ def test_a_bad_byte_after_a_byte_order_mark_is_named_at_its_offset(tmp_path):
     line = _error_line(err)
     assert code == 2
     assert f"{grid} (byte 5) = b'\\xffcd'" in line and "UTF-8 text" in line
+
+
+@pytest.mark.parametrize("command", ["design", "tca"])
+def test_a_setting_in_radians_is_named_where_the_flank_work_fails(tmp_path, command):
+    """The gear drive flank's machine root angle typed in radians (1.2262 for 70.2532
+    deg) in the F.2 pair: the typed-settings check finds it (mean cone distance 227 mm
+    against 81.27: "likely machine.gear.drive.machine_root_angle_deg (with the unit
+    corrected ...)"), but not gross (gross is a hand, a spiral or pressure angle), so
+    it warns; the ease-off shape's flanks are built next, inside the same check, and
+    failed first. Before: exit 2 naming "blade.gear.drive.point_radius_mm = 113.3 ...
+    a cutter circle that reaches both face ends (...; mm, not inches)", a key typed
+    right, the warning never printed; now the slip, its value as typed, the failure
+    kept in the message."""
+    pair = _typed(tmp_path, "machine_root_angle_deg = 70.2532", "machine_root_angle_deg = 1.2262")
+    argv = ["--out", tmp_path / "out", "--no-figures"] if command == "tca" else []
+    code, _, err = run_console(command, "--pair", pair, *argv)
+    line = _error_line(err)
+    assert code == 2
+    assert line.startswith(f"gearcontact {command}: error: "
+                           "machine.gear.drive.machine_root_angle_deg = 1.2262 ")
+    assert "blade.gear.drive.point_radius_mm = 113.3" in line    # the failure, kept
+    assert "warning: the gear drive flank" in err

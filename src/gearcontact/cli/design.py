@@ -29,15 +29,15 @@ from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, load_pair,
                              without_easeoff)
-from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
+from ..report.design_mean_point import (blank_check_json, blank_check_text,
                                         easeoff_shape_json, easeoff_shape_text,
                                         mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
 from .design_modes import calibrate, machine_settings, synthesize
 from .design_options import (TARGET_OPTIONS, check_options, check_relieved_blades,
-                             checked_flanks, checked_typed_gear, kept_gear,
-                             path_angle_option,
+                             checked_flanks, kept_gear, path_angle_option,
                              path_angle_options, renamed, synthesis_targets)
+from .settings_slip import checked_blank_named, checked_typed_gear
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
 _PAIRED = (
@@ -216,7 +216,8 @@ def check(args) -> None:
     # typed settings against the blank tables, on the flanks measured at the blank's mean
     # points once (the table below the blank prints the same measurements)
     args.mean_points = measure_pair_mean_points(pair) if pair.machine else None
-    args.blank_check = checked_blank(pair, measured=args.mean_points, easeoff_generated=True)
+    args.blank_check = checked_blank_named(pair, measured=args.mean_points,
+                                           easeoff_generated=True)
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces

@@ -12,7 +12,8 @@ from ..errors import CheckFailed
 from ..geometry.formate import SIDES
 from ..geometry.pair import has_easeoff
 from ..validation import InputRangeError
-from .design_options import checked_targets, path_angle_option, renamed, underived_pinion
+from .design_options import checked_targets, path_angle_option, renamed
+from .settings_slip import slip_renamed
 from .outdir import final_path
 
 
@@ -92,7 +93,8 @@ def machine_settings(args, pair) -> int:
         try:
             cut = typed_gear_machine_pair(pair, gear, reliefs=reliefs, **crowning)
         except InputRangeError as exc:      # a gear off its blank: named by its slip
-            raise underived_pinion(exc, getattr(args, "typed_gear_check", None)) from None
+            raise slip_renamed(exc, getattr(args, "typed_gear_check", None),
+                               failed="the derivation of its standard pinion") from None
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
                 "pinion (gearcontact design --machine-settings;\nsigns: "
                 "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "

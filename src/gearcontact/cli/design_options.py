@@ -4,8 +4,6 @@ the error names the option the user typed."""
 
 from __future__ import annotations
 
-import sys
-
 from ..geometry.formate import SIDES
 from ..geometry.pair import has_easeoff
 from ..validation import InputRangeError, check_range
@@ -224,43 +222,3 @@ def kept_gear(args, pair) -> dict | None:
                                   "gear's standard pinion")
     return gear
 
-
-def checked_typed_gear(pair, gear: dict):
-    """The typed gear that ``design --machine-settings`` keeps (:func:`kept_gear`)
-    against the blank it is meant to cut, before its standard pinion is derived: the
-    typed-settings check of its two flanks (:func:`~gearcontact.geometry.blank_check.
-    check_flanks`; a ``[print.gear]`` against its page's printed blank), its warnings on
-    stderr, a gross mismatch an input error naming the likely key (exit 2); returns the
-    :class:`~gearcontact.geometry.blank_check.BlankCheck` (what
-    :func:`underived_pinion` names). The pair's own check cannot see this gear: its
-    tables are replaced before it runs (``design.check``), and a gear typed alone has no
-    pinion to check beside it (docs/machine_settings.md sec. 2 and 5)."""
-    from ..geometry.blank_check import check_flanks
-    from ..geometry.blank_statement import printed_stated_blank, stated_blank
-
-    printed = printed_stated_blank(pair)
-    got = check_flanks(tuple(gear[side] for side in SIDES), stated_blank(pair),
-                       member_stated=None if printed is None else {"gear": printed})
-    for line in got.warnings():
-        print(line, file=sys.stderr)
-    got.raise_if_gross()
-    return got
-
-
-def underived_pinion(exc: InputRangeError, check) -> InputRangeError:
-    """``exc``, raised while the standard pinion of a kept typed gear was derived,
-    renamed to the gear's likely slip where the gear's ``check`` (:func:`checked_typed_gear`)
-    found it off its blank: the derivation's own field (a derived pinion blade's or
-    envelope node's) is no key the user typed. ``exc`` unchanged for a gear that
-    agrees."""
-    bad = [f for f in check.flanks if not f.agrees] if check is not None else []
-    if not bad:
-        return exc
-    f = next((f for f in bad if f.slip), bad[0])
-    table = "print.gear" if f.printed else f"machine.gear.{f.side}"
-    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or None)
-    return InputRangeError(field, value, (
-        "settings whose gear cuts its blank's tooth: the typed gear does not agree with "
-        f"its blank (the warnings above; likely {f.slip or table}) and no standard pinion "
-        f"is derived from it ({exc.field} = {exc.value!r}: {exc.allowed}); "
-        "docs/machine_settings.md sec. 2 and 5"))

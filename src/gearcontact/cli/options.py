@@ -154,9 +154,10 @@ def check_machine_settings(args) -> None:
     into the run's timings as ``blank_check_s``), the pinion ease-off shapes as
     ``easeoff_shape`` (``easeoff_shape_s``, inside ``blank_check_s``). Nothing for a pair without machine
     settings or a cylindrical pair (``args.settings_check`` None)."""
-    from ..report.design_mean_point import blank_check_json, checked_blank, easeoff_shape_json
+    from ..report.design_mean_point import blank_check_json, easeoff_shape_json
+    from .settings_slip import checked_blank_named
 
-    got = args.settings_check = checked_blank(args.gear_pair)
+    got = args.settings_check = checked_blank_named(args.gear_pair)
     if got is None:
         return
     args.input_checks = {"blank_check": {**blank_check_json(got.blank),
