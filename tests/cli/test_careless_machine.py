@@ -169,3 +169,22 @@ def test_a_setting_in_radians_is_named_where_the_flank_work_fails(tmp_path, comm
                            "machine.gear.drive.machine_root_angle_deg = 1.2262 ")
     assert "blade.gear.drive.point_radius_mm = 113.3" in line    # the failure, kept
     assert "warning: the gear drive flank" in err
+
+
+@pytest.mark.parametrize("command", ["design", "tca"])
+def test_a_ratio_of_roll_typed_as_cradle_per_work_is_named(tmp_path, command):
+    """The pinion drive flank's ratio of roll typed as cradle / work (1 / 2.785714 =
+    0.358974; docs/machine_settings.md sec. 2: work / cradle): the check warns, naming
+    it ("likely machine.pinion.drive.ratio_of_roll (with the other ratio of roll, work /
+    cradle against cradle / work ...)"), not gross, the run goes on, and the flank build
+    fails. Before: exit 2 naming "pinion drive flank at (u, v) = (2.5426, 76.4937) mm =
+    'residual 4.713e+01' ... a node the generated envelope reaches"; now the key as
+    typed, the failure kept in the message."""
+    pair = _typed(tmp_path, "ratio_of_roll = 2.785714", "ratio_of_roll = 0.358974")
+    argv = ["--out", tmp_path / "out", "--no-figures"] if command == "tca" else []
+    code, _, err = run_console(command, "--pair", pair, *argv)
+    line = _error_line(err)
+    assert code == 2
+    assert line.startswith(f"gearcontact {command}: error: "
+                           "machine.pinion.drive.ratio_of_roll = 0.358974 "), line
+    assert "residual" in line                                      # the failure, kept

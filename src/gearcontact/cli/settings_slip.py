@@ -14,7 +14,7 @@ import sys
 from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 
-__all__ = ["slip_renamed", "checked_blank_named", "checked_typed_gear"]
+__all__ = ["slip_renamed", "checked_blank_named", "checked_typed_gear", "work_slip_renamed"]
 
 
 def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError:
@@ -34,6 +34,20 @@ def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError
         f"agree with its blank (the warning above; likely {f.slip or table}), and {failed} "
         f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
         "docs/machine_settings.md sec. 2"))
+
+
+def work_slip_renamed(exc, args, command: str):
+    """``exc`` (a :class:`~gearcontact.errors.BadInput`), an input error of
+    ``gearcontact command``'s work, renamed by
+    :func:`slip_renamed` where the pair's typed settings were checked before the work
+    (``args.settings_check`` of the pair commands, ``args.blank_check`` of ``design``)
+    and a flank did not agree (its warning printed then, the run gone on). An option's
+    error (a field ``--...``) is the option's, unchanged."""
+    check = getattr(args, "settings_check", None) or getattr(args, "blank_check", None)
+    blank = getattr(check, "blank", None)
+    if blank is None or not isinstance(exc, InputRangeError) or exc.field.startswith("--"):
+        return exc
+    return slip_renamed(exc, blank, failed=f"gearcontact {command}")
 
 
 def checked_blank_named(pair, **options):
