@@ -188,3 +188,23 @@ def test_a_ratio_of_roll_typed_as_cradle_per_work_is_named(tmp_path, command):
     assert line.startswith(f"gearcontact {command}: error: "
                            "machine.pinion.drive.ratio_of_roll = 0.358974 "), line
     assert "residual" in line                                      # the failure, kept
+
+
+@pytest.mark.parametrize("old, new, named", [
+    ("pinion = 14", "pinion = 0", "teeth.pinion = 0 is outside the allowed range: an integer >= 5"),
+    ("gear = 39", "gear = 10", "teeth.gear = 10 is outside the allowed range: an integer >= "
+                               "teeth.pinion = 14"),
+    ("offset_mm = 0.0", "offset_mm = -5.0", "axes.offset_mm = -5.0 "),
+    ("pinion_spiral_angle_deg = 35.0", "pinion_spiral_angle_deg = 0.0",
+     "design.pinion_spiral_angle_deg = 0.0 "),
+    ("clearance_factor = 0.125", "clearance_factor = 12.5", "design.clearance_factor = 12.5 "),
+])
+def test_a_blank_key_is_named_as_the_file_spells_it(tmp_path, old, new, named):
+    """The blank tables of a settings pair typed out of range: before, the key named as
+    the blank design's argument ("pinion_teeth = 0", "offset_mm = -5.0",
+    "clearance_factor = 12.5"), not as the file's table and key; now dotted, as every
+    other key of the file is named (the range unchanged)."""
+    code, _, err = run_console("design", "--pair", _typed(tmp_path, old, new))
+    line = _error_line(err)
+    assert code == 2
+    assert f"typed.toml: {named}" in line, line
