@@ -208,3 +208,17 @@ def test_a_blank_key_is_named_as_the_file_spells_it(tmp_path, old, new, named):
     line = _error_line(err)
     assert code == 2
     assert f"typed.toml: {named}" in line, line
+
+
+def test_an_easeoff_synthesis_of_a_pair_cut_from_settings_is_refused(tmp_path):
+    """`design --synthesize-easeoff` on a pair cut from machine settings (the F.2 sheet):
+    before, exit 1, "internal error, please report (AttributeError: 'RadialSheet' object
+    has no attribute 'exact')" in the path-angle reach check (a generated pinion is no
+    conjugate pinion with an ease-off); the tables it would print cannot be given beside
+    the settings either (``[easeoff.*]`` is refused with ``[machine.*]``). Now refused
+    before any flank, naming the option and the mode that synthesizes settings."""
+    code, _, err = run_console("design", "--pair", F2_MACHINE, "--synthesize-easeoff")
+    line = _error_line(err)
+    assert code == 2
+    assert "--synthesize-easeoff = True" in line
+    assert "--machine-settings --local-synthesis" in line
