@@ -222,3 +222,24 @@ def test_an_easeoff_synthesis_of_a_pair_cut_from_settings_is_refused(tmp_path):
     assert code == 2
     assert "--synthesize-easeoff = True" in line
     assert "--machine-settings --local-synthesis" in line
+
+
+@pytest.mark.parametrize("header, words", [
+    # before: "Print = 'table' ... one of the tables ['assembly', ..., 'teeth']", the
+    # print's table not among them
+    ("[Print.Gear]", ["Print = 'table'", "'print.gear'"]),
+    # before: the whole page's dict as the value (some 900 characters)
+    ("[print.gera]", ["print.gera = 'table'", "[print.gear] only"]),
+])
+def test_a_misspelt_print_table_is_named_shortly_with_the_right_spelling(
+        tmp_path, header, words):
+    text = PRINT_GEAR.read_text()
+    assert text.count("\n[print.gear]\n") == 1
+    path = tmp_path / "page.toml"
+    path.write_text(text.replace("\n[print.gear]\n", f"\n{header}\n"))
+    code, _, err = run_console("design", "--pair", path, "--machine-settings")
+    line = _error_line(err)
+    assert code == 2
+    for w in words:
+        assert w in line, line
+    assert len(line) < 600, line

@@ -338,11 +338,12 @@ def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> Ge
     pinion's are read into ``typed_gear`` (else refused, naming the pinion's tables)."""
     doc, printed = split_print(doc)
     if printed is not None:
-        teeth = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)["teeth"]["gear"]
+        teeth = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS,
+                             also=("print.gear",))["teeth"]["gear"]
         converted = print_gear_tables(printed, gear_teeth=teeth)
         doc = {**doc, **{kind: {**doc.get(kind, {}), **tables}
                          for kind, tables in converted.items()}}
-    s = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)
+    s = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS, also=("print.gear",))
     design = dict(s["design"])
     if ("gear_mean_cone_distance_mm" in design) == ("gear_mean_pitch_radius_mm" in design):
         raise InputRangeError("design.gear_mean_cone_distance_mm / design.gear_mean_pitch_radius_mm",
