@@ -243,3 +243,23 @@ def test_a_misspelt_print_table_is_named_shortly_with_the_right_spelling(
     for w in words:
         assert w in line, line
     assert len(line) < 600, line
+
+
+@pytest.mark.parametrize("old, new, named", [
+    # before: "print.gear.cutter_diameter_in = 9.0 ... a value whose conversion
+    # (blade.gear.drive.point_radius_mm = -6.35) lies in (0, 1000]": the diameter, typed
+    # right, named for the point width
+    ("point_width_finish_in = 0.0900", "point_width_finish_in = 9.5",
+     "print.gear.point_width_finish_in = 9.5 is outside the allowed range: [0, 9)"),
+    # before: "print.gear.work_test_roll = '29D 57M' ... -29.9450 deg within half a
+    # minute": the test roll, typed right, named for the ratio's sign
+    ("ratio_nc_75 = 0.545665", "ratio_nc_75 = -0.545665",
+     "print.gear.ratio_nc_75 = -0.545665 is outside the allowed range: [0, inf)"),
+])
+def test_a_print_number_out_of_range_is_named_not_the_one_beside_it(tmp_path, old, new,
+                                                                       named):
+    code, _, err = run_console("design", "--pair", _misread(tmp_path, old, new),
+                               "--machine-settings")
+    line = _error_line(err)
+    assert code == 2
+    assert named in line, line
