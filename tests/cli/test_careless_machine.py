@@ -263,3 +263,31 @@ def test_a_print_number_out_of_range_is_named_not_the_one_beside_it(tmp_path, ol
     line = _error_line(err)
     assert code == 2
     assert named in line, line
+
+
+def test_a_rerun_keeps_the_settings_file_the_user_edited(tmp_path):
+    """docs/machine_settings.md sec. 5: `design --machine-settings --out DIR` writes
+    the settings "as a TOML the user can keep and edit". Edited in place (a blade angle
+    changed) and the same command run again: before, exit 0, the edit silently replaced
+    by the standard settings (the directory held "a previous run of the same command");
+    now refused before any work, naming the file and why (its SHA-256 is no longer the
+    one run.json lists), the edit kept byte for byte; --force replaces it. An unedited
+    re-run still replaces its files (byte-identical: identical runs)."""
+    out = tmp_path / "ms"
+    argv = ["design", "--pair", ROOT / "examples" / "iso23509_f2_spiral_bevel.toml",
+            "--machine-settings", "--out", out]
+    assert run_console(*argv)[0] == 0
+    written = out / "machine_settings.toml"
+    first = written.read_bytes()
+    assert run_console(*argv)[0] == 0
+    assert written.read_bytes() == first
+    edited = first.replace(b"blade_angle_deg = 20.0", b"blade_angle_deg = 21.0", 1)
+    assert edited != first
+    written.write_bytes(edited)
+    code, _, err = run_console(*argv)
+    line = _error_line(err)
+    assert code == 2
+    assert "'machine_settings.toml'" in line and "run.json" in line and "--force" in line
+    assert written.read_bytes() == edited
+    assert run_console(*argv, "--force")[0] == 0
+    assert written.read_bytes() == first
