@@ -149,45 +149,41 @@ def test_a_bad_byte_after_a_byte_order_mark_is_named_at_its_offset(tmp_path):
     assert f"{grid} (byte 5) = b'\\xffcd'" in line and "UTF-8 text" in line
 
 
-@pytest.mark.parametrize("command", ["design", "tca"])
-def test_a_setting_in_radians_is_named_where_the_flank_work_fails(tmp_path, command):
-    """The gear drive flank's machine root angle typed in radians (1.2262 for 70.2532
-    deg) in the F.2 pair: the typed-settings check finds it (mean cone distance 227 mm
-    against 81.27: "likely machine.gear.drive.machine_root_angle_deg (with the unit
-    corrected ...)"), but not gross (gross is a hand, a spiral or pressure angle), so
-    it warns; the ease-off shape's flanks are built next, inside the same check, and
-    failed first. Before: exit 2 naming "blade.gear.drive.point_radius_mm = 113.3 ...
-    a cutter circle that reaches both face ends (...; mm, not inches)", a key typed
-    right, the warning never printed; now the slip, its value as typed, the failure
-    kept in the message."""
-    pair = _typed(tmp_path, "machine_root_angle_deg = 70.2532", "machine_root_angle_deg = 1.2262")
-    argv = ["--out", tmp_path / "out", "--no-figures"] if command == "tca" else []
-    code, _, err = run_console(command, "--pair", pair, *argv)
-    line = _error_line(err)
-    assert code == 2
-    assert line.startswith(f"gearcontact {command}: error: "
-                           "machine.gear.drive.machine_root_angle_deg = 1.2262 ")
-    assert "blade.gear.drive.point_radius_mm = 113.3" in line    # the failure, kept
-    assert "warning: the gear drive flank" in err
+SLIPS_THE_WORK_MEETS = [
+    # the gear drive flank's machine root angle in radians (1.2262 for 70.2532 deg): the
+    # check finds it (mean cone distance 227 mm against 81.27: "likely
+    # machine.gear.drive.machine_root_angle_deg (with the unit corrected ...)"), not gross
+    # (gross is a hand, a spiral or pressure angle), so it warns; the ease-off shape's
+    # flanks are built next, inside the same check, and failed first. Before: "blade.gear.
+    # drive.point_radius_mm = 113.3 ... a cutter circle that reaches both face ends (...;
+    # mm, not inches)", a key typed right, the warning never printed.
+    ("machine_root_angle_deg = 70.2532", "machine_root_angle_deg = 1.2262",
+     "machine.gear.drive.machine_root_angle_deg = 1.2262 ",
+     "blade.gear.drive.point_radius_mm = 113.3"),
+    # the pinion drive flank's ratio of roll typed as cradle / work (1 / 2.785714; sec. 2:
+    # work / cradle): the check warns naming it, the run goes on, and the flank build
+    # fails. Before: "pinion drive flank at (u, v) = (2.5426, 76.4937) mm = 'residual
+    # 4.713e+01' ... a node the generated envelope reaches".
+    ("ratio_of_roll = 2.785714", "ratio_of_roll = 0.358974",
+     "machine.pinion.drive.ratio_of_roll = 0.358974 ", "residual"),
+]
 
 
 @pytest.mark.parametrize("command", ["design", "tca"])
-def test_a_ratio_of_roll_typed_as_cradle_per_work_is_named(tmp_path, command):
-    """The pinion drive flank's ratio of roll typed as cradle / work (1 / 2.785714 =
-    0.358974; docs/machine_settings.md sec. 2: work / cradle): the check warns, naming
-    it ("likely machine.pinion.drive.ratio_of_roll (with the other ratio of roll, work /
-    cradle against cradle / work ...)"), not gross, the run goes on, and the flank build
-    fails. Before: exit 2 naming "pinion drive flank at (u, v) = (2.5426, 76.4937) mm =
-    'residual 4.713e+01' ... a node the generated envelope reaches"; now the key as
-    typed, the failure kept in the message."""
-    pair = _typed(tmp_path, "ratio_of_roll = 2.785714", "ratio_of_roll = 0.358974")
+@pytest.mark.parametrize("old, new, named, failure", SLIPS_THE_WORK_MEETS,
+                         ids=["root-angle-in-radians", "roll-cradle-per-work"])
+def test_a_slip_the_check_warned_about_is_named_where_the_work_fails(
+        tmp_path, command, old, new, named, failure):
+    """A typed setting off its blank that the check warns about (not gross) and the
+    flank work after it fails on: the error names the check's likely slip, its value
+    as typed, the failure kept in the message (cli.settings_slip)."""
     argv = ["--out", tmp_path / "out", "--no-figures"] if command == "tca" else []
-    code, _, err = run_console(command, "--pair", pair, *argv)
+    code, _, err = run_console(command, "--pair", _typed(tmp_path, old, new), *argv)
     line = _error_line(err)
     assert code == 2
-    assert line.startswith(f"gearcontact {command}: error: "
-                           "machine.pinion.drive.ratio_of_roll = 0.358974 "), line
-    assert "residual" in line                                      # the failure, kept
+    assert line.startswith(f"gearcontact {command}: error: {named}"), line
+    assert failure in line
+    assert "warning: the " in err
 
 
 @pytest.mark.parametrize("old, new, named", [
