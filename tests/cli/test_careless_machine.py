@@ -287,3 +287,17 @@ def test_a_rerun_keeps_the_settings_file_the_user_edited(tmp_path):
     assert written.read_bytes() == edited
     assert run_console(*argv, "--force")[0] == 0
     assert written.read_bytes() == first
+
+
+def test_a_target_flank_of_neither_format_names_both_headers(tmp_path):
+    """`--target-flank` given the pair TOML (the wrong file): before, its first line
+    refused against the ease-off grid's header alone, "side,v_mm,u_mm,easeoff_um", though
+    the option reads measured deviations in machine coordinates too; now both headers
+    are named."""
+    code, _, err = run_console("design", "--pair", "s0003", "--machine-settings",
+                               "--target-flank", F2_MACHINE)
+    line = _error_line(err)
+    assert code == 2
+    assert f"{F2_MACHINE}: header = " in line
+    assert "side,v_mm,u_mm,easeoff_um" in line
+    assert "member,flank,L_mm,R_mm,deviation_um" in line

@@ -58,6 +58,14 @@ def check_options(args, pair) -> None:
             args.easeoff_grid, args.gear_targets = read_member_targets(args.target_flank,
                                                                        pair=pair)
         except InputRangeError as exc:
+            if exc.field.endswith(": header"):  # neither format's: name both
+                from ..geometry.easeoff import GRID_COLUMNS
+                from ..geometry.measuring_grid import MEASURED_COLUMNS
+
+                raise InputRangeError(exc.field, exc.value, (
+                    f"a header {','.join(GRID_COLUMNS)} (a measured ease-off grid) or "
+                    f"{','.join(MEASURED_COLUMNS)} (deviations in machine coordinates, "
+                    "docs/export.md)")) from None
             if exc.field != "target flank":     # a field inside the file: named as it is
                 raise
             raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
