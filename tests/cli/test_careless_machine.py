@@ -301,3 +301,19 @@ def test_a_target_flank_of_neither_format_names_both_headers(tmp_path):
     assert f"{F2_MACHINE}: header = " in line
     assert "side,v_mm,u_mm,easeoff_um" in line
     assert "member,flank,L_mm,R_mm,deviation_um" in line
+
+
+@pytest.mark.parametrize("torques", [["64.5", "64.5"], ["64.5", "64.500001"]])
+def test_a_torque_given_twice_is_refused(tmp_path, torques):
+    """`analyze --torques 64.5 64.5` (on the F.2 settings pair): before, exit 0, the LTCA
+    solved twice, ltca_torques.csv with the row twice and one pressure_64.5Nm.csv (the
+    second run's; a torque equal to 6 significant digits, 64.500001, wrote the same
+    file name over the first's). Now refused before any work, naming the option and the
+    repeated torque."""
+    code, _, err = run_console("analyze", "--pair", F2_MACHINE, "--torques", *torques,
+                               "--out", tmp_path / "a")
+    line = _error_line(err)
+    assert code == 2
+    assert line.startswith("gearcontact analyze: error: --torques = ")
+    assert "each torque once" in line and "pressure_64.5Nm.csv" in line
+    assert not (tmp_path / "a").exists()
