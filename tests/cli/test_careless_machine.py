@@ -317,3 +317,17 @@ def test_a_torque_given_twice_is_refused(tmp_path, torques):
     assert line.startswith("gearcontact analyze: error: --torques = ")
     assert "each torque once" in line and "pressure_64.5Nm.csv" in line
     assert not (tmp_path / "a").exists()
+
+
+def test_an_empty_out_is_refused_not_the_working_directory(tmp_path):
+    """`design --machine-settings --out ""` (an unset shell variable): before, exit 0 and
+    machine_settings.toml written into the working directory, outside the
+    output-directory policy (no run.json, beside foreign files); now the policy's
+    refusal of an empty path, nothing written."""
+    code, _, err = run_console("design", "--pair", ROOT / "examples" /
+                               "iso23509_f2_spiral_bevel.toml", "--machine-settings",
+                               "--out", "", cwd=tmp_path)
+    line = _error_line(err)
+    assert code == 2
+    assert "--out = ''" in line and "empty path given" in line
+    assert list(tmp_path.iterdir()) == []

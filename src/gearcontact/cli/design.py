@@ -253,8 +253,10 @@ def check(args) -> None:
             raise InputRangeError("--out", None, "an output directory for calibrated.toml")
         if args.tip_margin is not None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
+    # an --out given, even empty, goes through the output-directory policy (an empty
+    # path refused there, not taken for the working directory)
     args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
-                                                and args.out))
+                                                and args.out is not None))
 
 
 def _check_generation(args, pair) -> dict:
