@@ -37,7 +37,6 @@ from .design_modes import calibrate, machine_settings, synthesize
 from .design_options import (TARGET_OPTIONS, check_options, check_relieved_blades,
                              checked_flanks, kept_gear, path_angle_option,
                              path_angle_options, renamed, synthesis_targets)
-from .settings_slip import checked_blank_named, checked_typed_gear
 
 #: (label, BlankDesign attribute, unit) rows of the readable table, pinion | gear pairs.
 _PAIRED = (
@@ -205,8 +204,10 @@ def check(args) -> None:
     args.typed_gear = kept_gear(args, pair)
     # checked here, before its pinion is derived: the pair's own check below runs on
     # the blank's tables, not on it
-    args.typed_gear_check = checked_typed_gear(pair, args.typed_gear) \
-        if args.typed_gear else None
+    if args.typed_gear:
+        from .settings_slip import checked_typed_gear
+
+        args.typed_gear_check = checked_typed_gear(pair, args.typed_gear)
     if args.machine_settings and (pair.machine or pair.typed_gear):
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings; measured
@@ -216,8 +217,12 @@ def check(args) -> None:
     # typed settings against the blank tables, on the flanks measured at the blank's mean
     # points once (the table below the blank prints the same measurements)
     args.mean_points = measure_pair_mean_points(pair) if pair.machine else None
-    args.blank_check = checked_blank_named(pair, measured=args.mean_points,
-                                           easeoff_generated=True)
+    args.blank_check = None
+    if pair.machine:
+        from .settings_slip import checked_blank_named
+
+        args.blank_check = checked_blank_named(pair, measured=args.mean_points,
+                                               easeoff_generated=True)
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces

@@ -13,7 +13,6 @@ from ..geometry.formate import SIDES
 from ..geometry.pair import has_easeoff
 from ..validation import InputRangeError
 from .design_options import checked_targets, path_angle_option, renamed
-from .settings_slip import slip_renamed
 from .outdir import final_path
 
 
@@ -93,6 +92,8 @@ def machine_settings(args, pair) -> int:
         try:
             cut = typed_gear_machine_pair(pair, gear, reliefs=reliefs, **crowning)
         except InputRangeError as exc:      # a gear off its blank: named by its slip
+            from .settings_slip import slip_renamed
+
             raise slip_renamed(exc, getattr(args, "typed_gear_check", None),
                                failed="the derivation of its standard pinion") from None
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
