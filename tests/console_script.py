@@ -12,12 +12,13 @@ import pytest
 ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
 
 
-def run_console(*argv, timeout: float = 300.0):
-    """Run ``gearcontact *argv``; (return code, stdout, stderr). Skips the test when the
-    console script is not on PATH (``pip install -e .``)."""
+def run_console(*argv, timeout: float = 300.0, cwd=None):
+    """Run ``gearcontact *argv`` (in the directory ``cwd``, default this process's);
+    (return code, stdout, stderr). Skips the test when the console script is not on
+    PATH (``pip install -e .``)."""
     exe = shutil.which("gearcontact")
     if exe is None:
         pytest.skip("the gearcontact console script is not on PATH (pip install -e .)")
     p = subprocess.run([exe, *map(str, argv)], capture_output=True, text=True, env=ENV,
-                       timeout=timeout)
+                       timeout=timeout, cwd=cwd)
     return p.returncode, p.stdout, p.stderr

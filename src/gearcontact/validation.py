@@ -111,18 +111,28 @@ def check_array_finite(field: str, values) -> np.ndarray:
     return arr
 
 
+#: The UTF-8 byte order mark.
+_BOM = b"\xef\xbb\xbf"
+
+
 def read_text_file(path: Path, *, field: str, what: str) -> str:
     """The UTF-8 text of ``path``; a bad byte or an unreadable file is an
-    :class:`InputRangeError` naming the file (and the byte) or ``field``.
+    :class:`InputRangeError` naming the file (and the byte) or ``field``. A leading
+    byte order mark (what Windows editors and Excel's "CSV UTF-8" write) is the
+    encoding's, not the text's: it is dropped.
 
     ``what`` describes the expected file in the message (e.g. ``"a TOML file"``).
     """
     try:
-        return Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputRangeError(f"{path} (byte {exc.start})",
-                              exc.object[exc.start:exc.start + 4],
-                              f"UTF-8 text ({what})") from None
+        data = Path(path).read_bytes()
     except OSError as exc:
         raise InputRangeError(field, str(path), f"a readable file: {what} "
                                                 f"({exc.strerror})") from None
+    mark = len(_BOM) if data.startswith(_BOM) else 0
+    try:
+        text = data[mark:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        at = mark + exc.start       # the file's byte, the mark counted
+        raise InputRangeError(f"{path} (byte {at})", data[at:at + 4],
+                              f"UTF-8 text ({what})") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")     # as read_text's newlines

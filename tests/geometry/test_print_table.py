@@ -350,8 +350,10 @@ CARELESS = [
     # inches and millimetres: the print's lengths are inches
     ({"radial_in": 104.3432}, r"print\.gear\.radial_in = 104\.3432.*machine\.gear\.drive\."
                               r"radial_distance_mm = 2650\.31.*typed in mm\?"),
-    ({"cutter_diameter_in": 228.6}, r"print\.gear\.cutter_diameter_in = 228\.6.*cutter\."
-                                    r"radius_mm = 114\.3.*typed in mm\?"),
+    # (the blade point radius it gives, 2902 mm, is refused by the blade's range (0, 1000]
+    # mm before the pair's [cutter] is compared: the radial distance's form, above)
+    ({"cutter_diameter_in": 228.6}, r"print\.gear\.cutter_diameter_in = 228\.6.*blade\.gear\."
+                                    r"drive\.point_radius_mm = 2902\.077.*typed in mm\?"),
     ({"point_width_finish_in": 2.286}, r"print\.gear\.point_width_finish_in = 2\.286.*"
                                        r"typed in mm\?"),
     ({"gear_crown_to_crossing_point_in": 32.8422},

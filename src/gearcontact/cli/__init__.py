@@ -174,16 +174,31 @@ def _run(args, argv: list[str], name: str) -> int:
         return _run_command(args, argv, name)
 
 
+def _work(args, name: str, fn=None) -> int:
+    """The command's work (``fn``, default ``args.func``: its checks too); an input
+    error it finds in typed machine settings the check before it warned about is named
+    by that check's likely slip (:mod:`.settings_slip`)."""
+    try:
+        return int((fn or args.func)(args) or 0)
+    except BadInput as exc:
+        from .settings_slip import work_slip_renamed
+
+        renamed = work_slip_renamed(exc, args, name)
+        if renamed is exc:
+            raise
+        raise renamed from exc
+
+
 def _run_command(args, argv: list[str], name: str) -> int:
     latch = args.sigint_latch
     check = getattr(args, "check", None)
     if check is not None:
-        check(args)                 # cheap validation before any work or output
+        _work(args, name, check)    # cheap validation before any work or output
     from .warm_up import note_cold_cache
     note_cold_cache(args.command, getattr(getattr(args, "gear_pair", None), "kind", None))
     latch.check()
     if not getattr(args, "writes_files", False):
-        code = int(args.func(args) or 0)
+        code = _work(args, name)
         latch.check()
         return code
     from .outdir import RunDirectory
@@ -194,7 +209,7 @@ def _run_command(args, argv: list[str], name: str) -> int:
         args.run, args.out = run, run.work
         run.input_checks.update(getattr(args, "input_checks", {}))
         run.timings_s.update(getattr(args, "input_timings_s", {}))
-        run.exit_code = int(args.func(args) or 0)
+        run.exit_code = _work(args, name)
         latch.check()           # a swallowed Ctrl-C still discards the run
         if run.exit_code in (EXIT_INTERNAL, EXIT_BAD_INPUT):
             run.discard()       # a refused run keeps nothing; the previous run stays

@@ -21,6 +21,7 @@ from .options import (
     case_warnings,
     check_count,
     check_cylindrical_torque,
+    check_distinct_torques,
     check_pair_arguments,
     check_torque,
     lte_warnings,
@@ -63,6 +64,7 @@ def check(args) -> None:
         raise InputRangeError("--torques", args.torques, f"1 to {MAX_TORQUES} torques")
     for t in args.torques:
         check_torque("--torques (N·m)", t, args.gear_pair)
+    check_distinct_torques("--torques", args.torques)
     check_torque("--lte-torque (N·m)", args.lte_torque, args.gear_pair)
     if args.lte_phases is None:
         args.lte_phases = args.phases

@@ -29,7 +29,7 @@ from ..geometry.gear_generation import generation_of, generation_text
 from ..geometry.generation import check_generation, reverse_side_contact_ratio
 from ..geometry.pair import (BEVEL, CYLINDRICAL, PRESETS, load_pair,
                              without_easeoff)
-from ..report.design_mean_point import (blank_check_json, blank_check_text, checked_blank,
+from ..report.design_mean_point import (blank_check_json, blank_check_text,
                                         easeoff_shape_json, easeoff_shape_text,
                                         mean_point_json, mean_point_table)
 from ..validation import InputRangeError, check_range
@@ -202,6 +202,12 @@ def check(args) -> None:
     check_relieved_blades(args, pair)
     # a typed gear kept (typed alone, or --keep-gear): its standard pinion is derived
     args.typed_gear = kept_gear(args, pair)
+    # checked here, before its pinion is derived: the pair's own check below runs on
+    # the blank's tables, not on it
+    if args.typed_gear:
+        from .settings_slip import checked_typed_gear
+
+        args.typed_gear_check = checked_typed_gear(pair, args.typed_gear)
     if args.machine_settings and (pair.machine or pair.typed_gear):
         # the settings are those of the blank (the pair's own tables are replaced): its
         # default gear, formate or generated, decides the gear's settings; measured
@@ -211,7 +217,12 @@ def check(args) -> None:
     # typed settings against the blank tables, on the flanks measured at the blank's mean
     # points once (the table below the blank prints the same measurements)
     args.mean_points = measure_pair_mean_points(pair) if pair.machine else None
-    args.blank_check = checked_blank(pair, measured=args.mean_points, easeoff_generated=True)
+    args.blank_check = None
+    if pair.machine:
+        from .settings_slip import checked_blank_named
+
+        args.blank_check = checked_blank_named(pair, measured=args.mean_points,
+                                               easeoff_generated=True)
     if args.synthesize_easeoff and pair.easeoff_tables:
         # the synthesis makes both sides' tables afresh from the conjugate pinion: the
         # checks below see the bearing it will make, not the tables it replaces
@@ -247,8 +258,10 @@ def check(args) -> None:
             raise InputRangeError("--out", None, "an output directory for calibrated.toml")
         if args.tip_margin is not None:
             check_range("--tip-margin (mm)", args.tip_margin, 0.01, 0.5)
+    # an --out given, even empty, goes through the output-directory policy (an empty
+    # path refused there, not taken for the working directory)
     args.writes_files = bool(args.calibrate or ((args.synthesize_easeoff or args.machine_settings)
-                                                and args.out))
+                                                and args.out is not None))
 
 
 def _check_generation(args, pair) -> dict:

@@ -89,7 +89,13 @@ def machine_settings(args, pair) -> int:
     gear = getattr(args, "typed_gear", None)
     if gear:    # the typed gear as typed, the standard pinion of that gear
         source = "[print.gear]" if pair.print_gear else "[machine.gear.*] / [blade.gear.*]"
-        cut, fits = typed_gear_cut(pair, gear, reliefs=reliefs, **crowning)
+        try:
+            cut, fits = typed_gear_cut(pair, gear, reliefs=reliefs, **crowning)
+        except InputRangeError as exc:      # a gear off its blank: named by its slip
+            from .settings_slip import slip_renamed
+
+            raise slip_renamed(exc, getattr(args, "typed_gear_check", None),
+                               failed="the derivation of its standard pinion") from None
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
                 "pinion (gearcontact design --machine-settings;\nsigns: "
                 "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "
@@ -142,6 +148,22 @@ def local_synthesis(args, pair) -> int:
     return 0
 
 
+def grid_relief_named(exc: InputRangeError, target_flank) -> InputRangeError:
+    """``exc`` of :func:`~gearcontact.geometry.easeoff.apply_easeoff` (the largest relief
+    over a side beyond the ease-off limit) renamed to the ``--target-flank`` CSV's column
+    where the relief is the file's grid: the library names its ease-off and advises on
+    typed tables; the user typed the file (a column in nm, or in mm, is the likely slip).
+    Any other error unchanged."""
+    head, _, at = exc.field.partition(" relief at the ")
+    side = head.removeprefix("easeoff (").removesuffix(")")
+    if target_flank is None or not at or side not in SIDES:
+        return exc
+    where = at[at.index("("):] if "(" in at else ""
+    return InputRangeError(f"{target_flank}: {side} easeoff_um {where}".strip(), exc.value,
+                           exc.allowed.split(";")[0] + "; the grid's deviations in um, not "
+                           "nm or mm)")
+
+
 def easeoff_settings(args, pair) -> int:
     from ..geometry.easeoff_settings import easeoff_machine_pair
     from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
@@ -180,9 +202,12 @@ def easeoff_settings(args, pair) -> int:
     if "gear" in measured:       # measured gear rows: the gear corrected
         gear = gear_correction(pair, measured["gear"], objective=args.fit or "rms",
                                seeds=gear_seeds(own or pair, generation), where=where)
-    fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
-                               objective=args.fit or "rms", where=where,
-                               reliefs=getattr(args, "reliefs", None))
+    try:
+        fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
+                                   objective=args.fit or "rms", where=where,
+                                   reliefs=getattr(args, "reliefs", None))
+    except InputRangeError as exc:
+        raise grid_relief_named(exc, args.target_flank) from None
     if gear is not None:
         fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
     refuse_gap(args, pair, fit.pair)

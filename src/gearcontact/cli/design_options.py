@@ -15,23 +15,19 @@ def check_relieved_blades(args, pair) -> None:
     fit keep each relief as given on its blade,
     :func:`~gearcontact.geometry.relief_setup.relieved_setup`),
     refused where the kink would be dropped or smoothed: ``--machine-settings
-    --local-synthesis`` (the synthesized settings are solved for smooth blades) and
-    ``--synthesize-easeoff`` (an ease-off laid on the relieved pinion,
-    :func:`~gearcontact.geometry.flank.with_easeoff`, is resampled across the kink)."""
+    --local-synthesis`` (the synthesized settings are solved for smooth blades).
+    ``--synthesize-easeoff`` refuses every pair cut from settings (:func:`check_options`)."""
     from ..geometry.machine import relieved_blade_keys
     from ..geometry.relief_setup import blade_reliefs
 
     args.reliefs = blade_reliefs(pair.machine)
-    option = ("--machine-settings --local-synthesis" if args.local_synthesis else
-              "--synthesize-easeoff" if args.synthesize_easeoff else None)
     kinks = relieved_blade_keys(pair.machine)
-    if option is None or not kinks:
+    if not args.local_synthesis or not kinks:
         return
-    why = ("the synthesized settings are solved for smooth blades (--machine-settings "
-           "without it keeps the relief)" if args.local_synthesis else
-           "an ease-off laid on the relieved pinion would smooth its kink")
-    raise InputRangeError(*kinks[0], f"0 with {option}: {why}; analyze, ltca, bending and "
-                          "export flanks take the relieved pair as it is")
+    raise InputRangeError(*kinks[0], "0 with --machine-settings --local-synthesis: the "
+                          "synthesized settings are solved for smooth blades (--machine-"
+                          "settings without it keeps the relief); analyze, ltca, bending "
+                          "and export flanks take the relieved pair as it is")
 
 
 def check_options(args, pair) -> None:
@@ -45,6 +41,12 @@ def check_options(args, pair) -> None:
     if args.json and modes:
         raise InputRangeError("--json", True, f"not given with {modes[0]} (it prints TOML "
                                               "and tables; --json prints the blank design)")
+    if args.synthesize_easeoff and (pair.machine or pair.typed_gear):
+        raise InputRangeError("--synthesize-easeoff", True, (
+            "a pair without [machine.*] / [blade.*] tables: this pair's flanks are cut "
+            "from its settings, and [easeoff.*] tables are refused beside them; the "
+            "pinion settings for a TE0 and bearing target come from --machine-settings "
+            "--local-synthesis"))
     if args.target_flank is not None:
         if not args.machine_settings:
             raise InputRangeError("--target-flank", args.target_flank, "given only with "
@@ -56,6 +58,14 @@ def check_options(args, pair) -> None:
             args.easeoff_grid, args.gear_targets = read_member_targets(args.target_flank,
                                                                        pair=pair)
         except InputRangeError as exc:
+            if exc.field.endswith(": header"):  # neither format's: name both
+                from ..geometry.easeoff import GRID_COLUMNS
+                from ..geometry.measuring_grid import MEASURED_COLUMNS
+
+                raise InputRangeError(exc.field, exc.value, (
+                    f"a header {','.join(GRID_COLUMNS)} (a measured ease-off grid) or "
+                    f"{','.join(MEASURED_COLUMNS)} (deviations in machine coordinates, "
+                    "docs/export.md)")) from None
             if exc.field != "target flank":     # a field inside the file: named as it is
                 raise
             raise InputRangeError("--target-flank", exc.value, exc.allowed) from None
@@ -221,3 +231,4 @@ def kept_gear(args, pair) -> dict | None:
                                   "not one); --machine-settings without it writes that "
                                   "gear's standard pinion")
     return gear
+

@@ -13,7 +13,7 @@ from ..validation import InputRangeError, check_positive
 from .outdir import add_out_argument, final_path
 
 __all__ = ["add_pair_arguments", "check_pair_arguments", "check_count", "warn",
-           "check_machine_settings",
+           "check_machine_settings", "check_distinct_torques",
            "case_warnings", "lte_warnings", "run_timings", "check_torque",
            "check_cylindrical_torque",
            "MAX_PHASES", "MAX_CELLS", "MAX_PAIRS", "torque_limit_nm", "torque_floor_nm",
@@ -155,9 +155,10 @@ def check_machine_settings(args) -> None:
     into the run's timings as ``blank_check_s``), the pinion ease-off shapes as
     ``easeoff_shape`` (``easeoff_shape_s``, inside ``blank_check_s``). Nothing for a pair without machine
     settings or a cylindrical pair (``args.settings_check`` None)."""
-    from ..report.design_mean_point import blank_check_json, checked_blank, easeoff_shape_json
+    from ..report.design_mean_point import blank_check_json, easeoff_shape_json
+    from .settings_slip import checked_blank_named
 
-    got = args.settings_check = checked_blank(args.gear_pair)
+    got = args.settings_check = checked_blank_named(args.gear_pair)
     if got is None:
         return
     args.input_checks = {"blank_check": {**blank_check_json(got.blank),
@@ -166,6 +167,20 @@ def check_machine_settings(args) -> None:
     if got.easeoff is not None:
         args.input_checks["easeoff_shape"] = easeoff_shape_json(got.easeoff)
         args.input_timings_s["easeoff_shape_s"] = got.easeoff.seconds
+
+
+def check_distinct_torques(option: str, torques) -> None:
+    """Each torque of ``option`` once, to the 6 significant digits that name its result
+    files (``pressure_64.5Nm.csv``): a repeated one would be solved again and write the
+    same file over the first's."""
+    seen: dict[str, float] = {}
+    for t in torques:
+        name = f"{t:g}"
+        if name in seen:
+            raise InputRangeError(option, list(torques), f"each torque once, to 6 significant "
+                                  f"digits ({seen[name]!r} and {t!r} both name "
+                                  f"pressure_{name}Nm.csv)")
+        seen[name] = t
 
 
 def torque_limit_nm(pair, lever_mm: float | None = None) -> float:

@@ -11,8 +11,10 @@ One policy, applied by :func:`gearcontact.cli.main` around each such command:
    command). Anything else (files gearcontact did not write, a run of another command,
    a directory named like an output file) makes the command refuse before any work,
    unless ``--force`` is given: foreign entries (and another command's files) then stay
-   untouched and same-named files are replaced. A refused directory is left as it was
-   (no lock file remains).
+   untouched and same-named files are replaced. A file of the previous run whose
+   content is no longer the SHA-256 its ``run.json`` lists (edited since, as a written
+   settings TOML is meant to be) is not the run's to replace either: refused the same
+   way. A refused directory is left as it was (no lock file remains).
 3. **Atomic files, no stale files.** The command writes into a hidden staging directory
    inside ``--out``; when it finishes, every file is moved into place with
    :func:`os.replace` (atomic per file), the previous run's files that this run did not
@@ -147,17 +149,26 @@ def _tree(root: Path) -> tuple[list[str], list[str]]:
     return sorted(files), sorted(dirs)
 
 
-def _previous_files(root: Path) -> list[str] | None:
-    """Files listed by the previous run's manifest, None when there is none (or it is
-    not a gearcontact manifest)."""
+def _previous_files(root: Path) -> dict[str, str | None] | None:
+    """Files listed by the previous run's manifest, each with its SHA-256 as listed
+    (None where the entry has none); None when there is no manifest (or it is not a
+    gearcontact manifest)."""
     path = root / MANIFEST
     if not path.is_file():
         return None
     try:
         doc = json.loads(path.read_text(encoding="utf-8"))
-        return [str(f["path"]) for f in doc["files"]]
-    except (OSError, ValueError, KeyError, TypeError):
+        return {str(f["path"]): f.get("sha256") for f in doc["files"]}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
+
+
+def _edited(root: Path, previous: dict) -> list[str]:
+    """The files of ``previous`` (``{path: SHA-256}``, the manifest's) whose content is
+    no longer what the run wrote: edited by the user since (a settings TOML is written
+    to be edited), not the run's to replace."""
+    return [f for f, sha in previous.items() if sha is not None and
+            hashlib.sha256((root / f).read_bytes()).hexdigest() != sha]
 
 
 def _inside(rel: str) -> bool:
@@ -292,9 +303,17 @@ class RunDirectory:
             top += [MANIFEST] if (self.path / MANIFEST).exists() and other is None else []
             if top and not self.force:
                 self._refuse(top)
-            previous = []
+            previous = {}
         # only listed files that are really inside the directory are ever removed
-        self._previous = [f for f in previous if _inside(f) and (self.path / f).is_file()]
+        previous = {f: sha for f, sha in previous.items()
+                    if _inside(f) and (self.path / f).is_file()}
+        self._previous = list(previous)
+        edited = [] if self.force else _edited(self.path, previous)
+        if edited:
+            raise OutputDirectoryError(
+                self.given, f"holds {edited[0]!r} changed since the run that wrote it (its "
+                f"SHA-256 is not the one {MANIFEST} lists: edited?); copy it elsewhere, use "
+                "another directory, or --force to replace it")
         if self.force and self.staged:
             return                          # nothing below matters: no walk of a big tree
         files, dirs = _tree(self.path)

@@ -30,13 +30,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..validation import InputRangeError, check_finite, check_positive, check_range
+from ..validation import InputRangeError, check_finite, check_range
 
-__all__ = ["BladeSegment", "BladeSettings", "EdgeRound", "MAX_RELIEF_DEG", "blade_point",
-           "blade_profile", "blade_segments", "blade_through_point", "edge_round"]
+__all__ = ["BladeSegment", "BladeSettings", "EdgeRound", "MAX_POINT_RADIUS_MM", "MAX_RELIEF_DEG",
+           "blade_point", "blade_profile", "blade_segments", "blade_through_point", "edge_round"]
 
 #: Largest Toprem / Flankrem relief angle, degrees (blade grinders give a few degrees).
 MAX_RELIEF_DEG = 10.0
+
+#: Largest blade point radius, mm: a cutter of 2 m diameter, the bound of the radial
+#: distance (:class:`~.machine.MachineSettings`); a larger radius is a slip (a length in
+#: um, a wrong exponent) whose flank would overflow in the envelope solve.
+MAX_POINT_RADIUS_MM = 1000.0
+
 
 @dataclass(frozen=True)
 class BladeSettings:
@@ -51,9 +57,11 @@ class BladeSettings:
     blade_angle_deg : float
         Profile angle alpha_0 of the blade to the cutter axis, degrees, in [0, 45).
     point_radius_mm : float
-        Radius of the blade tip (the cutting edge at the tip plane), mm, > 0.
+        Radius of the blade tip (the cutting edge at the tip plane), mm, in (0,
+        :data:`MAX_POINT_RADIUS_MM`].
     edge_radius_mm : float
-        Tip edge radius, mm, >= 0: the flank starts above the edge round.
+        Tip edge radius, mm, in [0, point_radius_mm / 2]: the flank starts above the
+        edge round.
     profile_radius_mm : float
         Blade profile curvature radius r_b, mm; 0 = straight blade; else |r_b| >= 10 mm.
     profile_reference_mm : float
@@ -85,7 +93,13 @@ class BladeSettings:
         if self.kind not in ("inside", "outside"):
             raise InputRangeError(f"{w}.kind", self.kind, "'inside' or 'outside'")
         check_range(f"{w}.blade_angle_deg", self.blade_angle_deg, 0.0, 45.0, hi_open=True)
-        check_positive(f"{w}.point_radius_mm", self.point_radius_mm)
+        check_range(f"{w}.point_radius_mm", self.point_radius_mm, 0.0, MAX_POINT_RADIUS_MM,
+                    lo_open=True)
+        if check_finite(f"{w}.edge_radius_mm", self.edge_radius_mm) > 0.5 * self.point_radius_mm:
+            # the range's upper end is the other key's: name it (a point radius in m?)
+            raise InputRangeError(f"{w}.edge_radius_mm", self.edge_radius_mm, (
+                f"[0, {0.5 * self.point_radius_mm:.6g}]: at most half the point radius "
+                f"{w}.point_radius_mm = {self.point_radius_mm!r} (both in mm)"))
         check_range(f"{w}.edge_radius_mm", self.edge_radius_mm, 0.0, 0.5 * self.point_radius_mm)
         r = check_finite(f"{w}.profile_radius_mm", self.profile_radius_mm)
         if r != 0.0 and abs(r) < 10.0:
@@ -184,6 +198,12 @@ def blade_through_point(blade: BladeSettings, *, rho_mm: float, z_mm: float) -> 
     solves ``z(l_ref) = z_mm`` (monotone while ``|alpha| < 90 deg``), then the point
     radius puts ``rho(l_ref) = rho_mm``."""
     from scipy.optimize import brentq   # here: scipy.optimize costs 0.3 s per process
+
+    if not z_mm > 0.0:      # a point at or above the tip plane: no blade profile holds it
+        raise InputRangeError(f"{blade.where} reference point depth (mm)", z_mm,
+                              "> 0: behind the cutter's tip plane, where the blade cuts "
+                              "(the flank point it is placed through lies above the blade "
+                              "tips: settings that do not cut their blank's tooth)")
 
     def depth(l_ref):
         placed = dataclasses.replace(blade, profile_reference_mm=l_ref)

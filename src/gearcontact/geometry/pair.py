@@ -111,6 +111,7 @@ ISO 23509:2016, *Bevel and hypoid gear geometry*, clauses 5-7.
 from __future__ import annotations
 
 import dataclasses
+import re
 import tomllib
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -337,11 +338,12 @@ def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> Ge
     pinion's are read into ``typed_gear`` (else refused, naming the pinion's tables)."""
     doc, printed = split_print(doc)
     if printed is not None:
-        teeth = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)["teeth"]["gear"]
+        teeth = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS,
+                             also=("print.gear",))["teeth"]["gear"]
         converted = print_gear_tables(printed, gear_teeth=teeth)
         doc = {**doc, **{kind: {**doc.get(kind, {}), **tables}
                          for kind, tables in converted.items()}}
-    s = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS)
+    s = check_tables(doc, _SCHEMA, _REQUIRED_SECTIONS, also=("print.gear",))
     design = dict(s["design"])
     if ("gear_mean_cone_distance_mm" in design) == ("gear_mean_pitch_radius_mm" in design):
         raise InputRangeError("design.gear_mean_cone_distance_mm / design.gear_mean_pitch_radius_mm",
@@ -376,7 +378,45 @@ def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> Ge
             raise exc if printed is None else printed_key_error(exc, printed) from None
     typed_gear = machine if alone else ()
     machine = () if alone else machine
-    pair = GearPair(
+    try:
+        pair = _pair_of_tables(s, name=name, machine=machine, typed_gear=typed_gear,
+                               printed=printed, materials=materials, design=design)
+    except InputRangeError as exc:      # the blank design's arguments, named as typed
+        raise _blank_key_error(exc) from None
+    if printed is not None:
+        check_print_blank(pair, printed)
+    return pair
+
+
+#: The blank design's argument names (:func:`~.blank.design_blank`) -> the pair file's
+#: dotted keys, for its errors.
+_BLANK_KEYS = {"pinion_teeth": "teeth.pinion", "gear_teeth": "teeth.gear",
+               "offset_mm": "axes.offset_mm", "shaft_angle_deg": "axes.shaft_angle_deg",
+               **{k: f"design.{k}" for k in (
+                   "pinion_spiral_angle_deg", "working_depth_factor", "clearance_factor",
+                   "gear_addendum_factor", "gear_mean_pitch_radius_mm",
+                   "gear_mean_cone_distance_mm")},
+               "cutter_radius_mm": "cutter.radius_mm",
+               **{k: f"cutter.{k}" for k in ("pressure_angle_drive_deg",
+                                             "pressure_angle_coast_deg",
+                                             "limit_pressure_angle_factor")}}
+
+
+def _blank_key_error(exc: InputRangeError) -> InputRangeError:
+    """``exc`` with a blank design argument's name (field, and in the allowed range a
+    bound that is another argument: ``>= pinion_teeth = 14``) as the file's key."""
+    field = " / ".join(_BLANK_KEYS.get(f, f) for f in str(exc.field).split(" / "))
+    allowed = re.sub(r"(?<![.\w])(" + "|".join(_BLANK_KEYS) + r")\b",
+                     lambda m: _BLANK_KEYS[m.group(1)], str(exc.allowed))
+    if field == exc.field and allowed == exc.allowed:
+        return exc
+    return InputRangeError(field, exc.value, allowed)
+
+
+def _pair_of_tables(s: dict, *, name, machine, typed_gear, printed, materials,
+                    design) -> GearPair:
+    """The :class:`GearPair` of the checked tables ``s`` (:func:`parse_pair`)."""
+    return GearPair(
         name=s[""].get("name", name), machine=machine, typed_gear=typed_gear,
         pinion_teeth=s["teeth"]["pinion"], gear_teeth=s["teeth"]["gear"],
         offset_mm=s["axes"]["offset_mm"],
@@ -391,9 +431,6 @@ def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> Ge
         print_gear=() if printed is None else tuple(
             (k, tuple(v) if isinstance(v, list) else v) for k, v in printed.items()),
         **design)
-    if printed is not None:
-        check_print_blank(pair, printed)
-    return pair
 
 
 #: ``kind`` values of the pair files; absent is a bevel/hypoid pair (:class:`GearPair`).

@@ -117,7 +117,8 @@ def split_print(doc: dict) -> tuple[dict, dict | None]:
     table = doc["print"]
     for sub in table if isinstance(table, dict) else ():
         if sub != "gear":
-            raise InputRangeError(f"print.{sub}", table[sub], "[print.gear] only (a spread-"
+            raise InputRangeError(f"print.{sub}", "table" if isinstance(table[sub], dict)
+                                  else table[sub], "[print.gear] only (a spread-"
                                   "blade gear page): a pinion page's words are on no print "
                                   "read; type [machine.pinion.*] / [blade.pinion.*] "
                                   "(docs/machine_settings.md sec. 2-3)")

@@ -33,7 +33,7 @@ import math
 import re
 from collections.abc import Mapping
 
-from ..validation import InputRangeError, check_finite
+from ..validation import InputRangeError, check_finite, check_range
 
 __all__ = ["BLADE_WORDS", "BLANK_OFFSET_WORDS", "INCH_MM", "SLIDING_BASE_WORDS",
            "degrees_minutes", "gear_tables_from_print", "md_value",
@@ -238,7 +238,10 @@ def gear_tables_from_print(printed: Mapping, *, where: str = "printed",
     teeth = _get(printed, "gear_teeth", where)
     if isinstance(teeth, bool) or not isinstance(teeth, int) or teeth < 1:
         raise InputRangeError(key("gear_teeth"), teeth, "a positive integer")
-    ratio = ratio_of_roll_from_nc75(number("ratio_nc_75"), teeth)
+    # printed unsigned (a decimal of the generating gear's teeth): its own range first,
+    # before the test roll it would be found wrong against
+    ratio = ratio_of_roll_from_nc75(check_range(key("ratio_nc_75"), number("ratio_nc_75"),
+                                                0.0, math.inf, hi_open=True), teeth)
     if "work_test_roll" in printed or "cradle_test_roll_deg" in printed:
         work = degrees_minutes(key("work_test_roll"), _get(printed, "work_test_roll", where))
         cradle = degrees_minutes(key("cradle_test_roll_deg"),
@@ -284,6 +287,8 @@ def gear_tables_from_print(printed: Mapping, *, where: str = "printed",
         "swivel_deg": 0.0,
     }
     diameter, width = number("cutter_diameter_in"), number("point_width_finish_in")
+    if diameter > 0.0:      # both point radii (D -+ W) / 2 > 0: the width names itself
+        check_range(key("point_width_finish_in"), width, 0.0, diameter, hi_open=True)
     edge = number("edge_radius_in")
     blades = _get(printed, "blades", where)
     listed = list(blades) if isinstance(blades, (list, tuple)) else [blades]

@@ -48,11 +48,13 @@ def typed_value(key: str, value, kind: str):
 
 
 def check_tables(doc: dict, schema: dict[str, dict[str, tuple[str, bool]]],
-                 required: tuple[str, ...]) -> dict[str, dict]:
+                 required: tuple[str, ...], *, also: tuple[str, ...] = ()) -> dict[str, dict]:
     """Split a parsed TOML document into the tables of ``schema``, typed and checked.
 
     Tables whose name holds dots (``material.pinion``, ``machine.pinion.drive``) are
-    nested as deep in the document; ``required`` names the tables that must be present.
+    nested as deep in the document; ``required`` names the tables that must be present;
+    ``also``: the names of tables the caller reads apart from ``doc`` (``print.gear``),
+    listed beside the schema's where an unknown table is named.
     """
     # depth of each nested table family: material.pinion -> 1, machine.pinion.drive -> 2
     nested: dict[str, int] = {}
@@ -79,7 +81,7 @@ def check_tables(doc: dict, schema: dict[str, dict[str, tuple[str, bool]]],
         elif isinstance(value, dict):
             if key not in schema:
                 raise InputRangeError(key, "table", "one of the tables "
-                                      f"{sorted(s for s in schema if s)}")
+                                      f"{sorted({*(s for s in schema if s), *also})}")
             sections[key] = value
         else:
             sections[""][key] = value

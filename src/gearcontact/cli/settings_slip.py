@@ -1,0 +1,92 @@
+"""Typed machine settings that do not cut their blank, named by their likely slip where
+the work on them fails: the typed-settings check (docs/machine_settings.md sec. 2, "The
+check when a pair is loaded") finds a flank off its blank and the likely key (a sign
+word, a unit), but a gross mismatch alone is refused; any other is a warning, and the
+flank work after it (the ease-off shape's flanks, a kept gear's standard pinion) can fail
+first on a key the user never typed (a derived blade, an envelope node, a correct point
+radius). Such an input error is renamed here to the check's slip, the failure kept in
+the message."""
+
+from __future__ import annotations
+
+import sys
+
+from ..geometry.formate import SIDES
+from ..validation import InputRangeError
+
+__all__ = ["slip_renamed", "checked_blank_named", "checked_typed_gear", "work_slip_renamed"]
+
+
+def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError:
+    """``exc`` (raised by the work ``failed`` names) renamed to the likely slip of the
+    first flank of ``check`` (a :class:`~gearcontact.geometry.blank_check.BlankCheck`)
+    that does not agree with its blank: its key and value as typed, else its table.
+    ``exc`` unchanged where every flank agrees, or where ``exc`` names a key of the check
+    already (its own refusal of a gross mismatch)."""
+    bad = [f for f in check.flanks if not f.agrees] if check is not None else []
+    if not bad or exc.field in {f.slip for f in bad} | {check.stated.hand_key}:
+        return exc
+    f = next((f for f in bad if f.slip), bad[0])
+    table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
+    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or None)
+    return InputRangeError(field, value, (
+        f"settings that cut their blank's tooth: the {f.member} {f.side} flank does not "
+        f"agree with its blank (the warning above; likely {f.slip or table}), and {failed} "
+        f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
+        "docs/machine_settings.md sec. 2"))
+
+
+def work_slip_renamed(exc, args, command: str):
+    """``exc`` (a :class:`~gearcontact.errors.BadInput`), an input error of
+    ``gearcontact command``'s work, renamed by
+    :func:`slip_renamed` where the pair's typed settings were checked before the work
+    (``args.settings_check`` of the pair commands, ``args.blank_check`` of ``design``)
+    and a flank did not agree (its warning printed then, the run gone on). An option's
+    error (a field ``--...``) is the option's, unchanged."""
+    check = getattr(args, "settings_check", None) or getattr(args, "blank_check", None)
+    blank = getattr(check, "blank", None)
+    if blank is None or not isinstance(exc, InputRangeError) or exc.field.startswith("--"):
+        return exc
+    return slip_renamed(exc, blank, failed=f"gearcontact {command}")
+
+
+def checked_blank_named(pair, **options):
+    """:func:`~gearcontact.report.design_mean_point.checked_blank` of ``pair``
+    (``options`` its keywords); an input error of the flank work inside it renamed by
+    :func:`slip_renamed` (the check measured again, on this error path only, to name
+    the slip: its warnings, which the failed call did not print, first)."""
+    from ..geometry.blank_check import check_pair_blank
+    from ..report.design_mean_point import checked_blank
+
+    try:
+        return checked_blank(pair, **options)
+    except InputRangeError as exc:
+        check = check_pair_blank(pair, measured=options.get("measured"))
+        renamed = slip_renamed(exc, check, failed="the check of its flanks")
+        if renamed is not exc:
+            for line in check.warnings():
+                print(line, file=sys.stderr)
+        raise renamed from None
+
+
+def checked_typed_gear(pair, gear: dict):
+    """The typed gear that ``design --machine-settings`` keeps
+    (:func:`~.design_options.kept_gear`) against the blank it is meant to cut, before its
+    standard pinion is derived: the typed-settings check of its two flanks
+    (:func:`~gearcontact.geometry.blank_check.check_flanks`; a ``[print.gear]`` against
+    its page's printed blank), its warnings on stderr, a gross mismatch an input error
+    naming the likely key (exit 2); returns the
+    :class:`~gearcontact.geometry.blank_check.BlankCheck` (what :func:`slip_renamed`
+    names when the derivation fails). The pair's own check cannot see this gear: its
+    tables are replaced before it runs (``design.check``), and a gear typed alone has no
+    pinion to check beside it (docs/machine_settings.md sec. 2 and 5)."""
+    from ..geometry.blank_check import check_flanks
+    from ..geometry.blank_statement import printed_stated_blank, stated_blank
+
+    printed = printed_stated_blank(pair)
+    got = check_flanks(tuple(gear[side] for side in SIDES), stated_blank(pair),
+                       member_stated=None if printed is None else {"gear": printed})
+    for line in got.warnings():
+        print(line, file=sys.stderr)
+    got.raise_if_gross()
+    return got
