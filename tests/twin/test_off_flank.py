@@ -1,5 +1,5 @@
 """The law of mesh-table rows whose field lies wholly off the flank (:mod:`gearcontact.
-twin.off_flank`; docs/twin.md "Rows wholly off the flank: the edge law at the touch").
+ltca.off_flank`; docs/twin.md "Rows wholly off the flank: the edge law at the touch").
 
 On s0003 coast (the twin's fixture, 31 phases, rigid) pair +1 comes within the reach at
 3 phases with its field wholly off the flank; its touch is a corner of the gear's face
@@ -33,7 +33,7 @@ from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
 from gearcontact.ltca.pair_ltca import OFF_FLANK_GAP_MM
 from gearcontact.ltca.patch_field import patch_grid
 from gearcontact.materials import effective_modulus_mpa
-from gearcontact.twin.off_flank import TouchField, is_wholly_off, touch_law, touch_point
+from gearcontact.ltca.off_flank import TouchField, is_wholly_off, touch_law, touch_point
 
 from .conftest import TORQUE_NM
 

@@ -55,7 +55,7 @@ delta_LCP(W) / delta_ref(W)``, ``ln c`` interpolated linearly in ``ln W`` betwee
 calibration loads (:meth:`EdgeCompliance.scale_at`; constant above them; below the
 least, ``delta ~ W^m`` with ``m`` = :attr:`EdgeCompliance.low_exponent`: 2/3, the
 scale held, unless the caller knows the touch's asymptote -- a corner's 1/2,
-:mod:`gearcontact.twin.off_flank`), taken at the
+:mod:`.off_flank`), taken at the
 row's *operating load* (:func:`operating_scales`): its share of the torque in the
 quasi-static mesh of the table's own law (the Hertzian balance of the loaded TE's
 preview, :func:`gearcontact.ltca.lte_phase.preview_balance`, with the scaled rows;

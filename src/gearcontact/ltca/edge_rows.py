@@ -16,6 +16,8 @@ Its law is then Hertz with the approach scaled by ``c`` (:mod:`.edge_law`:
 for a surface row), ``delta = c kappa W^(2/3)``, ``c`` the calibration's at the load the
 contact carries (:func:`~.edge_law.operating_scales`); every other contact keeps
 ``c = 1``. A calibration whose LCP fails (``ArithmeticError``) keeps Hertz (``c = 1``).
+An edge row whose field lies wholly off the flank (no flank cell: its touch on the flank
+region's border) takes :func:`.off_flank.touch_law`, the twin's law of those rows.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from .edge_law import (EdgeCompliance, edge_compliance, ellipse_leaves_flank, op
                        trim_compliance)
 from .lte_pairs import PairContact, PairFields
 from .lte_phase import preview_balance
+from .off_flank import is_wholly_off, touch_law
 
 __all__ = ["is_edge_row", "is_cut", "row_law", "preview_edge_balance"]
 
@@ -54,8 +57,10 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
             cache: dict) -> EdgeCompliance | None:
     """The LCP calibration of a cut contact (module docstring): :func:`~.edge_law.
     edge_compliance` of an edge row, :func:`~.edge_law.trim_compliance` of a surface row,
-    once per TCA path index (``cache``, shared by the callers' phases); None where the
-    calibration fails (the contact keeps Hertz). The law's scale at a load is
+    once per TCA path index (``cache``, shared by the callers' phases); of an edge row
+    whose field lies wholly off the flank, :func:`.off_flank.touch_law` at its touch
+    (not cached: such rows share their nearest interior state's path index, not their
+    touch); None where the calibration fails (the contact keeps Hertz). The law's scale at a load is
     :meth:`~.edge_law.EdgeCompliance.scale_at` (at the operating loads:
     :func:`~.edge_law.operating_scales`).
 
@@ -72,6 +77,8 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
     cache : dict
         Path index -> EdgeCompliance or None.
     """
+    if is_edge_row(fields, pc) and is_wholly_off(fields, pc):
+        return touch_law(fields, pc, materials=materials, torque_nmm=torque_nmm)
     if pc.path_index not in cache:
         law = edge_compliance if is_edge_row(fields, pc) else trim_compliance
         try:

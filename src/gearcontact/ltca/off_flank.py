@@ -1,5 +1,6 @@
-"""The law of a mesh-table row whose field lies wholly off the flank: the edge contact
-at its searched touch.
+"""The law of a contact whose field lies wholly off the flank: the edge contact at its
+searched touch (the twin's mesh-table rows, :mod:`gearcontact.twin.mesh`, and the loaded
+TE's preview ``TE_pre``, :mod:`.edge_rows`).
 
 A pair far past its path's end has its field posed around its nearest interior state;
 where no node of that field lies on both flanks (s0003 coast's pair +1 at 3-4 of 31-61
@@ -55,11 +56,11 @@ import numpy as np
 
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.lcp import solve_lcp
-from ..ltca.edge_law import EDGE_LOAD_FRACTIONS, EdgeCompliance, edge_compliance
-from ..ltca.flank_touch import edge_samples, flank_gaps_mm
-from ..ltca.pair_ltca import OFF_FLANK_GAP_MM
-from ..ltca.patch_field import patch_grid
-from ..ltca.tooth_bending import conjugate_compliance
+from .edge_law import EDGE_LOAD_FRACTIONS, EdgeCompliance, edge_compliance
+from .flank_touch import edge_samples, flank_gaps_mm
+from .pair_ltca import OFF_FLANK_GAP_MM
+from .patch_field import patch_grid
+from .tooth_bending import conjugate_compliance
 
 __all__ = ["CORNER_EXPONENT", "TOUCH_FIELD_HALF", "TOUCH_REFINE", "TouchField",
            "corner_law", "is_wholly_off", "touch_point", "touch_field", "touch_law",
