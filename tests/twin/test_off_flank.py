@@ -26,6 +26,7 @@ import pytest
 
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.ltca.edge_law import EDGE_LOAD_FRACTIONS
+from gearcontact.ltca.edge_rows import preview_edge_balance, row_law
 from gearcontact.ltca.flank_touch import flank_gaps_mm
 from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
 from gearcontact.ltca.lte_phase import preview_balance
@@ -151,6 +152,9 @@ def _truth(pair, tca, flanks, mesh, fields64, row, torque_nm, cells):
 #: least gap 0.57 um above the searched touch, which the truth's l theta - g counts),
 #: -1.2 % the rest (resolution and coupling).
 DIFFERS = {(1, 1290.0)}
+#: The points TE_pre's law (calibrated at its own torque) does not meet the declared
+#: bound (measured; docs/twin.md): point -> reason.
+DIFFERS_TE_PRE: dict = {}
 
 
 @pytest.fixture(scope="module")
@@ -160,11 +164,57 @@ def s0003_off_rows(s0003_coast_twin):
     return fields64, _wholly_off_rows(mesh, tca, fields64)
 
 
+@pytest.fixture(scope="module")
+def coupled_lcp(s0003_coast_twin, s0003_off_rows):
+    """``(index, torque) -> (load of pair +1 at 160 cells (N), at 80 cells (N), its
+    approach l theta - g at 160 cells (mm), the mesh error)``: the truth, once per
+    point for the twin's and TE_pre's tests (the LCP's mesh error as declared: its
+    approach at 80 against 160 cells, relative)."""
+    pair, tca, flanks, mesh = s0003_coast_twin
+    fields64, rows = s0003_off_rows
+    memo = {}
+
+    def get(index, torque):
+        if (index, torque) not in memo:
+            (i, kk, _), _ = rows[index]
+            out = {}
+            for cells in (80, 160):
+                theta, w, lever, _ = _truth(pair, tca, flanks, mesh, fields64, rows[index][0],
+                                            torque, cells)
+                out[cells] = (w, lever * theta - mesh.opening_mm[i, kk])
+            approach = out[160][1]
+            memo[index, torque] = (out[160][0], out[80][0], approach,
+                                   abs(out[80][1] - approach) / abs(approach))
+        return memo[index, torque]
+    return get
+
+
+def _law_against(law, pc, e_prime, w, approach, mesh_error, label):
+    """Assert the law's approach ``c(W) kappa W^(2/3)`` at the LCP's load against the
+    LCP's within the declared bound (module docstring, truth 2): below the least
+    calibration load the LCP's local exponent lies between its own at the two least
+    loads and the law's asymptote (docs/twin.md, session 26), + the interpolation + the
+    LCP's mesh error; and nearer than the Hertzian law of the row's curvatures."""
+    lo = law.loads_n[0]
+    bound = (abs(law.low_local_exponent - law.low_exponent) * max(np.log(lo / w), 0.0)
+             + INTERPOLATION + mesh_error)
+    kap0 = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, 1.0,
+                               e_prime_mpa=e_prime).approach_mm
+    got = float(law.scale_at(w)) * kap0 * w ** (2 / 3)
+    hertz = kap0 * w ** (2 / 3)
+    print(f"   {label} law {1e3 * got:.3f} um, Hertz {1e3 * hertz:.3f} um; loads "
+          f"{law.loads_n.round(1)} N, n_lo {law.low_local_exponent:.4f}, m "
+          f"{law.low_exponent}; rel {got / approach - 1:+.4f}, bound {bound:.4f} "
+          f"(mesh error {mesh_error:.4f})")
+    assert abs(got - approach) < abs(hertz - approach)
+    assert abs(got / approach - 1.0) <= bound
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("torque", [645.0, 1290.0])
 @pytest.mark.parametrize("index", [0, 1, 2])
 def test_s0003_pair_plus_one_against_the_coupled_lcp(s0003_coast_twin, s0003_off_rows,
-                                                      index, torque, request):
+                                                      coupled_lcp, index, torque, request):
     """Truth 2 (module docstring), per wholly-off row and torque; where the LCP leaves
     the pair open, the twin's quasi-static balance does too. About 10 s each."""
     if (index, torque) in DIFFERS:
@@ -183,34 +233,53 @@ def test_s0003_pair_plus_one_against_the_coupled_lcp(s0003_coast_twin, s0003_off
     kappa = np.array([hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa)
                       .approach_mm for a, b in zip(mesh.A_minus_per_mm[on, kk],
                                                    mesh.B_minus_per_mm[on, kk])])
-    out = {}
-    for cells in (80, 160):
-        theta, w, lever, _ = _truth(pair, tca, flanks, mesh, fields64, row, torque, cells)
-        out[cells] = (theta, w, lever * theta - mesh.opening_mm[i, kk])
-    theta, w, approach = out[160]
+    w, w80, approach, mesh_error = coupled_lcp(index, torque)
     theta_twin, w_twin = preview_balance(mesh.lever_mm[on, kk], mesh.opening_mm[on, kk],
                                          kappa, 1e3 * torque)
-    print(f"\nrow ({i},{kk}) {torque} N·m: LCP W {w:.1f} N (80 cells {out[80][1]:.1f}), "
-          f"approach {1e3 * approach:.3f} um, rotation {theta:.6e} rad; twin quasi-static "
-          f"W {w_twin[j]:.1f} N, rotation {theta_twin:.6e} rad")
+    print(f"\nrow ({i},{kk}) {torque} N·m: LCP W {w:.1f} N (80 cells {w80:.1f}), "
+          f"approach {1e3 * approach:.3f} um; twin quasi-static W {w_twin[j]:.1f} N, "
+          f"rotation {theta_twin:.6e} rad, table's fixed c at the LCP's load "
+          f"{1e3 * kappa[j] * max(w, 0.0) ** (2 / 3):.3f} um")
     if w <= 0.0:
         assert w_twin[j] == 0.0
         return
-    # the LCP's mesh error as declared (its approach at 80 against 160 cells)
-    mesh_error = abs(out[80][2] - approach) / approach
-    lo = law.loads_n[0]
-    # below the least calibration load the LCP's local exponent lies between its own at
-    # the two least loads and the law's asymptote (docs/twin.md, session 26)
-    bound = (abs(law.low_local_exponent - law.low_exponent) * max(np.log(lo / w), 0.0)
-             + INTERPOLATION + mesh_error)
-    kap0 = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, 1.0,
-                               e_prime_mpa=fields64.e_prime).approach_mm
-    twin = float(law.scale_at(w)) * kap0 * w ** (2 / 3)
-    hertz = kap0 * w ** (2 / 3)
-    print(f"   twin law {1e3 * twin:.3f} um (table's fixed c: "
-          f"{1e3 * kappa[j] * w ** (2 / 3):.3f}), Hertz {1e3 * hertz:.3f} um; loads "
-          f"{law.loads_n.round(1)} N, n_lo {law.low_local_exponent:.4f}, m "
-          f"{law.low_exponent}; "
-          f"rel {twin / approach - 1:+.4f}, bound {bound:.4f} (mesh error {mesh_error:.4f})")
-    assert abs(twin - approach) < abs(hertz - approach)
-    assert abs(twin / approach - 1.0) <= bound
+    _law_against(law, pc, fields64.e_prime, w, approach, mesh_error, "twin")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("torque", [645.0, 1290.0])
+@pytest.mark.parametrize("index", [0, 1, 2])
+def test_s0003_te_pre_takes_the_law_against_the_coupled_lcp(s0003_coast_twin,
+                                                             s0003_off_rows, coupled_lcp,
+                                                             index, torque, request):
+    """Truth 2 for the loaded TE's preview (docs/twin.md, session 26, "TE_pre"): the law
+    ``TE_pre`` takes for pair +1 (:func:`gearcontact.ltca.edge_rows.row_law` on the
+    loaded TE's fields at that torque, calibrated at its fractions) against the coupled
+    LCP at the LCP's load, with the same bound; its balance
+    (:func:`~gearcontact.ltca.edge_rows.preview_edge_balance`) gives the pair that law's
+    scale at its own load. About 10 s each (the truth shared with the twin's test)."""
+    if (index, torque) in DIFFERS_TE_PRE:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=DIFFERS_TE_PRE[
+            index, torque]))
+    pair, tca, flanks, _ = s0003_coast_twin
+    _, rows = s0003_off_rows
+    (i, _, k), _ = rows[index]
+    mats = (pair.pinion_material, pair.gear_material)
+    fields = _fields(pair, tca, flanks, 1e3 * torque)
+    contacts = _contacts(fields, tca, k)
+    jj = next(n for n, p in enumerate(contacts) if p.offset == tca.cycle.pair_offsets[i])
+    pc = contacts[jj]
+    law = row_law(fields, pc, materials=mats, torque_nmm=1e3 * torque, cache={})
+    assert law is not None and law.low_exponent == 0.5      # a corner's law
+    _, scales, _, loads = preview_edge_balance(contacts, fields, 1e3 * torque,
+                                               materials=mats, cache={})
+    w, _, approach, mesh_error = coupled_lcp(index, torque)
+    print(f"\nrow {index} {torque} N·m: TE_pre W {loads[jj]:.1f} N, c {scales[jj]:.4f}; "
+          f"LCP W {w:.1f} N, approach {1e3 * approach:.3f} um")
+    if loads[jj] > 0.0:
+        # the operating loads' last pass (edge_law.OPERATING_PASSES = 3, each shrinking a
+        # load's change by |n - 2/3| <= 0.17; the scale moves by 1/6 of it): 1 %
+        assert scales[jj] == pytest.approx(float(law.scale_at(loads[jj])), rel=0.01)
+    if w <= 0.0:
+        return
+    _law_against(law, pc, fields.e_prime, w, approach, mesh_error, "TE_pre")

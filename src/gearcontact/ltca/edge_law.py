@@ -60,7 +60,9 @@ row's *operating load* (:func:`operating_scales`): its share of the torque in th
 quasi-static mesh of the table's own law (the Hertzian balance of the loaded TE's
 preview, :func:`gearcontact.ltca.lte_phase.preview_balance`, with the scaled rows;
 iterated, as the shares depend on the scales), at least the smallest calibration load
-(a row that carries nothing at rest first carries little when the mesh deflects). A
+(a row that carries nothing at rest first carries little when the mesh deflects; a law
+with a corner's continuation below the calibration is taken at the load a row carries
+where it carries any, docs/twin.md). A
 pair entering or leaving the mesh carries a fraction of the torque, and the LCP's power
 of the load ``n`` differs from 2/3 (0.55-0.8 on cut patches), so a scale fitted over
 ``T/4 .. T`` was off there by ``|n - 2/3| ln(W_fit / W)`` (the 7/60 pair's approaching
@@ -324,9 +326,18 @@ def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: fl
                                    scale[on, k] * kappa[on, k], torque_nmm)
             load[on, k] = w
         for i, k in zip(*np.nonzero(cut)):
-            floor = EDGE_LOAD_FRACTIONS[0] * torque_nmm / lever_mm[i, k]
-            scale[i, k] = float(laws[i, k].scale_at(max(load[i, k], floor)))
+            scale[i, k] = float(laws[i, k].scale_at(_operating_load(
+                laws[i, k], load[i, k], EDGE_LOAD_FRACTIONS[0] * torque_nmm / lever_mm[i, k])))
     return scale, load
+
+
+def _operating_load(law: EdgeCompliance, load_n: float, floor_n: float) -> float:
+    """The load a row's scale is taken at: its own where its law continues below the
+    calibration (a corner's, ``low_exponent`` != 2/3) and it carries load, else at
+    least ``floor_n`` (module docstring)."""
+    if law.low_exponent != 2.0 / 3.0 and load_n > 0.0:
+        return load_n
+    return max(load_n, floor_n)
 
 
 def equivalent_curvature_factor(scale: float) -> float:
