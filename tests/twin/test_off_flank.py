@@ -18,7 +18,10 @@ Truths:
    field covering the flank region near its touch at N = 80 and 160 cells per side --
    at 645 and 1290 N·m: at every phase where the LCP loads pair +1, the law's approach
    ``c(W) kappa W^(2/3)`` at the LCP's load equals the LCP's ``l theta - g`` within the
-   tolerance declared in docs/twin.md before measuring.
+   tolerance declared in docs/twin.md before measuring; the law the loaded TE's preview
+   ``TE_pre`` takes for the pair at those torques (its fields sized by them, where the
+   pair's rows are posed-field rows: ``row_law``, a corner's continuation below the
+   calibration) likewise.
 """
 
 import numpy as np

@@ -17,7 +17,10 @@ for a surface row), ``delta = c kappa W^(2/3)``, ``c`` the calibration's at the 
 contact carries (:func:`~.edge_law.operating_scales`); every other contact keeps
 ``c = 1``. A calibration whose LCP fails (``ArithmeticError``) keeps Hertz (``c = 1``).
 An edge row whose field lies wholly off the flank (no flank cell: its touch on the flank
-region's border) takes :func:`.off_flank.touch_law`, the twin's law of those rows.
+region's border) takes :func:`.off_flank.touch_law`, the twin's law of those rows; a
+posed-field row (``pc.edge``) takes, as those, a corner's continuation below its
+calibration where its LCP says it is one (:func:`.off_flank.corner_law`; docs/twin.md
+"below the calibration, the corner's law").
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ from .edge_law import (EdgeCompliance, edge_compliance, ellipse_leaves_flank, op
                        trim_compliance)
 from .lte_pairs import PairContact, PairFields
 from .lte_phase import preview_balance
-from .off_flank import is_wholly_off, touch_law
+from .off_flank import corner_law, is_wholly_off, touch_law
 
 __all__ = ["is_edge_row", "is_cut", "row_law", "preview_edge_balance"]
 
@@ -82,9 +85,10 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
     if pc.path_index not in cache:
         law = edge_compliance if is_edge_row(fields, pc) else trim_compliance
         try:
-            cache[pc.path_index] = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
+            out = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
         except ArithmeticError:     # no founded calibration: Hertz
-            cache[pc.path_index] = None
+            out = None
+        cache[pc.path_index] = corner_law(out) if out is not None and pc.edge else out
     return cache[pc.path_index]
 
 
