@@ -60,9 +60,9 @@ row's *operating load* (:func:`operating_scales`): its share of the torque in th
 quasi-static mesh of the table's own law (the Hertzian balance of the loaded TE's
 preview, :func:`gearcontact.ltca.lte_phase.preview_balance`, with the scaled rows;
 iterated, as the shares depend on the scales), at least the smallest calibration load
-(a row that carries nothing at rest first carries little when the mesh deflects; a law
-with a corner's continuation below the calibration is taken at the load a row carries
-where it carries any, docs/twin.md). A
+(a row that carries nothing at rest first carries little when the mesh deflects; in
+the loaded TE's static balance, ``TE_pre``, a law with a corner's continuation below the
+calibration is taken at the load the row carries where it carries any, docs/twin.md). A
 pair entering or leaving the mesh carries a fraction of the torque, and the LCP's power
 of the load ``n`` differs from 2/3 (0.55-0.8 on cut patches), so a scale fitted over
 ``T/4 .. T`` was off there by ``|n - 2/3| ln(W_fit / W)`` (the 7/60 pair's approaching
@@ -292,8 +292,8 @@ def _fit(loads, approach, reference) -> EdgeCompliance:
                           float(np.exp(np.mean(np.log(approach / reference)))), n)
 
 
-def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: float
-                     ) -> tuple[np.ndarray, np.ndarray]:
+def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: float,
+                     at_load: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The scales ``c`` of the rows at their operating loads (module docstring).
 
     Parameters
@@ -306,6 +306,11 @@ def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: fl
     valid : ndarray (P, K) of bool
     torque_nmm : float
         The table's torque, N·mm.
+    at_load : bool
+        Take a law with a corner's continuation (``low_exponent`` != 2/3) at the load
+        its row carries where it carries any (a static balance at its own torque:
+        ``TE_pre``); False (the twin's table, whose one ``c`` per row must serve the
+        dynamic loads): every law at least at the floor ``T/16`` (module docstring).
 
     Returns
     -------
@@ -326,18 +331,11 @@ def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: fl
                                    scale[on, k] * kappa[on, k], torque_nmm)
             load[on, k] = w
         for i, k in zip(*np.nonzero(cut)):
-            scale[i, k] = float(laws[i, k].scale_at(_operating_load(
-                laws[i, k], load[i, k], EDGE_LOAD_FRACTIONS[0] * torque_nmm / lever_mm[i, k])))
+            floor = EDGE_LOAD_FRACTIONS[0] * torque_nmm / lever_mm[i, k]
+            w = (load[i, k] if at_load and laws[i, k].low_exponent != 2.0 / 3.0
+                 and load[i, k] > 0.0 else max(load[i, k], floor))
+            scale[i, k] = float(laws[i, k].scale_at(w))
     return scale, load
-
-
-def _operating_load(law: EdgeCompliance, load_n: float, floor_n: float) -> float:
-    """The load a row's scale is taken at: its own where its law continues below the
-    calibration (a corner's, ``low_exponent`` != 2/3) and it carries load, else at
-    least ``floor_n`` (module docstring)."""
-    if law.low_exponent != 2.0 / 3.0 and load_n > 0.0:
-        return load_n
-    return max(load_n, floor_n)
 
 
 def equivalent_curvature_factor(scale: float) -> float:
