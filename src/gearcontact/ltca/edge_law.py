@@ -60,9 +60,8 @@ row's *operating load* (:func:`operating_scales`): its share of the torque in th
 quasi-static mesh of the table's own law (the Hertzian balance of the loaded TE's
 preview, :func:`gearcontact.ltca.lte_phase.preview_balance`, with the scaled rows;
 iterated, as the shares depend on the scales), at least the smallest calibration load
-(a row that carries nothing at rest first carries little when the mesh deflects; in
-the loaded TE's static balance, ``TE_pre``, a law with a corner's continuation below the
-calibration is taken at the load the row carries where it carries any, docs/twin.md). A
+(a row that carries nothing at rest first carries little when the mesh deflects;
+``TE_pre`` takes the same, docs/twin.md). A
 pair entering or leaving the mesh carries a fraction of the torque, and the LCP's power
 of the load ``n`` differs from 2/3 (0.55-0.8 on cut patches), so a scale fitted over
 ``T/4 .. T`` was off there by ``|n - 2/3| ln(W_fit / W)`` (the 7/60 pair's approaching
@@ -292,8 +291,8 @@ def _fit(loads, approach, reference) -> EdgeCompliance:
                           float(np.exp(np.mean(np.log(approach / reference)))), n)
 
 
-def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: float,
-                     at_load: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: float
+                     ) -> tuple[np.ndarray, np.ndarray]:
     """The scales ``c`` of the rows at their operating loads (module docstring).
 
     Parameters
@@ -306,11 +305,6 @@ def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: fl
     valid : ndarray (P, K) of bool
     torque_nmm : float
         The table's torque, N·mm.
-    at_load : bool
-        Take a law with a corner's continuation (``low_exponent`` != 2/3) at the load
-        its row carries where it carries any (a static balance at its own torque:
-        ``TE_pre``); False (the twin's table, whose one ``c`` per row must serve the
-        dynamic loads): every law at least at the floor ``T/16`` (module docstring).
 
     Returns
     -------
@@ -332,9 +326,7 @@ def operating_scales(laws, lever_mm, opening_mm, kappa, valid, *, torque_nmm: fl
             load[on, k] = w
         for i, k in zip(*np.nonzero(cut)):
             floor = EDGE_LOAD_FRACTIONS[0] * torque_nmm / lever_mm[i, k]
-            w = (load[i, k] if at_load and laws[i, k].low_exponent != 2.0 / 3.0
-                 and load[i, k] > 0.0 else max(load[i, k], floor))
-            scale[i, k] = float(laws[i, k].scale_at(w))
+            scale[i, k] = float(laws[i, k].scale_at(max(load[i, k], floor)))
     return scale, load
 
 

@@ -97,8 +97,7 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
     """:func:`.lte_phase.preview_balance` of the contacts with the edge law (this module):
     every loaded contact whose patch a flank boundary cuts takes its LCP calibration's
     compliance scale ``c`` at the load it carries (``kappa -> c kappa``;
-    :func:`.edge_law.operating_scales`, the twin's law; a corner's law at the load itself,
-    ``at_load``, where the twin's table holds its floor). Only a contact that carries load
+    :func:`.edge_law.operating_scales`, the twin's law). Only a contact that carries load
     needs its law, and a softer contact moves load onto the others, so the balance is
     solved again until every loaded contact has been looked at (each once).
 
@@ -144,8 +143,7 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
                 laws[i, 0] = row_law(fields, contacts[i], materials=materials,
                                      torque_nmm=torque_nmm, cache=cache)
         scales = operating_scales(laws, lever[:, None], opening[:, None], kappa[:, None],
-                                  np.ones((n, 1), bool), torque_nmm=torque_nmm,
-                                  at_load=True)[0][:, 0]
+                                  np.ones((n, 1), bool), torque_nmm=torque_nmm)[0][:, 0]
     scaled = [replace(pc, kappa_mm_per_n23=c * pc.kappa_mm_per_n23) if c != 1.0 else pc
               for pc, c in zip(contacts, scales)]
     return scaled, scales, theta, loads
