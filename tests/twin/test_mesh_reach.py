@@ -336,7 +336,7 @@ def _against_previous(pair, tca, flanks, side, monkeypatch, mesh=None) -> int:
     """The table (``mesh``, else built) against the previous code path's in-process:
     every per-phase array identical, every row that was valid identical in every array,
     and every row added one whose field lies wholly off the flank (posed field) whose
-    touch lies within the reach, its law the edge law at the touch (twin.off_flank: an
+    touch lies within the reach, its law the edge law at the touch (ltca.off_flank: an
     LCP exponent, a scale above 1). Returns the number of rows added."""
     mesh = mesh or mesh_module.mesh_table(tca, flanks, pair, side=side, torque_nm=TORQUE_NM)
     with monkeypatch.context() as mp:

@@ -1,5 +1,5 @@
 """The law of mesh-table rows whose field lies wholly off the flank (:mod:`gearcontact.
-twin.off_flank`; docs/twin.md "Rows wholly off the flank: the edge law at the touch").
+ltca.off_flank`; docs/twin.md "Rows wholly off the flank: the edge law at the touch").
 
 On s0003 coast (the twin's fixture, 31 phases, rigid) pair +1 comes within the reach at
 3 phases with its field wholly off the flank; its touch is a corner of the gear's face
@@ -10,19 +10,26 @@ Truths:
 1. (default) those rows carry the LCP's law (scale > 1, exponent the LCP's) as
    equivalent curvatures and keep their opening and lever; the touch point the law's
    field is centred on lies on the flank region's border within a sample's rise of the
-   searched touch.
+   searched touch. The LCP of every calibration load converges (phase 3's ``T/16`` on
+   the refined start), and the LCP's local exponent between the two least loads is
+   nearer a corner's 1/2 than 2/3 (the corner's law below the calibration).
 2. (slow) the loaded TE's model -- the torque-constrained half-space LCP of every pair of
    the phase (:func:`gearcontact.ltca.mesh_lcp.solve_mesh_lcp`, rigid), pair +1 on a
    field covering the flank region near its touch at N = 80 and 160 cells per side --
    at 645 and 1290 N·m: at every phase where the LCP loads pair +1, the law's approach
    ``c(W) kappa W^(2/3)`` at the LCP's load equals the LCP's ``l theta - g`` within the
-   tolerance declared in docs/twin.md before measuring.
+   tolerance declared in docs/twin.md before measuring; the law the loaded TE's preview
+   ``TE_pre`` takes for the pair at those torques (its fields sized by them, where the
+   pair's rows are posed-field rows: ``row_law``, a corner's continuation below the
+   calibration) likewise.
 """
 
 import numpy as np
 import pytest
 
 from gearcontact.analytic.hertz import hamrock_brewe_hertz
+from gearcontact.ltca.edge_law import EDGE_LOAD_FRACTIONS
+from gearcontact.ltca.edge_rows import preview_edge_balance, row_law
 from gearcontact.ltca.flank_touch import flank_gaps_mm
 from gearcontact.ltca.lte_pairs import PairFields, phase_contacts
 from gearcontact.ltca.lte_phase import preview_balance
@@ -30,7 +37,7 @@ from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
 from gearcontact.ltca.pair_ltca import OFF_FLANK_GAP_MM
 from gearcontact.ltca.patch_field import patch_grid
 from gearcontact.materials import effective_modulus_mpa
-from gearcontact.twin.off_flank import TouchField, is_wholly_off, touch_law, touch_point
+from gearcontact.ltca.off_flank import TouchField, is_wholly_off, touch_law, touch_point
 
 from .conftest import TORQUE_NM
 
@@ -75,6 +82,7 @@ def test_s0003_wholly_off_rows_take_the_edge_law_at_their_touch(s0003_coast_twin
     """Truth 1 (module docstring; the rows valid before are the previous table's in every
     array: tests/twin/test_mesh_reach.py ``_against_previous``). About 2 s."""
     pair, tca, flanks, mesh = s0003_coast_twin
+    mats = (pair.pinion_material, pair.gear_material)
     fields = _fields(pair, tca, flanks, 1e3 * TORQUE_NM)
     rows = _wholly_off_rows(mesh, tca, fields)
     assert len(rows) == 3               # pair +1 at 3 phases (session 24)
@@ -93,6 +101,14 @@ def test_s0003_wholly_off_rows_take_the_edge_law_at_their_touch(s0003_coast_twin
         # gap over the flank) by at most the border's rise between two samples
         _, _, g = touch_point(fields, pc)
         assert pc.offset_mm <= g <= pc.offset_mm + 20e-3   # um: 3.5-8.9 measured
+        # every load of the calibration converged (session 25: phase 3's T/16 did not,
+        # its patch on one cell of the 40-cell touch field); a corner's law below it
+        law = touch_law(fields, pc, materials=mats, torque_nmm=1e3 * TORQUE_NM)
+        assert law.loads_n.size == len(EDGE_LOAD_FRACTIONS)
+        assert 0.5 < law.low_local_exponent < 7.0 / 12.0 and law.low_exponent == 0.5
+        # the table's scale is the law's at the operating floor T/16 (pair +1 carries
+        # nothing at rest at 64.5 N·m): one exp/log round trip of rounding
+        assert c == pytest.approx(float(law.scale_at(law.loads_n[0])), rel=1e-12)
 
 
 def _truth_block(fields, pc, cells: int) -> PairBlock:
@@ -132,11 +148,16 @@ def _truth(pair, tca, flanks, mesh, fields64, row, torque_nm, cells):
 
 
 #: The case the declared tolerance does not hold (docs/twin.md, measured): row (4, 3) at
-#: 1290 N·m, the LCP loading pair +1 with 168 N, below the law's least converged
-#: calibration load (440.7 N: its T/16 LCP failed on its first solve), so the law keeps
-#: the scale of 440.7 N where the LCP's local exponent is 0.535: -15.2 % against a bound
-#: of 13.0 %.
+#: 1290 N·m, the LCP loading pair +1 with 168 N. Session 25: -15.2 % against 13.0 % (the
+#: T/16 LCP failed on the touch field, the scale held below 441 N). Session 26, the T/16
+#: calibration converged on the refined start, 168 N inside the calibration: -4.4 %
+#: against 2.2 %; -0.4 % is the interpolation, -2.8 % the law's datum (its fitted field's
+#: least gap 0.57 um above the searched touch, which the truth's l theta - g counts),
+#: -1.2 % the rest (resolution and coupling).
 DIFFERS = {(1, 1290.0)}
+#: The points TE_pre's law (calibrated at its own torque) does not meet the declared
+#: bound (measured; docs/twin.md): point -> reason.
+DIFFERS_TE_PRE: dict = {}
 
 
 @pytest.fixture(scope="module")
@@ -146,17 +167,63 @@ def s0003_off_rows(s0003_coast_twin):
     return fields64, _wholly_off_rows(mesh, tca, fields64)
 
 
+@pytest.fixture(scope="module")
+def coupled_lcp(s0003_coast_twin, s0003_off_rows):
+    """``(index, torque) -> (load of pair +1 at 160 cells (N), at 80 cells (N), its
+    approach l theta - g at 160 cells (mm), the mesh error)``: the truth, once per
+    point for the twin's and TE_pre's tests (the LCP's mesh error as declared: its
+    approach at 80 against 160 cells, relative)."""
+    pair, tca, flanks, mesh = s0003_coast_twin
+    fields64, rows = s0003_off_rows
+    memo = {}
+
+    def get(index, torque):
+        if (index, torque) not in memo:
+            (i, kk, _), _ = rows[index]
+            out = {}
+            for cells in (80, 160):
+                theta, w, lever, _ = _truth(pair, tca, flanks, mesh, fields64, rows[index][0],
+                                            torque, cells)
+                out[cells] = (w, lever * theta - mesh.opening_mm[i, kk])
+            approach = out[160][1]
+            memo[index, torque] = (out[160][0], out[80][0], approach,
+                                   abs(out[80][1] - approach) / abs(approach))
+        return memo[index, torque]
+    return get
+
+
+def _law_against(law, pc, e_prime, w, approach, mesh_error, label):
+    """Assert the law's approach ``c(W) kappa W^(2/3)`` at the LCP's load against the
+    LCP's within the declared bound (module docstring, truth 2): below the least
+    calibration load the LCP's local exponent lies between its own at the two least
+    loads and the law's asymptote (docs/twin.md, session 26), + the interpolation + the
+    LCP's mesh error; and nearer than the Hertzian law of the row's curvatures."""
+    lo = law.loads_n[0]
+    bound = (abs(law.low_local_exponent - law.low_exponent) * max(np.log(lo / w), 0.0)
+             + INTERPOLATION + mesh_error)
+    kap0 = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, 1.0,
+                               e_prime_mpa=e_prime).approach_mm
+    got = float(law.scale_at(w)) * kap0 * w ** (2 / 3)
+    hertz = kap0 * w ** (2 / 3)
+    print(f"   {label} law {1e3 * got:.3f} um, Hertz {1e3 * hertz:.3f} um; loads "
+          f"{law.loads_n.round(1)} N, n_lo {law.low_local_exponent:.4f}, m "
+          f"{law.low_exponent}; rel {got / approach - 1:+.4f}, bound {bound:.4f} "
+          f"(mesh error {mesh_error:.4f})")
+    assert abs(got - approach) < abs(hertz - approach)
+    assert abs(got / approach - 1.0) <= bound
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("torque", [645.0, 1290.0])
 @pytest.mark.parametrize("index", [0, 1, 2])
 def test_s0003_pair_plus_one_against_the_coupled_lcp(s0003_coast_twin, s0003_off_rows,
-                                                      index, torque, request):
+                                                      coupled_lcp, index, torque, request):
     """Truth 2 (module docstring), per wholly-off row and torque; where the LCP leaves
     the pair open, the twin's quasi-static balance does too. About 10 s each."""
     if (index, torque) in DIFFERS:
         request.applymarker(pytest.mark.xfail(strict=True, reason=(
-            "differs: the law's scale held below its least converged calibration load "
-            "(440.7 N) where the LCP's local exponent is 0.535 (docs/twin.md)")))
+            "differs: -4.4 % against 2.2 %, of which -2.8 % is the law's datum (its fitted "
+            "field's least gap 0.57 um above the touch; docs/twin.md)")))
     pair, tca, flanks, mesh = s0003_coast_twin
     fields64, rows = s0003_off_rows
     assert len(rows) == 3
@@ -169,30 +236,56 @@ def test_s0003_pair_plus_one_against_the_coupled_lcp(s0003_coast_twin, s0003_off
     kappa = np.array([hamrock_brewe_hertz(a, b, 1.0, e_prime_mpa=mesh.e_prime_mpa)
                       .approach_mm for a, b in zip(mesh.A_minus_per_mm[on, kk],
                                                    mesh.B_minus_per_mm[on, kk])])
-    out = {}
-    for cells in (80, 160):
-        theta, w, lever, _ = _truth(pair, tca, flanks, mesh, fields64, row, torque, cells)
-        out[cells] = (theta, w, lever * theta - mesh.opening_mm[i, kk])
-    theta, w, approach = out[160]
+    w, w80, approach, mesh_error = coupled_lcp(index, torque)
     theta_twin, w_twin = preview_balance(mesh.lever_mm[on, kk], mesh.opening_mm[on, kk],
                                          kappa, 1e3 * torque)
-    print(f"\nrow ({i},{kk}) {torque} N·m: LCP W {w:.1f} N (80 cells {out[80][1]:.1f}), "
-          f"approach {1e3 * approach:.3f} um, rotation {theta:.6e} rad; twin quasi-static "
-          f"W {w_twin[j]:.1f} N, rotation {theta_twin:.6e} rad")
+    print(f"\nrow ({i},{kk}) {torque} N·m: LCP W {w:.1f} N (80 cells {w80:.1f}), "
+          f"approach {1e3 * approach:.3f} um; twin quasi-static W {w_twin[j]:.1f} N, "
+          f"rotation {theta_twin:.6e} rad, table's fixed c at the LCP's load "
+          f"{1e3 * kappa[j] * max(w, 0.0) ** (2 / 3):.3f} um")
     if w <= 0.0:
         assert w_twin[j] == 0.0
         return
-    # the LCP's mesh error as declared (its approach at 80 against 160 cells)
-    mesh_error = abs(out[80][2] - approach) / approach
-    lo = law.loads_n[0]
-    bound = (abs(law.exponent - 2 / 3) * max(np.log(lo / w), 0.0) + INTERPOLATION
-             + mesh_error)
-    kap0 = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, 1.0,
-                               e_prime_mpa=fields64.e_prime).approach_mm
-    twin = float(law.scale_at(max(w, lo))) * kap0 * w ** (2 / 3)
-    hertz = kap0 * w ** (2 / 3)
-    print(f"   twin law {1e3 * twin:.3f} um (table's fixed c: "
-          f"{1e3 * kappa[j] * w ** (2 / 3):.3f}), Hertz {1e3 * hertz:.3f} um; "
-          f"rel {twin / approach - 1:+.4f}, bound {bound:.4f} (mesh error {mesh_error:.4f})")
-    assert abs(twin - approach) < abs(hertz - approach)
-    assert abs(twin / approach - 1.0) <= bound
+    _law_against(law, pc, fields64.e_prime, w, approach, mesh_error, "twin")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("torque", [645.0, 1290.0])
+@pytest.mark.parametrize("index", [0, 1, 2])
+def test_s0003_te_pre_takes_the_law_against_the_coupled_lcp(s0003_coast_twin,
+                                                             s0003_off_rows, coupled_lcp,
+                                                             index, torque, request):
+    """Truth 2 for the loaded TE's preview (docs/twin.md, session 26, "TE_pre"): the law
+    ``TE_pre`` takes for pair +1 (:func:`gearcontact.ltca.edge_rows.row_law` on the
+    loaded TE's fields at that torque, calibrated at its fractions) against the coupled
+    LCP at the LCP's load, with the same bound; its balance
+    (:func:`~gearcontact.ltca.edge_rows.preview_edge_balance`) gives the pair that law's
+    scale at its own load. About 10 s each (the truth shared with the twin's test)."""
+    if (index, torque) in DIFFERS_TE_PRE:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=DIFFERS_TE_PRE[
+            index, torque]))
+    pair, tca, flanks, _ = s0003_coast_twin
+    _, rows = s0003_off_rows
+    (i, _, k), _ = rows[index]
+    mats = (pair.pinion_material, pair.gear_material)
+    fields = _fields(pair, tca, flanks, 1e3 * torque)
+    contacts = _contacts(fields, tca, k)
+    jj = next(n for n, p in enumerate(contacts) if p.offset == tca.cycle.pair_offsets[i])
+    pc = contacts[jj]
+    law = row_law(fields, pc, materials=mats, torque_nmm=1e3 * torque, cache={})
+    assert law is not None
+    _, scales, _, loads = preview_edge_balance(contacts, fields, 1e3 * torque,
+                                               materials=mats, cache={})
+    w, _, approach, mesh_error = coupled_lcp(index, torque)
+    print(f"\nrow {index} {torque} N·m: TE_pre W {loads[jj]:.1f} N, c {scales[jj]:.4f}; "
+          f"LCP W {w:.1f} N, approach {1e3 * approach:.3f} um")
+    if loads[jj] > 0.0:
+        # the twin's operating rule (edge_law.operating_scales: at least T/16), to the
+        # operating loads' last pass (OPERATING_PASSES = 3, each shrinking a load's
+        # change by |n - 2/3| <= 0.17): 1 %
+        floor = EDGE_LOAD_FRACTIONS[0] * 1e3 * torque / pc.lever_mm
+        assert scales[jj] == pytest.approx(float(law.scale_at(max(loads[jj], floor))),
+                                           rel=0.01)
+    if w <= 0.0:
+        return
+    _law_against(law, pc, fields.e_prime, w, approach, mesh_error, "TE_pre")

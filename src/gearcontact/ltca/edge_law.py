@@ -52,12 +52,16 @@ fitted to the patch".
 
 The row's compliance scale is the LCP's ratio at the load the row carries: ``c(W) =
 delta_LCP(W) / delta_ref(W)``, ``ln c`` interpolated linearly in ``ln W`` between the
-calibration loads (:meth:`EdgeCompliance.scale_at`; constant beyond them), taken at the
+calibration loads (:meth:`EdgeCompliance.scale_at`; constant above them; below the
+least, ``delta ~ W^m`` with ``m`` = :attr:`EdgeCompliance.low_exponent`: 2/3, the
+scale held, unless the caller knows the touch's asymptote -- a corner's 1/2,
+:mod:`.off_flank`), taken at the
 row's *operating load* (:func:`operating_scales`): its share of the torque in the
 quasi-static mesh of the table's own law (the Hertzian balance of the loaded TE's
 preview, :func:`gearcontact.ltca.lte_phase.preview_balance`, with the scaled rows;
 iterated, as the shares depend on the scales), at least the smallest calibration load
-(a row that carries nothing at rest first carries little when the mesh deflects). A
+(a row that carries nothing at rest first carries little when the mesh deflects;
+``TE_pre`` takes the same, docs/twin.md). A
 pair entering or leaving the mesh carries a fraction of the torque, and the LCP's power
 of the load ``n`` differs from 2/3 (0.55-0.8 on cut patches), so a scale fitted over
 ``T/4 .. T`` was off there by ``|n - 2/3| ln(W_fit / W)`` (the 7/60 pair's approaching
@@ -138,6 +142,11 @@ class EdgeCompliance:
         2/3 (the law's scale is :meth:`scale_at` the row's operating load).
     exponent : float
         ``n`` of the free fit ``delta = C W^n`` to the LCP approaches.
+    low_exponent : float
+        ``m`` of the law below the least calibration load, ``delta = delta(W_lo) (W /
+        W_lo)^m`` against a Hertzian reference (``c ~ W^(m - 2/3)``): 2/3 holds the
+        scale (the default); 1/2 is a corner's asymptote (docs/twin.md, "below the
+        calibration, the corner's law").
     """
 
     loads_n: np.ndarray
@@ -145,17 +154,31 @@ class EdgeCompliance:
     approach_ref_mm: np.ndarray
     scale: float
     exponent: float
+    low_exponent: float = 2.0 / 3.0
 
     @property
     def ratio(self) -> np.ndarray:
         """``delta_LCP / delta_ref`` at each load."""
         return self.approach_lcp_mm / self.approach_ref_mm
 
+    @property
+    def low_local_exponent(self) -> float:
+        """``n_lo``: the LCP's local exponent ``d ln delta / d ln W`` between the two least
+        calibration loads."""
+        return float(np.log(self.approach_lcp_mm[1] / self.approach_lcp_mm[0])
+                     / np.log(self.loads_n[1] / self.loads_n[0]))
+
     def scale_at(self, load_n):
         """``c(W) = delta_LCP(W) / delta_ref(W)``: ``ln c`` linear in ``ln W`` between the
-        calibration loads, constant beyond them (module docstring); 1 exactly where the
+        calibration loads, constant above them, ``c(W_lo) (W / W_lo)^(m - 2/3)`` below
+        the least (``m`` = :attr:`low_exponent`; module docstring); 1 exactly where the
         row's patch stayed on the flanks."""
-        return np.exp(np.interp(np.log(load_n), np.log(self.loads_n), np.log(self.ratio)))
+        ln_w = np.log(load_n)
+        ln_c = np.interp(ln_w, np.log(self.loads_n), np.log(self.ratio))
+        if self.low_exponent == 2.0 / 3.0:     # the scale held: the law as calibrated
+            return np.exp(ln_c)
+        below = np.minimum(ln_w - np.log(self.loads_n[0]), 0.0)
+        return np.exp(ln_c + (self.low_exponent - 2.0 / 3.0) * below)
 
 
 def edge_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeCompliance:

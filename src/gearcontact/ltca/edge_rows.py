@@ -16,6 +16,11 @@ Its law is then Hertz with the approach scaled by ``c`` (:mod:`.edge_law`:
 for a surface row), ``delta = c kappa W^(2/3)``, ``c`` the calibration's at the load the
 contact carries (:func:`~.edge_law.operating_scales`); every other contact keeps
 ``c = 1``. A calibration whose LCP fails (``ArithmeticError``) keeps Hertz (``c = 1``).
+An edge row whose field lies wholly off the flank (no flank cell: its touch on the flank
+region's border) takes :func:`.off_flank.touch_law`, the twin's law of those rows; a
+posed-field row (``pc.edge``) takes, as those, a corner's continuation below its
+calibration where its LCP says it is one (:func:`.off_flank.corner_law`; docs/twin.md
+"below the calibration, the corner's law").
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ from .edge_law import (EdgeCompliance, edge_compliance, ellipse_leaves_flank, op
                        trim_compliance)
 from .lte_pairs import PairContact, PairFields
 from .lte_phase import preview_balance
+from .off_flank import corner_law, is_wholly_off, touch_law
 
 __all__ = ["is_edge_row", "is_cut", "row_law", "preview_edge_balance"]
 
@@ -54,8 +60,10 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
             cache: dict) -> EdgeCompliance | None:
     """The LCP calibration of a cut contact (module docstring): :func:`~.edge_law.
     edge_compliance` of an edge row, :func:`~.edge_law.trim_compliance` of a surface row,
-    once per TCA path index (``cache``, shared by the callers' phases); None where the
-    calibration fails (the contact keeps Hertz). The law's scale at a load is
+    once per TCA path index (``cache``, shared by the callers' phases); of an edge row
+    whose field lies wholly off the flank, :func:`.off_flank.touch_law` at its touch
+    (not cached: such rows share their nearest interior state's path index, not their
+    touch); None where the calibration fails (the contact keeps Hertz). The law's scale at a load is
     :meth:`~.edge_law.EdgeCompliance.scale_at` (at the operating loads:
     :func:`~.edge_law.operating_scales`).
 
@@ -72,12 +80,15 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
     cache : dict
         Path index -> EdgeCompliance or None.
     """
+    if is_edge_row(fields, pc) and is_wholly_off(fields, pc):
+        return touch_law(fields, pc, materials=materials, torque_nmm=torque_nmm)
     if pc.path_index not in cache:
         law = edge_compliance if is_edge_row(fields, pc) else trim_compliance
         try:
-            cache[pc.path_index] = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
+            out = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
         except ArithmeticError:     # no founded calibration: Hertz
-            cache[pc.path_index] = None
+            out = None
+        cache[pc.path_index] = corner_law(out) if out is not None and pc.edge else out
     return cache[pc.path_index]
 
 

@@ -65,7 +65,7 @@ from ..validation import InputRangeError, check_positive
 from ..ltca.edge_law import operating_scales
 from ..ltca.edge_rows import is_cut, row_law
 from ..ltca.tooth_bending import conjugate_compliance, pair_bending_compliance
-from .off_flank import is_wholly_off, touch_bending_compliance, touch_field, touch_law
+from ..ltca.off_flank import is_wholly_off, touch_bending_compliance, touch_field, touch_law
 
 __all__ = ["MeshTable", "mesh_table", "pair_mesh_table", "reverse_law", "free_play_rad",
            "pair_bending_compliance", "conjugate_compliance", "CONTACT_MODES",
@@ -170,7 +170,7 @@ class MeshTable:
         opening, which exceeds that reach; their opening is the field's least gap where
         the field bounds the touch (no touch search), else the searched touch; their law
         uncalibrated (Hertz). Such rows whose field lies wholly off the flank are left
-        out (not ``valid``); within reach, those take the law of :mod:`.off_flank`.
+        out (not ``valid``); within reach, those take the law of :mod:`~gearcontact.ltca.off_flank`.
     """
 
     psi_rad: np.ndarray
@@ -268,9 +268,9 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
     (:func:`~gearcontact.ltca.patch_field.touch_search`); beyond the reach it is left
     out of the table (not ``valid``, as a pair whose flanks do not overlap), within it
     kept with its touch as its opening and the edge law of a field placed at its touch
-    (:mod:`.off_flank`: the LCP calibration of the TCA's edge rows; where it fails, the
+    (:mod:`~gearcontact.ltca.off_flank`: the LCP calibration of the TCA's edge rows; where it fails, the
     Hertzian law, ``edge_exponent`` 0), with ``bending`` the bending compliance of that
-    field's LCP pressure (:func:`.off_flank.touch_bending_compliance`).
+    field's LCP pressure (:func:`~gearcontact.ltca.off_flank.touch_bending_compliance`).
     """
     t = check_positive("torque_nm (N·m)", torque_nm)
     cycle = tca.cycle

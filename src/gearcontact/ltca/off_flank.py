@@ -1,5 +1,6 @@
-"""The law of a mesh-table row whose field lies wholly off the flank: the edge contact
-at its searched touch.
+"""The law of a contact whose field lies wholly off the flank: the edge contact at its
+searched touch (the twin's mesh-table rows, :mod:`gearcontact.twin.mesh`, and the loaded
+TE's preview ``TE_pre``, :mod:`.edge_rows`).
 
 A pair far past its path's end has its field posed around its nearest interior state;
 where no node of that field lies on both flanks (s0003 coast's pair +1 at 3-4 of 31-61
@@ -30,6 +31,17 @@ takes it) of the LCP's own pressure under the whole torque on the touch field
 (:func:`touch_bending_compliance`) instead of the Hertzian ellipse centred on the row's
 field, which has no flank cell.
 
+Where the LCP of the calibration fails at a load on that field (the patch on a single
+cell: s0003 coast's phase 3 at ``T/16``), the calibration runs again on the same square
+with :data:`TOUCH_REFINE` times the cells per side (the fields fitted to the patch keep
+the table's cells) and takes that law if it converges at more loads. Below the least
+calibration load the law follows a corner's approach ``delta ~ W^(1/2)``
+(:data:`CORNER_EXPONENT`, :attr:`~gearcontact.ltca.edge_law.EdgeCompliance.
+low_exponent`) where the LCP's local exponent between its two least loads is nearer
+1/2 than 2/3 (:func:`corner_law`): the flank region's corner, where the gap rises
+linearly in every direction of its wedge (a gap of degree ``d`` gives ``delta ~
+W^(d/(d+1))``; Johnson 1985 sec. 5.2).
+
 What the law keeps from the row: its lever and the normal of its field's plane (the
 nearest interior state's), as every posed-field row (docs/twin.md "Rows wholly off the
 flank: the edge law at the touch").
@@ -37,25 +49,33 @@ flank: the edge law at the touch").
 
 from __future__ import annotations
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
 
 from ..analytic.hertz import hamrock_brewe_hertz
 from ..halfspace.lcp import solve_lcp
-from ..ltca.edge_law import EDGE_LOAD_FRACTIONS, EdgeCompliance, edge_compliance
-from ..ltca.flank_touch import edge_samples, flank_gaps_mm
-from ..ltca.pair_ltca import OFF_FLANK_GAP_MM
-from ..ltca.patch_field import patch_grid
-from ..ltca.tooth_bending import conjugate_compliance
+from .edge_law import EDGE_LOAD_FRACTIONS, EdgeCompliance, edge_compliance
+from .flank_touch import edge_samples, flank_gaps_mm
+from .pair_ltca import OFF_FLANK_GAP_MM
+from .patch_field import patch_grid
+from .tooth_bending import conjugate_compliance
 
-__all__ = ["TOUCH_FIELD_HALF", "TouchField", "is_wholly_off", "touch_point",
-           "touch_field", "touch_law", "touch_bending_compliance"]
+__all__ = ["CORNER_EXPONENT", "TOUCH_FIELD_HALF", "TOUCH_REFINE", "TouchField",
+           "corner_law", "is_wholly_off", "touch_point", "touch_field", "touch_law",
+           "touch_bending_compliance"]
 
 #: Half-side of a touch field in multiples of the larger Hertzian semi-axis of the row's
 #: curvatures under the whole torque (the extent of the loaded TE's fields is 1.6-2 of
 #: them; the patch fitting widens a field whose patch reaches its on-flank border).
 TOUCH_FIELD_HALF = 2.0
+#: Cells per side of the touch field, in multiples of the table's, where the LCP of a
+#: calibration load failed on it (a patch on one cell; module docstring).
+TOUCH_REFINE = 2
+#: The approach's power of the load at a corner as the patch shrinks: a gap rising
+#: linearly in every direction of a wedge (degree ``d = 1``), ``d / (d + 1)``.
+CORNER_EXPONENT = 0.5
 
 
 def is_wholly_off(fields, pc) -> bool:
@@ -95,9 +115,12 @@ class TouchField:
         The row, resolved (its opening the searched touch).
     torque_nmm : float
         The table's torque, N·mm (sizes the square).
+    refine : int
+        Cells per side of the square and its fitted field in multiples of the table's
+        ``fields.cells`` (the fields fitted to a patch keep ``fields.cells``).
     """
 
-    def __init__(self, fields, pc, *, torque_nmm: float):
+    def __init__(self, fields, pc, *, torque_nmm: float, refine: int = 1):
         self.args, self.cells, self.e_prime = fields.args, fields.cells, fields.e_prime
         self.frames, self.points, self.bending = fields.frames, fields.points, fields.bending
         self._fields = fields
@@ -108,7 +131,7 @@ class TouchField:
         half = TOUCH_FIELD_HALF * max(hz.a_mm, hz.b_mm)
         box = (s0 - half, s0 + half, t0 - half, t0 + half)
         for _ in range(2):      # the square, then its flank cells' box
-            s_axis, t_axis, grid = patch_grid(box, fields.cells)
+            s_axis, t_axis, grid = patch_grid(box, refine * fields.cells)
             s, t = np.meshgrid(s_axis, t_axis)
             gap = flank_gaps_mm(fields, pc, s, t)
             off = ~np.isfinite(gap)
@@ -152,16 +175,36 @@ def touch_law(fields, pc, *, materials, torque_nmm: float,
               touch=_UNSET) -> EdgeCompliance | None:
     """:func:`~gearcontact.ltca.edge_law.edge_compliance` of a wholly-off row on its
     :class:`TouchField` (module docstring; ``touch``: :func:`touch_field`'s, when the
-    caller holds it); None where it fails (no touch field, an LCP not converged at two
-    loads, a field that does not close): the row keeps the Hertzian law, counted
-    uncalibrated as before."""
+    caller holds it), again on the field :data:`TOUCH_REFINE` times finer where a load
+    failed, with :func:`corner_law`'s law below the least calibration load; None where
+    it fails (no touch field, an LCP not converged at two loads, a field that does not
+    close): the row keeps the Hertzian law, counted uncalibrated as before."""
     tf = touch_field(fields, pc, torque_nmm=torque_nmm) if touch is _UNSET else touch
     if tf is None:
         return None
+    law = _calibration(tf, pc, materials, torque_nmm)
+    if law is None or law.loads_n.size < len(EDGE_LOAD_FRACTIONS):
+        finer = _calibration(TouchField(fields, pc, torque_nmm=torque_nmm,
+                                        refine=TOUCH_REFINE), pc, materials, torque_nmm)
+        if finer is not None and (law is None or finer.loads_n.size > law.loads_n.size):
+            law = finer
+    return None if law is None else corner_law(law)
+
+
+def _calibration(tf, pc, materials, torque_nmm) -> EdgeCompliance | None:
     try:
         return edge_compliance(tf, pc, materials=materials, torque_nmm=torque_nmm)
     except ArithmeticError:
         return None
+
+
+def corner_law(law: EdgeCompliance) -> EdgeCompliance:
+    """``law`` with the corner's asymptote below its least calibration load
+    (``low_exponent`` = :data:`CORNER_EXPONENT`) where the LCP's local exponent between
+    its two least loads is nearer 1/2 than 2/3 (module docstring), else ``law``."""
+    corner = abs(law.low_local_exponent - CORNER_EXPONENT) < abs(law.low_local_exponent
+                                                                 - 2.0 / 3.0)
+    return replace(law, low_exponent=CORNER_EXPONENT) if corner else law
 
 
 def touch_bending_compliance(fields, pc, *, materials, torque_nmm: float,
