@@ -12,7 +12,7 @@ from tqdm import tqdm
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
-from .line_contact import LineContact, is_conjugate, line_contact
+from .line_contact import LineContact, found_line_contact, is_conjugate, line_contact
 from .edge_contact import pushes_forward, solve_edge_contact
 from .edges import PatternOffFlank, exit_counts, pattern_edges
 from .curvature import (ContactEllipse, RelativeCurvature, contact_ellipse,
@@ -137,6 +137,13 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
         surface contact only (:func:`~gearcontact.tca.mesh.mesh_cycle`).
     progress : bool
         Show progress bars.
+
+    Raises
+    ------
+    LineContact
+        Line contact at the reference point (B- within
+        :func:`~.line_contact.found_line_contact`'s tolerance): the contact line is
+        followed and reported (its TE0 along the pitch) instead of an ellipse.
     """
     timings = {}
     stages = tqdm(total=4, desc="TCA stages", disable=not progress, leave=False)
@@ -150,6 +157,11 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     mean = cycle.reference_point
     t0 = time.perf_counter()
     rc = relative_curvature(pinion, gear, kin, mean)
+    if found_line_contact(rc.B_minus_per_mm):
+        stages.close()      # conjugate flanks (e.g. cut uncrowned): the line, reported
+        raise LineContact(line_contact(pinion, gear, kin, mean.as_guess(),
+                                       pinion_teeth=pinion_teeth, phases=phases),
+                          found=rc.B_minus_per_mm)
     ell = contact_ellipse(rc)
     field = gap_field_80(pinion, gear, kin, mean)
     timings["gap_field_80"] = time.perf_counter() - t0
@@ -195,6 +207,9 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
     LineContact
         Zero ease-off and no assembly errors: the flanks are conjugate (line contact,
         TE0 = 0); the exception carries the :class:`~.line_contact.LineContactResult`.
+        Also when the TCA finds line contact (``found``: B- at the mean point within
+        :func:`~.line_contact.found_line_contact`'s tolerance; e.g. an uncrowned pinion
+        cut by the gear's complementary generating surface).
     PatternOffFlank
         The contact has left the flanks at every phase tried.
     """
@@ -219,10 +234,13 @@ def analyze_pair(pair, *, side: str | None = None, phases: int = 61, pairs: int 
                                        kin, start, pinion_teeth=pair.pinion_teeth,
                                        phases=phases), side=side)
     start, fixed = reference_start(pair, flanks, side, edge_contact=edge_contact)
-    result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
-                     pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
-                     phases=phases, pairs=pairs, edge_contact=edge_contact,
-                     progress=progress)
+    try:
+        result = analyze(flanks.flank("pinion", side), flanks.flank("gear", side), kin,
+                         pinion_teeth=pair.pinion_teeth, start=start, start_fixed=fixed,
+                         phases=phases, pairs=pairs, edge_contact=edge_contact,
+                         progress=progress)
+    except LineContact as line:     # found by the TCA: named with its side
+        raise LineContact(line.result, side=side, found=line.found) from None
     return result, flanks
 
 

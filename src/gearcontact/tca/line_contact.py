@@ -31,13 +31,22 @@ from ..validation import InputRangeError, UnusableInput
 from .mating import solve_mating_point
 from .types import ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError
 
-__all__ = ["LINE_TOLERANCE_MM", "LineContactResult", "LineContact", "line_contact",
-           "is_conjugate", "check_loadable"]
+__all__ = ["LINE_TOLERANCE_MM", "LINE_CURVATURE_PER_MM", "LineContactResult", "LineContact", "line_contact", "is_conjugate",
+           "found_line_contact", "check_loadable"]
 
 #: Residual tolerance of the contact-line solve, mm: the pinion sheets interpolate the
 #: exact conjugate nodes with C2 quintic splines, so the flanks are conjugate only to
 #: the interpolation accuracy (residuals ~1e-9 mm measured on s0003), not to 1e-10 mm.
 LINE_TOLERANCE_MM = 1e-7
+
+#: Below this smaller relative curvature B- at the reference point, 1/mm, the
+#: point-contact TCA has found line contact (flanks cut from machine settings are not
+#: known to be conjugate beforehand): the sheets' interpolation leaves B- ~1e-12 1/mm on
+#: a conjugate pair (5.2e-13 measured on F.2's uncrowned standard settings), while 1 um
+#: of crowning over a 30 mm face already gives ~1e-5 1/mm. At 1e-9 the paint ellipse
+#: would be metres long. (The point solve's TE0 is no test there: singular on the line,
+#: it gave 1.4e-4 arcsec p-p on that pair; the line's own TE0 is reported.)
+LINE_CURVATURE_PER_MM = 1e-9
 
 
 @dataclass(frozen=True)
@@ -81,14 +90,25 @@ class LineContact(UnusableInput):
     result : LineContactResult
     """
 
-    def __init__(self, result: LineContactResult, *, side: str = ""):
+    def __init__(self, result: LineContactResult, *, side: str = "",
+                 found: float | None = None):
         self.result = result
-        super().__init__(
-            f"line contact{f' on the {side} side' if side else ''}: zero ease-off and no "
-            f"assembly errors make the flanks conjugate (TE0 = 0 within "
-            f"{max(result.te0_max_abs_arcsec, 1e-9):.1e} arcsec, contact line "
-            f"{result.line_length_mm:.2f} mm long); there is no contact ellipse to load. "
-            "Give an [easeoff.*] table, or omit it to have one synthesized.")
+        self.found = found
+        where = f"line contact{f' on the {side} side' if side else ''}: "
+        line = (f"TE0 = 0 within {max(result.te0_max_abs_arcsec, 1e-9):.1e} arcsec, contact "
+                f"line {result.line_length_mm:.2f} mm long); there is no contact ellipse to "
+                "load. ")
+        if found is None:
+            super().__init__(where + "zero ease-off and no assembly errors make the flanks "
+                             "conjugate (" + line + "Give an [easeoff.*] table, or omit it "
+                             "to have one synthesized.")
+        else:
+            super().__init__(
+                where + f"the TCA found the flanks touching along a line (smaller relative "
+                f"curvature B- {found:.1e} 1/mm at the mean point; along the pitch "
+                + line + "Crown the pinion: an ease-off, or for machine settings "
+                "`gearcontact design --machine-settings` with its crowning options, modified "
+                "roll or a curved blade (docs/machine_settings.md).")
 
 
 def is_conjugate(pair, side: str) -> bool:
@@ -99,6 +119,13 @@ def is_conjugate(pair, side: str) -> bool:
     c = dataclasses.astuple(getattr(pair, f"easeoff_{side}"))
     a = pair.assembly
     return (not any(c)) and not any((a.E_mm, a.P_mm, a.G_mm, a.alpha_deg))
+
+
+def found_line_contact(b_minus_per_mm: float) -> bool:
+    """True if a point-contact TCA's smaller relative curvature B- at its reference
+    point says the flanks touch along a line there (:data:`LINE_CURVATURE_PER_MM`):
+    line contact found, not known beforehand."""
+    return abs(float(b_minus_per_mm)) <= LINE_CURVATURE_PER_MM
 
 
 def check_loadable(pair, side: str) -> None:
