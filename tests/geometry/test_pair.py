@@ -74,8 +74,8 @@ def test_unknown_key_rejected():
 
 
 @pytest.mark.parametrize("section, key, value, field", [
-    ("axes", "offset_mm", 25.0, "offset_mm"),
-    ("teeth", "pinion", 3, "pinion_teeth"),
+    ("axes", "offset_mm", 25.0, "axes.offset_mm"),
+    ("teeth", "pinion", 3, "teeth.pinion"),
     ("cutter", "edge_radius_mm", 0.3, "cutter.edge_radius_mm"),
     ("design", "pinion_hand", "up", "design.pinion_hand"),
     ("design", "pinion_face_width_mm", 5.0, "design.pinion_face_width_mm"),

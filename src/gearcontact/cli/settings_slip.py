@@ -26,14 +26,24 @@ def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError
     bad = [f for f in check.flanks if not f.agrees] if check is not None else []
     if not bad or exc.field in {f.slip for f in bad} | {check.stated.hand_key}:
         return exc
+    # the check's own refusal naming a key of a disagreeing flank's tables (a slip that
+    # two keys explain names the first typed): that key already, unchanged
+    tables = {t for f in bad for t in (_table(f), f"blade.{f.member}.{f.side}")}
+    if any(exc.field == t or exc.field.startswith(t + ".") for t in tables):
+        return exc
     f = next((f for f in bad if f.slip), bad[0])
-    table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
-    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or None)
+    table = _table(f)
+    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or "table")
     return InputRangeError(field, value, (
         f"settings that cut their blank's tooth: the {f.member} {f.side} flank does not "
         f"agree with its blank (the warning above; likely {f.slip or table}), and {failed} "
         f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
         "docs/machine_settings.md sec. 2"))
+
+
+def _table(f) -> str:
+    """The typed table of a flank check ``f``: ``print.gear`` or ``machine.<member>.<side>``."""
+    return "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
 
 
 def work_slip_renamed(exc, args, command: str):
