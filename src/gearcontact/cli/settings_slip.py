@@ -26,10 +26,10 @@ def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError
     bad = [f for f in check.flanks if not f.agrees] if check is not None else []
     if not bad or exc.field in {f.slip for f in bad} | {check.stated.hand_key}:
         return exc
-    # the check's own refusal naming a key of a disagreeing flank's tables (a slip that
-    # two keys explain names the first typed): that key already, unchanged
-    tables = {t for f in bad for t in (_table(f), f"blade.{f.member}.{f.side}")}
-    if any(exc.field == t or exc.field.startswith(t + ".") for t in tables):
+    # the check's own refusal naming a key it found (a flank that two keys explain is
+    # refused naming the first typed of its single keys): that key already, unchanged
+    named = {k for f in bad for k in (*f.slip_also, *(kv.key for kv in f.single_keys))}
+    if exc.field in named:
         return exc
     f = next((f for f in bad if f.slip), bad[0])
     table = _table(f)
