@@ -12,62 +12,13 @@ def pytest_addoption(parser):
                      help="also run tests marked slow (long sweeps, synthesis)")
 
 
-@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     if config.getoption("--runslow"):
-        _group_fixture_sharers(items)
         return
     skip_slow = pytest.mark.skip(reason="slow suite: run with --runslow")
     for item in items:
         if "slow" in item.keywords:
             item.add_marker(skip_slow)
-    _group_fixture_sharers([item for item in items if "slow" not in item.keywords])
-
-
-def _group_fixture_sharers(items):
-    """Mark the tests that share an expensive fixture with one ``xdist_group``, so that
-    ``--dist loadgroup`` (pyproject.toml) sends them to one worker and the fixture is
-    built once per run. Shared here: a module's (or class's) fixtures, and the session
-    (or package) fixtures of a sub-directory's conftest.py (a twin mesh table, an LTCA
-    set-up, the one ``reproduce --quick`` run of tests/report, the README export of
-    tests/export); tests linked through such fixtures form one group (union-find). The
-    root conftest's session fixtures (s0003 flanks, ~2 s) are built by each worker as
-    before, and so are the fixtures of tests without any of these: those stay single
-    units, spread over the workers as they free up.
-
-    Under the default ``--dist load`` a module's tests were cut between the two workers
-    wherever a chunk of the schedule ended (the last ones two tests long), each worker
-    then building the module's fixtures (a README command, a TCA, a twin table) again,
-    and a worker asking for a ``run_once`` fixture (tests/run_once.py) the other was
-    building waited for it, idle. Runs before xdist's own hook (tryfirst), which turns
-    the mark into the node id's ``@group`` suffix (``@cli/test_twin.out``: the
-    module, or directory, and the fixture; drop it to select the test by node id)."""
-    parent = {}
-
-    def find(key):
-        while parent.setdefault(key, key) != key:
-            parent[key] = parent[parent[key]]
-            key = parent[key]
-        return key
-
-    keys = {}
-    for item in items:
-        info = getattr(item, "_fixtureinfo", None)
-        module = item.nodeid.split("::", 1)[0]
-        mine = set()
-        for name, defs in (info.name2fixturedefs.items() if info is not None else ()):
-            d = defs[-1]                        # the definition the item gets
-            if d.scope in ("module", "class"):
-                mine.add(f"{module.removeprefix('tests/').removesuffix('.py')}.{name}")
-            elif d.scope in ("session", "package") and d.baseid not in ("", "tests"):
-                mine.add(f"{d.baseid.removeprefix('tests/')}.{name}")
-        if mine:
-            first, *rest = sorted(mine)
-            for key in rest:
-                parent[find(key)] = find(first)
-            keys[item] = first
-    for item, key in keys.items():
-        item.add_marker(pytest.mark.xdist_group(find(key)))
 
 
 @pytest.fixture(scope="session")
