@@ -24,26 +24,21 @@ def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError
     ``exc`` unchanged where every flank agrees, or where ``exc`` names a key of the check
     already (its own refusal of a gross mismatch)."""
     bad = [f for f in check.flanks if not f.agrees] if check is not None else []
-    if not bad or exc.field in {f.slip for f in bad} | {check.stated.hand_key}:
+    if not bad:
         return exc
-    # the check's own refusal naming a key it found (a flank that two keys explain is
-    # refused naming the first typed of its single keys): that key already, unchanged
-    named = {k for f in bad for k in (*f.slip_also, *(kv.key for kv in f.single_keys))}
-    if exc.field in named:
+    # the check's own refusal names a key it found (its slip, another slip, one of the
+    # single keys of a flank that two keys explain, the hand): unchanged
+    named = {k for f in bad for k in (f.slip, *f.slip_also, *(kv.key for kv in f.single_keys))}
+    if exc.field in named | {check.stated.hand_key}:
         return exc
     f = next((f for f in bad if f.slip), bad[0])
-    table = _table(f)
+    table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
     field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or "table")
     return InputRangeError(field, value, (
         f"settings that cut their blank's tooth: the {f.member} {f.side} flank does not "
         f"agree with its blank (the warning above; likely {f.slip or table}), and {failed} "
         f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
         "docs/machine_settings.md sec. 2"))
-
-
-def _table(f) -> str:
-    """The typed table of a flank check ``f``: ``print.gear`` or ``machine.<member>.<side>``."""
-    return "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
 
 
 def work_slip_renamed(exc, args, command: str):
