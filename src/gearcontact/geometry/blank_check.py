@@ -51,7 +51,6 @@ docs/machine_settings.md sec. 2 (sign conventions; the published sheet), sec. 3.
 from __future__ import annotations
 
 import dataclasses
-import math
 import re
 from dataclasses import dataclass
 
@@ -67,7 +66,7 @@ from .print_blank import print_key
 from .slip_attribution import describe, explaining_values, interval
 from .typed_settings import attributed_keys, full_key, moved, roundings, setting
 
-__all__ = ["GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
+__all__ = ["GROSS_CONE_FACE_FRACTION", "GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SCREEN_MARGIN",
            "BlankCheck", "Comparison", "FlankCheck", "check_flanks", "check_pair_blank"]
 __getattr__ = moved_names(__name__, {
@@ -102,6 +101,15 @@ PINION_PRESSURE_DEG = 5.0
 #: mismatch moves a pressure angle by 10 deg, a unit slip (radians) does. Declared with
 #: :data:`PINION_PRESSURE_DEG`.
 GROSS_PRESSURE_DEG = 10.0
+#: A gear flank's generating mean cone distance off the blank's by more than this
+#: fraction of the gear face width is an input error (exit 2): the generating gear's
+#: mean point then lies off the gear's face (the blank's own extent along the cone), so
+#: the flank is not the blank's tooth. No correction or rounding moves it by a
+#: millimetre (the largest deviation measured on a typed sheet, a radial distance with
+#: a digit misread, 0.30 mm on a 31.75 mm face), a unit slip does (a machine root angle
+#: in radians: 146 mm on F.2's 25.4 mm face). Declared in docs/machine_settings.md sec.
+#: 2, "A mean point off the face".
+GROSS_CONE_FACE_FRACTION = 0.5
 #: A slip's candidate on a gear flank is screened out without a solve where its closed-
 #: form spiral angle or mean cone distance is outside its tolerance by more than this
 #: fraction of it (:meth:`_Compare.outside`; the same floats as the solved comparison,
@@ -109,25 +117,38 @@ GROSS_PRESSURE_DEG = 10.0
 #: "The cost of the slip search").
 SCREEN_MARGIN = 1e-9
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
+_GROSS_FACE = "mean cone distance"     # its gross bound: the gear face's (GROSS_CONE_...)
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 
 
 @dataclass(frozen=True)
 class Comparison:
     """One measured value against the stated one: ``quantity``, ``unit``, ``measured``,
-    ``stated``, ``tolerance`` (None for the hand) and ``within``."""
+    ``stated``, ``tolerance`` (None for the hand) and ``within``; ``gross_bound``: the
+    difference beyond which the flank is not the blank's tooth (an input error,
+    :attr:`gross`), None where there is none."""
 
     quantity: str
     unit: str
     measured: float | str
     stated: float | str
     tolerance: float | None
+    gross_bound: float | None = None
 
     @property
     def within(self) -> bool:
         if self.tolerance is None:
             return self.measured == self.stated
         return abs(self.measured - self.stated) <= self.tolerance
+
+    @property
+    def gross(self) -> bool:
+        """Outside: a hand against the blank's, a value off by more than
+        :attr:`gross_bound`."""
+        if self.within:
+            return False
+        return self.tolerance is None or (self.gross_bound is not None and abs(
+            self.measured - self.stated) > self.gross_bound)
 
 
 @dataclass(frozen=True)
@@ -162,10 +183,10 @@ class FlankCheck:
     @property
     def gross(self) -> bool:
         """The hand against the blank's, a spiral angle off by more than
-        :data:`GROSS_SPIRAL_DEG` or a pressure angle by more than
-        :data:`GROSS_PRESSURE_DEG`."""
-        return any(not c.within and (c.quantity == "hand" or abs(c.measured - c.stated) > _GROSS.get(
-            c.quantity, math.inf)) for c in self.comparisons)
+        :data:`GROSS_SPIRAL_DEG`, a pressure angle by more than :data:`GROSS_PRESSURE_DEG`
+        or a gear's mean cone distance by more than :data:`GROSS_CONE_FACE_FRACTION` of
+        the face (:attr:`Comparison.gross`)."""
+        return any(c.gross for c in self.comparisons)
 
 
 @dataclass(frozen=True)
@@ -258,7 +279,15 @@ def _describe(f: FlankCheck) -> str:
     return ", ".join(
         f"{c.quantity} {c.measured}, {_blank(f)}'s {c.stated}" if c.tolerance is None else
         f"{c.quantity} {c.measured:.4f} {c.unit}, {_blank(f)}'s {c.stated:.4f} (tolerance "
-        f"{c.tolerance:.2g})" for c in f.comparisons if not c.within)
+        f"{c.tolerance:.2g}{_off_face(c)})" for c in f.comparisons if not c.within)
+
+
+def _off_face(c: Comparison) -> str:
+    """``"; off the face, <from> to <to> mm"`` for a gross mean cone distance, else ""."""
+    if c.quantity != _GROSS_FACE or not c.gross:
+        return ""
+    return (f"; off the gear's face, {c.stated - c.gross_bound:.4f} to "
+            f"{c.stated + c.gross_bound:.4f} {c.unit}")
 
 
 def _values(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict, object]:
@@ -408,8 +437,17 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
             f"the flank reaches {where} only at the edge: a setting moved by its typed "
             "rounding loses it")), tol
     want = _stated_values(setup.member, setup.side, stated, hand)
-    rows = tuple(Comparison(q, _UNITS[q], values[q], want[q], tol.get(q)) for q in values)
+    rows = tuple(Comparison(q, _UNITS[q], values[q], want[q], tol.get(q),
+                            _gross_bound(q, stated)) for q in values)
     return FlankCheck(setup.member, setup.side, rows), tol
+
+
+def _gross_bound(quantity: str, stated: StatedBlank) -> float | None:
+    """The :attr:`Comparison.gross_bound` of ``quantity`` against ``stated``."""
+    if quantity == _GROSS_FACE:
+        face = stated.gear_face_width_mm
+        return None if face is None else GROSS_CONE_FACE_FRACTION * face
+    return _GROSS.get(quantity)
 
 
 def _circle(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict, None]:

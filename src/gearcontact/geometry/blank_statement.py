@@ -17,6 +17,7 @@ import dataclasses
 from dataclasses import dataclass
 
 from .print_blank import cuts_the_printed_gear, printed_blank
+from .print_words import INCH_MM
 
 __all__ = ["StatedBlank", "printed_stated_blank", "stated_blank"]
 
@@ -52,6 +53,10 @@ class StatedBlank:
         towards the member's back, mm: a sheet's MD measured from the crossing point is
         typed as ``X_D = MD + datum`` (docs sec. 2), so its sign slip is ``X_D -> 2 datum
         - X_D``; tried where non-zero.
+    gear_face_width_mm : float or None
+        The gear's face width, mm: a generating gear's mean cone distance off the stated
+        one by more than half of it lies off the gear's face, an input error
+        (:data:`~.blank_check.GROSS_CONE_FACE_FRACTION`); None: no such bound.
     printed : tuple
         The ``[print.gear]`` items ``(key, value as typed)`` when the settings checked
         against this statement were converted from a print (:func:`printed_stated_blank`):
@@ -72,6 +77,7 @@ class StatedBlank:
     hand_value: str = ""
     mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
     printed: tuple = ()
+    gear_face_width_mm: float | None = None
 
 
 def stated_blank(pair) -> StatedBlank:
@@ -88,7 +94,7 @@ def stated_blank(pair) -> StatedBlank:
         pressure_angle_deg={"drive": b.pressure_angle_drive_deg,
                             "coast": b.pressure_angle_coast_deg},
         gear_hand=other[pair.pinion_hand], cutter_radius_mm=pair.cutter.radius_mm,
-        hand_value=pair.pinion_hand,
+        hand_value=pair.pinion_hand, gear_face_width_mm=pair.gear_face_width_mm,
         # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
         # each body on the + side (geometry.blank)
         mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})
@@ -117,4 +123,4 @@ def printed_stated_blank(pair) -> StatedBlank | None:
         rounding=p.rounding,
         setting_rounding=p.setting_rounding, hand_key="print.gear.gear_hand",
         hand_value=printed["gear_hand"], mctb_datum_mm={"gear": p.apex_mm},
-        printed=pair.print_gear)
+        printed=pair.print_gear, gear_face_width_mm=INCH_MM * printed["face_width_in"])
