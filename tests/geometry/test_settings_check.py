@@ -11,6 +11,7 @@ settings has nothing to check. Tolerances: geometry.blank_check's, tested there.
 """
 
 import dataclasses
+import sys
 import warnings
 
 import pytest
@@ -121,3 +122,69 @@ def test_analyze_pair_warns_a_sliding_base_slip(f2_machine_pair):
     assert len(lines) == 2 and all("sliding_base_mm" in line for line in lines)
     first = next(w for w in caught if w.category is SettingsWarning)
     assert first.filename == __file__            # attributed to the caller
+
+
+def _md_slip(f2):
+    """F.2 with the gear's MD typed -0.24 where its blank's settings have 0 (sec. 2's
+    table: mean cone distance 81.354 against 81.273 mm, a warning naming the MCTB alone;
+    the cheapest warned slip of the examples, 2-3 s)."""
+    return dataclasses.replace(f2, machine=_flip(f2.machine, "gear", "machine_centre_to_back_mm",
+                                                 lambda x: -0.24))
+
+
+def test_the_blank_warnings_come_before_the_flank_work(f2_machine_pair, monkeypatch):
+    """Validate, then compute (docs/machine_settings.md sec. 2, "The order of the
+    check"): the library's check emits the blank's SettingsWarnings before the ease-off
+    shape builds its flanks. Before (session 26) they came after it (1.3-2.4 s later on
+    F.2's warned slips; a failure of that work left them unsaid)."""
+    import gearcontact.geometry.settings_check as sc
+
+    slip, said = _md_slip(f2_machine_pair), {}
+
+    def shape(*args, **kwargs):     # the flank work, stubbed: only its moment matters
+        said["at the flank work"] = [str(w.message) for w in caught
+                                     if w.category is SettingsWarning]
+
+    monkeypatch.setattr(sc, "check_easeoff_shape", shape)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        got = sc.checked_settings(slip)
+    assert len(got.warnings) == 2 and "machine_centre_to_back_mm" in got.warnings[0]
+    assert said["at the flank work"] == [line.removeprefix("warning: ")
+                                         for line in got.warnings]
+
+
+def test_a_failure_of_the_flank_work_is_named_from_the_first_comparison(
+        f2_machine_pair, monkeypatch, capsys):
+    """The command line's check (cli.settings_slip.checked_blank_named): its warnings
+    printed before the flank work, and an input error of that work renamed to the slip
+    from the comparison already made. Before (session 26) the blank was compared a second
+    time on this path (check_pair_blank called twice: 2.4 s more on this slip, 11.7 s on
+    a pinion ratio of roll typed cradle / work) to name the slip and print the warnings
+    the failed call had not printed."""
+    import gearcontact.geometry.blank_check as bc
+    import gearcontact.geometry.settings_check as sc
+    from gearcontact.cli.settings_slip import checked_blank_named
+
+    calls, real = [], bc.check_pair_blank
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return real(*args, **kwargs)
+
+    def failing_shape(*args, **kwargs):     # the flank work failing on a key typed right
+        print("<flank work>", file=sys.stderr)
+        raise InputRangeError("blade.gear.drive.point_radius_mm", 113.3, "a simulated failure")
+
+    monkeypatch.setattr(bc, "check_pair_blank", counted)
+    monkeypatch.setattr(sc, "check_pair_blank", counted)
+    monkeypatch.setattr(sc, "check_easeoff_shape", failing_shape)
+    with pytest.raises(InputRangeError) as err:
+        checked_blank_named(_md_slip(f2_machine_pair))
+    assert len(calls) == 1
+    assert "the check of its flanks failed on it (blade.gear.drive.point_radius_mm = 113.3: " \
+           "a simulated failure)" in str(err.value)
+    assert "likely machine.gear" in str(err.value) or "[machine.gear.drive]" in str(err.value)
+    printed = capsys.readouterr().err.splitlines()
+    assert printed[-1] == "<flank work>" and len(printed) == 3
+    assert all(line.startswith("warning: the gear ") for line in printed[:2])

@@ -57,21 +57,18 @@ def work_slip_renamed(exc, args, command: str):
 
 def checked_blank_named(pair, **options):
     """:func:`~gearcontact.report.design_mean_point.checked_blank` of ``pair``
-    (``options`` its keywords); an input error of the flank work inside it renamed by
-    :func:`slip_renamed` (the check measured again, on this error path only, to name
-    the slip: its warnings, which the failed call did not print, first)."""
-    from ..geometry.blank_check import check_pair_blank
+    (``options`` its keywords; its warnings printed before its flank work); an input
+    error of that work renamed by :func:`slip_renamed` from the comparison the check
+    made first (not measured again)."""
     from ..report.design_mean_point import checked_blank
 
+    first = []
     try:
-        return checked_blank(pair, **options)
+        return checked_blank(pair, on_blank=first.append, **options)
     except InputRangeError as exc:
-        check = check_pair_blank(pair, measured=options.get("measured"))
-        renamed = slip_renamed(exc, check, failed="the check of its flanks")
-        if renamed is not exc:
-            for line in check.warnings():
-                print(line, file=sys.stderr)
-        raise renamed from None
+        if not first:       # the check's own refusal, before its flank work
+            raise
+        raise slip_renamed(exc, first[0].blank, failed="the check of its flanks") from None
 
 
 def checked_typed_gear(pair, gear: dict):

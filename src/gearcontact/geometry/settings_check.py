@@ -96,11 +96,14 @@ class SettingsCheck:
             self.easeoff.warn(stacklevel=stacklevel + 1)
 
 
-def check_settings(pair, *, measured=None, easeoff_generated: bool = False
-                   ) -> SettingsCheck | None:
+def check_settings(pair, *, measured=None, easeoff_generated: bool = False,
+                   on_blank=None) -> SettingsCheck | None:
     """The typed-settings check of ``pair`` (module docstring): None for a pair without
     machine settings (a cylindrical pair has none), else its :class:`SettingsCheck`.
-    Nothing is printed or warned here (:meth:`SettingsCheck.warn`).
+    Nothing is printed or warned here (:meth:`SettingsCheck.warn`). Validate, then
+    compute: the comparison with the blank (its refusal, its warnings) comes before any
+    flank work, which is the ease-off shape's (its flanks; docs/machine_settings.md
+    sec. 2, "The order of the check").
 
     Parameters
     ----------
@@ -114,6 +117,11 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False
         CPU a pair, against 0.18 s for a formate gear's; ``design`` measures them so). By
         default they are left to :func:`completed_settings` (``deferred``), which measures
         them on the gear boxes the reader's generation check traces anyway.
+    on_blank : callable, optional
+        Called with the check as it stands before the ease-off shape's flank work (its
+        :attr:`SettingsCheck.blank` and :attr:`SettingsCheck.warnings`, ``easeoff``
+        None), so that the caller shows the blank's warnings first; an error of that work
+        can then be named by them (``cli.settings_slip``) without measuring again.
 
     Raises
     ------
@@ -130,16 +138,19 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False
     measured = measured if measured is not None else measure_pair_mean_points(pair)
     got = check_pair_blank(pair, measured=measured)
     got.raise_if_gross()
+    blank = SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0)
+    if on_blank is not None:
+        on_blank(blank)
     check_edge_rounds(pair.machine, measured)
-    shape = check_easeoff_shape(pair, generated=easeoff_generated)
-    return SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0, easeoff=shape)
+    shape = check_easeoff_shape(pair, generated=easeoff_generated)     # the flank work
+    return dataclasses.replace(blank, seconds=time.perf_counter() - t0, easeoff=shape)
 
 
 def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
     """:func:`check_settings` of ``pair`` with its warnings emitted as
-    :class:`SettingsWarning` (a hollow pinion flank's as
-    :class:`~.easeoff_shape.HollowEaseOffWarning`; ``stacklevel`` counted from the caller
-    of this function):
+    :class:`SettingsWarning`, before the ease-off shape's flank work, and a hollow pinion
+    flank's after it as :class:`~.easeoff_shape.HollowEaseOffWarning` (``stacklevel``
+    counted from the caller of this function):
     what a library call runs where it takes a pair and builds its flanks itself
     (:func:`~gearcontact.tca.synthesis.prepare_pair`, and
     :func:`~gearcontact.tca.analysis.analyze_pair`,
@@ -153,9 +164,12 @@ def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
     InputRangeError
         A gross mismatch, naming the likely key.
     """
-    got = check_settings(pair)
-    if got is not None:
-        got.warn(stacklevel=stacklevel + 1)
+    def first(blank: SettingsCheck) -> None:    # called by check_settings, called here
+        blank.warn(stacklevel=stacklevel + 3)
+
+    got = check_settings(pair, on_blank=first)
+    if got is not None and got.easeoff is not None:
+        got.easeoff.warn(stacklevel=stacklevel + 1)
     return got
 
 

@@ -85,11 +85,12 @@ def mean_point_table(points: tuple[FlankMeanPoint, ...]) -> str:
     return "\n".join(line.rstrip() for line in lines)
 
 
-def checked_blank(pair, *, measured=None, easeoff_generated: bool = False
-                  ) -> SettingsCheck | None:
+def checked_blank(pair, *, measured=None, easeoff_generated: bool = False,
+                  on_blank=None) -> SettingsCheck | None:
     """:func:`~gearcontact.geometry.settings_check.check_settings` of ``pair`` with its
-    warnings printed on stderr, one line each, as the command line shows them, a hollow
-    pinion flank's after them (docs/machine_settings.md sec. 2): None for a pair without
+    warnings printed on stderr, one line each, as the command line shows them, before
+    the check's flank work (then ``on_blank``, as ``check_settings``'s), a hollow pinion
+    flank's after it (docs/machine_settings.md sec. 2): None for a pair without
     machine settings; a gross mismatch raises
     :class:`~gearcontact.validation.InputRangeError` naming the likely key (exit 2).
     ``measured``: the pair's
@@ -97,8 +98,15 @@ def checked_blank(pair, *, measured=None, easeoff_generated: bool = False
     measured (``design`` prints them): the check then measures no flank again.
     ``easeoff_generated``: as :func:`~gearcontact.geometry.settings_check.check_settings`'s
     (``design`` measures a generated gear's pinion ease-off too)."""
-    got = check_settings(pair, measured=measured, easeoff_generated=easeoff_generated)
-    for line in () if got is None else (*got.warnings, *got.hollow_warnings):
+    def first(blank: SettingsCheck) -> None:
+        for line in blank.warnings:
+            print(line, file=sys.stderr)
+        if on_blank is not None:
+            on_blank(blank)
+
+    got = check_settings(pair, measured=measured, easeoff_generated=easeoff_generated,
+                         on_blank=first)
+    for line in () if got is None else got.hollow_warnings:
         print(line, file=sys.stderr)
     return got
 
