@@ -217,6 +217,98 @@ def test_a_generated_gear_is_checked_on_load_as_design_checks_it(f3_generated, c
     assert again.easeoff.flanks == design.flanks
 
 
+@pytest.fixture(scope="module")
+def design_verdicts(f3_generated):
+    """``{case: (pair, design's EaseOffShapeCheck)}`` of the two cases above, measured
+    once (check_settings(easeoff_generated=True), ``design``'s own measurement)."""
+    pairs = {"sound": f3_generated, "hollow": _with_drive_2c(f3_generated, 0.05)}
+    return {case: (p, check_settings(p, easeoff_generated=True).easeoff)
+            for case, p in pairs.items()}
+
+
+class _Built(Exception):
+    """Raised in place of the flanks: the library call got past its settings check."""
+
+
+def _no_flanks(*args, **kwargs):
+    raise _Built
+
+
+def _analyze_pair(pair, out):
+    from gearcontact.tca.analysis import analyze_pair
+    analyze_pair(pair, phases=3)
+
+
+def _run_sweep(pair, out):
+    from gearcontact.sweep.grid import SweepGrid, parse_vary
+    from gearcontact.sweep.run import run_sweep
+    run_sweep(pair, SweepGrid((parse_vary("E=0:0:1"),), (64.5,)), out=out, side="drive",
+              phases=3, workers=0, progress=False)
+
+
+@pytest.mark.parametrize("case", ["sound", "hollow"])
+@pytest.mark.parametrize("call", [_analyze_pair, _run_sweep], ids=["analyze_pair", "run_sweep"])
+def test_a_library_call_checks_a_generated_gear_as_design_does(design_verdicts, tmp_path,
+                                                               monkeypatch, case, call):
+    """A library call that takes a raw pair and builds its flanks itself
+    (settings_check.checked_settings: analyze_pair and run_sweep given no flanks) measures
+    a generated gear's pinions before the flanks, with ``design``'s verdict exactly (the
+    same floats: check_settings(easeoff_generated=True), the gear boxes traced, as the
+    reader's boxes give them bit for bit, the test above); its hollow lines warned.
+    Before (session 26) they were left deferred: no warning on the hollow case. Cases as
+    above: F.3's standard settings with a generated gear, and its drive pinion with 2C
+    0.05 (lengthwise hollow, -10.5 um)."""
+    import gearcontact.geometry.flank as flank
+    from gearcontact.geometry.settings_check import checked_settings
+
+    pair, design = design_verdicts[case]
+    monkeypatch.setattr(flank, "build_flanks", _no_flanks)
+    seen = {}
+    real = checked_settings
+
+    def kept(*args, **kwargs):
+        seen["check"] = real(*args, **kwargs)
+        return seen["check"]
+
+    monkeypatch.setattr("gearcontact.geometry.settings_check.checked_settings", kept)
+    with warnings.catch_warnings(record=True) as caught, pytest.raises(_Built):
+        warnings.simplefilter("always")
+        call(pair, tmp_path)
+    got = seen["check"].easeoff
+    assert got.flanks == design.flanks and got.missing == design.missing == {}
+    assert got.deferred == ()
+    hollow = [str(w.message) for w in caught if w.category is HollowEaseOffWarning]
+    assert hollow == [line.removeprefix("warning: ") for line in design.warnings()]
+    assert len(hollow) == (0 if case == "sound" else 1)
+
+
+def test_the_reader_traces_a_generated_gear_box_once(design_verdicts, monkeypatch):
+    """prepare_pair (the reader of every pair command) leaves the pinions to its
+    generation check's gear boxes (checked_settings(deferred=True), then
+    completed_settings): one trace per gear flank, two in all (the library calls'
+    measurement above would make it four), and the hollow line of the 2C case as
+    ``design`` says it."""
+    from gearcontact.geometry import generated
+    from gearcontact.tca.synthesis import prepare_pair
+
+    pair, design = design_verdicts["hollow"]
+    traces, real = [], generated.generated_gear_box
+
+    def counted(*args, **kwargs):
+        traces.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(generated, "generated_gear_box", counted)
+    monkeypatch.setattr("gearcontact.geometry.settings_top_land.generated_gear_box", counted)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        got = prepare_pair(pair).settings_check
+    assert len(traces) == 2
+    assert got.easeoff.flanks == design.flanks and got.easeoff.deferred == ()
+    assert [str(w.message) for w in caught if w.category is HollowEaseOffWarning] \
+        == [line.removeprefix("warning: ") for line in design.warnings()]
+
+
 def test_a_relieved_gear_is_measured_against_its_main_segment(f2_machine_pair):
     # F.2 with a Flankrem on both gear blades (tests/data/toprem): the file is the F.2
     # example with the two flankrem keys added, so its main segment's blade

@@ -146,7 +146,8 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False,
     return dataclasses.replace(blank, seconds=time.perf_counter() - t0, easeoff=shape)
 
 
-def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
+def checked_settings(pair, *, stacklevel: int = 2, deferred: bool = False
+                     ) -> SettingsCheck | None:
     """:func:`check_settings` of ``pair`` with its warnings emitted as
     :class:`SettingsWarning`, before the ease-off shape's flank work, and a hollow pinion
     flank's after it as :class:`~.easeoff_shape.HollowEaseOffWarning` (``stacklevel``
@@ -159,6 +160,13 @@ def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
     :func:`~gearcontact.export.flanks.export_flanks` when given no flanks: flanks handed
     in were built by the caller, a prepared pair's after this check).
 
+    A generated gear's pinions are measured here as ``design`` measures them
+    (``easeoff_generated``, the gear boxes traced: the same verdict as
+    :func:`completed_settings` on the reader's boxes, bit for bit), unless ``deferred``:
+    the caller runs the pair's generation check next and completes the check on its gear
+    boxes (:func:`completed_settings`; :func:`~gearcontact.tca.synthesis.prepare_pair`),
+    so that the boxes are traced once.
+
     Raises
     ------
     InputRangeError
@@ -167,7 +175,7 @@ def checked_settings(pair, *, stacklevel: int = 2) -> SettingsCheck | None:
     def first(blank: SettingsCheck) -> None:    # called by check_settings, called here
         blank.warn(stacklevel=stacklevel + 3)
 
-    got = check_settings(pair, on_blank=first)
+    got = check_settings(pair, easeoff_generated=not deferred, on_blank=first)
     if got is not None and got.easeoff is not None:
         got.easeoff.warn(stacklevel=stacklevel + 1)
     return got

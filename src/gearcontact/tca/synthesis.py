@@ -556,7 +556,7 @@ def prepare_pair(pair, *, side: str | None = None, checked: dict | None = None,
     if side not in SIDES:
         raise InputRangeError("side", side, f"one of {SIDES}")
     if settings_check is None:      # None for a pair without settings
-        settings_check = checked_settings(pair, stacklevel=2)
+        settings_check = checked_settings(pair, stacklevel=2, deferred=True)
     if checked is None and pair.kind == BEVEL:
         # the contact path of the bearing the synthesis below will make (default targets)
         checked = check_generation(pair, bearing_of=BearingPredictor(),
