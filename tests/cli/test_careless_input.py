@@ -60,6 +60,22 @@ def test_design_options_refused_before_the_pair(short_path_pair, argv, words):
     assert "pinion_spiral_angle_deg" not in line
 
 
+def test_a_contact_path_too_short_for_any_fix_names_the_teeth_as_the_file_spells_them(
+        tmp_path):
+    """The contact-ratio refusal (geometry.contact_ratio) names the file's keys: 8/8,
+    beta1 20 deg, face 0.15 R_m (tests/geometry/test_contact_ratio.py: eps_p 0.752,
+    neither a face nor a spiral angle fixes it). Before: "pinion_teeth / gear_teeth =
+    (8, 8)", the library's names (the blank keys were named as typed since session 26,
+    geometry.pair; this refusal comes after the reader, from the generation check). The
+    spiral angle's: tests/cli/test_pair_refusal.py (design, twin, export fmu)."""
+    path = tmp_path / "eight.toml"
+    path.write_text(pair_to_toml(design_space_candidate(8, 1.0, 0.0, 20.0, 0.15, "drive")))
+    line = _refused(["design", "--pair", path])
+    assert line.startswith("gearcontact design: error: teeth.pinion / teeth.gear = (8, 8) is "
+                           "outside the allowed range: more teeth (the contact path of "), line
+    assert "no face width or spiral angle tried fixes it" in line
+
+
 def test_design_target_flank_directory_names_the_option(tmp_path):
     # before: "target flank = ..." (the reader's field, not the option)
     _refused(["design", "--pair", F3, "--machine-settings", "--target-flank", tmp_path],

@@ -51,7 +51,9 @@ def short_path(tmp_path_factory):
     code, _, err = run_console("design", "--pair", path)
     assert code == 2, err
     line = err.strip().splitlines()[-1]
-    assert line.startswith("gearcontact design: error: pinion_spiral_angle_deg = 25.0"), line
+    # the file's key (was the library's "pinion_spiral_angle_deg", session 27)
+    assert line.startswith("gearcontact design: error: design.pinion_spiral_angle_deg = 25.0 "
+                           "is outside the allowed range: 35.00 deg (the contact path of "), line
     assert "35.00 deg" in line, line
     return path, line.split(": error: ", 1)[1]
 

@@ -103,13 +103,13 @@ def test_design_refuses_the_5_5_pair_naming_the_field(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "eps_p = 0.498" in err and "leaving through the pinion tip and the pinion root" in err
     assert "eps_vg 0.874" in err
-    assert "pinion_teeth / gear_teeth" in err
+    assert "teeth.pinion / teeth.gear = (5, 5)" in err     # the file's keys
 
 
 @pytest.mark.parametrize("point, field", [
     ((12, 1.5, 0.3, 35.0, 0.15, "drive"), "design.gear_face_width_mm"),
-    ((16, 1.0, 0.0, 25.0, 0.353, "drive"), "pinion_spiral_angle_deg"),
-    ((8, 1.0, 0.0, 20.0, 0.15, "drive"), "pinion_teeth / gear_teeth")])
+    ((16, 1.0, 0.0, 25.0, 0.353, "drive"), "design.pinion_spiral_angle_deg"),
+    ((8, 1.0, 0.0, 20.0, 0.15, "drive"), "teeth.pinion / teeth.gear")])
 def test_the_named_fix_reaches_the_threshold(point, field):
     """Without the active boxes (the closed form, as for a pair cut from machine
     settings): the face width if within F <= 0.3 R_e, else the spiral angle, else the
@@ -120,11 +120,11 @@ def test_the_named_fix_reaches_the_threshold(point, field):
         check_contact_ratio(pair)
     assert err.value.field == field
     text = err.value.allowed
-    if field == "pinion_teeth / gear_teeth":
+    if field == "teeth.pinion / teeth.gear":
         return
     value = float(text.split(">= ", 1)[1].split(" ", 1)[0])
     def at(x):
-        if field.startswith("design."):
+        if field == "design.gear_face_width_mm":
             return replace(pair, gear_face_width_mm=x, pinion_face_width_mm=1.05 * x)
         return replace(pair, pinion_spiral_angle_deg=x)
 
@@ -290,7 +290,7 @@ def test_the_path_fix_is_verified():
     pair = design_space_candidate(10, 1.5, 0.3, 25.0, 0.15, "drive")
     with pytest.raises(InputRangeError) as err:
         check_generation(pair)
-    assert err.value.field == "pinion_spiral_angle_deg"
+    assert err.value.field == "design.pinion_spiral_angle_deg"
     assert "eps_p = 0.778" in err.value.allowed
     beta = float(err.value.allowed.split(" ", 1)[0])
     assert beta == pytest.approx(35.0)
@@ -312,7 +312,7 @@ def _refusing(pair, tried):
 
 @pytest.mark.parametrize("point, field", [
     ((16, 1.0, 0.3, 45.0, 0.05, "drive"), "design.gear_face_width_mm"),
-    ((16, 1.0, 0.0, 25.0, 0.353, "drive"), "pinion_spiral_angle_deg")])
+    ((16, 1.0, 0.0, 25.0, 0.353, "drive"), "design.pinion_spiral_angle_deg")])
 def test_a_virtual_fix_the_pair_refuses_is_not_named(point, field):
     """Issue 28's probe: a refusal named a spiral angle fix (59.74 deg for 12/12) that the
     pair's other checks never saw. With ``boxes_of`` (as check_generation passes it for
@@ -325,11 +325,11 @@ def test_a_virtual_fix_the_pair_refuses_is_not_named(point, field):
     assert err.value.field == field                     # no boxes_of: unverified
     value = float(err.value.allowed.split(">= ", 1)[1].split(" ", 1)[0])
     assert value <= (0.3 / 0.85 * pair.blank.mean_cone_distance_gear_mm
-                     if field.startswith("design.") else MAX_FIX_SPIRAL_DEG)
+                     if field == "design.gear_face_width_mm" else MAX_FIX_SPIRAL_DEG)
     tried = []
     with pytest.raises(InputRangeError) as err:
         check_contact_ratio(pair, boxes_of=_refusing(pair, tried))
-    assert err.value.field == "pinion_teeth / gear_teeth"
-    got = [t.gear_face_width_mm if field.startswith("design.") else t.pinion_spiral_angle_deg
+    assert err.value.field == "teeth.pinion / teeth.gear"
+    got = [t.gear_face_width_mm if field == "design.gear_face_width_mm" else t.pinion_spiral_angle_deg
            for t in tried]
     assert value in got

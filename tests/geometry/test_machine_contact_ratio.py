@@ -339,7 +339,7 @@ def test_local_synthesis_of_the_gapped_blank_is_refused_first(tmp_path, capsys):
     assert main(["design", "--pair", str(path_file), "--machine-settings",
                  "--local-synthesis", "--out", str(out)]) == 2
     err = capsys.readouterr().err
-    assert "pinion_teeth / gear_teeth = (12, 12)" in err
+    assert "teeth.pinion / teeth.gear = (12, 12)" in err
     assert f"eps_p = {path.total:.3f}" in err and "the TCA of the settings" not in err
     assert not out.exists() or not any(out.iterdir())
 

@@ -69,6 +69,7 @@ from dataclasses import dataclass, replace
 
 from ..validation import InputRangeError
 from .contact_path import path_contact_ratio
+from .pair import blank_key_error
 
 __all__ = ["MIN_CONTACT_RATIO", "MIN_VIRTUAL_CONTACT_RATIO", "REVERSE_GAP_RATIO",
            "SETTINGS_GAP_RATIO", "SETTINGS_NO_GAP_RATIO", "ContactRatioWarning",
@@ -264,8 +265,19 @@ def check_contact_ratio(pair, *, boxes: dict | None = None, boxes_of=None,
     Raises
     ------
     InputRangeError
-        The ratio is below ``threshold`` (a pair whose flanks are not cut from settings).
+        The ratio is below ``threshold`` (a pair whose flanks are not cut from settings),
+        the field named as the pair file spells it (``design.pinion_spiral_angle_deg``,
+        ``teeth.pinion / teeth.gear``: :func:`~.pair.blank_key_error`).
     """
+    try:
+        return _contact_ratio(pair, boxes=boxes, boxes_of=boxes_of, threshold=threshold,
+                              bearing_of=bearing_of, mesh_follows=mesh_follows)
+    except InputRangeError as exc:
+        raise blank_key_error(exc) from None
+
+
+def _contact_ratio(pair, *, boxes, boxes_of, threshold, bearing_of, mesh_follows):
+    """:func:`check_contact_ratio`, its fields named as the library spells them."""
     if boxes is None or pair.machine:
         try:
             # a pair cut from settings is warned, not refused: no fix is verified

@@ -135,7 +135,8 @@ from .print_table import (check_print_blank, print_gear_tables, printed_key_erro
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
 
 __all__ = ["BEVEL", "CYLINDRICAL", "CutterSpec", "EaseOffCoefficients", "GearPair", "PRESETS",
-           "has_easeoff", "load_pair", "parse_pair", "pair_to_toml", "without_easeoff"]
+           "blank_key_error", "has_easeoff", "load_pair", "parse_pair", "pair_to_toml",
+           "without_easeoff"]
 
 #: Built-in presets (resource files ``gearcontact/data/pairs/<name>.toml``): ``s0003``
 #: calibrated to the published design point (tip-edge bearing on the coast flank pair,
@@ -382,7 +383,7 @@ def parse_pair(doc: dict, *, name: str = "pair", gear_alone: bool = False) -> Ge
         pair = _pair_of_tables(s, name=name, machine=machine, typed_gear=typed_gear,
                                printed=printed, materials=materials, design=design)
     except InputRangeError as exc:      # the blank design's arguments, named as typed
-        raise _blank_key_error(exc) from None
+        raise blank_key_error(exc) from None
     if printed is not None:
         check_print_blank(pair, printed)
     return pair
@@ -402,9 +403,11 @@ _BLANK_KEYS = {"pinion_teeth": "teeth.pinion", "gear_teeth": "teeth.gear",
                                              "limit_pressure_angle_factor")}}
 
 
-def _blank_key_error(exc: InputRangeError) -> InputRangeError:
+def blank_key_error(exc: InputRangeError) -> InputRangeError:
     """``exc`` with a blank design argument's name (field, and in the allowed range a
-    bound that is another argument: ``>= pinion_teeth = 14``) as the file's key."""
+    bound that is another argument: ``>= pinion_teeth = 14``) as the file's key: the
+    reader's errors, and those of the checks after it that name the blank's fields
+    (:func:`~.contact_ratio.check_contact_ratio`)."""
     field = " / ".join(_BLANK_KEYS.get(f, f) for f in str(exc.field).split(" / "))
     allowed = re.sub(r"(?<![.\w])(" + "|".join(_BLANK_KEYS) + r")\b",
                      lambda m: _BLANK_KEYS[m.group(1)], str(exc.allowed))
