@@ -117,7 +117,7 @@ GROSS_CONE_FACE_FRACTION = 0.5
 #: "The cost of the slip search").
 SCREEN_MARGIN = 1e-9
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
-_GROSS_FACE = "mean cone distance"     # its gross bound: the gear face's (GROSS_CONE_...)
+_GROSS_FACE = "mean cone distance"     # gross: GROSS_CONE_FACE_FRACTION of the gear face
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
 
 
@@ -283,7 +283,8 @@ def _describe(f: FlankCheck) -> str:
 
 
 def _off_face(c: Comparison) -> str:
-    """``"; off the face, <from> to <to> mm"`` for a gross mean cone distance, else ""."""
+    """``"; off the gear's face, <from> to <to> mm"`` for a gross mean cone distance, else
+    ""."""
     if c.quantity != _GROSS_FACE or not c.gross:
         return ""
     return (f"; off the gear's face, {c.stated - c.gross_bound:.4f} to "

@@ -8,8 +8,8 @@ pair's flanks when given none, :func:`checked_settings`), or by the caller who h
 its result in (the command line runs it in its argument check;
 docs/machine_settings.md sec. 2, "The check when a pair is loaded").
 
-A gross mismatch (a hand, a generating spiral angle or pressure angle far off: the
-flanks are not the blank's tooth) raises :class:`~gearcontact.validation.InputRangeError`
+A gross mismatch (a hand, a generating spiral angle or pressure angle far off, a
+generating mean point off the gear's face: the flanks are not the blank's tooth) raises :class:`~gearcontact.validation.InputRangeError`
 naming the likely key; any other flank outside its tolerance is a warning naming the
 flank, the measured and stated values and the likely key
 (:attr:`SettingsCheck.warnings`), and the work goes on. Where the warnings go is the
