@@ -26,14 +26,13 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
 from tqdm import tqdm
 
 from ..geometry.pair import CYLINDRICAL
 from .cell import LTE_CELLS, compute_point, lte_stride
 from .cylindrical import compute_cylindrical_point
 from .design import Variant, build_variant, easeoff_only
-from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
+from .store import FAILED, PENDING, STORE_NAME, WARNING_VARIABLE, prepare_store, write_point
 
 __all__ = ["SweepReport", "run_sweep", "sweep_settings"]
 
@@ -247,18 +246,20 @@ def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
 
 def _guarded(variant, assembly, torques, kwargs) -> dict:
     """:func:`compute_point` on a built design variant, with the variant's flank build
-    time (:func:`compute_cylindrical_point` on a cylindrical pair, without: it has no
-    flank build); a failed build or any unexpected exception recorded as the point's
+    time and reader warnings (:func:`compute_cylindrical_point` on a cylindrical pair,
+    without: it has no flank build); a failed build or any unexpected exception recorded as the point's
     error (a sweep of hundreds of points must not die of one)."""
     n = len(torques)
     cylindrical = "options" in kwargs
-    timing = {} if cylindrical else {"flank_build_s": [variant.build_s] * n}
+    extra = {} if cylindrical else {"flank_build_s": [variant.build_s] * n}
+    if variant.warnings:       # a setting variant's (the store keeps them beside)
+        extra[WARNING_VARIABLE] = ["; ".join(variant.warnings)] * n
     if variant.error:
-        return {"error": [variant.error] * n, **timing}
+        return {"error": [variant.error] * n, **extra}
     try:
         if cylindrical:
             return compute_cylindrical_point(variant.pair, torques, **kwargs)
         return {**compute_point(variant.pair, variant.flanks, assembly, torques, **kwargs),
-                **timing}
+                **extra}
     except Exception as exc:  # noqa: BLE001  (recorded with its type; see the store)
-        return {"error": [f"{type(exc).__name__}: {exc}"] * n, **timing}
+        return {"error": [f"{type(exc).__name__}: {exc}"] * n, **extra}
