@@ -24,6 +24,7 @@ Truths:
 import tomllib
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from gearcontact.geometry.machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS,
@@ -160,23 +161,49 @@ def test_easeoff_key_on_a_settings_pair_names_the_setting_keys(f2):
 
 def test_variant_the_reader_refuses_is_a_failed_cell_with_its_refusal(f2, tmp_path):
     """profile_radius_mm 10 on the pinion's drive blade (a strongly curved blade) makes a
-    pointed pinion the reader refuses (exit 2 of every command on that file); 1000 is a
-    blade as the file's (516 mm): computed. About 10 s."""
+    pointed pinion the reader refuses (exit 2 of every command on that file): the sweep
+    returns with the cell failed and the refusal as its error. About 8 s."""
     from gearcontact.sweep.run import run_sweep
     from gearcontact.tca.synthesis import prepare_pair
 
     xr = pytest.importorskip("xarray")
-    grid = SweepGrid((parse_vary("blade.pinion.drive.profile_radius_mm=10:1000:2", pair=f2),),
+    grid = SweepGrid((parse_vary("blade.pinion.drive.profile_radius_mm=10:10:1", pair=f2),),
                      (64.5,))
-    check_variants(f2, grid)                   # both values inside the key's range
+    check_variants(f2, grid)                   # inside the key's range
     rep = run_sweep(f2, grid, out=tmp_path / "s", side="drive", phases=5, workers=0,
                     progress=False)
     ds = xr.open_zarr(rep.store, consolidated=False).load()
-    assert ds["status"].values.ravel().tolist() == [2, 1]
+    assert (rep.computed, rep.failed) == (1, 1)
+    assert ds["status"].values.ravel().tolist() == [2]
     edited = edited_file(tmp_path, (PINION_DRIVE_PROFILE,
                                     PINION_DRIVE_PROFILE.replace("516.2753", "10.0")))
     with pytest.raises(InputRangeError) as refusal:
         prepare_pair(load_pair(edited))
     assert ds["error"].values.ravel()[0] == f"InputRangeError: {refusal.value}"
     assert "pointed pinion tooth" in str(refusal.value)
-    assert ds["error"].values.ravel()[1] == "" and ds["te0_pp_arcsec"].values[1, 0] > 0
+    assert np.isnan(ds["te0_pp_arcsec"].values[0, 0])
+
+
+def test_store_keeps_each_variant_s_reader_warnings(f2, tmp_path):
+    """The reader's warnings of a variant (long lines) go into ``settings_warning`` beside
+    its cells, a failed one's too; a variant without any leaves ``""``. No flank is
+    built: the variants are given as built (:class:`~gearcontact.sweep.design.Variant`)."""
+    from gearcontact.sweep.design import Variant
+    from gearcontact.sweep.run import _guarded
+    from gearcontact.sweep.store import prepare_store, write_point
+
+    xr = pytest.importorskip("xarray")
+    grid = SweepGrid((parse_vary("machine.pinion.drive.tilt_deg=19:20:3", pair=f2),),
+                     (32.25, 64.5))
+    path = tmp_path / "sweep.zarr"
+    prepare_store(path, grid, ("tca",), {"pair": f2.name})
+    said = ("SettingsWarning: " + "x" * 600, "HollowEaseOffWarning: y")
+    failed = Variant(None, None, 1.5, "InputRangeError: z", said)
+    write_point(path, grid, (2,), _guarded(failed, {}, [32.25, 64.5], {}))
+    write_point(path, grid, (0,), _guarded(Variant(None, None, 1.0, "InputRangeError: w"),
+                                           {}, [32.25, 64.5], {}))
+    ds = xr.open_zarr(path, consolidated=False).load()
+    assert ds["settings_warning"].values.tolist() == [["", ""], ["", ""], ["; ".join(said)] * 2]
+    assert ds["error"].values.tolist() == [["InputRangeError: w"] * 2, ["", ""],
+                                           ["InputRangeError: z"] * 2]
+    assert ds["status"].values.tolist() == [[2, 2], [0, 0], [2, 2]]

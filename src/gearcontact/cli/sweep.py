@@ -24,6 +24,7 @@ from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..sweep.design import check_variants
 from ..sweep.grid import SweepGrid, parse_vary
 from ..sweep.run import sweep_settings
+from ..sweep.settings_keys import SETTING_KEYS
 from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
 from ..validation import InputRangeError
 from .options import (
@@ -158,13 +159,17 @@ def run(args) -> int:
     cylindrical = args.gear_pair.kind == CYLINDRICAL
     pair = args.gear_pair if cylindrical else load_pair_for(args)
     grid = args.grid
+    # setting keys: every variant is read and cut on its own, the nominal flanks unused
+    nominal = not cylindrical and not any(v.key in SETTING_KEYS for v in grid.vary)
     client = args.client
     try:
         report = run_sweep(pair, grid, out=args.out, side=args.side,
                            compute=tuple(args.compute.split(",")), phases=args.phases,
                            cells=args.cells, solver=SOLVER, workers=args.workers,
                            client=client,
-                           flanks=None if cylindrical else args.prepared_pair.flank_set(),
+                           flanks=args.prepared_pair.flank_set() if nominal else None,
+                           settings_check=None if cylindrical
+                           else args.prepared_pair.settings_check,
                            progress=not args.quiet)
     finally:
         if client is not None:

@@ -78,7 +78,8 @@ class SweepReport:
 def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
               cells: int = 80, solver: str = "pk_cg", scheduler: str | None = None,
               workers: int | None = None, client=None, flanks=None,
-              progress: bool = True, options: dict | None = None) -> SweepReport:
+              progress: bool = True, options: dict | None = None,
+              settings_check=None) -> SweepReport:
     """Compute the pending cells of ``grid`` into ``out/sweep.zarr``.
 
     Parameters
@@ -103,18 +104,23 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         :class:`~gearcontact.tca.synthesis.PreparedPair`); without them the pair's
         typed machine settings are checked against its blank first
         (:func:`~gearcontact.geometry.settings_check.checked_settings`: a gross slip
-        raises naming its key, before the store is touched).
+        raises naming its key, before the store is touched). Not used, and not needed,
+        when the grid varies setting keys (:mod:`.settings_keys`: each variant builds
+        its own).
     progress : bool
         Progress bar of cells done / total.
     options : dict, optional
         A cylindrical pair: further keyword options of its loaded TE
         (:func:`~gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te`; part of the
         settings a resumed sweep must share).
+    settings_check : SettingsCheck, optional
+        The typed-settings check of ``pair``, if the caller ran it (the command line, in
+        its argument check): not run again without ``flanks``.
     """
     from ..geometry.flank import build_flanks
     from ..geometry.settings_check import checked_settings
 
-    if flanks is None:      # a raw pair: its typed settings checked before the store
+    if flanks is None and settings_check is None:   # a raw pair: checked before the store
         checked_settings(pair, stacklevel=2)
     t0 = time.perf_counter()
     store = Path(out) / STORE_NAME

@@ -143,7 +143,8 @@ def write_point(path, grid, index: tuple, result: dict) -> int:
     names = {*CELL_VARIABLES, *CYLINDRICAL_TCA_VARIABLES, *CYLINDRICAL_LTCA_VARIABLES,
              *(TIMING_VARIABLES if any(v.design for v in grid.vary) else ()),
              *((WARNING_VARIABLE,) if _warned(grid) else ())}
-    data = {k: (grid.dims, np.asarray(v).reshape(shape))
+    data = {k: (grid.dims, np.asarray(v, dtype=object if k == WARNING_VARIABLE else None
+                                      ).reshape(shape))
             for k, v in result.items() if k in names}
     data["error"] = (grid.dims, errors.reshape(shape))
     region = {d: slice(i, i + 1) for d, i in zip(grid.dims, index)}
