@@ -207,3 +207,57 @@ def test_store_keeps_each_variant_s_reader_warnings(f2, tmp_path):
     assert ds["error"].values.tolist() == [["InputRangeError: w"] * 2, ["", ""],
                                            ["InputRangeError: z"] * 2]
     assert ds["status"].values.tolist() == [[2, 2], [0, 0], [2, 2]]
+
+
+@pytest.mark.slow
+def test_hollow_pinion_variant_is_computed_with_the_reader_s_warning(f2, tmp_path):
+    """profile_radius_mm -300 on the pinion's drive blade (a hollow profile) makes a
+    pinion the reader warns hollow and the commands analyse: the cell is the TCA of the
+    edited file, bit for bit, and keeps the reader's warning word for word. About 30 s."""
+    from gearcontact.geometry.easeoff_shape import HollowEaseOffWarning
+    from gearcontact.sweep.cell import TCA_VARIABLES, _tca_values
+    from gearcontact.sweep.run import run_sweep
+    from gearcontact.tca.analysis import analyze_pair
+    from gearcontact.tca.synthesis import prepare_pair
+
+    xr = pytest.importorskip("xarray")
+    grid = SweepGrid((parse_vary("blade.pinion.drive.profile_radius_mm=-300:-300:1",
+                                 pair=f2),), (64.5,))
+    rep = run_sweep(f2, grid, out=tmp_path / "s", side="drive", phases=5, workers=0,
+                    progress=False)
+    ds = xr.open_zarr(rep.store, consolidated=False).load().isel(torque_nm=0)
+    edited = edited_file(tmp_path, (PINION_DRIVE_PROFILE,
+                                    PINION_DRIVE_PROFILE.replace("516.2753", "-300.0")))
+    with pytest.warns(HollowEaseOffWarning) as caught:
+        prepared = prepare_pair(load_pair(edited))
+    res, _ = analyze_pair(prepared.pair, side="drive", phases=5,
+                          flanks=prepared.flank_set())
+    want = _tca_values(res)
+    for name in TCA_VARIABLES:
+        assert ds[name].values.tolist() == [want[name]], name
+    hollow = [str(w.message) for w in caught if w.category is HollowEaseOffWarning]
+    assert len(hollow) == 1 and "hollow" in hollow[0]
+    assert ds["error"].values.tolist() == [""]
+    assert f"HollowEaseOffWarning: {hollow[0]}" in ds["settings_warning"].values[0]
+
+
+@pytest.mark.slow
+def test_cluster_equals_serial_for_setting_variants(f2, client, tmp_path):
+    """Two tilt variants × two offsets on the LocalCluster of tests/sweep/conftest.py
+    and in this process: the same Dataset, bit for bit but the build timings. About
+    1.5 min at load 20."""
+    from gearcontact.sweep.run import run_sweep
+
+    xr = pytest.importorskip("xarray")
+    grid = SweepGrid((parse_vary("machine.pinion.drive.tilt_deg=19.5:20:2", pair=f2),
+                      parse_vary("E=-0.02:0.02:2")), (64.5,))
+    got = {}
+    for name, kw in (("serial", {"workers": 0}), ("cluster", {"client": client})):
+        rep = run_sweep(f2, grid, out=tmp_path / name, side="drive", phases=5,
+                        progress=False, **kw)
+        assert (rep.computed, rep.failed) == (4, 0)
+        got[name] = xr.open_zarr(rep.store, consolidated=False).load().drop_vars(
+            "flank_build_s")
+    xr.testing.assert_identical(got["serial"], got["cluster"])
+    te = got["serial"]["te0_pp_arcsec"].values[:, :, 0]
+    assert te[0, 0] != te[1, 0]                # another tilt, other flanks
