@@ -261,3 +261,28 @@ def test_cluster_equals_serial_for_setting_variants(f2, client, tmp_path):
     xr.testing.assert_identical(got["serial"], got["cluster"])
     te = got["serial"]["te0_pp_arcsec"].values[:, :, 0]
     assert te[0, 0] != te[1, 0]                # another tilt, other flanks
+
+
+def test_a_print_s_gear_offers_only_the_pinion_keys():
+    """The published 10 x 41 hypoid print's pair file (tests/geometry/summary_sheets):
+    its gear is cut from the [print.gear] page, whose words the writer keeps, so a gear
+    key edited beside it would not be read: only the pinion's keys are offered, and one
+    of them edited reads back as the file edited."""
+    import warnings
+
+    path = Path(__file__).resolve().parents[1] / "geometry" / "summary_sheets" / \
+        "hypoid_10x41_no16_pair.toml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")       # the print's datum and settings check
+        pair = load_pair(path)
+        keys = setting_keys(pair)
+        assert keys and all(".pinion." in k for k in keys) and len(keys) == 2 * (15 + 11)
+        with pytest.raises(InputRangeError) as exc:
+            parse_vary("machine.gear.drive.tilt_deg=0:1:2", pair=pair)
+        assert ("a key of the pair's [machine.<pinion>.<drive|coast>] tables (the gear is "
+                "cut from its [print.gear] page): radial_distance_mm") in str(exc.value)
+        doc = tomllib.loads(path.read_text())
+        typed = doc["machine"]["pinion"]["coast"]["tilt_deg"]
+        assert with_settings(pair, {"machine.pinion.coast.tilt_deg": typed}) == pair
+        moved = with_settings(pair, {"machine.pinion.coast.tilt_deg": typed + 0.5})
+        assert moved.machine != pair.machine and moved.print_gear == pair.print_gear

@@ -9,7 +9,7 @@ A variant is the pair file with the values edited in: the pair's TOML
 (:func:`~gearcontact.geometry.pair.pair_to_toml`, floats at full precision) with the keys
 set in its tables is read back by the pair reader
 (:func:`~gearcontact.geometry.pair.parse_pair`: every range check, naming the dotted
-key), then prepared as every pair command prepares a pair
+key), whose machine set-ups replace the pair's, then prepared as every pair command prepares a pair
 (:func:`~gearcontact.tca.synthesis.prepare_pair`: the typed-settings check against the
 blank, the generation check, the gear's pinion ease-off check) and its flanks cut
 (:meth:`~gearcontact.tca.synthesis.PreparedPair.flank_set`). So a grid point's results
@@ -26,6 +26,7 @@ pinion's keys vary (a gear key edited beside the print would not be read).
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import tomllib
 
@@ -96,8 +97,9 @@ def unknown_setting_key(pair, key: str) -> str:
 
 
 def with_settings(pair, design) -> object:
-    """``pair`` read back from its TOML with the setting keys of ``design`` (dotted key
-    -> value, or ``((key, value), ...)``) edited into their tables (module docstring).
+    """``pair`` with the setting keys of ``design`` (dotted key -> value, or ``((key,
+    value), ...)``) edited into its tables: its TOML with the values set read back by
+    the pair reader, whose machine set-ups replace ``pair``'s (module docstring).
 
     Raises
     ------
@@ -115,7 +117,9 @@ def with_settings(pair, design) -> object:
             raise KeyError(key)
         table, member, side, name = SETTING_KEYS[key]
         doc[table][member][side][name] = float(value)
-    return parse_pair(doc, name=pair.name)
+    # the set-ups as the reader reads the edited tables; every other field as ``pair``
+    # has it (the writer names a material the file left unnamed: not a setting)
+    return dataclasses.replace(pair, machine=parse_pair(doc, name=pair.name).machine)
 
 
 def build_setting_variant(pair, design) -> tuple:
