@@ -149,6 +149,23 @@ def test_value_outside_its_range_is_named_before_any_flank(f2, spec, message):
     assert str(exc.value) == message
 
 
+def test_keys_of_one_blade_are_checked_together(f2):
+    # a Toprem angle needs its depth: the variant (2 deg, 0 mm) is refused naming both
+    # keys' values; with a depth every variant reads
+    grid = SweepGrid((parse_vary("blade.pinion.drive.toprem_angle_deg=0:2:2", pair=f2),
+                      parse_vary("blade.pinion.drive.toprem_depth_mm=0:1:2", pair=f2)),
+                     (64.5,))
+    with pytest.raises(InputRangeError) as exc:
+        check_variants(f2, grid)
+    assert str(exc.value) == (
+        "--vary blade.pinion.drive.toprem_angle_deg=2, blade.pinion.drive.toprem_depth_mm=0: "
+        "blade.pinion.drive.toprem_depth_mm = 0.0 is outside the allowed range: (0, 50] mm "
+        "with toprem_angle_deg > 0 (the kink's depth behind the blade tip plane)")
+    check_variants(f2, SweepGrid(
+        (grid.vary[0], parse_vary("blade.pinion.drive.toprem_depth_mm=1:2:2", pair=f2)),
+        (64.5,)))
+
+
 def test_easeoff_key_on_a_settings_pair_names_the_setting_keys(f2):
     grid = SweepGrid((parse_vary("easeoff.drive.bias_um_per_mm2=0:0.1:2", pair=f2),), (64.5,))
     with pytest.raises(InputRangeError) as exc:
