@@ -123,10 +123,13 @@ def test_unknown_key_names_the_valid_keys_and_the_nearest(f2):
         "mean machine.pinion.drive.modified_roll_2c_per_rad?")
     # the ease-off / cutter keys are not offered for it ...
     assert "easeoff." not in str(exc.value) and "cutter." not in str(exc.value)
-    # ... and a setting key is not offered to a pair without settings
+    # ... and a setting key is not offered to a pair without settings: it is told why
     with pytest.raises(InputRangeError, match=r"\[easeoff\.\*\] / \[cutter\] tables") as exc:
         parse_vary("machine.pinion.drive.tilt_deg=19:21:2", pair=load_pair("s0003"))
-    assert "machine." not in str(exc.value).split("tables: ")[1]
+    listed, _, why = str(exc.value).split("tables: ")[1].partition("; ")
+    assert "machine." not in listed
+    assert why == ("the [machine.*] / [blade.*] keys are a pair's cut from machine settings "
+                   "(this one has none)")
 
 
 @pytest.mark.parametrize("spec,message", [

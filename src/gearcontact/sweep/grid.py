@@ -100,7 +100,10 @@ def parse_vary(text: str, *, kind: str = BEVEL, pair=None) -> VarySpec:
     elif key not in ASSEMBLY_KEYS and design_key(key) is None:
         raise InputRangeError("--vary KEY", key, "one of the assembly errors "
                               f"{', '.join(ASSEMBLY_KEYS)} or a key of the pair's TOML "
-                              f"[easeoff.*] / [cutter] tables: {', '.join(DESIGN_KEYS)}")
+                              f"[easeoff.*] / [cutter] tables: {', '.join(DESIGN_KEYS)}"
+                              + ("; the [machine.*] / [blade.*] keys are a pair's cut from "
+                                 "machine settings (this one has none)"
+                                 if key in SETTING_KEYS else ""))
     parts = rng.split(":")
     if len(parts) != 3:
         raise InputRangeError(f"--vary {key}", rng, "START:STOP:STEPS (three fields)")
