@@ -253,8 +253,8 @@ def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
 def _guarded(variant, assembly, torques, kwargs) -> dict:
     """:func:`compute_point` on a built design variant, with the variant's flank build
     time and reader warnings (:func:`compute_cylindrical_point` on a cylindrical pair,
-    without: it has no flank build); a failed build or any unexpected exception recorded as the point's
-    error (a sweep of hundreds of points must not die of one)."""
+    without: it has no flank build); a failed build or any unexpected exception
+    recorded as the point's error (a sweep of hundreds of points must not die of one)."""
     n = len(torques)
     cylindrical = "options" in kwargs
     extra = {} if cylindrical else {"flank_build_s": [variant.build_s] * n}
