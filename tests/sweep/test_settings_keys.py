@@ -132,6 +132,25 @@ def test_unknown_key_names_the_valid_keys_and_the_nearest(f2):
                    "(this one has none)")
 
 
+@pytest.mark.parametrize("typed,meant", [
+    # the engineer's word for the blade's angle; the printed 2C; a key's start
+    ("blade.pinion.drive.pressure_angle_deg", "blade.pinion.drive.blade_angle_deg"),
+    ("machine.pinion.drive.2C", "machine.pinion.drive.modified_roll_2c_per_rad"),
+    ("machine.pinion.coast.tilt", "machine.pinion.coast.tilt_deg"),
+    # a key of the other table; a near spelling
+    ("blade.pinion.drive.tilt_deg", "machine.pinion.drive.tilt_deg"),
+    ("machine.gear.drive.machine_root_deg", "machine.gear.drive.machine_root_angle_deg"),
+    # none where a guess could mislead: a flank named concave (the member's and hand's
+    # to map), a start shared by four keys, a name close to none
+    ("machine.pinion.concave.tilt_deg", None), ("machine.pinion.drive.modified_roll", None),
+    ("machine.pinion.drive.radial_mm", None)])
+def test_the_nearest_key_is_named_only_where_it_is_clear(f2, typed, meant):
+    with pytest.raises(InputRangeError) as exc:
+        parse_vary(f"{typed}=0:1:2", pair=f2)
+    tail = str(exc.value).rpartition("(e.g. machine.pinion.drive.tilt_deg)")[2]
+    assert tail == (f"; did you mean {meant}?" if meant else "")
+
+
 @pytest.mark.parametrize("spec,message", [
     ("machine.pinion.drive.tilt_deg=50:70:3",           # 50, 60 inside [0, 60]
      "--vary machine.pinion.drive.tilt_deg=70: machine.pinion.drive.tilt_deg = 70.0 is "

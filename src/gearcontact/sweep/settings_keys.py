@@ -90,10 +90,33 @@ def setting_keys_text(pair) -> str:
             f"machine.pinion.drive.tilt_deg)")
 
 
+#: Words a gear engineer may type for a key, by the key's table: the key they mean.
+_SPOKEN = {"blade": {"pressure_angle_deg": "blade_angle_deg"},
+           "machine": {"2c": "modified_roll_2c_per_rad", "6d": "modified_roll_6d_per_rad2",
+                       "24e": "modified_roll_24e_per_rad3",
+                       "120f": "modified_roll_120f_per_rad4"}}
+
+
 def unknown_setting_key(pair, key: str) -> str:
-    """``"; did you mean ..."`` naming the closest key ``pair`` can vary, or ``""``."""
-    close = difflib.get_close_matches(key, setting_keys(pair), n=1, cutoff=0.8)
-    return f"; did you mean {close[0]}?" if close else ""
+    """``"; did you mean ..."`` naming the key ``pair`` can vary that ``key`` most likely
+    means, or ``""``: only where its table, member and flank are the pair's and its name
+    is a key of the other table, a word of :data:`_SPOKEN`, the start of exactly one
+    key's name, or close to one (:func:`difflib.get_close_matches`, cutoff 0.8); a flank
+    named otherwise than drive / coast gets none (concave / convex is the member's and
+    hand's, not a spelling)."""
+    parts = key.split(".")
+    if len(parts) != 4 or parts[0] not in _SPOKEN or parts[1] not in _members(pair) \
+            or parts[2] not in _SIDES:
+        return ""
+    table, name = parts[0], parts[3].lower()
+    names = MACHINE_TABLE_KEYS if table == "machine" else BLADE_TABLE_KEYS
+    other = "blade" if table == "machine" else "machine"
+    if name in (BLADE_TABLE_KEYS if table == "machine" else MACHINE_TABLE_KEYS):
+        return f"; did you mean {other}.{parts[1]}.{parts[2]}.{name}?"    # the other table
+    starts = [n for n in names if n.startswith(name)]
+    meant = (_SPOKEN[table].get(name) or (starts[0] if len(starts) == 1 else None)
+             or next(iter(difflib.get_close_matches(name, names, n=1, cutoff=0.8)), None))
+    return f"; did you mean {'.'.join(parts[:3])}.{meant}?" if meant else ""
 
 
 def with_settings(pair, design) -> object:
