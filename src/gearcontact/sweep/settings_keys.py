@@ -100,7 +100,7 @@ _SPOKEN = {"blade": {"pressure_angle_deg": "blade_angle_deg"},
 def unknown_setting_key(pair, key: str) -> str:
     """``"; did you mean ..."`` naming the key ``pair`` can vary that ``key`` most likely
     means, or ``""``: only where its table, member and flank are the pair's and its name
-    is a key of the other table, a word of :data:`_SPOKEN`, the start of exactly one
+    is a key of the other table, a word of ``_SPOKEN``, the start of exactly one
     key's name, or close to one (:func:`difflib.get_close_matches`, cutoff 0.8); a flank
     named otherwise than drive / coast gets none (concave / convex is the member's and
     hand's, not a spelling)."""
