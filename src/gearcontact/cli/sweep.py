@@ -3,7 +3,9 @@ variants and torques, on Dask distributed (docs/sweeps.md).
 
 Writes into ``--out`` (created if missing): ``sweep.zarr``, one xarray Dataset with the
 dimensions of the ``--vary`` keys (``E_mm``, ``P_mm``, ``G_mm``, ``alpha_deg``, design
-keys with ``_`` for ``.``) and ``torque_nm``, filled as grid points finish. A rerun of the same command computes only
+keys with ``_`` for ``.``) and ``torque_nm``, filled as grid points finish (a pair cut
+from machine settings varies the keys of its ``[machine.*]`` / ``[blade.*]`` tables,
+:mod:`gearcontact.sweep.settings_keys`). A rerun of the same command computes only
 the cells still pending (resumable after a crash or Ctrl-C); a rerun with another grid
 or other settings into the same directory is refused.
 
@@ -22,6 +24,7 @@ from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..sweep.design import check_variants
 from ..sweep.grid import SweepGrid, parse_vary
 from ..sweep.run import sweep_settings
+from ..sweep.settings_keys import SETTING_KEYS
 from ..sweep.store import CREATING_NAME, STORE_NAME, check_store
 from ..validation import InputRangeError
 from .options import (
@@ -67,6 +70,12 @@ def register(sub) -> None:
                         "('ease-off.' also accepted), cutter.<key> (e.g. "
                         "easeoff.drive.lengthwise_crowning_um_per_mm2=0.08:0.16:5, "
                         "cutter.radius_mm=44:46:5; flanks rebuilt once per variant); "
+                        "a pair cut from machine settings: "
+                        "machine.<member>.<flank>.<key>, blade.<member>.<flank>.<key> "
+                        "as its tables spell them (e.g. "
+                        "machine.pinion.drive.tilt_deg=19:21:5; each variant read and "
+                        "cut as the pair file with the values edited in) instead of the "
+                        "[easeoff.*] / [cutter] keys; "
                         "a cylindrical pair: modifications.pinion.<key>, "
                         "modifications.gear.<key>, assembly.<key> (e.g. "
                         "modifications.pinion.tip_relief_um=0:20:5, "
@@ -103,7 +112,8 @@ def check(args) -> None:
     kind = args.gear_pair.kind
     if args.cells is None:
         args.cells = DEFAULT_CELLS[kind]
-    args.grid = SweepGrid(tuple(parse_vary(v, kind=kind) for v in args.vary),
+    args.grid = SweepGrid(tuple(parse_vary(v, kind=kind, pair=args.gear_pair)
+                                for v in args.vary),
                           tuple(args.torques))
     check_variants(args.gear_pair, args.grid)
     for t in args.torques:
@@ -149,13 +159,17 @@ def run(args) -> int:
     cylindrical = args.gear_pair.kind == CYLINDRICAL
     pair = args.gear_pair if cylindrical else load_pair_for(args)
     grid = args.grid
+    # setting keys: every variant is read and cut on its own, the nominal flanks unused
+    nominal = not cylindrical and not any(v.key in SETTING_KEYS for v in grid.vary)
     client = args.client
     try:
         report = run_sweep(pair, grid, out=args.out, side=args.side,
                            compute=tuple(args.compute.split(",")), phases=args.phases,
                            cells=args.cells, solver=SOLVER, workers=args.workers,
                            client=client,
-                           flanks=None if cylindrical else args.prepared_pair.flank_set(),
+                           flanks=args.prepared_pair.flank_set() if nominal else None,
+                           settings_check=None if cylindrical
+                           else args.prepared_pair.settings_check,
                            progress=not args.quiet)
     finally:
         if client is not None:

@@ -1,7 +1,9 @@
 """Sweeps of the contact analysis over assembly errors and torque on Dask distributed
-(docs/sweeps.md): :mod:`.grid` (the ``--vary`` grid), :mod:`.cell` (one grid point's
-results; a cylindrical pair's: :mod:`.cylindrical`), :mod:`.store` (the zarr Dataset,
-resumable), :mod:`.run` (the scheduler)."""
+(docs/sweeps.md): :mod:`.grid` (the ``--vary`` grid), :mod:`.design` and
+:mod:`.settings_keys` (design variants; a pair cut from settings: its machine and blade
+keys), :mod:`.cell` (one grid point's results; a cylindrical pair's:
+:mod:`.cylindrical`), :mod:`.store` (the zarr Dataset, resumable), :mod:`.run` (the
+scheduler)."""
 
 from ..lazy_names import lazy_names
 

@@ -3,7 +3,9 @@
 Keys are the assembly errors of :mod:`gearcontact.geometry.kinematics` by their short
 names (``E``, ``P``, ``G`` in mm, ``alpha`` in deg; sign conventions there) or design
 keys of the pair's TOML (``easeoff.<side>.<coefficient>``, ``cutter.<key>``;
-:mod:`.design`); for a cylindrical pair the keys of its ``[modifications.*]`` and
+:mod:`.design`); for a pair cut from machine settings the keys of its
+``[machine.<member>.<flank>]`` / ``[blade.<member>.<flank>]`` tables
+(:mod:`.settings_keys`); for a cylindrical pair the keys of its ``[modifications.*]`` and
 ``[assembly]`` tables (:mod:`.cylindrical`). Each spec spans
 ``numpy.linspace(START, STOP, STEPS)``, both ends included. The torques form the last
 dimension. A grid point (one design variant and one set of assembly errors) is one
@@ -24,6 +26,8 @@ from ..geometry.pair import BEVEL, CYLINDRICAL
 from ..validation import InputRangeError, check_finite
 from .cylindrical import CYLINDRICAL_KEYS
 from .design import DESIGN_KEYS, design_key, design_unit
+from .settings_keys import SETTING_KEYS, setting_keys, setting_keys_text, setting_unit, \
+    unknown_setting_key
 
 __all__ = ["MAX_STEPS", "MAX_CELLS", "VarySpec", "SweepGrid", "parse_vary"]
 
@@ -54,17 +58,21 @@ class VarySpec:
     @property
     def design(self) -> bool:
         """True for a design key (the flanks change; every key of a cylindrical pair)."""
-        return self.key in DESIGN_KEYS or self.key in CYLINDRICAL_KEYS
+        return (self.key in DESIGN_KEYS or self.key in CYLINDRICAL_KEYS
+                or self.key in SETTING_KEYS)
 
     @property
     def values(self) -> np.ndarray:
         return np.linspace(self.start, self.stop, self.steps)
 
 
-def parse_vary(text: str, *, kind: str = BEVEL) -> VarySpec:
+def parse_vary(text: str, *, kind: str = BEVEL, pair=None) -> VarySpec:
     """``"E=-0.1:0.1:9"`` -> :class:`VarySpec`; ``kind``: the pair's (``"cylindrical"``:
     the keys of :data:`.cylindrical.CYLINDRICAL_KEYS`, ranges checked by
-    :func:`.design.check_variants`).
+    :func:`.design.check_variants`); ``pair``: the bevel pair, if known (one cut from
+    machine settings takes the assembly errors and its setting keys,
+    :func:`.settings_keys.setting_keys`; its flanks take no ease-off or cutter key, which
+    :func:`.design.check_variants` refuses, naming a relieved blade's kink).
 
     Raises
     ------
@@ -83,10 +91,19 @@ def parse_vary(text: str, *, kind: str = BEVEL) -> VarySpec:
             raise InputRangeError("--vary KEY", key, "a key of the cylindrical pair's "
                                   "[modifications.pinion] / [modifications.gear] / "
                                   f"[assembly] tables: {', '.join(CYLINDRICAL_KEYS)}")
+    elif setting_keys(pair):       # a design key: refused by check_variants, by name
+        if key not in ASSEMBLY_KEYS and key not in setting_keys(pair) \
+                and design_key(key) is None:
+            raise InputRangeError("--vary KEY", key, "one of the assembly errors "
+                                  f"{', '.join(ASSEMBLY_KEYS)} or {setting_keys_text(pair)}"
+                                  + unknown_setting_key(pair, key))
     elif key not in ASSEMBLY_KEYS and design_key(key) is None:
         raise InputRangeError("--vary KEY", key, "one of the assembly errors "
                               f"{', '.join(ASSEMBLY_KEYS)} or a key of the pair's TOML "
-                              f"[easeoff.*] / [cutter] tables: {', '.join(DESIGN_KEYS)}")
+                              f"[easeoff.*] / [cutter] tables: {', '.join(DESIGN_KEYS)}"
+                              + ("; the [machine.*] / [blade.*] keys are a pair's cut from "
+                                 "machine settings (this one has none)"
+                                 if key in SETTING_KEYS else ""))
     parts = rng.split(":")
     if len(parts) != 3:
         raise InputRangeError(f"--vary {key}", rng, "START:STOP:STEPS (three fields)")
@@ -108,6 +125,8 @@ def parse_vary(text: str, *, kind: str = BEVEL) -> VarySpec:
         raise InputRangeError(f"--vary {key}", rng, "STEPS = 1 when STOP == START")
     if key in CYLINDRICAL_KEYS:
         return VarySpec(key, key.replace(".", "_"), start, stop, steps, design_unit(key))
+    if key in SETTING_KEYS:
+        return VarySpec(key, key.replace(".", "_"), start, stop, steps, setting_unit(key))
     if key not in ASSEMBLY_KEYS:
         key = design_key(key)
         return VarySpec(key, key.replace(".", "_"), start, stop, steps, design_unit(key))

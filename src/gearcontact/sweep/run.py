@@ -26,14 +26,13 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
 from tqdm import tqdm
 
 from ..geometry.pair import CYLINDRICAL
 from .cell import LTE_CELLS, compute_point, lte_stride
 from .cylindrical import compute_cylindrical_point
 from .design import Variant, build_variant, easeoff_only
-from .store import FAILED, PENDING, STORE_NAME, prepare_store, write_point
+from .store import FAILED, PENDING, STORE_NAME, WARNING_VARIABLE, prepare_store, write_point
 
 __all__ = ["SweepReport", "run_sweep", "sweep_settings"]
 
@@ -79,7 +78,8 @@ class SweepReport:
 def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
               cells: int = 80, solver: str = "pk_cg", scheduler: str | None = None,
               workers: int | None = None, client=None, flanks=None,
-              progress: bool = True, options: dict | None = None) -> SweepReport:
+              progress: bool = True, options: dict | None = None,
+              settings_check=None) -> SweepReport:
     """Compute the pending cells of ``grid`` into ``out/sweep.zarr``.
 
     Parameters
@@ -104,18 +104,23 @@ def run_sweep(pair, grid, *, out, side: str, compute=("tca",), phases: int = 61,
         :class:`~gearcontact.tca.synthesis.PreparedPair`); without them the pair's
         typed machine settings are checked against its blank first
         (:func:`~gearcontact.geometry.settings_check.checked_settings`: a gross slip
-        raises naming its key, before the store is touched).
+        raises naming its key, before the store is touched). Not used, and not needed,
+        when the grid varies setting keys (:mod:`.settings_keys`: each variant builds
+        its own).
     progress : bool
         Progress bar of cells done / total.
     options : dict, optional
         A cylindrical pair: further keyword options of its loaded TE
         (:func:`~gearcontact.ltca.cylindrical_lte.cylindrical_loaded_te`; part of the
         settings a resumed sweep must share).
+    settings_check : SettingsCheck, optional
+        The typed-settings check of ``pair``, if the caller ran it (the command line, in
+        its argument check): not run again without ``flanks``.
     """
     from ..geometry.flank import build_flanks
     from ..geometry.settings_check import checked_settings
 
-    if flanks is None:      # a raw pair: its typed settings checked before the store
+    if flanks is None and settings_check is None:   # a raw pair: checked before the store
         checked_settings(pair, stacklevel=2)
     t0 = time.perf_counter()
     store = Path(out) / STORE_NAME
@@ -247,18 +252,20 @@ def _results(pair, nominal, grid, todo, kwargs, *, scheduler, workers, client):
 
 def _guarded(variant, assembly, torques, kwargs) -> dict:
     """:func:`compute_point` on a built design variant, with the variant's flank build
-    time (:func:`compute_cylindrical_point` on a cylindrical pair, without: it has no
-    flank build); a failed build or any unexpected exception recorded as the point's
-    error (a sweep of hundreds of points must not die of one)."""
+    time and reader warnings (:func:`compute_cylindrical_point` on a cylindrical pair,
+    without: it has no flank build); a failed build or any unexpected exception
+    recorded as the point's error (a sweep of hundreds of points must not die of one)."""
     n = len(torques)
     cylindrical = "options" in kwargs
-    timing = {} if cylindrical else {"flank_build_s": [variant.build_s] * n}
+    extra = {} if cylindrical else {"flank_build_s": [variant.build_s] * n}
+    if variant.warnings:       # a setting variant's (the store keeps them beside)
+        extra[WARNING_VARIABLE] = ["; ".join(variant.warnings)] * n
     if variant.error:
-        return {"error": [variant.error] * n, **timing}
+        return {"error": [variant.error] * n, **extra}
     try:
         if cylindrical:
             return compute_cylindrical_point(variant.pair, torques, **kwargs)
         return {**compute_point(variant.pair, variant.flanks, assembly, torques, **kwargs),
-                **timing}
+                **extra}
     except Exception as exc:  # noqa: BLE001  (recorded with its type; see the store)
-        return {"error": [f"{type(exc).__name__}: {exc}"] * n, **timing}
+        return {"error": [f"{type(exc).__name__}: {exc}"] * n, **extra}

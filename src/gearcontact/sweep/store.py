@@ -26,8 +26,9 @@ from ..geometry.pair import CYLINDRICAL
 from .cell import BOOL_VARIABLES, CELL_VARIABLES, LTCA_VARIABLES, TCA_VARIABLES
 from .cylindrical import (CYLINDRICAL_BOOL_VARIABLES, CYLINDRICAL_LTCA_VARIABLES,
                           CYLINDRICAL_TCA_VARIABLES)
+from .settings_keys import SETTING_KEYS
 
-__all__ = ["STORE_NAME", "CREATING_NAME", "TIMING_VARIABLES", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
+__all__ = ["STORE_NAME", "CREATING_NAME", "TIMING_VARIABLES", "WARNING_VARIABLE", "PENDING", "DONE", "FAILED", "empty_dataset", "check_store",
            "prepare_store", "write_point"]
 
 #: Name of the store inside ``--out``.
@@ -39,6 +40,16 @@ PENDING, DONE, FAILED = 0, 1, 2
 #: timing, not a result: it differs between runs; one build per variant).
 TIMING_VARIABLES = {"flank_build_s": ("s", "wall time of the flank build of this cell's "
                                            "design variant (once per variant)")}
+
+
+#: With setting keys swept (:mod:`.settings_keys`): the pair reader's warnings of each
+#: cell's variant (text, ``""`` for none), as the commands print them beside their results.
+WARNING_VARIABLE = "settings_warning"
+
+
+def _warned(grid) -> bool:
+    """The store of ``grid`` keeps :data:`WARNING_VARIABLE` (setting keys swept)."""
+    return any(v.key in SETTING_KEYS for v in grid.vary)
 
 
 def _variables(grid, compute, settings: dict) -> dict:
@@ -65,6 +76,10 @@ def empty_dataset(grid, compute, settings: dict):
         data[name] = (grid.dims, fill, {"units": unit, "long_name": text})
     data["error"] = (grid.dims, np.full(grid.shape, "", dtype=object),
                      {"long_name": "error of a failed cell (type: message)"})
+    if _warned(grid):
+        data[WARNING_VARIABLE] = (grid.dims, np.full(grid.shape, "", dtype=object),
+                                  {"long_name": "the pair reader's warnings of the cell's "
+                                                "setting variant (category: message; ...)"})
     data["status"] = (grid.dims, np.zeros(grid.shape, np.int8),
                       {"long_name": "0 pending, 1 done, 2 failed"})
     return xr.Dataset(data, coords=coords,
@@ -126,8 +141,10 @@ def write_point(path, grid, index: tuple, result: dict) -> int:
     shape = (1,) * len(index) + (len(grid.torques_nm),)
     # a cylindrical point returns its own variables and no timing
     names = {*CELL_VARIABLES, *CYLINDRICAL_TCA_VARIABLES, *CYLINDRICAL_LTCA_VARIABLES,
-             *(TIMING_VARIABLES if any(v.design for v in grid.vary) else ())}
-    data = {k: (grid.dims, np.asarray(v).reshape(shape))
+             *(TIMING_VARIABLES if any(v.design for v in grid.vary) else ()),
+             *((WARNING_VARIABLE,) if _warned(grid) else ())}
+    data = {k: (grid.dims, np.asarray(v, dtype=object if k == WARNING_VARIABLE else None
+                                      ).reshape(shape))
             for k, v in result.items() if k in names}
     data["error"] = (grid.dims, errors.reshape(shape))
     region = {d: slice(i, i + 1) for d, i in zip(grid.dims, index)}
