@@ -12,7 +12,8 @@ Truths:
    the approach of a fresh LCP on fields of twice the cells (80 per side, fitted to the
    patch by :func:`gearcontact.ltca.patch_field.patch_approach`) within 3 %: the grid's
    share of the 4 % the twin's static approach is tested to against the LCP; measured
-   at most 2.8 % over 110 approaches (posed rows at T/16). The 40-cell field unfitted was 5-13 %
+   at most 1.36 % over 110 approaches (session 27, the posed rows counted from their
+   searched touch; 2.8 % from the fitted field's least gap, posed rows at T/16). The 40-cell field unfitted was 5-13 %
    off at the TCA's edge rows and 14-63 % at the posed rows (whose opening moved by
    1-11 um between 40 and 80 cells).
 2. *Touch*: a posed row's opening (:func:`gearcontact.ltca.patch_field.touch_gap_mm`)
@@ -97,7 +98,7 @@ def test_tca_edge_rows_converge_in_the_cells(s0003_calibrated, s0003_calibrated_
 
 @pytest.mark.slow
 def test_edge_rows_converge_in_the_cells(s0003_calibrated, s0003_calibrated_tca):
-    """Truth 1 at every edge row near contact (110 approaches; measured within 2.8 %;
+    """Truth 1 at every edge row near contact (110 approaches; measured within 1.36 %;
     about 1 min)."""
     pair, flanks = s0003_calibrated
     errors = _check_convergence(pair, flanks, s0003_calibrated_tca, "coast")

@@ -13,7 +13,8 @@ Truths:
    loaded TE's, :class:`gearcontact.ltca.lte_pairs.PairFields`, at twice its 40 cells,
    solved here again with :func:`gearcontact.halfspace.lcp.solve_lcp`; at an edge row on
    fields fitted to its patch, :func:`gearcontact.ltca.patch_field.patch_approach`, from
-   the field's least gap, :func:`gearcontact.ltca.edge_law.edge_datum_mm`; issue 28,
+   the field's least gap, a posed-field row from its searched touch (session 27),
+   :func:`gearcontact.ltca.edge_law.edge_datum_mm`; issue 28,
    session 16: the 40-cell field did not resolve the patch of an edge row, 5-13 %). The law's scale is the LCP's
    at the row's operating load (its load in the table's quasi-static mesh,
    :func:`gearcontact.ltca.edge_law.operating_scales`), so the bound is the

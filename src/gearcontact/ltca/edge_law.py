@@ -33,9 +33,14 @@ row's closing datum, against a reference ``delta_ref(W_i)``:
 *Grid floor.* At an edge contact of the TCA the opening ``g`` is the exact touch of
 the edge, but the field's nodes lie half a cell and more inside the edge: its least gap
 on the flank sits ``e`` above ``g``, and ``delta_LCP - g`` carries ``e`` as a false
-compliance, largest at small loads. The datum of an edge row is therefore that least gap
-(:func:`edge_datum_mm`): the LCP's approach from its own touch. A posed-field row's
-opening is the touch of its posed flanks (:func:`.patch_field.touch_gap_mm`).
+compliance, largest at small loads. The datum of the TCA's edge rows is therefore that
+least gap (:func:`edge_datum_mm`): the LCP's approach from its own touch. A posed-field
+row's opening is the touch of its posed flanks searched over the whole flank
+(:func:`.patch_field.touch_gap_mm`), the true first contact from which the coupled LCP
+counts too; it is that row's datum (its fitted fields resolve the patch in many cells,
+whose centred gaps are the cells' means: the LCP's approach is counted in the gap's own
+coordinates, zero at the touch; docs/twin.md, "Posed rows: the approach counted from the
+searched touch").
 
 *Patch resolution.* The loaded TE's field of an edge row is sized by the ellipse of the
 whole torque; the patch at an edge is a strip a few of its cells across (s0003 coast's
@@ -236,10 +241,13 @@ def trim_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
 
 
 def edge_datum_mm(gap, off, pc) -> float:
-    """The closing datum of an edge row's LCP approach (mm): the least gap of its field
-    on the flank, or the row's opening if that is larger (module docstring, "grid
-    floor"). A posed-field row's opening is that least gap already."""
-    return max(pc.offset_mm, float(gap[~off].min())) if (~off).any() else pc.offset_mm
+    """The closing datum of an edge row's LCP approach (mm): of a posed-field row
+    (``pc.edge``, wholly off the flank or not) its opening, the searched touch; of the
+    TCA's edge row the least gap of its field on the flank, or the row's opening if that
+    is larger (module docstring, "grid floor")."""
+    if pc.edge or not (~off).any():
+        return pc.offset_mm
+    return max(pc.offset_mm, float(gap[~off].min()))
 
 
 def _loads(pc, torque_nmm: float) -> np.ndarray:

@@ -60,7 +60,9 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
             cache: dict) -> EdgeCompliance | None:
     """The LCP calibration of a cut contact (module docstring): :func:`~.edge_law.
     edge_compliance` of an edge row, :func:`~.edge_law.trim_compliance` of a surface row,
-    once per TCA path index (``cache``, shared by the callers' phases); of an edge row
+    once per row (``cache``, shared by the callers' phases, keyed by the path index and
+    the field's centre: a posed-field row and a row on its own state can share a path
+    index, pairs at the pitch ends do, and their laws differ); of an edge row
     whose field lies wholly off the flank, :func:`.off_flank.touch_law` at its touch
     (not cached: such rows share their nearest interior state's path index, not their
     touch); None where the calibration fails (the contact keeps Hertz). The law's scale at a load is
@@ -78,18 +80,19 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
     torque_nmm : float
         Gear torque that sets the calibration loads, N·mm.
     cache : dict
-        Path index -> EdgeCompliance or None.
+        ``(path index, centre index)`` -> EdgeCompliance or None.
     """
     if is_edge_row(fields, pc) and is_wholly_off(fields, pc):
         return touch_law(fields, pc, materials=materials, torque_nmm=torque_nmm)
-    if pc.path_index not in cache:
+    key = (pc.path_index, pc.center_index)
+    if key not in cache:
         law = edge_compliance if is_edge_row(fields, pc) else trim_compliance
         try:
             out = law(fields, pc, materials=materials, torque_nmm=torque_nmm)
         except ArithmeticError:     # no founded calibration: Hertz
             out = None
-        cache[pc.path_index] = corner_law(out) if out is not None and pc.edge else out
-    return cache[pc.path_index]
+        cache[key] = corner_law(out) if out is not None and pc.edge else out
+    return cache[key]
 
 
 def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, materials,
@@ -111,7 +114,7 @@ def preview_edge_balance(contacts, fields: PairFields, torque_nmm: float, *, mat
         Gear torque, N·mm.
     materials : (Material, Material)
     cache : dict or None
-        Path index -> calibration (:func:`row_law`) shared over the phases;
+        The calibrations of :func:`row_law`, shared over the phases;
         None: the untruncated Hertz law at every contact (``c = 1``).
     bending_mm_per_n : array_like or None
         Tooth-bending compliance of each contact in series with its contact law

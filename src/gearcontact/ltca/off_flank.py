@@ -13,7 +13,8 @@ surface contact, whose curvatures the row carries: the edge bounds the contact r
 row's law is therefore the one the mesh table gives the TCA's edge rows
 (:func:`gearcontact.ltca.edge_law.edge_compliance`: the half-space LCP of the posed
 flanks at ``T/16, T/4, T`` over the row's lever, on fields fitted to its patch, from
-the field's least gap, against the Hamrock–Brewe approach of the row's curvatures), on
+the row's opening, the searched touch (:func:`gearcontact.ltca.edge_law.edge_datum_mm`),
+against the Hamrock–Brewe approach of the row's curvatures), on
 a field placed at the touch instead of the row's own: :class:`TouchField`, a square of
 the row's frame (origin, axes and posed point of its field, so the gap is the same
 function of the same plane point: its least value is the touch) centred on the flank

@@ -382,7 +382,7 @@ def mesh_table(tca, flanks, pair, *, side: str = "drive", torque_nm: float = 64.
 def _calibrate_edges(fields: PairFields, edges: np.ndarray, materials, torque_nmm: float,
                      done: dict) -> tuple[np.ndarray, np.ndarray]:
     """``(law, n)`` per row: :func:`gearcontact.ltca.edge_rows.row_law` of each row's
-    contact in ``edges`` (the calibration ``TE_pre`` takes too), once per path index
+    contact in ``edges`` (the calibration ``TE_pre`` takes too), once per row
     (``done``; ``law`` None and ``n = 0`` where it failed); None and NaN elsewhere."""
     laws, expo = np.full(edges.shape, None, dtype=object), np.full(edges.shape, np.nan)
     for (i, k), pc in np.ndenumerate(edges):
