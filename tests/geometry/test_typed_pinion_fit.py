@@ -15,7 +15,10 @@ Truths, declared before measuring (docs sec. 5):
     the residual angle of the pinion against the conjugate, spline error included
     (slow; through the CLI in tests/cli/test_design_typed_motion.py);
 (c) only a spiral bevel's generated gear with a modified roll or helical motion is fitted:
-    a hypoid's derived pinion is conjugate and stays as it was (no fit, the same tables).
+    a hypoid's derived pinion is conjugate and stays as it was (no fit, the same tables);
+(d) the bound on the contact lines (session 27, declared before measuring): the envelope's
+    lower term on a grid whose lines and values are known in closed form, and, on the
+    linear-roll gear of (a), a bound that vanishes for the exactly conjugate pinion.
 """
 
 import dataclasses
@@ -32,7 +35,8 @@ from gearcontact.geometry.kinked import machine_flank
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.typed_pinion import typed_gear_cut, typed_gear_pinion_setups
 from gearcontact.geometry.typed_pinion_fit import (ConjugateFit, conjugate_fitted_setups,
-                                                   conjugate_target, needs_conjugate_fit,
+                                                   conjugate_target, contact_line_bound_arcsec,
+                                                   line_envelope_min, needs_conjugate_fit,
                                                    residual_angles, spline_error_rad)
 
 PRINT = "tests/geometry/summary_sheets/hypoid_10x41_no16_pair.toml"
@@ -91,10 +95,35 @@ def test_the_conjugate_target_of_a_linear_roll_is_the_derived_pinion(f2_generate
     seed = typed_gear_pinion_setups(f2_generated, _gear(f2_generated))["drive"]
     target = conjugate_target(f2_generated, gear)
     cut = machine_flank(seed, f2_generated.blank, face_width_mm=f2_generated.pinion_face_width_mm)
-    _, _, d, dpsi = residual_angles(cut, target)
+    u, v, d, dpsi = residual_angles(cut, target)
     spline = spline_error_rad(target)
     assert np.abs(dpsi).max() <= 2.0 * spline
     assert np.abs(d).max() < 0.01          # um: not vacuous, the unit is um
+    # (d): both at exact nodes the derived pinion is the conjugate, TE0 = 0: the bound on
+    # the contact lines vanishes to the TCA's conjugacy tolerance, 1e-4 arcsec (the
+    # flank-wide bound carries the sheet's spline error, 2 x 1.6e-7 rad = 0.03 arcsec)
+    assert 0.0 <= contact_line_bound_arcsec(f2_generated, seed, target, u[:, 0], v[0]) < 1e-4
+
+
+def test_the_envelope_of_the_contact_lines_on_a_closed_form_grid():
+    # (d): phi = v on a 21 x 41 grid of [0, 1]^2 (the lines are the rows v = const), m =
+    # 3 phi - (u - 1/2)^2: M(phi) = 3 phi (u = 1/2 a node), exact on each edge (m linear
+    # in phi along v, the u-edges at one phase skipped). Pitch 0.4: the envelope
+    # max_k M(phi + 0.4 k) over phi in [0, 1] has its least value just past a jump, 3 (1 -
+    # 0.4) = 1.8, sampled at 2000 phases a pitch (one step, 3 x 0.4 / 2000 = 6e-4, the
+    # tolerance, 1e-12 for rounding either side: the sample one step past the jump is
+    # 1.8 + 6e-4 exactly); a mask cutting the lines above v = 0.3 leaves the phases (0.3,
+    # 0.4) of the pitch without a line: -inf
+    u, v = np.meshgrid(np.linspace(0.0, 1.0, 21), np.linspace(0.0, 1.0, 41), indexing="ij")
+    m = 3.0 * v - (u - 0.5) ** 2
+    ok = np.ones(u.shape, bool)
+    got = line_envelope_min(v, m, ok, pitch_rad=0.4)
+    assert 1.8 - 1e-12 <= got <= 1.8 + 6e-4 + 1e-12
+    # a node column off the line maximum (u = 1/2 masked) lowers M to 3 phi - 0.05^2
+    ok_mid = ok.copy()
+    ok_mid[10] = False
+    assert abs(line_envelope_min(v, m, ok_mid, pitch_rad=0.4) - (got - 0.0025)) < 1e-12
+    assert line_envelope_min(v, m, v <= 0.3, pitch_rad=0.4) == -np.inf
 
 
 def test_a_residual_above_the_bound_is_refused_naming_the_side(f2_generated, monkeypatch):
