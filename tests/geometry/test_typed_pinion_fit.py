@@ -22,6 +22,7 @@ Truths, declared before measuring (docs sec. 5):
 """
 
 import dataclasses
+import warnings
 
 import numpy as np
 import pytest
@@ -196,3 +197,53 @@ def test_a_derived_pinion_short_of_the_conjugate_starts_on_its_own_box(f2_genera
     _, fits = typed_gear_cut(f2_generated, gear)
     assert fits["drive"].seed_trimmed
     assert fits["drive"].max_um <= typed_pinion_fit.RESIDUAL_BOUND_UM
+    assert fits["drive"].stage == 1          # within the bound: no refit
+
+
+@pytest.mark.slow
+def test_a_fit_above_the_bound_is_refitted_with_every_setting(f2_generated):
+    # the second fit (session 27, declared before measuring, docs sec. 5): 2C 0.05 with 6D
+    # 1.0 on F.2's generated drive gear was refused at 2.080 um with the default eight;
+    # refitted (every setting, then minimax) it is within the unchanged 2 um (measured
+    # 1.570 um at stage 3) and no worse than the default fit's 60 x 75 residual, which it
+    # started from (the lowest kept)
+    gear = modified_gear(f2_generated, {"drive": (dict(modified_roll=(0.05, 1.0)), {})})
+    _, fits = typed_gear_cut(f2_generated, gear)
+    assert fits["drive"].stage > 1
+    assert fits["drive"].max_um <= typed_pinion_fit.RESIDUAL_BOUND_UM
+
+
+def _e0_pair():
+    from design_space import bare_candidate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # the blank's notes
+        return standard_machine_pair(bare_candidate(13, 2, 0, 35, 0.3, "drive"),
+                                     gear_generation="generated")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("side", [
+    pytest.param("drive", marks=pytest.mark.xfail(strict=True, reason=(
+        "differs: TE0 p-p 0.712 arcsec against the bound 0.532. The TCA's pair-2 path at "
+        "phases 2-3 of 31 (TE0 0.772, 0.948: a pinion-heel edge contact) is not a first "
+        "touch: at that pose the pinion point (3.18, 81.73) mm lies 5.6e-5 mm inside the "
+        "gear (an interior foot at gear (8.50, 11.36) mm), and the next pair's contact "
+        "line meets the pinion heel near the root with m 0.573 arcsec (TE0 <= 0.30). "
+        "Without those two phases the TCA's p-p is 0.507 (docs sec. 5)"))),
+    "coast"])
+def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
+    # (d) on the 13/26 at E 0 (its standard generated gear, 2C +-0.05; the table of docs
+    # sec. 5), library TCA at the CLI's 120 x 150 nodes, 31 phases: TE0 p-p at most the
+    # bound on the contact lines + 1e-4 arcsec (the TCA's conjugacy tolerance). Measured
+    # drive 0.712 against 0.532 (differs, the reason above), coast 0.880 against 1.545
+    # (session 26's flank-wide bound 19.03)
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair = _e0_pair()
+    cut, fits = typed_gear_cut(pair, modified_gear(pair, TWO_C), lengthwise_crowning_um=0.0,
+                               blade_profile_crowning_um=0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # the typed gear's check against the blank
+        result, _ = analyze_pair(cut, side=side, phases=31)
+    assert result.cycle.te0_pp_arcsec <= fits[side].te_bound_arcsec + 1e-4
