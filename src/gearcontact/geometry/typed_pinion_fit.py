@@ -262,7 +262,8 @@ def fit_to_conjugate(pair, gear: MachineSetup, seed: MachineSetup) -> ConjugateF
     roll), it is first fitted over the part its own active box covers
     (:func:`~.generated.generated_pinion_box`), then from there over the whole box
     (``seed_trimmed``). A fit above :data:`RESIDUAL_BOUND_UM` continues through
-    :data:`REFIT_STAGES` while it stays above, the lowest residual kept (``stage``).
+    :data:`REFIT_STAGES` while it stays above, the lowest residual kept (``stage``; a
+    stage that moves no setting is the same pinion, not kept).
 
     Raises
     ------
@@ -289,6 +290,8 @@ def fit_to_conjugate(pair, gear: MachineSetup, seed: MachineSetup) -> ConjugateF
         if np.abs(best[3]).max() <= RESIDUAL_BOUND_UM:
             break
         fit = fit_pinion_setup(fit.setup, pair.blank, target, **options)
+        if not any(fit.corrections.values()):      # no setting moved: the same pinion
+            continue
         trial = (fit, *_measured(pair, fit.setup, target))
         if np.abs(trial[3]).max() < np.abs(best[3]).max():
             best, stage = trial, k
