@@ -25,7 +25,9 @@ advance, so
 
     TE0 p-p <= (z1 / z2) (max m - min_phi max_k max_{L(phi + k tau2)} m)
 
-(gear angle, as TE0 is defined: docs/geometry.md; ``tau2 = 2 pi / z2``). A fit whose
+(gear angle, as TE0 is defined: docs/geometry.md; ``tau2 = 2 pi / z2``; the derivation:
+docs/machine_settings.md sec. 5, "The bound on the contact lines, and more freedoms for a
+refused fit"). A fit whose
 residual exceeds :data:`RESIDUAL_BOUND_UM` is not a conjugate pinion:
 :func:`conjugate_fitted_setups` refuses it. Every other typed gear keeps its derived
 pinion untouched (:func:`needs_conjugate_fit`).
@@ -57,9 +59,10 @@ from .member_envelope import angle_lever
 from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, FitProblem, SettingFit,
                           fit_pinion_setup, flank_deviation_um)
 
-__all__ = ["CONJUGATE_GRID", "REFIT_STAGES", "RESIDUAL_BOUND_UM", "ConjugateFit",
-           "conjugate_fitted_setups", "conjugate_target", "contact_line_bound_arcsec",
-           "fit_to_conjugate", "needs_conjugate_fit", "residual_angles", "spline_error_rad"]
+__all__ = ["BOUND_PHASES", "CONJUGATE_GRID", "REFIT_STAGES", "RESIDUAL_BOUND_UM",
+           "ConjugateFit", "conjugate_fitted_setups", "conjugate_target",
+           "contact_line_bound_arcsec", "fit_to_conjugate", "line_envelope_min",
+           "needs_conjugate_fit", "residual_angles", "spline_error_rad"]
 
 #: Exact meshing nodes of the conjugate target (profile x lengthwise), a quintic sheet
 #: between them (its error against exact nodes at the cell centres is part of each fit's
