@@ -180,7 +180,7 @@ def test_a_spiral_bevel_gear_with_modified_roll_gets_a_conjugate_pinion(side, tm
     assert np.abs(d).max() <= RESIDUAL_BOUND_UM
     bound = (got.pinion_teeth / got.gear_teeth) * (
         np.ptp(dpsi) + 2.0 * spline_error_rad(target)) * ARCSEC
-    on_lines = contact_line_bound_arcsec(got, setups["pinion", side], target, u[:, 0], v[0])
+    on_lines = contact_line_bound_arcsec(got, setups["pinion", side], target, cut)
     assert "pinion fitted to the typed gear's conjugate pinion" in written.read_text()
     run = tmp_path / "tca"
     assert main(["tca", "--pair", str(written), "--out", str(run),

@@ -103,7 +103,7 @@ def test_the_conjugate_target_of_a_linear_roll_is_the_derived_pinion(f2_generate
     # (d): both at exact nodes the derived pinion is the conjugate, TE0 = 0: the bound on
     # the contact lines vanishes to the TCA's conjugacy tolerance, 1e-4 arcsec (the
     # flank-wide bound carries the sheet's spline error, 2 x 1.6e-7 rad = 0.03 arcsec)
-    assert 0.0 <= contact_line_bound_arcsec(f2_generated, seed, target, u[:, 0], v[0]) < 1e-4
+    assert 0.0 <= contact_line_bound_arcsec(f2_generated, seed, target, cut) < 1e-4
 
 
 def test_the_envelope_of_the_contact_lines_on_a_closed_form_grid():
@@ -247,3 +247,25 @@ def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
         warnings.simplefilter("ignore")    # the typed gear's check against the blank
         result, _ = analyze_pair(cut, side=side, phases=31)
     assert result.cycle.te0_pp_arcsec <= fits[side].te_bound_arcsec + 1e-4
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "differs: TE0 p-p 6.742 arcsec against the bound on the contact lines 5.660. The "
+    "refitted pinion (stage 3, 1.570 um over the conjugate's box) reaches 3.28 mm past the "
+    "conjugate's tip-side edge (u 4.40 mm, the line the gear root generates), and the gear's "
+    "root edge touches it there (u 4.42-4.49 mm) at 26 of 31 phases: outside the common "
+    "box the bound's upper term covers (docs sec. 5; the amendment over the whole box, "
+    "747 arcsec, not adopted)"))
+def test_a_refitted_pinion_past_the_conjugates_box_differs(f2_generated):
+    # (d) on the refitted 2C 0.05 + 6D 1.0 (F.2's generated drive gear), uncrowned,
+    # library TCA at 120 x 150 nodes, 31 phases, + 1e-4 arcsec (the TCA's tolerance)
+    from gearcontact.tca.analysis import analyze_pair
+
+    gear = modified_gear(f2_generated, {"drive": (dict(modified_roll=(0.05, 1.0)), {})})
+    cut, fits = typed_gear_cut(f2_generated, gear, lengthwise_crowning_um=0.0,
+                               blade_profile_crowning_um=0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # the typed gear's check against the blank
+        result, _ = analyze_pair(cut, side="drive", phases=31)
+    assert result.cycle.te0_pp_arcsec <= fits["drive"].te_bound_arcsec + 1e-4

@@ -226,22 +226,33 @@ def line_envelope_min(phi, m, ok, *, pitch_rad: float, phases: int = BOUND_PHASE
     return float(envelope.reshape(-1, phases).max(axis=0).min())
 
 
-def contact_line_bound_arcsec(pair, setup: MachineSetup, target, us, vs) -> float:
-    """The bound of the uncrowned pair's TE0 p-p (gear arcsec) of the pinion flank
-    ``setup`` against the gear's conjugate ``target`` (right-hand ``pair``), on the grid
-    ``us x vs`` (:func:`residual_angles`': their common box; module docstring, docs
-    sec. 5): ``m`` the
-    flank's angle off the exact conjugate (both at exact nodes: the cut envelope's and
-    :meth:`~.conjugate.ConjugateFlank.exact`; material positive), the upper term its
-    largest value over the grid, the lower term :func:`line_envelope_min` over the nodes
-    whose gear point lies in the gear flank's active box; ``inf`` where a phase of the
-    pitch meets no contact line there."""
+def _exact_m(pair, setup: MachineSetup, target, us, vs):
+    """``(m, exact)``: the angle (rad, material positive) of the flank ``setup`` cuts off
+    ``target``'s exact meshing nodes on the grid ``us x vs``, and those nodes
+    (:class:`~.conjugate.MeshingSolution`)."""
     U, V = np.meshgrid(us, vs, indexing="ij")
     exact = target.exact(U, V)
     nodes = SimpleNamespace(boundary=target.boundary, evaluate=lambda *a, **k: SimpleNamespace(
         r=exact.x1_mm, n=exact.n1))
     prob = FitProblem(setup, pair.blank, nodes, (), us, vs)
-    m = prob.deviation_um(np.zeros(0)).reshape(U.shape) / np.abs(prob.lever_um)
+    return prob.deviation_um(np.zeros(0)).reshape(U.shape) / np.abs(prob.lever_um), exact
+
+
+def contact_line_bound_arcsec(pair, setup: MachineSetup, target, cut) -> float:
+    """The bound of the uncrowned pair's TE0 p-p (gear arcsec) of the pinion flank
+    ``setup`` (``cut``, the flank it cuts) against the gear's conjugate ``target``
+    (right-hand ``pair``; module docstring, docs sec. 5): ``m`` the flank's angle off
+    the exact conjugate (both at exact nodes: the cut envelope's and
+    :meth:`~.conjugate.ConjugateFlank.exact`; material positive) on
+    :func:`residual_angles`' grid (their common box); the upper term its largest value,
+    the lower term :func:`line_envelope_min` over the nodes whose gear point lies in the
+    gear flank's active box; ``inf`` where a phase of the pitch meets no contact line
+    there. A bound while the pair touches within the common box: a pinion flank reaching
+    past the conjugate's box can be touched there by a gear edge, beyond its reach (docs
+    sec. 5, measured)."""
+    u, v = residual_angles(cut, target)[:2]
+    us, vs = u[:, 0], v[0]
+    m, exact = _exact_m(pair, setup, target, us, vs)
     gear = target.solver.gear
     u2, v2 = gear.surface_parameters(exact.h_mm, exact.theta_rad)
     g = gear.boundary
@@ -252,10 +263,10 @@ def contact_line_bound_arcsec(pair, setup: MachineSetup, target, us, vs) -> floa
 
 
 def _measured(pair, setup: MachineSetup, target):
-    """``(u, v, d_um, dpsi_rad)`` of the pinion ``setup`` against ``target``
-    (:func:`residual_angles`)."""
-    return residual_angles(machine_flank(setup, pair.blank,
-                                         face_width_mm=pair.pinion_face_width_mm), target)
+    """``(cut, d_um, dpsi_rad)``: the flank the pinion ``setup`` cuts and its residual
+    against ``target`` (:func:`residual_angles`)."""
+    cut = machine_flank(setup, pair.blank, face_width_mm=pair.pinion_face_width_mm)
+    return (cut, *residual_angles(cut, target)[2:])
 
 
 def fit_to_conjugate(pair, gear: MachineSetup, seed: MachineSetup) -> ConjugateFit:
@@ -290,22 +301,22 @@ def fit_to_conjugate(pair, gear: MachineSetup, seed: MachineSetup) -> ConjugateF
     fit = fit_pinion_setup(start, pair.blank, target, parameters=DEFAULT_PARAMETERS)
     best, stage = (fit, *_measured(pair, fit.setup, target)), 1
     for k, options in enumerate(REFIT_STAGES, start=2):
-        if np.abs(best[3]).max() <= RESIDUAL_BOUND_UM:
+        if np.abs(best[2]).max() <= RESIDUAL_BOUND_UM:
             break
         fit = fit_pinion_setup(fit.setup, pair.blank, target, **options)
         if not any(fit.corrections.values()):      # no setting moved: the same pinion
             continue
         trial = (fit, *_measured(pair, fit.setup, target))
-        if np.abs(trial[3]).max() < np.abs(best[3]).max():
+        if np.abs(trial[2]).max() < np.abs(best[2]).max():
             best, stage = trial, k
-    fit, u, v, d, dpsi = best
+    fit, cut, d, dpsi = best
     spline = spline_error_rad(target)
     ratio = pair.pinion_teeth / pair.gear_teeth
     return ConjugateFit(
         side=gear.side, fit=fit, max_um=float(np.abs(d).max()),
         rms_um=float(np.sqrt(np.mean(d ** 2))), dpsi_min_rad=float(dpsi.min()),
         dpsi_max_rad=float(dpsi.max()), spline_error_rad=spline,
-        te_bound_arcsec=contact_line_bound_arcsec(pair, fit.setup, target, u[:, 0], v[0]),
+        te_bound_arcsec=contact_line_bound_arcsec(pair, fit.setup, target, cut),
         seed_max_um=float(np.abs(seed_dev).max()), seed_trimmed=start is not seed,
         te_bound_flank_arcsec=ratio * (float(dpsi.max() - dpsi.min()) + 2.0 * spline)
         * _ARCSEC, stage=stage)
