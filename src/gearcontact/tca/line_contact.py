@@ -31,7 +31,7 @@ from ..validation import InputRangeError, UnusableInput
 from .mating import solve_mating_point
 from .types import ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError
 
-__all__ = ["LINE_TOLERANCE_MM", "LINE_CURVATURE_PER_MM", "LineContactResult", "LineContact", "line_contact", "is_conjugate",
+__all__ = ["CROWNING_ADVICE", "LINE_TOLERANCE_MM", "LINE_CURVATURE_PER_MM", "LineContactResult", "LineContact", "line_contact", "is_conjugate",
            "found_line_contact", "check_loadable"]
 
 #: Residual tolerance of the contact-line solve, mm: the pinion sheets interpolate the
@@ -47,6 +47,13 @@ LINE_TOLERANCE_MM = 1e-7
 #: would be metres long. (The point solve's TE0 is no test there: singular on the line,
 #: it gave 1.4e-4 arcsec p-p on that pair; the line's own TE0 is reported.)
 LINE_CURVATURE_PER_MM = 1e-9
+
+#: What to do with line contact the TCA found (:class:`LineContact`'s message, and
+#: ``design``'s note on the uncrowned settings it writes,
+#: :mod:`.settings_line_contact`).
+CROWNING_ADVICE = ("Crown the pinion: an ease-off, or for machine settings `gearcontact "
+                   "design --machine-settings` with its crowning options, modified roll or "
+                   "a curved blade (docs/machine_settings.md).")
 
 
 @dataclass(frozen=True)
@@ -106,9 +113,7 @@ class LineContact(UnusableInput):
             super().__init__(
                 where + f"the TCA found the flanks touching along a line (smaller relative "
                 f"curvature B- {found:.1e} 1/mm at the mean point; along the pitch "
-                + line + "Crown the pinion: an ease-off, or for machine settings "
-                "`gearcontact design --machine-settings` with its crowning options, modified "
-                "roll or a curved blade (docs/machine_settings.md).")
+                + line + CROWNING_ADVICE)
 
 
 def is_conjugate(pair, side: str) -> bool:
@@ -153,8 +158,8 @@ def _line_point(pinion, gear, kin, guess: ContactGuess):
 
 
 def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: ContactGuess,
-                 *, pinion_teeth: int, phases: int = 61, line_points: int = 25
-                 ) -> LineContactResult:
+                 *, pinion_teeth: int, phases: int = 61, line_points: int = 25,
+                 also: tuple[ContactGuess, ...] = ()) -> LineContactResult:
     """Follow the contact line of conjugate flanks and TE0 over one pitch.
 
     Parameters
@@ -169,8 +174,21 @@ def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: Con
         Phases of the pitch (both ends included), centred on the start phase.
     line_points : int
         Samples of ``v2`` over the gear face for the contact line.
+    also : tuple of ContactGuess
+        Further starts, tried in turn where the line's point at ``start`` (its phase and
+        ``v2``) lies off a flank: the point TCA's reference on line contact is a point
+        of the line picked by a singular solve, and can sit beyond a flank edge (F.2's
+        uncrowned standard settings, coast: below the pinion root).
     """
-    ref = _line_point(pinion, gear, kin, start)
+    errors = []
+    for guess in (start, *also):
+        try:
+            ref = _line_point(pinion, gear, kin, guess)
+            break
+        except (EdgeContact, TcaConvergenceError) as exc:
+            errors.append(exc)
+    else:
+        raise errors[0]         # the start's: where the line was asked for
     # the contact line at the mean phase: march v2 from the start to each end
     v_lo, v_hi = gear.v_range
     line = {0.0: ref.point_mm}
