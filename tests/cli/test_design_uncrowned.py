@@ -56,3 +56,31 @@ def test_crowned_settings_say_nothing_of_line_contact(tmp_path):
     assert "line contact" not in err
     assert "uncrowned" not in (out / "machine_settings.toml").read_text()
     assert "line_contact" not in json.loads((out / "run.json").read_text())
+
+
+@pytest.mark.slow
+def test_a_side_fitted_to_a_zero_grid_is_named_uncrowned(tmp_path):
+    """`--target-flank` with a measured grid of zero deviations on the drive side (the
+    pair has no ease-off: the coast is fitted to zero too): the fit is the conjugate
+    pinion's settings on both sides (ease-off max 0), so both are checked and named.
+    Before: an internal error (EdgeContact) in the check's TCA on the coast side, the
+    start of the cycle at the pinion's toe edge; `tca.line_contact` now also tries the
+    line at the start's phase through the gear face's sections. ~6 min at load 18."""
+    import numpy as np
+
+    rows = ["side,v_mm,u_mm,easeoff_um"]
+    # covers F.2's active drive flank (u 1.215..7.682, v 64.541..88.447 mm)
+    rows += [f"drive,{float(v)!r},{float(u)!r},0.0" for u in np.linspace(1.0, 8.0, 6)
+             for v in np.linspace(64.0, 89.0, 9)]
+    grid = tmp_path / "zero.csv"
+    grid.write_text("\n".join(rows) + "\n")
+    out = tmp_path / "zero"
+    code, _, err = run_console("design", "--pair", F2, "--machine-settings", "--target-flank",
+                               grid, "--out", out, timeout=1800.0)
+    assert code == 0, err
+    text = (out / "machine_settings.toml").read_text()
+    manifest = json.loads((out / "run.json").read_text())
+    for side in ("drive", "coast"):
+        assert f"line contact on the {side} side" in err, err
+        assert f"{side}: uncrowned" in text
+        assert abs(manifest["line_contact"][side]["b_minus_per_mm"]) <= LINE_CURVATURE_PER_MM

@@ -157,6 +157,33 @@ def _line_point(pinion, gear, kin, guess: ContactGuess):
                               tol_mm=LINE_TOLERANCE_MM)
 
 
+#: Sections of the gear face tried for the line's first point at a start's phase.
+_START_SECTIONS = 9
+
+
+def _first_line_point(pinion, gear, kin, starts):
+    """The line's point at the first of ``starts`` (phase and ``v2`` held) on both
+    flanks; where none is, the line's point at a start's phase through the nearest of
+    :data:`_START_SECTIONS` gear face sections that is (a start on a flank edge, e.g. at
+    the toe: F.2's coast fitted to a zero ease-off). Raises the first start's error
+    where the line misses the flanks at every start's phase."""
+    errors = []
+    for guess in starts:
+        try:
+            return _line_point(pinion, gear, kin, guess)
+        except (EdgeContact, TcaConvergenceError) as exc:
+            errors.append(exc)
+    v_lo, v_hi = gear.v_range
+    sections = np.linspace(v_lo, v_hi, _START_SECTIONS + 2)[1:-1]
+    for guess in starts:
+        for v2 in sorted(sections, key=lambda v: abs(v - guess.v2)):
+            try:
+                return _line_point(pinion, gear, kin, dataclasses.replace(guess, v2=float(v2)))
+            except (EdgeContact, TcaConvergenceError):
+                continue
+    raise errors[0]         # the start's: where the line was asked for
+
+
 def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: ContactGuess,
                  *, pinion_teeth: int, phases: int = 61, line_points: int = 25,
                  also: tuple[ContactGuess, ...] = ()) -> LineContactResult:
@@ -178,17 +205,10 @@ def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: Con
         Further starts, tried in turn where the line's point at ``start`` (its phase and
         ``v2``) lies off a flank: the point TCA's reference on line contact is a point
         of the line picked by a singular solve, and can sit beyond a flank edge (F.2's
-        uncrowned standard settings, coast: below the pinion root).
+        uncrowned standard settings, coast: below the pinion root); then the line at
+        each start's phase through the gear face's sections (:func:`_first_line_point`).
     """
-    errors = []
-    for guess in (start, *also):
-        try:
-            ref = _line_point(pinion, gear, kin, guess)
-            break
-        except (EdgeContact, TcaConvergenceError) as exc:
-            errors.append(exc)
-    else:
-        raise errors[0]         # the start's: where the line was asked for
+    ref = _first_line_point(pinion, gear, kin, (start, *also))
     # the contact line at the mean phase: march v2 from the start to each end
     v_lo, v_hi = gear.v_range
     line = {0.0: ref.point_mm}
