@@ -108,6 +108,7 @@ def machine_settings(args, pair) -> int:
     from ..geometry.pair import pair_to_toml
     from ..geometry.typed_pinion import typed_gear_cut
     from ..report.design import write_machine_settings_toml
+    from ..tca.settings_line_contact import UNCROWNED_UM
 
     if has_easeoff(pair) or args.target_flank is not None:
         return easeoff_settings(args, pair)
@@ -144,8 +145,6 @@ def machine_settings(args, pair) -> int:
                 f"{generation}")
     cut, notes = written_pair(cut)
     refuse_gap(args, pair, cut)
-    from ..tca.settings_line_contact import UNCROWNED_UM
-
     uncrowned = all(c is not None and c < UNCROWNED_UM for c in (
         args.lengthwise_crowning_um, args.blade_profile_crowning_um))
     notes += line_contact_note(args, cut, SIDES if uncrowned else ())
