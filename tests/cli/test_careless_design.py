@@ -31,3 +31,21 @@ def test_a_crowning_below_the_flanks_accuracy_is_named_by_its_option(option):
     assert line.startswith(f"gearcontact design: error: {option} (um) = 1e-310"), line
     assert "0 (no crowning)" in line and "blade.profile_radius_mm" not in line
     assert out == ""
+
+
+def test_a_crowning_that_points_the_pinion_is_named_by_its_options():
+    """Before: `--lengthwise-crowning-um 200 --blade-profile-crowning-um 200` (the
+    range's end) on F.2 was refused naming `[machine.pinion.drive] /
+    [machine.pinion.coast] (blade point radii 141.2 / 83.94 mm)`, derived tables the user
+    never typed (the pinion check's verdict: a pointed tooth at the heel). Now the
+    options typed are named with their values (which one pointed the tooth is not known:
+    200 lengthwise alone does not), the check's verdict kept in the message, exit 2."""
+    code, out, err = run_console("design", "--pair", F2, "--machine-settings",
+                                 "--lengthwise-crowning-um", "200",
+                                 "--blade-profile-crowning-um", "200")
+    assert code == 2, err
+    line = err.strip().splitlines()[-1]
+    assert line.startswith("gearcontact design: error: --lengthwise-crowning-um / "
+                           "--blade-profile-crowning-um (um) = (200.0, 200.0)"), line
+    assert "pointed pinion tooth" in line and "[machine.pinion.drive]" in line
+    assert out == ""

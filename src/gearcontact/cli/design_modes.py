@@ -103,6 +103,25 @@ def line_contact_note(args, cut, sides) -> list[str]:
         CROWNING_ADVICE)]
 
 
+def crowning_named(exc: InputRangeError, args) -> InputRangeError:
+    """``exc`` renamed to the crowning options the user typed where it is the pinion
+    check's refusal of the standard pinion (a pointed tooth; its field the derived
+    ``[machine.pinion.*]`` tables, which the user never typed): the options that moved
+    the pinion from the standard one (which one pointed it is not known: both shape its
+    tooth), the check's verdict kept in the message; any other error, or no option
+    typed, unchanged."""
+    typed = {o: v for o, v in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
+                               ("--blade-profile-crowning-um",
+                                args.blade_profile_crowning_um)) if v is not None}
+    if not typed or not exc.field.startswith("[machine.pinion."):
+        return exc
+    values = tuple(typed.values())
+    return InputRangeError(" / ".join(typed) + " (um)", values[0] if len(values) == 1
+                           else values, (
+        f"a crowning whose standard pinion the readers accept; the pinion check refuses "
+        f"{exc.field} = {exc.value!r}: {exc.allowed}"))
+
+
 def machine_settings(args, pair) -> int:
     from ..geometry.basic_settings import standard_machine_pair
     from ..geometry.pair import pair_to_toml
@@ -127,8 +146,9 @@ def machine_settings(args, pair) -> int:
         except InputRangeError as exc:      # a gear off its blank: named by its slip
             from .settings_slip import slip_renamed
 
-            raise slip_renamed(exc, getattr(args, "typed_gear_check", None),
-                               failed="the derivation of its standard pinion") from None
+            named = slip_renamed(exc, getattr(args, "typed_gear_check", None),
+                                 failed="the derivation of its standard pinion")
+            raise (crowning_named(exc, args) if named is exc else named) from None
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
                 "pinion (gearcontact design --machine-settings;\nsigns: "
                 "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "
@@ -138,8 +158,11 @@ def machine_settings(args, pair) -> int:
     else:
         # the gear of the default flanks (check: generated where the formate gear undercuts)
         generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-        cut = standard_machine_pair(pair, gear_generation=generation, reliefs=reliefs,
-                                    **crowning)
+        try:
+            cut = standard_machine_pair(pair, gear_generation=generation, reliefs=reliefs,
+                                        **crowning)
+        except InputRangeError as exc:      # a pointed pinion: named by the typed option
+            raise crowning_named(exc, args) from None
         head = (f"{pair.name}: standard machine settings from the blank (gearcontact design "
                 "--machine-settings;\nsigns: docs/machine_settings.md); gear: "
                 f"{generation}")
