@@ -1,6 +1,6 @@
 """Line contact of machine settings before ``design --machine-settings`` writes them:
-settings that cut the pinion without crowning (docs/machine_settings.md sec. 5, "Uncrowned
-settings").
+settings that cut the pinion without crowning (docs/machine_settings.md sec. 4, "Uncrowned
+settings in `design`").
 
 A pinion cut by the generating surface complementary to the gear's, with the exact
 ratio of roll and no crowning of its own, is conjugate to the gear: the flanks touch
