@@ -53,19 +53,23 @@ def uncrowned_settings():
                                  lengthwise_crowning_um=0.0, blade_profile_crowning_um=0.0)
 
 
-def test_uncrowned_settings_are_found_in_line_contact(uncrowned_settings):
+@pytest.mark.parametrize("side", ["drive", "coast"])
+def test_uncrowned_settings_are_found_in_line_contact(uncrowned_settings, side):
     """The TCA finds the line (B- at the mean point within LINE_CURVATURE_PER_MM) and
     follows it: TE0 = 0 to 1e-3 arcsec over the pitch (the conjugate flanks' test
-    above; measured 2e-12), a contact line of several mm, and the message names what
-    to do instead of the [easeoff.*] advice of a typed zero ease-off."""
-    from gearcontact.tca.line_contact import LINE_CURVATURE_PER_MM
+    above; measured 2e-12 drive, 9.4e-5 coast), a contact line of several mm, and the
+    message names what to do instead of the [easeoff.*] advice of a typed zero ease-off.
+    The coast side (session 27): the point TCA's reference lay on the line beyond the
+    pinion root and following the line from it was an internal error (EdgeContact, exit
+    1 from `tca --side coast`); the line is now followed from the cycle's start."""
+    from gearcontact.tca.line_contact import CROWNING_ADVICE, LINE_CURVATURE_PER_MM
 
-    assert not is_conjugate(uncrowned_settings, "drive")
+    assert not is_conjugate(uncrowned_settings, side)
     with pytest.raises(LineContact) as info:
-        analyze_pair(uncrowned_settings, side="drive", phases=31)
+        analyze_pair(uncrowned_settings, side=side, phases=61)
     exc = info.value
     assert exc.found is not None and abs(exc.found) <= LINE_CURVATURE_PER_MM
     assert exc.result.te0_max_abs_arcsec < 1e-3
     assert exc.result.line_length_mm > 2.0
-    assert "on the drive side" in str(exc) and "Crown the pinion" in str(exc)
+    assert f"on the {side} side" in str(exc) and CROWNING_ADVICE in str(exc)
     assert "[easeoff.*] table" not in str(exc)

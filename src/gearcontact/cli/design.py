@@ -162,10 +162,12 @@ def register(sub) -> None:
                         "(from the RMS fit; docs/machine_settings.md sec. 6)")
     p.add_argument("--lengthwise-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion cutter circle departure at the "
-                        "face ends, um, 0 to 200 (default 25)")
+                        "face ends, um, 0 or 1e-6 to 200 (default 25; both crowning "
+                        "options 0: uncrowned settings, written with the TCA's line "
+                        "contact named, which the loaded commands refuse)")
     p.add_argument("--blade-profile-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion blade profile departure at "
-                        "+-h_mw/2, um, 0 to 200 (default 10)")
+                        "+-h_mw/2, um, 0 or 1e-6 to 200 (default 10)")
     p.set_defaults(func=run, check=check)
 
 

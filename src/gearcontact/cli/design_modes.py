@@ -11,6 +11,7 @@ import sys
 from ..errors import CheckFailed
 from ..geometry.formate import SIDES
 from ..geometry.pair import has_easeoff
+from ..geometry.written_blade import written_pair
 from ..validation import InputRangeError
 from .design_options import checked_targets, path_angle_option, renamed
 from .outdir import final_path
@@ -71,11 +72,62 @@ def refuse_gap(args, pair, cut) -> None:
         print(f"gearcontact design: {line}", file=sys.stderr)
 
 
+def line_contact_note(args, cut, sides) -> list[str]:
+    """The settings' line contact on ``sides`` (those cut uncrowned by construction):
+    the TCA the loaded commands run (:func:`~gearcontact.tca.settings_line_contact.
+    settings_line_contact`); each side found is written as asked and named: its refusal
+    on stderr, ``line_contact`` in run.json (B- and the message), and the returned lines
+    for the file's head comment (none where none; docs/machine_settings.md sec. 4,
+    "Uncrowned settings in `design`")."""
+    if not sides:
+        return []
+    from ..geometry.basic_settings import STANDARD_CROWNING
+    from ..tca.line_contact import CROWNING_ADVICE, LINE_CURVATURE_PER_MM
+    from ..tca.settings_line_contact import settings_line_contact
+
+    found = settings_line_contact(cut, sides=sides)
+    for line in found.values():
+        print(f"gearcontact design: warning: the settings are written uncrowned, as asked; "
+              f"the loaded commands refuse them: {line}", file=sys.stderr)
+    run = getattr(args, "run", None)
+    if run is not None and found:
+        run.input_checks["line_contact"] = {side: {"b_minus_per_mm": line.found,
+                                                   "message": str(line)}
+                                            for side, line in found.items()}
+    default = ("the default crowning: --lengthwise-crowning-um "
+               f"{STANDARD_CROWNING['lengthwise_crowning_um']:g} --blade-profile-crowning-um "
+               f"{STANDARD_CROWNING['blade_profile_crowning_um']:g}")
+    return [line for side in found for line in (
+        f"{side}: uncrowned: the TCA finds line contact (B- below {LINE_CURVATURE_PER_MM:g} "
+        f"1/mm at its reference point); the loaded commands refuse this pair ({default}).",
+        CROWNING_ADVICE)]
+
+
+def crowning_named(exc: InputRangeError, args) -> InputRangeError:
+    """``exc`` renamed to the crowning options the user typed where it is the pinion
+    check's refusal of the standard pinion (a pointed tooth; its field the derived
+    ``[machine.pinion.*]`` tables, which the user never typed): the options that moved
+    the pinion from the standard one (which one pointed it is not known: both shape its
+    tooth), the check's verdict kept in the message; any other error, or no option
+    typed, unchanged."""
+    typed = {o: v for o, v in (("--lengthwise-crowning-um", args.lengthwise_crowning_um),
+                               ("--blade-profile-crowning-um",
+                                args.blade_profile_crowning_um)) if v is not None}
+    if not typed or not exc.field.startswith("[machine.pinion."):
+        return exc
+    values = tuple(typed.values())
+    return InputRangeError(" / ".join(typed) + " (um)", values[0] if len(values) == 1
+                           else values, (
+        f"a crowning whose standard pinion the readers accept; the pinion check refuses "
+        f"{exc.field} = {exc.value!r}: {exc.allowed}"))
+
+
 def machine_settings(args, pair) -> int:
     from ..geometry.basic_settings import standard_machine_pair
     from ..geometry.pair import pair_to_toml
     from ..geometry.typed_pinion import typed_gear_cut
     from ..report.design import write_machine_settings_toml
+    from ..tca.settings_line_contact import UNCROWNED_UM
 
     if has_easeoff(pair) or args.target_flank is not None:
         return easeoff_settings(args, pair)
@@ -94,8 +146,9 @@ def machine_settings(args, pair) -> int:
         except InputRangeError as exc:      # a gear off its blank: named by its slip
             from .settings_slip import slip_renamed
 
-            raise slip_renamed(exc, getattr(args, "typed_gear_check", None),
-                               failed="the derivation of its standard pinion") from None
+            named = slip_renamed(exc, getattr(args, "typed_gear_check", None),
+                                 failed="the derivation of its standard pinion")
+            raise (crowning_named(exc, args) if named is exc else named) from None
         head = (f"{pair.name}: the typed gear ({source}, kept as typed) and its standard "
                 "pinion (gearcontact design --machine-settings;\nsigns: "
                 "docs/machine_settings.md sec. 2, the pinion sec. 5); gear: typed, "
@@ -105,12 +158,20 @@ def machine_settings(args, pair) -> int:
     else:
         # the gear of the default flanks (check: generated where the formate gear undercuts)
         generation = "formate" if args.gear_generation == "machine" else args.gear_generation
-        cut = standard_machine_pair(pair, gear_generation=generation, reliefs=reliefs,
-                                    **crowning)
+        try:
+            cut = standard_machine_pair(pair, gear_generation=generation, reliefs=reliefs,
+                                        **crowning)
+        except InputRangeError as exc:      # a pointed pinion: named by the typed option
+            raise crowning_named(exc, args) from None
         head = (f"{pair.name}: standard machine settings from the blank (gearcontact design "
                 "--machine-settings;\nsigns: docs/machine_settings.md); gear: "
                 f"{generation}")
+    cut, notes = written_pair(cut)
     refuse_gap(args, pair, cut)
+    uncrowned = all(c is not None and c < UNCROWNED_UM for c in (
+        args.lengthwise_crowning_um, args.blade_profile_crowning_um))
+    notes += line_contact_note(args, cut, SIDES if uncrowned else ())
+    head += "".join(f"\n{n}" for n in notes)
     text = pair_to_toml(cut, comments={"": head})
     print(text)
     if args.out is not None:
@@ -132,8 +193,10 @@ def local_synthesis(args, pair) -> int:
     except InputRangeError as exc:     # the reach model's certain refusal names the side
         side = next((s for s in SIDES if f"the {s} settings" in exc.allowed), SIDES[0])
         raise renamed(exc, path_angle_option(args, side)) from None
+    cut, notes = written_pair(cut)
     refuse_gap(args, pair, cut)
-    text = local_synthesis_toml(cut, done, typed=bool(getattr(args, "typed_gear", None)))
+    text = local_synthesis_toml(cut, done, typed=bool(getattr(args, "typed_gear", None)),
+                                notes=notes)
     print(text)
     if args.out is not None:
         print(f"-> {final_path(args, write_machine_settings_toml(text, args.out))}")
@@ -189,8 +252,9 @@ def easeoff_settings(args, pair) -> int:
         cut = own
         for c in done:
             cut = corrected_pair(cut, c)
+        cut, notes = written_pair(cut, members=tuple(c.member for c in done))
         refuse_gap(args, pair, cut)
-        text = gear_correction_toml(cut, *done)
+        text = gear_correction_toml(cut, *done, notes=notes)
         print(text)
         for c in done:
             print(c.table())
@@ -210,11 +274,17 @@ def easeoff_settings(args, pair) -> int:
         raise grid_relief_named(exc, args.target_flank) from None
     if gear is not None:
         fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
+    written, notes = written_pair(fit.pair, members=("pinion", "gear") if gear else ("pinion",))
+    fit = dataclasses.replace(fit, pair=written)
     refuse_gap(args, pair, fit.pair)
-    print(easeoff_settings_toml(fit, gear=gear))
+    # a side fitted to a zero ease-off is cut uncrowned: the conjugate pinion's settings
+    notes += line_contact_note(args, fit.pair, tuple(
+        side for side, r in fit.sides.items() if r.easeoff_max_um == 0.0))
+    print(easeoff_settings_toml(fit, gear=gear, notes=notes))
     print(fit.table())
     if gear is not None:
         print(gear.table())
     if args.out is not None:
-        print(f"-> {final_path(args, write_easeoff_settings(fit, args.out, gear=gear))}")
+        path = write_easeoff_settings(fit, args.out, gear=gear, notes=notes)
+        print(f"-> {final_path(args, path)}")
     return 0

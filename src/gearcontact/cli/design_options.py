@@ -9,6 +9,14 @@ from ..geometry.pair import has_easeoff
 from ..validation import InputRangeError, check_range
 
 
+#: The least crowning ``--lengthwise-crowning-um`` / ``--blade-profile-crowning-um``
+#: take besides 0, um: the flanks' own accuracy (the pinion sheets interpolate their
+#: exact nodes to ~1e-9 mm = 1e-6 um, :data:`~gearcontact.tca.line_contact.LINE_TOLERANCE_MM`'s
+#: reason), below which a crowning is none on the flanks built; a subnormal one
+#: overflowed the blade radius ``(h_mw/2)^2 / 2c`` to inf.
+MIN_CROWNING_UM = 1e-6
+
+
 def check_relieved_blades(args, pair) -> None:
     """The Toprem / Flankrem of a pair's blades, before any flank is built: kept by
     ``--machine-settings`` (``args.reliefs``: the standard settings and the settings
@@ -105,6 +113,11 @@ def check_options(args, pair) -> None:
                                   "settings)")
         if value is not None:
             check_range(f"{option} (um)", value, 0.0, 200.0)
+            if 0.0 < value < MIN_CROWNING_UM:
+                raise InputRangeError(f"{option} (um)", value, (
+                    f"0 (no crowning) or [{MIN_CROWNING_UM:g}, 200]: a crowning below "
+                    f"{MIN_CROWNING_UM:g} um is below the flanks' own accuracy (their "
+                    "interpolation, ~1e-9 mm)"))
     # an option of a mode that is not asked for would be ignored without a word
     synthesis = args.synthesize_easeoff or args.local_synthesis
     for option, value, mode in (("--tip-margin", args.tip_margin, args.calibrate),

@@ -98,13 +98,15 @@ def write_machine_settings_toml(text: str, out) -> Path:
     return path
 
 
-def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
+def local_synthesis_toml(cut, done: dict, *, typed: bool = False, notes=()) -> str:
     """The pair TOML of the settings from local synthesis
     (:func:`~gearcontact.tca.setting_synthesis.synthesized_machine_pair`), its head
     comment the target / achieved table at the mean point and the full TCA's check per
     side. ``typed``: the gear is the pair file's, kept as typed (``[print.gear]`` verbatim
     where the pair has one), the pinion synthesized against it. A side missing from
-    ``done`` (no pivot on the flank) is named: its pinion is the standard one."""
+    ``done`` (no pivot on the flank) is named: its pinion is the standard one. ``notes``:
+    further head lines (the blade curvatures written straight,
+    :func:`~gearcontact.geometry.written_blade.written_pair`)."""
     from ..geometry.pair import pair_to_toml
 
     gear = ("formate" if all(s.settings.formate for s in cut.machine if s.member == "gear")
@@ -130,14 +132,15 @@ def local_synthesis_toml(cut, done: dict, *, typed: bool = False) -> str:
             lines.append(r.reach_text())
         if getattr(r, "pivot", ""):
             lines.append(r.pivot_text())
-    return pair_to_toml(cut, comments={"": "\n".join(lines)})
+    return pair_to_toml(cut, comments={"": "\n".join([*lines, *notes])})
 
 
-def easeoff_settings_toml(fit, *, gear=None) -> str:
+def easeoff_settings_toml(fit, *, gear=None, notes=()) -> str:
     """The pair TOML of the settings fitted to a pair's ease-off
     (:class:`~gearcontact.geometry.easeoff_settings.EaseOffSettings`), its head comment the
     residual per side (and per corrected gear side, ``gear`` a
-    :class:`~gearcontact.geometry.gear_correction.GearCorrection`)."""
+    :class:`~gearcontact.geometry.gear_correction.GearCorrection`); ``notes``: further
+    head lines."""
     pair = fit.pair
     lines = [f"{pair.name}: machine settings that cut its ease-off (gearcontact design "
              "--machine-settings;", "signs: docs/machine_settings.md). Gear: the default "
@@ -158,14 +161,15 @@ def easeoff_settings_toml(fit, *, gear=None) -> str:
     if gear is not None:
         lines += ["Gear sides measured (--target-flank): corrected from the nominal gear's "
                   "settings."] + gear.comment_lines()
-    return pair_to_toml(pair, comments={"": "\n".join(lines)})
+    return pair_to_toml(pair, comments={"": "\n".join([*lines, *notes])})
 
 
-def gear_correction_toml(pair, *corrections) -> str:
+def gear_correction_toml(pair, *corrections, notes=()) -> str:
     """The pair TOML of a pair cut from machine settings whose measured members were
     corrected to their measured flanks (``corrections``, one
     :class:`~gearcontact.geometry.gear_correction.GearCorrection` per member), the
-    other member kept; the head comment the residual per corrected side."""
+    other member kept; the head comment the residual per corrected side (and
+    ``notes``)."""
     from ..geometry.pair import pair_to_toml
 
     done = [c.member for c in corrections]
@@ -176,7 +180,7 @@ def gear_correction_toml(pair, *corrections) -> str:
                                                           for m in kept) + "."]
     for c in corrections:
         lines += c.comment_lines()
-    return pair_to_toml(pair, comments={"": "\n".join(lines)})
+    return pair_to_toml(pair, comments={"": "\n".join([*lines, *notes])})
 
 
 def write_gear_points(correction, out) -> Path:
@@ -191,13 +195,14 @@ def write_gear_points(correction, out) -> Path:
     return path
 
 
-def write_easeoff_settings(fit, out, *, gear=None) -> Path:
+def write_easeoff_settings(fit, out, *, gear=None, notes=()) -> Path:
     """Write ``machine_settings.toml`` (:func:`easeoff_settings_toml`), the residual
     map ``machine_settings_residual.png`` / ``.svg`` and, for a target of scattered
     measured points, the residual at each point ``machine_settings_points.csv``
     (:meth:`~gearcontact.geometry.easeoff_settings.EaseOffSettings.points_csv`) into
     the directory ``out`` (created if missing); returns the TOML's path."""
-    path = write_machine_settings_toml(easeoff_settings_toml(fit, gear=gear), out)
+    path = write_machine_settings_toml(easeoff_settings_toml(fit, gear=gear, notes=notes),
+                                       out)
     if gear is not None:
         write_gear_points(gear, out)
     save_figure(plot_setting_residual(fit), Path(out) / "machine_settings_residual.png")

@@ -159,7 +159,8 @@ def analyze(pinion: Surface, gear: Surface, kin: MeshKinematics, *, pinion_teeth
     rc = relative_curvature(pinion, gear, kin, mean)
     if found_line_contact(rc.B_minus_per_mm):
         stages.close()      # conjugate flanks (e.g. cut uncrowned): the line, reported
-        raise LineContact(line_contact(pinion, gear, kin, mean.as_guess(),
+        # the line through the reference point, else through the cycle's start
+        raise LineContact(line_contact(pinion, gear, kin, mean.as_guess(), also=(start,),
                                        pinion_teeth=pinion_teeth, phases=phases),
                           found=rc.B_minus_per_mm)
     ell = contact_ellipse(rc)

@@ -31,7 +31,7 @@ from ..validation import InputRangeError, UnusableInput
 from .mating import solve_mating_point
 from .types import ARCSEC_PER_RAD, ContactGuess, EdgeContact, TcaConvergenceError
 
-__all__ = ["LINE_TOLERANCE_MM", "LINE_CURVATURE_PER_MM", "LineContactResult", "LineContact", "line_contact", "is_conjugate",
+__all__ = ["CROWNING_ADVICE", "LINE_TOLERANCE_MM", "LINE_CURVATURE_PER_MM", "LineContactResult", "LineContact", "line_contact", "is_conjugate",
            "found_line_contact", "check_loadable"]
 
 #: Residual tolerance of the contact-line solve, mm: the pinion sheets interpolate the
@@ -47,6 +47,13 @@ LINE_TOLERANCE_MM = 1e-7
 #: would be metres long. (The point solve's TE0 is no test there: singular on the line,
 #: it gave 1.4e-4 arcsec p-p on that pair; the line's own TE0 is reported.)
 LINE_CURVATURE_PER_MM = 1e-9
+
+#: What to do with line contact the TCA found (:class:`LineContact`'s message, and
+#: ``design``'s note on the uncrowned settings it writes,
+#: :mod:`.settings_line_contact`).
+CROWNING_ADVICE = ("Crown the pinion: an ease-off, or for machine settings `gearcontact "
+                   "design --machine-settings` with its crowning options, modified roll or "
+                   "a curved blade (docs/machine_settings.md).")
 
 
 @dataclass(frozen=True)
@@ -106,9 +113,7 @@ class LineContact(UnusableInput):
             super().__init__(
                 where + f"the TCA found the flanks touching along a line (smaller relative "
                 f"curvature B- {found:.1e} 1/mm at the mean point; along the pitch "
-                + line + "Crown the pinion: an ease-off, or for machine settings "
-                "`gearcontact design --machine-settings` with its crowning options, modified "
-                "roll or a curved blade (docs/machine_settings.md).")
+                + line + CROWNING_ADVICE)
 
 
 def is_conjugate(pair, side: str) -> bool:
@@ -152,9 +157,36 @@ def _line_point(pinion, gear, kin, guess: ContactGuess):
                               tol_mm=LINE_TOLERANCE_MM)
 
 
+#: Sections of the gear face tried for the line's first point at a start's phase.
+_START_SECTIONS = 9
+
+
+def _first_line_point(pinion, gear, kin, starts):
+    """The line's point at the first of ``starts`` (phase and ``v2`` held) on both
+    flanks; where none is, the line's point at a start's phase through the nearest of
+    :data:`_START_SECTIONS` gear face sections that is (a start on a flank edge, e.g. at
+    the toe: F.2's coast fitted to a zero ease-off). Raises the first start's error
+    where the line misses the flanks at every start's phase."""
+    errors = []
+    for guess in starts:
+        try:
+            return _line_point(pinion, gear, kin, guess)
+        except (EdgeContact, TcaConvergenceError) as exc:
+            errors.append(exc)
+    v_lo, v_hi = gear.v_range
+    sections = np.linspace(v_lo, v_hi, _START_SECTIONS + 2)[1:-1]
+    for guess in starts:
+        for v2 in sorted(sections, key=lambda v: abs(v - guess.v2)):
+            try:
+                return _line_point(pinion, gear, kin, dataclasses.replace(guess, v2=float(v2)))
+            except (EdgeContact, TcaConvergenceError):
+                continue
+    raise errors[0]         # the start's: where the line was asked for
+
+
 def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: ContactGuess,
-                 *, pinion_teeth: int, phases: int = 61, line_points: int = 25
-                 ) -> LineContactResult:
+                 *, pinion_teeth: int, phases: int = 61, line_points: int = 25,
+                 also: tuple[ContactGuess, ...] = ()) -> LineContactResult:
     """Follow the contact line of conjugate flanks and TE0 over one pitch.
 
     Parameters
@@ -169,8 +201,14 @@ def line_contact(pinion: Surface, gear: Surface, kin: MeshKinematics, start: Con
         Phases of the pitch (both ends included), centred on the start phase.
     line_points : int
         Samples of ``v2`` over the gear face for the contact line.
+    also : tuple of ContactGuess
+        Further starts, tried in turn where the line's point at ``start`` (its phase and
+        ``v2``) lies off a flank: the point TCA's reference on line contact is a point
+        of the line picked by a singular solve, and can sit beyond a flank edge (F.2's
+        uncrowned standard settings, coast: below the pinion root); then the line at
+        each start's phase through the gear face's sections (:func:`_first_line_point`).
     """
-    ref = _line_point(pinion, gear, kin, start)
+    ref = _first_line_point(pinion, gear, kin, (start, *also))
     # the contact line at the mean phase: march v2 from the start to each end
     v_lo, v_hi = gear.v_range
     line = {0.0: ref.point_mm}
