@@ -14,7 +14,7 @@ import numpy as np
 from gearcontact.tca.export import TIMING_KEYS
 
 #: Names of timing fields (wall clock, allowed to differ between identical calls).
-TIMING_NAMES = frozenset(TIMING_KEYS) | {"solve_time_ms", "timings_s", "latency"}
+TIMING_NAMES = frozenset(TIMING_KEYS) | {"solve_time_ms", "timings_s", "timings", "latency"}
 
 
 def differences(a, b, path: str = "result", *, skip=TIMING_NAMES, seen=None) -> list[str]:
