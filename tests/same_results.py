@@ -14,7 +14,8 @@ import numpy as np
 from gearcontact.tca.export import TIMING_KEYS
 
 #: Names of timing fields (wall clock, allowed to differ between identical calls).
-TIMING_NAMES = frozenset(TIMING_KEYS) | {"solve_time_ms", "timings_s", "timings", "latency"}
+TIMING_NAMES = frozenset(TIMING_KEYS) | {"solve_time_ms", "timings_s", "timings", "latency",
+                                           "build_s", "fe_build_s"}
 
 
 def differences(a, b, path: str = "result", *, skip=TIMING_NAMES, seen=None) -> list[str]:

@@ -16,12 +16,11 @@ TORQUE_NM = 64.5
 
 
 @pytest.fixture(scope="module")
-def s0003_coast_tca(s0003_calibrated):
-    """The calibrated s0003's TCA on its design side (coast) at 11 phases per pitch."""
-    from gearcontact.tca.analysis import analyze_pair
-
+def s0003_coast_tca(s0003_calibrated, s0003_calibrated_tca15):
+    """The calibrated s0003 on its design side (coast, a tip-edge bearing: the LTCA's
+    trimmed re-solve runs too) with its TCA at 15 phases per pitch (the session's)."""
     pair, flanks = s0003_calibrated
-    return pair, flanks, analyze_pair(pair, phases=11, flanks=flanks)[0]
+    return pair, flanks, s0003_calibrated_tca15
 
 
 def test_two_single_pair_solves_are_identical(s0003_coast_tca):
@@ -33,11 +32,12 @@ def test_two_single_pair_solves_are_identical(s0003_coast_tca):
     pair, flanks, tca = s0003_coast_tca
     a, b = (single_pair_ltca(tca, flanks, pair, TORQUE_NM, cells=40) for _ in range(2))
     assert a.patch.converged
+    assert a.resolved is not None          # the trimmed re-solve ran too
     assert_same(a, b)
 
 
 def test_two_loaded_te_calls_are_identical(s0003_coast_tca):
-    """``loaded_te`` twice (rigid teeth, 24 cells, every 5th phase; with bending in
+    """``loaded_te`` twice (rigid teeth, 24 cells, every 5th of 15 phases; with bending in
     the slow CLI comparison): every number equal, the pair fields, the per-phase LCPs
     warm-started along the pitch and the edge laws included."""
     from gearcontact.ltca.lte import loaded_te

@@ -42,3 +42,4 @@ def test_the_shell_does_not_depend_on_the_blas_thread_count(s0003_centred):
         with threadpool_limits(limits=threads, user_api="blas"):
             shells.append(build(flanks, "gear", material=pair.gear_material))
     assert_same(shells[0], shells[1])
+
