@@ -72,11 +72,12 @@ def test_a_pair_without_easeoff_writes_identical_files(tmp_path, bare_pair_file)
     assert all(m["timings_s"]["easeoff_synthesis_s"] > 0 for m in manifests)
 
 
-def _run_cli(argv, out, *, hash_seed):
+def _run_cli(argv, out, *, hash_seed, env=None):
     """``gearcontact argv --out out`` in a fresh interpreter (its own hash seed and
-    object addresses, as two separate runs have)."""
+    object addresses, as two separate runs have), with ``env`` added to the
+    environment."""
     src = str(Path(gearcontact.__file__).parents[1])
-    env = {**os.environ, "PYTHONHASHSEED": str(hash_seed),
+    env = {**os.environ, **(env or {}), "PYTHONHASHSEED": str(hash_seed),
            "PYTHONPATH": os.pathsep.join([src, os.environ.get("PYTHONPATH", "")])}
     proc = subprocess.run([sys.executable, "-m", "gearcontact", *argv, "--out", str(out)],
                           env=env, capture_output=True, text=True, timeout=600, check=False)
@@ -109,3 +110,41 @@ def test_generated_files_identical_across_runs_and_places(tmp_path, argv):
         assert str(tmp_path).encode() not in data, name
         assert install.encode() not in data, name
         assert b'src = "/' not in data, name    # Amaranth source paths import-relative
+
+
+#: Commands whose results go through dense or sparse linear algebra (the shell, the FE,
+#: the bending LCPs): small sizes, run in fresh processes.
+THREADED = {
+    "lte": ["lte", "--phases", "11", "--cells", "24", "--quiet", "--no-figures"],
+    "ltca-multi-tooth": ["ltca", "--phases", "11", "--cells", "40", "--multi-tooth",
+                         "--multi-tooth-cells", "24", "--quiet", "--no-figures"],
+    "bending-fe": ["bending", "--points", "3", "3", "--fe", "--fe-mesh", "6", "4", "2", "2",
+                   "--no-figures"],
+    "twin-bending": ["twin", "--phases", "11", "--duration-ms", "3", "--bending", "--quiet",
+                     "--no-figures"],
+}
+
+#: The environment of a run with every thread pool at one thread (as Dask's workers
+#: set it, distributed.nanny.pre-spawn-environ).
+ONE_THREAD = {k: "1" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                               "NUMBA_NUM_THREADS")}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("argv", THREADED.values(), ids=THREADED.keys())
+def test_a_run_in_process_equals_fresh_runs_with_any_thread_count(tmp_path, argv):
+    """One run in this process, after the others of this module, and two in fresh
+    processes, one with the thread pools as found and one with every pool at one thread:
+    the same result files, byte for byte (before the shell and the FE ran their BLAS on
+    one thread, the loaded TE with bending moved by 1.6e-9 arcsec and the FE compliance
+    by 1e-15 relative between 1 and 2 threads). Slow: four commands, 1-2 min CPU each
+    (the in-process half of it for the light commands is
+    test_identical_runs_identical_files)."""
+    if (os.cpu_count() or 1) < 2:
+        pytest.skip("one core: every pool runs one thread either way")
+    here, fresh, one = tmp_path / "here", tmp_path / "fresh", tmp_path / "one"
+    assert main(argv + ["--out", str(here)]) == 0
+    _run_cli(argv, fresh, hash_seed=1)
+    _run_cli(argv, one, hash_seed=2, env=ONE_THREAD)
+    for other in (fresh, one):
+        _assert_identical_files([here, other])

@@ -211,3 +211,19 @@ def test_law_status_columns(analysis):
             ref.A_minus_per_mm, ref.B_minus_per_mm)
         assert row["ref_law_status"] == row["golden_law_status"] == \
             row["chain_law_status"] == "ok"
+
+
+def test_each_torque_is_solved_from_its_own_torque_alone(analysis):
+    """A torque's LTCA does not depend on the torques solved before it in the job: each
+    row equals, bit for bit, the library's own solve of that torque alone in this process
+    (no tolerance: identical inputs give identical results, docs/architecture.md
+    "Rules"; the LCP's own tolerance, 1e-8, would let a solve warm-started from the
+    previous torque end elsewhere)."""
+    from gearcontact.ltca.pair_ltca import single_pair_ltca
+
+    from same_results import assert_same
+
+    for case in analysis.cases[1:]:
+        alone = single_pair_ltca(analysis.tca, analysis.flanks, analysis.pair,
+                                 case.torque_nm, side=analysis.side)
+        assert_same(case, alone)

@@ -170,7 +170,10 @@ def single_pair_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
     solver : str
         LCP solver (:func:`gearcontact.halfspace.lcp.solve_lcp`).
     warm_start : PatchContact, optional
-        Previous solution on the same grid (ignored when the grid differs).
+        Previous solution on the same grid (ignored when the grid differs). The result
+        then ends within the LCP's tolerance of the cold solve, not on its bits: a
+        caller that wants results independent of call history leaves it None
+        (docs/architecture.md "Determinism").
     """
     side = pair.design_side if side is None else side
     t = check_positive("torque_nm (N·m)", torque_nm)

@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry.kinked import KinkedFlank, kinked_flank
+from ..threads import one_blas_thread
 from ..validation import InputRangeError
 from .rim import rim_points, rim_segment
 from .tooth import LoadPoints
@@ -119,14 +120,19 @@ class FeTooth:
         F = np.zeros((self.n_dofs, len(vertices)))
         for col, (v, d) in enumerate(zip(vertices, points.direction)):
             F[self._nodal_dofs[:, v], col] = d
-        G = F.T @ self.displacement_mm(F)
+        with one_blas_thread():        # the same bits with any thread count (below)
+            G = F.T @ self.displacement_mm(F)
         return 0.5 * (G + G.T)
 
     def displacement_mm(self, load_n: np.ndarray) -> np.ndarray:
         """Displacements (n_dofs, ...) , mm, of nodal loads ``load_n`` (n_dofs, ...), N,
         on this model's degrees of freedom (the clamped ones stay 0)."""
         u = np.zeros_like(load_n, dtype=float)
-        u[self._free] = self._lu.solve(np.ascontiguousarray(load_n[self._free]))
+        # SuperLU's triangular solves call BLAS: on one thread, so that the result has
+        # the same bits with any thread count (threaded: the FE compliance moved by
+        # 1e-15 relative between 1 and 2 threads; docs/architecture.md "Determinism")
+        with one_blas_thread():
+            u[self._free] = self._lu.solve(np.ascontiguousarray(load_n[self._free]))
         return u
 
     @property
@@ -246,7 +252,8 @@ def build_fe(body, *, n_xi: int = 12, n_eta: int = 6, n_zeta: int = 3, n_rim: in
     bottom = idx.facets_satisfying(lambda x: x[1] < 1e-6)   # all three vertices on J = 0
     fixed = basis.get_dofs(facets=bottom).all()
     free = np.setdiff1d(np.arange(basis.N), fixed)
-    lu = splu(A[free][:, free].tocsc())
+    with one_blas_thread():        # SuperLU's supernodes call BLAS (displacement_mm)
+        lu = splu(A[free][:, free].tocsc())
     vertex = np.full((n_xi + 1, int(J.max()) + 1, int(K.max()) + 1), -1, dtype=int)
     vertex[I, J, K] = np.arange(idx.p.shape[1])
     vertex[tuple(merged[1])] = merged[0]

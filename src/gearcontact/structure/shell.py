@@ -492,7 +492,14 @@ def build_shell(body, *, order: int = 6, order_face: int | None = None,
                        block_points=block_points if rim_block else None,
                        solid_degrees=solid_degrees if solid else None,
                        solid_points=solid_points if solid else None)
-    return factored(model, _stiffness(body, model), name="shell stiffness")
+    # BLAS on one thread: the stiffness's products and LAPACK's blocked Cholesky sum in
+    # an order set by the thread count, so threaded BLAS gives other last bits on a
+    # machine with other cores or OPENBLAS_NUM_THREADS (measured: the s0003 loaded TE
+    # with bending moved by 1.6e-9 arcsec between 1 and 2 threads); one thread makes the
+    # model, and every result built on it, the same everywhere (docs/architecture.md
+    # "Determinism")
+    with one_blas_thread():
+        return factored(model, _stiffness(body, model), name="shell stiffness")
 
 
 def check_orders(order, order_face) -> tuple[int, int]:
