@@ -21,7 +21,11 @@ A point-contact base pinion (a hypoid's generated gear) pivots on its contact pa
 so it has no working depth's centre; the room is measured at its M, and the run's pivot
 is the base path's point on the pinion section of the run's middle
 (docs/machine_settings.md sec. 5, "The candidate choice for a point-contact base"); the
-rank and the choice are the same.
+rank and the choice are the same. A point-contact base whose best candidate still
+reaches an edge with its M closer to an edge than half its ellipse has one more
+candidate (:func:`room_pivot`): the pivot moved along the base's path to the nearest
+point whose room holds that half-length (docs/machine_settings.md sec. 5, lever 5 of
+"The print's drive bearing").
 
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
@@ -33,8 +37,13 @@ from __future__ import annotations
 import dataclasses
 import itertools
 
-__all__ = ["better_pivot", "cuttable_choice", "length_targets", "pivot_rank", "room_targets",
-           "run_pivot"]
+import numpy as np
+
+from .mating import solve_mating_point
+from .setting_problem import PIVOT_MARGIN, line_room_mm, path_points_inside
+
+__all__ = ["better_pivot", "cuttable_choice", "length_targets", "pivot_rank", "room_pivot",
+           "room_targets", "run_pivot"]
 
 #: Shortest paint-ellipse target of the further candidates (the
 #: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
@@ -153,3 +162,35 @@ def length_targets(targets, result, *, face_mm: float):
     length = targets.pattern_length_ratio * face_mm
     return _shortened(targets, length * (run.path_pitches - 1.0)
                       / (run.path_pitches - run.pitches), face_mm)
+
+
+def room_pivot(result, targets, problem, *, side: str):
+    """Lever 5 of "The print's drive bearing" (docs/machine_settings.md sec. 5): the
+    pinion flank point (u, v), mm (rounded to 1e-6 mm, as :func:`run_pivot`), of the
+    point-contact base's contact path to which ``result``'s pivot moves, or None where
+    the lever does not apply.
+
+    It applies where ``problem`` (the :class:`~.setting_problem.SynthesisProblem`
+    ``result`` was synthesized on, to ``targets``) has a point-contact base, the
+    targets leave the path angle free, ``result`` has edge phases and the room at its M
+    (:func:`~.setting_problem.line_room_mm` along the major axis of the base pair's own
+    contact ellipse, the uncrowned base pinion) is less than half the target ellipse
+    ``a``: then the point is the sampled point of the base's path
+    (:func:`~.setting_problem.path_points_inside`, inside the flank box by
+    :data:`~.setting_problem.PIVOT_MARGIN`) nearest M in phase whose room (measured the
+    same way) is at least ``a``; None if no sampled point has it."""
+    if not (problem.point_contact and result.edge_phases
+            and targets.path_angle_deg is None):
+        return None
+    half = 0.5 * targets.pattern_length_ratio * problem.pair.gear_face_width_mm
+    pinion, gear = problem.flank(side, np.zeros(3)), problem.gear[side]
+    kin = problem.pair.kinematics()
+    at_m = solve_mating_point(pinion, gear, kin, problem.start[side])
+    if not line_room_mm(pinion, gear, kin, at_m) < half:
+        return None
+    points = path_points_inside(pinion, gear, problem.pair, problem.start[side],
+                                margin=PIVOT_MARGIN)
+    for p in sorted(points, key=lambda p: (abs(p.phi1_rad - at_m.phi1_rad), p.phi1_rad)):
+        if line_room_mm(pinion, gear, kin, p) >= half:
+            return (round(float(p.u1), 6), round(float(p.v1), 6))
+    return None

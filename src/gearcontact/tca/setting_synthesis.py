@@ -77,8 +77,8 @@ from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_targets,
-                            run_pivot)
+from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_pivot,
+                            room_targets, run_pivot)
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -462,6 +462,18 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
             if t_len is not None:
                 add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
                     "pattern run of one pitch, {length:.2f} mm")
+        # a point-contact base's pivot moved along its path to the ellipse's room
+        for s in sides:
+            r, t, prob = best(s)
+            uv = room_pivot(r, t, prob, side=s)
+            try:
+                moved_prob = None if uv is None else SynthesisProblem(pair, **problem,
+                                                                      pivot_uv={s: uv})
+            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
+                moved_prob = None
+            if moved_prob is not None:
+                add(moved_prob, {s: t}, ", moved along the base's path to where its room "
+                    "holds half the paint ellipse, {length:.2f} mm")
     gear = {s: node.gear_setups[s] for s in SIDES}
 
     def pointed(pick):
