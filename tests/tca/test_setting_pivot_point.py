@@ -83,8 +83,9 @@ def test_a_point_contact_base_gets_the_declared_candidates(monkeypatch):
 
     monkeypatch.setattr(ss, "SynthesisProblem", problem)
     monkeypatch.setattr(ss, "synthesize_settings", synth)
-    # lever 5 (session 27) does not apply here: its own test below
+    # levers 5 and 6 (session 27) do not apply here: their own tests below
     monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=11.11 / face)
     done = {"drive": _result("drive", "node", 31, 15.7,
@@ -194,6 +195,7 @@ def test_lever_5_adds_the_pivot_moved_to_the_room_with_the_best_ones_targets(mon
     monkeypatch.setattr(ss, "SynthesisProblem", problem)
     monkeypatch.setattr(ss, "synthesize_settings", synth)
     monkeypatch.setattr(ss, "room_pivot", room)
+    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=5.36 / face)
     done = {"drive": _result("drive", "node", 15, 14.65)}      # no run: levers 2-4 idle
@@ -272,3 +274,44 @@ def test_room_pivot_on_the_print_moves_the_drive_pivot_to_the_room(print_twin):
     assert m.te_level_arcsec < 1e-4 and abs(m.te_slope_arcsec_per_rad) < 1e-4
     assert room_pivot(_result("coast", "M", 5, 2.8), SynthesisTargets(), prob,
                       side="coast") is None
+
+
+def test_lever_6_turns_the_best_ones_path_towards_lengthwise(monkeypatch):
+    # the rule by hand (declared before measuring it on any other case): sign(a)
+    # max(|a| - 30, 0), exact arithmetic; not tried on a lengthwise path (within the
+    # angle tolerance, 2 deg) or where lever 5's conditions fail; wired after lever 5
+    # with the best one's pivot and targets (stand-ins, exact)
+    from gearcontact.tca.setting_pivot import turned_path_targets
+
+    def at(angle, edges=15):
+        return dataclasses.replace(_result("drive", "M", edges, 14.65),
+                                   point=SimpleNamespace(path_angle_deg=angle))
+
+    free, point = SynthesisTargets(), SimpleNamespace(point_contact=True)
+    assert turned_path_targets(at(60.7), free, point).path_angle_deg == 60.7 - 30.0
+    assert turned_path_targets(at(-45.0), free, point).path_angle_deg == -15.0
+    assert turned_path_targets(at(12.0), free, point).path_angle_deg == 0.0
+    assert turned_path_targets(at(1.0), free, point) is None
+    assert turned_path_targets(at(60.7, edges=0), free, point) is None
+    assert turned_path_targets(at(60.7), free, SimpleNamespace(point_contact=False)) is None
+    assert turned_path_targets(at(60.7), SynthesisTargets(path_angle_deg=60.0), point) is None
+
+    face = 31.75
+    node = _Problem("node")
+    node.line_room_mm = lambda side, x: 1.0     # below 0.1 x face: no room candidate
+    asked = []
+
+    def synth(pair, *, targets, problem, sides, **options):
+        (s, t), = targets.items()
+        asked.append((problem.name, t.path_angle_deg))
+        return {s: _result(s, problem.pivot[s], 13, 9.8)}
+
+    monkeypatch.setattr(ss, "synthesize_settings", synth)
+    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
+    pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
+    t = SynthesisTargets(pattern_length_ratio=5.36 / face)
+    got = ss._pivot_candidates(pair, {"drive": at(60.7)}, t, ("drive",), {}, True,
+                               node=node, problem={"gear": None})
+    assert asked == [("node", 60.7 - 30.0)]
+    assert got["drive"].pivot == "node, its path at M turned towards lengthwise to 30.7 deg"
+    assert got["drive"].edge_phases == 13

@@ -78,7 +78,7 @@ from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
 from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_pivot,
-                            room_targets, run_pivot)
+                            room_targets, run_pivot, turned_path_targets)
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -474,6 +474,17 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
             if moved_prob is not None:
                 add(moved_prob, {s: t}, ", moved along the base's path to where its room "
                     "holds half the paint ellipse, {length:.2f} mm")
+        # the best one's path at M turned towards lengthwise (a reach refusal: not tried)
+        for s in sides:
+            r, t, prob = best(s)
+            t_turn = turned_path_targets(r, t, prob)
+            try:
+                if t_turn is not None:
+                    add(prob, {s: t_turn}, f", its path at M turned towards lengthwise to "
+                        f"{t_turn.path_angle_deg:.1f} deg")
+            except InputRangeError as exc:
+                failed[s].append(f"{prob.pivot[s]}, its path at M turned to "
+                                 f"{t_turn.path_angle_deg:.1f} deg: not synthesized ({exc})")
     gear = {s: node.gear_setups[s] for s in SIDES}
 
     def pointed(pick):
