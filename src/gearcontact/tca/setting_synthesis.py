@@ -552,7 +552,11 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     path to the pinion section of the best one's pattern run's middle
     (:class:`SynthesisProblem` ``pivot_uv``) and the best one's pivot with the ellipse
     shortened for a run of one pitch, chosen by the same rule (no working depth's centre:
-    it is no point of the path).
+    it is no point of the path); where the best one still has edge phases with the path
+    free, its pivot moved along the base's path to the ellipse's room
+    (:func:`~.setting_pivot.room_pivot`) and its path at M turned towards lengthwise
+    (:func:`~.setting_pivot.turned_path_targets`) join it (sec. 5, "The print's drive
+    bearing").
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
