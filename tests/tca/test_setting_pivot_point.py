@@ -83,6 +83,9 @@ def test_a_point_contact_base_gets_the_declared_candidates(monkeypatch):
 
     monkeypatch.setattr(ss, "SynthesisProblem", problem)
     monkeypatch.setattr(ss, "synthesize_settings", synth)
+    # levers 5 and 6 (session 27) do not apply here: their own tests below
+    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=11.11 / face)
     done = {"drive": _result("drive", "node", 31, 15.7,
@@ -164,3 +167,151 @@ def test_a_run_of_length_0_shortens_the_ellipse_and_moves_no_pivot():
     # a path on the flank not longer than a pitch: nothing to shorten for
     assert length_targets(t, _result("drive", "node", 31, 15.7, run=dataclasses.replace(
         zero, path_pitches=1.0)), face_mm=face) is None
+
+
+def test_lever_5_adds_the_pivot_moved_to_the_room_with_the_best_ones_targets(monkeypatch):
+    # lever 5 of "The print's drive bearing" (declared before building): after levers
+    # 1-4, the best one's (here the node's: no other applies) pivot moved along the base's
+    # path to room_pivot's point, synthesized with the best one's targets; kept by
+    # pivot_rank where it has fewer edge phases (stand-in counts, exact)
+    face = 31.75
+    node = _Problem("node")
+    node.line_room_mm = lambda side, x: 1.0     # below 0.1 x face: no room candidate
+    built, asked, looked = [], [], []
+
+    def problem(pair, **kw):
+        built.append(kw)
+        return _Problem("moved", **kw)
+
+    def synth(pair, *, targets, problem, sides, **options):
+        (s, t), = targets.items()
+        asked.append((problem.name, s, t))
+        return {s: _result(s, problem.pivot[s], 13, 9.8)}
+
+    def room(result, targets, problem, *, side):
+        looked.append((result.pivot, targets, problem.name, side))
+        return (3.5, 78.3) if problem.name == "node" else None
+
+    monkeypatch.setattr(ss, "SynthesisProblem", problem)
+    monkeypatch.setattr(ss, "synthesize_settings", synth)
+    monkeypatch.setattr(ss, "room_pivot", room)
+    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
+    pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
+    t = SynthesisTargets(pattern_length_ratio=5.36 / face)
+    done = {"drive": _result("drive", "node", 15, 14.65)}      # no run: levers 2-4 idle
+    got = ss._pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
+                               problem={"gear": None})
+    assert looked == [("node", t, "node", "drive")]
+    assert built == [{"gear": None, "pivot_uv": {"drive": (3.5, 78.3)}}]
+    assert asked == [("moved", "drive", t)]
+    kept = got["drive"]
+    assert kept.pivot == ("moved, moved along the base's path to where its room holds half "
+                          "the paint ellipse, 5.36 mm")
+    assert kept.edge_phases == 13
+    assert kept.other_pivot == ("node: paint ellipse at a flank edge at 15 of 31 phases, "
+                                "full TCA TE0 p-p 14.65 arcsec")
+
+
+class _NoBase:
+    """A problem whose every attribute but ``point_contact`` fails: room_pivot must
+    decide from its arguments alone where lever 5 does not apply."""
+
+    def __init__(self, point_contact):
+        self.point_contact = point_contact
+
+    def __getattr__(self, name):
+        raise AssertionError(f"room_pivot read {name}")
+
+
+def test_room_pivot_applies_only_to_a_free_point_contact_bearing_at_an_edge():
+    from gearcontact.tca.setting_pivot import room_pivot
+
+    free = SynthesisTargets()
+    assert room_pivot(_result("drive", "M", 15, 14.6), free, _NoBase(False),
+                      side="drive") is None          # a line-contact base
+    assert room_pivot(_result("drive", "M", 0, 2.0), free, _NoBase(True),
+                      side="drive") is None          # no edge phase
+    assert room_pivot(_result("drive", "M", 15, 14.6), SynthesisTargets(path_angle_deg=30.0),
+                      _NoBase(True), side="drive") is None     # a typed path angle
+
+
+def test_room_pivot_on_the_print_moves_the_drive_pivot_to_the_room(print_twin):
+    # ~15 s (two problems, 40 x 50 nodes: the synthesis' grid, on which the path points'
+    # conjugacy tolerance below was measured). Truths (declared with lever 5): the drive M
+    # (0.82 mm above the root) has less room than half lever 4's ellipse (5.36 mm,
+    # session 26), so the pivot moves to a point of the base's path (the uncrowned
+    # base's local TCA there: TE0 level < 1e-4 arcsec over a pitch, the crown-gear
+    # pinion's conjugacy tolerance, as above) whose room holds the half-length, while
+    # every sampled path point nearer M in phase does not (the rule's "nearest"; the
+    # room to line_room_mm's 0.01 mm); the coast M's room (7.2 mm measured) holds half
+    # the asked 11.11 mm, so it does not move
+    from gearcontact.tca.mating import solve_mating_point
+    from gearcontact.tca.setting_pivot import room_pivot
+    from gearcontact.tca.setting_problem import line_room_mm, path_points_inside
+
+    twin, gear = print_twin
+    prob = SynthesisProblem(twin, gear=gear)
+    face = twin.gear_face_width_mm
+    t = SynthesisTargets(pattern_length_ratio=5.36 / face)
+    half = 0.5 * 5.36
+    edge = _result("drive", "M", 15, 14.6)
+    uv = room_pivot(edge, t, prob, side="drive")
+    assert uv is not None
+    kin = twin.kinematics()
+    base, g = prob.flank("drive", np.zeros(3)), prob.gear["drive"]
+    at_m = solve_mating_point(base, g, kin, prob.start["drive"])
+    assert line_room_mm(base, g, kin, at_m) < half
+    points = path_points_inside(base, g, twin, prob.start["drive"])
+    chosen = min(points, key=lambda p: np.hypot(p.u1 - uv[0], p.v1 - uv[1]))
+    assert np.hypot(chosen.u1 - uv[0], chosen.v1 - uv[1]) < 1e-6    # the rounding
+    assert line_room_mm(base, g, kin, chosen) >= half
+    gap = abs(chosen.phi1_rad - at_m.phi1_rad)
+    assert all(line_room_mm(base, g, kin, p) < half for p in points
+               if abs(p.phi1_rad - at_m.phi1_rad) < gap - 1e-12)
+    moved = SynthesisProblem(twin, gear=gear, pivot_uv={"drive": uv})
+    assert abs(moved.mean_uv["drive"][1] - uv[1]) < 1e-6
+    m = moved.contact("drive", np.zeros(3))
+    assert m.te_level_arcsec < 1e-4 and abs(m.te_slope_arcsec_per_rad) < 1e-4
+    assert room_pivot(_result("coast", "M", 5, 2.8), SynthesisTargets(), prob,
+                      side="coast") is None
+
+
+def test_lever_6_turns_the_best_ones_path_towards_lengthwise(monkeypatch):
+    # the rule by hand (declared before measuring it on any other case): sign(a)
+    # max(|a| - 30, 0), exact arithmetic; not tried on a lengthwise path (within the
+    # angle tolerance, 2 deg) or where lever 5's conditions fail; wired after lever 5
+    # with the best one's pivot and targets (stand-ins, exact)
+    from gearcontact.tca.setting_pivot import turned_path_targets
+
+    def at(angle, edges=15):
+        return dataclasses.replace(_result("drive", "M", edges, 14.65),
+                                   point=SimpleNamespace(path_angle_deg=angle))
+
+    free, point = SynthesisTargets(), SimpleNamespace(point_contact=True)
+    assert turned_path_targets(at(60.7), free, point).path_angle_deg == 60.7 - 30.0
+    assert turned_path_targets(at(-45.0), free, point).path_angle_deg == -15.0
+    assert turned_path_targets(at(12.0), free, point).path_angle_deg == 0.0
+    assert turned_path_targets(at(1.0), free, point) is None
+    assert turned_path_targets(at(60.7, edges=0), free, point) is None
+    assert turned_path_targets(at(60.7), free, SimpleNamespace(point_contact=False)) is None
+    assert turned_path_targets(at(60.7), SynthesisTargets(path_angle_deg=60.0), point) is None
+
+    face = 31.75
+    node = _Problem("node")
+    node.line_room_mm = lambda side, x: 1.0     # below 0.1 x face: no room candidate
+    asked = []
+
+    def synth(pair, *, targets, problem, sides, **options):
+        (s, t), = targets.items()
+        asked.append((problem.name, t.path_angle_deg))
+        return {s: _result(s, problem.pivot[s], 13, 9.8)}
+
+    monkeypatch.setattr(ss, "synthesize_settings", synth)
+    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
+    pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
+    t = SynthesisTargets(pattern_length_ratio=5.36 / face)
+    got = ss._pivot_candidates(pair, {"drive": at(60.7)}, t, ("drive",), {}, True,
+                               node=node, problem={"gear": None})
+    assert asked == [("node", 60.7 - 30.0)]
+    assert got["drive"].pivot == "node, its path at M turned towards lengthwise to 30.7 deg"
+    assert got["drive"].edge_phases == 13

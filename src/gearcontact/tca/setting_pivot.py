@@ -21,7 +21,12 @@ A point-contact base pinion (a hypoid's generated gear) pivots on its contact pa
 so it has no working depth's centre; the room is measured at its M, and the run's pivot
 is the base path's point on the pinion section of the run's middle
 (docs/machine_settings.md sec. 5, "The candidate choice for a point-contact base"); the
-rank and the choice are the same.
+rank and the choice are the same. A point-contact base whose best candidate still
+reaches an edge with its M closer to an edge than half its ellipse has one more
+candidate (:func:`room_pivot`): the pivot moved along the base's path to the nearest
+point whose room holds that half-length (docs/machine_settings.md sec. 5, lever 5 of
+"The print's drive bearing"), and one with its path at M turned towards lengthwise
+(:func:`turned_path_targets`, lever 6).
 
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
@@ -32,9 +37,15 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 
-__all__ = ["better_pivot", "cuttable_choice", "length_targets", "pivot_rank", "room_targets",
-           "run_pivot"]
+import numpy as np
+
+from .mating import solve_mating_point
+from .setting_problem import PIVOT_MARGIN, line_room_mm, path_points_inside
+
+__all__ = ["PATH_TURN_DEG", "better_pivot", "cuttable_choice", "length_targets", "pivot_rank",
+           "room_pivot", "room_targets", "run_pivot", "turned_path_targets"]
 
 #: Shortest paint-ellipse target of the further candidates (the
 #: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
@@ -42,6 +53,10 @@ _RATIO_MIN = 0.1
 #: A pattern run's middle this close to M's phase (pinion pitches, one step of the
 #: 31-phase check) moves no pivot.
 _RUN_STEP_PITCH = 1.0 / 30.0
+#: Turn of lever 6's path towards lengthwise, deg (docs/machine_settings.md sec. 5,
+#: "The print's drive bearing": the step of the scan that gained on the print's drive,
+#: 60.7 -> 30 deg).
+PATH_TURN_DEG = 30.0
 
 
 def pivot_rank(r):
@@ -153,3 +168,57 @@ def length_targets(targets, result, *, face_mm: float):
     length = targets.pattern_length_ratio * face_mm
     return _shortened(targets, length * (run.path_pitches - 1.0)
                       / (run.path_pitches - run.pitches), face_mm)
+
+
+def room_pivot(result, targets, problem, *, side: str):
+    """Lever 5 of "The print's drive bearing" (docs/machine_settings.md sec. 5): the
+    pinion flank point (u, v), mm (rounded to 1e-6 mm, as :func:`run_pivot`), of the
+    point-contact base's contact path to which ``result``'s pivot moves, or None where
+    the lever does not apply.
+
+    It applies where ``problem`` (the :class:`~.setting_problem.SynthesisProblem`
+    ``result`` was synthesized on, to ``targets``) has a point-contact base, the
+    targets leave the path angle free, ``result`` has edge phases and the room at its M
+    (:func:`~.setting_problem.line_room_mm` along the major axis of the base pair's own
+    contact ellipse, the uncrowned base pinion) is less than half the target ellipse
+    ``a``: then the point is the sampled point of the base's path
+    (:func:`~.setting_problem.path_points_inside`, inside the flank box by
+    :data:`~.setting_problem.PIVOT_MARGIN`) nearest M in phase whose room (measured the
+    same way) is at least ``a``; None if no sampled point has it."""
+    if not _free_point_contact_at_edge(result, targets, problem):
+        return None
+    half = 0.5 * targets.pattern_length_ratio * problem.pair.gear_face_width_mm
+    pinion, gear = problem.flank(side, np.zeros(3)), problem.gear[side]
+    kin = problem.pair.kinematics()
+    at_m = solve_mating_point(pinion, gear, kin, problem.start[side])
+    if not line_room_mm(pinion, gear, kin, at_m) < half:
+        return None
+    points = path_points_inside(pinion, gear, problem.pair, problem.start[side],
+                                margin=PIVOT_MARGIN)
+    for p in sorted(points, key=lambda p: (abs(p.phi1_rad - at_m.phi1_rad), p.phi1_rad)):
+        if line_room_mm(pinion, gear, kin, p) >= half:
+            return (round(float(p.u1), 6), round(float(p.v1), 6))
+    return None
+
+
+def _free_point_contact_at_edge(result, targets, problem) -> bool:
+    """Levers 5 and 6 apply: a point-contact base, the path angle free, edge phases."""
+    return bool(problem.point_contact and result.edge_phases
+                and targets.path_angle_deg is None)
+
+
+def turned_path_targets(result, targets, problem):
+    """Lever 6 of "The print's drive bearing" (docs/machine_settings.md sec. 5):
+    ``targets`` (those ``result`` was synthesized to on ``problem``) with the path angle
+    prescribed at ``result``'s path angle at M turned towards lengthwise (0 deg) by
+    :data:`PATH_TURN_DEG`, not past it: ``sign(a) max(|a| - 30, 0)``; the contact then
+    moves less across the depth over the pitch. None where lever 5's conditions do not
+    hold (:func:`room_pivot`) or the path is lengthwise already (within the targets'
+    angle tolerance)."""
+    if not _free_point_contact_at_edge(result, targets, problem):
+        return None
+    angle = float(result.point.path_angle_deg)
+    if not abs(angle) > targets.tol_angle_deg:
+        return None
+    turned = math.copysign(max(abs(angle) - PATH_TURN_DEG, 0.0), angle)
+    return dataclasses.replace(targets, path_angle_deg=turned)

@@ -44,7 +44,8 @@ from .stencil import gap_at
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["MeanPointContact", "PatternRun", "SynthesisProblem", "corrected_setup",
-           "line_room_mm", "mean_point_contact", "pattern_run", "roll_about"]
+           "line_room_mm", "mean_point_contact", "path_points_inside", "pattern_run",
+           "roll_about"]
 
 _REPORT_TORQUE_NM = 64.5
 
@@ -186,14 +187,14 @@ PIVOT_MARGIN = 0.1
 _PATH_SEARCH_PITCHES = 2
 
 
-def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
-                       margin: float = PIVOT_MARGIN):
-    """The point of the contact path through ``guess``'s phase region nearest the
-    section ``v1_mm`` among those inside the pinion flank box by ``margin`` of its depth
-    and face, or None: the first phase within :data:`_PATH_SEARCH_PITCHES` of
-    ``guess`` (steps of :data:`_LOCAL_STEP_PITCH`, the nearer first) whose mating point
-    is on the flank starts a TCA (surface contact, edges off) over as many pitches either
-    side, sampled at the same step."""
+def path_points_inside(pinion, gear, pair, guess: ContactGuess, *,
+                       margin: float = PIVOT_MARGIN) -> list:
+    """The sampled points of the contact path through ``guess``'s phase region that lie
+    inside the pinion flank box by ``margin`` of its depth and face ([] if none): the
+    first phase within :data:`_PATH_SEARCH_PITCHES` of ``guess`` (steps of
+    :data:`_LOCAL_STEP_PITCH`, the nearer first) whose mating point is on the flank
+    starts a TCA (surface contact, edges off) over as many pitches either side, sampled
+    at the same step."""
     kin = pair.kinematics()
     h = 2.0 * math.pi / pair.pinion_teeth * _LOCAL_STEP_PITCH
     steps = int(round(_PATH_SEARCH_PITCHES / _LOCAL_STEP_PITCH))
@@ -205,13 +206,21 @@ def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
         except (EdgeContact, ArithmeticError):
             continue
     else:
-        return None
+        return []
     path = solve_tca(pinion, gear, kin, mp.phi1_rad + h * np.arange(-steps, steps + 1),
                      start=mp.as_guess(), start_fixed="phi1", edges=False)
     (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
     du, dv = margin * (u1 - u0), margin * (v1 - v0)
-    inside = [p for p in path.points if not p.edge and u0 + du <= p.u1 <= u1 - du
-              and v0 + dv <= p.v1 <= v1 - dv]
+    return [p for p in path.points if not p.edge and u0 + du <= p.u1 <= u1 - du
+            and v0 + dv <= p.v1 <= v1 - dv]
+
+
+def _path_point_inside(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float,
+                       margin: float = PIVOT_MARGIN):
+    """The point of the contact path through ``guess``'s phase region nearest the
+    section ``v1_mm`` among those inside the pinion flank box by ``margin`` of its depth
+    and face (:func:`path_points_inside`), or None."""
+    inside = path_points_inside(pinion, gear, pair, guess, margin=margin)
     return min(inside, key=lambda p: abs(p.v1 - v1_mm)) if inside else None
 
 

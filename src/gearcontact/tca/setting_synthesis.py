@@ -77,8 +77,8 @@ from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_targets,
-                            run_pivot)
+from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_pivot,
+                            room_targets, run_pivot, turned_path_targets)
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -462,6 +462,29 @@ def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node
             if t_len is not None:
                 add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
                     "pattern run of one pitch, {length:.2f} mm")
+        # a point-contact base's pivot moved along its path to the ellipse's room
+        for s in sides:
+            r, t, prob = best(s)
+            uv = room_pivot(r, t, prob, side=s)
+            try:
+                moved_prob = None if uv is None else SynthesisProblem(pair, **problem,
+                                                                      pivot_uv={s: uv})
+            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
+                moved_prob = None
+            if moved_prob is not None:
+                add(moved_prob, {s: t}, ", moved along the base's path to where its room "
+                    "holds half the paint ellipse, {length:.2f} mm")
+        # the best one's path at M turned towards lengthwise (a reach refusal: not tried)
+        for s in sides:
+            r, t, prob = best(s)
+            t_turn = turned_path_targets(r, t, prob)
+            try:
+                if t_turn is not None:
+                    add(prob, {s: t_turn}, f", its path at M turned towards lengthwise to "
+                        f"{t_turn.path_angle_deg:.1f} deg")
+            except InputRangeError as exc:
+                failed[s].append(f"{prob.pivot[s]}, its path at M turned to "
+                                 f"{t_turn.path_angle_deg:.1f} deg: not synthesized ({exc})")
     gear = {s: node.gear_setups[s] for s in SIDES}
 
     def pointed(pick):
@@ -529,7 +552,11 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     path to the pinion section of the best one's pattern run's middle
     (:class:`SynthesisProblem` ``pivot_uv``) and the best one's pivot with the ellipse
     shortened for a run of one pitch, chosen by the same rule (no working depth's centre:
-    it is no point of the path).
+    it is no point of the path); where the best one still has edge phases with the path
+    free, its pivot moved along the base's path to the ellipse's room
+    (:func:`~.setting_pivot.room_pivot`) and its path at M turned towards lengthwise
+    (:func:`~.setting_pivot.turned_path_targets`) join it (sec. 5, "The print's drive
+    bearing").
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
