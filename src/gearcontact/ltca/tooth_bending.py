@@ -117,7 +117,8 @@ class SignedFactor:
         """The signed factor of a dense symmetric ``matrix`` (n, n) over the cells of
         ``shape`` (row-major, n = ny nx; mm/N): its eigenvectors scaled by
         ``sqrt(|lambda|)``, split by the sign of ``lambda``; eigenvalues with ``|lambda|``
-        below ``cut`` of the largest are dropped (the plate's compression cut).
+        below ``cut`` of its largest |entry| are dropped (every entry of the dropped part
+        is below that; the plate's compression cut).
 
         Raises
         ------
@@ -147,11 +148,13 @@ class SignedFactor:
 
 def _signed_compress(gram: np.ndarray, cut: float) -> tuple[np.ndarray, np.ndarray]:
     """(F+ (n, r+), F- (n, r-)) with ``F+ F+^T - F- F-^T`` = the symmetric ``gram`` up to
-    its eigenvalues below ``cut`` x the largest |eigenvalue| (LAPACK's symmetric
-    eigensolver, one BLAS thread)."""
+    its eigenvalues below ``cut`` x its largest |entry| (LAPACK's symmetric eigensolver,
+    one BLAS thread): every entry of the dropped part is below that too
+    (``|sum_k lambda_k v_ik v_jk| <= max |lambda_k|`` over unit eigenvectors), the plate's
+    bound (:func:`_pivoted_cholesky`)."""
     with one_blas_thread():
         lam, vec = np.linalg.eigh(gram)
-    keep = np.abs(lam) > cut * max(float(np.abs(lam).max()), np.finfo(float).tiny)
+    keep = np.abs(lam) > cut * max(float(np.abs(gram).max()), np.finfo(float).tiny)
     pos, neg = keep & (lam > 0.0), keep & (lam < 0.0)
     return vec[:, pos] * np.sqrt(lam[pos]), vec[:, neg] * np.sqrt(-lam[neg])
 
