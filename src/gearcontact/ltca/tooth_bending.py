@@ -456,8 +456,9 @@ def tooth_bending(flanks, pair, *, side: str, order: int = ORDER, order_face: in
 
     ``near_field``: a tooth without a block below its fillet becomes the Ritz solid
     (:func:`solid_tooth`) and contributes its far field by Vijayakar's split (module
-    docstring; docs/bending.md sec. 13, session 27); teeth with a block are unchanged.
-    Off by default."""
+    docstring; docs/bending.md sec. 13, session 27); teeth with a block are unchanged,
+    and a pair whose teeth all have one keeps the default path exactly (its
+    :class:`ToothBending` has ``near_field`` False). Off by default."""
     check_range("bending scale", scale, 0.0, 1e6)
     if not isinstance(near_field, bool):
         raise InputRangeError("near_field", near_field, "True or False")
@@ -465,8 +466,9 @@ def tooth_bending(flanks, pair, *, side: str, order: int = ORDER, order_face: in
                           order=order, order_face=order_face) for member in ("pinion", "gear")]
     if near_field:
         shells = [solid_tooth(s) for s in shells]
+    # teeth that all have a block keep the plate-and-block path exactly (no solid tooth)
     return ToothBending(pinion=shells[0], gear=shells[1], side=side, scale=float(scale),
-                        near_field=near_field)
+                        near_field=any(s.solid_degrees is not None for s in shells))
 
 
 def bending_stack(blocks, shape, *, part: str = "positive") -> np.ndarray | None:
