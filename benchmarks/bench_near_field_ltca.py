@@ -2,7 +2,7 @@
 
 ``--widths``: criterion 1, the split at narrow patches. Set A's 12 patches on a gear made
 blockless (rim depth = fillet, session 26's set-up), each ``2 / n_eta`` high in eta (two
-FE cells of a mesh ``n_xi x n_eta x 3 + 4 (3, 2)``), the combined loaded-flank compliance
+FE cells of a mesh ``n_xi x n_eta x n_zeta + 4 (3, 2)``, n_zeta 3 by default), the combined loaded-flank compliance
 (HS_s + far_solid) / C_FE_front and the plate's (HS_s + plate) / C_FE_front.
 
 ``--ltca``: criterion 4 (reported, no truth): the multi-tooth LTCA at P0 and the loaded TE
@@ -39,18 +39,18 @@ from gearcontact.structure.tooth import tooth_geometry
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def widths(pair, flanks, n_etas, n_xi):
+def widths(pair, flanks, n_etas, n_xi, n_zeta):
     sys.path.insert(0, str(ROOT))
     from gearcontact.structure.compliance import FeMesh
     from tests.structure.test_near_field import far_field_table
 
     for n_eta in n_etas:
         t0 = time.process_time()
-        t = far_field_table(pair, flanks, "gear", FeMesh(n_xi, n_eta, 3, 4, 3, 2),
+        t = far_field_table(pair, flanks, "gear", FeMesh(n_xi, n_eta, n_zeta, 4, 3, 2),
                             half_height=2.0 / n_eta)
         split = (t["halfspace_surface"] + t["far"]) / t["fe_flank"]
         plate = (t["halfspace_surface"] + t["plate"]) / t["fe_flank"]
-        print(json.dumps({"n_eta": n_eta, "n_xi": n_xi, "width_mm": round(float(
+        print(json.dumps({"n_eta": n_eta, "n_xi": n_xi, "n_zeta": n_zeta, "width_mm": round(float(
             t["width_mm"].mean()), 4), "split": split.round(4).tolist(),
             "plate": plate.round(4).tolist(), "cpu_s": round(time.process_time() - t0, 1)}))
 
@@ -115,6 +115,7 @@ def main(argv=None):
     ap.add_argument("--widths", action="store_true")
     ap.add_argument("--n-eta", type=int, nargs="+", default=[24, 48])
     ap.add_argument("--n-xi", type=int, default=24)
+    ap.add_argument("--n-zeta", type=int, default=3)
     ap.add_argument("--ltca", action="store_true")
     ap.add_argument("--torque", type=float, default=64.5)
     ap.add_argument("--phases", type=int, default=61)
@@ -123,7 +124,7 @@ def main(argv=None):
     flanks = build_flanks(pair)
     print(f"pair {args.pair}; load average {os.getloadavg()}")
     if args.widths:
-        widths(pair, flanks, args.n_eta, args.n_xi)
+        widths(pair, flanks, args.n_eta, args.n_xi, args.n_zeta)
     if args.ltca:
         ltca(pair, flanks, args.torque, args.phases)
 
