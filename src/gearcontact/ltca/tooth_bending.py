@@ -458,7 +458,9 @@ def tooth_bending(flanks, pair, *, side: str, order: int = ORDER, order_face: in
     (:func:`solid_tooth`) and contributes its far field by Vijayakar's split (module
     docstring; docs/bending.md sec. 13, session 27); teeth with a block are unchanged,
     and a pair whose teeth all have one keeps the default path exactly (its
-    :class:`ToothBending` has ``near_field`` False). Off by default."""
+    :class:`ToothBending` has ``near_field`` False). Off by default: the split is
+    validated against the FE at patch widths of 0.6-1 mm, not below (docs/bending.md
+    sec. 13, session 27)."""
     check_range("bending scale", scale, 0.0, 1e6)
     if not isinstance(near_field, bool):
         raise InputRangeError("near_field", near_field, "True or False")
