@@ -105,8 +105,8 @@ class PairBlock:
     correction_mm_per_n : ndarray (ny nx, ny nx) or None
         A dense symmetric (possibly indefinite) compliance over the cells (row-major),
         mm/N, added to ``bending_factor``'s: stored as its signed factor
-        (:meth:`~.tooth_bending.SignedFactor.from_dense`, eigenvalues below 1e-6 of the
-        largest dropped) merged into ``bending_factor``.
+        (:meth:`~.tooth_bending.SignedFactor.from_dense`, eigenvalues below 1e-6 of its
+        largest |entry| dropped) merged into ``bending_factor``.
     """
 
     gap_mm: np.ndarray
@@ -411,7 +411,8 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     iters = out.iterations
     if not cold and not (out.converged and comp <= residual_tol):
         # The pairs' LCP is a strictly convex QP (bending adds G = F F^T, positive
-        # semi-definite) with one solution, whatever the start: a warm or guessed start
+        # semi-definite; a signed G is checked positive definite with the half-space on
+        # the contact after the solve) with one solution, whatever the start: a warm or guessed start
         # on which the CG stalls at a non-complementary point (the preview's rotation
         # guess at the 12/12 design-space pair's hand-over at T/20: residual 0.67) is
         # solved again from the cold start.
