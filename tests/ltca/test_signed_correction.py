@@ -124,3 +124,30 @@ def test_an_indefinite_total_is_refused_by_name(make_hertz):
     assert contact_eigenvalues([block], rigid, e_star_mpa=e_star)[0] < 0.0
     assert contact_eigenvalues([PairBlock(pb.gap_mm, pb.grid, 1.0)], rigid,
                                e_star_mpa=e_star)[0] > 0.0
+
+
+def test_the_checked_matrix_is_the_solvers_operator(make_hertz):
+    """The dense compliance the positive-definiteness check factors, on 300 random cells,
+    applied to random loads there, against the LCP's own operator (the FFT Love
+    operator plus the signed factor, SignedBlockCompliance): equal within the operator's
+    single-precision storage of the factors (float32, 6e-8 relative per entry; 1e-6 of
+    the largest displacement allowed; the half-space parts alone agree to 6e-16)."""
+    from gearcontact.ltca.mesh_lcp import SignedBlockCompliance, _contact_matrix
+
+    pb = make_hertz(10, 8)
+    ny, nx = pb.gap_mm.shape
+    rng = np.random.default_rng(0)
+    q, _ = np.linalg.qr(rng.normal(size=(ny * nx, 6)))
+    corr = (q * np.array([3, 2, 1, -1, -2, -3]) * 1e-5) @ q.T
+    block = PairBlock(pb.gap_mm, pb.grid, 1.0, correction_mm_per_n=corr)
+    e_star = resolve_e_star(None, None)
+    idx = rng.choice(ny * nx, 300, replace=False)
+    x = np.zeros((1, ny, nx))
+    x.reshape(-1)[idx] = rng.random(300)
+    sf = block.bending_factor
+    op = SignedBlockCompliance((ny, nx), [(float(pb.grid.dx_mm[0]), float(pb.grid.dy_mm[0]))],
+                               e_star_mpa=e_star, low_rank=sf.positive[None],
+                               negative=sf.negative[None])
+    want = op.evaluate_disp(x).reshape(-1)[idx]
+    got = _contact_matrix(block, idx, e_star) @ x.reshape(-1)[idx]
+    assert np.abs(got - want).max() <= 1e-6 * np.abs(want).max()

@@ -412,8 +412,8 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     if not cold and not (out.converged and comp <= residual_tol):
         # The pairs' LCP is a strictly convex QP (bending adds G = F F^T, positive
         # semi-definite; a signed G is checked positive definite with the half-space on
-        # the contact after the solve) with one solution, whatever the start: a warm or guessed start
-        # on which the CG stalls at a non-complementary point (the preview's rotation
+        # the contact after the solve) with one solution, whatever the start: a warm or
+        # guessed start on which the CG stalls at a non-complementary point (the preview's rotation
         # guess at the 12/12 design-space pair's hand-over at T/20: residual 0.67) is
         # solved again from the cold start.
         out, x, u, theta, comp = solve(_cold_start(hs, hmin))
