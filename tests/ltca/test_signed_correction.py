@@ -16,7 +16,9 @@ Independent truths:
   equations);
 * a correction that makes the total indefinite on the contact (``c`` ten times the rigid
   pair's approach per newton, negative: the uniform mode's energy then is negative) is
-  refused by name, :class:`IndefiniteCompliance`, with its least eigenvalue negative.
+  refused by name, :class:`IndefiniteCompliance`, with its least eigenvalue negative;
+* the dense matrix that check factors is the solver's own operator (FFT Love plus the
+  signed factor) on the cells it is taken on.
 """
 
 import numpy as np
