@@ -52,6 +52,20 @@ def test_signed_factor_reproduces_a_dense_indefinite_matrix():
     assert np.abs(sf.matrix() - g).max() <= 1e-12 * np.abs(g).max()
 
 
+def test_a_replaced_block_keeps_one_correction(make_hertz):
+    """The dense correction is merged into the bending factor once: a block copied with
+    dataclasses.replace (as the multi-tooth LTCA re-solves its blocks) holds the same
+    matrix, not twice it (1e-12 of its largest entry)."""
+    from dataclasses import replace
+
+    pb = make_hertz(3, 8)
+    g = uniform(pb.gap_mm.shape, -1e-6)
+    block = PairBlock(pb.gap_mm, pb.grid, 1.0, correction_mm_per_n=g)
+    again = replace(block, gap_mm=pb.gap_mm + 1e-3)
+    assert block.correction_mm_per_n is None
+    assert np.abs(again.bending_factor.matrix() - g).max() <= 1e-12 * np.abs(g).max()
+
+
 def test_bad_correction(make_hertz):
     pb = make_hertz(3, 8)
     n = pb.gap_mm.size

@@ -106,7 +106,8 @@ class PairBlock:
         A dense symmetric (possibly indefinite) compliance over the cells (row-major),
         mm/N, added to ``bending_factor``'s: stored as its signed factor
         (:meth:`~.tooth_bending.SignedFactor.from_dense`, eigenvalues below 1e-6 of its
-        largest |entry| dropped) merged into ``bending_factor``.
+        largest |entry| dropped) merged into ``bending_factor``; the attribute is then
+        None (the correction lives in ``bending_factor``).
     """
 
     gap_mm: np.ndarray
@@ -128,6 +129,8 @@ class PairBlock:
         if self.correction_mm_per_n is not None:
             corr = SignedFactor.from_dense(self.correction_mm_per_n, self.gap_mm.shape)
             object.__setattr__(self, "bending_factor", _merged(self.bending_factor, corr))
+            # merged once: a dataclasses.replace of the block must not add it again
+            object.__setattr__(self, "correction_mm_per_n", None)
         if isinstance(self.bending_factor, SignedFactor):
             if self.bending_factor.shape != self.gap_mm.shape:
                 raise InputRangeError("bending_factor", f"cells {self.bending_factor.shape}",

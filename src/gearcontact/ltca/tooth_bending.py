@@ -141,8 +141,9 @@ class SignedFactor:
 
     def matrix(self) -> np.ndarray:
         """The dense ``G`` (n, n), mm/N, over the cells in row-major order."""
-        p = self.positive.reshape(-1, self.positive.shape[2])
-        m = self.negative.reshape(-1, self.negative.shape[2])
+        n = self.shape[0] * self.shape[1]
+        p = self.positive.reshape(n, self.positive.shape[2])
+        m = self.negative.reshape(n, self.negative.shape[2])
         return p @ p.T - m @ m.T
 
 
