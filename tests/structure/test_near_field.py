@@ -242,3 +242,32 @@ def test_declared_far_field_ratio_on_set_a(gear_tables):
     for name, t in gear_tables.items():
         r = t["far"] / t["fe_far"]
         assert np.all((r >= BAND[0]) & (r <= BAND[1])), (name, r)
+
+
+#: Criterion 1 of session 27 (docs/bending.md sec. 13, "The split in the LTCA"): the
+#: held-out gears at patch widths within 0.1-0.4 mm, the patch two FE cells high.
+NARROW = {"s0003 gear": ((24, 48), (0.265, 0.132)), "F.2 gear": ((48,), (0.309,))}
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "differs: (HS_s + far_solid) / C_FE_front 1.119-1.220 (s0003 gear, 0.265 mm), "
+    "1.139-1.299 (0.132 mm), 1.089-1.235 (F.2 gear, 0.309 mm); the split's far field is "
+    "width-independent while the FE recovers only ~57 % of the half-space's local log "
+    "growth per halving of the width (unconverged truth at these widths, docs/bending.md "
+    "sec. 13, session 27)"))
+def test_split_at_narrow_patches(gears):
+    """Declared before measuring: at every patch of the held-out gears at widths of
+    0.1-0.4 mm, (HS_s + far_solid) / C_FE_front in set A's band 0.84 .. 1.19, FE
+    24 x n_eta x 3 + 4 (3, 2) with the patch two cells high (about 3 min)."""
+    pytest.importorskip("skfem")
+    from gearcontact.structure.compliance import FeMesh
+
+    for name, (n_etas, widths) in NARROW.items():
+        pair, flanks = gears[name]
+        for n_eta, width in zip(n_etas, widths):
+            t = far_field_table(pair, flanks, "gear", FeMesh(24, n_eta, 3, 4, 3, 2),
+                                half_height=2.0 / n_eta)
+            assert t["width_mm"].mean() == pytest.approx(width, abs=1e-3)
+            r = _combined(t)
+            assert np.all((r >= BAND[0]) & (r <= BAND[1])), (name, n_eta, r)

@@ -39,6 +39,15 @@ iteration runs with ``C~_j = (C_j + F_j F_j^T) / l_j^2`` (the operator's low-ran
 ``F_j / l_j``); the FFT preconditioner stays the half-space one. Without any bending
 factor the code path is exactly the rigid-tooth one.
 
+Signed corrections (optional): a block's bending may instead be symmetric and
+indefinite, ``G_j = F+ F+^T - F- F-^T`` (a :class:`~.tooth_bending.SignedFactor`, or a
+dense matrix over its cells, ``PairBlock.correction_mm_per_n``): the far field of
+Vijayakar's split, negative near a tooth's root (docs/bending.md sec. 13). The CG needs
+the total ``C_j + G_j`` positive definite on the cells that carry load; after the solve
+it is factored (Cholesky) on each pair's contact cells, and a pair where it is not is
+refused with :class:`IndefiniteCompliance` (never clipped). A CG step that loses
+descent on the way stops as FAILED, as without a correction.
+
 References
 ----------
 M. Polonsky, L. M. Keer, Wear 231 (1999) 206-219 (constrained CG).
@@ -50,20 +59,23 @@ F. L. Litvin, A. Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., 2004, ch.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.linalg import eigh
 
 from ..deprecation import moved_names
+from ..errors import CheckFailed
 from ..validation import InputRangeError, check_finite, check_positive
-from ..halfspace.compliance import BlockCompliance
+from ..halfspace.compliance import BlockCompliance, add_low_rank
 from ..halfspace.constrained_cg import constrained_cg
 from ..halfspace.grid import TangentGrid
 from ..halfspace.lcp import resolve_e_star
 from ..halfspace.result import ContactResult, SolveStatus
-from .tooth_bending import bending_stack
+from .tooth_bending import SignedFactor, bending_stack
 
-__all__ = ["PairBlock", "solve_mesh_lcp", "warm_up_mesh_lcp"]
+__all__ = ["PairBlock", "solve_mesh_lcp", "warm_up_mesh_lcp", "IndefiniteCompliance",
+           "SignedBlockCompliance", "contact_eigenvalues"]
 
 #: Deprecated for one release: the result is the contact family's one type.
 __getattr__ = moved_names(__name__, {
@@ -85,16 +97,25 @@ class PairBlock:
         Effective lever of the pair's normal force about the gear axis, mm (> 0).
     offset_mm : float
         Initial separation ``g_j`` of the pair along its normal, mm (>= 0).
-    bending_factor : ndarray (ny, nx, r) or None
+    bending_factor : ndarray (ny, nx, r), SignedFactor or None
         Low-rank factor F of the teeth's bending compliance at the cells,
-        ``G = F F^T`` (mm/N; F in (mm/N)^(1/2)); None: rigid teeth.
+        ``G = F F^T`` (mm/N; F in (mm/N)^(1/2)); a
+        :class:`~.tooth_bending.SignedFactor`: ``G = F+ F+^T - F- F-^T``, possibly
+        indefinite (module docstring); None: rigid teeth.
+    correction_mm_per_n : ndarray (ny nx, ny nx) or None
+        A dense symmetric (possibly indefinite) compliance over the cells (row-major),
+        mm/N, added to ``bending_factor``'s: stored as its signed factor
+        (:meth:`~.tooth_bending.SignedFactor.from_dense`, eigenvalues below 1e-6 of its
+        largest |entry| dropped) merged into ``bending_factor``; the attribute is then
+        None (the correction lives in ``bending_factor``).
     """
 
     gap_mm: np.ndarray
     grid: TangentGrid
     lever_mm: float
     offset_mm: float = 0.0
-    bending_factor: np.ndarray | None = None
+    bending_factor: np.ndarray | SignedFactor | None = None
+    correction_mm_per_n: np.ndarray | None = None
 
     def __post_init__(self):
         if not self.grid.is_uniform:
@@ -105,12 +126,162 @@ class PairBlock:
         if g < 0.0:
             raise InputRangeError("offset_mm", g, ">= 0 mm (initial separation)")
         object.__setattr__(self, "offset_mm", g)
-        if self.bending_factor is not None:
+        if self.correction_mm_per_n is not None:
+            corr = SignedFactor.from_dense(self.correction_mm_per_n, self.gap_mm.shape)
+            object.__setattr__(self, "bending_factor", _merged(self.bending_factor, corr))
+            # merged once: a dataclasses.replace of the block must not add it again
+            object.__setattr__(self, "correction_mm_per_n", None)
+        if isinstance(self.bending_factor, SignedFactor):
+            if self.bending_factor.shape != self.gap_mm.shape:
+                raise InputRangeError("bending_factor", f"cells {self.bending_factor.shape}",
+                                      f"the field's cells {self.gap_mm.shape}")
+        elif self.bending_factor is not None:
             f = np.asarray(self.bending_factor, dtype=float)
             if f.ndim != 3 or f.shape[:2] != self.gap_mm.shape or not np.isfinite(f).all():
                 raise InputRangeError("bending_factor", f"shape {f.shape}",
                                       f"a finite array of shape {self.gap_mm.shape} + (rank,)")
             object.__setattr__(self, "bending_factor", f)
+
+    @property
+    def signed(self) -> bool:
+        """Whether the block's bending is a signed (possibly indefinite) factor."""
+        return isinstance(self.bending_factor, SignedFactor)
+
+
+def _merged(factor, corr: SignedFactor) -> SignedFactor:
+    """A block's bending ``factor`` (None, an array or a signed factor) plus ``corr``."""
+    if factor is None:
+        return corr
+    pos, neg = (factor.positive, factor.negative) if isinstance(factor, SignedFactor) \
+        else (np.asarray(factor, float), np.zeros(corr.shape + (0,)))
+    if pos.shape[:2] != corr.shape:
+        raise InputRangeError("bending_factor", f"cells {pos.shape[:2]}",
+                              f"the field's cells {corr.shape}")
+    return SignedFactor(np.concatenate([pos, corr.positive], axis=2),
+                        np.concatenate([neg, corr.negative], axis=2))
+
+
+class IndefiniteCompliance(CheckFailed):
+    """The total compliance of a pair (half-space plus a signed bending correction) is
+    not positive definite on the cells that carry load: the contact problem is not
+    convex there and its solution is not the contact's (a failed check, exit 4).
+    ``pair``, ``contact_cells`` and ``least_eigenvalue_mm_per_n`` name where."""
+
+    def __init__(self, pair: int, contact_cells: int, least_eigenvalue_mm_per_n: float):
+        self.pair, self.contact_cells = pair, contact_cells
+        self.least_eigenvalue_mm_per_n = least_eigenvalue_mm_per_n
+        super().__init__(
+            f"pair {pair}: half-space + signed bending correction not positive definite "
+            f"on its {contact_cells} contact cells (least eigenvalue "
+            f"{least_eigenvalue_mm_per_n:.3e} mm/N): the near-field correction is more "
+            "negative than the half-space there (docs/bending.md sec. 13)")
+
+
+class SignedBlockCompliance(BlockCompliance):
+    """:class:`~..halfspace.compliance.BlockCompliance` with a negative low-rank part:
+    ``u[k] = C_k x[k] / s_k + F+_k (F+_k^T x[k]) - F-_k (F-_k^T x[k])``.
+
+    ``low_rank`` carries ``F+`` (None: none), ``negative`` (blocks, ny, nx, r-) ``F-``,
+    both in (mm/N)^(1/2) per unit of ``x`` (single precision, double sums)."""
+
+    def __init__(self, shape, cell_sizes, *, e_star_mpa: float, scales=None,
+                 low_rank=None, negative: np.ndarray, pre_shape=None):
+        super().__init__(shape, cell_sizes, e_star_mpa=e_star_mpa, scales=scales,
+                         low_rank=low_rank, pre_shape=pre_shape)
+        negative = np.asarray(negative, np.float32)
+        if negative.shape[:3] != (self.n_blocks,) + self.shape:
+            raise InputRangeError("negative", f"shape {negative.shape}",
+                                  f"({self.n_blocks}, {self.shape[0]}, {self.shape[1]}, rank)")
+        self.negative = negative
+
+    @property
+    def exact_kernels(self) -> bool:
+        return False
+
+    def evaluate_disp(self, loads, out=None, live=None):
+        out = super().evaluate_disp(loads, out=out, live=live)
+        neg = add_low_rank(self.negative, loads, np.zeros_like(out))
+        out -= neg
+        return out
+
+    def add_low_rank_cells(self, out, cells, values):
+        if self.low_rank is not None:
+            super().add_low_rank_cells(out, cells, values)
+        f = self.negative
+        c = np.zeros((f.shape[0], f.shape[3]))
+        np.add.at(c, cells[:, 0], f[cells[:, 0], cells[:, 1], cells[:, 2]] * values[:, None])
+        out -= np.einsum("kjiq,kq->kji", f, c)
+        return out
+
+    def window(self, blocks, origins, shape):
+        gy, gx = (int(n) for n in shape)
+        low = None if self.low_rank is None else np.ascontiguousarray(np.stack(
+            [self.low_rank[k, j:j + gy, i:i + gx] for k, (j, i) in zip(blocks, origins)]))
+        neg = np.ascontiguousarray(np.stack(
+            [self.negative[k, j:j + gy, i:i + gx] for k, (j, i) in zip(blocks, origins)]))
+        return SignedBlockCompliance((gy, gx), [self.cell_sizes[k] for k in blocks],
+                                     e_star_mpa=self.e_star_mpa, scales=self.scales[blocks],
+                                     low_rank=low, negative=neg, pre_shape=(gy, gx))
+
+
+def contact_eigenvalues(blocks, result, *, e_star_mpa: float) -> list[float | None]:
+    """The least eigenvalue (mm/N) of each pair's total compliance, Love's half-space
+    (E*) plus its bending (``F F^T`` or the signed factor), restricted to the cells that
+    carry load in ``result`` (:func:`solve_mesh_lcp`'s); None for a pair without
+    contact. Dense on the contact cells: a few hundred at most on a field."""
+    out = []
+    for b, mask in zip(blocks, result.contact_masks):
+        idx = np.flatnonzero(mask)
+        if idx.size == 0:
+            out.append(None)
+            continue
+        out.append(_least(_contact_matrix(b, idx, e_star_mpa)))
+    return out
+
+
+def _contact_matrix(block: PairBlock, idx: np.ndarray, e_star_mpa: float) -> np.ndarray:
+    """Love's compliance plus the block's bending between the cells ``idx`` (flat
+    indices, row-major), mm/N."""
+    ny, nx = block.gap_mm.shape
+    kern = BlockCompliance((ny, nx), [(float(block.grid.dx_mm[0]), float(block.grid.dy_mm[0]))],
+                           e_star_mpa=e_star_mpa).kernel_quadrants()[0]
+    j, i = np.divmod(idx, nx)
+    g = kern[np.abs(j[:, None] - j[None, :]), np.abs(i[:, None] - i[None, :])]
+    f = block.bending_factor
+    if isinstance(f, SignedFactor):
+        p = f.positive.reshape(ny * nx, -1)[idx]
+        m = f.negative.reshape(ny * nx, -1)[idx]
+        g = g + p @ p.T - m @ m.T
+    elif f is not None:
+        p = f.reshape(ny * nx, -1)[idx]
+        g = g + p @ p.T
+    return 0.5 * (g + g.T)
+
+
+def _least(g: np.ndarray) -> float:
+    """The least eigenvalue of the symmetric ``g`` (LAPACK's selected-eigenvalue solver)."""
+    return float(eigh(g, eigvals_only=True, subset_by_index=[0, 0])[0])
+
+
+def _check_contact(blocks, result, e_star_mpa: float) -> float:
+    """Cholesky of each signed pair's total compliance on its contact cells; raises
+    :class:`IndefiniteCompliance` (with the least eigenvalue) where it fails. Returns
+    the least eigenvalue over the signed pairs (mm/N), for the solve's message."""
+    least = np.inf
+    for k, (b, mask) in enumerate(zip(blocks, result.contact_masks)):
+        idx = np.flatnonzero(mask)
+        if not b.signed or idx.size == 0:
+            continue
+        g = _contact_matrix(b, idx, e_star_mpa)
+        lam = _least(g)
+        try:
+            np.linalg.cholesky(g)
+        except np.linalg.LinAlgError:
+            raise IndefiniteCompliance(k, int(idx.size), lam) from None
+        if lam <= 0.0:
+            raise IndefiniteCompliance(k, int(idx.size), lam)
+        least = min(least, lam)
+    return least
 
 
 def _cold_start(hs, hmin: float) -> list[np.ndarray]:
@@ -224,10 +395,16 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
             x0.append(np.zeros(hk.shape))
     cold = sum(float(xi.sum()) for xi in x0) <= 0.0
     h, _ = _stack(hs, [np.zeros(hk.shape) for hk in hs])   # the gaps, padded
-    op = BlockCompliance(h.shape[1:], [(float(b.grid.dx_mm[0]), float(b.grid.dy_mm[0]))
-                                       for b in blocks], e_star_mpa=e_star,
-                         scales=[b.lever_mm ** 2 for b in blocks],
-                         low_rank=bending_stack(blocks, h.shape[1:]))
+    signed = any(b.signed for b in blocks)
+    op_args = dict(e_star_mpa=e_star, scales=[b.lever_mm ** 2 for b in blocks],
+                   low_rank=bending_stack(blocks, h.shape[1:]))
+    sizes = [(float(b.grid.dx_mm[0]), float(b.grid.dy_mm[0])) for b in blocks]
+    if signed:
+        neg = bending_stack(blocks, h.shape[1:], part="negative")
+        op = SignedBlockCompliance(h.shape[1:], sizes, negative=np.zeros(
+            (len(blocks),) + h.shape[1:] + (1,)) if neg is None else neg, **op_args)
+    else:
+        op = BlockCompliance(h.shape[1:], sizes, **op_args)
 
     def solve(start):
         return _solve_from(op, h, hs, start, torque, tol=tol, max_iter=int(max_iter),
@@ -237,8 +414,9 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
     iters = out.iterations
     if not cold and not (out.converged and comp <= residual_tol):
         # The pairs' LCP is a strictly convex QP (bending adds G = F F^T, positive
-        # semi-definite) with one solution, whatever the start: a warm or guessed start
-        # on which the CG stalls at a non-complementary point (the preview's rotation
+        # semi-definite; a signed G is checked positive definite with the half-space on
+        # the contact after the solve) with one solution, whatever the start: a warm or
+        # guessed start on which the CG stalls at a non-complementary point (the preview's rotation
         # guess at the 12/12 design-space pair's hand-over at T/20: residual 0.67) is
         # solved again from the cold start.
         out, x, u, theta, comp = solve(_cold_start(hs, hmin))
@@ -258,12 +436,18 @@ def solve_mesh_lcp(blocks, torque_nmm: float, *, materials=None,
         out.status if out.status is not SolveStatus.CONVERGED else SolveStatus.FAILED)
     for w in loads:
         w.setflags(write=False)
-    return ContactResult(
+    result = ContactResult(
         solver="pk_cg", rotation_rad=theta, loads_n=loads, pair_loads_n=pair_loads,
         approach_mm=levers * theta - np.array([b.offset_mm for b in blocks]),
         contact_masks=tuple(contact), torque_nmm=torque, iterations=int(iters),
         complementarity_residual=comp, torque_residual=float(torque_res), status=status,
         message=msg, solve_time_ms=1e3 * (time.perf_counter() - t_start))
+    if signed:
+        least = _check_contact(blocks, result, e_star)
+        if np.isfinite(least):
+            result = replace(result, message=msg + "; total compliance positive definite on "
+                             f"the contact cells (least eigenvalue {least:.3e} mm/N)")
+    return result
 
 
 def warm_up_mesh_lcp() -> float:

@@ -19,6 +19,16 @@ field costs a few small products instead of the Ritz functions at 192 points.
 Cells outside a flank's parameter box (off-flank cells, which never carry load) take
 the compliance of the nearest box point.
 
+With ``near_field`` (:func:`tooth_bending`, off by default) a tooth without a block
+below its fillet is the Ritz solid tooth instead of the plate, and its part of ``G`` is
+the solid's *far field* by Vijayakar's split
+(:func:`gearcontact.structure.near_field.solid_far_field_matrix`: the solid's
+displacement at the mid-surface below a cell minus the half-space's there; the LCP's
+half-space supplies the rest). That part is symmetric but indefinite (negative near the
+root, docs/bending.md sec. 13), so the block's compliance is compressed at the
+sub-lattice by a symmetric eigendecomposition that keeps the signs
+(:class:`SignedFactor`, ``G = F+ F+^T - F- F-^T``) instead of the pivoted Cholesky.
+
 References
 ----------
 N. J. Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed., SIAM, 2002,
@@ -38,12 +48,14 @@ from numba import njit
 from scipy.interpolate import CubicSpline, make_interp_spline
 
 from ..analytic.hertz import hamrock_brewe_hertz
-from ..structure.shell import ORDER, ORDER_FACE, ShellModel, tooth_shell
+from ..structure.near_field import solid_far_field_matrix
+from ..structure.shell import ORDER, ORDER_FACE, ShellModel, build_shell, tooth_shell
 from ..threads import one_blas_thread
-from ..validation import check_range
+from ..validation import InputRangeError, check_range
 
-__all__ = ["conjugate_compliance", "pair_bending_compliance", "ToothBending", "FlankRows", "tooth_bending", "bending_stack", "flank_map",
-           "flank_rows"]
+__all__ = ["conjugate_compliance", "pair_bending_compliance", "ToothBending", "FlankRows",
+           "tooth_bending", "bending_stack", "flank_map", "flank_rows", "SignedFactor",
+           "solid_tooth"]
 
 #: Relative cut of the compressed bending factor: the pivoted Cholesky stops when the
 #: largest remaining diagonal of F F^T is below this fraction of the largest diagonal
@@ -70,6 +82,85 @@ _ROWS_GRID = (193, 33)
 
 
 @dataclass(frozen=True, eq=False)
+class SignedFactor:
+    """A symmetric, possibly indefinite compliance over a field's cells,
+    ``G = F+ F+^T - F- F-^T`` (mm/N).
+
+    Attributes
+    ----------
+    positive, negative : ndarray (ny, nx, r+) and (ny, nx, r-)
+        The factors of the positive and negative parts, (mm/N)^(1/2) (r- may be 0).
+    """
+
+    positive: np.ndarray
+    negative: np.ndarray
+
+    def __post_init__(self):
+        for name in ("positive", "negative"):
+            f = np.asarray(getattr(self, name), dtype=float)
+            if f.ndim != 3 or not np.isfinite(f).all():
+                raise InputRangeError(f"signed factor {name}", f"shape {f.shape}",
+                                      "a finite array (ny, nx, rank)")
+            object.__setattr__(self, name, f)
+        if self.positive.shape[:2] != self.negative.shape[:2]:
+            raise InputRangeError("signed factor shapes",
+                                  (self.positive.shape, self.negative.shape),
+                                  "the same cells (ny, nx) in both parts")
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Cells (ny, nx) of the field."""
+        return self.positive.shape[:2]
+
+    @classmethod
+    def from_dense(cls, matrix: np.ndarray, shape, *, cut: float = _CUT) -> "SignedFactor":
+        """The signed factor of a dense symmetric ``matrix`` (n, n) over the cells of
+        ``shape`` (row-major, n = ny nx; mm/N): its eigenvectors scaled by
+        ``sqrt(|lambda|)``, split by the sign of ``lambda``; eigenvalues with ``|lambda|``
+        below ``cut`` of its largest |entry| are dropped (every entry of the dropped part
+        is below that; the plate's compression cut).
+
+        Raises
+        ------
+        InputRangeError
+            For a matrix of the wrong shape, not finite or not symmetric (relative
+            1e-10 of its largest entry).
+        """
+        ny, nx = (int(n) for n in shape)
+        g = np.asarray(matrix, dtype=float)
+        if g.shape != (ny * nx, ny * nx) or not np.isfinite(g).all():
+            raise InputRangeError("correction matrix", f"shape {g.shape}",
+                                  f"a finite ({ny * nx}, {ny * nx}) matrix")
+        top = float(np.abs(g).max()) or 1.0
+        asym = float(np.abs(g - g.T).max())
+        if asym > 1e-10 * top:
+            raise InputRangeError("correction matrix asymmetry |G - G^T| (mm/N)", asym,
+                                  f"<= 1e-10 x its largest entry {top:.3e}")
+        pos, neg = _signed_compress(0.5 * (g + g.T), cut)
+        return cls(pos.reshape(ny, nx, -1), neg.reshape(ny, nx, -1))
+
+    def matrix(self) -> np.ndarray:
+        """The dense ``G`` (n, n), mm/N, over the cells in row-major order."""
+        n = self.shape[0] * self.shape[1]
+        p = self.positive.reshape(n, self.positive.shape[2])
+        m = self.negative.reshape(n, self.negative.shape[2])
+        return p @ p.T - m @ m.T
+
+
+def _signed_compress(gram: np.ndarray, cut: float) -> tuple[np.ndarray, np.ndarray]:
+    """(F+ (n, r+), F- (n, r-)) with ``F+ F+^T - F- F-^T`` = the symmetric ``gram`` up to
+    its eigenvalues below ``cut`` x its largest |entry| (LAPACK's symmetric eigensolver,
+    one BLAS thread): every entry of the dropped part is below that too
+    (``|sum_k lambda_k v_ik v_jk| <= max |lambda_k|`` over unit eigenvectors), the plate's
+    bound (:func:`_pivoted_cholesky`)."""
+    with one_blas_thread():
+        lam, vec = np.linalg.eigh(gram)
+    keep = np.abs(lam) > cut * max(float(np.abs(gram).max()), np.finfo(float).tiny)
+    pos, neg = keep & (lam > 0.0), keep & (lam < 0.0)
+    return vec[:, pos] * np.sqrt(lam[pos]), vec[:, neg] * np.sqrt(-lam[neg])
+
+
+@dataclass(frozen=True, eq=False)
 class ToothBending:
     """Shell models of one pinion and one gear tooth for the contacts of one side.
 
@@ -81,12 +172,18 @@ class ToothBending:
     scale : float
         Factor on the bending compliance (1: the model; 0: rigid teeth, the
         zero-compliance limit; > 1: softer teeth, e.g. a lower Young's modulus E/scale).
+    near_field : bool
+        A tooth that is a Ritz solid (``solid_degrees`` set, :func:`solid_tooth`)
+        contributes its far field by Vijayakar's split (module docstring), and
+        :meth:`factor` returns a :class:`SignedFactor`; False: every tooth's full
+        shell compliance, a semi-definite factor (the default path, unchanged).
     """
 
     pinion: ShellModel
     gear: ShellModel
     side: str
     scale: float = 1.0
+    near_field: bool = False
 
     def factor(self, uv_pinion: np.ndarray, uv_gear: np.ndarray, shape, *,
                nodes: tuple[int, int] = _NODES) -> np.ndarray:
@@ -108,6 +205,8 @@ class ToothBending:
         jy = _sub_lattice(ny, nodes[0])
         jx = _sub_lattice(nx, nodes[1])
         pick = (jy[:, None] * nx + jx[None, :]).ravel()
+        if self.near_field:
+            return self._signed_factor(uv_pinion[pick], uv_gear[pick], jy, jx, ny, nx)
         f = np.concatenate([flank_rows(shell, self.side).rows(uv[pick]) for shell, uv in
                             ((self.pinion, uv_pinion), (self.gear, uv_gear))], axis=1)
         f *= np.sqrt(self.scale)
@@ -126,6 +225,53 @@ class ToothBending:
         with one_blas_thread():
             half = np.matmul(wx, fc.astype(np.float32))             # (a, nx, r)
             return (wy @ half.reshape(len(jy), -1)).reshape(ny, nx, -1)
+
+
+    def _signed_factor(self, uv_pinion, uv_gear, jy, jx, ny, nx) -> SignedFactor:
+        """:meth:`factor` with ``near_field``: the nodes' compliance ``G`` (a solid
+        tooth's far field, :func:`~gearcontact.structure.near_field.solid_far_field_matrix`,
+        plus the other tooth's ``F F^T``) compressed with its signs
+        (:func:`_signed_compress`, cut :data:`_CUT`) and each part interpolated to the
+        cells by the same splines."""
+        gram = np.zeros((len(uv_pinion),) * 2)
+        with one_blas_thread():
+            for shell, uv in ((self.pinion, uv_pinion), (self.gear, uv_gear)):
+                if shell.solid_degrees is not None:
+                    gram += solid_far_field_matrix(shell, _flank_points(shell, self.side, uv))
+                else:
+                    f = flank_rows(shell, self.side).rows(uv)
+                    gram += f @ f.T
+        pos, neg = _signed_compress(self.scale * gram, _CUT)
+        wy, wx = (w.astype(np.float64) for w in (_spline_weights(jy, ny),
+                                                 _spline_weights(jx, nx)))
+        out = []
+        for part in (pos, neg):
+            fc = part.reshape(len(jy), len(jx), -1)
+            half = np.matmul(wx, fc)
+            out.append((wy @ half.reshape(len(jy), -1)).reshape(ny, nx, -1))
+        return SignedFactor(*out)
+
+
+def _flank_points(shell: ShellModel, side: str, uv: np.ndarray):
+    """The tooth's load points at flank parameters ``uv`` (n, 2), mm, clipped to the
+    flank box as :meth:`FlankRows.rows` clips them."""
+    tooth = shell.body
+    flank = getattr(tooth, side)
+    u = np.clip(uv[:, 0], *flank.u_range)
+    v = np.clip(uv[:, 1], *flank.v_range)
+    return tooth.points_at(side, *tooth.tooth_coordinates(side, u, v))
+
+
+@lru_cache(maxsize=16)
+def solid_tooth(shell: ShellModel) -> ShellModel:
+    """The Ritz solid tooth of a shell whose fillet leaves no block below it (the
+    no-block branch of :func:`~gearcontact.structure.shell.build_shell` with
+    ``solid_tooth``, its default degrees, docs/bending.md sec. 13); a shell with a block
+    (or a solid already) is returned as it is. Cached per shell model."""
+    if shell.rim_block or shell.solid_degrees is not None or shell.rim is None:
+        return shell
+    return build_shell(shell.body, order=shell.order, order_face=shell.order_face,
+                       rim=shell.rim, rim_block=True, solid_tooth=True)
 
 
 @lru_cache(maxsize=16)
@@ -305,30 +451,52 @@ def _spline_weights_cached(at: tuple, n: int) -> np.ndarray:
 
 
 def tooth_bending(flanks, pair, *, side: str, order: int = ORDER, order_face: int = ORDER_FACE,
-                  scale: float = 1.0) -> ToothBending:
+                  scale: float = 1.0, near_field: bool = False) -> ToothBending:
     """The :class:`ToothBending` of a pair (shell models cached per flank set; orders
-    and the members' rims as calibrated, :func:`~gearcontact.structure.shell.tooth_shell`)."""
+    and the members' rims as calibrated, :func:`~gearcontact.structure.shell.tooth_shell`).
+
+    ``near_field``: a tooth without a block below its fillet becomes the Ritz solid
+    (:func:`solid_tooth`) and contributes its far field by Vijayakar's split (module
+    docstring; docs/bending.md sec. 13, session 27); teeth with a block are unchanged,
+    and a pair whose teeth all have one keeps the default path exactly (its
+    :class:`ToothBending` has ``near_field`` False). Off by default: the split is
+    validated against the FE at patch widths of 0.6-1 mm, not below (docs/bending.md
+    sec. 13, session 27)."""
     check_range("bending scale", scale, 0.0, 1e6)
-    return ToothBending(
-        pinion=tooth_shell(flanks, "pinion", material=pair.pinion_material, order=order,
-                           order_face=order_face),
-        gear=tooth_shell(flanks, "gear", material=pair.gear_material, order=order,
-                         order_face=order_face),
-        side=side, scale=float(scale))
+    if not isinstance(near_field, bool):
+        raise InputRangeError("near_field", near_field, "True or False")
+    shells = [tooth_shell(flanks, member, material=getattr(pair, f"{member}_material"),
+                          order=order, order_face=order_face) for member in ("pinion", "gear")]
+    if near_field:
+        shells = [solid_tooth(s) for s in shells]
+    # teeth that all have a block keep the plate-and-block path exactly (no solid tooth)
+    return ToothBending(pinion=shells[0], gear=shells[1], side=side, scale=float(scale),
+                        near_field=any(s.solid_degrees is not None for s in shells))
 
 
-def bending_stack(blocks, shape) -> np.ndarray | None:
+def bending_stack(blocks, shape, *, part: str = "positive") -> np.ndarray | None:
     """Bending factors ``F_j / l_j`` of all blocks on one padded shape (blocks, ny, nx,
-    r_max), zero where a block has none or is padded; None if no block has one."""
-    if all(b.bending_factor is None for b in blocks):
+    r_max), zero where a block has none or is padded; None if no block has one.
+
+    A block's factor is its ``bending_factor`` array, or the ``part`` ("positive" or
+    "negative") of a :class:`SignedFactor`; an array has no negative part."""
+    factors = [_part(b.bending_factor, part) for b in blocks]
+    if all(f is None for f in factors):
         return None
-    r = max(b.bending_factor.shape[2] for b in blocks if b.bending_factor is not None)
+    r = max(f.shape[2] for f in factors if f is not None)
     out = np.zeros((len(blocks),) + tuple(shape) + (r,), np.float32)  # see compliance
-    for k, b in enumerate(blocks):
-        if b.bending_factor is not None:
-            f = b.bending_factor
+    for k, (b, f) in enumerate(zip(blocks, factors)):
+        if f is not None:
             out[k, :f.shape[0], :f.shape[1], :f.shape[2]] = f / b.lever_mm
     return out
+
+
+def _part(factor, part: str):
+    """A block factor's ``part``: None where it has none (or an empty one)."""
+    if isinstance(factor, SignedFactor):
+        f = getattr(factor, part)
+        return f if f.shape[2] else None
+    return factor if part == "positive" else None
 
 
 def pair_bending_compliance(fields, pc, torque_nmm: float) -> float:
@@ -357,10 +525,14 @@ def pair_bending_compliance(fields, pc, torque_nmm: float) -> float:
 def conjugate_compliance(factor: np.ndarray, weights: np.ndarray) -> float:
     """Work-conjugate compliance ``q^T G q = |F^T q|^2`` (mm/N) of the load shape
     ``weights`` (any shape S, scaled to a unit total; all zero: 0) on the bending factor
-    ``factor`` (S + (r,), ``G = F F^T`` mm/N): the mean deflection along the normal,
-    weighted by the load, per newton of it (Castigliano)."""
+    ``factor`` (S + (r,), ``G = F F^T`` mm/N; or a :class:`SignedFactor`,
+    ``|F+^T q|^2 - |F-^T q|^2``, which may be negative): the mean deflection along the
+    normal, weighted by the load, per newton of it (Castigliano)."""
     w = np.asarray(weights, float)
     if not w.any():
         return 0.0
+    if isinstance(factor, SignedFactor):   # q^T (F+ F+^T - F- F-^T) q
+        return conjugate_compliance(factor.positive, w) - (
+            conjugate_compliance(factor.negative, w) if factor.negative.shape[2] else 0.0)
     v = np.tensordot(w / w.sum(), np.asarray(factor, float), axes=w.ndim)
     return float(v @ v)

@@ -22,8 +22,9 @@ inward flank normal over the patch, mm/N):
   half-space's surface-to-matching-point difference, so the far field is the solid's
   mid-surface value minus the half-space's at the same depth (:func:`solid_far_field`);
 - the same split as a point operator between flank points (:func:`solid_far_field_matrix`),
-  what an LTCA would add to its half-space (not used by it: the far field is negative
-  near the root, docs/bending.md);
+  what the LTCA adds to its half-space with
+  ``ltca.tooth_bending.tooth_bending(near_field=True)`` (opt-in; as a signed factor,
+  the far field being negative near the root, docs/bending.md sec. 13, session 27);
 - the FE's patch compliance under the consistent load of the pressure
   (:func:`fe_patch_compliance`), the truth of the far field after the surface near field
   is taken off.
